@@ -1,0 +1,18 @@
+"""flyopt: optimization-based flywheel design.
+
+Pipeline: load a scene → analyse its cycle → (design the flywheel).
+
+>>> import flyopt
+>>> scene = flyopt.load("problems/shear-press.toml")   # doctest: +SKIP
+>>> flyopt.analyse(scene).j_required                  # doctest: +SKIP
+1.0183...
+"""
+
+from .analysis import Analysis, analyse
+from .errors import ExpressionError, FlyoptError, NonPeriodicCycle, SceneError, SolverFailed
+from .scene import Scene, Shaft, from_dict, load
+
+__version__ = "0.1.0"
+
+__all__ = ["Analysis", "ExpressionError", "FlyoptError", "NonPeriodicCycle", "Scene", "SceneError",
+           "Shaft", "SolverFailed", "analyse", "from_dict", "load", "__version__"]

@@ -1,0 +1,432 @@
+"""Cycle analysis: work balance, the energy indicator diagram and A_max.
+
+The excess work from the start of the cycle is
+
+    ΔE(φ) = ∫_0^φ (M_d − M_r) dφ,
+
+its largest span over the cycle is the maximum fluctuation of energy
+A_max = max ΔE − min ΔE, reached at crossings of the two torque curves
+(domain page, section 4). flyopt computes it exactly rather than by sampling:
+
+- where both curves are piecewise linear (tables and constants), the
+  difference is linear between the union of their breakpoints; the crossing
+  inside a piece is at t = a/(a − b) and every area is a closed-form
+  trapezoid, summed in extended precision;
+- where an expression is involved, crossings are found by bracketing on a
+  fine grid plus a search for near-tangent dips, refined with Brent's method,
+  and the areas between them by adaptive Gauss–Kronrod quadrature to 1e-13
+  relative.
+
+A cycle whose net work does not vanish is refused (non-periodic fluctuation).
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import integrate, optimize
+
+from .errors import NonPeriodicCycle, SceneError
+from .torque import Constant
+
+BALANCE_TOLERANCE = 1e-9
+"""Largest accepted |net work| per cycle, relative to the cycle work."""
+
+SAMPLES_PER_CYCLE = 4096
+"""Grid on which expression torques are bracketed for crossings."""
+
+QUAD_EPSREL = 1e-13
+"""Relative tolerance of the adaptive quadrature of expression torques."""
+
+EPS = float(np.finfo(float).eps)
+ROUNDOFF = 8 * EPS
+"""|M_d − M_r| at or below ROUNDOFF·(|M_d| + |M_r|) is the round-off of the
+subtraction (or of M = W/Φ for an unknown constant) and is taken as zero, so
+that equal torques never report a flywheel of 1e-12 kg*m^2."""
+
+
+@dataclass(frozen=True)
+class EnergyIndicator:
+    """The energy indicator diagram of one cycle and what follows from it.
+
+    Attributes
+    ----------
+    cycle_angle : float
+        Angle of one cycle Φ [rad].
+    work_driving, work_resisting : float
+        Work of each torque over one cycle [J].
+    chain_angle : ndarray or None
+        Angles of the chain points [rad]: the cycle start, every crossing of
+        the curves, the cycle end (None for scenes given as net areas).
+    chain_delta_e : ndarray
+        Excess work ΔE at the chain points [J].
+    a_max : float
+        Maximum fluctuation of energy [J].
+    index_max, index_min : int
+        Chain points where ΔE is largest (ω_max) and smallest (ω_min).
+    imbalance : float
+        Net work over the cycle left by round-off [J].
+    """
+
+    cycle_angle: float
+    work_driving: float
+    work_resisting: float
+    chain_angle: np.ndarray | None
+    chain_delta_e: np.ndarray
+    a_max: float
+    index_max: int
+    index_min: int
+    imbalance: float
+
+    @property
+    def driving_mean(self):
+        """Mean driving torque M_d = W_d/Φ [N*m]."""
+        return self.work_driving / self.cycle_angle
+
+    @property
+    def resisting_mean(self):
+        """Mean resisting torque M_r = W_r/Φ [N*m]."""
+        return self.work_resisting / self.cycle_angle
+
+    @property
+    def angle_omega_max(self):
+        """Angle of the highest speed [rad] (None for net-area scenes)."""
+        return None if self.chain_angle is None else float(self.chain_angle[self.index_max])
+
+    @property
+    def angle_omega_min(self):
+        """Angle of the lowest speed [rad] (None for net-area scenes)."""
+        return None if self.chain_angle is None else float(self.chain_angle[self.index_min])
+
+    @property
+    def areas(self):
+        """Signed areas between consecutive chain points [J] (+ surplus, − deficit)."""
+        return np.diff(self.chain_delta_e)
+
+
+def solve_unknown_constant(driving, resisting, cycle_angle):
+    """Replace an unknown constant torque by the value that balances the cycle.
+
+    M = W_other / Φ (domain page, section 4).
+
+    Returns
+    -------
+    tuple
+        ``(driving, resisting)`` with the unknown one made known.
+    """
+    if isinstance(driving, Constant) and driving.unknown:
+        return Constant(work(resisting, cycle_angle) / cycle_angle), resisting
+    if isinstance(resisting, Constant) and resisting.unknown:
+        return driving, Constant(work(driving, cycle_angle) / cycle_angle)
+    return driving, resisting
+
+
+def work(curve, cycle_angle):
+    """Work of one torque curve over one cycle, ∫_0^Φ M dφ [J]."""
+    zero = Constant(0.0)
+    return float(np.sum(_segments(curve, zero, cycle_angle).integrals(), dtype=np.longdouble))
+
+
+def energy_indicator(driving, resisting, cycle_angle):
+    """Exact energy indicator diagram of two torque curves over one cycle.
+
+    Parameters
+    ----------
+    driving, resisting : PiecewiseLinear, Constant or ExpressionTorque
+        Equivalent torques at the reference shaft [N*m]; a Constant may be
+        unknown and is then solved from the work balance.
+    cycle_angle : float
+        Angle of one cycle Φ [rad].
+
+    Returns
+    -------
+    EnergyIndicator
+
+    Raises
+    ------
+    NonPeriodicCycle
+        When |W_d − W_r| exceeds ``BALANCE_TOLERANCE`` of the cycle work.
+    """
+    driving, resisting = solve_unknown_constant(driving, resisting, cycle_angle)
+    w_d, w_r = work(driving, cycle_angle), work(resisting, cycle_angle)
+    segments = _segments(driving, resisting, cycle_angle)
+    angle, sign, delta_e = segments.events()
+    imbalance = float(delta_e[-1])
+    _check_balance(imbalance, max(abs(w_d), abs(w_r)), segments.scale())
+
+    crossings = _crossings(sign)
+    chain = np.concatenate(([0], crossings, [len(angle) - 1]))
+    chain = chain[np.concatenate(([True], np.diff(angle[chain]) > 0))] if len(chain) > 2 else chain
+    # Extremes of ΔE are at crossings (or the cycle ends): take them from the chain.
+    chain_angle, chain_de = angle[chain], delta_e[chain]
+    index_max, index_min = _extremes(chain_de, segments.scale())
+    return EnergyIndicator(
+        cycle_angle=cycle_angle, work_driving=w_d, work_resisting=w_r,
+        chain_angle=chain_angle, chain_delta_e=chain_de,
+        a_max=float(chain_de[index_max] - chain_de[index_min]),
+        index_max=index_max, index_min=index_min, imbalance=imbalance)
+
+
+def energy_indicator_from_areas(areas, cycle_angle):
+    """Energy indicator diagram from the signed net areas between the curves.
+
+    Parameters
+    ----------
+    areas : sequence of float
+        Signed areas between the torque curves in their order over the cycle,
+        already converted to energy [J] (+ surplus, − deficit).
+    cycle_angle : float
+        Angle of one cycle Φ [rad]; the crossing angles are not known.
+
+    Returns
+    -------
+    EnergyIndicator
+        With ``chain_angle`` None; works are the sums of surpluses/deficits.
+    """
+    areas = np.asarray(areas, dtype=float)
+    chain = np.concatenate(([0.0], np.cumsum(areas.astype(np.longdouble)).astype(float)))
+    surplus = math.fsum(a for a in areas if a > 0)
+    deficit = -math.fsum(a for a in areas if a < 0)
+    imbalance = math.fsum(areas)
+    _check_balance(imbalance, max(surplus, deficit), surplus + deficit)
+    index_max, index_min = _extremes(chain, surplus + deficit)
+    return EnergyIndicator(
+        cycle_angle=cycle_angle, work_driving=surplus, work_resisting=deficit,
+        chain_angle=None, chain_delta_e=chain,
+        a_max=float(chain[index_max] - chain[index_min]),
+        index_max=index_max, index_min=index_min, imbalance=imbalance)
+
+
+def required_inertia(a_max, omega_mean, delta, j_constant=0.0):
+    """Flywheel inertia at the reference shaft by the constant-inertia method.
+
+    J_F = A_max / (ω_m² δ) − J_c  (domain page, section 5).
+
+    Parameters
+    ----------
+    a_max : float
+        Maximum fluctuation of energy [J].
+    omega_mean : float
+        Mean speed of the reference shaft [rad/s].
+    delta : float
+        Allowed coefficient of speed fluctuation [-].
+    j_constant : float
+        Machine's own constant equivalent inertia J_c [kg*m^2].
+
+    Returns
+    -------
+    float
+        J_F [kg*m^2]; zero or negative means no flywheel is needed.
+    """
+    return a_max / (omega_mean**2 * delta) - j_constant
+
+
+def transfer_inertia(j_reference, speed_ratio):
+    """Inertia on a shaft turning ``speed_ratio`` times the reference speed.
+
+    Equal kinetic energy: J' = J (ω/ω')² (domain page, section 8).
+    """
+    return j_reference / speed_ratio**2
+
+
+# -- internals -----------------------------------------------------------------
+
+
+def _extremes(chain, scale):
+    """First chain points of largest and smallest ΔE; ties within round-off go to the earlier one."""
+    tie = 64 * EPS * scale
+    return int(np.argmax(chain >= chain.max() - tie)), int(np.argmax(chain <= chain.min() + tie))
+
+
+def _check_balance(imbalance, cycle_work, fallback_scale):
+    scale = cycle_work if cycle_work > 0 else fallback_scale
+    if abs(imbalance) > BALANCE_TOLERANCE * scale:
+        raise NonPeriodicCycle(imbalance, cycle_work)
+
+
+def _crossings(sign):
+    """Indices of the events where the sign of M_d − M_r changes.
+
+    A flip is placed at the first event after the last one of the old sign:
+    a zero of a linear piece, the first point of a run where the curves
+    coincide, or the right side of a vertical step.
+    """
+    nonzero = np.flatnonzero(sign)
+    if len(nonzero) < 2:
+        return np.empty(0, dtype=int)
+    flips = np.flatnonzero(sign[nonzero[1:]] != sign[nonzero[:-1]])
+    return nonzero[flips] + 1
+
+
+@dataclass
+class _Segments:
+    """M_d − M_r on the pieces between the union of both curves' breakpoints."""
+
+    knots: np.ndarray      # (n+1,) angles [rad]
+    start: np.ndarray      # (n,) difference just right of each knot [N*m]
+    end: np.ndarray        # (n,) difference just left of the next knot [N*m]
+    linear: bool
+    driving: object
+    resisting: object
+    peak: float            # largest |M_d − M_r| seen (at the knots or on the sampling grid) [N*m]
+
+    def scale(self):
+        """A work scale of the cycle, peak |M_d − M_r| times Φ, for tolerances [J]."""
+        return float(self.peak * (self.knots[-1] - self.knots[0])) or 1.0
+
+    def difference(self, k):
+        """M_d − M_r inside piece k as a vectorized function of φ."""
+        a, b = self.knots[k], self.knots[k + 1]
+
+        def piece(curve, phi):
+            if curve.is_linear:
+                left = curve.limits(np.array([a]))[1][0]
+                right = curve.limits(np.array([b]))[0][0]
+                return left + (right - left) * (phi - a) / (b - a)
+            return curve(phi)
+
+        def f(phi):
+            return piece(self.driving, phi) - piece(self.resisting, phi)
+        return f
+
+    def integrals(self):
+        """Work of M_d − M_r over each piece [J]."""
+        h = np.diff(self.knots)
+        if self.linear:
+            return 0.5 * (self.start + self.end) * h
+        return np.array([_quad(self.difference(k), self.knots[k], self.knots[k + 1], self.scale())
+                         for k in range(len(h))])
+
+    def events(self):
+        """Ordered points of the cycle with the sign of M_d − M_r and ΔE there.
+
+        Returns
+        -------
+        angle, sign, delta_e : ndarray
+            Each piece contributes its start and end, and each zero of the
+            difference inside it, with the sign on each side.
+        """
+        if self.linear:
+            return self._linear_events()
+        return self._smooth_events()
+
+    def _linear_events(self):
+        a, b = self.start, self.end
+        h = np.diff(self.knots)
+        n = len(h)
+        e_knot = np.concatenate(([0.0], np.cumsum(0.5 * (a + b) * h, dtype=np.longdouble)))
+        crosses = (a * b) < 0
+        t = np.where(crosses, a / np.where(crosses, a - b, 1.0), 0.0)
+        phi_c = self.knots[:-1] + t * h
+        e_c = e_knot[:-1] + 0.5 * a * t * h
+        # Five slots per piece: start, before crossing, crossing, after, end.
+        angle = np.stack([self.knots[:-1], phi_c, phi_c, phi_c, self.knots[1:]], axis=1)
+        sign = np.stack([np.sign(a), np.sign(a), np.zeros(n), np.sign(b), np.sign(b)], axis=1)
+        de = np.stack([e_knot[:-1], e_c, e_c, e_c, e_knot[1:]], axis=1)
+        keep = np.stack([np.ones(n, bool), crosses, crosses, crosses, np.ones(n, bool)], axis=1)
+        return angle[keep], sign[keep], de[keep].astype(float)
+
+    def _smooth_events(self):
+        scale = self.scale()
+        angle, sign, delta_e = [], [], []
+        e = 0.0
+        total = self.knots[-1] - self.knots[0]
+        for k in range(len(self.knots) - 1):
+            a, b = self.knots[k], self.knots[k + 1]
+            f = self.difference(k)
+            samples = max(64, int(SAMPLES_PER_CYCLE * (b - a) / total))
+            roots = _roots(f, a, b, samples, scale)
+            points = [a, *roots, b]
+            for p, q in zip(points[:-1], points[1:]):
+                s = float(np.sign(f(np.array([0.5 * (p + q)]))[0]))
+                angle += [p, q]
+                sign += [s, s]
+                delta_e.append(e)
+                e = e + _quad(f, p, q, scale)
+                delta_e.append(e)
+                if q < b:  # a zero inside the piece
+                    angle.append(q)
+                    sign.append(0.0)
+                    delta_e.append(e)
+        return np.array(angle), np.array(sign), np.array(delta_e)
+
+
+def _segments(driving, resisting, cycle_angle):
+    knots = np.union1d(np.union1d(driving.breakpoints(), resisting.breakpoints()), [0.0, cycle_angle])
+    knots = knots[(knots >= 0.0) & (knots <= cycle_angle)]
+    d_left, d_right = driving.limits(knots)
+    r_left, r_right = resisting.limits(knots)
+    start = _difference(d_right, r_right)[:-1]
+    end = _difference(d_left, r_left)[1:]
+    linear = driving.is_linear and resisting.is_linear
+    peak = max(np.max(np.abs(start), initial=0.0), np.max(np.abs(end), initial=0.0))
+    if not linear:
+        phi = np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1)
+        values = _sample(driving, phi)[0] - _sample(resisting, phi)[0]
+        peak = max(peak, float(np.max(np.abs(values))))
+    return _Segments(knots, start, end, linear, driving, resisting, float(peak))
+
+
+def _difference(driving, resisting):
+    """M_d − M_r with the round-off of the subtraction set to zero."""
+    diff = driving - resisting
+    return np.where(np.abs(diff) <= ROUNDOFF * (np.abs(driving) + np.abs(resisting)), 0.0, diff)
+
+
+def _sample(curve, phi):
+    """Limits of a curve at ``phi``; expressions checked finite there."""
+    if curve.is_linear:
+        return curve.limits(phi)
+    try:
+        values = curve(phi)
+    except (OverflowError, ZeroDivisionError, ValueError) as err:
+        raise SceneError(curve.where, f"cannot be evaluated over the cycle: {err}") from None
+    bad = ~np.isfinite(values)
+    if bad.any():
+        at = math.degrees(phi[np.argmax(bad)])
+        raise SceneError(curve.where, f"is not finite over the cycle (first at phi = {at:.6g} deg)")
+    return values, values
+
+
+def _roots(f, a, b, samples, scale):
+    """All zeros of f in the open interval (a, b), in order.
+
+    Sign changes on a grid are refined by Brent's method; a grid point whose
+    |f| dips below both neighbours is searched for a minimum that reaches
+    zero (two close crossings or a tangent touch that the grid would miss).
+    """
+    x = np.linspace(a, b, samples + 1)
+    y = f(x)
+    tiny = 1e-15 * scale / max(b - a, 1e-300)
+    roots = []
+
+    def brent(p, q):
+        return optimize.brentq(f, p, q, xtol=1e-15 * max(abs(p), abs(q), b - a), rtol=4 * EPS, maxiter=200)
+
+    for k in range(samples):
+        y0, y1 = y[k], y[k + 1]
+        if k > 0 and y0 == 0.0:
+            roots.append(x[k])
+        elif y0 * y1 < 0:
+            roots.append(brent(x[k], x[k + 1]))
+        elif k > 0 and abs(y0) < abs(y[k - 1]) and abs(y0) < abs(y1) and y0 * y[k - 1] > 0 and y0 * y1 > 0:
+            s = np.sign(y0)
+            res = optimize.minimize_scalar(lambda p: s * f(np.array([p]))[0], bounds=(x[k - 1], x[k + 1]),
+                                           method="bounded", options={"xatol": 1e-14 * (b - a)})
+            if s * res.fun < 0:
+                roots += [brent(x[k - 1], res.x), brent(res.x, x[k + 1])]
+            elif abs(res.fun) <= tiny:
+                roots.append(float(res.x))  # touches zero without crossing
+    return sorted(r for r in set(roots) if a < r < b)
+
+
+def _quad(f, a, b, scale):
+    """∫_a^b f dφ by adaptive Gauss–Kronrod quadrature to QUAD_EPSREL."""
+    if b <= a:
+        return 0.0
+    value, _, info, *message = integrate.quad(lambda p: f(np.array([p]))[0], a, b, epsabs=1e-15 * scale,
+                                              epsrel=QUAD_EPSREL, limit=500, full_output=1)
+    if message:
+        raise ArithmeticError(f"quadrature of the torque difference on [{a:.6g}, {b:.6g}] rad "
+                              f"did not reach {QUAD_EPSREL:g}: {message[0]}")
+    return value

@@ -1,0 +1,164 @@
+"""Safe arithmetic expressions for torque curves, usable as numpy and CasADi.
+
+A scene may give a torque as ``expression = "25000 + 3600*sin(phi)"``. The
+text is parsed with :mod:`ast` into a syntax tree, and every node is checked
+against a whitelist: numbers, the declared variables (``phi``; later
+``omega``), the constants ``pi`` and ``e``, ``+ - * / **``, unary signs,
+parentheses and the functions ``sin cos tan exp log sqrt abs min max``.
+Nothing is ever evaluated by Python: the checked tree is turned into nested
+closures that call numpy or CasADi, so attribute access, subscripts, keyword
+arguments, strings, comprehensions and unknown names are rejected before any
+arithmetic happens.
+"""
+
+import ast
+import difflib
+import math
+
+import numpy as np
+
+from .errors import ExpressionError
+
+MAX_LENGTH = 2000
+"""Longest expression accepted [characters]: a torque curve, not a program."""
+
+CONSTANTS = {"pi": math.pi, "e": math.e}
+
+# name -> (number of arguments, numpy implementation, casadi attribute name)
+FUNCTIONS = {
+    "sin": (1, np.sin, "sin"),
+    "cos": (1, np.cos, "cos"),
+    "tan": (1, np.tan, "tan"),
+    "exp": (1, np.exp, "exp"),
+    "log": (1, np.log, "log"),
+    "sqrt": (1, np.sqrt, "sqrt"),
+    "abs": (1, np.abs, "fabs"),
+    "min": (2, np.minimum, "fmin"),
+    "max": (2, np.maximum, "fmax"),
+}
+
+_BINARY = {
+    ast.Add: lambda a, b: a + b,
+    ast.Sub: lambda a, b: a - b,
+    ast.Mult: lambda a, b: a * b,
+    ast.Div: lambda a, b: a / b,
+    ast.Pow: lambda a, b: a ** b,
+}
+_UNARY = {ast.USub: lambda a: -a, ast.UAdd: lambda a: a}
+_SYMBOL = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "**"}
+
+
+class Expression:
+    """A parsed, whitelisted expression in a few named variables.
+
+    Parameters
+    ----------
+    text : str
+        The expression, e.g. ``"25000 + 3600*sin(phi)"``.
+    variables : tuple of str
+        The names the expression may use (default ``("phi",)``).
+
+    Raises
+    ------
+    ExpressionError
+        Syntax error, a name or function outside the whitelist, or a
+        construct that is not plain arithmetic.
+
+    Examples
+    --------
+    >>> f = Expression("1 + 2*sin(phi)")
+    >>> float(f.numpy(phi=0.0))
+    1.0
+    """
+
+    def __init__(self, text, variables=("phi",)):
+        if not isinstance(text, str):
+            raise ExpressionError(f"an expression must be a string, got {text!r}")
+        if len(text) > MAX_LENGTH:
+            raise ExpressionError(f"expression longer than {MAX_LENGTH} characters")
+        self.text = text
+        self.variables = tuple(variables)
+        try:
+            tree = ast.parse(text.strip(), mode="eval")
+        except SyntaxError as err:
+            raise ExpressionError(f"cannot parse {text!r}: {err.msg}") from None
+        self.used = set()
+        self._build = self._compile(tree.body)
+
+    @property
+    def depends_on(self):
+        """The variables that actually occur in the expression (a frozenset)."""
+        return frozenset(self.used)
+
+    def numpy(self, **values):
+        """Evaluate with numpy; variables are floats or arrays [SI]."""
+        return self._evaluate(values, backend="numpy")
+
+    def casadi(self, **values):
+        """Build the CasADi expression; variables are SX/MX/DM symbols or numbers."""
+        return self._evaluate(values, backend="casadi")
+
+    def _evaluate(self, values, backend):
+        missing = [v for v in self.used if v not in values]
+        if missing:
+            raise ExpressionError(f"{self.text!r} needs a value for {', '.join(sorted(missing))}")
+        if backend == "casadi":
+            import casadi as ca
+
+            functions = {name: getattr(ca, attr) for name, (_, _, attr) in FUNCTIONS.items()}
+        else:
+            functions = {name: fn for name, (_, fn, _) in FUNCTIONS.items()}
+        return self._build(values, functions)
+
+    def __repr__(self):
+        return f"Expression({self.text!r})"
+
+    # -- compilation of the checked tree into closures -----------------------
+    def _compile(self, node):
+        if isinstance(node, ast.Constant):
+            if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
+                raise ExpressionError(f"{self.text!r}: only numbers are allowed as constants, got {node.value!r}")
+            number = float(node.value)
+            if not math.isfinite(number):
+                raise ExpressionError(f"{self.text!r}: the number {node.value!r} is not finite")
+            return lambda values, fns: number
+        if isinstance(node, ast.Name):
+            name = node.id
+            if name in self.variables:
+                self.used.add(name)
+                return lambda values, fns: values[name]
+            if name in CONSTANTS:
+                number = CONSTANTS[name]
+                return lambda values, fns: number
+            raise ExpressionError(f"{self.text!r}: unknown name {name!r}{self._hint(name)}")
+        if isinstance(node, ast.BinOp) and type(node.op) in _BINARY:
+            op = _BINARY[type(node.op)]
+            left, right = self._compile(node.left), self._compile(node.right)
+            return lambda values, fns: op(left(values, fns), right(values, fns))
+        if isinstance(node, ast.UnaryOp) and type(node.op) in _UNARY:
+            op = _UNARY[type(node.op)]
+            operand = self._compile(node.operand)
+            return lambda values, fns: op(operand(values, fns))
+        if isinstance(node, ast.Call):
+            if not isinstance(node.func, ast.Name):
+                raise ExpressionError(f"{self.text!r}: only plain function calls are allowed")
+            name = node.func.id
+            if name not in FUNCTIONS:
+                raise ExpressionError(f"{self.text!r}: unknown function {name!r}{self._hint(name, functions=True)}")
+            if node.keywords:
+                raise ExpressionError(f"{self.text!r}: {name}() takes no keyword arguments")
+            arity = FUNCTIONS[name][0]
+            if len(node.args) != arity:
+                raise ExpressionError(f"{self.text!r}: {name}() takes {arity} argument(s), got {len(node.args)}")
+            args = [self._compile(a) for a in node.args]
+            return lambda values, fns: fns[name](*(a(values, fns) for a in args))
+        what = _SYMBOL.get(type(getattr(node, "op", None)), type(node).__name__)
+        raise ExpressionError(f"{self.text!r}: {what!s} is not allowed (numbers, "
+                              f"{', '.join(self.variables)}, pi, + - * / **, and "
+                              f"{' '.join(FUNCTIONS)} only)")
+
+    def _hint(self, name, functions=False):
+        pool = list(FUNCTIONS) if functions else [*self.variables, *CONSTANTS]
+        close = difflib.get_close_matches(name, pool, n=1)
+        allowed = ", ".join(pool)
+        return f" (did you mean {close[0]!r}? allowed: {allowed})" if close else f" (allowed: {allowed})"

@@ -1,0 +1,85 @@
+"""Readable text reports of an analysis (and, later, of a design)."""
+
+import math
+
+from .units import rad_s_to_rpm
+
+
+def number(value, digits=6):
+    """A number with ``digits`` significant digits, no exponent for everyday sizes."""
+    if value is None:
+        return "-"
+    if value == 0:
+        return "0"
+    magnitude = math.floor(math.log10(abs(value)))
+    if -4 <= magnitude < 9:
+        decimals = max(digits - 1 - magnitude, 0)
+        return f"{value:,.{decimals}f}".rstrip("0").rstrip(".") if decimals else f"{value:,.0f}"
+    return f"{value:.{digits - 1}e}"
+
+
+def power(watts):
+    return "-" if watts is None else (f"{number(watts / 1000)} kW" if abs(watts) >= 1000 else f"{number(watts)} W")
+
+
+def table(header, rows, align=None):
+    """Fixed-width table: a header row, a rule, then the rows."""
+    cells = [header] + [[str(c) for c in r] for r in rows]
+    widths = [max(len(r[i]) for r in cells) for i in range(len(header))]
+    align = align or ["<"] + [">"] * (len(header) - 1)
+    lines = ["  ".join(f"{c:{a}{w}}" for c, a, w in zip(r, align, widths)).rstrip() for r in cells]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return lines
+
+
+def analysis_report(result, source=None):
+    """The report of ``flyopt solve`` for the cycle analysis, as text."""
+    r = result
+    deg = math.degrees
+    lines = [f"{r.title}" + (f"  ({source})" if source else ""),
+             f"model: {r.model} (constant equivalent inertia, torques depend on the angle only)", ""]
+    facts = [
+        ("mean speed", f"{number(r.omega_mean)} rad/s ({number(rad_s_to_rpm(r.omega_mean))} rpm)"),
+        ("allowed δ", f"{number(r.delta)} (1/{number(1 / r.delta, 4)})"),
+        ("speed range", f"{number(r.omega_min)} to {number(r.omega_max)} rad/s"),
+        ("cycle", f"{number(deg(r.cycle_angle))} deg"),
+    ]
+    if r.work_per_cycle is not None:
+        facts += [
+            ("driving torque (mean)", f"{number(r.driving_torque)} N·m"),
+            ("resisting torque (mean)", f"{number(r.resisting_torque)} N·m"),
+            ("work per cycle", f"{number(r.work_per_cycle)} J"),
+            ("mean driving power", power(r.power)),
+            ("motor power", f"{power(r.motor_power)} (efficiency {number(r.efficiency, 4)})"),
+        ]
+    facts.append(("A_max", f"{number(r.a_max)} J"))
+    if r.angle_omega_max is not None:
+        facts.append(("ω_max / ω_min at", f"{number(deg(r.angle_omega_max))} / {number(deg(r.angle_omega_min))} deg"))
+    else:
+        facts.append(("ω_max / ω_min at", f"the end of area {r.index_omega_max} / area {r.index_omega_min}"))
+    if r.j_constant:
+        facts.append(("machine's own J_c", f"{number(r.j_constant)} kg·m²"))
+    if r.flywheel_needed:
+        facts.append(("required flywheel J_F", f"{number(r.j_required)} kg·m² (GD² {number(r.gd2_required)} N·m²) "
+                                                "at the reference shaft"))
+    else:
+        facts.append(("required flywheel", f"none: the machine's own inertia suffices "
+                                            f"(J_F would be {number(r.j_margin)} kg·m²)"))
+    width = max(len(k) for k, _ in facts)
+    lines += [f"  {k:<{width}}  {v}" for k, v in facts]
+
+    lines += ["", "Energy indicator diagram (excess work from the cycle start):"]
+    rows = []
+    for e in r.energy_chain:
+        mark = "ω_max" if e["index"] == r.index_omega_max else "ω_min" if e["index"] == r.index_omega_min else ""
+        where = number(deg(e["angle"])) if e["angle"] is not None else \
+            ("start" if e["index"] == 0 else f"after area {e['index']}")
+        rows.append([where, number(e["delta_e"]), mark])
+    head = ["angle [deg]" if r.angle_omega_max is not None else "point", "ΔE [J]", ""]
+    lines += ["  " + line for line in table(head, rows, ["<", ">", "<"])]
+
+    lines += ["", "Flywheel needed on each shaft (same kinetic energy, J' = J (ω/ω')²):"]
+    rows = [[s.name, number(s.speed_ratio), number(rad_s_to_rpm(s.omega)), number(s.j_required),
+             number(s.gd2_required)] for s in r.shafts]
+    lines += ["  " + line for line in table(["shaft", "speed ratio", "speed [rpm]", "J [kg·m²]", "GD² [N·m²]"], rows)]
+    return "\n".join(lines)

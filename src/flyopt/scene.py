@@ -1,0 +1,374 @@
+"""Scene files: one machine to regulate, read from TOML and checked field by field.
+
+A scene says how fast the reference shaft turns, the allowed coefficient of
+speed fluctuation δ, the torques over one cycle (two curves, or the signed net
+areas between them), and the shafts a flywheel may sit on. Every value may
+carry a unit ("1500 rpm", "100 N*m/mm"); plain numbers are SI. Everything that
+is wrong is reported as a :class:`~flyopt.errors.SceneError` naming the field.
+
+See README.md for the format with an example, and problems/ for scenes.
+"""
+
+import difflib
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from .errors import ExpressionError, SceneError
+from .expression import Expression
+from .torque import Constant, ExpressionTorque, PiecewiseLinear
+from .units import inertia_from_gd2, quantity
+
+try:  # Python >= 3.11
+    import tomllib
+except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+ANGLE_TOLERANCE = 1e-9
+"""Relative tolerance on a table's first and last angle against 0 and Φ."""
+
+
+@dataclass(frozen=True)
+class Shaft:
+    """A shaft a flywheel may sit on.
+
+    Attributes
+    ----------
+    name : str
+    speed_ratio : float
+        ω_shaft / ω_reference [-].
+    efficiency : float
+        Efficiency of the transmission from the motor to this shaft [-].
+    """
+
+    name: str
+    speed_ratio: float
+    efficiency: float = 1.0
+
+
+@dataclass(frozen=True)
+class NetAreas:
+    """The signed areas between the torque curves, in order, as energies [J]."""
+
+    energies: tuple
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A machine to regulate, in SI units.
+
+    Attributes
+    ----------
+    title : str
+    omega_mean : float
+        Mean speed ω_m of the reference shaft [rad/s].
+    delta : float
+        Allowed coefficient of speed fluctuation δ [-].
+    j_constant : float
+        Constant part J_c of the equivalent inertia at the reference shaft [kg*m^2].
+    cycle_angle : float
+        Angle Φ of one cycle of the reference shaft [rad].
+    efficiency : float
+        Efficiency from the motor to the reference shaft [-].
+    driving, resisting : torque curve or None
+        Equivalent torques at the reference shaft (None when ``net`` is given).
+    net : NetAreas or None
+    shafts : tuple of Shaft
+    source : str or None
+        File the scene came from.
+    """
+
+    title: str
+    omega_mean: float
+    delta: float
+    j_constant: float = 0.0
+    cycle_angle: float = 2 * math.pi
+    efficiency: float = 1.0
+    driving: object = None
+    resisting: object = None
+    net: NetAreas | None = None
+    shafts: tuple = (Shaft("reference", 1.0),)
+    source: str | None = field(default=None, compare=False)
+
+    def replace(self, **changes):
+        """A copy with some fields changed (for studies and tests)."""
+        return replace(self, **changes)
+
+
+def load(path):
+    """Read and check a scene file.
+
+    Parameters
+    ----------
+    path : str or Path
+        A TOML scene file.
+
+    Returns
+    -------
+    Scene
+
+    Raises
+    ------
+    SceneError
+        The file cannot be read, is not valid TOML, or a field is wrong; the
+        message names the file and the field.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise SceneError("", f"cannot read the file: {err.strerror if hasattr(err, 'strerror') and err.strerror else err}",
+                         str(path)) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise SceneError("", f"not valid TOML: {err}", str(path)) from None
+    try:
+        return from_dict(data, source=str(path))
+    except SceneError as err:
+        raise err.with_source(str(path)) from None
+
+
+def from_dict(data, source=None):
+    """Build a scene from a dictionary shaped like a scene file.
+
+    Raises
+    ------
+    SceneError
+        A field is missing, unknown or wrong.
+    """
+    top = _Table(data, "", {"title", "description", "machine", "torque", "shaft"})
+    machine = _Table(top.require("machine"), "machine",
+                     {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"})
+    omega = machine.quantity("speed", "angular_speed", required=True)
+    if omega <= 0:
+        raise SceneError("machine.speed", f"must be positive, got {machine.raw('speed')!r}")
+    delta = machine.quantity("delta", "dimensionless", required=True)
+    if not 0 < delta < 2:
+        raise SceneError("machine.delta", f"must lie between 0 and 2 (exclusive), got {machine.raw('delta')!r}; "
+                         "typical values are 1/5 (crushers) to 1/300 (AC generators)")
+    if machine.has("inertia") and machine.has("gd2"):
+        raise SceneError("machine.gd2", "give either machine.inertia or machine.gd2, not both")
+    j_c = machine.quantity("inertia", "inertia", default=0.0)
+    if machine.has("gd2"):
+        j_c = inertia_from_gd2(machine.quantity("gd2", "flywheel_moment"))
+    if j_c < 0:
+        raise SceneError("machine.inertia" if machine.has("inertia") else "machine.gd2", "must not be negative")
+    cycle = machine.quantity("cycle", "angle", default=2 * math.pi)
+    if cycle <= 0:
+        raise SceneError("machine.cycle", f"must be positive, got {machine.raw('cycle')!r}")
+
+    shafts = _shafts(top.get("shaft"))
+    efficiency = _efficiency(machine.get("efficiency"), "machine.efficiency") if machine.has("efficiency") \
+        else _reference_efficiency(shafts)
+
+    driving, resisting, net = _torques(top.require("torque"), cycle)
+    title = top.get("title", "")
+    if not isinstance(title, str):
+        raise SceneError("title", f"must be a string, got {title!r}")
+    return Scene(title=title or (Path(source).stem if source else "scene"), omega_mean=omega, delta=delta,
+                 j_constant=j_c, cycle_angle=cycle, efficiency=efficiency, driving=driving,
+                 resisting=resisting, net=net, shafts=shafts, source=source)
+
+
+# -- sections ------------------------------------------------------------------
+
+
+def _torques(section, cycle):
+    torque = _Table(section, "torque", {"driving", "resisting", "net"})
+    if torque.has("net"):
+        if torque.has("driving") or torque.has("resisting"):
+            raise SceneError("torque.net", "give either the net areas or the driving and resisting "
+                             "torques, not both (the torque is given twice)")
+        return None, None, _net_areas(torque.get("net"))
+    for name in ("driving", "resisting"):
+        if not torque.has(name):
+            raise SceneError(f"torque.{name}", "is missing: give [torque.driving] and [torque.resisting], "
+                             "or [torque.net] with the net areas")
+    driving = _curve(torque.get("driving"), "torque.driving", cycle)
+    resisting = _curve(torque.get("resisting"), "torque.resisting", cycle)
+    if isinstance(driving, Constant) and isinstance(resisting, Constant) and driving.unknown and resisting.unknown:
+        raise SceneError("torque.resisting.constant", "both torques are unknown; at most one may be")
+    return driving, resisting, None
+
+
+def _curve(section, where, cycle):
+    table = _Table(section, where, {"points", "constant", "expression", "unit", "angle_unit", "description"})
+    forms = [k for k in ("points", "constant", "expression") if table.has(k)]
+    if len(forms) != 1:
+        raise SceneError(where, "give exactly one of points, constant or expression"
+                         + (f" (the torque is given twice: {', '.join(forms)})" if forms else ""))
+    form = forms[0]
+    unit = 1.0
+    if table.has("unit"):
+        unit = _unit_factor(table.get("unit"), "torque", f"{where}.unit")
+    if form == "constant":
+        raw = table.get("constant")
+        if isinstance(raw, str) and raw.strip().lower() == "unknown":
+            return Constant(None)
+        value = _scaled(raw, "torque", f"{where}.constant", unit)
+        return Constant(value)
+    if form == "expression":
+        try:
+            expr = Expression(table.get("expression"), variables=("phi",))
+        except ExpressionError as err:
+            raise SceneError(f"{where}.expression", str(err)) from None
+        return ExpressionTorque(expr, unit, where=f"{where}.expression")
+    angle_unit = _unit_factor(table.get("angle_unit"), "angle", f"{where}.angle_unit") \
+        if table.has("angle_unit") else 1.0
+    return _points(table.get("points"), f"{where}.points", cycle, unit, angle_unit)
+
+
+def _points(raw, where, cycle, unit, angle_unit):
+    if not isinstance(raw, list) or len(raw) < 2:
+        raise SceneError(where, "must be a list of at least two [angle, torque] pairs")
+    angles = np.empty(len(raw))
+    values = np.empty(len(raw))
+    for k, pair in enumerate(raw):
+        if not isinstance(pair, list) or len(pair) != 2:
+            raise SceneError(f"{where}[{k}]", f"must be an [angle, torque] pair, got {pair!r}")
+        angles[k] = _scaled(pair[0], "angle", f"{where}[{k}] angle", angle_unit)
+        values[k] = _scaled(pair[1], "torque", f"{where}[{k}] torque", unit)
+    steps = np.diff(angles)
+    if np.any(steps < 0):
+        k = int(np.argmax(steps < 0)) + 1
+        raise SceneError(where, f"angles must not decrease: point {k} ({np.degrees(angles[k]):.6g} deg) "
+                         f"comes after {np.degrees(angles[k - 1]):.6g} deg")
+    if np.any((steps[1:] == 0) & (steps[:-1] == 0)):
+        k = int(np.argmax((steps[1:] == 0) & (steps[:-1] == 0))) + 1
+        raise SceneError(where, f"three points at one angle ({np.degrees(angles[k]):.6g} deg); "
+                         "a vertical step is exactly two points at one angle")
+    tol = ANGLE_TOLERANCE * cycle
+    if abs(angles[0]) > tol or abs(angles[-1] - cycle) > tol:
+        raise SceneError(where, f"the table covers {np.degrees(angles[0]):.6g} to {np.degrees(angles[-1]):.6g} deg "
+                         f"but the cycle is 0 to {np.degrees(cycle):.6g} deg: the cycle does not close "
+                         "(the first point must be at 0 and the last at the cycle angle)")
+    angles[0], angles[-1] = 0.0, cycle
+    return PiecewiseLinear(angles, values)
+
+
+def _net_areas(section):
+    table = _Table(section, "torque.net", {"areas", "area_unit", "torque_scale", "angle_scale", "description"})
+    areas = table.require("areas")
+    if not isinstance(areas, list) or len(areas) < 2:
+        raise SceneError("torque.net.areas", "must be a list of at least two signed areas")
+    drawing = [table.has(k) for k in ("area_unit", "torque_scale", "angle_scale")]
+    if any(drawing) and not all(drawing):
+        raise SceneError("torque.net", "areas measured on a drawing need all of area_unit, torque_scale "
+                         "and angle_scale (energy = area x torque scale x angle scale)")
+    if all(drawing):
+        factor = (table.quantity("area_unit", "area") * table.quantity("torque_scale", "torque_scale")
+                  * table.quantity("angle_scale", "angle_scale"))
+        if factor <= 0:
+            raise SceneError("torque.net", "the drawing scales must be positive")
+        energies = []
+        for k, a in enumerate(areas):
+            if isinstance(a, str):
+                raise SceneError(f"torque.net.areas[{k}]", "with drawing scales the areas are plain numbers "
+                                 f"(in area_unit), got {a!r}")
+            energies.append(factor * quantity(a, "dimensionless", f"torque.net.areas[{k}]"))
+    else:
+        energies = [quantity(a, "energy", f"torque.net.areas[{k}]") for k, a in enumerate(areas)]
+    return NetAreas(tuple(energies))
+
+
+def _shafts(raw):
+    if raw is None:
+        return (Shaft("reference", 1.0),)
+    if not isinstance(raw, list) or not raw:
+        raise SceneError("shaft", "must be an array of tables: [[shaft]] with name and speed_ratio")
+    shafts, seen = [], set()
+    for k, item in enumerate(raw):
+        where = f"shaft[{k}]"
+        table = _Table(item, where, {"name", "speed_ratio", "efficiency", "description"})
+        name = table.require("name")
+        if not isinstance(name, str) or not name.strip():
+            raise SceneError(f"{where}.name", f"must be a non-empty string, got {name!r}")
+        if name in seen:
+            raise SceneError(f"{where}.name", f"shaft {name!r} is given twice")
+        seen.add(name)
+        ratio = table.quantity("speed_ratio", "dimensionless", required=True)
+        if ratio <= 0:
+            raise SceneError(f"{where}.speed_ratio", f"must be positive (ω_shaft/ω_reference), got {ratio!r}")
+        eff = _efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
+        shafts.append(Shaft(name, ratio, eff))
+    return tuple(shafts)
+
+
+def _reference_efficiency(shafts):
+    """Efficiency from the motor to the reference shaft: that of the shaft turning at ratio 1."""
+    at_reference = {s.efficiency for s in shafts if s.speed_ratio == 1.0}
+    if len(at_reference) > 1:
+        raise SceneError("machine.efficiency", "several shafts turn at the reference speed with different "
+                         "efficiencies; say which applies with machine.efficiency")
+    return at_reference.pop() if at_reference else 1.0
+
+
+def _efficiency(raw, where):
+    """An efficiency in (0, 1], or a list of stage efficiencies in series (their product)."""
+    stages = raw if isinstance(raw, list) else [raw]
+    if not stages:
+        raise SceneError(where, "must be a number in (0, 1] or a non-empty list of stage efficiencies")
+    product = 1.0
+    for k, s in enumerate(stages):
+        label = f"{where}[{k}]" if isinstance(raw, list) else where
+        eta = quantity(s, "dimensionless", label)
+        if not 0 < eta <= 1:
+            raise SceneError(label, f"must lie in (0, 1], got {s!r}")
+        product *= eta
+    return product
+
+
+def _unit_factor(raw, dimension, where):
+    if not isinstance(raw, str):
+        raise SceneError(where, f"must be a unit string, got {raw!r}")
+    return quantity(f"1 {raw}", dimension, where)
+
+
+def _scaled(raw, dimension, where, factor):
+    """A number times the section's unit, or a string with its own unit."""
+    if isinstance(raw, str):
+        return quantity(raw, dimension, where)
+    return quantity(raw, "dimensionless", where) * factor
+
+
+class _Table:
+    """A dictionary from TOML with checked keys and typed accessors."""
+
+    def __init__(self, data, where, allowed):
+        if not isinstance(data, dict):
+            raise SceneError(where or "(top level)", f"must be a table, got {type(data).__name__}")
+        unknown = sorted(set(data) - set(allowed))
+        if unknown:
+            key = unknown[0]
+            close = difflib.get_close_matches(key, sorted(allowed), n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            path = f"{where}.{key}" if where else key
+            raise SceneError(path, f"unknown key{hint} (allowed here: {', '.join(sorted(allowed))})")
+        self.data, self.where = data, where
+
+    def _path(self, key):
+        return f"{self.where}.{key}" if self.where else key
+
+    def has(self, key):
+        return key in self.data
+
+    def raw(self, key):
+        return self.data.get(key)
+
+    def get(self, key, default=None):
+        return self.data.get(key, default)
+
+    def require(self, key):
+        if key not in self.data:
+            raise SceneError(self._path(key), "is missing")
+        return self.data[key]
+
+    def quantity(self, key, dimension, required=False, default=None):
+        if key not in self.data:
+            if required:
+                raise SceneError(self._path(key), "is missing")
+            return default
+        return quantity(self.data[key], dimension, self._path(key))

@@ -1,0 +1,137 @@
+"""Equivalent torque curves over one cycle of the reference shaft.
+
+Three forms, all in SI (angle [rad], torque [N*m]):
+
+- :class:`PiecewiseLinear`: a table of (angle, torque) points; a vertical step
+  is two points at one angle. Integrated exactly.
+- :class:`Constant`: one value, possibly still unknown (solved later from the
+  cycle work balance).
+- :class:`ExpressionTorque`: a whitelisted expression in ``phi`` [rad] times a
+  unit factor; integrated by adaptive quadrature.
+
+Each curve answers the same questions: where its breakpoints are, its left and
+right limits at given angles, its value inside a segment, and (for symbolic
+use) a CasADi expression.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .expression import Expression
+
+
+@dataclass(frozen=True)
+class PiecewiseLinear:
+    """Piecewise-linear torque through the points ``(angles[k], values[k])``.
+
+    Parameters
+    ----------
+    angles : ndarray
+        Non-decreasing angles [rad] from 0 to the cycle angle; an angle that
+        appears twice marks a vertical step.
+    values : ndarray
+        Torque at each point [N*m].
+    """
+
+    angles: np.ndarray
+    values: np.ndarray
+    is_linear = True
+
+    def breakpoints(self):
+        """Distinct angles where the slope or value may change [rad]."""
+        return np.unique(self.angles)
+
+    def limits(self, phi):
+        """Left and right limits of the torque at the angles ``phi`` [N*m].
+
+        Inside a piece both equal the linear interpolation; at a vertical
+        step the left limit is the first point and the right limit the last.
+        Outside the table the end values are held.
+        """
+        x, y = self.angles, self.values
+        phi = np.asarray(phi, dtype=float)
+        first = np.searchsorted(x, phi, side="left")
+        last = np.searchsorted(x, phi, side="right") - 1
+        on_point = (first < len(x)) & (first <= last)
+        # Interpolate where phi lies strictly between two points.
+        k = np.clip(last, 0, len(x) - 2)
+        x0, x1 = x[k], x[k + 1]
+        span = np.where(x1 > x0, x1 - x0, 1.0)
+        t = np.clip((phi - x0) / span, 0.0, 1.0)
+        inside = y[k] + (y[k + 1] - y[k]) * t
+        left = np.where(on_point, y[np.clip(first, 0, len(x) - 1)], inside)
+        right = np.where(on_point, y[np.clip(last, 0, len(x) - 1)], inside)
+        return left, right
+
+    def casadi(self, phi):
+        """Right-continuous CasADi expression of the curve in ``phi`` [rad]."""
+        import casadi as ca
+
+        x, y = self.angles, self.values
+        expr = float(y[0])
+        slope_prev = 0.0
+        for k in range(len(x) - 1):
+            if x[k + 1] == x[k]:  # vertical step of size y[k+1]-y[k] at x[k]
+                expr = expr + float(y[k + 1] - y[k]) * ca.if_else(phi >= x[k], 1, 0)
+                continue
+            slope = (y[k + 1] - y[k]) / (x[k + 1] - x[k])
+            expr = expr + float(slope - slope_prev) * ca.fmax(phi - float(x[k]), 0)
+            slope_prev = slope
+        return expr
+
+
+@dataclass(frozen=True)
+class Constant:
+    """A constant torque [N*m]; ``value`` is None while it is still unknown."""
+
+    value: float | None
+    is_linear = True
+
+    @property
+    def unknown(self):
+        return self.value is None
+
+    def breakpoints(self):
+        return np.empty(0)
+
+    def limits(self, phi):
+        v = np.full(np.shape(phi), float(self.value))
+        return v, v
+
+    def casadi(self, phi):
+        return float(self.value)
+
+
+@dataclass(frozen=True)
+class ExpressionTorque:
+    """Torque given as an expression in ``phi`` [rad] times ``scale`` [N*m per unit].
+
+    Parameters
+    ----------
+    expression : Expression
+        The parsed expression.
+    scale : float
+        Factor from the expression's unit to N*m.
+    where : str
+        Scene field it came from, for error messages.
+    """
+
+    expression: Expression
+    scale: float = 1.0
+    where: str = field(default="", compare=False)
+    is_linear = False
+
+    def breakpoints(self):
+        return np.empty(0)
+
+    def __call__(self, phi):
+        with np.errstate(all="ignore"):
+            return self.scale * np.asarray(self.expression.numpy(phi=phi), dtype=float) + 0.0 * phi
+
+    def limits(self, phi):
+        v = self(np.asarray(phi, dtype=float))
+        return v, v
+
+    def casadi(self, phi):
+        return self.scale * self.expression.casadi(phi=phi)
