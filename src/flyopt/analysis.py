@@ -9,6 +9,7 @@ ratio-squared transfer.
 from dataclasses import dataclass
 
 from .cycle import energy_indicator, energy_indicator_from_areas, required_inertia, transfer_inertia
+from .errors import NonPeriodicCycle, SceneError
 from .units import gd2_from_inertia
 
 MODEL_ENERGY = "energy"
@@ -89,6 +90,13 @@ def analyse(scene):
     NonPeriodicCycle
         The cycle's work does not balance.
     """
+    try:
+        return _analyse(scene)
+    except (SceneError, NonPeriodicCycle) as err:
+        raise err.with_source(scene.source) from None
+
+
+def _analyse(scene):
     if scene.net is not None:
         ind = energy_indicator_from_areas(scene.net.energies, scene.cycle_angle)
         work = driving = resisting = power = motor_power = None

@@ -26,7 +26,7 @@ def main(argv=None):
     except SceneError as err:
         return _fail(str(err), EXIT_INPUT)
     except NonPeriodicCycle as err:
-        return _fail(f"{args.scene}: torque: {err}", EXIT_INPUT)
+        return _fail(str(err), EXIT_INPUT)
     except SolverFailed as err:
         return _fail(f"{args.scene}: {err}", EXIT_FAILED)
     except ArithmeticError as err:

@@ -48,13 +48,19 @@ class NonPeriodicCycle(FlyoptError, ValueError):
     A flywheel cannot regulate such a machine: its mean speed drifts.
     """
 
-    def __init__(self, imbalance, cycle_work, message=None):
+    def __init__(self, imbalance, cycle_work, source=None):
         self.imbalance = imbalance
         self.cycle_work = cycle_work
-        super().__init__(message or (
-            f"non-periodic fluctuation: the work over one cycle does not balance "
+        self.source = source
+        where = f"{source}: torque: " if source else ""
+        super().__init__(
+            f"{where}non-periodic fluctuation: the work over one cycle does not balance "
             f"(net {imbalance:+.6g} J against {cycle_work:.6g} J of cycle work); "
-            f"no flywheel can regulate it, only a governor"))
+            f"no flywheel can regulate it, only a governor")
+
+    def with_source(self, source):
+        """Return the same error, now naming the file it came from."""
+        return NonPeriodicCycle(self.imbalance, self.cycle_work, source)
 
 
 class SolverFailed(FlyoptError, RuntimeError):

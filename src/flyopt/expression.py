@@ -45,7 +45,8 @@ _BINARY = {
     ast.Pow: lambda a, b: a ** b,
 }
 _UNARY = {ast.USub: lambda a: -a, ast.UAdd: lambda a: a}
-_SYMBOL = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "**"}
+_OTHER_OPERATORS = {ast.FloorDiv: "//", ast.Mod: "%", ast.BitXor: "^", ast.BitAnd: "&", ast.BitOr: "|",
+                    ast.MatMult: "@", ast.LShift: "<<", ast.RShift: ">>", ast.Invert: "~", ast.Not: "not"}
 
 
 class Expression:
@@ -152,8 +153,10 @@ class Expression:
                 raise ExpressionError(f"{self.text!r}: {name}() takes {arity} argument(s), got {len(node.args)}")
             args = [self._compile(a) for a in node.args]
             return lambda values, fns: fns[name](*(a(values, fns) for a in args))
-        what = _SYMBOL.get(type(getattr(node, "op", None)), type(node).__name__)
-        raise ExpressionError(f"{self.text!r}: {what!s} is not allowed (numbers, "
+        op = type(getattr(node, "op", None))
+        what = f"the operator {_OTHER_OPERATORS[op]}" if op in _OTHER_OPERATORS else type(node).__name__
+        hint = "; use ** for powers" if op is ast.BitXor else ""
+        raise ExpressionError(f"{self.text!r}: {what!s} is not allowed{hint} (numbers, "
                               f"{', '.join(self.variables)}, pi, + - * / **, and "
                               f"{' '.join(FUNCTIONS)} only)")
 

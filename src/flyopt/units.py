@@ -76,8 +76,8 @@ def quantity(value, dimension, field="value"):
             q = registry().Quantity(text)
         except Exception as err:  # pint raises many types (UndefinedUnitError, DefinitionSyntaxError, ...)
             raise SceneError(field, f"cannot read {value!r} as {words}: {_pint_reason(err)}") from None
-        if not hasattr(q, "dimensionality"):
-            number = float(q)
+        if not hasattr(q, "dimensionality") or q.unitless:
+            number = float(q.magnitude if hasattr(q, "magnitude") else q)  # a plain number: SI
         else:
             want = registry().get_dimensionality(dim) if dim else registry().Quantity(1).dimensionality
             if q.dimensionality != want:

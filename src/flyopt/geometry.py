@@ -1,0 +1,221 @@
+"""Flywheel geometry: mass, moment of inertia and rim speed.
+
+Pure formulas. Every function uses only arithmetic, so it works unchanged on
+floats, numpy arrays and CasADi ``SX``/``MX`` expressions; none checks its
+arguments (the callers that take user input do).
+
+Nomenclature (SI)
+-----------------
+d_mean   mean rim diameter D_m [m]
+h        radial thickness of the rim H [m]
+b        axial width B [m]
+d_outer  outer diameter D_1 = D_m + H [m]
+d_inner  inner diameter D_2 = D_m - H [m]
+density  rho [kg/m^3]
+mass     m [kg]
+omega    angular speed of the shaft that carries the flywheel [rad/s]
+
+Models
+------
+thin_rim   J = m D_m^2 / 4                      (the textbook model)
+rim        J = m (D_1^2 + D_2^2) / 8 = m (D_m^2 + H^2) / 4   (exact annulus)
+disc       J = m D^2 / 8,  m = pi D^2 B rho / 4
+and for both rim models m = pi D_m H B rho. A disc is the annulus with
+D_2 = 0, i.e. D_m = H = D / 2.
+
+References
+----------
+.. [1] flyopt domain notes, docs/flywheel-design.md, sections 9 and 10.
+"""
+
+import math
+
+__all__ = [
+    "GEOMETRIES",
+    "rim_mass",
+    "rim_inertia",
+    "thin_rim_inertia",
+    "disc_mass",
+    "disc_inertia",
+    "outer_diameter",
+    "inner_diameter",
+    "rim_speed",
+    "outer_diameter_for_rim_speed",
+    "hoop_stress",
+]
+
+#: Geometry model names understood by flyopt, with their inertia formula.
+GEOMETRIES = {
+    "thin_rim": "thin rim, J = m D_m^2/4 (textbook model; slightly low, errs safe)",
+    "rim": "exact annulus, J = m (D_m^2 + H^2)/4",
+    "disc": "solid disc, J = m D^2/8, m = pi D^2 B rho/4",
+}
+
+
+def rim_mass(d_mean, h, b, density):
+    """Mass of a rim (annulus).
+
+    Parameters
+    ----------
+    d_mean : float or array or casadi expression
+        Mean diameter D_m [m].
+    h : float or array or casadi expression
+        Radial thickness H [m].
+    b : float or array or casadi expression
+        Axial width B [m].
+    density : float or array or casadi expression
+        Density rho [kg/m^3].
+
+    Returns
+    -------
+    mass : same type as the inputs
+        m = pi D_m H B rho [kg].
+
+    References
+    ----------
+    .. [1] flyopt domain notes, section 9.
+    """
+    return math.pi * d_mean * h * b * density
+
+
+def rim_inertia(mass, d_mean, h):
+    """Moment of inertia of a rim, exact annulus.
+
+    Parameters
+    ----------
+    mass : float or array or casadi expression
+        Rim mass m [kg].
+    d_mean : float or array or casadi expression
+        Mean diameter D_m [m].
+    h : float or array or casadi expression
+        Radial thickness H [m].
+
+    Returns
+    -------
+    j : same type as the inputs
+        J = m (D_1^2 + D_2^2)/8 = m (D_m^2 + H^2)/4 [kg*m^2].
+
+    References
+    ----------
+    .. [1] flyopt domain notes, section 9.
+    """
+    return mass * (d_mean * d_mean + h * h) / 4.0
+
+
+def thin_rim_inertia(mass, d_mean):
+    """Moment of inertia of a rim in the thin-rim approximation.
+
+    Parameters
+    ----------
+    mass : float or array or casadi expression
+        Rim mass m [kg].
+    d_mean : float or array or casadi expression
+        Mean diameter D_m [m].
+
+    Returns
+    -------
+    j : same type as the inputs
+        J = m D_m^2 / 4 [kg*m^2]; below the exact annulus value by
+        m H^2/4, so neglecting it (and the hub and arms) errs on the safe side.
+
+    References
+    ----------
+    .. [1] flyopt domain notes, section 9.
+    """
+    return mass * d_mean * d_mean / 4.0
+
+
+def disc_mass(d, b, density):
+    """Mass of a solid disc.
+
+    Parameters
+    ----------
+    d : float or array or casadi expression
+        Diameter D [m].
+    b : float or array or casadi expression
+        Axial width B [m].
+    density : float or array or casadi expression
+        Density rho [kg/m^3].
+
+    Returns
+    -------
+    mass : same type as the inputs
+        m = pi D^2 B rho / 4 [kg].
+    """
+    return math.pi * d * d * b * density / 4.0
+
+
+def disc_inertia(mass, d):
+    """Moment of inertia of a solid disc.
+
+    Parameters
+    ----------
+    mass : float or array or casadi expression
+        Disc mass m [kg].
+    d : float or array or casadi expression
+        Diameter D [m].
+
+    Returns
+    -------
+    j : same type as the inputs
+        J = m D^2 / 8 [kg*m^2].
+    """
+    return mass * d * d / 8.0
+
+
+def outer_diameter(d_mean, h):
+    """Outer diameter of a rim, D_1 = D_m + H [m]."""
+    return d_mean + h
+
+
+def inner_diameter(d_mean, h):
+    """Inner diameter of a rim, D_2 = D_m - H [m] (a rim needs D_2 > 0)."""
+    return d_mean - h
+
+
+def rim_speed(omega, d_outer):
+    """Peripheral speed at the outer diameter.
+
+    Parameters
+    ----------
+    omega : float or array or casadi expression
+        Angular speed of the shaft that carries the flywheel [rad/s].
+    d_outer : float or array or casadi expression
+        Outer diameter D_1 [m].
+
+    Returns
+    -------
+    v : same type as the inputs
+        v = omega D_1 / 2 [m/s].
+    """
+    return omega * d_outer / 2.0
+
+
+def outer_diameter_for_rim_speed(max_rim_speed, omega):
+    """Largest outer diameter a rim speed limit allows, D_1 = 2 v_max / omega [m].
+
+    Parameters
+    ----------
+    max_rim_speed : float or array or casadi expression
+        Safe rim speed v_max [m/s].
+    omega : float or array or casadi expression
+        Angular speed of the shaft that carries the flywheel [rad/s].
+    """
+    return 2.0 * max_rim_speed / omega
+
+
+def hoop_stress(density, rim_speed):
+    """Hoop stress of a thin rotating ring, sigma = rho v^2 [Pa].
+
+    Parameters
+    ----------
+    density : float or array or casadi expression
+        Density rho [kg/m^3].
+    rim_speed : float or array or casadi expression
+        Peripheral speed v [m/s].
+
+    References
+    ----------
+    .. [1] flyopt domain notes, section 10.
+    """
+    return density * rim_speed * rim_speed

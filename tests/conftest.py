@@ -1,0 +1,34 @@
+"""Shared test helpers."""
+
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PROBLEMS = ROOT / "problems"
+
+
+@pytest.fixture
+def write_scene(tmp_path):
+    """Write a scene text to a file and return its path."""
+
+    def write(text, name="scene.toml"):
+        path = tmp_path / name
+        path.write_text(text, encoding="utf-8")
+        return path
+
+    return write
+
+
+def assert_published(actual, published):
+    """Check a computed value against a figure as printed in a source.
+
+    ``published`` is the printed text, e.g. "0.8223" or "72.65": the value
+    must round to it, i.e. lie within half a unit of its last printed digit.
+    """
+    from decimal import Decimal
+
+    figure = Decimal(published)
+    half_unit = Decimal(1).scaleb(figure.as_tuple().exponent) / 2
+    assert abs(Decimal(repr(float(actual))) - figure) <= half_unit, \
+        f"{actual!r} does not round to the published {published} (±{half_unit})"

@@ -1,0 +1,51 @@
+"""Units at the boundary."""
+
+import math
+
+import pytest
+from numpy.testing import assert_allclose
+
+from flyopt.errors import SceneError
+from flyopt.units import gd2_from_inertia, inertia_from_gd2, quantity, rad_s_to_rpm, rpm_to_rad_s
+
+
+@pytest.mark.parametrize("text, dimension, si", [
+    ("1500 rpm", "angular_speed", 50 * math.pi),
+    ("157.07963267948966", "angular_speed", 157.07963267948966),
+    ("2 rad/s", "angular_speed", 2.0),
+    ("360 deg", "angle", 2 * math.pi),
+    ("720 degree", "angle", 4 * math.pi),
+    ("3.5 kN*m", "torque", 3500.0),
+    ("1.02 kg*m^2", "inertia", 1.02),
+    ("3.5 N*m^2", "flywheel_moment", 3.5),
+    ("100 N*m/mm", "torque_scale", 1e5),
+    ("0.01 rad/mm", "angle_scale", 10.0),
+    ("580 mm^2", "area", 580e-6),
+    ("7800 kg/m^3", "density", 7800.0),
+    ("36 m/s", "speed", 36.0),
+    ("7.5 kW", "power", 7500.0),
+    ("250 MPa", "stress", 2.5e8),
+])
+def test_quantities_convert_to_si(text, dimension, si):
+    assert_allclose(quantity(text, dimension), si, rtol=1e-15)
+
+
+def test_drawing_scales_multiply_to_joules():
+    area = quantity("580 mm^2", "area") * quantity("100 N*m/mm", "torque_scale") * quantity("0.01 rad/mm", "angle_scale")
+    assert_allclose(area, 580.0, rtol=1e-14)
+
+
+@pytest.mark.parametrize("value, words", [
+    ("1500 m", "wrong dimension"), ("fast", "cannot read"), ("nan rpm", "finite"), (float("inf"), "finite"),
+    (True, "expected a rotational speed"), ([1500], "expected a rotational speed"),
+])
+def test_bad_quantities(value, words):
+    with pytest.raises(SceneError, match=words):
+        quantity(value, "angular_speed", "machine.speed")
+
+
+def test_rpm_and_gd2_round_trips():
+    assert_allclose(rpm_to_rad_s(60 / (2 * math.pi)), 1.0, rtol=1e-15)
+    assert_allclose(rad_s_to_rpm(rpm_to_rad_s(1440.0)), 1440.0, rtol=1e-15)
+    assert gd2_from_inertia(1.0) == 4 * 9.81
+    assert_allclose(inertia_from_gd2(gd2_from_inertia(2.5)), 2.5, rtol=1e-15)
