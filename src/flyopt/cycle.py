@@ -197,6 +197,51 @@ def energy_indicator_from_areas(areas, cycle_angle):
         index_max=index_max, index_min=index_min, imbalance=imbalance)
 
 
+class ExcessWork:
+    """ΔE(φ) = ∫_0^φ (M_d − M_r) dφ as an exact function of the angle.
+
+    Piecewise-linear torques give a piecewise-quadratic ΔE, evaluated in
+    closed form; with an expression, ΔE is the knot value plus an adaptive
+    quadrature from the piece's start.
+
+    Attributes
+    ----------
+    knots : ndarray
+        Angles where M_d − M_r may jump or change slope [rad]; ΔE is smooth
+        between them.
+    driving, resisting : torque curves (an unknown constant already solved)
+    """
+
+    def __init__(self, driving, resisting, cycle_angle):
+        self.driving, self.resisting = solve_unknown_constant(driving, resisting, cycle_angle)
+        self._segments = _segments(self.driving, self.resisting, cycle_angle)
+        self.knots = self._segments.knots
+        self._at_knots = np.concatenate(([0.0], np.cumsum(self._segments.integrals(), dtype=np.longdouble)))
+        self.cycle_angle = cycle_angle
+
+    def __call__(self, phi):
+        """ΔE at the angles ``phi`` in [0, Φ] [J] (vectorized)."""
+        phi = np.asarray(phi, dtype=float)
+        k = np.clip(np.searchsorted(self.knots, phi, side="right") - 1, 0, len(self.knots) - 2)
+        seg = self._segments
+        h = np.diff(self.knots)[k]
+        dx = phi - self.knots[k]
+        if seg.linear:
+            a, b = seg.start[k], seg.end[k]
+            slope = np.where(h > 0, (b - a) / np.where(h > 0, h, 1.0), 0.0)
+            return (self._at_knots[k] + a * dx + 0.5 * slope * dx * dx).astype(float)
+        flat = np.atleast_1d(phi)
+        ks = np.atleast_1d(k)
+        out = np.array([float(self._at_knots[j]) + _quad(seg.difference(j), self.knots[j], p, seg.scale())
+                        for j, p in zip(ks, flat)])
+        return out.reshape(phi.shape)
+
+    def net_torque(self, phi):
+        """M_d − M_r at ``phi`` [N*m] (right limits at steps; vectorized)."""
+        phi = np.asarray(phi, dtype=float)
+        return (_sample(self.driving, phi)[1] - _sample(self.resisting, phi)[1]).astype(float)
+
+
 def required_inertia(a_max, omega_mean, delta, j_constant=0.0):
     """Flywheel inertia at the reference shaft by the constant-inertia method.
 

@@ -76,6 +76,12 @@ class Scene:
         Equivalent torques at the reference shaft (None when ``net`` is given).
     net : NetAreas or None
     shafts : tuple of Shaft
+    design : DesignSpec
+        Geometry, H/B range, envelope and objective of the flywheel design.
+    design_materials, design_shafts : tuple of str or None
+        Materials and shafts the design may choose from (None: all).
+    materials : tuple of Material
+        The scene's own materials.
     source : str or None
         File the scene came from.
     """
@@ -90,7 +96,17 @@ class Scene:
     resisting: object = None
     net: NetAreas | None = None
     shafts: tuple = (Shaft("reference", 1.0),)
+    design: object = None          # DesignSpec (defaults when the scene has no [design])
+    design_materials: tuple | None = None   # names the design may use; None: every known material
+    design_shafts: tuple | None = None      # names of [[shaft]] the design may use; None: all
+    materials: tuple = ()          # user materials ([[material]]), extending the built-in ones
     source: str | None = field(default=None, compare=False)
+
+    def material_library(self):
+        """Built-in materials extended or overridden by the scene's own."""
+        from .materials import material_library
+
+        return material_library(self.materials)
 
     def replace(self, **changes):
         """A copy with some fields changed (for studies and tests)."""
@@ -139,7 +155,7 @@ def from_dict(data, source=None):
     SceneError
         A field is missing, unknown or wrong.
     """
-    top = _Table(data, "", {"title", "description", "machine", "torque", "shaft"})
+    top = _Table(data, "", {"title", "description", "machine", "torque", "shaft", "design", "material"})
     machine = _Table(top.require("machine"), "machine",
                      {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"})
     omega = machine.quantity("speed", "angular_speed", required=True)
@@ -165,12 +181,16 @@ def from_dict(data, source=None):
         else _reference_efficiency(shafts)
 
     driving, resisting, net = _torques(top.require("torque"), cycle)
+    materials = _materials(top.get("material"))
+    design, design_materials, design_shafts = _design(top.get("design", {}), shafts, materials)
     title = top.get("title", "")
     if not isinstance(title, str):
         raise SceneError("title", f"must be a string, got {title!r}")
     return Scene(title=title or (Path(source).stem if source else "scene"), omega_mean=omega, delta=delta,
                  j_constant=j_c, cycle_angle=cycle, efficiency=efficiency, driving=driving,
-                 resisting=resisting, net=net, shafts=shafts, source=source)
+                 resisting=resisting, net=net, shafts=shafts, design=design,
+                 design_materials=design_materials, design_shafts=design_shafts, materials=materials,
+                 source=source)
 
 
 # -- sections ------------------------------------------------------------------
@@ -295,6 +315,107 @@ def _shafts(raw):
         eff = _efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
         shafts.append(Shaft(name, ratio, eff))
     return tuple(shafts)
+
+
+def _materials(raw):
+    from .materials import make_material
+
+    if raw is None:
+        return ()
+    if not isinstance(raw, list):
+        raise SceneError("material", "must be an array of tables: [[material]] with name and density")
+    materials, seen = [], set()
+    for k, item in enumerate(raw):
+        where = f"material[{k}]"
+        table = _Table(item, where, {"name", "density", "max_rim_speed", "allowable_stress", "cost",
+                                     "source", "description"})
+        name = table.require("name")
+        if not isinstance(name, str) or not name.strip():
+            raise SceneError(f"{where}.name", f"must be a non-empty string, got {name!r}")
+        if name in seen:
+            raise SceneError(f"{where}.name", f"material {name!r} is given twice")
+        seen.add(name)
+        if not (table.has("max_rim_speed") or table.has("allowable_stress")):
+            raise SceneError(where, "give max_rim_speed, or allowable_stress (v_max then follows from σ = ρ v²)")
+        values = {
+            "density": table.quantity("density", "density", required=True),
+            "max_rim_speed": table.quantity("max_rim_speed", "speed"),
+            "allowable_stress": table.quantity("allowable_stress", "stress"),
+            "cost": table.quantity("cost", "cost_per_mass"),
+        }
+        for key, value in values.items():
+            if value is not None and (value < 0 or (value == 0 and key != "cost")):
+                raise SceneError(f"{where}.{key}", f"must be positive, got {table.raw(key)!r}")
+        source = table.get("source", "scene file")
+        try:
+            materials.append(make_material(name, source=str(source), **values))
+        except ValueError as err:
+            raise SceneError(where, str(err)) from None
+    return tuple(materials)
+
+
+def _design(raw, shafts, materials):
+    from .materials import material_library
+    from .optimize import DesignSpec
+
+    table = _Table(raw, "design", {"geometry", "materials", "shafts", "hb_ratio", "max_outer_diameter",
+                                   "max_width", "d_mean", "objective", "description"})
+    library = material_library(materials)
+    names = _name_list(table, "materials", library, "material")
+    shaft_names = _name_list(table, "shafts", {s.name: s for s in shafts}, "shaft")
+    options = {}
+    for key in ("geometry", "objective"):
+        if table.has(key):
+            value = table.get(key)
+            allowed = {"geometry": ("thin_rim", "rim", "disc"), "objective": ("mass", "outer_diameter", "cost")}[key]
+            if value not in allowed:
+                close = difflib.get_close_matches(str(value), allowed, n=1)
+                hint = f"; did you mean {close[0]!r}?" if close else ""
+                raise SceneError(f"design.{key}", f"{value!r} is not known{hint} (allowed: {', '.join(allowed)})")
+            options[key] = value
+    if table.has("hb_ratio"):
+        hb = table.get("hb_ratio")
+        pair = hb if isinstance(hb, list) else [hb, hb]
+        if len(pair) != 2:
+            raise SceneError("design.hb_ratio", f"must be one number or a range [min, max], got {hb!r}")
+        low, high = (quantity(v, "dimensionless", "design.hb_ratio") for v in pair)
+        if not 0 < low <= high:
+            raise SceneError("design.hb_ratio", f"must be a range 0 < min <= max, got {hb!r}")
+        options["hb_ratio"] = (low, high)
+    for key in ("max_outer_diameter", "max_width", "d_mean"):
+        if table.has(key):
+            value = table.quantity(key, "length")
+            if value <= 0:
+                raise SceneError(f"design.{key}", f"must be positive, got {table.raw(key)!r}")
+            options[key] = value
+    if options.get("objective") == "cost":
+        chosen = names or tuple(library)
+        missing = [n for n in chosen if library[n].cost is None]
+        if missing:
+            raise SceneError("design.objective", f"'cost' needs a cost per kg for every material; "
+                             f"none is given for {', '.join(missing)}")
+    try:
+        spec = DesignSpec(**options)
+    except ValueError as err:
+        raise SceneError("design", str(err)) from None
+    return spec, names, shaft_names
+
+
+def _name_list(table, key, known, what):
+    if not table.has(key):
+        return None
+    raw = table.get(key)
+    if not isinstance(raw, list) or not raw or not all(isinstance(n, str) for n in raw):
+        raise SceneError(f"design.{key}", f"must be a non-empty list of {what} names")
+    for k, name in enumerate(raw):
+        if name not in known:
+            close = difflib.get_close_matches(name, list(known), n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise SceneError(f"design.{key}[{k}]", f"unknown {what} {name!r}{hint} "
+                             f"(known: {', '.join(known)})")
+    if len(set(raw)) != len(raw):
+        raise SceneError(f"design.{key}", f"a {what} is named twice")
+    return tuple(raw)
 
 
 def _reference_efficiency(shafts):
