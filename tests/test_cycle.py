@@ -10,8 +10,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from conftest import assert_published
-from flyopt.cycle import (energy_indicator, energy_indicator_from_areas, required_inertia,
-                          transfer_inertia, work)
+from flyopt.cycle import energy_indicator, energy_indicator_from_areas, required_inertia, work
+from flyopt.transmission import inertia_on_shaft
 from flyopt.errors import NonPeriodicCycle
 from flyopt.expression import Expression
 from flyopt.torque import Constant, ExpressionTorque, PiecewiseLinear
@@ -287,4 +287,4 @@ def test_required_inertia_formula_and_transfer():
     n = 1500.0
     assert_allclose(required_inertia(1600, n * TWO_PI / 60, 0.02, 1.0),
                     900 * 1600 / (math.pi**2 * n**2 * 0.02) - 1.0, rtol=1e-14)
-    assert transfer_inertia(8.0, 2.0) == 2.0
+    assert inertia_on_shaft(8.0, 2.0) == 2.0

@@ -8,8 +8,9 @@ ratio-squared transfer.
 
 from dataclasses import dataclass
 
-from .cycle import energy_indicator, energy_indicator_from_areas, required_inertia, transfer_inertia
+from .cycle import energy_indicator, energy_indicator_from_areas, required_inertia
 from .errors import NonPeriodicCycle, SceneError
+from .transmission import inertia_on_shaft
 from .units import gd2_from_inertia
 
 MODEL_ENERGY = "energy"
@@ -113,8 +114,8 @@ def _analyse(scene):
     j_req = j_margin if needed else 0.0
     shafts = tuple(ShaftRequirement(
         name=s.name, speed_ratio=s.speed_ratio, omega=s.speed_ratio * scene.omega_mean,
-        efficiency=s.efficiency, j_required=transfer_inertia(j_req, s.speed_ratio),
-        gd2_required=gd2_from_inertia(transfer_inertia(j_req, s.speed_ratio))) for s in scene.shafts)
+        efficiency=s.efficiency, j_required=inertia_on_shaft(j_req, s.speed_ratio),
+        gd2_required=gd2_from_inertia(inertia_on_shaft(j_req, s.speed_ratio))) for s in scene.shafts)
     return Analysis(
         title=scene.title, model=MODEL_ENERGY, omega_mean=scene.omega_mean, delta=scene.delta,
         cycle_angle=scene.cycle_angle, j_constant=scene.j_constant, a_max=ind.a_max,

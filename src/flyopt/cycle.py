@@ -266,14 +266,6 @@ def required_inertia(a_max, omega_mean, delta, j_constant=0.0):
     return a_max / (omega_mean**2 * delta) - j_constant
 
 
-def transfer_inertia(j_reference, speed_ratio):
-    """Inertia on a shaft turning ``speed_ratio`` times the reference speed.
-
-    Equal kinetic energy: J' = J (ω/ω')² (domain page, section 8).
-    """
-    return j_reference / speed_ratio**2
-
-
 # -- internals -----------------------------------------------------------------
 
 

@@ -25,7 +25,7 @@ D_2 = 0, i.e. D_m = H = D / 2.
 
 References
 ----------
-.. [1] flyopt domain notes, docs/flywheel-design.md, sections 9 and 10.
+.. [1] flyopt domain notes, shared/domain/flywheel-design.md, sections 9 and 10.
 """
 
 import math

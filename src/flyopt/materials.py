@@ -15,7 +15,7 @@ known.
 
 References
 ----------
-.. [1] flyopt domain notes, docs/flywheel-design.md, section 10 (rim speed
+.. [1] flyopt domain notes, shared/domain/flywheel-design.md, section 10 (rim speed
    limits: cast iron 36 m/s, cast steel 50 m/s).
 """
 
@@ -69,7 +69,7 @@ class Material:
     Parameters
     ----------
     name : str
-        Name used in scenes and reports, e.g. ``"cast iron"``.
+        Name used in scenes and reports, e.g. ``"cast_iron"``.
     density : float
         Density rho [kg/m^3].
     max_rim_speed : float
@@ -257,6 +257,11 @@ def material_library(user_materials: Iterable[Material] | Mapping[str, Material]
     return library
 
 
+def _fold(name):
+    """Names compare without case, and with spaces and hyphens as underscores ("Cast Iron" = cast_iron)."""
+    return str(name).casefold().replace(" ", "_").replace("-", "_")
+
+
 def get_material(name: str, library: Mapping[str, Material] | None = None) -> Material:
     """Look a material up by name (case-insensitive), suggesting close names.
 
@@ -280,8 +285,8 @@ def get_material(name: str, library: Mapping[str, Material] | None = None) -> Ma
         library = builtin_materials()
     if name in library:
         return library[name]
-    folded = {key.casefold(): key for key in library}
-    key = str(name).casefold()
+    folded = {_fold(key): key for key in library}
+    key = _fold(name)
     if key in folded:
         return library[folded[key]]
     close = difflib.get_close_matches(key, list(folded), n=3, cutoff=0.5)

@@ -46,7 +46,7 @@ a non-converged solve of a feasible combination raises
 
 References
 ----------
-.. [1] flyopt domain notes, docs/flywheel-design.md, sections 5, 8, 9, 10 and
+.. [1] flyopt domain notes, shared/domain/flywheel-design.md, sections 5, 8, 9, 10 and
    worked example 6.
 .. [2] A. Waechter and L. T. Biegler, "On the implementation of an
    interior-point filter line-search algorithm for large-scale nonlinear
@@ -69,6 +69,7 @@ from scipy.optimize import brentq
 from flyopt import geometry
 from flyopt.errors import SolverFailed
 from flyopt.materials import Material
+from flyopt.transmission import inertia_at_reference, inertia_on_shaft
 
 __all__ = [
     "MountShaft",
@@ -233,42 +234,6 @@ class DesignSpec:
             raise ValueError("objective 'outer_diameter' with geometry 'disc' needs "
                              "max_width: without it an ever thinner, wider disc makes "
                              "the diameter as small as one likes")
-
-
-def inertia_on_shaft(j_reference, speed_ratio):
-    """Inertia a flywheel needs on a shaft to replace J at the reference shaft.
-
-    Parameters
-    ----------
-    j_reference : float
-        Inertia required at the reference shaft [kg*m^2].
-    speed_ratio : float
-        omega' / omega, shaft speed over reference speed [-].
-
-    Returns
-    -------
-    float
-        J' = J (omega / omega')^2 [kg*m^2], from equal kinetic energy [1]_.
-    """
-    return j_reference / (speed_ratio * speed_ratio)
-
-
-def inertia_at_reference(j_shaft, speed_ratio):
-    """Inertia of a flywheel on a shaft, moved to the reference shaft.
-
-    Parameters
-    ----------
-    j_shaft : float
-        Inertia on its own shaft J' [kg*m^2].
-    speed_ratio : float
-        omega' / omega [-].
-
-    Returns
-    -------
-    float
-        J_ref = J' (omega' / omega)^2 [kg*m^2].
-    """
-    return j_shaft * speed_ratio * speed_ratio
 
 
 # --------------------------------------------------------------------------
@@ -544,8 +509,8 @@ def _build_model(structure, options):
     name = "flywheel_" + "_".join(str(v) for v in structure)
     solver = ca.nlpsol(name, "ipopt", nlp, options)
     return NlpModel(structure=structure, solver=solver, variables=tuple(names),
-                  constraints=tuple(g_names), uses_p=uses_p,
-                  build_time=time.perf_counter() - start)
+                    constraints=tuple(g_names), uses_p=uses_p,
+                    build_time=time.perf_counter() - start)
 
 
 # --------------------------------------------------------------------------
@@ -727,7 +692,7 @@ class _Combination:
 
     @property
     def label(self):
-        return f"{self.material.name} on the {_shaft_label(self.shaft.name)}"
+        return f"{self.material.name.replace('_', ' ')} on the {_shaft_label(self.shaft.name)}"
 
 
 def _shaft_label(name):
@@ -798,7 +763,14 @@ def _explain_infeasible(combo, spec):
 
 
 def _scales(combo, spec):
-    """Length scales: L, H_s, B_s (disc: L, B_s) and the parameter log(H_s/L)."""
+    """Scales (L, H_s, B_s) [m] of the non-dimensional variables.
+
+    L is the outer-diameter cap (or the pinned diameter). For rims, H_s and
+    B_s = H_s / hb_min are the thin-rim wheel of D_m = L and H/B = hb_min that
+    gives exactly J' (so the inertia row reads >= 0 and x = 0 starts near the
+    optimum); for a disc H_s is None and B_s is the width of the disc of
+    diameter L that gives J'.
+    """
     rho, j = combo.material.density, combo.j_shaft
     length = combo.cap if spec.d_mean is None else spec.d_mean
     if spec.geometry == "disc":
@@ -857,9 +829,10 @@ def _solve(model, combo, spec):
     status = stats.get("return_status", "unknown")
     iterations = int(stats.get("iter_count", -1))
     if status not in _CONVERGED:
+        after = (f" after {iterations} iterations" if 0 <= iterations <= 10 ** 6 else "")
         err = SolverFailed(
-            f"{combo.label}: IPOPT did not converge (return status {status!r} after "
-            f"{iterations} iterations), although the closed-form bound shows the "
+            f"{combo.label}: IPOPT did not converge (return status {status!r}{after}), "
+            f"although the closed-form bound shows the "
             f"combination is feasible (it can give up to {_g(combo.j_max)} kg·m², "
             f"{_g(combo.j_shaft)} needed); no design is reported")
         err.status = status

@@ -94,3 +94,29 @@ def reduced_load_torque(torque, ratio, efficiency=1.0):
     """Static load torque reduced to the motor shaft: T_L' = T_L / (j η) [N*m]."""
     return torque / (ratio * efficiency)
 
+
+
+def inertia_on_shaft(j_reference, speed_ratio):
+    """Inertia a flywheel needs on a shaft to replace J at the reference shaft.
+
+    Equal kinetic energy, ½ J' ω'² = ½ J ω², gives J' = J (ω/ω')² (domain
+    page, section 8).
+
+    Parameters
+    ----------
+    j_reference : float
+        Inertia at the reference shaft [kg*m^2].
+    speed_ratio : float
+        ω'/ω, shaft speed over reference speed [-].
+
+    Returns
+    -------
+    float
+        J' [kg*m^2].
+    """
+    return j_reference / (speed_ratio * speed_ratio)
+
+
+def inertia_at_reference(j_shaft, speed_ratio):
+    """Inertia of a flywheel on a shaft, moved to the reference shaft: J = J' (ω'/ω)² [kg*m^2]."""
+    return j_shaft * speed_ratio * speed_ratio
