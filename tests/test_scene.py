@@ -170,3 +170,56 @@ def test_toml_syntax_and_duplicate_tables(write_scene):
 def test_missing_file():
     with pytest.raises(SceneError, match=r"no-such.toml: cannot read the file"):
         flyopt.load("no-such.toml")
+
+
+DESIGN_BAD = [
+    ('geometry = "rimm"', "design.geometry", "'rimm' is not known; did you mean 'rim'"),
+    ('materials = ["cast_iorn"]', "design.materials[0]", "unknown material 'cast_iorn'; did you mean 'cast_iron'"),
+    ('materials = []', "design.materials", "non-empty list"),
+    ('shafts = ["mian"]', "design.shafts[0]", "unknown shaft 'mian'; did you mean 'main'"),
+    ('hb_ratio = [2.0, 1.5]', "design.hb_ratio", "0 < min <= max"),
+    ('hb_ratio = [1, 2, 3]', "design.hb_ratio", "one number or a range"),
+    ('max_outer_diameter = "-1 m"', "design.max_outer_diameter", "must be positive"),
+    ('max_width = "25 kg"', "design.max_width", "wrong dimension"),
+    ('objective = "cost"', "design.objective", "needs a cost per kg"),
+    ('objective = "volume"', "design.objective", "not known"),
+    ('colour = "red"', "design.colour", "unknown key"),
+]
+
+
+@pytest.mark.parametrize("line, field, words", DESIGN_BAD)
+def test_bad_design_section(write_scene, line, field, words):
+    path = write_scene(scene_text() + f"[design]\n{line}\n")
+    with pytest.raises(SceneError) as info:
+        flyopt.load(path)
+    assert str(info.value).startswith(f"{path}: {field}: ")
+    assert words in str(info.value)
+
+
+MATERIAL_BAD = [
+    ('name = "x"\ndensity = "7000 kg/m^3"', "material[0]", "give max_rim_speed, or allowable_stress"),
+    ('name = "x"\nmax_rim_speed = "40 m/s"', "material[0].density", "is missing"),
+    ('name = "x"\ndensity = "7000 kg"\nmax_rim_speed = "40 m/s"', "material[0].density", "wrong dimension"),
+    ('name = "x"\ndensity = "7000 kg/m^3"\nmax_rim_speed = "-4 m/s"', "material[0].max_rim_speed", "positive"),
+    ('name = "x"\ndensity = "7000 kg/m^3"\nmax_rim_speed = "40 m/s"\nyield = "1 MPa"', "material[0].yield",
+     "unknown key"),
+]
+
+
+@pytest.mark.parametrize("body, field, words", MATERIAL_BAD)
+def test_bad_user_material(write_scene, body, field, words):
+    path = write_scene(scene_text() + f"[[material]]\n{body}\n")
+    with pytest.raises(SceneError) as info:
+        flyopt.load(path)
+    assert str(info.value).startswith(f"{path}: {field}: ")
+    assert words in str(info.value)
+
+
+def test_user_material_overrides_builtin_and_cost_objective(write_scene):
+    path = write_scene(scene_text() + '[design]\nobjective = "cost"\nmaterials = ["cast_iron"]\n'
+                       '[[material]]\nname = "cast_iron"\ndensity = "7100 kg/m^3"\nmax_rim_speed = "30 m/s"\n'
+                       'cost = "1.5 1/kg"\n')
+    scene = flyopt.load(path)
+    assert scene.material_library()["cast_iron"].max_rim_speed == 30.0
+    result = flyopt.solve(scene)
+    assert_allclose(result.design.best.cost, 1.5 * result.design.best.mass, rtol=1e-15)

@@ -1,8 +1,9 @@
 """Command line: ``flyopt solve SCENE.toml [--json]`` and ``flyopt check SCENE.toml``.
 
-Bad input ends with one line on stderr naming the file, the field and what is
-allowed, and exit status 2; nothing is printed on stdout before the whole
-result is ready.
+Exit status: 0 a design (or none needed), 1 a solver did not converge (no
+design is reported), 2 bad input (one line on stderr naming the file, the
+field and what is allowed), 3 no material and shaft can give the inertia.
+Nothing is printed on stdout before the whole result is ready.
 """
 
 import argparse
@@ -12,9 +13,10 @@ import sys
 from . import __version__
 from .analysis import analyse
 from .errors import NonPeriodicCycle, SceneError, SolverFailed
+from .pipeline import solve
 from .scene import load
 
-EXIT_OK, EXIT_FAILED, EXIT_INPUT = 0, 1, 2
+EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INFEASIBLE = 0, 1, 2, 3
 
 
 def main(argv=None):
@@ -41,6 +43,8 @@ def _parser():
     solve = commands.add_parser("solve", help="analyse a scene's cycle and size its flywheel")
     solve.add_argument("scene", help="scene file (TOML)")
     solve.add_argument("--json", action="store_true", help="print one JSON object, all numbers in SI")
+    solve.add_argument("--no-design", dest="design", action="store_false",
+                       help="stop after the cycle analysis (no optimization)")
     solve.set_defaults(run=_solve)
 
     check = commands.add_parser("check", help="check a scene file and say what is wrong")
@@ -51,15 +55,18 @@ def _parser():
 
 def _solve(args):
     scene = load(args.scene)
-    result = analyse(scene)
+    solution = solve(scene, design_flywheel=args.design)
     if args.json:
-        text = json.dumps({"scene": args.scene, **result.to_dict()}, indent=2, allow_nan=False)
+        text = json.dumps({"scene": args.scene, **solution.to_dict()}, indent=2, allow_nan=False)
     else:
-        from .report import analysis_report
+        from .report import analysis_report, design_report
 
-        text = analysis_report(result, args.scene)
+        lines = [analysis_report(solution.analysis, args.scene)]
+        if solution.design is not None:
+            lines += design_report(solution.design)
+        text = "\n".join(lines)
     print(text)
-    return EXIT_OK
+    return EXIT_INFEASIBLE if solution.status == "infeasible" else EXIT_OK
 
 
 def _check(args):

@@ -83,3 +83,46 @@ def analysis_report(result, source=None):
              number(s.gd2_required)] for s in r.shafts]
     lines += ["  " + line for line in table(["shaft", "speed ratio", "speed [rpm]", "J [kg·m²]", "GD² [N·m²]"], rows)]
     return "\n".join(lines)
+
+
+def design_report(result, spec=None):
+    """The design part of the ``flyopt solve`` report: the winner and the ranking of every combination."""
+    lines = ["", f"Flywheel design ({result.spec.geometry}, objective: {result.spec.objective}):"]
+    if result.status == "not_needed":
+        return lines + [f"  {result.message}"]
+    best = result.best
+    if best is not None:
+        facts = [
+            ("material / shaft", f"{best.material} on {best.shaft} (speed ratio {number(best.speed_ratio)})"),
+            ("mass", f"{number(best.mass)} kg" + (f" (cost {number(best.cost)})" if best.cost is not None else "")),
+            ("outer / mean / inner diameter", f"{number(best.d_outer)} / {number(best.d_mean)} / "
+                                              f"{number(best.d_inner)} m"),
+            ("rim H x B", f"{number(best.h)} x {number(best.b)} m (H/B {number(best.hb_ratio, 4)})"),
+            ("inertia", f"{number(best.j_flywheel)} kg·m² on its shaft = {number(best.j_at_reference)} kg·m² "
+                        "at the reference shaft"),
+            ("rim speed", f"{number(best.rim_speed)} m/s (limit {number(best.rim_speed_limit)} m/s), "
+                          f"hoop stress ρv² {number(best.hoop_stress / 1e6)} MPa"
+             + (f", safety factor {number(best.safety_factor, 3)}" if best.safety_factor else "")),
+            ("binding", ", ".join(best.binding) or "none"),
+        ]
+        width = max(len(k) for k, _ in facts)
+        lines += [f"  {k:<{width}}  {v}" for k, v in facts]
+        if result.spec.max_outer_diameter is None:
+            lines.append("  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
+                         "bounds the diameter")
+    else:
+        lines.append("  no feasible design: no material and shaft can give the required inertia")
+    rows = []
+    for k, c in enumerate(result.candidates, 1):
+        if c.feasible:
+            rows.append([str(k), c.material, c.shaft, number(c.mass), number(c.d_outer), number(c.h), number(c.b),
+                         number(c.rim_speed), ", ".join(c.binding)])
+        else:
+            rows.append(["-", c.material, c.shaft, "infeasible", "", "", "", "", ""])
+    lines += ["", "Every combination (ranked):"]
+    lines += ["  " + line for line in table(["rank", "material", "shaft", "mass [kg]", "D_outer [m]", "H [m]", "B [m]",
+                                             "v [m/s]", "binding"], rows, ["<", "<", "<", ">", ">", ">", ">", ">", "<"])]
+    reasons = [c.reason for c in result.candidates if not c.feasible]
+    if reasons:
+        lines += ["", "Why the infeasible ones fail:"] + [f"  - {r}" for r in reasons]
+    return lines

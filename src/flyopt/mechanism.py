@@ -1,0 +1,598 @@
+"""Reduction of a real mechanism to the reference shaft.
+
+The machine's members are replaced by one shaft (angle φ, speed ω) with the
+same kinetic energy and the same instantaneous power (domain page, section 3):
+
+    J_e(φ) = J_c + Σ_i [ J_Si (ω_i/ω)² + m_i (v_Si/ω)² ],
+    M_e(φ) = Σ_i [ T_i (ω_i/ω) + F_i (v_i/ω) cos α_i ].
+
+Both need only the velocity *ratios* v_S/ω [m/rad] and ω_i/ω [-]. They are
+constant for gear trains and vary with φ for linkages; here the slider-crank
+is given by its analytic kinematics (closed-form positions differentiated by
+hand, not finite differences). Every kinematic function accepts a numpy
+array **or** a CasADi SX/MX symbol and returns the same kind, so one
+definition serves the numpy analysis and the CasADi models.
+
+Sign convention of the equivalent torque: positive drives the reference
+shaft (acts in its sense of rotation), negative resists it.
+"""
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import casadi as ca
+import numpy as np
+
+from .torque import PiecewiseLinear
+
+FORCE_SENSES = ("resisting", "driving", "axial")
+"""How a member's force (or torque) does work:
+
+- ``"resisting"``: it always opposes the motion of its point: power −F|v|;
+- ``"driving"``: it always acts along the motion: power +F|v|;
+- ``"axial"``: it acts along the fixed axis on which the (scalar, signed)
+  velocity ratio is measured: power F·v, F positive along +axis.
+"""
+
+
+def _is_casadi(x):
+    return isinstance(x, (ca.SX, ca.MX, ca.DM))
+
+
+def _lib(x):
+    """numpy or casadi, whichever matches ``x``."""
+    return ca if _is_casadi(x) else np
+
+
+# -- mechanisms ------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Kinematics:
+    """Velocity ratios of one member of a mechanism.
+
+    Attributes
+    ----------
+    velocity_ratio : callable
+        φ ↦ v_S/ω of the member's centre of mass [m/rad]; returns a scalar
+        (signed, along a fixed axis) or a pair (v_x/ω, v_y/ω).
+    angular_ratio : callable
+        φ ↦ ω_member/ω [-].
+    """
+
+    velocity_ratio: object
+    angular_ratio: object
+
+
+class SliderCrank:
+    """Slider-crank (crank OA, rod AB, slider B) driven by the reference crank.
+
+    The crank turns about O at the origin; the crank angle φ [rad] is measured
+    from the slider axis, positive counter-clockwise. The slider moves along
+    the line y = ``offset`` on the side x > 0, so φ = 0 is (for zero offset)
+    the outer dead centre.
+
+    Parameters
+    ----------
+    crank : float
+        Crank radius r = |OA| [m].
+    rod : float
+        Connecting-rod length l = |AB| [m]; must exceed r + |offset| so that
+        the crank turns fully.
+    offset : float
+        Distance e of the slider axis from O [m] (positive: the axis lies on
+        the side y > 0).
+
+    Raises
+    ------
+    ValueError
+        For non-positive or non-finite lengths, or l <= r + |e|.
+
+    Notes
+    -----
+    With u = r sin φ − e and w = sqrt(l² − u²):
+
+        x_B = r cos φ + w,
+        v_B/ω = dx_B/dφ = −r sin φ − u r cos φ / w,
+        rod angle β = atan2(−u, w)  (direction of A→B),
+        ω_rod/ω = dβ/dφ = −r cos φ / w.
+
+    A point of the rod at the fraction s = |AP|/l from the crank pin moves at
+    ((1 − s)(−r sin φ) + s v_B/ω, (1 − s) r cos φ) times ω.
+
+    References
+    ----------
+    .. [1] Shigley, J. E., Uicker, J. J., *Theory of Machines and Mechanisms*,
+       slider-crank position and velocity analysis (loop-closure equations).
+    """
+
+    def __init__(self, crank, rod, offset=0.0):
+        for name, value in (("crank", crank), ("rod", rod)):
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+                raise ValueError(f"slider-crank {name} length must be a positive finite number [m], got {value!r}")
+        if not (isinstance(offset, (int, float)) and math.isfinite(offset)):
+            raise ValueError(f"slider-crank offset must be a finite number [m], got {offset!r}")
+        if rod <= crank + abs(offset):
+            raise ValueError(
+                f"slider-crank with crank {crank!r} m, rod {rod!r} m and offset {offset!r} m cannot turn fully: "
+                f"the rod must be longer than crank + |offset| = {crank + abs(offset)!r} m")
+        self.crank = float(crank)
+        self.rod = float(rod)
+        self.offset = float(offset)
+
+    def __repr__(self):
+        return f"SliderCrank(crank={self.crank!r}, rod={self.rod!r}, offset={self.offset!r})"
+
+    def _uw(self, phi):
+        lib = _lib(phi)
+        u = self.crank * lib.sin(phi) - self.offset
+        return u, lib.sqrt(self.rod**2 - u * u)
+
+    def slider_position(self, phi):
+        """Slider position x_B along its axis [m]."""
+        lib = _lib(phi)
+        return self.crank * lib.cos(phi) + self._uw(phi)[1]
+
+    def stroke(self):
+        """Slider stroke, x_B max − x_B min [m] (closed form, valid with offset)."""
+        r, l, e = self.crank, self.rod, self.offset
+        return math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e)
+
+    def slider_velocity_ratio(self, phi):
+        """v_B/ω of the slider [m/rad], signed along +x."""
+        lib = _lib(phi)
+        u, w = self._uw(phi)
+        return -self.crank * lib.sin(phi) - u * self.crank * lib.cos(phi) / w
+
+    def rod_angle(self, phi):
+        """Angle β of the rod, direction crank pin → slider, from +x [rad]."""
+        lib = _lib(phi)
+        u, w = self._uw(phi)
+        return lib.arctan2(-u, w) if lib is np else ca.atan2(-u, w)
+
+    def rod_angular_ratio(self, phi):
+        """ω_rod/ω [-] (signed, counter-clockwise positive)."""
+        lib = _lib(phi)
+        return -self.crank * lib.cos(phi) / self._uw(phi)[1]
+
+    def rod_point_velocity_ratio(self, phi, fraction):
+        """Velocity ratio of a point of the rod, (v_x/ω, v_y/ω) [m/rad].
+
+        Parameters
+        ----------
+        phi : array or casadi symbol
+            Crank angle [rad].
+        fraction : float
+            s = |AP|/l: 0 at the crank pin, 1 at the slider pin.
+        """
+        lib = _lib(phi)
+        s = float(fraction)
+        vx = (1 - s) * (-self.crank * lib.sin(phi)) + s * self.slider_velocity_ratio(phi)
+        vy = (1 - s) * self.crank * lib.cos(phi)
+        return vx, vy
+
+    def kinematics(self, part, centre=None):
+        """Velocity ratios of one part of the mechanism, for a :class:`Member`.
+
+        Parameters
+        ----------
+        part : {"crank", "rod", "slider"}
+        centre : float, optional
+            Position of the part's centre of mass [m]: for the crank, its
+            distance from O along OA (negative: behind O, e.g. a
+            counterweight; default r/2); for the rod, its distance from the
+            crank pin A along AB (default l/2); unused for the slider.
+
+        Returns
+        -------
+        Kinematics
+        """
+        if part == "crank":
+            c = 0.5 * self.crank if centre is None else float(centre)
+            return Kinematics(velocity_ratio=abs(c), angular_ratio=1.0)
+        if part == "rod":
+            c = 0.5 * self.rod if centre is None else float(centre)
+            if not 0 <= c <= self.rod:
+                raise ValueError(f"rod centre of mass must lie between the pins, 0..{self.rod!r} m, got {c!r}")
+            s = c / self.rod
+            return Kinematics(velocity_ratio=lambda phi: self.rod_point_velocity_ratio(phi, s),
+                              angular_ratio=self.rod_angular_ratio)
+        if part == "slider":
+            return Kinematics(velocity_ratio=self.slider_velocity_ratio, angular_ratio=0.0)
+        raise ValueError(f"slider-crank part {part!r} is not known (allowed: 'crank', 'rod', 'slider')")
+
+
+class GearTrain:
+    """A train of gear (or belt) stages with constant speed ratios.
+
+    Parameters
+    ----------
+    ratios : sequence of float
+        Speed ratio of each stage, ω_out/ω_in [-], from the reference shaft
+        outwards. Shaft 0 is the reference shaft; shaft k turns at
+        ratios[0]·…·ratios[k−1] times its speed.
+
+    Notes
+    -----
+    For a pair of gears with z_in and z_out teeth, ω_out/ω_in = z_in/z_out
+    (the sense of rotation does not enter the inertia; a torque on a gear
+    uses the "driving"/"resisting" sense of :class:`Member`).
+    """
+
+    def __init__(self, ratios):
+        ratios = [float(r) for r in ratios]
+        for r in ratios:
+            if not (math.isfinite(r) and r != 0):
+                raise ValueError(f"a gear stage ratio must be a finite non-zero number, got {r!r}")
+        self.ratios = tuple(ratios)
+
+    @classmethod
+    def from_teeth(cls, pairs):
+        """Gear train from tooth counts ``[(z_in, z_out), ...]`` per stage."""
+        stages = []
+        for pair in pairs:
+            z_in, z_out = pair
+            if not (z_in > 0 and z_out > 0):
+                raise ValueError(f"tooth counts must be positive, got {pair!r}")
+            stages.append(z_in / z_out)
+        return cls(stages)
+
+    def angular_ratio(self, shaft):
+        """ω_shaft/ω of shaft ``shaft`` (0 = reference) [-]."""
+        if not 0 <= shaft <= len(self.ratios):
+            raise ValueError(f"gear train has shafts 0..{len(self.ratios)}, got {shaft!r}")
+        return math.prod(self.ratios[:shaft])
+
+    def kinematics(self, shaft):
+        """Velocity ratios of a gear on shaft ``shaft`` (centre on the axis)."""
+        return Kinematics(velocity_ratio=0.0, angular_ratio=self.angular_ratio(shaft))
+
+
+# -- members and the reduction -------------------------------------------------
+
+
+class _Curve:
+    """A quantity over the crank angle: a constant, a table or a function.
+
+    Tables are ``(angles, values)`` pairs (or a :class:`PiecewiseLinear`),
+    linear between points, ends held. Functions map φ to a value (or a pair
+    (x, y) for a planar velocity ratio) and must work on numpy arrays and
+    CasADi symbols alike.
+    """
+
+    def __init__(self, value, what, steps_allowed):
+        self.what = what
+        self.kind = None
+        if value is None:
+            value = 0.0
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            if not math.isfinite(value):
+                raise ValueError(f"{what} must be finite, got {value!r}")
+            self.kind, self.value = "constant", float(value)
+        elif isinstance(value, PiecewiseLinear):
+            self.kind, self.table = "table", value
+        elif isinstance(value, (tuple, list)) and len(value) == 2 and not callable(value[0]):
+            angles = np.asarray(value[0], dtype=float)
+            values = np.asarray(value[1], dtype=float)
+            if angles.ndim != 1 or angles.shape != values.shape or len(angles) < 2:
+                raise ValueError(f"{what} table needs two equal-length lists of at least 2 angles [rad] and values")
+            if not (np.all(np.isfinite(angles)) and np.all(np.isfinite(values))):
+                raise ValueError(f"{what} table has non-finite entries")
+            if np.any(np.diff(angles) < 0):
+                raise ValueError(f"{what} table angles must be non-decreasing")
+            self.kind, self.table = "table", PiecewiseLinear(angles, values)
+        elif callable(value):
+            self.kind, self.function = "function", value
+        else:
+            raise ValueError(f"{what} must be a number, a table (angles, values) or a function of phi, got {value!r}")
+        if self.kind == "table" and not steps_allowed and np.any(np.diff(self.table.angles) == 0):
+            raise ValueError(f"{what} table has a step (two points at one angle): a velocity ratio cannot jump")
+
+    @property
+    def is_constant(self):
+        return self.kind == "constant"
+
+    def breakpoints(self):
+        return self.table.breakpoints() if self.kind == "table" else np.empty(0)
+
+    def numpy(self, phi, side="right"):
+        phi = np.asarray(phi, dtype=float)
+        if self.kind == "constant":
+            return np.full(phi.shape, self.value)
+        if self.kind == "table":
+            left, right = self.table.limits(phi)
+            return right if side == "right" else left
+        out = self.function(phi)
+        if isinstance(out, tuple):
+            return tuple(np.broadcast_to(np.asarray(o, dtype=float), phi.shape) for o in out)
+        return np.broadcast_to(np.asarray(out, dtype=float), phi.shape)
+
+    def casadi(self, phi):
+        if self.kind == "constant":
+            return self.value
+        if self.kind == "table":
+            return self.table.casadi(phi)
+        return self.function(phi)
+
+
+def _square(v):
+    return v[0] * v[0] + v[1] * v[1] if isinstance(v, tuple) else v * v
+
+
+def _magnitude(v, lib):
+    if isinstance(v, tuple):
+        return lib.sqrt(v[0] * v[0] + v[1] * v[1])
+    return lib.fabs(v) if lib is ca else np.abs(v)
+
+
+@dataclass(frozen=True, eq=False)
+class Member:
+    """One member of the machine, described for the reduction.
+
+    Parameters
+    ----------
+    name : str
+    mass : float
+        m [kg].
+    inertia : float
+        J_S about the centre of mass [kg*m^2].
+    velocity_ratio : float, table, or callable
+        v_S/ω of the centre of mass [m/rad]: a number, a table
+        ``(angles [rad], values [m/rad])``, or a function of φ returning a
+        scalar (signed along a fixed axis) or a pair (v_x/ω, v_y/ω) — e.g.
+        from :meth:`SliderCrank.kinematics`.
+    angular_ratio : float, table, or callable
+        ω_member/ω [-].
+    force : float, table, or callable, optional
+        A force on the member at its centre [N]; may step (two table points
+        at one angle).
+    force_sense : {"resisting", "driving", "axial"}
+        How the force does work (see :data:`FORCE_SENSES`): "resisting"
+        (default) opposes the motion, power −F|v|; "driving" follows it,
+        power +F|v|; "axial" acts along the axis of a signed scalar velocity
+        ratio, power F·v.
+    torque : float, table, or callable, optional
+        A moment on the member [N*m], doing work with ω_member in the same
+        ``force_sense``.
+    """
+
+    name: str
+    mass: float = 0.0
+    inertia: float = 0.0
+    velocity_ratio: object = 0.0
+    angular_ratio: object = 0.0
+    force: object = None
+    force_sense: str = "resisting"
+    torque: object = None
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name:
+            raise ValueError(f"a member needs a non-empty name, got {self.name!r}")
+        for what in ("mass", "inertia"):
+            value = getattr(self, what)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+                raise ValueError(f"member {self.name!r}: {what} must be a finite number >= 0, got {value!r}")
+        if self.force_sense not in FORCE_SENSES:
+            raise ValueError(f"member {self.name!r}: force_sense {self.force_sense!r} is not known "
+                             f"(allowed: {', '.join(FORCE_SENSES)})")
+
+    @cached_property
+    def _curves(self):
+        where = f"member {self.name!r}: "
+        return {
+            "v": _Curve(self.velocity_ratio, where + "velocity_ratio", steps_allowed=False),
+            "w": _Curve(self.angular_ratio, where + "angular_ratio", steps_allowed=False),
+            "f": _Curve(self.force, where + "force", steps_allowed=True),
+            "t": _Curve(self.torque, where + "torque", steps_allowed=True),
+        }
+
+    def inertia_contribution(self, phi):
+        """J_S (ω_i/ω)² + m (v_S/ω)² at ``phi`` [kg*m^2] (numpy or CasADi)."""
+        c = self._curves
+        if _is_casadi(phi):
+            return self.inertia * _square(c["w"].casadi(phi)) + self.mass * _square(c["v"].casadi(phi))
+        return self.inertia * _square(c["w"].numpy(phi)) + self.mass * _square(c["v"].numpy(phi))
+
+    def torque_contribution(self, phi, side="right"):
+        """Equivalent torque of the member's force and moment at ``phi`` [N*m].
+
+        Positive drives the reference shaft. ``side`` picks the left or right
+        limit where a force table steps (numpy only).
+        """
+        c = self._curves
+        symbolic = _is_casadi(phi)
+        lib = ca if symbolic else np
+        total = 0.0
+        for load, ratio in (("f", "v"), ("t", "w")):
+            if c[load].is_constant and c[load].value == 0.0:
+                continue
+            f = c[load].casadi(phi) if symbolic else c[load].numpy(phi, side)
+            v = c[ratio].casadi(phi) if symbolic else c[ratio].numpy(phi)
+            if self.force_sense == "axial":
+                if isinstance(v, tuple):
+                    raise ValueError(f"member {self.name!r}: an 'axial' force needs a scalar (signed) "
+                                     f"velocity ratio, not a planar one")
+                total = total + f * v
+            else:
+                sign = 1.0 if self.force_sense == "driving" else -1.0
+                total = total + sign * f * _magnitude(v, lib)
+        return total
+
+    def knots(self):
+        """Angles where a table of this member breaks [rad]."""
+        return np.unique(np.concatenate([c.breakpoints() for c in self._curves.values()]))
+
+    @property
+    def inertia_is_constant(self):
+        c = self._curves
+        return (c["v"].is_constant or self.mass == 0) and (c["w"].is_constant or self.inertia == 0)
+
+
+def _check_members(members):
+    members = list(members)
+    for m in members:
+        if not isinstance(m, Member):
+            raise ValueError(f"expected Member objects, got {m!r}")
+    names = [m.name for m in members]
+    duplicates = sorted({n for n in names if names.count(n) > 1})
+    if duplicates:
+        raise ValueError(f"member names must be unique; repeated: {', '.join(duplicates)}")
+    return members
+
+
+class EquivalentInertia:
+    """J_e(φ) = J_c + Σ [J_S (ω_i/ω)² + m (v_S/ω)²] as numpy and CasADi.
+
+    Build it with :func:`equivalent_inertia`.
+
+    Attributes
+    ----------
+    members : tuple of Member
+    j_constant : float
+        Constant part J_c added to the members [kg*m^2].
+    knots : ndarray
+        Angles where a ratio table breaks (J_e kinks there) [rad].
+    is_constant : bool
+        True when no member's ratios depend on φ.
+    """
+
+    def __init__(self, members, j_constant=0.0):
+        if not (isinstance(j_constant, (int, float)) and math.isfinite(j_constant) and j_constant >= 0):
+            raise ValueError(f"j_constant must be a finite number >= 0 [kg*m^2], got {j_constant!r}")
+        self.members = tuple(_check_members(members))
+        self.j_constant = float(j_constant)
+        self.knots = (np.unique(np.concatenate([m.knots() for m in self.members]))
+                      if self.members else np.empty(0))
+        self.is_constant = all(m.inertia_is_constant for m in self.members)
+
+    def __call__(self, phi):
+        """J_e at the angles ``phi`` [kg*m^2] (numpy, vectorized)."""
+        phi = np.asarray(phi, dtype=float)
+        total = np.full(phi.shape, self.j_constant)
+        for m in self.members:
+            total = total + m.inertia_contribution(phi)
+        return total
+
+    def casadi(self, phi):
+        """J_e as a CasADi expression of ``phi`` [kg*m^2]."""
+        total = self.j_constant
+        for m in self.members:
+            total = total + m.inertia_contribution(phi)
+        return total
+
+    def contributions(self, phi):
+        """Each member's part of J_e at ``phi``: dict name → array [kg*m^2]."""
+        phi = np.asarray(phi, dtype=float)
+        return {m.name: m.inertia_contribution(phi) for m in self.members}
+
+    @cached_property
+    def _derivative_function(self):
+        phi = ca.SX.sym("phi")
+        j = self.casadi(phi)
+        return ca.Function("dJ", [phi], [ca.jacobian(ca.SX(j), phi)])
+
+    def derivative(self, phi):
+        """dJ_e/dφ at ``phi`` [kg*m^2/rad] (exact, by CasADi's algorithmic differentiation)."""
+        phi = np.asarray(phi, dtype=float)
+        flat = phi.reshape(-1)
+        if flat.size == 0:
+            return np.zeros(phi.shape)
+        return np.asarray(self._derivative_function(flat)).reshape(phi.shape)
+
+
+class EquivalentTorque:
+    """M_e(φ) = Σ [T_i (ω_i/ω) + F_i (v_i/ω) cos α_i] as numpy and CasADi.
+
+    Build it with :func:`equivalent_torque`. Positive M_e drives the
+    reference shaft; :meth:`resisting` gives the same curve with the sign of
+    a resisting torque, M_r = −M_e.
+
+    It answers the torque-curve questions of :mod:`flyopt.torque`
+    (``breakpoints``, ``limits``, ``__call__``, ``casadi``), so it can enter
+    :class:`flyopt.cycle.ExcessWork` directly as a driving or resisting curve.
+    """
+
+    is_linear = False
+
+    def __init__(self, members, sign=1.0, where="members"):
+        self.members = tuple(_check_members(members))
+        self.sign = float(sign)
+        self.where = where
+
+    def resisting(self):
+        """The same torque with the resisting sign, M_r = −M_e."""
+        return EquivalentTorque(self.members, -self.sign, self.where)
+
+    def breakpoints(self):
+        """Angles where a table of a member breaks [rad]."""
+        if not self.members:
+            return np.empty(0)
+        return np.unique(np.concatenate([m.knots() for m in self.members]))
+
+    def __call__(self, phi):
+        """Torque at ``phi`` [N*m] (numpy; right limits where a force steps)."""
+        return self.limits(phi)[1]
+
+    def limits(self, phi):
+        """Left and right limits of the torque at ``phi`` [N*m]."""
+        phi = np.asarray(phi, dtype=float)
+        left = np.zeros(phi.shape)
+        right = np.zeros(phi.shape)
+        for m in self.members:
+            left = left + m.torque_contribution(phi, "left")
+            right = right + m.torque_contribution(phi, "right")
+        return self.sign * left, self.sign * right
+
+    def casadi(self, phi):
+        """The torque as a CasADi expression of ``phi`` [N*m] (right-continuous)."""
+        total = 0.0
+        for m in self.members:
+            total = total + m.torque_contribution(phi)
+        return self.sign * total
+
+    def contributions(self, phi):
+        """Each member's part at ``phi``: dict name → array [N*m]."""
+        phi = np.asarray(phi, dtype=float)
+        return {m.name: self.sign * m.torque_contribution(phi) for m in self.members}
+
+
+def equivalent_inertia(members, j_constant=0.0):
+    """Equivalent inertia of a machine at the reference shaft.
+
+    J_e(φ) = J_c + Σ_i [ J_Si (ω_i/ω)² + m_i (v_Si/ω)² ]  (domain page, section 3).
+
+    Parameters
+    ----------
+    members : iterable of Member
+    j_constant : float
+        Inertia already reduced to the reference shaft and constant, J_c
+        [kg*m^2] (e.g. a motor rotor given directly).
+
+    Returns
+    -------
+    EquivalentInertia
+        Callable on numpy arrays, with ``.casadi(phi)`` and an exact
+        ``.derivative(phi)``.
+    """
+    return EquivalentInertia(members, j_constant)
+
+
+def equivalent_torque(members):
+    """Equivalent torque of the members' forces and moments at the reference shaft.
+
+    M_e(φ) = Σ_i [ T_i (ω_i/ω) + F_i (v_i/ω) cos α_i ]  (domain page, section 3),
+    with cos α_i = −1 for a resisting force (it opposes the motion), +1 for a
+    driving one, and the signed component for an axial one.
+
+    Parameters
+    ----------
+    members : iterable of Member
+
+    Returns
+    -------
+    EquivalentTorque
+        Positive drives the reference shaft; ``.resisting()`` flips it to the
+        resisting-torque sign.
+    """
+    return EquivalentTorque(members)

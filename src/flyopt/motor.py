@@ -1,0 +1,220 @@
+"""Motor characteristics: torque as a function of speed.
+
+Two families, SI throughout (speed [rad/s] of the motor shaft, torque [N*m]):
+
+- :class:`InductionMotor`: the straight line through the synchronous speed
+  and the rated point, M = M_n (ω_0 − ω)/(ω_0 − ω_n) (domain page, section 7),
+  which is what the periodic steady state near rated speed needs; and, for
+  runs far from rated speed (a start from rest), the Kloss formula with a
+  breakdown-torque ratio.
+- :class:`DCMotor`: a separately excited (or shunt) DC motor's straight
+  torque–speed line, M = M_stall (1 − ω/ω_0).
+
+Every torque method accepts numpy arrays or CasADi symbols.
+
+A motor turns at ``speed_ratio`` times the reference shaft through a
+transmission of efficiency η; :meth:`InductionMotor.reference_torque` gives
+its torque reduced to the reference shaft, M' = M(i ω) i η (domain page,
+section 3).
+"""
+
+import math
+
+import casadi as ca
+import numpy as np
+
+DEFAULT_BREAKDOWN_RATIO = 2.5
+"""Default breakdown (pull-out) torque over rated torque, M_b/M_n [-].
+
+The middle of the 175–300 % range of NEMA design B motors (NEMA MG 10,
+Table 2-1, as tabulated in the EASA Engineering Handbook, "General
+speed-torque characteristics, three-phase induction motors"; higher values
+for smaller motors). Give the catalogue value when it is known.
+"""
+
+
+def _positive(value, what):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+        raise ValueError(f"{what} must be a positive finite number, got {value!r}")
+    return float(value)
+
+
+class _Motor:
+    def reference_torque(self, omega, speed_ratio=1.0, efficiency=1.0, model=None):
+        """Motor torque reduced to the reference shaft [N*m].
+
+        M' = M(i ω) · i · η, i = ω_motor/ω the speed ratio, η the efficiency
+        of the transmission between them (domain page, section 3).
+
+        Parameters
+        ----------
+        omega : array or casadi symbol
+            Speed of the reference shaft [rad/s].
+        speed_ratio : float
+            i = ω_motor/ω_reference [-].
+        efficiency : float
+            η of the transmission, in (0, 1] [-].
+        model : str, optional
+            Passed to :meth:`torque` (induction motors only).
+        """
+        i = _positive(speed_ratio, "speed_ratio")
+        eta = _positive(efficiency, "efficiency")
+        if eta > 1:
+            raise ValueError(f"efficiency must lie in (0, 1], got {efficiency!r}")
+        torque = self.torque(omega * i) if model is None else self.torque(omega * i, model=model)
+        return torque * (i * eta)
+
+
+class InductionMotor(_Motor):
+    """Three-phase induction motor given by its nameplate.
+
+    Parameters
+    ----------
+    rated_power : float
+        P_n, mechanical output at the rated point [W].
+    rated_speed : float
+        ω_n [rad/s].
+    synchronous_speed : float
+        ω_0 [rad/s], above ω_n.
+    breakdown_ratio : float, optional
+        M_b/M_n > 1 for the Kloss curve [-]; default
+        :data:`DEFAULT_BREAKDOWN_RATIO`.
+
+    Attributes
+    ----------
+    rated_torque : float
+        M_n = P_n/ω_n [N*m].
+    rated_slip : float
+        s_n = (ω_0 − ω_n)/ω_0 [-].
+    breakdown_slip : float
+        s_b of the Kloss curve through the rated point [-].
+
+    Notes
+    -----
+    Linear model (near the rated point, domain page section 7):
+
+        M = M_n (ω_0 − ω)/(ω_0 − ω_n).
+
+    Kloss model (the simplified Kloss formula, stator resistance neglected):
+
+        M = 2 M_b / (s/s_b + s_b/s) = 2 M_b s s_b / (s² + s_b²),  s = (ω_0 − ω)/ω_0,
+
+    with s_b = s_n (k + sqrt(k² − 1)), k = M_b/M_n, so that it passes through
+    the rated point on its stable branch. Both models agree at ω_0 and at the
+    rated point. The linear line is unrealistic far from rated speed (at rest
+    it gives M_n/s_n, 25 M_n at 4 % slip); the Kloss curve is the one for a
+    start from rest. The simplified Kloss formula underestimates the
+    locked-rotor torque of deep-bar and double-cage rotors, so start-up
+    times from it err long (on the safe side for sizing the motor).
+
+    References
+    ----------
+    .. [1] Kloss, M., the torque–slip formula of the induction machine, as in
+       Fischer, R., *Elektrische Maschinen*, Hanser, chapter on the
+       asynchronous machine.
+    .. [2] NEMA MG 10, Table 2-1 (via the EASA Engineering Handbook):
+       breakdown torque 175–300 % of rated for design B.
+    """
+
+    MODELS = ("linear", "kloss")
+
+    def __init__(self, rated_power, rated_speed, synchronous_speed, breakdown_ratio=None):
+        self.rated_power = _positive(rated_power, "rated_power [W]")
+        self.rated_speed = _positive(rated_speed, "rated_speed [rad/s]")
+        self.synchronous_speed = _positive(synchronous_speed, "synchronous_speed [rad/s]")
+        if not self.rated_speed < self.synchronous_speed:
+            raise ValueError(f"an induction motor's rated speed ({rated_speed!r} rad/s) must be below its "
+                             f"synchronous speed ({synchronous_speed!r} rad/s)")
+        k = DEFAULT_BREAKDOWN_RATIO if breakdown_ratio is None else _positive(breakdown_ratio, "breakdown_ratio")
+        if k <= 1:
+            raise ValueError(f"breakdown_ratio M_b/M_n must exceed 1, got {breakdown_ratio!r}")
+        self.breakdown_ratio = k
+        self.rated_torque = self.rated_power / self.rated_speed
+        self.rated_slip = (self.synchronous_speed - self.rated_speed) / self.synchronous_speed
+        self.breakdown_slip = self.rated_slip * (k + math.sqrt(k * k - 1))
+        self.breakdown_torque = k * self.rated_torque
+
+    def __repr__(self):
+        return (f"InductionMotor(rated_power={self.rated_power!r}, rated_speed={self.rated_speed!r}, "
+                f"synchronous_speed={self.synchronous_speed!r}, breakdown_ratio={self.breakdown_ratio!r})")
+
+    @property
+    def slope(self):
+        """dM/dω of the linear model [N*m*s/rad] (negative)."""
+        return -self.rated_torque / (self.synchronous_speed - self.rated_speed)
+
+    def torque(self, omega, model="linear"):
+        """Motor torque at the motor speed ``omega`` [N*m].
+
+        Parameters
+        ----------
+        omega : array or casadi symbol
+            Motor shaft speed [rad/s].
+        model : {"linear", "kloss"}
+        """
+        if model == "linear":
+            return self.rated_torque * (self.synchronous_speed - omega) / (self.synchronous_speed - self.rated_speed)
+        if model == "kloss":
+            s = (self.synchronous_speed - omega) / self.synchronous_speed
+            sb = self.breakdown_slip
+            return 2 * self.breakdown_torque * s * sb / (s * s + sb * sb)
+        raise ValueError(f"induction motor model {model!r} is not known (allowed: {', '.join(self.MODELS)})")
+
+    def starting_torque(self, model="kloss"):
+        """Torque at rest [N*m]."""
+        return float(self.torque(0.0, model))
+
+
+class DCMotor(_Motor):
+    """DC motor with a straight torque–speed line.
+
+    Parameters
+    ----------
+    no_load_speed : float
+        ω_0 where the torque vanishes [rad/s].
+    stall_torque : float
+        M_stall at rest [N*m].
+
+    Notes
+    -----
+    M = M_stall (1 − ω/ω_0), the line of a separately excited DC motor at
+    constant armature voltage and field (armature reaction neglected).
+    """
+
+    def __init__(self, no_load_speed, stall_torque):
+        self.no_load_speed = _positive(no_load_speed, "no_load_speed [rad/s]")
+        self.stall_torque = _positive(stall_torque, "stall_torque [N*m]")
+
+    @classmethod
+    def from_rated(cls, rated_power, rated_speed, no_load_speed):
+        """The line through the rated point (P_n/ω_n at ω_n) and the no-load speed.
+
+        Parameters
+        ----------
+        rated_power : float [W]
+        rated_speed : float [rad/s]
+        no_load_speed : float [rad/s], above ``rated_speed``
+        """
+        p = _positive(rated_power, "rated_power [W]")
+        wn = _positive(rated_speed, "rated_speed [rad/s]")
+        w0 = _positive(no_load_speed, "no_load_speed [rad/s]")
+        if not wn < w0:
+            raise ValueError(f"rated speed ({rated_speed!r} rad/s) must be below the no-load speed "
+                             f"({no_load_speed!r} rad/s)")
+        return cls(w0, p / wn * w0 / (w0 - wn))
+
+    def __repr__(self):
+        return f"DCMotor(no_load_speed={self.no_load_speed!r}, stall_torque={self.stall_torque!r})"
+
+    @property
+    def slope(self):
+        """dM/dω [N*m*s/rad] (negative)."""
+        return -self.stall_torque / self.no_load_speed
+
+    def torque(self, omega):
+        """Motor torque at the motor speed ``omega`` [N*m] (numpy or CasADi)."""
+        return self.stall_torque * (1 - omega / self.no_load_speed)
+
+
+def _lib(x):
+    return ca if isinstance(x, (ca.SX, ca.MX, ca.DM)) else np

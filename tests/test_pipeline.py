@@ -1,0 +1,100 @@
+"""The pipeline scene → analysis → design, as the CLI and the API run it."""
+
+import json
+import math
+
+import pytest
+from numpy.testing import assert_allclose
+
+import flyopt
+from conftest import PROBLEMS, assert_published
+from flyopt import optimize
+from flyopt.cli import main
+
+DESIGN_FIELDS = {"material", "shaft", "geometry", "d_mean", "d_outer", "d_inner", "h", "b", "hb_ratio", "mass",
+                 "rim_speed", "hoop_stress", "safety_factor", "j_flywheel", "j_at_reference", "binding",
+                 "candidates", "status", "message"}
+
+
+def test_domain_example6_rim_sizing_scene():
+    """J = 76 kg m², D_m pinned at 0.8 m, cast steel, H/B = 2, thin rim: m = 475 kg, B = 0.110 m, H = 0.220 m."""
+    solution = flyopt.solve(flyopt.load(PROBLEMS / "rim-sizing.toml"))
+    assert_allclose(solution.analysis.j_required, 76.0, rtol=1e-15)
+    best = solution.design.best
+    assert_published(best.mass, "475")
+    assert_published(best.b, "0.110")
+    assert_published(best.h, "0.220")
+    assert_allclose(best.mass, 4 * 76 / 0.8**2, rtol=1e-9)      # thin rim: m = 4 J / D_m², exact
+
+
+def test_json_has_the_design_object(capsys):
+    assert main(["solve", str(PROBLEMS / "shear-press.toml"), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    design = data["design"]
+    assert DESIGN_FIELDS <= set(design)
+    assert design["status"] == "designed"
+    assert {(c["material"], c["shaft"]) for c in design["candidates"]} == {("cast_iron", "motor"),
+                                                                           ("cast_steel", "motor")}
+    assert design["d_outer"] <= 0.6 * (1 + 1e-9)                  # the scene's envelope
+    # the flywheel gives at least the required inertia, moved by the ratio-squared transfer
+    assert design["j_at_reference"] >= data["j_required"] * (1 - 1e-9)
+    assert_allclose(design["hoop_stress"], 7800 * design["rim_speed"] ** 2, rtol=1e-12)
+
+
+def test_user_material_and_shaft_choice():
+    solution = flyopt.solve(flyopt.load(PROBLEMS / "punch-press.toml"))
+    names = {(c.material, c.shaft) for c in solution.design.candidates}
+    assert len(names) == 9 and ("ductile_iron", "motor") in names
+    ductile = next(c for c in solution.design.candidates if c.material == "ductile_iron" and c.feasible)
+    assert_allclose(ductile.rim_speed_limit, math.sqrt(14e6 / 7100), rtol=1e-15)
+    assert ductile.safety_factor is not None and ductile.safety_factor >= 1 - 1e-9
+
+
+def test_no_flywheel_needed_designs_none(capsys):
+    assert main(["solve", str(PROBLEMS / "conveyor.toml"), "--json"]) == 0
+    design = json.loads(capsys.readouterr().out)["design"]
+    assert design["status"] == "not_needed" and design["candidates"] == [] and design.get("mass") is None
+
+
+def test_infeasible_scene_exits_3_and_says_why(tmp_path, capsys):
+    text = (PROBLEMS / "shear-press.toml").read_text().replace('max_outer_diameter = "0.6 m"',
+                                                                'max_outer_diameter = "0.1 m"')
+    path = tmp_path / "tiny.toml"
+    path.write_text(text)
+    assert main(["solve", str(path)]) == 3
+    out = capsys.readouterr().out
+    assert "no feasible design" in out
+    assert "cast steel on the motor shaft: the envelope (max_outer_diameter) caps the outer diameter at 0.1 m" in out
+
+
+def test_non_converged_solve_is_never_a_design(monkeypatch, capsys):
+    """With IPOPT allowed 1 iteration, the solve fails: exit 1, its status shown, no design printed."""
+    monkeypatch.setitem(optimize.DEFAULT_SOLVER_OPTIONS, "ipopt.max_iter", 1)
+    assert main(["solve", str(PROBLEMS / "shear-press.toml"), "--json"]) == 1
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert "Maximum_Iterations_Exceeded" in captured.err and "no design is reported" in captured.err
+    assert captured.err.count("\n") == 1
+
+
+def test_no_design_flag_skips_the_optimizer(capsys):
+    assert main(["solve", str(PROBLEMS / "shear-press.toml"), "--json", "--no-design"]) == 0
+    assert "design" not in json.loads(capsys.readouterr().out)
+
+
+def test_report_shows_winner_and_ranking(capsys):
+    assert main(["solve", str(PROBLEMS / "punch-press.toml")]) == 0
+    out = capsys.readouterr().out
+    for words in ("Flywheel design (rim, objective: mass)", "Every combination (ranked)", "ductile_iron", "binding"):
+        assert words in out
+
+
+def test_every_problem_scene_solves_with_a_checked_status():
+    for path in sorted(PROBLEMS.glob("*.toml")):
+        solution = flyopt.solve(flyopt.load(path))
+        assert solution.status in ("designed", "not_needed"), path
+        if solution.status == "designed":
+            best = solution.design.best
+            assert best.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+            assert best.j_at_reference >= solution.analysis.j_required * (1 - 1e-6)
+            assert best.rim_speed <= best.rim_speed_limit * (1 + 1e-6)
