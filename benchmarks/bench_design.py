@@ -1,6 +1,7 @@
 """Benchmark of the flywheel designer (flyopt.optimize.design_flywheel).
 
-Times, on a batch of random scenes:
+Times `flyopt.solve` (cycle analysis + design) on every scene of problems/,
+and, on a batch of random scenes:
 
 * the build of each NLP structure (``casadi.nlpsol`` with IPOPT), once;
 * the full ranking of a scene, 2 materials x 3 shafts, after the first build;
@@ -31,6 +32,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
+import flyopt
 from flyopt.materials import builtin_materials
 from flyopt.optimize import (DesignSpec, ModelStructure, MountShaft, clear_model_cache,
                              design_flywheel, get_model)
@@ -78,6 +80,29 @@ def time_builds():
     return times
 
 
+PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
+
+
+def time_problems(repeats):
+    """Median wall time of flyopt.solve and of its design step per problems/ scene [s]."""
+    rows = []
+    for path in sorted(PROBLEMS.glob("*.toml")):
+        scene = flyopt.load(path)
+        flyopt.solve(scene)                       # warm-up: builds the scene's NLP structure
+        total, design = [], []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            solution = flyopt.solve(scene)
+            total.append(time.perf_counter() - start)
+            start = time.perf_counter()
+            flyopt.design(scene, solution.analysis)
+            design.append(time.perf_counter() - start)
+        rows.append({"scene": path.name, "status": solution.status,
+                     "combinations": len(solution.design.candidates),
+                     "solve_ms": 1e3 * statistics.median(total), "design_ms": 1e3 * statistics.median(design)})
+    return rows
+
+
 def run(count, seed):
     materials = list(builtin_materials().values())
     builds = time_builds()
@@ -102,7 +127,7 @@ def run(count, seed):
     return builds, rows, nlp_times, nlp_iters
 
 
-def write_results(out, builds, rows, nlp_times, nlp_iters, pinning, seed):
+def write_results(out, builds, rows, nlp_times, nlp_iters, pinning, seed, problems=()):
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "design.csv", "w", newline="", encoding="utf-8") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
@@ -153,6 +178,13 @@ def write_results(out, builds, rows, nlp_times, nlp_iters, pinning, seed):
         "Per-scene rows: `design.csv`.",
         "",
     ]
+    if problems:
+        lines += ["## problems/ scenes", "",
+                  "`flyopt.solve` (load excluded) and its design step alone; medians of 20 runs after a warm-up.",
+                  "", "| scene | status | combinations | solve [ms] | design [ms] |", "|---|---|---|---|---|"]
+        lines += [f"| {r['scene']} | {r['status']} | {r['combinations']} | {r['solve_ms']:.2f} | "
+                  f"{r['design_ms']:.2f} |" for r in problems]
+        lines.append("")
     (out / "design.md").write_text("\n".join(lines), encoding="utf-8")
     return "\n".join(lines)
 
@@ -166,7 +198,8 @@ def main(argv=None):
     args = parser.parse_args(argv)
     pinning = pin_one_core()
     builds, rows, nlp_times, nlp_iters = run(args.scenes, args.seed)
-    print(write_results(args.out, builds, rows, nlp_times, nlp_iters, pinning, args.seed))
+    problems = time_problems(repeats=20)
+    print(write_results(args.out, builds, rows, nlp_times, nlp_iters, pinning, args.seed, problems))
     return 0
 
 
