@@ -20,9 +20,6 @@ section 3).
 
 import math
 
-import casadi as ca
-import numpy as np
-
 DEFAULT_BREAKDOWN_RATIO = 2.5
 """Default breakdown (pull-out) torque over rated torque, M_b/M_n [-].
 
@@ -214,7 +211,3 @@ class DCMotor(_Motor):
     def torque(self, omega):
         """Motor torque at the motor speed ``omega`` [N*m] (numpy or CasADi)."""
         return self.stall_torque * (1 - omega / self.no_load_speed)
-
-
-def _lib(x):
-    return ca if isinstance(x, (ca.SX, ca.MX, ca.DM)) else np
