@@ -27,7 +27,7 @@ import numpy as np
 from scipy import integrate, optimize
 
 from .errors import NonPeriodicCycle, SceneError
-from .torque import Constant
+from .torque import Constant, PiecewiseLinear
 
 BALANCE_TOLERANCE = 1e-9
 """Largest accepted |net work| per cycle, relative to the cycle work."""
@@ -115,10 +115,26 @@ def solve_unknown_constant(driving, resisting, cycle_angle):
         ``(driving, resisting)`` with the unknown one made known.
     """
     if isinstance(driving, Constant) and driving.unknown:
-        return Constant(work(resisting, cycle_angle) / cycle_angle), resisting
+        return _balancing_constant(resisting, cycle_angle), resisting
     if isinstance(resisting, Constant) and resisting.unknown:
-        return driving, Constant(work(driving, cycle_angle) / cycle_angle)
+        return driving, _balancing_constant(driving, cycle_angle)
     return driving, resisting
+
+
+def _balancing_constant(curve, cycle_angle):
+    """The constant whose work over the cycle equals that of ``curve``.
+
+    Against a table it is kept as pivot + excess, the excess being the mean
+    of (table − pivot) with the pivot a middle value of the table: each
+    difference is exact (Sterbenz) when the values lie within a factor two of
+    the pivot, as they do for a large mean with a small ripple.
+    """
+    if isinstance(curve, PiecewiseLinear):
+        pivot = float(curve.values[len(curve.values) // 2])
+        rel = curve.values - pivot
+        excess = float(np.sum((rel[1:] + rel[:-1]) * np.diff(curve.angles))) / (2 * cycle_angle)
+        return Constant(pivot + excess, pivot=pivot, excess=excess)
+    return Constant(work(curve, cycle_angle) / cycle_angle)
 
 
 def work(curve, cycle_angle):
@@ -461,8 +477,9 @@ class _Segments:
 
 def _segments(driving, resisting, cycle_angle):
     knots = _knots(driving.breakpoints(), resisting.breakpoints(), cycle_angle)
-    d_left, d_right = driving.limits(knots)
-    r_left, r_right = resisting.limits(knots)
+    pivot = next((c.pivot for c in (driving, resisting) if isinstance(c, Constant) and c.pivot is not None), None)
+    d_left, d_right = _relative_limits(driving, knots, pivot)
+    r_left, r_right = _relative_limits(resisting, knots, pivot)
     start = _difference(d_right, r_right)[:-1]
     end = _difference(d_left, r_left)[1:]
     linear = driving.is_linear and resisting.is_linear
@@ -472,6 +489,17 @@ def _segments(driving, resisting, cycle_angle):
         values = _sample(driving, phi)[0] - _sample(resisting, phi)[0]
         peak = max(peak, float(np.max(np.abs(values))))
     return _Segments(knots, start, end, linear, driving, resisting, float(peak))
+
+
+def _relative_limits(curve, knots, pivot):
+    """Left and right limits of a curve at the knots, less ``pivot`` when one is set."""
+    if pivot is None:
+        return curve.limits(knots)
+    if isinstance(curve, Constant) and curve.pivot == pivot:
+        v = np.full(len(knots), curve.excess)
+        return v, v
+    left, right = curve.limits(knots)
+    return left - pivot, right - pivot
 
 
 def _knots(first, second, cycle_angle):

@@ -108,9 +108,17 @@ class PiecewiseLinear:
 
 @dataclass(frozen=True)
 class Constant:
-    """A constant torque [N*m]; ``value`` is None while it is still unknown."""
+    """A constant torque [N*m]; ``value`` is None while it is still unknown.
+
+    A constant solved from the work balance against a table keeps its exact
+    split ``pivot + excess`` (pivot a value of the table, excess the small
+    mean of table − pivot), so that M_d − M_r can be formed without the
+    cancellation of a large mean (10^6 N*m) against a small ripple.
+    """
 
     value: float | None
+    pivot: float | None = None
+    excess: float = 0.0
     is_linear = True
 
     @property
