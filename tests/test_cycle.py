@@ -1,6 +1,5 @@
 """Cycle analysis against published figures, exact arithmetic and closed forms."""
 
-import bisect
 import math
 from fractions import Fraction
 
@@ -10,6 +9,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from conftest import assert_published
+from reference import exact_chain
 from flyopt.cycle import energy_indicator, energy_indicator_from_areas, required_inertia, work
 from flyopt.transmission import inertia_on_shaft
 from flyopt.errors import NonPeriodicCycle
@@ -54,36 +54,6 @@ def test_domain_example2_shear_press():
 
 
 # -- exactness of the piecewise-linear path: exact rational reference -------------
-
-def exact_chain(xd, yd, xr, yr):
-    """ΔE at every knot and crossing in exact rational arithmetic; returns (max, min).
-
-    Independent of flyopt: evaluates both polylines at the union of their
-    breakpoints with Fractions, finds crossings of each linear piece exactly
-    and integrates trapezoids exactly.
-    """
-    xd, yd, xr, yr = ([Fraction(v) for v in a] for a in (xd, yd, xr, yr))
-
-    def at(x, y, p, side):
-        first, last = bisect.bisect_left(x, p), bisect.bisect_right(x, p) - 1
-        if first <= last:  # p is a point of the table (two points: a step)
-            return y[first] if side == "left" else y[last]
-        k = last
-        return y[k] + (y[k + 1] - y[k]) * (p - x[k]) / (x[k + 1] - x[k])
-
-    knots = sorted(set(xd) | set(xr))
-    e, values = Fraction(0), [Fraction(0)]
-    for p, q in zip(knots[:-1], knots[1:]):
-        a = at(xd, yd, p, "right") - at(xr, yr, p, "right")
-        b = at(xd, yd, q, "left") - at(xr, yr, q, "left")
-        h = q - p
-        if a * b < 0:
-            t = a / (a - b)
-            values.append(e + a * t * h / 2)
-        e += (a + b) * h / 2
-        values.append(e)
-    return max(values), min(values), e
-
 
 def random_polyline(rng, n, cycle, steps=True):
     x = np.sort(rng.uniform(0, cycle, n - 2))
