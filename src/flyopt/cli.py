@@ -47,6 +47,13 @@ def _parser():
                        help="stop after the cycle analysis (no optimization)")
     solve.set_defaults(run=_solve)
 
+    plot = commands.add_parser("plot", help="draw a diagram of a scene (png, svg or pdf)")
+    plot.add_argument("scene", help="scene file (TOML)")
+    plot.add_argument("--what", required=True, metavar="DIAGRAM",
+                      help="turning_moment | energy | inertia_delta | cross_section | speed")
+    plot.add_argument("-o", "--output", required=True, help="file to write; the suffix picks the format")
+    plot.set_defaults(run=_plot)
+
     check = commands.add_parser("check", help="check a scene file and say what is wrong")
     check.add_argument("scene", help="scene file (TOML)")
     check.set_defaults(run=_check)
@@ -67,6 +74,33 @@ def _solve(args):
         text = "\n".join(lines)
     print(text)
     return EXIT_INFEASIBLE if solution.status == "infeasible" else EXIT_OK
+
+
+def _plot(args):
+    from . import plots
+
+    if args.what not in plots.PLOTS:
+        import difflib
+
+        close = difflib.get_close_matches(args.what, list(plots.PLOTS), n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        return _fail(f"--what: unknown diagram {args.what!r}{hint} (known: {', '.join(plots.PLOTS)})", EXIT_INPUT)
+    if not args.output.lower().endswith((".png", ".svg", ".pdf")):
+        return _fail(f"--output: {args.output!r} must end in .png, .svg or .pdf", EXIT_INPUT)
+    scene = load(args.scene)
+    solution = solve(scene, design_flywheel=args.what == "cross_section")
+    try:
+        if args.what == "cross_section":
+            if solution.design.best is None:
+                return _fail(f"{args.scene}: no flywheel to draw ({solution.design.message})", EXIT_INFEASIBLE)
+            ax = plots.plot_cross_section(solution.design.best)
+        else:
+            ax = getattr(plots, f"plot_{args.what}")(scene, solution.analysis)
+    except ValueError as err:
+        return _fail(f"{args.scene}: {args.what}: {err}", EXIT_INPUT)
+    plots.save(ax, args.output)
+    print(f"wrote {args.output}")
+    return EXIT_OK
 
 
 def _check(args):

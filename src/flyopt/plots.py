@@ -1,0 +1,230 @@
+"""Diagrams of a scene, its analysis and its design (matplotlib).
+
+Each ``plot_*`` function draws on a given Axes (or a new figure) and returns
+the Axes; :func:`save` writes a figure atomically (to a temporary file in the
+same folder, then renamed), so a failed render leaves nothing half-written.
+The backend is Agg unless the caller chose another one.
+"""
+
+import math
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from .cycle import ExcessWork
+from .units import rad_s_to_rpm
+
+SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
+PLOTS = {
+    "turning_moment": "driving and resisting torque over the cycle, areas shaded and labelled",
+    "energy": "energy indicator diagram: the chain of ΔE with A_max marked",
+    "inertia_delta": "required flywheel J against δ (the hyperbola), the scene's δ marked",
+    "cross_section": "dimensioned cross-section of the chosen flywheel",
+    "speed": "ω(φ) over the cycle with the required flywheel",
+}
+
+
+def _pyplot():
+    import matplotlib
+
+    if "MPLBACKEND" not in os.environ and matplotlib.get_backend().lower() not in ("agg", "pdf", "svg"):
+        matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _axes(ax, figsize=(8, 4.5)):
+    if ax is not None:
+        return ax
+    plt = _pyplot()
+    return plt.figure(figsize=figsize, layout="constrained").add_subplot()
+
+
+def _curve_samples(curve, cycle_angle, n=2000):
+    """Angles and values that draw a torque curve exactly (tables at their points)."""
+    from .torque import Constant, PiecewiseLinear
+
+    if isinstance(curve, PiecewiseLinear):
+        return curve.angles, curve.values
+    if isinstance(curve, Constant):
+        return np.array([0.0, cycle_angle]), np.array([curve.value, curve.value])
+    phi = np.linspace(0.0, cycle_angle, n)
+    return phi, curve(phi)
+
+
+def plot_turning_moment(scene, analysis, ax=None):
+    """Turning-moment diagram: M_d and M_r over the cycle, surplus and deficit shaded.
+
+    Each area between crossings is labelled with its energy [J]; the angles of
+    ω_max and ω_min are marked. Net-area scenes have no curves: their areas are
+    drawn as a bar chart instead.
+    """
+    ax = _axes(ax)
+    ind = analysis.indicator
+    if scene.net is not None:
+        areas = ind.areas
+        ax.bar(np.arange(1, len(areas) + 1), areas, color=[SURPLUS if a > 0 else DEFICIT for a in areas])
+        ax.axhline(0, color="black", lw=0.8)
+        ax.set(xlabel="area (in order over the cycle)", ylabel="energy [J]",
+               title=f"{analysis.title}: net areas between the torque curves")
+        return ax
+    ew = ExcessWork(scene.driving, scene.resisting, scene.cycle_angle)
+    grid = np.union1d(np.linspace(0, scene.cycle_angle, 3000), ind.chain_angle)
+    grid = np.union1d(grid, ew.knots)
+    d = _curve_samples(ew.driving, scene.cycle_angle)
+    r = _curve_samples(ew.resisting, scene.cycle_angle)
+    md = np.interp(grid, *d) if not hasattr(ew.driving, "expression") else ew.driving(grid)
+    mr = np.interp(grid, *r) if not hasattr(ew.resisting, "expression") else ew.resisting(grid)
+    deg = np.degrees(grid)
+    ax.fill_between(deg, md, mr, where=md >= mr, color=SURPLUS, alpha=0.3, interpolate=True, lw=0)
+    ax.fill_between(deg, md, mr, where=md < mr, color=DEFICIT, alpha=0.3, interpolate=True, lw=0)
+    ax.plot(np.degrees(d[0]), d[1], color="tab:blue", lw=1.8, label="driving M_d")
+    ax.plot(np.degrees(r[0]), r[1], color="black", lw=1.8, label="resisting M_r")
+    span = max(np.ptp(np.concatenate([md, mr])), 1e-12)
+    for left, right, area in zip(ind.chain_angle[:-1], ind.chain_angle[1:], ind.areas):
+        if right - left < 0.02 * scene.cycle_angle and abs(area) < 0.05 * max(ind.a_max, 1e-300):
+            continue
+        mid = 0.5 * (left + right)
+        y = 0.5 * (np.interp(mid, grid, md) + np.interp(mid, grid, mr))
+        ax.annotate(f"{area:+.4g} J", (math.degrees(mid), y), ha="center", va="center", fontsize=8,
+                    color=SURPLUS if area > 0 else DEFICIT)
+    for angle, label in ((analysis.angle_omega_max, "ω_max"), (analysis.angle_omega_min, "ω_min")):
+        ax.axvline(math.degrees(angle), color="gray", ls="--", lw=0.8)
+        ax.text(math.degrees(angle), 0.97, f" {label}", transform=ax.get_xaxis_transform(), ha="left", va="top",
+                fontsize=8, color="gray")
+    ax.set(xlabel="crank angle φ [deg]", ylabel="torque [N·m]", xlim=(0, math.degrees(scene.cycle_angle)),
+           title=f"{analysis.title}: turning-moment diagram (A_max = {analysis.a_max:.5g} J)")
+    ax.margins(y=0.08 if span else 0.5)
+    ax.legend(loc="best", fontsize=8)
+    return ax
+
+
+def plot_energy(scene, analysis, ax=None):
+    """Energy indicator diagram: ΔE from the cycle start, the chain points and A_max."""
+    ax = _axes(ax)
+    ind = analysis.indicator
+    chain = ind.chain_delta_e
+    if ind.chain_angle is None:
+        x = np.arange(len(chain))
+        ax.plot(x, chain, "o-", color="tab:blue")
+        ax.set_xlabel("end of area")
+        where_max, where_min = x[ind.index_max], x[ind.index_min]
+    else:
+        ew = ExcessWork(scene.driving, scene.resisting, scene.cycle_angle)
+        phi = np.union1d(np.linspace(0, scene.cycle_angle, 1500), ind.chain_angle)
+        ax.plot(np.degrees(phi), ew(phi), color="tab:blue", lw=1.5, label="ΔE(φ)")
+        ax.plot(np.degrees(ind.chain_angle), chain, "o", color="black", ms=4, label="crossings")
+        ax.set_xlabel("crank angle φ [deg]")
+        where_max, where_min = np.degrees(ind.chain_angle[[ind.index_max, ind.index_min]])
+    hi, lo = chain[ind.index_max], chain[ind.index_min]
+    ax.axhline(hi, color=SURPLUS, ls=":", lw=1)
+    ax.axhline(lo, color=DEFICIT, ls=":", lw=1)
+    x_arrow = 0.5 * (where_max + where_min)
+    ax.annotate("", (x_arrow, hi), (x_arrow, lo), arrowprops={"arrowstyle": "<->", "color": "gray"})
+    ax.annotate(f"A_max = {ind.a_max:.5g} J", (x_arrow, 0.5 * (hi + lo)), ha="left", va="center", fontsize=9)
+    ax.set(ylabel="excess work ΔE [J]", title=f"{analysis.title}: energy indicator diagram")
+    return ax
+
+
+def plot_inertia_delta(scene, analysis, ax=None):
+    """J_F against δ: J_F = A_max/(ω_m² δ) − J_c, an equilateral hyperbola, the scene's δ marked."""
+    ax = _axes(ax)
+    lo, hi = analysis.delta / 20, min(1.9, analysis.delta * 20)
+    delta = np.geomspace(lo, hi, 200)
+    j = analysis.a_max / (analysis.omega_mean**2 * delta) - analysis.j_constant
+    ax.plot(delta, np.where(j > 0, j, np.nan), color="tab:blue", label="J_F(δ)")
+    if analysis.flywheel_needed:
+        ax.plot([analysis.delta], [analysis.j_required], "o", color=DEFICIT,
+                label=f"δ = {analysis.delta:.4g}: J_F = {analysis.j_required:.4g} kg·m²")
+    ax.set(xscale="log", yscale="log", xlabel="coefficient of speed fluctuation δ",
+           ylabel="required flywheel J_F [kg·m²]", title=f"{analysis.title}: J grows like 1/δ")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_cross_section(candidate, ax=None):
+    """Dimensioned axial cross-section of a designed rim or disc (half above the axis, mirrored)."""
+    from matplotlib.patches import Rectangle
+
+    ax = _axes(ax, figsize=(6, 6))
+    c = candidate
+    r_out, r_in, b = c.d_outer / 2, c.d_inner / 2, c.b
+    for sign in (1, -1):
+        low, high = (r_in, r_out) if sign > 0 else (-r_out, -r_in)
+        ax.add_patch(Rectangle((-b / 2, low), b, high - low, facecolor="#b0b7c3", edgecolor="black", hatch="//"))
+    ax.axhline(0, color="black", ls="-.", lw=0.8)
+    pad = 0.12 * r_out
+    x_dim = b / 2 + pad
+
+    def dim(x, y0, y1, text):
+        ax.annotate("", (x, y0), (x, y1), arrowprops={"arrowstyle": "<->", "lw": 0.8})
+        ax.text(x + 0.03 * r_out, 0.5 * (y0 + y1), text, rotation=90, ha="left", va="center", fontsize=8,
+                backgroundcolor="white")
+
+    dim(x_dim, -r_out, r_out, f"D_outer {c.d_outer * 1000:.4g} mm")
+    if r_in > 0:
+        dim(x_dim + pad, -r_in, r_in, f"D_inner {c.d_inner * 1000:.4g} mm")
+    ax.annotate("", (-b / 2, r_out + pad / 2), (b / 2, r_out + pad / 2), arrowprops={"arrowstyle": "<->", "lw": 0.8})
+    ax.annotate(f"B {b * 1000:.4g} mm", (0, r_out + pad / 2), ha="center", va="bottom", fontsize=8)
+    ax.set_aspect("equal")
+    ax.set_xlim(-b / 2 - 2 * pad, b / 2 + 4 * pad)
+    ax.set_ylim(-r_out - pad, r_out + 1.5 * pad)
+    ax.set(xlabel="axial [m]", ylabel="radial [m]",
+           title=f"{c.material} {c.geometry} on {c.shaft}: {c.mass:.4g} kg, v = {c.rim_speed:.3g} m/s")
+    return ax
+
+
+def plot_speed(scene, analysis, ax=None):
+    """ω(φ) over the cycle with the required flywheel (constant-inertia model).
+
+    With constant inertia J = J_c + J_F, ω² = 2 (E_0 + ΔE)/J, E_0 chosen so
+    that (ω_max + ω_min)/2 = ω_m (domain page, section 6, forward use).
+    """
+    from scipy.optimize import brentq
+
+    ax = _axes(ax)
+    if scene.net is not None:
+        raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
+    j = analysis.j_constant + analysis.j_required
+    if j <= 0:
+        raise ValueError("the scene has no inertia at all (J_c = 0 and no flywheel needed): ω(φ) is undefined")
+    ew = ExcessWork(scene.driving, scene.resisting, scene.cycle_angle)
+    phi = np.union1d(np.linspace(0, scene.cycle_angle, 2000), analysis.indicator.chain_angle)
+    de = ew(phi)
+    hi, lo = de.max(), de.min()
+
+    def mean_gap(e0):
+        return (math.sqrt(2 * (e0 + hi) / j) + math.sqrt(2 * (e0 + lo) / j)) / 2 - analysis.omega_mean
+
+    e0 = brentq(mean_gap, -lo, -lo + j * analysis.omega_mean**2 * 4, xtol=1e-14, rtol=4 * np.finfo(float).eps)
+    omega = np.sqrt(2 * (e0 + de) / j)
+    ax.plot(np.degrees(phi), rad_s_to_rpm(omega), color="tab:blue")
+    for value, label in ((analysis.omega_max, "ω_max"), (analysis.omega_min, "ω_min")):
+        ax.axhline(rad_s_to_rpm(value), color="gray", ls=":", lw=0.8)
+        ax.annotate(label, (0, rad_s_to_rpm(value)), fontsize=8, va="bottom")
+    ax.set(xlabel="crank angle φ [deg]", ylabel="speed [rpm]", xlim=(0, math.degrees(scene.cycle_angle)),
+           title=f"{analysis.title}: speed over the cycle (δ = {analysis.delta:.4g})")
+    return ax
+
+
+def save(ax, path):
+    """Write the Axes' figure to ``path`` (png, svg or pdf by suffix), atomically."""
+    path = Path(path)
+    suffix = path.suffix.lower().lstrip(".")
+    if suffix not in ("png", "svg", "pdf"):
+        raise ValueError(f"{path}: the output must end in .png, .svg or .pdf")
+    fig = ax.figure
+    handle, tmp = tempfile.mkstemp(suffix=path.suffix, dir=path.parent if str(path.parent) else ".")
+    os.close(handle)
+    try:
+        fig.savefig(tmp, format=suffix, dpi=150)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        _pyplot().close(fig)
+    return path
