@@ -258,3 +258,24 @@ def test_required_inertia_formula_and_transfer():
     assert_allclose(required_inertia(1600, n * TWO_PI / 60, 0.02, 1.0),
                     900 * 1600 / (math.pi**2 * n**2 * 0.02) - 1.0, rtol=1e-14)
     assert inertia_on_shaft(8.0, 2.0) == 2.0
+
+
+def test_dip_that_stays_on_one_side_is_not_a_crossing():
+    """Regression: a local extremum of M_d − M_r that does not reach zero is no crossing.
+
+    M_d − M_r = 400 sin φ + 250 cos 3φ has dips between grid points that stay on one side;
+    ΔE = 400 (1 − cos φ) + (250/3) sin 3φ, extremes at its roots (mpmath, 40 digits).
+    """
+    ind = energy_indicator(expr("1000 + 400*sin(phi) + 250*cos(3*phi)"), Constant(None), TWO_PI)
+    mpmath.mp.dps = 40
+
+    def f(p):
+        return 400 * mpmath.sin(p) + 250 * mpmath.cos(3 * p)
+
+    def de(p):
+        return 400 * (1 - mpmath.cos(p)) + mpmath.mpf(250) / 3 * mpmath.sin(3 * p)
+    grid = [2 * mpmath.pi * k / 2000 for k in range(2001)]
+    roots = [mpmath.findroot(f, (p, q), solver="anderson") for p, q in zip(grid[:-1], grid[1:]) if f(p) * f(q) < 0]
+    values = [de(0), de(2 * mpmath.pi)] + [de(r) for r in roots]
+    assert_allclose(ind.a_max, float(max(values) - min(values)), rtol=1e-12)
+    assert len(ind.chain_angle) == len(roots) + 2

@@ -561,7 +561,7 @@ def _roots(f, a, b, samples, scale):
             s = np.sign(y0)
             res = optimize.minimize_scalar(lambda p: s * f(np.array([p]))[0], bounds=(x[k - 1], x[k + 1]),
                                            method="bounded", options={"xatol": 1e-14 * (b - a)})
-            if s * res.fun < 0:
+            if res.fun < 0:  # res.fun = s·f at the dip: the dip crosses zero
                 roots += [brent(x[k - 1], res.x), brent(res.x, x[k + 1])]
             elif abs(res.fun) <= tiny:
                 roots.append(float(res.x))  # touches zero without crossing
