@@ -495,10 +495,11 @@ class EquivalentInertia:
     def derivative(self, phi):
         """dJ_e/dφ at ``phi`` [kg*m^2/rad] (exact, by CasADi's algorithmic differentiation)."""
         phi = np.asarray(phi, dtype=float)
-        flat = phi.reshape(-1)
-        if flat.size == 0:
+        n = phi.size
+        if n == 0:
             return np.zeros(phi.shape)
-        return np.asarray(self._derivative_function(flat)).reshape(phi.shape)
+        function = self._derivative_function.map(n) if n > 1 else self._derivative_function
+        return np.asarray(function(phi.reshape(1, -1))).reshape(phi.shape)
 
 
 class EquivalentTorque:

@@ -157,6 +157,21 @@ class InductionMotor(_Motor):
             return 2 * self.breakdown_torque * s * sb / (s * s + sb * sb)
         raise ValueError(f"induction motor model {model!r} is not known (allowed: {', '.join(self.MODELS)})")
 
+    @property
+    def linear_limit_speed(self):
+        """Speed where the linear line reaches the breakdown torque, ω_0 − k (ω_0 − ω_n) [rad/s].
+
+        Below it the linear model promises more torque than the motor has: a
+        periodic solution whose ω_min falls below this speed should be
+        recomputed with ``model="kloss"``.
+        """
+        return self.synchronous_speed - self.breakdown_ratio * (self.synchronous_speed - self.rated_speed)
+
+    @property
+    def breakdown_speed(self):
+        """Speed of the breakdown torque on the Kloss curve, ω_0 (1 − s_b) [rad/s]."""
+        return self.synchronous_speed * (1 - self.breakdown_slip)
+
     def starting_torque(self, model="kloss"):
         """Torque at rest [N*m]."""
         return float(self.torque(0.0, model))
