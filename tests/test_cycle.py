@@ -279,3 +279,16 @@ def test_dip_that_stays_on_one_side_is_not_a_crossing():
     values = [de(0), de(2 * mpmath.pi)] + [de(r) for r in roots]
     assert_allclose(ind.a_max, float(max(values) - min(values)), rtol=1e-12)
     assert len(ind.chain_angle) == len(roots) + 2
+
+
+def test_zero_mean_torque_against_an_unknown_constant_balances():
+    """Regression: 300 sin 2φ (zero mean) against an unknown constant M = 0 is periodic.
+
+    ΔE = 150 (1 − cos 2φ) ... with the sign of driving − resisting: A_max = 300 J (closed form).
+    """
+    ind = energy_indicator(Constant(None), expr("300*sin(2*phi)"), TWO_PI)
+    assert abs(ind.driving_mean) < 1e-12
+    assert_allclose(ind.a_max, 300.0, rtol=1e-12)
+    x = np.linspace(0, TWO_PI, 721)
+    table = energy_indicator(Constant(None), PiecewiseLinear(x, 300 * np.sin(2 * x)), TWO_PI)
+    assert_allclose(table.a_max, 300.0, rtol=1e-4)   # the table is a 0.5° polyline of the sine

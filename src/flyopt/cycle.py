@@ -321,8 +321,15 @@ def _extremes(chain, scale):
     return int(np.argmax(chain >= chain.max() - tie)), int(np.argmax(chain <= chain.min() + tie))
 
 
-def _check_balance(imbalance, cycle_work, fallback_scale):
-    scale = cycle_work if cycle_work > 0 else fallback_scale
+def _check_balance(imbalance, cycle_work, fluctuation_scale):
+    """Refuse a cycle whose net work exceeds BALANCE_TOLERANCE of its work.
+
+    The work is the larger of the cycle work of the torques and the work
+    scale of their difference (peak |M_d − M_r| Φ): a zero-mean torque
+    (a gravity load, sin φ) against an unknown constant has no cycle work
+    to speak of, yet balances.
+    """
+    scale = max(cycle_work, fluctuation_scale)
     if abs(imbalance) > BALANCE_TOLERANCE * scale:
         raise NonPeriodicCycle(imbalance, cycle_work)
 
