@@ -21,6 +21,11 @@ EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INFEASIBLE = 0, 1, 2, 3
 
 def main(argv=None):
     """Entry point of the ``flyopt`` command; returns the exit status."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["bench"]:  # its own option parser (flyopt.bench)
+        from .bench import main as bench_main
+
+        return bench_main(argv[1:])
     parser = _parser()
     args = parser.parse_args(argv)
     try:
@@ -53,6 +58,9 @@ def _parser():
                       help="turning_moment | energy | inertia_delta | cross_section | speed")
     plot.add_argument("-o", "--output", required=True, help="file to write; the suffix picks the format")
     plot.set_defaults(run=_plot)
+
+    commands.add_parser("bench", help="speed against error of each way to an answer (see flyopt bench --help)",
+                        add_help=False)
 
     check = commands.add_parser("check", help="check a scene file and say what is wrong")
     check.add_argument("scene", help="scene file (TOML)")
