@@ -292,3 +292,17 @@ def test_zero_mean_torque_against_an_unknown_constant_balances():
     x = np.linspace(0, TWO_PI, 721)
     table = energy_indicator(Constant(None), PiecewiseLinear(x, 300 * np.sin(2 * x)), TWO_PI)
     assert_allclose(table.a_max, 300.0, rtol=1e-4)   # the table is a 0.5° polyline of the sine
+
+
+def test_stacked_points_and_tiny_torque_balance():
+    """Regression (found by hypothesis): points stacked at one angle with a tiny torque.
+
+    The balancing constant must be the table's own mean to full precision; the old pivot (a middle
+    table value, here 5.0 inside the stack) left a 7e-9 relative imbalance and a false refusal.
+    """
+    x = np.array([0.0] + [1.0] * 29 + [TWO_PI])
+    y = np.zeros(31)
+    y[15], y[-1] = 5.0, 1.1920929e-07
+    ind = energy_indicator(Constant(None), PiecewiseLinear(x, y), TWO_PI)
+    exact = exact_chain(x, y, [0.0, TWO_PI], [0.0, 0.0])
+    assert ind.a_max >= 0 and abs(ind.imbalance) <= 1e-9 * abs(float(exact[2]))

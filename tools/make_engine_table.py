@@ -7,7 +7,9 @@ intake at -0.1 bar, polytropic compression (n = 1.3) from 1 bar abs at BDC,
 combustion raising the pressure to 55 bar abs over 0-15° after TDC,
 polytropic expansion (n = 1.3) to BDC, exhaust at +0.15 bar.
 Torque = p A r (sin θ + λ sin 2θ / (2 sqrt(1 - λ² sin²θ))) [N*m].
-Run: python tools/make_engine_table.py  (prints the TOML points).
+Run: python tools/make_engine_table.py  (prints the TOML points of the torque),
+     python tools/make_engine_table.py --force  (the gas force on the piston
+     along the slider axis, +x pointing away from the crank, for a [[member]]).
 """
 
 import math
@@ -48,7 +50,15 @@ def torque(deg):
     return (pressure(deg) - P_ATM) * AREA * R * (s + LAM * math.sin(2 * th) / (2 * math.sqrt(1 - (LAM * s)**2)))
 
 
+def force(deg):
+    """Gas force on the piston along +x (away from the crank) [N]: the gas pushes it towards the crank."""
+    return -(pressure(deg) - P_ATM) * AREA
+
+
 if __name__ == "__main__":
-    rows = [f'[{d}, {torque(d):.1f}]' for d in range(0, 721, 5)]
+    import sys
+
+    value = force if "--force" in sys.argv else torque
+    rows = [f'[{d}, {value(d):.1f}]' for d in range(0, 721, 5)]
     for k in range(0, len(rows), 6):
         print("  " + ", ".join(rows[k:k + 6]) + ",")

@@ -13,7 +13,6 @@ from .errors import NonPeriodicCycle, SceneError
 from .transmission import inertia_on_shaft
 from .units import gd2_from_inertia
 
-MODEL_ENERGY = "energy"
 
 
 @dataclass(frozen=True)
@@ -57,6 +56,9 @@ class Analysis:
     omega_min: float
     angle_omega_max: float | None
     angle_omega_min: float | None
+    model_reason: str
+    models: tuple
+    startup: dict | None
     index_omega_max: int
     index_omega_min: int
     j_margin: float
@@ -66,21 +68,28 @@ class Analysis:
     energy_chain: tuple
     shafts: tuple
     indicator: object = None
+    machine: object = None
+    requirement: object = None
 
     def to_dict(self):
         """Plain JSON-ready dictionary, every number in SI."""
-        out = {k: v for k, v in self.__dict__.items() if k not in ("indicator", "shafts", "energy_chain")}
+        out = {k: v for k, v in self.__dict__.items()
+               if k not in ("indicator", "machine", "requirement", "shafts", "energy_chain", "models")}
+        out["models"] = [dict(m) for m in self.models]
         out["energy_chain"] = [dict(e) for e in self.energy_chain]
         out["shafts"] = [s.to_dict() for s in self.shafts]
         return out
 
 
-def analyse(scene):
+def analyse(scene, model=None):
     """Analyse a scene's cycle and size the flywheel it needs.
 
     Parameters
     ----------
     scene : Scene
+    model : {"energy", "energy_mass", "dynamic"}, optional
+        Force a model; by default the cheapest one that is exact for the
+        scene (flyopt.models.choose).
 
     Returns
     -------
@@ -90,39 +99,92 @@ def analyse(scene):
     ------
     NonPeriodicCycle
         The cycle's work does not balance.
+    SolverFailed
+        The periodic solution did not converge.
     """
     try:
-        return _analyse(scene)
+        return _analyse(scene, model)
     except (SceneError, NonPeriodicCycle) as err:
         raise err.with_source(scene.source) from None
 
 
-def _analyse(scene):
+def _analyse(scene, forced=None):
+    from . import models
+
+    if forced is not None and forced not in models.MODELS:
+        raise SceneError("--model", f"{forced!r} is not known (allowed: {', '.join(models.ORDER)})")
+    machine = requirement = startup = None
     if scene.net is not None:
+        if forced not in (None, models.ENERGY):
+            raise SceneError("--model", "a scene given as net areas has no curves: only the energy model applies")
         ind = energy_indicator_from_areas(scene.net.energies, scene.cycle_angle)
         work = driving = resisting = power = motor_power = None
         chain = tuple({"index": k, "angle": None, "delta_e": float(e)} for k, e in enumerate(ind.chain_delta_e))
+        model, reason = models.ENERGY, "net areas of a constant-inertia machine: the energy method is exact"
+        j_margin = required_inertia(ind.a_max, scene.omega_mean, scene.delta, scene.j_constant)
+        omega_mean = scene.omega_mean
+        omega_max, omega_min = omega_mean * (1 + scene.delta / 2), omega_mean * (1 - scene.delta / 2)
+        angles = (ind.angle_omega_max, ind.angle_omega_min)
+        comparison = ({"model": model, "exact": True, "j_required": j_margin, "achieved_delta": scene.delta,
+                       "j_error": 0.0, "note": ""},)
     else:
-        ind = energy_indicator(scene.driving, scene.resisting, scene.cycle_angle)
+        machine = models.reduce(scene)
+        ew = machine.angle_only()
+        ind = energy_indicator(ew.driving, ew.resisting, scene.cycle_angle)
+        model, reason = models.choose(machine)
+        if forced is not None and forced != model:
+            reason = f"forced by --model; the exact model for this scene is {model}: {reason}"
+            model = forced
+        requirement = models.requirement(machine, model, ind)
+        comparison = tuple(models.compare(machine, model, ind))
+        j_margin = requirement.j_required
+        omega_mean, omega_max, omega_min = requirement.omega_mean, requirement.omega_max, requirement.omega_min
+        angles = (requirement.angle_omega_max, requirement.angle_omega_min)
         work, driving, resisting = ind.work_driving, ind.driving_mean, ind.resisting_mean
-        power = driving * scene.omega_mean
+        power = driving * omega_mean
         motor_power = power / scene.efficiency
         chain = tuple({"index": k, "angle": float(a), "delta_e": float(e)}
                       for k, (a, e) in enumerate(zip(ind.chain_angle, ind.chain_delta_e)))
-    j_margin = required_inertia(ind.a_max, scene.omega_mean, scene.delta, scene.j_constant)
+        startup = _startup(machine, omega_mean, max(j_margin, 0.0))
     needed = j_margin > 0
     j_req = j_margin if needed else 0.0
     shafts = tuple(ShaftRequirement(
-        name=s.name, speed_ratio=s.speed_ratio, omega=s.speed_ratio * scene.omega_mean,
+        name=s.name, speed_ratio=s.speed_ratio, omega=s.speed_ratio * omega_mean,
         efficiency=s.efficiency, j_required=inertia_on_shaft(j_req, s.speed_ratio),
         gd2_required=gd2_from_inertia(inertia_on_shaft(j_req, s.speed_ratio))) for s in scene.shafts)
     return Analysis(
-        title=scene.title, model=MODEL_ENERGY, omega_mean=scene.omega_mean, delta=scene.delta,
+        title=scene.title, model=model, model_reason=reason, models=comparison, startup=startup,
+        omega_mean=omega_mean, delta=scene.delta,
         cycle_angle=scene.cycle_angle, j_constant=scene.j_constant, a_max=ind.a_max,
         work_per_cycle=work, driving_torque=driving, resisting_torque=resisting, power=power,
         efficiency=scene.efficiency, motor_power=motor_power,
-        omega_max=scene.omega_mean * (1 + scene.delta / 2), omega_min=scene.omega_mean * (1 - scene.delta / 2),
-        angle_omega_max=ind.angle_omega_max, angle_omega_min=ind.angle_omega_min,
+        omega_max=omega_max, omega_min=omega_min, angle_omega_max=angles[0], angle_omega_min=angles[1],
         index_omega_max=ind.index_max, index_omega_min=ind.index_min,
         j_margin=j_margin, j_required=j_req, gd2_required=gd2_from_inertia(j_req), flywheel_needed=needed,
-        energy_chain=chain, shafts=shafts, indicator=ind)
+        energy_chain=chain, shafts=shafts, indicator=ind, machine=machine, requirement=requirement)
+
+
+def _startup(machine, omega_target, j_flywheel):
+    """Run-up from rest to the mean speed, declutched: the motor against the inertia alone.
+
+    Induction motors use the Kloss curve here (the linear line is valid only
+    near the rated point: at rest it would give 25 times the rated torque).
+    Returns None when no motor drives the machine.
+    """
+    from . import dynamics
+    from .errors import SolverFailed
+    from .torque import MotorTorque
+
+    motor = machine.driving if isinstance(machine.driving, MotorTorque) else None
+    if motor is None:
+        return None
+    curve = MotorTorque(motor.motor, motor.speed_ratio, motor.efficiency,
+                        "kloss" if motor.model is not None else None, motor.where)
+    method = ("declutched run-up: the motor against the inertia of machine and flywheel alone"
+              + (", Kloss curve" if motor.model is not None else ", DC motor line"))
+    try:
+        run = dynamics.startup_time(lambda phi, omega: curve.casadi(phi, omega), machine.j_machine,
+                                    machine.cycle_angle, omega_target, j_flywheel)
+    except (SolverFailed, ValueError) as err:
+        return {"method": method, "time": None, "cycles": None, "omega_target": omega_target, "note": str(err)}
+    return {"method": method, "time": run.time, "cycles": run.cycles, "omega_target": omega_target, "note": ""}

@@ -2,7 +2,8 @@
 
 Exit status: 0 a design (or none needed), 1 a solver did not converge (no
 design is reported), 2 bad input (one line on stderr naming the file, the
-field and what is allowed), 3 no material and shaft can give the inertia.
+field and what is allowed), 3 no material and shaft can give the inertia,
+4 the verification simulation finds the design misses the allowed δ.
 Nothing is printed on stdout before the whole result is ready.
 """
 
@@ -16,7 +17,7 @@ from .errors import NonPeriodicCycle, SceneError, SolverFailed
 from .pipeline import solve
 from .scene import load
 
-EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INFEASIBLE = 0, 1, 2, 3
+EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INFEASIBLE, EXIT_FLAGGED = 0, 1, 2, 3, 4
 
 
 def main(argv=None):
@@ -50,6 +51,10 @@ def _parser():
     solve.add_argument("--json", action="store_true", help="print one JSON object, all numbers in SI")
     solve.add_argument("--no-design", dest="design", action="store_false",
                        help="stop after the cycle analysis (no optimization)")
+    solve.add_argument("--model", choices=("energy", "energy_mass", "dynamic"),
+                       help="force the model that sizes the flywheel (default: the cheapest exact one)")
+    solve.add_argument("--verify", action="store_true",
+                       help="simulate the machine with the chosen flywheel and report the δ it achieves")
     solve.set_defaults(run=_solve)
 
     plot = commands.add_parser("plot", help="draw a diagram of a scene (png, svg or pdf)")
@@ -70,18 +75,37 @@ def _parser():
 
 def _solve(args):
     scene = load(args.scene)
-    solution = solve(scene, design_flywheel=args.design)
+    solution = solve(scene, design_flywheel=args.design, model=args.model, verify_design=args.verify)
     if args.json:
-        text = json.dumps({"scene": args.scene, **solution.to_dict()}, indent=2, allow_nan=False)
+        text = json.dumps({"scene": args.scene, **_json_safe(solution.to_dict())}, indent=2, allow_nan=False)
     else:
-        from .report import analysis_report, design_report
+        from .report import analysis_report, design_report, verification_report
 
         lines = [analysis_report(solution.analysis, args.scene)]
         if solution.design is not None:
             lines += design_report(solution.design)
+        if solution.verification is not None:
+            lines += verification_report(solution.verification)
         text = "\n".join(lines)
     print(text)
-    return EXIT_INFEASIBLE if solution.status == "infeasible" else EXIT_OK
+    if solution.status == "infeasible":
+        return EXIT_INFEASIBLE
+    if solution.verification is not None and solution.verification["flagged"]:
+        return EXIT_FLAGGED
+    return EXIT_OK
+
+
+def _json_safe(value):
+    """Infinite or NaN numbers (e.g. δ with no inertia at all) become null."""
+    import math
+
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(v) for v in value]
+    return value
 
 
 def _plot(args):

@@ -124,13 +124,14 @@ def solve_unknown_constant(driving, resisting, cycle_angle):
 def _balancing_constant(curve, cycle_angle):
     """The constant whose work over the cycle equals that of ``curve``.
 
-    Against a table it is kept as pivot + excess, the excess being the mean
-    of (table − pivot) with the pivot a middle value of the table: each
-    difference is exact (Sterbenz) when the values lie within a factor two of
-    the pivot, as they do for a large mean with a small ripple.
+    Against a table it is kept as pivot + excess (a two-pass mean): the
+    pivot is the plain mean W/Φ, the excess the mean of (table − pivot). For
+    a large mean with a small ripple every difference is exact (Sterbenz:
+    the values lie within a factor two of the pivot); otherwise the excess is
+    a small correction of an already good mean.
     """
     if isinstance(curve, PiecewiseLinear):
-        pivot = float(curve.values[len(curve.values) // 2])
+        pivot = curve.work(cycle_angle) / cycle_angle
         rel = curve.values - pivot
         excess = float(np.sum((rel[1:] + rel[:-1]) * np.diff(curve.angles))) / (2 * cycle_angle)
         return Constant(pivot + excess, pivot=pivot, excess=excess)

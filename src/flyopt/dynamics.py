@@ -170,8 +170,8 @@ def _curve_limits(curve, phi):
 # -- which model ----------------------------------------------------------------------
 
 MODEL_ENERGY = "energy"
-MODEL_ENERGY_MASS = "energy-mass"
-MODEL_PERIODIC = "periodic"
+MODEL_ENERGY_MASS = "energy_mass"
+MODEL_PERIODIC = "dynamic"
 
 
 def cheapest_model(j_machine, net_torque=None):

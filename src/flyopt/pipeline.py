@@ -25,6 +25,7 @@ class Solution:
     scene: object
     analysis: Analysis
     design: object = None
+    verification: object = None
 
     @property
     def status(self):
@@ -36,6 +37,8 @@ class Solution:
         out = self.analysis.to_dict()
         if self.design is not None:
             out["design"] = design_dict(self.design)
+        if self.verification is not None:
+            out["verification"] = dict(self.verification)
         return out
 
 
@@ -78,7 +81,45 @@ def design(scene, analysis, solver_options=None):
                            solver_options=solver_options)
 
 
-def solve(scene, design_flywheel=True, solver_options=None):
+def verify(scene, analysis, design_result=None):
+    """Simulate the machine with its flywheel and report the δ it really achieves.
+
+    The periodic solution of the equation of motion (flyopt.dynamics.verify)
+    with the chosen flywheel moved to the reference shaft (J' i²); with no
+    flywheel needed, the machine alone. A design whose δ exceeds the allowed
+    one by more than the simulation tolerance is ``flagged``.
+
+    Returns
+    -------
+    dict or None
+        The "verification" object: method, achieved_delta, delta_allowed,
+        omega_max, omega_min, omega_mean, tolerance, flagged, j_flywheel;
+        None when there is no flywheel to verify (infeasible design).
+    """
+    from . import dynamics
+
+    if design_result is not None and design_result.status == "infeasible":
+        return None
+    if design_result is not None and design_result.best is not None:
+        j_flywheel = design_result.best.j_at_reference
+    else:
+        j_flywheel = max(analysis.j_margin, 0.0)
+    machine = analysis.machine
+    if machine is None:  # net areas: no curves to simulate; the energy method is exact for them
+        j = analysis.j_constant + j_flywheel
+        achieved = analysis.a_max / (j * analysis.omega_mean**2) if j > 0 else float("inf")
+        return {"method": "energy method (net areas give no curves to simulate; exact for constant inertia)",
+                "achieved_delta": achieved, "delta_allowed": analysis.delta,
+                "omega_max": analysis.omega_mean * (1 + achieved / 2),
+                "omega_min": analysis.omega_mean * (1 - achieved / 2), "omega_mean": analysis.omega_mean,
+                "tolerance": 1e-12 * analysis.delta, "flagged": achieved > analysis.delta * (1 + 1e-12),
+                "j_flywheel": j_flywheel}
+    result = dynamics.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
+                             analysis.delta, j_flywheel, machine.knots())
+    return {**result.to_dict(), "j_flywheel": j_flywheel}
+
+
+def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_design=False):
     """Analyse a scene and design its flywheel.
 
     Parameters
@@ -88,11 +129,16 @@ def solve(scene, design_flywheel=True, solver_options=None):
         False stops after the cycle analysis.
     solver_options : mapping, optional
         CasADi/IPOPT options for the design NLPs.
+    model : {"energy", "energy_mass", "dynamic"}, optional
+        Force the model that sizes the flywheel (default: the cheapest exact one).
+    verify_design : bool
+        Simulate the machine with the chosen flywheel (:func:`verify`).
 
     Returns
     -------
     Solution
     """
-    analysis = analyse(scene)
+    analysis = analyse(scene, model)
     result = design(scene, analysis, solver_options) if design_flywheel else None
-    return Solution(scene=scene, analysis=analysis, design=result)
+    checked = verify(scene, analysis, result) if verify_design else None
+    return Solution(scene=scene, analysis=analysis, design=result, verification=checked)

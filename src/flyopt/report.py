@@ -36,8 +36,7 @@ def analysis_report(result, source=None):
     """The report of ``flyopt solve`` for the cycle analysis, as text."""
     r = result
     deg = math.degrees
-    lines = [f"{r.title}" + (f"  ({source})" if source else ""),
-             f"model: {r.model} (constant equivalent inertia, torques depend on the angle only)", ""]
+    lines = [f"{r.title}" + (f"  ({source})" if source else ""), f"model: {r.model}: {r.model_reason}", ""]
     facts = [
         ("mean speed", f"{number(r.omega_mean)} rad/s ({number(rad_s_to_rpm(r.omega_mean))} rpm)"),
         ("allowed δ", f"{number(r.delta)} (1/{number(1 / r.delta, 4)})"),
@@ -68,6 +67,20 @@ def analysis_report(result, source=None):
     width = max(len(k) for k, _ in facts)
     lines += [f"  {k:<{width}}  {v}" for k, v in facts]
 
+    if r.startup is not None:
+        st = r.startup
+        facts_text = (f"{number(st['time'])} s ({number(st['cycles'], 4)} cycles) to {number(st['omega_target'])} rad/s"
+                      if st["time"] is not None else f"not reached: {st['note']}")
+        lines.append(f"  {'start-up':<{width}}  {facts_text}; {st['method']}")
+    if len(r.models) > 1 or (r.models and not r.models[0]["exact"]):
+        lines += ["", "Models (J_F each asks for, and the δ it really gives by the exact model):"]
+        rows = []
+        for m in r.models:
+            rows.append([m["model"] + (" (exact)" if m["exact"] else ""), number(m["j_required"]),
+                         "-" if m["j_error"] is None else f"{100 * m['j_error']:+.3g} %",
+                         number(m["achieved_delta"]), m["note"]])
+        lines += ["  " + line for line in table(["model", "J_F [kg·m²]", "vs exact", "achieved δ", "note"], rows,
+                                                ["<", ">", ">", ">", "<"])]
     lines += ["", "Energy indicator diagram (excess work from the cycle start):"]
     rows = []
     for e in r.energy_chain:
@@ -126,3 +139,12 @@ def design_report(result, spec=None):
     if reasons:
         lines += ["", "Why the infeasible ones fail:"] + [f"  - {r}" for r in reasons]
     return lines
+
+
+def verification_report(v):
+    """The verification part of the ``flyopt solve --verify`` report."""
+    verdict = "FLAGGED: the design misses the allowed δ" if v["flagged"] else "ok"
+    return ["", f"Verification ({v['method']}): {verdict}",
+            f"  achieved δ {number(v['achieved_delta'])} against the allowed {number(v['delta_allowed'])} "
+            f"(tolerance {number(v['tolerance'], 3)}); ω {number(v['omega_min'])} to {number(v['omega_max'])} rad/s, "
+            f"mean {number(v['omega_mean'])}; flywheel {number(v['j_flywheel'])} kg·m² at the reference shaft"]

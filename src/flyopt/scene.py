@@ -82,6 +82,10 @@ class Scene:
         Materials and shafts the design may choose from (None: all).
     materials : tuple of Material
         The scene's own materials.
+    members : tuple of flyopt.mechanism.Member
+        Members whose kinetic energy and loads are reduced to the reference
+        shaft (J_e(φ) = J_c + Σ ..., their forces join the resisting torque).
+    mechanism : SliderCrank, GearTrain or None
     source : str or None
         File the scene came from.
     """
@@ -100,6 +104,8 @@ class Scene:
     design_materials: tuple | None = None   # names the design may use; None: every known material
     design_shafts: tuple | None = None      # names of [[shaft]] the design may use; None: all
     materials: tuple = ()          # user materials ([[material]]), extending the built-in ones
+    members: tuple = ()            # flyopt.mechanism.Member of [[member]]: J_e(φ) and member loads
+    mechanism: object = None       # SliderCrank or GearTrain of [mechanism]
     source: str | None = field(default=None, compare=False)
 
     def material_library(self):
@@ -155,7 +161,8 @@ def from_dict(data, source=None):
     SceneError
         A field is missing, unknown or wrong.
     """
-    top = _Table(data, "", {"title", "description", "machine", "torque", "shaft", "design", "material"})
+    top = _Table(data, "", {"title", "description", "machine", "torque", "shaft", "design", "material",
+                            "mechanism", "member"})
     machine = _Table(top.require("machine"), "machine",
                      {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"})
     omega = machine.quantity("speed", "angular_speed", required=True)
@@ -180,7 +187,12 @@ def from_dict(data, source=None):
     efficiency = _efficiency(machine.get("efficiency"), "machine.efficiency") if machine.has("efficiency") \
         else _reference_efficiency(shafts)
 
-    driving, resisting, net = _torques(top.require("torque"), cycle)
+    driving, resisting, net = _torques(top.require("torque"), cycle, shafts, efficiency)
+    mechanism = _mechanism(top.get("mechanism"))
+    members = _members(top.get("member"), mechanism, cycle)
+    if members and net is not None:
+        raise SceneError("member", "members need the torque curves ([torque.driving] and [torque.resisting]), "
+                         "not net areas: their inertia varies with the angle")
     materials = _materials(top.get("material"))
     design, design_materials, design_shafts = _design(top.get("design", {}), shafts, materials)
     title = top.get("title", "")
@@ -190,13 +202,13 @@ def from_dict(data, source=None):
                  j_constant=j_c, cycle_angle=cycle, efficiency=efficiency, driving=driving,
                  resisting=resisting, net=net, shafts=shafts, design=design,
                  design_materials=design_materials, design_shafts=design_shafts, materials=materials,
-                 source=source)
+                 members=members, mechanism=mechanism, source=source)
 
 
 # -- sections ------------------------------------------------------------------
 
 
-def _torques(section, cycle):
+def _torques(section, cycle, shafts=(), efficiency=1.0):
     torque = _Table(section, "torque", {"driving", "resisting", "net"})
     if torque.has("net"):
         if torque.has("driving") or torque.has("resisting"):
@@ -207,18 +219,19 @@ def _torques(section, cycle):
         if not torque.has(name):
             raise SceneError(f"torque.{name}", "is missing: give [torque.driving] and [torque.resisting], "
                              "or [torque.net] with the net areas")
-    driving = _curve(torque.get("driving"), "torque.driving", cycle)
-    resisting = _curve(torque.get("resisting"), "torque.resisting", cycle)
+    driving = _curve(torque.get("driving"), "torque.driving", cycle, shafts, efficiency)
+    resisting = _curve(torque.get("resisting"), "torque.resisting", cycle, shafts, efficiency)
     if isinstance(driving, Constant) and isinstance(resisting, Constant) and driving.unknown and resisting.unknown:
         raise SceneError("torque.resisting.constant", "both torques are unknown; at most one may be")
     return driving, resisting, None
 
 
-def _curve(section, where, cycle):
-    table = _Table(section, where, {"points", "constant", "expression", "unit", "angle_unit", "description"})
-    forms = [k for k in ("points", "constant", "expression") if table.has(k)]
+def _curve(section, where, cycle, shafts=(), efficiency=1.0):
+    table = _Table(section, where, {"points", "constant", "expression", "motor", "unit", "angle_unit",
+                                    "description"})
+    forms = [k for k in ("points", "constant", "expression", "motor") if table.has(k)]
     if len(forms) != 1:
-        raise SceneError(where, "give exactly one of points, constant or expression"
+        raise SceneError(where, "give exactly one of points, constant, expression or motor"
                          + (f" (the torque is given twice: {', '.join(forms)})" if forms else ""))
     form = forms[0]
     unit = 1.0
@@ -230,9 +243,11 @@ def _curve(section, where, cycle):
             return Constant(None)
         value = _scaled(raw, "torque", f"{where}.constant", unit)
         return Constant(value)
+    if form == "motor":
+        return _motor(table.get("motor"), f"{where}.motor", shafts, efficiency)
     if form == "expression":
         try:
-            expr = Expression(table.get("expression"), variables=("phi",))
+            expr = Expression(table.get("expression"), variables=("phi", "omega"))
         except ExpressionError as err:
             raise SceneError(f"{where}.expression", str(err)) from None
         return ExpressionTorque(expr, unit, where=f"{where}.expression")
@@ -241,16 +256,16 @@ def _curve(section, where, cycle):
     return _points(table.get("points"), f"{where}.points", cycle, unit, angle_unit)
 
 
-def _points(raw, where, cycle, unit, angle_unit):
+def _points(raw, where, cycle, unit, angle_unit, dimension="torque"):
     if not isinstance(raw, list) or len(raw) < 2:
-        raise SceneError(where, "must be a list of at least two [angle, torque] pairs")
+        raise SceneError(where, f"must be a list of at least two [angle, {dimension}] pairs")
     angles = np.empty(len(raw))
     values = np.empty(len(raw))
     for k, pair in enumerate(raw):
         if not isinstance(pair, list) or len(pair) != 2:
-            raise SceneError(f"{where}[{k}]", f"must be an [angle, torque] pair, got {pair!r}")
+            raise SceneError(f"{where}[{k}]", f"must be an [angle, {dimension}] pair, got {pair!r}")
         angles[k] = _scaled(pair[0], "angle", f"{where}[{k}] angle", angle_unit)
-        values[k] = _scaled(pair[1], "torque", f"{where}[{k}] torque", unit)
+        values[k] = _scaled(pair[1], dimension, f"{where}[{k}] {dimension}", unit)
     steps = np.diff(angles)
     if np.any(steps < 0):
         k = int(np.argmax(steps < 0)) + 1
@@ -267,6 +282,154 @@ def _points(raw, where, cycle, unit, angle_unit):
                          "(the first point must be at 0 and the last at the cycle angle)")
     angles[0], angles[-1] = 0.0, cycle
     return PiecewiseLinear(angles, values)
+
+
+def _motor(raw, where, shafts, efficiency):
+    """A motor characteristic as the driving torque at the reference shaft."""
+    from .motor import DCMotor, InductionMotor
+    from .torque import MotorTorque
+
+    kinds = {"induction": {"kind", "rated_power", "rated_speed", "synchronous_speed", "breakdown_ratio", "model",
+                           "shaft"},
+             "dc": {"kind", "no_load_speed", "stall_torque", "rated_power", "rated_speed", "shaft"}}
+    if not isinstance(raw, dict):
+        raise SceneError(where, "must be a table, e.g. { kind = \"induction\", rated_power = \"7.5 kW\", ... }")
+    kind = raw.get("kind")
+    if kind not in kinds:
+        raise SceneError(f"{where}.kind", f"{kind!r} is not known (allowed: induction, dc)")
+    table = _Table(raw, where, kinds[kind])
+    speed_ratio = 1.0
+    if table.has("shaft"):
+        name = table.get("shaft")
+        match = [s for s in shafts if s.name == name]
+        if not match:
+            raise SceneError(f"{where}.shaft", f"no [[shaft]] is named {name!r} "
+                             f"(known: {', '.join(s.name for s in shafts)})")
+        speed_ratio = match[0].speed_ratio
+    try:
+        if kind == "induction":
+            model = table.get("model", "linear")
+            if model not in ("linear", "kloss"):
+                raise SceneError(f"{where}.model", f"{model!r} is not known (allowed: linear, kloss)")
+            motor = InductionMotor(table.quantity("rated_power", "power", required=True),
+                                   table.quantity("rated_speed", "angular_speed", required=True),
+                                   table.quantity("synchronous_speed", "angular_speed", required=True),
+                                   table.quantity("breakdown_ratio", "dimensionless"))
+        else:
+            model = None
+            if table.has("stall_torque"):
+                motor = DCMotor(table.quantity("no_load_speed", "angular_speed", required=True),
+                                table.quantity("stall_torque", "torque"))
+            else:
+                motor = DCMotor.from_rated(table.quantity("rated_power", "power", required=True),
+                                           table.quantity("rated_speed", "angular_speed", required=True),
+                                           table.quantity("no_load_speed", "angular_speed", required=True))
+    except ValueError as err:
+        if isinstance(err, SceneError):
+            raise
+        raise SceneError(where, str(err)) from None
+    return MotorTorque(motor, speed_ratio, efficiency, model, where=where)
+
+
+def _mechanism(raw):
+    from .mechanism import GearTrain, SliderCrank
+
+    if raw is None:
+        return None
+    kind = raw.get("kind") if isinstance(raw, dict) else None
+    try:
+        if kind == "slider_crank":
+            table = _Table(raw, "mechanism", {"kind", "crank", "rod", "offset", "description"})
+            return SliderCrank(table.quantity("crank", "length", required=True),
+                               table.quantity("rod", "length", required=True),
+                               table.quantity("offset", "length", default=0.0))
+        if kind == "gear_train":
+            table = _Table(raw, "mechanism", {"kind", "ratios", "description"})
+            ratios = table.require("ratios")
+            if not isinstance(ratios, list) or not ratios:
+                raise SceneError("mechanism.ratios", "must be a list of stage speed ratios ω_out/ω_in")
+            return GearTrain([quantity(r, "dimensionless", f"mechanism.ratios[{k}]") for k, r in enumerate(ratios)])
+    except ValueError as err:
+        if isinstance(err, SceneError):
+            raise
+        raise SceneError("mechanism", str(err)) from None
+    raise SceneError("mechanism.kind", f"{kind!r} is not known (allowed: slider_crank, gear_train)")
+
+
+def _members(raw, mechanism, cycle):
+    from .mechanism import FORCE_SENSES, GearTrain, Member
+
+    if raw is None:
+        return ()
+    if not isinstance(raw, list):
+        raise SceneError("member", "must be an array of tables: [[member]] with name, mass, ...")
+    members, seen = [], set()
+    for k, item in enumerate(raw):
+        where = f"member[{k}]"
+        table = _Table(item, where, {"name", "mass", "inertia", "part", "centre", "velocity_ratio", "angular_ratio",
+                                     "force", "force_sense", "torque", "unit", "angle_unit", "description"})
+        name = table.require("name")
+        if not isinstance(name, str) or not name.strip():
+            raise SceneError(f"{where}.name", f"must be a non-empty string, got {name!r}")
+        if name in seen:
+            raise SceneError(f"{where}.name", f"member {name!r} is given twice")
+        seen.add(name)
+        angle_unit = _unit_factor(table.get("angle_unit"), "angle", f"{where}.angle_unit") \
+            if table.has("angle_unit") else 1.0
+        mass = table.quantity("mass", "mass", default=0.0)
+        inertia = table.quantity("inertia", "inertia", default=0.0)
+        for key, value in (("mass", mass), ("inertia", inertia)):
+            if value < 0:
+                raise SceneError(f"{where}.{key}", "must not be negative")
+        if table.has("part"):
+            if table.has("velocity_ratio") or table.has("angular_ratio"):
+                raise SceneError(f"{where}.part", "give either part (ratios from [mechanism]) or "
+                                 "velocity_ratio/angular_ratio, not both")
+            if mechanism is None:
+                raise SceneError(f"{where}.part", "needs a [mechanism] to take the ratios from")
+            part = table.get("part")
+            try:
+                if isinstance(mechanism, GearTrain):
+                    if isinstance(part, bool) or not isinstance(part, int):
+                        raise SceneError(f"{where}.part", f"a gear train's part is a shaft number 0..."
+                                         f"{len(mechanism.ratios)}, got {part!r}")
+                    kin = mechanism.kinematics(part)
+                else:
+                    centre = table.quantity("centre", "length") if table.has("centre") else None
+                    kin = mechanism.kinematics(part, centre)
+            except ValueError as err:
+                if isinstance(err, SceneError):
+                    raise
+                raise SceneError(f"{where}.part", str(err)) from None
+            velocity, angular = kin.velocity_ratio, kin.angular_ratio
+        else:
+            velocity = _member_curve(table, "velocity_ratio", "length", where, angle_unit, cycle, 0.0)
+            angular = _member_curve(table, "angular_ratio", "dimensionless", where, angle_unit, cycle, 0.0)
+        force = _member_curve(table, "force", "force", where, angle_unit, cycle, None)
+        torque = _member_curve(table, "torque", "torque", where, angle_unit, cycle, None)
+        sense = table.get("force_sense", "resisting")
+        if sense not in FORCE_SENSES:
+            raise SceneError(f"{where}.force_sense", f"{sense!r} is not known (allowed: {', '.join(FORCE_SENSES)})")
+        try:
+            members.append(Member(name, mass, inertia, velocity, angular, force, sense, torque))
+        except ValueError as err:
+            raise SceneError(where, str(err)) from None
+    return tuple(members)
+
+
+def _member_curve(table, key, dimension, where, angle_unit, cycle, default):
+    """A member's number or [[angle, value], ...] table (values with units or plain SI)."""
+    if not table.has(key):
+        return default
+    raw = table.get(key)
+    field_name = f"{where}.{key}"
+    unit = 1.0
+    if table.has("unit") and key in ("force", "torque"):
+        unit = _unit_factor(table.get("unit"), dimension, f"{where}.unit")
+    if not isinstance(raw, list):
+        return _scaled(raw, dimension, field_name, unit)
+    curve = _points(raw, field_name, cycle, unit, angle_unit, dimension)
+    return (curve.angles, curve.values)
 
 
 def _net_areas(section):

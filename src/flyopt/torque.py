@@ -142,7 +142,7 @@ class Constant:
 
 @dataclass(frozen=True)
 class ExpressionTorque:
-    """Torque given as an expression in ``phi`` [rad] times ``scale`` [N*m per unit].
+    """Torque given as an expression in ``phi`` [rad] (and ``omega`` [rad/s]) times ``scale``.
 
     Parameters
     ----------
@@ -152,23 +152,125 @@ class ExpressionTorque:
         Factor from the expression's unit to N*m.
     where : str
         Scene field it came from, for error messages.
+    omega : float or None
+        A fixed speed [rad/s] at which a speed-dependent expression is
+        evaluated by the angle-only methods (see :meth:`at_speed`).
     """
 
     expression: Expression
     scale: float = 1.0
     where: str = field(default="", compare=False)
+    omega: float | None = None
     is_linear = False
+
+    @property
+    def speed_dependent(self):
+        """True when the expression uses ``omega`` and no fixed speed is set."""
+        return "omega" in self.expression.depends_on and self.omega is None
+
+    def at_speed(self, omega):
+        """The same torque with ω held at ``omega`` [rad/s] (an angle-only curve)."""
+        return ExpressionTorque(self.expression, self.scale, self.where, float(omega))
 
     def breakpoints(self):
         return np.empty(0)
 
+    def _values(self, phi):
+        if "omega" in self.expression.depends_on:
+            if self.omega is None:
+                raise ValueError(f"{self.where}: the torque depends on omega; give a speed (at_speed)")
+            return self.expression.numpy(phi=phi, omega=self.omega)
+        return self.expression.numpy(phi=phi)
+
     def __call__(self, phi):
         with np.errstate(all="ignore"):
-            return self.scale * np.asarray(self.expression.numpy(phi=phi), dtype=float) + 0.0 * phi
+            return self.scale * np.asarray(self._values(phi), dtype=float) + 0.0 * phi
 
     def limits(self, phi):
         v = self(np.asarray(phi, dtype=float))
         return v, v
 
-    def casadi(self, phi):
+    def casadi(self, phi, omega=None):
+        """CasADi expression in ``phi`` (and ``omega``, a symbol, when the torque depends on speed)."""
+        if "omega" in self.expression.depends_on:
+            speed = self.omega if self.omega is not None else omega
+            if speed is None:
+                raise ValueError(f"{self.where}: the torque depends on omega; pass it")
+            return self.scale * self.expression.casadi(phi=phi, omega=speed)
         return self.scale * self.expression.casadi(phi=phi)
+
+
+@dataclass(frozen=True)
+class MotorTorque:
+    """Driving torque of a motor, reduced to the reference shaft: M' = M(i ω) i η.
+
+    Parameters
+    ----------
+    motor : flyopt.motor.InductionMotor or DCMotor
+    speed_ratio : float
+        i = ω_motor / ω_reference [-].
+    efficiency : float
+        η of the transmission from the motor to the reference shaft [-].
+    model : str or None
+        Characteristic of an induction motor: "linear" (near the rated point)
+        or "kloss" (the whole curve); None for a DC motor.
+    where : str
+        Scene field, for messages.
+    """
+
+    motor: object
+    speed_ratio: float = 1.0
+    efficiency: float = 1.0
+    model: str | None = None
+    where: str = field(default="", compare=False)
+    is_linear = False
+    speed_dependent = True
+
+    def breakpoints(self):
+        return np.empty(0)
+
+    def casadi(self, phi, omega=None):
+        if omega is None:
+            raise ValueError(f"{self.where}: a motor torque depends on omega; pass it")
+        return self.motor.reference_torque(omega, self.speed_ratio, self.efficiency, self.model) + 0 * phi
+
+    def at_speed(self, omega):
+        """The motor's torque at the reference speed ``omega`` [rad/s], as a Constant."""
+        return Constant(float(self.motor.reference_torque(np.asarray(float(omega)), self.speed_ratio,
+                                                          self.efficiency, self.model)))
+
+
+class TorqueSum:
+    """The sum of torque curves (e.g. a resisting load plus members' forces)."""
+
+    speed_dependent = False
+
+    def __init__(self, parts, where=""):
+        self.parts = tuple(parts)
+        self.where = where
+        self.is_linear = all(p.is_linear for p in self.parts)
+        self.speed_dependent = any(getattr(p, "speed_dependent", False) for p in self.parts)
+
+    def breakpoints(self):
+        points = [p.breakpoints() for p in self.parts]
+        return np.unique(np.concatenate(points)) if points else np.empty(0)
+
+    def limits(self, phi):
+        left = right = 0.0
+        for p in self.parts:
+            lp, rp = p.limits(phi)
+            left, right = left + lp, right + rp
+        return left, right
+
+    def __call__(self, phi):
+        return self.limits(np.asarray(phi, dtype=float))[1]
+
+    def casadi(self, phi, omega=None):
+        total = 0.0
+        for p in self.parts:
+            total = total + (p.casadi(phi, omega) if getattr(p, "speed_dependent", False) else p.casadi(phi))
+        return total
+
+    def at_speed(self, omega):
+        return TorqueSum([p.at_speed(omega) if getattr(p, "speed_dependent", False) else p for p in self.parts],
+                         self.where)
