@@ -60,7 +60,7 @@ def _parser():
     plot = commands.add_parser("plot", help="draw a diagram of a scene (png, svg or pdf)")
     plot.add_argument("scene", help="scene file (TOML)")
     plot.add_argument("--what", required=True, metavar="DIAGRAM",
-                      help="turning_moment | energy | inertia_delta | cross_section | speed")
+                      help="turning_moment | energy | inertia_delta | cross_section | speed | energy_mass")
     plot.add_argument("-o", "--output", required=True, help="file to write; the suffix picks the format")
     plot.set_defaults(run=_plot)
 

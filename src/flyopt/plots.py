@@ -22,7 +22,8 @@ PLOTS = {
     "energy": "energy indicator diagram: the chain of ΔE with A_max marked",
     "inertia_delta": "required flywheel J against δ (the hyperbola), the scene's δ marked",
     "cross_section": "dimensioned cross-section of the chosen flywheel",
-    "speed": "ω(φ) over the cycle with the required flywheel",
+    "speed": "ω(φ) over the cycle with the required flywheel, from the model that ran",
+    "energy_mass": "energy–mass (Wittenbauer) diagram: ΔE against J_e with the two tangents",
 }
 
 
@@ -178,36 +179,79 @@ def plot_cross_section(candidate, ax=None):
     return ax
 
 
+def _speed_curve(analysis):
+    """ω(φ) [rad/s] with the required flywheel, from the model that sized it."""
+    from . import dynamics
+
+    req = analysis.requirement
+    if req is not None and req.model == "dynamic":
+        return req.detail.solution.phi, req.detail.solution.omega
+    machine = analysis.machine
+    if machine.j_mean() + analysis.j_required <= 0:
+        raise ValueError("the scene has no inertia at all (J_c = 0 and no flywheel needed): ω(φ) is undefined")
+    speed = dynamics.achieved_speed(machine.angle_only(), machine.j_machine, analysis.omega_mean,
+                                    analysis.j_required)
+    return speed.phi, speed.omega
+
+
 def plot_speed(scene, analysis, ax=None):
-    """ω(φ) over the cycle with the required flywheel (constant-inertia model).
+    """ω(φ) over the cycle with the required flywheel, from the model that ran.
 
-    With constant inertia J = J_c + J_F, ω² = 2 (E_0 + ΔE)/J, E_0 chosen so
-    that (ω_max + ω_min)/2 = ω_m (domain page, section 6, forward use).
+    Energy models: ω² = 2 (E_0 + ΔE)/J_e with E_0 such that (ω_max + ω_min)/2 = ω_m
+    (domain page, section 6, forward use); the dynamic model: its periodic solution.
     """
-    from scipy.optimize import brentq
-
     ax = _axes(ax)
     if scene.net is not None:
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
-    j = analysis.j_constant + analysis.j_required
-    if j <= 0:
-        raise ValueError("the scene has no inertia at all (J_c = 0 and no flywheel needed): ω(φ) is undefined")
-    ew = ExcessWork(scene.driving, scene.resisting, scene.cycle_angle)
-    phi = np.union1d(np.linspace(0, scene.cycle_angle, 2000), analysis.indicator.chain_angle)
-    de = ew(phi)
-    hi, lo = de.max(), de.min()
-
-    def mean_gap(e0):
-        return (math.sqrt(2 * (e0 + hi) / j) + math.sqrt(2 * (e0 + lo) / j)) / 2 - analysis.omega_mean
-
-    e0 = brentq(mean_gap, -lo, -lo + j * analysis.omega_mean**2 * 4, xtol=1e-14, rtol=4 * np.finfo(float).eps)
-    omega = np.sqrt(2 * (e0 + de) / j)
-    ax.plot(np.degrees(phi), rad_s_to_rpm(omega), color="tab:blue")
-    for value, label in ((analysis.omega_max, "ω_max"), (analysis.omega_min, "ω_min")):
+    phi, omega = _speed_curve(analysis)
+    ax.plot(np.degrees(phi), rad_s_to_rpm(omega), color="tab:blue", label=f"model: {analysis.model}")
+    for value, label in ((omega.max(), "ω_max"), (omega.min(), "ω_min")):
         ax.axhline(rad_s_to_rpm(value), color="gray", ls=":", lw=0.8)
         ax.annotate(label, (0, rad_s_to_rpm(value)), fontsize=8, va="bottom")
     ax.set(xlabel="crank angle φ [deg]", ylabel="speed [rpm]", xlim=(0, math.degrees(scene.cycle_angle)),
            title=f"{analysis.title}: speed over the cycle (δ = {analysis.delta:.4g})")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_energy_mass(scene, analysis, ax=None):
+    """Wittenbauer's energy–mass diagram: ΔE against J_e over the cycle, with the two tangents.
+
+    From the true origin (−J_F, −E_0) the lines of slope ω_max²/2 and ω_min²/2
+    touch the curve where the speed is highest and lowest (domain page, section 6).
+    """
+    from . import models
+
+    ax = _axes(ax, figsize=(7, 5.5))
+    if analysis.machine is None or analysis.machine.speed_dependent:
+        raise ValueError("the energy–mass diagram needs torques of the angle only given as curves")
+    machine = analysis.machine
+    req = analysis.requirement if analysis.model == models.ENERGY_MASS else \
+        models.requirement(machine, models.ENERGY_MASS)
+    em = req.detail
+    ew = machine.angle_only()
+    phi = np.union1d(np.linspace(0, scene.cycle_angle, 1500), ew.knots)
+    j = np.broadcast_to(machine.j_machine(phi) if machine.variable_inertia else machine.j_machine, phi.shape)
+    de = ew(phi)
+    ax.plot(j, de, color="tab:blue", lw=1.5, label="(J_e(φ), ΔE(φ))")
+    j_f = max(em.j_required, 0.0)
+    x0, y0 = -j_f, -em.e0
+    xs = np.array([x0, j.max() + 0.05 * (j.max() - x0)])
+    for w, colour, label in ((em.omega_max, SURPLUS, "ω_max²/2"), (em.omega_min, DEFICIT, "ω_min²/2")):
+        ax.plot(xs, y0 + 0.5 * w**2 * (xs - x0), color=colour, lw=1, ls="--", label=f"slope {label}")
+    ax.plot([x0], [y0], "ko")
+    ax.annotate(f"origin (−J_F, −E_0), J_F = {j_f:.4g} kg·m²", (x0, y0), fontsize=8, xytext=(5, 5),
+                textcoords="offset points")
+    span_x = j.max() - j.min()
+    ax.set_xlim(j.min() - 0.5 * max(span_x, 1e-9), j.max() + 0.5 * max(span_x, 1e-9))
+    span_y = de.max() - de.min()
+    ax.set_ylim(de.min() - 0.3 * span_y, de.max() + 0.3 * span_y)
+    if x0 < j.min() - 0.5 * max(span_x, 1e-9):
+        ax.text(0.01, 0.01, f"tangents meet at (−J_F, −E_0) = ({x0:.4g} kg·m², {y0:.4g} J), off the plot",
+                transform=ax.transAxes, fontsize=8, color="gray")
+    ax.set(xlabel="equivalent inertia J_e [kg·m²]", ylabel="excess work ΔE [J]",
+           title=f"{analysis.title}: energy–mass diagram")
+    ax.legend(fontsize=8)
     return ax
 
 
