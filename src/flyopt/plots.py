@@ -44,6 +44,13 @@ def _axes(ax, figsize=(8, 4.5)):
     return plt.figure(figsize=figsize, layout="constrained").add_subplot()
 
 
+def _excess_work(scene, analysis):
+    """ΔE of the torques as the analysis saw them (members' loads joined, a motor at its mean)."""
+    if analysis.machine is not None:
+        return analysis.machine.angle_only()
+    return ExcessWork(scene.driving, scene.resisting, scene.cycle_angle)
+
+
 def _curve_samples(curve, cycle_angle, n=2000):
     """Angles and values that draw a torque curve exactly (tables at their points)."""
     from .torque import Constant, PiecewiseLinear
@@ -72,7 +79,7 @@ def plot_turning_moment(scene, analysis, ax=None):
         ax.set(xlabel="area (in order over the cycle)", ylabel="energy [J]",
                title=f"{analysis.title}: net areas between the torque curves")
         return ax
-    ew = ExcessWork(scene.driving, scene.resisting, scene.cycle_angle)
+    ew = _excess_work(scene, analysis)
     grid = np.union1d(np.linspace(0, scene.cycle_angle, 3000), ind.chain_angle)
     grid = np.union1d(grid, ew.knots)
     d = _curve_samples(ew.driving, scene.cycle_angle)
@@ -114,7 +121,7 @@ def plot_energy(scene, analysis, ax=None):
         ax.set_xlabel("end of area")
         where_max, where_min = x[ind.index_max], x[ind.index_min]
     else:
-        ew = ExcessWork(scene.driving, scene.resisting, scene.cycle_angle)
+        ew = _excess_work(scene, analysis)
         phi = np.union1d(np.linspace(0, scene.cycle_angle, 1500), ind.chain_angle)
         ax.plot(np.degrees(phi), ew(phi), color="tab:blue", lw=1.5, label="ΔE(φ)")
         ax.plot(np.degrees(ind.chain_angle), chain, "o", color="black", ms=4, label="crossings")
