@@ -13,8 +13,11 @@ from .analysis import Analysis, analyse
 from .errors import ExpressionError, FlyoptError, NonPeriodicCycle, SceneError, SolverFailed
 from .pipeline import Solution, design, solve
 from .scene import Scene, Shaft, from_dict, load
+from .studies import material_tradeoff, pareto
+from .sweep import sweep  # noqa: E402  (the function; the module stays importable as flyopt.sweep)
 
 __version__ = "0.1.0"
 
 __all__ = ["Analysis", "ExpressionError", "FlyoptError", "NonPeriodicCycle", "Scene", "SceneError",
-           "Shaft", "Solution", "SolverFailed", "analyse", "design", "from_dict", "load", "solve", "__version__"]
+           "Shaft", "Solution", "SolverFailed", "analyse", "design", "from_dict", "load", "material_tradeoff", "pareto",
+           "solve", "sweep", "__version__"]

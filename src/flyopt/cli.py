@@ -27,6 +27,10 @@ def main(argv=None):
         from .bench import main as bench_main
 
         return bench_main(argv[1:])
+    if argv[:1] and argv[0] in ("sweep", "pareto", "tradeoff"):  # their own parsers (flyopt.studies)
+        from . import studies
+
+        return getattr(studies, f"{argv[0]}_main")(argv[1:])
     parser = _parser()
     args = parser.parse_args(argv)
     try:
@@ -66,6 +70,9 @@ def _parser():
 
     commands.add_parser("bench", help="speed against error of each way to an answer (see flyopt bench --help)",
                         add_help=False)
+    commands.add_parser("sweep", help="a parameter sweep (grid or Latin hypercube) to CSV/Parquet", add_help=False)
+    commands.add_parser("pareto", help="a Pareto front of two objectives", add_help=False)
+    commands.add_parser("tradeoff", help="the lightest design of each material", add_help=False)
 
     check = commands.add_parser("check", help="check a scene file and say what is wrong")
     check.add_argument("scene", help="scene file (TOML)")

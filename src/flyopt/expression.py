@@ -114,6 +114,10 @@ class Expression:
     def __repr__(self):
         return f"Expression({self.text!r})"
 
+    def __reduce__(self):
+        """Pickle by text: the compiled closures are rebuilt (for worker processes)."""
+        return (Expression, (self.text, self.variables))
+
     # -- compilation of the checked tree into closures -----------------------
     def _compile(self, node):
         if isinstance(node, ast.Constant):

@@ -162,7 +162,7 @@ def from_dict(data, source=None):
         A field is missing, unknown or wrong.
     """
     top = _Table(data, "", {"title", "description", "machine", "torque", "shaft", "design", "material",
-                            "mechanism", "member"})
+                            "mechanism", "member", "sweep"})  # [sweep] is read by flyopt.sweep.load_sweep
     machine = _Table(top.require("machine"), "machine",
                      {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"})
     omega = machine.quantity("speed", "angular_speed", required=True)

@@ -1,0 +1,327 @@
+"""Benchmark of design sweeps (flyopt.sweep): optimized designs per second.
+
+Two 10,000-point sweeps of problems/punch-press.toml (3 materials x 3 shafts,
+so 9 material x shaft combinations per point, each counted as one design):
+
+* ``grid``: full factorial, δ (25, log) x speed (20, log) x envelope (20);
+* ``lhs``: 10,000 Latin hypercube samples over δ, speed, envelope, width
+  limit (none or 2..20 cm), H/B range start and geometry (rim, thin_rim,
+  disc): every closed-form structure.
+
+Each is timed end to end (``flyopt.sweep.sweep``: plan, one cycle analysis,
+designs, the result DataFrame; no file) serially (one process) and in
+parallel (worker processes, one per CPU), best and median of ``--repeat``
+runs. A design is a material x shaft combination decided: optimized, or
+proven infeasible by the exact closed-form bound; the feasible ones alone
+are reported too. For comparison the same points are run with every design
+through IPOPT (``method="ipopt"``) on a subset.
+
+Agreement: ``--check`` random points of each sweep are solved individually
+(``flyopt.solve`` of the point's scene: cycle analysed anew, every
+combination by IPOPT) and compared: same status, same winner, mass within
+1e-6.
+
+Writes ``benchmarks/results/sweep.md`` (summary) and ``sweep.csv`` (one row
+per timed run).
+
+Usage::
+
+    python benchmarks/bench_sweep.py [--repeat 3] [--check 200] [--ipopt-points 300]
+
+Target (issue): at least 2,000 designs/s on a 2-core machine, every checked
+point's mass within 1e-6 of an individual solve.
+"""
+
+import argparse
+import csv
+import os
+import platform
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+
+import flyopt
+from flyopt.sweep import point_scene, sweep
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENE = ROOT / "problems" / "punch-press.toml"
+TARGET = 2000.0
+AGREEMENT = 1e-6
+
+SWEEPS = {
+    "grid": dict(vary={"delta": "0.01:0.2:log25", "speed": "20:200:log20 rpm",
+                       "design.max_outer_diameter": "0.4:2.0:20 m"}),
+    "lhs": dict(vary={"delta": "0.01:0.2:log", "speed": "20:200:log rpm",
+                      "design.max_outer_diameter": "0.4:2.0 m",
+                      "design.max_width": "0.02,0.05,0.1,0.2,none",
+                      "design.hb_min": "1.0:2.0", "design.geometry": "rim,thin_rim,disc"},
+                samples=10_000, seed=1),
+}
+
+
+def cpus():
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover
+        return os.cpu_count() or 1
+
+
+class _Rows(list):
+    """Rows of timed runs; each records the 1-minute load average when it was added."""
+
+    def append(self, row):
+        row = dict(row)
+        row["load_1min"] = _load().split()[0]
+        super().append(row)
+
+
+def _load():
+    try:
+        return " ".join(f"{x:.2f}" for x in os.getloadavg())
+    except OSError:  # pragma: no cover
+        return "unknown"
+
+
+def timed(scene, spec, repeat, **options):
+    """Run a sweep ``repeat`` times; return (frame, list of seconds)."""
+    seconds, frame = [], None
+    for _ in range(repeat):
+        start = time.perf_counter()
+        frame = sweep(scene, spec["vary"], samples=spec.get("samples"), seed=spec.get("seed"),
+                      **options)
+        seconds.append(time.perf_counter() - start)
+    return frame, seconds
+
+
+def agreement(scene, frame, count, rng):
+    """Solve ``count`` random points individually; return the comparison."""
+    rows = frame.iloc[rng.choice(len(frame), size=min(count, len(frame)), replace=False)]
+    inputs = [c for c in frame.columns if c == "point" or "." in c
+              or c in ("delta", "speed", "inertia", "material", "shaft")]
+    worst, mismatches, ties, statuses, start = 0.0, [], [], {}, time.perf_counter()
+    for row in rows.to_dict("records"):
+        point = {k: row[k] for k in inputs if k != "point"}
+        solution = flyopt.solve(point_scene(scene, point))
+        statuses[solution.status] = statuses.get(solution.status, 0) + 1
+        if solution.status != row["status"]:
+            mismatches.append(f"point {row['point']}: status {row['status']} vs {solution.status}")
+            continue
+        if solution.status == "designed":
+            best = solution.design.best
+            diff = abs(row["mass"] / best.mass - 1.0)
+            worst = max(worst, diff)
+            winner = (row["best_material"], row["best_shaft"])
+            if diff > AGREEMENT:
+                mismatches.append(f"point {row['point']}: mass {row['mass']!r} vs {best.mass!r}")
+            elif winner != (best.material, best.shaft):
+                # an exact tie: the individual solve's own design of the sweep's winner
+                # must be as light as its best (else a real mismatch)
+                same = [c for c in solution.design.candidates
+                        if (c.material, c.shaft) == winner]
+                if same and same[0].feasible and abs(same[0].mass / best.mass - 1) <= 1e-9:
+                    ties.append(f"point {row['point']}: {'/'.join(winner)} vs "
+                                f"{best.material}/{best.shaft}, masses equal to "
+                                f"{abs(same[0].mass / best.mass - 1):.1e}")
+                else:
+                    mismatches.append(f"point {row['point']}: winner {'/'.join(winner)} vs "
+                                      f"{best.material}/{best.shaft}")
+    return {"points": len(rows), "worst": worst, "mismatches": mismatches, "ties": ties,
+            "statuses": statuses, "seconds": time.perf_counter() - start}
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--check", type=int, default=200, help="points solved individually")
+    parser.add_argument("--ipopt-points", type=int, default=300,
+                        help="points of the IPOPT comparison run")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--out", type=Path, default=ROOT / "benchmarks" / "results")
+    args = parser.parse_args(argv)
+    args.load_before = _load()
+    rng = np.random.default_rng(args.seed)
+    scene = flyopt.load(SCENE)
+    n_cpu = cpus()
+    sweep(scene, {"delta": "0.05"})          # warm up imports
+    rows, checks = _Rows(), {}
+    for name, spec in SWEEPS.items():
+        for mode, workers in (("serial", 1), ("parallel", n_cpu)):
+            frame, seconds = timed(scene, spec, args.repeat, workers=workers)
+            info = frame.attrs["sweep"]
+            designs = int(frame["n_combinations"].sum())
+            feasible = int(frame["n_feasible"].sum())
+            row = {"sweep": name, "mode": mode, "method": "auto", "workers": workers,
+                   "points": len(frame), "designs": designs, "feasible_designs": feasible,
+                   "chunks": info["chunks"], "runs": len(seconds),
+                   "best_s": min(seconds), "median_s": statistics.median(seconds),
+                   "designs_per_s": designs / statistics.median(seconds),
+                   "feasible_per_s": feasible / statistics.median(seconds),
+                   "methods": ";".join(f"{k}={v}" for k, v in
+                                       frame["method"].value_counts().items()),
+                   "statuses": ";".join(f"{k}={v}" for k, v in
+                                        frame["status"].value_counts().items())}
+            rows.append(row)
+            print(f"{name:4s} {mode:8s} {row['median_s']:.3f} s  "
+                  f"{row['designs_per_s']:,.0f} designs/s  ({row['statuses']})", flush=True)
+        checks[name] = agreement(scene, frame, args.check, rng)
+        print(f"{name}: agreement on {checks[name]['points']} points, worst "
+              f"{checks[name]['worst']:.2e}, {len(checks[name]['mismatches'])} mismatches",
+              flush=True)
+    # a larger closed-form sweep, where worker processes start to pay off
+    large = {"vary": {"delta": "0.01:0.2:log100", "speed": "20:200:log40 rpm",
+                      "design.max_outer_diameter": "0.4:2.0:50 m"}}
+    for mode, workers in (("serial", 1), ("parallel", n_cpu)):
+        frame, seconds = timed(scene, large, 1, workers=workers)
+        designs = int(frame["n_combinations"].sum())
+        feasible = int(frame["n_feasible"].sum())
+        rows.append({"sweep": "grid-200k", "mode": mode, "method": "auto", "workers": workers,
+                     "points": len(frame), "designs": designs, "feasible_designs": feasible,
+                     "chunks": frame.attrs["sweep"]["chunks"], "runs": 1,
+                     "best_s": seconds[0], "median_s": seconds[0],
+                     "designs_per_s": designs / seconds[0],
+                     "feasible_per_s": feasible / seconds[0],
+                     "methods": "closed_form=" + str(len(frame)),
+                     "statuses": ";".join(f"{k}={v}" for k, v in
+                                          frame["status"].value_counts().items())})
+        print(f"200k  {mode:8s} {seconds[0]:.3f} s  {designs / seconds[0]:,.0f} designs/s",
+              flush=True)
+        del frame
+    # the same structure through IPOPT, for comparison (a subset of the grid)
+    subset = {"delta": "0.01:0.2:log5", "speed": "20:200:log6 rpm",
+              "design.max_outer_diameter": f"0.4:2.0:{max(1, args.ipopt_points // 30)} m"}
+    for mode, workers in (("serial", 1), ("parallel", n_cpu)):
+        frame, seconds = timed(scene, {"vary": subset}, 1, workers=workers, method="ipopt")
+        designs = int(frame["n_combinations"].sum())
+        feasible = int(frame["n_feasible"].sum())
+        rows.append({"sweep": "grid-subset", "mode": mode, "method": "ipopt", "workers": workers,
+                     "points": len(frame), "designs": designs, "feasible_designs": feasible,
+                     "chunks": frame.attrs["sweep"]["chunks"], "runs": 1,
+                     "best_s": seconds[0], "median_s": seconds[0],
+                     "designs_per_s": designs / seconds[0],
+                     "feasible_per_s": feasible / seconds[0],
+                     "methods": "ipopt=" + str(len(frame)),
+                     "statuses": ";".join(f"{k}={v}" for k, v in
+                                          frame["status"].value_counts().items())})
+        print(f"ipopt {mode:8s} {seconds[0]:.3f} s  {designs / seconds[0]:,.0f} designs/s",
+              flush=True)
+    return write(args, rows, checks, n_cpu)
+
+
+def write(args, rows, checks, n_cpu):
+    args.out.mkdir(parents=True, exist_ok=True)
+    with open(args.out / "sweep.csv", "w", newline="", encoding="utf-8") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
+                             for k, v in row.items()})
+    auto = [r for r in rows if r["method"] == "auto" and r["points"] == 10_000]
+    slowest = min(r["designs_per_s"] for r in auto)
+    agree = all(not c["mismatches"] and c["worst"] <= AGREEMENT for c in checks.values())
+    lines = [
+        "# Sweep benchmark",
+        "",
+        f"Command: `python benchmarks/bench_sweep.py --repeat {args.repeat} --check {args.check} "
+        f"--ipopt-points {args.ipopt_points} --seed {args.seed}`",
+        "",
+        f"Machine: {platform.platform()}, {platform.machine()}, {n_cpu} CPUs available "
+        f"(not pinned: the parallel runs use all of them); Python {platform.python_version()}, "
+        f"CasADi {ca.__version__}, NumPy {np.__version__}. Load average before / after the "
+        f"runs: {args.load_before} / {_load()} (the machine is shared: other work on it slows "
+        f"the parallel runs most).",
+        "",
+        f"Scene: `problems/punch-press.toml` (3 materials x 3 shafts = 9 combinations per point, "
+        f"envelope and width limit). A design is one material x shaft combination decided: "
+        f"optimized, or proven infeasible by the exact closed-form bound (the feasible ones "
+        f"alone are the 'feasible designs/s'). Times are end to end (`flyopt.sweep.sweep`: "
+        f"plan, one cycle analysis, designs, result DataFrame; no file), median of "
+        f"{args.repeat} runs.",
+        "",
+        "- `grid`: δ 0.01..0.2 (25, log) x speed 20..200 rpm (20, log) x envelope 0.4..2 m (20).",
+        "- `lhs`: 10,000 Latin hypercube samples over δ, speed, envelope, width limit "
+        "(0.02, 0.05, 0.1, 0.2 m or none), H/B min 1..2 and geometry (rim, thin_rim, disc).",
+        "- `grid-200k`: δ (100, log) x speed (40, log) x envelope (50), 200,000 points, "
+        "one run each.",
+        "- `grid-subset`: 300 points of the grid with every combination through IPOPT "
+        "(`method=\"ipopt\"`), one run each, for comparison.",
+        "",
+        "| sweep | mode | method | workers | points | designs | median [s] | best [s] "
+        "| designs/s | feasible designs/s | load |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        lines.append(f"| {r['sweep']} | {r['mode']} | {r['method']} | {r['workers']} | "
+                     f"{r['points']} | {r['designs']} | {r['median_s']:.3f} | {r['best_s']:.3f} | "
+                     f"{r['designs_per_s']:,.0f} | {r['feasible_per_s']:,.0f} | "
+                     f"{r['load_1min']} |")
+    lines += [
+        "",
+        f"Target: at least {TARGET:,.0f} designs/s: **{'met' if slowest >= TARGET else 'NOT met'}** "
+        f"(slowest 10,000-point run {slowest:,.0f} designs/s).",
+        "",
+        "## Agreement with individual solves",
+        "",
+        "Random points of each sweep solved one by one with `flyopt.solve` on the point's "
+        "scene (cycle analysed anew, every combination by IPOPT):",
+        "",
+        "| sweep | points | statuses | worst relative mass difference | mismatches | "
+        "exact ties | time [s] |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for name, c in checks.items():
+        statuses = ", ".join(f"{v} {k}" for k, v in sorted(c["statuses"].items()))
+        lines.append(f"| {name} | {c['points']} | {statuses} | {c['worst']:.2e} | "
+                     f"{len(c['mismatches'])} | {len(c['ties'])} | {c['seconds']:.1f} |")
+    lines.append("")
+    for name, c in checks.items():
+        for m in c["mismatches"]:
+            lines.append(f"- {name}, mismatch: {m}")
+        for m in c["ties"]:
+            lines.append(f"- {name}, tie: {m}")
+    lines += [
+        "",
+        "A tie is a point where two combinations give the same mass in exact arithmetic "
+        "(a disc at the envelope weighs 8 J/D² whatever its density): the sweep ranks "
+        "objectives within 1e-9 as equal and takes the first in input order, while "
+        "`design_flywheel` lets IPOPT's round-off decide. The mass agrees either way.",
+    ]
+    lines += [
+        "",
+        f"Agreement within {AGREEMENT:g}: **{'yes' if agree else 'NO'}**.",
+        "",
+        "## Reading the figures",
+        "",
+        "- The speed comes from structure, not processes: every point of these sweeps has an "
+        "analytic optimum (mass objective, D_m free or pinned, rim, thin rim or disc), so "
+        "`flyopt.batch` designs all 90,000 combinations at once in numpy (exact screening by "
+        "the closed-form J_max, then the closed form or a vectorized monotone Newton root), "
+        "and the cycle is analysed once for the whole sweep.",
+        "- Worker processes do not pay off at 10,000 points: the whole sweep takes about a "
+        "tenth of a second in one process, less than it costs to start workers and ship "
+        "chunks and results between processes. `workers=\"auto\"` therefore runs a sweep "
+        "serially when it is estimated to take under a second; the parallel rows force one "
+        "worker per CPU to show it. At 200,000 points (`grid-200k`: δ 100 x speed 40 x "
+        "envelope 50, one run each) they can pay off: about 85 % of a serial run is the "
+        "designs, the rest (planning, one analysis, joining the chunks) stays in the parent, "
+        "so two cores give at most ~1.7x. On this shared machine the parallel rows vary most "
+        "with other work (the `load` column: 1-minute load average after the run); earlier "
+        "runs of the 200k sweep took 2.0 s in parallel against 2.6 s serially at a load "
+        "below 1, and 3.0-4.0 s against 2.5-3.1 s at a load of 1.3-1.7.",
+        "- Where the closed form does not apply (objective `outer_diameter`, or "
+        "`method=\"ipopt\"`), every combination is an IPOPT solve on an NLP built once per "
+        "structure and process (~2 ms each): the `ipopt` rows. There worker processes do "
+        "help.",
+        "",
+        "Per-run rows: `sweep.csv`.",
+    ]
+    (args.out / "sweep.md").write_text("\n".join(lines) + "\n", encoding="utf-8")
+    print(f"wrote {args.out / 'sweep.md'} and {args.out / 'sweep.csv'}")
+    return 0 if agree and slowest >= TARGET else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,457 @@
+"""Exact flywheel designs for many combinations at once, in closed form (numpy).
+
+:func:`flyopt.optimize.design_flywheel` solves one NLP per material × shaft
+combination with IPOPT (about 2 ms each). For the structures whose optimum is
+known analytically, or is the root of a monotone function of one variable,
+this module computes the same optimum for whole arrays of combinations at
+once. It is a model choice ("the cheapest model that is exact"): every design
+made here says ``method = "closed_form"``, and a structure it does not cover
+is left to IPOPT (see :func:`covers`).
+
+Covered: objective ``mass`` or ``cost`` (cost ranks the mass-optimal design of
+each combination by mass times the material's cost per kg, exactly as the
+NLP does), for ``thin_rim``, ``rim`` and ``disc``, mean diameter free or
+pinned, with or without envelope, width limit and H/B range. Not covered:
+objective ``outer_diameter``.
+
+Derivations
+-----------
+Notation per combination: J' the inertia needed on the wheel's shaft,
+rho the density, C = min(2 v_max / omega', envelope) the cap on the outer
+diameter, a <= H/B <= c the H/B range, B_max the width limit (inf if none).
+For rims m = pi rho D_m H B and J = m k / 4 with k = D_m^2 (thin rim) or
+D_m^2 + H^2 (exact annulus); for a disc m = pi rho D^2 B / 4, J = m D^2 / 8.
+
+*Feasibility* is decided by J' <= J_max, the largest inertia an admissible
+wheel gives, by :func:`max_inertia`: the vectorized twin of
+:func:`flyopt.optimize.max_inertia`, written with the same operations in the
+same order so that both give bitwise the same J_max, and thus the same verdict
+(including at the edge).
+
+*Rim, D_m free.* With the inertia binding, m = 4 J' / k, so the lightest
+wheel has the largest k. k grows with D_m, and along D_m + H = s it grows as
+H shrinks (H < D_m), so the outer diameter sits at the cap, D_m = C - H, and
+H is the smallest value at which a wheel of the widest admissible width
+B(H) = min(H / a, B_max) still gives J': the smallest root of
+
+    J_line(H) = pi rho (C - H) H B(H) k(H) / 4 = J'.
+
+Any lighter wheel (D', H') would have D' + H' <= C and, moved onto the line
+D_m + H = C with the same H', a larger J: a smaller root, a contradiction.
+At that root H/B = max(a, H / B_max) <= c, so the upper end of the H/B range
+never binds. In x = H / C, J_line is proportional to x^2 (1-x)^3 (thin rim,
+B = H/a), x (1-x)^3 (thin rim, B = B_max), x u (1 - 2u) or u (1 - 2u) with
+u = x (1 - x) (annulus): the thin rim is unimodal with its peak at
+clip(a B_max, C/4, 2C/5), the annulus increasing up to H = C/2. So the
+smallest root lies where J_line increases. Moreover log J_line is concave in
+log H (each factor is: log(C - H), log H, the minimum of two linear
+functions, and for the annulus log k + log(C - H) has a non-positive second
+derivative on (0, C/2], zero only at C/2), so Newton's method on
+log J_line(e^u) = log J' started left of the root climbs to it monotonically;
+it is safeguarded by bisection anyway. It starts at the lower bound
+H_0 = max(sqrt(4 a J' / (pi rho C^3)), 4 J' / (pi rho C^3 B_max)), valid since
+C - H <= C, k <= C^2, B <= H/a and B <= B_max.
+
+*Rim, D_m pinned.* The thin rim's mass 4 J' / D_m^2 does not depend on H;
+flyopt (and its NLP's tie-break) takes the thinnest such rim: with
+B = 4 J' / (pi rho D_m^3 H) <= min(H/a, B_max),
+H = max(sqrt(4 a J' / (pi rho D_m^3)), 4 J' / (pi rho D_m^3 B_max)).
+The annulus' mass 4 J' / (D_m^2 + H^2) falls with H, so H is as large as the
+room min(C - D_m, D_m) and H/B <= c allow; H/B = c gives
+H^2 (D_m^2 + H^2) = 4 c J' / (pi rho D_m), a quadratic in H^2:
+H^2 = 2 q / (D_m^2 + sqrt(D_m^4 + 4 q)), q = 4 c J' / (pi rho D_m).
+
+*Disc.* m = 8 J' / D^2 falls with D: D = C (or the pinned D), and
+B = 32 J' / (pi rho D^4).
+
+References
+----------
+.. [1] flyopt domain notes, shared/domain/flywheel-design.md, sections 8-10.
+.. [2] flyopt.optimize (the NLP these closed forms reproduce, and its
+   max_inertia).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from flyopt import geometry
+from flyopt.optimize import ACTIVE_RTOL, BINDING_NAMES
+
+__all__ = [
+    "METHOD",
+    "COVERED_OBJECTIVES",
+    "covers",
+    "max_inertia",
+    "lightest",
+    "design_combinations",
+    "binding_names",
+]
+
+#: Name of the method recorded with every design made here.
+METHOD = "closed_form"
+#: Objectives whose optimum is in closed form (cost ranks the mass optimum).
+COVERED_OBJECTIVES = ("mass", "cost")
+#: Bits of the binding mask, in the order of :data:`flyopt.optimize.BINDING_NAMES`.
+BINDING_BITS = {name: 1 << k for k, name in enumerate(BINDING_NAMES)}
+
+_NEWTON_MAX_ITER = 200
+#: Newton stops when a step moves log H by less than this (relative to max(1, |log H|)):
+#: a few ulps, so H is exact to ~1e-14 relative (IPOPT's designs: ~1e-10).
+_NEWTON_RTOL = 16 * np.finfo(float).eps
+
+
+def covers(geometry_name, objective, pinned=False):
+    """Whether the closed form is exact for a structure.
+
+    Parameters
+    ----------
+    geometry_name : {"rim", "thin_rim", "disc"}
+    objective : {"mass", "cost", "outer_diameter"}
+    pinned : bool
+        Mean diameter pinned (every pinned and free case is covered).
+
+    Returns
+    -------
+    bool
+        True for the mass and cost objectives (any geometry, free or pinned
+        D_m); False for ``outer_diameter``, which is left to IPOPT.
+    """
+    return geometry_name in geometry.GEOMETRIES and objective in COVERED_OBJECTIVES
+
+
+def _array(x):
+    return np.asarray(x, dtype=float)
+
+
+def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=np.inf,
+                d_mean=np.nan):
+    """Largest inertia any admissible wheel gives, for arrays of combinations.
+
+    The vectorized :func:`flyopt.optimize.max_inertia`, written with the
+    same floating-point operations so that both agree bitwise.
+
+    Parameters
+    ----------
+    geometry_name : {"rim", "thin_rim", "disc"}
+        One model for the whole array.
+    density : array_like
+        rho [kg/m^3].
+    d_outer_max : array_like
+        Cap on the outer diameter C [m].
+    hb_min, hb_max : array_like
+        H/B range [-] (ignored for a disc).
+    max_width : array_like
+        B_max [m]; ``inf`` for no limit.
+    d_mean : array_like
+        Pinned mean diameter (disc: diameter) [m]; NaN where free.
+
+    Returns
+    -------
+    ndarray
+        J_max [kg*m^2]; 0 where no wheel fits, ``inf`` for a disc with no
+        width limit and free diameter.
+    """
+    rho, cap, a, c, b_max, pin = np.broadcast_arrays(
+        _array(density), _array(d_outer_max), _array(hb_min), _array(hb_max),
+        _array(max_width), _array(d_mean))
+    pinned = ~np.isnan(pin)
+    out = np.zeros(rho.shape)
+    if geometry_name == "disc":
+        d = np.where(pinned, pin, cap)
+        fits = d <= cap
+        limited = np.isfinite(b_max)
+        j = geometry.disc_inertia(geometry.disc_mass(d, np.where(limited, b_max, 1.0), rho), d)
+        return np.where(fits, np.where(limited, j, np.inf), 0.0)
+
+    def inertia(d, h):
+        b = np.minimum(h / a, b_max)
+        mass = geometry.rim_mass(d, h, b, rho)
+        if geometry_name == "thin_rim":
+            return geometry.thin_rim_inertia(mass, d)
+        return geometry.rim_inertia(mass, d, h)
+
+    with np.errstate(invalid="ignore", divide="ignore"):
+        # pinned: H = min(C - D_m, D_m, hb_max B_max)
+        h_pin = np.minimum(np.minimum(cap - pin, pin), c * b_max)
+        j_pin = np.where(pin >= cap, 0.0, inertia(pin, h_pin))
+        # free: the same trial thicknesses as optimize.max_inertia, best of them
+        h_top = np.minimum(cap / 2.0, c * b_max)
+        trials = [h_top]
+        if geometry_name == "thin_rim":
+            h_break = np.minimum(a * b_max, h_top)
+            trials += [h_break, np.minimum(0.4 * cap, h_break),
+                       np.minimum(np.maximum(0.25 * cap, h_break), h_top)]
+        best = np.zeros(rho.shape)
+        for h in trials:
+            j = np.where(h > 0.0, inertia(cap - h, h), 0.0)
+            best = np.where(j > best, j, best)
+    out = np.where(pinned, j_pin, best)
+    return out
+
+
+def _rim_free_peak(thin, cap, a, c, b_max):
+    """Upper end of the increasing part of J_line(H) on (0, C/2] [m]."""
+    h_top = np.minimum(cap / 2.0, c * b_max)
+    if not thin:
+        return h_top
+    return np.minimum(h_top, np.clip(a * b_max, 0.25 * cap, 0.4 * cap))
+
+
+def _log_j_line(thin, u, log_coef, cap, a, b_max):
+    """log J_line(e^u) and its derivative in u (see the module notes)."""
+    h = np.exp(u)
+    d = cap - h
+    narrow = h / a < b_max
+    log_b = np.where(narrow, u - np.log(a), np.log(np.where(narrow, 1.0, b_max)))
+    dlog_b = np.where(narrow, 1.0, 0.0)
+    if thin:
+        log_k = 2.0 * np.log(d)
+        dlog_k = -2.0 * h / d
+    else:
+        k = d * d + h * h
+        log_k = np.log(k)
+        dlog_k = 2.0 * h * (2.0 * h - cap) / k
+    value = log_coef + np.log(d) + u + log_b + log_k
+    slope = 1.0 - h / d + dlog_b + dlog_k
+    return value, slope
+
+
+def _rim_free_root(thin, j, rho, cap, a, c, b_max):
+    """Smallest H with J_line(H) = J' (feasible combinations only) [m]."""
+    h_hi = _rim_free_peak(thin, cap, a, c, b_max)
+    with np.errstate(divide="ignore"):
+        base = math.pi * rho * cap ** 3
+        h_lo = np.maximum(np.sqrt(4.0 * a * j / base), 4.0 * j / (base * b_max))
+    h_lo = np.minimum(h_lo, h_hi)
+    lo, hi = np.log(h_lo), np.log(h_hi)
+    log_target = np.log(j)
+    log_coef = np.log(math.pi * rho / 4.0) - log_target
+    u = lo.copy()
+    active = np.arange(u.size)
+    for _ in range(_NEWTON_MAX_ITER):
+        if active.size == 0:
+            break
+        ua = u[active]
+        f, df = _log_j_line(thin, ua, log_coef[active], cap[active], a[active], b_max[active])
+        below = f < 0.0
+        lo[active] = np.where(below, ua, lo[active])
+        hi[active] = np.where(below, hi[active], ua)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = -f / df
+        new = ua + step
+        outside = ~((new > lo[active]) & (new < hi[active]))   # strictly inside, or bisect
+        new = np.where(f == 0.0, ua, np.where(outside, 0.5 * (lo[active] + hi[active]), new))
+        moved = np.abs(new - ua)
+        u[active] = new
+        # converged: the step, or the bracket around the root, is a few ulps of u.
+        # (Near the fold of J_line, where J' is close to J_max, the slope vanishes
+        # and Newton slows to halving the distance; the bracket stops round-off
+        # from making it oscillate.)
+        tol = _NEWTON_RTOL * np.maximum(1.0, np.abs(new))
+        converged = (moved <= tol) | (hi[active] - lo[active] <= tol) | (f == 0.0)
+        active = active[~converged]
+    else:  # pragma: no cover - the iteration converges quadratically in a few steps
+        raise ArithmeticError(f"closed-form rim root did not converge for {active.size} "
+                              f"combinations")
+    return np.exp(u)
+
+
+class Designs(dict):
+    """Arrays describing one design per combination (a dict of ndarrays).
+
+    Keys: ``feasible`` (bool), ``j_max``, ``d_mean``, ``h``, ``b``, ``mass``,
+    ``j_flywheel`` (NaN where infeasible) and, from
+    :func:`design_combinations`, also ``j_shaft``, ``omega``, ``cap``,
+    ``cap_speed``, ``d_outer``, ``d_inner``, ``hb_ratio``, ``rim_speed``,
+    ``hoop_stress``, ``j_at_reference``, ``binding`` (int bit mask, see
+    :func:`binding_names`).
+    """
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+
+def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_width=np.inf,
+             d_mean=np.nan):
+    """Lightest admissible wheel of each combination, exactly, or its infeasibility.
+
+    Parameters
+    ----------
+    geometry_name : {"rim", "thin_rim", "disc"}
+        One model for the whole array.
+    j_shaft : array_like
+        Inertia needed on the wheel's shaft J' [kg*m^2], > 0.
+    density : array_like
+        rho [kg/m^3].
+    d_outer_max : array_like
+        C = min(2 v_max / omega', envelope) [m].
+    hb_min, hb_max : array_like
+        H/B range [-].
+    max_width : array_like
+        B_max [m], ``inf`` for none.
+    d_mean : array_like
+        Pinned mean diameter (disc: diameter) [m], NaN where free.
+
+    Returns
+    -------
+    Designs
+        ``feasible``, ``j_max``, ``d_mean``, ``h``, ``b``, ``mass`` [kg],
+        ``j_flywheel`` [kg*m^2]. For a disc ``d_mean = h = D/2`` (the
+        convention of :class:`flyopt.optimize.Candidate`).
+
+    Notes
+    -----
+    See the module notes for the derivation of each case.
+    """
+    j, rho, cap, a, c, b_max, pin = np.broadcast_arrays(
+        _array(j_shaft), _array(density), _array(d_outer_max), _array(hb_min),
+        _array(hb_max), _array(max_width), _array(d_mean))
+    shape = j.shape
+    j_max = max_inertia(geometry_name, rho, cap, a, c, b_max, pin)
+    pinned = ~np.isnan(pin)
+    fits = np.where(geometry_name == "disc", pin <= cap, pin < cap) | ~pinned
+    feasible = fits & (j > 0.0) & (j <= j_max)
+    nan = np.full(shape, np.nan)
+    d_mean_out, h_out, b_out = nan.copy(), nan.copy(), nan.copy()
+
+    def put(mask, d, h, b):
+        d_mean_out[mask], h_out[mask], b_out[mask] = d, h, b
+
+    if geometry_name == "disc":
+        for mask in (feasible & ~pinned, feasible & pinned):
+            if mask.any():
+                d = np.where(pinned[mask], pin[mask], cap[mask])
+                b = 32.0 * j[mask] / (math.pi * rho[mask] * d ** 4)
+                put(mask, d / 2.0, d / 2.0, b)
+        mass = geometry.disc_mass(2.0 * d_mean_out, b_out, rho)
+        j_wheel = geometry.disc_inertia(mass, 2.0 * d_mean_out)
+    else:
+        thin = geometry_name == "thin_rim"
+        free = feasible & ~pinned
+        if free.any():
+            h = _rim_free_root(thin, j[free], rho[free], cap[free], a[free], c[free], b_max[free])
+            put(free, cap[free] - h, h, np.minimum(h / a[free], b_max[free]))
+        fixed = feasible & pinned
+        if fixed.any():
+            jj, rr, d, aa, cc, bm = (x[fixed] for x in (j, rho, pin, a, c, b_max))
+            if thin:
+                base = math.pi * rr * d ** 3
+                h = np.maximum(np.sqrt(4.0 * aa * jj / base), 4.0 * jj / (base * bm))
+                b = 4.0 * jj / (base * h)
+            else:
+                room = np.minimum(cap[fixed] - d, d)
+                q = 4.0 * cc * jj / (math.pi * rr * d)
+                h_c = np.sqrt(2.0 * q / (d * d + np.sqrt(d ** 4 + 4.0 * q)))
+                h = np.minimum(room, h_c)
+                b = 4.0 * jj / (math.pi * rr * d * h * (d * d + h * h))
+            put(fixed, d, h, b)
+        mass = geometry.rim_mass(d_mean_out, h_out, b_out, rho)
+        if thin:
+            j_wheel = geometry.thin_rim_inertia(mass, d_mean_out)
+        else:
+            j_wheel = geometry.rim_inertia(mass, d_mean_out, h_out)
+    return Designs(feasible=feasible, j_max=j_max, d_mean=d_mean_out, h=h_out, b=b_out,
+                   mass=mass, j_flywheel=j_wheel)
+
+
+def design_combinations(geometry_name, j_required, omega_mean, speed_ratio, density,
+                        max_rim_speed, hb_min, hb_max, max_outer_diameter=np.inf,
+                        max_width=np.inf, d_mean=np.nan):
+    """Design many material × shaft combinations at once (mass objective).
+
+    The array counterpart of what :func:`flyopt.optimize.design_flywheel`
+    does for each combination: move J_F to the shaft, cap the outer
+    diameter by the rim speed and the envelope, decide feasibility, and find
+    the lightest wheel.
+
+    Parameters
+    ----------
+    geometry_name : {"rim", "thin_rim", "disc"}
+    j_required : array_like
+        J_F at the reference shaft [kg*m^2], > 0.
+    omega_mean : array_like
+        Mean speed of the reference shaft [rad/s].
+    speed_ratio : array_like
+        omega_shaft / omega_reference [-].
+    density, max_rim_speed : array_like
+        Material: rho [kg/m^3], v_max [m/s].
+    hb_min, hb_max : array_like
+        H/B range [-].
+    max_outer_diameter, max_width : array_like
+        Envelope and width limit [m], ``inf`` for none.
+    d_mean : array_like
+        Pinned mean diameter [m], NaN where free.
+
+    Returns
+    -------
+    Designs
+        The keys of :func:`lightest` and ``j_shaft``, ``omega``, ``cap``,
+        ``cap_speed``, ``d_outer``, ``d_inner``, ``hb_ratio``, ``rim_speed``,
+        ``hoop_stress``, ``j_at_reference``, ``binding`` (bit mask).
+    """
+    arrays = np.broadcast_arrays(
+        _array(j_required), _array(omega_mean), _array(speed_ratio), _array(density),
+        _array(max_rim_speed), _array(hb_min), _array(hb_max), _array(max_outer_diameter),
+        _array(max_width), _array(d_mean))
+    j_ref, omega_mean, ratio, rho, v_max, a, c, envelope, b_max, pin = arrays
+    omega = omega_mean * ratio
+    j_shaft = j_ref / (ratio * ratio)                     # transmission.inertia_on_shaft
+    cap_speed = geometry.outer_diameter_for_rim_speed(v_max, omega)
+    cap = np.minimum(cap_speed, envelope)
+    out = lightest(geometry_name, j_shaft, rho, cap, a, c, b_max, pin)
+    d_outer = geometry.outer_diameter(out.d_mean, out.h)
+    d_inner = geometry.inner_diameter(out.d_mean, out.h)
+    speed = geometry.rim_speed(omega, d_outer)
+    hb = out.h / out.b
+    out.update(j_shaft=j_shaft, omega=omega, cap=cap, cap_speed=cap_speed, d_outer=d_outer,
+               d_inner=np.maximum(d_inner, 0.0), hb_ratio=hb, rim_speed=speed,
+               hoop_stress=geometry.hoop_stress(rho, speed),
+               j_at_reference=out.j_flywheel * ratio * ratio)
+    out["binding"] = _binding(geometry_name, out, envelope, b_max, a, c, d_inner)
+    return out
+
+
+def _binding(geometry_name, out, envelope, b_max, a, c, d_inner):
+    """Bit mask of the active constraints, by the rules of optimize (ACTIVE_RTOL)."""
+    rtol = ACTIVE_RTOL
+    d_outer, b, hb = out.d_outer, out.b, out.hb_ratio
+    bits = BINDING_BITS
+    with np.errstate(invalid="ignore"):
+        flags = {
+            "inertia": out.j_flywheel <= out.j_shaft * (1.0 + rtol),
+            "rim_speed": d_outer >= out.cap_speed * (1.0 - rtol),
+            "max_outer_diameter": d_outer >= envelope * (1 - rtol),
+            "max_width": b >= b_max * (1.0 - rtol),
+        }
+        if geometry_name != "disc":
+            flags["hb_min"] = hb <= a * (1.0 + rtol)
+            flags["hb_max"] = hb >= c * (1.0 - rtol)
+            flags["inner_diameter"] = d_inner <= rtol * d_outer
+    mask = np.zeros(d_outer.shape, dtype=np.int64)
+    for name, flag in flags.items():
+        mask |= np.where(out.feasible & flag, bits[name], 0)
+    return mask
+
+
+_BINDING_TEXT: dict = {}
+
+
+def binding_names(mask):
+    """The constraint names of a binding bit mask, in BINDING_NAMES order.
+
+    Returns
+    -------
+    tuple of str
+    """
+    mask = int(mask)
+    names = _BINDING_TEXT.get(mask)
+    if names is None:
+        names = tuple(name for name, bit in BINDING_BITS.items() if mask & bit)
+        _BINDING_TEXT[mask] = names
+    return names

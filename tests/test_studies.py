@@ -1,0 +1,227 @@
+"""Tests of flyopt.studies: Pareto fronts, the material trade-off table, and the
+``flyopt pareto`` / ``flyopt tradeoff`` commands.
+
+References: every front point is checked against ``flyopt.solve`` of the
+scene with its ε-constraint applied (the envelope set to ε, or δ = ε), and
+against a brute-force dominance check; the trade-off rows against
+``design_flywheel`` with the one material.
+"""
+
+import dataclasses
+import itertools
+import json
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from numpy.testing import assert_allclose
+
+import flyopt
+from conftest import PROBLEMS
+from flyopt.errors import SceneError
+from flyopt.optimize import MountShaft, design_flywheel
+from flyopt.studies import (material_tradeoff, non_dominated, pareto, pareto_main,
+                            tradeoff_main)
+
+PUNCH = flyopt.load(PROBLEMS / "punch-press.toml")
+SHEAR = flyopt.load(PROBLEMS / "shear-press.toml")
+
+COSTS = """
+[[material]]
+name = "grey_iron"
+density = "7200 kg/m^3"
+max_rim_speed = "36 m/s"
+cost = "1.2 1/kg"
+
+[[material]]
+name = "steel"
+density = "7800 kg/m^3"
+max_rim_speed = "50 m/s"
+cost = "3.0 1/kg"
+
+[[material]]
+name = "ductile"
+density = "7100 kg/m^3"
+max_rim_speed = "44 m/s"
+cost = "2.0 1/kg"
+
+[[material]]
+name = "dear_iron"
+density = "7200 kg/m^3"
+max_rim_speed = "36 m/s"
+cost = "5.0 1/kg"
+"""
+
+
+@pytest.fixture
+def costed_scene(write_scene):
+    text = (PROBLEMS / "punch-press.toml").read_text().replace(
+        'materials = ["cast_iron", "cast_steel", "ductile_iron"]',
+        'materials = ["grey_iron", "steel", "ductile", "dear_iron"]')
+    head, _ = text.split("# A user material beside")
+    return flyopt.load(write_scene(head + COSTS))
+
+
+def assert_non_dominated(f1, f2):
+    """Brute force: no point is no worse in both and better in one."""
+    for i, j in itertools.permutations(range(len(f1)), 2):
+        assert not (f1[j] <= f1[i] and f2[j] <= f2[i] and (f1[j] < f1[i] or f2[j] < f2[i])), (i, j)
+
+
+def test_non_dominated_filter():
+    f1 = [1.0, 2.0, 2.0, 3.0, 0.5, np.nan, 3.0]
+    f2 = [5.0, 3.0, 4.0, 1.0, 6.0, 0.0, 1.0]
+    assert non_dominated(f1, f2).tolist() == [True, True, False, True, True, False, False]
+
+
+def test_pareto_mass_outer_diameter_matches_individual_solves():
+    """ε-constraint on the outer diameter: each point is the lightest design with
+    D_outer <= ε (an individual solve with the envelope at ε), mass within 1e-6;
+    the first point is the smallest wheel (objective outer_diameter)."""
+    front = pareto(PUNCH, "mass,outer_diameter", points=8)
+    assert list(front.attrs["objectives"]) == ["mass", "outer_diameter"]
+    assert_non_dominated(front["mass"].to_numpy(), front["outer_diameter"].to_numpy())
+    assert (np.diff(front["outer_diameter"]) > 0).all() and (np.diff(front["mass"]) < 0).all()
+    smallest = flyopt.solve(PUNCH.replace(design=dataclasses.replace(
+        PUNCH.design, objective="outer_diameter"))).design.best
+    assert_allclose(front["outer_diameter"].iloc[0], smallest.d_outer, rtol=1e-12)
+    assert front["method"].iloc[0] == "ipopt"
+    for row in front.iloc[1:].to_dict("records"):
+        scene = PUNCH.replace(design=dataclasses.replace(PUNCH.design,
+                                                         max_outer_diameter=row["epsilon"]))
+        best = flyopt.solve(scene).design.best
+        assert_allclose(row["mass"], best.mass, rtol=1e-6)
+        assert row["outer_diameter"] <= row["epsilon"] * (1 + 1e-12)
+        assert (row["best_material"], row["best_shaft"]) == (best.material, best.shaft)
+    lightest = flyopt.solve(PUNCH).design.best
+    assert_allclose(front["mass"].iloc[-1], lightest.mass, rtol=1e-6)
+
+
+def test_pareto_through_ipopt_agrees_with_closed_form():
+    auto = pareto(SHEAR, ("mass", "outer_diameter"), points=6)
+    ipopt = pareto(SHEAR, ("mass", "outer_diameter"), points=6, method="ipopt")
+    assert set(ipopt["method"]) == {"ipopt"} and "closed_form" in set(auto["method"])
+    assert_allclose(auto["mass"], ipopt["mass"], rtol=1e-6)
+    assert_allclose(auto["outer_diameter"], ipopt["outer_diameter"], rtol=1e-6)
+
+
+def test_pareto_with_a_range():
+    front = pareto(SHEAR, "mass,outer_diameter", points=5, span=(0.3, 0.9))
+    # the scene's envelope (0.6 m) caps the range
+    assert front["epsilon"].max() <= 0.6 and front["epsilon"].min() >= 0.3
+
+
+def test_pareto_mass_cost_is_the_non_dominated_set_of_combinations(costed_scene):
+    """Brute force over every material x shaft design (IPOPT): the front is exactly
+    its non-dominated subset in (mass, cost)."""
+    front = pareto(costed_scene, "mass,cost")
+    analysis = flyopt.analyse(costed_scene)
+    library = costed_scene.material_library()
+    result = design_flywheel(analysis.j_margin, costed_scene.omega_mean,
+                             [MountShaft(s.name, s.speed_ratio) for s in costed_scene.shafts],
+                             [library[n] for n in costed_scene.design_materials],
+                             costed_scene.design)
+    designs = [c for c in result.candidates if c.feasible]
+    keep = non_dominated([c.mass for c in designs], [c.cost for c in designs])
+    expected = sorted((c.cost, c.mass, c.material, c.shaft) for c, k in zip(designs, keep) if k)
+    got = list(zip(front["cost"], front["mass"], front["best_material"], front["best_shaft"]))
+    assert [g[2:] for g in got] == [e[2:] for e in expected]
+    assert_allclose([g[:2] for g in got], [e[:2] for e in expected], rtol=1e-6)
+    assert "dear_iron" not in set(front["best_material"])     # grey iron, same wheel, cheaper
+    assert len(front) >= 2
+    assert_non_dominated(front["mass"].to_numpy(), front["cost"].to_numpy())
+
+
+def test_pareto_mass_delta_and_no_flywheel_needed():
+    """Mass falls as δ grows; where the machine's own inertia suffices the mass is 0
+    (one point: larger δ with mass 0 is dominated)."""
+    scene = PUNCH.replace(j_constant=200.0)        # J_F = A_max/(ω²δ) − 200 ≤ 0 from δ ≈ 0.43
+    front = pareto(scene, "mass,delta", points=12, span=(0.02, 1.0))
+    assert_non_dominated(front["mass"].to_numpy(), front["delta"].to_numpy())
+    assert (np.diff(front["delta"]) > 0).all() and (np.diff(front["mass"]) < 0).all()
+    assert list(front["status"]).count("not_needed") == 1 and front["mass"].iloc[-1] == 0.0
+    for row in front[front["status"] == "designed"].to_dict("records"):
+        best = flyopt.solve(scene.replace(delta=row["delta"])).design.best
+        assert_allclose(row["mass"], best.mass, rtol=1e-6)
+
+
+@pytest.mark.parametrize("objectives, kwargs, match", [
+    ("mass,volume", {}, "not a known pair"),
+    ("mass,mass", {}, "not a known pair"),
+    ("cost,outer_diameter", {}, "not a known pair"),
+    ("mass,cost", {}, "needs a cost per kg on every material"),
+    ("mass,delta", {"span": (0.1, 3.0)}, "must lie in"),
+    ("mass,outer_diameter", {"points": 1}, ">= 2"),
+])
+def test_pareto_errors(objectives, kwargs, match):
+    with pytest.raises(SceneError, match=match):
+        pareto(PUNCH, objectives, **kwargs)
+
+
+def test_material_tradeoff_table():
+    """Per material the lightest design over the shafts (IPOPT, one material at a
+    time), with its size, rim speed, mass and the limits that bind."""
+    table = material_tradeoff(PUNCH)
+    assert list(table["material"]) == ["cast_steel", "ductile_iron", "cast_iron"]   # lightest first
+    assert (np.diff(table["mass"]) > 0).all()
+    analysis = flyopt.analyse(PUNCH)
+    library = PUNCH.material_library()
+    shafts = [MountShaft(s.name, s.speed_ratio) for s in PUNCH.shafts]
+    for row in table.to_dict("records"):
+        best = design_flywheel(analysis.j_margin, PUNCH.omega_mean, shafts,
+                               [library[row["material"]]], PUNCH.design).best
+        assert row["status"] == "designed" and row["shaft"] == best.shaft
+        assert_allclose(row["mass"], best.mass, rtol=1e-12)
+        assert_allclose([row["d_outer"], row["rim_speed"]], [best.d_outer, best.rim_speed],
+                        rtol=1e-12)
+        assert row["rim_speed_limit"] == library[row["material"]].max_rim_speed
+        assert row["limit"] == ",".join(b for b in best.binding if b != "inertia")
+        assert "inertia" not in row["limit"].split(",") and row["limit"]
+        assert math.isnan(row["cost"])                 # the built-in materials have no cost
+
+
+def test_material_tradeoff_infeasible_material_says_why():
+    scene = SHEAR.replace(delta=0.004)                 # J_F 12.7 kg m^2 at 1500 rpm, D <= 0.6 m
+    table = material_tradeoff(scene).set_index("material")
+    assert table.loc["cast_iron", "status"] == "infeasible"
+    assert math.isnan(table.loc["cast_iron", "mass"])
+    assert "36 m/s rim limit caps the outer diameter" in table.loc["cast_iron", "reason"]
+    assert table.loc["cast_steel", "status"] == "designed"
+    assert list(table.index) == ["cast_steel", "cast_iron"]
+
+
+def test_cli_pareto(tmp_path, capsys):
+    out = tmp_path / "front.csv"
+    status = pareto_main([str(PROBLEMS / "shear-press.toml"), "--objectives",
+                          "mass,outer_diameter", "--points", "5", "-o", str(out)])
+    text = capsys.readouterr().out
+    assert status == 0
+    assert "Pareto front, mass vs outer_diameter" in text and "mass [kg]" in text
+    front = pd.read_csv(out)
+    assert len(front) >= 4 and {"mass", "outer_diameter", "epsilon"} <= set(front.columns)
+    assert pareto_main([str(PROBLEMS / "shear-press.toml"), "--objectives", "mass,delta",
+                        "--points", "4", "--range", "0.02:0.2", "--json"]) == 0
+    records = json.loads(capsys.readouterr().out)
+    assert len(records) == 4 and records[0]["delta"] == pytest.approx(0.02)
+
+
+@pytest.mark.parametrize("args, status, match", [
+    (["--objectives", "mass,volume"], 2, "objectives: 'mass,volume' is not a known pair"),
+    (["--objectives", "mass,cost"], 2, "needs a cost per kg"),
+    (["--range", "0.3:1.2:3 m"], 2, "--range: '0.3:1.2:3 m': expected LOW:HIGH"),
+])
+def test_cli_pareto_errors(args, status, match, capsys):
+    assert pareto_main([str(PROBLEMS / "shear-press.toml"), *args]) == status
+    err = capsys.readouterr().err
+    assert match in err and err.count("\n") == 1
+
+
+def test_cli_tradeoff(tmp_path, capsys):
+    assert tradeoff_main([str(PROBLEMS / "punch-press.toml")]) == 0
+    text = capsys.readouterr().out
+    assert "lightest design per material" in text and "rim_speed,hb_min" in text
+    out = tmp_path / "table.json"
+    assert tradeoff_main([str(PROBLEMS / "punch-press.toml"), "-o", str(out)]) == 0
+    rows = json.loads(out.read_text())
+    assert [r["material"] for r in rows] == ["cast_steel", "ductile_iron", "cast_iron"]
