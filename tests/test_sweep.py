@@ -18,7 +18,9 @@ from numpy.testing import assert_allclose
 import flyopt
 from conftest import PROBLEMS
 from flyopt import optimize
-from flyopt import sweep as sweep_module
+import importlib
+
+sweep_module = importlib.import_module("flyopt.sweep")  # the module; flyopt.sweep the attribute is the function
 from flyopt.errors import SceneError
 from flyopt.studies import sweep_main
 from flyopt.sweep import (CORE_INPUTS, RESULT_COLUMNS, load_sweep, parse_vary, plan_sweep,
