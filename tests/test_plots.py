@@ -46,3 +46,37 @@ def test_bad_plot_requests(tmp_path, capsys, args, words):
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1
     assert list(tmp_path.iterdir()) == []       # nothing half-written
+
+
+def test_sweep_and_pareto_plots_from_result_files(tmp_path):
+    from flyopt import studies
+
+    sweep_file = tmp_path / "sweep.parquet"
+    assert studies.sweep_main([str(PROBLEMS / "punch-press.toml"), "--vary", "delta=0.05:0.2:log4",
+                               "--vary", "material=cast_iron,cast_steel", "-o", str(sweep_file),
+                               "--no-progress"]) == 0
+    out = tmp_path / "sweep.png"
+    assert main(["plot", str(sweep_file), "--what", "sweep", "--x", "delta", "--by", "material", "-o", str(out)]) == 0
+    assert out.stat().st_size > 10_000
+    front = tmp_path / "front.csv"
+    assert studies.pareto_main([str(PROBLEMS / "shear-press.toml"), "--objectives", "mass,outer_diameter",
+                                "--points", "5", "-o", str(front)]) == 0
+    out = tmp_path / "front.svg"
+    assert main(["plot", str(front), "--what", "pareto", "--x", "outer_diameter", "--y", "mass", "-o", str(out)]) == 0
+    assert out.read_bytes().startswith(b"<?xml")
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--what", "energy", "--x", "delta"], "is not a diagram of results"),
+    (["--what", "sweep"], "--x: the results diagram 'sweep' needs"),
+    (["--what", "sweep", "--x", "colour"], "no column 'colour'"),
+])
+def test_bad_result_plot_requests(tmp_path, capsys, args, words):
+    import pandas as pd
+
+    results = tmp_path / "r.csv"
+    pd.DataFrame({"delta": [0.1, 0.2], "mass": [2.0, 1.0], "status": ["designed"] * 2}).to_csv(results, index=False)
+    assert main(["plot", str(results), *args, "-o", str(tmp_path / "x.png")]) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1
+    assert not (tmp_path / "x.png").exists()

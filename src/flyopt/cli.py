@@ -61,10 +61,14 @@ def _parser():
                        help="simulate the machine with the chosen flywheel and report the δ it achieves")
     solve.set_defaults(run=_solve)
 
-    plot = commands.add_parser("plot", help="draw a diagram of a scene (png, svg or pdf)")
-    plot.add_argument("scene", help="scene file (TOML)")
+    plot = commands.add_parser("plot", help="draw a diagram of a scene, or of sweep/Pareto results (png, svg, pdf)")
+    plot.add_argument("scene", help="scene file (TOML), or results (.csv/.parquet) of flyopt sweep or pareto")
     plot.add_argument("--what", required=True, metavar="DIAGRAM",
-                      help="turning_moment | energy | inertia_delta | cross_section | speed | energy_mass")
+                      help="turning_moment | energy | inertia_delta | cross_section | speed | energy_mass; "
+                           "for results: sweep | pareto")
+    plot.add_argument("--x", help="results: the column on the x axis (sweep: a varied field)")
+    plot.add_argument("--y", default="mass", help="results: the column on the y axis (default mass)")
+    plot.add_argument("--by", help="sweep results: one line per value of this column (e.g. material)")
     plot.add_argument("-o", "--output", required=True, help="file to write; the suffix picks the format")
     plot.set_defaults(run=_plot)
 
@@ -118,6 +122,8 @@ def _json_safe(value):
 def _plot(args):
     from . import plots
 
+    if args.scene.lower().endswith((".csv", ".parquet")):
+        return _plot_results(args)
     if args.what not in plots.PLOTS:
         import difflib
 
@@ -137,6 +143,31 @@ def _plot(args):
             ax = getattr(plots, f"plot_{args.what}")(scene, solution.analysis)
     except ValueError as err:
         return _fail(f"{args.scene}: {args.what}: {err}", EXIT_INPUT)
+    plots.save(ax, args.output)
+    print(f"wrote {args.output}")
+    return EXIT_OK
+
+
+def _plot_results(args):
+    from . import plots
+    from .sweep import read_results
+
+    if args.what not in plots.RESULT_PLOTS:
+        return _fail(f"--what: {args.what!r} is not a diagram of results (known: {', '.join(plots.RESULT_PLOTS)})",
+                     EXIT_INPUT)
+    if not args.output.lower().endswith((".png", ".svg", ".pdf")):
+        return _fail(f"--output: {args.output!r} must end in .png, .svg or .pdf", EXIT_INPUT)
+    if not args.x:
+        return _fail(f"--x: the results diagram {args.what!r} needs the column for the x axis", EXIT_INPUT)
+    try:
+        frame = read_results(args.scene)
+    except (OSError, ValueError) as err:
+        return _fail(f"{args.scene}: cannot read the results: {err}", EXIT_INPUT)
+    try:
+        ax = plots.plot_sweep(frame, args.x, args.y, args.by) if args.what == "sweep" else \
+            plots.plot_pareto(frame, args.x, args.y)
+    except ValueError as err:
+        return _fail(f"{args.scene}: {err}", EXIT_INPUT)
     plots.save(ax, args.output)
     print(f"wrote {args.output}")
     return EXIT_OK

@@ -262,6 +262,68 @@ def plot_energy_mass(scene, analysis, ax=None):
     return ax
 
 
+RESULT_PLOTS = {
+    "sweep": "a result of a sweep against a varied field, one line per group (--by)",
+    "pareto": "a Pareto front: the non-dominated designs of two objectives",
+}
+
+
+def _label(column):
+    units = {"mass": "kg", "d_outer": "m", "outer_diameter": "m", "d_mean": "m", "b": "m", "h": "m",
+             "speed": "rad/s", "j_required": "kg·m²", "rim_speed": "m/s", "delta": "-", "cost": "currency"}
+    unit = units.get(column)
+    return f"{column} [{unit}]" if unit else column
+
+
+def plot_sweep(frame, x, y="mass", by=None, ax=None):
+    """A sweep's result ``y`` against a varied field ``x``, one line per value of ``by``.
+
+    Points that are not designed (infeasible, failed, not needed) are left out of
+    the lines and counted in the legend. A field spanning more than a decade is
+    drawn on a log axis.
+    """
+    ax = _axes(ax)
+    for column in (x, y) + ((by,) if by else ()):
+        if column not in frame.columns:
+            raise ValueError(f"the results have no column {column!r} (columns: {', '.join(frame.columns)})")
+    groups = frame.groupby(by, sort=True) if by else [(None, frame)]
+    for key, part in groups:
+        part = part.sort_values(x)
+        ok = part["status"] == "designed" if "status" in part.columns else np.ones(len(part), bool)
+        label = f"{by} = {key}" if by else y
+        missing = int((~ok).sum())
+        if missing:
+            label += f" ({missing} not designed)"
+        ax.plot(part[x][ok], part[y][ok], "o-", ms=3, lw=1.2, label=label)
+    values = frame[x].to_numpy(dtype=float)
+    positive = values[values > 0]
+    if positive.size and positive.max() / positive.min() > 10:
+        ax.set_xscale("log")
+    ax.set(xlabel=_label(x), ylabel=_label(y), title=f"sweep: {y} against {x}")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_pareto(frame, x, y, ax=None):
+    """The Pareto front of two objectives (both minimized), non-dominated points joined."""
+    ax = _axes(ax)
+    for column in (x, y):
+        if column not in frame.columns:
+            raise ValueError(f"the results have no column {column!r} (columns: {', '.join(frame.columns)})")
+    data = frame[[x, y]].dropna().to_numpy(dtype=float)
+    order = np.lexsort((data[:, 1], data[:, 0]))
+    data = data[order]
+    front = data[np.concatenate(([True], data[1:, 1] < np.minimum.accumulate(data[:, 1])[:-1]))]
+    ax.plot(data[:, 0], data[:, 1], "o", color="lightgray", ms=4, label="designs")
+    ax.step(front[:, 0], front[:, 1], where="post", color=DEFICIT, lw=1.2)
+    ax.plot(front[:, 0], front[:, 1], "o", color=DEFICIT, ms=5, label=f"Pareto front ({len(front)})")
+    ax.set(xlabel=_label(x), ylabel=_label(y), title=f"Pareto front: {y} against {x}")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax
+
+
 def save(ax, path):
     """Write the Axes' figure to ``path`` (png, svg or pdf by suffix), atomically."""
     path = Path(path)
