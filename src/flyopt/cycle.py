@@ -435,7 +435,10 @@ class _Segments:
         partial = np.zeros(len(flips))
         partial[inside] = 0.5 * a[jk] * t * h[jk]
         # ΔE at the knot that opens each crossing's piece: sums of whole pieces up to it.
-        starts, where = np.unique(np.concatenate(([0], piece)), return_inverse=True)
+        # piece is sorted (flips are in order), so repeated indices are neighbours: no sort needed.
+        bounds = np.concatenate(([0], piece))
+        first = np.concatenate(([True], bounds[1:] != bounds[:-1]))
+        starts, where = bounds[first], np.cumsum(first) - 1
         prefix = np.concatenate(([0.0], np.cumsum(np.add.reduceat(areas, starts), dtype=np.longdouble)))
         delta_e = (prefix[where[1:]] + partial).astype(float)
         chain_angle = np.concatenate(([self.knots[0]], angle, [self.knots[-1]]))
@@ -488,8 +491,12 @@ def _segments(driving, resisting, cycle_angle):
     pivot = next((c.pivot for c in (driving, resisting) if isinstance(c, Constant) and c.pivot is not None), None)
     d_left, d_right = _relative_limits(driving, knots, pivot)
     r_left, r_right = _relative_limits(resisting, knots, pivot)
-    start = _difference(d_right, r_right)[:-1]
-    end = _difference(d_left, r_left)[1:]
+    if d_left is d_right and r_left is r_right:      # no steps: one difference serves both sides
+        diff = _difference(d_right, r_right)
+        start, end = diff[:-1], diff[1:]
+    else:
+        start = _difference(d_right, r_right)[:-1]
+        end = _difference(d_left, r_left)[1:]
     linear = driving.is_linear and resisting.is_linear
     peak = max(np.max(np.abs(start), initial=0.0), np.max(np.abs(end), initial=0.0))
     if not linear:
@@ -507,6 +514,9 @@ def _relative_limits(curve, knots, pivot):
         v = np.full(len(knots), curve.excess)
         return v, v
     left, right = curve.limits(knots)
+    if left is right:
+        rel = left - pivot
+        return rel, rel
     return left - pivot, right - pivot
 
 

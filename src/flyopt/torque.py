@@ -51,6 +51,10 @@ class PiecewiseLinear:
         last[:-1] = new[1:]
         return x[new], y[new], y[last]
 
+    @functools.cached_property
+    def _no_steps(self):
+        return len(self._own_limits[0]) == len(self.angles)
+
     def breakpoints(self):
         """Distinct angles where the slope or value may change [rad]."""
         return self._own_limits[0]
@@ -74,7 +78,7 @@ class PiecewiseLinear:
         x, y = self.angles, self.values
         own, left, right = self._own_limits
         if phi is own:
-            return left, right
+            return (left, left) if self._no_steps else (left, right)
         phi = np.asarray(phi, dtype=float)
         first = np.searchsorted(x, phi, side="left")
         last = np.searchsorted(x, phi, side="right") - 1
@@ -130,7 +134,7 @@ class Constant:
 
     def limits(self, phi):
         v = np.full(np.shape(phi), float(self.value))
-        return v, v
+        return v, v          # the same array twice: no steps
 
     def work(self, cycle_angle):
         """∫_0^Φ M dφ = M Φ [J]."""
