@@ -130,7 +130,7 @@ def _plot(args):
         close = difflib.get_close_matches(args.what, list(plots.PLOTS), n=1)
         hint = f"; did you mean {close[0]!r}?" if close else ""
         return _fail(f"--what: unknown diagram {args.what!r}{hint} (known: {', '.join(plots.PLOTS)})", EXIT_INPUT)
-    if not args.output.lower().endswith((".png", ".svg", ".pdf")):
+    if not _image_suffix(args.output):
         return _fail(f"--output: {args.output!r} must end in .png, .svg or .pdf", EXIT_INPUT)
     scene = load(args.scene)
     solution = solve(scene, design_flywheel=args.what == "cross_section")
@@ -155,7 +155,7 @@ def _plot_results(args):
     if args.what not in plots.RESULT_PLOTS:
         return _fail(f"--what: {args.what!r} is not a diagram of results (known: {', '.join(plots.RESULT_PLOTS)})",
                      EXIT_INPUT)
-    if not args.output.lower().endswith((".png", ".svg", ".pdf")):
+    if not _image_suffix(args.output):
         return _fail(f"--output: {args.output!r} must end in .png, .svg or .pdf", EXIT_INPUT)
     if not args.x:
         return _fail(f"--x: the results diagram {args.what!r} needs the column for the x axis", EXIT_INPUT)
@@ -171,6 +171,10 @@ def _plot_results(args):
     plots.save(ax, args.output)
     print(f"wrote {args.output}")
     return EXIT_OK
+
+
+def _image_suffix(path):
+    return path.lower().endswith((".png", ".svg", ".pdf"))
 
 
 def _check(args):
