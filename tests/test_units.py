@@ -13,6 +13,12 @@ from flyopt.units import gd2_from_inertia, inertia_from_gd2, quantity, rad_s_to_
     ("1500 rpm", "angular_speed", 50 * math.pi),
     ("157.07963267948966", "angular_speed", 157.07963267948966),
     ("2 rad/s", "angular_speed", 2.0),
+    # a bare 1/time is a rotational frequency (revolutions per time), as in DIN's "1500 min^-1"
+    ("1500 1/min", "angular_speed", 50 * math.pi),
+    ("1500/min", "angular_speed", 50 * math.pi),
+    ("25 Hz", "angular_speed", 50 * math.pi),
+    ("1500 rev/min", "angular_speed", 50 * math.pi),
+    ("180 deg/s", "angular_speed", math.pi),
     ("360 deg", "angle", 2 * math.pi),
     ("720 degree", "angle", 4 * math.pi),
     ("3.5 kN*m", "torque", 3500.0),

@@ -42,6 +42,7 @@ def registry():
     import pint
 
     ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    ureg.define("rev = revolution")
     return ureg
 
 
@@ -83,6 +84,9 @@ def quantity(value, dimension, field="value"):
             if q.dimensionality != want:
                 raise SceneError(field, f"{value!r} has the wrong dimension: expected {words}")
             number = float(q.to(si_unit).magnitude) if si_unit else float(q.to("").magnitude)
+            if dimension == "angular_speed" and "radian" not in str(q.to_root_units().units):
+                # a bare 1/time ("25 Hz", "1500 1/min") is a rotational frequency: revolutions per time
+                number *= 2.0 * math.pi
     else:
         number = float(value)
     if not math.isfinite(number):
