@@ -538,8 +538,8 @@ def test_non_converged_solve_raises_with_ipopt_status():
 
 @pytest.mark.parametrize("kwargs, match", [
     (dict(j_required=float("nan")), "j_required"),
-    (dict(omega_mean=0.0), "omega_mean"),
-    (dict(omega_mean=-5.0), "omega_mean"),
+    (dict(omega=0.0), "omega"),
+    (dict(omega=-5.0), "omega"),
     (dict(shafts=[]), "shafts must not be empty"),
     (dict(shafts=[MountShaft("a", 1.0), MountShaft("a", 2.0)]), "shaft 'a' is given twice"),
     (dict(materials=[]), "materials must not be empty"),
@@ -547,7 +547,7 @@ def test_non_converged_solve_raises_with_ipopt_status():
     (dict(spec="rim"), "DesignSpec"),
 ])
 def test_design_flywheel_rejects(kwargs, match):
-    args = dict(j_required=1.0, omega_mean=100.0, shafts=[MountShaft("m", 1.0)],
+    args = dict(j_required=1.0, omega=100.0, shafts=[MountShaft("m", 1.0)],
                 materials=[CAST_IRON], spec=DesignSpec())
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):

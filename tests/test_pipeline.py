@@ -98,3 +98,21 @@ def test_every_problem_scene_solves_with_a_checked_status():
             assert best.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
             assert best.j_at_reference >= solution.analysis.j_required * (1 - 1e-6)
             assert best.rim_speed <= best.rim_speed_limit * (1 + 1e-6)
+
+
+@pytest.mark.parametrize("scene, nominal", [("motor-press", "50 rpm"), ("slider-crank-press", None),
+                                            ("shear-press", None)])
+def test_rim_speed_holds_at_the_simulated_top_speed(tmp_path, scene, nominal):
+    """Regression (outside review): the rim speed limit holds at the highest speed the machine
+    really reaches — from the verification simulation, not from the design's own figures — even
+    when the scene's nominal speed is not the mean speed the motor settles at."""
+    text = (PROBLEMS / f"{scene}.toml").read_text()
+    if nominal:
+        text = text.replace('speed = "60 rpm"', f'speed = "{nominal}"')
+    path = tmp_path / f"{scene}.toml"
+    path.write_text(text)
+    solution = flyopt.solve(flyopt.load(path), verify_design=True)
+    best = solution.design.best
+    top = solution.verification["omega_max"] * best.speed_ratio      # [rad/s] of the flywheel's shaft
+    limit = solution.scene.material_library()[best.material].max_rim_speed
+    assert top * best.d_outer / 2 <= limit * (1 + 1e-6)

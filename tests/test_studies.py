@@ -118,7 +118,7 @@ def test_pareto_mass_cost_is_the_non_dominated_set_of_combinations(costed_scene)
     front = pareto(costed_scene, "mass,cost")
     analysis = flyopt.analyse(costed_scene)
     library = costed_scene.material_library()
-    result = design_flywheel(analysis.j_margin, costed_scene.omega_mean,
+    result = design_flywheel(analysis.j_margin, analysis.omega_max,
                              [MountShaft(s.name, s.speed_ratio) for s in costed_scene.shafts],
                              [library[n] for n in costed_scene.design_materials],
                              costed_scene.design)
@@ -169,7 +169,7 @@ def test_material_tradeoff_table():
     library = PUNCH.material_library()
     shafts = [MountShaft(s.name, s.speed_ratio) for s in PUNCH.shafts]
     for row in table.to_dict("records"):
-        best = design_flywheel(analysis.j_margin, PUNCH.omega_mean, shafts,
+        best = design_flywheel(analysis.j_margin, analysis.omega_max, shafts,
                                [library[row["material"]]], PUNCH.design).best
         assert row["status"] == "designed" and row["shaft"] == best.shaft
         assert_allclose(row["mass"], best.mass, rtol=1e-12)

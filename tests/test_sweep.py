@@ -482,3 +482,16 @@ def test_cli_sweep_bad_input_is_one_line_exit_2(args, match, capsys):
     err = capsys.readouterr().err
     assert status == 2
     assert err.startswith("flyopt: error: ") and match in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize("scene, vary", [("slider-crank-press", {"delta": "0.1,0.15"}),
+                                         ("motor-press", {"delta": "0.1,0.2"})])
+def test_sweeps_of_member_and_motor_scenes_match_individual_solves(scene, vary):
+    """Regression (outside review): a scene with members (varying J_e) or a motor is analysed
+    per point by its exact model, so the sweep agrees with flyopt.solve of the same point."""
+    base = flyopt.load(PROBLEMS / f"{scene}.toml")
+    frame = flyopt.sweep(base, vary)
+    for row in frame.to_dict("records"):
+        single = flyopt.solve(sweep_module.point_scene(base, {"delta": row["delta"]}))
+        assert_allclose(row["j_required"], single.analysis.j_required, rtol=1e-9)
+        assert_allclose(row["mass"], single.design.best.mass, rtol=1e-6)

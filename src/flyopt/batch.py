@@ -360,7 +360,7 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
                    mass=mass, j_flywheel=j_wheel)
 
 
-def design_combinations(geometry_name, j_required, omega_mean, speed_ratio, density,
+def design_combinations(geometry_name, j_required, omega_ref, speed_ratio, density,
                         max_rim_speed, hb_min, hb_max, max_outer_diameter=np.inf,
                         max_width=np.inf, d_mean=np.nan):
     """Design many material × shaft combinations at once (mass objective).
@@ -375,8 +375,9 @@ def design_combinations(geometry_name, j_required, omega_mean, speed_ratio, dens
     geometry_name : {"rim", "thin_rim", "disc"}
     j_required : array_like
         J_F at the reference shaft [kg*m^2], > 0.
-    omega_mean : array_like
-        Mean speed of the reference shaft [rad/s].
+    omega_ref : array_like
+        Speed of the reference shaft at which the rim speed is checked [rad/s]
+        (the highest speed of the cycle, ω_max).
     speed_ratio : array_like
         omega_shaft / omega_reference [-].
     density, max_rim_speed : array_like
@@ -396,11 +397,11 @@ def design_combinations(geometry_name, j_required, omega_mean, speed_ratio, dens
         ``hoop_stress``, ``j_at_reference``, ``binding`` (bit mask).
     """
     arrays = np.broadcast_arrays(
-        _array(j_required), _array(omega_mean), _array(speed_ratio), _array(density),
+        _array(j_required), _array(omega_ref), _array(speed_ratio), _array(density),
         _array(max_rim_speed), _array(hb_min), _array(hb_max), _array(max_outer_diameter),
         _array(max_width), _array(d_mean))
-    j_ref, omega_mean, ratio, rho, v_max, a, c, envelope, b_max, pin = arrays
-    omega = omega_mean * ratio
+    j_ref, omega_ref, ratio, rho, v_max, a, c, envelope, b_max, pin = arrays
+    omega = omega_ref * ratio
     j_shaft = j_ref / (ratio * ratio)                     # transmission.inertia_on_shaft
     cap_speed = geometry.outer_diameter_for_rim_speed(v_max, omega)
     cap = np.minimum(cap_speed, envelope)

@@ -630,8 +630,8 @@ class DesignResult:
     message : str
     j_required : float
         J_F at the reference shaft [kg*m^2].
-    omega_mean : float
-        Mean speed of the reference shaft [rad/s].
+    omega : float
+        Speed of the reference shaft at which the rim speed was checked (ω_max) [rad/s].
     spec : DesignSpec
     best : Candidate or None
     candidates : tuple of Candidate
@@ -644,7 +644,7 @@ class DesignResult:
     status: str
     message: str
     j_required: float
-    omega_mean: float
+    omega: float
     spec: DesignSpec
     best: Candidate | None = None
     candidates: tuple = ()
@@ -656,7 +656,7 @@ class DesignResult:
         Returns
         -------
         dict
-            ``status``, ``message``, ``j_required``, ``omega_mean``, ``spec``,
+            ``status``, ``message``, ``j_required``, ``omega``, ``spec``,
             ``model`` and ``design``. ``design`` is None when no flywheel is
             needed; otherwise it holds the best candidate's fields (all None
             when every combination is infeasible) and ``candidates``, one
@@ -671,7 +671,7 @@ class DesignResult:
         spec = asdict(self.spec)
         spec["hb_ratio"] = list(spec["hb_ratio"])
         return {"status": self.status, "message": self.message,
-                "j_required": self.j_required, "omega_mean": self.omega_mean,
+                "j_required": self.j_required, "omega": self.omega,
                 "spec": spec, "model": self.model, "design": design}
 
 
@@ -941,7 +941,7 @@ def _check_unique(items, kind, cls):
         seen.add(item.name)
 
 
-def design_flywheel(j_required: float, omega_mean: float, shafts: Sequence[MountShaft],
+def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft],
                     materials: Sequence[Material], spec: DesignSpec = DesignSpec(), *,
                     solver_options: Mapping | None = None) -> DesignResult:
     """Design the flywheel: the best material, shaft and dimensions.
@@ -952,8 +952,10 @@ def design_flywheel(j_required: float, omega_mean: float, shafts: Sequence[Mount
         J_F, the flywheel inertia required at the reference shaft [kg*m^2],
         already net of the machine's own inertia J_c (domain notes section 5:
         J_F = A_max / (omega_m^2 delta) - J_c). J_F <= 0: no flywheel needed.
-    omega_mean : float
-        Mean speed of the reference shaft [rad/s].
+    omega : float
+        Speed of the reference shaft at which the rim speed is checked
+        [rad/s]: the highest speed of the cycle, ω_max = ω_m (1 + δ/2) (or
+        the periodic solution's maximum), where the hoop stress peaks.
     shafts : sequence of MountShaft
         Where the flywheel may go; speed ratios relative to the reference.
     materials : sequence of Material
@@ -986,7 +988,7 @@ def design_flywheel(j_required: float, omega_mean: float, shafts: Sequence[Mount
     is solved to optimality. Ranking is by the objective, ties by mass.
     """
     j_required = _finite(j_required, "j_required [kg*m^2]")
-    omega_mean = _positive(omega_mean, "omega_mean", "[rad/s]")
+    omega = _positive(omega, "omega", "[rad/s]")
     _check_unique(shafts, "shaft", MountShaft)
     _check_unique(materials, "material", Material)
     if not isinstance(spec, DesignSpec):
@@ -1002,7 +1004,7 @@ def design_flywheel(j_required: float, omega_mean: float, shafts: Sequence[Mount
             message=(f"no flywheel needed: the required flywheel inertia J_F = "
                      f"{_g(j_required)} kg·m² is not positive, so the machine's own "
                      f"inertia already keeps the speed fluctuation within delta"),
-            j_required=j_required, omega_mean=omega_mean, spec=spec)
+            j_required=j_required, omega=omega, spec=spec)
 
     structure = ModelStructure(
         geometry=spec.geometry, pinned=spec.d_mean is not None,
@@ -1015,10 +1017,10 @@ def design_flywheel(j_required: float, omega_mean: float, shafts: Sequence[Mount
     order = 0
     for material in materials:
         for shaft in shafts:
-            omega = omega_mean * shaft.speed_ratio
-            cap_speed = geometry.outer_diameter_for_rim_speed(material.max_rim_speed, omega)
+            shaft_omega = omega * shaft.speed_ratio
+            cap_speed = geometry.outer_diameter_for_rim_speed(material.max_rim_speed, shaft_omega)
             combo = _Combination(
-                material=material, shaft=shaft, omega=omega,
+                material=material, shaft=shaft, omega=shaft_omega,
                 j_shaft=inertia_on_shaft(j_required, shaft.speed_ratio),
                 j_reference=j_required, cap_speed=cap_speed, cap=min(cap_speed, envelope))
             combo.j_max = max_inertia(spec.geometry, material.density, combo.cap,
@@ -1064,5 +1066,5 @@ def design_flywheel(j_required: float, omega_mean: float, shafts: Sequence[Mount
                    f"{_g(best.mass)} kg ({len(feasible)} of {len(ranked)} combinations "
                    f"feasible)")
     return DesignResult(status=status, message=message, j_required=j_required,
-                        omega_mean=omega_mean, spec=spec, best=best, candidates=ranked,
+                        omega=omega, spec=spec, best=best, candidates=ranked,
                         model=description)

@@ -77,7 +77,9 @@ def design(scene, analysis, solver_options=None):
     materials = [library[name] for name in (scene.design_materials or tuple(library))]
     allowed = scene.design_shafts
     shafts = [MountShaft(s.name, s.speed_ratio) for s in scene.shafts if allowed is None or s.name in allowed]
-    return design_flywheel(analysis.j_margin, scene.omega_mean, shafts, materials, scene.design,
+    # the rim is checked at the highest speed of the cycle, from the model that ran (for a motor
+    # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
+    return design_flywheel(analysis.j_margin, analysis.omega_max, shafts, materials, scene.design,
                            solver_options=solver_options)
 
 

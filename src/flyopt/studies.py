@@ -277,7 +277,7 @@ def material_tradeoff(scene, solver_options=None):
         row = dict.fromkeys(TRADEOFF_COLUMNS)
         row.update(material=name, rim_speed_limit=material.max_rim_speed, binding="", limit="",
                    reason="", method="ipopt", solver_status="", shaft="")
-        result = design_flywheel(analysis.j_margin, scene.omega_mean, shafts, [material], spec,
+        result = design_flywheel(analysis.j_margin, analysis.omega_max, shafts, [material], spec,
                                  solver_options=solver_options)
         row["status"] = result.status
         best = result.best

@@ -681,15 +681,19 @@ def _is_none(value):
 # --------------------------------------------------------------------------
 
 def _reusable(scene):
-    """Whether A_max is one number for every δ, ω_m and J_c (angle-only torques)."""
+    """Whether J_F = A_max/(ω_m² δ) − J_c with one A_max holds at every point.
+
+    True for the energy model's scenes: a constant inertia (no members) and
+    torques of the angle only. Members (a varying J_e) or speed-dependent
+    torques need each point analysed by the model that is exact for it.
+    """
     if scene.net is not None:
         return True
+    if scene.members:
+        return False
     angle_only = (PiecewiseLinear, Constant, ExpressionTorque)
     for curve in (scene.driving, scene.resisting):
-        if not isinstance(curve, angle_only):
-            return False
-        if isinstance(curve, ExpressionTorque) and set(
-                getattr(curve.expression, "variables", ("phi",))) - {"phi"}:
+        if not isinstance(curve, angle_only) or getattr(curve, "speed_dependent", False):
             return False
     return True
 
@@ -836,13 +840,16 @@ def _evaluate(ctx, points):
         driving = (inputs.scale * ctx.driving_torque if ctx.driving_torque is not None
                    else np.full(n, np.nan))
         j_margin = a_max / (inputs.speed ** 2 * inputs.delta) - inputs.inertia
-    else:  # speed-dependent torques: analyse every point
+        inputs.omega_rim = inputs.speed * (1 + inputs.delta / 2)      # ω_max: the rim is checked there
+    else:  # varying inertia or speed-dependent torques: analyse every point with its exact model
         from .analysis import analyse
 
         a_max, driving, j_margin = np.empty(n), np.empty(n), np.empty(n)
+        inputs.omega_rim = np.empty(n)
         for k, row in enumerate(points.to_dict("records")):
             analysis = analyse(point_scene(scene, row))
             a_max[k], j_margin[k] = analysis.a_max, analysis.j_margin
+            inputs.omega_rim[k] = analysis.omega_max
             driving[k] = np.nan if analysis.driving_torque is None else analysis.driving_torque
     res["a_max"], res["j_margin"] = a_max, j_margin
     res["j_required"] = np.maximum(j_margin, 0.0)
@@ -910,7 +917,7 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
     allowable = table(inputs.allowable, mats, mi)
     ratio = table(inputs.ratio, shafts, si)
     out = batch.design_combinations(
-        geo, j_margin[p], inputs.speed[p], ratio, density, v_max, inputs.hb_min[p],
+        geo, j_margin[p], inputs.omega_rim[p], ratio, density, v_max, inputs.hb_min[p],
         inputs.hb_max[p], np.where(np.isnan(inputs.envelope[p]), np.inf, inputs.envelope[p]),
         np.where(np.isnan(inputs.width[p]), np.inf, inputs.width[p]), inputs.d_mean[p])
     mass = out.mass
@@ -1001,7 +1008,7 @@ def _design_ipopt(ctx, inputs, k, j_required, res):
     res["n_combinations"][k] = len(materials) * len(mounts)
     try:
         with _IPOPT_LOCK:  # a CasADi Function is not to be called from two threads at once
-            result = design_flywheel(float(j_required), float(inputs.speed[k]), mounts,
+            result = design_flywheel(float(j_required), float(inputs.omega_rim[k]), mounts,
                                      materials, spec, solver_options=ctx.solver_options)
     except SolverFailed as err:
         res["status"][k] = "failed"
