@@ -116,3 +116,17 @@ def test_rim_speed_holds_at_the_simulated_top_speed(tmp_path, scene, nominal):
     top = solution.verification["omega_max"] * best.speed_ratio      # [rad/s] of the flywheel's shaft
     limit = solution.scene.material_library()[best.material].max_rim_speed
     assert top * best.d_outer / 2 <= limit * (1 + 1e-6)
+
+
+def test_zero_fluctuation_verifies_to_zero_delta(tmp_path, capsys):
+    """Regression (outside review): net areas of zero with --verify: δ = 0, a report, exit 0."""
+    path = tmp_path / "zero.toml"
+    path.write_text('[machine]\nspeed = "1500 rpm"\ndelta = 0.02\n[torque.net]\nareas = ["0 J", "0 J"]\n')
+    assert main(["solve", str(path), "--verify"]) == 0
+    assert "achieved δ 0 against the allowed 0.02" in capsys.readouterr().out
+
+
+def test_report_numbers_survive_inf_and_nan():
+    from flyopt.report import number
+
+    assert (number(float("inf")), number(float("nan"))) == ("inf", "nan")

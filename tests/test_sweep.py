@@ -495,3 +495,27 @@ def test_sweeps_of_member_and_motor_scenes_match_individual_solves(scene, vary):
         single = flyopt.solve(sweep_module.point_scene(base, {"delta": row["delta"]}))
         assert_allclose(row["j_required"], single.analysis.j_required, rtol=1e-9)
         assert_allclose(row["mass"], single.design.best.mass, rtol=1e-6)
+
+
+@pytest.mark.parametrize("sweep_table, words", [
+    ('[sweep]\nseed = "abc"\nsamples = 3\n[sweep.vary]\ndelta = "0.01:0.1"\n', "sweep.seed: must be a whole number"),
+    ('[sweep.vary]\nspeed = "1500 m"\n', "sweep.vary.speed: '1500 m' has the wrong dimension"),
+])
+def test_bad_sweep_table_names_the_file_and_field(tmp_path, capsys, sweep_table, words):
+    """Regression (outside review): errors in a scene's [sweep] table name the file and the field."""
+    from flyopt.cli import main
+
+    path = tmp_path / "s.toml"
+    path.write_text((PROBLEMS / "shear-press.toml").read_text() + "\n" + sweep_table)
+    assert main(["sweep", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"{path}: " in err and words in err
+
+
+def test_sweep_output_in_a_missing_folder_is_refused_not_created(tmp_path, capsys):
+    from flyopt.cli import main
+
+    target = tmp_path / "no" / "such" / "x.csv"
+    assert main(["sweep", str(PROBLEMS / "shear-press.toml"), "--vary", "delta=0.1,0.2", "-o", str(target)]) == 2
+    assert "does not exist" in capsys.readouterr().err
+    assert not (tmp_path / "no").exists()

@@ -109,7 +109,10 @@ def verify(scene, analysis, design_result=None):
     machine = analysis.machine
     if machine is None:  # net areas: no curves to simulate; the energy method is exact for them
         j = analysis.j_constant + j_flywheel
-        achieved = analysis.a_max / (j * analysis.omega_mean**2) if j > 0 else float("inf")
+        if analysis.a_max == 0:
+            achieved = 0.0                       # no fluctuation of energy: no fluctuation of speed
+        else:
+            achieved = analysis.a_max / (j * analysis.omega_mean**2) if j > 0 else float("inf")
         return {"method": "energy method (net areas give no curves to simulate; exact for constant inertia)",
                 "achieved_delta": achieved, "delta_allowed": analysis.delta,
                 "omega_max": analysis.omega_mean * (1 + achieved / 2),

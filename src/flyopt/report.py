@@ -9,6 +9,8 @@ def number(value, digits=6):
     """A number with ``digits`` significant digits, no exponent for everyday sizes."""
     if value is None:
         return "-"
+    if not math.isfinite(value):
+        return str(value)            # inf, -inf, nan: say so rather than fail
     if value == 0:
         return "0"
     magnitude = math.floor(math.log10(abs(value)))

@@ -38,7 +38,7 @@ import numpy as np
 import pandas as pd
 
 from .errors import NonPeriodicCycle, SceneError
-from .sweep import _resolve, _split_unit, evaluate_points, load_sweep, sweep, write_results
+from .sweep import plan_sweep, _resolve, _split_unit, evaluate_points, load_sweep, sweep, write_results
 from .units import quantity
 
 __all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto", "material_tradeoff",
@@ -317,6 +317,9 @@ def _guard(run, args, scene_path):
         return run(args)
     except (SceneError, NonPeriodicCycle) as err:
         return _fail(str(err), EXIT_INPUT)
+    except OSError as err:
+        where = f"{err.filename}: " if getattr(err, "filename", None) else ""
+        return _fail(f"{scene_path}: cannot write the results: {where}{err.strerror or err}", EXIT_INPUT)
     except ArithmeticError as err:
         return _fail(f"{scene_path}: {err}", EXIT_FAILED)
 
@@ -392,6 +395,9 @@ def sweep_main(argv=None):
 def _sweep_command(args):
     scene, options = load_sweep(args.scene)
     vary = dict(options.pop("vary", {}))
+    if vary:  # the file's own values: errors name the file and its sweep.vary field
+        plan_sweep(scene, vary, samples=options.get("samples"), seed=options.get("seed"),
+                   where=f"{args.scene}: sweep.vary")
     for text in args.vary:
         if "=" not in text:
             raise SceneError("--vary", f"{text!r}: expected FIELD=VALUES, e.g. "

@@ -1093,7 +1093,7 @@ def write_results(frame, path):
     """
     path = Path(path)
     kind = _format(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    _check_folder(path)
     tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
     if kind == "parquet":
         frame.to_parquet(tmp, index=False)
@@ -1358,7 +1358,8 @@ def sweep(scene, vary=None, *, samples=None, seed=None, output=None, workers="au
                 if part.exists():
                     done[i] = read_results(part)
         else:
-            parts.mkdir(parents=True)
+            _check_folder(parts)
+            parts.mkdir()
             manifest.write_text(json.dumps({"fingerprint": fingerprint, "points": n,
                                             "chunk_size": int(chunk_size),
                                             "chunks": n_chunks}), encoding="utf-8")
@@ -1482,6 +1483,13 @@ def _flatten(table, prefix=""):
     return out
 
 
+def _check_folder(path):
+    """The folder of an output must exist: flyopt does not create folders the user did not ask for."""
+    folder = Path(path).parent
+    if not folder.is_dir():
+        raise SceneError("output", f"the folder {str(folder)!r} of {str(path)!r} does not exist")
+
+
 def load_sweep(path):
     """Read a scene file that may hold a ``[sweep]`` table.
 
@@ -1535,6 +1543,14 @@ def load_sweep(path):
             raise SceneError(f"sweep.{unknown[0]}", f"unknown key{_hint(unknown[0], _SWEEP_KEYS)} "
                              f"(allowed here: {', '.join(sorted(_SWEEP_KEYS))})")
         options = {k: v for k, v in table.items() if k != "description"}
+        for key in ("seed", "samples", "chunk_size"):
+            value = options.get(key)
+            if value is not None and (isinstance(value, bool) or not isinstance(value, int) or
+                                      (key != "seed" and value < 1) or value < 0):
+                raise SceneError(f"sweep.{key}", f"must be a whole number{' >= 1' if key != 'seed' else ' >= 0'}, "
+                                 f"got {value!r}")
+        if "output" in options and not isinstance(options["output"], str):
+            raise SceneError("sweep.output", f"must be a file name (.csv or .parquet), got {options['output']!r}")
         vary = options.pop("vary", {})
         if not isinstance(vary, dict):
             raise SceneError("sweep.vary", "must be a table of FIELD = VALUES")
