@@ -120,3 +120,17 @@ def test_bad_section_is_refused(capsys):
         bench.main(["--sections", "cycle,nonsense", "--no-pin"])
     assert err.value.code == 2
     assert "nonsense" in capsys.readouterr().err
+
+
+def test_required_inertia_section_compares_the_models():
+    """Constant J: the periodic solution reproduces the closed form; variable J and a motor: the
+    constant-inertia method is measurably off and the exact model is the reference."""
+    from flyopt.bench import Config, section_required_inertia
+
+    rows = {(r.case.split(" ")[0], r.method): r for r in section_required_inertia(Config(quick=True))}
+    assert rows["constant", "energy"].error < 1e-12
+    assert rows["constant", "dynamic"].error < 1e-8
+    assert rows["variable", "energy"].error > 1e-3 and rows["variable", "energy_mass"].setting == "cheapest exact"
+    assert rows["variable", "dynamic"].error < 1e-8
+    assert rows["speed-dependent", "energy"].error > 1e-4
+    assert rows["speed-dependent", "dynamic"].setting == "cheapest exact"

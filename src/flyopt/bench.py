@@ -1107,14 +1107,127 @@ def _geometry_at_designs(config):
 
 
 #: Sections of the speed-against-error run, in order: name -> function(config) -> list[Row].
-#: To add the required-inertia comparison (constant-inertia vs energy-mass vs periodic
-#: dynamic, flyopt.dynamics), write ``section_required_inertia(config) -> list[Row]``
-#: (one Row per method and setting, error against the periodic solution or a closed form,
-#: time_ratio set with _set_ratios) and register it here as "required_inertia".
+_INERTIA_SCENES = {
+    # constant inertia, torques of the angle: domain worked example 2 (closed form known)
+    "constant J (shear press)": """
+[machine]
+speed = "1500 rpm"
+delta = 0.05
+[torque.resisting]
+points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]
+[torque.driving]
+constant = "unknown"
+""",
+    # the inertia varies with the angle: a slider-crank press with a heavy ram
+    "variable J (slider-crank press)": """
+[machine]
+speed = "120 rpm"
+delta = 0.15
+inertia = "2 kg*m^2"
+[mechanism]
+kind = "slider_crank"
+crank = "0.08 m"
+rod = "0.45 m"
+[[member]]
+name = "ram"
+part = "slider"
+mass = "400 kg"
+angle_unit = "deg"
+unit = "kN"
+force = [[0, 0], [140, 0], [140, 25], [175, 60], [180, 0], [360, 0]]
+[[member]]
+name = "rod"
+part = "rod"
+centre = "0.15 m"
+mass = "60 kg"
+inertia = "1.2 kg*m^2"
+[torque.driving]
+constant = "unknown"
+[torque.resisting]
+constant = "150 N*m"
+""",
+    # a torque depends on speed: the punch press on an induction motor
+    "speed-dependent (motor press)": """
+[machine]
+speed = "60 rpm"
+delta = 0.1
+efficiency = 0.9215
+[torque.driving]
+motor = { kind = "induction", rated_power = "5.5 kW", rated_speed = "1440 rpm", synchronous_speed = "1500 rpm", shaft = "motor" }
+[torque.resisting]
+unit = "N*m"
+angle_unit = "deg"
+points = [[0, 150], [150, 150], [150, 2000], [165, 9000], [180, 9000], [180, 150], [360, 150]]
+[[shaft]]
+name = "motor"
+speed_ratio = 24.0
+""",
+}
+
+
+def section_required_inertia(config):
+    """J_F by the constant-inertia, energy–mass and dynamic models on scenes that need each.
+
+    Error: relative to the exact model's J_F (for worked example 2, to its closed
+    form, so that the exact model is itself checked); the note gives the δ that each
+    J_F really achieves, by the exact model. Reference method for time ratios: the
+    exact model of each scene.
+    """
+    from . import models
+    from .scene import from_dict
+
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+        import tomli as tomllib
+
+    rows = []
+    repeats = 1 if config.quick else 3
+    for case, text in _INERTIA_SCENES.items():
+        scene = from_dict(tomllib.loads(text), source=f"bench: {case}")
+        machine = models.reduce(scene)
+        exact, _ = models.choose(machine)
+        results, timings = {}, {}
+        for model in models.ORDER:
+            if model == models.ENERGY_MASS and not machine.variable_inertia and exact != models.ENERGY_MASS:
+                continue      # with a constant inertia it is the energy method again
+            if model != models.DYNAMIC and machine.speed_dependent and model == models.ENERGY_MASS:
+                continue
+            def run(model=model):   # a fresh reduction each call: no cached ExcessWork, the whole model timed
+                return models.requirement(models.reduce(scene), model)
+            results[model] = run()
+            timings[model] = measure(run, repeats, 0.0)
+        if case.startswith("constant"):
+            omega = 1500 * 2 * math.pi / 60
+            j_ref = math.pi / 4 * 1137.5 * (1 + 0.8125 / 2) / (omega**2 * 0.05)
+            reference = "closed form of worked example 2"
+        else:
+            j_ref = results[exact].j_required
+            reference = f"the exact model ({exact})"
+        for model, res in results.items():
+            delta = models.achieved_delta(machine, res.j_required)
+            err = abs(res.j_required - j_ref) / j_ref
+            setting = ("cheapest exact" if model == exact else
+                       "exact, costlier" if models.ORDER.index(model) > models.ORDER.index(exact) else "approximate")
+            rows.append(Row.timed("required_inertia", case, model, setting,
+                                  timings[model], error=err, error_median=err, reference=reference,
+                                  note=f"J_F {res.j_required:.6g} kg*m^2; achieves delta {delta:.6g} "
+                                       f"(allowed {scene.delta:g}){'; the exact model' if model == exact else ''}"))
+    for case in _INERTIA_SCENES:
+        exact_rows = [r for r in rows if r.case == case and r.setting == "cheapest exact"]
+        if exact_rows:
+            base = exact_rows[0].time_median_s
+            for r in rows:
+                if r.case == case and base > 0:
+                    r.time_ratio = r.time_median_s / base
+    return rows
+
+
 SECTIONS: dict[str, Callable[[Config], list]] = {
     "cycle": section_cycle,
     "design": section_design,
     "geometry": section_geometry,
+    "required_inertia": section_required_inertia,
 }
 
 
