@@ -80,3 +80,22 @@ def test_bad_result_plot_requests(tmp_path, capsys, args, words):
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1
     assert not (tmp_path / "x.png").exists()
+
+
+def test_speed_plot_with_the_simulation_overlaid(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import flyopt
+    from flyopt import plots
+
+    scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
+    analysis = flyopt.analyse(scene)
+    ax = plots.plot_speed(scene, analysis, simulate=True)
+    model, simulated = ax.lines[0].get_ydata(), ax.lines[1].get_ydata()
+    # the closed form and the simulation reach the same extremes (to the simulation's tolerance)
+    assert abs(model.max() / simulated.max() - 1) < 1e-6 and abs(model.min() / simulated.min() - 1) < 1e-6
+    out = plots.save(ax, tmp_path / "speed.png")
+    assert out.stat().st_size > 10_000
+    assert main(["plot", str(PROBLEMS / "shear-press.toml"), "--what", "speed", "--verify",
+                 "-o", str(tmp_path / "s.png")]) == 0

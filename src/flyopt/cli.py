@@ -69,6 +69,7 @@ def _parser():
     plot.add_argument("--x", help="results: the column on the x axis (sweep: a varied field)")
     plot.add_argument("--y", default="mass", help="results: the column on the y axis (default mass)")
     plot.add_argument("--by", help="sweep results: one line per value of this column (e.g. material)")
+    plot.add_argument("--verify", action="store_true", help="speed: draw the periodic simulation over the model")
     plot.add_argument("-o", "--output", required=True, help="file to write; the suffix picks the format")
     plot.set_defaults(run=_plot)
 
@@ -139,6 +140,8 @@ def _plot(args):
             if solution.design.best is None:
                 return _fail(f"{args.scene}: no flywheel to draw ({solution.design.message})", EXIT_INFEASIBLE)
             ax = plots.plot_cross_section(solution.design.best)
+        elif args.what == "speed":
+            ax = plots.plot_speed(scene, solution.analysis, simulate=args.verify)
         else:
             ax = getattr(plots, f"plot_{args.what}")(scene, solution.analysis)
     except ValueError as err:

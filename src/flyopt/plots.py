@@ -201,17 +201,27 @@ def _speed_curve(analysis):
     return speed.phi, speed.omega
 
 
-def plot_speed(scene, analysis, ax=None):
+def plot_speed(scene, analysis, ax=None, simulate=False):
     """ω(φ) over the cycle with the required flywheel, from the model that ran.
 
     Energy models: ω² = 2 (E_0 + ΔE)/J_e with E_0 such that (ω_max + ω_min)/2 = ω_m
     (domain page, section 6, forward use); the dynamic model: its periodic solution.
+    With ``simulate``, the periodic simulation of the machine with that flywheel
+    (the verification's) is drawn over it.
     """
     ax = _axes(ax)
     if scene.net is not None:
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
     phi, omega = _speed_curve(analysis)
     ax.plot(np.degrees(phi), rad_s_to_rpm(omega), color="tab:blue", label=f"model: {analysis.model}")
+    if simulate:
+        from . import dynamics
+
+        m = analysis.machine
+        sol = dynamics.periodic_solution(m.net_torque(), m.j_machine, m.cycle_angle, analysis.omega_mean,
+                                         max(analysis.j_required, 0.0), m.knots())
+        ax.plot(np.degrees(sol.phi), rad_s_to_rpm(sol.omega), color=DEFICIT, ls="--", lw=1,
+                label=f"simulation (δ = {sol.delta:.6g})")
     for value, label in ((omega.max(), "ω_max"), (omega.min(), "ω_min")):
         ax.axhline(rad_s_to_rpm(value), color="gray", ls=":", lw=0.8)
         ax.annotate(label, (0, rad_s_to_rpm(value)), fontsize=8, va="bottom")
