@@ -130,3 +130,13 @@ def test_report_numbers_survive_inf_and_nan():
     from flyopt.report import number
 
     assert (number(float("inf")), number(float("nan"))) == ("inf", "nan")
+
+
+def test_design_method_auto_gives_the_same_design(capsys):
+    assert main(["solve", str(PROBLEMS / "punch-press.toml"), "--json"]) == 0
+    ipopt = json.loads(capsys.readouterr().out)["design"]
+    assert main(["solve", str(PROBLEMS / "punch-press.toml"), "--json", "--design-method", "auto"]) == 0
+    auto = json.loads(capsys.readouterr().out)["design"]
+    assert (auto["material"], auto["shaft"]) == (ipopt["material"], ipopt["shaft"])
+    assert_allclose(auto["mass"], ipopt["mass"], rtol=1e-6)
+    assert {c["solver_status"] for c in auto["candidates"] if c["feasible"]} == {"closed_form"}

@@ -851,14 +851,14 @@ def grid_combination(combo, n_diameters, n_ratios):
     return _design(combo, float(d[i[0], 0]), float(h[i]), float(b[i]), "grid")
 
 
-def ipopt_combinations(j_required, omega_mean, shafts, materials, spec):
+def ipopt_combinations(j_required, omega_mean, shafts, materials, spec, method="ipopt"):
     """flyopt's ranking (one design_flywheel call) as one Outcome per combination."""
     from .errors import SolverFailed
     from .optimize import design_flywheel
 
     combos = combinations(j_required, omega_mean, shafts, materials, spec)
     try:
-        result = design_flywheel(j_required, omega_mean, shafts, materials, spec)
+        result = design_flywheel(j_required, omega_mean, shafts, materials, spec, method=method)
     except SolverFailed as err:
         return [Outcome("failed", reason=f"SolverFailed: {err}") for _ in combos]
     found = {(c.material, c.shaft): c for c in result.candidates}
@@ -880,7 +880,9 @@ def _per_combination(solver):
 
 def design_methods(config):
     """Name, setting and solver of every design method: solver(j, ω, shafts, materials, spec)."""
-    methods = [("flyopt-ipopt", "casadi/ipopt", ipopt_combinations)]
+    methods = [("flyopt-ipopt", "casadi/ipopt", ipopt_combinations),
+               ("flyopt-auto", "closed form where exact",
+                lambda *args: ipopt_combinations(*args, method="auto"))]
     for ftol in SLSQP_FTOLS:
         methods.append(("slsqp", f"ftol={ftol:g}",
                         _per_combination(lambda c, ftol=ftol: slsqp_combination(c, "scaled", ftol))))

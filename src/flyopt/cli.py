@@ -57,6 +57,9 @@ def _parser():
                        help="stop after the cycle analysis (no optimization)")
     solve.add_argument("--model", choices=("energy", "energy_mass", "dynamic"),
                        help="force the model that sizes the flywheel (default: the cheapest exact one)")
+    solve.add_argument("--design-method", choices=("ipopt", "auto", "closed_form"), default="ipopt",
+                       help="ipopt (default): IPOPT on every combination; auto: the exact closed form where it "
+                            "covers the structure, IPOPT elsewhere")
     solve.add_argument("--verify", action="store_true",
                        help="simulate the machine with the chosen flywheel and report the δ it achieves")
     solve.set_defaults(run=_solve)
@@ -87,7 +90,8 @@ def _parser():
 
 def _solve(args):
     scene = load(args.scene)
-    solution = solve(scene, design_flywheel=args.design, model=args.model, verify_design=args.verify)
+    solution = solve(scene, design_flywheel=args.design, model=args.model, verify_design=args.verify,
+                     design_method=args.design_method)
     if args.json:
         text = json.dumps({"scene": args.scene, **_json_safe(solution.to_dict())}, indent=2, allow_nan=False)
     else:

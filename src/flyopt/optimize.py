@@ -860,6 +860,42 @@ def _solve(model, combo, spec):
                                   status, iterations, elapsed)
 
 
+def _solve_closed_form(pending, spec):
+    """Design feasible combinations by the exact closed form, all at once.
+
+    Returns (order, Candidate) pairs; each design is recomputed with
+    :mod:`flyopt.geometry` and verified like an IPOPT one.
+    """
+    from . import batch
+
+    start = time.perf_counter()
+    combos = [c for _, c in pending]
+    hb_min, hb_max = spec.hb_ratio
+    out = batch.lightest(spec.geometry, [c.j_shaft for c in combos], [c.material.density for c in combos],
+                         [c.cap for c in combos], hb_min, hb_max,
+                         math.inf if spec.max_width is None else spec.max_width,
+                         math.nan if spec.d_mean is None else spec.d_mean)
+    elapsed = (time.perf_counter() - start) / len(combos)
+    results = []
+    for k, (order, combo) in enumerate(pending):
+        if not out["feasible"][k]:  # the two closed forms disagree: let IPOPT decide this one
+            results.append((order, _solve(get_model(ModelStructure(
+                spec.geometry, spec.d_mean is not None,
+                spec.geometry != "disc" and hb_min == hb_max, "mass")), combo, spec)))
+            continue
+        d_mean, h, b = float(out["d_mean"][k]), float(out["h"][k]), float(out["b"][k])
+        rho = combo.material.density
+        if spec.geometry == "disc":
+            mass = geometry.disc_mass(2 * d_mean, b, rho)
+            j_wheel = geometry.disc_inertia(mass, 2 * d_mean)
+        else:
+            mass = geometry.rim_mass(d_mean, h, b, rho)
+            j_wheel = _wheel_inertia(spec.geometry, rho, d_mean, h, b)
+        results.append((order, _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel,
+                                                      "closed_form", 0, elapsed)))
+    return results
+
+
 def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, iterations,
                            elapsed):
     """Verify a solved design against every constraint and describe it."""
@@ -943,7 +979,7 @@ def _check_unique(items, kind, cls):
 
 def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft],
                     materials: Sequence[Material], spec: DesignSpec = DesignSpec(), *,
-                    solver_options: Mapping | None = None) -> DesignResult:
+                    solver_options: Mapping | None = None, method: str = "ipopt") -> DesignResult:
     """Design the flywheel: the best material, shaft and dimensions.
 
     Parameters
@@ -964,6 +1000,12 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         Geometry model, limits and objective.
     solver_options : mapping, optional
         CasADi/IPOPT options merged over :data:`DEFAULT_SOLVER_OPTIONS`.
+    method : {"ipopt", "auto", "closed_form"}
+        How a feasible combination is optimized: IPOPT on its NLP; or the
+        exact closed form of :mod:`flyopt.batch` where it covers the
+        structure (mass and cost objectives), IPOPT elsewhere ("auto");
+        "closed_form" refuses a structure it does not cover. Either way the
+        design is verified against every constraint before it is reported.
 
     Returns
     -------
@@ -998,6 +1040,15 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         if missing:
             raise ValueError(f"objective 'cost' needs a cost per kg on every material; "
                              f"missing for {missing}")
+    _choice(method, ("ipopt", "auto", "closed_form"), "method")
+    closed = False
+    if method != "ipopt":
+        from . import batch
+
+        closed = batch.covers(spec.geometry, spec.objective, spec.d_mean is not None)
+        if method == "closed_form" and not closed:
+            raise ValueError(f"the closed form does not cover geometry {spec.geometry!r} with objective "
+                             f"{spec.objective!r}; use method 'auto' or 'ipopt'")
     if j_required <= 0.0:
         return DesignResult(
             status="not_needed",
@@ -1010,10 +1061,10 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         geometry=spec.geometry, pinned=spec.d_mean is not None,
         collapsed=spec.geometry != "disc" and spec.hb_ratio[0] == spec.hb_ratio[1],
         objective="outer_diameter" if spec.objective == "outer_diameter" else "mass")
-    model = get_model(structure, solver_options)
+    model = None if closed else get_model(structure, solver_options)
     envelope = math.inf if spec.max_outer_diameter is None else spec.max_outer_diameter
 
-    feasible, infeasible = [], []
+    feasible, infeasible, pending = [], [], []
     order = 0
     for material in materials:
         for shaft in shafts:
@@ -1029,7 +1080,10 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
                 spec.d_mean <= combo.cap if spec.geometry == "disc"
                 else spec.d_mean < combo.cap)
             if pinned_fits and combo.j_shaft <= combo.j_max:
-                feasible.append((order, _solve(model, combo, spec)))
+                if closed:
+                    pending.append((order, combo))
+                else:
+                    feasible.append((order, _solve(model, combo, spec)))
             else:
                 reason, needed = _explain_infeasible(combo, spec)
                 infeasible.append(Candidate(
@@ -1039,10 +1093,18 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
                     d_outer_limit=combo.cap, rim_speed_limit=material.max_rim_speed,
                     j_max=combo.j_max, d_outer_needed=needed))
             order += 1
+    if pending:
+        feasible += _solve_closed_form(pending, spec)
     feasible.sort(key=lambda item: (item[1].objective, item[1].mass, item[0]))
     ranked = tuple(c for _, c in feasible) + tuple(infeasible)
     best = feasible[0][1] if feasible else None
-    description = model.describe()
+    if model is not None:
+        description = model.describe()
+    else:
+        description = {"geometry": spec.geometry, "inertia_model": geometry.GEOMETRIES[spec.geometry],
+                       "variables": [], "constraints": [], "pinned": ["d_mean"] if spec.d_mean is not None else [],
+                       "formulation": ("exact closed form (flyopt.batch): outer diameter at its cap, "
+                                       "a 1-D monotone root for the rim; verified against every constraint")}
     description["objective"] = spec.objective
     bounds = []
     if spec.max_width is not None:

@@ -49,7 +49,7 @@ def design_dict(result):
     return {"status": raw["status"], "message": raw["message"], **design, "model": raw["model"]}
 
 
-def design(scene, analysis, solver_options=None):
+def design(scene, analysis, solver_options=None, method="ipopt"):
     """Design the flywheel a scene needs, from its analysis.
 
     Parameters
@@ -61,6 +61,9 @@ def design(scene, analysis, solver_options=None):
         means no flywheel is needed).
     solver_options : mapping, optional
         CasADi/IPOPT options that override flyopt's defaults.
+    method : {"ipopt", "auto", "closed_form"}
+        IPOPT on every combination, or the exact closed form where it covers
+        the structure (see flyopt.optimize.design_flywheel).
 
     Returns
     -------
@@ -80,7 +83,7 @@ def design(scene, analysis, solver_options=None):
     # the rim is checked at the highest speed of the cycle, from the model that ran (for a motor
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     return design_flywheel(analysis.j_margin, analysis.omega_max, shafts, materials, scene.design,
-                           solver_options=solver_options)
+                           solver_options=solver_options, method=method)
 
 
 def verify(scene, analysis, design_result=None):
@@ -124,7 +127,8 @@ def verify(scene, analysis, design_result=None):
     return {**result.to_dict(), "j_flywheel": j_flywheel}
 
 
-def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_design=False):
+def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_design=False,
+          design_method="ipopt"):
     """Analyse a scene and design its flywheel.
 
     Parameters
@@ -138,12 +142,14 @@ def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_d
         Force the model that sizes the flywheel (default: the cheapest exact one).
     verify_design : bool
         Simulate the machine with the chosen flywheel (:func:`verify`).
+    design_method : {"ipopt", "auto", "closed_form"}
+        How each combination is optimized (see :func:`design`).
 
     Returns
     -------
     Solution
     """
     analysis = analyse(scene, model)
-    result = design(scene, analysis, solver_options) if design_flywheel else None
+    result = design(scene, analysis, solver_options, design_method) if design_flywheel else None
     checked = verify(scene, analysis, result) if verify_design else None
     return Solution(scene=scene, analysis=analysis, design=result, verification=checked)
