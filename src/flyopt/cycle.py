@@ -139,11 +139,19 @@ def _balancing_constant(curve, cycle_angle):
 
 
 def work(curve, cycle_angle):
-    """Work of one torque curve over one cycle, ∫_0^Φ M dφ [J]."""
+    """Work of one torque curve over one cycle, ∫_0^Φ M dφ [J].
+
+    Curves are immutable, so the quadrature of a nonlinear one is done once
+    per cycle angle and kept on the curve (solving an unknown constant and
+    building the indicator diagram both need it).
+    """
     if curve.is_linear:
         return curve.work(cycle_angle)
-    zero = Constant(0.0)
-    return float(np.sum(_segments(curve, zero, cycle_angle).integrals(), dtype=np.longdouble))
+    cache = curve.__dict__.setdefault("_work_per_cycle", {})
+    if cycle_angle not in cache:
+        zero = Constant(0.0)
+        cache[cycle_angle] = float(np.sum(_segments(curve, zero, cycle_angle).integrals(), dtype=np.longdouble))
+    return cache[cycle_angle]
 
 
 def energy_indicator(driving, resisting, cycle_angle):
