@@ -86,6 +86,20 @@ def _load():
         return "unknown"
 
 
+def result_row(name, mode, method, workers, frame, seconds):
+    """One line of sweep.csv: sizes, times and designs per second of a timed sweep."""
+    designs = int(frame["n_combinations"].sum())
+    feasible = int(frame["n_feasible"].sum())
+    median = statistics.median(seconds)
+    return {"sweep": name, "mode": mode, "method": method, "workers": workers,
+            "points": len(frame), "designs": designs, "feasible_designs": feasible,
+            "chunks": frame.attrs["sweep"]["chunks"], "runs": len(seconds),
+            "best_s": min(seconds), "median_s": median,
+            "designs_per_s": designs / median, "feasible_per_s": feasible / median,
+            "methods": ";".join(f"{k}={v}" for k, v in frame["method"].value_counts().items()),
+            "statuses": ";".join(f"{k}={v}" for k, v in frame["status"].value_counts().items())}
+
+
 def timed(scene, spec, repeat, **options):
     """Run a sweep ``repeat`` times; return (frame, list of seconds)."""
     seconds, frame = [], None
@@ -151,19 +165,7 @@ def main(argv=None):
     for name, spec in SWEEPS.items():
         for mode, workers in (("serial", 1), ("parallel", n_cpu)):
             frame, seconds = timed(scene, spec, args.repeat, workers=workers)
-            info = frame.attrs["sweep"]
-            designs = int(frame["n_combinations"].sum())
-            feasible = int(frame["n_feasible"].sum())
-            row = {"sweep": name, "mode": mode, "method": "auto", "workers": workers,
-                   "points": len(frame), "designs": designs, "feasible_designs": feasible,
-                   "chunks": info["chunks"], "runs": len(seconds),
-                   "best_s": min(seconds), "median_s": statistics.median(seconds),
-                   "designs_per_s": designs / statistics.median(seconds),
-                   "feasible_per_s": feasible / statistics.median(seconds),
-                   "methods": ";".join(f"{k}={v}" for k, v in
-                                       frame["method"].value_counts().items()),
-                   "statuses": ";".join(f"{k}={v}" for k, v in
-                                        frame["status"].value_counts().items())}
+            row = result_row(name, mode, "auto", workers, frame, seconds)
             rows.append(row)
             print(f"{name:4s} {mode:8s} {row['median_s']:.3f} s  "
                   f"{row['designs_per_s']:,.0f} designs/s  ({row['statuses']})", flush=True)
@@ -176,17 +178,9 @@ def main(argv=None):
                       "design.max_outer_diameter": "0.4:2.0:50 m"}}
     for mode, workers in (("serial", 1), ("parallel", n_cpu)):
         frame, seconds = timed(scene, large, 1, workers=workers)
-        designs = int(frame["n_combinations"].sum())
-        feasible = int(frame["n_feasible"].sum())
-        rows.append({"sweep": "grid-200k", "mode": mode, "method": "auto", "workers": workers,
-                     "points": len(frame), "designs": designs, "feasible_designs": feasible,
-                     "chunks": frame.attrs["sweep"]["chunks"], "runs": 1,
-                     "best_s": seconds[0], "median_s": seconds[0],
-                     "designs_per_s": designs / seconds[0],
-                     "feasible_per_s": feasible / seconds[0],
-                     "methods": "closed_form=" + str(len(frame)),
-                     "statuses": ";".join(f"{k}={v}" for k, v in
-                                          frame["status"].value_counts().items())})
+        row = result_row("grid-200k", mode, "auto", workers, frame, seconds)
+        rows.append(row)
+        designs = row["designs"]
         print(f"200k  {mode:8s} {seconds[0]:.3f} s  {designs / seconds[0]:,.0f} designs/s",
               flush=True)
         del frame
@@ -195,17 +189,9 @@ def main(argv=None):
               "design.max_outer_diameter": f"0.4:2.0:{max(1, args.ipopt_points // 30)} m"}
     for mode, workers in (("serial", 1), ("parallel", n_cpu)):
         frame, seconds = timed(scene, {"vary": subset}, 1, workers=workers, method="ipopt")
-        designs = int(frame["n_combinations"].sum())
-        feasible = int(frame["n_feasible"].sum())
-        rows.append({"sweep": "grid-subset", "mode": mode, "method": "ipopt", "workers": workers,
-                     "points": len(frame), "designs": designs, "feasible_designs": feasible,
-                     "chunks": frame.attrs["sweep"]["chunks"], "runs": 1,
-                     "best_s": seconds[0], "median_s": seconds[0],
-                     "designs_per_s": designs / seconds[0],
-                     "feasible_per_s": feasible / seconds[0],
-                     "methods": "ipopt=" + str(len(frame)),
-                     "statuses": ";".join(f"{k}={v}" for k, v in
-                                          frame["status"].value_counts().items())})
+        row = result_row("grid-subset", mode, "ipopt", workers, frame, seconds)
+        rows.append(row)
+        designs = row["designs"]
         print(f"ipopt {mode:8s} {seconds[0]:.3f} s  {designs / seconds[0]:,.0f} designs/s",
               flush=True)
     return write(args, rows, checks, n_cpu)
