@@ -1,7 +1,8 @@
 """Benchmark of the flywheel designer (flyopt.optimize.design_flywheel).
 
-Times `flyopt.solve` (cycle analysis + design) on every scene of problems/,
-and, on a batch of random scenes:
+Times `flyopt.solve` (cycle analysis + design, default design method "auto")
+on every scene of problems/, with its design step by "auto" and by IPOPT alone,
+and, on a batch of random scenes, the IPOPT path:
 
 * the build of each NLP structure (``casadi.nlpsol`` with IPOPT), once;
 * the full ranking of a scene, 2 materials x 3 shafts, after the first build;
@@ -84,12 +85,13 @@ PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
 
 
 def time_problems(repeats):
-    """Median wall time of flyopt.solve and of its design step per problems/ scene [s]."""
+    """Median wall time of flyopt.solve and of its design step (auto, IPOPT) per problems/ scene [ms]."""
     rows = []
     for path in sorted(PROBLEMS.glob("*.toml")):
         scene = flyopt.load(path)
-        flyopt.solve(scene)                       # warm-up: builds the scene's NLP structure
-        total, design = [], []
+        solution = flyopt.solve(scene)
+        flyopt.design(scene, solution.analysis, method="ipopt")   # warm-up: builds the NLP structure
+        total, design, ipopt = [], [], []
         for _ in range(repeats):
             start = time.perf_counter()
             solution = flyopt.solve(scene)
@@ -97,9 +99,13 @@ def time_problems(repeats):
             start = time.perf_counter()
             flyopt.design(scene, solution.analysis)
             design.append(time.perf_counter() - start)
+            start = time.perf_counter()
+            flyopt.design(scene, solution.analysis, method="ipopt")
+            ipopt.append(time.perf_counter() - start)
         rows.append({"scene": path.name, "status": solution.status,
                      "combinations": len(solution.design.candidates),
-                     "solve_ms": 1e3 * statistics.median(total), "design_ms": 1e3 * statistics.median(design)})
+                     "solve_ms": 1e3 * statistics.median(total), "design_ms": 1e3 * statistics.median(design),
+                     "design_ipopt_ms": 1e3 * statistics.median(ipopt)})
     return rows
 
 
@@ -109,12 +115,12 @@ def run(count, seed):
     scenes = random_scenes(count, seed)
     # one warm-up design per geometry so that no ranking below includes a build
     for geometry in ("rim", "thin_rim"):
-        design_flywheel(1.0, 100.0, scenes[0]["shafts"], materials, DesignSpec(geometry))
+        design_flywheel(1.0, 100.0, scenes[0]["shafts"], materials, DesignSpec(geometry), method="ipopt")
     rows, nlp_times, nlp_iters = [], [], []
     for index, scene in enumerate(scenes):
         start = time.perf_counter()
         result = design_flywheel(scene["j_required"], scene["omega_mean"], scene["shafts"],
-                                 materials, scene["spec"])
+                                 materials, scene["spec"], method="ipopt")
         elapsed = time.perf_counter() - start
         solved = [c for c in result.candidates if c.solve_time is not None]
         nlp_times += [c.solve_time for c in solved]
@@ -180,10 +186,12 @@ def write_results(out, builds, rows, nlp_times, nlp_iters, pinning, seed, proble
     ]
     if problems:
         lines += ["## problems/ scenes", "",
-                  "`flyopt.solve` (load excluded) and its design step alone; medians of 20 runs after a warm-up.",
-                  "", "| scene | status | combinations | solve [ms] | design [ms] |", "|---|---|---|---|---|"]
+                  "`flyopt.solve` (load excluded, default design method auto) and its design step alone, by "
+                  "auto and by IPOPT on every combination; medians of 20 runs after a warm-up.",
+                  "", "| scene | status | combinations | solve [ms] | design, auto [ms] | design, IPOPT [ms] |",
+                  "|---|---|---|---|---|---|"]
         lines += [f"| {r['scene']} | {r['status']} | {r['combinations']} | {r['solve_ms']:.2f} | "
-                  f"{r['design_ms']:.2f} |" for r in problems]
+                  f"{r['design_ms']:.2f} | {r['design_ipopt_ms']:.2f} |" for r in problems]
         lines.append("")
     (out / "design.md").write_text("\n".join(lines), encoding="utf-8")
     return "\n".join(lines)

@@ -122,7 +122,7 @@ def test_closed_form_agrees_with_ipopt_on_random_combinations(seed):
         geometry = ("rim", "thin_rim", "disc")[k % 3]
         j, omega, shaft, material, spec = random_combination(rng, geometry)
         got = closed_form(j, omega, shaft, material, spec)
-        ipopt = design_flywheel(j, omega, [shaft], [material], spec).candidates[0]
+        ipopt = design_flywheel(j, omega, [shaft], [material], spec, method="ipopt").candidates[0]
         assert bool(got.feasible) == ipopt.feasible, (spec, ipopt.reason)
         if not ipopt.feasible:
             counts["infeasible"] += 1
@@ -180,7 +180,7 @@ def test_edge_of_feasibility_decided_like_optimize(geometry, factor):
     got = batch.design_combinations(geometry, j, omega, 1.0, CAST_STEEL.density,
                                     CAST_STEEL.max_rim_speed, 1.5, 2.0)
     ipopt = design_flywheel(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
-                            DesignSpec(geometry=geometry)).candidates[0]
+                            DesignSpec(geometry=geometry), method="ipopt").candidates[0]
     assert bool(got.feasible) == ipopt.feasible == (factor <= 1.0)
     if factor < 1.0:
         # near the fold of J(H) the mass is sqrt-sensitive to J; 1e-6 still holds
@@ -222,6 +222,12 @@ def test_free_rim_matches_independent_root_search(thin, with_width):
             assert_allclose(got.mass[k], ref["mass"], rtol=1e-9)
             assert_allclose(got.h[k], ref["h"], rtol=1e-7)
             assert_allclose(got.b[k], ref["b"], rtol=1e-7)
+            # the scalar twin (design_flywheel's ranking path) against the same reference
+            d, h, b = batch.lightest_one("thin_rim" if thin else "rim", j[k], rho[k], cap[k], a[k],
+                                         c[k], width[k])
+            k_ref = d * d if thin else d * d + h * h
+            assert_allclose(4.0 * j[k] / k_ref, ref["mass"], rtol=1e-9)
+            assert_allclose((d + h, h, b), (cap[k], ref["h"], ref["b"]), rtol=1e-7)
     assert seen >= 50
 
 
@@ -240,6 +246,10 @@ def test_pinned_annulus_matches_independent_reference():
         if ref is not None:
             assert_allclose(got.mass[k], ref["mass"], rtol=1e-12)
             assert_allclose(got.h[k], ref["h"], rtol=1e-9)
+            d, h, _ = batch.lightest_one("rim", j, CAST_STEEL.density, cap, a[k], c[k], np.inf,
+                                         d_means[k])
+            assert_allclose((d, 4.0 * j / (d * d + h * h)), (d_means[k], ref["mass"]), rtol=1e-12)
+            assert_allclose(h, ref["h"], rtol=1e-9)
 
 
 def test_domain_example6_rim_sizing_pinned_thin_rim():
@@ -250,6 +260,9 @@ def test_domain_example6_rim_sizing_pinned_thin_rim():
     assert_allclose(got.mass, 475.0, rtol=1e-14)
     assert_allclose(got.b, 0.110, rtol=5e-3)
     assert_allclose(got.h, 0.220, rtol=5e-3)
+    d, h, b = batch.lightest_one("thin_rim", 76.0, CAST_STEEL.density, 2.0, 2.0, 2.0, np.inf, 0.8)
+    assert_allclose(math.pi * CAST_STEEL.density * d * h * b, 475.0, rtol=1e-14)
+    assert_allclose((b, h), (0.110, 0.220), rtol=5e-3)
 
 
 def test_disc_closed_form():
@@ -270,9 +283,33 @@ def test_disc_closed_form():
     assert got.d_inner[0] == 0.0
     assert_allclose(got.mass[3], 8 * j / (0.5 * d) ** 2, rtol=1e-14)
     assert batch.binding_names(got.binding[0]) == ("inertia", "rim_speed")
+    assert_allclose(batch.lightest_one("disc", j, rho, d, 1.5, 2.0), (d / 2, d / 2, b), rtol=1e-14)
+    assert_allclose(batch.lightest_one("disc", j, rho, d, 1.5, 2.0, math.inf, 0.5 * d)[2],
+                    32 * j / (math.pi * rho * (0.5 * d) ** 4), rtol=1e-14)
 
 
 def test_covers_only_mass_and_cost():
     for geometry in ("rim", "thin_rim", "disc"):
         assert batch.covers(geometry, "mass") and batch.covers(geometry, "cost", pinned=True)
         assert not batch.covers(geometry, "outer_diameter")
+
+
+@pytest.mark.parametrize("thin", [True, False])
+def test_newton_stops_when_its_step_is_an_ulp(thin, monkeypatch):
+    """Away from the fold of J_line (J' <= 0.9 J_max) Newton converges quadratically:
+    both the vectorized and the scalar root take at most 8 steps. (A last step of an
+    ulp used to land on the bracket's edge and start a bisection of ~40 more.)"""
+    rng = np.random.default_rng(5)
+    n = 400
+    rho, a, c = 7200.0, 1.5, 2.0
+    cap = 10 ** rng.uniform(-1, 1, n)
+    width = np.where(rng.random(n) < 0.6, np.inf, cap * 10 ** rng.uniform(-2, 0, n))
+    geometry = "thin_rim" if thin else "rim"
+    j_max = batch.max_inertia(geometry, rho, cap, a, c, width)
+    j = j_max * 10 ** rng.uniform(-6, math.log10(0.9), n)
+    monkeypatch.setattr(batch, "_NEWTON_MAX_ITER", 8)
+    got = batch.lightest(geometry, j, rho, cap, a, c, width)
+    assert got.feasible.all()
+    for k in range(n):
+        d, h, b = batch.lightest_one(geometry, j[k], rho, cap[k], a, c, width[k])
+        assert_allclose(h, got.h[k], rtol=1e-13)

@@ -17,6 +17,7 @@ flyopt.optimize: they use neither its code nor flyopt.geometry.
   so H is the largest allowed by the cap, the inner diameter and H/B <= hb_max.
 """
 
+import functools
 import json
 import math
 
@@ -32,6 +33,9 @@ from flyopt.optimize import (BINDING_NAMES, DESIGN_FIELDS, DesignSpec, ModelStru
 
 RPM = math.pi / 30.0
 MATERIALS = builtin_materials()
+#: The NLP path: every feasible combination solved by IPOPT (the default method, auto,
+#: takes the closed form where it is exact; it is tested against this path below).
+design_ipopt = functools.partial(design_flywheel, method="ipopt")
 CAST_IRON, CAST_STEEL = MATERIALS["cast_iron"], MATERIALS["cast_steel"]
 
 
@@ -125,8 +129,8 @@ def test_domain_example6_textbook_rim_sizing_pinned_d_mean():
     The mass 4 J / D_m^2 = 475 is exact: rtol 1e-8 (IPOPT tol 1e-10 on log
     mass). B and H are published to three figures: rtol 5e-3.
     """
-    result = design_flywheel(76.0, 600 * RPM, [MountShaft("main", 1.0)], [CAST_STEEL],
-                             DesignSpec(geometry="thin_rim", hb_ratio=(2.0, 2.0), d_mean=0.8))
+    result = design_ipopt(76.0, 600 * RPM, [MountShaft("main", 1.0)], [CAST_STEEL],
+                          DesignSpec(geometry="thin_rim", hb_ratio=(2.0, 2.0), d_mean=0.8))
     best = result.best
     assert result.status == "designed"
     assert_allclose(best.mass, 475.0, rtol=1e-8)
@@ -136,6 +140,27 @@ def test_domain_example6_textbook_rim_sizing_pinned_d_mean():
     assert_allclose(best.j_flywheel, 76.0, rtol=1e-8)
     assert "inertia" in best.binding
     assert result.model["variables"] == ["h"]       # D_m pinned, B = H/2: one variable
+
+
+def test_domain_example6_by_the_default_method():
+    """Worked example 6 again by the default method (auto: the closed form, here
+    m = 4 J / D_m^2 to round-off): 475 kg to 1e-13, B and H as published."""
+    result = design_flywheel(76.0, 600 * RPM, [MountShaft("main", 1.0)], [CAST_STEEL],
+                             DesignSpec(geometry="thin_rim", hb_ratio=(2.0, 2.0), d_mean=0.8))
+    best = result.best
+    assert best.solver_status == "closed_form" and result.model["variables"] == []
+    assert_allclose(best.mass, 475.0, rtol=1e-13)
+    assert_allclose([best.b, best.h], [0.110, 0.220], rtol=5e-3)
+    assert "inertia" in best.binding
+
+
+def test_default_method_takes_ipopt_where_the_closed_form_does_not_reach():
+    """Objective outer_diameter has no closed form: the default method solves it with IPOPT."""
+    spec = DesignSpec(objective="outer_diameter", max_width=0.05)
+    result = design_flywheel(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [CAST_STEEL], spec)
+    assert result.status == "designed"
+    assert result.best.solver_status == "Solve_Succeeded"
+    assert result.model["variables"]
 
 
 # --------------------------------------------------------------------------
@@ -161,7 +186,7 @@ def random_scene(rng):
 
 
 def check_against_reference(j, omega, shafts, materials, spec, counts):
-    result = design_flywheel(j, omega, shafts, materials, spec)
+    result = design_ipopt(j, omega, shafts, materials, spec)
     found = by_combination(result)
     assert len(found) == len(shafts) * len(materials)
     for material in materials:
@@ -220,7 +245,7 @@ def test_width_limited_rims_match_reference_and_brute_force(seed):
         free = reference_lightest_rim(model, rho, j, cap, low)
     # feasible down to about B_free sqrt(hb_min/hb_max): mostly feasible, some not
     b_max = free["b"] * float(rng.uniform(0.9 * math.sqrt(low / high), 1.05))
-    result = design_flywheel(j, omega, [MountShaft("s", 1.0)], [Material("m", rho, v_max)],
+    result = design_ipopt(j, omega, [MountShaft("s", 1.0)], [Material("m", rho, v_max)],
                              DesignSpec(geometry=model, hb_ratio=(low, high), max_width=b_max))
     ref = reference_lightest_rim(model, rho, j, cap, low, high, b_max)
     brute = brute_force_lightest(model, rho, j, cap, low, high, b_max)
@@ -242,7 +267,7 @@ def test_pinned_d_mean_exact_annulus_matches_closed_form(d_mean, hb):
     """D_m pinned, exact annulus: H as large as the cap, the inner diameter and
     H/B <= hb_max allow (reference above); mass within 1e-6."""
     j, omega = 1.0183, 1500 * RPM            # worked example 2: J_F on the motor shaft
-    result = design_flywheel(j, omega, [MountShaft("motor", 1.0)], [CAST_STEEL],
+    result = design_ipopt(j, omega, [MountShaft("motor", 1.0)], [CAST_STEEL],
                              DesignSpec(geometry="rim", hb_ratio=hb, d_mean=d_mean))
     ref = reference_pinned_rim(CAST_STEEL.density, j, d_mean, speed_cap(CAST_STEEL, omega),
                                *hb)
@@ -259,14 +284,14 @@ def test_disc_matches_closed_form():
     LP optimum: rtol 1e-8); with a width limit below that B, infeasible."""
     j, omega = 2.0, 1000 * RPM
     d = speed_cap(CAST_STEEL, omega)
-    result = design_flywheel(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
+    result = design_ipopt(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
                              DesignSpec(geometry="disc"))
     best = result.best
     assert_allclose(best.d_outer, d, rtol=1e-8)
     assert_allclose(best.b, 32 * j / (math.pi * CAST_STEEL.density * d ** 4), rtol=1e-8)
     assert_allclose(best.mass, 8 * j / d ** 2, rtol=1e-8)
     assert best.d_inner == 0.0 and best.d_mean == best.h == best.d_outer / 2
-    narrow = design_flywheel(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
+    narrow = design_ipopt(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
                              DesignSpec(geometry="disc", max_width=0.5 * best.b))
     assert narrow.status == "infeasible"
     # needs D^4 = 32 J / (pi rho B_max)
@@ -351,7 +376,7 @@ def test_hard_inertia_at_the_edge_of_feasibility(model, factor):
     else:
         x = 0.4
         j_max = math.pi * rho * d ** 5 * x ** 2 * (1 - x) ** 3 / (4 * hb_min)
-    result = design_flywheel(j_max * factor, omega, [MountShaft("motor", 1.0)], [CAST_STEEL],
+    result = design_ipopt(j_max * factor, omega, [MountShaft("motor", 1.0)], [CAST_STEEL],
                              DesignSpec(geometry=model))
     got = result.candidates[0]
     assert got.feasible == (factor < 1)
@@ -370,7 +395,7 @@ def test_hard_inertia_at_the_edge_of_feasibility(model, factor):
 def test_every_combination_reported_and_ranked():
     shafts = [MountShaft("motor", 1.0), MountShaft("intermediate", 0.5),
               MountShaft("main", 0.2)]
-    result = design_flywheel(20.0, 1500 * RPM, shafts, [CAST_IRON, CAST_STEEL], DesignSpec())
+    result = design_ipopt(20.0, 1500 * RPM, shafts, [CAST_IRON, CAST_STEEL], DesignSpec())
     pairs = [(c.material, c.shaft) for c in result.candidates]
     assert sorted(pairs) == sorted((m, s.name) for m in ("cast_iron", "cast_steel")
                                    for s in shafts)
@@ -395,7 +420,7 @@ def test_infeasible_reason_in_words_and_numbers():
     """Cast iron on the motor shaft at 1500 rpm: the 36 m/s limit caps D_outer at
     72/omega = 0.458 m; a rim for J needs D = (64 hb_min J / (pi rho))^(1/5)."""
     omega, j = 1500 * RPM, 10.0
-    result = design_flywheel(j, omega, [MountShaft("motor", 1.0)], [CAST_IRON], DesignSpec())
+    result = design_ipopt(j, omega, [MountShaft("motor", 1.0)], [CAST_IRON], DesignSpec())
     needed = (64 * 1.5 * j / (math.pi * CAST_IRON.density)) ** 0.2
     assert result.status == "infeasible" and result.best is None
     reason = result.candidates[0].reason
@@ -406,6 +431,58 @@ def test_infeasible_reason_in_words_and_numbers():
     assert reason in result.message
 
 
+def reference_largest_inertia(model, rho, d_cap, hb_min, hb_max, b_max):
+    """Largest inertia of any admissible wheel under an outer-diameter cap (physics only).
+
+    Rims: outer diameter at the cap, the widest admissible B(H) = min(H/hb_min, B_max),
+    H up to min(cap/2, hb_max B_max), maximized by a scan refined by a bounded search.
+    Disc of width B_max at the cap: pi rho D^4 B_max / 32.
+    """
+    if model == "disc":
+        return math.pi * rho * d_cap ** 4 * b_max / 32.0
+
+    def inertia(h):
+        d = d_cap - h
+        k = d * d + h * h if model == "rim" else d * d
+        return math.pi * rho * d * h * np.minimum(h / hb_min, b_max) * k / 4.0
+
+    h_top = min(d_cap / 2.0, hb_max * b_max)
+    grid = h_top * np.linspace(1e-6, 1.0, 4001)
+    i = int(np.argmax(inertia(grid)))
+    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+    peak = minimize_scalar(lambda h: -inertia(h), bounds=(lo, hi), method="bounded",
+                           options={"xatol": 1e-15 * hi})
+    return max(-peak.fun, float(inertia(grid[i])))
+
+
+@pytest.mark.parametrize("geometry", ["rim", "thin_rim", "disc"])
+def test_outer_diameter_needed_is_the_smallest_cap_that_reaches_the_inertia(geometry):
+    """An infeasible combination reports the cap it would need: the root of
+    J_max(cap) = J' for an independent J_max (scan + bounded search), to 1e-9,
+    with and without a width limit (closed form, then the bracketed root)."""
+    rng = np.random.default_rng(21 + len(geometry))
+    checked = 0
+    for _ in range(40):
+        j, rpm = float(10 ** rng.uniform(0, 4)), float(10 ** rng.uniform(2.5, 3.5))
+        omega = rpm * RPM
+        width = float(10 ** rng.uniform(-2, -0.5)) if geometry == "disc" or rng.random() < 0.7 else None
+        spec = DesignSpec(geometry=geometry, max_width=width)
+        result = design_flywheel(j, omega, [MountShaft("s", 1.0)], [CAST_IRON], spec, method="auto")
+        c = result.candidates[0]
+        if c.feasible:
+            continue
+        b_max = math.inf if width is None else width
+        cap = speed_cap(CAST_IRON, omega)
+        assert reference_largest_inertia(geometry, CAST_IRON.density, cap, 1.5, 2.0, b_max) < j
+        def short(log_cap):
+            return math.log(reference_largest_inertia(geometry, CAST_IRON.density, math.exp(log_cap),
+                                                      1.5, 2.0, b_max) / j)
+        needed = math.exp(brentq(short, math.log(cap), math.log(cap) + 20.0, xtol=1e-13))
+        assert_allclose(c.d_outer_needed, needed, rtol=1e-9)
+        checked += 1
+    assert checked >= 10
+
+
 @pytest.mark.parametrize("spec, words", [
     (DesignSpec(d_mean=0.7), "no room for a rim around the pinned mean diameter 0.7 m"),
     (DesignSpec(d_mean=0.2, max_width=0.01), "even with no limit on the outer diameter"),
@@ -413,14 +490,14 @@ def test_infeasible_reason_in_words_and_numbers():
     (DesignSpec(geometry="disc", d_mean=0.7), "below the pinned diameter 0.7 m"),
 ])
 def test_infeasible_reasons_name_the_limit(spec, words):
-    result = design_flywheel(1.0183, 1500 * RPM, [MountShaft("motor", 1.0)], [CAST_STEEL], spec)
+    result = design_ipopt(1.0183, 1500 * RPM, [MountShaft("motor", 1.0)], [CAST_STEEL], spec)
     assert result.status == "infeasible"
     assert words in result.candidates[0].reason
 
 
 @pytest.mark.parametrize("j", [0.0, -3.5])
 def test_no_flywheel_needed(j):
-    result = design_flywheel(j, 100.0, [MountShaft("main", 1.0)], [CAST_IRON])
+    result = design_ipopt(j, 100.0, [MountShaft("main", 1.0)], [CAST_IRON])
     assert result.status == "not_needed"
     assert result.best is None and result.candidates == ()
     assert "no flywheel needed" in result.message
@@ -436,11 +513,11 @@ def test_objective_outer_diameter_matches_closed_form():
     expected = {"rim": (64 * hb_min * j / (math.pi * rho)) ** 0.2,
                 "thin_rim": (4 * hb_min * j / (math.pi * rho * 0.4 ** 2 * 0.6 ** 3)) ** 0.2}
     for model, d in expected.items():
-        result = design_flywheel(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
+        result = design_ipopt(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
                                  DesignSpec(geometry=model, objective="outer_diameter"))
         assert_allclose(result.best.d_outer, d, rtol=1e-7)
         assert_allclose(result.best.objective, result.best.d_outer, rtol=0)
-    assert "inner_diameter" in design_flywheel(
+    assert "inner_diameter" in design_ipopt(
         j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
         DesignSpec(objective="outer_diameter")).best.binding
 
@@ -448,32 +525,32 @@ def test_objective_outer_diameter_matches_closed_form():
 def test_objective_cost_ranks_by_mass_times_cost():
     cheap = make_material("cheap iron", 7200.0, 36.0, cost=1.0)
     dear = make_material("dear steel", 7800.0, 50.0, cost=3.0)
-    result = design_flywheel(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap],
+    result = design_ipopt(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap],
                              DesignSpec(objective="cost"))
     assert result.best.material == "cheap iron"
     for c in result.candidates:
         assert_allclose(c.cost, c.mass * (1.0 if c.material == "cheap iron" else 3.0),
                         rtol=1e-14)
-    by_mass = design_flywheel(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap])
+    by_mass = design_ipopt(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap])
     assert by_mass.best.material == "dear steel"
     with pytest.raises(ValueError, match="cost per kg.*cast_iron"):
-        design_flywheel(1.0, 100.0, [MountShaft("m", 1.0)], [CAST_IRON],
+        design_ipopt(1.0, 100.0, [MountShaft("m", 1.0)], [CAST_IRON],
                         DesignSpec(objective="cost"))
 
 
 def test_safety_factor_from_allowable_stress():
     """v_max = sqrt(sigma/rho): at the rim-speed limit rho v^2 = sigma, factor 1."""
     material = make_material("steel", 7850.0, allowable_stress=40e6)
-    result = design_flywheel(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [material])
+    result = design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [material])
     best = result.best
     assert "rim_speed" in best.binding
     assert_allclose(best.safety_factor, 1.0, rtol=1e-9)
-    assert design_flywheel(1.0, 1500 * RPM, [MountShaft("m", 1.0)],
+    assert design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)],
                            [CAST_IRON]).best.safety_factor is None
 
 
 def test_to_dict_is_json_ready_design_object():
-    result = design_flywheel(1.0183, 1500 * RPM, [MountShaft("motor", 1.0),
+    result = design_ipopt(1.0183, 1500 * RPM, [MountShaft("motor", 1.0),
                                                   MountShaft("main", 0.25)],
                              [CAST_IRON, CAST_STEEL], DesignSpec(max_width=0.02))
     data = json.loads(json.dumps(result.to_dict()))
@@ -501,7 +578,7 @@ def test_to_dict_is_json_ready_design_object():
     (DesignSpec(geometry="disc", d_mean=0.5), ["b"], ["inertia"]),
 ])
 def test_nlp_holds_only_what_the_scene_uses(spec, variables, constraints):
-    result = design_flywheel(0.5, 500 * RPM, [MountShaft("m", 1.0)], [CAST_STEEL], spec)
+    result = design_ipopt(0.5, 500 * RPM, [MountShaft("m", 1.0)], [CAST_STEEL], spec)
     assert result.model["variables"] == variables
     assert result.model["constraints"] == constraints
     structure = ModelStructure(spec.geometry, spec.d_mean is not None,
@@ -517,7 +594,7 @@ def test_nlp_is_built_once_and_reused():
     clear_model_cache()
     first = get_model(ModelStructure("rim", False, False, "mass"))
     for j in (0.1, 1.0, 10.0):
-        design_flywheel(j, 1000 * RPM, [MountShaft("a", 1.0), MountShaft("b", 2.0)],
+        design_ipopt(j, 1000 * RPM, [MountShaft("a", 1.0), MountShaft("b", 2.0)],
                         [CAST_IRON, CAST_STEEL])
     assert get_model(ModelStructure("rim", False, False, "mass")) is first
 
@@ -526,7 +603,7 @@ def test_non_converged_solve_raises_with_ipopt_status():
     """Never a design from a solve that did not converge: IPOPT stopped after two
     iterations must raise SolverFailed naming its return status."""
     with pytest.raises(SolverFailed, match="Maximum_Iterations_Exceeded") as info:
-        design_flywheel(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [CAST_STEEL],
+        design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [CAST_STEEL],
                         solver_options={"ipopt.max_iter": 2})
     assert isinstance(info.value, RuntimeError)
     assert info.value.status == "Maximum_Iterations_Exceeded"
@@ -576,18 +653,22 @@ def test_mount_shaft_rejects_bad_speed_ratio(ratio):
         MountShaft("x", ratio)
 
 
+@pytest.mark.parametrize("pinned", [False, True])
 @pytest.mark.parametrize("geometry", ["rim", "thin_rim", "disc"])
-def test_closed_form_method_agrees_with_ipopt(geometry):
+def test_closed_form_method_agrees_with_ipopt(geometry, pinned):
     """method="auto" sizes covered structures by the exact closed form (flyopt.batch): the same
-    verdicts and masses as IPOPT to 1e-6 on random scenes, each design verified like IPOPT's."""
-    rng = np.random.default_rng(11)
+    verdicts and masses as IPOPT to 1e-6 on random scenes, mean diameter free or pinned, each
+    design verified like IPOPT's."""
+    rng = np.random.default_rng(11 + pinned)
     mats = list(builtin_materials().values())
     for _ in range(25):
         j, rpm = 10 ** rng.uniform(-3, 4), 10 ** rng.uniform(1.5, 3.5)
         shafts = [MountShaft("a", 1.0), MountShaft("b", float(10 ** rng.uniform(-1, 1)))]
-        spec = DesignSpec(geometry=geometry, max_outer_diameter=float(10 ** rng.uniform(-0.5, 0.3)),
-                          max_width=float(10 ** rng.uniform(-1.5, 0)))
-        a = design_flywheel(j, rpm * math.pi / 30, shafts, mats, spec)
+        envelope = float(10 ** rng.uniform(-0.5, 0.3))
+        spec = DesignSpec(geometry=geometry, max_outer_diameter=envelope,
+                          max_width=float(10 ** rng.uniform(-1.5, 0)),
+                          d_mean=envelope * float(rng.uniform(0.2, 0.8)) if pinned else None)
+        a = design_ipopt(j, rpm * math.pi / 30, shafts, mats, spec)
         b = design_flywheel(j, rpm * math.pi / 30, shafts, mats, spec, method="auto")
         assert a.status == b.status
         key = lambda c: (c.material, c.shaft)  # noqa: E731

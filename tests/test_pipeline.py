@@ -70,11 +70,30 @@ def test_infeasible_scene_exits_3_and_says_why(tmp_path, capsys):
 def test_non_converged_solve_is_never_a_design(monkeypatch, capsys):
     """With IPOPT allowed 1 iteration, the solve fails: exit 1, its status shown, no design printed."""
     monkeypatch.setitem(optimize.DEFAULT_SOLVER_OPTIONS, "ipopt.max_iter", 1)
-    assert main(["solve", str(PROBLEMS / "shear-press.toml"), "--json"]) == 1
+    assert main(["solve", str(PROBLEMS / "shear-press.toml"), "--json", "--design-method", "ipopt"]) == 1
     captured = capsys.readouterr()
     assert captured.out == ""
     assert "Maximum_Iterations_Exceeded" in captured.err and "no design is reported" in captured.err
     assert captured.err.count("\n") == 1
+
+
+def test_a_closed_form_design_is_verified_like_a_solve(monkeypatch, capsys):
+    """The default method's closed form is checked against every constraint too: a rim 1 %
+    too thin (inertia short) is refused, exit 1, no design printed."""
+    from flyopt import batch
+
+    exact = batch.lightest_one
+
+    def too_thin(*args, **kwargs):
+        d_mean, h, b = exact(*args, **kwargs)
+        return d_mean, 0.99 * h, b
+
+    monkeypatch.setattr(batch, "lightest_one", too_thin)
+    assert main(["solve", str(PROBLEMS / "shear-press.toml"), "--json"]) == 1
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert "the closed-form design violates inertia" in captured.err
+    assert "no design is reported" in captured.err and captured.err.count("\n") == 1
 
 
 def test_no_design_flag_skips_the_optimizer(capsys):
@@ -90,12 +109,19 @@ def test_report_shows_winner_and_ranking(capsys):
 
 
 def test_every_problem_scene_solves_with_a_checked_status():
+    """Every scene by the default method (the closed form: every scene's objective is mass
+    or cost) and by IPOPT on every combination: both statuses checked, the same winner and
+    masses within 1e-6."""
     for path in sorted(PROBLEMS.glob("*.toml")):
         solution = flyopt.solve(flyopt.load(path))
         assert solution.status in ("designed", "not_needed"), path
         if solution.status == "designed":
+            ipopt = flyopt.design(solution.scene, solution.analysis, method="ipopt").best
+            assert ipopt.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
             best = solution.design.best
-            assert best.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+            assert best.solver_status == "closed_form", path
+            assert (best.material, best.shaft) == (ipopt.material, ipopt.shaft), path
+            assert_allclose(best.mass, ipopt.mass, rtol=1e-6)
             assert best.j_at_reference >= solution.analysis.j_required * (1 - 1e-6)
             assert best.rim_speed <= best.rim_speed_limit * (1 + 1e-6)
 

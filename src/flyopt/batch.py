@@ -86,6 +86,7 @@ __all__ = [
     "covers",
     "max_inertia",
     "lightest",
+    "lightest_one",
     "design_combinations",
     "binding_names",
 ]
@@ -240,23 +241,117 @@ def _rim_free_root(thin, j, rho, cap, a, c, b_max):
         lo[active] = np.where(below, ua, lo[active])
         hi[active] = np.where(below, hi[active], ua)
         with np.errstate(divide="ignore", invalid="ignore"):
-            step = -f / df
-        new = ua + step
-        outside = ~((new > lo[active]) & (new < hi[active]))   # strictly inside, or bisect
-        new = np.where(f == 0.0, ua, np.where(outside, 0.5 * (lo[active] + hi[active]), new))
-        moved = np.abs(new - ua)
-        u[active] = new
-        # converged: the step, or the bracket around the root, is a few ulps of u.
+            step = np.where(f == 0.0, 0.0, -f / df)
+        # converged: the Newton step, or the bracket around the root, is a few ulps of
+        # u (tested before the bracket: a last step of an ulp may land on its edge).
         # (Near the fold of J_line, where J' is close to J_max, the slope vanishes
         # and Newton slows to halving the distance; the bracket stops round-off
         # from making it oscillate.)
-        tol = _NEWTON_RTOL * np.maximum(1.0, np.abs(new))
-        converged = (moved <= tol) | (hi[active] - lo[active] <= tol) | (f == 0.0)
+        tol = _NEWTON_RTOL * np.maximum(1.0, np.abs(ua))
+        converged = (np.abs(step) <= tol) | (hi[active] - lo[active] <= tol)
+        new = ua + step
+        inside = (new >= lo[active]) & (new <= hi[active])
+        outside = ~((new > lo[active]) & (new < hi[active]))   # strictly inside, or bisect
+        new = np.where(converged, np.where(inside, new, ua),
+                       np.where(outside, 0.5 * (lo[active] + hi[active]), new))
+        u[active] = new
         active = active[~converged]
     else:  # pragma: no cover - the iteration converges quadratically in a few steps
         raise ArithmeticError(f"closed-form rim root did not converge for {active.size} "
                               f"combinations")
     return np.exp(u)
+
+
+def _rim_free_root_one(thin, j, rho, cap, a, c, b_max):
+    """Scalar :func:`_rim_free_root`: the smallest H with J_line(H) = J' [m].
+
+    The same safeguarded Newton iteration on log J_line(e^u) in plain floats:
+    a ranking of a few combinations (:func:`lightest_one`) pays numpy's
+    per-call overhead on every vectorized pass, about 40 times the arithmetic.
+    """
+    h_top = min(cap / 2.0, c * b_max)
+    h_hi = h_top if not thin else min(h_top, min(max(a * b_max, 0.25 * cap), 0.4 * cap))
+    base = math.pi * rho * cap ** 3
+    h_lo = min(max(math.sqrt(4.0 * a * j / base), 4.0 * j / (base * b_max)), h_hi)
+    lo, hi = math.log(h_lo), math.log(h_hi)
+    log_coef = math.log(math.pi * rho / 4.0) - math.log(j)
+    log_a, log_b_max = math.log(a), (math.log(b_max) if b_max < math.inf else math.inf)
+    u = lo
+    for _ in range(_NEWTON_MAX_ITER):
+        h = math.exp(u)
+        d = cap - h
+        if h / a < b_max:
+            log_b, dlog_b = u - log_a, 1.0
+        else:
+            log_b, dlog_b = log_b_max, 0.0
+        if thin:
+            log_k, dlog_k = 2.0 * math.log(d), -2.0 * h / d
+        else:
+            k = d * d + h * h
+            log_k, dlog_k = math.log(k), 2.0 * h * (2.0 * h - cap) / k
+        f = log_coef + math.log(d) + u + log_b + log_k
+        if f == 0.0:
+            return h
+        if f < 0.0:
+            lo = u
+        else:
+            hi = u
+        df = 1.0 - h / d + dlog_b + dlog_k
+        tol = _NEWTON_RTOL * max(1.0, abs(u))
+        step = -f / df if df != 0.0 else math.inf
+        if abs(step) <= tol or hi - lo <= tol:
+            return math.exp(u + step) if lo <= u + step <= hi else h
+        u = u + step
+        if not lo < u < hi:                # strictly inside the bracket, or bisect
+            u = 0.5 * (lo + hi)
+    raise ArithmeticError("closed-form rim root did not converge")  # pragma: no cover
+
+
+def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_width=math.inf,
+                 d_mean=None):
+    """Lightest admissible wheel of one feasible combination, exactly (plain floats).
+
+    The scalar twin of :func:`lightest` for a ranking of a few combinations,
+    whose feasibility the caller has already decided
+    (:func:`flyopt.optimize.max_inertia`); the same closed forms and the same
+    Newton iteration (see the module notes).
+
+    Parameters
+    ----------
+    geometry_name : {"rim", "thin_rim", "disc"}
+    j_shaft : float
+        Inertia needed on the wheel's shaft J' [kg*m^2], > 0.
+    density : float
+        rho [kg/m^3].
+    d_outer_max : float
+        C = min(2 v_max / omega', envelope) [m].
+    hb_min, hb_max : float
+        H/B range [-].
+    max_width : float
+        B_max [m], ``inf`` for none.
+    d_mean : float or None
+        Pinned mean diameter (disc: diameter) [m].
+
+    Returns
+    -------
+    tuple
+        ``(d_mean, h, b)`` [m]; for a disc ``d_mean = h = D/2``.
+    """
+    j, rho, cap, a, c, b_max = j_shaft, density, d_outer_max, hb_min, hb_max, max_width
+    if geometry_name == "disc":
+        d = cap if d_mean is None else d_mean
+        return d / 2.0, d / 2.0, 32.0 * j / (math.pi * rho * d ** 4)
+    if d_mean is None:
+        h = _rim_free_root_one(geometry_name == "thin_rim", j, rho, cap, a, c, b_max)
+        return cap - h, h, min(h / a, b_max)
+    d = d_mean
+    if geometry_name == "thin_rim":
+        base = math.pi * rho * d ** 3
+        h = max(math.sqrt(4.0 * a * j / base), 4.0 * j / (base * b_max))
+        return d, h, 4.0 * j / (base * h)
+    q = 4.0 * c * j / (math.pi * rho * d)
+    h = min(cap - d, d, math.sqrt(2.0 * q / (d * d + math.sqrt(d ** 4 + 4.0 * q))))
+    return d, h, 4.0 * j / (math.pi * rho * d * h * (d * d + h * h))
 
 
 class Designs(dict):

@@ -958,7 +958,8 @@ def section_design(config):
     methods = design_methods(config)
     # warm-up: build every NLP structure the scenes use, outside the timings
     for geometry in ("rim", "thin_rim"):
-        design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry))
+        design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry),
+                        method="ipopt")
     stats = {name + setting: {"times": [], "errors": [], "viol": 0.0, "ok": 0, "total": 0, "fail": 0,
                               "reasons": {}, "name": name, "setting": setting, "repeats": 0}
              for name, setting, _ in methods}
@@ -1595,7 +1596,8 @@ def run_hard(config, progress=None):
     scenes += _boundary_scenes(config, scenes)
     from .optimize import DesignSpec, design_flywheel
     for geometry in ("rim", "thin_rim"):      # build the NLPs outside the timings
-        design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry))
+        design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry),
+                        method="ipopt")
     design_rows = []
     solvers = {"flyopt-ipopt": None}
     for ftol in SLSQP_FTOLS:

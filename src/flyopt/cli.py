@@ -57,9 +57,10 @@ def _parser():
                        help="stop after the cycle analysis (no optimization)")
     solve.add_argument("--model", choices=("energy", "energy_mass", "dynamic"),
                        help="force the model that sizes the flywheel (default: the cheapest exact one)")
-    solve.add_argument("--design-method", choices=("ipopt", "auto", "closed_form"), default="ipopt",
-                       help="ipopt (default): IPOPT on every combination; auto: the exact closed form where it "
-                            "covers the structure, IPOPT elsewhere")
+    solve.add_argument("--design-method", choices=("auto", "ipopt", "closed_form"), default="auto",
+                       help="auto (default): the exact closed form where it covers the structure, IPOPT "
+                            "elsewhere; ipopt: IPOPT on every combination; closed_form: refuse what the "
+                            "closed form does not cover")
     solve.add_argument("--verify", action="store_true",
                        help="simulate the machine with the chosen flywheel and report the δ it achieves")
     solve.set_defaults(run=_solve)

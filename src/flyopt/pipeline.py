@@ -49,7 +49,7 @@ def design_dict(result):
     return {"status": raw["status"], "message": raw["message"], **design, "model": raw["model"]}
 
 
-def design(scene, analysis, solver_options=None, method="ipopt"):
+def design(scene, analysis, solver_options=None, method="auto"):
     """Design the flywheel a scene needs, from its analysis.
 
     Parameters
@@ -61,9 +61,10 @@ def design(scene, analysis, solver_options=None, method="ipopt"):
         means no flywheel is needed).
     solver_options : mapping, optional
         CasADi/IPOPT options that override flyopt's defaults.
-    method : {"ipopt", "auto", "closed_form"}
-        IPOPT on every combination, or the exact closed form where it covers
-        the structure (see flyopt.optimize.design_flywheel).
+    method : {"auto", "ipopt", "closed_form"}
+        The exact closed form where it covers the structure and IPOPT
+        elsewhere (default), IPOPT on every combination, or the closed form
+        only (see flyopt.optimize.design_flywheel).
 
     Returns
     -------
@@ -128,7 +129,7 @@ def verify(scene, analysis, design_result=None):
 
 
 def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_design=False,
-          design_method="ipopt"):
+          design_method="auto"):
     """Analyse a scene and design its flywheel.
 
     Parameters
@@ -142,7 +143,7 @@ def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_d
         Force the model that sizes the flywheel (default: the cheapest exact one).
     verify_design : bool
         Simulate the machine with the chosen flywheel (:func:`verify`).
-    design_method : {"ipopt", "auto", "closed_form"}
+    design_method : {"auto", "ipopt", "closed_form"}
         How each combination is optimized (see :func:`design`).
 
     Returns

@@ -235,7 +235,7 @@ TRADEOFF_COLUMNS = ("material", "status", "shaft", "speed_ratio", "d_outer", "d_
                     "reason", "method", "solver_status")
 
 
-def material_tradeoff(scene, solver_options=None):
+def material_tradeoff(scene, solver_options=None, method="auto"):
     """For each material, its lightest design: size, rim speed, mass, cost, binding limit.
 
     Parameters
@@ -244,6 +244,8 @@ def material_tradeoff(scene, solver_options=None):
         Its materials (``design.materials`` or every known one) and shafts;
         the objective is mass whatever the scene says.
     solver_options : mapping, optional
+    method : {"auto", "ipopt", "closed_form"}
+        Design method (see :func:`flyopt.optimize.design_flywheel`).
 
     Returns
     -------
@@ -259,8 +261,8 @@ def material_tradeoff(scene, solver_options=None):
     Notes
     -----
     Each material is designed by :func:`flyopt.optimize.design_flywheel`
-    (IPOPT, with the exact closed-form infeasibility proof) on every allowed
-    shaft; the lightest shaft wins.
+    (the exact closed form, or IPOPT, after the closed-form infeasibility
+    proof) on every allowed shaft; the lightest shaft wins.
     """
     from .analysis import analyse
     from .optimize import MountShaft, design_flywheel
@@ -276,9 +278,9 @@ def material_tradeoff(scene, solver_options=None):
         material = library[name]
         row = dict.fromkeys(TRADEOFF_COLUMNS)
         row.update(material=name, rim_speed_limit=material.max_rim_speed, binding="", limit="",
-                   reason="", method="ipopt", solver_status="", shaft="")
+                   reason="", method="", solver_status="", shaft="")
         result = design_flywheel(analysis.j_margin, analysis.omega_max, shafts, [material], spec,
-                                 solver_options=solver_options)
+                                 solver_options=solver_options, method=method)
         row["status"] = result.status
         best = result.best
         if best is not None:
@@ -287,6 +289,7 @@ def material_tradeoff(scene, solver_options=None):
                        rim_speed=best.rim_speed, mass=best.mass, cost=best.cost,
                        binding=",".join(best.binding),
                        limit=",".join(b for b in best.binding if b != "inertia"),
+                       method="closed_form" if best.solver_status == "closed_form" else "ipopt",
                        solver_status=best.solver_status)
         elif result.status == "infeasible":
             row["reason"] = "; ".join(c.reason for c in result.candidates)

@@ -1009,7 +1009,8 @@ def _design_ipopt(ctx, inputs, k, j_required, res):
     try:
         with _IPOPT_LOCK:  # a CasADi Function is not to be called from two threads at once
             result = design_flywheel(float(j_required), float(inputs.omega_rim[k]), mounts,
-                                     materials, spec, solver_options=ctx.solver_options)
+                                     materials, spec, solver_options=ctx.solver_options,
+                                     method="ipopt")
     except SolverFailed as err:
         res["status"][k] = "failed"
         res["solver_status"][k] = str(getattr(err, "status", "") or "error")
