@@ -50,7 +50,8 @@ def test_every_method_has_a_time_and_an_error(quick_run):
         assert not math.isnan(error) and error >= 0.0, where
     methods = {(r["section"], r["method"]) for r in measured}
     for expected in [("cycle", "flyopt-exact"), ("cycle", "trapezoid"), ("cycle", "simpson"),
-                     ("cycle", "cumtrapz"), ("design", "flyopt-ipopt"), ("design", "slsqp"),
+                     ("cycle", "cumtrapz"), ("design", "flyopt-ipopt"), ("design", "flyopt-auto"),
+                     ("design", "slsqp"),
                      ("design", "grid"), ("geometry", "thin_rim"), ("geometry", "rim")]:
         assert expected in methods
 
@@ -63,12 +64,14 @@ def test_exact_cycle_analysis_is_exact(quick_run):
         assert float(r["error"]) <= 1e-12, r
 
 
-def test_design_rows_decide_every_combination(quick_run):
-    """IPOPT decides every combination of the quick scenes and lands within 1e-6 of the optimum."""
+@pytest.mark.parametrize("method", ["flyopt-ipopt", "flyopt-auto"])
+def test_design_rows_decide_every_combination(quick_run, method):
+    """flyopt's two design paths decide every combination of the quick scenes and land within
+    1e-6 of the optimum."""
     _, _, rows = quick_run
-    ipopt = next(r for r in rows if r["method"] == "flyopt-ipopt")
-    assert int(ipopt["verdicts_ok"]) == int(ipopt["verdicts_total"]) > 0
-    assert float(ipopt["error"]) <= 1e-6
+    row = next(r for r in rows if r["method"] == method)
+    assert int(row["verdicts_ok"]) == int(row["verdicts_total"]) > 0
+    assert float(row["error"]) <= 1e-6
 
 
 def test_quick_hard_run(tmp_path):
@@ -79,10 +82,13 @@ def test_quick_hard_run(tmp_path):
     design = [r for r in rows if r["kind"] == "design"]
     assert design
     # every combination carries flyopt's verdict and the SLSQP baselines'
-    for column in ("flyopt_verdict", "slsqp_1e-09_verdict", "slsqplog_1e-09_verdict"):
+    for column in ("flyopt_verdict", "auto_verdict", "slsqp_1e-09_verdict", "slsqplog_1e-09_verdict"):
         assert all(r[column] in ("design", "infeasible", "failed") for r in design), column
+    # flyopt's paths succeed on every combination of the quick set
+    assert all(r["flyopt_passed"] == "True" and r["auto_passed"] == "True" for r in design)
     text = (tmp_path / "hard.md").read_text(encoding="utf-8")
-    assert "success" in text and "Worst cases: flyopt-ipopt" in text
+    assert "success" in text and "Worst cases: flyopt-ipopt" in text and "Worst cases: flyopt-auto" in text
+    assert "auto path (the default): 100 %" in text
 
 
 def test_sampled_rules_against_a_closed_form():
