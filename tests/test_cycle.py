@@ -81,6 +81,27 @@ def test_piecewise_linear_a_max_is_exact(seed):
     assert_allclose(ind.chain_delta_e.max(), float(hi), rtol=1e-12, atol=1e-12 * float(hi - lo))
 
 
+@pytest.mark.parametrize("seed", range(8))
+def test_continuous_polylines_are_exact(seed):
+    """Tables without steps take the continuous chain (every crossing inside a piece):
+    A_max and the extreme ΔE equal exact rational arithmetic to 1e-12, including a
+    crossing in the first piece (odd seeds start the difference positive and cross at once)."""
+    rng = np.random.default_rng(100 + seed)
+    xd, yd = random_polyline(rng, 6 + 7 * seed, TWO_PI, steps=False)
+    xr, yr = random_polyline(rng, 4 + 5 * seed, TWO_PI, steps=False)
+    if seed % 2:      # the union's first piece is [0, xd[1]], and the difference changes sign on it
+        xd[1] = 0.5 * min(xd[1], xr[1])
+        yd[0], yd[1] = yd[0] + 4000.0, yd[1] - 4000.0
+    _, _, net = exact_chain(xd, yd, xr, yr)
+    yr = yr + float(net / Fraction(TWO_PI))
+    hi, lo, _ = exact_chain(xd, yd, xr, yr)
+    ind = energy_indicator(PiecewiseLinear(xd, yd), PiecewiseLinear(xr, yr), TWO_PI)
+    assert_allclose(ind.a_max, float(hi - lo), rtol=1e-12)
+    assert_allclose([ind.chain_delta_e.max(), ind.chain_delta_e.min()], [float(hi), float(lo)],
+                    rtol=1e-12, atol=1e-12 * float(hi - lo))
+    assert np.all(np.diff(ind.chain_angle) > 0)
+
+
 def test_large_table_is_exact():
     """A 10,000-point table against exact rationals (cumulative sums in extended precision)."""
     rng = np.random.default_rng(7)

@@ -368,6 +368,7 @@ class _Segments:
     driving: object
     resisting: object
     peak: float            # largest |M_d − M_r| seen (at the knots or on the sampling grid) [N*m]
+    at_knots: np.ndarray | None = None   # (n+1,) the difference at the knots when neither curve steps
 
     def scale(self):
         """A work scale of the cycle, peak |M_d − M_r| times Φ, for tolerances [J]."""
@@ -424,6 +425,8 @@ class _Segments:
         -------
         chain_angle, chain_delta_e : ndarray
         """
+        if self.at_knots is not None:
+            return self._continuous_chain()
         a, b = self.start, self.end
         n = len(a)
         if not (np.all(a) and np.all(b)):
@@ -450,6 +453,31 @@ class _Segments:
         prefix = np.concatenate(([0.0], np.cumsum(np.add.reduceat(areas, starts), dtype=np.longdouble)))
         delta_e = (prefix[where[1:]] + partial).astype(float)
         chain_angle = np.concatenate(([self.knots[0]], angle, [self.knots[-1]]))
+        chain_de = np.concatenate(([0.0], delta_e, [float(prefix[-1])]))
+        return chain_angle, chain_de
+
+    def _continuous_chain(self):
+        """:meth:`linear_chain` when neither curve steps: the difference is one
+        continuous broken line, so every crossing lies inside a piece (no sign
+        interleaving of piece ends is needed)."""
+        v, knots = self.at_knots, self.knots
+        positive = v > 0
+        j = np.flatnonzero(positive[1:] != positive[:-1])      # pieces with a zero inside
+        a, b = v[j], v[j + 1]
+        if not (a.all() and b.all()):      # a zero on a knot that borders a sign change
+            return None                    # (a zero inside a run of one sign changes nothing)
+        h = np.diff(knots)
+        hj = h[j]
+        t = a / (a - b)
+        areas = 0.5 * (v[:-1] + v[1:]) * h
+        # ΔE at the knot that opens each crossing piece: whole pieces summed between crossings
+        # (one sign each, no cancellation), chained in extended precision.
+        lead = 0 if len(j) and j[0] == 0 else 1
+        starts = j if lead == 0 else np.concatenate(([0], j))
+        prefix = np.zeros(len(starts) + 1, dtype=np.longdouble)
+        np.cumsum(np.add.reduceat(areas, starts), dtype=np.longdouble, out=prefix[1:])
+        delta_e = (prefix[lead:lead + len(j)] + 0.5 * a * t * hj).astype(float)
+        chain_angle = np.concatenate(([knots[0]], knots[j] + t * hj, [knots[-1]]))
         chain_de = np.concatenate(([0.0], delta_e, [float(prefix[-1])]))
         return chain_angle, chain_de
 
@@ -499,19 +527,21 @@ def _segments(driving, resisting, cycle_angle):
     pivot = next((c.pivot for c in (driving, resisting) if isinstance(c, Constant) and c.pivot is not None), None)
     d_left, d_right = _relative_limits(driving, knots, pivot)
     r_left, r_right = _relative_limits(resisting, knots, pivot)
+    at_knots = None
     if d_left is d_right and r_left is r_right:      # no steps: one difference serves both sides
-        diff = _difference(d_right, r_right)
-        start, end = diff[:-1], diff[1:]
+        at_knots = _difference(d_right, r_right)
+        start, end = at_knots[:-1], at_knots[1:]
+        peak = np.max(np.abs(at_knots), initial=0.0)
     else:
         start = _difference(d_right, r_right)[:-1]
         end = _difference(d_left, r_left)[1:]
+        peak = max(np.max(np.abs(start), initial=0.0), np.max(np.abs(end), initial=0.0))
     linear = driving.is_linear and resisting.is_linear
-    peak = max(np.max(np.abs(start), initial=0.0), np.max(np.abs(end), initial=0.0))
     if not linear:
         phi = np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1)
         values = _sample(driving, phi)[0] - _sample(resisting, phi)[0]
         peak = max(peak, float(np.max(np.abs(values))))
-    return _Segments(knots, start, end, linear, driving, resisting, float(peak))
+    return _Segments(knots, start, end, linear, driving, resisting, float(peak), at_knots)
 
 
 def _relative_limits(curve, knots, pivot):
@@ -544,7 +574,8 @@ def _knots(first, second, cycle_angle):
 def _difference(driving, resisting):
     """M_d − M_r with the round-off of the subtraction set to zero."""
     diff = driving - resisting
-    return np.where(np.abs(diff) <= ROUNDOFF * (np.abs(driving) + np.abs(resisting)), 0.0, diff)
+    diff[np.abs(diff) <= ROUNDOFF * (np.abs(driving) + np.abs(resisting))] = 0.0
+    return diff
 
 
 def _sample(curve, phi):

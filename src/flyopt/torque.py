@@ -46,6 +46,8 @@ class PiecewiseLinear:
         new = np.empty(len(x), dtype=bool)
         new[0] = True
         np.not_equal(x[1:], x[:-1], out=new[1:])
+        if new.all():                        # no steps: no copies
+            return x, y, y
         last = np.empty(len(x), dtype=bool)
         last[-1] = True
         last[:-1] = new[1:]
@@ -80,6 +82,9 @@ class PiecewiseLinear:
         if phi is own:
             return (left, left) if self._no_steps else (left, right)
         phi = np.asarray(phi, dtype=float)
+        if self._no_steps:                   # continuous: one array serves both sides
+            values = np.interp(phi, x, y)
+            return values, values
         first = np.searchsorted(x, phi, side="left")
         last = np.searchsorted(x, phi, side="right") - 1
         on_point = (first < len(x)) & (first <= last)
