@@ -35,6 +35,8 @@ def test_quick_run_writes_the_results(quick_run):
     assert (out / "speed_error.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     text = (out / "speed_error.md").read_text(encoding="utf-8")
     assert "## Targets" in text and "## cycle" in text and "## design" in text
+    assert "[auto, the default]" in text and "[IPOPT]" in text
+    assert "Beyond the targets:" in text and "integration alone of 100,000 samples" in text
     assert {r["section"] for r in rows} == set(bench.SECTIONS)
 
 
