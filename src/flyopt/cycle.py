@@ -263,7 +263,8 @@ class ExcessWork:
             return self._at_knots[k] + a * dx + 0.5 * slope * dx * dx
         flat = np.atleast_1d(phi)
         ks = np.atleast_1d(k)
-        out = np.array([float(self._at_knots[j]) + _quad(seg.difference(j), self.knots[j], p, seg.scale())
+        out = np.array([float(self._at_knots[j]) + _quad(seg.difference(j), self.knots[j], p, seg.scale(),
+                                                         seg.noise)
                         for j, p in zip(ks, flat)])
         return out.reshape(phi.shape)
 
@@ -369,6 +370,7 @@ class _Segments:
     resisting: object
     peak: float            # largest |M_d − M_r| seen (at the knots or on the sampling grid) [N*m]
     at_knots: np.ndarray | None = None   # (n+1,) the difference at the knots when neither curve steps
+    noise: float = 0.0     # round-off of M_d − M_r as evaluated: ROUNDOFF (|M_d| + |M_r|) at its largest [N*m]
 
     def scale(self):
         """A work scale of the cycle, peak |M_d − M_r| times Φ, for tolerances [J]."""
@@ -394,7 +396,7 @@ class _Segments:
         h = np.diff(self.knots)
         if self.linear:
             return 0.5 * (self.start + self.end) * h
-        return np.array([_quad(self.difference(k), self.knots[k], self.knots[k + 1], self.scale())
+        return np.array([_quad(self.difference(k), self.knots[k], self.knots[k + 1], self.scale(), self.noise)
                          for k in range(len(h))])
 
     def events(self):
@@ -513,7 +515,7 @@ class _Segments:
                 angle += [p, q]
                 sign += [s, s]
                 delta_e.append(e)
-                e = e + _quad(f, p, q, scale)
+                e = e + _quad(f, p, q, scale, self.noise)
                 delta_e.append(e)
                 if q < b:  # a zero inside the piece
                     angle.append(q)
@@ -537,11 +539,13 @@ def _segments(driving, resisting, cycle_angle):
         end = _difference(d_left, r_left)[1:]
         peak = max(np.max(np.abs(start), initial=0.0), np.max(np.abs(end), initial=0.0))
     linear = driving.is_linear and resisting.is_linear
+    noise = 0.0
     if not linear:
         phi = np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1)
-        values = _sample(driving, phi)[0] - _sample(resisting, phi)[0]
-        peak = max(peak, float(np.max(np.abs(values))))
-    return _Segments(knots, start, end, linear, driving, resisting, float(peak), at_knots)
+        d_values, r_values = _sample(driving, phi)[0], _sample(resisting, phi)[0]
+        peak = max(peak, float(np.max(np.abs(d_values - r_values))))
+        noise = ROUNDOFF * float(np.max(np.abs(d_values) + np.abs(r_values)))
+    return _Segments(knots, start, end, linear, driving, resisting, float(peak), at_knots, noise)
 
 
 def _relative_limits(curve, knots, pivot):
@@ -660,17 +664,18 @@ QUAD_MAX_INTERVALS = 2000
 """Most subintervals the adaptive quadrature of one piece may use."""
 
 
-def _gauss_kronrod(f, lo, hi):
+def _gauss_kronrod(f, lo, hi, noise=0.0):
     """The K21 rule on every interval [lo_i, hi_i] at once (one call of f on all nodes).
 
     Returns the integrals, the differences |K21 − G10| and the round-off
-    level of each.
+    level of each: that of the rule (50 eps ∫|f|) or, when larger, the
+    integrand's own ``noise`` [N*m] times the width.
     """
     centre, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
     values = f((centre[:, None] + half[:, None] * _GK21_NODES).ravel()).reshape(len(lo), 21)
     kronrod = values @ _K21_WEIGHTS
     gauss = values[:, 1::2] @ _G10_WEIGHTS
-    roundoff = 50.0 * EPS * half * (np.abs(values) @ _K21_WEIGHTS)
+    roundoff = np.maximum(50.0 * EPS * half * (np.abs(values) @ _K21_WEIGHTS), 2.0 * noise * half)
     return kronrod * half, np.abs(kronrod - gauss) * half, roundoff
 
 
@@ -683,7 +688,7 @@ def _halves(lo, hi):
     return left, right
 
 
-def _quad(f, a, b, scale):
+def _quad(f, a, b, scale, noise=0.0):
     """∫_a^b f dφ by adaptive Gauss–Kronrod quadrature, vectorized.
 
     Accurate to QUAD_EPSREL of the result or, where the result is near zero
@@ -701,16 +706,21 @@ def _quad(f, a, b, scale):
     the jump in slope times that distance squared.
     Pairs within their share of the tolerance, or at their round-off level,
     are kept, the others halved again. If round-off stops the halving, the
-    result is accepted within ten times the target, else refused.
+    result is accepted within ten times the target or within the round-off
+    of the pieces kept, else refused.
+
+    ``noise`` [N*m] is the round-off of f as evaluated: M_d − M_r of two
+    curves of 10^6 N*m each is known to ~1e-9 N*m only, however small the
+    difference, and no quadrature can do better than that times the width.
     """
     if b <= a:
         return 0.0
     floor = 0.1 * QUAD_EPSREL * scale
     whole, _, _ = _gauss_kronrod(f, np.array([a]), np.array([b]))
     lo, hi = _halves(np.array([a]), np.array([b]))
-    kept, kept_error = [], 0.0
+    kept, kept_error, kept_roundoff = [], 0.0, 0.0
     while True:
-        value, error, roundoff = _gauss_kronrod(f, lo, hi)
+        value, error, roundoff = _gauss_kronrod(f, lo, hi, noise)
         pair = value[0::2] + value[1::2]
         pair_error = np.maximum(np.abs(whole - pair), error[0::2] + error[1::2])
         total = math.fsum(kept) + math.fsum(value)
@@ -718,9 +728,11 @@ def _quad(f, a, b, scale):
         if kept_error + float(np.sum(pair_error)) <= target:
             return total
         width = hi[1::2] - lo[0::2]
-        done = (pair_error <= target * width / (b - a)) | (pair_error <= roundoff[0::2] + roundoff[1::2])
+        pair_roundoff = roundoff[0::2] + roundoff[1::2]
+        done = (pair_error <= target * width / (b - a)) | (pair_error <= pair_roundoff)
         kept += pair[done].tolist()
         kept_error += float(np.sum(pair_error[done]))
+        kept_roundoff += float(np.sum(pair_roundoff[done]))
         if done.all():
             break
         halves = np.repeat(~done, 2)
@@ -731,7 +743,7 @@ def _quad(f, a, b, scale):
             break
         lo, hi = _halves(lo, hi)
     total = math.fsum(kept)
-    if kept_error > max(10 * QUAD_EPSREL * abs(total), floor):
+    if kept_error > max(10 * QUAD_EPSREL * abs(total), floor, kept_roundoff):
         raise ArithmeticError(f"quadrature of the torque difference on [{a:.6g}, {b:.6g}] rad "
                               f"reached only {kept_error:.3g} J")
     return total

@@ -113,6 +113,19 @@ def test_huge_offset_on_both_tables():
     assert_allclose(ind.a_max, float(hi - lo), rtol=BAR)
 
 
+@pytest.mark.parametrize("offset, bar", [(0.0, 1e-12), (1e3, 1e-12), (1e6, BAR)])
+def test_huge_offset_on_an_expression(offset, bar):
+    """offset + sin φ against its (unknown) mean: A_max = 2 J exactly. An expression has no
+    pivot, so M_d − M_r is known only to the round-off of the offset (1e6 N·m: ~1e-10 N·m):
+    the quadrature must accept that level, not refuse it (regression: the vectorized
+    quadrature refused it until it was told the integrand's noise), and stay within the bar."""
+    from flyopt.expression import Expression
+    from flyopt.torque import ExpressionTorque
+
+    ind = energy_indicator(ExpressionTorque(Expression(f"{offset!r} + sin(phi)"), 1.0), Constant(None), TWO_PI)
+    assert_allclose(ind.a_max, 2.0, rtol=bar)
+
+
 @pytest.mark.parametrize("delta", [1e-5, 1e-3, 0.1, 0.5])
 @pytest.mark.parametrize("rpm", [1.0, 100.0, 50_000.0])
 def test_required_inertia_extremes(delta, rpm):
