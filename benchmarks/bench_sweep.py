@@ -119,7 +119,7 @@ def agreement(scene, frame, count, rng):
     worst, mismatches, ties, statuses, start = 0.0, [], [], {}, time.perf_counter()
     for row in rows.to_dict("records"):
         point = {k: row[k] for k in inputs if k != "point"}
-        solution = flyopt.solve(point_scene(scene, point))
+        solution = flyopt.solve(point_scene(scene, point), design_method="ipopt")
         statuses[solution.status] = statuses.get(solution.status, 0) + 1
         if solution.status != row["status"]:
             mismatches.append(f"point {row['point']}: status {row['status']} vs {solution.status}")

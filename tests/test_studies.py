@@ -160,8 +160,8 @@ def test_pareto_errors(objectives, kwargs, match):
 
 
 def test_material_tradeoff_table():
-    """Per material the lightest design over the shafts (IPOPT, one material at a
-    time), with its size, rim speed, mass and the limits that bind."""
+    """Per material the lightest design over the shafts (one design per material by the
+    default method), with its size, rim speed, mass and the limits that bind."""
     table = material_tradeoff(PUNCH)
     assert list(table["material"]) == ["cast_steel", "ductile_iron", "cast_iron"]   # lightest first
     assert (np.diff(table["mass"]) > 0).all()
@@ -172,6 +172,7 @@ def test_material_tradeoff_table():
         best = design_flywheel(analysis.j_margin, analysis.omega_max, shafts,
                                [library[row["material"]]], PUNCH.design).best
         assert row["status"] == "designed" and row["shaft"] == best.shaft
+        assert row["method"] == "closed_form" and row["solver_status"] == "closed_form"
         assert_allclose(row["mass"], best.mass, rtol=1e-12)
         assert_allclose([row["d_outer"], row["rim_speed"]], [best.d_outer, best.rim_speed],
                         rtol=1e-12)
@@ -225,3 +226,9 @@ def test_cli_tradeoff(tmp_path, capsys):
     assert tradeoff_main([str(PROBLEMS / "punch-press.toml"), "-o", str(out)]) == 0
     rows = json.loads(out.read_text())
     assert [r["material"] for r in rows] == ["cast_steel", "ductile_iron", "cast_iron"]
+    # --method ipopt: the same table by IPOPT on every combination, masses within 1e-6
+    out_ipopt = tmp_path / "ipopt.json"
+    assert tradeoff_main([str(PROBLEMS / "punch-press.toml"), "--method", "ipopt", "-o", str(out_ipopt)]) == 0
+    by_ipopt = json.loads(out_ipopt.read_text())
+    assert [r["method"] for r in by_ipopt] == ["ipopt"] * 3
+    assert_allclose([r["mass"] for r in by_ipopt], [r["mass"] for r in rows], rtol=1e-6)

@@ -86,7 +86,6 @@ __all__ = [
     "covers",
     "max_inertia",
     "lightest",
-    "lightest_one",
     "design_combinations",
     "binding_names",
 ]
@@ -314,7 +313,10 @@ def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, m
     The scalar twin of :func:`lightest` for a ranking of a few combinations,
     whose feasibility the caller has already decided
     (:func:`flyopt.optimize.max_inertia`); the same closed forms and the same
-    Newton iteration (see the module notes).
+    Newton iteration (see the module notes). It does not check feasibility:
+    for an infeasible combination it returns the wheel nearest to one, which
+    :func:`flyopt.optimize.design_flywheel` (its only caller) would refuse in
+    its verification of every design.
 
     Parameters
     ----------
@@ -330,7 +332,7 @@ def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, m
     max_width : float
         B_max [m], ``inf`` for none.
     d_mean : float or None
-        Pinned mean diameter (disc: diameter) [m].
+        Pinned mean diameter (disc: diameter) [m]; None or NaN where free.
 
     Returns
     -------
@@ -338,6 +340,8 @@ def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, m
         ``(d_mean, h, b)`` [m]; for a disc ``d_mean = h = D/2``.
     """
     j, rho, cap, a, c, b_max = j_shaft, density, d_outer_max, hb_min, hb_max, max_width
+    if d_mean is not None and math.isnan(d_mean):
+        d_mean = None
     if geometry_name == "disc":
         d = cap if d_mean is None else d_mean
         return d / 2.0, d / 2.0, 32.0 * j / (math.pi * rho * d ** 4)

@@ -1,7 +1,8 @@
 """Command line: ``flyopt solve SCENE.toml [--json]`` and ``flyopt check SCENE.toml``.
 
-Exit status: 0 a design (or none needed), 1 a solver did not converge (no
-design is reported), 2 bad input (one line on stderr naming the file, the
+Exit status: 0 a design (or none needed), 1 a solver did not converge or a
+design failed its verification against the constraints (no design is
+reported), 2 bad input (one line on stderr naming the file, the
 field and what is allowed), 3 no material and shaft can give the inertia,
 4 the verification simulation finds the design misses the allowed δ.
 Nothing is printed on stdout before the whole result is ready.

@@ -661,7 +661,7 @@ _G10_WEIGHTS = np.array([
     0.269266719309996355091226921569469, 0.219086362515982043995534934228163,
     0.149451349150580593145776339657697, 0.066671344308688137593568809893332])
 QUAD_MAX_INTERVALS = 2000
-"""Most subintervals the adaptive quadrature of one piece may use."""
+"""Most subintervals the adaptive quadrature of one piece refines at once."""
 
 
 def _gauss_kronrod(f, lo, hi, noise=0.0):
@@ -737,10 +737,18 @@ def _quad(f, a, b, scale, noise=0.0):
             break
         halves = np.repeat(~done, 2)
         lo, hi, whole = lo[halves], hi[halves], value[halves]
-        if 2 * len(lo) > QUAD_MAX_INTERVALS or not np.all((lo < 0.5 * (lo + hi)) & (0.5 * (lo + hi) < hi)):
+        if 2 * len(lo) > QUAD_MAX_INTERVALS:
             kept += whole.tolist()
             kept_error += float(np.sum(pair_error[~done]))
             break
+        mid = 0.5 * (lo + hi)
+        atomic = ~((lo < mid) & (mid < hi))           # too narrow to halve: keep as it is
+        if atomic.any():
+            kept += whole[atomic].tolist()
+            kept_error += float(np.sum(np.repeat(pair_error[~done], 2)[atomic])) / 2
+            lo, hi, whole = lo[~atomic], hi[~atomic], whole[~atomic]
+            if not len(lo):
+                break
         lo, hi = _halves(lo, hi)
     total = math.fsum(kept)
     if kept_error > max(10 * QUAD_EPSREL * abs(total), floor, kept_roundoff):

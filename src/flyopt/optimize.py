@@ -1014,13 +1014,16 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
     spec : DesignSpec
         Geometry model, limits and objective.
     solver_options : mapping, optional
-        CasADi/IPOPT options merged over :data:`DEFAULT_SOLVER_OPTIONS`.
+        CasADi/IPOPT options merged over :data:`DEFAULT_SOLVER_OPTIONS`; they
+        act on the combinations IPOPT solves (all of them with method
+        "ipopt", under "auto" only the structures the closed form does not
+        cover).
     method : {"auto", "ipopt", "closed_form"}
         How a feasible combination is optimized: the exact closed form of
         :mod:`flyopt.batch` where it covers the structure (mass and cost
-        objectives) and IPOPT elsewhere ("auto", the default; a ranking of
-        2 materials x 3 shafts in about 0.2 ms against 13 ms with IPOPT);
-        IPOPT on every NLP ("ipopt"); or the closed form only, refusing a
+        objectives) and IPOPT elsewhere ("auto", the default; for the
+        timings see benchmarks/results/speed_error.md); IPOPT on every NLP
+        ("ipopt"); or the closed form only, refusing a
         structure it does not cover ("closed_form"). Either way the design
         is verified against every constraint before it is reported.
 
@@ -1037,8 +1040,9 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         no cost.
     SolverFailed
         When IPOPT does not converge on a combination the closed form shows
-        feasible (the message carries IPOPT's return status). A design is
-        never made from a non-converged solve.
+        feasible (the message carries IPOPT's return status), or when a
+        solved or closed-form design fails its verification against the
+        constraints. A design is never made from a non-converged solve.
 
     Notes
     -----

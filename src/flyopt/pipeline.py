@@ -60,7 +60,8 @@ def design(scene, analysis, solver_options=None, method="auto"):
         Supplies J_F at the reference shaft (``j_margin``: zero or negative
         means no flywheel is needed).
     solver_options : mapping, optional
-        CasADi/IPOPT options that override flyopt's defaults.
+        CasADi/IPOPT options that override flyopt's defaults, for the
+        combinations IPOPT solves (see ``method``).
     method : {"auto", "ipopt", "closed_form"}
         The exact closed form where it covers the structure and IPOPT
         elsewhere (default), IPOPT on every combination, or the closed form
@@ -73,7 +74,8 @@ def design(scene, analysis, solver_options=None, method="auto"):
     Raises
     ------
     SolverFailed
-        IPOPT did not converge on a combination that can be feasible.
+        IPOPT did not converge on a combination that can be feasible, or a
+        design failed its verification against the constraints.
     """
     from .optimize import MountShaft, design_flywheel
 
@@ -138,7 +140,9 @@ def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_d
     design_flywheel : bool
         False stops after the cycle analysis.
     solver_options : mapping, optional
-        CasADi/IPOPT options for the design NLPs.
+        CasADi/IPOPT options for the design NLPs that IPOPT solves (every one
+        with ``design_method="ipopt"``; under "auto" only the structures the
+        closed form does not cover).
     model : {"energy", "energy_mass", "dynamic"}, optional
         Force the model that sizes the flywheel (default: the cheapest exact one).
     verify_design : bool

@@ -525,6 +525,9 @@ def tradeoff_parser():
         description="For each material the lightest design: size, rim speed, mass, cost and "
                     "which limit binds.")
     parser.add_argument("scene", help="scene file (TOML)")
+    parser.add_argument("--method", choices=("auto", "closed_form", "ipopt"), default="auto",
+                        help="design method: closed form where exact, else IPOPT (auto); ipopt: every "
+                             "combination through the CasADi/IPOPT model")
     parser.add_argument("-o", "--output", help="write the table to .csv, .parquet or .json")
     parser.add_argument("--json", action="store_true", help="print the table as JSON records")
     return parser
@@ -540,7 +543,7 @@ def _tradeoff_command(args):
     from .scene import load
 
     scene = load(args.scene)
-    table = material_tradeoff(scene)
+    table = material_tradeoff(scene, method=args.method)
     _emit(table, args.output, args.json,
           ["material", "status", "shaft", "d_outer", "b", "rim_speed", "rim_speed_limit",
            "mass", "cost", "limit"],
