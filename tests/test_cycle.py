@@ -358,7 +358,9 @@ def test_quadrature_kink_beside_a_halving_point_is_the_known_limit():
     """|sin φ − 0.3| over [0, 3]: the kink at asin 0.3 lies 5e-6 rad from the halving point
     0.3046875, inside the sliver between an end and the outermost node, where no local
     estimate sees it. The error is the slope jump (2 cos φ ≈ 1.9) times (5e-6)² / 2,
-    about 2.4e-11 J, a relative 2e-11: held within 5e-11 (the hard set's bar is 1e-9)."""
+    about 2.4e-11 J, a relative 2e-11: held within 5e-11. (The cycle analysis never
+    integrates across such a kink: it makes the kinks of abs/min/max knots; see
+    test_kinks_of_abs_min_max_are_knots.)"""
     from flyopt.cycle import _quad
 
     mpmath.mp.dps = 30
@@ -376,3 +378,32 @@ def test_quadrature_refuses_what_it_cannot_resolve():
 
     with pytest.raises(ArithmeticError, match="reached only"):
         _quad(lambda x: np.sin(1e9 * x) + 1.0, 0.0, 1.0, scale=1.0)
+
+
+@pytest.mark.parametrize("shift", [0.0, 1e-9, 0.002, 0.3])
+def test_kinks_of_abs_min_max_are_knots(shift):
+    """max(0, sin(φ − s)) against its mean 1/π: one positive lobe, A_max =
+    2 sqrt(1 − 1/π²) − 1 + 2 asin(1/π)/π for every shift s. The kink at φ = s (and at
+    s + π) is found from the argument of max() and becomes a knot, so no quadrature
+    integrates across it (regression: with the kink 0.002 rad inside the first piece,
+    hidden in the sliver the Gauss–Kronrod nodes never sample, A_max was 4e-6 off)."""
+    exact = 2 * math.sqrt(1 - 1 / math.pi**2) - 1 + 2 * math.asin(1 / math.pi) / math.pi
+    torque = ExpressionTorque(Expression(f"max(0, sin(phi - {shift!r}))"), 1.0)
+    ind = energy_indicator(torque, Constant(None), TWO_PI)
+    assert_allclose(ind.a_max, exact, rtol=1e-12)
+    if shift > 0:
+        # Brent's method stops at an absolute 1e-15 rad
+        assert_allclose(torque.kinks(TWO_PI), [shift, shift + math.pi], rtol=1e-14, atol=1e-15)
+
+
+def test_kink_arguments_of_an_expression():
+    """abs(g) kinks where g changes sign, min(g, h) and max(g, h) where g − h does."""
+    e = Expression("abs(phi - 1) + min(phi, 2) * max(3, phi ** 2)")
+    phi = np.array([0.0, 1.5, 4.0])
+    got = e.kink_arguments(phi=phi)
+    assert e.has_kinks and not Expression("sin(phi) + phi ** 2").has_kinks
+    assert_allclose(got[0], phi - 1)
+    assert_allclose(got[1], phi - 2)
+    assert_allclose(got[2], 3 - phi ** 2)
+    torque = ExpressionTorque(e, 1.0)
+    assert_allclose(torque.kinks(TWO_PI), [1.0, math.sqrt(3), 2.0], rtol=1e-14)

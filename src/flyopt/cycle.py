@@ -14,8 +14,8 @@ A_max = max ΔE − min ΔE, reached at crossings of the two torque curves
   trapezoid, summed in extended precision;
 - where an expression is involved, crossings are found by bracketing on a
   fine grid plus a search for near-tangent dips, refined with Brent's method,
-  and the areas between them by adaptive Gauss–Kronrod quadrature to 1e-13
-  relative.
+  the kinks of ``abs``, ``min`` and ``max`` likewise, and the areas between
+  them by adaptive Gauss–Kronrod quadrature to 1e-13 relative.
 
 A cycle whose net work does not vanish is refused (non-periodic fluctuation).
 """
@@ -525,7 +525,7 @@ class _Segments:
 
 
 def _segments(driving, resisting, cycle_angle):
-    knots = _knots(driving.breakpoints(), resisting.breakpoints(), cycle_angle)
+    knots = _knots(_breakpoints(driving, cycle_angle), _breakpoints(resisting, cycle_angle), cycle_angle)
     pivot = next((c.pivot for c in (driving, resisting) if isinstance(c, Constant) and c.pivot is not None), None)
     d_left, d_right = _relative_limits(driving, knots, pivot)
     r_left, r_right = _relative_limits(resisting, knots, pivot)
@@ -546,6 +546,13 @@ def _segments(driving, resisting, cycle_angle):
         peak = max(peak, float(np.max(np.abs(d_values - r_values))))
         noise = ROUNDOFF * float(np.max(np.abs(d_values) + np.abs(r_values)))
     return _Segments(knots, start, end, linear, driving, resisting, float(peak), at_knots, noise)
+
+
+def _breakpoints(curve, cycle_angle):
+    """A curve's breakpoints and, for expressions with abs/min/max, its kinks [rad]."""
+    points = curve.breakpoints()
+    kinks = curve.kinks(cycle_angle) if hasattr(curve, "kinks") else ()
+    return np.union1d(points, kinks) if len(kinks) else points
 
 
 def _relative_limits(curve, knots, pivot):
@@ -701,9 +708,12 @@ def _quad(f, a, b, scale, noise=0.0):
     ``min``, ``max`` in an expression) where either alone can vanish by
     chance (on |sin φ − 0.7639...| over [0, 3.03] QUADPACK, through
     scipy.integrate.quad, estimated 6e-14 and was 1.7e-6 off). A kink
-    closer to a halving point than the rule's outermost node (2e-3 of the
-    subinterval) is invisible to every local estimate: its error is about
-    the jump in slope times that distance squared.
+    closer to an end or a halving point than the rule's outermost node (2e-3
+    of the subinterval) is invisible to every local estimate: its error is
+    about the jump in slope times that distance squared. The cycle analysis
+    therefore makes the kinks of ``abs``, ``min`` and ``max`` knots
+    (:meth:`flyopt.torque.ExpressionTorque.kinks`), so that its pieces are
+    smooth.
     Pairs within their share of the tolerance, or at their round-off level,
     are kept, the others halved again. If round-off stops the halving, the
     result is accepted within ten times the target or within the round-off

@@ -84,6 +84,7 @@ class Expression:
         except SyntaxError as err:
             raise ExpressionError(f"cannot parse {text!r}: {err.msg}") from None
         self.used = set()
+        self._kinks = []
         self._build = self._compile(tree.body)
 
     @property
@@ -110,6 +111,20 @@ class Expression:
         else:
             functions = {name: fn for name, (_, fn, _) in FUNCTIONS.items()}
         return self._build(values, functions)
+
+    @property
+    def has_kinks(self):
+        """True when ``abs``, ``min`` or ``max`` may make the expression kink."""
+        return bool(self._kinks)
+
+    def kink_arguments(self, **values):
+        """The quantities whose sign changes are the expression's kinks (numpy).
+
+        ``abs(g)`` kinks where g changes sign, ``min(g, h)`` and ``max(g, h)``
+        where g − h does; one array per such call, in the order of the text.
+        """
+        functions = {name: fn for name, (_, fn, _) in FUNCTIONS.items()}
+        return [kink(values, functions) for kink in self._kinks]
 
     def __repr__(self):
         return f"Expression({self.text!r})"
@@ -156,6 +171,11 @@ class Expression:
             if len(node.args) != arity:
                 raise ExpressionError(f"{self.text!r}: {name}() takes {arity} argument(s), got {len(node.args)}")
             args = [self._compile(a) for a in node.args]
+            if name == "abs":
+                self._kinks.append(args[0])
+            elif name in ("min", "max"):
+                first, second = args
+                self._kinks.append(lambda values, fns: first(values, fns) - second(values, fns))
             return lambda values, fns: fns[name](*(a(values, fns) for a in args))
         op = type(getattr(node, "op", None))
         what = f"the operator {_OTHER_OPERATORS[op]}" if op in _OTHER_OPERATORS else type(node).__name__

@@ -18,6 +18,7 @@ import functools
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy import optimize
 
 from .expression import Expression
 
@@ -184,6 +185,40 @@ class ExpressionTorque:
     def breakpoints(self):
         return np.empty(0)
 
+    def kinks(self, cycle_angle, samples=4096):
+        """Angles in (0, Φ) where ``abs``, ``min`` or ``max`` make the torque kink [rad].
+
+        Each kink argument (:meth:`Expression.kink_arguments`) is sampled on
+        ``samples`` equal steps and every sign change refined by Brent's
+        method to a few ulps. The cycle analysis cuts its pieces there, so
+        that no quadrature has to integrate across a kink.
+        """
+        if not self.expression.has_kinks or self.speed_dependent:
+            return np.empty(0)
+        phi = np.linspace(0.0, cycle_angle, samples + 1)
+        extra = {"omega": self.omega} if "omega" in self.expression.depends_on else {}
+        found = []
+        with np.errstate(all="ignore"):
+            arguments = self.expression.kink_arguments(phi=phi, **extra)
+            for index, g in enumerate(arguments):
+                g = np.broadcast_to(np.asarray(g, dtype=float), phi.shape)
+                if not np.all(np.isfinite(g)):
+                    continue          # the analysis reports a torque that is not finite
+
+                def scalar(p, index=index):
+                    return float(np.asarray(self.expression.kink_arguments(phi=np.array([p]), **extra)[index],
+                                            dtype=float).ravel()[0])
+                positive = g > 0
+                for k in np.flatnonzero(positive[1:] != positive[:-1]):
+                    if g[k] == 0.0:
+                        found.append(phi[k])
+                    elif g[k + 1] == 0.0:
+                        found.append(phi[k + 1])
+                    else:
+                        found.append(optimize.brentq(scalar, phi[k], phi[k + 1], xtol=1e-15, rtol=8.9e-16))
+        found = np.unique(np.asarray(found, dtype=float))
+        return found[(found > 0.0) & (found < cycle_angle)]
+
     def _values(self, phi):
         if "omega" in self.expression.depends_on:
             if self.omega is None:
@@ -262,6 +297,11 @@ class TorqueSum:
 
     def breakpoints(self):
         points = [p.breakpoints() for p in self.parts]
+        return np.unique(np.concatenate(points)) if points else np.empty(0)
+
+    def kinks(self, cycle_angle):
+        """Kinks of the parts that have them (see :meth:`ExpressionTorque.kinks`) [rad]."""
+        points = [p.kinks(cycle_angle) for p in self.parts if hasattr(p, "kinks")]
         return np.unique(np.concatenate(points)) if points else np.empty(0)
 
     def limits(self, phi):
