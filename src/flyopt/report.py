@@ -100,6 +100,14 @@ def analysis_report(result, source=None):
     return "\n".join(lines)
 
 
+def _solved_by(candidate):
+    """How a design was found, in words: the exact closed form or IPOPT with its status."""
+    if candidate.solver_status == "closed_form":
+        return "the exact closed form of the lightest wheel, checked against every constraint"
+    return (f"IPOPT ({candidate.solver_status}, {candidate.iterations} iterations), checked against every "
+            f"constraint")
+
+
 def design_report(result, spec=None):
     """The design part of the ``flyopt solve`` report: the winner and the ranking of every combination."""
     lines = ["", f"Flywheel design ({result.spec.geometry}, objective: {result.spec.objective}):"]
@@ -119,6 +127,7 @@ def design_report(result, spec=None):
                           f"hoop stress ρv² {number(best.hoop_stress / 1e6)} MPa"
              + (f", safety factor {number(best.safety_factor, 3)}" if best.safety_factor else "")),
             ("binding", ", ".join(best.binding) or "none"),
+            ("solved by", _solved_by(best)),
         ]
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {v}" for k, v in facts]
