@@ -136,7 +136,7 @@ def _analyse(scene, forced=None):
             reason = f"forced by --model; the exact model for this scene is {model}: {reason}"
             model = forced
         requirement = models.requirement(machine, model, ind)
-        comparison = tuple(models.compare(machine, model, ind))
+        comparison = tuple(models.compare(machine, model, ind, known=requirement))
         j_margin = requirement.j_required
         omega_mean, omega_max, omega_min = requirement.omega_mean, requirement.omega_max, requirement.omega_min
         angles = (requirement.angle_omega_max, requirement.angle_omega_min)

@@ -227,8 +227,12 @@ def achieved_delta(machine, j_flywheel):
     return sol.delta
 
 
-def compare(machine, chosen, indicator=None):
+def compare(machine, chosen, indicator=None, known=None):
     """Every applicable model's J_F and the δ it really gives (by the exact model).
+
+    ``known`` is a :class:`Requirement` already computed (the chosen model's,
+    by :func:`requirement`): it is reused, not solved again (a periodic
+    dynamic solution takes about a second).
 
     Returns a list of dicts: model, exact (bool), j_required, achieved_delta,
     j_error (relative to the exact model's J_F), note.
@@ -240,6 +244,9 @@ def compare(machine, chosen, indicator=None):
             continue  # a costlier model than the exact one adds nothing
         if model == ENERGY_MASS and model != chosen and not machine.variable_inertia:
             continue  # with a constant inertia it is the energy method again
+        if known is not None and known.model == model:
+            results[model] = known
+            continue
         try:
             results[model] = requirement(machine, model, indicator if model == ENERGY else None)
         except (NonPeriodicCycle, SolverFailed, ValueError) as err:
