@@ -10,7 +10,7 @@ from numpy.testing import assert_allclose
 
 from conftest import assert_published
 from reference import exact_chain
-from flyopt.cycle import energy_indicator, energy_indicator_from_areas, required_inertia, work
+from flyopt.cycle import energy_indicator, energy_indicator_from_areas, kinks_of, required_inertia, work
 from flyopt.transmission import inertia_on_shaft
 from flyopt.errors import NonPeriodicCycle
 from flyopt.expression import Expression
@@ -393,7 +393,7 @@ def test_kinks_of_abs_min_max_are_knots(shift):
     assert_allclose(ind.a_max, exact, rtol=1e-12)
     if shift > 0:
         # Brent's method stops at an absolute 1e-15 rad
-        assert_allclose(torque.kinks(TWO_PI), [shift, shift + math.pi], rtol=1e-14, atol=1e-15)
+        assert_allclose(kinks_of(torque, TWO_PI), [shift, shift + math.pi], rtol=1e-14, atol=1e-15)
 
 
 def test_kink_arguments_of_an_expression():
@@ -406,4 +406,61 @@ def test_kink_arguments_of_an_expression():
     assert_allclose(got[1], phi - 2)
     assert_allclose(got[2], 3 - phi ** 2)
     torque = ExpressionTorque(e, 1.0)
-    assert_allclose(torque.kinks(TWO_PI), [1.0, math.sqrt(3), 2.0], rtol=1e-14)
+    assert_allclose(kinks_of(torque, TWO_PI), [1.0, math.sqrt(3), 2.0], rtol=1e-14)
+    # nested calls are numbered inner first
+    assert_allclose(Expression("abs(max(phi, 2))").kink_arguments(phi=phi), [phi - 2, np.maximum(phi, 2)])
+
+
+def test_kink_with_an_infinite_argument():
+    """max(sin(φ − 0.002), −1e-9/φ): the argument of max() is −inf at φ = 0, yet the
+    torque is finite. Its three kinks (near 5e-7, 0.002 and π + 0.002 rad, where the sine
+    and −1e-9/φ swap) are still found (regression: an argument with any non-finite sample
+    was skipped, and the cycle was refused as non-periodic). Reference: mpmath, split at
+    the kinks and at the two crossings of the single positive lobe, A_max = ∫ (M − mean)
+    over the lobe."""
+    mpmath.mp.dps = 30
+    f_sin = lambda x: mpmath.sin(x - mpmath.mpf(0.002))              # noqa: E731
+    f_inv = lambda x: -mpmath.mpf(1e-9) / x                          # noqa: E731
+    k1, k2, k3 = (mpmath.findroot(lambda x: f_sin(x) - f_inv(x), bracket, solver="anderson")
+                  for bracket in ((1e-7, 1e-6), (0.0019, 0.002), (3.1, 3.2)))
+    two_pi = 2 * mpmath.pi
+    mean = (mpmath.quad(f_sin, [0, k1]) + mpmath.quad(f_inv, [k1, k2]) + mpmath.quad(f_sin, [k2, k3])
+            + mpmath.quad(f_inv, [k3, two_pi])) / two_pi
+    c1 = mpmath.mpf(0.002) + mpmath.asin(mean)
+    c2 = mpmath.mpf(0.002) + mpmath.pi - mpmath.asin(mean)
+    exact = mpmath.quad(lambda x: f_sin(x) - mean, [c1, c2])
+    torque = ExpressionTorque(Expression("max(sin(phi - 0.002), -1e-9/phi)"), 1.0)
+    # the search stops at an absolute 1e-15 of the cycle angle
+    assert_allclose(kinks_of(torque, TWO_PI), [float(k1), float(k2), float(k3)], rtol=1e-12, atol=1e-14)
+    ind = energy_indicator(torque, Constant(None), TWO_PI)
+    assert_allclose(ind.a_max, float(exact), rtol=1e-12)
+
+
+def test_two_kinks_within_one_grid_step():
+    """max(0, sin(φ − 0.0007) − 0.9999999): a pulse 0.9 mrad wide, narrower than the
+    sampling grid (1.5 mrad), whose argument never changes sign on the grid: the dip search
+    finds both kinks. A_max of the lobe in closed form, area (1 − w/2π); the torque itself
+    is known only to ~1e-16 N·m (sin φ against 0.9999999), a relative 2e-9 of the 6e-11 J
+    lobe: held within 1e-8."""
+    mpmath.mp.dps = 30
+    c = mpmath.mpf(0.9999999)
+    a = mpmath.asin(c)
+    width = mpmath.pi - 2 * a
+    exact = (2 * mpmath.cos(a) - c * width) * (1 - width / (2 * mpmath.pi))
+    torque = ExpressionTorque(Expression("max(0, sin(phi - 0.0007) - 0.9999999)"), 1.0)
+    assert_allclose(kinks_of(torque, TWO_PI), [0.0007 + float(a), 0.0007 + float(mpmath.pi - a)], rtol=1e-12)
+    assert_allclose(energy_indicator(torque, Constant(None), TWO_PI).a_max, float(exact), rtol=1e-8)
+
+
+def test_kinks_of_sums_and_of_a_torque_at_a_fixed_speed():
+    """A sum passes on its parts' kinks; an ω-dependent argument is searched at the speed the
+    torque is held at (at_speed), and not at all while the speed is free."""
+    from flyopt.torque import TorqueSum
+
+    held = ExpressionTorque(Expression("max(0, sin(phi) - omega/100)", ("phi", "omega")), 1.0).at_speed(50.0)
+    assert_allclose(kinks_of(held, TWO_PI), [math.pi / 6, 5 * math.pi / 6], rtol=1e-13)
+    free = ExpressionTorque(Expression("max(0, sin(phi) - omega/100)", ("phi", "omega")), 1.0)
+    assert len(kinks_of(free, TWO_PI)) == 0
+    both = TorqueSum([held, ExpressionTorque(Expression("abs(phi - 1)"), 1.0),
+                      PiecewiseLinear(np.array([0.0, TWO_PI]), np.array([1.0, 1.0]))])
+    assert_allclose(kinks_of(both, TWO_PI), [math.pi / 6, 1.0, 5 * math.pi / 6], rtol=1e-13)

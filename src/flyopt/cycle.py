@@ -15,7 +15,8 @@ A_max = max ΔE − min ΔE, reached at crossings of the two torque curves
 - where an expression is involved, crossings are found by bracketing on a
   fine grid plus a search for near-tangent dips, refined with Brent's method,
   the kinks of ``abs``, ``min`` and ``max`` likewise, and the areas between
-  them by adaptive Gauss–Kronrod quadrature to 1e-13 relative.
+  them by adaptive Gauss–Kronrod quadrature to 1e-13 relative (or to the
+  round-off of the torques as evaluated, where that is larger).
 
 A cycle whose net work does not vanish is refused (non-periodic fluctuation).
 """
@@ -370,7 +371,7 @@ class _Segments:
     resisting: object
     peak: float            # largest |M_d − M_r| seen (at the knots or on the sampling grid) [N*m]
     at_knots: np.ndarray | None = None   # (n+1,) the difference at the knots when neither curve steps
-    noise: float = 0.0     # round-off of M_d − M_r as evaluated: ROUNDOFF (|M_d| + |M_r|) at its largest [N*m]
+    noise: float = 0.0     # round-off of M_d − M_r as evaluated, at its largest (see _round_off) [N*m]
 
     def scale(self):
         """A work scale of the cycle, peak |M_d − M_r| times Φ, for tolerances [J]."""
@@ -544,15 +545,55 @@ def _segments(driving, resisting, cycle_angle):
         phi = np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1)
         d_values, r_values = _sample(driving, phi)[0], _sample(resisting, phi)[0]
         peak = max(peak, float(np.max(np.abs(d_values - r_values))))
-        noise = ROUNDOFF * float(np.max(np.abs(d_values) + np.abs(r_values)))
+        noise = float(np.max(_round_off(driving, phi, d_values) + _round_off(resisting, phi, r_values)))
     return _Segments(knots, start, end, linear, driving, resisting, float(peak), at_knots, noise)
+
+
+def _round_off(curve, phi, values):
+    """A bound on a curve's round-off at ``phi`` [N*m]: its own (an expression's running
+    error bound, which sees cancellation inside it) or ROUNDOFF of its values."""
+    own = ROUNDOFF * np.abs(values)
+    if hasattr(curve, "round_off"):
+        return np.maximum(own, np.nan_to_num(curve.round_off(phi), nan=0.0, posinf=0.0))
+    if hasattr(curve, "parts"):          # a sum: its parts' bounds add up
+        parts = [_round_off(p, phi, _sample(p, phi)[0]) for p in curve.parts]
+        return np.maximum(own, np.sum(parts, axis=0))
+    return own
 
 
 def _breakpoints(curve, cycle_angle):
     """A curve's breakpoints and, for expressions with abs/min/max, its kinks [rad]."""
     points = curve.breakpoints()
-    kinks = curve.kinks(cycle_angle) if hasattr(curve, "kinks") else ()
+    kinks = kinks_of(curve, cycle_angle)
     return np.union1d(points, kinks) if len(kinks) else points
+
+
+def kinks_of(curve, cycle_angle):
+    """Angles in (0, Φ) where ``abs``, ``min`` or ``max`` make a torque kink [rad].
+
+    Each kink function of the curve (``kink_functions``: the argument of
+    ``abs``, the difference of the arguments of ``min``/``max``) is searched
+    like the crossings of two curves (:func:`_roots`: sign changes on the
+    sampling grid, dips that reach zero between grid points, Brent's method
+    to a few ulps). An infinite value keeps its sign; a NaN step is skipped
+    (the analysis reports a torque that is not finite). Kept on the curve
+    per cycle angle: the analysis asks several times.
+    """
+    functions = curve.kink_functions() if hasattr(curve, "kink_functions") else []
+    if not functions:
+        return np.empty(0)
+    cache = curve.__dict__.setdefault("_kinks_per_cycle", {})
+    if cycle_angle not in cache:
+        found = []
+        for g in functions:
+            def finite(phi, g=g):
+                return np.nan_to_num(g(phi), nan=np.nan, posinf=1e300, neginf=-1e300)
+            grid = finite(np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1))
+            size = float(np.nanmax(np.abs(grid), initial=0.0))
+            if size > 0.0:
+                found += _roots(finite, 0.0, cycle_angle, SAMPLES_PER_CYCLE, min(size, 1e300) * cycle_angle)
+        cache[cycle_angle] = np.unique(np.asarray(found, dtype=float))
+    return cache[cycle_angle]
 
 
 def _relative_limits(curve, knots, pivot):

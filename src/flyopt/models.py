@@ -90,7 +90,12 @@ class Machine:
         return net
 
     def knots(self):
-        """Angles where a torque steps or kinks [rad] (the simulation cuts there)."""
+        """Angles where a torque steps or kinks [rad] (the simulation cuts there).
+
+        The kinks of a speed-dependent expression are those at the mean speed
+        (the angle-only torques): with the speed free they move a little, and
+        a cut there is merely one more step of the integrator.
+        """
         return self.angle_only().knots
 
     def j_mean(self):

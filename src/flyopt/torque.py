@@ -18,7 +18,6 @@ import functools
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import optimize
 
 from .expression import Expression
 
@@ -185,39 +184,34 @@ class ExpressionTorque:
     def breakpoints(self):
         return np.empty(0)
 
-    def kinks(self, cycle_angle, samples=4096):
-        """Angles in (0, Φ) where ``abs``, ``min`` or ``max`` make the torque kink [rad].
-
-        Each kink argument (:meth:`Expression.kink_arguments`) is sampled on
-        ``samples`` equal steps and every sign change refined by Brent's
-        method to a few ulps. The cycle analysis cuts its pieces there, so
-        that no quadrature has to integrate across a kink.
-        """
-        if not self.expression.has_kinks or self.speed_dependent:
-            return np.empty(0)
-        phi = np.linspace(0.0, cycle_angle, samples + 1)
-        extra = {"omega": self.omega} if "omega" in self.expression.depends_on else {}
-        found = []
+    def round_off(self, phi):
+        """A bound on the round-off of the torque as evaluated at ``phi`` [N*m]
+        (:meth:`Expression.error_bound`, scaled)."""
+        phi = np.asarray(phi, dtype=float)
+        extra = {"omega": self.omega} if "omega" in self.expression.depends_on and self.omega is not None else {}
         with np.errstate(all="ignore"):
-            arguments = self.expression.kink_arguments(phi=phi, **extra)
-            for index, g in enumerate(arguments):
-                g = np.broadcast_to(np.asarray(g, dtype=float), phi.shape)
-                if not np.all(np.isfinite(g)):
-                    continue          # the analysis reports a torque that is not finite
+            bound = abs(self.scale) * np.asarray(self.expression.error_bound(phi=phi, **extra), dtype=float)
+        return np.broadcast_to(bound, phi.shape) + 2.0 * np.finfo(float).eps * np.abs(self(phi))
 
-                def scalar(p, index=index):
-                    return float(np.asarray(self.expression.kink_arguments(phi=np.array([p]), **extra)[index],
-                                            dtype=float).ravel()[0])
-                positive = g > 0
-                for k in np.flatnonzero(positive[1:] != positive[:-1]):
-                    if g[k] == 0.0:
-                        found.append(phi[k])
-                    elif g[k + 1] == 0.0:
-                        found.append(phi[k + 1])
-                    else:
-                        found.append(optimize.brentq(scalar, phi[k], phi[k + 1], xtol=1e-15, rtol=8.9e-16))
-        found = np.unique(np.asarray(found, dtype=float))
-        return found[(found > 0.0) & (found < cycle_angle)]
+    def kink_functions(self):
+        """Functions of the angle whose sign changes are kinks of the torque.
+
+        One per ``abs``, ``min`` or ``max`` in the expression
+        (:meth:`Expression.kink_argument`), vectorized in φ [rad]; none for a
+        speed-dependent torque (its kinks move with the speed).
+        """
+        if self.speed_dependent:
+            return []
+        extra = {"omega": self.omega} if "omega" in self.expression.depends_on else {}
+
+        def argument(index):
+            def g(phi):
+                phi = np.asarray(phi, dtype=float)       # numpy scalars: 1/0 is inf, not an exception
+                with np.errstate(all="ignore"):
+                    return np.broadcast_to(np.asarray(self.expression.kink_argument(index, phi=phi, **extra),
+                                                      dtype=float), np.shape(phi))
+            return g
+        return [argument(k) for k in range(self.expression.kink_count)]
 
     def _values(self, phi):
         if "omega" in self.expression.depends_on:
@@ -299,10 +293,9 @@ class TorqueSum:
         points = [p.breakpoints() for p in self.parts]
         return np.unique(np.concatenate(points)) if points else np.empty(0)
 
-    def kinks(self, cycle_angle):
-        """Kinks of the parts that have them (see :meth:`ExpressionTorque.kinks`) [rad]."""
-        points = [p.kinks(cycle_angle) for p in self.parts if hasattr(p, "kinks")]
-        return np.unique(np.concatenate(points)) if points else np.empty(0)
+    def kink_functions(self):
+        """The kink functions of the parts that have them (see :meth:`ExpressionTorque.kink_functions`)."""
+        return [g for p in self.parts if hasattr(p, "kink_functions") for g in p.kink_functions()]
 
     def limits(self, phi):
         left = right = 0.0

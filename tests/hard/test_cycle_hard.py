@@ -113,6 +113,18 @@ def test_huge_offset_on_both_tables():
     assert_allclose(ind.a_max, float(hi - lo), rtol=BAR)
 
 
+@pytest.mark.parametrize("text", ["(1000000.0 + sin(phi)) - 1000000.0 + 3", "3 + (sin(phi) + 1000000.0) - 1e6"])
+def test_cancellation_inside_an_expression(text):
+    """An expression whose own evaluation cancels (1e6 − 1e6): its running error bound,
+    not the size of its result, sets the round-off the quadrature accepts (regression: it
+    was refused like the offset case before the noise existed). A_max = 2 J."""
+    from flyopt.expression import Expression
+    from flyopt.torque import ExpressionTorque
+
+    ind = energy_indicator(ExpressionTorque(Expression(text), 1.0), Constant(None), TWO_PI)
+    assert_allclose(ind.a_max, 2.0, rtol=BAR)
+
+
 @pytest.mark.parametrize("offset, bar", [(0.0, 1e-12), (1e3, 1e-12), (1e6, BAR)])
 def test_huge_offset_on_an_expression(offset, bar):
     """offset + sin φ against its (unknown) mean: A_max = 2 J exactly. An expression has no

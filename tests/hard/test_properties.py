@@ -14,7 +14,9 @@ from flyopt.torque import Constant, PiecewiseLinear
 from flyopt.transmission import inertia_on_shaft
 
 TWO_PI = 2 * math.pi
-SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+# derandomize: CI runs the same examples every time (a failure is reproducible, not a lottery)
+SETTINGS = settings(max_examples=60, deadline=None, derandomize=True,
+                    suppress_health_check=[HealthCheck.too_slow])
 
 
 @st.composite
@@ -37,8 +39,11 @@ def scale(x, y):
 @SETTINGS
 @given(tables(), st.floats(-1e5, 1e5))
 def test_adding_a_constant_to_both_torques_changes_nothing(table, c):
+    """Up to the round-off of y + c itself: a ripple of 5.7e-174 N·m on top of c = 1 N·m
+    is not representable (hypothesis found it), so the shifted table has lost it."""
     x, y = table
-    assert_allclose(a_max(x, y + c), a_max(x, y), rtol=1e-9, atol=1e-12 * scale(x, y))
+    lost = 4 * np.finfo(float).eps * (abs(c) + float(np.max(np.abs(y)))) * TWO_PI
+    assert_allclose(a_max(x, y + c), a_max(x, y), rtol=1e-9, atol=1e-12 * scale(x, y) + lost)
 
 
 @SETTINGS
