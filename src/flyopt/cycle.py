@@ -660,14 +660,21 @@ def _roots(f, a, b, samples, scale):
     def brent(p, q):
         return optimize.brentq(f, p, q, xtol=1e-15 * max(abs(p), abs(q), b - a), rtol=4 * EPS, maxiter=200)
 
-    for k in range(samples):
-        y0, y1 = y[k], y[k + 1]
-        if k > 0 and y0 == 0.0:
+    # the grid steps worth a look, found at once: a zero on the grid, a sign change, a dip of |f|
+    y0, y1 = y[:-1], y[1:]
+    y_prev = np.concatenate(([np.nan], y[:-2]))
+    interior = np.arange(samples) > 0
+    zero = interior & (y0 == 0.0)
+    cross = ~zero & (y0 * y1 < 0)
+    dip = (~zero & ~cross & interior & (np.abs(y0) < np.abs(y_prev)) & (np.abs(y0) < np.abs(y1))
+           & (y0 * y_prev > 0) & (y0 * y1 > 0))
+    for k in np.flatnonzero(zero | cross | dip):
+        if zero[k]:
             roots.append(x[k])
-        elif y0 * y1 < 0:
+        elif cross[k]:
             roots.append(brent(x[k], x[k + 1]))
-        elif k > 0 and abs(y0) < abs(y[k - 1]) and abs(y0) < abs(y1) and y0 * y[k - 1] > 0 and y0 * y1 > 0:
-            s = np.sign(y0)
+        else:
+            s = np.sign(y0[k])
             res = optimize.minimize_scalar(lambda p: s * f(np.array([p]))[0], bounds=(x[k - 1], x[k + 1]),
                                            method="bounded", options={"xatol": 1e-14 * (b - a)})
             if res.fun < 0:  # res.fun = s·f at the dip: the dip crosses zero
