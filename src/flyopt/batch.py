@@ -1,10 +1,12 @@
-"""Exact flywheel designs for many combinations at once, in closed form (numpy).
+"""Exact flywheel designs in closed form: for arrays of combinations (numpy), or one at a time.
 
-:func:`flyopt.optimize.design_flywheel` solves one NLP per material × shaft
-combination with IPOPT (about 2 ms each). For the structures whose optimum is
-known analytically, or is the root of a monotone function of one variable,
-this module computes the same optimum for whole arrays of combinations at
-once. It is a model choice ("the cheapest model that is exact"): every design
+An NLP per material × shaft combination solved by IPOPT takes about 2 ms.
+For the structures whose optimum is known analytically, or is the root of a
+monotone function of one variable, this module computes the same optimum:
+for whole arrays of combinations at once (:func:`lightest`, used by sweeps),
+or one combination in plain floats (:func:`lightest_one`, used by
+:func:`flyopt.optimize.design_flywheel`, whose default method "auto" takes
+it). It is a model choice ("the cheapest model that is exact"): every design
 made here says ``method = "closed_form"``, and a structure it does not cover
 is left to IPOPT (see :func:`covers`).
 
