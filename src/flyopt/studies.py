@@ -488,11 +488,17 @@ def pareto_parser():
                         help="number of epsilon values (default 25)")
     parser.add_argument("--range", dest="span", metavar="LOW:HIGH",
                         help="range of epsilon, e.g. 0.3:1.2 m or 0.01:0.1")
-    parser.add_argument("--method", choices=("auto", "closed_form", "ipopt"), default="auto",
-                        help="ipopt: every point through the CasADi/IPOPT model")
-    parser.add_argument("-o", "--output", help="write the front to .csv, .parquet or .json")
-    parser.add_argument("--json", action="store_true", help="print the front as JSON records")
+    _method_and_output(parser, "front")
     return parser
+
+
+def _method_and_output(parser, what):
+    """The options ``flyopt pareto`` and ``flyopt tradeoff`` share: the design method and the output."""
+    parser.add_argument("--method", choices=("auto", "closed_form", "ipopt"), default="auto",
+                        help="design method: closed form where exact, else IPOPT (auto); ipopt: every "
+                             "combination through the CasADi/IPOPT model")
+    parser.add_argument("-o", "--output", help=f"write the {what} to .csv, .parquet or .json")
+    parser.add_argument("--json", action="store_true", help=f"print the {what} as JSON records")
 
 
 def pareto_main(argv=None):
@@ -525,11 +531,7 @@ def tradeoff_parser():
         description="For each material the lightest design: size, rim speed, mass, cost and "
                     "which limit binds.")
     parser.add_argument("scene", help="scene file (TOML)")
-    parser.add_argument("--method", choices=("auto", "closed_form", "ipopt"), default="auto",
-                        help="design method: closed form where exact, else IPOPT (auto); ipopt: every "
-                             "combination through the CasADi/IPOPT model")
-    parser.add_argument("-o", "--output", help="write the table to .csv, .parquet or .json")
-    parser.add_argument("--json", action="store_true", help="print the table as JSON records")
+    _method_and_output(parser, "table")
     return parser
 
 
