@@ -246,7 +246,7 @@ def test_width_limited_rims_match_reference_and_brute_force(seed):
     # feasible down to about B_free sqrt(hb_min/hb_max): mostly feasible, some not
     b_max = free["b"] * float(rng.uniform(0.9 * math.sqrt(low / high), 1.05))
     result = design_ipopt(j, omega, [MountShaft("s", 1.0)], [Material("m", rho, v_max)],
-                             DesignSpec(geometry=model, hb_ratio=(low, high), max_width=b_max))
+                          DesignSpec(geometry=model, hb_ratio=(low, high), max_width=b_max))
     ref = reference_lightest_rim(model, rho, j, cap, low, high, b_max)
     brute = brute_force_lightest(model, rho, j, cap, low, high, b_max)
     got = result.candidates[0]
@@ -268,7 +268,7 @@ def test_pinned_d_mean_exact_annulus_matches_closed_form(d_mean, hb):
     H/B <= hb_max allow (reference above); mass within 1e-6."""
     j, omega = 1.0183, 1500 * RPM            # worked example 2: J_F on the motor shaft
     result = design_ipopt(j, omega, [MountShaft("motor", 1.0)], [CAST_STEEL],
-                             DesignSpec(geometry="rim", hb_ratio=hb, d_mean=d_mean))
+                          DesignSpec(geometry="rim", hb_ratio=hb, d_mean=d_mean))
     ref = reference_pinned_rim(CAST_STEEL.density, j, d_mean, speed_cap(CAST_STEEL, omega),
                                *hb)
     got = result.candidates[0]
@@ -285,14 +285,14 @@ def test_disc_matches_closed_form():
     j, omega = 2.0, 1000 * RPM
     d = speed_cap(CAST_STEEL, omega)
     result = design_ipopt(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
-                             DesignSpec(geometry="disc"))
+                          DesignSpec(geometry="disc"))
     best = result.best
     assert_allclose(best.d_outer, d, rtol=1e-8)
     assert_allclose(best.b, 32 * j / (math.pi * CAST_STEEL.density * d ** 4), rtol=1e-8)
     assert_allclose(best.mass, 8 * j / d ** 2, rtol=1e-8)
     assert best.d_inner == 0.0 and best.d_mean == best.h == best.d_outer / 2
     narrow = design_ipopt(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
-                             DesignSpec(geometry="disc", max_width=0.5 * best.b))
+                          DesignSpec(geometry="disc", max_width=0.5 * best.b))
     assert narrow.status == "infeasible"
     # needs D^4 = 32 J / (pi rho B_max)
     needed = (32 * j / (math.pi * CAST_STEEL.density * 0.5 * best.b)) ** 0.25
@@ -377,7 +377,7 @@ def test_hard_inertia_at_the_edge_of_feasibility(model, factor):
         x = 0.4
         j_max = math.pi * rho * d ** 5 * x ** 2 * (1 - x) ** 3 / (4 * hb_min)
     result = design_ipopt(j_max * factor, omega, [MountShaft("motor", 1.0)], [CAST_STEEL],
-                             DesignSpec(geometry=model))
+                          DesignSpec(geometry=model))
     got = result.candidates[0]
     assert got.feasible == (factor < 1)
     if got.feasible:
@@ -514,7 +514,7 @@ def test_objective_outer_diameter_matches_closed_form():
                 "thin_rim": (4 * hb_min * j / (math.pi * rho * 0.4 ** 2 * 0.6 ** 3)) ** 0.2}
     for model, d in expected.items():
         result = design_ipopt(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
-                                 DesignSpec(geometry=model, objective="outer_diameter"))
+                              DesignSpec(geometry=model, objective="outer_diameter"))
         assert_allclose(result.best.d_outer, d, rtol=1e-7)
         assert_allclose(result.best.objective, result.best.d_outer, rtol=0)
     assert "inner_diameter" in design_ipopt(
@@ -526,8 +526,14 @@ def test_objective_cost_ranks_by_mass_times_cost():
     cheap = make_material("cheap iron", 7200.0, 36.0, cost=1.0)
     dear = make_material("dear steel", 7800.0, 50.0, cost=3.0)
     result = design_ipopt(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap],
-                             DesignSpec(objective="cost"))
+                          DesignSpec(objective="cost"))
     assert result.best.material == "cheap iron"
+    # the default method ranks by the same cost: the same order, objectives within 1e-6
+    auto = design_flywheel(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap],
+                           DesignSpec(objective="cost"))
+    assert [c.material for c in auto.candidates] == [c.material for c in result.candidates]
+    assert_allclose([c.objective for c in auto.candidates], [c.objective for c in result.candidates], rtol=1e-6)
+    assert auto.best.solver_status == "closed_form"
     for c in result.candidates:
         assert_allclose(c.cost, c.mass * (1.0 if c.material == "cheap iron" else 3.0),
                         rtol=1e-14)
@@ -535,7 +541,7 @@ def test_objective_cost_ranks_by_mass_times_cost():
     assert by_mass.best.material == "dear steel"
     with pytest.raises(ValueError, match="cost per kg.*cast_iron"):
         design_ipopt(1.0, 100.0, [MountShaft("m", 1.0)], [CAST_IRON],
-                        DesignSpec(objective="cost"))
+                     DesignSpec(objective="cost"))
 
 
 def test_safety_factor_from_allowable_stress():
@@ -546,13 +552,13 @@ def test_safety_factor_from_allowable_stress():
     assert "rim_speed" in best.binding
     assert_allclose(best.safety_factor, 1.0, rtol=1e-9)
     assert design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)],
-                           [CAST_IRON]).best.safety_factor is None
+                        [CAST_IRON]).best.safety_factor is None
 
 
 def test_to_dict_is_json_ready_design_object():
     result = design_ipopt(1.0183, 1500 * RPM, [MountShaft("motor", 1.0),
-                                                  MountShaft("main", 0.25)],
-                             [CAST_IRON, CAST_STEEL], DesignSpec(max_width=0.02))
+                                               MountShaft("main", 0.25)],
+                          [CAST_IRON, CAST_STEEL], DesignSpec(max_width=0.02))
     data = json.loads(json.dumps(result.to_dict()))
     design = data["design"]
     assert set(DESIGN_FIELDS) <= set(design)
@@ -595,7 +601,7 @@ def test_nlp_is_built_once_and_reused():
     first = get_model(ModelStructure("rim", False, False, "mass"))
     for j in (0.1, 1.0, 10.0):
         design_ipopt(j, 1000 * RPM, [MountShaft("a", 1.0), MountShaft("b", 2.0)],
-                        [CAST_IRON, CAST_STEEL])
+                     [CAST_IRON, CAST_STEEL])
     assert get_model(ModelStructure("rim", False, False, "mass")) is first
 
 
@@ -604,7 +610,7 @@ def test_non_converged_solve_raises_with_ipopt_status():
     iterations must raise SolverFailed naming its return status."""
     with pytest.raises(SolverFailed, match="Maximum_Iterations_Exceeded") as info:
         design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [CAST_STEEL],
-                        solver_options={"ipopt.max_iter": 2})
+                     solver_options={"ipopt.max_iter": 2})
     assert isinstance(info.value, RuntimeError)
     assert info.value.status == "Maximum_Iterations_Exceeded"
 
