@@ -464,3 +464,39 @@ def test_kinks_of_sums_and_of_a_torque_at_a_fixed_speed():
     both = TorqueSum([held, ExpressionTorque(Expression("abs(phi - 1)"), 1.0),
                       PiecewiseLinear(np.array([0.0, TWO_PI]), np.array([1.0, 1.0]))])
     assert_allclose(kinks_of(both, TWO_PI), [math.pi / 6, 1.0, 5 * math.pi / 6], rtol=1e-13)
+
+
+@pytest.mark.parametrize("text, kinks", [
+    # max(0, sin φ) is zero over (π, 2π): only its ends, not every grid point, are kinks
+    ("abs(max(0, sin(phi)))", [math.pi]),
+    ("min(max(0, sin(phi)), max(0, sin(2*phi)))", [math.pi / 3, math.pi / 2, math.pi, 3 * math.pi / 2]),
+    # an infinite argument at φ = 0 does not make the smooth cos φ + 2 kink anywhere
+    ("max(cos(phi) + 2, -1e-9/phi)", []),
+])
+def test_kink_search_reports_only_kinks(text, kinks):
+    """Regressions from the review of the kink search: a kink function that vanishes over a
+    stretch made every grid point a knot (400 ms instead of 7 ms), and an infinite sample
+    made every dip of the argument one. Each true kink is reported (an end of a zero run
+    may add one more knot, a grid step inside it: harmless)."""
+    found = kinks_of(ExpressionTorque(Expression(text), 1.0), TWO_PI)
+    assert len(found) <= 2 * len(kinks) + 1
+    for kink in kinks:
+        assert np.min(np.abs(found - kink)) < 1e-12, (text, kink, found)
+
+
+def test_kink_search_of_huge_arguments_does_not_overflow():
+    """exp(1000 cos φ) spans 0 to inf: the sign tests of the search must not multiply such
+    values (an overflow warning is an error in this project); max(0, −e^x) is 0: A_max 0."""
+    torque = ExpressionTorque(Expression("max(0, -exp(1000*cos(phi)))"), 1.0)
+    assert energy_indicator(torque, Constant(None), TWO_PI).a_max == 0.0
+
+
+def test_an_inactive_cap_costs_no_accuracy():
+    """min(peak, 1e15) never takes the cap: the round-off bound of min() carries the branch
+    taken only, so A_max equals that of the uncapped peak to 1e-13 (it was 1.2e-10 off when
+    the bound took the larger error of both branches)."""
+    capped = energy_indicator(ExpressionTorque(Expression("min(1/(1e-4+(phi-3)**2), 1e15)"), 1.0),
+                              Constant(None), TWO_PI).a_max
+    plain = energy_indicator(ExpressionTorque(Expression("1/(1e-4+(phi-3)**2)"), 1.0),
+                             Constant(None), TWO_PI).a_max
+    assert_allclose(capped, plain, rtol=1e-13)

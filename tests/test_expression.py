@@ -75,3 +75,30 @@ def test_rejected(text, words):
 def test_not_a_string():
     with pytest.raises(ExpressionError, match="must be a string"):
         Expression(42)
+
+
+@pytest.mark.parametrize("text, exact", [
+    ("(1e6 + sin(phi)) - 1e6", lambda p, m: (1e6 + m.sin(p)) - 1e6),
+    ("sin(phi) * 3.7 - 2 / (phi + 0.1)", lambda p, m: m.sin(p) * m.mpf(3.7) - 2 / (p + m.mpf(0.1))),
+    ("exp(phi) - exp(phi + 1e-8)", lambda p, m: m.exp(p) - m.exp(p + m.mpf(1e-8))),
+    ("sqrt(phi + 1) * log(phi + 2) + tan(phi / 3)",
+     lambda p, m: m.sqrt(p + 1) * m.log(p + 2) + m.tan(p / 3)),
+    ("(phi - 3) ** 3 + phi ** 0.5 - 2 ** phi", lambda p, m: (p - 3) ** 3 + p ** m.mpf(0.5) - 2 ** p),
+    ("min(sin(phi), cos(phi)) + max(1e6 * sin(phi), 1e6 * cos(phi)) - abs(1e6 * cos(phi))",
+     lambda p, m: min(m.sin(p), m.cos(p)) + max(1e6 * m.sin(p), 1e6 * m.cos(p)) - abs(1e6 * m.cos(p))),
+])
+def test_error_bound_covers_the_round_off(text, exact):
+    """The running error bound holds the true round-off of the numpy evaluation, measured
+    against mpmath at 40 digits on the same floats, on 200 angles; and it is not vacuous:
+    its largest value is within 1000 times the largest error (it adds worst cases, and single
+    points can round luckily)."""
+    import mpmath
+
+    mpmath.mp.dps = 40
+    phi = np.linspace(0.01, 6.2, 200)
+    e = Expression(text)
+    got, bound = e.numpy(phi=phi), e.error_bound(phi=phi)
+    true = np.array([float(exact(mpmath.mpf(p), mpmath)) for p in phi])
+    error = np.abs(got - true)
+    assert np.all(error <= bound), (text, float(np.max(error - bound)))
+    assert np.max(bound) <= 1e3 * max(np.max(error), np.finfo(float).eps * np.max(np.abs(true)))

@@ -371,7 +371,7 @@ class _Segments:
     resisting: object
     peak: float            # largest |M_d − M_r| seen (at the knots or on the sampling grid) [N*m]
     at_knots: np.ndarray | None = None   # (n+1,) the difference at the knots when neither curve steps
-    noise: float = 0.0     # round-off of M_d − M_r as evaluated, at its largest (see _round_off) [N*m]
+    noise: object = 0.0    # round-off bound of M_d − M_r as evaluated, a function of φ (see _round_off) [N*m]
 
     def scale(self):
         """A work scale of the cycle, peak |M_d − M_r| times Φ, for tolerances [J]."""
@@ -545,7 +545,10 @@ def _segments(driving, resisting, cycle_angle):
         phi = np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1)
         d_values, r_values = _sample(driving, phi)[0], _sample(resisting, phi)[0]
         peak = max(peak, float(np.max(np.abs(d_values - r_values))))
-        noise = float(np.max(_round_off(driving, phi, d_values) + _round_off(resisting, phi, r_values)))
+
+        def noise(phi):
+            return (_round_off(driving, phi, _sample(driving, phi)[0])
+                    + _round_off(resisting, phi, _sample(resisting, phi)[0]))
     return _Segments(knots, start, end, linear, driving, resisting, float(peak), at_knots, noise)
 
 
@@ -554,6 +557,8 @@ def _round_off(curve, phi, values):
     error bound, which sees cancellation inside it) or ROUNDOFF of its values."""
     own = ROUNDOFF * np.abs(values)
     if hasattr(curve, "round_off"):
+        # where the bound is not finite (sqrt at 0, 0 ** x) fall back to ROUNDOFF |M|: the quadrature
+        # may then refuse what it cannot resolve, never accept a worse result
         return np.maximum(own, np.nan_to_num(curve.round_off(phi), nan=0.0, posinf=0.0))
     if hasattr(curve, "parts"):          # a sum: its parts' bounds add up
         parts = [_round_off(p, phi, _sample(p, phi)[0]) for p in curve.parts]
@@ -586,13 +591,16 @@ def kinks_of(curve, cycle_angle):
     if cycle_angle not in cache:
         found = []
         for g in functions:
-            def finite(phi, g=g):
+            def signed(phi, g=g):        # ±inf keeps its sign, as a number Brent's method can use
                 return np.nan_to_num(g(phi), nan=np.nan, posinf=1e300, neginf=-1e300)
-            grid = finite(np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1))
-            size = float(np.nanmax(np.abs(grid), initial=0.0))
+            grid = g(np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1))
+            size = float(np.max(np.abs(grid[np.isfinite(grid)]), initial=0.0))
             if size > 0.0:
-                found += _roots(finite, 0.0, cycle_angle, SAMPLES_PER_CYCLE, min(size, 1e300) * cycle_angle)
-        cache[cycle_angle] = np.unique(np.asarray(found, dtype=float))
+                found += _roots(signed, 0.0, cycle_angle, SAMPLES_PER_CYCLE, size * cycle_angle,
+                                zero_runs="ends")
+        kinks = np.unique(np.asarray(found, dtype=float))
+        kinks.setflags(write=False)
+        cache[cycle_angle] = kinks
     return cache[cycle_angle]
 
 
@@ -645,12 +653,15 @@ def _sample(curve, phi):
     return values, values
 
 
-def _roots(f, a, b, samples, scale):
+def _roots(f, a, b, samples, scale, zero_runs="all"):
     """All zeros of f in the open interval (a, b), in order.
 
     Sign changes on a grid are refined by Brent's method; a grid point whose
     |f| dips below both neighbours is searched for a minimum that reaches
     zero (two close crossings or a tangent touch that the grid would miss).
+    Grid points where f is exactly zero are zeros; with ``zero_runs="ends"``
+    only the first and last point of a run of them are (f vanishing over a
+    stretch: for a kink search only its ends matter).
     """
     x = np.linspace(a, b, samples + 1)
     y = f(x)
@@ -665,9 +676,12 @@ def _roots(f, a, b, samples, scale):
     y_prev = np.concatenate(([np.nan], y[:-2]))
     interior = np.arange(samples) > 0
     zero = interior & (y0 == 0.0)
-    cross = ~zero & (y0 * y1 < 0)
+    if zero_runs == "ends":
+        zero &= (y_prev != 0.0) | (y1 != 0.0)
+    s0, s1, s_prev = np.sign(y0), np.sign(y1), np.sign(y_prev)     # signs: products of huge values overflow
+    cross = ~zero & (s0 * s1 < 0)
     dip = (~zero & ~cross & interior & (np.abs(y0) < np.abs(y_prev)) & (np.abs(y0) < np.abs(y1))
-           & (y0 * y_prev > 0) & (y0 * y1 > 0))
+           & (s0 * s_prev > 0) & (s0 * s1 > 0))
     for k in np.flatnonzero(zero | cross | dip):
         if zero[k]:
             roots.append(x[k])
@@ -723,14 +737,17 @@ def _gauss_kronrod(f, lo, hi, noise=0.0):
     """The K21 rule on every interval [lo_i, hi_i] at once (one call of f on all nodes).
 
     Returns the integrals, the differences |K21 − G10| and the round-off
-    level of each: that of the rule (50 eps ∫|f|) or, when larger, the
-    integrand's own ``noise`` [N*m] times the width.
+    level of each: that of the rule (50 eps ∫|f|) or, when larger, twice
+    the integral of the integrand's own round-off bound ``noise`` (a
+    function of φ [N*m], evaluated on the same nodes, or a constant).
     """
     centre, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
-    values = f((centre[:, None] + half[:, None] * _GK21_NODES).ravel()).reshape(len(lo), 21)
+    nodes = (centre[:, None] + half[:, None] * _GK21_NODES).ravel()
+    values = f(nodes).reshape(len(lo), 21)
     kronrod = values @ _K21_WEIGHTS
     gauss = values[:, 1::2] @ _G10_WEIGHTS
-    roundoff = np.maximum(50.0 * EPS * half * (np.abs(values) @ _K21_WEIGHTS), 2.0 * noise * half)
+    own = noise(nodes).reshape(len(lo), 21) @ _K21_WEIGHTS if callable(noise) else 2.0 * noise
+    roundoff = np.maximum(50.0 * EPS * half * (np.abs(values) @ _K21_WEIGHTS), 2.0 * own * half)
     return kronrod * half, np.abs(kronrod - gauss) * half, roundoff
 
 
@@ -760,16 +777,16 @@ def _quad(f, a, b, scale, noise=0.0):
     of the subinterval) is invisible to every local estimate: its error is
     about the jump in slope times that distance squared. The cycle analysis
     therefore makes the kinks of ``abs``, ``min`` and ``max`` knots
-    (:meth:`flyopt.torque.ExpressionTorque.kinks`), so that its pieces are
-    smooth.
+    (:func:`kinks_of`), so that its pieces are smooth.
     Pairs within their share of the tolerance, or at their round-off level,
     are kept, the others halved again. If round-off stops the halving, the
     result is accepted within ten times the target or within the round-off
     of the pieces kept, else refused.
 
-    ``noise`` [N*m] is the round-off of f as evaluated: M_d − M_r of two
-    curves of 10^6 N*m each is known to ~1e-9 N*m only, however small the
-    difference, and no quadrature can do better than that times the width.
+    ``noise`` [N*m] bounds the round-off of f as evaluated, as a function of
+    φ (or a constant): M_d − M_r of two curves of 10^6 N*m each is known to
+    ~1e-10 N*m only, however small the difference, and no quadrature can do
+    better than the integral of that.
     """
     if b <= a:
         return 0.0

@@ -54,14 +54,13 @@ _EPS = float(np.finfo(float).eps)
 
 def _bound(node, values):
     """(value, error bound) of a checked expression tree under numpy (see Expression.error_bound)."""
+    # numbers, constants and variables are exact: the expression means the floats it holds
     if isinstance(node, ast.Constant):
-        v = float(node.value)
-        return v, _EPS * abs(v)
+        return float(node.value), 0.0
     if isinstance(node, ast.Name):
         if node.id in values:
-            return np.asarray(values[node.id], dtype=float), 0.0        # inputs are exact
-        v = CONSTANTS[node.id]
-        return v, _EPS * abs(v)
+            return np.asarray(values[node.id], dtype=float), 0.0
+        return CONSTANTS[node.id], 0.0
     if isinstance(node, ast.UnaryOp):
         v, e = _bound(node.operand, values)
         return (-v if isinstance(node.op, ast.USub) else v), e
@@ -82,7 +81,10 @@ def _bound(node, values):
     args = [_bound(a, values) for a in node.args]
     if name in ("min", "max"):
         (a, ea), (b, eb) = args
-        return FUNCTIONS[name][1](a, b), np.maximum(ea, eb)
+        # the branch taken carries its error; where round-off could swap the branches, the larger
+        first = (a <= b) if name == "min" else (a >= b)
+        return FUNCTIONS[name][1](a, b), np.where(np.abs(a - b) <= ea + eb, np.maximum(ea, eb),
+                                                  np.where(first, ea, eb))
     (x, ex), = args
     v = FUNCTIONS[name][1](x)
     slope = {"sin": lambda: np.abs(np.cos(x)), "cos": lambda: np.abs(np.sin(x)),
