@@ -239,3 +239,5 @@ def test_the_chosen_model_is_solved_once(monkeypatch):
     for ours, theirs in zip(analysis.models, fresh):
         assert_allclose(ours["j_required"], theirs["j_required"], rtol=1e-12)
         assert_allclose(ours["achieved_delta"], theirs["achieved_delta"], rtol=1e-9)
+    with pytest.raises(ValueError, match="not of the chosen"):
+        models.compare(analysis.machine, models.ENERGY, analysis.indicator, known=analysis.requirement)

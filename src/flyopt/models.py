@@ -242,6 +242,8 @@ def compare(machine, chosen, indicator=None, known=None):
     Returns a list of dicts: model, exact (bool), j_required, achieved_delta,
     j_error (relative to the exact model's J_F), note.
     """
+    if known is not None and known.model != chosen:
+        raise ValueError(f"the known requirement is of model {known.model!r}, not of the chosen {chosen!r}")
     exact, _ = choose(machine)
     rows, results = [], {}
     for model in ORDER:
