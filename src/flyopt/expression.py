@@ -173,8 +173,12 @@ class Expression:
         ~1e-10 however small it is; the cycle analysis asks its quadrature
         for no more than that.
         """
+        return self.numpy_with_bound(**values)[1]
+
+    def numpy_with_bound(self, **values):
+        """(:meth:`numpy`, :meth:`error_bound`) from one pass over the tree."""
         with np.errstate(all="ignore"):
-            return _bound(self._tree, values)[1]
+            return _bound(self._tree, values)
 
     @property
     def kink_count(self):

@@ -189,9 +189,11 @@ class ExpressionTorque:
         (:meth:`Expression.error_bound`, scaled)."""
         phi = np.asarray(phi, dtype=float)
         extra = {"omega": self.omega} if "omega" in self.expression.depends_on and self.omega is not None else {}
+        value, bound = self.expression.numpy_with_bound(phi=phi, **extra)
         with np.errstate(all="ignore"):
-            bound = abs(self.scale) * np.asarray(self.expression.error_bound(phi=phi, **extra), dtype=float)
-        return np.broadcast_to(bound, phi.shape) + 2.0 * np.finfo(float).eps * np.abs(self(phi))
+            torque = self.scale * np.asarray(value, dtype=float)
+            bound = abs(self.scale) * np.asarray(bound, dtype=float)
+        return np.broadcast_to(bound + 2.0 * np.finfo(float).eps * np.abs(torque), phi.shape)
 
     def kink_functions(self):
         """Functions of the angle whose sign changes are kinks of the torque.
