@@ -1,4 +1,4 @@
-"""Benchmark of the flywheel designer (flyopt.optimize.design_flywheel).
+"""Benchmark of the flywheel designer (flyopt.design.optimize.design_flywheel).
 
 Times `flyopt.solve` (cycle analysis + design, default design method "auto")
 on every scene of problems/, with its design step by "auto" and by IPOPT alone,
@@ -34,8 +34,8 @@ import casadi as ca
 import numpy as np
 
 import flyopt
-from flyopt.materials import builtin_materials
-from flyopt.optimize import (DesignSpec, ModelStructure, MountShaft, clear_model_cache,
+from flyopt.design.materials import builtin_materials
+from flyopt.design.optimize import (DesignSpec, ModelStructure, MountShaft, clear_model_cache,
                              design_flywheel, get_model)
 
 TARGET_MS = 30.0
@@ -90,17 +90,17 @@ def time_problems(repeats):
     for path in sorted(PROBLEMS.glob("*.toml")):
         scene = flyopt.load(path)
         solution = flyopt.solve(scene)
-        flyopt.design(scene, solution.analysis, method="ipopt")   # warm-up: builds the NLP structure
+        flyopt.design_scene(scene, solution.analysis, method="ipopt")   # warm-up: builds the NLP structure
         total, design, ipopt = [], [], []
         for _ in range(repeats):
             start = time.perf_counter()
             solution = flyopt.solve(scene)
             total.append(time.perf_counter() - start)
             start = time.perf_counter()
-            flyopt.design(scene, solution.analysis)
+            flyopt.design_scene(scene, solution.analysis)
             design.append(time.perf_counter() - start)
             start = time.perf_counter()
-            flyopt.design(scene, solution.analysis, method="ipopt")
+            flyopt.design_scene(scene, solution.analysis, method="ipopt")
             ipopt.append(time.perf_counter() - start)
         rows.append({"scene": path.name, "status": solution.status,
                      "combinations": len(solution.design.candidates),

@@ -1,4 +1,4 @@
-"""Benchmark of design sweeps (flyopt.sweep): optimized designs per second.
+"""Benchmark of design sweeps (flyopt.studies.sweep): optimized designs per second.
 
 Two 10,000-point sweeps of problems/punch-press.toml (3 materials x 3 shafts,
 so 9 material x shaft combinations per point, each counted as one design):
@@ -8,7 +8,7 @@ so 9 material x shaft combinations per point, each counted as one design):
   limit (none or 2..20 cm), H/B range start and geometry (rim, thin_rim,
   disc): every closed-form structure.
 
-Each is timed end to end (``flyopt.sweep.sweep``: plan, one cycle analysis,
+Each is timed end to end (``flyopt.studies.sweep.sweep``: plan, one cycle analysis,
 designs, the result DataFrame; no file) serially (one process) and in
 parallel (worker processes, one per CPU), best and median of ``--repeat``
 runs. A design is a material x shaft combination decided: optimized, or
@@ -45,7 +45,7 @@ import casadi as ca
 import numpy as np
 
 import flyopt
-from flyopt.sweep import point_scene, sweep
+from flyopt.studies.sweep import point_scene, sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "problems" / "punch-press.toml"
@@ -223,7 +223,7 @@ def write(args, rows, checks, n_cpu):
         f"Scene: `problems/punch-press.toml` (3 materials x 3 shafts = 9 combinations per point, "
         f"envelope and width limit). A design is one material x shaft combination decided: "
         f"optimized, or proven infeasible by the exact closed-form bound (the feasible ones "
-        f"alone are the 'feasible designs/s'). Times are end to end (`flyopt.sweep.sweep`: "
+        f"alone are the 'feasible designs/s'). Times are end to end (`flyopt.studies.sweep.sweep`: "
         f"plan, one cycle analysis, designs, result DataFrame; no file), median of "
         f"{args.repeat} runs.",
         "",
@@ -283,7 +283,7 @@ def write(args, rows, checks, n_cpu):
         "",
         "- The speed comes from structure, not processes: every point of these sweeps has an "
         "analytic optimum (mass objective, D_m free or pinned, rim, thin rim or disc), so "
-        "`flyopt.batch` designs all 90,000 combinations at once in numpy (exact screening by "
+        "`flyopt.design.closed_form` designs all 90,000 combinations at once in numpy (exact screening by "
         "the closed-form J_max, then the closed form or a vectorized monotone Newton root), "
         "and the cycle is analysed once for the whole sweep.",
         "- Worker processes do not pay off at 10,000 points: the whole sweep takes about a "

@@ -1,13 +1,13 @@
-"""Tests of flyopt.batch, the vectorized closed-form designer.
+"""Tests of flyopt.design.closed_form, the vectorized closed-form designer.
 
 Two references:
 
-* flyopt.optimize.design_flywheel (IPOPT on the cached NLP, with its own
+* flyopt.design.optimize.design_flywheel (IPOPT on the cached NLP, with its own
   closed-form feasibility proof): on a few hundred random combinations of
   every covered structure, including infeasible ones, both must reach the
   same verdict and the same mass within 1e-6 (the issue's agreement).
 * An independent reference written here from the physics, not from flyopt
-  (neither flyopt.geometry nor flyopt.optimize): a scan of the inertia of
+  (neither flyopt.design.geometry nor flyopt.design.optimize): a scan of the inertia of
   the widest admissible rim at the outer-diameter cap and scipy's brentq for
   its smallest root (free D_m), and the largest admissible H for a pinned
   annulus; mass within 1e-9 (both are exact to round-off).
@@ -20,9 +20,9 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.optimize import brentq
 
-from flyopt import batch
-from flyopt.materials import Material, builtin_materials
-from flyopt.optimize import DesignSpec, MountShaft, design_flywheel, max_inertia
+from flyopt.design import closed_form as batch
+from flyopt.design.materials import Material, builtin_materials
+from flyopt.design.optimize import DesignSpec, MountShaft, design_flywheel, max_inertia
 
 RPM = math.pi / 30.0
 CAST_STEEL = builtin_materials()["cast_steel"]

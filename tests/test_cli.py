@@ -11,7 +11,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from conftest import PROBLEMS, assert_published
-from flyopt.cli import main
+from flyopt.cli.main import main
 
 JSON_FIELDS = {"a_max", "work_per_cycle", "driving_torque", "resisting_torque", "power", "omega_mean",
                "omega_max", "omega_min", "angle_omega_max", "angle_omega_min", "j_required",
@@ -19,7 +19,7 @@ JSON_FIELDS = {"a_max", "work_per_cycle", "driving_torque", "resisting_torque", 
 
 
 def run(*args):
-    return subprocess.run([sys.executable, "-m", "flyopt.cli", *map(str, args)], capture_output=True, text=True,
+    return subprocess.run([sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True,
                           timeout=120)
 
 

@@ -10,11 +10,11 @@ from numpy.testing import assert_allclose
 
 from conftest import assert_published
 from reference import exact_chain
-from flyopt.cycle import energy_indicator, energy_indicator_from_areas, kinks_of, required_inertia, work
-from flyopt.transmission import inertia_on_shaft
+from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, kinks_of, required_inertia, work
+from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.errors import NonPeriodicCycle
-from flyopt.expression import Expression
-from flyopt.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.machine.expression import Expression
+from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 
 TWO_PI = 2 * math.pi
 
@@ -345,7 +345,7 @@ KINK = 0.7639094994194499
 def test_quadrature_against_mpmath(name, f, mp_f, a, b, rtol):
     """The adaptive Gauss–Kronrod rule (one vectorized call per round) against mpmath at
     30 digits (split at the kinks and the peak so that mpmath is exact)."""
-    from flyopt.cycle import _quad
+    from flyopt.cycle.indicator import _quad
 
     mpmath.mp.dps = 30
     kink = mpmath.asin(mpmath.mpf(KINK))
@@ -361,7 +361,7 @@ def test_quadrature_kink_beside_a_halving_point_is_the_known_limit():
     about 2.4e-11 J, a relative 2e-11: held within 5e-11. (The cycle analysis never
     integrates across such a kink: it makes the kinks of abs/min/max knots; see
     test_kinks_of_abs_min_max_are_knots.)"""
-    from flyopt.cycle import _quad
+    from flyopt.cycle.indicator import _quad
 
     mpmath.mp.dps = 30
     c = mpmath.mpf(0.3)
@@ -374,7 +374,7 @@ def test_quadrature_kink_beside_a_halving_point_is_the_known_limit():
 def test_quadrature_refuses_what_it_cannot_resolve():
     """A torque oscillating a billion times per radian cannot be integrated to 1e-13: refused
     with the error reached, never returned as a number."""
-    from flyopt.cycle import _quad
+    from flyopt.cycle.indicator import _quad
 
     with pytest.raises(ArithmeticError, match="reached only"):
         _quad(lambda x: np.sin(1e9 * x) + 1.0, 0.0, 1.0, scale=1.0)
@@ -455,7 +455,7 @@ def test_two_kinks_within_one_grid_step():
 def test_kinks_of_sums_and_of_a_torque_at_a_fixed_speed():
     """A sum passes on its parts' kinks; an ω-dependent argument is searched at the speed the
     torque is held at (at_speed), and not at all while the speed is free."""
-    from flyopt.torque import TorqueSum
+    from flyopt.machine.torque import TorqueSum
 
     held = ExpressionTorque(Expression("max(0, sin(phi) - omega/100)", ("phi", "omega")), 1.0).at_speed(50.0)
     assert_allclose(kinks_of(held, TWO_PI), [math.pi / 6, 5 * math.pi / 6], rtol=1e-13)

@@ -1,13 +1,13 @@
 """Speed fluctuation beyond the constant-inertia method, against independent references.
 
 References used here:
-- the domain page's worked example 2 (published J_F) and flyopt.cycle's
+- the domain page's worked example 2 (published J_F) and flyopt.cycle.indicator's
   constant-inertia method, which every model must reproduce to 1e-8 on a
   scene of constant inertia and angle-only torques;
 - a brute-force forward simulation written here with scipy (DOP853 at
   rtol 1e-13, in time, state (φ, E), no ΔE closed form, no CasADi), with the
   slider-crank inertia from the textbook closed form rather than
-  flyopt.mechanism;
+  flyopt.machine.mechanism;
 - for speed-dependent torques, a scipy shooting solution (Brent's method on
   the periodicity condition) written here;
 - the closed-form run-up of a DC motor against a constant load.
@@ -22,15 +22,15 @@ from numpy.testing import assert_allclose
 from scipy import integrate, optimize
 
 from conftest import assert_published
-from flyopt import dynamics
-from flyopt.cycle import ExcessWork, energy_indicator, required_inertia
-from flyopt.dynamics import (achieved_speed, angle_torque, dynamic_requirement, energy_mass_requirement,
+from flyopt.sizing import dynamics
+from flyopt.cycle.indicator import ExcessWork, energy_indicator, required_inertia
+from flyopt.sizing.dynamics import (achieved_speed, angle_torque, dynamic_requirement, energy_mass_requirement,
                              periodic_solution, startup_time, verify)
 from flyopt.errors import NonPeriodicCycle, SolverFailed
-from flyopt.expression import Expression
-from flyopt.mechanism import Member, SliderCrank, equivalent_inertia, equivalent_torque
-from flyopt.motor import DCMotor, InductionMotor
-from flyopt.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.machine.expression import Expression
+from flyopt.machine.mechanism import Member, SliderCrank, equivalent_inertia, equivalent_torque
+from flyopt.machine.motor import DCMotor, InductionMotor
+from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 
 TWO_PI = 2 * math.pi
 RPM = TWO_PI / 60

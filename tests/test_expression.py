@@ -8,7 +8,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from flyopt.errors import ExpressionError
-from flyopt.expression import Expression
+from flyopt.machine.expression import Expression
 
 CASES = [
     ("25000 + 3600*sin(phi)", lambda p: 25000 + 3600 * np.sin(p)),

@@ -1,4 +1,4 @@
-"""Tests of flyopt.geometry: rim and disc mass, inertia, rim speed."""
+"""Tests of flyopt.design.geometry: rim and disc mass, inertia, rim speed."""
 
 import math
 
@@ -8,7 +8,7 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import quad
 
-from flyopt import geometry
+from flyopt.design import geometry
 
 
 def test_domain_example6_rim_sizing_textbook():

@@ -61,7 +61,7 @@ def _compare(expected, actual, path, problems):
 
 @pytest.mark.parametrize("path", SCENES, ids=[p.stem for p in SCENES])
 def test_problem_scene_json_matches_committed_copy(path):
-    run = subprocess.run([sys.executable, "-m", "flyopt.cli", "solve", str(path.relative_to(ROOT)), "--json"],
+    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(path.relative_to(ROOT)), "--json"],
                          capture_output=True, text=True, cwd=ROOT, timeout=300)
     assert run.returncode in (0, 3), run.stderr
     expected = json.loads((GOLDEN / f"{path.stem}.json").read_text())

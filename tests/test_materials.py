@@ -1,4 +1,4 @@
-"""Tests of flyopt.materials: the built-in data file and user materials."""
+"""Tests of flyopt.design.materials: the built-in data file and user materials."""
 
 import math
 import sys
@@ -7,7 +7,7 @@ from importlib import resources
 import pytest
 from numpy.testing import assert_allclose
 
-from flyopt.materials import (Material, builtin_materials, get_material, make_material,
+from flyopt.design.materials import (Material, builtin_materials, get_material, make_material,
                               material_library, rim_speed_from_stress)
 
 if sys.version_info >= (3, 11):

@@ -20,9 +20,9 @@ from numpy.testing import assert_allclose
 from scipy import integrate, optimize
 
 from conftest import assert_published
-from flyopt.cycle import ExcessWork
-from flyopt.mechanism import (GearTrain, Member, SliderCrank, equivalent_inertia, equivalent_torque)
-from flyopt.torque import Constant
+from flyopt.cycle.indicator import ExcessWork
+from flyopt.machine.mechanism import (GearTrain, Member, SliderCrank, equivalent_inertia, equivalent_torque)
+from flyopt.machine.torque import Constant
 
 TWO_PI = 2 * math.pi
 ANGLES = np.array([0.0, 0.3, 1.0, math.pi / 2, 2.0, math.pi, 4.0, 5.5])

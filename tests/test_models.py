@@ -8,7 +8,7 @@ from numpy.testing import assert_allclose
 
 import flyopt
 from conftest import PROBLEMS
-from flyopt.cli import main
+from flyopt.cli.main import main
 from flyopt.errors import SceneError
 
 
@@ -221,7 +221,7 @@ def test_the_chosen_model_is_solved_once(monkeypatch):
     """The comparison of models reuses the chosen model's requirement instead of solving
     the periodic dynamic problem a second time, with the same rows as a comparison that
     solves every model itself."""
-    from flyopt import models
+    from flyopt.sizing import models
 
     scene = flyopt.load(PROBLEMS / "motor-press.toml")
     calls = []

@@ -8,7 +8,7 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy import optimize
 
-from flyopt.motor import DEFAULT_BREAKDOWN_RATIO, DCMotor, InductionMotor
+from flyopt.machine.motor import DEFAULT_BREAKDOWN_RATIO, DCMotor, InductionMotor
 
 RPM = 2 * math.pi / 60
 

@@ -1,7 +1,7 @@
-"""Tests of flyopt.optimize, the CasADi/IPOPT flywheel designer.
+"""Tests of flyopt.design.optimize, the CasADi/IPOPT flywheel designer.
 
 The independent references below are written from the physics, not from
-flyopt.optimize: they use neither its code nor flyopt.geometry.
+flyopt.design.optimize: they use neither its code nor flyopt.design.geometry.
 
 * Lightest rim, no width limit or a width limit, D_m free (thin_rim and
   rim): the outer diameter sits at its cap D_c = min(2 v_max / omega',
@@ -27,8 +27,8 @@ from numpy.testing import assert_allclose
 from scipy.optimize import brentq, minimize_scalar
 
 from flyopt.errors import SolverFailed
-from flyopt.materials import Material, builtin_materials, make_material
-from flyopt.optimize import (BINDING_NAMES, DESIGN_FIELDS, DesignSpec, ModelStructure,
+from flyopt.design.materials import Material, builtin_materials, make_material
+from flyopt.design.optimize import (BINDING_NAMES, DESIGN_FIELDS, DesignSpec, ModelStructure,
                              MountShaft, clear_model_cache, design_flywheel, get_model)
 
 RPM = math.pi / 30.0
@@ -662,7 +662,7 @@ def test_mount_shaft_rejects_bad_speed_ratio(ratio):
 @pytest.mark.parametrize("pinned", [False, True])
 @pytest.mark.parametrize("geometry", ["rim", "thin_rim", "disc"])
 def test_closed_form_method_agrees_with_ipopt(geometry, pinned):
-    """method="auto" sizes covered structures by the exact closed form (flyopt.batch): the same
+    """method="auto" sizes covered structures by the exact closed form (flyopt.design.closed_form): the same
     verdicts and masses as IPOPT to 1e-6 on random scenes, mean diameter free or pinned, each
     design verified like IPOPT's."""
     rng = np.random.default_rng(11 + pinned)

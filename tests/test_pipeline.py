@@ -8,8 +8,8 @@ from numpy.testing import assert_allclose
 
 import flyopt
 from conftest import PROBLEMS, assert_published
-from flyopt import optimize
-from flyopt.cli import main
+from flyopt.design import optimize
+from flyopt.cli.main import main
 
 DESIGN_FIELDS = {"material", "shaft", "geometry", "d_mean", "d_outer", "d_inner", "h", "b", "hb_ratio", "mass",
                  "rim_speed", "hoop_stress", "safety_factor", "j_flywheel", "j_at_reference", "binding",
@@ -80,7 +80,7 @@ def test_non_converged_solve_is_never_a_design(monkeypatch, capsys):
 def test_a_closed_form_design_is_verified_like_a_solve(monkeypatch, capsys):
     """The default method's closed form is checked against every constraint too: a rim 1 %
     too thin (inertia short) is refused, exit 1, no design printed."""
-    from flyopt import batch
+    from flyopt.design import closed_form as batch
 
     exact = batch.lightest_one
 
@@ -117,7 +117,7 @@ def test_every_problem_scene_solves_with_a_checked_status():
         solution = flyopt.solve(flyopt.load(path))
         assert solution.status in ("designed", "not_needed"), path
         if solution.status == "designed":
-            ipopt = flyopt.design(solution.scene, solution.analysis, method="ipopt").best
+            ipopt = flyopt.design_scene(solution.scene, solution.analysis, method="ipopt").best
             assert ipopt.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
             best = solution.design.best
             assert best.solver_status == "closed_form", path
@@ -154,7 +154,7 @@ def test_zero_fluctuation_verifies_to_zero_delta(tmp_path, capsys):
 
 
 def test_report_numbers_survive_inf_and_nan():
-    from flyopt.report import number
+    from flyopt.report.text import number
 
     assert (number(float("inf")), number(float("nan"))) == ("inf", "nan")
 

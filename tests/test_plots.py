@@ -3,8 +3,8 @@
 import pytest
 
 from conftest import PROBLEMS
-from flyopt.cli import main
-from flyopt.plots import PLOTS
+from flyopt.cli.main import main
+from flyopt.report.plots import PLOTS
 
 SCENES = ["shear-press", "slider-crank-press", "motor-press", "example1-net-areas"]
 NOT_DRAWABLE = {  # (scene, diagram): why it is refused, in one line
@@ -49,7 +49,7 @@ def test_bad_plot_requests(tmp_path, capsys, args, words):
 
 
 def test_sweep_and_pareto_plots_from_result_files(tmp_path):
-    from flyopt import studies
+    from flyopt.studies import fronts as studies
 
     sweep_file = tmp_path / "sweep.parquet"
     assert studies.sweep_main([str(PROBLEMS / "punch-press.toml"), "--vary", "delta=0.05:0.2:log4",
@@ -87,7 +87,7 @@ def test_speed_plot_with_the_simulation_overlaid(tmp_path):
 
     matplotlib.use("Agg")
     import flyopt
-    from flyopt import plots
+    from flyopt.report import plots
 
     scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
     analysis = flyopt.analyse(scene)

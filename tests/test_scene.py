@@ -7,7 +7,7 @@ from numpy.testing import assert_allclose
 
 import flyopt
 from flyopt.errors import SceneError
-from flyopt.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 
 VALID = """
 title = "t"

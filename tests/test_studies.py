@@ -1,4 +1,4 @@
-"""Tests of flyopt.studies: Pareto fronts, the material trade-off table, and the
+"""Tests of flyopt.studies.fronts: Pareto fronts, the material trade-off table, and the
 ``flyopt pareto`` / ``flyopt tradeoff`` commands.
 
 References: every front point is checked against ``flyopt.solve`` of the
@@ -20,8 +20,8 @@ from numpy.testing import assert_allclose
 import flyopt
 from conftest import PROBLEMS
 from flyopt.errors import SceneError
-from flyopt.optimize import MountShaft, design_flywheel
-from flyopt.studies import (material_tradeoff, non_dominated, pareto, pareto_main,
+from flyopt.design.optimize import MountShaft, design_flywheel
+from flyopt.studies.fronts import (material_tradeoff, non_dominated, pareto, pareto_main,
                             tradeoff_main)
 
 PUNCH = flyopt.load(PROBLEMS / "punch-press.toml")

@@ -1,4 +1,4 @@
-"""Tests of flyopt.sweep: the --vary grammar, sweeps against individual solves,
+"""Tests of flyopt.studies.sweep: the --vary grammar, sweeps against individual solves,
 files, resume after a crash, worker processes and a Dask LocalCluster.
 
 The reference for every swept point is ``flyopt.solve`` of the scene of that
@@ -17,13 +17,13 @@ from numpy.testing import assert_allclose
 
 import flyopt
 from conftest import PROBLEMS
-from flyopt import optimize
+from flyopt.design import optimize
 import importlib
 
-sweep_module = importlib.import_module("flyopt.sweep")  # the module; flyopt.sweep the attribute is the function
+sweep_module = importlib.import_module("flyopt.studies.sweep")  # the module; flyopt.studies.sweep the attribute is the function
 from flyopt.errors import SceneError
-from flyopt.studies import sweep_main
-from flyopt.sweep import (CORE_INPUTS, RESULT_COLUMNS, load_sweep, parse_vary, plan_sweep,
+from flyopt.studies.fronts import sweep_main
+from flyopt.studies.sweep import (CORE_INPUTS, RESULT_COLUMNS, load_sweep, parse_vary, plan_sweep,
                           point_scene, read_results, sweep)
 
 RPM = math.pi / 30.0
@@ -504,7 +504,7 @@ def test_sweeps_of_member_and_motor_scenes_match_individual_solves(scene, vary):
 ])
 def test_bad_sweep_table_names_the_file_and_field(tmp_path, capsys, sweep_table, words):
     """Regression (outside review): errors in a scene's [sweep] table name the file and the field."""
-    from flyopt.cli import main
+    from flyopt.cli.main import main
 
     path = tmp_path / "s.toml"
     path.write_text((PROBLEMS / "shear-press.toml").read_text() + "\n" + sweep_table)
@@ -514,7 +514,7 @@ def test_bad_sweep_table_names_the_file_and_field(tmp_path, capsys, sweep_table,
 
 
 def test_sweep_output_in_a_missing_folder_is_refused_not_created(tmp_path, capsys):
-    from flyopt.cli import main
+    from flyopt.cli.main import main
 
     target = tmp_path / "no" / "such" / "x.csv"
     assert main(["sweep", str(PROBLEMS / "shear-press.toml"), "--vary", "delta=0.1,0.2", "-o", str(target)]) == 2

@@ -5,7 +5,7 @@ from numpy.testing import assert_allclose
 
 from conftest import assert_published
 
-from flyopt.transmission import motor_power, reduced_inertia, reduced_load_torque, series_efficiency
+from flyopt.machine.transmission import motor_power, reduced_inertia, reduced_load_torque, series_efficiency
 
 
 def test_domain_example4_series_efficiency_and_motor_power():

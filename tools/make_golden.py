@@ -20,7 +20,7 @@ def main():
     out_dir = ROOT / "tests" / "data" / "golden"
     out_dir.mkdir(parents=True, exist_ok=True)
     for scene in sorted((ROOT / "problems").glob("*.toml")):
-        run = subprocess.run([sys.executable, "-m", "flyopt.cli", "solve", str(scene.relative_to(ROOT)), "--json"],
+        run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene.relative_to(ROOT)), "--json"],
                              capture_output=True, text=True, cwd=ROOT)
         if run.returncode not in (0, 3):
             raise SystemExit(f"{scene.name}: exit {run.returncode}: {run.stderr.strip()}")

@@ -29,7 +29,7 @@ centre. We want the lightest flywheel that keeps the speed fluctuation within δ
     ("code", """%matplotlib inline
 from pathlib import Path
 import flyopt
-from flyopt import plots
+from flyopt.report import plots
 
 ROOT = Path.cwd() if (Path.cwd() / "problems").exists() else Path.cwd().parent
 scene = flyopt.load(ROOT / "problems" / "slider-crank-press.toml")
@@ -160,7 +160,7 @@ fig.colorbar(cs, label="lightest flywheel [kg]")
 ax.set(xscale="log", xlabel="allowed δ", ylabel="motor speed [rpm]", title="shear press: mass surface");"""),
     ("md", """Mass falls like 1/δ (the hyperbola of J against δ) and, at a fixed envelope, like 1/n²: J_F = A_max/(ω²δ).
 Check one point against an individual solve:"""),
-    ("code", """from flyopt.sweep import point_scene
+    ("code", """from flyopt.studies.sweep import point_scene
 
 row = grid.iloc[57]
 single = flyopt.solve(point_scene(scene, {"delta": row["delta"], "speed": row["speed"]}), design_method="ipopt")
@@ -168,7 +168,7 @@ print(f"sweep {row['mass']:.9g} kg, individual IPOPT solve {single.design.best.m
 assert abs(row["mass"] / single.design.best.mass - 1) < 1e-6"""),
     ("md", "And the trade-off between mass and outer diameter, by an ε-constraint on the envelope:"),
     ("code", """front = flyopt.pareto(scene, ("mass", "outer_diameter"), points=15)
-from flyopt import plots
+from flyopt.report import plots
 plots.plot_pareto(front, "outer_diameter", "mass");"""),
 ]
 

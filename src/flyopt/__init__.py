@@ -9,15 +9,15 @@ Pipeline: load a scene → analyse its cycle → design the flywheel.
 >>> flyopt.solve(scene).design.best.mass              # doctest: +SKIP
 """
 
-from .analysis import Analysis, analyse
-from .errors import ExpressionError, FlyoptError, NonPeriodicCycle, SceneError, SolverFailed
-from .pipeline import Solution, design, solve
-from .scene import Scene, Shaft, from_dict, load
-from .studies import material_tradeoff, pareto
-from .sweep import sweep  # noqa: E402  (the function; the module stays importable as flyopt.sweep)
+from flyopt.analysis import Analysis, analyse
+from flyopt.errors import ExpressionError, FlyoptError, NonPeriodicCycle, SceneError, SolverFailed
+from flyopt.pipeline import Solution, design_scene, solve
+from flyopt.io.scene import Scene, Shaft, from_dict, load
+from flyopt.studies.fronts import material_tradeoff, pareto
+from flyopt.studies.sweep import sweep  # noqa: E402  (the function; the module stays importable as flyopt.studies.sweep)
 
 __version__ = "0.1.0"
 
 __all__ = ["Analysis", "ExpressionError", "FlyoptError", "NonPeriodicCycle", "Scene", "SceneError",
-           "Shaft", "Solution", "SolverFailed", "analyse", "design", "from_dict", "load", "material_tradeoff", "pareto",
+           "Shaft", "Solution", "SolverFailed", "analyse", "design_scene", "from_dict", "load", "material_tradeoff", "pareto",
            "solve", "sweep", "__version__"]

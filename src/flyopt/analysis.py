@@ -1,6 +1,6 @@
 """The analysis pipeline: scene → cycle → required inertia → result.
 
-Reads like the domain page: solve an unknown constant torque from the work
+Reads like the domain notes (docs/flywheel-design.md): solve an unknown constant torque from the work
 balance, build the energy indicator diagram, take A_max, size the flywheel
 by J_F = A_max/(ω_m² δ) − J_c, and move it to every shaft by the
 ratio-squared transfer.
@@ -8,10 +8,10 @@ ratio-squared transfer.
 
 from dataclasses import dataclass
 
-from .cycle import energy_indicator, energy_indicator_from_areas, required_inertia
-from .errors import NonPeriodicCycle, SceneError
-from .transmission import inertia_on_shaft
-from .units import gd2_from_inertia
+from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia
+from flyopt.errors import NonPeriodicCycle, SceneError
+from flyopt.machine.transmission import inertia_on_shaft
+from flyopt.units import gd2_from_inertia
 
 
 
@@ -89,7 +89,7 @@ def analyse(scene, model=None):
     scene : Scene
     model : {"energy", "energy_mass", "dynamic"}, optional
         Force a model; by default the cheapest one that is exact for the
-        scene (flyopt.models.choose).
+        scene (flyopt.sizing.models.choose).
 
     Returns
     -------
@@ -109,7 +109,7 @@ def analyse(scene, model=None):
 
 
 def _analyse(scene, forced=None):
-    from . import models
+    from flyopt.sizing import models
 
     if forced is not None and forced not in models.MODELS:
         raise SceneError("--model", f"{forced!r} is not known (allowed: {', '.join(models.ORDER)})")
@@ -171,9 +171,9 @@ def _startup(machine, omega_target, j_flywheel):
     near the rated point: at rest it would give 25 times the rated torque).
     Returns None when no motor drives the machine.
     """
-    from . import dynamics
-    from .errors import SolverFailed
-    from .torque import MotorTorque
+    from flyopt.sizing import dynamics
+    from flyopt.errors import SolverFailed
+    from flyopt.machine.torque import MotorTorque
 
     motor = machine.driving if isinstance(machine.driving, MotorTorque) else None
     if motor is None:

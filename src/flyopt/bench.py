@@ -8,7 +8,7 @@ returns :class:`Row` objects, registered in :data:`SECTIONS`):
 
 ``cycle``
     A_max from tabulated torque curves. flyopt's exact piecewise integration
-    (:func:`flyopt.cycle.energy_indicator`) against what spreadsheets and
+    (:func:`flyopt.cycle.indicator.energy_indicator`) against what spreadsheets and
     student codes do: resample the table at N equally spaced angles
     (64 ... 100,000), take the mean torque from the same samples, chain the
     excess work by the rectangle, trapezoid, ``cumulative_trapezoid`` or
@@ -17,7 +17,7 @@ returns :class:`Row` objects, registered in :data:`SECTIONS`):
     (:mod:`fractions`) on the float table, so the reference error is zero.
 ``design``
     Design ranking, 2 materials × 3 shafts. flyopt's two paths through
-    :func:`flyopt.optimize.design_flywheel`: the default ``auto`` (the exact
+    :func:`flyopt.design.optimize.design_flywheel`: the default ``auto`` (the exact
     closed form where it covers the structure) and IPOPT on every NLP, each
     timed as the one call a user makes; scipy's SLSQP on the same model,
     once in scaled physical variables and once in flyopt's own log-variables;
@@ -35,7 +35,7 @@ returns :class:`Row` objects, registered in :data:`SECTIONS`):
 
 ``required_inertia``
     J_F by the constant-inertia method, the energy–mass closed form and the
-    periodic dynamic solution (:mod:`flyopt.dynamics`) on constant-inertia,
+    periodic dynamic solution (:mod:`flyopt.sizing.dynamics`) on constant-inertia,
     variable-inertia and speed-dependent scenes, each against the model that
     is exact for the scene.
 
@@ -380,8 +380,8 @@ class CycleCase:
 
 
 def _flyopt_curve(curve):
-    from .expression import Expression
-    from .torque import Constant, ExpressionTorque, PiecewiseLinear
+    from flyopt.machine.expression import Expression
+    from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 
     if curve[0] == "mean":
         return Constant(None)
@@ -392,7 +392,7 @@ def _flyopt_curve(curve):
 
 def flyopt_a_max(case):
     """A_max by flyopt's exact energy indicator (the torque objects built anew)."""
-    from .cycle import energy_indicator
+    from flyopt.cycle.indicator import energy_indicator
 
     return energy_indicator(_flyopt_curve(case.driving), _flyopt_curve(case.resisting),
                             case.cycle_angle).a_max
@@ -639,7 +639,7 @@ def lightest_rim_1d(combo, points=3000):
     D_m grows and as H shrinks (H < D_m). H is found by a log-spaced scan from
     far below the thin-rim estimate to min(cap/2, hb_max B_max), then
     ``brentq`` to 1e-15; no root and no refined peak above J' means
-    infeasible. Independent of flyopt.optimize.
+    infeasible. Independent of flyopt.design.optimize.
     """
     rho, j, cap = combo.density, combo.j, combo.cap
     hb_min, hb_max = combo.hb
@@ -856,8 +856,8 @@ def grid_combination(combo, n_diameters, n_ratios):
 
 def ipopt_combinations(j_required, omega_mean, shafts, materials, spec, method="ipopt"):
     """flyopt's ranking (one design_flywheel call) as one Outcome per combination."""
-    from .errors import SolverFailed
-    from .optimize import design_flywheel
+    from flyopt.errors import SolverFailed
+    from flyopt.design.optimize import design_flywheel
 
     combos = combinations(j_required, omega_mean, shafts, materials, spec)
     try:
@@ -885,7 +885,7 @@ def _per_combination(solver):
 def _flyopt_ranking(method):
     """The call a user makes: one design_flywheel over every combination (what is timed)."""
     def rank(j_required, omega_mean, shafts, materials, spec):
-        from .optimize import design_flywheel
+        from flyopt.design.optimize import design_flywheel
         return design_flywheel(j_required, omega_mean, shafts, materials, spec, method=method)
     return rank
 
@@ -922,8 +922,8 @@ def random_design_scenes(count, seed):
     reference shaft), a quarter with a width limit (0.5..3 × the thin-rim
     width at that diameter).
     """
-    from .materials import builtin_materials
-    from .optimize import DesignSpec, MountShaft
+    from flyopt.design.materials import builtin_materials
+    from flyopt.design.optimize import DesignSpec, MountShaft
 
     materials = [builtin_materials()[name] for name in ("cast_iron", "cast_steel")]
     rng = np.random.default_rng(seed)
@@ -970,7 +970,7 @@ def _judge(outcome, ref_mass):
 
 def section_design(config):
     """Design ranking, 2 materials × 3 shafts: IPOPT, SLSQP, grids, 1-D root search."""
-    from .optimize import DesignSpec, design_flywheel
+    from flyopt.design.optimize import DesignSpec, design_flywheel
 
     scenes = random_design_scenes(config.scenes, config.seed)
     methods = design_methods(config)
@@ -1060,7 +1060,7 @@ def exact_annulus_inertia(d_outer, d_inner, b, density):
 
 def section_geometry(config):
     """Inertia of thin rim and exact annulus against the exact integral, over H/D_m."""
-    from . import geometry
+    from flyopt.design import geometry
 
     rows = []
     density, d_mean = 7200.0, 1.0
@@ -1101,8 +1101,8 @@ def _geometry_at_designs(config):
     """
     from dataclasses import replace
 
-    from . import geometry
-    from .optimize import design_flywheel
+    from flyopt.design import geometry
+    from flyopt.design.optimize import design_flywheel
 
     errors, penalties, times = [], [], []
     for scene in random_design_scenes(min(config.scenes, 20), config.seed):
@@ -1198,8 +1198,8 @@ def section_required_inertia(config):
     J_F really achieves, by the exact model. Reference method for time ratios: the
     exact model of each scene.
     """
-    from . import models
-    from .scene import from_dict
+    from flyopt.sizing import models
+    from flyopt.io.scene import from_dict
 
     try:
         import tomllib
@@ -1521,8 +1521,8 @@ def hard_design_scenes(config, rng, cycles):
     H/B range or fixed, envelope and width limit sometimes. The first scenes
     pin the extremes (J_F, rpm, δ and ratio at their ends).
     """
-    from .materials import builtin_materials
-    from .optimize import DesignSpec, MountShaft
+    from flyopt.design.materials import builtin_materials
+    from flyopt.design.optimize import DesignSpec, MountShaft
 
     materials = [builtin_materials()[name] for name in ("cast_iron", "cast_steel")]
     small = [c for c in cycles if c.points <= 1000]
@@ -1613,7 +1613,7 @@ def run_hard(config, progress=None):
     cycle_rows, design_rows : list of dict
         One dict per cycle check and per (scene, combination, method).
     """
-    from .cycle import energy_indicator, required_inertia
+    from flyopt.cycle.indicator import energy_indicator, required_inertia
 
     rng = np.random.default_rng(config.seed + 1000)
     cycles = hard_cycle_cases(config, rng)
@@ -1638,7 +1638,7 @@ def run_hard(config, progress=None):
         progress(f"hard: {len(cycle_rows)} cycle cases checked")
     scenes = hard_design_scenes(config, rng, cycles)
     scenes += _boundary_scenes(config, scenes)
-    from .optimize import DesignSpec, design_flywheel
+    from flyopt.design.optimize import DesignSpec, design_flywheel
     for geometry in ("rim", "thin_rim"):      # build the NLPs outside the timings
         design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry),
                         method="ipopt")
@@ -1678,7 +1678,7 @@ def run_hard(config, progress=None):
             for ref_combo, combo, ref in zip(ref_combos, fly_combos, references):
                 start = time.perf_counter()
                 if isinstance(solver, str):
-                    from .optimize import MountShaft
+                    from flyopt.design.optimize import MountShaft
                     outcome = ipopt_combinations(combo.j * combo.speed_ratio ** 2, omega,
                                                  [MountShaft(combo.shaft, combo.speed_ratio)],
                                                  [m for m in scene["materials"] if m.name == combo.material],

@@ -7,7 +7,7 @@ PyBaMM Simulation pattern).
 
 from dataclasses import dataclass
 
-from .analysis import Analysis, analyse
+from flyopt.analysis import Analysis, analyse
 
 
 @dataclass(frozen=True)
@@ -49,7 +49,7 @@ def design_dict(result):
     return {"status": raw["status"], "message": raw["message"], **design, "model": raw["model"]}
 
 
-def design(scene, analysis, solver_options=None, method="auto"):
+def design_scene(scene, analysis, solver_options=None, method="auto"):
     """Design the flywheel a scene needs, from its analysis.
 
     Parameters
@@ -65,7 +65,7 @@ def design(scene, analysis, solver_options=None, method="auto"):
     method : {"auto", "ipopt", "closed_form"}
         The exact closed form where it covers the structure and IPOPT
         elsewhere (default), IPOPT on every combination, or the closed form
-        only (see flyopt.optimize.design_flywheel).
+        only (see flyopt.design.optimize.design_flywheel).
 
     Returns
     -------
@@ -77,7 +77,7 @@ def design(scene, analysis, solver_options=None, method="auto"):
         IPOPT did not converge on a combination that can be feasible, or a
         design failed its verification against the constraints.
     """
-    from .optimize import MountShaft, design_flywheel
+    from flyopt.design.optimize import MountShaft, design_flywheel
 
     library = scene.material_library()
     materials = [library[name] for name in (scene.design_materials or tuple(library))]
@@ -92,7 +92,7 @@ def design(scene, analysis, solver_options=None, method="auto"):
 def verify(scene, analysis, design_result=None):
     """Simulate the machine with its flywheel and report the δ it really achieves.
 
-    The periodic solution of the equation of motion (flyopt.dynamics.verify)
+    The periodic solution of the equation of motion (flyopt.sizing.dynamics.verify)
     with the chosen flywheel moved to the reference shaft (J' i²); with no
     flywheel needed, the machine alone. A design whose δ exceeds the allowed
     one by more than the simulation tolerance is ``flagged``.
@@ -104,7 +104,7 @@ def verify(scene, analysis, design_result=None):
         omega_max, omega_min, omega_mean, tolerance, flagged, j_flywheel;
         None when there is no flywheel to verify (infeasible design).
     """
-    from . import dynamics
+    from flyopt.sizing import dynamics
 
     if design_result is not None and design_result.status == "infeasible":
         return None
@@ -148,13 +148,13 @@ def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_d
     verify_design : bool
         Simulate the machine with the chosen flywheel (:func:`verify`).
     design_method : {"auto", "ipopt", "closed_form"}
-        How each combination is optimized (see :func:`design`).
+        How each combination is optimized (see :func:`design_scene`).
 
     Returns
     -------
     Solution
     """
     analysis = analyse(scene, model)
-    result = design(scene, analysis, solver_options, design_method) if design_flywheel else None
+    result = design_scene(scene, analysis, solver_options, design_method) if design_flywheel else None
     checked = verify(scene, analysis, result) if verify_design else None
     return Solution(scene=scene, analysis=analysis, design=result, verification=checked)

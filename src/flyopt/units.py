@@ -8,7 +8,7 @@ Plain numbers are taken as SI (angles in radians, speeds in rad/s).
 import functools
 import math
 
-from .errors import SceneError
+from flyopt.errors import SceneError
 
 G_STANDARD = 9.81
 """Acceleration of gravity used for GD² [m/s^2] (the electric-drive convention, GD² = 4 g J)."""

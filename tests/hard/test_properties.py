@@ -7,11 +7,11 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
-from flyopt.cycle import energy_indicator, required_inertia
-from flyopt.materials import builtin_materials
-from flyopt.optimize import DesignSpec, MountShaft, design_flywheel
-from flyopt.torque import Constant, PiecewiseLinear
-from flyopt.transmission import inertia_on_shaft
+from flyopt.cycle.indicator import energy_indicator, required_inertia
+from flyopt.design.materials import builtin_materials
+from flyopt.design.optimize import DesignSpec, MountShaft, design_flywheel
+from flyopt.machine.torque import Constant, PiecewiseLinear
+from flyopt.machine.transmission import inertia_on_shaft
 
 TWO_PI = 2 * math.pi
 # derandomize: CI runs the same examples every time (a failure is reproducible, not a lottery)

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .expression import Expression
+from flyopt.machine.expression import Expression
 
 
 @dataclass(frozen=True)
@@ -246,7 +246,7 @@ class MotorTorque:
 
     Parameters
     ----------
-    motor : flyopt.motor.InductionMotor or DCMotor
+    motor : flyopt.machine.motor.InductionMotor or DCMotor
     speed_ratio : float
         i = ω_motor / ω_reference [-].
     efficiency : float

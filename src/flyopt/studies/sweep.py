@@ -42,9 +42,9 @@ The cycle is analysed once: for torques of the angle alone A_max does not
 depend on δ, ω_m or J_c, and scaling both torques by k scales every ΔE, so
 A_max(k) = k A_max. Each point then has J_F = k A_max / (ω_m² δ) − J_c,
 the formula of the analysis itself. The designs come from
-:mod:`flyopt.batch` (closed form, exact, vectorized over every point and
+:mod:`flyopt.design.closed_form` (closed form, exact, vectorized over every point and
 combination) where it covers the structure, and from
-:func:`flyopt.optimize.design_flywheel` (IPOPT on an NLP built once per
+:func:`flyopt.design.optimize.design_flywheel` (IPOPT on an NLP built once per
 structure and process, fed parameters) elsewhere; each row says which
 (``method``). A point whose IPOPT solve fails gets ``status = "failed"``
 with IPOPT's status, never a mass.
@@ -84,11 +84,11 @@ from typing import Mapping
 import numpy as np
 import pandas as pd
 
-from . import batch
-from .errors import SceneError, SolverFailed
-from .scene import NetAreas
-from .torque import Constant, ExpressionTorque, PiecewiseLinear
-from .units import quantity
+from flyopt.design import closed_form as batch
+from flyopt.errors import SceneError, SolverFailed
+from flyopt.io.scene import NetAreas
+from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.units import quantity
 
 __all__ = [
     "FIELDS",
@@ -374,10 +374,10 @@ def _parse_range(name, spec, text, label, sampled):
 
 def _check_name(scene, name, item, label):
     if name == "design.geometry":
-        from .geometry import GEOMETRIES
+        from flyopt.design.geometry import GEOMETRIES
         known = list(GEOMETRIES)
     elif name == "design.objective":
-        from .optimize import OBJECTIVES
+        from flyopt.design.optimize import OBJECTIVES
         known = list(OBJECTIVES)
     elif name == "material":
         known = list(scene.material_library())
@@ -559,7 +559,7 @@ def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
 
 def _check_points(scene, points, where):
     """Reject points whose design settings are invalid, naming the field."""
-    from .optimize import DesignSpec
+    from flyopt.design.optimize import DesignSpec
 
     n = len(points)
     inputs = _Inputs(scene, points)
@@ -621,7 +621,7 @@ def point_scene(scene, point):
     -------
     Scene
     """
-    from .materials import material_library
+    from flyopt.design.materials import material_library
 
     changes = {}
     design = {}
@@ -712,7 +712,7 @@ class _Context:
 
 
 def _context(scene, method="auto", solver_options=None, axes=()):
-    from .analysis import analyse
+    from flyopt.analysis import analyse
 
     reusable = _reusable(scene)
     if reusable:
@@ -810,7 +810,7 @@ def evaluate_points(scene_or_context, points, *, method="auto", solver_options=N
     points : pandas.DataFrame
         Rows of :attr:`SweepPlan.points`.
     method : {"auto", "closed_form", "ipopt"}
-        ``auto``: the closed form of :mod:`flyopt.batch` where it is exact,
+        ``auto``: the closed form of :mod:`flyopt.design.closed_form` where it is exact,
         IPOPT elsewhere; ``ipopt``: IPOPT for every point (for checks and
         benchmarks); ``closed_form``: refuse structures it does not cover.
     solver_options : mapping, optional
@@ -842,7 +842,7 @@ def _evaluate(ctx, points):
         j_margin = a_max / (inputs.speed ** 2 * inputs.delta) - inputs.inertia
         inputs.omega_rim = inputs.speed * (1 + inputs.delta / 2)      # ω_max: the rim is checked there
     else:  # varying inertia or speed-dependent torques: analyse every point with its exact model
-        from .analysis import analyse
+        from flyopt.analysis import analyse
 
         a_max, driving, j_margin = np.empty(n), np.empty(n), np.empty(n)
         inputs.omega_rim = np.empty(n)
@@ -984,8 +984,8 @@ _IPOPT_LOCK = threading.Lock()
 
 def _design_ipopt(ctx, inputs, k, j_required, res):
     """One point by optimize.design_flywheel (IPOPT, NLP cached per structure)."""
-    from .optimize import DesignSpec, MountShaft, design_flywheel
-    from .materials import Material
+    from flyopt.design.optimize import DesignSpec, MountShaft, design_flywheel
+    from flyopt.design.materials import Material
 
     mats = [inputs.material[k]] if inputs.material is not None else inputs.material_names
     shafts = [inputs.shaft[k]] if inputs.shaft is not None else inputs.shaft_names
@@ -1239,7 +1239,7 @@ def _mp_context():
     if "forkserver" in methods:
         context = mp.get_context("forkserver")
         # the server imports flyopt (numpy, pandas, CasADi) once; workers fork from it
-        context.set_forkserver_preload(["flyopt.sweep"])
+        context.set_forkserver_preload(["flyopt.studies.sweep"])
         return context
     return mp.get_context("spawn")  # pragma: no cover - Windows
 
@@ -1525,7 +1525,7 @@ def load_sweep(path):
     SceneError
         Bad file, scene or ``[sweep]`` key (named, with the file).
     """
-    from .scene import from_dict
+    from flyopt.io.scene import from_dict
 
     path = Path(path)
     try:

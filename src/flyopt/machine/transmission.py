@@ -55,7 +55,7 @@ def motor_power(branches):
 def reduced_inertia(j_motor=0.0, shafts=(), masses=(), omega_motor=None, efficiencies=None):
     """Inertia of a drive reduced to the motor shaft.
 
-    J = J_M + Σ_k J_k / j_k² + Σ_i m_i v_i² / ω_M²  (domain page, section 3).
+    J = J_M + Σ_k J_k / j_k² + Σ_i m_i v_i² / ω_M²  (docs/flywheel-design.md, section 3).
 
     Parameters
     ----------

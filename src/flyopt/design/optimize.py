@@ -5,13 +5,13 @@ J_F (already net of the machine's own J_c), every combination of material and
 mounting shaft gets a small nonlinear program; the combinations are then
 ranked by the objective. The NLP is solved with IPOPT through CasADi, or,
 where its optimum is known in closed form (objectives mass and cost: the
-outer diameter at its cap and a monotone 1-D root, :mod:`flyopt.batch`), by
+outer diameter at its cap and a monotone 1-D root, :mod:`flyopt.design.closed_form`), by
 that closed form: the default method "auto" takes the closed form where it is
 exact and IPOPT elsewhere, and verifies either design against every
 constraint. The closed form is tested against IPOPT to 1e-6 in mass.
 
 For a flywheel mounted on a shaft turning at omega' = r omega_m (r the speed
-ratio), the kinetic energy transfer (domain notes section 8) gives
+ratio), the kinetic energy transfer (docs/flywheel-design.md, section 8) gives
 
     J_ref = J' r^2,   so the wheel must give J' >= J_F / r^2 on its shaft.
 
@@ -51,7 +51,7 @@ a non-converged solve of a feasible combination raises
 
 References
 ----------
-.. [1] flyopt domain notes, shared/domain/flywheel-design.md, sections 5, 8, 9, 10 and
+.. [1] flyopt domain notes, docs/flywheel-design.md, sections 5, 8, 9, 10 and
    worked example 6.
 .. [2] A. Waechter and L. T. Biegler, "On the implementation of an
    interior-point filter line-search algorithm for large-scale nonlinear
@@ -71,10 +71,10 @@ from typing import Mapping, NamedTuple, Sequence
 import casadi as ca
 from scipy.optimize import brentq
 
-from flyopt import geometry
+from flyopt.design import geometry
 from flyopt.errors import SolverFailed
-from flyopt.materials import Material
-from flyopt.transmission import inertia_at_reference, inertia_on_shaft
+from flyopt.design.materials import Material
+from flyopt.machine.transmission import inertia_at_reference, inertia_on_shaft
 
 __all__ = [
     "MountShaft",
@@ -189,7 +189,7 @@ class DesignSpec:
     Parameters
     ----------
     geometry : {"rim", "thin_rim", "disc"}
-        Inertia model (see :data:`flyopt.geometry.GEOMETRIES`).
+        Inertia model (see :data:`flyopt.design.geometry.GEOMETRIES`).
     hb_ratio : (float, float)
         Allowed range of H/B, radial thickness over axial width [-]; equal
         ends fix it. Ignored by ``disc``.
@@ -882,13 +882,13 @@ def _solve_closed_form(pending, spec):
     """Design feasible combinations by the exact closed form.
 
     Feasibility is already proven by :func:`max_inertia`; each design comes
-    from :func:`flyopt.batch.lightest_one` (plain floats: a ranking is a few
+    from :func:`flyopt.design.closed_form.lightest_one` (plain floats: a ranking is a few
     combinations, too few for numpy to pay), is recomputed with
-    :mod:`flyopt.geometry` and verified like an IPOPT one.
+    :mod:`flyopt.design.geometry` and verified like an IPOPT one.
 
     Returns (order, Candidate) pairs.
     """
-    from . import batch
+    from flyopt.design import closed_form as batch
 
     hb_min, hb_max = spec.hb_ratio
     b_max = math.inf if spec.max_width is None else spec.max_width
@@ -1001,7 +1001,7 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
     ----------
     j_required : float
         J_F, the flywheel inertia required at the reference shaft [kg*m^2],
-        already net of the machine's own inertia J_c (domain notes section 5:
+        already net of the machine's own inertia J_c (docs/flywheel-design.md, section 5:
         J_F = A_max / (omega_m^2 delta) - J_c). J_F <= 0: no flywheel needed.
     omega : float
         Speed of the reference shaft at which the rim speed is checked
@@ -1020,7 +1020,7 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         cover).
     method : {"auto", "ipopt", "closed_form"}
         How a feasible combination is optimized: the exact closed form of
-        :mod:`flyopt.batch` where it covers the structure (mass and cost
+        :mod:`flyopt.design.closed_form` where it covers the structure (mass and cost
         objectives) and IPOPT elsewhere ("auto", the default; for the
         timings see benchmarks/results/speed_error.md); IPOPT on every NLP
         ("ipopt"); or the closed form only, refusing a
@@ -1064,7 +1064,7 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
     _choice(method, ("ipopt", "auto", "closed_form"), "method")
     closed = False
     if method != "ipopt":
-        from . import batch
+        from flyopt.design import closed_form as batch
 
         closed = batch.covers(spec.geometry, spec.objective, spec.d_mean is not None)
         if method == "closed_form" and not closed:
@@ -1124,7 +1124,7 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
     else:
         description = {"geometry": spec.geometry, "inertia_model": geometry.GEOMETRIES[spec.geometry],
                        "variables": [], "constraints": [], "pinned": ["d_mean"] if spec.d_mean is not None else [],
-                       "formulation": ("exact closed form (flyopt.batch): outer diameter at its cap, "
+                       "formulation": ("exact closed form (flyopt.design.closed_form): outer diameter at its cap, "
                                        "a 1-D monotone root for the rim; verified against every constraint")}
     description["objective"] = spec.objective
     bounds = []

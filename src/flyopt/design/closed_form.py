@@ -5,7 +5,7 @@ For the structures whose optimum is known analytically, or is the root of a
 monotone function of one variable, this module computes the same optimum:
 for whole arrays of combinations at once (:func:`lightest`, used by sweeps),
 or one combination in plain floats (:func:`lightest_one`, used by
-:func:`flyopt.optimize.design_flywheel`, whose default method "auto" takes
+:func:`flyopt.design.optimize.design_flywheel`, whose default method "auto" takes
 it). It is a model choice ("the cheapest model that is exact"): every design
 made here says ``method = "closed_form"``, and a structure it does not cover
 is left to IPOPT (see :func:`covers`).
@@ -26,7 +26,7 @@ D_m^2 + H^2 (exact annulus); for a disc m = pi rho D^2 B / 4, J = m D^2 / 8.
 
 *Feasibility* is decided by J' <= J_max, the largest inertia an admissible
 wheel gives, by :func:`max_inertia`: the vectorized twin of
-:func:`flyopt.optimize.max_inertia`, written with the same operations in the
+:func:`flyopt.design.optimize.max_inertia`, written with the same operations in the
 same order so that both give bitwise the same J_max, and thus the same verdict
 (including at the edge).
 
@@ -68,7 +68,7 @@ B = 32 J' / (pi rho D^4).
 
 References
 ----------
-.. [1] flyopt domain notes, shared/domain/flywheel-design.md, sections 8-10.
+.. [1] flyopt domain notes, docs/flywheel-design.md, sections 8-10.
 .. [2] flyopt.optimize (the NLP these closed forms reproduce, and its
    max_inertia).
 """
@@ -79,8 +79,8 @@ import math
 
 import numpy as np
 
-from flyopt import geometry
-from flyopt.optimize import ACTIVE_RTOL, BINDING_NAMES
+from flyopt.design import geometry
+from flyopt.design.optimize import ACTIVE_RTOL, BINDING_NAMES
 
 __all__ = [
     "METHOD",
@@ -96,7 +96,7 @@ __all__ = [
 METHOD = "closed_form"
 #: Objectives whose optimum is in closed form (cost ranks the mass optimum).
 COVERED_OBJECTIVES = ("mass", "cost")
-#: Bits of the binding mask, in the order of :data:`flyopt.optimize.BINDING_NAMES`.
+#: Bits of the binding mask, in the order of :data:`flyopt.design.optimize.BINDING_NAMES`.
 BINDING_BITS = {name: 1 << k for k, name in enumerate(BINDING_NAMES)}
 
 _NEWTON_MAX_ITER = 200
@@ -132,7 +132,7 @@ def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=n
                 d_mean=np.nan):
     """Largest inertia any admissible wheel gives, for arrays of combinations.
 
-    The vectorized :func:`flyopt.optimize.max_inertia`, written with the
+    The vectorized :func:`flyopt.design.optimize.max_inertia`, written with the
     same floating-point operations so that both agree bitwise.
 
     Parameters
@@ -314,10 +314,10 @@ def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, m
 
     The scalar twin of :func:`lightest` for a ranking of a few combinations,
     whose feasibility the caller has already decided
-    (:func:`flyopt.optimize.max_inertia`); the same closed forms and the same
+    (:func:`flyopt.design.optimize.max_inertia`); the same closed forms and the same
     Newton iteration (see the module notes). It does not check feasibility:
     for an infeasible combination it returns the wheel nearest to one, which
-    :func:`flyopt.optimize.design_flywheel` (its only caller) would refuse in
+    :func:`flyopt.design.optimize.design_flywheel` (its only caller) would refuse in
     its verification of every design.
 
     Parameters
@@ -404,7 +404,7 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
     Designs
         ``feasible``, ``j_max``, ``d_mean``, ``h``, ``b``, ``mass`` [kg],
         ``j_flywheel`` [kg*m^2]. For a disc ``d_mean = h = D/2`` (the
-        convention of :class:`flyopt.optimize.Candidate`).
+        convention of :class:`flyopt.design.optimize.Candidate`).
 
     Notes
     -----
@@ -466,7 +466,7 @@ def design_combinations(geometry_name, j_required, omega_ref, speed_ratio, densi
                         max_width=np.inf, d_mean=np.nan):
     """Design many material × shaft combinations at once (mass objective).
 
-    The array counterpart of what :func:`flyopt.optimize.design_flywheel`
+    The array counterpart of what :func:`flyopt.design.optimize.design_flywheel`
     does for each combination: move J_F to the shaft, cap the outer
     diameter by the rim speed and the envelope, decide feasibility, and find
     the lightest wheel.

@@ -3,7 +3,7 @@
 Two families, SI throughout (speed [rad/s] of the motor shaft, torque [N*m]):
 
 - :class:`InductionMotor`: the straight line through the synchronous speed
-  and the rated point, M = M_n (ω_0 − ω)/(ω_0 − ω_n) (domain page, section 7),
+  and the rated point, M = M_n (ω_0 − ω)/(ω_0 − ω_n) (docs/flywheel-design.md, section 7),
   which is what the periodic steady state near rated speed needs; and, for
   runs far from rated speed (a start from rest), the Kloss formula with a
   breakdown-torque ratio.
@@ -14,7 +14,7 @@ Every torque method accepts numpy arrays or CasADi symbols.
 
 A motor turns at ``speed_ratio`` times the reference shaft through a
 transmission of efficiency η; :meth:`InductionMotor.reference_torque` gives
-its torque reduced to the reference shaft, M' = M(i ω) i η (domain page,
+its torque reduced to the reference shaft, M' = M(i ω) i η (docs/flywheel-design.md,
 section 3).
 """
 
@@ -41,7 +41,7 @@ class _Motor:
         """Motor torque reduced to the reference shaft [N*m].
 
         M' = M(i ω) · i · η, i = ω_motor/ω the speed ratio, η the efficiency
-        of the transmission between them (domain page, section 3).
+        of the transmission between them (docs/flywheel-design.md, section 3).
 
         Parameters
         ----------
@@ -88,7 +88,7 @@ class InductionMotor(_Motor):
 
     Notes
     -----
-    Linear model (near the rated point, domain page section 7):
+    Linear model (near the rated point, docs/flywheel-design.md, section 7):
 
         M = M_n (ω_0 − ω)/(ω_0 − ω_n).
 

@@ -16,10 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import ExpressionError, SceneError
-from .expression import Expression
-from .torque import Constant, ExpressionTorque, PiecewiseLinear
-from .units import inertia_from_gd2, quantity
+from flyopt.errors import ExpressionError, SceneError
+from flyopt.machine.expression import Expression
+from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.units import inertia_from_gd2, quantity
 
 try:  # Python >= 3.11
     import tomllib
@@ -82,7 +82,7 @@ class Scene:
         Materials and shafts the design may choose from (None: all).
     materials : tuple of Material
         The scene's own materials.
-    members : tuple of flyopt.mechanism.Member
+    members : tuple of flyopt.machine.mechanism.Member
         Members whose kinetic energy and loads are reduced to the reference
         shaft (J_e(φ) = J_c + Σ ..., their forces join the resisting torque).
     mechanism : SliderCrank, GearTrain or None
@@ -104,13 +104,13 @@ class Scene:
     design_materials: tuple | None = None   # names the design may use; None: every known material
     design_shafts: tuple | None = None      # names of [[shaft]] the design may use; None: all
     materials: tuple = ()          # user materials ([[material]]), extending the built-in ones
-    members: tuple = ()            # flyopt.mechanism.Member of [[member]]: J_e(φ) and member loads
+    members: tuple = ()            # flyopt.machine.mechanism.Member of [[member]]: J_e(φ) and member loads
     mechanism: object = None       # SliderCrank or GearTrain of [mechanism]
     source: str | None = field(default=None, compare=False)
 
     def material_library(self):
         """Built-in materials extended or overridden by the scene's own."""
-        from .materials import material_library
+        from flyopt.design.materials import material_library
 
         return material_library(self.materials)
 
@@ -162,7 +162,7 @@ def from_dict(data, source=None):
         A field is missing, unknown or wrong.
     """
     top = _Table(data, "", {"title", "description", "machine", "torque", "shaft", "design", "material",
-                            "mechanism", "member", "sweep"})  # [sweep] is read by flyopt.sweep.load_sweep
+                            "mechanism", "member", "sweep"})  # [sweep] is read by flyopt.studies.sweep.load_sweep
     machine = _Table(top.require("machine"), "machine",
                      {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"})
     omega = machine.quantity("speed", "angular_speed", required=True)
@@ -286,8 +286,8 @@ def _points(raw, where, cycle, unit, angle_unit, dimension="torque"):
 
 def _motor(raw, where, shafts, efficiency):
     """A motor characteristic as the driving torque at the reference shaft."""
-    from .motor import DCMotor, InductionMotor
-    from .torque import MotorTorque
+    from flyopt.machine.motor import DCMotor, InductionMotor
+    from flyopt.machine.torque import MotorTorque
 
     kinds = {"induction": {"kind", "rated_power", "rated_speed", "synchronous_speed", "breakdown_ratio", "model",
                            "shaft"},
@@ -332,7 +332,7 @@ def _motor(raw, where, shafts, efficiency):
 
 
 def _mechanism(raw):
-    from .mechanism import GearTrain, SliderCrank
+    from flyopt.machine.mechanism import GearTrain, SliderCrank
 
     if raw is None:
         return None
@@ -357,7 +357,7 @@ def _mechanism(raw):
 
 
 def _members(raw, mechanism, cycle):
-    from .mechanism import FORCE_SENSES, GearTrain, Member
+    from flyopt.machine.mechanism import FORCE_SENSES, GearTrain, Member
 
     if raw is None:
         return ()
@@ -481,7 +481,7 @@ def _shafts(raw):
 
 
 def _materials(raw):
-    from .materials import make_material
+    from flyopt.design.materials import make_material
 
     if raw is None:
         return ()
@@ -518,8 +518,8 @@ def _materials(raw):
 
 
 def _design(raw, shafts, materials):
-    from .materials import material_library
-    from .optimize import DesignSpec
+    from flyopt.design.materials import material_library
+    from flyopt.design.optimize import DesignSpec
 
     table = _Table(raw, "design", {"geometry", "materials", "shafts", "hb_ratio", "max_outer_diameter",
                                    "max_width", "d_mean", "objective", "description"})

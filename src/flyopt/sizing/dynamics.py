@@ -1,6 +1,6 @@
 """Speed fluctuation beyond the constant-inertia method.
 
-Three models, from the cheapest to the most general (domain page, sections
+Three models, from the cheapest to the most general (docs/flywheel-design.md, sections
 5–7):
 
 - variable inertia J_e(φ) = J_c + J_v(φ), torques of the angle only: the
@@ -26,7 +26,7 @@ integrator's states and exact slopes (simulation).
 
 Net torques are given as callables ``(phi, omega) -> torque`` that accept
 CasADi symbols (numbers come from the compiled CasADi function); inertias as
-a number, an :class:`flyopt.mechanism.EquivalentInertia`, or a CasADi-capable
+a number, an :class:`flyopt.machine.mechanism.EquivalentInertia`, or a CasADi-capable
 callable of φ. Results are SI: [rad], [rad/s], [kg*m^2], [J], [s].
 
 The equation of motion is integrated in the kinetic energy E = ½ J ω²,
@@ -43,8 +43,8 @@ import casadi as ca
 import numpy as np
 from scipy import optimize
 
-from .cycle import BALANCE_TOLERANCE
-from .errors import NonPeriodicCycle, SolverFailed
+from flyopt.cycle.indicator import BALANCE_TOLERANCE
+from flyopt.errors import NonPeriodicCycle, SolverFailed
 
 GRID = 4096
 """Points per cycle of the grid that brackets maxima and minima (knots added)."""
@@ -189,7 +189,7 @@ def cheapest_model(j_machine, net_torque=None):
     str
         :data:`MODEL_PERIODIC` when the torque depends on speed,
         :data:`MODEL_ENERGY_MASS` when J_e varies with the angle, else
-        :data:`MODEL_ENERGY` (the constant-inertia method of flyopt.cycle).
+        :data:`MODEL_ENERGY` (the constant-inertia method of flyopt.cycle.indicator).
     """
     if net_torque is not None:
         phi, omega = ca.SX.sym("phi"), ca.SX.sym("omega")
@@ -351,7 +351,7 @@ def energy_mass_requirement(excess_work, j_machine, omega_mean, delta):
     """Flywheel for a machine of variable inertia, by the energy–mass closed form.
 
     With ω_max,min = ω_m (1 ± δ/2) and J(φ) the machine's equivalent inertia
-    (domain page, section 6):
+    (docs/flywheel-design.md, section 6):
 
         J_F = ( max_φ[½ ω_min² J(φ) − ΔE(φ)] − min_φ[½ ω_max² J(φ) − ΔE(φ)] ) / ( ½ (ω_max² − ω_min²) ),
         E_0 = min_φ[½ ω_max² (J_F + J(φ)) − ΔE(φ)].
@@ -362,7 +362,7 @@ def energy_mass_requirement(excess_work, j_machine, omega_mean, delta):
 
     Parameters
     ----------
-    excess_work : flyopt.cycle.ExcessWork
+    excess_work : flyopt.cycle.indicator.ExcessWork
         ΔE(φ) of torques that depend on the angle only.
     j_machine : float, EquivalentInertia or callable
         J_e(φ) of the machine at the reference shaft [kg*m^2]; a callable
@@ -472,11 +472,11 @@ def achieved_speed(excess_work, j_machine, omega_mean, j_flywheel=0.0):
     """Speed fluctuation that a given flywheel achieves (energy–mass forward use).
 
     ω(φ) = sqrt(2 (E_0 + ΔE(φ)) / (J_F + J(φ))), with E_0 chosen so that
-    (ω_max + ω_min)/2 = ω_m (domain page, section 6).
+    (ω_max + ω_min)/2 = ω_m (docs/flywheel-design.md, section 6).
 
     Parameters
     ----------
-    excess_work : flyopt.cycle.ExcessWork
+    excess_work : flyopt.cycle.indicator.ExcessWork
         ΔE(φ) of torques of the angle only.
     j_machine : float, EquivalentInertia or callable
         J(φ) of the machine [kg*m^2].
@@ -893,7 +893,7 @@ def periodic_solution(net_torque, j_machine, cycle_angle, omega_mean, j_flywheel
     ----------
     net_torque : callable (phi, omega) -> torque
         M_d − M_r at the reference shaft [N*m], accepting CasADi symbols
-        (e.g. built from :mod:`flyopt.motor` and :mod:`flyopt.torque`, or
+        (e.g. built from :mod:`flyopt.machine.motor` and :mod:`flyopt.machine.torque`, or
         :func:`angle_torque`).
     j_machine : float, EquivalentInertia or callable
         The machine's J_e(φ) [kg*m^2].
@@ -1415,7 +1415,7 @@ def startup_time(net_torque, j_machine, cycle_angle, omega_target, j_flywheel=0.
     ----------
     net_torque : callable (phi, omega) -> torque
         M_d − M_r [N*m], accepting CasADi symbols; for an induction motor use
-        its Kloss curve (:meth:`flyopt.motor.InductionMotor.torque` with
+        its Kloss curve (:meth:`flyopt.machine.motor.InductionMotor.torque` with
         ``model="kloss"``), since the linear line overstates the torque at
         low speed.
     j_machine, cycle_angle, knots

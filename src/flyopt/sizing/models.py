@@ -1,13 +1,13 @@
 """Which model sizes the flywheel: the cheapest one that is exact for the scene.
 
-Three models (domain page, sections 5–7), from the cheapest:
+Three models (docs/flywheel-design.md, sections 5–7), from the cheapest:
 
 - ``energy``: constant equivalent inertia, torques of the angle only:
-  J_F = A_max/(ω_m² δ) − J_c (flyopt.cycle);
+  J_F = A_max/(ω_m² δ) − J_c (flyopt.cycle.indicator);
 - ``energy_mass``: the inertia varies with the angle, torques of the angle
-  only: Wittenbauer's energy–mass closed form (flyopt.dynamics);
+  only: Wittenbauer's energy–mass closed form (flyopt.sizing.dynamics);
 - ``dynamic``: a torque depends on speed: the periodic solution of
-  d(½ J_e ω²)/dφ = M_d(φ, ω) − M_r(φ, ω) (flyopt.dynamics).
+  d(½ J_e ω²)/dφ = M_d(φ, ω) − M_r(φ, ω) (flyopt.sizing.dynamics).
 
 A scene is first reduced to a :class:`Machine` (J_e(φ), the driving and
 resisting torques with the members' loads joined in); :func:`choose` names
@@ -20,10 +20,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import dynamics
-from .cycle import ExcessWork, required_inertia
-from .errors import NonPeriodicCycle, SceneError, SolverFailed
-from .torque import Constant, TorqueSum
+from flyopt.sizing import dynamics
+from flyopt.cycle.indicator import ExcessWork, required_inertia
+from flyopt.errors import NonPeriodicCycle, SceneError, SolverFailed
+from flyopt.machine.torque import Constant, TorqueSum
 
 ENERGY, ENERGY_MASS, DYNAMIC = dynamics.MODEL_ENERGY, dynamics.MODEL_ENERGY_MASS, dynamics.MODEL_PERIODIC
 MODELS = {
@@ -43,7 +43,7 @@ class Machine:
     driving, resisting : torque curves
         Equivalent torques [N*m]; the members' loads are joined into the
         side that is known. May depend on speed.
-    j_machine : float or flyopt.mechanism.EquivalentInertia
+    j_machine : float or flyopt.machine.mechanism.EquivalentInertia
         J_e(φ) = J_c + J_v(φ) [kg*m^2], without the flywheel.
     cycle_angle, omega_mean, delta : float
         Φ [rad], the scene's mean speed [rad/s], the allowed δ.
@@ -108,7 +108,7 @@ class Machine:
 
 def reduce(scene):
     """Reduce a scene (torques, J_c, members) to a :class:`Machine`."""
-    from .mechanism import equivalent_inertia, equivalent_torque
+    from flyopt.machine.mechanism import equivalent_inertia, equivalent_torque
 
     driving, resisting = scene.driving, scene.resisting
     j_machine = scene.j_constant
@@ -195,7 +195,7 @@ def requirement(machine, model, indicator=None):
     w, d = machine.omega_mean, machine.delta
     if model == ENERGY:
         if indicator is None:
-            from .cycle import energy_indicator
+            from flyopt.cycle.indicator import energy_indicator
 
             ew = machine.angle_only()
             indicator = energy_indicator(ew.driving, ew.resisting, machine.cycle_angle)

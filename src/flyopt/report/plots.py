@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .cycle import ExcessWork
-from .units import rad_s_to_rpm
+from flyopt.cycle.indicator import ExcessWork
+from flyopt.units import rad_s_to_rpm
 
 SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
 PLOTS = {
@@ -53,7 +53,7 @@ def _excess_work(scene, analysis):
 
 def _curve_samples(curve, cycle_angle, n=2000):
     """Angles and values that draw a torque curve exactly (tables at their points)."""
-    from .torque import Constant, PiecewiseLinear
+    from flyopt.machine.torque import Constant, PiecewiseLinear
 
     if isinstance(curve, PiecewiseLinear):
         return curve.angles, curve.values
@@ -188,7 +188,7 @@ def plot_cross_section(candidate, ax=None):
 
 def _speed_curve(analysis):
     """ω(φ) [rad/s] with the required flywheel, from the model that sized it."""
-    from . import dynamics
+    from flyopt.sizing import dynamics
 
     req = analysis.requirement
     if req is not None and req.model == "dynamic":
@@ -205,7 +205,7 @@ def plot_speed(scene, analysis, ax=None, simulate=False):
     """ω(φ) over the cycle with the required flywheel, from the model that ran.
 
     Energy models: ω² = 2 (E_0 + ΔE)/J_e with E_0 such that (ω_max + ω_min)/2 = ω_m
-    (domain page, section 6, forward use); the dynamic model: its periodic solution.
+    (docs/flywheel-design.md, section 6, forward use); the dynamic model: its periodic solution.
     With ``simulate``, the periodic simulation of the machine with that flywheel
     (the verification's) is drawn over it.
     """
@@ -215,7 +215,7 @@ def plot_speed(scene, analysis, ax=None, simulate=False):
     phi, omega = _speed_curve(analysis)
     ax.plot(np.degrees(phi), rad_s_to_rpm(omega), color="tab:blue", label=f"model: {analysis.model}")
     if simulate:
-        from . import dynamics
+        from flyopt.sizing import dynamics
 
         m = analysis.machine
         sol = dynamics.periodic_solution(m.net_torque(), m.j_machine, m.cycle_angle, analysis.omega_mean,
@@ -235,9 +235,9 @@ def plot_energy_mass(scene, analysis, ax=None):
     """Wittenbauer's energy–mass diagram: ΔE against J_e over the cycle, with the two tangents.
 
     From the true origin (−J_F, −E_0) the lines of slope ω_max²/2 and ω_min²/2
-    touch the curve where the speed is highest and lowest (domain page, section 6).
+    touch the curve where the speed is highest and lowest (docs/flywheel-design.md, section 6).
     """
-    from . import models
+    from flyopt.sizing import models
 
     ax = _axes(ax, figsize=(7, 5.5))
     if analysis.machine is None or analysis.machine.speed_dependent:

@@ -12,11 +12,11 @@ import argparse
 import json
 import sys
 
-from . import __version__
-from .analysis import analyse
-from .errors import NonPeriodicCycle, SceneError, SolverFailed
-from .pipeline import solve
-from .scene import load
+from flyopt import __version__
+from flyopt.analysis import analyse
+from flyopt.errors import NonPeriodicCycle, SceneError, SolverFailed
+from flyopt.pipeline import solve
+from flyopt.io.scene import load
 
 EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INFEASIBLE, EXIT_FLAGGED = 0, 1, 2, 3, 4
 
@@ -25,11 +25,11 @@ def main(argv=None):
     """Entry point of the ``flyopt`` command; returns the exit status."""
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] == ["bench"]:  # its own option parser (flyopt.bench)
-        from .bench import main as bench_main
+        from flyopt.bench import main as bench_main
 
         return bench_main(argv[1:])
-    if argv[:1] and argv[0] in ("sweep", "pareto", "tradeoff"):  # their own parsers (flyopt.studies)
-        from . import studies
+    if argv[:1] and argv[0] in ("sweep", "pareto", "tradeoff"):  # their own parsers (flyopt.studies.fronts)
+        from flyopt.studies import fronts as studies
 
         return getattr(studies, f"{argv[0]}_main")(argv[1:])
     parser = _parser()
@@ -97,7 +97,7 @@ def _solve(args):
     if args.json:
         text = json.dumps({"scene": args.scene, **_json_safe(solution.to_dict())}, indent=2, allow_nan=False)
     else:
-        from .report import analysis_report, design_report, verification_report
+        from flyopt.report.text import analysis_report, design_report, verification_report
 
         lines = [analysis_report(solution.analysis, args.scene)]
         if solution.design is not None:
@@ -127,7 +127,7 @@ def _json_safe(value):
 
 
 def _plot(args):
-    from . import plots
+    from flyopt.report import plots
 
     if args.scene.lower().endswith((".csv", ".parquet")):
         return _plot_results(args)
@@ -158,8 +158,8 @@ def _plot(args):
 
 
 def _plot_results(args):
-    from . import plots
-    from .sweep import read_results
+    from flyopt.report import plots
+    from flyopt.studies.sweep import read_results
 
     if args.what not in plots.RESULT_PLOTS:
         return _fail(f"--what: {args.what!r} is not a diagram of results (known: {', '.join(plots.RESULT_PLOTS)})",

@@ -2,7 +2,7 @@
 
 import math
 
-from .units import rad_s_to_rpm
+from flyopt.units import rad_s_to_rpm
 
 
 def number(value, digits=6):

@@ -37,9 +37,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .errors import NonPeriodicCycle, SceneError
-from .sweep import plan_sweep, _resolve, _split_unit, evaluate_points, load_sweep, sweep, write_results
-from .units import quantity
+from flyopt.errors import NonPeriodicCycle, SceneError
+from flyopt.studies.sweep import plan_sweep, _resolve, _split_unit, evaluate_points, load_sweep, sweep, write_results
+from flyopt.units import quantity
 
 __all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto", "material_tradeoff",
            "sweep_main", "pareto_main", "tradeoff_main"]
@@ -113,7 +113,7 @@ def pareto(scene, objectives=("mass", "outer_diameter"), *, points=25, span=None
         default the whole front for the outer diameter and δ/10 .. 10 δ
         (below 1) for delta.
     method : {"auto", "closed_form", "ipopt"}
-        How each ε point is designed (see :func:`flyopt.sweep.evaluate_points`):
+        How each ε point is designed (see :func:`flyopt.studies.sweep.evaluate_points`):
         ``ipopt`` sends every point through the CasADi/IPOPT model.
     solver_options : mapping, optional
 
@@ -132,7 +132,7 @@ def pareto(scene, objectives=("mass", "outer_diameter"), *, points=25, span=None
     objectives, other = _pair(objectives)
     if not isinstance(points, (int, np.integer)) or points < 2:
         raise SceneError("points", f"must be a whole number >= 2, got {points!r}")
-    from .analysis import analyse
+    from flyopt.analysis import analyse
 
     analysis = analyse(scene)
     empty = pd.DataFrame()
@@ -245,7 +245,7 @@ def material_tradeoff(scene, solver_options=None, method="auto"):
         the objective is mass whatever the scene says.
     solver_options : mapping, optional
     method : {"auto", "ipopt", "closed_form"}
-        Design method (see :func:`flyopt.optimize.design_flywheel`).
+        Design method (see :func:`flyopt.design.optimize.design_flywheel`).
 
     Returns
     -------
@@ -260,12 +260,12 @@ def material_tradeoff(scene, solver_options=None, method="auto"):
 
     Notes
     -----
-    Each material is designed by :func:`flyopt.optimize.design_flywheel`
+    Each material is designed by :func:`flyopt.design.optimize.design_flywheel`
     (the exact closed form, or IPOPT, after the closed-form infeasibility
     proof) on every allowed shaft; the lightest shaft wins.
     """
-    from .analysis import analyse
-    from .optimize import MountShaft, design_flywheel
+    from flyopt.analysis import analyse
+    from flyopt.design.optimize import MountShaft, design_flywheel
 
     analysis = analyse(scene)
     library = scene.material_library()
@@ -508,7 +508,7 @@ def pareto_main(argv=None):
 
 
 def _pareto_command(args):
-    from .scene import load
+    from flyopt.io.scene import load
 
     scene = load(args.scene)
     objectives, other = _pair(args.objectives)
@@ -542,7 +542,7 @@ def tradeoff_main(argv=None):
 
 
 def _tradeoff_command(args):
-    from .scene import load
+    from flyopt.io.scene import load
 
     scene = load(args.scene)
     table = material_tradeoff(scene, method=args.method)

@@ -1,7 +1,7 @@
 """Reduction of a real mechanism to the reference shaft.
 
 The machine's members are replaced by one shaft (angle φ, speed ω) with the
-same kinetic energy and the same instantaneous power (domain page, section 3):
+same kinetic energy and the same instantaneous power (docs/flywheel-design.md, section 3):
 
     J_e(φ) = J_c + Σ_i [ J_Si (ω_i/ω)² + m_i (v_Si/ω)² ],
     M_e(φ) = Σ_i [ T_i (ω_i/ω) + F_i (v_i/ω) cos α_i ].
@@ -24,7 +24,7 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
-from .torque import PiecewiseLinear
+from flyopt.machine.torque import PiecewiseLinear
 
 FORCE_SENSES = ("resisting", "driving", "axial")
 """How a member's force (or torque) does work:
@@ -509,9 +509,9 @@ class EquivalentTorque:
     reference shaft; :meth:`resisting` gives the same curve with the sign of
     a resisting torque, M_r = −M_e.
 
-    It answers the torque-curve questions of :mod:`flyopt.torque`
+    It answers the torque-curve questions of :mod:`flyopt.machine.torque`
     (``breakpoints``, ``limits``, ``__call__``, ``casadi``), so it can enter
-    :class:`flyopt.cycle.ExcessWork` directly as a driving or resisting curve.
+    :class:`flyopt.cycle.indicator.ExcessWork` directly as a driving or resisting curve.
     """
 
     is_linear = False
@@ -561,7 +561,7 @@ class EquivalentTorque:
 def equivalent_inertia(members, j_constant=0.0):
     """Equivalent inertia of a machine at the reference shaft.
 
-    J_e(φ) = J_c + Σ_i [ J_Si (ω_i/ω)² + m_i (v_Si/ω)² ]  (domain page, section 3).
+    J_e(φ) = J_c + Σ_i [ J_Si (ω_i/ω)² + m_i (v_Si/ω)² ]  (docs/flywheel-design.md, section 3).
 
     Parameters
     ----------
@@ -582,7 +582,7 @@ def equivalent_inertia(members, j_constant=0.0):
 def equivalent_torque(members):
     """Equivalent torque of the members' forces and moments at the reference shaft.
 
-    M_e(φ) = Σ_i [ T_i (ω_i/ω) + F_i (v_i/ω) cos α_i ]  (domain page, section 3),
+    M_e(φ) = Σ_i [ T_i (ω_i/ω) + F_i (v_i/ω) cos α_i ]  (docs/flywheel-design.md, section 3),
     with cos α_i = −1 for a resisting force (it opposes the motion), +1 for a
     driving one, and the signed component for an axial one.
 

@@ -15,7 +15,7 @@ known.
 
 References
 ----------
-.. [1] flyopt domain notes, shared/domain/flywheel-design.md, section 10 (rim speed
+.. [1] flyopt domain notes, docs/flywheel-design.md, section 10 (rim speed
    limits: cast iron 36 m/s, cast steel 50 m/s).
 """
 

@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from .errors import ExpressionError
+from flyopt.errors import ExpressionError
 
 MAX_LENGTH = 2000
 """Longest expression accepted [characters]: a torque curve, not a program."""

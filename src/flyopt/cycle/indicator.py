@@ -6,7 +6,7 @@ The excess work from the start of the cycle is
 
 its largest span over the cycle is the maximum fluctuation of energy
 A_max = max ΔE − min ΔE, reached at crossings of the two torque curves
-(domain page, section 4). flyopt computes it exactly rather than by sampling:
+(docs/flywheel-design.md, section 4). flyopt computes it exactly rather than by sampling:
 
 - where both curves are piecewise linear (tables and constants), the
   difference is linear between the union of their breakpoints; the crossing
@@ -27,8 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import integrate, optimize
 
-from .errors import NonPeriodicCycle, SceneError
-from .torque import Constant, PiecewiseLinear
+from flyopt.errors import NonPeriodicCycle, SceneError
+from flyopt.machine.torque import Constant, PiecewiseLinear
 
 BALANCE_TOLERANCE = 1e-9
 """Largest accepted |net work| per cycle, relative to the cycle work."""
@@ -108,7 +108,7 @@ class EnergyIndicator:
 def solve_unknown_constant(driving, resisting, cycle_angle):
     """Replace an unknown constant torque by the value that balances the cycle.
 
-    M = W_other / Φ (domain page, section 4).
+    M = W_other / Φ (docs/flywheel-design.md, section 4).
 
     Returns
     -------
@@ -278,7 +278,7 @@ class ExcessWork:
 def required_inertia(a_max, omega_mean, delta, j_constant=0.0):
     """Flywheel inertia at the reference shaft by the constant-inertia method.
 
-    J_F = A_max / (ω_m² δ) − J_c  (domain page, section 5).
+    J_F = A_max / (ω_m² δ) − J_c  (docs/flywheel-design.md, section 5).
 
     Parameters
     ----------

@@ -25,7 +25,7 @@ D_2 = 0, i.e. D_m = H = D / 2.
 
 References
 ----------
-.. [1] flyopt domain notes, shared/domain/flywheel-design.md, sections 9 and 10.
+.. [1] flyopt domain notes, docs/flywheel-design.md, sections 9 and 10.
 """
 
 import math
@@ -73,7 +73,7 @@ def rim_mass(d_mean, h, b, density):
 
     References
     ----------
-    .. [1] flyopt domain notes, section 9.
+    .. [1] flyopt domain notes, docs/flywheel-design.md, section 9.
     """
     return math.pi * d_mean * h * b * density
 
@@ -97,7 +97,7 @@ def rim_inertia(mass, d_mean, h):
 
     References
     ----------
-    .. [1] flyopt domain notes, section 9.
+    .. [1] flyopt domain notes, docs/flywheel-design.md, section 9.
     """
     return mass * (d_mean * d_mean + h * h) / 4.0
 
@@ -120,7 +120,7 @@ def thin_rim_inertia(mass, d_mean):
 
     References
     ----------
-    .. [1] flyopt domain notes, section 9.
+    .. [1] flyopt domain notes, docs/flywheel-design.md, section 9.
     """
     return mass * d_mean * d_mean / 4.0
 
@@ -216,6 +216,6 @@ def hoop_stress(density, rim_speed):
 
     References
     ----------
-    .. [1] flyopt domain notes, section 10.
+    .. [1] flyopt domain notes, docs/flywheel-design.md, section 10.
     """
     return density * rim_speed * rim_speed

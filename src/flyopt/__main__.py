@@ -1,0 +1,7 @@
+"""``python -m flyopt``: the same as the ``flyopt`` command."""
+
+import sys
+
+from flyopt.cli.main import main
+
+sys.exit(main())

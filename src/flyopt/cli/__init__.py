@@ -1,0 +1,1 @@
+"""The command line: one argparse tree and one exit-code table."""

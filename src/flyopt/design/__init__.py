@@ -1,0 +1,1 @@
+"""Design: geometry, materials and the optimization that chooses the wheel."""

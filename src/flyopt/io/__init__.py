@@ -1,0 +1,1 @@
+"""Input: scene files (TOML, with units) to a Scene."""

@@ -1,0 +1,1 @@
+"""The machine: torque curves, expressions, mechanisms, motors and transmissions, reduced to one shaft."""

@@ -1,0 +1,1 @@
+"""Reporting: text reports and plots of finished results (never a model run)."""

@@ -1,0 +1,1 @@
+"""Studies over many designs: sweeps, Pareto fronts and material trade-offs."""
