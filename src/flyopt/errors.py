@@ -65,3 +65,11 @@ class NonPeriodicCycle(FlyoptError, ValueError):
 
 class SolverFailed(FlyoptError, RuntimeError):
     """A numerical solver did not converge; its result is not a design."""
+
+
+class Interrupted(FlyoptError, RuntimeError):
+    """A long run (a sweep) was stopped by the user (Ctrl-C) or lost its workers.
+
+    What was finished is kept; the message says how to continue (``--resume``).
+    The command line exits with status 130 for a user's interrupt.
+    """
