@@ -45,7 +45,8 @@ import casadi as ca
 import numpy as np
 
 import flyopt
-from flyopt.studies.sweep import point_scene, sweep
+from flyopt.studies.evaluate import point_scene
+from flyopt.studies.sweep import sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "problems" / "punch-press.toml"

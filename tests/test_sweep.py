@@ -1,4 +1,4 @@
-"""Tests of flyopt.studies.sweep: the --vary grammar, sweeps against individual solves,
+"""Tests of flyopt.studies.sweep and the modules it joins: the --vary grammar, sweeps against individual solves,
 files, resume after a crash, worker processes and a Dask LocalCluster.
 
 The reference for every swept point is ``flyopt.solve`` of the scene of that
@@ -18,13 +18,14 @@ from numpy.testing import assert_allclose
 import flyopt
 from conftest import PROBLEMS
 from flyopt.design import optimize
-import importlib
-
-sweep_module = importlib.import_module("flyopt.studies.sweep")  # the module; flyopt.studies.sweep the attribute is the function
 from flyopt.errors import SceneError
+from flyopt.io.results import CORE_INPUTS, RESULT_COLUMNS, read_results
+from flyopt.io.sweep_spec import load_sweep, parse_vary
+from flyopt.studies import runner
+from flyopt.studies.evaluate import point_scene
 from flyopt.studies.fronts import sweep_main
-from flyopt.studies.sweep import (CORE_INPUTS, RESULT_COLUMNS, load_sweep, parse_vary, plan_sweep,
-                          point_scene, read_results, sweep)
+from flyopt.studies.plan import plan_sweep
+from flyopt.studies.sweep import sweep
 
 RPM = math.pi / 30.0
 PUNCH = flyopt.load(PROBLEMS / "punch-press.toml")      # 3 materials (one user), 3 shafts
@@ -349,7 +350,7 @@ def test_resume_after_a_crash(tmp_path, monkeypatch):
     """A chunk raises: the finished chunks are on disk, the crash loses the chunk
     in flight only, and --resume completes the sweep."""
     out = tmp_path / "study.csv"
-    original = sweep_module._evaluate
+    original = runner._evaluate
     calls = []
 
     def crashing(ctx, points):
@@ -358,13 +359,13 @@ def test_resume_after_a_crash(tmp_path, monkeypatch):
             raise MemoryError("simulated crash")
         return original(ctx, points)
 
-    monkeypatch.setattr(sweep_module, "_evaluate", crashing)
+    monkeypatch.setattr(runner, "_evaluate", crashing)
     with pytest.raises(MemoryError):
         sweep(PUNCH, VARY, output=out, chunk_size=4, workers=1)
     parts = tmp_path / "study.csv.parts"
     assert sorted(p.name for p in parts.glob("chunk-*")) == ["chunk-00000.parquet",
                                                              "chunk-00001.parquet"]
-    monkeypatch.setattr(sweep_module, "_evaluate", original)
+    monkeypatch.setattr(runner, "_evaluate", original)
     done = sweep(PUNCH, VARY, output=out, chunk_size=4, resume=True)
     assert done.attrs["sweep"]["chunks_run"] == [2, 3, 4]
     pd.testing.assert_frame_equal(read_results(out), sweep(PUNCH, VARY, chunk_size=4))
@@ -493,7 +494,7 @@ def test_sweeps_of_member_and_motor_scenes_match_individual_solves(scene, vary):
     base = flyopt.load(PROBLEMS / f"{scene}.toml")
     frame = flyopt.sweep(base, vary)
     for row in frame.to_dict("records"):
-        single = flyopt.solve(sweep_module.point_scene(base, {"delta": row["delta"]}))
+        single = flyopt.solve(point_scene(base, {"delta": row["delta"]}))
         assert_allclose(row["j_required"], single.analysis.j_required, rtol=1e-9)
         assert_allclose(row["mass"], single.design.best.mass, rtol=1e-6)
 

@@ -160,7 +160,7 @@ fig.colorbar(cs, label="lightest flywheel [kg]")
 ax.set(xscale="log", xlabel="allowed δ", ylabel="motor speed [rpm]", title="shear press: mass surface");"""),
     ("md", """Mass falls like 1/δ (the hyperbola of J against δ) and, at a fixed envelope, like 1/n²: J_F = A_max/(ω²δ).
 Check one point against an individual solve:"""),
-    ("code", """from flyopt.studies.sweep import point_scene
+    ("code", """from flyopt.studies.evaluate import point_scene
 
 row = grid.iloc[57]
 single = flyopt.solve(point_scene(scene, {"delta": row["delta"], "speed": row["speed"]}), design_method="ipopt")

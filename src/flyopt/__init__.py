@@ -14,7 +14,7 @@ from flyopt.errors import ExpressionError, FlyoptError, NonPeriodicCycle, SceneE
 from flyopt.pipeline import Solution, design_scene, solve
 from flyopt.io.scene import Scene, Shaft, from_dict, load
 from flyopt.studies.fronts import material_tradeoff, pareto
-from flyopt.studies.sweep import sweep  # noqa: E402  (the function; the module stays importable as flyopt.studies.sweep)
+from flyopt.studies.sweep import sweep  # the function; the module is flyopt.studies.sweep
 
 __version__ = "0.1.0"
 

@@ -38,7 +38,11 @@ import numpy as np
 import pandas as pd
 
 from flyopt.errors import NonPeriodicCycle, SceneError
-from flyopt.studies.sweep import plan_sweep, _resolve, _split_unit, evaluate_points, load_sweep, sweep, write_results
+from flyopt.io.results import write_results
+from flyopt.io.sweep_spec import _resolve, _split_unit, load_sweep
+from flyopt.studies.evaluate import evaluate_points
+from flyopt.studies.plan import plan_sweep
+from flyopt.studies.sweep import sweep
 from flyopt.units import quantity
 
 __all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto", "material_tradeoff",

@@ -1,0 +1,469 @@
+"""The sweep grammar: the scene fields a sweep may vary, their values, and ``[sweep]`` tables.
+
+``parse_vary(scene, {"delta": "0.01:0.1:log20", "speed": "300,600,1200rpm"})``
+reads the fields to vary into :class:`Axis` objects (SI values or names);
+:func:`load_sweep` reads a scene file's ``[sweep]`` table. The points are made
+from the axes by :func:`flyopt.studies.plan.plan_sweep`.
+
+Fields (``--vary FIELD=VALUES``)
+--------------------------------
+=================================  =====================================  ===========
+field (aliases)                    what it sets                           values
+=================================  =====================================  ===========
+``delta``                          δ, 0 < δ < 2                           number
+``speed``                          mean speed ω_m of the reference shaft  rad/s or rpm
+``inertia``                        the machine's own J_c                  kg*m^2
+``torque.scale``                   both torques (or the net areas) × k    k > 0
+``design.max_outer_diameter``      envelope (``envelope``)                m or none
+``design.max_width``               width limit B_max (``max_width``)      m or none
+``design.d_mean``                  pinned mean diameter (``d_mean``)      m or none
+``design.hb_ratio``                H/B, one value collapses the range     number
+``design.hb_min``, ``hb_max``      one end of the H/B range               number
+``design.geometry``                ``geometry``                           thin_rim, rim, disc
+``design.objective``               ``objective``                          mass, cost, outer_diameter
+``material``                       the one material of the point          names
+``shaft``                          the one shaft of the point             names
+``shaft.NAME.speed_ratio``         a shaft's ω_shaft / ω_reference        number
+``material.NAME.density``          (``max_rim_speed``, ``cost`` too)      kg/m^3 ...
+=================================  =====================================  ===========
+
+Values: a list ``a,b,c``; a linear range ``a:b:n`` (n points, ends
+included) or a log range ``a:b:logn``; names ``cast_iron,cast_steel``;
+``none`` for an optional length. A unit after the last value applies to
+every value written without one: ``300,600,1200rpm``, ``0.4:1.2:5 m``.
+Plain numbers are SI. For Latin hypercube samples (``samples=N``) a range
+is sampled continuously (``a:b`` or ``a:b:log``; a count is ignored) and a
+list is sampled as categories, each equally often.
+
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Mapping
+
+import numpy as np
+
+from flyopt.errors import SceneError
+from flyopt.units import quantity
+
+__all__ = ["FIELDS", "Axis", "parse_vary", "load_sweep"]
+
+try:  # Python >= 3.11
+    import tomllib
+except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Field:
+    kind: str              # "number" | "name"
+    dimension: str = "dimensionless"
+    minimum: float = 0.0   # values must exceed it (or reach it when inclusive)
+    inclusive: bool = False
+    maximum: float | None = None
+    optional: bool = False  # "none" allowed
+    what: str = ""
+
+
+#: The scene fields a sweep may vary (besides shaft.NAME.speed_ratio and
+#: material.NAME.density|max_rim_speed|cost).
+FIELDS = {
+    "delta": _Field("number", what="coefficient of speed fluctuation, 0 < δ < 2", maximum=2.0),
+    "speed": _Field("number", "angular_speed", what="mean speed of the reference shaft (> 0)"),
+    "inertia": _Field("number", "inertia", inclusive=True,
+                      what="the machine's own inertia J_c (>= 0)"),
+    "torque.scale": _Field("number", what="factor on both torques (> 0)"),
+    "design.max_outer_diameter": _Field("number", "length", optional=True,
+                                        what="envelope on the outer diameter (> 0 or none)"),
+    "design.max_width": _Field("number", "length", optional=True,
+                               what="limit on the axial width (> 0 or none)"),
+    "design.d_mean": _Field("number", "length", optional=True,
+                            what="pinned mean diameter (> 0 or none)"),
+    "design.hb_ratio": _Field("number", what="H/B, one value (> 0)"),
+    "design.hb_min": _Field("number", what="lower end of the H/B range (> 0)"),
+    "design.hb_max": _Field("number", what="upper end of the H/B range (> 0)"),
+    "design.geometry": _Field("name", what="thin_rim, rim or disc"),
+    "design.objective": _Field("name", what="mass, cost or outer_diameter"),
+    "material": _Field("name", what="a material name"),
+    "shaft": _Field("name", what="a shaft name"),
+}
+
+_SHAFT_FIELDS = {"speed_ratio": _Field("number", what="ω_shaft / ω_reference (> 0)")}
+_MATERIAL_FIELDS = {
+    "density": _Field("number", "density", what="density (> 0)"),
+    "max_rim_speed": _Field("number", "speed", what="safe rim speed (> 0)"),
+    "cost": _Field("number", "cost_per_mass", inclusive=True, what="cost per kg (>= 0)"),
+}
+
+_ALIASES = {
+    "machine.delta": "delta", "machine.speed": "speed", "omega_mean": "speed",
+    "machine.inertia": "inertia", "j_constant": "inertia",
+    "envelope": "design.max_outer_diameter", "max_outer_diameter": "design.max_outer_diameter",
+    "max_width": "design.max_width", "width": "design.max_width",
+    "d_mean": "design.d_mean", "hb_ratio": "design.hb_ratio", "hb_min": "design.hb_min",
+    "hb_max": "design.hb_max", "geometry": "design.geometry", "objective": "design.objective",
+    "design.material": "material", "design.shaft": "shaft", "materials": "material",
+    "shafts": "shaft", "design.materials": "material", "design.shafts": "shaft",
+}
+
+
+def _known_fields(scene):
+    names = list(FIELDS)
+    names.append(f"shaft.<name>.speed_ratio (shafts: {', '.join(s.name for s in scene.shafts)})")
+    names.append("material.<name>.density|max_rim_speed|cost "
+                 f"(materials: {', '.join(scene.material_library())})")
+    return names
+
+
+def _resolve(scene, path, where):
+    """Canonical field name and its description, or SceneError."""
+    key = _ALIASES.get(path.strip(), path.strip())
+    if key in FIELDS:
+        return key, FIELDS[key]
+    parts = key.split(".")
+    if len(parts) == 3 and parts[0] == "shaft":
+        names = [s.name for s in scene.shafts]
+        if parts[1] not in names:
+            raise SceneError(_where(where, path), f"unknown shaft {parts[1]!r}"
+                             f"{_hint(parts[1], names)} (shafts: {', '.join(names)})")
+        if parts[2] not in _SHAFT_FIELDS:
+            raise SceneError(_where(where, path), f"a shaft's field is "
+                             f"{', '.join(_SHAFT_FIELDS)}, not {parts[2]!r}")
+        return key, _SHAFT_FIELDS[parts[2]]
+    if len(parts) == 3 and parts[0] == "material":
+        library = scene.material_library()
+        if parts[1] not in library:
+            raise SceneError(_where(where, path), f"unknown material {parts[1]!r}"
+                             f"{_hint(parts[1], library)} (known: {', '.join(library)})")
+        if parts[2] not in _MATERIAL_FIELDS:
+            raise SceneError(_where(where, path), f"a material's field is one of "
+                             f"{', '.join(_MATERIAL_FIELDS)}, not {parts[2]!r}")
+        return key, _MATERIAL_FIELDS[parts[2]]
+    candidates = list(FIELDS) + list(_ALIASES)
+    raise SceneError(_where(where, path), f"unknown sweep field{_hint(key, candidates)}; "
+                     f"allowed: {'; '.join(_known_fields(scene))}")
+
+
+def _hint(name, known):
+    close = difflib.get_close_matches(str(name), list(known), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def _where(where, path):
+    if not where:
+        return path
+    return f"{where} {path}" if where.startswith("--") else f"{where}.{path}"
+
+
+# --------------------------------------------------------------------------
+# Values: a,b,c | a:b:n | a:b:logn, with a trailing unit
+# --------------------------------------------------------------------------
+
+_NUMBER = re.compile(r"\s*[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+_COUNT = re.compile(r"^\s*(log)?\s*(\d+)?\s*(.*?)\s*$", re.IGNORECASE)
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One varied field and its values (SI floats, names, or NaN for none).
+
+    Attributes
+    ----------
+    field : str
+        Canonical field name (the column of the result table).
+    values : tuple
+        The grid values.
+    kind : {"list", "range"}
+    low, high : float or None
+        Ends of a range (for Latin hypercube sampling).
+    log : bool
+        Log spacing / log-uniform sampling.
+    """
+
+    field: str
+    values: tuple
+    kind: str = "list"
+    low: float | None = None
+    high: float | None = None
+    log: bool = False
+
+
+def _split_unit(item):
+    """'1200rpm' -> ('1200', 'rpm'); '1/20' -> ('1/20', '')."""
+    m = _NUMBER.match(item)
+    if m:
+        rest = item[m.end():].strip()
+        if rest and (rest[0].isalpha() or rest[0] in "°%"):
+            return m.group().strip(), rest
+    return item.strip(), ""
+
+
+def _number(text, unit, spec, label):
+    raw = f"{text} {unit}".strip() if unit else text
+    try:
+        return quantity(raw, spec.dimension, label)
+    except SceneError as err:
+        raise SceneError(label, err.message) from None
+
+
+def _check_value(value, spec, label, text):
+    if spec.optional and value is None:
+        return
+    low_ok = value >= spec.minimum if spec.inclusive else value > spec.minimum
+    high_ok = spec.maximum is None or value < spec.maximum
+    if not (low_ok and high_ok):
+        raise SceneError(label, f"{text!r} is out of range: {spec.what}")
+
+
+def _parse_text(scene, name, spec, text, label, sampled):
+    text = text.strip()
+    if not text:
+        raise SceneError(label, "no values given: write a list a,b,c or a range a:b:n")
+    if spec.kind == "name":
+        if ":" in text:
+            raise SceneError(label, f"{text!r}: a range needs numbers; give names as a list a,b,c")
+        items = [t.strip() for t in text.split(",")]
+        return Axis(name, tuple(_check_name(scene, name, item, label) for item in items))
+    if ":" in text:
+        return _parse_range(name, spec, text, label, sampled)
+    items = [t.strip() for t in text.split(",")]
+    if any(not t for t in items):
+        raise SceneError(label, f"{text!r}: an empty value in the list")
+    trailing = _split_unit(items[-1])[1]
+    values = []
+    for item in items:
+        if spec.optional and item.lower() == "none":
+            values.append(math.nan)
+            continue
+        number, unit = _split_unit(item)
+        value = _number(number, unit or trailing, spec, label)
+        _check_value(value, spec, label, item)
+        values.append(value)
+    return Axis(name, tuple(values))
+
+
+def _parse_range(name, spec, text, label, sampled):
+    parts = text.split(":")
+    if len(parts) not in (2, 3):
+        raise SceneError(label, f"{text!r}: a range is a:b:n (linear) or a:b:logn (log), "
+                         f"with an optional unit at the end")
+    if len(parts) == 3:
+        m = _COUNT.match(parts[2])
+        log, count, trailing = bool(m.group(1)), m.group(2), m.group(3)
+        if count is None and not log:
+            raise SceneError(label, f"{text!r}: the third part must be a count n or logn "
+                             f"(e.g. 0.01:0.1:log20), then an optional unit")
+    else:
+        log, count = False, None
+        trailing = _split_unit(parts[1])[1]
+    if count is None and not sampled:
+        raise SceneError(label, f"{text!r}: a grid range needs a count: a:b:n or a:b:logn")
+    ends = []
+    for part in parts[:2]:
+        number, unit = _split_unit(part)
+        if not number:
+            raise SceneError(label, f"{text!r}: a range end is missing")
+        value = _number(number, unit or trailing, spec, label)
+        _check_value(value, spec, label, part.strip())
+        ends.append(value)
+    low, high = ends
+    if log and (low <= 0 or high <= 0):
+        raise SceneError(label, f"{text!r}: a log range needs positive ends")
+    n = 1 if count is None else int(count)
+    if n < 1:
+        raise SceneError(label, f"{text!r}: the count must be at least 1")
+    if log:
+        values = np.geomspace(low, high, n) if n > 1 else np.array([low])
+    else:
+        values = np.linspace(low, high, n) if n > 1 else np.array([low])
+    if n > 1:
+        values[0], values[-1] = low, high
+    return Axis(name, tuple(float(v) for v in values), "range", low, high, log)
+
+
+def _check_name(scene, name, item, label):
+    if name == "design.geometry":
+        from flyopt.design.geometry import GEOMETRIES
+        known = list(GEOMETRIES)
+    elif name == "design.objective":
+        from flyopt.design.optimize import OBJECTIVES
+        known = list(OBJECTIVES)
+    elif name == "material":
+        known = list(scene.material_library())
+    else:
+        known = [s.name for s in scene.shafts]
+    if item not in known:
+        raise SceneError(label, f"unknown {name.split('.')[-1]} {item!r}{_hint(item, known)} "
+                         f"(allowed: {', '.join(known)})")
+    return item
+
+
+def _parse_value(scene, name, spec, value, label, sampled):
+    """A value from TOML or Python: a string (the grammar), a number, or a list."""
+    if isinstance(value, str):
+        return _parse_text(scene, name, spec, value, label, sampled)
+    items = value if isinstance(value, (list, tuple, np.ndarray)) else [value]
+    if len(items) == 0:
+        raise SceneError(label, "no values given")
+    values = []
+    for item in items:
+        if isinstance(item, str):
+            values.extend(_parse_text(scene, name, spec, item, label, False).values)
+        elif spec.kind == "name":
+            raise SceneError(label, f"{item!r}: expected a name ({spec.what})")
+        elif item is None and spec.optional:
+            values.append(math.nan)
+        else:
+            number = _number(item, "", spec, label) if not isinstance(item, str) else None
+            _check_value(number, spec, label, str(item))
+            values.append(number)
+    return Axis(name, tuple(values))
+
+
+def parse_vary(scene, vary, *, where="--vary", samples=None):
+    """Read the fields to vary and their values.
+
+    Parameters
+    ----------
+    scene : Scene
+        Supplies the shafts and materials that field names may refer to.
+    vary : mapping or iterable of str
+        ``{"delta": "0.01:0.1:log20", ...}`` or ``["delta=0.01:0.1:log20", ...]``.
+        A mapping's values may also be numbers or lists (from a TOML table).
+    where : str
+        Where the fields come from, for messages (``--vary``, ``sweep.vary``).
+    samples : int or None
+        Latin hypercube sampling (ranges may then omit their count).
+
+    Returns
+    -------
+    list of Axis
+
+    Raises
+    ------
+    SceneError
+        Bad syntax, unknown field, wrong unit or out-of-range value; the
+        message names the field and what is allowed.
+    """
+    if isinstance(vary, Mapping):
+        items = list(vary.items())
+    else:
+        items = []
+        for text in vary:
+            if not isinstance(text, str) or "=" not in text:
+                raise SceneError(where, f"{text!r}: expected FIELD=VALUES, e.g. "
+                                 f"delta=0.01:0.1:log20 or speed=300,600,1200rpm")
+            path, values = text.split("=", 1)
+            items.append((path.strip(), values))
+    axes, seen = [], {}
+    for path, values in items:
+        if not path:
+            raise SceneError(where, "a field name is missing before '='")
+        name, spec = _resolve(scene, path, where)
+        label = _where(where, path)
+        if name in seen:
+            raise SceneError(label, f"is varied twice (also as {seen[name]!r})")
+        seen[name] = path
+        axes.append(_parse_value(scene, name, spec, values, label, samples is not None))
+    names = {a.field for a in axes}
+    if "design.hb_ratio" in names and names & {"design.hb_min", "design.hb_max"}:
+        raise SceneError(_where(where, "design.hb_ratio"), "vary either design.hb_ratio or "
+                         "design.hb_min/design.hb_max, not both")
+    return axes
+
+
+
+# --------------------------------------------------------------------------
+# [sweep] tables in scene files
+# --------------------------------------------------------------------------
+
+_SWEEP_KEYS = {"vary", "samples", "seed", "output", "chunk_size", "method", "workers",
+               "description"}
+
+
+def _flatten(table, prefix=""):
+    out = {}
+    for key, value in table.items():
+        name = f"{prefix}.{key}" if prefix else key
+        if isinstance(value, dict):
+            out.update(_flatten(value, name))
+        else:
+            out[name] = value
+    return out
+
+
+def load_sweep(path):
+    """Read a scene file that may hold a ``[sweep]`` table.
+
+    ::
+
+        [sweep]
+        samples = 500          # Latin hypercube (omit for the full grid)
+        seed = 1
+        output = "study.parquet"
+        [sweep.vary]
+        delta = "0.01:0.1:log20"
+        speed = "300,600,1200rpm"
+        material = ["cast_iron", "cast_steel"]
+        "shaft.motor.speed_ratio" = "2:8:4"   # or [sweep.vary.shaft.motor]
+
+    A relative ``output`` is relative to the scene file's folder (``flyopt
+    sweep`` applies it; ``-o`` on the command line wins).
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    scene : Scene
+        The scene without its ``[sweep]`` table.
+    options : dict
+        ``vary`` (flattened to dotted field names) and the other keys.
+
+    Raises
+    ------
+    SceneError
+        Bad file, scene or ``[sweep]`` key (named, with the file).
+    """
+    from flyopt.io.scene import from_dict
+
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as err:
+        raise SceneError("", f"cannot read the file: {err}", str(path)) from None
+    except tomllib.TOMLDecodeError as err:
+        raise SceneError("", f"not valid TOML: {err}", str(path)) from None
+    table = data.pop("sweep", {})
+    try:
+        scene = from_dict(data, source=str(path))
+        if not isinstance(table, dict):
+            raise SceneError("sweep", "must be a table")
+        unknown = sorted(set(table) - _SWEEP_KEYS)
+        if unknown:
+            raise SceneError(f"sweep.{unknown[0]}", f"unknown key{_hint(unknown[0], _SWEEP_KEYS)} "
+                             f"(allowed here: {', '.join(sorted(_SWEEP_KEYS))})")
+        options = {k: v for k, v in table.items() if k != "description"}
+        for key in ("seed", "samples", "chunk_size"):
+            value = options.get(key)
+            if value is not None and (isinstance(value, bool) or not isinstance(value, int) or
+                                      (key != "seed" and value < 1) or value < 0):
+                raise SceneError(f"sweep.{key}", f"must be a whole number{' >= 1' if key != 'seed' else ' >= 0'}, "
+                                 f"got {value!r}")
+        if "output" in options and not isinstance(options["output"], str):
+            raise SceneError("sweep.output", f"must be a file name (.csv or .parquet), got {options['output']!r}")
+        vary = options.pop("vary", {})
+        if not isinstance(vary, dict):
+            raise SceneError("sweep.vary", "must be a table of FIELD = VALUES")
+        options["vary"] = _flatten(vary)
+    except SceneError as err:
+        raise err.with_source(str(path)) from None
+    return scene, options

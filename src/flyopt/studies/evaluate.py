@@ -1,0 +1,535 @@
+"""Evaluation of sweep points: every point designed, the cycle analysed once where exact.
+
+What is computed once, and why it is exact
+------------------------------------------
+The cycle is analysed once: for torques of the angle alone A_max does not
+depend on δ, ω_m or J_c, and scaling both torques by k scales every ΔE, so
+A_max(k) = k A_max. Each point then has J_F = k A_max / (ω_m² δ) − J_c,
+the formula of the analysis itself. The designs come from
+:mod:`flyopt.design.closed_form` (closed form, exact, vectorized over every point and
+combination) where it covers the structure, and from
+:func:`flyopt.design.optimize.design_flywheel` (IPOPT on an NLP built once per
+structure and process, fed parameters) elsewhere; each row says which
+(``method``). A point whose IPOPT solve fails gets ``status = "failed"``
+with IPOPT's status, never a mass.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import threading
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from flyopt.design import closed_form as batch
+from flyopt.errors import SceneError, SolverFailed
+from flyopt.io.results import RESULT_COLUMNS
+from flyopt.io.scene import NetAreas
+from flyopt.io.sweep_spec import _where
+from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
+
+__all__ = ["TIE_RTOL", "point_scene", "evaluate_points"]
+
+
+def _check_points(scene, points, where):
+    """Reject points whose design settings are invalid, naming the field."""
+    from flyopt.design.optimize import DesignSpec
+
+    n = len(points)
+    inputs = _Inputs(scene, points)
+    bad = np.flatnonzero(inputs.hb_min > inputs.hb_max)
+    if bad.size:
+        k = int(bad[0])
+        raise SceneError(_where(where, "design.hb_min"), f"H/B min {inputs.hb_min[k]:.6g} "
+                         f"exceeds max {inputs.hb_max[k]:.6g} at point {k} (and "
+                         f"{bad.size - 1} other points)")
+    frame = pd.DataFrame({"g": inputs.geometry, "o": inputs.objective, "a": inputs.hb_min,
+                          "c": inputs.hb_max, "e": inputs.envelope, "w": inputs.width,
+                          "d": inputs.d_mean}).drop_duplicates()
+    for row in frame.itertuples(index=False):
+        try:
+            DesignSpec(geometry=row.g, hb_ratio=(row.a, row.c), objective=row.o,
+                       max_outer_diameter=None if math.isnan(row.e) else row.e,
+                       max_width=None if math.isnan(row.w) else row.w,
+                       d_mean=None if math.isnan(row.d) else row.d)
+        except ValueError as err:
+            raise SceneError(_where(where, "design"), str(err)) from None
+    cost = inputs.objective == "cost"
+    if cost.any():
+        for name in inputs.material_names:
+            used = cost & inputs.uses_material(name)
+            if used.any() and np.isnan(inputs.material_cost[name][used]).any():
+                raise SceneError(_where(where, "design.objective"), f"'cost' needs a cost per kg "
+                                 f"for every material; none is given for {name}")
+    if n and not inputs.material_names:
+        raise SceneError("design.materials", "no material to design with")
+
+
+# --------------------------------------------------------------------------
+# One point as a scene
+
+
+# --------------------------------------------------------------------------
+
+def _scale_curve(curve, k):
+    if curve is None:
+        return None
+    if isinstance(curve, PiecewiseLinear):
+        return PiecewiseLinear(curve.angles, curve.values * k)
+    if isinstance(curve, Constant):
+        return curve if curve.unknown else Constant(curve.value * k)
+    if isinstance(curve, ExpressionTorque):
+        return dataclasses.replace(curve, scale=curve.scale * k)
+    raise SceneError("torque.scale", f"cannot scale a torque of type {type(curve).__name__}")
+
+
+def point_scene(scene, point):
+    """The scene of one sweep point (for individual solves and checks).
+
+    Parameters
+    ----------
+    scene : Scene
+    point : mapping
+        Canonical field name to value (SI, names, NaN for none), e.g. a row
+        of :attr:`SweepPlan.points`.
+
+    Returns
+    -------
+    Scene
+    """
+    from flyopt.design.materials import material_library
+
+    changes = {}
+    design = {}
+    shafts = {s.name: s for s in scene.shafts}
+    library = material_library(scene.materials)
+    user = {m.name: m for m in scene.materials}
+    for name, value in point.items():
+        if name == "point":
+            continue
+        if name == "delta":
+            changes["delta"] = float(value)
+        elif name == "speed":
+            changes["omega_mean"] = float(value)
+        elif name == "inertia":
+            changes["j_constant"] = float(value)
+        elif name == "torque.scale":
+            k = float(value)
+            changes["driving"] = _scale_curve(scene.driving, k)
+            changes["resisting"] = _scale_curve(scene.resisting, k)
+            if scene.net is not None:
+                changes["net"] = NetAreas(tuple(e * k for e in scene.net.energies))
+        elif name == "design.hb_ratio":
+            design["hb_ratio"] = (float(value), float(value))
+        elif name in ("design.hb_min", "design.hb_max"):
+            low, high = design.get("hb_ratio", scene.design.hb_ratio)
+            design["hb_ratio"] = (float(value), high) if name.endswith("min") else (low, float(value))
+        elif name in ("design.max_outer_diameter", "design.max_width", "design.d_mean"):
+            design[name.split(".")[1]] = None if _is_none(value) else float(value)
+        elif name in ("design.geometry", "design.objective"):
+            design[name.split(".")[1]] = str(value)
+        elif name == "material":
+            changes["design_materials"] = (str(value),)
+        elif name == "shaft":
+            changes["design_shafts"] = (str(value),)
+        elif name.startswith("shaft."):
+            shaft_name = name.split(".")[1]
+            shafts[shaft_name] = dataclasses.replace(shafts[shaft_name], speed_ratio=float(value))
+        elif name.startswith("material."):
+            _, material_name, prop = name.split(".")
+            base = user.get(material_name, library[material_name])
+            user[material_name] = dataclasses.replace(base, **{prop: float(value)})
+        else:
+            raise SceneError(name, "unknown sweep field")
+    if design:
+        changes["design"] = dataclasses.replace(scene.design, **design)
+    changes["shafts"] = tuple(shafts.values())
+    changes["materials"] = tuple(user.values())
+    return scene.replace(**changes)
+
+
+def _is_none(value):
+    return value is None or (isinstance(value, float) and math.isnan(value))
+
+
+# --------------------------------------------------------------------------
+# Evaluation of a chunk of points
+# --------------------------------------------------------------------------
+
+def _reusable(scene):
+    """Whether J_F = A_max/(ω_m² δ) − J_c with one A_max holds at every point.
+
+    True for the energy model's scenes: a constant inertia (no members) and
+    torques of the angle only. Members (a varying J_e) or speed-dependent
+    torques need each point analysed by the model that is exact for it.
+    """
+    if scene.net is not None:
+        return True
+    if scene.members:
+        return False
+    angle_only = (PiecewiseLinear, Constant, ExpressionTorque)
+    for curve in (scene.driving, scene.resisting):
+        if not isinstance(curve, angle_only) or getattr(curve, "speed_dependent", False):
+            return False
+    return True
+
+
+@dataclass(frozen=True)
+class _Context:
+    """What every chunk needs; picklable (the torques are left out when reusable)."""
+
+    scene: object
+    a_max: float | None
+    driving_torque: float | None
+    reusable: bool
+    method: str = "auto"
+    solver_options: dict | None = None
+    axes: tuple = ()
+
+
+def _context(scene, method="auto", solver_options=None, axes=()):
+    from flyopt.analysis import analyse
+
+    reusable = _reusable(scene)
+    if reusable:
+        analysis = analyse(scene)
+        stripped = scene.replace(driving=None, resisting=None, net=None)
+        return _Context(stripped, analysis.a_max, analysis.driving_torque, True, method,
+                        dict(solver_options) if solver_options else None, tuple(axes))
+    return _Context(scene, None, None, False, method,
+                    dict(solver_options) if solver_options else None, tuple(axes))
+
+
+class _Inputs:
+    """Per-point input arrays of a chunk, defaults from the scene."""
+
+    def __init__(self, scene, points):
+        n = len(points)
+        self.n = n
+        spec = scene.design
+
+        def col(name, default):
+            if name in points:
+                return points[name].to_numpy(dtype=float)
+            return np.full(n, math.nan if default is None else float(default))
+
+        def names(name, default):
+            if name in points:
+                return points[name].to_numpy(dtype=object)
+            return np.full(n, default, dtype=object)
+
+        self.delta = col("delta", scene.delta)
+        self.speed = col("speed", scene.omega_mean)
+        self.inertia = col("inertia", scene.j_constant)
+        self.scale = col("torque.scale", 1.0)
+        self.geometry = names("design.geometry", spec.geometry)
+        self.objective = names("design.objective", spec.objective)
+        if "design.hb_ratio" in points:
+            self.hb_min = self.hb_max = points["design.hb_ratio"].to_numpy(dtype=float)
+        else:
+            self.hb_min = col("design.hb_min", spec.hb_ratio[0])
+            self.hb_max = col("design.hb_max", spec.hb_ratio[1])
+        self.envelope = col("design.max_outer_diameter", spec.max_outer_diameter)
+        self.width = col("design.max_width", spec.max_width)
+        self.d_mean = col("design.d_mean", spec.d_mean)
+        library = scene.material_library()
+        self.library = library
+        self.material_names = list(scene.design_materials or tuple(library))
+        self.material = names("material", None) if "material" in points else None
+        if self.material is not None:
+            self.material_names = list(dict.fromkeys(
+                self.material_names + [m for m in dict.fromkeys(self.material)]))
+        allowed = scene.design_shafts
+        self.shaft_names = [s.name for s in scene.shafts if allowed is None or s.name in allowed]
+        self.shaft = names("shaft", None) if "shaft" in points else None
+        if self.shaft is not None:
+            self.shaft_names = [s.name for s in scene.shafts
+                                if s.name in self.shaft_names or s.name in set(self.shaft)]
+        self.ratio = {s.name: col(f"shaft.{s.name}.speed_ratio", s.speed_ratio)
+                      for s in scene.shafts}
+        self.density, self.max_rim_speed, self.material_cost, self.allowable = {}, {}, {}, {}
+        for name, m in library.items():
+            self.density[name] = col(f"material.{name}.density", m.density)
+            self.max_rim_speed[name] = col(f"material.{name}.max_rim_speed", m.max_rim_speed)
+            self.material_cost[name] = col(f"material.{name}.cost", m.cost)
+            self.allowable[name] = np.full(n, math.nan if m.allowable_stress is None
+                                           else m.allowable_stress)
+
+    def uses_material(self, name):
+        if self.material is None:
+            return np.full(self.n, name in self.material_names)
+        return self.material == name
+
+
+def _empty_results(n):
+    out = {}
+    for name, kind in RESULT_COLUMNS.items():
+        if kind == "str":
+            out[name] = np.full(n, "", dtype=object)
+        elif kind == "bool":
+            out[name] = np.zeros(n, dtype=bool)
+        elif kind == "int":
+            out[name] = np.zeros(n, dtype=np.int64)
+        else:
+            out[name] = np.full(n, np.nan)
+    out["iterations"][:] = -1
+    return out
+
+
+def evaluate_points(scene_or_context, points, *, method="auto", solver_options=None):
+    """Design every point of a table of sweep points.
+
+    Parameters
+    ----------
+    scene_or_context : Scene
+        The scene the points vary (its cycle is analysed once).
+    points : pandas.DataFrame
+        Rows of :attr:`SweepPlan.points`.
+    method : {"auto", "closed_form", "ipopt"}
+        ``auto``: the closed form of :mod:`flyopt.design.closed_form` where it is exact,
+        IPOPT elsewhere; ``ipopt``: IPOPT for every point (for checks and
+        benchmarks); ``closed_form``: refuse structures it does not cover.
+    solver_options : mapping, optional
+        CasADi/IPOPT options for the IPOPT points.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per point: ``point``, :data:`CORE_INPUTS`, the other varied
+        fields, then :data:`RESULT_COLUMNS`.
+    """
+    ctx = scene_or_context
+    if not isinstance(ctx, _Context):
+        ctx = _context(ctx, method, solver_options, tuple(c for c in points.columns
+                                                         if c != "point"))
+    return _evaluate(ctx, points)
+
+
+def _evaluate(ctx, points):
+    scene = ctx.scene
+    inputs = _Inputs(scene, points)
+    n = inputs.n
+    res = _empty_results(n)
+    # -- the cycle: analysed once, A_max scaled (see the module notes) ------
+    if ctx.reusable:
+        a_max = inputs.scale * ctx.a_max
+        driving = (inputs.scale * ctx.driving_torque if ctx.driving_torque is not None
+                   else np.full(n, np.nan))
+        j_margin = a_max / (inputs.speed ** 2 * inputs.delta) - inputs.inertia
+        inputs.omega_rim = inputs.speed * (1 + inputs.delta / 2)      # ω_max: the rim is checked there
+    else:  # varying inertia or speed-dependent torques: analyse every point with its exact model
+        from flyopt.analysis import analyse
+
+        a_max, driving, j_margin = np.empty(n), np.empty(n), np.empty(n)
+        inputs.omega_rim = np.empty(n)
+        for k, row in enumerate(points.to_dict("records")):
+            analysis = analyse(point_scene(scene, row))
+            a_max[k], j_margin[k] = analysis.a_max, analysis.j_margin
+            inputs.omega_rim[k] = analysis.omega_max
+            driving[k] = np.nan if analysis.driving_torque is None else analysis.driving_torque
+    res["a_max"], res["j_margin"] = a_max, j_margin
+    res["j_required"] = np.maximum(j_margin, 0.0)
+    res["driving_torque"] = driving
+    res["power"] = driving * inputs.speed
+    res["motor_power"] = res["power"] / scene.efficiency
+    needed = j_margin > 0.0
+    idle = ~needed
+    res["status"][idle] = "not_needed"
+    res["method"][idle] = "none"
+    for k in np.flatnonzero(idle):
+        res["message"][k] = (f"no flywheel needed: J_F = {j_margin[k]:.4g} kg·m² is not "
+                             f"positive")
+    covered = np.array([batch.covers(g, o) for g, o in zip(inputs.geometry, inputs.objective)],
+                       dtype=bool) if n else np.zeros(0, dtype=bool)
+    if ctx.method == "closed_form" and (needed & ~covered).any():
+        k = int(np.flatnonzero(needed & ~covered)[0])
+        raise SceneError("method", f"the closed form does not cover objective "
+                         f"{inputs.objective[k]!r} (point {int(points['point'].iloc[k])}); "
+                         f"use method 'auto' or 'ipopt'")
+    use_batch = needed & covered if ctx.method != "ipopt" else np.zeros(n, dtype=bool)
+    _design_closed_form(inputs, j_margin, use_batch, res)
+    for k in np.flatnonzero(needed & ~use_batch):
+        _design_ipopt(ctx, inputs, k, j_margin[k], res)
+    return _table(inputs, points, ctx.axes, res)
+
+
+def _design_closed_form(inputs, j_margin, mask, res):
+    """Fill the rows of ``mask`` from the vectorized closed form."""
+    if not mask.any():
+        return
+    geometries = list(dict.fromkeys(inputs.geometry[mask]))
+    m_names, s_names = inputs.material_names, inputs.shaft_names
+    m_code = (np.array([m_names.index(m) for m in inputs.material]) if inputs.material is not None
+              else np.full(inputs.n, -1))
+    s_code = (np.array([s_names.index(s) for s in inputs.shaft]) if inputs.shaft is not None
+              else np.full(inputs.n, -1))
+    for geo in geometries:
+        in_geo = mask & (inputs.geometry == geo)
+        keys = np.stack([m_code[in_geo], s_code[in_geo]], axis=1)
+        groups, inverse = np.unique(keys, axis=0, return_inverse=True)
+        points_geo = np.flatnonzero(in_geo)
+        for g, (mc, sc) in enumerate(groups):
+            pts = points_geo[inverse.ravel() == g]
+            mats = m_names if mc < 0 else [m_names[mc]]
+            shafts = s_names if sc < 0 else [s_names[sc]]
+            _design_group(inputs, geo, pts, mats, shafts, j_margin, res)
+
+
+def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
+    """One geometry, one material list and one shaft list, for points ``pts``."""
+    n_m, n_s = len(mats), len(shafts)
+    per = n_m * n_s
+    p = np.repeat(pts, per)
+    mi = np.tile(np.repeat(np.arange(n_m), n_s), len(pts))
+    si = np.tile(np.tile(np.arange(n_s), n_m), len(pts))
+    order = mi * n_s + si
+
+    def table(values, names, index):
+        return np.stack([values[name] for name in names])[index, p]
+
+    density = table(inputs.density, mats, mi)
+    v_max = table(inputs.max_rim_speed, mats, mi)
+    cost_per_kg = table(inputs.material_cost, mats, mi)
+    allowable = table(inputs.allowable, mats, mi)
+    ratio = table(inputs.ratio, shafts, si)
+    out = batch.design_combinations(
+        geo, j_margin[p], inputs.omega_rim[p], ratio, density, v_max, inputs.hb_min[p],
+        inputs.hb_max[p], np.where(np.isnan(inputs.envelope[p]), np.inf, inputs.envelope[p]),
+        np.where(np.isnan(inputs.width[p]), np.inf, inputs.width[p]), inputs.d_mean[p])
+    mass = out.mass
+    cost = mass * cost_per_kg
+    objective = np.where(inputs.objective[p] == "cost", cost, mass)
+    feasible = out.feasible
+    res["n_combinations"][pts] = per
+    counts = np.bincount(p[feasible], minlength=inputs.n)
+    res["n_feasible"][pts] = counts[pts]
+    res["method"][pts] = batch.METHOD
+    # winner per point: lowest objective, then mass, then input order (as optimize),
+    # objectives within TIE_RTOL of the lowest counting as equal (see TIE_RTOL)
+    f = np.flatnonzero(feasible)
+    if f.size:
+        ranked = f[np.lexsort((order[f], mass[f], objective[f], p[f]))]
+        _, first = np.unique(p[ranked], return_index=True)
+        lowest = np.full(inputs.n, np.nan)
+        lowest[p[ranked[first]]] = objective[ranked[first]]
+        tied = f[objective[f] <= lowest[p[f]] * (1.0 + TIE_RTOL)]
+        ranked = tied[np.lexsort((order[tied], p[tied]))]
+        _, first = np.unique(p[ranked], return_index=True)
+        w = ranked[first]
+        q = p[w]
+        res["status"][q] = "designed"
+        res["feasible"][q] = True
+        res["best_material"][q] = np.asarray(mats, dtype=object)[mi[w]]
+        res["best_shaft"][q] = np.asarray(shafts, dtype=object)[si[w]]
+        res["best_speed_ratio"][q] = ratio[w]
+        for name in ("d_mean", "d_outer", "d_inner", "h", "b", "hb_ratio", "mass",
+                     "rim_speed", "hoop_stress", "j_flywheel", "j_at_reference"):
+            res[name][q] = out[name][w]
+        res["j_required_on_shaft"][q] = out.j_shaft[w]
+        res["d_outer_limit"][q] = out.cap[w]
+        res["rim_speed_limit"][q] = v_max[w]
+        res["cost"][q] = cost[w]
+        res["objective"][q] = objective[w]
+        res["safety_factor"][q] = allowable[w] / out.hoop_stress[w]
+        res["binding"][q] = [",".join(batch.binding_names(b)) for b in out.binding[w]]
+    none = pts[counts[pts] == 0]
+    if none.size:
+        # the combination that comes closest: largest J_max / J' (for the message)
+        closeness = out.j_max / out.j_shaft
+        lost = np.isin(p, none)
+        idx = np.flatnonzero(lost)
+        ranked = idx[np.lexsort((order[idx], -closeness[idx], p[idx]))]
+        _, first = np.unique(p[ranked], return_index=True)
+        for c in ranked[first]:
+            k = p[c]
+            res["status"][k] = "infeasible"
+            res["message"][k] = (
+                f"no material and shaft can give the inertia; the closest, "
+                f"{mats[mi[c]]} on the {shafts[si[c]]} shaft, can give at most "
+                f"{out.j_max[c]:.4g} of the {out.j_shaft[c]:.4g} kg·m² it needs there")
+
+
+#: Designs whose objectives differ by less than this (relative) are ranked as equal,
+#: and the first in input order (materials, then shafts) wins. Such ties are exact
+#: in the mathematics (e.g. a disc at the envelope weighs 8 J / D^2 whatever its
+#: density), so without it round-off would pick the winner.
+TIE_RTOL = 1e-9
+
+_IPOPT_LOCK = threading.Lock()
+
+
+def _design_ipopt(ctx, inputs, k, j_required, res):
+    """One point by optimize.design_flywheel (IPOPT, NLP cached per structure)."""
+    from flyopt.design.optimize import DesignSpec, MountShaft, design_flywheel
+    from flyopt.design.materials import Material
+
+    mats = [inputs.material[k]] if inputs.material is not None else inputs.material_names
+    shafts = [inputs.shaft[k]] if inputs.shaft is not None else inputs.shaft_names
+    materials = []
+    for name in mats:
+        base = inputs.library[name]
+        cost = inputs.material_cost[name][k]
+        materials.append(Material(name, inputs.density[name][k], inputs.max_rim_speed[name][k],
+                                  base.allowable_stress, None if math.isnan(cost) else cost,
+                                  base.source))
+    mounts = [MountShaft(name, inputs.ratio[name][k]) for name in shafts]
+
+    def opt(x):
+        return None if math.isnan(x) else float(x)
+
+    spec = DesignSpec(geometry=inputs.geometry[k], hb_ratio=(inputs.hb_min[k], inputs.hb_max[k]),
+                      max_outer_diameter=opt(inputs.envelope[k]), max_width=opt(inputs.width[k]),
+                      d_mean=opt(inputs.d_mean[k]), objective=inputs.objective[k])
+    res["method"][k] = "ipopt"
+    res["n_combinations"][k] = len(materials) * len(mounts)
+    try:
+        with _IPOPT_LOCK:  # a CasADi Function is not to be called from two threads at once
+            result = design_flywheel(float(j_required), float(inputs.omega_rim[k]), mounts,
+                                     materials, spec, solver_options=ctx.solver_options,
+                                     method="ipopt")
+    except SolverFailed as err:
+        res["status"][k] = "failed"
+        res["solver_status"][k] = str(getattr(err, "status", "") or "error")
+        res["message"][k] = str(err)
+        return
+    res["n_feasible"][k] = sum(c.feasible for c in result.candidates)
+    best = result.best
+    if best is None:
+        res["status"][k] = "infeasible"
+        res["message"][k] = result.message
+        return
+    res["status"][k] = "designed"
+    res["feasible"][k] = True
+    res["best_material"][k] = best.material
+    res["best_shaft"][k] = best.shaft
+    res["best_speed_ratio"][k] = best.speed_ratio
+    for name in ("d_mean", "d_outer", "d_inner", "h", "b", "hb_ratio", "mass", "rim_speed",
+                 "hoop_stress", "j_flywheel", "j_at_reference", "j_required_on_shaft",
+                 "d_outer_limit", "rim_speed_limit", "objective"):
+        res[name][k] = getattr(best, name)
+    res["cost"][k] = math.nan if best.cost is None else best.cost
+    res["safety_factor"][k] = math.nan if best.safety_factor is None else best.safety_factor
+    res["binding"][k] = ",".join(best.binding)
+    res["solver_status"][k] = best.solver_status
+    res["iterations"][k] = best.iterations
+
+
+def _table(inputs, points, axes, res):
+    n = inputs.n
+    data = {"point": points["point"].to_numpy(dtype=np.int64)}
+    core = {"delta": inputs.delta, "speed": inputs.speed, "inertia": inputs.inertia,
+            "torque.scale": inputs.scale, "design.geometry": inputs.geometry,
+            "design.objective": inputs.objective, "design.hb_min": inputs.hb_min,
+            "design.hb_max": inputs.hb_max, "design.max_outer_diameter": inputs.envelope,
+            "design.max_width": inputs.width, "design.d_mean": inputs.d_mean}
+    data.update(core)
+    for name in axes:
+        if name not in data:
+            data[name] = points[name].to_numpy()
+    data.update(res)
+    return pd.DataFrame(data, index=pd.RangeIndex(n), copy=False)
+
+

@@ -1,0 +1,112 @@
+"""The points of a sweep: a full-factorial grid, or Latin hypercube samples.
+
+:func:`plan_sweep` turns the varied fields (see :mod:`flyopt.io.sweep_spec`)
+into a table of points, one row per point, and refuses points whose design
+settings are invalid before anything runs.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from flyopt.errors import SceneError
+from flyopt.io.sweep_spec import FIELDS, _Field, parse_vary
+from flyopt.studies.evaluate import _check_points
+
+__all__ = ["MAX_POINTS", "SweepPlan", "plan_sweep"]
+
+
+
+#: Largest number of points a sweep may have.
+MAX_POINTS = 20_000_000
+
+
+@dataclass
+class SweepPlan:
+    """The points of a sweep: a DataFrame of inputs, one row per point.
+
+    Attributes
+    ----------
+    axes : list of Axis
+    points : pandas.DataFrame
+        Column ``point`` and one column per axis (SI values, names, NaN for none).
+    samples : int or None
+        Latin hypercube sample count (None: full factorial grid).
+    seed : int or None
+    """
+
+    axes: list
+    points: pd.DataFrame
+    samples: int | None = None
+    seed: int | None = None
+
+
+def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
+    """The points of a sweep: a full-factorial grid, or Latin hypercube samples.
+
+    Parameters
+    ----------
+    scene : Scene
+    vary : mapping or iterable of str
+        See :func:`parse_vary`.
+    samples : int, optional
+        Number of Latin hypercube samples; without it the full grid.
+    seed : int, optional
+        Seed of the Latin hypercube (reproducible samples).
+
+    Returns
+    -------
+    SweepPlan
+
+    Raises
+    ------
+    SceneError
+        Bad fields or values, too many points, or points whose design
+        settings are invalid (e.g. an H/B range with min > max).
+    """
+    axes = parse_vary(scene, vary, where=where, samples=samples)
+    if samples is not None:
+        if not isinstance(samples, (int, np.integer)) or isinstance(samples, bool) or samples < 1:
+            raise SceneError("samples", f"must be a positive whole number, got {samples!r}")
+        if not axes:
+            raise SceneError("samples", "Latin hypercube sampling needs at least one varied field")
+        from scipy.stats import qmc
+
+        unit = qmc.LatinHypercube(d=len(axes), rng=seed).random(int(samples))
+        columns = {}
+        for k, axis in enumerate(axes):
+            u = unit[:, k]
+            if axis.kind == "range":
+                if axis.log:
+                    lo, hi = math.log(axis.low), math.log(axis.high)
+                    columns[axis.field] = np.exp(lo + u * (hi - lo))
+                else:
+                    columns[axis.field] = axis.low + u * (axis.high - axis.low)
+            else:
+                index = np.minimum((u * len(axis.values)).astype(int), len(axis.values) - 1)
+                columns[axis.field] = np.asarray(axis.values, dtype=object)[index]
+        n = int(samples)
+    else:
+        n = math.prod(len(a.values) for a in axes)
+        if n > MAX_POINTS:
+            raise SceneError(where, f"the grid has {n} points, more than {MAX_POINTS}; "
+                             f"use fewer values or Latin hypercube samples")
+        columns = {}
+        if axes:
+            grids = np.meshgrid(*[np.arange(len(a.values)) for a in axes], indexing="ij")
+            for axis, index in zip(axes, grids):
+                columns[axis.field] = np.asarray(axis.values, dtype=object)[index.ravel()]
+    points = pd.DataFrame({"point": np.arange(n, dtype=np.int64)})
+    for axis in axes:
+        values = columns[axis.field]
+        if FIELDS.get(axis.field, _Field("number")).kind == "name":
+            points[axis.field] = np.asarray(values, dtype=object)
+        else:
+            points[axis.field] = np.asarray(values, dtype=float)
+    _check_points(scene, points, where)
+    return SweepPlan(axes=axes, points=points, samples=samples, seed=seed)
+
