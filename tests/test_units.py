@@ -31,6 +31,12 @@ from flyopt.units import gd2_from_inertia, inertia_from_gd2, quantity, rad_s_to_
     ("36 m/s", "speed", 36.0),
     ("7.5 kW", "power", 7500.0),
     ("250 MPa", "stress", 2.5e8),
+    # a fraction written with its unit is converted like any other unit
+    ("1 %", "dimensionless", 0.01),
+    ("92 percent", "dimensionless", 0.92),
+    ("5 permille", "dimensionless", 0.005),
+    ("2 m/mm", "dimensionless", 2000.0),
+    ("0.5 rad/rad", "dimensionless", 0.5),
 ])
 def test_quantities_convert_to_si(text, dimension, si):
     assert_allclose(quantity(text, dimension), si, rtol=1e-15)
@@ -44,10 +50,17 @@ def test_drawing_scales_multiply_to_joules():
 @pytest.mark.parametrize("value, words", [
     ("1500 m", "wrong dimension"), ("fast", "cannot read"), ("nan rpm", "finite"), (float("inf"), "finite"),
     (True, "expected a rotational speed"), ([1500], "expected a rotational speed"),
+    ("50 %", "wrong dimension"),
 ])
 def test_bad_quantities(value, words):
     with pytest.raises(SceneError, match=words):
         quantity(value, "angular_speed", "machine.speed")
+
+
+@pytest.mark.parametrize("text", ["50 %", "2 m/mm", "5 permille"])
+def test_a_fraction_is_no_angle(text):
+    with pytest.raises(SceneError, match="wrong dimension: expected an angle"):
+        quantity(text, "angle", "machine.cycle")
 
 
 def test_rpm_and_gd2_round_trips():

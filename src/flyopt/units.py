@@ -2,7 +2,9 @@
 
 Scene files and the command line speak units ("1500 rpm", "0.8 m",
 "100 N*m/mm"); everything past this module sees plain SI floats.
-Plain numbers are taken as SI (angles in radians, speeds in rad/s).
+Plain numbers are taken as SI (angles in radians, speeds in rad/s). A
+fraction may be written with its unit ("1 %", "5 permille"): it is converted
+to a plain number (0.01, 0.005) like any other unit, and is no speed or angle.
 """
 
 import functools
@@ -77,11 +79,12 @@ def quantity(value, dimension, field="value"):
             q = registry().Quantity(text)
         except Exception as err:  # pint raises many types (UndefinedUnitError, DefinitionSyntaxError, ...)
             raise SceneError(field, f"cannot read {value!r} as {words}: {_pint_reason(err)}") from None
-        if not hasattr(q, "dimensionality") or q.unitless:
-            number = float(q.magnitude if hasattr(q, "magnitude") else q)  # a plain number: SI
+        if not hasattr(q, "units") or q.units == registry().dimensionless:
+            number = float(q.magnitude if hasattr(q, "magnitude") else q)  # no unit written (or "rad/rad"): SI
         else:
+            # "%", "permille", "ppm", "m/mm" are units too: a fraction, converted like any other unit
             want = registry().get_dimensionality(dim) if dim else registry().Quantity(1).dimensionality
-            if q.dimensionality != want:
+            if q.dimensionality != want or (dimension == "angle" and not _is_angle(q)):
                 raise SceneError(field, f"{value!r} has the wrong dimension: expected {words}")
             number = float(q.to(si_unit).magnitude) if si_unit else float(q.to("").magnitude)
             if dimension == "angular_speed" and "radian" not in str(q.to_root_units().units):
@@ -92,6 +95,11 @@ def quantity(value, dimension, field="value"):
     if not math.isfinite(number):
         raise SceneError(field, f"must be finite, got {value!r}")
     return number
+
+
+def _is_angle(q):
+    """True when a dimensionless quantity is an angle ("90 deg", "1 turn"), not a ratio ("50 %")."""
+    return "radian" in str(q.to_root_units().units)
 
 
 def _pint_reason(err):

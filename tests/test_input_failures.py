@@ -1,0 +1,87 @@
+"""Bad scene input, tried as a new user and as an attacker would (issue 11, item 6).
+
+Every input either works or is refused with exit status 2 and one short line
+on stderr that names the file and the field, within seconds, and without a
+traceback. ``solve`` and ``check`` read scenes through the same loader, so
+both are tried.
+"""
+
+import re
+import subprocess
+import sys
+
+import pytest
+from numpy.testing import assert_allclose
+
+import flyopt
+
+BASE = """
+title = "t"
+[machine]
+speed = "1500 rpm"
+delta = 0.05
+[torque.resisting]
+points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]
+[torque.driving]
+constant = "unknown"
+"""
+
+TIMEOUT = 30
+"""Seconds a refusal may take in a fresh interpreter (a hang fails the test instead of blocking it)."""
+
+
+def scene(old, new, base=BASE):
+    if old not in base:
+        raise ValueError(f"test bug: {old!r} is not in the base scene")
+    return base.replace(old, new)
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True,
+                          timeout=TIMEOUT)
+
+
+def assert_refused(result, path, field, match):
+    """Exit 2, nothing on stdout, one line on stderr naming the file and the field, no traceback."""
+    assert "Traceback" not in result.stderr, result.stderr[-2000:]
+    assert result.returncode == 2, (result.returncode, result.stderr[-2000:])
+    assert result.stdout == ""
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1, result.stderr[-2000:]
+    assert str(path) in lines[0] and field in lines[0], lines[0]
+    assert re.search(match, lines[0]), lines[0]
+    assert len(lines[0]) < 600, f"{len(lines[0])} characters"
+
+
+# -- percentages are fractions ---------------------------------------------------
+
+
+@pytest.mark.parametrize("old, new, attribute, fraction", [
+    ("delta = 0.05", 'delta = "1 %"', "delta", 1 / 100),
+    ("delta = 0.05", 'delta = "5 permille"', "delta", 5 / 1000),
+    ("delta = 0.05", 'delta = "0.2 percent"', "delta", 0.2 / 100),
+    ("delta = 0.05", 'delta = 0.05\nefficiency = "92 %"', "efficiency", 92 / 100),
+    ("delta = 0.05", 'delta = 0.05\nefficiency = ["98 %", "95 %"]', "efficiency", 0.98 * 0.95),
+])
+def test_a_percentage_is_read_as_a_fraction(write_scene, old, new, attribute, fraction):
+    loaded = flyopt.load(write_scene(scene(old, new)))
+    assert_allclose(getattr(loaded, attribute), fraction, rtol=1e-15)
+
+
+def test_a_percentage_is_read_as_a_fraction_in_every_dimensionless_field(write_scene):
+    text = BASE + '[[shaft]]\nname = "m"\nspeed_ratio = "250 %"\nefficiency = "90 %"\n' \
+                  '[design]\nhb_ratio = ["20 %", "50 %"]\n'
+    loaded = flyopt.load(write_scene(text))
+    assert_allclose([loaded.shafts[0].speed_ratio, loaded.shafts[0].efficiency], [2.5, 0.9], rtol=1e-15)
+    assert_allclose(loaded.design.hb_ratio, (0.2, 0.5), rtol=1e-15)
+
+
+@pytest.mark.parametrize("command", ["solve", "check"])
+@pytest.mark.parametrize("old, new, field", [
+    ('speed = "1500 rpm"', 'speed = "50 %"', "machine.speed"),
+    ('["45 deg", "1600 N*m"]', '["12.5 %", "1600 N*m"]', "torque.resisting.points[1] angle"),
+    ('"1600 N*m"], ["90 deg"', '"50 %"], ["90 deg"', "torque.resisting.points[1] torque"),
+])
+def test_a_percentage_is_no_speed_angle_or_torque(write_scene, command, old, new, field):
+    path = write_scene(scene(old, new))
+    assert_refused(run(command, path), path, field, "wrong dimension: expected")
