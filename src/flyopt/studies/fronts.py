@@ -1,6 +1,6 @@
-"""Design studies built on sweeps: Pareto fronts, the material trade-off table, and
-the command-line entry points ``flyopt sweep``, ``flyopt pareto`` and
-``flyopt tradeoff``.
+"""Design studies built on sweeps: Pareto fronts and the material trade-off table
+(their command lines, ``flyopt pareto`` and ``flyopt tradeoff``, are in
+:mod:`flyopt.cli.studies`).
 
 Pareto fronts (two objectives, both minimized) come from an ε-constraint
 swept through the design model, then the dominated points are removed:
@@ -27,28 +27,17 @@ value that produced it.
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
-import json
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from flyopt.errors import NonPeriodicCycle, SceneError
-from flyopt.io.results import write_results
-from flyopt.io.sweep_spec import _resolve, _split_unit, load_sweep
+from flyopt.errors import SceneError
 from flyopt.studies.evaluate import evaluate_points
-from flyopt.studies.plan import plan_sweep
 from flyopt.studies.sweep import sweep
-from flyopt.units import quantity
 
-__all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto", "material_tradeoff",
-           "sweep_main", "pareto_main", "tradeoff_main"]
-
-EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INFEASIBLE = 0, 1, 2, 3
+__all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto", "material_tradeoff"]
 
 #: Second objectives a front may trade against mass, with the unit of --range.
 PARETO_OBJECTIVES = {
@@ -310,280 +299,14 @@ def material_tradeoff(scene, solver_options=None, method="auto"):
     return table.iloc[order].reset_index(drop=True)
 
 
-# --------------------------------------------------------------------------
-# Command line
-# --------------------------------------------------------------------------
+def __getattr__(name):
+    """``sweep_main``, ``pareto_main``, ``tradeoff_main`` moved to :mod:`flyopt.cli.studies`.
 
-def _fail(message, status):
-    print(f"flyopt: error: {message}", file=sys.stderr)
-    return status
+    Kept here, lazily, only until the tests that import them from this module
+    import them from there; nothing in the package uses this.
+    """
+    if name in ("sweep_main", "pareto_main", "tradeoff_main"):
+        from flyopt.cli import studies
 
-
-def _guard(run, args, scene_path):
-    try:
-        return run(args)
-    except (SceneError, NonPeriodicCycle) as err:
-        return _fail(str(err), EXIT_INPUT)
-    except OSError as err:
-        where = f"{err.filename}: " if getattr(err, "filename", None) else ""
-        return _fail(f"{scene_path}: cannot write the results: {where}{err.strerror or err}", EXIT_INPUT)
-    except ArithmeticError as err:
-        return _fail(f"{scene_path}: {err}", EXIT_FAILED)
-
-
-def _workers(text):
-    if text == "auto":
-        return "auto"
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: a whole number or 'auto'") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r}: at least 1")
-    return value
-
-
-def _positive_int(text):
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: a whole number") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r}: at least 1")
-    return value
-
-
-def sweep_parser():
-    """The argparse parser of ``flyopt sweep`` (for embedding as a subcommand)."""
-    parser = argparse.ArgumentParser(
-        prog="flyopt sweep",
-        description="Sweep a scene over a grid (or Latin hypercube) of its fields: one row "
-                    "per point with every input and result, to Parquet or CSV.",
-        epilog="FIELD: delta, speed, inertia, torque.scale, design.max_outer_diameter "
-               "(envelope), design.max_width, design.d_mean, design.hb_ratio, design.hb_min, "
-               "design.hb_max, design.geometry, design.objective, material, shaft, "
-               "shaft.NAME.speed_ratio, material.NAME.density|max_rim_speed|cost. "
-               "VALUES: a,b,c | a:b:n | a:b:logn, a unit after the last value applies to "
-               "all (300,600,1200rpm; 0.4:1.2:5 m); 'none' for no limit.")
-    parser.add_argument("scene", help="scene file (TOML); a [sweep] table in it is read too")
-    parser.add_argument("--vary", action="append", default=[], metavar="FIELD=VALUES",
-                        help="a field and its values (repeat for a grid)")
-    parser.add_argument("-o", "--output", help="result file, .parquet or .csv "
-                        "(default: CSV on stdout)")
-    parser.add_argument("--samples", type=_positive_int, metavar="N",
-                        help="N Latin hypercube samples instead of the full grid")
-    parser.add_argument("--seed", type=int, help="seed of the Latin hypercube")
-    parser.add_argument("--workers", type=_workers, metavar="N|auto",
-                        help="worker processes on this machine (default auto: one per CPU, "
-                             "serial when the sweep is too small to gain)")
-    parser.add_argument("--chunk-size", type=_positive_int, metavar="N",
-                        help="points per chunk (default 2500 closed form, 50 with IPOPT)")
-    parser.add_argument("--scheduler", metavar="ADDRESS",
-                        help="run on a Dask cluster, e.g. tcp://host:8786")
-    parser.add_argument("--resume", action="store_true",
-                        help="continue an interrupted sweep from OUTPUT.parts/")
-    parser.add_argument("--max-chunks", type=int, metavar="K",
-                        help="stop after K chunks (continue later with --resume)")
-    parser.add_argument("--method", choices=("auto", "closed_form", "ipopt"),
-                        help="design method: closed form where exact, else IPOPT (auto)")
-    parser.add_argument("--keep-parts", action="store_true",
-                        help="keep OUTPUT.parts/ after writing the output")
-    parser.add_argument("--no-progress", dest="progress", action="store_false",
-                        help="no progress line on stderr")
-    return parser
-
-
-def sweep_main(argv=None):
-    """``flyopt sweep``: returns the exit status (0 done, 2 bad input)."""
-    args = sweep_parser().parse_args(argv)
-    return _guard(_sweep_command, args, args.scene)
-
-
-def _sweep_command(args):
-    scene, options = load_sweep(args.scene)
-    vary = dict(options.pop("vary", {}))
-    if vary:  # the file's own values: errors name the file and its sweep.vary field
-        plan_sweep(scene, vary, samples=options.get("samples"), seed=options.get("seed"),
-                   where=f"{args.scene}: sweep.vary")
-    for text in args.vary:
-        if "=" not in text:
-            raise SceneError("--vary", f"{text!r}: expected FIELD=VALUES, e.g. "
-                             f"delta=0.01:0.1:log20 or speed=300,600,1200rpm")
-        path, values = text.split("=", 1)
-        canonical = _resolve(scene, path.strip(), "--vary")[0]
-        for key in list(vary):   # the command line overrides the file
-            if _resolve(scene, key, "sweep.vary")[0] == canonical:
-                del vary[key]
-        vary[path.strip()] = values
-    cli = {"samples": args.samples, "seed": args.seed, "output": args.output,
-           "chunk_size": args.chunk_size, "method": args.method, "workers": args.workers}
-    for key, value in cli.items():
-        if value is not None:
-            options[key] = value
-    output = options.pop("output", None)
-    if output is not None and args.output is None:
-        output = Path(args.scene).parent / output   # [sweep] output is relative to the file
-    frame = sweep(scene, vary, output=output, scheduler=args.scheduler, resume=args.resume,
-                  max_chunks=args.max_chunks, progress=args.progress,
-                  keep_parts=args.keep_parts, **options)
-    info = frame.attrs["sweep"]
-    counts = frame["status"].value_counts().to_dict()
-    summary = ", ".join(f"{counts.get(s, 0)} {s.replace('_', ' ')}"
-                        for s in ("designed", "infeasible", "not_needed", "failed"))
-    methods = ", ".join(f"{v} {k}" for k, v in frame["method"].value_counts().items())
-    rate = info["designs"] / info["seconds"] if info["seconds"] > 0 else math.inf
-    if not info["complete"]:
-        left = info["chunks"] - len(info["chunks_run"]) - len(info["chunks_reused"])
-        print(f"flyopt sweep: stopped after {len(info['chunks_run'])} chunks, {left} left: "
-              f"continue with --resume ({_parts_name(output)})", file=sys.stderr)
-        return EXIT_OK
-    if output is None:
-        sys.stdout.write(frame.to_csv(index=False))
-    where = f"wrote {output}" if output is not None else "done"
-    print(f"flyopt sweep: {where}: {len(frame)} points ({summary}); methods: {methods}; "
-          f"{info['designs']} designs in {info['seconds']:.2f} s ({rate:,.0f} designs/s, "
-          f"{info['mode']})", file=sys.stderr)
-    return EXIT_OK
-
-
-def _parts_name(output):
-    return f"{output}.parts" if output is not None else "no output file"
-
-
-def _span(text, other):
-    if text is None:
-        return None
-    dimension = PARETO_OBJECTIVES[other]
-    if dimension is None:
-        raise SceneError("--range", f"the {other} front has no range: it is the set of "
-                         f"material x shaft designs")
-    parts = text.split(":")
-    if len(parts) != 2:
-        raise SceneError("--range", f"{text!r}: expected LOW:HIGH with an optional unit, "
-                         f"e.g. 0.3:1.2 m")
-    trailing = _split_unit(parts[1])[1]
-    ends = []
-    for part in parts:
-        number, unit = _split_unit(part)
-        raw = f"{number} {unit or trailing}".strip()
-        ends.append(quantity(raw, dimension, "--range"))
-    return tuple(ends)
-
-
-_SHOW = {
-    "outer_diameter": ["mass", "outer_diameter", "best_material", "best_shaft", "b", "h",
-                       "binding", "method"],
-    "cost": ["mass", "cost", "best_material", "best_shaft", "d_outer", "binding", "method"],
-    "delta": ["mass", "delta", "best_material", "best_shaft", "d_outer", "binding", "method"],
-}
-
-
-def pareto_parser():
-    """The argparse parser of ``flyopt pareto``."""
-    parser = argparse.ArgumentParser(
-        prog="flyopt pareto",
-        description="Pareto front of mass against outer diameter, cost or delta, by an "
-                    "epsilon-constraint swept through the design model.")
-    parser.add_argument("scene", help="scene file (TOML)")
-    parser.add_argument("--objectives", default="mass,outer_diameter",
-                        help="mass,outer_diameter | mass,cost | mass,delta "
-                             "(default mass,outer_diameter)")
-    parser.add_argument("--points", type=_positive_int, default=25,
-                        help="number of epsilon values (default 25)")
-    parser.add_argument("--range", dest="span", metavar="LOW:HIGH",
-                        help="range of epsilon, e.g. 0.3:1.2 m or 0.01:0.1")
-    _method_and_output(parser, "front")
-    return parser
-
-
-def _method_and_output(parser, what):
-    """The options ``flyopt pareto`` and ``flyopt tradeoff`` share: the design method and the output."""
-    parser.add_argument("--method", choices=("auto", "closed_form", "ipopt"), default="auto",
-                        help="design method: closed form where exact, else IPOPT (auto); ipopt: every "
-                             "combination through the CasADi/IPOPT model")
-    parser.add_argument("-o", "--output", help=f"write the {what} to .csv, .parquet or .json")
-    parser.add_argument("--json", action="store_true", help=f"print the {what} as JSON records")
-
-
-def pareto_main(argv=None):
-    """``flyopt pareto``: returns the exit status (0 front, 2 bad input, 3 no design)."""
-    args = pareto_parser().parse_args(argv)
-    return _guard(_pareto_command, args, args.scene)
-
-
-def _pareto_command(args):
-    from flyopt.io.scene import load
-
-    scene = load(args.scene)
-    objectives, other = _pair(args.objectives)
-    front = pareto(scene, objectives, points=args.points, span=_span(args.span, other),
-                   method=args.method)
-    if front.empty:
-        message = front.attrs.get("message", "empty front")
-        print(f"{args.scene}: {message}")
-        return EXIT_OK if message.startswith("no flywheel needed") else EXIT_INFEASIBLE
-    _emit(front, args.output, args.json, _SHOW[other],
-          f"{args.scene}: Pareto front, {' vs '.join(objectives)} "
-          f"({len(front)} non-dominated of {front.attrs['evaluated']} designs)")
-    return EXIT_OK
-
-
-def tradeoff_parser():
-    """The argparse parser of ``flyopt tradeoff``."""
-    parser = argparse.ArgumentParser(
-        prog="flyopt tradeoff",
-        description="For each material the lightest design: size, rim speed, mass, cost and "
-                    "which limit binds.")
-    parser.add_argument("scene", help="scene file (TOML)")
-    _method_and_output(parser, "table")
-    return parser
-
-
-def tradeoff_main(argv=None):
-    """``flyopt tradeoff``: returns the exit status (0 a design, 2 bad input, 3 none feasible)."""
-    args = tradeoff_parser().parse_args(argv)
-    return _guard(_tradeoff_command, args, args.scene)
-
-
-def _tradeoff_command(args):
-    from flyopt.io.scene import load
-
-    scene = load(args.scene)
-    table = material_tradeoff(scene, method=args.method)
-    _emit(table, args.output, args.json,
-          ["material", "status", "shaft", "d_outer", "b", "rim_speed", "rim_speed_limit",
-           "mass", "cost", "limit"],
-          f"{args.scene}: lightest design per material")
-    if (table["status"] == "infeasible").all():
-        for reason in table["reason"]:
-            print(f"  {reason}")
-        return EXIT_INFEASIBLE
-    return EXIT_OK
-
-
-_UNITS = {"mass": "kg", "outer_diameter": "m", "d_outer": "m", "d_mean": "m", "b": "m", "h": "m",
-          "rim_speed": "m/s", "rim_speed_limit": "m/s", "delta": "-", "cost": "",
-          "epsilon": ""}
-
-
-def _emit(frame, output, as_json, columns, title):
-    if output is not None:
-        suffix = Path(output).suffix.lower()
-        if suffix == ".json":
-            Path(output).write_text(_json(frame), encoding="utf-8")
-        else:
-            write_results(frame, output)
-    if as_json:
-        print(_json(frame))
-        return
-    shown = frame[[c for c in columns if c in frame]].copy()
-    shown.columns = [f"{c} [{_UNITS[c]}]" if _UNITS.get(c) else c for c in shown.columns]
-    print(title)
-    print(shown.to_string(index=False, float_format=lambda x: f"{x:.5g}", na_rep="-"))
-    if output is not None:
-        print(f"wrote {output}")
-
-
-def _json(frame):
-    records = json.loads(frame.to_json(orient="records"))
-    return json.dumps(records, indent=2, allow_nan=False)
+        return getattr(studies, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

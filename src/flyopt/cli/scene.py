@@ -1,0 +1,78 @@
+"""``flyopt solve`` and ``flyopt check``: one scene, analysed and designed or checked."""
+
+import json
+import math
+
+from flyopt.cli.exits import EXIT_FLAGGED, EXIT_INFEASIBLE, EXIT_OK
+
+
+def add_solve_arguments(parser):
+    """The options of ``flyopt solve``; the handler is :func:`run_solve`."""
+    parser.add_argument("scene", help="scene file (TOML)")
+    parser.add_argument("--json", action="store_true", help="print one JSON object, all numbers in SI")
+    parser.add_argument("--no-design", dest="design", action="store_false",
+                        help="stop after the cycle analysis (no optimization)")
+    parser.add_argument("--model", choices=("energy", "energy_mass", "dynamic"),
+                        help="force the model that sizes the flywheel (default: the cheapest exact one)")
+    parser.add_argument("--design-method", choices=("auto", "ipopt", "closed_form"), default="auto",
+                        help="auto (default): the exact closed form where it covers the structure, IPOPT "
+                             "elsewhere; ipopt: IPOPT on every combination; closed_form: refuse what the "
+                             "closed form does not cover")
+    parser.add_argument("--verify", action="store_true",
+                        help="simulate the machine with the chosen flywheel and report the δ it achieves")
+    parser.set_defaults(run=run_solve)
+
+
+def run_solve(args):
+    """``flyopt solve``: 0 a design or none needed, 3 infeasible, 4 verification flagged."""
+    from flyopt.io.scene import load
+    from flyopt.pipeline import solve
+
+    scene = load(args.scene)
+    solution = solve(scene, design_flywheel=args.design, model=args.model, verify_design=args.verify,
+                     design_method=args.design_method)
+    if args.json:
+        text = json.dumps({"scene": args.scene, **_json_safe(solution.to_dict())}, indent=2, allow_nan=False)
+    else:
+        from flyopt.report.text import analysis_report, design_report, verification_report
+
+        lines = [analysis_report(solution.analysis, args.scene)]
+        if solution.design is not None:
+            lines += design_report(solution.design)
+        if solution.verification is not None:
+            lines += verification_report(solution.verification)
+        text = "\n".join(lines)
+    print(text)
+    if solution.status == "infeasible":
+        return EXIT_INFEASIBLE
+    if solution.verification is not None and solution.verification["flagged"]:
+        return EXIT_FLAGGED
+    return EXIT_OK
+
+
+def _json_safe(value):
+    """Infinite or NaN numbers (e.g. δ with no inertia at all) become null."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(v) for v in value]
+    return value
+
+
+def add_check_arguments(parser):
+    """The options of ``flyopt check``; the handler is :func:`run_check`."""
+    parser.add_argument("scene", help="scene file (TOML)")
+    parser.set_defaults(run=run_check)
+
+
+def run_check(args):
+    """``flyopt check``: 0 when the scene reads and its cycle closes."""
+    from flyopt.analysis import analyse
+    from flyopt.io.scene import load
+
+    scene = load(args.scene)
+    analyse(scene)  # a cycle that does not close is an input error too
+    print(f"{args.scene}: ok ({scene.title})")
+    return EXIT_OK
