@@ -1,4 +1,4 @@
-"""Benchmark of the flywheel designer (flyopt.design.optimize.design_flywheel).
+"""Benchmark of the flywheel designer (flyopt.design.designer.design_flywheel).
 
 Times `flyopt.solve` (cycle analysis + design, default design method "auto")
 on every scene of problems/, with its design step by "auto" and by IPOPT alone,
@@ -35,8 +35,8 @@ import numpy as np
 
 import flyopt
 from flyopt.design.materials import builtin_materials
-from flyopt.design.optimize import (DesignSpec, ModelStructure, MountShaft, clear_model_cache,
-                             design_flywheel, get_model)
+from flyopt.design import DesignSpec, MountShaft, design_flywheel
+from flyopt.design.nlp import ModelStructure, clear_model_cache, get_model
 
 TARGET_MS = 30.0
 

@@ -2,12 +2,12 @@
 
 Two references:
 
-* flyopt.design.optimize.design_flywheel (IPOPT on the cached NLP, with its own
+* flyopt.design.designer.design_flywheel (IPOPT on the cached NLP, with its own
   closed-form feasibility proof): on a few hundred random combinations of
   every covered structure, including infeasible ones, both must reach the
   same verdict and the same mass within 1e-6 (the issue's agreement).
 * An independent reference written here from the physics, not from flyopt
-  (neither flyopt.design.geometry nor flyopt.design.optimize): a scan of the inertia of
+  (neither flyopt.design.geometry nor flyopt.design.designer): a scan of the inertia of
   the widest admissible rim at the outer-diameter cap and scipy's brentq for
   its smallest root (free D_m), and the largest admissible H for a pinned
   annulus; mass within 1e-9 (both are exact to round-off).
@@ -22,7 +22,9 @@ from scipy.optimize import brentq
 
 from flyopt.design import closed_form as batch
 from flyopt.design.materials import Material, builtin_materials
-from flyopt.design.optimize import DesignSpec, MountShaft, design_flywheel, max_inertia
+from flyopt.design import DesignSpec, MountShaft, design_flywheel
+from flyopt.design.check import binding_names
+from flyopt.design.closed_form import max_inertia_one as max_inertia
 
 RPM = math.pi / 30.0
 CAST_STEEL = builtin_materials()["cast_steel"]
@@ -145,14 +147,14 @@ def test_closed_form_agrees_with_ipopt_on_random_combinations(seed):
             # so IPOPT stops with H loose by ~1e-3 while the mass agrees to 1e-10)
             assert_allclose(float(got.d_outer), ipopt.d_outer, rtol=1e-5)
             assert_allclose(float(got.b), ipopt.b, rtol=1e-4)
-            assert set(batch.binding_names(got.binding)) == set(ipopt.binding)
+            assert set(binding_names(got.binding)) == set(ipopt.binding)
         else:
             assert float(got.mass) <= ipopt.mass * (1 + 1e-9)   # the exact vertex is no heavier
     assert counts["feasible"] >= 40 and counts["infeasible"] >= 15, counts
 
 
-def test_max_inertia_is_bitwise_the_same_as_optimize():
-    """The screening must decide exactly as optimize does, also at the edge of
+def test_max_inertia_is_bitwise_the_same_as_the_scalar_form():
+    """The screening must decide exactly as the designer does, also at the edge of
     feasibility: the same J_max to the last bit on 3000 random inputs."""
     rng = np.random.default_rng(5)
     for k in range(3000):
@@ -160,11 +162,10 @@ def test_max_inertia_is_bitwise_the_same_as_optimize():
         rho, cap = float(rng.uniform(2000, 9000)), float(10 ** rng.uniform(-2, 1))
         low = float(rng.uniform(1, 2.5))
         high = low + float(rng.uniform(0, 1)) * (rng.random() < 0.8)
-        width = float(cap * 10 ** rng.uniform(-3, 0)) if rng.random() < 0.5 else None
+        width = float(cap * 10 ** rng.uniform(-3, 0)) if rng.random() < 0.5 else math.inf
         d_mean = float(cap * rng.uniform(0.1, 1.2)) if rng.random() < 0.3 else None
         expected = max_inertia(geometry, rho, cap, (low, high), width, d_mean)[0]
-        got = batch.max_inertia(geometry, rho, cap, low, high,
-                                math.inf if width is None else width,
+        got = batch.max_inertia(geometry, rho, cap, low, high, width,
                                 math.nan if d_mean is None else d_mean)
         assert float(got) == expected, (geometry, rho, cap, low, high, width, d_mean)
 
@@ -282,7 +283,7 @@ def test_disc_closed_form():
     assert_allclose(got.mass[0], 8 * j / d ** 2, rtol=1e-14)
     assert got.d_inner[0] == 0.0
     assert_allclose(got.mass[3], 8 * j / (0.5 * d) ** 2, rtol=1e-14)
-    assert batch.binding_names(got.binding[0]) == ("inertia", "rim_speed")
+    assert binding_names(got.binding[0]) == ("inertia", "rim_speed")
     assert_allclose(batch.lightest_one("disc", j, rho, d, 1.5, 2.0), (d / 2, d / 2, b), rtol=1e-14)
     assert_allclose(batch.lightest_one("disc", j, rho, d, 1.5, 2.0, math.inf, 0.5 * d)[2],
                     32 * j / (math.pi * rho * (0.5 * d) ** 4), rtol=1e-14)

@@ -1,7 +1,7 @@
-"""Tests of flyopt.design.optimize, the CasADi/IPOPT flywheel designer.
+"""Tests of flyopt.design.designer and flyopt.design.nlp, the CasADi/IPOPT flywheel designer.
 
 The independent references below are written from the physics, not from
-flyopt.design.optimize: they use neither its code nor flyopt.design.geometry.
+flyopt.design: they use neither its code nor flyopt.design.geometry.
 
 * Lightest rim, no width limit or a width limit, D_m free (thin_rim and
   rim): the outer diameter sits at its cap D_c = min(2 v_max / omega',
@@ -28,8 +28,10 @@ from scipy.optimize import brentq, minimize_scalar
 
 from flyopt.errors import SolverFailed
 from flyopt.design.materials import Material, builtin_materials, make_material
-from flyopt.design.optimize import (BINDING_NAMES, DESIGN_FIELDS, DesignSpec, ModelStructure,
-                             MountShaft, clear_model_cache, design_flywheel, get_model)
+from flyopt.design import DesignSpec, MountShaft, design_flywheel
+from flyopt.design.check import BINDING_NAMES
+from flyopt.design.nlp import ModelStructure, clear_model_cache, get_model
+from flyopt.design.result import DESIGN_FIELDS
 
 RPM = math.pi / 30.0
 MATERIALS = builtin_materials()
@@ -593,7 +595,7 @@ def test_nlp_holds_only_what_the_scene_uses(spec, variables, constraints):
     solver = get_model(structure).solver
     assert solver.size1_in("x0") == len(variables)
     assert solver.size1_out("g") == len(constraints)
-    assert ("max_width: B <= max_width" in result.model["bounds"]) == (spec.max_width is not None)
+    assert ("max_width: B <= max_width" in result.model["bounds"]) == (spec.max_width < math.inf)
 
 
 def test_nlp_is_built_once_and_reused():

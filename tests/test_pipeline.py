@@ -8,7 +8,7 @@ from numpy.testing import assert_allclose
 
 import flyopt
 from conftest import PROBLEMS, assert_published
-from flyopt.design import optimize
+from flyopt.design import nlp
 from flyopt.cli.main import main
 
 DESIGN_FIELDS = {"material", "shaft", "geometry", "d_mean", "d_outer", "d_inner", "h", "b", "hb_ratio", "mass",
@@ -69,7 +69,7 @@ def test_infeasible_scene_exits_3_and_says_why(tmp_path, capsys):
 
 def test_non_converged_solve_is_never_a_design(monkeypatch, capsys):
     """With IPOPT allowed 1 iteration, the solve fails: exit 1, its status shown, no design printed."""
-    monkeypatch.setitem(optimize.DEFAULT_SOLVER_OPTIONS, "ipopt.max_iter", 1)
+    monkeypatch.setitem(nlp.DEFAULT_SOLVER_OPTIONS, "ipopt.max_iter", 1)
     assert main(["solve", str(PROBLEMS / "shear-press.toml"), "--json", "--design-method", "ipopt"]) == 1
     captured = capsys.readouterr()
     assert captured.out == ""

@@ -8,7 +8,7 @@ ratio-squared transfer.
 
 from dataclasses import dataclass
 
-from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia
+from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia, speed_extremes
 from flyopt.errors import NonPeriodicCycle, SceneError
 from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.units import gd2_from_inertia
@@ -109,7 +109,7 @@ def analyse(scene, model=None):
 
 
 def _analyse(scene, forced=None):
-    from flyopt.sizing import models
+    from flyopt.sizing import choose as models
 
     if forced is not None and forced not in models.MODELS:
         raise SceneError("--model", f"{forced!r} is not known (allowed: {', '.join(models.ORDER)})")
@@ -123,7 +123,7 @@ def _analyse(scene, forced=None):
         model, reason = models.ENERGY, "net areas of a constant-inertia machine: the energy method is exact"
         j_margin = required_inertia(ind.a_max, scene.omega_mean, scene.delta, scene.j_constant)
         omega_mean = scene.omega_mean
-        omega_max, omega_min = omega_mean * (1 + scene.delta / 2), omega_mean * (1 - scene.delta / 2)
+        omega_max, omega_min = speed_extremes(omega_mean, scene.delta)
         angles = (ind.angle_omega_max, ind.angle_omega_min)
         comparison = ({"model": model, "exact": True, "j_required": j_margin, "achieved_delta": scene.delta,
                        "j_error": 0.0, "note": ""},)
@@ -171,7 +171,7 @@ def _startup(machine, omega_target, j_flywheel):
     near the rated point: at rest it would give 25 times the rated torque).
     Returns None when no motor drives the machine.
     """
-    from flyopt.sizing import dynamics
+    from flyopt.sizing import startup as dynamics
     from flyopt.errors import SolverFailed
     from flyopt.machine.torque import MotorTorque
 

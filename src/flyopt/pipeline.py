@@ -65,7 +65,7 @@ def design_scene(scene, analysis, solver_options=None, method="auto"):
     method : {"auto", "ipopt", "closed_form"}
         The exact closed form where it covers the structure and IPOPT
         elsewhere (default), IPOPT on every combination, or the closed form
-        only (see flyopt.design.optimize.design_flywheel).
+        only (see flyopt.design.designer.design_flywheel).
 
     Returns
     -------
@@ -77,15 +77,12 @@ def design_scene(scene, analysis, solver_options=None, method="auto"):
         IPOPT did not converge on a combination that can be feasible, or a
         design failed its verification against the constraints.
     """
-    from flyopt.design.optimize import MountShaft, design_flywheel
+    from flyopt.design import design_flywheel, design_inputs
 
-    library = scene.material_library()
-    materials = [library[name] for name in (scene.design_materials or tuple(library))]
-    allowed = scene.design_shafts
-    shafts = [MountShaft(s.name, s.speed_ratio) for s in scene.shafts if allowed is None or s.name in allowed]
+    inputs = design_inputs(scene)
     # the rim is checked at the highest speed of the cycle, from the model that ran (for a motor
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
-    return design_flywheel(analysis.j_margin, analysis.omega_max, shafts, materials, scene.design,
+    return design_flywheel(analysis.j_margin, analysis.omega_max, inputs.shafts, inputs.materials, inputs.spec,
                            solver_options=solver_options, method=method)
 
 
@@ -104,7 +101,7 @@ def verify(scene, analysis, design_result=None):
         omega_max, omega_min, omega_mean, tolerance, flagged, j_flywheel;
         None when there is no flywheel to verify (infeasible design).
     """
-    from flyopt.sizing import dynamics
+    from flyopt.sizing import periodic as dynamics
 
     if design_result is not None and design_result.status == "infeasible":
         return None

@@ -9,7 +9,7 @@ from numpy.testing import assert_allclose
 
 from flyopt.cycle.indicator import energy_indicator, required_inertia
 from flyopt.design.materials import builtin_materials
-from flyopt.design.optimize import DesignSpec, MountShaft, design_flywheel
+from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.machine.torque import Constant, PiecewiseLinear
 from flyopt.machine.transmission import inertia_on_shaft
 

@@ -299,6 +299,28 @@ def required_inertia(a_max, omega_mean, delta, j_constant=0.0):
     return a_max / (omega_mean**2 * delta) - j_constant
 
 
+def speed_extremes(omega_mean, delta):
+    """Highest and lowest speed of a cycle of mean speed ω_m and fluctuation δ [rad/s].
+
+    ω_max = ω_m (1 + δ/2), ω_min = ω_m (1 − δ/2), from δ = (ω_max − ω_min)/ω_m
+    and ω_m = (ω_max + ω_min)/2 (docs/flywheel-design.md, section 2): the
+    speeds of the energy method, where the rim speed is checked.
+
+    Parameters
+    ----------
+    omega_mean : float or ndarray
+        ω_m [rad/s].
+    delta : float or ndarray
+        δ [-].
+
+    Returns
+    -------
+    tuple
+        (ω_max, ω_min) [rad/s].
+    """
+    return omega_mean * (1 + delta / 2), omega_mean * (1 - delta / 2)
+
+
 # -- internals -----------------------------------------------------------------
 
 

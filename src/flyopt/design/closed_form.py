@@ -5,7 +5,7 @@ For the structures whose optimum is known analytically, or is the root of a
 monotone function of one variable, this module computes the same optimum:
 for whole arrays of combinations at once (:func:`lightest`, used by sweeps),
 or one combination in plain floats (:func:`lightest_one`, used by
-:func:`flyopt.design.optimize.design_flywheel`, whose default method "auto" takes
+:func:`flyopt.design.designer.design_flywheel`, whose default method "auto" takes
 it). It is a model choice ("the cheapest model that is exact"): every design
 made here says ``method = "closed_form"``, and a structure it does not cover
 is left to IPOPT (see :func:`covers`).
@@ -26,7 +26,7 @@ D_m^2 + H^2 (exact annulus); for a disc m = pi rho D^2 B / 4, J = m D^2 / 8.
 
 *Feasibility* is decided by J' <= J_max, the largest inertia an admissible
 wheel gives, by :func:`max_inertia`: the vectorized twin of
-:func:`flyopt.design.optimize.max_inertia`, written with the same operations in the
+:func:`max_inertia_one`, written with the same operations in the
 same order so that both give bitwise the same J_max, and thus the same verdict
 (including at the edge).
 
@@ -69,8 +69,7 @@ B = 32 J' / (pi rho D^4).
 References
 ----------
 .. [1] flyopt domain notes, docs/flywheel-design.md, sections 8-10.
-.. [2] flyopt.optimize (the NLP these closed forms reproduce, and its
-   max_inertia).
+.. [2] flyopt.design.nlp (the NLP these closed forms reproduce).
 """
 
 from __future__ import annotations
@@ -79,25 +78,26 @@ import math
 
 import numpy as np
 
-from flyopt.design import geometry
-from flyopt.design.optimize import ACTIVE_RTOL, BINDING_NAMES
+from scipy.optimize import brentq
+
+from flyopt.design import check, geometry
 
 __all__ = [
     "METHOD",
     "COVERED_OBJECTIVES",
     "covers",
     "max_inertia",
+    "max_inertia_one",
+    "cap_needed",
     "lightest",
+    "lightest_one",
     "design_combinations",
-    "binding_names",
 ]
 
 #: Name of the method recorded with every design made here.
 METHOD = "closed_form"
 #: Objectives whose optimum is in closed form (cost ranks the mass optimum).
 COVERED_OBJECTIVES = ("mass", "cost")
-#: Bits of the binding mask, in the order of :data:`flyopt.design.optimize.BINDING_NAMES`.
-BINDING_BITS = {name: 1 << k for k, name in enumerate(BINDING_NAMES)}
 
 _NEWTON_MAX_ITER = 200
 #: Newton stops when a step moves log H by less than this (relative to max(1, |log H|)):
@@ -128,11 +128,132 @@ def _array(x):
     return np.asarray(x, dtype=float)
 
 
+def max_inertia_one(geometry_name, density, d_outer_max, hb_ratio=(1.5, 2.0),
+                max_width=math.inf, d_mean=None):
+    """Largest inertia any admissible wheel gives, in closed form (one combination, plain floats).
+
+    The scalar twin of :func:`max_inertia`, written with the same operations
+    in the same order so that both give bitwise the same J_max, and thus the
+    same feasibility verdict (including at the edge).
+
+    Parameters
+    ----------
+    geometry_name : {"rim", "thin_rim", "disc"}
+        Inertia model.
+    density : float
+        Density [kg/m^3].
+    d_outer_max : float
+        Cap on the outer diameter (rim speed and envelope) [m].
+    hb_ratio : (float, float)
+        Range of H/B [-] (rims only).
+    max_width : float
+        Limit on B [m]; ``inf`` for none.
+    d_mean : float or None
+        Pinned mean diameter (disc: diameter) [m].
+
+    Returns
+    -------
+    j_max : float
+        Supremum of J on the shaft [kg*m^2]; 0 if no wheel fits, ``inf`` for
+        an unlimited disc.
+    dims : tuple (d_mean, h, b) or None
+        The wheel that attains it [m] (for a disc d_mean = h = D/2), or None.
+
+    Notes
+    -----
+    J grows with the width B, so B = min(H/hb_min, B_max), and a width limit
+    also caps H <= hb_max B_max. With D_m pinned, J grows with H up to
+    min(D_1max - D_m, D_m, hb_max B_max). With D_m = D_1max - H free, put
+    x = H/D_1max <= 1/2: the exact annulus gives J proportional to
+    x u (1 - 2u) or u (1 - 2u), u = x (1 - x), both increasing on [0, 1/2],
+    so H is as large as allowed; the thin rim gives x^2 (1-x)^3 (peak at
+    x = 2/5) or x (1-x)^3 (peak at 1/4), so the maximum is at a clipped peak,
+    at the change of piece or at the end of the range.
+    """
+    hb_min, hb_max = hb_ratio
+    b_max = max_width
+    cap = d_outer_max
+    if geometry_name == "disc":
+        d = cap if d_mean is None else d_mean
+        if d > cap:
+            return 0.0, None
+        if max_width == math.inf:
+            return math.inf, None
+        j = geometry.disc_inertia(geometry.disc_mass(d, b_max, density), d)
+        return j, (d / 2.0, d / 2.0, b_max)
+
+    def width(h):
+        return min(h / hb_min, b_max)
+
+    if d_mean is not None:
+        if d_mean >= cap:
+            return 0.0, None
+        h = min(cap - d_mean, d_mean, hb_max * b_max)
+        return geometry.wheel_inertia(geometry_name, density, d_mean, h, width(h)), (d_mean, h, width(h))
+
+    h_top = min(cap / 2.0, hb_max * b_max)
+    trials = [h_top]
+    if geometry_name == "thin_rim":
+        h_break = min(hb_min * b_max, h_top)
+        trials += [h_break, min(0.4 * cap, h_break), min(max(0.25 * cap, h_break), h_top)]
+    best = (0.0, None)
+    for h in trials:
+        if h <= 0.0:
+            continue
+        j = geometry.wheel_inertia(geometry_name, density, cap - h, h, width(h))
+        if j > best[0]:
+            best = (j, (cap - h, h, width(h)))
+    return best
+
+
+def cap_needed(geometry_name, density, j_needed, cap, hb_ratio, max_width, d_mean):
+    """Smallest outer-diameter cap at which ``j_needed`` becomes reachable.
+
+    Returns (cap_needed, j_sup): cap_needed is None when even an unlimited cap
+    does not reach ``j_needed``; j_sup is then the largest reachable inertia.
+    """
+    def j_max(c):
+        return max_inertia_one(geometry_name, density, c, hb_ratio, max_width, d_mean)[0]
+
+    if d_mean is not None:
+        if geometry_name == "disc":
+            saturated = d_mean
+        else:
+            hb_max = hb_ratio[1]
+            saturated = d_mean + min(d_mean, hb_max * max_width)
+        j_sup = j_max(saturated)
+        if j_sup < j_needed:
+            return None, j_sup
+        low, high = max(cap, d_mean), saturated
+        if geometry_name == "disc" or j_max(low) >= j_needed:
+            return low, j_sup
+    else:
+        # D_m free. J_max is homogeneous of degree 5 in (C, B_max): scaling an admissible
+        # wheel by λ keeps it admissible. So without a width limit the cap needed is in
+        # closed form (a disc of fixed width: degree 4 in C). With a width limit, growing
+        # C by λ >= 1 multiplies J_max by at most λ^5 (scale down any wheel of the larger
+        # cap) and at least λ^3 / 2 (keep H and B, push D_m out to >= λ D_m; with
+        # H <= D_m, D_m^2 + H^2 <= 2 D_m^2), which brackets the root.
+        j_cap = j_max(cap)
+        if max_width == math.inf or geometry_name == "disc":
+            power = 4.0 if geometry_name == "disc" else 5.0
+            return cap * (j_needed / j_cap) ** (1.0 / power), math.inf
+        low = cap * (j_needed / j_cap) ** 0.2
+        if j_max(low) >= j_needed:           # the width does not bind there: degree 5 is exact
+            return low, math.inf
+        high = cap * (2.0 * j_needed / j_cap) ** (1.0 / 3.0)
+        while j_max(high) < j_needed:        # round-off at the bracket's edge only
+            low, high = high, 2.0 * high
+    root = brentq(lambda c: j_max(c) / j_needed - 1.0, low, high, xtol=1e-12 * high,
+                  rtol=1e-12)
+    return root, math.inf
+
+
 def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=np.inf,
                 d_mean=np.nan):
     """Largest inertia any admissible wheel gives, for arrays of combinations.
 
-    The vectorized :func:`flyopt.design.optimize.max_inertia`, written with the
+    The vectorized :func:`max_inertia_one`, written with the
     same floating-point operations so that both agree bitwise.
 
     Parameters
@@ -179,7 +300,7 @@ def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=n
         # pinned: H = min(C - D_m, D_m, hb_max B_max)
         h_pin = np.minimum(np.minimum(cap - pin, pin), c * b_max)
         j_pin = np.where(pin >= cap, 0.0, inertia(pin, h_pin))
-        # free: the same trial thicknesses as optimize.max_inertia, best of them
+        # free: the same trial thicknesses as max_inertia_one, best of them
         h_top = np.minimum(cap / 2.0, c * b_max)
         trials = [h_top]
         if geometry_name == "thin_rim":
@@ -314,10 +435,10 @@ def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, m
 
     The scalar twin of :func:`lightest` for a ranking of a few combinations,
     whose feasibility the caller has already decided
-    (:func:`flyopt.design.optimize.max_inertia`); the same closed forms and the same
+    (:func:`max_inertia_one`); the same closed forms and the same
     Newton iteration (see the module notes). It does not check feasibility:
     for an infeasible combination it returns the wheel nearest to one, which
-    :func:`flyopt.design.optimize.design_flywheel` (its only caller) would refuse in
+    :func:`flyopt.design.designer.design_flywheel` (its only caller) would refuse in
     its verification of every design.
 
     Parameters
@@ -368,7 +489,7 @@ class Designs(dict):
     :func:`design_combinations`, also ``j_shaft``, ``omega``, ``cap``,
     ``cap_speed``, ``d_outer``, ``d_inner``, ``hb_ratio``, ``rim_speed``,
     ``hoop_stress``, ``j_at_reference``, ``binding`` (int bit mask, see
-    :func:`binding_names`).
+    :func:`flyopt.design.check.binding_names`).
     """
 
     def __getattr__(self, name):
@@ -404,7 +525,7 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
     Designs
         ``feasible``, ``j_max``, ``d_mean``, ``h``, ``b``, ``mass`` [kg],
         ``j_flywheel`` [kg*m^2]. For a disc ``d_mean = h = D/2`` (the
-        convention of :class:`flyopt.design.optimize.Candidate`).
+        convention of :class:`flyopt.design.result.Candidate`).
 
     Notes
     -----
@@ -466,7 +587,7 @@ def design_combinations(geometry_name, j_required, omega_ref, speed_ratio, densi
                         max_width=np.inf, d_mean=np.nan):
     """Design many material × shaft combinations at once (mass objective).
 
-    The array counterpart of what :func:`flyopt.design.optimize.design_flywheel`
+    The array counterpart of what :func:`flyopt.design.designer.design_flywheel`
     does for each combination: move J_F to the shaft, cap the outer
     diameter by the rim speed and the envelope, decide feasibility, and find
     the lightest wheel.
@@ -515,45 +636,6 @@ def design_combinations(geometry_name, j_required, omega_ref, speed_ratio, densi
                d_inner=np.maximum(d_inner, 0.0), hb_ratio=hb, rim_speed=speed,
                hoop_stress=geometry.hoop_stress(rho, speed),
                j_at_reference=out.j_flywheel * ratio * ratio)
-    out["binding"] = _binding(geometry_name, out, envelope, b_max, a, c, d_inner)
+    out["binding"] = np.where(out.feasible, check.binding_mask(
+        geometry_name, out.j_flywheel, j_shaft, d_outer, d_inner, out.b, hb, cap_speed, envelope, b_max, a, c), 0)
     return out
-
-
-def _binding(geometry_name, out, envelope, b_max, a, c, d_inner):
-    """Bit mask of the active constraints, by the rules of optimize (ACTIVE_RTOL)."""
-    rtol = ACTIVE_RTOL
-    d_outer, b, hb = out.d_outer, out.b, out.hb_ratio
-    bits = BINDING_BITS
-    with np.errstate(invalid="ignore"):
-        flags = {
-            "inertia": out.j_flywheel <= out.j_shaft * (1.0 + rtol),
-            "rim_speed": d_outer >= out.cap_speed * (1.0 - rtol),
-            "max_outer_diameter": d_outer >= envelope * (1 - rtol),
-            "max_width": b >= b_max * (1.0 - rtol),
-        }
-        if geometry_name != "disc":
-            flags["hb_min"] = hb <= a * (1.0 + rtol)
-            flags["hb_max"] = hb >= c * (1.0 - rtol)
-            flags["inner_diameter"] = d_inner <= rtol * d_outer
-    mask = np.zeros(d_outer.shape, dtype=np.int64)
-    for name, flag in flags.items():
-        mask |= np.where(out.feasible & flag, bits[name], 0)
-    return mask
-
-
-_BINDING_TEXT: dict = {}
-
-
-def binding_names(mask):
-    """The constraint names of a binding bit mask, in BINDING_NAMES order.
-
-    Returns
-    -------
-    tuple of str
-    """
-    mask = int(mask)
-    names = _BINDING_TEXT.get(mask)
-    if names is None:
-        names = tuple(name for name, bit in BINDING_BITS.items() if mask & bit)
-        _BINDING_TEXT[mask] = names
-    return names

@@ -42,6 +42,7 @@ __all__ = [
     "rim_speed",
     "outer_diameter_for_rim_speed",
     "hoop_stress",
+    "wheel_inertia",
 ]
 
 #: Geometry model names understood by flyopt, with their inertia formula.
@@ -219,3 +220,29 @@ def hoop_stress(density, rim_speed):
     .. [1] flyopt domain notes, docs/flywheel-design.md, section 10.
     """
     return density * rim_speed * rim_speed
+
+
+def wheel_inertia(geometry_name, density, d_mean, h, b):
+    """Inertia of a wheel of one of the GEOMETRIES from its dimensions [kg*m^2].
+
+    Parameters
+    ----------
+    geometry_name : {"rim", "thin_rim", "disc"}
+    density : float or ndarray
+        rho [kg/m^3].
+    d_mean, h, b : float or ndarray
+        Mean diameter, radial thickness and axial width [m]; for a disc
+        d_mean = h = D/2 (the convention of flyopt.design.result.Candidate).
+
+    Returns
+    -------
+    float or ndarray
+        J on the wheel's own shaft [kg*m^2].
+    """
+    if geometry_name == "disc":
+        d = 2.0 * d_mean
+        return disc_inertia(disc_mass(d, b, density), d)
+    mass = rim_mass(d_mean, h, b, density)
+    if geometry_name == "thin_rim":
+        return thin_rim_inertia(mass, d_mean)
+    return rim_inertia(mass, d_mean, h)

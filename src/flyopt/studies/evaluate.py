@@ -8,10 +8,22 @@ A_max(k) = k A_max. Each point then has J_F = k A_max / (ω_m² δ) − J_c,
 the formula of the analysis itself. The designs come from
 :mod:`flyopt.design.closed_form` (closed form, exact, vectorized over every point and
 combination) where it covers the structure, and from
-:func:`flyopt.design.optimize.design_flywheel` (IPOPT on an NLP built once per
+:func:`flyopt.design.designer.design_flywheel` (IPOPT on an NLP built once per
 structure and process, fed parameters) elsewhere; each row says which
 (``method``). A point whose IPOPT solve fails gets ``status = "failed"``
 with IPOPT's status, never a mass.
+
+Where one A_max does not serve every point (a varying inertia, a torque that
+depends on speed), each point's physics (δ, ω_m, J_c, torque scale) is
+analysed by :func:`flyopt.analysis.analyse`, once per distinct physics: the
+points that vary only the design (envelope, material, shaft, H/B, geometry,
+objective) reuse it.
+
+One path for each decision: the scene's design problem comes from
+:func:`flyopt.design.design_inputs` (the columns of a point override it), the
+constraint check and the binding rule from :mod:`flyopt.design.check`, the
+winner of each point from :func:`flyopt.design.rank.winners`; so a sweep
+point and ``flyopt solve`` of the same scene name the same winner.
 """
 
 from __future__ import annotations
@@ -24,19 +36,26 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from flyopt.cycle.indicator import required_inertia, speed_extremes
 from flyopt.design import closed_form as batch
+from flyopt.design import design_inputs, rank
+from flyopt.design.check import binding_names
 from flyopt.errors import SceneError, SolverFailed
 from flyopt.io.results import RESULT_COLUMNS
 from flyopt.io.scene import NetAreas
 from flyopt.io.sweep_spec import _where
 from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 
-__all__ = ["TIE_RTOL", "point_scene", "evaluate_points"]
+__all__ = ["point_scene", "evaluate_points"]
+
+#: The fields of a point that change its physics (its analysis); every other field changes
+#: only the design, and points that differ only in those share one analysis.
+PHYSICS_FIELDS = ("delta", "speed", "inertia", "torque.scale")
 
 
 def _check_points(scene, points, where):
     """Reject points whose design settings are invalid, naming the field."""
-    from flyopt.design.optimize import DesignSpec
+    from flyopt.design.spec import DesignSpec
 
     n = len(points)
     inputs = _Inputs(scene, points)
@@ -52,8 +71,7 @@ def _check_points(scene, points, where):
     for row in frame.itertuples(index=False):
         try:
             DesignSpec(geometry=row.g, hb_ratio=(row.a, row.c), objective=row.o,
-                       max_outer_diameter=None if math.isnan(row.e) else row.e,
-                       max_width=None if math.isnan(row.w) else row.w,
+                       max_outer_diameter=row.e, max_width=row.w,
                        d_mean=None if math.isnan(row.d) else row.d)
         except ValueError as err:
             raise SceneError(_where(where, "design"), str(err)) from None
@@ -162,19 +180,17 @@ def _is_none(value):
 def _reusable(scene):
     """Whether J_F = A_max/(ω_m² δ) − J_c with one A_max holds at every point.
 
-    True for the energy model's scenes: a constant inertia (no members) and
-    torques of the angle only. Members (a varying J_e) or speed-dependent
-    torques need each point analysed by the model that is exact for it.
+    True where the energy model is the exact one (flyopt's one model chooser
+    decides): a constant inertia and torques of the angle only, so A_max does
+    not depend on δ, ω_m or J_c, and scales with the torques. Otherwise each
+    distinct physics is analysed by its exact model.
     """
     if scene.net is not None:
         return True
-    if scene.members:
-        return False
-    angle_only = (PiecewiseLinear, Constant, ExpressionTorque)
-    for curve in (scene.driving, scene.resisting):
-        if not isinstance(curve, angle_only) or getattr(curve, "speed_dependent", False):
-            return False
-    return True
+    from flyopt.machine.reduce import reduce
+    from flyopt.sizing.choose import ENERGY, choose
+
+    return choose(reduce(scene))[0] == ENERGY
 
 
 @dataclass(frozen=True)
@@ -209,7 +225,8 @@ class _Inputs:
     def __init__(self, scene, points):
         n = len(points)
         self.n = n
-        spec = scene.design
+        defaults = design_inputs(scene)
+        spec = defaults.spec
 
         def col(name, default):
             if name in points:
@@ -232,18 +249,18 @@ class _Inputs:
         else:
             self.hb_min = col("design.hb_min", spec.hb_ratio[0])
             self.hb_max = col("design.hb_max", spec.hb_ratio[1])
-        self.envelope = col("design.max_outer_diameter", spec.max_outer_diameter)
-        self.width = col("design.max_width", spec.max_width)
+        # one representation of a limit that is not set: inf (a sweep's "none" arrives as NaN)
+        self.envelope = np.where(np.isnan(e := col("design.max_outer_diameter", spec.max_outer_diameter)), np.inf, e)
+        self.width = np.where(np.isnan(w := col("design.max_width", spec.max_width)), np.inf, w)
         self.d_mean = col("design.d_mean", spec.d_mean)
         library = scene.material_library()
         self.library = library
-        self.material_names = list(scene.design_materials or tuple(library))
+        self.material_names = [m.name for m in defaults.materials]
         self.material = names("material", None) if "material" in points else None
         if self.material is not None:
             self.material_names = list(dict.fromkeys(
                 self.material_names + [m for m in dict.fromkeys(self.material)]))
-        allowed = scene.design_shafts
-        self.shaft_names = [s.name for s in scene.shafts if allowed is None or s.name in allowed]
+        self.shaft_names = [s.name for s in defaults.shafts]
         self.shaft = names("shaft", None) if "shaft" in points else None
         if self.shaft is not None:
             self.shaft_names = [s.name for s in scene.shafts
@@ -318,23 +335,23 @@ def _evaluate(ctx, points):
         a_max = inputs.scale * ctx.a_max
         driving = (inputs.scale * ctx.driving_torque if ctx.driving_torque is not None
                    else np.full(n, np.nan))
-        j_margin = a_max / (inputs.speed ** 2 * inputs.delta) - inputs.inertia
-        inputs.omega_rim = inputs.speed * (1 + inputs.delta / 2)      # ω_max: the rim is checked there
-    else:  # varying inertia or speed-dependent torques: analyse every point with its exact model
-        from flyopt.analysis import analyse
-
-        a_max, driving, j_margin = np.empty(n), np.empty(n), np.empty(n)
+        j_margin = required_inertia(a_max, inputs.speed, inputs.delta, inputs.inertia)
+        inputs.omega_rim = speed_extremes(inputs.speed, inputs.delta)[0]   # ω_max: the rim is checked there
+        power = driving * inputs.speed
+        motor_power = power / scene.efficiency
+    else:  # varying inertia or speed-dependent torques: each distinct physics by its exact model
+        a_max, driving, j_margin, power, motor_power = (np.empty(n) for _ in range(5))
         inputs.omega_rim = np.empty(n)
-        for k, row in enumerate(points.to_dict("records")):
-            analysis = analyse(point_scene(scene, row))
+        for k, analysis in enumerate(_analyses(scene, points)):
             a_max[k], j_margin[k] = analysis.a_max, analysis.j_margin
             inputs.omega_rim[k] = analysis.omega_max
-            driving[k] = np.nan if analysis.driving_torque is None else analysis.driving_torque
+            driving[k] = _float(analysis.driving_torque)
+            power[k], motor_power[k] = _float(analysis.power), _float(analysis.motor_power)
     res["a_max"], res["j_margin"] = a_max, j_margin
     res["j_required"] = np.maximum(j_margin, 0.0)
     res["driving_torque"] = driving
-    res["power"] = driving * inputs.speed
-    res["motor_power"] = res["power"] / scene.efficiency
+    res["power"] = power
+    res["motor_power"] = motor_power
     needed = j_margin > 0.0
     idle = ~needed
     res["status"][idle] = "not_needed"
@@ -354,6 +371,23 @@ def _evaluate(ctx, points):
     for k in np.flatnonzero(needed & ~use_batch):
         _design_ipopt(ctx, inputs, k, j_margin[k], res)
     return _table(inputs, points, ctx.axes, res)
+
+
+def _float(value):
+    return np.nan if value is None else float(value)
+
+
+def _analyses(scene, points):
+    """The analysis of each point, computed once per distinct physics (see PHYSICS_FIELDS)."""
+    from flyopt.analysis import analyse
+
+    fields = [name for name in PHYSICS_FIELDS if name in points]
+    done = {}
+    for row in points.to_dict("records"):
+        key = tuple(row[name] for name in fields)
+        if key not in done:
+            done[key] = analyse(point_scene(scene, {name: row[name] for name in fields}))
+        yield done[key]
 
 
 def _design_closed_form(inputs, j_margin, mask, res):
@@ -397,8 +431,7 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
     ratio = table(inputs.ratio, shafts, si)
     out = batch.design_combinations(
         geo, j_margin[p], inputs.omega_rim[p], ratio, density, v_max, inputs.hb_min[p],
-        inputs.hb_max[p], np.where(np.isnan(inputs.envelope[p]), np.inf, inputs.envelope[p]),
-        np.where(np.isnan(inputs.width[p]), np.inf, inputs.width[p]), inputs.d_mean[p])
+        inputs.hb_max[p], inputs.envelope[p], inputs.width[p], inputs.d_mean[p])
     mass = out.mass
     cost = mass * cost_per_kg
     objective = np.where(inputs.objective[p] == "cost", cost, mass)
@@ -407,18 +440,14 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
     counts = np.bincount(p[feasible], minlength=inputs.n)
     res["n_feasible"][pts] = counts[pts]
     res["method"][pts] = batch.METHOD
-    # winner per point: lowest objective, then mass, then input order (as optimize),
-    # objectives within TIE_RTOL of the lowest counting as equal (see TIE_RTOL)
+    # the winner of each point, by the one ranking rule (flyopt.design.rank)
     f = np.flatnonzero(feasible)
     if f.size:
-        ranked = f[np.lexsort((order[f], mass[f], objective[f], p[f]))]
-        _, first = np.unique(p[ranked], return_index=True)
-        lowest = np.full(inputs.n, np.nan)
-        lowest[p[ranked[first]]] = objective[ranked[first]]
-        tied = f[objective[f] <= lowest[p[f]] * (1.0 + TIE_RTOL)]
-        ranked = tied[np.lexsort((order[tied], p[tied]))]
-        _, first = np.unique(p[ranked], return_index=True)
-        w = ranked[first]
+        local = np.searchsorted(pts, p[f])            # pts is sorted: each point's group number
+        best = rank.winners(local, objective[f], cost[f], mass[f],
+                            out.rim_speed[f], np.asarray(mats, dtype=object)[mi[f]],
+                            np.asarray(shafts, dtype=object)[si[f]], n_groups=len(pts))
+        w = f[best[best >= 0]]
         q = p[w]
         res["status"][q] = "designed"
         res["feasible"][q] = True
@@ -434,7 +463,7 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
         res["cost"][q] = cost[w]
         res["objective"][q] = objective[w]
         res["safety_factor"][q] = allowable[w] / out.hoop_stress[w]
-        res["binding"][q] = [",".join(batch.binding_names(b)) for b in out.binding[w]]
+        res["binding"][q] = [",".join(binding_names(b)) for b in out.binding[w]]
     none = pts[counts[pts] == 0]
     if none.size:
         # the combination that comes closest: largest J_max / J' (for the message)
@@ -452,18 +481,12 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
                 f"{out.j_max[c]:.4g} of the {out.j_shaft[c]:.4g} kg·m² it needs there")
 
 
-#: Designs whose objectives differ by less than this (relative) are ranked as equal,
-#: and the first in input order (materials, then shafts) wins. Such ties are exact
-#: in the mathematics (e.g. a disc at the envelope weighs 8 J / D^2 whatever its
-#: density), so without it round-off would pick the winner.
-TIE_RTOL = 1e-9
-
 _IPOPT_LOCK = threading.Lock()
 
 
 def _design_ipopt(ctx, inputs, k, j_required, res):
     """One point by optimize.design_flywheel (IPOPT, NLP cached per structure)."""
-    from flyopt.design.optimize import DesignSpec, MountShaft, design_flywheel
+    from flyopt.design import DesignSpec, MountShaft, design_flywheel
     from flyopt.design.materials import Material
 
     mats = [inputs.material[k]] if inputs.material is not None else inputs.material_names
@@ -481,7 +504,7 @@ def _design_ipopt(ctx, inputs, k, j_required, res):
         return None if math.isnan(x) else float(x)
 
     spec = DesignSpec(geometry=inputs.geometry[k], hb_ratio=(inputs.hb_min[k], inputs.hb_max[k]),
-                      max_outer_diameter=opt(inputs.envelope[k]), max_width=opt(inputs.width[k]),
+                      max_outer_diameter=inputs.envelope[k], max_width=inputs.width[k],
                       d_mean=opt(inputs.d_mean[k]), objective=inputs.objective[k])
     res["method"][k] = "ipopt"
     res["n_combinations"][k] = len(materials) * len(mounts)

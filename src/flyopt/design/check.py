@@ -1,0 +1,127 @@
+"""The one check of a design against its constraints, and the one rule for what binds.
+
+Every design flyopt reports, by IPOPT or by the closed form, for one scene
+or for a sweep of a million points, passes through these two functions:
+:func:`violations` (is every constraint met, to :data:`VERIFY_RTOL`?) and
+:func:`binding_mask` (which constraints are active, to :data:`ACTIVE_RTOL`?).
+Both take numpy arrays or plain floats, so the scalar ranking and the
+vectorized sweep cannot disagree.
+
+Limits that are not set are ``inf`` (see :mod:`flyopt.design.spec`), which
+never binds and is never violated.
+
+References
+----------
+.. [1] flyopt domain notes, docs/flywheel-design.md, sections 8-10.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["BINDING_NAMES", "BINDING_BITS", "ACTIVE_RTOL", "VERIFY_RTOL", "binding_mask", "binding_names",
+           "violations"]
+
+#: Names that ``Candidate.binding`` may contain, in the order reports list them.
+BINDING_NAMES = {
+    "inertia": "the wheel gives exactly the required inertia",
+    "rim_speed": "the outer diameter is at the material's rim speed limit",
+    "max_outer_diameter": "the outer diameter is at the scene's envelope",
+    "max_width": "the axial width is at the scene's limit",
+    "hb_min": "H/B is at the lower end of its range",
+    "hb_max": "H/B is at the upper end of its range",
+    "inner_diameter": "the inner diameter has shrunk to zero (the rim became a disc)",
+}
+#: Bits of a binding mask, in the order of :data:`BINDING_NAMES`.
+BINDING_BITS = {name: 1 << k for k, name in enumerate(BINDING_NAMES)}
+#: Relative tolerance for calling a constraint binding.
+ACTIVE_RTOL = 1e-6
+#: Relative tolerance when checking a solved design against its constraints.
+VERIFY_RTOL = 1e-6
+
+
+def binding_mask(geometry_name, j_wheel, j_shaft, d_outer, d_inner, b, hb, cap_speed, envelope, max_width,
+                 hb_min, hb_max):
+    """Bit mask of the active constraints of designed wheels (see :func:`binding_names`).
+
+    Parameters
+    ----------
+    geometry_name : {"rim", "thin_rim", "disc"}
+    j_wheel, j_shaft : float or ndarray
+        Inertia the wheel gives and the inertia needed, on its shaft [kg*m^2].
+    d_outer, d_inner, b : float or ndarray
+        Outer and inner diameter (may be slightly negative from round-off) and width [m].
+    hb : float or ndarray
+        H/B [-].
+    cap_speed, envelope, max_width : float or ndarray
+        Outer-diameter cap of the rim speed, the envelope and the width limit [m]
+        (``inf`` where not set).
+    hb_min, hb_max : float or ndarray
+        The H/B range [-].
+
+    Returns
+    -------
+    int or ndarray of int64
+        OR of :data:`BINDING_BITS` of the constraints within :data:`ACTIVE_RTOL` of their limit.
+    """
+    rtol = ACTIVE_RTOL
+    with np.errstate(invalid="ignore"):
+        flags = {
+            "inertia": np.less_equal(j_wheel, np.multiply(j_shaft, 1.0 + rtol)),
+            "rim_speed": np.greater_equal(d_outer, np.multiply(cap_speed, 1.0 - rtol)),
+            "max_outer_diameter": np.greater_equal(d_outer, np.multiply(envelope, 1.0 - rtol)),
+            "max_width": np.greater_equal(b, np.multiply(max_width, 1.0 - rtol)),
+        }
+        if geometry_name != "disc":
+            flags["hb_min"] = np.less_equal(hb, np.multiply(hb_min, 1.0 + rtol))
+            flags["hb_max"] = np.greater_equal(hb, np.multiply(hb_max, 1.0 - rtol))
+            flags["inner_diameter"] = np.less_equal(d_inner, np.multiply(d_outer, rtol))
+    mask = np.zeros(np.shape(d_outer), dtype=np.int64)
+    for name, flag in flags.items():
+        mask |= np.where(flag, BINDING_BITS[name], 0)
+    return int(mask) if mask.ndim == 0 else mask
+
+
+_NAMES_OF_MASK: dict = {}
+
+
+def binding_names(mask):
+    """The constraint names of a binding bit mask, in :data:`BINDING_NAMES` order.
+
+    Returns
+    -------
+    tuple of str
+    """
+    mask = int(mask)
+    names = _NAMES_OF_MASK.get(mask)
+    if names is None:
+        names = tuple(name for name, bit in BINDING_BITS.items() if mask & bit)
+        _NAMES_OF_MASK[mask] = names
+    return names
+
+
+def violations(geometry_name, j_wheel, j_shaft, d_outer, d_inner, b, hb, cap, max_width, hb_min, hb_max):
+    """The constraints one design violates by more than :data:`VERIFY_RTOL`, in words.
+
+    Parameters are those of :func:`binding_mask` for one design (plain floats),
+    with ``cap`` = min(cap_speed, envelope) [m].
+
+    Returns
+    -------
+    list of str
+        Empty when every constraint holds.
+    """
+    tol = VERIFY_RTOL
+    found = []
+    if j_wheel < j_shaft * (1.0 - tol):
+        found.append(f"inertia {j_wheel:.9g} < {j_shaft:.9g} kg·m²")
+    if d_outer > cap * (1.0 + tol):
+        found.append(f"outer diameter {d_outer:.9g} > cap {cap:.9g} m")
+    if b > max_width * (1.0 + tol):
+        found.append(f"width {b:.9g} > {max_width:.9g} m")
+    if geometry_name != "disc":
+        if not hb_min * (1.0 - tol) <= hb <= hb_max * (1.0 + tol):
+            found.append(f"H/B {hb:.9g} outside [{hb_min}, {hb_max}]")
+        if d_inner < -tol * d_outer:
+            found.append(f"inner diameter {d_inner:.9g} m < 0")
+    return found

@@ -1,0 +1,362 @@
+"""The flywheel designer: every material x shaft combination decided, then ranked.
+
+Given the flywheel inertia the cycle analysis requires at the reference shaft,
+J_F (already net of the machine's own J_c), every combination of material and
+mounting shaft is decided: the exact closed-form bound
+(:func:`flyopt.design.closed_form.max_inertia_one`) proves the infeasible ones
+infeasible and says why in numbers; each feasible one is optimized, by the
+exact closed form where it covers the structure (:mod:`flyopt.design.closed_form`)
+or by IPOPT on the NLP of :mod:`flyopt.design.nlp`; every design is verified
+against every constraint by :mod:`flyopt.design.check`; and the combinations
+are ranked by the one rule of :mod:`flyopt.design.rank`.
+
+For a flywheel mounted on a shaft turning at omega' = r omega_m (r the speed
+ratio), the kinetic energy transfer (docs/flywheel-design.md, section 8) gives
+
+    J_ref = J' r^2,   so the wheel must give J' >= J_F / r^2 on its shaft.
+
+References
+----------
+.. [1] flyopt domain notes, docs/flywheel-design.md, sections 5, 8, 9, 10 and
+   worked example 6.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Mapping, Sequence
+
+from flyopt.design import check, closed_form, geometry, rank
+from flyopt.design.materials import Material
+from flyopt.design.result import Candidate, DesignResult
+from flyopt.design.spec import DesignSpec, MountShaft, _choice, _finite, _positive
+from flyopt.errors import SolverFailed
+from flyopt.machine.transmission import inertia_at_reference, inertia_on_shaft
+
+__all__ = ["design_flywheel", "METHODS"]
+
+#: How a feasible combination is optimized (see :func:`design_flywheel`).
+METHODS = ("auto", "ipopt", "closed_form")
+
+@dataclass
+class _Combination:
+    material: Material
+    shaft: MountShaft
+    omega: float          # speed of the carrying shaft [rad/s]
+    j_shaft: float        # required inertia on that shaft [kg*m^2]
+    j_reference: float
+    cap_speed: float      # outer-diameter cap of the rim speed [m]
+    cap: float            # min(cap_speed, envelope) [m]
+    j_max: float = 0.0
+
+    @property
+    def label(self):
+        return f"{self.material.name.replace('_', ' ')} on the {_shaft_label(self.shaft.name)}"
+
+def _shaft_label(name):
+    return name if name.lower().endswith("shaft") else f"{name} shaft"
+
+def _g(x):
+    return f"{x:.3g}"
+
+def _g_apart(a, b):
+    """Format two numbers with as few significant digits as keep them apart."""
+    for digits in range(3, 13):
+        sa, sb = f"{a:.{digits}g}", f"{b:.{digits}g}"
+        if sa != sb:
+            return sa, sb
+    return f"{a:.12g}", f"{b:.12g}"
+
+def _explain_infeasible(combo, spec):
+    """Say in words and numbers why a combination cannot give its inertia.
+
+    Returns the sentence and the outer-diameter cap the combination would
+    need (None when no cap would do).
+    """
+    m, geo = combo.material, spec.geometry
+    word = {"rim": "rim", "thin_rim": "thin rim", "disc": "disc"}[geo]
+    hb_min, hb_max = spec.hb_ratio
+    if combo.cap_speed <= combo.cap:
+        cap_text = f"the {_g(m.max_rim_speed)} m/s rim limit caps the outer diameter"
+    else:
+        cap_text = "the envelope (max_outer_diameter) caps the outer diameter"
+
+    def need(j_text):
+        text = f"{j_text} kg·m²"
+        if combo.shaft.speed_ratio != 1.0:
+            text += f" on this shaft ({_g(combo.j_reference)} kg·m² at the reference shaft)"
+        return text
+
+    pinned = spec.d_mean
+    if pinned is not None and geo != "disc" and pinned >= combo.cap:
+        cap, pin = _g_apart(combo.cap, pinned)
+        return (f"{combo.label}: {cap_text} at {cap} m, which leaves no room for a rim "
+                f"around the pinned mean diameter {pin} m"), None
+    if pinned is not None and geo == "disc" and pinned > combo.cap:
+        cap, pin = _g_apart(combo.cap, pinned)
+        return (f"{combo.label}: {cap_text} at {cap} m, below the pinned diameter "
+                f"{pin} m"), None
+    needed, j_sup = closed_form.cap_needed(geo, m.density, combo.j_shaft, combo.cap, spec.hb_ratio,
+                                spec.max_width, pinned)
+    if needed is None:
+        limits = []
+        if pinned is not None:
+            limits.append(f"{'D' if geo == 'disc' else 'D_m'} pinned at {_g(pinned)} m")
+        if spec.max_width < math.inf:
+            limits.append(f"B <= {_g(spec.max_width)} m")
+        if geo != "disc":
+            limits.append(f"{_g(hb_min)} <= H/B <= {_g(hb_max)}")
+            limits.append("D_inner > 0")
+        text = ", ".join(limits[:-1]) + " and " + limits[-1] if len(limits) > 1 else limits[0]
+        j_sup_text, j_text = _g_apart(j_sup, combo.j_shaft)
+        return (f"{combo.label}: even with no limit on the outer diameter, the largest "
+                f"{word} with {text} gives {j_sup_text} kg·m², short of the "
+                f"{need(j_text)} required"), None
+    cap, needed_text = _g_apart(combo.cap, needed)
+    return (f"{combo.label}: {cap_text} at {cap} m, where the smallest {word} that gives "
+            f"{need(_g(combo.j_shaft))} still needs {needed_text} m"), needed
+
+def _solve_closed_form(pending, spec):
+    """Design feasible combinations by the exact closed form.
+
+    Feasibility is already proven by :func:`flyopt.design.closed_form.max_inertia_one`; each design comes
+    from :func:`flyopt.design.closed_form.lightest_one` (plain floats: a ranking is a few
+    combinations, too few for numpy to pay), is recomputed with
+    :mod:`flyopt.design.geometry` and verified like an IPOPT one.
+
+    Returns (order, Candidate) pairs.
+    """
+    hb_min, hb_max = spec.hb_ratio
+    b_max = spec.max_width
+    results = []
+    for order, combo in pending:
+        start = time.perf_counter()
+        rho = combo.material.density
+        d_mean, h, b = closed_form.lightest_one(spec.geometry, combo.j_shaft, rho, combo.cap, hb_min, hb_max,
+                                          b_max, spec.d_mean)
+        if spec.geometry == "disc":
+            mass = geometry.disc_mass(2 * d_mean, b, rho)
+            j_wheel = geometry.disc_inertia(mass, 2 * d_mean)
+        else:
+            mass = geometry.rim_mass(d_mean, h, b, rho)
+            j_wheel = geometry.wheel_inertia(spec.geometry, rho, d_mean, h, b)
+        results.append((order, _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel,
+                                                      "closed_form", 0, time.perf_counter() - start)))
+    return results
+
+def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, iterations,
+                           elapsed):
+    """Verify a solved design against every constraint and describe it."""
+    m = combo.material
+    d_outer = geometry.outer_diameter(d_mean, h)
+    d_inner = geometry.inner_diameter(d_mean, h)
+    speed = geometry.rim_speed(combo.omega, d_outer)
+    stress = geometry.hoop_stress(m.density, speed)
+    hb = h / b
+    hb_min, hb_max = spec.hb_ratio
+    violations = check.violations(spec.geometry, j_wheel, combo.j_shaft, d_outer, d_inner, b, hb, combo.cap,
+                                  spec.max_width, hb_min, hb_max)
+    if violations:
+        source = ("the closed-form design" if status == "closed_form"
+                  else f"IPOPT reported {status!r} but the design")
+        err = SolverFailed(f"{combo.label}: {source} violates {'; '.join(violations)}; "
+                           f"no design is reported")
+        err.status = status
+        err.combination = combo.label
+        raise err
+    binding = check.binding_names(check.binding_mask(
+        spec.geometry, j_wheel, combo.j_shaft, d_outer, d_inner, b, hb, combo.cap_speed,
+        spec.max_outer_diameter, spec.max_width, hb_min, hb_max))
+    cost = mass * m.cost if m.cost is not None else None
+    objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
+    return Candidate(
+        material=m.name, shaft=combo.shaft.name, speed_ratio=combo.shaft.speed_ratio,
+        geometry=spec.geometry, feasible=True,
+        reason=f"{combo.label}: designed; binding: {', '.join(binding) or 'none'}",
+        d_mean=d_mean, d_outer=d_outer, d_inner=max(d_inner, 0.0),
+        h=h, b=b, hb_ratio=hb, mass=mass, rim_speed=speed, hoop_stress=stress,
+        safety_factor=(m.allowable_stress / stress if m.allowable_stress else None),
+        cost=cost, j_flywheel=j_wheel,
+        j_at_reference=inertia_at_reference(j_wheel, combo.shaft.speed_ratio),
+        binding=tuple(binding), objective=objective,
+        j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap,
+        rim_speed_limit=m.max_rim_speed, j_max=combo.j_max, solver_status=status,
+        iterations=iterations, solve_time=elapsed)
+
+
+def _check_unique(items, kind, cls):
+    if isinstance(items, (str, bytes)) or not isinstance(items, Sequence):
+        raise ValueError(f"{kind}s must be a sequence of {cls.__name__}, got {items!r}")
+    if not items:
+        raise ValueError(f"{kind}s must not be empty: give at least one {kind}")
+    seen = set()
+    for item in items:
+        if not isinstance(item, cls):
+            raise ValueError(f"{kind}s must hold {cls.__name__} objects, got {item!r}")
+        if item.name in seen:
+            raise ValueError(f"{kind} {item.name!r} is given twice")
+        seen.add(item.name)
+
+def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft],
+                    materials: Sequence[Material], spec: DesignSpec = DesignSpec(), *,
+                    solver_options: Mapping | None = None, method: str = "auto") -> DesignResult:
+    """Design the flywheel: the best material, shaft and dimensions.
+
+    Parameters
+    ----------
+    j_required : float
+        J_F, the flywheel inertia required at the reference shaft [kg*m^2],
+        already net of the machine's own inertia J_c (docs/flywheel-design.md, section 5:
+        J_F = A_max / (omega_m^2 delta) - J_c). J_F <= 0: no flywheel needed.
+    omega : float
+        Speed of the reference shaft at which the rim speed is checked
+        [rad/s]: the highest speed of the cycle, ω_max = ω_m (1 + δ/2) (or
+        the periodic solution's maximum), where the hoop stress peaks.
+    shafts : sequence of MountShaft
+        Where the flywheel may go; speed ratios relative to the reference.
+    materials : sequence of Material
+        Materials to consider.
+    spec : DesignSpec
+        Geometry model, limits and objective.
+    solver_options : mapping, optional
+        CasADi/IPOPT options merged over :data:`flyopt.design.nlp.DEFAULT_SOLVER_OPTIONS`; they
+        act on the combinations IPOPT solves (all of them with method
+        "ipopt", under "auto" only the structures the closed form does not
+        cover).
+    method : {"auto", "ipopt", "closed_form"}
+        How a feasible combination is optimized: the exact closed form of
+        :mod:`flyopt.design.closed_form` where it covers the structure (mass and cost
+        objectives) and IPOPT elsewhere ("auto", the default; for the
+        timings see benchmarks/results/speed_error.md); IPOPT on every NLP
+        ("ipopt"); or the closed form only, refusing a
+        structure it does not cover ("closed_form"). Either way the design
+        is verified against every constraint before it is reported.
+
+    Returns
+    -------
+    DesignResult
+        ``status`` "designed" (with ``best``), "infeasible" (no combination
+        can give the inertia; every candidate says why) or "not_needed".
+
+    Raises
+    ------
+    ValueError
+        On invalid arguments; for the ``cost`` objective when a material has
+        no cost.
+    SolverFailed
+        When IPOPT does not converge on a combination the closed form shows
+        feasible (the message carries IPOPT's return status), or when a
+        solved or closed-form design fails its verification against the
+        constraints. A design is never made from a non-converged solve.
+
+    Notes
+    -----
+    Every combination is decided: the closed-form :func:`flyopt.design.closed_form.max_inertia_one` proves
+    infeasibility exactly (no NLP is solved then); every feasible combination
+    is solved to optimality. Ranking is by the one rule of :mod:`flyopt.design.rank`.
+    """
+    j_required = _finite(j_required, "j_required [kg*m^2]")
+    omega = _positive(omega, "omega", "[rad/s]")
+    _check_unique(shafts, "shaft", MountShaft)
+    _check_unique(materials, "material", Material)
+    if not isinstance(spec, DesignSpec):
+        raise ValueError(f"spec must be a DesignSpec, got {spec!r}")
+    if spec.objective == "cost":
+        missing = [m.name for m in materials if m.cost is None]
+        if missing:
+            raise ValueError(f"objective 'cost' needs a cost per kg on every material; "
+                             f"missing for {missing}")
+    _choice(method, ("ipopt", "auto", "closed_form"), "method")
+    closed = False
+    if method != "ipopt":
+        closed = closed_form.covers(spec.geometry, spec.objective, spec.d_mean is not None)
+        if method == "closed_form" and not closed:
+            raise ValueError(f"the closed form does not cover geometry {spec.geometry!r} with objective "
+                             f"{spec.objective!r}; use method 'auto' or 'ipopt'")
+    if j_required <= 0.0:
+        return DesignResult(
+            status="not_needed",
+            message=(f"no flywheel needed: the required flywheel inertia J_F = "
+                     f"{_g(j_required)} kg·m² is not positive, so the machine's own "
+                     f"inertia already keeps the speed fluctuation within delta"),
+            j_required=j_required, omega=omega, spec=spec)
+
+    model = None
+    if not closed:
+        from flyopt.design import nlp   # CasADi only when IPOPT is asked for
+
+        structure = nlp.ModelStructure(
+            geometry=spec.geometry, pinned=spec.d_mean is not None,
+            collapsed=spec.geometry != "disc" and spec.hb_ratio[0] == spec.hb_ratio[1],
+            objective="outer_diameter" if spec.objective == "outer_diameter" else "mass")
+        model = nlp.get_model(structure, solver_options)
+    envelope = spec.max_outer_diameter
+
+    feasible, infeasible, pending = [], [], []
+    order = 0
+    for material in materials:
+        for shaft in shafts:
+            shaft_omega = omega * shaft.speed_ratio
+            cap_speed = geometry.outer_diameter_for_rim_speed(material.max_rim_speed, shaft_omega)
+            combo = _Combination(
+                material=material, shaft=shaft, omega=shaft_omega,
+                j_shaft=inertia_on_shaft(j_required, shaft.speed_ratio),
+                j_reference=j_required, cap_speed=cap_speed, cap=min(cap_speed, envelope))
+            combo.j_max = closed_form.max_inertia_one(spec.geometry, material.density, combo.cap,
+                                      spec.hb_ratio, spec.max_width, spec.d_mean)[0]
+            pinned_fits = spec.d_mean is None or (
+                spec.d_mean <= combo.cap if spec.geometry == "disc"
+                else spec.d_mean < combo.cap)
+            if pinned_fits and combo.j_shaft <= combo.j_max:
+                if closed:
+                    pending.append((order, combo))
+                else:
+                    feasible.append((order, _candidate_from_design(combo, spec,
+                                                                   *nlp.solve_combination(model, combo, spec))))
+            else:
+                reason, needed = _explain_infeasible(combo, spec)
+                infeasible.append(Candidate(
+                    material=material.name, shaft=shaft.name,
+                    speed_ratio=shaft.speed_ratio, geometry=spec.geometry,
+                    feasible=False, reason=reason, j_required_on_shaft=combo.j_shaft,
+                    d_outer_limit=combo.cap, rim_speed_limit=material.max_rim_speed,
+                    j_max=combo.j_max, d_outer_needed=needed))
+            order += 1
+    if pending:
+        feasible += _solve_closed_form(pending, spec)
+    ranked = tuple(rank.ranking([c for _, c in feasible])) + tuple(infeasible)
+    best = ranked[0] if feasible else None
+    if model is not None:
+        description = model.describe()
+    else:
+        description = {"geometry": spec.geometry, "inertia_model": geometry.GEOMETRIES[spec.geometry],
+                       "variables": [], "constraints": [], "pinned": ["d_mean"] if spec.d_mean is not None else [],
+                       "formulation": ("exact closed form (flyopt.design.closed_form): outer diameter at its cap, "
+                                       "a 1-D monotone root for the rim; verified against every constraint")}
+    description["objective"] = spec.objective
+    bounds = []
+    if spec.max_width < math.inf:
+        bounds.append("max_width: B <= max_width")
+    if spec.geometry == "disc" and spec.d_mean is None:
+        bounds.append("outer_diameter: D <= min(2 v_max/omega', max_outer_diameter)")
+    if spec.geometry != "disc" and spec.d_mean is not None:
+        bounds.append("outer_diameter and inner_diameter: H <= min(cap - D_m, D_m)")
+    description["bounds"] = bounds
+    limits = spec.to_dict()
+    description["limits"] = {name: limits[name] for name in ("max_outer_diameter", "max_width", "hb_ratio",
+                                                             "d_mean")}
+    if best is None:
+        status = "infeasible"
+        message = ("no material and shaft can give the required inertia: "
+                   + "; ".join(c.reason for c in infeasible))
+    else:
+        status = "designed"
+        message = (f"{best.material} on the {_shaft_label(best.shaft)}: {spec.geometry} "
+                   f"D_outer {_g(best.d_outer)} m, B {_g(best.b)} m, mass "
+                   f"{_g(best.mass)} kg ({len(feasible)} of {len(ranked)} combinations "
+                   f"feasible)")
+    return DesignResult(status=status, message=message, j_required=j_required,
+                        omega=omega, spec=spec, best=best, candidates=ranked,
+                        model=description)

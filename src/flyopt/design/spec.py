@@ -1,0 +1,147 @@
+"""What a flywheel design must satisfy: the mounting shafts and the design specification.
+
+One representation of every limit inside the package: an absent envelope or
+width limit is ``math.inf`` (no limit), never None or NaN; a pinned mean
+diameter is a number or None (free). Inputs may say None for "no limit";
+:class:`DesignSpec` turns it into ``inf``, and the JSON output writes ``null``.
+
+References
+----------
+.. [1] flyopt domain notes, docs/flywheel-design.md, sections 8-10.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import dataclass
+
+from flyopt.design import geometry
+
+__all__ = ["OBJECTIVES", "MountShaft", "DesignSpec"]
+
+#: Objectives understood by :func:`design_flywheel`.
+OBJECTIVES = {
+    "mass": "minimize the flywheel mass [kg]",
+    "outer_diameter": "minimize the outer diameter [m]",
+    "cost": "minimize mass times the material's cost per kg",
+}
+
+def _finite(value, name):
+    try:
+        number = float(value)
+    except (TypeError, ValueError) as err:
+        raise ValueError(f"{name} must be a number, got {value!r}") from err
+    if not math.isfinite(number):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return number
+
+def _positive(value, name, unit):
+    number = _finite(value, f"{name} {unit}")
+    if number <= 0.0:
+        raise ValueError(f"{name} {unit} must be > 0, got {value!r}")
+    return number
+
+def _choice(value, allowed, name):
+    if value in allowed:
+        return value
+    close = difflib.get_close_matches(str(value), list(allowed), n=2, cutoff=0.4)
+    hint = f"; best matches are {close}" if close else ""
+    raise ValueError(f"{name} {value!r} not recognised; allowed are {sorted(allowed)}{hint}")
+
+@dataclass(frozen=True)
+class MountShaft:
+    """A shaft the flywheel may be mounted on.
+
+    Parameters
+    ----------
+    name : str
+        Shaft name for reports, e.g. ``"motor"``.
+    speed_ratio : float
+        omega_shaft / omega_reference [-], > 0.
+    """
+
+    name: str
+    speed_ratio: float
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise ValueError(f"shaft name must be a non-empty string, got {self.name!r}")
+        object.__setattr__(self, "speed_ratio",
+                           _positive(self.speed_ratio, f"shaft {self.name!r}: speed_ratio", "[-]"))
+
+@dataclass(frozen=True)
+class DesignSpec:
+    """What the design must satisfy and optimize, shared by every combination.
+
+    Parameters
+    ----------
+    geometry : {"rim", "thin_rim", "disc"}
+        Inertia model (see :data:`flyopt.design.geometry.GEOMETRIES`).
+    hb_ratio : (float, float)
+        Allowed range of H/B, radial thickness over axial width [-]; equal
+        ends fix it. Ignored by ``disc``.
+    max_outer_diameter : float
+        Envelope on the outer diameter [m]; ``inf`` (or None on input) for none.
+    max_width : float
+        Limit on the axial width B [m]; ``inf`` (or None on input) for none.
+    d_mean : float or None
+        Pinned mean diameter D_m [m]; for ``disc`` the pinned diameter D.
+    objective : {"mass", "outer_diameter", "cost"}
+        What to minimize. ``cost`` needs a cost per kg on every material.
+
+    Raises
+    ------
+    ValueError
+        On an unknown name, a non-positive length, or a bad H/B range; and for
+        ``outer_diameter`` with a ``disc`` and no ``max_width`` (an ever
+        thinner, wider disc makes the diameter as small as one likes).
+    """
+
+    geometry: str = "rim"
+    hb_ratio: tuple[float, float] = (1.5, 2.0)
+    max_outer_diameter: float = math.inf
+    max_width: float = math.inf
+    d_mean: float | None = None
+    objective: str = "mass"
+
+    @property
+    def has_envelope(self):
+        """Whether an envelope limits the outer diameter."""
+        return self.max_outer_diameter < math.inf
+
+    def to_dict(self):
+        """JSON-ready: limits that are not set are None."""
+        return {"geometry": self.geometry, "hb_ratio": list(self.hb_ratio),
+                "max_outer_diameter": _none_if_inf(self.max_outer_diameter),
+                "max_width": _none_if_inf(self.max_width), "d_mean": self.d_mean,
+                "objective": self.objective}
+
+    def __post_init__(self):
+        _choice(self.geometry, geometry.GEOMETRIES, "geometry")
+        _choice(self.objective, OBJECTIVES, "objective")
+        try:
+            low, high = self.hb_ratio
+        except (TypeError, ValueError) as err:
+            raise ValueError(f"hb_ratio must be a pair (min, max) of H/B, "
+                             f"got {self.hb_ratio!r}") from err
+        low = _positive(low, "hb_ratio min", "[-]")
+        high = _positive(high, "hb_ratio max", "[-]")
+        if low > high:
+            raise ValueError(f"hb_ratio min {low} must not exceed max {high}")
+        object.__setattr__(self, "hb_ratio", (low, high))
+        for name in ("max_outer_diameter", "max_width"):
+            value = getattr(self, name)
+            limit = math.inf if value is None or value == math.inf else _positive(value, name, "[m]")
+            object.__setattr__(self, name, limit)
+        if self.d_mean is not None:
+            object.__setattr__(self, "d_mean", _positive(self.d_mean, "d_mean", "[m]"))
+        if (self.objective == "outer_diameter" and self.geometry == "disc"
+                and self.max_width == math.inf):
+            raise ValueError("objective 'outer_diameter' with geometry 'disc' needs "
+                             "max_width: without it an ever thinner, wider disc makes "
+                             "the diameter as small as one likes")
+
+
+def _none_if_inf(value):
+    return None if value == math.inf else value
