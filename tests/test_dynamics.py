@@ -22,10 +22,11 @@ from numpy.testing import assert_allclose
 from scipy import integrate, optimize
 
 from conftest import assert_published
-from flyopt.sizing import dynamics
 from flyopt.cycle.indicator import ExcessWork, energy_indicator, required_inertia
-from flyopt.sizing.dynamics import (achieved_speed, angle_torque, dynamic_requirement, energy_mass_requirement,
-                             periodic_solution, startup_time, verify)
+from flyopt.sizing import periodic
+from flyopt.sizing.energy_mass import achieved_speed, energy_mass_requirement
+from flyopt.sizing.periodic import angle_torque, dynamic_requirement, periodic_solution, verify
+from flyopt.sizing.startup import startup_time
 from flyopt.errors import NonPeriodicCycle, SolverFailed
 from flyopt.machine.expression import Expression
 from flyopt.machine.mechanism import Member, SliderCrank, equivalent_inertia, equivalent_torque
@@ -437,7 +438,7 @@ def test_kloss_motor_beyond_breakdown_is_limited_by_stall():
 def test_newton_limit_raises_instead_of_returning(monkeypatch):
     """When the iteration limit stops Newton early, SolverFailed says so; no solution is returned."""
     net, load, _, omega_n = press(1500, 0.04)
-    monkeypatch.setattr(dynamics, "MAX_NEWTON", 1)
+    monkeypatch.setattr(periodic, "MAX_NEWTON", 1)
     with pytest.raises(SolverFailed, match="did not converge"):
         periodic_solution(net, 0.0, TWO_PI, 0.5 * omega_n, 0.05, load.breakpoints())
 
@@ -491,19 +492,6 @@ def test_startup_failures():
         startup_time(lambda phi, omega: motor.torque(omega) - 60.0, 1.0, TWO_PI, 10.0)
     with pytest.raises(SolverFailed, match="settles below the target"):
         startup_time(lambda phi, omega: motor.torque(omega) - 20.0, 0.05, TWO_PI, 61.0)
-
-
-# -- model choice ----------------------------------------------------------------------
-
-def test_cheapest_model():
-    """Constant J and angle-only torque: energy; J_e(φ): energy–mass; a torque of ω: periodic."""
-    excess, j_e = compressor()
-    net, *_ = press(1500, 0.04)
-    assert dynamics.cheapest_model(0.3, angle_torque(shear_press())) == dynamics.MODEL_ENERGY
-    assert dynamics.cheapest_model(0.3) == dynamics.MODEL_ENERGY
-    assert dynamics.cheapest_model(j_e, angle_torque(excess)) == dynamics.MODEL_ENERGY_MASS
-    assert dynamics.cheapest_model(0.3, net) == dynamics.MODEL_PERIODIC
-    assert dynamics.cheapest_model(j_e, net) == dynamics.MODEL_PERIODIC
 
 
 # -- inputs --------------------------------------------------------------------------

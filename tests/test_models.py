@@ -221,23 +221,23 @@ def test_the_chosen_model_is_solved_once(monkeypatch):
     """The comparison of models reuses the chosen model's requirement instead of solving
     the periodic dynamic problem a second time, with the same rows as a comparison that
     solves every model itself."""
-    from flyopt.sizing import models
+    from flyopt.sizing import choose
 
     scene = flyopt.load(PROBLEMS / "motor-press.toml")
     calls = []
-    solve = models.requirement
+    solve = choose.requirement
 
     def counted(machine, model, indicator=None):
         calls.append(model)
         return solve(machine, model, indicator)
 
-    monkeypatch.setattr(models, "requirement", counted)
+    monkeypatch.setattr(choose, "requirement", counted)
     analysis = flyopt.analyse(scene)
-    assert analysis.model == models.DYNAMIC and calls.count(models.DYNAMIC) == 1
-    fresh = models.compare(analysis.machine, analysis.model, analysis.indicator)
+    assert analysis.model == choose.DYNAMIC and calls.count(choose.DYNAMIC) == 1
+    fresh = choose.compare(analysis.machine, analysis.model, analysis.indicator)
     assert [row["model"] for row in fresh] == [row["model"] for row in analysis.models]
     for ours, theirs in zip(analysis.models, fresh):
         assert_allclose(ours["j_required"], theirs["j_required"], rtol=1e-12)
         assert_allclose(ours["achieved_delta"], theirs["achieved_delta"], rtol=1e-9)
     with pytest.raises(ValueError, match="not of the chosen"):
-        models.compare(analysis.machine, models.ENERGY, analysis.indicator, known=analysis.requirement)
+        choose.compare(analysis.machine, choose.ENERGY, analysis.indicator, known=analysis.requirement)

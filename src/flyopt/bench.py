@@ -1198,7 +1198,7 @@ def section_required_inertia(config):
     J_F really achieves, by the exact model. Reference method for time ratios: the
     exact model of each scene.
     """
-    from flyopt.sizing import models
+    from flyopt.sizing import choose as models
     from flyopt.io.scene import from_dict
 
     try:

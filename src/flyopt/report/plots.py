@@ -188,7 +188,7 @@ def plot_cross_section(candidate, ax=None):
 
 def _speed_curve(analysis):
     """ω(φ) [rad/s] with the required flywheel, from the model that sized it."""
-    from flyopt.sizing import dynamics
+    from flyopt.sizing import energy_mass as dynamics
 
     req = analysis.requirement
     if req is not None and req.model == "dynamic":
@@ -215,7 +215,7 @@ def plot_speed(scene, analysis, ax=None, simulate=False):
     phi, omega = _speed_curve(analysis)
     ax.plot(np.degrees(phi), rad_s_to_rpm(omega), color="tab:blue", label=f"model: {analysis.model}")
     if simulate:
-        from flyopt.sizing import dynamics
+        from flyopt.sizing import periodic as dynamics
 
         m = analysis.machine
         sol = dynamics.periodic_solution(m.net_torque(), m.j_machine, m.cycle_angle, analysis.omega_mean,
@@ -237,7 +237,7 @@ def plot_energy_mass(scene, analysis, ax=None):
     From the true origin (−J_F, −E_0) the lines of slope ω_max²/2 and ω_min²/2
     touch the curve where the speed is highest and lowest (docs/flywheel-design.md, section 6).
     """
-    from flyopt.sizing import models
+    from flyopt.sizing import choose as models
 
     ax = _axes(ax, figsize=(7, 5.5))
     if analysis.machine is None or analysis.machine.speed_dependent:

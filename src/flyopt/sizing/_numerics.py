@@ -1,0 +1,138 @@
+"""Numerical helpers shared by the sizing models (private).
+
+The inertia J(φ) as a CasADi function, elementwise evaluation of CasADi
+functions on numpy arrays, argument checks, and the cubic Hermite
+interpolant with its exact extremes (docs/flywheel-design.md, sections 6–7).
+"""
+
+import math
+
+import casadi as ca
+import numpy as np
+
+EPS = float(np.finfo(float).eps)
+
+EDGE = 1e-10
+"""Torques are evaluated this fraction of a piece inside its ends, so a step at
+a knot is seen from the correct side."""
+
+
+class Inertia:
+    """J(φ) from a number, an EquivalentInertia or a CasADi-capable callable."""
+
+    def __init__(self, j, what="j_machine"):
+        phi = ca.SX.sym("phi")
+        if isinstance(j, (int, float)) and not isinstance(j, bool):
+            if not (math.isfinite(j) and j >= 0):
+                raise ValueError(f"{what} must be a finite number >= 0 [kg*m^2], got {j!r}")
+            expr, self.knots, self.is_constant = ca.SX(float(j)), np.empty(0), True
+        elif hasattr(j, "casadi"):
+            expr = ca.SX(j.casadi(phi))
+            self.knots = np.asarray(getattr(j, "knots", np.empty(0)), dtype=float)
+            self.is_constant = bool(getattr(j, "is_constant", False))
+        elif callable(j):
+            try:
+                expr = ca.SX(j(phi))
+            except Exception as err:  # noqa: BLE001 -- any failure means "not CasADi-capable"
+                raise ValueError(f"{what} must accept a CasADi symbol (use numpy-free arithmetic or "
+                                 f"an EquivalentInertia): {err}") from err
+            self.knots, self.is_constant = np.empty(0), False
+        else:
+            raise ValueError(f"{what} must be a number [kg*m^2] or a function of phi, got {j!r}")
+        if not self.is_constant:
+            self.is_constant = not ca.depends_on(expr, phi)
+        self.source = j
+        self.function = ca.Function("J", [phi], [expr, ca.jacobian(expr, phi)])
+        self._maps = {}
+
+    def casadi(self, phi):
+        return self.function(phi)[0]
+
+    def __call__(self, phi):
+        return self._eval(phi, 0)
+
+    def derivative(self, phi):
+        return self._eval(phi, 1)
+
+    def _eval(self, phi, which):
+        return evaluate(self.function, self._maps, phi)[which]
+
+
+def evaluate(function, maps, *args):
+    """Evaluate a scalar CasADi Function elementwise on broadcast numpy arrays.
+
+    The mapped function for each size is built once and kept in ``maps``.
+    """
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in args))
+    shape = arrays[0].shape
+    n = arrays[0].size
+    if n == 0:
+        return tuple(np.zeros(shape) for _ in range(function.n_out()))
+    if n not in maps:
+        if len(maps) > 64:
+            maps.clear()
+        maps[n] = function.map(n) if n > 1 else function
+    out = maps[n](*(a.reshape(1, -1) for a in arrays))
+    out = out if isinstance(out, tuple) else (out,)
+    return tuple(np.asarray(o, dtype=float).reshape(shape) for o in out)
+
+
+def check_speed_delta(omega_mean, delta, delta_max=2.0):
+    if not (isinstance(omega_mean, (int, float)) and math.isfinite(omega_mean) and omega_mean > 0):
+        raise ValueError(f"omega_mean must be a positive finite speed [rad/s], got {omega_mean!r}")
+    if delta is not None and not (isinstance(delta, (int, float)) and math.isfinite(delta) and 0 < delta < delta_max):
+        raise ValueError(f"delta must lie in (0, {delta_max:g}), got {delta!r}")
+
+
+def check_cycle(cycle_angle):
+    if not (isinstance(cycle_angle, (int, float)) and math.isfinite(cycle_angle) and cycle_angle > 0):
+        raise ValueError(f"cycle_angle must be a positive finite angle [rad], got {cycle_angle!r}")
+    return float(cycle_angle)
+
+
+
+def hermite(f0, f1, m0, m1, t):
+    """Cubic Hermite interpolant on [0, 1] with end values f and end slopes m."""
+    return f0 + t * (m0 + t * (3 * (f1 - f0) - 2 * m0 - m1 + t * (2 * (f0 - f1) + m0 + m1)))
+
+
+
+def hermite_extremes(phi, f, df):
+    """Max and min of the piecewise cubic Hermite interpolant, with their angles.
+
+    ``phi``, ``f``, ``df`` have shape (pieces, outputs); each row is
+    interpolated on its own (slopes are one-sided at piece ends).
+    """
+    h = np.diff(phi, axis=1)
+    f0, f1 = f[:, :-1], f[:, 1:]
+    m0, m1 = df[:, :-1] * h, df[:, 1:] * h
+    c = m0
+    b = 3 * (f1 - f0) - 2 * m0 - m1
+    a = 2 * (f0 - f1) + m0 + m1
+    # p'(t) = 3a t² + 2b t + c = 0
+    qa, qb, qc = 3 * a, 2 * b, c
+    disc = qb * qb - 4 * qa * qc
+    sq = np.sqrt(np.where(disc >= 0, disc, 0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        big = np.abs(qa) > 1e-14 * (np.abs(qb) + np.abs(qc))
+        r1 = np.where(big, (-qb + sq) / (2 * qa), np.where(qb != 0, -qc / np.where(qb != 0, qb, 1), -1.0))
+        r2 = np.where(big, (-qb - sq) / (2 * qa), -1.0)
+    best_hi = (float(np.max(f)), np.unravel_index(np.argmax(f), f.shape))
+    best_lo = (float(np.min(f)), np.unravel_index(np.argmin(f), f.shape))
+    hi_val, hi_phi = best_hi[0], float(phi[best_hi[1]])
+    lo_val, lo_phi = best_lo[0], float(phi[best_lo[1]])
+    for r in (r1, r2):
+        ok = (disc >= 0) & (r > 0) & (r < 1)
+        t = np.where(ok, r, 0.0)
+        p = f0 + t * (c + t * (b + t * a))
+        where = phi[:, :-1] + t * h
+        if np.any(ok):
+            pm = np.where(ok, p, -np.inf)
+            i = np.unravel_index(np.argmax(pm), pm.shape)
+            if pm[i] > hi_val:
+                hi_val, hi_phi = float(pm[i]), float(where[i])
+            pm = np.where(ok, p, np.inf)
+            i = np.unravel_index(np.argmin(pm), pm.shape)
+            if pm[i] < lo_val:
+                lo_val, lo_phi = float(pm[i]), float(where[i])
+    return (hi_phi, hi_val), (lo_phi, lo_val)
