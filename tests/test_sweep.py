@@ -15,17 +15,20 @@ import pandas as pd
 import pytest
 from numpy.testing import assert_allclose
 
+import importlib
+
 import flyopt
 from conftest import PROBLEMS
-from flyopt.design import optimize
+from flyopt.design import nlp
 from flyopt.errors import SceneError
 from flyopt.io.results import CORE_INPUTS, RESULT_COLUMNS, read_results
 from flyopt.io.sweep_spec import load_sweep, parse_vary
-from flyopt.studies import runner
 from flyopt.studies.evaluate import point_scene
 from flyopt.studies.fronts import sweep_main
 from flyopt.studies.plan import plan_sweep
 from flyopt.studies.sweep import sweep
+
+sweep_module = importlib.import_module("flyopt.studies.sweep")  # the module (flyopt.sweep is the function)
 
 RPM = math.pi / 30.0
 PUNCH = flyopt.load(PROBLEMS / "punch-press.toml")      # 3 materials (one user), 3 shafts
@@ -177,6 +180,182 @@ def test_latin_hypercube_is_stratified_and_reproducible():
 
 
 # --------------------------------------------------------------------------
+# Sizes, seeds and options: refused before anything is made
+# --------------------------------------------------------------------------
+
+def peak_bytes(call):
+    """Peak memory Python allocates while ``call()`` runs [bytes] (tracemalloc)."""
+    import tracemalloc
+
+    tracemalloc.start()
+    try:
+        call()
+    finally:
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+    return peak
+
+
+@pytest.mark.parametrize("vary, samples, field", [
+    (["delta=0.01:0.1:1000000000"], None, "--vary delta"),            # 7.45 GB of values
+    (["delta=0.01:0.1:20000001"], None, "--vary delta"),              # one past the cap
+    (["delta=0.01:0.1:5000", "speed=1:2:5000"], None, "--vary speed"),  # 25e6 together
+    ({"delta": "0.01:0.1"}, 10 ** 9, "--samples"),
+])
+def test_too_many_points_refused_before_allocating(vary, samples, field):
+    """Regression (issue 11): a grid or a sample count of 1e9 allocated 7.45 GB before
+    the cap was checked, then MemoryError. The cap is checked on the counts first: the
+    refusal is one line naming the field and the cap, and allocates (almost) nothing."""
+    from flyopt.studies.plan import MAX_POINTS
+
+    def plan():
+        with pytest.raises(SceneError) as info:
+            plan_sweep(PUNCH, vary, samples=samples)
+        assert info.value.field == field and str(MAX_POINTS) in info.value.message
+        assert "\n" not in str(info.value)
+
+    # 2 MB: far below the 160 MB of the smallest grid refused here (2e7 float64)
+    assert peak_bytes(plan) < 2e6
+
+
+def test_samples_over_the_cap_in_a_sweep_table_name_the_file(tmp_path):
+    from flyopt.studies.sweep import check_sweep
+
+    path = scene_with_sweep(tmp_path, '[sweep]\nsamples = 1000000000\n[sweep.vary]\n'
+                                      'delta = "0.01:0.1"\n')
+    scene, options = load_sweep(path)
+    with pytest.raises(SceneError, match="more than the 20000000") as info:
+        check_sweep(scene, options)
+    assert info.value.field == "sweep.samples" and info.value.source == str(path)
+
+
+@pytest.mark.parametrize("seed", [-1, 1.5, True, "7"])
+def test_bad_seed_is_refused_by_the_plan(seed):
+    """Regression (issue 11): ``--seed -1`` ended in numpy's traceback."""
+    with pytest.raises(SceneError, match="must be a whole number >= 0") as info:
+        plan_sweep(PUNCH, {"delta": "0.01:0.1"}, samples=5, seed=seed)
+    assert info.value.field == "--seed"
+
+
+def test_latin_hypercube_without_a_seed_records_the_one_it_drew(tmp_path):
+    """Regression (issue 11): a Latin hypercube run without a seed could not be repeated.
+    The seed drawn is in the plan, in the table's ``seed`` column (so in the file, CSV
+    or Parquet alike) and in ``attrs``; rerun with it, the points are the same."""
+    vary = {"delta": "0.02:0.2:log", "speed": "30:120 rpm", "material": "cast_iron,cast_steel"}
+    first, second = plan_sweep(PUNCH, vary, samples=12), plan_sweep(PUNCH, vary, samples=12)
+    assert isinstance(first.seed, int) and 0 <= first.seed < 2 ** 63
+    assert first.seed != second.seed          # drawn afresh (a collision has odds 2**-63)
+    pd.testing.assert_frame_equal(plan_sweep(PUNCH, vary, samples=12, seed=first.seed).points,
+                                  first.points)
+    out = tmp_path / "study.csv"
+    frame = sweep(PUNCH, vary, samples=12, output=out)
+    recorded = read_results(out)["seed"]
+    assert recorded.nunique() == 1 and int(recorded.iloc[0]) == frame.attrs["sweep"]["seed"]
+    again = sweep(PUNCH, vary, samples=12, seed=int(recorded.iloc[0]))
+    pd.testing.assert_frame_equal(again, frame)
+    assert "seed" not in sweep(PUNCH, {"delta": "0.1,0.2"}).columns   # a grid has no seed
+
+
+def test_resume_of_a_latin_hypercube_reuses_its_recorded_seed(tmp_path):
+    out = tmp_path / "study.parquet"
+    vary = {"delta": "0.02:0.2:log", "speed": "30:120 rpm"}
+    first = sweep(PUNCH, vary, samples=12, output=out, chunk_size=4, max_chunks=1)
+    done = sweep(PUNCH, vary, samples=12, output=out, chunk_size=4, resume=True)
+    assert done.attrs["sweep"]["chunks_reused"] == [0]
+    assert done.attrs["sweep"]["seed"] == first.attrs["sweep"]["seed"]
+    pd.testing.assert_frame_equal(read_results(out),
+                                  sweep(PUNCH, vary, samples=12, chunk_size=4,
+                                        seed=first.attrs["sweep"]["seed"]))
+
+
+@pytest.mark.parametrize("texts, field", [
+    (["delta=0.1", "delta=0.2"], "--vary delta"),
+    (["envelope=1 m", "design.max_outer_diameter=2 m"], "--vary design.max_outer_diameter"),
+    (["material=cast_iron", "materials=cast_steel"], "--vary materials"),
+])
+def test_a_field_given_twice_is_refused(texts, field):
+    """Regression (issue 11): a repeated ``--vary`` for one field (or an alias of it)
+    silently kept the last. ``vary_from_texts`` (what the command line calls on its
+    --vary list) and ``parse_vary`` refuse it, naming the second."""
+    from flyopt.io.sweep_spec import vary_from_texts
+
+    for call in (lambda: vary_from_texts(PUNCH, texts), lambda: parse_vary(PUNCH, texts)):
+        with pytest.raises(SceneError, match="is varied twice") as info:
+            call()
+        assert info.value.field == field
+    assert vary_from_texts(PUNCH, ["delta=0.1,0.2", "envelope=1 m"]) == {
+        "delta": "0.1,0.2", "envelope": "1 m"}
+
+
+@pytest.mark.parametrize("table, field, words", [
+    ('method = "fast"', "sweep.method", "'fast' is not known (allowed: auto, closed_form, ipopt)"),
+    ("workers = 0", "sweep.workers", "must be 'auto' or a whole number >= 1"),
+    ('workers = "many"', "sweep.workers", "must be 'auto' or a whole number >= 1"),
+    ('output = "study.xlsx"', "sweep.output", "must end in .parquet or .csv"),
+    ("chunk_size = 0", "sweep.chunk_size", "must be a whole number >= 1"),
+    ("seed = -1", "sweep.seed", "must be a whole number >= 0"),
+])
+def test_sweep_table_options_are_checked_when_read(tmp_path, table, field, words):
+    """Regression (issue 11): ``flyopt check`` said "ok" for [sweep] tables that
+    ``flyopt sweep`` then refused; the options are checked where the table is read."""
+    path = scene_with_sweep(tmp_path, f"[sweep]\n{table}\n[sweep.vary]\ndelta = \"0.1,0.2\"\n")
+    with pytest.raises(SceneError) as info:
+        load_sweep(path)
+    assert (info.value.field, info.value.source) == (field, str(path))
+    assert words in info.value.message
+
+
+@pytest.mark.parametrize("vary, field, words", [
+    ('delta = "0.1:0.2"', "sweep.vary.delta", "a grid range needs a count"),
+    ('deltaa = "0.1"', "sweep.vary.deltaa", "unknown sweep field"),
+    ('hb_min = "1.8:2.4:4"', "sweep.vary.design.hb_min", "exceeds max"),
+    ('objective = "cost"', "sweep.vary.design.objective", "needs a cost per kg"),
+])
+def test_check_sweep_finds_what_sweep_refuses(tmp_path, vary, field, words):
+    """``check_sweep`` (what ``flyopt check`` calls) refuses the fields, values and
+    points that the sweep refuses, with the same message, naming the file."""
+    from flyopt.studies.sweep import check_sweep
+
+    path = scene_with_sweep(tmp_path, f"[sweep.vary]\n{vary}\n")
+    scene, options = load_sweep(path)
+    with pytest.raises(SceneError) as info:
+        check_sweep(scene, options)
+    assert (info.value.field, info.value.source) == (field, str(path))
+    assert words in info.value.message
+    with pytest.raises(SceneError) as ran:
+        sweep(scene, options["vary"])
+    assert ran.value.message == info.value.message
+    plan = check_sweep(*load_sweep(scene_with_sweep(tmp_path)))   # a sound table: its plan
+    assert len(plan.points) == 3 * 2 * 2 * 2
+
+
+def test_flyopt_sweep_is_the_function_and_the_modules_are_reachable():
+    """Regression (issue 11): the function ``flyopt.sweep`` shadowed the module, so
+    ``flyopt.sweep.read_results`` failed; the module is now flyopt.studies.sweep and the
+    file functions are in flyopt.io.results."""
+    import flyopt.io.results
+    import flyopt.studies.sweep
+
+    assert callable(flyopt.sweep) and flyopt.sweep is sweep_module.sweep
+    assert flyopt.studies.sweep is sweep_module
+    assert flyopt.io.results.read_results is read_results
+
+
+def test_declared_scipy_floor_has_latin_hypercube_rng():
+    """Regression (issue 11): plan_sweep calls ``qmc.LatinHypercube(rng=...)``, a keyword
+    SciPy added in 1.15.0 (SPEC 7; before it was ``seed``, which draws other samples
+    for the same integer), while pyproject.toml declared scipy>=1.10."""
+    import re
+    import tomllib
+    from pathlib import Path
+
+    pyproject = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
+    (floor,) = [re.match(r"scipy\s*>=\s*([\d.]+)", d).group(1)
+                for d in pyproject["project"]["dependencies"] if d.startswith("scipy")]
+    assert tuple(int(x) for x in floor.split(".")[:2]) >= (1, 15)
+
+
+# --------------------------------------------------------------------------
 # Sweeps against individual solves
 # --------------------------------------------------------------------------
 
@@ -273,7 +452,7 @@ def test_nlp_built_once_per_structure_not_per_point(monkeypatch):
         builds.append(args[0])
         return original(*args, **kwargs)
 
-    optimize.clear_model_cache()
+    nlp.clear_model_cache()
     monkeypatch.setattr(casadi, "nlpsol", counting)
     frame = sweep(PUNCH, {"delta": "0.02:0.2:log6", "speed": "30,60,120rpm"}, method="ipopt")
     assert (frame["status"] == "designed").sum() == 18
@@ -350,7 +529,7 @@ def test_resume_after_a_crash(tmp_path, monkeypatch):
     """A chunk raises: the finished chunks are on disk, the crash loses the chunk
     in flight only, and --resume completes the sweep."""
     out = tmp_path / "study.csv"
-    original = runner._evaluate
+    original = sweep_module._evaluate
     calls = []
 
     def crashing(ctx, points):
@@ -359,13 +538,13 @@ def test_resume_after_a_crash(tmp_path, monkeypatch):
             raise MemoryError("simulated crash")
         return original(ctx, points)
 
-    monkeypatch.setattr(runner, "_evaluate", crashing)
+    monkeypatch.setattr(sweep_module, "_evaluate", crashing)
     with pytest.raises(MemoryError):
         sweep(PUNCH, VARY, output=out, chunk_size=4, workers=1)
     parts = tmp_path / "study.csv.parts"
     assert sorted(p.name for p in parts.glob("chunk-*")) == ["chunk-00000.parquet",
                                                              "chunk-00001.parquet"]
-    monkeypatch.setattr(runner, "_evaluate", original)
+    monkeypatch.setattr(sweep_module, "_evaluate", original)
     done = sweep(PUNCH, VARY, output=out, chunk_size=4, resume=True)
     assert done.attrs["sweep"]["chunks_run"] == [2, 3, 4]
     pd.testing.assert_frame_equal(read_results(out), sweep(PUNCH, VARY, chunk_size=4))
@@ -377,7 +556,7 @@ def test_resume_refuses_parts_of_another_sweep(tmp_path):
     other = dict(VARY, delta="0.02:0.2:log6")
     with pytest.raises(SceneError, match="come from a different sweep") as info:
         sweep(PUNCH, other, output=out, chunk_size=4, resume=True)
-    assert info.value.field == "resume"
+    assert info.value.field == "--resume"
     manifest = json.loads((tmp_path / "study.parquet.parts" / "sweep.json").read_text())
     assert manifest["points"] == 20 and manifest["chunks"] == 5
 

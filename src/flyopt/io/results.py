@@ -15,7 +15,7 @@ import pandas as pd
 
 from flyopt.errors import SceneError
 
-__all__ = ["CORE_INPUTS", "RESULT_COLUMNS", "read_results", "write_results"]
+__all__ = ["CORE_INPUTS", "RESULT_COLUMNS", "output_format", "read_results", "write_results"]
 
 #: Input columns present in every result table (SI; NaN for "none").
 CORE_INPUTS = ("delta", "speed", "inertia", "torque.scale", "design.geometry",
@@ -52,7 +52,8 @@ def _normalize(frame):
     for name in frame.columns:
         kind = RESULT_COLUMNS.get(name)
         if kind is None:
-            kind = "str" if name in _NAME_INPUTS else ("int" if name == "point" else "float")
+            kind = ("str" if name in _NAME_INPUTS else
+                    "int" if name in ("point", "seed") else "float")
         if kind == "str":
             frame[name] = frame[name].fillna("").astype(str)
         elif kind == "bool":
@@ -71,29 +72,46 @@ def _normalize(frame):
 _SUFFIXES = {".parquet": "parquet", ".pq": "parquet", ".csv": "csv"}
 
 
-def _format(path):
+def output_format(path, label="output"):
+    """``"parquet"`` or ``"csv"``, by the suffix of ``path``; SceneError naming ``label`` else."""
     kind = _SUFFIXES.get(Path(path).suffix.lower())
     if kind is None:
-        raise SceneError("output", f"{str(path)!r} must end in .parquet or .csv "
+        raise SceneError(label, f"{str(path)!r} must end in .parquet or .csv "
                          f"(the suffix picks the format)")
     return kind
 
 
-def write_results(frame, path):
+def write_results(frame, path, temporary_folder=None):
     """Write a result table to Parquet or CSV (by the suffix), atomically.
 
-    The file is written beside its final name and moved into place, so a
-    crash never leaves a half-written file under that name.
+    The table is written to a temporary file and moved into place, so a
+    crash never leaves a half-written file under the final name; an error
+    or an interrupt while writing removes the temporary file.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+    path : str or Path
+        ``.parquet`` (or ``.pq``) or ``.csv``.
+    temporary_folder : str or Path, optional
+        Where the temporary file goes (on the same file system as ``path``),
+        e.g. the sweep's parts folder, which a rerun cleans even after a
+        kill; default: beside ``path``.
     """
     path = Path(path)
-    kind = _format(path)
+    kind = output_format(path)
     _check_folder(path)
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    if kind == "parquet":
-        frame.to_parquet(tmp, index=False)
-    else:
-        frame.to_csv(tmp, index=False)
-    os.replace(tmp, path)
+    folder = path.parent if temporary_folder is None else Path(temporary_folder)
+    tmp = folder / f"{path.name}.tmp-{os.getpid()}"
+    try:
+        if kind == "parquet":
+            frame.to_parquet(tmp, index=False)
+        else:
+            frame.to_csv(tmp, index=False)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
 
 
 def read_results(path):
@@ -105,7 +123,7 @@ def read_results(path):
         Equal to the DataFrame the sweep returned.
     """
     path = Path(path)
-    if _format(path) == "parquet":
+    if output_format(path) == "parquet":
         frame = pd.read_parquet(path)
     else:
         header = pd.read_csv(path, nrows=0).columns
@@ -117,11 +135,8 @@ def read_results(path):
     return _normalize(frame)
 
 
-
 def _check_folder(path):
     """The folder of an output must exist: flyopt does not create folders the user did not ask for."""
     folder = Path(path).parent
     if not folder.is_dir():
         raise SceneError("output", f"the folder {str(folder)!r} of {str(path)!r} does not exist")
-
-

@@ -51,7 +51,8 @@ import numpy as np
 from flyopt.errors import SceneError
 from flyopt.units import quantity
 
-__all__ = ["FIELDS", "Axis", "parse_vary", "load_sweep"]
+__all__ = ["FIELDS", "METHODS", "Axis", "parse_vary", "vary_from_texts", "check_options",
+           "option_label", "whole_number", "load_sweep"]
 
 try:  # Python >= 3.11
     import tomllib
@@ -163,6 +164,91 @@ def _where(where, path):
 
 
 # --------------------------------------------------------------------------
+# The other options of a sweep: one rule each, for [sweep] tables, the
+# command line and the Python API alike
+# --------------------------------------------------------------------------
+
+#: How the points are designed (see :func:`flyopt.studies.evaluate.evaluate_points`).
+METHODS = ("auto", "closed_form", "ipopt")
+
+
+def option_label(where, key):
+    """The name of option ``key`` as the user wrote it.
+
+    Parameters
+    ----------
+    where : str
+        Where the options come from: ``"--"`` or ``"--vary"`` (the command
+        line), ``"sweep"`` or ``"sweep.vary"`` (a ``[sweep]`` table, maybe
+        after a file name), ``""`` (Python keywords).
+    key : str
+        The keyword of :func:`flyopt.studies.sweep.sweep`, e.g. ``chunk_size``.
+
+    Returns
+    -------
+    str
+        ``--chunk-size``, ``sweep.chunk_size`` or ``chunk_size``.
+    """
+    base = where[:-len("vary")] if where.endswith("vary") else where
+    if base.startswith("--"):
+        return "--" + key.replace("_", "-")
+    base = base.rstrip(".")
+    return f"{base}.{key}" if base else key
+
+
+def whole_number(value, label, minimum):
+    """``value`` as an int, or SceneError naming ``label`` and the lowest value allowed."""
+    if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value >= minimum:
+        return int(value)
+    raise SceneError(label, f"must be a whole number >= {minimum}, got {value!r}")
+
+
+def check_options(options, where="sweep"):
+    """Check the options of a sweep other than ``vary`` (their values, not the scene's).
+
+    Parameters
+    ----------
+    options : mapping
+        Keywords of :func:`flyopt.studies.sweep.sweep`: ``samples``, ``seed``,
+        ``output``, ``chunk_size``, ``max_chunks``, ``method``, ``workers``,
+        ``resume``; absent or None means the default.
+    where : str
+        Where they come from, for messages (see :func:`option_label`).
+
+    Raises
+    ------
+    SceneError
+        The first bad option, named as the user wrote it, with what is allowed.
+    """
+    from flyopt.io.results import output_format
+
+    minimum = {"samples": 1, "seed": 0, "chunk_size": 1, "max_chunks": 0}
+    for key, lowest in minimum.items():
+        if options.get(key) is not None:
+            whole_number(options[key], option_label(where, key), lowest)
+    method = options.get("method")
+    if method is not None and method not in METHODS:
+        raise SceneError(option_label(where, "method"), f"{method!r} is not known "
+                         f"(allowed: {', '.join(METHODS)})")
+    workers = options.get("workers")
+    if workers is not None and workers != "auto":
+        try:
+            whole_number(workers, option_label(where, "workers"), 1)
+        except SceneError as err:
+            raise SceneError(err.field, f"must be 'auto' or a whole number >= 1, "
+                             f"got {workers!r}") from None
+    output = options.get("output")
+    if output is not None:
+        if not isinstance(output, (str, Path)):
+            raise SceneError(option_label(where, "output"), f"must be a file name (.csv or "
+                             f".parquet), got {output!r}")
+        output_format(output, option_label(where, "output"))
+    if options.get("resume") and output is None:
+        raise SceneError(option_label(where, "resume"), "needs an output file (its parts hold "
+                         "the finished chunks)")
+
+
+# --------------------------------------------------------------------------
 # Values: a,b,c | a:b:n | a:b:logn, with a trailing unit
 # --------------------------------------------------------------------------
 
@@ -222,7 +308,7 @@ def _check_value(value, spec, label, text):
         raise SceneError(label, f"{text!r} is out of range: {spec.what}")
 
 
-def _parse_text(scene, name, spec, text, label, sampled):
+def _parse_text(scene, name, spec, text, label, sampled, cap=None):
     text = text.strip()
     if not text:
         raise SceneError(label, "no values given: write a list a,b,c or a range a:b:n")
@@ -232,7 +318,7 @@ def _parse_text(scene, name, spec, text, label, sampled):
         items = [t.strip() for t in text.split(",")]
         return Axis(name, tuple(_check_name(scene, name, item, label) for item in items))
     if ":" in text:
-        return _parse_range(name, spec, text, label, sampled)
+        return _parse_range(name, spec, text, label, sampled, cap)
     items = [t.strip() for t in text.split(",")]
     if any(not t for t in items):
         raise SceneError(label, f"{text!r}: an empty value in the list")
@@ -249,7 +335,7 @@ def _parse_text(scene, name, spec, text, label, sampled):
     return Axis(name, tuple(values))
 
 
-def _parse_range(name, spec, text, label, sampled):
+def _parse_range(name, spec, text, label, sampled, cap=None):
     parts = text.split(":")
     if len(parts) not in (2, 3):
         raise SceneError(label, f"{text!r}: a range is a:b:n (linear) or a:b:logn (log), "
@@ -279,6 +365,10 @@ def _parse_range(name, spec, text, label, sampled):
     n = 1 if count is None else int(count)
     if n < 1:
         raise SceneError(label, f"{text!r}: the count must be at least 1")
+    if cap is not None and n * cap[0] > cap[1]:   # (points of the fields before, most points)
+        raise SceneError(label, f"{text!r}: {n} values make a grid of {n * cap[0]} points, "
+                         f"more than the {cap[1]} a sweep may have; use fewer values or "
+                         f"Latin hypercube samples")
     if log:
         values = np.geomspace(low, high, n) if n > 1 else np.array([low])
     else:
@@ -293,7 +383,7 @@ def _check_name(scene, name, item, label):
         from flyopt.design.geometry import GEOMETRIES
         known = list(GEOMETRIES)
     elif name == "design.objective":
-        from flyopt.design.optimize import OBJECTIVES
+        from flyopt.design.spec import OBJECTIVES
         known = list(OBJECTIVES)
     elif name == "material":
         known = list(scene.material_library())
@@ -305,10 +395,10 @@ def _check_name(scene, name, item, label):
     return item
 
 
-def _parse_value(scene, name, spec, value, label, sampled):
+def _parse_value(scene, name, spec, value, label, sampled, cap=None):
     """A value from TOML or Python: a string (the grammar), a number, or a list."""
     if isinstance(value, str):
-        return _parse_text(scene, name, spec, value, label, sampled)
+        return _parse_text(scene, name, spec, value, label, sampled, cap)
     items = value if isinstance(value, (list, tuple, np.ndarray)) else [value]
     if len(items) == 0:
         raise SceneError(label, "no values given")
@@ -327,7 +417,63 @@ def _parse_value(scene, name, spec, value, label, sampled):
     return Axis(name, tuple(values))
 
 
-def parse_vary(scene, vary, *, where="--vary", samples=None):
+def _text_items(texts, where):
+    """``["FIELD=VALUES", ...]`` as (field, values) pairs."""
+    if isinstance(texts, str):
+        texts = [texts]
+    items = []
+    for text in texts:
+        if not isinstance(text, str) or "=" not in text:
+            raise SceneError(where, f"{text!r}: expected FIELD=VALUES, e.g. "
+                             f"delta=0.01:0.1:log20 or speed=300,600,1200rpm")
+        path, values = text.split("=", 1)
+        if not path.strip():
+            raise SceneError(where, "a field name is missing before '='")
+        items.append((path.strip(), values))
+    return items
+
+
+def _check_once(scene, items, where):
+    """Refuse a field given twice, under its name or an alias (the first would be lost)."""
+    seen = {}
+    for path, _ in items:
+        name = _resolve(scene, path, where)[0]
+        if name in seen:
+            raise SceneError(_where(where, path), f"is varied twice (also as {seen[name]!r}); "
+                             f"give each field once, with all its values")
+        seen[name] = path
+
+
+def vary_from_texts(scene, texts, where="--vary"):
+    """The fields to vary, from ``FIELD=VALUES`` texts (e.g. repeated ``--vary`` options).
+
+    Parameters
+    ----------
+    scene : Scene
+        Supplies the shafts and materials that field names may refer to.
+    texts : iterable of str
+        ``["delta=0.01:0.1:log20", "speed=300,600,1200rpm"]``.
+    where : str
+        Where the texts come from, for messages.
+
+    Returns
+    -------
+    dict
+        Field as written to its values text, in the order given (the
+        ``vary`` mapping of :func:`parse_vary`).
+
+    Raises
+    ------
+    SceneError
+        A text without ``=``, an unknown field, or a field given twice (also
+        under an alias, e.g. ``envelope`` and ``design.max_outer_diameter``).
+    """
+    items = _text_items(texts, where)
+    _check_once(scene, items, where)
+    return dict(items)
+
+
+def parse_vary(scene, vary, *, where="--vary", samples=None, max_points=None):
     """Read the fields to vary and their values.
 
     Parameters
@@ -341,6 +487,9 @@ def parse_vary(scene, vary, *, where="--vary", samples=None):
         Where the fields come from, for messages (``--vary``, ``sweep.vary``).
     samples : int or None
         Latin hypercube sampling (ranges may then omit their count).
+    max_points : int, optional
+        Most points the grid may have: a range that would make more is
+        refused before its values are made.
 
     Returns
     -------
@@ -354,24 +503,19 @@ def parse_vary(scene, vary, *, where="--vary", samples=None):
     """
     if isinstance(vary, Mapping):
         items = list(vary.items())
+        if any(not str(path).strip() for path, _ in items):
+            raise SceneError(where, "a field name is missing")
     else:
-        items = []
-        for text in vary:
-            if not isinstance(text, str) or "=" not in text:
-                raise SceneError(where, f"{text!r}: expected FIELD=VALUES, e.g. "
-                                 f"delta=0.01:0.1:log20 or speed=300,600,1200rpm")
-            path, values = text.split("=", 1)
-            items.append((path.strip(), values))
-    axes, seen = [], {}
+        items = _text_items(vary, where)
+    _check_once(scene, items, where)
+    axes, points = [], 1
     for path, values in items:
-        if not path:
-            raise SceneError(where, "a field name is missing before '='")
         name, spec = _resolve(scene, path, where)
-        label = _where(where, path)
-        if name in seen:
-            raise SceneError(label, f"is varied twice (also as {seen[name]!r})")
-        seen[name] = path
-        axes.append(_parse_value(scene, name, spec, values, label, samples is not None))
+        cap = None if max_points is None else (points, max_points)
+        axes.append(_parse_value(scene, name, spec, values, _where(where, path),
+                                 samples is not None, cap))
+        if samples is None:
+            points *= len(axes[-1].values)
     names = {a.field for a in axes}
     if "design.hb_ratio" in names and names & {"design.hb_min", "design.hb_max"}:
         raise SceneError(_where(where, "design.hb_ratio"), "vary either design.hb_ratio or "
@@ -431,7 +575,10 @@ def load_sweep(path):
     Raises
     ------
     SceneError
-        Bad file, scene or ``[sweep]`` key (named, with the file).
+        Bad file, scene, ``[sweep]`` key or option value (named, with the
+        file). The fields and values of ``vary`` and the points they make are
+        checked by :func:`flyopt.studies.sweep.check_sweep`, which also runs
+        these checks (``flyopt check`` and ``flyopt sweep`` share it).
     """
     from flyopt.io.scene import from_dict
 
@@ -452,14 +599,7 @@ def load_sweep(path):
             raise SceneError(f"sweep.{unknown[0]}", f"unknown key{_hint(unknown[0], _SWEEP_KEYS)} "
                              f"(allowed here: {', '.join(sorted(_SWEEP_KEYS))})")
         options = {k: v for k, v in table.items() if k != "description"}
-        for key in ("seed", "samples", "chunk_size"):
-            value = options.get(key)
-            if value is not None and (isinstance(value, bool) or not isinstance(value, int) or
-                                      (key != "seed" and value < 1) or value < 0):
-                raise SceneError(f"sweep.{key}", f"must be a whole number{' >= 1' if key != 'seed' else ' >= 0'}, "
-                                 f"got {value!r}")
-        if "output" in options and not isinstance(options["output"], str):
-            raise SceneError("sweep.output", f"must be a file name (.csv or .parquet), got {options['output']!r}")
+        check_options(options, "sweep")
         vary = options.pop("vary", {})
         if not isinstance(vary, dict):
             raise SceneError("sweep.vary", "must be a table of FIELD = VALUES")

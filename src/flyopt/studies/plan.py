@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from flyopt.errors import SceneError
-from flyopt.io.sweep_spec import FIELDS, _Field, parse_vary
+from flyopt.io.sweep_spec import FIELDS, _Field, option_label, parse_vary, whole_number
 from flyopt.studies.evaluate import _check_points
 
 __all__ = ["MAX_POINTS", "SweepPlan", "plan_sweep"]
@@ -37,6 +37,8 @@ class SweepPlan:
     samples : int or None
         Latin hypercube sample count (None: full factorial grid).
     seed : int or None
+        Seed of the Latin hypercube: the one given, or the one drawn when none
+        was given (so that the samples can be made again); None for a grid.
     """
 
     axes: list
@@ -52,11 +54,16 @@ def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
     ----------
     scene : Scene
     vary : mapping or iterable of str
-        See :func:`parse_vary`.
+        See :func:`flyopt.io.sweep_spec.parse_vary`.
     samples : int, optional
         Number of Latin hypercube samples; without it the full grid.
     seed : int, optional
-        Seed of the Latin hypercube (reproducible samples).
+        Seed of the Latin hypercube (a whole number >= 0). Without it one is
+        drawn from the operating system's entropy and recorded in the plan.
+    where : str
+        Where ``vary`` comes from, for messages (``--vary``, ``sweep.vary``);
+        ``samples`` and ``seed`` are named after it (``--samples``,
+        ``sweep.samples``).
 
     Returns
     -------
@@ -65,18 +72,37 @@ def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
     Raises
     ------
     SceneError
-        Bad fields or values, too many points, or points whose design
-        settings are invalid (e.g. an H/B range with min > max).
+        Bad fields or values, a bad sample count or seed, more than
+        :data:`MAX_POINTS` points (refused before anything is allocated), or
+        points whose design settings are invalid (e.g. an H/B range with
+        min > max).
+
+    Notes
+    -----
+    The samples are those of :class:`scipy.stats.qmc.LatinHypercube` with
+    ``rng=seed``: each range is cut into ``samples`` equal strata (of the
+    logarithm for a log range) with one sample in each; a list is sampled
+    as categories, each equally often.
     """
-    axes = parse_vary(scene, vary, where=where, samples=samples)
+    if seed is not None:
+        seed = whole_number(seed, option_label(where, "seed"), 0)
     if samples is not None:
-        if not isinstance(samples, (int, np.integer)) or isinstance(samples, bool) or samples < 1:
-            raise SceneError("samples", f"must be a positive whole number, got {samples!r}")
+        samples = whole_number(samples, option_label(where, "samples"), 1)
+        if samples > MAX_POINTS:
+            raise SceneError(option_label(where, "samples"), f"{samples} samples, more than "
+                             f"the {MAX_POINTS} points a sweep may have")
+        if seed is None:
+            seed = _drawn_seed()
+    else:
+        seed = None  # a grid has no randomness
+    axes = parse_vary(scene, vary, where=where, samples=samples, max_points=MAX_POINTS)
+    if samples is not None:
         if not axes:
-            raise SceneError("samples", "Latin hypercube sampling needs at least one varied field")
+            raise SceneError(option_label(where, "samples"), "Latin hypercube sampling needs "
+                             "at least one varied field")
         from scipy.stats import qmc
 
-        unit = qmc.LatinHypercube(d=len(axes), rng=seed).random(int(samples))
+        unit = qmc.LatinHypercube(d=len(axes), rng=seed).random(samples)
         columns = {}
         for k, axis in enumerate(axes):
             u = unit[:, k]
@@ -89,12 +115,12 @@ def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
             else:
                 index = np.minimum((u * len(axis.values)).astype(int), len(axis.values) - 1)
                 columns[axis.field] = np.asarray(axis.values, dtype=object)[index]
-        n = int(samples)
+        n = samples
     else:
         n = math.prod(len(a.values) for a in axes)
         if n > MAX_POINTS:
-            raise SceneError(where, f"the grid has {n} points, more than {MAX_POINTS}; "
-                             f"use fewer values or Latin hypercube samples")
+            raise SceneError(where, f"the grid has {n} points, more than the {MAX_POINTS} a "
+                             f"sweep may have; use fewer values or Latin hypercube samples")
         columns = {}
         if axes:
             grids = np.meshgrid(*[np.arange(len(a.values)) for a in axes], indexing="ij")
@@ -110,3 +136,7 @@ def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
     _check_points(scene, points, where)
     return SweepPlan(axes=axes, points=points, samples=samples, seed=seed)
 
+
+def _drawn_seed():
+    """A fresh seed from the operating system's entropy, in 0 <= seed < 2**63 (an int64)."""
+    return int(np.random.SeedSequence().entropy % 2**63)

@@ -1,39 +1,48 @@
 """Running a sweep's chunks: serially, in worker processes or on a Dask cluster, with resume.
 
+The runner knows nothing of flywheels: it runs a *task* (a picklable callable
+taking a table of points and returning a table of results, one row per
+point) over chunks of points, and keeps what is finished.
 
-Running
--------
-Points are cut into chunks. By default chunks run in parallel in worker
-processes on this machine, one per CPU (serially when the sweep is estimated
-to take under a second in one process, so that starting processes would cost
-more than it saves: a 10,000-point closed-form sweep takes ~0.15 s), with a
-progress line and an ETA on stderr. ``scheduler="tcp://host:8786"`` (or a
-``dask.distributed`` Client or cluster) runs them on a Dask cluster instead.
-With an ``output`` file every finished chunk is written to
+By default chunks run in parallel in worker processes on this machine, one
+per CPU (serially when the sweep is estimated to take under a second in one
+process, so that starting processes would cost more than it saves: a
+10,000-point closed-form sweep takes ~0.15 s), with a progress line and an
+ETA on stderr. A Dask scheduler (``tcp://host:8786``, a ``Client`` or a
+cluster) runs them on a cluster instead; it is connected to before anything
+is written, so a wrong address leaves nothing behind.
+
+With an output file every finished chunk is written to
 ``OUTPUT.parts/chunk-NNNNN.parquet`` at once, so a crash loses at most the
-chunks in flight; ``resume=True`` skips the chunks already on disk. The
-final file (Parquet or CSV, by its suffix) is assembled at the end and the
-parts removed.
+chunks in flight; ``resume`` reuses the chunks on disk after checking that
+each is the chunk it claims to be (a damaged one is computed again). Every
+temporary file lives in ``OUTPUT.parts/`` too, so nothing is left that a
+rerun does not see. Worker processes ignore Ctrl-C (the parent stops them)
+and, on Linux, die with their parent even when it is killed.
 """
 
 from __future__ import annotations
 
 import hashlib
+import json
 import math
 import os
+import pickle
+import shutil
+import signal
 import sys
 import threading
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 
-from flyopt.design import closed_form as batch
-from flyopt.errors import SceneError
-from flyopt.studies.evaluate import _evaluate
+from flyopt.errors import Interrupted, SceneError
+from flyopt.io.results import _check_folder, read_results, write_results
 
-
+__all__ = ["CHUNK_CLOSED_FORM", "CHUNK_IPOPT", "SERIAL_SECONDS", "Parts", "connect",
+           "estimated_seconds", "fingerprint", "run_chunks"]
 
 #: Points per chunk when every point is closed form, and when some need IPOPT.
 CHUNK_CLOSED_FORM = 2500
@@ -46,19 +55,159 @@ SERIAL_SECONDS = 1.0
 #: (measured ~2 ms per NLP, benchmarks/results/design.md).
 SECONDS_CLOSED_FORM = 2e-6
 SECONDS_IPOPT = 2.5e-3
+#: Longest wait for a Dask scheduler to answer [s].
+CONNECT_SECONDS = 5.0
+#: A Dask cluster without a single worker for this long has lost them [s].
+NO_WORKERS_SECONDS = 10.0
+#: How often the Dask loop looks at finished chunks and at the workers [s].
+POLL_SECONDS = 0.1
 
 
-def _estimated_seconds(inputs, method):
-    per_point = len(inputs.material_names) * len(inputs.shaft_names)
-    if inputs.material is not None:
-        per_point //= max(len(inputs.material_names), 1)
-    if inputs.shaft is not None:
-        per_point //= max(len(inputs.shaft_names), 1)
-    covered = np.array([batch.covers(g, o) for g, o in zip(inputs.geometry, inputs.objective)],
-                       dtype=bool) if method != "ipopt" else np.zeros(inputs.n, dtype=bool)
-    closed = int(covered.sum())
-    return per_point * (closed * SECONDS_CLOSED_FORM + (inputs.n - closed) * SECONDS_IPOPT)
+def estimated_seconds(closed_form_designs, ipopt_designs):
+    """Time one process takes for a sweep [s], from its count of designs of each kind."""
+    return closed_form_designs * SECONDS_CLOSED_FORM + ipopt_designs * SECONDS_IPOPT
 
+
+def cpu_count():
+    """CPUs this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def chunks_of(points, chunk_size):
+    """``[(index, rows), ...]``: the points cut into chunks of ``chunk_size`` rows."""
+    n_chunks = max(1, math.ceil(len(points) / chunk_size))
+    return [(i, points.iloc[i * chunk_size:(i + 1) * chunk_size]) for i in range(n_chunks)]
+
+
+def fingerprint(identity, points, chunk_size):
+    """A digest of what a sweep computes: parts of another sweep are never reused.
+
+    Parameters
+    ----------
+    identity : str
+        Everything the results depend on besides the points (the scene, the
+        method, solver options), as a text stable across processes.
+    points : pandas.DataFrame
+    chunk_size : int
+    """
+    digest = hashlib.sha256(repr((identity, int(chunk_size))).encode())
+    digest.update(pd.util.hash_pandas_object(points, index=False).to_numpy().tobytes())
+    return digest.hexdigest()
+
+
+# --------------------------------------------------------------------------
+# The parts folder
+# --------------------------------------------------------------------------
+
+class Parts:
+    """The folder ``OUTPUT.parts``: one file per finished chunk, a manifest, temporary files.
+
+    Parameters
+    ----------
+    output : str or Path
+        The sweep's output file; the folder is beside it.
+    """
+
+    MANIFEST = "sweep.json"
+
+    def __init__(self, output):
+        output = Path(output)
+        self.folder = output.with_name(output.name + ".parts")
+
+    def path(self, index):
+        """The file of chunk ``index``."""
+        return self.folder / f"chunk-{index:05d}.parquet"
+
+    def manifest(self):
+        """What the folder's manifest records (``{}`` when there is none or it is unreadable)."""
+        try:
+            return json.loads((self.folder / self.MANIFEST).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return {}
+
+    def open(self, record, chunks, resume):
+        """Create the folder, or (``resume``) read the chunks already in it.
+
+        Parameters
+        ----------
+        record : dict
+            The manifest: ``fingerprint`` and what else identifies the sweep.
+        chunks : list of (int, pandas.DataFrame)
+            Every chunk of the sweep, to check the parts against.
+        resume : bool
+
+        Returns
+        -------
+        dict
+            Chunk index to its results, for the sound parts found. A part
+            that cannot be read or does not hold its chunk's points is said
+            on stderr (one line), removed and left to be computed again.
+
+        Raises
+        ------
+        SceneError
+            The folder exists without ``resume``, or holds another sweep.
+        """
+        if not self.folder.exists():
+            _check_folder(self.folder)
+            self.folder.mkdir()
+            (self.folder / self.MANIFEST).write_text(json.dumps(record), encoding="utf-8")
+            return {}
+        if not resume:
+            raise SceneError("--output", f"{str(self.folder)!r} holds the chunks of an earlier, "
+                             f"unfinished sweep: resume it (--resume) or delete the folder")
+        if self.manifest().get("fingerprint") != record["fingerprint"]:
+            raise SceneError("--resume", f"the parts in {str(self.folder)!r} come from a "
+                             f"different sweep (scene, fields, values or chunk size differ); "
+                             f"delete the folder to start over")
+        for stale in self.folder.glob("*.tmp-*"):   # left by a killed run
+            stale.unlink(missing_ok=True)
+        done = {}
+        for i, chunk in chunks:
+            path = self.path(i)
+            if not path.exists():
+                continue
+            problem = _damage(path, chunk)
+            if problem:
+                print(f"flyopt sweep: {path}: {problem}; computing chunk {i} again",
+                      file=sys.stderr)
+                path.unlink()
+            else:
+                done[i] = read_results(path)
+        return done
+
+    def save(self, index, frame):
+        """Write the results of chunk ``index`` (atomically)."""
+        write_results(frame, self.path(index), temporary_folder=self.folder)
+
+    def remove(self):
+        """Remove the folder and everything in it."""
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def _damage(path, chunk):
+    """What is wrong with the part file of ``chunk`` ("" when it is sound)."""
+    try:
+        frame = read_results(path)
+    except Exception as err:   # noqa: BLE001 - whatever the reader says, the part is unusable
+        text = str(err).strip().splitlines()
+        return f"cannot be read ({type(err).__name__}: {text[0] if text else ''})"
+    if len(frame) != len(chunk):
+        return f"holds {len(frame)} rows, not the chunk's {len(chunk)}"
+    missing = [c for c in chunk.columns if c not in frame.columns]
+    if missing:
+        return f"lacks the column {missing[0]!r}"
+    if not (frame["point"].to_numpy() == chunk["point"].to_numpy()).all():
+        return "holds other points than its chunk"
+    return ""
+
+
+# --------------------------------------------------------------------------
+# Progress
+# --------------------------------------------------------------------------
 
 class _Progress:
     """A progress line with rate and ETA on stderr (a bar on a terminal)."""
@@ -112,30 +261,167 @@ def _clock(seconds):
     return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
 
 
-def _run_chunk(ctx, index, points):
-    return index, _evaluate(ctx, points)
+# --------------------------------------------------------------------------
+# Running
+# --------------------------------------------------------------------------
 
-
-_WORKER_CONTEXT = None
-
-
-def _init_worker(ctx):
-    global _WORKER_CONTEXT
-    _WORKER_CONTEXT = ctx
-
-
-def _run_chunk_in_worker(index, points):
-    return index, _evaluate(_WORKER_CONTEXT, points)
-
-
-def _cpu_count():
+def picklable(task):
+    """Whether ``task`` can travel to worker processes (a scene's torques may not)."""
     try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not Linux
-        return os.cpu_count() or 1
+        pickle.dumps(task)
+    except (pickle.PicklingError, TypeError, AttributeError):
+        return False
+    return True
 
 
-def _mp_context():
+@contextmanager
+def connect(scheduler):
+    """A Dask client for ``scheduler`` (None: no client), closed at the end if opened here.
+
+    Connects (within :data:`CONNECT_SECONDS`) before the sweep writes
+    anything, so a wrong address leaves no parts folder behind.
+
+    Raises
+    ------
+    SceneError
+        ``--scheduler``: dask.distributed is missing, or the scheduler does
+        not answer.
+    """
+    if scheduler is None:
+        yield None
+        return
+    try:
+        from dask.distributed import Client
+    except ImportError as err:  # pragma: no cover - dask is in the test extras
+        raise SceneError("--scheduler", "running on a Dask cluster needs dask[distributed] "
+                         "(pip install 'flyopt[cluster]')") from err
+    if isinstance(scheduler, Client):
+        yield scheduler
+        return
+    try:
+        client = Client(scheduler, timeout=CONNECT_SECONDS, set_as_default=False)
+    except (OSError, TimeoutError, ValueError, TypeError) as err:
+        reason = (str(err).strip().splitlines() or [type(err).__name__])[0]
+        raise SceneError("--scheduler", f"cannot connect to the Dask scheduler {scheduler!r} "
+                         f"within {CONNECT_SECONDS:g} s: {reason}") from None
+    try:
+        yield client
+    finally:
+        client.close()
+
+
+def run_chunks(task, chunks, pending, *, parts=None, done=None, workers=1, client=None,
+               progress=False):
+    """Run ``task`` on the ``pending`` chunks; save each as it finishes.
+
+    Parameters
+    ----------
+    task : callable
+        ``task(points) -> pandas.DataFrame``; picklable to run in processes.
+    chunks : list of (int, pandas.DataFrame)
+        Every chunk of the sweep (for the counts).
+    pending : list of (int, pandas.DataFrame)
+        The chunks to run now.
+    parts : Parts, optional
+        Where finished chunks are saved.
+    done : dict, optional
+        Results already at hand (chunk index to table); updated in place.
+    workers : int
+        Worker processes (1: serially, in this process).
+    client : dask.distributed.Client, optional
+        Run on this Dask cluster instead.
+    progress : bool
+        A progress line with rate and ETA on stderr.
+
+    Returns
+    -------
+    results : dict
+        Chunk index to its table, for every finished chunk (``done`` too).
+    ran : list of int
+        The chunks run in this call.
+
+    Raises
+    ------
+    Interrupted
+        Ctrl-C, or a Dask cluster that lost its workers: the finished chunks
+        are kept in ``parts`` and the message says how many and that
+        ``--resume`` continues.
+    """
+    results = {} if done is None else done
+    ran = []
+    total = sum(len(chunk) for _, chunk in chunks)
+    meter = _Progress(total, len(chunks), progress,
+                      done_points=sum(len(frame) for frame in results.values()))
+
+    def finished(i, frame):
+        if parts is not None:
+            parts.save(i, frame)
+        results[i] = frame
+        ran.append(i)
+        meter.update(len(frame), int(frame["n_combinations"].sum())
+                     if "n_combinations" in frame else len(frame))
+
+    try:
+        if not pending:
+            pass
+        elif client is not None:
+            _run_dask(client, task, pending, finished)
+        elif workers > 1:
+            _run_processes(task, pending, workers, finished)
+        else:
+            for i, chunk in pending:
+                finished(i, task(chunk))
+    except KeyboardInterrupt:
+        raise Interrupted(stopped("interrupted", parts, len(results), len(chunks))) from None
+    except _WorkersLost as err:
+        raise Interrupted(stopped(str(err), parts, len(results), len(chunks))) from None
+    finally:
+        meter.close()
+    return results, ran
+
+
+def stopped(why, parts, saved, total):
+    """One line: why a sweep stopped, what it kept and how to continue."""
+    if parts is None:
+        return f"{why}; nothing was saved (no output file: give one to keep finished chunks)"
+    return (f"{why}; {saved} of {total} chunks saved in {parts.folder}; "
+            f"--resume continues")
+
+
+class _WorkersLost(Exception):
+    """A Dask cluster has no worker left to run the chunks."""
+
+
+# -- worker processes ------------------------------------------------------
+
+_TASK = None
+
+
+def _init_worker(task):
+    global _TASK
+    _TASK = task
+    signal.signal(signal.SIGINT, signal.SIG_IGN)   # Ctrl-C is the parent's to handle
+    _die_with_parent()
+
+
+def _die_with_parent():
+    """Ask Linux to kill this process when its parent dies (``prctl(PR_SET_PDEATHSIG)``)."""
+    if not sys.platform.startswith("linux"):  # pragma: no cover - elsewhere, at the parent's exit
+        return
+    import ctypes
+
+    parent = os.getppid()
+    pr_set_pdeathsig = 1
+    ctypes.CDLL(None, use_errno=True).prctl(pr_set_pdeathsig, signal.SIGKILL, 0, 0, 0)
+    if parent == 1 or os.getppid() != parent:   # the parent died before the request
+        os._exit(1)
+
+
+def _run_in_worker(index, points):
+    return index, _TASK(points)
+
+
+def _mp_context(preload):
     import multiprocessing as mp
 
     methods = mp.get_all_start_methods()
@@ -145,69 +431,81 @@ def _mp_context():
         return mp.get_context("fork")
     if "forkserver" in methods:
         context = mp.get_context("forkserver")
-        # the server imports flyopt (numpy, pandas, CasADi) once; workers fork from it
-        context.set_forkserver_preload(["flyopt.studies.runner"])
+        # the server imports the task's module (numpy, pandas, CasADi) once; workers fork from it
+        context.set_forkserver_preload([preload])
         return context
     return mp.get_context("spawn")  # pragma: no cover - Windows
 
 
-def _fingerprint(ctx, points, chunk_size):
-    scene = ctx.scene.replace(source=None)
-    text = repr((repr(scene), ctx.a_max, ctx.driving_torque, ctx.reusable, ctx.method,
-                 sorted((ctx.solver_options or {}).items()), ctx.axes, chunk_size))
-    digest = hashlib.sha256(text.encode())
-    digest.update(pd.util.hash_pandas_object(points, index=False).to_numpy().tobytes())
-    return digest.hexdigest()
-
-
-def _parts_dir(output):
-    output = Path(output)
-    return output.with_name(output.name + ".parts")
-
-
-def _part_path(parts, index):
-    return parts / f"chunk-{index:05d}.parquet"
-
-
-def _run_processes(ctx, pending, n_workers, finished):
+def _run_processes(task, pending, n_workers, finished):
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    with ProcessPoolExecutor(max_workers=n_workers, mp_context=_mp_context(),
-                             initializer=_init_worker, initargs=(ctx,)) as pool:
-        futures = [pool.submit(_run_chunk_in_worker, i, chunk) for i, chunk in pending]
-        try:
-            for future in as_completed(futures):
-                finished(*future.result())
-        except BaseException:
-            for future in futures:
-                future.cancel()
-            raise
-
-
-def _run_dask(scheduler, ctx, pending, finished):
+    module = getattr(task, "func", task).__module__
+    pool = ProcessPoolExecutor(max_workers=n_workers, mp_context=_mp_context(module),
+                               initializer=_init_worker, initargs=(task,))
     try:
-        from dask.distributed import Client, as_completed
-    except ImportError as err:  # pragma: no cover - dask is in the test extras
-        raise SceneError("scheduler", "running on a Dask cluster needs dask[distributed] "
-                         "(pip install 'flyopt[cluster]')") from err
-    own = not isinstance(scheduler, Client)
-    if own:
-        address = scheduler if isinstance(scheduler, str) else scheduler
-        try:
-            client = Client(address)
-        except (OSError, TimeoutError, ValueError) as err:
-            raise SceneError("scheduler", f"cannot connect to the Dask scheduler "
-                             f"{scheduler!r}: {err}") from err
-    else:
-        client = scheduler
-    try:
-        context = client.scatter(ctx, broadcast=True)
-        futures = [client.submit(_run_chunk, context, i, chunk, pure=False)
-                   for i, chunk in pending]
+        futures = [pool.submit(_run_in_worker, i, chunk) for i, chunk in pending]
         for future in as_completed(futures):
             finished(*future.result())
-    finally:
-        if own:
-            client.close()
+    except BaseException:
+        _terminate(pool)
+        raise
+    pool.shutdown()
 
 
+def _terminate(pool):
+    """Stop a process pool now: pending chunks cancelled, running workers ended."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        process.terminate()
+    for process in processes:
+        process.join(timeout=5.0)
+        if process.is_alive():  # pragma: no cover - SIGTERM is not ignored by the workers
+            process.kill()
+            process.join(timeout=5.0)
+
+
+# -- Dask ------------------------------------------------------------------
+
+def _run_task(task, index, points):
+    return index, task(points)
+
+
+def _run_dask(client, task, pending, finished):
+    from dask.distributed import KilledWorker, as_completed
+
+    futures = {client.submit(_run_task, task, i, chunk, pure=False): i for i, chunk in pending}
+    queue = as_completed(list(futures))
+    alone_since = None
+    try:
+        while not queue.is_empty():
+            batch = queue.next_batch(block=False)
+            for future in batch:
+                try:
+                    finished(*future.result())
+                except KilledWorker as err:
+                    raise _WorkersLost(f"chunk {futures[future]} killed every Dask worker that "
+                                       f"ran it ({type(err).__name__})") from None
+            if batch:
+                alone_since = None
+                continue
+            try:
+                workers = client.scheduler_info()["workers"]
+            except (OSError, TimeoutError) as err:
+                raise _WorkersLost(f"the connection to the Dask scheduler was lost "
+                                   f"({type(err).__name__})") from None
+            if workers:
+                alone_since = None
+            elif alone_since is None:
+                alone_since = time.monotonic()
+            elif time.monotonic() - alone_since > NO_WORKERS_SECONDS:
+                raise _WorkersLost(f"all Dask workers were lost (none for "
+                                   f"{NO_WORKERS_SECONDS:g} s)")
+            time.sleep(POLL_SECONDS)
+    except BaseException:
+        try:
+            client.cancel(list(futures))
+        except (OSError, TimeoutError):  # the scheduler is gone: nothing left to cancel
+            pass
+        raise
