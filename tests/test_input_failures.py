@@ -85,3 +85,35 @@ def test_a_percentage_is_read_as_a_fraction_in_every_dimensionless_field(write_s
 def test_a_percentage_is_no_speed_angle_or_torque(write_scene, command, old, new, field):
     path = write_scene(scene(old, new))
     assert_refused(run(command, path), path, field, "wrong dimension: expected")
+
+
+# -- messages quote at most a short piece of what was written ------------------------
+
+MB = 1_000_000
+
+
+@pytest.mark.parametrize("old, new, field, match", [
+    ('speed = "1500 rpm"', f'speed = {"1" * 4000}', "machine.speed",
+     r"must be finite, got an integer of about 399\d digits"),
+    ('title = "t"', f'title = ["{"t" * MB}"]', "title", "must be a string"),
+    ("delta = 0.05", f'delta = 0.05\n{"k" * MB} = 1', "machine.kkkk", "unknown key"),
+    ('constant = "unknown"', f'expression = "1 + {"x" * 1900}"', "torque.driving.expression",
+     r"unknown name 'x+…' \(1900 characters\)"),
+    ('constant = "unknown"', 'constant = "unknown"\n[design]\ngeometry = "' + "rim" * MB + '"', "design.geometry",
+     r"\(3000000 characters\) is not known"),
+    ('constant = "unknown"', 'constant = "unknown"\n[[shaft]]\nname = "s"\nspeed_ratio = 1\n[design]\nshafts = ["'
+     + "s" * MB + '"]', "design.shafts[0]", r"unknown shaft 's+…' \(1000000 characters\)"),
+])
+def test_a_message_quotes_at_most_a_short_piece_of_the_input(write_scene, old, new, field, match):
+    path = write_scene(scene(old, new))
+    assert_refused(run("check", path), path, field, match)
+
+
+@pytest.mark.parametrize("value", ["x" * MB, "it's " * 1000, ["y" * MB], [1] * MB, 10 ** 4000, 1e300, "short"])
+def test_shorten_quotes_at_most_about_sixty_characters(value):
+    from flyopt.errors import QUOTE_LENGTH, shorten
+
+    text = shorten(value)
+    assert len(text) <= QUOTE_LENGTH + 30, text
+    if isinstance(value, str) and len(value) < QUOTE_LENGTH - 2:
+        assert text == repr(value)

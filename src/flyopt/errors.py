@@ -2,7 +2,55 @@
 
 Each subclasses a built-in so callers may catch either the specific error or
 the built-in (the python-control pattern).
+
+Messages quote what the user wrote through :func:`shorten`, so that a
+megabyte of input gives a message of one short line.
 """
+
+import math
+
+QUOTE_LENGTH = 60
+"""Longest quotation of user text in a message [characters]; longer text is cut."""
+
+
+def shorten(value, limit=QUOTE_LENGTH):
+    """The ``repr`` of a value the user gave, cut to about ``limit`` characters.
+
+    Parameters
+    ----------
+    value : object
+        What the user wrote (a string, number, list, ...).
+    limit : int
+        Longest quotation [characters].
+
+    Returns
+    -------
+    str
+        ``repr(value)`` when it is short; otherwise its first characters, an
+        ellipsis and the length, e.g. ``'1111111111…' (1000004 characters)``.
+
+    Examples
+    --------
+    >>> shorten("1500 rpm")
+    "'1500 rpm'"
+    >>> shorten("x" * 1000, limit=10)
+    "'xxxxxxxx…' (1000 characters)"
+    """
+    if isinstance(value, str):
+        if len(value) + 2 <= limit:
+            return repr(value)
+        head = repr(value[:max(limit - 2, 1)])
+        return f"{head[:-1]}…{head[-1]} ({len(value)} characters)"
+    if isinstance(value, (list, tuple, dict)) and len(value) > limit:   # never build the whole repr
+        return f"a {type(value).__name__} of {len(value)} items"
+    if isinstance(value, int) and value.bit_length() > 4 * limit:   # repr refuses over 4300 digits
+        return f"an integer of about {int((value.bit_length() - 1) * math.log10(2)) + 1} digits"
+    return clip(repr(value), limit)
+
+
+def clip(text, limit=2 * QUOTE_LENGTH):
+    """Text cut to ``limit`` characters with an ellipsis and its length (unquoted, e.g. a field path)."""
+    return text if len(text) <= limit else f"{text[:limit - 1]}… ({len(text)} characters)"
 
 
 class FlyoptError(Exception):
@@ -30,7 +78,7 @@ class SceneError(FlyoptError, ValueError):
 
     def _text(self):
         where = f"{self.source}: " if self.source else ""
-        field = f"{self.field}: " if self.field else ""
+        field = f"{clip(self.field)}: " if self.field else ""   # a field path may hold a key the user wrote
         return f"{where}{field}{self.message}"
 
     def with_source(self, source):

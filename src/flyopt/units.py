@@ -10,7 +10,7 @@ to a plain number (0.01, 0.005) like any other unit, and is no speed or angle.
 import functools
 import math
 
-from flyopt.errors import SceneError
+from flyopt.errors import SceneError, clip, shorten
 
 G_STANDARD = 9.81
 """Acceleration of gravity used for GD² [m/s^2] (the electric-drive convention, GD² = 4 g J)."""
@@ -70,41 +70,46 @@ def quantity(value, dimension, field="value"):
     SceneError
         Not a number, unknown unit, wrong dimension, NaN or infinite.
     """
-    dim, si_unit, words = DIMENSIONS[dimension]
+    words = DIMENSIONS[dimension][2]
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-        raise SceneError(field, f"expected {words}, got {value!r}")
-    if isinstance(value, str):
-        text = value.strip()
-        try:
-            q = registry().Quantity(text)
-        except Exception as err:  # pint raises many types (UndefinedUnitError, DefinitionSyntaxError, ...)
-            raise SceneError(field, f"cannot read {value!r} as {words}: {_pint_reason(err)}") from None
-        if not hasattr(q, "units") or q.units == registry().dimensionless:
-            number = float(q.magnitude if hasattr(q, "magnitude") else q)  # no unit written (or "rad/rad"): SI
-        else:
-            # "%", "permille", "ppm", "m/mm" are units too: a fraction, converted like any other unit
-            want = registry().get_dimensionality(dim) if dim else registry().Quantity(1).dimensionality
-            if q.dimensionality != want or (dimension == "angle" and not _is_angle(q)):
-                raise SceneError(field, f"{value!r} has the wrong dimension: expected {words}")
-            number = float(q.to(si_unit).magnitude) if si_unit else float(q.to("").magnitude)
-            if dimension == "angular_speed" and "radian" not in str(q.to_root_units().units):
-                # a bare 1/time ("25 Hz", "1500 1/min") is a rotational frequency: revolutions per time
-                number *= 2.0 * math.pi
-    else:
-        number = float(value)
+        raise SceneError(field, f"expected {words}, got {shorten(value)}")
+    try:
+        number = _si_number(value, dimension, field) if isinstance(value, str) else float(value)
+    except OverflowError:       # an integer beyond the floats (TOML allows 4300 digits)
+        number = math.inf
     if not math.isfinite(number):
-        raise SceneError(field, f"must be finite, got {value!r}")
+        raise SceneError(field, f"must be finite, got {shorten(value)}")
+    return number
+
+
+def _si_number(text, dimension, field):
+    """The SI float of a string with a unit (see :func:`quantity`)."""
+    dim, si_unit, words = DIMENSIONS[dimension]
+    try:
+        q = registry().Quantity(text.strip())
+    except Exception as err:  # pint raises many types (UndefinedUnitError, DefinitionSyntaxError, ...)
+        raise SceneError(field, f"cannot read {shorten(text)} as {words}: {_pint_reason(err)}") from None
+    if not hasattr(q, "units") or q.units == registry().dimensionless:
+        return float(q.magnitude if hasattr(q, "magnitude") else q)  # no unit written (or "rad/rad"): SI
+    # "%", "permille", "ppm", "m/mm" are units too: a fraction, converted like any other unit
+    want = registry().get_dimensionality(dim) if dim else registry().Quantity(1).dimensionality
+    if q.dimensionality != want or (dimension == "angle" and not _is_angle(q)):
+        raise SceneError(field, f"{shorten(text)} has the wrong dimension: expected {words}")
+    number = float(q.to(si_unit).magnitude) if si_unit else float(q.to("").magnitude)
+    if dimension == "angular_speed" and not _is_angle(q):
+        # a bare 1/time ("25 Hz", "1500 1/min") is a rotational frequency: revolutions per time
+        number *= 2.0 * math.pi
     return number
 
 
 def _is_angle(q):
-    """True when a dimensionless quantity is an angle ("90 deg", "1 turn"), not a ratio ("50 %")."""
+    """True when the units hold an angle ("90 deg", "1 turn", "rpm"), not a ratio ("50 %") or a bare 1/time."""
     return "radian" in str(q.to_root_units().units)
 
 
 def _pint_reason(err):
     text = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
-    return text
+    return clip(text)
 
 
 def rpm_to_rad_s(n):

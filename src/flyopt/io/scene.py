@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flyopt.errors import ExpressionError, SceneError
+from flyopt.errors import ExpressionError, SceneError, clip, shorten
 from flyopt.machine.expression import Expression
 from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.units import inertia_from_gd2, quantity
@@ -147,6 +147,11 @@ def load(path):
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise SceneError("", f"not valid TOML: {err}", str(path)) from None
+    except ValueError as err:        # an integer of over 4300 digits
+        raise SceneError("", f"not a scene: {clip(str(err))}", str(path)) from None
+    except (RecursionError, MemoryError):
+        raise SceneError("", "not a scene: arrays or tables nested too deeply (or too large) to read "
+                         f"({len(text)} characters)", str(path)) from None
     try:
         return from_dict(data, source=str(path))
     except SceneError as err:
@@ -167,10 +172,10 @@ def from_dict(data, source=None):
                      {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"})
     omega = machine.quantity("speed", "angular_speed", required=True)
     if omega <= 0:
-        raise SceneError("machine.speed", f"must be positive, got {machine.raw('speed')!r}")
+        raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
     delta = machine.quantity("delta", "dimensionless", required=True)
     if not 0 < delta < 2:
-        raise SceneError("machine.delta", f"must lie between 0 and 2 (exclusive), got {machine.raw('delta')!r}; "
+        raise SceneError("machine.delta", f"must lie between 0 and 2 (exclusive), got {shorten(machine.raw('delta'))}; "
                          "typical values are 1/5 (crushers) to 1/300 (AC generators)")
     if machine.has("inertia") and machine.has("gd2"):
         raise SceneError("machine.gd2", "give either machine.inertia or machine.gd2, not both")
@@ -181,7 +186,7 @@ def from_dict(data, source=None):
         raise SceneError("machine.inertia" if machine.has("inertia") else "machine.gd2", "must not be negative")
     cycle = machine.quantity("cycle", "angle", default=2 * math.pi)
     if cycle <= 0:
-        raise SceneError("machine.cycle", f"must be positive, got {machine.raw('cycle')!r}")
+        raise SceneError("machine.cycle", f"must be positive, got {shorten(machine.raw('cycle'))}")
 
     shafts = _shafts(top.get("shaft"))
     efficiency = _efficiency(machine.get("efficiency"), "machine.efficiency") if machine.has("efficiency") \
@@ -197,7 +202,7 @@ def from_dict(data, source=None):
     design, design_materials, design_shafts = _design(top.get("design", {}), shafts, materials)
     title = top.get("title", "")
     if not isinstance(title, str):
-        raise SceneError("title", f"must be a string, got {title!r}")
+        raise SceneError("title", f"must be a string, got {shorten(title)}")
     return Scene(title=title or (Path(source).stem if source else "scene"), omega_mean=omega, delta=delta,
                  j_constant=j_c, cycle_angle=cycle, efficiency=efficiency, driving=driving,
                  resisting=resisting, net=net, shafts=shafts, design=design,
@@ -263,7 +268,7 @@ def _points(raw, where, cycle, unit, angle_unit, dimension="torque"):
     values = np.empty(len(raw))
     for k, pair in enumerate(raw):
         if not isinstance(pair, list) or len(pair) != 2:
-            raise SceneError(f"{where}[{k}]", f"must be an [angle, {dimension}] pair, got {pair!r}")
+            raise SceneError(f"{where}[{k}]", f"must be an [angle, {dimension}] pair, got {shorten(pair)}")
         angles[k] = _scaled(pair[0], "angle", f"{where}[{k}] angle", angle_unit)
         values[k] = _scaled(pair[1], dimension, f"{where}[{k}] {dimension}", unit)
     steps = np.diff(angles)
@@ -296,21 +301,21 @@ def _motor(raw, where, shafts, efficiency):
         raise SceneError(where, "must be a table, e.g. { kind = \"induction\", rated_power = \"7.5 kW\", ... }")
     kind = raw.get("kind")
     if kind not in kinds:
-        raise SceneError(f"{where}.kind", f"{kind!r} is not known (allowed: induction, dc)")
+        raise SceneError(f"{where}.kind", f"{shorten(kind)} is not known (allowed: induction, dc)")
     table = _Table(raw, where, kinds[kind])
     speed_ratio = 1.0
     if table.has("shaft"):
         name = table.get("shaft")
         match = [s for s in shafts if s.name == name]
         if not match:
-            raise SceneError(f"{where}.shaft", f"no [[shaft]] is named {name!r} "
+            raise SceneError(f"{where}.shaft", f"no [[shaft]] is named {shorten(name)} "
                              f"(known: {', '.join(s.name for s in shafts)})")
         speed_ratio = match[0].speed_ratio
     try:
         if kind == "induction":
             model = table.get("model", "linear")
             if model not in ("linear", "kloss"):
-                raise SceneError(f"{where}.model", f"{model!r} is not known (allowed: linear, kloss)")
+                raise SceneError(f"{where}.model", f"{shorten(model)} is not known (allowed: linear, kloss)")
             motor = InductionMotor(table.quantity("rated_power", "power", required=True),
                                    table.quantity("rated_speed", "angular_speed", required=True),
                                    table.quantity("synchronous_speed", "angular_speed", required=True),
@@ -353,7 +358,7 @@ def _mechanism(raw):
         if isinstance(err, SceneError):
             raise
         raise SceneError("mechanism", str(err)) from None
-    raise SceneError("mechanism.kind", f"{kind!r} is not known (allowed: slider_crank, gear_train)")
+    raise SceneError("mechanism.kind", f"{shorten(kind)} is not known (allowed: slider_crank, gear_train)")
 
 
 def _members(raw, mechanism, cycle):
@@ -370,9 +375,9 @@ def _members(raw, mechanism, cycle):
                                      "force", "force_sense", "torque", "unit", "angle_unit", "description"})
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
-            raise SceneError(f"{where}.name", f"must be a non-empty string, got {name!r}")
+            raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
         if name in seen:
-            raise SceneError(f"{where}.name", f"member {name!r} is given twice")
+            raise SceneError(f"{where}.name", f"member {shorten(name)} is given twice")
         seen.add(name)
         angle_unit = _unit_factor(table.get("angle_unit"), "angle", f"{where}.angle_unit") \
             if table.has("angle_unit") else 1.0
@@ -392,7 +397,7 @@ def _members(raw, mechanism, cycle):
                 if isinstance(mechanism, GearTrain):
                     if isinstance(part, bool) or not isinstance(part, int):
                         raise SceneError(f"{where}.part", f"a gear train's part is a shaft number 0..."
-                                         f"{len(mechanism.ratios)}, got {part!r}")
+                                         f"{len(mechanism.ratios)}, got {shorten(part)}")
                     kin = mechanism.kinematics(part)
                 else:
                     centre = table.quantity("centre", "length") if table.has("centre") else None
@@ -409,7 +414,8 @@ def _members(raw, mechanism, cycle):
         torque = _member_curve(table, "torque", "torque", where, angle_unit, cycle, None)
         sense = table.get("force_sense", "resisting")
         if sense not in FORCE_SENSES:
-            raise SceneError(f"{where}.force_sense", f"{sense!r} is not known (allowed: {', '.join(FORCE_SENSES)})")
+            raise SceneError(f"{where}.force_sense",
+                             f"{shorten(sense)} is not known (allowed: {', '.join(FORCE_SENSES)})")
         try:
             members.append(Member(name, mass, inertia, velocity, angular, force, sense, torque))
         except ValueError as err:
@@ -450,7 +456,7 @@ def _net_areas(section):
         for k, a in enumerate(areas):
             if isinstance(a, str):
                 raise SceneError(f"torque.net.areas[{k}]", "with drawing scales the areas are plain numbers "
-                                 f"(in area_unit), got {a!r}")
+                                 f"(in area_unit), got {shorten(a)}")
             energies.append(factor * quantity(a, "dimensionless", f"torque.net.areas[{k}]"))
     else:
         energies = [quantity(a, "energy", f"torque.net.areas[{k}]") for k, a in enumerate(areas)]
@@ -468,13 +474,13 @@ def _shafts(raw):
         table = _Table(item, where, {"name", "speed_ratio", "efficiency", "description"})
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
-            raise SceneError(f"{where}.name", f"must be a non-empty string, got {name!r}")
+            raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
         if name in seen:
-            raise SceneError(f"{where}.name", f"shaft {name!r} is given twice")
+            raise SceneError(f"{where}.name", f"shaft {shorten(name)} is given twice")
         seen.add(name)
         ratio = table.quantity("speed_ratio", "dimensionless", required=True)
         if ratio <= 0:
-            raise SceneError(f"{where}.speed_ratio", f"must be positive (ω_shaft/ω_reference), got {ratio!r}")
+            raise SceneError(f"{where}.speed_ratio", f"must be positive (ω_shaft/ω_reference), got {shorten(ratio)}")
         eff = _efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
         shafts.append(Shaft(name, ratio, eff))
     return tuple(shafts)
@@ -494,9 +500,9 @@ def _materials(raw):
                                      "source", "description"})
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
-            raise SceneError(f"{where}.name", f"must be a non-empty string, got {name!r}")
+            raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
         if name in seen:
-            raise SceneError(f"{where}.name", f"material {name!r} is given twice")
+            raise SceneError(f"{where}.name", f"material {shorten(name)} is given twice")
         seen.add(name)
         if not (table.has("max_rim_speed") or table.has("allowable_stress")):
             raise SceneError(where, "give max_rim_speed, or allowable_stress (v_max then follows from σ = ρ v²)")
@@ -508,7 +514,7 @@ def _materials(raw):
         }
         for key, value in values.items():
             if value is not None and (value < 0 or (value == 0 and key != "cost")):
-                raise SceneError(f"{where}.{key}", f"must be positive, got {table.raw(key)!r}")
+                raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
         source = table.get("source", "scene file")
         try:
             materials.append(make_material(name, source=str(source), **values))
@@ -519,7 +525,7 @@ def _materials(raw):
 
 def _design(raw, shafts, materials):
     from flyopt.design.materials import material_library
-    from flyopt.design.optimize import DesignSpec
+    from flyopt.design.spec import DesignSpec
 
     table = _Table(raw, "design", {"geometry", "materials", "shafts", "hb_ratio", "max_outer_diameter",
                                    "max_width", "d_mean", "objective", "description"})
@@ -533,23 +539,24 @@ def _design(raw, shafts, materials):
             allowed = {"geometry": ("thin_rim", "rim", "disc"), "objective": ("mass", "outer_diameter", "cost")}[key]
             if value not in allowed:
                 close = difflib.get_close_matches(str(value), allowed, n=1)
-                hint = f"; did you mean {close[0]!r}?" if close else ""
-                raise SceneError(f"design.{key}", f"{value!r} is not known{hint} (allowed: {', '.join(allowed)})")
+                hint = f"; did you mean {shorten(close[0])}?" if close else ""
+                raise SceneError(f"design.{key}",
+                                 f"{shorten(value)} is not known{hint} (allowed: {', '.join(allowed)})")
             options[key] = value
     if table.has("hb_ratio"):
         hb = table.get("hb_ratio")
         pair = hb if isinstance(hb, list) else [hb, hb]
         if len(pair) != 2:
-            raise SceneError("design.hb_ratio", f"must be one number or a range [min, max], got {hb!r}")
+            raise SceneError("design.hb_ratio", f"must be one number or a range [min, max], got {shorten(hb)}")
         low, high = (quantity(v, "dimensionless", "design.hb_ratio") for v in pair)
         if not 0 < low <= high:
-            raise SceneError("design.hb_ratio", f"must be a range 0 < min <= max, got {hb!r}")
+            raise SceneError("design.hb_ratio", f"must be a range 0 < min <= max, got {shorten(hb)}")
         options["hb_ratio"] = (low, high)
     for key in ("max_outer_diameter", "max_width", "d_mean"):
         if table.has(key):
             value = table.quantity(key, "length")
             if value <= 0:
-                raise SceneError(f"design.{key}", f"must be positive, got {table.raw(key)!r}")
+                raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
             options[key] = value
     if options.get("objective") == "cost":
         chosen = names or tuple(library)
@@ -573,8 +580,8 @@ def _name_list(table, key, known, what):
     for k, name in enumerate(raw):
         if name not in known:
             close = difflib.get_close_matches(name, list(known), n=1)
-            hint = f"; did you mean {close[0]!r}?" if close else ""
-            raise SceneError(f"design.{key}[{k}]", f"unknown {what} {name!r}{hint} "
+            hint = f"; did you mean {shorten(close[0])}?" if close else ""
+            raise SceneError(f"design.{key}[{k}]", f"unknown {what} {shorten(name)}{hint} "
                              f"(known: {', '.join(known)})")
     if len(set(raw)) != len(raw):
         raise SceneError(f"design.{key}", f"a {what} is named twice")
@@ -600,14 +607,14 @@ def _efficiency(raw, where):
         label = f"{where}[{k}]" if isinstance(raw, list) else where
         eta = quantity(s, "dimensionless", label)
         if not 0 < eta <= 1:
-            raise SceneError(label, f"must lie in (0, 1], got {s!r}")
+            raise SceneError(label, f"must lie in (0, 1], got {shorten(s)}")
         product *= eta
     return product
 
 
 def _unit_factor(raw, dimension, where):
     if not isinstance(raw, str):
-        raise SceneError(where, f"must be a unit string, got {raw!r}")
+        raise SceneError(where, f"must be a unit string, got {shorten(raw)}")
     return quantity(f"1 {raw}", dimension, where)
 
 
@@ -628,7 +635,7 @@ class _Table:
         if unknown:
             key = unknown[0]
             close = difflib.get_close_matches(key, sorted(allowed), n=1)
-            hint = f"; did you mean {close[0]!r}?" if close else ""
+            hint = f"; did you mean {shorten(close[0])}?" if close else ""
             path = f"{where}.{key}" if where else key
             raise SceneError(path, f"unknown key{hint} (allowed here: {', '.join(sorted(allowed))})")
         self.data, self.where = data, where

@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from flyopt.errors import ExpressionError
+from flyopt.errors import ExpressionError, shorten
 
 MAX_LENGTH = 2000
 """Longest expression accepted [characters]: a torque curve, not a program."""
@@ -119,7 +119,7 @@ class Expression:
 
     def __init__(self, text, variables=("phi",)):
         if not isinstance(text, str):
-            raise ExpressionError(f"an expression must be a string, got {text!r}")
+            raise ExpressionError(f"an expression must be a string, got {shorten(text)}")
         if len(text) > MAX_LENGTH:
             raise ExpressionError(f"expression longer than {MAX_LENGTH} characters")
         self.text = text
@@ -127,7 +127,7 @@ class Expression:
         try:
             tree = ast.parse(text.strip(), mode="eval")
         except SyntaxError as err:
-            raise ExpressionError(f"cannot parse {text!r}: {err.msg}") from None
+            raise ExpressionError(f"cannot parse {shorten(text)}: {err.msg}") from None
         self.used = set()
         self._kinks = []
         self._build = self._compile(tree.body)
@@ -149,7 +149,7 @@ class Expression:
     def _evaluate(self, values, backend):
         missing = [v for v in self.used if v not in values]
         if missing:
-            raise ExpressionError(f"{self.text!r} needs a value for {', '.join(sorted(missing))}")
+            raise ExpressionError(f"{shorten(self.text)} needs a value for {', '.join(sorted(missing))}")
         if backend == "casadi":
             import casadi as ca
 
@@ -210,10 +210,11 @@ class Expression:
     def _compile(self, node):
         if isinstance(node, ast.Constant):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
-                raise ExpressionError(f"{self.text!r}: only numbers are allowed as constants, got {node.value!r}")
+                raise ExpressionError(f"{shorten(self.text)}: only numbers are allowed as constants, "
+                                      f"got {shorten(node.value)}")
             number = float(node.value)
             if not math.isfinite(number):
-                raise ExpressionError(f"{self.text!r}: the number {node.value!r} is not finite")
+                raise ExpressionError(f"{shorten(self.text)}: the number {shorten(node.value)} is not finite")
             return lambda values, fns: number
         if isinstance(node, ast.Name):
             name = node.id
@@ -223,7 +224,7 @@ class Expression:
             if name in CONSTANTS:
                 number = CONSTANTS[name]
                 return lambda values, fns: number
-            raise ExpressionError(f"{self.text!r}: unknown name {name!r}{self._hint(name)}")
+            raise ExpressionError(f"{shorten(self.text)}: unknown name {shorten(name)}{self._hint(name)}")
         if isinstance(node, ast.BinOp) and type(node.op) in _BINARY:
             op = _BINARY[type(node.op)]
             left, right = self._compile(node.left), self._compile(node.right)
@@ -234,15 +235,16 @@ class Expression:
             return lambda values, fns: op(operand(values, fns))
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name):
-                raise ExpressionError(f"{self.text!r}: only plain function calls are allowed")
+                raise ExpressionError(f"{shorten(self.text)}: only plain function calls are allowed")
             name = node.func.id
             if name not in FUNCTIONS:
-                raise ExpressionError(f"{self.text!r}: unknown function {name!r}{self._hint(name, functions=True)}")
+                raise ExpressionError(f"{shorten(self.text)}: unknown function {shorten(name)}"
+                                      f"{self._hint(name, functions=True)}")
             if node.keywords:
-                raise ExpressionError(f"{self.text!r}: {name}() takes no keyword arguments")
+                raise ExpressionError(f"{shorten(self.text)}: {name}() takes no keyword arguments")
             arity = FUNCTIONS[name][0]
             if len(node.args) != arity:
-                raise ExpressionError(f"{self.text!r}: {name}() takes {arity} argument(s), got {len(node.args)}")
+                raise ExpressionError(f"{shorten(self.text)}: {name}() takes {arity} argument(s), got {len(node.args)}")
             args = [self._compile(a) for a in node.args]
             if name == "abs":
                 self._kinks.append(args[0])
@@ -253,7 +255,7 @@ class Expression:
         op = type(getattr(node, "op", None))
         what = f"the operator {_OTHER_OPERATORS[op]}" if op in _OTHER_OPERATORS else type(node).__name__
         hint = "; use ** for powers" if op is ast.BitXor else ""
-        raise ExpressionError(f"{self.text!r}: {what!s} is not allowed{hint} (numbers, "
+        raise ExpressionError(f"{shorten(self.text)}: {what!s} is not allowed{hint} (numbers, "
                               f"{', '.join(self.variables)}, pi, + - * / **, and "
                               f"{' '.join(FUNCTIONS)} only)")
 
@@ -261,4 +263,4 @@ class Expression:
         pool = list(FUNCTIONS) if functions else [*self.variables, *CONSTANTS]
         close = difflib.get_close_matches(name, pool, n=1)
         allowed = ", ".join(pool)
-        return f" (did you mean {close[0]!r}? allowed: {allowed})" if close else f" (allowed: {allowed})"
+        return f" (did you mean {shorten(close[0])}? allowed: {allowed})" if close else f" (allowed: {allowed})"
