@@ -31,6 +31,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import threading
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -207,11 +208,9 @@ class _Context:
 
 
 def _context(scene, method="auto", solver_options=None, axes=()):
-    from flyopt.analysis import analyse
-
     reusable = _reusable(scene)
     if reusable:
-        analysis = analyse(scene)
+        analysis = physics_analysis(scene)
         stripped = scene.replace(driving=None, resisting=None, net=None)
         return _Context(stripped, analysis.a_max, analysis.driving_torque, True, method,
                         dict(solver_options) if solver_options else None, tuple(axes))
@@ -379,15 +378,48 @@ def _float(value):
 
 def _analyses(scene, points):
     """The analysis of each point, computed once per distinct physics (see PHYSICS_FIELDS)."""
+    fields = [name for name in PHYSICS_FIELDS if name in points]
+    for row in points.to_dict("records"):
+        yield physics_analysis(scene, {name: row[name] for name in fields})
+
+
+#: Analyses of this process, per scene object: {id(scene): (weak reference, {physics: Analysis})}.
+_ANALYSES: dict = {}
+
+
+def physics_analysis(scene, point=None):
+    """The analysis of a scene at one physics (δ, ω_m, J_c, torque scale), computed once.
+
+    Every study (sweep chunks, the points of a Pareto front, the materials of
+    a trade-off) asks here, so that variations of the design alone (envelope,
+    material, shaft, H/B, geometry, objective) never analyse the cycle again.
+    The memo lives as long as the scene object does.
+
+    Parameters
+    ----------
+    scene : Scene
+    point : mapping, optional
+        Values of :data:`PHYSICS_FIELDS` (SI); the scene's own where absent.
+
+    Returns
+    -------
+    flyopt.analysis.Analysis
+    """
     from flyopt.analysis import analyse
 
-    fields = [name for name in PHYSICS_FIELDS if name in points]
-    done = {}
-    for row in points.to_dict("records"):
-        key = tuple(row[name] for name in fields)
-        if key not in done:
-            done[key] = analyse(point_scene(scene, {name: row[name] for name in fields}))
-        yield done[key]
+    point = dict(point or {})
+    own = {"delta": scene.delta, "speed": scene.omega_mean, "inertia": scene.j_constant, "torque.scale": 1.0}
+    key = tuple(float(point.get(name, own[name])) for name in PHYSICS_FIELDS)
+    entry = _ANALYSES.get(id(scene))
+    if entry is None or entry[0]() is not scene:
+        for stale in [k for k, (ref, _) in _ANALYSES.items() if ref() is None]:
+            del _ANALYSES[stale]
+        entry = _ANALYSES[id(scene)] = (weakref.ref(scene), {})
+    memo = entry[1]
+    if key not in memo:
+        changed = {name: value for name, value in zip(PHYSICS_FIELDS, key) if value != own[name]}
+        memo[key] = analyse(point_scene(scene, changed) if changed else scene)
+    return memo[key]
 
 
 def _design_closed_form(inputs, j_margin, mask, res):

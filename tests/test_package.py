@@ -1,0 +1,72 @@
+"""The package itself: a lazy ``import flyopt``, public names that are what they say, no import cycles."""
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import flyopt
+
+SRC = Path(flyopt.__file__).resolve().parent
+
+
+def test_import_flyopt_loads_no_heavy_dependency():
+    code = ("import sys, flyopt; heavy = [m for m in ('pandas', 'pyarrow', 'casadi', 'scipy', 'matplotlib', 'pint') "
+            "if m in sys.modules]; print(','.join(heavy))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == ""
+
+
+def test_public_names_are_the_functions_not_modules():
+    import flyopt.studies.sweep  # noqa: F401  (importing the module must not shadow the function)
+
+    assert callable(flyopt.sweep) and flyopt.sweep.__module__ == "flyopt.studies.sweep"
+    assert callable(flyopt.design_scene) and callable(flyopt.solve)
+    for name in flyopt.__all__:
+        assert getattr(flyopt, name) is not None
+
+
+def _imports(path, modules):
+    """Modules of flyopt that a file imports, at its top level or inside a function.
+
+    A lazy import inside a function still makes the two modules depend on each
+    other, so it counts. ``from package import module`` counts as an import of the module, not of the
+    package's ``__init__`` (which Python runs first, but which only gathers names).
+    """
+    tree = ast.parse(path.read_text())
+    found = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("flyopt"):
+            submodules = {f"{node.module}.{a.name}" for a in node.names} & set(modules)
+            found.update(submodules or {node.module})
+        elif isinstance(node, ast.Import):
+            found.update(a.name for a in node.names if a.name.startswith("flyopt"))
+    return found
+
+
+def test_no_import_cycle_between_modules():
+    """Imports form a DAG (before, flyopt.batch and flyopt.optimize imported each other)."""
+    modules = {}
+    for path in SRC.rglob("*.py"):
+        parts = path.relative_to(SRC.parent).with_suffix("").parts
+        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        modules[name] = path
+    graph = {name: {m for m in _imports(path, modules) if m in modules and m != name}
+             for name, path in modules.items()}
+    cycles = []
+    state = {}
+
+    def visit(node, stack):
+        state[node] = "open"
+        for nxt in sorted(graph[node]):
+            if state.get(nxt) == "open":
+                cycles.append(stack[stack.index(nxt):] + [nxt])
+            elif nxt not in state:
+                visit(nxt, stack + [nxt])
+        state[node] = "done"
+
+    for name in sorted(graph):
+        if name not in state:
+            visit(name, [name])
+    assert not cycles, cycles
