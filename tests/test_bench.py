@@ -7,24 +7,32 @@ exact cycle analysis is held to 1e-12 against exact rational arithmetic
 (flyopt's own claim; the hard suite's bar is 1e-9).
 """
 
+import ast
 import csv
 import math
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from flyopt import bench
+from flyopt.bench import cycle, main, peers, references
+from flyopt.bench.sections import SECTIONS
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _read_csv(path):
+    with open(path, newline="", encoding="utf-8") as handle:
+        return list(csv.DictReader(handle))
 
 
 @pytest.fixture(scope="module")
 def quick_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("bench")
-    status = bench.main(["--quick", "--no-pin", "--out", str(out)])
-    with open(out / "speed_error.csv", newline="", encoding="utf-8") as handle:
-        rows = list(csv.DictReader(handle))
-    return status, out, rows
+    status = main(["--quick", "--no-pin", "--out", str(out)])
+    return status, out, _read_csv(out / "speed_error.csv")
 
 
 def test_quick_run_writes_the_results(quick_run):
@@ -37,7 +45,7 @@ def test_quick_run_writes_the_results(quick_run):
     assert "## Targets" in text and "## cycle" in text and "## design" in text
     assert "[auto, the default]" in text and "[IPOPT]" in text
     assert "Beyond the targets:" in text and "integration alone of 100,000 samples" in text
-    assert {r["section"] for r in rows} == set(bench.SECTIONS)
+    assert {r["section"] for r in rows} == set(SECTIONS)
 
 
 def test_every_method_has_a_time_and_an_error(quick_run):
@@ -76,10 +84,24 @@ def test_design_rows_decide_every_combination(quick_run, method):
     assert float(row["error"]) <= 1e-6
 
 
+def test_required_inertia_section_compares_the_models():
+    """Constant J: the periodic solution reproduces the closed form; variable J and a motor: the
+    constant-inertia method is measurably off and the exact model is the reference."""
+    from flyopt.bench.inertia import section_required_inertia
+    from flyopt.bench.timing import Config
+
+    rows = {(r.case.split(" ")[0], r.method): r for r in section_required_inertia(Config(quick=True))}
+    assert rows["constant", "energy"].error < 1e-12
+    assert rows["constant", "dynamic"].error < 1e-8
+    assert rows["variable", "energy"].error > 1e-3 and rows["variable", "energy_mass"].setting == "cheapest exact"
+    assert rows["variable", "dynamic"].error < 1e-8
+    assert rows["speed-dependent", "energy"].error > 1e-4
+    assert rows["speed-dependent", "dynamic"].setting == "cheapest exact"
+
+
 def test_quick_hard_run(tmp_path):
-    assert bench.main(["--quick", "--hard", "--no-pin", "--out", str(tmp_path)]) == 0
-    with open(tmp_path / "hard.csv", newline="", encoding="utf-8") as handle:
-        rows = list(csv.DictReader(handle))
+    assert main(["--quick", "--hard", "--no-pin", "--out", str(tmp_path)]) == 0
+    rows = _read_csv(tmp_path / "hard.csv")
     assert {r["kind"] for r in rows} == {"cycle", "j_required", "design"}
     design = [r for r in rows if r["kind"] == "design"]
     assert design
@@ -93,52 +115,84 @@ def test_quick_hard_run(tmp_path):
     assert "auto path (the default): 100 %" in text
 
 
-def test_sampled_rules_against_a_closed_form():
-    """A_max of M = 1000 + 300 sin(2 phi) sampled finely: 2 * 300 / 2 = 300 J to 1e-6."""
-    x = np.linspace(0.0, bench.TWO_PI, 4001)
-    y = 1000.0 + 300.0 * np.sin(2.0 * x)
-    for rule in bench.SAMPLED_RULES:
-        assert_allclose(bench.sampled_a_max(x, y, bench.TWO_PI, 100_000, rule), 300.0, rtol=1e-5)
-
-
-def test_exact_reference_on_a_spike():
-    """Domain-style press: the deficit of the stroke is (peak - mean) x stroke, in rationals."""
-    x, y = bench.table_spike()
-    stroke = Fraction(float(x[3])) - Fraction(float(x[1]))
-    mean = (Fraction(100) * (Fraction(bench.TWO_PI) - stroke) + Fraction(5000) * stroke) / Fraction(bench.TWO_PI)
-    assert bench.exact_a_max_against_mean(x, y) == (Fraction(5000) - mean) * stroke
-
-
-def test_baselines_agree_with_the_reference_on_one_combination():
-    """SLSQP and a fine grid land on the 1-D reference mass of a plain combination."""
-    combo = bench.Combination("rim", 7200.0, 10.0, 1.2, (1.5, 2.0), math.inf)
-    ref = bench.lightest_rim_1d(combo)
-    assert ref.verdict == "design" and ref.violation <= 1e-12
-    for variables in ("scaled", "log"):
-        got = bench.slsqp_combination(combo, variables)
-        assert got.verdict == "design", got.reason
-        assert_allclose(got.mass, ref.mass, rtol=1e-6)
-    grid = bench.grid_combination(combo, 3000, 5)
-    assert grid.verdict == "design" and grid.mass >= ref.mass * (1 - 1e-12)
-    assert_allclose(grid.mass, ref.mass, rtol=2e-3)
-
+# ------------------------------------------------------------------------------
+# The command line and the package
+# ------------------------------------------------------------------------------
 
 def test_bad_section_is_refused(capsys):
     with pytest.raises(SystemExit) as err:
-        bench.main(["--sections", "cycle,nonsense", "--no-pin"])
+        main(["--sections", "cycle,nonsense", "--no-pin"])
     assert err.value.code == 2
     assert "nonsense" in capsys.readouterr().err
 
 
-def test_required_inertia_section_compares_the_models():
-    """Constant J: the periodic solution reproduces the closed form; variable J and a motor: the
-    constant-inertia method is measurably off and the exact model is the reference."""
-    from flyopt.bench import Config, section_required_inertia
+def test_nothing_in_flyopt_imports_the_bench():
+    """The bench is a leaf: only the command line's dispatch (flyopt.cli) reaches it."""
+    package = ROOT / "src" / "flyopt"
+    importers = []
+    for path in package.rglob("*.py"):
+        if {"bench", "cli"} & set(path.relative_to(package).parts[:-1]):
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                     [f"{node.module}.{a.name}" for a in node.names] if isinstance(node, ast.ImportFrom) else [])
+            if any(n == "flyopt.bench" or n.startswith("flyopt.bench.") for n in names):
+                importers.append(str(path.relative_to(package)))
+    assert importers == []
 
-    rows = {(r.case.split(" ")[0], r.method): r for r in section_required_inertia(Config(quick=True))}
-    assert rows["constant", "energy"].error < 1e-12
-    assert rows["constant", "dynamic"].error < 1e-8
-    assert rows["variable", "energy"].error > 1e-3 and rows["variable", "energy_mass"].setting == "cheapest exact"
-    assert rows["variable", "dynamic"].error < 1e-8
-    assert rows["speed-dependent", "energy"].error > 1e-4
-    assert rows["speed-dependent", "dynamic"].setting == "cheapest exact"
+
+# ------------------------------------------------------------------------------
+# The bench's references and peers against closed forms
+# ------------------------------------------------------------------------------
+
+def test_sampled_rules_against_a_closed_form():
+    """A_max of M = 1000 + 300 sin(2 phi) sampled finely: 2 * 300 / 2 = 300 J to 1e-6."""
+    x = np.linspace(0.0, cycle.TWO_PI, 4001)
+    y = 1000.0 + 300.0 * np.sin(2.0 * x)
+    for rule in peers.SAMPLED_RULES:
+        assert_allclose(peers.sampled_a_max(x, y, cycle.TWO_PI, 100_000, rule), 300.0, rtol=1e-5)
+
+
+def test_exact_reference_on_a_spike():
+    """Domain-style press: the deficit of the stroke is (peak - mean) x stroke, in rationals."""
+    x, y = cycle.table_spike()
+    stroke = Fraction(float(x[3])) - Fraction(float(x[1]))
+    mean = (Fraction(100) * (Fraction(cycle.TWO_PI) - stroke) + Fraction(5000) * stroke) / Fraction(cycle.TWO_PI)
+    assert references.exact_a_max_against_mean(x, y) == (Fraction(5000) - mean) * stroke
+
+
+def test_rim_inertia_is_the_annulus_integral():
+    """J = pi rho D_m H B (D_m^2 + H^2)/4 is the integral of r^2 dm over the annulus D_m +- H, B
+    wide (R1^4 - R2^4 = (R1^2 - R2^2)(R1^2 + R2^2) = D_m H (D_m^2 + H^2)/2); to round-off."""
+    for d_mean, h, b in ((1.0, 0.1, 0.07), (0.3, 0.29, 0.5), (2.5, 0.01, 0.02)):
+        assert_allclose(references.rim_inertia("rim", 7200.0, d_mean, h, b),
+                        references.exact_annulus_inertia(d_mean + h, d_mean - h, b, 7200.0), rtol=1e-13)
+
+
+def test_largest_rim_inertia_bounds_the_root_search():
+    """Just below the largest inertia a rim can give, the 1-D root search finds a design; just
+    above, it reports the combination infeasible (a width limit makes the largest inertia finite)."""
+    combo = references.Combination("rim", 7200.0, 1.0, 1.2, (1.5, 2.0), 0.05)
+    j_max = references.largest_rim_inertia(combo)
+    # the largest rim fills the cap at H = hb_max B_max = 0.1 m: D_m = 1.1 m, B = 0.05 m
+    assert_allclose(j_max, math.pi * 7200.0 * 1.1 * 0.1 * 0.05 * (1.1 ** 2 + 0.1 ** 2) / 4.0, rtol=1e-14)
+    inside = references.lightest_rim_1d(references.Combination("rim", 7200.0, j_max * (1 - 1e-4), 1.2,
+                                                               (1.5, 2.0), 0.05))
+    outside = references.lightest_rim_1d(references.Combination("rim", 7200.0, j_max * (1 + 1e-4), 1.2,
+                                                                (1.5, 2.0), 0.05))
+    assert inside.verdict == "design" and inside.violation <= 1e-12
+    assert outside.verdict == "infeasible"
+
+
+def test_baselines_agree_with_the_reference_on_one_combination():
+    """SLSQP and a fine grid land on the 1-D reference mass of a plain combination."""
+    combo = references.Combination("rim", 7200.0, 10.0, 1.2, (1.5, 2.0), math.inf)
+    ref = references.lightest_rim_1d(combo)
+    assert ref.verdict == "design" and ref.violation <= 1e-12
+    for variables in ("scaled", "log"):
+        got = peers.slsqp_combination(combo, variables)
+        assert got.verdict == "design", got.reason
+        assert_allclose(got.mass, ref.mass, rtol=1e-6)
+    grid = peers.grid_combination(combo, 3000, 5)
+    assert grid.verdict == "design" and grid.mass >= ref.mass * (1 - 1e-12)
+    assert_allclose(grid.mass, ref.mass, rtol=2e-3)
