@@ -73,3 +73,21 @@ def test_no_flywheel_when_own_inertia_suffices(tmp_path):
     r = flyopt.analyse(flyopt.load(path))
     assert r.flywheel_needed is False and r.j_required == 0.0
     assert_allclose(r.j_margin, 3.2423 - 4, rtol=5e-4)
+
+
+def test_speed_and_energy_extremes_are_named_apart_where_they_differ():
+    """slider-crank-press (variable inertia): ΔE is lowest at 177.4°, the speed at 264.9°.
+
+    The JSON names both: ``angle_delta_e_*`` are the energy chain's extremes,
+    ``angle_omega_*`` where the speed is extreme for the model that ran.
+    """
+    r = flyopt.analyse(flyopt.load(PROBLEMS / "slider-crank-press.toml"))
+    chain = {e["index"]: e for e in r.energy_chain}
+    assert r.angle_delta_e_max == chain[r.index_omega_max]["angle"]
+    assert r.angle_delta_e_min == chain[r.index_omega_min]["angle"]
+    assert chain[r.index_omega_min]["delta_e"] == min(e["delta_e"] for e in r.energy_chain)
+    assert f"{math.degrees(r.angle_delta_e_min):.1f}" == "177.4"
+    assert f"{math.degrees(r.angle_omega_min):.1f}" == "264.9"
+    # the constant-inertia energy model: the two are the same angles
+    e = flyopt.analyse(flyopt.load(PROBLEMS / "shear-press.toml"))
+    assert (e.angle_omega_max, e.angle_omega_min) == (e.angle_delta_e_max, e.angle_delta_e_min)

@@ -6,10 +6,18 @@ by J_F = A_max/(ω_m² δ) − J_c, and move it to every shaft by the
 ratio-squared transfer.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia, speed_extremes
 from flyopt.errors import NonPeriodicCycle, SceneError
+
+if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
+    from flyopt.cycle.indicator import EnergyIndicator
+    from flyopt.machine.reduce import Machine
+    from flyopt.sizing.choose import Requirement
 from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.units import gd2_from_inertia
 
@@ -32,11 +40,22 @@ class ShaftRequirement:
 
 @dataclass(frozen=True)
 class Analysis:
-    """Result of the cycle analysis of a scene (all SI).
+    """Result of the cycle analysis of a scene (all SI; names as in docs/nomenclature.md).
 
     ``j_required`` is the flywheel inertia at the reference shaft, 0 when the
     machine's own inertia suffices (``flywheel_needed`` False; ``j_margin``
     then tells by how much it suffices, as a negative number).
+
+    Two pairs of angles, which differ where the inertia varies or a torque
+    depends on speed: ``angle_omega_max``/``angle_omega_min`` are where the
+    *speed* is highest and lowest for the model that ran (with the flywheel
+    it sizes); ``angle_delta_e_max``/``angle_delta_e_min`` are where the
+    excess work ΔE of the energy indicator diagram is largest and smallest
+    (the ends of A_max; ``index_omega_max``/``_min`` index them in
+    ``energy_chain``). For the energy model the pairs are the same angles.
+
+    ``indicator``, ``machine`` and ``requirement`` are the computed results
+    the report and the plots draw from (they never run a model again).
     """
 
     title: str
@@ -56,6 +75,8 @@ class Analysis:
     omega_min: float
     angle_omega_max: float | None
     angle_omega_min: float | None
+    angle_delta_e_max: float | None
+    angle_delta_e_min: float | None
     model_reason: str
     models: tuple
     startup: dict | None
@@ -67,9 +88,9 @@ class Analysis:
     flywheel_needed: bool
     energy_chain: tuple
     shafts: tuple
-    indicator: object = None
-    machine: object = None
-    requirement: object = None
+    indicator: EnergyIndicator | None = None
+    machine: Machine | None = None
+    requirement: Requirement | None = None
 
     def to_dict(self):
         """Plain JSON-ready dictionary, every number in SI."""
@@ -159,6 +180,7 @@ def _analyse(scene, forced=None):
         work_per_cycle=work, driving_torque=driving, resisting_torque=resisting, power=power,
         efficiency=scene.efficiency, motor_power=motor_power,
         omega_max=omega_max, omega_min=omega_min, angle_omega_max=angles[0], angle_omega_min=angles[1],
+        angle_delta_e_max=ind.angle_omega_max, angle_delta_e_min=ind.angle_omega_min,
         index_omega_max=ind.index_max, index_omega_min=ind.index_min,
         j_margin=j_margin, j_required=j_req, gd2_required=gd2_from_inertia(j_req), flywheel_needed=needed,
         energy_chain=chain, shafts=shafts, indicator=ind, machine=machine, requirement=requirement)
