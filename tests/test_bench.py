@@ -4,12 +4,16 @@ They run the quick configuration into a temporary directory and check what
 was written and that every measurement carries a time and an error. No
 timing is asserted: the machine's speed is not the code's property. The
 exact cycle analysis is held to 1e-12 against exact rational arithmetic
-(flyopt's own claim; the hard suite's bar is 1e-9).
+(flyopt's own claim; the hard suite's bar is 1e-9). A quick run is a smoke
+run: it must leave the committed benchmarks/results alone.
 """
 
 import ast
 import csv
 import math
+import runpy
+import shutil
+import sys
 from fractions import Fraction
 from pathlib import Path
 
@@ -21,6 +25,7 @@ from flyopt.bench import cycle, main, peers, references
 from flyopt.bench.sections import SECTIONS
 
 ROOT = Path(__file__).resolve().parents[1]
+COMMITTED = ("speed_error.csv", "speed_error.md", "speed_error.png", "hard.csv", "hard.md")
 
 
 def _read_csv(path):
@@ -31,7 +36,7 @@ def _read_csv(path):
 @pytest.fixture(scope="module")
 def quick_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("bench")
-    status = main(["--quick", "--no-pin", "--out", str(out)])
+    status = main(["--quick", "--no-pin", "--output-dir", str(out)])
     return status, out, _read_csv(out / "speed_error.csv")
 
 
@@ -100,7 +105,7 @@ def test_required_inertia_section_compares_the_models():
 
 
 def test_quick_hard_run(tmp_path):
-    assert main(["--quick", "--hard", "--no-pin", "--out", str(tmp_path)]) == 0
+    assert main(["--quick", "--hard", "--no-pin", "--output-dir", str(tmp_path)]) == 0
     rows = _read_csv(tmp_path / "hard.csv")
     assert {r["kind"] for r in rows} == {"cycle", "j_required", "design"}
     design = [r for r in rows if r["kind"] == "design"]
@@ -116,8 +121,67 @@ def test_quick_hard_run(tmp_path):
 
 
 # ------------------------------------------------------------------------------
-# The command line and the package
+# Where a run writes
 # ------------------------------------------------------------------------------
+
+def _committed_results(folder):
+    """A benchmarks/results folder with sentinel copies of the committed files; returns their bytes."""
+    results = folder / "benchmarks" / "results"
+    results.mkdir(parents=True)
+    for name in COMMITTED:
+        (results / name).write_bytes(f"committed {name}\n".encode())
+    return {path: path.read_bytes() for path in folder.rglob("*") if path.is_file()}
+
+
+def _run_the_wrapper(folder, argv, monkeypatch):
+    """benchmarks/bench_speed_error.py run as a script from a copy inside ``folder``."""
+    script = folder / "benchmarks" / "bench_speed_error.py"
+    shutil.copy(ROOT / "benchmarks" / "bench_speed_error.py", script)
+    monkeypatch.setattr(sys, "argv", [str(script), *argv])
+    with pytest.raises(SystemExit) as done:
+        runpy.run_path(str(script), run_name="__main__")
+    return done.value.code
+
+
+@pytest.mark.parametrize("how, extra, title", [
+    ("flyopt bench", ["--sections", "geometry"], "# Speed against error"),
+    ("flyopt bench", ["--hard"], "# Hard set"),
+    ("benchmarks/bench_speed_error.py", ["--sections", "geometry"], "# Speed against error"),
+])
+def test_quick_run_leaves_the_committed_results_alone(tmp_path, monkeypatch, capsys, how, extra, title):
+    """A --quick run without --output-dir prints its summary and writes no file, wherever it runs
+    (it used to overwrite benchmarks/results of the working directory, or beside the script)."""
+    before = _committed_results(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    argv = ["--quick", "--no-pin", *extra]
+    status = main(argv) if how == "flyopt bench" else _run_the_wrapper(tmp_path, argv, monkeypatch)
+    assert status == 0
+    after = {path: path.read_bytes() for path in tmp_path.rglob("*")
+             if path.is_file() and path.name != "bench_speed_error.py"}
+    assert after == before
+    assert title in capsys.readouterr().out
+
+
+def test_full_run_writes_into_benchmarks_results(tmp_path, monkeypatch, capsys):
+    """Without --quick and --output-dir the run writes where the committed figures live."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["--sections", "geometry", "--repeats", "1", "--scenes", "1", "--no-pin"]) == 0
+    results = tmp_path / "benchmarks" / "results"
+    assert sorted(p.name for p in results.iterdir()) == ["speed_error.csv", "speed_error.md", "speed_error.png"]
+    assert (results / "speed_error.md").read_text(encoding="utf-8") in capsys.readouterr().out
+
+
+def test_output_dir_that_is_a_file_is_refused(tmp_path, capsys):
+    """Refused before anything runs, naming the option and the path; the file is left as it was."""
+    target = tmp_path / "results"
+    target.write_text("not a folder", encoding="utf-8")
+    with pytest.raises(SystemExit) as err:
+        main(["--quick", "--no-pin", "--output-dir", str(target)])
+    assert err.value.code == 2
+    message = capsys.readouterr().err.strip().splitlines()[-1]
+    assert "--output-dir" in message and str(target) in message and "not a directory" in message
+    assert target.read_text(encoding="utf-8") == "not a folder"
+
 
 def test_bad_section_is_refused(capsys):
     with pytest.raises(SystemExit) as err:

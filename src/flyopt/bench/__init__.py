@@ -26,7 +26,9 @@ One module per concern:
 :mod:`~flyopt.bench.output`
     CSV, plot and Markdown, with the targets they judge.
 :mod:`~flyopt.bench.cli`
-    The options and :func:`main`.
+    The options and :func:`main`. A full run writes into
+    ``benchmarks/results``; a ``--quick`` run writes only into an
+    ``--output-dir`` it is given.
 """
 
 from flyopt.bench.cli import main

@@ -16,19 +16,26 @@ from flyopt.bench.output import hard_summary, plot, summary, write_csv, write_ha
 from flyopt.bench.sections import SECTIONS, run
 from flyopt.bench.timing import Config, machine_header, pin_one_core
 
-__all__ = ["main"]
+__all__ = ["RESULTS", "main"]
+
+RESULTS = Path("benchmarks") / "results"
+"""Where a full run writes by default (relative to the working directory): the committed results."""
 
 
 def _parser():
     parser = argparse.ArgumentParser(
         prog="flyopt bench",
         description="Speed against error: time every way of getting an answer and its error against a "
-                    "reference of known accuracy; write CSV, PNG and Markdown.")
-    parser.add_argument("--out", type=Path, default=Path("benchmarks") / "results",
-                        help="directory for the results (default: benchmarks/results)")
-    parser.add_argument("--quick", action="store_true", help="a few seconds: fewer samples, scenes and repeats")
+                    "reference of known accuracy; print the Markdown summary and write CSV, PNG and "
+                    "Markdown.")
+    parser.add_argument("--output-dir", type=Path, default=None, metavar="DIR",
+                        help=f"directory for the results (default: {RESULTS.as_posix()} for a full run; "
+                             f"a --quick run writes no files unless this is given)")
+    parser.add_argument("--quick", action="store_true",
+                        help="a few seconds: fewer samples, scenes and repeats; a smoke run that only "
+                             "prints its summary unless --output-dir is given")
     parser.add_argument("--hard", action="store_true",
-                        help="run the generated hard set instead (writes hard.md and hard.csv)")
+                        help="run the generated hard set instead (hard.md and hard.csv)")
     parser.add_argument("--sections", default=None,
                         help=f"comma-separated sections to run (default all: {','.join(SECTIONS)})")
     parser.add_argument("--seed", type=int, default=None, help="seed of the random scenes (default 1)")
@@ -39,8 +46,44 @@ def _parser():
     return parser
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of ``flyopt bench``; returns the exit status (0 done, 2 bad arguments)."""
+def _output_dir(args, parser, default):
+    """The folder the run writes into, made ready before the run; None for a quick run without one.
+
+    A full run writes into ``default`` unless ``--output-dir`` is given; a
+    ``--quick`` run is a smoke run and writes only into an ``--output-dir``
+    it is given, never over the committed results. A folder that cannot be
+    written is refused (exit 2) before anything runs.
+    """
+    folder = args.output_dir if args.output_dir is not None else (None if args.quick else default)
+    if folder is None:
+        return None
+    if folder.exists() and not folder.is_dir():
+        parser.error(f"argument --output-dir: {folder} is a file, not a directory")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        parser.error(f"argument --output-dir: cannot create {folder}: {err.strerror or err}")
+    if not os.access(folder, os.W_OK):
+        parser.error(f"argument --output-dir: {folder} is not writable")
+    return folder
+
+
+def main(argv: list[str] | None = None, *, default_output_dir: Path = RESULTS) -> int:
+    """Entry point of ``flyopt bench``; returns the exit status (0 done).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``flyopt bench`` (default: ``sys.argv[1:]``).
+    default_output_dir : Path, optional
+        Where a full run writes without ``--output-dir`` (default
+        ``benchmarks/results`` of the working directory).
+
+    Returns
+    -------
+    int
+        0 when the run is done. Bad arguments exit through argparse (status 2).
+    """
     parser = _parser()
     args = parser.parse_args(argv)
     for name in ("repeats", "scenes", "hard_scenes"):
@@ -53,6 +96,7 @@ def main(argv: list[str] | None = None) -> int:
         unknown = [s for s in sections if s not in SECTIONS]
         if unknown:
             parser.error(f"section {unknown[0]!r} not recognised; allowed are {', '.join(SECTIONS)}")
+    out = _output_dir(args, parser, default_output_dir)
     config = Config.make(args.quick, seed=args.seed, repeats=args.repeats, scenes=args.scenes,
                          hard_scenes=args.hard_scenes)
     here = str(Path.cwd()) + os.sep
@@ -63,21 +107,24 @@ def main(argv: list[str] | None = None) -> int:
         print(text, file=sys.stderr, flush=True)
 
     try:
-        args.out.mkdir(parents=True, exist_ok=True)
         header = machine_header(pinning)
         if args.hard:
             cycle_rows, design_rows = run_hard(config, progress)
             text = hard_summary(cycle_rows, design_rows, header, command.strip())
-            write_hard_csv(args.out / "hard.csv", cycle_rows, design_rows)
-            (args.out / "hard.md").write_text(text, encoding="utf-8")
+            if out is not None:
+                write_hard_csv(out / "hard.csv", cycle_rows, design_rows)
+                (out / "hard.md").write_text(text, encoding="utf-8")
         else:
             rows = run(config, sections, progress)
-            write_csv(args.out / "speed_error.csv", rows)
-            plot(args.out / "speed_error.png", rows)
             text = summary(rows, header, command.strip())
-            (args.out / "speed_error.md").write_text(text, encoding="utf-8")
+            if out is not None:
+                plot(out / "speed_error.png", rows)
+                write_csv(out / "speed_error.csv", rows)
+                (out / "speed_error.md").write_text(text, encoding="utf-8")
     finally:
         if previous is not None:
             os.sched_setaffinity(0, previous)
+    if out is None:
+        progress("a --quick run writes no files; give --output-dir DIR to keep them")
     print(text)
     return 0
