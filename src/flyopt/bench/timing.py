@@ -18,7 +18,7 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["Config", "Timing", "Row", "measure", "set_ratios", "pin_one_core", "machine_header"]
+__all__ = ["Config", "Timing", "Row", "measure", "once", "set_ratios", "pin_one_core", "machine_header"]
 
 
 @dataclass
@@ -107,6 +107,18 @@ def measure(fn: Callable[[], object], repeats: int, min_time: float = 0.0) -> Ti
         samples.append((time.perf_counter() - start) / number)
     q25, q75 = np.quantile(samples, [0.25, 0.75])
     return Timing(statistics.median(samples), float(q25), float(q75), repeats, number)
+
+
+def once(fn: Callable[[], object]) -> tuple[object, Timing]:
+    """One call of ``fn()``, timed: its value and a Timing of that single call.
+
+    The figure of a smoke run (``--quick``) where one call takes seconds: no
+    warm-up and no spread, so the time includes whatever the first call builds.
+    """
+    start = time.perf_counter()
+    value = fn()
+    elapsed = time.perf_counter() - start
+    return value, Timing(elapsed, elapsed, elapsed, 1, 1)
 
 
 @dataclass
