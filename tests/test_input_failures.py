@@ -117,3 +117,27 @@ def test_shorten_quotes_at_most_about_sixty_characters(value):
     assert len(text) <= QUOTE_LENGTH + 30, text
     if isinstance(value, str) and len(value) < QUOTE_LENGTH - 2:
         assert text == repr(value)
+
+
+# -- a number with a unit is read in milliseconds, whatever it holds --------------------
+
+
+@pytest.mark.parametrize("old, new, field, match", [
+    ('speed = "1500 rpm"', 'speed = "9**9**9 rpm"', "machine.speed", "exponent must be a number"),
+    ('speed = "1500 rpm"', 'speed = "10**10**10 rpm"', "machine.speed", "exponent must be a number"),
+    ('speed = "1500 rpm"', 'speed = "1500 rpm^9^9^9"', "machine.speed", "exponent must be a number"),
+    ('speed = "1500 rpm"', 'speed = "9**(9**9) rpm"', "machine.speed", "exponent must be a number"),
+    ('speed = "1500 rpm"', 'speed = "9**99999999 rpm"', "machine.speed", "exponent must be a number"),
+    ('"1600 N*m"], ["90 deg"', '"9^9^9 N*m"], ["90 deg"', "torque.resisting.points[1] torque", "exponent"),
+    ('constant = "unknown"', 'constant = 100\nunit = "N*m**9**9**9"', "torque.driving.unit", "exponent"),
+    ('speed = "1500 rpm"', f'speed = "{"1" * MB} rpm"', "machine.speed", "at most 100 characters"),
+    ("delta = 0.05", f'delta = "{"x" * MB}"', "machine.delta", r"'x+…' \(1000000 characters\) is too long"),
+])
+def test_a_quantity_that_would_take_long_to_evaluate_is_refused_at_once(write_scene, old, new, field, match):
+    path = write_scene(scene(old, new))
+    assert_refused(run("check", path), path, field, match)
+
+
+def test_solve_refuses_a_power_tower_too(write_scene):
+    path = write_scene(scene('speed = "1500 rpm"', 'speed = "9**9**9 rpm"'))
+    assert_refused(run("solve", path), path, "machine.speed", "a number of at most 3 digits, not itself a power")

@@ -37,6 +37,13 @@ from flyopt.units import gd2_from_inertia, inertia_from_gd2, quantity, rad_s_to_
     ("5 permille", "dimensionless", 0.005),
     ("2 m/mm", "dimensionless", 2000.0),
     ("0.5 rad/rad", "dimensionless", 0.5),
+    # powers with a plain exponent are read (the guard against towers lets them through)
+    ("1500 min^-1", "angular_speed", 50 * math.pi),
+    ("1500 min ** -1", "angular_speed", 50 * math.pi),
+    ("2 kg*m^(2)", "inertia", 2.0),
+    ("10**3 kg", "mass", 1000.0),
+    ("1e-3 m^2", "area", 1e-3),
+    ("1 m^0.5 * m^1.5", "area", 1.0),
 ])
 def test_quantities_convert_to_si(text, dimension, si):
     assert_allclose(quantity(text, dimension), si, rtol=1e-15)

@@ -9,11 +9,21 @@ to a plain number (0.01, 0.005) like any other unit, and is no speed or angle.
 
 import functools
 import math
+import re
 
 from flyopt.errors import SceneError, clip, shorten
 
 G_STANDARD = 9.81
 """Acceleration of gravity used for GD² [m/s^2] (the electric-drive convention, GD² = 4 g J)."""
+
+MAX_QUANTITY_LENGTH = 100
+"""Longest string accepted as a number with a unit [characters] ("1500 rpm" has 8)."""
+
+MAX_EXPONENT_DIGITS = 3
+"""Most digits of an exponent in a quantity string ("m^2", "10**-3 m"): a power, not a tower."""
+
+_POWER = re.compile(r"\*\*|\^")
+_EXPONENT = re.compile(r"\s*\(?\s*[+-]?\s*\d{1,%d}(?![\d_])(?:\.\d*)?\s*\)?" % MAX_EXPONENT_DIGITS)
 
 # Dimension name -> (pint dimensionality string, SI unit to convert to, words for errors)
 DIMENSIONS = {
@@ -68,7 +78,17 @@ def quantity(value, dimension, field="value"):
     Raises
     ------
     SceneError
-        Not a number, unknown unit, wrong dimension, NaN or infinite.
+        Not a number, unknown unit, wrong dimension, NaN or infinite; a
+        string longer than ``MAX_QUANTITY_LENGTH`` or with a power of a
+        power ("9**9**9 rpm") or an exponent of more than
+        ``MAX_EXPONENT_DIGITS`` digits, refused before pint evaluates it.
+
+    Notes
+    -----
+    Every number with a unit that flyopt reads (scene fields, the sweep's
+    ``--vary`` and ``--range`` values) passes through this function, so the
+    bounds above hold everywhere: pint evaluates a string's arithmetic with
+    Python integers, and ``9**9**9`` would take hours.
     """
     words = DIMENSIONS[dimension][2]
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
@@ -85,6 +105,7 @@ def quantity(value, dimension, field="value"):
 def _si_number(text, dimension, field):
     """The SI float of a string with a unit (see :func:`quantity`)."""
     dim, si_unit, words = DIMENSIONS[dimension]
+    _check_size(text, field, words)
     try:
         q = registry().Quantity(text.strip())
     except Exception as err:  # pint raises many types (UndefinedUnitError, DefinitionSyntaxError, ...)
@@ -100,6 +121,18 @@ def _si_number(text, dimension, field):
         # a bare 1/time ("25 Hz", "1500 1/min") is a rotational frequency: revolutions per time
         number *= 2.0 * math.pi
     return number
+
+
+def _check_size(text, field, words):
+    """Refuse a string whose arithmetic could run for long: too long, or a power of a power."""
+    if len(text) > MAX_QUANTITY_LENGTH:
+        raise SceneError(field, f"{shorten(text)} is too long for {words}: a number with a unit "
+                         f"has at most {MAX_QUANTITY_LENGTH} characters")
+    for power in _POWER.finditer(text):
+        exponent = _EXPONENT.match(text, power.end())
+        if exponent is None or _POWER.match(text, exponent.end()):
+            raise SceneError(field, f"cannot read {shorten(text)} as {words}: an exponent must be a number "
+                             f"of at most {MAX_EXPONENT_DIGITS} digits, not itself a power")
 
 
 def _is_angle(q):
