@@ -62,7 +62,16 @@ REJECTED = [
     ("(1, 2)", "Tuple is not allowed"),
     ("1 +", "cannot parse"),
     ("x" * 3000, "longer than"),
-    ("1e999", "not finite"),
+    ("1e999", "inf is not a finite number"),
+    ("1" + "0" * 400, r"an integer of about 40\d digits is not a finite number"),
+    # a part without variables must be a finite number (Python's floats would raise or turn complex)
+    ("9**9**9**9", r"'9 \*\* 9 \*\* 9' is inf \(it overflows"),
+    ("phi**9**9**9", r"'9 \*\* 9 \*\* 9' is inf"),
+    ("100 + 1/0", r"'1 / 0' is inf"),
+    ("100 + 0*(2**1023*2)", r"'2 \*\* 1023 \* 2' is inf"),
+    ("sin(phi) + log(0)", r"'log\(0\)' is -inf"),
+    ("phi + (-8)**(1/3)", r"'\(-8\) \*\* \(1 / 3\)' is nan"),
+    ("max(phi, sqrt(-1))", r"'sqrt\(-1\)' is nan"),
 ]
 
 

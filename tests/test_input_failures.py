@@ -141,3 +141,17 @@ def test_a_quantity_that_would_take_long_to_evaluate_is_refused_at_once(write_sc
 def test_solve_refuses_a_power_tower_too(write_scene):
     path = write_scene(scene('speed = "1500 rpm"', 'speed = "9**9**9 rpm"'))
     assert_refused(run("solve", path), path, "machine.speed", "a number of at most 3 digits, not itself a power")
+
+
+# -- an expression whose constant part is no number ---------------------------------
+
+
+@pytest.mark.parametrize("command", ["solve", "check"])
+@pytest.mark.parametrize("expression, match", [
+    ("9**9**9**9", r"'9 \*\* 9 \*\* 9' is inf \(it overflows or is undefined\)"),
+    ("100 + 1/0", r"'1 / 0' is inf"),
+    ("100 + (-8)**(1/3)", r"is nan"),
+])
+def test_an_expression_that_overflows_is_refused_naming_the_field(write_scene, command, expression, match):
+    path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
+    assert_refused(run(command, path), path, "torque.driving.expression", match)

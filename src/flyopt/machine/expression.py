@@ -132,6 +132,8 @@ class Expression:
         self._kinks = []
         self._build = self._compile(tree.body)
         self._tree = tree.body
+        with np.errstate(all="ignore"):
+            self._constant(tree.body)
 
     @property
     def depends_on(self):
@@ -212,9 +214,12 @@ class Expression:
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
                 raise ExpressionError(f"{shorten(self.text)}: only numbers are allowed as constants, "
                                       f"got {shorten(node.value)}")
-            number = float(node.value)
+            try:
+                number = float(node.value)
+            except OverflowError:      # an integer beyond the floats
+                number = math.inf
             if not math.isfinite(number):
-                raise ExpressionError(f"{shorten(self.text)}: the number {shorten(node.value)} is not finite")
+                raise ExpressionError(f"{shorten(self.text)}: {shorten(node.value)} is not a finite number")
             return lambda values, fns: number
         if isinstance(node, ast.Name):
             name = node.id
@@ -258,6 +263,36 @@ class Expression:
         raise ExpressionError(f"{shorten(self.text)}: {what!s} is not allowed{hint} (numbers, "
                               f"{', '.join(self.variables)}, pi, + - * / **, and "
                               f"{' '.join(FUNCTIONS)} only)")
+
+    def _constant(self, node):
+        """The value of a checked subtree that holds no variable (None if it holds one).
+
+        Every such part must be a finite number: ``9**9**9**9``, ``1/0``,
+        ``log(0)`` or ``(-8)**(1/3)`` is refused here, naming the part,
+        rather than failing (or turning complex) when it is evaluated.
+        IEEE arithmetic (numpy float64) gives inf or nan where Python's
+        floats would raise.
+        """
+        if isinstance(node, ast.Constant):
+            return np.float64(float(node.value))    # checked finite by _compile
+        if isinstance(node, ast.Name):
+            return None if node.id in self.variables else np.float64(CONSTANTS[node.id])
+        if isinstance(node, ast.UnaryOp):
+            operand = self._constant(node.operand)
+            return None if operand is None else _UNARY[type(node.op)](operand)
+        if isinstance(node, ast.BinOp):
+            parts = [self._constant(node.left), self._constant(node.right)]
+            function = _BINARY[type(node.op)]
+        else:
+            parts = [self._constant(a) for a in node.args]
+            function = FUNCTIONS[node.func.id][1]
+        if any(p is None for p in parts):
+            return None
+        value = np.float64(function(*parts))
+        if not np.isfinite(value):
+            raise ExpressionError(f"{shorten(self.text)}: {shorten(ast.unparse(node))} is {value} "
+                                  "(it overflows or is undefined): every value must be a finite number")
+        return value
 
     def _hint(self, name, functions=False):
         pool = list(FUNCTIONS) if functions else [*self.variables, *CONSTANTS]
