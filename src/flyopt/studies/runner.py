@@ -475,18 +475,20 @@ def _run_task(task, index, points):
 def _run_dask(client, task, pending, finished):
     from dask.distributed import KilledWorker, as_completed
 
-    futures = {client.submit(_run_task, task, i, chunk, pure=False): i for i, chunk in pending}
-    queue = as_completed(list(futures))
+    futures = [client.submit(_run_task, task, i, chunk, pure=False) for i, chunk in pending]
+    # results are fetched as they come: a result asked for later may have been lost
+    # with its worker, and waiting for it would wait for a worker that may never come
+    queue = as_completed(futures, loop=client.loop, with_results=True)
     alone_since = None
     try:
         while not queue.is_empty():
-            batch = queue.next_batch(block=False)
-            for future in batch:
-                try:
-                    finished(*future.result())
-                except KilledWorker as err:
-                    raise _WorkersLost(f"chunk {futures[future]} killed every Dask worker that "
-                                       f"ran it ({type(err).__name__})") from None
+            try:
+                batch = queue.next_batch(block=False)
+            except KilledWorker as err:
+                raise _WorkersLost(f"a chunk killed every Dask worker that ran it "
+                                   f"({type(err).__name__})") from None
+            for _, result in batch:
+                finished(*result)
             if batch:
                 alone_since = None
                 continue
@@ -505,7 +507,7 @@ def _run_dask(client, task, pending, finished):
             time.sleep(POLL_SECONDS)
     except BaseException:
         try:
-            client.cancel(list(futures))
+            client.cancel(futures)
         except (OSError, TimeoutError):  # the scheduler is gone: nothing left to cancel
             pass
         raise
