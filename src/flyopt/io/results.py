@@ -1,8 +1,10 @@
 """Sweep result tables: their columns (the schema) and their files, Parquet or CSV.
 
 A result table has one row per point: ``point``, :data:`CORE_INPUTS`, the
-other varied fields, then :data:`RESULT_COLUMNS`. :func:`write_results` and
-:func:`read_results` round-trip it exactly, whatever the format.
+other varied fields, then :data:`RESULT_COLUMNS`; the table of a Latin
+hypercube has a ``seed`` column after ``point`` (the seed of its samples, in
+CSV and Parquet alike). :func:`write_results` and :func:`read_results`
+round-trip it exactly, whatever the format.
 """
 
 from __future__ import annotations
