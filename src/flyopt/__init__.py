@@ -22,7 +22,7 @@ _API = {
     "SceneError": "flyopt.errors", "SolverFailed": "flyopt.errors", "Interrupted": "flyopt.errors",
     "Solution": "flyopt.pipeline", "design_scene": "flyopt.pipeline", "solve": "flyopt.pipeline",
     "Scene": "flyopt.io.scene", "Shaft": "flyopt.io.scene", "from_dict": "flyopt.io.scene", "load": "flyopt.io.scene",
-    "material_tradeoff": "flyopt.studies.fronts", "pareto": "flyopt.studies.fronts",
+    "material_tradeoff": "flyopt.studies.tradeoff", "pareto": "flyopt.studies.pareto",
     "sweep": "flyopt.studies.sweep",   # the function; the module is flyopt.studies.sweep
 }
 

@@ -1,6 +1,4 @@
-"""Design studies built on sweeps: Pareto fronts and the material trade-off table
-(their command lines, ``flyopt pareto`` and ``flyopt tradeoff``, are in
-:mod:`flyopt.cli.studies`).
+"""Pareto fronts of mass against a second objective (``flyopt pareto``, in :mod:`flyopt.cli.studies`).
 
 Pareto fronts (two objectives, both minimized) come from an ε-constraint
 swept through the design model, then the dominated points are removed:
@@ -27,17 +25,17 @@ value that produced it.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
 import pandas as pd
 
+from flyopt.design import design_inputs
 from flyopt.errors import SceneError
-from flyopt.studies.evaluate import evaluate_points
+from flyopt.studies.evaluate import evaluate_points, physics_analysis
 from flyopt.studies.sweep import sweep
 
-__all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto", "material_tradeoff"]
+__all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto"]
 
 #: Second objectives a front may trade against mass, with the unit of --range.
 PARETO_OBJECTIVES = {
@@ -125,9 +123,7 @@ def pareto(scene, objectives=("mass", "outer_diameter"), *, points=25, span=None
     objectives, other = _pair(objectives)
     if not isinstance(points, (int, np.integer)) or points < 2:
         raise SceneError("points", f"must be a whole number >= 2, got {points!r}")
-    from flyopt.analysis import analyse
-
-    analysis = analyse(scene)
+    analysis = physics_analysis(scene)
     empty = pd.DataFrame()
     if analysis.j_margin <= 0.0 and other != "delta":
         empty.attrs["message"] = (f"no flywheel needed (J_F = {analysis.j_margin:.4g} kg·m²): "
@@ -161,7 +157,7 @@ def _front_outer_diameter(scene, points, span, method, solver_options):
     lightest = evaluate_points(scene, pd.DataFrame({"point": [0], "design.objective": ["mass"]}),
                                method=method, solver_options=solver_options)
     if span is None:
-        if spec.geometry == "disc" and spec.max_width is None:
+        if spec.geometry == "disc" and spec.max_width == math.inf:
             raise SceneError("design.max_width", "a disc with no width limit can be made as "
                              "small as one likes (thinner and wider): give max_width or a "
                              "range for the outer diameter")
@@ -177,8 +173,7 @@ def _front_outer_diameter(scene, points, span, method, solver_options):
         grid = np.geomspace(low, high, points)[1:] if high > low else np.array([])
     else:
         low, high = span
-        if envelope is not None:
-            high = min(high, envelope)
+        high = min(high, envelope)
         if not 0 < low <= high:
             raise SceneError("range", f"the outer diameter range {low:.6g}..{high:.6g} m is "
                              f"empty or not positive")
@@ -193,15 +188,14 @@ def _front_outer_diameter(scene, points, span, method, solver_options):
 
 
 def _front_cost(scene, method, solver_options):
-    library = scene.material_library()
-    names = list(scene.design_materials or library)
-    missing = [n for n in names if library[n].cost is None]
+    inputs = design_inputs(scene)
+    names = [m.name for m in inputs.materials]
+    missing = [m.name for m in inputs.materials if m.cost is None]
     if missing:
         raise SceneError("material", f"a mass-cost front needs a cost per kg on every "
                          f"material; none is given for {', '.join(missing)} "
                          f"(add cost = \"... 1/kg\" in [[material]])")
-    shafts = [s.name for s in scene.shafts
-              if scene.design_shafts is None or s.name in scene.design_shafts]
+    shafts = [s.name for s in inputs.shafts]
     swept = sweep(scene, {"material": names, "shaft": shafts, "design.objective": "mass"},
                   method=method, solver_options=solver_options, workers=1)
     return swept.assign(epsilon=swept["cost"])
@@ -217,96 +211,3 @@ def _front_delta(scene, points, span, method, solver_options):
     swept = sweep(scene, {"delta": list(grid), "design.objective": "mass"}, method=method,
                   solver_options=solver_options, workers=1)
     return swept.assign(epsilon=swept["delta"])
-
-
-# --------------------------------------------------------------------------
-# Material trade-off table
-# --------------------------------------------------------------------------
-
-TRADEOFF_COLUMNS = ("material", "status", "shaft", "speed_ratio", "d_outer", "d_mean", "h", "b",
-                    "hb_ratio", "rim_speed", "rim_speed_limit", "mass", "cost", "binding", "limit",
-                    "reason", "method", "solver_status")
-
-
-def material_tradeoff(scene, solver_options=None, method="auto"):
-    """For each material, its lightest design: size, rim speed, mass, cost, binding limit.
-
-    Parameters
-    ----------
-    scene : Scene
-        Its materials (``design.materials`` or every known one) and shafts;
-        the objective is mass whatever the scene says.
-    solver_options : mapping, optional
-    method : {"auto", "ipopt", "closed_form"}
-        Design method (see :func:`flyopt.design.optimize.design_flywheel`).
-
-    Returns
-    -------
-    pandas.DataFrame
-        One row per material, lightest first, then the infeasible ones:
-        ``material``, ``status`` (designed, infeasible, not_needed), the
-        chosen ``shaft``, ``d_outer``, ``d_mean``, ``h``, ``b`` [m],
-        ``rim_speed`` and its limit [m/s], ``mass`` [kg], ``cost``,
-        ``binding`` (every active constraint), ``limit`` (the active limits
-        other than the inertia itself), ``reason`` (for an infeasible
-        material: why, for each shaft), ``method`` and ``solver_status``.
-
-    Notes
-    -----
-    Each material is designed by :func:`flyopt.design.optimize.design_flywheel`
-    (the exact closed form, or IPOPT, after the closed-form infeasibility
-    proof) on every allowed shaft; the lightest shaft wins.
-    """
-    from flyopt.analysis import analyse
-    from flyopt.design.optimize import MountShaft, design_flywheel
-
-    analysis = analyse(scene)
-    library = scene.material_library()
-    names = list(scene.design_materials or library)
-    shafts = [MountShaft(s.name, s.speed_ratio) for s in scene.shafts
-              if scene.design_shafts is None or s.name in scene.design_shafts]
-    spec = dataclasses.replace(scene.design, objective="mass")
-    rows = []
-    for name in names:
-        material = library[name]
-        row = dict.fromkeys(TRADEOFF_COLUMNS)
-        row.update(material=name, rim_speed_limit=material.max_rim_speed, binding="", limit="",
-                   reason="", method="", solver_status="", shaft="")
-        result = design_flywheel(analysis.j_margin, analysis.omega_max, shafts, [material], spec,
-                                 solver_options=solver_options, method=method)
-        row["status"] = result.status
-        best = result.best
-        if best is not None:
-            row.update(shaft=best.shaft, speed_ratio=best.speed_ratio, d_outer=best.d_outer,
-                       d_mean=best.d_mean, h=best.h, b=best.b, hb_ratio=best.hb_ratio,
-                       rim_speed=best.rim_speed, mass=best.mass, cost=best.cost,
-                       binding=",".join(best.binding),
-                       limit=",".join(b for b in best.binding if b != "inertia"),
-                       method="closed_form" if best.solver_status == "closed_form" else "ipopt",
-                       solver_status=best.solver_status)
-        elif result.status == "infeasible":
-            row["reason"] = "; ".join(c.reason for c in result.candidates)
-            row["method"] = "closed_form"
-        else:
-            row["reason"] = result.message
-            row["method"] = "none"
-        rows.append(row)
-    table = pd.DataFrame(rows, columns=list(TRADEOFF_COLUMNS))
-    for column in ("speed_ratio", "d_outer", "d_mean", "h", "b", "hb_ratio", "rim_speed",
-                   "rim_speed_limit", "mass", "cost"):
-        table[column] = pd.to_numeric(table[column]).astype(float)
-    order = np.lexsort((np.arange(len(table)), table["mass"].fillna(np.inf).to_numpy()))
-    return table.iloc[order].reset_index(drop=True)
-
-
-def __getattr__(name):
-    """``sweep_main``, ``pareto_main``, ``tradeoff_main`` moved to :mod:`flyopt.cli.studies`.
-
-    Kept here, lazily, only until the tests that import them from this module
-    import them from there; nothing in the package uses this.
-    """
-    if name in ("sweep_main", "pareto_main", "tradeoff_main"):
-        from flyopt.cli import studies
-
-        return getattr(studies, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

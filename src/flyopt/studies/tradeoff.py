@@ -1,0 +1,96 @@
+"""The material trade-off: each material's lightest design, ranked (``flyopt tradeoff``).
+
+For every material of a scene, the lightest wheel on any allowed shaft, its
+size, rim speed, mass, cost and the limits that bind; the materials are
+ordered by flyopt's one ranking rule (:mod:`flyopt.design.rank`), so the
+first row is the material ``flyopt solve`` chooses with the objective mass.
+The command line is in :mod:`flyopt.cli.studies`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pandas as pd
+
+from flyopt.design import design_inputs, rank
+from flyopt.studies.evaluate import physics_analysis
+
+__all__ = ["TRADEOFF_COLUMNS", "material_tradeoff"]
+
+TRADEOFF_COLUMNS = ("material", "status", "shaft", "speed_ratio", "d_outer", "d_mean", "h", "b",
+                    "hb_ratio", "rim_speed", "rim_speed_limit", "mass", "cost", "binding", "limit",
+                    "reason", "method", "solver_status")
+
+
+def material_tradeoff(scene, solver_options=None, method="auto"):
+    """For each material, its lightest design: size, rim speed, mass, cost, binding limit.
+
+    Parameters
+    ----------
+    scene : Scene
+        Its materials (``design.materials`` or every known one) and shafts;
+        the objective is mass whatever the scene says.
+    solver_options : mapping, optional
+    method : {"auto", "ipopt", "closed_form"}
+        Design method (see :func:`flyopt.design.designer.design_flywheel`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per material, lightest first, then the infeasible ones:
+        ``material``, ``status`` (designed, infeasible, not_needed), the
+        chosen ``shaft``, ``d_outer``, ``d_mean``, ``h``, ``b`` [m],
+        ``rim_speed`` and its limit [m/s], ``mass`` [kg], ``cost``,
+        ``binding`` (every active constraint), ``limit`` (the active limits
+        other than the inertia itself), ``reason`` (for an infeasible
+        material: why, for each shaft), ``method`` and ``solver_status``.
+
+    Notes
+    -----
+    Each material is designed by :func:`flyopt.design.designer.design_flywheel`
+    (the exact closed form, or IPOPT, after the closed-form infeasibility
+    proof) on every allowed shaft; the materials are ordered by flyopt's one
+    ranking rule (:mod:`flyopt.design.rank`), so the first row is the winner
+    of ``flyopt solve`` with the objective mass.
+    """
+    from flyopt.design import design_flywheel
+
+    analysis = physics_analysis(scene)
+    inputs = design_inputs(scene)
+    spec = dataclasses.replace(inputs.spec, objective="mass")
+    rows, bests = [], {}
+    for material in inputs.materials:
+        name = material.name
+        row = dict.fromkeys(TRADEOFF_COLUMNS)
+        row.update(material=name, rim_speed_limit=material.max_rim_speed, binding="", limit="",
+                   reason="", method="", solver_status="", shaft="")
+        result = design_flywheel(analysis.j_margin, analysis.omega_max, inputs.shafts, [material], spec,
+                                 solver_options=solver_options, method=method)
+        row["status"] = result.status
+        best = result.best
+        if best is not None:
+            bests[name] = best
+            row.update(shaft=best.shaft, speed_ratio=best.speed_ratio, d_outer=best.d_outer,
+                       d_mean=best.d_mean, h=best.h, b=best.b, hb_ratio=best.hb_ratio,
+                       rim_speed=best.rim_speed, mass=best.mass, cost=best.cost,
+                       binding=",".join(best.binding),
+                       limit=",".join(b for b in best.binding if b != "inertia"),
+                       method="closed_form" if best.solver_status == "closed_form" else "ipopt",
+                       solver_status=best.solver_status)
+        elif result.status == "infeasible":
+            row["reason"] = "; ".join(c.reason for c in result.candidates)
+            row["method"] = "closed_form"
+        else:
+            row["reason"] = result.message
+            row["method"] = "none"
+        rows.append(row)
+    table = pd.DataFrame(rows, columns=list(TRADEOFF_COLUMNS))
+    for column in ("speed_ratio", "d_outer", "d_mean", "h", "b", "hb_ratio", "rim_speed",
+                   "rim_speed_limit", "mass", "cost"):
+        table[column] = pd.to_numeric(table[column]).astype(float)
+    # the designed materials in the order of flyopt's one ranking rule, then the others
+    ranked = [c.material for c in rank.ranking(list(bests.values()))]
+    position = {name: k for k, name in enumerate(ranked)}
+    order = sorted(range(len(table)), key=lambda k: (position.get(table["material"].iloc[k], len(ranked)), k))
+    return table.iloc[order].reset_index(drop=True)
