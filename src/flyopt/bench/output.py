@@ -333,7 +333,7 @@ def hard_summary(cycle_rows, design_rows, header, command):
               f" x the reference, rim and thin_rim, H/B ranges and fixed H/B, envelopes and width limits; "
               f"{sum(1 for s in scenes if any(r['boundary'] for r in design_rows if r['scene'] == s))} scenes put "
               f"a combination at 1 - 1e-7, 1 +- 1e-4 or 1 + 1e-5 times its largest inertia. Reference: 1-D root search "
-              f"(bench.lightest_rim_1d); bar: mass within {MASS_BAR:g} relative, or infeasible when the reference "
+              f"(flyopt.bench.references.lightest_rim_1d); bar: mass within {MASS_BAR:g} relative, or infeasible when the reference "
               f"is. A success is a design within the bar that violates no constraint by more than "
               f"{VERIFY_RTOL:g}, or a correct infeasible verdict.", "",
               "| method | combinations | success | feasible: converged within bar | infeasible: correct verdict | "
