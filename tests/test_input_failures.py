@@ -155,3 +155,37 @@ def test_solve_refuses_a_power_tower_too(write_scene):
 def test_an_expression_that_overflows_is_refused_naming_the_field(write_scene, command, expression, match):
     path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
     assert_refused(run(command, path), path, "torque.driving.expression", match)
+
+
+# -- nesting deep enough to exhaust Python's recursion -------------------------------------
+
+
+@pytest.mark.parametrize("expression, match", [
+    ("-" * 1997 + "phi", "nested more than 200 deep"),
+    ("phi+" * 499 + "1", "nested more than 200 deep"),
+    ("sin(-" * 150 + "phi" + ")" * 150, "nested more than 200 deep"),
+    ("(" * 500 + "phi" + ")" * 500, "too many nested parentheses"),
+])
+def test_a_deeply_nested_expression_is_refused_naming_the_field(write_scene, expression, match):
+    path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
+    assert_refused(run("check", path), path, "torque.driving.expression", match)
+
+
+@pytest.mark.parametrize("text, match", [
+    (BASE + "x = " + "[" * 100_000 + "]" * 100_000, "nested too deeply"),
+    (BASE + "x = " + "{a = " * 50_000 + "1" + "}" * 50_000, "nested too deeply"),
+    (BASE + "x = " + "1" * 5000, "digits"),
+])
+def test_a_toml_file_python_cannot_read_is_refused_naming_the_file(write_scene, text, match):
+    path = write_scene(text)
+    for command in ("solve", "check"):
+        result = run(command, path)
+        assert_refused(result, path, "not a scene", match)
+
+
+def test_an_expression_of_the_deepest_allowed_nesting_evaluates():
+    from flyopt.machine.expression import MAX_DEPTH, Expression
+
+    # -(-(...(phi))) with an even number of signs is phi itself
+    expression = Expression("-" * (MAX_DEPTH - 2) + "phi")
+    assert_allclose(expression.numpy(phi=0.75), 0.75, rtol=0)

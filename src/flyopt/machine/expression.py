@@ -22,6 +22,10 @@ from flyopt.errors import ExpressionError, shorten
 MAX_LENGTH = 2000
 """Longest expression accepted [characters]: a torque curve, not a program."""
 
+MAX_DEPTH = 200
+"""Deepest nesting of operations accepted (``-(-(-phi))`` is 4, ``1+2+3`` is 3): the
+compiled closures recurse once per level, and Python allows about 1000."""
+
 CONSTANTS = {"pi": math.pi, "e": math.e}
 
 # name -> (number of arguments, numpy implementation, casadi attribute name)
@@ -94,6 +98,16 @@ def _bound(node, values):
     return v, np.where(ex > 0, slope * ex, 0.0) + (0.0 if name == "abs" else _EPS * np.abs(v))
 
 
+def _depth(node):
+    """How deep the operations of a syntax tree nest (counted without recursion)."""
+    deepest, stack = 0, [(node, 1)]
+    while stack:
+        node, depth = stack.pop()
+        deepest = max(deepest, depth)
+        stack.extend((child, depth + 1) for child in ast.iter_child_nodes(node) if isinstance(child, ast.expr))
+    return deepest
+
+
 class Expression:
     """A parsed, whitelisted expression in a few named variables.
 
@@ -124,10 +138,16 @@ class Expression:
             raise ExpressionError(f"expression longer than {MAX_LENGTH} characters")
         self.text = text
         self.variables = tuple(variables)
+        too_deep = f"{shorten(text)}: operations nested more than {MAX_DEPTH} deep (a sum nests one level " \
+                   "per term: give a long curve as a points table)"
         try:
             tree = ast.parse(text.strip(), mode="eval")
         except SyntaxError as err:
             raise ExpressionError(f"cannot parse {shorten(text)}: {err.msg}") from None
+        except (RecursionError, MemoryError):       # Python's own parser gives up
+            raise ExpressionError(too_deep) from None
+        if _depth(tree.body) > MAX_DEPTH:
+            raise ExpressionError(too_deep)
         self.used = set()
         self._kinks = []
         self._build = self._compile(tree.body)
