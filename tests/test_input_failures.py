@@ -14,6 +14,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 import flyopt
+from conftest import PROBLEMS
 
 BASE = """
 title = "t"
@@ -189,3 +190,13 @@ def test_an_expression_of_the_deepest_allowed_nesting_evaluates():
     # -(-(...(phi))) with an even number of signs is phi itself
     expression = Expression("-" * (MAX_DEPTH - 2) + "phi")
     assert_allclose(expression.numpy(phi=0.75), 0.75, rtol=0)
+
+
+# -- a scene whose members carry the whole load needs no [torque.resisting] -------------------
+
+
+def test_check_accepts_a_member_force_as_the_whole_load(write_scene):
+    friction = '[torque.resisting]\nconstant = "150 N*m"       # friction of the slides and bearings\n'
+    path = write_scene(scene(friction, "", (PROBLEMS / "slider-crank-press.toml").read_text(encoding="utf-8")))
+    result = run("check", path)
+    assert (result.returncode, result.stderr) == (0, "")

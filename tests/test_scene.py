@@ -223,3 +223,46 @@ def test_user_material_overrides_builtin_and_cost_objective(write_scene):
     assert scene.material_library()["cast_iron"].max_rim_speed == 30.0
     result = flyopt.solve(scene)
     assert_allclose(result.design.best.cost, 1.5 * result.design.best.mass, rtol=1e-15)
+
+
+SLIDER_CRANK = """
+[machine]
+speed = "120 rpm"
+delta = 0.15
+inertia = "2 kg*m^2"
+[mechanism]
+kind = "slider_crank"
+crank = "0.08 m"
+rod = "0.45 m"
+[[member]]
+name = "ram"
+part = "slider"
+mass = "400 kg"
+angle_unit = "deg"
+unit = "kN"
+force = [[0, 0], [140, 0], [140, 25], [175, 60], [180, 0], [360, 0]]
+[torque.driving]
+constant = "unknown"
+"""
+
+
+def test_a_member_force_may_carry_the_whole_load(write_scene):
+    # a [torque.resisting] left out means zero when [[member]] forces carry the load
+    left_out = flyopt.load(write_scene(SLIDER_CRANK, "left_out.toml"))
+    explicit = flyopt.load(write_scene(SLIDER_CRANK + '[torque.resisting]\nconstant = 0\n', "explicit.toml"))
+    assert left_out.resisting == Constant(0.0)
+    assert_allclose(flyopt.analyse(left_out).a_max, flyopt.analyse(explicit).a_max, rtol=1e-15)
+    assert flyopt.analyse(left_out).a_max > 0
+
+
+def test_member_loads_alone_must_balance_over_the_cycle(write_scene):
+    # no [torque] at all: nothing is unknown, and a resisting force alone cannot be periodic
+    path = write_scene(SLIDER_CRANK.replace('[torque.driving]\nconstant = "unknown"\n', ""))
+    with pytest.raises(flyopt.NonPeriodicCycle, match="does not balance"):
+        flyopt.analyse(flyopt.load(path))
+
+
+def test_a_missing_torque_curve_without_member_loads_is_an_error(write_scene):
+    path = write_scene(scene_text('[torque.driving]\nconstant = "unknown"\n', ""))
+    with pytest.raises(SceneError, match=r"torque.driving: is missing.*\[\[member\]\] forces or torques"):
+        flyopt.load(path)

@@ -73,7 +73,9 @@ class Scene:
     efficiency : float
         Efficiency from the motor to the reference shaft [-].
     driving, resisting : torque curve or None
-        Equivalent torques at the reference shaft (None when ``net`` is given).
+        Equivalent torques at the reference shaft (None when ``net`` is
+        given; ``Constant(0.0)`` for a curve left out when [[member]] loads
+        are given).
     net : NetAreas or None
     shafts : tuple of Shaft
     design : DesignSpec
@@ -192,9 +194,11 @@ def from_dict(data, source=None):
     efficiency = _efficiency(machine.get("efficiency"), "machine.efficiency") if machine.has("efficiency") \
         else _reference_efficiency(shafts)
 
-    driving, resisting, net = _torques(top.require("torque"), cycle, shafts, efficiency)
     mechanism = _mechanism(top.get("mechanism"))
     members = _members(top.get("member"), mechanism, cycle)
+    member_loads = any(m.force is not None or m.torque is not None for m in members)
+    driving, resisting, net = _torques(top.get("torque", {}) if member_loads else top.require("torque"),
+                                       cycle, shafts, efficiency, member_loads)
     if members and net is not None:
         raise SceneError("member", "members need the torque curves ([torque.driving] and [torque.resisting]), "
                          "not net areas: their inertia varies with the angle")
@@ -213,19 +217,30 @@ def from_dict(data, source=None):
 # -- sections ------------------------------------------------------------------
 
 
-def _torques(section, cycle, shafts=(), efficiency=1.0):
+def _torques(section, cycle, shafts=(), efficiency=1.0, member_loads=False):
+    """(driving, resisting, net) of the [torque] table.
+
+    With forces or torques on [[member]]s (``member_loads``), a curve left
+    out is zero: the members' loads may carry the whole load (or drive),
+    and an unknown constant or the cycle's own balance settles the rest.
+    """
     torque = _Table(section, "torque", {"driving", "resisting", "net"})
     if torque.has("net"):
         if torque.has("driving") or torque.has("resisting"):
             raise SceneError("torque.net", "give either the net areas or the driving and resisting "
                              "torques, not both (the torque is given twice)")
         return None, None, _net_areas(torque.get("net"))
+    curves = []
     for name in ("driving", "resisting"):
-        if not torque.has(name):
+        if torque.has(name):
+            curves.append(_curve(torque.get(name), f"torque.{name}", cycle, shafts, efficiency))
+        elif member_loads:
+            curves.append(Constant(0.0))
+        else:
             raise SceneError(f"torque.{name}", "is missing: give [torque.driving] and [torque.resisting], "
-                             "or [torque.net] with the net areas")
-    driving = _curve(torque.get("driving"), "torque.driving", cycle, shafts, efficiency)
-    resisting = _curve(torque.get("resisting"), "torque.resisting", cycle, shafts, efficiency)
+                             "or [torque.net] with the net areas (a curve may be left out, meaning zero, "
+                             "when [[member]] forces or torques carry the load)")
+    driving, resisting = curves
     if isinstance(driving, Constant) and isinstance(resisting, Constant) and driving.unknown and resisting.unknown:
         raise SceneError("torque.resisting.constant", "both torques are unknown; at most one may be")
     return driving, resisting, None
