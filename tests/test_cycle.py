@@ -12,7 +12,7 @@ from conftest import assert_published
 from reference import exact_chain
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, kinks_of, required_inertia, work
 from flyopt.machine.transmission import inertia_on_shaft
-from flyopt.errors import NonPeriodicCycle
+from flyopt.errors import NonPeriodicCycle, SceneError
 from flyopt.machine.expression import Expression
 from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 
@@ -500,3 +500,40 @@ def test_an_inactive_cap_costs_no_accuracy():
     plain = energy_indicator(ExpressionTorque(Expression("1/(1e-4+(phi-3)**2)"), 1.0),
                              Constant(None), TWO_PI).a_max
     assert_allclose(capped, plain, rtol=1e-13)
+
+
+# -- a torque must be finite over the cycle: poles are refused, steep torques are not -------
+
+
+@pytest.mark.parametrize("text, pole", [
+    ("100 + tan(phi)", math.pi / 2),          # the grid lands within an ulp of this pole
+    ("1/cos(phi)", math.pi / 2),
+    ("1/(phi - 1)", 1.0),
+    ("50 + 1/(phi - 4.5)**3", 4.5),
+    ("(phi - 2)/((phi - 2)**2)**0.75", 2.0),  # |M| = |φ − 2|^(-1/2): integrable, yet unbounded
+])
+def test_a_torque_with_a_pole_is_refused_naming_it(text, pole):
+    with pytest.raises(SceneError, match=rf"^test: the expression has a pole near φ = {pole:.6g} rad"):
+        energy_indicator(Constant(None), expr(text), TWO_PI)
+
+
+def test_a_pole_in_a_part_of_a_sum_names_that_part():
+    from flyopt.machine.torque import TorqueSum
+
+    load = TorqueSum([expr("100"), ExpressionTorque(Expression("tan(phi/4)"), 1.0, "torque.resisting.expression")])
+    with pytest.raises(SceneError, match=r"^torque.resisting.expression: the expression has a pole near φ = 6.28"):
+        energy_indicator(Constant(None), load, 2.5 * math.pi)
+
+
+def test_a_steep_crossing_of_zero_is_no_pole():
+    # M = s/(1 + |s|), s = 1e9 (φ − π): crosses zero at π with slope 1e9, bounded by 1.
+    # Mean 0 (odd about π); ΔE = −∫ M is largest at π: A_max = π − 1e-9 ln(1 + 1e9 π).
+    ind = energy_indicator(Constant(None), expr("1e9*(phi - pi)/(1 + 1e9*abs(phi - pi))"), TWO_PI)
+    assert_allclose(ind.a_max, math.pi - 1e-9 * math.log1p(1e9 * math.pi), rtol=1e-12)
+
+
+def test_a_finite_jump_across_zero_is_no_pole():
+    # M = -1 before φ = 2, +1 after (a step clipped to ±1): the constant is (2π − 4)/(2π) and
+    # ΔE rises at slope c + 1 up to φ = 2, then falls back to 0: A_max = 2 (c + 1) = (4π − 4)/π
+    ind = energy_indicator(Constant(None), expr("min(max((phi - 2)*1e300, -1), 1)"), TWO_PI)
+    assert_allclose(ind.a_max, (4 * math.pi - 4) / math.pi, rtol=1e-12)

@@ -200,3 +200,15 @@ def test_check_accepts_a_member_force_as_the_whole_load(write_scene):
     path = write_scene(scene(friction, "", (PROBLEMS / "slider-crank-press.toml").read_text(encoding="utf-8")))
     result = run("check", path)
     assert (result.returncode, result.stderr) == (0, "")
+
+
+# -- a torque with a pole is no torque ----------------------------------------------------------
+
+
+@pytest.mark.parametrize("command", ["solve", "check"])
+@pytest.mark.parametrize("expression, near", [("100 + tan(phi)", "1.5708"), ("1/(phi - 1)", "1"),
+                                              ("1/cos(phi)", "1.5708")])
+def test_a_torque_with_a_pole_is_refused_naming_the_field(write_scene, command, expression, near):
+    path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
+    assert_refused(run(command, path), path, "torque.driving.expression",
+                   rf"the expression has a pole near φ = {near} rad .*\|M\| grows without bound")

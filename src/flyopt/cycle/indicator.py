@@ -39,6 +39,12 @@ SAMPLES_PER_CYCLE = 4096
 QUAD_EPSREL = 1e-13
 """Relative tolerance of the adaptive quadrature of expression torques."""
 
+POLE_GROWTH = 1e3
+"""A sign change of a torque across which the smaller |M| at the bracket's ends grows
+by more than this factor, as the grid bracket is halved down to adjacent floats, is
+a pole: at a crossing of zero |M| falls by ~h/ulp (1e12), at a finite jump it stays,
+at a pole it grows by ~h/ulp."""
+
 EPS = float(np.finfo(float).eps)
 ROUNDOFF = 8 * EPS
 """|M_d − M_r| at or below ROUNDOFF·(|M_d| + |M_r|) is the round-off of the
@@ -566,6 +572,10 @@ def _segments(driving, resisting, cycle_angle):
     if not linear:
         phi = np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1)
         d_values, r_values = _sample(driving, phi)[0], _sample(resisting, phi)[0]
+        for curve in (driving, resisting):
+            if not curve.is_linear:
+                _sample(curve, knots)            # the kinks are knots off the grid
+                _check_poles(curve, phi)
         peak = max(peak, float(np.max(np.abs(d_values - r_values))))
 
         def noise(phi):
@@ -673,6 +683,72 @@ def _sample(curve, phi):
         at = math.degrees(phi[np.argmax(bad)])
         raise SceneError(curve.where, f"is not finite over the cycle (first at phi = {at:.6g} deg)")
     return values, values
+
+
+def _check_poles(curve, phi):
+    """Refuse a torque expression with a pole on the grid ``phi`` [rad] (see :func:`_poles`).
+
+    A torque must be finite and bounded over the whole cycle; across a pole
+    (``tan φ``, ``1/(φ − 1)``) the work and ΔE have no meaning, and the
+    crossing search would take the pole for a crossing of the curves.
+    """
+    for part in getattr(curve, "parts", (curve,)):
+        if hasattr(part, "parts"):
+            _check_poles(part, phi)
+        elif hasattr(part, "expression"):
+            poles = _poles(part, phi, _sample(part, phi)[0])
+            if len(poles):
+                at = float(poles[0])
+                raise SceneError(part.where, f"the expression has a pole near φ = {at:.6g} rad "
+                                 f"({math.degrees(at):.6g} deg; |M| grows without bound): a torque must be "
+                                 "finite over the whole cycle")
+
+
+def _poles(f, phi, values):
+    """Angles of the sign changes of f on a grid across which |f| grows without bound.
+
+    Every bracket [φ_k, φ_k+1] where f changes sign is halved (all at once)
+    until its ends are adjacent floats, keeping the sign change inside. At a
+    zero of a continuous f the end values shrink to round-off; at a pole the
+    smaller of them grows past ``POLE_GROWTH`` times the smaller grid value
+    (or f is not finite there).
+
+    Parameters
+    ----------
+    f : callable
+        Vectorized function of φ [rad].
+    phi, values : ndarray
+        The grid [rad] and f on it (finite).
+
+    Returns
+    -------
+    ndarray
+        The poles found [rad], in order.
+    """
+    k = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)
+    lo, hi, f_lo, f_hi = phi[k], phi[k + 1], values[k], values[k + 1]
+    grid = np.minimum(np.abs(f_lo), np.abs(f_hi))    # the grid may land within an ulp of the pole
+    infinite = np.zeros(len(k), dtype=bool)
+    for _ in range(1100):                        # a bracket in [0, 1e300] reaches adjacent floats in ~1100
+        mid = 0.5 * (lo + hi)
+        active = (lo < mid) & (mid < hi) & ~infinite
+        if not active.any():
+            break
+        with np.errstate(all="ignore"):
+            f_mid = np.asarray(f(mid[active]), dtype=float)
+        infinite[active] = ~np.isfinite(f_mid)
+        low_side = np.zeros(len(k), dtype=bool)
+        low_side[active] = np.sign(f_mid) == np.sign(f_lo[active])
+        high_side = active & ~low_side & ~infinite
+        zero = np.zeros(len(k), dtype=bool)
+        zero[active] = f_mid == 0.0
+        values_mid = np.zeros(len(k))
+        values_mid[active] = f_mid
+        lo, f_lo = np.where(low_side, mid, lo), np.where(low_side, values_mid, f_lo)
+        hi, f_hi = np.where(high_side, mid, hi), np.where(high_side, values_mid, f_hi)
+        lo = np.where(zero, hi, lo)              # f = 0 exactly: a zero, bracket closed
+    end = np.minimum(np.abs(f_lo), np.abs(f_hi))
+    return np.sort(lo[infinite | (end > POLE_GROWTH * grid)])
 
 
 def _roots(f, a, b, samples, scale, zero_runs="all"):
