@@ -12,6 +12,7 @@ from numpy.testing import assert_allclose
 
 from conftest import PROBLEMS, assert_published
 from flyopt.cli.main import main
+from flyopt.errors import ExpressionError, Interrupted, NonPeriodicCycle, SceneError, SolverFailed
 
 JSON_FIELDS = {"a_max", "work_per_cycle", "driving_torque", "resisting_torque", "power", "omega_mean",
                "omega_max", "omega_min", "angle_omega_max", "angle_omega_min", "j_required",
@@ -82,3 +83,168 @@ def test_console_script_is_installed():
                          capture_output=True, text=True, timeout=120)
     assert out.returncode == 0
     assert math.isclose(json.loads(out.stdout)["a_max"], 1600.0)
+
+
+# --------------------------------------------------------------------------
+# One exit-code table, one error handler
+# --------------------------------------------------------------------------
+
+def _raiser(err):
+    def run(*args, **kwargs):
+        raise err
+    return run
+
+
+@pytest.mark.parametrize("err, status, words", [
+    (SceneError("machine.delta", "must lie between 0 and 2", "s.toml"), 2, "s.toml: machine.delta: must lie"),
+    (NonPeriodicCycle(-3.0, 100.0, "s.toml"), 2, "s.toml: torque: non-periodic"),
+    (ExpressionError("unknown name 'x'"), 2, "SCENE: unknown name 'x'"),
+    (SolverFailed("IPOPT: Maximum_Iterations_Exceeded after 3000 iterations"), 1, "SCENE: IPOPT: Maximum"),
+    (ZeroDivisionError("float division by zero"), 1, "SCENE: float division by zero"),
+    (OverflowError("math range error"), 1, "SCENE: math range error"),
+    (ValueError("math domain error"), 1, "SCENE: math domain error"),
+    (Interrupted("stopped after 3 of 8 chunks: continue with --resume"), 130, "SCENE: stopped after 3"),
+    (KeyboardInterrupt(), 130, "SCENE: interrupted"),
+    (FileNotFoundError(2, "No such file or directory", "out/x.csv"), 2, "out/x.csv: No such file"),
+])
+def test_every_error_is_one_line_with_its_exit_status(monkeypatch, capsys, err, status, words):
+    import flyopt.cli.scene
+
+    monkeypatch.setattr(flyopt.cli.scene, "run_check", _raiser(err))
+    assert main(["check", "SCENE"]) == status
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err.count("\n") == 1
+    assert captured.err.startswith(f"flyopt: error: {words}")
+
+
+def test_an_unexpected_error_keeps_its_traceback(monkeypatch):
+    # a bug is not an input error: it is not hidden behind a one-line message
+    import flyopt.cli.scene
+
+    monkeypatch.setattr(flyopt.cli.scene, "run_check", _raiser(TypeError("a bug")))
+    with pytest.raises(TypeError, match="a bug"):
+        main(["check", "SCENE"])
+
+
+def test_a_long_message_stays_one_short_line(monkeypatch, capsys):
+    import flyopt.cli.scene
+
+    huge = SceneError("machine.speed", "'" + "9" * 1_000_000 + "' is not a speed", "s.toml")
+    monkeypatch.setattr(flyopt.cli.scene, "run_check", _raiser(huge))
+    assert main(["check", "SCENE"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and len(err) < 1200
+
+
+def test_interrupted_sweep_exits_130(monkeypatch, capsys):
+    import flyopt.studies.sweep
+
+    monkeypatch.setattr(flyopt.studies.sweep, "sweep",
+                        _raiser(Interrupted("stopped: continue with --resume (out.csv.parts)")))
+    assert main(["sweep", str(PROBLEMS / "shear-press.toml"), "--vary", "delta=0.05,0.1"]) == 130
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--resume" in err
+
+
+@pytest.mark.parametrize("command", ["solve", "check", "plot", "sweep", "pareto", "tradeoff", "bench"])
+def test_every_command_is_in_the_one_tree(command):
+    out = run(command, "--help")
+    assert out.returncode == 0 and f"flyopt {command}" in out.stdout, out.stderr
+
+
+def test_bench_options_are_bench_own():
+    out = run("bench", "--help")
+    assert out.returncode == 0 and "--quick" in out.stdout and "--hard" in out.stdout
+
+
+def test_unknown_option_of_a_command_is_refused():
+    out = run("solve", PROBLEMS / "shear-press.toml", "--quick")
+    assert out.returncode == 2 and "unrecognized arguments: --quick" in out.stderr
+    assert "Traceback" not in out.stderr
+
+
+# --------------------------------------------------------------------------
+# stdout closed early: `flyopt solve ... | head`
+# --------------------------------------------------------------------------
+
+@pytest.mark.parametrize("args", [["solve"], ["solve", "--json"]])
+def test_closed_stdout_exits_quietly_141(args):
+    scene = PROBLEMS / "shear-press.toml"
+    with subprocess.Popen([sys.executable, "-m", "flyopt", args[0], str(scene), *args[1:]],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE) as proc:
+        proc.stdout.close()          # the reader is gone before a byte is written
+        err = proc.stderr.read()
+        proc.wait(timeout=120)
+    assert proc.returncode == 141    # 128 + SIGPIPE, what the shell reports for `yes | head`
+    assert err == b""                # no "Broken pipe", no traceback
+
+
+def test_reader_that_stops_early_gets_the_start_of_the_report():
+    scene = PROBLEMS / "shear-press.toml"
+    with subprocess.Popen([sys.executable, "-m", "flyopt", "solve", str(scene)],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE) as proc:
+        first = proc.stdout.readline()
+        proc.stdout.close()
+        err = proc.stderr.read()
+        proc.wait(timeout=120)
+    assert first.startswith(b"Shear press") and b"Traceback" not in err and b"Broken pipe" not in err
+    assert proc.returncode in (0, 141)   # 0 when the whole report fit in the pipe before it closed
+
+
+# --------------------------------------------------------------------------
+# A machine that needs no flywheel
+# --------------------------------------------------------------------------
+
+def test_verify_a_machine_that_needs_no_flywheel():
+    # conveyor: steady torques, A_max = 0 and no inertia at all; nothing fluctuates
+    out = run("solve", PROBLEMS / "conveyor.toml", "--verify", "--json")
+    assert out.returncode == 0, out.stderr
+    assert "Traceback" not in out.stderr
+    verification = json.loads(out.stdout)["verification"]
+    assert verification["achieved_delta"] == 0.0 and verification["flagged"] is False
+
+
+@pytest.mark.slow
+def test_pareto_of_delta_on_a_motor_press_ends_without_a_traceback():
+    # the δ front of problems/motor-press.toml reaches δ = 1, where the dynamic model probes
+    # J_F ~ 1e-10 kg·m² and failed with "math domain error" and a traceback
+    out = subprocess.run([sys.executable, "-m", "flyopt", "pareto", str(PROBLEMS / "motor-press.toml"),
+                          "--objectives", "mass,delta"], capture_output=True, text=True, timeout=1800)
+    assert out.returncode in (0, 1) and "Traceback" not in out.stderr
+    if out.returncode == 1:
+        assert out.stderr.splitlines()[-1].startswith(f"flyopt: error: {PROBLEMS / 'motor-press.toml'}: ")
+
+
+@pytest.mark.parametrize("table, words", [
+    ('[sweep]\nseed = -1\n[sweep.vary]\ndelta = "0.01:0.1:3"\n', "sweep.seed: must be a whole number >= 0"),
+    ('[sweep.vary]\nspeed = "1500 m"\n', "sweep.vary.speed: '1500 m' has the wrong dimension"),
+    ('[sweep.vary]\ndeltaa = "0.1,0.2"\n', "sweep.vary.deltaa: unknown sweep field"),
+])
+def test_check_refuses_the_sweep_table_that_sweep_refuses(tmp_path, capsys, table, words):
+    path = tmp_path / "s.toml"
+    path.write_text((PROBLEMS / "shear-press.toml").read_text() + "\n" + table)
+    assert main(["sweep", str(path), "--no-progress"]) == 2
+    from_sweep = capsys.readouterr().err
+    assert main(["check", str(path)]) == 2
+    from_check = capsys.readouterr()
+    assert from_check.out == "" and from_check.err == from_sweep
+    assert from_check.err.count("\n") == 1 and from_check.err.startswith(f"flyopt: error: {path}: ")
+    assert words in from_check.err
+
+
+def test_check_accepts_a_good_sweep_table(tmp_path, capsys):
+    path = tmp_path / "s.toml"
+    path.write_text((PROBLEMS / "shear-press.toml").read_text() + '\n[sweep.vary]\ndelta = "0.01:0.1:3"\n')
+    assert main(["check", str(path)]) == 0
+    assert "ok" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--vary", "delta=0.1,0.2", "--vary", "delta=0.3"], "--vary delta: is varied twice"),
+    (["--vary", "envelope=0.5,0.6m", "--vary", "design.max_outer_diameter=0.7m"], "is varied twice"),
+    (["--vary", "delta=0.1,0.2", "--seed", "-1", "--samples", "2"], "--seed: must be a whole number >= 0"),
+])
+def test_sweep_command_line_errors_name_the_option(capsys, args, words):
+    assert main(["sweep", str(PROBLEMS / "shear-press.toml"), *args, "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and words in err

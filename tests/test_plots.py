@@ -1,5 +1,10 @@
 """Every diagram renders to a non-empty file (Agg backend); bad requests are one-line errors."""
 
+import math
+import subprocess
+import sys
+
+import numpy as np
 import pytest
 
 from conftest import PROBLEMS
@@ -49,7 +54,7 @@ def test_bad_plot_requests(tmp_path, capsys, args, words):
 
 
 def test_sweep_and_pareto_plots_from_result_files(tmp_path):
-    from flyopt.studies import fronts as studies
+    from flyopt.cli import studies
 
     sweep_file = tmp_path / "sweep.parquet"
     assert studies.sweep_main([str(PROBLEMS / "punch-press.toml"), "--vary", "delta=0.05:0.2:log4",
@@ -87,11 +92,12 @@ def test_speed_plot_with_the_simulation_overlaid(tmp_path):
 
     matplotlib.use("Agg")
     import flyopt
+    from flyopt.cli.plot import _simulation, _speed
     from flyopt.report import plots
 
     scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
     analysis = flyopt.analyse(scene)
-    ax = plots.plot_speed(scene, analysis, simulate=True)
+    ax = plots.plot_speed(scene, analysis, _speed(analysis), _simulation(analysis))
     model, simulated = ax.lines[0].get_ydata(), ax.lines[1].get_ydata()
     # the closed form and the simulation reach the same extremes (to the simulation's tolerance)
     assert abs(model.max() / simulated.max() - 1) < 1e-6 and abs(model.min() / simulated.min() - 1) < 1e-6
@@ -99,3 +105,200 @@ def test_speed_plot_with_the_simulation_overlaid(tmp_path):
     assert out.stat().st_size > 10_000
     assert main(["plot", str(PROBLEMS / "shear-press.toml"), "--what", "speed", "--verify",
                  "-o", str(tmp_path / "s.png")]) == 0
+
+
+# --------------------------------------------------------------------------
+# The output file is checked before anything is computed
+# --------------------------------------------------------------------------
+
+@pytest.mark.parametrize("target, words", [
+    ("missing/dir/x.png", "-o/--output: the folder"),
+    ("x.jpg", "-o/--output: "),
+    ("x", "must end in .png, .svg or .pdf"),
+])
+@pytest.mark.parametrize("source", ["scene", "results"])
+def test_bad_output_is_one_line_exit_2_nothing_written(tmp_path, target, words, source):
+    import pandas as pd
+
+    if source == "scene":
+        given = PROBLEMS / "shear-press.toml"
+        what = ["--what", "energy"]
+    else:
+        given = tmp_path / "r.csv"
+        pd.DataFrame({"delta": [0.1, 0.2], "mass": [2.0, 1.0], "status": ["designed"] * 2}).to_csv(given, index=False)
+        what = ["--what", "sweep", "--x", "delta"]
+    before = set(tmp_path.rglob("*"))
+    out = subprocess.run([sys.executable, "-m", "flyopt", "plot", str(given), *what, "-o", str(tmp_path / target)],
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 2 and out.stdout == ""
+    lines = out.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("flyopt: error: ") and words in lines[0]
+    if "folder" in words:
+        assert str(tmp_path / "missing" / "dir") in lines[0]
+    assert set(tmp_path.rglob("*")) == before     # nothing written, no folder made
+
+
+# --------------------------------------------------------------------------
+# A machine that needs no flywheel: nothing to draw is said, not a failure
+# --------------------------------------------------------------------------
+
+@pytest.mark.parametrize("what", ["cross_section", "inertia_delta"])
+def test_nothing_to_draw_when_no_flywheel_is_needed(tmp_path, capsys, what):
+    # conveyor: steady torques, A_max = 0, J_F(δ) = 0 for every δ
+    out = tmp_path / "x.png"
+    assert main(["plot", str(PROBLEMS / "conveyor.toml"), "--what", what, "-o", str(out)]) == 0
+    captured = capsys.readouterr()
+    assert "nothing to draw" in captured.out and captured.out.count("\n") == 1
+    assert "no flywheel is needed" in captured.out and captured.err == ""
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("what", ["turning_moment", "energy"])
+def test_steady_machine_still_draws_its_torques(tmp_path, what):
+    out = tmp_path / "x.png"
+    assert main(["plot", str(PROBLEMS / "conveyor.toml"), "--what", what, "-o", str(out)]) == 0
+    assert out.stat().st_size > 10_000
+
+
+def test_inertia_delta_when_the_machine_inertia_suffices(tmp_path):
+    """J_c far above the need: J_F(δ) > 0 only below δ* = A_max/(ω_m² J_c), far left of the scene's δ."""
+    import flyopt
+    from flyopt.report import plots
+
+    text = (PROBLEMS / "shear-press.toml").read_text().replace('delta = 0.05', 'delta = 0.05\ninertia = "100 kg*m^2"')
+    path = tmp_path / "heavy.toml"
+    path.write_text(text)
+    assert main(["plot", str(path), "--what", "inertia_delta", "-o", str(tmp_path / "j.png")]) == 0
+    scene = flyopt.load(path)
+    analysis = flyopt.analyse(scene)
+    assert not analysis.flywheel_needed
+    ax = plots.plot_inertia_delta(scene, analysis)
+    delta, j = ax.lines[0].get_data()
+    # shear press by hand: M_d = 925π/2π = 462.5 N·m; the deficit from 0 to the crossing at
+    # φ = 1.8125 π/4 is 1137.5 (1 + 0.8125/2) π/4 = 1599.609375 π/4 J (1256.33 J, as published)
+    a_max, omega_mean = 1599.609375 * math.pi / 4, 1500 * 2 * math.pi / 60
+    delta_free = a_max / (omega_mean**2 * 100.0)
+    assert math.isclose(ax.lines[1].get_xdata()[0], delta_free, rel_tol=1e-12)
+    drawn = np.isfinite(j)
+    assert drawn.sum() > 20 and delta[drawn].max() < delta_free
+    # every point on the hyperbola J_F = A_max/(ω_m² δ) − J_c (to the round-off of the difference)
+    np.testing.assert_allclose(j[drawn], a_max / (omega_mean**2 * delta[drawn]) - 100.0, rtol=1e-9, atol=1e-9 * 100)
+
+
+# --------------------------------------------------------------------------
+# Plots draw computed results and never run a model
+# --------------------------------------------------------------------------
+
+def _forbid_models(patch):
+    """Make every function of the sizing modules, the analysis and the pipeline raise."""
+    import importlib
+    import inspect
+    import pkgutil
+
+    import flyopt.analysis
+    import flyopt.pipeline
+    import flyopt.sizing
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError("a plot ran a model")
+
+    modules = [importlib.import_module(f"flyopt.sizing.{m.name}") for m in pkgutil.iter_modules(flyopt.sizing.__path__)]
+    for module in modules + [flyopt.analysis, flyopt.pipeline]:
+        for name, value in list(vars(module).items()):
+            if inspect.isfunction(value) and value.__module__.startswith("flyopt."):
+                patch.setattr(module, name, forbidden)
+
+
+@pytest.mark.parametrize("scene, what, options", [
+    ("shear-press", "energy_mass", []),           # sized by the energy model: the energy–mass result is passed in
+    ("slider-crank-press", "energy_mass", []),
+    ("shear-press", "speed", ["--verify"]),       # the model's ω(φ) and the simulation are passed in
+    ("slider-crank-press", "speed", ["--verify"]),
+    ("motor-press", "speed", []),                 # the dynamic model's own periodic solution
+    ("shear-press", "inertia_delta", []),
+    ("shear-press", "energy", []),
+    ("shear-press", "turning_moment", []),
+    ("shear-press", "cross_section", []),
+])
+def test_plots_never_run_a_model(monkeypatch, tmp_path, scene, what, options):
+    from flyopt.report import plots
+
+    real, drawn = getattr(plots, f"plot_{what}"), []
+
+    def guarded(*args, **kwargs):   # inside the plot, every model run fails the test
+        with pytest.MonkeyPatch.context() as patch:
+            _forbid_models(patch)
+            drawn.append(real(*args, **kwargs))
+        return drawn[-1]
+
+    monkeypatch.setattr(plots, f"plot_{what}", guarded)
+    out = tmp_path / "x.png"
+    assert main(["plot", str(PROBLEMS / f"{scene}.toml"), "--what", what, *options, "-o", str(out)]) == 0
+    assert len(drawn) == 1 and out.stat().st_size > 10_000
+    if options:                                   # model and simulation both drawn
+        assert "simulation" in drawn[0].lines[1].get_label()
+
+
+def test_energy_mass_refuses_an_analysis_by_another_model():
+    import flyopt
+    from flyopt.report import plots
+
+    scene = flyopt.load(PROBLEMS / "shear-press.toml")
+    with pytest.raises(ValueError, match="analyse with model='energy_mass'"):
+        plots.plot_energy_mass(scene, flyopt.analyse(scene))
+
+
+# --------------------------------------------------------------------------
+# The README's plot recipes, as written
+# --------------------------------------------------------------------------
+
+def _flyopt(*args, cwd):
+    return subprocess.run([sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True,
+                          timeout=600, cwd=cwd)
+
+
+def test_readme_sweep_plot_by_material(tmp_path):
+    # README: flyopt plot RESULTS.parquet --what sweep --x delta --y mass --by material -o f.png,
+    # on a sweep that varies delta only: the winner's material is the line
+    sweep = _flyopt("sweep", PROBLEMS / "punch-press.toml", "--vary", "delta=0.01:0.1:log5", "-o", "out.parquet",
+                    "--no-progress", cwd=tmp_path)
+    assert sweep.returncode == 0, sweep.stderr
+    out = _flyopt("plot", "out.parquet", "--what", "sweep", "--x", "delta", "--y", "mass", "--by", "material",
+                  "-o", "f.png", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert (tmp_path / "f.png").stat().st_size > 10_000
+
+
+def test_readme_pareto_plot_without_x(tmp_path):
+    front = _flyopt("pareto", PROBLEMS / "shear-press.toml", "--objectives", "mass,outer_diameter",
+                    "--points", "5", "-o", "front.csv", cwd=tmp_path)
+    assert front.returncode == 0, front.stderr
+    out = _flyopt("plot", "front.csv", "--what", "pareto", "-o", "front.png", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert (tmp_path / "front.png").stat().st_size > 10_000
+
+
+def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):
+    import argparse
+
+    import pandas as pd
+    from flyopt.cli.plot import run_plot
+    from flyopt.report import plots
+
+    front = pd.DataFrame({"mass": [3.0, 2.0, 1.0], "delta": [0.01, 0.02, 0.04], "outer_diameter": [1.0, 2.0, 3.0],
+                          "epsilon": [0.01, 0.02, 0.04]})
+    assert plots.pareto_objectives(front) == ("mass", "delta")
+    path = tmp_path / "f.csv"
+    front.to_csv(path, index=False)
+    seen = {}
+    real = plots.plot_pareto
+
+    def spy(frame, x, y, ax=None):
+        seen.update(x=x, y=y)
+        return real(frame, x, y, ax)
+
+    monkeypatch.setattr(plots, "plot_pareto", spy)
+    args = argparse.Namespace(scene=str(path), what="pareto", x=None, y="mass", by=None,
+                              output=str(tmp_path / "f.png"))
+    assert run_plot(args) == 0
+    assert seen == {"x": "delta", "y": "mass"}

@@ -25,8 +25,7 @@ wrong``.
 
 import sys
 
-from flyopt.errors import (ExpressionError, FlyoptError, Interrupted, NonPeriodicCycle, SceneError,
-                           SolverFailed)
+from flyopt.errors import ExpressionError, FlyoptError, Interrupted, NonPeriodicCycle, SceneError
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -56,7 +55,9 @@ def status_of(err, where):
     ----------
     err : BaseException
         A :class:`flyopt.errors.FlyoptError`, an :class:`OSError`, an
-        :class:`ArithmeticError` or a :class:`KeyboardInterrupt`.
+        :class:`ArithmeticError`, a :class:`ValueError` (other than the
+        input errors, which are FlyoptErrors: a computation that failed) or
+        a :class:`KeyboardInterrupt`.
     where : str or None
         The file the command works on, named when the error does not name one.
 
@@ -80,11 +81,11 @@ def status_of(err, where):
         return fail(f"{prefix}{err}", EXIT_INTERRUPTED)
     if isinstance(err, KeyboardInterrupt):
         return fail(f"{prefix}interrupted", EXIT_INTERRUPTED)
-    if isinstance(err, (SolverFailed, ArithmeticError)):
-        return fail(f"{prefix}{err}", EXIT_FAILED)
     if isinstance(err, OSError):
         name = f"{err.filename}: " if getattr(err, "filename", None) else prefix
         return fail(f"{name}{err.strerror or err}", EXIT_INPUT)
-    if isinstance(err, FlyoptError):
+    if isinstance(err, (FlyoptError, ArithmeticError, ValueError)):
+        # a solver that did not converge, or arithmetic that failed on the way ("math domain
+        # error" is a ValueError): no result, said in one line
         return fail(f"{prefix}{err}", EXIT_FAILED)
     raise err

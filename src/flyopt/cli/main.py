@@ -49,7 +49,7 @@ def main(argv=None):
         return status
     except BrokenPipeError:
         return _stdout_closed()
-    except (FlyoptError, OSError, ArithmeticError, KeyboardInterrupt) as err:
+    except (FlyoptError, OSError, ArithmeticError, ValueError, KeyboardInterrupt) as err:
         return status_of(err, getattr(args, "scene", None))
 
 

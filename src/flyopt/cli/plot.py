@@ -1,6 +1,15 @@
-"""``flyopt plot``: a diagram of a scene, or of the results of a sweep or a Pareto front."""
+"""``flyopt plot``: a diagram of a scene, or of the results of a sweep or a Pareto front.
+
+The handler computes what a diagram needs (the analysis, the design, the
+speed over the cycle, the simulation) and hands it to :mod:`flyopt.report.plots`,
+which only draws. The output file is checked before anything is computed.
+A diagram that would be empty because no flywheel is needed is said in one
+line on stdout with exit status 0 and no file: the scene is valid and the
+answer (no flywheel) is the one ``flyopt solve`` gives with status 0.
+"""
 
 from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_INPUT, EXIT_OK, fail
+from flyopt.errors import FlyoptError
 
 
 def add_plot_arguments(parser):
@@ -9,18 +18,18 @@ def add_plot_arguments(parser):
     parser.add_argument("--what", required=True, metavar="DIAGRAM",
                         help="turning_moment | energy | inertia_delta | cross_section | speed | energy_mass; "
                              "for results: sweep | pareto")
-    parser.add_argument("--x", help="results: the column on the x axis (sweep: a varied field)")
+    parser.add_argument("--x", help="results: the column on the x axis (sweep: a varied field; "
+                                    "pareto: default the front's second objective)")
     parser.add_argument("--y", default="mass", help="results: the column on the y axis (default mass)")
     parser.add_argument("--by", help="sweep results: one line per value of this column (e.g. material)")
     parser.add_argument("--verify", action="store_true", help="speed: draw the periodic simulation over the model")
-    parser.add_argument("-o", "--output", required=True, help="file to write; the suffix picks the format")
+    parser.add_argument("-o", "--output", required=True,
+                        help="file to write (its folder must exist); the suffix picks the format: png, svg, pdf")
     parser.set_defaults(run=run_plot)
 
 
 def run_plot(args):
-    """``flyopt plot``: 0 written, 2 a diagram that cannot be drawn or a bad request."""
-    from flyopt.io.scene import load
-    from flyopt.pipeline import solve
+    """``flyopt plot``: 0 written (or nothing to draw), 2 a bad request, 3 no feasible flywheel to draw."""
     from flyopt.report import plots
 
     if args.scene.lower().endswith((".csv", ".parquet")):
@@ -31,24 +40,92 @@ def run_plot(args):
         close = difflib.get_close_matches(args.what, list(plots.PLOTS), n=1)
         hint = f"; did you mean {close[0]!r}?" if close else ""
         return fail(f"--what: unknown diagram {args.what!r}{hint} (known: {', '.join(plots.PLOTS)})", EXIT_INPUT)
-    if not _image_suffix(args.output):
-        return fail(f"--output: {args.output!r} must end in .png, .svg or .pdf", EXIT_INPUT)
-    scene = load(args.scene)
-    solution = solve(scene, design_flywheel=args.what == "cross_section")
+    plots.check_output(args.output)
     try:
-        if args.what == "cross_section":
-            if solution.design.best is None:
-                return fail(f"{args.scene}: no flywheel to draw ({solution.design.message})", EXIT_INFEASIBLE)
-            ax = plots.plot_cross_section(solution.design.best)
-        elif args.what == "speed":
-            ax = plots.plot_speed(scene, solution.analysis, simulate=args.verify)
-        else:
-            ax = getattr(plots, f"plot_{args.what}")(scene, solution.analysis)
+        ax = _draw(args, plots)
+    except plots.NothingToDraw as said:
+        print(f"{args.scene}: {args.what}: {said} (no file written)")
+        return EXIT_OK
+    except _Infeasible as said:
+        return fail(f"{args.scene}: no flywheel to draw ({said})", EXIT_INFEASIBLE)
     except ValueError as err:
+        if isinstance(err, FlyoptError):   # an input error names its file and field itself
+            raise
         return fail(f"{args.scene}: {args.what}: {err}", EXIT_INPUT)
     plots.save(ax, args.output)
     print(f"wrote {args.output}")
     return EXIT_OK
+
+
+class _Infeasible(Exception):
+    """A flywheel is needed and no material and shaft can give it (exit 3)."""
+
+
+def _draw(args, plots):
+    """Compute what the diagram needs, then draw it; returns the Axes."""
+    from flyopt.analysis import analyse
+    from flyopt.io.scene import load
+
+    scene = load(args.scene)
+    analysis = analyse(scene)
+    if args.what == "cross_section":
+        from flyopt.pipeline import design_scene
+
+        design = design_scene(scene, analysis)
+        if design.status == "not_needed":
+            raise plots.NothingToDraw("no flywheel is needed: nothing to draw")
+        if design.best is None:
+            raise _Infeasible(design.message)
+        return plots.plot_cross_section(design.best)
+    if args.what == "speed":
+        if scene.net is not None:   # said by the plot, before any model runs
+            return plots.plot_speed(scene, analysis, None)
+        simulation = _simulation(analysis) if args.verify else None
+        return plots.plot_speed(scene, analysis, _speed(analysis), simulation)
+    if args.what == "energy_mass":
+        plots.check_energy_mass(analysis)
+        if analysis.model != "energy_mass":   # the diagram draws that model's tangents
+            analysis = analyse(scene, model="energy_mass")
+    return getattr(plots, f"plot_{args.what}")(scene, analysis)
+
+
+def _speed(analysis):
+    """ω(φ) with the required flywheel, from the model that sized it.
+
+    The dynamic model's own periodic solution; for the energy models the
+    forward use of the energy–mass method (docs/flywheel-design.md, section 6).
+
+    Raises
+    ------
+    NothingToDraw
+        No inertia at all and no fluctuation of energy (A_max = 0): the speed
+        stays at ω_m.
+    ValueError
+        No inertia at all while the energy fluctuates.
+    """
+    from flyopt.report.plots import NothingToDraw
+
+    requirement = analysis.requirement
+    if requirement.model == "dynamic":
+        return requirement.detail.solution
+    machine = analysis.machine
+    if machine.j_mean() + analysis.j_required <= 0:
+        if analysis.a_max <= 0:
+            raise NothingToDraw("the speed does not fluctuate (A_max = 0 J and no inertia at all): "
+                                "nothing to draw")
+        raise ValueError("the scene has no inertia at all (J_c = 0 and no flywheel needed): ω(φ) is undefined")
+    from flyopt.sizing.energy_mass import achieved_speed
+
+    return achieved_speed(machine.angle_only(), machine.j_machine, analysis.omega_mean, analysis.j_required)
+
+
+def _simulation(analysis):
+    """The periodic simulation of the machine with the required flywheel (what ``--verify`` checks)."""
+    from flyopt.sizing.periodic import periodic_solution
+
+    machine = analysis.machine
+    return periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
+                             max(analysis.j_required, 0.0), machine.knots())
 
 
 def _plot_results(args):
@@ -58,23 +135,22 @@ def _plot_results(args):
     if args.what not in plots.RESULT_PLOTS:
         return fail(f"--what: {args.what!r} is not a diagram of results (known: {', '.join(plots.RESULT_PLOTS)})",
                     EXIT_INPUT)
-    if not _image_suffix(args.output):
-        return fail(f"--output: {args.output!r} must end in .png, .svg or .pdf", EXIT_INPUT)
-    if not args.x:
-        return fail(f"--x: the results diagram {args.what!r} needs the column for the x axis", EXIT_INPUT)
+    plots.check_output(args.output)
     try:
         frame = read_results(args.scene)
     except (OSError, ValueError) as err:
         return fail(f"{args.scene}: cannot read the results: {err}", EXIT_INPUT)
+    x = args.x
+    if x is None and args.what == "pareto":
+        objectives = plots.pareto_objectives(frame)
+        x = objectives[1] if objectives else None
+    if x is None:
+        return fail(f"--x: the results diagram {args.what!r} needs the column for the x axis", EXIT_INPUT)
     try:
-        ax = plots.plot_sweep(frame, args.x, args.y, args.by) if args.what == "sweep" else \
-            plots.plot_pareto(frame, args.x, args.y)
+        ax = plots.plot_sweep(frame, x, args.y, args.by) if args.what == "sweep" else \
+            plots.plot_pareto(frame, x, args.y)
     except ValueError as err:
         return fail(f"{args.scene}: {err}", EXIT_INPUT)
     plots.save(ax, args.output)
     print(f"wrote {args.output}")
     return EXIT_OK
-
-
-def _image_suffix(path):
-    return path.lower().endswith((".png", ".svg", ".pdf"))

@@ -87,35 +87,31 @@ def add_sweep_arguments(parser):
 
 def run_sweep(args):
     """``flyopt sweep``: returns the exit status (0 done, or stopped by --max-chunks)."""
-    from flyopt.io.sweep_spec import _resolve, load_sweep
-    from flyopt.studies.plan import plan_sweep
-    from flyopt.studies.sweep import sweep
+    from flyopt.io.sweep_spec import _resolve, check_options, load_sweep, vary_from_texts
+    from flyopt.studies.sweep import check_sweep, sweep
 
     scene, options = load_sweep(args.scene)
-    vary = dict(options.pop("vary", {}))
-    if vary:  # the file's own values: errors name the file and its sweep.vary field
-        plan_sweep(scene, vary, samples=options.get("samples"), seed=options.get("seed"),
-                   where=f"{args.scene}: sweep.vary")
-    for text in args.vary:
-        if "=" not in text:
-            raise SceneError("--vary", f"{text!r}: expected FIELD=VALUES, e.g. "
-                             f"delta=0.01:0.1:log20 or speed=300,600,1200rpm")
-        path, values = text.split("=", 1)
-        canonical = _resolve(scene, path.strip(), "--vary")[0]
+    if options["vary"] or len(options) > 1:   # the file's own [sweep] table: errors name the file
+        check_sweep(scene, options, "sweep")
+    cli = {"samples": args.samples, "seed": args.seed, "output": args.output,
+           "chunk_size": args.chunk_size, "method": args.method, "workers": args.workers,
+           "max_chunks": args.max_chunks}
+    cli = {key: value for key, value in cli.items() if value is not None}
+    check_options({**cli, "resume": args.resume, "output": cli.get("output", options.get("output"))}, "--")
+    vary = options.pop("vary")
+    for path, values in vary_from_texts(scene, args.vary, "--vary").items():
+        canonical = _resolve(scene, path, "--vary")[0]
         for key in list(vary):   # the command line overrides the file
             if _resolve(scene, key, "sweep.vary")[0] == canonical:
                 del vary[key]
-        vary[path.strip()] = values
-    cli = {"samples": args.samples, "seed": args.seed, "output": args.output,
-           "chunk_size": args.chunk_size, "method": args.method, "workers": args.workers}
-    for key, value in cli.items():
-        if value is not None:
-            options[key] = value
+        vary[path] = values
+    max_chunks = cli.pop("max_chunks", None)
+    options.update(cli)
     output = options.pop("output", None)
     if output is not None and args.output is None:
         output = Path(args.scene).parent / output   # [sweep] output is relative to the file
     frame = sweep(scene, vary, output=output, scheduler=args.scheduler, resume=args.resume,
-                  max_chunks=args.max_chunks, progress=args.progress,
+                  max_chunks=max_chunks, progress=args.progress,
                   keep_parts=args.keep_parts, **options)
     info = frame.attrs["sweep"]
     counts = frame["status"].value_counts().to_dict()
@@ -178,7 +174,7 @@ def _method_and_output(parser, what):
 def _span(text, other):
     """``--range LOW:HIGH [unit]`` in SI, in the dimension of the front's second objective."""
     from flyopt.io.sweep_spec import _split_unit
-    from flyopt.studies.fronts import PARETO_OBJECTIVES
+    from flyopt.studies.pareto import PARETO_OBJECTIVES
     from flyopt.units import quantity
 
     if text is None:
@@ -211,7 +207,7 @@ _SHOW = {
 def run_pareto(args):
     """``flyopt pareto``: returns the exit status (0 a front or none needed, 3 no design)."""
     from flyopt.io.scene import load
-    from flyopt.studies.fronts import _pair, pareto
+    from flyopt.studies.pareto import _pair, pareto
 
     scene = load(args.scene)
     objectives, other = _pair(args.objectives)
@@ -221,6 +217,9 @@ def run_pareto(args):
         message = front.attrs.get("message", "empty front")
         print(f"{args.scene}: {message}")
         return EXIT_OK if message.startswith("no flywheel needed") else EXIT_INFEASIBLE
+    # the objectives first, mass then the other, in every format: flyopt plot --what pareto
+    # reads them there (flyopt.report.plots.pareto_objectives)
+    front = front[["mass", other, *(c for c in front.columns if c not in ("mass", other))]]
     _emit(front, args.output, args.json, _SHOW[other],
           f"{args.scene}: Pareto front, {' vs '.join(objectives)} "
           f"({len(front)} non-dominated of {front.attrs['evaluated']} designs)")
@@ -248,7 +247,7 @@ def add_tradeoff_arguments(parser):
 def run_tradeoff(args):
     """``flyopt tradeoff``: returns the exit status (0 a design, 3 none feasible)."""
     from flyopt.io.scene import load
-    from flyopt.studies.fronts import material_tradeoff
+    from flyopt.studies.tradeoff import material_tradeoff
 
     scene = load(args.scene)
     table = material_tradeoff(scene, method=args.method)

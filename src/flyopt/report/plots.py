@@ -4,6 +4,12 @@ Each ``plot_*`` function draws on a given Axes (or a new figure) and returns
 the Axes; :func:`save` writes a figure atomically (to a temporary file in the
 same folder, then renamed), so a failed render leaves nothing half-written.
 The backend is Agg unless the caller chose another one.
+
+The plots draw computed results and never run a model: what a diagram needs
+beyond the :class:`~flyopt.analysis.Analysis` (the speed over the cycle, a
+simulation, a design) is computed by the caller and passed in. A diagram that
+cannot be drawn for this scene raises :class:`ValueError`; one that would be
+empty because the machine needs no flywheel raises :class:`NothingToDraw`.
 """
 
 import math
@@ -14,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from flyopt.cycle.indicator import ExcessWork
+from flyopt.errors import SceneError
 from flyopt.units import rad_s_to_rpm
 
 SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
@@ -25,6 +32,35 @@ PLOTS = {
     "speed": "ω(φ) over the cycle with the required flywheel, from the model that ran",
     "energy_mass": "energy–mass (Wittenbauer) diagram: ΔE against J_e with the two tangents",
 }
+#: Image formats :func:`save` writes, by the suffix of the file.
+FORMATS = ("png", "svg", "pdf")
+
+
+class NothingToDraw(Exception):
+    """The diagram would be empty for this machine (no flywheel is needed): not an error."""
+
+
+def check_output(path):
+    """Check the file a diagram will go to, before anything is computed.
+
+    Parameters
+    ----------
+    path : str or Path
+        The output file; its suffix picks the format (:data:`FORMATS`).
+
+    Raises
+    ------
+    SceneError
+        Field ``-o/--output``: an unsupported suffix, or a folder that does
+        not exist (flyopt does not create folders the user did not ask for).
+    """
+    path = Path(path)
+    if path.suffix.lower().lstrip(".") not in FORMATS:
+        raise SceneError("-o/--output", f"{str(path)!r} must end in .png, .svg or .pdf "
+                         f"(the suffix picks the format)")
+    folder = path.parent
+    if not folder.is_dir():
+        raise SceneError("-o/--output", f"the folder {str(folder)!r} does not exist")
 
 
 def _pyplot():
@@ -138,12 +174,29 @@ def plot_energy(scene, analysis, ax=None):
 
 
 def plot_inertia_delta(scene, analysis, ax=None):
-    """J_F against δ: J_F = A_max/(ω_m² δ) − J_c, an equilateral hyperbola, the scene's δ marked."""
+    """J_F against δ: J_F = A_max/(ω_m² δ) − J_c, an equilateral hyperbola, the scene's δ marked.
+
+    J_F is positive only below δ* = A_max/(ω_m² J_c), where the machine's own
+    inertia stops sufficing; the δ axis reaches down to δ*/20 when the scene's
+    δ lies above it, and δ* is marked.
+
+    Raises
+    ------
+    NothingToDraw
+        A_max = 0: no flywheel is needed for any δ.
+    """
+    if analysis.a_max <= 0:
+        raise NothingToDraw("no flywheel is needed for any δ (A_max = 0 J, so J_F(δ) = 0): nothing to draw")
     ax = _axes(ax)
-    lo, hi = analysis.delta / 20, min(1.9, analysis.delta * 20)
+    omega2 = analysis.omega_mean**2
+    delta_free = analysis.a_max / (omega2 * analysis.j_constant) if analysis.j_constant > 0 else math.inf
+    lo, hi = min(analysis.delta, delta_free) / 20, min(1.9, analysis.delta * 20)
     delta = np.geomspace(lo, hi, 200)
-    j = analysis.a_max / (analysis.omega_mean**2 * delta) - analysis.j_constant
+    j = analysis.a_max / (omega2 * delta) - analysis.j_constant
     ax.plot(delta, np.where(j > 0, j, np.nan), color="tab:blue", label="J_F(δ)")
+    if delta_free < hi:
+        ax.axvline(delta_free, color="gray", ls="--", lw=0.8,
+                   label=f"δ* = {delta_free:.4g}: J_F = 0 above (J_c suffices)")
     if analysis.flywheel_needed:
         ax.plot([analysis.delta], [analysis.j_required], "o", color=DEFICIT,
                 label=f"δ = {analysis.delta:.4g}: J_F = {analysis.j_required:.4g} kg·m²")
@@ -186,42 +239,36 @@ def plot_cross_section(candidate, ax=None):
     return ax
 
 
-def _speed_curve(analysis):
-    """ω(φ) [rad/s] with the required flywheel, from the model that sized it."""
-    from flyopt.sizing import energy_mass as dynamics
-
-    req = analysis.requirement
-    if req is not None and req.model == "dynamic":
-        return req.detail.solution.phi, req.detail.solution.omega
-    machine = analysis.machine
-    if machine.j_mean() + analysis.j_required <= 0:
-        raise ValueError("the scene has no inertia at all (J_c = 0 and no flywheel needed): ω(φ) is undefined")
-    speed = dynamics.achieved_speed(machine.angle_only(), machine.j_machine, analysis.omega_mean,
-                                    analysis.j_required)
-    return speed.phi, speed.omega
-
-
-def plot_speed(scene, analysis, ax=None, simulate=False):
+def plot_speed(scene, analysis, speed, simulation=None, ax=None):
     """ω(φ) over the cycle with the required flywheel, from the model that ran.
 
-    Energy models: ω² = 2 (E_0 + ΔE)/J_e with E_0 such that (ω_max + ω_min)/2 = ω_m
-    (docs/flywheel-design.md, section 6, forward use); the dynamic model: its periodic solution.
-    With ``simulate``, the periodic simulation of the machine with that flywheel
-    (the verification's) is drawn over it.
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+    speed : SpeedFluctuation or PeriodicSolution
+        The model's speed over the cycle: ``phi`` [rad] and ``omega`` [rad/s].
+        Energy models: ω² = 2 (E_0 + ΔE)/J_e with E_0 such that
+        (ω_max + ω_min)/2 = ω_m (docs/flywheel-design.md, section 6, forward
+        use); the dynamic model: its periodic solution.
+    simulation : PeriodicSolution, optional
+        The periodic simulation of the machine with that flywheel (the
+        verification's), drawn over it: ``phi``, ``omega`` and ``delta``.
+    ax : matplotlib Axes, optional
+
+    Raises
+    ------
+    ValueError
+        A net-area scene: it has no angles.
     """
-    ax = _axes(ax)
     if scene.net is not None:
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
-    phi, omega = _speed_curve(analysis)
-    ax.plot(np.degrees(phi), rad_s_to_rpm(omega), color="tab:blue", label=f"model: {analysis.model}")
-    if simulate:
-        from flyopt.sizing import periodic as dynamics
-
-        m = analysis.machine
-        sol = dynamics.periodic_solution(m.net_torque(), m.j_machine, m.cycle_angle, analysis.omega_mean,
-                                         max(analysis.j_required, 0.0), m.knots())
-        ax.plot(np.degrees(sol.phi), rad_s_to_rpm(sol.omega), color=DEFICIT, ls="--", lw=1,
-                label=f"simulation (δ = {sol.delta:.6g})")
+    ax = _axes(ax)
+    omega = np.asarray(speed.omega)
+    ax.plot(np.degrees(speed.phi), rad_s_to_rpm(omega), color="tab:blue", label=f"model: {analysis.model}")
+    if simulation is not None:
+        ax.plot(np.degrees(simulation.phi), rad_s_to_rpm(simulation.omega), color=DEFICIT, ls="--", lw=1,
+                label=f"simulation (δ = {simulation.delta:.6g})")
     for value, label in ((omega.max(), "ω_max"), (omega.min(), "ω_min")):
         ax.axhline(rad_s_to_rpm(value), color="gray", ls=":", lw=0.8)
         ax.annotate(label, (0, rad_s_to_rpm(value)), fontsize=8, va="bottom")
@@ -236,16 +283,28 @@ def plot_energy_mass(scene, analysis, ax=None):
 
     From the true origin (−J_F, −E_0) the lines of slope ω_max²/2 and ω_min²/2
     touch the curve where the speed is highest and lowest (docs/flywheel-design.md, section 6).
-    """
-    from flyopt.sizing import choose as models
 
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+        Sized by the energy–mass model (``analyse(scene, model="energy_mass")``):
+        ``analysis.requirement.detail`` is its EnergyMassRequirement
+        (``j_required``, ``e0``, ``omega_max``, ``omega_min``).
+    ax : matplotlib Axes, optional
+
+    Raises
+    ------
+    ValueError
+        Torques that depend on speed, or net areas; or an analysis by another model.
+    """
+    check_energy_mass(analysis)
+    if analysis.requirement is None or analysis.requirement.model != "energy_mass":
+        raise ValueError(f"the energy–mass diagram draws the energy–mass model's result, and this "
+                         f"analysis ran the {analysis.model} model: analyse with model='energy_mass'")
     ax = _axes(ax, figsize=(7, 5.5))
-    if analysis.machine is None or analysis.machine.speed_dependent:
-        raise ValueError("the energy–mass diagram needs torques of the angle only given as curves")
     machine = analysis.machine
-    req = analysis.requirement if analysis.model == models.ENERGY_MASS else \
-        models.requirement(machine, models.ENERGY_MASS)
-    em = req.detail
+    em = analysis.requirement.detail
     ew = machine.angle_only()
     phi = np.union1d(np.linspace(0, scene.cycle_angle, 1500), ew.knots)
     j = np.broadcast_to(machine.j_machine(phi) if machine.variable_inertia else machine.j_machine, phi.shape)
@@ -272,6 +331,12 @@ def plot_energy_mass(scene, analysis, ax=None):
     return ax
 
 
+def check_energy_mass(analysis):
+    """Raise ValueError unless the energy–mass diagram can be drawn: torques of the angle only, as curves."""
+    if analysis.machine is None or analysis.machine.speed_dependent:
+        raise ValueError("the energy–mass diagram needs torques of the angle only given as curves")
+
+
 RESULT_PLOTS = {
     "sweep": "a result of a sweep against a varied field, one line per group (--by)",
     "pareto": "a Pareto front: the non-dominated designs of two objectives",
@@ -285,17 +350,43 @@ def _label(column):
     return f"{column} [{unit}]" if unit else column
 
 
+def _column(frame, name):
+    """The column a user names: itself, or the result of that name (``material`` is ``best_material``)."""
+    for column in (name, f"best_{name}"):
+        if column in frame.columns:
+            return column
+    raise ValueError(f"the results have no column {name!r} (columns: {', '.join(frame.columns)})")
+
+
+def pareto_objectives(frame):
+    """The two objectives of a front written by ``flyopt pareto``, or None.
+
+    A front has an ``epsilon`` column (the constraint value of each point)
+    and its two objectives as its first two columns, mass first.
+
+    Returns
+    -------
+    tuple of str or None
+        ``("mass", "outer_diameter")`` and so on; None for other results (a sweep).
+    """
+    columns = list(frame.columns)
+    if "epsilon" not in columns or len(columns) < 3 or columns[0] != "mass":
+        return None
+    return tuple(columns[:2])
+
+
 def plot_sweep(frame, x, y="mass", by=None, ax=None):
     """A sweep's result ``y`` against a varied field ``x``, one line per value of ``by``.
 
     Points that are not designed (infeasible, failed, not needed) are left out of
     the lines and counted in the legend. A field spanning more than a decade is
-    drawn on a log axis.
+    drawn on a log axis. A name that is not a column may name a result:
+    ``material`` and ``shaft`` are the winner's, ``best_material`` and
+    ``best_shaft``, when the sweep did not vary them.
     """
+    x, y = _column(frame, x), _column(frame, y)
+    by = _column(frame, by) if by else None
     ax = _axes(ax)
-    for column in (x, y) + ((by,) if by else ()):
-        if column not in frame.columns:
-            raise ValueError(f"the results have no column {column!r} (columns: {', '.join(frame.columns)})")
     groups = frame.groupby(by, sort=True) if by else [(None, frame)]
     for key, part in groups:
         part = part.sort_values(x)
@@ -305,8 +396,8 @@ def plot_sweep(frame, x, y="mass", by=None, ax=None):
         if missing:
             label += f" ({missing} not designed)"
         ax.plot(part[x][ok], part[y][ok], "o-", ms=3, lw=1.2, label=label)
-    values = frame[x].to_numpy(dtype=float)
-    positive = values[values > 0]
+    values = frame[x].to_numpy()
+    positive = values[values > 0] if np.issubdtype(values.dtype, np.number) else values[:0]
     if positive.size and positive.max() / positive.min() > 10:
         ax.set_xscale("log")
     ax.set(xlabel=_label(x), ylabel=_label(y), title=f"sweep: {y} against {x}")
@@ -317,10 +408,8 @@ def plot_sweep(frame, x, y="mass", by=None, ax=None):
 
 def plot_pareto(frame, x, y, ax=None):
     """The Pareto front of two objectives (both minimized), non-dominated points joined."""
+    x, y = _column(frame, x), _column(frame, y)
     ax = _axes(ax)
-    for column in (x, y):
-        if column not in frame.columns:
-            raise ValueError(f"the results have no column {column!r} (columns: {', '.join(frame.columns)})")
     data = frame[[x, y]].dropna().to_numpy(dtype=float)
     order = np.lexsort((data[:, 1], data[:, 0]))
     data = data[order]
@@ -335,13 +424,24 @@ def plot_pareto(frame, x, y, ax=None):
 
 
 def save(ax, path):
-    """Write the Axes' figure to ``path`` (png, svg or pdf by suffix), atomically."""
+    """Write the Axes' figure to ``path`` (png, svg or pdf by suffix), atomically.
+
+    Raises
+    ------
+    SceneError
+        See :func:`check_output`.
+    OSError
+        The folder cannot be written; the error names ``path``.
+    """
+    check_output(path)
     path = Path(path)
     suffix = path.suffix.lower().lstrip(".")
-    if suffix not in ("png", "svg", "pdf"):
-        raise ValueError(f"{path}: the output must end in .png, .svg or .pdf")
     fig = ax.figure
-    handle, tmp = tempfile.mkstemp(suffix=path.suffix, dir=path.parent if str(path.parent) else ".")
+    try:
+        handle, tmp = tempfile.mkstemp(suffix=path.suffix, dir=path.parent)
+    except OSError as err:
+        _pyplot().close(fig)
+        raise OSError(err.errno, err.strerror, str(path)) from err
     os.close(handle)
     try:
         fig.savefig(tmp, format=suffix, dpi=150)
