@@ -3,7 +3,8 @@
 Every input either works or is refused with exit status 2 and one short line
 on stderr that names the file and the field, within seconds, and without a
 traceback. ``solve`` and ``check`` read scenes through the same loader, so
-both are tried.
+both are tried. Input that could hang the parser runs in a fresh interpreter
+with a timeout; the rest runs ``flyopt.cli.main.main`` in this one (fast).
 """
 
 import re
@@ -38,8 +39,21 @@ def scene(old, new, base=BASE):
 
 
 def run(*args):
+    """flyopt in a fresh interpreter: for input that could hang it, a timeout fails the test."""
     return subprocess.run([sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True,
                           timeout=TIMEOUT)
+
+
+@pytest.fixture
+def cli(capsys):
+    """flyopt in this interpreter (fast), with the same result as :func:`run`."""
+    from flyopt.cli.main import main
+
+    def call(*args):
+        status = main([str(a) for a in args])
+        out, err = capsys.readouterr()
+        return subprocess.CompletedProcess(args, status, out, err)
+    return call
 
 
 def assert_refused(result, path, field, match):
@@ -83,9 +97,9 @@ def test_a_percentage_is_read_as_a_fraction_in_every_dimensionless_field(write_s
     ('["45 deg", "1600 N*m"]', '["12.5 %", "1600 N*m"]', "torque.resisting.points[1] angle"),
     ('"1600 N*m"], ["90 deg"', '"50 %"], ["90 deg"', "torque.resisting.points[1] torque"),
 ])
-def test_a_percentage_is_no_speed_angle_or_torque(write_scene, command, old, new, field):
+def test_a_percentage_is_no_speed_angle_or_torque(cli, write_scene, command, old, new, field):
     path = write_scene(scene(old, new))
-    assert_refused(run(command, path), path, field, "wrong dimension: expected")
+    assert_refused(cli(command, path), path, field, "wrong dimension: expected")
 
 
 # -- messages quote at most a short piece of what was written ------------------------
@@ -105,9 +119,9 @@ MB = 1_000_000
     ('constant = "unknown"', 'constant = "unknown"\n[[shaft]]\nname = "s"\nspeed_ratio = 1\n[design]\nshafts = ["'
      + "s" * MB + '"]', "design.shafts[0]", r"unknown shaft 's+…' \(1000000 characters\)"),
 ])
-def test_a_message_quotes_at_most_a_short_piece_of_the_input(write_scene, old, new, field, match):
+def test_a_message_quotes_at_most_a_short_piece_of_the_input(cli, write_scene, old, new, field, match):
     path = write_scene(scene(old, new))
-    assert_refused(run("check", path), path, field, match)
+    assert_refused(cli("check", path), path, field, match)
 
 
 @pytest.mark.parametrize("value", ["x" * MB, "it's " * 1000, ["y" * MB], [1] * MB, 10 ** 4000, 1e300, "short"])
@@ -153,9 +167,9 @@ def test_solve_refuses_a_power_tower_too(write_scene):
     ("100 + 1/0", r"'1 / 0' is inf"),
     ("100 + (-8)**(1/3)", r"is nan"),
 ])
-def test_an_expression_that_overflows_is_refused_naming_the_field(write_scene, command, expression, match):
+def test_an_expression_that_overflows_is_refused_naming_the_field(cli, write_scene, command, expression, match):
     path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
-    assert_refused(run(command, path), path, "torque.driving.expression", match)
+    assert_refused(cli(command, path), path, "torque.driving.expression", match)
 
 
 # -- nesting deep enough to exhaust Python's recursion -------------------------------------
@@ -167,9 +181,9 @@ def test_an_expression_that_overflows_is_refused_naming_the_field(write_scene, c
     ("sin(-" * 150 + "phi" + ")" * 150, "nested more than 200 deep"),
     ("(" * 500 + "phi" + ")" * 500, "too many nested parentheses"),
 ])
-def test_a_deeply_nested_expression_is_refused_naming_the_field(write_scene, expression, match):
+def test_a_deeply_nested_expression_is_refused_naming_the_field(cli, write_scene, expression, match):
     path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
-    assert_refused(run("check", path), path, "torque.driving.expression", match)
+    assert_refused(cli("check", path), path, "torque.driving.expression", match)
 
 
 @pytest.mark.parametrize("text, match", [
@@ -177,10 +191,10 @@ def test_a_deeply_nested_expression_is_refused_naming_the_field(write_scene, exp
     (BASE + "x = " + "{a = " * 50_000 + "1" + "}" * 50_000, "nested too deeply"),
     (BASE + "x = " + "1" * 5000, "digits"),
 ])
-def test_a_toml_file_python_cannot_read_is_refused_naming_the_file(write_scene, text, match):
+def test_a_toml_file_python_cannot_read_is_refused_naming_the_file(cli, write_scene, text, match):
     path = write_scene(text)
     for command in ("solve", "check"):
-        result = run(command, path)
+        result = cli(command, path)
         assert_refused(result, path, "not a scene", match)
 
 
@@ -195,10 +209,10 @@ def test_an_expression_of_the_deepest_allowed_nesting_evaluates():
 # -- a scene whose members carry the whole load needs no [torque.resisting] -------------------
 
 
-def test_check_accepts_a_member_force_as_the_whole_load(write_scene):
+def test_check_accepts_a_member_force_as_the_whole_load(cli, write_scene):
     friction = '[torque.resisting]\nconstant = "150 N*m"       # friction of the slides and bearings\n'
     path = write_scene(scene(friction, "", (PROBLEMS / "slider-crank-press.toml").read_text(encoding="utf-8")))
-    result = run("check", path)
+    result = cli("check", path)
     assert (result.returncode, result.stderr) == (0, "")
 
 
@@ -208,7 +222,7 @@ def test_check_accepts_a_member_force_as_the_whole_load(write_scene):
 @pytest.mark.parametrize("command", ["solve", "check"])
 @pytest.mark.parametrize("expression, near", [("100 + tan(phi)", "1.5708"), ("1/(phi - 1)", "1"),
                                               ("1/cos(phi)", "1.5708")])
-def test_a_torque_with_a_pole_is_refused_naming_the_field(write_scene, command, expression, near):
+def test_a_torque_with_a_pole_is_refused_naming_the_field(cli, write_scene, command, expression, near):
     path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
-    assert_refused(run(command, path), path, "torque.driving.expression",
+    assert_refused(cli(command, path), path, "torque.driving.expression",
                    rf"the expression has a pole near φ = {near} rad .*\|M\| grows without bound")
