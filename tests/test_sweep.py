@@ -24,7 +24,7 @@ from flyopt.errors import SceneError
 from flyopt.io.results import CORE_INPUTS, RESULT_COLUMNS, read_results
 from flyopt.io.sweep_spec import load_sweep, parse_vary
 from flyopt.studies.evaluate import point_scene
-from flyopt.studies.fronts import sweep_main
+from flyopt.cli.studies import sweep_main
 from flyopt.studies.plan import plan_sweep
 from flyopt.studies.sweep import sweep
 
@@ -465,7 +465,8 @@ def test_cycle_analysed_once(monkeypatch):
     calls = []
     original = flyopt.analysis.analyse
     monkeypatch.setattr(flyopt.analysis, "analyse", lambda s: calls.append(1) or original(s))
-    sweep(PUNCH, {"delta": "0.02:0.2:log10", "speed": "30,60,120rpm", "torque.scale": "1,2"})
+    scene = flyopt.load(PROBLEMS / "punch-press.toml")   # a scene object of its own: analyses are
+    sweep(scene, {"delta": "0.02:0.2:log10", "speed": "30,60,120rpm", "torque.scale": "1,2"})  # memoized per scene
     assert len(calls) == 1
 
 
