@@ -8,7 +8,7 @@ ratio-squared transfer.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia, speed_extremes
@@ -78,8 +78,6 @@ class Analysis:
     angle_delta_e_max: float | None
     angle_delta_e_min: float | None
     model_reason: str
-    models: tuple
-    startup: dict | None
     index_omega_max: int
     index_omega_min: int
     j_margin: float
@@ -91,11 +89,33 @@ class Analysis:
     indicator: EnergyIndicator | None = None
     machine: Machine | None = None
     requirement: Requirement | None = None
+    _lazy: dict = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def models(self):
+        """Every applicable model's J_F and the δ it really gives (flyopt.sizing.choose.compare).
+
+        Computed on first use, not by every analysis: a sweep point needs only
+        J_F and ω_max, and the comparison solves the cheaper models again.
+        """
+        return self._get("models")
+
+    @property
+    def startup(self):
+        """The run-up from rest with the motor (dict), or None without a motor; computed on first use."""
+        return self._get("startup")
+
+    def _get(self, name):
+        value = self._lazy[name]
+        if callable(value):
+            value = self._lazy[name] = value()
+        return value
 
     def to_dict(self):
-        """Plain JSON-ready dictionary, every number in SI."""
+        """Plain JSON-ready dictionary, every number in SI (the comparison and start-up included)."""
         out = {k: v for k, v in self.__dict__.items()
-               if k not in ("indicator", "machine", "requirement", "shafts", "energy_chain", "models")}
+               if k not in ("indicator", "machine", "requirement", "shafts", "energy_chain", "_lazy")}
+        out["startup"] = self.startup
         out["models"] = [dict(m) for m in self.models]
         out["energy_chain"] = [dict(e) for e in self.energy_chain]
         out["shafts"] = [s.to_dict() for s in self.shafts]
@@ -134,7 +154,7 @@ def _analyse(scene, forced=None):
 
     if forced is not None and forced not in models.MODELS:
         raise SceneError("--model", f"{forced!r} is not known (allowed: {', '.join(models.ORDER)})")
-    machine = requirement = startup = None
+    machine = requirement = None
     if scene.net is not None:
         if forced not in (None, models.ENERGY):
             raise SceneError("--model", "a scene given as net areas has no curves: only the energy model applies")
@@ -146,8 +166,8 @@ def _analyse(scene, forced=None):
         omega_mean = scene.omega_mean
         omega_max, omega_min = speed_extremes(omega_mean, scene.delta)
         angles = (ind.angle_omega_max, ind.angle_omega_min)
-        comparison = ({"model": model, "exact": True, "j_required": j_margin, "achieved_delta": scene.delta,
-                       "j_error": 0.0, "note": ""},)
+        lazy = {"models": ({"model": model, "exact": True, "j_required": j_margin, "achieved_delta": scene.delta,
+                            "j_error": 0.0, "note": ""},), "startup": None}
     else:
         machine = models.reduce(scene)
         ew = machine.angle_only()
@@ -157,7 +177,6 @@ def _analyse(scene, forced=None):
             reason = f"forced by --model; the exact model for this scene is {model}: {reason}"
             model = forced
         requirement = models.requirement(machine, model, ind)
-        comparison = tuple(models.compare(machine, model, ind, known=requirement))
         j_margin = requirement.j_required
         omega_mean, omega_max, omega_min = requirement.omega_mean, requirement.omega_max, requirement.omega_min
         angles = (requirement.angle_omega_max, requirement.angle_omega_min)
@@ -166,7 +185,8 @@ def _analyse(scene, forced=None):
         motor_power = power / scene.efficiency
         chain = tuple({"index": k, "angle": float(a), "delta_e": float(e)}
                       for k, (a, e) in enumerate(zip(ind.chain_angle, ind.chain_delta_e)))
-        startup = _startup(machine, omega_mean, max(j_margin, 0.0))
+        lazy = {"models": lambda: tuple(models.compare(machine, model, ind, known=requirement)),
+                "startup": lambda: _startup(machine, omega_mean, max(j_margin, 0.0))}
     needed = j_margin > 0
     j_req = j_margin if needed else 0.0
     shafts = tuple(ShaftRequirement(
@@ -174,7 +194,7 @@ def _analyse(scene, forced=None):
         efficiency=s.efficiency, j_required=inertia_on_shaft(j_req, s.speed_ratio),
         gd2_required=gd2_from_inertia(inertia_on_shaft(j_req, s.speed_ratio))) for s in scene.shafts)
     return Analysis(
-        title=scene.title, model=model, model_reason=reason, models=comparison, startup=startup,
+        title=scene.title, model=model, model_reason=reason, _lazy=lazy,
         omega_mean=omega_mean, delta=scene.delta,
         cycle_angle=scene.cycle_angle, j_constant=scene.j_constant, a_max=ind.a_max,
         work_per_cycle=work, driving_torque=driving, resisting_torque=resisting, power=power,
