@@ -248,3 +248,26 @@ def test_sweep_command_line_errors_name_the_option(capsys, args, words):
     assert main(["sweep", str(PROBLEMS / "shear-press.toml"), *args, "--no-progress"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and words in err
+
+
+def _keys(value):
+    if isinstance(value, dict):
+        return set(value) | set().union(*(_keys(v) for v in value.values()))
+    if isinstance(value, list):
+        return set().union(*(_keys(v) for v in value))
+    return set()
+
+
+def test_json_is_the_same_on_every_run_and_timings_only_when_asked():
+    # by IPOPT every feasible combination of the punch press has a wall-clock time
+    scene = PROBLEMS / "punch-press.toml"
+    first, second = run("solve", scene, "--json", "--design-method", "ipopt"), \
+        run("solve", scene, "--json", "--design-method", "ipopt")
+    assert first.returncode == second.returncode == 0, first.stderr
+    assert first.stdout == second.stdout
+    assert "solve_time" not in _keys(json.loads(first.stdout))
+    timed = run("solve", scene, "--json", "--design-method", "ipopt", "--timings")
+    assert timed.returncode == 0, timed.stderr
+    candidates = json.loads(timed.stdout)["design"]["candidates"]
+    solved = [c for c in candidates if c["solver_status"]]
+    assert "solve_time" in _keys(candidates) and solved and all(c["solve_time"] > 0 for c in solved)

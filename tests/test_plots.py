@@ -142,7 +142,7 @@ def test_bad_output_is_one_line_exit_2_nothing_written(tmp_path, target, words, 
 # A machine that needs no flywheel: nothing to draw is said, not a failure
 # --------------------------------------------------------------------------
 
-@pytest.mark.parametrize("what", ["cross_section", "inertia_delta"])
+@pytest.mark.parametrize("what", ["cross_section", "inertia_delta", "speed", "energy_mass"])
 def test_nothing_to_draw_when_no_flywheel_is_needed(tmp_path, capsys, what):
     # conveyor: steady torques, A_max = 0, J_F(δ) = 0 for every δ
     out = tmp_path / "x.png"
@@ -257,25 +257,39 @@ def _flyopt(*args, cwd):
                           timeout=600, cwd=cwd)
 
 
+def _readme_command(start):
+    """The arguments after ``flyopt`` of the README's command that begins with ``start``."""
+    import re
+    import shlex
+
+    from conftest import ROOT
+
+    commands = re.findall(r"^\| `(flyopt [^`]+)`", (ROOT / "README.md").read_text(encoding="utf-8"), re.M)
+    found = [c for c in commands if c.startswith(start)]
+    assert len(found) == 1, f"the README has no single command starting {start!r}"
+    return shlex.split(found[0])[1:]
+
+
 def test_readme_sweep_plot_by_material(tmp_path):
-    # README: flyopt plot RESULTS.parquet --what sweep --x delta --y mass --by material -o f.png,
-    # on a sweep that varies delta only: the winner's material is the line
-    sweep = _flyopt("sweep", PROBLEMS / "punch-press.toml", "--vary", "delta=0.01:0.1:log5", "-o", "out.parquet",
+    # on a sweep that varies delta only, --by material means the winner's material
+    sweep = _flyopt("sweep", PROBLEMS / "punch-press.toml", "--vary", "delta=0.01:0.1:log5", "-o", "RESULTS.parquet",
                     "--no-progress", cwd=tmp_path)
     assert sweep.returncode == 0, sweep.stderr
-    out = _flyopt("plot", "out.parquet", "--what", "sweep", "--x", "delta", "--y", "mass", "--by", "material",
-                  "-o", "f.png", cwd=tmp_path)
+    command = _readme_command("flyopt plot RESULTS.parquet --what sweep")
+    out = _flyopt(*command, cwd=tmp_path)
     assert out.returncode == 0, out.stderr
-    assert (tmp_path / "f.png").stat().st_size > 10_000
+    assert (tmp_path / command[command.index("-o") + 1]).stat().st_size > 10_000
 
 
 def test_readme_pareto_plot_without_x(tmp_path):
     front = _flyopt("pareto", PROBLEMS / "shear-press.toml", "--objectives", "mass,outer_diameter",
-                    "--points", "5", "-o", "front.csv", cwd=tmp_path)
+                    "--points", "5", "-o", "FRONT.csv", cwd=tmp_path)
     assert front.returncode == 0, front.stderr
-    out = _flyopt("plot", "front.csv", "--what", "pareto", "-o", "front.png", cwd=tmp_path)
+    command = _readme_command("flyopt plot FRONT.csv --what pareto")
+    assert "--x" not in command
+    out = _flyopt(*command, cwd=tmp_path)
     assert out.returncode == 0, out.stderr
-    assert (tmp_path / "front.png").stat().st_size > 10_000
+    assert (tmp_path / command[command.index("-o") + 1]).stat().st_size > 10_000
 
 
 def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):

@@ -111,8 +111,8 @@ def _speed(analysis):
     machine = analysis.machine
     if machine.j_mean() + analysis.j_required <= 0:
         if analysis.a_max <= 0:
-            raise NothingToDraw("the speed does not fluctuate (A_max = 0 J and no inertia at all): "
-                                "nothing to draw")
+            raise NothingToDraw("no flywheel is needed and the speed does not fluctuate (A_max = 0 J, "
+                                "no inertia at all): nothing to draw")
         raise ValueError("the scene has no inertia at all (J_c = 0 and no flywheel needed): ω(φ) is undefined")
     from flyopt.sizing.energy_mass import achieved_speed
 

@@ -20,6 +20,9 @@ def add_solve_arguments(parser):
                              "closed form does not cover")
     parser.add_argument("--verify", action="store_true",
                         help="simulate the machine with the chosen flywheel and report the δ it achieves")
+    parser.add_argument("--timings", action="store_true",
+                        help="--json: also the wall-clock time of each design solve (solve_time [s]); left out "
+                             "by default, so that the same scene gives the same JSON")
     parser.set_defaults(run=run_solve)
 
 
@@ -32,7 +35,10 @@ def run_solve(args):
     solution = solve(scene, design_flywheel=args.design, model=args.model, verify_design=args.verify,
                      design_method=args.design_method)
     if args.json:
-        text = json.dumps({"scene": args.scene, **_json_safe(solution.to_dict())}, indent=2, allow_nan=False)
+        data = solution.to_dict()
+        if args.timings and solution.design is not None and data["design"].get("candidates"):
+            data["design"]["candidates"] = [c.to_dict(timings=True) for c in solution.design.candidates]
+        text = json.dumps({"scene": args.scene, **_json_safe(data)}, indent=2, allow_nan=False)
     else:
         from flyopt.report.text import analysis_report, design_report, verification_report
 

@@ -297,13 +297,18 @@ def plot_energy_mass(scene, analysis, ax=None):
     ------
     ValueError
         Torques that depend on speed, or net areas; or an analysis by another model.
+    NothingToDraw
+        A_max = 0 with a constant inertia: the curve is one point.
     """
     check_energy_mass(analysis)
     if analysis.requirement is None or analysis.requirement.model != "energy_mass":
         raise ValueError(f"the energy–mass diagram draws the energy–mass model's result, and this "
                          f"analysis ran the {analysis.model} model: analyse with model='energy_mass'")
-    ax = _axes(ax, figsize=(7, 5.5))
     machine = analysis.machine
+    if analysis.a_max <= 0 and not machine.variable_inertia:
+        raise NothingToDraw("no flywheel is needed and the diagram is one point (A_max = 0 J, constant "
+                            "inertia): nothing to draw")
+    ax = _axes(ax, figsize=(7, 5.5))
     em = analysis.requirement.detail
     ew = machine.angle_only()
     phi = np.union1d(np.linspace(0, scene.cycle_angle, 1500), ew.knots)
@@ -321,7 +326,7 @@ def plot_energy_mass(scene, analysis, ax=None):
     span_x = j.max() - j.min()
     ax.set_xlim(j.min() - 0.5 * max(span_x, 1e-9), j.max() + 0.5 * max(span_x, 1e-9))
     span_y = de.max() - de.min()
-    ax.set_ylim(de.min() - 0.3 * span_y, de.max() + 0.3 * span_y)
+    ax.set_ylim(de.min() - 0.3 * max(span_y, 1e-9), de.max() + 0.3 * max(span_y, 1e-9))
     if x0 < j.min() - 0.5 * max(span_x, 1e-9):
         ax.text(0.01, 0.01, f"tangents meet at (−J_F, −E_0) = ({x0:.4g} kg·m², {y0:.4g} J), off the plot",
                 transform=ax.transAxes, fontsize=8, color="gray")
