@@ -167,3 +167,16 @@ def test_design_method_auto_gives_the_same_design(capsys):
     assert (auto["material"], auto["shaft"]) == (ipopt["material"], ipopt["shaft"])
     assert_allclose(auto["mass"], ipopt["mass"], rtol=1e-6)
     assert {c["solver_status"] for c in auto["candidates"] if c["feasible"]} == {"closed_form"}
+
+
+@pytest.mark.parametrize("scene, extra", [("punch-press.toml", ()), ("shear-press.toml", ("--design-method", "ipopt"))])
+def test_json_is_the_same_on_every_run(scene, extra, capsys):
+    """Wall-clock times are not results: two runs give the same JSON (they differed in solve_time)."""
+    outputs = []
+    for _ in range(2):
+        assert main(["solve", str(PROBLEMS / scene), "--json", *extra]) == 0
+        outputs.append(capsys.readouterr().out)
+    assert outputs[0] == outputs[1]
+    assert "solve_time" not in outputs[0]
+    assert main(["solve", str(PROBLEMS / scene), "--json", "--timings", *extra]) == 0
+    assert "solve_time" in capsys.readouterr().out

@@ -32,19 +32,23 @@ class Solution:
         """"designed", "not_needed", "infeasible", or "analysed" (design skipped)."""
         return self.design.status if self.design is not None else "analysed"
 
-    def to_dict(self):
-        """The JSON of ``flyopt solve``: the analysis fields plus a "design" object."""
+    def to_dict(self, timings=False):
+        """The JSON of ``flyopt solve``: the analysis fields plus a "design" object.
+
+        Wall-clock times (``solve_time`` of each design) only with ``timings``:
+        without them the same scene always gives the same JSON.
+        """
         out = self.analysis.to_dict()
         if self.design is not None:
-            out["design"] = design_dict(self.design)
+            out["design"] = design_dict(self.design, timings)
         if self.verification is not None:
             out["verification"] = dict(self.verification)
         return out
 
 
-def design_dict(result):
+def design_dict(result, timings=False):
     """The "design" object: the winner's fields, its ranking, status and model."""
-    raw = result.to_dict()
+    raw = result.to_dict(timings)
     design = raw["design"] or {"candidates": []}
     return {"status": raw["status"], "message": raw["message"], **design, "model": raw["model"]}
 

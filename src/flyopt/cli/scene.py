@@ -35,9 +35,7 @@ def run_solve(args):
     solution = solve(scene, design_flywheel=args.design, model=args.model, verify_design=args.verify,
                      design_method=args.design_method)
     if args.json:
-        data = solution.to_dict()
-        if args.timings and solution.design is not None and data["design"].get("candidates"):
-            data["design"]["candidates"] = [c.to_dict(timings=True) for c in solution.design.candidates]
+        data = solution.to_dict(timings=args.timings)
         text = json.dumps({"scene": args.scene, **_json_safe(data)}, indent=2, allow_nan=False)
     else:
         from flyopt.report.text import analysis_report, design_report, verification_report
