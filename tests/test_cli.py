@@ -133,7 +133,7 @@ def test_a_long_message_stays_one_short_line(monkeypatch, capsys):
     monkeypatch.setattr(flyopt.cli.scene, "run_check", _raiser(huge))
     assert main(["check", "SCENE"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and len(err) < 1200
+    assert err.count("\n") == 1 and len(err) < 1100
 
 
 def test_interrupted_sweep_exits_130(monkeypatch, capsys):

@@ -42,7 +42,7 @@ def fail(message, status):
     return status
 
 
-def _one_line(message, limit=500):
+def _one_line(message, limit=1000):
     """The message on one line, cut to ``limit`` characters (an echoed input may be huge)."""
     text = " ".join(str(message).split())
     return text if len(text) <= limit else text[:limit - 1] + "…"

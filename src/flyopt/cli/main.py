@@ -73,7 +73,8 @@ def _parser():
     parser = argparse.ArgumentParser(
         prog="flyopt", description="Flywheel design for speed regulation.",
         epilog="exit status: 0 ok, 1 solver failed or design failed its check, 2 bad input, "
-               "3 infeasible, 4 verification flagged, 130 interrupted (see flyopt.cli.exits)")
+               "3 infeasible, 4 verification flagged, 130 interrupted, 141 stdout closed early "
+               "(see flyopt.cli.exits)")
     parser.add_argument("--version", action="version", version=f"flyopt {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
