@@ -29,6 +29,8 @@ from dataclasses import dataclass
 from importlib import resources
 from typing import Iterable, Mapping
 
+from flyopt.errors import shorten
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - exercised only on Python 3.10
@@ -53,7 +55,7 @@ def _positive_finite(value, what, name):
         number = float(value)
     except (TypeError, ValueError) as err:
         raise ValueError(
-            f"material {name!r}: {what} must be a positive number, got {value!r}"
+            f"material {shorten(name)}: {what} must be a positive number, got {shorten(value)}"
         ) from err
     if not math.isfinite(number) or number <= 0.0:
         raise ValueError(

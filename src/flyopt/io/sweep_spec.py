@@ -48,7 +48,7 @@ from typing import Mapping
 
 import numpy as np
 
-from flyopt.errors import SceneError
+from flyopt.errors import SceneError, shorten
 from flyopt.units import quantity
 
 __all__ = ["FIELDS", "METHODS", "Axis", "parse_vary", "vary_from_texts", "check_options",
@@ -305,7 +305,7 @@ def _check_value(value, spec, label, text):
     low_ok = value >= spec.minimum if spec.inclusive else value > spec.minimum
     high_ok = spec.maximum is None or value < spec.maximum
     if not (low_ok and high_ok):
-        raise SceneError(label, f"{text!r} is out of range: {spec.what}")
+        raise SceneError(label, f"{shorten(text)} is out of range: {spec.what}")
 
 
 def _parse_text(scene, name, spec, text, label, sampled, cap=None):
@@ -338,7 +338,7 @@ def _parse_text(scene, name, spec, text, label, sampled, cap=None):
 def _parse_range(name, spec, text, label, sampled, cap=None):
     parts = text.split(":")
     if len(parts) not in (2, 3):
-        raise SceneError(label, f"{text!r}: a range is a:b:n (linear) or a:b:logn (log), "
+        raise SceneError(label, f"{shorten(text)}: a range is a:b:n (linear) or a:b:logn (log), "
                          f"with an optional unit at the end")
     if len(parts) == 3:
         m = _COUNT.match(parts[2])

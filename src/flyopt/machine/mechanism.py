@@ -24,6 +24,7 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
+from flyopt.errors import shorten
 from flyopt.machine.torque import PiecewiseLinear
 
 FORCE_SENSES = ("resisting", "driving", "axial")
@@ -200,7 +201,7 @@ class SliderCrank:
                               angular_ratio=self.rod_angular_ratio)
         if part == "slider":
             return Kinematics(velocity_ratio=self.slider_velocity_ratio, angular_ratio=0.0)
-        raise ValueError(f"slider-crank part {part!r} is not known (allowed: 'crank', 'rod', 'slider')")
+        raise ValueError(f"slider-crank part {shorten(part)} is not known (allowed: 'crank', 'rod', 'slider')")
 
 
 class GearTrain:
