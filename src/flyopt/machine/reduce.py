@@ -13,7 +13,8 @@ import numpy as np
 
 from flyopt.cycle.indicator import ExcessWork
 from flyopt.errors import SceneError
-from flyopt.machine.torque import Constant, TorqueSum
+from flyopt.machine.motor import InductionMotor
+from flyopt.machine.torque import Constant, MotorTorque, TorqueSum
 
 
 @dataclass(frozen=True)
@@ -50,24 +51,31 @@ class Machine:
         ``omega`` (default: the scene's mean speed).
         """
         omega = self.omega_mean if omega is None else float(omega)
-        if omega not in self._cache:  # built once: its knot integrals may cost many quadratures
-            self._cache[omega] = ExcessWork(_frozen(self.driving, omega), _frozen(self.resisting, omega),
-                                            self.cycle_angle)
-        return self._cache[omega]
+        key = ("angle_only", omega)
+        if key not in self._cache:  # built once: its knot integrals may cost many quadratures
+            self._cache[key] = ExcessWork(_frozen(self.driving, omega), _frozen(self.resisting, omega),
+                                          self.cycle_angle)
+        return self._cache[key]
 
     def net_torque(self):
-        """M_d − M_r as a callable (phi, omega) that accepts CasADi symbols [N*m].
+        """M_d − M_r at the reference shaft, as the periodic model takes it (:class:`NetTorque`).
 
         An unknown constant is first solved from the work balance (at the
-        mean speed when another torque depends on speed).
+        mean speed when another torque depends on speed). Built once per
+        machine: the periodic model's CasADi functions are cached on this
+        object (flyopt.sizing.periodic.periodic_model), so every model run
+        on the machine shares them.
         """
-        balanced = self.angle_only()
-        driving = balanced.driving if _unknown(self.driving) else self.driving
-        resisting = balanced.resisting if _unknown(self.resisting) else self.resisting
-
-        def net(phi, omega):
-            return _casadi(driving, phi, omega) - _casadi(resisting, phi, omega)
-        return net
+        if "net_torque" not in self._cache:
+            balanced = self.angle_only()
+            driving = balanced.driving if _unknown(self.driving) else self.driving
+            resisting = balanced.resisting if _unknown(self.resisting) else self.resisting
+            phi = np.linspace(0.0, self.cycle_angle, 4097)
+            work = self.cycle_angle * float(np.mean(np.abs(balanced.driving.limits(phi)[1])))
+            self._cache["net_torque"] = NetTorque(
+                driving, resisting, work,
+                balanced=self.speed_dependent and (_unknown(self.driving) or _unknown(self.resisting)))
+        return self._cache["net_torque"]
 
     def knots(self):
         """Angles where a torque steps or kinks [rad] (the simulation cuts there).
@@ -84,6 +92,87 @@ class Machine:
             return float(self.j_machine)
         phi = np.linspace(0.0, self.cycle_angle, 4097)
         return float(np.mean(self.j_machine(phi[:-1])))
+
+
+
+class NetTorque:
+    """The net torque M_d − M_r at the reference shaft [N*m], split for the periodic model.
+
+    Calling it, ``net(phi, omega)``, gives the whole net torque for CasADi
+    symbols. The periodic model (flyopt.sizing.periodic) takes it apart:
+
+    - ``table``: the part that depends on the angle only and is piecewise
+      linear (tables and constants, with their signs). Linear between its
+      breakpoints, it enters each integration piece as the two values at the
+      piece's ends, so a table of n points costs O(n), not O(n) per step;
+    - ``rest(phi, omega)``: every other part (expressions, motors, members'
+      loads), for CasADi.
+
+    Parameters
+    ----------
+    driving, resisting : torque curves
+        The torques, an unknown constant already balanced [N*m].
+    work : float
+        The work of the torques over a cycle, ∫|M_d| dφ [J]: the scale of
+        the work balance's tolerance (the difference of two balanced torques
+        is round-off, and cannot say how large the torques are).
+    balanced : bool
+        An unknown constant torque balances the cycle while another torque
+        depends on speed: the scene's mean speed then holds, and the
+        constant follows from the periodic steady state (only a motor's
+        characteristic sets the mean speed).
+    """
+
+    def __init__(self, driving, resisting, work, balanced=False):
+        self.work = float(work)
+        self.balanced = bool(balanced)
+        parts = [(1.0, p) for p in _parts(driving)] + [(-1.0, p) for p in _parts(resisting)]
+        linear = [p.is_linear and not getattr(p, "speed_dependent", False) for _, p in parts]
+        self.table = LinearTable([part for part, flag in zip(parts, linear) if flag])
+        self._rest = [part for part, flag in zip(parts, linear) if not flag]
+
+    def rest(self, phi, omega):
+        """The parts that are not tables, as a CasADi expression [N*m]."""
+        total = 0.0
+        for sign, part in self._rest:
+            total = total + sign * _casadi(part, phi, omega)
+        return total
+
+    def __call__(self, phi, omega):
+        return self.table.casadi(phi) + self.rest(phi, omega)
+
+
+class LinearTable:
+    """A signed sum of piecewise-linear torques of the angle (tables and constants) [N*m].
+
+    Parameters
+    ----------
+    parts : list of (sign, curve)
+        Curves with ``limits(phi)``, ``breakpoints()`` and ``casadi(phi)``.
+    """
+
+    def __init__(self, parts):
+        self.parts = list(parts)
+
+    def breakpoints(self):
+        """Angles where the sum kinks or steps [rad]."""
+        points = [np.asarray(p.breakpoints(), dtype=float) for _, p in self.parts]
+        return np.unique(np.concatenate(points)) if points else np.empty(0)
+
+    def limits(self, phi):
+        """Left and right limits at the angles ``phi`` [N*m]."""
+        phi = np.asarray(phi, dtype=float)
+        left, right = np.zeros(phi.shape), np.zeros(phi.shape)
+        for sign, part in self.parts:
+            lp, rp = part.limits(phi)
+            left, right = left + sign * np.asarray(lp, dtype=float), right + sign * np.asarray(rp, dtype=float)
+        return left, right
+
+    def casadi(self, phi):
+        total = 0.0
+        for sign, part in self.parts:
+            total = total + sign * part.casadi(phi)
+        return total
 
 
 def reduce(scene):
@@ -104,15 +193,56 @@ def reduce(scene):
                 resisting = TorqueSum([resisting, loads.resisting()], "torque.resisting + members")
     speed = any(getattr(c, "speed_dependent", False) for c in (driving, resisting))
     if speed and (_unknown(driving) or _unknown(resisting)) and \
-            any(type(c).__name__ == "MotorTorque" for c in (driving, resisting)):
+            any(isinstance(c, MotorTorque) for c in (driving, resisting)):
         raise SceneError("torque.resisting", "with a motor driving, the load must be given (not an unknown constant)")
-    return Machine(driving=driving, resisting=resisting, j_machine=j_machine, cycle_angle=scene.cycle_angle,
-                   omega_mean=scene.omega_mean, delta=scene.delta, speed_dependent=speed,
-                   variable_inertia=not isinstance(j_machine, (int, float)))
+    machine = Machine(driving=driving, resisting=resisting, j_machine=j_machine, cycle_angle=scene.cycle_angle,
+                      omega_mean=scene.omega_mean, delta=scene.delta, speed_dependent=speed,
+                      variable_inertia=not isinstance(j_machine, (int, float)))
+    _check_drive(machine)
+    return machine
 
+
+def _check_drive(machine):
+    """Refuse a motor whose largest torque is below the mean load: it cannot run steadily at any speed.
+
+    The largest torque on the reference shaft is the breakdown torque of an
+    induction motor (or the stall torque of a DC motor) times i η
+    (docs/flywheel-design.md, sections 3 and 7); the mean load is the work
+    balance's constant (flyopt.cycle.indicator), at the scene's speed and,
+    for a load that depends on speed, the least of it up to the motor's
+    no-load speed.
+
+    Raises
+    ------
+    SceneError
+        Field ``torque.driving``: the scene asks for something no periodic
+        solution can give, which is an error of the input, not of a solver.
+    """
+    curve = machine.driving
+    if not isinstance(curve, MotorTorque):
+        return
+    motor, gain = curve.motor, curve.speed_ratio * curve.efficiency
+    if isinstance(motor, InductionMotor):
+        largest, what, no_load = motor.breakdown_torque * gain, "breakdown", motor.synchronous_speed
+    else:
+        largest, what, no_load = motor.stall_torque * gain, "stall", motor.no_load_speed
+    speeds = [machine.omega_mean]
+    if getattr(machine.resisting, "speed_dependent", False):
+        speeds += list(np.linspace(0.0, no_load / curve.speed_ratio, 17)[1:])
+    load = min(float(machine.angle_only(w).driving.value) for w in speeds)
+    if largest < load:
+        raise SceneError("torque.driving", f"the motor's largest torque on the reference shaft, {largest:.6g} N*m "
+                         f"({what}), is below the mean load {load:.6g} N*m: no steady running")
 
 
 # -- internals -------------------------------------------------------------------
+
+
+def _parts(curve):
+    """The curves a torque is the sum of (a TorqueSum taken apart, recursively)."""
+    if isinstance(curve, TorqueSum):
+        return [q for p in curve.parts for q in _parts(p)]
+    return [curve]
 
 
 def _unknown(curve):
@@ -121,7 +251,7 @@ def _unknown(curve):
 
 def _frozen(curve, omega):
     """An angle-only version of a curve: motors become the balancing unknown, ω held elsewhere."""
-    if type(curve).__name__ == "MotorTorque":
+    if isinstance(curve, MotorTorque):
         return Constant(None)
     if getattr(curve, "speed_dependent", False):
         return curve.at_speed(omega)

@@ -5,6 +5,7 @@ functions on numpy arrays, argument checks, and the cubic Hermite
 interpolant with its exact extremes (docs/flywheel-design.md, sections 6–7).
 """
 
+import contextlib
 import math
 
 import casadi as ca
@@ -55,6 +56,9 @@ class Inertia:
         return self._eval(phi, 1)
 
     def _eval(self, phi, which):
+        if self.is_constant:  # no CasADi call per angle for a constant
+            shape = np.shape(phi)
+            return np.full(shape, float(self.function(0.0)[0])) if which == 0 else np.zeros(shape)
         return evaluate(self.function, self._maps, phi)[which]
 
 
@@ -136,3 +140,26 @@ def hermite_extremes(phi, f, df):
             if pm[i] < lo_val:
                 lo_val, lo_phi = float(pm[i]), float(where[i])
     return (hi_phi, hi_val), (lo_phi, lo_val)
+
+
+class _Discard:
+    """A text stream that keeps nothing."""
+
+    def write(self, text):
+        return len(text)
+
+    def flush(self):
+        pass
+
+
+@contextlib.contextmanager
+def quiet():
+    """Keep CasADi's diagnostics off stderr while CasADi evaluates.
+
+    When a function called inside a CasADi graph fails (CVODES giving up
+    on a trial that stalls), CasADi prints its every input to stderr before
+    it raises; the exception, which flyopt turns into a message with
+    numbers, is all that is wanted.
+    """
+    with contextlib.redirect_stderr(_Discard()):
+        yield

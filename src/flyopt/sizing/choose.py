@@ -124,8 +124,10 @@ def achieved_delta(machine, j_flywheel):
     """δ the machine really reaches with a flywheel J_F at the reference shaft (by the exact model)."""
     exact, _ = choose(machine)
     if exact in (ENERGY, ENERGY_MASS):
-        if machine.j_mean() + j_flywheel <= 0:
-            return float("inf")
+        if machine.j_mean() + j_flywheel <= 0:  # no inertia: the speed is constant only if nothing fluctuates
+            model = periodic.periodic_model(machine.net_torque(), machine.j_machine, machine.cycle_angle,
+                                            machine.knots())
+            return 0.0 if model.steady else float("inf")
         return energy_mass.achieved_speed(machine.angle_only(), machine.j_machine, machine.omega_mean,
                                        j_flywheel).delta
     sol = periodic.periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle,

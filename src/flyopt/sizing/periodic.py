@@ -21,6 +21,17 @@ CasADi symbols (numbers come from the compiled CasADi function); inertias as
 a number, an :class:`flyopt.machine.mechanism.EquivalentInertia`, or a CasADi-capable
 callable of φ. Results are SI: [rad], [rad/s], [kg*m^2], [J], [s].
 
+When neither the torques nor the inertia vary with the angle nothing
+fluctuates: the speed is constant, whatever the inertia (even none). An
+unknown constant torque that balances the cycle while another torque depends
+on speed holds the scene's mean speed; only a motor's characteristic makes
+the mean speed an outcome.
+
+A machine's model is built once (:func:`periodic_model`, cached on its net
+torque; :data:`BUILDS` counts the builds), and a torque table enters it as
+its values at the ends of each piece, so time and memory grow linearly with
+the table's length.
+
 The equation of motion is integrated in the kinetic energy E = ½ J ω²,
 written as E = E_ref + W_s y with y of order one (E_ref a reference energy,
 W_s the energy swing of the cycle), so the integrator's tolerances act on the
@@ -28,22 +39,37 @@ fluctuation, whatever the speed (1 rpm or 20,000 rpm) and δ (1e-4 or 0.3).
 """
 
 import math
+import weakref
+from collections import Counter
 from dataclasses import dataclass, field
-from functools import cached_property, lru_cache
+from functools import cached_property
 
 import casadi as ca
 import numpy as np
 from scipy import optimize
 
 from flyopt.cycle.indicator import BALANCE_TOLERANCE
-from flyopt.errors import NonPeriodicCycle, SolverFailed
-from flyopt.sizing._numerics import EDGE, EPS, Inertia, check_cycle, check_speed_delta, evaluate, hermite_extremes
+from flyopt.errors import NonPeriodicCycle, SceneError, SolverFailed
+from flyopt.sizing._numerics import (EDGE, EPS, Inertia, check_cycle, check_speed_delta, evaluate, hermite_extremes,
+                                     quiet)
 
 PIECES_PER_CYCLE = 32
 """The simulation splits the cycle at every knot and into at least this many pieces."""
 
 OUTPUTS_PER_PIECE = 64
 """Integrator outputs per piece (the simulation grid: at least 2048 per cycle)."""
+
+MAX_OUTPUTS = 2**17
+"""Outputs per cycle above which a piece gets fewer than :data:`OUTPUTS_PER_PIECE`
+(a table of many points cuts the cycle into many short pieces; memory stays bounded)."""
+
+CHUNK = 256
+"""Pieces integrated by one CasADi call (a ``mapaccum``); longer cycles are chained in chunks."""
+
+BUILDS = Counter()
+"""CasADi structures built, by kind ("periodic model", "integrator", "timed integrator",
+"cycle function", "shooting function", "balancing function"). Each is built once per
+machine and reused for every flywheel and speed; tests count them."""
 
 RELTOL = 1e-11
 ABSTOL = 1e-12
@@ -64,8 +90,17 @@ MAX_NEWTON = 60
 MAX_DYNAMIC = 80
 """Periodic solutions the search for the required flywheel may compute."""
 
+VANISHING_INERTIA = 1e-9
+"""Smallest total inertia the search for the flywheel tries, relative to the machine's (or to the
+first estimate): δ below the allowed value there means that no flywheel is needed."""
+
 STALL_RTOL = 1e-4
 """Relative width in J_F to which a stall limit (see :class:`DynamicRequirement`) is located."""
+
+MEAN_TARGET = 1e-13
+MEAN_RTOL = 1e-10
+"""Relative accuracy to which a balancing constant holds the prescribed mean speed: the
+iteration aims at MEAN_TARGET and fails beyond MEAN_RTOL."""
 
 
 def angle_torque(excess_work):
@@ -119,6 +154,10 @@ class PeriodicSolution:
         Kinetic energy at φ = 0 [J].
     period : float
         Time of one cycle, ∫ dφ/ω [s].
+    torque_offset : float
+        The correction added to an unknown constant torque so that the
+        cycle balances at the prescribed mean speed (0 unless
+        ``net_torque.balanced``) [N*m].
     """
 
     phi: np.ndarray
@@ -140,6 +179,7 @@ class PeriodicSolution:
     j_flywheel: float
     e0: float
     period: float
+    torque_offset: float = 0.0
 
 
 class PeriodicModel:
@@ -149,12 +189,20 @@ class PeriodicModel:
     least :data:`PIECES_PER_CYCLE` pieces. Each piece is integrated by CVODES
     in a normalized time τ ∈ [0, 1] with the piece's ends, the flywheel and
     the energy scales as parameters, so one integrator serves every piece,
-    flywheel and speed. Build it through :func:`periodic_model` (cached).
+    flywheel and speed. The cycle is integrated in chunks of at most
+    :data:`CHUNK` pieces (a CasADi ``mapaccum`` each), so that time and
+    memory grow linearly with the number of pieces. Build it through
+    :func:`periodic_model` (cached).
 
     Parameters
     ----------
     net_torque : callable (phi, omega) -> torque
         M_d − M_r at the reference shaft [N*m]; must accept CasADi symbols.
+        A :class:`flyopt.machine.reduce.NetTorque` is taken apart: its
+        ``table`` (piecewise linear in the angle) enters each piece as its
+        two end values, its ``rest`` as CasADi, its ``work`` sets the scale of
+        the work balance and ``balanced`` says that an unknown constant
+        holds the mean speed (see :func:`periodic_solution`).
     j_machine : float, EquivalentInertia or callable
         J(φ) of the machine [kg*m^2].
     cycle_angle : float
@@ -164,56 +212,80 @@ class PeriodicModel:
     """
 
     def __init__(self, net_torque, j_machine, cycle_angle, knots=()):
+        BUILDS["periodic model"] += 1
         self.cycle = check_cycle(cycle_angle)
         self.inertia = Inertia(j_machine)
+        self.table = getattr(net_torque, "table", None)
+        rest = net_torque.rest if self.table is not None else net_torque
         knots = np.asarray(list(knots), dtype=float).reshape(-1)
         if not np.all(np.isfinite(knots)):
             raise ValueError("knots must be finite angles [rad]")
-        inner = np.concatenate((knots, self.inertia.knots))
+        table_knots = self.table.breakpoints() if self.table is not None else np.empty(0)
+        inner = np.concatenate((knots, table_knots, self.inertia.knots))
         inner = inner[(inner > 0) & (inner < self.cycle)]
         edges = np.union1d([0.0, self.cycle], inner)
-        pieces = []
-        for a, b in zip(edges[:-1], edges[1:]):
-            n = max(1, math.ceil((b - a) / self.cycle * PIECES_PER_CYCLE - 1e-9))
-            cuts = np.linspace(a, b, n + 1)
-            pieces += list(zip(cuts[:-1], cuts[1:]))
-        self.pieces = np.array(pieces)
+        counts = np.maximum(1, np.ceil((edges[1:] - edges[:-1]) / self.cycle * PIECES_PER_CYCLE - 1e-9)).astype(int)
+        pieces = [np.linspace(a, b, n + 1) for a, b, n in zip(edges[:-1], edges[1:], counts)]
+        self.pieces = np.concatenate([np.column_stack((c[:-1], c[1:])) for c in pieces])
         self.segments = np.column_stack((edges[:-1], edges[1:]))
-        self.net_torque = net_torque
-        self.tau = np.linspace(0.0, 1.0, OUTPUTS_PER_PIECE + 1)
+        outputs = OUTPUTS_PER_PIECE
+        if len(self.pieces) * OUTPUTS_PER_PIECE > MAX_OUTPUTS:
+            outputs = max(2, MAX_OUTPUTS // len(self.pieces) // 2 * 2)
+        self.tau = np.linspace(0.0, 1.0, outputs + 1)
+        self.table_ends = self.table_at(self.pieces[:, 0], self.pieces[:, 1])
+        self.work = float(getattr(net_torque, "work", 0.0))
 
         phi, omega = ca.SX.sym("phi"), ca.SX.sym("omega")
         try:
-            m = ca.SX(net_torque(phi, omega))
+            m = ca.SX(rest(phi, omega))
         except Exception as err:  # noqa: BLE001 -- any failure means "not CasADi-capable"
             raise ValueError(f"net_torque(phi, omega) must accept CasADi symbols: {err}") from err
         if m.shape != (1, 1):
             raise ValueError(f"net_torque must return a scalar, got shape {m.shape}")
         self.speed_dependent = bool(ca.depends_on(m, omega))
+        self.balanced = self.speed_dependent and bool(getattr(net_torque, "balanced", False))
+        self.steady = (self.inertia.is_constant and not ca.depends_on(m, phi)
+                       and bool(np.all(self.table_ends == self.table_ends[0, 0])))
         self.torque_function = ca.Function("M", [phi, omega], [m])
+        self._rest_constant = not (ca.depends_on(m, phi) or self.speed_dependent)
         self.torque_slope_function = ca.Function("dM", [phi, omega], [ca.jacobian(m, omega)])
         self._maps = {}
+        self._chunks = {}
+
+    def table_at(self, a, b):
+        """The table's values at the ends of pieces [a, b], seen from inside them [N*m], shape (n, 2)."""
+        a, b = np.atleast_1d(np.asarray(a, dtype=float)), np.atleast_1d(np.asarray(b, dtype=float))
+        if self.table is None:
+            return np.zeros((len(a), 2))
+        return np.column_stack((self.table.limits(a)[1], self.table.limits(b)[0]))
 
     # -- CasADi building blocks --------------------------------------------------
     def _rhs(self, with_time):
-        """States [y, stall(, t)], parameters [φ_a, φ_b, J_F, E_ref, W_s(, T_s)]."""
+        """States [y, stall(, t)], parameters [φ_a, φ_b, J_F, E_ref, W_s, c, M_a, M_b(, T_s)].
+
+        c is a constant added to the net torque (the correction of a
+        balancing constant); M_a and M_b are the table's values at the
+        piece's ends, between which it is linear.
+        """
         tau = ca.SX.sym("tau")
         x = ca.SX.sym("x", 3 if with_time else 2)
-        p = ca.SX.sym("p", 6 if with_time else 5)
-        a, b, j_f, e_ref, w_s = p[0], p[1], p[2], p[3], p[4]
+        p = ca.SX.sym("p", 9 if with_time else 8)
+        a, b, j_f, e_ref, w_s, c, m_a, m_b = (p[k] for k in range(8))
         h = b - a
         phi = a + tau * h
-        phi_torque = a + ca.fmin(ca.fmax(tau, EDGE), 1 - EDGE) * h
+        tau_torque = ca.fmin(ca.fmax(tau, EDGE), 1 - EDGE)
+        phi_torque = a + tau_torque * h
         j = self.inertia.casadi(phi) + j_f
         energy = e_ref + w_s * x[0]
         omega = ca.sqrt(ca.fmax(2 * energy / j, 1e-300))
-        torque = self.torque_function(phi_torque, omega)
+        torque = self.torque_function(phi_torque, omega) + (m_a + (m_b - m_a) * tau_torque) + c
         ode = [h * torque / w_s, h * ca.fmax(-energy / w_s, 0)]
         if with_time:
-            ode.append(h / (omega * p[5]))
+            ode.append(h / (omega * p[8]))
         return {"x": x, "p": p, "t": tau, "ode": ca.vertcat(*ode)}
 
     def _integrator(self, with_time):
+        BUILDS["timed integrator" if with_time else "integrator"] += 1
         opts = {"abstol": ABSTOL, "reltol": RELTOL, "max_num_steps": 200000,
                 "disable_internal_warnings": True}
         return ca.integrator("piece_t" if with_time else "piece", "cvodes", self._rhs(with_time),
@@ -229,27 +301,62 @@ class PeriodicModel:
         """CVODES over one piece with time: states [y, stall, t]."""
         return self._integrator(True)
 
-    @cached_property
-    def cycle_function(self):
-        """(y0, [J_F, E_ref, W_s]) -> states at every output of every piece."""
-        x0 = ca.MX.sym("x0", 2)
-        q = ca.MX.sym("q", 3)
-        x, outs = x0, []
-        for a, b in self.pieces:
-            xf = self.piece(x0=x, p=ca.vertcat(a, b, q))["xf"]
-            outs.append(xf)
-            x = xf[:, -1]
-        return ca.Function("cycle", [x0, q], [ca.horzcat(*outs)])
+    def _chunk(self, kind, size):
+        """A CasADi function over ``size`` consecutive pieces (built once per kind and size).
 
-    @cached_property
-    def shooting_function(self):
-        """([J_F, E_ref, W_s]) -> (y(Φ), stall(Φ), dy(Φ)/dE_ref), starting from y = 0."""
-        j_f, e_ref, w_s = ca.MX.sym("j_f"), ca.MX.sym("e_ref"), ca.MX.sym("w_s")
-        q = ca.vertcat(j_f, e_ref, w_s)
-        x = ca.MX.zeros(2)
-        for a, b in self.pieces:
-            x = self.piece(x0=x, p=ca.vertcat(a, b, q))["xf"][:, -1]
-        return ca.Function("shoot", [j_f, e_ref, w_s], [x[0], x[1], ca.jacobian(x[0], e_ref)])
+        Inputs: the states at the chunk's start, q = [J_F, E_ref, W_s, c], and
+        the pieces' data [φ_a, φ_b, M_a, M_b] (4 × size). Outputs by kind:
+        "cycle": the states at the chunk's end and at every output;
+        "shooting": the states at the end and ∂y/∂E_ref there;
+        "balancing": the same and ∂y/∂c.
+        """
+        key = (kind, size)
+        if key not in self._chunks:
+            BUILDS[f"{kind} function"] += 1
+            x0, q, data = ca.MX.sym("x0", 2), ca.MX.sym("q", 4), ca.MX.sym("data", 4)
+            xf = self.piece(x0=x0, p=ca.vertcat(data[0], data[1], q, data[2], data[3]))["xf"]
+            if kind == "cycle":
+                step = ca.Function("step", [x0, q, data], [xf[:, -1], xf])
+                self._chunks[key] = step.mapaccum(f"cycle_{size}", size)
+            else:
+                step = ca.Function("step", [x0, q, data], [xf[:, -1]])
+                chain = step.mapaccum(f"chain_{size}", size)
+                xs, ds = ca.MX.sym("x0", 2), ca.MX.sym("data", 4, size)
+                qs = [ca.MX.sym(name) for name in ("j_f", "e_ref", "w_s", "c")]
+                end = chain(xs, ca.vertcat(*qs), ds)[:, -1]
+                wrt = [qs[1]] if kind == "shooting" else [qs[1], qs[3]]
+                outs = [end] + [ca.jacobian(end[0], v) for v in wrt]
+                self._chunks[key] = ca.Function(f"{kind}_{size}", [xs, ca.vertcat(*qs), ds], outs)
+        return self._chunks[key]
+
+    def _chunked(self):
+        """(start, data) of each chunk of at most :data:`CHUNK` pieces."""
+        data = np.column_stack((self.pieces, self.table_ends)).T
+        return [(k, data[:, k:k + CHUNK]) for k in range(0, len(self.pieces), CHUNK)]
+
+    def shoot(self, j_flywheel, e_ref, w_s, offset=0.0, balancing=False):
+        """One cycle from y = 0: (y(Φ), stall(Φ), dy(Φ)/dE_ref[, dy(Φ)/dc]).
+
+        The chunks are chained by the chain rule: y depends on the energy
+        E_ref + W_s y only, so ∂y_end/∂y_start = 1 + W_s ∂y_end/∂E_ref.
+
+        Raises
+        ------
+        RuntimeError
+            When CVODES fails (CasADi's message).
+        """
+        kind = "balancing" if balancing else "shooting"
+        q = [j_flywheel, e_ref, w_s, offset]
+        x, d_e, d_c = np.zeros(2), 0.0, 0.0
+        for _, data in self._chunked():
+            out = self._chunk(kind, data.shape[1])(x, q, data)
+            b_e = float(out[1])
+            gain = 1.0 + w_s * b_e
+            d_e = gain * d_e + b_e
+            if balancing:
+                d_c = gain * d_c + float(out[2])
+            x = np.asarray(out[0], dtype=float).reshape(-1)
+        return (x[0], x[1], d_e, d_c) if balancing else (x[0], x[1], d_e)
 
     # -- numbers --------------------------------------------------------------
     def grid_angles(self):
@@ -258,8 +365,15 @@ class PeriodicModel:
         return a + self.tau[None, :] * (b - a)
 
     def torque(self, phi, omega):
-        """Net torque at numpy arrays (broadcast) [N*m]."""
-        return evaluate(self.torque_function, self._maps, phi, omega)[0]
+        """Net torque at numpy arrays (broadcast) [N*m]; on a knot, the value right of it."""
+        if self._rest_constant:  # a table alone: no CasADi call per point
+            shape = np.broadcast_shapes(np.shape(phi), np.shape(omega))
+            values = np.full(shape, float(self.torque_function(0.0, 0.0)))
+        else:
+            values = evaluate(self.torque_function, self._maps, phi, omega)[0]
+        if self.table is not None:
+            values = values + self.table.limits(np.broadcast_to(np.asarray(phi, dtype=float), values.shape))[1]
+        return values
 
     def falls_with_speed(self, omega):
         """Whether ∂M/∂ω <= 0 on the grid for speeds up to 4 ω (sampled; the torque
@@ -282,10 +396,15 @@ class PeriodicModel:
                              f"be finite over the cycle")
 
     def work_scale(self, omega):
-        """Φ · max |M(φ, ω)| over the cycle at speed ``omega`` [J], an upper bound of the energy swing."""
-        phi = self.grid_angles()[:, :-1].reshape(-1)
-        m = self.torque(phi, omega)
-        scale = self.cycle * float(np.max(np.abs(m)))
+        """An upper bound of the energy swing over the cycle at speed ``omega`` [J].
+
+        The larger of Φ · max |M(φ, ω)| and ½ (max J − min J) ω² (the energy
+        a varying inertia trades at that speed, even when M is nil).
+        """
+        phi = self.grid_angles()
+        m = self.torque(phi[:, :-1].reshape(-1), omega)
+        j = self.inertia(phi)
+        scale = max(self.cycle * float(np.max(np.abs(m))), 0.5 * float(np.ptp(j)) * omega**2)
         return scale if scale > 0 else 1.0
 
     def absolute_work(self, omega):
@@ -296,24 +415,30 @@ class PeriodicModel:
                                omega))
         return float(np.sum(0.5 * (m[:, 1:] + m[:, :-1]) * np.diff(phi, axis=1)))
 
-    def trajectory(self, j_flywheel, e_ref, w_s, x0=None):
-        """Integrate one cycle; returns y (pieces, outputs) and the stall measure.
+    def trajectory(self, j_flywheel, e_ref, w_s, offset=0.0):
+        """Integrate one cycle from y = 0; returns y (pieces, outputs) and the stall measure.
 
         Raises
         ------
         SolverFailed
             When CVODES fails (its status in the message).
         """
-        x0 = [0.0, 0.0] if x0 is None else x0
+        q = [j_flywheel, e_ref, w_s, offset]
+        x, parts = np.zeros(2), []
         try:
-            out = np.asarray(self.cycle_function(x0, [j_flywheel, e_ref, w_s]), dtype=float)
+            with quiet():
+                for _, data in self._chunked():
+                    ends, outs = self._chunk("cycle", data.shape[1])(x, q, data)
+                    parts.append(np.asarray(outs, dtype=float))
+                    x = np.asarray(ends, dtype=float)[:, -1]
         except RuntimeError as err:
             raise SolverFailed(f"the integration of the cycle failed (CVODES: "
                                f"{str(err).strip().splitlines()[-1]})") from err
+        out = np.concatenate(parts, axis=1)
         y = out[0].reshape(len(self.pieces), len(self.tau))
         return y, float(out[1, -1])
 
-    def speed_profile(self, y, j_flywheel, e_ref, w_s, shift=0.0):
+    def speed_profile(self, y, j_flywheel, e_ref, w_s, shift=0.0, offset=0.0):
         """q = E/J = ω²/2 and its slope dq/dφ = (M J − E J')/J² on the simulation grid.
 
         q is smooth even where ω is small (ω itself has a square-root
@@ -335,7 +460,7 @@ class PeriodicModel:
         # torques seen from inside each piece (a step at a knot from the correct side)
         tau_t = np.clip(self.tau, EDGE, 1 - EDGE)
         phi_t = self.pieces[:, :1] + tau_t[None, :] * h[:, None]
-        m = self.torque(phi_t, np.sqrt(2 * q))
+        m = self.torque(phi_t, np.sqrt(2 * q)) + offset
         return phi, q, (m * j - energy * dj) / j**2, energy
 
 
@@ -348,23 +473,31 @@ def _simpson_time(phi, omega):
     return float(np.sum(h[:, 0] / 3 * (g @ w)))
 
 
-@lru_cache(maxsize=32)
-def _cached_model(net_torque, j_machine, cycle_angle, knots):
-    return PeriodicModel(net_torque, j_machine, cycle_angle, knots)
+_MODELS = weakref.WeakKeyDictionary()
+"""Periodic models by net torque, then by (inertia, cycle, knots). A machine's
+net torque is one object (flyopt.machine.reduce.Machine.net_torque), so the
+requirement, the comparison of models and the verification of one machine
+share one model; the entry lives as long as that torque."""
 
 
 def periodic_model(net_torque, j_machine, cycle_angle, knots=()):
     """The (cached) :class:`PeriodicModel` of one machine structure.
 
-    The CasADi integrators and cycle functions are built once per
-    (net_torque, j_machine, cycle_angle, knots) and reused for every
-    flywheel and speed.
+    The CasADi integrators and cycle functions are built once per net torque
+    (its identity: the physics it stands for), inertia, cycle angle and
+    knots, and reused for every flywheel and speed. :data:`BUILDS` counts
+    the builds.
     """
     knots = tuple(float(k) for k in np.asarray(list(knots), dtype=float).reshape(-1))
+    inertia = ("value", float(j_machine)) if isinstance(j_machine, (int, float)) else ("object", id(j_machine))
+    key = (inertia, float(cycle_angle), knots)
     try:
-        return _cached_model(net_torque, j_machine, float(cycle_angle), knots)
-    except TypeError:  # an unhashable argument: build without the cache
+        models = _MODELS.setdefault(net_torque, {})
+    except TypeError:  # not weakly referenceable: build without the cache
         return PeriodicModel(net_torque, j_machine, cycle_angle, knots)
+    if key not in models:  # the model keeps j_machine alive, so its id is not reused meanwhile
+        models[key] = PeriodicModel(net_torque, j_machine, cycle_angle, knots)
+    return models[key]
 
 
 def periodic_solution(net_torque, j_machine, cycle_angle, omega_mean, j_flywheel=0.0, knots=()):
@@ -374,17 +507,20 @@ def periodic_solution(net_torque, j_machine, cycle_angle, omega_mean, j_flywheel
     ----------
     net_torque : callable (phi, omega) -> torque
         M_d − M_r at the reference shaft [N*m], accepting CasADi symbols
-        (e.g. built from :mod:`flyopt.machine.motor` and :mod:`flyopt.machine.torque`, or
+        (e.g. :meth:`flyopt.machine.reduce.Machine.net_torque`, or built from
+        :mod:`flyopt.machine.motor` and :mod:`flyopt.machine.torque`, or
         :func:`angle_torque`).
     j_machine : float, EquivalentInertia or callable
         The machine's J_e(φ) [kg*m^2].
     cycle_angle : float
         Φ [rad].
     omega_mean : float
-        When the torque depends on the angle only: the prescribed mean speed
-        (ω_max + ω_min)/2 [rad/s] — every initial speed is then periodic and
-        this one is picked. When it depends on speed: a first guess; the
-        mean speed follows from the torque–speed balance.
+        The prescribed mean speed (ω_max + ω_min)/2 [rad/s] when the torque
+        depends on the angle only (every initial speed is then periodic and
+        this one is picked) or when an unknown constant torque balances the
+        cycle (``net_torque.balanced``: the constant is solved with the
+        steady state). Otherwise (a motor) a first guess: the mean speed
+        follows from the torque–speed balance.
     j_flywheel : float
         J_F added to the machine [kg*m^2].
     knots : sequence of float
@@ -407,12 +543,18 @@ def periodic_solution(net_torque, j_machine, cycle_angle, omega_mean, j_flywheel
 
     Notes
     -----
-    Shooting: from E(0) = E_ref the cycle is integrated with CVODES
+    When neither the torques nor the inertia vary with the angle, nothing
+    fluctuates: the speed is constant (δ = 0, whatever the inertia, even
+    none) and is the root of M(ω) = 0 (or the prescribed one).
+
+    Otherwise shooting: from E(0) = E_ref the cycle is integrated with CVODES
     (BDF, exact forward sensitivities), and Newton's method on E(Φ) − E(0) = 0,
     kept inside a bracket of the sign change, moves E_ref; a torque that
     rises with speed somewhere (a motor past breakdown) adds a scan of speeds
     when Newton finds no gain (see :func:`_periodic_energy`). A solution must
-    be stable (Floquet multiplier dE(Φ)/dE(0) < 1). The extremes of
+    be stable (Floquet multiplier dE(Φ)/dE(0) < 1). With a balancing
+    constant, Newton moves the constant c instead (y(Φ) grows with c) and a
+    secant on √E_ref holds the mean speed. The extremes of
     ω = sqrt(2q) are those of the cubic Hermite interpolant of q = E/J through
     the states and the exact slopes dq/dφ = (M J − E J')/J² at the 2048+
     outputs per cycle (q stays smooth where ω is small).
@@ -423,6 +565,8 @@ def periodic_solution(net_torque, j_machine, cycle_angle, omega_mean, j_flywheel
 
 def _periodic(model, j_flywheel, omega_guess):
     check_speed_delta(omega_guess, None)
+    if model.steady:
+        return _steady(model, j_flywheel, omega_guess)
     phi_grid = model.grid_angles()
     j_min = float(np.min(model.inertia(phi_grid))) + j_flywheel
     if not j_min > 0:
@@ -430,13 +574,81 @@ def _periodic(model, j_flywheel, omega_guess):
                          f"it reaches {j_min!r} kg*m^2")
     j_ref = float(model.inertia(0.0)) + j_flywheel
     model.check_finite(omega_guess)
+    if model.balanced:
+        return _periodic_balanced(model, j_flywheel, omega_guess, j_ref)
     if model.speed_dependent:
         return _periodic_speed_dependent(model, j_flywheel, omega_guess, j_ref)
     return _periodic_angle_only(model, j_flywheel, omega_guess, j_ref)
 
 
-def _finish(model, y, j_flywheel, e_ref, w_s, shift, status, residual, tol, multiplier, iterations):
-    phi, q, dq, energy = model.speed_profile(y, j_flywheel, e_ref, w_s, shift)
+def _steady(model, j_flywheel, omega_guess):
+    """Neither the torques nor the inertia vary with the angle: a constant speed, δ = 0.
+
+    Angle-only torques must balance (|M| Φ within :data:`BALANCE_TOLERANCE`
+    of the torques' work); a balancing constant holds the prescribed speed;
+    otherwise the speed is the root of M(ω) = 0 where M falls with speed
+    (a stable balance), searched outward from the guess.
+    """
+    j = float(model.inertia(0.0)) + j_flywheel
+    if j < 0:
+        raise ValueError(f"the total inertia J_F + J_e must not be negative; with J_F = {j_flywheel!r} kg*m^2 "
+                         f"it is {j!r} kg*m^2")
+    model.check_finite(omega_guess)
+
+    def torque(omega):
+        return float(model.torque(0.0, omega))
+
+    omega, offset, multiplier = omega_guess, 0.0, 1.0
+    if not model.speed_dependent:
+        m = torque(omega)
+        imbalance = m * model.cycle
+        if abs(imbalance) > BALANCE_TOLERANCE * max(model.work, abs(imbalance)):
+            raise NonPeriodicCycle(imbalance, model.work)
+        status = "steady: the torques balance and do not vary with the angle, so the speed is constant"
+    elif model.balanced:
+        offset = -torque(omega)
+        status = ("steady: the torques do not vary with the angle; the unknown constant torque balances them "
+                  "at the prescribed speed")
+    else:
+        omega = _speed_balance(torque, omega_guess)
+        slope = float(evaluate(model.torque_slope_function, model._maps, 0.0, omega)[0])
+        multiplier = math.exp(model.cycle * slope / (j * omega)) if j > 0 else 0.0
+        status = "steady: the torques do not vary with the angle; the torque-speed balance sets the speed"
+    phi = model.grid_angles().reshape(-1)
+    return PeriodicSolution(
+        phi=phi, omega=np.full(phi.shape, float(omega)), omega_max=float(omega), omega_min=float(omega),
+        omega_mean=float(omega), delta=0.0, phi_omega_max=0.0, phi_omega_min=0.0, converged=True, status=status,
+        periodicity_residual=0.0, periodicity_tolerance=0.0, tolerance=0.0, multiplier=multiplier,
+        speed_dependent=model.speed_dependent, iterations=0, j_flywheel=j_flywheel, e0=0.5 * j * omega**2,
+        period=model.cycle / omega, torque_offset=offset)
+
+
+def _speed_balance(torque, omega_guess):
+    """The speed where a torque of speed alone, M(ω), falls through zero (a stable balance) [rad/s]."""
+    lo = hi = float(omega_guess)
+    m_lo = m_hi = torque(lo)
+    for _ in range(60):
+        if m_lo > 0 > m_hi:
+            break
+        if m_hi >= 0:      # still gains energy: the balance lies faster
+            lo, m_lo = hi, m_hi
+            hi *= 2.0
+            m_hi = torque(hi)
+        else:              # loses energy: it lies slower
+            hi, m_hi = lo, m_lo
+            lo *= 0.5
+            m_lo = torque(lo)
+    else:
+        raise SolverFailed(f"no steady speed: the net torque does not fall through zero between "
+                           f"{lo:.6g} and {hi:.6g} rad/s (it is {m_lo:.6g} and {m_hi:.6g} N*m there): the "
+                           f"machine runs away or stalls")
+    if m_lo == 0:
+        return lo
+    return optimize.brentq(torque, lo, hi, xtol=1e-15 * hi, rtol=4 * EPS, maxiter=500)
+
+
+def _finish(model, y, j_flywheel, e_ref, w_s, shift, status, residual, tol, multiplier, iterations, offset=0.0):
+    phi, q, dq, energy = model.speed_profile(y, j_flywheel, e_ref, w_s, shift, offset)
     if q is None:
         raise SolverFailed(f"the speed reaches zero within the cycle (status: {status}); "
                            f"the machine stalls: more flywheel inertia or a stronger motor is needed")
@@ -450,7 +662,7 @@ def _finish(model, y, j_flywheel, e_ref, w_s, shift, status, residual, tol, mult
         delta=delta, phi_omega_max=hi[0], phi_omega_min=lo[0], converged=True, status=status,
         periodicity_residual=abs(residual), periodicity_tolerance=tol, tolerance=DELTA_RTOL * delta,
         multiplier=multiplier, speed_dependent=model.speed_dependent, iterations=iterations,
-        j_flywheel=j_flywheel, e0=float(energy[0, 0]), period=_simpson_time(phi, omega))
+        j_flywheel=j_flywheel, e0=float(energy[0, 0]), period=_simpson_time(phi, omega), torque_offset=offset)
 
 
 def _periodic_angle_only(model, j_flywheel, omega_mean, j_ref):
@@ -463,9 +675,12 @@ def _periodic_angle_only(model, j_flywheel, omega_mean, j_ref):
         y, stall = model.trajectory(j_flywheel, e_ref, w_s)
         swing = float(y.max() - y.min())
     residual = float(y[-1, -1] - y[0, 0])
-    # the cycle module's balance tolerance, or the integration's accuracy on the swing
-    cycle_work = model.absolute_work(omega_mean)
-    tol = max(PERIODIC_RTOL * max(swing, EPS), BALANCE_TOLERANCE * cycle_work / w_s)
+    # the cycle module's balance tolerance on the work of the torques (not of their difference,
+    # which is round-off for a steady machine), or the integration's accuracy: on the swing, and
+    # CVODES's tolerance accumulated over the pieces (a table of many points makes many)
+    cycle_work = max(model.absolute_work(omega_mean), model.work)
+    integration = len(model.pieces) * (ABSTOL + RELTOL * float(np.max(np.abs(y))))
+    tol = max(PERIODIC_RTOL * max(swing, EPS), BALANCE_TOLERANCE * cycle_work / w_s, integration)
     if abs(residual) > tol:
         raise NonPeriodicCycle(residual * w_s, cycle_work)
     y_min = float(y.min())
@@ -496,14 +711,13 @@ def _periodic_speed_dependent(model, j_flywheel, omega_guess, j_ref):
     w_s = model.work_scale(omega_guess)
     e_guess = 0.5 * j_ref * omega_guess**2
 
-    function = model.shooting_function
-
     def shoot(e_ref):
         try:
-            y_end, stall, dy = function(j_flywheel, e_ref, w_s)
+            with quiet():
+                y_end, stall, dy = model.shoot(j_flywheel, e_ref, w_s)
         except RuntimeError:
             return None
-        if float(stall) > 0:
+        if stall > 0:
             return None
         return float(y_end), float(dy)
 
@@ -523,7 +737,8 @@ def _periodic_speed_dependent(model, j_flywheel, omega_guess, j_ref):
     if stall > 0 or abs(residual) > tol_abs:
         raise SolverFailed(f"periodic solution not found: after {iterations} Newton iterations E(Φ) − E(0) = "
                            f"{residual * w_s:.3g} J exceeds the tolerance {tol_abs * w_s:.3g} J ({status})")
-    dy = float(function(j_flywheel, e_ref, w_s)[2])
+    with quiet():
+        dy = model.shoot(j_flywheel, e_ref, w_s)[2]
     multiplier = 1.0 + w_s * dy
     if not multiplier < 1.0:
         raise SolverFailed(f"the periodic solution found (mean energy {e_ref:.6g} J) is unstable: its Floquet "
@@ -531,6 +746,81 @@ def _periodic_speed_dependent(model, j_flywheel, omega_guess, j_ref):
                            f"there (a motor beyond its breakdown torque?)")
     return _finish(model, y, j_flywheel, e_ref, w_s, 0.0, status, residual * w_s, tol_abs * w_s,
                    multiplier, iterations)
+
+
+def _periodic_balanced(model, j_flywheel, omega_mean, j_ref):
+    """The periodic steady state at the prescribed mean speed, an unknown constant torque balancing it.
+
+    The constant was first solved at the frozen mean speed (the net torque's
+    value); with the speed fluctuating, the work of a torque of speed
+    differs a little, so a correction c is solved with the steady state. Two
+    unknowns, √E_ref (E_ref the energy at φ = 0) and c, and two conditions:
+    the orbit is periodic, y(Φ) = 0, and (ω_max + ω_min)/2 = ω_m. Broyden's
+    method, started from the exact sensitivities of y(Φ) (CVODES) and
+    ∂ω_m/∂√E = ω_m/√E (ω grows like √E); each step integrates one cycle.
+    """
+    w_s = model.work_scale(omega_mean)
+
+    def stalls():
+        return SolverFailed(f"the speed reaches zero within the cycle at the mean speed {omega_mean:.6g} rad/s "
+                            f"with J_F = {j_flywheel:.6g} kg*m^2: more flywheel inertia is needed")
+
+    def shoot(e_ref, offset, balancing):
+        try:
+            with quiet():
+                out = model.shoot(j_flywheel, e_ref, w_s, offset, balancing=balancing)
+        except RuntimeError as err:
+            raise SolverFailed(f"the integration of the cycle failed at E_ref = {e_ref:.6g} J, c = {offset:.6g} "
+                               f"N*m (CVODES: {str(err).strip().splitlines()[-1]})") from err
+        if out[1] > 0:
+            raise stalls()
+        return out
+
+    def conditions(x):
+        """[y(Φ), mean speed / ω_m − 1] of the cycle from E_ref = x[0]², with c = x[1]; and y on the grid."""
+        e_ref, offset = x[0] ** 2, x[1]
+        y, stall = model.trajectory(j_flywheel, e_ref, w_s, offset)
+        phi, q, dq, _ = model.speed_profile(y, j_flywheel, e_ref, w_s, 0.0, offset)
+        if q is None or stall > 0:
+            raise stalls()
+        hi, lo = hermite_extremes(phi, q, dq)
+        w_mean = 0.5 * (math.sqrt(2 * hi[1]) + math.sqrt(2 * lo[1]))
+        return np.array([y[-1, -1], w_mean / omega_mean - 1]), y
+
+    x = np.array([math.sqrt(0.5 * j_ref * omega_mean**2), 0.0])
+    _, y = conditions(x)
+    swing = float(y.max() - y.min())
+    if swing > 0:  # rescale so that y swings by about one
+        w_s *= swing
+    _, _, d_e, d_c = shoot(x[0] ** 2, 0.0, True)
+    if not d_c > 0:
+        raise SolverFailed(f"the balancing constant cannot be solved: dE(Φ)/dc = {d_c * w_s:.6g} J/(N*m) is not "
+                           f"positive")
+    jac = np.array([[2 * x[0] * d_e, d_c], [1 / x[0], 0.0]])
+    ftol = 0.1 * PERIODIC_RTOL
+    values, y = conditions(x)
+    for iterations in range(1, MAX_NEWTON + 1):
+        if abs(values[0]) <= ftol and abs(values[1]) <= MEAN_TARGET:
+            break
+        step = -np.linalg.solve(jac, values)
+        x = x + step
+        new, y = conditions(x)
+        jac += np.outer(new - values - jac @ step, step) / (step @ step)
+        values = new
+    y_end, f = values
+    residual = float(y[-1, -1] - y[0, 0])
+    swing = float(y.max() - y.min())
+    tol_abs = PERIODIC_RTOL * max(swing, EPS)
+    if abs(f) > MEAN_RTOL or abs(residual) > tol_abs:
+        raise SolverFailed(f"periodic solution at the mean speed {omega_mean:.6g} rad/s not found in "
+                           f"{iterations} iterations: E(Φ) − E(0) = {residual * w_s:.3g} J (tolerance "
+                           f"{tol_abs * w_s:.3g} J), mean speed off by {f:.3g} (tolerance {MEAN_RTOL:g})")
+    e_ref, offset = x[0] ** 2, float(x[1])
+    multiplier = 1.0 + w_s * shoot(e_ref, offset, False)[2]
+    status = (f"periodic: the mean speed prescribed, the unknown constant torque corrected by {offset:.6g} N*m "
+              f"to balance the cycle ({iterations} iterations)")
+    return _finish(model, y, j_flywheel, e_ref, w_s, 0.0, status, residual * w_s, tol_abs * w_s, multiplier,
+                   iterations, offset)
 
 
 class _NoGain(SolverFailed):
@@ -731,6 +1021,9 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
     phi = model.grid_angles()
     j_grid = model.inertia(phi)
     j_low = float(j_grid.min())
+    if model.steady:  # nothing fluctuates: the machine's own inertia (even none) suffices
+        return DynamicRequirement(j_required=0.0 - j_low, solution=_steady(model, 0.0, omega_mean), iterations=1,
+                                  held=_held(model), j_initial=0.0 - j_low, limit="delta")
     j_mean = float(np.mean(j_grid[:, :-1]))  # an estimate only, for the start
     # constant-inertia estimate at the guessed speed
     m = model.torque(phi, omega_mean)
@@ -743,6 +1036,9 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
     # unknown u = log(J_F + j_low)
     u = math.log(max(j_tot0 - (j_mean - j_low), 0.25 * j_tot0, 1e-300) if j_tot0 > 0 else max(j_mean, 1e-300))
     target = math.log(delta)
+    # the smallest total inertia tried: if δ stays below the allowed value down to it, a motor's
+    # stiffness alone keeps δ, and no flywheel is needed (J_F + J_e would otherwise round to 0)
+    u_floor = max(u, math.log(max(j_mean, 1e-300))) + math.log(VANISHING_INERTIA)
     lo, hi = -math.inf, math.inf  # u where δ is too large (or no steady state) / small enough
     lo_failed = False  # whether lo is a flywheel without a periodic steady state
     hi_solution = None
@@ -787,6 +1083,11 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
             # δ stays below the allowed value down to where the steady state ceases to exist
             return DynamicRequirement(j_required=math.exp(hi) - j_low, solution=hi_solution, iterations=it,
                                       held=_held(model), j_initial=j_initial, limit="stall")
+        if u_next < u_floor:
+            if hi <= u_floor:  # δ is below the allowed value even at a vanishing inertia
+                return DynamicRequirement(j_required=0.0 - j_low, solution=hi_solution, iterations=it,
+                                          held=_held(model), j_initial=j_initial, limit="delta")
+            u_next = max(u_floor, 0.5 * (lo + u_floor)) if math.isfinite(lo) else u_floor
         u = u_next
     raise SolverFailed(f"the flywheel for delta = {delta!r} was not found in {MAX_DYNAMIC} periodic solutions "
                        f"(bracket J_F in [{math.exp(lo) - j_low:.6g}, {math.exp(hi) - j_low:.6g}] kg*m^2; "
@@ -794,6 +1095,8 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
 
 
 def _held(model):
+    if model.balanced:
+        return "mean speed prescribed: the unknown constant torque balances the cycle at it"
     if model.speed_dependent:
         return "torque-speed balance: the mean speed is an outcome (omega_mean was a guess)"
     return "mean speed prescribed (torques of the angle only)"
@@ -853,11 +1156,29 @@ def verify(net_torque, j_machine, cycle_angle, omega_mean, delta_allowed, j_flyw
     Returns
     -------
     Verification
+        When neither the torques nor the inertia vary with the angle, the
+        speed does not fluctuate: achieved δ = 0 whatever the inertia (even
+        none), and the method says so.
+
+    Raises
+    ------
+    SceneError
+        Field ``machine.inertia``: the machine and flywheel have no inertia
+        while the torque or the inertia varies with the angle (the speed
+        would jump).
     """
     check_speed_delta(omega_mean, delta_allowed)
-    sol = periodic_solution(net_torque, j_machine, cycle_angle, omega_mean, j_flywheel, knots)
+    model = periodic_model(net_torque, j_machine, cycle_angle, knots)
+    j_low = float(np.min(model.inertia(model.grid_angles()))) + float(j_flywheel)
+    if not model.steady and j_low == 0:
+        raise SceneError("machine.inertia", "the machine and its flywheel have no inertia (J = 0 kg*m^2) while "
+                         "its torque varies with the angle: the speed would jump, so δ is undefined; give the "
+                         "machine's inertia (> 0)")
+    sol = _periodic(model, float(j_flywheel), omega_mean)
+    method = ("no fluctuation: neither the torques nor the inertia vary with the angle, so the speed is constant "
+              "(δ = 0 whatever the inertia)" if model.steady else
+              "periodic simulation (CVODES shooting, Newton on the periodicity condition)")
     return Verification(
-        method="periodic simulation (CVODES shooting, Newton on the periodicity condition)",
-        achieved_delta=sol.delta, delta_allowed=float(delta_allowed), omega_max=sol.omega_max,
+        method=method, achieved_delta=sol.delta, delta_allowed=float(delta_allowed), omega_max=sol.omega_max,
         omega_min=sol.omega_min, omega_mean=sol.omega_mean, tolerance=sol.tolerance,
         flagged=bool(sol.delta - delta_allowed > sol.tolerance), solution=sol)

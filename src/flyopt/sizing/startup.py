@@ -12,7 +12,7 @@ import numpy as np
 from scipy import optimize
 
 from flyopt.errors import SolverFailed
-from flyopt.sizing._numerics import EDGE, EPS, check_speed_delta, hermite, hermite_extremes
+from flyopt.sizing._numerics import EDGE, EPS, check_speed_delta, hermite, hermite_extremes, quiet
 from flyopt.sizing.periodic import periodic_model
 
 
@@ -104,9 +104,11 @@ def startup_time(net_torque, j_machine, cycle_angle, omega_target, j_flywheel=0.
     peaks = []
     for n in range(int(max_cycles) + 1):
         peak = 0.0
-        for a, b in pieces:
+        for (a, b), (m_a, m_b) in zip(pieces, model.table_at(*np.transpose(pieces))):
             try:
-                xf = np.asarray(model.piece_timed(x0=x, p=[a, b, j_flywheel, 0.0, e_target, t_scale])["xf"])
+                with quiet():
+                    xf = np.asarray(model.piece_timed(
+                        x0=x, p=[a, b, j_flywheel, 0.0, e_target, 0.0, m_a, m_b, t_scale])["xf"])
             except RuntimeError as err:
                 raise SolverFailed(f"start-up integration failed near phi = {a:.6g} rad in cycle {n}: "
                                    f"{str(err).splitlines()[-1]}") from err

@@ -1,0 +1,57 @@
+"""The periodic model's CasADi functions are built once per machine and shared (issue 11, item 5)."""
+
+import gc
+import math
+import weakref
+
+import casadi as ca
+
+import flyopt
+from conftest import PROBLEMS
+from flyopt.sizing import choose, periodic
+
+
+def test_one_solve_verify_of_the_motor_press_builds_each_structure_once():
+    """One ``solve --verify`` of problems/motor-press.toml sizes the flywheel with the periodic
+    model, compares the energy method's flywheel on it and verifies the design on it: one
+    machine, one model. The declutched run-up (the motor's Kloss curve against the inertia
+    alone) is a second torque, so a second model with its own timed integrator."""
+    periodic.BUILDS.clear()
+    solution = flyopt.solve(flyopt.load(PROBLEMS / "motor-press.toml"), verify_design=True)
+    out = solution.to_dict()   # all that `solve --verify --json` prints: comparison and run-up included
+    assert out["verification"] is not None and out["model"] == "dynamic"
+    assert out["startup"]["time"] > 0 and len(out["models"]) == 2
+    assert dict(periodic.BUILDS) == {"periodic model": 2, "integrator": 1, "shooting function": 1,
+                                     "cycle function": 1, "timed integrator": 1}
+
+
+def test_a_machine_keeps_one_model_for_as_long_as_it_lives():
+    """Every run on one machine gets the same model; a second machine of the same scene gets
+    its own; a machine that is gone takes its model with it (the cache holds no machine)."""
+    scene = flyopt.load(PROBLEMS / "motor-press.toml")
+    machine = choose.reduce(scene)
+    assert machine.net_torque() is machine.net_torque()
+
+    def model_of(m):
+        return periodic.periodic_model(m.net_torque(), m.j_machine, m.cycle_angle, m.knots())
+
+    first = model_of(machine)
+    assert model_of(machine) is first
+    other = choose.reduce(scene)
+    assert model_of(other) is not first
+    torques = [weakref.ref(machine.net_torque()), weakref.ref(other.net_torque())]
+    del machine, first, other
+    gc.collect()
+    assert [ref() for ref in torques] == [None, None]   # so their entries have left the cache
+
+
+def test_the_same_torque_callable_is_built_once():
+    """A caller that passes the same net torque again (a sweep over flywheels) reuses the model."""
+    def net(phi, omega):
+        return 10.0 * ca.sin(phi)
+
+    periodic.BUILDS.clear()
+    for j_flywheel in (0.5, 1.0, 2.0):
+        periodic.periodic_solution(net, 1.0, 2 * math.pi, 50.0, j_flywheel)
+    assert periodic.BUILDS["periodic model"] == 1
+    assert periodic.BUILDS["cycle function"] == 1
