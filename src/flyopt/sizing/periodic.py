@@ -287,7 +287,7 @@ class PeriodicModel:
     def _integrator(self, with_time):
         BUILDS["timed integrator" if with_time else "integrator"] += 1
         opts = {"abstol": ABSTOL, "reltol": RELTOL, "max_num_steps": 200000,
-                "disable_internal_warnings": True}
+                "disable_internal_warnings": True, "print_stats": False, "verbose": False}
         return ca.integrator("piece_t" if with_time else "piece", "cvodes", self._rhs(with_time),
                              0.0, self.tau, opts)
 
