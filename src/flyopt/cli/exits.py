@@ -1,4 +1,4 @@
-"""The exit codes of the ``flyopt`` command and the one place that maps errors to them.
+"""The exit codes of the ``flyopt`` command, and :func:`run`, the one place that maps errors to them.
 
 ==========  ===========================================================
 status      meaning
@@ -23,6 +23,7 @@ Every error is one line on stderr: ``flyopt: error: FILE: FIELD: what is
 wrong``.
 """
 
+import os
 import sys
 
 from flyopt.errors import ExpressionError, FlyoptError, Interrupted, NonPeriodicCycle, SceneError
@@ -89,3 +90,51 @@ def status_of(err, where):
         # error" is a ValueError): no result, said in one line
         return fail(f"{prefix}{err}", EXIT_FAILED)
     raise err
+
+
+def run(parser, argv=None):
+    """Parse a command line, run its handler, and turn what it raises into its exit status.
+
+    The one error handler of every ``flyopt`` command.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        Sets ``run``, the handler (``run(args) -> status``); a handler that
+        parses the rest of the line itself (``flyopt bench``) also sets
+        ``takes_rest`` and finds the rest in ``args.rest``.
+    argv : list of str, optional
+        Default: ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        The handler's status, or the status of the table above for what it raised.
+    """
+    args, rest = parser.parse_known_args(sys.argv[1:] if argv is None else list(argv))
+    if getattr(args, "takes_rest", False):
+        args.rest = rest
+    elif rest:
+        parser.error(f"unrecognized arguments: {' '.join(rest)}")
+    try:
+        status = args.run(args)
+        sys.stdout.flush()   # a closed pipe shows here, not at exit
+        return status
+    except BrokenPipeError:
+        return _stdout_closed()
+    except (FlyoptError, OSError, ArithmeticError, ValueError, KeyboardInterrupt) as err:
+        return status_of(err, getattr(args, "scene", None))
+
+
+def _stdout_closed():
+    """The reader of stdout went away (``flyopt solve ... | head``): stop quietly.
+
+    Python would print "Exception ignored ... BrokenPipeError" when it flushes
+    stdout at exit; pointing stdout at the null device first keeps that quiet.
+    """
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):   # stdout without a file descriptor (captured in a test)
+        pass
+    return EXIT_BROKEN_PIPE

@@ -9,17 +9,16 @@
     flyopt bench ...                                  speed against error
 
 Each subcommand's handler (``args.run``) returns an exit status from the
-table in :mod:`flyopt.cli.exits`; what it raises is said there in one line.
+table in :mod:`flyopt.cli.exits`; :func:`flyopt.cli.exits.run` runs it and
+says what it raises in one line.
 Nothing is printed on stdout before the whole result is ready.
 """
 
 import argparse
-import os
 import sys
 
 from flyopt import __version__
-from flyopt.cli.exits import EXIT_BROKEN_PIPE, status_of
-from flyopt.errors import FlyoptError
+from flyopt.cli.exits import run
 
 
 def main(argv=None):
@@ -36,35 +35,7 @@ def main(argv=None):
         An exit status of :mod:`flyopt.cli.exits`. Bad options exit through
         argparse (status 2, its usage line and one error line).
     """
-    argv = sys.argv[1:] if argv is None else list(argv)
-    parser = _parser()
-    args, rest = parser.parse_known_args(argv)
-    if args.command == "bench":   # its own options, parsed by flyopt.bench
-        args.rest = rest
-    elif rest:
-        parser.error(f"unrecognized arguments: {' '.join(rest)}")
-    try:
-        status = args.run(args)
-        sys.stdout.flush()   # a closed pipe shows here, not at exit
-        return status
-    except BrokenPipeError:
-        return _stdout_closed()
-    except (FlyoptError, OSError, ArithmeticError, ValueError, KeyboardInterrupt) as err:
-        return status_of(err, getattr(args, "scene", None))
-
-
-def _stdout_closed():
-    """The reader of stdout went away (``flyopt solve ... | head``): stop quietly.
-
-    Python would print "Exception ignored ... BrokenPipeError" when it flushes
-    stdout at exit; pointing stdout at the null device first keeps that quiet.
-    """
-    try:
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-    except (OSError, ValueError):   # stdout without a file descriptor (captured in a test)
-        pass
-    return EXIT_BROKEN_PIPE
+    return run(_parser(), argv)
 
 
 def _parser():
@@ -91,7 +62,7 @@ def _parser():
     bench = commands.add_parser("bench", add_help=False,   # --help is bench's own
                                 help="speed against error of each way to an answer "
                                      "(see flyopt bench --help)")
-    bench.set_defaults(run=_bench)
+    bench.set_defaults(run=_bench, takes_rest=True)   # its own options, parsed by flyopt.bench
     return parser
 
 

@@ -79,7 +79,7 @@ def _draw(args, plots):
         return plots.plot_cross_section(design.best)
     if args.what == "speed":
         if scene.net is not None:   # said by the plot, before any model runs
-            return plots.plot_speed(scene, analysis, None)
+            return plots.plot_speed(scene, analysis)
         simulation = _simulation(analysis) if args.verify else None
         return plots.plot_speed(scene, analysis, _speed(analysis), simulation)
     if args.what == "energy_mass":
@@ -90,10 +90,11 @@ def _draw(args, plots):
 
 
 def _speed(analysis):
-    """ω(φ) with the required flywheel, from the model that sized it.
+    """ω(φ) with the required flywheel, from the model that sized it; None for the dynamic model.
 
-    The dynamic model's own periodic solution; for the energy models the
-    forward use of the energy–mass method (docs/flywheel-design.md, section 6).
+    The dynamic model's periodic solution is in the analysis (the plot takes
+    it from there); for the energy models, the forward use of the energy–mass
+    method (docs/flywheel-design.md, section 6).
 
     Raises
     ------
@@ -105,9 +106,8 @@ def _speed(analysis):
     """
     from flyopt.report.plots import NothingToDraw
 
-    requirement = analysis.requirement
-    if requirement.model == "dynamic":
-        return requirement.detail.solution
+    if analysis.requirement.model == "dynamic":
+        return None
     machine = analysis.machine
     if machine.j_mean() + analysis.j_required <= 0:
         if analysis.a_max <= 0:

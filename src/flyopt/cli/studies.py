@@ -12,7 +12,7 @@ import math
 import sys
 from pathlib import Path
 
-from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_OK
+from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_OK, run
 from flyopt.errors import SceneError
 
 
@@ -301,22 +301,24 @@ def _json(frame):
 # Entry points of one command each (the same as ``flyopt COMMAND ...``)
 # --------------------------------------------------------------------------
 
+def _one_command(name, add, texts):
+    """The parser of one study command alone, as ``flyopt NAME`` has it."""
+    texts = {k: v for k, v in texts.items() if k != "help"}
+    parser = argparse.ArgumentParser(prog=f"flyopt {name}", **texts)
+    add(parser)
+    return parser
+
+
 def sweep_main(argv=None):
     """``flyopt sweep ARGV``; returns the exit status."""
-    from flyopt.cli.main import main
-
-    return main(["sweep", *(sys.argv[1:] if argv is None else argv)])
+    return run(_one_command("sweep", add_sweep_arguments, SWEEP_HELP), argv)
 
 
 def pareto_main(argv=None):
     """``flyopt pareto ARGV``; returns the exit status."""
-    from flyopt.cli.main import main
-
-    return main(["pareto", *(sys.argv[1:] if argv is None else argv)])
+    return run(_one_command("pareto", add_pareto_arguments, PARETO_HELP), argv)
 
 
 def tradeoff_main(argv=None):
     """``flyopt tradeoff ARGV``; returns the exit status."""
-    from flyopt.cli.main import main
-
-    return main(["tradeoff", *(sys.argv[1:] if argv is None else argv)])
+    return run(_one_command("tradeoff", add_tradeoff_arguments, TRADEOFF_HELP), argv)

@@ -239,18 +239,19 @@ def plot_cross_section(candidate, ax=None):
     return ax
 
 
-def plot_speed(scene, analysis, speed, simulation=None, ax=None):
+def plot_speed(scene, analysis, speed=None, simulation=None, ax=None):
     """ω(φ) over the cycle with the required flywheel, from the model that ran.
 
     Parameters
     ----------
     scene : Scene
     analysis : Analysis
-    speed : SpeedFluctuation or PeriodicSolution
+    speed : SpeedFluctuation or PeriodicSolution, optional
         The model's speed over the cycle: ``phi`` [rad] and ``omega`` [rad/s].
         Energy models: ω² = 2 (E_0 + ΔE)/J_e with E_0 such that
         (ω_max + ω_min)/2 = ω_m (docs/flywheel-design.md, section 6, forward
-        use); the dynamic model: its periodic solution.
+        use: :func:`flyopt.sizing.energy_mass.achieved_speed`); the dynamic
+        model: its periodic solution, which the analysis carries (the default).
     simulation : PeriodicSolution, optional
         The periodic simulation of the machine with that flywheel (the
         verification's), drawn over it: ``phi``, ``omega`` and ``delta``.
@@ -259,10 +260,16 @@ def plot_speed(scene, analysis, speed, simulation=None, ax=None):
     Raises
     ------
     ValueError
-        A net-area scene: it has no angles.
+        A net-area scene: it has no angles; or no ``speed`` for an analysis
+        whose result does not carry one (the energy models).
     """
     if scene.net is not None:
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
+    if speed is None:
+        if analysis.requirement is None or analysis.requirement.model != "dynamic":
+            raise ValueError(f"the {analysis.model} model's result carries no ω(φ): pass speed "
+                             f"(flyopt.sizing.energy_mass.achieved_speed with J_F)")
+        speed = analysis.requirement.detail.solution
     ax = _axes(ax)
     omega = np.asarray(speed.omega)
     ax.plot(np.degrees(speed.phi), rad_s_to_rpm(omega), color="tab:blue", label=f"model: {analysis.model}")
