@@ -1,4 +1,4 @@
-"""Tests of flyopt.studies.fronts: Pareto fronts, the material trade-off table, and the
+"""Tests of flyopt.studies.pareto and flyopt.studies.tradeoff: Pareto fronts, the material trade-off table, and the
 ``flyopt pareto`` / ``flyopt tradeoff`` commands.
 
 References: every front point is checked against ``flyopt.solve`` of the
@@ -20,9 +20,10 @@ from numpy.testing import assert_allclose
 import flyopt
 from conftest import PROBLEMS
 from flyopt.errors import SceneError
-from flyopt.design.optimize import MountShaft, design_flywheel
-from flyopt.studies.fronts import (material_tradeoff, non_dominated, pareto, pareto_main,
-                            tradeoff_main)
+from flyopt.design import MountShaft, design_flywheel
+from flyopt.cli.studies import pareto_main, tradeoff_main
+from flyopt.studies.pareto import non_dominated, pareto
+from flyopt.studies.tradeoff import material_tradeoff
 
 PUNCH = flyopt.load(PROBLEMS / "punch-press.toml")
 SHEAR = flyopt.load(PROBLEMS / "shear-press.toml")

@@ -63,7 +63,7 @@ pd.DataFrame([c.to_dict() for c in solution.design.candidates])[
 print(f"verification: achieved δ = {v['achieved_delta']:.6f} (allowed {v['delta_allowed']}), flagged: {v['flagged']}")
 assert not v["flagged"]"""),
     ("code", "plots.plot_cross_section(best);"),
-    ("code", "plots.plot_speed(scene, analysis);"),
+    ("code", "plots.plot_speed(scene, analysis, analysis.speed_curve());"),
 ]
 
 TRADE_OFF = [

@@ -105,6 +105,31 @@ class Analysis:
         """The run-up from rest with the motor (dict), or None without a motor; computed on first use."""
         return self._get("startup")
 
+    def speed_curve(self):
+        """ω(φ) over the cycle with the required flywheel, by the model that sized it (computed once).
+
+        The dynamic model's periodic solution; for the energy models the forward
+        use of the energy–mass method, ω² = 2 (E_0 + ΔE)/J_e with E_0 such that
+        (ω_max + ω_min)/2 = ω_m (docs/flywheel-design.md, section 6;
+        flyopt.sizing.energy_mass.achieved_speed). It has ``phi`` [rad],
+        ``omega`` [rad/s] and ``delta``.
+
+        Returns
+        -------
+        SpeedFluctuation or PeriodicSolution or None
+            None when nothing turns with inertia and nothing fluctuates
+            (A_max = 0, no inertia): the speed stays at ω_m.
+
+        Raises
+        ------
+        ValueError
+            A net-area scene (it has no angles), or no inertia at all while
+            the energy fluctuates (ω(φ) is undefined).
+        """
+        if "speed" not in self._lazy:
+            self._lazy["speed"] = _speed_curve(self)
+        return self._lazy["speed"]
+
     def _get(self, name):
         value = self._lazy[name]
         if callable(value):
@@ -150,6 +175,7 @@ def analyse(scene, model=None):
 
 
 def _analyse(scene, forced=None):
+    from flyopt.machine.reduce import reduce
     from flyopt.sizing import choose as models
 
     if forced is not None and forced not in models.MODELS:
@@ -169,7 +195,7 @@ def _analyse(scene, forced=None):
         lazy = {"models": ({"model": model, "exact": True, "j_required": j_margin, "achieved_delta": scene.delta,
                             "j_error": 0.0, "note": ""},), "startup": None}
     else:
-        machine = models.reduce(scene)
+        machine = reduce(scene)
         ew = machine.angle_only()
         ind = energy_indicator(ew.driving, ew.resisting, scene.cycle_angle)
         model, reason = models.choose(machine)
@@ -213,7 +239,7 @@ def _startup(machine, omega_target, j_flywheel):
     near the rated point: at rest it would give 25 times the rated torque).
     Returns None when no motor drives the machine.
     """
-    from flyopt.sizing import startup as dynamics
+    from flyopt.sizing.startup import startup_time
     from flyopt.errors import SolverFailed
     from flyopt.machine.torque import MotorTorque
 
@@ -225,8 +251,24 @@ def _startup(machine, omega_target, j_flywheel):
     method = ("declutched run-up: the motor against the inertia of machine and flywheel alone"
               + (", Kloss curve" if motor.model is not None else ", DC motor line"))
     try:
-        run = dynamics.startup_time(lambda phi, omega: curve.casadi(phi, omega), machine.j_machine,
+        run = startup_time(lambda phi, omega: curve.casadi(phi, omega), machine.j_machine,
                                     machine.cycle_angle, omega_target, j_flywheel)
     except (SolverFailed, ValueError) as err:
         return {"method": method, "time": None, "cycles": None, "omega_target": omega_target, "note": str(err)}
     return {"method": method, "time": run.time, "cycles": run.cycles, "omega_target": omega_target, "note": ""}
+
+
+def _speed_curve(analysis):
+    """See :meth:`Analysis.speed_curve`."""
+    machine = analysis.machine
+    if machine is None:
+        raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
+    if analysis.requirement.model == "dynamic":
+        return analysis.requirement.detail.solution
+    if machine.j_mean() + analysis.j_required <= 0:
+        if analysis.a_max <= 0:
+            return None
+        raise ValueError("the scene has no inertia at all (J_c = 0 and no flywheel needed): ω(φ) is undefined")
+    from flyopt.sizing.energy_mass import achieved_speed
+
+    return achieved_speed(machine.angle_only(), machine.j_machine, analysis.omega_mean, analysis.j_required)

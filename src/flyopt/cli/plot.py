@@ -81,42 +81,16 @@ def _draw(args, plots):
         if scene.net is not None:   # said by the plot, before any model runs
             return plots.plot_speed(scene, analysis)
         simulation = _simulation(analysis) if args.verify else None
-        return plots.plot_speed(scene, analysis, _speed(analysis), simulation)
+        speed = analysis.speed_curve()
+        if speed is None:
+            raise plots.NothingToDraw("no flywheel is needed and the speed does not fluctuate (A_max = 0 J, "
+                                      "no inertia at all): nothing to draw")
+        return plots.plot_speed(scene, analysis, speed, simulation)
     if args.what == "energy_mass":
         plots.check_energy_mass(analysis)
         if analysis.model != "energy_mass":   # the diagram draws that model's tangents
             analysis = analyse(scene, model="energy_mass")
     return getattr(plots, f"plot_{args.what}")(scene, analysis)
-
-
-def _speed(analysis):
-    """ω(φ) with the required flywheel, from the model that sized it; None for the dynamic model.
-
-    The dynamic model's periodic solution is in the analysis (the plot takes
-    it from there); for the energy models, the forward use of the energy–mass
-    method (docs/flywheel-design.md, section 6).
-
-    Raises
-    ------
-    NothingToDraw
-        No inertia at all and no fluctuation of energy (A_max = 0): the speed
-        stays at ω_m.
-    ValueError
-        No inertia at all while the energy fluctuates.
-    """
-    from flyopt.report.plots import NothingToDraw
-
-    if analysis.requirement.model == "dynamic":
-        return None
-    machine = analysis.machine
-    if machine.j_mean() + analysis.j_required <= 0:
-        if analysis.a_max <= 0:
-            raise NothingToDraw("no flywheel is needed and the speed does not fluctuate (A_max = 0 J, "
-                                "no inertia at all): nothing to draw")
-        raise ValueError("the scene has no inertia at all (J_c = 0 and no flywheel needed): ω(φ) is undefined")
-    from flyopt.sizing.energy_mass import achieved_speed
-
-    return achieved_speed(machine.angle_only(), machine.j_machine, analysis.omega_mean, analysis.j_required)
 
 
 def _simulation(analysis):

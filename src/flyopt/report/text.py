@@ -131,7 +131,7 @@ def design_report(result, spec=None):
         ]
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {v}" for k, v in facts]
-        if result.spec.max_outer_diameter is None:
+        if not result.spec.has_envelope:
             lines.append("  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
                          "bounds the diameter")
     else:
