@@ -91,3 +91,15 @@ def test_speed_and_energy_extremes_are_named_apart_where_they_differ():
     # the constant-inertia energy model: the two are the same angles
     e = flyopt.analyse(flyopt.load(PROBLEMS / "shear-press.toml"))
     assert (e.angle_omega_max, e.angle_omega_min) == (e.angle_delta_e_max, e.angle_delta_e_min)
+
+
+def test_text_report_labels_the_energy_chain_by_what_it_is():
+    """The chain's extremes are marked ΔE where they are not the speed's extremes (they were
+    labelled ω_min at 177.4° while the speed is lowest at 264.9°)."""
+    from flyopt.report.text import analysis_report
+
+    text = analysis_report(flyopt.analyse(flyopt.load(PROBLEMS / "slider-crank-press.toml")))
+    assert "ΔE min" in text and "ω_min" not in text.split("Energy indicator diagram")[1].split("\n\n")[0]
+    assert "264.885" in text and "177.366" in text
+    plain = analysis_report(flyopt.analyse(flyopt.load(PROBLEMS / "shear-press.toml")))
+    assert "ω_min" in plain.split("Energy indicator diagram")[1] and "ΔE min" not in plain

@@ -93,7 +93,7 @@ def design_scene(scene, analysis, solver_options=None, method="auto"):
 def verify(scene, analysis, design_result=None):
     """Simulate the machine with its flywheel and report the δ it really achieves.
 
-    The periodic solution of the equation of motion (flyopt.sizing.dynamics.verify)
+    The periodic solution of the equation of motion (flyopt.sizing.periodic.verify)
     with the chosen flywheel moved to the reference shaft (J' i²); with no
     flywheel needed, the machine alone. A design whose δ exceeds the allowed
     one by more than the simulation tolerance is ``flagged``.
@@ -105,7 +105,8 @@ def verify(scene, analysis, design_result=None):
         omega_max, omega_min, omega_mean, tolerance, flagged, j_flywheel;
         None when there is no flywheel to verify (infeasible design).
     """
-    from flyopt.sizing import periodic as dynamics
+    from flyopt.errors import SceneError
+    from flyopt.sizing import periodic
 
     if design_result is not None and design_result.status == "infeasible":
         return None
@@ -126,8 +127,11 @@ def verify(scene, analysis, design_result=None):
                 "omega_min": analysis.omega_mean * (1 - achieved / 2), "omega_mean": analysis.omega_mean,
                 "tolerance": 1e-12 * analysis.delta, "flagged": achieved > analysis.delta * (1 + 1e-12),
                 "j_flywheel": j_flywheel}
-    result = dynamics.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
-                             analysis.delta, j_flywheel, machine.knots())
+    try:
+        result = periodic.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
+                                 analysis.delta, j_flywheel, machine.knots())
+    except SceneError as err:
+        raise err.with_source(scene.source) from None
     return {**result.to_dict(), "j_flywheel": j_flywheel}
 
 

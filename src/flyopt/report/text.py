@@ -56,6 +56,10 @@ def analysis_report(result, source=None):
     facts.append(("A_max", f"{number(r.a_max)} J"))
     if r.angle_omega_max is not None:
         facts.append(("ω_max / ω_min at", f"{number(deg(r.angle_omega_max))} / {number(deg(r.angle_omega_min))} deg"))
+        if (r.angle_delta_e_max, r.angle_delta_e_min) != (r.angle_omega_max, r.angle_omega_min):
+            facts.append(("ΔE max / min at", f"{number(deg(r.angle_delta_e_max))} / "
+                          f"{number(deg(r.angle_delta_e_min))} deg (where the speed is extreme differs: "
+                          f"the inertia varies or a torque depends on speed)"))
     else:
         facts.append(("ω_max / ω_min at", f"the end of area {r.index_omega_max} / area {r.index_omega_min}"))
     if r.j_constant:
@@ -86,7 +90,9 @@ def analysis_report(result, source=None):
     lines += ["", "Energy indicator diagram (excess work from the cycle start):"]
     rows = []
     for e in r.energy_chain:
-        mark = "ω_max" if e["index"] == r.index_omega_max else "ω_min" if e["index"] == r.index_omega_min else ""
+        same = (r.angle_delta_e_max, r.angle_delta_e_min) == (r.angle_omega_max, r.angle_omega_min)
+        top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")
+        mark = top if e["index"] == r.index_omega_max else bottom if e["index"] == r.index_omega_min else ""
         where = number(deg(e["angle"])) if e["angle"] is not None else \
             ("start" if e["index"] == 0 else f"after area {e['index']}")
         rows.append([where, number(e["delta_e"]), mark])
