@@ -653,6 +653,14 @@ def _finish(model, y, j_flywheel, e_ref, w_s, shift, status, residual, tol, mult
         raise SolverFailed(f"the speed reaches zero within the cycle (status: {status}); "
                            f"the machine stalls: more flywheel inertia or a stronger motor is needed")
     hi, lo = hermite_extremes(phi, q, dq)
+    if lo[1] <= 0.0:
+        # the grid's ω²/2 is positive but its cubic interpolant dips below zero: the speed is
+        # far too stiff between output points to be resolved (a vanishing flywheel)
+        raise SolverFailed(
+            f"the periodic speed is not resolved with J_F = {j_flywheel:.3g} kg·m² (status: {status}): "
+            f"ω²/2 lies in [{float(np.min(q)):.4g}, {float(np.max(q)):.4g}] rad²/s² on the output grid, but "
+            f"its interpolant reaches {lo[1]:.3g} at φ = {lo[0]:.4g} rad (slopes up to "
+            f"{float(np.max(np.abs(dq))):.3g} rad²/s² per rad)")
     w_max, w_min = math.sqrt(2 * hi[1]), math.sqrt(2 * lo[1])
     omega = np.sqrt(2 * q)
     w_mean = 0.5 * (w_max + w_min)
