@@ -56,18 +56,18 @@ def test_cheaper_models_are_off_on_a_speed_dependent_press():
     assert abs(rows["energy"]["achieved_delta"] - analysis.delta) > 1e-4 * analysis.delta
     # the mean speed follows from the motor's torque-speed balance, below synchronous/24
     assert analysis.omega_mean < 1500 * 2 * math.pi / 60 / 24
-    assert analysis.startup["time"] > 0 and analysis.startup["note"] == ""
+    assert analysis.startup.time > 0 and analysis.startup.note == ""
 
 
 def test_verification_reproduces_delta_of_the_exact_method():
     """Periodic simulation with the designed flywheel: δ within 1e-6 relative of the allowed one."""
     solution = flyopt.solve(flyopt.load(PROBLEMS / "slider-crank-press.toml"), verify_design=True)
     v = solution.verification
-    assert v["flagged"] is False
+    assert v.flagged is False
     # the designed flywheel gives at least J_F, so δ is at most the allowed one, and equal within the
     # design's own 1e-9 excess of inertia
-    assert_allclose(v["achieved_delta"], solution.analysis.delta, rtol=1e-6)
-    assert v["achieved_delta"] <= solution.analysis.delta * (1 + 1e-6)
+    assert_allclose(v.achieved_delta, solution.analysis.delta, rtol=1e-6)
+    assert v.achieved_delta <= solution.analysis.delta * (1 + 1e-6)
 
 
 @pytest.mark.slow
@@ -76,7 +76,7 @@ def test_engine_members_verification():
     solution = flyopt.solve(flyopt.load(PROBLEMS / "engine-members.toml"), design_flywheel=False,
                             verify_design=True)
     assert solution.analysis.model == "energy_mass"
-    assert_allclose(solution.verification["achieved_delta"], solution.analysis.delta, rtol=1e-6)
+    assert_allclose(solution.verification.achieved_delta, solution.analysis.delta, rtol=1e-6)
 
 
 def test_forcing_a_cheap_model_says_it_is_not_exact(capsys):
@@ -98,8 +98,8 @@ def test_verification_flags_a_flywheel_that_is_too_small(scene):
     analysis = flyopt.analyse(s)
     ok = verify(s, analysis)
     small = verify(s, dataclasses.replace(analysis, j_margin=0.8 * analysis.j_margin))
-    assert ok["flagged"] is False and ok["achieved_delta"] <= analysis.delta * (1 + 1e-6)
-    assert small["flagged"] is True and small["achieved_delta"] > 1.05 * analysis.delta
+    assert ok.flagged is False and ok.achieved_delta <= analysis.delta * (1 + 1e-6)
+    assert small.flagged is True and small.achieved_delta > 1.05 * analysis.delta
 
 
 def test_flagged_verification_exits_4(monkeypatch, capsys):

@@ -140,7 +140,7 @@ def test_rim_speed_holds_at_the_simulated_top_speed(tmp_path, scene, nominal):
     path.write_text(text)
     solution = flyopt.solve(flyopt.load(path), verify_design=True)
     best = solution.design.best
-    top = solution.verification["omega_max"] * best.speed_ratio      # [rad/s] of the flywheel's shaft
+    top = solution.verification.omega_max * best.speed_ratio      # [rad/s] of the flywheel's shaft
     limit = solution.scene.material_library()[best.material].max_rim_speed
     assert top * best.d_outer / 2 <= limit * (1 + 1e-6)
 

@@ -60,8 +60,8 @@ print(f"{best.material} on the {best.shaft} shaft: D_outer {best.d_outer:.3f} m,
 pd.DataFrame([c.to_dict() for c in solution.design.candidates])[
     ["material", "shaft", "feasible", "mass", "d_outer", "rim_speed", "binding"]]"""),
     ("code", """v = solution.verification
-print(f"verification: achieved δ = {v['achieved_delta']:.6f} (allowed {v['delta_allowed']}), flagged: {v['flagged']}")
-assert not v["flagged"]"""),
+print(f"verification: achieved δ = {v.achieved_delta:.6f} (allowed {v.delta_allowed}), flagged: {v.flagged}")
+assert not v.flagged"""),
     ("code", "plots.plot_cross_section(best);"),
     ("code", "plots.plot_speed(scene, analysis, analysis.speed_curve());"),
 ]

@@ -8,7 +8,7 @@ ratio-squared transfer.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from typing import TYPE_CHECKING
 
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia, speed_extremes
@@ -36,6 +36,29 @@ class ShaftRequirement:
 
     def to_dict(self):
         return dict(self.__dict__)
+
+
+@dataclass(frozen=True)
+class StartupRun:
+    """The run-up from rest to the mean speed with the motor on its curve.
+
+    Attributes
+    ----------
+    method : str
+    time : float or None
+        Time to reach ``omega_target`` [s]; None when it is not reached (``note`` says why).
+    cycles : float or None
+        Cycles turned meanwhile [-].
+    omega_target : float
+        [rad/s]
+    note : str
+    """
+
+    method: str
+    time: float | None
+    cycles: float | None
+    omega_target: float
+    note: str
 
 
 @dataclass(frozen=True)
@@ -102,7 +125,7 @@ class Analysis:
 
     @property
     def startup(self):
-        """The run-up from rest with the motor (dict), or None without a motor; computed on first use."""
+        """The run-up from rest with the motor (:class:`StartupRun`), or None without a motor; computed on first use."""
         return self._get("startup")
 
     def speed_curve(self):
@@ -140,7 +163,7 @@ class Analysis:
         """Plain JSON-ready dictionary, every number in SI (the comparison and start-up included)."""
         out = {k: v for k, v in self.__dict__.items()
                if k not in ("indicator", "machine", "requirement", "shafts", "energy_chain", "_lazy")}
-        out["startup"] = self.startup
+        out["startup"] = None if self.startup is None else asdict(self.startup)
         out["models"] = [dict(m) for m in self.models]
         out["energy_chain"] = [dict(e) for e in self.energy_chain]
         out["shafts"] = [s.to_dict() for s in self.shafts]
@@ -254,8 +277,8 @@ def _startup(machine, omega_target, j_flywheel):
         run = startup_time(lambda phi, omega: curve.casadi(phi, omega), machine.j_machine,
                                     machine.cycle_angle, omega_target, j_flywheel)
     except (SolverFailed, ValueError) as err:
-        return {"method": method, "time": None, "cycles": None, "omega_target": omega_target, "note": str(err)}
-    return {"method": method, "time": run.time, "cycles": run.cycles, "omega_target": omega_target, "note": ""}
+        return StartupRun(method, None, None, omega_target, str(err))
+    return StartupRun(method, run.time, run.cycles, omega_target, "")
 
 
 def _speed_curve(analysis):

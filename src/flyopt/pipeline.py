@@ -5,9 +5,51 @@ lives in its own module; this one only joins them (the pvlib ModelChain /
 PyBaMM Simulation pattern).
 """
 
-from dataclasses import dataclass
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
 
 from flyopt.analysis import Analysis, analyse
+
+
+@dataclass(frozen=True)
+class Verification:
+    """The machine simulated with its flywheel: the δ it really achieves.
+
+    Attributes
+    ----------
+    method : str
+        How it was simulated (the periodic solution, or the energy method for net areas).
+    achieved_delta, delta_allowed : float
+        δ reached and δ allowed [-].
+    omega_max, omega_min, omega_mean : float
+        Speeds of the simulated cycle [rad/s].
+    tolerance : float
+        Accuracy of ``achieved_delta`` [-].
+    flagged : bool
+        The design misses the allowed δ by more than the tolerance.
+    j_flywheel : float
+        The flywheel simulated, at the reference shaft [kg*m^2].
+    solution : PeriodicSolution or None
+        The simulated speed over the cycle (None for net areas), for plots.
+    """
+
+    method: str
+    achieved_delta: float
+    delta_allowed: float
+    omega_max: float
+    omega_min: float
+    omega_mean: float
+    tolerance: float
+    flagged: bool
+    j_flywheel: float
+    solution: object = field(default=None, repr=False, compare=False)
+
+    def to_dict(self):
+        """The "verification" object of the JSON (SI)."""
+        out = asdict(self)
+        del out["solution"]
+        return out
 
 
 @dataclass(frozen=True)
@@ -25,7 +67,7 @@ class Solution:
     scene: object
     analysis: Analysis
     design: object = None
-    verification: object = None
+    verification: Verification | None = None
 
     @property
     def status(self):
@@ -42,7 +84,7 @@ class Solution:
         if self.design is not None:
             out["design"] = design_dict(self.design, timings)
         if self.verification is not None:
-            out["verification"] = dict(self.verification)
+            out["verification"] = self.verification.to_dict()
         return out
 
 
@@ -100,11 +142,10 @@ def verify(scene, analysis, design_result=None):
 
     Returns
     -------
-    dict or None
-        The "verification" object: method, achieved_delta, delta_allowed,
-        omega_max, omega_min, omega_mean, tolerance, flagged, j_flywheel;
+    Verification or None
         None when there is no flywheel to verify (infeasible design).
     """
+    from flyopt.cycle.indicator import speed_extremes
     from flyopt.errors import SceneError
     from flyopt.sizing import periodic
 
@@ -121,18 +162,18 @@ def verify(scene, analysis, design_result=None):
             achieved = 0.0                       # no fluctuation of energy: no fluctuation of speed
         else:
             achieved = analysis.a_max / (j * analysis.omega_mean**2) if j > 0 else float("inf")
-        return {"method": "energy method (net areas give no curves to simulate; exact for constant inertia)",
-                "achieved_delta": achieved, "delta_allowed": analysis.delta,
-                "omega_max": analysis.omega_mean * (1 + achieved / 2),
-                "omega_min": analysis.omega_mean * (1 - achieved / 2), "omega_mean": analysis.omega_mean,
-                "tolerance": 1e-12 * analysis.delta, "flagged": achieved > analysis.delta * (1 + 1e-12),
-                "j_flywheel": j_flywheel}
+        omega_max, omega_min = speed_extremes(analysis.omega_mean, achieved)
+        return Verification(
+            method="energy method (net areas give no curves to simulate; exact for constant inertia)",
+            achieved_delta=achieved, delta_allowed=analysis.delta, omega_max=omega_max, omega_min=omega_min,
+            omega_mean=analysis.omega_mean, tolerance=1e-12 * analysis.delta,
+            flagged=achieved > analysis.delta * (1 + 1e-12), j_flywheel=j_flywheel)
     try:
         result = periodic.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
                                  analysis.delta, j_flywheel, machine.knots())
     except SceneError as err:
         raise err.with_source(scene.source) from None
-    return {**result.to_dict(), "j_flywheel": j_flywheel}
+    return Verification(**result.to_dict(), j_flywheel=j_flywheel, solution=result.solution)
 
 
 def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_design=False,

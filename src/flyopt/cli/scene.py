@@ -49,7 +49,7 @@ def run_solve(args):
     print(text)
     if solution.status == "infeasible":
         return EXIT_INFEASIBLE
-    if solution.verification is not None and solution.verification["flagged"]:
+    if solution.verification is not None and solution.verification.flagged:
         return EXIT_FLAGGED
     return EXIT_OK
 

@@ -75,9 +75,9 @@ def analysis_report(result, source=None):
 
     if r.startup is not None:
         st = r.startup
-        facts_text = (f"{number(st['time'])} s ({number(st['cycles'], 4)} cycles) to {number(st['omega_target'])} rad/s"
-                      if st["time"] is not None else f"not reached: {st['note']}")
-        lines.append(f"  {'start-up':<{width}}  {facts_text}; {st['method']}")
+        facts_text = (f"{number(st.time)} s ({number(st.cycles, 4)} cycles) to {number(st.omega_target)} rad/s"
+                      if st.time is not None else f"not reached: {st.note}")
+        lines.append(f"  {'start-up':<{width}}  {facts_text}; {st.method}")
     if len(r.models) > 1 or (r.models and not r.models[0]["exact"]):
         lines += ["", "Models (J_F each asks for, and the δ it really gives by the exact model):"]
         rows = []
@@ -160,8 +160,8 @@ def design_report(result, spec=None):
 
 def verification_report(v):
     """The verification part of the ``flyopt solve --verify`` report."""
-    verdict = "FLAGGED: the design misses the allowed δ" if v["flagged"] else "ok"
-    return ["", f"Verification ({v['method']}): {verdict}",
-            f"  achieved δ {number(v['achieved_delta'])} against the allowed {number(v['delta_allowed'])} "
-            f"(tolerance {number(v['tolerance'], 3)}); ω {number(v['omega_min'])} to {number(v['omega_max'])} rad/s, "
-            f"mean {number(v['omega_mean'])}; flywheel {number(v['j_flywheel'])} kg·m² at the reference shaft"]
+    verdict = "FLAGGED: the design misses the allowed δ" if v.flagged else "ok"
+    return ["", f"Verification ({v.method}): {verdict}",
+            f"  achieved δ {number(v.achieved_delta)} against the allowed {number(v.delta_allowed)} "
+            f"(tolerance {number(v.tolerance, 3)}); ω {number(v.omega_min)} to {number(v.omega_max)} rad/s, "
+            f"mean {number(v.omega_mean)}; flywheel {number(v.j_flywheel)} kg·m² at the reference shaft"]
