@@ -7,49 +7,13 @@ PyBaMM Simulation pattern).
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from flyopt.analysis import Analysis, analyse
 
-
-@dataclass(frozen=True)
-class Verification:
-    """The machine simulated with its flywheel: the δ it really achieves.
-
-    Attributes
-    ----------
-    method : str
-        How it was simulated (the periodic solution, or the energy method for net areas).
-    achieved_delta, delta_allowed : float
-        δ reached and δ allowed [-].
-    omega_max, omega_min, omega_mean : float
-        Speeds of the simulated cycle [rad/s].
-    tolerance : float
-        Accuracy of ``achieved_delta`` [-].
-    flagged : bool
-        The design misses the allowed δ by more than the tolerance.
-    j_flywheel : float
-        The flywheel simulated, at the reference shaft [kg*m^2].
-    solution : PeriodicSolution or None
-        The simulated speed over the cycle (None for net areas), for plots.
-    """
-
-    method: str
-    achieved_delta: float
-    delta_allowed: float
-    omega_max: float
-    omega_min: float
-    omega_mean: float
-    tolerance: float
-    flagged: bool
-    j_flywheel: float
-    solution: object = field(default=None, repr=False, compare=False)
-
-    def to_dict(self):
-        """The "verification" object of the JSON (SI)."""
-        out = asdict(self)
-        del out["solution"]
-        return out
+if TYPE_CHECKING:  # the annotation only: importing it loads CasADi
+    from flyopt.sizing.periodic import Verification
 
 
 @dataclass(frozen=True)
@@ -163,7 +127,7 @@ def verify(scene, analysis, design_result=None):
         else:
             achieved = analysis.a_max / (j * analysis.omega_mean**2) if j > 0 else float("inf")
         omega_max, omega_min = speed_extremes(analysis.omega_mean, achieved)
-        return Verification(
+        return periodic.Verification(
             method="energy method (net areas give no curves to simulate; exact for constant inertia)",
             achieved_delta=achieved, delta_allowed=analysis.delta, omega_max=omega_max, omega_min=omega_min,
             omega_mean=analysis.omega_mean, tolerance=1e-12 * analysis.delta,
@@ -173,7 +137,7 @@ def verify(scene, analysis, design_result=None):
                                  analysis.delta, j_flywheel, machine.knots())
     except SceneError as err:
         raise err.with_source(scene.source) from None
-    return Verification(**result.to_dict(), j_flywheel=j_flywheel, solution=result.solution)
+    return result
 
 
 def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_design=False,

@@ -1128,7 +1128,10 @@ class Verification:
         Accuracy of ``achieved_delta`` [-].
     flagged : bool
         True when achieved_delta exceeds delta_allowed by more than the tolerance.
-    solution : PeriodicSolution
+    j_flywheel : float
+        The flywheel simulated, at the reference shaft [kg*m^2].
+    solution : PeriodicSolution or None
+        The simulated speed over the cycle (None where nothing was simulated: net areas).
     """
 
     method: str
@@ -1139,14 +1142,15 @@ class Verification:
     omega_mean: float
     tolerance: float
     flagged: bool
-    solution: PeriodicSolution = field(repr=False)
+    j_flywheel: float
+    solution: PeriodicSolution | None = field(default=None, repr=False, compare=False)
 
     def to_dict(self):
-        """The fields of the report's "verification" entry."""
+        """The fields of the report's "verification" entry (SI)."""
         return {"method": self.method, "achieved_delta": self.achieved_delta,
                 "delta_allowed": self.delta_allowed, "omega_max": self.omega_max,
                 "omega_min": self.omega_min, "omega_mean": self.omega_mean,
-                "tolerance": self.tolerance, "flagged": self.flagged}
+                "tolerance": self.tolerance, "flagged": self.flagged, "j_flywheel": self.j_flywheel}
 
 
 def verify(net_torque, j_machine, cycle_angle, omega_mean, delta_allowed, j_flywheel, knots=()):
@@ -1189,4 +1193,4 @@ def verify(net_torque, j_machine, cycle_angle, omega_mean, delta_allowed, j_flyw
     return Verification(
         method=method, achieved_delta=sol.delta, delta_allowed=float(delta_allowed), omega_max=sol.omega_max,
         omega_min=sol.omega_min, omega_mean=sol.omega_mean, tolerance=sol.tolerance,
-        flagged=bool(sol.delta - delta_allowed > sol.tolerance), solution=sol)
+        flagged=bool(sol.delta - delta_allowed > sol.tolerance), j_flywheel=float(j_flywheel), solution=sol)
