@@ -92,12 +92,12 @@ def test_speed_plot_with_the_simulation_overlaid(tmp_path):
 
     matplotlib.use("Agg")
     import flyopt
-    from flyopt.cli.plot import _simulation
+    from flyopt.pipeline import verify
     from flyopt.report import plots
 
     scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
     analysis = flyopt.analyse(scene)
-    ax = plots.plot_speed(scene, analysis, analysis.speed_curve(), _simulation(analysis))
+    ax = plots.plot_speed(scene, analysis, analysis.speed_curve(), verify(scene, analysis).solution)
     model, simulated = ax.lines[0].get_ydata(), ax.lines[1].get_ydata()
     # the closed form and the simulation reach the same extremes (to the simulation's tolerance)
     assert abs(model.max() / simulated.max() - 1) < 1e-6 and abs(model.min() / simulated.min() - 1) < 1e-6

@@ -80,7 +80,10 @@ def _draw(args, plots):
     if args.what == "speed":
         if scene.net is not None:   # said by the plot, before any model runs
             return plots.plot_speed(scene, analysis)
-        simulation = _simulation(analysis) if args.verify else None
+        from flyopt.pipeline import verify
+
+        # the simulation --verify checks, with the required flywheel: pipeline.verify, the one path
+        simulation = verify(scene, analysis).solution if args.verify else None
         speed = analysis.speed_curve()
         if speed is None:
             raise plots.NothingToDraw("no flywheel is needed and the speed does not fluctuate (A_max = 0 J, "
@@ -91,15 +94,6 @@ def _draw(args, plots):
         if analysis.model != "energy_mass":   # the diagram draws that model's tangents
             analysis = analyse(scene, model="energy_mass")
     return getattr(plots, f"plot_{args.what}")(scene, analysis)
-
-
-def _simulation(analysis):
-    """The periodic simulation of the machine with the required flywheel (what ``--verify`` checks)."""
-    from flyopt.sizing.periodic import periodic_solution
-
-    machine = analysis.machine
-    return periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
-                             max(analysis.j_required, 0.0), machine.knots())
 
 
 def _plot_results(args):
