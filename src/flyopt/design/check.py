@@ -65,21 +65,23 @@ def binding_mask(geometry_name, j_wheel, j_shaft, d_outer, d_inner, b, hb, cap_s
         OR of :data:`BINDING_BITS` of the constraints within :data:`ACTIVE_RTOL` of their limit.
     """
     rtol = ACTIVE_RTOL
-    with np.errstate(invalid="ignore"):
-        flags = {
-            "inertia": np.less_equal(j_wheel, np.multiply(j_shaft, 1.0 + rtol)),
-            "rim_speed": np.greater_equal(d_outer, np.multiply(cap_speed, 1.0 - rtol)),
-            "max_outer_diameter": np.greater_equal(d_outer, np.multiply(envelope, 1.0 - rtol)),
-            "max_width": np.greater_equal(b, np.multiply(max_width, 1.0 - rtol)),
-        }
-        if geometry_name != "disc":
-            flags["hb_min"] = np.less_equal(hb, np.multiply(hb_min, 1.0 + rtol))
-            flags["hb_max"] = np.greater_equal(hb, np.multiply(hb_max, 1.0 - rtol))
-            flags["inner_diameter"] = np.less_equal(d_inner, np.multiply(d_outer, rtol))
+    # plain operators: the same rule for floats (one design, no numpy overhead) and for arrays
+    flags = {
+        "inertia": j_wheel <= j_shaft * (1.0 + rtol),
+        "rim_speed": d_outer >= cap_speed * (1.0 - rtol),
+        "max_outer_diameter": d_outer >= envelope * (1.0 - rtol),
+        "max_width": b >= max_width * (1.0 - rtol),
+    }
+    if geometry_name != "disc":
+        flags["hb_min"] = hb <= hb_min * (1.0 + rtol)
+        flags["hb_max"] = hb >= hb_max * (1.0 - rtol)
+        flags["inner_diameter"] = d_inner <= d_outer * rtol
+    if not any(isinstance(flag, np.ndarray) for flag in flags.values()):
+        return sum(BINDING_BITS[name] for name, flag in flags.items() if flag)
     mask = np.zeros(np.shape(d_outer), dtype=np.int64)
     for name, flag in flags.items():
         mask |= np.where(flag, BINDING_BITS[name], 0)
-    return int(mask) if mask.ndim == 0 else mask
+    return mask
 
 
 _NAMES_OF_MASK: dict = {}

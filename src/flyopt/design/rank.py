@@ -27,12 +27,16 @@ two designs are the same wheel to 1e-9.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = ["TIE_RTOL", "winners", "ranking"]
 
 #: Objectives (and costs, masses, rim speeds) within this relative distance rank as equal.
 TIE_RTOL = 1e-9
+#: Up to this many designs of one point the rule runs in plain Python (numpy's per-call cost dominates).
+_FEW = 64
 
 
 def _numeric(values, n):
@@ -65,6 +69,8 @@ def winners(group, objective, cost, mass, rim_speed, material, shaft, n_groups=N
     n = group.size
     if n_groups is None:
         n_groups = int(group.max()) + 1 if n else 0
+    if n_groups == 1 and 0 < n <= _FEW:   # one point with a few designs (a solve's ranking)
+        return np.array([_winner_of_few(objective, cost, mass, rim_speed, material, shaft)], dtype=np.int64)
     alive = np.ones(n, dtype=bool)
     for key in (objective, cost, mass, rim_speed):
         values = np.where(alive, _numeric(key, n), np.inf)
@@ -81,6 +87,20 @@ def winners(group, objective, cost, mass, rim_speed, material, shaft, n_groups=N
         first = np.unique(group[order], return_index=True)[1]
         best[group[order[first]]] = order[first]
     return best
+
+
+def _winner_of_few(objective, cost, mass, rim_speed, material, shaft):
+    """The rule of :func:`winners` for one point in plain Python (numpy's per-call cost dominates there).
+
+    The same steps in the same order: NaN counts as inf, each numeric key keeps
+    the designs within TIE_RTOL of its lowest, then the names decide.
+    """
+    alive = range(len(material))
+    for key in (objective, cost, mass, rim_speed):
+        values = [math.inf if v is None or v != v else float(v) for v in key]
+        lowest = min(values[k] for k in alive)
+        alive = [k for k in alive if values[k] <= lowest * (1.0 + TIE_RTOL)]
+    return min(alive, key=lambda k: (str(material[k]), str(shaft[k])))
 
 
 def ranking(candidates):
@@ -100,9 +120,7 @@ def ranking(candidates):
     left = list(candidates)
     ordered = []
     while left:
-        k = int(winners(np.zeros(len(left), dtype=np.int64),
-                        [c.objective for c in left], [np.nan if c.cost is None else c.cost for c in left],
-                        [c.mass for c in left], [c.rim_speed for c in left],
-                        [c.material for c in left], [c.shaft for c in left], n_groups=1)[0])
+        k = _winner_of_few([c.objective for c in left], [c.cost for c in left], [c.mass for c in left],
+                           [c.rim_speed for c in left], [c.material for c in left], [c.shaft for c in left])
         ordered.append(left.pop(k))
     return ordered
