@@ -197,7 +197,7 @@ def test_bad_design_section(write_scene, line, field, words):
 
 
 MATERIAL_BAD = [
-    ('name = "x"\ndensity = "7000 kg/m^3"', "material[0]", "give max_rim_speed, or allowable_stress"),
+    ('name = "x"\ndensity = "7000 kg/m^3"', "material[0]", "give max_rim_speed, allowable_stress"),
     ('name = "x"\nmax_rim_speed = "40 m/s"', "material[0].density", "is missing"),
     ('name = "x"\ndensity = "7000 kg"\nmax_rim_speed = "40 m/s"', "material[0].density", "wrong dimension"),
     ('name = "x"\ndensity = "7000 kg/m^3"\nmax_rim_speed = "-4 m/s"', "material[0].max_rim_speed", "positive"),

@@ -120,7 +120,7 @@ def covers(geometry_name, objective, pinned=False):
         True for the mass and cost objectives (any geometry, free or pinned
         D_m); False for ``outer_diameter``, which is left to IPOPT.
     """
-    return geometry_name in geometry.GEOMETRIES and objective in COVERED_OBJECTIVES
+    return geometry_name in geometry.BARE and objective in COVERED_OBJECTIVES
 
 
 def _array(x):

@@ -32,6 +32,8 @@ import math
 
 __all__ = [
     "GEOMETRIES",
+    "BARE",
+    "WHEELS",
     "rim_mass",
     "rim_inertia",
     "thin_rim_inertia",
@@ -45,12 +47,20 @@ __all__ = [
     "wheel_inertia",
 ]
 
-#: Geometry model names understood by flyopt, with their inertia formula.
-GEOMETRIES = {
+#: The bare wheels of the textbook: one body, sized by a closed form where it is exact.
+BARE = {
     "thin_rim": "thin rim, J = m D_m^2/4 (textbook model; slightly low, errs safe)",
     "rim": "exact annulus, J = m (D_m^2 + H^2)/4",
-    "disc": "solid disc, J = m D^2/8, m = pi D^2 B rho/4",
+    "disc": "solid disc, J = m D^2/8, m = pi D^2 B rho/4 (an annulus when it has a bore)",
 }
+#: Whole wheels: a rim carried on a web or on arms, with a hub on the shaft
+#: (flyopt.design.wheel holds their parts).
+WHEELS = {
+    "rim_web": "rim, web and hub: a stepped disc, every part counted in J and mass",
+    "rim_arms": "rim on n elliptical arms and a hub, every part counted in J and mass",
+}
+#: Geometry model names understood by flyopt, with their inertia formula.
+GEOMETRIES = {**BARE, **WHEELS}
 
 
 def rim_mass(d_mean, h, b, density):

@@ -50,6 +50,7 @@ def design_inputs(scene):
     library = scene.material_library()
     materials = tuple(library[name] for name in (scene.design_materials or tuple(library)))
     allowed = scene.design_shafts
-    shafts = tuple(MountShaft(s.name, s.speed_ratio) for s in scene.shafts if allowed is None or s.name in allowed)
+    shafts = tuple(MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts
+                   if allowed is None or s.name in allowed)
     spec = scene.design if scene.design is not None else DesignSpec()
     return DesignInputs(materials=materials, shafts=shafts, spec=spec)

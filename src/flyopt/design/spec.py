@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from flyopt.design import geometry
 
-__all__ = ["OBJECTIVES", "MountShaft", "DesignSpec"]
+__all__ = ["OBJECTIVES", "CRITERIA", "MountShaft", "DesignSpec"]
 
 #: Objectives understood by :func:`design_flywheel`.
 OBJECTIVES = {
@@ -26,6 +26,18 @@ OBJECTIVES = {
     "outer_diameter": "minimize the outer diameter [m]",
     "cost": "minimize mass times the material's cost per kg",
 }
+
+#: Strength criteria understood by :func:`design_flywheel`.
+CRITERIA = {
+    "rim_speed": "the textbook limit: the outer diameter's peripheral speed at omega_max stays below the "
+                 "material's safe rim speed (cast iron 36 m/s, cast steel 50 m/s)",
+    "stress": "the governing stress of every part at omega_max stays below the allowable stress (von Mises "
+              "against yield for ductile materials, largest principal stress against tensile strength for "
+              "brittle ones)",
+}
+
+#: Arm counts a rim_arms wheel considers unless the scene says (the machine-design texts' range).
+DEFAULT_ARMS = (4, 6, 8)
 
 def _finite(value, name):
     try:
@@ -59,16 +71,23 @@ class MountShaft:
         Shaft name for reports, e.g. ``"motor"``.
     speed_ratio : float
         omega_shaft / omega_reference [-], > 0.
+    diameter : float or None
+        The shaft seat [m]: the wheel's bore, hub and key follow from it
+        unless the design gives its own bore.
     """
 
     name: str
     speed_ratio: float
+    diameter: float | None = None
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():
             raise ValueError(f"shaft name must be a non-empty string, got {self.name!r}")
         object.__setattr__(self, "speed_ratio",
                            _positive(self.speed_ratio, f"shaft {self.name!r}: speed_ratio", "[-]"))
+        if self.diameter is not None:
+            object.__setattr__(self, "diameter",
+                               _positive(self.diameter, f"shaft {self.name!r}: diameter", "[m]"))
 
 @dataclass(frozen=True)
 class DesignSpec:
@@ -76,7 +95,7 @@ class DesignSpec:
 
     Parameters
     ----------
-    geometry : {"rim", "thin_rim", "disc"}
+    geometry : {"rim", "thin_rim", "disc", "rim_web", "rim_arms"}
         Inertia model (see :data:`flyopt.design.geometry.GEOMETRIES`).
     hb_ratio : (float, float)
         Allowed range of H/B, radial thickness over axial width [-]; equal
@@ -89,6 +108,21 @@ class DesignSpec:
         Pinned mean diameter D_m [m]; for ``disc`` the pinned diameter D.
     objective : {"mass", "outer_diameter", "cost"}
         What to minimize. ``cost`` needs a cost per kg on every material.
+    criterion : {"rim_speed", "stress"}
+        What limits the wheel's size (see :data:`CRITERIA`).
+    safety_factor : float or None
+        Factor on the material's strength for the allowable stress, when the
+        material gives no allowable stress; None: the material's own default.
+    bore : float or None
+        Diameter of the shaft seat [m]; None: the mounting shaft's diameter,
+        or no bore when the shaft gives none. 0 means no bore.
+    arms : tuple of int
+        Arm counts a ``rim_arms`` wheel considers (each >= 3).
+    min_wall : float or None
+        Thinnest section the process can make [m]; None: the material's
+        default. Bounds every section of a whole wheel and of any wheel under
+        the stress criterion (the textbook rim-speed design of a bare wheel
+        is left as the textbook makes it).
 
     Raises
     ------
@@ -104,6 +138,18 @@ class DesignSpec:
     max_width: float = math.inf
     d_mean: float | None = None
     objective: str = "mass"
+    criterion: str = "rim_speed"
+    safety_factor: float | None = None
+    bore: float | None = None
+    arms: tuple = DEFAULT_ARMS
+    min_wall: float | None = None
+
+    def textbook(self, bore=None):
+        """Whether this is the textbook design: a bare wheel without a bore sized by the rim speed limit
+        (the closed forms and the NLP of :mod:`flyopt.design.nlp`); anything else is a whole wheel
+        (:mod:`flyopt.design.wheel`). ``bore`` [m] is the combination's (a disc with a bore is an annulus)."""
+        return (self.geometry in geometry.BARE and self.criterion == "rim_speed"
+                and not (self.geometry == "disc" and bore))
 
     @property
     def has_envelope(self):
@@ -115,7 +161,9 @@ class DesignSpec:
         return {"geometry": self.geometry, "hb_ratio": list(self.hb_ratio),
                 "max_outer_diameter": _none_if_inf(self.max_outer_diameter),
                 "max_width": _none_if_inf(self.max_width), "d_mean": self.d_mean,
-                "objective": self.objective}
+                "objective": self.objective, "criterion": self.criterion,
+                "safety_factor": self.safety_factor, "bore": self.bore, "arms": list(self.arms),
+                "min_wall": self.min_wall}
 
     def __post_init__(self):
         _choice(self.geometry, geometry.GEOMETRIES, "geometry")
@@ -136,6 +184,32 @@ class DesignSpec:
             object.__setattr__(self, name, limit)
         if self.d_mean is not None:
             object.__setattr__(self, "d_mean", _positive(self.d_mean, "d_mean", "[m]"))
+        _choice(self.criterion, CRITERIA, "criterion")
+        if self.safety_factor is not None:
+            factor = _finite(self.safety_factor, "safety_factor [-]")
+            if factor < 1.0:
+                raise ValueError(f"safety_factor [-] must be >= 1 (the allowable stress is the "
+                                 f"strength divided by it), got {self.safety_factor!r}")
+            object.__setattr__(self, "safety_factor", factor)
+        if self.bore is not None:
+            bore = _finite(self.bore, "bore [m]")
+            if bore < 0.0:
+                raise ValueError(f"bore [m] must be >= 0 (0: no bore), got {self.bore!r}")
+            if bore >= self.max_outer_diameter:
+                raise ValueError(f"bore {bore} m must be smaller than max_outer_diameter "
+                                 f"{self.max_outer_diameter} m")
+            object.__setattr__(self, "bore", bore)
+        try:
+            arms = tuple(self.arms)
+        except TypeError as err:
+            raise ValueError(f"arms must be a list of arm counts, got {self.arms!r}") from err
+        if not arms or any(isinstance(n, bool) or not isinstance(n, int) or n < 3 for n in arms):
+            raise ValueError(f"arms must be a non-empty list of whole arm counts >= 3, got {list(arms)!r}")
+        if len(set(arms)) != len(arms):
+            raise ValueError(f"arms lists an arm count twice: {list(arms)!r}")
+        object.__setattr__(self, "arms", arms)
+        if self.min_wall is not None:
+            object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
         if (self.objective == "outer_diameter" and self.geometry == "disc"
                 and self.max_width == math.inf):
             raise ValueError("objective 'outer_diameter' with geometry 'disc' needs "

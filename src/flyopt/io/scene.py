@@ -42,11 +42,14 @@ class Shaft:
         ω_shaft / ω_reference [-].
     efficiency : float
         Efficiency of the transmission from the motor to this shaft [-].
+    diameter : float or None
+        The shaft seat [m] (sets a wheel's bore, hub and key), when given.
     """
 
     name: str
     speed_ratio: float
     efficiency: float = 1.0
+    diameter: float | None = None
 
 
 @dataclass(frozen=True)
@@ -927,7 +930,7 @@ def _shafts(raw):
     shafts, seen = [], set()
     for k, item in enumerate(raw):
         where = f"shaft[{k}]"
-        table = _Table(item, where, {"name", "speed_ratio", "efficiency", "description"})
+        table = _Table(item, where, {"name", "speed_ratio", "efficiency", "diameter", "description"})
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
             raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
@@ -938,8 +941,18 @@ def _shafts(raw):
         if ratio <= 0:
             raise SceneError(f"{where}.speed_ratio", f"must be positive (ω_shaft/ω_reference), got {shorten(ratio)}")
         eff = _efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
-        shafts.append(Shaft(name, ratio, eff))
+        diameter = table.quantity("diameter", "length")
+        if diameter is not None and diameter <= 0:
+            raise SceneError(f"{where}.diameter", f"must be positive (the shaft seat), got "
+                                                  f"{shorten(table.raw('diameter'))}")
+        shafts.append(Shaft(name, ratio, eff, diameter))
     return tuple(shafts)
+
+
+#: The strength fields of a [[material]] (beyond density, rim speed, allowable stress and cost).
+_MATERIAL_STRENGTH = {"elastic_modulus": "stress", "poisson_ratio": "dimensionless",
+                      "tensile_strength": "stress", "yield_strength": "stress", "ductile": "bool",
+                      "safety_factor": "dimensionless", "min_wall": "length", "bearing_pressure": "stress"}
 
 
 def _materials(raw):
@@ -953,15 +966,17 @@ def _materials(raw):
     for k, item in enumerate(raw):
         where = f"material[{k}]"
         table = _Table(item, where, {"name", "density", "max_rim_speed", "allowable_stress", "cost",
-                                     "source", "description"})
+                                     "source", "description", *_MATERIAL_STRENGTH})
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
             raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
         if name in seen:
             raise SceneError(f"{where}.name", f"material {shorten(name)} is given twice")
         seen.add(name)
-        if not (table.has("max_rim_speed") or table.has("allowable_stress")):
-            raise SceneError(where, "give max_rim_speed, or allowable_stress (v_max then follows from σ = ρ v²)")
+        strength = "tensile_strength" if table.get("ductile") is not True else "yield_strength"
+        if not (table.has("max_rim_speed") or table.has("allowable_stress") or table.has(strength)):
+            raise SceneError(where, f"give max_rim_speed, allowable_stress (v_max then follows from σ = ρ v²) "
+                                    f"or {strength} (the allowable stress is it over the safety factor)")
         values = {
             "density": table.quantity("density", "density", required=True),
             "max_rim_speed": table.quantity("max_rim_speed", "speed"),
@@ -971,6 +986,24 @@ def _materials(raw):
         for key, value in values.items():
             if value is not None and (value < 0 or (value == 0 and key != "cost")):
                 raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
+        for key, dimension in _MATERIAL_STRENGTH.items():
+            if not table.has(key):
+                continue
+            if dimension == "bool":
+                if not isinstance(table.get(key), bool):
+                    raise SceneError(f"{where}.{key}", f"must be true or false, got {shorten(table.raw(key))}")
+                values[key] = table.get(key)
+                continue
+            value = table.quantity(key, dimension)
+            if key == "poisson_ratio":
+                if not 0.0 <= value < 0.5:
+                    raise SceneError(f"{where}.{key}", f"must be in [0, 0.5), got {shorten(table.raw(key))}")
+            elif key == "safety_factor":
+                if value < 1.0:
+                    raise SceneError(f"{where}.{key}", f"must be >= 1, got {shorten(table.raw(key))}")
+            elif value <= 0:
+                raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
+            values[key] = value
         source = table.get("source", "scene file")
         try:
             materials.append(make_material(name, source=str(source), **values))
@@ -983,16 +1016,20 @@ def _design(raw, shafts, materials):
     from flyopt.design.materials import material_library
     from flyopt.design.spec import DesignSpec
 
+    from flyopt.design.geometry import GEOMETRIES
+    from flyopt.design.spec import CRITERIA, OBJECTIVES
+
     table = _Table(raw, "design", {"geometry", "materials", "shafts", "hb_ratio", "max_outer_diameter",
-                                   "max_width", "d_mean", "objective", "description"})
+                                   "max_width", "d_mean", "objective", "description", "criterion",
+                                   "safety_factor", "bore", "arms", "min_wall"})
     library = material_library(materials)
     names = _name_list(table, "materials", library, "material")
     shaft_names = _name_list(table, "shafts", {s.name: s for s in shafts}, "shaft")
     options = {}
-    for key in ("geometry", "objective"):
+    for key in ("geometry", "objective", "criterion"):
         if table.has(key):
             value = table.get(key)
-            allowed = {"geometry": ("thin_rim", "rim", "disc"), "objective": ("mass", "outer_diameter", "cost")}[key]
+            allowed = tuple({"geometry": GEOMETRIES, "objective": OBJECTIVES, "criterion": CRITERIA}[key])
             if value not in allowed:
                 close = difflib.get_close_matches(str(value), allowed, n=1)
                 hint = f"; did you mean {shorten(close[0])}?" if close else ""
@@ -1008,12 +1045,35 @@ def _design(raw, shafts, materials):
         if not 0 < low <= high:
             raise SceneError("design.hb_ratio", f"must be a range 0 < min <= max, got {shorten(hb)}")
         options["hb_ratio"] = (low, high)
-    for key in ("max_outer_diameter", "max_width", "d_mean"):
+    for key in ("max_outer_diameter", "max_width", "d_mean", "min_wall"):
         if table.has(key):
             value = table.quantity(key, "length")
             if value <= 0:
                 raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
             options[key] = value
+    if table.has("bore"):
+        value = table.quantity("bore", "length")
+        if value < 0:
+            raise SceneError("design.bore", f"must be >= 0 (0: no bore), got {shorten(table.raw('bore'))}")
+        envelope = options.get("max_outer_diameter", math.inf)
+        if value >= envelope:
+            raise SceneError("design.bore", f"{shorten(table.raw('bore'))} does not fit inside "
+                                            f"max_outer_diameter {shorten(table.raw('max_outer_diameter'))}")
+        options["bore"] = value
+    if table.has("safety_factor"):
+        value = table.quantity("safety_factor", "dimensionless")
+        if value < 1:
+            raise SceneError("design.safety_factor", f"must be >= 1 (the allowable stress is the strength "
+                                                     f"over it), got {shorten(table.raw('safety_factor'))}")
+        options["safety_factor"] = value
+    if table.has("arms"):
+        arms = table.get("arms")
+        arms = arms if isinstance(arms, list) else [arms]
+        if (not arms or any(isinstance(n, bool) or not isinstance(n, int) or n < 3 for n in arms)
+                or len(set(arms)) != len(arms)):
+            raise SceneError("design.arms", f"must be whole arm counts >= 3, each once (e.g. [4, 6, 8]), "
+                                            f"got {shorten(table.raw('arms'))}")
+        options["arms"] = tuple(arms)
     if options.get("objective") == "cost":
         chosen = names or tuple(library)
         missing = [n for n in chosen if library[n].cost is None]

@@ -46,6 +46,7 @@ import pandas as pd
 from flyopt.cycle.indicator import required_inertia, speed_extremes
 from flyopt.design import closed_form as batch
 from flyopt.design import design_inputs, rank
+from flyopt.design.spec import MountShaft
 from flyopt.design.check import binding_names
 from flyopt.errors import SceneError, SolverFailed
 from flyopt.io.results import RESULT_COLUMNS
@@ -67,8 +68,6 @@ def _check_points(scene, points, where):
     Works on the varied columns only (a 10⁶-point plan is checked without
     per-point copies of the scene's defaults).
     """
-    from flyopt.design.spec import DesignSpec
-
     spec = design_inputs(scene).spec
 
     def column(name, default):
@@ -98,11 +97,11 @@ def _check_points(scene, points, where):
         width = row.get("design.max_width", spec.max_width)
         d_mean = row.get("design.d_mean", spec.d_mean)
         try:
-            DesignSpec(geometry=row.get("design.geometry", spec.geometry), hb_ratio=hb,
-                       objective=row.get("design.objective", spec.objective),
-                       max_outer_diameter=math.inf if _is_none(envelope) else envelope,
-                       max_width=math.inf if _is_none(width) else width,
-                       d_mean=None if _is_none(d_mean) else d_mean)
+            dataclasses.replace(spec, geometry=row.get("design.geometry", spec.geometry), hb_ratio=hb,
+                                objective=row.get("design.objective", spec.objective),
+                                max_outer_diameter=math.inf if _is_none(envelope) else envelope,
+                                max_width=math.inf if _is_none(width) else width,
+                                d_mean=None if _is_none(d_mean) else d_mean)
         except ValueError as err:
             raise SceneError(_where(where, "design"), str(err)) from None
     inputs = design_inputs(scene)
@@ -164,15 +163,24 @@ def design_counts(scene, points, method="auto"):
     geometry = points["design.geometry"] if "design.geometry" in points else None
     objective = points["design.objective"] if "design.objective" in points else None
     if geometry is None and objective is None:
-        ipopt = np.full(n, not batch.covers(spec.geometry, spec.objective))
+        ipopt = np.full(n, not _vectorized(inputs, spec.geometry, spec.objective))
     else:
         pairs = pd.DataFrame({"g": geometry if geometry is not None else spec.geometry,
                               "o": objective if objective is not None else spec.objective},
                              index=points.index)
         codes, uniques = pd.MultiIndex.from_frame(pairs).factorize()
-        covered = np.array([batch.covers(g, o) for g, o in uniques], dtype=bool)
+        covered = np.array([_vectorized(inputs, g, o) for g, o in uniques], dtype=bool)
         ipopt = ~covered[codes]
     return n_materials * n_shafts, ipopt
+
+
+def _vectorized(inputs, geometry_name, objective):
+    """Whether the vectorized closed form designs a point: the textbook design (a bare wheel, no bore,
+    sized by the rim speed: :meth:`DesignSpec.textbook`) with an objective the closed form covers.
+    Every other point goes through :func:`flyopt.design.designer.design_flywheel` one by one."""
+    spec = dataclasses.replace(inputs.spec, geometry=geometry_name)
+    return batch.covers(geometry_name, objective) and all(
+        spec.textbook(spec.bore if spec.bore is not None else s.diameter) for s in inputs.shafts)
 
 
 def physics_codes(points):
@@ -421,6 +429,8 @@ class _Inputs:
         self.n = n
         defaults = design_inputs(scene)
         spec = defaults.spec
+        self.spec = spec
+        self.mounts = {s.name: MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts}
 
         def col(name, default):
             if name in points:
@@ -562,7 +572,9 @@ def _evaluate(ctx, points):
     for k in np.flatnonzero(idle):
         res["message"][k] = (f"no flywheel needed: J_F = {j_margin[k]:.4g} kg·m² is not "
                              f"positive")
-    covered = np.array([batch.covers(g, o) for g, o in zip(inputs.geometry, inputs.objective)],
+    design, seen = design_inputs(scene), {}
+    covered = np.array([seen[g, o] if (g, o) in seen else seen.setdefault((g, o), _vectorized(design, g, o))
+                        for g, o in zip(inputs.geometry, inputs.objective)],
                        dtype=bool) if n else np.zeros(0, dtype=bool)
     if ctx.method == "closed_form" and (needed & ~covered).any():
         k = int(np.flatnonzero(needed & ~covered)[0])
@@ -764,26 +776,27 @@ _IPOPT_LOCK = threading.Lock()
 
 def _design_ipopt(ctx, inputs, k, j_required, res):
     """One point by optimize.design_flywheel (IPOPT, NLP cached per structure)."""
-    from flyopt.design import DesignSpec, MountShaft, design_flywheel
-    from flyopt.design.materials import Material
+    from flyopt.design import design_flywheel
 
     mats = [inputs.material[k]] if inputs.material is not None else inputs.material_names
     shafts = [inputs.shaft[k]] if inputs.shaft is not None else inputs.shaft_names
     materials = []
-    for name in mats:
-        base = inputs.library[name]
+    for name in mats:   # the scene's material with this point's values: every other field kept
         cost = inputs.material_cost[name][k]
-        materials.append(Material(name, inputs.density[name][k], inputs.max_rim_speed[name][k],
-                                  base.allowable_stress, None if math.isnan(cost) else cost,
-                                  base.source))
-    mounts = [MountShaft(name, inputs.ratio[name][k]) for name in shafts]
+        materials.append(dataclasses.replace(
+            inputs.library[name], density=float(inputs.density[name][k]),
+            max_rim_speed=float(inputs.max_rim_speed[name][k]),
+            cost=None if math.isnan(cost) else float(cost)))
+    mounts = [dataclasses.replace(inputs.mounts[name], speed_ratio=float(inputs.ratio[name][k]))
+              for name in shafts]
 
     def opt(x):
         return None if math.isnan(x) else float(x)
 
-    spec = DesignSpec(geometry=inputs.geometry[k], hb_ratio=(inputs.hb_min[k], inputs.hb_max[k]),
-                      max_outer_diameter=inputs.envelope[k], max_width=inputs.width[k],
-                      d_mean=opt(inputs.d_mean[k]), objective=inputs.objective[k])
+    spec = dataclasses.replace(
+        inputs.spec, geometry=inputs.geometry[k], hb_ratio=(inputs.hb_min[k], inputs.hb_max[k]),
+        max_outer_diameter=inputs.envelope[k], max_width=inputs.width[k],
+        d_mean=opt(inputs.d_mean[k]), objective=inputs.objective[k])
     res["method"][k] = "ipopt"
     res["n_combinations"][k] = len(materials) * len(mounts)
     try:

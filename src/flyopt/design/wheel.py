@@ -1,0 +1,298 @@
+"""The whole wheel: its parts, their mass and inertia, and their stresses.
+
+A flywheel that can be built is more than its rim. flyopt knows five
+geometries (:data:`flyopt.design.geometry.GEOMETRIES`); each is a list of
+parts, and every part counts in the inertia and in the mass:
+
+=========  ==========================================================
+geometry   parts (inner to outer)
+=========  ==========================================================
+thin_rim   rim (inertia m D_m^2/4, the textbook's, which errs safe)
+rim        rim (the exact annulus)
+disc       disc: solid, or an annulus from the bore to D
+rim_web    hub (bore to d_hub, length l_hub), web (d_hub to the rim's
+           inner diameter, thickness t_web), rim (width B); no bore:
+           the web runs to the centre and there is no hub
+rim_arms   hub, n arms of elliptical section (major axis a in the plane
+           of rotation, minor axis a/2), rim
+=========  ==========================================================
+
+Dimensions of a wheel (:class:`Dims`, SI): outer diameter ``d_outer``,
+radial rim thickness ``h``, rim width ``b``, web thickness ``t_web``, hub
+diameter ``d_hub`` and length ``l_hub``, arm major axis ``arm_major``, arm
+count ``n_arms`` and the bore ``bore`` (0: none). For a disc ``h`` is the
+radial extent (D - bore)/2.
+
+Every function is arithmetic only, so the same code gives floats, numpy
+arrays and CasADi expressions (the design NLP, :mod:`flyopt.design.wheel_nlp`,
+builds on it). Stresses come from :mod:`flyopt.design.stress`.
+
+References
+----------
+.. [1] flyopt domain notes, docs/flywheel-design.md, sections 9, 10 and 13.
+.. [2] R. S. Khurmi and J. K. Gupta, A Textbook of Machine Design, chapter
+   22 (flywheel): rim, arms of elliptical section with minor axis half the
+   major, hub.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+__all__ = ["Dims", "Part", "ARM_MINOR_RATIO", "parts", "wheel_mass", "wheel_inertia", "steps"]
+
+#: Minor over major axis of an arm's elliptical section (the texts' proportion, [2]).
+ARM_MINOR_RATIO = 0.5
+
+
+@dataclass(frozen=True)
+class Dims:
+    """The dimensions of a wheel [m] (``n_arms`` a count); what a geometry does not use is 0."""
+
+    d_outer: object
+    h: object
+    b: object
+    bore: object = 0.0
+    t_web: object = 0.0
+    d_hub: object = 0.0
+    l_hub: object = 0.0
+    arm_major: object = 0.0
+    n_arms: int = 0
+
+    @property
+    def d_mean(self):
+        """Mean rim diameter D_m = D_outer - H [m]."""
+        return self.d_outer - self.h
+
+    @property
+    def d_inner(self):
+        """Inner rim diameter D_outer - 2 H [m] (the bore for a disc)."""
+        return self.d_outer - 2.0 * self.h
+
+    def to_dict(self):
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+@dataclass(frozen=True)
+class Part:
+    """One part of a wheel.
+
+    Attributes
+    ----------
+    name : str
+        "rim", "web", "hub", "arms" or "disc".
+    mass : float or expression
+        [kg] (all arms together for "arms").
+    inertia : float or expression
+        About the axis [kg*m^2].
+    r_inner, r_outer : float or expression
+        Radial extent [m].
+    thickness : float or expression
+        Axial thickness [m] (rim width, web thickness, hub length; the arms' minor axis).
+    """
+
+    name: str
+    mass: object
+    inertia: object
+    r_inner: object
+    r_outer: object
+    thickness: object
+
+
+def _annulus(name, density, r_inner, r_outer, thickness, thin=False):
+    """An annulus of constant thickness: m = pi rho t (r_o^2 - r_i^2), J = m (r_o^2 + r_i^2)/2
+    (``thin``: J = m r_mean^2, the thin-rim model)."""
+    mass = math.pi * density * thickness * (r_outer * r_outer - r_inner * r_inner)
+    if thin:
+        r_mean = (r_outer + r_inner) / 2.0
+        inertia = mass * r_mean * r_mean
+    else:
+        inertia = mass * (r_outer * r_outer + r_inner * r_inner) / 2.0
+    return Part(name, mass, inertia, r_inner, r_outer, thickness)
+
+
+def parts(geometry_name, dims, density):
+    """The parts of a wheel, inner to outer.
+
+    Parameters
+    ----------
+    geometry_name : str
+        One of :data:`flyopt.design.geometry.GEOMETRIES`.
+    dims : Dims
+    density : float or expression
+        rho [kg/m^3].
+
+    Returns
+    -------
+    list of Part
+
+    Notes
+    -----
+    The arms run from the hub's outer radius to the rim's inner radius, each
+    of area A = pi a (a/2)/4: m = n rho A (r_i - r_h), J = n rho A (r_i^3 - r_h^3)/3
+    (slender bars; their own width across the radius is neglected in J).
+    """
+    r_o = dims.d_outer / 2.0
+    r_i = dims.d_inner / 2.0
+    r_bore = dims.bore / 2.0
+    if geometry_name == "disc":
+        return [_annulus("disc", density, r_bore, r_o, dims.b)]
+    rim = _annulus("rim", density, r_i, r_o, dims.b, thin=geometry_name == "thin_rim")
+    if geometry_name in ("rim", "thin_rim"):
+        return [rim]
+    r_h = dims.d_hub / 2.0
+    if geometry_name == "rim_web":
+        if _zero(dims.bore):
+            return [_annulus("web", density, 0.0, r_i, dims.t_web), rim]
+        return [_annulus("hub", density, r_bore, r_h, dims.l_hub),
+                _annulus("web", density, r_h, r_i, dims.t_web), rim]
+    if geometry_name == "rim_arms":
+        area = math.pi * dims.arm_major * (ARM_MINOR_RATIO * dims.arm_major) / 4.0
+        n = dims.n_arms
+        arms = Part("arms", n * density * area * (r_i - r_h),
+                    n * density * area * (r_i ** 3 - r_h ** 3) / 3.0, r_h, r_i,
+                    ARM_MINOR_RATIO * dims.arm_major)
+        return [_annulus("hub", density, r_bore, r_h, dims.l_hub), arms, rim]
+    raise ValueError(f"geometry {geometry_name!r} not known")
+
+
+def _zero(value):
+    """Whether a structural value (the bore, a plain number) is zero; symbols are never asked."""
+    return isinstance(value, (int, float)) and value == 0
+
+
+def wheel_mass(wheel_parts):
+    """Total mass of the parts [kg]."""
+    total = 0.0
+    for part in wheel_parts:
+        total = total + part.mass
+    return total
+
+
+def wheel_inertia(wheel_parts):
+    """Total inertia of the parts about the axis [kg*m^2]."""
+    total = 0.0
+    for part in wheel_parts:
+        total = total + part.inertia
+    return total
+
+
+def steps(geometry_name, dims):
+    """The wheel as a stepped disc for the plane-stress solver: (radii, thicknesses, solid, names).
+
+    For ``rim_arms`` only the hub is a disc (the rim and the arms follow the
+    texts' beam models), so this returns the hub alone.
+
+    Returns
+    -------
+    radii : list
+        Edge radii r_0 < ... < r_N [m] (r_0 = 0 for a solid centre).
+    thicknesses : list
+        Axial thickness of each step [m].
+    solid : bool
+        The centre is solid (no bore).
+    names : list of str
+        The part each step belongs to.
+    """
+    r_o = dims.d_outer / 2.0
+    r_i = dims.d_inner / 2.0
+    r_bore = dims.bore / 2.0
+    solid = _zero(dims.bore)
+    if geometry_name == "disc":
+        return [r_bore, r_o], [dims.b], solid, ["disc"]
+    if geometry_name in ("rim", "thin_rim"):
+        return [r_i, r_o], [dims.b], False, ["rim"]
+    r_h = dims.d_hub / 2.0
+    if geometry_name == "rim_web":
+        if solid:
+            return [0.0, r_i, r_o], [dims.t_web, dims.b], True, ["web", "rim"]
+        return [r_bore, r_h, r_i, r_o], [dims.l_hub, dims.t_web, dims.b], False, ["hub", "web", "rim"]
+    if geometry_name == "rim_arms":
+        return [r_bore, r_h], [dims.l_hub], solid, ["hub"]
+    raise ValueError(f"geometry {geometry_name!r} not known")
+
+
+def walls(geometry_name, dims):
+    """The wall thickness of every part, the section its strength depends on [m].
+
+    A casting's strength falls with its wall thickness (EN 1561, EN 1563:
+    the relevant wall thickness of the section). Rim: the smaller of H and
+    B; web: its thickness; hub: the smaller of its radial wall and its
+    length; arms: the minor axis; disc: the smaller of B and its radial
+    extent. Floats only (used between solves, never inside the NLP).
+
+    Returns
+    -------
+    dict of str to float
+    """
+    out = {}
+    for part in parts(geometry_name, dims, 1.0):
+        if part.name == "arms":
+            out["arms"] = float(part.thickness)
+        else:
+            out[part.name] = float(min(part.thickness, part.r_outer - part.r_inner))
+    return out
+
+
+def stress_samples(geometry_name, dims, density, poisson, omega, torque, fractions):
+    """Radial and hoop stress at sample points of every part, at speed omega.
+
+    Parameters
+    ----------
+    geometry_name : str
+    dims : Dims
+    density, poisson : float or expression
+        rho [kg/m^3], nu [-].
+    omega : float or expression
+        Speed of the wheel [rad/s] (its highest of the cycle, for a design check).
+    torque : float or expression
+        Peak torque the wheel exchanges with its shaft [N*m] (the arms bend under it).
+    fractions : sequence of float
+        Where in each stepped-disc part to sample, as fractions 0..1 of its radial extent.
+
+    Returns
+    -------
+    list of (part, r, sr, st)
+        Part name, radius [m], sigma_r and sigma_t [Pa]. The disc parts
+        (rim, web, hub, disc) by the exact stepped-disc solution
+        (:func:`flyopt.design.stress.disc_coefficients`), at every fraction;
+        for ``rim_arms`` the rim by the texts' combined hoop and bending
+        stress (as a hoop stress at the mean radius) and the arms by their
+        root stress (as a radial stress at the hub), once each; the hub of
+        ``rim_arms`` is a free annulus pulled at its rim by the arms.
+
+    Notes
+    -----
+    Arithmetic only: the NLP samples a few fractions of symbolic wheels;
+    :mod:`flyopt.design.strength` finds the exact maxima of a solved one.
+    """
+    from flyopt.design import stress
+
+    radii, thicknesses, solid, names = steps(geometry_name, dims)
+    samples = []
+    traction = 0.0
+    if geometry_name == "rim_arms":
+        r_mean = dims.d_mean / 2.0
+        r_inner = dims.d_inner / 2.0
+        r_hub = dims.d_hub / 2.0
+        minor = ARM_MINOR_RATIO * dims.arm_major
+        area = stress.arm_section_area(dims.arm_major, minor)
+        rim = stress.rim_combined_stress(
+            stress.rim_hoop_stress(density, omega, r_mean),
+            stress.rim_bending_stress(density, omega, r_mean, dims.h, dims.n_arms))
+        pull = stress.arm_pull(density, area, dims.b * dims.h, omega, r_mean, r_inner, r_hub,
+                               dims.n_arms)
+        arm = stress.arm_stress(stress.arm_bending_stress(torque, dims.n_arms, r_mean, r_hub,
+                                                          dims.arm_major, minor), pull, area)
+        traction = stress.arm_hub_traction(dims.n_arms, pull, r_hub, dims.l_hub)
+        samples.append(("arms", r_hub, arm, 0.0))
+        samples.append(("rim", r_mean, 0.0, rim))
+    coefficients = stress.disc_coefficients(radii, thicknesses, density, poisson, omega, solid=solid,
+                                            outer_traction=traction)
+    for k, c in enumerate(coefficients):
+        for f in fractions:
+            r = radii[k] + f * (radii[k + 1] - radii[k])
+            sr, st = stress.disc_stresses(c, density, poisson, omega, r)
+            samples.append((names[k], r, sr, st))
+    return samples

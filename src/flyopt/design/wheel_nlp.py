@@ -1,0 +1,390 @@
+"""The design NLP of a whole wheel: every dimension chosen by IPOPT, every part counted and checked.
+
+One NLP per structure (:class:`WheelStructure`: the geometry, the criterion,
+ductile or brittle, a bore or not, the arm count, which limits are set, the
+objective), built once with CasADi and cached; the numbers of a combination
+(required inertia, speed, density, Poisson's ratio, torque, bore, the
+allowable stress of each part) enter as parameters and bounds::
+
+    minimize    log m(x)            (every part: rim, web or arms, hub)   objective "mass"/"cost"
+           or   log D_outer                                               objective "outer_diameter"
+    subject to  log J(x) >= log J'                                  inertia, every part counted
+                D_outer <= D_env                                    envelope
+                omega' D_outer / 2 <= v_max                        rim speed   (criterion "rim_speed")
+                sigma(x) <= sigma_allow of its part at K radii of  stress      (criterion "stress")
+                           every disc part (von Mises^2 for ductile materials, sigma_r and
+                           sigma_t for brittle ones); the rim and arms of rim_arms by the texts' beams
+                B, l_hub <= B_max;  hb_min <= H/B <= hb_max;  D_m = pinned
+                H, B, t_web, arm minor axis, hub wall >= min_wall
+                hub diameter and length within the textbook proportions and long enough for the key
+                t_web <= B, t_web <= l_hub;  the rim clears the hub;  n arms fit round the hub
+
+The variables are the logarithms of the dimensions in metres, so every
+dimension stays positive and mm and m sit side by side at order one. A
+stress row is divided by S = rho omega'^2 r_s^2 (r_s a length of the
+wheel), so it too is of order one.
+
+The sampled stress rows (:data:`SAMPLES` radii per part) are checked after
+the solve by the exact maxima (:mod:`flyopt.design.strength`); where a peak
+between samples exceeds the allowable, the designer tightens that part's
+row and solves again.
+
+References
+----------
+.. [1] flyopt domain notes, docs/flywheel-design.md, sections 9, 10 and 13.
+.. [2] A. Waechter and L. T. Biegler, Math. Program. 106 (2006) 25-57 (IPOPT).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import casadi as ca
+
+from flyopt.design import wheel
+from flyopt.design.nlp import DEFAULT_SOLVER_OPTIONS, _CONVERGED, _options_key
+from flyopt.errors import SolverFailed
+
+__all__ = ["WheelStructure", "WheelProblem", "WheelSolution", "SAMPLES", "get_model", "solve", "BUILDS",
+           "variables_of"]
+
+#: Radii per disc part where the NLP writes the stress rows, as fractions of its radial extent.
+SAMPLES = (0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0)
+
+#: How many wheel NLPs this process has built.
+BUILDS = {"count": 0}
+_CACHE: dict = {}
+
+#: Parameters of every wheel NLP, in order.
+PARAMETERS = ("omega", "density", "poisson", "torque", "bore", "stress_scale", "log_half_omega")
+
+
+class WheelStructure(NamedTuple):
+    """What decides the shape of a wheel NLP."""
+
+    geometry: str
+    criterion: str          # "rim_speed" | "stress"
+    ductile: bool
+    bored: bool             # a bore (else a solid centre; rim and thin_rim have neither)
+    n_arms: int             # rim_arms only (0 otherwise)
+    envelope: bool          # an outer-diameter limit is set
+    width: bool             # an axial width limit is set
+    pinned: bool            # D_m pinned
+    objective: str          # "mass" | "outer_diameter"
+
+
+def variables_of(structure):
+    """The dimensions IPOPT chooses for a structure, in order."""
+    geo = structure.geometry
+    if geo == "disc":
+        return ("d_outer", "b")
+    names = ["d_outer", "h", "b"]
+    if geo == "rim_web":
+        names.append("t_web")
+        if structure.bored:
+            names += ["d_hub", "l_hub"]
+    elif geo == "rim_arms":
+        names += ["arm_major", "d_hub", "l_hub"]
+    return tuple(names)
+
+
+def _dims(structure, values, bore):
+    """A wheel's Dims from its variables (floats or symbols)."""
+    v = dict(values)
+    geo = structure.geometry
+    if geo == "disc":
+        bore = bore if structure.bored else 0.0
+        return wheel.Dims(d_outer=v["d_outer"], h=(v["d_outer"] - bore) / 2.0, b=v["b"], bore=bore)
+    return wheel.Dims(d_outer=v["d_outer"], h=v["h"], b=v["b"], bore=bore if structure.bored else 0.0,
+                      t_web=v.get("t_web", 0.0), d_hub=v.get("d_hub", 0.0), l_hub=v.get("l_hub", 0.0),
+                      arm_major=v.get("arm_major", 0.0), n_arms=structure.n_arms)
+
+
+def _parts_with_stress(structure):
+    """The parts whose stress the NLP limits, in the order of the allowable-stress parameters."""
+    geo = structure.geometry
+    if geo == "disc":
+        return ("disc",)
+    if geo in ("rim", "thin_rim"):
+        return ("rim",)
+    if geo == "rim_web":
+        return ("hub", "web", "rim") if structure.bored else ("web", "rim")
+    return ("hub", "arms", "rim")
+
+
+@dataclass
+class WheelModel:
+    """A built wheel NLP."""
+
+    structure: WheelStructure
+    solver: ca.Function
+    variables: tuple
+    constraints: tuple       # names of the rows of g
+    stress_parts: tuple      # which part each allowable parameter belongs to
+    build_time: float
+
+    def describe(self):
+        s = self.structure
+        return {"geometry": s.geometry, "criterion": s.criterion, "objective": s.objective,
+                "variables": list(self.variables), "constraints": sorted(set(self.constraints)),
+                "pinned": ["d_mean"] if s.pinned else [],
+                "formulation": ("IPOPT (CasADi nlpsol) on the logarithms of the dimensions; every part "
+                                "counted in J and mass; stresses by the stepped-disc solution at "
+                                f"{len(SAMPLES)} radii per part, verified by the exact maxima")}
+
+
+def get_model(structure, solver_options=None):
+    """The wheel NLP of a structure, built once per structure and solver options."""
+    options = dict(DEFAULT_SOLVER_OPTIONS)
+    options.update(solver_options or {})
+    key = (structure, _options_key(options))
+    model = _CACHE.get(key)
+    if model is None:
+        model = _build(structure, options)
+        _CACHE[key] = model
+        BUILDS["count"] += 1
+    return model
+
+
+def _build(structure, options):
+    start = time.perf_counter()
+    names = variables_of(structure)
+    x = ca.SX.sym("x", len(names))
+    p = ca.SX.sym("p", len(PARAMETERS))
+    par = {name: p[k] for k, name in enumerate(PARAMETERS)}
+    stress_parts = _parts_with_stress(structure)
+    allow = ca.SX.sym("allow", len(stress_parts))       # (sigma_allow / S) per part, squared if ductile
+    dims = _dims(structure, {n: ca.exp(x[k]) for k, n in enumerate(names)}, par["bore"])
+    density = par["density"]
+    parts = wheel.parts(structure.geometry, dims, density)
+    mass = wheel.wheel_mass(parts)
+    inertia = wheel.wheel_inertia(parts)
+    col = {n: x[k] for k, n in enumerate(names)}
+    rows, row_names = [], []
+
+    def row(name, expr):
+        rows.append(expr)
+        row_names.append(name)
+
+    row("inertia", ca.log(inertia))
+    if structure.envelope:
+        row("max_outer_diameter", col["d_outer"])
+    if structure.criterion == "rim_speed":
+        row("rim_speed", col["d_outer"] + par["log_half_omega"])
+    if structure.width:
+        row("max_width", col["b"])
+        if "l_hub" in col:
+            row("max_width_hub", col["l_hub"])
+    if structure.geometry != "disc":
+        row("hb_ratio", col["h"] - col["b"])
+        # the rim clears the hub (or is a ring whose inner diameter stays positive)
+        inner = dims.d_inner
+        row("inner_diameter", inner / dims.d_outer)
+        if "d_hub" in col:
+            row("rim_clears_hub", (inner - dims.d_hub) / dims.d_outer)
+    else:
+        row("bore_clear", (dims.d_outer - par["bore"]) / dims.d_outer)
+    if structure.pinned:
+        row("d_mean", ca.log(dims.d_mean))
+    if "t_web" in col:
+        row("web_below_rim", col["t_web"] - col["b"])
+        if "l_hub" in col:
+            row("web_below_hub", col["t_web"] - col["l_hub"])
+    if "arm_major" in col:
+        minor = wheel.ARM_MINOR_RATIO * dims.arm_major
+        row("arms_fit_hub", structure.n_arms * dims.arm_major / (math.pi * dims.d_hub))
+        row("arm_within_rim", ca.log(minor) - col["b"])
+        row("arm_within_hub", ca.log(minor) - col["l_hub"])
+    if "d_hub" in col:
+        row("hub_wall", (dims.d_hub - par["bore"]) / 2.0)     # >= min_wall
+    if structure.criterion == "stress":
+        scale = par["stress_scale"]
+        samples = wheel.stress_samples(structure.geometry, dims, density, par["poisson"], par["omega"],
+                                       par["torque"], SAMPLES)
+        for part, _r, sr, st in samples:
+            k = stress_parts.index(part)
+            if structure.ductile:
+                row(f"stress_{part}", (sr * sr - sr * st + st * st) / (scale * scale) / allow[k])
+            else:
+                row(f"stress_{part}", sr / scale / allow[k])
+                row(f"stress_{part}", st / scale / allow[k])
+    if structure.objective == "outer_diameter":
+        f = col["d_outer"]
+    else:
+        f = ca.log(mass)
+    nlp = {"x": x, "p": ca.vertcat(p, allow), "f": f, "g": ca.vertcat(*rows)}
+    solver = ca.nlpsol("wheel_" + "_".join(str(v) for v in structure), "ipopt", nlp, options)
+    return WheelModel(structure, solver, names, tuple(row_names), stress_parts,
+                      time.perf_counter() - start)
+
+
+@dataclass(frozen=True)
+class WheelProblem:
+    """The numbers of one combination (SI).
+
+    ``allowable`` maps each stressed part to its allowable stress [Pa];
+    ``min_wall``, the hub bounds and ``l_hub_min`` (the key's) are lower
+    bounds [m]; ``d_hub_range`` and ``l_hub_range`` the textbook proportions.
+    """
+
+    j_shaft: float
+    omega: float
+    density: float
+    poisson: float
+    torque: float
+    bore: float
+    allowable: dict
+    envelope: float
+    max_width: float
+    max_rim_speed: float
+    hb_ratio: tuple
+    d_mean: float | None
+    min_wall: float
+    d_hub_range: tuple = (0.0, math.inf)
+    l_hub_range: tuple = (0.0, math.inf)
+    start: dict | None = None
+
+
+@dataclass(frozen=True)
+class WheelSolution:
+    """A solved wheel: its dims, IPOPT's status and the multipliers of its limits."""
+
+    dims: wheel.Dims
+    objective: float
+    status: str
+    iterations: int
+    elapsed: float
+    lam_g: dict            # row name -> multiplier (summed over rows of one name)
+    lam_x: dict            # variable name -> multiplier of its bounds
+    lam_p: dict            # parameter name -> d f / d p
+    stress_scale: float
+
+
+def _start(structure, problem, names):
+    """A starting wheel: the thin rim that gives J' at a diameter within every limit."""
+    rho, j = problem.density, problem.j_shaft
+    cap = min(problem.envelope, 2.0 * problem.max_rim_speed / problem.omega
+              if structure.criterion == "rim_speed" else math.inf)
+    sigma = min(problem.allowable.values()) if problem.allowable else math.inf
+    ring = 2.0 * math.sqrt(sigma / rho) / problem.omega if math.isfinite(sigma) else math.inf
+    d = min(cap, 0.8 * ring)
+    if problem.d_mean is not None:
+        d = problem.d_mean * 1.1
+    if not math.isfinite(d):
+        d = (64.0 * j / (math.pi * rho)) ** 0.2
+    hb = problem.hb_ratio[0]
+    if structure.geometry == "disc":
+        b = 32.0 * j / (math.pi * rho * max(d ** 4 - problem.bore ** 4, 1e-30 * d ** 4))
+        return {"d_outer": d, "b": max(b, problem.min_wall)}
+    h = min(math.sqrt(4.0 * j * hb / (math.pi * rho * d ** 3)), 0.2 * d)
+    h = max(h, problem.min_wall * 1.01)
+    b = max(h / hb, problem.min_wall * 1.01)
+    start = {"d_outer": d, "h": h, "b": b, "t_web": max(problem.min_wall * 1.2, 0.3 * b)}
+    if "d_hub" in names:
+        lo, hi = problem.d_hub_range
+        start["d_hub"] = min(max(lo, 1.9 * problem.bore), hi) if math.isfinite(hi) else max(lo, 2 * problem.bore)
+        lo, hi = problem.l_hub_range
+        start["l_hub"] = max(lo, min(hi, b)) if math.isfinite(hi) else max(lo, b)
+        start["t_web"] = min(start["t_web"], 0.9 * start["l_hub"])
+    if "arm_major" in names:
+        start["arm_major"] = max(2.2 * problem.min_wall, 0.5 * b)
+    return start
+
+
+def solve(model, problem, label):
+    """Solve one combination's wheel NLP, its status checked.
+
+    Returns
+    -------
+    WheelSolution
+
+    Raises
+    ------
+    SolverFailed
+        IPOPT stopped with an error or did not converge (``status`` carries
+        its return status; "Infeasible_Problem_Detected" means IPOPT found
+        no wheel meeting every limit, which the designer reports as such).
+    """
+    s = model.structure
+    names = model.variables
+    inf = math.inf
+    lbx = [-inf] * len(names)
+    ubx = [inf] * len(names)
+    col = {n: k for k, n in enumerate(names)}
+    log_wall = math.log(problem.min_wall) if problem.min_wall > 0 else -inf
+    for n in ("h", "b", "t_web"):
+        if n in col:
+            lbx[col[n]] = log_wall
+    if s.geometry == "disc":
+        lbx[col["b"]] = log_wall
+    if "arm_major" in col:
+        lbx[col["arm_major"]] = log_wall - math.log(wheel.ARM_MINOR_RATIO) if problem.min_wall > 0 else -inf
+    if "d_hub" in col:
+        lo, hi = problem.d_hub_range
+        lbx[col["d_hub"]] = math.log(lo) if lo > 0 else -inf
+        ubx[col["d_hub"]] = math.log(hi) if math.isfinite(hi) else inf
+        lo, hi = problem.l_hub_range
+        lbx[col["l_hub"]] = math.log(lo) if lo > 0 else -inf
+        ubx[col["l_hub"]] = math.log(hi) if math.isfinite(hi) else inf
+    start = problem.start or _start(s, problem, names)
+    x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
+    length = start["d_outer"] / 2.0
+    scale = problem.density * problem.omega ** 2 * length ** 2
+    lbg, ubg = [], []
+    for name in model.constraints:
+        lo, hi = {
+            "inertia": (math.log(problem.j_shaft), inf),
+            "max_outer_diameter": (-inf, math.log(problem.envelope) if s.envelope else inf),
+            "rim_speed": (-inf, math.log(problem.max_rim_speed)),
+            "max_width": (-inf, math.log(problem.max_width) if s.width else inf),
+            "max_width_hub": (-inf, math.log(problem.max_width) if s.width else inf),
+            "hb_ratio": (math.log(problem.hb_ratio[0]), math.log(problem.hb_ratio[1])),
+            "inner_diameter": (0.0, inf),
+            "rim_clears_hub": (0.0, inf),
+            "bore_clear": (0.0, inf),
+            "d_mean": ((math.log(problem.d_mean),) * 2 if problem.d_mean is not None else (-inf, inf)),
+            "web_below_rim": (-inf, 0.0),
+            "web_below_hub": (-inf, 0.0),
+            "arms_fit_hub": (-inf, 1.0),
+            "arm_within_rim": (-inf, 0.0),
+            "arm_within_hub": (-inf, 0.0),
+            "hub_wall": (problem.min_wall, inf),
+        }.get(name, (-inf, 1.0))               # stress rows: sigma / allowable <= 1
+        lbg.append(lo)
+        ubg.append(hi)
+    allow = []
+    for part in model.stress_parts:
+        a = problem.allowable.get(part, inf) / scale
+        allow.append(a * a if s.ductile else a)
+    values = {"omega": problem.omega, "density": problem.density, "poisson": problem.poisson,
+              "torque": problem.torque, "bore": problem.bore, "stress_scale": scale,
+              "log_half_omega": math.log(problem.omega / 2.0)}
+    p = [values[n] for n in PARAMETERS] + allow
+    begin = time.perf_counter()
+    try:
+        sol = model.solver(x0=x0, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg, p=p)
+    except RuntimeError as err:
+        raise SolverFailed(f"{label}: IPOPT stopped with an error ({err}); no design is reported") from err
+    elapsed = time.perf_counter() - begin
+    stats = model.solver.stats()
+    status = stats.get("return_status", "unknown")
+    iterations = int(stats.get("iter_count", -1))
+    if status not in _CONVERGED:
+        err = SolverFailed(f"{label}: IPOPT did not converge on the whole wheel (return status "
+                           f"{status!r} after {iterations} iterations); no design is reported")
+        err.status = status
+        err.combination = label
+        raise err
+    xs = [float(v) for v in sol["x"].full().ravel()]
+    dims = _dims(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
+    lam_g: dict = {}
+    for name, lam in zip(model.constraints, sol["lam_g"].full().ravel()):
+        lam_g[name] = lam_g.get(name, 0.0) + float(lam)
+    lam_x = {n: float(v) for n, v in zip(names, sol["lam_x"].full().ravel())}
+    lam_p = {n: float(v) for n, v in zip(PARAMETERS, sol["lam_p"].full().ravel())}
+    for part, v in zip(model.stress_parts, sol["lam_p"].full().ravel()[len(PARAMETERS):]):
+        lam_p[f"allow_{part}"] = float(v)
+    return WheelSolution(dims, float(sol["f"]), status, iterations, elapsed, lam_g, lam_x, lam_p, scale)
