@@ -449,9 +449,12 @@ def mean_hoop_stress(coefficients, radii, thickness, density, poisson, omega):
     References
     ----------
     .. [1] E. L. Robinson, "Bursting tests of steam-turbine disk wheels",
-       Trans. ASME 66 (1944) 373-386 (the average tangential stress
-       criterion of ductile burst); A. Nadai, Theory of Flow and Fracture of
-       Solids, vol. II, McGraw-Hill, 1963 (rotating discs, plastic burst).
+       Trans. ASME 66 (1944): model discs with and without a bore burst when
+       the average hoop stress reached, for a good alloy steel somewhat
+       exceeded, the ordinary tensile strength, so the criterion is a
+       reasonable, slightly conservative estimate for ductile discs; A.
+       Nadai, Theory of Flow and Fracture of Solids, vol. II, McGraw-Hill,
+       1963 (rotating discs, plastic burst).
     """
     radii = _items(radii)
     thickness = _items(thickness)
@@ -1051,8 +1054,8 @@ def burst_speed_ductile(omega, mean_hoop, tensile_strength):
 
     References
     ----------
-    .. [1] Robinson, Trans. ASME 66 (1944) 373-386; Nadai, Theory of Flow
-       and Fracture of Solids, vol. II, 1963.
+    .. [1] Robinson, Trans. ASME 66 (1944); Nadai, Theory of Flow and
+       Fracture of Solids, vol. II, 1963 (see :func:`mean_hoop_stress`).
     """
     return burst_speed(omega, mean_hoop, tensile_strength)
 
