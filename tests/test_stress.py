@@ -332,16 +332,18 @@ def test_numpy_arrays_broadcast():
     assert_allclose(np.array(cs_2d), np.array(cs), rtol=1e-15)
 
 
+@pytest.mark.parametrize("symbol", [ca.SX, ca.MX])
 @pytest.mark.parametrize("solid", [False, True])
-def test_casadi_sx_evaluates_to_float_result(solid):
-    """Radii, thicknesses and omega as CasADi SX symbols: a casadi.Function of
+def test_casadi_evaluates_to_float_result(solid, symbol):
+    """Radii, thicknesses and omega as CasADi SX or MX symbols (the radii as
+    one column, or a list when r_0 = 0 is a plain number): a casadi.Function of
     the step constants, the stresses at the steps' edges and at a mid radius,
     the von Mises stress (and its square), the mean hoop stress and the
     ductile burst speed evaluates to the float results (rtol 1e-12)."""
     rho, nu = STEEL["density"], STEEL["poisson"]
-    radii_sx = ca.SX.sym("r", 4)
-    thickness_sx = ca.SX.sym("t", 3)
-    omega_sx = ca.SX.sym("omega")
+    radii_sx = symbol.sym("r", 4)
+    thickness_sx = symbol.sym("t", 3)
+    omega_sx = symbol.sym("omega")
     radii_values = [0.0 if solid else 0.05, 0.12, 0.42, 0.5]
     thickness_values = [0.12, 0.03, 0.10]
 
