@@ -153,6 +153,19 @@ class Analysis:
             self._lazy["speed"] = _speed_curve(self)
         return self._lazy["speed"]
 
+    def flywheel_torque(self):
+        """The largest torque the required flywheel exchanges with the reference shaft [N*m], or None.
+
+        Its share J_F / J(phi) of the net torque |M_d - M_r| at the worst angle
+        (:func:`flyopt.design.hub.flywheel_peak_torque`), over the torque curves
+        on a grid of 4097 angles and every knot, both sides of a step; speed-
+        dependent torques are taken at the mean speed. None for a net-area scene
+        (no curves) or when no flywheel is needed. Computed once.
+        """
+        if "flywheel_torque" not in self._lazy:
+            self._lazy["flywheel_torque"] = _flywheel_torque(self)
+        return self._lazy["flywheel_torque"]
+
     def _get(self, name):
         value = self._lazy[name]
         if callable(value):
@@ -168,6 +181,24 @@ class Analysis:
         out["energy_chain"] = [dict(e) for e in self.energy_chain]
         out["shafts"] = [s.to_dict() for s in self.shafts]
         return out
+
+
+def _flywheel_torque(analysis):
+    import numpy as np
+
+    from flyopt.design.hub import flywheel_peak_torque
+
+    machine = analysis.machine
+    if machine is None or analysis.j_margin <= 0.0:
+        return None
+    balanced = machine.angle_only()
+    phi = np.union1d(np.linspace(0.0, machine.cycle_angle, 4097), np.asarray(balanced.knots, dtype=float))
+    driving, resisting = balanced.driving.limits(phi), balanced.resisting.limits(phi)
+    differences = np.concatenate([driving[0] - resisting[0], driving[1] - resisting[1]])
+    j_machine = (machine.j_machine(phi) if machine.variable_inertia
+                 else np.full(phi.shape, float(machine.j_machine)))
+    j_total = np.concatenate([j_machine, j_machine]) + analysis.j_margin
+    return flywheel_peak_torque(analysis.j_margin, j_total, differences, 1.0)
 
 
 def analyse(scene, model=None):

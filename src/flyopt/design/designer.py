@@ -32,6 +32,8 @@ from flyopt.design import check, closed_form, geometry, rank
 from flyopt.design.materials import Material
 from flyopt.design.result import Candidate, DesignResult
 from flyopt.design.spec import DesignSpec, MountShaft, _choice, _finite, _positive
+from flyopt.design import wheel, wheel_design
+from flyopt.design.wheel_design import bore_of
 from flyopt.errors import SolverFailed
 from flyopt.machine.transmission import inertia_at_reference, inertia_on_shaft
 
@@ -50,10 +52,15 @@ class _Combination:
     cap_speed: float      # outer-diameter cap of the rim speed [m]
     cap: float            # min(cap_speed, envelope) [m]
     j_max: float = 0.0
+    bore: float = 0.0     # the shaft seat [m], 0: none
+    torque: float = 0.0   # peak torque on this shaft [N*m], 0: unknown
+    n_arms: int = 0       # a rim_arms wheel's arm count
+    v_max: float = math.nan  # the material's safe rim speed [m/s] (nan: none, under the stress criterion)
 
     @property
     def label(self):
-        return f"{self.material.name.replace('_', ' ')} on the {_shaft_label(self.shaft.name)}"
+        arms = f" with {self.n_arms} arms" if self.n_arms else ""
+        return f"{self.material.name.replace('_', ' ')} on the {_shaft_label(self.shaft.name)}{arms}"
 
 def _shaft_label(name):
     return name if name.lower().endswith("shaft") else f"{name} shaft"
@@ -79,7 +86,7 @@ def _explain_infeasible(combo, spec):
     word = {"rim": "rim", "thin_rim": "thin rim", "disc": "disc"}[geo]
     hb_min, hb_max = spec.hb_ratio
     if combo.cap_speed <= combo.cap:
-        cap_text = f"the {_g(m.max_rim_speed)} m/s rim limit caps the outer diameter"
+        cap_text = f"the {_g(combo.v_max)} m/s rim limit caps the outer diameter"
     else:
         cap_text = "the envelope (max_outer_diameter) caps the outer diameter"
 
@@ -171,7 +178,10 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
         spec.max_outer_diameter, spec.max_width, hb_min, hb_max))
     cost = mass * m.cost if m.cost is not None else None
     objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
-    return Candidate(
+    dims = (wheel.Dims(d_outer=d_outer, h=d_outer / 2.0, b=b) if spec.geometry == "disc"
+            else wheel.Dims(d_outer=d_outer, h=h, b=b))
+    structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec, 0.0)
+    return Candidate(**structure,
         material=m.name, shaft=combo.shaft.name, speed_ratio=combo.shaft.speed_ratio,
         geometry=spec.geometry, feasible=True,
         reason=f"{combo.label}: designed; binding: {', '.join(binding) or 'none'}",
@@ -182,8 +192,111 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
         j_at_reference=inertia_at_reference(j_wheel, combo.shaft.speed_ratio),
         binding=tuple(binding), objective=objective,
         j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap,
-        rim_speed_limit=m.max_rim_speed, j_max=combo.j_max, solver_status=status,
+        rim_speed_limit=combo.v_max, j_max=combo.j_max, solver_status=status,
         iterations=iterations, solve_time=elapsed)
+
+
+def _rim_speed_limit(material, spec):
+    """The material's safe rim speed [m/s]: its own, else from its allowable stress (sigma = rho v^2)."""
+    if material.max_rim_speed is not None:
+        return material.max_rim_speed
+    if spec.criterion != "rim_speed":
+        try:
+            return material.rim_speed_limit(safety_factor=spec.safety_factor)
+        except ValueError:
+            return math.nan          # no factor on its strength: the stress criterion needs none
+    return material.rim_speed_limit(safety_factor=spec.safety_factor)
+
+
+def _design_whole(combo, spec, n_arms, solver_options):
+    """One combination (and arm count) as a whole wheel: its Candidate, designed or not, and the model."""
+    from flyopt.design import wheel_nlp
+
+    combo_n = _Combination(**{**combo.__dict__, "n_arms": n_arms})
+    label = combo_n.label
+    m = combo.material
+    common = dict(material=m.name, shaft=combo.shaft.name, speed_ratio=combo.shaft.speed_ratio,
+                  geometry=spec.geometry, j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap,
+                  rim_speed_limit=combo.v_max, n_arms=n_arms or None, bore=combo.bore or None)
+    start = time.perf_counter()
+    try:
+        dims, solution, checked = wheel_design.design_combination(combo_n, spec, combo.bore, combo.torque,
+                                                                  n_arms, solver_options)
+    except wheel_design.NoWheel as err:
+        return Candidate(feasible=False, reason=err.reason, j_max=err.j_max, **common), None
+    except SolverFailed as err:
+        err.combination = label
+        raise
+    model = wheel_nlp.get_model(solution.structure, solver_options)
+    parts = wheel.parts(spec.geometry, dims, m.density)
+    mass = float(wheel.wheel_mass(parts))
+    j_wheel = float(wheel.wheel_inertia(parts))
+    d_outer, h, b = float(dims.d_outer), float(dims.h), float(dims.b)
+    d_inner = float(dims.d_inner)
+    speed = geometry.rim_speed(combo.omega, d_outer)
+    found = _whole_violations(combo, spec, dims, j_wheel, checked)
+    if found:
+        err = SolverFailed(f"{label}: IPOPT reported {solution.status!r} but the wheel violates "
+                           f"{'; '.join(found)}; no design is reported")
+        err.status = solution.status
+        err.combination = label
+        raise err
+    binding = sorted(name for name, lam in solution.lam_g.items() if abs(lam) > 1e-9)
+    binding += sorted(f"{name}_bound" for name, lam in solution.lam_x.items() if abs(lam) > 1e-9)
+    cost = mass * m.cost if m.cost is not None else None
+    objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
+    structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec,
+                                              combo.bore)
+    limits = {"envelope": spec.max_outer_diameter, "max_rim_speed": combo.v_max,
+              "max_width": spec.max_width, "j_shaft": combo.j_shaft,
+              "allowable": {p.part: p.allowable for p in checked.parts} if checked else {},
+              "allow_power": 2 if getattr(m, "ductile", False) else 1,
+              "allow_param": solution.allow_params}
+    sensitivities = (wheel_design.sensitivities(solution, mass, limits)
+                     if spec.objective != "outer_diameter" else ())
+    common.pop("bore")
+    return Candidate(
+        feasible=True, reason=f"{label}: designed; binding: {', '.join(binding) or 'none'}",
+        d_mean=d_outer - h, d_outer=d_outer, d_inner=max(d_inner, 0.0), h=h, b=b, hb_ratio=h / b,
+        mass=mass, rim_speed=speed, hoop_stress=geometry.hoop_stress(m.density, speed),
+        safety_factor=(m.allowable_stress / geometry.hoop_stress(m.density, speed)
+                       if m.allowable_stress else None),
+        cost=cost, j_flywheel=j_wheel, j_at_reference=inertia_at_reference(j_wheel, combo.shaft.speed_ratio),
+        binding=tuple(binding), objective=objective, j_max=math.nan, solver_status=solution.status,
+        iterations=solution.iterations, solve_time=time.perf_counter() - start,
+        t_web=_dim(dims.t_web), d_hub=_dim(dims.d_hub), l_hub=_dim(dims.l_hub),
+        arm_major=_dim(dims.arm_major), arm_minor=_dim(dims.arm_major * wheel.ARM_MINOR_RATIO),
+        sensitivities=sensitivities, **structure, **common), model
+
+
+def _dim(value):
+    value = float(value)
+    return value if value > 0 else None
+
+
+def _whole_violations(combo, spec, dims, j_wheel, checked):
+    """Every limit of a whole wheel checked on the solved dimensions, in words (empty: all hold)."""
+    tol = check.VERIFY_RTOL
+    found = []
+    if j_wheel < combo.j_shaft * (1.0 - tol):
+        found.append(f"inertia {j_wheel:.9g} < {combo.j_shaft:.9g} kg·m²")
+    if dims.d_outer > combo.cap * (1.0 + tol):
+        found.append(f"outer diameter {dims.d_outer:.9g} > cap {combo.cap:.9g} m")
+    if dims.b > spec.max_width * (1.0 + tol) or dims.l_hub > spec.max_width * (1.0 + tol):
+        found.append(f"width {max(dims.b, dims.l_hub):.9g} > {spec.max_width:.9g} m")
+    if spec.geometry != "disc":
+        hb = dims.h / dims.b
+        if not spec.hb_ratio[0] * (1.0 - tol) <= hb <= spec.hb_ratio[1] * (1.0 + tol):
+            found.append(f"H/B {hb:.9g} outside [{spec.hb_ratio[0]}, {spec.hb_ratio[1]}]")
+        if dims.d_inner < max(dims.d_hub, 0.0) * (1.0 - tol):
+            found.append(f"the rim's inner diameter {dims.d_inner:.9g} m is inside the hub "
+                         f"({dims.d_hub:.9g} m)")
+    if spec.criterion == "stress" and checked is not None:
+        for part in checked.parts:
+            if part.stress > part.allowable * (1.0 + tol):
+                found.append(f"{part.part} stress {part.stress / 1e6:.9g} MPa > allowable "
+                             f"{part.allowable / 1e6:.9g} MPa at r = {part.radius:.6g} m")
+    return found
 
 
 def _check_unique(items, kind, cls):
@@ -201,7 +314,8 @@ def _check_unique(items, kind, cls):
 
 def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft],
                     materials: Sequence[Material], spec: DesignSpec = DesignSpec(), *,
-                    solver_options: Mapping | None = None, method: str = "auto") -> DesignResult:
+                    solver_options: Mapping | None = None, method: str = "auto",
+                    torque: float | None = None) -> DesignResult:
     """Design the flywheel: the best material, shaft and dimensions.
 
     Parameters
@@ -225,6 +339,12 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         act on the combinations IPOPT solves (all of them with method
         "ipopt", under "auto" only the structures the closed form does not
         cover).
+    torque : float or None
+        The largest torque the flywheel exchanges with the reference shaft
+        over the cycle [N*m] (:meth:`flyopt.analysis.Analysis.flywheel_torque`);
+        on a shaft of speed ratio r it is torque / r. It bends the arms and
+        loads the key; None when unknown (net areas): then the arms are
+        checked for their centrifugal load only and the key is not checked.
     method : {"auto", "ipopt", "closed_form"}
         How a feasible combination is optimized: the exact closed form of
         :mod:`flyopt.design.closed_form` where it covers the structure (mass and cost
@@ -270,7 +390,8 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
                              f"missing for {missing}")
     _choice(method, ("ipopt", "auto", "closed_form"), "method")
     closed = False
-    if method != "ipopt":
+    textbook = [spec.textbook(bore_of(spec, shaft)) for shaft in shafts]
+    if method != "ipopt" and all(textbook):
         closed = closed_form.covers(spec.geometry, spec.objective, spec.d_mean is not None)
         if method == "closed_form" and not closed:
             raise ValueError(f"the closed form does not cover geometry {spec.geometry!r} with objective "
@@ -283,8 +404,8 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
                      f"inertia already keeps the speed fluctuation within delta"),
             j_required=j_required, omega=omega, spec=spec)
 
-    model = None
-    if not closed:
+    model = wheel_model = None
+    if not closed and any(textbook):
         from flyopt.design import nlp   # CasADi only when IPOPT is asked for
 
         structure = nlp.ModelStructure(
@@ -297,13 +418,27 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
     feasible, infeasible, pending = [], [], []
     order = 0
     for material in materials:
-        for shaft in shafts:
+        for shaft, plain in zip(shafts, textbook):
             shaft_omega = omega * shaft.speed_ratio
-            cap_speed = geometry.outer_diameter_for_rim_speed(material.max_rim_speed, shaft_omega)
+            v_max = _rim_speed_limit(material, spec)
+            cap_speed = (geometry.outer_diameter_for_rim_speed(v_max, shaft_omega)
+                         if spec.criterion == "rim_speed" else math.inf)
             combo = _Combination(
                 material=material, shaft=shaft, omega=shaft_omega,
                 j_shaft=inertia_on_shaft(j_required, shaft.speed_ratio),
                 j_reference=j_required, cap_speed=cap_speed, cap=min(cap_speed, envelope))
+            combo.bore = bore_of(spec, shaft)
+            combo.v_max = v_max
+            combo.torque = torque / shaft.speed_ratio if torque else 0.0
+            if not plain:
+                for n_arms in (spec.arms if spec.geometry == "rim_arms" else (0,)):
+                    result, wheel_model = _design_whole(combo, spec, n_arms, solver_options)
+                    if result.feasible:
+                        feasible.append((order, result))
+                    else:
+                        infeasible.append(result)
+                order += 1
+                continue
             combo.j_max = closed_form.max_inertia_one(spec.geometry, material.density, combo.cap,
                                       spec.hb_ratio, spec.max_width, spec.d_mean)[0]
             pinned_fits = spec.d_mean is None or (
@@ -321,14 +456,16 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
                     material=material.name, shaft=shaft.name,
                     speed_ratio=shaft.speed_ratio, geometry=spec.geometry,
                     feasible=False, reason=reason, j_required_on_shaft=combo.j_shaft,
-                    d_outer_limit=combo.cap, rim_speed_limit=material.max_rim_speed,
+                    d_outer_limit=combo.cap, rim_speed_limit=combo.v_max,
                     j_max=combo.j_max, d_outer_needed=needed))
             order += 1
     if pending:
         feasible += _solve_closed_form(pending, spec)
     ranked = tuple(rank.ranking([c for _, c in feasible])) + tuple(infeasible)
     best = ranked[0] if feasible else None
-    if model is not None:
+    if wheel_model is not None:
+        description = wheel_model.describe()
+    elif model is not None:
         description = model.describe()
     else:
         description = {"geometry": spec.geometry, "inertia_model": geometry.GEOMETRIES[spec.geometry],

@@ -24,7 +24,8 @@ class DesignInputs:
     Attributes
     ----------
     materials : tuple of flyopt.design.materials.Material
-        The materials to consider, in the scene's order (default: every known one).
+        The materials to consider, in the scene's order (default: the scene's own and the
+        built-in defaults, :func:`flyopt.design.materials.default_materials`).
     shafts : tuple of MountShaft
         The shafts the wheel may sit on, in the scene's order (default: every [[shaft]]).
     spec : DesignSpec
@@ -47,8 +48,10 @@ def design_inputs(scene):
     -------
     DesignInputs
     """
+    from flyopt.design.materials import default_materials
+
     library = scene.material_library()
-    materials = tuple(library[name] for name in (scene.design_materials or tuple(library)))
+    materials = tuple(library[name] for name in (scene.design_materials or tuple(default_materials(library))))
     allowed = scene.design_shafts
     shafts = tuple(MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts
                    if allowed is None or s.name in allowed)

@@ -68,6 +68,33 @@ class Candidate:
     iterations : int or None
     solve_time : float or None
         Wall time of the NLP solve [s].
+    n_arms, t_web, d_hub, l_hub, arm_major, arm_minor : int or float or None
+        The arm count and the dimensions of the web, hub and arms of a whole
+        wheel [m] (None where the geometry has no such part).
+    bore : float or None
+        The shaft seat [m]; None: no bore.
+    parts : tuple of dict
+        One per part: ``name``, ``mass`` [kg], ``inertia`` [kg*m^2],
+        ``r_inner``, ``r_outer``, ``thickness`` [m].
+    stress : dict or None
+        At omega_max on the wheel's shaft [Pa]: ``max_principal``,
+        ``von_mises``, ``hoop_max``, ``radial_max``, ``where`` (part and
+        radius of the governing stress), ``mean_hoop`` and ``parts`` (each
+        part's governing stress, radius, allowable, strength and wall).
+    allowable_stress : float or None
+        The governing part's allowable stress [Pa].
+    strength_safety : float or None
+        The smallest strength / governing stress of any part [-].
+    burst_speed : float or None
+        [rad/s] on the wheel's shaft; ``speed_margin`` = burst_speed / omega_max.
+    unbalance_permissible : float or None
+        ISO 21940-11 G6.3: U_per = e_per m [kg*m].
+    key : dict or None
+        The DIN 6885-1 key of the hub and its check at the peak torque.
+    sensitivities : tuple of dict
+        For a design by the wheel NLP: d(mass)/d(limit) of every binding limit.
+    notes : tuple of str
+        What could not be computed, and why.
     """
 
     material: str
@@ -99,6 +126,23 @@ class Candidate:
     solver_status: str | None = None
     iterations: int | None = None
     solve_time: float | None = None
+    n_arms: int | None = None
+    t_web: float | None = None
+    d_hub: float | None = None
+    l_hub: float | None = None
+    arm_major: float | None = None
+    arm_minor: float | None = None
+    bore: float | None = None
+    parts: tuple = ()
+    stress: dict | None = None
+    allowable_stress: float | None = None
+    strength_safety: float | None = None
+    burst_speed: float | None = None
+    speed_margin: float | None = None
+    unbalance_permissible: float | None = None
+    key: dict | None = None
+    sensitivities: tuple = ()
+    notes: tuple = ()
 
     def to_dict(self, timings=False):
         """Plain, JSON-ready dictionary (inf becomes None; wall times only with ``timings``)."""
@@ -108,7 +152,7 @@ class Candidate:
                 continue
             value = getattr(self, f.name)
             if isinstance(value, tuple):
-                value = list(value)
+                value = [dict(v) if isinstance(v, dict) else v for v in value]
             elif isinstance(value, float) and not math.isfinite(value):
                 value = None
             out[f.name] = value
@@ -118,7 +162,9 @@ class Candidate:
 DESIGN_FIELDS = ("material", "shaft", "speed_ratio", "geometry", "d_mean", "d_outer",
                  "d_inner", "h", "b", "hb_ratio", "mass", "rim_speed", "hoop_stress",
                  "safety_factor", "cost", "j_flywheel", "j_at_reference", "binding",
-                 "objective")
+                 "objective", "n_arms", "t_web", "d_hub", "l_hub", "arm_major", "arm_minor", "bore",
+                 "parts", "stress", "allowable_stress", "strength_safety", "burst_speed",
+                 "speed_margin", "unbalance_permissible", "key", "sensitivities", "notes")
 
 @dataclass(frozen=True)
 class DesignResult:
@@ -166,7 +212,8 @@ class DesignResult:
         if self.status != "not_needed":
             best = self.best.to_dict() if self.best else {}
             design = {name: best.get(name) for name in DESIGN_FIELDS}
-            design["binding"] = design["binding"] or []
+            for name in ("binding", "parts", "sensitivities", "notes"):
+                design[name] = design[name] or []
             design["candidates"] = [c.to_dict(timings) for c in self.candidates]
         spec = self.spec.to_dict()
         return {"status": self.status, "message": self.message,

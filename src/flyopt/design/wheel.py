@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from typing import NamedTuple
 
 __all__ = ["Dims", "Part", "ARM_MINOR_RATIO", "parts", "wheel_mass", "wheel_inertia", "steps"]
 
@@ -235,8 +236,18 @@ def walls(geometry_name, dims):
     return out
 
 
-def stress_samples(geometry_name, dims, density, poisson, omega, torque, fractions):
-    """Radial and hoop stress at sample points of every part, at speed omega.
+class StressState(NamedTuple):
+    """The stress state of a wheel at one speed (see :func:`stress_state`)."""
+
+    beams: list          # (part, r, sr, st) of the parts the texts treat as beams (rim_arms: rim, arms)
+    radii: list          # edge radii of the stepped-disc parts [m]
+    thicknesses: list    # their axial thicknesses [m]
+    names: list          # the part of each step
+    coefficients: list   # (c1, c2) of each step (flyopt.design.stress.disc_coefficients)
+
+
+def stress_state(geometry_name, dims, density, poisson, omega, torque):
+    """The stresses of a wheel at speed omega: its disc parts exactly, its arms' parts by the texts.
 
     Parameters
     ----------
@@ -248,29 +259,26 @@ def stress_samples(geometry_name, dims, density, poisson, omega, torque, fractio
         Speed of the wheel [rad/s] (its highest of the cycle, for a design check).
     torque : float or expression
         Peak torque the wheel exchanges with its shaft [N*m] (the arms bend under it).
-    fractions : sequence of float
-        Where in each stepped-disc part to sample, as fractions 0..1 of its radial extent.
 
     Returns
     -------
-    list of (part, r, sr, st)
-        Part name, radius [m], sigma_r and sigma_t [Pa]. The disc parts
-        (rim, web, hub, disc) by the exact stepped-disc solution
-        (:func:`flyopt.design.stress.disc_coefficients`), at every fraction;
-        for ``rim_arms`` the rim by the texts' combined hoop and bending
-        stress (as a hoop stress at the mean radius) and the arms by their
-        root stress (as a radial stress at the hub), once each; the hub of
-        ``rim_arms`` is a free annulus pulled at its rim by the arms.
+    StressState
+        The disc parts (rim, web, hub, disc) by the exact stepped-disc
+        solution (:func:`flyopt.design.stress.disc_coefficients`); for
+        ``rim_arms`` the rim by the texts' combined hoop and bending stress
+        (a hoop stress at the mean radius) and the arms by their root stress
+        (a radial stress at the hub), and the hub as a free annulus pulled
+        at its rim by the arms.
 
     Notes
     -----
-    Arithmetic only: the NLP samples a few fractions of symbolic wheels;
+    Arithmetic only: the NLP samples symbolic wheels (:func:`stress_samples`);
     :mod:`flyopt.design.strength` finds the exact maxima of a solved one.
     """
     from flyopt.design import stress
 
     radii, thicknesses, solid, names = steps(geometry_name, dims)
-    samples = []
+    beams = []
     traction = 0.0
     if geometry_name == "rim_arms":
         r_mean = dims.d_mean / 2.0
@@ -286,13 +294,31 @@ def stress_samples(geometry_name, dims, density, poisson, omega, torque, fractio
         arm = stress.arm_stress(stress.arm_bending_stress(torque, dims.n_arms, r_mean, r_hub,
                                                           dims.arm_major, minor), pull, area)
         traction = stress.arm_hub_traction(dims.n_arms, pull, r_hub, dims.l_hub)
-        samples.append(("arms", r_hub, arm, 0.0))
-        samples.append(("rim", r_mean, 0.0, rim))
+        beams = [("arms", r_hub, arm, 0.0), ("rim", r_mean, 0.0, rim)]
     coefficients = stress.disc_coefficients(radii, thicknesses, density, poisson, omega, solid=solid,
                                             outer_traction=traction)
-    for k, c in enumerate(coefficients):
+    return StressState(beams, radii, thicknesses, names, coefficients)
+
+
+def stress_samples(geometry_name, dims, density, poisson, omega, torque, fractions):
+    """Radial and hoop stress at sample points of every part (see :func:`stress_state`).
+
+    ``fractions`` (0..1 of each disc part's radial extent) say where to sample
+    the disc parts; the beams of ``rim_arms`` come once each.
+
+    Returns
+    -------
+    list of (part, r, sr, st)
+        Part name, radius [m], sigma_r and sigma_t [Pa].
+    """
+    from flyopt.design import stress
+
+    state = stress_state(geometry_name, dims, density, poisson, omega, torque)
+    samples = list(state.beams)
+    radii = state.radii
+    for k, c in enumerate(state.coefficients):
         for f in fractions:
             r = radii[k] + f * (radii[k + 1] - radii[k])
             sr, st = stress.disc_stresses(c, density, poisson, omega, r)
-            samples.append((names[k], r, sr, st))
+            samples.append((state.names[k], r, sr, st))
     return samples

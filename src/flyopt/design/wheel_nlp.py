@@ -261,6 +261,8 @@ class WheelSolution:
     lam_x: dict            # variable name -> multiplier of its bounds
     lam_p: dict            # parameter name -> d f / d p
     stress_scale: float
+    structure: WheelStructure
+    allow_params: dict     # part -> the allowable's parameter, (sigma_a / S)^2 (ductile) or sigma_a / S
 
 
 def _start(structure, problem, names):
@@ -387,4 +389,5 @@ def solve(model, problem, label):
     lam_p = {n: float(v) for n, v in zip(PARAMETERS, sol["lam_p"].full().ravel())}
     for part, v in zip(model.stress_parts, sol["lam_p"].full().ravel()[len(PARAMETERS):]):
         lam_p[f"allow_{part}"] = float(v)
-    return WheelSolution(dims, float(sol["f"]), status, iterations, elapsed, lam_g, lam_x, lam_p, scale)
+    return WheelSolution(dims, float(sol["f"]), status, iterations, elapsed, lam_g, lam_x, lam_p, scale,
+                         s, dict(zip(model.stress_parts, allow)))

@@ -1075,7 +1075,9 @@ def _design(raw, shafts, materials):
                                             f"got {shorten(table.raw('arms'))}")
         options["arms"] = tuple(arms)
     if options.get("objective") == "cost":
-        chosen = names or tuple(library)
+        from flyopt.design.materials import default_materials
+
+        chosen = names or tuple(default_materials(library))
         missing = [n for n in chosen if library[n].cost is None]
         if missing:
             raise SceneError("design.objective", f"'cost' needs a cost per kg for every material; "

@@ -1,0 +1,208 @@
+"""The strength of a designed wheel: every part's governing stress found exactly, its burst speed and balance.
+
+This is the independent check of a design (the NLP writes its stress rows at
+a few radii; here the maximum of each disc part is found on a dense grid and
+refined, :func:`flyopt.design.stress.max_stress_per_step`), and the source of
+the stress fields of every design flyopt reports, whichever criterion sized it.
+
+The allowable stress of a part is the material's
+(:meth:`flyopt.design.materials.Material.allowable`) at the part's wall
+thickness (:func:`flyopt.design.wheel.walls`): a casting is weaker in a
+thick section (EN 1561, EN 1563). Ductile materials are judged by the von
+Mises stress against yield, brittle ones by the largest principal stress
+against the tensile strength.
+
+Burst speed: for a ductile wheel where the mean hoop stress of its radial
+section reaches the tensile strength, for a brittle one where the governing
+stress does; both scale with omega^2 (:func:`flyopt.design.stress.burst_speed`).
+
+Balance: the permissible residual unbalance of ISO 21940-11 grade G6.3,
+e_per = G / Omega, U_per = e_per m (:func:`flyopt.design.hub.permissible_unbalance`).
+
+References
+----------
+.. [1] flyopt domain notes, docs/flywheel-design.md, section 13.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from flyopt.design import stress, wheel
+
+__all__ = ["PartStress", "StrengthCheck", "allowables", "check_wheel", "profile", "BALANCE_GRADE"]
+
+#: ISO 21940-11 balance quality grade of a flywheel [mm/s] (crankshaft drives and flywheels: G6.3).
+BALANCE_GRADE = 6.3
+
+#: Grid points per disc part for the exact maxima (then refined by a bounded scalar search).
+_POINTS = 201
+
+
+@dataclass(frozen=True)
+class PartStress:
+    """The governing stress of one part at the checked speed."""
+
+    part: str
+    stress: float         # von Mises (ductile) or largest principal (brittle) [Pa]
+    radius: float         # where [m]
+    allowable: float      # [Pa]
+    strength: float       # yield (ductile) or tensile (brittle) strength at the part's wall [Pa]
+    wall: float           # the wall thickness the strength was taken at [m]
+
+
+@dataclass(frozen=True)
+class StrengthCheck:
+    """The stress check of a wheel at its highest speed (SI)."""
+
+    parts: tuple             # PartStress per stressed part
+    max_principal: float
+    von_mises: float
+    hoop_max: float
+    radial_max: float
+    where: dict              # {"part", "radius"} of the governing stress (the smallest margin)
+    allowable_stress: float  # the governing part's allowable
+    strength_safety: float   # min over parts of strength / governing stress
+    burst_speed: float       # [rad/s] on the wheel's shaft
+    speed_margin: float      # burst_speed / omega
+    mean_hoop: float         # mean hoop stress of the radial section [Pa]
+
+    def utilisation(self):
+        """The largest governing stress over allowable of any part [-]."""
+        return max(p.stress / p.allowable for p in self.parts)
+
+    def to_dict(self):
+        return {"max_principal": self.max_principal, "von_mises": self.von_mises,
+                "hoop_max": self.hoop_max, "radial_max": self.radial_max, "where": dict(self.where),
+                "parts": [{"part": p.part, "stress": p.stress, "radius": p.radius,
+                           "allowable": p.allowable, "strength": p.strength, "wall": p.wall}
+                          for p in self.parts]}
+
+
+def _strength_thickness(material, part_wall, all_walls):
+    """The thickness a part's strength is read at: its own wall for a casting, the wheel's thickest
+    section for a heat-treated forging (the material's ``section_rule``)."""
+    if getattr(material, "thickness_rule", "part") == "wheel":
+        return max(all_walls.values())
+    return part_wall
+
+
+def allowables(material, geometry_name, dims, safety_factor=None):
+    """Allowable stress and strength of every stressed part of a wheel.
+
+    Parameters
+    ----------
+    material : flyopt.design.materials.Material
+    geometry_name : str
+    dims : flyopt.design.wheel.Dims
+        Floats.
+    safety_factor : float or None
+        The design's factor on strength (None: the material's default).
+
+    Returns
+    -------
+    dict of str to (allowable [Pa], strength [Pa], wall [m])
+    """
+    walls = wheel.walls(geometry_name, dims)
+    out = {}
+    for part, wall in walls.items():
+        thickness = _strength_thickness(material, wall, walls)
+        allowable = material.allowable(thickness=thickness, safety_factor=safety_factor)
+        tensile, yield_ = material.strength(thickness)
+        strength = yield_ if material.ductile and yield_ is not None else tensile
+        out[part] = (allowable, strength if strength is not None else math.nan, wall)
+    return out
+
+
+def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None):
+    """Every part's governing stress at omega, the burst speed and the margins.
+
+    Parameters
+    ----------
+    material : Material
+        Needs ``poisson_ratio``; strengths for the burst speed.
+    geometry_name : str
+    dims : Dims
+        Floats.
+    omega : float
+        The highest speed of the wheel's shaft over the cycle [rad/s].
+    torque : float
+        The peak torque the wheel exchanges with its shaft [N*m].
+    safety_factor : float or None
+
+    Returns
+    -------
+    StrengthCheck
+    """
+    rho, nu = material.density, material.poisson_ratio
+    ductile = bool(material.ductile)
+    measure = "von_mises" if ductile else "largest_principal"
+    state = wheel.stress_state(geometry_name, dims, rho, nu, omega, torque)
+    limits = allowables(material, geometry_name, dims, safety_factor)
+    worst: dict = {}
+    hoop, radial, vm, principal = -math.inf, -math.inf, -math.inf, -math.inf
+
+    def note(part, value, r):
+        if part not in worst or value > worst[part][0]:
+            worst[part] = (value, r)
+
+    for part, r, sr, st in state.beams:
+        sr, st = float(sr), float(st)
+        note(part, stress.von_mises(sr, st) if ductile else max(sr, st), float(r))
+        hoop, radial = max(hoop, st), max(radial, sr)
+        vm, principal = max(vm, stress.von_mises(sr, st)), max(principal, sr, st)
+    coefficients = [(float(c1), 0.0 if isinstance(c2, (int, float)) and c2 == 0 else float(c2))
+                    for c1, c2 in state.coefficients]
+    radii = [float(r) for r in state.radii]
+    if coefficients:
+        for found in stress.max_stress_per_step(coefficients, radii, rho, nu, omega, measure, _POINTS):
+            note(state.names[found.step], found.value, found.radius)
+        for k, c in enumerate(coefficients):
+            grid = np.linspace(radii[k], radii[k + 1], _POINTS)
+            sr, st = stress.disc_stresses(c, rho, nu, omega, grid)
+            hoop, radial = max(hoop, float(st.max())), max(radial, float(sr.max()))
+            vm = max(vm, float(stress.von_mises(sr, st).max()))
+            principal = max(principal, float(np.maximum(sr, st).max()))
+        mean_hoop = float(stress.mean_hoop_stress(coefficients, radii, [float(t) for t in state.thicknesses],
+                                                  rho, nu, omega))
+    if geometry_name == "rim_arms":    # the rim carries the hoop load of an arms wheel
+        mean_hoop = float(stress.rim_hoop_stress(rho, omega, dims.d_mean / 2.0))
+    parts = tuple(PartStress(part, value, r, limits[part][0], limits[part][1], limits[part][2])
+                  for part, (value, r) in worst.items())
+    governing = max(parts, key=lambda p: p.stress / p.allowable)
+    safety = min(p.strength / p.stress for p in parts if p.stress > 0) if any(
+        p.stress > 0 for p in parts) else math.inf
+    tensile = [material.strength(p.wall if getattr(material, "thickness_rule", "part") != "wheel"
+                                 else max(q.wall for q in parts))[0] for p in parts]
+    if ductile:
+        rim_tensile = min(t for t in tensile if t is not None) if any(t is not None for t in tensile) else None
+        burst = (float(stress.burst_speed_ductile(omega, mean_hoop, rim_tensile))
+                 if rim_tensile is not None and mean_hoop > 0 else math.inf)
+    else:
+        burst = min((float(stress.burst_speed_brittle(omega, p.stress, t)) for p, t in zip(parts, tensile)
+                     if t is not None and p.stress > 0), default=math.inf)
+    return StrengthCheck(parts=parts, max_principal=principal, von_mises=vm, hoop_max=hoop,
+                         radial_max=radial, where={"part": governing.part, "radius": governing.radius},
+                         allowable_stress=governing.allowable, strength_safety=safety,
+                         burst_speed=burst, speed_margin=burst / omega, mean_hoop=mean_hoop)
+
+
+def profile(material, geometry_name, dims, omega, torque, points=200):
+    """sigma_r, sigma_t and von Mises over the radius of the disc parts, for plots.
+
+    Returns
+    -------
+    list of (part, r, sr, st, vm) arrays, one per disc part; and the beams' (part, r, sr, st).
+    """
+    rho, nu = material.density, material.poisson_ratio
+    state = wheel.stress_state(geometry_name, dims, rho, nu, omega, torque)
+    out = []
+    for k, c in enumerate(state.coefficients):
+        c = (float(c[0]), 0.0 if isinstance(c[1], (int, float)) and c[1] == 0 else float(c[1]))
+        r = np.linspace(float(state.radii[k]), float(state.radii[k + 1]), points)
+        sr, st = stress.disc_stresses(c, rho, nu, omega, r)
+        out.append((state.names[k], r, sr, st, stress.von_mises(sr, st)))
+    return out, [(p, float(r), float(sr), float(st)) for p, r, sr, st in state.beams]

@@ -1,0 +1,306 @@
+"""One combination designed as a whole wheel, and the structural fields of every design.
+
+:func:`design_combination` sizes a material x shaft (x arm count) combination
+whose structure the textbook closed forms do not cover: a web or arms wheel,
+a disc with a bore, or any wheel under the stress criterion. It is the one
+place that turns a combination into the numbers of the wheel NLP
+(:mod:`flyopt.design.wheel_nlp`): the allowable stress of every part at its
+wall thickness, the hub's proportions and the key's shortest hub, the
+thinnest wall; it solves, checks the result independently
+(:func:`flyopt.design.strength.check_wheel`: exact stress maxima, every part's
+allowable at the wall it really has) and solves again where a peak between
+the NLP's sample radii or a thicker wall's lower strength asks for it.
+
+:func:`structure_fields` gives every design, the textbook ones included, its
+parts, stresses, burst speed, permissible unbalance and key.
+
+References
+----------
+.. [1] flyopt domain notes, docs/flywheel-design.md, section 13.
+"""
+
+from __future__ import annotations
+
+import math
+
+from flyopt.design import check, hub, strength, wheel
+from flyopt.errors import SolverFailed
+
+__all__ = ["bore_of", "design_combination", "structure_fields", "NoWheel", "sensitivities"]
+
+#: Re-solves allowed for the exact stress check and the strength of the walls to settle.
+_MAX_ROUNDS = 8
+
+
+class NoWheel(Exception):
+    """The combination cannot be built: ``reason`` says why, in numbers."""
+
+    def __init__(self, reason, j_max=math.nan):
+        super().__init__(reason)
+        self.reason = reason
+        self.j_max = j_max
+
+
+def bore_of(spec, shaft):
+    """The bore of a wheel on a shaft [m]: the design's, else the shaft's seat, else 0 (none)."""
+    if spec.bore is not None:
+        return spec.bore
+    return shaft.diameter or 0.0
+
+
+def _min_wall(spec, material):
+    if spec.min_wall is not None:
+        return spec.min_wall
+    return getattr(material, "min_wall", None) or 0.0
+
+
+def _hub_bounds(material, bore, torque):
+    """(d_hub range, l_hub range, key note) of a hub on a seat of diameter ``bore``."""
+    kind = "cast_iron" if not material.ductile or material.name.startswith(("cast_iron", "en_gj")) else "steel"
+    p = hub.hub_proportions(bore, kind)
+    l_low = p.l_hub_min
+    pressure = getattr(material, "bearing_pressure", None)
+    if torque and pressure:
+        try:
+            l_low = max(l_low, hub.hub_length_for_key(torque, bore, pressure))
+        except ValueError:
+            pass       # no standard key carries it: check_key says so in the report
+    return (p.d_hub_min, p.d_hub_max), (l_low, max(p.l_hub_max, l_low)), kind
+
+
+def _upper_bound(combo, spec):
+    """An inertia no wheel of the combination can exceed [kg*m^2] (inf when nothing bounds it):
+    a solid disc filling the envelope D_cap x B_max."""
+    cap = combo.cap if spec.criterion == "rim_speed" else spec.max_outer_diameter
+    if not (math.isfinite(cap) and math.isfinite(spec.max_width)):
+        return math.inf
+    return math.pi * combo.material.density * spec.max_width * cap ** 4 / 32.0
+
+
+def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None):
+    """Design one combination as a whole wheel.
+
+    Parameters
+    ----------
+    combo : flyopt.design.designer._Combination
+        Material, shaft, speed on it (omega_max of the cycle) and inertia needed on it.
+    spec : DesignSpec
+    bore : float
+        Shaft seat [m] (0: none).
+    torque : float
+        Peak torque the wheel exchanges with its shaft [N*m] (0 when unknown).
+    n_arms : int
+        For ``rim_arms``.
+    solver_options : mapping or None
+
+    Returns
+    -------
+    dims : flyopt.design.wheel.Dims
+    solution : flyopt.design.wheel_nlp.WheelSolution
+    checked : flyopt.design.strength.StrengthCheck or None
+
+    Raises
+    ------
+    NoWheel
+        The combination cannot give the inertia (proven by a bound, or IPOPT
+        found no wheel within every limit: the reason says which).
+    SolverFailed
+        IPOPT did not converge, or the design fails its independent check.
+    """
+    from flyopt.design import wheel_nlp
+
+    material, geo = combo.material, spec.geometry
+    j_sup = _upper_bound(combo, spec)
+    if combo.j_shaft > j_sup:
+        raise NoWheel(f"{combo.label}: even a solid disc filling the envelope (D {combo.cap:.4g} m, "
+                      f"B {spec.max_width:.4g} m) gives only {j_sup:.4g} kg·m², short of the "
+                      f"{combo.j_shaft:.4g} kg·m² required", j_sup)
+    if geo == "rim_arms" and not bore:
+        raise NoWheel(f"{combo.label}: a wheel on arms needs a hub on a shaft: give design.bore or the "
+                      f"shaft's diameter")
+    stressed = spec.criterion == "stress"
+    if (stressed or geo in ("rim_web", "rim_arms")) and getattr(material, "poisson_ratio", None) is None:
+        raise NoWheel(f"{combo.label}: material {material.name!r} gives no poisson_ratio, which the "
+                      f"stress of a {geo} needs")
+    d_hub_range = l_hub_range = (0.0, math.inf)
+    if geo in ("rim_web", "rim_arms") and bore:
+        d_hub_range, l_hub_range, _ = _hub_bounds(material, bore, torque)
+    structure = wheel_nlp.WheelStructure(
+        geometry=geo, criterion=spec.criterion, ductile=bool(getattr(material, "ductile", False)),
+        bored=bool(bore), n_arms=n_arms, envelope=spec.has_envelope, width=spec.max_width < math.inf,
+        pinned=spec.d_mean is not None,
+        objective="outer_diameter" if spec.objective == "outer_diameter" else "mass")
+    model = wheel_nlp.get_model(structure, solver_options)
+    parts = model.stress_parts
+    # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
+    problem = wheel_nlp.WheelProblem(
+        j_shaft=combo.j_shaft, omega=combo.omega, density=material.density,
+        poisson=getattr(material, "poisson_ratio", None) or 0.3, torque=torque, bore=bore,
+        allowable={}, envelope=spec.max_outer_diameter, max_width=spec.max_width,
+        max_rim_speed=combo.v_max, hb_ratio=spec.hb_ratio, d_mean=spec.d_mean,
+        min_wall=_min_wall(spec, material), d_hub_range=d_hub_range, l_hub_range=l_hub_range)
+    start = wheel_nlp._start(structure, problem, model.variables)
+    start_dims = wheel_nlp._dims(structure, start, bore)
+    targets = ({p: a for p, (a, _s, _w) in strength.allowables(material, geo, start_dims,
+                                                               spec.safety_factor).items()}
+               if stressed else {})
+    used = dict(targets)
+    for _round in range(_MAX_ROUNDS):
+        problem = _with(problem, allowable={p: used.get(p, math.inf) for p in parts})
+        try:
+            solution = wheel_nlp.solve(model, problem, combo.label)
+        except SolverFailed as err:
+            if getattr(err, "status", "") == "Infeasible_Problem_Detected":
+                raise NoWheel(f"{combo.label}: IPOPT found no {geo.replace('_', ' ')} within every "
+                              f"limit (it reports the problem locally infeasible; no bound proves it)") from None
+            raise
+        dims = solution.dims
+        checked = (strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
+                   if getattr(material, "poisson_ratio", None) is not None else None)
+        if not stressed:
+            return dims, solution, checked
+        settled = True
+        for part in checked.parts:
+            target = part.allowable
+            old = used[part.part]
+            binding = part.stress >= old * (1.0 - 1e-6)
+            new = old * target / part.stress if binding else target
+            if part.stress > target * (1.0 + check.VERIFY_RTOL) or abs(new - old) > 1e-9 * old:
+                settled = False
+            used[part.part] = min(new, target) if not binding else new
+        if settled:
+            return dims, solution, checked
+    raise SolverFailed(f"{combo.label}: the stress check of the whole wheel did not settle in "
+                       f"{_MAX_ROUNDS} solves (a part's stress peak or wall strength keeps moving); "
+                       f"no design is reported")
+
+
+def _with(problem, **changes):
+    import dataclasses
+
+    return dataclasses.replace(problem, **changes)
+
+
+def structure_fields(material, geometry_name, dims, omega, torque, spec, bore):
+    """The structural fields of a design (any geometry, any criterion).
+
+    Returns
+    -------
+    dict
+        ``parts``, ``bore``, ``stress``, ``allowable_stress``,
+        ``strength_safety``, ``burst_speed``, ``speed_margin``,
+        ``unbalance_permissible``, ``key`` (values None where the material
+        lacks what they need; ``notes`` say why).
+    """
+    out = {"bore": bore or None, "notes": []}
+    parts = wheel.parts(geometry_name, dims, material.density)
+    out["parts"] = tuple({"name": p.name, "mass": float(p.mass), "inertia": float(p.inertia),
+                          "r_inner": float(p.r_inner), "r_outer": float(p.r_outer),
+                          "thickness": float(p.thickness)} for p in parts)
+    mass = float(wheel.wheel_mass(parts))
+    balance = hub.permissible_unbalance(mass, omega, strength.BALANCE_GRADE)
+    out["unbalance_permissible"] = float(balance.u_per)
+    out.update(stress=None, allowable_stress=None, strength_safety=None, burst_speed=None,
+               speed_margin=None, key=None)
+    if getattr(material, "poisson_ratio", None) is None:
+        out["notes"].append(f"material {material.name} gives no poisson_ratio: stresses not computed")
+    else:
+        try:
+            checked = strength.check_wheel(material, geometry_name, dims, omega, torque, spec.safety_factor)
+        except ValueError as err:
+            out["notes"].append(f"stresses not computed: {err}")
+        else:
+            out["stress"] = {**checked.to_dict(), "mean_hoop": checked.mean_hoop}
+            out.update(allowable_stress=checked.allowable_stress,
+                       strength_safety=_finite_or_none(checked.strength_safety),
+                       burst_speed=_finite_or_none(checked.burst_speed),
+                       speed_margin=_finite_or_none(checked.speed_margin))
+    hub_length = {"rim_web": dims.l_hub, "rim_arms": dims.l_hub, "disc": dims.b}.get(geometry_name)
+    if bore and hub_length and torque:
+        pressure = getattr(material, "bearing_pressure", None)
+        if pressure is None:
+            out["notes"].append(f"material {material.name} gives no bearing_pressure: key not checked")
+        else:
+            try:
+                k = hub.check_key(torque, bore, float(hub_length), pressure)
+            except ValueError as err:
+                out["notes"].append(f"key not checked: {err}")
+            else:
+                out["key"] = {"size": k.key.size, "b": k.key.b, "h": k.key.h, "t1": k.key.t1,
+                              "t2": k.key.t2, "length": k.length, "effective_length": k.effective_length,
+                              "torque": k.torque, "bearing_pressure": k.pressure,
+                              "allowable_pressure": k.allowable_pressure, "shear": k.shear,
+                              "allowable_shear": k.allowable_shear, "ok": k.ok}
+    elif bore and not torque:
+        out["notes"].append("the cycle gives no torque curves: key not checked")
+    out["notes"] = tuple(out["notes"])
+    return out
+
+
+def _finite_or_none(x):
+    return float(x) if math.isfinite(x) else None
+
+
+#: Sensitivities whose elasticity |d m / d limit| limit / m is below this are round-off, not reported.
+ELASTICITY_FLOOR = 1e-7
+
+#: What each limit's sensitivity is called, its unit and the step a report quotes it for.
+_LIMITS = {
+    "max_outer_diameter": ("the envelope", "m", 0.010, "mm of outer diameter", 1e3),
+    "rim_speed": ("the rim speed limit", "m/s", 1.0, "m/s of rim speed", 1.0),
+    "max_width": ("the width limit", "m", 0.010, "mm of width", 1e3),
+    "max_width_hub": ("the width limit (hub)", "m", 0.010, "mm of width", 1e3),
+}
+
+
+def sensitivities(solution, mass, problem_limits):
+    """The multipliers of the binding limits in engineering units: d(mass)/d(limit).
+
+    Parameters
+    ----------
+    solution : WheelSolution
+    mass : float
+        The design's mass [kg].
+    problem_limits : dict
+        ``envelope``, ``max_rim_speed``, ``max_width``, ``j_shaft``, ``allowable`` (part to Pa).
+
+    Returns
+    -------
+    tuple of dict
+        ``limit``, ``unit``, ``dmass_dlimit`` [kg per unit] and ``text``, for every limit whose
+        multiplier is not zero. The objective is log m, and IPOPT's multiplier lambda of a row
+        ``g <= u`` (or ``>= l``) is -d f*/du, so d m / d u = -m lambda d(row)/d(limit).
+    """
+    out = []
+    lam = solution.lam_g
+
+    def add(limit, unit, dm, text, value):
+        # a limit that does not bind has a multiplier of round-off size: keep elasticities above 1e-7
+        if math.isfinite(dm) and abs(dm * value) > ELASTICITY_FLOOR * mass:
+            out.append({"limit": limit, "unit": unit, "dmass_dlimit": dm, "text": text})
+
+    for row, (what, unit, step, words, factor) in _LIMITS.items():
+        if abs(lam.get(row, 0.0)) > 0:
+            value = {"max_outer_diameter": problem_limits["envelope"], "rim_speed": problem_limits["max_rim_speed"],
+                     "max_width": problem_limits["max_width"], "max_width_hub": problem_limits["max_width"]}[row]
+            dm = -mass * lam[row] / value         # rows are log(limit)
+            add(row, unit, dm, f"{what} binds: +{step * factor:g} {words} changes the mass by "
+                               f"{dm * step:+.3g} kg", value)
+    if abs(lam.get("inertia", 0.0)) > 0:
+        dm = -mass * lam["inertia"] / problem_limits["j_shaft"]
+        add("inertia", "kg*m^2", dm, f"each +1 % of required inertia adds "
+                                     f"{dm * 0.01 * problem_limits['j_shaft']:+.3g} kg", problem_limits["j_shaft"])
+    for key, value in solution.lam_p.items():
+        if not key.startswith("allow_") or value == 0.0:
+            continue
+        part = key[len("allow_"):]
+        allowable = problem_limits["allowable"].get(part)
+        if not allowable or not math.isfinite(allowable):
+            continue
+        # the parameter is P = (sigma_a / S)^k, k = 2 (ductile) or 1, and CasADi's lam_p is -d f*/d P
+        # (checked against re-solving in tests/test_wheel_nlp.py): d m / d sigma_a = -m lam_p k P / sigma_a
+        k, param = problem_limits["allow_power"], problem_limits["allow_param"][part]
+        dm = -mass * value * k * param / allowable
+        add(f"stress_{part}", "Pa", dm, f"the stress limit of the {part} binds: +1 MPa allowable changes "
+                                        f"the mass by {dm * 1e6:+.3g} kg", allowable)
+    return tuple(out)

@@ -1,0 +1,74 @@
+"""Bad values of the whole-wheel fields (issue 13): exit 2, one line naming the file and the field.
+
+Every new field of [design], [[shaft]] and [[material]] is tried with what an
+engineer might mistype: a negative length, Poisson's ratio of 0.5 or more, a
+strength of zero, a bore wider than the envelope, fewer than three arms.
+"""
+
+import pytest
+
+from test_input_failures import BASE, assert_refused, cli  # noqa: F401 (cli is a fixture)
+
+MATERIAL = """
+[[material]]
+name = "gjs"
+density = "7100 kg/m^3"
+elastic_modulus = "169 GPa"
+poisson_ratio = 0.275
+tensile_strength = "400 MPa"
+yield_strength = "250 MPa"
+ductile = true
+safety_factor = 4
+"""
+SHAFT = """
+[[shaft]]
+name = "main"
+speed_ratio = 1
+diameter = "80 mm"
+"""
+DESIGN = """
+[design]
+geometry = "rim_web"
+criterion = "stress"
+materials = ["gjs"]
+max_outer_diameter = "1.2 m"
+"""
+GOOD = BASE + SHAFT + DESIGN + MATERIAL
+
+CASES = [
+    ('poisson_ratio = 0.275', 'poisson_ratio = 0.5', "material[0].poisson_ratio", r"\[0, 0.5\)"),
+    ('poisson_ratio = 0.275', 'poisson_ratio = -0.1', "material[0].poisson_ratio", r"\[0, 0.5\)"),
+    ('tensile_strength = "400 MPa"', 'tensile_strength = "0 MPa"', "material[0].tensile_strength", "positive"),
+    ('yield_strength = "250 MPa"', 'yield_strength = "-250 MPa"', "material[0].yield_strength", "positive"),
+    ('yield_strength = "250 MPa"', 'yield_strength = "450 MPa"', "material[0]", "yield"),
+    ('elastic_modulus = "169 GPa"', 'elastic_modulus = "-1 GPa"', "material[0].elastic_modulus", "positive"),
+    ('ductile = true', 'ductile = "yes"', "material[0].ductile", "true or false"),
+    ('safety_factor = 4', 'safety_factor = 0.5', "material[0].safety_factor", ">= 1"),
+    ('diameter = "80 mm"', 'diameter = "-80 mm"', "shaft[0].diameter", "positive"),
+    ('criterion = "stress"', 'criterion = "strength"', "design.criterion", "not known"),
+    ('geometry = "rim_web"', 'geometry = "rim_spokes"', "design.geometry", "not known"),
+    ('criterion = "stress"', 'criterion = "stress"\nbore = "1.5 m"', "design.bore", "does not fit"),
+    ('criterion = "stress"', 'criterion = "stress"\nbore = "-10 mm"', "design.bore", ">= 0"),
+    ('criterion = "stress"', 'criterion = "stress"\narms = [2, 4]', "design.arms", ">= 3"),
+    ('criterion = "stress"', 'criterion = "stress"\narms = [4, 4]', "design.arms", "each once"),
+    ('criterion = "stress"', 'criterion = "stress"\narms = [4.5]', "design.arms", "whole"),
+    ('criterion = "stress"', 'criterion = "stress"\nmin_wall = "0 mm"', "design.min_wall", "positive"),
+    ('criterion = "stress"', 'criterion = "stress"\nsafety_factor = 0.9', "design.safety_factor", ">= 1"),
+]
+
+
+@pytest.mark.parametrize("old, new, field, match", CASES)
+@pytest.mark.parametrize("command", ["check", "solve"])
+def test_bad_wheel_field_is_refused_in_one_line(tmp_path, cli, command, old, new, field, match):
+    assert old in GOOD, "test bug: the snippet is not in the scene"
+    path = tmp_path / "scene.toml"
+    path.write_text(GOOD.replace(old, new, 1))
+    assert_refused(cli(command, path), path, field, match)
+
+
+def test_the_good_scene_designs_a_whole_wheel(tmp_path, cli):
+    path = tmp_path / "scene.toml"
+    path.write_text(GOOD)
+    result = cli("solve", path)
+    assert result.returncode == 0, result.stderr
+    assert "rim_web" in result.stdout
