@@ -606,15 +606,18 @@ def _load_builtin():
     return materials, frozenset(defaults)
 
 
-def builtin_materials(default_only: bool = False) -> dict[str, Material]:
+def builtin_materials(default_only: bool = True) -> dict[str, Material]:
     """The built-in materials, read once from ``flyopt/data/materials.toml``.
 
     Parameters
     ----------
     default_only : bool
-        Only those flagged ``default = true`` in the data file: the set a
-        design uses when the scene names no materials (the textbook
-        ``cast_iron`` and ``cast_steel``).
+        True (the default, and what this function returned before the
+        standard grades were added): only those flagged ``default = true`` in
+        the data file, the set a design uses when the scene names no materials
+        (the textbook ``cast_iron`` and ``cast_steel``), each with its own rim
+        speed limit. False: every built-in material, the standard grades too
+        (what :func:`material_library` and :func:`get_material` look in).
 
     Returns
     -------
@@ -633,8 +636,8 @@ def default_materials(library: Mapping[str, Material] | None = None) -> dict[str
     Parameters
     ----------
     library : mapping of str to Material, optional
-        A material library (:func:`material_library`); the built-in
-        materials by default.
+        A material library (:func:`material_library`); every built-in
+        material by default.
 
     Returns
     -------
@@ -647,7 +650,7 @@ def default_materials(library: Mapping[str, Material] | None = None) -> dict[str
         change a scene's default design.
     """
     if library is None:
-        library = builtin_materials()
+        library = builtin_materials(default_only=False)
     builtins, defaults = _load_builtin()
     return {name: m for name, m in library.items()
             if name in defaults or name not in builtins or m != builtins[name]}
@@ -655,7 +658,7 @@ def default_materials(library: Mapping[str, Material] | None = None) -> dict[str
 
 def material_library(user_materials: Iterable[Material] | Mapping[str, Material] = ()
                      ) -> dict[str, Material]:
-    """Built-in materials extended or overridden by the user's.
+    """Every built-in material, extended or overridden by the user's.
 
     Parameters
     ----------
@@ -673,7 +676,7 @@ def material_library(user_materials: Iterable[Material] | Mapping[str, Material]
     """
     if isinstance(user_materials, Mapping):
         user_materials = list(user_materials.values())
-    library = builtin_materials()
+    library = builtin_materials(default_only=False)
     seen = set()
     for material in user_materials:
         if not isinstance(material, Material):
@@ -699,7 +702,7 @@ def get_material(name: str, library: Mapping[str, Material] | None = None) -> Ma
         Material name; case, spaces and hyphens do not matter
         ("EN-GJS-400-18" finds ``en_gjs_400_18``).
     library : mapping of str to Material, optional
-        Where to look; the built-in materials by default.
+        Where to look; every built-in material by default.
 
     Returns
     -------
@@ -711,7 +714,7 @@ def get_material(name: str, library: Mapping[str, Material] | None = None) -> Ma
         If no material has that name; the message lists the closest matches.
     """
     if library is None:
-        library = builtin_materials()
+        library = builtin_materials(default_only=False)
     if name in library:
         return library[name]
     folded = {_fold(key): key for key in library}
