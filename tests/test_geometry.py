@@ -109,4 +109,6 @@ def test_formulas_work_on_floats_arrays_and_casadi(formula, nargs):
 
 
 def test_geometry_names():
-    assert set(geometry.GEOMETRIES) == {"thin_rim", "rim", "disc"}
+    assert set(geometry.BARE) == {"thin_rim", "rim", "disc"}
+    assert set(geometry.WHEELS) == {"rim_web", "rim_arms"}
+    assert set(geometry.GEOMETRIES) == set(geometry.BARE) | set(geometry.WHEELS)

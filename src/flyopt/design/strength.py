@@ -157,9 +157,15 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
     coefficients = [(float(c1), 0.0 if isinstance(c2, (int, float)) and c2 == 0 else float(c2))
                     for c1, c2 in state.coefficients]
     radii = [float(r) for r in state.radii]
-    if coefficients:
+    if len(coefficients) == 1 and not state.beams:
+        # one free disc (a bare rim, a disc with or without a bore): sigma_t >= sigma_r >= 0 and sigma_t
+        # falls outwards, so both measures peak at the inner edge (Timoshenko & Goodier, art. 32)
+        sr, st = stress.disc_stresses(coefficients[0], rho, nu, omega, radii[0])
+        note(state.names[0], float(stress.von_mises(sr, st) if ductile else max(sr, st)), radii[0])
+    elif coefficients:
         for found in stress.max_stress_per_step(coefficients, radii, rho, nu, omega, measure, _POINTS):
             note(state.names[found.step], found.value, found.radius)
+    if coefficients:
         for k, c in enumerate(coefficients):
             grid = np.linspace(radii[k], radii[k + 1], _POINTS)
             sr, st = stress.disc_stresses(c, rho, nu, omega, grid)
