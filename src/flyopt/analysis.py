@@ -166,6 +166,14 @@ class Analysis:
             self._lazy["flywheel_torque"] = _flywheel_torque(self)
         return self._lazy["flywheel_torque"]
 
+    def net_torque_peak(self):
+        """The largest |M_d - M_r| of the cycle at the reference shaft [N*m] (None for net areas).
+
+        A sweep that scales the torques of a constant-inertia machine scales this and
+        takes the flywheel's share of it (:func:`flyopt.design.hub.flywheel_peak_torque`)."""
+        samples = _net_torque_samples(self)
+        return None if samples is None else float(abs(samples[1]).max())
+
     def _get(self, name):
         value = self._lazy[name]
         if callable(value):
@@ -184,12 +192,22 @@ class Analysis:
 
 
 def _flywheel_torque(analysis):
-    import numpy as np
-
     from flyopt.design.hub import flywheel_peak_torque
 
+    samples = _net_torque_samples(analysis)
+    if samples is None or analysis.j_margin <= 0.0:
+        return None
+    j_machine, differences = samples
+    return flywheel_peak_torque(analysis.j_margin, j_machine + analysis.j_margin, differences, 1.0)
+
+
+def _net_torque_samples(analysis):
+    """(J_e, M_d - M_r) at the reference shaft on 4097 angles and every knot, both sides of a step;
+    None for a net-area scene."""
+    import numpy as np
+
     machine = analysis.machine
-    if machine is None or analysis.j_margin <= 0.0:
+    if machine is None:
         return None
     balanced = machine.angle_only()
     phi = np.union1d(np.linspace(0.0, machine.cycle_angle, 4097), np.asarray(balanced.knots, dtype=float))
@@ -197,8 +215,7 @@ def _flywheel_torque(analysis):
     differences = np.concatenate([driving[0] - resisting[0], driving[1] - resisting[1]])
     j_machine = (machine.j_machine(phi) if machine.variable_inertia
                  else np.full(phi.shape, float(machine.j_machine)))
-    j_total = np.concatenate([j_machine, j_machine]) + analysis.j_margin
-    return flywheel_peak_torque(analysis.j_margin, j_total, differences, 1.0)
+    return np.concatenate([j_machine, j_machine]), differences
 
 
 def analyse(scene, model=None):

@@ -88,21 +88,15 @@ def design_scene(scene, analysis, solver_options=None, method="auto"):
         design failed its verification against the constraints.
     """
     from flyopt.design import design_flywheel, design_inputs
+    from flyopt.design.wheel_design import needs_torque
 
     inputs = design_inputs(scene)
     # the rim is checked at the highest speed of the cycle, from the model that ran (for a motor
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
-    torque = analysis.flywheel_torque() if _needs_torque(inputs) else None
+    torque = analysis.flywheel_torque() if needs_torque(inputs) else None
     return design_flywheel(analysis.j_margin, analysis.omega_max, inputs.shafts, inputs.materials, inputs.spec,
                            solver_options=solver_options, method=method, torque=torque)
-
-
-def _needs_torque(inputs):
-    """Whether a design has arms or a keyed hub (the textbook bare rim has neither)."""
-    from flyopt.design.wheel_design import bore_of
-
-    return inputs.spec.geometry == "rim_arms" or any(bore_of(inputs.spec, s) for s in inputs.shafts)
 
 
 def verify(scene, analysis, design_result=None):

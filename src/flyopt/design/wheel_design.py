@@ -26,7 +26,7 @@ import math
 from flyopt.design import check, hub, strength, wheel
 from flyopt.errors import SolverFailed
 
-__all__ = ["bore_of", "design_combination", "structure_fields", "NoWheel", "sensitivities"]
+__all__ = ["needs_torque", "bore_of", "design_combination", "structure_fields", "NoWheel", "sensitivities"]
 
 #: Re-solves allowed for the exact stress check and the strength of the walls to settle.
 _MAX_ROUNDS = 8
@@ -46,6 +46,12 @@ def bore_of(spec, shaft):
     if spec.bore is not None:
         return spec.bore
     return shaft.diameter or 0.0
+
+
+def needs_torque(inputs):
+    """Whether a design problem (:class:`flyopt.design.inputs.DesignInputs`) has arms or a keyed hub,
+    which the flywheel's peak torque loads (the textbook bare rim has neither)."""
+    return inputs.spec.geometry == "rim_arms" or any(bore_of(inputs.spec, s) for s in inputs.shafts)
 
 
 def _min_wall(spec, material):

@@ -46,6 +46,7 @@ import pandas as pd
 from flyopt.cycle.indicator import required_inertia, speed_extremes
 from flyopt.design import closed_form as batch
 from flyopt.design import design_inputs, rank
+from flyopt.design.hub import flywheel_peak_torque
 from flyopt.design.spec import MountShaft
 from flyopt.design.check import binding_names
 from flyopt.errors import SceneError, SolverFailed
@@ -326,6 +327,7 @@ class _Context:
     method: str = "auto"
     solver_options: dict | None = None
     axes: tuple = ()
+    torque_peak: float | None = None    # max |M_d - M_r| of the cycle when reusable [N*m]
 
 
 def _context(scene, method="auto", solver_options=None, axes=()):
@@ -334,7 +336,8 @@ def _context(scene, method="auto", solver_options=None, axes=()):
         analysis = physics_analysis(scene)
         stripped = scene.replace(driving=None, resisting=None, net=None)
         return _Context(stripped, analysis.a_max, analysis.driving_torque, True, method,
-                        dict(solver_options) if solver_options else None, tuple(axes))
+                        dict(solver_options) if solver_options else None, tuple(axes),
+                        analysis.net_torque_peak() if _needs_torque(scene) else None)
     return _Context(scene, None, None, False, method,
                     dict(solver_options) if solver_options else None, tuple(axes))
 
@@ -371,6 +374,7 @@ class Task:
     reusable: bool = False
     a_max: float | None = None
     driving_torque: float | None = None
+    torque_peak: float | None = None
 
     def __call__(self, points):
         return _evaluate(self.context(), points)
@@ -378,7 +382,7 @@ class Task:
     def context(self):
         """The chunk context of this process, built on first use and kept."""
         key = (self.scene.key, self.method, repr(sorted((self.solver_options or {}).items())),
-               self.axes, self.reusable, self.a_max, self.driving_torque)
+               self.axes, self.reusable, self.a_max, self.driving_torque, self.torque_peak)
         with _TASK_LOCK:
             ctx = _TASK_CONTEXTS.get(key)
             if ctx is None:
@@ -386,7 +390,7 @@ class Task:
                 if self.reusable:
                     scene = scene.replace(driving=None, resisting=None, net=None)
                 ctx = _Context(scene, self.a_max, self.driving_torque, self.reusable,
-                               self.method, self.solver_options, self.axes)
+                               self.method, self.solver_options, self.axes, self.torque_peak)
                 while len(_TASK_CONTEXTS) >= 4:       # a worker that serves several sweeps
                     _TASK_CONTEXTS.pop(next(iter(_TASK_CONTEXTS)))
                 _TASK_CONTEXTS[key] = ctx
@@ -418,7 +422,7 @@ def task_of(ctx, scene):
     if data is None:
         return None, reason
     return Task(data, ctx.method, ctx.solver_options, ctx.axes, ctx.reusable, ctx.a_max,
-                ctx.driving_torque), ""
+                ctx.driving_torque, ctx.torque_peak), ""
 
 
 class _Inputs:
@@ -543,6 +547,7 @@ def _evaluate(ctx, points):
     inputs = _Inputs(scene, points)
     n = inputs.n
     res = _empty_results(n)
+    needs_torque = _needs_torque(scene)
     # -- the cycle: analysed once, A_max scaled (see the module notes) ------
     if ctx.reusable:
         a_max = inputs.scale * ctx.a_max
@@ -555,7 +560,10 @@ def _evaluate(ctx, points):
     else:  # varying inertia or speed-dependent torques: each distinct physics by its exact model
         a_max, driving, j_margin, power, motor_power = (np.empty(n) for _ in range(5))
         inputs.omega_rim = np.empty(n)
+        torques = needs_torque and []
         for k, analysis in enumerate(_analyses(scene, points)):
+            if needs_torque:
+                torques.append(analysis.flywheel_torque())
             a_max[k], j_margin[k] = analysis.a_max, analysis.j_margin
             inputs.omega_rim[k] = analysis.omega_max
             driving[k] = _float(analysis.driving_torque)
@@ -584,7 +592,13 @@ def _evaluate(ctx, points):
     use_batch = needed & covered if ctx.method != "ipopt" else np.zeros(n, dtype=bool)
     _design_closed_form(inputs, j_margin, use_batch, res)
     for k in np.flatnonzero(needed & ~use_batch):
-        _design_ipopt(ctx, inputs, k, j_margin[k], res)
+        torque = None
+        if needs_torque and ctx.reusable and ctx.torque_peak is not None:
+            torque = flywheel_peak_torque(j_margin[k], j_margin[k] + inputs.inertia[k],
+                                          inputs.scale[k] * ctx.torque_peak, 1.0)
+        elif needs_torque and not ctx.reusable:
+            torque = torques[k]
+        _design_ipopt(ctx, inputs, k, j_margin[k], res, torque)
     return _table(inputs, points, ctx.axes, res)
 
 
@@ -774,7 +788,15 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
 _IPOPT_LOCK = threading.Lock()
 
 
-def _design_ipopt(ctx, inputs, k, j_required, res):
+def _needs_torque(scene):
+    """Whether the scene's designs have arms or a keyed hub, which the flywheel's peak torque loads
+    (the same rule as :func:`flyopt.pipeline.design_scene`)."""
+    from flyopt.design.wheel_design import needs_torque
+
+    return needs_torque(design_inputs(scene))
+
+
+def _design_ipopt(ctx, inputs, k, j_required, res, torque=None):
     """One point by optimize.design_flywheel (IPOPT, NLP cached per structure)."""
     from flyopt.design import design_flywheel
 
@@ -803,7 +825,7 @@ def _design_ipopt(ctx, inputs, k, j_required, res):
         with _IPOPT_LOCK:  # a CasADi Function is not to be called from two threads at once
             result = design_flywheel(float(j_required), float(inputs.omega_rim[k]), mounts,
                                      materials, spec, solver_options=ctx.solver_options,
-                                     method="ipopt")
+                                     method="ipopt", torque=torque)
     except SolverFailed as err:
         res["status"][k] = "failed"
         res["solver_status"][k] = str(getattr(err, "status", "") or "error")
