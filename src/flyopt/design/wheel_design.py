@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 
 from flyopt.design import check, hub, strength, wheel
+from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
 
 __all__ = ["needs_torque", "bore_of", "design_combination", "structure_fields", "NoWheel", "sensitivities"]
@@ -147,9 +148,13 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None)
         min_wall=_min_wall(spec, material), d_hub_range=d_hub_range, l_hub_range=l_hub_range)
     start = wheel_nlp._start(structure, problem, model.variables)
     start_dims = wheel_nlp._dims(structure, start, bore)
-    targets = ({p: a for p, (a, _s, _w) in strength.allowables(material, geo, start_dims,
-                                                               spec.safety_factor).items()}
-               if stressed else {})
+    targets = {}
+    if stressed:
+        try:
+            targets = {p: a for p, (a, _s, _w) in strength.allowables(material, geo, start_dims,
+                                                                      spec.safety_factor).items()}
+        except ThicknessOutOfRange:      # the starting wheel is thicker than the table: its weakest row
+            targets = {p: material.allowable(safety_factor=spec.safety_factor) for p in parts}
     used = dict(targets)
     for _round in range(_MAX_ROUNDS):
         problem = _with(problem, allowable={p: used.get(p, math.inf) for p in parts})
@@ -161,8 +166,13 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None)
                               f"limit (it reports the problem locally infeasible; no bound proves it)") from None
             raise
         dims = solution.dims
-        checked = (strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
-                   if getattr(material, "poisson_ratio", None) is not None else None)
+        try:
+            checked = (strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
+                       if getattr(material, "poisson_ratio", None) is not None else None)
+        except ThicknessOutOfRange as err:
+            raise NoWheel(f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
+                          f"material's strength table ({err}); flyopt does not yet bound the walls by the "
+                          f"table") from None
         if not stressed:
             return dims, solution, checked
         settled = True

@@ -805,9 +805,10 @@ def _design_ipopt(ctx, inputs, k, j_required, res, torque=None):
     materials = []
     for name in mats:   # the scene's material with this point's values: every other field kept
         cost = inputs.material_cost[name][k]
+        speed = float(inputs.max_rim_speed[name][k])
         materials.append(dataclasses.replace(
             inputs.library[name], density=float(inputs.density[name][k]),
-            max_rim_speed=float(inputs.max_rim_speed[name][k]),
+            max_rim_speed=inputs.library[name].max_rim_speed if math.isnan(speed) else speed,
             cost=None if math.isnan(cost) else float(cost)))
     mounts = [dataclasses.replace(inputs.mounts[name], speed_ratio=float(inputs.ratio[name][k]))
               for name in shafts]
