@@ -32,6 +32,28 @@ BINDING_NAMES = {
     "hb_max": "H/B is at the upper end of its range",
     "inner_diameter": "the inner diameter has shrunk to zero (the rim became a disc)",
 }
+#: What the limits of a whole wheel (flyopt.design.wheel_nlp) mean when they bind.
+WHEEL_BINDING_NAMES = {
+    "max_width_hub": "the hub's length is at the scene's width limit",
+    "hb_ratio": "H/B is at an end of its range",
+    "rim_clears_hub": "the rim sits on the hub (no room left for a web or arms)",
+    "bore_clear": "the disc's outer diameter is down to its bore",
+    "d_mean": "the mean diameter is pinned",
+    "web_below_rim": "the web is as thick as the rim is wide",
+    "web_below_hub": "the web is as thick as the hub is long",
+    "arms_fit_hub": "the arms fill the hub's circumference",
+    "arm_within_rim": "the arms' axial minor axis equals the rim width",
+    "arm_within_hub": "the arms' axial minor axis equals the hub length",
+    "hub_wall": "the hub's wall is at min_wall",
+    "stress_rim": "the rim's stress is at its allowable", "stress_web": "the web's stress is at its allowable",
+    "stress_hub": "the hub's stress is at its allowable", "stress_arms": "the arms' stress is at their allowable",
+    "stress_disc": "the disc's stress is at its allowable",
+    "min_wall": "a section is at the thinnest the process makes (min_wall)",
+    "hub_diameter_min": "the hub diameter is at the smallest the textbook proportions allow",
+    "hub_diameter_max": "the hub diameter is at the largest the textbook proportions allow",
+    "hub_length_min": "the hub length is at its minimum (the proportions, or the key's length at the peak torque)",
+    "hub_length_max": "the hub length is at the largest the textbook proportions allow",
+}
 #: Bits of a binding mask, in the order of :data:`BINDING_NAMES`.
 BINDING_BITS = {name: 1 << k for k, name in enumerate(BINDING_NAMES)}
 #: Relative tolerance for calling a constraint binding.

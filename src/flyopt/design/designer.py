@@ -242,7 +242,7 @@ def _design_whole(combo, spec, n_arms, solver_options):
         err.combination = label
         raise err
     binding = sorted(name for name, lam in solution.lam_g.items() if abs(lam) > 1e-9)
-    binding += sorted(f"{name}_bound" for name, lam in solution.lam_x.items() if abs(lam) > 1e-9)
+    binding += sorted({_BOUND_NAMES[name, lam > 0] for name, lam in solution.lam_x.items() if abs(lam) > 1e-9})
     cost = mass * m.cost if m.cost is not None else None
     objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
     structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec,
@@ -267,6 +267,15 @@ def _design_whole(combo, spec, n_arms, solver_options):
         t_web=_dim(dims.t_web), d_hub=_dim(dims.d_hub), l_hub=_dim(dims.l_hub),
         arm_major=_dim(dims.arm_major), arm_minor=_dim(dims.arm_major * wheel.ARM_MINOR_RATIO),
         sensitivities=sensitivities, **structure, **common), model
+
+
+#: What an active bound on a wheel NLP variable means: (variable, upper bound) -> binding name.
+_BOUND_NAMES = {
+    ("h", False): "min_wall", ("b", False): "min_wall", ("t_web", False): "min_wall",
+    ("arm_major", False): "min_wall",
+    ("d_hub", False): "hub_diameter_min", ("d_hub", True): "hub_diameter_max",
+    ("l_hub", False): "hub_length_min", ("l_hub", True): "hub_length_max",
+}
 
 
 def _dim(value):
