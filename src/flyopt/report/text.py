@@ -140,6 +140,7 @@ def design_report(result, spec=None):
         if not result.spec.has_envelope:
             lines.append("  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
                          "bounds the diameter")
+        lines += wheel_report(best, result.omega * best.speed_ratio)
     else:
         lines.append("  no feasible design: no material and shaft can give the required inertia")
     rows = []
@@ -149,12 +150,113 @@ def design_report(result, spec=None):
                          number(c.rim_speed), ", ".join(c.binding)])
         else:
             rows.append(["-", c.material, c.shaft, "infeasible", "", "", "", "", ""])
+    head = ["rank", "material", "shaft", "mass [kg]", "D_outer [m]", "H [m]", "B [m]", "v [m/s]", "binding"]
+    align = ["<", "<", "<", ">", ">", ">", ">", ">", "<"]
+    if any(c.n_arms for c in result.candidates):   # one combination per arm count: say which
+        for row, c in zip(rows, result.candidates):
+            row.insert(3, str(c.n_arms or "-"))
+        head.insert(3, "arms")
+        align.insert(3, ">")
     lines += ["", "Every combination (ranked):"]
-    lines += ["  " + line for line in table(["rank", "material", "shaft", "mass [kg]", "D_outer [m]", "H [m]", "B [m]",
-                                             "v [m/s]", "binding"], rows, ["<", "<", "<", ">", ">", ">", ">", ">", "<"])]
+    lines += ["  " + line for line in table(head, rows, align)]
     reasons = [c.reason for c in result.candidates if not c.feasible]
     if reasons:
         lines += ["", "Why the infeasible ones fail:"] + [f"  - {r}" for r in reasons]
+    return lines
+
+
+def _finite(value):
+    """Whether a reported value exists: not None and a finite number."""
+    return value is not None and math.isfinite(value)
+
+
+def _mm(metres, digits=4):
+    return number(None if metres is None else metres * 1e3, digits)
+
+
+def _mpa(pascals, digits=4):
+    return number(pascals / 1e6, digits) if _finite(pascals) else "-"
+
+
+def wheel_report(candidate, omega):
+    """The whole wheel of a design: its parts, stress check, burst speed, balance, key, sensitivities, notes.
+
+    Parameters
+    ----------
+    candidate : flyopt.design.result.Candidate
+        A feasible design.
+    omega : float
+        omega_max on the wheel's own shaft [rad/s] (the speed the stresses were checked at).
+
+    Returns
+    -------
+    list of str
+        Report lines; a block appears only where the design carries its data
+        (a textbook rim has parts and stresses, but no key).
+    """
+    c = candidate
+    lines = []
+    if c.parts:
+        total_j = sum(p["inertia"] for p in c.parts)
+        rows = [[p["name"], f"{_mm(p['r_inner'])} – {_mm(p['r_outer'])}", _mm(p["thickness"]), number(p["mass"]),
+                 number(p["inertia"]), f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-"]
+                for p in c.parts]
+        rows.append(["total", f"{_mm(min(p['r_inner'] for p in c.parts))} – "
+                              f"{_mm(max(p['r_outer'] for p in c.parts))}", "",
+                     number(sum(p["mass"] for p in c.parts)), number(total_j), "100.0 %" if total_j > 0 else "-"])
+        head = ["part", "r_inner – r_outer [mm]", "thickness [mm]", "mass [kg]", "inertia [kg·m²]", "share of J"]
+        lines += ["", "Parts of the wheel (thickness: axial):"]
+        body = table(head, rows, ["<", ">", ">", ">", ">", ">"])
+        body.insert(len(body) - 1, "  ".join("-" * len(cell) for cell in body[1].split("  ")))
+        lines += ["  " + line for line in body]
+        if c.n_arms and c.arm_major:
+            lines.append(f"  arms: {c.n_arms} of elliptical section {_mm(c.arm_major)} x {_mm(c.arm_minor)} mm "
+                         "(major axis in the plane of rotation, minor axial)")
+    if c.stress:
+        s = c.stress
+        lines += ["", f"Stress check at ω_max = {number(omega)} rad/s ({number(rad_s_to_rpm(omega))} rpm) on its shaft:"]
+        rows = []
+        for p in s.get("parts", []):
+            utilisation = p["stress"] / p["allowable"] if _finite(p["allowable"]) and p["allowable"] > 0 else None
+            rows.append([p["part"], _mpa(p["stress"]), _mm(p["radius"]), _mpa(p["allowable"]),
+                         "-" if utilisation is None else f"{100 * utilisation:.1f} %",
+                         _mpa(p.get("strength")), _mm(p.get("wall"))])
+        head = ["part", "stress [MPa]", "at r [mm]", "allowable [MPa]", "utilisation", "strength [MPa]",
+                "at wall [mm]"]
+        lines += ["  " + line for line in table(head, rows)]
+        lines.append("  (stress: von Mises if ductile, largest principal if brittle; strength: yield if ductile, "
+                     "tensile if brittle, at the part's wall)")
+        where = s.get("where") or {}
+        facts = []
+        if where:
+            facts.append(("governing", f"{where['part']} at r = {_mm(where['radius'])} mm"))
+        facts.append(("largest σ_t / σ_r", f"{_mpa(s.get('hoop_max'))} / {_mpa(s.get('radial_max'))} MPa "
+                                           f"(von Mises {_mpa(s.get('von_mises'))} MPa)"))
+        if _finite(s.get("mean_hoop")):
+            facts.append(("mean hoop stress", f"{_mpa(s['mean_hoop'])} MPa over the radial section"))
+        if _finite(c.strength_safety):
+            facts.append(("safety on strength", number(c.strength_safety, 3)))
+        if _finite(c.burst_speed):
+            margin = f" ({number(c.speed_margin, 3)} x ω_max)" if _finite(c.speed_margin) else ""
+            facts.append(("burst speed", f"{number(rad_s_to_rpm(c.burst_speed))} rpm on its shaft{margin}"))
+        width = max(len(k) for k, _ in facts)
+        lines += [f"  {k:<{width}}  {v}" for k, v in facts]
+    if _finite(c.unbalance_permissible):
+        lines += ["", f"Permissible unbalance (ISO 21940-11, G6.3 at ω_max): {number(c.unbalance_permissible * 1e6)} g·mm"
+                      + (f" (e_per {number(c.unbalance_permissible / c.mass * 1e6, 4)} µm)" if c.mass else "")]
+    if c.key:
+        k = c.key
+        verdict = "OK" if k["ok"] else "NOT OK"
+        lines += ["", f"Key (DIN 6885-1 form A) on a {_mm(c.bore)} mm bore: {k['size']}, length {_mm(k['length'])} mm "
+                      f"(effective {_mm(k['effective_length'])} mm): {verdict}",
+                  f"  at the peak torque {number(k['torque'])} N·m: bearing pressure {_mpa(k['bearing_pressure'])} MPa "
+                  f"(allowable {_mpa(k['allowable_pressure'])} MPa), shear {_mpa(k['shear'])} MPa "
+                  f"(allowable {_mpa(k['allowable_shear'])} MPa)"]
+    if c.sensitivities:
+        lines += ["", "Sensitivities (of the mass to the binding limits):"]
+        lines += [f"  - {s['text']}" for s in c.sensitivities]
+    if c.notes:
+        lines += ["", "Notes:"] + [f"  - {n}" for n in c.notes]
     return lines
 
 

@@ -1,0 +1,176 @@
+"""The text report of a whole wheel (``flyopt solve``): parts, stress check, burst, balance, key, notes.
+
+Every figure is read back from the text a user sees and checked against a
+hand calculation or a published table, not against the code that printed it.
+The scenes under tests/data/wheels are the four-stroke engine of
+problems/four-stroke-engine.toml (same torque table) designed as a whole wheel
+of a ductile iron (R_m 400 MPa, R_p0.2 250 MPa, 60 MPa allowable) on a 60 mm
+crankshaft, by the stress criterion.
+"""
+
+import math
+import re
+from pathlib import Path
+
+import pytest
+
+from conftest import PROBLEMS
+from flyopt.cli.main import main
+
+WHEELS = Path(__file__).parent / "data" / "wheels"
+GEOMETRIES = ["rim_web", "rim_arms", "disc", "rim"]
+
+#: Printed numbers carry 6 significant digits (flyopt.report.text.number): the sum of three
+#: rounded masses may differ from the rounded total by 3 half-units of the 6th digit.
+PRINT_RTOL = 2e-5
+
+
+def _solve_text(path, capsys):
+    assert main(["solve", str(path)]) == 0
+    return capsys.readouterr().out
+
+
+def _value(text):
+    """The number at the start of a printed cell ("1,656.71 g·mm" -> 1656.71)."""
+    return float(re.match(r"\s*([-+0-9.,eE]+)", text).group(1).replace(",", ""))
+
+
+def _block(text, title):
+    """The lines of the report block that starts with ``title``, up to the next blank line."""
+    lines = text.splitlines()
+    start = next(k for k, line in enumerate(lines) if line.startswith(title))
+    out = []
+    for line in lines[start + 1:]:
+        if not line.strip():
+            break
+        out.append(line)
+    return out
+
+
+def _table(block):
+    """Rows of a report table as lists of cells (cells are separated by two or more spaces)."""
+    rows = [re.split(r"\s{2,}", line.strip()) for line in block]
+    return [r for r in rows if not set("".join(r)) <= {"-", " "}]
+
+
+def _fact(text, name):
+    match = re.search(rf"^  {re.escape(name)}\s{{2,}}(.+)$", text, re.M)
+    assert match, f"no line {name!r} in the report"
+    return match.group(1)
+
+
+@pytest.mark.parametrize("scene", [WHEELS / f"engine-{g}.toml" for g in GEOMETRIES]
+                         + [PROBLEMS / "shear-press.toml"], ids=GEOMETRIES + ["shear-press"])
+def test_part_table_sums_to_the_design(scene, capsys):
+    text = _solve_text(scene, capsys)
+    rows = _table(_block(text, "Parts of the wheel"))
+    end = next(k for k, r in enumerate(rows) if r[0] == "total")
+    header, parts, total = rows[0], rows[1:end], rows[end]
+    assert header[:4] == ["part", "r_inner – r_outer [mm]", "thickness [mm]", "mass [kg]"]
+    assert total[0] == "total" and parts
+    masses = [_value(r[3]) for r in parts]
+    inertias = [_value(r[4]) for r in parts]
+    design_mass = _value(_fact(text, "mass"))
+    design_j = _value(_fact(text, "inertia"))
+    # the parts make up the whole wheel: their masses and inertias add up to the design's
+    assert math.isclose(sum(masses), design_mass, rel_tol=PRINT_RTOL)
+    assert math.isclose(_value(total[2]), design_mass, rel_tol=1e-12)   # total: mass column (no thickness)
+    assert math.isclose(sum(inertias), design_j, rel_tol=PRINT_RTOL)
+    shares = [_value(r[5]) for r in parts]
+    assert math.isclose(sum(shares), 100.0, abs_tol=0.05 * len(shares))   # 0.1 % printed
+    # the radial spans join: each part starts where the one inside it ends
+    spans = [[_value(x) for x in r[1].split("–")] for r in parts]
+    for inner, outer in zip(spans, spans[1:]):
+        assert math.isclose(inner[1], outer[0], rel_tol=1e-9)
+    assert {r[0] for r in parts} <= {"hub", "web", "arms", "rim", "disc"}
+
+
+def test_part_names_per_geometry(capsys):
+    names = {}
+    for geometry in GEOMETRIES:
+        rows = _table(_block(_solve_text(WHEELS / f"engine-{geometry}.toml", capsys), "Parts of the wheel"))
+        names[geometry] = [r[0] for r in rows[1:] if len(r) == 6 and r[0] != "total"]
+    assert names == {"rim_web": ["hub", "web", "rim"], "rim_arms": ["hub", "arms", "rim"],
+                     "disc": ["disc"], "rim": ["rim"]}
+
+
+def test_stress_check_utilisation_and_burst_speed_by_hand(capsys):
+    text = _solve_text(WHEELS / "engine-rim_web.toml", capsys)
+    block = _block(text, "Stress check at ω_max")
+    rows = _table(block)
+    assert rows[0][:4] == ["part", "stress [MPa]", "at r [mm]", "allowable [MPa]"]
+    for row in rows[1:]:
+        if row[0].startswith("("):
+            break
+        stress, allowable, utilisation = _value(row[1]), _value(row[3]), _value(row[4])
+        assert allowable == 60.0                        # the scene's allowable_stress, every part
+        assert math.isclose(utilisation, 100 * stress / allowable, abs_tol=0.06)
+        assert _value(row[5]) == 250.0                  # ductile: yield strength R_p0.2
+    omega = _value(re.search(r"Stress check at ω_max = ([0-9.,]+) rad/s", text).group(1))
+    mean_hoop = _value(_fact(text, "mean hoop stress"))
+    # ductile burst (Robinson): the mean hoop stress reaches R_m = 400 MPa, and stress ~ omega^2
+    burst_rpm = omega * math.sqrt(400.0 / mean_hoop) * 30 / math.pi
+    printed = _fact(text, "burst speed")
+    assert math.isclose(_value(printed), burst_rpm, rel_tol=5e-4)   # mean hoop printed to 4 digits
+    margin = _value(re.search(r"\(([0-9.]+) x ω_max\)", printed).group(1))
+    assert math.isclose(margin, math.sqrt(400.0 / mean_hoop), rel_tol=1e-3)
+
+
+def test_unbalance_is_g63_by_hand(capsys):
+    text = _solve_text(WHEELS / "engine-rim_web.toml", capsys)
+    omega = _value(re.search(r"Stress check at ω_max = ([0-9.,]+) rad/s", text).group(1))
+    mass = _value(_fact(text, "mass"))
+    line = next(line for line in text.splitlines() if line.startswith("Permissible unbalance"))
+    u_per = _value(line.split(":")[1])
+    # ISO 21940-11: e_per = G / omega with G = 6.3 mm/s; U_per = e_per m, in g*mm
+    assert math.isclose(u_per, 6.3 / omega * mass * 1e3, rel_tol=1e-5)
+    e_per = _value(re.search(r"e_per ([0-9.]+) µm", line).group(1))
+    assert math.isclose(e_per, 6.3 / omega * 1e3, rel_tol=5e-4)
+
+
+def test_key_by_din_6885_and_hand_calculation(capsys):
+    text = _solve_text(WHEELS / "engine-rim_web.toml", capsys)
+    lines = text.splitlines()
+    k = next(i for i, line in enumerate(lines) if line.startswith("Key (DIN 6885-1"))
+    head, check = lines[k], lines[k + 1]
+    # DIN 6885-1: shafts over 58 up to 65 mm take an 18 x 11 key, shaft groove t1 = 7 mm
+    assert "on a 60 mm bore: 18 x 11" in head and head.endswith(": OK")
+    effective = _value(re.search(r"effective ([0-9.]+) mm", head).group(1)) / 1e3
+    length = _value(re.search(r"length ([0-9.]+) mm", head).group(1)) / 1e3
+    assert math.isclose(effective, length - 0.018, rel_tol=1e-9)     # form A: l - b
+    torque = _value(re.search(r"peak torque ([0-9.,]+) N·m", check).group(1))
+    pressure = _value(re.search(r"bearing pressure ([0-9.]+) MPa", check).group(1))
+    shear = _value(re.search(r"shear ([0-9.]+) MPa", check).group(1))
+    d = 0.060
+    # p = 2T / (d (h - t1) l_eff), tau = 2T / (d b l_eff)
+    assert math.isclose(pressure, 2 * torque / (d * (0.011 - 0.007) * effective) / 1e6, rel_tol=1e-3)
+    assert math.isclose(shear, 2 * torque / (d * 0.018 * effective) / 1e6, rel_tol=1e-3)
+    assert pressure <= 90.0                             # the scene's bearing_pressure
+
+
+def test_blocks_only_where_the_design_has_the_data(capsys):
+    textbook = _solve_text(PROBLEMS / "shear-press.toml", capsys)
+    assert "Parts of the wheel" in textbook and "Stress check" in textbook
+    assert "Key (" not in textbook and "Sensitivities" not in textbook and "Notes:" not in textbook
+    assert "arms" not in _block(textbook, "Every combination")[0]
+    # the disc on a 60 mm shaft is too thin for a standard key: said in the notes, no key block
+    disc = _solve_text(WHEELS / "engine-disc.toml", capsys)
+    assert "Key (" not in disc
+    notes = _block(disc, "Notes:")
+    assert any("key not checked" in n for n in notes)
+    arms = _solve_text(WHEELS / "engine-rim_arms.toml", capsys)
+    assert re.search(r"arms: 6 of elliptical section [0-9.]+ x [0-9.]+ mm", arms)
+    ranking = _table(_block(arms, "Every combination"))
+    assert ranking[0][3] == "arms" and sorted(r[3] for r in ranking[1:]) == ["4", "6", "8"]
+    assert _block(arms, "Sensitivities")
+
+
+def test_the_existing_design_lines_are_unchanged(capsys):
+    """The textbook report keeps its lines: the new blocks come after them, before the ranking."""
+    text = _solve_text(PROBLEMS / "shear-press.toml", capsys)
+    lines = text.splitlines()
+    start = lines.index("Flywheel design (rim, objective: mass):")
+    names = [re.match(r"  (\S.*?)\s{2,}", line).group(1) for line in lines[start + 1:start + 9]]
+    assert names == ["material / shaft", "mass", "outer / mean / inner diameter", "rim H x B", "inertia",
+                     "rim speed", "binding", "solved by"]
+    assert lines.index("Parts of the wheel (thickness: axial):") < lines.index("Every combination (ranked):")
