@@ -208,7 +208,7 @@ def _rim_speed_limit(material, spec):
     return material.rim_speed_limit(safety_factor=spec.safety_factor)
 
 
-def _design_whole(combo, spec, n_arms, solver_options):
+def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     """One combination (and arm count) as a whole wheel: its Candidate, designed or not, and the model."""
     from flyopt.design import wheel_nlp
 
@@ -221,13 +221,14 @@ def _design_whole(combo, spec, n_arms, solver_options):
     start = time.perf_counter()
     try:
         dims, solution, checked = wheel_design.design_combination(combo_n, spec, combo.bore, combo.torque,
-                                                                  n_arms, solver_options)
+                                                                  n_arms, solver_options, method)
     except wheel_design.NoWheel as err:
         return Candidate(feasible=False, reason=err.reason, j_max=err.j_max, **common), None
     except SolverFailed as err:
         err.combination = label
         raise
-    model = wheel_nlp.get_model(solution.structure, solver_options)
+    model = (wheel_nlp.get_model(solution.structure, solver_options) if solution.status != "closed_form"
+             else None)
     parts = wheel.parts(spec.geometry, dims, m.density)
     mass = float(wheel.wheel_mass(parts))
     j_wheel = float(wheel.wheel_inertia(parts))
@@ -441,7 +442,7 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
             combo.torque = torque / shaft.speed_ratio if torque else 0.0
             if not plain:
                 for n_arms in (spec.arms if spec.geometry == "rim_arms" else (0,)):
-                    result, wheel_model = _design_whole(combo, spec, n_arms, solver_options)
+                    result, wheel_model = _design_whole(combo, spec, n_arms, solver_options, method)
                     if result.feasible:
                         feasible.append((order, result))
                     else:

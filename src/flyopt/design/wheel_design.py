@@ -84,7 +84,7 @@ def _upper_bound(combo, spec):
     return math.pi * combo.material.density * spec.max_width * cap ** 4 / 32.0
 
 
-def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None):
+def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None, method="auto"):
     """Design one combination as a whole wheel.
 
     Parameters
@@ -99,6 +99,8 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None)
     n_arms : int
         For ``rim_arms``.
     solver_options : mapping or None
+    method : {"auto", "ipopt", "closed_form"}
+        "ipopt" solves the NLP even where the disc's closed form covers the combination.
 
     Returns
     -------
@@ -129,6 +131,10 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None)
     if (stressed or geo in ("rim_web", "rim_arms")) and getattr(material, "poisson_ratio", None) is None:
         raise NoWheel(f"{combo.label}: material {material.name!r} gives no poisson_ratio, which the "
                       f"stress of a {geo} needs")
+    exact = _disc_closed_form(combo, spec, bore, material) if method != "ipopt" else None
+    if exact is not None:
+        dims, solution = exact
+        return dims, solution, strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
     d_hub_range = l_hub_range = (0.0, math.inf)
     if geo in ("rim_web", "rim_arms") and bore:
         d_hub_range, l_hub_range, _ = _hub_bounds(material, bore, torque)
@@ -189,6 +195,67 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None)
     raise SolverFailed(f"{combo.label}: the stress check of the whole wheel did not settle in "
                        f"{_MAX_ROUNDS} solves (a part's stress peak or wall strength keeps moving); "
                        f"no design is reported")
+
+
+def _disc_closed_form(combo, spec, bore, material):
+    """The lightest disc under the stress criterion, exactly, where the closed form covers it.
+
+    A free disc peaks at its bore (sigma_r = 0, sigma_t largest) or, solid, at
+    its centre (sigma_r = sigma_t), so both measures are the hoop stress there
+    (Timoshenko & Goodier, art. 32): sigma_t(a) = (3+nu)/4 rho w^2 [b^2 + (1-nu)/(3+nu) a^2],
+    or (3+nu)/8 rho w^2 b^2 solid. The lightest disc of inertia J is the widest one,
+    m = 2 J/(a^2 + b^2), at the largest b the stress and the envelope allow, and
+    B = 2 J/(pi rho (b^4 - a^4)).
+
+    Returns
+    -------
+    (Dims, WheelSolution) or None
+        None where the closed form does not cover the combination (another
+        objective, a pinned diameter, strength that depends on the wall, no
+        Poisson's ratio, or a width below min_wall or above max_width, which
+        the NLP then settles).
+    """
+    from flyopt.design import wheel_nlp
+
+    if (spec.geometry != "disc" or spec.criterion != "stress" or spec.objective == "outer_diameter"
+            or spec.d_mean is not None or getattr(material, "strength_by_thickness", ())
+            or getattr(material, "poisson_ratio", None) is None):
+        return None
+    a, rho, nu, j = bore / 2.0, material.density, material.poisson_ratio, combo.j_shaft
+    sigma = material.allowable(safety_factor=spec.safety_factor)
+    k = rho * combo.omega ** 2
+    if a > 0:
+        slope = 4.0 / ((3.0 + nu) * k)
+        b2_stress = slope * sigma - (1.0 - nu) / (3.0 + nu) * a * a
+    else:
+        slope = 8.0 / ((3.0 + nu) * k)
+        b2_stress = slope * sigma
+    if b2_stress <= a * a:
+        raise NoWheel(f"{combo.label}: at {combo.omega:.4g} rad/s the hoop stress at a {bore * 1e3:.4g} mm bore "
+                      f"exceeds the allowable {sigma / 1e6:.4g} MPa for any disc")
+    b_stress = math.sqrt(b2_stress)
+    half_envelope = spec.max_outer_diameter / 2.0
+    by_stress = b_stress <= half_envelope
+    b = b_stress if by_stress else half_envelope
+    width = 2.0 * j / (math.pi * rho * (b ** 4 - a ** 4))
+    if width > spec.max_width or width < _min_wall(spec, material) or b - a < _min_wall(spec, material):
+        return None
+    mass = 2.0 * j / (a * a + b * b)
+    dims = wheel.Dims(d_outer=2.0 * b, h=b - a, b=width, bore=bore)
+    # multipliers of the log-scaled rows, as IPOPT would give them (see sensitivities)
+    lam_g = {"inertia": -1.0}
+    lam_p = {}
+    power = 2 if getattr(material, "ductile", False) else 1
+    dm_db = -4.0 * j * b / (a * a + b * b) ** 2
+    if by_stress:
+        dm_dsigma = dm_db * slope / (2.0 * b)
+        lam_p["allow_disc"] = -dm_dsigma * sigma / (mass * power)
+    else:
+        lam_g["max_outer_diameter"] = -(dm_db / 2.0) * spec.max_outer_diameter / mass
+    structure = wheel_nlp.WheelStructure("disc", "stress", power == 2, bool(bore), 0, spec.has_envelope,
+                                         spec.max_width < math.inf, False, "mass")
+    return dims, wheel_nlp.WheelSolution(dims, math.log(mass), "closed_form", 0, 0.0, lam_g, {}, lam_p, 1.0,
+                                         structure, {"disc": 1.0})
 
 
 def _with(problem, **changes):
