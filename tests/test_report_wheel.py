@@ -148,21 +148,45 @@ def test_key_by_din_6885_and_hand_calculation(capsys):
     assert pressure <= 90.0                             # the scene's bearing_pressure
 
 
-def test_blocks_only_where_the_design_has_the_data(capsys):
-    textbook = _solve_text(PROBLEMS / "shear-press.toml", capsys)
-    assert "Parts of the wheel" in textbook and "Stress check" in textbook
-    assert "Key (" not in textbook and "Sensitivities" not in textbook and "Notes:" not in textbook
-    assert "arms" not in _block(textbook, "Every combination")[0]
-    # the disc on a 60 mm shaft is too thin for a standard key: said in the notes, no key block
+def _solve_json(path, capsys):
+    import json
+
+    assert main(["solve", str(path), "--json"]) == 0
+    return json.loads(capsys.readouterr().out)["design"]
+
+
+@pytest.mark.parametrize("scene", [WHEELS / f"engine-{g}.toml" for g in GEOMETRIES]
+                         + [PROBLEMS / "shear-press.toml"], ids=GEOMETRIES + ["shear-press"])
+def test_blocks_only_where_the_design_has_the_data(scene, capsys):
+    """The key, sensitivity and note blocks appear exactly when the design (its JSON) carries them."""
+    text = _solve_text(scene, capsys)
+    design = _solve_json(scene, capsys)
+    assert ("Key (DIN 6885-1" in text) == (design["key"] is not None)
+    if design["sensitivities"]:
+        assert _block(text, "Sensitivities of the mass") == [f"  - {s['text']}" for s in design["sensitivities"]]
+    else:
+        assert "Sensitivities" not in text
+    if design["notes"]:
+        assert _block(text, "Notes:") == [f"  - {n}" for n in design["notes"]]
+    else:
+        assert "Notes:" not in text
+    assert "Parts of the wheel" in text and "Stress check" in text
+
+
+def test_disc_too_thin_for_a_key_says_so(capsys):
+    # the 13 mm disc on a 60 mm shaft is shorter than the shortest standard 18 x 11 key (50 mm)
     disc = _solve_text(WHEELS / "engine-disc.toml", capsys)
     assert "Key (" not in disc
-    notes = _block(disc, "Notes:")
-    assert any("key not checked" in n for n in notes)
+    assert any("key not checked" in n for n in _block(disc, "Notes:"))
+
+
+def test_arms_wheel_names_its_arms(capsys):
+    textbook = _solve_text(PROBLEMS / "shear-press.toml", capsys)
+    assert "arms" not in _block(textbook, "Every combination")[0]
     arms = _solve_text(WHEELS / "engine-rim_arms.toml", capsys)
     assert re.search(r"arms: 6 of elliptical section [0-9.]+ x [0-9.]+ mm", arms)
     ranking = _table(_block(arms, "Every combination"))
     assert ranking[0][3] == "arms" and sorted(r[3] for r in ranking[1:]) == ["4", "6", "8"]
-    assert _block(arms, "Sensitivities")
 
 
 def test_the_existing_design_lines_are_unchanged(capsys):

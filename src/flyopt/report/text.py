@@ -253,7 +253,7 @@ def wheel_report(candidate, omega):
                   f"(allowable {_mpa(k['allowable_pressure'])} MPa), shear {_mpa(k['shear'])} MPa "
                   f"(allowable {_mpa(k['allowable_shear'])} MPa)"]
     if c.sensitivities:
-        lines += ["", "Sensitivities (of the mass to the binding limits):"]
+        lines += ["", "Sensitivities of the mass:"]
         lines += [f"  - {s['text']}" for s in c.sensitivities]
     if c.notes:
         lines += ["", "Notes:"] + [f"  - {n}" for n in c.notes]
