@@ -3,6 +3,7 @@
 import math
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -142,7 +143,7 @@ def test_bad_output_is_one_line_exit_2_nothing_written(tmp_path, target, words, 
 # A machine that needs no flywheel: nothing to draw is said, not a failure
 # --------------------------------------------------------------------------
 
-@pytest.mark.parametrize("what", ["cross_section", "inertia_delta", "speed", "energy_mass"])
+@pytest.mark.parametrize("what", ["cross_section", "stress", "inertia_delta", "speed", "energy_mass"])
 def test_nothing_to_draw_when_no_flywheel_is_needed(tmp_path, capsys, what):
     # conveyor: steady torques, A_max = 0, J_F(δ) = 0 for every δ
     out = tmp_path / "x.png"
@@ -219,6 +220,7 @@ def _forbid_models(patch):
     ("shear-press", "energy", []),
     ("shear-press", "turning_moment", []),
     ("shear-press", "cross_section", []),
+    ("shear-press", "stress", []),
 ])
 def test_plots_never_run_a_model(monkeypatch, tmp_path, scene, what, options):
     from flyopt.report import plots
@@ -316,3 +318,167 @@ def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):
                               output=str(tmp_path / "f.png"))
     assert run_plot(args) == 0
     assert seen == {"x": "delta", "y": "mass"}
+
+
+# --------------------------------------------------------------------------
+# Whole wheels: the dimensioned section and the stresses over the radius
+# --------------------------------------------------------------------------
+
+WHEELS = Path(__file__).parent / "data" / "wheels"
+WHEEL_GEOMETRIES = ["rim", "disc", "rim_web", "rim_arms"]
+#: The ductile iron of the wheel scenes (tests/data/wheels): density [kg/m^3] and Poisson's ratio.
+RHO, NU = 7100.0, 0.275
+
+
+def _designed(path):
+    import flyopt
+    from flyopt.pipeline import design_scene
+
+    scene = flyopt.load(path)
+    analysis = flyopt.analyse(scene)
+    design = design_scene(scene, analysis)
+    assert design.best is not None and design.best.geometry == path.stem.split("-", 1)[1]
+    return scene, analysis, design
+
+
+@pytest.mark.parametrize("what", ["cross_section", "stress"])
+@pytest.mark.parametrize("geometry", WHEEL_GEOMETRIES)
+def test_wheel_plots_render_for_every_geometry(tmp_path, geometry, what):
+    # pytest turns every warning into an error: a plot that warns (a tight layout that cannot fit,
+    # a label that cannot be placed) fails here
+    out = tmp_path / f"{geometry}-{what}.png"
+    assert main(["plot", str(WHEELS / f"engine-{geometry}.toml"), "--what", what, "-o", str(out)]) == 0
+    assert out.stat().st_size > 10_000
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _blocks(ax):
+    """The hatched blocks of a drawn section by gid: (x0, x1, y0, y1) [m]."""
+    from matplotlib.patches import Rectangle
+
+    out = {}
+    for patch in ax.patches:
+        if isinstance(patch, Rectangle) and patch.get_gid():
+            x, y = patch.get_xy()
+            out[patch.get_gid()] = (x, x + patch.get_width(), y, y + patch.get_height())
+    return out
+
+
+@pytest.mark.parametrize("geometry", WHEEL_GEOMETRIES)
+def test_cross_section_draws_the_candidates_dimensions(geometry):
+    from flyopt.report import plots
+
+    _scene, _analysis, design = _designed(WHEELS / f"engine-{geometry}.toml")
+    c = design.best
+    ax = plots.plot_cross_section(c)
+    blocks = _blocks(ax)
+    r_o, b = c.d_outer / 2, c.b
+    expected = {}
+    if geometry == "disc":
+        expected["disc"] = (-b / 2, b / 2, c.bore / 2, r_o)
+    else:
+        expected["rim"] = (-b / 2, b / 2, r_o - c.h, r_o)
+    if geometry in ("rim_web", "rim_arms"):
+        expected["hub"] = (-c.l_hub / 2, c.l_hub / 2, c.bore / 2, c.d_hub / 2)
+    if geometry == "rim_web":
+        expected["web"] = (-c.t_web / 2, c.t_web / 2, c.d_hub / 2, r_o - c.h)
+    if geometry == "rim_arms":
+        expected["arms"] = (-c.arm_minor / 2, c.arm_minor / 2, c.d_hub / 2, r_o - c.h)
+    for name, (x0, x1, y0, y1) in expected.items():
+        np.testing.assert_allclose(blocks[f"{name}+"], (x0, x1, y0, y1), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(blocks[f"{name}-"], (x0, x1, -y1, -y0), rtol=0, atol=1e-12)  # mirrored
+    assert {g[:-1] for g in blocks} == set(expected)
+    # every dimension the brief names is written, in mm
+    texts = {t.get_text() for t in ax.texts}
+    wanted = {f"Ø{c.d_outer * 1e3:.1f}".rstrip("0").rstrip("."), f"B {c.b * 1e3:.1f}".rstrip("0").rstrip(".")}
+    if geometry != "disc":
+        wanted |= {f"Ø{c.d_inner * 1e3:.1f}".rstrip("0").rstrip("."), f"H {c.h * 1e3:.1f}".rstrip("0").rstrip(".")}
+    if geometry in ("rim_web", "rim_arms"):
+        wanted |= {f"Ø{c.d_hub * 1e3:.1f}".rstrip("0").rstrip("."), "Ø60",
+                   f"l_hub {c.l_hub * 1e3:.1f}".rstrip("0").rstrip(".")}
+    if geometry == "disc":
+        wanted.add("Ø60")
+    if geometry == "rim_web":
+        wanted.add(f"t_web {c.t_web * 1e3:.1f}".rstrip("0").rstrip("."))
+    assert wanted <= texts, wanted - texts
+    if geometry == "rim_arms":
+        from matplotlib.patches import Ellipse, Polygon
+
+        section = [p for p in ax.patches if isinstance(p, Ellipse) and p.get_gid() == "arm_section"]
+        assert len(section) == 1
+        np.testing.assert_allclose((section[0].width, section[0].height), (c.arm_minor, c.arm_major), rtol=1e-12)
+        front = [a for a in ax.figure.axes if a is not ax]
+        assert len(front) == 1
+        arms = [p for p in front[0].patches if isinstance(p, Polygon) and p.get_gid() == "arm"]
+        assert len(arms) == c.n_arms == 6
+        # each arm is a strip of width a (the major axis lies in the plane of rotation)
+        for arm in arms:
+            xy = arm.get_xy()[:4]
+            np.testing.assert_allclose(np.hypot(*(xy[0] - xy[3])), c.arm_major, rtol=1e-9)
+    ax.figure.clf()
+
+
+def _stress_axes(geometry):
+    from flyopt.cli.plot import stress_profile
+    from flyopt.report import plots
+
+    scene, analysis, design = _designed(WHEELS / f"engine-{geometry}.toml")
+    profile, beams, omega, material = stress_profile(scene, analysis, design)
+    ax = plots.plot_stress(design.best, profile, beams, omega, ductile=material.ductile)
+    return ax, design, analysis
+
+
+def _line(ax, label):
+    found = [line for line in ax.lines if line.get_label() == label]
+    assert len(found) == 1, [line.get_label() for line in ax.lines]
+    return found[0]
+
+
+@pytest.mark.parametrize("geometry", ["disc", "rim"])
+def test_stress_plot_at_the_bore_is_the_annulus_closed_form(geometry):
+    """A free rotating annulus a < r < b (Timoshenko & Goodier, Theory of Elasticity, section 32):
+    at r = a, sigma_r = 0 and sigma_t = (3 + nu)/4 rho w^2 [b^2 + (1 - nu)/(3 + nu) a^2].
+    The disc on its 60 mm bore and the bare rim are both such annuli."""
+    ax, design, analysis = _stress_axes(geometry)
+    c = design.best
+    omega = analysis.omega_max                       # the speed ratio of the crankshaft is 1
+    a = (c.bore if geometry == "disc" else c.d_inner) / 2
+    b = c.d_outer / 2
+    hoop = (3 + NU) / 4 * RHO * omega**2 * (b**2 + (1 - NU) / (3 + NU) * a**2)
+    r, st = _line(ax, "σ_t").get_data()
+    r_sr, sr = _line(ax, "σ_r").get_data()
+    assert math.isclose(r[0], a * 1e3, rel_tol=1e-12) and math.isclose(r_sr[0], a * 1e3, rel_tol=1e-12)
+    assert math.isclose(st[0], hoop / 1e6, rel_tol=1e-9)
+    assert abs(sr[0]) < 1e-9 * hoop / 1e6
+    # at r = b: sigma_r = 0 again, sigma_t = (3 + nu)/4 rho w^2 [a^2 + (1 - nu)/(3 + nu) b^2]
+    outer = (3 + NU) / 4 * RHO * omega**2 * (a**2 + (1 - NU) / (3 + NU) * b**2)
+    assert math.isclose(r[-1], b * 1e3, rel_tol=1e-12) and math.isclose(st[-1], outer / 1e6, rel_tol=1e-9)
+    # the governing point marked is the hoop stress at the bore (the largest, and von Mises = sigma_t there)
+    governing = [line for line in ax.lines if line.get_label().startswith("governing")]
+    assert len(governing) == 1
+    x, y = governing[0].get_data()
+    assert math.isclose(x[0], a * 1e3, rel_tol=1e-9) and math.isclose(y[0], hoop / 1e6, rel_tol=1e-6)
+    ax.figure.clf()
+
+
+def test_stress_plot_of_an_arms_wheel_marks_rim_and_arm_root():
+    ax, design, analysis = _stress_axes("rim_arms")
+    c = design.best
+    omega = analysis.omega_max
+    r_mean = c.d_mean / 2
+    # Khurmi ch. 22: 3/4 rho v^2 + 1/4 of the bending of a rim fixed at its arms, 2 pi^2 rho w^2 R^3/(n^2 H)
+    rim = 0.75 * RHO * (omega * r_mean)**2 + 0.25 * 2 * math.pi**2 * RHO * omega**2 * r_mean**3 / (c.n_arms**2 * c.h)
+    rim_point = [line for line in ax.lines if line.get_label().startswith("rim (hoop + bending)")]
+    arm_point = [line for line in ax.lines if line.get_label().startswith("arm root")]
+    assert len(rim_point) == 1 and len(arm_point) == 1
+    x, y = rim_point[0].get_data()
+    assert math.isclose(x[0], r_mean * 1e3, rel_tol=1e-12) and math.isclose(y[0], rim / 1e6, rel_tol=1e-9)
+    assert math.isclose(arm_point[0].get_xdata()[0], c.d_hub / 2 * 1e3, rel_tol=1e-12)
+    # both labelled on the plot, not only in the legend
+    labels = " ".join(t.get_text() for t in ax.texts)
+    assert "arm root" in labels and "rim (hoop + bending)" in labels
+    # the allowable of each part spans that part
+    spans = {p["name"]: (p["r_inner"] * 1e3, p["r_outer"] * 1e3) for p in c.parts}
+    segments = [seg for coll in ax.collections if "allowable" in coll.get_label() for seg in coll.get_segments()]
+    assert sorted((s[0][0], s[1][0]) for s in segments) == sorted(spans.values())
+    ax.figure.clf()

@@ -16,8 +16,8 @@ def add_plot_arguments(parser):
     """The options of ``flyopt plot``; the handler is :func:`run_plot`."""
     parser.add_argument("scene", help="scene file (TOML), or results (.csv/.parquet) of flyopt sweep or pareto")
     parser.add_argument("--what", required=True, metavar="DIAGRAM",
-                        help="turning_moment | energy | inertia_delta | cross_section | speed | energy_mass; "
-                             "for results: sweep | pareto")
+                        help="turning_moment | energy | inertia_delta | cross_section | stress | speed | "
+                             "energy_mass; for results: sweep | pareto")
     parser.add_argument("--x", help="results: the column on the x axis (sweep: a varied field; "
                                     "pareto: default the front's second objective)")
     parser.add_argument("--y", default="mass", help="results: the column on the y axis (default mass)")
@@ -68,7 +68,7 @@ def _draw(args, plots):
 
     scene = load(args.scene)
     analysis = analyse(scene)
-    if args.what == "cross_section":
+    if args.what in ("cross_section", "stress"):
         from flyopt.pipeline import design_scene
 
         design = design_scene(scene, analysis)
@@ -76,7 +76,9 @@ def _draw(args, plots):
             raise plots.NothingToDraw("no flywheel is needed: nothing to draw")
         if design.best is None:
             raise _Infeasible(design.message)
-        return plots.plot_cross_section(design.best)
+        if args.what == "cross_section":
+            return plots.plot_cross_section(design.best)
+        return _draw_stress(scene, analysis, design, plots)
     if args.what == "speed":
         if scene.net is not None:   # said by the plot, before any model runs
             return plots.plot_speed(scene, analysis)
@@ -94,6 +96,43 @@ def _draw(args, plots):
         if analysis.model != "energy_mass":   # the diagram draws that model's tangents
             analysis = analyse(scene, model="energy_mass")
     return getattr(plots, f"plot_{args.what}")(scene, analysis)
+
+
+def wheel_dims(candidate):
+    """The :class:`flyopt.design.wheel.Dims` of a designed candidate [m] (0 where it has no such part)."""
+    from flyopt.design.wheel import Dims
+
+    c = candidate
+    return Dims(d_outer=c.d_outer, h=c.h, b=c.b, bore=c.bore or 0.0, t_web=c.t_web or 0.0, d_hub=c.d_hub or 0.0,
+                l_hub=c.l_hub or 0.0, arm_major=c.arm_major or 0.0, n_arms=c.n_arms or 0)
+
+
+def stress_profile(scene, analysis, design):
+    """The stresses of the design's best wheel over its radius, at omega_max on its own shaft.
+
+    Returns
+    -------
+    profile, beams : see :func:`flyopt.design.strength.profile`
+    omega : float
+        omega_max on the wheel's shaft [rad/s].
+    material : flyopt.design.materials.Material
+    """
+    from flyopt.design import strength
+
+    best = design.best
+    material = scene.material_library()[best.material]
+    if getattr(material, "poisson_ratio", None) is None:
+        raise ValueError(f"material {best.material!r} gives no poisson_ratio: its stresses cannot be computed")
+    omega = design.omega * best.speed_ratio
+    torque = analysis.flywheel_torque()
+    torque = torque / best.speed_ratio if torque else 0.0
+    profile, beams = strength.profile(material, best.geometry, wheel_dims(best), omega, torque)
+    return profile, beams, omega, material
+
+
+def _draw_stress(scene, analysis, design, plots):
+    profile, beams, omega, material = stress_profile(scene, analysis, design)
+    return plots.plot_stress(design.best, profile, beams, omega, ductile=bool(getattr(material, "ductile", False)))
 
 
 def _plot_results(args):

@@ -28,7 +28,8 @@ PLOTS = {
     "turning_moment": "driving and resisting torque over the cycle, areas shaded and labelled",
     "energy": "energy indicator diagram: the chain of ΔE with A_max marked",
     "inertia_delta": "required flywheel J against δ (the hyperbola), the scene's δ marked",
-    "cross_section": "dimensioned cross-section of the chosen flywheel",
+    "cross_section": "dimensioned axial section of the chosen flywheel (hub, web or arms, rim), in mm",
+    "stress": "σ_r, σ_t and von Mises over the radius at ω_max, each part's allowable, the governing point",
     "speed": "ω(φ) over the cycle with the required flywheel, from the model that ran",
     "energy_mass": "energy–mass (Wittenbauer) diagram: ΔE against J_e with the two tangents",
 }
@@ -207,36 +208,434 @@ def plot_inertia_delta(scene, analysis, ax=None):
     return ax
 
 
+#: Font size of dimensions and notes on the drawing [pt].
+_DIM_FONT = 8
+#: Distance between stacked dimension lines, and of the first from the part [in].
+_DIM_STEP, _DIM_FIRST = 0.30, 0.34
+#: Extension lines: gap from the part, overshoot past the dimension line [in].
+_EXT_GAP, _EXT_OVER = 0.03, 0.06
+#: Height the wheel's outer diameter is drawn at when the function makes its own figure [in].
+_SECTION_HEIGHT = 6.4
+_SECTION_HATCH = dict(facecolor="#e8ebf0", edgecolor="black", linewidth=0, hatch="////")
+
+
+def _mm_text(metres):
+    """A length in mm as a drawing gives it: to 0.1 mm, no trailing zeros."""
+    return f"{metres * 1e3:.1f}".rstrip("0").rstrip(".")
+
+
+def _text_width(text, size=_DIM_FONT):
+    """Rough width of a line of text [in] (DejaVu Sans: about 0.6 em per character)."""
+    return 0.6 * size * len(text) / 72.0
+
+
+class _Sheet:
+    """Draws dimensions on an Axes of equal aspect whose scale is known: ``scale`` inches per metre."""
+
+    def __init__(self, ax, scale):
+        self.ax, self.scale = ax, scale
+
+    def d(self, inches):
+        """A length on the sheet [in] in data units [m]."""
+        return inches / self.scale
+
+    def _arrow(self, tip, tail):
+        self.ax.annotate("", tip, tail, arrowprops={"arrowstyle": "-|>", "lw": 0.7, "color": "black",
+                                                     "mutation_scale": 7, "shrinkA": 0, "shrinkB": 0})
+
+    def linear(self, a, b, line, text, vertical, feature=None, room=None, beside=None):
+        """A dimension between ``a`` and ``b`` (along y if ``vertical``, else along x).
+
+        Arrows go inside the extension lines where there is room, else outside
+        pointing in. The text of a vertical dimension reads from the right,
+        left of its line (ISO 129) where it fits between the ends, else on the
+        far side of the line; of a horizontal one above the line where it fits
+        in ``room``, else beside the outside arrow, away from the middle of the
+        drawing.
+
+        Parameters
+        ----------
+        a, b : float
+            The two ends [m] on the measured axis.
+        line : float
+            Where the dimension line runs, on the other axis [m].
+        text : str
+        vertical : bool
+        feature : tuple of float or None
+            Where on the other axis the extension lines start at ``a`` and
+            ``b`` (the part's edges); None: the dimension line spans the part.
+        room : float or None
+            A horizontal dimension's text may be this wide, centred [m] (it
+            must clear the next extension lines out); None: the dimension's length.
+        beside : {1, -1} or None
+            Put a horizontal dimension's text beside its line, right (1) or
+            left (-1); None: above where it fits, else away from the middle.
+        """
+        ax, d = self.ax, self.d
+        lo, hi = min(a, b), max(a, b)
+
+        def point(along, across):
+            return (across, along) if vertical else (along, across)
+
+        away = 1.0 if feature is None or line >= feature[0] else -1.0   # from the part towards the line
+        if feature is not None:
+            for end, start in zip((a, b), feature):
+                p0, p1 = point(end, start + away * d(_EXT_GAP)), point(end, line + away * d(_EXT_OVER))
+                ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color="black", lw=0.5, solid_capstyle="butt")
+        length = (hi - lo) * self.scale
+        inside = length > 0.32
+        arrow = {"lw": 0.7, "color": "black", "mutation_scale": 7, "shrinkA": 0, "shrinkB": 0}
+        if inside:
+            ax.annotate("", point(lo, line), point(hi, line), arrowprops={"arrowstyle": "<|-|>", **arrow})
+        else:   # too short for arrows inside: arrows from outside, pointing in
+            ax.plot(*zip(point(lo, line), point(hi, line)), color="black", lw=0.7)
+            for tip, tail in ((lo, lo - d(0.16)), (hi, hi + d(0.16))):
+                ax.annotate("", point(tip, line), point(tail, line), arrowprops={"arrowstyle": "-|>", **arrow})
+        fits = _text_width(text) < length - 0.12
+        off = d(_EXT_OVER + 0.03)
+        if vertical:
+            side = -1.0 if fits or (feature is not None and away < 0) else away
+            ax.text(line + side * off, 0.5 * (lo + hi), text, rotation=90, rotation_mode="anchor",
+                    ha="center", va="bottom" if side < 0 else "top", fontsize=_DIM_FONT)
+        elif beside is None and feature is not None and \
+                _text_width(text) < max(length, (room or 0.0) * self.scale) - 0.08:
+            ax.text(0.5 * (lo + hi), line + off, text, ha="center", va="bottom", fontsize=_DIM_FONT)
+        else:
+            right = beside > 0 if beside is not None else 0.5 * (lo + hi) >= 0
+            gap = d(0.2) if not inside else d(0.06)
+            ax.text(hi + gap if right else lo - gap, line, text, ha="left" if right else "right",
+                    va="center", fontsize=_DIM_FONT)
+
+
+def _section_parts(c):
+    """The hatched blocks of the axial half-section: (name, r_inner, r_outer, axial width) [m], inner first,
+    and the arms (r_inner, r_outer, major, minor) or None."""
+    r_o = c.d_outer / 2.0
+    r_bore = (c.bore or 0.0) / 2.0
+    if c.geometry == "disc":
+        return [("disc", r_bore, r_o, c.b)], None
+    r_i = c.d_inner / 2.0
+    rim = ("rim", r_i, r_o, c.b)
+    if c.geometry == "rim_web":
+        if not c.bore:
+            return [("web", 0.0, r_i, c.t_web), rim], None
+        return [("hub", r_bore, c.d_hub / 2.0, c.l_hub), ("web", c.d_hub / 2.0, r_i, c.t_web), rim], None
+    if c.geometry == "rim_arms":
+        return [("hub", r_bore, c.d_hub / 2.0, c.l_hub), rim], (c.d_hub / 2.0, r_i, c.arm_major, c.arm_minor)
+    return [rim], None
+
+
+def _outline(blocks):
+    """The outline of contiguous centred blocks (the upper half), as polygon vertices."""
+    right = []
+    for _name, r0, r1, w in blocks:
+        right += [(w / 2.0, r0), (w / 2.0, r1)]
+    return right + [(-x, y) for x, y in reversed(right)]
+
+
+def _groups(blocks):
+    """Blocks that touch (one outline each)."""
+    out = [[blocks[0]]]
+    for block in blocks[1:]:
+        if math.isclose(block[1], out[-1][-1][2], rel_tol=1e-9, abs_tol=1e-12):
+            out[-1].append(block)
+        else:
+            out.append([block])
+    return out
+
+
 def plot_cross_section(candidate, ax=None):
-    """Dimensioned axial cross-section of a designed rim or disc (half above the axis, mirrored)."""
-    from matplotlib.patches import Rectangle
+    """Dimensioned axial section of a designed wheel, mirrored about the axis, dimensions in mm.
 
-    ax = _axes(ax, figsize=(6, 6))
+    The hub (bore to D_hub, length l_hub), the web (t_web) and the rim (H x B)
+    are drawn hatched as one casting; the arms of a ``rim_arms`` wheel are
+    drawn unhatched (they are not cut: the drafting rule for spokes) with
+    their elliptical section revolved into the view, and a small front view
+    beside the section shows their number. A bare rim or disc draws alone.
+
+    Parameters
+    ----------
+    candidate : flyopt.design.result.Candidate
+        A feasible design.
+    ax : matplotlib Axes, optional
+        Where to draw the section; by default a new figure sized so that the
+        dimensions are legible (and, for arms, with the front view beside it).
+
+    Returns
+    -------
+    matplotlib Axes
+        The section. Every hatched block is a Rectangle whose ``gid`` is its
+        part and half: ``"rim+"``, ``"hub-"``...; the revolved arm section an
+        Ellipse with gid ``"arm_section"``.
+    """
+    from matplotlib.patches import Ellipse, Polygon, Rectangle
+
     c = candidate
-    r_out, r_in, b = c.d_outer / 2, c.d_inner / 2, c.b
-    for sign in (1, -1):
-        low, high = (r_in, r_out) if sign > 0 else (-r_out, -r_in)
-        ax.add_patch(Rectangle((-b / 2, low), b, high - low, facecolor="#b0b7c3", edgecolor="black", hatch="//"))
-    ax.axhline(0, color="black", ls="-.", lw=0.8)
-    pad = 0.12 * r_out
-    x_dim = b / 2 + pad
-
-    def dim(x, y0, y1, text):
-        ax.annotate("", (x, y0), (x, y1), arrowprops={"arrowstyle": "<->", "lw": 0.8})
-        ax.text(x + 0.03 * r_out, 0.5 * (y0 + y1), text, rotation=90, ha="left", va="center", fontsize=8,
-                backgroundcolor="white")
-
-    dim(x_dim, -r_out, r_out, f"D_outer {c.d_outer * 1000:.4g} mm")
-    if r_in > 0:
-        dim(x_dim + pad, -r_in, r_in, f"D_inner {c.d_inner * 1000:.4g} mm")
-    ax.annotate("", (-b / 2, r_out + pad / 2), (b / 2, r_out + pad / 2), arrowprops={"arrowstyle": "<->", "lw": 0.8})
-    ax.annotate(f"B {b * 1000:.4g} mm", (0, r_out + pad / 2), ha="center", va="bottom", fontsize=8)
+    if not c.feasible or c.d_outer is None:
+        raise ValueError(f"{c.material} on {c.shaft} is not a design: nothing to draw")
+    blocks, arms = _section_parts(c)
+    r_o = c.d_outer / 2.0
+    w_max = max([w for *_x, w in blocks] + ([arms[3]] if arms else []))
+    has_hub = blocks[0][0] == "hub"
+    has_rim = blocks[-1][0] == "rim"
+    bored = blocks[0][0] in ("hub", "disc") and blocks[0][1] > 0
+    # dimension lines: right of the section the diameters, inner to outer; above it the rim's width
+    diameters = []
+    if bored:
+        diameters.append((blocks[0][1], blocks[0][3] / 2.0, "bore"))
+    if has_hub:
+        diameters.append((blocks[0][2], blocks[0][3] / 2.0, "D_hub"))
+    if has_rim:
+        diameters.append((blocks[-1][1], c.b / 2.0, "D_inner"))
+    diameters.append((r_o, c.b / 2.0, "D_outer"))
+    n_right = len(diameters)
+    left_in = (_DIM_FIRST + 0.45) if has_rim else 0.3           # H (and the arm's a) on the left
+    right_in = _DIM_FIRST + _DIM_STEP * (n_right - 1) + 0.3
+    top_in = _DIM_FIRST + 0.25
+    bottom_in = 0.25
+    own = ax is None
+    if own:
+        plt = _pyplot()
+        scale = min(_SECTION_HEIGHT / (2 * r_o), 5.0 / w_max)      # [in/m]
+        width_in = w_max * scale + left_in + right_in
+        height_in = 2 * r_o * scale + top_in + bottom_in
+        front_in = 0.62 * 2 * r_o * scale + 0.6 if arms else 0.0   # the front view, smaller
+        title_in, margin = 0.75, 0.3
+        fig_w = max(width_in + front_in + 2 * margin, 7.0)
+        fig_h = height_in + title_in + 2 * margin
+        fig = plt.figure(figsize=(fig_w, fig_h))
+        x0 = (fig_w - width_in - front_in) / 2.0
+        ax = fig.add_axes([x0 / fig_w, margin / fig_h, width_in / fig_w, height_in / fig_h])
+        if arms:
+            size = 0.62 * 2 * r_o * scale + 0.3
+            front = fig.add_axes([(x0 + width_in + 0.3) / fig_w, (margin + (height_in - size) / 2) / fig_h,
+                                  size / fig_w, size / fig_h])
+            _front_view(front, c, arms)
+    else:
+        box = ax.get_position()
+        fig_w, fig_h = ax.figure.get_size_inches()
+        scale = min((box.height * fig_h - top_in - bottom_in) / (2 * r_o),
+                    (box.width * fig_w - left_in - right_in) / w_max)
+        scale = max(scale, 1e-9)
+    sheet = _Sheet(ax, scale)
+    d = sheet.d
+    for group in _groups(blocks):
+        for sign in (1, -1):
+            for name, r0, r1, w in group:
+                y = r0 if sign > 0 else -r1
+                ax.add_patch(Rectangle((-w / 2.0, y), w, r1 - r0, gid=f"{name}{'+' if sign > 0 else '-'}",
+                                       **_SECTION_HATCH))
+        upper = _outline(group)
+        if group[0][1] > 0:      # a bore: the halves are two sections
+            outlines = [upper, [(x, -y) for x, y in upper]]
+        else:                    # solid to the centre: one section, no line on the axis
+            right = upper[: len(upper) // 2]
+            side = [(x, -y) for x, y in reversed(right)] + right[1:]
+            outlines = [side + [(-x, y) for x, y in reversed(side)]]
+        for outline in outlines:
+            ax.add_patch(Polygon(outline, closed=True, fill=False, edgecolor="black", lw=1.2))
+    if arms:
+        r0, r1, major, minor = arms
+        for sign in (1, -1):
+            ax.add_patch(Rectangle((-minor / 2.0, r0 if sign > 0 else -r1), minor, r1 - r0, fill=False,
+                                   edgecolor="black", lw=1.0, gid=f"arms{'+' if sign > 0 else '-'}"))
+        middle = 0.5 * (r0 + r1)
+        ax.add_patch(Ellipse((0.0, middle), minor, major, gid="arm_section", zorder=3, **_SECTION_HATCH))
+        ax.add_patch(Ellipse((0.0, middle), minor, major, fill=False, edgecolor="black", lw=1.0, zorder=3))
+    # the axis: dash-dot, a little past the outline
+    reach = w_max / 2.0 + d(0.06)   # short of the text of the first diameter
+    ax.plot([-reach, reach], [0, 0], color="black", lw=0.6, ls=(0, (12, 3, 2, 3)))
+    # diameters, right of the section
+    for k, (r, x_edge, _name) in enumerate(diameters):
+        line = w_max / 2.0 + d(_DIM_FIRST + _DIM_STEP * k)
+        sheet.linear(-r, r, line, f"Ø{_mm_text(2 * r)}", vertical=True, feature=(x_edge, x_edge))
+    # the width above (nothing else is there: its text may overhang the extension lines)
+    sheet.linear(-c.b / 2.0, c.b / 2.0, r_o + d(_DIM_FIRST), f"B {_mm_text(c.b)}", vertical=False,
+                 feature=(r_o, r_o), room=c.b + d(1.0))
+    if has_hub:   # the hub's length just outside it (not above the rim: its extension lines would
+        # run the height of the drawing and read as outlines), its text left, clear of the diameters
+        hub = blocks[0]
+        sheet.linear(-hub[3] / 2.0, hub[3] / 2.0, hub[2] + d(0.22), f"l_hub {_mm_text(hub[3])}",
+                     vertical=False, feature=(hub[2], hub[2]), beside=-1)
+    if has_rim:
+        rim = blocks[-1]
+        line = -w_max / 2.0 - d(_DIM_FIRST)
+        sheet.linear(rim[1], rim[2], line, f"H {_mm_text(rim[2] - rim[1])}", vertical=True,
+                     feature=(-c.b / 2.0, -c.b / 2.0))
+    # web or arm thickness, across it in the lower half
+    thin = [b for b in blocks if b[0] == "web"]
+    if thin:
+        _name, r0, r1, w = thin[0]
+        sheet.linear(-w / 2.0, w / 2.0, -0.5 * (r0 + r1), f"t_web {_mm_text(w)}", vertical=False)
+    if arms:
+        r0, r1, major, minor = arms
+        middle = 0.5 * (r0 + r1)
+        sheet.linear(-minor / 2.0, minor / 2.0, -middle, f"a/2 {_mm_text(minor)}", vertical=False)
+        sheet.linear(middle - major / 2.0, middle + major / 2.0, -w_max / 2.0 - d(_DIM_FIRST),
+                     f"a {_mm_text(major)}", vertical=True, feature=(0.0, 0.0))
     ax.set_aspect("equal")
-    ax.set_xlim(-b / 2 - 2 * pad, b / 2 + 4 * pad)
-    ax.set_ylim(-r_out - pad, r_out + 1.5 * pad)
-    ax.set(xlabel="axial [m]", ylabel="radial [m]",
-           title=f"{c.material} {c.geometry} on {c.shaft}: {c.mass:.4g} kg, v = {c.rim_speed:.3g} m/s")
+    ax.set_xlim(-w_max / 2.0 - d(left_in), w_max / 2.0 + d(right_in))
+    ax.set_ylim(-r_o - d(bottom_in), r_o + d(top_in))
+    ax.set_axis_off()
+    what = {"rim_arms": f"rim on {c.n_arms} arms", "rim_web": "rim and web", "thin_rim": "thin rim"}.get(
+        c.geometry, c.geometry)
+    title = (f"Flywheel, {what}: {c.material}, {c.mass:.4g} kg, J = {c.j_flywheel:.4g} kg·m² on {c.shaft}\n"
+             f"axial section{', arm section revolved' if arms else ''}, dimensions in mm")
+    if own:   # the figure is this drawing's: its title over both views
+        ax.figure.suptitle(title, fontsize=10)
+    else:
+        ax.set_title(title, fontsize=9)
     return ax
+
+
+def _front_view(ax, c, arms):
+    """A small front view of an arms wheel: rim, hub, bore, key seat and the arms, not dimensioned."""
+    from matplotlib.patches import Circle, Polygon, Rectangle, Wedge
+
+    r_o, r_i = c.d_outer / 2.0, c.d_inner / 2.0
+    r_hub, r_bore = c.d_hub / 2.0, (c.bore or 0.0) / 2.0
+    grey = {"facecolor": "#e8ebf0", "edgecolor": "black", "lw": 0.9}
+    ax.add_patch(Wedge((0, 0), r_o, 0, 360, width=r_o - r_i, **grey))
+    half = arms[2] / 2.0
+    for k in range(c.n_arms):
+        angle = math.pi / 2 + 2 * math.pi * k / c.n_arms
+        u = np.array([math.cos(angle), math.sin(angle)])
+        v = np.array([-u[1], u[0]])
+        # the arm's sides run from the hub circle to the rim circle
+        corners = []
+        for side in (-half, half):
+            for r in (r_hub, r_i):
+                along = math.sqrt(max(r * r - side * side, 0.0))
+                corners.append(tuple(along * u + side * v))
+        corners = [corners[0], corners[1], corners[3], corners[2]]
+        ax.add_patch(Polygon(corners, closed=True, gid="arm", **grey))
+    ax.add_patch(Circle((0, 0), r_hub, **grey))
+    ax.add_patch(Circle((0, 0), r_bore, facecolor="white", edgecolor="black", lw=0.9))
+    if c.key:
+        b_key, t2 = c.key["b"], c.key["t2"]
+        ax.add_patch(Rectangle((-b_key / 2, r_bore - 0.002 * r_o), b_key, t2 + 0.002 * r_o, facecolor="white",
+                               edgecolor="black", lw=0.9))
+    reach = 1.08 * r_o
+    for xs, ys in (([-reach, reach], [0, 0]), ([0, 0], [-reach, reach])):
+        ax.plot(xs, ys, color="black", lw=0.5, ls=(0, (12, 3, 2, 3)))
+    ax.set_aspect("equal")
+    ax.set_xlim(-1.1 * r_o, 1.1 * r_o)
+    ax.set_ylim(-1.1 * r_o, 1.1 * r_o)
+    ax.set_axis_off()
+    ax.set_title(f"front view: {c.n_arms} arms of elliptical section\n{_mm_text(arms[2])} × "
+                 f"{_mm_text(arms[3])} (a × a/2)", fontsize=_DIM_FONT)
+
+
+#: Colours of the stress curves.
+_STRESS_COLOURS = {"sr": "tab:blue", "st": "tab:red", "vm": "black"}
+#: Shades of the parts' spans, inner to outer.
+_PART_SHADES = ("#eef1f6", "#f8f4ea")
+
+
+def plot_stress(candidate, profile, beams=(), omega=None, ductile=True, ax=None):
+    """sigma_r, sigma_t and von Mises over the radius at omega_max, each part's span and allowable.
+
+    Parameters
+    ----------
+    candidate : flyopt.design.result.Candidate
+        A feasible design with its ``parts`` and ``stress`` (the check the
+        design carries: each part's governing stress and allowable).
+    profile : list of (part, r, sr, st, vm)
+        The stresses of the disc parts over their radii [m, Pa], from
+        :func:`flyopt.design.strength.profile` at the same speed.
+    beams : list of (part, r, sr, st)
+        The parts of a ``rim_arms`` wheel the texts treat as beams: the arms'
+        root stress (a radial stress at the hub) and the rim's combined hoop
+        and bending stress (at its mean radius) [m, Pa].
+    omega : float or None
+        The speed the stresses are at, on the wheel's shaft [rad/s] (for the title).
+    ductile : bool
+        Whether the governing stress is von Mises (True) or the largest
+        principal stress (False).
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib Axes
+        Lines labelled "σ_r", "σ_t" and "von Mises" (the first part's; the
+        others' carry a leading underscore), in MPa over mm.
+    """
+    c = candidate
+    if not c.feasible or not c.parts:
+        raise ValueError(f"{c.material} on {c.shaft} is not a design: no stresses to draw")
+    if not c.stress:
+        raise ValueError(f"the design of {c.material} carries no stresses (its notes: "
+                         f"{'; '.join(c.notes) or 'none'})")
+    ax = _axes(ax, figsize=(9, 5.2))
+    mm, mpa = 1e3, 1e-6
+    checked = {p["part"]: p for p in c.stress.get("parts", [])}
+    spans = {p["name"]: (p["r_inner"], p["r_outer"]) for p in c.parts}
+    # the parts' spans, shaded and named at the top
+    for k, p in enumerate(c.parts):
+        r0, r1 = p["r_inner"] * mm, p["r_outer"] * mm
+        ax.axvspan(r0, r1, color=_PART_SHADES[k % 2], lw=0, zorder=0)
+        ax.axvline(r0, color="gray", lw=0.5, zorder=1)
+        narrow = (r1 - r0) < 0.06 * c.d_outer / 2 * mm
+        ax.text(0.5 * (r0 + r1), 0.985, p["name"], transform=ax.get_xaxis_transform(), ha="center", va="top",
+                fontsize=8, color="dimgray", rotation=90 if narrow else 0)
+    # the curves of the disc parts
+    names = {"sr": "σ_r", "st": "σ_t", "vm": "von Mises"}
+    for k, (part, r, sr, st, vm) in enumerate(profile):
+        for key, values, style in (("sr", sr, "-"), ("st", st, "-"), ("vm", vm, "--")):
+            ax.plot(np.asarray(r) * mm, np.asarray(values) * mpa, style, color=_STRESS_COLOURS[key], lw=1.5,
+                    label=names[key] if k == 0 else f"_{names[key]}")
+    # each part's allowable over its span
+    allowables = [(name, checked[name]["allowable"]) for name in spans
+                  if name in checked and _finite_positive(checked[name].get("allowable"))]
+    same = len({a for _n, a in allowables}) == 1
+    for k, (name, allowable) in enumerate(allowables):
+        label = (f"allowable {allowable * mpa:.4g} MPa" if same else "allowable of each part") if k == 0 else \
+            "_allowable"
+        ax.hlines(allowable * mpa, spans[name][0] * mm, spans[name][1] * mm, colors=DEFICIT, linestyles=":",
+                  lw=1.8, label=label)
+        if not same:
+            ax.annotate(f"{allowable * mpa:.4g}", (0.5 * (spans[name][0] + spans[name][1]) * mm, allowable * mpa),
+                        xytext=(0, 2), textcoords="offset points", ha="center", va="bottom", fontsize=7,
+                        color=DEFICIT)
+    # the beams of an arms wheel
+    beam_words = {"arms": ("arm root (pull + bending)", "^"), "rim": ("rim (hoop + bending)", "s")}
+    for part, r, sr, st in beams:
+        value = sr if part == "arms" else st
+        words, marker = beam_words.get(part, (part, "o"))
+        ax.plot([r * mm], [value * mpa], marker, color="tab:purple", ms=8, zorder=4,
+                label=f"{words}: {value * mpa:.4g} MPa")
+        at = r / (c.d_outer / 2)       # near an end of the axis the label turns inwards
+        ha, dx = ("left", -4) if at < 0.15 else ("right", 4) if at > 0.85 else ("center", 0)
+        ax.annotate(f"{words}\n{value * mpa:.4g} MPa", (r * mm, value * mpa), xytext=(dx, -12),
+                    textcoords="offset points", ha=ha, va="top", fontsize=8, color="tab:purple")
+    # the governing point
+    where = c.stress.get("where") or {}
+    governing = checked.get(where.get("part"))
+    if governing is not None:
+        measure = "von Mises" if ductile else "largest principal"
+        utilisation = governing["stress"] / governing["allowable"] if governing.get("allowable") else math.nan
+        x, y = governing["radius"] * mm, governing["stress"] * mpa
+        ax.plot([x], [y], "o", ms=11, mfc="none", mec="black", mew=1.5, zorder=5,
+                label=f"governing: {governing['part']}, {measure} {y:.4g} MPa at r = {x:.4g} mm "
+                      f"({100 * utilisation:.0f} % of allowable)")
+    ax.axhline(0, color="black", lw=0.6)
+    top = max([a for _n, a in allowables] + [governing["stress"] if governing else 0.0]) * mpa
+    r_in, r_out = min(spans.values())[0] * mm, c.d_outer / 2 * mm
+    # from the axis, unless the wheel is a ring far from it (a bare rim): then its own span
+    left = 0.0 if r_in < 0.4 * r_out else r_in - 0.08 * (r_out - r_in)
+    ax.set_xlim(left, r_out + 0.03 * (r_out - left))
+    low = min([0.0] + [float(np.min(np.minimum(sr, st))) * mpa for _p, _r, sr, st, _v in profile])
+    ax.set_ylim(low - 0.05 * top, 1.25 * top if top > 0 else 1.0)
+    speed = f" = {omega:.5g} rad/s ({rad_s_to_rpm(omega):.5g} rpm)" if omega else ""
+    ax.set(xlabel="radius r [mm]", ylabel="stress [MPa]",
+           title=f"{c.material} {c.geometry} on {c.shaft}: stresses at ω_max{speed}")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
+    return ax
+
+
+def _finite_positive(value):
+    return value is not None and math.isfinite(value) and value > 0
 
 
 def plot_speed(scene, analysis, speed=None, simulation=None, ax=None):
