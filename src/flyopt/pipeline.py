@@ -95,8 +95,56 @@ def design_scene(scene, analysis, solver_options=None, method="auto"):
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
     torque = analysis.flywheel_torque() if needs_torque(inputs) else None
-    return design_flywheel(analysis.j_margin, analysis.omega_max, inputs.shafts, inputs.materials, inputs.spec,
-                           solver_options=solver_options, method=method, torque=torque)
+    result = design_flywheel(analysis.j_margin, analysis.omega_max, inputs.shafts, inputs.materials, inputs.spec,
+                             solver_options=solver_options, method=method, torque=torque)
+    return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
+
+
+#: Relative step of the central difference of the design's mass in delta.
+DELTA_STEP = 1e-4
+
+
+def _with_delta_sensitivity(scene, analysis, result, solver_options, method):
+    """The winner's d(mass)/d(delta), by designing its combination again at delta (1 +- DELTA_STEP).
+
+    delta moves the required inertia and the highest speed together, through
+    whichever model sized the flywheel, so the whole requirement is recomputed
+    (the same model, forced) rather than differentiated; the truncation error
+    of the central difference is O(DELTA_STEP^2) of the curvature, the
+    round-off that of the requirement (1e-10 relative) over 2e-4.
+    """
+    import dataclasses
+
+    from flyopt.design import design_flywheel, design_inputs
+    from flyopt.design.wheel_design import needs_torque
+
+    best = result.best
+    if best is None or scene.delta is None or analysis.machine is None and analysis.indicator is None:
+        return result
+    masses = []
+    for sign in (1.0, -1.0):
+        delta = scene.delta * (1.0 + sign * DELTA_STEP)
+        try:
+            moved = analyse(dataclasses.replace(scene, delta=delta), analysis.model)
+            inputs = design_inputs(dataclasses.replace(scene, delta=delta))
+            spec = inputs.spec if best.n_arms is None else dataclasses.replace(inputs.spec, arms=(best.n_arms,))
+            torque = moved.flywheel_torque() if needs_torque(inputs) else None
+            again = design_flywheel(moved.j_margin, moved.omega_max,
+                                    [s for s in inputs.shafts if s.name == best.shaft],
+                                    [m for m in inputs.materials if m.name == best.material], spec,
+                                    solver_options=solver_options, method=method, torque=torque)
+        except (ValueError, RuntimeError):
+            return result
+        if again.best is None:
+            return result
+        masses.append(again.best.mass)
+    slope = (masses[0] - masses[1]) / (2.0 * DELTA_STEP * scene.delta)
+    entry = {"limit": "delta", "unit": "-", "dmass_dlimit": slope,
+             "text": f"delta: +0.01 (e.g. {scene.delta:.3g} to {scene.delta + 0.01:.3g}) changes the mass "
+                     f"by {slope * 0.01:+.3g} kg (central difference of the whole design)"}
+    winner = dataclasses.replace(best, sensitivities=tuple(best.sensitivities) + (entry,))
+    candidates = tuple(winner if c is best else c for c in result.candidates)
+    return dataclasses.replace(result, best=winner, candidates=candidates)
 
 
 def verify(scene, analysis, design_result=None):

@@ -252,7 +252,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
               "max_width": spec.max_width, "j_shaft": combo.j_shaft,
               "allowable": {p.part: p.allowable for p in checked.parts} if checked else {},
               "allow_power": 2 if getattr(m, "ductile", False) else 1,
-              "allow_param": solution.allow_params}
+              "allow_param": solution.allow_params, "min_wall": wheel_design._min_wall(spec, m)}
     sensitivities = (wheel_design.sensitivities(solution, mass, limits)
                      if spec.objective != "outer_diameter" else ())
     common.pop("bore")

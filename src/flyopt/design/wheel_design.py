@@ -369,6 +369,13 @@ def sensitivities(solution, mass, problem_limits):
             dm = -mass * lam[row] / value         # rows are log(limit)
             add(row, unit, dm, f"{what} binds: +{step * factor:g} {words} changes the mass by "
                                f"{dm * step:+.3g} kg", value)
+    wall = problem_limits.get("min_wall") or 0.0
+    at_wall = sum(v for n, v in solution.lam_x.items() if v < 0 and n in ("h", "b", "t_web", "arm_major"))
+    if wall > 0 and (at_wall or lam.get("hub_wall", 0.0)):
+        # variables are log(dimension) with lower bounds log(min_wall); the hub's wall row is in metres
+        dm = -mass * at_wall / wall - mass * lam.get("hub_wall", 0.0)
+        add("min_wall", "m", dm, f"min_wall binds: -1 mm of the thinnest section changes the mass by "
+                                 f"{-dm * 1e-3:+.3g} kg", wall)
     if abs(lam.get("inertia", 0.0)) > 0:
         dm = -mass * lam["inertia"] / problem_limits["j_shaft"]
         add("inertia", "kg*m^2", dm, f"each +1 % of required inertia adds "
