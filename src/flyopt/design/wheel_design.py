@@ -250,6 +250,7 @@ def _disc_closed_form(combo, spec, bore, material):
     if by_stress:
         dm_dsigma = dm_db * slope / (2.0 * b)
         lam_p["allow_disc"] = -dm_dsigma * sigma / (mass * power)
+        lam_g["stress_disc"] = lam_p["allow_disc"]     # the stress row binds (its name in the binding list)
     else:
         lam_g["max_outer_diameter"] = -(dm_db / 2.0) * spec.max_outer_diameter / mass
     structure = wheel_nlp.WheelStructure("disc", "stress", power == 2, bool(bore), 0, spec.has_envelope,
