@@ -218,7 +218,7 @@ def _net_torque_samples(analysis):
     return np.concatenate([j_machine, j_machine]), differences
 
 
-def analyse(scene, model=None):
+def analyse(scene, model=None, *, like=None):
     """Analyse a scene's cycle and size the flywheel it needs.
 
     Parameters
@@ -227,6 +227,10 @@ def analyse(scene, model=None):
     model : {"energy", "energy_mass", "dynamic"}, optional
         Force a model; by default the cheapest one that is exact for the
         scene (flyopt.sizing.models.choose).
+    like : Analysis, optional
+        The analysis of the same scene at another delta: its reduced machine
+        (and the compiled models cached on it, which do not depend on delta)
+        is reused instead of reducing the scene again.
 
     Returns
     -------
@@ -240,12 +244,12 @@ def analyse(scene, model=None):
         The periodic solution did not converge.
     """
     try:
-        return _analyse(scene, model)
+        return _analyse(scene, model, like)
     except (SceneError, NonPeriodicCycle) as err:
         raise err.with_source(scene.source) from None
 
 
-def _analyse(scene, forced=None):
+def _analyse(scene, forced=None, like=None):
     from flyopt.machine.reduce import reduce
     from flyopt.sizing import choose as models
 
@@ -266,7 +270,13 @@ def _analyse(scene, forced=None):
         lazy = {"models": ({"model": model, "exact": True, "j_required": j_margin, "achieved_delta": scene.delta,
                             "j_error": 0.0, "note": ""},), "startup": None}
     else:
-        machine = reduce(scene)
+        if like is not None and like.machine is not None:
+            import dataclasses
+
+            base = like.machine
+            machine = dataclasses.replace(base, delta=scene.delta, _cache=base._cache)
+        else:
+            machine = reduce(scene)
         ew = machine.angle_only()
         ind = energy_indicator(ew.driving, ew.resisting, scene.cycle_angle)
         model, reason = models.choose(machine)

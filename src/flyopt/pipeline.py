@@ -125,7 +125,7 @@ def _with_delta_sensitivity(scene, analysis, result, solver_options, method):
     for sign in (1.0, -1.0):
         delta = scene.delta * (1.0 + sign * DELTA_STEP)
         try:
-            moved = analyse(dataclasses.replace(scene, delta=delta), analysis.model)
+            moved = analyse(dataclasses.replace(scene, delta=delta), analysis.model, like=analysis)
             inputs = design_inputs(dataclasses.replace(scene, delta=delta))
             spec = inputs.spec if best.n_arms is None else dataclasses.replace(inputs.spec, arms=(best.n_arms,))
             torque = moved.flywheel_torque() if needs_torque(inputs) else None
