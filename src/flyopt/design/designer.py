@@ -247,7 +247,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     cost = mass * m.cost if m.cost is not None else None
     objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
     structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec,
-                                              combo.bore)
+                                              combo.bore, checked)
     limits = {"envelope": spec.max_outer_diameter, "max_rim_speed": combo.v_max,
               "max_width": spec.max_width, "j_shaft": combo.j_shaft,
               "allowable": {p.part: p.allowable for p in checked.parts} if checked else {},

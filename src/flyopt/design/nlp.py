@@ -131,14 +131,24 @@ def get_model(structure: ModelStructure, solver_options: Mapping | None = None) 
         Holds the ``casadi.nlpsol`` function and the names of its variables
         and constraint rows.
     """
+    return cached_model(_MODEL_CACHE, BUILDS, _build_model, structure, solver_options)
+
+
+def cached_model(cache, builds, build, structure, solver_options=None):
+    """The NLP of ``structure`` from ``cache``, built by ``build(structure, options)`` on first use.
+
+    The one place where solver options are merged over :data:`DEFAULT_SOLVER_OPTIONS`
+    and a built NLP is kept per structure and options (``builds["count"]`` counts the builds);
+    the textbook NLP and the whole wheel's (flyopt.design.wheel_nlp) share it.
+    """
     options = dict(DEFAULT_SOLVER_OPTIONS)
     options.update(solver_options or {})
     key = (structure, _options_key(options))
-    model = _MODEL_CACHE.get(key)
+    model = cache.get(key)
     if model is None:
-        model = _build_model(structure, options)
-        _MODEL_CACHE[key] = model
-        BUILDS["count"] += 1
+        model = build(structure, options)
+        cache[key] = model
+        builds["count"] += 1
     return model
 
 def _build_model(structure, options):

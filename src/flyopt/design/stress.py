@@ -615,7 +615,9 @@ def thin_ring_hoop_stress(density, rim_speed):
     .. [1] Khurmi and Gupta, A Textbook of Machine Design, 2005, chapter 22,
        "Stresses in a flywheel rim".
     """
-    return density * rim_speed * rim_speed
+    from flyopt.design.geometry import hoop_stress
+
+    return hoop_stress(density, rim_speed)
 
 
 # --------------------------------------------------------------- numeric check

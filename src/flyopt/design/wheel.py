@@ -104,12 +104,11 @@ class Part:
 def _annulus(name, density, r_inner, r_outer, thickness, thin=False):
     """An annulus of constant thickness: m = pi rho t (r_o^2 - r_i^2), J = m (r_o^2 + r_i^2)/2
     (``thin``: J = m r_mean^2, the thin-rim model)."""
-    mass = math.pi * density * thickness * (r_outer * r_outer - r_inner * r_inner)
-    if thin:
-        r_mean = (r_outer + r_inner) / 2.0
-        inertia = mass * r_mean * r_mean
-    else:
-        inertia = mass * (r_outer * r_outer + r_inner * r_inner) / 2.0
+    from flyopt.design import geometry
+
+    d_mean, h = r_outer + r_inner, r_outer - r_inner      # an annulus is a rim of D_m and H
+    mass = geometry.rim_mass(d_mean, h, thickness, density)
+    inertia = geometry.thin_rim_inertia(mass, d_mean) if thin else geometry.rim_inertia(mass, d_mean, h)
     return Part(name, mass, inertia, r_inner, r_outer, thickness)
 
 

@@ -265,7 +265,7 @@ def _with(problem, **changes):
     return dataclasses.replace(problem, **changes)
 
 
-def structure_fields(material, geometry_name, dims, omega, torque, spec, bore):
+def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, checked=None):
     """The structural fields of a design (any geometry, any criterion).
 
     Returns
@@ -274,7 +274,9 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore):
         ``parts``, ``bore``, ``stress``, ``allowable_stress``,
         ``strength_safety``, ``burst_speed``, ``speed_margin``,
         ``unbalance_permissible``, ``key`` (values None where the material
-        lacks what they need; ``notes`` say why).
+        lacks what they need; ``notes`` say why). ``checked``: the
+        :func:`flyopt.design.strength.check_wheel` of these dims, when the
+        designer has made it already (it is not made twice).
     """
     out = {"bore": bore or None, "notes": []}
     parts = wheel.parts(geometry_name, dims, material.density)
@@ -290,7 +292,8 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore):
         out["notes"].append(f"material {material.name} gives no poisson_ratio: stresses not computed")
     else:
         try:
-            checked = strength.check_wheel(material, geometry_name, dims, omega, torque, spec.safety_factor)
+            if checked is None:
+                checked = strength.check_wheel(material, geometry_name, dims, omega, torque, spec.safety_factor)
         except ValueError as err:
             out["notes"].append(f"stresses not computed: {err}")
         else:

@@ -45,7 +45,7 @@ from typing import NamedTuple
 import casadi as ca
 
 from flyopt.design import wheel
-from flyopt.design.nlp import DEFAULT_SOLVER_OPTIONS, _CONVERGED, _options_key
+from flyopt.design.nlp import _CONVERGED, cached_model
 from flyopt.errors import SolverFailed
 
 __all__ = ["WheelStructure", "WheelProblem", "WheelSolution", "SAMPLES", "get_model", "solve", "BUILDS",
@@ -138,15 +138,7 @@ class WheelModel:
 
 def get_model(structure, solver_options=None):
     """The wheel NLP of a structure, built once per structure and solver options."""
-    options = dict(DEFAULT_SOLVER_OPTIONS)
-    options.update(solver_options or {})
-    key = (structure, _options_key(options))
-    model = _CACHE.get(key)
-    if model is None:
-        model = _build(structure, options)
-        _CACHE[key] = model
-        BUILDS["count"] += 1
-    return model
+    return cached_model(_CACHE, BUILDS, _build, structure, solver_options)
 
 
 def _build(structure, options):
