@@ -112,6 +112,7 @@ class Scene:
     materials: tuple = ()          # user materials ([[material]]), extending the built-in ones
     members: tuple = ()            # flyopt.machine.mechanism.Member of [[member]]: J_e(φ) and member loads
     mechanism: object = None       # SliderCrank or GearTrain of [mechanism]
+    drive: object = None           # flyopt.io.drive.DriveSpec of [drive]: the motor and ratio designed with the wheel
     source: str | None = field(default=None, compare=False)
 
     def material_library(self):
@@ -340,8 +341,12 @@ def from_dict(data, source=None):
         A field is missing, unknown or wrong.
     """
     files = Path(source).parent if source else Path()   # a points_file is relative to the scene file
+    if isinstance(data, dict) and "press" in data:      # a press from its process data (docs/flywheel-design.md, section 11)
+        from flyopt.io.press import scene_data
+
+        data = scene_data(data)
     top = _Table(data, "", {"title", "description", "machine", "torque", "shaft", "design", "material",
-                            "mechanism", "member", "sweep"})  # [sweep] is read by flyopt.studies.sweep.load_sweep
+                            "mechanism", "member", "sweep", "drive", "motor_option"})  # [sweep] is read by flyopt.studies.sweep.load_sweep
     machine = _Table(top.require("machine"), "machine",
                      {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"})
     omega = machine.quantity("speed", "angular_speed", required=True)
@@ -376,6 +381,11 @@ def from_dict(data, source=None):
                          "not net areas: their inertia varies with the angle")
     materials = _materials(top.get("material"))
     design, design_materials, design_shafts = _design(top.get("design", {}), shafts, materials)
+    drive = None
+    if top.has("drive") or top.has("motor_option"):
+        from flyopt.io.drive import drive_spec
+
+        drive = drive_spec(top.get("drive"), top.get("motor_option"), shafts)
     title = top.get("title", "")
     if not isinstance(title, str):
         raise SceneError("title", f"must be a string, got {shorten(title)}")
@@ -383,7 +393,7 @@ def from_dict(data, source=None):
                  j_constant=j_c, cycle_angle=cycle, efficiency=efficiency, driving=driving,
                  resisting=resisting, net=net, shafts=shafts, design=design,
                  design_materials=design_materials, design_shafts=design_shafts, materials=materials,
-                 members=members, mechanism=mechanism, source=source)
+                 members=members, mechanism=mechanism, drive=drive, source=source)
 
 
 # -- sections ------------------------------------------------------------------
