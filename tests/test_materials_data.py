@@ -128,3 +128,31 @@ def test_standard_grades_need_the_designs_safety_factor():
     assert MATERIALS["42crmo4_qt"].allowable(50 * MM, safety_factor=2.0) == 325 * MPA
     with pytest.raises(ValueError, match="en_gjl_250.*safety factor"):
         MATERIALS["en_gjl_250"].allowable(15 * MM)
+
+
+def test_every_builtin_hub_rule_is_a_rule_of_keys_toml():
+    """A material's hub rule names a hub_proportions row that exists (a wrong name would end a design)."""
+    import tomllib
+    from importlib import resources
+
+    from flyopt.design.materials import builtin_materials
+
+    rows = tomllib.loads(resources.files("flyopt").joinpath("data", "keys.toml").read_text())["hub_proportions"]
+    for name, material in builtin_materials(default_only=False).items():
+        assert material.hub_kind in rows, name
+
+
+def test_hub_rule_by_material_not_by_name():
+    """Cast irons keep the grey-iron hub (D/d 1.8-2) even when ductile; cast steel the steel row (1.6-1.8)."""
+    from flyopt.design.materials import builtin_materials, make_material
+
+    lib = builtin_materials(default_only=False)
+    assert {lib[n].hub_kind for n in lib if n.startswith("en_gjs")} == {"cast_iron"}
+    assert {lib[n].hub_kind for n in lib if n.startswith("en_gjl")} == {"cast_iron"}
+    assert lib["cast_iron"].hub_kind == "cast_iron"
+    assert lib["cast_steel"].hub_kind == "steel"
+    assert lib["42crmo4_qt"].hub_kind == "steel"
+    # a user's material without a rule: by its ductility, the larger hub when it is not known
+    assert make_material("x", 7800.0, max_rim_speed=40.0).hub_kind == "cast_iron"
+    assert make_material("y", 7800.0, tensile_strength=500e6, yield_strength=300e6, ductile=True).hub_kind == "steel"
+    assert make_material("z", 7800.0, max_rim_speed=40.0, hub_rule="steel").hub_kind == "steel"

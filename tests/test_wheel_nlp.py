@@ -773,8 +773,7 @@ def test_designs_meet_every_limit(case, material, j, torque, seat, spec):
             assert d.n_arms * d.arm_major <= math.pi * d.d_hub * (1.0 + LIMIT_RTOL), f"{what}: arms do not fit"
             assert minor <= min(d.b, d.l_hub) * (1.0 + LIMIT_RTOL), what
         if d.d_hub:                            # the textbook proportions of a keyed hub, and the key
-            kind = "cast_iron" if not material.ductile else "steel"
-            p = hub.hub_proportions(d.bore, kind)
+            p = hub.hub_proportions(d.bore, material.hub_kind)
             l_low = p.l_hub_min
             if torque:
                 l_low = max(l_low, hub.hub_length_for_key(torque, d.bore, material.bearing_pressure))

@@ -231,6 +231,10 @@ class Material:
     bearing_pressure : float or None
         Allowable surface pressure of a keyed hub of this material [Pa] (the
         DIN 6885 key check).
+    hub_rule : str or None
+        Which hub proportions of ``flyopt/data/keys.toml`` a keyed hub of
+        this material follows (``"cast_iron"``, ``"steel"``, ...); None: by
+        ductility (:attr:`hub_kind`).
 
     Raises
     ------
@@ -264,6 +268,7 @@ class Material:
     thickness_rule: str | None = None
     min_wall: float | None = None
     bearing_pressure: float | None = None
+    hub_rule: str | None = None
 
     def __post_init__(self):
         name = self.name
@@ -286,6 +291,9 @@ class Material:
                                          allow_none=True))
         set_("safety_factor", _number(self.safety_factor, "safety_factor [-]", name, minimum=1.0,
                                       allow_none=True))
+        if self.hub_rule is not None and (not isinstance(self.hub_rule, str) or not self.hub_rule.strip()):
+            raise ValueError(f"material {shorten(name)}: hub_rule must be the name of a hub rule, "
+                             f"got {shorten(self.hub_rule)}")
         self._check_strengths(set_)
         if self.max_rim_speed is None:
             set_("max_rim_speed", self._derived_rim_speed())
@@ -366,6 +374,18 @@ class Material:
         if self.ductile is None:
             return None
         return "von_mises" if self.ductile else "max_principal"
+
+    @property
+    def hub_kind(self) -> str:
+        """The hub proportions a keyed hub of this material follows (a ``hub_proportions`` row of keys.toml).
+
+        ``hub_rule`` when the material names one; otherwise ``"steel"`` for a
+        ductile material and ``"cast_iron"`` for a brittle one or one whose
+        ductility is not given (the larger hub, D/d 1.8-2: the safe side).
+        """
+        if self.hub_rule is not None:
+            return self.hub_rule
+        return "steel" if self.ductile else "cast_iron"
 
     def strength(self, thickness=None):
         """Tensile and yield strength at a section thickness.
@@ -516,7 +536,7 @@ def make_material(name, density, max_rim_speed=None, allowable_stress=None,
                   cost=None, source="", *, elastic_modulus=None, poisson_ratio=None,
                   tensile_strength=None, yield_strength=None, ductile=None,
                   safety_factor=None, strength_by_thickness=(), thickness_rule=None,
-                  min_wall=None, bearing_pressure=None, **unknown):
+                  min_wall=None, bearing_pressure=None, hub_rule=None, **unknown):
     """Build a user material, checking every field; the rim speed may be derived.
 
     Parameters
@@ -539,7 +559,7 @@ def make_material(name, density, max_rim_speed=None, allowable_stress=None,
         Where the numbers come from.
     elastic_modulus, poisson_ratio, tensile_strength, yield_strength, ductile,
     safety_factor, strength_by_thickness, thickness_rule, min_wall,
-    bearing_pressure
+    bearing_pressure, hub_rule
         As :class:`Material`, in SI units ([Pa], [-], [m]); keyword only.
 
     Returns
@@ -566,7 +586,7 @@ def make_material(name, density, max_rim_speed=None, allowable_stress=None,
                     tensile_strength=tensile_strength, yield_strength=yield_strength,
                     ductile=ductile, safety_factor=safety_factor,
                     strength_by_thickness=strength_by_thickness, thickness_rule=thickness_rule,
-                    min_wall=min_wall, bearing_pressure=bearing_pressure)
+                    min_wall=min_wall, bearing_pressure=bearing_pressure, hub_rule=hub_rule)
 
 
 def _material_from_table(name, table, origin):

@@ -63,7 +63,7 @@ def _min_wall(spec, material):
 
 def _hub_bounds(material, bore, torque):
     """(d_hub range, l_hub range, key note) of a hub on a seat of diameter ``bore``."""
-    kind = "cast_iron" if not material.ductile or material.name.startswith(("cast_iron", "en_gj")) else "steel"
+    kind = material.hub_kind
     p = hub.hub_proportions(bore, kind)
     l_low = p.l_hub_min
     pressure = getattr(material, "bearing_pressure", None)
