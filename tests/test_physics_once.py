@@ -69,7 +69,7 @@ def _with(scene, delta, envelope):
 def test_a_sweep_computes_neither_the_model_comparison_nor_the_startup(monkeypatch):
     """Only what is asked is computed: a sweep point needs J_F and ω_max, not the comparison of
     the cheaper models (which solves them again) nor the run-up time; the JSON of solve has both."""
-    from flyopt.analysis import _startup  # noqa: F401  (the name the analysis calls)
+    from flyopt.analysis import startup_run  # noqa: F401  (the name the analysis calls)
     from flyopt.sizing import choose
 
     def refuse(*args, **kwargs):
@@ -78,7 +78,7 @@ def test_a_sweep_computes_neither_the_model_comparison_nor_the_startup(monkeypat
     scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
     with monkeypatch.context() as patch:
         patch.setattr(choose, "compare", refuse)
-        patch.setattr("flyopt.analysis._startup", refuse)
+        patch.setattr("flyopt.analysis.startup_run", refuse)
         table = flyopt.sweep(scene, {"delta": "0.02,0.04"}, workers=1)
     assert (table["status"] == "designed").all()
     data = flyopt.solve(flyopt.load(PROBLEMS / "slider-crank-press.toml")).to_dict()

@@ -153,8 +153,11 @@ class Analysis:
             self._lazy["speed"] = _speed_curve(self)
         return self._lazy["speed"]
 
-    def flywheel_torque(self):
-        """The largest torque the required flywheel exchanges with the reference shaft [N*m], or None.
+    def flywheel_torque(self, j_flywheel=None):
+        """The largest torque a flywheel exchanges with the reference shaft [N*m], or None.
+
+        ``j_flywheel``: the flywheel at the reference shaft [kg*m^2]; default
+        the required one (``j_margin``).
 
         Its share J_F / J(phi) of the net torque |M_d - M_r| at the worst angle
         (:func:`flyopt.design.hub.flywheel_peak_torque`), over the torque curves
@@ -162,8 +165,10 @@ class Analysis:
         dependent torques are taken at the mean speed. None for a net-area scene
         (no curves) or when no flywheel is needed. Computed once.
         """
+        if j_flywheel is not None:
+            return _flywheel_torque(self, j_flywheel)
         if "flywheel_torque" not in self._lazy:
-            self._lazy["flywheel_torque"] = _flywheel_torque(self)
+            self._lazy["flywheel_torque"] = _flywheel_torque(self, self.j_margin)
         return self._lazy["flywheel_torque"]
 
     def net_torque_peak(self):
@@ -191,14 +196,14 @@ class Analysis:
         return out
 
 
-def _flywheel_torque(analysis):
+def _flywheel_torque(analysis, j_flywheel):
     from flyopt.design.hub import flywheel_peak_torque
 
     samples = _net_torque_samples(analysis)
-    if samples is None or analysis.j_margin <= 0.0:
+    if samples is None or j_flywheel <= 0.0:
         return None
     j_machine, differences = samples
-    return flywheel_peak_torque(analysis.j_margin, j_machine + analysis.j_margin, differences, 1.0)
+    return flywheel_peak_torque(j_flywheel, j_machine + j_flywheel, differences, 1.0)
 
 
 def _net_torque_samples(analysis):
@@ -293,7 +298,7 @@ def _analyse(scene, forced=None, like=None):
         chain = tuple({"index": k, "angle": float(a), "delta_e": float(e)}
                       for k, (a, e) in enumerate(zip(ind.chain_angle, ind.chain_delta_e)))
         lazy = {"models": lambda: tuple(models.compare(machine, model, ind, known=requirement)),
-                "startup": lambda: _startup(machine, omega_mean, max(j_margin, 0.0))}
+                "startup": lambda: startup_run(machine, omega_mean, max(j_margin, 0.0))}
     needed = j_margin > 0
     j_req = j_margin if needed else 0.0
     shafts = tuple(ShaftRequirement(
@@ -313,8 +318,8 @@ def _analyse(scene, forced=None, like=None):
         energy_chain=chain, shafts=shafts, indicator=ind, machine=machine, requirement=requirement)
 
 
-def _startup(machine, omega_target, j_flywheel):
-    """Run-up from rest to the mean speed, declutched: the motor against the inertia alone.
+def startup_run(machine, omega_target, j_flywheel):
+    """Run-up from rest to the mean speed, declutched: the motor against the inertia alone (:class:`StartupRun`).
 
     Induction motors use the Kloss curve here (the linear line is valid only
     near the rated point: at rest it would give 25 times the rated torque).
