@@ -1,0 +1,407 @@
+"""[press]: a press or shear from its process data, read and checked, and written as a scene.
+
+A scene with a [press] table gives the process instead of the torques::
+
+    [press]
+    strokes_per_minute = 12         # or stroke_period = "5 s"
+    energy_per_stroke = "15 kJ"     # or force = [[position, force], ...] over the working stroke,
+                                    # or punching = { thickness, shear_strength, hole_diameter or cut_length }
+    working_time = "2 s"            # or working_angle = "144 deg" of the crank
+    slowdown = 0.111                # (ω_top − ω_bottom)/ω_top over the working stroke; or delta,
+                                    # or flywheel_speed_min (with flywheel_speed)
+    flywheel_speed = "225 rpm"      # top speed of the flywheel shaft (optional)
+
+:func:`scene_data` checks it completely (every error a
+:class:`~flyopt.errors.SceneError` naming ``press.<field>`` and what is
+allowed) and returns the scene dictionary it stands for: [machine] (speed,
+delta, cycle), [torque] (the process load as the resisting torque over the
+crank angle; the driving torque an unknown constant unless the scene gives
+one, e.g. a motor) and, with ``flywheel_speed``, the flywheel's [[shaft]]. The
+scene reader (:func:`flyopt.io.scene.from_dict`) then reads that dictionary
+like any other, so analysis, design and sweeps run on their one path. The
+physics (the conversions) is :mod:`flyopt.machine.press`; the model is the
+textbook's (docs/flywheel-design.md, sections 2, 8 and 11).
+"""
+
+import difflib
+import math
+
+from flyopt.errors import SceneError, shorten
+from flyopt.machine import press as physics
+from flyopt.units import quantity
+
+PRESS_KEYS = ("strokes_per_minute", "stroke_period", "energy_per_stroke", "force", "force_unit", "position_unit",
+              "punching", "working_time", "working_angle", "slowdown", "delta", "flywheel_speed",
+              "flywheel_speed_min", "description")
+"""Keys of the [press] table."""
+
+PUNCHING_KEYS = ("thickness", "shear_strength", "hole_diameter", "cut_length", "description")
+"""Keys of ``press.punching``."""
+
+FLYWHEEL_SHAFT = "flywheel"
+"""Name of the [[shaft]] that ``press.flywheel_speed`` adds (the flywheel's own shaft)."""
+
+CRANKSHAFT = "crankshaft"
+"""Name of the reference shaft added beside it when the scene gives no [[shaft]]."""
+
+_RATE = ("strokes_per_minute", "stroke_period")
+_ENERGY = ("energy_per_stroke", "force", "punching")
+_WORKING = ("working_time", "working_angle")
+_FLUCTUATION = ("slowdown", "delta", "flywheel_speed_min")
+
+
+def scene_data(data):
+    """The scene dictionary a [press] table stands for.
+
+    Parameters
+    ----------
+    data : dict
+        A scene file's contents (as ``tomllib`` reads them) with a ``press``
+        table. It is not changed.
+
+    Returns
+    -------
+    dict
+        The same contents without ``press``, with [machine] ``speed`` (the
+        crank's mean speed, one stroke per turn), ``delta`` and ``cycle`` (one
+        turn); [torque] ``resisting`` (the process load over the crank angle,
+        from φ = 0 at the start of the working stroke) and ``driving`` (an
+        unknown constant, unless the scene gives one); and, with
+        ``flywheel_speed``, a [[shaft]] ``flywheel`` at its speed ratio (and a
+        ``crankshaft`` at ratio 1 when the scene gives no [[shaft]]), on which
+        the design puts the flywheel unless [design] names its shafts. The
+        user's other tables and keys are kept as they are.
+
+    Raises
+    ------
+    SceneError
+        A [press] field is missing, unknown or wrong, or the scene gives a
+        [machine] speed, delta or cycle, or a resisting torque, that the
+        press sets (the message names both).
+
+    Notes
+    -----
+    docs/flywheel-design.md, sections 2 (δ and the slowdown), 8 (the speed
+    ratio of the flywheel shaft) and 11 (presses); the conversions are
+    :mod:`flyopt.machine.press`.
+    """
+    press = _table(data["press"], "press", PRESS_KEYS)
+    rate, omega_crank, period = _crank(press)
+    angle = _working_angle(press, period)
+    source, rows, note = _load(press, angle)
+    fluctuation, delta = _delta(press)
+    ratio = _flywheel_ratio(press, delta, omega_crank)
+
+    out = {key: value for key, value in data.items() if key != "press"}
+    out["machine"] = _machine(data.get("machine"), rate, fluctuation, omega_crank, delta)
+    out["torque"] = _torque(data.get("torque"), source, rows, note)
+    if ratio is not None:
+        out["shaft"] = _shafts(data.get("shaft"), ratio, press["flywheel_speed"])
+        design = data.get("design", {})
+        if isinstance(design, dict) and "shafts" not in design:
+            out["design"] = {**design, "shafts": [FLYWHEEL_SHAFT]}
+    return out
+
+
+# -- the crank and the working stroke ---------------------------------------------
+
+
+def _crank(press):
+    """(the key given, the crank's mean speed [rad/s], the stroke period [s])."""
+    key = _one_of(press, _RATE, "press.strokes_per_minute",
+                  "give the stroke rate as strokes_per_minute (e.g. 12) or stroke_period (e.g. '5 s')")
+    if key == "strokes_per_minute":
+        strokes = _number(press, key, "dimensionless")
+        if strokes <= 0:
+            raise SceneError("press.strokes_per_minute", f"must be positive (strokes a minute, one crank turn "
+                                                         f"each), got {shorten(press[key])}")
+        omega = physics.crank_speed(strokes)
+        return key, omega, physics.stroke_period(omega)
+    period = _time(press[key], "press.stroke_period")
+    if period <= 0:
+        raise SceneError("press.stroke_period", f"must be positive (the time of one stroke, one crank turn), "
+                                                f"got {shorten(press[key])}")
+    return key, physics.crank_speed_of_period(period), period
+
+
+def _working_angle(press, period):
+    """The crank angle of the working stroke [rad], 0 < θ_w < 2π."""
+    key = _one_of(press, _WORKING, "press.working_time",
+                  "give how long the working stroke lasts as working_time (e.g. '2 s') or "
+                  "working_angle (e.g. '60 deg' of the crank)")
+    if key == "working_time":
+        time = _time(press[key], "press.working_time")
+        if not 0 < time < period:
+            raise SceneError("press.working_time", f"must be positive and shorter than the stroke period "
+                                                   f"({period:.6g} s), got {shorten(press[key])}")
+        return physics.working_angle(time, period)
+    angle = _number(press, key, "angle")
+    if not 0 < angle < physics.TURN:
+        raise SceneError("press.working_angle", f"must lie between 0 and 360 deg (exclusive: one crank turn is "
+                                                f"the whole stroke), got {shorten(press[key])}")
+    return angle
+
+
+# -- the load -----------------------------------------------------------------
+
+
+def _load(press, angle):
+    """(the key given, the resisting torque table over one turn, a description of it)."""
+    key = _one_of(press, _ENERGY, "press.energy_per_stroke",
+                  "give the work of one stroke as energy_per_stroke (e.g. '15 kJ'), force = [[position, force], "
+                  "...] over the working stroke, or punching = { thickness, shear_strength, hole_diameter or "
+                  "cut_length }")
+    for unit in ("force_unit", "position_unit"):
+        if unit in press and key != "force":
+            raise SceneError(f"press.{unit}", "belongs to press.force (the units of its table), which is not given")
+    degrees = math.degrees(angle)
+    if key == "energy_per_stroke":
+        energy = _number(press, key, "energy")
+        if energy <= 0:
+            raise SceneError("press.energy_per_stroke", f"must be positive, got {shorten(press[key])}")
+        note = f"press: {energy:.6g} J a stroke, taken evenly over the working angle of {degrees:.6g} deg"
+    elif key == "punching":
+        energy, force = _punching(press[key])
+        note = (f"press: punching, F_max = {force:.6g} N, E = F_max t/2 = {energy:.6g} J a stroke, taken evenly "
+                f"over the working angle of {degrees:.6g} deg")
+    else:
+        positions, forces = _force_table(press)
+        energy = physics.force_energy(positions, forces)
+        if not energy > 0:
+            raise SceneError("press.force", f"the table does no work (∫F dx = {energy:.6g} J): give the force the "
+                             "ram works against over the working stroke")
+        angles, torques = physics.force_torque(positions, forces, angle)
+        note = (f"press: the force table, {energy:.6g} J a stroke, its positions uniform over the working angle "
+                f"of {degrees:.6g} deg")
+        return key, physics.resisting_table(angles, torques, angle), note
+    torque = physics.working_torque(energy, angle)
+    return key, physics.resisting_table([0.0, angle], [torque, torque], angle), note
+
+
+def _punching(raw):
+    """(E = ½ F_max t [J], F_max = τ L t [N]) of ``press.punching``."""
+    table = _table(raw, "press.punching", PUNCHING_KEYS)
+    values = {}
+    for key, dimension in (("thickness", "length"), ("shear_strength", "stress")):
+        if key not in table:
+            raise SceneError(f"press.punching.{key}", "is missing: punching needs the plate's thickness, its "
+                                                      "ultimate shear_strength, and hole_diameter or cut_length")
+        values[key] = _positive(table, key, dimension, "press.punching")
+    cut = _one_of(table, ("hole_diameter", "cut_length"), "press.punching.hole_diameter",
+                  "give the cut as hole_diameter (a round hole, cut length π d) or cut_length (the sheared "
+                  "edge's length)")
+    length = _positive(table, cut, "length", "press.punching")
+    if cut == "hole_diameter":
+        length *= math.pi
+    force = physics.punching_force(values["shear_strength"], length, values["thickness"])
+    return physics.punching_energy(force, values["thickness"]), force
+
+
+def _force_table(press):
+    """(positions [m], forces [N]) of ``press.force``, checked."""
+    where = "press.force"
+    raw = press["force"]
+    position_unit = _unit(press, "position_unit", "length")
+    force_unit = _unit(press, "force_unit", "force")
+    if hasattr(raw, "array"):                  # a large table read without tomllib (flyopt.io.scene.InlineRows)
+        raw = raw.array.tolist()
+    if not isinstance(raw, list) or len(raw) < 2:
+        raise SceneError(where, "must be a list of at least two [position, force] pairs over the working stroke, "
+                                "e.g. [[\"0 mm\", \"0 kN\"], [\"20 mm\", \"660 kN\"]]")
+    positions, forces = [], []
+    for k, pair in enumerate(raw):
+        if not isinstance(pair, list) or len(pair) != 2:
+            raise SceneError(f"{where}[{k}]", f"must be a [position, force] pair, got {shorten(pair)}")
+        positions.append(_scaled(pair[0], "length", f"{where}[{k}] position", position_unit))
+        forces.append(_scaled(pair[1], "force", f"{where}[{k}] force", force_unit))
+        if forces[-1] < 0:
+            raise SceneError(f"{where}[{k}]", f"the force must not be negative (the force the ram works "
+                                              f"against), got {shorten(pair[1])}")
+        if k and positions[k] < positions[k - 1]:
+            raise SceneError(f"{where}[{k}]", f"positions must not decrease over the working stroke: "
+                                              f"{positions[k]:.6g} m comes after {positions[k - 1]:.6g} m")
+        if k >= 2 and positions[k] == positions[k - 2]:
+            raise SceneError(f"{where}[{k}]", f"three points at one position ({positions[k]:.6g} m); a step is "
+                                              "exactly two points at one position")
+    if positions[-1] == positions[0]:
+        raise SceneError(where, "the working stroke has no length: the last position must lie beyond the first")
+    return positions, forces
+
+
+# -- the speed fluctuation and the flywheel shaft ------------------------------------------
+
+
+def _delta(press):
+    """(the key given, flyopt's δ)."""
+    key = _one_of(press, _FLUCTUATION, "press.slowdown",
+                  "give the allowed speed drop over the working stroke as slowdown ((ω_top − ω_bottom)/ω_top, "
+                  "e.g. 0.1), delta (δ = (ω_max − ω_min)/ω_mean), or flywheel_speed_min with flywheel_speed")
+    if key == "slowdown":
+        slowdown = _number(press, key, "dimensionless")
+        if not 0 < slowdown < 1:
+            raise SceneError("press.slowdown", f"must lie between 0 and 1 (exclusive): the fraction of its top speed "
+                                               f"the flywheel loses over the working stroke (1 would stop it), got "
+                                               f"{shorten(press[key])}; presses about 0.1 (δ 1/10 to 1/7)")
+        return key, physics.delta_from_slowdown(slowdown)
+    if key == "delta":
+        delta = _number(press, key, "dimensionless")
+        if not 0 < delta < 2:
+            raise SceneError("press.delta", f"must lie between 0 and 2 (exclusive; the slowdown 2δ/(2 + δ) between "
+                                            f"0 and 1), got {shorten(press[key])}; presses 1/10 to 1/7")
+        return key, delta
+    if "flywheel_speed" not in press:
+        raise SceneError("press.flywheel_speed_min", "needs press.flywheel_speed, the top speed it is the "
+                                                     "lowest speed of")
+    top = _flywheel_top(press)
+    bottom = _number(press, key, "angular_speed")
+    if not 0 < bottom < top:
+        raise SceneError("press.flywheel_speed_min", f"must be positive and below flywheel_speed "
+                                                     f"({shorten(press['flywheel_speed'])}), got {shorten(press[key])}")
+    return key, physics.delta_from_slowdown(1.0 - bottom / top)
+
+
+def _flywheel_top(press):
+    top = _number(press, "flywheel_speed", "angular_speed")
+    if top <= 0:
+        raise SceneError("press.flywheel_speed", f"must be positive (the flywheel shaft's top speed), got "
+                                                 f"{shorten(press['flywheel_speed'])}")
+    return top
+
+
+def _flywheel_ratio(press, delta, omega_crank):
+    """The flywheel shaft's speed ratio to the crank, or None without ``flywheel_speed``."""
+    if "flywheel_speed" not in press:
+        return None
+    return physics.flywheel_speed_ratio(_flywheel_top(press), delta, omega_crank)
+
+
+# -- the scene's tables ----------------------------------------------------------------
+
+
+def _machine(raw, rate, fluctuation, omega_crank, delta):
+    """[machine] with the press's speed, delta and cycle (the user's other keys kept)."""
+    if raw is None:
+        raw = {}
+    if not isinstance(raw, dict):
+        return raw                                 # the scene reader says what is wrong
+    for key, press_key, what in (("speed", rate, "the crank's mean speed is the stroke rate"),
+                                 ("delta", fluctuation, "the speed fluctuation follows from the press's"),
+                                 ("cycle", rate, "a press's cycle is one crank turn a stroke")):
+        if key in raw:
+            raise SceneError(f"press.{press_key}", f"machine.{key} is given too: {what}; give it once, "
+                                                   f"in [press] (leave machine.{key} out)")
+    return {**raw, "speed": f"{omega_crank!r} rad/s", "delta": delta, "cycle": f"{physics.TURN!r} rad"}
+
+
+def _torque(raw, source, rows, note):
+    """[torque] with the process load as the resisting torque; driving an unknown constant unless given."""
+    if raw is None:
+        raw = {}
+    if not isinstance(raw, dict):
+        return raw
+    for key in ("resisting", "net"):
+        if key in raw:
+            raise SceneError(f"press.{source}", f"torque.{key} is given too: the process load of a [press] is its "
+                                                f"resisting torque; give the load once (leave [torque.{key}] out)")
+    out = {**raw, "resisting": {"points": rows, "unit": "N*m", "angle_unit": "rad", "description": note}}
+    out.setdefault("driving", {"constant": "unknown"})
+    return out
+
+
+def _shafts(raw, ratio, top):
+    """[[shaft]] with the flywheel's shaft added (and the crankshaft, when the scene gives none)."""
+    shaft = {"name": FLYWHEEL_SHAFT, "speed_ratio": ratio,
+             "description": f"the flywheel shaft, top speed {top} (press.flywheel_speed)"}
+    if raw is None:
+        return [{"name": CRANKSHAFT, "speed_ratio": 1.0}, shaft]
+    if not isinstance(raw, list):
+        return raw
+    for k, item in enumerate(raw):
+        if isinstance(item, dict) and item.get("name") == FLYWHEEL_SHAFT:
+            raise SceneError("press.flywheel_speed", f"shaft[{k}] is named {FLYWHEEL_SHAFT!r} too: flywheel_speed "
+                                                     f"adds the flywheel's shaft under that name; rename yours")
+    return [*raw, shaft]
+
+
+# -- reading --------------------------------------------------------------------
+
+
+def _table(raw, where, allowed):
+    """``raw`` as a table whose keys are all ``allowed``."""
+    if not isinstance(raw, dict):
+        raise SceneError(where, f"must be a table, got {type(raw).__name__}")
+    unknown = sorted(set(raw) - set(allowed))
+    if unknown:
+        key = unknown[0]
+        close = difflib.get_close_matches(key, sorted(allowed), n=1)
+        hint = f"; did you mean {shorten(close[0])}?" if close else ""
+        raise SceneError(f"{where}.{key}", f"unknown key{hint} (allowed here: {', '.join(sorted(allowed))})")
+    return raw
+
+
+def _one_of(table, keys, where, allowed):
+    """The one key of ``keys`` the table gives; an error naming them when none or several are given."""
+    given = [k for k in keys if k in table]
+    if len(given) != 1:
+        prefix = where.rsplit(".", 1)[0]
+        field = f"{prefix}.{given[1]}" if given else where
+        found = f" (given: {', '.join(given)})" if given else ""
+        raise SceneError(field, f"{allowed}: exactly one of {', '.join(keys)}{found}")
+    return given[0]
+
+
+def _number(table, key, dimension, where="press"):
+    """The SI float of ``table[key]``; a wrong value names the field."""
+    return quantity(table[key], dimension, f"{where}.{key}")
+
+
+def _positive(table, key, dimension, where):
+    value = _number(table, key, dimension, where)
+    if value <= 0:
+        raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table[key])}")
+    return value
+
+
+def _unit(press, key, dimension):
+    """The SI value of one ``press.<key>`` unit (1 when not given)."""
+    if key not in press:
+        return 1.0
+    raw = press[key]
+    if not isinstance(raw, str):
+        raise SceneError(f"press.{key}", f"must be a unit string (e.g. 'mm', 'kN'), got {shorten(raw)}")
+    return quantity(f"1 {raw}", dimension, f"press.{key}")
+
+
+def _scaled(raw, dimension, where, factor):
+    """A plain number times the table's unit, or a string with its own unit."""
+    if isinstance(raw, str):
+        return quantity(raw, dimension, where)
+    return quantity(raw, "dimensionless", where) * factor
+
+
+def _time(raw, where):
+    """A time [s]: a plain number of seconds, or a string with a unit of time ("2 s", "500 ms", "0.1 min").
+
+    flyopt's unit table (:data:`flyopt.units.DIMENSIONS`) has no time, so a
+    string is read through :func:`flyopt.units.quantity` as the energy of one
+    watt for that time, "(2 s) * W" = 2 J: the same checks (length, powers)
+    and the same conversion as every other quantity. Parentheses are refused,
+    so that the string is one factor of that product.
+    """
+    words = "give seconds, or a time with its unit (e.g. '2 s', '500 ms', '0.1 min')"
+    if isinstance(raw, bool) or not isinstance(raw, (int, float, str)):
+        raise SceneError(where, f"expected a time, got {shorten(raw)}: {words}")
+    if not isinstance(raw, str):
+        return quantity(raw, "dimensionless", where)
+    try:
+        float(raw)
+    except ValueError:
+        pass
+    else:
+        return quantity(raw, "dimensionless", where)   # a plain number in a string: seconds, as SI
+    if "(" in raw or ")" in raw:
+        raise SceneError(where, f"{shorten(raw)} is not a time: {words}")
+    try:
+        return quantity(f"({raw}) * W", "energy", where)
+    except SceneError:
+        raise SceneError(where, f"{shorten(raw)} is not a time: {words}") from None
