@@ -52,6 +52,7 @@ DIMENSIONS = {
     "angle_scale": ("1/[length]", "rad/m", "an angle scale (e.g. '0.01 rad/mm')"),
     "dimensionless": ("", "", "a plain number"),
     "cost_per_mass": ("1/[mass]", "1/kg", "a cost per kilogram (e.g. '2.1 1/kg')"),
+    "time": ("[time]", "s", "a time (e.g. '2 s')"),
 }
 
 #: Units read without pint, per dimension: the unit as written -> pint's factor to the SI unit of
@@ -87,6 +88,7 @@ FAST_UNITS = {
                     "deg/cm": 1.7453292519943295, "deg/mm": 17.453292519943297},
     "dimensionless": {"%": 0.01, "percent": 0.01, "permille": 0.001, "ppm": 1e-06},
     "cost_per_mass": {"1/kg": 1.0, "/kg": 1.0},
+    "time": {"s": 1.0, "ms": 0.001, "min": 60.0},
 }
 
 _PER_TURN = frozenset({"Hz", "1/s", "/s", "s^-1", "1/min", "/min", "min^-1"})

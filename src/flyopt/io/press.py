@@ -380,28 +380,8 @@ def _scaled(raw, dimension, where, factor):
 
 
 def _time(raw, where):
-    """A time [s]: a plain number of seconds, or a string with a unit of time ("2 s", "500 ms", "0.1 min").
-
-    flyopt's unit table (:data:`flyopt.units.DIMENSIONS`) has no time, so a
-    string is read through :func:`flyopt.units.quantity` as the energy of one
-    watt for that time, "(2 s) * W" = 2 J: the same checks (length, powers)
-    and the same conversion as every other quantity. Parentheses are refused,
-    so that the string is one factor of that product.
-    """
-    words = "give seconds, or a time with its unit (e.g. '2 s', '500 ms', '0.1 min')"
-    if isinstance(raw, bool) or not isinstance(raw, (int, float, str)):
-        raise SceneError(where, f"expected a time, got {shorten(raw)}: {words}")
-    if not isinstance(raw, str):
-        return quantity(raw, "dimensionless", where)
-    try:
-        float(raw)
-    except ValueError:
-        pass
-    else:
-        return quantity(raw, "dimensionless", where)   # a plain number in a string: seconds, as SI
-    if "(" in raw or ")" in raw:
-        raise SceneError(where, f"{shorten(raw)} is not a time: {words}")
-    try:
-        return quantity(f"({raw}) * W", "energy", where)
-    except SceneError:
-        raise SceneError(where, f"{shorten(raw)} is not a time: {words}") from None
+    """A time [s]: a plain number of seconds, or a string with a unit of time ("2 s", "500 ms", "0.1 min")."""
+    if isinstance(raw, bool):
+        raise SceneError(where, f"expected a time, got {shorten(raw)}: give seconds, or a time with its unit "
+                                "(e.g. '2 s', '500 ms', '0.1 min')")
+    return quantity(raw, "time", where)
