@@ -26,16 +26,29 @@ class Solution:
     analysis : Analysis
     design : DesignResult or None
         None when the design step was skipped.
+    verification : Verification or None
+    drive : DriveDesign or None
+        The motor, ratios and wheel designed together (a scene with a [drive]);
+        ``scene`` and ``analysis`` are then those of the machine as built (the
+        chosen motor at its ratio) and ``design`` its wheel's.
+    drive_check : DriveCheck or None
+        The chosen drive simulated with the wheel as built.
     """
 
     scene: object
     analysis: Analysis
     design: object = None
     verification: Verification | None = None
+    drive: object = None            # flyopt.design.drive.DriveDesign of a scene with a [drive]
+    drive_check: object = None      # flyopt.design.drive.DriveCheck of the chosen drive
 
     @property
     def status(self):
         """"designed", "not_needed", "infeasible", or "analysed" (design skipped)."""
+        if self.drive is not None and self.drive.best is None:
+            return "infeasible"
+        if self.drive is not None and self.design is None:
+            return "not_needed"               # the chosen motor holds δ without a flywheel
         return self.design.status if self.design is not None else "analysed"
 
     def to_dict(self, timings=False):
@@ -49,6 +62,10 @@ class Solution:
             out["design"] = design_dict(self.design, timings)
         if self.verification is not None:
             out["verification"] = self.verification.to_dict()
+        if self.drive is not None:
+            out["drive"] = self.drive.to_dict()
+            if self.drive_check is not None:
+                out["drive"]["verification"] = self.drive_check.to_dict()
         return out
 
 
@@ -216,6 +233,27 @@ def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_d
     Solution
     """
     analysis = analyse(scene, model)
+    if scene.drive is not None and design_flywheel:
+        return solve_drive(scene, analysis, solver_options)
     result = design_scene(scene, analysis, solver_options, design_method) if design_flywheel else None
     checked = verify(scene, analysis, result) if verify_design else None
     return Solution(scene=scene, analysis=analysis, design=result, verification=checked)
+
+
+def solve_drive(scene, analysis, solver_options=None):
+    """Design the drive and the flywheel together (flyopt.design.drive), then analyse and check the machine as built.
+
+    The Solution's scene and analysis are the machine with the chosen motor
+    on its curve at its ratio (the periodic model), its design the wheel on
+    the chosen shaft, and ``drive_check`` the simulation with the wheel as built
+    (δ, the motor's RMS torque, the start-up); an infeasible drive gives the
+    scene's own analysis and no design.
+    """
+    from flyopt.design.drive import chosen_scene, design_drive, verify_drive
+
+    drive = design_drive(scene, analysis, solver_options=solver_options)
+    if drive.best is None:
+        return Solution(scene=scene, analysis=analysis, drive=drive)
+    built = chosen_scene(scene, drive.best)
+    return Solution(scene=built, analysis=analyse(built, "dynamic"), design=drive.best.design, drive=drive,
+                    drive_check=verify_drive(scene, drive.best))

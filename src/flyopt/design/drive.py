@@ -1,0 +1,614 @@
+"""The drive designed with the flywheel: the motor, its ratio and the wheel chosen together.
+
+A press or shear is driven by an induction motor through a belt and gears;
+the flywheel sits on one of the shafts between them. A bigger wheel lets a
+smaller motor suffice (its torque then stays near the mean load, so its RMS
+torque, which heats it, stays near the mean), and where the wheel sits (its
+speed ratio r to the crank) decides how big it must be
+(docs/flywheel-design.md, sections 7, 8 and 14).
+
+For one motor of the catalogue the chain is exact, on flyopt's one path:
+
+1. the motor's ratio i_m = ω_motor/ω_crank is the one that runs the crank at
+   the scene's mean speed ω_m = (ω_max + ω_min)/2 (a closed form from the
+   work balance on the motor's linear characteristic, then corrected on the
+   periodic solution until the mean speed is the scene's to 1e-9);
+2. the machine with that motor on its characteristic (rotor inertia J_rot i_m²
+   added to J_c) is analysed by the periodic model: the least flywheel J_F at
+   the crank that keeps δ (:func:`flyopt.sizing.periodic.dynamic_requirement`);
+3. thermal: the motor's RMS torque over the cycle, sqrt(∫ M² dt / T), must not
+   exceed its rated torque; it falls as J_F grows (toward the mean torque), so
+   J_F is raised, by a bracketed root, until it holds (a motor whose mean
+   torque exceeds its rating is refused at once);
+4. the run-up from rest on the Kloss curve with that flywheel must end within
+   ``max_startup`` (it only grows with J_F, so the least flywheel is checked);
+5. the wheel for J_F at the crank is designed on a shaft of speed ratio r by
+   :func:`flyopt.design.designer.design_flywheel`, r over the drive's range (a
+   bounded scalar minimization; of equal masses the slowest shaft) or each of
+   its fixed ratios.
+
+Every motor size is so evaluated and the sizes ranked by the objective (total
+mass of motor and wheel, or their cost); :func:`design_drive` returns the best
+with every size tried. :func:`verify_drive` simulates the chosen machine again
+with the wheel as built (its inertia, not the required one).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from flyopt.analysis import startup_run
+from flyopt.errors import SceneError, SolverFailed
+
+#: Name of the shaft the drive puts the flywheel on, and of the motor's.
+FLYWHEEL_SHAFT, MOTOR_SHAFT = "flywheel", "motor"
+
+#: Mean crank speed held by the motor ratio, relative [-].
+SPEED_RTOL = 1e-9
+
+#: The thermal limit's flywheel, relative tolerance of the root [-].
+THERMAL_RTOL = 1e-9
+
+#: The motor's characteristic in the steady state: the Kloss curve, valid from rest to synchronous speed
+#: (the linear line holds near the rated point only, and a press's slowdown of several per cent takes
+#: a standard motor of 2-4 % rated slip far from it).
+MOTOR_MODEL = "kloss"
+
+#: Objectives of a drive design.
+OBJECTIVES = ("mass", "cost")
+
+
+@dataclass(frozen=True)
+class MotorRun:
+    """One motor size of the catalogue, with the least flywheel it needs and that wheel designed.
+
+    Attributes
+    ----------
+    motor : catalogue entry
+    feasible : bool
+    reason : str
+        Why not (empty when feasible).
+    motor_ratio : float or None
+        i_m = ω_motor / ω_crank [-].
+    j_flywheel : float or None
+        Least flywheel inertia at the crank [kg*m^2] that keeps δ and the thermal limit.
+    limit : str or None
+        Which limit sets it: "delta", "thermal" or "none" (the machine needs no flywheel).
+    j_delta : float or None
+        The least flywheel for δ alone [kg*m^2].
+    rms_torque, mean_torque, rated_torque : float or None
+        Of the motor shaft over the cycle with ``j_flywheel`` [N*m].
+    omega_mean, delta : float or None
+        Mean crank speed [rad/s] and δ achieved with ``j_flywheel``.
+    startup_time : float or None
+        Run-up from rest [s] with ``j_flywheel``.
+    flywheel_ratio : float or None
+        r = ω_flywheel_shaft / ω_crank [-] of the wheel chosen.
+    wheel : Candidate or None
+    design : DesignResult or None
+        The wheel's design on its shaft (every material ranked), for the report.
+    motor_mass, wheel_mass, total_mass : float or None
+        [kg]
+    cost : float or None
+        Motor price plus wheel cost [currency], when both are known.
+    objective : float or None
+        The ranked value (``total_mass`` or ``cost``).
+    """
+
+    motor: object
+    feasible: bool
+    reason: str = ""
+    motor_ratio: float | None = None
+    j_flywheel: float | None = None
+    limit: str | None = None
+    j_delta: float | None = None
+    rms_torque: float | None = None
+    mean_torque: float | None = None
+    rated_torque: float | None = None
+    omega_mean: float | None = None
+    delta: float | None = None
+    startup_time: float | None = None
+    flywheel_ratio: float | None = None
+    wheel: object = None
+    motor_mass: float | None = None
+    wheel_mass: float | None = None
+    total_mass: float | None = None
+    cost: float | None = None
+    objective: float | None = None
+    design: object = field(default=None, compare=False, repr=False)
+
+    def to_dict(self):
+        out = {k: v for k, v in self.__dict__.items() if k not in ("motor", "wheel", "design")}
+        out["motor"] = _motor_dict(self.motor)
+        out["wheel"] = None if self.wheel is None else self.wheel.to_dict()
+        return out
+
+
+@dataclass(frozen=True)
+class DriveDesign:
+    """The drive and flywheel designed together.
+
+    Attributes
+    ----------
+    status : {"designed", "infeasible"}
+    objective : {"mass", "cost"}
+    best : MotorRun or None
+    runs : tuple of MotorRun
+        Every motor size solved, in order of rating.
+    message : str
+    relaxation : flyopt.design.drive_nlp.Relaxation or None
+        The continuous optimum that located the sizes solved (None: every size solved).
+    note : str
+        How the sizes were chosen.
+    """
+
+    status: str
+    objective: str
+    best: MotorRun | None
+    runs: tuple
+    message: str = ""
+    relaxation: object = None
+    note: str = ""
+
+    def to_dict(self):
+        relaxed = None if self.relaxation is None else dict(self.relaxation.__dict__)
+        return {"status": self.status, "objective": self.objective, "message": self.message, "note": self.note,
+                "relaxation": relaxed,
+                "best": None if self.best is None else self.best.to_dict(),
+                "runs": [r.to_dict() for r in self.runs]}
+
+
+def _motor_dict(motor):
+    fields = ("name", "rated_power", "rated_speed", "synchronous_speed", "rotor_inertia", "breakdown_ratio",
+              "mass", "price")
+    return {f: getattr(motor, f, None) for f in fields}
+
+
+# -- one motor -------------------------------------------------------------------
+
+
+def motor_ratio_estimate(motor, load_torque, omega_crank, efficiency):
+    """The motor ratio that runs the crank at ``omega_crank`` on average, from the work balance [-].
+
+    Over a cycle the motor's work equals the load's: with the linear
+    characteristic M = M_n (ω_0 − ω)/(ω_0 − ω_n) on the motor shaft and
+    ω_motor = i ω, the angle mean of i η M(i ω) equals the mean load M̄ at
+    the crank when the angle-mean crank speed is ω:
+
+        η M_n ω i² − η M_n ω_0 i + M̄ (ω_0 − ω_n) = 0,
+
+    whose larger root is the stable, low-slip one. It is a first estimate:
+    the scene's mean speed is (ω_max + ω_min)/2, not the angle mean, and
+    :func:`evaluate_motor` corrects it on the periodic solution.
+
+    Returns
+    -------
+    float or None
+        None when no ratio gives the mean torque on the stable branch (the
+        motor is too small: its torque at the crank cannot reach M̄).
+    """
+    m_n, w0, wn = motor.rated_torque, motor.synchronous_speed, motor.rated_speed
+    a, b, c = efficiency * m_n * omega_crank, -efficiency * m_n * w0, load_torque * (w0 - wn)
+    disc = b * b - 4 * a * c
+    if disc < 0:
+        return None
+    return (-b + math.sqrt(disc)) / (2 * a)
+
+
+def rms_torque(solution, motor, ratio, model=MOTOR_MODEL):
+    """(RMS, mean) of the motor shaft's torque over the cycle, in time [N*m].
+
+    T_rms² = ∫ M(i ω)² dt / T with dt = dφ/ω, by the trapezoidal rule on the
+    periodic solution's grid (2048+ points a cycle, every knot; the error is
+    O(h²) of the torque's curvature, below 1e-6 relative on the scenes tested).
+    """
+    phi, omega = np.asarray(solution.phi, float), np.asarray(solution.omega, float)
+    torque = np.asarray(motor.torque(ratio * omega, model), float)
+    dt = np.diff(phi) * 0.5 * (1.0 / omega[1:] + 1.0 / omega[:-1])
+    period = dt.sum()
+    squares = np.diff(phi) * 0.5 * (torque[1:] ** 2 / omega[1:] + torque[:-1] ** 2 / omega[:-1])
+    means = np.diff(phi) * 0.5 * (torque[1:] / omega[1:] + torque[:-1] / omega[:-1])
+    return math.sqrt(squares.sum() / period), means.sum() / period
+
+
+def motor_scene(scene, motor, ratio):
+    """The scene driven by ``motor`` at speed ratio ``ratio``: its Kloss curve, its rotor's inertia at the crank."""
+    from flyopt.machine.torque import MotorTorque
+    from flyopt.machine.transmission import inertia_at_reference
+
+    drive = MotorTorque(motor.motor(), ratio, scene.efficiency, MOTOR_MODEL, "drive.motors")
+    return dataclasses.replace(scene, driving=drive,
+                               j_constant=scene.j_constant + inertia_at_reference(motor.rotor_inertia, ratio))
+
+
+def chosen_scene(scene, run):
+    """The scene as built: the run's motor at its ratio, and the flywheel's shaft and the motor's among its shafts."""
+    from flyopt.io.scene import Shaft
+
+    built = motor_scene(scene, run.motor, run.motor_ratio)
+    shafts = tuple(s for s in scene.shafts if s.name not in (FLYWHEEL_SHAFT, MOTOR_SHAFT))
+    shafts += (Shaft(MOTOR_SHAFT, run.motor_ratio),)
+    if run.flywheel_ratio is not None:
+        shafts += (Shaft(FLYWHEEL_SHAFT, run.flywheel_ratio),)
+    return dataclasses.replace(built, shafts=shafts, design_shafts=None)
+
+
+def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_spec, *, solver_options=None):
+    """One motor size: its ratio, the least flywheel it needs, the checks, and the wheel (:class:`MotorRun`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The machine with its load (the driving torque is replaced by the motor).
+    motor : catalogue entry
+    load_torque : float
+        Mean load torque at the crank M̄ [N*m] (the analysis's balancing driving torque).
+    spec : DriveSpec
+    ratios : tuple
+        ("range", lo, hi) or ("fixed", r1, r2, ...) of the flywheel shaft.
+    materials, design_spec
+        As for :func:`flyopt.design.designer.design_flywheel`.
+    """
+    from flyopt.analysis import analyse
+
+    omega = scene.omega_mean
+    rated = motor.rated_torque
+
+    def run(feasible, reason, **facts):
+        return MotorRun(motor=motor, feasible=feasible, reason=reason, rated_torque=rated, **facts)
+
+    ratio = motor_ratio_estimate(motor, load_torque, omega, scene.efficiency)
+    if ratio is None:
+        return run(False, f"too small: its torque on the crank cannot reach the mean load {load_torque:.6g} N*m "
+                          f"at {omega:.6g} rad/s on the stable branch")
+    if spec.thermal and load_torque / (ratio * scene.efficiency) > rated * (1 + 1e-12):
+        return run(False, f"thermal: its mean torque {load_torque / (ratio * scene.efficiency):.6g} N*m exceeds "
+                          f"its rated torque {rated:.6g} N*m whatever the flywheel", motor_ratio=ratio)
+    analysis = None
+    for _ in range(30):                      # hold the scene's mean speed (ω_max + ω_min)/2
+        try:
+            analysis = analyse(motor_scene(scene, motor, ratio), "dynamic")
+        except (SolverFailed, SceneError) as err:
+            return run(False, f"no steady running: {err}", motor_ratio=ratio)
+        error = analysis.omega_mean / omega - 1.0
+        if abs(error) <= SPEED_RTOL:
+            break
+        ratio *= analysis.omega_mean / omega
+    else:
+        return run(False, f"the motor ratio did not settle the mean speed (last error {error:.3g})",
+                   motor_ratio=ratio)
+    machine = analysis.machine
+    j_delta = max(analysis.j_margin, 0.0)
+    solution = analysis.requirement.detail.solution
+    rms, mean = rms_torque(solution, motor.motor(), ratio)
+    j_need, limit = j_delta, ("delta" if analysis.j_margin > 0 else "none")
+    if spec.thermal and rms > rated:
+        j_need, solution = _thermal_flywheel(machine, motor, ratio, omega, j_delta, rated)
+        if j_need is None:
+            return run(False, f"thermal: its RMS torque stays above its rated torque {rated:.6g} N*m "
+                              f"for any flywheel", motor_ratio=ratio, j_delta=j_delta)
+        limit = "thermal"
+        rms, mean = rms_torque(solution, motor.motor(), ratio)
+    omega_min_motor = float(np.min(solution.omega)) * ratio
+    if omega_min_motor < motor.motor().breakdown_speed:
+        return run(False, f"breakdown: the motor slows to {omega_min_motor:.6g} rad/s in the cycle, past its "
+                          f"breakdown speed {motor.motor().breakdown_speed:.6g} rad/s",
+                   motor_ratio=ratio, j_delta=j_delta)
+    startup = startup_run(machine, solution.omega_mean, j_need)
+    facts = dict(motor_ratio=ratio, j_flywheel=j_need, limit=limit, j_delta=j_delta, rms_torque=rms,
+                 mean_torque=mean, omega_mean=solution.omega_mean, delta=solution.delta,
+                 startup_time=startup.time)
+    if spec.max_startup is not None:
+        if startup.time is None:
+            return run(False, f"start-up: {startup.note}", **facts)
+        if startup.time > spec.max_startup:
+            return run(False, f"start-up: {startup.time:.4g} s from rest, over max_startup "
+                              f"{spec.max_startup:.4g} s", **facts)
+    torque = analysis.flywheel_torque(j_need) if j_need > 0 else None
+    result, r = _best_wheel(j_need, solution.omega_max, ratios, materials, design_spec, torque, spec.objective,
+                            solver_options)
+    wheel = None if result is None else result.best
+    if j_need > 0 and wheel is None:
+        return run(False, "no wheel fits the design limits for the flywheel it needs", **facts)
+    wheel_mass = wheel.mass if wheel is not None else 0.0
+    total = motor.mass + wheel_mass if motor.mass is not None else None
+    cost = None
+    if getattr(motor, "price", None) is not None and (wheel is None or wheel.cost is not None):
+        cost = motor.price + (wheel.cost if wheel is not None else 0.0)
+    objective = total if spec.objective == "mass" else cost
+    return run(True, "", **facts, flywheel_ratio=r, wheel=wheel, design=result, motor_mass=motor.mass,
+               wheel_mass=wheel_mass, total_mass=total, cost=cost, objective=objective)
+
+
+def _thermal_flywheel(machine, motor, ratio, omega, j_low, rated):
+    """The least J_F (>= j_low) whose periodic solution keeps the motor's RMS torque at its rating."""
+    from scipy.optimize import brentq
+
+    from flyopt.sizing.periodic import periodic_solution
+
+    net, knots = machine.net_torque(), machine.knots()
+    cache = {}
+
+    def excess(j):
+        sol = periodic_solution(net, machine.j_machine, machine.cycle_angle, omega, j, knots)
+        cache[j] = sol
+        return rms_torque(sol, motor.motor(), ratio)[0] / rated - 1.0
+
+    scale = max(j_low, float(np.mean(np.atleast_1d(machine.j_mean()))), 1e-9)
+    high = scale
+    for _ in range(60):
+        high *= 2.0
+        if excess(high) <= 0:
+            break
+    else:
+        return None, None
+    j = brentq(excess, j_low, high, rtol=THERMAL_RTOL, xtol=1e-14 * high)
+    if excess(j) > 0:                       # the root's side that holds
+        j *= 1 + THERMAL_RTOL
+        excess(j)
+    return j, cache[j]
+
+
+def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, solver_options):
+    """(best Candidate, its shaft ratio) over the drive's flywheel ratios; (None, None) when no flywheel is needed.
+
+    The wheel's share of the drive's objective (its mass, or its cost) is what is minimized over r.
+    """
+    from flyopt.design.designer import design_flywheel
+    from flyopt.design.spec import MountShaft
+
+    if j_need <= 0:
+        return None, None
+
+    def design(r):
+        return design_flywheel(j_need, omega_max, [MountShaft(FLYWHEEL_SHAFT, r)], materials, spec,
+                               solver_options=solver_options, torque=torque)
+
+    def mass(r):
+        best = design(r).best
+        if best is None:
+            return math.inf
+        value = best.mass if objective == "mass" else best.cost
+        return math.inf if value is None else value
+
+    kind, *values = ratios
+    if kind == "fixed":
+        found = [(mass(r), r) for r in values]
+        m, r = min(found, key=lambda pair: (pair[0], pair[1]))
+        return (None, None) if math.isinf(m) else (design(r), r)
+    lo, hi = values
+    from scipy.optimize import minimize_scalar
+
+    grid = np.geomspace(lo, hi, 9)
+    grid[0], grid[-1] = lo, hi
+    masses = [mass(r) for r in grid]
+    k = int(np.argmin(masses))
+    if math.isinf(masses[k]):
+        return None, None
+    a, b = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
+    found = minimize_scalar(mass, bounds=(a, b), method="bounded", options={"xatol": 1e-10 * b})
+    r, m = min([(masses[k], grid[k]), (found.fun, found.x)], key=lambda pair: pair[0])[::-1]
+    r = _slowest_equal(mass, lo, r, m)
+    return design(r), r
+
+
+def _slowest_equal(mass, lo, r, m, rtol=1e-9):
+    """The smallest ratio in [lo, r] whose wheel is as light as ``m`` (to ``rtol``): of equal wheels, the slowest shaft.
+
+    Above the ratio where the rim speed binds, a rim's least mass no longer
+    depends on r (m = J_F ω² / v_max² · const): the optimum is a flat valley.
+    """
+    if mass(lo) <= m * (1 + rtol):
+        return lo
+    if mass(max(lo, r * (1 - 1e-6))) > m * (1 + rtol):
+        return r                              # no valley: the mass still falls toward r
+    a, b = lo, r
+    for _ in range(100):
+        mid = 0.5 * (a + b)
+        if mass(mid) <= m * (1 + rtol):
+            b = mid
+        else:
+            a = mid
+        if b - a <= 1e-10 * b:
+            break
+    return b
+
+
+# -- the drive -------------------------------------------------------------------
+
+
+def design_drive(scene, analysis=None, *, solver_options=None):
+    """Design the motor, its ratio and the flywheel of a scene with a [drive] together.
+
+    Parameters
+    ----------
+    scene : Scene
+        With ``scene.drive`` and a driving torque that is an unknown constant
+        (the motor replaces it).
+    analysis : Analysis, optional
+        The scene's own analysis (the mean load); default: analysed here.
+
+    Returns
+    -------
+    DriveDesign
+    """
+    from flyopt.analysis import analyse
+    from flyopt.design import design_inputs
+
+    spec = scene.drive
+    if spec is None:
+        raise ValueError("the scene has no [drive]")
+    if analysis is None:
+        analysis = analyse(scene)
+    load = analysis.driving_torque
+    if load is None or not load > 0:
+        raise SceneError("drive", "the drive needs a load to drive: the scene's mean driving torque is "
+                                  f"{load!r} N*m")
+    inputs = design_inputs(scene)
+    ratios = ("range", *spec.ratio_range) if spec.ratios is None else ("fixed", *spec.ratios)
+    motors = sorted(spec.motors, key=lambda m: m.rated_power)
+    done = {}
+
+    def evaluate(k):
+        if k not in done:
+            done[k] = evaluate_motor(scene, motors[k], load, spec, ratios, inputs.materials, inputs.spec,
+                                     solver_options=solver_options)
+        return done[k]
+
+    relaxation, note = _relaxation(scene, analysis, spec, motors, inputs, load)
+    if relaxation is None:
+        for k in range(len(motors)):
+            evaluate(k)
+    else:
+        _neighbours(motors, relaxation.rated_power, evaluate, done)
+    runs = tuple(done[k] for k in sorted(done))
+    ranked = sorted((r for r in runs if r.feasible and r.objective is not None),
+                    key=lambda r: (r.objective, r.motor.rated_power))
+    if not ranked:
+        return DriveDesign("infeasible", spec.objective, None, runs,
+                           "no motor size of the catalogue drives the machine within the limits: "
+                           + "; ".join(f"{_name(r.motor)}: {r.reason}" for r in runs if not r.feasible)[:2000],
+                           relaxation=relaxation, note=note)
+    return DriveDesign("designed", spec.objective, ranked[0], runs, relaxation=relaxation, note=note)
+
+
+def _relaxation(scene, analysis, spec, motors, inputs, load):
+    """(Relaxation or None, note): the continuous relaxation, best over the design's materials."""
+    from flyopt.design.designer import _rim_speed_limit
+    from flyopt.design.drive_nlp import CatalogueFit, relax
+
+    fit = CatalogueFit.of(motors)
+    if fit is None or (spec.objective == "mass" and fit.mass is None) or (spec.objective == "cost" and fit.price is None):
+        return None, "every catalogue size solved (too few sizes, or one lacks a value, for a continuous relaxation)"
+    best, failures = None, []
+    for material in inputs.materials:
+        v_max = _rim_speed_limit(material, inputs.spec)
+        if not math.isfinite(v_max) or (spec.objective == "cost" and material.cost is None):
+            continue
+        wheel = (v_max, inputs.spec.max_outer_diameter / 2, material.cost)
+        try:
+            found = relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, spec, wheel, load)
+        except SolverFailed as err:
+            failures.append(f"{material.name}: {err}")
+            continue
+        if best is None or found.objective < best.objective:
+            best = found
+    if best is None:
+        return None, ("every catalogue size solved: the relaxation found no optimum"
+                      + (f" ({'; '.join(failures)})" if failures else ""))
+    return best, f"relaxation: {best.rated_power / 1000:.4g} kW; the catalogue sizes around it solved exactly"
+
+
+def spec_motors_neighbours(motors, power):
+    """(below, above) of the catalogue's own rule (:meth:`flyopt.machine.catalogue.Catalogue.neighbours`)."""
+    from flyopt.machine.catalogue import Catalogue
+
+    return Catalogue("sizes", tuple(motors)).neighbours(power)
+
+
+def _neighbours(motors, power, evaluate, done):
+    """Solve the sizes either side of the relaxed rating, then walk on while the best is at an end.
+
+    Below the relaxed rating the motor is smaller than the continuous optimum
+    wants, above it larger; the discrete optimum is one of the two unless the
+    fitted laws mislead, so the search moves on past an end of the solved
+    block as long as the best (or, when none is feasible yet, any) lies there.
+    """
+    below, above = spec_motors_neighbours(motors, power)
+    for motor in (below, above):
+        if motor is not None:
+            evaluate(motors.index(motor))
+    while True:
+        lo, hi = min(done), max(done)
+        feasible = [k for k in done if done[k].feasible and done[k].objective is not None]
+        if feasible:
+            best = min(feasible, key=lambda k: (done[k].objective, motors[k].rated_power))
+            moves = [k for k in ((lo - 1) if best == lo else None, (hi + 1) if best == hi else None)
+                     if k is not None and 0 <= k < len(motors)]
+        else:
+            moves = [k for k in (lo - 1, hi + 1) if 0 <= k < len(motors)]
+        if not moves:
+            return
+        for k in moves:
+            evaluate(k)
+
+
+def _name(motor):
+    return getattr(motor, "name", None) or f"{motor.rated_power / 1000:g} kW"
+
+
+# -- verification ----------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class DriveCheck:
+    """The chosen drive simulated again with the wheel as built (its inertia, not the required one).
+
+    Attributes
+    ----------
+    verification : flyopt.sizing.periodic.Verification
+        δ achieved by the periodic simulation (CVODES shooting) of machine, motor and wheel.
+    rms_torque, rated_torque : float
+        The motor's RMS torque over the cycle and its rating [N*m].
+    startup_time : float or None
+        Run-up from rest [s] (None: not reached; ``notes`` say why).
+    flagged : bool
+        Any limit exceeded beyond the simulation's tolerance.
+    notes : tuple of str
+        Each limit exceeded, in words.
+    """
+
+    verification: object
+    rms_torque: float
+    rated_torque: float
+    startup_time: float | None
+    flagged: bool
+    notes: tuple = ()
+
+    def to_dict(self):
+        return {**self.verification.to_dict(), "rms_torque": self.rms_torque, "rated_torque": self.rated_torque,
+                "startup_time": self.startup_time, "flagged": self.flagged, "notes": list(self.notes)}
+
+
+def verify_drive(scene, run, j_flywheel=None):
+    """Simulate the scene with the run's motor and flywheel and check δ, the thermal limit and the start-up.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene with its [drive] (the load; the driving torque is the motor's).
+    run : MotorRun
+    j_flywheel : float, optional
+        The flywheel at the crank [kg*m^2]; default the wheel as designed
+        (its inertia on its shaft times r²), else the run's requirement.
+
+    Returns
+    -------
+    DriveCheck
+    """
+    from flyopt.machine.reduce import reduce
+    from flyopt.sizing import periodic
+
+    if j_flywheel is None:
+        j_flywheel = run.wheel.j_at_reference if run.wheel is not None else (run.j_flywheel or 0.0)
+    built = motor_scene(scene, run.motor, run.motor_ratio)
+    machine = reduce(built)
+    checked = periodic.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean,
+                              scene.delta, j_flywheel, machine.knots())
+    rms, _ = rms_torque(checked.solution, run.motor.motor(), run.motor_ratio)
+    startup = startup_run(machine, checked.omega_mean, j_flywheel)
+    notes = []
+    if checked.flagged:
+        notes.append(f"delta {checked.achieved_delta:.6g} exceeds the allowed {scene.delta:.6g}")
+    rated = run.motor.rated_torque
+    if scene.drive.thermal and rms > rated * (1 + 1e-6):
+        notes.append(f"RMS torque {rms:.6g} N*m exceeds the rated {rated:.6g} N*m (thermal)")
+    if scene.drive.max_startup is not None and (startup.time is None or startup.time > scene.drive.max_startup):
+        notes.append(f"start-up {startup.note or f'{startup.time:.4g} s'} over max_startup "
+                     f"{scene.drive.max_startup:.4g} s")
+    return DriveCheck(verification=checked, rms_torque=rms, rated_torque=rated, startup_time=startup.time,
+                      flagged=bool(notes), notes=tuple(notes))

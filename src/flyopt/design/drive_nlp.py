@@ -1,0 +1,255 @@
+"""The drive's continuous relaxation: motor rating, ratios and flywheel in one CasADi NLP.
+
+The catalogue's motor sizes are a ladder; the relaxation makes the rating P a
+continuous variable whose rated slip, rotor inertia, breakdown ratio, mass and
+price follow power laws fitted to the catalogue (least squares in log P). One
+NLP (IPOPT) then chooses P, the motor ratio i = ω_motor/ω_crank, the flywheel
+J_F at the crank, its shaft ratio r and its outer radius R, with the periodic
+steady state of the machine by collocation over the cycle
+(docs/flywheel-design.md, sections 7 and 14):
+
+    E_k = ½ (J_e(φ_k) + J_rot(P) i² + J_F) ω_k²,
+    E_{k+1} − E_k = h/2 [(i η M(i ω_k) − M_r(φ_k⁺)) + (i η M(i ω_{k+1}) − M_r(φ_{k+1}⁻))],
+
+periodic (ω_N = ω_0), the nodes at every knot of the load table (its steps
+taken from the side of each interval), M the Kloss curve of the motor. The
+constraints:
+
+- speed: every ω_k within ω_m (1 ± δ/2) (the scene's mean speed and δ);
+- thermal: the RMS torque in time, ∫ M² dt / ∫ dt with dt = dφ/ω, at most
+  the rated torque squared;
+- breakdown: the motor never slows past its breakdown speed;
+- start-up: the declutched run-up on the Kloss curve with the cycle-mean
+  inertia, in closed form,
+  t = J/(i² η) · ω_0/(2 M_b s_b) [(1 − s_e²)/2 + s_b² ln(1/s_e)],
+  s_e = 1 − i ω_m/ω_0, at most ``max_startup``;
+- the wheel: a thin ring at its outer radius R (a lower bound on any real
+  wheel's mass for its inertia), m = J_F/(r² R²), with R within the envelope
+  and r R ω_max within the material's safe rim speed.
+
+The objective is the motor's mass (or price) plus the wheel's mass (or cost).
+It is a relaxation: it locates the motor size; :func:`flyopt.design.drive.design_drive`
+then solves the catalogue sizes around it exactly (periodic shooting, the
+wheel designer) and ranks them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from flyopt.errors import SolverFailed
+from flyopt.sizing._numerics import quiet
+
+#: Collocation intervals over the cycle (plus one node at every knot).
+NODES = 240
+
+#: IPOPT statuses accepted as a solution.
+_ACCEPTED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+
+
+@dataclass(frozen=True)
+class CatalogueFit:
+    """Power laws of a catalogue's sizes in the rating P [W]: y = exp(a + b ln P) (``breakdown``: a + b ln P)."""
+
+    synchronous_speed: float
+    p_min: float
+    p_max: float
+    slip: tuple
+    rotor_inertia: tuple
+    breakdown: tuple
+    mass: tuple | None
+    price: tuple | None
+
+    @classmethod
+    def of(cls, motors):
+        """Fit a catalogue (at least three sizes of one synchronous speed), or None when it cannot be."""
+        motors = list(motors)
+        speeds = {round(m.synchronous_speed, 9) for m in motors}
+        if len(motors) < 3 or len(speeds) != 1:
+            return None
+        x = np.log([m.rated_power for m in motors])
+
+        def power_law(values):
+            if any(v is None or not v > 0 for v in values):
+                return None
+            b, a = np.polyfit(x, np.log(values), 1)
+            return float(a), float(b)
+
+        slips = [(m.synchronous_speed - m.rated_speed) / m.synchronous_speed for m in motors]
+        k = [m.motor().breakdown_ratio for m in motors]       # the motor's own, or the documented default
+        b, a = np.polyfit(x, k, 1)
+        return cls(synchronous_speed=motors[0].synchronous_speed, p_min=float(min(m.rated_power for m in motors)),
+                   p_max=float(max(m.rated_power for m in motors)), slip=power_law(slips),
+                   rotor_inertia=power_law([m.rotor_inertia for m in motors]), breakdown=(float(a), float(b)),
+                   mass=power_law([getattr(m, "mass", None) for m in motors]),
+                   price=power_law([getattr(m, "price", None) for m in motors]))
+
+
+    def motor(self, power):
+        """The relaxed motor of rating ``power`` [W]: (InductionMotor, rotor inertia [kg*m^2], mass [kg] or None)."""
+        from flyopt.machine.motor import InductionMotor
+
+        lnp = math.log(power)
+        slip = float(_law(self.slip, lnp, np))
+        k = self.breakdown[0] + self.breakdown[1] * lnp
+        motor = InductionMotor(power, self.synchronous_speed * (1 - slip), self.synchronous_speed, k)
+        mass = None if self.mass is None else float(_law(self.mass, lnp, np))
+        return motor, float(_law(self.rotor_inertia, lnp, np)), mass
+
+
+@dataclass(frozen=True)
+class Relaxation:
+    """The relaxed optimum: rating [W], ratios [-], flywheel at the crank [kg*m^2], status."""
+
+    rated_power: float
+    motor_ratio: float
+    flywheel_ratio: float
+    j_flywheel: float
+    objective: float
+    status: str
+
+
+def kloss_runup_time(inertia, ratio, efficiency, breakdown_torque, breakdown_slip, synchronous_speed, omega, lib=math):
+    """Run-up time from rest to ``omega`` of a constant inertia on an induction motor's Kloss curve, no load [s].
+
+    J dω/dt = i η M(i ω), M = 2 M_b s s_b/(s² + s_b²), s = 1 − i ω/ω_0, so with
+    dω_motor = −ω_0 ds,
+
+        t = J/(i² η) ∫ dω_motor/M = J/(i² η) · ω_0/(2 M_b s_b) [(1 − s_e²)/2 + s_b² ln(1/s_e)],
+
+    s_e = 1 − i ω/ω_0 the slip at the target speed (which must be positive).
+    ``lib``: math, numpy or casadi (the NLP's symbols).
+    """
+    s_e = 1 - ratio * omega / synchronous_speed
+    return (inertia / (ratio**2 * efficiency) * synchronous_speed / (2 * breakdown_torque * breakdown_slip)
+            * ((1 - s_e**2) / 2 + breakdown_slip**2 * lib.log(1 / s_e)))
+
+
+def _law(fit, lnp, ca):
+    a, b = fit
+    return ca.exp(a + b * lnp)
+
+
+def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque):
+    """Solve the relaxation (:class:`Relaxation`).
+
+    Parameters
+    ----------
+    machine : flyopt.machine.reduce.Machine
+        The scene reduced (its resisting torque and J_e; the driving torque is the motor's).
+    omega_mean, delta, efficiency : float
+    fit : CatalogueFit
+    spec : DriveSpec
+    wheel : (density-free) tuple (v_max [m/s], R_envelope [m] or inf, cost_per_kg or None)
+        The wheel's limits: its material's safe rim speed, half the envelope.
+    load_torque : float
+        Mean load torque at the crank [N*m] (for the first guess).
+
+    Raises
+    ------
+    SolverFailed
+        IPOPT did not converge.
+    """
+    import casadi as ca
+
+    v_max, r_env, cost_per_kg = wheel
+    cycle = machine.cycle_angle
+    resisting = machine.angle_only().resisting
+    knots = np.asarray(machine.knots(), dtype=float)
+    phi = np.union1d(np.linspace(0.0, cycle, NODES + 1), knots[(knots > 0) & (knots < cycle)])
+    left, right = resisting.limits(phi)       # M_r(φ⁻), M_r(φ⁺)
+    j_e = machine.j_machine(phi) if machine.variable_inertia else np.full(phi.shape, float(machine.j_machine))
+    h = np.diff(phi)
+    n = len(phi) - 1                          # intervals; node n is node 0 again
+    w0 = fit.synchronous_speed
+
+    lnp, i_m, jf, r, big_r = (ca.SX.sym(name) for name in ("lnp", "i_m", "jf", "r", "R"))
+    w = ca.SX.sym("w", n)                     # ω_k / ω_m, k = 0..n-1
+    j_scale = max(load_torque * cycle / (omega_mean**2 * delta), 1e-6)   # J_F = j_scale * jf
+    rows = []                                 # (expression, lower, upper)
+
+    p = ca.exp(lnp)
+    s_n = _law(fit.slip, lnp, ca)
+    j_rot = _law(fit.rotor_inertia, lnp, ca)
+    k = fit.breakdown[0] + fit.breakdown[1] * lnp
+    w_n = w0 * (1 - s_n)
+    m_n = p / w_n
+    s_b = s_n * (k + ca.sqrt(k * k - 1))
+
+    def motor(speed):                         # Kloss torque at the motor shaft
+        s = (w0 - speed) / w0
+        return 2 * k * m_n * s * s_b / (s * s + s_b * s_b)
+
+    omega = omega_mean * ca.vertcat(w, w[0])
+    j_f = j_scale * jf
+    energy = 0.5 * (ca.DM(j_e) + j_rot * i_m**2 + j_f) * omega**2
+    m_motor = motor(i_m * omega)
+    net_a = i_m * efficiency * m_motor[:-1] - ca.DM(right[:-1])
+    net_b = i_m * efficiency * m_motor[1:] - ca.DM(left[1:])
+    e_scale = 0.5 * j_scale * omega_mean**2 * delta
+    rows.append(((energy[1:] - energy[:-1] - ca.DM(h) / 2 * (net_a + net_b)) / e_scale, 0.0, 0.0))
+    rows.append((i_m * w - w0 * (1 - s_b) / omega_mean, 0.0, math.inf))        # above breakdown
+    extra, extra_lo, extra_hi, extra_x0 = [], [], [], []
+    if spec.thermal:
+        # ∫M² dt and ∫dt as variables of their own: their ratio written directly would couple every node
+        # in a dense Hessian
+        squares, period = ca.SX.sym("squares"), ca.SX.sym("period")
+        inv = 1.0 / omega
+        t_scale = cycle / omega_mean
+        m_scale = load_torque / (omega_mean * efficiency) * omega_mean / w0    # about the mean motor torque
+        rows.append((ca.sum1(ca.DM(h) / 2 * (m_motor[:-1] ** 2 * inv[:-1] + m_motor[1:] ** 2 * inv[1:]))
+                     / (m_scale**2 * t_scale) - squares, 0.0, 0.0))
+        rows.append((ca.sum1(ca.DM(h) / 2 * (inv[:-1] + inv[1:])) / t_scale - period, 0.0, 0.0))
+        rows.append((squares * m_scale**2 - m_n**2 * period, -math.inf, 0.0))
+        extra += [squares, period]
+        extra_lo += [0.0, 0.0]
+        extra_hi += [math.inf, math.inf]
+        extra_x0 += [1.0, 1.0]
+    s_e = 1 - i_m * omega_mean / w0
+    rows.append((s_e, 1e-6, math.inf))
+    if spec.max_startup is not None:
+        j_total = float(np.mean(j_e[:-1])) + j_rot * i_m**2 + j_f
+        run = kloss_runup_time(j_total, i_m, efficiency, k * m_n, s_b, w0, omega_mean, ca)
+        rows.append((run / spec.max_startup, -math.inf, 1.0))
+    omega_top = omega_mean * (1 + delta / 2)
+    rows.append((r * big_r * omega_top / v_max, -math.inf, 1.0))
+    lo, hi = spec.ratio_range if spec.ratios is None else (min(spec.ratios), max(spec.ratios))
+    radius_cap = min(r_env, v_max / (lo * omega_top))
+    wheel_mass = j_f / (r**2 * big_r**2)
+    if spec.objective == "cost":
+        objective = _law(fit.price, lnp, ca) + cost_per_kg * wheel_mass
+        scale = float(_law(fit.price, math.log(fit.p_max), np))
+    else:
+        objective = _law(fit.mass, lnp, ca) + wheel_mass
+        scale = float(_law(fit.mass, math.log(fit.p_max), np))
+
+    x = ca.vertcat(lnp, i_m, jf, r, big_r, w, *extra)
+    lbx = [math.log(fit.p_min), 1e-9, 0.0, lo, 1e-6 * radius_cap] + [1 - delta / 2] * n + extra_lo
+    ubx = [math.log(fit.p_max), math.inf, math.inf, hi, radius_cap] + [1 + delta / 2] * n + extra_hi
+    g = ca.vertcat(*(row[0] for row in rows))
+    lbg = np.concatenate([np.full(row[0].shape[0], row[1]) for row in rows])
+    ubg = np.concatenate([np.full(row[0].shape[0], row[2]) for row in rows])
+
+    # first guess: twice the mean power, the ratio of the work balance, a flywheel of the energy method
+    p0 = min(max(2 * load_torque * omega_mean / efficiency, fit.p_min), fit.p_max)
+    sn0 = float(_law(fit.slip, math.log(p0), np))
+    x0 = [math.log(p0), w0 * (1 - 0.5 * sn0) / omega_mean, 1.0, hi,
+          min(r_env, 0.9 * v_max / (hi * omega_top))] + [1.0] * n + extra_x0
+    solver = ca.nlpsol("drive", "ipopt", {"x": x, "f": objective / scale, "g": g},
+                       {"print_time": False, "ipopt.print_level": 0, "ipopt.sb": "yes",
+                        "ipopt.max_iter": 3000, "ipopt.tol": 1e-10})
+    try:
+        with quiet():
+            found = solver(x0=x0, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
+    except RuntimeError as err:
+        raise SolverFailed(f"the drive's relaxation did not converge: {err}") from None
+    status = solver.stats()["return_status"]
+    if status not in _ACCEPTED:
+        raise SolverFailed(f"the drive's relaxation did not converge: {status}")
+    values = ca.Function("values", [x], [p, i_m, r, j_f, objective])(found["x"])
+    p, i_m, r, j_f, objective = (float(v) for v in values)
+    return Relaxation(rated_power=p, motor_ratio=i_m, flywheel_ratio=r, j_flywheel=j_f, objective=objective,
+                      status=status)
