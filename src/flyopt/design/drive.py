@@ -421,7 +421,7 @@ def _slowest_equal(mass, lo, r, m, rtol=1e-9):
 # -- the drive -------------------------------------------------------------------
 
 
-def design_drive(scene, analysis=None, *, solver_options=None):
+def design_drive(scene, analysis=None, *, solver_options=None, every_size=False):
     """Design the motor, its ratio and the flywheel of a scene with a [drive] together.
 
     Parameters
@@ -431,6 +431,9 @@ def design_drive(scene, analysis=None, *, solver_options=None):
         (the motor replaces it).
     analysis : Analysis, optional
         The scene's own analysis (the mean load); default: analysed here.
+    every_size : bool
+        Solve every size of the catalogue (a front of wheel mass against
+        motor power needs them all), not only those around the relaxation.
 
     Returns
     -------
@@ -459,7 +462,8 @@ def design_drive(scene, analysis=None, *, solver_options=None):
                                      solver_options=solver_options)
         return done[k]
 
-    relaxation, note = _relaxation(scene, analysis, spec, motors, inputs, load)
+    relaxation, note = (None, "every catalogue size solved") if every_size else \
+        _relaxation(scene, analysis, spec, motors, inputs, load)
     if relaxation is None:
         for k in range(len(motors)):
             evaluate(k)
@@ -535,6 +539,17 @@ def _neighbours(motors, power, evaluate, done):
             return
         for k in moves:
             evaluate(k)
+
+
+def motor_power_front(drive):
+    """The runs no other run beats in both motor power and wheel mass (a Pareto front), by rising power."""
+    feasible = sorted((r for r in drive.runs if r.feasible), key=lambda r: (r.motor.rated_power, r.wheel_mass))
+    front, lightest = [], math.inf
+    for run in feasible:
+        if run.wheel_mass < lightest:
+            front.append(run)
+            lightest = run.wheel_mass
+    return tuple(front)
 
 
 def _name(motor):

@@ -1,0 +1,186 @@
+"""The drive designed with the flywheel (flyopt.design.drive, flyopt.design.drive_nlp).
+
+References are independent of the code under test: a brute-force enumeration
+of every motor size over a fine grid of flywheel ratios; quadrature (scipy
+quad) of the RMS torque and of the Kloss run-up; the root of the work balance
+checked by substitution; the collocation of the relaxation against flyopt's
+CVODES periodic solution of the same relaxed motor; and the smaller motor shown
+to break a limit in the simulation.
+"""
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from scipy import integrate
+
+from flyopt.design import drive
+from flyopt.design.drive_nlp import CatalogueFit, kloss_runup_time
+from flyopt.io.drive import DriveSpec
+from flyopt.io.scene import load
+from flyopt.machine.catalogue import Catalogue, CatalogueMotor
+from flyopt.machine.motor import InductionMotor
+
+RPM = math.pi / 30
+
+# A user's own motor options for the tests (a plausible 4-pole ladder: 1500 rpm, slip 3-4 %,
+# rotor inertia and mass growing with the rating). The optimizer is under test, not the data.
+OPTIONS = Catalogue("motor_option", tuple(
+    CatalogueMotor(name=f"{p:g} kW", rated_power=p * 1e3, rated_speed=n * RPM, synchronous_speed=1500 * RPM,
+                   rotor_inertia=j, breakdown_ratio=k, mass=m)
+    for p, n, j, k, m in [(3.0, 1435, 0.0095, 2.9, 22.0), (4.0, 1440, 0.012, 2.8, 30.0),
+                          (5.5, 1450, 0.022, 2.7, 40.0), (7.5, 1455, 0.030, 2.7, 50.0),
+                          (11.0, 1460, 0.060, 2.6, 75.0), (15.0, 1465, 0.075, 2.6, 95.0)]))
+
+
+def _scene(**changes):
+    spec = DriveSpec(motors=OPTIONS, ratio_range=(2.0, 8.0), objective="mass", max_startup=30.0, thermal=True)
+    spec = DriveSpec(**{**spec.__dict__, **changes})
+    return load("problems/punch-press.toml").replace(drive=spec)
+
+
+@pytest.fixture(scope="module")
+def designed():
+    scene = _scene()
+    return scene, drive.design_drive(scene)
+
+
+def test_work_balance_ratio_is_the_root():
+    """The motor ratio estimate puts the angle-mean motor torque on the load: i η M_lin(i ω) = M̄."""
+    motor = OPTIONS.motors[3]
+    load, omega, eta = 700.0, 2 * math.pi, 0.92
+    i = drive.motor_ratio_estimate(motor, load, omega, eta)
+    torque = motor.motor().torque(i * omega, "linear")
+    assert i * eta * torque == pytest.approx(load, rel=1e-12)
+    assert i * omega > motor.motor().linear_limit_speed            # the stable, low-slip root
+    assert drive.motor_ratio_estimate(motor, 1e6, omega, eta) is None   # no ratio reaches a huge load
+
+
+def test_rms_torque_against_quadrature():
+    """RMS of the motor torque in time on ω(φ) = ω̄ (1 + a sin φ), against scipy quad of the exact integrals."""
+    motor = OPTIONS.motors[2].motor()
+    w_bar, a, ratio = 6.0, 0.04, 24.0
+    phi = np.linspace(0.0, 2 * math.pi, 20001)
+    solution = SimpleNamespace(phi=phi, omega=w_bar * (1 + a * np.sin(phi)))
+    rms, mean = drive.rms_torque(solution, motor, ratio)
+
+    def w(p):
+        return w_bar * (1 + a * math.sin(p))
+
+    def m(p):
+        return float(motor.torque(ratio * w(p), "kloss"))
+
+    period = integrate.quad(lambda p: 1 / w(p), 0, 2 * math.pi, epsabs=0, epsrel=1e-13)[0]
+    squares = integrate.quad(lambda p: m(p) ** 2 / w(p), 0, 2 * math.pi, epsabs=0, epsrel=1e-13)[0]
+    means = integrate.quad(lambda p: m(p) / w(p), 0, 2 * math.pi, epsabs=0, epsrel=1e-13)[0]
+    assert rms == pytest.approx(math.sqrt(squares / period), rel=1e-7)
+    assert mean == pytest.approx(means / period, rel=1e-7)
+
+
+def test_kloss_runup_closed_form_against_quadrature():
+    """t = J/(i² η) ∫ dω_m / M_kloss(ω_m), integrated numerically from rest to i ω."""
+    motor = OPTIONS.motors[1].motor()
+    inertia, ratio, eta, omega = 300.0, 24.0, 0.92, 6.2
+    found = kloss_runup_time(inertia, ratio, eta, motor.breakdown_torque, motor.breakdown_slip,
+                             motor.synchronous_speed, omega)
+    integral = integrate.quad(lambda wm: 1 / float(motor.torque(wm, "kloss")), 0, ratio * omega,
+                              epsabs=0, epsrel=1e-12, limit=200)[0]
+    assert found == pytest.approx(inertia / (ratio**2 * eta) * integral, rel=1e-9)
+
+
+def test_codesign_matches_brute_force(designed):
+    """Every motor size over a fine grid of flywheel ratios: the same motor and the best mass to 1e-6."""
+    scene, result = designed
+    assert result.status == "designed"
+    load_torque = drive_load(scene)
+    grid = ("fixed", *np.linspace(2.0, 8.0, 241))
+    from flyopt.design import design_inputs
+
+    inputs = design_inputs(scene)
+    brute = [drive.evaluate_motor(scene, m, load_torque, scene.drive, grid, inputs.materials, inputs.spec)
+             for m in OPTIONS]
+    feasible = [r for r in brute if r.feasible]
+    best = min(feasible, key=lambda r: r.objective)
+    assert result.best.motor.name == best.motor.name
+    assert result.best.objective <= best.objective * (1 + 1e-6)
+    assert result.best.objective == pytest.approx(best.objective, rel=1e-6)
+    # the relaxation solved fewer sizes than the catalogue holds, and the winner among them
+    assert len(result.runs) < len(OPTIONS)
+    assert result.relaxation is not None
+
+
+def drive_load(scene):
+    from flyopt.analysis import analyse
+
+    return analyse(scene).driving_torque
+
+
+def test_one_size_smaller_breaks_a_limit_in_the_simulation(designed):
+    """The next smaller motor with the chosen wheel: the simulation shows δ or the thermal limit exceeded."""
+    scene, result = designed
+    best = result.best
+    smaller = [m for m in OPTIONS if m.rated_power < best.motor.rated_power][-1]
+    from flyopt.design import design_inputs
+
+    inputs = design_inputs(scene)
+    run = drive.evaluate_motor(scene, smaller, drive_load(scene), scene.drive, ("fixed", best.flywheel_ratio),
+                               inputs.materials, inputs.spec)
+    ratio = run.motor_ratio or drive.motor_ratio_estimate(smaller, drive_load(scene), scene.omega_mean,
+                                                         scene.efficiency)
+    trial = drive.MotorRun(motor=smaller, feasible=True, motor_ratio=ratio)
+    check = drive.verify_drive(scene, trial, j_flywheel=best.wheel.j_at_reference)
+    assert check.flagged
+    assert any("delta" in n or "thermal" in n for n in check.notes)
+    # and the chosen drive, simulated with its wheel as built, keeps every limit
+    ok = drive.verify_drive(scene, best)
+    assert not ok.flagged, ok.notes
+    assert ok.verification.achieved_delta <= scene.delta * (1 + 1e-6)
+    assert ok.rms_torque <= best.motor.rated_torque * (1 + 1e-6)
+
+
+def test_relaxation_collocation_against_the_periodic_solution(designed):
+    """The relaxed motor and flywheel, simulated by CVODES shooting: δ and the mean speed within the collocation error."""
+    from flyopt.analysis import analyse
+    from flyopt.machine.transmission import inertia_at_reference
+    from flyopt.sizing.periodic import periodic_solution
+    from flyopt.machine.torque import MotorTorque
+    from flyopt.machine.reduce import reduce
+
+    scene, result = designed
+    relaxed = result.relaxation
+    fit = CatalogueFit.of(OPTIONS)
+    motor, j_rot, _ = fit.motor(relaxed.rated_power)
+    built = scene.replace(driving=MotorTorque(motor, relaxed.motor_ratio, scene.efficiency, "kloss", "test"),
+                          j_constant=scene.j_constant + inertia_at_reference(j_rot, relaxed.motor_ratio))
+    machine = reduce(built)
+    sol = periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean,
+                            relaxed.j_flywheel, machine.knots())
+    # the NLP kept every node within ω_m (1 ± δ/2); trapezoidal collocation on ~250 intervals: O(h²)
+    assert sol.omega_max <= scene.omega_mean * (1 + scene.delta / 2) * (1 + 2e-4)
+    assert sol.omega_min >= scene.omega_mean * (1 - scene.delta / 2) * (1 - 2e-4)
+    assert analyse(scene).driving_torque > 0
+
+
+def test_every_size_without_a_relaxation_when_too_few():
+    """Two sizes are no ladder to fit: every size is solved, and the note says so."""
+    few = Catalogue("motor_option", OPTIONS.motors[3:5])
+    scene = _scene(motors=few)
+    result = drive.design_drive(scene)
+    assert result.relaxation is None and "every catalogue size" in result.note
+    assert len(result.runs) == 2
+
+
+def test_motor_power_front_is_the_nondominated_set():
+    """Every size solved; the front keeps exactly the runs no other run beats in both power and wheel mass."""
+    result = drive.design_drive(_scene(), every_size=True)
+    assert len(result.runs) == len(OPTIONS)
+    front = drive.motor_power_front(result)
+    feasible = [r for r in result.runs if r.feasible]
+    for run in feasible:
+        dominated = any(o.motor.rated_power <= run.motor.rated_power and o.wheel_mass <= run.wheel_mass
+                        and (o.motor.rated_power, o.wheel_mass) != (run.motor.rated_power, run.wheel_mass)
+                        for o in feasible)
+        assert (run in front) == (not dominated), run.motor.name
+    # a bigger motor needs no heavier wheel along the front
+    assert all(a.wheel_mass > b.wheel_mass for a, b in zip(front, front[1:]))
