@@ -191,3 +191,11 @@ def test_a_cost_objective_needs_every_material_priced():
     assert err.value.field == "drive.objective"
     priced = {"grey": make_material("grey", density=7200.0, max_rim_speed=36.0, cost=2.1)}
     assert drive_spec(raw, options, (), materials=priced).objective == "cost"
+
+
+def test_a_mass_objective_needs_every_motor_mass(tmp_path, cli):
+    """objective = "mass" adds the motor's mass to the wheel's: an option without one is refused by name."""
+    path = tmp_path / "scene.toml"
+    path.write_text(GOOD_OPTIONS)                 # the options give prices, not masses
+    assert_refused(cli("check", path), path, "drive.objective",
+                   r"'mass' is the motor's mass plus the wheel's, and none is given for 'small, big'")

@@ -58,8 +58,6 @@ THERMAL_RTOL = 1e-9
 #: a standard motor of 2-4 % rated slip far from it).
 MOTOR_MODEL = "kloss"
 
-#: Objectives of a drive design.
-OBJECTIVES = ("mass", "cost")
 
 
 @dataclass(frozen=True)

@@ -227,7 +227,11 @@ def _objective(table, motors, materials):
     objective = table.get("objective", "mass")
     if objective not in OBJECTIVES:
         raise SceneError("drive.objective", f"{shorten(objective)} is not known (allowed: {', '.join(OBJECTIVES)})")
-    if objective != "cost":
+    if objective == "mass":
+        massless = tuple(m.name for m in motors if m.mass is None)
+        if massless:
+            raise SceneError("drive.objective", f"'mass' is the motor's mass plus the wheel's, and none is given "
+                                                f"for {shorten(', '.join(massless), 200)} (give mass = ...)")
         return objective
     unpriced = motors.unpriced
     if unpriced:
