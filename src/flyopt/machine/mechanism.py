@@ -84,23 +84,31 @@ class SliderCrank:
     offset : float
         Distance e of the slider axis from O [m] (positive: the axis lies on
         the side y > 0).
+    phase : float
+        Angle of the reference shaft at which this crank points along the
+        slider axis [rad] (default 0): the crank's own angle is
+        ψ = φ − phase, and every formula below is written in ψ. A
+        multi-cylinder engine is one slider-crank per cylinder, each phased
+        by its firing angle (flyopt.machine.engine). Derivatives with
+        respect to φ and ψ are the same.
 
     Raises
     ------
     ValueError
-        For non-positive or non-finite lengths, or l <= r + |e|.
+        For non-positive or non-finite lengths, l <= r + |e|, or a
+        non-finite phase.
 
     Notes
     -----
-    With u = r sin φ − e and w = sqrt(l² − u²):
+    With u = r sin ψ − e and w = sqrt(l² − u²) (ψ = φ for phase 0):
 
-        x_B = r cos φ + w,
-        v_B/ω = dx_B/dφ = −r sin φ − u r cos φ / w,
+        x_B = r cos ψ + w,
+        v_B/ω = dx_B/dφ = −r sin ψ − u r cos ψ / w,
         rod angle β = atan2(−u, w)  (direction of A→B),
-        ω_rod/ω = dβ/dφ = −r cos φ / w.
+        ω_rod/ω = dβ/dφ = −r cos ψ / w.
 
     A point of the rod at the fraction s = |AP|/l from the crank pin moves at
-    ((1 − s)(−r sin φ) + s v_B/ω, (1 − s) r cos φ) times ω.
+    ((1 − s)(−r sin ψ) + s v_B/ω, (1 − s) r cos ψ) times ω.
 
     References
     ----------
@@ -108,7 +116,7 @@ class SliderCrank:
        slider-crank position and velocity analysis (loop-closure equations).
     """
 
-    def __init__(self, crank, rod, offset=0.0):
+    def __init__(self, crank, rod, offset=0.0, phase=0.0):
         for name, value in (("crank", crank), ("rod", rod)):
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise ValueError(f"slider-crank {name} length must be a positive finite number [m], got {value!r}")
@@ -118,16 +126,25 @@ class SliderCrank:
             raise ValueError(
                 f"slider-crank with crank {crank!r} m, rod {rod!r} m and offset {offset!r} m cannot turn fully: "
                 f"the rod must be longer than crank + |offset| = {crank + abs(offset)!r} m")
+        if not (isinstance(phase, (int, float)) and math.isfinite(phase)):
+            raise ValueError(f"slider-crank phase must be a finite angle [rad], got {phase!r}")
         self.crank = float(crank)
         self.rod = float(rod)
         self.offset = float(offset)
+        self.phase = float(phase)
 
     def __repr__(self):
-        return f"SliderCrank(crank={self.crank!r}, rod={self.rod!r}, offset={self.offset!r})"
+        phase = f", phase={self.phase!r}" if self.phase else ""
+        return f"SliderCrank(crank={self.crank!r}, rod={self.rod!r}, offset={self.offset!r}{phase})"
 
-    def _uw(self, phi):
-        lib = _lib(phi)
-        u = self.crank * lib.sin(phi) - self.offset
+    def _own(self, phi):
+        """The crank's own angle ψ = φ − phase (φ itself, untouched, for phase 0)."""
+        return phi - self.phase if self.phase else phi
+
+    def _uw(self, psi):
+        """u and w at the crank's own angle ψ (see Notes)."""
+        lib = _lib(psi)
+        u = self.crank * lib.sin(psi) - self.offset
         return u, lib.sqrt(self.rod**2 - u * u)
 
     def _state(self, phi, cache=None):
@@ -141,7 +158,8 @@ class SliderCrank:
         key = id(self)
         if cache is not None and key in cache and cache[key][0] is phi:
             return cache[key][1]
-        s, c = np.sin(phi), np.cos(phi)
+        psi = self._own(phi)
+        s, c = np.sin(psi), np.cos(psi)
         u = self.crank * s - self.offset
         state = (s, c, u, np.sqrt(self.rod**2 - u * u))
         if cache is not None:
@@ -151,7 +169,8 @@ class SliderCrank:
     def slider_position(self, phi):
         """Slider position x_B along its axis [m]."""
         lib = _lib(phi)
-        return self.crank * lib.cos(phi) + self._uw(phi)[1]
+        psi = self._own(phi)
+        return self.crank * lib.cos(psi) + self._uw(psi)[1]
 
     def stroke(self):
         """Slider stroke, x_B max − x_B min [m] (closed form, valid with offset)."""
@@ -161,19 +180,21 @@ class SliderCrank:
     def slider_velocity_ratio(self, phi):
         """v_B/ω of the slider [m/rad], signed along +x."""
         lib = _lib(phi)
-        u, w = self._uw(phi)
-        return -self.crank * lib.sin(phi) - u * self.crank * lib.cos(phi) / w
+        psi = self._own(phi)
+        u, w = self._uw(psi)
+        return -self.crank * lib.sin(psi) - u * self.crank * lib.cos(psi) / w
 
     def rod_angle(self, phi):
         """Angle β of the rod, direction crank pin → slider, from +x [rad]."""
         lib = _lib(phi)
-        u, w = self._uw(phi)
+        u, w = self._uw(self._own(phi))
         return lib.arctan2(-u, w) if lib is np else ca.atan2(-u, w)
 
     def rod_angular_ratio(self, phi):
         """ω_rod/ω [-] (signed, counter-clockwise positive)."""
         lib = _lib(phi)
-        return -self.crank * lib.cos(phi) / self._uw(phi)[1]
+        psi = self._own(phi)
+        return -self.crank * lib.cos(psi) / self._uw(psi)[1]
 
     def rod_point_velocity_ratio(self, phi, fraction):
         """Velocity ratio of a point of the rod, (v_x/ω, v_y/ω) [m/rad].
@@ -187,8 +208,9 @@ class SliderCrank:
         """
         lib = _lib(phi)
         s = float(fraction)
-        vx = (1 - s) * (-self.crank * lib.sin(phi)) + s * self.slider_velocity_ratio(phi)
-        vy = (1 - s) * self.crank * lib.cos(phi)
+        psi = self._own(phi)
+        vx = (1 - s) * (-self.crank * lib.sin(psi)) + s * self.slider_velocity_ratio(phi)
+        vy = (1 - s) * self.crank * lib.cos(psi)
         return vx, vy
 
     def kinematics(self, part, centre=None):
@@ -489,6 +511,11 @@ class Member:
     torque : float, table, or callable, optional
         A moment on the member [N*m], doing work with ω_member in the same
         ``force_sense``.
+    owner : object, optional
+        What the member was made from, when a scene section makes members
+        (an [engine]'s :class:`flyopt.machine.engine.Engine` owns its pistons
+        and rods), so that a report can name the machine. It takes no part
+        in the reduction.
     """
 
     name: str
@@ -499,6 +526,7 @@ class Member:
     force: object = None
     force_sense: str = "resisting"
     torque: object = None
+    owner: object = None
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name:
@@ -701,6 +729,10 @@ class EquivalentInertia:
             total = total + m.inertia_contribution(phi, cache)
             slope = slope + m.inertia_slope(phi, cache)
         return total, slope
+
+    def casadi_derivative(self, phi):
+        """dJ_e/dφ as a CasADi expression of ``phi`` [kg*m^2/rad] (algorithmic differentiation)."""
+        return self._derivative_function(phi)
 
     def derivative(self, phi):
         """dJ_e/dφ at ``phi`` [kg*m^2/rad] (exact: closed forms, or CasADi's algorithmic differentiation)."""
