@@ -20,6 +20,7 @@ import numpy as np
 from flyopt.errors import ExpressionError, SceneError, clip, shorten
 from flyopt.machine.expression import Expression
 from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.machine.transmission import inertia_at_reference
 from flyopt.units import DIMENSIONS, inertia_from_gd2, quantity
 
 try:  # Python >= 3.11
@@ -44,12 +45,17 @@ class Shaft:
         Efficiency of the transmission from the motor to this shaft [-].
     diameter : float or None
         The shaft seat [m] (sets a wheel's bore, hub and key), when given.
+    inertia : float
+        Inertia already turning with this shaft (a motor rotor, pulleys,
+        gears), about its axis [kg*m^2]; it counts towards the machine's J_c
+        as inertia * speed_ratio² at the reference shaft.
     """
 
     name: str
     speed_ratio: float
     efficiency: float = 1.0
     diameter: float | None = None
+    inertia: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -71,7 +77,9 @@ class Scene:
     delta : float
         Allowed coefficient of speed fluctuation δ [-].
     j_constant : float
-        Constant part J_c of the equivalent inertia at the reference shaft [kg*m^2].
+        Constant part J_c of the equivalent inertia at the reference shaft
+        [kg*m^2]: machine.inertia (or gd2) plus the inertia on every
+        [[shaft]] by the ratio-squared transfer (:func:`constant_inertia`).
     cycle_angle : float
         Angle Φ of one cycle of the reference shaft [rad].
     efficiency : float
@@ -92,6 +100,8 @@ class Scene:
         Members whose kinetic energy and loads are reduced to the reference
         shaft (J_e(φ) = J_c + Σ ..., their forces join the resisting torque).
     mechanism : SliderCrank, GearTrain or None
+    engine : flyopt.machine.engine.Engine or None
+        The [engine]: its pistons and rods are the first of ``members``.
     source : str or None
         File the scene came from.
     """
@@ -113,6 +123,7 @@ class Scene:
     members: tuple = ()            # flyopt.machine.mechanism.Member of [[member]]: J_e(φ) and member loads
     mechanism: object = None       # SliderCrank or GearTrain of [mechanism]
     drive: object = None           # flyopt.io.drive.DriveSpec of [drive]: the motor and ratio designed with the wheel
+    engine: object = None          # flyopt.machine.engine.Engine of [engine]; its members lead ``members``
     source: str | None = field(default=None, compare=False)
 
     def material_library(self):
@@ -346,7 +357,7 @@ def from_dict(data, source=None):
 
         data = scene_data(data)
     top = _Table(data, "", {"title", "description", "machine", "torque", "shaft", "design", "material",
-                            "mechanism", "member", "sweep", "drive", "motor_option"})  # [sweep] is read by flyopt.studies.sweep.load_sweep
+                            "mechanism", "member", "sweep", "drive", "motor_option", "engine"})  # [sweep] is read by flyopt.studies.sweep.load_sweep
     machine = _Table(top.require("machine"), "machine",
                      {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"})
     omega = machine.quantity("speed", "angular_speed", required=True)
@@ -366,13 +377,23 @@ def from_dict(data, source=None):
     cycle = machine.quantity("cycle", "angle", default=2 * math.pi)
     if cycle <= 0:
         raise SceneError("machine.cycle", f"must be positive, got {shorten(machine.raw('cycle'))}")
+    engine = _engine(top.get("engine"), files) if top.has("engine") else None
+    if engine is not None:
+        if machine.has("cycle") and abs(cycle - engine.cycle_angle) > ANGLE_TOLERANCE * engine.cycle_angle:
+            raise SceneError("machine.cycle", f"is {math.degrees(cycle):.6g} deg, but the cycle of a {engine.cycle} "
+                             f"engine is {math.degrees(engine.cycle_angle):.6g} deg (leave machine.cycle out: "
+                             "[engine] cycle sets it)")
+        cycle = engine.cycle_angle
 
     shafts = _shafts(top.get("shaft"))
+    j_c = constant_inertia(j_c, shafts)
     efficiency = _efficiency(machine.get("efficiency"), "machine.efficiency") if machine.has("efficiency") \
         else _reference_efficiency(shafts)
 
     mechanism = _mechanism(top.get("mechanism"))
     members = _members(top.get("member"), mechanism, cycle, files)
+    if engine is not None:
+        members = _with_engine(engine, mechanism, members)
     member_loads = any(m.force is not None or m.torque is not None for m in members)
     driving, resisting, net = _torques(top.get("torque", {}) if member_loads else top.require("torque"),
                                        cycle, shafts, efficiency, member_loads, files)
@@ -393,7 +414,28 @@ def from_dict(data, source=None):
                  j_constant=j_c, cycle_angle=cycle, efficiency=efficiency, driving=driving,
                  resisting=resisting, net=net, shafts=shafts, design=design,
                  design_materials=design_materials, design_shafts=design_shafts, materials=materials,
-                 members=members, mechanism=mechanism, drive=drive, source=source)
+                 members=members, mechanism=mechanism, drive=drive, engine=engine, source=source)
+
+
+def constant_inertia(j_machine, shafts):
+    """J_c at the reference shaft: the machine's own plus the inertia on each shaft [kg*m^2].
+
+    J_c = J_machine + Σ_k J_k i_k², i_k = ω_k/ω the shaft's speed ratio: the
+    same kinetic energy at every speed (docs/flywheel-design.md, sections 3
+    and 8; the reduction of GD² to one shaft of the electric-drive texts, in
+    flyopt's speed-ratio convention), no efficiency applied.
+
+    Parameters
+    ----------
+    j_machine : float
+        machine.inertia (or gd2) [kg*m^2], already at the reference shaft.
+    shafts : iterable of Shaft
+
+    Returns
+    -------
+    float
+    """
+    return j_machine + math.fsum(inertia_at_reference(s.inertia, s.speed_ratio) for s in shafts)
 
 
 # -- sections ------------------------------------------------------------------
@@ -462,9 +504,15 @@ def _curve(section, where, cycle, shafts=(), efficiency=1.0, files=Path()):
     return _points(table.get("points"), f"{where}.points", cycle, unit, angle_unit)
 
 
-def _points(raw, where, cycle, unit, angle_unit, dimension="torque"):
+def _points(raw, where, cycle, unit, angle_unit, dimension="torque", label=None, minimum=None):
+    """A table [[angle, value], ...] over the cycle as a PiecewiseLinear (values in SI).
+
+    ``label`` names the values in messages (default: the dimension);
+    ``minimum``, a pair (least value [SI], why), refuses a value below it.
+    """
+    label = label or dimension
     if not isinstance(raw, (list, InlineRows)) or len(raw) < 2:
-        raise SceneError(where, f"must be a list of at least two [angle, {dimension}] pairs")
+        raise SceneError(where, f"must be a list of at least two [angle, {label}] pairs")
     if isinstance(raw, InlineRows):     # plain finite numbers: what _scaled gives each, float(x) * unit
         angles = raw.array[:, 0] * angle_unit
         values = raw.array[:, 1] * unit
@@ -473,9 +521,14 @@ def _points(raw, where, cycle, unit, angle_unit, dimension="torque"):
         values = np.empty(len(raw))
         for k, pair in enumerate(raw):
             if not isinstance(pair, list) or len(pair) != 2:
-                raise SceneError(f"{where}[{k}]", f"must be an [angle, {dimension}] pair, got {shorten(pair)}")
+                raise SceneError(f"{where}[{k}]", f"must be an [angle, {label}] pair, got {shorten(pair)}")
             angles[k] = _scaled(pair[0], "angle", f"{where}[{k}] angle", angle_unit)
-            values[k] = _scaled(pair[1], dimension, f"{where}[{k}] {dimension}", unit)
+            values[k] = _scaled(pair[1], dimension, f"{where}[{k}] {label}", unit)
+    if minimum is not None and np.any(values < minimum[0]):
+        k = int(np.argmax(values < minimum[0]))
+        written = raw.array[k, 1] if isinstance(raw, InlineRows) else raw[k][1]
+        raise SceneError(f"{where}[{k}]", f"the {label} {shorten(written)} at {np.degrees(angles[k]):.6g} deg is "
+                         f"below {minimum[0]:g}: {minimum[1]}")
     problem, k = _table_problem(angles, cycle)
     if problem == "decreasing":
         raise SceneError(where, f"angles must not decrease: point {k} ({np.degrees(angles[k]):.6g} deg) "
@@ -515,7 +568,7 @@ def _table_problem(angles, cycle):
     return None, None
 
 
-def _points_file(raw, where, files, cycle, unit, angle_unit, column, units):
+def _points_file(raw, where, files, cycle, unit, angle_unit, column, units, minimum=None):
     """A table [angle, value] read from a CSV file, with the checks of inline points.
 
     Parameters
@@ -534,6 +587,8 @@ def _points_file(raw, where, files, cycle, unit, angle_unit, column, units):
         What the second column holds ("torque", "force", ...), for messages.
     units : tuple of str
         The two columns' units as written (for messages).
+    minimum : (float, str), optional
+        The least value of the second column [SI] and why: a row below it is refused.
 
     Returns
     -------
@@ -548,6 +603,10 @@ def _points_file(raw, where, files, cycle, unit, angle_unit, column, units):
     numbers, lines, name = _csv_table(raw, where, files, ("angle", column), units)
     angles = numbers[:, 0] * angle_unit
     values = numbers[:, 1] * unit
+    if minimum is not None and np.any(values < minimum[0]):
+        k = int(np.argmax(values < minimum[0]))
+        raise SceneError(where, f"{name} line {lines[k]}: the {column} {numbers[k, 1]:.6g} {units[1]} is below "
+                         f"{minimum[0]:g}: {minimum[1]}")
     problem, k = _table_problem(angles, cycle)
     if problem == "decreasing":
         raise SceneError(where, f"{name} line {lines[k]}: angles must not decrease: {np.degrees(angles[k]):.6g} deg "
@@ -878,6 +937,112 @@ def _members(raw, mechanism, cycle, files=Path()):
     return tuple(members)
 
 
+def _engine(raw, files=Path()):
+    """The [engine] section: an :class:`~flyopt.machine.engine.Engine` (cylinders, crank train, indicator data)."""
+    from flyopt.machine.engine import CYCLE_ANGLES, MAX_CYLINDERS, STANDARD_ATMOSPHERE, Engine   # CasADi
+
+    table = _Table(raw, "engine", {"cycle", "cylinders", "firing_angles", "bore", "stroke", "rod",
+                                   "reciprocating_mass", "rod_mass", "rod_centre", "rod_inertia", "angle_unit",
+                                   "pressure_unit", "pressure", "pressure_file", "crankcase_pressure",
+                                   "description"})
+    kind = table.require("cycle")
+    if kind not in CYCLE_ANGLES:
+        close = difflib.get_close_matches(str(kind), list(CYCLE_ANGLES), n=1)
+        hint = f"; did you mean {shorten(close[0])}?" if close else ""
+        raise SceneError("engine.cycle", f"{shorten(kind)} is not known{hint} (allowed: '4-stroke', a cycle of "
+                                         "720 deg, or '2-stroke', 360 deg)")
+    cycle = CYCLE_ANGLES[kind]
+    count = table.require("cylinders")
+    if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= MAX_CYLINDERS:
+        raise SceneError("engine.cylinders", f"must be a whole number of cylinders from 1 to {MAX_CYLINDERS}, "
+                                             f"got {shorten(count)}")
+    angle_unit = _unit_factor(table.get("angle_unit"), "angle", "engine.angle_unit") \
+        if table.has("angle_unit") else 1.0
+    firing = [k * cycle / count for k in range(count)]          # default: evenly spaced over the cycle
+    if table.has("firing_angles"):
+        raw_angles = table.get("firing_angles")
+        if not isinstance(raw_angles, list) or len(raw_angles) != count:
+            raise SceneError("engine.firing_angles", f"must be a list of {count} angles, one per cylinder (the "
+                                                     f"crank angle at which its cycle starts), got {shorten(raw_angles)}")
+        for k, value in enumerate(raw_angles):
+            firing[k] = _scaled(value, "angle", f"engine.firing_angles[{k}]", angle_unit)
+            if not 0.0 <= firing[k] < cycle:
+                raise SceneError(f"engine.firing_angles[{k}]", f"{shorten(value)} lies outside the cycle: a firing "
+                                 f"angle is the crank angle at which the cylinder's cycle starts, from 0 up to "
+                                 f"(not including) {math.degrees(cycle):g} deg for a {kind} engine")
+    sizes = {}
+    for key in ("bore", "stroke", "rod"):
+        sizes[key] = table.quantity(key, "length", required=True)
+        if not (math.isfinite(sizes[key]) and sizes[key] > 0):
+            raise SceneError(f"engine.{key}", f"must be a positive length, got {shorten(table.raw(key))}")
+    if not sizes["rod"] > sizes["stroke"] / 2:
+        raise SceneError("engine.rod", f"{shorten(table.raw('rod'))} is not longer than the crank radius, "
+                                       f"stroke/2 = {sizes['stroke'] / 2 * 1e3:.6g} mm: the crank could not turn "
+                                       "(the connecting rod is measured centre to centre)")
+    masses = {"reciprocating_mass": table.quantity("reciprocating_mass", "mass", required=True),
+              "rod_mass": table.quantity("rod_mass", "mass", default=0.0)}
+    for key, value in masses.items():
+        if not (math.isfinite(value) and value >= 0):
+            raise SceneError(f"engine.{key}", f"must be a finite mass >= 0, got {shorten(table.raw(key))}")
+    rod = {"rod_centre": 0.0, "rod_inertia": 0.0}
+    if table.has("rod_mass"):
+        for key in rod:
+            if not table.has(key):
+                raise SceneError(f"engine.{key}", "is missing: rod_mass, rod_centre (from the crank pin) and "
+                                                  "rod_inertia (about the rod's centre of mass) come together")
+        rod["rod_centre"] = table.quantity("rod_centre", "length")
+        if not 0.0 <= rod["rod_centre"] <= sizes["rod"]:
+            raise SceneError("engine.rod_centre", f"{shorten(table.raw('rod_centre'))} is not between the pins: the "
+                                                  f"centre of mass lies 0 to {shorten(table.raw('rod'))} from the "
+                                                  "crank pin")
+        rod["rod_inertia"] = table.quantity("rod_inertia", "inertia")
+        if not (math.isfinite(rod["rod_inertia"]) and rod["rod_inertia"] >= 0):
+            raise SceneError("engine.rod_inertia", f"must be a finite number >= 0, got "
+                                                   f"{shorten(table.raw('rod_inertia'))}")
+    else:
+        for key in rod:
+            if table.has(key):
+                raise SceneError(f"engine.{key}", "describes the rest of the connecting rod: give rod_mass with it")
+    unit = _unit_factor(table.get("pressure_unit"), "stress", "engine.pressure_unit") \
+        if table.has("pressure_unit") else 1.0
+    forms = [k for k in ("pressure", "pressure_file") if table.has(k)]
+    if len(forms) != 1:
+        raise SceneError("engine.pressure", "give exactly one of pressure = [[angle, pressure], ...] or "
+                         "pressure_file = \"indicator.csv\": the absolute cylinder pressure of one cylinder over "
+                         "its cycle" + (" (given both)" if forms else ""))
+    absolute = (0.0, "the table holds absolute pressures, which cannot be negative")
+    if forms[0] == "pressure_file":
+        units = (table.get("angle_unit", "rad"), table.get("pressure_unit", "Pa"))
+        pressure = _points_file(table.get("pressure_file"), "engine.pressure_file", files, cycle, unit, angle_unit,
+                                "pressure", units, minimum=absolute)
+    else:
+        pressure = _points(table.get("pressure"), "engine.pressure", cycle, unit, angle_unit, "stress",
+                           label="pressure", minimum=absolute)
+    crankcase = table.quantity("crankcase_pressure", "stress", default=STANDARD_ATMOSPHERE)
+    if not (math.isfinite(crankcase) and crankcase >= 0):
+        raise SceneError("engine.crankcase_pressure", f"must be an absolute pressure >= 0, got "
+                                                      f"{shorten(table.raw('crankcase_pressure'))}")
+    try:
+        return Engine(kind, tuple(firing), sizes["bore"], sizes["stroke"], sizes["rod"],
+                      masses["reciprocating_mass"], pressure, crankcase, masses["rod_mass"], rod["rod_centre"],
+                      rod["rod_inertia"])
+    except ValueError as err:
+        raise SceneError("engine", str(err)) from None
+
+
+def _with_engine(engine, mechanism, members):
+    """The engine's pistons and rods followed by the scene's own [[member]]s (names checked apart)."""
+    if mechanism is not None:
+        raise SceneError("mechanism", "an [engine] brings its own slider-cranks, one per cylinder; a [mechanism] "
+                         "cannot be added to it (give other members their velocity_ratio and angular_ratio)")
+    own = {m.name for m in engine.members}
+    for k, member in enumerate(members):
+        if member.name in own:
+            raise SceneError(f"member[{k}].name", f"{shorten(member.name)} is the name of a member of the "
+                             "[engine]; choose another")
+    return engine.members + tuple(members)
+
+
 _MEMBER_TABLES = ("force", "torque", "velocity_ratio", "angular_ratio")
 """Member fields that may be a table over the angle, inline or from a CSV file (``force_file``, ...)."""
 
@@ -940,7 +1105,8 @@ def _shafts(raw):
     shafts, seen = [], set()
     for k, item in enumerate(raw):
         where = f"shaft[{k}]"
-        table = _Table(item, where, {"name", "speed_ratio", "efficiency", "diameter", "description"})
+        table = _Table(item, where, {"name", "speed_ratio", "efficiency", "diameter", "inertia", "gd2",
+                                     "description"})
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
             raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
@@ -955,8 +1121,22 @@ def _shafts(raw):
         if diameter is not None and diameter <= 0:
             raise SceneError(f"{where}.diameter", f"must be positive (the shaft seat), got "
                                                   f"{shorten(table.raw('diameter'))}")
-        shafts.append(Shaft(name, ratio, eff, diameter))
+        shafts.append(Shaft(name, ratio, eff, diameter, _shaft_inertia(table, where)))
     return tuple(shafts)
+
+
+def _shaft_inertia(table, where):
+    """The inertia already on a [[shaft]], about its axis [kg*m^2]: ``inertia``, or ``gd2`` (GD² = 4 g J), or 0."""
+    if table.has("inertia") and table.has("gd2"):
+        raise SceneError(f"{where}.gd2", "give either inertia or gd2, not both (the same inertia, GD² = 4 g J)")
+    key = "gd2" if table.has("gd2") else "inertia"
+    if not table.has(key):
+        return 0.0
+    value = table.quantity(key, "flywheel_moment" if key == "gd2" else "inertia")
+    if not (math.isfinite(value) and value >= 0):
+        raise SceneError(f"{where}.{key}", f"must be a finite number >= 0 (the inertia already turning with the "
+                                           f"shaft), got {shorten(table.raw(key))}")
+    return inertia_from_gd2(value) if key == "gd2" else value
 
 
 #: The strength fields of a [[material]] (beyond density, rim speed, allowable stress and cost).
