@@ -87,6 +87,7 @@ def analysis_report(result, source=None):
                          number(m["achieved_delta"]), m["note"]])
         lines += ["  " + line for line in table(["model", "J_F [kg·m²]", "vs exact", "achieved δ", "note"], rows,
                                                 ["<", ">", ">", ">", "<"])]
+    lines += engine_report(r)
     lines += ["", "Energy indicator diagram (excess work from the cycle start):"]
     rows = []
     for e in r.energy_chain:
@@ -104,6 +105,45 @@ def analysis_report(result, source=None):
              number(s.gd2_required)] for s in r.shafts]
     lines += ["  " + line for line in table(["shaft", "speed ratio", "speed [rpm]", "J [kg·m²]", "GD² [N·m²]"], rows)]
     return "\n".join(lines)
+
+
+def engine_report(result):
+    """For an [engine]: the textbook's flywheel beside the exact one, and by how much it is off.
+
+    The textbook's method (flyopt.machine.engine.textbook_requirement) takes
+    the crank effort at the mean speed (gas torque plus the inertia torque
+    −½ J_e' ω_m²) as a torque curve on a constant inertia; the exact model
+    keeps J_e(φ) varying (docs/flywheel-design.md, sections 5 and 6). The
+    difference is (J_textbook − J_exact)/J_exact. No lines for a machine that
+    is not an engine, or whose inertia is constant (no moving masses: the
+    two methods are one).
+    """
+    machine = result.machine
+    if machine is None or not machine.variable_inertia:
+        return []
+    from flyopt.machine.engine import engine_of, textbook_requirement   # CasADi: loaded with the members
+
+    engine = engine_of(machine)
+    if engine is None:
+        return []
+    deg = math.degrees
+    textbook = textbook_requirement(machine, result.omega_mean, result.delta)
+    exact = next((m for m in result.models if m["exact"]), None)
+    angles = ", ".join(number(deg(a), 4) for a in engine.firing_angles)
+    found = f"A_max {number(textbook.a_max)} J, J_F {number(textbook.j_required)} kg·m²"
+    if exact is None or exact["j_required"] is None:
+        found += "; the exact model gave no J_F to compare with"
+    elif exact["j_required"] > 0:
+        off = (textbook.j_required - exact["j_required"]) / exact["j_required"]
+        found += f", {100 * off:+.3g} % against the exact J_F {number(exact['j_required'])} kg·m² ({exact['model']})"
+    else:
+        found += (f"; the exact model ({exact['model']}) needs no flywheel (J_F would be "
+                  f"{number(exact['j_required'])} kg·m²)")
+    return ["", f"Engine: {engine.cylinder_count} cylinder{'s' if engine.cylinder_count > 1 else ''}, "
+                f"{engine.cycle}, cycles starting at {angles} deg",
+            f"  textbook method (the crank effort at the mean speed, gas torque − ½ J_e′(φ) ω_m², on the constant "
+            f"mean J_e {number(textbook.j_machine_mean)} kg·m²):",
+            f"    {found}"]
 
 
 def _solved_by(candidate):
