@@ -516,6 +516,8 @@ def cli(capsys):
                            "[torque.resisting]", "mechanism", "brings its own slider-cranks"),
     ("[torque.resisting]", '[[member]]\nname = "cylinder 1 piston"\nmass = "1 kg"\n[torque.resisting]',
      "member[0].name", "name of a member of the"),
+    ('[torque.resisting]\nconstant = "unknown"', '[torque.net]\nareas = ["10 J", "-10 J"]', "torque.net",
+     "an \\[engine\\] needs torque curves"),
 ])
 def test_bad_engine_values_exit_2_with_one_line(cli, write_scene, old, new, field, match):
     import re

@@ -397,6 +397,9 @@ def from_dict(data, source=None):
     member_loads = any(m.force is not None or m.torque is not None for m in members)
     driving, resisting, net = _torques(top.get("torque", {}) if member_loads else top.require("torque"),
                                        cycle, shafts, efficiency, member_loads, files)
+    if engine is not None and net is not None:
+        raise SceneError("torque.net", "an [engine] needs torque curves, not net areas: its gas torque is a curve "
+                         "over the crank angle (give [torque.resisting], e.g. constant = \"unknown\")")
     if members and net is not None:
         raise SceneError("member", "members need the torque curves ([torque.driving] and [torque.resisting]), "
                          "not net areas: their inertia varies with the angle")
