@@ -79,7 +79,8 @@ FIELDS = {
     "delta": _Field("number", what="coefficient of speed fluctuation, 0 < δ < 2", maximum=2.0),
     "speed": _Field("number", "angular_speed", what="mean speed of the reference shaft (> 0)"),
     "inertia": _Field("number", "inertia", inclusive=True,
-                      what="the machine's own inertia J_c (>= 0)"),
+                      what="the constant inertia J_c at the reference shaft, the shafts' own inertia "
+                           "included (>= 0)"),
     "torque.scale": _Field("number", what="factor on both torques (> 0)"),
     "design.max_outer_diameter": _Field("number", "length", optional=True,
                                         what="envelope on the outer diameter (> 0 or none)"),
@@ -137,6 +138,11 @@ def _resolve(scene, path, where):
         if parts[2] not in _SHAFT_FIELDS:
             raise SceneError(_where(where, path), f"a shaft's field is "
                              f"{', '.join(_SHAFT_FIELDS)}, not {parts[2]!r}")
+        shaft = next(s for s in scene.shafts if s.name == parts[1])
+        if getattr(shaft, "inertia", 0.0):
+            raise SceneError(_where(where, path), f"shaft {parts[1]!r} carries inertia, which its speed ratio "
+                             "moves to the reference shaft (J i²): the machine's J_c would change with it; vary "
+                             "the ratio of a shaft without inertia, or make a scene per ratio")
         return key, _SHAFT_FIELDS[parts[2]]
     if len(parts) == 3 and parts[0] == "material":
         library = scene.material_library()
