@@ -216,7 +216,7 @@ def test_pareto_of_delta_on_a_motor_press_reaches_delta_one():
                           "--objectives", "mass,delta", "--json"],
                          capture_output=True, text=True, timeout=1800)
     assert out.returncode == 0 and "Traceback" not in out.stderr, out.stderr[-2000:]
-    front = json.loads(out.stdout)
+    front = json.loads(out.stdout)["rows"]    # the JSON document of the front: its rows
     delta = [row["delta"] for row in front]
     mass = [row["mass"] for row in front]
     assert len(front) == 25 and delta[-1] == pytest.approx(1.0, rel=1e-12)

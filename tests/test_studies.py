@@ -204,7 +204,7 @@ def test_cli_pareto(tmp_path, capsys):
     assert len(front) >= 4 and {"mass", "outer_diameter", "epsilon"} <= set(front.columns)
     assert pareto_main([str(PROBLEMS / "shear-press.toml"), "--objectives", "mass,delta",
                         "--points", "4", "--range", "0.02:0.2", "--json"]) == 0
-    records = json.loads(capsys.readouterr().out)
+    records = json.loads(capsys.readouterr().out)["rows"]    # the JSON document's rows
     assert len(records) == 4 and records[0]["delta"] == pytest.approx(0.02)
 
 
@@ -217,7 +217,8 @@ def test_cli_json_keeps_every_digit(tmp_path, capsys):
     out = tmp_path / "front.json"
     assert pareto_main([str(PROBLEMS / "punch-press.toml"), "--objectives", "mass,delta",
                         "--points", "6", "--range", "0.02:0.9", "--json", "-o", str(out)]) == 0
-    for records in (json.loads(capsys.readouterr().out), json.loads(out.read_text())):
+    for document in (json.loads(capsys.readouterr().out), json.loads(out.read_text())):
+        records = document["rows"]
         for column in ("mass", "delta", "j_flywheel", "d_outer", "hoop_stress"):
             assert [r[column] for r in records] == expected[column].tolist(), column
 
@@ -239,11 +240,11 @@ def test_cli_tradeoff(tmp_path, capsys):
     assert "lightest design per material" in text and "rim_speed,hb_min" in text
     out = tmp_path / "table.json"
     assert tradeoff_main([str(PROBLEMS / "punch-press.toml"), "-o", str(out)]) == 0
-    rows = json.loads(out.read_text())
+    rows = json.loads(out.read_text())["rows"]
     assert [r["material"] for r in rows] == ["cast_steel", "ductile_iron", "cast_iron"]
     # --method ipopt: the same table by IPOPT on every combination, masses within 1e-6
     out_ipopt = tmp_path / "ipopt.json"
     assert tradeoff_main([str(PROBLEMS / "punch-press.toml"), "--method", "ipopt", "-o", str(out_ipopt)]) == 0
-    by_ipopt = json.loads(out_ipopt.read_text())
+    by_ipopt = json.loads(out_ipopt.read_text())["rows"]
     assert [r["method"] for r in by_ipopt] == ["ipopt"] * 3
     assert_allclose([r["mass"] for r in by_ipopt], [r["mass"] for r in rows], rtol=1e-6)

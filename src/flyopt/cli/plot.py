@@ -149,7 +149,9 @@ def _plot_results(args):
         return fail(f"{args.scene}: cannot read the results: {err}", EXIT_INPUT)
     x = args.x
     if x is None and args.what == "pareto":
-        objectives = plots.pareto_objectives(frame)
+        # the objectives the front's file records (flyopt pareto writes them in its metadata);
+        # a file written before they were recorded: its first two columns
+        objectives = frame.attrs.get("flyopt", {}).get("objectives") or plots.pareto_objectives(frame)
         x = objectives[1] if objectives else None
     if x is None:
         return fail(f"--x: the results diagram {args.what!r} needs the column for the x axis", EXIT_INPUT)

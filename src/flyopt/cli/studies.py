@@ -4,10 +4,16 @@ The studies themselves live in :mod:`flyopt.studies`; this module only reads
 the command line, calls them and prints or writes what they return. Errors
 are raised and said by :func:`flyopt.cli.exits.status_of` (one line, one
 exit code from the table there).
+
+Every file a study writes describes itself (:mod:`flyopt.io.results`): the
+units of its columns, the flyopt version, the scene and its digest, and for
+a Pareto front its objectives (``flyopt plot`` reads them), as Parquet
+metadata, as the sidecar ``FILE.csv.json`` of a CSV file, or in the JSON
+document itself; missing values are nulls. ``-o`` and ``--quiet`` follow the
+conventions of :mod:`flyopt.cli.main`.
 """
 
 import argparse
-import json
 import math
 import sys
 from pathlib import Path
@@ -36,6 +42,13 @@ def _positive_int(text):
     if value < 1:
         raise argparse.ArgumentTypeError(f"{text!r}: at least 1")
     return value
+
+
+def add_quiet_argument(parser):
+    """``-q``/``--quiet``, in the words of every flyopt command (see :mod:`flyopt.cli.main`)."""
+    parser.add_argument("-q", "--quiet", action="store_true",
+                        help="print nothing but errors; the result still goes to the -o file, "
+                             "or to stdout without one")
 
 
 # --------------------------------------------------------------------------
@@ -83,6 +96,7 @@ def add_sweep_arguments(parser):
                         help="keep OUTPUT.parts/ after writing the output")
     parser.add_argument("--no-progress", dest="progress", action="store_false",
                         help="no progress line on stderr")
+    add_quiet_argument(parser)
     parser.set_defaults(run=run_sweep)
 
 
@@ -112,7 +126,7 @@ def run_sweep(args):
     if output is not None and args.output is None:
         output = Path(args.scene).parent / output   # [sweep] output is relative to the file
     frame = sweep(scene, vary, output=output, scheduler=args.scheduler, resume=args.resume,
-                  max_chunks=max_chunks, progress=args.progress,
+                  max_chunks=max_chunks, progress=args.progress and not args.quiet,
                   keep_parts=args.keep_parts, **options)
     info = frame.attrs["sweep"]
     counts = frame["status"].value_counts().to_dict()
@@ -122,11 +136,16 @@ def run_sweep(args):
     rate = info["designs"] / info["seconds"] if info["seconds"] > 0 else math.inf
     if not info["complete"]:
         left = info["chunks"] - len(info["chunks_run"]) - len(info["chunks_reused"])
-        print(f"flyopt sweep: stopped after {len(info['chunks_run'])} chunks, {left} left: "
-              f"continue with --resume ({_parts_name(output)})", file=sys.stderr)
+        if not args.quiet:
+            print(f"flyopt sweep: stopped after {len(info['chunks_run'])} chunks, {left} left: "
+                  f"continue with --resume ({_parts_name(output)})", file=sys.stderr)
         return EXIT_OK
-    if output is None:
-        sys.stdout.write(frame.to_csv(index=False))
+    if output is None:   # missing values as empty cells, as in a CSV file
+        from flyopt.io.results import _csv
+
+        _csv(frame, sys.stdout, header=True)
+    if args.quiet:
+        return EXIT_OK
     where = f"wrote {output}" if output is not None else "done"
     print(f"flyopt sweep: {where}: {len(frame)} points ({summary}); methods: {methods}; "
           f"{info['designs']} designs in {info['seconds']:.2f} s ({rate:,.0f} designs/s, "
@@ -168,8 +187,12 @@ def _method_and_output(parser, what):
     parser.add_argument("--method", choices=("auto", "closed_form", "ipopt"), default="auto",
                         help="design method: closed form where exact, else IPOPT (auto); ipopt: every "
                              "combination through the CasADi/IPOPT model")
-    parser.add_argument("-o", "--output", help=f"write the {what} to .csv, .parquet or .json")
-    parser.add_argument("--json", action="store_true", help=f"print the {what} as JSON records")
+    parser.add_argument("-o", "--output", help=f"write the {what} to .csv, .parquet or .json "
+                        f"(with its units and provenance: Parquet metadata, FILE.csv.json beside a "
+                        f"CSV file, or in the JSON)")
+    parser.add_argument("--json", action="store_true",
+                        help=f"print the {what} as one JSON document: its units, provenance and rows")
+    add_quiet_argument(parser)
 
 
 def _span(text, other):
@@ -212,18 +235,21 @@ def run_pareto(args):
 
     scene = load(args.scene)
     objectives, other = _pair(args.objectives)
+    _check_output(args.output)
     front = pareto(scene, objectives, points=args.points, span=_span(args.span, other),
                    method=args.method)
     if front.empty:
         message = front.attrs.get("message", "empty front")
-        print(f"{args.scene}: {message}")
+        if not args.quiet:
+            print(f"{args.scene}: {message}")
         return EXIT_OK if message.startswith("no flywheel needed") else EXIT_INFEASIBLE
-    # the objectives first, mass then the other, in every format: flyopt plot --what pareto
-    # reads them there (flyopt.report.plots.pareto_objectives)
+    # the objectives first, mass then the other, in every format; the file's metadata names
+    # them too, which flyopt plot --what pareto reads
     front = front[["mass", other, *(c for c in front.columns if c not in ("mass", other))]]
-    _emit(front, args.output, args.json, _SHOW[other],
+    _emit(front, args, "pareto", scene, _SHOW[other],
           f"{args.scene}: Pareto front, {' vs '.join(objectives)} "
-          f"({len(front)} non-dominated of {front.attrs['evaluated']} designs)")
+          f"({len(front)} non-dominated of {front.attrs['evaluated']} designs)",
+          objectives=("mass", other))
     return EXIT_OK
 
 
@@ -251,14 +277,16 @@ def run_tradeoff(args):
     from flyopt.studies.tradeoff import material_tradeoff
 
     scene = load(args.scene)
+    _check_output(args.output)
     table = material_tradeoff(scene, method=args.method)
-    _emit(table, args.output, args.json,
+    _emit(table, args, "tradeoff", scene,
           ["material", "status", "shaft", "d_outer", "b", "rim_speed", "rim_speed_limit",
            "mass", "cost", "limit"],
           f"{args.scene}: lightest design per material")
     if (table["status"] == "infeasible").all():
-        for reason in table["reason"]:
-            print(f"  {reason}")
+        if not args.quiet:
+            for reason in table["reason"]:
+                print(f"  {reason}")
         return EXIT_INFEASIBLE
     return EXIT_OK
 
@@ -267,49 +295,60 @@ def run_tradeoff(args):
 # Output of the tables
 # --------------------------------------------------------------------------
 
-_UNITS = {"mass": "kg", "outer_diameter": "m", "d_outer": "m", "d_mean": "m", "b": "m", "h": "m",
-          "rim_speed": "m/s", "rim_speed_limit": "m/s", "delta": "-", "cost": "",
-          "epsilon": ""}
+_SUFFIXES = (".csv", ".parquet", ".pq", ".json")
 
 
-def _emit(frame, output, as_json, columns, title):
-    """Write ``frame`` to ``output`` (by its suffix) and print it as a table or JSON records."""
-    from flyopt.io.results import write_results
+def _check_output(output):
+    """The output file of a front or table, checked before anything is computed."""
+    from flyopt.io.results import _check_folder
 
-    if output is not None:
-        suffix = Path(output).suffix.lower()
-        if suffix == ".json":
-            Path(output).write_text(_json(frame), encoding="utf-8")
-        else:
-            write_results(frame, output)
-    if as_json:
-        print(_json(frame))
+    if output is None:
         return
+    if Path(output).suffix.lower() not in _SUFFIXES:
+        raise SceneError("-o/--output", f"{output!r} must end in .csv, .parquet or .json "
+                         f"(the suffix picks the format)")
+    _check_folder(output, "-o/--output")
+
+
+def _emit(frame, args, kind, scene, columns, title, objectives=None):
+    """Write a study's table to ``args.output`` (by its suffix) and print it, or its JSON.
+
+    The table goes out with its metadata (units, provenance, a front's
+    objectives) and nulls for missing values, whatever the format; a JSON
+    file is written atomically like the others. With ``--quiet`` and a file,
+    nothing is printed.
+    """
+    from flyopt.io import results
+    from flyopt.studies.payload import digest
+
+    frame = results.normalize(frame.copy())
+    output = args.output
+    metadata = results.table_metadata(kind, list(frame.columns), scene=results.scene_record(scene, digest(scene)),
+                                      objectives=objectives, objective=results.objective_of(frame))
+    if output is not None:
+        if Path(output).suffix.lower() == ".json":
+            results.write_text(output, results.json_text(results.table_document(frame, metadata)))
+        else:
+            results.write_results(frame, output, metadata=metadata)
+    if args.quiet and output is not None:
+        return
+    if args.json:
+        print(results.json_text(results.table_document(frame, metadata)))
+        return
+    front = objectives[1] if objectives else None
     shown = frame[[c for c in columns if c in frame]].copy()
-    shown.columns = [f"{c} [{_UNITS[c]}]" if _UNITS.get(c) else c for c in shown.columns]
+    shown.columns = [_label(c, results.unit_of(c, results.objective_of(frame), front)) for c in shown.columns]
     print(title)
     print(shown.to_string(index=False, float_format=lambda x: f"{x:.5g}", na_rep="-"))
     if output is not None:
         print(f"wrote {output}")
 
 
-def _json(frame):
-    """JSON records with every float as Python prints it (round-trip exact); NaN and ±inf
-    (no limit, no value) as null.
-
-    ``DataFrame.to_json`` keeps 10 decimal places, not digits: 1e-13 kg·m² came out as
-    0.0 and a 4.5 g flywheel lost its last five digits.
-    """
-    def plain(value):
-        if isinstance(value, float):
-            return value if math.isfinite(value) else None
-        if hasattr(value, "item"):          # a numpy scalar that slipped through
-            return plain(value.item())
-        return value
-
-    records = [{key: plain(value) for key, value in row.items()}
-               for row in frame.to_dict(orient="records")]
-    return json.dumps(records, indent=2, allow_nan=False)
+def _label(column, unit):
+    """A printed column's heading: its name and unit, ``[-]`` for a plain number."""
+    if unit is None:
+        return column
+    return f"{column} [{'-' if unit == '1' else unit}]"
 
 
 # --------------------------------------------------------------------------

@@ -20,7 +20,8 @@ swept through the design model, then the dominated points are removed:
 
 Each front point is a row of the sweep table (the design, how it was
 computed) with the two objectives as columns and ``epsilon``, the constraint
-value that produced it.
+value that produced it; ``attrs["objectives"]`` names the objectives, which
+``flyopt pareto`` writes into the front's file for ``flyopt plot``.
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ import pandas as pd
 
 from flyopt.design import design_inputs
 from flyopt.errors import SceneError
+from flyopt.io.results import normalize
 from flyopt.studies.evaluate import evaluate_points, physics_analysis
 from flyopt.studies.sweep import sweep
 
@@ -150,6 +152,7 @@ def pareto(scene, objectives=("mass", "outer_diameter"), *, points=25, span=None
     usable = rows["status"].isin(["designed", "not_needed"]).to_numpy()
     keep = non_dominated(np.where(usable, rows[other], np.nan), rows["mass"])
     front = rows[keep].sort_values([other, "mass"], kind="stable").reset_index(drop=True)
+    front = normalize(front)   # the rows of single designs and of sweeps alike: nulls where no value
     front.attrs["objectives"] = list(objectives)
     front.attrs["evaluated"] = len(rows)
     return front

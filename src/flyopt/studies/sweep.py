@@ -16,7 +16,10 @@ The stages, each in its own module, joined here:
   to workers as data (:mod:`flyopt.studies.payload`),
 - the chunks, sized by their estimated cost and run serially, in processes
   or on Dask, with resume (:mod:`flyopt.studies.runner`),
-- the result table and its files, written piece by piece (:mod:`flyopt.io.results`).
+- the result table and its files, written piece by piece (:mod:`flyopt.io.results`),
+  with their metadata: units, flyopt's version, the scene (its file, the file's
+  SHA-256 and flyopt's digest of it) and the sweep (fields, values, samples,
+  seed, method), also in ``frame.attrs["flyopt"]``. Missing values are nulls.
 """
 
 from __future__ import annotations
@@ -27,8 +30,9 @@ import time
 import numpy as np
 import pandas as pd
 
+from flyopt.design import design_inputs
 from flyopt.errors import Interrupted, SceneError
-from flyopt.io.results import ResultWriter
+from flyopt.io.results import ResultWriter, normalize, scene_record, table_metadata
 from flyopt.io.sweep_spec import check_options, option_label
 from flyopt.studies import runner
 from flyopt.studies.evaluate import (_context, _evaluate, design_counts, evaluate_points,
@@ -228,7 +232,8 @@ def sweep(scene, vary=None, *, samples=None, seed=None, output=None, workers="au
         if mode == "serial":
             task = functools.partial(_evaluate, ctx)
         prepare = _seed_column(plan)
-        assembly = _Assembly(layout["units"], len(points), parts, output, prepare)
+        describe = _describe(scene, plan, method)
+        assembly = _Assembly(layout["units"], len(points), parts, output, prepare, describe)
         try:
             for i in reused:
                 assembly.add(i)
@@ -261,6 +266,8 @@ def sweep(scene, vary=None, *, samples=None, seed=None, output=None, workers="au
     if "serial_because" in layout:
         info["serial_because"] = layout["serial_because"]
     frame.attrs["sweep"] = info
+    if output is None:
+        frame.attrs["flyopt"] = describe(list(frame.columns))
     return frame
 
 
@@ -272,12 +279,28 @@ def _chunk(points, order, start, end):
 
 
 def _seed_column(plan):
-    """A function adding a Latin hypercube's ``seed`` column after ``point`` (grids: none)."""
+    """A function making rows the sweep's table: a Latin hypercube's ``seed`` column after
+    ``point`` (grids: none), and nulls for missing values (:func:`flyopt.io.results.normalize`)."""
     def prepare(frame):
         if plan.samples is not None and "seed" not in frame:
             frame.insert(1, "seed", np.full(len(frame), plan.seed, dtype=np.int64))
-        return frame
+        return normalize(frame)
     return prepare
+
+
+def _describe(scene, plan, method):
+    """A function giving a sweep table's metadata (:func:`flyopt.io.results.table_metadata`)
+    from its columns: units, flyopt's version, the scene, and the sweep that made it."""
+    varied = {a.field for a in plan.axes}
+    objective = None if "design.objective" in varied else design_inputs(scene).spec.objective
+    spec = {"vary": {a.field: {"kind": a.kind, "values": list(a.values), "low": a.low, "high": a.high,
+                               "log": bool(a.log)} for a in plan.axes},
+            "samples": plan.samples, "seed": plan.seed, "method": method, "points": len(plan.points)}
+    record = scene_record(scene, digest(scene))
+
+    def describe(columns):
+        return table_metadata("sweep", columns, scene=record, sweep=spec, objective=objective)
+    return describe
 
 
 def _layout(scene, ctx, points, method, workers, chunk_size, client, recorded):
@@ -399,9 +422,11 @@ class _Assembly:
     output : str or Path or None
     prepare : callable
         Applied to each unit's rows before they are written or kept.
+    describe : callable
+        The metadata of the output file, from its columns.
     """
 
-    def __init__(self, units, n_points, parts, output, prepare):
+    def __init__(self, units, n_points, parts, output, prepare, describe):
         self.units, self.parts, self.prepare = units, parts, prepare
         self.unit_of = {c: u for u, unit in enumerate(units) for c in unit}
         self.next = 0
@@ -410,7 +435,7 @@ class _Assembly:
         self.kept = []
         self.designs = {}
         self.writer = (None if output is None else
-                       ResultWriter(output, temporary_folder=parts.folder))
+                       ResultWriter(output, temporary_folder=parts.folder, metadata=describe))
         if self.writer is not None:     # the summary, by point
             self.have = np.zeros(n_points, dtype=bool)
             self.status = np.zeros(n_points, dtype=np.int8)
