@@ -11,8 +11,6 @@ Pipeline: load a scene → analyse its cycle → design the flywheel.
 
 import importlib
 
-__version__ = "0.1.0"
-
 #: The public API and the module each name lives in. Imported on first use, so that
 #: ``import flyopt`` costs nothing: pandas and pyarrow come with the studies, CasADi with
 #: a model that needs it (the periodic solution, IPOPT), scipy.optimize where it is used.
@@ -30,12 +28,44 @@ __all__ = sorted(_API) + ["__version__"]
 
 
 def __getattr__(name):
-    module = _API.get(name)
-    if module is None:
-        raise AttributeError(f"module 'flyopt' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
+    if name == "__version__":
+        value = _version()
+    else:
+        module = _API.get(name)
+        if module is None:
+            raise AttributeError(f"module 'flyopt' has no attribute {name!r}")
+        value = getattr(importlib.import_module(module), name)
     globals()[name] = value
     return value
+
+
+def _version():
+    """The version of flyopt: the installed distribution's metadata, the one source.
+
+    Read on first use of ``flyopt.__version__`` (importing importlib.metadata
+    costs some 30 ms, which ``import flyopt`` does not pay). A source tree
+    that is not installed has no metadata: its pyproject.toml says the
+    version, and without one (or without a TOML reader) it is "unknown".
+    """
+    from importlib import metadata
+
+    try:
+        return metadata.version("flyopt")
+    except metadata.PackageNotFoundError:
+        pass
+    from pathlib import Path
+
+    try:
+        try:
+            import tomllib
+        except ModuleNotFoundError:  # pragma: no cover - Python 3.10 without tomli
+            import tomli as tomllib
+        project = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml")
+                                .read_text(encoding="utf-8")).get("project", {})
+    except (ImportError, OSError, ValueError):
+        return "unknown"
+    version = project.get("version")
+    return version if project.get("name") == "flyopt" and isinstance(version, str) else "unknown"
 
 
 def __dir__():

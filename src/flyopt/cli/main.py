@@ -2,23 +2,42 @@
 
 ::
 
-    flyopt solve SCENE.toml [--json] [--verify] ...   analyse and design
-    flyopt check SCENE.toml                           check a scene file
+    flyopt solve SCENE.toml [--json] [--verify] [-o FILE] ...   analyse and design
+    flyopt check SCENE.toml                                     check a scene file
     flyopt plot SCENE.toml|RESULTS --what DIAGRAM -o FILE
-    flyopt sweep | pareto | tradeoff SCENE.toml ...   design studies
-    flyopt bench ...                                  speed against error
+    flyopt sweep | pareto | tradeoff SCENE.toml [-o FILE] ...   design studies
+    flyopt bench ...                                            speed against error
+    flyopt --version
 
 Each subcommand's handler (``args.run``) returns an exit status from the
 table in :mod:`flyopt.cli.exits`; :func:`flyopt.cli.exits.run` runs it and
 says what it raises in one line.
 Nothing is printed on stdout before the whole result is ready.
+
+Two conventions hold for every command (bench has its own options):
+
+``-o FILE``
+    The result goes to FILE, written atomically (a temporary file beside it,
+    moved into place when complete: an error or Ctrl-C leaves no half-written
+    file); its folder must exist. ``solve`` writes there what it would print,
+    the text report or (``--json``) the JSON document.
+``-q``, ``--quiet``
+    Nothing but errors on stderr, and the result: in the ``-o`` file, or on
+    stdout when there is no file (``solve`` and ``sweep`` without ``-o``
+    print their result as usual). Progress lines, summaries, "wrote FILE"
+    and ``check``'s "ok" are left out; the exit status still says how it went.
+
+``--version`` reads the version from the installed package's metadata
+(:data:`flyopt.__version__`) only when asked, so the argparse tree costs
+nothing for it.
 """
 
 import argparse
+import contextlib
+import io
 import signal
 import sys
 
-from flyopt import __version__
 from flyopt.cli.exits import run
 
 
@@ -59,15 +78,23 @@ def _parser():
         epilog="exit status: 0 ok, 1 solver failed or design failed its check, 2 bad input, "
                "3 infeasible, 4 verification flagged, 130 interrupted, 141 stdout closed early "
                "(see flyopt.cli.exits)")
-    parser.add_argument("--version", action="version", version=f"flyopt {__version__}")
+    parser.add_argument("--version", action=_Version)
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    scene.add_solve_arguments(commands.add_parser(
-        "solve", help="analyse a scene's cycle and size its flywheel"))
-    scene.add_check_arguments(commands.add_parser(
-        "check", help="check a scene file and say what is wrong"))
-    plot.add_plot_arguments(commands.add_parser(
-        "plot", help="draw a diagram of a scene, or of sweep/Pareto results (png, svg, pdf)"))
+    solve = commands.add_parser("solve", help="analyse a scene's cycle and size its flywheel")
+    scene.add_solve_arguments(solve)
+    solve.add_argument("-o", "--output", metavar="FILE",
+                       help="write the report (or with --json the JSON) to FILE instead of stdout, "
+                            "atomically; its folder must exist")
+    studies.add_quiet_argument(solve)
+    solve.set_defaults(run=_printed_to_file(solve.get_default("run")))
+    for name, add, text in (("check", scene.add_check_arguments, "check a scene file and say what is wrong"),
+                            ("plot", plot.add_plot_arguments,
+                             "draw a diagram of a scene, or of sweep/Pareto results (png, svg, pdf)")):
+        command = commands.add_parser(name, help=text)
+        add(command)
+        studies.add_quiet_argument(command)
+        command.set_defaults(run=_silenced(command.get_default("run")))
     for name, add, texts in (("sweep", studies.add_sweep_arguments, studies.SWEEP_HELP),
                              ("pareto", studies.add_pareto_arguments, studies.PARETO_HELP),
                              ("tradeoff", studies.add_tradeoff_arguments, studies.TRADEOFF_HELP)):
@@ -77,6 +104,60 @@ def _parser():
                                      "(see flyopt bench --help)")
     bench.set_defaults(run=_bench, takes_rest=True)   # its own options, parsed by flyopt.bench
     return parser
+
+
+class _Version(argparse.Action):
+    """``--version``: print ``flyopt VERSION`` on stdout and exit 0; the version is read only then."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS,
+                 help="print flyopt's version and exit"):
+        super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        import flyopt
+
+        print(f"flyopt {flyopt.__version__}")
+        parser.exit()
+
+
+def _printed_to_file(handler):
+    """A handler whose printed result goes to ``-o FILE`` instead of stdout, atomically.
+
+    The file's folder is checked before anything is computed; the file is
+    written only when the handler returns (an error or Ctrl-C writes
+    nothing), then "wrote FILE" is said unless ``--quiet``.
+    """
+    def run_to_file(args):
+        if args.output is None:
+            return handler(args)
+        from pathlib import Path
+
+        from flyopt.errors import SceneError
+        from flyopt.io.results import _check_folder, write_text
+
+        _check_folder(args.output, "-o/--output")
+        scene = getattr(args, "scene", None)
+        if scene is not None and Path(args.output).resolve() == Path(scene).resolve():
+            raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: "
+                             f"name another file for the result")
+        printed = io.StringIO()
+        with contextlib.redirect_stdout(printed):
+            status = handler(args)
+        write_text(args.output, printed.getvalue())
+        if not args.quiet:
+            print(f"wrote {args.output}")
+        return status
+    return run_to_file
+
+
+def _silenced(handler):
+    """A handler whose stdout ``--quiet`` silences: its result is a file or its exit status."""
+    def run_quietly(args):
+        if not args.quiet:
+            return handler(args)
+        with contextlib.redirect_stdout(io.StringIO()):
+            return handler(args)
+    return run_quietly
 
 
 def _bench(args):
