@@ -70,7 +70,7 @@ class SceneError(FlyoptError, ValueError):
         The file the scene came from.
     """
 
-    def __init__(self, field, message, source=None):
+    def __init__(self, field: str, message: str, source: str | None = None) -> None:
         self.field = field
         self.message = message
         self.source = source
@@ -81,7 +81,7 @@ class SceneError(FlyoptError, ValueError):
         field = f"{clip(self.field)}: " if self.field else ""   # a field path may hold a key the user wrote
         return f"{where}{field}{self.message}"
 
-    def with_source(self, source):
+    def with_source(self, source: str | None) -> "SceneError":
         """Return the same error, now naming the file it came from."""
         return SceneError(self.field, self.message, source)
 
@@ -96,7 +96,7 @@ class NonPeriodicCycle(FlyoptError, ValueError):
     A flywheel cannot regulate such a machine: its mean speed drifts.
     """
 
-    def __init__(self, imbalance, cycle_work, source=None):
+    def __init__(self, imbalance: float, cycle_work: float, source: str | None = None) -> None:
         self.imbalance = imbalance
         self.cycle_work = cycle_work
         self.source = source
@@ -106,7 +106,7 @@ class NonPeriodicCycle(FlyoptError, ValueError):
             f"(net {imbalance:+.6g} J against {cycle_work:.6g} J of cycle work); "
             f"no flywheel can regulate it, only a governor")
 
-    def with_source(self, source):
+    def with_source(self, source: str | None) -> "NonPeriodicCycle":
         """Return the same error, now naming the file it came from."""
         return NonPeriodicCycle(self.imbalance, self.cycle_work, source)
 

@@ -8,11 +8,13 @@ PyBaMM Simulation pattern).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Literal, Mapping
 
 from flyopt.analysis import Analysis, analyse
 
-if TYPE_CHECKING:  # the annotation only: importing it loads CasADi
+if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
+    from flyopt.design.result import DesignResult
+    from flyopt.io.scene import Scene
     from flyopt.sizing.periodic import Verification
 
 
@@ -76,7 +78,8 @@ def design_dict(result, timings=False):
     return {"status": raw["status"], "message": raw["message"], **design, "model": raw["model"]}
 
 
-def design_scene(scene, analysis, solver_options=None, method="auto"):
+def design_scene(scene: Scene, analysis: Analysis, solver_options: Mapping[str, Any] | None = None,
+                 method: Literal["auto", "ipopt", "closed_form"] = "auto") -> DesignResult:
     """Design the flywheel a scene needs, from its analysis.
 
     Parameters
@@ -208,8 +211,9 @@ def verify(scene, analysis, design_result=None):
     return result
 
 
-def solve(scene, design_flywheel=True, solver_options=None, model=None, verify_design=False,
-          design_method="auto"):
+def solve(scene: Scene, design_flywheel: bool = True, solver_options: Mapping[str, Any] | None = None,
+          model: Literal["energy", "energy_mass", "dynamic"] | None = None, verify_design: bool = False,
+          design_method: Literal["auto", "ipopt", "closed_form"] = "auto") -> Solution:
     """Analyse a scene and design its flywheel.
 
     Parameters

@@ -11,9 +11,11 @@ See README.md for the format with an example, and problems/ for scenes.
 
 import difflib
 import math
+import os
 import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Any, Mapping
 
 import numpy as np
 
@@ -137,7 +139,7 @@ class Scene:
         return replace(self, **changes)
 
 
-def load(path, data=None):
+def load(path: str | os.PathLike[str], data: Mapping[str, Any] | None = None) -> Scene:
     """Read and check a scene file.
 
     Parameters
@@ -330,7 +332,7 @@ def _put_rows(data, tables):
     return found
 
 
-def from_dict(data, source=None):
+def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     """Build a scene from a dictionary shaped like a scene file.
 
     Parameters

@@ -27,6 +27,7 @@ value that produced it; ``attrs["objectives"]`` names the objectives, which
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -36,6 +37,9 @@ from flyopt.errors import SceneError
 from flyopt.io.results import normalize
 from flyopt.studies.evaluate import evaluate_points, physics_analysis
 from flyopt.studies.sweep import sweep
+
+if TYPE_CHECKING:  # the annotations only
+    from flyopt.io.scene import Scene
 
 __all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto"]
 
@@ -94,8 +98,9 @@ def _pair(objectives):
     return objectives, other[0]
 
 
-def pareto(scene, objectives=("mass", "outer_diameter"), *, points=25, span=None,
-           method="auto", solver_options=None):
+def pareto(scene: Scene, objectives: str | Sequence[str] = ("mass", "outer_diameter"), *, points: int = 25,
+           span: tuple[float, float] | None = None, method: Literal["auto", "closed_form", "ipopt"] = "auto",
+           solver_options: Mapping[str, Any] | None = None) -> pd.DataFrame:
     """Pareto front of mass against a second objective, by an ε-constraint.
 
     Parameters

@@ -25,7 +25,9 @@ The stages, each in its own module, joined here:
 from __future__ import annotations
 
 import functools
+import os
 import time
+from typing import TYPE_CHECKING, Any, Iterable, Literal, Mapping
 
 import numpy as np
 import pandas as pd
@@ -40,6 +42,9 @@ from flyopt.studies.evaluate import (_context, _evaluate, design_counts, evaluat
 from flyopt.studies.payload import digest
 from flyopt.studies.plan import plan_sweep
 from flyopt.studies.runner import Parts, connect, cpu_count, fingerprint, run_chunks, stopped
+
+if TYPE_CHECKING:  # the annotations only
+    from flyopt.io.scene import Scene
 
 __all__ = ["SUMMARY_COLUMNS", "sweep"]
 
@@ -92,9 +97,12 @@ def check_sweep(scene, options, where="sweep"):
         raise err.with_source(scene.source) from None
 
 
-def sweep(scene, vary=None, *, samples=None, seed=None, output=None, workers="auto",
-          chunk_size=None, scheduler=None, resume=False, max_chunks=None, progress=False,
-          method="auto", solver_options=None, keep_parts=False):
+def sweep(scene: Scene, vary: Mapping[str, Any] | Iterable[str] | None = None, *, samples: int | None = None,
+          seed: int | None = None, output: str | os.PathLike[str] | None = None,
+          workers: int | Literal["auto"] = "auto", chunk_size: int | None = None, scheduler: Any = None,
+          resume: bool = False, max_chunks: int | None = None, progress: bool = False,
+          method: Literal["auto", "closed_form", "ipopt"] = "auto",
+          solver_options: Mapping[str, Any] | None = None, keep_parts: bool = False) -> pd.DataFrame:
     """Sweep a scene over a grid (or Latin hypercube) of its fields.
 
     Parameters

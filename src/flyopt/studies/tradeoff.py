@@ -10,11 +10,15 @@ The command line is in :mod:`flyopt.cli.studies`.
 from __future__ import annotations
 
 import dataclasses
+from typing import TYPE_CHECKING, Any, Literal, Mapping
 
 import pandas as pd
 
 from flyopt.design import design_inputs, rank
 from flyopt.studies.evaluate import physics_analysis
+
+if TYPE_CHECKING:  # the annotations only
+    from flyopt.io.scene import Scene
 
 __all__ = ["TRADEOFF_COLUMNS", "material_tradeoff"]
 
@@ -23,7 +27,8 @@ TRADEOFF_COLUMNS = ("material", "status", "shaft", "speed_ratio", "d_outer", "d_
                     "reason", "method", "solver_status")
 
 
-def material_tradeoff(scene, solver_options=None, method="auto"):
+def material_tradeoff(scene: Scene, solver_options: Mapping[str, Any] | None = None,
+                      method: Literal["auto", "ipopt", "closed_form"] = "auto") -> pd.DataFrame:
     """For each material, its lightest design: size, rim speed, mass, cost, binding limit.
 
     Parameters
