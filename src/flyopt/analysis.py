@@ -9,13 +9,14 @@ ratio-squared transfer.
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia, speed_extremes
 from flyopt.errors import NonPeriodicCycle, SceneError
 
 if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
     from flyopt.cycle.indicator import EnergyIndicator
+    from flyopt.io.scene import Scene
     from flyopt.machine.reduce import Machine
     from flyopt.sizing.choose import Requirement
 from flyopt.machine.transmission import inertia_on_shaft
@@ -223,7 +224,8 @@ def _net_torque_samples(analysis):
     return np.concatenate([j_machine, j_machine]), differences
 
 
-def analyse(scene, model=None, *, like=None):
+def analyse(scene: Scene, model: Literal["energy", "energy_mass", "dynamic"] | None = None, *,
+            like: Analysis | None = None) -> Analysis:
     """Analyse a scene's cycle and size the flywheel it needs.
 
     Parameters
