@@ -89,6 +89,7 @@ def test_kloss_runup_closed_form_against_quadrature():
     assert found == pytest.approx(inertia / (ratio**2 * eta) * integral, rel=1e-9)
 
 
+@pytest.mark.slow   # every size of the ladder solved exactly: about a minute
 def test_codesign_matches_brute_force(designed):
     """Every motor size over a fine grid of flywheel ratios: the same motor and the best mass to 1e-6."""
     scene, result = designed
@@ -116,6 +117,7 @@ def drive_load(scene):
     return analyse(scene).driving_torque
 
 
+@pytest.mark.slow   # every size of the ladder solved exactly: about a minute
 def test_one_size_smaller_breaks_a_limit_in_the_simulation(designed):
     """The next smaller motor with the chosen wheel: the simulation shows δ or the thermal limit exceeded."""
     scene, result = designed
@@ -139,6 +141,7 @@ def test_one_size_smaller_breaks_a_limit_in_the_simulation(designed):
     assert ok.rms_torque <= best.motor.rated_torque * (1 + 1e-6)
 
 
+@pytest.mark.slow   # every size of the ladder solved exactly: about a minute
 def test_relaxation_collocation_against_the_periodic_solution(designed):
     """The relaxed motor and flywheel, simulated by CVODES shooting: δ and the mean speed within the collocation error."""
     from flyopt.analysis import analyse
@@ -171,6 +174,7 @@ def test_every_size_without_a_relaxation_when_too_few():
     assert len(result.runs) == 2
 
 
+@pytest.mark.slow   # every size of the ladder solved exactly: about a minute
 def test_motor_power_front_is_the_nondominated_set():
     """Every size solved; the front keeps exactly the runs no other run beats in both power and wheel mass."""
     result = drive.design_drive(_scene(), every_size=True)

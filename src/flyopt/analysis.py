@@ -167,9 +167,9 @@ class Analysis:
         (no curves) or when no flywheel is needed. Computed once.
         """
         if j_flywheel is not None:
-            return _flywheel_torque(self, j_flywheel)
+            return flywheel_torque(self.machine, j_flywheel)
         if "flywheel_torque" not in self._lazy:
-            self._lazy["flywheel_torque"] = _flywheel_torque(self, self.j_margin)
+            self._lazy["flywheel_torque"] = flywheel_torque(self.machine, self.j_margin)
         return self._lazy["flywheel_torque"]
 
     def net_torque_peak(self):
@@ -177,7 +177,7 @@ class Analysis:
 
         A sweep that scales the torques of a constant-inertia machine scales this and
         takes the flywheel's share of it (:func:`flyopt.design.hub.flywheel_peak_torque`)."""
-        samples = _net_torque_samples(self)
+        samples = _net_torque_samples(self.machine)
         return None if samples is None else float(abs(samples[1]).max())
 
     def _get(self, name):
@@ -197,22 +197,25 @@ class Analysis:
         return out
 
 
-def _flywheel_torque(analysis, j_flywheel):
+def flywheel_torque(machine, j_flywheel):
+    """The largest torque a flywheel ``j_flywheel`` [kg*m^2] exchanges with the reference shaft of ``machine`` [N*m].
+
+    None for a net-area scene (``machine`` None) or no flywheel; see :meth:`Analysis.flywheel_torque`.
+    """
     from flyopt.design.hub import flywheel_peak_torque
 
-    samples = _net_torque_samples(analysis)
+    samples = _net_torque_samples(machine)
     if samples is None or j_flywheel <= 0.0:
         return None
     j_machine, differences = samples
     return flywheel_peak_torque(j_flywheel, j_machine + j_flywheel, differences, 1.0)
 
 
-def _net_torque_samples(analysis):
+def _net_torque_samples(machine):
     """(J_e, M_d - M_r) at the reference shaft on 4097 angles and every knot, both sides of a step;
-    None for a net-area scene."""
+    None for a net-area scene (no machine)."""
     import numpy as np
 
-    machine = analysis.machine
     if machine is None:
         return None
     balanced = machine.angle_only()

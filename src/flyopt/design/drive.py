@@ -41,17 +41,20 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from flyopt.analysis import startup_run
+from flyopt.analysis import flywheel_torque, startup_run
 from flyopt.errors import SceneError, SolverFailed
 
 #: Name of the shaft the drive puts the flywheel on, and of the motor's.
 FLYWHEEL_SHAFT, MOTOR_SHAFT = "flywheel", "motor"
 
 #: Mean crank speed held by the motor ratio, relative [-].
-SPEED_RTOL = 1e-9
+SPEED_RTOL = 1e-7
+
+#: The flywheel and the motor ratio settled together, relative change of the flywheel [-].
+SETTLE_RTOL = 1e-6
 
 #: The thermal limit's flywheel, relative tolerance of the root [-].
-THERMAL_RTOL = 1e-9
+THERMAL_RTOL = 1e-8
 
 #: The motor's characteristic in the steady state: the Kloss curve, valid from rest to synchronous speed
 #: (the linear line holds near the rated point only, and a press's slowdown of several per cent takes
@@ -251,7 +254,6 @@ def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_sp
     materials, design_spec
         As for :func:`flyopt.design.designer.design_flywheel`.
     """
-    from flyopt.analysis import analyse
 
     omega = scene.omega_mean
     rated = motor.rated_torque
@@ -266,31 +268,15 @@ def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_sp
     if spec.thermal and load_torque / (ratio * scene.efficiency) > rated * (1 + 1e-12):
         return run(False, f"thermal: its mean torque {load_torque / (ratio * scene.efficiency):.6g} N*m exceeds "
                           f"its rated torque {rated:.6g} N*m whatever the flywheel", motor_ratio=ratio)
-    analysis = None
-    for _ in range(30):                      # hold the scene's mean speed (ω_max + ω_min)/2
-        try:
-            analysis = analyse(motor_scene(scene, motor, ratio), "dynamic")
-        except (SolverFailed, SceneError) as err:
-            return run(False, f"no steady running: {err}", motor_ratio=ratio)
-        error = analysis.omega_mean / omega - 1.0
-        if abs(error) <= SPEED_RTOL:
-            break
-        ratio *= analysis.omega_mean / omega
-    else:
-        return run(False, f"the motor ratio did not settle the mean speed (last error {error:.3g})",
-                   motor_ratio=ratio)
-    machine = analysis.machine
-    j_delta = max(analysis.j_margin, 0.0)
-    solution = analysis.requirement.detail.solution
+    try:
+        ratio, machine, solution, j_delta = _settle(scene, motor, ratio, spec.thermal)
+    except _Unsettled as err:
+        return run(False, str(err), motor_ratio=err.ratio, j_delta=err.j_delta)
+    except (SolverFailed, SceneError) as err:
+        return run(False, f"no steady running: {err}", motor_ratio=ratio)
+    j_need = solution.j_flywheel
+    limit = "thermal" if j_need > j_delta * (1 + 1e-8) else ("delta" if j_delta > 0 else "none")
     rms, mean = rms_torque(solution, motor.motor(), ratio)
-    j_need, limit = j_delta, ("delta" if analysis.j_margin > 0 else "none")
-    if spec.thermal and rms > rated:
-        j_need, solution = _thermal_flywheel(machine, motor, ratio, omega, j_delta, rated)
-        if j_need is None:
-            return run(False, f"thermal: its RMS torque stays above its rated torque {rated:.6g} N*m "
-                              f"for any flywheel", motor_ratio=ratio, j_delta=j_delta)
-        limit = "thermal"
-        rms, mean = rms_torque(solution, motor.motor(), ratio)
     omega_min_motor = float(np.min(solution.omega)) * ratio
     if omega_min_motor < motor.motor().breakdown_speed:
         return run(False, f"breakdown: the motor slows to {omega_min_motor:.6g} rad/s in the cycle, past its "
@@ -306,7 +292,7 @@ def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_sp
         if startup.time > spec.max_startup:
             return run(False, f"start-up: {startup.time:.4g} s from rest, over max_startup "
                               f"{spec.max_startup:.4g} s", **facts)
-    torque = analysis.flywheel_torque(j_need) if j_need > 0 else None
+    torque = flywheel_torque(machine, j_need) if j_need > 0 else None
     result, r = _best_wheel(j_need, solution.omega_max, ratios, materials, design_spec, torque, spec.objective,
                             solver_options)
     wheel = None if result is None else result.best
@@ -322,33 +308,169 @@ def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_sp
                wheel_mass=wheel_mass, total_mass=total, cost=cost, objective=objective)
 
 
-def _thermal_flywheel(machine, motor, ratio, omega, j_low, rated):
-    """The least J_F (>= j_low) whose periodic solution keeps the motor's RMS torque at its rating."""
+class _Unsettled(SolverFailed):
+    """A motor for which no ratio and flywheel keep the limits (the message says which)."""
+
+    def __init__(self, message, ratio, j_delta=None):
+        super().__init__(message)
+        self.ratio, self.j_delta = ratio, j_delta
+
+
+def _steady(scene, motor, ratio, j_flywheel):
+    """(machine, periodic solution) of the scene driven by ``motor`` at ``ratio`` with a flywheel at the crank."""
+    from flyopt.machine.reduce import reduce
+    from flyopt.sizing.periodic import periodic_solution
+
+    machine = reduce(motor_scene(scene, motor, ratio))
+    return machine, periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle,
+                                      scene.omega_mean, j_flywheel, machine.knots())
+
+
+def _hold_speed(scene, motor, ratio, j_flywheel, memo=None):
+    """(ratio, machine, solution) whose mean speed (ω_max + ω_min)/2 is the scene's to :data:`SPEED_RTOL`.
+
+    A secant on ln i for ln(ω_mean/ω): the crank's mean speed is nearly ω_motor/i
+    (a slope of −1 starts it, or the last call's slope kept in ``memo``), the
+    motor's slip moving it a little.
+    """
+    omega = scene.omega_mean
+    memo = {} if memo is None else memo
+    x0 = math.log(ratio)
+    machine, sol = _steady(scene, motor, ratio, j_flywheel)
+    f0 = math.log(sol.omega_mean / omega)
+    slope = memo.get("slope", -1.0)
+    x1 = x0 - f0 / slope
+    for _ in range(30):
+        if abs(f0) <= SPEED_RTOL:
+            return math.exp(x0), machine, sol
+        machine, sol = _steady(scene, motor, math.exp(x1), j_flywheel)
+        f1 = math.log(sol.omega_mean / omega)
+        if x1 != x0 and (f1 - f0) / (x1 - x0) < 0:
+            slope = memo["slope"] = (f1 - f0) / (x1 - x0)
+        x0, f0, x1 = x1, f1, x1 - f1 / slope
+    raise _Unsettled(f"the motor ratio did not settle the mean speed (last error {f0:.3g})", math.exp(x0))
+
+
+def _settle(scene, motor, ratio, thermal):
+    """(ratio, machine, solution with the least flywheel, J for δ alone): δ, the thermal limit and the mean speed together.
+
+    At a ratio that holds the mean speed, the least flywheel for δ
+    (:func:`flyopt.sizing.periodic.dynamic_requirement`, only when the
+    machine alone misses δ) and for the thermal limit (a root of the RMS
+    torque) is found, and the binding one kept; the flywheel moves the mean
+    speed a little, so the ratio is held again with it and the binding limit's
+    flywheel refined from where it was (a secant), until the flywheel settles.
+    """
+    from flyopt.machine.reduce import reduce
+
+    delta, rated = scene.delta, motor.rated_torque
+    memo = {}
+    try:
+        ratio, machine, sol = _hold_speed(scene, motor, ratio, 0.0, memo)
+        j_delta = _delta_flywheel(scene, machine) if sol.delta > delta else 0.0
+    except SolverFailed:          # without a flywheel the machine stalls: δ needs one (dynamic_requirement finds it)
+        machine = reduce(motor_scene(scene, motor, ratio))
+        j_delta = _delta_flywheel(scene, machine)
+        if not j_delta > 0:
+            raise
+        sol = None
+    j, limit = j_delta, ("delta" if j_delta > 0 else "none")
+    held = None if sol is None else 0.0          # the flywheel the ratio was last held with
+    if thermal:
+        if j > 0:
+            ratio, machine, sol = _hold_speed(scene, motor, ratio, j, memo)
+            held = j
+        if rms_torque(sol, motor.motor(), ratio)[0] > rated:
+            j = _thermal_flywheel(machine, motor, ratio, scene.omega_mean, j, rated)
+            if j is None:
+                raise _Unsettled(f"thermal: its RMS torque stays above its rated torque {rated:.6g} N*m "
+                                 "for any flywheel", ratio, j_delta)
+            limit = "thermal"
+    seq = [j]
+    for _ in range(20):
+        if limit == "none":
+            return ratio, machine, sol, 0.0
+        if held != j:
+            ratio, machine, sol = _hold_speed(scene, motor, ratio, j, memo)
+            held = j
+        if limit == "delta":
+            j_new = _delta_flywheel(scene, machine)
+        else:
+            j_new = _thermal_flywheel(machine, motor, ratio, scene.omega_mean, j_delta, rated, guess=j)
+        seq.append(j_new)
+        if len(seq) == 3 and abs(j_new - j) > SETTLE_RTOL * j_new:
+            # the flywheel converges linearly (each step shrinks the change 10- to 50-fold): Aitken's
+            # extrapolation of the last three, then three more
+            d1, d2 = seq[1] - seq[0], seq[2] - seq[1]
+            if d2 != d1:
+                j_new = seq[2] - d2 * d2 / (d2 - d1)
+            seq = [j_new]
+        if abs(j_new - j) <= SETTLE_RTOL * j_new:
+            if j_new != j:
+                ratio, machine, sol = _hold_speed(scene, motor, ratio, j_new, memo)
+                held = j_new
+            if limit == "thermal":
+                j_delta = _delta_flywheel(scene, machine) if sol.delta > delta or j_delta > 0 else 0.0
+                if sol.delta > delta * (1 + 1e-9):     # δ binds after all at this ratio: size for it
+                    limit, j = "delta", j_delta
+                    continue
+            else:
+                j_delta = j_new
+            return ratio, machine, sol, j_delta
+        j = j_new
+    raise _Unsettled("the flywheel and the motor ratio did not settle together", ratio, j_delta)
+
+
+def _delta_flywheel(scene, machine):
+    """The least flywheel at the crank that keeps δ with the machine's motor (0 when none is needed)."""
+    from flyopt.sizing.periodic import dynamic_requirement
+
+    need = dynamic_requirement(machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean,
+                               scene.delta, machine.knots())
+    return max(need.j_required, 0.0)
+
+
+def _thermal_flywheel(machine, motor, ratio, omega, j_low, rated, guess=None):
+    """The least J_F (>= j_low) whose periodic solution keeps the motor's RMS torque at its rating [kg*m^2].
+
+    From a ``guess`` (the last ratio's), a secant; otherwise (or should the
+    secant leave the bracket) a bracket doubled from the machine's mean
+    inertia, then Brent's root. None when no flywheel brings the RMS torque
+    to the rating (it tends to the mean torque as J_F grows).
+    """
     from scipy.optimize import brentq
 
     from flyopt.sizing.periodic import periodic_solution
 
     net, knots = machine.net_torque(), machine.knots()
-    cache = {}
 
     def excess(j):
         sol = periodic_solution(net, machine.j_machine, machine.cycle_angle, omega, j, knots)
-        cache[j] = sol
         return rms_torque(sol, motor.motor(), ratio)[0] / rated - 1.0
 
-    scale = max(j_low, float(np.mean(np.atleast_1d(machine.j_mean()))), 1e-9)
-    high = scale
+    if guess is not None and guess > j_low:
+        x0, x1 = guess, guess * (1 + 1e-4)
+        f0, f1 = excess(x0), excess(x1)
+        for _ in range(20):
+            if f1 == f0:
+                break
+            x0, f0, x1 = x1, f1, x1 - f1 * (x1 - x0) / (f1 - f0)
+            if not x1 > j_low:
+                break
+            f1 = excess(x1)
+            if abs(x1 - x0) <= THERMAL_RTOL * x1:
+                return x1 * (1 + THERMAL_RTOL) if f1 > 0 else x1
+    if excess(j_low) <= 0:
+        return j_low
+    high = max(j_low, machine.j_mean(), 1e-9)
     for _ in range(60):
         high *= 2.0
         if excess(high) <= 0:
             break
     else:
-        return None, None
+        return None
     j = brentq(excess, j_low, high, rtol=THERMAL_RTOL, xtol=1e-14 * high)
-    if excess(j) > 0:                       # the root's side that holds
-        j *= 1 + THERMAL_RTOL
-        excess(j)
-    return j, cache[j]
+    return j * (1 + THERMAL_RTOL) if excess(j) > 0 else j
 
 
 def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, solver_options):
