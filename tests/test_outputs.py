@@ -249,9 +249,6 @@ def test_the_schema_ships_with_the_package():
     assert any(fnmatch("py.typed", p) for p in patterns)
 
 
-@pytest.mark.xfail(strict=True, reason="flyopt.cli.scene.run_solve prints its own JSON: it must print "
-                                       "flyopt.io.results.solution_json(...) (a change outside this "
-                                       "work's files, described in its report)")
 def test_the_command_line_json_validates(capsys):
     assert main(["solve", str(PROBLEMS / "punch-press-wheel.toml"), "--json"]) == 0
     assert _errors(json.loads(capsys.readouterr().out)) == []

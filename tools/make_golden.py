@@ -25,6 +25,7 @@ def main():
         if run.returncode not in (0, 3):
             raise SystemExit(f"{scene.name}: exit {run.returncode}: {run.stderr.strip()}")
         data = json.loads(run.stdout)
+        data.pop("flyopt_version", None)      # provenance, not a result: a release must not break the copies
         (out_dir / f"{scene.stem}.json").write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
         print(scene.name, run.returncode)
 

@@ -1,8 +1,5 @@
 """``flyopt solve`` and ``flyopt check``: one scene, analysed and designed or checked."""
 
-import json
-import math
-
 from flyopt.cli.exits import EXIT_FLAGGED, EXIT_INFEASIBLE, EXIT_OK
 
 
@@ -35,14 +32,19 @@ def run_solve(args):
     solution = solve(scene, design_flywheel=args.design, model=args.model, verify_design=args.verify,
                      design_method=args.design_method)
     if args.json:
-        data = solution.to_dict(timings=args.timings)
-        text = json.dumps({"scene": args.scene, **_json_safe(data)}, indent=2, allow_nan=False)
+        from flyopt.io.results import solution_json
+
+        text = solution_json(solution, args.scene, timings=args.timings)
     else:
         from flyopt.report.text import analysis_report, design_report, verification_report
 
         lines = [analysis_report(solution.analysis, args.scene)]
         if solution.design is not None:
             lines += design_report(solution.design)
+        if solution.drive is not None:
+            from flyopt.report.drive import drive_report
+
+            lines += drive_report(solution.drive, solution.drive_check)
         if solution.verification is not None:
             lines += verification_report(solution.verification)
         text = "\n".join(lines)
@@ -51,18 +53,9 @@ def run_solve(args):
         return EXIT_INFEASIBLE
     if solution.verification is not None and solution.verification.flagged:
         return EXIT_FLAGGED
+    if solution.drive_check is not None and solution.drive_check.flagged:
+        return EXIT_FLAGGED
     return EXIT_OK
-
-
-def _json_safe(value):
-    """Infinite or NaN numbers (e.g. δ with no inertia at all) become null."""
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    if isinstance(value, dict):
-        return {k: _json_safe(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_json_safe(v) for v in value]
-    return value
 
 
 def add_check_arguments(parser):
