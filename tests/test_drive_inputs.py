@@ -45,6 +45,17 @@ rotor_inertia = "0.03 kg*m^2"
 price = 620
 """
 GOOD = BASE + DRIVE
+#: A wheel material with a price, the only one the design may use: a drive by cost needs it.
+PRICED_WHEEL = """
+[[material]]
+name = "priced_iron"
+density = "7200 kg/m^3"
+max_rim_speed = "36 m/s"
+cost = "2.1 1/kg"
+
+[design]
+materials = ["priced_iron"]
+"""
 GOOD_OPTIONS = BASE + DRIVE.replace('motors = "iec_4pole"\n', "") + OPTIONS
 
 DRIVE_CASES = [
@@ -161,7 +172,7 @@ def test_max_startup_takes_any_time_unit_and_plain_seconds(write_scene, written,
 
 
 def test_motor_options_are_read_in_si_and_sorted_by_rating(tmp_path, cli):
-    text = GOOD_OPTIONS.replace('objective = "mass"', 'objective = "cost"')
+    text = GOOD_OPTIONS.replace('objective = "mass"', 'objective = "cost"') + PRICED_WHEEL
     path = tmp_path / "scene.toml"
     path.write_text(text.replace('name = "small"\n', ""))       # a nameless option is named by its table
     result = cli("check", path)
@@ -199,3 +210,12 @@ def test_a_mass_objective_needs_every_motor_mass(tmp_path, cli):
     path.write_text(GOOD_OPTIONS)                 # the options give prices, not masses
     assert_refused(cli("check", path), path, "drive.objective",
                    r"'mass' is the motor's mass plus the wheel's, and none is given for 'small, big'")
+
+
+def test_a_cost_objective_refuses_unpriced_wheel_materials_from_the_scene(tmp_path, cli):
+    """The scene's own design materials reach the drive's check: the textbook pair has no price."""
+    path = tmp_path / "scene.toml"
+    path.write_text(GOOD_OPTIONS.replace('objective = "mass"', 'objective = "cost"'))
+    assert_refused(cli("check", path), path, "drive.objective",
+                   r"'cost' needs a cost per kg for every material the flywheel may be made of; "
+                   r"none is given for 'cast_iron, cast_steel'")

@@ -48,10 +48,10 @@ def design_inputs(scene):
     -------
     DesignInputs
     """
-    from flyopt.design.materials import default_materials
+    from flyopt.design.materials import design_material_names
 
     library = scene.material_library()
-    materials = tuple(library[name] for name in (scene.design_materials or tuple(default_materials(library))))
+    materials = tuple(library[name] for name in design_material_names(library, scene.design_materials))
     allowed = scene.design_shafts
     shafts = tuple(MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts
                    if allowed is None or s.name in allowed)

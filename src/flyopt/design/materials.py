@@ -676,6 +676,11 @@ def default_materials(library: Mapping[str, Material] | None = None) -> dict[str
             if name in defaults or name not in builtins or m != builtins[name]}
 
 
+def design_material_names(library: Mapping[str, Material], names: Iterable[str] | None = None) -> tuple:
+    """The names of the materials a design may use: ``names`` (a scene's ``[design] materials``), else the default set."""
+    return tuple(names) if names else tuple(default_materials(library))
+
+
 def material_library(user_materials: Iterable[Material] | Mapping[str, Material] = ()
                      ) -> dict[str, Material]:
     """Every built-in material, extended or overridden by the user's.

@@ -411,7 +411,11 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     if top.has("drive") or top.has("motor_option"):
         from flyopt.io.drive import drive_spec
 
-        drive = drive_spec(top.get("drive"), top.get("motor_option"), shafts)
+        from flyopt.design.materials import design_material_names, material_library
+
+        library = material_library(materials)
+        drive = drive_spec(top.get("drive"), top.get("motor_option"), shafts,
+                           materials={n: library[n] for n in design_material_names(library, design_materials)})
     title = top.get("title", "")
     if not isinstance(title, str):
         raise SceneError("title", f"must be a string, got {shorten(title)}")
@@ -1270,9 +1274,9 @@ def _design(raw, shafts, materials):
                                             f"got {shorten(table.raw('arms'))}")
         options["arms"] = tuple(arms)
     if options.get("objective") == "cost":
-        from flyopt.design.materials import default_materials
+        from flyopt.design.materials import design_material_names
 
-        chosen = names or tuple(default_materials(library))
+        chosen = design_material_names(library, names)
         missing = [n for n in chosen if library[n].cost is None]
         if missing:
             raise SceneError("design.objective", f"'cost' needs a cost per kg for every material; "
