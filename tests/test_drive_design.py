@@ -188,3 +188,38 @@ def test_motor_power_front_is_the_nondominated_set():
         assert (run in front) == (not dominated), run.motor.name
     # a bigger motor needs no heavier wheel along the front
     assert all(a.wheel_mass > b.wheel_mass for a, b in zip(front, front[1:]))
+
+
+def test_motor_power_front_needs_a_drive(tmp_path):
+    """A front of flywheel mass against motor power on a scene without [drive]: one line, exit 2."""
+    import subprocess
+    import sys
+
+    result = subprocess.run([sys.executable, "-m", "flyopt", "pareto", "problems/punch-press.toml",
+                             "--objectives", "mass,motor_power"], capture_output=True, text=True)
+    assert result.returncode == 2 and "Traceback" not in result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "objectives" in lines[0] and "[drive]" in lines[0]
+
+
+@pytest.mark.slow   # every size of the ladder solved exactly: about half a minute
+def test_flyopt_pareto_motor_power_writes_the_front(tmp_path):
+    """flyopt pareto --objectives mass,motor_power: the non-dominated (motor power, wheel mass) of every size,
+    its objectives recorded for flyopt plot."""
+    import json
+    import subprocess
+    import sys
+
+    import pandas as pd
+
+    out = tmp_path / "front.csv"
+    result = subprocess.run([sys.executable, "-m", "flyopt", "pareto", "problems/press-drive.toml",
+                             "--objectives", "mass,motor_power", "-o", str(out)], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    front = pd.read_csv(out)
+    scene = load("problems/press-drive.toml")
+    every = drive.design_drive(scene, every_size=True)
+    expected = drive.motor_power_front(every)
+    assert list(front["motor"]) == [r.motor.name for r in expected]
+    assert front["mass"].to_numpy() == pytest.approx([r.wheel_mass for r in expected], rel=1e-9)
+    assert json.loads(out.with_name("front.csv.json").read_text())["objectives"] == ["mass", "motor_power"]

@@ -172,7 +172,7 @@ def add_pareto_arguments(parser):
     """The options of ``flyopt pareto``; the handler is :func:`run_pareto`."""
     parser.add_argument("scene", help="scene file (TOML)")
     parser.add_argument("--objectives", default="mass,outer_diameter",
-                        help="mass,outer_diameter | mass,cost | mass,delta "
+                        help="mass,outer_diameter | mass,cost | mass,delta | mass,motor_power (a [drive]) "
                              "(default mass,outer_diameter)")
     parser.add_argument("--points", type=_positive_int, default=25,
                         help="number of epsilon values (default 25)")
@@ -225,6 +225,8 @@ _SHOW = {
                        "binding", "method"],
     "cost": ["mass", "cost", "best_material", "best_shaft", "d_outer", "binding", "method"],
     "delta": ["mass", "delta", "best_material", "best_shaft", "d_outer", "binding", "method"],
+    "motor_power": ["mass", "motor_power", "motor", "motor_ratio", "flywheel_ratio", "j_flywheel", "limit",
+                    "total_mass", "best_material", "d_outer"],
 }
 
 

@@ -52,6 +52,7 @@ PARETO_OBJECTIVES = {
     "outer_diameter": "length",
     "cost": None,
     "delta": "dimensionless",
+    "motor_power": None,          # the motor sizes of a scene's [drive], each with its lightest wheel
 }
 
 
@@ -107,7 +108,8 @@ def pareto(scene: Scene, objectives: str | Sequence[str] = ("mass", "outer_diame
     ----------
     scene : Scene
     objectives : pair of str or "mass,OTHER"
-        ``mass`` and one of ``outer_diameter``, ``cost``, ``delta``.
+        ``mass`` and one of ``outer_diameter``, ``cost``, ``delta``, ``motor_power`` (the
+        flywheel's mass against the motor's rated power, over the sizes of the scene's [drive]).
     points : int
         Number of ε values (outer diameter, δ).
     span : (float, float), optional
@@ -136,7 +138,11 @@ def pareto(scene: Scene, objectives: str | Sequence[str] = ("mass", "outer_diame
         raise SceneError("points", f"must be a whole number >= 2, got {points!r}")
     analysis = physics_analysis(scene)
     empty = pd.DataFrame()
-    if analysis.j_margin <= 0.0 and other != "delta":
+    if other == "motor_power":
+        if scene.drive is None:
+            raise SceneError("objectives", "a front of flywheel mass against motor power needs the scene's "
+                                           "[drive] (the motor sizes to choose from)")
+    elif analysis.j_margin <= 0.0 and other != "delta":
         empty.attrs["message"] = (f"no flywheel needed (J_F = {analysis.j_margin:.4g} kg·m²): "
                                   f"nothing to trade")
         return empty
@@ -144,6 +150,8 @@ def pareto(scene: Scene, objectives: str | Sequence[str] = ("mass", "outer_diame
         rows = _front_outer_diameter(scene, points, span, method, solver_options)
     elif other == "cost":
         rows = _front_cost(scene, method, solver_options)
+    elif other == "motor_power":
+        rows = _front_motor_power(scene, analysis, solver_options)
     else:
         rows = _front_delta(scene, points, span, method, solver_options)
     if rows.empty:
@@ -151,7 +159,8 @@ def pareto(scene: Scene, objectives: str | Sequence[str] = ("mass", "outer_diame
         return rows
     rows = rows.copy()
     rows["mass"] = np.where(rows["status"] == "not_needed", 0.0, rows["mass"])
-    rows[other] = rows[{"outer_diameter": "d_outer", "cost": "cost", "delta": "delta"}[other]]
+    rows[other] = rows[{"outer_diameter": "d_outer", "cost": "cost", "delta": "delta",
+                        "motor_power": "rated_power"}[other]]
     if other == "outer_diameter":
         rows[other] = np.where(rows["status"] == "not_needed", 0.0, rows[other])
     usable = rows["status"].isin(["designed", "not_needed"]).to_numpy()
@@ -211,6 +220,31 @@ def _front_cost(scene, method, solver_options):
     swept = sweep(scene, {"material": names, "shaft": shafts, "design.objective": "mass"},
                   method=method, solver_options=solver_options, workers=WORKERS)
     return swept.assign(epsilon=swept["cost"])
+
+
+def _front_motor_power(scene, analysis, solver_options):
+    """Every motor size of the drive with its lightest wheel (flyopt.design.drive, every size solved).
+
+    ``mass`` is the flywheel's (0 where the motor needs none), ``rated_power``
+    the motor's; the drive's own objective (motor plus wheel) is ``total_mass``.
+    """
+    from flyopt.design.drive import design_drive
+
+    drive = design_drive(scene, analysis, solver_options=solver_options, every_size=True)
+    rows = []
+    for run in drive.runs:
+        wheel = run.wheel
+        status = "infeasible" if not run.feasible else ("designed" if wheel is not None else "not_needed")
+        rows.append({"motor": run.motor.name, "rated_power": run.motor.rated_power, "status": status,
+                     "mass": wheel.mass if wheel is not None else math.nan,
+                     "total_mass": run.total_mass if run.total_mass is not None else math.nan,
+                     "motor_ratio": run.motor_ratio if run.motor_ratio is not None else math.nan,
+                     "flywheel_ratio": run.flywheel_ratio if run.flywheel_ratio is not None else math.nan,
+                     "j_flywheel": run.j_flywheel if run.j_flywheel is not None else math.nan,
+                     "limit": run.limit, "best_material": wheel.material if wheel is not None else None,
+                     "d_outer": wheel.d_outer if wheel is not None else math.nan,
+                     "epsilon": run.motor.rated_power, "message": run.reason})
+    return pd.DataFrame(rows)
 
 
 def _front_delta(scene, points, span, method, solver_options):
