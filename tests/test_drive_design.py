@@ -223,3 +223,39 @@ def test_flyopt_pareto_motor_power_writes_the_front(tmp_path):
     assert list(front["motor"]) == [r.motor.name for r in expected]
     assert front["mass"].to_numpy() == pytest.approx([r.wheel_mass for r in expected], rel=1e-9)
     assert json.loads(out.with_name("front.csv.json").read_text())["objectives"] == ["mass", "motor_power"]
+
+
+def test_relaxation_sensitivities_against_central_differences():
+    """d(objective)/d(limit) from IPOPT's multipliers against the relaxation re-solved at limit ± h."""
+    import dataclasses
+
+    from flyopt.analysis import analyse
+    from flyopt.design.drive_nlp import relax
+
+    scene = _scene(max_startup=2.5)       # the run-up binds too (3.2 s unbound)
+    analysis = analyse(scene)
+    fit = CatalogueFit.of(OPTIONS)
+    v_max, envelope = 50.0, 1.2
+    load_torque = analysis.driving_torque
+
+    def solve(delta=scene.delta, spec=scene.drive, v=v_max, d=envelope):
+        return relax(analysis.machine, scene.omega_mean, delta, scene.efficiency, fit, spec, (v, d / 2, None),
+                     load_torque)
+
+    base = solve()
+    sens = base.sensitivities
+    moves = {
+        "delta": lambda h: solve(delta=scene.delta + h),
+        "max_startup": lambda h: solve(spec=dataclasses.replace(scene.drive, max_startup=2.5 + h)),
+        "rim_speed": lambda h: solve(v=v_max + h),
+        "ratio_max": lambda h: solve(spec=dataclasses.replace(scene.drive, ratio_range=(2.0, 8.0 + h))),
+        "max_outer_diameter": lambda h: solve(d=envelope + h),
+    }
+    steps = {"delta": 1e-5, "max_startup": 1e-4, "rim_speed": 1e-3, "ratio_max": 1e-5, "max_outer_diameter": 1e-6}
+    binding = 0
+    for limit, move in moves.items():
+        h = steps[limit]
+        fd = (move(h).objective - move(-h).objective) / (2 * h)
+        assert sens[limit] == pytest.approx(fd, rel=2e-5, abs=1e-8 * base.objective), limit
+        binding += abs(fd) > 1e-6 * base.objective
+    assert binding == 4                    # delta, run-up, ratio and envelope bind; the rim speed does not

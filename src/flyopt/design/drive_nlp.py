@@ -36,7 +36,7 @@ wheel designer) and ranks them.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -102,7 +102,14 @@ class CatalogueFit:
 
 @dataclass(frozen=True)
 class Relaxation:
-    """The relaxed optimum: rating [W], ratios [-], flywheel at the crank [kg*m^2], status."""
+    """The relaxed optimum: rating [W], ratios [-], flywheel at the crank [kg*m^2], status.
+
+    ``sensitivities``: d(objective)/d(limit) of the relaxed optimum, in the
+    objective's unit (kg, or currency) per SI unit of each limit: ``max_startup``
+    [s], ``rim_speed`` (the material's safe rim speed) [m/s], ``ratio_max`` and
+    ``ratio_min`` (the flywheel shaft's range) [-], ``max_outer_diameter`` [m],
+    ``delta`` [-]; zero where the limit does not bind.
+    """
 
     rated_power: float
     motor_ratio: float
@@ -110,6 +117,7 @@ class Relaxation:
     j_flywheel: float
     objective: float
     status: str
+    sensitivities: dict = field(default_factory=dict)
 
 
 def kloss_runup_time(inertia, ratio, efficiency, breakdown_torque, breakdown_slip, synchronous_speed, omega, lib=math):
@@ -214,8 +222,10 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
         j_total = float(np.mean(j_e[:-1])) + j_rot * i_m**2 + j_f
         run = kloss_runup_time(j_total, i_m, efficiency, k * m_n, s_b, w0, omega_mean, ca)
         rows.append((run / spec.max_startup, -math.inf, 1.0))
+        startup_row = len(rows) - 1
     omega_top = omega_mean * (1 + delta / 2)
     rows.append((r * big_r * omega_top / v_max, -math.inf, 1.0))
+    rim_row = len(rows) - 1
     lo, hi = spec.ratio_range if spec.ratios is None else (min(spec.ratios), max(spec.ratios))
     radius_cap = min(r_env, v_max / (lo * omega_top))
     wheel_mass = j_f / (r**2 * big_r**2)
@@ -251,5 +261,24 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
         raise SolverFailed(f"the drive's relaxation did not converge: {status}")
     values = ca.Function("values", [x], [p, i_m, r, j_f, objective])(found["x"])
     p, i_m, r, j_f, objective = (float(v) for v in values)
+    # d(objective)/d(limit) from the multipliers (CasADi: d f*/d ubx = -lam_x where lam_x > 0, d f*/d lbx =
+    # -lam_x where lam_x < 0; a row g(x; limit) <= 1 adds lam_g dg/dlimit), times the objective's scale
+    lam_x = np.asarray(found["lam_x"]).ravel() * scale
+    lam_g = np.asarray(found["lam_g"]).ravel() * scale
+    starts = np.cumsum([0] + [row[0].shape[0] for row in rows])
+    g_value = np.asarray(found["g"]).ravel()
+    rim = starts[rim_row]
+    sens = {}
+    if spec.max_startup is not None:
+        k = starts[startup_row]
+        sens["max_startup"] = -lam_g[k] * g_value[k] / spec.max_startup
+    sens["rim_speed"] = -lam_g[rim] * g_value[rim] / v_max
+    if spec.ratios is None:
+        sens["ratio_max"] = -max(lam_x[3], 0.0)
+        sens["ratio_min"] = -min(lam_x[3], 0.0)
+    if math.isfinite(r_env) and radius_cap == r_env:
+        sens["max_outer_diameter"] = -max(lam_x[4], 0.0) / 2
+    lam_w = lam_x[5:5 + n]
+    sens["delta"] = -0.5 * float(np.sum(np.abs(lam_w))) + lam_g[rim] * g_value[rim] * 0.5 / (1 + delta / 2)
     return Relaxation(rated_power=p, motor_ratio=i_m, flywheel_ratio=r, j_flywheel=j_f, objective=objective,
-                      status=status)
+                      status=status, sensitivities={k: float(v) for k, v in sens.items()})

@@ -34,6 +34,15 @@ def drive_report(drive, check=None):
             lines.append(f"  relaxation           {power(r.rated_power)}, motor ratio {number(r.motor_ratio, 5)}, "
                          f"flywheel ratio {number(r.flywheel_ratio, 4)}, {number(r.j_flywheel, 5)} kg·m² "
                          f"({r.status}; a thin-ring wheel, a lower bound)")
+            unit = "kg" if drive.objective == "mass" else "(currency)"
+            steps = (("delta", 0.01, "δ +0.01"), ("max_startup", 1.0, "max_startup +1 s"),
+                     ("rim_speed", 1.0, "safe rim speed +1 m/s"), ("ratio_max", 1.0, "largest flywheel ratio +1"),
+                     ("ratio_min", -1.0, "smallest flywheel ratio −1"),
+                     ("max_outer_diameter", 0.1, "envelope +100 mm"))
+            moved = [f"{words}: {number(r.sensitivities[name] * step, 4)} {unit}" for name, step, words in steps
+                     if abs(r.sensitivities.get(name, 0.0)) > 1e-9 * max(abs(r.objective), 1.0)]
+            if moved:
+                lines.append("  binding limits       " + "; ".join(moved) + " (relaxed optimum, first order)")
     head = ["motor", "P [kW]", "ratio", "J_F [kg·m²]", "limit", "RMS/rated", "start [s]", "r", "wheel [kg]",
             "total [kg]", "verdict"]
     rows = []
