@@ -1,0 +1,91 @@
+"""Units of the user's choice for what people read: the text report, the plots, the engineering report.
+
+flyopt computes and writes its files in SI (docs/nomenclature.md; the JSON
+and the tables stay SI whatever is shown). What a person reads may be in one
+of three systems (``--units``):
+
+- ``si``: the SI base units (rad, rad/s, N·m, J, m, Pa, W, ...);
+- ``engineering`` (the default of reports and plots): the machine designer's
+  units, mm, rpm, kN·m, kJ, MPa, kW;
+- ``imperial``: in, rpm, lbf·ft, psi, hp, lb.
+
+Every factor is pint's own (``Quantity(1, unit).to(SI).magnitude``), written
+out so that showing a number loads no unit library; tests/test_display.py
+checks each against pint. One table, by dimension (the dimensions of
+:data:`flyopt.units.DIMENSIONS` and :data:`flyopt.io.results.OUTPUT_DIMENSIONS`):
+a quantity is shown as ``value_SI / factor`` followed by its label.
+"""
+
+from __future__ import annotations
+
+import math
+
+#: The unit systems, the default first for reports.
+SYSTEMS = ("engineering", "si", "imperial")
+
+#: The default for what people read.
+DEFAULT = "engineering"
+
+#: dimension -> system -> (label, factor: SI value of one displayed unit).
+UNITS = {
+    "angle": {"si": ("rad", 1.0), "engineering": ("deg", 0.017453292519943295),
+              "imperial": ("deg", 0.017453292519943295)},
+    "angular_speed": {"si": ("rad/s", 1.0), "engineering": ("rpm", 0.10471975511965977),
+                      "imperial": ("rpm", 0.10471975511965977)},
+    "torque": {"si": ("N·m", 1.0), "engineering": ("kN·m", 1000.0), "imperial": ("lbf·ft", 1.3558179483314004)},
+    "energy": {"si": ("J", 1.0), "engineering": ("kJ", 1000.0), "imperial": ("ft·lbf", 1.3558179483314004)},
+    "inertia": {"si": ("kg·m²", 1.0), "engineering": ("kg·m²", 1.0), "imperial": ("lb·ft²", 0.04214011009380480)},
+    "flywheel_moment": {"si": ("N·m²", 1.0), "engineering": ("N·m²", 1.0),
+                        "imperial": ("lbf·ft²", 0.41325331065141085)},
+    "length": {"si": ("m", 1.0), "engineering": ("mm", 0.001), "imperial": ("in", 0.0254)},
+    "mass": {"si": ("kg", 1.0), "engineering": ("kg", 1.0), "imperial": ("lb", 0.45359237)},
+    "density": {"si": ("kg/m³", 1.0), "engineering": ("kg/m³", 1.0), "imperial": ("lb/in³", 27679.904710203125)},
+    "speed": {"si": ("m/s", 1.0), "engineering": ("m/s", 1.0), "imperial": ("ft/s", 0.3048)},
+    "stress": {"si": ("Pa", 1.0), "engineering": ("MPa", 1e6), "imperial": ("psi", 6894.7572931683635)},
+    "power": {"si": ("W", 1.0), "engineering": ("kW", 1000.0), "imperial": ("hp", 745.6998715822701)},
+    "force": {"si": ("N", 1.0), "engineering": ("kN", 1000.0), "imperial": ("lbf", 4.4482216152605)},
+    "area": {"si": ("m²", 1.0), "engineering": ("mm²", 1e-6), "imperial": ("in²", 0.00064516)},
+    "time": {"si": ("s", 1.0), "engineering": ("s", 1.0), "imperial": ("s", 1.0)},
+    "unbalance": {"si": ("kg·m", 1.0), "engineering": ("g·mm", 1e-6), "imperial": ("oz·in", 0.0007200778873750002)},
+    "dimensionless": {"si": ("-", 1.0), "engineering": ("-", 1.0), "imperial": ("-", 1.0)},
+}
+
+
+def check_system(system):
+    """``system`` if it is known; ValueError naming the allowed ones otherwise."""
+    if system not in SYSTEMS:
+        raise ValueError(f"unit system {system!r} is not known (allowed: {', '.join(SYSTEMS)})")
+    return system
+
+
+def unit(dimension, system=DEFAULT):
+    """(label, factor) of a dimension in a system: shown value = SI value / factor."""
+    check_system(system)
+    try:
+        return UNITS[dimension][system]
+    except KeyError:
+        raise ValueError(f"no display unit for dimension {dimension!r} (known: {', '.join(UNITS)})") from None
+
+
+def label(dimension, system=DEFAULT):
+    """The unit's label, e.g. "mm"."""
+    return unit(dimension, system)[0]
+
+
+def show(value, dimension, system=DEFAULT):
+    """An SI value (number or numpy array) in the system's unit of its dimension (None stays None)."""
+    if value is None:
+        return None
+    return value / unit(dimension, system)[1]
+
+
+def quantity_text(value, dimension, system=DEFAULT, digits=6):
+    """"<number> <label>" with ``digits`` significant digits ("-" for None, "inf"/"nan" as such)."""
+    from flyopt.report.text import number
+
+    if value is None:
+        return "-"
+    shown = show(float(value), dimension, system)
+    text = number(shown, digits) if math.isfinite(shown) else str(shown)
+    name = label(dimension, system)
+    return text if name == "-" else f"{text} {name}"
