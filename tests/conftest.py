@@ -9,6 +9,18 @@ PROBLEMS = ROOT / "problems"
 
 
 @pytest.fixture
+def main_cli(capsys):
+    """flyopt's command line in this process: call(*args) -> (exit status, stdout, stderr)."""
+    from flyopt.cli.main import main
+
+    def call(*args):
+        status = main([str(a) for a in args])
+        out, err = capsys.readouterr()
+        return status, out, err
+    return call
+
+
+@pytest.fixture
 def write_scene(tmp_path):
     """Write a scene text to a file and return its path."""
 

@@ -473,17 +473,6 @@ def test_default_firing_angles_are_evenly_spaced(write_scene):
 # -- bad values: exit 2, one line naming the file and the field --------------------------------
 
 
-@pytest.fixture
-def cli(capsys):
-    from flyopt.cli.main import main
-
-    def call(*args):
-        status = main([str(a) for a in args])
-        out, err = capsys.readouterr()
-        return status, out, err
-    return call
-
-
 @pytest.mark.parametrize("old, new, field, match", [
     ('rod = "145 mm"', 'rod = "40 mm"', "engine.rod", "not longer than the crank radius, stroke/2 = 46 mm"),
     ('rod = "145 mm"', 'rod = "46 mm"', "engine.rod", "not longer than the crank radius"),
@@ -519,14 +508,14 @@ def cli(capsys):
     ('[torque.resisting]\nconstant = "unknown"', '[torque.net]\nareas = ["10 J", "-10 J"]', "torque.net",
      "an \\[engine\\] needs torque curves"),
 ])
-def test_bad_engine_values_exit_2_with_one_line(cli, write_scene, old, new, field, match):
+def test_bad_engine_values_exit_2_with_one_line(main_cli, write_scene, old, new, field, match):
     import re
 
     text = FOUR_CYLINDER.read_text()
     assert old in text
     path = write_scene(text.replace(old, new, 1))
     for command in ("check", "solve"):
-        status, out, err = cli(command, path)
+        status, out, err = main_cli(command, path)
         lines = err.splitlines()
         assert status == 2 and out == "" and len(lines) == 1, (status, err[-2000:])
         assert str(path) in lines[0] and f"{field}:" in lines[0], lines[0]
@@ -534,13 +523,13 @@ def test_bad_engine_values_exit_2_with_one_line(cli, write_scene, old, new, fiel
         assert "Traceback" not in err
 
 
-def test_negative_pressure_in_a_csv_file_names_its_line(cli, write_scene, tmp_path):
+def test_negative_pressure_in_a_csv_file_names_its_line(main_cli, write_scene, tmp_path):
     (tmp_path / "p.csv").write_text("angle,pressure\n0,1\n# a comment\n360,-0.5\n720,1\n")
     text = FOUR_CYLINDER.read_text()
     start = text.index("pressure = [")
     end = text.index("]\n", text.index("[720,")) + 2
     path = write_scene(text[:start] + 'pressure_file = "p.csv"\n' + text[end:])
-    status, out, err = cli("check", path)
+    status, out, err = main_cli("check", path)
     assert status == 2 and len(err.splitlines()) == 1
     assert "engine.pressure_file: " in err and "p.csv line 4: the pressure -0.5 bar is below 0" in err, err
 

@@ -136,17 +136,6 @@ def test_shear_press_flywheel_shrinks_by_the_inertia_already_on_the_shafts(write
     assert_allclose(main.j_required, result.j_required / 0.25**2, rtol=1e-15)
 
 
-@pytest.fixture
-def cli(capsys):
-    from flyopt.cli.main import main
-
-    def call(*args):
-        status = main([str(a) for a in args])
-        out, err = capsys.readouterr()
-        return status, out, err
-    return call
-
-
 @pytest.mark.parametrize("new, field, match", [
     ('inertia = "-0.06 kg*m^2"', "shaft[1].inertia", ">= 0"),
     ('inertia = "0.06 kg*m^2"\ngd2 = "2 N*m^2"', "shaft[1].gd2", "either inertia or gd2"),
@@ -156,14 +145,14 @@ def cli(capsys):
     ('inertia = "inf kg*m^2"', "shaft[1].inertia", "must be finite"),
     ('inertia = true', "shaft[1].inertia", "moment of inertia"),
 ])
-def test_bad_shaft_inertia_exits_2_with_one_line(cli, write_scene, new, field, match):
+def test_bad_shaft_inertia_exits_2_with_one_line(main_cli, write_scene, new, field, match):
     import re
 
     text = EXAMPLE3.replace('inertia = "0.06 kg*m^2"', new)
     assert text != EXAMPLE3
     path = write_scene(text)
     for command in ("check", "solve"):
-        status, out, err = cli(command, path)
+        status, out, err = main_cli(command, path)
         lines = err.splitlines()
         assert status == 2 and out == "" and len(lines) == 1, (status, err[-2000:])
         assert str(path) in lines[0] and f"{field}:" in lines[0], lines[0]
