@@ -12,8 +12,9 @@ UREG = pint.UnitRegistry()
 PINT = {"N·m": "N*m", "kN·m": "kN*m", "lbf·ft": "lbf*ft", "ft·lbf": "ft*lbf", "kg·m²": "kg*m**2",
         "lb·ft²": "lb*ft**2", "N·m²": "N*m**2", "lbf·ft²": "lbf*ft**2", "kg/m³": "kg/m**3", "lb/in³": "lb/in**3",
         "m²": "m**2", "mm²": "mm**2", "in²": "in**2", "kg·m": "kg*m", "g·mm": "g*mm", "oz·in": "oz*in"}
-#: The SI unit of each dimension (flyopt.units.DIMENSIONS, and the outputs' own for unbalance).
-SI = {name: entry[1] for name, entry in DIMENSIONS.items()} | {"unbalance": "kg*m"}
+#: The SI unit of each dimension (flyopt.units.DIMENSIONS, and the outputs' own for unbalance;
+#: the specific unbalance e_per = U/m of ISO 21940-11 is a length).
+SI = {name: entry[1] for name, entry in DIMENSIONS.items()} | {"unbalance": "kg*m", "eccentricity": "m"}
 
 
 @pytest.mark.parametrize("dimension", sorted(display.UNITS))
@@ -41,3 +42,31 @@ def test_an_unknown_system_or_dimension_is_named():
         display.unit("length", "cgs")
     with pytest.raises(ValueError, match="no display unit for dimension 'colour'"):
         display.unit("colour")
+
+
+@pytest.mark.parametrize("value, digits, text", [
+    (1256.33, 6, "1,256.33"), (1500.0, 6, "1,500"), (0.000123456789, 6, "0.000123457"),
+    # a whole number longer than the digits asked for is rounded to them, not printed whole
+    (23053542.3, 6, "23,053,500"), (5120982.0, 4, "5,121,000"), (999999.7, 6, "1,000,000"),
+    (-1858.78, 6, "-1,858.78"), (1e9, 6, "1.00000e+09"), (0.0, 6, "0"), (None, 6, "-"),
+])
+def test_numbers_carry_the_digits_asked_for(value, digits, text):
+    assert display.number(value, digits) == text
+
+
+def test_a_field_is_shown_in_the_dimension_the_json_gives_it():
+    """dimension_of reads flyopt.io.results' table: the JSON's unit and the shown one are one dimension."""
+    from flyopt.io.results import unit_of
+
+    for name in ("a_max", "d_outer", "hoop_stress", "omega_mean", "inertia", "rated_power", "unbalance_permissible",
+                 "delta", "gd2_required", "startup_time"):
+        dimension = display.dimension_of(name)
+        si = SI[dimension] or "dimensionless"
+        assert UREG.Quantity(1.0, unit_of(name)).to(si).magnitude == pytest.approx(1.0, rel=1e-15), name
+    assert display.field_text(1256.33, "a_max") == "1.25633 kJ"
+    assert display.field_text(0.6, "d_outer", "imperial") == "23.622 in"
+    assert display.field_number(0.6, "d_outer") == "600" and display.field_number(None, "d_outer") == "-"
+    assert display.heading("D_outer", "d_outer", "si") == "D_outer [m]"
+    assert display.heading("achieved δ", "achieved_delta") == "achieved δ"
+    with pytest.raises(ValueError, match="'material' is not a quantity"):
+        display.dimension_of("material")

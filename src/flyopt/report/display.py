@@ -14,6 +14,9 @@ out so that showing a number loads no unit library; tests/test_display.py
 checks each against pint. One table, by dimension (the dimensions of
 :data:`flyopt.units.DIMENSIONS` and :data:`flyopt.io.results.OUTPUT_DIMENSIONS`):
 a quantity is shown as ``value_SI / factor`` followed by its label.
+An output field is shown by its name (:func:`field_text`, :func:`heading`),
+its dimension read from flyopt.io.results' table of every field flyopt
+writes (:func:`dimension_of`), the table behind the JSON's ``units`` map.
 """
 
 from __future__ import annotations
@@ -47,6 +50,8 @@ UNITS = {
     "area": {"si": ("m²", 1.0), "engineering": ("mm²", 1e-6), "imperial": ("in²", 0.00064516)},
     "time": {"si": ("s", 1.0), "engineering": ("s", 1.0), "imperial": ("s", 1.0)},
     "unbalance": {"si": ("kg·m", 1.0), "engineering": ("g·mm", 1e-6), "imperial": ("oz·in", 0.0007200778873750002)},
+    # the specific unbalance e = U/m of ISO 21940-11 (a length; g·mm/kg is µm), for the report's e_per
+    "eccentricity": {"si": ("m", 1.0), "engineering": ("µm", 1e-6), "imperial": ("in", 0.0254)},
     "dimensionless": {"si": ("-", 1.0), "engineering": ("-", 1.0), "imperial": ("-", 1.0)},
 }
 
@@ -81,11 +86,63 @@ def show(value, dimension, system=DEFAULT):
 
 def quantity_text(value, dimension, system=DEFAULT, digits=6):
     """"<number> <label>" with ``digits`` significant digits ("-" for None, "inf"/"nan" as such)."""
-    from flyopt.report.text import number
-
     if value is None:
         return "-"
     shown = show(float(value), dimension, system)
     text = number(shown, digits) if math.isfinite(shown) else str(shown)
     name = label(dimension, system)
     return text if name == "-" else f"{text} {name}"
+
+
+def number(value, digits=6):
+    """A number with ``digits`` significant digits, no exponent for everyday sizes ("-" for None).
+
+    The one way flyopt writes a number for people (the text report, plots'
+    labels); thousands are grouped ("1,256.33"), trailing zeros dropped. A
+    whole number longer than ``digits`` is rounded to them (23,053,542 Pa to
+    6 digits is "23,053,500"), so that no digit is printed that was not asked for.
+    """
+    if value is None:
+        return "-"
+    if not math.isfinite(value):
+        return str(value)            # inf, -inf, nan: say so rather than fail
+    if value == 0:
+        return "0"
+    magnitude = math.floor(math.log10(abs(value)))
+    if -4 <= magnitude < 9:
+        decimals = digits - 1 - magnitude
+        if decimals > 0:
+            return f"{value:,.{decimals}f}".rstrip("0").rstrip(".")
+        return f"{round(value, decimals):,.0f}"
+    return f"{value:.{digits - 1}e}"
+
+
+def dimension_of(name):
+    """The dimension of an output field (``a_max``: "energy", ``d_outer``: "length", a part's ``inertia``).
+
+    From flyopt.io.results' one table of the fields flyopt writes (QUANTITIES
+    and the sweep inputs), so that the JSON's ``units`` map and what people
+    read cannot disagree. ValueError for a name that is no quantity.
+    """
+    from flyopt.io.results import _dimension
+
+    dimension = _dimension(name)
+    if dimension is None:
+        raise ValueError(f"{name!r} is not a quantity of flyopt.io.results (no dimension to show it in)")
+    return dimension
+
+
+def field_text(value, name, system=DEFAULT, digits=6):
+    """An output field's SI value as "<number> <label>" in ``system`` (:func:`quantity_text` by its name)."""
+    return quantity_text(value, dimension_of(name), system, digits)
+
+
+def field_number(value, name, system=DEFAULT, digits=6):
+    """The number alone of :func:`field_text`: for a table whose heading carries the unit ("-" for None)."""
+    return number(show(None if value is None else float(value), dimension_of(name), system), digits)
+
+
+def heading(title, name, system=DEFAULT):
+    """A table heading with the unit of the field ``name``: "mass [kg]" (the title alone if dimensionless)."""
+    text = label(dimension_of(name), system)
+    return title if text == "-" else f"{title} [{text}]"
