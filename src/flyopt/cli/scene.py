@@ -1,12 +1,20 @@
 """``flyopt solve`` and ``flyopt check``: one scene, analysed and designed or checked."""
 
 from flyopt.cli.exits import EXIT_FLAGGED, EXIT_INFEASIBLE, EXIT_OK
+from flyopt.report import display
+
+#: The help of ``--units`` (``flyopt plot`` takes the same choices, from the same table).
+UNITS_HELP = ("unit system of the text report: engineering (default: mm, rpm, kN·m, kJ, MPa, kW, kg), si "
+              "(SI base units: m, rad/s, N·m, J, Pa, W) or imperial (in, rpm, lbf·ft, ft·lbf, psi, hp, lb); "
+              "--json ignores it: the JSON is always SI")
 
 
 def add_solve_arguments(parser):
     """The options of ``flyopt solve``; the handler is :func:`run_solve`."""
     parser.add_argument("scene", help="scene file (TOML)")
-    parser.add_argument("--json", action="store_true", help="print one JSON object, all numbers in SI")
+    parser.add_argument("--json", action="store_true",
+                        help="print one JSON object, all numbers in SI whatever --units says")
+    parser.add_argument("--units", choices=display.SYSTEMS, default=display.DEFAULT, help=UNITS_HELP)
     parser.add_argument("--no-design", dest="design", action="store_false",
                         help="stop after the cycle analysis (no optimization)")
     parser.add_argument("--model", choices=("energy", "energy_mass", "dynamic"),
@@ -38,15 +46,15 @@ def run_solve(args):
     else:
         from flyopt.report.text import analysis_report, design_report, verification_report
 
-        lines = [analysis_report(solution.analysis, args.scene)]
+        lines = [analysis_report(solution.analysis, args.scene, units=args.units)]
         if solution.design is not None:
-            lines += design_report(solution.design)
+            lines += design_report(solution.design, units=args.units)
         if solution.drive is not None:
             from flyopt.report.drive import drive_report
 
-            lines += drive_report(solution.drive, solution.drive_check)
+            lines += drive_report(solution.drive, solution.drive_check, units=args.units)
         if solution.verification is not None:
-            lines += verification_report(solution.verification)
+            lines += verification_report(solution.verification, units=args.units)
         text = "\n".join(lines)
     print(text)
     if solution.status == "infeasible":

@@ -1,11 +1,35 @@
-"""The drive part of the text report: the motor, ratios and wheel designed together (flyopt.design.drive)."""
+"""The drive part of the text report: the motor, ratios and wheel designed together (flyopt.design.drive).
 
-from flyopt.report.text import number, power, table
-from flyopt.units import rad_s_to_rpm
+Quantities are shown in the reader's unit system through :mod:`flyopt.report.display`,
+like the rest of the report (:mod:`flyopt.report.text`); the JSON stays SI.
+"""
+
+from functools import partial
+
+from flyopt.report.display import DEFAULT, field_number, field_text, heading, label, number, unit
+from flyopt.report.text import table
+
+#: The step of a relaxed limit that the report gives the objective's change for, in the shown
+#: unit of the limit's dimension: a round amount in each system (the envelope +100 mm, +0.1 m
+#: or +4 in; the safe rim speed +1 m/s or +1 ft/s). Dimensionless limits and time step the same
+#: in every system. Rows: (limit, words, dimension, the step by system or one for all).
+RELAXED_STEPS = (
+    ("delta", "δ", "dimensionless", 0.01),
+    ("max_startup", "max_startup", "time", 1.0),
+    ("rim_speed", "safe rim speed", "speed", 1.0),
+    ("ratio_max", "largest flywheel ratio", "dimensionless", 1.0),
+    ("ratio_min", "smallest flywheel ratio", "dimensionless", -1.0),
+    ("max_outer_diameter", "envelope", "length", {"engineering": 100.0, "si": 0.1, "imperial": 4.0}),
+)
 
 
-def drive_report(drive, check=None):
-    """Lines of the report for a :class:`flyopt.design.drive.DriveDesign` (and its :class:`DriveCheck`)."""
+def drive_report(drive, check=None, units=DEFAULT):
+    """Lines of the report for a :class:`flyopt.design.drive.DriveDesign` (and its :class:`DriveCheck`).
+
+    ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
+    """
+    q = partial(field_text, system=units)
+    n = partial(field_number, system=units)
     lines = ["", f"Drive designed with the flywheel (objective: {drive.objective}; {drive.note}):"]
     best = drive.best
     if best is None:
@@ -13,45 +37,36 @@ def drive_report(drive, check=None):
     else:
         m = best.motor
         lines += [
-            f"  motor                {m.name}: {power(m.rated_power)} at {number(rad_s_to_rpm(m.rated_speed), 5)} rpm "
-            f"(rated torque {number(m.rated_torque, 4)} N·m, rotor {number(m.rotor_inertia, 4)} kg·m²)",
+            f"  motor                {m.name}: {q(m.rated_power, 'rated_power')} at "
+            f"{q(m.rated_speed, 'rated_speed', 5)} (rated torque {q(m.rated_torque, 'rated_torque', 4)}, "
+            f"rotor {q(m.rotor_inertia, 'rotor_inertia', 4)})",
             f"  motor ratio          {number(best.motor_ratio, 6)} (motor speed over crank speed)",
-            f"  flywheel             {number(best.j_flywheel, 6)} kg·m² at the crank, set by "
-            f"{_limit_words(best.limit)}" + (f" (δ alone needs {number(best.j_delta, 6)})"
+            f"  flywheel             {q(best.j_flywheel, 'j_flywheel', 6)} at the crank, set by "
+            f"{_limit_words(best.limit)}" + (f" (δ alone needs {q(best.j_delta, 'j_delta', 6)})"
                                               if best.limit == "thermal" else ""),
         ]
         if best.flywheel_ratio is not None:
             lines.append(f"  flywheel shaft       ratio {number(best.flywheel_ratio, 6)} to the crank; the wheel below")
         lines += [
-            f"  RMS torque           {number(best.rms_torque, 5)} N·m of the rated {number(best.rated_torque, 5)} N·m "
-            f"(mean {number(best.mean_torque, 5)} N·m)",
-            f"  start-up             {number(best.startup_time, 4)} s from rest (Kloss curve, declutched)",
-            f"  masses               motor {number(best.motor_mass, 4)} kg + wheel {number(best.wheel_mass, 4)} kg "
-            f"= {number(best.total_mass, 5)} kg" + (f"; cost {number(best.cost, 5)}" if best.cost is not None else ""),
+            f"  RMS torque           {q(best.rms_torque, 'rms_torque', 5)} of the rated "
+            f"{q(best.rated_torque, 'rated_torque', 5)} (mean {q(best.mean_torque, 'mean_torque', 5)})",
+            f"  start-up             {q(best.startup_time, 'startup_time', 4)} from rest (Kloss curve, declutched)",
+            f"  masses               motor {q(best.motor_mass, 'motor_mass', 4)} + wheel "
+            f"{q(best.wheel_mass, 'wheel_mass', 4)} = {q(best.total_mass, 'total_mass', 5)}"
+            + (f"; cost {number(best.cost, 5)}" if best.cost is not None else ""),
         ]
         if drive.relaxation is not None:
-            r = drive.relaxation
-            lines.append(f"  relaxation           {power(r.rated_power)}, motor ratio {number(r.motor_ratio, 5)}, "
-                         f"flywheel ratio {number(r.flywheel_ratio, 4)}, {number(r.j_flywheel, 5)} kg·m² "
-                         f"({r.status}; a thin-ring wheel, a lower bound)")
-            unit = "kg" if drive.objective == "mass" else "(currency)"
-            steps = (("delta", 0.01, "δ +0.01"), ("max_startup", 1.0, "max_startup +1 s"),
-                     ("rim_speed", 1.0, "safe rim speed +1 m/s"), ("ratio_max", 1.0, "largest flywheel ratio +1"),
-                     ("ratio_min", -1.0, "smallest flywheel ratio −1"),
-                     ("max_outer_diameter", 0.1, "envelope +100 mm"))
-            moved = [f"{words}: {number(r.sensitivities[name] * step, 4)} {unit}" for name, step, words in steps
-                     if abs(r.sensitivities.get(name, 0.0)) > 1e-9 * max(abs(r.objective), 1.0)]
-            if moved:
-                lines.append("  binding limits       " + "; ".join(moved) + " (relaxed optimum, first order)")
-    head = ["motor", "P [kW]", "ratio", "J_F [kg·m²]", "limit", "RMS/rated", "start [s]", "r", "wheel [kg]",
-            "total [kg]", "verdict"]
+            lines += _relaxation_lines(drive, units)
+    head = ["motor", heading("P", "rated_power", units), "ratio", heading("J_F", "j_flywheel", units), "limit",
+            "RMS/rated", heading("start", "startup_time", units), "r", heading("wheel", "wheel_mass", units),
+            heading("total", "total_mass", units), "verdict"]
     rows = []
     for run in drive.runs:
-        rows.append([run.motor.name, number(run.motor.rated_power / 1000, 4), number(run.motor_ratio, 5),
-                     number(run.j_flywheel, 5), run.limit or "-",
+        rows.append([run.motor.name, n(run.motor.rated_power, "rated_power", 4), number(run.motor_ratio, 5),
+                     n(run.j_flywheel, "j_flywheel", 5), run.limit or "-",
                      number(run.rms_torque / run.rated_torque, 4) if run.rms_torque else "-",
-                     number(run.startup_time, 4), number(run.flywheel_ratio, 4), number(run.wheel_mass, 5),
-                     number(run.total_mass, 5),
+                     n(run.startup_time, "startup_time", 4), number(run.flywheel_ratio, 4),
+                     n(run.wheel_mass, "wheel_mass", 5), n(run.total_mass, "total_mass", 5),
                      ("best" if run is best else "ok") if run.feasible else run.reason])
     lines += ["", "Every motor size solved:"] + ["  " + line for line in table(head, rows, ["<"] + [">"] * 9 + ["<"])]
     if check is not None:
@@ -59,8 +74,33 @@ def drive_report(drive, check=None):
         verdict = "FLAGGED: " + "; ".join(check.notes) if check.flagged else "ok"
         lines += ["", f"Drive verification (the machine simulated with the wheel as built): {verdict}",
                   f"  achieved δ {number(v.achieved_delta)} against {number(v.delta_allowed)}; mean speed "
-                  f"{number(rad_s_to_rpm(v.omega_mean), 6)} rpm; RMS torque {number(check.rms_torque, 5)} of "
-                  f"{number(check.rated_torque, 5)} N·m; start-up {number(check.startup_time, 4)} s"]
+                  f"{q(v.omega_mean, 'omega_mean', 6)}; RMS torque {n(check.rms_torque, 'rms_torque', 5)} of "
+                  f"{q(check.rated_torque, 'rated_torque', 5)}; start-up {q(check.startup_time, 'startup_time', 4)}"]
+    return lines
+
+
+def _relaxation_lines(drive, units):
+    """The relaxed optimum and what relaxing each binding limit by a round step would save (first order)."""
+    r = drive.relaxation
+    lines = [f"  relaxation           {field_text(r.rated_power, 'rated_power', units)}, motor ratio "
+             f"{number(r.motor_ratio, 5)}, flywheel ratio {number(r.flywheel_ratio, 4)}, "
+             f"{field_text(r.j_flywheel, 'j_flywheel', units, 5)} ({r.status}; a thin-ring wheel, a lower bound)"]
+    moved = []
+    for name, words, dimension, steps in RELAXED_STEPS:
+        sensitivity = r.sensitivities.get(name, 0.0)      # objective per SI unit of the limit
+        if abs(sensitivity) <= 1e-9 * max(abs(r.objective), 1.0):
+            continue
+        shown = steps[units] if isinstance(steps, dict) else steps
+        step = shown * unit(dimension, units)[1]          # the step in SI
+        change = sensitivity * step
+        amount = field_text(change, "total_mass", units, 4) if drive.objective == "mass" \
+            else f"{number(change, 4)} (currency)"
+        sign = "+" if shown > 0 else "−"
+        name = label(dimension, units)
+        step_text = number(abs(shown), 4) + ("" if name == "-" else f" {name}")
+        moved.append(f"{words} {sign}{step_text}: {amount}")
+    if moved:
+        lines.append("  binding limits       " + "; ".join(moved) + " (relaxed optimum, first order)")
     return lines
 
 

@@ -1,27 +1,32 @@
-"""Readable text reports of an analysis (and, later, of a design)."""
+"""The text report of ``flyopt solve``: the cycle analysis, the design, the whole wheel, the verification.
+
+Every quantity is shown in the unit system the reader chose (``--units``:
+engineering, the default, si or imperial) through :mod:`flyopt.report.display`,
+the one table of display units; a field's dimension is the one flyopt.io.results
+gives it for the JSON, which stays SI. A table's heading carries its column's
+unit ("mass [kg]"), a line its numbers' ("1.25633 kJ"). Prose written by the
+design itself (why a combination fails, the sensitivities' sentences, notes)
+is shown as the design wrote it.
+"""
 
 import math
+from functools import partial
 
-from flyopt.units import rad_s_to_rpm
+from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, \
+    quantity_text
 
-
-def number(value, digits=6):
-    """A number with ``digits`` significant digits, no exponent for everyday sizes."""
-    if value is None:
-        return "-"
-    if not math.isfinite(value):
-        return str(value)            # inf, -inf, nan: say so rather than fail
-    if value == 0:
-        return "0"
-    magnitude = math.floor(math.log10(abs(value)))
-    if -4 <= magnitude < 9:
-        decimals = max(digits - 1 - magnitude, 0)
-        return f"{value:,.{decimals}f}".rstrip("0").rstrip(".") if decimals else f"{value:,.0f}"
-    return f"{value:.{digits - 1}e}"
+__all__ = ["analysis_report", "design_report", "engine_report", "number", "power", "table", "verification_report",
+           "wheel_report"]
 
 
-def power(watts):
-    return "-" if watts is None else (f"{number(watts / 1000)} kW" if abs(watts) >= 1000 else f"{number(watts)} W")
+def power(watts, units=DEFAULT):
+    """A power [W] in the unit system's unit ("72.6493 kW"; "-" for None)."""
+    return field_text(watts, "power", units)
+
+
+def _label(name, units):
+    """The label of a field's unit in the system ("mm"), for a list of numbers that ends in one."""
+    return label(dimension_of(name), units)
 
 
 def table(header, rows, align=None):
@@ -34,80 +39,94 @@ def table(header, rows, align=None):
     return lines
 
 
-def analysis_report(result, source=None):
-    """The report of ``flyopt solve`` for the cycle analysis, as text."""
+def analysis_report(result, source=None, units=DEFAULT):
+    """The report of ``flyopt solve`` for the cycle analysis, as text.
+
+    Parameters
+    ----------
+    result : flyopt.analysis.Analysis
+    source : str, optional
+        The scene file, named after the title.
+    units : str
+        The unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
+    """
     r = result
-    deg = math.degrees
+    q = partial(field_text, system=units)           # "<number> <label>" of a field, by its name
+    n = partial(field_number, system=units)         # the number alone, where one label follows a list
     lines = [f"{r.title}" + (f"  ({source})" if source else ""), f"model: {r.model}: {r.model_reason}", ""]
     facts = [
-        ("mean speed", f"{number(r.omega_mean)} rad/s ({number(rad_s_to_rpm(r.omega_mean))} rpm)"),
+        ("mean speed", q(r.omega_mean, "omega_mean")),
         ("allowed δ", f"{number(r.delta)} (1/{number(1 / r.delta, 4)})"),
-        ("speed range", f"{number(r.omega_min)} to {number(r.omega_max)} rad/s"),
-        ("cycle", f"{number(deg(r.cycle_angle))} deg"),
+        ("speed range", f"{n(r.omega_min, 'omega_min')} to {q(r.omega_max, 'omega_max')}"),
+        ("cycle", q(r.cycle_angle, "cycle_angle")),
     ]
     if r.work_per_cycle is not None:
         facts += [
-            ("driving torque (mean)", f"{number(r.driving_torque)} N·m"),
-            ("resisting torque (mean)", f"{number(r.resisting_torque)} N·m"),
-            ("work per cycle", f"{number(r.work_per_cycle)} J"),
-            ("mean driving power", power(r.power)),
-            ("motor power", f"{power(r.motor_power)} (efficiency {number(r.efficiency, 4)})"),
+            ("driving torque (mean)", q(r.driving_torque, "driving_torque")),
+            ("resisting torque (mean)", q(r.resisting_torque, "resisting_torque")),
+            ("work per cycle", q(r.work_per_cycle, "work_per_cycle")),
+            ("mean driving power", q(r.power, "power")),
+            ("motor power", f"{q(r.motor_power, 'motor_power')} (efficiency {number(r.efficiency, 4)})"),
         ]
-    facts.append(("A_max", f"{number(r.a_max)} J"))
+    facts.append(("A_max", q(r.a_max, "a_max")))
     if r.angle_omega_max is not None:
-        facts.append(("ω_max / ω_min at", f"{number(deg(r.angle_omega_max))} / {number(deg(r.angle_omega_min))} deg"))
+        facts.append(("ω_max / ω_min at", f"{n(r.angle_omega_max, 'angle_omega_max')} / "
+                                          f"{q(r.angle_omega_min, 'angle_omega_min')}"))
         if (r.angle_delta_e_max, r.angle_delta_e_min) != (r.angle_omega_max, r.angle_omega_min):
-            facts.append(("ΔE max / min at", f"{number(deg(r.angle_delta_e_max))} / "
-                          f"{number(deg(r.angle_delta_e_min))} deg (where the speed is extreme differs: "
+            facts.append(("ΔE max / min at", f"{n(r.angle_delta_e_max, 'angle_delta_e_max')} / "
+                          f"{q(r.angle_delta_e_min, 'angle_delta_e_min')} (where the speed is extreme differs: "
                           f"the inertia varies or a torque depends on speed)"))
     else:
         facts.append(("ω_max / ω_min at", f"the end of area {r.index_omega_max} / area {r.index_omega_min}"))
     if r.j_constant:
-        facts.append(("machine's own J_c", f"{number(r.j_constant)} kg·m²"))
+        facts.append(("machine's own J_c", q(r.j_constant, "j_constant")))
     if r.flywheel_needed:
-        facts.append(("required flywheel J_F", f"{number(r.j_required)} kg·m² (GD² {number(r.gd2_required)} N·m²) "
-                                                "at the reference shaft"))
+        facts.append(("required flywheel J_F", f"{q(r.j_required, 'j_required')} "
+                                                f"(GD² {q(r.gd2_required, 'gd2_required')}) at the reference shaft"))
     else:
         facts.append(("required flywheel", f"none: the machine's own inertia suffices "
-                                            f"(J_F would be {number(r.j_margin)} kg·m²)"))
+                                            f"(J_F would be {q(r.j_margin, 'j_margin')})"))
     width = max(len(k) for k, _ in facts)
     lines += [f"  {k:<{width}}  {v}" for k, v in facts]
 
     if r.startup is not None:
         st = r.startup
-        facts_text = (f"{number(st.time)} s ({number(st.cycles, 4)} cycles) to {number(st.omega_target)} rad/s"
+        facts_text = (f"{q(st.time, 'time')} ({number(st.cycles, 4)} cycles) to {q(st.omega_target, 'omega_target')}"
                       if st.time is not None else f"not reached: {st.note}")
         lines.append(f"  {'start-up':<{width}}  {facts_text}; {st.method}")
     if len(r.models) > 1 or (r.models and not r.models[0]["exact"]):
         lines += ["", "Models (J_F each asks for, and the δ it really gives by the exact model):"]
         rows = []
         for m in r.models:
-            rows.append([m["model"] + (" (exact)" if m["exact"] else ""), number(m["j_required"]),
+            rows.append([m["model"] + (" (exact)" if m["exact"] else ""), n(m["j_required"], "j_required"),
                          "-" if m["j_error"] is None else f"{100 * m['j_error']:+.3g} %",
                          number(m["achieved_delta"]), m["note"]])
-        lines += ["  " + line for line in table(["model", "J_F [kg·m²]", "vs exact", "achieved δ", "note"], rows,
-                                                ["<", ">", ">", ">", "<"])]
-    lines += engine_report(r)
+        head = ["model", heading("J_F", "j_required", units), "vs exact", "achieved δ", "note"]
+        lines += ["  " + line for line in table(head, rows, ["<", ">", ">", ">", "<"])]
+    lines += engine_report(r, units)
     lines += ["", "Energy indicator diagram (excess work from the cycle start):"]
     rows = []
     for e in r.energy_chain:
         same = (r.angle_delta_e_max, r.angle_delta_e_min) == (r.angle_omega_max, r.angle_omega_min)
         top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")
         mark = top if e["index"] == r.index_omega_max else bottom if e["index"] == r.index_omega_min else ""
-        where = number(deg(e["angle"])) if e["angle"] is not None else \
+        where = n(e["angle"], "angle") if e["angle"] is not None else \
             ("start" if e["index"] == 0 else f"after area {e['index']}")
-        rows.append([where, number(e["delta_e"]), mark])
-    head = ["angle [deg]" if r.angle_omega_max is not None else "point", "ΔE [J]", ""]
+        rows.append([where, n(e["delta_e"], "delta_e"), mark])
+    head = [heading("angle", "angle", units) if r.angle_omega_max is not None else "point",
+            heading("ΔE", "delta_e", units), ""]
     lines += ["  " + line for line in table(head, rows, ["<", ">", "<"])]
 
     lines += ["", "Flywheel needed on each shaft (same kinetic energy, J' = J (ω/ω')²):"]
-    rows = [[s.name, number(s.speed_ratio), number(rad_s_to_rpm(s.omega)), number(s.j_required),
-             number(s.gd2_required)] for s in r.shafts]
-    lines += ["  " + line for line in table(["shaft", "speed ratio", "speed [rpm]", "J [kg·m²]", "GD² [N·m²]"], rows)]
+    rows = [[s.name, number(s.speed_ratio), n(s.omega, "omega"), n(s.j_required, "j_required"),
+             n(s.gd2_required, "gd2_required")] for s in r.shafts]
+    head = ["shaft", "speed ratio", heading("speed", "omega", units), heading("J", "j_required", units),
+            heading("GD²", "gd2_required", units)]
+    lines += ["  " + line for line in table(head, rows)]
     return "\n".join(lines)
 
 
-def engine_report(result):
+def engine_report(result, units=DEFAULT):
     """For an [engine]: the textbook's flywheel beside the exact one, and by how much it is off.
 
     The textbook's method (flyopt.machine.engine.textbook_requirement) takes
@@ -126,23 +145,23 @@ def engine_report(result):
     engine = engine_of(machine)
     if engine is None:
         return []
-    deg = math.degrees
+    q = partial(field_text, system=units)
     textbook = textbook_requirement(machine, result.omega_mean, result.delta)
     exact = next((m for m in result.models if m["exact"]), None)
-    angles = ", ".join(number(deg(a), 4) for a in engine.firing_angles)
-    found = f"A_max {number(textbook.a_max)} J, J_F {number(textbook.j_required)} kg·m²"
+    angles = ", ".join(field_number(a, "angle", units, 4) for a in engine.firing_angles)
+    found = f"A_max {q(textbook.a_max, 'a_max')}, J_F {q(textbook.j_required, 'j_required')}"
     if exact is None or exact["j_required"] is None:
         found += "; the exact model gave no J_F to compare with"
     elif exact["j_required"] > 0:
         off = (textbook.j_required - exact["j_required"]) / exact["j_required"]
-        found += f", {100 * off:+.3g} % against the exact J_F {number(exact['j_required'])} kg·m² ({exact['model']})"
+        found += f", {100 * off:+.3g} % against the exact J_F {q(exact['j_required'], 'j_required')} ({exact['model']})"
     else:
         found += (f"; the exact model ({exact['model']}) needs no flywheel (J_F would be "
-                  f"{number(exact['j_required'])} kg·m²)")
+                  f"{q(exact['j_required'], 'j_required')})")
     return ["", f"Engine: {engine.cylinder_count} cylinder{'s' if engine.cylinder_count > 1 else ''}, "
-                f"{engine.cycle}, cycles starting at {angles} deg",
+                f"{engine.cycle}, cycles starting at {angles} {_label('angle', units)}",
             f"  textbook method (the crank effort at the mean speed, gas torque − ½ J_e′(φ) ω_m², on the constant "
-            f"mean J_e {number(textbook.j_machine_mean)} kg·m²):",
+            f"mean J_e {q(textbook.j_machine_mean, 'inertia')}):",
             f"    {found}"]
 
 
@@ -154,8 +173,13 @@ def _solved_by(candidate):
             f"constraint")
 
 
-def design_report(result, spec=None):
-    """The design part of the ``flyopt solve`` report: the winner and the ranking of every combination."""
+def design_report(result, spec=None, units=DEFAULT):
+    """The design part of the ``flyopt solve`` report: the winner and the ranking of every combination.
+
+    ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
+    """
+    q = partial(field_text, system=units)
+    n = partial(field_number, system=units)
     lines = ["", f"Flywheel design ({result.spec.geometry}, objective: {result.spec.objective}):"]
     if result.status == "not_needed":
         return lines + [f"  {result.message}"]
@@ -163,14 +187,14 @@ def design_report(result, spec=None):
     if best is not None:
         facts = [
             ("material / shaft", f"{best.material} on {best.shaft} (speed ratio {number(best.speed_ratio)})"),
-            ("mass", f"{number(best.mass)} kg" + (f" (cost {number(best.cost)})" if best.cost is not None else "")),
-            ("outer / mean / inner diameter", f"{number(best.d_outer)} / {number(best.d_mean)} / "
-                                              f"{number(best.d_inner)} m"),
-            ("rim H x B", f"{number(best.h)} x {number(best.b)} m (H/B {number(best.hb_ratio, 4)})"),
-            ("inertia", f"{number(best.j_flywheel)} kg·m² on its shaft = {number(best.j_at_reference)} kg·m² "
-                        "at the reference shaft"),
-            ("rim speed", f"{number(best.rim_speed)} m/s (limit {number(best.rim_speed_limit)} m/s), "
-                          f"hoop stress ρv² {number(best.hoop_stress / 1e6)} MPa"
+            ("mass", q(best.mass, "mass") + (f" (cost {number(best.cost)})" if best.cost is not None else "")),
+            ("outer / mean / inner diameter", f"{n(best.d_outer, 'd_outer')} / {n(best.d_mean, 'd_mean')} / "
+                                              f"{q(best.d_inner, 'd_inner')}"),
+            ("rim H x B", f"{n(best.h, 'h')} x {q(best.b, 'b')} (H/B {number(best.hb_ratio, 4)})"),
+            ("inertia", f"{q(best.j_flywheel, 'j_flywheel')} on its shaft = "
+                        f"{q(best.j_at_reference, 'j_at_reference')} at the reference shaft"),
+            ("rim speed", f"{q(best.rim_speed, 'rim_speed')} (limit {q(best.rim_speed_limit, 'rim_speed_limit')}), "
+                          f"hoop stress ρv² {q(best.hoop_stress, 'hoop_stress')}"
              + (f", safety factor {number(best.safety_factor, 3)}" if best.safety_factor else "")),
             ("binding", ", ".join(best.binding) or "none"),
             ("solved by", _solved_by(best)),
@@ -180,17 +204,18 @@ def design_report(result, spec=None):
         if not result.spec.has_envelope:
             lines.append("  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
                          "bounds the diameter")
-        lines += wheel_report(best, result.omega * best.speed_ratio)
+        lines += wheel_report(best, result.omega * best.speed_ratio, units)
     else:
         lines.append("  no feasible design: no material and shaft can give the required inertia")
     rows = []
     for k, c in enumerate(result.candidates, 1):
         if c.feasible:
-            rows.append([str(k), c.material, c.shaft, number(c.mass), number(c.d_outer), number(c.h), number(c.b),
-                         number(c.rim_speed), ", ".join(c.binding)])
+            rows.append([str(k), c.material, c.shaft, n(c.mass, "mass"), n(c.d_outer, "d_outer"), n(c.h, "h"),
+                         n(c.b, "b"), n(c.rim_speed, "rim_speed"), ", ".join(c.binding)])
         else:
             rows.append(["-", c.material, c.shaft, "infeasible", "", "", "", "", ""])
-    head = ["rank", "material", "shaft", "mass [kg]", "D_outer [m]", "H [m]", "B [m]", "v [m/s]", "binding"]
+    head = ["rank", "material", "shaft", heading("mass", "mass", units), heading("D_outer", "d_outer", units),
+            heading("H", "h", units), heading("B", "b", units), heading("v", "rim_speed", units), "binding"]
     align = ["<", "<", "<", ">", ">", ">", ">", ">", "<"]
     if any(c.n_arms for c in result.candidates):   # one combination per arm count: say which
         for row, c in zip(rows, result.candidates):
@@ -210,15 +235,7 @@ def _finite(value):
     return value is not None and math.isfinite(value)
 
 
-def _mm(metres, digits=4):
-    return number(None if metres is None else metres * 1e3, digits)
-
-
-def _mpa(pascals, digits=4):
-    return number(pascals / 1e6, digits) if _finite(pascals) else "-"
-
-
-def wheel_report(candidate, omega):
+def wheel_report(candidate, omega, units=DEFAULT):
     """The whole wheel of a design: its parts, stress check, burst speed, balance, key, sensitivities, notes.
 
     Parameters
@@ -227,6 +244,8 @@ def wheel_report(candidate, omega):
         A feasible design.
     omega : float
         omega_max on the wheel's own shaft [rad/s] (the speed the stresses were checked at).
+    units : str
+        The unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
 
     Returns
     -------
@@ -235,63 +254,80 @@ def wheel_report(candidate, omega):
         (a textbook rim has parts and stresses, but no key).
     """
     c = candidate
+
+    def n(value, name, digits=6):        # a number of a table or list whose unit is written once; "-" if none
+        return field_number(value, name, units, digits) if _finite(value) else "-"
+
+    def q(value, name, digits=6):        # a number with its unit; "-" if none
+        return field_text(value, name, units, digits) if _finite(value) else "-"
+
     lines = []
     if c.parts:
         total_j = sum(p["inertia"] for p in c.parts)
-        rows = [[p["name"], f"{_mm(p['r_inner'])} – {_mm(p['r_outer'])}", _mm(p["thickness"]), number(p["mass"]),
-                 number(p["inertia"]), f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-"]
+        rows = [[p["name"], f"{n(p['r_inner'], 'r_inner', 4)} – {n(p['r_outer'], 'r_outer', 4)}",
+                 n(p["thickness"], "thickness", 4), n(p["mass"], "mass"), n(p["inertia"], "inertia"),
+                 f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-"]
                 for p in c.parts]
-        rows.append(["total", f"{_mm(min(p['r_inner'] for p in c.parts))} – "
-                              f"{_mm(max(p['r_outer'] for p in c.parts))}", "",
-                     number(sum(p["mass"] for p in c.parts)), number(total_j), "100.0 %" if total_j > 0 else "-"])
-        head = ["part", "r_inner – r_outer [mm]", "thickness [mm]", "mass [kg]", "inertia [kg·m²]", "share of J"]
+        rows.append(["total", f"{n(min(p['r_inner'] for p in c.parts), 'r_inner', 4)} – "
+                              f"{n(max(p['r_outer'] for p in c.parts), 'r_outer', 4)}", "",
+                     n(sum(p["mass"] for p in c.parts), "mass"), n(total_j, "inertia"),
+                     "100.0 %" if total_j > 0 else "-"])
+        head = ["part", heading("r_inner – r_outer", "r_inner", units), heading("thickness", "thickness", units),
+                heading("mass", "mass", units), heading("inertia", "inertia", units), "share of J"]
         lines += ["", "Parts of the wheel (thickness: axial):"]
         body = table(head, rows, ["<", ">", ">", ">", ">", ">"])
         body.insert(len(body) - 1, "  ".join("-" * len(cell) for cell in body[1].split("  ")))
         lines += ["  " + line for line in body]
         if c.n_arms and c.arm_major:
-            lines.append(f"  arms: {c.n_arms} of elliptical section {_mm(c.arm_major)} x {_mm(c.arm_minor)} mm "
-                         "(major axis in the plane of rotation, minor axial)")
+            lines.append(f"  arms: {c.n_arms} of elliptical section {n(c.arm_major, 'arm_major', 4)} x "
+                         f"{q(c.arm_minor, 'arm_minor', 4)} (major axis in the plane of rotation, minor axial)")
     if c.stress:
         s = c.stress
-        lines += ["", f"Stress check at ω_max = {number(omega)} rad/s ({number(rad_s_to_rpm(omega))} rpm) on its shaft:"]
+        lines += ["", f"Stress check at ω_max = {q(omega, 'omega_max')} on its shaft:"]
         rows = []
         for p in s.get("parts", []):
             utilisation = p["stress"] / p["allowable"] if _finite(p["allowable"]) and p["allowable"] > 0 else None
-            rows.append([p["part"], _mpa(p["stress"]), _mm(p["radius"]), _mpa(p["allowable"]),
+            rows.append([p["part"], n(p["stress"], "stress", 4), n(p["radius"], "radius", 4),
+                         n(p["allowable"], "allowable", 4),
                          "-" if utilisation is None else f"{100 * utilisation:.1f} %",
-                         _mpa(p.get("strength")), _mm(p.get("wall"))])
-        head = ["part", "stress [MPa]", "at r [mm]", "allowable [MPa]", "utilisation", "strength [MPa]",
-                "at wall [mm]"]
+                         n(p.get("strength"), "strength", 4), n(p.get("wall"), "wall", 4)])
+        head = ["part", heading("stress", "stress", units), heading("at r", "radius", units),
+                heading("allowable", "allowable", units), "utilisation", heading("strength", "strength", units),
+                heading("at wall", "wall", units)]
         lines += ["  " + line for line in table(head, rows)]
         lines.append("  (stress: von Mises if ductile, largest principal if brittle; strength: yield if ductile, "
                      "tensile if brittle, at the part's wall)")
         where = s.get("where") or {}
         facts = []
         if where:
-            facts.append(("governing", f"{where['part']} at r = {_mm(where['radius'])} mm"))
-        facts.append(("largest σ_t / σ_r", f"{_mpa(s.get('hoop_max'))} / {_mpa(s.get('radial_max'))} MPa "
-                                           f"(von Mises {_mpa(s.get('von_mises'))} MPa)"))
+            facts.append(("governing", f"{where['part']} at r = {q(where['radius'], 'radius', 4)}"))
+        facts.append(("largest σ_t / σ_r", f"{n(s.get('hoop_max'), 'hoop_max', 4)} / "
+                                           f"{q(s.get('radial_max'), 'radial_max', 4)} "
+                                           f"(von Mises {q(s.get('von_mises'), 'von_mises', 4)})"))
         if _finite(s.get("mean_hoop")):
-            facts.append(("mean hoop stress", f"{_mpa(s['mean_hoop'])} MPa over the radial section"))
+            facts.append(("mean hoop stress", f"{q(s['mean_hoop'], 'mean_hoop', 4)} over the radial section"))
         if _finite(c.strength_safety):
             facts.append(("safety on strength", number(c.strength_safety, 3)))
         if _finite(c.burst_speed):
             margin = f" ({number(c.speed_margin, 3)} x ω_max)" if _finite(c.speed_margin) else ""
-            facts.append(("burst speed", f"{number(rad_s_to_rpm(c.burst_speed))} rpm on its shaft{margin}"))
+            facts.append(("burst speed", f"{q(c.burst_speed, 'burst_speed')} on its shaft{margin}"))
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {v}" for k, v in facts]
     if _finite(c.unbalance_permissible):
-        lines += ["", f"Permissible unbalance (ISO 21940-11, G6.3 at ω_max): {number(c.unbalance_permissible * 1e6)} g·mm"
-                      + (f" (e_per {number(c.unbalance_permissible / c.mass * 1e6, 4)} µm)" if c.mass else "")]
+        eccentricity = quantity_text(c.unbalance_permissible / c.mass, "eccentricity", units, 4) if c.mass else None
+        lines += ["", f"Permissible unbalance (ISO 21940-11, G6.3 at ω_max): "
+                      f"{q(c.unbalance_permissible, 'unbalance_permissible')}"
+                      + (f" (e_per {eccentricity})" if eccentricity else "")]
     if c.key:
         k = c.key
         verdict = "OK" if k["ok"] else "NOT OK"
-        lines += ["", f"Key (DIN 6885-1 form A) on a {_mm(c.bore)} mm bore: {k['size']}, length {_mm(k['length'])} mm "
-                      f"(effective {_mm(k['effective_length'])} mm): {verdict}",
-                  f"  at the peak torque {number(k['torque'])} N·m: bearing pressure {_mpa(k['bearing_pressure'])} MPa "
-                  f"(allowable {_mpa(k['allowable_pressure'])} MPa), shear {_mpa(k['shear'])} MPa "
-                  f"(allowable {_mpa(k['allowable_shear'])} MPa)"]
+        lines += ["", f"Key (DIN 6885-1 form A) on a {q(c.bore, 'bore', 4)} bore: {k['size']}, length "
+                      f"{q(k['length'], 'length', 4)} (effective {q(k['effective_length'], 'effective_length', 4)}): "
+                      f"{verdict}",
+                  f"  at the peak torque {q(k['torque'], 'torque')}: bearing pressure "
+                  f"{q(k['bearing_pressure'], 'bearing_pressure', 4)} (allowable "
+                  f"{q(k['allowable_pressure'], 'allowable_pressure', 4)}), shear {q(k['shear'], 'shear', 4)} "
+                  f"(allowable {q(k['allowable_shear'], 'allowable_shear', 4)})"]
     if c.sensitivities:
         lines += ["", "Sensitivities of the mass:"]
         lines += [f"  - {s['text']}" for s in c.sensitivities]
@@ -300,10 +336,12 @@ def wheel_report(candidate, omega):
     return lines
 
 
-def verification_report(v):
-    """The verification part of the ``flyopt solve --verify`` report."""
+def verification_report(v, units=DEFAULT):
+    """The verification part of the ``flyopt solve --verify`` report (``units``: the unit system)."""
+    q = partial(field_text, system=units)
     verdict = "FLAGGED: the design misses the allowed δ" if v.flagged else "ok"
     return ["", f"Verification ({v.method}): {verdict}",
             f"  achieved δ {number(v.achieved_delta)} against the allowed {number(v.delta_allowed)} "
-            f"(tolerance {number(v.tolerance, 3)}); ω {number(v.omega_min)} to {number(v.omega_max)} rad/s, "
-            f"mean {number(v.omega_mean)}; flywheel {number(v.j_flywheel)} kg·m² at the reference shaft"]
+            f"(tolerance {number(v.tolerance, 3)}); ω {field_number(v.omega_min, 'omega_min', units)} to "
+            f"{q(v.omega_max, 'omega_max')}, mean {q(v.omega_mean, 'omega_mean')}; flywheel "
+            f"{q(v.j_flywheel, 'j_flywheel')} at the reference shaft"]
