@@ -44,6 +44,8 @@ CASES = [
     ('elastic_modulus = "169 GPa"', 'elastic_modulus = "-1 GPa"', "material[0].elastic_modulus", "positive"),
     ('ductile = true', 'ductile = "yes"', "material[0].ductile", "true or false"),
     ('safety_factor = 4', 'safety_factor = 0.5', "material[0].safety_factor", ">= 1"),
+    ('safety_factor = 4', 'safety_factor = 4\nhub_rule = "bronze"', "material[0].hub_rule",
+     r"'bronze' is not a hub rule \(allowed: cast_iron, steel, cast_iron_flywheel\)"),
     ('diameter = "80 mm"', 'diameter = "-80 mm"', "shaft[0].diameter", "positive"),
     ('criterion = "stress"', 'criterion = "strength"', "design.criterion", "not known"),
     ('geometry = "rim_web"', 'geometry = "rim_spokes"', "design.geometry", "not known"),
@@ -72,3 +74,19 @@ def test_the_good_scene_designs_a_whole_wheel(tmp_path, cli):
     result = cli("solve", path)
     assert result.returncode == 0, result.stderr
     assert "rim_web" in result.stdout
+
+
+def test_a_materials_hub_rule_sets_its_hub(tmp_path):
+    """[[material]] hub_rule: the same ductile iron with the grey-iron rule gets a hub of D/d 1.8-2, with the
+    steel rule one of D/d 1.6-1.8 (keys.toml), on the 80 mm seat of the good scene."""
+    import flyopt
+
+    found = {}
+    for rule in ("cast_iron", "steel"):
+        path = tmp_path / f"{rule}.toml"
+        path.write_text(GOOD.replace("safety_factor = 4", f'safety_factor = 4\nhub_rule = "{rule}"'))
+        scene = flyopt.load(path)
+        assert scene.materials[0].hub_kind == rule
+        found[rule] = flyopt.solve(scene).design.best.d_hub / 0.080
+    assert 1.8 - 1e-6 <= found["cast_iron"] <= 2.0 + 1e-6
+    assert 1.6 - 1e-6 <= found["steel"] <= 1.8 + 1e-6

@@ -582,6 +582,11 @@ class HubProportions(NamedTuple):
     l_hub_max: float
 
 
+def hub_rules() -> tuple:
+    """The names of the hub proportions of ``keys.toml`` (a material's ``hub_rule``)."""
+    return tuple(_load()[3])
+
+
 def hub_proportions(d, kind="cast_iron") -> HubProportions:
     """Outer diameter and length of a hub from the machine-design rules of thumb.
 

@@ -1165,7 +1165,7 @@ def _materials(raw):
     for k, item in enumerate(raw):
         where = f"material[{k}]"
         table = _Table(item, where, {"name", "density", "max_rim_speed", "allowable_stress", "cost",
-                                     "source", "description", *_MATERIAL_STRENGTH})
+                                     "source", "description", "hub_rule", *_MATERIAL_STRENGTH})
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
             raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
@@ -1203,6 +1203,14 @@ def _materials(raw):
             elif value <= 0:
                 raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
             values[key] = value
+        if table.has("hub_rule"):
+            from flyopt.design.hub import hub_rules
+
+            rule = table.get("hub_rule")
+            if rule not in hub_rules():
+                raise SceneError(f"{where}.hub_rule", f"{shorten(rule)} is not a hub rule (allowed: "
+                                                      f"{', '.join(hub_rules())})")
+            values["hub_rule"] = rule
         source = table.get("source", "scene file")
         try:
             materials.append(make_material(name, source=str(source), **values))
