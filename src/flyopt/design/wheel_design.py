@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 
-from flyopt.design import check, hub, strength, wheel
+from flyopt.design import check, geometry, hub, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
 
@@ -55,10 +55,20 @@ def needs_torque(inputs):
     return inputs.spec.geometry == "rim_arms" or any(bore_of(inputs.spec, s) for s in inputs.shafts)
 
 
+#: The thinnest section of a web or arms wheel when neither the design nor the material gives
+#: ``min_wall`` [m]: not a process limit but a floor against a degenerate optimum (a strong
+#: material's lightest web heads for a foil, where the stress rows lose their conditioning and
+#: IPOPT fails). Bare rims and discs keep no floor.
+DEFAULT_MIN_WALL = 1e-3
+
+
 def _min_wall(spec, material):
     if spec.min_wall is not None:
         return spec.min_wall
-    return getattr(material, "min_wall", None) or 0.0
+    own = getattr(material, "min_wall", None)
+    if own:
+        return own
+    return DEFAULT_MIN_WALL if spec.geometry in geometry.WHEELS else 0.0
 
 
 def _hub_bounds(material, bore, torque):
