@@ -3,10 +3,13 @@
 from flyopt.cli.exits import EXIT_FLAGGED, EXIT_INFEASIBLE, EXIT_OK
 from flyopt.report import display
 
-#: The help of ``--units`` (``flyopt plot`` takes the same choices, from the same table).
-UNITS_HELP = ("unit system of the text report: engineering (default: mm, rpm, kN·m, kJ, MPa, kW, kg), si "
-              "(SI base units: m, rad/s, N·m, J, Pa, W) or imperial (in, rpm, lbf·ft, ft·lbf, psi, hp, lb); "
-              "--json ignores it: the JSON is always SI")
+
+def units_help(what="the text report"):
+    """The help of ``--units``, its units read from the display table (``flyopt plot`` takes the same choices)."""
+    shown = ("length", "angular_speed", "torque", "energy", "stress", "power", "mass")
+    systems = "; ".join(f"{system}: {', '.join(dict.fromkeys(display.label(d, system) for d in shown))}"
+                        for system in display.SYSTEMS)
+    return f"unit system of {what} (default {display.DEFAULT}; {systems})"
 
 
 def add_solve_arguments(parser):
@@ -14,7 +17,8 @@ def add_solve_arguments(parser):
     parser.add_argument("scene", help="scene file (TOML)")
     parser.add_argument("--json", action="store_true",
                         help="print one JSON object, all numbers in SI whatever --units says")
-    parser.add_argument("--units", choices=display.SYSTEMS, default=display.DEFAULT, help=UNITS_HELP)
+    parser.add_argument("--units", choices=display.SYSTEMS, default=display.DEFAULT,
+                        help=units_help() + "; --json ignores it: the JSON is always SI")
     parser.add_argument("--no-design", dest="design", action="store_false",
                         help="stop after the cycle analysis (no optimization)")
     parser.add_argument("--model", choices=("energy", "energy_mass", "dynamic"),

@@ -4,10 +4,8 @@ Quantities are shown in the reader's unit system through :mod:`flyopt.report.dis
 like the rest of the report (:mod:`flyopt.report.text`); the JSON stays SI.
 """
 
-from functools import partial
-
-from flyopt.report.display import DEFAULT, field_number, field_text, heading, label, number, unit
-from flyopt.report.text import table
+from flyopt.report.display import DEFAULT, field_text, heading, label, number, unit
+from flyopt.report.text import formatters, table
 
 #: The step of a relaxed limit that the report gives the objective's change for, in the shown
 #: unit of the limit's dimension: a round amount in each system (the envelope +100 mm, +0.1 m
@@ -28,8 +26,7 @@ def drive_report(drive, check=None, units=DEFAULT):
 
     ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
     """
-    q = partial(field_text, system=units)
-    n = partial(field_number, system=units)
+    q, n = formatters(units)
     lines = ["", f"Drive designed with the flywheel (objective: {drive.objective}; {drive.note}):"]
     best = drive.best
     if best is None:

@@ -10,18 +10,32 @@ is shown as the design wrote it.
 """
 
 import math
-from functools import partial
 
 from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, \
     quantity_text
 
-__all__ = ["analysis_report", "design_report", "engine_report", "number", "power", "table", "verification_report",
-           "wheel_report"]
+__all__ = ["analysis_report", "design_report", "engine_report", "formatters", "number", "power", "table",
+           "verification_report", "wheel_report"]
 
 
 def power(watts, units=DEFAULT):
     """A power [W] in the unit system's unit ("72.6493 kW"; "-" for None)."""
     return field_text(watts, "power", units)
+
+
+def formatters(units):
+    """The two ways a report line shows a field in a unit system, by the field's name.
+
+    Returns ``(q, n)``: ``q(value, name, digits=6)`` gives "<number> <label>"
+    ("1.25633 kJ" for ``a_max``), ``n(value, name, digits=6)`` the number alone,
+    for a table under a heading that carries the unit or a list that ends in it.
+    """
+    def q(value, name, digits=6):
+        return field_text(value, name, units, digits)
+
+    def n(value, name, digits=6):
+        return field_number(value, name, units, digits)
+    return q, n
 
 
 def _label(name, units):
@@ -51,8 +65,7 @@ def analysis_report(result, source=None, units=DEFAULT):
         The unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
     """
     r = result
-    q = partial(field_text, system=units)           # "<number> <label>" of a field, by its name
-    n = partial(field_number, system=units)         # the number alone, where one label follows a list
+    q, n = formatters(units)
     lines = [f"{r.title}" + (f"  ({source})" if source else ""), f"model: {r.model}: {r.model_reason}", ""]
     facts = [
         ("mean speed", q(r.omega_mean, "omega_mean")),
@@ -145,7 +158,7 @@ def engine_report(result, units=DEFAULT):
     engine = engine_of(machine)
     if engine is None:
         return []
-    q = partial(field_text, system=units)
+    q, _ = formatters(units)
     textbook = textbook_requirement(machine, result.omega_mean, result.delta)
     exact = next((m for m in result.models if m["exact"]), None)
     angles = ", ".join(field_number(a, "angle", units, 4) for a in engine.firing_angles)
@@ -178,8 +191,7 @@ def design_report(result, spec=None, units=DEFAULT):
 
     ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
     """
-    q = partial(field_text, system=units)
-    n = partial(field_number, system=units)
+    q, n = formatters(units)
     lines = ["", f"Flywheel design ({result.spec.geometry}, objective: {result.spec.objective}):"]
     if result.status == "not_needed":
         return lines + [f"  {result.message}"]
@@ -338,7 +350,7 @@ def wheel_report(candidate, omega, units=DEFAULT):
 
 def verification_report(v, units=DEFAULT):
     """The verification part of the ``flyopt solve --verify`` report (``units``: the unit system)."""
-    q = partial(field_text, system=units)
+    q, _ = formatters(units)
     verdict = "FLAGGED: the design misses the allowed δ" if v.flagged else "ok"
     return ["", f"Verification ({v.method}): {verdict}",
             f"  achieved δ {number(v.achieved_delta)} against the allowed {number(v.delta_allowed)} "

@@ -1,0 +1,508 @@
+"""``flyopt solve --units si|engineering|imperial``: the text report in the reader's units (issue 15, part 4).
+
+References, independent of flyopt.report.display:
+
+- the units of each system are written out here (:data:`UNITS`), as the issue
+  names them: the SI base units; mm, rpm, kN·m, kJ, MPa (engineering, with kW,
+  kg, kg·m², m/s); in, rpm, lbf·ft, psi (imperial, with hp, lb, lb·ft², ft/s);
+- every number the report prints is read back from the text and compared with
+  the analysis's or the design's SI value (what ``--json`` writes) converted
+  by pint in the test.
+
+Tolerance: a number printed to d significant digits lies within half a unit of
+its d-th digit, a relative 0.5·10^(1−d) of the value (6 digits: 5e-6, 4 digits:
+5e-4); :func:`close` allows that and nothing more.
+
+The scenes are solved once per module (about 8 s) and the command line's
+report is built from that solution for each system (flyopt.pipeline.solve is
+replaced by the cached solution, so what is tested is the command's own
+formatting path); the JSON test runs the real command three times.
+"""
+
+import json
+import math
+import re
+
+import pint
+import pytest
+
+import flyopt
+import flyopt.pipeline
+from conftest import PROBLEMS, ROOT
+from flyopt.cli.main import main
+
+UREG = pint.UnitRegistry()
+
+SYSTEMS = ("engineering", "si", "imperial")
+SCENES = ("shear-press", "punch-press-wheel", "four-cylinder-engine", "motor-press")
+
+#: The unit of each dimension in each system, as the report must label it.
+UNITS = {
+    "si": {"angle": "rad", "angular_speed": "rad/s", "torque": "N·m", "energy": "J", "inertia": "kg·m²",
+           "flywheel_moment": "N·m²", "length": "m", "mass": "kg", "speed": "m/s", "stress": "Pa", "power": "W",
+           "time": "s", "unbalance": "kg·m", "eccentricity": "m"},
+    "engineering": {"angle": "deg", "angular_speed": "rpm", "torque": "kN·m", "energy": "kJ", "inertia": "kg·m²",
+                    "flywheel_moment": "N·m²", "length": "mm", "mass": "kg", "speed": "m/s", "stress": "MPa",
+                    "power": "kW", "time": "s", "unbalance": "g·mm", "eccentricity": "µm"},
+    "imperial": {"angle": "deg", "angular_speed": "rpm", "torque": "lbf·ft", "energy": "ft·lbf", "inertia": "lb·ft²",
+                 "flywheel_moment": "lbf·ft²", "length": "in", "mass": "lb", "speed": "ft/s", "stress": "psi",
+                 "power": "hp", "time": "s", "unbalance": "oz·in", "eccentricity": "in"},
+}
+#: The SI unit of each dimension, as pint spells it.
+SI = {"angle": "rad", "angular_speed": "rad/s", "torque": "N*m", "energy": "J", "inertia": "kg*m**2",
+      "flywheel_moment": "N*m**2", "length": "m", "mass": "kg", "speed": "m/s", "stress": "Pa", "power": "W",
+      "time": "s", "unbalance": "kg*m", "eccentricity": "m"}
+#: pint's spelling of a label.
+PINT = {"deg": "degree", "N·m": "N*m", "kN·m": "kN*m", "lbf·ft": "lbf*ft", "ft·lbf": "ft*lbf", "kg·m²": "kg*m**2",
+        "lb·ft²": "lb*ft**2", "N·m²": "N*m**2", "lbf·ft²": "lbf*ft**2", "kg·m": "kg*m", "g·mm": "g*mm",
+        "oz·in": "oz*in"}
+
+#: A printed number: optional sign, thousands grouped by commas, optional exponent.
+NUM = r"[-+−]?[0-9][0-9,]*(?:\.[0-9]+)?(?:e[-+][0-9]+)?"
+
+
+def value(text):
+    """The float of a printed number ("1,256.33" -> 1256.33, "−1" -> -1)."""
+    return float(text.replace(",", "").replace("−", "-"))
+
+
+def expected(si_value, dimension, system):
+    """An SI value in the system's unit, converted by pint."""
+    name = UNITS[system][dimension]
+    return UREG.Quantity(si_value, SI[dimension]).to(PINT.get(name, name)).magnitude
+
+
+def close(printed, si_value, dimension, system, digits=6):
+    """Whether a number printed to ``digits`` significant digits is the SI value converted (see the docstring)."""
+    want = expected(si_value, dimension, system)
+    return math.isclose(printed, want, rel_tol=0.5 * 10 ** (1 - digits) * (1 + 1e-9), abs_tol=1e-300)
+
+
+def quantity(text, dimension, system):
+    """The number of "<number> <label>" at the start of ``text``, after checking that the label is the system's."""
+    label = UNITS[system][dimension]
+    match = re.match(rf"({NUM}) (\S+)", text)
+    assert match, f"no '<number> <unit>' at {text!r}"
+    assert match.group(2).rstrip(",;)") == label, f"{text!r}: expected the unit {label!r} ({system})"
+    return value(match.group(1))
+
+
+def fact(text, name):
+    """The value of a report line '  name    value'."""
+    match = re.search(rf"^  {re.escape(name)}\s{{2,}}(.+)$", text, re.M)
+    assert match, f"no line {name!r} in the report"
+    return match.group(1)
+
+
+def table(text, title):
+    """The table under the line starting with ``title``: (header cells, rows of cells), cut at the rule's columns."""
+    lines = text.splitlines()
+    start = next(k for k, line in enumerate(lines) if line.startswith(title))
+    block = []
+    for line in lines[start + 1:]:
+        if not line.strip() or not line.startswith("  ") or line.startswith("  ("):   # "(stress: ...)" ends one
+            break
+        block.append(line)
+    rule = block[1]
+    assert set(rule.strip()) <= {"-", " "}, rule
+    spans = [m.span() for m in re.finditer(r"-+", rule)]
+    cells = [[line[a:b].strip() if k < len(spans) - 1 else line[a:].strip() for k, (a, b) in enumerate(spans)]
+             for line in block if not set(line.strip()) <= {"-", " "}]
+    return cells[0], cells[1:]
+
+
+def heading_unit(cell):
+    """"mass [kg]" -> ("mass", "kg"); "rank" -> ("rank", None)."""
+    match = re.fullmatch(r"(.*?) \[(.+)\]", cell)
+    return (match.group(1), match.group(2)) if match else (cell, None)
+
+
+# --------------------------------------------------------------------------
+# The report of each scene in each system, from one solution per scene
+# --------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def solutions():
+    return {name: flyopt.solve(flyopt.load(PROBLEMS / f"{name}.toml"), verify_design=True) for name in SCENES}
+
+
+@pytest.fixture
+def report(solutions, monkeypatch, capsys):
+    """report(scene, system or None) -> the text ``flyopt solve SCENE --verify [--units SYSTEM]`` prints."""
+    def solved(scene, *, design_flywheel, model, verify_design, design_method):
+        assert (design_flywheel, model, verify_design, design_method) == (True, None, True, "auto")
+        return next(s for s in solutions.values() if s.analysis.title == scene.title)
+
+    monkeypatch.setattr(flyopt.pipeline, "solve", solved)
+
+    def make(name, system):
+        args = ["solve", str(PROBLEMS / f"{name}.toml"), "--verify"] + (["--units", system] if system else [])
+        assert main(args) == 0
+        return capsys.readouterr().out
+    return make
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+@pytest.mark.parametrize("name", SCENES)
+def test_the_analysis_in_the_chosen_units(name, system, solutions, report):
+    """ω_m, the speed range, A_max, J_F, GD², torques, work, power, the ΔE chain and the shafts' table."""
+    text = report(name, system)
+    a = solutions[name].analysis
+    assert close(quantity(fact(text, "mean speed"), "angular_speed", system), a.omega_mean, "angular_speed", system)
+    low, high = re.fullmatch(rf"({NUM}) to (.+)", fact(text, "speed range")).groups()
+    assert close(value(low), a.omega_min, "angular_speed", system)
+    assert close(quantity(high, "angular_speed", system), a.omega_max, "angular_speed", system)
+    assert close(quantity(fact(text, "cycle"), "angle", system), a.cycle_angle, "angle", system)
+    assert close(quantity(fact(text, "A_max"), "energy", system), a.a_max, "energy", system)
+    assert close(quantity(fact(text, "work per cycle"), "energy", system), a.work_per_cycle, "energy", system)
+    assert close(quantity(fact(text, "driving torque (mean)"), "torque", system), a.driving_torque, "torque", system)
+    assert close(quantity(fact(text, "mean driving power"), "power", system), a.power, "power", system)
+    assert close(quantity(fact(text, "motor power"), "power", system), a.motor_power, "power", system)
+    j_f = fact(text, "required flywheel J_F")
+    assert close(quantity(j_f, "inertia", system), a.j_required, "inertia", system)
+    gd2 = re.search(r"\(GD² (.+)\)", j_f).group(1)
+    assert close(quantity(gd2, "flywheel_moment", system), a.gd2_required, "flywheel_moment", system)
+
+    head, rows = table(text, "Energy indicator diagram")
+    assert [heading_unit(c) for c in head[:2]] == [("angle", UNITS[system]["angle"]),
+                                                    ("ΔE", UNITS[system]["energy"])]
+    assert len(rows) == len(a.energy_chain)
+    for row, point in zip(rows, a.energy_chain):
+        assert close(value(row[0]), point["angle"], "angle", system)
+        assert close(value(row[1]), point["delta_e"], "energy", system)
+
+    head, rows = table(text, "Flywheel needed on each shaft")
+    assert [heading_unit(c) for c in head] == [("shaft", None), ("speed ratio", None),
+                                               ("speed", UNITS[system]["angular_speed"]),
+                                               ("J", UNITS[system]["inertia"]),
+                                               ("GD²", UNITS[system]["flywheel_moment"])]
+    for row, shaft in zip(rows, a.shafts, strict=True):
+        assert row[0] == shaft.name
+        assert close(value(row[2]), shaft.omega, "angular_speed", system)
+        assert close(value(row[3]), shaft.j_required, "inertia", system)
+
+    if len(a.models) > 1:
+        head, rows = table(text, "Models (J_F")
+        assert heading_unit(head[1]) == ("J_F", UNITS[system]["inertia"])
+        for row, model in zip(rows, a.models, strict=True):
+            assert close(value(row[1]), model["j_required"], "inertia", system)
+
+    v = solutions[name].verification
+    line = text.splitlines()[text.splitlines().index(next(x for x in text.splitlines()
+                                                          if x.startswith("Verification ("))) + 1]
+    mean = re.search(r"mean (.+?);", line).group(1)
+    assert close(quantity(mean, "angular_speed", system), v.omega_mean, "angular_speed", system)
+    flywheel = re.search(r"flywheel (.+) at the reference shaft", line).group(1)
+    assert close(quantity(flywheel, "inertia", system), v.j_flywheel, "inertia", system)
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+@pytest.mark.parametrize("name", SCENES)
+def test_the_design_in_the_chosen_units(name, system, solutions, report):
+    """Mass, the diameters, H x B, J, rim speed, ρv², the parts, the stresses, burst, unbalance, key, ranking."""
+    text = report(name, system)
+    design = solutions[name].design
+    best = design.best
+    assert close(quantity(fact(text, "mass"), "mass", system), best.mass, "mass", system)
+    outer, mean, inner = fact(text, "outer / mean / inner diameter").split(" / ")
+    assert close(value(outer), best.d_outer, "length", system)
+    assert close(value(mean), best.d_mean, "length", system)
+    assert close(quantity(inner, "length", system), best.d_inner, "length", system)
+    h, b = fact(text, "rim H x B").split(" x ", 1)
+    assert close(value(h), best.h, "length", system) and close(quantity(b, "length", system), best.b, "length",
+                                                                      system)
+    rim = fact(text, "rim speed")
+    assert close(quantity(rim, "speed", system), best.rim_speed, "speed", system)
+    assert close(quantity(re.search(r"ρv² (.+)", rim).group(1), "stress", system), best.hoop_stress, "stress",
+                 system)
+    j = fact(text, "inertia")
+    assert close(quantity(j, "inertia", system), best.j_flywheel, "inertia", system)
+
+    head, rows = table(text, "Parts of the wheel")
+    assert [heading_unit(c)[1] for c in head] == [None, UNITS[system]["length"], UNITS[system]["length"],
+                                                  UNITS[system]["mass"], UNITS[system]["inertia"], None]
+    for row, part in zip(rows, best.parts):
+        r_inner, r_outer = row[1].split(" – ")
+        assert close(value(r_inner), part["r_inner"], "length", system, 4)
+        assert close(value(r_outer), part["r_outer"], "length", system, 4)
+        assert close(value(row[3]), part["mass"], "mass", system)
+
+    omega = re.search(r"^Stress check at ω_max = (.+) on its shaft:$", text, re.M).group(1)
+    assert close(quantity(omega, "angular_speed", system), design.omega * best.speed_ratio, "angular_speed", system)
+    head, rows = table(text, "Stress check at ω_max")
+    assert [heading_unit(c) for c in head] == [
+        ("part", None), ("stress", UNITS[system]["stress"]), ("at r", UNITS[system]["length"]),
+        ("allowable", UNITS[system]["stress"]), ("utilisation", None), ("strength", UNITS[system]["stress"]),
+        ("at wall", UNITS[system]["length"])]
+    for row, part in zip(rows, best.stress["parts"], strict=True):
+        assert row[0] == part["part"]
+        assert close(value(row[1]), part["stress"], "stress", system, 4)
+        assert close(value(row[2]), part["radius"], "length", system, 4)
+        assert close(value(row[3]), part["allowable"], "stress", system, 4)
+    mean_hoop = fact(text, "mean hoop stress")
+    assert close(quantity(mean_hoop, "stress", system), best.stress["mean_hoop"], "stress", system, 4)
+    if best.burst_speed is not None and math.isfinite(best.burst_speed):
+        burst = fact(text, "burst speed")
+        assert close(quantity(burst, "angular_speed", system), best.burst_speed, "angular_speed", system)
+
+    balance = next(line for line in text.splitlines() if line.startswith("Permissible unbalance"))
+    u_per, e_per = re.fullmatch(r".*G6\.3 at ω_max\): (.+) \(e_per (.+)\)", balance).groups()
+    assert close(quantity(u_per, "unbalance", system), best.unbalance_permissible, "unbalance", system)
+    assert close(quantity(e_per, "eccentricity", system), best.unbalance_permissible / best.mass, "eccentricity",
+                 system, 4)
+    if best.key:
+        key = text.splitlines()[[k for k, x in enumerate(text.splitlines()) if x.startswith("Key (DIN")][0] + 1]
+        torque = re.search(r"peak torque (.+?): bearing pressure (.+?) \(allowable", key)
+        assert close(quantity(torque.group(1), "torque", system), best.key["torque"], "torque", system)
+        assert close(quantity(torque.group(2), "stress", system), best.key["bearing_pressure"], "stress", system, 4)
+
+    head, rows = table(text, "Every combination")
+    units = dict(heading_unit(c) for c in head)
+    assert (units["mass"], units["D_outer"], units["H"], units["B"], units["v"]) == (
+        UNITS[system]["mass"], UNITS[system]["length"], UNITS[system]["length"], UNITS[system]["length"],
+        UNITS[system]["speed"])
+    column = {heading_unit(c)[0]: k for k, c in enumerate(head)}
+    for row, candidate in zip(rows, design.candidates, strict=True):
+        if candidate.feasible:
+            assert close(value(row[column["mass"]]), candidate.mass, "mass", system)
+            assert close(value(row[column["D_outer"]]), candidate.d_outer, "length", system)
+            assert close(value(row[column["v"]]), candidate.rim_speed, "speed", system)
+
+
+# --------------------------------------------------------------------------
+# Every number has its unit's label, and the system's
+# --------------------------------------------------------------------------
+
+#: Table columns that carry a unit (the title's dimension), and those that are dimensionless or text.
+COLUMN_DIMENSION = {"J_F": "inertia", "angle": "angle", "ΔE": "energy", "speed": "angular_speed", "J": "inertia",
+                    "GD²": "flywheel_moment", "r_inner – r_outer": "length", "thickness": "length", "mass": "mass",
+                    "inertia": "inertia", "stress": "stress", "at r": "length", "allowable": "stress",
+                    "strength": "stress", "at wall": "length", "D_outer": "length", "H": "length", "B": "length",
+                    "v": "speed", "P": "power", "start": "time", "wheel": "mass", "total": "mass"}
+PLAIN_COLUMNS = {"model", "vs exact", "achieved δ", "note", "point", "", "shaft", "speed ratio", "part", "share of J",
+                 "utilisation", "rank", "material", "arms", "binding", "motor", "ratio", "limit", "RMS/rated", "r",
+                 "verdict"}
+#: Report lines whose numbers are dimensionless by their name.
+PLAIN_FACTS = ("allowed δ", "material / shaft", "binding", "solved by", "safety on strength", "motor ratio",
+               "flywheel shaft")
+#: Blocks of prose written by the design itself (flyopt.design), shown as it wrote them.
+PROSE_BLOCKS = ("Sensitivities of the mass:", "Notes:", "Why the infeasible ones fail:")
+#: Lines that carry the design's prose: the drive's note ("relaxation: 4.843 kW; ...", written in
+#: kW by flyopt.design.drive whatever the system; the relaxed rating itself is on the report's
+#: "relaxation" line in the system's unit, which the test reads).
+PROSE_LINES = ("Drive designed with the flywheel (",)
+#: Dimensionless numbers inside a line: ratios, counts, percentages, tolerances, standards' names.
+PLAIN_NUMBERS = [rf"efficiency {NUM}", rf"H/B {NUM}", rf"safety factor {NUM}", rf"\({NUM} cycles\)",
+                 rf"\({NUM} x ω_max\)", rf"{NUM} %", rf"achieved δ {NUM} against (the allowed )?{NUM}",
+                 rf"tolerance {NUM}", rf"area {NUM}", rf"{NUM} cylinders?", rf"{NUM}-stroke", r"ISO 21940-11",
+                 r"G6\.3", r"DIN 6885-1", r"bore: [0-9]+ x [0-9]+,", rf"{NUM} iterations", rf"ratio [-+−]?{NUM}",
+                 rf"δ \+{NUM}", rf"arms: {NUM}"]
+
+
+def unlabelled_numbers(text, system, names=()):
+    """Lines of the report, each with what is left of it where a number has no unit of ``system``.
+
+    A number counts as labelled when a unit of the system follows it (or a
+    list of numbers joined by "/", "to", "x", "of" or commas that ends in
+    one), when it stands in a table column whose heading carries the system's
+    unit of that column's dimension, or when it is dimensionless by the
+    patterns above. ``names`` (a motor's "5.5 kW") are names, not quantities.
+    """
+    labels = sorted(set(UNITS[system].values()), key=len, reverse=True)
+    labelled = re.compile(rf"{NUM}(?:(?:\s*(?:/|to|x|–|of)\s*|,\s+){NUM})*\s+(?:"
+                          + "|".join(map(re.escape, labels)) + r")(?![\w/²³·])")
+    lines = text.splitlines()
+    left = []
+    k = 2                                                 # after the title and the model's line
+    while k < len(lines):
+        line = lines[k]
+        if line.startswith(PROSE_BLOCKS):
+            while k < len(lines) and lines[k].strip():
+                k += 1
+            continue
+        if line.startswith(PROSE_LINES):
+            k += 1
+            continue
+        if k + 1 < len(lines) and lines[k + 1].startswith("  -") and set(lines[k + 1].strip()) <= {"-", " "}:
+            k = _check_table(lines, k, system, left)     # a table: header, rule, rows
+            continue
+        k += 1
+        if re.match(rf"  ({'|'.join(map(re.escape, PLAIN_FACTS))})\s{{2,}}", line):
+            continue
+        for name in names:
+            line = line.replace(name, "<name>")
+        rest = labelled.sub("", line)
+        for pattern in PLAIN_NUMBERS:
+            rest = re.sub(pattern, "", rest)
+        if re.search(r"[0-9]", rest):
+            left.append((line, rest))
+    return left
+
+
+def _check_table(lines, k, system, left):
+    """Check a table's headings and cells; returns the index after it."""
+    rule = lines[k + 1]
+    spans = [m.span() for m in re.finditer(r"-+", rule)]
+
+    def cells(line):
+        return [line[a:b].strip() if j < len(spans) - 1 else line[a:].strip() for j, (a, b) in enumerate(spans)]
+
+    head = [heading_unit(c) for c in cells(lines[k])]
+    end = k + 2
+    while end < len(lines) and lines[end].startswith("  ") and lines[end].strip() and not lines[end].startswith("  ("):
+        end += 1
+    for j, (title, unit) in enumerate(head):
+        if title in PLAIN_COLUMNS:
+            assert unit is None, f"{lines[k]!r}: a dimensionless column has a unit"
+            continue
+        assert title in COLUMN_DIMENSION, f"{lines[k]!r}: column {title!r} is neither a quantity nor plain"
+        if unit != UNITS[system][COLUMN_DIMENSION[title]]:
+            left.append((lines[k], f"column {title!r} in {unit!r}"))
+        for line in lines[k + 2:end]:
+            cell = cells(line)[j]
+            if cell and not re.fullmatch(rf"-+|{NUM}( – {NUM})?|infeasible", cell):
+                left.append((line, cell))
+    return end
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+@pytest.mark.parametrize("name", SCENES)
+def test_every_number_has_its_systems_unit(name, system, report):
+    text = report(name, system)
+    assert unlabelled_numbers(text, system) == []
+
+
+def test_the_label_check_finds_a_number_without_its_unit(report):
+    """The check above can fail: another system's unit, a bare number and a wrong heading are each found."""
+    text = report("shear-press", "engineering")
+    assert unlabelled_numbers(text, "engineering") == []
+    assert unlabelled_numbers(text, "si") != [] and unlabelled_numbers(text, "imperial") != []
+    for old, new in (("mean 1,500 rpm;", "mean 1,500;"), ("1.25633 kJ", "1,256.33 J"), ("mass [kg]", "mass [lb]")):
+        assert old in text
+        assert unlabelled_numbers(text.replace(old, new), "engineering") != [], new
+
+
+# --------------------------------------------------------------------------
+# The command line: the default, the JSON, bad values, the report code
+# --------------------------------------------------------------------------
+
+def test_the_default_is_engineering(report):
+    """Engineering units by default: those of the plots and the engineering report (issue 15)."""
+    assert report("punch-press-wheel", None) == report("punch-press-wheel", "engineering")
+
+
+def test_the_json_is_si_whatever_the_units(main_cli):
+    """--json ignores --units: the same document, byte for byte, with A_max in J as the analysis gives it."""
+    scene = PROBLEMS / "shear-press.toml"
+    outputs = {system: main_cli("solve", scene, "--json", "--units", system) for system in SYSTEMS}
+    outputs[None] = main_cli("solve", scene, "--json")
+    assert {status for status, _, _ in outputs.values()} == {0}
+    assert len({out for _, out, _ in outputs.values()}) == 1
+    document = json.loads(outputs[None][1])
+    assert document["a_max"] == flyopt.analyse(flyopt.load(scene)).a_max and document["units"]["a_max"] == "J"
+
+
+def test_an_unknown_unit_system_is_refused(capsys):
+    with pytest.raises(SystemExit) as exit_:
+        main(["solve", str(PROBLEMS / "shear-press.toml"), "--units", "cgs"])
+    err = capsys.readouterr().err
+    assert exit_.value.code == 2 and "Traceback" not in err
+    assert "argument --units: invalid choice: 'cgs'" in err and all(s in err for s in SYSTEMS)
+
+
+def test_the_help_says_the_json_stays_si(capsys):
+    with pytest.raises(SystemExit):
+        main(["solve", "--help"])
+    words = " ".join(capsys.readouterr().out.split())
+    assert "--units {engineering,si,imperial}" in words and "--json ignores it: the JSON is always SI" in words
+
+
+def test_the_report_code_has_no_conversion_of_its_own():
+    """One table of display units: the report's modules convert nothing themselves."""
+    for path in ("src/flyopt/report/text.py", "src/flyopt/report/drive.py"):
+        source = (ROOT / path).read_text(encoding="utf-8")
+        for pattern in (r"rad_s_to_rpm", r"\b1e6\b", r"\b1e3\b", r"\* ?1000\b", r"/ ?1000\b", r"math\.degrees",
+                        r"\b_mm\(", r"\b_mpa\(", r"30 / math\.pi"):
+            assert not re.search(pattern, source), (path, pattern)
+
+
+# --------------------------------------------------------------------------
+# The drive
+# --------------------------------------------------------------------------
+
+def _drive(solution):
+    """A drive result assembled from the drive's own types (designing one takes a minute: the real one,
+    press-drive, is in the slow test). Its numbers are placeholders chosen apart from each other."""
+    from flyopt.design.drive import DriveCheck, DriveDesign, MotorRun
+    from flyopt.design.drive_nlp import Relaxation
+    from flyopt.machine.catalogue import CatalogueMotor
+
+    motor = CatalogueMotor(name="5.5 kW", rated_power=5500.0, rated_speed=151.8, synchronous_speed=157.1,
+                           rotor_inertia=0.022, breakdown_ratio=2.7, mass=40.0)
+    run = MotorRun(motor=motor, feasible=True, motor_ratio=24.0, j_flywheel=812.5, limit="thermal", j_delta=790.0,
+                   rms_torque=30.5, mean_torque=20.25, rated_torque=36.23, omega_mean=6.28, delta=0.1,
+                   startup_time=5.125, flywheel_ratio=24.0, wheel=solution.design.best, motor_mass=40.0,
+                   wheel_mass=17.5, total_mass=57.5, objective=57.5)
+    relaxation = Relaxation(5000.0, 23.5, 22.0, 800.0, 57.0, "Solve_Succeeded",
+                            sensitivities={"max_outer_diameter": -20.0, "rim_speed": -0.75, "delta": -30.0})
+    drive = DriveDesign(status="designed", objective="mass", best=run, relaxation=relaxation, note="relaxation",
+                        runs=(run, MotorRun(motor=motor, feasible=False, reason="too small")))
+    check = DriveCheck(verification=solution.verification, rms_torque=30.5, rated_torque=36.23, startup_time=5.125,
+                       flagged=False)
+    return drive, check
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+def test_the_drive_in_the_chosen_units(system, solutions):
+    from flyopt.report.drive import drive_report
+
+    drive, check = _drive(solutions["punch-press-wheel"])
+    text = "\n".join(drive_report(drive, check, units=system))
+    run = drive.best
+    motor = re.search(r"5\.5 kW: (.+?) at (.+?) \(rated torque (.+?), rotor (.+?)\)", text)
+    assert close(quantity(motor.group(1), "power", system), 5500.0, "power", system)
+    assert close(quantity(motor.group(2), "angular_speed", system), 151.8, "angular_speed", system, 5)
+    assert close(quantity(motor.group(3), "torque", system), drive.best.motor.rated_torque, "torque", system, 4)
+    assert close(quantity(motor.group(4), "inertia", system), 0.022, "inertia", system, 4)
+    flywheel = fact(text, "flywheel")
+    assert close(quantity(flywheel, "inertia", system), run.j_flywheel, "inertia", system)
+    assert close(quantity(re.search(r"δ alone needs (.+)\)", flywheel).group(1), "inertia", system), run.j_delta,
+                 "inertia", system)
+    assert close(quantity(fact(text, "RMS torque"), "torque", system), run.rms_torque, "torque", system, 5)
+    assert close(quantity(fact(text, "start-up"), "time", system), run.startup_time, "time", system, 4)
+    total = re.search(r"= (.+)$", fact(text, "masses")).group(1)
+    assert close(quantity(total, "mass", system), run.total_mass, "mass", system, 5)
+    # relaxing the envelope by a round step of the system's length: +100 mm, +0.1 m or +4 in
+    step = {"engineering": ("100 mm", 0.1), "si": ("0.1 m", 0.1), "imperial": ("4 in", 4 * 0.0254)}[system]
+    saved = re.search(rf"envelope \+{re.escape(step[0])}: (.+?)(;| \(relaxed)", fact(text, "binding limits"))
+    assert saved, fact(text, "binding limits")
+    assert close(quantity(saved.group(1), "mass", system), -20.0 * step[1], "mass", system, 4)
+    rim_step = {"engineering": ("1 m/s", 1.0), "si": ("1 m/s", 1.0), "imperial": ("1 ft/s", 0.3048)}[system]
+    saved = re.search(rf"safe rim speed \+{re.escape(rim_step[0])}: (.+?)(;| \(relaxed)", text)
+    assert close(quantity(saved.group(1), "mass", system), -0.75 * rim_step[1], "mass", system, 4)
+    head, rows = table(text, "Every motor size solved")
+    assert dict(heading_unit(c) for c in head)["P"] == UNITS[system]["power"]
+    assert close(value(rows[0][1]), 5500.0, "power", system, 4)
+    assert close(value(rows[0][3]), run.j_flywheel, "inertia", system, 5)
+    assert close(value(rows[0][9]), run.total_mass, "mass", system, 5)
+    assert unlabelled_numbers(text, system, names=["5.5 kW"]) == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("system", ["imperial"])
+def test_press_drive_end_to_end(system, main_cli):
+    """The real drive of problems/press-drive.toml (about a minute): its report against its JSON."""
+    scene = PROBLEMS / "press-drive.toml"
+    status, out, _ = main_cli("solve", scene, "--json")
+    document = json.loads(out)
+    status_text, text, _ = main_cli("solve", scene, "--units", system)
+    assert status == status_text
+    best = document["drive"]["best"]
+    assert close(quantity(fact(text, "RMS torque"), "torque", system), best["rms_torque"], "torque", system, 5)
+    assert close(quantity(fact(text, "flywheel"), "inertia", system), best["j_flywheel"], "inertia", system)
+    total = re.search(r"= (.+?)(;|$)", fact(text, "masses")).group(1)
+    assert close(quantity(total, "mass", system), best["total_mass"], "mass", system, 5)
+    relaxed = re.match(r"(.+?), motor ratio", fact(text, "relaxation")).group(1)
+    assert close(quantity(relaxed, "power", system), document["drive"]["relaxation"]["rated_power"], "power", system)
+    names = [run["motor"]["name"] for run in document["drive"]["runs"]]
+    assert unlabelled_numbers(text, system, names=names) == []
