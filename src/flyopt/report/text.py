@@ -92,7 +92,7 @@ def analysis_report(result, source=None, units=DEFAULT):
     else:
         facts.append(("ω_max / ω_min at", f"the end of area {r.index_omega_max} / area {r.index_omega_min}"))
     if r.j_constant:
-        facts.append(("machine's own J_c", q(r.j_constant, "j_constant")))
+        facts.append(("J_c (machine and shafts)", q(r.j_constant, "j_constant")))
     if r.flywheel_needed:
         facts.append(("required flywheel J_F", f"{q(r.j_required, 'j_required')} "
                                                 f"(GD² {q(r.gd2_required, 'gd2_required')}) at the reference shaft"))
