@@ -287,10 +287,8 @@ PLAIN_FACTS = ("allowed δ", "material / shaft", "binding", "solved by", "safety
                "flywheel shaft")
 #: Blocks of prose written by the design itself (flyopt.design), shown as it wrote them.
 PROSE_BLOCKS = ("Sensitivities of the mass:", "Notes:", "Why the infeasible ones fail:")
-#: Lines that carry the design's prose: the drive's note ("relaxation: 4.843 kW; ...", written in
-#: kW by flyopt.design.drive whatever the system; the relaxed rating itself is on the report's
-#: "relaxation" line in the system's unit, which the test reads).
-PROSE_LINES = ("Drive designed with the flywheel (",)
+#: Lines that carry the design's prose (none: the drive's note no longer prints a number).
+PROSE_LINES = ()
 #: Dimensionless numbers inside a line: ratios, counts, percentages, tolerances, standards' names.
 PLAIN_NUMBERS = [rf"efficiency {NUM}", rf"H/B {NUM}", rf"safety factor {NUM}", rf"\({NUM} cycles\)",
                  rf"\({NUM} x ω_max\)", rf"{NUM} %", rf"achieved δ {NUM} against (the allowed )?{NUM}",

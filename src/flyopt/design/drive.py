@@ -624,7 +624,7 @@ def _relaxation(scene, analysis, spec, motors, inputs, load):
     if best is None:
         return None, ("every catalogue size solved: the relaxation found no optimum"
                       + (f" ({'; '.join(failures)})" if failures else ""))
-    return best, f"relaxation: {best.rated_power / 1000:.4g} kW; the catalogue sizes around it solved exactly"
+    return best, "the catalogue sizes around the relaxed optimum solved exactly"
 
 
 def spec_motors_neighbours(motors, power):
