@@ -154,7 +154,7 @@ MISSING = ("null where a value does not exist (nothing designed, no limit bindin
            "that is not set is +inf in tables (inf in CSV) and null in JSON")
 
 
-def _dimension(name):
+def dimension_of(name):
     """The dimension of a numeric field, or None (text, counts, unknown names)."""
     if name in INPUTS:
         return INPUTS[name]
@@ -174,7 +174,7 @@ def _si(dimension):
 
 def has_unit(name):
     """Whether ``name`` is a quantity: a unit of its own, or one set by another field."""
-    return name in UNIT_SET_BY or _dimension(name) is not None
+    return name in UNIT_SET_BY or dimension_of(name) is not None
 
 
 def unit_of(name, objective=None, front=None):
@@ -201,7 +201,7 @@ def unit_of(name, objective=None, front=None):
         return unit_of(objective) if objective else None
     if name == "epsilon":
         return unit_of(front) if front else None
-    dimension = _dimension(name)
+    dimension = dimension_of(name)
     return None if dimension is None else _si(dimension)
 
 

@@ -124,9 +124,9 @@ def dimension_of(name):
     and the sweep inputs), so that the JSON's ``units`` map and what people
     read cannot disagree. ValueError for a name that is no quantity.
     """
-    from flyopt.io.results import _dimension
+    from flyopt.io import results
 
-    dimension = _dimension(name)
+    dimension = results.dimension_of(name)
     if dimension is None:
         raise ValueError(f"{name!r} is not a quantity of flyopt.io.results (no dimension to show it in)")
     return dimension
