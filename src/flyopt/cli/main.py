@@ -5,6 +5,7 @@
     flyopt solve SCENE.toml [--json] [--verify] [-o FILE] ...   analyse and design
     flyopt check SCENE.toml                                     check a scene file
     flyopt plot SCENE.toml|RESULTS --what DIAGRAM -o FILE
+    flyopt report SCENE.toml -o FILE [--units SYSTEM]           the engineering report (.html, .pdf)
     flyopt sweep | pareto | tradeoff SCENE.toml [-o FILE] ...   design studies
     flyopt bench ...                                            speed against error
     flyopt --version
@@ -71,7 +72,7 @@ def entry():
 
 
 def _parser():
-    from flyopt.cli import plot, scene, studies
+    from flyopt.cli import plot, report, scene, studies
 
     parser = argparse.ArgumentParser(
         prog="flyopt", description="Flywheel design for speed regulation.",
@@ -90,7 +91,9 @@ def _parser():
     solve.set_defaults(run=_printed_to_file(solve.get_default("run")))
     for name, add, text in (("check", scene.add_check_arguments, "check a scene file and say what is wrong"),
                             ("plot", plot.add_plot_arguments,
-                             "draw a diagram of a scene, or of sweep/Pareto results (png, svg, pdf)")):
+                             "draw a diagram of a scene, or of sweep/Pareto results (png, svg, pdf)"),
+                            ("report", report.add_report_arguments,
+                             "the engineering report of a scene: one self-contained HTML or PDF file")):
         command = commands.add_parser(name, help=text)
         add(command)
         studies.add_quiet_argument(command)

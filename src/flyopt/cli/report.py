@@ -1,0 +1,276 @@
+"""``flyopt report``: the engineering report of one scene, as one self-contained HTML or PDF file.
+
+::
+
+    flyopt report SCENE.toml -o report.html [--units engineering|si|imperial]
+    flyopt report SCENE.toml -o report.pdf
+
+The scene is solved as ``flyopt solve --verify`` solves it
+(:func:`flyopt.pipeline.solve` with ``verify_design=True``); :func:`collect`
+then gathers what the diagrams and the worked steps need beyond the solution
+(the speed over the cycle, the stress profile, the energy–mass tangent points,
+an engine's textbook flywheel, the provenance), as ``flyopt plot`` does for
+one diagram, and :mod:`flyopt.report.document` builds the report from them
+without running a model. The suffix of ``-o`` picks the format; the file is
+written atomically (nothing half-written on an error or Ctrl-C) and its
+folder is checked before anything is computed.
+
+Exit status as ``flyopt solve``: 0 written, 2 bad input (one line naming the
+file and the field), 3 infeasible (the report is still written and says
+so), 4 the verification flagged the design (written, and says so).
+"""
+
+from flyopt.cli.exits import EXIT_FLAGGED, EXIT_INFEASIBLE, EXIT_OK
+
+#: The report's formats, by the suffix of the output file.
+FORMATS = {".html": "html", ".htm": "html", ".pdf": "pdf"}
+
+
+def add_report_arguments(parser):
+    """The options of ``flyopt report``; the handler is :func:`run_report`."""
+    from flyopt.report.display import DEFAULT, SYSTEMS
+
+    parser.add_argument("scene", help="scene file (TOML)")
+    parser.add_argument("-o", "--output", required=True, metavar="FILE",
+                        help="the report to write: .html (one self-contained page) or .pdf; written atomically, "
+                             "its folder must exist")
+    parser.add_argument("--units", choices=SYSTEMS, default=DEFAULT,
+                        help=f"units of the summary and tables (default {DEFAULT}: mm, rpm, kN·m, kJ, MPa; "
+                             "si: SI base units; imperial: in, rpm, lbf·ft, psi); the equations stay in SI")
+    parser.set_defaults(run=run_report)
+
+
+def output_kind(path):
+    """"html" or "pdf" from the suffix of ``path``; SceneError at ``-o/--output`` otherwise."""
+    from pathlib import Path
+
+    from flyopt.errors import SceneError
+
+    kind = FORMATS.get(Path(path).suffix.lower())
+    if kind is None:
+        raise SceneError("-o/--output", f"{str(path)!r} must end in .html or .pdf (the suffix picks the format)")
+    return kind
+
+
+def run_report(args):
+    """``flyopt report``: 0 written, 3 infeasible (written), 4 verification flagged (written)."""
+    import sys
+    from pathlib import Path
+
+    from flyopt.errors import SceneError
+    from flyopt.io.results import _check_folder
+
+    kind = output_kind(args.output)
+    _check_folder(args.output, "-o/--output")
+    if Path(args.output).resolve() == Path(args.scene).resolve():
+        raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: name another file for the report")
+    command = f"flyopt report {args.scene} -o {args.output} --units {args.units}"
+    inputs = collect(args.scene, command, pdf=kind == "pdf")
+    from flyopt.report.document import build
+
+    document = build(inputs, args.units, title_block=_title_lines(inputs))
+    try:
+        write(document, args.output, kind)
+    finally:
+        document.close()
+    for failure in document.failures:
+        print(f"flyopt: warning: {args.scene}: diagram {failure}", file=sys.stderr)
+    print(f"wrote {args.output}")
+    solution = inputs.solution
+    if solution.status == "infeasible":
+        return EXIT_INFEASIBLE
+    if solution.verification is not None and solution.verification.flagged:
+        return EXIT_FLAGGED
+    if solution.drive_check is not None and solution.drive_check.flagged:
+        return EXIT_FLAGGED
+    return EXIT_OK
+
+
+def write(document, path, kind):
+    """Render ``document`` as ``kind`` ("html" or "pdf") and write it to ``path`` atomically."""
+    from pathlib import Path
+
+    from flyopt.io.results import _replace, write_text
+
+    if kind == "html":
+        from flyopt.report.html import render
+
+        write_text(path, render(document))
+        return
+    try:
+        from flyopt.report.pdf import render
+        data = render(document)
+    except ImportError as err:   # reportlab is a dependency: only a broken installation lacks it
+        from flyopt.errors import SceneError
+
+        raise SceneError("-o/--output", f"a PDF report needs reportlab ({err}); install it "
+                                        "(pip install reportlab) or write .html") from None
+
+    def write_bytes(tmp):
+        with open(tmp, "wb") as handle:
+            handle.write(data)
+    _replace(Path(path), write_bytes)
+
+
+def collect(path, command="", pdf=False):
+    """Solve a scene and gather what its report shows (:class:`flyopt.report.document.ReportInputs`).
+
+    Parameters
+    ----------
+    path : str
+        The scene file.
+    command : str
+        The command line, for the provenance.
+    pdf : bool
+        Name reportlab's version in the provenance.
+
+    Raises
+    ------
+    SceneError, NonPeriodicCycle
+        The scene cannot be read, or its cycle does not close (exit 2).
+    SolverFailed
+        A model or the design did not converge (exit 1).
+    """
+    from pathlib import Path
+
+    from flyopt.io.scene import load, read_toml
+    from flyopt.pipeline import solve
+    from flyopt.report.document import ReportInputs
+
+    data = read_toml(path)
+    scene = load(path, data)
+    solution = solve(scene, verify_design=True)
+    analysis = solution.analysis
+    _ = (analysis.models, analysis.startup)   # computed on first use: here, not while the report is built
+    inputs = ReportInputs(scene_file=str(path), scene_text=Path(path).read_text(encoding="utf-8"),
+                          scene_tables=tuple(k for k, v in data.items() if isinstance(v, (dict, list))),
+                          scene=scene, solution=solution)
+    _speed(inputs)
+    _machine(inputs)
+    _stress(inputs)
+    inputs.provenance = provenance(scene, command, pdf)
+    return inputs
+
+
+def _speed(inputs):
+    """ω(φ) with the required flywheel, by the model that sized it (as ``flyopt plot --what speed``)."""
+    solution = inputs.solution
+    if solution.scene.net is not None:
+        inputs.speed_note = "a scene given as net areas has no angles"
+        return
+    try:
+        inputs.speed = solution.analysis.speed_curve()
+    except ValueError as err:
+        inputs.speed_note = str(err)
+        return
+    if inputs.speed is None:
+        inputs.speed_note = ("no flywheel is needed and the speed does not fluctuate (A_max = 0 J, no inertia at "
+                             "all)")
+
+
+def _machine(inputs):
+    """J_e(φ)'s range and mean, the energy–mass tangent points and analysis, an engine's textbook flywheel."""
+    import numpy as np
+
+    analysis = inputs.solution.analysis
+    machine = analysis.machine
+    if machine is None:
+        return
+    if machine.variable_inertia:
+        phi = np.linspace(0.0, machine.cycle_angle, 4097)
+        j = np.asarray(machine.j_machine(phi), dtype=float)
+        inputs.j_machine = (float(j.min()), machine.j_mean(), float(j.max()))
+    else:
+        j = float(machine.j_machine)
+        inputs.j_machine = (j, j, j)
+    if not machine.variable_inertia:
+        return    # constant inertia: the energy–mass diagram is a vertical line, and no engine textbook step
+    from flyopt.machine.engine import engine_of, textbook_requirement
+
+    if engine_of(machine) is not None:
+        inputs.textbook = textbook_requirement(machine, analysis.omega_mean, analysis.delta)
+    if machine.speed_dependent:
+        return    # the energy–mass diagram needs torques of the angle only (flyopt.report.plots refuses it)
+    if analysis.model == "energy_mass":
+        inputs.energy_mass = analysis
+        detail = analysis.requirement.detail
+        excess = machine.angle_only()
+        inputs.tangents = {
+            key: (float(phi_k), float(np.asarray(machine.j_machine(np.array([phi_k])))[0]),
+                  float(np.asarray(excess(np.array([phi_k])))[0]))
+            for key, phi_k in (("max", detail.phi_omega_max), ("min", detail.phi_omega_min))}
+    else:
+        from flyopt.analysis import analyse
+
+        inputs.energy_mass = analyse(inputs.solution.scene, "energy_mass", like=analysis)
+
+
+def _stress(inputs):
+    """The stresses over the radius of the chosen wheel (:func:`flyopt.cli.plot.stress_profile`)."""
+    solution = inputs.solution
+    design = solution.design
+    best = design.best if design is not None else None
+    if best is None or not best.stress or not best.parts:
+        return
+    from flyopt.cli.plot import stress_profile
+
+    try:
+        inputs.stress = stress_profile(solution.scene, solution.analysis, design)
+    except ValueError as err:
+        inputs.stress_note = str(err)
+
+
+def provenance(scene, command="", pdf=False):
+    """Where the report came from: flyopt's version, the scene file and its SHA-256, the date, the solvers.
+
+    Returns
+    -------
+    tuple of (str, str)
+    """
+    import datetime
+    import platform
+
+    import flyopt
+    from flyopt.io.results import scene_record
+
+    record = scene_record(scene)
+    rows = [("flyopt", flyopt.__version__),
+            ("scene file", record["scene"] or "-"),
+            ("scene file SHA-256", record["scene_file_sha256"] or "-"),
+            ("data files", "files the scene reads (a points_file, a CSV table) are not in the hash above"),
+            ("written", datetime.datetime.now().astimezone().isoformat(timespec="seconds")),
+            ("command", command or "-"),
+            ("Python", f"{platform.python_version()} ({platform.python_implementation()}), {platform.platform()}")]
+    for name in ("numpy", "scipy", "casadi", "matplotlib", "pint") + (("reportlab",) if pdf else ()):
+        rows.append((name, _version_of(name)))
+    rows.append(("IPOPT", ipopt_version()))
+    return tuple(rows)
+
+
+def _version_of(name):
+    from importlib import metadata
+
+    try:
+        return metadata.version(name)
+    except metadata.PackageNotFoundError:
+        return "not installed"
+
+
+def ipopt_version():
+    """IPOPT's version as CasADi's build reports it (``CasadiMeta.feature_list``), or why it is not known."""
+    import re
+
+    try:
+        import casadi as ca
+
+        found = re.search(r"BUILD_IPOPT_VERSION=([^)\s]+)", ca.CasadiMeta.feature_list())
+    except (ImportError, AttributeError, RuntimeError):
+        return "not reported by CasADi"
+    return f"{found.group(1)} (built into CasADi {ca.__version__})" if found else "not reported by CasADi"
+
+
+def _title_lines(inputs):
+    """The title block's lines beside the scene file: date, flyopt version, the file's SHA-256."""
+    rows = dict(inputs.provenance)
+    return (("date", rows.get("written", "-")), ("flyopt version", rows.get("flyopt", "-")),
+            ("scene SHA-256", rows.get("scene file SHA-256", "-")))

@@ -1,0 +1,207 @@
+"""The engineering report as one self-contained HTML file: inline CSS, inline SVG, no links, no scripts.
+
+:func:`render` turns a :class:`flyopt.report.document.Document` into the
+text of an HTML5 page that prints on A4 (print CSS: sections start on their
+own rules, figures, tables and equations are not split across pages). Every
+diagram is the matplotlib figure saved as SVG (text as paths, so no font is
+needed) and placed inline, its element ids prefixed so that the figures of
+one page never share an id. A number the report shows carries its JSON name
+and SI value (``data-q``, ``data-si``), an equation its step (``data-eq``),
+so that the page can be checked against the solver's results.
+"""
+
+from __future__ import annotations
+
+import html
+import io
+import re
+
+from flyopt.report.document import Code, Equation, Facts, Figure, Paragraph, Quantity, Table
+
+CSS = """
+:root { --ink: #1d232b; --rule: #c9ced6; --shade: #f3f5f8; --ok: #1e7a46; --warn: #b3261e; --note: #6b5800; }
+* { box-sizing: border-box; }
+body { font-family: "DejaVu Sans", "Segoe UI", Helvetica, Arial, sans-serif; color: var(--ink);
+       max-width: 60rem; margin: 1.5rem auto; padding: 0 1.2rem; line-height: 1.45; font-size: 15px; }
+header.title { border: 2px solid var(--ink); padding: 0.8rem 1rem; margin-bottom: 1.5rem; }
+header.title h1 { margin: 0 0 0.2rem 0; font-size: 1.55rem; }
+header.title .kind { text-transform: uppercase; letter-spacing: 0.08em; font-size: 0.8rem; color: #555; }
+header.title table { margin: 0.6rem 0 0 0; font-size: 0.85rem; }
+header.title td { padding: 0.1rem 0.8rem 0.1rem 0; border: none; vertical-align: top; }
+header.title td:first-child { color: #555; white-space: nowrap; }
+h2 { font-size: 1.25rem; border-bottom: 2px solid var(--ink); padding-bottom: 0.15rem; margin-top: 2.2rem; }
+h3 { font-size: 1.05rem; margin-top: 1.6rem; }
+p { margin: 0.5rem 0; }
+p.ok, p.warning, p.note { padding: 0.45rem 0.7rem; border-left: 4px solid; background: var(--shade); }
+p.ok { border-color: var(--ok); } p.warning { border-color: var(--warn); font-weight: bold; }
+p.note { border-color: var(--note); }
+table { border-collapse: collapse; margin: 0.2rem 0 1rem 0; font-size: 0.84rem; max-width: 100%; }
+th, td { border: 1px solid var(--rule); padding: 0.22rem 0.5rem; vertical-align: top; }
+th { background: var(--shade); text-align: left; font-weight: 600; }
+td.r, th.r { text-align: right; white-space: nowrap; }
+tr.total td { border-top: 2px solid var(--ink); font-weight: 600; }
+table.facts { width: 100%; }
+table.facts td:first-child { color: #444; width: 32%; }
+table.facts td { border: none; border-bottom: 1px solid var(--rule); }
+p.caption { font-style: italic; color: #444; margin: 0.8rem 0 0.2rem 0; font-size: 0.88rem; }
+div.eq { border-left: 3px solid #4a6fa5; background: var(--shade); padding: 0.4rem 0.8rem; margin: 0.6rem 0;
+         font-family: "DejaVu Sans", "Cambria Math", serif; }
+div.eq div.line { white-space: normal; }
+div.eq div.sym { font-weight: 600; }
+div.eq div.res { font-weight: 600; }
+div.eq div.ref { font-size: 0.78rem; color: #555; margin-top: 0.15rem; }
+figure { margin: 1rem 0; text-align: center; }
+figure svg { max-width: 100%; height: auto; }
+figcaption { font-size: 0.85rem; color: #333; margin-top: 0.3rem; }
+figure.missing { border: 1px dashed var(--rule); padding: 0.6rem; color: #555; text-align: left; }
+figure.code { text-align: left; }
+pre { background: var(--shade); border: 1px solid var(--rule); padding: 0.6rem 0.8rem; font-size: 0.78rem;
+      overflow-x: auto; white-space: pre-wrap; word-break: break-all;
+      font-family: "DejaVu Sans Mono", Consolas, monospace; }
+footer { margin-top: 2.5rem; font-size: 0.78rem; color: #666; border-top: 1px solid var(--rule); padding-top: 0.4rem; }
+@media print {
+  @page { size: A4; margin: 15mm 14mm 16mm 14mm; }
+  body { max-width: none; margin: 0; padding: 0; font-size: 10pt; }
+  h2 { break-after: avoid; page-break-after: avoid; }
+  h3 { break-after: avoid; page-break-after: avoid; }
+  figure, div.eq, table, p.ok, p.warning, p.note { break-inside: avoid; page-break-inside: avoid; }
+  p.caption { break-after: avoid; page-break-after: avoid; }
+  pre { white-space: pre-wrap; font-size: 7.5pt; }
+  a { color: inherit; text-decoration: none; }
+}
+"""
+
+
+def render(document) -> str:
+    """The HTML page of a :class:`~flyopt.report.document.Document`.
+
+    Returns
+    -------
+    str
+        A complete HTML5 document with no external reference.
+    """
+    out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
+           '<meta name="viewport" content="width=device-width, initial-scale=1">',
+           f"<title>{_escape(document.title)}: flywheel design report</title>",
+           f"<style>{CSS}</style>", "</head>", "<body>"]
+    out.append(f'<header class="title" data-status="{_escape(document.status)}">')
+    out.append('<div class="kind">Flywheel design report</div>')
+    out.append(f"<h1>{_escape(document.title)}</h1>")
+    out.append("<table>")
+    for label, value in document.title_block:
+        out.append(f"<tr><td>{_escape(label)}</td><td>{_text(value)}</td></tr>")
+    out.append("</table></header>")
+    out.append('<nav><h2 id="contents">Contents</h2><ol>')
+    for section in document.sections:
+        if section.level == 1:
+            out.append(f"<li>{_escape(section.title)}</li>")
+    out.append("</ol></nav>")
+    figures = 0
+    for section in document.sections:
+        tag = "h2" if section.level == 1 else "h3"
+        out.append(f'<section data-section="{_escape(section.key)}">')
+        out.append(f"<{tag}>{section.number} {_escape(section.title)}</{tag}>")
+        for block in section.blocks:
+            if isinstance(block, Figure) and block.figure is not None:
+                figures += 1
+            out.append(_block(block, figures))
+        out.append("</section>")
+    out.append(f"<footer>{_escape(document.title)}: written by flyopt. Equations in SI; tables in "
+               f"{_escape(document.units)} units.</footer>")
+    out += ["</body>", "</html>"]
+    return "\n".join(out) + "\n"
+
+
+def _block(block, figure_number):
+    if isinstance(block, Paragraph):
+        kind = "" if block.kind == "text" else f' class="{block.kind}"'
+        return f"<p{kind}>{_text(block.text)}</p>"
+    if isinstance(block, Facts):
+        rows = "".join(f"<tr><td>{_text(label)}</td><td>{_text(value)}</td></tr>" for label, value in block.rows)
+        return f'<table class="facts" data-table="{_escape(block.name or "")}">{rows}</table>'
+    if isinstance(block, Table):
+        return _table(block)
+    if isinstance(block, Equation):
+        lines = [f'<div class="line sym">{_text(block.lines[0])}</div>']
+        lines += [f'<div class="line num">{_text(line)}</div>' for line in block.lines[1:-1]]
+        lines.append(f'<div class="line res">{_text(block.lines[-1])}</div>')
+        lines.append(f'<div class="ref">{_escape(block.reference)}</div>')
+        return f'<div class="eq" data-eq="{_escape(block.key)}">{"".join(lines)}</div>'
+    if isinstance(block, Figure):
+        if block.figure is None:
+            state = "failed" if block.failed else "refused"
+            return (f'<figure class="missing" data-figure="{_escape(block.key)}" data-state="{state}">'
+                    f"<figcaption>{_text(block.caption)}. {_text(block.note)}</figcaption></figure>")
+        svg = svg_of(block.figure, f"f{figure_number}-")
+        return (f'<figure data-figure="{_escape(block.key)}" data-state="drawn">{svg}'
+                f"<figcaption>Figure {figure_number}: {_text(block.caption)}.</figcaption></figure>")
+    if isinstance(block, Code):
+        caption = f"<figcaption>{_escape(block.caption)}</figcaption>" if block.caption else ""
+        return f'<figure class="code">{caption}<pre>{html.escape(block.text)}</pre></figure>'
+    raise TypeError(f"no HTML for a {type(block).__name__}")
+
+
+def _table(table):
+    out = [f'<p class="caption">{_text(table.caption)}</p>'] if table.caption else []
+    out.append(f'<table data-table="{_escape(table.name or "")}">')
+    head = "".join(f'<th{_align(a)}>{_text(h)}</th>' for h, a in zip(table.head, table.align))
+    out.append(f"<thead><tr>{head}</tr></thead><tbody>")
+    for k, row in enumerate(table.rows):
+        total = ' class="total"' if table.total and k == len(table.rows) - 1 else ""
+        cells = "".join(f"<td{_align(a)}>{_text(cell)}</td>" for cell, a in zip(row, table.align))
+        out.append(f"<tr{total}>{cells}</tr>")
+    out.append("</tbody></table>")
+    return "".join(out)
+
+
+def _align(align):
+    return ' class="r"' if align == ">" else ""
+
+
+def _escape(text):
+    return html.escape(str(text), quote=True)
+
+
+def _text(text):
+    """A Text (string with ``_{}``/``^{}`` markup, Quantity, or a tuple of them) as HTML."""
+    if isinstance(text, tuple):
+        return "".join(_text(t) for t in text)
+    if isinstance(text, Quantity):
+        attributes = f' data-dimension="{text.dimension}"'
+        if text.name:
+            attributes += f' data-q="{_escape(text.name)}"'
+        if text.si is not None:
+            attributes += f' data-si="{text.si!r}"'
+        return f'<span class="q"{attributes}>{_escape(text.text)}</span>'
+    escaped = _escape(text)
+    escaped = re.sub(r"_\{([^{}]*)\}", r"<sub>\1</sub>", escaped)
+    return re.sub(r"\^\{([^{}]*)\}", r"<sup>\1</sup>", escaped)
+
+
+def svg_of(figure, prefix):
+    """A matplotlib figure as an inline ``<svg>`` element, its ids prefixed with ``prefix``.
+
+    The XML declaration, the DOCTYPE (which names an external DTD) and the
+    metadata block are left out; text is drawn as paths (matplotlib's
+    default ``svg.fonttype``), so the figure needs no font.
+    """
+    import matplotlib
+
+    buffer = io.StringIO()
+    with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": prefix}):
+        figure.savefig(buffer, format="svg", metadata={"Date": None})
+    text = buffer.getvalue()
+    text = text[text.index("<svg"):]
+    text = re.sub(r"<metadata>.*?</metadata>\s*", "", text, flags=re.S)
+    seen = {}
+
+    def unique(match):
+        # an artist's gid may name several elements (a plot's "area" labels): the second and later get a
+        # number, so that ids stay unique; references (#...) only ever name matplotlib's own unique ids
+        name = match.group(1)
+        seen[name] = seen.get(name, 0) + 1
+        suffix = "" if seen[name] == 1 else f"-{seen[name]}"
+        return f' id="{prefix}{name}{suffix}"'
+    text = re.sub(r'\sid="([^"]+)"', unique, text)
+    text = re.sub(r'href="#([^"]+)"', lambda m: f'href="#{prefix}{m.group(1)}"', text)
+    return re.sub(r"url\(#([^)]+)\)", lambda m: f"url(#{prefix}{m.group(1)})", text)

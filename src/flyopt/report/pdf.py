@@ -1,0 +1,274 @@
+"""The engineering report as a PDF, drawn by reportlab (no browser, no external program).
+
+:func:`render` lays a :class:`flyopt.report.document.Document` out on A4
+pages with reportlab's platypus: the title block, numbered sections, tables
+that repeat their header across pages, equations in shaded boxes, every
+diagram as a 200 dpi image, and a footer with the scene's title and the page
+number. The text is set in DejaVu Sans, the font matplotlib ships (it has
+the Greek letters, superscripts and the minus sign the engineering needs),
+embedded in the file. reportlab is imported here only, when a PDF is asked
+for, so that ``import flyopt`` and the other commands do not pay for it.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import re
+from xml.sax.saxutils import escape
+
+from flyopt.report.document import Code, Equation, Facts, Figure, Paragraph, Quantity, Table, plain
+
+#: Resolution of the diagrams in the PDF [dpi].
+DPI = 200
+
+_FONT, _BOLD, _ITALIC, _MONO = "FlyoptSans", "FlyoptSans-Bold", "FlyoptSans-Oblique", "FlyoptMono"
+
+
+def render(document) -> bytes:
+    """The PDF of a :class:`~flyopt.report.document.Document`, as bytes."""
+    from reportlab.lib.pagesizes import A4
+    from reportlab.lib.units import mm
+    from reportlab.platypus import SimpleDocTemplate
+
+    _fonts()
+    styles = _styles()
+    buffer = io.BytesIO()
+    margin = 16 * mm
+    page = SimpleDocTemplate(buffer, pagesize=A4, leftMargin=margin, rightMargin=margin, topMargin=15 * mm,
+                             bottomMargin=17 * mm, title=f"{document.title}: flywheel design report",
+                             author="flyopt", subject="Flywheel design report", creator="flyopt")
+    width = A4[0] - 2 * margin
+    height = A4[1] - 32 * mm
+    story = _title(document, styles, width)
+    for section in document.sections:
+        style = styles["h1"] if section.level == 1 else styles["h2"]
+        story.append(_paragraph(f"{section.number} {section.title}", style))
+        for block in section.blocks:
+            story += _block(block, styles, width, height)
+
+    def footer(canvas, doc):
+        canvas.saveState()
+        canvas.setFont(_FONT, 7.5)
+        canvas.setFillGray(0.35)
+        canvas.drawString(margin, 9 * mm, f"{document.title}: flywheel design report (flyopt)")
+        canvas.drawRightString(A4[0] - margin, 9 * mm, f"page {doc.page}")
+        canvas.restoreState()
+
+    page.build(story, onFirstPage=footer, onLaterPages=footer)
+    return buffer.getvalue()
+
+
+def _fonts():
+    """Register DejaVu Sans (regular, bold, oblique) and DejaVu Sans Mono from matplotlib's data, once."""
+    from reportlab.pdfbase import pdfmetrics
+    from reportlab.pdfbase.ttfonts import TTFont
+
+    if _FONT in pdfmetrics.getRegisteredFontNames():
+        return
+    import matplotlib
+
+    folder = os.path.join(matplotlib.get_data_path(), "fonts", "ttf")
+    for name, file in ((_FONT, "DejaVuSans.ttf"), (_BOLD, "DejaVuSans-Bold.ttf"),
+                       (_ITALIC, "DejaVuSans-Oblique.ttf"), (_MONO, "DejaVuSansMono.ttf")):
+        pdfmetrics.registerFont(TTFont(name, os.path.join(folder, file)))
+    pdfmetrics.registerFontFamily(_FONT, normal=_FONT, bold=_BOLD, italic=_ITALIC, boldItalic=_BOLD)
+
+
+def _styles():
+    from reportlab.lib import colors
+    from reportlab.lib.styles import ParagraphStyle
+
+    base = ParagraphStyle("body", fontName=_FONT, fontSize=9, leading=12.2, spaceAfter=4)
+    return {
+        "body": base,
+        "lead": ParagraphStyle("lead", base, keepWithNext=1),
+        "title": ParagraphStyle("title", base, fontName=_BOLD, fontSize=17, leading=21, spaceAfter=2),
+        "kind": ParagraphStyle("kind", base, fontSize=7.5, textColor=colors.HexColor("#555555"), spaceAfter=2),
+        "h1": ParagraphStyle("h1", base, fontName=_BOLD, fontSize=13, leading=16, spaceBefore=12, spaceAfter=6,
+                             keepWithNext=1),
+        "h2": ParagraphStyle("h2", base, fontName=_BOLD, fontSize=10.5, leading=13, spaceBefore=9, spaceAfter=4,
+                             keepWithNext=1),
+        "cell": ParagraphStyle("cell", base, fontSize=7.6, leading=9.4, spaceAfter=0),
+        "head": ParagraphStyle("head", base, fontName=_BOLD, fontSize=7.6, leading=9.4, spaceAfter=0),
+        "cell_r": ParagraphStyle("cell_r", base, fontSize=7.6, leading=9.4, spaceAfter=0, alignment=2),
+        "head_r": ParagraphStyle("head_r", base, fontName=_BOLD, fontSize=7.6, leading=9.4, spaceAfter=0,
+                                 alignment=2),
+        "caption": ParagraphStyle("caption", base, fontName=_ITALIC, fontSize=8, leading=10, spaceAfter=3,
+                                  textColor=colors.HexColor("#333333")),
+        "eq": ParagraphStyle("eq", base, fontSize=9, leading=12, spaceAfter=0),
+        "eq_b": ParagraphStyle("eq_b", base, fontName=_BOLD, fontSize=9, leading=12, spaceAfter=0),
+        "ref": ParagraphStyle("ref", base, fontSize=7, leading=9, spaceAfter=0, textColor=colors.HexColor("#555555")),
+        "code": ParagraphStyle("code", base, fontName=_MONO, fontSize=6.8, leading=8.2, spaceAfter=0),
+        "ok": ParagraphStyle("ok", base, spaceBefore=2, spaceAfter=6),
+        "warning": ParagraphStyle("warning", base, fontName=_BOLD, spaceBefore=2, spaceAfter=6),
+        "note": ParagraphStyle("note", base, spaceBefore=2, spaceAfter=6),
+    }
+
+
+def _markup(text):
+    """A Text as reportlab paragraph markup: escaped, ``_{}`` as subscript, ``^{}`` as superscript."""
+    if isinstance(text, tuple):
+        return "".join(_markup(t) for t in text)
+    if isinstance(text, Quantity):
+        return escape(text.text)
+    escaped = escape(str(text))
+    escaped = re.sub(r"_\{([^{}]*)\}", r"<sub>\1</sub>", escaped)
+    return re.sub(r"\^\{([^{}]*)\}", r"<super>\1</super>", escaped)
+
+
+def _paragraph(text, style):
+    from reportlab.platypus import Paragraph as RLParagraph
+
+    return RLParagraph(_markup(text), style)
+
+
+def _title(document, styles, width):
+    from reportlab.lib import colors
+    from reportlab.platypus import Spacer
+    from reportlab.platypus import Table as RLTable
+
+    rows = [[_paragraph("FLYWHEEL DESIGN REPORT", styles["kind"]), ""],
+            [_paragraph(document.title, styles["title"]), ""]]
+    rows += [[_paragraph(label, styles["cell"]), _paragraph(value, styles["cell"])]
+             for label, value in document.title_block]
+    table = RLTable(rows, colWidths=[0.2 * width, 0.8 * width - 12])
+    table.setStyle([("BOX", (0, 0), (-1, -1), 1.4, colors.black), ("SPAN", (0, 0), (1, 0)), ("SPAN", (0, 1), (1, 1)),
+                    ("VALIGN", (0, 0), (-1, -1), "TOP"), ("LEFTPADDING", (0, 0), (-1, -1), 6),
+                    ("TOPPADDING", (0, 0), (-1, -1), 1.5), ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5),
+                    ("TEXTCOLOR", (0, 2), (0, -1), colors.HexColor("#555555"))])
+    return [table, Spacer(1, 8)]
+
+
+def _block(block, styles, width, height):
+    from reportlab.lib import colors
+    from reportlab.platypus import KeepTogether, Spacer
+    from reportlab.platypus import Table as RLTable
+
+    if isinstance(block, Paragraph):
+        if block.kind == "text":
+            # a paragraph that introduces what follows ("...:") stays on its page
+            lead = plain(block.text).rstrip().endswith(":")
+            return [_paragraph(block.text, styles["lead"] if lead else styles["body"])]
+        colour = {"ok": "#1e7a46", "warning": "#b3261e", "note": "#8a7300"}[block.kind]
+        box = RLTable([[_paragraph(block.text, styles[block.kind])]], colWidths=[width])
+        box.setStyle([("LINEBEFORE", (0, 0), (0, -1), 3, colors.HexColor(colour)),
+                      ("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
+                      ("LEFTPADDING", (0, 0), (-1, -1), 7), ("TOPPADDING", (0, 0), (-1, -1), 3),
+                      ("BOTTOMPADDING", (0, 0), (-1, -1), 1)])
+        return [box, Spacer(1, 4)]
+    if isinstance(block, Facts):
+        rows = [[_paragraph(label, styles["cell"]), _paragraph(value, styles["cell"])] for label, value in block.rows]
+        table = RLTable(rows, colWidths=[0.33 * width, 0.67 * width])
+        table.setStyle([("LINEBELOW", (0, 0), (-1, -1), 0.4, colors.HexColor("#c9ced6")),
+                        ("VALIGN", (0, 0), (-1, -1), "TOP"), ("TOPPADDING", (0, 0), (-1, -1), 1.5),
+                        ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5), ("LEFTPADDING", (0, 0), (-1, -1), 2),
+                        ("TEXTCOLOR", (0, 0), (0, -1), colors.HexColor("#444444"))])
+        return [table, Spacer(1, 6)]
+    if isinstance(block, Table):
+        return _table(block, styles, width)
+    if isinstance(block, Equation):
+        rows = [[_paragraph(block.lines[0], styles["eq_b"])]]
+        rows += [[_paragraph(line, styles["eq"])] for line in block.lines[1:-1]]
+        rows += [[_paragraph(block.lines[-1], styles["eq_b"])], [_paragraph(block.reference, styles["ref"])]]
+        table = RLTable(rows, colWidths=[width])
+        table.setStyle([("LINEBEFORE", (0, 0), (0, -1), 2.2, colors.HexColor("#4a6fa5")),
+                        ("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
+                        ("LEFTPADDING", (0, 0), (-1, -1), 8), ("TOPPADDING", (0, 0), (-1, -1), 0.8),
+                        ("BOTTOMPADDING", (0, 0), (-1, -1), 0.8)])
+        return [KeepTogether([table]), Spacer(1, 5)]
+    if isinstance(block, Figure):
+        caption = f"{block.caption}." if block.figure is not None else f"{block.caption}. {block.note}"
+        if block.figure is None:
+            return [_paragraph(caption, styles["caption"]), Spacer(1, 4)]
+        return [KeepTogether([_image(block.figure, width, 0.62 * height), _paragraph(caption, styles["caption"])]),
+                Spacer(1, 6)]
+    if isinstance(block, Code):
+        chars = int(width / (0.6 * styles["code"].fontSize)) - 1
+        out = [_paragraph(block.caption, styles["caption"])] if block.caption else []
+        return out + [_split_code(block.text, styles["code"], chars, width)]
+    raise TypeError(f"no PDF layout for a {type(block).__name__}")
+
+
+def _split_code(text, style, chars, width):
+    """The scene file as a shaded block that may run over pages (one table row per line)."""
+    from reportlab.lib import colors
+    from reportlab.platypus import Preformatted
+    from reportlab.platypus import Table as RLTable
+
+    rows = [[Preformatted(line or " ", style, maxLineLength=chars, newLineChars="↪ ")]
+            for line in text.rstrip("\n").split("\n")]
+    table = RLTable(rows, colWidths=[width], repeatRows=0)
+    table.setStyle([("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
+                    ("LEFTPADDING", (0, 0), (-1, -1), 5), ("TOPPADDING", (0, 0), (-1, -1), 0),
+                    ("BOTTOMPADDING", (0, 0), (-1, -1), 0.4),
+                    ("BOX", (0, 0), (-1, -1), 0.5, colors.HexColor("#c9ced6"))])
+    return table
+
+
+def _table(block, styles, width):
+    from reportlab.lib import colors
+    from reportlab.pdfbase.pdfmetrics import stringWidth
+    from reportlab.platypus import Spacer
+    from reportlab.platypus import Table as RLTable
+
+    size = styles["cell"].fontSize
+    pad = 8.0
+    natural, least = [], []
+    for k, align in enumerate(block.align):
+        head = plain(block.head[k])
+        body = [plain(row[k]) for row in block.rows]
+        widest = max([stringWidth(t, _FONT, size) for t in body] + [0.0])
+        natural.append(max(widest, stringWidth(head, _BOLD, size)) + pad)
+        words = max([stringWidth(w, _BOLD, size) for w in head.split() or [""]]
+                    + [stringWidth(w, _FONT, size) for t in body for w in t.split() or [""]])
+        # a number is never broken over lines: a right-aligned column keeps its cells' width
+        least.append(max(words, widest if align == ">" else 0.0) + pad)
+    widths = _fit(natural, least, width)
+    head = [_paragraph(h, styles["head_r" if a == ">" else "head"]) for h, a in zip(block.head, block.align)]
+    rows = [head] + [[_paragraph(cell, styles["cell_r" if a == ">" else "cell"]) for cell, a in zip(row, block.align)]
+                     for row in block.rows]
+    table = RLTable(rows, colWidths=widths, repeatRows=1, hAlign="LEFT")
+    style = [("GRID", (0, 0), (-1, -1), 0.4, colors.HexColor("#c9ced6")),
+             ("BACKGROUND", (0, 0), (-1, 0), colors.HexColor("#f3f5f8")),
+             ("VALIGN", (0, 0), (-1, -1), "TOP"), ("TOPPADDING", (0, 0), (-1, -1), 1.5),
+             ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5), ("LEFTPADDING", (0, 0), (-1, -1), 3),
+             ("RIGHTPADDING", (0, 0), (-1, -1), 3)]
+    if block.total:
+        style.append(("LINEABOVE", (0, -1), (-1, -1), 1.2, colors.black))
+    table.setStyle(style)
+    out = [_paragraph(block.caption, styles["caption"])] if block.caption else []
+    return out + [table, Spacer(1, 6)]
+
+
+def _fit(natural, least, width):
+    """Column widths: each its natural width if all fit, else the wide ones shrunk (never below their longest word)."""
+    if sum(natural) <= width:
+        return natural
+    widths = list(natural)
+    fixed = set()
+    while True:
+        free = [k for k in range(len(widths)) if k not in fixed]
+        room = width - sum(widths[k] for k in fixed)
+        share = room / max(sum(natural[k] for k in free), 1e-9)
+        changed = False
+        for k in free:
+            widths[k] = natural[k] * share
+            if widths[k] < least[k]:
+                widths[k] = least[k]
+                fixed.add(k)
+                changed = True
+        if not changed or not [k for k in range(len(widths)) if k not in fixed]:
+            return widths
+
+
+def _image(figure, width, height):
+    """A matplotlib figure as a reportlab Image, scaled to fit ``width`` x ``height`` [pt], never enlarged."""
+    from reportlab.platypus import Image
+
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=DPI)
+    buffer.seek(0)
+    w, h = figure.get_size_inches() * 72.0
+    scale = min(1.0, width / w, height / h)
+    return Image(buffer, width=w * scale, height=h * scale)
