@@ -294,6 +294,8 @@ def _formula(key):
         "rim_mass": lambda n: pi * n[0] * n[1] * n[2] * n[3],              # m = π D_m H B ρ, section 9
         "rim_inertia": lambda n: n[0] * (n[1] ** 2 + n[2] ** 2) / n[3],    # m (D_m² + H²)/4
         "rim_inertia_thin": lambda n: n[0] * n[1] ** 2 / n[2],             # m D_m²/4
+        "disc_mass": lambda n: pi * n[0] ** 2 * n[1] * n[2] / n[3],        # π D² B ρ/4
+        "disc_inertia": lambda n: n[0] * n[1] ** 2 / n[2],                 # m D²/8
         "parts_inertia": sum, "parts_mass": sum,
         "j_at_reference": lambda n: n[0] * n[1] ** 2,                      # J' i², section 8
         "rim_speed": lambda n: n[0] * n[1] * n[2] / n[3],                  # v = i ω_max D_1/2, section 10

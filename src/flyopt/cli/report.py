@@ -147,9 +147,23 @@ def collect(path, command="", pdf=False):
                           scene=scene, solution=solution)
     _speed(inputs)
     _machine(inputs)
+    _inertia_delta(inputs)
     _stress(inputs)
-    inputs.provenance = provenance(scene, command, pdf)
+    inputs.provenance = provenance(scene, command, pdf, data_files(data))
     return inputs
+
+
+def data_files(data, where=""):
+    """The files a scene names (``points_file``, a member's ``force_file``, ...): [(field, value)]."""
+    found = []
+    items = data.items() if isinstance(data, dict) else enumerate(data) if isinstance(data, list) else ()
+    for key, value in items:
+        field = f"{where}.{key}" if where and isinstance(key, str) else f"{where}[{key}]" if where else str(key)
+        if isinstance(key, str) and key.endswith("_file") and isinstance(value, str):
+            found.append((field, value))
+        elif isinstance(value, (dict, list)):
+            found += data_files(value, field)
+    return found
 
 
 def _speed(inputs):
@@ -205,6 +219,23 @@ def _machine(inputs):
         inputs.energy_mass = analyse(inputs.solution.scene, "energy_mass", like=analysis)
 
 
+def _inertia_delta(inputs):
+    """J_F at each δ by the exact model, where it is not the energy method's closed form (as ``flyopt plot``)."""
+    from flyopt.report import plots
+
+    analysis = inputs.solution.analysis
+    if analysis.model == "energy":
+        return                    # the diagram draws the closed form itself
+    try:
+        plots.check_inertia_delta(analysis)
+    except plots.NothingToDraw:
+        return                    # said by the diagram
+    from flyopt.cli.plot import inertia_curve
+
+    points = 25 if analysis.model == "dynamic" else 41     # the points of flyopt plot --what inertia_delta
+    inputs.inertia_curve = inertia_curve(inputs.solution.scene, analysis, plots.delta_range(analysis, points))
+
+
 def _stress(inputs):
     """The stresses over the radius of the chosen wheel (:func:`flyopt.cli.plot.stress_profile`)."""
     solution = inputs.solution
@@ -220,8 +251,18 @@ def _stress(inputs):
         inputs.stress_note = str(err)
 
 
-def provenance(scene, command="", pdf=False):
+def provenance(scene, command="", pdf=False, files=()):
     """Where the report came from: flyopt's version, the scene file and its SHA-256, the date, the solvers.
+
+    Parameters
+    ----------
+    scene : Scene
+    command : str
+        The command line.
+    pdf : bool
+        Name reportlab's version too.
+    files : sequence of (str, str)
+        The data files the scene names (:func:`data_files`): listed, not hashed.
 
     Returns
     -------
@@ -234,13 +275,14 @@ def provenance(scene, command="", pdf=False):
     from flyopt.io.results import scene_record
 
     record = scene_record(scene)
-    rows = [("flyopt", flyopt.__version__),
-            ("scene file", record["scene"] or "-"),
-            ("scene file SHA-256", record["scene_file_sha256"] or "-"),
-            ("data files", "files the scene reads (a points_file, a CSV table) are not in the hash above"),
-            ("written", datetime.datetime.now().astimezone().isoformat(timespec="seconds")),
-            ("command", command or "-"),
-            ("Python", f"{platform.python_version()} ({platform.python_implementation()}), {platform.platform()}")]
+    rows = [("flyopt", flyopt.__version__), ("scene file", record["scene"] or "-"),
+            ("scene file SHA-256", record["scene_file_sha256"] or "-")]
+    if files:
+        rows.append(("data files the scene reads", "; ".join(f"{field} = {value}" for field, value in files)
+                     + " (not in the hash above)"))
+    rows += [("written", datetime.datetime.now().astimezone().isoformat(timespec="seconds")),
+             ("command", command or "-"),
+             ("Python", f"{platform.python_version()} ({platform.python_implementation()}), {platform.platform()}")]
     for name in ("numpy", "scipy", "casadi", "matplotlib", "pint") + (("reportlab",) if pdf else ()):
         rows.append((name, _version_of(name)))
     rows.append(("IPOPT", ipopt_version()))

@@ -222,6 +222,9 @@ class ReportInputs:
         [rad, kg*m^2, J], J_e and ΔE evaluated on the machine at those angles.
     j_machine : tuple or None
         (min, cycle mean, max) of the machine's J_e(φ) [kg*m^2].
+    inertia_curve : tuple or None
+        (δ, J_F) of the exact model at each δ, for the J_F(δ) diagram of a model other than
+        the energy method (:func:`flyopt.cli.plot.inertia_curve`).
     stress : tuple or None
         ``(profile, beams, omega, material)`` of :func:`flyopt.cli.plot.stress_profile`.
     stress_note : str
@@ -241,6 +244,7 @@ class ReportInputs:
     energy_mass: object = None
     tangents: dict | None = None
     j_machine: tuple | None = None
+    inertia_curve: tuple | None = None
     stress: tuple | None = None
     stress_note: str = ""
     textbook: object = None
@@ -423,8 +427,7 @@ class _Builder:
                                       f"(speed ratio {number(best.speed_ratio)})"),
                      ("mass", self.q(best.mass, "mass", "mass")),
                      ("outer diameter", self.q(best.d_outer, "length", "d_outer")),
-                     ("width B × radial thickness H", (self.q(best.b, "length", "b"), " × ",
-                                                       self.q(best.h, "length", "h"))),
+                     self.width_row(best),
                      ("inertia on its shaft", self.q(best.j_flywheel, "inertia", "j_flywheel")),
                      ("rim speed", (self.q(best.rim_speed, "speed", "rim_speed"), " (limit ",
                                     self.q(best.rim_speed_limit, "speed", "rim_speed_limit"), ")")),
@@ -474,6 +477,15 @@ class _Builder:
                 f"{display.quantity_text(best.mass, 'mass', self.units, 4)}, outer diameter "
                 f"{display.quantity_text(best.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
                 f"within δ = {number(a.delta, 4)}{checked}.")
+
+    def width_row(self, c):
+        """The wheel's width and, for a rim, its radial thickness (a disc is the annulus with no hole, section 9)."""
+        if c.geometry == "disc":
+            return ("axial width B", (self.q(c.b, "length", "b"), " (a disc: D_m = H = D/2, no hole)"
+                                      if not c.d_inner else " (an annulus on its bore)"))
+        return ("rim: radial thickness H × axial width B", (self.q(c.h, "length", "h"), " × ",
+                                                           self.q(c.b, "length", "b"),
+                                                           f" (H/B {number(c.hb_ratio, 4)})"))
 
     def best(self):
         return self.design.best if self.design is not None else None
@@ -755,8 +767,9 @@ class _Builder:
                               f"4 × {number(G_STANDARD)} m/s² × {si(a.j_required, 'inertia')}",
                               res(a.gd2_required, "flywheel_moment"), 3))
         self.engine_step(blocks)
+        curve = {} if self.inputs.inertia_curve is None else {"curve": self.inputs.inertia_curve}
         self.figure(blocks, "inertia_delta", "Required flywheel against the allowed δ, the scene's δ marked",
-                    plots.plot_inertia_delta, self.scene, a)
+                    plots.plot_inertia_delta, self.scene, a, **curve)
         if self.inputs.energy_mass is not None:
             self.figure(blocks, "energy_mass", "Energy–mass (Wittenbauer) diagram: ΔE against J_e, with the "
                         "tangents of slope ω_max²/2 and ω_min²/2", plots.plot_energy_mass, self.scene,
@@ -881,8 +894,7 @@ class _Builder:
                 ("outer / mean / inner diameter", (self.q(best.d_outer, "length", "d_outer"), " / ",
                                                    self.q(best.d_mean, "length", "d_mean"), " / ",
                                                    self.q(best.d_inner, "length", "d_inner"))),
-                ("rim H × B", (self.q(best.h, "length", "h"), " × ", self.q(best.b, "length", "b"),
-                               f" (H/B {number(best.hb_ratio, 4)})")),
+                self.width_row(best),
                 ("inertia", (self.q(best.j_flywheel, "inertia", "j_flywheel"), " on its shaft = ",
                              self.q(best.j_at_reference, "inertia", "j_at_reference"), " at the reference shaft")),
                 ("rim speed", (self.q(best.rim_speed, "speed", "rim_speed"), " (limit ",
@@ -919,7 +931,13 @@ class _Builder:
         """The wheel's mass and inertia (section 9) and its rim speed (section 10), numbers substituted."""
         si, res, sq = self.si, self.result, self.squared
         rho = getattr(material, "density", None)
-        if c.geometry in ("rim", "thin_rim", "disc") and len(c.parts) <= 1 and rho:
+        if c.geometry == "disc" and not c.d_inner and len(c.parts) <= 1 and rho:
+            d = si(c.d_outer, "length")
+            blocks.append(self.eq("disc_mass", "m = π D² B ρ / 4", f"π × {sq(d)} × {si(c.b, 'length')} × "
+                                  f"{si(rho, 'density')} / 4", res(c.mass, "mass"), 9))
+            blocks.append(self.eq("disc_inertia", "J = m D² / 8", f"{si(c.mass, 'mass')} × {sq(d)} / 8",
+                                  res(c.j_flywheel, "inertia"), 9))
+        elif c.geometry in ("rim", "thin_rim", "disc") and len(c.parts) <= 1 and rho:
             d_m, h = si(c.d_mean, "length"), si(c.h, "length")
             blocks.append(self.eq("rim_mass", "m = π D_{m} H B ρ",
                                   f"π × {d_m} × {h} × {si(c.b, 'length')} × {si(rho, 'density')}",

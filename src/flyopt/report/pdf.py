@@ -181,8 +181,7 @@ def _block(block, styles, width, height):
         caption = f"{block.caption}." if block.figure is not None else f"{block.caption}. {block.note}"
         if block.figure is None:
             return [_paragraph(caption, styles["caption"]), Spacer(1, 4)]
-        return [KeepTogether([_image(block.figure, width, 0.62 * height), _paragraph(caption, styles["caption"])]),
-                Spacer(1, 6)]
+        return [_figure(block.figure, _paragraph(caption, styles["caption"]), width, 0.62 * height), Spacer(1, 6)]
     if isinstance(block, Code):
         chars = int(width / (0.6 * styles["code"].fontSize)) - 1
         out = [_paragraph(block.caption, styles["caption"])] if block.caption else []
@@ -262,13 +261,42 @@ def _fit(natural, least, width):
             return widths
 
 
-def _image(figure, width, height):
-    """A matplotlib figure as a reportlab Image, scaled to fit ``width`` x ``height`` [pt], never enlarged."""
-    from reportlab.platypus import Image
+#: A diagram may shrink to this fraction of its size to finish a page rather than leave it half empty.
+SHRINK = 0.72
+
+
+def _figure(figure, caption, width, height):
+    """A matplotlib figure as a PNG flowable with its caption below, kept together.
+
+    Scaled to fit ``width`` x ``height`` [pt] and never enlarged; where the rest
+    of a page holds at least :data:`SHRINK` of that size the diagram shrinks to
+    fit it, so that a page is not left half empty for want of a few points.
+    """
+    from reportlab.lib.utils import ImageReader
+    from reportlab.platypus import Flowable
 
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png", dpi=DPI)
     buffer.seek(0)
+    image = ImageReader(buffer)
     w, h = figure.get_size_inches() * 72.0
     scale = min(1.0, width / w, height / h)
-    return Image(buffer, width=w * scale, height=h * scale)
+
+    class FigureFlowable(Flowable):
+        def wrap(self, available_width, available_height):
+            self.caption_height = caption.wrap(available_width, available_height)[1]
+            room = available_height - self.caption_height - 4
+            self.scale = scale if h * scale <= room or room < SHRINK * h * scale else room / h
+            self.width = available_width
+            self.height = h * self.scale + self.caption_height + 4
+            return self.width, self.height
+
+        def split(self, available_width, available_height):
+            return []        # a diagram is never cut: it goes to the next page whole
+
+        def draw(self):
+            shown_w, shown_h = w * self.scale, h * self.scale
+            self.canv.drawImage(image, (self.width - shown_w) / 2, self.caption_height + 4, shown_w, shown_h)
+            caption.drawOn(self.canv, 0, 0)
+
+    return FigureFlowable()
