@@ -569,6 +569,28 @@ def test_an_infeasible_design_is_reported_and_exits_3(tmp_path, main_cli, write_
     assert 'data-status="infeasible"' in out.read_text(encoding="utf-8")
 
 
+def test_a_flagged_verification_is_reported_and_exits_4(tmp_path, main_cli, monkeypatch):
+    """As flyopt solve: the simulated δ beyond the allowed one is said in the summary and exits 4."""
+    import dataclasses
+
+    import flyopt.pipeline
+
+    verify = flyopt.pipeline.verify
+
+    def missed(*args, **kwargs):
+        found = verify(*args, **kwargs)
+        return dataclasses.replace(found, achieved_delta=2 * found.delta_allowed, flagged=True)
+    monkeypatch.setattr(flyopt.pipeline, "verify", missed)
+    out = tmp_path / "flagged.html"
+    status, _, err = main_cli("report", PROBLEMS / "example1-net-areas.toml", "-o", out)
+    assert status == 4, err
+    page = _page(out)
+    assert 'data-status="designed flagged"' in out.read_text(encoding="utf-8")
+    achieved = [q for q in page.quantities if q["name"] == "achieved_delta" and q["section"] == "summary"]
+    assert achieved and float(achieved[0]["si"]) == 2 * 0.02
+    assert "FLAGGED" in " ".join("".join(page.text).split())
+
+
 def test_an_interrupted_report_leaves_the_old_file_and_no_temporary(tmp_path, main_cli, monkeypatch):
     import flyopt.report.html
 

@@ -537,7 +537,8 @@ class _Builder:
             if spec.min_wall is not None:
                 brief.append(("thinnest section", self.q(spec.min_wall, "length")))
             materials = sorted({c.material for c in self.design.candidates})
-            brief.append(("materials considered", ", ".join(materials)))
+            if materials:
+                brief.append(("materials considered", ", ".join(materials)))
             blocks.append(Facts(tuple(brief), "brief"))
         blocks.append(Code(self.inputs.scene_text, f"{self.inputs.scene_file}, as given"))
 
@@ -1213,7 +1214,8 @@ class _Builder:
         elif self.inputs.speed is None:
             blocks.append(Figure("speed", "Speed over the cycle", note=f"Not drawn: {self.inputs.speed_note}."))
         else:
-            simulation = None if v is None else v.solution
+            check = self.solution.drive_check
+            simulation = v.solution if v is not None else check.verification.solution if check is not None else None
             self.figure(blocks, "speed", "Speed over the cycle with the required flywheel"
                         + (", and the simulation of the design over it" if simulation is not None else ""),
                         plots.plot_speed, self.scene, a, self.inputs.speed, simulation)

@@ -38,7 +38,8 @@ p.note { border-color: var(--note); }
 table { border-collapse: collapse; margin: 0.2rem 0 1rem 0; font-size: 0.84rem; max-width: 100%; }
 th, td { border: 1px solid var(--rule); padding: 0.22rem 0.5rem; vertical-align: top; }
 th { background: var(--shade); text-align: left; font-weight: 600; }
-td.r, th.r { text-align: right; white-space: nowrap; }
+td.r, th.r { text-align: right; }
+td.r { white-space: nowrap; }
 tr.total td { border-top: 2px solid var(--ink); font-weight: 600; }
 table.facts { width: 100%; }
 table.facts td:first-child { color: #444; width: 32%; }
