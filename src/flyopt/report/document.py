@@ -225,6 +225,8 @@ class ReportInputs:
     inertia_curve : tuple or None
         (δ, J_F) of the exact model at each δ, for the J_F(δ) diagram of a model other than
         the energy method (:func:`flyopt.cli.plot.inertia_curve`).
+    inertia_note : str
+        Why there is no ``inertia_curve`` where one was needed.
     stress : tuple or None
         ``(profile, beams, omega, material)`` of :func:`flyopt.cli.plot.stress_profile`.
     stress_note : str
@@ -245,6 +247,7 @@ class ReportInputs:
     tangents: dict | None = None
     j_machine: tuple | None = None
     inertia_curve: tuple | None = None
+    inertia_note: str = ""
     stress: tuple | None = None
     stress_note: str = ""
     textbook: object = None
@@ -768,9 +771,12 @@ class _Builder:
                               f"4 × {number(G_STANDARD)} m/s² × {si(a.j_required, 'inertia')}",
                               res(a.gd2_required, "flywheel_moment"), 3))
         self.engine_step(blocks)
-        curve = {} if self.inputs.inertia_curve is None else {"curve": self.inputs.inertia_curve}
-        self.figure(blocks, "inertia_delta", "Required flywheel against the allowed δ, the scene's δ marked",
-                    plots.plot_inertia_delta, self.scene, a, **curve)
+        caption = "Required flywheel against the allowed δ, the scene's δ marked"
+        if self.inputs.inertia_note:
+            blocks.append(Figure("inertia_delta", caption, note=f"Not drawn: {self.inputs.inertia_note}."))
+        else:
+            curve = {} if self.inputs.inertia_curve is None else {"curve": self.inputs.inertia_curve}
+            self.figure(blocks, "inertia_delta", caption, plots.plot_inertia_delta, self.scene, a, **curve)
         if self.inputs.energy_mass is not None:
             self.figure(blocks, "energy_mass", "Energy–mass (Wittenbauer) diagram: ΔE against J_e, with the "
                         "tangents of slope ω_max²/2 and ω_min²/2", plots.plot_energy_mass, self.scene,

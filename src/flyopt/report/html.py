@@ -67,6 +67,7 @@ footer { margin-top: 2.5rem; font-size: 0.78rem; color: #666; border-top: 1px so
   h3 { break-after: avoid; page-break-after: avoid; }
   figure, div.eq, table, p.ok, p.warning, p.note { break-inside: avoid; page-break-inside: avoid; }
   p.caption { break-after: avoid; page-break-after: avoid; }
+  figure.code { break-inside: auto; page-break-inside: auto; }
   pre { white-space: pre-wrap; font-size: 7.5pt; }
   a { color: inherit; text-decoration: none; }
 }
