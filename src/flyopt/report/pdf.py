@@ -164,7 +164,7 @@ def _block(block, styles, width, height):
                         ("VALIGN", (0, 0), (-1, -1), "TOP"), ("TOPPADDING", (0, 0), (-1, -1), 1.5),
                         ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5), ("LEFTPADDING", (0, 0), (-1, -1), 2),
                         ("TEXTCOLOR", (0, 0), (0, -1), colors.HexColor("#444444"))])
-        return [table, Spacer(1, 6)]
+        return [KeepTogether([table]) if len(rows) <= 12 else table, Spacer(1, 6)]   # a short list is not cut
     if isinstance(block, Table):
         return _table(block, styles, width)
     if isinstance(block, Equation):
@@ -192,11 +192,12 @@ def _block(block, styles, width, height):
 def _split_code(text, style, chars, width):
     """The scene file as a shaded block that may run over pages (one table row per line)."""
     from reportlab.lib import colors
-    from reportlab.platypus import Preformatted
+    from reportlab.platypus import Preformatted, Spacer
     from reportlab.platypus import Table as RLTable
 
-    rows = [[Preformatted(line or " ", style, maxLineLength=chars, newLineChars="↪ ")]
-            for line in text.rstrip("\n").split("\n")]
+    # a blank line is a space of one line (Preformatted drops a line of white space)
+    rows = [[Preformatted(line, style, maxLineLength=chars, newLineChars="↪ ") if line.strip()
+             else Spacer(1, style.leading)] for line in text.rstrip("\n").split("\n")]
     table = RLTable(rows, colWidths=[width], repeatRows=0)
     table.setStyle([("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
                     ("LEFTPADDING", (0, 0), (-1, -1), 5), ("TOPPADDING", (0, 0), (-1, -1), 0),
