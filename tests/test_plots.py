@@ -17,6 +17,8 @@ NOT_DRAWABLE = {  # (scene, diagram): why it is refused, in one line
     ("example1-net-areas", "speed"): "net-area scene has no angles",
     ("example1-net-areas", "energy_mass"): "needs torques of the angle only given as curves",
     ("motor-press", "energy_mass"): "needs torques of the angle only given as curves",
+    # a constant inertia: the energy–mass diagram would be a vertical line (it was drawn, on a ±5e-10 axis)
+    ("shear-press", "energy_mass"): "drawn for an inertia that varies with the angle",
 }
 
 
@@ -99,7 +101,8 @@ def test_speed_plot_with_the_simulation_overlaid(tmp_path):
     scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
     analysis = flyopt.analyse(scene)
     ax = plots.plot_speed(scene, analysis, analysis.speed_curve(), verify(scene, analysis).solution)
-    model, simulated = ax.lines[0].get_ydata(), ax.lines[1].get_ydata()
+    model, simulated = (next(line for line in ax.lines if line.get_gid() == gid).get_ydata()
+                        for gid in ("model", "simulation"))
     # the closed form and the simulation reach the same extremes (to the simulation's tolerance)
     assert abs(model.max() / simulated.max() - 1) < 1e-6 and abs(model.min() / simulated.min() - 1) < 1e-6
     out = plots.save(ax, tmp_path / "speed.png")
@@ -143,7 +146,7 @@ def test_bad_output_is_one_line_exit_2_nothing_written(tmp_path, target, words, 
 # A machine that needs no flywheel: nothing to draw is said, not a failure
 # --------------------------------------------------------------------------
 
-@pytest.mark.parametrize("what", ["cross_section", "stress", "inertia_delta", "speed", "energy_mass"])
+@pytest.mark.parametrize("what", ["cross_section", "stress", "inertia_delta", "speed"])
 def test_nothing_to_draw_when_no_flywheel_is_needed(tmp_path, capsys, what):
     # conveyor: steady torques, A_max = 0, J_F(δ) = 0 for every δ
     out = tmp_path / "x.png"
@@ -179,7 +182,8 @@ def test_inertia_delta_when_the_machine_inertia_suffices(tmp_path):
     # φ = 1.8125 π/4 is 1137.5 (1 + 0.8125/2) π/4 = 1599.609375 π/4 J (1256.33 J, as published)
     a_max, omega_mean = 1599.609375 * math.pi / 4, 1500 * 2 * math.pi / 60
     delta_free = a_max / (omega_mean**2 * 100.0)
-    assert math.isclose(ax.lines[1].get_xdata()[0], delta_free, rel_tol=1e-12)
+    free = next(line for line in ax.lines if line.get_gid() == "delta_free")
+    assert math.isclose(free.get_xdata()[0], delta_free, rel_tol=1e-12)
     drawn = np.isfinite(j)
     assert drawn.sum() > 20 and delta[drawn].max() < delta_free
     # every point on the hyperbola J_F = A_max/(ω_m² δ) − J_c (to the round-off of the difference)
@@ -211,8 +215,9 @@ def _forbid_models(patch):
 
 
 @pytest.mark.parametrize("scene, what, options", [
-    ("shear-press", "energy_mass", []),           # sized by the energy model: the energy–mass result is passed in
     ("slider-crank-press", "energy_mass", []),
+    ("slider-crank-press", "inertia_delta", []),  # J_F(δ) of the exact model is computed before, and passed in
+    ("motor-press", "turning_moment", []),        # the motor along the periodic solution the analysis carries
     ("shear-press", "speed", ["--verify"]),       # the model's ω(φ) and the simulation are passed in
     ("slider-crank-press", "speed", ["--verify"]),
     ("motor-press", "speed", []),                 # the dynamic model's own periodic solution
@@ -245,9 +250,9 @@ def test_energy_mass_refuses_an_analysis_by_another_model():
     import flyopt
     from flyopt.report import plots
 
-    scene = flyopt.load(PROBLEMS / "shear-press.toml")
+    scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
     with pytest.raises(ValueError, match="analyse with model='energy_mass'"):
-        plots.plot_energy_mass(scene, flyopt.analyse(scene))
+        plots.plot_energy_mass(scene, flyopt.analyse(scene, model="energy"))
 
 
 # --------------------------------------------------------------------------
@@ -309,12 +314,12 @@ def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):
     seen = {}
     real = plots.plot_pareto
 
-    def spy(frame, x, y, ax=None):
+    def spy(frame, x, y, ax=None, units="engineering"):
         seen.update(x=x, y=y)
-        return real(frame, x, y, ax)
+        return real(frame, x, y, ax, units)
 
     monkeypatch.setattr(plots, "plot_pareto", spy)
-    args = argparse.Namespace(scene=str(path), what="pareto", x=None, y="mass", by=None,
+    args = argparse.Namespace(scene=str(path), what="pareto", x=None, y="mass", by=None, units="engineering",
                               output=str(tmp_path / "f.png"))
     assert run_plot(args) == 0
     assert seen == {"x": "delta", "y": "mass"}
@@ -353,7 +358,7 @@ def test_wheel_plots_render_for_every_geometry(tmp_path, geometry, what):
 
 
 def _blocks(ax):
-    """The hatched blocks of a drawn section by gid: (x0, x1, y0, y1) [m]."""
+    """The hatched blocks of a drawn section by gid: (x0, x1, y0, y1) in the drawing's unit (mm by default)."""
     from matplotlib.patches import Rectangle
 
     out = {}
@@ -371,7 +376,8 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
     _scene, _analysis, design = _designed(WHEELS / f"engine-{geometry}.toml")
     c = design.best
     ax = plots.plot_cross_section(c)
-    blocks = _blocks(ax)
+    # the drawing is in mm (the engineering units, the default): its coordinates too, not metres
+    blocks = {gid: tuple(v / 1e3 for v in box) for gid, box in _blocks(ax).items()}
     r_o, b = c.d_outer / 2, c.b
     expected = {}
     if geometry == "disc":
@@ -387,6 +393,7 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
     for name, (x0, x1, y0, y1) in expected.items():
         np.testing.assert_allclose(blocks[f"{name}+"], (x0, x1, y0, y1), rtol=0, atol=1e-12)
         np.testing.assert_allclose(blocks[f"{name}-"], (x0, x1, -y1, -y0), rtol=0, atol=1e-12)  # mirrored
+    assert c.d_outer * 1e3 / 2 < ax.get_ylim()[1] < c.d_outer * 1e3    # the axes hold millimetres
     assert {g[:-1] for g in blocks} == set(expected)
     # every dimension the brief names is written, in mm
     texts = {t.get_text() for t in ax.texts}
@@ -406,7 +413,8 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
 
         section = [p for p in ax.patches if isinstance(p, Ellipse) and p.get_gid() == "arm_section"]
         assert len(section) == 1
-        np.testing.assert_allclose((section[0].width, section[0].height), (c.arm_minor, c.arm_major), rtol=1e-12)
+        np.testing.assert_allclose((section[0].width, section[0].height), (c.arm_minor * 1e3, c.arm_major * 1e3),
+                                   rtol=1e-12)
         front = [a for a in ax.figure.axes if a is not ax]
         assert len(front) == 1
         arms = [p for p in front[0].patches if isinstance(p, Polygon) and p.get_gid() == "arm"]
@@ -414,7 +422,7 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
         # each arm is a strip of width a (the major axis lies in the plane of rotation)
         for arm in arms:
             xy = arm.get_xy()[:4]
-            np.testing.assert_allclose(np.hypot(*(xy[0] - xy[3])), c.arm_major, rtol=1e-9)
+            np.testing.assert_allclose(np.hypot(*(xy[0] - xy[3])), c.arm_major * 1e3, rtol=1e-9)
     ax.figure.clf()
 
 

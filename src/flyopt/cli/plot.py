@@ -5,7 +5,11 @@ speed over the cycle, the simulation) and hands it to :mod:`flyopt.report.plots`
 which only draws. The output file is checked before anything is computed.
 A diagram that would be empty because no flywheel is needed is said in one
 line on stdout with exit status 0 and no file: the scene is valid and the
-answer (no flywheel) is the one ``flyopt solve`` gives with status 0.
+answer (no flywheel) is the one ``flyopt solve`` gives with status 0. A
+diagram that does not apply to the scene (the energy–mass diagram of a
+constant inertia, ω(φ) of net areas) is refused in one line, exit status 2,
+nothing written. ``--units`` picks the unit system every axis and label is
+drawn in (flyopt.report.display); files of results stay SI.
 """
 
 from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_INPUT, EXIT_OK, fail
@@ -23,6 +27,9 @@ def add_plot_arguments(parser):
     parser.add_argument("--y", default="mass", help="results: the column on the y axis (default mass)")
     parser.add_argument("--by", help="sweep results: one line per value of this column (e.g. material)")
     parser.add_argument("--verify", action="store_true", help="speed: draw the periodic simulation over the model")
+    parser.add_argument("--units", default="engineering", metavar="SYSTEM",
+                        help="units of the axes and labels: engineering (mm, rpm, kN·m, kJ, MPa; the default), "
+                             "si (m, rad/s, N·m, J, Pa) or imperial (in, rpm, lbf·ft, ft·lbf, psi)")
     parser.add_argument("-o", "--output", required=True,
                         help="file to write (its folder must exist); the suffix picks the format: png, svg, pdf")
     parser.set_defaults(run=run_plot)
@@ -30,8 +37,10 @@ def add_plot_arguments(parser):
 
 def run_plot(args):
     """``flyopt plot``: 0 written (or nothing to draw), 2 a bad request, 3 no feasible flywheel to draw."""
-    from flyopt.report import plots
+    from flyopt.report import display, plots
 
+    if args.units not in display.SYSTEMS:
+        return fail(f"--units: unknown unit system {args.units!r} (allowed: {', '.join(display.SYSTEMS)})", EXIT_INPUT)
     if args.scene.lower().endswith((".csv", ".parquet")):
         return _plot_results(args)
     if args.what not in plots.PLOTS:
@@ -66,6 +75,7 @@ def _draw(args, plots):
     from flyopt.analysis import analyse
     from flyopt.io.scene import load
 
+    units = args.units
     scene = load(args.scene)
     analysis = analyse(scene)
     if args.what in ("cross_section", "stress"):
@@ -77,11 +87,11 @@ def _draw(args, plots):
         if design.best is None:
             raise _Infeasible(design.message)
         if args.what == "cross_section":
-            return plots.plot_cross_section(design.best)
-        return _draw_stress(scene, analysis, design, plots)
+            return plots.plot_cross_section(design.best, units=units)
+        return _draw_stress(scene, analysis, design, plots, units)
     if args.what == "speed":
         if scene.net is not None:   # said by the plot, before any model runs
-            return plots.plot_speed(scene, analysis)
+            return plots.plot_speed(scene, analysis, units=units)
         from flyopt.pipeline import verify
 
         # the simulation --verify checks, with the required flywheel: pipeline.verify, the one path
@@ -90,12 +100,70 @@ def _draw(args, plots):
         if speed is None:
             raise plots.NothingToDraw("no flywheel is needed and the speed does not fluctuate (A_max = 0 J, "
                                       "no inertia at all): nothing to draw")
-        return plots.plot_speed(scene, analysis, speed, simulation)
+        return plots.plot_speed(scene, analysis, speed, simulation, units=units)
     if args.what == "energy_mass":
         plots.check_energy_mass(analysis)
         if analysis.model != "energy_mass":   # the diagram draws that model's tangents
             analysis = analyse(scene, model="energy_mass")
-    return getattr(plots, f"plot_{args.what}")(scene, analysis)
+    if args.what == "inertia_delta":
+        plots.check_inertia_delta(analysis)
+        curve = None if analysis.model == "energy" else inertia_curve(scene, analysis)
+        return plots.plot_inertia_delta(scene, analysis, units=units, curve=curve)
+    return getattr(plots, f"plot_{args.what}")(scene, analysis, units=units)
+
+
+def inertia_curve(scene, analysis, deltas=None):
+    """J_F at each δ by the analysis' own model: the scene analysed again at that δ.
+
+    With a variable inertia or a speed-dependent torque, J_F is not
+    A_max/(ω_m² δ) − J_c (docs/flywheel-design.md, sections 6 and 7): each
+    δ is a new sizing by the exact model. The reduced machine and its
+    compiled models are reused (``analyse(..., like=analysis)``).
+
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+    deltas : sequence of float, optional
+        δ [-], each in (0, 2). By default those of
+        :func:`flyopt.report.plots.delta_range` (41; 25 for the dynamic model,
+        whose every point is a periodic solution), and where J_F falls to zero
+        between two of them (δ*, where the machine's own inertia starts to
+        suffice, and the curve is steep) eight more between those two.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        δ and J_F there (``j_margin``: negative where none is needed)
+        [kg*m^2]; NaN where the model has no answer at that δ (the periodic
+        solution stalls, say).
+    """
+    import dataclasses
+
+    import numpy as np
+
+    from flyopt.analysis import analyse
+    from flyopt.errors import SolverFailed
+
+    if deltas is None:
+        from flyopt.report.plots import delta_range
+
+        delta, j = inertia_curve(scene, analysis, delta_range(analysis, 25 if analysis.model == "dynamic" else 41))
+        falls = np.flatnonzero((j[:-1] > 0) & (j[1:] <= 0))
+        if len(falls):
+            k = falls[0]
+            more = inertia_curve(scene, analysis, np.geomspace(delta[k], delta[k + 1], 10)[1:-1])
+            order = np.argsort(np.concatenate([delta, more[0]]))
+            return np.concatenate([delta, more[0]])[order], np.concatenate([j, more[1]])[order]
+        return delta, j
+    deltas = np.asarray(deltas, dtype=float)
+    j = np.full(deltas.shape, np.nan)
+    for k, delta in enumerate(deltas):
+        try:
+            j[k] = analyse(dataclasses.replace(scene, delta=float(delta)), analysis.model, like=analysis).j_margin
+        except SolverFailed:
+            continue
+    return deltas, j
 
 
 def wheel_dims(candidate):
@@ -130,9 +198,10 @@ def stress_profile(scene, analysis, design):
     return profile, beams, omega, material
 
 
-def _draw_stress(scene, analysis, design, plots):
+def _draw_stress(scene, analysis, design, plots, units="engineering"):
     profile, beams, omega, material = stress_profile(scene, analysis, design)
-    return plots.plot_stress(design.best, profile, beams, omega, ductile=bool(getattr(material, "ductile", False)))
+    return plots.plot_stress(design.best, profile, beams, omega, ductile=bool(getattr(material, "ductile", False)),
+                             units=units)
 
 
 def _plot_results(args):
@@ -155,9 +224,10 @@ def _plot_results(args):
         x = objectives[1] if objectives else None
     if x is None:
         return fail(f"--x: the results diagram {args.what!r} needs the column for the x axis", EXIT_INPUT)
+    units = args.units
     try:
-        ax = plots.plot_sweep(frame, x, args.y, args.by) if args.what == "sweep" else \
-            plots.plot_pareto(frame, x, args.y)
+        ax = plots.plot_sweep(frame, x, args.y, args.by, units=units) if args.what == "sweep" else \
+            plots.plot_pareto(frame, x, args.y, units=units)
     except ValueError as err:
         return fail(f"{args.scene}: {err}", EXIT_INPUT)
     plots.save(ax, args.output)
