@@ -232,9 +232,8 @@ def _inertia_delta(inputs):
         return                    # said by the diagram
     from flyopt.cli.plot import inertia_curve
 
-    points = 25 if analysis.model == "dynamic" else 41     # the points of flyopt plot --what inertia_delta
-    try:
-        inputs.inertia_curve = inertia_curve(inputs.solution.scene, analysis, plots.delta_range(analysis, points))
+    try:   # at the δ flyopt plot --what inertia_delta takes (the function's own choice)
+        inputs.inertia_curve = inertia_curve(inputs.solution.scene, analysis)
     except (ValueError, RuntimeError) as err:    # the report goes on; the diagram says why it is missing
         inputs.inertia_note = f"J_F could not be found at every δ by the {analysis.model} model ({err})"
 
