@@ -136,9 +136,9 @@ def _printed_to_file(handler):
         from pathlib import Path
 
         from flyopt.errors import SceneError
-        from flyopt.io.results import _check_folder, write_text
+        from flyopt.io.results import check_folder, write_text
 
-        _check_folder(args.output, "-o/--output")
+        check_folder(args.output, "-o/--output")
         scene = getattr(args, "scene", None)
         if scene is not None and Path(args.output).resolve() == Path(scene).resolve():
             raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: "

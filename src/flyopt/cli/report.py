@@ -58,10 +58,10 @@ def run_report(args):
     from pathlib import Path
 
     from flyopt.errors import SceneError
-    from flyopt.io.results import _check_folder
+    from flyopt.io.results import check_folder
 
     kind = output_kind(args.output)
-    _check_folder(args.output, "-o/--output")
+    check_folder(args.output, "-o/--output")
     if Path(args.output).resolve() == Path(args.scene).resolve():
         raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: name another file for the report")
     command = f"flyopt report {args.scene} -o {args.output} --units {args.units}"
@@ -90,7 +90,7 @@ def write(document, path, kind):
     """Render ``document`` as ``kind`` ("html" or "pdf") and write it to ``path`` atomically."""
     from pathlib import Path
 
-    from flyopt.io.results import _replace, write_text
+    from flyopt.io.results import replace_atomically, write_text
 
     if kind == "html":
         from flyopt.report.html import render
@@ -109,7 +109,7 @@ def write(document, path, kind):
     def write_bytes(tmp):
         with open(tmp, "wb") as handle:
             handle.write(data)
-    _replace(Path(path), write_bytes)
+    replace_atomically(Path(path), write_bytes)
 
 
 def collect(path, command="", pdf=False):

@@ -302,14 +302,14 @@ _SUFFIXES = (".csv", ".parquet", ".pq", ".json")
 
 def _check_output(output):
     """The output file of a front or table, checked before anything is computed."""
-    from flyopt.io.results import _check_folder
+    from flyopt.io.results import check_folder
 
     if output is None:
         return
     if Path(output).suffix.lower() not in _SUFFIXES:
         raise SceneError("-o/--output", f"{output!r} must end in .csv, .parquet or .json "
                          f"(the suffix picks the format)")
-    _check_folder(output, "-o/--output")
+    check_folder(output, "-o/--output")
 
 
 def _emit(frame, args, kind, scene, columns, title, objectives=None):

@@ -418,17 +418,17 @@ def write_text(path, text, label="-o/--output"):
         Field ``label``: the folder of ``path`` does not exist.
     """
     path = Path(path)
-    _check_folder(path, label)
+    check_folder(path, label)
 
     def write(tmp):
         with open(tmp, "w", encoding="utf-8") as handle:
             handle.write(text)
             if text and not text.endswith("\n"):
                 handle.write("\n")
-    _replace(path, write)
+    replace_atomically(path, write)
 
 
-def _replace(path, write, temporary_folder=None):
+def replace_atomically(path, write, temporary_folder=None):
     """Call ``write(tmp)`` on a temporary file, then move it to ``path`` (removed on any failure)."""
     folder = path.parent if temporary_folder is None else Path(temporary_folder)
     tmp = folder / f"{path.name}.tmp-{os.getpid()}"
@@ -688,7 +688,7 @@ class ResultWriter:
     def __init__(self, path, temporary_folder=None, metadata=None):
         self.path = Path(path)
         self.kind = output_format(self.path)
-        _check_folder(self.path)
+        check_folder(self.path)
         folder = self.path.parent if temporary_folder is None else Path(temporary_folder)
         self.temporary = folder / f"{self.path.name}.tmp-{os.getpid()}"
         self.rows = 0
@@ -809,7 +809,7 @@ def write_results(frame, path, temporary_folder=None, metadata=None):
     """
     path = Path(path)
     kind = output_format(path)
-    _check_folder(path)
+    check_folder(path)
     sidecar = None
 
     def write(tmp):
@@ -825,7 +825,7 @@ def write_results(frame, path, temporary_folder=None, metadata=None):
             if metadata is not None:
                 sidecar = _write_sidecar(path, metadata)
     try:
-        _replace(path, write, temporary_folder)
+        replace_atomically(path, write, temporary_folder)
     except BaseException:
         if sidecar is not None:
             sidecar.unlink(missing_ok=True)
@@ -878,7 +878,7 @@ def read_results(path, columns=None):
     return frame
 
 
-def _check_folder(path, label="output"):
+def check_folder(path, label="output"):
     """The folder of an output must exist: flyopt does not create folders the user did not ask for."""
     folder = Path(path).parent
     if not folder.is_dir():

@@ -52,7 +52,7 @@ import numpy as np
 import pandas as pd
 
 from flyopt.errors import Interrupted, SceneError
-from flyopt.io.results import _check_folder, read_results, write_results
+from flyopt.io.results import check_folder, read_results, write_results
 
 __all__ = ["CHUNK_SECONDS", "GUIDED", "MAX_CHUNK_POINTS", "MIN_CHUNK_SECONDS",
            "SERIAL_SECONDS", "Parts", "chunk_bounds", "connect", "fingerprint", "run_chunks"]
@@ -245,7 +245,7 @@ class Parts:
             The folder exists without ``resume``, or holds another sweep.
         """
         if not self.folder.exists():
-            _check_folder(self.folder)
+            check_folder(self.folder)
             self.folder.mkdir()
             (self.folder / self.MANIFEST).write_text(json.dumps(record), encoding="utf-8")
             return []
