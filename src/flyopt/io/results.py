@@ -113,7 +113,7 @@ QUANTITIES = {
     "arm_major": "length", "arm_minor": "length",
     "r_inner": "length", "r_outer": "length", "thickness": "length", "radius": "length",
     "wall": "length",
-    "hb_ratio": "dimensionless", "mass": "mass", "cost": "dimensionless",
+    "hb_ratio": "dimensionless", "mass": "mass", "cost": "dimensionless", "density": "density",
     "j_flywheel": "inertia", "j_at_reference": "inertia", "j_max": "inertia",
     "j_required_on_shaft": "inertia",
     "rim_speed": "speed", "rim_speed_limit": "speed",
