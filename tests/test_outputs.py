@@ -359,6 +359,8 @@ RELATIONS = {
     "solve_time": "time",
     # section 9: m = J / (D_m^2 / 4); section 11: omega_m = P / M_d
     "mass": "j_flywheel / d_mean**2", "omega_mean": "power / driving_torque",
+    # section 9: m = rho pi D_m H B
+    "density": "mass / (d_mean * h * b)",
     "driving_torque": "work_per_cycle / cycle_angle", "h": "d_outer - d_inner",
     # section 14, the drive: ratios of speeds, M_n = P_n / omega_n, inertias, the run-up, masses, price
     "motor_ratio": "omega / omega_mean", "flywheel_ratio": "omega / omega_mean",
