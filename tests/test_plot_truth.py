@@ -214,6 +214,40 @@ def test_motor_torque_is_drawn_along_the_periodic_solution(drawn):
     assert math.isclose(-labels[0], swing, rel_tol=2e-3)      # the deficit: ω from its highest to its lowest
 
 
+def test_a_constant_solved_with_the_periodic_solution_is_drawn_with_its_correction(write_scene):
+    """An unknown driving constant against a load that depends on speed: the periodic model holds the
+    mean speed by correcting the balancing constant. The torques drawn must be those it integrated:
+    the kinetic energy of the solution, ½ J ω² (constant J), changes by ∫(M_d − M_r) dφ of the drawn
+    curves at every angle (the equation of motion, docs/flywheel-design.md, section 7)."""
+    import flyopt
+    from flyopt.report import plots
+
+    scene = flyopt.load(write_scene("""title = "Balanced drive against a speed-dependent load"
+[machine]
+speed = "120 rpm"
+delta = 0.1
+inertia = "2 kg*m^2"
+[torque.driving]
+constant = "unknown"
+[torque.resisting]
+expression = "100 + 300*max(0, sin(phi))**2 + 2*omega"
+unit = "N*m"
+"""))
+    analysis = flyopt.analyse(scene)
+    solution = analysis.requirement.detail.solution
+    assert analysis.model == "dynamic" and solution.torque_offset != 0.0
+    ax = plots.plot_turning_moment(scene, analysis, units="si")
+    phi = np.asarray(_line(ax, "driving").get_xdata())
+    net = np.asarray(_line(ax, "driving").get_ydata()) - np.asarray(_line(ax, "resisting").get_ydata())
+    from scipy.integrate import cumulative_trapezoid
+
+    energy = 0.5 * (analysis.machine.j_machine + solution.j_flywheel) * np.asarray(solution.omega) ** 2
+    swing = np.ptp(energy)
+    np.testing.assert_allclose(cumulative_trapezoid(net, phi, initial=0.0), energy - energy[0], rtol=0,
+                               atol=2e-5 * swing)
+    assert "(constant, solved with the periodic solution)" in _legend_text(ax)
+
+
 @pytest.mark.parametrize("scene", ["slider-crank-press", "four-cylinder-engine", "shear-press", "motor-press",
                                    "engine-members"])
 def test_area_labels_sit_clear_of_the_curves(drawn, scene):

@@ -149,14 +149,23 @@ def _legend(ax, own, title=None, ncol=2, handles=None):
         wrap, title_wrap = chars // ncol - 8, chars - 4
     else:
         ncol, wrap, title_wrap = 1, 40, 40
-    labels = [textwrap.fill(label, wrap) for label in labels]
+    labels = [_fill(label, wrap) for label in labels]
     if title:
-        title = textwrap.fill(title, title_wrap)
+        title = _fill(title, title_wrap)
     if own:
         return ax.figure.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=_FONT,
                                 title=title, title_fontsize=_FONT, frameon=False)
     return ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
                      fontsize=_FONT, title=title, title_fontsize=_FONT, frameon=False)
+
+
+def _fill(text, width):
+    """Wrap a line to ``width`` characters, never between a number and its unit ("0 mm", "1,512 rpm"),
+    nor inside "name = value"."""
+    import re
+
+    kept = re.sub(r"(\d) (?=[^\s(=+−-])", "\\1\u00a0", text).replace(" = ", "\u00a0=\u00a0")
+    return textwrap.fill(kept, width).replace("\u00a0", " ")
 
 
 def _angle_axis(ax, cycle_angle, units):
