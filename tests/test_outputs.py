@@ -576,7 +576,8 @@ def test_pareto_files_record_their_objectives_and_plot_needs_no_x(tmp_path, caps
 
     drawn = []
     original = plots.plot_pareto
-    monkeypatch.setattr(plots, "plot_pareto", lambda frame, x, y, ax=None: drawn.append(x) or original(frame, x, y))
+    monkeypatch.setattr(plots, "plot_pareto",
+                        lambda frame, x, y, ax=None, **kw: drawn.append(x) or original(frame, x, y, **kw))
     for suffix in ("parquet", "csv", "json"):
         out = tmp_path / f"front.{suffix}"
         assert main(["pareto", str(PROBLEMS / "punch-press.toml"), "--objectives", "mass,delta",
