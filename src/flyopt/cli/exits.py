@@ -37,6 +37,17 @@ EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141
 
 
+def solution_exit(solution):
+    """The exit status of a solved scene (``flyopt solve``, ``flyopt report``): 3 infeasible,
+    4 a verification (of the flywheel or of the drive) flagged, else 0."""
+    if solution.status == "infeasible":
+        return EXIT_INFEASIBLE
+    for check in (solution.verification, getattr(solution, "drive_check", None)):
+        if check is not None and check.flagged:
+            return EXIT_FLAGGED
+    return EXIT_OK
+
+
 def fail(message, status):
     """Say ``message`` in one line on stderr and return ``status``."""
     print(f"flyopt: error: {_one_line(message)}", file=sys.stderr)

@@ -20,7 +20,7 @@ file and the field), 3 infeasible (the report is still written and says
 so), 4 the verification flagged the design (written, and says so).
 """
 
-from flyopt.cli.exits import EXIT_FLAGGED, EXIT_INFEASIBLE, EXIT_OK
+from flyopt.cli.exits import solution_exit
 
 #: The report's formats, by the suffix of the output file.
 FORMATS = {".html": "html", ".htm": "html", ".pdf": "pdf"}
@@ -76,14 +76,7 @@ def run_report(args):
     for failure in document.failures:
         print(f"flyopt: warning: {args.scene}: diagram {failure}", file=sys.stderr)
     print(f"wrote {args.output}")
-    solution = inputs.solution
-    if solution.status == "infeasible":
-        return EXIT_INFEASIBLE
-    if solution.verification is not None and solution.verification.flagged:
-        return EXIT_FLAGGED
-    if solution.drive_check is not None and solution.drive_check.flagged:
-        return EXIT_FLAGGED
-    return EXIT_OK
+    return solution_exit(inputs.solution)
 
 
 def write(document, path, kind):

@@ -1,6 +1,6 @@
 """``flyopt solve`` and ``flyopt check``: one scene, analysed and designed or checked."""
 
-from flyopt.cli.exits import EXIT_FLAGGED, EXIT_INFEASIBLE, EXIT_OK
+from flyopt.cli.exits import EXIT_OK, solution_exit
 from flyopt.report import display
 
 
@@ -61,13 +61,7 @@ def run_solve(args):
             lines += verification_report(solution.verification, units=args.units)
         text = "\n".join(lines)
     print(text)
-    if solution.status == "infeasible":
-        return EXIT_INFEASIBLE
-    if solution.verification is not None and solution.verification.flagged:
-        return EXIT_FLAGGED
-    if solution.drive_check is not None and solution.drive_check.flagged:
-        return EXIT_FLAGGED
-    return EXIT_OK
+    return solution_exit(solution)
 
 
 def add_check_arguments(parser):
