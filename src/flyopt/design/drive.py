@@ -469,8 +469,10 @@ def _thermal_flywheel(machine, motor, ratio, omega, j_low, rated, guess=None):
             break
     else:
         return None
-    j = brentq(excess, j_low, high, rtol=THERMAL_RTOL, xtol=1e-14 * high)
-    return j * (1 + THERMAL_RTOL) if excess(j) > 0 else j
+    xtol = 1e-14 * high
+    j = brentq(excess, j_low, high, rtol=THERMAL_RTOL, xtol=xtol)
+    # Brent stops within 2 (xtol + rtol |j|) of the root: that far above it the limit holds
+    return j + 2.0 * (xtol + THERMAL_RTOL * j)
 
 
 def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, solver_options):
@@ -484,9 +486,14 @@ def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, s
     if j_need <= 0:
         return None, None
 
+    designs = {}            # r -> DesignResult: the scan, the minimization and the tie-break revisit ratios
+
     def design(r):
-        return design_flywheel(j_need, omega_max, [MountShaft(FLYWHEEL_SHAFT, r)], materials, spec,
-                               solver_options=solver_options, torque=torque)
+        r = float(r)
+        if r not in designs:
+            designs[r] = design_flywheel(j_need, omega_max, [MountShaft(FLYWHEEL_SHAFT, r)], materials, spec,
+                                         solver_options=solver_options, torque=torque)
+        return designs[r]
 
     def mass(r):
         best = design(r).best
@@ -573,7 +580,7 @@ def design_drive(scene, analysis=None, *, solver_options=None, every_size=False)
                                   f"{load!r} N*m")
     inputs = design_inputs(scene)
     ratios = ("range", *spec.ratio_range) if spec.ratios is None else ("fixed", *spec.ratios)
-    motors = sorted(spec.motors, key=lambda m: m.rated_power)
+    motors = spec.motors.motors               # a Catalogue keeps its sizes in increasing rated power
     done = {}
 
     def evaluate(k):
@@ -588,7 +595,7 @@ def design_drive(scene, analysis=None, *, solver_options=None, every_size=False)
         for k in range(len(motors)):
             evaluate(k)
     else:
-        _neighbours(motors, relaxation.rated_power, evaluate, done)
+        _neighbours(spec.motors, relaxation.rated_power, evaluate, done)
     runs = tuple(done[k] for k in sorted(done))
     ranked = sorted((r for r in runs if r.feasible and r.objective is not None),
                     key=lambda r: (r.objective, r.motor.rated_power))
@@ -627,14 +634,7 @@ def _relaxation(scene, analysis, spec, motors, inputs, load):
     return best, "the catalogue sizes around the relaxed optimum solved exactly"
 
 
-def spec_motors_neighbours(motors, power):
-    """(below, above) of the catalogue's own rule (:meth:`flyopt.machine.catalogue.Catalogue.neighbours`)."""
-    from flyopt.machine.catalogue import Catalogue
-
-    return Catalogue("sizes", tuple(motors)).neighbours(power)
-
-
-def _neighbours(motors, power, evaluate, done):
+def _neighbours(catalogue, power, evaluate, done):
     """Solve the sizes either side of the relaxed rating, then walk on while the best is at an end.
 
     Below the relaxed rating the motor is smaller than the continuous optimum
@@ -642,7 +642,8 @@ def _neighbours(motors, power, evaluate, done):
     fitted laws mislead, so the search moves on past an end of the solved
     block as long as the best (or, when none is feasible yet, any) lies there.
     """
-    below, above = spec_motors_neighbours(motors, power)
+    motors = catalogue.motors                 # in increasing rated power
+    below, above = catalogue.neighbours(power)
     for motor in (below, above):
         if motor is not None:
             evaluate(motors.index(motor))
