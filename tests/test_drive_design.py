@@ -259,3 +259,20 @@ def test_relaxation_sensitivities_against_central_differences():
         assert sens[limit] == pytest.approx(fd, rel=2e-5, abs=1e-8 * base.objective), limit
         binding += abs(fd) > 1e-6 * base.objective
     assert binding == 4                    # delta, run-up, ratio and envelope bind; the rim speed does not
+
+
+def test_the_relaxation_is_built_once_per_machine():
+    """Another material or limit solves the relaxation again without building its NLP (limits are parameters)."""
+    from flyopt.analysis import analyse
+    from flyopt.design import drive_nlp
+
+    scene = _scene()
+    analysis = analyse(scene)
+    fit = CatalogueFit.of(OPTIONS)
+    before = drive_nlp.BUILDS["count"]
+    first = drive_nlp.relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, scene.drive,
+                            (50.0, 0.6, None), analysis.driving_torque)
+    second = drive_nlp.relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, scene.drive,
+                             (36.0, 0.6, None), analysis.driving_torque)
+    assert drive_nlp.BUILDS["count"] == before + 1
+    assert first.status == second.status == "Solve_Succeeded"

@@ -141,29 +141,45 @@ def _law(fit, lnp, ca):
     return ca.exp(a + b * lnp)
 
 
-def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque):
-    """Solve the relaxation (:class:`Relaxation`).
+#: Builds of the relaxation's NLP (a test checks that a second solve on the same machine builds none).
+BUILDS = {"count": 0}
 
-    Parameters
-    ----------
-    machine : flyopt.machine.reduce.Machine
-        The scene reduced (its resisting torque and J_e; the driving torque is the motor's).
-    omega_mean, delta, efficiency : float
-    fit : CatalogueFit
-    spec : DriveSpec
-    wheel : (density-free) tuple (v_max [m/s], R_envelope [m] or inf, cost_per_kg or None)
-        The wheel's limits: its material's safe rim speed, half the envelope.
-    load_torque : float
-        Mean load torque at the crank [N*m] (for the first guess).
 
-    Raises
-    ------
-    SolverFailed
-        IPOPT did not converge.
+@dataclass(frozen=True)
+class _Model:
+    """The relaxation's NLP for one machine, catalogue fit and structure; its limits are parameters."""
+
+    solver: object
+    values: object          # x, par -> (P, i, r, J_F, objective)
+    n: int                  # collocation intervals
+    rows: tuple             # row sizes, in order
+    rim_row: int
+    startup_row: int | None
+    scale: float            # of the objective
+    extra_lo: tuple
+    extra_hi: tuple
+    extra_x0: tuple
+    lbg: np.ndarray
+    ubg: np.ndarray
+
+
+def _model(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque):
+    """The relaxation's NLP, built once per machine and structure (kept in the machine's cache).
+
+    Parameters of the NLP: ``par`` = (δ, v_max [m/s], cost per kg, max_startup [s], J scale [kg*m^2]).
     """
+    key = ("drive_relaxation", fit, float(omega_mean), float(efficiency), bool(thermal), bool(startup),
+           objective_name, float(load_torque))
+    cache = machine._cache
+    if key not in cache:
+        cache[key] = _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque)
+        BUILDS["count"] += 1
+    return cache[key]
+
+
+def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque):
     import casadi as ca
 
-    v_max, r_env, cost_per_kg = wheel
     cycle = machine.cycle_angle
     resisting = machine.angle_only().resisting
     knots = np.asarray(machine.knots(), dtype=float)
@@ -176,7 +192,8 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
 
     lnp, i_m, jf, r, big_r = (ca.SX.sym(name) for name in ("lnp", "i_m", "jf", "r", "R"))
     w = ca.SX.sym("w", n)                     # ω_k / ω_m, k = 0..n-1
-    j_scale = max(load_torque * cycle / (omega_mean**2 * delta), 1e-6)   # J_F = j_scale * jf
+    par = ca.SX.sym("par", 5)
+    delta, v_max, cost_per_kg, t_max, j_scale = (par[k] for k in range(5))   # J_F = j_scale * jf
     rows = []                                 # (expression, lower, upper)
 
     p = ca.exp(lnp)
@@ -201,7 +218,7 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
     rows.append(((energy[1:] - energy[:-1] - ca.DM(h) / 2 * (net_a + net_b)) / e_scale, 0.0, 0.0))
     rows.append((i_m * w - w0 * (1 - s_b) / omega_mean, 0.0, math.inf))        # above breakdown
     extra, extra_lo, extra_hi, extra_x0 = [], [], [], []
-    if spec.thermal:
+    if thermal:
         # ∫M² dt and ∫dt as variables of their own: their ratio written directly would couple every node
         # in a dense Hessian
         squares, period = ca.SX.sym("squares"), ca.SX.sym("period")
@@ -218,59 +235,95 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
         extra_x0 += [1.0, 1.0]
     s_e = 1 - i_m * omega_mean / w0
     rows.append((s_e, 1e-6, math.inf))
-    if spec.max_startup is not None:
+    startup_row = None
+    if startup:
         j_total = float(np.mean(j_e[:-1])) + j_rot * i_m**2 + j_f
         run = kloss_runup_time(j_total, i_m, efficiency, k * m_n, s_b, w0, omega_mean, ca)
-        rows.append((run / spec.max_startup, -math.inf, 1.0))
+        rows.append((run / t_max, -math.inf, 1.0))
         startup_row = len(rows) - 1
     omega_top = omega_mean * (1 + delta / 2)
     rows.append((r * big_r * omega_top / v_max, -math.inf, 1.0))
     rim_row = len(rows) - 1
-    lo, hi = spec.ratio_range if spec.ratios is None else (min(spec.ratios), max(spec.ratios))
-    radius_cap = min(r_env, v_max / (lo * omega_top))
     wheel_mass = j_f / (r**2 * big_r**2)
-    if spec.objective == "cost":
+    if objective_name == "cost":
         objective = _law(fit.price, lnp, ca) + cost_per_kg * wheel_mass
         scale = float(_law(fit.price, math.log(fit.p_max), np))
     else:
         objective = _law(fit.mass, lnp, ca) + wheel_mass
         scale = float(_law(fit.mass, math.log(fit.p_max), np))
-
     x = ca.vertcat(lnp, i_m, jf, r, big_r, w, *extra)
-    lbx = [math.log(fit.p_min), 1e-9, 0.0, lo, 1e-6 * radius_cap] + [1 - delta / 2] * n + extra_lo
-    ubx = [math.log(fit.p_max), math.inf, math.inf, hi, radius_cap] + [1 + delta / 2] * n + extra_hi
     g = ca.vertcat(*(row[0] for row in rows))
-    lbg = np.concatenate([np.full(row[0].shape[0], row[1]) for row in rows])
-    ubg = np.concatenate([np.full(row[0].shape[0], row[2]) for row in rows])
+    solver = ca.nlpsol("drive", "ipopt", {"x": x, "p": par, "f": objective / scale, "g": g},
+                       {"print_time": False, "ipopt.print_level": 0, "ipopt.sb": "yes",
+                        "ipopt.max_iter": 3000, "ipopt.tol": 1e-10})
+    return _Model(solver=solver, values=ca.Function("values", [x, par], [p, i_m, r, j_f, objective]), n=n,
+                  rows=tuple(row[0].shape[0] for row in rows), rim_row=rim_row, startup_row=startup_row,
+                  scale=scale, extra_lo=tuple(extra_lo), extra_hi=tuple(extra_hi), extra_x0=tuple(extra_x0),
+                  lbg=np.concatenate([np.full(row[0].shape[0], row[1]) for row in rows]),
+                  ubg=np.concatenate([np.full(row[0].shape[0], row[2]) for row in rows]))
 
+
+def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque):
+    """Solve the relaxation (:class:`Relaxation`).
+
+    The NLP is built once per machine, catalogue fit and structure (thermal,
+    start-up, objective); δ, the wheel's limits and ``max_startup`` enter as
+    parameters and bounds, so another material or limit solves it again
+    without building it.
+
+    Parameters
+    ----------
+    machine : flyopt.machine.reduce.Machine
+        The scene reduced (its resisting torque and J_e; the driving torque is the motor's).
+    omega_mean, delta, efficiency : float
+    fit : CatalogueFit
+    spec : DriveSpec
+    wheel : (density-free) tuple (v_max [m/s], R_envelope [m] or inf, cost_per_kg or None)
+        The wheel's limits: its material's safe rim speed, half the envelope.
+    load_torque : float
+        Mean load torque at the crank [N*m] (scales and the first guess).
+
+    Raises
+    ------
+    SolverFailed
+        IPOPT did not converge.
+    """
+    v_max, r_env, cost_per_kg = wheel
+    model = _model(machine, omega_mean, efficiency, fit, spec.thermal, spec.max_startup is not None,
+                   spec.objective, load_torque)
+    n, w0 = model.n, fit.synchronous_speed
+    j_scale = max(load_torque * machine.cycle_angle / (omega_mean**2 * delta), 1e-6)
+    par = [delta, v_max, cost_per_kg or 0.0, spec.max_startup or 1.0, j_scale]
+    omega_top = omega_mean * (1 + delta / 2)
+    lo, hi = spec.ratio_range if spec.ratios is None else (min(spec.ratios), max(spec.ratios))
+    radius_cap = min(r_env, v_max / (lo * omega_top))
+    lbx = [math.log(fit.p_min), 1e-9, 0.0, lo, 1e-6 * radius_cap] + [1 - delta / 2] * n + list(model.extra_lo)
+    ubx = [math.log(fit.p_max), math.inf, math.inf, hi, radius_cap] + [1 + delta / 2] * n + list(model.extra_hi)
     # first guess: twice the mean power, the ratio of the work balance, a flywheel of the energy method
     p0 = min(max(2 * load_torque * omega_mean / efficiency, fit.p_min), fit.p_max)
     sn0 = float(_law(fit.slip, math.log(p0), np))
     x0 = [math.log(p0), w0 * (1 - 0.5 * sn0) / omega_mean, 1.0, hi,
-          min(r_env, 0.9 * v_max / (hi * omega_top))] + [1.0] * n + extra_x0
-    solver = ca.nlpsol("drive", "ipopt", {"x": x, "f": objective / scale, "g": g},
-                       {"print_time": False, "ipopt.print_level": 0, "ipopt.sb": "yes",
-                        "ipopt.max_iter": 3000, "ipopt.tol": 1e-10})
+          min(r_env, 0.9 * v_max / (hi * omega_top))] + [1.0] * n + list(model.extra_x0)
+    solver = model.solver
     try:
         with quiet():
-            found = solver(x0=x0, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
+            found = solver(x0=x0, p=par, lbx=lbx, ubx=ubx, lbg=model.lbg, ubg=model.ubg)
     except RuntimeError as err:
         raise SolverFailed(f"the drive's relaxation did not converge: {err}") from None
     status = solver.stats()["return_status"]
     if status not in _ACCEPTED:
         raise SolverFailed(f"the drive's relaxation did not converge: {status}")
-    values = ca.Function("values", [x], [p, i_m, r, j_f, objective])(found["x"])
-    p, i_m, r, j_f, objective = (float(v) for v in values)
+    p, i_m, r, j_f, objective = (float(v) for v in model.values(found["x"], par))
     # d(objective)/d(limit) from the multipliers (CasADi: d f*/d ubx = -lam_x where lam_x > 0, d f*/d lbx =
     # -lam_x where lam_x < 0; a row g(x; limit) <= 1 adds lam_g dg/dlimit), times the objective's scale
-    lam_x = np.asarray(found["lam_x"]).ravel() * scale
-    lam_g = np.asarray(found["lam_g"]).ravel() * scale
-    starts = np.cumsum([0] + [row[0].shape[0] for row in rows])
+    lam_x = np.asarray(found["lam_x"]).ravel() * model.scale
+    lam_g = np.asarray(found["lam_g"]).ravel() * model.scale
+    starts = np.cumsum((0,) + model.rows)
     g_value = np.asarray(found["g"]).ravel()
-    rim = starts[rim_row]
+    rim = starts[model.rim_row]
     sens = {}
-    if spec.max_startup is not None:
-        k = starts[startup_row]
+    if model.startup_row is not None:
+        k = starts[model.startup_row]
         sens["max_startup"] = -lam_g[k] * g_value[k] / spec.max_startup
     sens["rim_speed"] = -lam_g[rim] * g_value[rim] / v_max
     if spec.ratios is None:
