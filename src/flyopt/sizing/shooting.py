@@ -107,9 +107,10 @@ def _functions(model, substeps):
     """CasADi functions of one chunk of pieces with ``substeps`` RK4 steps per grid interval (cached).
 
     ``"plain", size``: (x0, q, data) -> (x_end, X) with X the states at every
-    output of every piece (2 × size·outputs); ``"jacobian", size``: the same and
-    ∂X[0]/∂(y0, J_F, E_ref, c). q = [J_F, E_ref, W_s, c]; data = [φ_a, φ_b, M_a, M_b]
-    of each piece (4 × size).
+    output of every piece (2 × size·outputs); ``"jacobian", size``: the same
+    with the states carrying their forward sensitivities, x = [y, stall,
+    ∂(y, stall)/∂J_F, ∂(y, stall)/∂E_ref, ∂(y, stall)/∂c] (8 rows). q = [J_F,
+    E_ref, W_s, c]; data = [φ_a, φ_b, M_a, M_b] of each piece (4 × size).
     """
     structure = model.__dict__.get("_structure")
     if structure is None:
@@ -123,7 +124,6 @@ def _functions(model, substeps):
         return _STRUCTURES[key]
     if len(_STRUCTURES) >= MAX_STRUCTURES:
         _STRUCTURES.pop(next(iter(_STRUCTURES)))
-    cache = _STRUCTURES
     BUILDS["fixed-step function"] += 1
     rhs = model._rhs(False)
     f = ca.Function("f", [rhs["t"], rhs["x"], rhs["p"]], [rhs["ode"]])
@@ -134,44 +134,44 @@ def _functions(model, substeps):
     k2 = f(t + h / 2, x + h / 2 * k1, p)
     k3 = f(t + h / 2, x + h / 2 * k2, p)
     k4 = f(t + h, x + h * k3, p)
-    rk4 = ca.Function("rk4", [x, p, t], [x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)])
-    if substeps == 1:
-        interval = rk4
-    else:   # the steps of one grid interval as a loop, not unrolled: the graph stays small
-        steps = rk4.mapaccum("steps", substeps)
-        xm, pm, t0 = ca.MX.sym("x", 2), ca.MX.sym("p", 8), ca.MX.sym("t0")
-        times = t0 + ca.DM(np.arange(substeps, dtype=float).reshape(1, -1) * h)
-        interval = ca.Function("interval", [xm, pm, t0], [steps(xm, pm, times)[:, -1]])
-    along = interval.mapaccum("along", outputs)
+    x_next = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    # the same step with its tangent: S' = ∂x'/∂x S + ∂x'/∂(J_F, E_ref, c), exactly CasADi's
+    # forward derivative of the discrete steps, carried as states so that one SX loop computes
+    # both (an MX Jacobian of the chained steps costs several times more)
+    sens = ca.SX.sym("s", 6)
+    wrt = [p[2], p[3]] + ([p[5]] if model.balanced else [])
+    source = ca.jacobian(x_next, ca.vertcat(*wrt))
+    if not model.balanced:
+        source = ca.horzcat(source, ca.SX.zeros(2, 1))
+    s_next = ca.jacobian(x_next, x) @ ca.reshape(sens, 2, 3) + source
+    steps = {"plain": (x, ca.Function("rk4", [x, p, t], [x_next])),
+             "jacobian": (ca.vertcat(x, sens),
+                          ca.Function("rk4_tangent", [ca.vertcat(x, sens), p, t],
+                                      [ca.vertcat(x_next, ca.reshape(s_next, 6, 1))]))}
     starts = ca.DM(np.arange(outputs, dtype=float).reshape(1, -1) / outputs)
-
-    x0, q, data = ca.MX.sym("x0", 2), ca.MX.sym("q", 4), ca.MX.sym("data", 4)
-    states = along(x0, ca.vertcat(data[0], data[1], q, data[2], data[3]), starts)
-    piece = ca.Function("piece", [x0, q, data], [states[:, -1], ca.horzcat(x0, states)]).expand()
-    cache[key] = {"piece": piece, "chunks": {}}
-    return cache[key]
+    functions = {"chunks": {}}
+    for kind, (state, rk4) in steps.items():
+        n = state.shape[0]
+        if substeps == 1:
+            interval = rk4
+        else:   # the steps of one grid interval as a loop, not unrolled: the graph stays small
+            loop = rk4.mapaccum("steps", substeps)
+            xm, pm, t0 = ca.MX.sym("x", n), ca.MX.sym("p", 8), ca.MX.sym("t0")
+            times = t0 + ca.DM(np.arange(substeps, dtype=float).reshape(1, -1) * h)
+            interval = ca.Function("interval", [xm, pm, t0], [loop(xm, pm, times)[:, -1]])
+        along = interval.mapaccum("along", outputs)
+        x0, q, data = ca.MX.sym("x0", n), ca.MX.sym("q", 4), ca.MX.sym("data", 4)
+        states = along(x0, ca.vertcat(data[0], data[1], q, data[2], data[3]), starts)
+        functions[kind] = ca.Function("piece", [x0, q, data], [states[:, -1], ca.horzcat(x0, states)]).expand()
+    _STRUCTURES[key] = functions
+    return functions
 
 
 def _chunk(model, substeps, kind, size):
     functions = _functions(model, substeps)
     key = (kind, size)
     if key not in functions["chunks"]:
-        chain = functions["piece"].mapaccum(f"pieces_{size}", size)
-        if kind == "plain":
-            functions["chunks"][key] = chain
-        else:
-            y0, s0 = ca.MX.sym("y0"), ca.MX.sym("s0")
-            qs = [ca.MX.sym(name) for name in ("j_f", "e_ref", "w_s", "c")]
-            ds = ca.MX.sym("data", 4, size)
-            end, states = chain(ca.vertcat(y0, s0), ca.vertcat(*qs), ds)
-            # the directions needed: the chunk's start (to chain chunks), J_F, E_ref and,
-            # with a balancing constant, c; the others are zero columns
-            wrt = [y0, qs[0], qs[1]] + ([qs[3]] if model.balanced else [])
-            jac = ca.jacobian(states[0, :].T, ca.vertcat(*wrt))
-            if not model.balanced:
-                jac = ca.horzcat(jac, ca.MX.zeros(jac.shape[0], 1))
-            functions["chunks"][key] = ca.Function(
-                f"pieces_jac_{size}", [ca.vertcat(y0, s0), ca.vertcat(*qs), ds], [end, states, jac])
+        functions["chunks"][key] = functions[kind].mapaccum(f"pieces_{kind}_{size}", size)
     return functions["chunks"][key]
 
 
@@ -186,27 +186,18 @@ def cycle(model, substeps, j_flywheel, e_ref, w_s, offset, derivatives):
         ∂y/∂(J_F, E_ref, c) on the grid (with ``derivatives``).
     """
     q = [j_flywheel, e_ref, w_s, offset]
-    x = np.zeros(2)
-    d0 = np.zeros(3)           # total derivative of the chunk's starting y
-    ys, jacs = [], []
+    kind = "jacobian" if derivatives else "plain"
+    x = np.zeros(8 if derivatives else 2)   # the sensitivities start at zero with y
+    parts = []
     for _, data in model._chunked():
-        size = data.shape[1]
-        if derivatives:
-            end, states, jac = _chunk(model, substeps, "jacobian", size)(x, q, data)
-            jac = np.asarray(jac, dtype=float)
-            # y enters a chunk only through its start: chain the start's derivatives in
-            total = jac[:, 1:] + np.outer(jac[:, 0], d0)
-            jacs.append(total)
-        else:
-            end, states = _chunk(model, substeps, "plain", size)(x, q, data)
-        states = np.asarray(states, dtype=float)
-        ys.append(states[0])
+        end, states = _chunk(model, substeps, kind, data.shape[1])(x, q, data)
+        parts.append(np.asarray(states, dtype=float))
         x = np.asarray(end, dtype=float)[:, -1]
-        if derivatives:
-            d0 = total[-1]
+    states = np.concatenate(parts, axis=1)
     shape = (len(model.pieces), len(model.tau))
-    y = np.concatenate(ys).reshape(shape)
-    jac = np.concatenate(jacs).reshape(shape + (3,)) if derivatives else None
+    y = states[0].reshape(shape)
+    # rows 2, 4, 6: ∂y/∂J_F, ∂y/∂E_ref, ∂y/∂c (the sensitivities are stored column by column)
+    jac = states[2::2].T.reshape(shape + (3,)) if derivatives else None
     return y, jac
 
 
