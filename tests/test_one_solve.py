@@ -177,3 +177,59 @@ def test_fixed_steps_are_refined_until_halving_them_changes_nothing(monkeypatch)
     reference = by_cvodes(monkeypatch, args)
     periodic._MODELS.clear()
     assert math.isclose(fast.j_required, reference.j_required, rel_tol=1e-8)
+
+
+def test_buffered_call_equals_casadis_own_call_for_matrices():
+    """_numerics.call (CasADi buffers into numpy) against CasADi's ordinary call, on inputs and
+    outputs that are not square, so a row/column mix-up cannot pass."""
+    import casadi as ca
+    import numpy as np
+
+    from flyopt.sizing._numerics import call, evaluate
+
+    a, b = ca.SX.sym("a", 2, 3), ca.SX.sym("b", 3)
+    f = ca.Function("f", [a, b], [ca.mtimes(a, b), ca.sin(a).T, ca.sum1(a) * 2])
+    rng = np.random.default_rng(1)
+    a0, b0 = rng.normal(size=(2, 3)), rng.normal(size=3)
+    got = call(f, a0, b0)
+    want = [np.asarray(o, dtype=float) for o in f(a0, b0)]
+    assert got[0].shape == (2,) and got[1].shape == (3, 2) and got[2].shape == (1, 3)
+    assert_allclose(got[0], want[0].ravel(), rtol=0, atol=0)
+    assert_allclose(got[1], want[1], rtol=0, atol=0)
+    assert_allclose(got[2], want[2], rtol=0, atol=0)
+    with pytest.raises(ValueError, match="input 1 has 2 numbers, 3 expected"):
+        call(f, a0, b0[:2])
+    # elementwise on a 2-D grid, against numpy directly
+    phi, omega = ca.SX.sym("phi"), ca.SX.sym("omega")
+    g = ca.Function("g", [phi, omega], [ca.sin(phi) * omega + phi**2])
+    grid = rng.uniform(0, 6, size=(4, 7))
+    speeds = rng.uniform(1, 9, size=(4, 1))
+    (value,) = evaluate(g, {}, grid, speeds)
+    assert_allclose(value, np.sin(grid) * speeds + grid**2, rtol=1e-15)
+
+
+def test_the_carried_tangent_is_the_derivative_of_the_discrete_cycle():
+    """shooting.cycle's ∂y/∂(J_F, E_ref) (forward sensitivities carried with the RK4 steps)
+    against central differences of the same discrete cycle without them."""
+    import numpy as np
+
+    machine = reduce(flyopt.load(PROBLEMS / "motor-press.toml"))
+    net = machine.net_torque()
+    model = periodic.periodic_model(net, machine.j_machine, machine.cycle_angle, machine.knots())
+    omega = machine.omega_mean
+    w_s = shooting.energy_swing(model, omega)
+    j_f = w_s / (omega**2 * 0.05)
+    e_ref = 0.5 * (j_f + float(model.inertia(0.0))) * omega**2
+    y, jac = shooting.cycle(model, 1, j_f, e_ref, w_s, 0.0, True)
+    plain, _ = shooting.cycle(model, 1, j_f, e_ref, w_s, 0.0, False)
+    assert_allclose(plain, y, rtol=0, atol=0)
+    for k, (value, step) in enumerate(((j_f, 1e-5 * j_f), (e_ref, 1e-5 * e_ref))):
+        args = [j_f, e_ref]
+        args[k] = value + step
+        up, _ = shooting.cycle(model, 1, *args, w_s, 0.0, False)
+        args[k] = value - step
+        down, _ = shooting.cycle(model, 1, *args, w_s, 0.0, False)
+        central = (up - down) / (2 * step)
+        scale = np.max(np.abs(central))
+        assert scale > 0
+        assert np.max(np.abs(jac[..., k] - central)) <= 1e-7 * scale

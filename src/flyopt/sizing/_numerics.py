@@ -111,6 +111,41 @@ class Inertia:
         return pair if which is None else pair[which]
 
 
+def call(function, *args):
+    """Evaluate a CasADi Function on numpy inputs into numpy outputs.
+
+    The inputs are copied once into column-major buffers and the outputs
+    written straight into numpy arrays (CasADi's ``buffer``), without the DM
+    conversions of an ordinary call, which cost more than the evaluation for
+    the small functions of the sizing models. Each input must hold as many
+    numbers as the function's (dense) input; the outputs come back in their
+    own shapes (a column vector as a 1-D array). A function with a sparse input or
+    output is called the ordinary way.
+    """
+    if not all(function.sparsity_in(i).is_dense() for i in range(function.n_in())) or \
+            not all(function.sparsity_out(i).is_dense() for i in range(function.n_out())):
+        out = function(*args)
+        out = out if isinstance(out, tuple) else (out,)
+        return tuple(np.asarray(o, dtype=float) for o in out)
+    buffer, run = function.buffer()
+    inputs = []
+    for i, a in enumerate(args):
+        flat = np.asarray(a, dtype=float).ravel(order="F")
+        if flat.size != function.nnz_in(i):
+            raise ValueError(f"{function.name()}: input {i} has {flat.size} numbers, {function.nnz_in(i)} expected")
+        flat = np.ascontiguousarray(flat)
+        inputs.append(flat)                    # the buffer keeps no reference: these must live
+        buffer.set_arg(i, memoryview(flat))
+    outputs = []
+    for i in range(function.n_out()):
+        rows, cols = function.size_out(i)
+        out = np.empty(rows * cols)
+        buffer.set_res(i, memoryview(out))
+        outputs.append(out.reshape((rows, cols), order="F") if cols > 1 else out)
+    run()
+    return tuple(outputs)
+
+
 def evaluate(function, maps, *args):
     """Evaluate a scalar CasADi Function elementwise on broadcast numpy arrays.
 
@@ -125,9 +160,7 @@ def evaluate(function, maps, *args):
         if len(maps) > 64:
             maps.clear()
         maps[n] = function.map(n) if n > 1 else function
-    out = maps[n](*(a.reshape(1, -1) for a in arrays))
-    out = out if isinstance(out, tuple) else (out,)
-    return tuple(np.asarray(o, dtype=float).reshape(shape) for o in out)
+    return tuple(o.reshape(shape) for o in call(maps[n], *(a.reshape(1, -1) for a in arrays)))
 
 
 def check_speed_delta(omega_mean, delta, delta_max=2.0):

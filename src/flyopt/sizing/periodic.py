@@ -254,6 +254,7 @@ class PeriodicModel:
         self.torque_slope_function = ca.Function("dM", [phi, omega], [ca.jacobian(m, omega)])
         self._maps = {}
         self._chunks = {}
+        self._table_values = {}
 
     def table_at(self, a, b):
         """The table's values at the ends of pieces [a, b], seen from inside them [N*m], shape (n, 2)."""
@@ -363,9 +364,24 @@ class PeriodicModel:
 
     # -- numbers --------------------------------------------------------------
     def grid_angles(self):
-        """Angles of the simulation outputs, piece by piece, shape (pieces, outputs)."""
+        """Angles of the simulation outputs, piece by piece, shape (pieces, outputs) (read-only)."""
+        return self._grid
+
+    @cached_property
+    def _grid(self):
         a, b = self.pieces[:, :1], self.pieces[:, 1:]
-        return a + self.tau[None, :] * (b - a)
+        grid = a + self.tau[None, :] * (b - a)
+        grid.setflags(write=False)
+        return grid
+
+    @cached_property
+    def inner_angles(self):
+        """The output angles seen from inside each piece (:data:`EDGE` in from its ends), where the
+        torques are evaluated so that a step at a knot is taken from the correct side (read-only)."""
+        h = self.pieces[:, 1] - self.pieces[:, 0]
+        inner = self.pieces[:, :1] + np.clip(self.tau, EDGE, 1 - EDGE)[None, :] * h[:, None]
+        inner.setflags(write=False)
+        return inner
 
     def torque(self, phi, omega):
         """Net torque at numpy arrays (broadcast) [N*m]; on a knot, the value right of it."""
@@ -375,7 +391,19 @@ class PeriodicModel:
         else:
             values = evaluate(self.torque_function, self._maps, phi, omega)[0]
         if self.table is not None:
-            values = values + self.table.limits(np.broadcast_to(np.asarray(phi, dtype=float), values.shape))[1]
+            values = values + self._table_right(phi, values.shape)
+        return values
+
+    def _table_right(self, phi, shape):
+        """The table's values right of ``phi``, broadcast to ``shape``; kept for the model's own grids,
+        at which every solve evaluates the torque again and again."""
+        grid = (phi is self._grid or phi is self.inner_angles) and phi.shape == shape
+        if grid and id(phi) in self._table_values:
+            return self._table_values[id(phi)]
+        values = self.table.limits(np.broadcast_to(np.asarray(phi, dtype=float), shape))[1]
+        if grid:
+            values.setflags(write=False)
+            self._table_values[id(phi)] = values
         return values
 
     def falls_with_speed(self, omega):
@@ -413,9 +441,7 @@ class PeriodicModel:
     def absolute_work(self, omega):
         """∫ |M(φ, ω)| dφ over the cycle at speed ``omega`` [J] (trapezoid on the simulation grid)."""
         phi = self.grid_angles()
-        h = self.pieces[:, 1] - self.pieces[:, 0]
-        m = np.abs(self.torque(self.pieces[:, :1] + np.clip(self.tau, EDGE, 1 - EDGE)[None, :] * h[:, None],
-                               omega))
+        m = np.abs(self.torque(self.inner_angles, omega))
         return float(np.sum(0.5 * (m[:, 1:] + m[:, :-1]) * np.diff(phi, axis=1)))
 
     def trajectory(self, j_flywheel, e_ref, w_s, offset=0.0):
@@ -453,17 +479,13 @@ class PeriodicModel:
             q and dq are None when the energy is not positive everywhere.
         """
         phi = self.grid_angles()
-        h = self.pieces[:, 1] - self.pieces[:, 0]
         j = self.inertia(phi) + j_flywheel
         dj = self.inertia.derivative(phi)
         energy = e_ref + w_s * (y + shift)
         if np.any(energy <= 0):
             return phi, None, None, energy
         q = energy / j
-        # torques seen from inside each piece (a step at a knot from the correct side)
-        tau_t = np.clip(self.tau, EDGE, 1 - EDGE)
-        phi_t = self.pieces[:, :1] + tau_t[None, :] * h[:, None]
-        m = self.torque(phi_t, np.sqrt(2 * q)) + offset
+        m = self.torque(self.inner_angles, np.sqrt(2 * q)) + offset
         return phi, q, (m * j - energy * dj) / j**2, energy
 
 

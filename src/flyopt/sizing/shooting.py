@@ -53,7 +53,7 @@ import casadi as ca
 import numpy as np
 
 from flyopt.errors import SolverFailed
-from flyopt.sizing._numerics import EPS, evaluate, hermite_extremes
+from flyopt.sizing._numerics import EPS, call, evaluate, hermite_extremes
 
 BUILDS = Counter()
 """CasADi structures built, by kind; :data:`flyopt.sizing.periodic.BUILDS` is this counter."""
@@ -106,11 +106,11 @@ MAX_STRUCTURES = 32
 def _functions(model, substeps):
     """CasADi functions of one chunk of pieces with ``substeps`` RK4 steps per grid interval (cached).
 
-    ``"plain", size``: (x0, q, data) -> (x_end, X) with X the states at every
-    output of every piece (2 × size·outputs); ``"jacobian", size``: the same
-    with the states carrying their forward sensitivities, x = [y, stall,
-    ∂(y, stall)/∂J_F, ∂(y, stall)/∂E_ref, ∂(y, stall)/∂c] (8 rows). q = [J_F,
-    E_ref, W_s, c]; data = [φ_a, φ_b, M_a, M_b] of each piece (4 × size).
+    ``"plain", size``: (y0, q, data) -> (y_end, Y) with Y the scaled energy at
+    every output of every piece (1 × size·outputs); ``"jacobian", size``: the
+    same with y carrying its forward sensitivities, x = [y, ∂y/∂J_F, ∂y/∂E_ref,
+    ∂y/∂c] (4 rows). q = [J_F, E_ref, W_s, c]; data = [φ_a, φ_b, M_a, M_b] of
+    each piece (4 × size).
     """
     structure = model.__dict__.get("_structure")
     if structure is None:
@@ -126,28 +126,32 @@ def _functions(model, substeps):
         _STRUCTURES.pop(next(iter(_STRUCTURES)))
     BUILDS["fixed-step function"] += 1
     rhs = model._rhs(False)
-    f = ca.Function("f", [rhs["t"], rhs["x"], rhs["p"]], [rhs["ode"]])
+    # y alone: the stall measure (the model's second state) never enters dy/dτ and is not used here
+    f = ca.Function("f", [rhs["t"], rhs["x"], rhs["p"]], [rhs["ode"][0]])
     outputs = len(model.tau) - 1
     h = 1.0 / (outputs * substeps)
-    x, p, t = ca.SX.sym("x", 2), ca.SX.sym("p", 8), ca.SX.sym("t")
-    k1 = f(t, x, p)
-    k2 = f(t + h / 2, x + h / 2 * k1, p)
-    k3 = f(t + h / 2, x + h / 2 * k2, p)
-    k4 = f(t + h, x + h * k3, p)
-    x_next = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-    # the same step with its tangent: S' = ∂x'/∂x S + ∂x'/∂(J_F, E_ref, c), exactly CasADi's
-    # forward derivative of the discrete steps, carried as states so that one SX loop computes
-    # both (an MX Jacobian of the chained steps costs several times more)
-    sens = ca.SX.sym("s", 6)
+    y, p, t = ca.SX.sym("y"), ca.SX.sym("p", 8), ca.SX.sym("t")
+
+    def dydt(tau, value):
+        return f(tau, ca.vertcat(value, 0), p)
+
+    k1 = dydt(t, y)
+    k2 = dydt(t + h / 2, y + h / 2 * k1)
+    k3 = dydt(t + h / 2, y + h / 2 * k2)
+    k4 = dydt(t + h, y + h * k3)
+    y_next = y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    # the same step with its tangent: s' = ∂y'/∂y s + ∂y'/∂(J_F, E_ref, c), exactly the forward
+    # derivative of the discrete steps, carried as states so that one SX loop computes both
+    # (an MX Jacobian of the chained steps costs several times more)
+    sens = ca.SX.sym("s", 3)
     wrt = [p[2], p[3]] + ([p[5]] if model.balanced else [])
-    source = ca.jacobian(x_next, ca.vertcat(*wrt))
+    source = ca.jacobian(y_next, ca.vertcat(*wrt)).T
     if not model.balanced:
-        source = ca.horzcat(source, ca.SX.zeros(2, 1))
-    s_next = ca.jacobian(x_next, x) @ ca.reshape(sens, 2, 3) + source
-    steps = {"plain": (x, ca.Function("rk4", [x, p, t], [x_next])),
-             "jacobian": (ca.vertcat(x, sens),
-                          ca.Function("rk4_tangent", [ca.vertcat(x, sens), p, t],
-                                      [ca.vertcat(x_next, ca.reshape(s_next, 6, 1))]))}
+        source = ca.vertcat(source, 0)
+    s_next = ca.jacobian(y_next, y) * sens + source
+    steps = {"plain": (y, ca.Function("rk4", [y, p, t], [y_next])),
+             "jacobian": (ca.vertcat(y, sens),
+                          ca.Function("rk4_tangent", [ca.vertcat(y, sens), p, t], [ca.vertcat(y_next, s_next)]))}
     starts = ca.DM(np.arange(outputs, dtype=float).reshape(1, -1) / outputs)
     functions = {"chunks": {}}
     for kind, (state, rk4) in steps.items():
@@ -185,19 +189,20 @@ def cycle(model, substeps, j_flywheel, e_ref, w_s, offset, derivatives):
     jac : ndarray (pieces, outputs + 1, 3) or None
         ∂y/∂(J_F, E_ref, c) on the grid (with ``derivatives``).
     """
-    q = [j_flywheel, e_ref, w_s, offset]
+    q = np.array([[j_flywheel], [e_ref], [w_s], [offset]])   # the same for every piece
     kind = "jacobian" if derivatives else "plain"
-    x = np.zeros(8 if derivatives else 2)   # the sensitivities start at zero with y
+    x = np.zeros(4 if derivatives else 1)   # the sensitivities start at zero with y
     parts = []
     for _, data in model._chunked():
-        end, states = _chunk(model, substeps, kind, data.shape[1])(x, q, data)
-        parts.append(np.asarray(states, dtype=float))
-        x = np.asarray(end, dtype=float)[:, -1]
+        size = data.shape[1]
+        end, states = call(_chunk(model, substeps, kind, size), x, np.repeat(q, size, axis=1), data)
+        states = states.reshape(len(x), -1, order="F")
+        parts.append(states)
+        x = states[:, -1]
     states = np.concatenate(parts, axis=1)
     shape = (len(model.pieces), len(model.tau))
     y = states[0].reshape(shape)
-    # rows 2, 4, 6: ∂y/∂J_F, ∂y/∂E_ref, ∂y/∂c (the sensitivities are stored column by column)
-    jac = states[2::2].T.reshape(shape + (3,)) if derivatives else None
+    jac = states[1:].T.reshape(shape + (3,)) if derivatives else None
     return y, jac
 
 
@@ -438,7 +443,7 @@ def _mean_balance(model, omega_guess):
         return float(np.sum(0.5 * (m[:, 1:] + m[:, :-1]) * h)) / model.cycle
 
     try:   # a starting point: Newton refines it
-        return speed_balance(mean, omega_guess, rtol=1e-10)
+        return speed_balance(mean, omega_guess, rtol=1e-6)
     except SolverFailed as err:
         raise NotSettled(f"the cycle's mean torque: {err}") from None
 
