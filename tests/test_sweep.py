@@ -472,7 +472,7 @@ def test_cycle_analysed_once(monkeypatch):
 
     calls = []
     original = flyopt.analysis.analyse
-    monkeypatch.setattr(flyopt.analysis, "analyse", lambda s: calls.append(1) or original(s))
+    monkeypatch.setattr(flyopt.analysis, "analyse", lambda s, **kw: calls.append(1) or original(s, **kw))
     scene = flyopt.load(PROBLEMS / "punch-press.toml")   # a scene object of its own: analyses are
     sweep(scene, {"delta": "0.02:0.2:log10", "speed": "30,60,120rpm", "torque.scale": "1,2"})  # memoized per scene
     assert len(calls) == 1

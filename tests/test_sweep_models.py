@@ -367,24 +367,43 @@ def test_resume_keeps_the_chunks_of_the_run_it_continues(tmp_path, monkeypatch):
     pd.testing.assert_frame_equal(read_results(out), sweep(scene, vary, workers=1))
 
 
-def test_each_physics_is_offered_the_previous_one_as_a_warm_start(monkeypatch):
-    """The hook for solvers that iterate: along a chunk, each new physics's analysis is
-    handed the analysis before it (when ``analyse`` takes ``warm_start``)."""
+@pytest.mark.parametrize("model, speeds", [("energy_mass", "60,90rpm"), ("dynamic", "40,50rpm")])
+def test_a_physics_differing_in_delta_alone_reuses_the_machine_and_gives_the_same_analysis(monkeypatch, model,
+                                                                                           speeds):
+    """Along a δ axis each analysis is handed ``like`` an earlier one at the same speed (its reduced
+    machine and indicator), never one at another speed; and what it gives equals a fresh analysis
+    of the same point (the reference: flyopt.analysis.analyse without ``like``)."""
     from flyopt import analysis
+    from flyopt.studies.evaluate import point_scene
 
     original = analysis.analyse
     calls = []
 
-    def analyse(scene, model=None, warm_start=None):
-        result = original(scene, model)
-        calls.append((scene.delta, warm_start, result))
+    def analyse(scene, model=None, like=None):
+        result = original(scene, model, like=like)
+        calls.append((scene.delta, scene.omega_mean, like, result))
         return result
 
     monkeypatch.setattr(analysis, "analyse", analyse)
-    sweep(load("energy_mass"), {"delta": "0.05,0.1,0.15", "envelope": "0.8,none"}, workers=1,
-          chunk_size=6)
-    assert [c[0] for c in calls] == [0.05, 0.1, 0.15]
-    assert calls[0][1] is None and calls[1][1] is calls[0][2] and calls[2][1] is calls[1][2]
+    scene = load(model)
+    frame = sweep(scene, {"speed": speeds, "delta": "0.05,0.1,0.15"}, workers=1)
+    assert len(calls) == 6 and {c[3].model for c in calls} == {model}
+    physics = {id(result): (delta, speed) for delta, speed, _, result in calls}
+    seen = set()
+    for delta, speed, like, result in calls:
+        if speed in seen:
+            assert like is not None and physics[id(like)][1] == speed and physics[id(like)][0] != delta
+            assert result.machine._cache is like.machine._cache and result.indicator is like.indicator
+        else:
+            assert like is None
+        seen.add(speed)
+    monkeypatch.setattr(analysis, "analyse", original)
+    for (delta, speed, like, result), row in zip(calls, frame.itertuples()):
+        fresh = original(point_scene(scene, {"delta": delta, "speed": speed}))
+        assert row.delta == delta and row.speed == speed
+        np.testing.assert_allclose(result.j_required, fresh.j_required, rtol=1e-12)
+        np.testing.assert_allclose([result.omega_max, result.omega_min, result.a_max],
+                                   [fresh.omega_max, fresh.omega_min, fresh.a_max], rtol=1e-12)
 
 
 # --------------------------------------------------------------------------

@@ -239,8 +239,9 @@ def analyse(scene: Scene, model: Literal["energy", "energy_mass", "dynamic"] | N
         scene (flyopt.sizing.models.choose).
     like : Analysis, optional
         The analysis of the same scene at another delta: its reduced machine
-        (and the compiled models cached on it, which do not depend on delta)
-        is reused instead of reducing the scene again.
+        (and the compiled models cached on it) and its energy indicator,
+        none of which depends on delta, are reused instead of reducing the
+        scene and integrating its torques again.
 
     Returns
     -------
@@ -285,10 +286,11 @@ def _analyse(scene, forced=None, like=None):
 
             base = like.machine
             machine = dataclasses.replace(base, delta=scene.delta, _cache=base._cache)
+            ind = like.indicator        # the torques at the frozen speed do not depend on δ
         else:
             machine = reduce(scene)
-        ew = machine.angle_only()
-        ind = energy_indicator(ew.driving, ew.resisting, scene.cycle_angle)
+            ew = machine.angle_only()
+            ind = energy_indicator(ew.driving, ew.resisting, scene.cycle_angle)
         model, reason = models.choose(machine)
         if forced is not None and forced != model:
             reason = f"forced by --model; the exact model for this scene is {model}: {reason}"

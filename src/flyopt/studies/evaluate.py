@@ -607,25 +607,19 @@ def _float(value):
 
 
 def _analyses(scene, points):
-    """The analysis of each point, computed once per distinct physics (see PHYSICS_FIELDS).
-
-    The physics are visited in the chunk's order, each offered the analysis
-    of the one before as a warm start (see :func:`physics_analysis`).
-    """
+    """The analysis of each point, computed once per distinct physics (see PHYSICS_FIELDS)."""
     fields = [name for name in PHYSICS_FIELDS if name in points]
     if not fields:
         analysis = physics_analysis(scene)
         for _ in range(len(points)):
             yield analysis
         return
-    previous = None
     for values in zip(*(points[name].to_numpy(dtype=float) for name in fields)):
-        analysis = physics_analysis(scene, dict(zip(fields, values)), near=previous)
-        previous = analysis
-        yield analysis
+        yield physics_analysis(scene, dict(zip(fields, values)))
 
 
-#: Analyses of this process, per scene object: {id(scene): (weak reference, {physics: Analysis})}.
+#: Analyses of this process, per scene object: {id(scene): (weak reference, {physics: Analysis},
+#: {physics but δ: the latest Analysis})}.
 _ANALYSES: dict = {}
 #: Analyses kept per scene, the most recently used (~0.1-0.2 MB each): a sweep's chunks hold
 #: the points of one physics together, so only a chunk's own physics need to stay.
@@ -633,26 +627,23 @@ MEMO_SIZE = 256
 _MEMO_LOCK = threading.Lock()
 
 
-def physics_analysis(scene, point=None, *, near=None):
+def physics_analysis(scene, point=None):
     """The analysis of a scene at one physics (δ, ω_m, J_c, torque scale), computed once.
 
     Every study (sweep chunks, the points of a Pareto front, the materials of
     a trade-off) asks here, so that variations of the design alone (envelope,
     material, shaft, H/B, geometry, objective) never analyse the cycle again.
     The memo lives as long as the scene object does, and keeps the
-    :data:`MEMO_SIZE` most recently used analyses.
+    :data:`MEMO_SIZE` most recently used analyses. A physics that differs
+    from one analysed before in δ alone is analysed ``like`` it (the reduced
+    machine, its compiled models and the energy indicator do not depend on
+    δ), which makes the points of a δ axis several times cheaper.
 
     Parameters
     ----------
     scene : Scene
     point : mapping, optional
         Values of :data:`PHYSICS_FIELDS` (SI); the scene's own where absent.
-    near : flyopt.analysis.Analysis, optional
-        The analysis of a neighbouring physics (the previous one in a
-        sweep's order): handed to ``flyopt.analysis.analyse`` as
-        ``warm_start`` when it takes one (a solver that iterates may start
-        from it), otherwise unused. It never changes the result beyond the
-        solver's tolerance.
 
     Returns
     -------
@@ -666,32 +657,25 @@ def physics_analysis(scene, point=None, *, near=None):
     with _MEMO_LOCK:    # Dask workers in threads share this process's memo
         entry = _ANALYSES.get(id(scene))
         if entry is None or entry[0]() is not scene:
-            for stale in [k for k, (ref, _) in _ANALYSES.items() if ref() is None]:
+            for stale in [k for k, (ref, *_) in _ANALYSES.items() if ref() is None]:
                 del _ANALYSES[stale]
-            entry = _ANALYSES[id(scene)] = (weakref.ref(scene), OrderedDict())
-        memo = entry[1]
+            entry = _ANALYSES[id(scene)] = (weakref.ref(scene), OrderedDict(), OrderedDict())
+        memo, by_rest = entry[1], entry[2]
         if key in memo:
             memo.move_to_end(key)
             return memo[key]
+        # the same physics but δ (PHYSICS_FIELDS[0]): its reduced machine and indicator serve again
+        like = by_rest.get(key[1:])
     changed = {name: value for name, value in zip(PHYSICS_FIELDS, key) if value != own[name]}
-    analyse = _analysis.analyse
-    extra = {"warm_start": near} if near is not None and _takes_warm_start(analyse) else {}
-    result = analyse(point_scene(scene, changed) if changed else scene, **extra)
+    result = _analysis.analyse(point_scene(scene, changed) if changed else scene, like=like)
     with _MEMO_LOCK:
         memo[key] = result
-        while len(memo) > MEMO_SIZE:
-            memo.popitem(last=False)
+        by_rest[key[1:]] = result
+        by_rest.move_to_end(key[1:])
+        for kept in (memo, by_rest):
+            while len(kept) > MEMO_SIZE:
+                kept.popitem(last=False)
     return result
-
-
-def _takes_warm_start(function):
-    """Whether ``function`` has a ``warm_start`` keyword."""
-    import inspect
-
-    try:
-        return "warm_start" in inspect.signature(function).parameters
-    except (TypeError, ValueError):
-        return False
 
 
 def _design_closed_form(inputs, j_margin, mask, res):

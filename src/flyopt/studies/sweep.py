@@ -387,11 +387,11 @@ def _time_first_analysis(scene, points, codes):
     """
     fields = [name for name in PHYSICS_FIELDS if name in points]
     positions = [0] if codes.max(initial=0) < 1 else [0, int(np.argmax(codes == 1))]
-    seconds, previous = 0.0, None
+    seconds = 0.0
     for k in positions:
         physics = {name: float(points[name].iloc[k]) for name in fields}
         start = time.perf_counter()
-        previous = physics_analysis(scene, physics, near=previous)
+        physics_analysis(scene, physics)
         seconds = time.perf_counter() - start
         if seconds >= RETIME_SECONDS:
             break
