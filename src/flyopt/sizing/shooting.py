@@ -26,8 +26,9 @@ One cycle is integrated by the classical fourth-order Runge–Kutta method with
 fixed steps on :class:`flyopt.sizing.periodic.PeriodicModel`'s output grid (the same
 pieces, cut at every knot of the torque or the inertia, and the same scaled
 energy y = (E − E_ref)/W_s), compiled once per machine structure with CasADi.
-The Jacobian is exact for the discrete cycle (CasADi's forward derivatives of
-the same steps) except for δ, whose extremes move between grid points: its
+The Jacobian is exact for the discrete cycle (the forward sensitivities of y
+to J_F, E_ref and c, carried with y through the same steps, so that one
+compiled SX loop computes both) except for δ, whose extremes move between grid points: its
 derivative is taken at the grid point of each extreme (the envelope theorem
 makes that the exact derivative where the extreme is a smooth maximum), which
 costs Newton nothing but a little of its quadratic rate.
