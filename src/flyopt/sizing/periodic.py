@@ -397,14 +397,14 @@ class PeriodicModel:
     def _table_right(self, phi, shape):
         """The table's values right of ``phi``, broadcast to ``shape``; kept for the model's own grids,
         at which every solve evaluates the torque again and again."""
-        grid = (phi is self._grid or phi is self.inner_angles) and phi.shape == shape
-        if grid and id(phi) in self._table_values:
-            return self._table_values[id(phi)]
-        values = self.table.limits(np.broadcast_to(np.asarray(phi, dtype=float), shape))[1]
-        if grid:
+        grid = "grid" if phi is self._grid else "inner" if phi is self.inner_angles else None
+        if grid is None or phi.shape != shape:
+            return self.table.limits(np.broadcast_to(np.asarray(phi, dtype=float), shape))[1]
+        if grid not in self._table_values:
+            values = self.table.limits(phi)[1]
             values.setflags(write=False)
-            self._table_values[id(phi)] = values
-        return values
+            self._table_values[grid] = values
+        return self._table_values[grid]
 
     def falls_with_speed(self, omega):
         """Whether ∂M/∂ω <= 0 on the grid for speeds up to 4 ω (sampled; the torque

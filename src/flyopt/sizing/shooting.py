@@ -153,10 +153,15 @@ def _functions(model, substeps):
     steps = {"plain": (y, ca.Function("rk4", [y, p, t], [y_next])),
              "jacobian": (ca.vertcat(y, sens),
                           ca.Function("rk4_tangent", [ca.vertcat(y, sens), p, t], [ca.vertcat(y_next, s_next)]))}
-    starts = ca.DM(np.arange(outputs, dtype=float).reshape(1, -1) / outputs)
-    functions = {"chunks": {}}
-    for kind, (state, rk4) in steps.items():
-        n = state.shape[0]
+    _STRUCTURES[key] = {"steps": steps, "outputs": outputs, "h": h, "substeps": substeps, "chunks": {}}
+    return _STRUCTURES[key]
+
+
+def _piece(functions, kind):
+    """One piece of ``kind`` (built on first use: the check with twice the steps needs no tangent)."""
+    if kind not in functions:
+        state, rk4 = functions["steps"][kind]
+        n, outputs, h, substeps = state.shape[0], functions["outputs"], functions["h"], functions["substeps"]
         if substeps == 1:
             interval = rk4
         else:   # the steps of one grid interval as a loop, not unrolled: the graph stays small
@@ -165,18 +170,18 @@ def _functions(model, substeps):
             times = t0 + ca.DM(np.arange(substeps, dtype=float).reshape(1, -1) * h)
             interval = ca.Function("interval", [xm, pm, t0], [loop(xm, pm, times)[:, -1]])
         along = interval.mapaccum("along", outputs)
+        starts = ca.DM(np.arange(outputs, dtype=float).reshape(1, -1) / outputs)
         x0, q, data = ca.MX.sym("x0", n), ca.MX.sym("q", 4), ca.MX.sym("data", 4)
         states = along(x0, ca.vertcat(data[0], data[1], q, data[2], data[3]), starts)
         functions[kind] = ca.Function("piece", [x0, q, data], [states[:, -1], ca.horzcat(x0, states)]).expand()
-    _STRUCTURES[key] = functions
-    return functions
+    return functions[kind]
 
 
 def _chunk(model, substeps, kind, size):
     functions = _functions(model, substeps)
     key = (kind, size)
     if key not in functions["chunks"]:
-        functions["chunks"][key] = functions[kind].mapaccum(f"pieces_{kind}_{size}", size)
+        functions["chunks"][key] = _piece(functions, kind).mapaccum(f"pieces_{kind}_{size}", size)
     return functions["chunks"][key]
 
 
