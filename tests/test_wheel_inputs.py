@@ -56,6 +56,8 @@ CASES = [
     ('criterion = "stress"', 'criterion = "stress"\narms = [4.5]', "design.arms", "whole"),
     ('criterion = "stress"', 'criterion = "stress"\nmin_wall = "0 mm"', "design.min_wall", "positive"),
     ('criterion = "stress"', 'criterion = "stress"\nsafety_factor = 0.9', "design.safety_factor", ">= 1"),
+    ('criterion = "stress"', 'criterion = "stress"\nprune = "yes"', "design.prune", "true or false"),
+    ('criterion = "stress"', 'criterion = "stress"\nprune = 1', "design.prune", "true or false"),
 ]
 
 

@@ -270,6 +270,74 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
         sensitivities=sensitivities, **structure, **common), model
 
 
+def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pruned):
+    """Design the whole-wheel combinations, the most promising first, leaving out those that cannot win.
+
+    Each combination (and arm count) is taken in the order of its objective
+    bound (:func:`flyopt.design.wheel_design.objective_bound`, a lower bound
+    on the objective of every wheel it can make). With ``spec.prune``, one
+    whose bound exceeds the best objective already designed by more than the
+    ranking's tie tolerance (:data:`flyopt.design.rank.TIE_RTOL`) cannot win
+    or tie: it is reported as pruned, with the bound and the design that
+    beats it, and IPOPT is not run on it. The winner and its design are the
+    same as with every combination designed.
+
+    Appends (order, Candidate) to ``feasible``, ((order, arm index), Candidate) to ``infeasible`` and
+    Candidates to ``pruned``; returns
+    the last wheel model built (for the description), or None.
+    """
+    tasks = []
+    for order, combo in whole:
+        bound, why = wheel_design.objective_bound(combo, spec)
+        for n_arms in (spec.arms if spec.geometry == "rim_arms" else (0,)):
+            tasks.append((bound, order, n_arms, combo, why))
+    tasks.sort(key=lambda t: t[:3])
+    model = None
+    for bound, order, n_arms, combo, why in tasks:
+        try:      # a combination shown unable to make any wheel is infeasible, not pruned
+            wheel_design.screen(_Combination(**{**combo.__dict__, "n_arms": n_arms}), spec, combo.bore)
+        except wheel_design.NoWheel:
+            pass  # _design_whole reports it, without solving
+        else:
+            if spec.prune and feasible and _cannot_win(bound, feasible):
+                pruned.append(_pruned(combo, spec, n_arms, bound, why, feasible))
+                continue
+        result, built = _design_whole(combo, spec, n_arms, solver_options, method)
+        model = built or model
+        if result.feasible:
+            feasible.append((order, result))
+        else:
+            infeasible.append(((order, spec.arms.index(n_arms) if n_arms else 0), result))
+    return model
+
+
+def _best_of(feasible):
+    return min((c for _, c in feasible), key=lambda c: c.objective)
+
+
+def _cannot_win(bound, feasible):
+    """Whether an objective bound exceeds the best design's objective beyond the ranking's tie tolerance."""
+    return bound > _best_of(feasible).objective * (1.0 + rank.TIE_RTOL)
+
+
+#: The unit of each objective, for the reasons of pruned combinations.
+_OBJECTIVE_UNIT = {"mass": " kg", "outer_diameter": " m", "cost": ""}
+
+
+def _pruned(combo, spec, n_arms, bound, why, feasible):
+    """The Candidate of a combination left undesigned because its bound shows it cannot win."""
+    best = _best_of(feasible)
+    label = _Combination(**{**combo.__dict__, "n_arms": n_arms}).label
+    winner = f"{best.material} on the {_shaft_label(best.shaft)}" + (f" with {best.n_arms} arms" if best.n_arms else "")
+    return Candidate(
+        material=combo.material.name, shaft=combo.shaft.name, speed_ratio=combo.shaft.speed_ratio,
+        geometry=spec.geometry, feasible=False, pruned=True, objective_bound=bound,
+        reason=(f"{label}: not designed, it cannot win: {why}, more than the "
+                f"{best.objective:.4g}{_OBJECTIVE_UNIT[spec.objective]} of {winner}"),
+        j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max,
+        n_arms=n_arms or None, bore=combo.bore or None)
+
+
 #: What an active bound on a wheel NLP variable means: (variable, upper bound) -> binding name.
 _BOUND_NAMES = {
     ("h", False): "min_wall", ("b", False): "min_wall", ("t_web", False): "min_wall",
@@ -425,7 +493,7 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         model = nlp.get_model(structure, solver_options)
     envelope = spec.max_outer_diameter
 
-    feasible, infeasible, pending = [], [], []
+    feasible, infeasible, pending, whole = [], [], [], []
     order = 0
     for material in materials:
         for shaft, plain in zip(shafts, textbook):
@@ -441,12 +509,7 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
             combo.v_max = v_max
             combo.torque = torque / shaft.speed_ratio if torque else 0.0
             if not plain:
-                for n_arms in (spec.arms if spec.geometry == "rim_arms" else (0,)):
-                    result, wheel_model = _design_whole(combo, spec, n_arms, solver_options, method)
-                    if result.feasible:
-                        feasible.append((order, result))
-                    else:
-                        infeasible.append(result)
+                whole.append((order, combo))
                 order += 1
                 continue
             combo.j_max = closed_form.max_inertia_one(spec.geometry, material.density, combo.cap,
@@ -462,16 +525,21 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
                                                                    *nlp.solve_combination(model, combo, spec))))
             else:
                 reason, needed = _explain_infeasible(combo, spec)
-                infeasible.append(Candidate(
+                infeasible.append(((order, 0), Candidate(
                     material=material.name, shaft=shaft.name,
                     speed_ratio=shaft.speed_ratio, geometry=spec.geometry,
                     feasible=False, reason=reason, j_required_on_shaft=combo.j_shaft,
                     d_outer_limit=combo.cap, rim_speed_limit=combo.v_max,
-                    j_max=combo.j_max, d_outer_needed=needed))
+                    j_max=combo.j_max, d_outer_needed=needed)))
             order += 1
     if pending:
         feasible += _solve_closed_form(pending, spec)
-    ranked = tuple(rank.ranking([c for _, c in feasible])) + tuple(infeasible)
+    pruned = []
+    if whole:
+        wheel_model = _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pruned)
+    infeasible = [c for _, c in sorted(infeasible, key=lambda item: item[0])]    # in input order
+    ranked = (tuple(rank.ranking([c for _, c in feasible])) + tuple(sorted(pruned, key=lambda c: c.objective_bound))
+              + tuple(infeasible))
     best = ranked[0] if feasible else None
     if wheel_model is not None:
         description = wheel_model.describe()
@@ -503,7 +571,8 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         message = (f"{best.material} on the {_shaft_label(best.shaft)}: {spec.geometry} "
                    f"D_outer {_g(best.d_outer)} m, B {_g(best.b)} m, mass "
                    f"{_g(best.mass)} kg ({len(feasible)} of {len(ranked)} combinations "
-                   f"feasible)")
+                   f"feasible" + (f", {len(pruned)} not designed: a bound shows they cannot win" if pruned else "")
+                   + ")")
     return DesignResult(status=status, message=message, j_required=j_required,
                         omega=omega, spec=spec, best=best, candidates=ranked,
                         model=description)

@@ -134,14 +134,16 @@ def get_model(structure: ModelStructure, solver_options: Mapping | None = None) 
     return cached_model(_MODEL_CACHE, BUILDS, _build_model, structure, solver_options)
 
 
-def cached_model(cache, builds, build, structure, solver_options=None):
+def cached_model(cache, builds, build, structure, solver_options=None, defaults=None):
     """The NLP of ``structure`` from ``cache``, built by ``build(structure, options)`` on first use.
 
-    The one place where solver options are merged over :data:`DEFAULT_SOLVER_OPTIONS`
-    and a built NLP is kept per structure and options (``builds["count"]`` counts the builds);
-    the textbook NLP and the whole wheel's (flyopt.design.wheel_nlp) share it.
+    The one place where solver options are merged: :data:`DEFAULT_SOLVER_OPTIONS`, then the
+    model's own ``defaults``, then the caller's ``solver_options``. A built NLP is kept per
+    structure and options (``builds["count"]`` counts the builds); the textbook NLP and the
+    whole wheel's (flyopt.design.wheel_nlp) share it.
     """
     options = dict(DEFAULT_SOLVER_OPTIONS)
+    options.update(defaults or {})
     options.update(solver_options or {})
     key = (structure, _options_key(options))
     model = cache.get(key)

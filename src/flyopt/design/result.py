@@ -95,6 +95,14 @@ class Candidate:
         For a design by the wheel NLP: d(mass)/d(limit) of every binding limit.
     notes : tuple of str
         What could not be computed, and why.
+    pruned : bool
+        Not designed because a bound shows it cannot win (``feasible`` is then
+        False and says nothing of whether the combination could give its
+        inertia; ``reason`` gives the bound and the design that beats it).
+    objective_bound : float or None
+        For a pruned combination: a lower bound on its objective that every
+        wheel of it meets (:func:`flyopt.design.wheel_design.objective_bound`),
+        in the unit of the objective.
     """
 
     material: str
@@ -143,6 +151,8 @@ class Candidate:
     key: dict | None = None
     sensitivities: tuple = ()
     notes: tuple = ()
+    pruned: bool = False
+    objective_bound: float | None = None
 
     def to_dict(self, timings=False):
         """Plain, JSON-ready dictionary (inf becomes None; wall times only with ``timings``)."""

@@ -123,6 +123,12 @@ class DesignSpec:
         default. Bounds every section of a whole wheel and of any wheel under
         the stress criterion (the textbook rim-speed design of a bare wheel
         is left as the textbook makes it).
+    prune : bool
+        Whether a whole-wheel combination whose objective bound
+        (:func:`flyopt.design.wheel_design.objective_bound`) already exceeds
+        a design found is left undesigned (True, the default: it cannot win,
+        and IPOPT is spared); False designs every combination, for a full
+        trade-off table.
 
     Raises
     ------
@@ -143,6 +149,7 @@ class DesignSpec:
     bore: float | None = None
     arms: tuple = DEFAULT_ARMS
     min_wall: float | None = None
+    prune: bool = True
 
     def textbook(self, bore=None):
         """Whether this is the textbook design: a bare wheel without a bore sized by the rim speed limit
@@ -163,7 +170,7 @@ class DesignSpec:
                 "max_width": _none_if_inf(self.max_width), "d_mean": self.d_mean,
                 "objective": self.objective, "criterion": self.criterion,
                 "safety_factor": self.safety_factor, "bore": self.bore, "arms": list(self.arms),
-                "min_wall": self.min_wall}
+                "min_wall": self.min_wall, "prune": self.prune}
 
     def __post_init__(self):
         _choice(self.geometry, geometry.GEOMETRIES, "geometry")
@@ -208,6 +215,8 @@ class DesignSpec:
         if len(set(arms)) != len(arms):
             raise ValueError(f"arms lists an arm count twice: {list(arms)!r}")
         object.__setattr__(self, "arms", arms)
+        if not isinstance(self.prune, bool):
+            raise ValueError(f"prune must be true or false, got {self.prune!r}")
         if self.min_wall is not None:
             object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
         if (self.objective == "outer_diameter" and self.geometry == "disc"

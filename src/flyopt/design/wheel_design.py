@@ -27,7 +27,7 @@ from flyopt.design import check, geometry, hub, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
 
-__all__ = ["needs_torque", "bore_of", "design_combination", "structure_fields", "NoWheel", "sensitivities"]
+__all__ = ["needs_torque", "bore_of", "objective_bound", "stress_cap", "screen", "design_combination", "structure_fields", "NoWheel", "sensitivities"]
 
 #: Re-solves allowed for the exact stress check and the strength of the walls to settle.
 _MAX_ROUNDS = 8
@@ -85,13 +85,116 @@ def _hub_bounds(material, bore, torque):
     return (p.d_hub_min, p.d_hub_max), (l_low, max(p.l_hub_max, l_low)), kind
 
 
-def _upper_bound(combo, spec):
-    """An inertia no wheel of the combination can exceed [kg*m^2] (inf when nothing bounds it):
-    a solid disc filling the envelope D_cap x B_max."""
-    cap = combo.cap if spec.criterion == "rim_speed" else spec.max_outer_diameter
-    if not (math.isfinite(cap) and math.isfinite(spec.max_width)):
+def _strongest_allowable(material, spec):
+    """The largest allowable stress any section of the material has [Pa] (its strength table's
+    strongest row), or None when the material gives none (no safety factor to divide by)."""
+    rows = getattr(material, "strength_by_thickness", ())
+    try:
+        if rows:
+            return max(material.allowable(thickness=row.max_thickness, safety_factor=spec.safety_factor)
+                       for row in rows)
+        return material.allowable(safety_factor=spec.safety_factor)
+    except ValueError:
+        return None
+
+
+def stress_cap(combo, spec, bore):
+    """The largest outer diameter the stress allows a bare rim or disc [m] (inf where no closed form says).
+
+    A free annulus a < b at speed omega has its largest stress at the bore,
+    where sigma_r = 0 and sigma_t(a) = (3+nu)/4 rho omega^2 [b^2 + (1-nu)/(3+nu) a^2]
+    >= (3+nu)/4 rho omega^2 b^2; a solid disc at its centre, sigma_r = sigma_t =
+    (3+nu)/8 rho omega^2 b^2 (Timoshenko & Goodier, art. 32; docs/flywheel-design.md,
+    section 13). Both measures (von Mises, largest principal) equal sigma_t there,
+    so no rim (an annulus for the stress solver, :func:`flyopt.design.wheel.steps`)
+    or disc whose stress stays within the material's strongest allowable can be wider
+    than 2 b with (3+nu)/4 (or /8, solid) rho omega^2 b^2 = sigma_allow.
+    """
+    if spec.criterion != "stress" or spec.geometry not in ("rim", "disc"):
         return math.inf
-    return math.pi * combo.material.density * spec.max_width * cap ** 4 / 32.0
+    nu = getattr(combo.material, "poisson_ratio", None)
+    sigma = _strongest_allowable(combo.material, spec)
+    if nu is None or not sigma:
+        return math.inf
+    factor = 8.0 if spec.geometry == "disc" and not bore else 4.0
+    return 2.0 * math.sqrt(factor * sigma / ((3.0 + nu) * combo.material.density * combo.omega ** 2))
+
+
+def _upper_bound(combo, spec, bore=0.0):
+    """An inertia no wheel of the combination can exceed [kg*m^2] (inf when nothing bounds it),
+    and the outer diameter and width it is taken at [m]: a solid cylinder of that diameter (the smaller of
+    the cap and :func:`stress_cap`) and of the width limit (for a rim, also H/B: B <= D/(2 hb_min))."""
+    cap = min(combo.cap, stress_cap(combo, spec, bore))
+    width = spec.max_width
+    if spec.geometry in ("rim", "thin_rim"):
+        width = min(width, cap / (2.0 * spec.hb_ratio[0]))
+    if not (math.isfinite(cap) and math.isfinite(width)):
+        return math.inf, cap, width
+    return math.pi * combo.material.density * width * cap ** 4 / 32.0, cap, width
+
+
+def objective_bound(combo, spec):
+    """A lower bound on the objective of every wheel of a combination, and how it is found.
+
+    No mass sits farther out than half the largest outer diameter the
+    combination may have, D_cap (the rim speed cap or the envelope), so
+    J' = ∫ r² dm <= m D_cap² / 4 and every wheel of the combination, whatever
+    its parts, weighs m >= 4 J' / D_cap² (all of it in a thin ring at the
+    cap: docs/flywheel-design.md, section 9); its cost is at least that mass
+    times the cost per kg. No body of revolution within an axial width B_max
+    has more inertia than the solid cylinder of that width, J' <= π ρ B_max
+    D⁴ / 32, so its outer diameter is at least (32 J' / (π ρ B_max))^(1/4).
+    Each bound is 0 where no limit makes it (no cap, no width limit).
+
+    Parameters
+    ----------
+    combo : flyopt.design.designer._Combination
+    spec : DesignSpec
+
+    Returns
+    -------
+    (float, str)
+        The bound in the objective's unit (kg, the material's currency or m) and a phrase saying why.
+    """
+    j = combo.j_shaft
+    if spec.objective == "outer_diameter":
+        if not math.isfinite(spec.max_width):
+            return 0.0, "no width limit bounds the diameter"
+        d = (32.0 * j / (math.pi * combo.material.density * spec.max_width)) ** 0.25
+        return d, (f"no wheel within the {spec.max_width:.4g} m width limit gives {j:.4g} kg·m² below "
+                   f"D {d:.4g} m (a solid cylinder of that width)")
+    cap = min(combo.cap, stress_cap(combo, spec, combo.bore))   # rim speed or stress cap, envelope
+    if not math.isfinite(cap):
+        return 0.0, "no cap on the outer diameter bounds the mass"
+    mass = 4.0 * j / (cap * cap)
+    why = (f"every wheel that gives {j:.4g} kg·m² within D {cap:.4g} m weighs at least "
+           f"{mass:.4g} kg (m >= 4 J/D²: all of it at the outer radius)")
+    if spec.objective == "cost":
+        cost = combo.material.cost
+        return (mass * cost if cost is not None else 0.0), why + f", which costs at least {mass * (cost or 0.0):.4g}"
+    return mass, why
+
+
+def screen(combo, spec, bore):
+    """Raise :class:`NoWheel` where a combination is shown unable to make a wheel without solving:
+    its inertia above that of a solid disc filling the envelope, arms with no hub, or a stress
+    that needs a Poisson's ratio the material does not give."""
+    material, geo = combo.material, spec.geometry
+    j_sup, cap, width = _upper_bound(combo, spec, bore)
+    if combo.j_shaft > j_sup:
+        where = ("the envelope" if cap >= combo.cap else
+                 f"the largest diameter its stress allows at {combo.omega:.4g} rad/s")
+        wide = (f"B {width:.4g} m" if width >= spec.max_width else
+                f"B {width:.4g} m, the widest a rim of H/B >= {spec.hb_ratio[0]:g} can be")
+        raise NoWheel(f"{combo.label}: even a solid disc filling {where} (D {cap:.4g} m, {wide}) "
+                      f"gives only {j_sup:.4g} kg·m², short of the {combo.j_shaft:.4g} kg·m² required", j_sup)
+    if geo == "rim_arms" and not bore:
+        raise NoWheel(f"{combo.label}: a wheel on arms needs a hub on a shaft: give design.bore or the "
+                      f"shaft's diameter")
+    if ((spec.criterion == "stress" or geo in ("rim_web", "rim_arms"))
+            and getattr(material, "poisson_ratio", None) is None):
+        raise NoWheel(f"{combo.label}: material {material.name!r} gives no poisson_ratio, which the "
+                      f"stress of a {geo} needs")
 
 
 def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None, method="auto"):
@@ -128,20 +231,11 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
     """
     from flyopt.design import wheel_nlp
 
+    screen(combo, spec, bore)
     material, geo = combo.material, spec.geometry
-    j_sup = _upper_bound(combo, spec)
-    if combo.j_shaft > j_sup:
-        raise NoWheel(f"{combo.label}: even a solid disc filling the envelope (D {combo.cap:.4g} m, "
-                      f"B {spec.max_width:.4g} m) gives only {j_sup:.4g} kg·m², short of the "
-                      f"{combo.j_shaft:.4g} kg·m² required", j_sup)
-    if geo == "rim_arms" and not bore:
-        raise NoWheel(f"{combo.label}: a wheel on arms needs a hub on a shaft: give design.bore or the "
-                      f"shaft's diameter")
     stressed = spec.criterion == "stress"
-    if (stressed or geo in ("rim_web", "rim_arms")) and getattr(material, "poisson_ratio", None) is None:
-        raise NoWheel(f"{combo.label}: material {material.name!r} gives no poisson_ratio, which the "
-                      f"stress of a {geo} needs")
     exact = _disc_closed_form(combo, spec, bore, material) if method != "ipopt" else None
+
     if exact is not None:
         dims, solution = exact
         return dims, solution, strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)

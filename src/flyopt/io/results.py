@@ -140,6 +140,7 @@ QUANTITIES = {
 UNIT_SET_BY = {
     "objective": "the unit of the quantity the design's objective names "
                  "(mass: kg, outer_diameter: m, cost: 1; a drive's mass is motor plus wheel)",
+    "objective_bound": "the unit of the design's objective, as for objective",
     "epsilon": "the unit of the Pareto front's second objective",
     "dmass_dlimit": "kg per the unit given in the same entry's 'unit'",
 }
@@ -197,7 +198,7 @@ def unit_of(name, objective=None, front=None):
         None for text, counts and names that are no quantity, and for a
         field of :data:`UNIT_SET_BY` whose unit is not fixed by the arguments.
     """
-    if name == "objective":
+    if name in ("objective", "objective_bound"):
         return unit_of(objective) if objective else None
     if name == "epsilon":
         return unit_of(front) if front else None

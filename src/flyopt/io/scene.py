@@ -1228,7 +1228,7 @@ def _design(raw, shafts, materials):
 
     table = _Table(raw, "design", {"geometry", "materials", "shafts", "hb_ratio", "max_outer_diameter",
                                    "max_width", "d_mean", "objective", "description", "criterion",
-                                   "safety_factor", "bore", "arms", "min_wall"})
+                                   "safety_factor", "bore", "arms", "min_wall", "prune"})
     library = material_library(materials)
     names = _name_list(table, "materials", library, "material")
     shaft_names = _name_list(table, "shafts", {s.name: s for s in shafts}, "shaft")
@@ -1281,6 +1281,11 @@ def _design(raw, shafts, materials):
             raise SceneError("design.arms", f"must be whole arm counts >= 3, each once (e.g. [4, 6, 8]), "
                                             f"got {shorten(table.raw('arms'))}")
         options["arms"] = tuple(arms)
+    if table.has("prune"):
+        value = table.get("prune")
+        if not isinstance(value, bool):
+            raise SceneError("design.prune", f"must be true or false, got {shorten(table.raw('prune'))}")
+        options["prune"] = value
     if options.get("objective") == "cost":
         from flyopt.design.materials import design_material_names
 

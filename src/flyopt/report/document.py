@@ -1104,7 +1104,7 @@ class _Builder:
                        self.n(c.h, "length"), self.n(c.b, "length"), self.n(c.rim_speed, "speed"),
                        ", ".join(c.binding)]
             else:
-                row = ["-", c.material, c.shaft, "infeasible", "", "", "", "", ""]
+                row = ["-", c.material, c.shaft, "cannot win" if c.pruned else "infeasible", "", "", "", "", ""]
             if arms:
                 row.insert(3, str(c.n_arms or "-"))
             rows.append(row)
@@ -1115,10 +1115,15 @@ class _Builder:
             head.insert(3, "arms")
             align.insert(3, ">")
         blocks.append(Table(tuple(head), tuple(rows), tuple(align), "Every material × shaft combination", "ranking"))
-        reasons = [c.reason for c in d.candidates if not c.feasible]
+        reasons = [c.reason for c in d.candidates if not c.feasible and not c.pruned]
         if reasons:
             blocks.append(Table(("why infeasible",), tuple([r] for r in reasons), ("<",),
                                 "The combinations that cannot give the required flywheel", "infeasible"))
+        reasons = [c.reason for c in d.candidates if c.pruned]
+        if reasons:
+            blocks.append(Table(("why not designed",), tuple([r] for r in reasons), ("<",),
+                                "The combinations a bound shows cannot win (design.prune = false designs them)",
+                                "pruned"))
 
     # -- 7. drive ---------------------------------------------------------------------------
 

@@ -225,7 +225,7 @@ def design_report(result, spec=None, units=DEFAULT):
             rows.append([str(k), c.material, c.shaft, n(c.mass, "mass"), n(c.d_outer, "d_outer"), n(c.h, "h"),
                          n(c.b, "b"), n(c.rim_speed, "rim_speed"), ", ".join(c.binding)])
         else:
-            rows.append(["-", c.material, c.shaft, "infeasible", "", "", "", "", ""])
+            rows.append(["-", c.material, c.shaft, "cannot win" if c.pruned else "infeasible", "", "", "", "", ""])
     head = ["rank", "material", "shaft", heading("mass", "mass", units), heading("D_outer", "d_outer", units),
             heading("H", "h", units), heading("B", "b", units), heading("v", "rim_speed", units), "binding"]
     align = ["<", "<", "<", ">", ">", ">", ">", ">", "<"]
@@ -236,9 +236,13 @@ def design_report(result, spec=None, units=DEFAULT):
         align.insert(3, ">")
     lines += ["", "Every combination (ranked):"]
     lines += ["  " + line for line in table(head, rows, align)]
-    reasons = [c.reason for c in result.candidates if not c.feasible]
+    reasons = [c.reason for c in result.candidates if not c.feasible and not c.pruned]
     if reasons:
         lines += ["", "Why the infeasible ones fail:"] + [f"  - {r}" for r in reasons]
+    reasons = [c.reason for c in result.candidates if c.pruned]
+    if reasons:
+        lines += ["", "Not designed, since a bound shows they cannot win (design.prune = false designs them):"]
+        lines += [f"  - {r}" for r in reasons]
     return lines
 
 
