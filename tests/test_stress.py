@@ -602,3 +602,33 @@ def test_radial_displacement_of_thin_ring():
     sr, st = stress.disc_stresses(cs[0], rho, nu, w, 0.5)
     assert_allclose(stress.radial_displacement(sr, st, 0.5, modulus, nu),
                     0.5 * rho * (w * 0.5) ** 2 / modulus, rtol=1e-6)
+
+
+def test_check_wheel_maxima_of_one_disc_are_exact():
+    """check_wheel's maxima of a bare disc or rim against the issue's figures and an independent
+    bounded maximization of the Lame stresses (scipy), not a grid: sigma_r of an annulus peaks between
+    grid points (a 201-point grid read it up to 2e-5 low)."""
+    from scipy.optimize import minimize_scalar
+
+    from flyopt.design import strength, wheel
+    from flyopt.design.materials import make_material
+
+    rho, nu, w = 7850.0, 0.3, 3000.0 * 2.0 * np.pi / 60.0
+    steel = make_material("steel", rho, allowable_stress=200e6, poisson_ratio=nu, tensile_strength=500e6,
+                          yield_strength=300e6, ductile=True)
+    annulus = strength.check_wheel(steel, "disc", wheel.Dims(d_outer=1.0, h=0.45, b=0.05, bore=0.1), w, 0.0)
+    assert_allclose(annulus.hoop_max / 1e6, 160.13, atol=0.005)
+    assert_allclose(annulus.radial_max / 1e6, 64.72, atol=0.005)
+    assert annulus.von_mises == annulus.hoop_max == annulus.max_principal
+    solid = strength.check_wheel(steel, "disc", wheel.Dims(d_outer=1.0, h=0.5, b=0.05), w, 0.0)
+    assert_allclose([solid.hoop_max / 1e6, solid.radial_max / 1e6], [79.90, 79.90], atol=0.005)
+    for d_inner in (0.3, 0.7, 0.95):        # rims of every proportion
+        dims = wheel.Dims(d_outer=1.0, h=(1.0 - d_inner) / 2.0, b=0.1)
+        checked = strength.check_wheel(steel, "rim", dims, w, 0.0)
+        coefficients = wheel.stress_state("rim", dims, rho, nu, w, 0.0).coefficients[0]
+        for index, reported in ((0, checked.radial_max), (1, checked.hoop_max)):
+            found = minimize_scalar(lambda r: -stress.disc_stresses(coefficients, rho, nu, w, r)[index],
+                                    bounds=(d_inner / 2.0, 0.5), method="bounded",
+                                    options={"xatol": 1e-12})
+            best = max(-found.fun, stress.disc_stresses(coefficients, rho, nu, w, d_inner / 2.0)[index])
+            assert_allclose(reported, best, rtol=1e-12)

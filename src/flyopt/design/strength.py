@@ -157,21 +157,30 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
     coefficients = [(float(c1), 0.0 if isinstance(c2, (int, float)) and c2 == 0 else float(c2))
                     for c1, c2 in state.coefficients]
     radii = [float(r) for r in state.radii]
-    if len(coefficients) == 1 and not state.beams:
-        # one free disc (a bare rim, a disc with or without a bore): sigma_t >= sigma_r >= 0 and sigma_t
-        # falls outwards, so both measures peak at the inner edge (Timoshenko & Goodier, art. 32)
-        sr, st = stress.disc_stresses(coefficients[0], rho, nu, omega, radii[0])
-        note(state.names[0], float(stress.von_mises(sr, st) if ductile else max(sr, st)), radii[0])
+    single = len(coefficients) == 1 and not state.beams
+    if single:
+        # one free disc (a bare rim, a disc with or without a bore), exactly (Timoshenko & Goodier,
+        # art. 32): sigma_t >= sigma_r >= 0 and sigma_t falls outwards, so sigma_t, von Mises
+        # (sqrt(st^2 - sr (st - sr)) <= st) and the largest principal stress all peak at the inner
+        # edge, where sigma_r = 0 (or, solid, sigma_r = sigma_t); sigma_r peaks at r = sqrt(a b) at
+        # (3+nu)/8 rho w^2 (b - a)^2 (at the centre of a solid disc, a = 0)
+        a, b = radii
+        sr, st = (float(v) for v in stress.disc_stresses(coefficients[0], rho, nu, omega, a))
+        note(state.names[0], float(stress.von_mises(sr, st)) if ductile else max(sr, st), a)
+        hoop, principal = st, max(st, sr)
+        vm = float(stress.von_mises(sr, st))
+        radial = (3.0 + nu) / 8.0 * rho * omega ** 2 * (b - a) ** 2
     elif coefficients:
         for found in stress.max_stress_per_step(coefficients, radii, rho, nu, omega, measure, _POINTS):
             note(state.names[found.step], found.value, found.radius)
-    if coefficients:
+    if coefficients and not single:
         for k, c in enumerate(coefficients):
             grid = np.linspace(radii[k], radii[k + 1], _POINTS)
             sr, st = stress.disc_stresses(c, rho, nu, omega, grid)
             hoop, radial = max(hoop, float(st.max())), max(radial, float(sr.max()))
             vm = max(vm, float(stress.von_mises(sr, st).max()))
             principal = max(principal, float(np.maximum(sr, st).max()))
+    if coefficients:
         mean_hoop = float(stress.mean_hoop_stress(coefficients, radii, [float(t) for t in state.thicknesses],
                                                   rho, nu, omega))
     if geometry_name == "rim_arms":    # the rim carries the hoop load of an arms wheel
