@@ -171,15 +171,16 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
         vm = float(stress.von_mises(sr, st))
         radial = (3.0 + nu) / 8.0 * rho * omega ** 2 * (b - a) ** 2
     elif coefficients:
-        for found in stress.max_stress_per_step(coefficients, radii, rho, nu, omega, measure, _POINTS):
-            note(state.names[found.step], found.value, found.radius)
-    if coefficients and not single:
-        for k, c in enumerate(coefficients):
-            grid = np.linspace(radii[k], radii[k + 1], _POINTS)
-            sr, st = stress.disc_stresses(c, rho, nu, omega, grid)
-            hoop, radial = max(hoop, float(st.max())), max(radial, float(sr.max()))
-            vm = max(vm, float(stress.von_mises(sr, st).max()))
-            principal = max(principal, float(np.maximum(sr, st).max()))
+        # a stepped disc: each measure's maximum over each step, found on a grid and refined between
+        # its points (the governing measure's per part, every measure's for the report)
+        found = {m: stress.max_stress_per_step(coefficients, radii, rho, nu, omega, m, _POINTS)
+                 for m in ("von_mises", "largest_principal", "hoop", "radial")}
+        for step_max in found[measure]:
+            note(state.names[step_max.step], step_max.value, step_max.radius)
+        vm = max(vm, *(f.value for f in found["von_mises"]))
+        principal = max(principal, *(f.value for f in found["largest_principal"]))
+        hoop = max(hoop, *(f.value for f in found["hoop"]))
+        radial = max(radial, *(f.value for f in found["radial"]))
     if coefficients:
         mean_hoop = float(stress.mean_hoop_stress(coefficients, radii, [float(t) for t in state.thicknesses],
                                                   rho, nu, omega))
