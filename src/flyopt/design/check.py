@@ -49,6 +49,7 @@ WHEEL_BINDING_NAMES = {
     "stress_hub": "the hub's stress is at its allowable", "stress_arms": "the arms' stress is at their allowable",
     "stress_disc": "the disc's stress is at its allowable",
     "min_wall": "a section is at the thinnest the process makes (min_wall)",
+    "strength_table": "a section is at the thickest its material's strength-by-thickness table covers",
     "hub_diameter_min": "the hub diameter is at the smallest the textbook proportions allow",
     "hub_diameter_max": "the hub diameter is at the largest the textbook proportions allow",
     "hub_length_min": "the hub length is at its minimum (the proportions, or the key's length at the peak torque)",

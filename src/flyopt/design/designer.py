@@ -243,7 +243,8 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
         err.combination = label
         raise err
     binding = sorted(name for name, lam in solution.lam_g.items() if abs(lam) > 1e-9)
-    binding += sorted({_BOUND_NAMES[name, lam > 0] for name, lam in solution.lam_x.items() if abs(lam) > 1e-9})
+    binding += sorted({"strength_table" if lam > 0 and name in (solution.caps or {}) else _BOUND_NAMES[name, lam > 0]
+                       for name, lam in solution.lam_x.items() if abs(lam) > 1e-9})
     cost = mass * m.cost if m.cost is not None else None
     objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
     structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec,

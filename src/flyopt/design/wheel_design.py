@@ -265,7 +265,85 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
                                                                       spec.safety_factor).items()}
         except ThicknessOutOfRange:      # the starting wheel is thicker than the table: its weakest row
             targets = {p: material.allowable(safety_factor=spec.safety_factor) for p in parts}
-    used = dict(targets)
+    table_end = _table_end(material) if stressed else None
+    best, tried, queue = None, set(), [()]
+    while queue:                     # the unconstrained wheel first, then sections capped at the table's end
+        caps = queue.pop(0)
+        if caps in tried:
+            continue
+        tried.add(caps)
+        try:
+            found = _settle(model, _with(problem, caps=dict(caps) or None), combo, material, geo, spec,
+                            torque, parts, dict(targets), table_end)
+        except _OverTable as over:
+            if len(tried) >= _MAX_BRANCHES:
+                raise SolverFailed(f"{combo.label}: keeping every section within the material's strength "
+                                   f"table took more than {_MAX_BRANCHES} capped solves; no design is "
+                                   f"reported") from None
+            queue += _branches(over.walls, dict(caps), geo, bore, table_end)
+            continue
+        except NoWheel:
+            if not caps:
+                raise
+            continue                 # this choice of capped sections leaves no wheel; another may
+        if best is None or found[1].objective < best[1].objective:
+            best = found
+    if best is None:
+        raise NoWheel(f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
+                      f"material's strength table, which ends at {table_end * 1e3:g} mm, and no wheel whose "
+                      f"sections stay within it meets every limit")
+    return best
+
+
+#: Capped solves allowed while keeping a wheel's sections within a strength table.
+_MAX_BRANCHES = 16
+
+
+class _OverTable(Exception):
+    """A solved wheel has sections beyond its material's strength table: ``walls`` part -> wall [m]."""
+
+    def __init__(self, walls):
+        super().__init__(walls)
+        self.walls = walls
+
+
+def _table_end(material):
+    """The thickest section the material's strength table covers [m], or None (no table)."""
+    rows = getattr(material, "strength_by_thickness", ())
+    return rows[-1].max_thickness if rows else None
+
+
+def _branches(walls, caps, geo, bore, end):
+    """Caps that bring every section in ``walls`` within the table's ``end``: one child per choice.
+
+    A part's wall is the smaller of its two section sizes (:func:`flyopt.design.wheel.walls`), so
+    each of the rim, hub and disc may be brought within the table by either: H or B for the
+    rim, the radial wall or the length for the hub, B or the radial extent for the disc; the
+    web by its thickness and the arms by their minor axis alone.
+    """
+    import itertools
+
+    options = {"rim": ({"h": end}, {"b": end}), "web": ({"t_web": end},),
+               "arms": ({"arm_major": end / wheel.ARM_MINOR_RATIO},),
+               "hub": ({"d_hub": bore + 2.0 * end}, {"l_hub": end}),
+               "disc": ({"b": end}, {"d_outer": bore + 2.0 * end})}
+    end = end * (1.0 - 1e-9)       # inside the last row, whatever the round-off of exp(log(cap))
+    children = []
+    for choice in itertools.product(*(options[part] for part in sorted(walls))):
+        child = dict(caps)
+        for cap in choice:
+            for name, value in cap.items():
+                child[name] = min(child.get(name, math.inf), value)
+        children.append(tuple(sorted(child.items())))
+    return children
+
+
+def _settle(model, problem, combo, material, geo, spec, torque, parts, used, table_end):
+    """Solve, check the exact stresses and every part's strength at its wall, and solve again until
+    they agree with the NLP's rows. Raises _OverTable where a section leaves the strength table."""
+    from flyopt.design import wheel_nlp
+
+    stressed = spec.criterion == "stress"
     for _round in range(_MAX_ROUNDS):
         problem = _with(problem, allowable={p: used.get(p, math.inf) for p in parts})
         try:
@@ -279,10 +357,12 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
         try:
             checked = (strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
                        if getattr(material, "poisson_ratio", None) is not None else None)
-        except ThicknessOutOfRange as err:
-            raise NoWheel(f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
-                          f"material's strength table ({err}); flyopt does not yet bound the walls by the "
-                          f"table") from None
+        except ThicknessOutOfRange:
+            if not stressed:         # sized by the rim speed: the report says why no stress is given
+                return dims, solution, None
+            # the parts whose wall is beyond the table (under the "wheel" rule the ruling section is the
+            # thickest wall, so the same parts)
+            raise _OverTable({p: w for p, w in wheel.walls(geo, dims).items() if w > table_end}) from None
         if not stressed:
             return dims, solution, checked
         settled = True

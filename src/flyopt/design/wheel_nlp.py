@@ -226,7 +226,10 @@ class WheelProblem:
 
     ``allowable`` maps each stressed part to its allowable stress [Pa];
     ``min_wall``, the hub bounds and ``l_hub_min`` (the key's) are lower
-    bounds [m]; ``d_hub_range`` and ``l_hub_range`` the textbook proportions.
+    bounds [m]; ``d_hub_range`` and ``l_hub_range`` the textbook proportions;
+    ``caps`` upper bounds on chosen dimensions (``h``, ``b``, ``t_web``,
+    ``arm_major``, ``d_hub``, ``l_hub``, ``d_outer``), which keep a section
+    within its material's strength table.
     """
 
     j_shaft: float
@@ -245,6 +248,7 @@ class WheelProblem:
     d_hub_range: tuple = (0.0, math.inf)
     l_hub_range: tuple = (0.0, math.inf)
     start: dict | None = None
+    caps: dict | None = None       # variable name -> upper bound [m] (a section kept within a strength table)
 
 
 @dataclass(frozen=True)
@@ -262,6 +266,7 @@ class WheelSolution:
     stress_scale: float
     structure: WheelStructure
     allow_params: dict     # part -> the allowable's parameter, (sigma_a / S)^2 (ductile) or sigma_a / S
+    caps: dict = None      # the caps that set a variable's upper bound (variable -> [m]), or None
 
 
 def _start(structure, problem, names):
@@ -330,6 +335,18 @@ def solve(model, problem, label):
         lo, hi = problem.l_hub_range
         lbx[col["l_hub"]] = math.log(lo) if lo > 0 else -inf
         ubx[col["l_hub"]] = math.log(hi) if math.isfinite(hi) else inf
+    capped = {}                        # the caps tighter than every other upper bound
+    for n, cap in (problem.caps or {}).items():
+        if n in col and math.log(cap) < ubx[col[n]]:
+            ubx[col[n]] = math.log(cap)
+            capped[n] = cap
+    crossed = [n for n, lo, hi in zip(names, lbx, ubx) if lo > hi]
+    if crossed:        # a cap below a lower bound: no wheel, and IPOPT is not asked
+        err = SolverFailed(f"{label}: the caps on {', '.join(crossed)} are below their lower bounds; "
+                           f"no wheel meets both")
+        err.status = "Infeasible_Problem_Detected"
+        err.combination = label
+        raise err
     start = problem.start or _start(s, problem, names)
     x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
     length = start["d_outer"] / 2.0
@@ -389,4 +406,4 @@ def solve(model, problem, label):
     for part, v in zip(model.stress_parts, sol["lam_p"].full().ravel()[len(PARAMETERS):]):
         lam_p[f"allow_{part}"] = float(v)
     return WheelSolution(dims, float(sol["f"]), status, iterations, elapsed, lam_g, lam_x, lam_p, scale,
-                         s, dict(zip(model.stress_parts, allow)))
+                         s, dict(zip(model.stress_parts, allow)), capped or None)
