@@ -286,7 +286,8 @@ PLAIN_COLUMNS = {"model", "vs exact", "achieved δ", "note", "point", "", "shaft
 PLAIN_FACTS = ("allowed δ", "material / shaft", "binding", "solved by", "safety on strength", "motor ratio",
                "flywheel shaft")
 #: Blocks of prose written by the design itself (flyopt.design), shown as it wrote them.
-PROSE_BLOCKS = ("Sensitivities of the mass:", "Notes:", "Why the infeasible ones fail:")
+PROSE_BLOCKS = ("Sensitivities of the mass:", "Notes:", "Why the infeasible ones fail:",
+                "Not designed, since a bound shows they cannot win")
 #: Lines that carry the design's prose (none: the drive's note no longer prints a number).
 PROSE_LINES = ()
 #: Dimensionless numbers inside a line: ratios, counts, percentages, tolerances, standards' names.
@@ -358,7 +359,7 @@ def _check_table(lines, k, system, left):
             left.append((lines[k], f"column {title!r} in {unit!r}"))
         for line in lines[k + 2:end]:
             cell = cells(line)[j]
-            if cell and not re.fullmatch(rf"-+|{NUM}( – {NUM})?|infeasible", cell):
+            if cell and not re.fullmatch(rf"-+|{NUM}( – {NUM})?|infeasible|cannot win", cell):
                 left.append((line, cell))
     return end
 
