@@ -27,7 +27,8 @@ from flyopt.design import check, geometry, hub, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
 
-__all__ = ["needs_torque", "bore_of", "objective_bound", "stress_cap", "screen", "design_combination", "structure_fields", "NoWheel", "sensitivities"]
+__all__ = ["needs_torque", "bore_of", "objective_bound", "stress_cap", "screen", "design_combination",
+           "structure_fields", "NoWheel", "sensitivities"]
 
 #: Re-solves allowed for the exact stress check and the strength of the walls to settle.
 _MAX_ROUNDS = 8
@@ -169,9 +170,8 @@ def objective_bound(combo, spec):
     mass = 4.0 * j / (cap * cap)
     why = (f"every wheel that gives {j:.4g} kg·m² within D {cap:.4g} m weighs at least "
            f"{mass:.4g} kg (m >= 4 J/D²: all of it at the outer radius)")
-    if spec.objective == "cost":
-        cost = combo.material.cost
-        return (mass * cost if cost is not None else 0.0), why + f", which costs at least {mass * (cost or 0.0):.4g}"
+    if spec.objective == "cost":           # design_flywheel refuses the cost objective without a price
+        return mass * combo.material.cost, why + f", which costs at least {mass * combo.material.cost:.4g}"
     return mass, why
 
 
@@ -235,7 +235,6 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
     material, geo = combo.material, spec.geometry
     stressed = spec.criterion == "stress"
     exact = _disc_closed_form(combo, spec, bore, material) if method != "ipopt" else None
-
     if exact is not None:
         dims, solution = exact
         return dims, solution, strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
@@ -323,11 +322,11 @@ def _branches(walls, caps, geo, bore, end):
     """
     import itertools
 
+    end = end * (1.0 - 1e-9)       # inside the last row, whatever the round-off of exp(log(cap))
     options = {"rim": ({"h": end}, {"b": end}), "web": ({"t_web": end},),
                "arms": ({"arm_major": end / wheel.ARM_MINOR_RATIO},),
                "hub": ({"d_hub": bore + 2.0 * end}, {"l_hub": end}),
                "disc": ({"b": end}, {"d_outer": bore + 2.0 * end})}
-    end = end * (1.0 - 1e-9)       # inside the last row, whatever the round-off of exp(log(cap))
     children = []
     for choice in itertools.product(*(options[part] for part in sorted(walls))):
         child = dict(caps)
