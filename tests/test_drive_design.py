@@ -230,17 +230,21 @@ def test_relaxation_sensitivities_against_central_differences():
     import dataclasses
 
     from flyopt.analysis import analyse
-    from flyopt.design.drive_nlp import relax
+    from flyopt.design import design_inputs
+    from flyopt.design.drive_nlp import RelaxedWheel, relax
 
     scene = _scene(max_startup=2.5)       # the run-up binds too (3.2 s unbound)
     analysis = analyse(scene)
     fit = CatalogueFit.of(OPTIONS)
     v_max, envelope = 50.0, 1.2
     load_torque = analysis.driving_torque
+    inputs = design_inputs(scene)
+    steel = next(m for m in inputs.materials if m.name == "cast_steel")
 
     def solve(delta=scene.delta, spec=scene.drive, v=v_max, d=envelope):
-        return relax(analysis.machine, scene.omega_mean, delta, scene.efficiency, fit, spec, (v, d / 2, None),
-                     load_torque)
+        wheel = RelaxedWheel.of(dataclasses.replace(steel, max_rim_speed=v),
+                                dataclasses.replace(inputs.spec, max_outer_diameter=d))
+        return relax(analysis.machine, scene.omega_mean, delta, scene.efficiency, fit, spec, wheel, load_torque)
 
     base = solve()
     sens = base.sensitivities
@@ -264,15 +268,56 @@ def test_relaxation_sensitivities_against_central_differences():
 def test_the_relaxation_is_built_once_per_machine():
     """Another material or limit solves the relaxation again without building its NLP (limits are parameters)."""
     from flyopt.analysis import analyse
-    from flyopt.design import drive_nlp
+    from flyopt.design import design_inputs, drive_nlp
 
     scene = _scene()
     analysis = analyse(scene)
     fit = CatalogueFit.of(OPTIONS)
+    inputs = design_inputs(scene)
+    iron, steel = (next(m for m in inputs.materials if m.name == name) for name in ("cast_iron", "cast_steel"))
     before = drive_nlp.BUILDS["count"]
     first = drive_nlp.relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, scene.drive,
-                            (50.0, 0.6, None), analysis.driving_torque)
+                            drive_nlp.RelaxedWheel.of(steel, inputs.spec), analysis.driving_torque)
     second = drive_nlp.relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, scene.drive,
-                             (36.0, 0.6, None), analysis.driving_torque)
+                             drive_nlp.RelaxedWheel.of(iron, inputs.spec), analysis.driving_torque)
     assert drive_nlp.BUILDS["count"] == before + 1
     assert first.status == second.status == "Solve_Succeeded"
+
+
+@pytest.mark.parametrize("geometry, criterion, material, arms", [
+    ("rim", "rim_speed", "cast_steel", 0), ("disc", "rim_speed", "cast_iron", 0),
+    ("rim_web", "stress", "cast_steel", 0), ("rim_arms", "stress", "cast_steel", 6),
+    ("rim_arms", "stress", "cast_iron", 6)])
+def test_relaxation_wheel_is_the_designers_wheel(geometry, criterion, material, arms):
+    """The relaxation's wheel at its optimum (J_F, r) against flyopt's designer given that inertia on that shaft
+    (the closed form for the bare wheels; the whole-wheel NLP with its exact stress checks for the others):
+    never heavier, and the same wheel where the allowable stress does not depend on the wall (cast steel).
+    Cast iron's allowable falls with the wall (EN 1561); the relaxation takes its strongest row."""
+    import dataclasses
+
+    from flyopt.analysis import analyse
+    from flyopt.design import design_inputs
+    from flyopt.design.designer import design_flywheel
+    from flyopt.design.drive_nlp import RelaxedWheel, relax
+    from flyopt.design.spec import MountShaft
+
+    scene = _scene()
+    analysis = analyse(scene)
+    inputs = design_inputs(scene)
+    bore = 0.05 if geometry in ("rim_web", "rim_arms") else None
+    spec = dataclasses.replace(inputs.spec, geometry=geometry, criterion=criterion, bore=bore)
+    chosen = next(m for m in inputs.materials if m.name == material)
+    wheel = RelaxedWheel.of(chosen, spec, bore or 0.0, arms)
+    relaxed = relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, CatalogueFit.of(OPTIONS),
+                    scene.drive, wheel, analysis.driving_torque)
+    assert relaxed.status == "Solve_Succeeded" and relaxed.j_flywheel > 0
+    omega_top = scene.omega_mean * (1 + scene.delta / 2)
+    designed = design_flywheel(relaxed.j_flywheel, omega_top, [MountShaft("flywheel", relaxed.flywheel_ratio)],
+                               [chosen], dataclasses.replace(spec, arms=(arms,) if arms else spec.arms))
+    assert designed.status == "designed"
+    assert relaxed.wheel_mass <= designed.best.mass * (1 + 1e-7)
+    if material == "cast_steel" or criterion == "rim_speed":
+        assert relaxed.wheel_mass == pytest.approx(designed.best.mass, rel=1e-6)
+        assert relaxed.d_outer == pytest.approx(designed.best.d_outer, rel=1e-4)
+    else:
+        assert relaxed.wheel_mass < designed.best.mass * (1 - 1e-6)

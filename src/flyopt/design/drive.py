@@ -608,26 +608,35 @@ def design_drive(scene, analysis=None, *, solver_options=None, every_size=False)
 
 
 def _relaxation(scene, analysis, spec, motors, inputs, load):
-    """(Relaxation or None, note): the continuous relaxation, best over the design's materials."""
-    from flyopt.design.designer import _rim_speed_limit
-    from flyopt.design.drive_nlp import CatalogueFit, relax
+    """(Relaxation or None, note): the continuous relaxation, best over the design's materials (and arm counts)."""
+    from flyopt.design.drive_nlp import CatalogueFit, RelaxedWheel, relax
+    from flyopt.design.spec import MountShaft
+    from flyopt.design.wheel_design import bore_of
 
     fit = CatalogueFit.of(motors)
     if fit is None or (spec.objective == "mass" and fit.mass is None) or (spec.objective == "cost" and fit.price is None):
         return None, "every catalogue size solved (too few sizes, or one lacks a value, for a continuous relaxation)"
+    design = inputs.spec
+    bore = bore_of(design, MountShaft(FLYWHEEL_SHAFT, 1.0))
     best, failures = None, []
     for material in inputs.materials:
-        v_max = _rim_speed_limit(material, inputs.spec)
-        if not math.isfinite(v_max) or (spec.objective == "cost" and material.cost is None):
+        if spec.objective == "cost" and material.cost is None:
             continue
-        wheel = (v_max, inputs.spec.max_outer_diameter / 2, material.cost)
-        try:
-            found = relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, spec, wheel, load)
-        except SolverFailed as err:
-            failures.append(f"{material.name}: {err}")
-            continue
-        if best is None or found.objective < best.objective:
-            best = found
+        if ((design.criterion == "stress" or design.geometry in ("rim_web", "rim_arms"))
+                and getattr(material, "poisson_ratio", None) is None):
+            continue                  # the designer refuses it: its stress needs a Poisson's ratio
+        for n_arms in (design.arms if design.geometry == "rim_arms" else (0,)):
+            wheel = RelaxedWheel.of(material, design, bore, n_arms)
+            if design.criterion == "rim_speed" and not math.isfinite(wheel.v_max):
+                continue
+            try:
+                found = relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, spec, wheel,
+                              load)
+            except SolverFailed as err:
+                failures.append(f"{wheel.label}: {err}")
+                continue
+            if best is None or found.objective < best.objective:
+                best = found
     if best is None:
         return None, ("every catalogue size solved: the relaxation found no optimum"
                       + (f" ({'; '.join(failures)})" if failures else ""))

@@ -23,9 +23,14 @@ constraints:
   inertia, in closed form,
   t = J/(i² η) · ω_0/(2 M_b s_b) [(1 − s_e²)/2 + s_b² ln(1/s_e)],
   s_e = 1 − i ω_m/ω_0, at most ``max_startup``;
-- the wheel: a thin ring at its outer radius R (a lower bound on any real
-  wheel's mass for its inertia), m = J_F/(r² R²), with R within the envelope
-  and r R ω_max within the material's safe rim speed.
+- the wheel: the designer's whole-wheel NLP (:func:`flyopt.design.wheel_nlp.formulate`,
+  every dimension a variable, every row of the structure: inertia, envelope,
+  width, H/B, walls, hub, and the rim speed or the stress of every part) on
+  the flywheel shaft, whose speed r ω_max is a variable here; its inertia
+  there times r² at least J_F. Each part's allowable is the material's
+  strongest (its strength table's thinnest row) and the hub and arms carry
+  no torque, so for the same J_F and r its wheel is never heavier than the
+  designer's (and is the same where the allowable does not depend on the wall).
 
 The objective is the motor's mass (or price) plus the wheel's mass (or cost).
 It is a relaxation: it locates the motor size; :func:`flyopt.design.drive.design_drive`
@@ -35,6 +40,7 @@ wheel designer) and ranks them.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -102,7 +108,8 @@ class CatalogueFit:
 
 @dataclass(frozen=True)
 class Relaxation:
-    """The relaxed optimum: rating [W], ratios [-], flywheel at the crank [kg*m^2], status.
+    """The relaxed optimum: rating [W], ratios [-], flywheel at the crank [kg*m^2], status, and its wheel
+    (``wheel_mass`` [kg], ``d_outer`` [m] and ``wheel``, its material and arm count).
 
     ``sensitivities``: d(objective)/d(limit) of the relaxed optimum, in the
     objective's unit (kg, or currency) per SI unit of each limit: ``max_startup``
@@ -118,6 +125,9 @@ class Relaxation:
     objective: float
     status: str
     sensitivities: dict = field(default_factory=dict)
+    wheel_mass: float | None = None
+    d_outer: float | None = None
+    wheel: str = ""
 
 
 def kloss_runup_time(inertia, ratio, efficiency, breakdown_torque, breakdown_slip, synchronous_speed, omega, lib=math):
@@ -144,41 +154,85 @@ def _law(fit, lnp, ca):
 #: Builds of the relaxation's NLP (a test checks that a second solve on the same machine builds none).
 BUILDS = {"count": 0}
 
+#: The smallest dimension of the relaxation's wheel [m]: where the drive needs no flywheel its wheel
+#: shrinks toward nothing, and its dimensions (logarithms in the NLP) stop here instead of at -inf.
+MIN_DIMENSION = 1e-4
+
+
+@dataclass(frozen=True)
+class RelaxedWheel:
+    """The wheel of the relaxation: the whole-wheel NLP's structure and limits for one material.
+
+    ``problem`` is the :class:`flyopt.design.wheel_nlp.WheelProblem` the
+    designer would solve (:func:`flyopt.design.wheel_design.wheel_problem`),
+    with the material's strongest allowable stress on every part and no
+    torque on the hub or arms; its inertia and shaft speed are the drive's
+    variables. ``v_max``: the material's safe rim speed [m/s] (used under
+    the rim-speed criterion); ``cost_per_kg``: its cost, or None.
+    """
+
+    structure: object
+    problem: object
+    v_max: float
+    cost_per_kg: float | None
+    label: str
+
+    @classmethod
+    def of(cls, material, spec, bore=0.0, n_arms=0):
+        """The relaxed wheel of a material under a design spec, on a seat of diameter ``bore`` [m]."""
+        from flyopt.design.designer import _rim_speed_limit
+        from flyopt.design.wheel_design import strongest_allowables, wheel_problem
+
+        v_max = _rim_speed_limit(material, spec)
+        structure, problem = wheel_problem(material, spec, bore, 0.0, n_arms, 1.0, 1.0, v_max)
+        structure = structure._replace(objective="mass")
+        problem = dataclasses.replace(problem, allowable=strongest_allowables(material, spec, structure))
+        label = material.name + (f", {n_arms} arms" if n_arms else "")
+        return cls(structure, problem, v_max, material.cost, label)
+
 
 @dataclass(frozen=True)
 class _Model:
     """The relaxation's NLP for one machine, catalogue fit and structure; its limits are parameters."""
 
     solver: object
-    values: object          # x, par -> (P, i, r, J_F, objective)
+    values: object          # x, par -> (P, i, r, J_F, objective, wheel mass, wheel outer diameter)
     n: int                  # collocation intervals
     rows: tuple             # row sizes, in order
-    rim_row: int
-    startup_row: int | None
+    wheel_rows: tuple       # names of the wheel's rows, in order (they come last)
+    wheel_names: tuple      # the wheel's variables
     scale: float            # of the objective
     extra_lo: tuple
     extra_hi: tuple
     extra_x0: tuple
-    lbg: np.ndarray
+    lbg: np.ndarray         # without the wheel's rows
     ubg: np.ndarray
 
 
-def _model(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque):
+def _model(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque, structure):
     """The relaxation's NLP, built once per machine and structure (kept in the machine's cache).
 
-    Parameters of the NLP: ``par`` = (δ, v_max [m/s], cost per kg, max_startup [s], J scale [kg*m^2]).
+    Parameters of the NLP: ``par`` = (δ, cost per kg, max_startup [s], J scale [kg*m^2], density,
+    Poisson's ratio, torque, bore, stress scale, the allowables of the wheel's parts).
     """
     key = ("drive_relaxation", fit, float(omega_mean), float(efficiency), bool(thermal), bool(startup),
-           objective_name, float(load_torque))
+           objective_name, float(load_torque), structure)
     cache = machine._cache
     if key not in cache:
-        cache[key] = _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque)
+        cache[key] = _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque,
+                            structure)
         BUILDS["count"] += 1
     return cache[key]
 
 
-def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque):
+#: The wheel's parameters in the relaxation, after (δ, cost per kg, max_startup, J scale).
+_WHEEL_PARAMETERS = ("density", "poisson", "torque", "bore", "stress_scale")
+
+
+def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque, structure):
     import casadi as ca
+
+    from flyopt.design import wheel_nlp
 
     cycle = machine.cycle_angle
     resisting = machine.angle_only().resisting
@@ -190,10 +244,13 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     n = len(phi) - 1                          # intervals; node n is node 0 again
     w0 = fit.synchronous_speed
 
-    lnp, i_m, jf, r, big_r = (ca.SX.sym(name) for name in ("lnp", "i_m", "jf", "r", "R"))
+    lnp, i_m, jf, r = (ca.SX.sym(name) for name in ("lnp", "i_m", "jf", "r"))
+    wheel_names = wheel_nlp.variables_of(structure)
+    x_wheel = ca.SX.sym("wheel", len(wheel_names))
     w = ca.SX.sym("w", n)                     # ω_k / ω_m, k = 0..n-1
-    par = ca.SX.sym("par", 5)
-    delta, v_max, cost_per_kg, t_max, j_scale = (par[k] for k in range(5))   # J_F = j_scale * jf
+    n_allow = len(wheel_nlp.stressed_parts(structure))
+    par = ca.SX.sym("par", 4 + len(_WHEEL_PARAMETERS) + n_allow)
+    delta, cost_per_kg, t_max, j_scale = (par[k] for k in range(4))   # J_F = j_scale * jf
     rows = []                                 # (expression, lower, upper)
 
     p = ca.exp(lnp)
@@ -235,29 +292,32 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
         extra_x0 += [1.0, 1.0]
     s_e = 1 - i_m * omega_mean / w0
     rows.append((s_e, 1e-6, math.inf))
-    startup_row = None
     if startup:
         j_total = float(np.mean(j_e[:-1])) + j_rot * i_m**2 + j_f
         run = kloss_runup_time(j_total, i_m, efficiency, k * m_n, s_b, w0, omega_mean, ca)
         rows.append((run / t_max, -math.inf, 1.0))
-        startup_row = len(rows) - 1
-    omega_top = omega_mean * (1 + delta / 2)
-    rows.append((r * big_r * omega_top / v_max, -math.inf, 1.0))
-    rim_row = len(rows) - 1
-    wheel_mass = j_f / (r**2 * big_r**2)
+    # the wheel: the designer's NLP rows (flyopt.design.wheel_nlp.formulate) on the flywheel shaft, whose speed
+    # r ω_max is a variable here; its inertia there, times r², gives J_F at the crank
+    shaft_omega = r * omega_mean * (1 + delta / 2)
+    wheel_par = {name: par[4 + k] for k, name in enumerate(_WHEEL_PARAMETERS)}
+    wheel_par.update(omega=shaft_omega, log_half_omega=ca.log(shaft_omega / 2))
+    form = wheel_nlp.formulate(structure, x_wheel, wheel_par, par[4 + len(_WHEEL_PARAMETERS):])
+    wheel_rows = [(name, (form.inertia * r**2 - j_f) / j_scale) if name == "inertia" else (name, expr)
+                  for name, expr in zip(form.row_names, form.rows)]
     if objective_name == "cost":
-        objective = _law(fit.price, lnp, ca) + cost_per_kg * wheel_mass
+        objective = _law(fit.price, lnp, ca) + cost_per_kg * form.mass
         scale = float(_law(fit.price, math.log(fit.p_max), np))
     else:
-        objective = _law(fit.mass, lnp, ca) + wheel_mass
+        objective = _law(fit.mass, lnp, ca) + form.mass
         scale = float(_law(fit.mass, math.log(fit.p_max), np))
-    x = ca.vertcat(lnp, i_m, jf, r, big_r, w, *extra)
-    g = ca.vertcat(*(row[0] for row in rows))
+    x = ca.vertcat(lnp, i_m, jf, r, x_wheel, w, *extra)
+    g = ca.vertcat(*(row[0] for row in rows), *(expr for _, expr in wheel_rows))
     solver = ca.nlpsol("drive", "ipopt", {"x": x, "p": par, "f": objective / scale, "g": g},
                        {"print_time": False, "ipopt.print_level": 0, "ipopt.sb": "yes",
                         "ipopt.max_iter": 3000, "ipopt.tol": 1e-10})
-    return _Model(solver=solver, values=ca.Function("values", [x, par], [p, i_m, r, j_f, objective]), n=n,
-                  rows=tuple(row[0].shape[0] for row in rows), rim_row=rim_row, startup_row=startup_row,
+    values = ca.Function("values", [x, par], [p, i_m, r, j_f, objective, form.mass, form.dims.d_outer])
+    return _Model(solver=solver, values=values, n=n, rows=tuple(row[0].shape[0] for row in rows),
+                  wheel_rows=tuple(name for name, _ in wheel_rows), wheel_names=tuple(wheel_names),
                   scale=scale, extra_lo=tuple(extra_lo), extra_hi=tuple(extra_hi), extra_x0=tuple(extra_x0),
                   lbg=np.concatenate([np.full(row[0].shape[0], row[1]) for row in rows]),
                   ubg=np.concatenate([np.full(row[0].shape[0], row[2]) for row in rows]))
@@ -267,9 +327,9 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
     """Solve the relaxation (:class:`Relaxation`).
 
     The NLP is built once per machine, catalogue fit and structure (thermal,
-    start-up, objective); δ, the wheel's limits and ``max_startup`` enter as
-    parameters and bounds, so another material or limit solves it again
-    without building it.
+    start-up, objective, the wheel's structure); δ, the wheel's material and
+    limits and ``max_startup`` enter as parameters and bounds, so another
+    material or limit solves it again without building it.
 
     Parameters
     ----------
@@ -278,8 +338,7 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
     omega_mean, delta, efficiency : float
     fit : CatalogueFit
     spec : DriveSpec
-    wheel : (density-free) tuple (v_max [m/s], R_envelope [m] or inf, cost_per_kg or None)
-        The wheel's limits: its material's safe rim speed, half the envelope.
+    wheel : RelaxedWheel
     load_torque : float
         Mean load torque at the crank [N*m] (scales and the first guess).
 
@@ -288,50 +347,69 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
     SolverFailed
         IPOPT did not converge.
     """
-    v_max, r_env, cost_per_kg = wheel
+    from flyopt.design import wheel_nlp
+
+    structure, problem = wheel.structure, wheel.problem
     model = _model(machine, omega_mean, efficiency, fit, spec.thermal, spec.max_startup is not None,
-                   spec.objective, load_torque)
+                   spec.objective, load_torque, structure)
     n, w0 = model.n, fit.synchronous_speed
     j_scale = max(load_torque * machine.cycle_angle / (omega_mean**2 * delta), 1e-6)
-    par = [delta, v_max, cost_per_kg or 0.0, spec.max_startup or 1.0, j_scale]
     omega_top = omega_mean * (1 + delta / 2)
     lo, hi = spec.ratio_range if spec.ratios is None else (min(spec.ratios), max(spec.ratios))
-    radius_cap = min(r_env, v_max / (lo * omega_top))
-    lbx = [math.log(fit.p_min), 1e-9, 0.0, lo, 1e-6 * radius_cap] + [1 - delta / 2] * n + list(model.extra_lo)
-    ubx = [math.log(fit.p_max), math.inf, math.inf, hi, radius_cap] + [1 + delta / 2] * n + list(model.extra_hi)
+    # the wheel: its variables' bounds and rows' bounds as the designer's (the inertia row: J r² >= J_F, written
+    # as a difference), every dimension at least MIN_DIMENSION
+    floor = math.log(MIN_DIMENSION)
+    w_lo, w_hi, _ = wheel_nlp.variable_bounds(structure, problem)
+    w_lo = [max(v, floor) for v in w_lo]
+    g_lo, g_hi = wheel_nlp.row_bounds(structure, model.wheel_rows, dataclasses.replace(problem, j_shaft=1.0))
+    inertia = model.wheel_rows.index("inertia")
+    g_lo[inertia], g_hi[inertia] = 0.0, math.inf
+    start = wheel_nlp._start(structure, dataclasses.replace(problem, j_shaft=j_scale / hi**2,
+                                                            omega=hi * omega_top), model.wheel_names)
+    w_x0 = [min(max(math.log(max(start[name], MIN_DIMENSION)), a), b)
+            for name, a, b in zip(model.wheel_names, w_lo, w_hi)]
+    stress_scale = problem.density * (hi * omega_top * start["d_outer"] / 2) ** 2
+    allow = wheel_nlp.allowable_parameters(structure, problem.allowable, stress_scale)
+    par = ([delta, wheel.cost_per_kg or 0.0, spec.max_startup or 1.0, j_scale, problem.density, problem.poisson,
+            problem.torque, problem.bore, stress_scale] + allow)
+    nw = len(model.wheel_names)
+    lbx = [math.log(fit.p_min), 1e-9, 0.0, lo] + w_lo + [1 - delta / 2] * n + list(model.extra_lo)
+    ubx = [math.log(fit.p_max), math.inf, math.inf, hi] + w_hi + [1 + delta / 2] * n + list(model.extra_hi)
     # first guess: twice the mean power, the ratio of the work balance, a flywheel of the energy method
     p0 = min(max(2 * load_torque * omega_mean / efficiency, fit.p_min), fit.p_max)
     sn0 = float(_law(fit.slip, math.log(p0), np))
-    x0 = [math.log(p0), w0 * (1 - 0.5 * sn0) / omega_mean, 1.0, hi,
-          min(r_env, 0.9 * v_max / (hi * omega_top))] + [1.0] * n + list(model.extra_x0)
+    x0 = ([math.log(p0), w0 * (1 - 0.5 * sn0) / omega_mean, 1.0, hi] + w_x0 + [1.0] * n
+          + list(model.extra_x0))
     solver = model.solver
     try:
         with quiet():
-            found = solver(x0=x0, p=par, lbx=lbx, ubx=ubx, lbg=model.lbg, ubg=model.ubg)
+            found = solver(x0=x0, p=par, lbx=lbx, ubx=ubx, lbg=np.concatenate([model.lbg, g_lo]),
+                           ubg=np.concatenate([model.ubg, g_hi]))
     except RuntimeError as err:
         raise SolverFailed(f"the drive's relaxation did not converge: {err}") from None
     status = solver.stats()["return_status"]
     if status not in _ACCEPTED:
         raise SolverFailed(f"the drive's relaxation did not converge: {status}")
-    p, i_m, r, j_f, objective = (float(v) for v in model.values(found["x"], par))
-    # d(objective)/d(limit) from the multipliers (CasADi: d f*/d ubx = -lam_x where lam_x > 0, d f*/d lbx =
-    # -lam_x where lam_x < 0; a row g(x; limit) <= 1 adds lam_g dg/dlimit), times the objective's scale
+    p, i_m, r, j_f, objective, wheel_mass, d_outer = (float(v) for v in model.values(found["x"], par))
+    # d(objective)/d(limit) from the multipliers: CasADi's lam_x, lam_g are those of the Lagrangian
+    # f + lam' g, so d f*/d ubx = -lam_x where lam_x > 0, d f*/d lbx = -lam_x where lam_x < 0, likewise
+    # for a row's bounds, and lam_p = -d f*/d p; times the objective's scale
     lam_x = np.asarray(found["lam_x"]).ravel() * model.scale
     lam_g = np.asarray(found["lam_g"]).ravel() * model.scale
-    starts = np.cumsum((0,) + model.rows)
-    g_value = np.asarray(found["g"]).ravel()
-    rim = starts[model.rim_row]
+    lam_p = np.asarray(found["lam_p"]).ravel() * model.scale
+    wheel_lam = dict(zip(model.wheel_rows, lam_g[sum(model.rows):]))
     sens = {}
-    if model.startup_row is not None:
-        k = starts[model.startup_row]
-        sens["max_startup"] = -lam_g[k] * g_value[k] / spec.max_startup
-    sens["rim_speed"] = -lam_g[rim] * g_value[rim] / v_max
+    if spec.max_startup is not None:
+        sens["max_startup"] = -lam_p[2]
+    if "rim_speed" in wheel_lam:
+        sens["rim_speed"] = -wheel_lam["rim_speed"] / wheel.v_max
     if spec.ratios is None:
         sens["ratio_max"] = -max(lam_x[3], 0.0)
         sens["ratio_min"] = -min(lam_x[3], 0.0)
-    if math.isfinite(r_env) and radius_cap == r_env:
-        sens["max_outer_diameter"] = -max(lam_x[4], 0.0) / 2
-    lam_w = lam_x[5:5 + n]
-    sens["delta"] = -0.5 * float(np.sum(np.abs(lam_w))) + lam_g[rim] * g_value[rim] * 0.5 / (1 + delta / 2)
+    if "max_outer_diameter" in wheel_lam:
+        sens["max_outer_diameter"] = -wheel_lam["max_outer_diameter"] / problem.envelope
+    lam_w = lam_x[4 + nw:4 + nw + n]
+    sens["delta"] = -0.5 * float(np.sum(np.abs(lam_w))) - lam_p[0]
     return Relaxation(rated_power=p, motor_ratio=i_m, flywheel_ratio=r, j_flywheel=j_f, objective=objective,
-                      status=status, sensitivities={k: float(v) for k, v in sens.items()})
+                      status=status, sensitivities={k: float(v) for k, v in sens.items()},
+                      wheel_mass=wheel_mass, d_outer=d_outer, wheel=wheel.label)

@@ -197,6 +197,43 @@ def screen(combo, spec, bore):
                       f"stress of a {geo} needs")
 
 
+def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):
+    """(WheelStructure, WheelProblem) of a whole wheel of a material on a shaft, its allowables not yet set.
+
+    The one place where a design's limits become a wheel NLP's structure and
+    numbers: :func:`design_combination` solves it, and the drive's relaxation
+    (:mod:`flyopt.design.drive_nlp`) writes the same rows with the shaft's
+    speed as a variable.
+    """
+    from flyopt.design import wheel_nlp
+
+    geo = spec.geometry
+    d_hub_range = l_hub_range = (0.0, math.inf)
+    if geo in ("rim_web", "rim_arms") and bore:
+        d_hub_range, l_hub_range, _ = _hub_bounds(material, bore, torque)
+    structure = wheel_nlp.WheelStructure(
+        geometry=geo, criterion=spec.criterion, ductile=bool(getattr(material, "ductile", False)),
+        bored=bool(bore), n_arms=n_arms, envelope=spec.has_envelope, width=spec.max_width < math.inf,
+        pinned=spec.d_mean is not None,
+        objective="outer_diameter" if spec.objective == "outer_diameter" else "mass")
+    problem = wheel_nlp.WheelProblem(
+        j_shaft=j_shaft, omega=omega, density=material.density,
+        poisson=getattr(material, "poisson_ratio", None) or 0.3, torque=torque, bore=bore,
+        allowable={}, envelope=spec.max_outer_diameter, max_width=spec.max_width,
+        max_rim_speed=v_max, hb_ratio=spec.hb_ratio, d_mean=spec.d_mean,
+        min_wall=_min_wall(spec, material), d_hub_range=d_hub_range, l_hub_range=l_hub_range)
+    return structure, problem
+
+
+def strongest_allowables(material, spec, structure):
+    """Each stressed part of a structure to the largest allowable stress any section of the material has [Pa]
+    (empty under the rim-speed criterion, or when the material gives none): no wheel's allowable is higher."""
+    from flyopt.design import wheel_nlp
+
+    sigma = _strongest_allowable(material, spec) if spec.criterion == "stress" else None
+    return {} if sigma is None else {part: sigma for part in wheel_nlp.stressed_parts(structure)}
+
+
 def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None, method="auto"):
     """Design one combination as a whole wheel.
 
@@ -238,23 +275,11 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
     if exact is not None:
         dims, solution = exact
         return dims, solution, strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
-    d_hub_range = l_hub_range = (0.0, math.inf)
-    if geo in ("rim_web", "rim_arms") and bore:
-        d_hub_range, l_hub_range, _ = _hub_bounds(material, bore, torque)
-    structure = wheel_nlp.WheelStructure(
-        geometry=geo, criterion=spec.criterion, ductile=bool(getattr(material, "ductile", False)),
-        bored=bool(bore), n_arms=n_arms, envelope=spec.has_envelope, width=spec.max_width < math.inf,
-        pinned=spec.d_mean is not None,
-        objective="outer_diameter" if spec.objective == "outer_diameter" else "mass")
+    structure, problem = wheel_problem(material, spec, bore, torque, n_arms, combo.j_shaft, combo.omega,
+                                       combo.v_max)
     model = wheel_nlp.get_model(structure, solver_options)
     parts = model.stress_parts
     # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
-    problem = wheel_nlp.WheelProblem(
-        j_shaft=combo.j_shaft, omega=combo.omega, density=material.density,
-        poisson=getattr(material, "poisson_ratio", None) or 0.3, torque=torque, bore=bore,
-        allowable={}, envelope=spec.max_outer_diameter, max_width=spec.max_width,
-        max_rim_speed=combo.v_max, hb_ratio=spec.hb_ratio, d_mean=spec.d_mean,
-        min_wall=_min_wall(spec, material), d_hub_range=d_hub_range, l_hub_range=l_hub_range)
     start = wheel_nlp._start(structure, problem, model.variables)
     start_dims = wheel_nlp._dims(structure, start, bore)
     targets = {}

@@ -103,7 +103,7 @@ def _dims(structure, values, bore):
                       arm_major=v.get("arm_major", 0.0), n_arms=structure.n_arms)
 
 
-def _parts_with_stress(structure):
+def stressed_parts(structure):
     """The parts whose stress the NLP limits, in the order of the allowable-stress parameters."""
     geo = structure.geometry
     if geo == "disc":
@@ -148,14 +148,36 @@ def get_model(structure, solver_options=None):
     return cached_model(_CACHE, BUILDS, _build, structure, solver_options, WHEEL_SOLVER_OPTIONS)
 
 
-def _build(structure, options):
-    start = time.perf_counter()
+class Formulation(NamedTuple):
+    """A wheel NLP's symbols: its dimensions, mass, inertia, objective and constraint rows (named)."""
+
+    dims: wheel.Dims
+    mass: object
+    inertia: object
+    objective: object
+    rows: tuple
+    row_names: tuple
+
+
+def formulate(structure, x, par, allow):
+    """The wheel NLP of a structure in CasADi symbols (:class:`Formulation`).
+
+    Parameters
+    ----------
+    structure : WheelStructure
+    x : casadi.SX
+        The logarithms of the dimensions [ln m], in the order of :func:`variables_of`.
+    par : mapping
+        Each name of :data:`PARAMETERS` to a symbol or an expression: the
+        wheel NLP's own parameters, or (:mod:`flyopt.design.drive_nlp`) the
+        shaft speed as an expression of the drive's variables.
+    allow : casadi.SX
+        The allowable of each part of :func:`stressed_parts`, (sigma_a / S)^2 if ductile, else sigma_a / S.
+
+    The rows' bounds are :func:`row_bounds`'.
+    """
     names = variables_of(structure)
-    x = ca.SX.sym("x", len(names))
-    p = ca.SX.sym("p", len(PARAMETERS))
-    par = {name: p[k] for k, name in enumerate(PARAMETERS)}
-    stress_parts = _parts_with_stress(structure)
-    allow = ca.SX.sym("allow", len(stress_parts))       # (sigma_allow / S) per part, squared if ductile
+    stress_parts = stressed_parts(structure)
     dims = _dims(structure, {n: ca.exp(x[k]) for k, n in enumerate(names)}, par["bore"])
     density = par["density"]
     parts = wheel.parts(structure.geometry, dims, density)
@@ -210,13 +232,21 @@ def _build(structure, options):
             else:
                 row(f"stress_{part}", sr / scale / allow[k])
                 row(f"stress_{part}", st / scale / allow[k])
-    if structure.objective == "outer_diameter":
-        f = col["d_outer"]
-    else:
-        f = ca.log(mass)
-    nlp = {"x": x, "p": ca.vertcat(p, allow), "f": f, "g": ca.vertcat(*rows)}
+    objective = col["d_outer"] if structure.objective == "outer_diameter" else ca.log(mass)
+    return Formulation(dims, mass, inertia, objective, tuple(rows), tuple(row_names))
+
+
+def _build(structure, options):
+    start = time.perf_counter()
+    names = variables_of(structure)
+    x = ca.SX.sym("x", len(names))
+    p = ca.SX.sym("p", len(PARAMETERS))
+    stress_parts = stressed_parts(structure)
+    allow = ca.SX.sym("allow", len(stress_parts))       # (sigma_allow / S) per part, squared if ductile
+    form = formulate(structure, x, {name: p[k] for k, name in enumerate(PARAMETERS)}, allow)
+    nlp = {"x": x, "p": ca.vertcat(p, allow), "f": form.objective, "g": ca.vertcat(*form.rows)}
     solver = ca.nlpsol("wheel_" + "_".join(str(v) for v in structure), "ipopt", nlp, options)
-    return WheelModel(structure, solver, names, tuple(row_names), stress_parts,
+    return WheelModel(structure, solver, names, form.row_names, stress_parts,
                       time.perf_counter() - start)
 
 
@@ -300,22 +330,12 @@ def _start(structure, problem, names):
     return start
 
 
-def solve(model, problem, label):
-    """Solve one combination's wheel NLP, its status checked.
+def variable_bounds(structure, problem):
+    """(lbx, ubx, capped) of a wheel NLP's variables (logarithms of metres) for a problem's limits.
 
-    Returns
-    -------
-    WheelSolution
-
-    Raises
-    ------
-    SolverFailed
-        IPOPT stopped with an error or did not converge (``status`` carries
-        its return status; "Infeasible_Problem_Detected" means IPOPT found
-        no wheel meeting every limit, which the designer reports as such).
+    ``capped``: the caps of ``problem.caps`` tighter than every other upper bound (variable -> [m]).
     """
-    s = model.structure
-    names = model.variables
+    names = variables_of(structure)
     inf = math.inf
     lbx = [-inf] * len(names)
     ubx = [inf] * len(names)
@@ -324,7 +344,7 @@ def solve(model, problem, label):
     for n in ("h", "b", "t_web"):
         if n in col:
             lbx[col[n]] = log_wall
-    if s.geometry == "disc":
+    if structure.geometry == "disc":
         lbx[col["b"]] = log_wall
     if "arm_major" in col:
         lbx[col["arm_major"]] = log_wall - math.log(wheel.ARM_MINOR_RATIO) if problem.min_wall > 0 else -inf
@@ -340,19 +360,14 @@ def solve(model, problem, label):
         if n in col and math.log(cap) < ubx[col[n]]:
             ubx[col[n]] = math.log(cap)
             capped[n] = cap
-    crossed = [n for n, lo, hi in zip(names, lbx, ubx) if lo > hi]
-    if crossed:        # a cap below a lower bound: no wheel, and IPOPT is not asked
-        err = SolverFailed(f"{label}: the caps on {', '.join(crossed)} are below their lower bounds; "
-                           f"no wheel meets both")
-        err.status = "Infeasible_Problem_Detected"
-        err.combination = label
-        raise err
-    start = problem.start or _start(s, problem, names)
-    x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
-    length = start["d_outer"] / 2.0
-    scale = problem.density * problem.omega ** 2 * length ** 2
+    return lbx, ubx, capped
+
+
+def row_bounds(structure, constraints, problem):
+    """(lbg, ubg) of a wheel NLP's rows (``constraints``: their names, as :func:`formulate` gives them)."""
+    s, inf = structure, math.inf
     lbg, ubg = [], []
-    for name in model.constraints:
+    for name in constraints:
         lo, hi = {
             "inertia": (math.log(problem.j_shaft), inf),
             "max_outer_diameter": (-inf, math.log(problem.envelope) if s.envelope else inf),
@@ -373,10 +388,49 @@ def solve(model, problem, label):
         }.get(name, (-inf, 1.0))               # stress rows: sigma / allowable <= 1
         lbg.append(lo)
         ubg.append(hi)
-    allow = []
-    for part in model.stress_parts:
-        a = problem.allowable.get(part, inf) / scale
-        allow.append(a * a if s.ductile else a)
+    return lbg, ubg
+
+
+def allowable_parameters(structure, allowable, scale):
+    """The allowable parameters of a wheel NLP: sigma_a / S of each stressed part, squared if ductile
+    (``allowable``: part -> sigma_a [Pa]; a part not given is not limited)."""
+    out = []
+    for part in stressed_parts(structure):
+        a = allowable.get(part, math.inf) / scale
+        out.append(a * a if structure.ductile else a)
+    return out
+
+
+def solve(model, problem, label):
+    """Solve one combination's wheel NLP, its status checked.
+
+    Returns
+    -------
+    WheelSolution
+
+    Raises
+    ------
+    SolverFailed
+        IPOPT stopped with an error or did not converge (``status`` carries
+        its return status; "Infeasible_Problem_Detected" means IPOPT found
+        no wheel meeting every limit, which the designer reports as such).
+    """
+    s = model.structure
+    names = model.variables
+    lbx, ubx, capped = variable_bounds(s, problem)
+    crossed = [n for n, lo, hi in zip(names, lbx, ubx) if lo > hi]
+    if crossed:        # a cap below a lower bound: no wheel, and IPOPT is not asked
+        err = SolverFailed(f"{label}: the caps on {', '.join(crossed)} are below their lower bounds; "
+                           f"no wheel meets both")
+        err.status = "Infeasible_Problem_Detected"
+        err.combination = label
+        raise err
+    start = problem.start or _start(s, problem, names)
+    x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
+    length = start["d_outer"] / 2.0
+    scale = problem.density * problem.omega ** 2 * length ** 2
+    lbg, ubg = row_bounds(s, model.constraints, problem)
+    allow = allowable_parameters(s, problem.allowable, scale)
     values = {"omega": problem.omega, "density": problem.density, "poisson": problem.poisson,
               "torque": problem.torque, "bore": problem.bore, "stress_scale": scale,
               "log_half_omega": math.log(problem.omega / 2.0)}

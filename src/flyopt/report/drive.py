@@ -81,7 +81,9 @@ def _relaxation_lines(drive, units):
     r = drive.relaxation
     lines = [f"  relaxation           {field_text(r.rated_power, 'rated_power', units)}, motor ratio "
              f"{number(r.motor_ratio, 5)}, flywheel ratio {number(r.flywheel_ratio, 4)}, "
-             f"{field_text(r.j_flywheel, 'j_flywheel', units, 5)} ({r.status}; a thin-ring wheel, a lower bound)"]
+             f"{field_text(r.j_flywheel, 'j_flywheel', units, 5)}, wheel {r.wheel} "
+             f"{field_text(r.wheel_mass, 'wheel_mass', units, 5)}, D {field_text(r.d_outer, 'd_outer', units, 4)} "
+             f"({r.status}; the whole-wheel NLP at the strongest allowable, no torque on the hub)"]
     moved = []
     for name, words, dimension, steps in RELAXED_STEPS:
         sensitivity = r.sensitivities.get(name, 0.0)      # objective per SI unit of the limit
