@@ -8,6 +8,7 @@ CVODES periodic solution of the same relaxed motor; and the smaller motor shown
 to break a limit in the simulation.
 """
 
+import dataclasses
 import math
 from types import SimpleNamespace
 
@@ -227,7 +228,6 @@ def test_flyopt_pareto_motor_power_writes_the_front(tmp_path):
 
 def test_relaxation_sensitivities_against_central_differences():
     """d(objective)/d(limit) from IPOPT's multipliers against the relaxation re-solved at limit ± h."""
-    import dataclasses
 
     from flyopt.analysis import analyse
     from flyopt.design import design_inputs
@@ -293,7 +293,6 @@ def test_relaxation_wheel_is_the_designers_wheel(geometry, criterion, material, 
     (the closed form for the bare wheels; the whole-wheel NLP with its exact stress checks for the others):
     never heavier, and the same wheel where the allowable stress does not depend on the wall (cast steel).
     Cast iron's allowable falls with the wall (EN 1561); the relaxation takes its strongest row."""
-    import dataclasses
 
     from flyopt.analysis import analyse
     from flyopt.design import design_inputs
@@ -321,3 +320,34 @@ def test_relaxation_wheel_is_the_designers_wheel(geometry, criterion, material, 
         assert relaxed.d_outer == pytest.approx(designed.best.d_outer, rel=1e-4)
     else:
         assert relaxed.wheel_mass < designed.best.mass * (1 - 1e-6)
+
+
+# The same ladder with a price per size, and the wheel's materials with a cost per kg: illustrative test
+# data (no source prices these motors), for the co-design by cost.
+PRICED = Catalogue("motor_option", tuple(dataclasses.replace(m, price=price) for m, price in
+                                         zip(OPTIONS.motors, (310.0, 365.0, 455.0, 570.0, 810.0, 1060.0))))
+
+
+@pytest.mark.slow   # every size of the ladder over 241 ratios: about a minute
+def test_codesign_by_cost_matches_brute_force():
+    """Objective cost (motor price + wheel cost): the same motor and the best cost to 1e-6 as every size over a
+    241-point grid of flywheel ratios, each wheel the designer's cheapest material."""
+    from flyopt.design import design_inputs
+
+    scene = _scene(motors=PRICED, objective="cost")
+    library = scene.material_library()
+    priced = tuple(dataclasses.replace(library[name], cost=cost) for name, cost in (("cast_iron", 2.2),
+                                                                                    ("cast_steel", 4.0)))
+    scene = scene.replace(materials=priced, design_materials=("cast_iron", "cast_steel"))
+    result = drive.design_drive(scene)
+    assert result.status == "designed" and result.objective == "cost"
+    assert result.relaxation is not None
+    inputs = design_inputs(scene)
+    grid = ("fixed", *np.linspace(2.0, 8.0, 241))
+    brute = [drive.evaluate_motor(scene, m, drive_load(scene), scene.drive, grid, inputs.materials, inputs.spec)
+             for m in PRICED]
+    best = min((r for r in brute if r.feasible), key=lambda r: r.objective)
+    assert result.best.motor.name == best.motor.name
+    assert result.best.objective <= best.objective * (1 + 1e-6)
+    assert result.best.objective == pytest.approx(best.objective, rel=1e-6)
+    assert result.best.cost == pytest.approx(best.motor.price + best.wheel.cost, rel=1e-12)
