@@ -21,7 +21,6 @@ from flyopt.design.drive_nlp import CatalogueFit, kloss_runup_time
 from flyopt.io.drive import DriveSpec
 from flyopt.io.scene import load
 from flyopt.machine.catalogue import Catalogue, CatalogueMotor
-from flyopt.machine.motor import InductionMotor
 
 RPM = math.pi / 30
 
