@@ -670,3 +670,37 @@ def test_units_option_is_checked_in_one_line(tmp_path, capsys):
                  "-o", str(tmp_path / "x.png")]) == 2
     err = capsys.readouterr().err
     assert err == "flyopt: error: --units: unknown unit system 'metric' (allowed: engineering, si, imperial)\n"
+
+
+def test_speed_without_a_flywheel_is_the_machine_as_it_is():
+    """A motor stiff enough that no flywheel is needed (press-drive's chosen 132S-4 at its ratio): the dynamic
+    requirement's own solution sits at the negative margin J_F < 0, where the fixed-step cycle is far too stiff
+    to resolve and its interpolated extremes overshoot (δ 0.1176 reported, 0.0431 on its own grid). The speed
+    drawn is the machine with no flywheel: J_F = 0, its extremes those of its own curve, and its δ the CVODES
+    verification's."""
+    from flyopt.analysis import analyse
+    from flyopt.design.drive import MotorRun, chosen_scene
+    from flyopt.io.scene import load
+    from flyopt.machine.catalogue import catalogue
+    from flyopt.report import plots
+    from flyopt.sizing import periodic
+
+    scene = load(PROBLEMS / "press-drive.toml")
+    motor = next(m for m in catalogue("iec_4pole").motors if m.name.startswith("132S-4"))
+    built = chosen_scene(scene, MotorRun(motor=motor, feasible=True, motor_ratio=122.363))
+    analysis = analyse(built, "dynamic")
+    assert analysis.j_required == 0 and analysis.j_margin < 0
+    speed = analysis.speed_curve()
+    assert speed.j_flywheel == 0
+    omega = np.asarray(speed.omega)
+    assert speed.omega_max == pytest.approx(omega.max(), rel=1e-6)
+    assert speed.omega_min == pytest.approx(omega.min(), rel=1e-6)
+    machine = analysis.machine
+    checked = periodic.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, built.omega_mean,
+                              built.delta, 0.0, machine.knots())
+    assert speed.delta == pytest.approx(checked.achieved_delta, rel=1e-6)
+    ax = plots.plot_speed(built, analysis)
+    line = next(l for l in ax.get_lines() if l.get_gid() == "model")
+    assert "J_F = 0" in line.get_label()
+    y = np.asarray(line.get_ydata())
+    assert np.ptp(y) / (0.5 * (y.max() + y.min())) == pytest.approx(speed.delta, rel=1e-6)

@@ -361,7 +361,15 @@ def _speed_curve(analysis):
     if machine is None:
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
     if analysis.requirement.model == "dynamic":
-        return analysis.requirement.detail.solution
+        solution = analysis.requirement.detail.solution
+        if solution.j_flywheel == analysis.j_required:
+            return solution
+        # no flywheel needed: the requirement's solution is the one at the negative margin J_F < 0 (where δ would
+        # reach the allowed value); the machine runs with none
+        from flyopt.sizing.periodic import periodic_solution
+
+        return periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
+                                 analysis.j_required, machine.knots())
     if machine.j_mean() + analysis.j_required <= 0:
         if analysis.a_max <= 0:
             return None

@@ -1429,7 +1429,7 @@ def plot_speed(scene, analysis, speed=None, simulation=None, ax=None, units=disp
         if analysis.requirement is None or analysis.requirement.model != "dynamic":
             raise ValueError(f"the {analysis.model} model's result carries no ω(φ): pass speed "
                              f"(Analysis.speed_curve())")
-        speed = analysis.requirement.detail.solution
+        speed = analysis.speed_curve()
     ax, own = _axes(ax)
     omega = np.asarray(speed.omega, dtype=float)
     x = _show(speed.phi, "angle", units)
