@@ -425,7 +425,8 @@ def test_units_set_by_another_field():
     assert unit_of("objective") is None and unit_of("dmass_dlimit") is None
     assert unit_of("epsilon", front="outer_diameter") == "m" and unit_of("epsilon", front="delta") == "1"
     assert unit_of("objective_bound", objective="mass") == "kg" and unit_of("objective_bound") is None
-    assert set(UNIT_SET_BY) == {"objective", "objective_bound", "epsilon", "dmass_dlimit"}
+    assert unit_of("dobjective_dlimit") is None
+    assert set(UNIT_SET_BY) == {"objective", "objective_bound", "epsilon", "dmass_dlimit", "dobjective_dlimit"}
     assert unit_of("status") is None and unit_of("iterations") is None and unit_of("design.geometry") is None
 
 

@@ -156,7 +156,7 @@ class DriveDesign:
     note: str = ""
 
     def to_dict(self):
-        relaxed = None if self.relaxation is None else dict(self.relaxation.__dict__)
+        relaxed = None if self.relaxation is None else self.relaxation.to_dict()
         return {"status": self.status, "objective": self.objective, "message": self.message, "note": self.note,
                 "relaxation": relaxed,
                 "best": None if self.best is None else self.best.to_dict(),

@@ -129,6 +129,18 @@ class Relaxation:
     d_outer: float | None = None
     wheel: str = ""
 
+    #: The SI unit of each limit a sensitivity is taken per.
+    LIMIT_UNITS = {"delta": "-", "max_startup": "s", "rim_speed": "m/s", "ratio_max": "-", "ratio_min": "-",
+                   "max_outer_diameter": "m"}
+
+    def to_dict(self):
+        """The relaxation for JSON: its sensitivities a list of entries (limit, its unit, d objective / d limit),
+        as a design's are (their names are quantities of their own elsewhere in a document)."""
+        out = {k: v for k, v in self.__dict__.items() if k != "sensitivities"}
+        out["sensitivities"] = [{"limit": name, "unit": self.LIMIT_UNITS[name], "dobjective_dlimit": value}
+                                for name, value in self.sensitivities.items()]
+        return out
+
 
 def kloss_runup_time(inertia, ratio, efficiency, breakdown_torque, breakdown_slip, synchronous_speed, omega, lib=math):
     """Run-up time from rest to ``omega`` of a constant inertia on an induction motor's Kloss curve, no load [s].

@@ -143,6 +143,8 @@ UNIT_SET_BY = {
     "objective_bound": "the unit of the design's objective, as for objective",
     "epsilon": "the unit of the Pareto front's second objective",
     "dmass_dlimit": "kg per the unit given in the same entry's 'unit'",
+    "dobjective_dlimit": "the drive objective's unit (kg for mass, 1 for cost) per the unit given in the same "
+                         "entry's 'unit'",
 }
 
 #: Whole numbers that count or index: no unit.

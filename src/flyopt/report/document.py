@@ -1159,6 +1159,13 @@ class _Builder:
                 rows.insert(3, ("flywheel shaft ratio", number(best.flywheel_ratio)))
             if best.cost is not None:
                 rows.append(("cost", number(best.cost)))
+            if drive.relaxation is not None:
+                from flyopt.report.drive import relaxation_summary
+
+                summary, moved = relaxation_summary(drive, self.units)
+                rows.append(("relaxed optimum", summary))
+                if moved:
+                    rows.append(("binding limits", "; ".join(moved) + " (relaxed optimum, first order)"))
             blocks.append(Facts(tuple(rows), "drive"))
         rows = []
         for run in drive.runs:

@@ -76,14 +76,15 @@ def drive_report(drive, check=None, units=DEFAULT):
     return lines
 
 
-def _relaxation_lines(drive, units):
-    """The relaxed optimum and what relaxing each binding limit by a round step would save (first order)."""
+def relaxation_summary(drive, units):
+    """(the relaxed optimum in words, what relaxing each binding limit by a round step saves, first order),
+    in ``units``: the text report and the HTML/PDF document say the same."""
     r = drive.relaxation
-    lines = [f"  relaxation           {field_text(r.rated_power, 'rated_power', units)}, motor ratio "
-             f"{number(r.motor_ratio, 5)}, flywheel ratio {number(r.flywheel_ratio, 4)}, "
-             f"{field_text(r.j_flywheel, 'j_flywheel', units, 5)}, wheel {r.wheel} "
-             f"{field_text(r.wheel_mass, 'wheel_mass', units, 5)}, D {field_text(r.d_outer, 'd_outer', units, 4)} "
-             f"({r.status}; the whole-wheel NLP at the strongest allowable, no torque on the hub)"]
+    summary = (f"{field_text(r.rated_power, 'rated_power', units)}, motor ratio {number(r.motor_ratio, 5)}, "
+               f"flywheel ratio {number(r.flywheel_ratio, 4)}, {field_text(r.j_flywheel, 'j_flywheel', units, 5)}, "
+               f"wheel {r.wheel} {field_text(r.wheel_mass, 'wheel_mass', units, 5)}, D "
+               f"{field_text(r.d_outer, 'd_outer', units, 4)} ({r.status}; the whole-wheel NLP at the strongest "
+               f"allowable, no torque on the hub)")
     moved = []
     for name, words, dimension, steps in RELAXED_STEPS:
         sensitivity = r.sensitivities.get(name, 0.0)      # objective per SI unit of the limit
@@ -98,6 +99,13 @@ def _relaxation_lines(drive, units):
         name = label(dimension, units)
         step_text = number(abs(shown), 4) + ("" if name == "-" else f" {name}")
         moved.append(f"{words} {sign}{step_text}: {amount}")
+    return summary, moved
+
+
+def _relaxation_lines(drive, units):
+    """The relaxed optimum and what relaxing each binding limit by a round step would save (first order)."""
+    summary, moved = relaxation_summary(drive, units)
+    lines = [f"  relaxation           {summary}"]
     if moved:
         lines.append("  binding limits       " + "; ".join(moved) + " (relaxed optimum, first order)")
     return lines
