@@ -188,10 +188,22 @@ def hermite_extremes(phi, f, df):
 
     ``phi``, ``f``, ``df`` have shape (pieces, outputs); each row is
     interpolated on its own (slopes are one-sided at piece ends).
+
+    An extremum inside an interval is taken only where the data say there is
+    one: an end slope against the rise f1 − f0 (or the two end slopes of
+    opposite signs). Where both end slopes go the way of the rise, the
+    function is monotone between the nodes as far as the data show, and a
+    cubic extremum there is overshoot, not the function's: it appears where
+    the slopes are far steeper than the secant (Fritsch & Carlson, SIAM J.
+    Numer. Anal. 17 (1980) 238, need α² + β² > 9 for it), as at a stiff
+    motor's speed relaxing within a fraction of one grid step, whose cubic
+    reached 12.68 rpm between nodes of at most 12.26.
     """
     h = np.diff(phi, axis=1)
     f0, f1 = f[:, :-1], f[:, 1:]
     m0, m1 = df[:, :-1] * h, df[:, 1:] * h
+    rise = f1 - f0
+    turning = (m0 * rise < 0) | (m1 * rise < 0) | (rise == 0)
     c = m0
     b = 3 * (f1 - f0) - 2 * m0 - m1
     a = 2 * (f0 - f1) + m0 + m1
@@ -208,7 +220,7 @@ def hermite_extremes(phi, f, df):
     hi_val, hi_phi = best_hi[0], float(phi[best_hi[1]])
     lo_val, lo_phi = best_lo[0], float(phi[best_lo[1]])
     for r in (r1, r2):
-        ok = (disc >= 0) & (r > 0) & (r < 1)
+        ok = (disc >= 0) & (r > 0) & (r < 1) & turning
         t = np.where(ok, r, 0.0)
         p = f0 + t * (c + t * (b + t * a))
         where = phi[:, :-1] + t * h
