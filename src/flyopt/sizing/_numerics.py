@@ -183,6 +183,12 @@ def hermite(f0, f1, m0, m1, t):
 
 
 
+#: How much steeper than the rises beside it an end slope may be for the cubic to be trusted between the
+#: nodes [-]: on a smooth function the scaled slope h f' and the rises f_{i+1} - f_i agree to O(h), and 3 is
+#: where the cubic Hermite interpolant starts to overshoot (Fritsch & Carlson 1980).
+STEEP = 3.0
+
+
 def hermite_extremes(phi, f, df):
     """Max and min of the piecewise cubic Hermite interpolant, with their angles.
 
@@ -197,13 +203,25 @@ def hermite_extremes(phi, f, df):
     the slopes are far steeper than the secant (Fritsch & Carlson, SIAM J.
     Numer. Anal. 17 (1980) 238, need α² + β² > 9 for it), as at a stiff
     motor's speed relaxing within a fraction of one grid step, whose cubic
-    reached 12.68 rpm between nodes of at most 12.26.
+    reached 12.68 rpm between nodes of at most 12.26. Nor is it taken where
+    an end slope (times the step) exceeds :data:`STEEP` times the rises on
+    both sides of its node: that slope is a boundary layer's, not the
+    function's over the interval, whichever way it points. The extremes are
+    then the nodes'.
     """
     h = np.diff(phi, axis=1)
     f0, f1 = f[:, :-1], f[:, 1:]
     m0, m1 = df[:, :-1] * h, df[:, 1:] * h
     rise = f1 - f0
     turning = (m0 * rise < 0) | (m1 * rise < 0) | (rise == 0)
+    # an end slope far steeper than the rises on either side of its node is not the function's slope
+    # over the interval but a boundary layer's (a stiff motor relaxing within a fraction of the step)
+    before = np.concatenate([rise[:, :1], rise[:, :-1]], axis=1)      # the rise before each interval
+    after = np.concatenate([rise[:, 1:], rise[:, -1:]], axis=1)       # and after it
+    floor = 1e-12 * max(float(np.max(np.abs(f))), EPS)
+    resolved = ((np.abs(m0) <= STEEP * np.maximum(np.abs(rise), np.abs(before)) + floor)
+                & (np.abs(m1) <= STEEP * np.maximum(np.abs(rise), np.abs(after)) + floor))
+    turning &= resolved
     c = m0
     b = 3 * (f1 - f0) - 2 * m0 - m1
     a = 2 * (f0 - f1) + m0 + m1
