@@ -690,6 +690,14 @@ def test_speed_without_a_flywheel_is_the_machine_as_it_is():
     built = chosen_scene(scene, MotorRun(motor=motor, feasible=True, motor_ratio=122.363))
     analysis = analyse(built, "dynamic")
     assert analysis.j_required == 0 and analysis.j_margin < 0
+    # δ holds however small the inertia: j_margin is the bound -min J_e, and the report says so
+    assert analysis.delta_holds_at_any_inertia
+    assert not analysis.machine.variable_inertia
+    assert analysis.j_margin == pytest.approx(-analysis.machine.j_mean(), rel=1e-12)
+    from flyopt.report.text import analysis_report
+    report = analysis_report(analysis)
+    assert "however small the inertia" in (report if isinstance(report, str) else "\n".join(report))
+    assert not analyse(load(PROBLEMS / "motor-press.toml")).delta_holds_at_any_inertia
     speed = analysis.speed_curve()
     assert speed.j_flywheel == 0
     omega = np.asarray(speed.omega)

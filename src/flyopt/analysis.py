@@ -116,6 +116,16 @@ class Analysis:
     _lazy: dict = field(default_factory=dict, compare=False, repr=False)
 
     @property
+    def delta_holds_at_any_inertia(self):
+        """Whether δ stays below the allowed value however small the inertia (the dynamic model, a motor
+        stiff enough that its slip alone holds the speed): ``j_margin`` is then not a flywheel at which δ
+        reaches its limit but the bound −min J_e, where the machine would have no inertia left."""
+        if self.requirement is None or self.requirement.model != "dynamic" or self.flywheel_needed:
+            return False
+        detail = self.requirement.detail
+        return detail.limit == "delta" and detail.solution.delta < self.delta * (1 - 1e-6)
+
+    @property
     def models(self):
         """Every applicable model's J_F and the δ it really gives (flyopt.sizing.choose.compare).
 

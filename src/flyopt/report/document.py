@@ -420,8 +420,11 @@ class _Builder:
                                                    " at the reference shaft (GD² ",
                                                    self.q(a.gd2_required, "flywheel_moment", "gd2_required"), ")")))
         else:
-            rows.append(("required flywheel J_{F}", ("none: the machine's own inertia suffices (J_F would be ",
-                                                   self.q(a.j_margin, "inertia", "j_margin"), ")")))
+            from flyopt.report.text import no_flywheel_words
+
+            before, after = no_flywheel_words(a)
+            rows.append(("required flywheel J_{F}", (f"none: {before} ", self.q(a.j_margin, "inertia", "j_margin"),
+                                                   after)))
         if a.motor_power is not None:
             rows.append(("motor power", (self.q(a.motor_power, "power", "motor_power"),
                                          f" (efficiency {number(a.efficiency, 4)})")))

@@ -53,6 +53,14 @@ def table(header, rows, align=None):
     return lines
 
 
+def no_flywheel_words(analysis):
+    """(before, after) ``j_margin``: why no flywheel is needed (the text and the document say the same)."""
+    if analysis.delta_holds_at_any_inertia:
+        return ("δ stays within the allowed value however small the inertia (the motor's slip holds the speed; "
+                "J_F could go down to", ", the machine's whole inertia)")
+    return "the machine's own inertia suffices (J_F would be", ")"
+
+
 def analysis_report(result, source=None, units=DEFAULT):
     """The report of ``flyopt solve`` for the cycle analysis, as text.
 
@@ -97,8 +105,8 @@ def analysis_report(result, source=None, units=DEFAULT):
         facts.append(("required flywheel J_F", f"{q(r.j_required, 'j_required')} "
                                                 f"(GD² {q(r.gd2_required, 'gd2_required')}) at the reference shaft"))
     else:
-        facts.append(("required flywheel", f"none: the machine's own inertia suffices "
-                                            f"(J_F would be {q(r.j_margin, 'j_margin')})"))
+        before, after = no_flywheel_words(r)
+        facts.append(("required flywheel", f"none: {before} {q(r.j_margin, 'j_margin')}{after}"))
     width = max(len(k) for k, _ in facts)
     lines += [f"  {k:<{width}}  {v}" for k, v in facts]
 
