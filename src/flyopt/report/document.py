@@ -765,6 +765,10 @@ class _Builder:
         if a.flywheel_needed:
             blocks.append(Paragraph(("J_F = ", self.q(a.j_required, "inertia", "j_required"),
                                      " at the reference shaft is needed.")))
+        elif a.delta_holds_at_any_inertia:
+            blocks.append(Paragraph(("No flywheel is needed: the speed stays within δ however small the inertia, "
+                                     "the motor's slip alone holding it (the periodic solution down to a vanishing "
+                                     "inertia; ", NOTES, ", section 7)."), "ok"))
         else:
             blocks.append(Paragraph(("J_F ≤ 0: no flywheel is needed; the machine's own inertia suffices by ",
                                      self.q(-a.j_margin, "inertia"), f" ({NOTES}, section 5)."), "ok"))
