@@ -39,3 +39,38 @@ def test_a_boundary_layer_does_not_overshoot(tau):
     (_, hi), (_, lo) = hermite_extremes(phi[None, :], f[None, :], slope[None, :])
     assert hi == pytest.approx(f.max(), rel=1e-12) and hi <= 1.0
     assert lo == pytest.approx(f.min(), abs=1e-12) and lo >= 0.0
+
+
+def test_an_extremum_in_a_rows_first_interval_is_refined():
+    """The rows are the cycle's pieces, joined node to node: an extremum mid-way in a row's first interval
+    (where that row's own first rise vanishes) is refined like any other, the rise before it taken from the
+    row that ends there. 32 rows of 65 nodes (the periodic model's layout), cos(k(φ − x0)) with its maximum
+    half a step into row 5."""
+    cycle = 2 * math.pi
+    starts = np.linspace(0, cycle, 33)[:-1]
+    phi = starts[:, None] + np.linspace(0, 1, 65)[None, :] * (cycle / 32)
+    h, k = cycle / 32 / 64, 4.0
+    x0 = 5 * cycle / 32 + h / 2
+    (at_hi, hi), (_, lo) = hermite_extremes(phi, np.cos(k * (phi - x0)), -k * np.sin(k * (phi - x0)))
+    turns = k * (at_hi - x0) / (2 * math.pi)          # the maxima repeat every 2π/k, each as high
+    assert hi == pytest.approx(1.0, abs=1e-9) and turns == pytest.approx(round(turns), abs=1e-5)
+    assert lo == pytest.approx(-1.0, abs=1e-9)
+
+
+def test_delta_of_a_sine_torque_against_its_closed_form():
+    """M = M0 sin(kφ + p) on a constant inertia J at a prescribed mean speed: ω²/2 swings by 2 M0/(k J), so
+    δ = (ω_max − ω_min)/ω_m = 2 M0 / (J k ω_m²) exactly (ω_m the midrange); the speed's maximum placed half
+    a step into a piece of the periodic model's grid."""
+    import casadi as ca
+
+    from flyopt.sizing.periodic import periodic_solution
+
+    cycle, j, m0, omega, k = 2 * math.pi, 2.0, 50.0, 30.0, 4.0
+    x0 = 5 * cycle / 32 + cycle / 32 / 64 / 2
+    phase = math.pi - k * x0
+
+    def net(phi, w):
+        return m0 * ca.sin(k * phi + phase)
+
+    solution = periodic_solution(net, j, cycle, omega)
+    assert solution.delta == pytest.approx(2 * m0 / (j * k * omega**2), rel=1e-7)

@@ -674,10 +674,11 @@ def test_units_option_is_checked_in_one_line(tmp_path, capsys):
 
 def test_speed_without_a_flywheel_is_the_machine_as_it_is():
     """A motor stiff enough that no flywheel is needed (press-drive's chosen 132S-4 at its ratio): the dynamic
-    requirement's own solution sits at the negative margin J_F < 0, where the fixed-step cycle is far too stiff
-    to resolve and its interpolated extremes overshoot (δ 0.1176 reported, 0.0431 on its own grid). The speed
-    drawn is the machine with no flywheel: J_F = 0, its extremes those of its own curve, and its δ the CVODES
-    verification's."""
+    requirement's own solution sits at its margin J_F < 0, a vanishing inertia (where, before the cubic's
+    overshoot was kept out of the extremes, it reported δ 0.1176 on a curve of 0.0431, and the plot drew that
+    labelled J_F = 0). The speed drawn is the machine with no flywheel: J_F = 0, its extremes those of its
+    own curve, and its δ the CVODES verification's. A machine with no inertia of its own (motor-press at
+    δ 0.7) is drawn at the vanishing inertia it tends to."""
     from flyopt.analysis import analyse
     from flyopt.design.drive import MotorRun, chosen_scene
     from flyopt.io.scene import load
@@ -712,3 +713,8 @@ def test_speed_without_a_flywheel_is_the_machine_as_it_is():
     assert "J_F = 0" in line.get_label()
     y = np.asarray(line.get_ydata())
     assert np.ptp(y) / (0.5 * (y.max() + y.min())) == pytest.approx(speed.delta, rel=1e-6)
+    loose = load(PROBLEMS / "motor-press.toml").replace(delta=0.7)
+    bare = analyse(loose)
+    assert bare.j_margin == 0 and bare.delta_holds_at_any_inertia
+    assert bare.speed_curve().delta < 0.7
+    plots.plot_speed(loose, bare)

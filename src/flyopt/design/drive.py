@@ -611,7 +611,7 @@ def _relaxation(scene, analysis, spec, motors, inputs, load):
     """(Relaxation or None, note): the continuous relaxation, best over the design's materials (and arm counts)."""
     from flyopt.design.drive_nlp import CatalogueFit, RelaxedWheel, relax
     from flyopt.design.spec import MountShaft
-    from flyopt.design.wheel_design import bore_of
+    from flyopt.design.wheel_design import bore_of, missing_poisson
 
     fit = CatalogueFit.of(motors)
     if fit is None or (spec.objective == "mass" and fit.mass is None) or (spec.objective == "cost" and fit.price is None):
@@ -622,13 +622,14 @@ def _relaxation(scene, analysis, spec, motors, inputs, load):
     for material in inputs.materials:
         if spec.objective == "cost" and material.cost is None:
             continue
-        if ((design.criterion == "stress" or design.geometry in ("rim_web", "rim_arms"))
-                and getattr(material, "poisson_ratio", None) is None):
-            continue                  # the designer refuses it: its stress needs a Poisson's ratio
+        if missing_poisson(material, design):
+            continue                  # the designer refuses it too
         for n_arms in (design.arms if design.geometry == "rim_arms" else (0,)):
             wheel = RelaxedWheel.of(material, design, bore, n_arms)
             if design.criterion == "rim_speed" and not math.isfinite(wheel.v_max):
                 continue
+            if design.criterion == "stress" and not wheel.problem.allowable:
+                continue              # no allowable stress (no safety factor on its strength): nothing to limit
             try:
                 found = relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, spec, wheel,
                               load)

@@ -175,6 +175,14 @@ def objective_bound(combo, spec):
     return mass, why
 
 
+def missing_poisson(material, spec):
+    """Why a material can make no wheel under a spec on any shaft for want of a Poisson's ratio, or None."""
+    if ((spec.criterion == "stress" or spec.geometry in ("rim_web", "rim_arms"))
+            and getattr(material, "poisson_ratio", None) is None):
+        return f"material {material.name!r} gives no poisson_ratio, which the stress of a {spec.geometry} needs"
+    return None
+
+
 def screen(combo, spec, bore):
     """Raise :class:`NoWheel` where a combination is shown unable to make a wheel without solving:
     its inertia above that of a solid disc filling the envelope, arms with no hub, or a stress
@@ -191,10 +199,9 @@ def screen(combo, spec, bore):
     if geo == "rim_arms" and not bore:
         raise NoWheel(f"{combo.label}: a wheel on arms needs a hub on a shaft: give design.bore or the "
                       f"shaft's diameter")
-    if ((spec.criterion == "stress" or geo in ("rim_web", "rim_arms"))
-            and getattr(material, "poisson_ratio", None) is None):
-        raise NoWheel(f"{combo.label}: material {material.name!r} gives no poisson_ratio, which the "
-                      f"stress of a {geo} needs")
+    missing = missing_poisson(material, spec)
+    if missing:
+        raise NoWheel(f"{combo.label}: {missing}")
 
 
 def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):

@@ -183,10 +183,31 @@ def hermite(f0, f1, m0, m1, t):
 
 
 
-#: How much steeper than the rises beside it an end slope may be for the cubic to be trusted between the
-#: nodes [-]: on a smooth function the scaled slope h f' and the rises f_{i+1} - f_i agree to O(h), and 3 is
+#: How much steeper than the larger of the rises beside its node an end slope may be for the cubic to be
+#: trusted between the nodes [-]: on a smooth function the scaled slope h f' lies between the rises
+#: f_i - f_{i-1} and f_{i+1} - f_i up to O(h²) (near an extremum one rise vanishes, not both), and 3 is
 #: where the cubic Hermite interpolant starts to overshoot (Fritsch & Carlson 1980).
 STEEP = 3.0
+
+
+def _neighbour_rises(phi, f, rise):
+    """The rise of the interval before and after each one [same shape as ``rise``].
+
+    Within a row, its neighbours'. At a row's ends, the adjacent row's end interval where the rows join
+    (the same node: a periodic cycle's pieces, the last row joining the first when f closes); where
+    nothing joins, +inf, so that the steepness test never refuses an extremum for want of a neighbour.
+    """
+    pieces = rise.shape[0]
+    before = np.concatenate([np.full((pieces, 1), np.inf), rise[:, :-1]], axis=1)
+    after = np.concatenate([rise[:, 1:], np.full((pieces, 1), np.inf)], axis=1)
+    scale = max(float(np.max(np.abs(f))), EPS)
+    for r in range(pieces):
+        previous = (r - 1) % pieces
+        if pieces > 1 and (r > 0 or abs(f[-1, -1] - f[0, 0]) <= 1e-9 * scale) and \
+                (r == 0 or phi[previous, -1] == phi[r, 0]):
+            before[r, 0] = rise[previous, -1]
+            after[previous, -1] = rise[r, 0]
+    return before, after
 
 
 def hermite_extremes(phi, f, df):
@@ -216,8 +237,7 @@ def hermite_extremes(phi, f, df):
     turning = (m0 * rise < 0) | (m1 * rise < 0) | (rise == 0)
     # an end slope far steeper than the rises on either side of its node is not the function's slope
     # over the interval but a boundary layer's (a stiff motor relaxing within a fraction of the step)
-    before = np.concatenate([rise[:, :1], rise[:, :-1]], axis=1)      # the rise before each interval
-    after = np.concatenate([rise[:, 1:], rise[:, -1:]], axis=1)       # and after it
+    before, after = _neighbour_rises(phi, f, rise)
     floor = 1e-12 * max(float(np.max(np.abs(f))), EPS)
     resolved = ((np.abs(m0) <= STEEP * np.maximum(np.abs(rise), np.abs(before)) + floor)
                 & (np.abs(m1) <= STEEP * np.maximum(np.abs(rise), np.abs(after)) + floor))
