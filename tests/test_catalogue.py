@@ -418,6 +418,11 @@ def _size(kw, rpm=1450.0):
 LADDER = Catalogue("ladder", tuple(_size(kw) for kw in (7.5, 1.1, 4.0, 2.2)))
 
 
+def _names(found):
+    """(below, above) of a Neighbours by name, None where there is none."""
+    return tuple(None if m is None else m.name for m in (found.below, found.above))
+
+
 @pytest.mark.parametrize("rating, below, above", [
     (3e3, "2.2 kW", "4.0 kW"),
     (4e3, "2.2 kW", "4.0 kW"),                       # a size itself is "at or above"
@@ -430,8 +435,7 @@ LADDER = Catalogue("ladder", tuple(_size(kw) for kw in (7.5, 1.1, 4.0, 2.2)))
     (10e3, "7.5 kW", None),
 ])
 def test_neighbours_are_the_size_at_or_above_and_the_one_below(rating, below, above):
-    found = LADDER.neighbours(rating)
-    assert (found.below.name if found.below else None, found.above.name if found.above else None) == (below, above)
+    assert _names(LADDER.neighbours(rating)) == (below, above)
 
 
 @pytest.mark.parametrize("rating, below, above", [
@@ -441,8 +445,7 @@ def test_neighbours_are_the_size_at_or_above_and_the_one_below(rating, below, ab
     (100e3, "280M-4 90 kW", None),
 ])
 def test_neighbours_in_the_shipped_catalogue(rating, below, above):
-    found = CATALOGUE.neighbours(rating)
-    assert (found.below.name if found.below else None, found.above.name if found.above else None) == (below, above)
+    assert _names(CATALOGUE.neighbours(rating)) == (below, above)
 
 
 @pytest.mark.parametrize("rating", [0.0, -1.0, math.nan, math.inf, True, "5 kW", None])

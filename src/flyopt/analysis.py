@@ -374,17 +374,13 @@ def _speed_curve(analysis):
         solution = analysis.requirement.detail.solution
         if solution.j_flywheel == analysis.j_required:
             return solution
-        # no flywheel needed: the requirement's solution is the one at its margin J_F <= 0 (where δ reaches the
-        # allowed value, or a vanishing inertia); the machine runs with none, unless it has no inertia at all,
-        # where the vanishing inertia's solution is the limit it tends to
-        import numpy as np
-
+        # no flywheel needed: the requirement's solution is the one at its margin J_F = j_margin <= 0 (where δ
+        # reaches the allowed value, or -min J_e, a vanishing inertia); the machine runs with none, unless it has
+        # no inertia of its own (j_margin 0), where the vanishing inertia's solution is the limit it tends to
+        if not analysis.j_margin < 0:
+            return solution
         from flyopt.sizing.periodic import periodic_solution
 
-        j = machine.j_machine
-        lowest = float(np.min(j(np.linspace(0.0, machine.cycle_angle, 721)))) if callable(j) else float(j)
-        if not lowest + analysis.j_required > 0:
-            return solution
         return periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
                                  analysis.j_required, machine.knots())
     if machine.j_mean() + analysis.j_required <= 0:

@@ -198,15 +198,12 @@ def _neighbour_rises(phi, f, rise):
     nothing joins, +inf, so that the steepness test never refuses an extremum for want of a neighbour.
     """
     pieces = rise.shape[0]
-    before = np.concatenate([np.full((pieces, 1), np.inf), rise[:, :-1]], axis=1)
-    after = np.concatenate([rise[:, 1:], np.full((pieces, 1), np.inf)], axis=1)
-    scale = max(float(np.max(np.abs(f))), EPS)
-    for r in range(pieces):
-        previous = (r - 1) % pieces
-        if pieces > 1 and (r > 0 or abs(f[-1, -1] - f[0, 0]) <= 1e-9 * scale) and \
-                (r == 0 or phi[previous, -1] == phi[r, 0]):
-            before[r, 0] = rise[previous, -1]
-            after[previous, -1] = rise[r, 0]
+    previous = np.roll(np.arange(pieces), 1)
+    joins = phi[previous, -1] == phi[:, 0]                       # row r starts where row r-1 ends
+    joins[0] = pieces > 1 and abs(f[-1, -1] - f[0, 0]) <= 1e-9 * max(float(np.max(np.abs(f))), EPS)
+    before = np.concatenate([np.where(joins, rise[previous, -1], np.inf)[:, None], rise[:, :-1]], axis=1)
+    after = np.concatenate([rise[:, 1:], np.where(np.roll(joins, -1), np.roll(rise[:, 0], -1), np.inf)[:, None]],
+                           axis=1)
     return before, after
 
 
