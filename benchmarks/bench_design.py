@@ -34,8 +34,8 @@ import casadi as ca
 import numpy as np
 
 import flyopt
-from flyopt.design.materials import builtin_materials
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
+from flyopt.design.materials import builtin_materials
 from flyopt.design.nlp import ModelStructure, clear_model_cache, get_model
 
 TARGET_MS = 30.0
@@ -56,13 +56,21 @@ def random_scenes(count, seed):
     scenes = []
     for _ in range(count):
         rpm = 10 ** rng.uniform(math.log10(50), math.log10(5000))
-        shafts = [MountShaft("reference", 1.0),
-                  MountShaft("slower", float(10 ** rng.uniform(-1.0, 0.0))),
-                  MountShaft("faster", float(10 ** rng.uniform(0.0, 1.0)))]
+        shafts = [
+            MountShaft("reference", 1.0),
+            MountShaft("slower", float(10 ** rng.uniform(-1.0, 0.0))),
+            MountShaft("faster", float(10 ** rng.uniform(0.0, 1.0))),
+        ]
         spec = DesignSpec(geometry=str(rng.choice(["rim", "thin_rim"])))
-        scenes.append({"j_required": float(10 ** rng.uniform(-3, 4)),
-                       "omega_mean": rpm * math.pi / 30.0, "rpm": rpm,
-                       "shafts": shafts, "spec": spec})
+        scenes.append(
+            {
+                "j_required": float(10 ** rng.uniform(-3, 4)),
+                "omega_mean": rpm * math.pi / 30.0,
+                "rpm": rpm,
+                "shafts": shafts,
+                "spec": spec,
+            }
+        )
     return scenes
 
 
@@ -72,7 +80,7 @@ def time_builds():
     times = {}
     for geometry in ("rim", "thin_rim", "disc"):
         for pinned in (False, True):
-            for collapsed in ((False, True) if geometry != "disc" else (False,)):
+            for collapsed in (False, True) if geometry != "disc" else (False,):
                 for objective in ("mass", "outer_diameter"):
                     structure = ModelStructure(geometry, pinned, collapsed, objective)
                     start = time.perf_counter()
@@ -90,7 +98,7 @@ def time_problems(repeats):
     for path in sorted(PROBLEMS.glob("*.toml")):
         scene = flyopt.load(path)
         solution = flyopt.solve(scene)
-        flyopt.design_scene(scene, solution.analysis, method="ipopt")   # warm-up: builds the NLP structure
+        flyopt.design_scene(scene, solution.analysis, method="ipopt")  # warm-up: builds the NLP structure
         total, design, ipopt = [], [], []
         for _ in range(repeats):
             start = time.perf_counter()
@@ -102,10 +110,16 @@ def time_problems(repeats):
             start = time.perf_counter()
             flyopt.design_scene(scene, solution.analysis, method="ipopt")
             ipopt.append(time.perf_counter() - start)
-        rows.append({"scene": path.name, "status": solution.status,
-                     "combinations": len(solution.design.candidates),
-                     "solve_ms": 1e3 * statistics.median(total), "design_ms": 1e3 * statistics.median(design),
-                     "design_ipopt_ms": 1e3 * statistics.median(ipopt)})
+        rows.append(
+            {
+                "scene": path.name,
+                "status": solution.status,
+                "combinations": len(solution.design.candidates),
+                "solve_ms": 1e3 * statistics.median(total),
+                "design_ms": 1e3 * statistics.median(design),
+                "design_ipopt_ms": 1e3 * statistics.median(ipopt),
+            }
+        )
     return rows
 
 
@@ -119,17 +133,26 @@ def run(count, seed):
     rows, nlp_times, nlp_iters = [], [], []
     for index, scene in enumerate(scenes):
         start = time.perf_counter()
-        result = design_flywheel(scene["j_required"], scene["omega_mean"], scene["shafts"],
-                                 materials, scene["spec"], method="ipopt")
+        result = design_flywheel(
+            scene["j_required"], scene["omega_mean"], scene["shafts"], materials, scene["spec"], method="ipopt"
+        )
         elapsed = time.perf_counter() - start
         solved = [c for c in result.candidates if c.solve_time is not None]
         nlp_times += [c.solve_time for c in solved]
         nlp_iters += [c.iterations for c in solved]
-        rows.append({"scene": index, "geometry": scene["spec"].geometry,
-                     "j_required": scene["j_required"], "rpm": scene["rpm"],
-                     "combinations": len(result.candidates), "nlps_solved": len(solved),
-                     "feasible": sum(c.feasible for c in result.candidates),
-                     "status": result.status, "ranking_ms": 1e3 * elapsed})
+        rows.append(
+            {
+                "scene": index,
+                "geometry": scene["spec"].geometry,
+                "j_required": scene["j_required"],
+                "rpm": scene["rpm"],
+                "combinations": len(result.candidates),
+                "nlps_solved": len(solved),
+                "feasible": sum(c.feasible for c in result.candidates),
+                "status": result.status,
+                "ranking_ms": 1e3 * elapsed,
+            }
+        )
     return builds, rows, nlp_times, nlp_iters
 
 
@@ -139,8 +162,7 @@ def write_results(out, builds, rows, nlp_times, nlp_iters, pinning, seed, proble
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
         for row in rows:
-            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
-                             for k, v in row.items()})
+            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
     ranking = [r["ranking_ms"] for r in rows]
     full = [r["ranking_ms"] for r in rows if r["nlps_solved"] == r["combinations"]]
     build_ms = [1e3 * t for t in builds.values()]
@@ -162,21 +184,16 @@ def write_results(out, builds, rows, nlp_times, nlp_iters, pinning, seed, proble
         "",
         "| figure | value |",
         "|---|---|",
-        f"| median ranking time per scene (all 6 combinations) | "
-        f"{statistics.median(ranking):.2f} ms |",
-        f"| 90th percentile / max ranking time | {quantile(ranking, 0.9):.2f} / "
-        f"{max(ranking):.2f} ms |",
+        f"| median ranking time per scene (all 6 combinations) | {statistics.median(ranking):.2f} ms |",
+        f"| 90th percentile / max ranking time | {quantile(ranking, 0.9):.2f} / {max(ranking):.2f} ms |",
         f"| median ranking time, scenes with all 6 NLPs solved ({len(full)} scenes) | "
         + (f"{statistics.median(full):.2f} ms |" if full else "n/a |"),
-        f"| median time per single NLP solve ({len(nlp_times)} solves) | "
-        f"{1e3 * statistics.median(nlp_times):.3f} ms |",
+        f"| median time per single NLP solve ({len(nlp_times)} solves) | {1e3 * statistics.median(nlp_times):.3f} ms |",
         f"| 90th percentile NLP solve | {1e3 * quantile(nlp_times, 0.9):.3f} ms |",
-        f"| IPOPT iterations per NLP, median / max | {statistics.median(nlp_iters):.0f} / "
-        f"{max(nlp_iters)} |",
+        f"| IPOPT iterations per NLP, median / max | {statistics.median(nlp_iters):.0f} / {max(nlp_iters)} |",
         f"| first NLP build (cold, includes loading IPOPT) | {build_ms[0]:.1f} ms "
         f"({'/'.join(str(v) for v in first)}) |",
-        f"| later NLP builds, median of {len(build_ms) - 1} structures | "
-        f"{statistics.median(build_ms[1:]):.1f} ms |",
+        f"| later NLP builds, median of {len(build_ms) - 1} structures | {statistics.median(build_ms[1:]):.1f} ms |",
         f"| target: ranking under {TARGET_MS:.0f} ms | "
         f"{'met' if statistics.median(ranking) < TARGET_MS else 'NOT met'} "
         f"(median) |",
@@ -185,13 +202,20 @@ def write_results(out, builds, rows, nlp_times, nlp_iters, pinning, seed, proble
         "",
     ]
     if problems:
-        lines += ["## problems/ scenes", "",
-                  "`flyopt.solve` (load excluded, default design method auto) and its design step alone, by "
-                  "auto and by IPOPT on every combination; medians of 20 runs after a warm-up.",
-                  "", "| scene | status | combinations | solve [ms] | design, auto [ms] | design, IPOPT [ms] |",
-                  "|---|---|---|---|---|---|"]
-        lines += [f"| {r['scene']} | {r['status']} | {r['combinations']} | {r['solve_ms']:.2f} | "
-                  f"{r['design_ms']:.2f} | {r['design_ipopt_ms']:.2f} |" for r in problems]
+        lines += [
+            "## problems/ scenes",
+            "",
+            "`flyopt.solve` (load excluded, default design method auto) and its design step alone, by "
+            "auto and by IPOPT on every combination; medians of 20 runs after a warm-up.",
+            "",
+            "| scene | status | combinations | solve [ms] | design, auto [ms] | design, IPOPT [ms] |",
+            "|---|---|---|---|---|---|",
+        ]
+        lines += [
+            f"| {r['scene']} | {r['status']} | {r['combinations']} | {r['solve_ms']:.2f} | "
+            f"{r['design_ms']:.2f} | {r['design_ipopt_ms']:.2f} |"
+            for r in problems
+        ]
         lines.append("")
     (out / "design.md").write_text("\n".join(lines), encoding="utf-8")
     return "\n".join(lines)
@@ -201,8 +225,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--scenes", type=int, default=300)
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--out", type=Path,
-                        default=Path(__file__).resolve().parent / "results")
+    parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parent / "results")
     args = parser.parse_args(argv)
     pinning = pin_one_core()
     builds, rows, nlp_times, nlp_iters = run(args.scenes, args.seed)

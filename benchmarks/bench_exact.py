@@ -51,7 +51,7 @@ PARETO_TARGET = 2.0
 STARTUP_RATIO = 3.0
 TABLE_TARGET = 10e-3
 VERIFY_TARGET = 2.0
-MEMORY_TARGET = 400.0   # MB
+MEMORY_TARGET = 400.0  # MB
 
 
 def median_time(call, repeat, warm=1):
@@ -93,12 +93,25 @@ def bench_analyses(repeat, rows):
             try:
                 med, lo, hi = median_time(lambda: analyse(scene, model), repeat)
             except Exception as err:  # noqa: BLE001 -- a model that does not apply is reported
-                rows.append({"section": "analyse", "case": path.stem, "setting": model, "median_s": "",
-                             "note": f"not applicable: {str(err).splitlines()[0][:80]}"})
+                rows.append(
+                    {
+                        "section": "analyse",
+                        "case": path.stem,
+                        "setting": model,
+                        "median_s": "",
+                        "note": f"not applicable: {str(err).splitlines()[0][:80]}",
+                    }
+                )
                 continue
-            rows.append({"section": "analyse", "case": path.stem, "setting": model + (" (exact)" if model == exact
-                                                                                      else ""),
-                         "median_s": med, "note": f"min {lo * 1e3:.3g} ms, max {hi * 1e3:.3g} ms"})
+            rows.append(
+                {
+                    "section": "analyse",
+                    "case": path.stem,
+                    "setting": model + (" (exact)" if model == exact else ""),
+                    "median_s": med,
+                    "note": f"min {lo * 1e3:.3g} ms, max {hi * 1e3:.3g} ms",
+                }
+            )
 
 
 SWEEPS = {
@@ -120,34 +133,58 @@ def bench_sweeps(repeat, rows, quick):
                 times.append(time.perf_counter() - start)
                 points = len(frame)
             med = statistics.median(times)
-            rows.append({"section": "sweep", "case": name, "setting": f"{workers} worker(s)", "median_s": med,
-                         "note": f"{points} points, {points / med:.4g} points/s, mode "
-                                 f"{frame.attrs.get('sweep', {}).get('mode')}"})
+            rows.append(
+                {
+                    "section": "sweep",
+                    "case": name,
+                    "setting": f"{workers} worker(s)",
+                    "median_s": med,
+                    "note": f"{points} points, {points / med:.4g} points/s, mode "
+                    f"{frame.attrs.get('sweep', {}).get('mode')}",
+                }
+            )
         del scene
 
 
 def bench_pareto(repeat, rows):
     med = process_time(FLYOPT + ["pareto", "problems/motor-press.toml"], max(1, repeat // 2))
-    rows.append({"section": "pareto", "case": "motor-press", "setting": "25 points, whole process",
-                 "median_s": med, "note": ""})
+    rows.append(
+        {"section": "pareto", "case": "motor-press", "setting": "25 points, whole process", "median_s": med, "note": ""}
+    )
 
 
 def bench_startup(repeat, rows):
     numpy_times, check_times, solve_times = [], [], []
-    for _ in range(repeat):   # alternately, so that the machine's load hits all alike
-        for command, times in (([sys.executable, "-c", "import numpy"], numpy_times),
-                               (FLYOPT + ["check", "problems/punch-press.toml"], check_times),
-                               (FLYOPT + ["solve", "problems/punch-press.toml"], solve_times)):
+    for _ in range(repeat):  # alternately, so that the machine's load hits all alike
+        for command, times in (
+            ([sys.executable, "-c", "import numpy"], numpy_times),
+            (FLYOPT + ["check", "problems/punch-press.toml"], check_times),
+            (FLYOPT + ["solve", "problems/punch-press.toml"], solve_times),
+        ):
             start = time.perf_counter()
             subprocess.run(command, check=True, capture_output=True, cwd=ROOT)
             times.append(time.perf_counter() - start)
     base = statistics.median(numpy_times)
-    rows.append({"section": "startup", "case": "python -c 'import numpy'", "setting": "whole process",
-                 "median_s": base, "note": ""})
+    rows.append(
+        {
+            "section": "startup",
+            "case": "python -c 'import numpy'",
+            "setting": "whole process",
+            "median_s": base,
+            "note": "",
+        }
+    )
     for label, times in (("flyopt check punch-press", check_times), ("flyopt solve punch-press", solve_times)):
         med = statistics.median(times)
-        rows.append({"section": "startup", "case": label, "setting": "whole process", "median_s": med,
-                     "note": f"{med / base:.3g}x import numpy"})
+        rows.append(
+            {
+                "section": "startup",
+                "case": label,
+                "setting": "whole process",
+                "median_s": med,
+                "note": f"{med / base:.3g}x import numpy",
+            }
+        )
 
 
 TABLE_SCENE = """title = "10,000-point torque table"
@@ -170,11 +207,15 @@ def bench_table(repeat, rows, folder):
     torques = 1000 + 300 * np.sin(np.radians(angles) * 3) + rng.normal(0, 20, angles.size)
     torques[-1] = torques[0]
     inline = folder / "inline.toml"
-    inline.write_text(TABLE_SCENE.format(points="points = [" + ", ".join(
-        f"[{a!r}, {t!r}]" for a, t in zip(angles.tolist(), torques.tolist())) + "]"))
+    inline.write_text(
+        TABLE_SCENE.format(
+            points="points = [" + ", ".join(f"[{a!r}, {t!r}]" for a, t in zip(angles.tolist(), torques.tolist())) + "]"
+        )
+    )
     med, _, _ = median_time(lambda: flyopt.load(inline), repeat)
-    rows.append({"section": "table", "case": "10k-point table", "setting": "inline points", "median_s": med,
-                 "note": ""})
+    rows.append(
+        {"section": "table", "case": "10k-point table", "setting": "inline points", "median_s": med, "note": ""}
+    )
     table = folder / "torque.csv"
     table.write_text("angle,torque\n" + "".join(f"{a!r},{t!r}\n" for a, t in zip(angles.tolist(), torques.tolist())))
     from_file = folder / "from_csv.toml"
@@ -182,20 +223,40 @@ def bench_table(repeat, rows, folder):
     try:
         med, _, _ = median_time(lambda: flyopt.load(from_file), repeat)
         same = analyse(flyopt.load(from_file)).a_max == analyse(flyopt.load(inline)).a_max
-        rows.append({"section": "table", "case": "10k-point table", "setting": "points_file (CSV)",
-                     "median_s": med, "note": f"same A_max as inline: {same}"})
+        rows.append(
+            {
+                "section": "table",
+                "case": "10k-point table",
+                "setting": "points_file (CSV)",
+                "median_s": med,
+                "note": f"same A_max as inline: {same}",
+            }
+        )
         from flyopt.pipeline import verify
 
         scene = flyopt.load(from_file).replace(delta=0.02)
         solution = flyopt.solve(scene)
         med, _, _ = median_time(lambda: verify(scene, solution.analysis, solution.design), max(3, repeat // 2))
         check = verify(scene, solution.analysis, solution.design)
-        rows.append({"section": "verify", "case": "10k-point table", "setting": "CVODES periodic simulation",
-                     "median_s": med, "note": f"achieved δ {check.achieved_delta:.10g} (allowed 0.02), "
-                                              f"flagged {check.flagged}"})
+        rows.append(
+            {
+                "section": "verify",
+                "case": "10k-point table",
+                "setting": "CVODES periodic simulation",
+                "median_s": med,
+                "note": f"achieved δ {check.achieved_delta:.10g} (allowed 0.02), flagged {check.flagged}",
+            }
+        )
     except Exception as err:  # noqa: BLE001 -- reported, not hidden
-        rows.append({"section": "table", "case": "10k-point table", "setting": "points_file (CSV)",
-                     "median_s": "", "note": f"failed: {str(err).splitlines()[0][:100]}"})
+        rows.append(
+            {
+                "section": "table",
+                "case": "10k-point table",
+                "setting": "points_file (CSV)",
+                "median_s": "",
+                "note": f"failed: {str(err).splitlines()[0][:100]}",
+            }
+        )
 
 
 MEMORY_DRIVER = """
@@ -208,70 +269,114 @@ print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
 def bench_memory(rows, folder, quick):
     n = 100 if quick else 1000
     out = folder / "big.parquet"
-    command = FLYOPT + ["sweep", "problems/punch-press.toml", "--vary", f"delta=0.01:0.2:{n}",
-                        "--vary", f"speed=30:120:{n}rpm", "-o", str(out), "--no-progress"]
+    command = FLYOPT + [
+        "sweep",
+        "problems/punch-press.toml",
+        "--vary",
+        f"delta=0.01:0.2:{n}",
+        "--vary",
+        f"speed=30:120:{n}rpm",
+        "-o",
+        str(out),
+        "--no-progress",
+    ]
     start = time.perf_counter()
-    run = subprocess.run([sys.executable, "-c", MEMORY_DRIVER, *command], capture_output=True, text=True,
-                         cwd=ROOT, check=True)
+    run = subprocess.run(
+        [sys.executable, "-c", MEMORY_DRIVER, *command], capture_output=True, text=True, cwd=ROOT, check=True
+    )
     seconds = time.perf_counter() - start
-    peak = int(run.stdout.strip()) / 1024   # kB -> MB (Linux)
-    rows.append({"section": "memory", "case": f"{n * n:,}-point sweep to Parquet", "setting": "ru_maxrss",
-                 "median_s": seconds, "note": f"peak {peak:.0f} MB (largest process); file "
-                                              f"{out.stat().st_size / 1e6:.0f} MB"})
+    peak = int(run.stdout.strip()) / 1024  # kB -> MB (Linux)
+    rows.append(
+        {
+            "section": "memory",
+            "case": f"{n * n:,}-point sweep to Parquet",
+            "setting": "ru_maxrss",
+            "median_s": seconds,
+            "note": f"peak {peak:.0f} MB (largest process); file {out.stat().st_size / 1e6:.0f} MB",
+        }
+    )
     return peak
 
 
 def summary(rows, header):
     def find(section, case, setting=None):
         for row in rows:
-            if row["section"] == section and row["case"] == case and (setting is None
-                                                                      or row["setting"].startswith(setting)):
+            if (
+                row["section"] == section
+                and row["case"] == case
+                and (setting is None or row["setting"].startswith(setting))
+            ):
                 return row
         return None
 
     def verdict(ok):
         return "met" if ok else "**NOT met**"
 
-    lines = ["# Exact models: speed", "", "Command: `python benchmarks/bench_exact.py`", "", header, "",
-             "Medians; ratios from the same run. A whole-process time includes the interpreter's start.",
-             "", "## Targets (issue 12)", "", "| target | status | measured |", "|---|---|---|"]
+    lines = [
+        "# Exact models: speed",
+        "",
+        "Command: `python benchmarks/bench_exact.py`",
+        "",
+        header,
+        "",
+        "Medians; ratios from the same run. A whole-process time includes the interpreter's start.",
+        "",
+        "## Targets (issue 12)",
+        "",
+        "| target | status | measured |",
+        "|---|---|---|",
+    ]
     for case, limit in ANALYSE_TARGET.items():
         exact, _ = models_of(flyopt.load(PROBLEMS / f"{case}.toml"))
         row = find("analyse", case, exact)
         if row and row["median_s"] != "":
-            lines.append(f"| analyse {case} ({exact}) <= {limit * 1e3:g} ms | {verdict(row['median_s'] <= limit)} "
-                         f"| {row['median_s'] * 1e3:.3g} ms |")
+            lines.append(
+                f"| analyse {case} ({exact}) <= {limit * 1e3:g} ms | {verdict(row['median_s'] <= limit)} "
+                f"| {row['median_s'] * 1e3:.3g} ms |"
+            )
     for case, target in SWEEP_TARGET.items():
         row = find("sweep", case, "2 worker")
         serial = find("sweep", case, "1 worker")
         rate = float(row["note"].split(", ")[1].split()[0])
-        lines.append(f"| sweep {case}, 2 workers >= {target:g} points/s | {verdict(rate >= target)} | "
-                     f"{row['note']}; serial: {serial['note']} |")
+        lines.append(
+            f"| sweep {case}, 2 workers >= {target:g} points/s | {verdict(rate >= target)} | "
+            f"{row['note']}; serial: {serial['note']} |"
+        )
     row = find("pareto", "motor-press")
-    lines.append(f"| flyopt pareto motor-press <= {PARETO_TARGET:g} s | {verdict(row['median_s'] <= PARETO_TARGET)} "
-                 f"| {row['median_s']:.3g} s |")
+    lines.append(
+        f"| flyopt pareto motor-press <= {PARETO_TARGET:g} s | {verdict(row['median_s'] <= PARETO_TARGET)} "
+        f"| {row['median_s']:.3g} s |"
+    )
     base = find("startup", "python -c 'import numpy'")["median_s"]
     for label in ("flyopt check punch-press", "flyopt solve punch-press"):
         row = find("startup", label)
         ratio = row["median_s"] / base
-        lines.append(f"| {label} <= {STARTUP_RATIO:g}x import numpy | {verdict(ratio <= STARTUP_RATIO)} | "
-                     f"{row['median_s'] * 1e3:.0f} ms vs {base * 1e3:.0f} ms: {ratio:.2f}x |")
+        lines.append(
+            f"| {label} <= {STARTUP_RATIO:g}x import numpy | {verdict(ratio <= STARTUP_RATIO)} | "
+            f"{row['median_s'] * 1e3:.0f} ms vs {base * 1e3:.0f} ms: {ratio:.2f}x |"
+        )
     for setting in ("inline points", "points_file (CSV)"):
         row = find("table", "10k-point table", setting)
         if row is None or row["median_s"] == "":
             lines.append(f"| load 10k-point table, {setting} <= 10 ms | **NOT met** | {row and row['note']} |")
         else:
-            lines.append(f"| load 10k-point table, {setting} <= {TABLE_TARGET * 1e3:g} ms | "
-                         f"{verdict(row['median_s'] <= TABLE_TARGET)} | {row['median_s'] * 1e3:.3g} ms "
-                         f"{row['note']} |")
+            lines.append(
+                f"| load 10k-point table, {setting} <= {TABLE_TARGET * 1e3:g} ms | "
+                f"{verdict(row['median_s'] <= TABLE_TARGET)} | {row['median_s'] * 1e3:.3g} ms "
+                f"{row['note']} |"
+            )
     row = find("verify", "10k-point table")
     if row is not None:
-        lines.append(f"| solve --verify of a 10k-point table <= {VERIFY_TARGET:g} s (the verification) | "
-                     f"{verdict(row['median_s'] <= VERIFY_TARGET)} | {row['median_s']:.3g} s, {row['note']} |")
+        lines.append(
+            f"| solve --verify of a 10k-point table <= {VERIFY_TARGET:g} s (the verification) | "
+            f"{verdict(row['median_s'] <= VERIFY_TARGET)} | {row['median_s']:.3g} s, {row['note']} |"
+        )
     row = [r for r in rows if r["section"] == "memory"][0]
     peak = float(row["note"].split()[1])
-    lines.append(f"| peak memory, {row['case']} <= {MEMORY_TARGET:g} MB | {verdict(peak <= MEMORY_TARGET)} | "
-                 f"{row['note']}, {row['median_s']:.3g} s |")
+    lines.append(
+        f"| peak memory, {row['case']} <= {MEMORY_TARGET:g} MB | {verdict(peak <= MEMORY_TARGET)} | "
+        f"{row['note']}, {row['median_s']:.3g} s |"
+    )
     lines += ["", "## Every row", "", "| section | case | setting | median | note |", "|---|---|---|---|---|"]
     for row in rows:
         value = row["median_s"]
@@ -287,16 +392,20 @@ def main(argv=None):
     args = parser.parse_args(argv)
     repeat = 3 if args.quick else args.repeat
     rows = []
-    header = (f"Machine: {platform.platform()}, {os.cpu_count()} CPUs; Python {platform.python_version()}, "
-              f"numpy {np.__version__}.")
+    header = (
+        f"Machine: {platform.platform()}, {os.cpu_count()} CPUs; Python {platform.python_version()}, "
+        f"numpy {np.__version__}."
+    )
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
-        for step, run in (("analyses", lambda: bench_analyses(repeat, rows)),
-                          ("sweeps", lambda: bench_sweeps(repeat, rows, args.quick)),
-                          ("pareto", lambda: bench_pareto(repeat, rows)),
-                          ("start-up", lambda: bench_startup(repeat, rows)),
-                          ("tables", lambda: bench_table(repeat, rows, folder)),
-                          ("memory", lambda: bench_memory(rows, folder, args.quick))):
+        for step, run in (
+            ("analyses", lambda: bench_analyses(repeat, rows)),
+            ("sweeps", lambda: bench_sweeps(repeat, rows, args.quick)),
+            ("pareto", lambda: bench_pareto(repeat, rows)),
+            ("start-up", lambda: bench_startup(repeat, rows)),
+            ("tables", lambda: bench_table(repeat, rows, folder)),
+            ("memory", lambda: bench_memory(rows, folder, args.quick)),
+        ):
             print(f"bench_exact: {step}", file=sys.stderr, flush=True)
             run()
     text = summary(rows, header)

@@ -54,13 +54,21 @@ TARGET = 2000.0
 AGREEMENT = 1e-6
 
 SWEEPS = {
-    "grid": dict(vary={"delta": "0.01:0.2:log25", "speed": "20:200:log20 rpm",
-                       "design.max_outer_diameter": "0.4:2.0:20 m"}),
-    "lhs": dict(vary={"delta": "0.01:0.2:log", "speed": "20:200:log rpm",
-                      "design.max_outer_diameter": "0.4:2.0 m",
-                      "design.max_width": "0.02,0.05,0.1,0.2,none",
-                      "design.hb_min": "1.0:2.0", "design.geometry": "rim,thin_rim,disc"},
-                samples=10_000, seed=1),
+    "grid": dict(
+        vary={"delta": "0.01:0.2:log25", "speed": "20:200:log20 rpm", "design.max_outer_diameter": "0.4:2.0:20 m"}
+    ),
+    "lhs": dict(
+        vary={
+            "delta": "0.01:0.2:log",
+            "speed": "20:200:log rpm",
+            "design.max_outer_diameter": "0.4:2.0 m",
+            "design.max_width": "0.02,0.05,0.1,0.2,none",
+            "design.hb_min": "1.0:2.0",
+            "design.geometry": "rim,thin_rim,disc",
+        },
+        samples=10_000,
+        seed=1,
+    ),
 }
 
 
@@ -92,13 +100,23 @@ def result_row(name, mode, method, workers, frame, seconds):
     designs = int(frame["n_combinations"].sum())
     feasible = int(frame["n_feasible"].sum())
     median = statistics.median(seconds)
-    return {"sweep": name, "mode": mode, "method": method, "workers": workers,
-            "points": len(frame), "designs": designs, "feasible_designs": feasible,
-            "chunks": frame.attrs["sweep"]["chunks"], "runs": len(seconds),
-            "best_s": min(seconds), "median_s": median,
-            "designs_per_s": designs / median, "feasible_per_s": feasible / median,
-            "methods": ";".join(f"{k}={v}" for k, v in frame["method"].value_counts().items()),
-            "statuses": ";".join(f"{k}={v}" for k, v in frame["status"].value_counts().items())}
+    return {
+        "sweep": name,
+        "mode": mode,
+        "method": method,
+        "workers": workers,
+        "points": len(frame),
+        "designs": designs,
+        "feasible_designs": feasible,
+        "chunks": frame.attrs["sweep"]["chunks"],
+        "runs": len(seconds),
+        "best_s": min(seconds),
+        "median_s": median,
+        "designs_per_s": designs / median,
+        "feasible_per_s": feasible / median,
+        "methods": ";".join(f"{k}={v}" for k, v in frame["method"].value_counts().items()),
+        "statuses": ";".join(f"{k}={v}" for k, v in frame["status"].value_counts().items()),
+    }
 
 
 def timed(scene, spec, repeat, **options):
@@ -106,8 +124,7 @@ def timed(scene, spec, repeat, **options):
     seconds, frame = [], None
     for _ in range(repeat):
         start = time.perf_counter()
-        frame = sweep(scene, spec["vary"], samples=spec.get("samples"), seed=spec.get("seed"),
-                      **options)
+        frame = sweep(scene, spec["vary"], samples=spec.get("samples"), seed=spec.get("seed"), **options)
         seconds.append(time.perf_counter() - start)
     return frame, seconds
 
@@ -115,8 +132,9 @@ def timed(scene, spec, repeat, **options):
 def agreement(scene, frame, count, rng):
     """Solve ``count`` random points individually; return the comparison."""
     rows = frame.iloc[rng.choice(len(frame), size=min(count, len(frame)), replace=False)]
-    inputs = [c for c in frame.columns if c == "point" or "." in c
-              or c in ("delta", "speed", "inertia", "material", "shaft")]
+    inputs = [
+        c for c in frame.columns if c == "point" or "." in c or c in ("delta", "speed", "inertia", "material", "shaft")
+    ]
     worst, mismatches, ties, statuses, start = 0.0, [], [], {}, time.perf_counter()
     for row in rows.to_dict("records"):
         point = {k: row[k] for k in inputs if k != "point"}
@@ -135,25 +153,32 @@ def agreement(scene, frame, count, rng):
             elif winner != (best.material, best.shaft):
                 # an exact tie: the individual solve's own design of the sweep's winner
                 # must be as light as its best (else a real mismatch)
-                same = [c for c in solution.design.candidates
-                        if (c.material, c.shaft) == winner]
+                same = [c for c in solution.design.candidates if (c.material, c.shaft) == winner]
                 if same and same[0].feasible and abs(same[0].mass / best.mass - 1) <= 1e-9:
-                    ties.append(f"point {row['point']}: {'/'.join(winner)} vs "
-                                f"{best.material}/{best.shaft}, masses equal to "
-                                f"{abs(same[0].mass / best.mass - 1):.1e}")
+                    ties.append(
+                        f"point {row['point']}: {'/'.join(winner)} vs "
+                        f"{best.material}/{best.shaft}, masses equal to "
+                        f"{abs(same[0].mass / best.mass - 1):.1e}"
+                    )
                 else:
-                    mismatches.append(f"point {row['point']}: winner {'/'.join(winner)} vs "
-                                      f"{best.material}/{best.shaft}")
-    return {"points": len(rows), "worst": worst, "mismatches": mismatches, "ties": ties,
-            "statuses": statuses, "seconds": time.perf_counter() - start}
+                    mismatches.append(
+                        f"point {row['point']}: winner {'/'.join(winner)} vs {best.material}/{best.shaft}"
+                    )
+    return {
+        "points": len(rows),
+        "worst": worst,
+        "mismatches": mismatches,
+        "ties": ties,
+        "statuses": statuses,
+        "seconds": time.perf_counter() - start,
+    }
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--check", type=int, default=200, help="points solved individually")
-    parser.add_argument("--ipopt-points", type=int, default=300,
-                        help="points of the IPOPT comparison run")
+    parser.add_argument("--ipopt-points", type=int, default=300, help="points of the IPOPT comparison run")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--out", type=Path, default=ROOT / "benchmarks" / "results")
     args = parser.parse_args(argv)
@@ -161,40 +186,47 @@ def main(argv=None):
     rng = np.random.default_rng(args.seed)
     scene = flyopt.load(SCENE)
     n_cpu = cpus()
-    sweep(scene, {"delta": "0.05"})          # warm up imports
+    sweep(scene, {"delta": "0.05"})  # warm up imports
     rows, checks = _Rows(), {}
     for name, spec in SWEEPS.items():
         for mode, workers in (("serial", 1), ("parallel", n_cpu)):
             frame, seconds = timed(scene, spec, args.repeat, workers=workers)
             row = result_row(name, mode, "auto", workers, frame, seconds)
             rows.append(row)
-            print(f"{name:4s} {mode:8s} {row['median_s']:.3f} s  "
-                  f"{row['designs_per_s']:,.0f} designs/s  ({row['statuses']})", flush=True)
+            print(
+                f"{name:4s} {mode:8s} {row['median_s']:.3f} s  "
+                f"{row['designs_per_s']:,.0f} designs/s  ({row['statuses']})",
+                flush=True,
+            )
         checks[name] = agreement(scene, frame, args.check, rng)
-        print(f"{name}: agreement on {checks[name]['points']} points, worst "
-              f"{checks[name]['worst']:.2e}, {len(checks[name]['mismatches'])} mismatches",
-              flush=True)
+        print(
+            f"{name}: agreement on {checks[name]['points']} points, worst "
+            f"{checks[name]['worst']:.2e}, {len(checks[name]['mismatches'])} mismatches",
+            flush=True,
+        )
     # a larger closed-form sweep, where worker processes start to pay off
-    large = {"vary": {"delta": "0.01:0.2:log100", "speed": "20:200:log40 rpm",
-                      "design.max_outer_diameter": "0.4:2.0:50 m"}}
+    large = {
+        "vary": {"delta": "0.01:0.2:log100", "speed": "20:200:log40 rpm", "design.max_outer_diameter": "0.4:2.0:50 m"}
+    }
     for mode, workers in (("serial", 1), ("parallel", n_cpu)):
         frame, seconds = timed(scene, large, 1, workers=workers)
         row = result_row("grid-200k", mode, "auto", workers, frame, seconds)
         rows.append(row)
         designs = row["designs"]
-        print(f"200k  {mode:8s} {seconds[0]:.3f} s  {designs / seconds[0]:,.0f} designs/s",
-              flush=True)
+        print(f"200k  {mode:8s} {seconds[0]:.3f} s  {designs / seconds[0]:,.0f} designs/s", flush=True)
         del frame
     # the same structure through IPOPT, for comparison (a subset of the grid)
-    subset = {"delta": "0.01:0.2:log5", "speed": "20:200:log6 rpm",
-              "design.max_outer_diameter": f"0.4:2.0:{max(1, args.ipopt_points // 30)} m"}
+    subset = {
+        "delta": "0.01:0.2:log5",
+        "speed": "20:200:log6 rpm",
+        "design.max_outer_diameter": f"0.4:2.0:{max(1, args.ipopt_points // 30)} m",
+    }
     for mode, workers in (("serial", 1), ("parallel", n_cpu)):
         frame, seconds = timed(scene, {"vary": subset}, 1, workers=workers, method="ipopt")
         row = result_row("grid-subset", mode, "ipopt", workers, frame, seconds)
         rows.append(row)
         designs = row["designs"]
-        print(f"ipopt {mode:8s} {seconds[0]:.3f} s  {designs / seconds[0]:,.0f} designs/s",
-              flush=True)
+        print(f"ipopt {mode:8s} {seconds[0]:.3f} s  {designs / seconds[0]:,.0f} designs/s", flush=True)
     return write(args, rows, checks, n_cpu)
 
 
@@ -204,8 +236,7 @@ def write(args, rows, checks, n_cpu):
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
         writer.writeheader()
         for row in rows:
-            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
-                             for k, v in row.items()})
+            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
     auto = [r for r in rows if r["method"] == "auto" and r["points"] == 10_000]
     slowest = min(r["designs_per_s"] for r in auto)
     agree = all(not c["mismatches"] and c["worst"] <= AGREEMENT for c in checks.values())
@@ -231,20 +262,21 @@ def write(args, rows, checks, n_cpu):
         "- `grid`: δ 0.01..0.2 (25, log) x speed 20..200 rpm (20, log) x envelope 0.4..2 m (20).",
         "- `lhs`: 10,000 Latin hypercube samples over δ, speed, envelope, width limit "
         "(0.02, 0.05, 0.1, 0.2 m or none), H/B min 1..2 and geometry (rim, thin_rim, disc).",
-        "- `grid-200k`: δ (100, log) x speed (40, log) x envelope (50), 200,000 points, "
-        "one run each.",
+        "- `grid-200k`: δ (100, log) x speed (40, log) x envelope (50), 200,000 points, one run each.",
         "- `grid-subset`: 300 points of the grid with every combination through IPOPT "
-        "(`method=\"ipopt\"`), one run each, for comparison.",
+        '(`method="ipopt"`), one run each, for comparison.',
         "",
         "| sweep | mode | method | workers | points | designs | median [s] | best [s] "
         "| designs/s | feasible designs/s | load |",
         "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
-        lines.append(f"| {r['sweep']} | {r['mode']} | {r['method']} | {r['workers']} | "
-                     f"{r['points']} | {r['designs']} | {r['median_s']:.3f} | {r['best_s']:.3f} | "
-                     f"{r['designs_per_s']:,.0f} | {r['feasible_per_s']:,.0f} | "
-                     f"{r['load_1min']} |")
+        lines.append(
+            f"| {r['sweep']} | {r['mode']} | {r['method']} | {r['workers']} | "
+            f"{r['points']} | {r['designs']} | {r['median_s']:.3f} | {r['best_s']:.3f} | "
+            f"{r['designs_per_s']:,.0f} | {r['feasible_per_s']:,.0f} | "
+            f"{r['load_1min']} |"
+        )
     lines += [
         "",
         f"Target: at least {TARGET:,.0f} designs/s: **{'met' if slowest >= TARGET else 'NOT met'}** "
@@ -255,14 +287,15 @@ def write(args, rows, checks, n_cpu):
         "Random points of each sweep solved one by one with `flyopt.solve` on the point's "
         "scene (cycle analysed anew, every combination by IPOPT):",
         "",
-        "| sweep | points | statuses | worst relative mass difference | mismatches | "
-        "exact ties | time [s] |",
+        "| sweep | points | statuses | worst relative mass difference | mismatches | exact ties | time [s] |",
         "|---|---|---|---|---|---|---|",
     ]
     for name, c in checks.items():
         statuses = ", ".join(f"{v} {k}" for k, v in sorted(c["statuses"].items()))
-        lines.append(f"| {name} | {c['points']} | {statuses} | {c['worst']:.2e} | "
-                     f"{len(c['mismatches'])} | {len(c['ties'])} | {c['seconds']:.1f} |")
+        lines.append(
+            f"| {name} | {c['points']} | {statuses} | {c['worst']:.2e} | "
+            f"{len(c['mismatches'])} | {len(c['ties'])} | {c['seconds']:.1f} |"
+        )
     lines.append("")
     for name, c in checks.items():
         for m in c["mismatches"]:
@@ -289,7 +322,7 @@ def write(args, rows, checks, n_cpu):
         "and the cycle is analysed once for the whole sweep.",
         "- Worker processes do not pay off at 10,000 points: the whole sweep takes about a "
         "tenth of a second in one process, less than it costs to start workers and ship "
-        "chunks and results between processes. `workers=\"auto\"` therefore runs a sweep "
+        'chunks and results between processes. `workers="auto"` therefore runs a sweep '
         "serially when it is estimated to take under a second; the parallel rows force one "
         "worker per CPU to show it. At 200,000 points (`grid-200k`: δ 100 x speed 40 x "
         "envelope 50, one run each) they can pay off: about 85 % of a serial run is the "
@@ -299,7 +332,7 @@ def write(args, rows, checks, n_cpu):
         "runs of the 200k sweep took 2.0 s in parallel against 2.6 s serially at a load "
         "below 1, and 3.0-4.0 s against 2.5-3.1 s at a load of 1.3-1.7.",
         "- Where the closed form does not apply (objective `outer_diameter`, or "
-        "`method=\"ipopt\"`), every combination is an IPOPT solve on an NLP built once per "
+        '`method="ipopt"`), every combination is an IPOPT solve on an NLP built once per '
         "structure and process (~2 ms each): the `ipopt` rows. There worker processes do "
         "help.",
         "",

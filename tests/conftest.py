@@ -17,6 +17,7 @@ def main_cli(capsys):
         status = main([str(a) for a in args])
         out, err = capsys.readouterr()
         return status, out, err
+
     return call
 
 
@@ -42,5 +43,6 @@ def assert_published(actual, published):
 
     figure = Decimal(published)
     half_unit = Decimal(1).scaleb(figure.as_tuple().exponent) / 2
-    assert abs(Decimal(repr(float(actual))) - figure) <= half_unit, \
+    assert abs(Decimal(repr(float(actual))) - figure) <= half_unit, (
         f"{actual!r} does not round to the published {published} (±{half_unit})"
+    )

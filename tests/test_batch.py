@@ -20,11 +20,11 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.optimize import brentq
 
-from flyopt.design import closed_form as batch
-from flyopt.design.materials import Material, builtin_materials
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
+from flyopt.design import closed_form as batch
 from flyopt.design.check import binding_names
 from flyopt.design.closed_form import max_inertia_one as max_inertia
+from flyopt.design.materials import Material, builtin_materials
 
 RPM = math.pi / 30.0
 CAST_STEEL = builtin_materials()["cast_steel"]
@@ -34,9 +34,11 @@ CAST_STEEL = builtin_materials()["cast_steel"]
 # Independent references (physics only)
 # --------------------------------------------------------------------------
 
+
 def ref_free_rim(thin, rho, j, cap, hb_min, b_max=math.inf):
     """Lightest rim with D_m free, or None: D_outer = cap, H the smallest root of
     pi rho (cap - H) H B(H) k(H) / 4 = j with B(H) = min(H / hb_min, B_max)."""
+
     def inertia(h):
         d = cap - h
         b = np.minimum(h / hb_min, b_max)
@@ -60,8 +62,9 @@ def ref_free_rim(thin, rho, j, cap, hb_min, b_max=math.inf):
 def ref_pinned_annulus(rho, j, d_mean, cap, hb_min, hb_max):
     """Lightest exact annulus of mean diameter d_mean: H as large as the room and
     H/B <= hb_max allow (bisection on H/B of the wheel giving exactly j)."""
+
     def hb_of(h):
-        mass = 4.0 * j / (d_mean ** 2 + h ** 2)
+        mass = 4.0 * j / (d_mean**2 + h**2)
         return h / (mass / (math.pi * rho * d_mean * h))
 
     if d_mean >= cap:
@@ -71,12 +74,13 @@ def ref_pinned_annulus(rho, j, d_mean, cap, hb_min, hb_max):
         h = brentq(lambda x: hb_of(x) - hb_max, 1e-12 * d_mean, h, xtol=1e-16, rtol=1e-15)
     if hb_of(h) < hb_min * (1 - 1e-12):
         return None
-    return {"mass": 4.0 * j / (d_mean ** 2 + h ** 2), "h": h}
+    return {"mass": 4.0 * j / (d_mean**2 + h**2), "h": h}
 
 
 # --------------------------------------------------------------------------
 # Random combinations
 # --------------------------------------------------------------------------
+
 
 def random_combination(rng, geometry):
     """One material x shaft combination of a random scene (about a third infeasible)."""
@@ -88,17 +92,18 @@ def random_combination(rng, geometry):
     cap_speed = 2 * v_max / (omega * ratio)
     envelope = float(cap_speed * rng.uniform(0.3, 1.5)) if rng.random() < 0.5 else None
     cap = min(cap_speed, envelope or math.inf)
-    j_shaft = j / ratio ** 2
+    j_shaft = j / ratio**2
     width = None
-    if rng.random() < 0.5:   # near the width the wheel would take without a limit
+    if rng.random() < 0.5:  # near the width the wheel would take without a limit
         if geometry == "disc":
-            free = 32 * j_shaft / (math.pi * rho * cap ** 4)
+            free = 32 * j_shaft / (math.pi * rho * cap**4)
         else:
-            free = math.sqrt(4 * low * j_shaft / (math.pi * rho * cap ** 3)) / low
+            free = math.sqrt(4 * low * j_shaft / (math.pi * rho * cap**3)) / low
         width = float(free * rng.uniform(0.3, 3.0))
     d_mean = float(cap * rng.uniform(0.2, 1.05)) if rng.random() < 0.3 else None
-    spec = DesignSpec(geometry=geometry, hb_ratio=(low, high), max_outer_diameter=envelope,
-                      max_width=width, d_mean=d_mean)
+    spec = DesignSpec(
+        geometry=geometry, hb_ratio=(low, high), max_outer_diameter=envelope, max_width=width, d_mean=d_mean
+    )
     return j, omega, MountShaft("s", ratio), Material("m", rho, v_max), spec
 
 
@@ -107,9 +112,18 @@ def closed_form(j, omega, shaft, material, spec):
         return math.inf if x is None else x
 
     return batch.design_combinations(
-        spec.geometry, j, omega, shaft.speed_ratio, material.density, material.max_rim_speed,
-        spec.hb_ratio[0], spec.hb_ratio[1], inf(spec.max_outer_diameter), inf(spec.max_width),
-        math.nan if spec.d_mean is None else spec.d_mean)
+        spec.geometry,
+        j,
+        omega,
+        shaft.speed_ratio,
+        material.density,
+        material.max_rim_speed,
+        spec.hb_ratio[0],
+        spec.hb_ratio[1],
+        inf(spec.max_outer_diameter),
+        inf(spec.max_width),
+        math.nan if spec.d_mean is None else spec.d_mean,
+    )
 
 
 @pytest.mark.parametrize("seed", [11, 12, 13])
@@ -133,7 +147,7 @@ def test_closed_form_agrees_with_ipopt_on_random_combinations(seed):
         counts["feasible"] += 1
         assert_allclose(float(got.mass), ipopt.mass, rtol=1e-6)
         # constraints, to round-off
-        j_shaft = j / shaft.speed_ratio ** 2
+        j_shaft = j / shaft.speed_ratio**2
         assert_allclose(float(got.j_flywheel), j_shaft, rtol=1e-12)
         assert float(got.d_outer) <= float(got.cap) * (1 + 1e-14)
         if spec.max_width is not None:
@@ -149,7 +163,7 @@ def test_closed_form_agrees_with_ipopt_on_random_combinations(seed):
             assert_allclose(float(got.b), ipopt.b, rtol=1e-4)
             assert set(binding_names(got.binding)) == set(ipopt.binding)
         else:
-            assert float(got.mass) <= ipopt.mass * (1 + 1e-9)   # the exact vertex is no heavier
+            assert float(got.mass) <= ipopt.mass * (1 + 1e-9)  # the exact vertex is no heavier
     assert counts["feasible"] >= 40 and counts["infeasible"] >= 15, counts
 
 
@@ -165,8 +179,7 @@ def test_max_inertia_is_bitwise_the_same_as_the_scalar_form():
         width = float(cap * 10 ** rng.uniform(-3, 0)) if rng.random() < 0.5 else math.inf
         d_mean = float(cap * rng.uniform(0.1, 1.2)) if rng.random() < 0.3 else None
         expected = max_inertia(geometry, rho, cap, (low, high), width, d_mean)[0]
-        got = batch.max_inertia(geometry, rho, cap, low, high, width,
-                                math.nan if d_mean is None else d_mean)
+        got = batch.max_inertia(geometry, rho, cap, low, high, width, math.nan if d_mean is None else d_mean)
         assert float(got) == expected, (geometry, rho, cap, low, high, width, d_mean)
 
 
@@ -178,10 +191,10 @@ def test_edge_of_feasibility_decided_like_optimize(geometry, factor):
     cap = 2 * CAST_STEEL.max_rim_speed / omega
     j_max = max_inertia(geometry, CAST_STEEL.density, cap, (1.5, 2.0))[0]
     j = j_max * factor
-    got = batch.design_combinations(geometry, j, omega, 1.0, CAST_STEEL.density,
-                                    CAST_STEEL.max_rim_speed, 1.5, 2.0)
-    ipopt = design_flywheel(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL],
-                            DesignSpec(geometry=geometry), method="ipopt").candidates[0]
+    got = batch.design_combinations(geometry, j, omega, 1.0, CAST_STEEL.density, CAST_STEEL.max_rim_speed, 1.5, 2.0)
+    ipopt = design_flywheel(
+        j, omega, [MountShaft("m", 1.0)], [CAST_STEEL], DesignSpec(geometry=geometry), method="ipopt"
+    ).candidates[0]
     assert bool(got.feasible) == ipopt.feasible == (factor <= 1.0)
     if factor < 1.0:
         # near the fold of J(H) the mass is sqrt-sensitive to J; 1e-6 still holds
@@ -190,7 +203,7 @@ def test_edge_of_feasibility_decided_like_optimize(geometry, factor):
         # at the fold the only wheel is the peak of J(H): H = 2C/5 (thin rim, m = 4 J /
         # (3C/5)^2) or H = C/2 (annulus, m = 4 J / (C^2/2)). The closed form finds it to
         # ~sqrt(eps) in H, 1e-8 in mass; IPOPT stops ~3e-6 away in mass here
-        exact = 4 * j / (0.6 * cap) ** 2 if geometry == "thin_rim" else 8 * j / cap ** 2
+        exact = 4 * j / (0.6 * cap) ** 2 if geometry == "thin_rim" else 8 * j / cap**2
         assert_allclose(float(got.mass), exact, rtol=1e-7)
         assert_allclose(ipopt.mass, exact, rtol=1e-5)
 
@@ -208,8 +221,9 @@ def test_free_rim_matches_independent_root_search(thin, with_width):
     j = 10 ** rng.uniform(-3, 3, n)
     a = rng.uniform(1.0, 2.5, n)
     c = a + rng.uniform(0, 1, n)
-    width = (np.sqrt(4 * a * j / (np.pi * rho * cap ** 3)) / a * rng.uniform(0.5, 2, n)
-             if with_width else np.full(n, np.inf))
+    width = (
+        np.sqrt(4 * a * j / (np.pi * rho * cap**3)) / a * rng.uniform(0.5, 2, n) if with_width else np.full(n, np.inf)
+    )
     got = batch.lightest("thin_rim" if thin else "rim", j, rho, cap, a, c, width)
     seen = 0
     for k in range(n):
@@ -224,8 +238,7 @@ def test_free_rim_matches_independent_root_search(thin, with_width):
             assert_allclose(got.h[k], ref["h"], rtol=1e-7)
             assert_allclose(got.b[k], ref["b"], rtol=1e-7)
             # the scalar twin (design_flywheel's ranking path) against the same reference
-            d, h, b = batch.lightest_one("thin_rim" if thin else "rim", j[k], rho[k], cap[k], a[k],
-                                         c[k], width[k])
+            d, h, b = batch.lightest_one("thin_rim" if thin else "rim", j[k], rho[k], cap[k], a[k], c[k], width[k])
             k_ref = d * d if thin else d * d + h * h
             assert_allclose(4.0 * j[k] / k_ref, ref["mass"], rtol=1e-9)
             assert_allclose((d + h, h, b), (cap[k], ref["h"], ref["b"]), rtol=1e-7)
@@ -247,8 +260,7 @@ def test_pinned_annulus_matches_independent_reference():
         if ref is not None:
             assert_allclose(got.mass[k], ref["mass"], rtol=1e-12)
             assert_allclose(got.h[k], ref["h"], rtol=1e-9)
-            d, h, _ = batch.lightest_one("rim", j, CAST_STEEL.density, cap, a[k], c[k], np.inf,
-                                         d_means[k])
+            d, h, _ = batch.lightest_one("rim", j, CAST_STEEL.density, cap, a[k], c[k], np.inf, d_means[k])
             assert_allclose((d, 4.0 * j / (d * d + h * h)), (d_means[k], ref["mass"]), rtol=1e-12)
             assert_allclose(h, ref["h"], rtol=1e-9)
 
@@ -272,21 +284,33 @@ def test_disc_closed_form():
     j, omega = 2.0, 1000 * RPM
     d = 2 * CAST_STEEL.max_rim_speed / omega
     rho = CAST_STEEL.density
-    b = 32 * j / (math.pi * rho * d ** 4)
-    got = batch.design_combinations("disc", [j, j, j, j], omega, 1.0, rho,
-                                    CAST_STEEL.max_rim_speed, 1.5, 2.0, math.inf,
-                                    [math.inf, 0.5 * b, math.inf, math.inf],
-                                    [math.nan, math.nan, 1.01 * d, 0.5 * d])
+    b = 32 * j / (math.pi * rho * d**4)
+    got = batch.design_combinations(
+        "disc",
+        [j, j, j, j],
+        omega,
+        1.0,
+        rho,
+        CAST_STEEL.max_rim_speed,
+        1.5,
+        2.0,
+        math.inf,
+        [math.inf, 0.5 * b, math.inf, math.inf],
+        [math.nan, math.nan, 1.01 * d, 0.5 * d],
+    )
     assert got.feasible.tolist() == [True, False, False, True]
     assert_allclose(got.d_outer[0], d, rtol=1e-15)
     assert_allclose(got.b[0], b, rtol=1e-14)
-    assert_allclose(got.mass[0], 8 * j / d ** 2, rtol=1e-14)
+    assert_allclose(got.mass[0], 8 * j / d**2, rtol=1e-14)
     assert got.d_inner[0] == 0.0
     assert_allclose(got.mass[3], 8 * j / (0.5 * d) ** 2, rtol=1e-14)
     assert binding_names(got.binding[0]) == ("inertia", "rim_speed")
     assert_allclose(batch.lightest_one("disc", j, rho, d, 1.5, 2.0), (d / 2, d / 2, b), rtol=1e-14)
-    assert_allclose(batch.lightest_one("disc", j, rho, d, 1.5, 2.0, math.inf, 0.5 * d)[2],
-                    32 * j / (math.pi * rho * (0.5 * d) ** 4), rtol=1e-14)
+    assert_allclose(
+        batch.lightest_one("disc", j, rho, d, 1.5, 2.0, math.inf, 0.5 * d)[2],
+        32 * j / (math.pi * rho * (0.5 * d) ** 4),
+        rtol=1e-14,
+    )
 
 
 def test_covers_only_mass_and_cost():

@@ -55,7 +55,7 @@ def test_quick_run_writes_the_results(quick_run):
 
 def test_every_method_has_a_time_and_an_error(quick_run):
     _, _, rows = quick_run
-    measured = [r for r in rows if r["setting"] != "not built"]   # the hub-and-arms placeholder
+    measured = [r for r in rows if r["setting"] != "not built"]  # the hub-and-arms placeholder
     assert measured
     for r in measured:
         where = f"{r['section']}/{r['case']}/{r['method']}/{r['setting']}"
@@ -64,10 +64,18 @@ def test_every_method_has_a_time_and_an_error(quick_run):
         error = float(r["error"])
         assert not math.isnan(error) and error >= 0.0, where
     methods = {(r["section"], r["method"]) for r in measured}
-    for expected in [("cycle", "flyopt-exact"), ("cycle", "trapezoid"), ("cycle", "simpson"),
-                     ("cycle", "cumtrapz"), ("design", "flyopt-ipopt"), ("design", "flyopt-auto"),
-                     ("design", "slsqp"),
-                     ("design", "grid"), ("geometry", "thin_rim"), ("geometry", "rim")]:
+    for expected in [
+        ("cycle", "flyopt-exact"),
+        ("cycle", "trapezoid"),
+        ("cycle", "simpson"),
+        ("cycle", "cumtrapz"),
+        ("design", "flyopt-ipopt"),
+        ("design", "flyopt-auto"),
+        ("design", "slsqp"),
+        ("design", "grid"),
+        ("geometry", "thin_rim"),
+        ("geometry", "rim"),
+    ]:
         assert expected in methods
 
 
@@ -123,6 +131,7 @@ def test_quick_hard_run(tmp_path):
 # Where a run writes
 # ------------------------------------------------------------------------------
 
+
 def _committed_results(folder):
     """A benchmarks/results folder with sentinel copies of the committed files; returns their bytes."""
     results = folder / "benchmarks" / "results"
@@ -142,11 +151,14 @@ def _run_the_wrapper(folder, argv, monkeypatch):
     return done.value.code
 
 
-@pytest.mark.parametrize("how, extra, title", [
-    ("flyopt bench", ["--sections", "geometry"], "# Speed against error"),
-    ("flyopt bench", ["--hard"], "# Hard set"),
-    ("benchmarks/bench_speed_error.py", ["--sections", "geometry"], "# Speed against error"),
-])
+@pytest.mark.parametrize(
+    "how, extra, title",
+    [
+        ("flyopt bench", ["--sections", "geometry"], "# Speed against error"),
+        ("flyopt bench", ["--hard"], "# Hard set"),
+        ("benchmarks/bench_speed_error.py", ["--sections", "geometry"], "# Speed against error"),
+    ],
+)
 def test_quick_run_leaves_the_committed_results_alone(tmp_path, monkeypatch, capsys, how, extra, title):
     """A --quick run without --output-dir prints its summary and writes no file, wherever it runs
     (it used to overwrite benchmarks/results of the working directory, or beside the script)."""
@@ -155,8 +167,11 @@ def test_quick_run_leaves_the_committed_results_alone(tmp_path, monkeypatch, cap
     argv = ["--quick", "--no-pin", *extra]
     status = main(argv) if how == "flyopt bench" else _run_the_wrapper(tmp_path, argv, monkeypatch)
     assert status == 0
-    after = {path: path.read_bytes() for path in tmp_path.rglob("*")
-             if path.is_file() and path.name != "bench_speed_error.py"}
+    after = {
+        path: path.read_bytes()
+        for path in tmp_path.rglob("*")
+        if path.is_file() and path.name != "bench_speed_error.py"
+    }
     assert after == before
     assert title in capsys.readouterr().out
 
@@ -197,8 +212,13 @@ def test_nothing_in_flyopt_imports_the_bench():
         if {"bench", "cli"} & set(path.relative_to(package).parts[:-1]):
             continue
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
-                     [f"{node.module}.{a.name}" for a in node.names] if isinstance(node, ast.ImportFrom) else [])
+            names = (
+                [a.name for a in node.names]
+                if isinstance(node, ast.Import)
+                else [f"{node.module}.{a.name}" for a in node.names]
+                if isinstance(node, ast.ImportFrom)
+                else []
+            )
             if any(n == "flyopt.bench" or n.startswith("flyopt.bench.") for n in names):
                 importers.append(str(path.relative_to(package)))
     assert importers == []
@@ -207,6 +227,7 @@ def test_nothing_in_flyopt_imports_the_bench():
 # ------------------------------------------------------------------------------
 # The bench's references and peers against closed forms
 # ------------------------------------------------------------------------------
+
 
 def test_sampled_rules_against_a_closed_form():
     """A_max of M = 1000 + 300 sin(2 phi) sampled finely: 2 * 300 / 2 = 300 J to 1e-6."""
@@ -228,8 +249,11 @@ def test_rim_inertia_is_the_annulus_integral():
     """J = pi rho D_m H B (D_m^2 + H^2)/4 is the integral of r^2 dm over the annulus D_m +- H, B
     wide (R1^4 - R2^4 = (R1^2 - R2^2)(R1^2 + R2^2) = D_m H (D_m^2 + H^2)/2); to round-off."""
     for d_mean, h, b in ((1.0, 0.1, 0.07), (0.3, 0.29, 0.5), (2.5, 0.01, 0.02)):
-        assert_allclose(references.rim_inertia("rim", 7200.0, d_mean, h, b),
-                        references.exact_annulus_inertia(d_mean + h, d_mean - h, b, 7200.0), rtol=1e-13)
+        assert_allclose(
+            references.rim_inertia("rim", 7200.0, d_mean, h, b),
+            references.exact_annulus_inertia(d_mean + h, d_mean - h, b, 7200.0),
+            rtol=1e-13,
+        )
 
 
 def test_largest_rim_inertia_bounds_the_root_search():
@@ -238,11 +262,13 @@ def test_largest_rim_inertia_bounds_the_root_search():
     combo = references.Combination("rim", 7200.0, 1.0, 1.2, (1.5, 2.0), 0.05)
     j_max = references.largest_rim_inertia(combo)
     # the largest rim fills the cap at H = hb_max B_max = 0.1 m: D_m = 1.1 m, B = 0.05 m
-    assert_allclose(j_max, math.pi * 7200.0 * 1.1 * 0.1 * 0.05 * (1.1 ** 2 + 0.1 ** 2) / 4.0, rtol=1e-14)
-    inside = references.lightest_rim_1d(references.Combination("rim", 7200.0, j_max * (1 - 1e-4), 1.2,
-                                                               (1.5, 2.0), 0.05))
-    outside = references.lightest_rim_1d(references.Combination("rim", 7200.0, j_max * (1 + 1e-4), 1.2,
-                                                                (1.5, 2.0), 0.05))
+    assert_allclose(j_max, math.pi * 7200.0 * 1.1 * 0.1 * 0.05 * (1.1**2 + 0.1**2) / 4.0, rtol=1e-14)
+    inside = references.lightest_rim_1d(
+        references.Combination("rim", 7200.0, j_max * (1 - 1e-4), 1.2, (1.5, 2.0), 0.05)
+    )
+    outside = references.lightest_rim_1d(
+        references.Combination("rim", 7200.0, j_max * (1 + 1e-4), 1.2, (1.5, 2.0), 0.05)
+    )
     assert inside.verdict == "design" and inside.violation <= 1e-12
     assert outside.verdict == "infeasible"
 

@@ -22,19 +22,18 @@ def cases(n=400, seed=3):
         width = float(10 ** rng.uniform(-2, -0.3)) if geometry == "disc" or rng.random() < 0.7 else math.inf
         pin = float(rng.uniform(0.1, 1.5)) if geometry != "disc" and rng.random() < 0.3 else None
         case = geometry, 7200.0, float(rng.uniform(0.2, 2.0)), (1.5, 2.0), width, pin, float(10 ** rng.uniform(0.01, 2))
-        if 0 < closed_form.max_inertia_one(*case[:5], pin)[0] < math.inf:   # a wheel fits, and J is bounded
+        if 0 < closed_form.max_inertia_one(*case[:5], pin)[0] < math.inf:  # a wheel fits, and J is bounded
             yield case
 
 
 @pytest.mark.parametrize("geometry, density, cap, hb, width, pin, factor", list(cases()))
-def test_the_cap_needed_is_the_smallest_float_that_reaches_the_inertia(geometry, density, cap, hb, width, pin,
-                                                                         factor):
+def test_the_cap_needed_is_the_smallest_float_that_reaches_the_inertia(geometry, density, cap, hb, width, pin, factor):
     def j_max(c):
         return closed_form.max_inertia_one(geometry, density, c, hb, width, pin)[0]
 
     j = j_max(cap) * factor
     needed, _ = closed_form.cap_needed(geometry, density, j, cap, hb, width, pin)
-    if needed is None:                     # only a pinned mean diameter limits what any cap gives
+    if needed is None:  # only a pinned mean diameter limits what any cap gives
         assert pin is not None
         return
     assert j_max(needed) >= j * (1 - 1e-14)
@@ -52,8 +51,9 @@ def test_bisection_finds_the_change_of_a_step():
 def test_the_cap_needed_of_a_problem_scene_is_where_its_inertia_is_first_reached():
     """punch-press: the crankshaft combinations need more than the 1.2 m envelope; each cap is the first
     float at which the largest admissible rim reaches the inertia."""
-    import flyopt
     from conftest import PROBLEMS
+
+    import flyopt
 
     result = flyopt.solve(flyopt.load(PROBLEMS / "punch-press.toml")).design
     checked = 0
@@ -63,8 +63,10 @@ def test_the_cap_needed_of_a_problem_scene_is_where_its_inertia_is_first_reached
         density = {"cast_iron": 7200.0, "cast_steel": 7800.0, "ductile_iron": 7100.0}[c.material]
         hb = (1.5, 2.0)
         j = c.j_required_on_shaft
+
         def j_max(cap):
             return closed_form.max_inertia_one("rim", density, cap, hb, 0.2, None)[0]
+
         assert j_max(c.d_outer_needed) >= j > j_max(np.nextafter(c.d_outer_needed, 0.0))
         checked += 1
     assert checked == 3

@@ -26,12 +26,19 @@ from importlib import resources
 from itertools import combinations
 
 import pytest
+from conftest import assert_published
 from numpy.testing import assert_allclose
 
-from conftest import assert_published
 from flyopt.design.drive_nlp import CatalogueFit
-from flyopt.machine.catalogue import (RATING_TOLERANCE, Catalogue, CatalogueMotor, MotorDataError, catalogue,
-                                      catalogue_names, read_catalogues)
+from flyopt.machine.catalogue import (
+    RATING_TOLERANCE,
+    Catalogue,
+    CatalogueMotor,
+    MotorDataError,
+    catalogue,
+    catalogue_names,
+    read_catalogues,
+)
 from flyopt.machine.motor import DEFAULT_BREAKDOWN_RATIO
 
 if sys.version_info >= (3, 11):
@@ -39,16 +46,32 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-IE3_50HZ_4POLE = {0.75: 82.5, 1.1: 84.1, 1.5: 85.3, 2.2: 86.7, 3: 87.7, 4: 88.6, 5.5: 89.6, 7.5: 90.4,
-                  11: 91.4, 15: 92.1, 18.5: 92.6, 22: 93.0, 30: 93.6, 37: 93.9, 45: 94.2, 55: 94.6,
-                  75: 95.0, 90: 95.2}
+IE3_50HZ_4POLE = {
+    0.75: 82.5,
+    1.1: 84.1,
+    1.5: 85.3,
+    2.2: 86.7,
+    3: 87.7,
+    4: 88.6,
+    5.5: 89.6,
+    7.5: 90.4,
+    11: 91.4,
+    15: 92.1,
+    18.5: 92.6,
+    22: 93.0,
+    30: 93.6,
+    37: 93.9,
+    45: 94.2,
+    55: 94.6,
+    75: 95.0,
+    90: 95.2,
+}
 """Minimum efficiency [%] of IE3, 4 poles, 50 Hz, by rated output [kW]: IEC 60034-30-1:2014, Table 3
 (the same figures as Regulation (EU) 2019/1781, Annex I, and UK SI 2021/745, Schedule 16, Table 22;
 0.75 to 7.5 kW also as reproduced in Siemens' 'Efficiency classes and efficiencies according to
 IEC 60034-30' table). Its rows are the IEC 60072-1 output steps."""
 
-INTERPOLATION_50HZ_4POLE = {"IE2": (0.0278, -1.9247, 10.4395, 80.9761),
-                            "IE3": (0.0773, -1.8951, 9.2984, 83.7025)}
+INTERPOLATION_50HZ_4POLE = {"IE2": (0.0278, -1.9247, 10.4395, 80.9761), "IE3": (0.0773, -1.8951, 9.2984, 83.7025)}
 """Coefficients (A, B, C, D) of eta = A x^3 + B x^2 + C x + D [%], x = log10(P [kW]), 0.75 to 200 kW,
 4 poles: UK SI 2021/745, Schedule 16, Table 28 (IEC 60034-30-1's interpolation for outputs between
 the table's rows)."""
@@ -56,10 +79,25 @@ the table's rows)."""
 IEC_OUTPUTS_KW = (0.06, 0.09, 0.12, 0.18, 0.25, 0.37, 0.55, *IE3_50HZ_4POLE, 110, 132, 160, 200, 250, 315)
 """Rated outputs [kW] of the IEC 60072-1 series from 0.06 to 315 kW (from 0.75 kW the rows of the IE3 table)."""
 
-CEMEP_4POLE = {1.1: (76.2, 83.8), 1.5: (78.5, 85.0), 2.2: (81.0, 86.4), 3: (82.6, 87.4), 4: (84.2, 88.3),
-               5.5: (85.7, 89.2), 7.5: (87.0, 90.1), 11: (88.4, 91.0), 15: (89.4, 91.8), 18.5: (90.0, 92.2),
-               22: (90.5, 92.6), 30: (91.4, 93.2), 37: (92.0, 93.6), 45: (92.5, 93.9), 55: (93.0, 94.2),
-               75: (93.6, 94.7), 90: (93.9, 95.0)}
+CEMEP_4POLE = {
+    1.1: (76.2, 83.8),
+    1.5: (78.5, 85.0),
+    2.2: (81.0, 86.4),
+    3: (82.6, 87.4),
+    4: (84.2, 88.3),
+    5.5: (85.7, 89.2),
+    7.5: (87.0, 90.1),
+    11: (88.4, 91.0),
+    15: (89.4, 91.8),
+    18.5: (90.0, 92.2),
+    22: (90.5, 92.6),
+    30: (91.4, 93.2),
+    37: (92.0, 93.6),
+    45: (92.5, 93.9),
+    55: (93.0, 94.2),
+    75: (93.6, 94.7),
+    90: (93.9, 95.0),
+}
 """eff2 band [%] of 4-pole motors by output [kW]: eff2 is '>= first', eff1 '> second' (Motive, General
 Catalogue Delphi series, 'Efficiency', p. 6, table 'Motors 4 poles', the classes of the European
 Commission-CEMEP agreement; the transcript keeps the 17 rows of eff3/eff2/eff1 limits in order but
@@ -68,48 +106,272 @@ lost the kW labels 3, 4, 11, 15, 22, 30, 45, 55, 75 and 90, which are the agreem
 # -- the transcript's runs (github.com/ArtemFilin1990/Mar, Размеры/jelektrodvigateli-motive.md,
 # -- commit 03423536, table '4 Poles asynchronous speed 1500 rpm'), as printed, decimal commas as points
 
-TYPES = ("56A 56B 63A 63B 63C 71A 71B 71C 80A 80B 80C 90S 90L 90LB 100LA 100LB 100LC 112M 112MB 132S 112MC "
-         "132MA 132MB 132MC 160M 132MD 160L 180M 180L 200L 225S 225M 250M 280S 280M 315S 315M 315LA 315LB "
-         "355M 355L").split()
+TYPES = (
+    "56A 56B 63A 63B 63C 71A 71B 71C 80A 80B 80C 90S 90L 90LB 100LA 100LB 100LC 112M 112MB 132S 112MC "
+    "132MA 132MB 132MC 160M 132MD 160L 180M 180L 200L 225S 225M 250M 280S 280M 315S 315M 315LA 315LB "
+    "355M 355L"
+).split()
 """The table's 41 types (each '-4'), in the table's order: increasing output, compact types among them."""
 
-RPM = (1332, 1346, 1355, 1393, 1380, 1370, 1366, 1364, 1391, 1413, 1376, 1362, 1413, 1412, 1431, 1418, 1415,
-       1453, 1448, 1455, 1453, 1462, 1470, 1460, 1466, 1457, 1470, 1476, 1470, 1480, 1480, 1480, 1480, 1480,
-       1485, 1485, 1485, 1485, 1485, 1485, 1485)
-CN = ("0.43 0.64 0.92 1.23 1.73 1.74 2.59 3.85 3.78 5.07 7.63 7.71 10.14 14.88 14.68 20.20 27.00 26.29 36.27 "
-      "36.10 49.29 48.99 59.77 71.95 71.66 98.32 97.45 119.70 142.93 193.58 238.75 290.37 354.90 483.95 "
-      "578.79 707.41 848.89 1028.96 1286.20 1607.74 2025.76").split()
+RPM = (
+    1332,
+    1346,
+    1355,
+    1393,
+    1380,
+    1370,
+    1366,
+    1364,
+    1391,
+    1413,
+    1376,
+    1362,
+    1413,
+    1412,
+    1431,
+    1418,
+    1415,
+    1453,
+    1448,
+    1455,
+    1453,
+    1462,
+    1470,
+    1460,
+    1466,
+    1457,
+    1470,
+    1476,
+    1470,
+    1480,
+    1480,
+    1480,
+    1480,
+    1480,
+    1485,
+    1485,
+    1485,
+    1485,
+    1485,
+    1485,
+    1485,
+)
+CN = (
+    "0.43 0.64 0.92 1.23 1.73 1.74 2.59 3.85 3.78 5.07 7.63 7.71 10.14 14.88 14.68 20.20 27.00 26.29 36.27 "
+    "36.10 49.29 48.99 59.77 71.95 71.66 98.32 97.45 119.70 142.93 193.58 238.75 290.37 354.90 483.95 "
+    "578.79 707.41 848.89 1028.96 1286.20 1607.74 2025.76"
+).split()
 """The rated-torque run Cn [Nm], printed to two decimals."""
-EFF_100 = ("56.0 60.7 64.7 68.2 69.5 70.2 71.5 73.3 75.0 77.7 76.4 76.5 78.7 80.7 81.4 82.6 84.2 85.8 86.3 87.8 "
-           "87.4 87.9 88.1 88.9 89.4 89.5 89.6 91.2 91.6 92.6 92.8 93.4 94.0 94.0 94.0 94.0 94.8 95.0 95.0 95.0 "
-           "95.0").split()
+EFF_100 = (
+    "56.0 60.7 64.7 68.2 69.5 70.2 71.5 73.3 75.0 77.7 76.4 76.5 78.7 80.7 81.4 82.6 84.2 85.8 86.3 87.8 "
+    "87.4 87.9 88.1 88.9 89.4 89.5 89.6 91.2 91.6 92.6 92.8 93.4 94.0 94.0 94.0 94.0 94.8 95.0 95.0 95.0 "
+    "95.0"
+).split()
 """The first of the two efficiency runs, the header's '100%' (the second, '75%', is not used)."""
-J = ("0.00015 0.00015 0.00030 0.00040 0.00045 0.00050 0.00080 0.00150 0.00180 0.00210 0.00220 0.00240 0.00300 "
-     "0.00410 0.00540 0.00670 0.00810 0.00950 0.01500 0.02140 0.02230 0.02960 0.03100 0.04000 0.06100 0.05000 "
-     "0.09180 0.13900 0.15800 0.26200 0.40600 0.46900 0.66000 1.12000 1.46000 3.11000 3.62000 4.13000 4.73000 "
-     "6.50000 8.20000").split()
-MASS = (3.6, 4.5, 4.7, 5.7, 6.3, 7.3, 10.0, 11.0, 12.5, 13.0, 14.0, 16.0, 23.0, 25.0, 27.0, 28.0, 35.0, 45.0,
-        37.0, 55.0, 56.0, 57.0, 118.0, 58.0, 132.0, 164.0, 182.0, 245.0, 258.0, 290.0, 388.0, 510.0, 606.0, 910.0,
-        1000.0, 1055.0, 1128.0, 1700.0, 1900.0)
+J = (
+    "0.00015 0.00015 0.00030 0.00040 0.00045 0.00050 0.00080 0.00150 0.00180 0.00210 0.00220 0.00240 0.00300 "
+    "0.00410 0.00540 0.00670 0.00810 0.00950 0.01500 0.02140 0.02230 0.02960 0.03100 0.04000 0.06100 0.05000 "
+    "0.09180 0.13900 0.15800 0.26200 0.40600 0.46900 0.66000 1.12000 1.46000 3.11000 3.62000 4.13000 4.73000 "
+    "6.50000 8.20000"
+).split()
+MASS = (
+    3.6,
+    4.5,
+    4.7,
+    5.7,
+    6.3,
+    7.3,
+    10.0,
+    11.0,
+    12.5,
+    13.0,
+    14.0,
+    16.0,
+    23.0,
+    25.0,
+    27.0,
+    28.0,
+    35.0,
+    45.0,
+    37.0,
+    55.0,
+    56.0,
+    57.0,
+    118.0,
+    58.0,
+    132.0,
+    164.0,
+    182.0,
+    245.0,
+    258.0,
+    290.0,
+    388.0,
+    510.0,
+    606.0,
+    910.0,
+    1000.0,
+    1055.0,
+    1128.0,
+    1700.0,
+    1900.0,
+)
 """The mass run [Kg]: 39 values for the 41 types (two cells lost)."""
-TORQUE_A = (1.20, 1.80, 2.10, 3.10, 4.00, 4.50, 6.10, 10.00, 10.20, 14.60, 21.00, 18.40, 27.80, 44.40, 40.10, 57.80,
-            80.99, 85.20, 125.40, 114.10, 169.50, 160.10, 189.00, 212.30, 223.10, 282.50, 269.00, 334.30, 328.73,
-            445.24, 549.13, 667.85, 816.27, 1113.09, 1331.21, 1556.30, 1867.56, 2263.70, 2829.63, 3537.04, 4456.67)
-TORQUE_B = (1.20, 1.80, 2.10, 2.90, 4.00, 4.50, 6.00, 9.60, 9.10, 13.00, 20.50, 20.70, 26.70, 47.20, 33.60, 54.10,
-            80.99, 65.80, 126.70, 86.70, 146.50, 120.10, 152.70, 169.00, 195.40, 235.70, 207.70, 220.90, 314.44,
-            425.88, 525.25, 638.82, 780.78, 1064.70, 1273.33, 1485.56, 1782.67, 2160.81, 2701.01, 3376.26, 4254.09)
+TORQUE_A = (
+    1.20,
+    1.80,
+    2.10,
+    3.10,
+    4.00,
+    4.50,
+    6.10,
+    10.00,
+    10.20,
+    14.60,
+    21.00,
+    18.40,
+    27.80,
+    44.40,
+    40.10,
+    57.80,
+    80.99,
+    85.20,
+    125.40,
+    114.10,
+    169.50,
+    160.10,
+    189.00,
+    212.30,
+    223.10,
+    282.50,
+    269.00,
+    334.30,
+    328.73,
+    445.24,
+    549.13,
+    667.85,
+    816.27,
+    1113.09,
+    1331.21,
+    1556.30,
+    1867.56,
+    2263.70,
+    2829.63,
+    3537.04,
+    4456.67,
+)
+TORQUE_B = (
+    1.20,
+    1.80,
+    2.10,
+    2.90,
+    4.00,
+    4.50,
+    6.00,
+    9.60,
+    9.10,
+    13.00,
+    20.50,
+    20.70,
+    26.70,
+    47.20,
+    33.60,
+    54.10,
+    80.99,
+    65.80,
+    126.70,
+    86.70,
+    146.50,
+    120.10,
+    152.70,
+    169.00,
+    195.40,
+    235.70,
+    207.70,
+    220.90,
+    314.44,
+    425.88,
+    525.25,
+    638.82,
+    780.78,
+    1064.70,
+    1273.33,
+    1485.56,
+    1782.67,
+    2160.81,
+    2701.01,
+    3376.26,
+    4254.09,
+)
 """The two further Nm runs (the one after Cn, the one after J): Cs and Cmax in an order the transcript hides."""
 
-OUTPUT_KW = (0.06, 0.09, 0.13, 0.18, 0.25, 0.25, 0.37, 0.55, 0.55, 0.75, 1.1, 1.1, 1.5, 2.2, 2.2, 3, 4, 4, 5.5, 5.5,
-             7.5, 7.5, 9.2, 11, 11, 15, 15, 18.5, 22, 30, 37, 45, 55, 75, 90, 110, 132, 160, 200, 250, 315)
+OUTPUT_KW = (
+    0.06,
+    0.09,
+    0.13,
+    0.18,
+    0.25,
+    0.25,
+    0.37,
+    0.55,
+    0.55,
+    0.75,
+    1.1,
+    1.1,
+    1.5,
+    2.2,
+    2.2,
+    3,
+    4,
+    4,
+    5.5,
+    5.5,
+    7.5,
+    7.5,
+    9.2,
+    11,
+    11,
+    15,
+    15,
+    18.5,
+    22,
+    30,
+    37,
+    45,
+    55,
+    75,
+    90,
+    110,
+    132,
+    160,
+    200,
+    250,
+    315,
+)
 """Each type's output [kW]: the step its printed Cn and rpm give (test_every_printed_cn_is_9550_p_over_n);
 the transcript's kW run keeps only 0,06 0,09 0,13 0,18 0,37 1,1 1,1 9,2 18,5 37 132 315."""
 
 TRANSCRIPT_KW = (0.06, 0.09, 0.13, 0.18, 0.37, 1.1, 1.1, 9.2, 18.5, 37, 132, 315)
 
-BRAKE_MOTOR_MASS = {"63A": 7.8, "63B": 8.1, "71A": 9.0, "71B": 9.5, "80A": 13.4, "80B": 14.8, "90S": 16.5,
-                    "90L": 18.3, "100LA": 26.8, "100LB": 29.5, "112M": 37.5, "132S": 51.5, "132MA": 57.5,
-                    "160M": 138.0, "160L": 152.0, "180M": 194.0, "180L": 212.0, "200L": 280.0}
+BRAKE_MOTOR_MASS = {
+    "63A": 7.8,
+    "63B": 8.1,
+    "71A": 9.0,
+    "71B": 9.5,
+    "80A": 13.4,
+    "80B": 14.8,
+    "90S": 16.5,
+    "90L": 18.3,
+    "100LA": 26.8,
+    "100LB": 29.5,
+    "112M": 37.5,
+    "132S": 51.5,
+    "132MA": 57.5,
+    "160M": 138.0,
+    "160L": 152.0,
+    "180M": 194.0,
+    "180L": 212.0,
+    "200L": 280.0,
+}
 """Kg of the same maker's 4-pole ATDC brake motors (the same catalogue, 'Delphi ATDC', its 18 values for
 its 18 4-pole types; its 132M-4 is set against the table's 132MA-4)."""
 
@@ -206,11 +468,14 @@ def test_a_run_shifted_against_the_other_would_be_caught(shift):
     """The check above can fail: with the rpm run shifted against Cn most rows fit no output at all; those that
     still fit are rows whose neighbour prints the same rpm, and at most two sub-0.75 kW rows a few rpm apart."""
     rows = [k for k in range(41) if 0 <= k + shift < 41]
-    unfit = [k for k in rows
-             if not any(abs(9550 * kw / RPM[k + shift] - float(CN[k])) <= 0.005 for kw in (*IEC_OUTPUTS_KW, 0.13, 9.2))]
+    unfit = [
+        k
+        for k in rows
+        if not any(abs(9550 * kw / RPM[k + shift] - float(CN[k])) <= 0.005 for kw in (*IEC_OUTPUTS_KW, 0.13, 9.2))
+    ]
     still = [k for k in rows if k not in unfit and RPM[k] != RPM[k + shift]]
     assert len(unfit) > 2 * len(rows) / 3
-    assert len(still) <= 2 and all(OUTPUT_KW[k] < 0.75 for k in still)    # tiny motors, a few rpm apart
+    assert len(still) <= 2 and all(OUTPUT_KW[k] < 0.75 for k in still)  # tiny motors, a few rpm apart
 
 
 def test_the_surviving_kw_cells_are_outputs_of_the_rows():
@@ -231,10 +496,10 @@ def test_the_mass_run_aligns_from_its_end():
     assert (0, 1) in ordered
     assert max(lost[1] for lost in ordered) == TYPES.index("112MB")
     end = _mass_aligned((0, 1))
-    assert end[TYPES.index("63A"):TYPES.index("90LB") + 1] == list(TWO_POLE_MASS_63A_TO_90LB)
+    assert end[TYPES.index("63A") : TYPES.index("90LB") + 1] == list(TWO_POLE_MASS_63A_TO_90LB)
     excess = [BRAKE_MOTOR_MASS[kind] - end[TYPES.index(kind)] for kind in BRAKE_MOTOR_MASS]
     assert min(excess) > 0
-    shifted = _mass_aligned((39, 40))          # the two lost cells taken as the 355 frame's instead
+    shifted = _mass_aligned((39, 40))  # the two lost cells taken as the 355 frame's instead
     assert not _in_physical_order(shifted)
 
 
@@ -253,7 +518,7 @@ def test_neither_unlabelled_torque_run_is_always_the_larger():
 
 
 def test_the_catalogue_is_known_by_name_and_read_once():
-    assert list(catalogue_names()) == ["iec_4pole"]      # one maker's series; no other catalogue ships
+    assert list(catalogue_names()) == ["iec_4pole"]  # one maker's series; no other catalogue ships
     assert catalogue("iec_4pole") is catalogue("iec_4pole")
     assert [m.rated_power for m in SIZES] == sorted(m.rated_power for m in SIZES)
 
@@ -265,11 +530,17 @@ def test_the_ladder_runs_from_0_75_to_90_kw_one_size_per_iec_step():
 @pytest.mark.parametrize("motor", SIZES, ids=lambda m: m.name)
 def test_every_size_cites_one_makers_catalogue_and_gives_no_unsourced_price(motor):
     source = " ".join(motor.source.split())
-    for words in ("Motive s.r.l.", "Delphi series", "07 04 REV.03", "'4 Poles asynchronous speed 1500 rpm'",
-                  "github.com/ArtemFilin1990/Mar", "Размеры/jelektrodvigateli-motive.md",
-                  f"type {TYPES[_row(motor)]}-4:"):
+    for words in (
+        "Motive s.r.l.",
+        "Delphi series",
+        "07 04 REV.03",
+        "'4 Poles asynchronous speed 1500 rpm'",
+        "github.com/ArtemFilin1990/Mar",
+        "Размеры/jelektrodvigateli-motive.md",
+        f"type {TYPES[_row(motor)]}-4:",
+    ):
         assert words in source
-    assert motor.price is None      # no price source is on file; see the data file's header
+    assert motor.price is None  # no price source is on file; see the data file's header
     assert CATALOGUE.unpriced == CATALOGUE.names
 
 
@@ -304,7 +575,7 @@ def test_rated_power_is_an_iec_output_step(motor):
 
 @pytest.mark.parametrize("motor", SIZES, ids=lambda m: m.name)
 def test_synchronous_speed_is_120_f_over_p(motor):
-    n0 = 120 * 50 / 4                                         # rpm, 50 Hz, 4 poles
+    n0 = 120 * 50 / 4  # rpm, 50 Hz, 4 poles
     assert_allclose(motor.synchronous_speed, n0 * 2 * math.pi / 60, rtol=1e-15)
 
 
@@ -313,7 +584,7 @@ def test_rated_speed_lies_below_synchronous_with_the_printed_slip(motor):
     n = float(_printed(_raw_sizes()[motor.name]["rated_speed"], "rpm"))
     assert 0 < motor.rated_speed < motor.synchronous_speed
     assert_allclose(motor.slip, (1500 - n) / 1500, rtol=1e-12)
-    assert 0.005 < motor.slip < 0.10     # 90S-4 1.1 kW prints 1362 rpm, 9.2 % (its Cn 7,71 agrees)
+    assert 0.005 < motor.slip < 0.10  # 90S-4 1.1 kW prints 1362 rpm, 9.2 % (its Cn 7,71 agrees)
 
 
 def test_the_slip_falls_with_the_size():
@@ -355,8 +626,7 @@ def test_the_printed_torques_follow_9550_not_p_over_omega():
 @pytest.mark.parametrize("model", ["linear", "kloss"])
 def test_the_torque_model_gives_the_rated_torque_at_rated_speed(motor, model):
     characteristic = motor.motor()
-    assert_allclose(characteristic.torque(motor.rated_speed, model), motor.rated_power / motor.rated_speed,
-                    rtol=1e-12)
+    assert_allclose(characteristic.torque(motor.rated_speed, model), motor.rated_power / motor.rated_speed, rtol=1e-12)
     assert abs(characteristic.torque(motor.synchronous_speed, model)) < 1e-12 * motor.rated_torque
     assert characteristic.breakdown_ratio == DEFAULT_BREAKDOWN_RATIO
 
@@ -369,7 +639,7 @@ def _frame_key(frame):
 
 def test_rotor_inertia_and_mass_grow_with_the_frame():
     by_frame = sorted(SIZES, key=lambda m: (_frame_key(m.frame), m.rated_power))
-    assert [m.name for m in by_frame] == [m.name for m in SIZES]      # bigger output, same or bigger frame
+    assert [m.name for m in by_frame] == [m.name for m in SIZES]  # bigger output, same or bigger frame
     for small, big in zip(by_frame, by_frame[1:]):
         assert small.rotor_inertia < big.rotor_inertia
         assert small.mass < big.mass
@@ -423,27 +693,33 @@ def _names(found):
     return tuple(None if m is None else m.name for m in (found.below, found.above))
 
 
-@pytest.mark.parametrize("rating, below, above", [
-    (3e3, "2.2 kW", "4.0 kW"),
-    (4e3, "2.2 kW", "4.0 kW"),                       # a size itself is "at or above"
-    (4e3 * (1 + 0.1 * RATING_TOLERANCE), "2.2 kW", "4.0 kW"),   # round-off above a size is that size
-    (4e3 * (1 - 0.1 * RATING_TOLERANCE), "2.2 kW", "4.0 kW"),
-    (4e3 * (1 + 1e-6), "4.0 kW", "7.5 kW"),
-    (500.0, None, "1.1 kW"),
-    (1.1e3, None, "1.1 kW"),
-    (7.5e3, "4.0 kW", "7.5 kW"),
-    (10e3, "7.5 kW", None),
-])
+@pytest.mark.parametrize(
+    "rating, below, above",
+    [
+        (3e3, "2.2 kW", "4.0 kW"),
+        (4e3, "2.2 kW", "4.0 kW"),  # a size itself is "at or above"
+        (4e3 * (1 + 0.1 * RATING_TOLERANCE), "2.2 kW", "4.0 kW"),  # round-off above a size is that size
+        (4e3 * (1 - 0.1 * RATING_TOLERANCE), "2.2 kW", "4.0 kW"),
+        (4e3 * (1 + 1e-6), "4.0 kW", "7.5 kW"),
+        (500.0, None, "1.1 kW"),
+        (1.1e3, None, "1.1 kW"),
+        (7.5e3, "4.0 kW", "7.5 kW"),
+        (10e3, "7.5 kW", None),
+    ],
+)
 def test_neighbours_are_the_size_at_or_above_and_the_one_below(rating, below, above):
     assert _names(LADDER.neighbours(rating)) == (below, above)
 
 
-@pytest.mark.parametrize("rating, below, above", [
-    (5e3, "112M-4 4 kW", "132S-4 5.5 kW"),
-    (0.5e3, None, "80B-4 0.75 kW"),
-    (55e3, "225M-4 45 kW", "250M-4 55 kW"),
-    (100e3, "280M-4 90 kW", None),
-])
+@pytest.mark.parametrize(
+    "rating, below, above",
+    [
+        (5e3, "112M-4 4 kW", "132S-4 5.5 kW"),
+        (0.5e3, None, "80B-4 0.75 kW"),
+        (55e3, "225M-4 45 kW", "250M-4 55 kW"),
+        (100e3, "280M-4 90 kW", None),
+    ],
+)
 def test_neighbours_in_the_shipped_catalogue(rating, below, above):
     assert _names(CATALOGUE.neighbours(rating)) == (below, above)
 
@@ -457,11 +733,14 @@ def test_neighbours_refuse_a_rating_that_is_not_a_power(rating):
 # -- what the catalogue refuses ------------------------------------------------------
 
 
-@pytest.mark.parametrize("name, match", [
-    ("iec_4pol", r"not known; did you mean 'iec_4pole'\? \(known: iec_4pole\)"),
-    ("nema", r"not known \(known: iec_4pole\)"),
-    (4, r"not known"),
-])
+@pytest.mark.parametrize(
+    "name, match",
+    [
+        ("iec_4pol", r"not known; did you mean 'iec_4pole'\? \(known: iec_4pole\)"),
+        ("nema", r"not known \(known: iec_4pole\)"),
+        (4, r"not known"),
+    ],
+)
 def test_an_unknown_catalogue_is_refused_listing_the_known(name, match):
     with pytest.raises(ValueError, match=match):
         catalogue(name)
@@ -478,20 +757,28 @@ def test_a_catalogue_has_one_size_per_rating_and_per_name():
         Catalogue("c", ())
 
 
-@pytest.mark.parametrize("change, field", [
-    ({"rated_power": 0.0}, "rated_power"),
-    ({"rated_speed": 160.0}, "rated_speed"),          # above synchronous (157.08 rad/s)
-    ({"rotor_inertia": -0.01}, "rotor_inertia"),
-    ({"breakdown_ratio": 1.0}, "breakdown_ratio"),
-    ({"efficiency": 92.0}, "efficiency"),
-    ({"price": -1.0}, "price"),
-    ({"mass": math.nan}, "mass"),
-    ({"efficiency_class": "IE9"}, "efficiency_class"),
-    ({"name": ""}, "name"),
-])
+@pytest.mark.parametrize(
+    "change, field",
+    [
+        ({"rated_power": 0.0}, "rated_power"),
+        ({"rated_speed": 160.0}, "rated_speed"),  # above synchronous (157.08 rad/s)
+        ({"rotor_inertia": -0.01}, "rotor_inertia"),
+        ({"breakdown_ratio": 1.0}, "breakdown_ratio"),
+        ({"efficiency": 92.0}, "efficiency"),
+        ({"price": -1.0}, "price"),
+        ({"mass": math.nan}, "mass"),
+        ({"efficiency_class": "IE9"}, "efficiency_class"),
+        ({"name": ""}, "name"),
+    ],
+)
 def test_a_size_out_of_range_names_its_field(change, field):
-    values = {"name": "m", "rated_power": 4e3, "rated_speed": 150.0, "synchronous_speed": 50 * math.pi,
-              "rotor_inertia": 0.01} | change
+    values = {
+        "name": "m",
+        "rated_power": 4e3,
+        "rated_speed": 150.0,
+        "synchronous_speed": 50 * math.pi,
+        "rotor_inertia": 0.01,
+    } | change
     with pytest.raises(MotorDataError) as err:
         CatalogueMotor(**values)
     assert err.value.field == field
@@ -510,18 +797,24 @@ source = "s"
 """
 
 
-@pytest.mark.parametrize("old, new, match", [
-    ('source = "s"\n', "", r"motor\[0\] has no source"),
-    ('source = "s"', 'source = " "', r"motor\[0\]\.source must cite"),
-    ('name = "a"', 'name = "a"\npoles = 4', r"motor\[0\] has unknown keys \['poles'\]"),
-    ('"1440 rpm"', '"1500 rpm"', r"motor\[0\]\.rated_speed: .*must be below the synchronous speed"),
-    ('"4 kW"', '"4 kg"', r"motor\[0\]\.rated_power: .*wrong dimension"),
-    ('description = "d"', 'description = "d"\nprice = 3', r" has unknown keys \['price'\]"),
-    ('source = "s"', 'source = "s"\n[[c.motor]]\nname = "b"\nrated_power = "4 kW"\nrated_speed = "1440 rpm"\n'
-                     'synchronous_speed = "1500 rpm"\nrotor_inertia = "0.01 kg*m^2"\nsource = "s"',
-     r"motor\[1\]: motor 'b' has the same rated power"),
-    ("[[c.motor]]", "[[c.other]]", r"unknown keys \['other'\]"),
-])
+@pytest.mark.parametrize(
+    "old, new, match",
+    [
+        ('source = "s"\n', "", r"motor\[0\] has no source"),
+        ('source = "s"', 'source = " "', r"motor\[0\]\.source must cite"),
+        ('name = "a"', 'name = "a"\npoles = 4', r"motor\[0\] has unknown keys \['poles'\]"),
+        ('"1440 rpm"', '"1500 rpm"', r"motor\[0\]\.rated_speed: .*must be below the synchronous speed"),
+        ('"4 kW"', '"4 kg"', r"motor\[0\]\.rated_power: .*wrong dimension"),
+        ('description = "d"', 'description = "d"\nprice = 3', r" has unknown keys \['price'\]"),
+        (
+            'source = "s"',
+            'source = "s"\n[[c.motor]]\nname = "b"\nrated_power = "4 kW"\nrated_speed = "1440 rpm"\n'
+            'synchronous_speed = "1500 rpm"\nrotor_inertia = "0.01 kg*m^2"\nsource = "s"',
+            r"motor\[1\]: motor 'b' has the same rated power",
+        ),
+        ("[[c.motor]]", "[[c.other]]", r"unknown keys \['other'\]"),
+    ],
+)
 def test_the_data_file_reader_names_the_file_the_size_and_the_field(old, new, match):
     assert old in GOOD, "test bug: the snippet is not in the text"
     with pytest.raises(ValueError, match=r"^motors\.toml: catalogue 'c'.*" + match):

@@ -8,22 +8,37 @@ import sys
 from pathlib import Path
 
 import pytest
+from conftest import PROBLEMS, assert_published
 from numpy.testing import assert_allclose
 
 import flyopt
-from conftest import PROBLEMS, assert_published
 from flyopt.cli.main import main
 from flyopt.errors import ExpressionError, Interrupted, NonPeriodicCycle, SceneError, SolverFailed
 from flyopt.pipeline import verify
 
-JSON_FIELDS = {"a_max", "work_per_cycle", "driving_torque", "resisting_torque", "power", "omega_mean",
-               "omega_max", "omega_min", "angle_omega_max", "angle_omega_min", "j_required",
-               "flywheel_needed", "energy_chain", "shafts", "motor_power"}
+JSON_FIELDS = {
+    "a_max",
+    "work_per_cycle",
+    "driving_torque",
+    "resisting_torque",
+    "power",
+    "omega_mean",
+    "omega_max",
+    "omega_min",
+    "angle_omega_max",
+    "angle_omega_min",
+    "j_required",
+    "flywheel_needed",
+    "energy_chain",
+    "shafts",
+    "motor_power",
+}
 
 
 def run(*args):
-    return subprocess.run([sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True,
-                          timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True, timeout=120
+    )
 
 
 def test_solve_json_shear_press():
@@ -53,19 +68,31 @@ def test_check_ok(capsys):
     assert "ok" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("text, words", [
-    ('[machine]\nspeed = "1500 m"\ndelta = 0.05\n[torque.net]\nareas = [1, -1]\n', "machine.speed: '1500 m' has the wrong dimension"),
-    ('[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n[torque.net]\nareas = [1, -2]\n', "torque: non-periodic fluctuation"),
-    ('[machine]\nspeed = "1500 rpm"\ndelta = 3\n[torque.net]\nareas = [1, -1]\n', "machine.delta: must lie between 0 and 2"),
-    ('[machine\n', "not valid TOML"),
-])
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        (
+            '[machine]\nspeed = "1500 m"\ndelta = 0.05\n[torque.net]\nareas = [1, -1]\n',
+            "machine.speed: '1500 m' has the wrong dimension",
+        ),
+        (
+            '[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n[torque.net]\nareas = [1, -2]\n',
+            "torque: non-periodic fluctuation",
+        ),
+        (
+            '[machine]\nspeed = "1500 rpm"\ndelta = 3\n[torque.net]\nareas = [1, -1]\n',
+            "machine.delta: must lie between 0 and 2",
+        ),
+        ("[machine\n", "not valid TOML"),
+    ],
+)
 @pytest.mark.parametrize("command", ["solve", "check"])
 def test_bad_input_is_one_line_exit_2_no_traceback(tmp_path, text, words, command):
     path = tmp_path / "bad.toml"
     path.write_text(text)
     out = run(command, path, "--json") if command == "solve" else run(command, path)
     assert out.returncode == 2
-    assert out.stdout == ""                       # nothing half-written
+    assert out.stdout == ""  # nothing half-written
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and "Traceback" not in out.stderr
     assert lines[0].startswith(f"flyopt: error: {path}: ")
@@ -82,8 +109,9 @@ def test_console_script_is_installed():
     beside = Path(sys.executable).parent / "flyopt"
     exe = str(beside) if beside.exists() else shutil.which("flyopt")
     assert exe, "the flyopt console script is not installed beside this Python"
-    out = subprocess.run([exe, "solve", str(PROBLEMS / "example1-net-areas.toml"), "--json"],
-                         capture_output=True, text=True, timeout=120)
+    out = subprocess.run(
+        [exe, "solve", str(PROBLEMS / "example1-net-areas.toml"), "--json"], capture_output=True, text=True, timeout=120
+    )
     assert out.returncode == 0
     assert math.isclose(json.loads(out.stdout)["a_max"], 1600.0)
 
@@ -92,24 +120,29 @@ def test_console_script_is_installed():
 # One exit-code table, one error handler
 # --------------------------------------------------------------------------
 
+
 def _raiser(err):
     def run(*args, **kwargs):
         raise err
+
     return run
 
 
-@pytest.mark.parametrize("err, status, words", [
-    (SceneError("machine.delta", "must lie between 0 and 2", "s.toml"), 2, "s.toml: machine.delta: must lie"),
-    (NonPeriodicCycle(-3.0, 100.0, "s.toml"), 2, "s.toml: torque: non-periodic"),
-    (ExpressionError("unknown name 'x'"), 2, "SCENE: unknown name 'x'"),
-    (SolverFailed("IPOPT: Maximum_Iterations_Exceeded after 3000 iterations"), 1, "SCENE: IPOPT: Maximum"),
-    (ZeroDivisionError("float division by zero"), 1, "SCENE: float division by zero"),
-    (OverflowError("math range error"), 1, "SCENE: math range error"),
-    (ValueError("math domain error"), 1, "SCENE: math domain error"),
-    (Interrupted("stopped after 3 of 8 chunks: continue with --resume"), 130, "SCENE: stopped after 3"),
-    (KeyboardInterrupt(), 130, "SCENE: interrupted"),
-    (FileNotFoundError(2, "No such file or directory", "out/x.csv"), 2, "out/x.csv: No such file"),
-])
+@pytest.mark.parametrize(
+    "err, status, words",
+    [
+        (SceneError("machine.delta", "must lie between 0 and 2", "s.toml"), 2, "s.toml: machine.delta: must lie"),
+        (NonPeriodicCycle(-3.0, 100.0, "s.toml"), 2, "s.toml: torque: non-periodic"),
+        (ExpressionError("unknown name 'x'"), 2, "SCENE: unknown name 'x'"),
+        (SolverFailed("IPOPT: Maximum_Iterations_Exceeded after 3000 iterations"), 1, "SCENE: IPOPT: Maximum"),
+        (ZeroDivisionError("float division by zero"), 1, "SCENE: float division by zero"),
+        (OverflowError("math range error"), 1, "SCENE: math range error"),
+        (ValueError("math domain error"), 1, "SCENE: math domain error"),
+        (Interrupted("stopped after 3 of 8 chunks: continue with --resume"), 130, "SCENE: stopped after 3"),
+        (KeyboardInterrupt(), 130, "SCENE: interrupted"),
+        (FileNotFoundError(2, "No such file or directory", "out/x.csv"), 2, "out/x.csv: No such file"),
+    ],
+)
 def test_every_error_is_one_line_with_its_exit_status(monkeypatch, capsys, err, status, words):
     import flyopt.cli.scene
 
@@ -142,8 +175,9 @@ def test_a_long_message_stays_one_short_line(monkeypatch, capsys):
 def test_interrupted_sweep_exits_130(monkeypatch, capsys):
     import flyopt.studies.sweep
 
-    monkeypatch.setattr(flyopt.studies.sweep, "sweep",
-                        _raiser(Interrupted("stopped: continue with --resume (out.csv.parts)")))
+    monkeypatch.setattr(
+        flyopt.studies.sweep, "sweep", _raiser(Interrupted("stopped: continue with --resume (out.csv.parts)"))
+    )
     assert main(["sweep", str(PROBLEMS / "shear-press.toml"), "--vary", "delta=0.05,0.1"]) == 130
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--resume" in err
@@ -170,33 +204,37 @@ def test_unknown_option_of_a_command_is_refused():
 # stdout closed early: `flyopt solve ... | head`
 # --------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("args", [["solve"], ["solve", "--json"]])
 def test_closed_stdout_exits_quietly_141(args):
     scene = PROBLEMS / "shear-press.toml"
-    with subprocess.Popen([sys.executable, "-m", "flyopt", args[0], str(scene), *args[1:]],
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE) as proc:
-        proc.stdout.close()          # the reader is gone before a byte is written
+    with subprocess.Popen(
+        [sys.executable, "-m", "flyopt", args[0], str(scene), *args[1:]], stdout=subprocess.PIPE, stderr=subprocess.PIPE
+    ) as proc:
+        proc.stdout.close()  # the reader is gone before a byte is written
         err = proc.stderr.read()
         proc.wait(timeout=120)
-    assert proc.returncode == 141    # 128 + SIGPIPE, what the shell reports for `yes | head`
-    assert err == b""                # no "Broken pipe", no traceback
+    assert proc.returncode == 141  # 128 + SIGPIPE, what the shell reports for `yes | head`
+    assert err == b""  # no "Broken pipe", no traceback
 
 
 def test_reader_that_stops_early_gets_the_start_of_the_report():
     scene = PROBLEMS / "shear-press.toml"
-    with subprocess.Popen([sys.executable, "-m", "flyopt", "solve", str(scene)],
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE) as proc:
+    with subprocess.Popen(
+        [sys.executable, "-m", "flyopt", "solve", str(scene)], stdout=subprocess.PIPE, stderr=subprocess.PIPE
+    ) as proc:
         first = proc.stdout.readline()
         proc.stdout.close()
         err = proc.stderr.read()
         proc.wait(timeout=120)
     assert first.startswith(b"Shear press") and b"Traceback" not in err and b"Broken pipe" not in err
-    assert proc.returncode in (0, 141)   # 0 when the whole report fit in the pipe before it closed
+    assert proc.returncode in (0, 141)  # 0 when the whole report fit in the pipe before it closed
 
 
 # --------------------------------------------------------------------------
 # A machine that needs no flywheel
 # --------------------------------------------------------------------------
+
 
 def test_verify_a_machine_that_needs_no_flywheel():
     # conveyor: steady torques, A_max = 0 and no inertia at all; nothing fluctuates
@@ -219,18 +257,31 @@ def test_pareto_of_delta_on_a_motor_press_ends_where_no_flywheel_is_needed():
     from flyopt.machine.reduce import reduce
     from flyopt.sizing import periodic
 
-    out = subprocess.run([sys.executable, "-m", "flyopt", "pareto", str(PROBLEMS / "motor-press.toml"),
-                          "--objectives", "mass,delta", "--json"],
-                         capture_output=True, text=True, timeout=1800)
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "flyopt",
+            "pareto",
+            str(PROBLEMS / "motor-press.toml"),
+            "--objectives",
+            "mass,delta",
+            "--json",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=1800,
+    )
     assert out.returncode == 0 and "Traceback" not in out.stderr, out.stderr[-2000:]
-    front = json.loads(out.stdout)["rows"]    # the JSON document of the front: its rows
+    front = json.loads(out.stdout)["rows"]  # the JSON document of the front: its rows
     delta = [row["delta"] for row in front]
     mass = [row["mass"] for row in front]
     assert all(b > a for a, b in zip(delta, delta[1:])) and all(b < a for a, b in zip(mass, mass[1:]))
     scene = flyopt.load(PROBLEMS / "motor-press.toml")
     machine = reduce(scene)
-    vanishing = periodic.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean,
-                                0.5, 1e-9, machine.knots()).achieved_delta
+    vanishing = periodic.verify(
+        machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean, 0.5, 1e-9, machine.knots()
+    ).achieved_delta
     assert mass[-1] == 0 and delta[-1] >= vanishing
     assert all(m > 0 for m in mass[:-1]) and delta[-2] < vanishing
     scene = scene.replace(delta=delta[-2])
@@ -240,11 +291,14 @@ def test_pareto_of_delta_on_a_motor_press_ends_where_no_flywheel_is_needed():
     assert not check.flagged and check.achieved_delta == pytest.approx(delta[-2], rel=1e-5)
 
 
-@pytest.mark.parametrize("table, words", [
-    ('[sweep]\nseed = -1\n[sweep.vary]\ndelta = "0.01:0.1:3"\n', "sweep.seed: must be a whole number >= 0"),
-    ('[sweep.vary]\nspeed = "1500 m"\n', "sweep.vary.speed: '1500 m' has the wrong dimension"),
-    ('[sweep.vary]\ndeltaa = "0.1,0.2"\n', "sweep.vary.deltaa: unknown sweep field"),
-])
+@pytest.mark.parametrize(
+    "table, words",
+    [
+        ('[sweep]\nseed = -1\n[sweep.vary]\ndelta = "0.01:0.1:3"\n', "sweep.seed: must be a whole number >= 0"),
+        ('[sweep.vary]\nspeed = "1500 m"\n', "sweep.vary.speed: '1500 m' has the wrong dimension"),
+        ('[sweep.vary]\ndeltaa = "0.1,0.2"\n', "sweep.vary.deltaa: unknown sweep field"),
+    ],
+)
 def test_check_refuses_the_sweep_table_that_sweep_refuses(tmp_path, capsys, table, words):
     path = tmp_path / "s.toml"
     path.write_text((PROBLEMS / "shear-press.toml").read_text() + "\n" + table)
@@ -264,11 +318,14 @@ def test_check_accepts_a_good_sweep_table(tmp_path, capsys):
     assert "ok" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("args, words", [
-    (["--vary", "delta=0.1,0.2", "--vary", "delta=0.3"], "--vary delta: is varied twice"),
-    (["--vary", "envelope=0.5,0.6m", "--vary", "design.max_outer_diameter=0.7m"], "is varied twice"),
-    (["--vary", "delta=0.1,0.2", "--seed", "-1", "--samples", "2"], "--seed: must be a whole number >= 0"),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--vary", "delta=0.1,0.2", "--vary", "delta=0.3"], "--vary delta: is varied twice"),
+        (["--vary", "envelope=0.5,0.6m", "--vary", "design.max_outer_diameter=0.7m"], "is varied twice"),
+        (["--vary", "delta=0.1,0.2", "--seed", "-1", "--samples", "2"], "--seed: must be a whole number >= 0"),
+    ],
+)
 def test_sweep_command_line_errors_name_the_option(capsys, args, words):
     assert main(["sweep", str(PROBLEMS / "shear-press.toml"), *args, "--no-progress"]) == 2
     err = capsys.readouterr().err
@@ -286,8 +343,10 @@ def _keys(value):
 def test_json_is_the_same_on_every_run_and_timings_only_when_asked():
     # by IPOPT every feasible combination of the punch press has a wall-clock time
     scene = PROBLEMS / "punch-press.toml"
-    first, second = run("solve", scene, "--json", "--design-method", "ipopt"), \
-        run("solve", scene, "--json", "--design-method", "ipopt")
+    first, second = (
+        run("solve", scene, "--json", "--design-method", "ipopt"),
+        run("solve", scene, "--json", "--design-method", "ipopt"),
+    )
     assert first.returncode == second.returncode == 0, first.stderr
     assert first.stdout == second.stdout
     assert "solve_time" not in _keys(json.loads(first.stdout))

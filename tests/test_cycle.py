@@ -6,15 +6,15 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from numpy.testing import assert_allclose
-
 from conftest import assert_published
+from numpy.testing import assert_allclose
 from reference import exact_chain
+
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, kinks_of, required_inertia, work
-from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.errors import NonPeriodicCycle, SceneError
 from flyopt.machine.expression import Expression
 from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.machine.transmission import inertia_on_shaft
 
 TWO_PI = 2 * math.pi
 
@@ -24,6 +24,7 @@ def expr(text):
 
 
 # -- worked examples of the domain page ----------------------------------------
+
 
 def test_domain_example1_net_areas():
     """Domain page example 1: chain 0,1500,500,900,-100,0; A_max 1600 J; J_F 3.2423 kg m^2."""
@@ -37,8 +38,9 @@ def test_domain_example1_net_areas():
 
 def test_domain_example2_shear_press():
     """Domain page example 2: M_d 462.5 N m, A_max 1256.33 J, J_F 1.0183 kg m^2, P 72.65 kW."""
-    resisting = PiecewiseLinear(np.array([0, math.pi / 4, math.pi / 2, TWO_PI]),
-                                np.array([1600.0, 1600.0, 200.0, 200.0]))
+    resisting = PiecewiseLinear(
+        np.array([0, math.pi / 4, math.pi / 2, TWO_PI]), np.array([1600.0, 1600.0, 200.0, 200.0])
+    )
     ind = energy_indicator(Constant(None), resisting, TWO_PI)
     omega = 1500 * TWO_PI / 60
     assert_allclose(ind.driving_mean, 462.5, rtol=1e-15)
@@ -54,6 +56,7 @@ def test_domain_example2_shear_press():
 
 
 # -- exactness of the piecewise-linear path: exact rational reference -------------
+
 
 def random_polyline(rng, n, cycle, steps=True):
     x = np.sort(rng.uniform(0, cycle, n - 2))
@@ -89,7 +92,7 @@ def test_continuous_polylines_are_exact(seed):
     rng = np.random.default_rng(100 + seed)
     xd, yd = random_polyline(rng, 6 + 7 * seed, TWO_PI, steps=False)
     xr, yr = random_polyline(rng, 4 + 5 * seed, TWO_PI, steps=False)
-    if seed % 2:      # the union's first piece is [0, xd[1]], and the difference changes sign on it
+    if seed % 2:  # the union's first piece is [0, xd[1]], and the difference changes sign on it
         xd[1] = 0.5 * min(xd[1], xr[1])
         yd[0], yd[1] = yd[0] + 4000.0, yd[1] - 4000.0
     _, _, net = exact_chain(xd, yd, xr, yr)
@@ -97,8 +100,12 @@ def test_continuous_polylines_are_exact(seed):
     hi, lo, _ = exact_chain(xd, yd, xr, yr)
     ind = energy_indicator(PiecewiseLinear(xd, yd), PiecewiseLinear(xr, yr), TWO_PI)
     assert_allclose(ind.a_max, float(hi - lo), rtol=1e-12)
-    assert_allclose([ind.chain_delta_e.max(), ind.chain_delta_e.min()], [float(hi), float(lo)],
-                    rtol=1e-12, atol=1e-12 * float(hi - lo))
+    assert_allclose(
+        [ind.chain_delta_e.max(), ind.chain_delta_e.min()],
+        [float(hi), float(lo)],
+        rtol=1e-12,
+        atol=1e-12 * float(hi - lo),
+    )
     assert np.all(np.diff(ind.chain_angle) > 0)
 
 
@@ -160,6 +167,7 @@ def test_coincident_curves_need_no_flywheel():
 
 # -- expressions: closed forms and high-precision quadrature ---------------------
 
+
 def test_expression_single_harmonic_closed_form():
     """M_r = 25000 + 3600 sin φ against M_d = 25000: ΔE = 3600 (cos φ − 1), A_max = 7200 J at φ = π."""
     ind = energy_indicator(Constant(None), expr("25000 + 3600*sin(phi)"), TWO_PI)
@@ -189,7 +197,7 @@ def test_near_tangent_crossings_are_found():
     """
     eps = 1e-4
     driving = expr(f"(phi - pi)**2 - {eps}**2")
-    mean = ((TWO_PI - math.pi) ** 3 + math.pi ** 3) / 3 / TWO_PI - eps**2
+    mean = ((TWO_PI - math.pi) ** 3 + math.pi**3) / 3 / TWO_PI - eps**2
     ind = energy_indicator(driving, Constant(mean + eps**2 - eps**2), TWO_PI)
     # reference: high-precision mpmath on the exact antiderivative
     mpmath.mp.dps = 40
@@ -198,8 +206,8 @@ def test_near_tangent_crossings_are_found():
 
     def de(p):
         return ((p - pi) ** 3 + pi**3) / 3 - mpmath.mpf(eps) ** 2 * p - c * p
-    roots = [mpmath.findroot(lambda p: (p - pi) ** 2 - mpmath.mpf(eps) ** 2 - c, x0)
-             for x0 in (0.1, 6.0)]
+
+    roots = [mpmath.findroot(lambda p: (p - pi) ** 2 - mpmath.mpf(eps) ** 2 - c, x0) for x0 in (0.1, 6.0)]
     values = [de(0), de(2 * pi)] + [de(r) for r in roots]
     a_ref = float(max(values) - min(values))
     assert_allclose(ind.a_max, a_ref, rtol=1e-11)
@@ -238,6 +246,7 @@ def test_mixed_table_and_expression_against_mpmath():
 
         def f(p, a1=a1, a2=a2, r1=r1, r2=r2):
             return m_d(p) - (r1 + (r2 - r1) * (p - a1) / (a2 - a1))
+
         grid = [a1 + (a2 - a1) * k / 400 for k in range(401)]
         points = [a1]
         for p, q in zip(grid[:-1], grid[1:]):
@@ -251,6 +260,7 @@ def test_mixed_table_and_expression_against_mpmath():
 
 
 # -- refusals and helpers ----------------------------------------------------------
+
 
 def test_non_periodic_cycle_is_refused_with_the_imbalance():
     with pytest.raises(NonPeriodicCycle) as info:
@@ -276,8 +286,9 @@ def test_balance_tolerance_is_relative_to_the_cycle_work():
 def test_required_inertia_formula_and_transfer():
     """J_F = 900 A/(π² n² δ) − J_c; J' = J/i²."""
     n = 1500.0
-    assert_allclose(required_inertia(1600, n * TWO_PI / 60, 0.02, 1.0),
-                    900 * 1600 / (math.pi**2 * n**2 * 0.02) - 1.0, rtol=1e-14)
+    assert_allclose(
+        required_inertia(1600, n * TWO_PI / 60, 0.02, 1.0), 900 * 1600 / (math.pi**2 * n**2 * 0.02) - 1.0, rtol=1e-14
+    )
     assert inertia_on_shaft(8.0, 2.0) == 2.0
 
 
@@ -295,6 +306,7 @@ def test_dip_that_stays_on_one_side_is_not_a_crossing():
 
     def de(p):
         return 400 * (1 - mpmath.cos(p)) + mpmath.mpf(250) / 3 * mpmath.sin(3 * p)
+
     grid = [2 * mpmath.pi * k / 2000 for k in range(2001)]
     roots = [mpmath.findroot(f, (p, q), solver="anderson") for p, q in zip(grid[:-1], grid[1:]) if f(p) * f(q) < 0]
     values = [de(0), de(2 * mpmath.pi)] + [de(r) for r in roots]
@@ -312,7 +324,7 @@ def test_zero_mean_torque_against_an_unknown_constant_balances():
     assert_allclose(ind.a_max, 300.0, rtol=1e-12)
     x = np.linspace(0, TWO_PI, 721)
     table = energy_indicator(Constant(None), PiecewiseLinear(x, 300 * np.sin(2 * x)), TWO_PI)
-    assert_allclose(table.a_max, 300.0, rtol=1e-4)   # the table is a 0.5° polyline of the sine
+    assert_allclose(table.a_max, 300.0, rtol=1e-4)  # the table is a 0.5° polyline of the sine
 
 
 def test_stacked_points_and_tiny_torque_balance():
@@ -333,15 +345,37 @@ def test_stacked_points_and_tiny_torque_balance():
 
 KINK = 0.7639094994194499
 
-@pytest.mark.parametrize("name, f, mp_f, a, b, rtol", [
-    ("smooth, oscillating", lambda x: np.exp(np.sin(5 * x)), lambda x: mpmath.exp(mpmath.sin(5 * x)),
-     0.0, TWO_PI, 1e-13),
-    # two kinks; QUADPACK (scipy.integrate.quad, epsrel 1e-13) estimated 6e-14 here and was 1.7e-6 off
-    ("kinks", lambda x: np.abs(np.sin(x) - KINK), lambda x: abs(mpmath.sin(x) - KINK), 0.0, 3.0315304421746485,
-     1e-12),
-    ("a sharp peak", lambda x: 1.0 / (1e-4 + (x - 1.234) ** 2), lambda x: 1 / (mpmath.mpf("1e-4") + (x - 1.234) ** 2),
-     0.0, 3.0, 1e-12),
-])
+
+@pytest.mark.parametrize(
+    "name, f, mp_f, a, b, rtol",
+    [
+        (
+            "smooth, oscillating",
+            lambda x: np.exp(np.sin(5 * x)),
+            lambda x: mpmath.exp(mpmath.sin(5 * x)),
+            0.0,
+            TWO_PI,
+            1e-13,
+        ),
+        # two kinks; QUADPACK (scipy.integrate.quad, epsrel 1e-13) estimated 6e-14 here and was 1.7e-6 off
+        (
+            "kinks",
+            lambda x: np.abs(np.sin(x) - KINK),
+            lambda x: abs(mpmath.sin(x) - KINK),
+            0.0,
+            3.0315304421746485,
+            1e-12,
+        ),
+        (
+            "a sharp peak",
+            lambda x: 1.0 / (1e-4 + (x - 1.234) ** 2),
+            lambda x: 1 / (mpmath.mpf("1e-4") + (x - 1.234) ** 2),
+            0.0,
+            3.0,
+            1e-12,
+        ),
+    ],
+)
 def test_quadrature_against_mpmath(name, f, mp_f, a, b, rtol):
     """The adaptive Gauss–Kronrod rule (one vectorized call per round) against mpmath at
     30 digits (split at the kinks and the peak so that mpmath is exact)."""
@@ -404,7 +438,7 @@ def test_kink_arguments_of_an_expression():
     assert e.has_kinks and not Expression("sin(phi) + phi ** 2").has_kinks
     assert_allclose(got[0], phi - 1)
     assert_allclose(got[1], phi - 2)
-    assert_allclose(got[2], 3 - phi ** 2)
+    assert_allclose(got[2], 3 - phi**2)
     torque = ExpressionTorque(e, 1.0)
     assert_allclose(kinks_of(torque, TWO_PI), [1.0, math.sqrt(3), 2.0], rtol=1e-14)
     # nested calls are numbered inner first
@@ -419,13 +453,19 @@ def test_kink_with_an_infinite_argument():
     the kinks and at the two crossings of the single positive lobe, A_max = ∫ (M − mean)
     over the lobe."""
     mpmath.mp.dps = 30
-    f_sin = lambda x: mpmath.sin(x - mpmath.mpf(0.002))              # noqa: E731
-    f_inv = lambda x: -mpmath.mpf(1e-9) / x                          # noqa: E731
-    k1, k2, k3 = (mpmath.findroot(lambda x: f_sin(x) - f_inv(x), bracket, solver="anderson")
-                  for bracket in ((1e-7, 1e-6), (0.0019, 0.002), (3.1, 3.2)))
+    f_sin = lambda x: mpmath.sin(x - mpmath.mpf(0.002))  # noqa: E731
+    f_inv = lambda x: -mpmath.mpf(1e-9) / x  # noqa: E731
+    k1, k2, k3 = (
+        mpmath.findroot(lambda x: f_sin(x) - f_inv(x), bracket, solver="anderson")
+        for bracket in ((1e-7, 1e-6), (0.0019, 0.002), (3.1, 3.2))
+    )
     two_pi = 2 * mpmath.pi
-    mean = (mpmath.quad(f_sin, [0, k1]) + mpmath.quad(f_inv, [k1, k2]) + mpmath.quad(f_sin, [k2, k3])
-            + mpmath.quad(f_inv, [k3, two_pi])) / two_pi
+    mean = (
+        mpmath.quad(f_sin, [0, k1])
+        + mpmath.quad(f_inv, [k1, k2])
+        + mpmath.quad(f_sin, [k2, k3])
+        + mpmath.quad(f_inv, [k3, two_pi])
+    ) / two_pi
     c1 = mpmath.mpf(0.002) + mpmath.asin(mean)
     c2 = mpmath.mpf(0.002) + mpmath.pi - mpmath.asin(mean)
     exact = mpmath.quad(lambda x: f_sin(x) - mean, [c1, c2])
@@ -461,18 +501,26 @@ def test_kinks_of_sums_and_of_a_torque_at_a_fixed_speed():
     assert_allclose(kinks_of(held, TWO_PI), [math.pi / 6, 5 * math.pi / 6], rtol=1e-13)
     free = ExpressionTorque(Expression("max(0, sin(phi) - omega/100)", ("phi", "omega")), 1.0)
     assert len(kinks_of(free, TWO_PI)) == 0
-    both = TorqueSum([held, ExpressionTorque(Expression("abs(phi - 1)"), 1.0),
-                      PiecewiseLinear(np.array([0.0, TWO_PI]), np.array([1.0, 1.0]))])
+    both = TorqueSum(
+        [
+            held,
+            ExpressionTorque(Expression("abs(phi - 1)"), 1.0),
+            PiecewiseLinear(np.array([0.0, TWO_PI]), np.array([1.0, 1.0])),
+        ]
+    )
     assert_allclose(kinks_of(both, TWO_PI), [math.pi / 6, 1.0, 5 * math.pi / 6], rtol=1e-13)
 
 
-@pytest.mark.parametrize("text, kinks", [
-    # max(0, sin φ) is zero over (π, 2π): only its ends, not every grid point, are kinks
-    ("abs(max(0, sin(phi)))", [math.pi]),
-    ("min(max(0, sin(phi)), max(0, sin(2*phi)))", [math.pi / 3, math.pi / 2, math.pi, 3 * math.pi / 2]),
-    # an infinite argument at φ = 0 does not make the smooth cos φ + 2 kink anywhere
-    ("max(cos(phi) + 2, -1e-9/phi)", []),
-])
+@pytest.mark.parametrize(
+    "text, kinks",
+    [
+        # max(0, sin φ) is zero over (π, 2π): only its ends, not every grid point, are kinks
+        ("abs(max(0, sin(phi)))", [math.pi]),
+        ("min(max(0, sin(phi)), max(0, sin(2*phi)))", [math.pi / 3, math.pi / 2, math.pi, 3 * math.pi / 2]),
+        # an infinite argument at φ = 0 does not make the smooth cos φ + 2 kink anywhere
+        ("max(cos(phi) + 2, -1e-9/phi)", []),
+    ],
+)
 def test_kink_search_reports_only_kinks(text, kinks):
     """Regressions from the review of the kink search: a kink function that vanishes over a
     stretch made every grid point a knot (400 ms instead of 7 ms), and an infinite sample
@@ -495,23 +543,26 @@ def test_an_inactive_cap_costs_no_accuracy():
     """min(peak, 1e15) never takes the cap: the round-off bound of min() carries the branch
     taken only, so A_max equals that of the uncapped peak to 1e-13 (it was 1.2e-10 off when
     the bound took the larger error of both branches)."""
-    capped = energy_indicator(ExpressionTorque(Expression("min(1/(1e-4+(phi-3)**2), 1e15)"), 1.0),
-                              Constant(None), TWO_PI).a_max
-    plain = energy_indicator(ExpressionTorque(Expression("1/(1e-4+(phi-3)**2)"), 1.0),
-                             Constant(None), TWO_PI).a_max
+    capped = energy_indicator(
+        ExpressionTorque(Expression("min(1/(1e-4+(phi-3)**2), 1e15)"), 1.0), Constant(None), TWO_PI
+    ).a_max
+    plain = energy_indicator(ExpressionTorque(Expression("1/(1e-4+(phi-3)**2)"), 1.0), Constant(None), TWO_PI).a_max
     assert_allclose(capped, plain, rtol=1e-13)
 
 
 # -- a torque must be finite over the cycle: poles are refused, steep torques are not -------
 
 
-@pytest.mark.parametrize("text, pole", [
-    ("100 + tan(phi)", math.pi / 2),          # the grid lands within an ulp of this pole
-    ("1/cos(phi)", math.pi / 2),
-    ("1/(phi - 1)", 1.0),
-    ("50 + 1/(phi - 4.5)**3", 4.5),
-    ("(phi - 2)/((phi - 2)**2)**0.75", 2.0),  # |M| = |φ − 2|^(-1/2): integrable, yet unbounded
-])
+@pytest.mark.parametrize(
+    "text, pole",
+    [
+        ("100 + tan(phi)", math.pi / 2),  # the grid lands within an ulp of this pole
+        ("1/cos(phi)", math.pi / 2),
+        ("1/(phi - 1)", 1.0),
+        ("50 + 1/(phi - 4.5)**3", 4.5),
+        ("(phi - 2)/((phi - 2)**2)**0.75", 2.0),  # |M| = |φ − 2|^(-1/2): integrable, yet unbounded
+    ],
+)
 def test_a_torque_with_a_pole_is_refused_naming_it(text, pole):
     with pytest.raises(SceneError, match=rf"^test: the expression has a pole near φ = {pole:.6g} rad"):
         energy_indicator(Constant(None), expr(text), TWO_PI)

@@ -9,9 +9,24 @@ from flyopt.units import DIMENSIONS
 UREG = pint.UnitRegistry()
 
 #: The pint spelling of each label.
-PINT = {"N·m": "N*m", "kN·m": "kN*m", "lbf·ft": "lbf*ft", "ft·lbf": "ft*lbf", "kg·m²": "kg*m**2",
-        "lb·ft²": "lb*ft**2", "N·m²": "N*m**2", "lbf·ft²": "lbf*ft**2", "kg/m³": "kg/m**3", "lb/in³": "lb/in**3",
-        "m²": "m**2", "mm²": "mm**2", "in²": "in**2", "kg·m": "kg*m", "g·mm": "g*mm", "oz·in": "oz*in"}
+PINT = {
+    "N·m": "N*m",
+    "kN·m": "kN*m",
+    "lbf·ft": "lbf*ft",
+    "ft·lbf": "ft*lbf",
+    "kg·m²": "kg*m**2",
+    "lb·ft²": "lb*ft**2",
+    "N·m²": "N*m**2",
+    "lbf·ft²": "lbf*ft**2",
+    "kg/m³": "kg/m**3",
+    "lb/in³": "lb/in**3",
+    "m²": "m**2",
+    "mm²": "mm**2",
+    "in²": "in**2",
+    "kg·m": "kg*m",
+    "g·mm": "g*mm",
+    "oz·in": "oz*in",
+}
 #: The SI unit of each dimension (flyopt.units.DIMENSIONS, and the outputs' own for unbalance;
 #: the specific unbalance e_per = U/m of ISO 21940-11 is a length).
 SI = {name: entry[1] for name, entry in DIMENSIONS.items()} | {"unbalance": "kg*m", "eccentricity": "m"}
@@ -30,8 +45,14 @@ def test_every_factor_is_pints(dimension, system):
 
 def test_si_is_the_base_units_and_engineering_the_designers():
     assert all(display.unit(d, "si")[1] == 1.0 for d in display.UNITS)
-    assert [display.label(d) for d in ("length", "angular_speed", "torque", "energy", "stress", "power")] == \
-        ["mm", "rpm", "kN·m", "kJ", "MPa", "kW"]
+    assert [display.label(d) for d in ("length", "angular_speed", "torque", "energy", "stress", "power")] == [
+        "mm",
+        "rpm",
+        "kN·m",
+        "kJ",
+        "MPa",
+        "kW",
+    ]
     assert display.quantity_text(0.7441, "length") == "744.1 mm"
     assert display.quantity_text(157.07963267948966, "angular_speed", "imperial") == "1,500 rpm"
     assert display.quantity_text(None, "length") == "-"
@@ -44,12 +65,22 @@ def test_an_unknown_system_or_dimension_is_named():
         display.unit("colour")
 
 
-@pytest.mark.parametrize("value, digits, text", [
-    (1256.33, 6, "1,256.33"), (1500.0, 6, "1,500"), (0.000123456789, 6, "0.000123457"),
-    # a whole number longer than the digits asked for is rounded to them, not printed whole
-    (23053542.3, 6, "23,053,500"), (5120982.0, 4, "5,121,000"), (999999.7, 6, "1,000,000"),
-    (-1858.78, 6, "-1,858.78"), (1e9, 6, "1.00000e+09"), (0.0, 6, "0"), (None, 6, "-"),
-])
+@pytest.mark.parametrize(
+    "value, digits, text",
+    [
+        (1256.33, 6, "1,256.33"),
+        (1500.0, 6, "1,500"),
+        (0.000123456789, 6, "0.000123457"),
+        # a whole number longer than the digits asked for is rounded to them, not printed whole
+        (23053542.3, 6, "23,053,500"),
+        (5120982.0, 4, "5,121,000"),
+        (999999.7, 6, "1,000,000"),
+        (-1858.78, 6, "-1,858.78"),
+        (1e9, 6, "1.00000e+09"),
+        (0.0, 6, "0"),
+        (None, 6, "-"),
+    ],
+)
 def test_numbers_carry_the_digits_asked_for(value, digits, text):
     assert display.number(value, digits) == text
 
@@ -58,8 +89,18 @@ def test_a_field_is_shown_in_the_dimension_the_json_gives_it():
     """dimension_of reads flyopt.io.results' table: the JSON's unit and the shown one are one dimension."""
     from flyopt.io.results import unit_of
 
-    for name in ("a_max", "d_outer", "hoop_stress", "omega_mean", "inertia", "rated_power", "unbalance_permissible",
-                 "delta", "gd2_required", "startup_time"):
+    for name in (
+        "a_max",
+        "d_outer",
+        "hoop_stress",
+        "omega_mean",
+        "inertia",
+        "rated_power",
+        "unbalance_permissible",
+        "delta",
+        "gd2_required",
+        "startup_time",
+    ):
         dimension = display.dimension_of(name)
         si = SI[dimension] or "dimensionless"
         assert UREG.Quantity(1.0, unit_of(name)).to(si).magnitude == pytest.approx(1.0, rel=1e-15), name

@@ -26,12 +26,28 @@ RPM = math.pi / 30
 
 # A user's own motor options for the tests (a plausible 4-pole ladder: 1500 rpm, slip 3-4 %,
 # rotor inertia and mass growing with the rating). The optimizer is under test, not the data.
-OPTIONS = Catalogue("motor_option", tuple(
-    CatalogueMotor(name=f"{p:g} kW", rated_power=p * 1e3, rated_speed=n * RPM, synchronous_speed=1500 * RPM,
-                   rotor_inertia=j, breakdown_ratio=k, mass=m)
-    for p, n, j, k, m in [(3.0, 1435, 0.0095, 2.9, 22.0), (4.0, 1440, 0.012, 2.8, 30.0),
-                          (5.5, 1450, 0.022, 2.7, 40.0), (7.5, 1455, 0.030, 2.7, 50.0),
-                          (11.0, 1460, 0.060, 2.6, 75.0), (15.0, 1465, 0.075, 2.6, 95.0)]))
+OPTIONS = Catalogue(
+    "motor_option",
+    tuple(
+        CatalogueMotor(
+            name=f"{p:g} kW",
+            rated_power=p * 1e3,
+            rated_speed=n * RPM,
+            synchronous_speed=1500 * RPM,
+            rotor_inertia=j,
+            breakdown_ratio=k,
+            mass=m,
+        )
+        for p, n, j, k, m in [
+            (3.0, 1435, 0.0095, 2.9, 22.0),
+            (4.0, 1440, 0.012, 2.8, 30.0),
+            (5.5, 1450, 0.022, 2.7, 40.0),
+            (7.5, 1455, 0.030, 2.7, 50.0),
+            (11.0, 1460, 0.060, 2.6, 75.0),
+            (15.0, 1465, 0.075, 2.6, 95.0),
+        ]
+    ),
+)
 
 
 def _scene(**changes):
@@ -53,8 +69,8 @@ def test_work_balance_ratio_is_the_root():
     i = drive.motor_ratio_estimate(motor, load, omega, eta)
     torque = motor.motor().torque(i * omega, "linear")
     assert i * eta * torque == pytest.approx(load, rel=1e-12)
-    assert i * omega > motor.motor().linear_limit_speed            # the stable, low-slip root
-    assert drive.motor_ratio_estimate(motor, 1e6, omega, eta) is None   # no ratio reaches a huge load
+    assert i * omega > motor.motor().linear_limit_speed  # the stable, low-slip root
+    assert drive.motor_ratio_estimate(motor, 1e6, omega, eta) is None  # no ratio reaches a huge load
 
 
 def test_rms_torque_against_quadrature():
@@ -82,14 +98,16 @@ def test_kloss_runup_closed_form_against_quadrature():
     """t = J/(i² η) ∫ dω_m / M_kloss(ω_m), integrated numerically from rest to i ω."""
     motor = OPTIONS.motors[1].motor()
     inertia, ratio, eta, omega = 300.0, 24.0, 0.92, 6.2
-    found = kloss_runup_time(inertia, ratio, eta, motor.breakdown_torque, motor.breakdown_slip,
-                             motor.synchronous_speed, omega)
-    integral = integrate.quad(lambda wm: 1 / float(motor.torque(wm, "kloss")), 0, ratio * omega,
-                              epsabs=0, epsrel=1e-12, limit=200)[0]
+    found = kloss_runup_time(
+        inertia, ratio, eta, motor.breakdown_torque, motor.breakdown_slip, motor.synchronous_speed, omega
+    )
+    integral = integrate.quad(
+        lambda wm: 1 / float(motor.torque(wm, "kloss")), 0, ratio * omega, epsabs=0, epsrel=1e-12, limit=200
+    )[0]
     assert found == pytest.approx(inertia / (ratio**2 * eta) * integral, rel=1e-9)
 
 
-@pytest.mark.slow   # every size of the ladder solved exactly: about a minute
+@pytest.mark.slow  # every size of the ladder solved exactly: about a minute
 def test_codesign_matches_brute_force(designed):
     """Every motor size over a fine grid of flywheel ratios: the same motor and the best mass to 1e-6."""
     scene, result = designed
@@ -99,8 +117,9 @@ def test_codesign_matches_brute_force(designed):
     from flyopt.design import design_inputs
 
     inputs = design_inputs(scene)
-    brute = [drive.evaluate_motor(scene, m, load_torque, scene.drive, grid, inputs.materials, inputs.spec)
-             for m in OPTIONS]
+    brute = [
+        drive.evaluate_motor(scene, m, load_torque, scene.drive, grid, inputs.materials, inputs.spec) for m in OPTIONS
+    ]
     feasible = [r for r in brute if r.feasible]
     best = min(feasible, key=lambda r: r.objective)
     assert result.best.motor.name == best.motor.name
@@ -117,7 +136,7 @@ def drive_load(scene):
     return analyse(scene).driving_torque
 
 
-@pytest.mark.slow   # every size of the ladder solved exactly: about a minute
+@pytest.mark.slow  # every size of the ladder solved exactly: about a minute
 def test_one_size_smaller_breaks_a_limit_in_the_simulation(designed):
     """The next smaller motor with the chosen wheel: the simulation shows δ or the thermal limit exceeded."""
     scene, result = designed
@@ -126,10 +145,12 @@ def test_one_size_smaller_breaks_a_limit_in_the_simulation(designed):
     from flyopt.design import design_inputs
 
     inputs = design_inputs(scene)
-    run = drive.evaluate_motor(scene, smaller, drive_load(scene), scene.drive, ("fixed", best.flywheel_ratio),
-                               inputs.materials, inputs.spec)
-    ratio = run.motor_ratio or drive.motor_ratio_estimate(smaller, drive_load(scene), scene.omega_mean,
-                                                         scene.efficiency)
+    run = drive.evaluate_motor(
+        scene, smaller, drive_load(scene), scene.drive, ("fixed", best.flywheel_ratio), inputs.materials, inputs.spec
+    )
+    ratio = run.motor_ratio or drive.motor_ratio_estimate(
+        smaller, drive_load(scene), scene.omega_mean, scene.efficiency
+    )
     trial = drive.MotorRun(motor=smaller, feasible=True, motor_ratio=ratio)
     check = drive.verify_drive(scene, trial, j_flywheel=best.wheel.j_at_reference)
     assert check.flagged
@@ -141,24 +162,32 @@ def test_one_size_smaller_breaks_a_limit_in_the_simulation(designed):
     assert ok.rms_torque <= best.motor.rated_torque * (1 + 1e-6)
 
 
-@pytest.mark.slow   # every size of the ladder solved exactly: about a minute
+@pytest.mark.slow  # every size of the ladder solved exactly: about a minute
 def test_relaxation_collocation_against_the_periodic_solution(designed):
     """The relaxed motor and flywheel, simulated by CVODES shooting: δ and the mean speed within the collocation error."""
     from flyopt.analysis import analyse
+    from flyopt.machine.reduce import reduce
+    from flyopt.machine.torque import MotorTorque
     from flyopt.machine.transmission import inertia_at_reference
     from flyopt.sizing.periodic import periodic_solution
-    from flyopt.machine.torque import MotorTorque
-    from flyopt.machine.reduce import reduce
 
     scene, result = designed
     relaxed = result.relaxation
     fit = CatalogueFit.of(OPTIONS)
     motor, j_rot, _ = fit.motor(relaxed.rated_power)
-    built = scene.replace(driving=MotorTorque(motor, relaxed.motor_ratio, scene.efficiency, "kloss", "test"),
-                          j_constant=scene.j_constant + inertia_at_reference(j_rot, relaxed.motor_ratio))
+    built = scene.replace(
+        driving=MotorTorque(motor, relaxed.motor_ratio, scene.efficiency, "kloss", "test"),
+        j_constant=scene.j_constant + inertia_at_reference(j_rot, relaxed.motor_ratio),
+    )
     machine = reduce(built)
-    sol = periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean,
-                            relaxed.j_flywheel, machine.knots())
+    sol = periodic_solution(
+        machine.net_torque(),
+        machine.j_machine,
+        machine.cycle_angle,
+        scene.omega_mean,
+        relaxed.j_flywheel,
+        machine.knots(),
+    )
     # the NLP kept every node within ω_m (1 ± δ/2); trapezoidal collocation on ~250 intervals: O(h²)
     assert sol.omega_max <= scene.omega_mean * (1 + scene.delta / 2) * (1 + 2e-4)
     assert sol.omega_min >= scene.omega_mean * (1 - scene.delta / 2) * (1 - 2e-4)
@@ -174,7 +203,7 @@ def test_every_size_without_a_relaxation_when_too_few():
     assert len(result.runs) == 2
 
 
-@pytest.mark.slow   # every size of the ladder solved exactly: about a minute
+@pytest.mark.slow  # every size of the ladder solved exactly: about a minute
 def test_motor_power_front_is_the_nondominated_set():
     """Every size solved; the front keeps exactly the runs no other run beats in both power and wheel mass."""
     result = drive.design_drive(_scene(), every_size=True)
@@ -182,9 +211,12 @@ def test_motor_power_front_is_the_nondominated_set():
     front = drive.motor_power_front(result)
     feasible = [r for r in result.runs if r.feasible]
     for run in feasible:
-        dominated = any(o.motor.rated_power <= run.motor.rated_power and o.wheel_mass <= run.wheel_mass
-                        and (o.motor.rated_power, o.wheel_mass) != (run.motor.rated_power, run.wheel_mass)
-                        for o in feasible)
+        dominated = any(
+            o.motor.rated_power <= run.motor.rated_power
+            and o.wheel_mass <= run.wheel_mass
+            and (o.motor.rated_power, o.wheel_mass) != (run.motor.rated_power, run.wheel_mass)
+            for o in feasible
+        )
         assert (run in front) == (not dominated), run.motor.name
     # a bigger motor needs no heavier wheel along the front
     assert all(a.wheel_mass > b.wheel_mass for a, b in zip(front, front[1:]))
@@ -195,14 +227,17 @@ def test_motor_power_front_needs_a_drive(tmp_path):
     import subprocess
     import sys
 
-    result = subprocess.run([sys.executable, "-m", "flyopt", "pareto", "problems/punch-press.toml",
-                             "--objectives", "mass,motor_power"], capture_output=True, text=True)
+    result = subprocess.run(
+        [sys.executable, "-m", "flyopt", "pareto", "problems/punch-press.toml", "--objectives", "mass,motor_power"],
+        capture_output=True,
+        text=True,
+    )
     assert result.returncode == 2 and "Traceback" not in result.stderr
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and "objectives" in lines[0] and "[drive]" in lines[0]
 
 
-@pytest.mark.slow   # every size of the ladder solved exactly: about half a minute
+@pytest.mark.slow  # every size of the ladder solved exactly: about half a minute
 def test_flyopt_pareto_motor_power_writes_the_front(tmp_path):
     """flyopt pareto --objectives mass,motor_power: the non-dominated (motor power, wheel mass) of every size,
     its objectives recorded for flyopt plot."""
@@ -213,8 +248,21 @@ def test_flyopt_pareto_motor_power_writes_the_front(tmp_path):
     import pandas as pd
 
     out = tmp_path / "front.csv"
-    result = subprocess.run([sys.executable, "-m", "flyopt", "pareto", "problems/press-drive.toml",
-                             "--objectives", "mass,motor_power", "-o", str(out)], capture_output=True, text=True)
+    result = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "flyopt",
+            "pareto",
+            "problems/press-drive.toml",
+            "--objectives",
+            "mass,motor_power",
+            "-o",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert result.returncode == 0, result.stderr
     front = pd.read_csv(out)
     scene = load("problems/press-drive.toml")
@@ -232,7 +280,7 @@ def test_relaxation_sensitivities_against_central_differences():
     from flyopt.design import design_inputs
     from flyopt.design.drive_nlp import RelaxedWheel, relax
 
-    scene = _scene(max_startup=2.5)       # the run-up binds too (3.2 s unbound)
+    scene = _scene(max_startup=2.5)  # the run-up binds too (3.2 s unbound)
     analysis = analyse(scene)
     fit = CatalogueFit.of(OPTIONS)
     v_max, envelope = 50.0, 1.2
@@ -241,8 +289,9 @@ def test_relaxation_sensitivities_against_central_differences():
     steel = next(m for m in inputs.materials if m.name == "cast_steel")
 
     def solve(delta=scene.delta, spec=scene.drive, v=v_max, d=envelope):
-        wheel = RelaxedWheel.of(dataclasses.replace(steel, max_rim_speed=v),
-                                dataclasses.replace(inputs.spec, max_outer_diameter=d))
+        wheel = RelaxedWheel.of(
+            dataclasses.replace(steel, max_rim_speed=v), dataclasses.replace(inputs.spec, max_outer_diameter=d)
+        )
         return relax(analysis.machine, scene.omega_mean, delta, scene.efficiency, fit, spec, wheel, load_torque)
 
     base = solve()
@@ -261,7 +310,7 @@ def test_relaxation_sensitivities_against_central_differences():
         fd = (move(h).objective - move(-h).objective) / (2 * h)
         assert sens[limit] == pytest.approx(fd, rel=2e-5, abs=1e-8 * base.objective), limit
         binding += abs(fd) > 1e-6 * base.objective
-    assert binding == 4                    # delta, run-up, ratio and envelope bind; the rim speed does not
+    assert binding == 4  # delta, run-up, ratio and envelope bind; the rim speed does not
 
 
 def test_the_relaxation_is_built_once_per_machine():
@@ -275,18 +324,40 @@ def test_the_relaxation_is_built_once_per_machine():
     inputs = design_inputs(scene)
     iron, steel = (next(m for m in inputs.materials if m.name == name) for name in ("cast_iron", "cast_steel"))
     before = drive_nlp.BUILDS["count"]
-    first = drive_nlp.relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, scene.drive,
-                            drive_nlp.RelaxedWheel.of(steel, inputs.spec), analysis.driving_torque)
-    second = drive_nlp.relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, scene.drive,
-                             drive_nlp.RelaxedWheel.of(iron, inputs.spec), analysis.driving_torque)
+    first = drive_nlp.relax(
+        analysis.machine,
+        scene.omega_mean,
+        scene.delta,
+        scene.efficiency,
+        fit,
+        scene.drive,
+        drive_nlp.RelaxedWheel.of(steel, inputs.spec),
+        analysis.driving_torque,
+    )
+    second = drive_nlp.relax(
+        analysis.machine,
+        scene.omega_mean,
+        scene.delta,
+        scene.efficiency,
+        fit,
+        scene.drive,
+        drive_nlp.RelaxedWheel.of(iron, inputs.spec),
+        analysis.driving_torque,
+    )
     assert drive_nlp.BUILDS["count"] == before + 1
     assert first.status == second.status == "Solve_Succeeded"
 
 
-@pytest.mark.parametrize("geometry, criterion, material, arms", [
-    ("rim", "rim_speed", "cast_steel", 0), ("disc", "rim_speed", "cast_iron", 0),
-    ("rim_web", "stress", "cast_steel", 0), ("rim_arms", "stress", "cast_steel", 6),
-    ("rim_arms", "stress", "cast_iron", 6)])
+@pytest.mark.parametrize(
+    "geometry, criterion, material, arms",
+    [
+        ("rim", "rim_speed", "cast_steel", 0),
+        ("disc", "rim_speed", "cast_iron", 0),
+        ("rim_web", "stress", "cast_steel", 0),
+        ("rim_arms", "stress", "cast_steel", 6),
+        ("rim_arms", "stress", "cast_iron", 6),
+    ],
+)
 def test_relaxation_wheel_is_the_designers_wheel(geometry, criterion, material, arms):
     """The relaxation's wheel at its optimum (J_F, r) against flyopt's designer given that inertia on that shaft
     (the closed form for the bare wheels; the whole-wheel NLP with its exact stress checks for the others):
@@ -306,12 +377,25 @@ def test_relaxation_wheel_is_the_designers_wheel(geometry, criterion, material, 
     spec = dataclasses.replace(inputs.spec, geometry=geometry, criterion=criterion, bore=bore)
     chosen = next(m for m in inputs.materials if m.name == material)
     wheel = RelaxedWheel.of(chosen, spec, bore or 0.0, arms)
-    relaxed = relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, CatalogueFit.of(OPTIONS),
-                    scene.drive, wheel, analysis.driving_torque)
+    relaxed = relax(
+        analysis.machine,
+        scene.omega_mean,
+        scene.delta,
+        scene.efficiency,
+        CatalogueFit.of(OPTIONS),
+        scene.drive,
+        wheel,
+        analysis.driving_torque,
+    )
     assert relaxed.status == "Solve_Succeeded" and relaxed.j_flywheel > 0
     omega_top = scene.omega_mean * (1 + scene.delta / 2)
-    designed = design_flywheel(relaxed.j_flywheel, omega_top, [MountShaft("flywheel", relaxed.flywheel_ratio)],
-                               [chosen], dataclasses.replace(spec, arms=(arms,) if arms else spec.arms))
+    designed = design_flywheel(
+        relaxed.j_flywheel,
+        omega_top,
+        [MountShaft("flywheel", relaxed.flywheel_ratio)],
+        [chosen],
+        dataclasses.replace(spec, arms=(arms,) if arms else spec.arms),
+    )
     assert designed.status == "designed"
     assert relaxed.wheel_mass <= designed.best.mass * (1 + 1e-7)
     if material == "cast_steel" or criterion == "rim_speed":
@@ -323,11 +407,16 @@ def test_relaxation_wheel_is_the_designers_wheel(geometry, criterion, material, 
 
 # The same ladder with a price per size, and the wheel's materials with a cost per kg: illustrative test
 # data (no source prices these motors), for the co-design by cost.
-PRICED = Catalogue("motor_option", tuple(dataclasses.replace(m, price=price) for m, price in
-                                         zip(OPTIONS.motors, (310.0, 365.0, 455.0, 570.0, 810.0, 1060.0))))
+PRICED = Catalogue(
+    "motor_option",
+    tuple(
+        dataclasses.replace(m, price=price)
+        for m, price in zip(OPTIONS.motors, (310.0, 365.0, 455.0, 570.0, 810.0, 1060.0))
+    ),
+)
 
 
-@pytest.mark.slow   # every size of the ladder over 241 ratios: about a minute
+@pytest.mark.slow  # every size of the ladder over 241 ratios: about a minute
 def test_codesign_by_cost_matches_brute_force():
     """Objective cost (motor price + wheel cost): the same motor and the best cost to 1e-6 as every size over a
     241-point grid of flywheel ratios, each wheel the designer's cheapest material."""
@@ -335,16 +424,19 @@ def test_codesign_by_cost_matches_brute_force():
 
     scene = _scene(motors=PRICED, objective="cost")
     library = scene.material_library()
-    priced = tuple(dataclasses.replace(library[name], cost=cost) for name, cost in (("cast_iron", 2.2),
-                                                                                    ("cast_steel", 4.0)))
+    priced = tuple(
+        dataclasses.replace(library[name], cost=cost) for name, cost in (("cast_iron", 2.2), ("cast_steel", 4.0))
+    )
     scene = scene.replace(materials=priced, design_materials=("cast_iron", "cast_steel"))
     result = drive.design_drive(scene)
     assert result.status == "designed" and result.objective == "cost"
     assert result.relaxation is not None
     inputs = design_inputs(scene)
     grid = ("fixed", *np.linspace(2.0, 8.0, 241))
-    brute = [drive.evaluate_motor(scene, m, drive_load(scene), scene.drive, grid, inputs.materials, inputs.spec)
-             for m in PRICED]
+    brute = [
+        drive.evaluate_motor(scene, m, drive_load(scene), scene.drive, grid, inputs.materials, inputs.spec)
+        for m in PRICED
+    ]
     best = min((r for r in brute if r.feasible), key=lambda r: r.objective)
     assert result.best.motor.name == best.motor.name
     assert result.best.objective <= best.objective * (1 + 1e-6)

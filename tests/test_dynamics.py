@@ -18,20 +18,20 @@ import math
 import casadi as ca
 import numpy as np
 import pytest
+from conftest import assert_published
 from numpy.testing import assert_allclose
 from scipy import integrate, optimize
 
-from conftest import assert_published
 from flyopt.cycle.indicator import ExcessWork, energy_indicator, required_inertia
-from flyopt.sizing import periodic
-from flyopt.sizing.energy_mass import achieved_speed, energy_mass_requirement
-from flyopt.sizing.periodic import angle_torque, dynamic_requirement, periodic_solution, verify
-from flyopt.sizing.startup import startup_time
 from flyopt.errors import NonPeriodicCycle, SolverFailed
 from flyopt.machine.expression import Expression
 from flyopt.machine.mechanism import Member, SliderCrank, equivalent_inertia, equivalent_torque
 from flyopt.machine.motor import DCMotor, InductionMotor
 from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.sizing import periodic
+from flyopt.sizing.energy_mass import achieved_speed, energy_mass_requirement
+from flyopt.sizing.periodic import angle_torque, dynamic_requirement, periodic_solution, verify
+from flyopt.sizing.startup import startup_time
 
 TWO_PI = 2 * math.pi
 RPM = TWO_PI / 60
@@ -39,10 +39,12 @@ RPM = TWO_PI / 60
 
 # -- scenes ---------------------------------------------------------------------
 
+
 def shear_press():
     """Domain page example 2: resisting 1600 → 200 N m, constant driving torque balancing it."""
-    resisting = PiecewiseLinear(np.array([0, math.pi / 4, math.pi / 2, TWO_PI]),
-                                np.array([1600.0, 1600.0, 200.0, 200.0]))
+    resisting = PiecewiseLinear(
+        np.array([0, math.pi / 4, math.pi / 2, TWO_PI]), np.array([1600.0, 1600.0, 200.0, 200.0])
+    )
     return ExcessWork(Constant(None), resisting, TWO_PI)
 
 
@@ -56,8 +58,15 @@ N_COMPRESSOR = 300 * RPM
 
 def compressor():
     sc = SliderCrank(CRANK, ROD)
-    piston = Member("piston", PISTON, 0.0, sc.slider_velocity_ratio, 0.0,
-                    force=(FORCE_ANGLES, FORCE_VALUES), force_sense="resisting")
+    piston = Member(
+        "piston",
+        PISTON,
+        0.0,
+        sc.slider_velocity_ratio,
+        0.0,
+        force=(FORCE_ANGLES, FORCE_VALUES),
+        force_sense="resisting",
+    )
     j_e = equivalent_inertia([piston], J_CRANK)
     excess = ExcessWork(Constant(None), equivalent_torque([piston]).resisting(), TWO_PI)
     return excess, j_e
@@ -92,12 +101,12 @@ def press(rpm, slip, stroke=0.02, peak=50.0, torque=100.0):
     """
     omega_n = rpm * RPM
     a, b = 1.0, 1.0 + stroke * TWO_PI
-    load = PiecewiseLinear(np.array([0, a, a, b, b, TWO_PI]),
-                           np.array([0, 0, peak * torque, peak * torque, 0, 0.0]))
+    load = PiecewiseLinear(np.array([0, a, a, b, b, TWO_PI]), np.array([0, 0, peak * torque, peak * torque, 0, 0.0]))
     motor = InductionMotor(torque * omega_n, omega_n, omega_n / (1 - slip))
 
     def net(phi, omega):
         return motor.torque(omega) - load.casadi(phi)
+
     return net, load, motor, omega_n
 
 
@@ -108,6 +117,7 @@ def energy_estimate(load, omega, delta):
 
 
 # -- independent references ------------------------------------------------------
+
 
 def simulate_time_domain(inertia, torque_on_piece, knots, e0, cycle=TWO_PI):
     """One cycle of J(φ) in time with scipy: dφ/dt = sqrt(2E/J(φ)), dE/dt = M(φ) dφ/dt.
@@ -120,16 +130,26 @@ def simulate_time_domain(inertia, torque_on_piece, knots, e0, cycle=TWO_PI):
     t, y = 0.0, np.array([0.0, e0])
     best_max, best_min = -math.inf, math.inf
     for a, b in zip(edges[:-1], edges[1:]):
+
         def rhs(_, s, a=a):
             omega = math.sqrt(2 * s[1] / inertia(s[0]))
             return [omega, torque_on_piece(s[0], a) * omega]
 
         def reach(_, s, b=b):
             return s[0] - b
+
         reach.terminal, reach.direction = True, 1
         span = 10 * (b - a) / math.sqrt(2 * e0 / inertia(a)) + 1.0
-        sol = integrate.solve_ivp(rhs, (t, t + 100 * span), y, method="DOP853", rtol=1e-13, atol=[1e-14, 1e-14 * e0],
-                                  events=reach, dense_output=True)
+        sol = integrate.solve_ivp(
+            rhs,
+            (t, t + 100 * span),
+            y,
+            method="DOP853",
+            rtol=1e-13,
+            atol=[1e-14, 1e-14 * e0],
+            events=reach,
+            dense_output=True,
+        )
         assert sol.status == 1, sol.message
         t_end = sol.t_events[0][0]
         ts = np.linspace(t, t_end, 401)
@@ -137,12 +157,17 @@ def simulate_time_domain(inertia, torque_on_piece, knots, e0, cycle=TWO_PI):
         def omega_at(tt):
             s = sol.sol(tt)
             return np.sqrt(2 * s[1] / inertia(s[0]))
+
         w = omega_at(ts)
         for sign in (1, -1):
             i = int(np.argmax(sign * w))
             lo_t, hi_t = ts[max(i - 1, 0)], ts[min(i + 1, len(ts) - 1)]
-            res = optimize.minimize_scalar(lambda tt: -sign * float(omega_at(tt)), bounds=(lo_t, hi_t),
-                                           method="bounded", options={"xatol": 1e-14 * max(t_end, 1)})
+            res = optimize.minimize_scalar(
+                lambda tt: -sign * float(omega_at(tt)),
+                bounds=(lo_t, hi_t),
+                method="bounded",
+                options={"xatol": 1e-14 * max(t_end, 1)},
+            )
             value = max(sign * w[i], -res.fun) * sign
             if sign > 0:
                 best_max = max(best_max, value)
@@ -166,15 +191,16 @@ def scipy_periodic_press(net_numeric, load, j_total, e_guess, method="DOP853"):
 
             def rhs(p, s, level=level):
                 return [net_numeric(math.sqrt(2 * s[0] / j_total)) - level]
-            sol = integrate.solve_ivp(rhs, (a, b), [e], method=method, rtol=1e-13, atol=1e-14 * e0,
-                                      dense_output=dense)
+
+            sol = integrate.solve_ivp(rhs, (a, b), [e], method=method, rtol=1e-13, atol=1e-14 * e0, dense_output=dense)
             assert sol.success, sol.message
             e = sol.y[0, -1]
             out.append(sol)
         return e, out
 
-    e_star = optimize.brentq(lambda e0: cycle(e0)[0] - e0, 0.999 * e_guess, 1.001 * e_guess,
-                             xtol=1e-15 * e_guess, rtol=1e-15)
+    e_star = optimize.brentq(
+        lambda e0: cycle(e0)[0] - e0, 0.999 * e_guess, 1.001 * e_guess, xtol=1e-15 * e_guess, rtol=1e-15
+    )
     _, sols = cycle(e_star, dense=True)
     e_max, e_min = -math.inf, math.inf
     for sol in sols:
@@ -182,15 +208,19 @@ def scipy_periodic_press(net_numeric, load, j_total, e_guess, method="DOP853"):
         values = sol.sol(ts)[0]
         for sign in (1, -1):
             i = int(np.argmax(sign * values))
-            res = optimize.minimize_scalar(lambda p: -sign * float(sol.sol(p)[0]),
-                                           bounds=(ts[max(i - 1, 0)], ts[min(i + 1, 2000)]), method="bounded",
-                                           options={"xatol": 1e-13})
+            res = optimize.minimize_scalar(
+                lambda p: -sign * float(sol.sol(p)[0]),
+                bounds=(ts[max(i - 1, 0)], ts[min(i + 1, 2000)]),
+                method="bounded",
+                options={"xatol": 1e-13},
+            )
             v = sign * max(sign * values[i], -res.fun)
             e_max, e_min = max(e_max, v), min(e_min, v)
     return math.sqrt(2 * e_max / j_total), math.sqrt(2 * e_min / j_total)
 
 
 # -- constant inertia, angle-only torques: every model is exact and agrees -------------
+
 
 @pytest.mark.parametrize("j_constant", [0.0, 0.3])
 def test_constant_inertia_all_models_agree_shear_press(j_constant):
@@ -218,8 +248,7 @@ def test_constant_inertia_all_models_agree_shear_press(j_constant):
 
 def test_constant_inertia_expression_torque_all_models_agree():
     """A smooth expression torque (quadrature path): energy–mass, dynamic and cycle method to 1e-8."""
-    driving = ExpressionTorque(Expression("1000 + 400*sin(phi) + 150*cos(2*phi)**3 + 30*sin(5*phi)"), 1.0,
-                               "test")
+    driving = ExpressionTorque(Expression("1000 + 400*sin(phi) + 150*cos(2*phi)**3 + 30*sin(5*phi)"), 1.0, "test")
     excess = ExcessWork(driving, Constant(None), TWO_PI)
     ind = energy_indicator(driving, Constant(None), TWO_PI)
     omega, delta, j_c = 100.0, 0.02, 0.5
@@ -230,6 +259,7 @@ def test_constant_inertia_expression_torque_all_models_agree():
 
 
 # -- variable inertia, angle-only torques ---------------------------------------
+
 
 def test_compressor_driving_torque_matches_quadrature():
     """The reduced piston force balances with M_d = (1/2π)∫ F |v_B/ω| dφ (textbook |v_B/ω|, quad 1e-12)."""
@@ -253,6 +283,7 @@ def test_energy_mass_against_brute_force_time_simulation(delta):
 
     def torque(phi, a):
         return m_d - compressor_force(phi, a) * textbook_slider_ratio(phi)
+
     j_total = lambda p: exact.j_required + textbook_compressor_inertia(p)  # noqa: E731
     w_max, w_min, e_end = simulate_time_domain(j_total, torque, [1.5, 2.6, math.pi], speed.e0)
     assert_allclose(e_end, speed.e0, rtol=1e-11)  # the cycle balances: the speed is periodic
@@ -274,6 +305,7 @@ def test_constant_inertia_method_is_off_with_variable_inertia():
 
     def torque(phi, a):
         return m_d - compressor_force(phi, a) * textbook_slider_ratio(phi)
+
     j_total = lambda p: exact.j_constant_inertia + textbook_compressor_inertia(p)  # noqa: E731
     w_max, w_min, _ = simulate_time_domain(j_total, torque, [1.5, 2.6, math.pi], speed.e0)
     assert_allclose((w_max - w_min) / (0.5 * (w_max + w_min)), exact.delta_constant_inertia, rtol=1e-8)
@@ -291,13 +323,13 @@ def test_variable_inertia_simulation_agrees_with_energy_mass(delta):
     sim = periodic_solution(angle_torque(excess), j_e, TWO_PI, N_COMPRESSOR, exact.j_required, excess.knots)
     assert_allclose(sim.delta, delta, rtol=1e-6)
     assert_allclose([sim.omega_max, sim.omega_min], [exact.omega_max, exact.omega_min], rtol=1e-8)
-    assert_allclose([sim.phi_omega_max, sim.phi_omega_min], [exact.phi_omega_max, exact.phi_omega_min],
-                    rtol=1e-5)
+    assert_allclose([sim.phi_omega_max, sim.phi_omega_min], [exact.phi_omega_max, exact.phi_omega_min], rtol=1e-5)
     dynamic = dynamic_requirement(angle_torque(excess), j_e, TWO_PI, N_COMPRESSOR, delta, excess.knots)
     assert_allclose(dynamic.j_required, exact.j_required, rtol=1e-8)
 
 
 # -- speed-dependent torques: the periodic solution ------------------------------
+
 
 def test_press_periodic_solution_against_scipy_shooting():
     """Induction-motor press (2 % stroke, 50× spike): δ and ω_m against a scipy shooting solution.
@@ -362,7 +394,7 @@ def test_stiff_motor_never_swings_to_delta_03():
     assert_allclose(result.solution.delta, 2 / 7, rtol=1e-6)
     omega = np.asarray(result.solution.omega)
     assert_allclose([result.solution.omega_max, result.solution.omega_min], [omega.max(), omega.min()], rtol=1e-9)
-    for j_f in (6e-4, 3e-3):          # δ below 2/7 at any flywheel: the requirement's answer, by scipy Radau
+    for j_f in (6e-4, 3e-3):  # δ below 2/7 at any flywheel: the requirement's answer, by scipy Radau
         sol = periodic_solution(net, 0.0, TWO_PI, omega_n, j_f, load.breakpoints())
         w_max, w_min = scipy_periodic_press(motor.torque, load, j_f, sol.e0, method="Radau")
         reference = (w_max - w_min) / (0.5 * (w_max + w_min))
@@ -397,6 +429,7 @@ def test_cheaper_models_are_off_with_a_speed_dependent_motor():
 
 # -- verification -----------------------------------------------------------------
 
+
 def test_verification_flags_only_a_flywheel_that_misses_delta():
     """The required flywheel passes (δ within the tolerance); 20 % less is flagged."""
     excess, j_e = compressor()
@@ -414,6 +447,7 @@ def test_verification_flags_only_a_flywheel_that_misses_delta():
 
 # -- failures are reported, never a non-periodic "steady state" ---------------------
 
+
 def test_unbalanced_angle_only_torque_is_not_periodic():
     """A net torque of 1 N m over the turn: no periodic solution, NonPeriodicCycle with the imbalance."""
     with pytest.raises(NonPeriodicCycle, match=r"\+6\.28319 J"):
@@ -427,6 +461,7 @@ def test_too_weak_motor_reports_a_stall():
 
     def net(phi, omega):
         return motor.torque(omega) - load.casadi(phi)
+
     with pytest.raises(SolverFailed, match="stall"):
         periodic_solution(net, 0.0, TWO_PI, omega_n, 1.0, load.breakpoints())
 
@@ -447,6 +482,7 @@ def test_kloss_motor_beyond_breakdown_is_limited_by_stall():
 
     def net(phi, omega):
         return motor.torque(omega, "kloss") - load.casadi(phi)
+
     result = dynamic_requirement(net, 0.0, TWO_PI, omega_n, 0.3, load.breakpoints())
     assert result.limit == "stall"
     assert result.solution.delta < 0.3
@@ -464,6 +500,7 @@ def test_newton_limit_raises_instead_of_returning(monkeypatch):
 
 # -- start-up ----------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("fraction, rtol", [(0.5, 1e-8), (0.9, 1e-8), (0.999, 1e-6)])
 def test_startup_dc_motor_constant_load_closed_form(fraction, rtol):
     """J ω' = M_s (1 − ω/ω_0) − M_L: t = −τ ln(1 − ω/ω_∞), τ = J ω_0/M_s, ω_∞ = ω_0 (1 − M_L/M_s).
@@ -474,6 +511,7 @@ def test_startup_dc_motor_constant_load_closed_form(fraction, rtol):
 
     def net(phi, omega):
         return motor.torque(omega) - load
+
     w_inf, tau = 100.0 * (1 - load / 50.0), j * 100.0 / 50.0
     result = startup_time(net, j, TWO_PI, fraction * w_inf)
     assert_allclose(result.time, -tau * math.log(1 - fraction), rtol=rtol)
@@ -490,6 +528,7 @@ def test_startup_kloss_motor_fluctuating_load_against_scipy():
 
     def net(phi, omega):
         return motor.torque(omega, "kloss") - 0.5 * m_n * (1 + 0.5 * ca.sin(phi))
+
     target = 0.97 * 1500 * RPM
     result = startup_time(net, j, TWO_PI, target)
 
@@ -498,6 +537,7 @@ def test_startup_kloss_motor_fluctuating_load_against_scipy():
 
     def reach(_, s):
         return s[1] - target
+
     reach.terminal, reach.direction = True, 1
     ref = integrate.solve_ivp(rhs, (0, 100), [0.0, 0.0], method="DOP853", rtol=1e-13, atol=1e-12, events=reach)
     assert_allclose(result.time, ref.t_events[0][0], rtol=1e-7)
@@ -515,21 +555,25 @@ def test_startup_failures():
 
 # -- inputs --------------------------------------------------------------------------
 
+
 def _math_sin_torque(phi, omega):
     return math.sin(phi)
 
 
-@pytest.mark.parametrize("call, match", [
-    (lambda: energy_mass_requirement(shear_press(), 0.0, -1.0, 0.05), "omega_mean must be a positive"),
-    (lambda: energy_mass_requirement(shear_press(), 0.0, 100.0, 2.5), r"delta must lie in \(0, 2\)"),
-    (lambda: energy_mass_requirement(shear_press(), -1.0, 100.0, 0.05), "j_machine must be a finite number >= 0"),
-    (lambda: achieved_speed(shear_press(), 0.0, 157.0, 1e-6), "cannot keep the mean speed"),
-    (lambda: achieved_speed(shear_press(), 0.5, 157.0, -0.6), "total inertia"),
-    (lambda: periodic_solution(_math_sin_torque, 1.0, TWO_PI, 10.0), "must accept CasADi symbols"),
-    (lambda: periodic_solution(lambda p, w: 0 * p, 1.0, -1.0, 10.0), "cycle_angle must be a positive"),
-    (lambda: periodic_solution(lambda p, w: 0 * p, 1.0, TWO_PI, 10.0, -2.0), "total inertia"),
-    (lambda: startup_time(lambda p, w: 1 + 0 * p, 1.0, TWO_PI, 10.0, phi_start=7.0), "phi_start must lie"),
-])
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda: energy_mass_requirement(shear_press(), 0.0, -1.0, 0.05), "omega_mean must be a positive"),
+        (lambda: energy_mass_requirement(shear_press(), 0.0, 100.0, 2.5), r"delta must lie in \(0, 2\)"),
+        (lambda: energy_mass_requirement(shear_press(), -1.0, 100.0, 0.05), "j_machine must be a finite number >= 0"),
+        (lambda: achieved_speed(shear_press(), 0.0, 157.0, 1e-6), "cannot keep the mean speed"),
+        (lambda: achieved_speed(shear_press(), 0.5, 157.0, -0.6), "total inertia"),
+        (lambda: periodic_solution(_math_sin_torque, 1.0, TWO_PI, 10.0), "must accept CasADi symbols"),
+        (lambda: periodic_solution(lambda p, w: 0 * p, 1.0, -1.0, 10.0), "cycle_angle must be a positive"),
+        (lambda: periodic_solution(lambda p, w: 0 * p, 1.0, TWO_PI, 10.0, -2.0), "total inertia"),
+        (lambda: startup_time(lambda p, w: 1 + 0 * p, 1.0, TWO_PI, 10.0, phi_start=7.0), "phi_start must lie"),
+    ],
+)
 def test_bad_input_raises_value_error(call, match):
     with pytest.raises(ValueError, match=match):
         call()

@@ -27,19 +27,20 @@ def test_domain_example6_rim_sizing_textbook():
     assert_allclose(geometry.rim_mass(0.8, 2.0 * b, b, 7800.0), mass, rtol=1e-14)
 
 
-@pytest.mark.parametrize("d_mean, h, b, density", [
-    (0.8, 0.22, 0.11, 7800.0),
-    (2.0, 0.05, 0.5, 7200.0),
-    (0.1, 0.099, 0.01, 2700.0),      # almost a disc
-])
+@pytest.mark.parametrize(
+    "d_mean, h, b, density",
+    [
+        (0.8, 0.22, 0.11, 7800.0),
+        (2.0, 0.05, 0.5, 7200.0),
+        (0.1, 0.099, 0.01, 2700.0),  # almost a disc
+    ],
+)
 def test_rim_inertia_equals_integral_of_r2_dm(d_mean, h, b, density):
     """Exact annulus against the defining integral J = int r^2 rho B 2 pi r dr,
     evaluated by adaptive quadrature (rtol 1e-12: quad is asked for 1e-13)."""
     r_in, r_out = (d_mean - h) / 2.0, (d_mean + h) / 2.0
-    j_quad, _ = quad(lambda r: r * r * density * b * 2.0 * math.pi * r, r_in, r_out,
-                     epsabs=0.0, epsrel=1e-13)
-    m_quad, _ = quad(lambda r: density * b * 2.0 * math.pi * r, r_in, r_out,
-                     epsabs=0.0, epsrel=1e-13)
+    j_quad, _ = quad(lambda r: r * r * density * b * 2.0 * math.pi * r, r_in, r_out, epsabs=0.0, epsrel=1e-13)
+    m_quad, _ = quad(lambda r: density * b * 2.0 * math.pi * r, r_in, r_out, epsabs=0.0, epsrel=1e-13)
     mass = geometry.rim_mass(d_mean, h, b, density)
     assert_allclose(mass, m_quad, rtol=1e-12)
     assert_allclose(geometry.rim_inertia(mass, d_mean, h), j_quad, rtol=1e-12)
@@ -57,13 +58,11 @@ def test_thin_rim_is_low_by_m_h2_over_4():
 def test_disc_is_an_annulus_without_hole():
     """J = m D^2/8 and m = pi D^2 B rho/4 are the annulus with D_m = H = D/2."""
     d, b, rho = 0.6, 0.05, 7800.0
-    assert_allclose(geometry.disc_mass(d, b, rho), geometry.rim_mass(d / 2, d / 2, b, rho),
-                    rtol=1e-15)
+    assert_allclose(geometry.disc_mass(d, b, rho), geometry.rim_mass(d / 2, d / 2, b, rho), rtol=1e-15)
     mass = geometry.disc_mass(d, b, rho)
-    assert_allclose(geometry.disc_inertia(mass, d), geometry.rim_inertia(mass, d / 2, d / 2),
-                    rtol=1e-15)
+    assert_allclose(geometry.disc_inertia(mass, d), geometry.rim_inertia(mass, d / 2, d / 2), rtol=1e-15)
     # against the integral over the full disc
-    j_quad, _ = quad(lambda r: r ** 3 * rho * b * 2.0 * math.pi, 0.0, d / 2.0, epsrel=1e-13)
+    j_quad, _ = quad(lambda r: r**3 * rho * b * 2.0 * math.pi, 0.0, d / 2.0, epsrel=1e-13)
     assert_allclose(geometry.disc_inertia(mass, d), j_quad, rtol=1e-12)
 
 
@@ -73,7 +72,7 @@ def test_rim_speed_and_its_diameter_cap_are_inverse():
     cap = geometry.outer_diameter_for_rim_speed(36.0, omega)
     assert_allclose(cap, 72.0 / omega, rtol=1e-15)
     assert_allclose(geometry.rim_speed(omega, cap), 36.0, rtol=1e-15)
-    assert_allclose(geometry.hoop_stress(7200.0, 36.0), 7200.0 * 36.0 ** 2, rtol=1e-15)
+    assert_allclose(geometry.hoop_stress(7200.0, 36.0), 7200.0 * 36.0**2, rtol=1e-15)
     assert geometry.outer_diameter(0.8, 0.2) == pytest.approx(1.0, rel=1e-15)
     assert geometry.inner_diameter(0.8, 0.2) == pytest.approx(0.6, rel=1e-15)
 

@@ -15,10 +15,8 @@ import json
 import math
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
-
 from conftest import PROBLEMS, ROOT
 
 GOLDEN = ROOT / "tests" / "data" / "golden"
@@ -50,8 +48,15 @@ def _compare(expected, actual, path, problems, absolute=False, work=0.0, energy=
             if key not in actual:
                 problems.append(f"{path}.{key}: missing")
                 continue
-            _compare(value, actual[key], f"{path}.{key}", problems, absolute=key in ABSOLUTE,
-                     work=work, energy=key in ENERGIES)
+            _compare(
+                value,
+                actual[key],
+                f"{path}.{key}",
+                problems,
+                absolute=key in ABSOLUTE,
+                work=work,
+                energy=key in ENERGIES,
+            )
     elif isinstance(expected, list):
         if not isinstance(actual, list) or len(actual) != len(expected):
             problems.append(f"{path}: expected a list of {len(expected)}, got {actual!r:.200}")
@@ -61,9 +66,12 @@ def _compare(expected, actual, path, problems, absolute=False, work=0.0, energy=
     elif isinstance(expected, float) and not isinstance(expected, bool):
         if not isinstance(actual, (int, float)) or isinstance(actual, bool):
             problems.append(f"{path}: expected {expected!r}, got {actual!r}")
-        elif not math.isclose(actual, expected, rel_tol=0.0 if absolute else RTOL,
-                              abs_tol=RTOL if absolute else RTOL * work if energy else 0.0) and not (
-                expected == 0 and abs(actual) < 1e-300):
+        elif not math.isclose(
+            actual,
+            expected,
+            rel_tol=0.0 if absolute else RTOL,
+            abs_tol=RTOL if absolute else RTOL * work if energy else 0.0,
+        ) and not (expected == 0 and abs(actual) < 1e-300):
             problems.append(f"{path}: {actual!r} != {expected!r}")
     elif expected != actual:
         problems.append(f"{path}: {actual!r} != {expected!r}")
@@ -71,8 +79,13 @@ def _compare(expected, actual, path, problems, absolute=False, work=0.0, energy=
 
 @pytest.mark.parametrize("path", SCENES, ids=[p.stem for p in SCENES])
 def test_problem_scene_json_matches_committed_copy(path):
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(path.relative_to(ROOT)), "--json"],
-                         capture_output=True, text=True, cwd=ROOT, timeout=300)
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "solve", str(path.relative_to(ROOT)), "--json"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=300,
+    )
     assert run.returncode in (0, 3), run.stderr
     expected = json.loads((GOLDEN / f"{path.stem}.json").read_text())
     problems = []

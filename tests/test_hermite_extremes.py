@@ -18,7 +18,7 @@ def test_a_smooth_extremum_between_nodes_is_refined():
     phi = np.linspace(0.1, 3.0, 13)[None, :]
     (at_hi, hi), (at_lo, lo) = hermite_extremes(phi, np.sin(phi), np.cos(phi))
     nodes = float(np.max(np.sin(phi)))
-    assert 1 - nodes > 2e-4                       # the nodes alone are off
+    assert 1 - nodes > 2e-4  # the nodes alone are off
     assert hi == pytest.approx(1.0, abs=1e-5) and at_hi == pytest.approx(math.pi / 2, abs=1e-3)
     assert lo == pytest.approx(math.sin(0.1), rel=1e-12)
 
@@ -31,7 +31,7 @@ def test_a_boundary_layer_does_not_overshoot(tau):
     h = 0.05
     phi = np.arange(0.0, 2.0 + h / 2, h)
     g = np.where((phi > 0.5) & (phi <= 1.5), 0.0, 1.0)
-    f = np.empty_like(phi)                         # the exact solution, started at its level
+    f = np.empty_like(phi)  # the exact solution, started at its level
     f[0] = 1.0
     for k in range(1, len(phi)):
         f[k] = g[k] + (f[k - 1] - g[k]) * math.exp(-(phi[k] - phi[k - 1]) / tau)
@@ -52,7 +52,7 @@ def test_an_extremum_in_a_rows_first_interval_is_refined():
     h, k = cycle / 32 / 64, 4.0
     x0 = 5 * cycle / 32 + h / 2
     (at_hi, hi), (_, lo) = hermite_extremes(phi, np.cos(k * (phi - x0)), -k * np.sin(k * (phi - x0)))
-    turns = k * (at_hi - x0) / (2 * math.pi)          # the maxima repeat every 2π/k, each as high
+    turns = k * (at_hi - x0) / (2 * math.pi)  # the maxima repeat every 2π/k, each as high
     assert hi == pytest.approx(1.0, abs=1e-9) and turns == pytest.approx(round(turns), abs=1e-5)
     assert lo == pytest.approx(-1.0, abs=1e-9)
 

@@ -12,10 +12,10 @@ import subprocess
 import sys
 
 import pytest
+from conftest import PROBLEMS
 from numpy.testing import assert_allclose
 
 import flyopt
-from conftest import PROBLEMS
 
 BASE = """
 title = "t"
@@ -40,8 +40,9 @@ def scene(old, new, base=BASE):
 
 def run(*args):
     """flyopt in a fresh interpreter: for input that could hang it, a timeout fails the test."""
-    return subprocess.run([sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True,
-                          timeout=TIMEOUT)
+    return subprocess.run(
+        [sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True, timeout=TIMEOUT
+    )
 
 
 @pytest.fixture
@@ -53,6 +54,7 @@ def cli(capsys):
         status = main([str(a) for a in args])
         out, err = capsys.readouterr()
         return subprocess.CompletedProcess(args, status, out, err)
+
     return call
 
 
@@ -71,32 +73,40 @@ def assert_refused(result, path, field, match):
 # -- percentages are fractions ---------------------------------------------------
 
 
-@pytest.mark.parametrize("old, new, attribute, fraction", [
-    ("delta = 0.05", 'delta = "1 %"', "delta", 1 / 100),
-    ("delta = 0.05", 'delta = "5 permille"', "delta", 5 / 1000),
-    ("delta = 0.05", 'delta = "0.2 percent"', "delta", 0.2 / 100),
-    ("delta = 0.05", 'delta = 0.05\nefficiency = "92 %"', "efficiency", 92 / 100),
-    ("delta = 0.05", 'delta = 0.05\nefficiency = ["98 %", "95 %"]', "efficiency", 0.98 * 0.95),
-])
+@pytest.mark.parametrize(
+    "old, new, attribute, fraction",
+    [
+        ("delta = 0.05", 'delta = "1 %"', "delta", 1 / 100),
+        ("delta = 0.05", 'delta = "5 permille"', "delta", 5 / 1000),
+        ("delta = 0.05", 'delta = "0.2 percent"', "delta", 0.2 / 100),
+        ("delta = 0.05", 'delta = 0.05\nefficiency = "92 %"', "efficiency", 92 / 100),
+        ("delta = 0.05", 'delta = 0.05\nefficiency = ["98 %", "95 %"]', "efficiency", 0.98 * 0.95),
+    ],
+)
 def test_a_percentage_is_read_as_a_fraction(write_scene, old, new, attribute, fraction):
     loaded = flyopt.load(write_scene(scene(old, new)))
     assert_allclose(getattr(loaded, attribute), fraction, rtol=1e-15)
 
 
 def test_a_percentage_is_read_as_a_fraction_in_every_dimensionless_field(write_scene):
-    text = BASE + '[[shaft]]\nname = "m"\nspeed_ratio = "250 %"\nefficiency = "90 %"\n' \
-                  '[design]\nhb_ratio = ["20 %", "50 %"]\n'
+    text = (
+        BASE + '[[shaft]]\nname = "m"\nspeed_ratio = "250 %"\nefficiency = "90 %"\n'
+        '[design]\nhb_ratio = ["20 %", "50 %"]\n'
+    )
     loaded = flyopt.load(write_scene(text))
     assert_allclose([loaded.shafts[0].speed_ratio, loaded.shafts[0].efficiency], [2.5, 0.9], rtol=1e-15)
     assert_allclose(loaded.design.hb_ratio, (0.2, 0.5), rtol=1e-15)
 
 
 @pytest.mark.parametrize("command", ["solve", "check"])
-@pytest.mark.parametrize("old, new, field", [
-    ('speed = "1500 rpm"', 'speed = "50 %"', "machine.speed"),
-    ('["45 deg", "1600 N*m"]', '["12.5 %", "1600 N*m"]', "torque.resisting.points[1] angle"),
-    ('"1600 N*m"], ["90 deg"', '"50 %"], ["90 deg"', "torque.resisting.points[1] torque"),
-])
+@pytest.mark.parametrize(
+    "old, new, field",
+    [
+        ('speed = "1500 rpm"', 'speed = "50 %"', "machine.speed"),
+        ('["45 deg", "1600 N*m"]', '["12.5 %", "1600 N*m"]', "torque.resisting.points[1] angle"),
+        ('"1600 N*m"], ["90 deg"', '"50 %"], ["90 deg"', "torque.resisting.points[1] torque"),
+    ],
+)
 def test_a_percentage_is_no_speed_angle_or_torque(cli, write_scene, command, old, new, field):
     path = write_scene(scene(old, new))
     assert_refused(cli(command, path), path, field, "wrong dimension: expected")
@@ -107,24 +117,43 @@ def test_a_percentage_is_no_speed_angle_or_torque(cli, write_scene, command, old
 MB = 1_000_000
 
 
-@pytest.mark.parametrize("old, new, field, match", [
-    ('speed = "1500 rpm"', f'speed = {"1" * 4000}', "machine.speed",
-     r"must be finite, got an integer of about 399\d digits"),
-    ('title = "t"', f'title = ["{"t" * MB}"]', "title", "must be a string"),
-    ("delta = 0.05", f'delta = 0.05\n{"k" * MB} = 1', "machine.kkkk", "unknown key"),
-    ('constant = "unknown"', f'expression = "1 + {"x" * 1900}"', "torque.driving.expression",
-     r"unknown name 'x+…' \(1900 characters\)"),
-    ('constant = "unknown"', 'constant = "unknown"\n[design]\ngeometry = "' + "rim" * MB + '"', "design.geometry",
-     r"\(3000000 characters\) is not known"),
-    ('constant = "unknown"', 'constant = "unknown"\n[[shaft]]\nname = "s"\nspeed_ratio = 1\n[design]\nshafts = ["'
-     + "s" * MB + '"]', "design.shafts[0]", r"unknown shaft 's+…' \(1000000 characters\)"),
-])
+@pytest.mark.parametrize(
+    "old, new, field, match",
+    [
+        (
+            'speed = "1500 rpm"',
+            f"speed = {'1' * 4000}",
+            "machine.speed",
+            r"must be finite, got an integer of about 399\d digits",
+        ),
+        ('title = "t"', f'title = ["{"t" * MB}"]', "title", "must be a string"),
+        ("delta = 0.05", f"delta = 0.05\n{'k' * MB} = 1", "machine.kkkk", "unknown key"),
+        (
+            'constant = "unknown"',
+            f'expression = "1 + {"x" * 1900}"',
+            "torque.driving.expression",
+            r"unknown name 'x+…' \(1900 characters\)",
+        ),
+        (
+            'constant = "unknown"',
+            'constant = "unknown"\n[design]\ngeometry = "' + "rim" * MB + '"',
+            "design.geometry",
+            r"\(3000000 characters\) is not known",
+        ),
+        (
+            'constant = "unknown"',
+            'constant = "unknown"\n[[shaft]]\nname = "s"\nspeed_ratio = 1\n[design]\nshafts = ["' + "s" * MB + '"]',
+            "design.shafts[0]",
+            r"unknown shaft 's+…' \(1000000 characters\)",
+        ),
+    ],
+)
 def test_a_message_quotes_at_most_a_short_piece_of_the_input(cli, write_scene, old, new, field, match):
     path = write_scene(scene(old, new))
     assert_refused(cli("check", path), path, field, match)
 
 
-@pytest.mark.parametrize("value", ["x" * MB, "it's " * 1000, ["y" * MB], [1] * MB, 10 ** 4000, 1e300, "short"])
+@pytest.mark.parametrize("value", ["x" * MB, "it's " * 1000, ["y" * MB], [1] * MB, 10**4000, 1e300, "short"])
 def test_shorten_quotes_at_most_about_sixty_characters(value):
     from flyopt.errors import QUOTE_LENGTH, shorten
 
@@ -137,17 +166,20 @@ def test_shorten_quotes_at_most_about_sixty_characters(value):
 # -- a number with a unit is read in milliseconds, whatever it holds --------------------
 
 
-@pytest.mark.parametrize("old, new, field, match", [
-    ('speed = "1500 rpm"', 'speed = "9**9**9 rpm"', "machine.speed", "exponent must be a number"),
-    ('speed = "1500 rpm"', 'speed = "10**10**10 rpm"', "machine.speed", "exponent must be a number"),
-    ('speed = "1500 rpm"', 'speed = "1500 rpm^9^9^9"', "machine.speed", "exponent must be a number"),
-    ('speed = "1500 rpm"', 'speed = "9**(9**9) rpm"', "machine.speed", "exponent must be a number"),
-    ('speed = "1500 rpm"', 'speed = "9**99999999 rpm"', "machine.speed", "exponent must be a number"),
-    ('"1600 N*m"], ["90 deg"', '"9^9^9 N*m"], ["90 deg"', "torque.resisting.points[1] torque", "exponent"),
-    ('constant = "unknown"', 'constant = 100\nunit = "N*m**9**9**9"', "torque.driving.unit", "exponent"),
-    ('speed = "1500 rpm"', f'speed = "{"1" * MB} rpm"', "machine.speed", "at most 100 characters"),
-    ("delta = 0.05", f'delta = "{"x" * MB}"', "machine.delta", r"'x+…' \(1000000 characters\) is too long"),
-])
+@pytest.mark.parametrize(
+    "old, new, field, match",
+    [
+        ('speed = "1500 rpm"', 'speed = "9**9**9 rpm"', "machine.speed", "exponent must be a number"),
+        ('speed = "1500 rpm"', 'speed = "10**10**10 rpm"', "machine.speed", "exponent must be a number"),
+        ('speed = "1500 rpm"', 'speed = "1500 rpm^9^9^9"', "machine.speed", "exponent must be a number"),
+        ('speed = "1500 rpm"', 'speed = "9**(9**9) rpm"', "machine.speed", "exponent must be a number"),
+        ('speed = "1500 rpm"', 'speed = "9**99999999 rpm"', "machine.speed", "exponent must be a number"),
+        ('"1600 N*m"], ["90 deg"', '"9^9^9 N*m"], ["90 deg"', "torque.resisting.points[1] torque", "exponent"),
+        ('constant = "unknown"', 'constant = 100\nunit = "N*m**9**9**9"', "torque.driving.unit", "exponent"),
+        ('speed = "1500 rpm"', f'speed = "{"1" * MB} rpm"', "machine.speed", "at most 100 characters"),
+        ("delta = 0.05", f'delta = "{"x" * MB}"', "machine.delta", r"'x+…' \(1000000 characters\) is too long"),
+    ],
+)
 def test_a_quantity_that_would_take_long_to_evaluate_is_refused_at_once(write_scene, old, new, field, match):
     path = write_scene(scene(old, new))
     assert_refused(run("check", path), path, field, match)
@@ -162,11 +194,14 @@ def test_solve_refuses_a_power_tower_too(write_scene):
 
 
 @pytest.mark.parametrize("command", ["solve", "check"])
-@pytest.mark.parametrize("expression, match", [
-    ("9**9**9**9", r"'9 \*\* 9 \*\* 9' is inf \(it overflows or is undefined\)"),
-    ("100 + 1/0", r"'1 / 0' is inf"),
-    ("100 + (-8)**(1/3)", r"is nan"),
-])
+@pytest.mark.parametrize(
+    "expression, match",
+    [
+        ("9**9**9**9", r"'9 \*\* 9 \*\* 9' is inf \(it overflows or is undefined\)"),
+        ("100 + 1/0", r"'1 / 0' is inf"),
+        ("100 + (-8)**(1/3)", r"is nan"),
+    ],
+)
 def test_an_expression_that_overflows_is_refused_naming_the_field(cli, write_scene, command, expression, match):
     path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
     assert_refused(cli(command, path), path, "torque.driving.expression", match)
@@ -175,22 +210,28 @@ def test_an_expression_that_overflows_is_refused_naming_the_field(cli, write_sce
 # -- nesting deep enough to exhaust Python's recursion -------------------------------------
 
 
-@pytest.mark.parametrize("expression, match", [
-    ("-" * 1997 + "phi", "nested more than 200 deep"),
-    ("phi+" * 499 + "1", "nested more than 200 deep"),
-    ("sin(-" * 150 + "phi" + ")" * 150, "nested more than 200 deep"),
-    ("(" * 500 + "phi" + ")" * 500, "too many nested parentheses"),
-])
+@pytest.mark.parametrize(
+    "expression, match",
+    [
+        ("-" * 1997 + "phi", "nested more than 200 deep"),
+        ("phi+" * 499 + "1", "nested more than 200 deep"),
+        ("sin(-" * 150 + "phi" + ")" * 150, "nested more than 200 deep"),
+        ("(" * 500 + "phi" + ")" * 500, "too many nested parentheses"),
+    ],
+)
 def test_a_deeply_nested_expression_is_refused_naming_the_field(cli, write_scene, expression, match):
     path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
     assert_refused(cli("check", path), path, "torque.driving.expression", match)
 
 
-@pytest.mark.parametrize("text, match", [
-    (BASE + "x = " + "[" * 100_000 + "]" * 100_000, "nested too deeply"),
-    (BASE + "x = " + "{a = " * 50_000 + "1" + "}" * 50_000, "nested too deeply"),
-    (BASE + "x = " + "1" * 5000, "digits"),
-])
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        (BASE + "x = " + "[" * 100_000 + "]" * 100_000, "nested too deeply"),
+        (BASE + "x = " + "{a = " * 50_000 + "1" + "}" * 50_000, "nested too deeply"),
+        (BASE + "x = " + "1" * 5000, "digits"),
+    ],
+)
 def test_a_toml_file_python_cannot_read_is_refused_naming_the_file(cli, write_scene, text, match):
     path = write_scene(text)
     for command in ("solve", "check"):
@@ -220,9 +261,14 @@ def test_check_accepts_a_member_force_as_the_whole_load(cli, write_scene):
 
 
 @pytest.mark.parametrize("command", ["solve", "check"])
-@pytest.mark.parametrize("expression, near", [("100 + tan(phi)", "1.5708"), ("1/(phi - 1)", "1"),
-                                              ("1/cos(phi)", "1.5708")])
+@pytest.mark.parametrize(
+    "expression, near", [("100 + tan(phi)", "1.5708"), ("1/(phi - 1)", "1"), ("1/cos(phi)", "1.5708")]
+)
 def test_a_torque_with_a_pole_is_refused_naming_the_field(cli, write_scene, command, expression, near):
     path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
-    assert_refused(cli(command, path), path, "torque.driving.expression",
-                   rf"the expression has a pole near φ = {near} rad .*\|M\| grows without bound")
+    assert_refused(
+        cli(command, path),
+        path,
+        "torque.driving.expression",
+        rf"the expression has a pole near φ = {near} rad .*\|M\| grows without bound",
+    )

@@ -8,9 +8,18 @@ from importlib import resources
 import pytest
 from numpy.testing import assert_allclose
 
-from flyopt.design.materials import (Material, StrengthRow, ThicknessOutOfRange, _material_from_table,
-                                     builtin_materials, default_materials, get_material, make_material,
-                                     material_library, rim_speed_from_stress)
+from flyopt.design.materials import (
+    Material,
+    StrengthRow,
+    ThicknessOutOfRange,
+    _material_from_table,
+    builtin_materials,
+    default_materials,
+    get_material,
+    make_material,
+    material_library,
+    rim_speed_from_stress,
+)
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -59,11 +68,10 @@ def test_builtin_materials_is_cached_but_returns_a_copy():
 def test_rim_speed_from_stress_satisfies_hoop_stress_relation():
     """sigma = rho v^2 of a thin ring (domain notes section 10)."""
     material = make_material("steel S355", 7850.0, allowable_stress=120e6, cost=1.5)
-    assert_allclose(material.density * material.max_rim_speed ** 2, 120e6, rtol=1e-14)
+    assert_allclose(material.density * material.max_rim_speed**2, 120e6, rtol=1e-14)
     assert material.allowable_stress == 120e6
     assert material.cost == 1.5
-    assert_allclose(rim_speed_from_stress(120e6, 7850.0), math.sqrt(120e6 / 7850.0),
-                    rtol=1e-15)
+    assert_allclose(rim_speed_from_stress(120e6, 7850.0), math.sqrt(120e6 / 7850.0), rtol=1e-15)
 
 
 def test_make_material_keeps_a_given_rim_speed_with_its_stress():
@@ -72,16 +80,19 @@ def test_make_material_keeps_a_given_rim_speed_with_its_stress():
     assert material.allowable_stress == 20e6
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(name="x", density=7000.0), "max_rim_speed.*allowable_stress"),
-    (dict(name="x", density=-1.0, max_rim_speed=30.0), "density"),
-    (dict(name="x", density=float("nan"), max_rim_speed=30.0), "density"),
-    (dict(name="x", density=7000.0, max_rim_speed=0.0), "max_rim_speed"),
-    (dict(name="x", density=7000.0, allowable_stress=-5.0), "allowable_stress"),
-    (dict(name="x", density=7000.0, max_rim_speed=30.0, cost=-1.0), "cost"),
-    (dict(name="x", density="heavy", max_rim_speed=30.0), "density"),
-    (dict(name="", density=7000.0, max_rim_speed=30.0), "name"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(name="x", density=7000.0), "max_rim_speed.*allowable_stress"),
+        (dict(name="x", density=-1.0, max_rim_speed=30.0), "density"),
+        (dict(name="x", density=float("nan"), max_rim_speed=30.0), "density"),
+        (dict(name="x", density=7000.0, max_rim_speed=0.0), "max_rim_speed"),
+        (dict(name="x", density=7000.0, allowable_stress=-5.0), "allowable_stress"),
+        (dict(name="x", density=7000.0, max_rim_speed=30.0, cost=-1.0), "cost"),
+        (dict(name="x", density="heavy", max_rim_speed=30.0), "density"),
+        (dict(name="", density=7000.0, max_rim_speed=30.0), "name"),
+    ],
+)
 def test_make_material_rejects(kwargs, match):
     with pytest.raises(ValueError, match=match):
         make_material(**kwargs)
@@ -122,7 +133,7 @@ def _table_material(**extra):
 def test_textbook_allowable_is_the_hoop_stress_of_the_speed_limit():
     """Domain notes section 10: sigma = rho v^2, so cast iron's 36 m/s allows 7200 * 36^2 Pa."""
     cast_iron = builtin_materials()["cast_iron"]
-    assert cast_iron.allowable() == 7200.0 * 36.0 ** 2 == 9_331_200.0
+    assert cast_iron.allowable() == 7200.0 * 36.0**2 == 9_331_200.0
     # a thickness or a design's safety factor does not change a speed limit
     assert cast_iron.allowable(thickness=0.05, safety_factor=3.0) == 9_331_200.0
     assert cast_iron.rim_speed_limit(safety_factor=3.0) == 36.0
@@ -131,8 +142,9 @@ def test_textbook_allowable_is_the_hoop_stress_of_the_speed_limit():
 
 
 def test_explicit_allowable_stress_wins_over_strengths_and_factors():
-    material = make_material("x", 7000.0, allowable_stress=20e6, tensile_strength=200e6,
-                             ductile=False, safety_factor=4.0)
+    material = make_material(
+        "x", 7000.0, allowable_stress=20e6, tensile_strength=200e6, ductile=False, safety_factor=4.0
+    )
     assert material.allowable() == 20e6
     assert material.allowable(safety_factor=2.0) == 20e6
     assert_allclose(material.max_rim_speed, math.sqrt(20e6 / 7000.0), rtol=1e-15)
@@ -140,8 +152,9 @@ def test_explicit_allowable_stress_wins_over_strengths_and_factors():
 
 def test_ductile_allowable_is_yield_over_safety_factor():
     """Von Mises against R_p0.2: 300 MPa / 2 = 150 MPa; the design's 3 wins: 100 MPa."""
-    material = make_material("steel", 7850.0, tensile_strength=500e6, yield_strength=300e6,
-                             ductile=True, safety_factor=2.0)
+    material = make_material(
+        "steel", 7850.0, tensile_strength=500e6, yield_strength=300e6, ductile=True, safety_factor=2.0
+    )
     assert material.failure_criterion == "von_mises"
     assert material.allowable() == 150e6
     assert material.allowable(safety_factor=3.0) == 100e6
@@ -202,8 +215,9 @@ def test_table_fields_may_repeat_the_weakest_row():
 
 
 def test_elastic_constants_and_limits_are_kept():
-    material = make_material("x", 7000.0, max_rim_speed=40.0, elastic_modulus=170e9,
-                             poisson_ratio=0.0, min_wall=0.004, bearing_pressure=90e6)
+    material = make_material(
+        "x", 7000.0, max_rim_speed=40.0, elastic_modulus=170e9, poisson_ratio=0.0, min_wall=0.004, bearing_pressure=90e6
+    )
     assert (material.elastic_modulus, material.poisson_ratio) == (170e9, 0.0)
     assert (material.min_wall, material.bearing_pressure) == (0.004, 90e6)
 
@@ -211,56 +225,85 @@ def test_elastic_constants_and_limits_are_kept():
 def test_scene_values_pass_through_make_material():
     """The scene parser hands every key to make_material as SI floats and a bool."""
     table = [[0.016, 1100e6, 900e6], [0.040, 1000e6, 750e6]]
-    material = make_material("forged", 7840.0, source="scene", ductile=True, safety_factor=2.5,
-                             strength_by_thickness=table, thickness_rule="wheel")
+    material = make_material(
+        "forged",
+        7840.0,
+        source="scene",
+        ductile=True,
+        safety_factor=2.5,
+        strength_by_thickness=table,
+        thickness_rule="wheel",
+    )
     assert material.strength(0.02) == (1000e6, 750e6)
     assert_allclose(material.max_rim_speed, math.sqrt(750e6 / 2.5 / 7840.0), rtol=1e-15)
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(elastic_modulus=-1.0), "elastic_modulus"),
-    (dict(elastic_modulus=0.0), "elastic_modulus"),
-    (dict(poisson_ratio=0.5), r"poisson_ratio.*< 0.5"),
-    (dict(poisson_ratio=0.6), "poisson_ratio"),
-    (dict(poisson_ratio=-0.1), r"poisson_ratio.*>= 0"),
-    (dict(poisson_ratio=float("nan")), "poisson_ratio"),
-    (dict(tensile_strength=0.0, ductile=False), "tensile_strength"),
-    (dict(tensile_strength=-5.0, ductile=False), "tensile_strength"),
-    (dict(yield_strength=0.0, ductile=True), "yield_strength"),
-    (dict(tensile_strength=300e6, yield_strength=400e6, ductile=True), "yield_strength.*<= tensile"),
-    (dict(tensile_strength=300e6, ductile=False, safety_factor=1.0), r"safety_factor.*> 1"),
-    (dict(tensile_strength=300e6, ductile=False, safety_factor=0.5), "safety_factor"),
-    (dict(safety_factor=2.0), "safety_factor applies to"),
-    (dict(tensile_strength=300e6), "ductile must be given"),
-    (dict(tensile_strength=300e6, ductile="yes"), "ductile must be true or false"),
-    (dict(tensile_strength=300e6, ductile=True), "ductile material.*yield_strength"),
-    (dict(yield_strength=300e6, ductile=False), "brittle material.*tensile_strength"),
-    (dict(min_wall=0.0), "min_wall"),
-    (dict(bearing_pressure=-1.0), "bearing_pressure"),
-    (dict(thickness_rule="part"), "thickness_rule 'part' needs a strength_by_thickness"),
-    (dict(ductile=True, strength_by_thickness=TABLE), r"thickness_rule must be one of \['part', 'wheel'\]"),
-    (dict(ductile=True, strength_by_thickness=TABLE, thickness_rule="ruling"), "thickness_rule"),
-    (dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.03, 400e6, 450e6)]),
-     r"strength_by_thickness\[0\].yield_strength.*<= tensile"),
-    (dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.03, -1.0, 250e6)]),
-     r"strength_by_thickness\[0\].tensile_strength"),
-    (dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.0, 400e6, 250e6)]),
-     r"strength_by_thickness\[0\].max_thickness"),
-    (dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.06, 400e6, 250e6),
-                                                                       (0.03, 390e6, 240e6)]),
-     r"strength_by_thickness\[1\].max_thickness.*increasing"),
-    (dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.03, 400e6, 250e6, 1.0)]),
-     r"strength_by_thickness\[0\] must have 2 or 3 numbers"),
-    (dict(ductile=True, thickness_rule="part", strength_by_thickness="0.03 400e6"),
-     "strength_by_thickness must be a list of rows"),
-    (dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.03, 400e6)]),
-     "ductile material.*yield_strength"),
-    (dict(ductile=True, thickness_rule="part", strength_by_thickness=TABLE, tensile_strength=400e6),
-     "tensile_strength 4e[+]08 Pa differs from the weakest row"),
-    (dict(ductile=True, thickness_rule="part", strength_by_thickness=TABLE, min_wall=0.3),
-     "min_wall.*above the thickest row"),
-    (dict(elasticity=200e9), "unknown field 'elasticity'.*allowed are.*'elastic_modulus'"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(elastic_modulus=-1.0), "elastic_modulus"),
+        (dict(elastic_modulus=0.0), "elastic_modulus"),
+        (dict(poisson_ratio=0.5), r"poisson_ratio.*< 0.5"),
+        (dict(poisson_ratio=0.6), "poisson_ratio"),
+        (dict(poisson_ratio=-0.1), r"poisson_ratio.*>= 0"),
+        (dict(poisson_ratio=float("nan")), "poisson_ratio"),
+        (dict(tensile_strength=0.0, ductile=False), "tensile_strength"),
+        (dict(tensile_strength=-5.0, ductile=False), "tensile_strength"),
+        (dict(yield_strength=0.0, ductile=True), "yield_strength"),
+        (dict(tensile_strength=300e6, yield_strength=400e6, ductile=True), "yield_strength.*<= tensile"),
+        (dict(tensile_strength=300e6, ductile=False, safety_factor=1.0), r"safety_factor.*> 1"),
+        (dict(tensile_strength=300e6, ductile=False, safety_factor=0.5), "safety_factor"),
+        (dict(safety_factor=2.0), "safety_factor applies to"),
+        (dict(tensile_strength=300e6), "ductile must be given"),
+        (dict(tensile_strength=300e6, ductile="yes"), "ductile must be true or false"),
+        (dict(tensile_strength=300e6, ductile=True), "ductile material.*yield_strength"),
+        (dict(yield_strength=300e6, ductile=False), "brittle material.*tensile_strength"),
+        (dict(min_wall=0.0), "min_wall"),
+        (dict(bearing_pressure=-1.0), "bearing_pressure"),
+        (dict(thickness_rule="part"), "thickness_rule 'part' needs a strength_by_thickness"),
+        (dict(ductile=True, strength_by_thickness=TABLE), r"thickness_rule must be one of \['part', 'wheel'\]"),
+        (dict(ductile=True, strength_by_thickness=TABLE, thickness_rule="ruling"), "thickness_rule"),
+        (
+            dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.03, 400e6, 450e6)]),
+            r"strength_by_thickness\[0\].yield_strength.*<= tensile",
+        ),
+        (
+            dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.03, -1.0, 250e6)]),
+            r"strength_by_thickness\[0\].tensile_strength",
+        ),
+        (
+            dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.0, 400e6, 250e6)]),
+            r"strength_by_thickness\[0\].max_thickness",
+        ),
+        (
+            dict(
+                ductile=True, thickness_rule="part", strength_by_thickness=[(0.06, 400e6, 250e6), (0.03, 390e6, 240e6)]
+            ),
+            r"strength_by_thickness\[1\].max_thickness.*increasing",
+        ),
+        (
+            dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.03, 400e6, 250e6, 1.0)]),
+            r"strength_by_thickness\[0\] must have 2 or 3 numbers",
+        ),
+        (
+            dict(ductile=True, thickness_rule="part", strength_by_thickness="0.03 400e6"),
+            "strength_by_thickness must be a list of rows",
+        ),
+        (
+            dict(ductile=True, thickness_rule="part", strength_by_thickness=[(0.03, 400e6)]),
+            "ductile material.*yield_strength",
+        ),
+        (
+            dict(ductile=True, thickness_rule="part", strength_by_thickness=TABLE, tensile_strength=400e6),
+            "tensile_strength 4e[+]08 Pa differs from the weakest row",
+        ),
+        (
+            dict(ductile=True, thickness_rule="part", strength_by_thickness=TABLE, min_wall=0.3),
+            "min_wall.*above the thickest row",
+        ),
+        (dict(elasticity=200e9), "unknown field 'elasticity'.*allowed are.*'elastic_modulus'"),
+    ],
+)
 def test_make_material_rejects_bad_new_fields(kwargs, match):
     """Each bad value is refused with the material's name, the field and what is allowed."""
     kwargs.setdefault("max_rim_speed", 40.0)
@@ -289,6 +332,7 @@ def test_data_file_rejects_unknown_keys_naming_material_and_key():
 
 
 # --- the default set -------------------------------------------------------------------------
+
 
 def test_default_materials_are_the_textbook_pair_and_the_users():
     """A scene that names no materials designs with what it did before the grades were added."""

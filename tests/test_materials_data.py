@@ -11,8 +11,7 @@ from importlib import resources
 
 import pytest
 
-from flyopt.design.materials import (ThicknessOutOfRange, builtin_materials, default_materials,
-                                     get_material)
+from flyopt.design.materials import ThicknessOutOfRange, builtin_materials, default_materials, get_material
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -22,8 +21,18 @@ else:  # pragma: no cover
 MPA = 1e6
 MM = 1e-3
 MATERIALS = builtin_materials(default_only=False)
-NUMERIC = ("density", "max_rim_speed", "allowable_stress", "cost", "elastic_modulus",
-           "tensile_strength", "yield_strength", "safety_factor", "min_wall", "bearing_pressure")
+NUMERIC = (
+    "density",
+    "max_rim_speed",
+    "allowable_stress",
+    "cost",
+    "elastic_modulus",
+    "tensile_strength",
+    "yield_strength",
+    "safety_factor",
+    "min_wall",
+    "bearing_pressure",
+)
 
 
 def _data():
@@ -90,10 +99,15 @@ def test_en1561_1997_table1_first_rows_of_en_gjl_200_and_300():
     assert (MATERIALS["en_gjl_200"].min_wall, MATERIALS["en_gjl_300"].min_wall) == (2.5 * MM, 10 * MM)
 
 
-@pytest.mark.parametrize("name, rm, rp", [
-    ("EN-GJS-400-18", 400, 250), ("EN-GJS-500-7", 500, 320),
-    ("EN-GJS-600-3", 600, 370), ("EN-GJS-700-2", 700, 420),
-])
+@pytest.mark.parametrize(
+    "name, rm, rp",
+    [
+        ("EN-GJS-400-18", 400, 250),
+        ("EN-GJS-500-7", 500, 320),
+        ("EN-GJS-600-3", 600, 370),
+        ("EN-GJS-700-2", 700, 420),
+    ],
+)
 def test_en1563_1997_table1_separately_cast_strengths(name, rm, rp):
     """EN 1563:1997 Table 1 (the grade's designation values), used up to 30 mm walls only."""
     gjs = get_material(name)
@@ -103,9 +117,16 @@ def test_en1563_1997_table1_separately_cast_strengths(name, rm, rp):
         gjs.strength(31 * MM)
 
 
-@pytest.mark.parametrize("t_mm, rm, rp", [
-    (8, 1100, 900), (20, 1000, 750), (50, 900, 650), (100, 800, 550), (160, 750, 500),
-])
+@pytest.mark.parametrize(
+    "t_mm, rm, rp",
+    [
+        (8, 1100, 900),
+        (20, 1000, 750),
+        (50, 900, 650),
+        (100, 800, 550),
+        (160, 750, 500),
+    ],
+)
 def test_en10083_3_42crmo4_qt_by_ruling_section(t_mm, rm, rp):
     """EN 10083-3, 42CrMo4+QT by flat ruling section t: R_m (lower end of range), R_p0.2 minimum."""
     steel = MATERIALS["42crmo4_qt"]
@@ -132,8 +153,9 @@ def test_standard_grades_need_the_designs_safety_factor():
 
 def test_every_builtin_hub_rule_is_a_rule_of_keys_toml():
     """A material's hub rule names a hub_proportions row that exists (a wrong name would end a design)."""
-    import tomllib
     from importlib import resources
+
+    import tomllib
 
     from flyopt.design.materials import builtin_materials
 

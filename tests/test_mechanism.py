@@ -16,12 +16,12 @@ import casadi as ca
 import mpmath
 import numpy as np
 import pytest
+from conftest import assert_published
 from numpy.testing import assert_allclose
 from scipy import integrate, optimize
 
-from conftest import assert_published
 from flyopt.cycle.indicator import ExcessWork
-from flyopt.machine.mechanism import (GearTrain, Member, SliderCrank, equivalent_inertia, equivalent_torque)
+from flyopt.machine.mechanism import GearTrain, Member, SliderCrank, equivalent_inertia, equivalent_torque
 from flyopt.machine.torque import Constant
 
 TWO_PI = 2 * math.pi
@@ -38,9 +38,11 @@ J_C = 0.2
 
 def slider_crank_members(sc):
     crank, rod, slider = sc.kinematics("crank", CRANK_C), sc.kinematics("rod", ROD_C), sc.kinematics("slider")
-    return [Member("crank", CRANK_M, CRANK_J, crank.velocity_ratio, crank.angular_ratio),
-            Member("rod", ROD_M, ROD_J, rod.velocity_ratio, rod.angular_ratio),
-            Member("slider", SLIDER_M, 0.0, slider.velocity_ratio, slider.angular_ratio)]
+    return [
+        Member("crank", CRANK_M, CRANK_J, crank.velocity_ratio, crank.angular_ratio),
+        Member("rod", ROD_M, ROD_J, rod.velocity_ratio, rod.angular_ratio),
+        Member("slider", SLIDER_M, 0.0, slider.velocity_ratio, slider.angular_ratio),
+    ]
 
 
 # -- independent reference: mpmath loop closure and numerical differentiation -----
@@ -74,17 +76,18 @@ def mp_kinetic_inertia(phi):
     v_rod2 = d(rod_centre, 0) ** 2 + d(rod_centre, 1) ** 2
     w_rod = mpmath.diff(lambda p: mp_positions(p)[2], phi)
     v_slider = mpmath.diff(lambda p: mp_positions(p)[1][0], phi)
-    return (J_C + CRANK_J + CRANK_M * v_crank2 + ROD_J * w_rod**2 + ROD_M * v_rod2
-            + SLIDER_M * v_slider**2)
+    return J_C + CRANK_J + CRANK_M * v_crank2 + ROD_J * w_rod**2 + ROD_M * v_rod2 + SLIDER_M * v_slider**2
 
 
 def test_domain_example3_reduced_inertia_and_torque():
     """Domain page example 3: J_e = 0.0655 kg m^2, M_e = 8.66 N m (resisting)."""
     gears = GearTrain.from_teeth([(20, 40)])
-    members = [Member("shaft 1", 0.0, 0.003, 0.0, gears.angular_ratio(0)),
-               Member("gear 2", 0.0, 0.06, 0.0, gears.angular_ratio(1)),
-               Member("link", 1.0, 0.0, 0.1, 0.0),
-               Member("slider", 5.0, 0.0, 0.0866, 0.0, force=100.0, force_sense="resisting")]
+    members = [
+        Member("shaft 1", 0.0, 0.003, 0.0, gears.angular_ratio(0)),
+        Member("gear 2", 0.0, 0.06, 0.0, gears.angular_ratio(1)),
+        Member("link", 1.0, 0.0, 0.1, 0.0),
+        Member("slider", 5.0, 0.0, 0.0866, 0.0, force=100.0, force_sense="resisting"),
+    ]
     j_e = equivalent_inertia(members)(0.0)
     m_e = equivalent_torque(members)(0.0)
     assert_published(j_e, "0.0655")
@@ -125,8 +128,12 @@ def test_slider_velocity_textbook_closed_form():
     sc = SliderCrank(R, L)
     lam = R / L
     root = np.sqrt(1 - lam**2 * np.sin(ANGLES) ** 2)
-    assert_allclose(sc.slider_velocity_ratio(ANGLES), -R * np.sin(ANGLES) * (1 + lam * np.cos(ANGLES) / root),
-                    rtol=1e-13, atol=1e-16)
+    assert_allclose(
+        sc.slider_velocity_ratio(ANGLES),
+        -R * np.sin(ANGLES) * (1 + lam * np.cos(ANGLES) / root),
+        rtol=1e-13,
+        atol=1e-16,
+    )
     assert_allclose(sc.rod_angular_ratio(ANGLES), -lam * np.cos(ANGLES) / root, rtol=1e-13, atol=1e-16)
     assert sc.stroke() == pytest.approx(2 * R, rel=1e-15)
 
@@ -137,10 +144,10 @@ def test_slider_crank_loop_closure_and_stroke():
     phi = np.linspace(0, TWO_PI, 101)
     xb = sc.slider_position(phi)
     assert_allclose(np.hypot(xb - R * np.cos(phi), E - R * np.sin(phi)), L, rtol=1e-14)
-    hi = optimize.minimize_scalar(lambda p: -sc.slider_position(p), bounds=(-1, 1), method="bounded",
-                                  options={"xatol": 1e-12})
-    lo = optimize.minimize_scalar(sc.slider_position, bounds=(2, 4.5), method="bounded",
-                                  options={"xatol": 1e-12})
+    hi = optimize.minimize_scalar(
+        lambda p: -sc.slider_position(p), bounds=(-1, 1), method="bounded", options={"xatol": 1e-12}
+    )
+    lo = optimize.minimize_scalar(sc.slider_position, bounds=(2, 4.5), method="bounded", options={"xatol": 1e-12})
     # the extremes are flat, so the positions there are accurate to ~xatol² even though the angles are not
     assert_allclose(-hi.fun - lo.fun, sc.stroke(), rtol=1e-12)
 
@@ -149,8 +156,15 @@ def test_casadi_and_numpy_agree():
     """The same J_e and M_e through CasADi SX and through numpy (round-off only: 1e-14)."""
     sc = SliderCrank(R, L, E)
     members = slider_crank_members(sc)
-    members[2] = Member("slider", SLIDER_M, 0.0, sc.slider_velocity_ratio, 0.0,
-                        force=([0, 1, 1, TWO_PI], [0, 0, 500, 500]), force_sense="resisting")
+    members[2] = Member(
+        "slider",
+        SLIDER_M,
+        0.0,
+        sc.slider_velocity_ratio,
+        0.0,
+        force=([0, 1, 1, TWO_PI], [0, 0, 500, 500]),
+        force_sense="resisting",
+    )
     j_e, m_e = equivalent_inertia(members, J_C), equivalent_torque(members)
     phi = ca.SX.sym("phi")
     f = ca.Function("f", [phi], [j_e.casadi(phi), m_e.casadi(phi)])
@@ -183,11 +197,13 @@ def test_axial_force_equals_resisting_force_that_opposes_motion():
     resisting = equivalent_torque([Member("s", 1.0, 0.0, sc.slider_velocity_ratio, 0.0, force=force)])
     signs = np.sign(sc.slider_velocity_ratio(angles))
     for phi, sign in zip(angles, signs):
-        axial = equivalent_torque([Member("s", 1.0, 0.0, sc.slider_velocity_ratio, 0.0, force=-force * sign,
-                                          force_sense="axial")])
+        axial = equivalent_torque(
+            [Member("s", 1.0, 0.0, sc.slider_velocity_ratio, 0.0, force=-force * sign, force_sense="axial")]
+        )
         assert_allclose(axial(phi), resisting(phi), rtol=1e-15)
-    driving = equivalent_torque([Member("s", 1.0, 0.0, sc.slider_velocity_ratio, 0.0, force=force,
-                                        force_sense="driving")])
+    driving = equivalent_torque(
+        [Member("s", 1.0, 0.0, sc.slider_velocity_ratio, 0.0, force=force, force_sense="driving")]
+    )
     assert_allclose(driving(angles), -resisting(angles), rtol=1e-15)
 
 
@@ -195,8 +211,10 @@ def test_torque_on_a_gear_and_force_table_limits():
     """A resisting moment T on a gear at ω_2/ω = 1/2 reduces to −T/2; a force table step has two limits."""
     gears = GearTrain([0.5, 0.25])
     assert gears.angular_ratio(2) == 0.125
-    members = [Member("gear", 0.0, 0.1, 0.0, gears.angular_ratio(1), torque=40.0),
-               Member("ram", 10.0, 0.0, 0.2, 0.0, force=([0, 1, 1, TWO_PI], [0, 0, 300, 300]))]
+    members = [
+        Member("gear", 0.0, 0.1, 0.0, gears.angular_ratio(1), torque=40.0),
+        Member("ram", 10.0, 0.0, 0.2, 0.0, force=([0, 1, 1, TWO_PI], [0, 0, 300, 300])),
+    ]
     m_e = equivalent_torque(members)
     left, right = m_e.limits(np.array([1.0]))
     assert_allclose([left[0], right[0]], [-20.0, -20.0 - 60.0], rtol=1e-15)
@@ -213,27 +231,32 @@ def test_table_velocity_ratio_is_linear_between_points():
     assert not j_e.is_constant
 
 
-@pytest.mark.parametrize("build, match", [
-    (lambda: SliderCrank(0.2, 0.2), "cannot turn fully"),
-    (lambda: SliderCrank(0.1, 0.3, 0.25), "cannot turn fully"),
-    (lambda: SliderCrank(-0.1, 0.3), "crank length must be a positive"),
-    (lambda: SliderCrank(0.1, 0.3).kinematics("piston"), "part 'piston' is not known"),
-    (lambda: SliderCrank(0.1, 0.3).kinematics("rod", 0.5), "between the pins"),
-    (lambda: Member("m", mass=-1.0), "mass must be a finite number >= 0"),
-    (lambda: Member("m", inertia=math.nan), "inertia must be a finite number >= 0"),
-    (lambda: Member("", mass=1.0), "non-empty name"),
-    (lambda: Member("m", force=1.0, force_sense="pushing"), "force_sense 'pushing' is not known"),
-    (lambda: equivalent_inertia([Member("a"), Member("a")]), "repeated: a"),
-    (lambda: equivalent_inertia([Member("a", 1.0, 0.0, ([0, 1, 1, 2], [0, 0, 1, 1]))]), "cannot jump"),
-    (lambda: equivalent_inertia([Member("a", 1.0, 0.0, ([0, 2, 1], [0, 1, 1]))]), "non-decreasing"),
-    (lambda: equivalent_inertia([Member("a", 1.0, 0.0, "fast")]), "must be a number, a table"),
-    (lambda: equivalent_inertia([Member("a")], j_constant=-1.0), "j_constant must be"),
-    (lambda: equivalent_torque([Member("a", 1.0, 0.0, lambda p: (p, p), force=1.0, force_sense="axial")])(1.0),
-     "needs a scalar"),
-    (lambda: GearTrain([0.5, 0.0]), "finite non-zero"),
-    (lambda: GearTrain([0.5]).angular_ratio(3), "shafts 0..1"),
-    (lambda: GearTrain.from_teeth([(20, 0)]), "tooth counts must be positive"),
-])
+@pytest.mark.parametrize(
+    "build, match",
+    [
+        (lambda: SliderCrank(0.2, 0.2), "cannot turn fully"),
+        (lambda: SliderCrank(0.1, 0.3, 0.25), "cannot turn fully"),
+        (lambda: SliderCrank(-0.1, 0.3), "crank length must be a positive"),
+        (lambda: SliderCrank(0.1, 0.3).kinematics("piston"), "part 'piston' is not known"),
+        (lambda: SliderCrank(0.1, 0.3).kinematics("rod", 0.5), "between the pins"),
+        (lambda: Member("m", mass=-1.0), "mass must be a finite number >= 0"),
+        (lambda: Member("m", inertia=math.nan), "inertia must be a finite number >= 0"),
+        (lambda: Member("", mass=1.0), "non-empty name"),
+        (lambda: Member("m", force=1.0, force_sense="pushing"), "force_sense 'pushing' is not known"),
+        (lambda: equivalent_inertia([Member("a"), Member("a")]), "repeated: a"),
+        (lambda: equivalent_inertia([Member("a", 1.0, 0.0, ([0, 1, 1, 2], [0, 0, 1, 1]))]), "cannot jump"),
+        (lambda: equivalent_inertia([Member("a", 1.0, 0.0, ([0, 2, 1], [0, 1, 1]))]), "non-decreasing"),
+        (lambda: equivalent_inertia([Member("a", 1.0, 0.0, "fast")]), "must be a number, a table"),
+        (lambda: equivalent_inertia([Member("a")], j_constant=-1.0), "j_constant must be"),
+        (
+            lambda: equivalent_torque([Member("a", 1.0, 0.0, lambda p: (p, p), force=1.0, force_sense="axial")])(1.0),
+            "needs a scalar",
+        ),
+        (lambda: GearTrain([0.5, 0.0]), "finite non-zero"),
+        (lambda: GearTrain([0.5]).angular_ratio(3), "shafts 0..1"),
+        (lambda: GearTrain.from_teeth([(20, 0)]), "tooth counts must be positive"),
+    ],
+)
 def test_bad_input_raises_value_error(build, match):
     with pytest.raises(ValueError, match=match):
         build()

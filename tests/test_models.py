@@ -4,10 +4,10 @@ import json
 import math
 
 import pytest
+from conftest import PROBLEMS
 from numpy.testing import assert_allclose
 
 import flyopt
-from conftest import PROBLEMS
 from flyopt.cli.main import main
 from flyopt.errors import SceneError
 
@@ -16,10 +16,16 @@ def models_of(analysis):
     return {m["model"]: m for m in analysis.models}
 
 
-@pytest.mark.parametrize("scene, expected", [
-    ("shear-press", "energy"), ("compressor", "energy"), ("slider-crank-press", "energy_mass"),
-    ("motor-press", "dynamic"), ("example1-net-areas", "energy"),
-])
+@pytest.mark.parametrize(
+    "scene, expected",
+    [
+        ("shear-press", "energy"),
+        ("compressor", "energy"),
+        ("slider-crank-press", "energy_mass"),
+        ("motor-press", "dynamic"),
+        ("example1-net-areas", "energy"),
+    ],
+)
 def test_the_cheapest_exact_model_is_chosen(scene, expected):
     analysis = flyopt.analyse(flyopt.load(PROBLEMS / f"{scene}.toml"))
     assert analysis.model == expected
@@ -43,15 +49,15 @@ def test_cheaper_model_is_off_on_a_variable_inertia_press():
     rows = models_of(analysis)
     exact, cheap = rows["energy_mass"], rows["energy"]
     assert exact["exact"] and not cheap["exact"]
-    assert abs(cheap["j_error"]) > 0.01                     # > 1 % off in J_F
-    assert abs(cheap["achieved_delta"] - analysis.delta) > 1e-3 * analysis.delta   # and δ is not what was asked
+    assert abs(cheap["j_error"]) > 0.01  # > 1 % off in J_F
+    assert abs(cheap["achieved_delta"] - analysis.delta) > 1e-3 * analysis.delta  # and δ is not what was asked
     assert_allclose(exact["achieved_delta"], analysis.delta, rtol=1e-12)
 
 
 def test_cheaper_models_are_off_on_a_speed_dependent_press():
     analysis = flyopt.analyse(flyopt.load(PROBLEMS / "motor-press.toml"))
     rows = models_of(analysis)
-    assert analysis.model == "dynamic" and "energy_mass" not in rows   # constant J: energy_mass adds nothing
+    assert analysis.model == "dynamic" and "energy_mass" not in rows  # constant J: energy_mass adds nothing
     assert abs(rows["energy"]["j_error"]) > 1e-3
     assert abs(rows["energy"]["achieved_delta"] - analysis.delta) > 1e-4 * analysis.delta
     # the mean speed follows from the motor's torque-speed balance, below synchronous/24
@@ -73,15 +79,13 @@ def test_verification_reproduces_delta_of_the_exact_method():
 @pytest.mark.slow
 def test_engine_members_verification():
     """The member-based engine (720°, variable J_e): simulation and energy–mass agree to 1e-6 in δ."""
-    solution = flyopt.solve(flyopt.load(PROBLEMS / "engine-members.toml"), design_flywheel=False,
-                            verify_design=True)
+    solution = flyopt.solve(flyopt.load(PROBLEMS / "engine-members.toml"), design_flywheel=False, verify_design=True)
     assert solution.analysis.model == "energy_mass"
     assert_allclose(solution.verification.achieved_delta, solution.analysis.delta, rtol=1e-6)
 
 
 def test_forcing_a_cheap_model_says_it_is_not_exact(capsys):
-    assert main(["solve", str(PROBLEMS / "slider-crank-press.toml"), "--model", "energy", "--json",
-                 "--no-design"]) == 0
+    assert main(["solve", str(PROBLEMS / "slider-crank-press.toml"), "--model", "energy", "--json", "--no-design"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["model"] == "energy"
     assert "the exact model for this scene is energy_mass" in data["model_reason"]
@@ -111,6 +115,7 @@ def test_flagged_verification_exits_4(monkeypatch, capsys):
         import dataclasses
 
         return real(scene, dataclasses.replace(analysis, j_margin=0.5 * analysis.j_margin))
+
     monkeypatch.setattr(pipeline, "verify", too_small)
     assert main(["solve", str(PROBLEMS / "shear-press.toml"), "--verify", "--no-design"]) == 4
     assert "FLAGGED" in capsys.readouterr().out
@@ -154,10 +159,13 @@ def test_bad_members(tmp_path, extra, field, words):
     assert str(info.value).startswith(f"{path}: {field}: ") and words in str(info.value)
 
 
-@pytest.mark.parametrize("mechanism, field, words", [
-    ('kind = "slider_crank"\ncrank = "0.5 m"\nrod = "0.4 m"', "mechanism", "cannot turn fully"),
-    ('kind = "cam"', "mechanism.kind", "'cam' is not known"),
-])
+@pytest.mark.parametrize(
+    "mechanism, field, words",
+    [
+        ('kind = "slider_crank"\ncrank = "0.5 m"\nrod = "0.4 m"', "mechanism", "cannot turn fully"),
+        ('kind = "cam"', "mechanism.kind", "'cam' is not known"),
+    ],
+)
 def test_bad_mechanism(tmp_path, mechanism, field, words):
     text = MECHANISM.replace('kind = "slider_crank"\ncrank = "0.08 m"\nrod = "0.45 m"', mechanism)
     path = tmp_path / "m.toml"
@@ -167,7 +175,7 @@ def test_bad_mechanism(tmp_path, mechanism, field, words):
     assert str(info.value).startswith(f"{path}: {field}: ") and words in str(info.value)
 
 
-MOTOR = '''
+MOTOR = """
 [machine]
 speed = "60 rpm"
 delta = 0.1
@@ -178,19 +186,33 @@ constant = "100 N*m"
 [[shaft]]
 name = "motor"
 speed_ratio = 24.0
-'''
+"""
 
 
-@pytest.mark.parametrize("motor, field, words", [
-    ('kind = "stepper"', "torque.driving.motor.kind", "'stepper' is not known"),
-    ('kind = "induction", rated_power = "5 kW", rated_speed = "1500 rpm", synchronous_speed = "1440 rpm"',
-     "torque.driving.motor", "must be below its synchronous speed"),
-    ('kind = "induction", rated_power = "5 kW", rated_speed = "1440 rpm", synchronous_speed = "1500 rpm", '
-     'shaft = "gearbox"', "torque.driving.motor.shaft", "no [[shaft]] is named 'gearbox'"),
-    ('kind = "induction", rated_power = "5 kW", rated_speed = "1440 rpm", synchronous_speed = "1500 rpm", '
-     'model = "exact"', "torque.driving.motor.model", "not known"),
-    ('kind = "dc", no_load_speed = "1500 rpm"', "torque.driving.motor.rated_power", "is missing"),
-])
+@pytest.mark.parametrize(
+    "motor, field, words",
+    [
+        ('kind = "stepper"', "torque.driving.motor.kind", "'stepper' is not known"),
+        (
+            'kind = "induction", rated_power = "5 kW", rated_speed = "1500 rpm", synchronous_speed = "1440 rpm"',
+            "torque.driving.motor",
+            "must be below its synchronous speed",
+        ),
+        (
+            'kind = "induction", rated_power = "5 kW", rated_speed = "1440 rpm", synchronous_speed = "1500 rpm", '
+            'shaft = "gearbox"',
+            "torque.driving.motor.shaft",
+            "no [[shaft]] is named 'gearbox'",
+        ),
+        (
+            'kind = "induction", rated_power = "5 kW", rated_speed = "1440 rpm", synchronous_speed = "1500 rpm", '
+            'model = "exact"',
+            "torque.driving.motor.model",
+            "not known",
+        ),
+        ('kind = "dc", no_load_speed = "1500 rpm"', "torque.driving.motor.rated_power", "is missing"),
+    ],
+)
 def test_bad_motor(tmp_path, motor, field, words):
     path = tmp_path / "m.toml"
     path.write_text(MOTOR.replace("MOTOR", motor))
@@ -202,8 +224,10 @@ def test_bad_motor(tmp_path, motor, field, words):
 def test_speed_dependent_expression_runs_the_dynamic_model(tmp_path):
     """A load that grows with speed (fan-like) on a constant-inertia machine: the dynamic model runs,
     and as the speed term vanishes the result tends to the energy method's."""
-    base = ('[machine]\nspeed = "600 rpm"\ndelta = 0.05\ninertia = "0.5 kg*m^2"\n'
-            '[torque.driving]\nconstant = "unknown"\n[torque.resisting]\nexpression = "{expr}"\nunit = "N*m"\n')
+    base = (
+        '[machine]\nspeed = "600 rpm"\ndelta = 0.05\ninertia = "0.5 kg*m^2"\n'
+        '[torque.driving]\nconstant = "unknown"\n[torque.resisting]\nexpression = "{expr}"\nunit = "N*m"\n'
+    )
     results = {}
     for k, expr in (("speed", "300 + 200*sin(phi) + 0.01*omega**2"), ("none", "300 + 200*sin(phi) + 0*omega")):
         path = tmp_path / f"{k}.toml"

@@ -46,8 +46,9 @@ def test_kloss_curve_properties():
     w0 = 1500 * RPM
     assert_allclose(m.torque(1440 * RPM, "kloss"), m.rated_torque, rtol=1e-14)
     assert_allclose(m.breakdown_slip, 0.04 * (k + math.sqrt(k * k - 1)), rtol=1e-14)
-    peak = optimize.minimize_scalar(lambda w: -m.torque(w, "kloss"), bounds=(0, w0), method="bounded",
-                                    options={"xatol": 1e-10})
+    peak = optimize.minimize_scalar(
+        lambda w: -m.torque(w, "kloss"), bounds=(0, w0), method="bounded", options={"xatol": 1e-10}
+    )
     assert_allclose(-peak.fun, k * m.rated_torque, rtol=1e-12)
     assert_allclose(1 - peak.x / w0, m.breakdown_slip, rtol=1e-7)
     sb = m.breakdown_slip
@@ -87,8 +88,9 @@ def test_reference_torque_keeps_power_through_the_transmission():
     assert_allclose(m.reference_torque(0.0, 12.0, 1.0, model="kloss"), 12 * m.starting_torque(), rtol=1e-14)
 
 
-@pytest.mark.parametrize("motor, model", [(issue_motor(), "linear"), (issue_motor(), "kloss"),
-                                          (DCMotor(100.0, 50.0), None)])
+@pytest.mark.parametrize(
+    "motor, model", [(issue_motor(), "linear"), (issue_motor(), "kloss"), (DCMotor(100.0, 50.0), None)]
+)
 def test_casadi_and_numpy_agree(motor, model):
     """The torque laws are the same expression in CasADi and numpy (1e-14)."""
     w = ca.SX.sym("w")
@@ -99,16 +101,19 @@ def test_casadi_and_numpy_agree(motor, model):
     assert_allclose(np.asarray(f(speeds.reshape(1, -1))).ravel(), numeric, rtol=1e-14, atol=1e-12)
 
 
-@pytest.mark.parametrize("build, match", [
-    (lambda: InductionMotor(7500.0, 160.0, 150.0), "must be below its synchronous speed"),
-    (lambda: InductionMotor(-1.0, 150.0, 157.0), "rated_power"),
-    (lambda: InductionMotor(7500.0, 150.0, 157.0, breakdown_ratio=0.9), "must exceed 1"),
-    (lambda: InductionMotor(7500.0, 150.0, math.inf), "synchronous_speed"),
-    (lambda: issue_motor().torque(100.0, "steinmetz"), "model 'steinmetz' is not known"),
-    (lambda: issue_motor().reference_torque(1.0, efficiency=1.2), r"efficiency must lie in \(0, 1\]"),
-    (lambda: DCMotor(0.0, 1.0), "no_load_speed"),
-    (lambda: DCMotor.from_rated(1000.0, 120.0, 100.0), "must be below the no-load speed"),
-])
+@pytest.mark.parametrize(
+    "build, match",
+    [
+        (lambda: InductionMotor(7500.0, 160.0, 150.0), "must be below its synchronous speed"),
+        (lambda: InductionMotor(-1.0, 150.0, 157.0), "rated_power"),
+        (lambda: InductionMotor(7500.0, 150.0, 157.0, breakdown_ratio=0.9), "must exceed 1"),
+        (lambda: InductionMotor(7500.0, 150.0, math.inf), "synchronous_speed"),
+        (lambda: issue_motor().torque(100.0, "steinmetz"), "model 'steinmetz' is not known"),
+        (lambda: issue_motor().reference_torque(1.0, efficiency=1.2), r"efficiency must lie in \(0, 1\]"),
+        (lambda: DCMotor(0.0, 1.0), "no_load_speed"),
+        (lambda: DCMotor.from_rated(1000.0, 120.0, 100.0), "must be below the no-load speed"),
+    ],
+)
 def test_bad_input_raises_value_error(build, match):
     with pytest.raises(ValueError, match=match):
         build()

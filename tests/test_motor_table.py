@@ -16,10 +16,10 @@ import sys
 import casadi as ca
 import numpy as np
 import pytest
+from conftest import PROBLEMS
 from numpy.testing import assert_allclose
 
 import flyopt
-from conftest import PROBLEMS
 from flyopt.machine.motor import DCMotor, InductionMotor, TableMotor
 
 RPM = math.pi / 30
@@ -47,8 +47,12 @@ def inline_motor(rows):
 
 
 def solve_json(path, *options):
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(path), "--json", *options],
-                         capture_output=True, text=True, timeout=300)
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "solve", str(path), "--json", *options],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert run.returncode == 0, run.stderr
     return json.loads(run.stdout)
 
@@ -78,8 +82,12 @@ def test_a_table_on_the_dc_line_is_the_dc_motor_start_up_included(tmp_path):
 def test_a_csv_motor_table_is_the_inline_table(tmp_path):
     rows = line_rows([0.0, 300.0, 900.0, 1440.0, 1500.0, 1550.0])
     csv = "speed [rpm],torque [N*m]\n" + "".join(f"{a!r},{t!r}\n" for a, t in rows)
-    from_file = scene_with(tmp_path, 'motor = { kind = "table", speed_unit = "rpm", unit = "N*m", shaft = "motor", '
-                                     'points_file = "motor.csv" }', csv, name="file.toml")
+    from_file = scene_with(
+        tmp_path,
+        'motor = { kind = "table", speed_unit = "rpm", unit = "N*m", shaft = "motor", points_file = "motor.csv" }',
+        csv,
+        name="file.toml",
+    )
     written = scene_with(tmp_path, inline_motor(rows), name="inline.toml")
     a, b = solve_json(from_file, "--no-design"), solve_json(written, "--no-design")
     a.pop("scene"), b.pop("scene")
@@ -90,8 +98,8 @@ def test_the_table_is_one_expression_for_numpy_and_casadi():
     motor = TableMotor([0.0, 50.0, 140.0, 157.0], [300.0, 280.0, 120.0, -10.0])
     w = np.array([-5.0, 0.0, 25.0, 50.0, 100.0, 140.0, 150.0, 157.0, 170.0])
     expected = np.interp(w, motor.speeds, motor.torques)
-    expected[0] = 300.0 + 5.0 * 20.0 / 50.0                          # the first segment, extended
-    expected[-1] = -10.0 + 13.0 * (-130.0 / 17.0)                     # the last segment, extended
+    expected[0] = 300.0 + 5.0 * 20.0 / 50.0  # the first segment, extended
+    expected[-1] = -10.0 + 13.0 * (-130.0 / 17.0)  # the last segment, extended
     assert_allclose(motor.torque(w), expected, rtol=1e-13, atol=1e-12)
     x = ca.SX.sym("w")
     f = ca.Function("f", [x], [motor.torque(x)])
@@ -102,36 +110,56 @@ def test_the_table_is_one_expression_for_numpy_and_casadi():
 
 def test_a_motor_too_weak_for_the_load_is_refused(tmp_path):
     path = scene_with(tmp_path, inline_motor([(0.0, 20.0), (1500.0, 0.0)]))
-    run = subprocess.run([sys.executable, "-m", "flyopt", "check", str(path)], capture_output=True, text=True,
-                         timeout=120)
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "check", str(path)], capture_output=True, text=True, timeout=120
+    )
     assert run.returncode == 2 and len(run.stderr.splitlines()) == 1, run.stderr
     assert "torque.driving: the motor's largest torque on the reference shaft" in run.stderr
     assert "(the largest of its table), is below the mean load" in run.stderr
 
 
-FILE_MOTOR = ('motor = { kind = "table", speed_unit = "rpm", unit = "N*m", shaft = "motor", '
-              'points_file = "motor.csv" }')
+FILE_MOTOR = 'motor = { kind = "table", speed_unit = "rpm", unit = "N*m", shaft = "motor", points_file = "motor.csv" }'
 
 
-@pytest.mark.parametrize("csv_text, match", [
-    ("speed,torque\n0,900\n1600,500\n1500,0\n",
-     r"speeds must increase: .*motor\.csv line 4 \(157\.08 rad/s\) comes after 167\.552 rad/s"),
-    ("0,900\n1500,0\n1500,-5\n",
-     r"speeds must increase: .*motor\.csv line 3 \(157\.08 rad/s\) comes after 157\.08 rad/s"),
-    ("0,900\n100,800\n", r"the torque at the last row \(.*motor\.csv line 2, 10\.472 rad/s\) is 800 N\*m: the table "
-                         r"must reach the motor's no-load speed"),
-    ("speed,torque\n0,900\n", r"a table needs at least two rows of speed,torque \(the first at rest\); only line 2"),
-    ("0,900\n1500\n", r"motor\.csv line 2: expected 2 columns, speed and torque separated by a comma, got 1"),
-    ("0,900\n1500,zero\n", r"motor\.csv line 2, column 2: 'zero' is not a number \(allowed: a plain number, "
-                           r"the torque in N\*m\)"),
-    ("10,900\n1500,0\n", r"the table starts at 1\.0472 rad/s \(.*motor\.csv line 1\); it must start at rest"),
-    ("0,900\n1500,-10\n1600,0\n", r"the torque rises over the last segment \(.*motor\.csv line 2 to "
-                                  r".*motor\.csv line 3\)"),
-])
+@pytest.mark.parametrize(
+    "csv_text, match",
+    [
+        (
+            "speed,torque\n0,900\n1600,500\n1500,0\n",
+            r"speeds must increase: .*motor\.csv line 4 \(157\.08 rad/s\) comes after 167\.552 rad/s",
+        ),
+        (
+            "0,900\n1500,0\n1500,-5\n",
+            r"speeds must increase: .*motor\.csv line 3 \(157\.08 rad/s\) comes after 157\.08 rad/s",
+        ),
+        (
+            "0,900\n100,800\n",
+            r"the torque at the last row \(.*motor\.csv line 2, 10\.472 rad/s\) is 800 N\*m: the table "
+            r"must reach the motor's no-load speed",
+        ),
+        (
+            "speed,torque\n0,900\n",
+            r"a table needs at least two rows of speed,torque \(the first at rest\); only line 2",
+        ),
+        ("0,900\n1500\n", r"motor\.csv line 2: expected 2 columns, speed and torque separated by a comma, got 1"),
+        (
+            "0,900\n1500,zero\n",
+            r"motor\.csv line 2, column 2: 'zero' is not a number \(allowed: a plain number, "
+            r"the torque in N\*m\)",
+        ),
+        ("10,900\n1500,0\n", r"the table starts at 1\.0472 rad/s \(.*motor\.csv line 1\); it must start at rest"),
+        (
+            "0,900\n1500,-10\n1600,0\n",
+            r"the torque rises over the last segment \(.*motor\.csv line 2 to "
+            r".*motor\.csv line 3\)",
+        ),
+    ],
+)
 def test_a_malformed_motor_table_is_refused_in_one_line(tmp_path, csv_text, match):
     path = scene_with(tmp_path, FILE_MOTOR, csv_text)
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(path)], capture_output=True, text=True,
-                         timeout=120)
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "solve", str(path)], capture_output=True, text=True, timeout=120
+    )
     assert "Traceback" not in run.stderr
     assert run.returncode == 2 and run.stdout == "" and len(run.stderr.splitlines()) == 1, run.stderr
     assert run.stderr.startswith(f"flyopt: error: {path}: torque.driving.motor.points_file: "), run.stderr
@@ -140,12 +168,17 @@ def test_a_malformed_motor_table_is_refused_in_one_line(tmp_path, csv_text, matc
 
 def test_a_missing_motor_file_and_both_forms_are_refused(tmp_path):
     path = scene_with(tmp_path, FILE_MOTOR)
-    run = subprocess.run([sys.executable, "-m", "flyopt", "check", str(path)], capture_output=True, text=True,
-                         timeout=120)
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "check", str(path)], capture_output=True, text=True, timeout=120
+    )
     assert run.returncode == 2 and "motor.csv: No such file or directory" in run.stderr, run.stderr
     both = FILE_MOTOR.replace(" }", ", points = [[0, 900], [1500, 0]] }")
-    run = subprocess.run([sys.executable, "-m", "flyopt", "check", str(scene_with(tmp_path, both))],
-                         capture_output=True, text=True, timeout=120)
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "check", str(scene_with(tmp_path, both))],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert run.returncode == 2 and "torque.driving.motor: a motor table needs exactly one of points" in run.stderr
 
 

@@ -17,8 +17,11 @@ NOTEBOOKS = sorted((Path(__file__).resolve().parents[1] / "notebooks").glob("*.i
 
 def _code(path):
     cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
-    return "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "code"
-                     and not "".join(c["source"]).lstrip().startswith(("%", "!")))
+    return "\n".join(
+        "".join(c["source"])
+        for c in cells
+        if c["cell_type"] == "code" and not "".join(c["source"]).lstrip().startswith(("%", "!"))
+    )
 
 
 def _private_names(source):
@@ -30,8 +33,11 @@ def _private_names(source):
                 private.append(f"from {node.module}")
             private += [f"{node.module}.{a.name}" for a in node.names if a.name.startswith("_")]
         elif isinstance(node, ast.Import):
-            private += [a.name for a in node.names if a.name.split(".")[0] == "flyopt"
-                        and any(part.startswith("_") for part in a.name.split("."))]
+            private += [
+                a.name
+                for a in node.names
+                if a.name.split(".")[0] == "flyopt" and any(part.startswith("_") for part in a.name.split("."))
+            ]
         elif isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__"):
             private.append(f".{node.attr}")
     return private
@@ -45,7 +51,8 @@ def test_a_notebook_uses_the_public_api_only(path):
 
 def test_the_scan_catches_a_private_call():
     """The check above can fail: private modules, names and attributes are each caught; public ones are not."""
-    assert _private_names("from flyopt.design.materials import _load_builtin\nfrom flyopt.sizing._numerics import quiet\n"
-                          "x = scene._lazy\nimport flyopt.sizing._numerics\n") == \
-        ["flyopt.design.materials._load_builtin", "from flyopt.sizing._numerics", "flyopt.sizing._numerics", "._lazy"]
+    assert _private_names(
+        "from flyopt.design.materials import _load_builtin\nfrom flyopt.sizing._numerics import quiet\n"
+        "x = scene._lazy\nimport flyopt.sizing._numerics\n"
+    ) == ["flyopt.design.materials._load_builtin", "from flyopt.sizing._numerics", "flyopt.sizing._numerics", "._lazy"]
     assert _private_names("import flyopt\nfrom flyopt.report import display\nx = scene.__class__\n") == []

@@ -13,8 +13,6 @@ chose.
 import math
 
 import numpy as np
-import pandas as pd
-import pytest
 
 import flyopt
 
@@ -30,7 +28,7 @@ def _scene(rng, k):
     tie = k % 4 == 0
     if tie:
         geometry = "disc"
-    speed = float(rng.uniform(100, 3000))                      # rpm
+    speed = float(rng.uniform(100, 3000))  # rpm
     delta = float(10 ** rng.uniform(-2.5, -0.7))
     a_max = float(10 ** rng.uniform(1, 5))
     areas = [a_max, -0.4 * a_max, 0.1 * a_max, -0.7 * a_max]
@@ -39,10 +37,10 @@ def _scene(rng, k):
         shafts.append((name, float(10 ** rng.uniform(-0.5, 0.8))))
     design = {"geometry": geometry, "hb_ratio": [1.5, 2.0] if rng.random() < 0.7 else [1.0, 1.0]}
     omega_top = speed * math.pi / 30 * max(r for _, r in shafts) * (1 + delta / 2)
-    cap_iron = 2 * 36.0 / omega_top                            # the smallest rim-speed cap of all
+    cap_iron = 2 * 36.0 / omega_top  # the smallest rim-speed cap of all
     choice = rng.random()
     if tie:
-        design["max_outer_diameter"] = f"{0.5 * cap_iron} m"   # binds before any speed cap
+        design["max_outer_diameter"] = f"{0.5 * cap_iron} m"  # binds before any speed cap
     elif choice < 0.35:
         design["max_outer_diameter"] = f"{float(rng.uniform(0.3, 1.0)) * cap_iron} m"
     elif choice < 0.6:
@@ -50,15 +48,17 @@ def _scene(rng, k):
     if geometry == "disc" or rng.random() < 0.3:
         design["max_width"] = f"{float(10 ** rng.uniform(-1.5, 0))} m"
     materials = ["cast_iron", "cast_steel"]
-    rng.shuffle(materials)                                     # the winner must not depend on the order
+    rng.shuffle(materials)  # the winner must not depend on the order
     design["materials"] = materials
-    return flyopt.from_dict({
-        "title": f"random {k}",
-        "machine": {"speed": f"{speed} rpm", "delta": delta},
-        "torque": {"net": {"areas": [f"{e} J" for e in areas]}},
-        "shaft": [{"name": n, "speed_ratio": r} for n, r in shafts],
-        "design": design,
-    })
+    return flyopt.from_dict(
+        {
+            "title": f"random {k}",
+            "machine": {"speed": f"{speed} rpm", "delta": delta},
+            "torque": {"net": {"areas": [f"{e} J" for e in areas]}},
+            "shaft": [{"name": n, "speed_ratio": r} for n, r in shafts],
+            "design": design,
+        }
+    )
 
 
 SCENES = [_scene(np.random.default_rng(2026), k) for k in range(N_SCENES)]
@@ -80,11 +80,11 @@ def test_solve_and_sweep_name_the_same_winner_on_random_scenes():
         assert (row["best_material"], row["best_shaft"]) == expected[:2], scene.title
         np.testing.assert_allclose(row["mass"], expected[2], rtol=RTOL, err_msg=scene.title)
         ties += scene.design.geometry == "disc" and "max_outer_diameter" in row["binding"]
-    assert ties >= N_SCENES // 8          # the exact ties are really exercised
+    assert ties >= N_SCENES // 8  # the exact ties are really exercised
 
 
 def test_the_winner_does_not_depend_on_the_order_materials_are_given():
-    for scene in SCENES[::4]:            # the disc-at-envelope ties
+    for scene in SCENES[::4]:  # the disc-at-envelope ties
         flipped = scene.replace(design_materials=tuple(reversed(scene.design_materials)))
         assert _solve_winner(flipped) == _solve_winner(scene), scene.title
 
@@ -106,7 +106,7 @@ def test_pareto_front_ends_at_the_solve_design():
     done = 0
     for scene in SCENES:
         if scene.design.geometry == "disc" and scene.design.max_width == math.inf:
-            continue                      # no front: a disc can be made as small as one likes
+            continue  # no front: a disc can be made as small as one likes
         expected = _solve_winner(scene)
         if expected is None:
             continue
@@ -115,6 +115,6 @@ def test_pareto_front_ends_at_the_solve_design():
         assert (lightest["best_material"], lightest["best_shaft"]) == expected[:2], scene.title
         np.testing.assert_allclose(lightest["mass"], expected[2], rtol=RTOL, err_msg=scene.title)
         done += 1
-        if done == 12:                    # each front solves IPOPT for its smallest wheel
+        if done == 12:  # each front solves IPOPT for its smallest wheel
             break
     assert done == 12

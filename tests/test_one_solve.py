@@ -11,30 +11,38 @@ A case the one-solve cannot settle must fall back on the CVODES search, never re
 import math
 
 import pytest
+from conftest import PROBLEMS
 from numpy.testing import assert_allclose
+from test_dynamics import HARD_CASES, N_COMPRESSOR, TWO_PI, compressor, press
+from test_sizing_failures import speed_load
 
 import flyopt
-from conftest import PROBLEMS
 from flyopt.errors import NonPeriodicCycle, SolverFailed
 from flyopt.machine.motor import DCMotor
 from flyopt.machine.reduce import reduce
 from flyopt.sizing import energy_mass, periodic, shooting
-from test_dynamics import HARD_CASES, N_COMPRESSOR, TWO_PI, compressor, press
-from test_sizing_failures import speed_load
-
 
 
 def requirement_args(machine):
     """The arguments of periodic.dynamic_requirement for a reduced scene."""
-    return (machine.net_torque(), machine.j_machine, machine.cycle_angle, machine.omega_mean, machine.delta,
-            machine.knots())
+    return (
+        machine.net_torque(),
+        machine.j_machine,
+        machine.cycle_angle,
+        machine.omega_mean,
+        machine.delta,
+        machine.knots(),
+    )
 
 
 def by_cvodes(monkeypatch, args):
     """The requirement by the CVODES search alone (the one-solve made to give up)."""
     with monkeypatch.context() as patch:
-        patch.setattr(shooting, "required_flywheel",
-                      lambda *a, **k: (_ for _ in ()).throw(shooting.NotSettled("test: CVODES only")))
+        patch.setattr(
+            shooting,
+            "required_flywheel",
+            lambda *a, **k: (_ for _ in ()).throw(shooting.NotSettled("test: CVODES only")),
+        )
         return periodic.dynamic_requirement(*args)
 
 
@@ -78,10 +86,15 @@ def test_motor_press_agrees_with_cvodes(monkeypatch):
 def test_variable_inertia_with_a_motor_agrees_with_cvodes(monkeypatch, write_scene):
     """The slider-crank press (J_e(φ) from a 400 kg ram) driven by an induction motor: both
     exact models at once."""
-    text = (PROBLEMS / "slider-crank-press.toml").read_text().replace(
-        'constant = "unknown"',
-        'motor = { kind = "induction", rated_power = "4 kW", rated_speed = "1440 rpm", '
-        'synchronous_speed = "1500 rpm", shaft = "motor" }')
+    text = (
+        (PROBLEMS / "slider-crank-press.toml")
+        .read_text()
+        .replace(
+            'constant = "unknown"',
+            'motor = { kind = "induction", rated_power = "4 kW", rated_speed = "1440 rpm", '
+            'synchronous_speed = "1500 rpm", shaft = "motor" }',
+        )
+    )
     machine = reduce(flyopt.load(write_scene(text)))
     assert machine.speed_dependent and machine.variable_inertia
     args = requirement_args(machine)
@@ -93,16 +106,14 @@ def test_variable_inertia_with_a_motor_agrees_with_cvodes(monkeypatch, write_sce
 def test_balancing_constant_agrees_with_cvodes(monkeypatch, write_scene):
     """A load that depends on speed against an unknown constant torque: the constant's
     correction and the mean speed are unknowns of the same solve."""
-    machine = reduce(flyopt.load(write_scene(speed_load("200 + 50*sin(phi)*omega/157",
-                                                        inertia="1 kg*m^2"))))
+    machine = reduce(flyopt.load(write_scene(speed_load("200 + 50*sin(phi)*omega/157", inertia="1 kg*m^2"))))
     args = requirement_args(machine)
     fast, fell_back = one_solve(args)
     assert not fell_back and periodic.periodic_model(*args[:3], args[5]).balanced
     reference = by_cvodes(monkeypatch, args)
     assert_agree(fast, reference)
     assert_allclose(fast.solution.omega_mean, machine.omega_mean, rtol=1e-12)
-    assert_allclose(fast.solution.torque_offset, reference.solution.torque_offset,
-                    atol=1e-8 * 200)
+    assert_allclose(fast.solution.torque_offset, reference.solution.torque_offset, atol=1e-8 * 200)
 
 
 @pytest.mark.parametrize("delta", [0.01, 0.05, 0.2])
@@ -114,14 +125,14 @@ def test_angle_only_variable_inertia_matches_the_energy_mass_closed_form(delta):
     fast, fell_back = one_solve((periodic.angle_torque(excess), j_e, TWO_PI, N_COMPRESSOR, delta, excess.knots))
     assert not fell_back
     assert_allclose(fast.j_required, exact.j_required, rtol=1e-9)
-    assert_allclose([fast.solution.omega_max, fast.solution.omega_min],
-                    [exact.omega_max, exact.omega_min], rtol=1e-9)
+    assert_allclose([fast.solution.omega_max, fast.solution.omega_min], [exact.omega_max, exact.omega_min], rtol=1e-9)
 
 
 def test_slider_crank_press_matches_the_energy_mass_closed_form():
     machine = reduce(flyopt.load(PROBLEMS / "slider-crank-press.toml"))
-    exact = energy_mass.energy_mass_requirement(machine.angle_only(), machine.j_machine, machine.omega_mean,
-                                                machine.delta)
+    exact = energy_mass.energy_mass_requirement(
+        machine.angle_only(), machine.j_machine, machine.omega_mean, machine.delta
+    )
     fast, fell_back = one_solve(requirement_args(machine))
     assert not fell_back
     assert_allclose(fast.j_required, exact.j_required, rtol=1e-9)
@@ -135,6 +146,7 @@ def test_a_motor_too_weak_is_not_settled_and_the_search_says_why():
 
     def net(phi, omega):
         return motor.torque(omega) - load.casadi(phi)
+
     model = periodic.periodic_model(net, 0.0, TWO_PI, load.breakpoints())
     with pytest.raises(shooting.NotSettled):
         shooting.required_flywheel(model, 0.05, omega_n, 1.0)
@@ -149,6 +161,7 @@ def test_unbalanced_angle_only_torques_are_not_periodic():
 
     def net(phi, omega):
         return 1.0 + 5 * ca.sin(phi)
+
     with pytest.raises(NonPeriodicCycle):
         periodic.dynamic_requirement(net, 1.0, TWO_PI, 10.0, 0.05)
 
@@ -166,6 +179,7 @@ def test_fixed_steps_are_refined_until_halving_them_changes_nothing(monkeypatch)
     def recording(solve, x, substeps, derivatives):
         seen.append(substeps)
         return original(solve, x, substeps, derivatives)
+
     monkeypatch.setattr(shooting, "_State", recording)
     fast, fell_back = one_solve(args)
     monkeypatch.setattr(shooting, "_State", original)

@@ -35,9 +35,9 @@ import pint
 import pyarrow.compute as pc
 import pyarrow.parquet as pq
 import pytest
+from conftest import PROBLEMS, ROOT
 
 import flyopt
-from conftest import PROBLEMS, ROOT
 from flyopt.cli.main import main
 from flyopt.io import results
 from flyopt.io.results import COUNTS, QUANTITIES, UNIT_SET_BY, read_results, unit_of
@@ -61,8 +61,7 @@ def _errors(document):
 #: (press-drive designs its motor with the flywheel, some 50 s).
 SLOW_SCENES = {"press-drive"}
 #: The scenes the fast checks of the schema and the units use (every branch of the schema occurs).
-FAST = ("punch-press-wheel", "conveyor", "motor-press", "example1-net-areas", "punch-press",
-        "slider-crank-press")
+FAST = ("punch-press-wheel", "conveyor", "motor-press", "example1-net-areas", "punch-press", "slider-crank-press")
 _DOCUMENTS = {}
 
 
@@ -74,8 +73,10 @@ def _documents(stem):
         scene, name = flyopt.load(path), str(path.relative_to(ROOT))
         solution = flyopt.solve(scene, verify_design=True)
         bare = flyopt.solve(scene, design_flywheel=False)
-        _DOCUMENTS[stem] = [json.loads(results.json_text(results.solution_document(s, name, timings=t)))
-                            for s, t in ((solution, True), (bare, False))]
+        _DOCUMENTS[stem] = [
+            json.loads(results.json_text(results.solution_document(s, name, timings=t)))
+            for s, t in ((solution, True), (bare, False))
+        ]
     return _DOCUMENTS[stem]
 
 
@@ -112,6 +113,7 @@ def _solve_document(path, **options):
 # The JSON Schema
 # --------------------------------------------------------------------------
 
+
 def test_the_schema_is_a_valid_draft_2020_12_schema():
     jsonschema.Draft202012Validator.check_schema(results.schema())
     assert results.schema()["$schema"] == "https://json-schema.org/draft/2020-12/schema"
@@ -133,10 +135,18 @@ def test_the_documents_cover_every_branch_of_the_schema(documents, tmp_path):
     each occurs in a document that validates (a schema tested on none of them tests nothing)."""
     more = {
         "infeasible": _solve_document(_variant(tmp_path, "tiny", _punch(**{'"1.2 m"': '"0.1 m"'}))),
-        "cost": _solve_document(_variant(tmp_path, "cost", _punch(**{
-            'materials = ["cast_iron", "cast_steel", "ductile_iron"]':
-                'materials = ["ductile_iron"]\nobjective = "cost"',
-            'density = "7100 kg/m^3"': 'density = "7100 kg/m^3"\ncost = "2.1 1/kg"'}))),
+        "cost": _solve_document(
+            _variant(
+                tmp_path,
+                "cost",
+                _punch(
+                    **{
+                        'materials = ["cast_iron", "cast_steel", "ductile_iron"]': 'materials = ["ductile_iron"]\nobjective = "cost"',
+                        'density = "7100 kg/m^3"': 'density = "7100 kg/m^3"\ncost = "2.1 1/kg"',
+                    }
+                ),
+            )
+        ),
         "arms": _solve_document(ROOT / "tests" / "data" / "wheels" / "engine-rim_arms.toml"),
     }
     more["drive"] = _drive_document()
@@ -167,17 +177,46 @@ def _drive_document():
     from flyopt.machine.catalogue import CatalogueMotor
 
     solution = flyopt.solve(flyopt.load(PROBLEMS / "punch-press.toml"), verify_design=True)
-    motor = CatalogueMotor(name="5.5 kW", rated_power=5500.0, rated_speed=151.8, synchronous_speed=157.1,
-                           rotor_inertia=0.022, breakdown_ratio=2.7, mass=40.0)
-    run = MotorRun(motor=motor, feasible=True, motor_ratio=24.0, j_flywheel=800.0, limit="delta", j_delta=800.0,
-                   rms_torque=30.0, mean_torque=20.0, rated_torque=36.0, omega_mean=6.28, delta=0.1,
-                   startup_time=5.0, flywheel_ratio=24.0, wheel=solution.design.best, motor_mass=40.0,
-                   wheel_mass=17.0, total_mass=57.0, objective=57.0)
-    drive = DriveDesign(status="designed", objective="mass", best=run, runs=(run, MotorRun(motor=motor, feasible=False,
-                        reason="too small")), relaxation=Relaxation(5000.0, 24.0, 24.0, 800.0, 57.0, "Solve_Succeeded"),
-                        note="relaxation")
-    check = DriveCheck(verification=solution.verification, rms_torque=30.0, rated_torque=36.0, startup_time=5.0,
-                       flagged=False)
+    motor = CatalogueMotor(
+        name="5.5 kW",
+        rated_power=5500.0,
+        rated_speed=151.8,
+        synchronous_speed=157.1,
+        rotor_inertia=0.022,
+        breakdown_ratio=2.7,
+        mass=40.0,
+    )
+    run = MotorRun(
+        motor=motor,
+        feasible=True,
+        motor_ratio=24.0,
+        j_flywheel=800.0,
+        limit="delta",
+        j_delta=800.0,
+        rms_torque=30.0,
+        mean_torque=20.0,
+        rated_torque=36.0,
+        omega_mean=6.28,
+        delta=0.1,
+        startup_time=5.0,
+        flywheel_ratio=24.0,
+        wheel=solution.design.best,
+        motor_mass=40.0,
+        wheel_mass=17.0,
+        total_mass=57.0,
+        objective=57.0,
+    )
+    drive = DriveDesign(
+        status="designed",
+        objective="mass",
+        best=run,
+        runs=(run, MotorRun(motor=motor, feasible=False, reason="too small")),
+        relaxation=Relaxation(5000.0, 24.0, 24.0, 800.0, 57.0, "Solve_Succeeded"),
+        note="relaxation",
+    )
+    check = DriveCheck(
+        verification=solution.verification, rms_torque=30.0, rated_torque=36.0, startup_time=5.0, flagged=False
+    )
     with_drive = dataclasses.replace(solution, drive=drive, drive_check=check)
     return json.loads(results.json_text(results.solution_document(with_drive, "drive.toml")))
 
@@ -188,6 +227,7 @@ def _set(path, value):
         for key in path[:-1]:
             target = target[key]
         target[path[-1]] = value
+
     return mutate
 
 
@@ -197,32 +237,36 @@ def _delete(path):
         for key in path[:-1]:
             target = target[key]
         del target[path[-1]]
+
     return mutate
 
 
-@pytest.mark.parametrize("mutate, why", [
-    (_set(["a_max"], "1256 J"), "a number as text"),
-    (_set(["flywheel_needed"], "yes"), "a boolean as text"),
-    (_set(["flywheel_needed"], None), "null where a value must be"),
-    (_set(["index_omega_max"], 1.5), "a fraction for an index"),
-    (_set(["energy_chain"], {}), "an object for a list"),
-    (_set(["design", "mass"], "heavy"), "the winner's mass as text"),
-    (_set(["design", "candidates", 0, "feasible"], 1), "a number for a boolean"),
-    (_set(["design", "candidates", 0, "parts", 0, "mass"], None), "a part without mass"),
-    (_set(["design", "binding"], "inertia"), "text for a list"),
-    (_set(["units", "mass"], 1), "a unit that is no text"),
-    (_set(["schema_version"], "0.9"), "another schema version"),
-    (_set(["kind"], "report"), "an unknown kind"),
-    (_set(["design", "status"], "maybe"), "an unknown design status"),
-    (_set(["surprise"], 1), "a field the schema does not know"),
-    (_set(["design", "candidates", 0, "stress", "surprise"], 1.0), "a field deep inside"),
-    (_delete(["a_max"]), "a missing analysis field"),
-    (_delete(["units"]), "no units"),
-    (_delete(["schema_version"]), "no version"),
-    (_delete(["design", "candidates", 0, "reason"]), "a candidate without its reason"),
-    (_delete(["design", "key"]), "a design without its key field"),
-    (_delete(["shafts", 0, "omega"]), "a shaft without its speed"),
-])
+@pytest.mark.parametrize(
+    "mutate, why",
+    [
+        (_set(["a_max"], "1256 J"), "a number as text"),
+        (_set(["flywheel_needed"], "yes"), "a boolean as text"),
+        (_set(["flywheel_needed"], None), "null where a value must be"),
+        (_set(["index_omega_max"], 1.5), "a fraction for an index"),
+        (_set(["energy_chain"], {}), "an object for a list"),
+        (_set(["design", "mass"], "heavy"), "the winner's mass as text"),
+        (_set(["design", "candidates", 0, "feasible"], 1), "a number for a boolean"),
+        (_set(["design", "candidates", 0, "parts", 0, "mass"], None), "a part without mass"),
+        (_set(["design", "binding"], "inertia"), "text for a list"),
+        (_set(["units", "mass"], 1), "a unit that is no text"),
+        (_set(["schema_version"], "0.9"), "another schema version"),
+        (_set(["kind"], "report"), "an unknown kind"),
+        (_set(["design", "status"], "maybe"), "an unknown design status"),
+        (_set(["surprise"], 1), "a field the schema does not know"),
+        (_set(["design", "candidates", 0, "stress", "surprise"], 1.0), "a field deep inside"),
+        (_delete(["a_max"]), "a missing analysis field"),
+        (_delete(["units"]), "no units"),
+        (_delete(["schema_version"]), "no version"),
+        (_delete(["design", "candidates", 0, "reason"]), "a candidate without its reason"),
+        (_delete(["design", "key"]), "a design without its key field"),
+        (_delete(["shafts", 0, "omega"]), "a shaft without its speed"),
+    ],
+)
 def test_a_mutated_document_fails(documents, mutate, why):
     document = json.loads(json.dumps(documents["punch-press-wheel/0"]))
     assert _errors(document) == []
@@ -233,7 +277,7 @@ def test_a_mutated_document_fails(documents, mutate, why):
 def test_the_not_needed_design_has_its_own_form(documents):
     document = json.loads(json.dumps(documents["conveyor/0"]))
     assert document["design"]["status"] == "not_needed" and _errors(document) == []
-    document["design"]["mass"] = 1.0           # a not-needed design carries no wheel
+    document["design"]["mass"] = 1.0  # a not-needed design carries no wheel
     assert _errors(document)
 
 
@@ -258,6 +302,7 @@ def test_the_command_line_json_validates(capsys):
 # Units
 # --------------------------------------------------------------------------
 
+
 def _numeric_keys(document):
     found = set()
 
@@ -270,6 +315,7 @@ def _numeric_keys(document):
                 visit(key, v)
         elif isinstance(value, (int, float)) and not isinstance(value, bool):
             found.add(key)
+
     visit(None, {k: v for k, v in document.items() if k != "units"})
     return found
 
@@ -297,8 +343,9 @@ def _only_null(document, key):
         elif isinstance(value, list):
             for v in value:
                 visit(v)
+
     visit({k: v for k, v in document.items() if k != "units"})
-    return any(v is None for v in found)     # a quantity with no value here (text elsewhere: model.objective)
+    return any(v is None for v in found)  # a quantity with no value here (text elsewhere: model.objective)
 
 
 def _q(unit):
@@ -311,64 +358,124 @@ def _q(unit):
 RELATIONS = {
     # section 5: J_F = A_max / (omega_m^2 delta); J_F is what j_margin clips and J_c adds to
     "j_required": "a_max / omega_mean**2 / delta",
-    "j_margin": "j_required", "j_constant": "j_required",
+    "j_margin": "j_required",
+    "j_constant": "j_required",
     # section 4: the work of a torque over the cycle angle; the excess work delta E; an angle
     # is a work over a torque
     "angle": "a_max / driving_torque",
-    "work_per_cycle": "driving_torque * cycle_angle", "delta_e": "a_max", "a_max": "driving_torque * angle",
+    "work_per_cycle": "driving_torque * cycle_angle",
+    "delta_e": "a_max",
+    "a_max": "driving_torque * angle",
     "resisting_torque": "driving_torque",
     # section 2: omega_m (1 +- delta/2); delta = (omega_max - omega_min)/omega_m
-    "omega_max": "omega_mean * (1 + delta)", "omega_min": "omega_mean", "omega": "omega_mean",
-    "omega_target": "omega_mean", "achieved_delta": "omega_max / omega_mean",
-    "delta_allowed": "delta", "tolerance": "delta", "j_error": "j_required / j_required",
+    "omega_max": "omega_mean * (1 + delta)",
+    "omega_min": "omega_mean",
+    "omega": "omega_mean",
+    "omega_target": "omega_mean",
+    "achieved_delta": "omega_max / omega_mean",
+    "delta_allowed": "delta",
+    "tolerance": "delta",
+    "j_error": "j_required / j_required",
     # angles of the cycle
-    "cycle_angle": "angle", "angle_omega_max": "angle", "angle_omega_min": "angle",
-    "angle_delta_e_max": "angle", "angle_delta_e_min": "angle",
+    "cycle_angle": "angle",
+    "angle_omega_max": "angle",
+    "angle_omega_min": "angle",
+    "angle_delta_e_max": "angle",
+    "angle_delta_e_min": "angle",
     # section 3: GD^2 = 4 g J (g in m/s^2)
     "gd2_required": "j_required * meter / second**2",
     # section 11: P = M_d omega_m, P_motor = P / eta
-    "power": "driving_torque * omega_mean", "motor_power": "power / efficiency",
+    "power": "driving_torque * omega_mean",
+    "motor_power": "power / efficiency",
     # section 8: J' = J_F / i^2, omega' = i omega
-    "j_required_on_shaft": "j_required / speed_ratio**2", "j_at_reference": "j_flywheel * speed_ratio**2",
-    "speed_ratio": "omega / omega_mean", "best_speed_ratio": "speed_ratio",
+    "j_required_on_shaft": "j_required / speed_ratio**2",
+    "j_at_reference": "j_flywheel * speed_ratio**2",
+    "speed_ratio": "omega / omega_mean",
+    "best_speed_ratio": "speed_ratio",
     # section 9: J = m D_m^2 / 4, H/B, D_1 = D_m + H
-    "j_flywheel": "mass * d_mean**2", "j_max": "j_flywheel", "hb_ratio": "h / b",
-    "d_outer": "d_mean + h", "d_inner": "d_mean - h", "d_mean": "h", "b": "h",
-    "outer_diameter": "d_outer", "d_outer_limit": "d_outer", "d_outer_needed": "d_outer",
-    "max_outer_diameter": "d_outer", "max_width": "b",
+    "j_flywheel": "mass * d_mean**2",
+    "j_max": "j_flywheel",
+    "hb_ratio": "h / b",
+    "d_outer": "d_mean + h",
+    "d_inner": "d_mean - h",
+    "d_mean": "h",
+    "b": "h",
+    "outer_diameter": "d_outer",
+    "d_outer_limit": "d_outer",
+    "d_outer_needed": "d_outer",
+    "max_outer_diameter": "d_outer",
+    "max_width": "b",
     # section 10: v = omega' D_1 / 2, sigma = rho v^2 (rho = m / volume), safety factor
-    "rim_speed": "omega_max * d_outer", "rim_speed_limit": "rim_speed",
-    "hoop_stress": "mass / d_outer**3 * rim_speed**2", "allowable_stress": "hoop_stress",
+    "rim_speed": "omega_max * d_outer",
+    "rim_speed_limit": "rim_speed",
+    "hoop_stress": "mass / d_outer**3 * rim_speed**2",
+    "allowable_stress": "hoop_stress",
     "safety_factor": "allowable_stress / hoop_stress",
     # section 13: parts, stresses, burst, balance (U = e m), the key (p = 2 T / (d t2 l), tau = 2 T / (d b l))
-    "inertia": "mass * r_outer**2", "r_outer": "d_outer", "r_inner": "d_inner", "thickness": "b",
-    "bore": "d_inner", "t_web": "b", "d_hub": "d_outer", "l_hub": "b", "arm_major": "b", "arm_minor": "b",
-    "radius": "r_outer", "wall": "b",
-    "stress": "hoop_stress", "allowable": "stress", "strength": "stress", "max_principal": "stress",
-    "von_mises": "stress", "hoop_max": "stress", "radial_max": "stress", "mean_hoop": "stress",
-    "strength_safety": "strength / stress", "burst_speed": "omega_max", "speed_margin": "burst_speed / omega_max",
+    "inertia": "mass * r_outer**2",
+    "r_outer": "d_outer",
+    "r_inner": "d_inner",
+    "thickness": "b",
+    "bore": "d_inner",
+    "t_web": "b",
+    "d_hub": "d_outer",
+    "l_hub": "b",
+    "arm_major": "b",
+    "arm_minor": "b",
+    "radius": "r_outer",
+    "wall": "b",
+    "stress": "hoop_stress",
+    "allowable": "stress",
+    "strength": "stress",
+    "max_principal": "stress",
+    "von_mises": "stress",
+    "hoop_max": "stress",
+    "radial_max": "stress",
+    "mean_hoop": "stress",
+    "strength_safety": "strength / stress",
+    "burst_speed": "omega_max",
+    "speed_margin": "burst_speed / omega_max",
     "unbalance_permissible": "mass * d_outer",
-    "torque": "driving_torque", "length": "l_hub", "effective_length": "length", "t1": "h", "t2": "h",
+    "torque": "driving_torque",
+    "length": "l_hub",
+    "effective_length": "length",
+    "t1": "h",
+    "t2": "h",
     "bearing_pressure": "torque / (bore * t2 * effective_length)",
     "shear": "torque / (bore * b * effective_length)",
-    "allowable_pressure": "bearing_pressure", "allowable_shear": "shear",
+    "allowable_pressure": "bearing_pressure",
+    "allowable_shear": "shear",
     # section 11 and money: a cost is mass times a price per kg (the sweep field material.NAME.cost)
-    "efficiency": "power / power", "cost": "mass * material.x.cost",
+    "efficiency": "power / power",
+    "cost": "mass * material.x.cost",
     # section 7: cycles turned in the run-up, omega t / Phi; wall-clock times
-    "time": "cycle_angle / omega_target", "cycles": "omega_target * time / cycle_angle",
+    "time": "cycle_angle / omega_target",
+    "cycles": "omega_target * time / cycle_angle",
     "solve_time": "time",
     # section 9: m = J / (D_m^2 / 4); section 11: omega_m = P / M_d
-    "mass": "j_flywheel / d_mean**2", "omega_mean": "power / driving_torque",
+    "mass": "j_flywheel / d_mean**2",
+    "omega_mean": "power / driving_torque",
     # section 9: m = rho pi D_m H B
     "density": "mass / (d_mean * h * b)",
-    "driving_torque": "work_per_cycle / cycle_angle", "h": "d_outer - d_inner",
+    "driving_torque": "work_per_cycle / cycle_angle",
+    "h": "d_outer - d_inner",
     # section 14, the drive: ratios of speeds, M_n = P_n / omega_n, inertias, the run-up, masses, price
-    "motor_ratio": "omega / omega_mean", "flywheel_ratio": "omega / omega_mean",
-    "breakdown_ratio": "torque / rated_torque", "rated_torque": "rated_power / rated_speed",
-    "rms_torque": "rated_torque", "mean_torque": "rated_torque", "rated_power": "power",
-    "rated_speed": "omega_mean", "synchronous_speed": "omega_mean", "rotor_inertia": "j_required",
-    "j_delta": "j_required", "startup_time": "time", "motor_mass": "mass", "wheel_mass": "mass",
-    "total_mass": "motor_mass + wheel_mass", "price": "cost",
+    "motor_ratio": "omega / omega_mean",
+    "flywheel_ratio": "omega / omega_mean",
+    "breakdown_ratio": "torque / rated_torque",
+    "rated_torque": "rated_power / rated_speed",
+    "rms_torque": "rated_torque",
+    "mean_torque": "rated_torque",
+    "rated_power": "power",
+    "rated_speed": "omega_mean",
+    "synchronous_speed": "omega_mean",
+    "rotor_inertia": "j_required",
+    "j_delta": "j_required",
+    "startup_time": "time",
+    "motor_mass": "mass",
+    "wheel_mass": "mass",
+    "total_mass": "motor_mass + wheel_mass",
+    "price": "cost",
 }
 
 
@@ -381,7 +488,7 @@ def _value(expression):
         unit = "radian" if name == "angle" else unit_of(name)
         assert unit is not None, f"{name} has no unit"
         scope[f"_v{k}"] = _q(unit)
-    return eval(text, {"__builtins__": {}}, scope)   # noqa: S307 - expressions of this file
+    return eval(text, {"__builtins__": {}}, scope)  # noqa: S307 - expressions of this file
 
 
 @pytest.mark.parametrize("name", sorted(RELATIONS))
@@ -395,9 +502,19 @@ def test_every_quantity_is_in_a_relation_and_every_unit_is_coherent_si():
     """No unit escapes the dimensional check, and each is SI without a prefix (1 of it is 1 in
     base units): "mm" or "MPa" would pass the dimension and still be wrong."""
     assert set(QUANTITIES) <= set(RELATIONS)
-    names = set(QUANTITIES) | {"delta", "speed", "inertia", "design.max_outer_diameter", "design.max_width",
-                               "design.d_mean", "material.x.density", "material.x.max_rim_speed",
-                               "material.x.cost", "shaft.x.speed_ratio", "torque.scale"}
+    names = set(QUANTITIES) | {
+        "delta",
+        "speed",
+        "inertia",
+        "design.max_outer_diameter",
+        "design.max_width",
+        "design.d_mean",
+        "material.x.density",
+        "material.x.max_rim_speed",
+        "material.x.cost",
+        "shaft.x.speed_ratio",
+        "torque.scale",
+    }
     for name in names:
         unit = unit_of(name)
         assert _q(unit).to_base_units().magnitude == pytest.approx(1.0, rel=1e-15), (name, unit)
@@ -411,10 +528,12 @@ def test_the_sweep_inputs_have_the_dimensions_their_values_are_read_in():
     assert set(results.INPUTS) == set(sweep_spec.FIELDS)
     for name, field in sweep_spec.FIELDS.items():
         assert results.INPUTS[name] == (field.dimension if field.kind == "number" else None), name
-    for table, mine in ((sweep_spec._MATERIAL_FIELDS, results.MATERIAL_INPUTS),
-                        (sweep_spec._SHAFT_FIELDS, results.SHAFT_INPUTS)):
+    for table, mine in (
+        (sweep_spec._MATERIAL_FIELDS, results.MATERIAL_INPUTS),
+        (sweep_spec._SHAFT_FIELDS, results.SHAFT_INPUTS),
+    ):
         assert {k: f.dimension for k, f in table.items()} == mine
-    assert not set(results.INPUTS) & set(QUANTITIES)      # one entry per name
+    assert not set(results.INPUTS) & set(QUANTITIES)  # one entry per name
     assert unit_of("material.cast_iron.density") == "kg/m**3" and unit_of("shaft.motor.speed_ratio") == "1"
 
 
@@ -446,7 +565,7 @@ def test_units_agree_with_the_nomenclature():
             continue
         unit = _NOMENCLATURE_UNITS.get(unit, unit)
         for segment in names.split(";"):
-            if "(" in segment:          # code or scene names, not JSON
+            if "(" in segment:  # code or scene names, not JSON
                 continue
             for path in re.findall(r"`([^`]+)`", segment):
                 field = [p for p in re.split(r"\.|\[\]", path) if p][-1]
@@ -464,8 +583,12 @@ def test_units_agree_with_the_nomenclature():
 # --------------------------------------------------------------------------
 
 #: Points that are designed by the closed form and by IPOPT, and infeasible (a 0.3 m envelope).
-VARY = {"delta": "0.01,0.1", "design.max_outer_diameter": "0.3,1.2", "objective": "mass,outer_diameter",
-        "speed": "60,120rpm"}
+VARY = {
+    "delta": "0.01,0.1",
+    "design.max_outer_diameter": "0.3,1.2",
+    "objective": "mass,outer_diameter",
+    "speed": "60,120rpm",
+}
 
 
 @pytest.fixture(scope="module")
@@ -500,9 +623,9 @@ def test_parquet_holds_nulls_not_empty_text_or_minus_one(study):
     assert -1 not in iterations.to_pylist()
     for name in ("mass", "d_outer", "cost", "design.d_mean"):
         column = table.column(name)
-        assert not pc.any(pc.is_nan(column)).as_py(), name     # NaN is a value; no value is null
+        assert not pc.any(pc.is_nan(column)).as_py(), name  # NaN is a value; no value is null
     assert table.column("mass").null_count == int((~designed).sum())
-    assert table.column("design.d_mean").null_count == len(frame)      # no pinned mean diameter
+    assert table.column("design.d_mean").null_count == len(frame)  # no pinned mean diameter
     assert table.column("message").null_count > 0 and "" not in table.column("message").to_pylist()
 
 
@@ -517,7 +640,7 @@ def test_csv_holds_empty_cells_and_its_sidecar_says_so(study):
         if row["method"] != "ipopt" or row["status"] != "designed":
             assert row["iterations"] == ""
         assert "-1" not in (row["iterations"], row["n_feasible"]) and "nan" not in row.values()
-    plain = pd.read_csv(folder / "study.csv")      # pandas without flyopt reads an empty cell as NaN
+    plain = pd.read_csv(folder / "study.csv")  # pandas without flyopt reads an empty cell as NaN
     assert plain["best_material"].isna().sum() == int((frame["status"] != "designed").sum())
     sidecar = json.loads((folder / "study.csv.json").read_text())
     assert _errors(sidecar) == []
@@ -552,14 +675,15 @@ def test_sweep_files_carry_units_and_provenance(study):
     assert stored["scene_digest"] == digest(flyopt.load(PROBLEMS / "punch-press.toml"))
     vary = stored["sweep"]["vary"]
     # 60 and 120 rpm in rad/s, to round-off (flyopt multiplies by pint's factor 2 pi/60 in one step)
-    np.testing.assert_allclose(vary["speed"]["values"], [60 * 2 * math.pi / 60, 120 * 2 * math.pi / 60],
-                               rtol=1e-15, atol=0)
+    np.testing.assert_allclose(
+        vary["speed"]["values"], [60 * 2 * math.pi / 60, 120 * 2 * math.pi / 60], rtol=1e-15, atol=0
+    )
     assert vary["design.objective"]["values"] == ["mass", "outer_diameter"]
     assert stored["sweep"]["method"] == "auto" and stored["sweep"]["points"] == len(frame)
     units = stored["units"]
     assert units["speed"] == "rad/s" and units["mass"] == "kg" and units["design.max_outer_diameter"] == "m"
     assert units["a_max"] == "J" and units["delta"] == "1" and "status" not in units and "point" not in units
-    assert units["objective"] is None       # the sweep varies the objective: kg or m by row
+    assert units["objective"] is None  # the sweep varies the objective: kg or m by row
     assert [c["name"] for c in stored["columns"]] == list(frame.columns)
     assert read_results(folder / "study.parquet").attrs["flyopt"] == stored
     assert frame.attrs["flyopt"] == stored
@@ -578,12 +702,27 @@ def test_pareto_files_record_their_objectives_and_plot_needs_no_x(tmp_path, caps
 
     drawn = []
     original = plots.plot_pareto
-    monkeypatch.setattr(plots, "plot_pareto",
-                        lambda frame, x, y, ax=None, **kw: drawn.append(x) or original(frame, x, y, **kw))
+    monkeypatch.setattr(
+        plots, "plot_pareto", lambda frame, x, y, ax=None, **kw: drawn.append(x) or original(frame, x, y, **kw)
+    )
     for suffix in ("parquet", "csv", "json"):
         out = tmp_path / f"front.{suffix}"
-        assert main(["pareto", str(PROBLEMS / "punch-press.toml"), "--objectives", "mass,delta",
-                     "--points", "4", "-o", str(out), "-q"]) == 0
+        assert (
+            main(
+                [
+                    "pareto",
+                    str(PROBLEMS / "punch-press.toml"),
+                    "--objectives",
+                    "mass,delta",
+                    "--points",
+                    "4",
+                    "-o",
+                    str(out),
+                    "-q",
+                ]
+            )
+            == 0
+        )
         assert capsys.readouterr().out == ""
         if suffix == "json":
             document = json.loads(out.read_text())
@@ -593,9 +732,12 @@ def test_pareto_files_record_their_objectives_and_plot_needs_no_x(tmp_path, caps
             assert list(frame.columns[:2]) == ["mass", "delta"]
             shuffled = tmp_path / f"shuffled.{suffix}"
             columns = [c for c in frame.columns if c not in ("mass", "delta")] + ["delta", "mass"]
-            assert plots.pareto_objectives(frame[columns]) is None      # the columns alone tell nothing
-            results.write_results(frame[columns], shuffled, metadata=results.table_metadata(
-                "pareto", columns, objectives=document["objectives"]))
+            assert plots.pareto_objectives(frame[columns]) is None  # the columns alone tell nothing
+            results.write_results(
+                frame[columns],
+                shuffled,
+                metadata=results.table_metadata("pareto", columns, objectives=document["objectives"]),
+            )
             assert main(["plot", str(shuffled), "--what", "pareto", "-o", str(tmp_path / f"{suffix}.png")]) == 0
             assert drawn[-1] == "delta" and capsys.readouterr().out.startswith("wrote ")
         assert _errors(document) == [] and document["objectives"] == ["mass", "delta"]
@@ -604,8 +746,9 @@ def test_pareto_files_record_their_objectives_and_plot_needs_no_x(tmp_path, caps
 
 
 def test_pareto_and_tradeoff_json_are_documents_with_nulls(tmp_path, capsys):
-    scene = _variant(tmp_path, "s", (PROBLEMS / "shear-press.toml").read_text().replace(
-        "delta = 0.05", "delta = 0.004"))            # cast iron cannot give J_F (tests/test_studies.py)
+    scene = _variant(
+        tmp_path, "s", (PROBLEMS / "shear-press.toml").read_text().replace("delta = 0.05", "delta = 0.004")
+    )  # cast iron cannot give J_F (tests/test_studies.py)
     assert main(["tradeoff", str(scene), "--json"]) == 0
     document = json.loads(capsys.readouterr().out)
     assert _errors(document) == [] and document["kind"] == "tradeoff"
@@ -632,9 +775,14 @@ def test_a_tradeoff_writes_parquet(tmp_path):
 def test_a_mutated_table_document_fails(study):
     _, _, folder = study
     stored = json.loads(pq.read_schema(folder / "study.parquet").metadata[b"flyopt"])
-    for mutate in (_delete(["units"]), _delete(["sweep"]), _set(["kind"], "pareto"),
-                   _set(["scene_file_sha256"], "abc"), _set(["columns", 0, "type"], "float"),
-                   _set(["sweep", "seed"], "none")):
+    for mutate in (
+        _delete(["units"]),
+        _delete(["sweep"]),
+        _set(["kind"], "pareto"),
+        _set(["scene_file_sha256"], "abc"),
+        _set(["columns", 0, "type"], "float"),
+        _set(["sweep", "seed"], "none"),
+    ):
         changed = json.loads(json.dumps(stored))
         mutate(changed)
         assert _errors(changed)
@@ -643,6 +791,7 @@ def test_a_mutated_table_document_fails(study):
 # --------------------------------------------------------------------------
 # -o FILE and --quiet
 # --------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("options", [[], ["--json"]])
 def test_solve_to_a_file_writes_what_it_prints(tmp_path, capsys, options):
@@ -656,7 +805,7 @@ def test_solve_to_a_file_writes_what_it_prints(tmp_path, capsys, options):
     assert out.read_text() == printed
     assert main(["solve", scene, *options, "-o", str(out), "--quiet"]) == 0
     assert capsys.readouterr() == ("", "") and out.read_text() == printed
-    assert [p.name for p in tmp_path.iterdir()] == ["result.txt"]      # no temporary file left
+    assert [p.name for p in tmp_path.iterdir()] == ["result.txt"]  # no temporary file left
 
 
 def test_solve_to_a_file_is_all_or_nothing(tmp_path, capsys, monkeypatch):
@@ -671,6 +820,7 @@ def test_solve_to_a_file_is_all_or_nothing(tmp_path, capsys, monkeypatch):
         def handler(args):
             print('{"a_max": 1,')
             raise error
+
         return handler
 
     for error, status in ((flyopt.SolverFailed("did not converge"), 1), (KeyboardInterrupt(), 130)):
@@ -685,23 +835,34 @@ def test_a_text_file_is_written_whole_or_not_at_all(tmp_path):
     out = tmp_path / "result.txt"
     out.write_text("earlier\n")
     with pytest.raises(UnicodeEncodeError):
-        results.write_text(out, "A_max = 1 J\n" * 1000 + "\ud800")     # fails half-way through
+        results.write_text(out, "A_max = 1 J\n" * 1000 + "\ud800")  # fails half-way through
     assert out.read_text() == "earlier\n" and [p.name for p in tmp_path.iterdir()] == ["result.txt"]
     results.write_text(out, "A_max = 1 J")
     assert out.read_text() == "A_max = 1 J\n"
 
 
-@pytest.mark.parametrize("args, match", [
-    (["solve", str(PROBLEMS / "shear-press.toml"), "-o", "no/such/folder/x.json"],
-     "-o/--output: the folder 'no/such/folder' of 'no/such/folder/x.json' does not exist"),
-    (["solve", str(PROBLEMS / "shear-press.toml"), "-o", str(PROBLEMS / "shear-press.toml")],
-     "is the scene file itself"),
-    (["pareto", str(PROBLEMS / "shear-press.toml"), "-o", "front.txt"],
-     "-o/--output: 'front.txt' must end in .csv, .parquet or .json"),
-    (["tradeoff", str(PROBLEMS / "shear-press.toml"), "-o", "no/such/folder/t.json", "-q"],
-     "-o/--output: the folder 'no/such/folder'"),
-    (["solve", str(PROBLEMS / "missing.toml"), "-q"], "missing.toml"),
-])
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (
+            ["solve", str(PROBLEMS / "shear-press.toml"), "-o", "no/such/folder/x.json"],
+            "-o/--output: the folder 'no/such/folder' of 'no/such/folder/x.json' does not exist",
+        ),
+        (
+            ["solve", str(PROBLEMS / "shear-press.toml"), "-o", str(PROBLEMS / "shear-press.toml")],
+            "is the scene file itself",
+        ),
+        (
+            ["pareto", str(PROBLEMS / "shear-press.toml"), "-o", "front.txt"],
+            "-o/--output: 'front.txt' must end in .csv, .parquet or .json",
+        ),
+        (
+            ["tradeoff", str(PROBLEMS / "shear-press.toml"), "-o", "no/such/folder/t.json", "-q"],
+            "-o/--output: the folder 'no/such/folder'",
+        ),
+        (["solve", str(PROBLEMS / "missing.toml"), "-q"], "missing.toml"),
+    ],
+)
 def test_a_bad_output_is_one_line_and_status_2_even_when_quiet(args, match, capsys):
     assert main(args) == 2
     said = capsys.readouterr()
@@ -717,21 +878,21 @@ def test_quiet_leaves_the_result_and_nothing_else(tmp_path, capsys):
     assert capsys.readouterr() == ("", "") and (tmp_path / "e.png").stat().st_size > 0
     assert main(["sweep", scene, "--vary", "delta=0.02,0.05", "-o", str(tmp_path / "s.csv"), "-q"]) == 0
     assert capsys.readouterr() == ("", "") and len(read_results(tmp_path / "s.csv")) == 2
-    assert main(["sweep", scene, "--vary", "delta=0.02,0.05", "-q"]) == 0      # the result is stdout
+    assert main(["sweep", scene, "--vary", "delta=0.02,0.05", "-q"]) == 0  # the result is stdout
     said = capsys.readouterr()
     assert said.err == "" and said.out.splitlines()[0].startswith("point,delta,")
     assert main(["solve", scene, "-q"]) == 0 and "A_max" in capsys.readouterr().out
     assert main(["sweep", scene, "--vary", "delta=0.02,0.05", "-o", str(tmp_path / "t.csv")]) == 0
-    assert "flyopt sweep: wrote" in capsys.readouterr().err      # and without --quiet, the summary
+    assert "flyopt sweep: wrote" in capsys.readouterr().err  # and without --quiet, the summary
 
 
 # --------------------------------------------------------------------------
 # Version, licence, typing
 # --------------------------------------------------------------------------
 
+
 def test_version_comes_from_the_package_metadata():
-    run = subprocess.run([sys.executable, "-m", "flyopt", "--version"], capture_output=True, text=True,
-                         timeout=60)
+    run = subprocess.run([sys.executable, "-m", "flyopt", "--version"], capture_output=True, text=True, timeout=60)
     assert run.returncode == 0 and run.stderr == ""
     assert run.stdout == f"flyopt {importlib.metadata.version('flyopt')}\n"
     assert flyopt.__version__ == importlib.metadata.version("flyopt")
@@ -740,15 +901,21 @@ def test_version_comes_from_the_package_metadata():
 def test_version_is_fast_to_ask_for():
     """``flyopt --version`` builds the argparse tree and reads the metadata, nothing else: no numpy,
     pandas, CasADi; ``import flyopt`` does not even read the metadata."""
-    code = ("import sys\nfrom flyopt.cli.main import main\n"
-            "try:\n    main(['--version'])\nexcept SystemExit as stop:\n    assert stop.code in (0, None)\n"
-            "print(sorted(m for m in ('numpy', 'pandas', 'casadi', 'scipy', 'pint', 'matplotlib') "
-            "if m in sys.modules))\n")
+    code = (
+        "import sys\nfrom flyopt.cli.main import main\n"
+        "try:\n    main(['--version'])\nexcept SystemExit as stop:\n    assert stop.code in (0, None)\n"
+        "print(sorted(m for m in ('numpy', 'pandas', 'casadi', 'scipy', 'pint', 'matplotlib') "
+        "if m in sys.modules))\n"
+    )
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert run.returncode == 0, run.stderr
     assert run.stdout.splitlines()[-1] == "[]"
-    run = subprocess.run([sys.executable, "-c", "import sys, flyopt; print('importlib.metadata' in sys.modules)"],
-                         capture_output=True, text=True, timeout=60)
+    run = subprocess.run(
+        [sys.executable, "-c", "import sys, flyopt; print('importlib.metadata' in sys.modules)"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert run.stdout.strip() == "False"
 
 
@@ -760,7 +927,7 @@ def test_an_uninstalled_source_tree_reads_its_pyproject(monkeypatch, tmp_path):
     declared = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"]
     assert flyopt._version() == declared
     monkeypatch.setattr(flyopt, "__file__", str(tmp_path / "a" / "b" / "flyopt" / "__init__.py"))
-    assert flyopt._version() == "unknown"          # no pyproject.toml above it
+    assert flyopt._version() == "unknown"  # no pyproject.toml above it
 
 
 def test_the_licence_is_mit_and_pyproject_agrees():
@@ -775,8 +942,7 @@ def test_the_public_api_is_typed():
     """py.typed marks the package as typed (PEP 561); every public function annotates every
     parameter and its return."""
     assert (Path(flyopt.__file__).parent / "py.typed").is_file()
-    functions = [getattr(flyopt, name) for name in flyopt.__all__
-                 if inspect.isfunction(getattr(flyopt, name))]
+    functions = [getattr(flyopt, name) for name in flyopt.__all__ if inspect.isfunction(getattr(flyopt, name))]
     assert len(functions) >= 7
     for function in functions:
         signature = inspect.signature(function)

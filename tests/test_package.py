@@ -11,8 +11,10 @@ SRC = Path(flyopt.__file__).resolve().parent
 
 
 def test_import_flyopt_loads_no_heavy_dependency():
-    code = ("import sys, flyopt; heavy = [m for m in ('pandas', 'pyarrow', 'casadi', 'scipy', 'matplotlib', 'pint') "
-            "if m in sys.modules]; print(','.join(heavy))")
+    code = (
+        "import sys, flyopt; heavy = [m for m in ('pandas', 'pyarrow', 'casadi', 'scipy', 'matplotlib', 'pint') "
+        "if m in sys.modules]; print(','.join(heavy))"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == ""
@@ -52,8 +54,7 @@ def test_no_import_cycle_between_modules():
         parts = path.relative_to(SRC.parent).with_suffix("").parts
         name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
         modules[name] = path
-    graph = {name: {m for m in _imports(path, modules) if m in modules and m != name}
-             for name, path in modules.items()}
+    graph = {name: {m for m in _imports(path, modules) if m in modules and m != name} for name, path in modules.items()}
     cycles = []
     state = {}
 
@@ -61,7 +62,7 @@ def test_no_import_cycle_between_modules():
         state[node] = "open"
         for nxt in sorted(graph[node]):
             if state.get(nxt) == "open":
-                cycles.append(stack[stack.index(nxt):] + [nxt])
+                cycles.append(stack[stack.index(nxt) :] + [nxt])
             elif nxt not in state:
                 visit(nxt, stack + [nxt])
         state[node] = "done"

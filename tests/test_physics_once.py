@@ -8,9 +8,9 @@ variable-inertia or motor scene was analysed afresh.
 """
 
 import pytest
+from conftest import PROBLEMS
 
 import flyopt
-from conftest import PROBLEMS
 
 
 @pytest.fixture
@@ -29,9 +29,10 @@ def analyses(monkeypatch):
 
 
 def test_design_only_sweep_analyses_once(analyses):
-    scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")      # energy–mass: no shortcut by scaling
-    table = flyopt.sweep(scene, {"envelope": [0.5, 0.8, 1.2, "none"], "material": ["cast_iron", "cast_steel"]},
-                         workers=1)
+    scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")  # energy–mass: no shortcut by scaling
+    table = flyopt.sweep(
+        scene, {"envelope": [0.5, 0.8, 1.2, "none"], "material": ["cast_iron", "cast_steel"]}, workers=1
+    )
     assert len(table) == 8
     assert analyses["n"] == 1
 
@@ -54,7 +55,7 @@ def test_pareto_and_tradeoff_analyse_once(analyses):
     assert not front.empty
     assert analyses["n"] == 1
     flyopt.material_tradeoff(scene)
-    assert analyses["n"] == 1            # the same scene object: its analysis is remembered
+    assert analyses["n"] == 1  # the same scene object: its analysis is remembered
 
 
 def _with(scene, delta, envelope):

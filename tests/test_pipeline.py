@@ -4,16 +4,34 @@ import json
 import math
 
 import pytest
+from conftest import PROBLEMS, assert_published
 from numpy.testing import assert_allclose
 
 import flyopt
-from conftest import PROBLEMS, assert_published
-from flyopt.design import nlp
 from flyopt.cli.main import main
+from flyopt.design import nlp
 
-DESIGN_FIELDS = {"material", "shaft", "geometry", "d_mean", "d_outer", "d_inner", "h", "b", "hb_ratio", "mass",
-                 "rim_speed", "hoop_stress", "safety_factor", "j_flywheel", "j_at_reference", "binding",
-                 "candidates", "status", "message"}
+DESIGN_FIELDS = {
+    "material",
+    "shaft",
+    "geometry",
+    "d_mean",
+    "d_outer",
+    "d_inner",
+    "h",
+    "b",
+    "hb_ratio",
+    "mass",
+    "rim_speed",
+    "hoop_stress",
+    "safety_factor",
+    "j_flywheel",
+    "j_at_reference",
+    "binding",
+    "candidates",
+    "status",
+    "message",
+}
 
 
 def test_domain_example6_rim_sizing_scene():
@@ -24,7 +42,7 @@ def test_domain_example6_rim_sizing_scene():
     assert_published(best.mass, "475")
     assert_published(best.b, "0.110")
     assert_published(best.h, "0.220")
-    assert_allclose(best.mass, 4 * 76 / 0.8**2, rtol=1e-9)      # thin rim: m = 4 J / D_m², exact
+    assert_allclose(best.mass, 4 * 76 / 0.8**2, rtol=1e-9)  # thin rim: m = 4 J / D_m², exact
 
 
 def test_json_has_the_design_object(capsys):
@@ -33,9 +51,11 @@ def test_json_has_the_design_object(capsys):
     design = data["design"]
     assert DESIGN_FIELDS <= set(design)
     assert design["status"] == "designed"
-    assert {(c["material"], c["shaft"]) for c in design["candidates"]} == {("cast_iron", "motor"),
-                                                                           ("cast_steel", "motor")}
-    assert design["d_outer"] <= 0.6 * (1 + 1e-9)                  # the scene's envelope
+    assert {(c["material"], c["shaft"]) for c in design["candidates"]} == {
+        ("cast_iron", "motor"),
+        ("cast_steel", "motor"),
+    }
+    assert design["d_outer"] <= 0.6 * (1 + 1e-9)  # the scene's envelope
     # the flywheel gives at least the required inertia, moved by the ratio-squared transfer
     assert design["j_at_reference"] >= data["j_required"] * (1 - 1e-9)
     assert_allclose(design["hoop_stress"], 7800 * design["rim_speed"] ** 2, rtol=1e-12)
@@ -57,8 +77,11 @@ def test_no_flywheel_needed_designs_none(capsys):
 
 
 def test_infeasible_scene_exits_3_and_says_why(tmp_path, capsys):
-    text = (PROBLEMS / "shear-press.toml").read_text().replace('max_outer_diameter = "0.6 m"',
-                                                                'max_outer_diameter = "0.1 m"')
+    text = (
+        (PROBLEMS / "shear-press.toml")
+        .read_text()
+        .replace('max_outer_diameter = "0.6 m"', 'max_outer_diameter = "0.1 m"')
+    )
     path = tmp_path / "tiny.toml"
     path.write_text(text)
     assert main(["solve", str(path)]) == 3
@@ -104,8 +127,14 @@ def test_no_design_flag_skips_the_optimizer(capsys):
 def test_report_shows_winner_and_ranking(capsys):
     assert main(["solve", str(PROBLEMS / "punch-press.toml")]) == 0
     out = capsys.readouterr().out
-    for words in ("Flywheel design (rim, objective: mass)", "Every combination (ranked)", "ductile_iron", "binding",
-                  "solved by", "the exact closed form of the lightest wheel"):
+    for words in (
+        "Flywheel design (rim, objective: mass)",
+        "Every combination (ranked)",
+        "ductile_iron",
+        "binding",
+        "solved by",
+        "the exact closed form of the lightest wheel",
+    ):
         assert words in out
 
 
@@ -127,12 +156,13 @@ def test_every_problem_scene_solves_with_a_checked_status():
             assert best.j_at_reference >= solution.analysis.j_required * (1 - 1e-6)
             if solution.scene.design is None or solution.scene.design.criterion == "rim_speed":
                 assert best.rim_speed <= best.rim_speed_limit * (1 + 1e-6)
-            else:   # the stress criterion: every part within its allowable
+            else:  # the stress criterion: every part within its allowable
                 assert all(p["stress"] <= p["allowable"] * (1 + 1e-6) for p in best.stress["parts"])
 
 
-@pytest.mark.parametrize("scene, nominal", [("motor-press", "50 rpm"), ("slider-crank-press", None),
-                                            ("shear-press", None)])
+@pytest.mark.parametrize(
+    "scene, nominal", [("motor-press", "50 rpm"), ("slider-crank-press", None), ("shear-press", None)]
+)
 def test_rim_speed_holds_at_the_simulated_top_speed(tmp_path, scene, nominal):
     """Regression (outside review): the rim speed limit holds at the highest speed the machine
     really reaches — from the verification simulation, not from the design's own figures — even
@@ -144,7 +174,7 @@ def test_rim_speed_holds_at_the_simulated_top_speed(tmp_path, scene, nominal):
     path.write_text(text)
     solution = flyopt.solve(flyopt.load(path), verify_design=True)
     best = solution.design.best
-    top = solution.verification.omega_max * best.speed_ratio      # [rad/s] of the flywheel's shaft
+    top = solution.verification.omega_max * best.speed_ratio  # [rad/s] of the flywheel's shaft
     limit = solution.scene.material_library()[best.material].max_rim_speed
     assert top * best.d_outer / 2 <= limit * (1 + 1e-6)
 

@@ -14,8 +14,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from conftest import PROBLEMS, assert_published
+
 from flyopt.cli.main import main
 
 pytestmark = pytest.mark.filterwarnings("error")
@@ -47,16 +47,17 @@ def drawn(tmp_path):
             kept = []
             with pytest.MonkeyPatch.context() as patch:
                 patch.setattr(plots, "save", lambda ax, path, *a, **k: kept.append(ax) or Path(path))
-                status = main(["plot", str(PROBLEMS / f"{scene}.toml"), "--what", what, *options,
-                               "-o", str(tmp_path / "x.png")])
+                status = main(
+                    ["plot", str(PROBLEMS / f"{scene}.toml"), "--what", what, *options, "-o", str(tmp_path / "x.png")]
+                )
             assert status == 0
             ax = kept[-1]
             import matplotlib.pyplot as plt
             from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-            plt.close(ax.figure)       # kept by this cache, not by pyplot (which closes its figures after each test)
+            plt.close(ax.figure)  # kept by this cache, not by pyplot (which closes its figures after each test)
             FigureCanvasAgg(ax.figure)
-            ax.figure.set_dpi(72)      # laid out at a low resolution: fast, and the geometry is the same
+            ax.figure.set_dpi(72)  # laid out at a low resolution: fast, and the geometry is the same
             ax.figure.canvas.draw()
             _DRAWN[key] = ax
         return _DRAWN[key]
@@ -67,6 +68,7 @@ def drawn(tmp_path):
 # --------------------------------------------------------------------------
 # Helpers: what was drawn, and where it landed on the page
 # --------------------------------------------------------------------------
+
 
 def _gid(ax, gid):
     found = [a for a in ax.get_children() if a.get_gid() == gid]
@@ -89,7 +91,7 @@ def _legend(ax):
 def _legend_text(ax):
     legend = _legend(ax)
     words = [t.get_text() for t in legend.get_texts()] + [legend.get_title().get_text()]
-    return " ".join(" ".join(words).split())       # the wrapped lines joined again
+    return " ".join(" ".join(words).split())  # the wrapped lines joined again
 
 
 def _pixels(line):
@@ -100,8 +102,14 @@ def _pixels(line):
 
 
 def _hits(box, points, margin=0.5):
-    return bool(np.any((points[:, 0] > box.x0 + margin) & (points[:, 0] < box.x1 - margin)
-                       & (points[:, 1] > box.y0 + margin) & (points[:, 1] < box.y1 - margin)))
+    return bool(
+        np.any(
+            (points[:, 0] > box.x0 + margin)
+            & (points[:, 0] < box.x1 - margin)
+            & (points[:, 1] > box.y0 + margin)
+            & (points[:, 1] < box.y1 - margin)
+        )
+    )
 
 
 def _overlap(a, b):
@@ -113,19 +121,22 @@ def _assert_standard(ax):
     legend off the data, a unit on both axes."""
     fig = ax.figure
     renderer = fig.canvas.get_renderer()
-    drawn = fig.get_tightbbox(renderer)           # [in]: the box around every visible artist
+    drawn = fig.get_tightbbox(renderer)  # [in]: the box around every visible artist
     width, height = fig.get_size_inches()
     tolerance = 1.0 / fig.dpi
     assert -tolerance <= drawn.x0 and drawn.x1 <= width + tolerance, (drawn, width)
     assert -tolerance <= drawn.y0 and drawn.y1 <= height + tolerance, (drawn, height)
-    for axes in fig.axes:                         # tick labels clear of each other
+    for axes in fig.axes:  # tick labels clear of each other
         for axis in (axes.xaxis, axes.yaxis):
             low, high = sorted(axis.get_view_interval())
-            shown = [label.get_window_extent(renderer)
-                     for label, tick in zip(axis.get_ticklabels(), axis.get_ticklocs())
-                     if label.get_visible() and label.get_text() and low <= tick <= high]
-            assert not any(_overlap(a, b) for k, a in enumerate(shown) for b in shown[k + 1:]), \
-                [label.get_text() for label in axis.get_ticklabels()]
+            shown = [
+                label.get_window_extent(renderer)
+                for label, tick in zip(axis.get_ticklabels(), axis.get_ticklocs())
+                if label.get_visible() and label.get_text() and low <= tick <= high
+            ]
+            assert not any(_overlap(a, b) for k, a in enumerate(shown) for b in shown[k + 1 :]), [
+                label.get_text() for label in axis.get_ticklabels()
+            ]
     legend = _legend(ax).get_window_extent(renderer)
     assert not _overlap(legend, ax.get_window_extent(renderer)), "the legend covers the data"
     for label in (ax.get_xlabel(), ax.get_ylabel()):
@@ -135,6 +146,7 @@ def _assert_standard(ax):
 # --------------------------------------------------------------------------
 # turning_moment
 # --------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("scene", ["slider-crank-press", "engine-members"])
 def test_speed_extremes_and_the_ends_of_a_max_are_both_marked_and_explained(drawn, scene):
@@ -158,10 +170,14 @@ def test_speed_extremes_and_the_ends_of_a_max_are_both_marked_and_explained(draw
     ew = analysis.machine.angle_only()
     phi = np.linspace(0.0, analysis.cycle_angle, 3601)
     k = int(np.argmin(ew(phi)))
-    lowest = minimize_scalar(lambda p: float(ew(np.array([p]))[0]), bounds=(phi[k - 1], phi[k + 1]),
-                             method="bounded", options={"xatol": 1e-10})
+    lowest = minimize_scalar(
+        lambda p: float(ew(np.array([p]))[0]),
+        bounds=(phi[k - 1], phi[k + 1]),
+        method="bounded",
+        options={"xatol": 1e-10},
+    )
     assert abs(math.degrees(lowest.x) - _gid(ax, "delta_e_min")[0].get_xdata()[0]) < 1e-6
-    assert abs(analysis.angle_omega_min - analysis.angle_delta_e_min) > math.radians(0.3)   # they do differ
+    assert abs(analysis.angle_omega_min - analysis.angle_delta_e_min) > math.radians(0.3)  # they do differ
     assert "energy–mass tangents touch" in _legend_text(ax)
     _assert_standard(ax)
 
@@ -194,7 +210,7 @@ def test_motor_torque_is_drawn_along_the_periodic_solution(drawn):
     p_rated, w_rated, w_sync, ratio, efficiency = 5500.0, 1440 * rpm, 1500 * rpm, 24.0, 0.95 * 0.97
     motor = p_rated / w_rated * (w_sync - ratio * solution.omega) / (w_sync - w_rated)
     np.testing.assert_allclose(torque_knm * 1e3, motor * ratio * efficiency, rtol=1e-12)
-    assert np.ptp(torque_knm) > 1.5        # from about 0.2 to 2.1 kN·m over the cycle: not a flat line
+    assert np.ptp(torque_knm) > 1.5  # from about 0.2 to 2.1 kN·m over the cycle: not a flat line
     # periodic with a constant inertia: ∫(M_d − M_r) dφ = ΔE over the cycle = 0, so the mean of the drawn
     # motor torque is the mean load, the balancing constant the analysis reports (trapezoids, 2049+ points)
     resisting = _line(ax, "resisting")
@@ -211,7 +227,7 @@ def test_motor_torque_is_drawn_along_the_periodic_solution(drawn):
     energy = 0.5 * j_total * np.asarray(solution.omega) ** 2
     swing = (energy.max() - energy.min()) / 1e3
     labels = sorted(float(t.get_text().replace("−", "-").split()[0]) for t in _gid(ax, "area"))
-    assert math.isclose(-labels[0], swing, rel_tol=2e-3)      # the deficit: ω from its highest to its lowest
+    assert math.isclose(-labels[0], swing, rel_tol=2e-3)  # the deficit: ω from its highest to its lowest
 
 
 def test_a_constant_solved_with_the_periodic_solution_is_drawn_with_its_correction(write_scene):
@@ -222,7 +238,8 @@ def test_a_constant_solved_with_the_periodic_solution_is_drawn_with_its_correcti
     import flyopt
     from flyopt.report import plots
 
-    scene = flyopt.load(write_scene("""title = "Balanced drive against a speed-dependent load"
+    scene = flyopt.load(
+        write_scene("""title = "Balanced drive against a speed-dependent load"
 [machine]
 speed = "120 rpm"
 delta = 0.1
@@ -232,7 +249,8 @@ constant = "unknown"
 [torque.resisting]
 expression = "100 + 300*max(0, sin(phi))**2 + 2*omega"
 unit = "N*m"
-"""))
+""")
+    )
     analysis = flyopt.analyse(scene)
     solution = analysis.requirement.detail.solution
     assert analysis.model == "dynamic" and solution.torque_offset != 0.0
@@ -243,13 +261,15 @@ unit = "N*m"
 
     energy = 0.5 * (analysis.machine.j_machine + solution.j_flywheel) * np.asarray(solution.omega) ** 2
     swing = np.ptp(energy)
-    np.testing.assert_allclose(cumulative_trapezoid(net, phi, initial=0.0), energy - energy[0], rtol=0,
-                               atol=2e-5 * swing)
+    np.testing.assert_allclose(
+        cumulative_trapezoid(net, phi, initial=0.0), energy - energy[0], rtol=0, atol=2e-5 * swing
+    )
     assert "(constant, solved with the periodic solution)" in _legend_text(ax)
 
 
-@pytest.mark.parametrize("scene", ["slider-crank-press", "four-cylinder-engine", "shear-press", "motor-press",
-                                   "engine-members"])
+@pytest.mark.parametrize(
+    "scene", ["slider-crank-press", "four-cylinder-engine", "shear-press", "motor-press", "engine-members"]
+)
 def test_area_labels_sit_clear_of_the_curves(drawn, scene):
     """Was: 8 pt area labels centred between the curves' means, on the curves where the band is thin."""
     ax = drawn(scene, "turning_moment")
@@ -263,7 +283,7 @@ def test_area_labels_sit_clear_of_the_curves(drawn, scene):
         assert not any(_hits(box, points) for points in curves), text.get_text()
         assert ax.get_window_extent(renderer).contains(box.x0, box.y0)
     for k, a in enumerate(boxes):
-        assert not any(_overlap(a, b) for b in boxes[k + 1:])
+        assert not any(_overlap(a, b) for b in boxes[k + 1 :])
     _assert_standard(ax)
 
 
@@ -274,19 +294,22 @@ def test_steady_conveyor_has_no_speed_marks_and_nothing_overlaps(drawn):
     assert not [a for a in ax.get_children() if (a.get_gid() or "").startswith(("omega", "delta_e"))]
     texts = [t for t in ax.texts if t.get_text()] + [ax.title]
     boxes = [t.get_window_extent(renderer) for t in texts]
-    assert not any(_overlap(a, b) for k, a in enumerate(boxes) for b in boxes[k + 1:])
+    assert not any(_overlap(a, b) for k, a in enumerate(boxes) for b in boxes[k + 1 :])
     assert "does not fluctuate" in _legend_text(ax)
     # worked example 4: 5500 N on the 0.25 m drum, 1375 N·m, the driving torque solved equal to it
     assert "M_d = 1.375 kN·m (constant, solved from the work balance)" in _legend_text(ax)
     _assert_standard(ax)
 
 
-@pytest.mark.parametrize("units, shown, factor", [
-    ("engineering", "0.4625 kN·m", 1e3),
-    ("si", "462.5 N·m", 1.0),
-    # 1 lbf·ft = 0.3048 m × 0.45359237 kg × 9.80665 m/s² (the exact definitions of ft, lb and g_n)
-    ("imperial", "341.1 lbf·ft", 0.3048 * 0.45359237 * 9.80665),
-])
+@pytest.mark.parametrize(
+    "units, shown, factor",
+    [
+        ("engineering", "0.4625 kN·m", 1e3),
+        ("si", "462.5 N·m", 1.0),
+        # 1 lbf·ft = 0.3048 m × 0.45359237 kg × 9.80665 m/s² (the exact definitions of ft, lb and g_n)
+        ("imperial", "341.1 lbf·ft", 0.3048 * 0.45359237 * 9.80665),
+    ],
+)
 def test_the_solved_torque_is_shown_in_the_chosen_units(drawn, units, shown, factor):
     """Was: the torque solved from the work balance never shown. The shear press: M_d = 462.5 N·m
     (docs/flywheel-design.md, section 12, example 2); every axis in the chosen units."""
@@ -308,8 +331,12 @@ def test_engine_dead_centres_and_strokes(drawn):
     np.testing.assert_allclose(top.get_xticks(), [0, 180, 360, 540, 720], rtol=1e-12, atol=1e-12)
     assert [label.get_text() for label in top.get_xticklabels()] == ["TDC", "BDC", "TDC", "BDC", "TDC"]
     np.testing.assert_allclose(top.get_xticks(minor=True), [90, 270, 450, 630], rtol=1e-12)
-    assert [label.get_text() for label in top.get_xticklabels(minor=True)] == \
-        ["intake", "compression", "power", "exhaust"]
+    assert [label.get_text() for label in top.get_xticklabels(minor=True)] == [
+        "intake",
+        "compression",
+        "power",
+        "exhaust",
+    ]
     np.testing.assert_allclose(ax.get_xlim(), (0.0, 720.0), rtol=1e-12)
     _assert_standard(ax)
 
@@ -329,20 +356,22 @@ def test_slider_crank_dead_centres_with_an_offset(write_scene):
     ax = plots.plot_turning_moment(scene, flyopt.analyse(scene))
     (top,) = [a for a in ax.child_axes if a.get_gid() == "dead_centres"]
     labels = [label.get_text() for label in top.get_xticklabels()]
-    assert labels == ["ODC", "IDC"]                    # once each within the turn, now that they moved off 0
+    assert labels == ["ODC", "IDC"]  # once each within the turn, now that they moved off 0
     v = scene.mechanism.slider_velocity_ratio
     outer = math.degrees(brentq(v, -0.5, 0.5, xtol=1e-15))
     inner = math.degrees(brentq(v, math.pi - 0.5, math.pi + 0.5, xtol=1e-15))
     np.testing.assert_allclose(top.get_xticks(), [outer, inner], rtol=0, atol=1e-9)
-    assert outer > 5.0 and inner > 180.0 + 5.0         # the offset moves them (e/(l ± r) = 0.094, 0.135)
+    assert outer > 5.0 and inner > 180.0 + 5.0  # the offset moves them (e/(l ± r) = 0.094, 0.135)
 
 
 # --------------------------------------------------------------------------
 # energy
 # --------------------------------------------------------------------------
 
-@pytest.mark.parametrize("scene, end", [("shear-press", 360.0), ("slider-crank-press", 360.0),
-                                        ("four-cylinder-engine", 720.0)])
+
+@pytest.mark.parametrize(
+    "scene, end", [("shear-press", 360.0), ("slider-crank-press", 360.0), ("four-cylinder-engine", 720.0)]
+)
 def test_energy_diagram_shares_the_turning_moment_axis(drawn, scene, end):
     """Was: the energy diagram's x axis ran from −18° to 378°, not lined up with the turning moment's."""
     energy = drawn(scene, "energy")
@@ -359,7 +388,7 @@ def test_energy_diagram_dimensions_a_max_off_the_curve_and_names_the_extremes(dr
     renderer = ax.figure.canvas.get_renderer()
     (arrow,) = _gid(ax, "a_max")
     (x_tip, y_tip), (x_tail, y_tail) = arrow.xy, arrow.xyann
-    assert x_tip == x_tail > 1.0                       # right of the plot, in axes coordinates
+    assert x_tip == x_tail > 1.0  # right of the plot, in axes coordinates
     assert_published(abs(y_tip - y_tail) * 1e3, "1256.33")
     curve = _pixels(_line(ax, "ΔE(φ)"))
     assert not _hits(arrow.arrow_patch.get_window_extent(renderer), curve)
@@ -388,13 +417,14 @@ def test_energy_diagram_of_the_dynamic_model_holds_both_curves(drawn):
 # inertia_delta
 # --------------------------------------------------------------------------
 
+
 def _design_point_on_curve(ax):
     (curve,) = _gid(ax, "j_delta")
     (point,) = _gid(ax, "design_point")
     delta, j = (np.asarray(v, dtype=float) for v in curve.get_data())
     at = float(point.get_xdata()[0])
     k = int(np.argmin(np.abs(delta - at)))
-    assert delta[k] == at                                # the scene's own δ is one of the curve's points
+    assert delta[k] == at  # the scene's own δ is one of the curve's points
     return j[k], float(point.get_ydata()[0]), delta, j
 
 
@@ -407,7 +437,7 @@ def test_inertia_delta_curve_passes_through_its_design_point(drawn, scene):
     ax = drawn(scene, "inertia_delta")
     on_curve, point, delta, _j = _design_point_on_curve(ax)
     assert math.isclose(on_curve, point, rel_tol=1e-6)
-    assert delta.max() <= 0.5 and delta.min() > 0       # was: up to δ = 1.9
+    assert delta.max() <= 0.5 and delta.min() > 0  # was: up to δ = 1.9
     assert "1/δ" not in ax.get_title()
     _assert_standard(ax)
 
@@ -427,8 +457,9 @@ def test_inertia_delta_of_the_energy_mass_model_is_the_closed_form_of_section_6(
     inertia, de = analysis.machine.j_machine(phi), analysis.machine.angle_only()(phi)
     for k in (0, len(delta) // 3, len(delta) - 1):
         w_max, w_min = analysis.omega_mean * (1 + delta[k] / 2), analysis.omega_mean * (1 - delta[k] / 2)
-        closed = (np.max(0.5 * w_min**2 * inertia - de) - np.min(0.5 * w_max**2 * inertia - de)) / \
-            (0.5 * (w_max**2 - w_min**2))
+        closed = (np.max(0.5 * w_min**2 * inertia - de) - np.min(0.5 * w_max**2 * inertia - de)) / (
+            0.5 * (w_max**2 - w_min**2)
+        )
         assert math.isclose(j[k], closed, rel_tol=1e-7), (delta[k], j[k], closed)
 
 
@@ -456,6 +487,7 @@ def test_inertia_delta_of_a_steady_conveyor_is_nothing_to_draw(tmp_path, capsys)
 # --------------------------------------------------------------------------
 # cross_section
 # --------------------------------------------------------------------------
+
 
 def _designed(name):
     import flyopt
@@ -491,17 +523,25 @@ def test_cross_section_draws_in_the_chosen_units_and_comments_an_odd_design():
 WHEELS = Path(__file__).parent / "data" / "wheels"
 
 
-@pytest.mark.parametrize("source, size", [
-    ("engine-rim", None), ("engine-disc", None), ("engine-rim_web", None), ("engine-rim_arms", None),
-    ("slider-crank-press", None),
-    # drawn on a small Axes of the caller's: the hub's diameters too short for their texts (which go
-    # outside their lines) and the hub's length beside the arm's dimension used to collide
-    ("engine-rim_arms", (6, 4)), ("slider-crank-press", (4, 6))])
+@pytest.mark.parametrize(
+    "source, size",
+    [
+        ("engine-rim", None),
+        ("engine-disc", None),
+        ("engine-rim_web", None),
+        ("engine-rim_arms", None),
+        ("slider-crank-press", None),
+        # drawn on a small Axes of the caller's: the hub's diameters too short for their texts (which go
+        # outside their lines) and the hub's length beside the arm's dimension used to collide
+        ("engine-rim_arms", (6, 4)),
+        ("slider-crank-press", (4, 6)),
+    ],
+)
 def test_cross_section_texts_clear_each_other_and_the_arrows(source, size):
     """Was: the B arrow struck through its label. No text of the drawing overlaps another, an arrow or a line."""
+    import matplotlib.pyplot as plt
     from matplotlib.text import Annotation
 
-    import matplotlib.pyplot as plt
     from flyopt.report import plots
 
     path = WHEELS / f"{source}.toml" if source.startswith("engine") else PROBLEMS / f"{source}.toml"
@@ -512,11 +552,14 @@ def test_cross_section_texts_clear_each_other_and_the_arrows(source, size):
     renderer = ax.figure.canvas.get_renderer()
     texts = [t for t in ax.texts if t.get_text() and not isinstance(t, Annotation)]
     boxes = [t.get_window_extent(renderer) for t in texts]
-    arrows = [a.arrow_patch.get_window_extent(renderer) for a in ax.texts
-              if isinstance(a, Annotation) and a.arrow_patch is not None]
-    lines = [_pixels(line) for line in ax.lines]          # extension and dimension lines, the axis
+    arrows = [
+        a.arrow_patch.get_window_extent(renderer)
+        for a in ax.texts
+        if isinstance(a, Annotation) and a.arrow_patch is not None
+    ]
+    lines = [_pixels(line) for line in ax.lines]  # extension and dimension lines, the axis
     for k, (text, box) in enumerate(zip(texts, boxes)):
-        assert not any(_overlap(box, other) for other in boxes[k + 1:]), text.get_text()
+        assert not any(_overlap(box, other) for other in boxes[k + 1 :]), text.get_text()
         shrunk = box.padded(-1.0)
         assert not any(_overlap(shrunk, arrow) for arrow in arrows), text.get_text()
         assert not any(_hits(box, points, margin=1.0) for points in lines), text.get_text()
@@ -525,6 +568,7 @@ def test_cross_section_texts_clear_each_other_and_the_arrows(source, size):
 # --------------------------------------------------------------------------
 # speed
 # --------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("scene", ["slider-crank-press", "motor-press"])
 def test_speed_plot_has_the_mean_speed_and_the_achieved_delta(drawn, scene):
@@ -552,6 +596,7 @@ def test_speed_plot_has_the_mean_speed_and_the_achieved_delta(drawn, scene):
 # --------------------------------------------------------------------------
 # energy_mass
 # --------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("scene", ["shear-press", "conveyor", "punch-press-wheel"])
 def test_energy_mass_of_a_constant_inertia_is_refused(tmp_path, capsys, scene):
@@ -596,6 +641,7 @@ def test_energy_mass_shows_the_origin_and_its_tangent_points(drawn):
 # sweep and pareto
 # --------------------------------------------------------------------------
 
+
 def _sweep_frame():
     """A sweep of delta × speed × material as flyopt writes it (SI), one infeasible point."""
     import pandas as pd
@@ -605,8 +651,16 @@ def _sweep_frame():
         for rpm in (600.0, 900.0):
             for delta in (0.02, 0.05, 0.1):
                 mass = (2.0 if material == "cast_iron" else 1.0) * 100.0 / (rpm / 60) ** 2 / delta
-                rows.append({"delta": delta, "speed": rpm * 2 * math.pi / 60, "material": material,
-                             "status": "designed", "mass": mass, "d_outer": 0.5})
+                rows.append(
+                    {
+                        "delta": delta,
+                        "speed": rpm * 2 * math.pi / 60,
+                        "material": material,
+                        "status": "designed",
+                        "mass": mass,
+                        "d_outer": 0.5,
+                    }
+                )
     rows[0].update(status="infeasible", mass=float("nan"), d_outer=float("nan"))
     return pd.DataFrame(rows)
 
@@ -619,10 +673,10 @@ def test_sweep_lines_never_join_points_of_another_field_and_show_display_units()
     frame = _sweep_frame()
     ax = plots.plot_sweep(frame, "delta", "mass", by="material")
     lines = [line for line in ax.lines if line.get_label().startswith("material")]
-    assert len(lines) == 4                                  # material × speed
+    assert len(lines) == 4  # material × speed
     for line in lines:
         x = np.asarray(line.get_xdata(), dtype=float)
-        assert np.all(np.diff(x) > 0), line.get_label()   # one point per δ: no sawtooth
+        assert np.all(np.diff(x) > 0), line.get_label()  # one point per δ: no sawtooth
     labels = {line.get_label() for line in lines}
     assert "material = cast_steel, speed = 600 rpm" in labels and "material = cast_iron, speed = 900 rpm" in labels
     (miss,) = _gid(ax, "infeasible")
@@ -666,8 +720,21 @@ def test_pareto_refuses_points_of_different_delta(tmp_path, capsys):
 
 
 def test_units_option_is_checked_in_one_line(tmp_path, capsys):
-    assert main(["plot", str(PROBLEMS / "shear-press.toml"), "--what", "energy", "--units", "metric",
-                 "-o", str(tmp_path / "x.png")]) == 2
+    assert (
+        main(
+            [
+                "plot",
+                str(PROBLEMS / "shear-press.toml"),
+                "--what",
+                "energy",
+                "--units",
+                "metric",
+                "-o",
+                str(tmp_path / "x.png"),
+            ]
+        )
+        == 2
+    )
     err = capsys.readouterr().err
     assert err == "flyopt: error: --units: unknown unit system 'metric' (allowed: engineering, si, imperial)\n"
 
@@ -696,6 +763,7 @@ def test_speed_without_a_flywheel_is_the_machine_as_it_is():
     assert not analysis.machine.variable_inertia
     assert analysis.j_margin == pytest.approx(-analysis.machine.j_mean(), rel=1e-12)
     from flyopt.report.text import analysis_report
+
     report = analysis_report(analysis)
     assert "however small the inertia" in (report if isinstance(report, str) else "\n".join(report))
     assert not analyse(load(PROBLEMS / "motor-press.toml")).delta_holds_at_any_inertia
@@ -705,8 +773,15 @@ def test_speed_without_a_flywheel_is_the_machine_as_it_is():
     assert speed.omega_max == pytest.approx(omega.max(), rel=1e-6)
     assert speed.omega_min == pytest.approx(omega.min(), rel=1e-6)
     machine = analysis.machine
-    checked = periodic.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, built.omega_mean,
-                              built.delta, 0.0, machine.knots())
+    checked = periodic.verify(
+        machine.net_torque(),
+        machine.j_machine,
+        machine.cycle_angle,
+        built.omega_mean,
+        built.delta,
+        0.0,
+        machine.knots(),
+    )
     assert speed.delta == pytest.approx(checked.achieved_delta, rel=1e-6)
     ax = plots.plot_speed(built, analysis)
     line = next(l for l in ax.get_lines() if l.get_gid() == "model")

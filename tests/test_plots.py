@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from conftest import PROBLEMS
+
 from flyopt.cli.main import main
 from flyopt.report.plots import PLOTS
 
@@ -33,7 +33,7 @@ def test_every_plot_renders(tmp_path, scene, what, capsys):
         assert NOT_DRAWABLE[scene, what] in capsys.readouterr().err
         return
     assert status == 0
-    assert out.stat().st_size > 10_000          # a real image, not an empty canvas
+    assert out.stat().st_size > 10_000  # a real image, not an empty canvas
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
@@ -44,41 +44,71 @@ def test_vector_formats(tmp_path, suffix, magic):
     assert out.read_bytes().startswith(magic)
 
 
-@pytest.mark.parametrize("args, words", [
-    (["--what", "turning_momnet", "-o", "x.png"], "did you mean 'turning_moment'"),
-    (["--what", "energy", "-o", "x.jpg"], "must end in .png, .svg or .pdf"),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--what", "turning_momnet", "-o", "x.png"], "did you mean 'turning_moment'"),
+        (["--what", "energy", "-o", "x.jpg"], "must end in .png, .svg or .pdf"),
+    ],
+)
 def test_bad_plot_requests(tmp_path, capsys, args, words):
     args = [a if a != "x.png" and a != "x.jpg" else str(tmp_path / a) for a in args]
     assert main(["plot", str(PROBLEMS / "shear-press.toml"), *args]) == 2
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1
-    assert list(tmp_path.iterdir()) == []       # nothing half-written
+    assert list(tmp_path.iterdir()) == []  # nothing half-written
 
 
 def test_sweep_and_pareto_plots_from_result_files(tmp_path):
     from flyopt.cli import studies
 
     sweep_file = tmp_path / "sweep.parquet"
-    assert studies.sweep_main([str(PROBLEMS / "punch-press.toml"), "--vary", "delta=0.05:0.2:log4",
-                               "--vary", "material=cast_iron,cast_steel", "-o", str(sweep_file),
-                               "--no-progress"]) == 0
+    assert (
+        studies.sweep_main(
+            [
+                str(PROBLEMS / "punch-press.toml"),
+                "--vary",
+                "delta=0.05:0.2:log4",
+                "--vary",
+                "material=cast_iron,cast_steel",
+                "-o",
+                str(sweep_file),
+                "--no-progress",
+            ]
+        )
+        == 0
+    )
     out = tmp_path / "sweep.png"
     assert main(["plot", str(sweep_file), "--what", "sweep", "--x", "delta", "--by", "material", "-o", str(out)]) == 0
     assert out.stat().st_size > 10_000
     front = tmp_path / "front.csv"
-    assert studies.pareto_main([str(PROBLEMS / "shear-press.toml"), "--objectives", "mass,outer_diameter",
-                                "--points", "5", "-o", str(front)]) == 0
+    assert (
+        studies.pareto_main(
+            [
+                str(PROBLEMS / "shear-press.toml"),
+                "--objectives",
+                "mass,outer_diameter",
+                "--points",
+                "5",
+                "-o",
+                str(front),
+            ]
+        )
+        == 0
+    )
     out = tmp_path / "front.svg"
     assert main(["plot", str(front), "--what", "pareto", "--x", "outer_diameter", "--y", "mass", "-o", str(out)]) == 0
     assert out.read_bytes().startswith(b"<?xml")
 
 
-@pytest.mark.parametrize("args, words", [
-    (["--what", "energy", "--x", "delta"], "is not a diagram of results"),
-    (["--what", "sweep"], "--x: the results diagram 'sweep' needs"),
-    (["--what", "sweep", "--x", "colour"], "no column 'colour'"),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--what", "energy", "--x", "delta"], "is not a diagram of results"),
+        (["--what", "sweep"], "--x: the results diagram 'sweep' needs"),
+        (["--what", "sweep", "--x", "colour"], "no column 'colour'"),
+    ],
+)
 def test_bad_result_plot_requests(tmp_path, capsys, args, words):
     import pandas as pd
 
@@ -101,25 +131,32 @@ def test_speed_plot_with_the_simulation_overlaid(tmp_path):
     scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
     analysis = flyopt.analyse(scene)
     ax = plots.plot_speed(scene, analysis, analysis.speed_curve(), verify(scene, analysis).solution)
-    model, simulated = (next(line for line in ax.lines if line.get_gid() == gid).get_ydata()
-                        for gid in ("model", "simulation"))
+    model, simulated = (
+        next(line for line in ax.lines if line.get_gid() == gid).get_ydata() for gid in ("model", "simulation")
+    )
     # the closed form and the simulation reach the same extremes (to the simulation's tolerance)
     assert abs(model.max() / simulated.max() - 1) < 1e-6 and abs(model.min() / simulated.min() - 1) < 1e-6
     out = plots.save(ax, tmp_path / "speed.png")
     assert out.stat().st_size > 10_000
-    assert main(["plot", str(PROBLEMS / "shear-press.toml"), "--what", "speed", "--verify",
-                 "-o", str(tmp_path / "s.png")]) == 0
+    assert (
+        main(["plot", str(PROBLEMS / "shear-press.toml"), "--what", "speed", "--verify", "-o", str(tmp_path / "s.png")])
+        == 0
+    )
 
 
 # --------------------------------------------------------------------------
 # The output file is checked before anything is computed
 # --------------------------------------------------------------------------
 
-@pytest.mark.parametrize("target, words", [
-    ("missing/dir/x.png", "-o/--output: the folder"),
-    ("x.jpg", "-o/--output: "),
-    ("x", "must end in .png, .svg or .pdf"),
-])
+
+@pytest.mark.parametrize(
+    "target, words",
+    [
+        ("missing/dir/x.png", "-o/--output: the folder"),
+        ("x.jpg", "-o/--output: "),
+        ("x", "must end in .png, .svg or .pdf"),
+    ],
+)
 @pytest.mark.parametrize("source", ["scene", "results"])
 def test_bad_output_is_one_line_exit_2_nothing_written(tmp_path, target, words, source):
     import pandas as pd
@@ -132,19 +169,24 @@ def test_bad_output_is_one_line_exit_2_nothing_written(tmp_path, target, words, 
         pd.DataFrame({"delta": [0.1, 0.2], "mass": [2.0, 1.0], "status": ["designed"] * 2}).to_csv(given, index=False)
         what = ["--what", "sweep", "--x", "delta"]
     before = set(tmp_path.rglob("*"))
-    out = subprocess.run([sys.executable, "-m", "flyopt", "plot", str(given), *what, "-o", str(tmp_path / target)],
-                         capture_output=True, text=True, timeout=120)
+    out = subprocess.run(
+        [sys.executable, "-m", "flyopt", "plot", str(given), *what, "-o", str(tmp_path / target)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert out.returncode == 2 and out.stdout == ""
     lines = out.stderr.splitlines()
     assert len(lines) == 1 and lines[0].startswith("flyopt: error: ") and words in lines[0]
     if "folder" in words:
         assert str(tmp_path / "missing" / "dir") in lines[0]
-    assert set(tmp_path.rglob("*")) == before     # nothing written, no folder made
+    assert set(tmp_path.rglob("*")) == before  # nothing written, no folder made
 
 
 # --------------------------------------------------------------------------
 # A machine that needs no flywheel: nothing to draw is said, not a failure
 # --------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("what", ["cross_section", "stress", "inertia_delta", "speed"])
 def test_nothing_to_draw_when_no_flywheel_is_needed(tmp_path, capsys, what):
@@ -169,7 +211,7 @@ def test_inertia_delta_when_the_machine_inertia_suffices(tmp_path):
     import flyopt
     from flyopt.report import plots
 
-    text = (PROBLEMS / "shear-press.toml").read_text().replace('delta = 0.05', 'delta = 0.05\ninertia = "100 kg*m^2"')
+    text = (PROBLEMS / "shear-press.toml").read_text().replace("delta = 0.05", 'delta = 0.05\ninertia = "100 kg*m^2"')
     path = tmp_path / "heavy.toml"
     path.write_text(text)
     assert main(["plot", str(path), "--what", "inertia_delta", "-o", str(tmp_path / "j.png")]) == 0
@@ -194,6 +236,7 @@ def test_inertia_delta_when_the_machine_inertia_suffices(tmp_path):
 # Plots draw computed results and never run a model
 # --------------------------------------------------------------------------
 
+
 def _forbid_models(patch):
     """Make every function of the sizing modules, the analysis and the pipeline raise."""
     import importlib
@@ -214,25 +257,28 @@ def _forbid_models(patch):
                 patch.setattr(module, name, forbidden)
 
 
-@pytest.mark.parametrize("scene, what, options", [
-    ("slider-crank-press", "energy_mass", []),
-    ("slider-crank-press", "inertia_delta", []),  # J_F(δ) of the exact model is computed before, and passed in
-    ("motor-press", "turning_moment", []),        # the motor along the periodic solution the analysis carries
-    ("shear-press", "speed", ["--verify"]),       # the model's ω(φ) and the simulation are passed in
-    ("slider-crank-press", "speed", ["--verify"]),
-    ("motor-press", "speed", []),                 # the dynamic model's own periodic solution
-    ("shear-press", "inertia_delta", []),
-    ("shear-press", "energy", []),
-    ("shear-press", "turning_moment", []),
-    ("shear-press", "cross_section", []),
-    ("shear-press", "stress", []),
-])
+@pytest.mark.parametrize(
+    "scene, what, options",
+    [
+        ("slider-crank-press", "energy_mass", []),
+        ("slider-crank-press", "inertia_delta", []),  # J_F(δ) of the exact model is computed before, and passed in
+        ("motor-press", "turning_moment", []),  # the motor along the periodic solution the analysis carries
+        ("shear-press", "speed", ["--verify"]),  # the model's ω(φ) and the simulation are passed in
+        ("slider-crank-press", "speed", ["--verify"]),
+        ("motor-press", "speed", []),  # the dynamic model's own periodic solution
+        ("shear-press", "inertia_delta", []),
+        ("shear-press", "energy", []),
+        ("shear-press", "turning_moment", []),
+        ("shear-press", "cross_section", []),
+        ("shear-press", "stress", []),
+    ],
+)
 def test_plots_never_run_a_model(monkeypatch, tmp_path, scene, what, options):
     from flyopt.report import plots
 
     real, drawn = getattr(plots, f"plot_{what}"), []
 
-    def guarded(*args, **kwargs):   # inside the plot, every model run fails the test
+    def guarded(*args, **kwargs):  # inside the plot, every model run fails the test
         with pytest.MonkeyPatch.context() as patch:
             _forbid_models(patch)
             drawn.append(real(*args, **kwargs))
@@ -242,7 +288,7 @@ def test_plots_never_run_a_model(monkeypatch, tmp_path, scene, what, options):
     out = tmp_path / "x.png"
     assert main(["plot", str(PROBLEMS / f"{scene}.toml"), "--what", what, *options, "-o", str(out)]) == 0
     assert len(drawn) == 1 and out.stat().st_size > 10_000
-    if options:                                   # model and simulation both drawn
+    if options:  # model and simulation both drawn
         assert "simulation" in drawn[0].lines[1].get_label()
 
 
@@ -259,9 +305,11 @@ def test_energy_mass_refuses_an_analysis_by_another_model():
 # The README's plot recipes, as written
 # --------------------------------------------------------------------------
 
+
 def _flyopt(*args, cwd):
-    return subprocess.run([sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True,
-                          timeout=600, cwd=cwd)
+    return subprocess.run(
+        [sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True, timeout=600, cwd=cwd
+    )
 
 
 def _readme_command(start):
@@ -279,8 +327,16 @@ def _readme_command(start):
 
 def test_readme_sweep_plot_by_material(tmp_path):
     # on a sweep that varies delta only, --by material means the winner's material
-    sweep = _flyopt("sweep", PROBLEMS / "punch-press.toml", "--vary", "delta=0.01:0.1:log5", "-o", "RESULTS.parquet",
-                    "--no-progress", cwd=tmp_path)
+    sweep = _flyopt(
+        "sweep",
+        PROBLEMS / "punch-press.toml",
+        "--vary",
+        "delta=0.01:0.1:log5",
+        "-o",
+        "RESULTS.parquet",
+        "--no-progress",
+        cwd=tmp_path,
+    )
     assert sweep.returncode == 0, sweep.stderr
     command = _readme_command("flyopt plot RESULTS.parquet --what sweep")
     out = _flyopt(*command, cwd=tmp_path)
@@ -289,8 +345,17 @@ def test_readme_sweep_plot_by_material(tmp_path):
 
 
 def test_readme_pareto_plot_without_x(tmp_path):
-    front = _flyopt("pareto", PROBLEMS / "shear-press.toml", "--objectives", "mass,outer_diameter",
-                    "--points", "5", "-o", "FRONT.csv", cwd=tmp_path)
+    front = _flyopt(
+        "pareto",
+        PROBLEMS / "shear-press.toml",
+        "--objectives",
+        "mass,outer_diameter",
+        "--points",
+        "5",
+        "-o",
+        "FRONT.csv",
+        cwd=tmp_path,
+    )
     assert front.returncode == 0, front.stderr
     command = _readme_command("flyopt plot FRONT.csv --what pareto")
     assert "--x" not in command
@@ -303,11 +368,18 @@ def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):
     import argparse
 
     import pandas as pd
+
     from flyopt.cli.plot import run_plot
     from flyopt.report import plots
 
-    front = pd.DataFrame({"mass": [3.0, 2.0, 1.0], "delta": [0.01, 0.02, 0.04], "outer_diameter": [1.0, 2.0, 3.0],
-                          "epsilon": [0.01, 0.02, 0.04]})
+    front = pd.DataFrame(
+        {
+            "mass": [3.0, 2.0, 1.0],
+            "delta": [0.01, 0.02, 0.04],
+            "outer_diameter": [1.0, 2.0, 3.0],
+            "epsilon": [0.01, 0.02, 0.04],
+        }
+    )
     assert plots.pareto_objectives(front) == ("mass", "delta")
     path = tmp_path / "f.csv"
     front.to_csv(path, index=False)
@@ -319,8 +391,9 @@ def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):
         return real(frame, x, y, ax, units)
 
     monkeypatch.setattr(plots, "plot_pareto", spy)
-    args = argparse.Namespace(scene=str(path), what="pareto", x=None, y="mass", by=None, units="engineering",
-                              output=str(tmp_path / "f.png"))
+    args = argparse.Namespace(
+        scene=str(path), what="pareto", x=None, y="mass", by=None, units="engineering", output=str(tmp_path / "f.png")
+    )
     assert run_plot(args) == 0
     assert seen == {"x": "delta", "y": "mass"}
 
@@ -393,7 +466,7 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
     for name, (x0, x1, y0, y1) in expected.items():
         np.testing.assert_allclose(blocks[f"{name}+"], (x0, x1, y0, y1), rtol=0, atol=1e-12)
         np.testing.assert_allclose(blocks[f"{name}-"], (x0, x1, -y1, -y0), rtol=0, atol=1e-12)  # mirrored
-    assert c.d_outer * 1e3 / 2 < ax.get_ylim()[1] < c.d_outer * 1e3    # the axes hold millimetres
+    assert c.d_outer * 1e3 / 2 < ax.get_ylim()[1] < c.d_outer * 1e3  # the axes hold millimetres
     assert {g[:-1] for g in blocks} == set(expected)
     # every dimension the brief names is written, in mm
     texts = {t.get_text() for t in ax.texts}
@@ -401,8 +474,11 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
     if geometry != "disc":
         wanted |= {f"Ø{c.d_inner * 1e3:.1f}".rstrip("0").rstrip("."), f"H {c.h * 1e3:.1f}".rstrip("0").rstrip(".")}
     if geometry in ("rim_web", "rim_arms"):
-        wanted |= {f"Ø{c.d_hub * 1e3:.1f}".rstrip("0").rstrip("."), "Ø60",
-                   f"l_hub {c.l_hub * 1e3:.1f}".rstrip("0").rstrip(".")}
+        wanted |= {
+            f"Ø{c.d_hub * 1e3:.1f}".rstrip("0").rstrip("."),
+            "Ø60",
+            f"l_hub {c.l_hub * 1e3:.1f}".rstrip("0").rstrip("."),
+        }
     if geometry == "disc":
         wanted.add("Ø60")
     if geometry == "rim_web":
@@ -413,8 +489,9 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
 
         section = [p for p in ax.patches if isinstance(p, Ellipse) and p.get_gid() == "arm_section"]
         assert len(section) == 1
-        np.testing.assert_allclose((section[0].width, section[0].height), (c.arm_minor * 1e3, c.arm_major * 1e3),
-                                   rtol=1e-12)
+        np.testing.assert_allclose(
+            (section[0].width, section[0].height), (c.arm_minor * 1e3, c.arm_major * 1e3), rtol=1e-12
+        )
         front = [a for a in ax.figure.axes if a is not ax]
         assert len(front) == 1
         arms = [p for p in front[0].patches if isinstance(p, Polygon) and p.get_gid() == "arm"]
@@ -449,7 +526,7 @@ def test_stress_plot_at_the_bore_is_the_annulus_closed_form(geometry):
     The disc on its 60 mm bore and the bare rim are both such annuli."""
     ax, design, analysis = _stress_axes(geometry)
     c = design.best
-    omega = analysis.omega_max                       # the speed ratio of the crankshaft is 1
+    omega = analysis.omega_max  # the speed ratio of the crankshaft is 1
     a = (c.bore if geometry == "disc" else c.d_inner) / 2
     b = c.d_outer / 2
     hoop = (3 + NU) / 4 * RHO * omega**2 * (b**2 + (1 - NU) / (3 + NU) * a**2)
@@ -475,7 +552,7 @@ def test_stress_plot_of_an_arms_wheel_marks_rim_and_arm_root():
     omega = analysis.omega_max
     r_mean = c.d_mean / 2
     # Khurmi ch. 22: 3/4 rho v^2 + 1/4 of the bending of a rim fixed at its arms, 2 pi^2 rho w^2 R^3/(n^2 H)
-    rim = 0.75 * RHO * (omega * r_mean)**2 + 0.25 * 2 * math.pi**2 * RHO * omega**2 * r_mean**3 / (c.n_arms**2 * c.h)
+    rim = 0.75 * RHO * (omega * r_mean) ** 2 + 0.25 * 2 * math.pi**2 * RHO * omega**2 * r_mean**3 / (c.n_arms**2 * c.h)
     rim_point = [line for line in ax.lines if line.get_label().startswith("rim (hoop + bending)")]
     arm_point = [line for line in ax.lines if line.get_label().startswith("arm root")]
     assert len(rim_point) == 1 and len(arm_point) == 1

@@ -14,12 +14,12 @@ import re
 
 import numpy as np
 import pytest
+from conftest import PROBLEMS, assert_published
 from numpy.testing import assert_allclose
 from scipy.integrate import quad, solve_ivp
+from test_input_failures import assert_refused, cli  # noqa: F401 (cli is a fixture)
 
 import flyopt
-from conftest import PROBLEMS, assert_published
-from test_input_failures import assert_refused, cli  # noqa: F401 (cli is a fixture)
 
 RPM = 2 * math.pi / 60
 
@@ -63,12 +63,12 @@ def test_khurmi_punching_press_720_holes_an_hour():
     solution = flyopt.solve(scene)
     result = solution.analysis
     w1, w2 = 225 * RPM, 200 * RPM
-    j_khurmi = 9000 / (0.5 * (w1**2 - w2**2))            # the textbook's J, in floats
-    assert_allclose(result.a_max, 15000 * (1 - 2 / 5), rtol=1e-13)   # the flywheel's 9 kJ
+    j_khurmi = 9000 / (0.5 * (w1**2 - w2**2))  # the textbook's J, in floats
+    assert_allclose(result.a_max, 15000 * (1 - 2 / 5), rtol=1e-13)  # the flywheel's 9 kJ
     assert_allclose(flywheel(result).j_required, j_khurmi, rtol=1e-12)
     assert_published(flywheel(result).j_required / 0.5**2, "618")
     assert_allclose(result.power, 15000 / 5, rtol=1e-13)
-    assert_allclose(result.motor_power, 15000 / 5, rtol=1e-13)    # no efficiency given: 1
+    assert_allclose(result.motor_power, 15000 / 5, rtol=1e-13)  # no efficiency given: 1
     assert_published(result.power / 1000, "3")
     # the thin rim of mean diameter 2k = 1 m is m = J/k^2: the textbook's mass through the design
     assert solution.design.best.shaft == "flywheel"
@@ -101,7 +101,7 @@ def test_the_issues_slowdown_gives_khurmis_press(write_scene):
     assert_published(flywheel(exact).j_required / 0.25, "618")
     rounded = flyopt.analyse(khurmi(write_scene, 0.111))
     w1 = 225 * RPM
-    j = 9000 / (0.5 * w1**2 * (1 - (1 - 0.111)**2))
+    j = 9000 / (0.5 * w1**2 * (1 - (1 - 0.111) ** 2))
     assert_allclose(flywheel(rounded).j_required, j, rtol=1e-12)
     assert_published(flywheel(rounded).j_required / 0.25, "618.5")
 
@@ -140,12 +140,21 @@ def test_a_simulation_in_time_slows_the_flywheel_from_225_to_its_bottom_speed(wr
     def run(load, start, angle):
         """Integrate with a constant load [N*m] from ``start`` (t, φ, ω) until φ reaches ``angle``;
         each piece is smooth, so the integrator never steps across the load's step."""
+
         def reached(t, y):
             return y[0] - angle
+
         reached.terminal = True
         t0, phi, omega = start
-        sol = solve_ivp(lambda t, y: [y[1], (driving - load) / j], (t0, t0 + 100), [phi, omega],
-                        events=reached, rtol=1e-12, atol=1e-14, max_step=0.01)
+        sol = solve_ivp(
+            lambda t, y: [y[1], (driving - load) / j],
+            (t0, t0 + 100),
+            [phi, omega],
+            events=reached,
+            rtol=1e-12,
+            atol=1e-14,
+            max_step=0.01,
+        )
         return sol.t_events[0][0], *sol.y_events[0][0]
 
     top = 225 * RPM / ratio
@@ -172,7 +181,7 @@ def test_the_conversions_of_the_physics_module():
 
     for s in (0.01, 0.1, 1 / 9, 0.5, 0.99):
         delta = press.delta_from_slowdown(s)
-        omega_max, omega_min = 1 + delta / 2, 1 - delta / 2          # section 2, ω_m = 1
+        omega_max, omega_min = 1 + delta / 2, 1 - delta / 2  # section 2, ω_m = 1
         assert_allclose((omega_max - omega_min) / omega_max, s, rtol=1e-14)
         assert_allclose(press.slowdown_from_delta(delta), s, rtol=1e-14)
         assert_allclose(press.mean_from_top_speed(10.0, delta), 10 * (1 - s / 2), rtol=1e-14)
@@ -189,16 +198,19 @@ def _same_cycle(a, b):
     assert_allclose(flywheel(b).speed_ratio, flywheel(a).speed_ratio, rtol=1e-13)
 
 
-@pytest.mark.parametrize("old, new", [
-    ("strokes_per_minute = 12", 'stroke_period = "5 s"'),
-    ("strokes_per_minute = 12", "stroke_period = 5"),
-    ("strokes_per_minute = 12", 'stroke_period = "5000 ms"'),
-    ("working_time = 2", 'working_time = "2 s"'),
-    ("working_time = 2", 'working_time = "2000 ms"'),
-    ("working_time = 2", 'working_angle = "144 deg"'),
-    ("working_time = 2", "working_angle = 2.5132741228718345"),
-    ('energy_per_stroke = "15 kJ"', 'energy_per_stroke = "15 kN*m"'),
-])
+@pytest.mark.parametrize(
+    "old, new",
+    [
+        ("strokes_per_minute = 12", 'stroke_period = "5 s"'),
+        ("strokes_per_minute = 12", "stroke_period = 5"),
+        ("strokes_per_minute = 12", 'stroke_period = "5000 ms"'),
+        ("working_time = 2", 'working_time = "2 s"'),
+        ("working_time = 2", 'working_time = "2000 ms"'),
+        ("working_time = 2", 'working_angle = "144 deg"'),
+        ("working_time = 2", "working_angle = 2.5132741228718345"),
+        ('energy_per_stroke = "15 kJ"', 'energy_per_stroke = "15 kN*m"'),
+    ],
+)
 def test_each_form_of_the_rate_and_the_working_stroke_gives_the_same_cycle(write_scene, old, new):
     """5 s a stroke is 12 strokes a minute; 2 s of 5 s is 144 deg of the crank."""
     base = flyopt.analyse(khurmi(write_scene))
@@ -248,8 +260,7 @@ delta = 0.1
 
 
 @pytest.mark.parametrize("angle, stroke, force", [(60, 20, 600), (120, 5, 2000), (10, 100, 50)])
-def test_a_force_ramp_gives_its_work_and_the_energy_indicator_of_its_closed_form(write_scene, angle, stroke,
-                                                                                 force):
+def test_a_force_ramp_gives_its_work_and_the_energy_indicator_of_its_closed_form(write_scene, angle, stroke, force):
     """A force rising linearly from 0 to F over the stroke s: work E = F s/2. With the positions
     uniform over θ_w, M_r rises linearly to M_p = F s/θ_w (= 2E/θ_w), M_d = E/2π. ΔE climbs to
     M_d φ*/2 at the crossing φ* = θ_w M_d/M_p = θ_w²/(4π), and falls to E θ_w/2π - E at the end of
@@ -272,16 +283,21 @@ def test_a_force_table_with_steps_does_the_work_of_its_integral(write_scene):
     plain numbers and strings with units mixed: the work per cycle is ∫F dx by scipy's quad of
     the interpolated table (to 1e-10), and the load ends at the working angle."""
     rows = [["0 mm", "0 kN"], ["0 mm", "120 kN"], [4, 300], [9, 420], ["12 mm", "0.39 MN"], [12, 0], [15, 0]]
-    text = ('[press]\nstrokes_per_minute = 20\nworking_angle = "90 deg"\nslowdown = 0.15\n'
-            'position_unit = "mm"\nforce_unit = "kN"\nforce = ' + repr(rows).replace("'", '"') + "\n")
+    text = (
+        '[press]\nstrokes_per_minute = 20\nworking_angle = "90 deg"\nslowdown = 0.15\n'
+        'position_unit = "mm"\nforce_unit = "kN"\nforce = ' + repr(rows).replace("'", '"') + "\n"
+    )
     result = flyopt.analyse(flyopt.load(write_scene(text)))
     x = np.array([0, 0, 4, 9, 12, 12, 15]) * 1e-3
     f = np.array([0, 120, 300, 420, 390, 0, 0]) * 1e3
-    pieces = [quad(lambda t, k=k: np.interp(t, x[k:k + 2], f[k:k + 2]), x[k], x[k + 1], epsabs=0, epsrel=1e-13)[0]
-              for k in range(len(x) - 1) if x[k + 1] > x[k]]
+    pieces = [
+        quad(lambda t, k=k: np.interp(t, x[k : k + 2], f[k : k + 2]), x[k], x[k + 1], epsabs=0, epsrel=1e-13)[0]
+        for k in range(len(x) - 1)
+        if x[k + 1] > x[k]
+    ]
     assert_allclose(result.work_per_cycle, sum(pieces), rtol=1e-10)
     chain = [e["angle"] for e in result.energy_chain]
-    assert max(chain[:-1]) <= math.radians(90) * (1 + 1e-12)     # nothing happens after the working stroke
+    assert max(chain[:-1]) <= math.radians(90) * (1 + 1e-12)  # nothing happens after the working stroke
 
 
 def test_punching_energy_is_half_the_largest_force_times_the_thickness(write_scene):
@@ -291,14 +307,17 @@ def test_punching_energy_is_half_the_largest_force_times_the_thickness(write_sce
     a 50 mm hole in a 2 mm sheet, τ = 3.1 kN/mm², penetration half the thickness: 973.89 J.
     By hand: F = 3100 N/mm² x π x 50 mm x 2 mm = 973,894 N; E = ½ x 973,894 N x 0.002 m = 973.89 J.
     A cut_length of π d is the same hole."""
-    text = ('[press]\nstrokes_per_minute = 24\nworking_angle = "36 deg"\ndelta = 0.1\n'
-            '[press.punching]\nthickness = "2 mm"\nshear_strength = "3.1 kN/mm^2"\nhole_diameter = "50 mm"\n')
+    text = (
+        '[press]\nstrokes_per_minute = 24\nworking_angle = "36 deg"\ndelta = 0.1\n'
+        '[press.punching]\nthickness = "2 mm"\nshear_strength = "3.1 kN/mm^2"\nhole_diameter = "50 mm"\n'
+    )
     result = flyopt.analyse(flyopt.load(write_scene(text)))
     assert_published(result.work_per_cycle, "973.89")
     assert_allclose(result.work_per_cycle, 0.5 * 3.1e9 * math.pi * 0.05 * 0.002 * 0.002, rtol=1e-13)
     cut = text.replace('hole_diameter = "50 mm"', f"cut_length = {math.pi * 0.05!r}")
-    assert_allclose(flyopt.analyse(flyopt.load(write_scene(cut, name="cut.toml"))).work_per_cycle,
-                    result.work_per_cycle, rtol=1e-15)
+    assert_allclose(
+        flyopt.analyse(flyopt.load(write_scene(cut, name="cut.toml"))).work_per_cycle, result.work_per_cycle, rtol=1e-15
+    )
 
 
 def test_a_punching_press_with_an_efficiency_takes_its_motor_power_through_it(write_scene):
@@ -307,9 +326,11 @@ def test_a_punching_press_with_an_efficiency_takes_its_motor_power_through_it(wr
     E = ½ (350 x π x 30 x 20) N x 0.020 m = 6,597.3 J a stroke, mean power E x 24/60 = 2,638.9 W,
     motor 2,638.9/0.76 = 3,472 W; the flywheel gives up E (1 - 1/10) = 5,937.6 J. Closed forms
     written out here (the inputs are the textbook's; its answers are not quoted)."""
-    text = ('[press]\nstrokes_per_minute = 24\nworking_angle = "36 deg"\ndelta = 0.1\n'
-            '[press.punching]\nthickness = "20 mm"\nshear_strength = "350 MPa"\nhole_diameter = "30 mm"\n'
-            '[machine]\nefficiency = "76 %"\n')
+    text = (
+        '[press]\nstrokes_per_minute = 24\nworking_angle = "36 deg"\ndelta = 0.1\n'
+        '[press.punching]\nthickness = "20 mm"\nshear_strength = "350 MPa"\nhole_diameter = "30 mm"\n'
+        '[machine]\nefficiency = "76 %"\n'
+    )
     result = flyopt.analyse(flyopt.load(write_scene(text)))
     energy = 0.5 * 350e6 * math.pi * 0.030 * 0.020 * 0.020
     assert_allclose(result.work_per_cycle, energy, rtol=1e-13)
@@ -333,11 +354,20 @@ def test_the_users_own_tables_are_kept_and_the_input_is_not_changed():
     from flyopt.io.press import scene_data
     from flyopt.io.scene import from_dict
 
-    data = {"title": "p", "press": {"strokes_per_minute": 12, "energy_per_stroke": "15 kJ", "working_time": 2,
-                                    "slowdown": 0.1, "flywheel_speed": "225 rpm"},
-            "machine": {"inertia": "2 kg*m^2", "efficiency": 0.9},
-            "shaft": [{"name": "main", "speed_ratio": 1, "efficiency": 0.9}],
-            "design": {"geometry": "disc"}, "material": [{"name": "x", "density": 7000, "max_rim_speed": 30}]}
+    data = {
+        "title": "p",
+        "press": {
+            "strokes_per_minute": 12,
+            "energy_per_stroke": "15 kJ",
+            "working_time": 2,
+            "slowdown": 0.1,
+            "flywheel_speed": "225 rpm",
+        },
+        "machine": {"inertia": "2 kg*m^2", "efficiency": 0.9},
+        "shaft": [{"name": "main", "speed_ratio": 1, "efficiency": 0.9}],
+        "design": {"geometry": "disc"},
+        "material": [{"name": "x", "density": 7000, "max_rim_speed": 30}],
+    }
     before = copy.deepcopy(data)
     out = scene_data(data)
     assert data == before
@@ -369,8 +399,10 @@ def test_a_motor_the_user_gives_drives_the_press(write_scene):
     """[torque.driving] is the user's: a motor on the flywheel shaft drives, the press's load resists."""
     from flyopt.machine.torque import MotorTorque, PiecewiseLinear
 
-    text = KHURMI.format(slowdown=0.1) + ('[torque.driving]\nmotor = { kind = "induction", rated_power = "4 kW", '
-                                          'rated_speed = "1440 rpm", synchronous_speed = "1500 rpm" }\n')
+    text = KHURMI.format(slowdown=0.1) + (
+        '[torque.driving]\nmotor = { kind = "induction", rated_power = "4 kW", '
+        'rated_speed = "1440 rpm", synchronous_speed = "1500 rpm" }\n'
+    )
     scene = flyopt.load(write_scene(text))
     assert isinstance(scene.driving, MotorTorque) and isinstance(scene.resisting, PiecewiseLinear)
 
@@ -385,33 +417,51 @@ working_time = "2 s"
 slowdown = 0.1
 flywheel_speed = "225 rpm"
 """
-FORCE = GOOD.replace('energy_per_stroke = "15 kJ"', 'force = [[0, 0], [20, 600]]\nposition_unit = "mm"\n'
-                                                    'force_unit = "kN"')
-PUNCH = GOOD.replace('energy_per_stroke = "15 kJ"', "") + ('[press.punching]\nthickness = "20 mm"\n'
-                                                           'shear_strength = "350 MPa"\nhole_diameter = "30 mm"\n')
+FORCE = GOOD.replace(
+    'energy_per_stroke = "15 kJ"', 'force = [[0, 0], [20, 600]]\nposition_unit = "mm"\nforce_unit = "kN"'
+)
+PUNCH = GOOD.replace('energy_per_stroke = "15 kJ"', "") + (
+    '[press.punching]\nthickness = "20 mm"\nshear_strength = "350 MPa"\nhole_diameter = "30 mm"\n'
+)
 
 BAD = [
     # the rate
     (GOOD, "strokes_per_minute = 12", "strokes_per_minute = 0", "press.strokes_per_minute", "positive"),
     (GOOD, "strokes_per_minute = 12", "strokes_per_minute = -12", "press.strokes_per_minute", "positive"),
     (GOOD, "strokes_per_minute = 12", 'strokes_per_minute = "12 rpm"', "press.strokes_per_minute", "plain number"),
-    (GOOD, "strokes_per_minute = 12", 'strokes_per_minute = 12\nstroke_period = "5 s"', "press.stroke_period",
-     "exactly one of strokes_per_minute, stroke_period"),
+    (
+        GOOD,
+        "strokes_per_minute = 12",
+        'strokes_per_minute = 12\nstroke_period = "5 s"',
+        "press.stroke_period",
+        "exactly one of strokes_per_minute, stroke_period",
+    ),
     (GOOD, "strokes_per_minute = 12\n", "", "press.strokes_per_minute", "exactly one of"),
     (GOOD, "strokes_per_minute = 12", 'stroke_period = "0 s"', "press.stroke_period", "positive"),
     (GOOD, "strokes_per_minute = 12", 'stroke_period = "5 m"', "press.stroke_period", "expected a time"),
     (GOOD, "strokes_per_minute = 12", 'stroke_period = "5 s) * (1 m"', "press.stroke_period", "time"),
     (GOOD, "strokes_per_minute = 12", "stroke_period = true", "press.stroke_period", "expected a time"),
     # the working stroke
-    (GOOD, 'working_time = "2 s"', 'working_time = "5 s"', "press.working_time", r"shorter than the stroke period \(5 s\)"),
+    (
+        GOOD,
+        'working_time = "2 s"',
+        'working_time = "5 s"',
+        "press.working_time",
+        r"shorter than the stroke period \(5 s\)",
+    ),
     (GOOD, 'working_time = "2 s"', 'working_time = "6 s"', "press.working_time", "shorter than"),
     (GOOD, 'working_time = "2 s"', "working_time = 0", "press.working_time", "positive"),
     (GOOD, 'working_time = "2 s"', 'working_time = "2 kg"', "press.working_time", "expected a time"),
     (GOOD, 'working_time = "2 s"', 'working_angle = "360 deg"', "press.working_angle", "between 0 and 360 deg"),
     (GOOD, 'working_time = "2 s"', 'working_angle = "-10 deg"', "press.working_angle", "between 0 and 360 deg"),
     (GOOD, 'working_time = "2 s"', 'working_angle = "60 s"', "press.working_angle", "wrong dimension"),
-    (GOOD, 'working_time = "2 s"', 'working_time = "2 s"\nworking_angle = "60 deg"', "press.working_angle",
-     "exactly one of working_time, working_angle"),
+    (
+        GOOD,
+        'working_time = "2 s"',
+        'working_time = "2 s"\nworking_angle = "60 deg"',
+        "press.working_angle",
+        "exactly one of working_time, working_angle",
+    ),
     (GOOD, 'working_time = "2 s"\n', "", "press.working_time", "exactly one of"),
     # the fluctuation
     (GOOD, "slowdown = 0.1", "slowdown = 1", "press.slowdown", "between 0 and 1"),
@@ -424,57 +474,125 @@ BAD = [
     (GOOD, "slowdown = 0.1\n", "", "press.slowdown", "exactly one of"),
     (GOOD, "slowdown = 0.1", 'flywheel_speed_min = "230 rpm"', "press.flywheel_speed_min", "below flywheel_speed"),
     (GOOD, "slowdown = 0.1", 'flywheel_speed_min = "0 rpm"', "press.flywheel_speed_min", "positive"),
-    (GOOD.replace('flywheel_speed = "225 rpm"\n', ""), "slowdown = 0.1", 'flywheel_speed_min = "200 rpm"',
-     "press.flywheel_speed_min", "needs press.flywheel_speed"),
+    (
+        GOOD.replace('flywheel_speed = "225 rpm"\n', ""),
+        "slowdown = 0.1",
+        'flywheel_speed_min = "200 rpm"',
+        "press.flywheel_speed_min",
+        "needs press.flywheel_speed",
+    ),
     # the flywheel shaft
     (GOOD, 'flywheel_speed = "225 rpm"', 'flywheel_speed = "0 rpm"', "press.flywheel_speed", "positive"),
     (GOOD, 'flywheel_speed = "225 rpm"', 'flywheel_speed = "-225 rpm"', "press.flywheel_speed", "positive"),
     (GOOD, 'flywheel_speed = "225 rpm"', 'flywheel_speed = "225 m"', "press.flywheel_speed", "wrong dimension"),
-    (GOOD, 'flywheel_speed = "225 rpm"', 'flywheel_speed = "225 rpm"\n[[shaft]]\nname = "flywheel"\nspeed_ratio = 2',
-     "press.flywheel_speed", "shaft\\[0\\] is named 'flywheel' too"),
+    (
+        GOOD,
+        'flywheel_speed = "225 rpm"',
+        'flywheel_speed = "225 rpm"\n[[shaft]]\nname = "flywheel"\nspeed_ratio = 2',
+        "press.flywheel_speed",
+        "shaft\\[0\\] is named 'flywheel' too",
+    ),
     # the energy
     (GOOD, 'energy_per_stroke = "15 kJ"', 'energy_per_stroke = "0 J"', "press.energy_per_stroke", "positive"),
     (GOOD, 'energy_per_stroke = "15 kJ"', 'energy_per_stroke = "-15 kJ"', "press.energy_per_stroke", "positive"),
-    (GOOD, 'energy_per_stroke = "15 kJ"', 'energy_per_stroke = "15 kW"', "press.energy_per_stroke",
-     "wrong dimension"),
+    (GOOD, 'energy_per_stroke = "15 kJ"', 'energy_per_stroke = "15 kW"', "press.energy_per_stroke", "wrong dimension"),
     (GOOD, 'energy_per_stroke = "15 kJ"\n', "", "press.energy_per_stroke", "exactly one of"),
-    (GOOD, 'energy_per_stroke = "15 kJ"', 'energy_per_stroke = "15 kJ"\nforce = [[0, 0], [1, 1]]', "press.force",
-     "exactly one of energy_per_stroke, force, punching"),
-    (GOOD, 'energy_per_stroke = "15 kJ"', 'energy_per_stroke = "15 kJ"\nforce_unit = "kN"', "press.force_unit",
-     "belongs to press.force"),
+    (
+        GOOD,
+        'energy_per_stroke = "15 kJ"',
+        'energy_per_stroke = "15 kJ"\nforce = [[0, 0], [1, 1]]',
+        "press.force",
+        "exactly one of energy_per_stroke, force, punching",
+    ),
+    (
+        GOOD,
+        'energy_per_stroke = "15 kJ"',
+        'energy_per_stroke = "15 kJ"\nforce_unit = "kN"',
+        "press.force_unit",
+        "belongs to press.force",
+    ),
     (FORCE, "force = [[0, 0], [20, 600]]", "force = [[0, 0]]", "press.force", "at least two"),
     (FORCE, "force = [[0, 0], [20, 600]]", "force = [[0, 0], [20]]", "press.force[1]", "pair"),
-    (FORCE, "force = [[0, 0], [20, 600]]", "force = [[0, 0], [20, 600], [10, 0]]", "press.force[2]",
-     "must not decrease"),
-    (FORCE, "force = [[0, 0], [20, 600]]", "force = [[0, 0], [20, 600], [20, 300], [20, 0]]", "press.force[3]",
-     "three points at one position"),
+    (
+        FORCE,
+        "force = [[0, 0], [20, 600]]",
+        "force = [[0, 0], [20, 600], [10, 0]]",
+        "press.force[2]",
+        "must not decrease",
+    ),
+    (
+        FORCE,
+        "force = [[0, 0], [20, 600]]",
+        "force = [[0, 0], [20, 600], [20, 300], [20, 0]]",
+        "press.force[3]",
+        "three points at one position",
+    ),
     (FORCE, "force = [[0, 0], [20, 600]]", "force = [[0, 0], [20, -600]]", "press.force[1]", "not be negative"),
     (FORCE, "force = [[0, 0], [20, 600]]", "force = [[0, 0], [20, 0]]", "press.force", "does no work"),
     (FORCE, "force = [[0, 0], [20, 600]]", "force = [[5, 0], [5, 600]]", "press.force", "no length"),
-    (FORCE, "force = [[0, 0], [20, 600]]", 'force = [[0, 0], ["20 mm", "600 N*m"]]', "press.force[1] force",
-     "wrong dimension"),
+    (
+        FORCE,
+        "force = [[0, 0], [20, 600]]",
+        'force = [[0, 0], ["20 mm", "600 N*m"]]',
+        "press.force[1] force",
+        "wrong dimension",
+    ),
     (FORCE, 'force_unit = "kN"', 'force_unit = "kJ"', "press.force_unit", "wrong dimension"),
     (FORCE, 'position_unit = "mm"', "position_unit = 0.001", "press.position_unit", "unit string"),
     (PUNCH, 'thickness = "20 mm"\n', "", "press.punching.thickness", "is missing"),
-    (PUNCH, 'shear_strength = "350 MPa"', 'shear_strength = "-350 MPa"', "press.punching.shear_strength",
-     "positive"),
-    (PUNCH, 'hole_diameter = "30 mm"', 'hole_diameter = "30 mm"\ncut_length = "94 mm"', "press.punching.cut_length",
-     "exactly one of hole_diameter, cut_length"),
-    (PUNCH, 'hole_diameter = "30 mm"', 'hole_diamter = "30 mm"', "press.punching.hole_diamter",
-     "did you mean 'hole_diameter'"),
+    (PUNCH, 'shear_strength = "350 MPa"', 'shear_strength = "-350 MPa"', "press.punching.shear_strength", "positive"),
+    (
+        PUNCH,
+        'hole_diameter = "30 mm"',
+        'hole_diameter = "30 mm"\ncut_length = "94 mm"',
+        "press.punching.cut_length",
+        "exactly one of hole_diameter, cut_length",
+    ),
+    (
+        PUNCH,
+        'hole_diameter = "30 mm"',
+        'hole_diamter = "30 mm"',
+        "press.punching.hole_diamter",
+        "did you mean 'hole_diameter'",
+    ),
     # the table and conflicts with the scene's own
     (GOOD, "slowdown = 0.1", "slowdown = 0.1\nstroke_rate = 12", "press.stroke_rate", "unknown key"),
     (GOOD, "[press]\nstrokes_per_minute", "press = 5\n[pres]\nstrokes_per_minute", "press", "must be a table"),
-    (GOOD, 'flywheel_speed = "225 rpm"', 'flywheel_speed = "225 rpm"\n[machine]\nspeed = "12 rpm"',
-     "press.strokes_per_minute", "machine.speed is given too"),
-    (GOOD, 'flywheel_speed = "225 rpm"', 'flywheel_speed = "225 rpm"\n[machine]\ndelta = 0.1',
-     "press.slowdown", "machine.delta is given too"),
-    (GOOD, 'flywheel_speed = "225 rpm"', 'flywheel_speed = "225 rpm"\n[machine]\ncycle = "720 deg"',
-     "press.strokes_per_minute", "machine.cycle is given too"),
-    (GOOD, 'flywheel_speed = "225 rpm"', 'flywheel_speed = "225 rpm"\n[torque.resisting]\nconstant = "100 N*m"',
-     "press.energy_per_stroke", "torque.resisting is given too"),
-    (GOOD, 'flywheel_speed = "225 rpm"', 'flywheel_speed = "225 rpm"\n[torque.net]\nareas = [1, -1]',
-     "press.energy_per_stroke", "torque.net is given too"),
+    (
+        GOOD,
+        'flywheel_speed = "225 rpm"',
+        'flywheel_speed = "225 rpm"\n[machine]\nspeed = "12 rpm"',
+        "press.strokes_per_minute",
+        "machine.speed is given too",
+    ),
+    (
+        GOOD,
+        'flywheel_speed = "225 rpm"',
+        'flywheel_speed = "225 rpm"\n[machine]\ndelta = 0.1',
+        "press.slowdown",
+        "machine.delta is given too",
+    ),
+    (
+        GOOD,
+        'flywheel_speed = "225 rpm"',
+        'flywheel_speed = "225 rpm"\n[machine]\ncycle = "720 deg"',
+        "press.strokes_per_minute",
+        "machine.cycle is given too",
+    ),
+    (
+        GOOD,
+        'flywheel_speed = "225 rpm"',
+        'flywheel_speed = "225 rpm"\n[torque.resisting]\nconstant = "100 N*m"',
+        "press.energy_per_stroke",
+        "torque.resisting is given too",
+    ),
+    (
+        GOOD,
+        'flywheel_speed = "225 rpm"',
+        'flywheel_speed = "225 rpm"\n[torque.net]\nareas = [1, -1]',
+        "press.energy_per_stroke",
+        "torque.net is given too",
+    ),
 ]
 
 
@@ -486,9 +604,10 @@ def test_a_bad_press_value_is_refused_in_one_line(tmp_path, cli, base, old, new,
     assert_refused(cli("check", path), path, field, match)
 
 
-@pytest.mark.parametrize("base, old, new, field, match",
-                         [case for case in BAD if case[2] in ("slowdown = 1", 'working_time = "5 s"',
-                                                              "force = [[0, 0], [20, 0]]")])
+@pytest.mark.parametrize(
+    "base, old, new, field, match",
+    [case for case in BAD if case[2] in ("slowdown = 1", 'working_time = "5 s"', "force = [[0, 0], [20, 0]]")],
+)
 def test_solve_refuses_a_bad_press_value_as_check_does(tmp_path, cli, base, old, new, field, match):
     path = tmp_path / "press.toml"
     path.write_text(base.replace(old, new, 1))
@@ -510,16 +629,18 @@ def test_a_long_force_table_read_without_tomllib_gives_the_work_of_its_rows(writ
     from flyopt.io.press import scene_data
     from flyopt.io.scene import InlineRows, from_dict, read_toml
 
-    x = np.linspace(0.0, 30.0, 400)                      # mm
-    f = 500.0 * np.sin(np.pi * x / 30.0) ** 2            # kN
+    x = np.linspace(0.0, 30.0, 400)  # mm
+    f = 500.0 * np.sin(np.pi * x / 30.0) ** 2  # kN
     rows = ", ".join(f"[{a!r}, {b!r}]" for a, b in zip(x.tolist(), f.tolist()))
-    path = write_scene('[press]\nstrokes_per_minute = 20\nworking_angle = "100 deg"\nslowdown = 0.1\n'
-                       f'position_unit = "mm"\nforce_unit = "kN"\nforce = [{rows}]\n')
+    path = write_scene(
+        '[press]\nstrokes_per_minute = 20\nworking_angle = "100 deg"\nslowdown = 0.1\n'
+        f'position_unit = "mm"\nforce_unit = "kN"\nforce = [{rows}]\n'
+    )
     data = read_toml(path)
     assert isinstance(data["press"]["force"], InlineRows)
     fast = flyopt.analyse(from_dict(scene_data(data)))
     listed = dict(data, press=dict(data["press"], force=[[a, b] for a, b in zip(x.tolist(), f.tolist())]))
     slow = flyopt.analyse(from_dict(scene_data(listed)))
-    work = float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(x)))    # kN*mm = J
+    work = float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(x)))  # kN*mm = J
     assert_allclose(fast.work_per_cycle, work, rtol=1e-12)
     assert_allclose(slow.a_max, fast.a_max, rtol=1e-15)

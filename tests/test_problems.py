@@ -3,10 +3,10 @@
 import math
 
 import pytest
+from conftest import PROBLEMS, assert_published
 from numpy.testing import assert_allclose
 
 import flyopt
-from conftest import PROBLEMS, assert_published
 
 SCENES = sorted(PROBLEMS.glob("*.toml"))
 
@@ -68,8 +68,10 @@ def test_four_stroke_engine_cycle_is_two_turns():
 
 def test_no_flywheel_when_own_inertia_suffices(tmp_path):
     path = tmp_path / "s.toml"
-    path.write_text('[machine]\nspeed = "1500 rpm"\ndelta = 0.02\ninertia = "4 kg*m^2"\n'
-                    '[torque.net]\nareas = ["1500 J", "-1000 J", "400 J", "-1000 J", "100 J"]\n')
+    path.write_text(
+        '[machine]\nspeed = "1500 rpm"\ndelta = 0.02\ninertia = "4 kg*m^2"\n'
+        '[torque.net]\nareas = ["1500 J", "-1000 J", "400 J", "-1000 J", "100 J"]\n'
+    )
     r = flyopt.analyse(flyopt.load(path))
     assert r.flywheel_needed is False and r.j_required == 0.0
     assert_allclose(r.j_margin, 3.2423 - 4, rtol=5e-4)

@@ -35,12 +35,21 @@ def _materials(rng, cost):
     for k in range(int(rng.integers(2, 4))):
         ductile = bool(rng.random() < 0.6)
         tensile = rng.uniform(250e6, 600e6)
-        out.append(make_material(
-            f"m{k}", rng.uniform(6900.0, 7900.0), poisson_ratio=rng.uniform(0.22, 0.3),
-            tensile_strength=tensile, yield_strength=tensile * rng.uniform(0.55, 0.8) if ductile else None,
-            ductile=ductile, safety_factor=rng.uniform(3.0, 6.0), elastic_modulus=170e9,
-            max_rim_speed=rng.uniform(30.0, 60.0), min_wall=0.006,
-            cost=rng.uniform(1.0, 5.0) if cost else None))
+        out.append(
+            make_material(
+                f"m{k}",
+                rng.uniform(6900.0, 7900.0),
+                poisson_ratio=rng.uniform(0.22, 0.3),
+                tensile_strength=tensile,
+                yield_strength=tensile * rng.uniform(0.55, 0.8) if ductile else None,
+                ductile=ductile,
+                safety_factor=rng.uniform(3.0, 6.0),
+                elastic_modulus=170e9,
+                max_rim_speed=rng.uniform(30.0, 60.0),
+                min_wall=0.006,
+                cost=rng.uniform(1.0, 5.0) if cost else None,
+            )
+        )
     return out
 
 
@@ -51,16 +60,22 @@ def random_problem(seed):
     objective = ("mass", "mass", "cost", "outer_diameter")[(seed // 4) % 4]
     criterion = "stress" if geometry in ("disc", "rim") or rng.random() < 0.7 else "rim_speed"
     omega = rng.uniform(40.0, 120.0)
-    shafts = [MountShaft("slow", 1.0, rng.uniform(0.08, 0.12)),
-              MountShaft("middle", rng.uniform(2.0, 4.0), rng.uniform(0.05, 0.08)),
-              MountShaft("fast", rng.uniform(6.0, 12.0), rng.uniform(0.03, 0.05))]
+    shafts = [
+        MountShaft("slow", 1.0, rng.uniform(0.08, 0.12)),
+        MountShaft("middle", rng.uniform(2.0, 4.0), rng.uniform(0.05, 0.08)),
+        MountShaft("fast", rng.uniform(6.0, 12.0), rng.uniform(0.03, 0.05)),
+    ]
     # an inertia a 1 m wheel of about 100 kg gives on the slow shaft
     j = rng.uniform(10.0, 40.0)
-    spec = DesignSpec(geometry=geometry, criterion=criterion, objective=objective, hb_ratio=(0.5, 2.0),
-                      max_outer_diameter=rng.uniform(0.9, 1.6),
-                      max_width=rng.uniform(0.15, 0.3) if objective == "outer_diameter" or rng.random() < 0.5
-                      else math.inf,
-                      arms=(4, 6) if geometry == "rim_arms" else (4, 6, 8))
+    spec = DesignSpec(
+        geometry=geometry,
+        criterion=criterion,
+        objective=objective,
+        hb_ratio=(0.5, 2.0),
+        max_outer_diameter=rng.uniform(0.9, 1.6),
+        max_width=rng.uniform(0.15, 0.3) if objective == "outer_diameter" or rng.random() < 0.5 else math.inf,
+        arms=(4, 6) if geometry == "rim_arms" else (4, 6, 8),
+    )
     return j, omega, shafts, _materials(rng, objective == "cost"), spec
 
 
@@ -70,10 +85,9 @@ def _key(c):
 
 def compare(seed):
     j, omega, shafts, materials, spec = random_problem(seed)
-    torque = 2.0 * j * omega        # some torque for the arms and the key
+    torque = 2.0 * j * omega  # some torque for the arms and the key
     pruned = design_flywheel(j, omega, shafts, materials, spec, torque=torque)
-    full = design_flywheel(j, omega, shafts, materials, dataclasses.replace(spec, prune=False),
-                           torque=torque)
+    full = design_flywheel(j, omega, shafts, materials, dataclasses.replace(spec, prune=False), torque=torque)
     assert not any(c.pruned for c in full.candidates)
     assert pruned.status == full.status
     by_key = {_key(c): c for c in full.candidates}
@@ -83,10 +97,15 @@ def compare(seed):
         assert pruned.best.mass == full.best.mass and pruned.best.d_outer == full.best.d_outer
     # the bound holds on every design, whichever run made it
     for c in full.candidates:
-        combo = _Combination(material=next(m for m in materials if m.name == c.material),
-                             shaft=next(s for s in shafts if s.name == c.shaft), omega=omega * c.speed_ratio,
-                             j_shaft=c.j_required_on_shaft, j_reference=j, cap_speed=math.inf,
-                             cap=c.d_outer_limit)
+        combo = _Combination(
+            material=next(m for m in materials if m.name == c.material),
+            shaft=next(s for s in shafts if s.name == c.shaft),
+            omega=omega * c.speed_ratio,
+            j_shaft=c.j_required_on_shaft,
+            j_reference=j,
+            cap_speed=math.inf,
+            cap=c.d_outer_limit,
+        )
         bound, _why = wheel_design.objective_bound(combo, spec)
         if c.feasible:
             assert c.objective >= bound * (1.0 - 1e-12), (c.reason, c.objective, bound)
@@ -101,8 +120,9 @@ def compare(seed):
         else:
             assert c.feasible == twin.feasible and c.reason == twin.reason
     left_out = {_key(c) for c in pruned.candidates if c.pruned}
-    assert ([_key(c) for c in pruned.candidates if not c.feasible and not c.pruned]
-            == [_key(c) for c in full.candidates if not c.feasible and _key(c) not in left_out])
+    assert [_key(c) for c in pruned.candidates if not c.feasible and not c.pruned] == [
+        _key(c) for c in full.candidates if not c.feasible and _key(c) not in left_out
+    ]
     return sum(c.pruned for c in pruned.candidates)
 
 
@@ -112,7 +132,7 @@ FAST_SEEDS = range(16)
 def test_pruning_keeps_the_winner_and_prunes_only_losers():
     """16 random problems (4 geometries x 4 objective slots): same winner, sound bounds; some pruned."""
     pruned = [compare(seed) for seed in FAST_SEEDS]
-    assert sum(pruned) >= 10, pruned        # the bound does prune (the slow shaft's wheels, mostly)
+    assert sum(pruned) >= 10, pruned  # the bound does prune (the slow shaft's wheels, mostly)
 
 
 @pytest.mark.slow
@@ -125,21 +145,35 @@ def test_objective_bound_is_the_thin_ring_and_the_solid_cylinder():
     """The bound's three forms against their geometry: a thin ring at the cap gives exactly J with
     the bounding mass, and a solid cylinder of the width limit at the bounding diameter gives J."""
     material = make_material("steel", 7800.0, max_rim_speed=50.0, cost=3.0)
-    combo = _Combination(material=material, shaft=MountShaft("s", 2.0), omega=100.0, j_shaft=12.0,
-                         j_reference=48.0, cap_speed=1.0, cap=0.8)
+    combo = _Combination(
+        material=material,
+        shaft=MountShaft("s", 2.0),
+        omega=100.0,
+        j_shaft=12.0,
+        j_reference=48.0,
+        cap_speed=1.0,
+        cap=0.8,
+    )
     mass, _ = wheel_design.objective_bound(combo, DesignSpec(geometry="rim_web", max_outer_diameter=0.8))
-    assert mass * 0.4 ** 2 == pytest.approx(12.0, rel=1e-15)          # J of a thin ring of radius D/2
+    assert mass * 0.4**2 == pytest.approx(12.0, rel=1e-15)  # J of a thin ring of radius D/2
     cost, _ = wheel_design.objective_bound(combo, DesignSpec(geometry="rim_web", objective="cost"))
     assert cost == pytest.approx(3.0 * mass, rel=1e-15)
     spec = DesignSpec(geometry="rim_web", objective="outer_diameter", max_width=0.2)
     d, _ = wheel_design.objective_bound(combo, spec)
-    assert math.pi * 7800.0 * 0.2 * d ** 4 / 32.0 == pytest.approx(12.0, rel=1e-14)
+    assert math.pi * 7800.0 * 0.2 * d**4 / 32.0 == pytest.approx(12.0, rel=1e-14)
     assert wheel_design.objective_bound(combo, DesignSpec(geometry="rim_web", objective="outer_diameter"))[0] == 0.0
 
 
 def _steel(allowable):
-    return make_material("steel", 7850.0, allowable_stress=allowable, poisson_ratio=0.3, tensile_strength=500e6,
-                         yield_strength=300e6, ductile=True)
+    return make_material(
+        "steel",
+        7850.0,
+        allowable_stress=allowable,
+        poisson_ratio=0.3,
+        tensile_strength=500e6,
+        yield_strength=300e6,
+        ductile=True,
+    )
 
 
 def test_stress_cap_against_the_published_disc_figures():
@@ -150,20 +184,34 @@ def test_stress_cap_against_the_published_disc_figures():
     shaft = MountShaft("s", 1.0)
 
     def cap(allowable, geometry, bore):
-        combo = _Combination(material=_steel(allowable), shaft=shaft, omega=omega, j_shaft=1.0, j_reference=1.0,
-                             cap_speed=math.inf, cap=math.inf)
+        combo = _Combination(
+            material=_steel(allowable),
+            shaft=shaft,
+            omega=omega,
+            j_shaft=1.0,
+            j_reference=1.0,
+            cap_speed=math.inf,
+            cap=math.inf,
+        )
         return wheel_design.stress_cap(combo, DesignSpec(geometry=geometry, criterion="stress"), bore)
 
-    assert cap(79.90e6, "disc", 0.0) == pytest.approx(1.0, rel=1e-4)           # the published 4 digits
-    without_a2 = 3.3 / 4.0 * 7850.0 * omega ** 2 * 0.25                        # (3+nu)/4 rho w^2 b^2 [Pa]
-    with_a2 = without_a2 + 0.7 / 4.0 * 7850.0 * omega ** 2 * 0.05 ** 2         # + (1-nu)/4 rho w^2 a^2
-    assert with_a2 == pytest.approx(160.13e6, rel=5e-5)                        # the published hoop stress
+    assert cap(79.90e6, "disc", 0.0) == pytest.approx(1.0, rel=1e-4)  # the published 4 digits
+    without_a2 = 3.3 / 4.0 * 7850.0 * omega**2 * 0.25  # (3+nu)/4 rho w^2 b^2 [Pa]
+    with_a2 = without_a2 + 0.7 / 4.0 * 7850.0 * omega**2 * 0.05**2  # + (1-nu)/4 rho w^2 a^2
+    assert with_a2 == pytest.approx(160.13e6, rel=5e-5)  # the published hoop stress
     assert cap(without_a2, "disc", 0.1) == pytest.approx(1.0, rel=1e-14)
-    assert cap(without_a2, "rim", 0.0) == pytest.approx(1.0, rel=1e-14)         # a rim is an annulus
-    assert cap(without_a2, "rim_web", 0.1) == math.inf                          # no closed form: no cap
-    combo = _Combination(material=_steel(without_a2), shaft=shaft, omega=omega, j_shaft=1.0, j_reference=1.0,
-                         cap_speed=math.inf, cap=math.inf)
-    assert wheel_design.stress_cap(combo, DesignSpec(geometry="rim"), 0.0) == math.inf   # rim speed criterion
+    assert cap(without_a2, "rim", 0.0) == pytest.approx(1.0, rel=1e-14)  # a rim is an annulus
+    assert cap(without_a2, "rim_web", 0.1) == math.inf  # no closed form: no cap
+    combo = _Combination(
+        material=_steel(without_a2),
+        shaft=shaft,
+        omega=omega,
+        j_shaft=1.0,
+        j_reference=1.0,
+        cap_speed=math.inf,
+        cap=math.inf,
+    )
+    assert wheel_design.stress_cap(combo, DesignSpec(geometry="rim"), 0.0) == math.inf  # rim speed criterion
 
 
 def test_a_rim_the_stress_bound_refuses_ipopt_finds_infeasible():
@@ -173,17 +221,36 @@ def test_a_rim_the_stress_bound_refuses_ipopt_finds_infeasible():
 
     material, omega, width = _steel(60e6), 300.0, 0.1
     spec = DesignSpec(geometry="rim", criterion="stress", hb_ratio=(0.5, 2.0), max_width=width)
-    combo = _Combination(material=material, shaft=MountShaft("s", 1.0), omega=omega, j_shaft=1.0, j_reference=1.0,
-                         cap_speed=math.inf, cap=math.inf)
+    combo = _Combination(
+        material=material,
+        shaft=MountShaft("s", 1.0),
+        omega=omega,
+        j_shaft=1.0,
+        j_reference=1.0,
+        cap_speed=math.inf,
+        cap=math.inf,
+    )
     d = wheel_design.stress_cap(combo, spec, 0.0)
-    j_sup = math.pi * 7850.0 * min(width, d / 1.0) * d ** 4 / 32.0
+    j_sup = math.pi * 7850.0 * min(width, d / 1.0) * d**4 / 32.0
     combo.j_shaft = 1.05 * j_sup
     result = design_flywheel(combo.j_shaft, omega, [MountShaft("s", 1.0)], [material], spec)
     assert result.status == "infeasible" and "its stress allows" in result.candidates[0].reason
     structure = wheel_nlp.WheelStructure("rim", "stress", True, False, 0, False, True, False, "mass")
-    problem = wheel_nlp.WheelProblem(j_shaft=combo.j_shaft, omega=omega, density=7850.0, poisson=0.3, torque=0.0,
-                                     bore=0.0, allowable={"rim": 60e6}, envelope=math.inf, max_width=width,
-                                     max_rim_speed=math.nan, hb_ratio=(0.5, 2.0), d_mean=None, min_wall=0.0)
+    problem = wheel_nlp.WheelProblem(
+        j_shaft=combo.j_shaft,
+        omega=omega,
+        density=7850.0,
+        poisson=0.3,
+        torque=0.0,
+        bore=0.0,
+        allowable={"rim": 60e6},
+        envelope=math.inf,
+        max_width=width,
+        max_rim_speed=math.nan,
+        hb_ratio=(0.5, 2.0),
+        d_mean=None,
+        min_wall=0.0,
+    )
     with pytest.raises(SolverFailed) as err:
         wheel_nlp.solve(wheel_nlp.get_model(structure), problem, "rim")
     assert err.value.status == "Infeasible_Problem_Detected"

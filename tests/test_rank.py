@@ -11,24 +11,51 @@ def test_vectorized_and_plain_rule_pick_the_same_winner():
     group = np.repeat(np.arange(n_groups), per)
     n = group.size
     base = rng.uniform(1, 2, n)
-    tie = rng.random(n) < 0.5                         # exact and round-off ties are common
+    tie = rng.random(n) < 0.5  # exact and round-off ties are common
     objective = np.where(tie, np.repeat(base[::per], per) * (1 + rng.uniform(-1e-12, 1e-12, n)), base)
     cost = np.where(rng.random(n) < 0.3, np.nan, rng.choice([3.0, 3.0 * (1 + 1e-13), 5.0], n))
     mass = np.where(rng.random(n) < 0.5, objective, rng.uniform(1, 2, n))
     speed = rng.choice([30.0, 36.0, 50.0], n)
     material = rng.choice(["cast_steel", "cast_iron", "ductile_iron"], n).astype(object)
     shaft = rng.choice(["crank", "motor"], n).astype(object)
-    best = rank.winners(group, objective, cost, mass, speed, material, shaft)   # numpy path (many groups)
+    best = rank.winners(group, objective, cost, mass, speed, material, shaft)  # numpy path (many groups)
     for g in range(n_groups):
         rows = np.flatnonzero(group == g)
-        one = rank.winners(np.zeros(per, dtype=np.int64), objective[rows], cost[rows], mass[rows], speed[rows],
-                           material[rows], shaft[rows])[0]               # plain path (one group)
+        one = rank.winners(
+            np.zeros(per, dtype=np.int64),
+            objective[rows],
+            cost[rows],
+            mass[rows],
+            speed[rows],
+            material[rows],
+            shaft[rows],
+        )[0]  # plain path (one group)
         assert rows[one] == best[g], g
 
 
 def test_exact_tie_goes_to_the_cheaper_then_the_name():
     # a disc at its envelope: the same mass whatever the density
-    assert rank.winners([0, 0], [10.0, 10.0], [np.nan, 40.0], [10.0, 10.0], [30.0, 30.0],
-                        ["cast_iron", "cast_steel"], ["crank", "crank"])[0] == 1
-    assert rank.winners([0, 0], [10.0, 10.0 * (1 + 1e-12)], [np.nan, np.nan], [10.0, 10.0], [30.0, 30.0],
-                        ["cast_steel", "cast_iron"], ["crank", "crank"])[0] == 1
+    assert (
+        rank.winners(
+            [0, 0],
+            [10.0, 10.0],
+            [np.nan, 40.0],
+            [10.0, 10.0],
+            [30.0, 30.0],
+            ["cast_iron", "cast_steel"],
+            ["crank", "crank"],
+        )[0]
+        == 1
+    )
+    assert (
+        rank.winners(
+            [0, 0],
+            [10.0, 10.0 * (1 + 1e-12)],
+            [np.nan, np.nan],
+            [10.0, 10.0],
+            [30.0, 30.0],
+            ["cast_steel", "cast_iron"],
+            ["crank", "crank"],
+        )[0]
+        == 1
+    )

@@ -36,7 +36,6 @@ import xml.etree.ElementTree as ElementTree
 from html.parser import HTMLParser
 
 import pytest
-
 from conftest import PROBLEMS, ROOT
 
 GOLDEN = ROOT / "tests" / "data" / "golden"
@@ -53,6 +52,7 @@ VOID = {"meta", "br", "hr", "img", "input", "link", "col", "area", "base", "wbr"
 # --------------------------------------------------------------------------
 # Reading a page back
 # --------------------------------------------------------------------------
+
 
 class Page(HTMLParser):
     """What a report page holds, read with html.parser; unbalanced tags are recorded as errors."""
@@ -85,16 +85,27 @@ class Page(HTMLParser):
         elif tag == "figure" and "data-figure" in attrs:
             self.figures.setdefault(attrs["data-figure"], []).append(attrs.get("data-state"))
         elif tag == "div" and "data-eq" in attrs:
-            self._equation = {"key": attrs["data-eq"], "sym": "", "num": [], "res": "", "ref": "",
-                              "section": self._section}
+            self._equation = {
+                "key": attrs["data-eq"],
+                "sym": "",
+                "num": [],
+                "res": "",
+                "ref": "",
+                "section": self._section,
+            }
             self._equation_depth = len(self.stack)
         elif tag == "div" and self._equation is not None:
             self._line = next((name for name in ("sym", "num", "res", "ref") if name in classes), None)
             if self._line == "num":
                 self._equation["num"].append("")
         elif tag == "span" and "q" in classes:
-            self._quantity = {"name": attrs.get("data-q"), "si": attrs.get("data-si"),
-                              "dimension": attrs.get("data-dimension"), "text": "", "section": self._section}
+            self._quantity = {
+                "name": attrs.get("data-q"),
+                "si": attrs.get("data-si"),
+                "dimension": attrs.get("data-dimension"),
+                "text": "",
+                "section": self._section,
+            }
         elif tag == "tr" and self._section is None:
             self._cells = []
         elif tag == "td" and self._cells is not None:
@@ -187,12 +198,22 @@ def _golden(scene):
 # Every problem scene
 # --------------------------------------------------------------------------
 
-SCENES = [pytest.param(s, id=s) for s in FAST] + \
-         [pytest.param(s, id=s, marks=pytest.mark.slow) for s in SLOW]
+SCENES = [pytest.param(s, id=s) for s in FAST] + [pytest.param(s, id=s, marks=pytest.mark.slow) for s in SLOW]
 
 #: Sections every report has, and those that depend on the result.
-ALWAYS = ["summary", "scene", "model", "steps", "speeds", "reduction", "a_max", "requirement", "shafts",
-          "verification", "provenance"]
+ALWAYS = [
+    "summary",
+    "scene",
+    "model",
+    "steps",
+    "speeds",
+    "reduction",
+    "a_max",
+    "requirement",
+    "shafts",
+    "verification",
+    "provenance",
+]
 
 
 @pytest.mark.parametrize("scene", SCENES)
@@ -200,7 +221,7 @@ def test_every_problem_scene_renders_a_whole_self_contained_page(scene, folder):
     status, out, err = render(scene, folder=folder)
     golden = _golden(scene)
     assert status == 0, err
-    assert "warning" not in err, err          # no diagram failed to draw
+    assert "warning" not in err, err  # no diagram failed to draw
     page = _page(out)
     assert page.errors == []
     # every section
@@ -219,7 +240,7 @@ def test_every_problem_scene_renders_a_whole_self_contained_page(scene, folder):
     for tag, name, value in page.attributes:
         assert tag not in ("script", "link", "iframe", "object", "embed", "img"), (tag, name, value)
         if name in ("href", "xlink:href", "src", "action", "srcset"):
-            assert (value or "").startswith(("#", "data:")), (tag, name, value)   # a fragment, or inline data
+            assert (value or "").startswith(("#", "data:")), (tag, name, value)  # a fragment, or inline data
         if name == "style":
             assert "url(" not in value or "url(#" in value, value
     css = "".join(page.styles)
@@ -257,56 +278,65 @@ def test_every_worked_step_gives_the_result_it_shows(scene, folder):
     assert {"omega_mean", "a_max", "gd2"} <= keys
     for eq in page.equations:
         formula = _formula(eq["key"])
-        assert re.fullmatch(r"docs/flywheel-design\.md, section (\d+)", eq["ref"]) and \
-            1 <= int(eq["ref"].rsplit(" ", 1)[1]) <= 14, eq["ref"]
+        assert (
+            re.fullmatch(r"docs/flywheel-design\.md, section (\d+)", eq["ref"])
+            and 1 <= int(eq["ref"].rsplit(" ", 1)[1]) <= 14
+        ), eq["ref"]
         assert len(eq["num"]) == 1, eq
         inputs = [_number(n) for n in _numbers(eq["num"][0])]
         shown = _numbers(eq["res"])[0]
         value = formula(inputs)
         # the shown digits bound the substitution's error: each input by half a unit of its last digit
-        slack = sum(abs(formula(inputs[:k] + [x + _half_unit(s)] + inputs[k + 1:]) - value)
-                    for k, (x, s) in enumerate(zip(inputs, _numbers(eq["num"][0]))))
-        assert abs(value - _number(shown)) <= 1.01 * (slack + _half_unit(shown)) + 1e-300, \
-            (eq["key"], eq["num"][0], eq["res"], value)
+        slack = sum(
+            abs(formula(inputs[:k] + [x + _half_unit(s)] + inputs[k + 1 :]) - value)
+            for k, (x, s) in enumerate(zip(inputs, _numbers(eq["num"][0])))
+        )
+        assert abs(value - _number(shown)) <= 1.01 * (slack + _half_unit(shown)) + 1e-300, (
+            eq["key"],
+            eq["num"][0],
+            eq["res"],
+            value,
+        )
 
 
 def _formula(key):
     """The formula of a step, written again from docs/flywheel-design.md (the numbers in the order shown)."""
     pi = math.pi
     formulas = {
-        "omega_mean": lambda n: n[0] * pi * n[1] / n[2],                   # ω = 2π n/60, section 2
-        "omega_mean_dynamic": lambda n: (n[0] + n[1]) / n[2],              # (ω_max + ω_min)/2
-        "omega_max": lambda n: n[0] * (n[1] + n[2] / n[3]),                # ω_m (1 + δ/2)
-        "omega_min": lambda n: n[0] * (n[1] - n[2] / n[3]),                # ω_m (1 − δ/2)
-        "driving_torque": lambda n: n[0] / n[1],                           # M = W/Φ, section 4
+        "omega_mean": lambda n: n[0] * pi * n[1] / n[2],  # ω = 2π n/60, section 2
+        "omega_mean_dynamic": lambda n: (n[0] + n[1]) / n[2],  # (ω_max + ω_min)/2
+        "omega_max": lambda n: n[0] * (n[1] + n[2] / n[3]),  # ω_m (1 + δ/2)
+        "omega_min": lambda n: n[0] * (n[1] - n[2] / n[3]),  # ω_m (1 − δ/2)
+        "driving_torque": lambda n: n[0] / n[1],  # M = W/Φ, section 4
         "resisting_torque": lambda n: n[0] / n[1],
-        "power": lambda n: n[0] * n[1],                                    # P = M_d ω_m, section 11
-        "motor_power": lambda n: n[0] / n[1],                              # P/η
-        "a_max": lambda n: n[0] - n[1],                                    # max ΔE − min ΔE
-        "j_energy": lambda n: n[0] / (n[1] ** 2 * n[2]) - n[3],            # section 5
+        "power": lambda n: n[0] * n[1],  # P = M_d ω_m, section 11
+        "motor_power": lambda n: n[0] / n[1],  # P/η
+        "a_max": lambda n: n[0] - n[1],  # max ΔE − min ΔE
+        "j_energy": lambda n: n[0] / (n[1] ** 2 * n[2]) - n[3],  # section 5
         "j_energy_textbook": lambda n: n[0] / (n[1] ** 2 * n[2]) - n[3],
-        "j_engine_textbook": lambda n: n[0] / (n[1] ** 2 * n[2]) - n[3],   # section 14
-        "gd2": lambda n: n[0] * n[1] * n[2],                               # GD² = 4 g J, section 3
-        "em_upper": lambda n: 0.5 * n[0] ** 2 * n[1] - n[2],               # section 6
+        "j_engine_textbook": lambda n: n[0] / (n[1] ** 2 * n[2]) - n[3],  # section 14
+        "gd2": lambda n: n[0] * n[1] * n[2],  # GD² = 4 g J, section 3
+        "em_upper": lambda n: 0.5 * n[0] ** 2 * n[1] - n[2],  # section 6
         "em_lower": lambda n: 0.5 * n[0] ** 2 * n[1] - n[2],
         "j_energy_mass": lambda n: (n[0] - n[1]) / (0.5 * (n[2] ** 2 - n[3] ** 2)),
-        "rim_mass": lambda n: pi * n[0] * n[1] * n[2] * n[3],              # m = π D_m H B ρ, section 9
-        "rim_inertia": lambda n: n[0] * (n[1] ** 2 + n[2] ** 2) / n[3],    # m (D_m² + H²)/4
-        "rim_inertia_thin": lambda n: n[0] * n[1] ** 2 / n[2],             # m D_m²/4
-        "disc_mass": lambda n: pi * n[0] ** 2 * n[1] * n[2] / n[3],        # π D² B ρ/4
-        "disc_inertia": lambda n: n[0] * n[1] ** 2 / n[2],                 # m D²/8
-        "parts_inertia": sum, "parts_mass": sum,
-        "j_at_reference": lambda n: n[0] * n[1] ** 2,                      # J' i², section 8
-        "rim_speed": lambda n: n[0] * n[1] * n[2] / n[3],                  # v = i ω_max D_1/2, section 10
-        "hoop_stress": lambda n: n[0] * n[1] ** 2,                         # ρ v²
-        "e_per": lambda n: n[0] / n[1],                                    # G/Ω, section 13
-        "u_per": lambda n: n[0] * n[1],                                    # e_per m
-        "key_pressure": lambda n: n[0] * n[1] / (n[2] * (n[3] - n[4]) * n[5]),   # 2T/(d (h − t1) l)
-        "key_shear": lambda n: n[0] * n[1] / (n[2] * n[3] * n[4]),               # 2T/(d b l)
-        "achieved_delta": lambda n: (n[0] - n[1]) / n[2],                  # δ = (ω_max − ω_min)/ω_m
+        "rim_mass": lambda n: pi * n[0] * n[1] * n[2] * n[3],  # m = π D_m H B ρ, section 9
+        "rim_inertia": lambda n: n[0] * (n[1] ** 2 + n[2] ** 2) / n[3],  # m (D_m² + H²)/4
+        "rim_inertia_thin": lambda n: n[0] * n[1] ** 2 / n[2],  # m D_m²/4
+        "disc_mass": lambda n: pi * n[0] ** 2 * n[1] * n[2] / n[3],  # π D² B ρ/4
+        "disc_inertia": lambda n: n[0] * n[1] ** 2 / n[2],  # m D²/8
+        "parts_inertia": sum,
+        "parts_mass": sum,
+        "j_at_reference": lambda n: n[0] * n[1] ** 2,  # J' i², section 8
+        "rim_speed": lambda n: n[0] * n[1] * n[2] / n[3],  # v = i ω_max D_1/2, section 10
+        "hoop_stress": lambda n: n[0] * n[1] ** 2,  # ρ v²
+        "e_per": lambda n: n[0] / n[1],  # G/Ω, section 13
+        "u_per": lambda n: n[0] * n[1],  # e_per m
+        "key_pressure": lambda n: n[0] * n[1] / (n[2] * (n[3] - n[4]) * n[5]),  # 2T/(d (h − t1) l)
+        "key_shear": lambda n: n[0] * n[1] / (n[2] * n[3] * n[4]),  # 2T/(d b l)
+        "achieved_delta": lambda n: (n[0] - n[1]) / n[2],  # δ = (ω_max − ω_min)/ω_m
     }
     if key.startswith("j_shaft:"):
-        return lambda n: n[0] / n[1] ** 2                                  # J' = J_F / i², section 8
+        return lambda n: n[0] / n[1] ** 2  # J' = J_F / i², section 8
     assert key in formulas, f"no formula in the test for the step {key!r}"
     return formulas[key]
 
@@ -334,10 +364,34 @@ def _half_unit(text):
 
 
 #: Names the report gives its quantities, and where the JSON of ``flyopt solve`` holds them.
-TOP = {"omega_mean", "delta", "a_max", "j_required", "gd2_required", "j_margin", "motor_power", "j_constant",
-       "work_per_cycle", "cycle_angle", "omega_max", "omega_min"}
-DESIGN = {"mass", "d_outer", "d_mean", "d_inner", "b", "h", "j_flywheel", "j_at_reference", "rim_speed",
-          "rim_speed_limit", "bore", "burst_speed"}
+TOP = {
+    "omega_mean",
+    "delta",
+    "a_max",
+    "j_required",
+    "gd2_required",
+    "j_margin",
+    "motor_power",
+    "j_constant",
+    "work_per_cycle",
+    "cycle_angle",
+    "omega_max",
+    "omega_min",
+}
+DESIGN = {
+    "mass",
+    "d_outer",
+    "d_mean",
+    "d_inner",
+    "b",
+    "h",
+    "j_flywheel",
+    "j_at_reference",
+    "rim_speed",
+    "rim_speed_limit",
+    "bore",
+    "burst_speed",
+}
 
 
 @pytest.mark.parametrize("scene", SCENES)
@@ -353,13 +407,14 @@ def test_the_numbers_shown_are_the_solvers(scene, folder):
         name = q["name"]
         if name is None:
             continue
-        assert q["dimension"] == dimension_of(name), q     # the field's one unit table
+        assert q["dimension"] == dimension_of(name), q  # the field's one unit table
         if q["si"] is None:
             continue
         if name in TOP and q["section"] not in ("verification", "drive"):
             expected = golden[name]
-        elif name in DESIGN and q["section"] in ("summary", "design") and golden.get("design", {}).get(name) \
-                is not None:
+        elif (
+            name in DESIGN and q["section"] in ("summary", "design") and golden.get("design", {}).get(name) is not None
+        ):
             expected = golden["design"][name]
         else:
             continue
@@ -377,7 +432,7 @@ def test_provenance_is_the_file_and_the_versions(scene, folder):
     digest = hashlib.sha256((PROBLEMS / f"{scene}.toml").read_bytes()).hexdigest()
     page = _page(out)
     whole = "".join(page.text)
-    assert whole.count(digest) == 2                        # title block and provenance
+    assert whole.count(digest) == 2  # title block and provenance
     assert page.title_block["scene SHA-256"] == digest
     assert page.title_block["flyopt version"] == flyopt.__version__
     assert page.title_block["date"].startswith(datetime.date.today().isoformat())
@@ -400,24 +455,67 @@ def test_provenance_is_the_file_and_the_versions(scene, folder):
 
 #: What each system prescribes (issue 15, part 4), as pint spells the unit, and how the report labels it.
 EXPECTED_UNITS = {
-    "engineering": {"length": ("mm", "mm"), "angular_speed": ("rpm", "rpm"), "torque": ("kN*m", "kN·m"),
-                    "energy": ("kJ", "kJ"), "stress": ("MPa", "MPa"), "power": ("kW", "kW"),
-                    "mass": ("kg", "kg"), "inertia": ("kg*m**2", "kg·m²"), "speed": ("m/s", "m/s"),
-                    "angle": ("deg", "deg"), "flywheel_moment": ("N*m**2", "N·m²"), "time": ("s", "s"),
-                    "unbalance": ("g*mm", "g·mm")},
-    "si": {"length": ("m", "m"), "angular_speed": ("rad/s", "rad/s"), "torque": ("N*m", "N·m"),
-           "energy": ("J", "J"), "stress": ("Pa", "Pa"), "power": ("W", "W"), "mass": ("kg", "kg"),
-           "inertia": ("kg*m**2", "kg·m²"), "speed": ("m/s", "m/s"), "angle": ("rad", "rad"),
-           "flywheel_moment": ("N*m**2", "N·m²"), "time": ("s", "s"), "unbalance": ("kg*m", "kg·m")},
-    "imperial": {"length": ("in", "in"), "angular_speed": ("rpm", "rpm"), "torque": ("lbf*ft", "lbf·ft"),
-                 "energy": ("ft*lbf", "ft·lbf"), "stress": ("psi", "psi"), "power": ("hp", "hp"),
-                 "mass": ("lb", "lb"), "inertia": ("lb*ft**2", "lb·ft²"), "speed": ("ft/s", "ft/s"),
-                 "angle": ("deg", "deg"), "flywheel_moment": ("lbf*ft**2", "lbf·ft²"), "time": ("s", "s"),
-                 "unbalance": ("oz*in", "oz·in")},
+    "engineering": {
+        "length": ("mm", "mm"),
+        "angular_speed": ("rpm", "rpm"),
+        "torque": ("kN*m", "kN·m"),
+        "energy": ("kJ", "kJ"),
+        "stress": ("MPa", "MPa"),
+        "power": ("kW", "kW"),
+        "mass": ("kg", "kg"),
+        "inertia": ("kg*m**2", "kg·m²"),
+        "speed": ("m/s", "m/s"),
+        "angle": ("deg", "deg"),
+        "flywheel_moment": ("N*m**2", "N·m²"),
+        "time": ("s", "s"),
+        "unbalance": ("g*mm", "g·mm"),
+    },
+    "si": {
+        "length": ("m", "m"),
+        "angular_speed": ("rad/s", "rad/s"),
+        "torque": ("N*m", "N·m"),
+        "energy": ("J", "J"),
+        "stress": ("Pa", "Pa"),
+        "power": ("W", "W"),
+        "mass": ("kg", "kg"),
+        "inertia": ("kg*m**2", "kg·m²"),
+        "speed": ("m/s", "m/s"),
+        "angle": ("rad", "rad"),
+        "flywheel_moment": ("N*m**2", "N·m²"),
+        "time": ("s", "s"),
+        "unbalance": ("kg*m", "kg·m"),
+    },
+    "imperial": {
+        "length": ("in", "in"),
+        "angular_speed": ("rpm", "rpm"),
+        "torque": ("lbf*ft", "lbf·ft"),
+        "energy": ("ft*lbf", "ft·lbf"),
+        "stress": ("psi", "psi"),
+        "power": ("hp", "hp"),
+        "mass": ("lb", "lb"),
+        "inertia": ("lb*ft**2", "lb·ft²"),
+        "speed": ("ft/s", "ft/s"),
+        "angle": ("deg", "deg"),
+        "flywheel_moment": ("lbf*ft**2", "lbf·ft²"),
+        "time": ("s", "s"),
+        "unbalance": ("oz*in", "oz·in"),
+    },
 }
-SI = {"length": "m", "angular_speed": "rad/s", "torque": "N*m", "energy": "J", "stress": "Pa", "power": "W",
-      "mass": "kg", "inertia": "kg*m**2", "speed": "m/s", "angle": "rad", "flywheel_moment": "N*m**2", "time": "s",
-      "unbalance": "kg*m"}
+SI = {
+    "length": "m",
+    "angular_speed": "rad/s",
+    "torque": "N*m",
+    "energy": "J",
+    "stress": "Pa",
+    "power": "W",
+    "mass": "kg",
+    "inertia": "kg*m**2",
+    "speed": "m/s",
+    "angle": "rad",
+    "flywheel_moment": "N*m**2",
+    "time": "s",
+    "unbalance": "kg*m",
+}
 
 
 @pytest.fixture(scope="module")
@@ -438,13 +536,21 @@ def _document_quantities(inputs, units):
 
     def walk(value, section):
         if isinstance(value, Quantity):
-            found.append({"name": value.name, "si": None if value.si is None else repr(value.si),
-                          "dimension": value.dimension, "text": value.text, "section": section})
+            found.append(
+                {
+                    "name": value.name,
+                    "si": None if value.si is None else repr(value.si),
+                    "dimension": value.dimension,
+                    "text": value.text,
+                    "section": section,
+                }
+            )
         elif isinstance(value, (tuple, list)):
             for v in value:
                 walk(v, section)
         elif hasattr(value, "__dict__") and not hasattr(value, "savefig"):
             walk(tuple(v for k, v in vars(value).items() if k != "figure"), section)
+
     for section in document.sections:
         walk(section.blocks, section.key)
     return found
@@ -484,6 +590,7 @@ def test_every_quantity_is_shown_in_the_systems_unit(units, folder, punch_press_
 # The PDF
 # --------------------------------------------------------------------------
 
+
 def _pdf_text(path):
     """The PDF's text, read back by pypdf (the test extra), an independent reader of what reportlab wrote."""
     from pypdf import PdfReader
@@ -491,8 +598,14 @@ def _pdf_text(path):
     return "\n".join(page.extract_text() or "" for page in PdfReader(str(path)).pages)
 
 
-@pytest.mark.parametrize("scene", ["example1-net-areas", pytest.param("punch-press-wheel", marks=pytest.mark.slow),
-                                   pytest.param("four-cylinder-engine", marks=pytest.mark.slow)])
+@pytest.mark.parametrize(
+    "scene",
+    [
+        "example1-net-areas",
+        pytest.param("punch-press-wheel", marks=pytest.mark.slow),
+        pytest.param("four-cylinder-engine", marks=pytest.mark.slow),
+    ],
+)
 def test_the_pdf_says_what_the_html_says(scene, folder):
     status, pdf, err = render(scene, "pdf", folder=folder)
     assert status == 0, err
@@ -507,8 +620,16 @@ def test_the_pdf_says_what_the_html_says(scene, folder):
     assert hashlib.sha256((PROBLEMS / f"{scene}.toml").read_bytes()).hexdigest() in text
     golden = _golden(scene)
     assert golden["title"] in text
-    for title in ("Summary", "The scene as given", "The model and why", "The calculation, step by step",
-                  "The design", "Ranking of every combination", "Verification", "Provenance"):
+    for title in (
+        "Summary",
+        "The scene as given",
+        "The model and why",
+        "The calculation, step by step",
+        "The design",
+        "Ranking of every combination",
+        "Verification",
+        "Provenance",
+    ):
         assert title in text, title
     assert "docs/flywheel-design.md, section 5" in text or "docs/flywheel-design.md, section 6" in text
 
@@ -520,18 +641,22 @@ def test_the_pdf_says_what_the_html_says(scene, folder):
 SHEAR = PROBLEMS / "shear-press.toml"
 
 
-@pytest.mark.parametrize("args, field, words", [
-    (["{scene}", "-o", "{tmp}/report.docx"], "-o/--output", ".html or .pdf"),
-    (["{scene}", "-o", "{tmp}/no/such/folder/report.html"], "-o/--output", "does not exist"),
-    (["{html_scene}", "-o", "{html_scene}"], "-o/--output", "scene file itself"),
-    (["{tmp}/missing.toml", "-o", "{tmp}/report.html"], "missing.toml", "No such file"),
-    (["{bad}", "-o", "{tmp}/report.html"], "delta", "delta"),
-], ids=["suffix", "folder", "scene-as-output", "no-scene", "scene-error"])
+@pytest.mark.parametrize(
+    "args, field, words",
+    [
+        (["{scene}", "-o", "{tmp}/report.docx"], "-o/--output", ".html or .pdf"),
+        (["{scene}", "-o", "{tmp}/no/such/folder/report.html"], "-o/--output", "does not exist"),
+        (["{html_scene}", "-o", "{html_scene}"], "-o/--output", "scene file itself"),
+        (["{tmp}/missing.toml", "-o", "{tmp}/report.html"], "missing.toml", "No such file"),
+        (["{bad}", "-o", "{tmp}/report.html"], "delta", "delta"),
+    ],
+    ids=["suffix", "folder", "scene-as-output", "no-scene", "scene-error"],
+)
 def test_bad_input_is_one_line_and_exit_2(args, field, words, tmp_path, main_cli, write_scene):
     bad = write_scene(SHEAR.read_text(encoding="utf-8").replace("delta = 0.05", "delta = 3"), "bad.toml")
     scene = tmp_path / "scene.toml"
     scene.write_text(SHEAR.read_text(encoding="utf-8"), encoding="utf-8")
-    html_scene = tmp_path / "scene.html"      # a scene file may have any name: it must not be overwritten
+    html_scene = tmp_path / "scene.html"  # a scene file may have any name: it must not be overwritten
     html_scene.write_text(SHEAR.read_text(encoding="utf-8"), encoding="utf-8")
     filled = [a.format(scene=scene, tmp=tmp_path, bad=bad, html_scene=html_scene) for a in args]
     before = sorted(p.name for p in tmp_path.iterdir())
@@ -539,9 +664,10 @@ def test_bad_input_is_one_line_and_exit_2(args, field, words, tmp_path, main_cli
     assert status == 2, err
     assert err.count("\n") == 1 and err.startswith("flyopt: error:") and "Traceback" not in err, err
     assert field in err and words in err, err
-    assert sorted(p.name for p in tmp_path.iterdir()) == before      # nothing written
-    assert scene.read_text(encoding="utf-8") == html_scene.read_text(encoding="utf-8") == \
-        SHEAR.read_text(encoding="utf-8")
+    assert sorted(p.name for p in tmp_path.iterdir()) == before  # nothing written
+    assert (
+        scene.read_text(encoding="utf-8") == html_scene.read_text(encoding="utf-8") == SHEAR.read_text(encoding="utf-8")
+    )
 
 
 def test_an_unknown_unit_system_is_refused_by_the_parser(capsys, tmp_path):
@@ -578,6 +704,7 @@ def test_a_flagged_verification_is_reported_and_exits_4(tmp_path, main_cli, monk
     def missed(*args, **kwargs):
         found = verify(*args, **kwargs)
         return dataclasses.replace(found, achieved_delta=2 * found.delta_allowed, flagged=True)
+
     monkeypatch.setattr(flyopt.pipeline, "verify", missed)
     out = tmp_path / "flagged.html"
     status, _, err = main_cli("report", PROBLEMS / "example1-net-areas.toml", "-o", out)
@@ -597,6 +724,7 @@ def test_an_interrupted_report_leaves_the_old_file_and_no_temporary(tmp_path, ma
 
     def interrupted(document):
         raise KeyboardInterrupt
+
     monkeypatch.setattr(flyopt.report.html, "render", interrupted)
     status, _, err = main_cli("report", PROBLEMS / "conveyor.toml", "-o", out)
     assert status == 130, err
@@ -606,22 +734,25 @@ def test_an_interrupted_report_leaves_the_old_file_and_no_temporary(tmp_path, ma
 
 def test_an_html_report_loads_no_pdf_library():
     """reportlab is imported for a PDF only: the command's modules and an HTML page need neither it nor pint."""
-    code = ("import sys\n"
-            "import flyopt\n"
-            "assert 'reportlab' not in sys.modules and 'matplotlib' not in sys.modules\n"
-            "import flyopt.cli.report, flyopt.report.document as d, flyopt.report.html as h\n"
-            "page = h.render(d.Document('t', (('scene file', 'x.toml'),), [d.Section('1', 'S', "
-            "[d.Paragraph('a J_{F}'), d.Equation('k', ('x', '= 1', '= 1'), 'r')])], 'engineering', 'designed'))\n"
-            "assert '<sub>F</sub>' in page\n"
-            "print(sorted(m for m in ('reportlab', 'pint', 'casadi') if m in sys.modules))\n")
+    code = (
+        "import sys\n"
+        "import flyopt\n"
+        "assert 'reportlab' not in sys.modules and 'matplotlib' not in sys.modules\n"
+        "import flyopt.cli.report, flyopt.report.document as d, flyopt.report.html as h\n"
+        "page = h.render(d.Document('t', (('scene file', 'x.toml'),), [d.Section('1', 'S', "
+        "[d.Paragraph('a J_{F}'), d.Equation('k', ('x', '= 1', '= 1'), 'r')])], 'engineering', 'designed'))\n"
+        "assert '<sub>F</sub>' in page\n"
+        "print(sorted(m for m in ('reportlab', 'pint', 'casadi') if m in sys.modules))\n"
+    )
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == "[]"
 
 
 def test_the_report_command_is_in_the_one_tree():
-    run = subprocess.run([sys.executable, "-m", "flyopt", "report", "--help"], capture_output=True, text=True,
-                         timeout=60)
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", "--help"], capture_output=True, text=True, timeout=60
+    )
     assert run.returncode == 0 and "flyopt report" in run.stdout and "--units" in run.stdout, run.stderr
 
 

@@ -13,8 +13,8 @@ import re
 from pathlib import Path
 
 import pytest
-
 from conftest import PROBLEMS
+
 from flyopt.cli.main import main
 
 WHEELS = Path(__file__).parent / "data" / "wheels"
@@ -40,7 +40,7 @@ def _block(text, title):
     lines = text.splitlines()
     start = next(k for k, line in enumerate(lines) if line.startswith(title))
     out = []
-    for line in lines[start + 1:]:
+    for line in lines[start + 1 :]:
         if not line.strip():
             break
         out.append(line)
@@ -59,8 +59,11 @@ def _fact(text, name):
     return match.group(1)
 
 
-@pytest.mark.parametrize("scene", [WHEELS / f"engine-{g}.toml" for g in GEOMETRIES]
-                         + [PROBLEMS / "shear-press.toml"], ids=GEOMETRIES + ["shear-press"])
+@pytest.mark.parametrize(
+    "scene",
+    [WHEELS / f"engine-{g}.toml" for g in GEOMETRIES] + [PROBLEMS / "shear-press.toml"],
+    ids=GEOMETRIES + ["shear-press"],
+)
 def test_part_table_sums_to_the_design(scene, capsys):
     text = _solve_text(scene, capsys)
     rows = _table(_block(text, "Parts of the wheel"))
@@ -74,10 +77,10 @@ def test_part_table_sums_to_the_design(scene, capsys):
     design_j = _value(_fact(text, "inertia"))
     # the parts make up the whole wheel: their masses and inertias add up to the design's
     assert math.isclose(sum(masses), design_mass, rel_tol=PRINT_RTOL)
-    assert math.isclose(_value(total[2]), design_mass, rel_tol=1e-12)   # total: mass column (no thickness)
+    assert math.isclose(_value(total[2]), design_mass, rel_tol=1e-12)  # total: mass column (no thickness)
     assert math.isclose(sum(inertias), design_j, rel_tol=PRINT_RTOL)
     shares = [_value(r[5]) for r in parts]
-    assert math.isclose(sum(shares), 100.0, abs_tol=0.05 * len(shares))   # 0.1 % printed
+    assert math.isclose(sum(shares), 100.0, abs_tol=0.05 * len(shares))  # 0.1 % printed
     # the radial spans join: each part starts where the one inside it ends
     spans = [[_value(x) for x in r[1].split("–")] for r in parts]
     for inner, outer in zip(spans, spans[1:]):
@@ -90,8 +93,12 @@ def test_part_names_per_geometry(capsys):
     for geometry in GEOMETRIES:
         rows = _table(_block(_solve_text(WHEELS / f"engine-{geometry}.toml", capsys), "Parts of the wheel"))
         names[geometry] = [r[0] for r in rows[1:] if len(r) == 6 and r[0] != "total"]
-    assert names == {"rim_web": ["hub", "web", "rim"], "rim_arms": ["hub", "arms", "rim"],
-                     "disc": ["disc"], "rim": ["rim"]}
+    assert names == {
+        "rim_web": ["hub", "web", "rim"],
+        "rim_arms": ["hub", "arms", "rim"],
+        "disc": ["disc"],
+        "rim": ["rim"],
+    }
 
 
 def test_stress_check_utilisation_and_burst_speed_by_hand(capsys):
@@ -103,15 +110,15 @@ def test_stress_check_utilisation_and_burst_speed_by_hand(capsys):
         if row[0].startswith("("):
             break
         stress, allowable, utilisation = _value(row[1]), _value(row[3]), _value(row[4])
-        assert allowable == 60.0                        # the scene's allowable_stress, every part
+        assert allowable == 60.0  # the scene's allowable_stress, every part
         assert math.isclose(utilisation, 100 * stress / allowable, abs_tol=0.06)
-        assert _value(row[5]) == 250.0                  # ductile: yield strength R_p0.2
-    rpm = _value(re.search(r"Stress check at ω_max = ([0-9.,]+) rpm", text).group(1))   # engineering units
+        assert _value(row[5]) == 250.0  # ductile: yield strength R_p0.2
+    rpm = _value(re.search(r"Stress check at ω_max = ([0-9.,]+) rpm", text).group(1))  # engineering units
     mean_hoop = _value(_fact(text, "mean hoop stress"))
     # ductile burst (Robinson): the mean hoop stress reaches R_m = 400 MPa, and stress ~ omega^2
     burst_rpm = rpm * math.sqrt(400.0 / mean_hoop)
     printed = _fact(text, "burst speed")
-    assert math.isclose(_value(printed), burst_rpm, rel_tol=5e-4)   # mean hoop printed to 4 digits
+    assert math.isclose(_value(printed), burst_rpm, rel_tol=5e-4)  # mean hoop printed to 4 digits
     margin = _value(re.search(r"\(([0-9.]+) x ω_max\)", printed).group(1))
     assert math.isclose(margin, math.sqrt(400.0 / mean_hoop), rel_tol=1e-3)
 
@@ -137,15 +144,15 @@ def test_key_by_din_6885_and_hand_calculation(capsys):
     assert "on a 60 mm bore: 18 x 11" in head and head.endswith(": OK")
     effective = _value(re.search(r"effective ([0-9.]+) mm", head).group(1)) / 1e3
     length = _value(re.search(r"length ([0-9.]+) mm", head).group(1)) / 1e3
-    assert math.isclose(effective, length - 0.018, rel_tol=1e-9)     # form A: l - b
-    torque = _value(re.search(r"peak torque ([0-9.,]+) kN·m", check).group(1)) * 1e3      # [N*m]
+    assert math.isclose(effective, length - 0.018, rel_tol=1e-9)  # form A: l - b
+    torque = _value(re.search(r"peak torque ([0-9.,]+) kN·m", check).group(1)) * 1e3  # [N*m]
     pressure = _value(re.search(r"bearing pressure ([0-9.]+) MPa", check).group(1))
     shear = _value(re.search(r"shear ([0-9.]+) MPa", check).group(1))
     d = 0.060
     # p = 2T / (d (h - t1) l_eff), tau = 2T / (d b l_eff)
     assert math.isclose(pressure, 2 * torque / (d * (0.011 - 0.007) * effective) / 1e6, rel_tol=1e-3)
     assert math.isclose(shear, 2 * torque / (d * 0.018 * effective) / 1e6, rel_tol=1e-3)
-    assert pressure <= 90.0                             # the scene's bearing_pressure
+    assert pressure <= 90.0  # the scene's bearing_pressure
 
 
 def _solve_json(path, capsys):
@@ -155,8 +162,11 @@ def _solve_json(path, capsys):
     return json.loads(capsys.readouterr().out)["design"]
 
 
-@pytest.mark.parametrize("scene", [WHEELS / f"engine-{g}.toml" for g in GEOMETRIES]
-                         + [PROBLEMS / "shear-press.toml"], ids=GEOMETRIES + ["shear-press"])
+@pytest.mark.parametrize(
+    "scene",
+    [WHEELS / f"engine-{g}.toml" for g in GEOMETRIES] + [PROBLEMS / "shear-press.toml"],
+    ids=GEOMETRIES + ["shear-press"],
+)
 def test_blocks_only_where_the_design_has_the_data(scene, capsys):
     """The key, sensitivity and note blocks appear exactly when the design (its JSON) carries them."""
     text = _solve_text(scene, capsys)
@@ -194,7 +204,15 @@ def test_the_existing_design_lines_are_unchanged(capsys):
     text = _solve_text(PROBLEMS / "shear-press.toml", capsys)
     lines = text.splitlines()
     start = lines.index("Flywheel design (rim, objective: mass):")
-    names = [re.match(r"  (\S.*?)\s{2,}", line).group(1) for line in lines[start + 1:start + 9]]
-    assert names == ["material / shaft", "mass", "outer / mean / inner diameter", "rim H x B", "inertia",
-                     "rim speed", "binding", "solved by"]
+    names = [re.match(r"  (\S.*?)\s{2,}", line).group(1) for line in lines[start + 1 : start + 9]]
+    assert names == [
+        "material / shaft",
+        "mass",
+        "outer / mean / inner diameter",
+        "rim H x B",
+        "inertia",
+        "rim speed",
+        "binding",
+        "solved by",
+    ]
     assert lines.index("Parts of the wheel (thickness: axial):") < lines.index("Every combination (ranked):")

@@ -41,9 +41,10 @@ def test_valid_scene_units_are_converted_to_si(write_scene):
 
 
 def test_plain_numbers_are_si_and_section_units_apply(write_scene):
-    text = scene_text('points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], '
-                      '["360 deg", "200 N*m"]]',
-                      'angle_unit = "deg"\nunit = "kN*m"\npoints = [[0, 1.6], [45, 1.6], [90, 0.2], [360, 0.2]]')
+    text = scene_text(
+        'points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]',
+        'angle_unit = "deg"\nunit = "kN*m"\npoints = [[0, 1.6], [45, 1.6], [90, 0.2], [360, 0.2]]',
+    )
     scene = flyopt.load(write_scene(text.replace('speed = "1500 rpm"', "speed = 157.07963267948966")))
     assert_allclose(scene.resisting.values, [1600, 1600, 200, 200], rtol=1e-15)
     assert_allclose(scene.resisting.angles[1], math.pi / 4, rtol=1e-15)
@@ -52,8 +53,10 @@ def test_plain_numbers_are_si_and_section_units_apply(write_scene):
 
 def test_expression_with_unit(write_scene):
     text = scene_text('constant = "unknown"', 'expression = "2.5 + 0.36*sin(phi)"\nunit = "kN*m"')
-    text = text.replace('points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], '
-                        '["360 deg", "200 N*m"]]', 'constant = "2500 N*m"')
+    text = text.replace(
+        'points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]',
+        'constant = "2500 N*m"',
+    )
     scene = flyopt.load(write_scene(text))
     assert isinstance(scene.driving, ExpressionTorque)
     assert_allclose(flyopt.analyse(scene).a_max, 720, rtol=1e-12)
@@ -62,7 +65,7 @@ def test_expression_with_unit(write_scene):
 def test_gd2_and_efficiency_lists(write_scene):
     text = scene_text("delta = 0.05", 'delta = 0.05\ngd2 = "39.24 N*m^2"\nefficiency = [0.95, 0.97]')
     scene = flyopt.load(write_scene(text))
-    assert_allclose(scene.j_constant, 1.0, rtol=1e-15)       # 39.24 / (4 * 9.81)
+    assert_allclose(scene.j_constant, 1.0, rtol=1e-15)  # 39.24 / (4 * 9.81)
     assert_allclose(scene.efficiency, 0.95 * 0.97, rtol=1e-15)
 
 
@@ -85,32 +88,57 @@ BAD = [
     ("delta = 0.05", "delta = -0.1", "", "machine.delta", "between 0 and 2"),
     ("delta = 0.05", "delta = 2.0", "", "machine.delta", "between 0 and 2"),
     (SPEED_LINE, 'speed = "0 rpm"', "", "machine.speed", "must be positive"),
-    (SPEED_LINE, 'speed = -10', "", "machine.speed", "must be positive"),
+    (SPEED_LINE, "speed = -10", "", "machine.speed", "must be positive"),
     (SPEED_LINE, 'speed = "1500 m"', "", "machine.speed", "wrong dimension: expected a rotational speed"),
     (SPEED_LINE, 'speed = "1500 rpn"', "", "machine.speed", "cannot read '1500 rpn'"),
-    (SPEED_LINE, 'speed = true', "", "machine.speed", "expected a rotational speed"),
+    (SPEED_LINE, "speed = true", "", "machine.speed", "expected a rotational speed"),
     ("delta = 0.05", "delta = nan", "", "machine.delta", "must be finite"),
     ("delta = 0.05", "delta = inf", "", "machine.delta", "must be finite"),
     (SPEED_LINE, 'speed = "inf rpm"', "", "machine.speed", "must be finite"),
     ('"1600 N*m"], ["45 deg"', '"nan N*m"], ["45 deg"', "", "torque.resisting.points[0] torque", "finite"),
-    ('["45 deg", "1600 N*m"], ["90 deg"', '["95 deg", "1600 N*m"], ["90 deg"', "", "torque.resisting.points",
-     "angles must not decrease"),
-    ('["45 deg", "1600 N*m"]', '["45 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["45 deg", "1600 N*m"]', "",
-     "torque.resisting.points", "three points at one angle"),
+    (
+        '["45 deg", "1600 N*m"], ["90 deg"',
+        '["95 deg", "1600 N*m"], ["90 deg"',
+        "",
+        "torque.resisting.points",
+        "angles must not decrease",
+    ),
+    (
+        '["45 deg", "1600 N*m"]',
+        '["45 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["45 deg", "1600 N*m"]',
+        "",
+        "torque.resisting.points",
+        "three points at one angle",
+    ),
     ('["360 deg", "200 N*m"]', '["300 deg", "200 N*m"]', "", "torque.resisting.points", "does not close"),
     ('[["0 deg"', '[["10 deg"', "", "torque.resisting.points", "does not close"),
     ('["90 deg", "200 N*m"]', '["90 deg", "200 m"]', "", "torque.resisting.points[2] torque", "wrong dimension"),
     ('["90 deg", "200 N*m"]', '["90 deg"]', "", "torque.resisting.points[2]", r"an \[angle, torque\] pair"),
-    ('constant = "unknown"', 'expression = "1000 + sinh(phi)"', "", "torque.driving.expression",
-     "unknown function 'sinh'"),
+    (
+        'constant = "unknown"',
+        'expression = "1000 + sinh(phi)"',
+        "",
+        "torque.driving.expression",
+        "unknown function 'sinh'",
+    ),
     ('constant = "unknown"', 'expression = "1000 + theta"', "", "torque.driving.expression", "unknown name 'theta'"),
-    ('constant = "unknown"', 'expression = "__import__(\'os\')"', "", "torque.driving.expression",
-     "unknown function '__import__'"),
+    (
+        'constant = "unknown"',
+        "expression = \"__import__('os')\"",
+        "",
+        "torque.driving.expression",
+        "unknown function '__import__'",
+    ),
     ('constant = "unknown"', 'expression = "phi.real"', "", "torque.driving.expression", "not allowed"),
     ('constant = "unknown"', 'expression = "1000 +"', "", "torque.driving.expression", "cannot parse"),
     ('constant = "unknown"', 'expression = "1/(phi-phi)"', "", "torque.driving.expression", "not finite"),
-    ('constant = "unknown"', 'constant = "unknown"\nexpression = "1000"', "", "torque.driving",
-     "the torque is given twice"),
+    (
+        'constant = "unknown"',
+        'constant = "unknown"\nexpression = "1000"',
+        "",
+        "torque.driving",
+        "the torque is given twice",
+    ),
     ('constant = "unknown"', 'constant = "300 N*m"', "", "torque", "non-periodic fluctuation"),
     (POINTS, 'constant = "unknown"', "", "torque.resisting.constant", "both torques are unknown"),
     ("", "", "[torque.net]\nareas = [1, -1]\n", "torque.net", "the torque is given twice"),
@@ -135,6 +163,7 @@ def test_bad_scenes_name_the_file_and_the_field(write_scene, old, new, extra, fi
     assert message.startswith(f"{path}: {field}: "), message
     assert "\n" not in message
     import re
+
     assert re.search(words, message), message
 
 
@@ -143,8 +172,11 @@ NET_BAD = [
     ('areas = ["1500 J", "-1500 m"]', "torque.net.areas[1]", "wrong dimension"),
     ('areas = [580, -580]\narea_unit = "mm^2"', "torque.net", "need all of area_unit, torque_scale"),
     ('areas = ["1 J"]', "torque.net.areas", "at least two"),
-    ('areas = [580, -580]\narea_unit = "mm^2"\ntorque_scale = "100 N*m/mm"\nangle_scale = "0.01 rad"',
-     "torque.net.angle_scale", "wrong dimension"),
+    (
+        'areas = [580, -580]\narea_unit = "mm^2"\ntorque_scale = "100 N*m/mm"\nangle_scale = "0.01 rad"',
+        "torque.net.angle_scale",
+        "wrong dimension",
+    ),
 ]
 
 
@@ -175,10 +207,10 @@ def test_missing_file():
 DESIGN_BAD = [
     ('geometry = "rimm"', "design.geometry", "'rimm' is not known; did you mean 'rim'"),
     ('materials = ["cast_iorn"]', "design.materials[0]", "unknown material 'cast_iorn'; did you mean 'cast_iron'"),
-    ('materials = []', "design.materials", "non-empty list"),
+    ("materials = []", "design.materials", "non-empty list"),
     ('shafts = ["mian"]', "design.shafts[0]", "unknown shaft 'mian'; did you mean 'main'"),
-    ('hb_ratio = [2.0, 1.5]', "design.hb_ratio", "0 < min <= max"),
-    ('hb_ratio = [1, 2, 3]', "design.hb_ratio", "one number or a range"),
+    ("hb_ratio = [2.0, 1.5]", "design.hb_ratio", "0 < min <= max"),
+    ("hb_ratio = [1, 2, 3]", "design.hb_ratio", "one number or a range"),
     ('max_outer_diameter = "-1 m"', "design.max_outer_diameter", "must be positive"),
     ('max_width = "25 kg"', "design.max_width", "wrong dimension"),
     ('objective = "cost"', "design.objective", "needs a cost per kg"),
@@ -201,8 +233,11 @@ MATERIAL_BAD = [
     ('name = "x"\nmax_rim_speed = "40 m/s"', "material[0].density", "is missing"),
     ('name = "x"\ndensity = "7000 kg"\nmax_rim_speed = "40 m/s"', "material[0].density", "wrong dimension"),
     ('name = "x"\ndensity = "7000 kg/m^3"\nmax_rim_speed = "-4 m/s"', "material[0].max_rim_speed", "positive"),
-    ('name = "x"\ndensity = "7000 kg/m^3"\nmax_rim_speed = "40 m/s"\nyield = "1 MPa"', "material[0].yield",
-     "unknown key"),
+    (
+        'name = "x"\ndensity = "7000 kg/m^3"\nmax_rim_speed = "40 m/s"\nyield = "1 MPa"',
+        "material[0].yield",
+        "unknown key",
+    ),
 ]
 
 
@@ -216,9 +251,11 @@ def test_bad_user_material(write_scene, body, field, words):
 
 
 def test_user_material_overrides_builtin_and_cost_objective(write_scene):
-    path = write_scene(scene_text() + '[design]\nobjective = "cost"\nmaterials = ["cast_iron"]\n'
-                       '[[material]]\nname = "cast_iron"\ndensity = "7100 kg/m^3"\nmax_rim_speed = "30 m/s"\n'
-                       'cost = "1.5 1/kg"\n')
+    path = write_scene(
+        scene_text() + '[design]\nobjective = "cost"\nmaterials = ["cast_iron"]\n'
+        '[[material]]\nname = "cast_iron"\ndensity = "7100 kg/m^3"\nmax_rim_speed = "30 m/s"\n'
+        'cost = "1.5 1/kg"\n'
+    )
     scene = flyopt.load(path)
     assert scene.material_library()["cast_iron"].max_rim_speed == 30.0
     result = flyopt.solve(scene)
@@ -249,7 +286,7 @@ constant = "unknown"
 def test_a_member_force_may_carry_the_whole_load(write_scene):
     # a [torque.resisting] left out means zero when [[member]] forces carry the load
     left_out = flyopt.load(write_scene(SLIDER_CRANK, "left_out.toml"))
-    explicit = flyopt.load(write_scene(SLIDER_CRANK + '[torque.resisting]\nconstant = 0\n', "explicit.toml"))
+    explicit = flyopt.load(write_scene(SLIDER_CRANK + "[torque.resisting]\nconstant = 0\n", "explicit.toml"))
     assert left_out.resisting == Constant(0.0)
     assert_allclose(flyopt.analyse(left_out).a_max, flyopt.analyse(explicit).a_max, rtol=1e-15)
     assert flyopt.analyse(left_out).a_max > 0

@@ -9,13 +9,13 @@ import json
 import re
 import subprocess
 import sys
-import tomllib
 
 import numpy as np
 import pytest
+import tomllib
+from conftest import PROBLEMS, ROOT
 
 import flyopt
-from conftest import PROBLEMS, ROOT
 from flyopt.io import scene as scene_io
 
 BASE = """
@@ -47,8 +47,9 @@ def write(tmp_path, csv_text, table='points_file = "torque.csv"', name="scene.to
 
 
 def cli(*args, cwd=ROOT):
-    return subprocess.run([sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True,
-                          cwd=cwd, timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=120
+    )
 
 
 def without_names(data):
@@ -63,14 +64,17 @@ def without_names(data):
 # -- the same table, inline or from a file -------------------------------------------
 
 
-@pytest.mark.parametrize("csv_text", [
-    "angle,torque\n" + "".join(f"{a},{t}\n" for a, t in ROWS),                    # a header
-    "".join(f"{a},{t}\n" for a, t in ROWS),                                       # none
-    "angle [deg];torque, kN*m\r\n" + "".join(f"{a} , {t}\r\n" for a, t in ROWS),  # CRLF, blanks, a header with ;
-    "# measured 2024\n\nangle,torque\n" + "".join(f"{a},{t}\n\n" for a, t in ROWS) + "# end\n",
-    "".join(f"{a},{t}\n" for a, t in ROWS).rstrip("\n"),                          # no newline at the end
-    "\ufeffangle,torque\n" + "".join(f"{a},{t}\n" for a, t in ROWS),              # Excel's byte-order mark
-])
+@pytest.mark.parametrize(
+    "csv_text",
+    [
+        "angle,torque\n" + "".join(f"{a},{t}\n" for a, t in ROWS),  # a header
+        "".join(f"{a},{t}\n" for a, t in ROWS),  # none
+        "angle [deg];torque, kN*m\r\n" + "".join(f"{a} , {t}\r\n" for a, t in ROWS),  # CRLF, blanks, a header with ;
+        "# measured 2024\n\nangle,torque\n" + "".join(f"{a},{t}\n\n" for a, t in ROWS) + "# end\n",
+        "".join(f"{a},{t}\n" for a, t in ROWS).rstrip("\n"),  # no newline at the end
+        "\ufeffangle,torque\n" + "".join(f"{a},{t}\n" for a, t in ROWS),  # Excel's byte-order mark
+    ],
+)
 def test_a_csv_table_is_the_inline_table(tmp_path, csv_text):
     from_file = flyopt.load(write(tmp_path, csv_text))
     written = flyopt.from_dict(tomllib.loads(BASE.format(table=inline(ROWS))))
@@ -83,8 +87,9 @@ def test_a_csv_table_is_the_inline_table(tmp_path, csv_text):
 
 def test_the_problem_scene_from_csv_gives_the_inline_scenes_json():
     """problems/four-stroke-engine-csv.toml is four-stroke-engine.toml with its table in a CSV file."""
-    runs = [cli("solve", PROBLEMS / name, "--json") for name in ("four-stroke-engine.toml",
-                                                                 "four-stroke-engine-csv.toml")]
+    runs = [
+        cli("solve", PROBLEMS / name, "--json") for name in ("four-stroke-engine.toml", "four-stroke-engine-csv.toml")
+    ]
     assert all(r.returncode == 0 for r in runs), [r.stderr for r in runs]
     inline_json, csv_json = (json.loads(r.stdout) for r in runs)
     assert csv_json["a_max"] > 0 and csv_json["design"]["status"] == "designed"
@@ -120,12 +125,14 @@ def test_the_fast_reading_gives_what_the_line_by_line_reading_gives():
     rng = np.random.default_rng(7)
     angles = np.sort(rng.uniform(0, 360, 500))
     values = rng.normal(0, 1e4, 500)
-    for text in ("a,b\n" + "".join(f"{a!r},{v!r}\n" for a, v in zip(angles.tolist(), values.tolist())),
-                 "".join(f"{a:.3f}, {v:.6e}\r\n" for a, v in zip(angles, values)),
-                 "".join(f"{a!r},{v!r}\n" for a, v in zip(angles.tolist(), values.tolist())) + "\n\n  \n"):
+    for text in (
+        "a,b\n" + "".join(f"{a!r},{v!r}\n" for a, v in zip(angles.tolist(), values.tolist())),
+        "".join(f"{a:.3f}, {v:.6e}\r\n" for a, v in zip(angles, values)),
+        "".join(f"{a!r},{v!r}\n" for a, v in zip(angles.tolist(), values.tolist())) + "\n\n  \n",
+    ):
         fast, lines = scene_io._read_csv(text, "f", "t.csv", ("angle", "torque"), ("deg", "N*m"))
         slow, slow_lines = scene_io._read_csv_lines(text.split("\n"), "f", "t.csv", ("angle", "torque"), ("deg", "N*m"))
-        assert isinstance(lines, range)         # the one-pass reading took it
+        assert isinstance(lines, range)  # the one-pass reading took it
         assert np.array_equal(fast, slow) and list(lines) == list(slow_lines)
 
 
@@ -147,28 +154,46 @@ def assert_refused(run, scene, match):
 GOOD = "".join(f"{a},{t}\n" for a, t in ROWS)
 
 
-@pytest.mark.parametrize("csv_text, match", [
-    ("0,1.6\n45\n90,0.2\n360,0.2\n",
-     r"torque\.csv line 2: expected 2 columns, angle and torque separated by a comma, got 1: '45'"),
-    ("0,1.6,7\n360,0.2\n", r"torque\.csv line 1: expected 2 columns.*got 3"),
-    ("0;1.6\n360;0.2\n", r"torque\.csv line 1: expected 2 columns, angle and torque separated by a comma"),
-    ("angle,torque\n0,1.6\n45,1.6 kN*m\n360,0.2\n",
-     r"torque\.csv line 3, column 2: '1\.6 kN\*m' is not a number \(allowed: a plain number, the torque in kN\*m\)"),
-    ("0,1.6\nforty,1.6\n360,0.2\n",
-     r"torque\.csv line 2, column 1: 'forty' is not a number \(allowed: a plain number, the angle in deg\)"),
-    ("angle,torque\n0,1.6\n", r"torque\.csv: a table needs at least two rows of angle,torque .*only line 2 holds one"),
-    ("angle,torque\n", r"torque\.csv: a table needs at least two rows .*there is none"),
-    ("", r"torque\.csv: a table needs at least two rows .*there is none"),
-    ("0,1.6\n90,0.2\n45,1.6\n360,0.2\n",
-     r"torque\.csv line 3: angles must not decrease: 45 deg comes after 90 deg on line 2"),
-    ("0,1.6\n90,0.2\n90,0.3\n90,0.4\n360,0.2\n",
-     r"torque\.csv line 3: three rows at one angle \(90 deg, lines 2 to 4\); a vertical step is exactly two rows"),
-    ("0,1.6\n90,0.2\n350,0.2\n",
-     r"torque\.csv lines 1 to 3: the table covers 0 to 350 deg but the cycle is 0 to 360 deg: the cycle does not close"),
-    ("0,1.6\n90,nan\n360,0.2\n", r"torque\.csv line 2, column 2: 'nan' is not finite"),
-    ("0,1.6\n90,1e999\n360,0.2\n", r"torque\.csv line 2, column 2: '1e999' is not finite"),
-    (b"0,1.6\n\xff\xfe,2\n", r"cannot read .*torque\.csv: not UTF-8 text"),
-])
+@pytest.mark.parametrize(
+    "csv_text, match",
+    [
+        (
+            "0,1.6\n45\n90,0.2\n360,0.2\n",
+            r"torque\.csv line 2: expected 2 columns, angle and torque separated by a comma, got 1: '45'",
+        ),
+        ("0,1.6,7\n360,0.2\n", r"torque\.csv line 1: expected 2 columns.*got 3"),
+        ("0;1.6\n360;0.2\n", r"torque\.csv line 1: expected 2 columns, angle and torque separated by a comma"),
+        (
+            "angle,torque\n0,1.6\n45,1.6 kN*m\n360,0.2\n",
+            r"torque\.csv line 3, column 2: '1\.6 kN\*m' is not a number \(allowed: a plain number, the torque in kN\*m\)",
+        ),
+        (
+            "0,1.6\nforty,1.6\n360,0.2\n",
+            r"torque\.csv line 2, column 1: 'forty' is not a number \(allowed: a plain number, the angle in deg\)",
+        ),
+        (
+            "angle,torque\n0,1.6\n",
+            r"torque\.csv: a table needs at least two rows of angle,torque .*only line 2 holds one",
+        ),
+        ("angle,torque\n", r"torque\.csv: a table needs at least two rows .*there is none"),
+        ("", r"torque\.csv: a table needs at least two rows .*there is none"),
+        (
+            "0,1.6\n90,0.2\n45,1.6\n360,0.2\n",
+            r"torque\.csv line 3: angles must not decrease: 45 deg comes after 90 deg on line 2",
+        ),
+        (
+            "0,1.6\n90,0.2\n90,0.3\n90,0.4\n360,0.2\n",
+            r"torque\.csv line 3: three rows at one angle \(90 deg, lines 2 to 4\); a vertical step is exactly two rows",
+        ),
+        (
+            "0,1.6\n90,0.2\n350,0.2\n",
+            r"torque\.csv lines 1 to 3: the table covers 0 to 350 deg but the cycle is 0 to 360 deg: the cycle does not close",
+        ),
+        ("0,1.6\n90,nan\n360,0.2\n", r"torque\.csv line 2, column 2: 'nan' is not finite"),
+        ("0,1.6\n90,1e999\n360,0.2\n", r"torque\.csv line 2, column 2: '1e999' is not finite"),
+        (b"0,1.6\n\xff\xfe,2\n", r"cannot read .*torque\.csv: not UTF-8 text"),
+    ],
+)
 def test_a_malformed_csv_is_refused_in_one_line(tmp_path, csv_text, match):
     path = write(tmp_path, csv_text)
     for command in ("check", "solve"):
@@ -182,12 +207,18 @@ def test_a_file_that_does_not_exist_is_refused_in_one_line(tmp_path):
     assert_refused(cli("solve", path), path, r"cannot read .*: Is a directory")
 
 
-@pytest.mark.parametrize("table, field, match", [
-    ('points_file = 3', "torque.resisting.points_file", r"must be the name of a CSV file \(a string\), got 3"),
-    ('points_file = "torque.csv"\npoints = [[0, 1], [360, 1]]', "torque.resisting",
-     r"give exactly one of points, points_file, constant, expression or motor \(the torque is given twice: "
-     r"points, points_file\)"),
-])
+@pytest.mark.parametrize(
+    "table, field, match",
+    [
+        ("points_file = 3", "torque.resisting.points_file", r"must be the name of a CSV file \(a string\), got 3"),
+        (
+            'points_file = "torque.csv"\npoints = [[0, 1], [360, 1]]',
+            "torque.resisting",
+            r"give exactly one of points, points_file, constant, expression or motor \(the torque is given twice: "
+            r"points, points_file\)",
+        ),
+    ],
+)
 def test_points_file_field_errors(tmp_path, table, field, match):
     path = write(tmp_path, GOOD, table=table)
     run = cli("check", path)
@@ -215,5 +246,8 @@ def test_a_member_csv_error_names_the_member_field_and_line(tmp_path):
     path.write_text(text[:start] + 'force_file = "ram.csv"' + text[end:], encoding="utf-8")
     run = cli("check", path)
     assert run.returncode == 2 and len(run.stderr.splitlines()) == 1, run.stderr
-    assert re.search(r"member\[\d\]\.force_file: .*ram\.csv line 3, column 2: 'x' is not a number "
-                     r"\(allowed: a plain number, the force in kN\)", run.stderr), run.stderr
+    assert re.search(
+        r"member\[\d\]\.force_file: .*ram\.csv line 3, column 2: 'x' is not a number "
+        r"\(allowed: a plain number, the force in kN\)",
+        run.stderr,
+    ), run.stderr

@@ -8,10 +8,10 @@ same error for a file tomllib refuses.
 """
 
 import math
-import tomllib
 
 import numpy as np
 import pytest
+import tomllib
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -60,7 +60,7 @@ def test_a_large_table_is_read_without_tomllib_and_gives_tomllibs_floats():
     text = HEAD + table_text(angles.tolist(), values.tolist())
     data = scene_io._parse_toml(text)
     rows = data["torque"]["resisting"]["points"]
-    assert isinstance(rows, scene_io.InlineRows) and len(rows) == 400   # the fast reading took it
+    assert isinstance(rows, scene_io.InlineRows) and len(rows) == 400  # the fast reading took it
     expected = np.array(tomllib.loads(text)["torque"]["resisting"]["points"], dtype=float)
     assert np.array_equal(bits(rows.array), bits(expected))
     a, b = fast_scene(text), tomllib_scene(text)
@@ -68,14 +68,22 @@ def test_a_large_table_is_read_without_tomllib_and_gives_tomllibs_floats():
     assert np.array_equal(bits(a.resisting.values), bits(b.resisting.values))
 
 
-@pytest.mark.parametrize("sep, row_sep, end", [
-    (", ", ", ", "]"), (",", ",", ",]"), (" , ", ",\n", ",\n]"), (",\t", " ,\r\n  ", "\r\n]"),
-    (",\n    ", "\n  ,\n  ", "\n,\n]"),
-])
+@pytest.mark.parametrize(
+    "sep, row_sep, end",
+    [
+        (", ", ", ", "]"),
+        (",", ",", ",]"),
+        (" , ", ",\n", ",\n]"),
+        (",\t", " ,\r\n  ", "\r\n]"),
+        (",\n    ", "\n  ,\n  ", "\n,\n]"),
+    ],
+)
 def test_every_layout_of_blanks_and_commas_is_read_fast(sep, row_sep, end):
     angles, values = large()
-    rows = [f"[{a!r}{sep}{v!r}{',' if k % 3 == 0 else ''}]" for k, (a, v) in
-            enumerate(zip(angles.tolist(), values.tolist()))]
+    rows = [
+        f"[{a!r}{sep}{v!r}{',' if k % 3 == 0 else ''}]"
+        for k, (a, v) in enumerate(zip(angles.tolist(), values.tolist()))
+    ]
     text = HEAD + "points = [" + row_sep.join(rows) + end + "\n"
     rows = scene_io._parse_toml(text)["torque"]["resisting"]["points"]
     assert isinstance(rows, scene_io.InlineRows)
@@ -88,29 +96,44 @@ def test_a_small_table_is_left_to_tomllib():
     assert isinstance(scene_io._parse_toml(text)["torque"]["resisting"]["points"], list)
 
 
-@pytest.mark.parametrize("variant", [
-    "comment inside", "unit strings", "in a multi-line string", "in a literal multi-line string",
-    "underscore", "inf", "leading zero", "bare fraction", "trailing dot", "lone carriage return",
-    "three columns", "dotted key",
-])
+@pytest.mark.parametrize(
+    "variant",
+    [
+        "comment inside",
+        "unit strings",
+        "in a multi-line string",
+        "in a literal multi-line string",
+        "underscore",
+        "inf",
+        "leading zero",
+        "bare fraction",
+        "trailing dot",
+        "lone carriage return",
+        "three columns",
+        "dotted key",
+    ],
+)
 def test_what_the_fast_reading_is_not_sure_of_is_tomllibs(variant):
     """Each variant is read by tomllib whole: the same data, or the same error."""
     angles, values = large()
     body = table_text(angles.tolist(), values.tolist())
-    text = HEAD + {
-        "comment inside": body.replace("], [", "], # a note\n [", 1),
-        "unit strings": body.replace("[0.0, ", '["0 deg", ', 1),
-        "in a multi-line string": 'description = """\n' + body + '"""\n',
-        "in a literal multi-line string": "description = '''\n" + body + "'''\npoints = [[0, 1], [360, 1]]\n",
-        "underscore": body.replace("[0.0, ", "[0.0_0, ", 1),
-        "inf": body.replace("[360.0, ", "[inf, ", 1),
-        "leading zero": body.replace("[0.0, ", "[00, ", 1),
-        "bare fraction": body.replace("[0.0, ", "[.0, ", 1),
-        "trailing dot": body.replace("[0.0, ", "[0., ", 1),
-        "lone carriage return": body.replace("], [", "],\r [", 1),
-        "three columns": body.replace("[0.0, ", "[0.0, 1, ", 1),
-        "dotted key": body.replace("points", "resisting.points", 1).replace("[torque.resisting]", "[torque]"),
-    }[variant]
+    text = (
+        HEAD
+        + {
+            "comment inside": body.replace("], [", "], # a note\n [", 1),
+            "unit strings": body.replace("[0.0, ", '["0 deg", ', 1),
+            "in a multi-line string": 'description = """\n' + body + '"""\n',
+            "in a literal multi-line string": "description = '''\n" + body + "'''\npoints = [[0, 1], [360, 1]]\n",
+            "underscore": body.replace("[0.0, ", "[0.0_0, ", 1),
+            "inf": body.replace("[360.0, ", "[inf, ", 1),
+            "leading zero": body.replace("[0.0, ", "[00, ", 1),
+            "bare fraction": body.replace("[0.0, ", "[.0, ", 1),
+            "trailing dot": body.replace("[0.0, ", "[0., ", 1),
+            "lone carriage return": body.replace("], [", "],\r [", 1),
+            "three columns": body.replace("[0.0, ", "[0.0, 1, ", 1),
+            "dotted key": body.replace("points", "resisting.points", 1).replace("[torque.resisting]", "[torque]"),
+        }[variant]
+    )
     data = scene_io._parse_toml(text) if _reads(text) else None
     if data is None:
         with pytest.raises(tomllib.TOMLDecodeError) as fast:
@@ -119,7 +142,7 @@ def test_what_the_fast_reading_is_not_sure_of_is_tomllibs(variant):
             tomllib.loads(text)
         assert str(fast.value) == str(reference.value)
     else:
-        assert data == tomllib.loads(text)           # no InlineRows anywhere: tomllib's own result
+        assert data == tomllib.loads(text)  # no InlineRows anywhere: tomllib's own result
 
 
 def _reads(text):
@@ -130,8 +153,10 @@ def _reads(text):
         return False
 
 
-@pytest.mark.parametrize("token, expected", [("-0", 0.0), ("+0", 0.0), ("-0.0", -0.0), ("0", 0.0),
-                                             ("-0e0", -0.0), ("1e-400", 0.0), ("-1e-400", -0.0)])
+@pytest.mark.parametrize(
+    "token, expected",
+    [("-0", 0.0), ("+0", 0.0), ("-0.0", -0.0), ("0", 0.0), ("-0e0", -0.0), ("1e-400", 0.0), ("-1e-400", -0.0)],
+)
 def test_signed_zeros_are_tomllibs(token, expected):
     angles, values = large()
     values = [token] + [repr(v) for v in values[1:].tolist()]
@@ -163,9 +188,12 @@ def test_a_decreasing_angle_in_a_large_table_names_the_point_as_before(tmp_path)
 def test_member_tables_and_two_tables_in_one_file():
     """A member's force table and a torque table, both large, in one file: each is tomllib's."""
     angles, values = large(300)
-    text = (HEAD + table_text(angles.tolist(), values.tolist(), wrap=3)
-            + '[[member]]\nname = "ram"\nmass = 1\nvelocity_ratio = 0.1\nangle_unit = "deg"\nunit = "N"\n'
-            + table_text(angles.tolist(), (-values).tolist(), sep=",", row_sep=",\n  ").replace("points", "force"))
+    text = (
+        HEAD
+        + table_text(angles.tolist(), values.tolist(), wrap=3)
+        + '[[member]]\nname = "ram"\nmass = 1\nvelocity_ratio = 0.1\nangle_unit = "deg"\nunit = "N"\n'
+        + table_text(angles.tolist(), (-values).tolist(), sep=",", row_sep=",\n  ").replace("points", "force")
+    )
     data = scene_io._parse_toml(text)
     assert isinstance(data["member"][0]["force"], scene_io.InlineRows)
     a, b = fast_scene(text), tomllib_scene(text)
@@ -174,28 +202,33 @@ def test_member_tables_and_two_tables_in_one_file():
 
 
 NUMBER = st.one_of(
-    st.integers(-10**6, 10**6).map(str),
+    st.integers(-(10**6), 10**6).map(str),
     st.floats(allow_nan=False, allow_infinity=False, width=64).map(repr).filter(lambda t: "inf" not in t),
     st.floats(-1e3, 1e3).map(lambda x: f"{x:.4f}"),
     st.floats(1e-300, 1e300).map(lambda x: f"{x:.6e}"),
     st.sampled_from(["-0", "+0", "-0.0", "+1", "1E5", "1e+05", "-1e-400", "12345678901234567890123"]),
 )
-TOML_NOT_FAST = ("1_000", "nan", "-inf", "0x1F", "\"1\"")
+TOML_NOT_FAST = ("1_000", "nan", "-inf", "0x1F", '"1"')
 """TOML values the fast reading leaves to tomllib (a TOML array may mix types)."""
 NOT_TOML = ["01", "1.", ".5", "1e", "--1", "1.2.3", "+.5", "1.e5", "1e400", *TOML_NOT_FAST]
 BLANK = st.sampled_from(["", " ", "  ", "\t", "\n", " \n  ", "\r\n"])
 
 
 @settings(max_examples=80, deadline=None)
-@given(rows=st.lists(st.tuples(NUMBER, NUMBER, BLANK, BLANK, st.booleans()), min_size=60, max_size=200),
-       trailing=st.booleans(), bad=st.one_of(st.none(), st.tuples(st.integers(0, 599), st.sampled_from(NOT_TOML))))
+@given(
+    rows=st.lists(st.tuples(NUMBER, NUMBER, BLANK, BLANK, st.booleans()), min_size=60, max_size=200),
+    trailing=st.booleans(),
+    bad=st.one_of(st.none(), st.tuples(st.integers(0, 599), st.sampled_from(NOT_TOML))),
+)
 def test_random_tables_read_as_tomllib_reads_them(rows, trailing, bad):
     tokens = [t for a, v, *_ in rows for t in (a, v)]
-    if bad is not None:                       # one number TOML does not allow
+    if bad is not None:  # one number TOML does not allow
         tokens[bad[0] % len(tokens)] = bad[1]
-    body = ",".join(f"{b1}[{tokens[2 * k]}{b2},{b1}{tokens[2 * k + 1]}{',' if comma else ''}]"
-                    for k, (_, _, b1, b2, comma) in enumerate(rows))
-    text = f'x = 1\npoints = [{body}{"," if trailing else ""}]\n'
+    body = ",".join(
+        f"{b1}[{tokens[2 * k]}{b2},{b1}{tokens[2 * k + 1]}{',' if comma else ''}]"
+        for k, (_, _, b1, b2, comma) in enumerate(rows)
+    )
+    text = f"x = 1\npoints = [{body}{',' if trailing else ''}]\n"
     try:
         reference = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
@@ -208,10 +241,13 @@ def test_random_tables_read_as_tomllib_reads_them(rows, trailing, bad):
     expected = np.array(reference["points"], dtype=float)
     if isinstance(points, scene_io.InlineRows):
         got = points.array
-    else:                                     # left to tomllib: a short table, or a number beyond the floats
+    else:  # left to tomllib: a short table, or a number beyond the floats
         assert isinstance(points, list)
-        assert (len(text) < scene_io.FAST_TABLE_CHARACTERS + 20 or not np.isfinite(expected).all()
-                or (bad is not None and bad[1] in TOML_NOT_FAST))
+        assert (
+            len(text) < scene_io.FAST_TABLE_CHARACTERS + 20
+            or not np.isfinite(expected).all()
+            or (bad is not None and bad[1] in TOML_NOT_FAST)
+        )
         got = np.array(points, dtype=float)
     assert np.array_equal(bits(got), bits(expected))
     assert data["x"] == 1

@@ -19,10 +19,10 @@ import math
 
 import numpy as np
 import pytest
+from conftest import PROBLEMS, assert_published
 from numpy.testing import assert_allclose
 
 import flyopt
-from conftest import PROBLEMS, assert_published
 from flyopt.machine.reduce import reduce
 
 EXAMPLE3 = """
@@ -74,6 +74,7 @@ def test_shigley_gear_reducer_reflected_to_the_motor(write_scene, form):
 
     def value(j):
         return f'inertia = "{j!r} kg*m^2"' if form == "inertia" else f'gd2 = "{4 * 9.81 * j!r} N*m^2"'
+
     text = f"""
 [machine]
 speed = "1500 rpm"
@@ -102,10 +103,14 @@ def test_the_shafts_inertia_holds_the_kinetic_energy_of_every_shaft(write_scene)
         count = int(rng.integers(1, 6))
         ratios, inertias = rng.uniform(0.05, 8.0, count).tolist(), rng.uniform(0.0, 3.0, count).tolist()
         j_machine = float(rng.uniform(0, 2))
-        shafts = "".join(f'[[shaft]]\nname = "s{k}"\nspeed_ratio = {ratios[k]!r}\ninertia = "{inertias[k]!r} kg*m^2"\n'
-                         for k in range(count))
-        text = (f'[machine]\nspeed = "1500 rpm"\ndelta = 0.02\ninertia = "{j_machine!r} kg*m^2"\n'
-                f'[torque.net]\nareas = ["100 J", "-100 J"]\n{shafts}')
+        shafts = "".join(
+            f'[[shaft]]\nname = "s{k}"\nspeed_ratio = {ratios[k]!r}\ninertia = "{inertias[k]!r} kg*m^2"\n'
+            for k in range(count)
+        )
+        text = (
+            f'[machine]\nspeed = "1500 rpm"\ndelta = 0.02\ninertia = "{j_machine!r} kg*m^2"\n'
+            f'[torque.net]\nareas = ["100 J", "-100 J"]\n{shafts}'
+        )
         scene = flyopt.load(write_scene(text))
         energy = 0.5 * j_machine * omega**2 + math.fsum(0.5 * j * (i * omega) ** 2 for j, i in zip(inertias, ratios))
         assert_allclose(0.5 * scene.j_constant * omega**2, energy, rtol=1e-14)
@@ -136,15 +141,18 @@ def test_shear_press_flywheel_shrinks_by_the_inertia_already_on_the_shafts(write
     assert_allclose(main.j_required, result.j_required / 0.25**2, rtol=1e-15)
 
 
-@pytest.mark.parametrize("new, field, match", [
-    ('inertia = "-0.06 kg*m^2"', "shaft[1].inertia", ">= 0"),
-    ('inertia = "0.06 kg*m^2"\ngd2 = "2 N*m^2"', "shaft[1].gd2", "either inertia or gd2"),
-    ('inertia = "0.06 kg"', "shaft[1].inertia", "wrong dimension"),
-    ('gd2 = "0.06 kg*m^2"', "shaft[1].gd2", "wrong dimension"),
-    ('gd2 = "-2 N*m^2"', "shaft[1].gd2", ">= 0"),
-    ('inertia = "inf kg*m^2"', "shaft[1].inertia", "must be finite"),
-    ('inertia = true', "shaft[1].inertia", "moment of inertia"),
-])
+@pytest.mark.parametrize(
+    "new, field, match",
+    [
+        ('inertia = "-0.06 kg*m^2"', "shaft[1].inertia", ">= 0"),
+        ('inertia = "0.06 kg*m^2"\ngd2 = "2 N*m^2"', "shaft[1].gd2", "either inertia or gd2"),
+        ('inertia = "0.06 kg"', "shaft[1].inertia", "wrong dimension"),
+        ('gd2 = "0.06 kg*m^2"', "shaft[1].gd2", "wrong dimension"),
+        ('gd2 = "-2 N*m^2"', "shaft[1].gd2", ">= 0"),
+        ('inertia = "inf kg*m^2"', "shaft[1].inertia", "must be finite"),
+        ("inertia = true", "shaft[1].inertia", "moment of inertia"),
+    ],
+)
 def test_bad_shaft_inertia_exits_2_with_one_line(main_cli, write_scene, new, field, match):
     import re
 
@@ -175,7 +183,8 @@ def test_a_sweep_of_the_ratio_of_a_shaft_with_inertia_is_refused(tmp_path):
         assert len(lines) == 1 and "Traceback" not in result.stderr
         assert f"shaft {shaft!r} carries inertia" in lines[0] and str(path) in lines[0]
     bare = tmp_path / "bare.toml"
-    bare.write_text(Path("problems/punch-press.toml").read_text()
-                    + '\n[sweep.vary]\n"shaft.intermediate.speed_ratio" = "4:8:3"\n')
+    bare.write_text(
+        Path("problems/punch-press.toml").read_text() + '\n[sweep.vary]\n"shaft.intermediate.speed_ratio" = "4:8:3"\n'
+    )
     result = subprocess.run([sys.executable, "-m", "flyopt", "check", str(bare)], capture_output=True, text=True)
     assert result.returncode == 0, result.stderr

@@ -5,9 +5,9 @@ import math
 import weakref
 
 import casadi as ca
+from conftest import PROBLEMS
 
 import flyopt
-from conftest import PROBLEMS
 from flyopt.sizing import choose, periodic, shooting
 
 
@@ -19,13 +19,19 @@ def test_one_solve_verify_of_the_motor_press_builds_each_structure_once():
     is found by the one Newton solve: its fixed-step cycle at one step per grid interval and
     the check at two (two structures); CVODES simulates the comparison and the verification."""
     periodic.BUILDS.clear()
-    shooting._STRUCTURES.clear()      # from cold: the fixed-step functions are shared by structure
+    shooting._STRUCTURES.clear()  # from cold: the fixed-step functions are shared by structure
     solution = flyopt.solve(flyopt.load(PROBLEMS / "motor-press.toml"), verify_design=True)
-    out = solution.to_dict()   # all that `solve --verify --json` prints: comparison and run-up included
+    out = solution.to_dict()  # all that `solve --verify --json` prints: comparison and run-up included
     assert out["verification"] is not None and out["model"] == "dynamic"
     assert out["startup"]["time"] > 0 and len(out["models"]) == 2
-    assert dict(periodic.BUILDS) == {"periodic model": 2, "integrator": 1, "shooting function": 1,
-                                     "cycle function": 1, "timed integrator": 1, "fixed-step function": 2}
+    assert dict(periodic.BUILDS) == {
+        "periodic model": 2,
+        "integrator": 1,
+        "shooting function": 1,
+        "cycle function": 1,
+        "timed integrator": 1,
+        "fixed-step function": 2,
+    }
 
 
 def test_machines_of_one_structure_share_the_compiled_one_solve(write_scene):
@@ -61,11 +67,12 @@ def test_a_machine_keeps_one_model_for_as_long_as_it_lives():
     torques = [weakref.ref(machine.net_torque()), weakref.ref(other.net_torque())]
     del machine, first, other
     gc.collect()
-    assert [ref() for ref in torques] == [None, None]   # so their entries have left the cache
+    assert [ref() for ref in torques] == [None, None]  # so their entries have left the cache
 
 
 def test_the_same_torque_callable_is_built_once():
     """A caller that passes the same net torque again (a sweep over flywheels) reuses the model."""
+
     def net(phi, omega):
         return 10.0 * ca.sin(phi)
 

@@ -16,10 +16,10 @@ import time
 import casadi as ca
 import numpy as np
 import pytest
+from conftest import PROBLEMS, ROOT
 from numpy.testing import assert_allclose
 from scipy import integrate, optimize
 
-from conftest import PROBLEMS, ROOT
 from flyopt.errors import SceneError
 from flyopt.sizing import periodic
 
@@ -28,8 +28,9 @@ RPM = 2 * math.pi / 60
 
 def flyopt_cli(*args, timeout=60):
     """Run ``python -m flyopt ARGS``; a hang fails the test (subprocess.TimeoutExpired)."""
-    return subprocess.run([sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True,
-                          cwd=ROOT, timeout=timeout)
+    return subprocess.run(
+        [sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True, cwd=ROOT, timeout=timeout
+    )
 
 
 def speed_load(expression, driving='constant = "unknown"', inertia=None):
@@ -91,7 +92,7 @@ def test_a_load_of_speed_alone_against_an_unknown_constant_needs_no_flywheel(wri
     assert run.stderr == ""
     out = json.loads(run.stdout)
     assert out["flywheel_needed"] is False
-    assert abs(out["a_max"]) <= 1e-12 * out["work_per_cycle"]   # the indicator's A_max: zero up to round-off
+    assert abs(out["a_max"]) <= 1e-12 * out["work_per_cycle"]  # the indicator's A_max: zero up to round-off
     assert out["omega_max"] == out["omega_min"] == out["omega_mean"] == pytest.approx(1500 * RPM, rel=1e-15)
     assert out["verification"]["achieved_delta"] == 0.0
 
@@ -122,12 +123,14 @@ def test_a_balancing_constant_holds_the_scene_speed(write_scene):
 
 
 DC_MOTOR = 'motor = { kind = "dc", rated_power = "40 kW", rated_speed = "1500 rpm", no_load_speed = "1600 rpm" }'
-INDUCTION_MOTOR = ('motor = { kind = "induction", rated_power = "40 kW", rated_speed = "1440 rpm", '
-                   'synchronous_speed = "1500 rpm" }')
+INDUCTION_MOTOR = (
+    'motor = { kind = "induction", rated_power = "40 kW", rated_speed = "1440 rpm", synchronous_speed = "1500 rpm" }'
+)
 
 
-@pytest.mark.parametrize("motor, rated, no_load", [(DC_MOTOR, 1500, 1600), (INDUCTION_MOTOR, 1440, 1500)],
-                         ids=["dc", "induction"])
+@pytest.mark.parametrize(
+    "motor, rated, no_load", [(DC_MOTOR, 1500, 1600), (INDUCTION_MOTOR, 1440, 1500)], ids=["dc", "induction"]
+)
 def test_a_motor_sets_the_mean_speed_by_its_line(write_scene, motor, rated, no_load):
     """The same load driven by a motor: the motor's straight line, M_n (ω_0 − ω)/(ω_0 − ω_n),
     sets the mean speed where it meets the mean load, 200 N*m (the sin φ ω term adds only a
@@ -205,8 +208,10 @@ def _scipy_delta(j_total, omega_mean):
     def run(e0, c):
         def rhs(phi, e):
             return [c - (100 + 0.1 * np.sqrt(2 * e[0] / inertia(phi)))]
-        sol = integrate.solve_ivp(rhs, (0.0, 2 * math.pi), [e0], method="DOP853", rtol=1e-12, atol=1e-12,
-                                  dense_output=True)
+
+        sol = integrate.solve_ivp(
+            rhs, (0.0, 2 * math.pi), [e0], method="DOP853", rtol=1e-12, atol=1e-12, dense_output=True
+        )
         return sol
 
     def periodic_c(e0):
@@ -218,8 +223,9 @@ def _scipy_delta(j_total, omega_mean):
         return np.sqrt(2 * e / inertia(grid))
 
     e_guess = 0.5 * inertia(0.0) * omega_mean**2
-    e0 = optimize.brentq(lambda e: 0.5 * (speeds(e).max() + speeds(e).min()) - omega_mean,
-                         0.8 * e_guess, 1.25 * e_guess, xtol=1e-12)
+    e0 = optimize.brentq(
+        lambda e: 0.5 * (speeds(e).max() + speeds(e).min()) - omega_mean, 0.8 * e_guess, 1.25 * e_guess, xtol=1e-12
+    )
     w = speeds(e0)
     return (w.max() - w.min()) / omega_mean
 

@@ -17,9 +17,8 @@ import sys
 
 import numpy as np
 import pytest
-from numpy.testing import assert_allclose
-
 from conftest import ROOT
+from numpy.testing import assert_allclose
 
 RPM = 2 * math.pi / 60
 
@@ -58,14 +57,19 @@ def verify_table(tmp_path, n, timeout):
     text, phi, values = table_scene(n)
     path = tmp_path / "table.toml"
     path.write_text(text, encoding="utf-8")
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(path), "--verify", "--json"],
-                         capture_output=True, text=True, cwd=ROOT, timeout=timeout)
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "solve", str(path), "--verify", "--json"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=timeout,
+    )
     assert run.returncode == 0, run.stderr
     out = json.loads(run.stdout)
     assert_allclose(out["j_required"], exact_flywheel(phi, values, 300 * RPM, 0.05, 1.0), rtol=1e-9)
     check = out["verification"]
     assert check["method"].startswith("periodic simulation")
-    assert_allclose(check["achieved_delta"], 0.05, rtol=1e-6)   # DELTA_RTOL, the simulation's stated accuracy
+    assert_allclose(check["achieved_delta"], 0.05, rtol=1e-6)  # DELTA_RTOL, the simulation's stated accuracy
     assert check["flagged"] is False
 
 

@@ -14,7 +14,6 @@ import subprocess
 import sys
 
 import pytest
-
 from conftest import PROBLEMS
 
 DRIVER = """
@@ -50,10 +49,12 @@ def imported(setup, watched=STUDIES_AND_PLOTS + SOLVERS + ("scipy",)):
 
 def command(*args):
     """Run ``flyopt ARGS`` through ``main`` with stdout captured; it must succeed."""
-    return ("from flyopt.cli.main import main\n"
-            "with contextlib.redirect_stdout(io.StringIO()):\n"
-            f"    status = main({list(map(str, args))!r})\n"
-            "assert status == 0, status\n")
+    return (
+        "from flyopt.cli.main import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"    status = main({list(map(str, args))!r})\n"
+        "assert status == 0, status\n"
+    )
 
 
 def test_the_command_line_parser_imports_nothing_heavy():

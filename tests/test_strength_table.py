@@ -20,8 +20,15 @@ from flyopt.design.materials import builtin_materials
 
 GJS = builtin_materials(default_only=False)["en_gjs_400_18"]
 OMEGA, ENVELOPE, WIDTH, MIN_WALL, FACTOR = 12.0, 1.2, 0.05, 0.008, 5.0
-SPEC = DesignSpec(geometry="rim", criterion="stress", safety_factor=FACTOR, max_outer_diameter=ENVELOPE,
-                  max_width=WIDTH, hb_ratio=(0.5, 2.0), min_wall=MIN_WALL)
+SPEC = DesignSpec(
+    geometry="rim",
+    criterion="stress",
+    safety_factor=FACTOR,
+    max_outer_diameter=ENVELOPE,
+    max_width=WIDTH,
+    hb_ratio=(0.5, 2.0),
+    min_wall=MIN_WALL,
+)
 
 
 def brute_force_rim(j):
@@ -33,11 +40,18 @@ def brute_force_rim(j):
     h = np.linspace(MIN_WALL, 0.25, 4000)[None, :]
     r_o, r_i = d / 2.0, d / 2.0 - h
     with np.errstate(invalid="ignore", divide="ignore"):
-        b = 2.0 * j / (math.pi * rho * (r_o ** 4 - r_i ** 4))
-        hoop = (3.0 + nu) / 4.0 * rho * OMEGA ** 2 * (r_o ** 2 + (1.0 - nu) / (3.0 + nu) * r_i ** 2)
-        ok = ((r_i > 0) & (b <= WIDTH) & (b >= MIN_WALL) & (h / b >= 0.5) & (h / b <= 2.0)
-              & (np.minimum(h, b) <= 0.03) & (hoop <= allowable))
-        mass = np.where(ok, rho * math.pi * (r_o ** 2 - r_i ** 2) * b, np.inf)
+        b = 2.0 * j / (math.pi * rho * (r_o**4 - r_i**4))
+        hoop = (3.0 + nu) / 4.0 * rho * OMEGA**2 * (r_o**2 + (1.0 - nu) / (3.0 + nu) * r_i**2)
+        ok = (
+            (r_i > 0)
+            & (b <= WIDTH)
+            & (b >= MIN_WALL)
+            & (h / b >= 0.5)
+            & (h / b <= 2.0)
+            & (np.minimum(h, b) <= 0.03)
+            & (hoop <= allowable)
+        )
+        mass = np.where(ok, rho * math.pi * (r_o**2 - r_i**2) * b, np.inf)
     return float(mass.min())
 
 
@@ -50,8 +64,8 @@ def test_a_rim_beyond_the_table_is_designed_within_it():
     assert min(best.h, best.b) <= 0.03
     assert max(p["wall"] for p in best.stress["parts"]) <= 0.03
     reference = brute_force_rim(14.0)
-    assert best.mass <= reference * (1.0 + 1e-9)          # at least as light as every grid rim
-    assert best.mass >= reference * (1.0 - 2e-3)          # and no lighter than the grid's resolution allows
+    assert best.mass <= reference * (1.0 + 1e-9)  # at least as light as every grid rim
+    assert best.mass >= reference * (1.0 - 2e-3)  # and no lighter than the grid's resolution allows
 
 
 def test_a_rim_no_section_within_the_table_can_make_is_infeasible():
@@ -65,8 +79,16 @@ def test_a_rim_no_section_within_the_table_can_make_is_infeasible():
 @pytest.mark.parametrize("geometry", ["rim_web", "rim_arms"])
 def test_whole_wheels_keep_every_section_within_the_table(geometry):
     """Web and arms wheels heavy enough to want thick sections: every part's wall ends within the table."""
-    spec = DesignSpec(geometry=geometry, criterion="stress", safety_factor=FACTOR, max_outer_diameter=ENVELOPE,
-                      max_width=0.3, hb_ratio=(0.5, 2.0), min_wall=MIN_WALL, arms=(6,))
+    spec = DesignSpec(
+        geometry=geometry,
+        criterion="stress",
+        safety_factor=FACTOR,
+        max_outer_diameter=ENVELOPE,
+        max_width=0.3,
+        hb_ratio=(0.5, 2.0),
+        min_wall=MIN_WALL,
+        arms=(6,),
+    )
     j = {"rim_web": 40.0, "rim_arms": 18.0}[geometry]
     result = design_flywheel(j, OMEGA, [MountShaft("main", 1.0, 0.05)], [GJS], spec, torque=500.0)
     assert result.status == "designed" and "strength_table" in result.best.binding

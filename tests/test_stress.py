@@ -19,7 +19,7 @@ from scipy.integrate import quad, solve_ivp
 from flyopt.design import stress
 
 STEEL = {"density": 7850.0, "poisson": 0.3}
-OMEGA_3000 = 3000.0 * 2.0 * math.pi / 60.0          # 314.159... rad/s
+OMEGA_3000 = 3000.0 * 2.0 * math.pi / 60.0  # 314.159... rad/s
 
 
 def field(coefficients, radii, density, poisson, omega, per_step=7):
@@ -32,6 +32,7 @@ def field(coefficients, radii, density, poisson, omega, per_step=7):
 
 
 # ------------------------------------------------------ the issue's closed forms
+
 
 def test_issue_closed_form_numbers_by_hand():
     """The issue's figures, steel rho 7850, nu 0.3, R 0.5 m, 3000 rpm, checked by hand.
@@ -91,8 +92,10 @@ def test_thin_annulus_tends_to_thin_ring():
 
 # --------------------------------- the stepped disc against a second method
 
-def shooting_reference(radii, thickness, density, poisson, omega, *, solid=False, bore_pressure=0.0,
-                       outer_traction=0.0, per_step=7):
+
+def shooting_reference(
+    radii, thickness, density, poisson, omega, *, solid=False, bore_pressure=0.0, outer_traction=0.0, per_step=7
+):
     """sigma_r, sigma_t and E u of a stepped disc by shooting (DOP853, rtol 1e-13).
 
     The displacement form of the variable-thickness disc in plane stress,
@@ -112,8 +115,8 @@ def shooting_reference(radii, thickness, density, poisson, omega, *, solid=False
     terms are O(r^2) = 1e-14).
     """
     length = radii[-1]
-    scale = max(density * omega ** 2 * length ** 2, abs(bore_pressure), abs(outer_traction))
-    kappa = density * omega ** 2 * length ** 2 / scale
+    scale = max(density * omega**2 * length**2, abs(bore_pressure), abs(outer_traction))
+    kappa = density * omega**2 * length**2 / scale
     x_edges = [r / length for r in radii]
     tau = [t / max(thickness) for t in thickness]
     if solid:
@@ -123,7 +126,8 @@ def shooting_reference(radii, thickness, density, poisson, omega, *, solid=False
         def f(x, y):
             sr = y[1] / (tau_i * x)
             st = y[0] / x + poisson * sr
-            return [(1.0 - poisson ** 2) * sr - poisson * y[0] / x, tau_i * st - tau_i * spin * x * x]
+            return [(1.0 - poisson**2) * sr - poisson * y[0] / x, tau_i * st - tau_i * spin * x * x]
+
         return f
 
     def run(y0, spin):
@@ -161,10 +165,16 @@ WHEELS = {
     # name: radii, thickness, keyword arguments
     "hub-web-rim with bore": ([0.05, 0.12, 0.42, 0.5], [0.12, 0.03, 0.10], {}),
     "hub-web-rim, solid centre": ([0.0, 0.12, 0.42, 0.5], [0.12, 0.03, 0.10], {"solid": True}),
-    "shrink fit and outer pull": ([0.04, 0.10, 0.38, 0.5], [0.08, 0.02, 0.15],
-                                  {"bore_pressure": 40e6, "outer_traction": 15e6}),
-    "4 steps, solid, outer pull": ([0.0, 0.08, 0.2, 0.35, 0.5], [0.06, 0.02, 0.04, 0.09],
-                                   {"solid": True, "outer_traction": -5e6}),
+    "shrink fit and outer pull": (
+        [0.04, 0.10, 0.38, 0.5],
+        [0.08, 0.02, 0.15],
+        {"bore_pressure": 40e6, "outer_traction": 15e6},
+    ),
+    "4 steps, solid, outer pull": (
+        [0.0, 0.08, 0.2, 0.35, 0.5],
+        [0.06, 0.02, 0.04, 0.09],
+        {"solid": True, "outer_traction": -5e6},
+    ),
 }
 
 
@@ -209,6 +219,7 @@ def test_thickness_steps_change_the_answer():
 
 # ------------------------------------------------- reductions to closed forms
 
+
 @pytest.mark.parametrize("solid", [False, True])
 def test_equal_steps_reduce_to_uniform_disc(solid):
     """Hub, web and rim all 0.07 m thick: every step's (c1, c2) equals the
@@ -219,7 +230,7 @@ def test_equal_steps_reduce_to_uniform_disc(solid):
     a, b = (0.0 if solid else 0.05), 0.5
     radii = [a, 0.12, 0.42, b]
     coefficients = stress.disc_coefficients(radii, [0.07] * 3, rho, nu, w, solid=solid)
-    k = (3.0 + nu) / 8.0 * rho * w ** 2
+    k = (3.0 + nu) / 8.0 * rho * w**2
     scale = k * b * b
     for c1, c2 in coefficients:
         assert_allclose(c1, k * (a * a + b * b), rtol=1e-12)
@@ -249,8 +260,9 @@ def test_pressures_alone_against_lame(bore_pressure, traction):
     pressure, p_o = -traction) against Lame, to 1e-12 of the loads."""
     a, b = 0.06, 0.3
     radii = [a, 0.15, b]
-    coefficients = stress.disc_coefficients(radii, [0.05, 0.05], 7850.0, 0.3, 0.0,
-                                            bore_pressure=bore_pressure, outer_traction=traction)
+    coefficients = stress.disc_coefficients(
+        radii, [0.05, 0.05], 7850.0, 0.3, 0.0, bore_pressure=bore_pressure, outer_traction=traction
+    )
     sampled = field(coefficients, radii, 7850.0, 0.3, 0.0)
     sr, st = lame(a, b, bore_pressure, -traction, sampled[:, 0])
     big = max(abs(bore_pressure), abs(traction))
@@ -274,6 +286,7 @@ def test_solid_disc_under_outer_traction_is_uniform():
 
 # ----------------------------------------------------------- mean hoop stress
 
+
 @pytest.mark.parametrize("name", WHEELS)
 def test_mean_hoop_stress_by_equilibrium(name):
     """integral(sigma_t t dr) from the solver's constants against the
@@ -285,9 +298,11 @@ def test_mean_hoop_stress_by_equilibrium(name):
     coefficients = stress.disc_coefficients(radii, thickness, rho, nu, w, **options)
     sr_inner = -options.get("bore_pressure", 0.0)
     sr_outer = options.get("outer_traction", 0.0)
-    force = (thickness[-1] * radii[-1] * sr_outer - thickness[0] * radii[0] * sr_inner
-             + rho * w ** 2 * sum(t * (r1 ** 3 - r0 ** 3) / 3.0
-                                  for t, r0, r1 in zip(thickness, radii[:-1], radii[1:])))
+    force = (
+        thickness[-1] * radii[-1] * sr_outer
+        - thickness[0] * radii[0] * sr_inner
+        + rho * w**2 * sum(t * (r1**3 - r0**3) / 3.0 for t, r0, r1 in zip(thickness, radii[:-1], radii[1:]))
+    )
     area = sum(t * (r1 - r0) for t, r0, r1 in zip(thickness, radii[:-1], radii[1:]))
     assert_allclose(stress.mean_hoop_stress(coefficients, radii, thickness, rho, nu, w), force / area, rtol=1e-12)
 
@@ -306,6 +321,7 @@ def test_mean_hoop_stress_of_annulus_by_quadrature():
 
 # --------------------------------------------------- other input types
 
+
 def test_numpy_arrays_broadcast():
     """Five designs at once (arrays for radii, thicknesses, omega and the
     outer traction) give, element by element, the float results (rtol 1e-14:
@@ -321,12 +337,16 @@ def test_numpy_arrays_broadcast():
     sr, st = stress.disc_stresses(cs[1], rho, nu, omega, r)
     mean = stress.mean_hoop_stress(cs, radii, thickness, rho, nu, omega)
     for j in range(5):
-        one = stress.disc_coefficients([x[j] for x in radii], [x[j] for x in thickness], rho, nu, omega[j],
-                                       outer_traction=traction[j])
+        one = stress.disc_coefficients(
+            [x[j] for x in radii], [x[j] for x in thickness], rho, nu, omega[j], outer_traction=traction[j]
+        )
         sr_j, st_j = stress.disc_stresses(one[1], rho, nu, omega[j], r[j])
         assert_allclose((sr[j], st[j]), (sr_j, st_j), rtol=1e-14)
-        assert_allclose(mean[j], stress.mean_hoop_stress(one, [x[j] for x in radii], [x[j] for x in thickness],
-                                                         rho, nu, omega[j]), rtol=1e-14)
+        assert_allclose(
+            mean[j],
+            stress.mean_hoop_stress(one, [x[j] for x in radii], [x[j] for x in thickness], rho, nu, omega[j]),
+            rtol=1e-14,
+        )
     # a (edges, designs) array is iterated along axis 0 like a list of edges
     cs_2d = stress.disc_coefficients(np.array(radii), np.array(thickness), rho, nu, omega, outer_traction=traction)
     assert_allclose(np.array(cs_2d), np.array(cs), rtol=1e-15)
@@ -357,8 +377,12 @@ def test_casadi_evaluates_to_float_result(solid, symbol):
         mid = (radii[1] + radii[2]) / 2.0
         sr, st = stress.disc_stresses(cs[1], rho, nu, omega, mid)
         mean = stress.mean_hoop_stress(cs, radii, thickness, rho, nu, omega)
-        out += [stress.von_mises(sr, st), stress.von_mises_squared(sr, st), mean,
-                stress.burst_speed_ductile(omega, mean, 600e6)]
+        out += [
+            stress.von_mises(sr, st),
+            stress.von_mises_squared(sr, st),
+            mean,
+            stress.burst_speed_ductile(omega, mean, 600e6),
+        ]
         return out
 
     symbolic = outputs(radii_sx, thickness_sx, omega_sx)
@@ -369,6 +393,7 @@ def test_casadi_evaluates_to_float_result(solid, symbol):
 
 
 # ---------------------------------------------------------- the numeric check
+
 
 def test_max_radial_stress_of_free_annulus_is_interior():
     """The issue's free annulus (a = 0.05, b = 0.5 m, 3000 rpm): the search
@@ -396,7 +421,7 @@ def test_max_stress_per_step_finds_interior_maximum():
     cs = stress.disc_coefficients(radii, thickness, rho, nu, w)
     c1, c2 = cs[1]
     assert c2 < 0
-    beta = (1.0 + 3.0 * nu) / 8.0 * rho * w ** 2
+    beta = (1.0 + 3.0 * nu) / 8.0 * rho * w**2
     r_star = (-c2 / beta) ** 0.25
     assert radii[1] < r_star < radii[2]
     _, st_star = stress.disc_stresses(cs[1], rho, nu, w, r_star)
@@ -430,18 +455,33 @@ def test_solid_centre_evaluated_at_r_zero():
     assert_allclose(found.value, stress.solid_disc_centre_stress(0.5, rho, nu, w), rtol=1e-12)
 
 
-@pytest.mark.parametrize("call, exception, match", [
-    (lambda: stress.disc_coefficients([0.1, 0.2], [0.1, 0.1], 7850.0, 0.3, 1.0), ValueError, "N \\+ 1 edge radii"),
-    (lambda: stress.disc_coefficients([0.1], [], 7850.0, 0.3, 1.0), ValueError, "N \\+ 1 edge radii"),
-    (lambda: stress.disc_coefficients([0.1, 0.2], [0.1], 7850.0, 0.3, 1.0, solid=True), ValueError,
-     "solid centre starts at r_0 = 0"),
-    (lambda: stress.disc_coefficients([0.0, 0.2], [0.1], 7850.0, 0.3, 1.0, solid=True, bore_pressure=1e6),
-     ValueError, "no bore to press"),
-    (lambda: stress.max_stress_per_step([(1.0, 1.0)], [0.1, 0.2], 7850.0, 0.3, 1.0, measure="von_mise"),
-     ValueError, "did you mean 'von_mises'"),
-    (lambda: stress.max_stress_per_step([(1.0, 1.0)], [0.1, 0.2], 7850.0, 0.3, 1.0, points=2),
-     ValueError, "at least 3"),
-])
+@pytest.mark.parametrize(
+    "call, exception, match",
+    [
+        (lambda: stress.disc_coefficients([0.1, 0.2], [0.1, 0.1], 7850.0, 0.3, 1.0), ValueError, "N \\+ 1 edge radii"),
+        (lambda: stress.disc_coefficients([0.1], [], 7850.0, 0.3, 1.0), ValueError, "N \\+ 1 edge radii"),
+        (
+            lambda: stress.disc_coefficients([0.1, 0.2], [0.1], 7850.0, 0.3, 1.0, solid=True),
+            ValueError,
+            "solid centre starts at r_0 = 0",
+        ),
+        (
+            lambda: stress.disc_coefficients([0.0, 0.2], [0.1], 7850.0, 0.3, 1.0, solid=True, bore_pressure=1e6),
+            ValueError,
+            "no bore to press",
+        ),
+        (
+            lambda: stress.max_stress_per_step([(1.0, 1.0)], [0.1, 0.2], 7850.0, 0.3, 1.0, measure="von_mise"),
+            ValueError,
+            "did you mean 'von_mises'",
+        ),
+        (
+            lambda: stress.max_stress_per_step([(1.0, 1.0)], [0.1, 0.2], 7850.0, 0.3, 1.0, points=2),
+            ValueError,
+            "at least 3",
+        ),
+    ],
+)
 def test_bad_arguments(call, exception, match):
     with pytest.raises(exception, match=match):
         call()
@@ -449,8 +489,13 @@ def test_bad_arguments(call, exception, match):
 
 # ------------------------------------------------------------- rim with arms
 
-CAST_IRON_RIM = {"density": 7200.0, "omega": 300.0 * 2.0 * math.pi / 60.0, "mean_radius": 0.6,
-                 "radial_thickness": 0.1, "n_arms": 6}
+CAST_IRON_RIM = {
+    "density": 7200.0,
+    "omega": 300.0 * 2.0 * math.pi / 60.0,
+    "mean_radius": 0.6,
+    "radial_thickness": 0.1,
+    "n_arms": 6,
+}
 # B = 0.2 m wide; arms from the hub r = 0.1 m; ellipse a = 0.1 m, b_a = 0.05 m.
 
 
@@ -467,15 +512,15 @@ def test_rim_bending_by_fixed_beam_derivation():
     width = 0.2
     load = p["density"] * width * p["radial_thickness"] * p["omega"] ** 2 * p["mean_radius"]
     span = 2.0 * math.pi * p["mean_radius"] / p["n_arms"]
-    moment = load * span ** 2 / 12.0
+    moment = load * span**2 / 12.0
     modulus = width * p["radial_thickness"] ** 2 / 6.0
     got = stress.rim_bending_stress(**p)
     assert_allclose(got, moment / modulus, rtol=1e-13)
     assert_allclose(got, 8.41615e6, rtol=1e-6)
     v = p["omega"] * p["mean_radius"]
-    khurmi = 19.74 * p["density"] * v ** 2 * p["mean_radius"] / (p["n_arms"] ** 2 * p["radial_thickness"])
+    khurmi = 19.74 * p["density"] * v**2 * p["mean_radius"] / (p["n_arms"] ** 2 * p["radial_thickness"])
     assert_allclose(got, khurmi, rtol=5e-5)
-    assert abs(got / khurmi - 1) > 1e-6     # the rounded 19.74 is not what is coded
+    assert abs(got / khurmi - 1) > 1e-6  # the rounded 19.74 is not what is coded
 
 
 def test_rim_hoop_and_combined_stress_by_hand():
@@ -496,7 +541,7 @@ def test_arm_bending_by_hand():
     rim's inner radius R - H/2 = 0.55 m the moment is smaller,
     T/n (1 - r/0.55) = 272.7273 N m."""
     assert_allclose(stress.arm_bending_moment(2000.0, 6, 0.6, 0.1), 277.7778, rtol=1e-6)
-    assert_allclose(stress.arm_section_modulus(0.1, 0.05), math.pi * 0.05 * 0.1 ** 3 / 64.0 / 0.05, rtol=1e-14)
+    assert_allclose(stress.arm_section_modulus(0.1, 0.05), math.pi * 0.05 * 0.1**3 / 64.0 / 0.05, rtol=1e-14)
     assert_allclose(stress.arm_section_modulus(0.1, 0.05), 4.90874e-5, rtol=1e-6)
     assert_allclose(stress.arm_bending_stress(2000.0, 6, 0.6, 0.1, 0.1, 0.05), 5.65884e6, rtol=1e-6)
     assert_allclose(stress.arm_bending_moment(2000.0, 6, 0.55, 0.1), 272.7273, rtol=1e-6)
@@ -527,8 +572,13 @@ def test_rim_segment_force_by_quadrature(n_arms):
     unit length of the rim segment -pi/n..pi/n, integrated numerically
     (rtol 1e-12); also for numpy arrays of n."""
     rho, area, w, radius = 7200.0, 0.02, 31.4, 0.6
-    integral, _ = quad(lambda th: rho * area * w ** 2 * radius * math.cos(th) * radius,
-                       -math.pi / n_arms, math.pi / n_arms, epsabs=0.0, epsrel=1e-13)
+    integral, _ = quad(
+        lambda th: rho * area * w**2 * radius * math.cos(th) * radius,
+        -math.pi / n_arms,
+        math.pi / n_arms,
+        epsabs=0.0,
+        epsrel=1e-13,
+    )
     assert_allclose(stress.rim_segment_force(rho, area, w, radius, n_arms), integral, rtol=1e-12)
     both = stress.rim_segment_force(rho, area, w, radius, np.array([n_arms, n_arms]))
     assert_allclose(both, [integral, integral], rtol=1e-12)
@@ -548,12 +598,14 @@ def test_arms_hub_is_annulus_under_outer_pull():
     a, b, nu = 0.03, 0.1, 0.26
     cs = stress.disc_coefficients([a, b], [0.15], p["density"], nu, p["omega"], outer_traction=traction)
     hoop = stress.disc_stresses(cs[0], p["density"], nu, p["omega"], a)[1]
-    expected = (stress.annulus_bore_hoop_stress(a, b, p["density"], nu, p["omega"])
-                + 2.0 * traction * b * b / (b * b - a * a))
+    expected = stress.annulus_bore_hoop_stress(a, b, p["density"], nu, p["omega"]) + 2.0 * traction * b * b / (
+        b * b - a * a
+    )
     assert_allclose(hoop, expected, rtol=1e-12)
 
 
 # ------------------------------------------------------------------ burst speed
+
 
 def test_ductile_burst_speed_closed_form_and_scaling():
     """Free annulus a = 0.05, b = 0.5 m, sigma_u = 600 MPa: the mean hoop
@@ -569,8 +621,9 @@ def test_ductile_burst_speed_closed_form_and_scaling():
     assert_allclose(burst, math.sqrt(3.0 * strength / (rho * (a * a + a * b + b * b))), rtol=1e-12)
     radii, thickness, _ = WHEELS["hub-web-rim with bore"]
     cs = stress.disc_coefficients(radii, thickness, rho, nu, OMEGA_3000)
-    burst = stress.burst_speed_ductile(OMEGA_3000, stress.mean_hoop_stress(cs, radii, thickness, rho, nu, OMEGA_3000),
-                                       strength)
+    burst = stress.burst_speed_ductile(
+        OMEGA_3000, stress.mean_hoop_stress(cs, radii, thickness, rho, nu, OMEGA_3000), strength
+    )
     at_burst = stress.disc_coefficients(radii, thickness, rho, nu, burst)
     assert_allclose(stress.mean_hoop_stress(at_burst, radii, thickness, rho, nu, burst), strength, rtol=1e-12)
 
@@ -583,12 +636,12 @@ def test_brittle_burst_speed_scaling():
     rho, nu, strength = 7200.0, 0.26, 200e6
     radii, thickness, _ = WHEELS["hub-web-rim, solid centre"]
     cs = stress.disc_coefficients(radii, thickness, rho, nu, OMEGA_3000, solid=True)
-    peak = max(m.value for m in stress.max_stress_per_step(cs, radii, rho, nu, OMEGA_3000,
-                                                           measure="largest_principal"))
+    peak = max(m.value for m in stress.max_stress_per_step(cs, radii, rho, nu, OMEGA_3000, measure="largest_principal"))
     burst = stress.burst_speed_brittle(OMEGA_3000, peak, strength)
     at_burst = stress.disc_coefficients(radii, thickness, rho, nu, burst, solid=True)
-    again = max(m.value for m in stress.max_stress_per_step(at_burst, radii, rho, nu, burst,
-                                                            measure="largest_principal"))
+    again = max(
+        m.value for m in stress.max_stress_per_step(at_burst, radii, rho, nu, burst, measure="largest_principal")
+    )
     assert_allclose(again, strength, rtol=1e-10)
 
 
@@ -600,8 +653,9 @@ def test_radial_displacement_of_thin_ring():
     a, b = 0.4999, 0.5001
     cs = stress.disc_coefficients([a, b], [0.1], rho, nu, w)
     sr, st = stress.disc_stresses(cs[0], rho, nu, w, 0.5)
-    assert_allclose(stress.radial_displacement(sr, st, 0.5, modulus, nu),
-                    0.5 * rho * (w * 0.5) ** 2 / modulus, rtol=1e-6)
+    assert_allclose(
+        stress.radial_displacement(sr, st, 0.5, modulus, nu), 0.5 * rho * (w * 0.5) ** 2 / modulus, rtol=1e-6
+    )
 
 
 def test_check_wheel_maxima_of_one_disc_are_exact():
@@ -614,22 +668,32 @@ def test_check_wheel_maxima_of_one_disc_are_exact():
     from flyopt.design.materials import make_material
 
     rho, nu, w = 7850.0, 0.3, 3000.0 * 2.0 * np.pi / 60.0
-    steel = make_material("steel", rho, allowable_stress=200e6, poisson_ratio=nu, tensile_strength=500e6,
-                          yield_strength=300e6, ductile=True)
+    steel = make_material(
+        "steel",
+        rho,
+        allowable_stress=200e6,
+        poisson_ratio=nu,
+        tensile_strength=500e6,
+        yield_strength=300e6,
+        ductile=True,
+    )
     annulus = strength.check_wheel(steel, "disc", wheel.Dims(d_outer=1.0, h=0.45, b=0.05, bore=0.1), w, 0.0)
     assert_allclose(annulus.hoop_max / 1e6, 160.13, atol=0.005)
     assert_allclose(annulus.radial_max / 1e6, 64.72, atol=0.005)
     assert annulus.von_mises == annulus.hoop_max == annulus.max_principal
     solid = strength.check_wheel(steel, "disc", wheel.Dims(d_outer=1.0, h=0.5, b=0.05), w, 0.0)
     assert_allclose([solid.hoop_max / 1e6, solid.radial_max / 1e6], [79.90, 79.90], atol=0.005)
-    for d_inner in (0.3, 0.7, 0.95):        # rims of every proportion
+    for d_inner in (0.3, 0.7, 0.95):  # rims of every proportion
         dims = wheel.Dims(d_outer=1.0, h=(1.0 - d_inner) / 2.0, b=0.1)
         checked = strength.check_wheel(steel, "rim", dims, w, 0.0)
         coefficients = wheel.stress_state("rim", dims, rho, nu, w, 0.0).coefficients[0]
         for index, reported in ((0, checked.radial_max), (1, checked.hoop_max)):
-            found = minimize_scalar(lambda r: -stress.disc_stresses(coefficients, rho, nu, w, r)[index],
-                                    bounds=(d_inner / 2.0, 0.5), method="bounded",
-                                    options={"xatol": 1e-12})
+            found = minimize_scalar(
+                lambda r: -stress.disc_stresses(coefficients, rho, nu, w, r)[index],
+                bounds=(d_inner / 2.0, 0.5),
+                method="bounded",
+                options={"xatol": 1e-12},
+            )
             best = max(-found.fun, stress.disc_stresses(coefficients, rho, nu, w, d_inner / 2.0)[index])
             assert_allclose(reported, best, rtol=1e-12)
 
@@ -642,8 +706,9 @@ def test_check_wheel_maxima_of_a_web_wheel_against_a_dense_grid():
     from flyopt.design.materials import make_material
 
     rho, nu, w = 7100.0, 0.28, 160.0
-    iron = make_material("gjs", rho, allowable_stress=60e6, poisson_ratio=nu, tensile_strength=400e6,
-                         yield_strength=250e6, ductile=True)
+    iron = make_material(
+        "gjs", rho, allowable_stress=60e6, poisson_ratio=nu, tensile_strength=400e6, yield_strength=250e6, ductile=True
+    )
     dims = wheel.Dims(d_outer=0.72, h=0.03, b=0.06, bore=0.055, t_web=0.012, d_hub=0.11, l_hub=0.08)
     checked = strength.check_wheel(iron, "rim_web", dims, w, 300.0)
     state = wheel.stress_state("rim_web", dims, rho, nu, w, 300.0)
@@ -655,7 +720,11 @@ def test_check_wheel_maxima_of_a_web_wheel_against_a_dense_grid():
         dense["radial"] = max(dense["radial"], sr.max())
         dense["von_mises"] = max(dense["von_mises"], np.sqrt(sr * sr - sr * st + st * st).max())
         dense["principal"] = max(dense["principal"], np.maximum(sr, st).max())
-    for name, reported in (("hoop", checked.hoop_max), ("radial", checked.radial_max),
-                           ("von_mises", checked.von_mises), ("principal", checked.max_principal)):
+    for name, reported in (
+        ("hoop", checked.hoop_max),
+        ("radial", checked.radial_max),
+        ("von_mises", checked.von_mises),
+        ("principal", checked.max_principal),
+    ):
         assert reported >= dense[name] * (1.0 - 1e-14), name
         assert_allclose(reported, dense[name], rtol=1e-9, err_msg=name)

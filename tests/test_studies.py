@@ -15,13 +15,13 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
+from conftest import PROBLEMS
 from numpy.testing import assert_allclose
 
 import flyopt
-from conftest import PROBLEMS
-from flyopt.errors import SceneError
-from flyopt.design import MountShaft, design_flywheel
 from flyopt.cli.studies import pareto_main, tradeoff_main
+from flyopt.design import MountShaft, design_flywheel
+from flyopt.errors import SceneError
 from flyopt.studies.pareto import non_dominated, pareto
 from flyopt.studies.tradeoff import material_tradeoff
 
@@ -57,9 +57,14 @@ cost = "5.0 1/kg"
 
 @pytest.fixture
 def costed_scene(write_scene):
-    text = (PROBLEMS / "punch-press.toml").read_text().replace(
-        'materials = ["cast_iron", "cast_steel", "ductile_iron"]',
-        'materials = ["grey_iron", "steel", "ductile", "dear_iron"]')
+    text = (
+        (PROBLEMS / "punch-press.toml")
+        .read_text()
+        .replace(
+            'materials = ["cast_iron", "cast_steel", "ductile_iron"]',
+            'materials = ["grey_iron", "steel", "ductile", "dear_iron"]',
+        )
+    )
     head, _ = text.split("# A user material beside")
     return flyopt.load(write_scene(head + COSTS))
 
@@ -84,13 +89,13 @@ def test_pareto_mass_outer_diameter_matches_individual_solves():
     assert list(front.attrs["objectives"]) == ["mass", "outer_diameter"]
     assert_non_dominated(front["mass"].to_numpy(), front["outer_diameter"].to_numpy())
     assert (np.diff(front["outer_diameter"]) > 0).all() and (np.diff(front["mass"]) < 0).all()
-    smallest = flyopt.solve(PUNCH.replace(design=dataclasses.replace(
-        PUNCH.design, objective="outer_diameter"))).design.best
+    smallest = flyopt.solve(
+        PUNCH.replace(design=dataclasses.replace(PUNCH.design, objective="outer_diameter"))
+    ).design.best
     assert_allclose(front["outer_diameter"].iloc[0], smallest.d_outer, rtol=1e-12)
     assert front["method"].iloc[0] == "ipopt"
     for row in front.iloc[1:].to_dict("records"):
-        scene = PUNCH.replace(design=dataclasses.replace(PUNCH.design,
-                                                         max_outer_diameter=row["epsilon"]))
+        scene = PUNCH.replace(design=dataclasses.replace(PUNCH.design, max_outer_diameter=row["epsilon"]))
         best = flyopt.solve(scene).design.best
         assert_allclose(row["mass"], best.mass, rtol=1e-6)
         assert row["outer_diameter"] <= row["epsilon"] * (1 + 1e-12)
@@ -119,17 +124,20 @@ def test_pareto_mass_cost_is_the_non_dominated_set_of_combinations(costed_scene)
     front = pareto(costed_scene, "mass,cost")
     analysis = flyopt.analyse(costed_scene)
     library = costed_scene.material_library()
-    result = design_flywheel(analysis.j_margin, analysis.omega_max,
-                             [MountShaft(s.name, s.speed_ratio) for s in costed_scene.shafts],
-                             [library[n] for n in costed_scene.design_materials],
-                             costed_scene.design)
+    result = design_flywheel(
+        analysis.j_margin,
+        analysis.omega_max,
+        [MountShaft(s.name, s.speed_ratio) for s in costed_scene.shafts],
+        [library[n] for n in costed_scene.design_materials],
+        costed_scene.design,
+    )
     designs = [c for c in result.candidates if c.feasible]
     keep = non_dominated([c.mass for c in designs], [c.cost for c in designs])
     expected = sorted((c.cost, c.mass, c.material, c.shaft) for c, k in zip(designs, keep) if k)
     got = list(zip(front["cost"], front["mass"], front["best_material"], front["best_shaft"]))
     assert [g[2:] for g in got] == [e[2:] for e in expected]
     assert_allclose([g[:2] for g in got], [e[:2] for e in expected], rtol=1e-6)
-    assert "dear_iron" not in set(front["best_material"])     # grey iron, same wheel, cheaper
+    assert "dear_iron" not in set(front["best_material"])  # grey iron, same wheel, cheaper
     assert len(front) >= 2
     assert_non_dominated(front["mass"].to_numpy(), front["cost"].to_numpy())
 
@@ -137,7 +145,7 @@ def test_pareto_mass_cost_is_the_non_dominated_set_of_combinations(costed_scene)
 def test_pareto_mass_delta_and_no_flywheel_needed():
     """Mass falls as δ grows; where the machine's own inertia suffices the mass is 0
     (one point: larger δ with mass 0 is dominated)."""
-    scene = PUNCH.replace(j_constant=200.0)        # J_F = A_max/(ω²δ) − 200 ≤ 0 from δ ≈ 0.43
+    scene = PUNCH.replace(j_constant=200.0)  # J_F = A_max/(ω²δ) − 200 ≤ 0 from δ ≈ 0.43
     front = pareto(scene, "mass,delta", points=12, span=(0.02, 1.0))
     assert_non_dominated(front["mass"].to_numpy(), front["delta"].to_numpy())
     assert (np.diff(front["delta"]) > 0).all() and (np.diff(front["mass"]) < 0).all()
@@ -147,14 +155,17 @@ def test_pareto_mass_delta_and_no_flywheel_needed():
         assert_allclose(row["mass"], best.mass, rtol=1e-6)
 
 
-@pytest.mark.parametrize("objectives, kwargs, match", [
-    ("mass,volume", {}, "not a known pair"),
-    ("mass,mass", {}, "not a known pair"),
-    ("cost,outer_diameter", {}, "not a known pair"),
-    ("mass,cost", {}, "needs a cost per kg on every material"),
-    ("mass,delta", {"span": (0.1, 3.0)}, "must lie in"),
-    ("mass,outer_diameter", {"points": 1}, ">= 2"),
-])
+@pytest.mark.parametrize(
+    "objectives, kwargs, match",
+    [
+        ("mass,volume", {}, "not a known pair"),
+        ("mass,mass", {}, "not a known pair"),
+        ("cost,outer_diameter", {}, "not a known pair"),
+        ("mass,cost", {}, "needs a cost per kg on every material"),
+        ("mass,delta", {"span": (0.1, 3.0)}, "must lie in"),
+        ("mass,outer_diameter", {"points": 1}, ">= 2"),
+    ],
+)
 def test_pareto_errors(objectives, kwargs, match):
     with pytest.raises(SceneError, match=match):
         pareto(PUNCH, objectives, **kwargs)
@@ -164,27 +175,27 @@ def test_material_tradeoff_table():
     """Per material the lightest design over the shafts (one design per material by the
     default method), with its size, rim speed, mass and the limits that bind."""
     table = material_tradeoff(PUNCH)
-    assert list(table["material"]) == ["cast_steel", "ductile_iron", "cast_iron"]   # lightest first
+    assert list(table["material"]) == ["cast_steel", "ductile_iron", "cast_iron"]  # lightest first
     assert (np.diff(table["mass"]) > 0).all()
     analysis = flyopt.analyse(PUNCH)
     library = PUNCH.material_library()
     shafts = [MountShaft(s.name, s.speed_ratio) for s in PUNCH.shafts]
     for row in table.to_dict("records"):
-        best = design_flywheel(analysis.j_margin, analysis.omega_max, shafts,
-                               [library[row["material"]]], PUNCH.design).best
+        best = design_flywheel(
+            analysis.j_margin, analysis.omega_max, shafts, [library[row["material"]]], PUNCH.design
+        ).best
         assert row["status"] == "designed" and row["shaft"] == best.shaft
         assert row["method"] == "closed_form" and row["solver_status"] == "closed_form"
         assert_allclose(row["mass"], best.mass, rtol=1e-12)
-        assert_allclose([row["d_outer"], row["rim_speed"]], [best.d_outer, best.rim_speed],
-                        rtol=1e-12)
+        assert_allclose([row["d_outer"], row["rim_speed"]], [best.d_outer, best.rim_speed], rtol=1e-12)
         assert row["rim_speed_limit"] == library[row["material"]].max_rim_speed
         assert row["limit"] == ",".join(b for b in best.binding if b != "inertia")
         assert "inertia" not in row["limit"].split(",") and row["limit"]
-        assert math.isnan(row["cost"])                 # the built-in materials have no cost
+        assert math.isnan(row["cost"])  # the built-in materials have no cost
 
 
 def test_material_tradeoff_infeasible_material_says_why():
-    scene = SHEAR.replace(delta=0.004)                 # J_F 12.7 kg m^2 at 1500 rpm, D <= 0.6 m
+    scene = SHEAR.replace(delta=0.004)  # J_F 12.7 kg m^2 at 1500 rpm, D <= 0.6 m
     table = material_tradeoff(scene).set_index("material")
     assert table.loc["cast_iron", "status"] == "infeasible"
     assert math.isnan(table.loc["cast_iron", "mass"])
@@ -195,16 +206,30 @@ def test_material_tradeoff_infeasible_material_says_why():
 
 def test_cli_pareto(tmp_path, capsys):
     out = tmp_path / "front.csv"
-    status = pareto_main([str(PROBLEMS / "shear-press.toml"), "--objectives",
-                          "mass,outer_diameter", "--points", "5", "-o", str(out)])
+    status = pareto_main(
+        [str(PROBLEMS / "shear-press.toml"), "--objectives", "mass,outer_diameter", "--points", "5", "-o", str(out)]
+    )
     text = capsys.readouterr().out
     assert status == 0
     assert "Pareto front, mass vs outer_diameter" in text and "mass [kg]" in text
     front = pd.read_csv(out)
     assert len(front) >= 4 and {"mass", "outer_diameter", "epsilon"} <= set(front.columns)
-    assert pareto_main([str(PROBLEMS / "shear-press.toml"), "--objectives", "mass,delta",
-                        "--points", "4", "--range", "0.02:0.2", "--json"]) == 0
-    records = json.loads(capsys.readouterr().out)["rows"]    # the JSON document's rows
+    assert (
+        pareto_main(
+            [
+                str(PROBLEMS / "shear-press.toml"),
+                "--objectives",
+                "mass,delta",
+                "--points",
+                "4",
+                "--range",
+                "0.02:0.2",
+                "--json",
+            ]
+        )
+        == 0
+    )
+    records = json.loads(capsys.readouterr().out)["rows"]  # the JSON document's rows
     assert len(records) == 4 and records[0]["delta"] == pytest.approx(0.02)
 
 
@@ -215,19 +240,37 @@ def test_cli_json_keeps_every_digit(tmp_path, capsys):
     scene = flyopt.load(PROBLEMS / "punch-press.toml")
     expected = pareto(scene, "mass,delta", points=6, span=(0.02, 0.9))
     out = tmp_path / "front.json"
-    assert pareto_main([str(PROBLEMS / "punch-press.toml"), "--objectives", "mass,delta",
-                        "--points", "6", "--range", "0.02:0.9", "--json", "-o", str(out)]) == 0
+    assert (
+        pareto_main(
+            [
+                str(PROBLEMS / "punch-press.toml"),
+                "--objectives",
+                "mass,delta",
+                "--points",
+                "6",
+                "--range",
+                "0.02:0.9",
+                "--json",
+                "-o",
+                str(out),
+            ]
+        )
+        == 0
+    )
     for document in (json.loads(capsys.readouterr().out), json.loads(out.read_text())):
         records = document["rows"]
         for column in ("mass", "delta", "j_flywheel", "d_outer", "hoop_stress"):
             assert [r[column] for r in records] == expected[column].tolist(), column
 
 
-@pytest.mark.parametrize("args, status, match", [
-    (["--objectives", "mass,volume"], 2, "objectives: 'mass,volume' is not a known pair"),
-    (["--objectives", "mass,cost"], 2, "needs a cost per kg"),
-    (["--range", "0.3:1.2:3 m"], 2, "--range: '0.3:1.2:3 m': expected LOW:HIGH"),
-])
+@pytest.mark.parametrize(
+    "args, status, match",
+    [
+        (["--objectives", "mass,volume"], 2, "objectives: 'mass,volume' is not a known pair"),
+        (["--objectives", "mass,cost"], 2, "needs a cost per kg"),
+        (["--range", "0.3:1.2:3 m"], 2, "--range: '0.3:1.2:3 m': expected LOW:HIGH"),
+    ],
+)
 def test_cli_pareto_errors(args, status, match, capsys):
     assert pareto_main([str(PROBLEMS / "shear-press.toml"), *args]) == status
     err = capsys.readouterr().err

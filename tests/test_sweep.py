@@ -7,32 +7,31 @@ combination designed by IPOPT. Masses agree within 1e-6 (the issue's
 agreement; the closed form and IPOPT both reach ~1e-10).
 """
 
+import importlib
 import json
 import math
 
 import numpy as np
 import pandas as pd
 import pytest
+from conftest import PROBLEMS
 from numpy.testing import assert_allclose
 
-import importlib
-
 import flyopt
-from conftest import PROBLEMS
+from flyopt.cli.studies import sweep_main
 from flyopt.design import nlp
 from flyopt.errors import SceneError
 from flyopt.io.results import CORE_INPUTS, RESULT_COLUMNS, read_results
 from flyopt.io.sweep_spec import load_sweep, parse_vary
 from flyopt.studies.evaluate import point_scene
-from flyopt.cli.studies import sweep_main
 from flyopt.studies.plan import plan_sweep
 from flyopt.studies.sweep import SUMMARY_COLUMNS, sweep
 
 sweep_module = importlib.import_module("flyopt.studies.sweep")  # the module (flyopt.sweep is the function)
 
 RPM = math.pi / 30.0
-PUNCH = flyopt.load(PROBLEMS / "punch-press.toml")      # 3 materials (one user), 3 shafts
-SHEAR = flyopt.load(PROBLEMS / "shear-press.toml")      # 2 materials, 1 shaft, envelope
+PUNCH = flyopt.load(PROBLEMS / "punch-press.toml")  # 3 materials (one user), 3 shafts
+SHEAR = flyopt.load(PROBLEMS / "shear-press.toml")  # 2 materials, 1 shaft, envelope
 
 
 def plain(summary):
@@ -58,8 +57,11 @@ def check_against_individual_solves(scene, frame, rtol=1e-6):
             if (row["best_material"], row["best_shaft"]) != (best.material, best.shaft):
                 # an exact tie (e.g. discs of two materials at the envelope, 8 J / D^2):
                 # the individual solve's design of the sweep's winner is as light
-                (same,) = [c for c in solution.design.candidates
-                           if (c.material, c.shaft) == (row["best_material"], row["best_shaft"])]
+                (same,) = [
+                    c
+                    for c in solution.design.candidates
+                    if (c.material, c.shaft) == (row["best_material"], row["best_shaft"])
+                ]
                 assert_allclose(same.mass, best.mass, rtol=1e-9)
             assert_allclose(row["d_outer"], same.d_outer, rtol=1e-5)
             assert row["n_feasible"] == sum(c.feasible for c in solution.design.candidates)
@@ -71,23 +73,27 @@ def check_against_individual_solves(scene, frame, rtol=1e-6):
 # The --vary grammar
 # --------------------------------------------------------------------------
 
-@pytest.mark.parametrize("text, field, expected", [
-    ("speed=300,600,1200rpm", "speed", [300 * RPM, 600 * RPM, 1200 * RPM]),
-    ("speed=300 rpm, 20", "speed", [300 * RPM, 20.0]),     # a plain number is SI
-    ("delta=0.01:0.1:log3", "delta", [0.01, math.sqrt(0.01 * 0.1), 0.1]),
-    ("delta=1/20,1/10", "delta", [0.05, 0.1]),
-    ("envelope=0.4:1.2:5 m", "design.max_outer_diameter", [0.4, 0.6, 0.8, 1.0, 1.2]),
-    ("design.max_outer_diameter=400:1200:3 mm", "design.max_outer_diameter", [0.4, 0.8, 1.2]),
-    ("max_width=0.1,none", "design.max_width", [0.1, math.nan]),
-    ("hb_ratio=2", "design.hb_ratio", [2.0]),
-    ("torque.scale=0.5:2:log3", "torque.scale", [0.5, 1.0, 2.0]),
-    ("inertia=0,3 kg*m^2", "inertia", [0.0, 3.0]),
-    ("shaft.motor.speed_ratio=12:36:3", "shaft.motor.speed_ratio", [12.0, 24.0, 36.0]),
-    ("material.cast_iron.density=7.1,7.3 g/cm^3", "material.cast_iron.density", [7100.0, 7300.0]),
-    ("material=cast_iron, ductile_iron", "material", ["cast_iron", "ductile_iron"]),
-    ("shaft=motor,crankshaft", "shaft", ["motor", "crankshaft"]),
-    ("geometry=rim,disc", "design.geometry", ["rim", "disc"]),
-])
+
+@pytest.mark.parametrize(
+    "text, field, expected",
+    [
+        ("speed=300,600,1200rpm", "speed", [300 * RPM, 600 * RPM, 1200 * RPM]),
+        ("speed=300 rpm, 20", "speed", [300 * RPM, 20.0]),  # a plain number is SI
+        ("delta=0.01:0.1:log3", "delta", [0.01, math.sqrt(0.01 * 0.1), 0.1]),
+        ("delta=1/20,1/10", "delta", [0.05, 0.1]),
+        ("envelope=0.4:1.2:5 m", "design.max_outer_diameter", [0.4, 0.6, 0.8, 1.0, 1.2]),
+        ("design.max_outer_diameter=400:1200:3 mm", "design.max_outer_diameter", [0.4, 0.8, 1.2]),
+        ("max_width=0.1,none", "design.max_width", [0.1, math.nan]),
+        ("hb_ratio=2", "design.hb_ratio", [2.0]),
+        ("torque.scale=0.5:2:log3", "torque.scale", [0.5, 1.0, 2.0]),
+        ("inertia=0,3 kg*m^2", "inertia", [0.0, 3.0]),
+        ("shaft.motor.speed_ratio=12:36:3", "shaft.motor.speed_ratio", [12.0, 24.0, 36.0]),
+        ("material.cast_iron.density=7.1,7.3 g/cm^3", "material.cast_iron.density", [7100.0, 7300.0]),
+        ("material=cast_iron, ductile_iron", "material", ["cast_iron", "ductile_iron"]),
+        ("shaft=motor,crankshaft", "shaft", ["motor", "crankshaft"]),
+        ("geometry=rim,disc", "design.geometry", ["rim", "disc"]),
+    ],
+)
 def test_vary_grammar(text, field, expected):
     (axis,) = parse_vary(PUNCH, [text])
     assert axis.field == field
@@ -98,38 +104,48 @@ def test_vary_grammar(text, field, expected):
 
 
 def test_vary_from_toml_values_numbers_and_lists():
-    axes = parse_vary(PUNCH, {"delta": 0.05, "speed": ["30 rpm", 60 * RPM],
-                              "material": ["cast_iron", "cast_steel"],
-                              "design.max_width": [0.1, None]}, where="sweep.vary")
+    axes = parse_vary(
+        PUNCH,
+        {
+            "delta": 0.05,
+            "speed": ["30 rpm", 60 * RPM],
+            "material": ["cast_iron", "cast_steel"],
+            "design.max_width": [0.1, None],
+        },
+        where="sweep.vary",
+    )
     assert [a.values for a in axes][:2] == [(0.05,), (30 * RPM, 60 * RPM)]
     assert axes[2].values == ("cast_iron", "cast_steel")
     assert axes[3].values[0] == 0.1 and math.isnan(axes[3].values[1])
 
 
-@pytest.mark.parametrize("text, field, match", [
-    ("deltaa=0.1", "--vary deltaa", r"unknown sweep field \(did you mean 'delta'\?\); allowed: delta"),
-    ("colour=red", "--vary colour", "unknown sweep field; allowed: .*shaft.<name>.speed_ratio"),
-    ("delta", "--vary", "expected FIELD=VALUES"),
-    ("=0.1", "--vary", "field name is missing"),
-    ("delta=", "--vary delta", "no values given"),
-    ("delta=0.01:0.1", "--vary delta", "a grid range needs a count"),
-    ("delta=0.01:0.1:lg4", "--vary delta", "the third part must be a count n or logn"),
-    ("delta=0.01:0.1:4:5", "--vary delta", "a range is a:b:n"),
-    ("delta=0.01:0.1:0", "--vary delta", "the count must be at least 1"),
-    ("delta=2.5", "--vary delta", "out of range: coefficient of speed fluctuation"),
-    ("delta=-0.1:0.1:log3", "--vary delta", "out of range"),
-    ("delta=0.1,,0.2", "--vary delta", "an empty value"),
-    ("speed=100 m", "--vary speed", "wrong dimension: expected a rotational speed"),
-    ("speed=fast", "--vary speed", "cannot read 'fast'"),
-    ("envelope=-1 m", "--vary envelope", "out of range"),
-    ("material=unobtainium", "--vary material", "unknown material 'unobtainium'"),
-    ("material=cast_irn", "--vary material", "did you mean 'cast_iron'"),
-    ("shaft=main", "--vary shaft", "unknown shaft 'main'"),
-    ("geometry=0.1:0.2:3", "--vary geometry", "a range needs numbers"),
-    ("shaft.main.speed_ratio=2", "--vary shaft.main.speed_ratio", "unknown shaft 'main'"),
-    ("material.cast_iron.colour=1", "--vary material.cast_iron.colour", "a material's field"),
-    ("material.steel.density=1", "--vary material.steel.density", "unknown material 'steel'"),
-])
+@pytest.mark.parametrize(
+    "text, field, match",
+    [
+        ("deltaa=0.1", "--vary deltaa", r"unknown sweep field \(did you mean 'delta'\?\); allowed: delta"),
+        ("colour=red", "--vary colour", "unknown sweep field; allowed: .*shaft.<name>.speed_ratio"),
+        ("delta", "--vary", "expected FIELD=VALUES"),
+        ("=0.1", "--vary", "field name is missing"),
+        ("delta=", "--vary delta", "no values given"),
+        ("delta=0.01:0.1", "--vary delta", "a grid range needs a count"),
+        ("delta=0.01:0.1:lg4", "--vary delta", "the third part must be a count n or logn"),
+        ("delta=0.01:0.1:4:5", "--vary delta", "a range is a:b:n"),
+        ("delta=0.01:0.1:0", "--vary delta", "the count must be at least 1"),
+        ("delta=2.5", "--vary delta", "out of range: coefficient of speed fluctuation"),
+        ("delta=-0.1:0.1:log3", "--vary delta", "out of range"),
+        ("delta=0.1,,0.2", "--vary delta", "an empty value"),
+        ("speed=100 m", "--vary speed", "wrong dimension: expected a rotational speed"),
+        ("speed=fast", "--vary speed", "cannot read 'fast'"),
+        ("envelope=-1 m", "--vary envelope", "out of range"),
+        ("material=unobtainium", "--vary material", "unknown material 'unobtainium'"),
+        ("material=cast_irn", "--vary material", "did you mean 'cast_iron'"),
+        ("shaft=main", "--vary shaft", "unknown shaft 'main'"),
+        ("geometry=0.1:0.2:3", "--vary geometry", "a range needs numbers"),
+        ("shaft.main.speed_ratio=2", "--vary shaft.main.speed_ratio", "unknown shaft 'main'"),
+        ("material.cast_iron.colour=1", "--vary material.cast_iron.colour", "a material's field"),
+        ("material.steel.density=1", "--vary material.steel.density", "unknown material 'steel'"),
+    ],
+)
 def test_vary_errors_name_the_field(text, field, match):
     with pytest.raises(SceneError, match=match) as info:
         parse_vary(PUNCH, [text])
@@ -137,15 +153,16 @@ def test_vary_errors_name_the_field(text, field, match):
     assert "\n" not in str(info.value)
 
 
-@pytest.mark.parametrize("vary, field, match", [
-    (["delta=0.1", "machine.delta=0.2"], "--vary machine.delta", "varied twice"),
-    (["hb_ratio=2", "hb_min=1.5"], "--vary design.hb_ratio", "not both"),
-    (["hb_min=1.8:2.4:4"], "--vary design.hb_min",
-     r"H/B min 2.2 exceeds max 2 at point 2 \(and 1 other points\)"),
-    (["objective=cost"], "--vary design", r"|--vary design.objective"),
-    (["geometry=disc", "objective=outer_diameter", "max_width=none"], "--vary design",
-     "needs max_width"),
-])
+@pytest.mark.parametrize(
+    "vary, field, match",
+    [
+        (["delta=0.1", "machine.delta=0.2"], "--vary machine.delta", "varied twice"),
+        (["hb_ratio=2", "hb_min=1.5"], "--vary design.hb_ratio", "not both"),
+        (["hb_min=1.8:2.4:4"], "--vary design.hb_min", r"H/B min 2.2 exceeds max 2 at point 2 \(and 1 other points\)"),
+        (["objective=cost"], "--vary design", r"|--vary design.objective"),
+        (["geometry=disc", "objective=outer_diameter", "max_width=none"], "--vary design", "needs max_width"),
+    ],
+)
 def test_plan_errors(vary, field, match):
     with pytest.raises(SceneError, match=match) as info:
         plan_sweep(PUNCH, vary)
@@ -190,6 +207,7 @@ def test_latin_hypercube_is_stratified_and_reproducible():
 # Sizes, seeds and options: refused before anything is made
 # --------------------------------------------------------------------------
 
+
 def peak_bytes(call):
     """Peak memory Python allocates while ``call()`` runs [bytes] (tracemalloc)."""
     import tracemalloc
@@ -203,12 +221,15 @@ def peak_bytes(call):
     return peak
 
 
-@pytest.mark.parametrize("vary, samples, field", [
-    (["delta=0.01:0.1:1000000000"], None, "--vary delta"),            # 7.45 GB of values
-    (["delta=0.01:0.1:20000001"], None, "--vary delta"),              # one past the cap
-    (["delta=0.01:0.1:5000", "speed=1:2:5000"], None, "--vary speed"),  # 25e6 together
-    ({"delta": "0.01:0.1"}, 10 ** 9, "--samples"),
-])
+@pytest.mark.parametrize(
+    "vary, samples, field",
+    [
+        (["delta=0.01:0.1:1000000000"], None, "--vary delta"),  # 7.45 GB of values
+        (["delta=0.01:0.1:20000001"], None, "--vary delta"),  # one past the cap
+        (["delta=0.01:0.1:5000", "speed=1:2:5000"], None, "--vary speed"),  # 25e6 together
+        ({"delta": "0.01:0.1"}, 10**9, "--samples"),
+    ],
+)
 def test_too_many_points_refused_before_allocating(vary, samples, field):
     """Regression (issue 11): a grid or a sample count of 1e9 allocated 7.45 GB before
     the cap was checked, then MemoryError. The cap is checked on the counts first: the
@@ -228,8 +249,7 @@ def test_too_many_points_refused_before_allocating(vary, samples, field):
 def test_samples_over_the_cap_in_a_sweep_table_name_the_file(tmp_path):
     from flyopt.studies.sweep import check_sweep
 
-    path = scene_with_sweep(tmp_path, '[sweep]\nsamples = 1000000000\n[sweep.vary]\n'
-                                      'delta = "0.01:0.1"\n')
+    path = scene_with_sweep(tmp_path, '[sweep]\nsamples = 1000000000\n[sweep.vary]\ndelta = "0.01:0.1"\n')
     scene, options = load_sweep(path)
     with pytest.raises(SceneError, match="more than the 20000000") as info:
         check_sweep(scene, options)
@@ -250,10 +270,9 @@ def test_latin_hypercube_without_a_seed_records_the_one_it_drew(tmp_path):
     or Parquet alike) and in ``attrs``; rerun with it, the points are the same."""
     vary = {"delta": "0.02:0.2:log", "speed": "30:120 rpm", "material": "cast_iron,cast_steel"}
     first, second = plan_sweep(PUNCH, vary, samples=12), plan_sweep(PUNCH, vary, samples=12)
-    assert isinstance(first.seed, int) and 0 <= first.seed < 2 ** 63
-    assert first.seed != second.seed          # drawn afresh (a collision has odds 2**-63)
-    pd.testing.assert_frame_equal(plan_sweep(PUNCH, vary, samples=12, seed=first.seed).points,
-                                  first.points)
+    assert isinstance(first.seed, int) and 0 <= first.seed < 2**63
+    assert first.seed != second.seed  # drawn afresh (a collision has odds 2**-63)
+    pd.testing.assert_frame_equal(plan_sweep(PUNCH, vary, samples=12, seed=first.seed).points, first.points)
     out = tmp_path / "study.csv"
     frame = sweep(PUNCH, vary, samples=12, output=out)
     recorded = read_results(out)["seed"]
@@ -261,7 +280,7 @@ def test_latin_hypercube_without_a_seed_records_the_one_it_drew(tmp_path):
     again = sweep(PUNCH, vary, samples=12, seed=int(recorded.iloc[0]))
     assert list(again.columns[:2]) == ["point", "seed"]
     pd.testing.assert_frame_equal(again, read_results(out))
-    assert "seed" not in sweep(PUNCH, {"delta": "0.1,0.2"}).columns   # a grid has no seed
+    assert "seed" not in sweep(PUNCH, {"delta": "0.1,0.2"}).columns  # a grid has no seed
 
 
 def test_resume_of_a_latin_hypercube_reuses_its_recorded_seed(tmp_path):
@@ -271,16 +290,19 @@ def test_resume_of_a_latin_hypercube_reuses_its_recorded_seed(tmp_path):
     done = sweep(PUNCH, vary, samples=12, output=out, chunk_size=4, resume=True)
     assert done.attrs["sweep"]["chunks_reused"] == [0]
     assert done.attrs["sweep"]["seed"] == first.attrs["sweep"]["seed"]
-    pd.testing.assert_frame_equal(read_results(out),
-                                  sweep(PUNCH, vary, samples=12, chunk_size=4,
-                                        seed=first.attrs["sweep"]["seed"]))
+    pd.testing.assert_frame_equal(
+        read_results(out), sweep(PUNCH, vary, samples=12, chunk_size=4, seed=first.attrs["sweep"]["seed"])
+    )
 
 
-@pytest.mark.parametrize("texts, field", [
-    (["delta=0.1", "delta=0.2"], "--vary delta"),
-    (["envelope=1 m", "design.max_outer_diameter=2 m"], "--vary design.max_outer_diameter"),
-    (["material=cast_iron", "materials=cast_steel"], "--vary materials"),
-])
+@pytest.mark.parametrize(
+    "texts, field",
+    [
+        (["delta=0.1", "delta=0.2"], "--vary delta"),
+        (["envelope=1 m", "design.max_outer_diameter=2 m"], "--vary design.max_outer_diameter"),
+        (["material=cast_iron", "materials=cast_steel"], "--vary materials"),
+    ],
+)
 def test_a_field_given_twice_is_refused(texts, field):
     """Regression (issue 11): a repeated ``--vary`` for one field (or an alias of it)
     silently kept the last. ``vary_from_texts`` (what the command line calls on its
@@ -291,34 +313,39 @@ def test_a_field_given_twice_is_refused(texts, field):
         with pytest.raises(SceneError, match="is varied twice") as info:
             call()
         assert info.value.field == field
-    assert vary_from_texts(PUNCH, ["delta=0.1,0.2", "envelope=1 m"]) == {
-        "delta": "0.1,0.2", "envelope": "1 m"}
+    assert vary_from_texts(PUNCH, ["delta=0.1,0.2", "envelope=1 m"]) == {"delta": "0.1,0.2", "envelope": "1 m"}
 
 
-@pytest.mark.parametrize("table, field, words", [
-    ('method = "fast"', "sweep.method", "'fast' is not known (allowed: auto, closed_form, ipopt)"),
-    ("workers = 0", "sweep.workers", "must be 'auto' or a whole number >= 1"),
-    ('workers = "many"', "sweep.workers", "must be 'auto' or a whole number >= 1"),
-    ('output = "study.xlsx"', "sweep.output", "must end in .parquet or .csv"),
-    ("chunk_size = 0", "sweep.chunk_size", "must be a whole number >= 1"),
-    ("seed = -1", "sweep.seed", "must be a whole number >= 0"),
-])
+@pytest.mark.parametrize(
+    "table, field, words",
+    [
+        ('method = "fast"', "sweep.method", "'fast' is not known (allowed: auto, closed_form, ipopt)"),
+        ("workers = 0", "sweep.workers", "must be 'auto' or a whole number >= 1"),
+        ('workers = "many"', "sweep.workers", "must be 'auto' or a whole number >= 1"),
+        ('output = "study.xlsx"', "sweep.output", "must end in .parquet or .csv"),
+        ("chunk_size = 0", "sweep.chunk_size", "must be a whole number >= 1"),
+        ("seed = -1", "sweep.seed", "must be a whole number >= 0"),
+    ],
+)
 def test_sweep_table_options_are_checked_when_read(tmp_path, table, field, words):
     """Regression (issue 11): ``flyopt check`` said "ok" for [sweep] tables that
     ``flyopt sweep`` then refused; the options are checked where the table is read."""
-    path = scene_with_sweep(tmp_path, f"[sweep]\n{table}\n[sweep.vary]\ndelta = \"0.1,0.2\"\n")
+    path = scene_with_sweep(tmp_path, f'[sweep]\n{table}\n[sweep.vary]\ndelta = "0.1,0.2"\n')
     with pytest.raises(SceneError) as info:
         load_sweep(path)
     assert (info.value.field, info.value.source) == (field, str(path))
     assert words in info.value.message
 
 
-@pytest.mark.parametrize("vary, field, words", [
-    ('delta = "0.1:0.2"', "sweep.vary.delta", "a grid range needs a count"),
-    ('deltaa = "0.1"', "sweep.vary.deltaa", "unknown sweep field"),
-    ('hb_min = "1.8:2.4:4"', "sweep.vary.design.hb_min", "exceeds max"),
-    ('objective = "cost"', "sweep.vary.design.objective", "needs a cost per kg"),
-])
+@pytest.mark.parametrize(
+    "vary, field, words",
+    [
+        ('delta = "0.1:0.2"', "sweep.vary.delta", "a grid range needs a count"),
+        ('deltaa = "0.1"', "sweep.vary.deltaa", "unknown sweep field"),
+        ('hb_min = "1.8:2.4:4"', "sweep.vary.design.hb_min", "exceeds max"),
+        ('objective = "cost"', "sweep.vary.design.objective", "needs a cost per kg"),
+    ],
+)
 def test_check_sweep_finds_what_sweep_refuses(tmp_path, vary, field, words):
     """``check_sweep`` (what ``flyopt check`` calls) refuses the fields, values and
     points that the sweep refuses, with the same message, naming the file."""
@@ -333,7 +360,7 @@ def test_check_sweep_finds_what_sweep_refuses(tmp_path, vary, field, words):
     with pytest.raises(SceneError) as ran:
         sweep(scene, options["vary"])
     assert ran.value.message == info.value.message
-    plan = check_sweep(*load_sweep(scene_with_sweep(tmp_path)))   # a sound table: its plan
+    plan = check_sweep(*load_sweep(scene_with_sweep(tmp_path)))  # a sound table: its plan
     assert len(plan.points) == 3 * 2 * 2 * 2
 
 
@@ -354,12 +381,16 @@ def test_declared_scipy_floor_has_latin_hypercube_rng():
     SciPy added in 1.15.0 (SPEC 7; before it was ``seed``, which draws other samples
     for the same integer), while pyproject.toml declared scipy>=1.10."""
     import re
-    import tomllib
     from pathlib import Path
 
+    import tomllib
+
     pyproject = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
-    (floor,) = [re.match(r"scipy\s*>=\s*([\d.]+)", d).group(1)
-                for d in pyproject["project"]["dependencies"] if d.startswith("scipy")]
+    (floor,) = [
+        re.match(r"scipy\s*>=\s*([\d.]+)", d).group(1)
+        for d in pyproject["project"]["dependencies"]
+        if d.startswith("scipy")
+    ]
     assert tuple(int(x) for x in floor.split(".")[:2]) >= (1, 15)
 
 
@@ -367,11 +398,11 @@ def test_declared_scipy_floor_has_latin_hypercube_rng():
 # Sweeps against individual solves
 # --------------------------------------------------------------------------
 
+
 def test_grid_sweep_matches_individual_solves_punch_press():
     """27 points (delta x speed x material) of a 3-shaft scene with envelope,
     width limit and a user material."""
-    frame = sweep(PUNCH, ["delta=0.005:0.2:log3", "speed=30,60,120rpm",
-                          "material=cast_iron,cast_steel,ductile_iron"])
+    frame = sweep(PUNCH, ["delta=0.005:0.2:log3", "speed=30,60,120rpm", "material=cast_iron,cast_steel,ductile_iron"])
     assert len(frame) == 27
     assert set(frame["method"]) == {"closed_form"}
     assert (frame["n_combinations"] == 3).all()
@@ -379,28 +410,38 @@ def test_grid_sweep_matches_individual_solves_punch_press():
     check_against_individual_solves(PUNCH, frame)
     designed = frame[frame["status"] == "designed"]
     assert (designed["binding"].str.contains("inertia")).all()
-    assert_allclose(designed["hoop_stress"],
-                    designed["rim_speed"] ** 2 * np.where(designed["best_material"] == "cast_iron",
-                                                          7200.0, np.where(designed["best_material"]
-                                                                           == "cast_steel", 7800.0,
-                                                                           7100.0)), rtol=1e-14)
+    assert_allclose(
+        designed["hoop_stress"],
+        designed["rim_speed"] ** 2
+        * np.where(
+            designed["best_material"] == "cast_iron",
+            7200.0,
+            np.where(designed["best_material"] == "cast_steel", 7800.0, 7100.0),
+        ),
+        rtol=1e-14,
+    )
 
 
 def test_sweep_of_design_fields_matches_individual_solves():
     """Shaft ratio, H/B, width limit, pinned diameter and geometry, including
     not-needed points (J_c large) and infeasible ones."""
-    frame = sweep(PUNCH, {"shaft.motor.speed_ratio": "12,36", "design.hb_ratio": "1.5,2.5",
-                          "design.max_width": "0.02,none", "inertia": "0,2000"})
+    frame = sweep(
+        PUNCH,
+        {
+            "shaft.motor.speed_ratio": "12,36",
+            "design.hb_ratio": "1.5,2.5",
+            "design.max_width": "0.02,none",
+            "inertia": "0,2000",
+        },
+    )
     assert set(frame["status"]) == {"designed", "infeasible", "not_needed"}
     check_against_individual_solves(PUNCH, frame)
-    pinned = sweep(SHEAR, {"design.d_mean": "0.3,0.45,0.55", "geometry": "rim,thin_rim,disc",
-                           "max_width": "0.05,none"})
+    pinned = sweep(SHEAR, {"design.d_mean": "0.3,0.45,0.55", "geometry": "rim,thin_rim,disc", "max_width": "0.05,none"})
     assert {"designed", "infeasible"} <= set(pinned["status"])
     check_against_individual_solves(SHEAR, pinned)
 
 
-@pytest.mark.parametrize("scene_file", ["shear-press.toml", "compressor.toml",
-                                        "example1-net-areas.toml"])
+@pytest.mark.parametrize("scene_file", ["shear-press.toml", "compressor.toml", "example1-net-areas.toml"])
 def test_torque_scale_is_exact(scene_file):
     """Scaling both torques (a table, an expression, net areas) scales A_max: the
     sweep's k A_max equals the analysis of the scaled scene."""
@@ -420,15 +461,14 @@ def test_outer_diameter_objective_falls_back_to_ipopt():
     assert methods == {"mass": "closed_form", "outer_diameter": "ipopt"}
     ipopt = frame[frame["method"] == "ipopt"]
     assert (ipopt["solver_status"] == "Solve_Succeeded").all() and (ipopt["iterations"] > 0).all()
-    assert frame.loc[frame["method"] == "closed_form", "iterations"].isna().all()   # no iterations: null
+    assert frame.loc[frame["method"] == "closed_form", "iterations"].isna().all()  # no iterations: null
     check_against_individual_solves(SHEAR, frame)
     with pytest.raises(SceneError, match="closed form does not cover"):
         sweep(SHEAR, {"objective": "outer_diameter"}, method="closed_form")
 
 
 def test_closed_form_and_ipopt_sweeps_agree():
-    vary = {"delta": "0.01:0.3:log4", "speed": "20,60,200rpm", "max_width": "0.05,none",
-            "geometry": "rim,thin_rim"}
+    vary = {"delta": "0.01:0.3:log4", "speed": "20,60,200rpm", "max_width": "0.05,none", "geometry": "rim,thin_rim"}
     closed = sweep(PUNCH, vary)
     ipopt = sweep(PUNCH, vary, method="ipopt")
     assert set(closed["method"]) == {"closed_form"} and set(ipopt["method"]) == {"ipopt"}
@@ -440,12 +480,13 @@ def test_closed_form_and_ipopt_sweeps_agree():
 def test_failed_solve_is_a_failed_row_not_a_design():
     """IPOPT stopped after 2 iterations: status failed with IPOPT's status, no
     mass, and the sweep goes on (the closed-form points are designed)."""
-    frame = sweep(SHEAR, {"objective": "mass,outer_diameter", "delta": "0.02,0.05"},
-                  solver_options={"ipopt.max_iter": 2})
+    frame = sweep(
+        SHEAR, {"objective": "mass,outer_diameter", "delta": "0.02,0.05"}, solver_options={"ipopt.max_iter": 2}
+    )
     failed = frame[frame["design.objective"] == "outer_diameter"]
     assert (failed["status"] == "failed").all() and not failed["feasible"].any()
     assert (failed["solver_status"] == "Maximum_Iterations_Exceeded").all()
-    assert failed["mass"].isna().all() and failed["best_material"].isna().all()   # no value: null
+    assert failed["mass"].isna().all() and failed["best_material"].isna().all()  # no value: null
     assert failed["message"].str.contains("did not converge").all()
     assert (frame.loc[frame["design.objective"] == "mass", "status"] == "designed").all()
 
@@ -473,16 +514,16 @@ def test_cycle_analysed_once(monkeypatch):
     calls = []
     original = flyopt.analysis.analyse
     monkeypatch.setattr(flyopt.analysis, "analyse", lambda s, **kw: calls.append(1) or original(s, **kw))
-    scene = flyopt.load(PROBLEMS / "punch-press.toml")   # a scene object of its own: analyses are
+    scene = flyopt.load(PROBLEMS / "punch-press.toml")  # a scene object of its own: analyses are
     sweep(scene, {"delta": "0.02:0.2:log10", "speed": "30,60,120rpm", "torque.scale": "1,2"})  # memoized per scene
     assert len(calls) == 1
 
 
 def test_row_holds_every_input_and_result_field():
     frame = sweep(PUNCH, ["delta=0.05", "material=cast_steel"])
-    assert list(frame.columns[:1 + len(CORE_INPUTS)]) == ["point", *CORE_INPUTS]
+    assert list(frame.columns[: 1 + len(CORE_INPUTS)]) == ["point", *CORE_INPUTS]
     assert "material" in frame.columns
-    assert list(frame.columns[-len(RESULT_COLUMNS):]) == list(RESULT_COLUMNS)
+    assert list(frame.columns[-len(RESULT_COLUMNS) :]) == list(RESULT_COLUMNS)
     row = frame.iloc[0]
     assert row["speed"] == PUNCH.omega_mean and row["design.max_width"] == 0.2
     assert row["binding"] and row["best_material"] == "cast_steel"
@@ -523,7 +564,11 @@ def test_resume_after_stopping_and_after_a_lost_part(tmp_path):
     assert not info["complete"] and info["chunks"] == 5 and info["chunks_run"] == [0, 1, 2]
     parts = tmp_path / "study.parquet.parts"
     assert sorted(p.name for p in parts.iterdir()) == [
-        "chunk-00000.parquet", "chunk-00001.parquet", "chunk-00002.parquet", "sweep.json"]
+        "chunk-00000.parquet",
+        "chunk-00001.parquet",
+        "chunk-00002.parquet",
+        "sweep.json",
+    ]
     assert not out.exists()
     pd.testing.assert_frame_equal(plain(first), whole[list(SUMMARY_COLUMNS)].iloc[:12])
     # a rerun without --resume refuses to start over on top of the parts
@@ -556,8 +601,7 @@ def test_resume_after_a_crash(tmp_path, monkeypatch):
     with pytest.raises(MemoryError):
         sweep(PUNCH, VARY, output=out, chunk_size=4, workers=1)
     parts = tmp_path / "study.csv.parts"
-    assert sorted(p.name for p in parts.glob("chunk-*")) == ["chunk-00000.parquet",
-                                                             "chunk-00001.parquet"]
+    assert sorted(p.name for p in parts.glob("chunk-*")) == ["chunk-00000.parquet", "chunk-00001.parquet"]
     monkeypatch.setattr(sweep_module, "_evaluate", original)
     done = sweep(PUNCH, VARY, output=out, chunk_size=4, resume=True)
     assert done.attrs["sweep"]["chunks_run"] == [2, 3, 4]
@@ -579,6 +623,7 @@ def test_resume_refuses_parts_of_another_sweep(tmp_path):
 # Parallel: processes and Dask
 # --------------------------------------------------------------------------
 
+
 def test_worker_processes_give_the_serial_result():
     serial = sweep(PUNCH, VARY, chunk_size=4, workers=1)
     parallel = sweep(PUNCH, VARY, chunk_size=4, workers=2)
@@ -591,8 +636,10 @@ def test_dask_local_cluster_streams_parts_and_gives_the_serial_result(tmp_path):
 
     out = tmp_path / "study.parquet"
     serial = sweep(PUNCH, VARY, chunk_size=4, workers=1)
-    with LocalCluster(processes=False, n_workers=1, threads_per_worker=1,
-                      dashboard_address=":0") as cluster, Client(cluster) as client:
+    with (
+        LocalCluster(processes=False, n_workers=1, threads_per_worker=1, dashboard_address=":0") as cluster,
+        Client(cluster) as client,
+    ):
         first = sweep(PUNCH, VARY, chunk_size=4, scheduler=client, output=out, max_chunks=2)
         assert first.attrs["sweep"]["mode"] == "dask"
         assert len(list((tmp_path / "study.parquet.parts").glob("chunk-*"))) == 2
@@ -626,11 +673,16 @@ def scene_with_sweep(tmp_path, table=SWEEP_TABLE):
 
 def test_sweep_table_in_a_scene_file(tmp_path):
     scene, options = load_sweep(scene_with_sweep(tmp_path))
-    assert (scene.title, scene.omega_mean, scene.shafts) == (PUNCH.title, PUNCH.omega_mean,
-                                                             PUNCH.shafts)
-    assert options == {"output": "study.csv", "vary": {
-        "delta": "0.02:0.2:log3", "speed": "30,60rpm", "shaft.motor.speed_ratio": [12, 24],
-        "design.max_width": ["0.05 m", "none"]}}
+    assert (scene.title, scene.omega_mean, scene.shafts) == (PUNCH.title, PUNCH.omega_mean, PUNCH.shafts)
+    assert options == {
+        "output": "study.csv",
+        "vary": {
+            "delta": "0.02:0.2:log3",
+            "speed": "30,60rpm",
+            "shaft.motor.speed_ratio": [12, 24],
+            "design.max_width": ["0.05 m", "none"],
+        },
+    }
     with pytest.raises(SceneError, match=r"sweep.sample: unknown key \(did you mean 'samples'"):
         load_sweep(scene_with_sweep(tmp_path, "[sweep]\nsample = 3\n"))
 
@@ -640,7 +692,7 @@ def test_cli_sweep_from_the_file_table_with_overrides(tmp_path, capsys):
     assert sweep_main([str(path), "--vary", "delta=0.05,0.1", "--no-progress"]) == 0
     out = tmp_path / "study.csv"
     frame = read_results(out)
-    assert len(frame) == 2 * 2 * 2 * 2        # --vary delta replaced the file's 3 values
+    assert len(frame) == 2 * 2 * 2 * 2  # --vary delta replaced the file's 3 values
     assert sorted(set(frame["delta"])) == [0.05, 0.1]
     err = capsys.readouterr().err
     assert f"wrote {out}" in err and "16 points" in err
@@ -658,20 +710,22 @@ def test_cli_sweep_to_stdout_and_progress(capsys):
 
 def test_cli_sweep_stop_and_resume(tmp_path, capsys):
     scene, out = str(PROBLEMS / "punch-press.toml"), str(tmp_path / "s.parquet")
-    args = [scene, "--vary", "delta=0.02:0.2:log8", "-o", out, "--chunk-size", "3",
-            "--no-progress"]
+    args = [scene, "--vary", "delta=0.02:0.2:log8", "-o", out, "--chunk-size", "3", "--no-progress"]
     assert sweep_main(args + ["--max-chunks", "1"]) == 0
     assert "continue with --resume" in capsys.readouterr().err
     assert sweep_main(args + ["--resume"]) == 0
     assert len(read_results(out)) == 8
 
 
-@pytest.mark.parametrize("args, match", [
-    (["--vary", "deltaa=0.1"], "--vary deltaa: unknown sweep field"),
-    (["--vary", "delta=0.1:0.2"], "--vary delta: '0.1:0.2': a grid range needs a count"),
-    (["--vary", "delta=0.1", "-o", "x.txt"], "output: 'x.txt' must end in .parquet or .csv"),
-    (["--vary", "delta=0.1", "--resume"], "resume: needs an output file"),
-])
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (["--vary", "deltaa=0.1"], "--vary deltaa: unknown sweep field"),
+        (["--vary", "delta=0.1:0.2"], "--vary delta: '0.1:0.2': a grid range needs a count"),
+        (["--vary", "delta=0.1", "-o", "x.txt"], "output: 'x.txt' must end in .parquet or .csv"),
+        (["--vary", "delta=0.1", "--resume"], "resume: needs an output file"),
+    ],
+)
 def test_cli_sweep_bad_input_is_one_line_exit_2(args, match, capsys):
     status = sweep_main([str(PROBLEMS / "shear-press.toml"), *args, "--no-progress"])
     err = capsys.readouterr().err
@@ -679,8 +733,9 @@ def test_cli_sweep_bad_input_is_one_line_exit_2(args, match, capsys):
     assert err.startswith("flyopt: error: ") and match in err and err.count("\n") == 1
 
 
-@pytest.mark.parametrize("scene, vary", [("slider-crank-press", {"delta": "0.1,0.15"}),
-                                         ("motor-press", {"delta": "0.1,0.2"})])
+@pytest.mark.parametrize(
+    "scene, vary", [("slider-crank-press", {"delta": "0.1,0.15"}), ("motor-press", {"delta": "0.1,0.2"})]
+)
 def test_sweeps_of_member_and_motor_scenes_match_individual_solves(scene, vary):
     """Regression (outside review): a scene with members (varying J_e) or a motor is analysed
     per point by its exact model, so the sweep agrees with flyopt.solve of the same point."""
@@ -692,10 +747,16 @@ def test_sweeps_of_member_and_motor_scenes_match_individual_solves(scene, vary):
         assert_allclose(row["mass"], single.design.best.mass, rtol=1e-6)
 
 
-@pytest.mark.parametrize("sweep_table, words", [
-    ('[sweep]\nseed = "abc"\nsamples = 3\n[sweep.vary]\ndelta = "0.01:0.1"\n', "sweep.seed: must be a whole number"),
-    ('[sweep.vary]\nspeed = "1500 m"\n', "sweep.vary.speed: '1500 m' has the wrong dimension"),
-])
+@pytest.mark.parametrize(
+    "sweep_table, words",
+    [
+        (
+            '[sweep]\nseed = "abc"\nsamples = 3\n[sweep.vary]\ndelta = "0.01:0.1"\n',
+            "sweep.seed: must be a whole number",
+        ),
+        ('[sweep.vary]\nspeed = "1500 m"\n', "sweep.vary.speed: '1500 m' has the wrong dimension"),
+    ],
+)
 def test_bad_sweep_table_names_the_file_and_field(tmp_path, capsys, sweep_table, words):
     """Regression (outside review): errors in a scene's [sweep] table name the file and the field."""
     from flyopt.cli.main import main

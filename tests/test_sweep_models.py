@@ -24,9 +24,9 @@ import time
 import numpy as np
 import pandas as pd
 import pytest
+from conftest import PROBLEMS
 
 import flyopt
-from conftest import PROBLEMS
 from flyopt.io.results import read_results
 from flyopt.studies import runner
 from flyopt.studies import sweep as sweep_module
@@ -40,10 +40,8 @@ RTOL = 1e-9
 
 #: model -> scene file and a small grid of physics (δ, speed) and design (envelope) fields.
 MODELS = {
-    "energy": ("punch-press.toml", {"delta": "0.02,0.1", "speed": "30,60rpm",
-                                    "envelope": "1.0 m,none"}),
-    "energy_mass": ("slider-crank-press.toml", {"speed": "100,140rpm", "delta": "0.08,0.15",
-                                                "envelope": "0.8 m,none"}),
+    "energy": ("punch-press.toml", {"delta": "0.02,0.1", "speed": "30,60rpm", "envelope": "1.0 m,none"}),
+    "energy_mass": ("slider-crank-press.toml", {"speed": "100,140rpm", "delta": "0.08,0.15", "envelope": "0.8 m,none"}),
     "dynamic": ("motor-press.toml", {"delta": "0.08,0.15", "envelope": "1.0,1.4 m"}),
 }
 
@@ -80,7 +78,7 @@ def test_serial_sweep_of_every_model_equals_individual_solves(serial, model):
         np.testing.assert_allclose(row["mass"], best.mass, rtol=RTOL, err_msg=str(point))
         np.testing.assert_allclose(row["j_required"], solution.analysis.j_required, rtol=RTOL)
         designed += 1
-    assert designed >= len(frame) // 2          # the comparison is not vacuous
+    assert designed >= len(frame) // 2  # the comparison is not vacuous
 
 
 @pytest.mark.parametrize("model", list(MODELS))
@@ -96,8 +94,10 @@ def dask_client():
     """A Dask cluster of two worker processes: the chunks travel to them pickled."""
     from dask.distributed import Client, LocalCluster
 
-    with LocalCluster(processes=True, n_workers=2, threads_per_worker=1,
-                      dashboard_address=":0") as cluster, Client(cluster) as client:
+    with (
+        LocalCluster(processes=True, n_workers=2, threads_per_worker=1, dashboard_address=":0") as cluster,
+        Client(cluster) as client,
+    ):
         yield client
 
 
@@ -105,8 +105,7 @@ def dask_client():
 def test_dask_local_cluster_gives_the_serial_table(serial, dask_client, model, tmp_path):
     _, expected = serial[model]
     out = tmp_path / "study.parquet"
-    summary = sweep(load(model), MODELS[model][1], scheduler=dask_client, chunk_size=2,
-                    output=out)
+    summary = sweep(load(model), MODELS[model][1], scheduler=dask_client, chunk_size=2, output=out)
     assert summary.attrs["sweep"]["mode"] == "dask"
     pd.testing.assert_frame_equal(read_results(out), expected)
     # the workers really were other processes that rebuilt the scene
@@ -115,8 +114,7 @@ def test_dask_local_cluster_gives_the_serial_table(serial, dask_client, model, t
 
 
 @pytest.mark.parametrize("model", list(MODELS))
-def test_stopped_sweep_resumed_from_a_scene_loaded_afresh_gives_the_same_file(
-        serial, model, tmp_path):
+def test_stopped_sweep_resumed_from_a_scene_loaded_afresh_gives_the_same_file(serial, model, tmp_path):
     """Regression: the parts of a slider-crank sweep could never be resumed: the sweep's
     fingerprint held the repr of the scene, in which a member's kinematics is a function
     shown with its address (another at every load), and numpy's repr of a table rounds
@@ -124,11 +122,9 @@ def test_stopped_sweep_resumed_from_a_scene_loaded_afresh_gives_the_same_file(
     values."""
     _, expected = serial[model]
     out = tmp_path / "study.csv"
-    first = sweep(load(model), MODELS[model][1], workers=1, chunk_size=2, output=out,
-                  max_chunks=1)
+    first = sweep(load(model), MODELS[model][1], workers=1, chunk_size=2, output=out, max_chunks=1)
     assert not first.attrs["sweep"]["complete"] and not out.exists()
-    done = sweep(load(model), MODELS[model][1], workers=1, chunk_size=2, output=out,
-                 resume=True)
+    done = sweep(load(model), MODELS[model][1], workers=1, chunk_size=2, output=out, resume=True)
     assert done.attrs["sweep"]["chunks_reused"] == [0]
     pd.testing.assert_frame_equal(read_results(out), expected)
 
@@ -142,12 +138,19 @@ def test_a_scene_differing_inside_a_long_table_is_another_sweep(tmp_path):
     def scene(bump):
         table = values.copy()
         table[1000] += bump
-        return flyopt.from_dict({
-            "machine": {"speed": "300 rpm", "delta": 0.05},
-            "torque": {"resisting": {"angle_unit": "deg", "unit": "N*m",
-                                     "points": [[a, v] for a, v in zip(angles, table)]},
-                       "driving": {"constant": "unknown"}},
-        })
+        return flyopt.from_dict(
+            {
+                "machine": {"speed": "300 rpm", "delta": 0.05},
+                "torque": {
+                    "resisting": {
+                        "angle_unit": "deg",
+                        "unit": "N*m",
+                        "points": [[a, v] for a, v in zip(angles, table)],
+                    },
+                    "driving": {"constant": "unknown"},
+                },
+            }
+        )
 
     assert digest(scene(0.0)) != digest(scene(1e-9))
     out = tmp_path / "study.parquet"
@@ -180,9 +183,13 @@ def test_killed_slider_crank_sweep_resumes_to_the_same_file(tmp_path):
     parts = tmp_path / "study.parquet.parts"
 
     def start(mode):
-        return subprocess.Popen([sys.executable, str(script), str(scene_file), str(out), mode],
-                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                start_new_session=True)
+        return subprocess.Popen(
+            [sys.executable, str(script), str(scene_file), str(out), mode],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            start_new_session=True,
+        )
 
     driver = start("new")
     try:
@@ -209,6 +216,7 @@ def test_killed_slider_crank_sweep_resumes_to_the_same_file(tmp_path):
 # --------------------------------------------------------------------------
 # Points as data
 # --------------------------------------------------------------------------
+
 
 def test_the_task_sent_to_workers_is_the_scene_text_and_values():
     """The task a worker gets holds the scene's file text (rebuilt there by the same
@@ -272,11 +280,26 @@ def fake_dask(monkeypatch):
 # Chunks sized by cost, physics kept together
 # --------------------------------------------------------------------------
 
+
 def test_chunk_bounds_by_cost():
     # 60 points of 0.1 s, 2 workers: a chunk takes a quarter of what is left, at most 1 s
     # (10 points), so the chunks shrink towards the end, down to a point
     assert runner.chunk_bounds(np.full(60, 0.1), workers=2).tolist() == [
-        0, 10, 20, 30, 38, 44, 48, 51, 54, 56, 57, 58, 59, 60]
+        0,
+        10,
+        20,
+        30,
+        38,
+        44,
+        48,
+        51,
+        54,
+        56,
+        57,
+        58,
+        59,
+        60,
+    ]
     # 10^6 closed-form points: 1 s would be 55,556 points, held to MAX_CHUNK_POINTS
     bounds = runner.chunk_bounds(np.full(1_000_000, 1.8e-5), workers=2)
     sizes = np.diff(bounds)
@@ -285,8 +308,7 @@ def test_chunk_bounds_by_cost():
     # a small sweep: chunks of at least MIN_CHUNK_SECONDS (0.05 s), not of 0.01 s
     assert runner.chunk_bounds(np.full(24, 0.01), workers=2).tolist() == [0, 6, 11, 16, 21, 24]
     # the user's chunk size, cut again at the breaks
-    assert runner.chunk_bounds(np.ones(10), chunk_size=4, breaks=[6]).tolist() == [
-        0, 4, 6, 10]
+    assert runner.chunk_bounds(np.ones(10), chunk_size=4, breaks=[6]).tolist() == [0, 4, 6, 10]
 
 
 def test_chunk_bounds_keep_groups_together():
@@ -296,7 +318,7 @@ def test_chunk_bounds_keep_groups_together():
     starts = np.zeros(60, dtype=bool)
     starts[::10] = True
     bounds = runner.chunk_bounds(costs, workers=2, starts=starts)
-    assert bounds.tolist() == [0, 20, 30, 40, 50, 60]     # never a physics in two chunks
+    assert bounds.tolist() == [0, 20, 30, 40, 50, 60]  # never a physics in two chunks
     assert runner.chunk_bounds(costs, workers=2).tolist() == [0, 11, 24, 31, 41, 51, 60]
     # a group whose designs alone outweigh a chunk is split (aim 0.125 s: 12,500 points,
     # held to MAX_CHUNK_POINTS)
@@ -311,8 +333,7 @@ def test_a_costly_sweep_is_cut_for_the_workers(monkeypatch):
     scene = load("dynamic")
     monkeypatch.setattr(sweep_module, "_time_first_analysis", lambda scene, points, codes: 0.5)
     monkeypatch.setattr(sweep_module, "cpu_count", lambda: 2)
-    plan_points = flyopt.studies.plan.plan_sweep(
-        scene, {"delta": "0.05:0.2:6", "envelope": "0.8:1.6:10 m"}).points
+    plan_points = flyopt.studies.plan.plan_sweep(scene, {"delta": "0.05:0.2:6", "envelope": "0.8:1.6:10 m"}).points
     ctx = _context(scene)
     layout = sweep_module._layout(scene, ctx, plan_points, "auto", "auto", None, None, {})
     assert layout["mode"] == "processes" and layout["workers"] == 2
@@ -321,13 +342,11 @@ def test_a_costly_sweep_is_cut_for_the_workers(monkeypatch):
     assert layout["bounds"].tolist() == [0, 20, 30, 40, 50, 60]
     # a closed-form sweep of the same size is estimated to take milliseconds: serial
     punch = load("energy")
-    small = sweep_module._layout(punch, _context(punch), plan_points, "auto", "auto", None,
-                                 None, {})
+    small = sweep_module._layout(punch, _context(punch), plan_points, "auto", "auto", None, None, {})
     assert small["mode"] == "serial" and len(small["bounds"]) == 2
 
 
-def test_interleaved_physics_are_gathered_into_chunks_and_the_file_is_in_point_order(
-        tmp_path, monkeypatch):
+def test_interleaved_physics_are_gathered_into_chunks_and_the_file_is_in_point_order(tmp_path, monkeypatch):
     """With the envelope varied first, the points of one δ come back every 3 points. They
     are gathered so that each δ is analysed in one chunk (here one part file each), and
     the rows are put back in point order: the streamed files (CSV and Parquet) and the
@@ -337,7 +356,7 @@ def test_interleaved_physics_are_gathered_into_chunks_and_the_file_is_in_point_o
     monkeypatch.setattr(sweep_module, "_time_first_analysis", lambda scene, points, codes: 1.0)
     gathered = sweep(scene, vary, workers=1)
     assert gathered.attrs["sweep"]["chunks"] == 3
-    reference = sweep(scene, vary, workers=1, chunk_size=1)   # point order, a chunk a point
+    reference = sweep(scene, vary, workers=1, chunk_size=1)  # point order, a chunk a point
     pd.testing.assert_frame_equal(gathered, reference)
     assert gathered["point"].tolist() == list(range(12))
     for suffix in (".csv", ".parquet"):
@@ -361,15 +380,14 @@ def test_resume_keeps_the_chunks_of_the_run_it_continues(tmp_path, monkeypatch):
     first = sweep(scene, vary, workers=1, output=out, max_chunks=1)
     assert first.attrs["sweep"]["chunks"] == 3
     monkeypatch.setattr(sweep_module, "_time_first_analysis", lambda scene, points, codes: 0.01)
-    assert sweep(scene, vary, workers=1).attrs["sweep"]["chunks"] == 1   # cut otherwise now
+    assert sweep(scene, vary, workers=1).attrs["sweep"]["chunks"] == 1  # cut otherwise now
     done = sweep(load("energy_mass"), vary, workers=1, output=out, resume=True)
     assert done.attrs["sweep"]["chunks"] == 3 and done.attrs["sweep"]["chunks_reused"] == [0]
     pd.testing.assert_frame_equal(read_results(out), sweep(scene, vary, workers=1))
 
 
 @pytest.mark.parametrize("model, speeds", [("energy_mass", "60,90rpm"), ("dynamic", "40,50rpm")])
-def test_a_physics_differing_in_delta_alone_reuses_the_machine_and_gives_the_same_analysis(monkeypatch, model,
-                                                                                           speeds):
+def test_a_physics_differing_in_delta_alone_reuses_the_machine_and_gives_the_same_analysis(monkeypatch, model, speeds):
     """Along a δ axis each analysis is handed ``like`` an earlier one at the same speed (its reduced
     machine and indicator), never one at another speed; and what it gives equals a fresh analysis
     of the same point (the reference: flyopt.analysis.analyse without ``like``)."""
@@ -398,17 +416,21 @@ def test_a_physics_differing_in_delta_alone_reuses_the_machine_and_gives_the_sam
             assert like is None
         seen.add(speed)
     monkeypatch.setattr(analysis, "analyse", original)
-    for (delta, speed, like, result), row in zip(calls, frame.itertuples()):
+    for (delta, speed, _like, result), row in zip(calls, frame.itertuples()):
         fresh = original(point_scene(scene, {"delta": delta, "speed": speed}))
         assert row.delta == delta and row.speed == speed
         np.testing.assert_allclose(result.j_required, fresh.j_required, rtol=1e-12)
-        np.testing.assert_allclose([result.omega_max, result.omega_min, result.a_max],
-                                   [fresh.omega_max, fresh.omega_min, fresh.a_max], rtol=1e-12)
+        np.testing.assert_allclose(
+            [result.omega_max, result.omega_min, result.a_max],
+            [fresh.omega_max, fresh.omega_min, fresh.a_max],
+            rtol=1e-12,
+        )
 
 
 # --------------------------------------------------------------------------
 # Streaming
 # --------------------------------------------------------------------------
+
 
 def test_with_an_output_the_table_is_not_returned_but_summarized(tmp_path):
     scene = load("energy")
@@ -424,22 +446,20 @@ def test_with_an_output_the_table_is_not_returned_but_summarized(tmp_path):
     schema = pq.read_schema(out)
     assert str(schema.field("status").type) == "dictionary<values=string, indices=int32, ordered=0>"
     assert str(schema.field("mass").type) == "double"
-    assert pq.ParquetFile(out).num_row_groups == 1      # 600 rows in 17 chunks, one row group
+    assert pq.ParquetFile(out).num_row_groups == 1  # 600 rows in 17 chunks, one row group
 
 
 @pytest.mark.parametrize("suffix", [".csv", ".parquet"])
-def test_result_writer_appends_pieces_and_puts_the_file_in_place_only_when_complete(
-        tmp_path, suffix):
+def test_result_writer_appends_pieces_and_puts_the_file_in_place_only_when_complete(tmp_path, suffix):
     from flyopt.io.results import ResultWriter, write_results
 
-    whole = sweep(load("energy"), {"delta": "0.01:0.2:7", "material": "cast_iron,cast_steel"},
-                  chunk_size=3)
+    whole = sweep(load("energy"), {"delta": "0.01:0.2:7", "material": "cast_iron,cast_steel"}, chunk_size=3)
     one = tmp_path / f"one{suffix}"
     write_results(whole, one)
     out = tmp_path / f"pieces{suffix}"
     with ResultWriter(out, temporary_folder=tmp_path) as writer:
         for start in range(0, len(whole), 5):
-            writer.append(whole.iloc[start:start + 5])
+            writer.append(whole.iloc[start : start + 5])
         assert not out.exists()
         writer.close()
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([one.name, out.name])
@@ -468,12 +488,15 @@ def test_resume_without_the_chunk_size_uses_the_recorded_one(tmp_path):
 # Longer runs (pytest -m slow)
 # --------------------------------------------------------------------------
 
+
 @pytest.mark.slow
-@pytest.mark.parametrize("model, vary, fields", [
-    ("energy_mass", {"speed": "80:160:6rpm", "delta": "0.05:0.2:6"}, ("speed", "delta")),
-    ("dynamic", {"delta": "0.05:0.2:6", "envelope": "0.8:1.6:5 m"},
-     ("delta", "design.max_outer_diameter")),
-])
+@pytest.mark.parametrize(
+    "model, vary, fields",
+    [
+        ("energy_mass", {"speed": "80:160:6rpm", "delta": "0.05:0.2:6"}, ("speed", "delta")),
+        ("dynamic", {"delta": "0.05:0.2:6", "envelope": "0.8:1.6:5 m"}, ("delta", "design.max_outer_diameter")),
+    ],
+)
 def test_larger_sweeps_in_processes_equal_individual_solves(model, vary, fields):
     """Chunks of 6 points in 2 processes (left to itself, the sweep now finds the 36 energy_mass points too
     cheap to split: one chunk, run serially), each row equal to the point solved on its own."""

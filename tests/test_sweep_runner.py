@@ -22,9 +22,9 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from conftest import PROBLEMS
 
 import flyopt
-from conftest import PROBLEMS
 from flyopt.errors import Interrupted, SceneError
 from flyopt.io.results import ResultWriter, read_results
 from flyopt.studies import runner
@@ -64,7 +64,7 @@ def children(pid):
             stat = (entry / "stat").read_text()
         except OSError:
             continue
-        fields = stat[stat.rindex(")") + 2:].split()   # after "pid (comm) "
+        fields = stat[stat.rindex(")") + 2 :].split()  # after "pid (comm) "
         if fields[0] != "Z":
             parent_of[int(entry.name)] = int(fields[1])
     found, frontier = set(), {pid}
@@ -99,10 +99,14 @@ def wait_for(condition, seconds, what):
 def start_driver(tmp_path, out, resume=False):
     script = tmp_path / "driver.py"
     script.write_text(DRIVER)
-    return subprocess.Popen([sys.executable, str(script), str(PROBLEMS / "punch-press.toml"),
-                             str(out), "resume" if resume else "new"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            start_new_session=True, cwd=tmp_path)
+    return subprocess.Popen(
+        [sys.executable, str(script), str(PROBLEMS / "punch-press.toml"), str(out), "resume" if resume else "new"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+        cwd=tmp_path,
+    )
 
 
 def stop_after_first_chunk(tmp_path, out, sig, group):
@@ -111,15 +115,14 @@ def stop_after_first_chunk(tmp_path, out, sig, group):
     driver = start_driver(tmp_path, out)
     workers = set()
     try:
-        wait_for(lambda: any(parts.glob("chunk-*.parquet")) or driver.poll() is not None,
-                 120, "the first chunk")
+        wait_for(lambda: any(parts.glob("chunk-*.parquet")) or driver.poll() is not None, 120, "the first chunk")
         assert driver.poll() is None, driver.communicate()
         workers = children(driver.pid)
-        assert len(workers) >= 2      # the two worker processes (and their helpers)
+        assert len(workers) >= 2  # the two worker processes (and their helpers)
         (os.killpg if group else os.kill)(driver.pid, sig)
         # the workers hold the driver's stdout: output ends when they are gone too
         stdout, stderr = driver.communicate(timeout=60)
-    finally:   # whatever happened, leave no process of this test behind
+    finally:  # whatever happened, leave no process of this test behind
         for pid in alive(workers | ({driver.pid} if driver.poll() is None else set())):
             os.kill(pid, signal.SIGKILL)
         driver.wait(10)
@@ -129,8 +132,7 @@ def stop_after_first_chunk(tmp_path, out, sig, group):
 @pytest.fixture(scope="module")
 def uninterrupted():
     """The table of LONG run in one go, in this process."""
-    return sweep(PUNCH, LONG["vary"], method=LONG["method"], chunk_size=LONG["chunk_size"],
-                 workers=1)
+    return sweep(PUNCH, LONG["vary"], method=LONG["method"], chunk_size=LONG["chunk_size"], workers=1)
 
 
 def resume_and_compare(tmp_path, out, expected):
@@ -145,13 +147,13 @@ def resume_and_compare(tmp_path, out, expected):
 # Ctrl-C and kill
 # --------------------------------------------------------------------------
 
+
 def test_ctrl_c_stops_workers_keeps_chunks_and_resume_completes(tmp_path, uninterrupted):
     """Regression (issue 11): Ctrl-C (SIGINT to the process group, as a terminal sends
     it) ends the workers, keeps the finished chunks, removes temporary files and raises
     Interrupted saying how many chunks are saved and that --resume continues."""
     out = tmp_path / "study.parquet"
-    status, stdout, stderr, workers = stop_after_first_chunk(tmp_path, out, signal.SIGINT,
-                                                             group=True)
+    status, stdout, stderr, workers = stop_after_first_chunk(tmp_path, out, signal.SIGINT, group=True)
     assert status == 130 and stdout.startswith("Interrupted interrupted; "), (stdout, stderr)
     assert stdout.count("\n") == 1 and "chunks saved in" in stdout and "--resume" in stdout
     assert "Traceback" not in stderr
@@ -189,7 +191,7 @@ class _SavingParts:
         if not self.saved:
             os.kill(os.getpid(), signal.SIGINT)
             os.kill(os.getpid(), signal.SIGINT)
-            time.sleep(0.05)           # the handler runs here, in the middle of the save
+            time.sleep(0.05)  # the handler runs here, in the middle of the save
         self.saved.append((index, len(frame)))
 
 
@@ -198,7 +200,7 @@ def _points(n):
 
 
 def _square(points):
-    time.sleep(0.3)            # long enough that no worker finishes a second chunk first
+    time.sleep(0.3)  # long enough that no worker finishes a second chunk first
     return pd.DataFrame({"y": points["x"] ** 2})
 
 
@@ -215,17 +217,18 @@ def test_ctrl_c_during_a_save_finishes_the_save_then_stops(workers):
     previous = signal.getsignal(signal.SIGINT)
     with pytest.raises(Interrupted) as stop:
         runner.run_chunks(_square, chunks, chunks, parts=parts, workers=workers)
-    assert re.fullmatch(r"interrupted; (\d) of 6 chunks saved in parts; --resume continues",
-                        str(stop.value)), str(stop.value)
+    assert re.fullmatch(r"interrupted; (\d) of 6 chunks saved in parts; --resume continues", str(stop.value)), str(
+        stop.value
+    )
     saved = int(str(stop.value).split("; ")[1].split()[0])
     assert saved == len(parts.saved) and all(rows == 1 for _, rows in parts.saved)
     assert saved == 1 if workers == 1 else 1 <= saved <= workers
-    assert signal.getsignal(signal.SIGINT) is previous      # the handler is put back
+    assert signal.getsignal(signal.SIGINT) is previous  # the handler is put back
 
 
 def _interrupted_serial_chunk(points):
     os.kill(os.getpid(), signal.SIGINT)
-    time.sleep(5)              # a long computation: Ctrl-C must not wait for it
+    time.sleep(5)  # a long computation: Ctrl-C must not wait for it
     return _square(points)
 
 
@@ -251,7 +254,7 @@ def test_interrupt_while_writing_the_output_leaves_no_hidden_file(tmp_path, monk
     seen = []
 
     def interrupted_close(writer):
-        writer._flush()                       # every row is in the temporary file
+        writer._flush()  # every row is in the temporary file
         seen.append(writer.temporary.stat().st_size)
         raise KeyboardInterrupt
 
@@ -261,7 +264,9 @@ def test_interrupt_while_writing_the_output_leaves_no_hidden_file(tmp_path, monk
     assert seen and seen[0] > 0
     assert sorted(p.name for p in tmp_path.iterdir()) == ["study.parquet.parts"]
     assert sorted(p.name for p in (tmp_path / "study.parquet.parts").iterdir()) == [
-        *(f"chunk-{i:05d}.parquet" for i in range(5)), "sweep.json"]
+        *(f"chunk-{i:05d}.parquet" for i in range(5)),
+        "sweep.json",
+    ]
     monkeypatch.setattr(ResultWriter, "close", original)
     done = sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)
     assert done.attrs["sweep"]["chunks_reused"] == [0, 1, 2, 3, 4]
@@ -283,9 +288,10 @@ def test_resume_removes_temporary_files_a_kill_left_in_the_parts(tmp_path):
 # Damaged parts
 # --------------------------------------------------------------------------
 
+
 def truncate(path):
     data = path.read_bytes()
-    path.write_bytes(data[:len(data) // 2])
+    path.write_bytes(data[: len(data) // 2])
 
 
 def other_chunk(path):
@@ -296,11 +302,14 @@ def empty(path):
     path.write_bytes(b"")
 
 
-@pytest.mark.parametrize("damage, words", [
-    (truncate, "cannot be read"),
-    (empty, "cannot be read"),
-    (other_chunk, "holds other points than its chunk"),
-])
+@pytest.mark.parametrize(
+    "damage, words",
+    [
+        (truncate, "cannot be read"),
+        (empty, "cannot be read"),
+        (other_chunk, "holds other points than its chunk"),
+    ],
+)
 def test_resume_recomputes_a_damaged_part(tmp_path, capsys, damage, words):
     """Regression (issue 11): a truncated part file crashed --resume (pyarrow's error).
     Each part is read back and checked against its chunk; a damaged one is said in one
@@ -333,19 +342,19 @@ def test_part_with_missing_rows_is_recomputed(tmp_path, capsys):
 # Dask
 # --------------------------------------------------------------------------
 
+
 def test_unreachable_scheduler_is_one_line_and_leaves_nothing(tmp_path):
     """Regression (issue 11): a failed scheduler connection left a stale .parts folder
     that blocked the next run. The scheduler is connected to (within a few seconds)
     before anything is written."""
     out = tmp_path / "study.parquet"
     start = time.monotonic()
-    with pytest.raises(SceneError, match="cannot connect to the Dask scheduler "
-                                         "'tcp://127.0.0.1:1' within 5 s") as info:
+    with pytest.raises(SceneError, match="cannot connect to the Dask scheduler 'tcp://127.0.0.1:1' within 5 s") as info:
         sweep(PUNCH, VARY, output=out, scheduler="tcp://127.0.0.1:1")
     assert time.monotonic() - start < 30
     assert info.value.field == "--scheduler" and "\n" not in str(info.value)
     assert list(tmp_path.iterdir()) == []
-    sweep(PUNCH, VARY, output=out)           # nothing stale blocks the next run
+    sweep(PUNCH, VARY, output=out)  # nothing stale blocks the next run
     assert out.exists()
 
 
@@ -359,20 +368,24 @@ def test_losing_every_dask_worker_stops_the_sweep(tmp_path, monkeypatch):
     out = tmp_path / "study.parquet"
     parts = tmp_path / "study.parquet.parts"
     outcome = {}
-    with LocalCluster(processes=False, n_workers=2, threads_per_worker=1,
-                      dashboard_address=":0") as cluster:
+    with LocalCluster(processes=False, n_workers=2, threads_per_worker=1, dashboard_address=":0") as cluster:
+
         def run():
             try:
-                outcome["frame"] = sweep(PUNCH, LONG["vary"], method=LONG["method"],
-                                         chunk_size=LONG["chunk_size"], scheduler=cluster,
-                                         output=out)
-            except BaseException as err:   # noqa: BLE001 - handed to the test thread
+                outcome["frame"] = sweep(
+                    PUNCH,
+                    LONG["vary"],
+                    method=LONG["method"],
+                    chunk_size=LONG["chunk_size"],
+                    scheduler=cluster,
+                    output=out,
+                )
+            except BaseException as err:  # noqa: BLE001 - handed to the test thread
                 outcome["error"] = err
 
         thread = threading.Thread(target=run, daemon=True)
         thread.start()
-        wait_for(lambda: any(parts.glob("chunk-*.parquet")) or not thread.is_alive(), 120,
-                 "the first chunk")
+        wait_for(lambda: any(parts.glob("chunk-*.parquet")) or not thread.is_alive(), 120, "the first chunk")
         cluster.scale(0)
         thread.join(timeout=60)
         assert not thread.is_alive(), "the sweep did not stop after losing its workers"
@@ -383,6 +396,7 @@ def test_losing_every_dask_worker_stops_the_sweep(tmp_path, monkeypatch):
     assert "\n" not in str(err)
     saved = int(str(err).split("; ")[1].split(" of ")[0])
     assert len(list(parts.glob("chunk-*.parquet"))) == saved >= 1
-    done = sweep(PUNCH, LONG["vary"], method=LONG["method"], chunk_size=LONG["chunk_size"],
-                 output=out, resume=True, workers=1)
+    done = sweep(
+        PUNCH, LONG["vary"], method=LONG["method"], chunk_size=LONG["chunk_size"], output=out, resume=True, workers=1
+    )
     assert done.attrs["sweep"]["complete"] and len(done.attrs["sweep"]["chunks_reused"]) == saved

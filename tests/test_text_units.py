@@ -25,10 +25,10 @@ import re
 
 import pint
 import pytest
+from conftest import PROBLEMS, ROOT
 
 import flyopt
 import flyopt.pipeline
-from conftest import PROBLEMS, ROOT
 from flyopt.cli.main import main
 
 UREG = pint.UnitRegistry()
@@ -38,24 +38,87 @@ SCENES = ("shear-press", "punch-press-wheel", "four-cylinder-engine", "motor-pre
 
 #: The unit of each dimension in each system, as the report must label it.
 UNITS = {
-    "si": {"angle": "rad", "angular_speed": "rad/s", "torque": "N·m", "energy": "J", "inertia": "kg·m²",
-           "flywheel_moment": "N·m²", "length": "m", "mass": "kg", "speed": "m/s", "stress": "Pa", "power": "W",
-           "time": "s", "unbalance": "kg·m", "eccentricity": "m"},
-    "engineering": {"angle": "deg", "angular_speed": "rpm", "torque": "kN·m", "energy": "kJ", "inertia": "kg·m²",
-                    "flywheel_moment": "N·m²", "length": "mm", "mass": "kg", "speed": "m/s", "stress": "MPa",
-                    "power": "kW", "time": "s", "unbalance": "g·mm", "eccentricity": "µm"},
-    "imperial": {"angle": "deg", "angular_speed": "rpm", "torque": "lbf·ft", "energy": "ft·lbf", "inertia": "lb·ft²",
-                 "flywheel_moment": "lbf·ft²", "length": "in", "mass": "lb", "speed": "ft/s", "stress": "psi",
-                 "power": "hp", "time": "s", "unbalance": "oz·in", "eccentricity": "in"},
+    "si": {
+        "angle": "rad",
+        "angular_speed": "rad/s",
+        "torque": "N·m",
+        "energy": "J",
+        "inertia": "kg·m²",
+        "flywheel_moment": "N·m²",
+        "length": "m",
+        "mass": "kg",
+        "speed": "m/s",
+        "stress": "Pa",
+        "power": "W",
+        "time": "s",
+        "unbalance": "kg·m",
+        "eccentricity": "m",
+    },
+    "engineering": {
+        "angle": "deg",
+        "angular_speed": "rpm",
+        "torque": "kN·m",
+        "energy": "kJ",
+        "inertia": "kg·m²",
+        "flywheel_moment": "N·m²",
+        "length": "mm",
+        "mass": "kg",
+        "speed": "m/s",
+        "stress": "MPa",
+        "power": "kW",
+        "time": "s",
+        "unbalance": "g·mm",
+        "eccentricity": "µm",
+    },
+    "imperial": {
+        "angle": "deg",
+        "angular_speed": "rpm",
+        "torque": "lbf·ft",
+        "energy": "ft·lbf",
+        "inertia": "lb·ft²",
+        "flywheel_moment": "lbf·ft²",
+        "length": "in",
+        "mass": "lb",
+        "speed": "ft/s",
+        "stress": "psi",
+        "power": "hp",
+        "time": "s",
+        "unbalance": "oz·in",
+        "eccentricity": "in",
+    },
 }
 #: The SI unit of each dimension, as pint spells it.
-SI = {"angle": "rad", "angular_speed": "rad/s", "torque": "N*m", "energy": "J", "inertia": "kg*m**2",
-      "flywheel_moment": "N*m**2", "length": "m", "mass": "kg", "speed": "m/s", "stress": "Pa", "power": "W",
-      "time": "s", "unbalance": "kg*m", "eccentricity": "m"}
+SI = {
+    "angle": "rad",
+    "angular_speed": "rad/s",
+    "torque": "N*m",
+    "energy": "J",
+    "inertia": "kg*m**2",
+    "flywheel_moment": "N*m**2",
+    "length": "m",
+    "mass": "kg",
+    "speed": "m/s",
+    "stress": "Pa",
+    "power": "W",
+    "time": "s",
+    "unbalance": "kg*m",
+    "eccentricity": "m",
+}
 #: pint's spelling of a label.
-PINT = {"deg": "degree", "N·m": "N*m", "kN·m": "kN*m", "lbf·ft": "lbf*ft", "ft·lbf": "ft*lbf", "kg·m²": "kg*m**2",
-        "lb·ft²": "lb*ft**2", "N·m²": "N*m**2", "lbf·ft²": "lbf*ft**2", "kg·m": "kg*m", "g·mm": "g*mm",
-        "oz·in": "oz*in"}
+PINT = {
+    "deg": "degree",
+    "N·m": "N*m",
+    "kN·m": "kN*m",
+    "lbf·ft": "lbf*ft",
+    "ft·lbf": "ft*lbf",
+    "kg·m²": "kg*m**2",
+    "lb·ft²": "lb*ft**2",
+    "N·m²": "N*m**2",
+    "lbf·ft²": "lbf*ft**2",
+    "kg·m": "kg*m",
+    "g·mm": "g*mm",
+    "oz·in": "oz*in",
+}
 
 #: A printed number: optional sign, thousands grouped by commas, optional exponent.
 NUM = r"[-+−]?[0-9][0-9,]*(?:\.[0-9]+)?(?:e[-+][0-9]+)?"
@@ -99,20 +162,23 @@ def table(text, title):
     lines = text.splitlines()
     start = next(k for k, line in enumerate(lines) if line.startswith(title))
     block = []
-    for line in lines[start + 1:]:
-        if not line.strip() or not line.startswith("  ") or line.startswith("  ("):   # "(stress: ...)" ends one
+    for line in lines[start + 1 :]:
+        if not line.strip() or not line.startswith("  ") or line.startswith("  ("):  # "(stress: ...)" ends one
             break
         block.append(line)
     rule = block[1]
     assert set(rule.strip()) <= {"-", " "}, rule
     spans = [m.span() for m in re.finditer(r"-+", rule)]
-    cells = [[line[a:b].strip() if k < len(spans) - 1 else line[a:].strip() for k, (a, b) in enumerate(spans)]
-             for line in block if not set(line.strip()) <= {"-", " "}]
+    cells = [
+        [line[a:b].strip() if k < len(spans) - 1 else line[a:].strip() for k, (a, b) in enumerate(spans)]
+        for line in block
+        if not set(line.strip()) <= {"-", " "}
+    ]
     return cells[0], cells[1:]
 
 
 def heading_unit(cell):
-    """"mass [kg]" -> ("mass", "kg"); "rank" -> ("rank", None)."""
+    """ "mass [kg]" -> ("mass", "kg"); "rank" -> ("rank", None)."""
     match = re.fullmatch(r"(.*?) \[(.+)\]", cell)
     return (match.group(1), match.group(2)) if match else (cell, None)
 
@@ -120,6 +186,7 @@ def heading_unit(cell):
 # --------------------------------------------------------------------------
 # The report of each scene in each system, from one solution per scene
 # --------------------------------------------------------------------------
+
 
 @pytest.fixture(scope="module")
 def solutions():
@@ -129,6 +196,7 @@ def solutions():
 @pytest.fixture
 def report(solutions, monkeypatch, capsys):
     """report(scene, system or None) -> the text ``flyopt solve SCENE --verify [--units SYSTEM]`` prints."""
+
     def solved(scene, *, design_flywheel, model, verify_design, design_method):
         assert (design_flywheel, model, verify_design, design_method) == (True, None, True, "auto")
         return next(s for s in solutions.values() if s.analysis.title == scene.title)
@@ -139,6 +207,7 @@ def report(solutions, monkeypatch, capsys):
         args = ["solve", str(PROBLEMS / f"{name}.toml"), "--verify"] + (["--units", system] if system else [])
         assert main(args) == 0
         return capsys.readouterr().out
+
     return make
 
 
@@ -164,18 +233,20 @@ def test_the_analysis_in_the_chosen_units(name, system, solutions, report):
     assert close(quantity(gd2, "flywheel_moment", system), a.gd2_required, "flywheel_moment", system)
 
     head, rows = table(text, "Energy indicator diagram")
-    assert [heading_unit(c) for c in head[:2]] == [("angle", UNITS[system]["angle"]),
-                                                    ("ΔE", UNITS[system]["energy"])]
+    assert [heading_unit(c) for c in head[:2]] == [("angle", UNITS[system]["angle"]), ("ΔE", UNITS[system]["energy"])]
     assert len(rows) == len(a.energy_chain)
     for row, point in zip(rows, a.energy_chain):
         assert close(value(row[0]), point["angle"], "angle", system)
         assert close(value(row[1]), point["delta_e"], "energy", system)
 
     head, rows = table(text, "Flywheel needed on each shaft")
-    assert [heading_unit(c) for c in head] == [("shaft", None), ("speed ratio", None),
-                                               ("speed", UNITS[system]["angular_speed"]),
-                                               ("J", UNITS[system]["inertia"]),
-                                               ("GD²", UNITS[system]["flywheel_moment"])]
+    assert [heading_unit(c) for c in head] == [
+        ("shaft", None),
+        ("speed ratio", None),
+        ("speed", UNITS[system]["angular_speed"]),
+        ("J", UNITS[system]["inertia"]),
+        ("GD²", UNITS[system]["flywheel_moment"]),
+    ]
     for row, shaft in zip(rows, a.shafts, strict=True):
         assert row[0] == shaft.name
         assert close(value(row[2]), shaft.omega, "angular_speed", system)
@@ -188,8 +259,9 @@ def test_the_analysis_in_the_chosen_units(name, system, solutions, report):
             assert close(value(row[1]), model["j_required"], "inertia", system)
 
     v = solutions[name].verification
-    line = text.splitlines()[text.splitlines().index(next(x for x in text.splitlines()
-                                                          if x.startswith("Verification ("))) + 1]
+    line = text.splitlines()[
+        text.splitlines().index(next(x for x in text.splitlines() if x.startswith("Verification ("))) + 1
+    ]
     mean = re.search(r"mean (.+?);", line).group(1)
     assert close(quantity(mean, "angular_speed", system), v.omega_mean, "angular_speed", system)
     flywheel = re.search(r"flywheel (.+) at the reference shaft", line).group(1)
@@ -209,18 +281,22 @@ def test_the_design_in_the_chosen_units(name, system, solutions, report):
     assert close(value(mean), best.d_mean, "length", system)
     assert close(quantity(inner, "length", system), best.d_inner, "length", system)
     h, b = fact(text, "rim H x B").split(" x ", 1)
-    assert close(value(h), best.h, "length", system) and close(quantity(b, "length", system), best.b, "length",
-                                                                      system)
+    assert close(value(h), best.h, "length", system) and close(quantity(b, "length", system), best.b, "length", system)
     rim = fact(text, "rim speed")
     assert close(quantity(rim, "speed", system), best.rim_speed, "speed", system)
-    assert close(quantity(re.search(r"ρv² (.+)", rim).group(1), "stress", system), best.hoop_stress, "stress",
-                 system)
+    assert close(quantity(re.search(r"ρv² (.+)", rim).group(1), "stress", system), best.hoop_stress, "stress", system)
     j = fact(text, "inertia")
     assert close(quantity(j, "inertia", system), best.j_flywheel, "inertia", system)
 
     head, rows = table(text, "Parts of the wheel")
-    assert [heading_unit(c)[1] for c in head] == [None, UNITS[system]["length"], UNITS[system]["length"],
-                                                  UNITS[system]["mass"], UNITS[system]["inertia"], None]
+    assert [heading_unit(c)[1] for c in head] == [
+        None,
+        UNITS[system]["length"],
+        UNITS[system]["length"],
+        UNITS[system]["mass"],
+        UNITS[system]["inertia"],
+        None,
+    ]
     for row, part in zip(rows, best.parts):
         r_inner, r_outer = row[1].split(" – ")
         assert close(value(r_inner), part["r_inner"], "length", system, 4)
@@ -231,9 +307,14 @@ def test_the_design_in_the_chosen_units(name, system, solutions, report):
     assert close(quantity(omega, "angular_speed", system), design.omega * best.speed_ratio, "angular_speed", system)
     head, rows = table(text, "Stress check at ω_max")
     assert [heading_unit(c) for c in head] == [
-        ("part", None), ("stress", UNITS[system]["stress"]), ("at r", UNITS[system]["length"]),
-        ("allowable", UNITS[system]["stress"]), ("utilisation", None), ("strength", UNITS[system]["stress"]),
-        ("at wall", UNITS[system]["length"])]
+        ("part", None),
+        ("stress", UNITS[system]["stress"]),
+        ("at r", UNITS[system]["length"]),
+        ("allowable", UNITS[system]["stress"]),
+        ("utilisation", None),
+        ("strength", UNITS[system]["stress"]),
+        ("at wall", UNITS[system]["length"]),
+    ]
     for row, part in zip(rows, best.stress["parts"], strict=True):
         assert row[0] == part["part"]
         assert close(value(row[1]), part["stress"], "stress", system, 4)
@@ -248,8 +329,9 @@ def test_the_design_in_the_chosen_units(name, system, solutions, report):
     balance = next(line for line in text.splitlines() if line.startswith("Permissible unbalance"))
     u_per, e_per = re.fullmatch(r".*G6\.3 at ω_max\): (.+) \(e_per (.+)\)", balance).groups()
     assert close(quantity(u_per, "unbalance", system), best.unbalance_permissible, "unbalance", system)
-    assert close(quantity(e_per, "eccentricity", system), best.unbalance_permissible / best.mass, "eccentricity",
-                 system, 4)
+    assert close(
+        quantity(e_per, "eccentricity", system), best.unbalance_permissible / best.mass, "eccentricity", system, 4
+    )
     if best.key:
         key = text.splitlines()[[k for k, x in enumerate(text.splitlines()) if x.startswith("Key (DIN")][0] + 1]
         torque = re.search(r"peak torque (.+?): bearing pressure (.+?) \(allowable", key)
@@ -259,8 +341,12 @@ def test_the_design_in_the_chosen_units(name, system, solutions, report):
     head, rows = table(text, "Every combination")
     units = dict(heading_unit(c) for c in head)
     assert (units["mass"], units["D_outer"], units["H"], units["B"], units["v"]) == (
-        UNITS[system]["mass"], UNITS[system]["length"], UNITS[system]["length"], UNITS[system]["length"],
-        UNITS[system]["speed"])
+        UNITS[system]["mass"],
+        UNITS[system]["length"],
+        UNITS[system]["length"],
+        UNITS[system]["length"],
+        UNITS[system]["speed"],
+    )
     column = {heading_unit(c)[0]: k for k, c in enumerate(head)}
     for row, candidate in zip(rows, design.candidates, strict=True):
         if candidate.feasible:
@@ -274,28 +360,95 @@ def test_the_design_in_the_chosen_units(name, system, solutions, report):
 # --------------------------------------------------------------------------
 
 #: Table columns that carry a unit (the title's dimension), and those that are dimensionless or text.
-COLUMN_DIMENSION = {"J_F": "inertia", "angle": "angle", "ΔE": "energy", "speed": "angular_speed", "J": "inertia",
-                    "GD²": "flywheel_moment", "r_inner – r_outer": "length", "thickness": "length", "mass": "mass",
-                    "inertia": "inertia", "stress": "stress", "at r": "length", "allowable": "stress",
-                    "strength": "stress", "at wall": "length", "D_outer": "length", "H": "length", "B": "length",
-                    "v": "speed", "P": "power", "start": "time", "wheel": "mass", "total": "mass"}
-PLAIN_COLUMNS = {"model", "vs exact", "achieved δ", "note", "point", "", "shaft", "speed ratio", "part", "share of J",
-                 "utilisation", "rank", "material", "arms", "binding", "motor", "ratio", "limit", "RMS/rated", "r",
-                 "verdict"}
+COLUMN_DIMENSION = {
+    "J_F": "inertia",
+    "angle": "angle",
+    "ΔE": "energy",
+    "speed": "angular_speed",
+    "J": "inertia",
+    "GD²": "flywheel_moment",
+    "r_inner – r_outer": "length",
+    "thickness": "length",
+    "mass": "mass",
+    "inertia": "inertia",
+    "stress": "stress",
+    "at r": "length",
+    "allowable": "stress",
+    "strength": "stress",
+    "at wall": "length",
+    "D_outer": "length",
+    "H": "length",
+    "B": "length",
+    "v": "speed",
+    "P": "power",
+    "start": "time",
+    "wheel": "mass",
+    "total": "mass",
+}
+PLAIN_COLUMNS = {
+    "model",
+    "vs exact",
+    "achieved δ",
+    "note",
+    "point",
+    "",
+    "shaft",
+    "speed ratio",
+    "part",
+    "share of J",
+    "utilisation",
+    "rank",
+    "material",
+    "arms",
+    "binding",
+    "motor",
+    "ratio",
+    "limit",
+    "RMS/rated",
+    "r",
+    "verdict",
+}
 #: Report lines whose numbers are dimensionless by their name.
-PLAIN_FACTS = ("allowed δ", "material / shaft", "binding", "solved by", "safety on strength", "motor ratio",
-               "flywheel shaft")
+PLAIN_FACTS = (
+    "allowed δ",
+    "material / shaft",
+    "binding",
+    "solved by",
+    "safety on strength",
+    "motor ratio",
+    "flywheel shaft",
+)
 #: Blocks of prose written by the design itself (flyopt.design), shown as it wrote them.
-PROSE_BLOCKS = ("Sensitivities of the mass:", "Notes:", "Why the infeasible ones fail:",
-                "Not designed, since a bound shows they cannot win")
+PROSE_BLOCKS = (
+    "Sensitivities of the mass:",
+    "Notes:",
+    "Why the infeasible ones fail:",
+    "Not designed, since a bound shows they cannot win",
+)
 #: Lines that carry the design's prose (none: the drive's note no longer prints a number).
 PROSE_LINES = ()
 #: Dimensionless numbers inside a line: ratios, counts, percentages, tolerances, standards' names.
-PLAIN_NUMBERS = [rf"efficiency {NUM}", rf"H/B {NUM}", rf"safety factor {NUM}", rf"\({NUM} cycles\)",
-                 rf"\({NUM} x ω_max\)", rf"{NUM} %", rf"achieved δ {NUM} against (the allowed )?{NUM}",
-                 rf"tolerance {NUM}", rf"area {NUM}", rf"{NUM} cylinders?", rf"{NUM}-stroke", r"ISO 21940-11",
-                 r"G6\.3", r"DIN 6885-1", r"bore: [0-9]+ x [0-9]+,", rf"{NUM} iterations", rf"ratio [-+−]?{NUM}",
-                 rf"δ \+{NUM}", rf"arms: {NUM}"]
+PLAIN_NUMBERS = [
+    rf"efficiency {NUM}",
+    rf"H/B {NUM}",
+    rf"safety factor {NUM}",
+    rf"\({NUM} cycles\)",
+    rf"\({NUM} x ω_max\)",
+    rf"{NUM} %",
+    rf"achieved δ {NUM} against (the allowed )?{NUM}",
+    rf"tolerance {NUM}",
+    rf"area {NUM}",
+    rf"{NUM} cylinders?",
+    rf"{NUM}-stroke",
+    r"ISO 21940-11",
+    r"G6\.3",
+    r"DIN 6885-1",
+    r"bore: [0-9]+ x [0-9]+,",
+    rf"{NUM} iterations",
+    rf"ratio [-+−]?{NUM}",
+    rf"δ \+{NUM}",
+    rf"arms: {NUM}",
+]
 
 
 def unlabelled_numbers(text, system, names=()):
@@ -308,11 +461,12 @@ def unlabelled_numbers(text, system, names=()):
     patterns above. ``names`` (a motor's "5.5 kW") are names, not quantities.
     """
     labels = sorted(set(UNITS[system].values()), key=len, reverse=True)
-    labelled = re.compile(rf"{NUM}(?:(?:\s*(?:/|to|x|–|of)\s*|,\s+){NUM})*\s+(?:"
-                          + "|".join(map(re.escape, labels)) + r")(?![\w/²³·])")
+    labelled = re.compile(
+        rf"{NUM}(?:(?:\s*(?:/|to|x|–|of)\s*|,\s+){NUM})*\s+(?:" + "|".join(map(re.escape, labels)) + r")(?![\w/²³·])"
+    )
     lines = text.splitlines()
     left = []
-    k = 2                                                 # after the title and the model's line
+    k = 2  # after the title and the model's line
     while k < len(lines):
         line = lines[k]
         if line.startswith(PROSE_BLOCKS):
@@ -323,7 +477,7 @@ def unlabelled_numbers(text, system, names=()):
             k += 1
             continue
         if k + 1 < len(lines) and lines[k + 1].startswith("  -") and set(lines[k + 1].strip()) <= {"-", " "}:
-            k = _check_table(lines, k, system, left)     # a table: header, rule, rows
+            k = _check_table(lines, k, system, left)  # a table: header, rule, rows
             continue
         k += 1
         if re.match(rf"  ({'|'.join(map(re.escape, PLAIN_FACTS))})\s{{2,}}", line):
@@ -357,7 +511,7 @@ def _check_table(lines, k, system, left):
         assert title in COLUMN_DIMENSION, f"{lines[k]!r}: column {title!r} is neither a quantity nor plain"
         if unit != UNITS[system][COLUMN_DIMENSION[title]]:
             left.append((lines[k], f"column {title!r} in {unit!r}"))
-        for line in lines[k + 2:end]:
+        for line in lines[k + 2 : end]:
             cell = cells(line)[j]
             if cell and not re.fullmatch(rf"-+|{NUM}( – {NUM})?|infeasible|cannot win", cell):
                 left.append((line, cell))
@@ -384,6 +538,7 @@ def test_the_label_check_finds_a_number_without_its_unit(report):
 # --------------------------------------------------------------------------
 # The command line: the default, the JSON, bad values, the report code
 # --------------------------------------------------------------------------
+
 
 def test_the_default_is_engineering(report):
     """Engineering units by default: those of the plots and the engineering report (issue 15)."""
@@ -420,14 +575,24 @@ def test_the_report_code_has_no_conversion_of_its_own():
     """One table of display units: the report's modules convert nothing themselves."""
     for path in ("src/flyopt/report/text.py", "src/flyopt/report/drive.py"):
         source = (ROOT / path).read_text(encoding="utf-8")
-        for pattern in (r"rad_s_to_rpm", r"\b1e6\b", r"\b1e3\b", r"\* ?1000\b", r"/ ?1000\b", r"math\.degrees",
-                        r"\b_mm\(", r"\b_mpa\(", r"30 / math\.pi"):
+        for pattern in (
+            r"rad_s_to_rpm",
+            r"\b1e6\b",
+            r"\b1e3\b",
+            r"\* ?1000\b",
+            r"/ ?1000\b",
+            r"math\.degrees",
+            r"\b_mm\(",
+            r"\b_mpa\(",
+            r"30 / math\.pi",
+        ):
             assert not re.search(pattern, source), (path, pattern)
 
 
 # --------------------------------------------------------------------------
 # The drive
 # --------------------------------------------------------------------------
+
 
 def _drive(solution):
     """A drive result assembled from the drive's own types (designing one takes a minute: the real one,
@@ -436,18 +601,55 @@ def _drive(solution):
     from flyopt.design.drive_nlp import Relaxation
     from flyopt.machine.catalogue import CatalogueMotor
 
-    motor = CatalogueMotor(name="5.5 kW", rated_power=5500.0, rated_speed=151.8, synchronous_speed=157.1,
-                           rotor_inertia=0.022, breakdown_ratio=2.7, mass=40.0)
-    run = MotorRun(motor=motor, feasible=True, motor_ratio=24.0, j_flywheel=812.5, limit="thermal", j_delta=790.0,
-                   rms_torque=30.5, mean_torque=20.25, rated_torque=36.23, omega_mean=6.28, delta=0.1,
-                   startup_time=5.125, flywheel_ratio=24.0, wheel=solution.design.best, motor_mass=40.0,
-                   wheel_mass=17.5, total_mass=57.5, objective=57.5)
-    relaxation = Relaxation(5000.0, 23.5, 22.0, 800.0, 57.0, "Solve_Succeeded",
-                            sensitivities={"max_outer_diameter": -20.0, "rim_speed": -0.75, "delta": -30.0})
-    drive = DriveDesign(status="designed", objective="mass", best=run, relaxation=relaxation, note="relaxation",
-                        runs=(run, MotorRun(motor=motor, feasible=False, reason="too small")))
-    check = DriveCheck(verification=solution.verification, rms_torque=30.5, rated_torque=36.23, startup_time=5.125,
-                       flagged=False)
+    motor = CatalogueMotor(
+        name="5.5 kW",
+        rated_power=5500.0,
+        rated_speed=151.8,
+        synchronous_speed=157.1,
+        rotor_inertia=0.022,
+        breakdown_ratio=2.7,
+        mass=40.0,
+    )
+    run = MotorRun(
+        motor=motor,
+        feasible=True,
+        motor_ratio=24.0,
+        j_flywheel=812.5,
+        limit="thermal",
+        j_delta=790.0,
+        rms_torque=30.5,
+        mean_torque=20.25,
+        rated_torque=36.23,
+        omega_mean=6.28,
+        delta=0.1,
+        startup_time=5.125,
+        flywheel_ratio=24.0,
+        wheel=solution.design.best,
+        motor_mass=40.0,
+        wheel_mass=17.5,
+        total_mass=57.5,
+        objective=57.5,
+    )
+    relaxation = Relaxation(
+        5000.0,
+        23.5,
+        22.0,
+        800.0,
+        57.0,
+        "Solve_Succeeded",
+        sensitivities={"max_outer_diameter": -20.0, "rim_speed": -0.75, "delta": -30.0},
+    )
+    drive = DriveDesign(
+        status="designed",
+        objective="mass",
+        best=run,
+        relaxation=relaxation,
+        note="relaxation",
+        runs=(run, MotorRun(motor=motor, feasible=False, reason="too small")),
+    )
+    check = DriveCheck(
+        verification=solution.verification, rms_torque=30.5, rated_torque=36.23, startup_time=5.125, flagged=False
+    )
     return drive, check
 
 
@@ -465,8 +667,12 @@ def test_the_drive_in_the_chosen_units(system, solutions):
     assert close(quantity(motor.group(4), "inertia", system), 0.022, "inertia", system, 4)
     flywheel = fact(text, "flywheel")
     assert close(quantity(flywheel, "inertia", system), run.j_flywheel, "inertia", system)
-    assert close(quantity(re.search(r"δ alone needs (.+)\)", flywheel).group(1), "inertia", system), run.j_delta,
-                 "inertia", system)
+    assert close(
+        quantity(re.search(r"δ alone needs (.+)\)", flywheel).group(1), "inertia", system),
+        run.j_delta,
+        "inertia",
+        system,
+    )
     assert close(quantity(fact(text, "RMS torque"), "torque", system), run.rms_torque, "torque", system, 5)
     assert close(quantity(fact(text, "start-up"), "time", system), run.startup_time, "time", system, 4)
     total = re.search(r"= (.+)$", fact(text, "masses")).group(1)

@@ -24,7 +24,7 @@ from flyopt.design.materials import make_material
 
 RPM, SIGMA, RHO, DELTA, DELTA_E = 800.0, 7e6, 7200.0, 0.04, 23562.0
 OMEGA = 2 * math.pi * RPM / 60
-J = DELTA_E / (OMEGA ** 2 * DELTA)
+J = DELTA_E / (OMEGA**2 * DELTA)
 IRON = make_material("khurmi_cast_iron", RHO, allowable_stress=SIGMA, source="Khurmi, flywheel example")
 
 
@@ -49,14 +49,15 @@ def test_khurmi_rim_example_with_the_textbooks_convention():
     assert best.h == pytest.approx(0.0848, abs=0.00005)
     # the closed form by hand: m = 4 J / D_m^2 and H = sqrt(m / (5 pi D_m rho))
     d_mean = 2 * math.sqrt(SIGMA / RHO) / OMEGA
-    assert best.mass == pytest.approx(4 * J / d_mean ** 2, rel=1e-12)
+    assert best.mass == pytest.approx(4 * J / d_mean**2, rel=1e-12)
     assert best.h == pytest.approx(math.sqrt(best.mass / (5 * math.pi * d_mean * RHO)), rel=1e-9)
 
 
 def test_flyopts_default_checks_the_outer_diameter_at_the_highest_speed():
     omega_max = OMEGA * (1 + DELTA / 2)
-    best = design_flywheel(J, omega_max, [MountShaft("crankshaft", 1.0)], [IRON],
-                           DesignSpec(geometry="thin_rim", hb_ratio=(0.2, 0.2))).best
+    best = design_flywheel(
+        J, omega_max, [MountShaft("crankshaft", 1.0)], [IRON], DesignSpec(geometry="thin_rim", hb_ratio=(0.2, 0.2))
+    ).best
     v_max = math.sqrt(SIGMA / RHO)
     # the outer diameter sits at the rim speed limit at omega_max
     assert best.d_outer == pytest.approx(2 * v_max / omega_max, rel=1e-9)
@@ -68,7 +69,8 @@ def test_flyopts_default_checks_the_outer_diameter_at_the_highest_speed():
     from scipy.optimize import brentq
 
     d_outer = 2 * v_max / omega_max
-    h = brentq(lambda h: 4 * J / (d_outer - h) ** 2 - 5 * math.pi * RHO * (d_outer - h) * h * h,
-               1e-6, d_outer / 2, xtol=1e-15)
+    h = brentq(
+        lambda h: 4 * J / (d_outer - h) ** 2 - 5 * math.pi * RHO * (d_outer - h) * h * h, 1e-6, d_outer / 2, xtol=1e-15
+    )
     assert best.mass == pytest.approx(4 * J / (d_outer - h) ** 2, rel=1e-9)
-    assert best.mass > 1.4 * textbook.mass               # 880 kg, 45 % above the textbook's 606 kg
+    assert best.mass > 1.4 * textbook.mass  # 880 kg, 45 % above the textbook's 606 kg

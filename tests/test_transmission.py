@@ -1,9 +1,8 @@
 """Drive-train reduction against the domain page's worked examples 3 (inertia part), 4 and 5."""
 
 import pytest
-from numpy.testing import assert_allclose
-
 from conftest import assert_published
+from numpy.testing import assert_allclose
 
 from flyopt.machine.transmission import motor_power, reduced_inertia, reduced_load_torque, series_efficiency
 

@@ -9,56 +9,68 @@ from flyopt.errors import SceneError
 from flyopt.units import gd2_from_inertia, inertia_from_gd2, quantity, rad_s_to_rpm, rpm_to_rad_s
 
 
-@pytest.mark.parametrize("text, dimension, si", [
-    ("1500 rpm", "angular_speed", 50 * math.pi),
-    ("157.07963267948966", "angular_speed", 157.07963267948966),
-    ("2 rad/s", "angular_speed", 2.0),
-    # a bare 1/time is a rotational frequency (revolutions per time), as in DIN's "1500 min^-1"
-    ("1500 1/min", "angular_speed", 50 * math.pi),
-    ("1500/min", "angular_speed", 50 * math.pi),
-    ("25 Hz", "angular_speed", 50 * math.pi),
-    ("1500 rev/min", "angular_speed", 50 * math.pi),
-    ("180 deg/s", "angular_speed", math.pi),
-    ("360 deg", "angle", 2 * math.pi),
-    ("720 degree", "angle", 4 * math.pi),
-    ("3.5 kN*m", "torque", 3500.0),
-    ("1.02 kg*m^2", "inertia", 1.02),
-    ("3.5 N*m^2", "flywheel_moment", 3.5),
-    ("100 N*m/mm", "torque_scale", 1e5),
-    ("0.01 rad/mm", "angle_scale", 10.0),
-    ("580 mm^2", "area", 580e-6),
-    ("7800 kg/m^3", "density", 7800.0),
-    ("36 m/s", "speed", 36.0),
-    ("7.5 kW", "power", 7500.0),
-    ("250 MPa", "stress", 2.5e8),
-    # a fraction written with its unit is converted like any other unit
-    ("1 %", "dimensionless", 0.01),
-    ("92 percent", "dimensionless", 0.92),
-    ("5 permille", "dimensionless", 0.005),
-    ("2 m/mm", "dimensionless", 2000.0),
-    ("0.5 rad/rad", "dimensionless", 0.5),
-    # powers with a plain exponent are read (the guard against towers lets them through)
-    ("1500 min^-1", "angular_speed", 50 * math.pi),
-    ("1500 min ** -1", "angular_speed", 50 * math.pi),
-    ("2 kg*m^(2)", "inertia", 2.0),
-    ("10**3 kg", "mass", 1000.0),
-    ("1e-3 m^2", "area", 1e-3),
-    ("1 m^0.5 * m^1.5", "area", 1.0),
-])
+@pytest.mark.parametrize(
+    "text, dimension, si",
+    [
+        ("1500 rpm", "angular_speed", 50 * math.pi),
+        ("157.07963267948966", "angular_speed", 157.07963267948966),
+        ("2 rad/s", "angular_speed", 2.0),
+        # a bare 1/time is a rotational frequency (revolutions per time), as in DIN's "1500 min^-1"
+        ("1500 1/min", "angular_speed", 50 * math.pi),
+        ("1500/min", "angular_speed", 50 * math.pi),
+        ("25 Hz", "angular_speed", 50 * math.pi),
+        ("1500 rev/min", "angular_speed", 50 * math.pi),
+        ("180 deg/s", "angular_speed", math.pi),
+        ("360 deg", "angle", 2 * math.pi),
+        ("720 degree", "angle", 4 * math.pi),
+        ("3.5 kN*m", "torque", 3500.0),
+        ("1.02 kg*m^2", "inertia", 1.02),
+        ("3.5 N*m^2", "flywheel_moment", 3.5),
+        ("100 N*m/mm", "torque_scale", 1e5),
+        ("0.01 rad/mm", "angle_scale", 10.0),
+        ("580 mm^2", "area", 580e-6),
+        ("7800 kg/m^3", "density", 7800.0),
+        ("36 m/s", "speed", 36.0),
+        ("7.5 kW", "power", 7500.0),
+        ("250 MPa", "stress", 2.5e8),
+        # a fraction written with its unit is converted like any other unit
+        ("1 %", "dimensionless", 0.01),
+        ("92 percent", "dimensionless", 0.92),
+        ("5 permille", "dimensionless", 0.005),
+        ("2 m/mm", "dimensionless", 2000.0),
+        ("0.5 rad/rad", "dimensionless", 0.5),
+        # powers with a plain exponent are read (the guard against towers lets them through)
+        ("1500 min^-1", "angular_speed", 50 * math.pi),
+        ("1500 min ** -1", "angular_speed", 50 * math.pi),
+        ("2 kg*m^(2)", "inertia", 2.0),
+        ("10**3 kg", "mass", 1000.0),
+        ("1e-3 m^2", "area", 1e-3),
+        ("1 m^0.5 * m^1.5", "area", 1.0),
+    ],
+)
 def test_quantities_convert_to_si(text, dimension, si):
     assert_allclose(quantity(text, dimension), si, rtol=1e-15)
 
 
 def test_drawing_scales_multiply_to_joules():
-    area = quantity("580 mm^2", "area") * quantity("100 N*m/mm", "torque_scale") * quantity("0.01 rad/mm", "angle_scale")
+    area = (
+        quantity("580 mm^2", "area") * quantity("100 N*m/mm", "torque_scale") * quantity("0.01 rad/mm", "angle_scale")
+    )
     assert_allclose(area, 580.0, rtol=1e-14)
 
 
-@pytest.mark.parametrize("value, words", [
-    ("1500 m", "wrong dimension"), ("fast", "cannot read"), ("nan rpm", "finite"), (float("inf"), "finite"),
-    (True, "expected a rotational speed"), ([1500], "expected a rotational speed"),
-    ("50 %", "wrong dimension"),
-])
+@pytest.mark.parametrize(
+    "value, words",
+    [
+        ("1500 m", "wrong dimension"),
+        ("fast", "cannot read"),
+        ("nan rpm", "finite"),
+        (float("inf"), "finite"),
+        (True, "expected a rotational speed"),
+        ([1500], "expected a rotational speed"),
+        ("50 %", "wrong dimension"),
+    ],
+)
 def test_bad_quantities(value, words):
     with pytest.raises(SceneError, match=words):
         quantity(value, "angular_speed", "machine.speed")

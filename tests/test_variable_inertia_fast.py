@@ -21,20 +21,19 @@ Speed is not asserted here (timing belongs to benchmarks, not to tests).
 """
 
 import math
-import tomllib
 
 import casadi as ca
 import mpmath
 import numpy as np
 import pytest
+import tomllib
+from conftest import PROBLEMS
 from numpy.testing import assert_allclose, assert_array_equal
 from scipy import integrate, optimize
 
-from conftest import PROBLEMS
 from flyopt.analysis import analyse
-from flyopt.cycle.indicator import _quad, _quad_many, _segments, brentq_many
+from flyopt.cycle.indicator import ExcessWork, _quad, _quad_many, _segments, brentq_many
 from flyopt.io.scene import load
-from flyopt.cycle.indicator import ExcessWork
 from flyopt.machine.expression import Expression
 from flyopt.machine.mechanism import GearTrain, Member, SliderCrank, SliderCrankRatio, equivalent_inertia
 from flyopt.machine.reduce import reduce
@@ -84,12 +83,13 @@ class Textbook:
         self.known = _si(resisting if self.unknown == "driving" else driving)
         # the knots: the force table's angles (steps included once)
         self.knots = np.unique(np.concatenate((self.force_angles, [0.0, self.cycle])))
-        w = sum(quad(self._load, a, b)
-                for a, b in zip(self.knots[:-1], self.knots[1:]))
+        w = sum(quad(self._load, a, b) for a, b in zip(self.knots[:-1], self.knots[1:]))
         # the unknown constant balances the cycle: M_r = known − load (driving unknown), M_d = known + load
         self.balance = self.known - w / self.cycle if self.unknown == "driving" else self.known + w / self.cycle
-        self.work = sum(integrate.quad(lambda p: abs(self.net(p)), a, b, epsabs=1e-9, epsrel=1e-12, limit=200)[0]
-                        for a, b in zip(self.knots[:-1], self.knots[1:]))
+        self.work = sum(
+            integrate.quad(lambda p: abs(self.net(p)), a, b, epsabs=1e-9, epsrel=1e-12, limit=200)[0]
+            for a, b in zip(self.knots[:-1], self.knots[1:])
+        )
 
     @staticmethod
     def _lib(phi):
@@ -137,13 +137,12 @@ class Textbook:
     def net(self, phi, piece=None):
         """M_d − M_r on a piece [N*m]."""
         load = self._load(phi, piece)
-        if self.unknown == "driving":      # M_r = known − load (a resisting force), M_d = balance
+        if self.unknown == "driving":  # M_r = known − load (a resisting force), M_d = balance
             return self.balance - (self.known - load)
         return self.known + load - self.balance
 
     def delta_e_at_knots(self):
-        parts = [quad(self.net, a, b, (k,))
-                 for k, (a, b) in enumerate(zip(self.knots[:-1], self.knots[1:]))]
+        parts = [quad(self.net, a, b, (k,)) for k, (a, b) in enumerate(zip(self.knots[:-1], self.knots[1:]))]
         return np.concatenate(([0.0], np.cumsum(parts)))
 
 
@@ -193,12 +192,14 @@ def test_numpy_slope_matches_casadi_ad_with_offset_tables_and_gears():
     crank, rod, slider = sc.kinematics("crank", -0.03), sc.kinematics("rod", 0.12), sc.kinematics("slider")
     table = (np.array([0.0, 1.0, 2.5, 4.0, 2 * math.pi]), np.array([0.1, 0.3, -0.2, 0.05, 0.1]))
     gears = GearTrain([0.5, 0.25])
-    members = [Member("crank", 3.0, 0.02, crank.velocity_ratio, crank.angular_ratio),
-               Member("rod", 2.0, 0.05, rod.velocity_ratio, rod.angular_ratio),
-               Member("slider", 6.0, 0.0, slider.velocity_ratio, slider.angular_ratio),
-               Member("follower", 1.5, 0.01, table, table),
-               Member("gear", 0.0, 0.4, 0.0, gears.angular_ratio(2)),
-               Member("slider, given as the method", 1.0, 0.0, sc.slider_velocity_ratio, 0.0)]
+    members = [
+        Member("crank", 3.0, 0.02, crank.velocity_ratio, crank.angular_ratio),
+        Member("rod", 2.0, 0.05, rod.velocity_ratio, rod.angular_ratio),
+        Member("slider", 6.0, 0.0, slider.velocity_ratio, slider.angular_ratio),
+        Member("follower", 1.5, 0.01, table, table),
+        Member("gear", 0.0, 0.4, 0.0, gears.angular_ratio(2)),
+        Member("slider, given as the method", 1.0, 0.0, sc.slider_velocity_ratio, 0.0),
+    ]
     j_e = equivalent_inertia(members, 0.3)
     assert j_e.has_numpy_derivative
     phi = np.linspace(0.0, 2 * math.pi, 1001)
@@ -228,7 +229,7 @@ def test_slider_crank_ratio_slopes_against_complex_step(kind, fraction):
     direct = ratio(phi)
     pairs = zip(value, direct) if isinstance(value, tuple) else [(value, direct)]
     for a, b in pairs:
-        assert_array_equal(a, b)      # the shared-trigonometry value is the method's, operation for operation
+        assert_array_equal(a, b)  # the shared-trigonometry value is the method's, operation for operation
 
 
 def test_inertia_wrapper_numpy_and_casadi_paths_agree():
@@ -263,14 +264,16 @@ def test_brentq_many_is_scipy_brentq_zero_for_zero(n):
 
     def f(x, i):
         return np.sin(c[i] * x) - 0.3 * d[i] + 0.01 * (x - 1.0) ** p[i]
+
     a, b = np.full(n, -0.5), np.full(n, 1.5)
     fa, fb = f(a, np.arange(n)), f(b, np.arange(n))
     idx = np.flatnonzero(fa * fb < 0)
     assert len(idx) > 0.3 * n
     roots = brentq_many(lambda x, k: f(x, idx[k]), a[idx], b[idx], fa[idx], fb[idx], xtol=1e-15, rtol=4 * EPS)
     for j, i in enumerate(idx):
-        expected = optimize.brentq(lambda x: float(f(np.array([x]), np.array([i]))[0]), -0.5, 1.5,
-                                   xtol=1e-15, rtol=4 * EPS)
+        expected = optimize.brentq(
+            lambda x: float(f(np.array([x]), np.array([i]))[0]), -0.5, 1.5, xtol=1e-15, rtol=4 * EPS
+        )
         assert roots[j] == expected
 
 
@@ -287,8 +290,11 @@ def test_batched_quadrature_is_the_one_piece_quadrature_piece_for_piece():
     oscillation), mixed: each integral is the number the one-piece adaptive quadrature gives,
     bit for bit, and within 1e-12 of mpmath at 30 digits."""
     fs = [lambda x: np.exp(np.sin(5 * x)), lambda x: 1.0 / (1e-4 + (x - 1.234) ** 2), lambda x: np.cos(40 * x) + 2]
-    mp_fs = [lambda x: mpmath.exp(mpmath.sin(5 * x)), lambda x: 1 / (mpmath.mpf("1e-4") + (x - 1.234) ** 2),
-             lambda x: mpmath.cos(40 * x) + 2]
+    mp_fs = [
+        lambda x: mpmath.exp(mpmath.sin(5 * x)),
+        lambda x: 1 / (mpmath.mpf("1e-4") + (x - 1.234) ** 2),
+        lambda x: mpmath.cos(40 * x) + 2,
+    ]
     a = np.array([0.0, 0.5, 1.0, 2.0, 0.0, 0.3])
     b = np.array([0.4, 3.0, 1.1, 2.0, 6.0, 0.30001])
     which = np.array([0, 1, 0, 0, 2, 2])
@@ -299,6 +305,7 @@ def test_batched_quadrature_is_the_one_piece_quadrature_piece_for_piece():
             sel = which[i] == k
             out[sel] = fs[k](phi[sel])
         return out
+
     batched = _quad_many(f, a, b, scale=1.0)
     single = np.array([_quad(fs[w], lo, hi, scale=1.0) for w, lo, hi in zip(which, a, b)])
     assert_array_equal(batched, single)
@@ -316,8 +323,10 @@ def test_delta_e_at_knots_against_mpmath_slider_crank():
     ew = machine.angle_only()
     assert_allclose(ew.knots, book.knots, rtol=1e-15)
     mpmath.mp.dps = 30
-    parts = [mpmath.quad(lambda p, k=k: book.net(p, k), [mpmath.mpf(a), mpmath.mpf(b)])
-             for k, (a, b) in enumerate(zip(book.knots[:-1], book.knots[1:]))]
+    parts = [
+        mpmath.quad(lambda p, k=k: book.net(p, k), [mpmath.mpf(a), mpmath.mpf(b)])
+        for k, (a, b) in enumerate(zip(book.knots[:-1], book.knots[1:]))
+    ]
     reference = np.array([0.0] + [float(v) for v in np.cumsum(parts)])
     got = ew(book.knots)
     assert np.max(np.abs(got - reference)) <= 1e-12 * book.work
@@ -375,7 +384,7 @@ def test_grid_delta_e_rule_is_checked(frequency, rule):
     assert np.max(np.abs(grid.delta_e - exact)) <= 1e-14 * scale
     gl4 = grid._composite(energy_mass._GL4_NODES, energy_mass._GL4_WEIGHTS)
     off = np.max(np.abs(gl4 - exact)) / scale
-    assert (off > 1e-13) == (rule == 8)     # the check is not idle: at n = 300 the 4-point rule is off
+    assert (off > 1e-13) == (rule == 8)  # the check is not idle: at n = 300 the 4-point rule is off
 
 
 def _reference_extreme(book, c, find_max, at_knots):
@@ -390,6 +399,7 @@ def _reference_extreme(book, c, find_max, at_knots):
 
         def g(p, k=k):
             return c * book.inertia_slope(np.atleast_1d(p)) - book.net(np.atleast_1d(p), k)
+
         gx = g(x)
         for i in np.flatnonzero(np.sign(gx[:-1]) * np.sign(gx[1:]) < 0):
             root = optimize.brentq(lambda p: float(g(p)[0]), x[i], x[i + 1], xtol=1e-15, rtol=4 * EPS)
@@ -429,8 +439,7 @@ def test_mean_inertia_against_quad(scene):
     """The cycle mean of J_e (adaptive Gauss–Kronrod on panels) against scipy.integrate.quad of the
     textbook J_e (epsrel 2e-14): 1e-13."""
     path, book, machine = scene
-    result = energy_mass.energy_mass_requirement(machine.angle_only(), machine.j_machine, book.omega,
-                                                 book.delta)
+    result = energy_mass.energy_mass_requirement(machine.angle_only(), machine.j_machine, book.omega, book.delta)
     mean = integrate.quad(book.inertia, 0.0, book.cycle, epsabs=0, epsrel=2e-14, limit=400)[0] / book.cycle
     assert_allclose(result.j_machine_mean, mean, rtol=1e-13)
 
@@ -440,8 +449,7 @@ def test_forward_use_against_bisection_on_the_textbook(scene):
     E_0 found by bisection to the last bit on the textbook model, its ω extremes from a dense grid
     refined by scipy's bounded minimizer: δ to 1e-9."""
     path, book, machine = scene
-    result = energy_mass.energy_mass_requirement(machine.angle_only(), machine.j_machine, book.omega,
-                                                 book.delta)
+    result = energy_mass.energy_mass_requirement(machine.angle_only(), machine.j_machine, book.omega, book.delta)
     j_f = result.j_constant_inertia
     # ΔE on a grid with every knot: exact at the knots, cumulative Simpson inside each piece
     # (only to find where the extremes are; their values come from quad below)
@@ -465,6 +473,7 @@ def test_forward_use_against_bisection_on_the_textbook(scene):
                 j = min(max(int(np.searchsorted(book.knots, p, side="right")) - 1, 0), len(book.knots) - 2)
                 d = at_knots[j] + quad(book.net, book.knots[j], p, (j,))
                 return -sign * (e0 + d) / (j_f + book.inertia(p))
+
             res = optimize.minimize_scalar(neg, bounds=(lo, hi), method="bounded", options={"xatol": 1e-12})
             out.append(max(sign * v[i], -res.fun) * sign)
         return out
@@ -472,6 +481,7 @@ def test_forward_use_against_bisection_on_the_textbook(scene):
     def mismatch(e0):
         hi, lo = extremes(e0)
         return (math.sqrt(2 * hi) + math.sqrt(2 * max(lo, 0.0))) / (2 * book.omega) - 1
+
     guess = 0.5 * book.omega**2 * float(np.mean(j_tot)) - float(np.mean(de))
     a, b = 0.9 * guess, 1.1 * guess
     assert mismatch(a) < 0 < mismatch(b)
@@ -479,8 +489,10 @@ def test_forward_use_against_bisection_on_the_textbook(scene):
     hi, lo = extremes(e0)
     w_hi, w_lo = math.sqrt(2 * hi), math.sqrt(2 * lo)
     assert_allclose(result.delta_constant_inertia, (w_hi - w_lo) / (0.5 * (w_hi + w_lo)), rtol=1e-9)
-    assert result.delta_constant_inertia == energy_mass.achieved_speed(
-        machine.angle_only(), machine.j_machine, book.omega, j_f).delta
+    assert (
+        result.delta_constant_inertia
+        == energy_mass.achieved_speed(machine.angle_only(), machine.j_machine, book.omega, j_f).delta
+    )
 
 
 def test_forward_use_refuses_a_flywheel_too_small_to_keep_the_speed():
@@ -500,7 +512,7 @@ def test_analysis_caches_do_not_travel_with_a_pickled_scene():
     scene = load(PROBLEMS / "four-stroke-engine.toml")
     before = len(pickle.dumps(scene))
     analyse(scene)
-    assert scene.driving.__dict__["_analysis_kept"]          # the analysis did keep pieces on it
+    assert scene.driving.__dict__["_analysis_kept"]  # the analysis did keep pieces on it
     after = pickle.dumps(scene)
     assert len(after) <= before + 200
     assert pickle.loads(after).driving.__dict__["_analysis_kept"] == {}

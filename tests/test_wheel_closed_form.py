@@ -15,10 +15,10 @@ import pytest
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.design.materials import make_material
 
-DUCTILE = make_material("gjs", 7100, tensile_strength=400e6, yield_strength=250e6, ductile=True,
-                        safety_factor=4, poisson_ratio=0.28)
-BRITTLE = make_material("gjl", 7200, tensile_strength=250e6, ductile=False, safety_factor=8,
-                        poisson_ratio=0.26)
+DUCTILE = make_material(
+    "gjs", 7100, tensile_strength=400e6, yield_strength=250e6, ductile=True, safety_factor=4, poisson_ratio=0.28
+)
+BRITTLE = make_material("gjl", 7200, tensile_strength=250e6, ductile=False, safety_factor=8, poisson_ratio=0.26)
 CASES = list(itertools.product([DUCTILE, BRITTLE], [0.0, 0.06, 0.15], [10.0, 1.0], [5.0, 50.0, 500.0]))
 
 

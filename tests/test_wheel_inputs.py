@@ -6,7 +6,6 @@ strength of zero, a bore wider than the envelope, fewer than three arms.
 """
 
 import pytest
-
 from test_input_failures import BASE, assert_refused, cli  # noqa: F401 (cli is a fixture)
 
 MATERIAL = """
@@ -36,16 +35,20 @@ max_outer_diameter = "1.2 m"
 GOOD = BASE + SHAFT + DESIGN + MATERIAL
 
 CASES = [
-    ('poisson_ratio = 0.275', 'poisson_ratio = 0.5', "material[0].poisson_ratio", r"\[0, 0.5\)"),
-    ('poisson_ratio = 0.275', 'poisson_ratio = -0.1', "material[0].poisson_ratio", r"\[0, 0.5\)"),
+    ("poisson_ratio = 0.275", "poisson_ratio = 0.5", "material[0].poisson_ratio", r"\[0, 0.5\)"),
+    ("poisson_ratio = 0.275", "poisson_ratio = -0.1", "material[0].poisson_ratio", r"\[0, 0.5\)"),
     ('tensile_strength = "400 MPa"', 'tensile_strength = "0 MPa"', "material[0].tensile_strength", "positive"),
     ('yield_strength = "250 MPa"', 'yield_strength = "-250 MPa"', "material[0].yield_strength", "positive"),
     ('yield_strength = "250 MPa"', 'yield_strength = "450 MPa"', "material[0]", "yield"),
     ('elastic_modulus = "169 GPa"', 'elastic_modulus = "-1 GPa"', "material[0].elastic_modulus", "positive"),
-    ('ductile = true', 'ductile = "yes"', "material[0].ductile", "true or false"),
-    ('safety_factor = 4', 'safety_factor = 0.5', "material[0].safety_factor", ">= 1"),
-    ('safety_factor = 4', 'safety_factor = 4\nhub_rule = "bronze"', "material[0].hub_rule",
-     r"'bronze' is not a hub rule \(allowed: cast_iron, steel, cast_iron_flywheel\)"),
+    ("ductile = true", 'ductile = "yes"', "material[0].ductile", "true or false"),
+    ("safety_factor = 4", "safety_factor = 0.5", "material[0].safety_factor", ">= 1"),
+    (
+        "safety_factor = 4",
+        'safety_factor = 4\nhub_rule = "bronze"',
+        "material[0].hub_rule",
+        r"'bronze' is not a hub rule \(allowed: cast_iron, steel, cast_iron_flywheel\)",
+    ),
     ('diameter = "80 mm"', 'diameter = "-80 mm"', "shaft[0].diameter", "positive"),
     ('criterion = "stress"', 'criterion = "strength"', "design.criterion", "not known"),
     ('geometry = "rim_web"', 'geometry = "rim_spokes"', "design.geometry", "not known"),

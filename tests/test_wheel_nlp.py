@@ -29,9 +29,17 @@ from flyopt.design.materials import StrengthRow, make_material
 from flyopt.errors import SolverFailed
 
 #: Every structure of a wheel NLP: (geometry, bored, n_arms).
-STRUCTURES = (("rim", False, 0), ("thin_rim", False, 0), ("disc", False, 0), ("disc", True, 0),
-              ("rim_web", False, 0), ("rim_web", True, 0), ("rim_arms", True, 4), ("rim_arms", True, 6),
-              ("rim_arms", True, 8))
+STRUCTURES = (
+    ("rim", False, 0),
+    ("thin_rim", False, 0),
+    ("disc", False, 0),
+    ("disc", True, 0),
+    ("rim_web", False, 0),
+    ("rim_web", True, 0),
+    ("rim_arms", True, 4),
+    ("rim_arms", True, 6),
+    ("rim_arms", True, 8),
+)
 
 #: The fast set: every structure x criterion x (ductile, brittle) once.
 FAST_SEEDS = range(4 * len(STRUCTURES))
@@ -58,10 +66,15 @@ INFEASIBLE_T = 1e-6
 
 # ------------------------------------------------------------------ random wheels
 
+
 def _parts_stressed(geometry, bored):
-    return {"disc": ("disc",), "rim": ("rim",), "thin_rim": ("rim",),
-            "rim_web": ("hub", "web", "rim") if bored else ("web", "rim"),
-            "rim_arms": ("hub", "arms", "rim")}[geometry]
+    return {
+        "disc": ("disc",),
+        "rim": ("rim",),
+        "thin_rim": ("rim",),
+        "rim_web": ("hub", "web", "rim") if bored else ("web", "rim"),
+        "rim_arms": ("hub", "arms", "rim"),
+    }[geometry]
 
 
 def random_case(seed):
@@ -87,17 +100,37 @@ def random_case(seed):
     # the inertia asked: a ring of H = B = D/10 within the limits, times a random factor (a wheel on
     # arms gives less: its rim bends between the arms, its arms must fit round the hub)
     d = min(d_natural / (1.5 if geometry == "rim_arms" and criterion == "stress" else 1.0), envelope)
-    ring = rho * math.pi * (0.1 * d) ** 2 * d ** 3 / 4.0
+    ring = rho * math.pi * (0.1 * d) ** 2 * d**3 / 4.0
     j_shaft = ring * math.exp(rng.uniform(math.log(0.02), math.log(0.5 if geometry == "rim_arms" else 3.0)))
     torque = rng.uniform(0.0, 1500.0) if geometry == "rim_arms" else rng.uniform(0.0, 500.0)
     structure = wheel_nlp.WheelStructure(
-        geometry=geometry, criterion=criterion, ductile=ductile, bored=bored, n_arms=n_arms,
-        envelope=math.isfinite(envelope), width=math.isfinite(max_width), pinned=False, objective="mass")
+        geometry=geometry,
+        criterion=criterion,
+        ductile=ductile,
+        bored=bored,
+        n_arms=n_arms,
+        envelope=math.isfinite(envelope),
+        width=math.isfinite(max_width),
+        pinned=False,
+        objective="mass",
+    )
     problem = wheel_nlp.WheelProblem(
-        j_shaft=j_shaft, omega=omega, density=rho, poisson=nu, torque=torque, bore=bore,
-        allowable=allowable if criterion == "stress" else {}, envelope=envelope, max_width=max_width,
-        max_rim_speed=v_max, hb_ratio=hb_ratio, d_mean=None, min_wall=min_wall, d_hub_range=d_hub_range,
-        l_hub_range=l_hub_range)
+        j_shaft=j_shaft,
+        omega=omega,
+        density=rho,
+        poisson=nu,
+        torque=torque,
+        bore=bore,
+        allowable=allowable if criterion == "stress" else {},
+        envelope=envelope,
+        max_width=max_width,
+        max_rim_speed=v_max,
+        hb_ratio=hb_ratio,
+        d_mean=None,
+        min_wall=min_wall,
+        d_hub_range=d_hub_range,
+        l_hub_range=l_hub_range,
+    )
     return structure, problem
 
 
@@ -112,6 +145,7 @@ def _ipopt(structure, problem):
 
 
 # ------------------------------------------- the NLP written again, in floats
+
 
 class Statement:
     """The wheel NLP of one combination, written from its statement and evaluated in floats.
@@ -132,8 +166,13 @@ class Statement:
             names += ["arm_major", "d_hub", "l_hub"]
         self.names = tuple(names)
         wall = math.log(problem.min_wall)
-        low = {"d_outer": math.log(1e-3), "h": wall, "b": wall, "t_web": wall,
-               "arm_major": wall - math.log(wheel.ARM_MINOR_RATIO)}
+        low = {
+            "d_outer": math.log(1e-3),
+            "h": wall,
+            "b": wall,
+            "t_web": wall,
+            "arm_major": wall - math.log(wheel.ARM_MINOR_RATIO),
+        }
         high = {n: math.log(100.0) for n in names}
         if "d_hub" in names:
             low["d_hub"], high["d_hub"] = (math.log(v) for v in problem.d_hub_range)
@@ -146,16 +185,27 @@ class Statement:
         bore = self.p.bore if self.s.bored else 0.0
         if self.s.geometry == "disc":
             return wheel.Dims(d_outer=v["d_outer"], h=(v["d_outer"] - bore) / 2.0, b=v["b"], bore=bore)
-        return wheel.Dims(d_outer=v["d_outer"], h=v["h"], b=v["b"], bore=bore, t_web=v.get("t_web", 0.0),
-                          d_hub=v.get("d_hub", 0.0), l_hub=v.get("l_hub", 0.0),
-                          arm_major=v.get("arm_major", 0.0), n_arms=self.s.n_arms)
+        return wheel.Dims(
+            d_outer=v["d_outer"],
+            h=v["h"],
+            b=v["b"],
+            bore=bore,
+            t_web=v.get("t_web", 0.0),
+            d_hub=v.get("d_hub", 0.0),
+            l_hub=v.get("l_hub", 0.0),
+            arm_major=v.get("arm_major", 0.0),
+            n_arms=self.s.n_arms,
+        )
 
     def cap(self):
         """An outer diameter no design exceeds by much [m]: the envelope, the rim speed's, 1.5 x a free ring's."""
         p = self.p
         sigma = max(p.allowable.values()) if p.allowable else math.inf
-        return min(p.envelope, 2.0 * p.max_rim_speed / p.omega if self.s.criterion == "rim_speed" else math.inf,
-                   3.0 * math.sqrt(sigma / p.density) / p.omega)
+        return min(
+            p.envelope,
+            2.0 * p.max_rim_speed / p.omega if self.s.criterion == "rim_speed" else math.inf,
+            3.0 * math.sqrt(sigma / p.density) / p.omega,
+        )
 
     def mass_scale(self):
         """The mass of a thin ring of the outer diameter :meth:`cap` giving J' [kg]: scales the objective."""
@@ -195,11 +245,12 @@ class Statement:
         if "d_hub" in self.names:
             out.append((d.d_hub - d.bore) / 2.0 / p.min_wall - 1.0)
         if s.criterion == "stress":
-            for part, _r, sr, st in wheel.stress_samples(s.geometry, d, p.density, p.poisson, p.omega, p.torque,
-                                                         wheel_nlp.SAMPLES):
+            for part, _r, sr, st in wheel.stress_samples(
+                s.geometry, d, p.density, p.poisson, p.omega, p.torque, wheel_nlp.SAMPLES
+            ):
                 allow = p.allowable[part]
                 if s.ductile:
-                    out.append(1.0 - (sr * sr - sr * st + st * st) / allow ** 2)
+                    out.append(1.0 - (sr * sr - sr * st + st * st) / allow**2)
                 else:
                     out += [1.0 - sr / allow, 1.0 - st / allow]
         return np.array([float(v) for v in out])
@@ -227,9 +278,13 @@ class Statement:
         for _ in range(count):
             d = cap * rng.uniform(0.3, 1.0)
             h = math.exp(rng.uniform(math.log(p.min_wall), math.log(max(0.25 * d, p.min_wall))))
-            v = {"d_outer": d, "h": h, "b": h / rng.uniform(*p.hb_ratio),
-                 "t_web": p.min_wall * rng.uniform(1.0, 3.0),
-                 "arm_major": p.min_wall * rng.uniform(2.0, 5.0)}
+            v = {
+                "d_outer": d,
+                "h": h,
+                "b": h / rng.uniform(*p.hb_ratio),
+                "t_web": p.min_wall * rng.uniform(1.0, 3.0),
+                "arm_major": p.min_wall * rng.uniform(2.0, 5.0),
+            }
             if self.s.geometry == "disc":
                 v["b"] = math.exp(rng.uniform(math.log(p.min_wall), math.log(max(0.3 * d, p.min_wall))))
             if self.s.bored:
@@ -241,8 +296,9 @@ class Statement:
 
 def _slsqp(fun, x0, bounds, constraints):
     with np.errstate(all="ignore"):
-        return minimize(fun, x0, method="SLSQP", bounds=bounds, constraints=constraints,
-                        options={"ftol": 1e-15, "maxiter": 1000})
+        return minimize(
+            fun, x0, method="SLSQP", bounds=bounds, constraints=constraints, options={"ftol": 1e-15, "maxiter": 1000}
+        )
 
 
 def scipy_lightest(statement, starts):
@@ -278,6 +334,7 @@ def scipy_least_violation(statement, starts):
 
 # ------------------------------------------------- 1. IPOPT against SLSQP
 
+
 def compare_with_scipy(seed, starts=8):
     """IPOPT and SLSQP on one random wheel: same verdict, same mass; returns a line for the record."""
     structure, problem = random_case(seed)
@@ -288,25 +345,30 @@ def compare_with_scipy(seed, starts=8):
     lightest = scipy_lightest(statement, tries)
     what = f"seed {seed}: {structure}"
     if solution is None:
-        assert lightest is None, (f"{what}: IPOPT reports the problem infeasible, SLSQP finds a feasible wheel "
-                                  f"of {lightest[0]:.9g} kg at {statement.dims(lightest[1])}")
+        assert lightest is None, (
+            f"{what}: IPOPT reports the problem infeasible, SLSQP finds a feasible wheel "
+            f"of {lightest[0]:.9g} kg at {statement.dims(lightest[1])}"
+        )
         least = scipy_least_violation(statement, tries)
         assert least > INFEASIBLE_T, f"{what}: IPOPT says infeasible, phase one reaches a violation {least:.3g}"
         return seed, "infeasible", least
     x = statement.x_of(solution.dims)
-    assert statement.violation(x) <= FEASIBLE_ATOL, \
+    assert statement.violation(x) <= FEASIBLE_ATOL, (
         f"{what}: IPOPT's wheel violates the statement by {statement.violation(x):.3g}"
+    )
     mass = statement.mass(x)
     assert_allclose(mass, math.exp(solution.objective), rtol=1e-12)
     more = lightest is None or lightest[0] > mass * (1.0 + MASS_RTOL)
-    if more:                                  # SLSQP missed: more starts before any verdict
+    if more:  # SLSQP missed: more starts before any verdict
         found = [f for f in (lightest, scipy_lightest(statement, statement.starts(rng, 4 * starts))) if f]
         lightest = min(found, key=lambda f: f[0]) if found else None
     assert lightest is not None, f"{what}: IPOPT designs {mass:.9g} kg, SLSQP finds no feasible wheel"
     rel = lightest[0] / mass - 1.0
     which = "SLSQP lighter: IPOPT stopped at a worse point" if rel < 0 else "IPOPT lighter"
-    assert abs(rel) <= MASS_RTOL, (f"{what}: IPOPT {mass:.12g} kg, SLSQP {lightest[0]:.12g} kg ({which}); "
-                                   f"SLSQP's wheel {statement.dims(lightest[1])}, IPOPT's {solution.dims}")
+    assert abs(rel) <= MASS_RTOL, (
+        f"{what}: IPOPT {mass:.12g} kg, SLSQP {lightest[0]:.12g} kg ({which}); "
+        f"SLSQP's wheel {statement.dims(lightest[1])}, IPOPT's {solution.dims}"
+    )
     # the box that keeps SLSQP's steps finite (1 mm to 100 m) must not be what stops it
     assert all(xi < math.log(50.0) for xi in lightest[1]) and lightest[1][0] > math.log(2e-3)
     return seed, "feasible", rel, more
@@ -361,15 +423,17 @@ def _central(mass_at, h):
 
 def check_against_differences(what, reported, mass_at, mass, limit):
     """A reported d(mass)/d(limit) [kg per unit] against central differences at the two STEPS."""
-    coarse, fine = (_central(mass_at, h) for h in STEPS)       # d m / d ln L
+    coarse, fine = (_central(mass_at, h) for h in STEPS)  # d m / d ln L
     truncation = abs(coarse - fine)
     allowed = SENSITIVITY_RTOL * abs(coarse) + ELASTICITY_ATOL * mass
-    assert truncation <= 0.1 * allowed, \
-        (f"{what}: the differences at steps {STEPS} differ by {truncation:.3g} kg, more than a tenth of "
-         f"the tolerance {allowed:.3g} kg (a kink near the point?)")
-    assert abs(reported * limit - coarse) <= allowed, \
-        (f"{what}: multipliers give d m/d L = {reported:.9g}, re-solves {coarse / limit:.9g} "
-         f"(relative difference {abs(reported * limit / coarse - 1) if coarse else math.inf:.3g})")
+    assert truncation <= 0.1 * allowed, (
+        f"{what}: the differences at steps {STEPS} differ by {truncation:.3g} kg, more than a tenth of "
+        f"the tolerance {allowed:.3g} kg (a kink near the point?)"
+    )
+    assert abs(reported * limit - coarse) <= allowed, (
+        f"{what}: multipliers give d m/d L = {reported:.9g}, re-solves {coarse / limit:.9g} "
+        f"(relative difference {abs(reported * limit / coarse - 1) if coarse else math.inf:.3g})"
+    )
     return abs(reported * limit - coarse) / max(abs(coarse), ELASTICITY_ATOL * mass), truncation / allowed
 
 
@@ -389,10 +453,16 @@ def compare_sensitivities(seed):
     if solution is None:
         return []
     mass = float(wheel.wheel_mass(wheel.parts(structure.geometry, solution.dims, problem.density)))
-    limits = {"envelope": problem.envelope, "max_rim_speed": problem.max_rim_speed,
-              "max_width": problem.max_width, "j_shaft": problem.j_shaft, "allowable": dict(problem.allowable),
-              "allow_power": 2 if structure.ductile else 1, "allow_param": solution.allow_params,
-              "min_wall": problem.min_wall}
+    limits = {
+        "envelope": problem.envelope,
+        "max_rim_speed": problem.max_rim_speed,
+        "max_width": problem.max_width,
+        "j_shaft": problem.j_shaft,
+        "allowable": dict(problem.allowable),
+        "allow_power": 2 if structure.ductile else 1,
+        "allow_param": solution.allow_params,
+        "min_wall": problem.min_wall,
+    }
     reported = _reported(wheel_design.sensitivities(solution, mass, limits))
     moves = {"inertia": "j_shaft", "min_wall": "min_wall"}
     if structure.envelope:
@@ -419,8 +489,11 @@ def compare_sensitivities(seed):
         def mass_at(factor, moved=moved):
             return math.exp(wheel_nlp.solve(wheel_nlp.get_model(structure), moved(factor), "moved").objective)
 
-        errors.append(check_against_differences(f"seed {seed} {structure.geometry} {name}",
-                                                reported.get(name, 0.0), mass_at, mass, value))
+        errors.append(
+            check_against_differences(
+                f"seed {seed} {structure.geometry} {name}", reported.get(name, 0.0), mass_at, mass, value
+            )
+        )
     return errors
 
 
@@ -438,9 +511,19 @@ def test_sensitivities_match_re_solves_slow(seed):
 
 def _engine_material(allowable=60e6, max_rim_speed=None, ductile=True):
     """The engine scenes' material (docs examples engine-web/engine-arms): cast steel-like, 60 MPa allowable."""
-    return make_material("engine", 7100.0, max_rim_speed=max_rim_speed, allowable_stress=allowable,
-                         elastic_modulus=169e9, poisson_ratio=0.275, tensile_strength=400e6, yield_strength=250e6,
-                         ductile=ductile, bearing_pressure=90e6, min_wall=0.008)
+    return make_material(
+        "engine",
+        7100.0,
+        max_rim_speed=max_rim_speed,
+        allowable_stress=allowable,
+        elastic_modulus=169e9,
+        poisson_ratio=0.275,
+        tensile_strength=400e6,
+        yield_strength=250e6,
+        ductile=ductile,
+        bearing_pressure=90e6,
+        min_wall=0.008,
+    )
 
 
 #: The single-cylinder engine's flywheel (the example scenes engine-web/engine-arms, as flyopt solves
@@ -451,8 +534,14 @@ ENGINE = {"j": 3.804126900905206, "omega": 157.8650308428871, "torque": 897.3561
 def _design(j=ENGINE["j"], allowable=60e6, max_rim_speed=None, ductile=True, **spec):
     material = _engine_material(allowable, max_rim_speed, ductile)
     spec = {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.0), **spec}
-    result = design_flywheel(j, ENGINE["omega"], [MountShaft("crankshaft", 1.0, 0.06)], [material],
-                             DesignSpec(**spec), torque=ENGINE["torque"])
+    result = design_flywheel(
+        j,
+        ENGINE["omega"],
+        [MountShaft("crankshaft", 1.0, 0.06)],
+        [material],
+        DesignSpec(**spec),
+        torque=ENGINE["torque"],
+    )
     assert result.status == "designed", result.message
     return result.best
 
@@ -462,15 +551,27 @@ DESIGN_CASES = [
     ("engine-web: envelope", "max_outer_diameter", {"max_outer_diameter": 0.8}, "max_outer_diameter"),
     ("engine-web: inertia", "inertia", {"max_outer_diameter": 0.8}, "j"),
     ("engine-web: thinnest wall", "min_wall", {"max_outer_diameter": 0.8}, "min_wall"),
-    ("engine-arms: envelope", "max_outer_diameter", {"geometry": "rim_arms", "arms": (6,),
-                                                     "max_outer_diameter": 0.8}, "max_outer_diameter"),
-    ("engine-arms: allowable", "stress", {"geometry": "rim_arms", "arms": (6,), "max_outer_diameter": 0.8},
-     "allowable"),
+    (
+        "engine-arms: envelope",
+        "max_outer_diameter",
+        {"geometry": "rim_arms", "arms": (6,), "max_outer_diameter": 0.8},
+        "max_outer_diameter",
+    ),
+    (
+        "engine-arms: allowable",
+        "stress",
+        {"geometry": "rim_arms", "arms": (6,), "max_outer_diameter": 0.8},
+        "allowable",
+    ),
     ("web, ductile, 25 MPa: allowable", "stress", {"j": 20.0, "allowable": 25e6}, "allowable"),
     ("web, brittle, 25 MPa: allowable", "stress", {"j": 20.0, "allowable": 25e6, "ductile": False}, "allowable"),
     ("web, ductile, 15 MPa (hub binds): allowable", "stress", {"j": 20.0, "allowable": 15e6}, "allowable"),
-    ("web, rim speed 40 m/s: rim speed", "rim_speed", {"criterion": "rim_speed", "max_rim_speed": 40.0},
-     "max_rim_speed"),
+    (
+        "web, rim speed 40 m/s: rim speed",
+        "rim_speed",
+        {"criterion": "rim_speed", "max_rim_speed": 40.0},
+        "max_rim_speed",
+    ),
     ("web, rim speed 40 m/s: inertia", "inertia", {"criterion": "rim_speed", "max_rim_speed": 40.0}, "j"),
 ]
 
@@ -492,7 +593,7 @@ def test_design_flywheel_sensitivities_match_re_designs(case, limit, kwargs, key
     else:
         value = reported.get(limit, 0.0)
         assert value != 0.0, f"{case}: {limit} does not bind ({reported})"
-    default = {"allowable": 60e6, "min_wall": 0.008}         # the engine material's
+    default = {"allowable": 60e6, "min_wall": 0.008}  # the engine material's
     limit_value = base.get(key, default.get(key))
 
     def mass_at(factor):
@@ -532,7 +633,7 @@ def lightest_disc(j, rho, nu, omega, sigma, bore, envelope):
     dict : mass [kg], b [m], B [m], dm_dsigma [kg/Pa], dm_denvelope [kg/m] (0 where it does not bind)
     """
     a = bore / 2.0
-    k = rho * omega ** 2
+    k = rho * omega**2
     if a > 0.0:
         b2_stress = 4.0 * sigma / ((3.0 + nu) * k) - (1.0 - nu) / (3.0 + nu) * a * a
         db2_dsigma = 4.0 / ((3.0 + nu) * k)
@@ -543,9 +644,13 @@ def lightest_disc(j, rho, nu, omega, sigma, bore, envelope):
     b = math.sqrt(b2_stress) if stress_binds else envelope / 2.0
     mass = 2.0 * j / (a * a + b * b)
     dm_db2 = -2.0 * j / (a * a + b * b) ** 2
-    return {"mass": mass, "b": b, "B": 2.0 * j / (math.pi * rho * (b ** 4 - a ** 4)),
-            "dm_dsigma": dm_db2 * db2_dsigma if stress_binds else 0.0,
-            "dm_denvelope": 0.0 if stress_binds else dm_db2 * b}      # d(b^2)/d(envelope) = b
+    return {
+        "mass": mass,
+        "b": b,
+        "B": 2.0 * j / (math.pi * rho * (b**4 - a**4)),
+        "dm_dsigma": dm_db2 * db2_dsigma if stress_binds else 0.0,
+        "dm_denvelope": 0.0 if stress_binds else dm_db2 * b,
+    }  # d(b^2)/d(envelope) = b
 
 
 DISC_CASES = [
@@ -568,21 +673,29 @@ def test_disc_under_stress_matches_closed_form(case, ductile, bore, envelope, me
     own closed form of the disc (flyopt.design.wheel_design), checked against this one.
     """
     j, omega, rho, nu, sigma = 5.0, 300.0, 7200.0, 0.3, 40e6
-    material = make_material("steel", rho, allowable_stress=sigma, poisson_ratio=nu, tensile_strength=500e6,
-                             yield_strength=300e6, ductile=ductile, min_wall=0.005)
+    material = make_material(
+        "steel",
+        rho,
+        allowable_stress=sigma,
+        poisson_ratio=nu,
+        tensile_strength=500e6,
+        yield_strength=300e6,
+        ductile=ductile,
+        min_wall=0.005,
+    )
     spec = DesignSpec(geometry="disc", criterion="stress", bore=bore, max_outer_diameter=envelope)
     best = design_flywheel(j, omega, [MountShaft("shaft", 1.0)], [material], spec, method=method).best
     if method == "ipopt":
         assert best.solver_status == "Solve_Succeeded"
     expected = lightest_disc(j, rho, nu, omega, sigma, bore, envelope)
-    assert expected["B"] > 0.005            # the wall bound does not bind: the closed form holds
+    assert expected["B"] > 0.005  # the wall bound does not bind: the closed form holds
     assert_allclose(best.mass, expected["mass"], rtol=DISC_RTOL)
     assert_allclose(best.d_outer, 2.0 * expected["b"], rtol=DISC_RTOL)
-    assert_allclose(best.b, expected["B"], rtol=10 * DISC_RTOL)     # B ~ 1/(b^4 - a^4): four times b's error
+    assert_allclose(best.b, expected["B"], rtol=10 * DISC_RTOL)  # B ~ 1/(b^4 - a^4): four times b's error
     reported = _reported(best.sensitivities)
     assert_allclose(reported.get("stress_disc", 0.0), expected["dm_dsigma"], rtol=DISC_SENSITIVITY_RTOL)
     assert_allclose(reported.get("max_outer_diameter", 0.0), expected["dm_denvelope"], rtol=DISC_SENSITIVITY_RTOL)
-    assert_allclose(reported["inertia"], expected["mass"] / j, rtol=DISC_SENSITIVITY_RTOL)   # m is linear in J
+    assert_allclose(reported["inertia"], expected["mass"] / j, rtol=DISC_SENSITIVITY_RTOL)  # m is linear in J
 
 
 @pytest.mark.parametrize("case, ductile, bore, envelope", DISC_CASES, ids=[c[0] for c in DISC_CASES])
@@ -593,11 +706,23 @@ def test_disc_closed_form_names_the_binding_limits_ipopt_names(case, ductile, bo
     "the disc's stress is at its allowable"); the closed form must too, as its own sensitivity
     (d m / d sigma_allow != 0) says the stress binds.
     """
-    material = make_material("steel", 7200.0, allowable_stress=40e6, poisson_ratio=0.3, tensile_strength=500e6,
-                             yield_strength=300e6, ductile=ductile, min_wall=0.005)
+    material = make_material(
+        "steel",
+        7200.0,
+        allowable_stress=40e6,
+        poisson_ratio=0.3,
+        tensile_strength=500e6,
+        yield_strength=300e6,
+        ductile=ductile,
+        min_wall=0.005,
+    )
     spec = DesignSpec(geometry="disc", criterion="stress", bore=bore, max_outer_diameter=envelope)
-    binding = {method: set(design_flywheel(5.0, 300.0, [MountShaft("shaft", 1.0)], [material], spec,
-                                           method=method).best.binding) for method in ("ipopt", "auto")}
+    binding = {
+        method: set(
+            design_flywheel(5.0, 300.0, [MountShaft("shaft", 1.0)], [material], spec, method=method).best.binding
+        )
+        for method in ("ipopt", "auto")
+    }
     assert binding["auto"] == binding["ipopt"]
 
 
@@ -615,11 +740,26 @@ STRESS_RTOL = 1e-6
 
 def _grey_iron():
     """A grey cast iron whose strength falls with the wall (EN 1561-like rows), brittle, factor 4."""
-    rows = [StrengthRow(0.010, 250e6), StrengthRow(0.020, 225e6), StrengthRow(0.040, 195e6),
-            StrengthRow(0.080, 170e6), StrengthRow(0.150, 155e6), StrengthRow(0.300, 145e6)]
-    return make_material("grey_iron", 7200.0, poisson_ratio=0.26, elastic_modulus=110e9,
-                         strength_by_thickness=rows, thickness_rule="part", ductile=False, safety_factor=4.0,
-                         min_wall=0.006, bearing_pressure=60e6)
+    rows = [
+        StrengthRow(0.010, 250e6),
+        StrengthRow(0.020, 225e6),
+        StrengthRow(0.040, 195e6),
+        StrengthRow(0.080, 170e6),
+        StrengthRow(0.150, 155e6),
+        StrengthRow(0.300, 145e6),
+    ]
+    return make_material(
+        "grey_iron",
+        7200.0,
+        poisson_ratio=0.26,
+        elastic_modulus=110e9,
+        strength_by_thickness=rows,
+        thickness_rule="part",
+        ductile=False,
+        safety_factor=4.0,
+        min_wall=0.006,
+        bearing_pressure=60e6,
+    )
 
 
 def _dims_of(c):
@@ -627,8 +767,17 @@ def _dims_of(c):
     bore = c.bore or 0.0
     if c.geometry == "disc":
         return wheel.Dims(d_outer=c.d_outer, h=(c.d_outer - bore) / 2.0, b=c.b, bore=bore)
-    return wheel.Dims(d_outer=c.d_outer, h=c.h, b=c.b, bore=bore, t_web=c.t_web or 0.0, d_hub=c.d_hub or 0.0,
-                      l_hub=c.l_hub or 0.0, arm_major=c.arm_major or 0.0, n_arms=c.n_arms or 0)
+    return wheel.Dims(
+        d_outer=c.d_outer,
+        h=c.h,
+        b=c.b,
+        bore=bore,
+        t_web=c.t_web or 0.0,
+        d_hub=c.d_hub or 0.0,
+        l_hub=c.l_hub or 0.0,
+        arm_major=c.arm_major or 0.0,
+        n_arms=c.n_arms or 0,
+    )
 
 
 def _walls(geometry, d):
@@ -673,10 +822,10 @@ def governing_stresses(geometry, d, rho, nu, omega, torque, ductile):
         major = d.arm_major
         minor = wheel.ARM_MINOR_RATIO * major
         area = math.pi * major * minor / 4.0
-        k = rho * omega ** 2
-        out["rim"] = 0.75 * k * r_m ** 2 + 0.25 * 2.0 * math.pi ** 2 * k * r_m ** 3 / (n * n * d.h)
-        pull = k * area * (r_i ** 2 - r_h ** 2) / 2.0 + 2.0 * k * d.b * d.h * r_m ** 2 * math.sin(math.pi / n)
-        out["arms"] = torque / n * (1.0 - r_h / r_m) / (math.pi * minor * major ** 2 / 32.0) + pull / area
+        k = rho * omega**2
+        out["rim"] = 0.75 * k * r_m**2 + 0.25 * 2.0 * math.pi**2 * k * r_m**3 / (n * n * d.h)
+        pull = k * area * (r_i**2 - r_h**2) / 2.0 + 2.0 * k * d.b * d.h * r_m**2 * math.sin(math.pi / n)
+        out["arms"] = torque / n * (1.0 - r_h / r_m) / (math.pi * minor * major**2 / 32.0) + pull / area
         traction = n * pull / (2.0 * math.pi * r_h * d.l_hub)
         radii, thick, names = [a, r_h], [d.l_hub], ["hub"]
     coefficients = stress.disc_coefficients(radii, thick, rho, nu, omega, solid=solid, outer_traction=traction)
@@ -688,33 +837,105 @@ def governing_stresses(geometry, d, rho, nu, omega, torque, ductile):
 
 REDESIGNS = [
     # (case, material, j [kg m^2], torque [N m], shaft diameter [m], DesignSpec keywords); method "auto"
-    ("engine-web", "engine", ENGINE["j"], ENGINE["torque"], 0.06,
-     {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.0), "max_outer_diameter": 0.8}),
-    ("engine-arms", "engine", ENGINE["j"], ENGINE["torque"], 0.06,
-     {"geometry": "rim_arms", "criterion": "stress", "hb_ratio": (0.5, 2.0), "max_outer_diameter": 0.8}),
-    ("web, grey iron by wall, width", "grey_iron", 20.0, 400.0, 0.05,
-     {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.5), "max_width": 0.12}),
-    ("web without bore, brittle", "engine_brittle", 20.0, 0.0, None,
-     {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.0)}),
-    ("arms, grey iron, rim speed", "grey_iron", 8.0, 1500.0, 0.07,
-     {"geometry": "rim_arms", "criterion": "rim_speed", "hb_ratio": (0.8, 2.0), "safety_factor": 4.0}),
-    ("arms, grey iron, stress", "grey_iron", 8.0, 1500.0, 0.07,
-     {"geometry": "rim_arms", "criterion": "stress", "hb_ratio": (0.8, 2.0)}),
-    ("web, 25 MPa (the web binds)", "engine_25", 20.0, 1000.0, 0.06,
-     {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.0)}),
-    ("web, 15 MPa (the hub binds)", "engine_15", 20.0, 1000.0, 0.06,
-     {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.0)}),
-    ("web, grey iron, factor 8", "grey_iron", 20.0, 400.0, 0.05,
-     {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.5), "safety_factor": 8.0}),
-    ("disc with bore, brittle, stress binds", "engine_brittle_25", 5.0, 500.0, 0.05,
-     {"geometry": "disc", "criterion": "stress"}),
+    (
+        "engine-web",
+        "engine",
+        ENGINE["j"],
+        ENGINE["torque"],
+        0.06,
+        {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.0), "max_outer_diameter": 0.8},
+    ),
+    (
+        "engine-arms",
+        "engine",
+        ENGINE["j"],
+        ENGINE["torque"],
+        0.06,
+        {"geometry": "rim_arms", "criterion": "stress", "hb_ratio": (0.5, 2.0), "max_outer_diameter": 0.8},
+    ),
+    (
+        "web, grey iron by wall, width",
+        "grey_iron",
+        20.0,
+        400.0,
+        0.05,
+        {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.5), "max_width": 0.12},
+    ),
+    (
+        "web without bore, brittle",
+        "engine_brittle",
+        20.0,
+        0.0,
+        None,
+        {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.0)},
+    ),
+    (
+        "arms, grey iron, rim speed",
+        "grey_iron",
+        8.0,
+        1500.0,
+        0.07,
+        {"geometry": "rim_arms", "criterion": "rim_speed", "hb_ratio": (0.8, 2.0), "safety_factor": 4.0},
+    ),
+    (
+        "arms, grey iron, stress",
+        "grey_iron",
+        8.0,
+        1500.0,
+        0.07,
+        {"geometry": "rim_arms", "criterion": "stress", "hb_ratio": (0.8, 2.0)},
+    ),
+    (
+        "web, 25 MPa (the web binds)",
+        "engine_25",
+        20.0,
+        1000.0,
+        0.06,
+        {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.0)},
+    ),
+    (
+        "web, 15 MPa (the hub binds)",
+        "engine_15",
+        20.0,
+        1000.0,
+        0.06,
+        {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.0)},
+    ),
+    (
+        "web, grey iron, factor 8",
+        "grey_iron",
+        20.0,
+        400.0,
+        0.05,
+        {"geometry": "rim_web", "criterion": "stress", "hb_ratio": (0.5, 2.5), "safety_factor": 8.0},
+    ),
+    (
+        "disc with bore, brittle, stress binds",
+        "engine_brittle_25",
+        5.0,
+        500.0,
+        0.05,
+        {"geometry": "disc", "criterion": "stress"},
+    ),
     ("rim, stress, ductile", "engine", 20.0, 0.0, None, {"geometry": "rim", "criterion": "stress"}),
     ("thin rim, stress, brittle", "engine_brittle", 20.0, 0.0, None, {"geometry": "thin_rim", "criterion": "stress"}),
-    ("disc with bore, grey iron", "grey_iron", 5.0, 500.0, 0.05,
-     {"geometry": "disc", "criterion": "stress", "max_outer_diameter": 0.6}),
+    (
+        "disc with bore, grey iron",
+        "grey_iron",
+        5.0,
+        500.0,
+        0.05,
+        {"geometry": "disc", "criterion": "stress", "max_outer_diameter": 0.6},
+    ),
     ("solid disc, stress", "engine", 5.0, 0.0, None, {"geometry": "disc", "criterion": "stress"}),
-    ("rim, rim speed (textbook closed form)", "engine_speed", 3.0, 0.0, None,
-     {"geometry": "rim", "criterion": "rim_speed", "max_width": 0.1}),
+    (
+        "rim, rim speed (textbook closed form)",
+        "engine_speed",
+        3.0,
+        0.0,
+        None,
+        {"geometry": "rim", "criterion": "rim_speed", "max_width": 0.1},
+    ),
     ("web, rim speed", "engine_speed", 3.0, 1000.0, 0.06, {"geometry": "rim_web", "criterion": "rim_speed"}),
 ]
 
@@ -722,15 +943,22 @@ REDESIGNS = [
 def _material(name):
     if name == "grey_iron":
         return _grey_iron()
-    return {"engine": _engine_material(), "engine_brittle": _engine_material(ductile=False),
-            "engine_25": _engine_material(25e6), "engine_15": _engine_material(15e6),
-            "engine_brittle_25": _engine_material(25e6, ductile=False),
-            "engine_speed": _engine_material(max_rim_speed=40.0)}[name]
+    return {
+        "engine": _engine_material(),
+        "engine_brittle": _engine_material(ductile=False),
+        "engine_25": _engine_material(25e6),
+        "engine_15": _engine_material(15e6),
+        "engine_brittle_25": _engine_material(25e6, ductile=False),
+        "engine_speed": _engine_material(max_rim_speed=40.0),
+    }[name]
 
 
 #: The discs by stress again with IPOPT (under "auto" the closed form designs them).
-REDESIGNS += [(f"{case}, IPOPT", material, j, torque, seat, {**spec, "method": "ipopt"})
-              for case, material, j, torque, seat, spec in REDESIGNS if spec["geometry"] == "disc"]
+REDESIGNS += [
+    (f"{case}, IPOPT", material, j, torque, seat, {**spec, "method": "ipopt"})
+    for case, material, j, torque, seat, spec in REDESIGNS
+    if spec["geometry"] == "disc"
+]
 
 
 @pytest.mark.parametrize("case, material, j, torque, seat, spec", REDESIGNS, ids=[c[0] for c in REDESIGNS])
@@ -740,8 +968,9 @@ def test_designs_meet_every_limit(case, material, j, torque, seat, spec):
     method = spec.get("method", "auto")
     spec = DesignSpec(**{k: v for k, v in spec.items() if k != "method"})
     omega = ENGINE["omega"]
-    result = design_flywheel(j, omega, [MountShaft("shaft", 1.0, seat)], [material], spec, torque=torque or None,
-                             method=method)
+    result = design_flywheel(
+        j, omega, [MountShaft("shaft", 1.0, seat)], [material], spec, torque=torque or None, method=method
+    )
     assert result.status == "designed", result.message
     feasible = [c for c in result.candidates if c.feasible]
     for c in feasible:
@@ -760,9 +989,9 @@ def test_designs_meet_every_limit(case, material, j, torque, seat, spec):
             lo, hi = spec.hb_ratio
             assert lo * (1.0 - LIMIT_RTOL) <= d.h / d.b <= hi * (1.0 + LIMIT_RTOL), what
             assert d.d_outer - 2.0 * d.h >= d.d_hub - LIMIT_RTOL * d.d_outer, f"{what}: the rim cuts the hub"
-        if not spec.textbook(d.bore):         # the textbook design is left as the textbook makes it
+        if not spec.textbook(d.bore):  # the textbook design is left as the textbook makes it
             walls = _walls(c.geometry, d)
-            if c.geometry == "disc":          # a disc's radial extent is no wall the NLP bounds
+            if c.geometry == "disc":  # a disc's radial extent is no wall the NLP bounds
                 walls = {"disc": d.b}
             assert min(walls.values()) >= (spec.min_wall or material.min_wall) * (1.0 - LIMIT_RTOL), what
         if c.geometry == "rim_web":
@@ -772,7 +1001,7 @@ def test_designs_meet_every_limit(case, material, j, torque, seat, spec):
             minor = wheel.ARM_MINOR_RATIO * d.arm_major
             assert d.n_arms * d.arm_major <= math.pi * d.d_hub * (1.0 + LIMIT_RTOL), f"{what}: arms do not fit"
             assert minor <= min(d.b, d.l_hub) * (1.0 + LIMIT_RTOL), what
-        if d.d_hub:                            # the textbook proportions of a keyed hub, and the key
+        if d.d_hub:  # the textbook proportions of a keyed hub, and the key
             p = hub.hub_proportions(d.bore, material.hub_kind)
             l_low = p.l_hub_min
             if torque:
@@ -780,11 +1009,13 @@ def test_designs_meet_every_limit(case, material, j, torque, seat, spec):
             assert p.d_hub_min * (1 - LIMIT_RTOL) <= d.d_hub <= p.d_hub_max * (1 + LIMIT_RTOL), what
             assert l_low * (1 - LIMIT_RTOL) <= d.l_hub <= max(p.l_hub_max, l_low) * (1 + LIMIT_RTOL), what
         if spec.criterion == "stress":
-            found = governing_stresses(c.geometry, d, material.density, material.poisson_ratio, omega, torque,
-                                       material.ductile)
+            found = governing_stresses(
+                c.geometry, d, material.density, material.poisson_ratio, omega, torque, material.ductile
+            )
             walls = _walls(c.geometry, d)
             assert set(found) == set(walls), what
             for part, value in found.items():
                 allowable = material.allowable(thickness=walls[part], safety_factor=spec.safety_factor)
-                assert value <= allowable * (1.0 + STRESS_RTOL), \
+                assert value <= allowable * (1.0 + STRESS_RTOL), (
                     f"{what}: {part} {value / 1e6:.9g} MPa > allowable {allowable / 1e6:.9g} MPa"
+                )

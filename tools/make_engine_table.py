@@ -22,7 +22,7 @@ P_ATM = 1.0e5
 
 def volume_fraction(theta):
     """Cylinder volume over clearance volume at crank angle theta [rad], TDC = 0."""
-    x = R * (1 - math.cos(theta)) + L * (1 - math.sqrt(1 - (LAM * math.sin(theta))**2))
+    x = R * (1 - math.cos(theta)) + L * (1 - math.sqrt(1 - (LAM * math.sin(theta)) ** 2))
     stroke_volume = 2 * R
     clearance = stroke_volume / (CR - 1)
     return (clearance + x) / clearance
@@ -34,20 +34,20 @@ def pressure(deg):
     if deg < 180:
         return 0.9e5
     if deg < 360:
-        return 1.0e5 * (volume_fraction(math.radians(180)) / volume_fraction(th))**N
+        return 1.0e5 * (volume_fraction(math.radians(180)) / volume_fraction(th)) ** N
     if deg < 540:
         p_top = 1.0e5 * CR**N
         p_peak = 55e5
         if deg < 375:
             return p_top + (p_peak - p_top) * (deg - 360) / 15
-        return p_peak * (volume_fraction(math.radians(375)) / volume_fraction(th))**N
+        return p_peak * (volume_fraction(math.radians(375)) / volume_fraction(th)) ** N
     return 1.15e5
 
 
 def torque(deg):
     th = math.radians(deg)
     s = math.sin(th)
-    return (pressure(deg) - P_ATM) * AREA * R * (s + LAM * math.sin(2 * th) / (2 * math.sqrt(1 - (LAM * s)**2)))
+    return (pressure(deg) - P_ATM) * AREA * R * (s + LAM * math.sin(2 * th) / (2 * math.sqrt(1 - (LAM * s) ** 2)))
 
 
 def force(deg):
@@ -59,6 +59,6 @@ if __name__ == "__main__":
     import sys
 
     value = force if "--force" in sys.argv else torque
-    rows = [f'[{d}, {value(d):.1f}]' for d in range(0, 721, 5)]
+    rows = [f"[{d}, {value(d):.1f}]" for d in range(0, 721, 5)]
     for k in range(0, len(rows), 6):
-        print("  " + ", ".join(rows[k:k + 6]) + ",")
+        print("  " + ", ".join(rows[k : k + 6]) + ",")

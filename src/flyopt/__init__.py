@@ -15,13 +15,24 @@ import importlib
 #: ``import flyopt`` costs nothing: pandas and pyarrow come with the studies, CasADi with
 #: a model that needs it (the periodic solution, IPOPT), scipy.optimize where it is used.
 _API = {
-    "Analysis": "flyopt.analysis", "analyse": "flyopt.analysis",
-    "ExpressionError": "flyopt.errors", "FlyoptError": "flyopt.errors", "NonPeriodicCycle": "flyopt.errors",
-    "SceneError": "flyopt.errors", "SolverFailed": "flyopt.errors", "Interrupted": "flyopt.errors",
-    "Solution": "flyopt.pipeline", "design_scene": "flyopt.pipeline", "solve": "flyopt.pipeline",
-    "Scene": "flyopt.io.scene", "Shaft": "flyopt.io.scene", "from_dict": "flyopt.io.scene", "load": "flyopt.io.scene",
-    "material_tradeoff": "flyopt.studies.tradeoff", "pareto": "flyopt.studies.pareto",
-    "sweep": "flyopt.studies.sweep",   # the function; the module is flyopt.studies.sweep
+    "Analysis": "flyopt.analysis",
+    "analyse": "flyopt.analysis",
+    "ExpressionError": "flyopt.errors",
+    "FlyoptError": "flyopt.errors",
+    "NonPeriodicCycle": "flyopt.errors",
+    "SceneError": "flyopt.errors",
+    "SolverFailed": "flyopt.errors",
+    "Interrupted": "flyopt.errors",
+    "Solution": "flyopt.pipeline",
+    "design_scene": "flyopt.pipeline",
+    "solve": "flyopt.pipeline",
+    "Scene": "flyopt.io.scene",
+    "Shaft": "flyopt.io.scene",
+    "from_dict": "flyopt.io.scene",
+    "load": "flyopt.io.scene",
+    "material_tradeoff": "flyopt.studies.tradeoff",
+    "pareto": "flyopt.studies.pareto",
+    "sweep": "flyopt.studies.sweep",  # the function; the module is flyopt.studies.sweep
 }
 
 __all__ = sorted(_API) + ["__version__"]
@@ -60,8 +71,9 @@ def _version():
             import tomllib
         except ModuleNotFoundError:  # pragma: no cover - Python 3.10 without tomli
             import tomli as tomllib
-        project = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml")
-                                .read_text(encoding="utf-8")).get("project", {})
+        project = tomllib.loads(
+            (Path(__file__).resolve().parents[2] / "pyproject.toml").read_text(encoding="utf-8")
+        ).get("project", {})
     except (ImportError, OSError, ValueError):
         return "unknown"
     version = project.get("version")

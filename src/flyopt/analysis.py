@@ -23,17 +23,16 @@ from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.units import gd2_from_inertia
 
 
-
 @dataclass(frozen=True)
 class ShaftRequirement:
     """The required flywheel on one shaft."""
 
     name: str
-    speed_ratio: float      # ω_shaft/ω_reference [-]
-    omega: float            # mean speed of the shaft [rad/s]
-    efficiency: float       # from the motor to this shaft [-]
-    j_required: float       # [kg*m^2], 0 when no flywheel is needed
-    gd2_required: float     # [N*m^2]
+    speed_ratio: float  # ω_shaft/ω_reference [-]
+    omega: float  # mean speed of the shaft [rad/s]
+    efficiency: float  # from the motor to this shaft [-]
+    j_required: float  # [kg*m^2], 0 when no flywheel is needed
+    gd2_required: float  # [N*m^2]
 
     def to_dict(self):
         return dict(self.__dict__)
@@ -198,8 +197,11 @@ class Analysis:
 
     def to_dict(self):
         """Plain JSON-ready dictionary, every number in SI (the comparison and start-up included)."""
-        out = {k: v for k, v in self.__dict__.items()
-               if k not in ("indicator", "machine", "requirement", "shafts", "energy_chain", "_lazy")}
+        out = {
+            k: v
+            for k, v in self.__dict__.items()
+            if k not in ("indicator", "machine", "requirement", "shafts", "energy_chain", "_lazy")
+        }
         out["startup"] = None if self.startup is None else asdict(self.startup)
         out["models"] = [dict(m) for m in self.models]
         out["energy_chain"] = [dict(e) for e in self.energy_chain]
@@ -232,13 +234,13 @@ def _net_torque_samples(machine):
     phi = np.union1d(np.linspace(0.0, machine.cycle_angle, 4097), np.asarray(balanced.knots, dtype=float))
     driving, resisting = balanced.driving.limits(phi), balanced.resisting.limits(phi)
     differences = np.concatenate([driving[0] - resisting[0], driving[1] - resisting[1]])
-    j_machine = (machine.j_machine(phi) if machine.variable_inertia
-                 else np.full(phi.shape, float(machine.j_machine)))
+    j_machine = machine.j_machine(phi) if machine.variable_inertia else np.full(phi.shape, float(machine.j_machine))
     return np.concatenate([j_machine, j_machine]), differences
 
 
-def analyse(scene: Scene, model: Literal["energy", "energy_mass", "dynamic"] | None = None, *,
-            like: Analysis | None = None) -> Analysis:
+def analyse(
+    scene: Scene, model: Literal["energy", "energy_mass", "dynamic"] | None = None, *, like: Analysis | None = None
+) -> Analysis:
     """Analyse a scene's cycle and size the flywheel it needs.
 
     Parameters
@@ -288,15 +290,26 @@ def _analyse(scene, forced=None, like=None):
         omega_mean = scene.omega_mean
         omega_max, omega_min = speed_extremes(omega_mean, scene.delta)
         angles = (ind.angle_omega_max, ind.angle_omega_min)
-        lazy = {"models": ({"model": model, "exact": True, "j_required": j_margin, "achieved_delta": scene.delta,
-                            "j_error": 0.0, "note": ""},), "startup": None}
+        lazy = {
+            "models": (
+                {
+                    "model": model,
+                    "exact": True,
+                    "j_required": j_margin,
+                    "achieved_delta": scene.delta,
+                    "j_error": 0.0,
+                    "note": "",
+                },
+            ),
+            "startup": None,
+        }
     else:
         if like is not None and like.machine is not None:
             import dataclasses
 
             base = like.machine
             machine = dataclasses.replace(base, delta=scene.delta, _cache=base._cache)
-            ind = like.indicator        # the torques at the frozen speed do not depend on δ
+            ind = like.indicator  # the torques at the frozen speed do not depend on δ
         else:
             machine = reduce(scene)
             ew = machine.angle_only()
@@ -312,27 +325,61 @@ def _analyse(scene, forced=None, like=None):
         work, driving, resisting = ind.work_driving, ind.driving_mean, ind.resisting_mean
         power = driving * omega_mean
         motor_power = power / scene.efficiency
-        chain = tuple({"index": k, "angle": float(a), "delta_e": float(e)}
-                      for k, (a, e) in enumerate(zip(ind.chain_angle, ind.chain_delta_e)))
-        lazy = {"models": lambda: tuple(models.compare(machine, model, ind, known=requirement)),
-                "startup": lambda: startup_run(machine, omega_mean, max(j_margin, 0.0))}
+        chain = tuple(
+            {"index": k, "angle": float(a), "delta_e": float(e)}
+            for k, (a, e) in enumerate(zip(ind.chain_angle, ind.chain_delta_e))
+        )
+        lazy = {
+            "models": lambda: tuple(models.compare(machine, model, ind, known=requirement)),
+            "startup": lambda: startup_run(machine, omega_mean, max(j_margin, 0.0)),
+        }
     needed = j_margin > 0
     j_req = j_margin if needed else 0.0
-    shafts = tuple(ShaftRequirement(
-        name=s.name, speed_ratio=s.speed_ratio, omega=s.speed_ratio * omega_mean,
-        efficiency=s.efficiency, j_required=inertia_on_shaft(j_req, s.speed_ratio),
-        gd2_required=gd2_from_inertia(inertia_on_shaft(j_req, s.speed_ratio))) for s in scene.shafts)
+    shafts = tuple(
+        ShaftRequirement(
+            name=s.name,
+            speed_ratio=s.speed_ratio,
+            omega=s.speed_ratio * omega_mean,
+            efficiency=s.efficiency,
+            j_required=inertia_on_shaft(j_req, s.speed_ratio),
+            gd2_required=gd2_from_inertia(inertia_on_shaft(j_req, s.speed_ratio)),
+        )
+        for s in scene.shafts
+    )
     return Analysis(
-        title=scene.title, model=model, model_reason=reason, _lazy=lazy,
-        omega_mean=omega_mean, delta=scene.delta,
-        cycle_angle=scene.cycle_angle, j_constant=scene.j_constant, a_max=ind.a_max,
-        work_per_cycle=work, driving_torque=driving, resisting_torque=resisting, power=power,
-        efficiency=scene.efficiency, motor_power=motor_power,
-        omega_max=omega_max, omega_min=omega_min, angle_omega_max=angles[0], angle_omega_min=angles[1],
-        angle_delta_e_max=ind.angle_omega_max, angle_delta_e_min=ind.angle_omega_min,
-        index_omega_max=ind.index_max, index_omega_min=ind.index_min,
-        j_margin=j_margin, j_required=j_req, gd2_required=gd2_from_inertia(j_req), flywheel_needed=needed,
-        energy_chain=chain, shafts=shafts, indicator=ind, machine=machine, requirement=requirement)
+        title=scene.title,
+        model=model,
+        model_reason=reason,
+        _lazy=lazy,
+        omega_mean=omega_mean,
+        delta=scene.delta,
+        cycle_angle=scene.cycle_angle,
+        j_constant=scene.j_constant,
+        a_max=ind.a_max,
+        work_per_cycle=work,
+        driving_torque=driving,
+        resisting_torque=resisting,
+        power=power,
+        efficiency=scene.efficiency,
+        motor_power=motor_power,
+        omega_max=omega_max,
+        omega_min=omega_min,
+        angle_omega_max=angles[0],
+        angle_omega_min=angles[1],
+        angle_delta_e_max=ind.angle_omega_max,
+        angle_delta_e_min=ind.angle_omega_min,
+        index_omega_max=ind.index_max,
+        index_omega_min=ind.index_min,
+        j_margin=j_margin,
+        j_required=j_req,
+        gd2_required=gd2_from_inertia(j_req),
+        flywheel_needed=needed,
+        energy_chain=chain,
+        shafts=shafts,
+        indicator=ind,
+        machine=machine,
+        requirement=requirement,
+    )
 
 
 def startup_run(machine, omega_target, j_flywheel):
@@ -348,18 +395,29 @@ def startup_run(machine, omega_target, j_flywheel):
     if motor is None:
         return None
     from flyopt.errors import SolverFailed
-    from flyopt.sizing.startup import startup_time   # CasADi, scipy.optimize: only with a motor
+    from flyopt.sizing.startup import startup_time  # CasADi, scipy.optimize: only with a motor
 
-    curve = MotorTorque(motor.motor, motor.speed_ratio, motor.efficiency,
-                        "kloss" if motor.model is not None else None, motor.where)
+    curve = MotorTorque(
+        motor.motor, motor.speed_ratio, motor.efficiency, "kloss" if motor.model is not None else None, motor.where
+    )
     from flyopt.machine.motor import TableMotor
 
-    line = ", Kloss curve" if motor.model is not None else \
-        ", the motor's torque-speed table" if isinstance(motor.motor, TableMotor) else ", DC motor line"
+    line = (
+        ", Kloss curve"
+        if motor.model is not None
+        else ", the motor's torque-speed table"
+        if isinstance(motor.motor, TableMotor)
+        else ", DC motor line"
+    )
     method = "declutched run-up: the motor against the inertia of machine and flywheel alone" + line
     try:
-        run = startup_time(lambda phi, omega: curve.casadi(phi, omega), machine.j_machine,
-                                    machine.cycle_angle, omega_target, j_flywheel)
+        run = startup_time(
+            lambda phi, omega: curve.casadi(phi, omega),
+            machine.j_machine,
+            machine.cycle_angle,
+            omega_target,
+            j_flywheel,
+        )
     except (SolverFailed, ValueError) as err:
         return StartupRun(method, None, None, omega_target, str(err))
     return StartupRun(method, run.time, run.cycles, omega_target, "")
@@ -381,8 +439,14 @@ def _speed_curve(analysis):
             return solution
         from flyopt.sizing.periodic import periodic_solution
 
-        return periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
-                                 analysis.j_required, machine.knots())
+        return periodic_solution(
+            machine.net_torque(),
+            machine.j_machine,
+            machine.cycle_angle,
+            analysis.omega_mean,
+            analysis.j_required,
+            machine.knots(),
+        )
     if machine.j_mean() + analysis.j_required <= 0:
         if analysis.a_max <= 0:
             return None

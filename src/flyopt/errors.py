@@ -39,18 +39,18 @@ def shorten(value, limit=QUOTE_LENGTH):
     if isinstance(value, str):
         if len(value) + 2 <= limit:
             return repr(value)
-        head = repr(value[:max(limit - 2, 1)])
+        head = repr(value[: max(limit - 2, 1)])
         return f"{head[:-1]}…{head[-1]} ({len(value)} characters)"
-    if isinstance(value, (list, tuple, dict)) and len(value) > limit:   # never build the whole repr
+    if isinstance(value, (list, tuple, dict)) and len(value) > limit:  # never build the whole repr
         return f"a {type(value).__name__} of {len(value)} items"
-    if isinstance(value, int) and value.bit_length() > 4 * limit:   # repr refuses over 4300 digits
+    if isinstance(value, int) and value.bit_length() > 4 * limit:  # repr refuses over 4300 digits
         return f"an integer of about {int((value.bit_length() - 1) * math.log10(2)) + 1} digits"
     return clip(repr(value), limit)
 
 
 def clip(text, limit=2 * QUOTE_LENGTH):
     """Text cut to ``limit`` characters with an ellipsis and its length (unquoted, e.g. a field path)."""
-    return text if len(text) <= limit else f"{text[:limit - 1]}… ({len(text)} characters)"
+    return text if len(text) <= limit else f"{text[: limit - 1]}… ({len(text)} characters)"
 
 
 class FlyoptError(Exception):
@@ -78,7 +78,7 @@ class SceneError(FlyoptError, ValueError):
 
     def _text(self):
         where = f"{self.source}: " if self.source else ""
-        field = f"{clip(self.field)}: " if self.field else ""   # a field path may hold a key the user wrote
+        field = f"{clip(self.field)}: " if self.field else ""  # a field path may hold a key the user wrote
         return f"{where}{field}{self.message}"
 
     def with_source(self, source: str | None) -> "SceneError":
@@ -104,7 +104,8 @@ class NonPeriodicCycle(FlyoptError, ValueError):
         super().__init__(
             f"{where}non-periodic fluctuation: the work over one cycle does not balance "
             f"(net {imbalance:+.6g} J against {cycle_work:.6g} J of cycle work); "
-            f"no flywheel can regulate it, only a governor")
+            f"no flywheel can regulate it, only a governor"
+        )
 
     def with_source(self, source: str | None) -> "NonPeriodicCycle":
         """Return the same error, now naming the file it came from."""

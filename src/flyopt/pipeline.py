@@ -7,8 +7,9 @@ PyBaMM Simulation pattern).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Literal, Mapping
+from typing import TYPE_CHECKING, Any, Literal
 
 from flyopt.analysis import Analysis, analyse
 
@@ -41,16 +42,16 @@ class Solution:
     analysis: Analysis
     design: object = None
     verification: Verification | None = None
-    drive: object = None            # flyopt.design.drive.DriveDesign of a scene with a [drive]
-    drive_check: object = None      # flyopt.design.drive.DriveCheck of the chosen drive
+    drive: object = None  # flyopt.design.drive.DriveDesign of a scene with a [drive]
+    drive_check: object = None  # flyopt.design.drive.DriveCheck of the chosen drive
 
     @property
     def status(self):
-        """"designed", "not_needed", "infeasible", or "analysed" (design skipped)."""
+        """ "designed", "not_needed", "infeasible", or "analysed" (design skipped)."""
         if self.drive is not None and self.drive.best is None:
             return "infeasible"
         if self.drive is not None and self.design is None:
-            return "not_needed"               # the chosen motor holds δ without a flywheel
+            return "not_needed"  # the chosen motor holds δ without a flywheel
         return self.design.status if self.design is not None else "analysed"
 
     def to_dict(self, timings=False):
@@ -78,8 +79,12 @@ def design_dict(result, timings=False):
     return {"status": raw["status"], "message": raw["message"], **design, "model": raw["model"]}
 
 
-def design_scene(scene: Scene, analysis: Analysis, solver_options: Mapping[str, Any] | None = None,
-                 method: Literal["auto", "ipopt", "closed_form"] = "auto") -> DesignResult:
+def design_scene(
+    scene: Scene,
+    analysis: Analysis,
+    solver_options: Mapping[str, Any] | None = None,
+    method: Literal["auto", "ipopt", "closed_form"] = "auto",
+) -> DesignResult:
     """Design the flywheel a scene needs, from its analysis.
 
     Parameters
@@ -115,8 +120,16 @@ def design_scene(scene: Scene, analysis: Analysis, solver_options: Mapping[str, 
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
     torque = analysis.flywheel_torque() if needs_torque(inputs) else None
-    result = design_flywheel(analysis.j_margin, analysis.omega_max, inputs.shafts, inputs.materials, inputs.spec,
-                             solver_options=solver_options, method=method, torque=torque)
+    result = design_flywheel(
+        analysis.j_margin,
+        analysis.omega_max,
+        inputs.shafts,
+        inputs.materials,
+        inputs.spec,
+        solver_options=solver_options,
+        method=method,
+        torque=torque,
+    )
     return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
 
 
@@ -149,19 +162,29 @@ def _with_delta_sensitivity(scene, analysis, result, solver_options, method):
             inputs = design_inputs(dataclasses.replace(scene, delta=delta))
             spec = inputs.spec if best.n_arms is None else dataclasses.replace(inputs.spec, arms=(best.n_arms,))
             torque = moved.flywheel_torque() if needs_torque(inputs) else None
-            again = design_flywheel(moved.j_margin, moved.omega_max,
-                                    [s for s in inputs.shafts if s.name == best.shaft],
-                                    [m for m in inputs.materials if m.name == best.material], spec,
-                                    solver_options=solver_options, method=method, torque=torque)
+            again = design_flywheel(
+                moved.j_margin,
+                moved.omega_max,
+                [s for s in inputs.shafts if s.name == best.shaft],
+                [m for m in inputs.materials if m.name == best.material],
+                spec,
+                solver_options=solver_options,
+                method=method,
+                torque=torque,
+            )
         except (ValueError, RuntimeError):
             return result
         if again.best is None:
             return result
         masses.append(again.best.mass)
     slope = (masses[0] - masses[1]) / (2.0 * DELTA_STEP * scene.delta)
-    entry = {"limit": "delta", "unit": "-", "dmass_dlimit": slope,
-             "text": f"delta: +0.01 (e.g. {scene.delta:.3g} to {scene.delta + 0.01:.3g}) changes the mass "
-                     f"by {slope * 0.01:+.3g} kg (central difference of the whole design)"}
+    entry = {
+        "limit": "delta",
+        "unit": "-",
+        "dmass_dlimit": slope,
+        "text": f"delta: +0.01 (e.g. {scene.delta:.3g} to {scene.delta + 0.01:.3g}) changes the mass "
+        f"by {slope * 0.01:+.3g} kg (central difference of the whole design)",
+    }
     winner = dataclasses.replace(best, sensitivities=tuple(best.sensitivities) + (entry,))
     candidates = tuple(winner if c is best else c for c in result.candidates)
     return dataclasses.replace(result, best=winner, candidates=candidates)
@@ -194,26 +217,44 @@ def verify(scene, analysis, design_result=None):
     if machine is None:  # net areas: no curves to simulate; the energy method is exact for them
         j = analysis.j_constant + j_flywheel
         if analysis.a_max == 0:
-            achieved = 0.0                       # no fluctuation of energy: no fluctuation of speed
+            achieved = 0.0  # no fluctuation of energy: no fluctuation of speed
         else:
             achieved = analysis.a_max / (j * analysis.omega_mean**2) if j > 0 else float("inf")
         omega_max, omega_min = speed_extremes(analysis.omega_mean, achieved)
         return periodic.Verification(
             method="energy method (net areas give no curves to simulate; exact for constant inertia)",
-            achieved_delta=achieved, delta_allowed=analysis.delta, omega_max=omega_max, omega_min=omega_min,
-            omega_mean=analysis.omega_mean, tolerance=1e-12 * analysis.delta,
-            flagged=achieved > analysis.delta * (1 + 1e-12), j_flywheel=j_flywheel)
+            achieved_delta=achieved,
+            delta_allowed=analysis.delta,
+            omega_max=omega_max,
+            omega_min=omega_min,
+            omega_mean=analysis.omega_mean,
+            tolerance=1e-12 * analysis.delta,
+            flagged=achieved > analysis.delta * (1 + 1e-12),
+            j_flywheel=j_flywheel,
+        )
     try:
-        result = periodic.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, analysis.omega_mean,
-                                 analysis.delta, j_flywheel, machine.knots())
+        result = periodic.verify(
+            machine.net_torque(),
+            machine.j_machine,
+            machine.cycle_angle,
+            analysis.omega_mean,
+            analysis.delta,
+            j_flywheel,
+            machine.knots(),
+        )
     except SceneError as err:
         raise err.with_source(scene.source) from None
     return result
 
 
-def solve(scene: Scene, design_flywheel: bool = True, solver_options: Mapping[str, Any] | None = None,
-          model: Literal["energy", "energy_mass", "dynamic"] | None = None, verify_design: bool = False,
-          design_method: Literal["auto", "ipopt", "closed_form"] = "auto") -> Solution:
+def solve(
+    scene: Scene,
+    design_flywheel: bool = True,
+    solver_options: Mapping[str, Any] | None = None,
+    model: Literal["energy", "energy_mass", "dynamic"] | None = None,
+    verify_design: bool = False,
+    design_method: Literal["auto", "ipopt", "closed_form"] = "auto",
+) -> Solution:
     """Analyse a scene and design its flywheel.
 
     Parameters
@@ -259,5 +300,10 @@ def solve_drive(scene, analysis, solver_options=None):
     if drive.best is None:
         return Solution(scene=scene, analysis=analysis, drive=drive)
     built = chosen_scene(scene, drive.best)
-    return Solution(scene=built, analysis=analyse(built, "dynamic"), design=drive.best.design, drive=drive,
-                    drive_check=verify_drive(scene, drive.best))
+    return Solution(
+        scene=built,
+        analysis=analyse(built, "dynamic"),
+        design=drive.best.design,
+        drive=drive,
+        drive_check=verify_drive(scene, drive.best),
+    )

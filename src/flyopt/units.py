@@ -30,7 +30,7 @@ MAX_EXPONENT_DIGITS = 3
 """Most digits of an exponent in a quantity string ("m^2", "10**-3 m"): a power, not a tower."""
 
 _POWER = re.compile(r"\*\*|\^")
-_EXPONENT = re.compile(r"\s*\(?\s*[+-]?\s*\d{1,%d}(?![\d_])(?:\.\d*)?\s*\)?" % MAX_EXPONENT_DIGITS)
+_EXPONENT = re.compile(r"\s*\(?\s*[+-]?\s*\d{1," + str(MAX_EXPONENT_DIGITS) + r"}(?![\d_])(?:\.\d*)?\s*\)?")
 
 # Dimension name -> (pint dimensionality string, SI unit to convert to, words for errors)
 DIMENSIONS = {
@@ -58,34 +58,92 @@ DIMENSIONS = {
 #: Units read without pint, per dimension: the unit as written -> pint's factor to the SI unit of
 #: ``DIMENSIONS`` (``Quantity(1, unit).to(si).magnitude``, written out; the test checks each against pint).
 FAST_UNITS = {
-    "angle": {"rad": 1.0, "radian": 1.0, "deg": 0.017453292519943295, "degree": 0.017453292519943295,
-              "turn": 6.283185307179586, "rev": 6.283185307179586, "revolution": 6.283185307179586},
-    "angular_speed": {"rpm": 0.10471975511965977, "rev/min": 0.10471975511965977, "rad/s": 1.0,
-                      "deg/s": 0.017453292519943295, "rev/s": 6.283185307179586, "rps": 6.283185307179586,
-                      "Hz": 1.0, "1/s": 1.0, "/s": 1.0, "s^-1": 1.0,
-                      "1/min": 0.016666666666666666, "/min": 0.016666666666666666,
-                      "min^-1": 0.016666666666666666},
-    "torque": {"N*m": 1.0, "N m": 1.0, "kN*m": 1000.0, "kN m": 1000.0, "MN*m": 1000000.0, "N*mm": 0.001,
-               "kN*mm": 1.0},
-    "energy": {"J": 1.0, "kJ": 1000.0, "MJ": 1000000.0, "N*m": 1.0, "N m": 1.0, "kN*m": 1000.0, "kN m": 1000.0,
-               "W*s": 1.0, "kWh": 3600000.0},
-    "inertia": {"kg*m^2": 1.0, "kg m^2": 1.0, "kg*m**2": 1.0, "kg m**2": 1.0, "t*m^2": 1000.0,
-                "kg*cm^2": 0.0001, "kg*mm^2": 1e-06},
+    "angle": {
+        "rad": 1.0,
+        "radian": 1.0,
+        "deg": 0.017453292519943295,
+        "degree": 0.017453292519943295,
+        "turn": 6.283185307179586,
+        "rev": 6.283185307179586,
+        "revolution": 6.283185307179586,
+    },
+    "angular_speed": {
+        "rpm": 0.10471975511965977,
+        "rev/min": 0.10471975511965977,
+        "rad/s": 1.0,
+        "deg/s": 0.017453292519943295,
+        "rev/s": 6.283185307179586,
+        "rps": 6.283185307179586,
+        "Hz": 1.0,
+        "1/s": 1.0,
+        "/s": 1.0,
+        "s^-1": 1.0,
+        "1/min": 0.016666666666666666,
+        "/min": 0.016666666666666666,
+        "min^-1": 0.016666666666666666,
+    },
+    "torque": {"N*m": 1.0, "N m": 1.0, "kN*m": 1000.0, "kN m": 1000.0, "MN*m": 1000000.0, "N*mm": 0.001, "kN*mm": 1.0},
+    "energy": {
+        "J": 1.0,
+        "kJ": 1000.0,
+        "MJ": 1000000.0,
+        "N*m": 1.0,
+        "N m": 1.0,
+        "kN*m": 1000.0,
+        "kN m": 1000.0,
+        "W*s": 1.0,
+        "kWh": 3600000.0,
+    },
+    "inertia": {
+        "kg*m^2": 1.0,
+        "kg m^2": 1.0,
+        "kg*m**2": 1.0,
+        "kg m**2": 1.0,
+        "t*m^2": 1000.0,
+        "kg*cm^2": 0.0001,
+        "kg*mm^2": 1e-06,
+    },
     "flywheel_moment": {"N*m^2": 1.0, "N m^2": 1.0, "N*m**2": 1.0, "kN*m^2": 1000.0},
     "length": {"m": 1.0, "mm": 0.001, "cm": 0.01, "dm": 0.1, "km": 1000.0},
     "mass": {"kg": 1.0, "g": 0.001, "t": 1000.0, "tonne": 1000.0},
-    "density": {"kg/m^3": 1.0, "kg/m**3": 1.0, "t/m^3": 1000.0, "g/cm^3": 999.9999999999999,
-                "kg/dm^3": 999.9999999999999},
+    "density": {
+        "kg/m^3": 1.0,
+        "kg/m**3": 1.0,
+        "t/m^3": 1000.0,
+        "g/cm^3": 999.9999999999999,
+        "kg/dm^3": 999.9999999999999,
+    },
     "speed": {"m/s": 1.0, "mm/s": 0.001, "m/min": 0.016666666666666666, "km/h": 0.2777777777777778},
-    "stress": {"Pa": 1.0, "kPa": 1000.0, "MPa": 1000000.0, "GPa": 1000000000.0, "N/m^2": 1.0,
-               "N/mm^2": 1000000.0, "bar": 100000.0, "mbar": 100.0, "psi": 6894.7572931683635},
+    "stress": {
+        "Pa": 1.0,
+        "kPa": 1000.0,
+        "MPa": 1000000.0,
+        "GPa": 1000000000.0,
+        "N/m^2": 1.0,
+        "N/mm^2": 1000000.0,
+        "bar": 100000.0,
+        "mbar": 100.0,
+        "psi": 6894.7572931683635,
+    },
     "power": {"W": 1.0, "kW": 1000.0, "MW": 1000000.0, "hp": 745.6998715822701},
     "force": {"N": 1.0, "kN": 1000.0, "MN": 1000000.0},
     "area": {"m^2": 1.0, "m**2": 1.0, "cm^2": 0.0001, "cm**2": 0.0001, "mm^2": 1e-06, "mm**2": 1e-06},
-    "torque_scale": {"N*m/m": 1.0, "N*m/cm": 100.0, "N*m/mm": 1000.0, "N m/mm": 1000.0, "kN*m/m": 1000.0,
-                     "kN*m/mm": 1000000.0},
-    "angle_scale": {"rad/m": 1.0, "rad/cm": 100.0, "rad/mm": 1000.0, "deg/m": 0.017453292519943295,
-                    "deg/cm": 1.7453292519943295, "deg/mm": 17.453292519943297},
+    "torque_scale": {
+        "N*m/m": 1.0,
+        "N*m/cm": 100.0,
+        "N*m/mm": 1000.0,
+        "N m/mm": 1000.0,
+        "kN*m/m": 1000.0,
+        "kN*m/mm": 1000000.0,
+    },
+    "angle_scale": {
+        "rad/m": 1.0,
+        "rad/cm": 100.0,
+        "rad/mm": 1000.0,
+        "deg/m": 0.017453292519943295,
+        "deg/cm": 1.7453292519943295,
+        "deg/mm": 17.453292519943297,
+    },
     "dimensionless": {"%": 0.01, "percent": 0.01, "permille": 0.001, "ppm": 1e-06},
     "cost_per_mass": {"1/kg": 1.0, "/kg": 1.0},
     "time": {"s": 1.0, "ms": 0.001, "min": 60.0},
@@ -97,8 +155,11 @@ _PER_TURN = frozenset({"Hz", "1/s", "/s", "s^-1", "1/min", "/min", "min^-1"})
 #: A number as Python writes it (what pint reads), then a unit after blanks ("1500 rpm"), or a unit
 #: beginning with % or / after optional blanks ("5%", "1500/min").
 #: An integer with a leading zero ("0150") is no Python number: pint says so.
-_COMMON_FORM = re.compile(r"([+-]?(?:(?:0|[1-9][0-9]*)(?![0-9.eE])|(?:[0-9]+\.[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
-                          r"|[0-9]+[eE][+-]?[0-9]+))(?:[ \t]*([%/][^ \t]*)|[ \t]+([^ \t].*))?\Z", re.ASCII)
+_COMMON_FORM = re.compile(
+    r"([+-]?(?:(?:0|[1-9][0-9]*)(?![0-9.eE])|(?:[0-9]+\.[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+    r"|[0-9]+[eE][+-]?[0-9]+))(?:[ \t]*([%/][^ \t]*)|[ \t]+([^ \t].*))?\Z",
+    re.ASCII,
+)
 _INTEGER = re.compile(r"[+-]?[0-9]+\Z")
 
 
@@ -149,7 +210,7 @@ def quantity(value, dimension, field="value"):
         raise SceneError(field, f"expected {words}, got {shorten(value)}")
     try:
         number = _si_number(value, dimension, field) if isinstance(value, str) else float(value)
-    except OverflowError:       # an integer beyond the floats (TOML allows 4300 digits)
+    except OverflowError:  # an integer beyond the floats (TOML allows 4300 digits)
         number = math.inf
     if not math.isfinite(number):
         raise SceneError(field, f"must be finite, got {shorten(value)}")
@@ -191,7 +252,7 @@ def _table_number(text, dimension):
         An integer beyond the floats, as pint's own conversion raises it.
     """
     text = text.strip()
-    if text in FAST_UNITS[dimension] and text[0] != "/":   # a unit alone ("mm^2") is one of it, as pint reads it
+    if text in FAST_UNITS[dimension] and text[0] != "/":  # a unit alone ("mm^2") is one of it, as pint reads it
         number, unit = 1, text
     else:
         match = _COMMON_FORM.match(text)
@@ -233,13 +294,19 @@ def _pint_number(text, dimension, field):
 def _check_size(text, field, words):
     """Refuse a string whose arithmetic could run for long: too long, or a power of a power."""
     if len(text) > MAX_QUANTITY_LENGTH:
-        raise SceneError(field, f"{shorten(text)} is too long for {words}: a number with a unit "
-                         f"has at most {MAX_QUANTITY_LENGTH} characters")
+        raise SceneError(
+            field,
+            f"{shorten(text)} is too long for {words}: a number with a unit "
+            f"has at most {MAX_QUANTITY_LENGTH} characters",
+        )
     for power in _POWER.finditer(text):
         exponent = _EXPONENT.match(text, power.end())
         if exponent is None or _POWER.match(text, exponent.end()):
-            raise SceneError(field, f"cannot read {shorten(text)} as {words}: an exponent must be a number "
-                             f"of at most {MAX_EXPONENT_DIGITS} digits, not itself a power")
+            raise SceneError(
+                field,
+                f"cannot read {shorten(text)} as {words}: an exponent must be a number "
+                f"of at most {MAX_EXPONENT_DIGITS} digits, not itself a power",
+            )
 
 
 def _is_angle(q):

@@ -11,10 +11,10 @@ import math
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
+from reference import exact_a_max_against_mean, exact_chain
 
 from flyopt.cycle.indicator import energy_indicator, required_inertia
 from flyopt.machine.torque import Constant, PiecewiseLinear
-from reference import exact_a_max_against_mean, exact_chain
 
 TWO_PI = 2 * math.pi
 BAR = 1e-9
@@ -81,8 +81,9 @@ def test_near_tangent_crossings(gap):
 
     def table(c):
         return np.array([100.0, 200.0, 100.0, level - gap, 100.0, 100.0, 100.0 + c, 100.0 + c, 100.0, 100.0])
+
     _, _, net = exact_chain([0.0, TWO_PI], [level, level], x, table(0.0))
-    y = table(float(net))          # a block of c·1 rad of resisting work absorbs the surplus
+    y = table(float(net))  # a block of c·1 rad of resisting work absorbs the surplus
     hi, lo, net = exact_chain([0.0, TWO_PI], [level, level], x, y)
     assert abs(float(net)) < 1e-12 * level * TWO_PI
     ind = energy_indicator(Constant(level), PiecewiseLinear(x, y), TWO_PI)

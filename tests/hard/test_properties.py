@@ -8,15 +8,14 @@ from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from flyopt.cycle.indicator import energy_indicator, required_inertia
-from flyopt.design.materials import builtin_materials
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
+from flyopt.design.materials import builtin_materials
 from flyopt.machine.torque import Constant, PiecewiseLinear
 from flyopt.machine.transmission import inertia_on_shaft
 
 TWO_PI = 2 * math.pi
 # derandomize: CI runs the same examples every time (a failure is reproducible, not a lottery)
-SETTINGS = settings(max_examples=60, deadline=None, derandomize=True,
-                    suppress_health_check=[HealthCheck.too_slow])
+SETTINGS = settings(max_examples=60, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 
 
 @st.composite
@@ -63,7 +62,7 @@ def rotate(x, y, shift):
     end and start meet at 2π − shift (a step when y[-1] != y[0]); the cut at ``shift``
     gets the interpolated value at both new ends.
     """
-    k = int(np.searchsorted(x, shift))               # x[k-1] < shift < x[k]
+    k = int(np.searchsorted(x, shift))  # x[k-1] < shift < x[k]
     cut = y[k - 1] + (y[k] - y[k - 1]) * (shift - x[k - 1]) / (x[k] - x[k - 1])
     xr = np.concatenate(([0.0], x[k:] - shift, x[:k] - shift + TWO_PI, [TWO_PI]))
     yr = np.concatenate(([cut], y[k:], y[:k], [cut]))

@@ -26,18 +26,27 @@ def _parser():
     parser = argparse.ArgumentParser(
         prog="flyopt bench",
         description="Speed against error: time every way of getting an answer and its error against a "
-                    "reference of known accuracy; print the Markdown summary and write CSV, PNG and "
-                    "Markdown.")
-    parser.add_argument("--output-dir", type=Path, default=None, metavar="DIR",
-                        help=f"directory for the results (default: {RESULTS.as_posix()} for a full run; "
-                             f"a --quick run writes no files unless this is given)")
-    parser.add_argument("--quick", action="store_true",
-                        help="a few seconds: fewer samples, scenes and repeats; a smoke run that only "
-                             "prints its summary unless --output-dir is given")
-    parser.add_argument("--hard", action="store_true",
-                        help="run the generated hard set instead (hard.md and hard.csv)")
-    parser.add_argument("--sections", default=None,
-                        help=f"comma-separated sections to run (default all: {','.join(SECTIONS)})")
+        "reference of known accuracy; print the Markdown summary and write CSV, PNG and "
+        "Markdown.",
+    )
+    parser.add_argument(
+        "--output-dir",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help=f"directory for the results (default: {RESULTS.as_posix()} for a full run; "
+        f"a --quick run writes no files unless this is given)",
+    )
+    parser.add_argument(
+        "--quick",
+        action="store_true",
+        help="a few seconds: fewer samples, scenes and repeats; a smoke run that only "
+        "prints its summary unless --output-dir is given",
+    )
+    parser.add_argument("--hard", action="store_true", help="run the generated hard set instead (hard.md and hard.csv)")
+    parser.add_argument(
+        "--sections", default=None, help=f"comma-separated sections to run (default all: {','.join(SECTIONS)})"
+    )
     parser.add_argument("--seed", type=int, default=None, help="seed of the random scenes (default 1)")
     parser.add_argument("--repeats", type=int, default=None, help="timed repeats per measurement")
     parser.add_argument("--scenes", type=int, default=None, help="random design scenes")
@@ -68,8 +77,7 @@ def _output_dir(args, parser, default):
     return folder
 
 
-def main(argv: list[str] | None = None, *, default_output_dir: Path = RESULTS,
-         program: str = "flyopt bench") -> int:
+def main(argv: list[str] | None = None, *, default_output_dir: Path = RESULTS, program: str = "flyopt bench") -> int:
     """Entry point of ``flyopt bench``; returns the exit status (0 done).
 
     Parameters
@@ -100,8 +108,9 @@ def main(argv: list[str] | None = None, *, default_output_dir: Path = RESULTS,
         if unknown:
             parser.error(f"section {unknown[0]!r} not recognised; allowed are {', '.join(SECTIONS)}")
     out = _output_dir(args, parser, default_output_dir)
-    config = Config.make(args.quick, seed=args.seed, repeats=args.repeats, scenes=args.scenes,
-                         hard_scenes=args.hard_scenes)
+    config = Config.make(
+        args.quick, seed=args.seed, repeats=args.repeats, scenes=args.scenes, hard_scenes=args.hard_scenes
+    )
     here = str(Path.cwd()) + os.sep
     command = program + " " + " ".join(a.replace(here, "") for a in (argv if argv is not None else sys.argv[1:]))
     pinning, previous = pin_one_core() if args.pin else ("not pinned (--no-pin)", None)

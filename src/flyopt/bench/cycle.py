@@ -26,13 +26,23 @@ from flyopt.cycle.indicator import energy_indicator
 from flyopt.machine.expression import Expression
 from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 
-__all__ = ["TWO_PI", "CycleCase", "flyopt_curve", "flyopt_a_max", "reference_a_max", "table_noisy",
-           "table_spike", "table_staircase", "table_ripple", "case_near_tangent", "main_cycle_cases",
-           "section_cycle"]
+__all__ = [
+    "TWO_PI",
+    "CycleCase",
+    "flyopt_curve",
+    "flyopt_a_max",
+    "reference_a_max",
+    "table_noisy",
+    "table_spike",
+    "table_staircase",
+    "table_ripple",
+    "case_near_tangent",
+    "main_cycle_cases",
+    "section_cycle",
+]
 
 TWO_PI = 2.0 * math.pi
 """The cycle angle of one turn [rad]."""
-
 
 
 @dataclass
@@ -67,9 +77,16 @@ class CycleCase:
             if curve[0] == "expr":
                 return ("expr", curve[1], curve[2], (curve[3] if len(curve) > 3 else 1.0) * factor)
             return curve
-        return CycleCase(self.name, scale(self.driving), scale(self.resisting), self.cycle_angle,
-                         self.kind, None if self.reference is None else self.reference * factor,
-                         self.reference_how)
+
+        return CycleCase(
+            self.name,
+            scale(self.driving),
+            scale(self.resisting),
+            self.cycle_angle,
+            self.kind,
+            None if self.reference is None else self.reference * factor,
+            self.reference_how,
+        )
 
 
 def flyopt_curve(curve):
@@ -83,8 +100,7 @@ def flyopt_curve(curve):
 
 def flyopt_a_max(case):
     """A_max by flyopt's exact energy indicator (the torque objects built anew)."""
-    return energy_indicator(flyopt_curve(case.driving), flyopt_curve(case.resisting),
-                            case.cycle_angle).a_max
+    return energy_indicator(flyopt_curve(case.driving), flyopt_curve(case.resisting), case.cycle_angle).a_max
 
 
 def reference_a_max(case):
@@ -141,12 +157,13 @@ def case_near_tangent(gap, level=300.0):
     x = np.array([0, 1, 2, 3, 4, 5, 5, 6, 6, TWO_PI], dtype=float)
 
     def table(c):
-        return np.array([100.0, 200.0, 100.0, level - gap, 100.0, 100.0, 100.0 + c, 100.0 + c,
-                         100.0, 100.0])
+        return np.array([100.0, 200.0, 100.0, level - gap, 100.0, 100.0, 100.0 + c, 100.0 + c, 100.0, 100.0])
+
     drive = (np.array([0.0, TWO_PI]), np.array([level, level]))
     _, net = exact_a_max_tables(*drive, x, table(0.0))
-    return CycleCase(f"near-tangent gap {gap:g}", ("table", *drive), ("table", x, table(float(net))),
-                     kind="near-tangent")
+    return CycleCase(
+        f"near-tangent gap {gap:g}", ("table", *drive), ("table", x, table(float(net))), kind="near-tangent"
+    )
 
 
 def main_cycle_cases(config, rng):
@@ -155,11 +172,11 @@ def main_cycle_cases(config, rng):
     x, y = table_noisy(n, rng)
     xs, ys = table_spike()
     xr, yr = table_ripple(1e6, 1000, rng)
-    return [CycleCase(f"table-{n // 1000}k" if n >= 1000 else f"table-{n}", ("mean",), ("table", x, y),
-                      kind="noisy table"),
-            CycleCase("press-spike", ("mean",), ("table", xs, ys), kind="spike with steps"),
-            CycleCase("offset-1e6", ("mean",), ("table", xr, yr), kind="1e6 N*m + 1 N*m ripple")]
-
+    return [
+        CycleCase(f"table-{n // 1000}k" if n >= 1000 else f"table-{n}", ("mean",), ("table", x, y), kind="noisy table"),
+        CycleCase("press-spike", ("mean",), ("table", xs, ys), kind="spike with steps"),
+        CycleCase("offset-1e6", ("mean",), ("table", xr, yr), kind="1e6 N*m + 1 N*m ripple"),
+    ]
 
 
 def section_cycle(config):
@@ -174,21 +191,30 @@ def section_cycle(config):
             value = fn()
             timing = measure(fn, config.repeats, config.min_time)
             err = abs(value - ref) / ref
-            rows.append(Row.timed("cycle", case.name, method, setting, timing, error=err,
-                                  error_median=err, reference=case.reference_how,
-                                  note=f"{case.points} points, {case.kind}; A_max {value:.15g} J "
-                                       f"(exact {ref:.15g} J)"))
+            rows.append(
+                Row.timed(
+                    "cycle",
+                    case.name,
+                    method,
+                    setting,
+                    timing,
+                    error=err,
+                    error_median=err,
+                    reference=case.reference_how,
+                    note=f"{case.points} points, {case.kind}; A_max {value:.15g} J (exact {ref:.15g} J)",
+                )
+            )
 
         record("flyopt-exact", "exact", lambda: flyopt_a_max(case))
         record("trapezoid-table", f"{len(x)}", lambda: sampled_a_max(x, y, case.cycle_angle, None, "trapezoid"))
         for rule in SAMPLED_RULES:
             for n in config.samples:
                 record(rule, n, lambda n=n, rule=rule: sampled_a_max(x, y, case.cycle_angle, n, rule))
-        for n in config.samples:     # the integration alone, samples given (no resampling in the time)
+        for n in config.samples:  # the integration alone, samples given (no resampling in the time)
             phi = np.linspace(0.0, case.cycle_angle, n)
             m = np.interp(phi, x, y)
-            record("trapezoid-presampled", n,
-                   lambda phi=phi, m=m: integrate_samples(phi, m, case.cycle_angle, "trapezoid"))
+            record(
+                "trapezoid-presampled", n, lambda phi=phi, m=m: integrate_samples(phi, m, case.cycle_angle, "trapezoid")
+            )
     set_ratios(rows, lambda r: r.method == "flyopt-exact")
     return rows
-

@@ -27,14 +27,12 @@ from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.design.materials import builtin_materials
 from flyopt.errors import SolverFailed
 
-__all__ = ["RPM", "REFERENCE_RTOL", "ipopt_combinations", "design_methods", "random_design_scenes",
-           "section_design"]
+__all__ = ["RPM", "REFERENCE_RTOL", "ipopt_combinations", "design_methods", "random_design_scenes", "section_design"]
 
 RPM = math.pi / 30.0
 """One revolution per minute [rad/s]."""
 REFERENCE_RTOL = 1e-12
 """A candidate may join the reference optimum only if it violates nothing by more than this."""
-
 
 
 def ipopt_combinations(j_required, omega_mean, shafts, materials, spec, method="ipopt"):
@@ -58,14 +56,17 @@ def ipopt_combinations(j_required, omega_mean, shafts, materials, spec, method="
 def _per_combination(solver):
     def solve(j_required, omega_mean, shafts, materials, spec):
         return [solver(c) for c in combinations(j_required, omega_mean, shafts, materials, spec)]
-    solve.per_combination = solver      # timed on combinations built outside the timing
+
+    solve.per_combination = solver  # timed on combinations built outside the timing
     return solve
 
 
 def _flyopt_ranking(method):
     """The call a user makes: one design_flywheel over every combination (what is timed)."""
+
     def rank(j_required, omega_mean, shafts, materials, spec):
         return design_flywheel(j_required, omega_mean, shafts, materials, spec, method=method)
+
     return rank
 
 
@@ -77,18 +78,27 @@ def design_methods(config):
     other methods are timed on their combinations built beforehand (the caps
     and inertias per material and shaft, which flyopt's timing includes).
     """
-    methods = [("flyopt-ipopt", "casadi/ipopt", ipopt_combinations, _flyopt_ranking("ipopt")),
-               ("flyopt-auto", "closed form where exact",
-                lambda *args: ipopt_combinations(*args, method="auto"), _flyopt_ranking("auto"))]
+    methods = [
+        ("flyopt-ipopt", "casadi/ipopt", ipopt_combinations, _flyopt_ranking("ipopt")),
+        (
+            "flyopt-auto",
+            "closed form where exact",
+            lambda *args: ipopt_combinations(*args, method="auto"),
+            _flyopt_ranking("auto"),
+        ),
+    ]
     for ftol in SLSQP_FTOLS:
-        methods.append(("slsqp", f"ftol={ftol:g}",
-                        _per_combination(lambda c, ftol=ftol: slsqp_combination(c, "scaled", ftol))))
-    methods += [("slsqp-log", f"ftol={SLSQP_FTOL:g}",
-                 _per_combination(lambda c: slsqp_combination(c, "log", SLSQP_FTOL))),
-                ("root-1d", "bench reference", _per_combination(lightest_rim_1d))]
+        methods.append(
+            ("slsqp", f"ftol={ftol:g}", _per_combination(lambda c, ftol=ftol: slsqp_combination(c, "scaled", ftol)))
+        )
+    methods += [
+        ("slsqp-log", f"ftol={SLSQP_FTOL:g}", _per_combination(lambda c: slsqp_combination(c, "log", SLSQP_FTOL))),
+        ("root-1d", "bench reference", _per_combination(lightest_rim_1d)),
+    ]
     for n_d, n_k in config.grids:
-        methods.append(("grid", f"{n_d}x{n_k}",
-                        _per_combination(lambda c, n_d=n_d, n_k=n_k: grid_combination(c, n_d, n_k))))
+        methods.append(
+            ("grid", f"{n_d}x{n_k}", _per_combination(lambda c, n_d=n_d, n_k=n_k: grid_combination(c, n_d, n_k)))
+        )
     return methods
 
 
@@ -108,18 +118,22 @@ def random_design_scenes(count, seed):
         rpm = 10 ** rng.uniform(math.log10(50), math.log10(5000))
         omega = rpm * RPM
         j = float(10 ** rng.uniform(-3, 4))
-        shafts = [MountShaft("reference", 1.0), MountShaft("slower", float(10 ** rng.uniform(-1.0, 0.0))),
-                  MountShaft("faster", float(10 ** rng.uniform(0.0, 1.0)))]
+        shafts = [
+            MountShaft("reference", 1.0),
+            MountShaft("slower", float(10 ** rng.uniform(-1.0, 0.0))),
+            MountShaft("faster", float(10 ** rng.uniform(0.0, 1.0))),
+        ]
         geometry = str(rng.choice(["rim", "thin_rim"]))
         cap = 2.0 * materials[0].max_rim_speed / omega
         envelope = float(cap * rng.uniform(0.3, 1.5)) if rng.random() < 1 / 3 else None
         width = None
         if rng.random() < 0.25:
-            h_s = math.sqrt(4 * j * 1.5 / (math.pi * materials[0].density * cap ** 3))
+            h_s = math.sqrt(4 * j * 1.5 / (math.pi * materials[0].density * cap**3))
             width = float(h_s / 1.5 * rng.uniform(0.5, 3.0))
         spec = DesignSpec(geometry=geometry, hb_ratio=(1.5, 2.0), max_outer_diameter=envelope, max_width=width)
-        scenes.append({"j_required": j, "omega_mean": omega, "rpm": rpm, "shafts": shafts,
-                       "materials": materials, "spec": spec})
+        scenes.append(
+            {"j_required": j, "omega_mean": omega, "rpm": rpm, "shafts": shafts, "materials": materials, "spec": spec}
+        )
     return scenes
 
 
@@ -136,7 +150,7 @@ def _judge(outcome, ref_mass):
     """(correct verdict, relative excess mass or None) of one outcome against the reference mass."""
     feasible = math.isfinite(ref_mass)
     if outcome.verdict == "design":
-        if not feasible:      # a verified design where the reference found none: reference wrong
+        if not feasible:  # a verified design where the reference found none: reference wrong
             return True, 0.0
         return True, (outcome.mass - ref_mass) / ref_mass
     # no design: right when the combination is infeasible, whether the method proved it
@@ -150,11 +164,22 @@ def section_design(config):
     methods = design_methods(config)
     # warm-up: build every NLP structure the scenes use, outside the timings
     for geometry in ("rim", "thin_rim"):
-        design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry),
-                        method="ipopt")
-    stats = {name + setting: {"times": [], "errors": [], "viol": 0.0, "ok": 0, "total": 0, "fail": 0,
-                              "reasons": {}, "name": name, "setting": setting, "repeats": 0}
-             for name, setting, *_ in methods}
+        design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry), method="ipopt")
+    stats = {
+        name + setting: {
+            "times": [],
+            "errors": [],
+            "viol": 0.0,
+            "ok": 0,
+            "total": 0,
+            "fail": 0,
+            "reasons": {},
+            "name": name,
+            "setting": setting,
+            "repeats": 0,
+        }
+        for name, setting, *_ in methods
+    }
     beat_reference, beat_by = 0, 0.0
     for scene in scenes:
         args = (scene["j_required"], scene["omega_mean"], scene["shafts"], scene["materials"], scene["spec"])
@@ -196,9 +221,9 @@ def section_design(config):
             if masses and math.isfinite(winner):
                 s["errors"].append(abs(min(masses) - winner) / winner)
             elif math.isfinite(winner):
-                s["errors"].append(math.inf)      # no design where there is one
+                s["errors"].append(math.inf)  # no design where there is one
     rows = []
-    for key, s in stats.items():
+    for s in stats.values():
         times = np.array(s["times"])
         errors = [e for e in s["errors"] if math.isfinite(e)]
         missing = len(s["errors"]) - len(errors)
@@ -209,14 +234,30 @@ def section_design(config):
         if reasons:
             note += f"; wrong verdicts: {reasons}"
         if s["name"] == "root-1d" and beat_reference:
-            note += (f"; beaten by a verified candidate (violation <= {REFERENCE_RTOL:g}) in {beat_reference} "
-                     f"combinations, by at most {beat_by:.1e} in mass")
-        rows.append(Row("design", "ranking 2x3", s["name"], s["setting"], float(np.median(times)),
-                        float(np.quantile(times, 0.25)), float(np.quantile(times, 0.75)), s["repeats"], 1,
-                        error=max(errors) if errors else math.inf,
-                        error_median=float(np.median(errors)) if errors else math.inf,
-                        violation=s["viol"], verdicts_ok=s["ok"], verdicts_total=s["total"],
-                        failures=s["fail"], reference="best verified optimum (1-D root search)",
-                        note=note))
+            note += (
+                f"; beaten by a verified candidate (violation <= {REFERENCE_RTOL:g}) in {beat_reference} "
+                f"combinations, by at most {beat_by:.1e} in mass"
+            )
+        rows.append(
+            Row(
+                "design",
+                "ranking 2x3",
+                s["name"],
+                s["setting"],
+                float(np.median(times)),
+                float(np.quantile(times, 0.25)),
+                float(np.quantile(times, 0.75)),
+                s["repeats"],
+                1,
+                error=max(errors) if errors else math.inf,
+                error_median=float(np.median(errors)) if errors else math.inf,
+                violation=s["viol"],
+                verdicts_ok=s["ok"],
+                verdicts_total=s["total"],
+                failures=s["fail"],
+                reference="best verified optimum (1-D root search)",
+                note=note,
+            )
+        )
     set_ratios(rows, lambda r: r.method == "flyopt-ipopt")
     return rows

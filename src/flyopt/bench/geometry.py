@@ -22,7 +22,6 @@ from flyopt.design import design_flywheel, geometry
 __all__ = ["section_geometry"]
 
 
-
 def section_geometry(config):
     """Inertia of thin rim and exact annulus against the exact integral, over H/D_m."""
     rows = []
@@ -35,21 +34,43 @@ def section_geometry(config):
             "thin_rim": lambda: geometry.thin_rim_inertia(geometry.rim_mass(d_mean, h, b, density), d_mean),
             "rim": lambda: geometry.rim_inertia(geometry.rim_mass(d_mean, h, b, density), d_mean, h),
         }
-        if ratio == 1.0:        # the annulus with no hole is the disc
+        if ratio == 1.0:  # the annulus with no hole is the disc
             models["disc"] = lambda: geometry.disc_inertia(geometry.disc_mass(2 * h, b, density), 2 * h)
         for name, fn in models.items():
             value = fn()
             timing = measure(fn, config.repeats, config.min_time)
             err = abs(value - ref) / ref
-            rows.append(Row.timed("geometry", f"H/D_m={ratio:g}", name, f"H/D_m={ratio:g}", timing,
-                                  error=err, error_median=err,
-                                  reference="exact integral of r^2 dm over the annulus (rationals)",
-                                  note=f"J {value:.12g} vs {ref:.12g} kg*m^2"
-                                       + ("; thin rim is low (safe side)" if name == "thin_rim" else "")))
+            rows.append(
+                Row.timed(
+                    "geometry",
+                    f"H/D_m={ratio:g}",
+                    name,
+                    f"H/D_m={ratio:g}",
+                    timing,
+                    error=err,
+                    error_median=err,
+                    reference="exact integral of r^2 dm over the annulus (rationals)",
+                    note=f"J {value:.12g} vs {ref:.12g} kg*m^2"
+                    + ("; thin rim is low (safe side)" if name == "thin_rim" else ""),
+                )
+            )
     rows += _geometry_at_designs(config)
-    rows.append(Row("geometry", "hub and arms", "rim-hub-arms", "not built", math.nan, math.nan, math.nan,
-                    0, 0, verdicts_ok=0, verdicts_total=0,
-                    note="flyopt has no hub-and-arms model; the exact annulus is the most detailed model"))
+    rows.append(
+        Row(
+            "geometry",
+            "hub and arms",
+            "rim-hub-arms",
+            "not built",
+            math.nan,
+            math.nan,
+            math.nan,
+            0,
+            0,
+            verdicts_ok=0,
+            verdicts_total=0,
+            note="flyopt has no hub-and-arms model; the exact annulus is the most detailed model",
+        )
+    )
     set_ratios(rows, lambda r: r.method == "rim")
     return rows
 
@@ -74,16 +95,29 @@ def _geometry_at_designs(config):
 
         def thin_model(exact=exact, rho=rho):
             return geometry.thin_rim_inertia(geometry.rim_mass(exact.d_mean, exact.h, exact.b, rho), exact.d_mean)
+
         times.append(measure(thin_model, max(3, config.repeats // 3), config.min_time).median)
         errors.append(abs(thin_model() - ref) / ref)
         penalties.append(thin.mass / exact.mass - 1.0)
     if not errors:
         return []
     t = float(np.median(times))
-    return [Row("geometry", "optimal designs", "thin_rim", f"{len(errors)} designs", t, float(np.quantile(times, 0.25)),
-                float(np.quantile(times, 0.75)), max(3, config.repeats // 3), 1,
-                error=max(errors), error_median=float(np.median(errors)),
-                reference="exact integral of r^2 dm over the annulus (rationals)",
-                note=f"inertia error at the exact-annulus optima of the design scenes (worst; median "
-                     f"{np.median(errors):.2e}); designing with the thin-rim model costs {100 * np.median(penalties):.3g} % "
-                     f"more mass (median; worst {100 * max(penalties):.3g} %)")]
+    return [
+        Row(
+            "geometry",
+            "optimal designs",
+            "thin_rim",
+            f"{len(errors)} designs",
+            t,
+            float(np.quantile(times, 0.25)),
+            float(np.quantile(times, 0.75)),
+            max(3, config.repeats // 3),
+            1,
+            error=max(errors),
+            error_median=float(np.median(errors)),
+            reference="exact integral of r^2 dm over the annulus (rationals)",
+            note=f"inertia error at the exact-annulus optima of the design scenes (worst; median "
+            f"{np.median(errors):.2e}); designing with the thin-rim model costs {100 * np.median(penalties):.3g} % "
+            f"more mass (median; worst {100 * max(penalties):.3g} %)",
+        )
+    ]

@@ -18,12 +18,21 @@ from fractions import Fraction
 
 import numpy as np
 
-from flyopt.bench.cycle import (TWO_PI, CycleCase, case_near_tangent, flyopt_a_max, flyopt_curve, reference_a_max,
-                                table_noisy, table_ripple, table_spike, table_staircase)
+from flyopt.bench.cycle import (
+    TWO_PI,
+    CycleCase,
+    case_near_tangent,
+    flyopt_a_max,
+    flyopt_curve,
+    reference_a_max,
+    table_noisy,
+    table_ripple,
+    table_spike,
+    table_staircase,
+)
 from flyopt.bench.design import RPM, ipopt_combinations
 from flyopt.bench.peers import SLSQP_FTOL, SLSQP_FTOLS, slsqp_combination
-from flyopt.bench.references import (combinations, exact_a_max_tables, largest_rim_inertia, lightest_rim_1d,
-                                     violation)
+from flyopt.bench.references import combinations, exact_a_max_tables, largest_rim_inertia, lightest_rim_1d, violation
 from flyopt.cycle.indicator import energy_indicator, required_inertia
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.design.materials import builtin_materials
@@ -36,7 +45,6 @@ MASS_BAR = 1e-6
 """Relative error allowed on an optimized mass in the hard set."""
 
 
-
 def hard_cycle_cases(config, rng):
     """Generated cycles across the extremes, each with an exact reference."""
     sizes = (2, 3, 10, 1000) if config.quick else (2, 3, 10, 100, 1000, 10_000, 100_000)
@@ -45,37 +53,62 @@ def hard_cycle_cases(config, rng):
         x, y = table_noisy(n, rng)
         cases.append(CycleCase(f"noisy table {n} points", ("mean",), ("table", x, y), kind="size"))
         x = np.linspace(0.0, TWO_PI, n)
-        cases.append(CycleCase(f"smooth table {n} points", ("mean",),
-                               ("table", x, 800.0 + 600.0 * np.sin(x) + 150.0 * np.cos(3.0 * x + 0.3)),
-                               kind="size"))
+        cases.append(
+            CycleCase(
+                f"smooth table {n} points",
+                ("mean",),
+                ("table", x, 800.0 + 600.0 * np.sin(x) + 150.0 * np.cos(3.0 * x + 0.3)),
+                kind="size",
+            )
+        )
     x, y = table_staircase(40 if config.quick else 200)
     cases.append(CycleCase(f"staircase {len(x) // 2} steps", ("mean",), ("table", x, y), kind="steps"))
     xs = np.sort(np.concatenate((rng.uniform(0, TWO_PI, 50), np.repeat(rng.uniform(0, TWO_PI, 25), 2))))
     xs = np.concatenate(([0.0], xs, [TWO_PI]))
     cases.append(CycleCase("random steps", ("mean",), ("table", xs, rng.uniform(0, 1000, xs.size)), kind="steps"))
     for offset in (0.0, 1e3, 1e6):
-        cases.append(CycleCase(f"spike 2% at 50x, offset {offset:g}", ("mean",), ("table", *table_spike(offset)),
-                               kind="spike"))
+        cases.append(
+            CycleCase(f"spike 2% at 50x, offset {offset:g}", ("mean",), ("table", *table_spike(offset)), kind="spike")
+        )
     for gap in (0.0, 1e-12, 1e-6):
         cases.append(case_near_tangent(gap))
     for offset, n in ((1e3, 300), (1e6, 300), (1e6, 10_000), (1e9, 300)):
         if config.quick and n > 1000:
             continue
-        cases.append(CycleCase(f"offset {offset:g} + 1 N*m ripple, {n} points", ("mean",),
-                               ("table", *table_ripple(offset, n, rng)), kind="offset"))
+        cases.append(
+            CycleCase(
+                f"offset {offset:g} + 1 N*m ripple, {n} points",
+                ("mean",),
+                ("table", *table_ripple(offset, n, rng)),
+                kind="offset",
+            )
+        )
     x = np.linspace(0.0, TWO_PI, 1001)
-    cases.append(CycleCase("zero-mean table 300 sin 2phi (a balanced load)", ("mean",),
-                           ("table", x, 300.0 * np.sin(2.0 * x)), kind="zero mean"))
+    cases.append(
+        CycleCase(
+            "zero-mean table 300 sin 2phi (a balanced load)",
+            ("mean",),
+            ("table", x, 300.0 * np.sin(2.0 * x)),
+            kind="zero mean",
+        )
+    )
     x = np.linspace(0.0, TWO_PI, 400)
     yr = 1e6 + rng.uniform(-1.0, 1.0, x.size)
     yd = 1e6 + np.sin(x)
     _, net = exact_a_max_tables(x, yd, x, yr)
-    cases.append(CycleCase("two tables at 1e6 N*m, 1 N*m apart", ("table", x, yd),
-                           ("table", x, yr + float(net) / TWO_PI), kind="offset"))
+    cases.append(
+        CycleCase(
+            "two tables at 1e6 N*m, 1 N*m apart",
+            ("table", x, yd),
+            ("table", x, yr + float(net) / TWO_PI),
+            kind="offset",
+        )
+    )
     for offset, k in ((0.0, 1), (0.0, 3), (1e3, 2), (1e6, 1)):
         text = f"{offset!r} + sin({k}*phi)" if k != 1 else f"{offset!r} + sin(phi)"
-        cases.append(CycleCase(f"expression {text}", ("mean",), ("expr", text, 2.0 / k),
-                               kind="expression (closed form 2A/k)"))
+        cases.append(
+            CycleCase(f"expression {text}", ("mean",), ("expr", text, 2.0 / k), kind="expression (closed form 2A/k)")
+        )
     return cases
 
 
@@ -103,7 +136,7 @@ def hard_design_scenes(config, rng, cycles):
         cycle = small[i % len(small)]
         omega = rpm * RPM
         a_ref = reference_a_max(cycle)
-        power = round(math.log2(j_target * omega ** 2 * delta / a_ref))
+        power = round(math.log2(j_target * omega**2 * delta / a_ref))
         ratios = [1.0, float(10 ** rng.uniform(math.log10(1 / 20), 0)), float(10 ** rng.uniform(0, math.log10(50)))]
         if i % 3 == 0:
             ratios[1 + (i // 3) % 2] = (1 / 20, 50.0)[(i // 3) % 2]
@@ -114,13 +147,27 @@ def hard_design_scenes(config, rng, cycles):
         envelope = float(cap * rng.uniform(0.3, 1.5)) if rng.random() < 0.3 else None
         width = None
         if rng.random() < 0.25:
-            j_est = a_ref * math.ldexp(1.0, power) / (omega ** 2 * delta)
-            h_s = math.sqrt(4 * j_est * low / (math.pi * materials[0].density * cap ** 3))
+            j_est = a_ref * math.ldexp(1.0, power) / (omega**2 * delta)
+            h_s = math.sqrt(4 * j_est * low / (math.pi * materials[0].density * cap**3))
             width = float(h_s / low * 10 ** rng.uniform(-0.5, 1.0))
-        spec = DesignSpec(geometry=str(rng.choice(["rim", "thin_rim"])), hb_ratio=(low, high),
-                          max_outer_diameter=envelope, max_width=width)
-        scenes.append({"cycle": cycle, "power": power, "rpm": rpm, "omega_mean": omega, "delta": delta,
-                       "shafts": shafts, "materials": materials, "spec": spec})
+        spec = DesignSpec(
+            geometry=str(rng.choice(["rim", "thin_rim"])),
+            hb_ratio=(low, high),
+            max_outer_diameter=envelope,
+            max_width=width,
+        )
+        scenes.append(
+            {
+                "cycle": cycle,
+                "power": power,
+                "rpm": rpm,
+                "omega_mean": omega,
+                "delta": delta,
+                "shafts": shafts,
+                "materials": materials,
+                "spec": spec,
+            }
+        )
     return scenes
 
 
@@ -138,15 +185,17 @@ def _boundary_scenes(config, base):
     for scene in base:
         if len(out) >= count:
             break
-        combo = combinations(1.0, scene["omega_mean"], scene["shafts"][:1], scene["materials"][:1],
-                             scene["spec"])[0]
+        combo = combinations(1.0, scene["omega_mean"], scene["shafts"][:1], scene["materials"][:1], scene["spec"])[0]
         j_max = largest_rim_inertia(combo)
         if not 1e-6 <= j_max <= 1e6:
             continue
         factor = factors[len(out) % len(factors)]
-        scene = dict(scene, j_override=j_max * factor,
-                     boundary=f"J' = (1 {'-' if factor < 1 else '+'} {abs(factor - 1):.0e}) x largest inertia "
-                              f"of {combo.material} on {combo.shaft}")
+        scene = dict(
+            scene,
+            j_override=j_max * factor,
+            boundary=f"J' = (1 {'-' if factor < 1 else '+'} {abs(factor - 1):.0e}) x largest inertia "
+            f"of {combo.material} on {combo.shaft}",
+        )
         out.append(scene)
     return out
 
@@ -174,19 +223,31 @@ def run_hard(config, progress=None):
         except (ArithmeticError, ValueError) as err:
             value, status, elapsed = math.nan, f"{type(err).__name__}: {err}", math.nan
         err = abs(value - ref) / ref if math.isfinite(value) else math.inf
-        cycle_rows.append({"kind": "cycle", "case": case.name, "points": case.points, "check": "a_max",
-                           "value": value, "reference": ref, "reference_how": case.reference_how,
-                           "rel_error": err, "bar": CYCLE_BAR, "passed": err <= CYCLE_BAR, "status": status,
-                           "time_s": elapsed, "reference_time_s": ref_time})
+        cycle_rows.append(
+            {
+                "kind": "cycle",
+                "case": case.name,
+                "points": case.points,
+                "check": "a_max",
+                "value": value,
+                "reference": ref,
+                "reference_how": case.reference_how,
+                "rel_error": err,
+                "bar": CYCLE_BAR,
+                "passed": err <= CYCLE_BAR,
+                "status": status,
+                "time_s": elapsed,
+                "reference_time_s": ref_time,
+            }
+        )
     if progress:
         progress(f"hard: {len(cycle_rows)} cycle cases checked")
     scenes = hard_design_scenes(config, rng, cycles)
     scenes += _boundary_scenes(config, scenes)
-    for geometry in ("rim", "thin_rim"):      # build the NLPs outside the timings
-        design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry),
-                        method="ipopt")
+    for geometry in ("rim", "thin_rim"):  # build the NLPs outside the timings
+        design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry), method="ipopt")
     design_rows = []
-    solvers = {"flyopt-ipopt": "ipopt", "flyopt-auto": "auto"}     # flyopt's design paths
+    solvers = {"flyopt-ipopt": "ipopt", "flyopt-auto": "auto"}  # flyopt's design paths
     for ftol in SLSQP_FTOLS:
         solvers[f"slsqp(ftol={ftol:g})"] = lambda c, ftol=ftol: slsqp_combination(c, "scaled", ftol)
     solvers[f"slsqp-log(ftol={SLSQP_FTOL:g})"] = lambda c: slsqp_combination(c, "log", SLSQP_FTOL)
@@ -199,8 +260,11 @@ def run_hard(config, progress=None):
             check_j = None
         else:
             # independent: 900 A / (π² n² δ) in rationals of the float inputs (π as a float)
-            j_ref = float(Fraction(900) * Fraction(a_ref) / (Fraction(math.pi) ** 2 * Fraction(scene["rpm"]) ** 2
-                                                              * Fraction(delta)))
+            j_ref = float(
+                Fraction(900)
+                * Fraction(a_ref)
+                / (Fraction(math.pi) ** 2 * Fraction(scene["rpm"]) ** 2 * Fraction(delta))
+            )
             try:
                 j_fly = required_inertia(flyopt_a_max(cycle), omega, delta)
                 status = "ok"
@@ -208,12 +272,23 @@ def run_hard(config, progress=None):
                 # the cycle analysis refused the scene: record it, and design for the exact J_F
                 j_fly, status = j_ref, f"{type(err).__name__}: {err}"
             check_j = abs(j_fly - j_ref) / j_ref if status == "ok" else math.inf
-            cycle_rows.append({"kind": "j_required", "case": f"scene {index}: {cycle.name} x 2^{scene['power']}",
-                               "points": cycle.points, "check": "j_required",
-                               "value": j_fly if status == "ok" else math.nan, "reference": j_ref,
-                               "reference_how": "900 A_max/(pi^2 n^2 delta), exact A_max", "rel_error": check_j,
-                               "bar": CYCLE_BAR, "passed": check_j <= CYCLE_BAR, "status": status,
-                               "time_s": math.nan, "reference_time_s": math.nan})
+            cycle_rows.append(
+                {
+                    "kind": "j_required",
+                    "case": f"scene {index}: {cycle.name} x 2^{scene['power']}",
+                    "points": cycle.points,
+                    "check": "j_required",
+                    "value": j_fly if status == "ok" else math.nan,
+                    "reference": j_ref,
+                    "reference_how": "900 A_max/(pi^2 n^2 delta), exact A_max",
+                    "rel_error": check_j,
+                    "bar": CYCLE_BAR,
+                    "passed": check_j <= CYCLE_BAR,
+                    "status": status,
+                    "time_s": math.nan,
+                    "reference_time_s": math.nan,
+                }
+            )
         ref_combos = combinations(j_ref, omega, scene["shafts"], scene["materials"], scene["spec"])
         fly_combos = combinations(j_fly, omega, scene["shafts"], scene["materials"], scene["spec"])
         references = [lightest_rim_1d(c) for c in ref_combos]
@@ -221,18 +296,23 @@ def run_hard(config, progress=None):
             for ref_combo, combo, ref in zip(ref_combos, fly_combos, references):
                 start = time.perf_counter()
                 if isinstance(solver, str):
-                    outcome = ipopt_combinations(combo.j * combo.speed_ratio ** 2, omega,
-                                                 [MountShaft(combo.shaft, combo.speed_ratio)],
-                                                 [m for m in scene["materials"] if m.name == combo.material],
-                                                 scene["spec"], method=solver)[0]
+                    outcome = ipopt_combinations(
+                        combo.j * combo.speed_ratio**2,
+                        omega,
+                        [MountShaft(combo.shaft, combo.speed_ratio)],
+                        [m for m in scene["materials"] if m.name == combo.material],
+                        scene["spec"],
+                        method=solver,
+                    )[0]
                 else:
                     outcome = solver(combo)
                 elapsed = time.perf_counter() - start
                 ref_mass = ref.mass if ref.verdict == "design" else math.inf
                 if outcome.verdict == "design":
                     # measured against the reference combination (J from the exact A_max)
-                    outcome.violation = violation(ref_combo, *outcome.dims) if ref.verdict == "design" else \
-                        outcome.violation
+                    outcome.violation = (
+                        violation(ref_combo, *outcome.dims) if ref.verdict == "design" else outcome.violation
+                    )
                 err = None
                 last = last_error = None
                 if outcome.verdict == "failed" and outcome.mass is not None and math.isfinite(ref_mass):
@@ -243,20 +323,40 @@ def run_hard(config, progress=None):
                     passed = err <= MASS_BAR
                 elif outcome.verdict == "design":
                     passed = False
-                else:       # no design: right when infeasible (SLSQP's failure counts as a verdict)
+                else:  # no design: right when infeasible (SLSQP's failure counts as a verdict)
                     passed = not math.isfinite(ref_mass)
-                design_rows.append({
-                    "kind": "design", "scene": index, "cycle": cycle.name, "rpm": scene["rpm"], "delta": delta,
-                    "j_required": j_fly, "j_check": check_j, "geometry": combo.geometry,
-                    "hb_ratio": f"{combo.hb[0]:.4g}..{combo.hb[1]:.4g}",
-                    "envelope": scene["spec"].max_outer_diameter, "max_width": scene["spec"].max_width,
-                    "material": combo.material, "speed_ratio": combo.speed_ratio, "j_on_shaft": combo.j,
-                    "cap": combo.cap, "boundary": scene.get("boundary", ""),
-                    "reference_verdict": ref.verdict, "reference_mass": ref.mass, "method": name,
-                    "verdict": outcome.verdict, "mass": outcome.mass, "rel_error": err,
-                    "violation": outcome.violation, "passed": passed, "time_s": elapsed,
-                    "last_error": last_error, "last_violation": outcome.violation if last else None,
-                    "reason": (f"{last}; " if last else "") + outcome.reason})
+                design_rows.append(
+                    {
+                        "kind": "design",
+                        "scene": index,
+                        "cycle": cycle.name,
+                        "rpm": scene["rpm"],
+                        "delta": delta,
+                        "j_required": j_fly,
+                        "j_check": check_j,
+                        "geometry": combo.geometry,
+                        "hb_ratio": f"{combo.hb[0]:.4g}..{combo.hb[1]:.4g}",
+                        "envelope": scene["spec"].max_outer_diameter,
+                        "max_width": scene["spec"].max_width,
+                        "material": combo.material,
+                        "speed_ratio": combo.speed_ratio,
+                        "j_on_shaft": combo.j,
+                        "cap": combo.cap,
+                        "boundary": scene.get("boundary", ""),
+                        "reference_verdict": ref.verdict,
+                        "reference_mass": ref.mass,
+                        "method": name,
+                        "verdict": outcome.verdict,
+                        "mass": outcome.mass,
+                        "rel_error": err,
+                        "violation": outcome.violation,
+                        "passed": passed,
+                        "time_s": elapsed,
+                        "last_error": last_error,
+                        "last_violation": outcome.violation if last else None,
+                        "reason": (f"{last}; " if last else "") + outcome.reason,
+                    }
+                )
         if progress and (index + 1) % 50 == 0:
             progress(f"hard: {index + 1}/{len(scenes)} design scenes")
     return cycle_rows, design_rows

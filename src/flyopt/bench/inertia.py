@@ -98,12 +98,14 @@ def section_required_inertia(config):
         results, timings = {}, {}
         for model in ORDER:
             if model == ENERGY_MASS and not machine.variable_inertia and exact != ENERGY_MASS:
-                continue      # with a constant inertia it is the energy method again
+                continue  # with a constant inertia it is the energy method again
             if model == ENERGY_MASS and machine.speed_dependent:
-                continue      # the energy–mass closed form holds only for torques of the angle alone
-            def run(model=model):   # a fresh reduction each call: no cached ExcessWork, the whole model timed
+                continue  # the energy–mass closed form holds only for torques of the angle alone
+
+            def run(model=model):  # a fresh reduction each call: no cached ExcessWork, the whole model timed
                 return requirement(reduce(scene), model)
-            if config.quick:     # one call: the periodic solution takes seconds
+
+            if config.quick:  # one call: the periodic solution takes seconds
                 results[model], timings[model] = once(run)
             else:
                 results[model], timings[model] = run(), measure(run, 3, 0.0)
@@ -117,11 +119,26 @@ def section_required_inertia(config):
         for model, res in results.items():
             delta = achieved_delta(machine, res.j_required)
             err = abs(res.j_required - j_ref) / j_ref
-            setting = ("cheapest exact" if model == exact else
-                       "exact, costlier" if ORDER.index(model) > ORDER.index(exact) else "approximate")
-            rows.append(Row.timed("required_inertia", case, model, setting,
-                                  timings[model], error=err, error_median=err, reference=reference,
-                                  note=f"J_F {res.j_required:.6g} kg*m^2; achieves delta {delta:.6g} "
-                                       f"(allowed {scene.delta:g}){'; the exact model' if model == exact else ''}"))
+            setting = (
+                "cheapest exact"
+                if model == exact
+                else "exact, costlier"
+                if ORDER.index(model) > ORDER.index(exact)
+                else "approximate"
+            )
+            rows.append(
+                Row.timed(
+                    "required_inertia",
+                    case,
+                    model,
+                    setting,
+                    timings[model],
+                    error=err,
+                    error_median=err,
+                    reference=reference,
+                    note=f"J_F {res.j_required:.6g} kg*m^2; achieves delta {delta:.6g} "
+                    f"(allowed {scene.delta:g}){'; the exact model' if model == exact else ''}",
+                )
+            )
     set_ratios(rows, lambda r: r.setting == "cheapest exact")
     return rows

@@ -19,8 +19,15 @@ from scipy import integrate, optimize
 
 from flyopt.bench.references import Outcome, checked_design, violation
 
-__all__ = ["SAMPLED_RULES", "sampled_a_max", "integrate_samples", "SLSQP_FTOLS", "SLSQP_FTOL",
-           "slsqp_combination", "grid_combination"]
+__all__ = [
+    "SAMPLED_RULES",
+    "sampled_a_max",
+    "integrate_samples",
+    "SLSQP_FTOLS",
+    "SLSQP_FTOL",
+    "slsqp_combination",
+    "grid_combination",
+]
 
 
 # ------------------------------------------------------------------------------
@@ -75,7 +82,6 @@ def integrate_samples(phi, m, cycle_angle, rule):
     raise ValueError(f"rule {rule!r} not recognised; allowed are {SAMPLED_RULES}")
 
 
-
 # ------------------------------------------------------------------------------
 # Design: SLSQP and brute-force grids on the rim model
 # ------------------------------------------------------------------------------
@@ -84,7 +90,7 @@ def integrate_samples(phi, m, cycle_angle, rule):
 def _scales(combo):
     """(L, H_s, B_s, ε = H_s/L): the thin rim at D_m = L = cap, H/B = hb_min, giving J'."""
     length = combo.cap
-    h_s = math.sqrt(4.0 * combo.j * combo.hb[0] / (math.pi * combo.density * length ** 3))
+    h_s = math.sqrt(4.0 * combo.j * combo.hb[0] / (math.pi * combo.density * length**3))
     return length, h_s, h_s / combo.hb[0], h_s / length
 
 
@@ -121,6 +127,7 @@ def slsqp_combination(combo, variables="scaled", ftol=SLSQP_FTOL, maxiter=200):
     b_top = combo.b_max / b_s
     cons = []
     if variables == "scaled":
+
         def f(z):
             return z[0] * z[1] * z[2]
 
@@ -134,21 +141,22 @@ def slsqp_combination(combo, variables="scaled", ftol=SLSQP_FTOL, maxiter=200):
         def dg_inertia(z):
             d, h, b = z
             e2 = eps * eps if rim else 0.0
-            return np.array([h * b * (3 * d * d + e2 * h * h), d * b * (d * d + 3 * e2 * h * h),
-                             d * h * (d * d + e2 * h * h)])
+            return np.array(
+                [h * b * (3 * d * d + e2 * h * h), d * b * (d * d + 3 * e2 * h * h), d * h * (d * d + e2 * h * h)]
+            )
+
         cons.append({"type": "ineq", "fun": g_inertia, "jac": dg_inertia})
-        cons.append({"type": "ineq", "fun": lambda z: 1.0 - z[0] - eps * z[1],
-                     "jac": lambda z: np.array([-1.0, -eps, 0.0])})
-        cons.append({"type": "ineq", "fun": lambda z: z[0] - eps * z[1],
-                     "jac": lambda z: np.array([1.0, -eps, 0.0])})
+        cons.append(
+            {"type": "ineq", "fun": lambda z: 1.0 - z[0] - eps * z[1], "jac": lambda z: np.array([-1.0, -eps, 0.0])}
+        )
+        cons.append({"type": "ineq", "fun": lambda z: z[0] - eps * z[1], "jac": lambda z: np.array([1.0, -eps, 0.0])})
         if ratio > 1.0:
-            cons.append({"type": "ineq", "fun": lambda z: z[1] - z[2],
-                         "jac": lambda z: np.array([0.0, 1.0, -1.0])})
-            cons.append({"type": "ineq", "fun": lambda z: ratio * z[2] - z[1],
-                         "jac": lambda z: np.array([0.0, -1.0, ratio])})
+            cons.append({"type": "ineq", "fun": lambda z: z[1] - z[2], "jac": lambda z: np.array([0.0, 1.0, -1.0])})
+            cons.append(
+                {"type": "ineq", "fun": lambda z: ratio * z[2] - z[1], "jac": lambda z: np.array([0.0, -1.0, ratio])}
+            )
         else:
-            cons.append({"type": "eq", "fun": lambda z: z[1] - z[2],
-                         "jac": lambda z: np.array([0.0, 1.0, -1.0])})
+            cons.append({"type": "eq", "fun": lambda z: z[1] - z[2], "jac": lambda z: np.array([0.0, 1.0, -1.0])})
         bounds = [(1e-12, None), (1e-12, None), (1e-12, b_top if math.isfinite(b_top) else None)]
         x0 = np.array([1.0 - min(eps, 0.5), 1.0, min(1.0, b_top)])
 
@@ -182,18 +190,23 @@ def slsqp_combination(combo, variables="scaled", ftol=SLSQP_FTOL, maxiter=200):
             t = x[1] + log_eps - x[0]
             s = 1.0 / (1.0 + math.exp(-t))
             return -np.array([1.0 - s, s, 0.0])
+
         cons.append({"type": "ineq", "fun": g_inertia, "jac": dg_inertia})
         cons.append({"type": "ineq", "fun": g_outer, "jac": dg_outer})
-        cons.append({"type": "ineq", "fun": lambda x: -log_eps - (x[1] - x[0]),
-                     "jac": lambda x: np.array([1.0, -1.0, 0.0])})
+        cons.append(
+            {"type": "ineq", "fun": lambda x: -log_eps - (x[1] - x[0]), "jac": lambda x: np.array([1.0, -1.0, 0.0])}
+        )
         if ratio > 1.0:
-            cons.append({"type": "ineq", "fun": lambda x: x[1] - x[2],
-                         "jac": lambda x: np.array([0.0, 1.0, -1.0])})
-            cons.append({"type": "ineq", "fun": lambda x: math.log(ratio) - (x[1] - x[2]),
-                         "jac": lambda x: np.array([0.0, -1.0, 1.0])})
+            cons.append({"type": "ineq", "fun": lambda x: x[1] - x[2], "jac": lambda x: np.array([0.0, 1.0, -1.0])})
+            cons.append(
+                {
+                    "type": "ineq",
+                    "fun": lambda x: math.log(ratio) - (x[1] - x[2]),
+                    "jac": lambda x: np.array([0.0, -1.0, 1.0]),
+                }
+            )
         else:
-            cons.append({"type": "eq", "fun": lambda x: x[1] - x[2],
-                         "jac": lambda x: np.array([0.0, 1.0, -1.0])})
+            cons.append({"type": "eq", "fun": lambda x: x[1] - x[2], "jac": lambda x: np.array([0.0, 1.0, -1.0])})
         bounds = [(None, None), (None, None), (None, math.log(b_top) if math.isfinite(b_top) else None)]
         x0 = np.array([math.log1p(-min(eps, 0.5)), 0.0, min(0.0, math.log(b_top))])
 
@@ -205,8 +218,15 @@ def slsqp_combination(combo, variables="scaled", ftol=SLSQP_FTOL, maxiter=200):
         warnings.simplefilter("always")
         with np.errstate(all="ignore"):
             try:
-                res = optimize.minimize(f, x0, jac=df, method="SLSQP", bounds=bounds, constraints=cons,
-                                        options={"ftol": ftol, "maxiter": maxiter})
+                res = optimize.minimize(
+                    f,
+                    x0,
+                    jac=df,
+                    method="SLSQP",
+                    bounds=bounds,
+                    constraints=cons,
+                    options={"ftol": ftol, "maxiter": maxiter},
+                )
             except (ValueError, OverflowError, ZeroDivisionError) as err:
                 return Outcome("failed", reason=f"SLSQP raised {type(err).__name__}: {err}")
     note = "; ".join(sorted({str(w.message).splitlines()[0] for w in caught}))
@@ -217,7 +237,7 @@ def slsqp_combination(combo, variables="scaled", ftol=SLSQP_FTOL, maxiter=200):
         d, h, b = dims(res.x)
     except OverflowError:
         return Outcome("failed", reason=message + "; overflow")
-    if not res.success:       # keep the last point: how far it was from a design is worth knowing
+    if not res.success:  # keep the last point: how far it was from a design is worth knowing
         v = violation(combo, d, h, b) if min(d, h, b) > 0 else math.inf
         return Outcome("failed", math.pi * combo.density * d * h * b, (d, h, b), v, message)
     return checked_design(combo, d, h, b, message)
@@ -250,4 +270,3 @@ def grid_combination(combo, n_diameters, n_ratios):
     mass = np.where(ok, math.pi * rho * d * h * b, np.inf)
     i = np.unravel_index(int(np.argmin(mass)), mass.shape)
     return checked_design(combo, float(d[i[0], 0]), float(h[i]), float(b[i]), "grid")
-

@@ -20,9 +20,18 @@ import numpy as np
 from scipy import optimize
 
 __all__ = [
-    "VERIFY_RTOL", "exact_a_max_against_mean", "exact_a_max_tables", "exact_annulus_inertia",
-    "Combination", "combinations", "rim_inertia", "violation", "Outcome", "checked_design",
-    "lightest_rim_1d", "largest_rim_inertia",
+    "VERIFY_RTOL",
+    "exact_a_max_against_mean",
+    "exact_a_max_tables",
+    "exact_annulus_inertia",
+    "Combination",
+    "combinations",
+    "rim_inertia",
+    "violation",
+    "Outcome",
+    "checked_design",
+    "lightest_rim_1d",
+    "largest_rim_inertia",
 ]
 
 VERIFY_RTOL = 1e-6
@@ -104,7 +113,6 @@ def exact_a_max_tables(xd, yd, xr, yr):
     return high - low, e
 
 
-
 # ------------------------------------------------------------------------------
 # Geometry: the exact inertia of an annulus
 # ------------------------------------------------------------------------------
@@ -113,7 +121,7 @@ def exact_a_max_tables(xd, yd, xr, yr):
 def exact_annulus_inertia(d_outer, d_inner, b, density):
     """∫ r² dm over an annulus, π ρ B (R₁⁴ − R₂⁴)/2, in rationals (π and ρ as floats at the end)."""
     r1, r2, bw = Fraction(d_outer) / 2, Fraction(d_inner) / 2, Fraction(b)
-    return math.pi * density * float(bw * (r1 ** 4 - r2 ** 4) / 2)
+    return math.pi * density * float(bw * (r1**4 - r2**4) / 2)
 
 
 # ------------------------------------------------------------------------------
@@ -149,8 +157,19 @@ def combinations(j_required, omega_mean, shafts, materials, spec):
     for m in materials:
         for s in shafts:
             cap = min(2.0 * m.max_rim_speed / (omega_mean * s.speed_ratio), envelope)
-            out.append(Combination(spec.geometry, m.density, j_required / s.speed_ratio ** 2, cap,
-                                   tuple(spec.hb_ratio), b_max, m.name, s.name, s.speed_ratio))
+            out.append(
+                Combination(
+                    spec.geometry,
+                    m.density,
+                    j_required / s.speed_ratio**2,
+                    cap,
+                    tuple(spec.hb_ratio),
+                    b_max,
+                    m.name,
+                    s.name,
+                    s.speed_ratio,
+                )
+            )
     return out
 
 
@@ -164,9 +183,13 @@ def violation(combo, d_mean, h, b):
     """Largest relative violation of the combination's constraints by a rim [-] (0 if none)."""
     j = rim_inertia(combo.geometry, combo.density, d_mean, h, b)
     hb = h / b
-    terms = [(combo.j - j) / combo.j, (d_mean + h - combo.cap) / combo.cap,
-             (h - d_mean) / (d_mean + h), (combo.hb[0] - hb) / combo.hb[0],
-             (hb - combo.hb[1]) / combo.hb[1]]
+    terms = [
+        (combo.j - j) / combo.j,
+        (d_mean + h - combo.cap) / combo.cap,
+        (h - d_mean) / (d_mean + h),
+        (combo.hb[0] - hb) / combo.hb[0],
+        (hb - combo.hb[1]) / combo.hb[1],
+    ]
     if math.isfinite(combo.b_max):
         terms.append((b - combo.b_max) / combo.b_max)
     return max(0.0, *terms)
@@ -176,9 +199,9 @@ def violation(combo, d_mean, h, b):
 class Outcome:
     """What a method says about one combination: a design, infeasible, or failed."""
 
-    verdict: str                 # "design" | "infeasible" | "failed"
+    verdict: str  # "design" | "infeasible" | "failed"
     mass: float | None = None
-    dims: tuple | None = None    # (d_mean, h, b) [m]
+    dims: tuple | None = None  # (d_mean, h, b) [m]
     violation: float = 0.0
     reason: str = ""
 
@@ -189,10 +212,8 @@ def checked_design(combo, d_mean, h, b, reason=""):
     v = violation(combo, d_mean, h, b)
     mass = math.pi * combo.density * d_mean * h * b
     if not all(map(math.isfinite, (d_mean, h, b, mass))) or v > VERIFY_RTOL:
-        return Outcome("failed", mass, (d_mean, h, b), v,
-                       f"{reason}; violates a constraint by {v:.3g}".lstrip("; "))
+        return Outcome("failed", mass, (d_mean, h, b), v, f"{reason}; violates a constraint by {v:.3g}".lstrip("; "))
     return Outcome("design", mass, (d_mean, h, b), v, reason)
-
 
 
 def lightest_rim_1d(combo, points=3000):
@@ -213,7 +234,7 @@ def lightest_rim_1d(combo, points=3000):
         return _inertia_at_cap(combo, h)
 
     h_top = min(cap / 2.0, hb_max * combo.b_max)
-    h_est = math.sqrt(4.0 * j * hb_min / (math.pi * rho * cap ** 3))
+    h_est = math.sqrt(4.0 * j * hb_min / (math.pi * rho * cap**3))
     low = min(1e-3 * h_est, 1e-12 * h_top)
     while low > 1e-300 and inertia(low) >= j:
         low *= 1e-3
@@ -226,15 +247,22 @@ def lightest_rim_1d(combo, points=3000):
     if above.size == 0:
         i = int(np.argmax(values))
         lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-        peak = optimize.minimize_scalar(lambda h: -inertia(h) / j, bounds=(lo, hi), method="bounded",
-                                        options={"xatol": 1e-15 * hi})
+        peak = optimize.minimize_scalar(
+            lambda h: -inertia(h) / j, bounds=(lo, hi), method="bounded", options={"xatol": 1e-15 * hi}
+        )
         if -peak.fun < 1.0:
             return Outcome("infeasible", reason=f"largest rim gives {-peak.fun:.6g} of J'")
         lo_root, hi_root = grid[max(i - 1, 0)], peak.x
     else:
         lo_root, hi_root = grid[above[0] - 1], grid[above[0]]
-    u = optimize.brentq(lambda u: math.log(inertia(math.exp(u)) / j), math.log(lo_root),
-                        math.log(hi_root), xtol=1e-15, rtol=1e-15, maxiter=500)
+    u = optimize.brentq(
+        lambda u: math.log(inertia(math.exp(u)) / j),
+        math.log(lo_root),
+        math.log(hi_root),
+        xtol=1e-15,
+        rtol=1e-15,
+        maxiter=500,
+    )
     h = math.exp(u)
     d = cap - h
     k = d * d + (h * h if combo.geometry == "rim" else 0.0)
@@ -259,8 +287,9 @@ def largest_rim_inertia(combo):
     if i == hs.size - 1:
         return float(inertia(h_top))
     lo, hi = hs[max(i - 1, 0)], hs[i + 1]
-    peak = optimize.minimize_scalar(lambda h: -inertia(h), bounds=(lo, hi), method="bounded",
-                                    options={"xatol": 1e-15 * hi})
+    peak = optimize.minimize_scalar(
+        lambda h: -inertia(h), bounds=(lo, hi), method="bounded", options={"xatol": 1e-15 * hi}
+    )
     return float(max(-peak.fun, inertia(hs[i])))
 
 
@@ -272,4 +301,3 @@ def _width_at(combo, h):
 def _inertia_at_cap(combo, h):
     """J [kg*m^2] of the rim of height ``h`` [m] (scalar or array) with its outer diameter at the cap."""
     return rim_inertia(combo.geometry, combo.density, combo.cap - h, h, _width_at(combo, h))
-

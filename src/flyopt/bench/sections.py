@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import time
-from typing import Callable
+from collections.abc import Callable
 
 from flyopt.bench.cycle import section_cycle
 from flyopt.bench.design import section_design

@@ -13,8 +13,8 @@ import os
 import platform
 import statistics
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
@@ -63,9 +63,21 @@ class Config:
     @classmethod
     def make(cls, quick=False, **overrides):
         """The full configuration, or the quick one; ``None`` overrides are ignored."""
-        config = cls(quick=True, repeats=3, design_repeats=2, min_time=0.001, scenes=3,
-                     samples=(64, 1024, 100_000), grids=((30, 3), (1000, 5)),
-                     table_points=2_000, hard_scenes=6) if quick else cls()
+        config = (
+            cls(
+                quick=True,
+                repeats=3,
+                design_repeats=2,
+                min_time=0.001,
+                scenes=3,
+                samples=(64, 1024, 100_000),
+                grids=((30, 3), (1000, 5)),
+                table_points=2_000,
+                hard_scenes=6,
+            )
+            if quick
+            else cls()
+        )
         for key, value in overrides.items():
             if value is not None:
                 setattr(config, key, value)
@@ -177,8 +189,18 @@ class Row:
 
     @classmethod
     def timed(cls, section, case, method, setting, timing, **values):
-        return cls(section, case, method, str(setting), timing.median, timing.p25, timing.p75,
-                   timing.repeats, timing.number, **values)
+        return cls(
+            section,
+            case,
+            method,
+            str(setting),
+            timing.median,
+            timing.p25,
+            timing.p75,
+            timing.repeats,
+            timing.number,
+            **values,
+        )
 
 
 def set_ratios(rows, is_reference):
@@ -207,6 +229,8 @@ def machine_header(pinning):
     import casadi as ca
     import scipy
 
-    return (f"Machine: {platform.platform()}, {platform.processor() or platform.machine()}, "
-            f"{os.cpu_count()} CPUs, {pinning}; Python {platform.python_version()}, numpy "
-            f"{np.__version__}, scipy {scipy.__version__}, CasADi {ca.__version__} (IPOPT bundled).")
+    return (
+        f"Machine: {platform.platform()}, {platform.processor() or platform.machine()}, "
+        f"{os.cpu_count()} CPUs, {pinning}; Python {platform.python_version()}, numpy "
+        f"{np.__version__}, scipy {scipy.__version__}, CasADi {ca.__version__} (IPOPT bundled)."
+    )

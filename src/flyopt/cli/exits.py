@@ -57,7 +57,7 @@ def fail(message, status):
 def _one_line(message, limit=1000):
     """The message on one line, cut to ``limit`` characters (an echoed input may be huge)."""
     text = " ".join(str(message).split())
-    return text if len(text) <= limit else text[:limit - 1] + "…"
+    return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
 def status_of(err, where):
@@ -129,7 +129,7 @@ def run(parser, argv=None):
         parser.error(f"unrecognized arguments: {' '.join(rest)}")
     try:
         status = args.run(args)
-        sys.stdout.flush()   # a closed pipe shows here, not at exit
+        sys.stdout.flush()  # a closed pipe shows here, not at exit
         return status
     except BrokenPipeError:
         return _stdout_closed()
@@ -146,6 +146,6 @@ def _stdout_closed():
     try:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
-    except (OSError, ValueError):   # stdout without a file descriptor (captured in a test)
+    except (OSError, ValueError):  # stdout without a file descriptor (captured in a test)
         pass
     return EXIT_BROKEN_PIPE

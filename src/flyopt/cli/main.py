@@ -75,45 +75,59 @@ def _parser():
     from flyopt.cli import plot, report, scene, studies
 
     parser = argparse.ArgumentParser(
-        prog="flyopt", description="Flywheel design for speed regulation.",
+        prog="flyopt",
+        description="Flywheel design for speed regulation.",
         epilog="exit status: 0 ok, 1 solver failed or design failed its check, 2 bad input, "
-               "3 infeasible, 4 verification flagged, 130 interrupted, 141 stdout closed early "
-               "(see flyopt.cli.exits)")
+        "3 infeasible, 4 verification flagged, 130 interrupted, 141 stdout closed early "
+        "(see flyopt.cli.exits)",
+    )
     parser.add_argument("--version", action=_Version)
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     solve = commands.add_parser("solve", help="analyse a scene's cycle and size its flywheel")
     scene.add_solve_arguments(solve)
-    solve.add_argument("-o", "--output", metavar="FILE",
-                       help="write the report (or with --json the JSON) to FILE instead of stdout, "
-                            "atomically; its folder must exist")
+    solve.add_argument(
+        "-o",
+        "--output",
+        metavar="FILE",
+        help="write the report (or with --json the JSON) to FILE instead of stdout, atomically; its folder must exist",
+    )
     studies.add_quiet_argument(solve)
     solve.set_defaults(run=_printed_to_file(solve.get_default("run")))
-    for name, add, text in (("check", scene.add_check_arguments, "check a scene file and say what is wrong"),
-                            ("plot", plot.add_plot_arguments,
-                             "draw a diagram of a scene, or of sweep/Pareto results (png, svg, pdf)"),
-                            ("report", report.add_report_arguments,
-                             "the engineering report of a scene: one self-contained HTML or PDF file")):
+    for name, add, text in (
+        ("check", scene.add_check_arguments, "check a scene file and say what is wrong"),
+        ("plot", plot.add_plot_arguments, "draw a diagram of a scene, or of sweep/Pareto results (png, svg, pdf)"),
+        (
+            "report",
+            report.add_report_arguments,
+            "the engineering report of a scene: one self-contained HTML or PDF file",
+        ),
+    ):
         command = commands.add_parser(name, help=text)
         add(command)
         studies.add_quiet_argument(command)
         command.set_defaults(run=_silenced(command.get_default("run")))
-    for name, add, texts in (("sweep", studies.add_sweep_arguments, studies.SWEEP_HELP),
-                             ("pareto", studies.add_pareto_arguments, studies.PARETO_HELP),
-                             ("tradeoff", studies.add_tradeoff_arguments, studies.TRADEOFF_HELP)):
+    for name, add, texts in (
+        ("sweep", studies.add_sweep_arguments, studies.SWEEP_HELP),
+        ("pareto", studies.add_pareto_arguments, studies.PARETO_HELP),
+        ("tradeoff", studies.add_tradeoff_arguments, studies.TRADEOFF_HELP),
+    ):
         add(commands.add_parser(name, **texts))
-    bench = commands.add_parser("bench", add_help=False,   # --help is bench's own
-                                help="speed against error of each way to an answer "
-                                     "(see flyopt bench --help)")
-    bench.set_defaults(run=_bench, takes_rest=True)   # its own options, parsed by flyopt.bench
+    bench = commands.add_parser(
+        "bench",
+        add_help=False,  # --help is bench's own
+        help="speed against error of each way to an answer (see flyopt bench --help)",
+    )
+    bench.set_defaults(run=_bench, takes_rest=True)  # its own options, parsed by flyopt.bench
     return parser
 
 
 class _Version(argparse.Action):
     """``--version``: print ``flyopt VERSION`` on stdout and exit 0; the version is read only then."""
 
-    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS,
-                 help="print flyopt's version and exit"):
+    def __init__(
+        self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help="print flyopt's version and exit"
+    ):
         super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
 
     def __call__(self, parser, namespace, values, option_string=None):
@@ -130,6 +144,7 @@ def _printed_to_file(handler):
     written only when the handler returns (an error or Ctrl-C writes
     nothing), then "wrote FILE" is said unless ``--quiet``.
     """
+
     def run_to_file(args):
         if args.output is None:
             return handler(args)
@@ -141,8 +156,9 @@ def _printed_to_file(handler):
         check_folder(args.output, "-o/--output")
         scene = getattr(args, "scene", None)
         if scene is not None and Path(args.output).resolve() == Path(scene).resolve():
-            raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: "
-                             f"name another file for the result")
+            raise SceneError(
+                "-o/--output", f"{args.output!r} is the scene file itself: name another file for the result"
+            )
         printed = io.StringIO()
         with contextlib.redirect_stdout(printed):
             status = handler(args)
@@ -150,16 +166,19 @@ def _printed_to_file(handler):
         if not args.quiet:
             print(f"wrote {args.output}")
         return status
+
     return run_to_file
 
 
 def _silenced(handler):
     """A handler whose stdout ``--quiet`` silences: its result is a file or its exit status."""
+
     def run_quietly(args):
         if not args.quiet:
             return handler(args)
         with contextlib.redirect_stdout(io.StringIO()):
             return handler(args)
+
     return run_quietly
 
 

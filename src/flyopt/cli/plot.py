@@ -19,19 +19,33 @@ from flyopt.errors import FlyoptError
 def add_plot_arguments(parser):
     """The options of ``flyopt plot``; the handler is :func:`run_plot`."""
     parser.add_argument("scene", help="scene file (TOML), or results (.csv/.parquet) of flyopt sweep or pareto")
-    parser.add_argument("--what", required=True, metavar="DIAGRAM",
-                        help="turning_moment | energy | inertia_delta | cross_section | stress | speed | "
-                             "energy_mass; for results: sweep | pareto")
-    parser.add_argument("--x", help="results: the column on the x axis (sweep: a varied field; "
-                                    "pareto: default the front's second objective)")
+    parser.add_argument(
+        "--what",
+        required=True,
+        metavar="DIAGRAM",
+        help="turning_moment | energy | inertia_delta | cross_section | stress | speed | "
+        "energy_mass; for results: sweep | pareto",
+    )
+    parser.add_argument(
+        "--x",
+        help="results: the column on the x axis (sweep: a varied field; pareto: default the front's second objective)",
+    )
     parser.add_argument("--y", default="mass", help="results: the column on the y axis (default mass)")
     parser.add_argument("--by", help="sweep results: one line per value of this column (e.g. material)")
     parser.add_argument("--verify", action="store_true", help="speed: draw the periodic simulation over the model")
-    parser.add_argument("--units", default="engineering", metavar="SYSTEM",
-                        help="units of the axes and labels: engineering (mm, rpm, kN·m, kJ, MPa; the default), "
-                             "si (m, rad/s, N·m, J, Pa) or imperial (in, rpm, lbf·ft, ft·lbf, psi)")
-    parser.add_argument("-o", "--output", required=True,
-                        help="file to write (its folder must exist); the suffix picks the format: png, svg, pdf")
+    parser.add_argument(
+        "--units",
+        default="engineering",
+        metavar="SYSTEM",
+        help="units of the axes and labels: engineering (mm, rpm, kN·m, kJ, MPa; the default), "
+        "si (m, rad/s, N·m, J, Pa) or imperial (in, rpm, lbf·ft, ft·lbf, psi)",
+    )
+    parser.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        help="file to write (its folder must exist); the suffix picks the format: png, svg, pdf",
+    )
     parser.set_defaults(run=run_plot)
 
 
@@ -58,7 +72,7 @@ def run_plot(args):
     except _Infeasible as said:
         return fail(f"{args.scene}: no flywheel to draw ({said})", EXIT_INFEASIBLE)
     except ValueError as err:
-        if isinstance(err, FlyoptError):   # an input error names its file and field itself
+        if isinstance(err, FlyoptError):  # an input error names its file and field itself
             raise
         return fail(f"{args.scene}: {args.what}: {err}", EXIT_INPUT)
     plots.save(ax, args.output)
@@ -90,7 +104,7 @@ def _draw(args, plots):
             return plots.plot_cross_section(design.best, units=units)
         return _draw_stress(scene, analysis, design, plots, units)
     if args.what == "speed":
-        if scene.net is not None:   # said by the plot, before any model runs
+        if scene.net is not None:  # said by the plot, before any model runs
             return plots.plot_speed(scene, analysis, units=units)
         from flyopt.pipeline import verify
 
@@ -98,12 +112,14 @@ def _draw(args, plots):
         simulation = verify(scene, analysis).solution if args.verify else None
         speed = analysis.speed_curve()
         if speed is None:
-            raise plots.NothingToDraw("no flywheel is needed and the speed does not fluctuate (A_max = 0 J, "
-                                      "no inertia at all): nothing to draw")
+            raise plots.NothingToDraw(
+                "no flywheel is needed and the speed does not fluctuate (A_max = 0 J, "
+                "no inertia at all): nothing to draw"
+            )
         return plots.plot_speed(scene, analysis, speed, simulation, units=units)
     if args.what == "energy_mass":
         plots.check_energy_mass(analysis)
-        if analysis.model != "energy_mass":   # the diagram draws that model's tangents
+        if analysis.model != "energy_mass":  # the diagram draws that model's tangents
             analysis = analyse(scene, model="energy_mass")
     if args.what == "inertia_delta":
         plots.check_inertia_delta(analysis)
@@ -171,8 +187,17 @@ def wheel_dims(candidate):
     from flyopt.design.wheel import Dims
 
     c = candidate
-    return Dims(d_outer=c.d_outer, h=c.h, b=c.b, bore=c.bore or 0.0, t_web=c.t_web or 0.0, d_hub=c.d_hub or 0.0,
-                l_hub=c.l_hub or 0.0, arm_major=c.arm_major or 0.0, n_arms=c.n_arms or 0)
+    return Dims(
+        d_outer=c.d_outer,
+        h=c.h,
+        b=c.b,
+        bore=c.bore or 0.0,
+        t_web=c.t_web or 0.0,
+        d_hub=c.d_hub or 0.0,
+        l_hub=c.l_hub or 0.0,
+        arm_major=c.arm_major or 0.0,
+        n_arms=c.n_arms or 0,
+    )
 
 
 def stress_profile(scene, analysis, design):
@@ -200,8 +225,9 @@ def stress_profile(scene, analysis, design):
 
 def _draw_stress(scene, analysis, design, plots, units="engineering"):
     profile, beams, omega, material = stress_profile(scene, analysis, design)
-    return plots.plot_stress(design.best, profile, beams, omega, ductile=bool(getattr(material, "ductile", False)),
-                             units=units)
+    return plots.plot_stress(
+        design.best, profile, beams, omega, ductile=bool(getattr(material, "ductile", False)), units=units
+    )
 
 
 def _plot_results(args):
@@ -209,8 +235,9 @@ def _plot_results(args):
     from flyopt.report import plots
 
     if args.what not in plots.RESULT_PLOTS:
-        return fail(f"--what: {args.what!r} is not a diagram of results (known: {', '.join(plots.RESULT_PLOTS)})",
-                    EXIT_INPUT)
+        return fail(
+            f"--what: {args.what!r} is not a diagram of results (known: {', '.join(plots.RESULT_PLOTS)})", EXIT_INPUT
+        )
     plots.check_output(args.output)
     try:
         frame = read_results(args.scene)
@@ -226,8 +253,11 @@ def _plot_results(args):
         return fail(f"--x: the results diagram {args.what!r} needs the column for the x axis", EXIT_INPUT)
     units = args.units
     try:
-        ax = plots.plot_sweep(frame, x, args.y, args.by, units=units) if args.what == "sweep" else \
-            plots.plot_pareto(frame, x, args.y, units=units)
+        ax = (
+            plots.plot_sweep(frame, x, args.y, args.by, units=units)
+            if args.what == "sweep"
+            else plots.plot_pareto(frame, x, args.y, units=units)
+        )
     except ValueError as err:
         return fail(f"{args.scene}: {err}", EXIT_INPUT)
     plots.save(ax, args.output)

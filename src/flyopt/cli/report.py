@@ -31,17 +31,25 @@ def add_report_arguments(parser):
     from flyopt.report.display import DEFAULT, SYSTEMS
 
     parser.add_argument("scene", help="scene file (TOML)")
-    parser.add_argument("-o", "--output", required=True, metavar="FILE",
-                        help="the report to write: .html (one self-contained page) or .pdf; written atomically, "
-                             "its folder must exist")
-    parser.add_argument("--units", choices=SYSTEMS, default=DEFAULT,
-                        help=f"units of the summary and tables (default {DEFAULT}: mm, rpm, kN·m, kJ, MPa; "
-                             "si: SI base units; imperial: in, rpm, lbf·ft, psi); the equations stay in SI")
+    parser.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        metavar="FILE",
+        help="the report to write: .html (one self-contained page) or .pdf; written atomically, its folder must exist",
+    )
+    parser.add_argument(
+        "--units",
+        choices=SYSTEMS,
+        default=DEFAULT,
+        help=f"units of the summary and tables (default {DEFAULT}: mm, rpm, kN·m, kJ, MPa; "
+        "si: SI base units; imperial: in, rpm, lbf·ft, psi); the equations stay in SI",
+    )
     parser.set_defaults(run=run_report)
 
 
 def output_kind(path):
-    """"html" or "pdf" from the suffix of ``path``; SceneError at ``-o/--output`` otherwise."""
+    """ "html" or "pdf" from the suffix of ``path``; SceneError at ``-o/--output`` otherwise."""
     from pathlib import Path
 
     from flyopt.errors import SceneError
@@ -92,16 +100,19 @@ def write(document, path, kind):
         return
     try:
         from flyopt.report.pdf import render
+
         data = render(document)
-    except ImportError as err:   # reportlab is a dependency: only a broken installation lacks it
+    except ImportError as err:  # reportlab is a dependency: only a broken installation lacks it
         from flyopt.errors import SceneError
 
-        raise SceneError("-o/--output", f"a PDF report needs reportlab ({err}); install it "
-                                        "(pip install reportlab) or write .html") from None
+        raise SceneError(
+            "-o/--output", f"a PDF report needs reportlab ({err}); install it (pip install reportlab) or write .html"
+        ) from None
 
     def write_bytes(tmp):
         with open(tmp, "wb") as handle:
             handle.write(data)
+
     replace_atomically(Path(path), write_bytes)
 
 
@@ -134,10 +145,14 @@ def collect(path, command="", pdf=False):
     scene = load(path, data)
     solution = solve(scene, verify_design=True)
     analysis = solution.analysis
-    _ = (analysis.models, analysis.startup)   # computed on first use: here, not while the report is built
-    inputs = ReportInputs(scene_file=str(path), scene_text=Path(path).read_text(encoding="utf-8"),
-                          scene_tables=tuple(k for k, v in data.items() if isinstance(v, (dict, list))),
-                          scene=scene, solution=solution)
+    _ = (analysis.models, analysis.startup)  # computed on first use: here, not while the report is built
+    inputs = ReportInputs(
+        scene_file=str(path),
+        scene_text=Path(path).read_text(encoding="utf-8"),
+        scene_tables=tuple(k for k, v in data.items() if isinstance(v, (dict, list))),
+        scene=scene,
+        solution=solution,
+    )
     _speed(inputs)
     _machine(inputs)
     _inertia_delta(inputs)
@@ -171,8 +186,7 @@ def _speed(inputs):
         inputs.speed_note = str(err)
         return
     if inputs.speed is None:
-        inputs.speed_note = ("no flywheel is needed and the speed does not fluctuate (A_max = 0 J, no inertia at "
-                             "all)")
+        inputs.speed_note = "no flywheel is needed and the speed does not fluctuate (A_max = 0 J, no inertia at all)"
 
 
 def _machine(inputs):
@@ -191,21 +205,25 @@ def _machine(inputs):
         j = float(machine.j_machine)
         inputs.j_machine = (j, j, j)
     if not machine.variable_inertia:
-        return    # constant inertia: the energy–mass diagram is a vertical line, and no engine textbook step
+        return  # constant inertia: the energy–mass diagram is a vertical line, and no engine textbook step
     from flyopt.machine.engine import engine_of, textbook_requirement
 
     if engine_of(machine) is not None:
         inputs.textbook = textbook_requirement(machine, analysis.omega_mean, analysis.delta)
     if machine.speed_dependent:
-        return    # the energy–mass diagram needs torques of the angle only (flyopt.report.plots refuses it)
+        return  # the energy–mass diagram needs torques of the angle only (flyopt.report.plots refuses it)
     if analysis.model == "energy_mass":
         inputs.energy_mass = analysis
         detail = analysis.requirement.detail
         excess = machine.angle_only()
         inputs.tangents = {
-            key: (float(phi_k), float(np.asarray(machine.j_machine(np.array([phi_k])))[0]),
-                  float(np.asarray(excess(np.array([phi_k])))[0]))
-            for key, phi_k in (("max", detail.phi_omega_max), ("min", detail.phi_omega_min))}
+            key: (
+                float(phi_k),
+                float(np.asarray(machine.j_machine(np.array([phi_k])))[0]),
+                float(np.asarray(excess(np.array([phi_k])))[0]),
+            )
+            for key, phi_k in (("max", detail.phi_omega_max), ("min", detail.phi_omega_min))
+        }
     else:
         from flyopt.analysis import analyse
 
@@ -218,16 +236,16 @@ def _inertia_delta(inputs):
 
     analysis = inputs.solution.analysis
     if analysis.model == "energy":
-        return                    # the diagram draws the closed form itself
+        return  # the diagram draws the closed form itself
     try:
         plots.check_inertia_delta(analysis)
     except plots.NothingToDraw:
-        return                    # said by the diagram
+        return  # said by the diagram
     from flyopt.cli.plot import inertia_curve
 
-    try:   # at the δ flyopt plot --what inertia_delta takes (the function's own choice)
+    try:  # at the δ flyopt plot --what inertia_delta takes (the function's own choice)
         inputs.inertia_curve = inertia_curve(inputs.solution.scene, analysis)
-    except (ValueError, RuntimeError) as err:    # the report goes on; the diagram says why it is missing
+    except (ValueError, RuntimeError) as err:  # the report goes on; the diagram says why it is missing
         inputs.inertia_note = f"J_F could not be found at every δ by the {analysis.model} model ({err})"
 
 
@@ -270,14 +288,23 @@ def provenance(scene, command="", pdf=False, files=()):
     from flyopt.io.results import scene_record
 
     record = scene_record(scene)
-    rows = [("flyopt", flyopt.__version__), ("scene file", record["scene"] or "-"),
-            ("scene file SHA-256", record["scene_file_sha256"] or "-")]
+    rows = [
+        ("flyopt", flyopt.__version__),
+        ("scene file", record["scene"] or "-"),
+        ("scene file SHA-256", record["scene_file_sha256"] or "-"),
+    ]
     if files:
-        rows.append(("data files the scene reads", "; ".join(f"{field} = {value}" for field, value in files)
-                     + " (not in the hash above)"))
-    rows += [("written", datetime.datetime.now().astimezone().isoformat(timespec="seconds")),
-             ("command", command or "-"),
-             ("Python", f"{platform.python_version()} ({platform.python_implementation()}), {platform.platform()}")]
+        rows.append(
+            (
+                "data files the scene reads",
+                "; ".join(f"{field} = {value}" for field, value in files) + " (not in the hash above)",
+            )
+        )
+    rows += [
+        ("written", datetime.datetime.now().astimezone().isoformat(timespec="seconds")),
+        ("command", command or "-"),
+        ("Python", f"{platform.python_version()} ({platform.python_implementation()}), {platform.platform()}"),
+    ]
     for name in ("numpy", "scipy", "casadi", "matplotlib", "pint") + (("reportlab",) if pdf else ()):
         rows.append((name, _version_of(name)))
     rows.append(("IPOPT", ipopt_version()))
@@ -309,5 +336,8 @@ def ipopt_version():
 def _title_lines(inputs):
     """The title block's lines beside the scene file: date, flyopt version, the file's SHA-256."""
     rows = dict(inputs.provenance)
-    return (("date", rows.get("written", "-")), ("flyopt version", rows.get("flyopt", "-")),
-            ("scene SHA-256", rows.get("scene file SHA-256", "-")))
+    return (
+        ("date", rows.get("written", "-")),
+        ("flyopt version", rows.get("flyopt", "-")),
+        ("scene SHA-256", rows.get("scene file SHA-256", "-")),
+    )

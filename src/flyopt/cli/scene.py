@@ -7,31 +7,51 @@ from flyopt.report import display
 def units_help(what="the text report"):
     """The help of ``--units``, its units read from the display table (``flyopt plot`` takes the same choices)."""
     shown = ("length", "angular_speed", "torque", "energy", "stress", "power", "mass")
-    systems = "; ".join(f"{system}: {', '.join(dict.fromkeys(display.label(d, system) for d in shown))}"
-                        for system in display.SYSTEMS)
+    systems = "; ".join(
+        f"{system}: {', '.join(dict.fromkeys(display.label(d, system) for d in shown))}" for system in display.SYSTEMS
+    )
     return f"unit system of {what} (default {display.DEFAULT}; {systems})"
 
 
 def add_solve_arguments(parser):
     """The options of ``flyopt solve``; the handler is :func:`run_solve`."""
     parser.add_argument("scene", help="scene file (TOML)")
-    parser.add_argument("--json", action="store_true",
-                        help="print one JSON object, all numbers in SI whatever --units says")
-    parser.add_argument("--units", choices=display.SYSTEMS, default=display.DEFAULT,
-                        help=units_help() + "; --json ignores it: the JSON is always SI")
-    parser.add_argument("--no-design", dest="design", action="store_false",
-                        help="stop after the cycle analysis (no optimization)")
-    parser.add_argument("--model", choices=("energy", "energy_mass", "dynamic"),
-                        help="force the model that sizes the flywheel (default: the cheapest exact one)")
-    parser.add_argument("--design-method", choices=("auto", "ipopt", "closed_form"), default="auto",
-                        help="auto (default): the exact closed form where it covers the structure, IPOPT "
-                             "elsewhere; ipopt: IPOPT on every combination; closed_form: refuse what the "
-                             "closed form does not cover")
-    parser.add_argument("--verify", action="store_true",
-                        help="simulate the machine with the chosen flywheel and report the δ it achieves")
-    parser.add_argument("--timings", action="store_true",
-                        help="--json: also the wall-clock time of each design solve (solve_time [s]); left out "
-                             "by default, so that the same scene gives the same JSON")
+    parser.add_argument(
+        "--json", action="store_true", help="print one JSON object, all numbers in SI whatever --units says"
+    )
+    parser.add_argument(
+        "--units",
+        choices=display.SYSTEMS,
+        default=display.DEFAULT,
+        help=units_help() + "; --json ignores it: the JSON is always SI",
+    )
+    parser.add_argument(
+        "--no-design", dest="design", action="store_false", help="stop after the cycle analysis (no optimization)"
+    )
+    parser.add_argument(
+        "--model",
+        choices=("energy", "energy_mass", "dynamic"),
+        help="force the model that sizes the flywheel (default: the cheapest exact one)",
+    )
+    parser.add_argument(
+        "--design-method",
+        choices=("auto", "ipopt", "closed_form"),
+        default="auto",
+        help="auto (default): the exact closed form where it covers the structure, IPOPT "
+        "elsewhere; ipopt: IPOPT on every combination; closed_form: refuse what the "
+        "closed form does not cover",
+    )
+    parser.add_argument(
+        "--verify",
+        action="store_true",
+        help="simulate the machine with the chosen flywheel and report the δ it achieves",
+    )
+    parser.add_argument(
+        "--timings",
+        action="store_true",
+        help="--json: also the wall-clock time of each design solve (solve_time [s]); left out "
+        "by default, so that the same scene gives the same JSON",
+    )
     parser.set_defaults(run=run_solve)
 
 
@@ -41,8 +61,13 @@ def run_solve(args):
     from flyopt.pipeline import solve
 
     scene = load(args.scene)
-    solution = solve(scene, design_flywheel=args.design, model=args.model, verify_design=args.verify,
-                     design_method=args.design_method)
+    solution = solve(
+        scene,
+        design_flywheel=args.design,
+        model=args.model,
+        verify_design=args.verify,
+        design_method=args.design_method,
+    )
     if args.json:
         from flyopt.io.results import solution_json
 
@@ -78,12 +103,12 @@ def run_check(args):
     data = read_toml(args.scene)
     scene = load(args.scene, data)
     analyse(scene)  # a cycle that does not close is an input error too
-    if "sweep" in data:                        # the sweep's modules (pandas, pyarrow) only for a [sweep] table
+    if "sweep" in data:  # the sweep's modules (pandas, pyarrow) only for a [sweep] table
         from flyopt.io.sweep_spec import load_sweep
         from flyopt.studies.sweep import check_sweep
 
         _, options = load_sweep(args.scene)
-        if options["vary"] or len(options) > 1:   # the same checks flyopt sweep makes before it runs
+        if options["vary"] or len(options) > 1:  # the same checks flyopt sweep makes before it runs
             check_sweep(scene, options, "sweep")
     print(f"{args.scene}: ok ({scene.title})")
     return EXIT_OK

@@ -46,9 +46,12 @@ def _positive_int(text):
 
 def add_quiet_argument(parser):
     """``-q``/``--quiet``, in the words of every flyopt command (see :mod:`flyopt.cli.main`)."""
-    parser.add_argument("-q", "--quiet", action="store_true",
-                        help="print nothing but errors; the result still goes to the -o file, "
-                             "or to stdout without one")
+    parser.add_argument(
+        "-q",
+        "--quiet",
+        action="store_true",
+        help="print nothing but errors; the result still goes to the -o file, or to stdout without one",
+    )
 
 
 # --------------------------------------------------------------------------
@@ -58,44 +61,51 @@ def add_quiet_argument(parser):
 SWEEP_HELP = {
     "help": "a parameter sweep (grid or Latin hypercube) to CSV/Parquet",
     "description": "Sweep a scene over a grid (or Latin hypercube) of its fields: one row "
-                   "per point with every input and result, to Parquet or CSV.",
+    "per point with every input and result, to Parquet or CSV.",
     "epilog": "FIELD: delta, speed, inertia, torque.scale, design.max_outer_diameter "
-              "(envelope), design.max_width, design.d_mean, design.hb_ratio, design.hb_min, "
-              "design.hb_max, design.geometry, design.objective, material, shaft, "
-              "shaft.NAME.speed_ratio, material.NAME.density|max_rim_speed|cost. "
-              "VALUES: a,b,c | a:b:n | a:b:logn, a unit after the last value applies to "
-              "all (300,600,1200rpm; 0.4:1.2:5 m); 'none' for no limit.",
+    "(envelope), design.max_width, design.d_mean, design.hb_ratio, design.hb_min, "
+    "design.hb_max, design.geometry, design.objective, material, shaft, "
+    "shaft.NAME.speed_ratio, material.NAME.density|max_rim_speed|cost. "
+    "VALUES: a,b,c | a:b:n | a:b:logn, a unit after the last value applies to "
+    "all (300,600,1200rpm; 0.4:1.2:5 m); 'none' for no limit.",
 }
 
 
 def add_sweep_arguments(parser):
     """The options of ``flyopt sweep``; the handler is :func:`run_sweep`."""
     parser.add_argument("scene", help="scene file (TOML); a [sweep] table in it is read too")
-    parser.add_argument("--vary", action="append", default=[], metavar="FIELD=VALUES",
-                        help="a field and its values (repeat for a grid)")
-    parser.add_argument("-o", "--output", help="result file, .parquet or .csv "
-                        "(default: CSV on stdout)")
-    parser.add_argument("--samples", type=_positive_int, metavar="N",
-                        help="N Latin hypercube samples instead of the full grid")
+    parser.add_argument(
+        "--vary", action="append", default=[], metavar="FIELD=VALUES", help="a field and its values (repeat for a grid)"
+    )
+    parser.add_argument("-o", "--output", help="result file, .parquet or .csv (default: CSV on stdout)")
+    parser.add_argument(
+        "--samples", type=_positive_int, metavar="N", help="N Latin hypercube samples instead of the full grid"
+    )
     parser.add_argument("--seed", type=int, help="seed of the Latin hypercube")
-    parser.add_argument("--workers", type=_workers, metavar="N|auto",
-                        help="worker processes on this machine (default auto: one per CPU, "
-                             "serial when the sweep is too small to gain)")
-    parser.add_argument("--chunk-size", type=_positive_int, metavar="N",
-                        help="points per chunk (default: sized by the estimated cost of the points, "
-                             "1 s at most each)")
-    parser.add_argument("--scheduler", metavar="ADDRESS",
-                        help="run on a Dask cluster, e.g. tcp://host:8786")
-    parser.add_argument("--resume", action="store_true",
-                        help="continue an interrupted sweep from OUTPUT.parts/")
-    parser.add_argument("--max-chunks", type=int, metavar="K",
-                        help="stop after K chunks (continue later with --resume)")
-    parser.add_argument("--method", choices=("auto", "closed_form", "ipopt"),
-                        help="design method: closed form where exact, else IPOPT (auto)")
-    parser.add_argument("--keep-parts", action="store_true",
-                        help="keep OUTPUT.parts/ after writing the output")
-    parser.add_argument("--no-progress", dest="progress", action="store_false",
-                        help="no progress line on stderr")
+    parser.add_argument(
+        "--workers",
+        type=_workers,
+        metavar="N|auto",
+        help="worker processes on this machine (default auto: one per CPU, serial when the sweep is too small to gain)",
+    )
+    parser.add_argument(
+        "--chunk-size",
+        type=_positive_int,
+        metavar="N",
+        help="points per chunk (default: sized by the estimated cost of the points, 1 s at most each)",
+    )
+    parser.add_argument("--scheduler", metavar="ADDRESS", help="run on a Dask cluster, e.g. tcp://host:8786")
+    parser.add_argument("--resume", action="store_true", help="continue an interrupted sweep from OUTPUT.parts/")
+    parser.add_argument(
+        "--max-chunks", type=int, metavar="K", help="stop after K chunks (continue later with --resume)"
+    )
+    parser.add_argument(
+        "--method",
+        choices=("auto", "closed_form", "ipopt"),
+        help="design method: closed form where exact, else IPOPT (auto)",
+    )
+    parser.add_argument("--keep-parts", action="store_true", help="keep OUTPUT.parts/ after writing the output")
+    parser.add_argument("--no-progress", dest="progress", action="store_false", help="no progress line on stderr")
     add_quiet_argument(parser)
     parser.set_defaults(run=run_sweep)
 
@@ -106,17 +116,23 @@ def run_sweep(args):
     from flyopt.studies.sweep import check_sweep, sweep
 
     scene, options = load_sweep(args.scene)
-    if options["vary"] or len(options) > 1:   # the file's own [sweep] table: errors name the file
+    if options["vary"] or len(options) > 1:  # the file's own [sweep] table: errors name the file
         check_sweep(scene, options, "sweep")
-    cli = {"samples": args.samples, "seed": args.seed, "output": args.output,
-           "chunk_size": args.chunk_size, "method": args.method, "workers": args.workers,
-           "max_chunks": args.max_chunks}
+    cli = {
+        "samples": args.samples,
+        "seed": args.seed,
+        "output": args.output,
+        "chunk_size": args.chunk_size,
+        "method": args.method,
+        "workers": args.workers,
+        "max_chunks": args.max_chunks,
+    }
     cli = {key: value for key, value in cli.items() if value is not None}
     check_options({**cli, "resume": args.resume, "output": cli.get("output", options.get("output"))}, "--")
     vary = options.pop("vary")
     for path, values in vary_from_texts(scene, args.vary, "--vary").items():
         canonical = _resolve(scene, path, "--vary")[0]
-        for key in list(vary):   # the command line overrides the file
+        for key in list(vary):  # the command line overrides the file
             if _resolve(scene, key, "sweep.vary")[0] == canonical:
                 del vary[key]
         vary[path] = values
@@ -124,32 +140,47 @@ def run_sweep(args):
     options.update(cli)
     output = options.pop("output", None)
     if output is not None and args.output is None:
-        output = Path(args.scene).parent / output   # [sweep] output is relative to the file
-    frame = sweep(scene, vary, output=output, scheduler=args.scheduler, resume=args.resume,
-                  max_chunks=max_chunks, progress=args.progress and not args.quiet,
-                  keep_parts=args.keep_parts, **options)
+        output = Path(args.scene).parent / output  # [sweep] output is relative to the file
+    frame = sweep(
+        scene,
+        vary,
+        output=output,
+        scheduler=args.scheduler,
+        resume=args.resume,
+        max_chunks=max_chunks,
+        progress=args.progress and not args.quiet,
+        keep_parts=args.keep_parts,
+        **options,
+    )
     info = frame.attrs["sweep"]
     counts = frame["status"].value_counts().to_dict()
-    summary = ", ".join(f"{counts.get(s, 0)} {s.replace('_', ' ')}"
-                        for s in ("designed", "infeasible", "not_needed", "failed"))
+    summary = ", ".join(
+        f"{counts.get(s, 0)} {s.replace('_', ' ')}" for s in ("designed", "infeasible", "not_needed", "failed")
+    )
     methods = ", ".join(f"{v} {k}" for k, v in frame["method"].value_counts().items())
     rate = info["designs"] / info["seconds"] if info["seconds"] > 0 else math.inf
     if not info["complete"]:
         left = info["chunks"] - len(info["chunks_run"]) - len(info["chunks_reused"])
         if not args.quiet:
-            print(f"flyopt sweep: stopped after {len(info['chunks_run'])} chunks, {left} left: "
-                  f"continue with --resume ({_parts_name(output)})", file=sys.stderr)
+            print(
+                f"flyopt sweep: stopped after {len(info['chunks_run'])} chunks, {left} left: "
+                f"continue with --resume ({_parts_name(output)})",
+                file=sys.stderr,
+            )
         return EXIT_OK
-    if output is None:   # missing values as empty cells, as in a CSV file
+    if output is None:  # missing values as empty cells, as in a CSV file
         from flyopt.io.results import _csv
 
         _csv(frame, sys.stdout, header=True)
     if args.quiet:
         return EXIT_OK
     where = f"wrote {output}" if output is not None else "done"
-    print(f"flyopt sweep: {where}: {len(frame)} points ({summary}); methods: {methods}; "
-          f"{info['designs']} designs in {info['seconds']:.2f} s ({rate:,.0f} designs/s, "
-          f"{info['mode']})", file=sys.stderr)
+    print(
+        f"flyopt sweep: {where}: {len(frame)} points ({summary}); methods: {methods}; "
+        f"{info['designs']} designs in {info['seconds']:.2f} s ({rate:,.0f} designs/s, "
+        f"{info['mode']})",
+        file=sys.stderr,
+    )
     return EXIT_OK
 
 
@@ -164,34 +195,44 @@ def _parts_name(output):
 PARETO_HELP = {
     "help": "a Pareto front of two objectives",
     "description": "Pareto front of mass against outer diameter, cost or delta, by an "
-                   "epsilon-constraint swept through the design model.",
+    "epsilon-constraint swept through the design model.",
 }
 
 
 def add_pareto_arguments(parser):
     """The options of ``flyopt pareto``; the handler is :func:`run_pareto`."""
     parser.add_argument("scene", help="scene file (TOML)")
-    parser.add_argument("--objectives", default="mass,outer_diameter",
-                        help="mass,outer_diameter | mass,cost | mass,delta | mass,motor_power (a [drive]) "
-                             "(default mass,outer_diameter)")
-    parser.add_argument("--points", type=_positive_int, default=25,
-                        help="number of epsilon values (default 25)")
-    parser.add_argument("--range", dest="span", metavar="LOW:HIGH",
-                        help="range of epsilon, e.g. 0.3:1.2 m or 0.01:0.1")
+    parser.add_argument(
+        "--objectives",
+        default="mass,outer_diameter",
+        help="mass,outer_diameter | mass,cost | mass,delta | mass,motor_power (a [drive]) "
+        "(default mass,outer_diameter)",
+    )
+    parser.add_argument("--points", type=_positive_int, default=25, help="number of epsilon values (default 25)")
+    parser.add_argument("--range", dest="span", metavar="LOW:HIGH", help="range of epsilon, e.g. 0.3:1.2 m or 0.01:0.1")
     _method_and_output(parser, "front")
     parser.set_defaults(run=run_pareto)
 
 
 def _method_and_output(parser, what):
     """The options ``flyopt pareto`` and ``flyopt tradeoff`` share: the design method and the output."""
-    parser.add_argument("--method", choices=("auto", "closed_form", "ipopt"), default="auto",
-                        help="design method: closed form where exact, else IPOPT (auto); ipopt: every "
-                             "combination through the CasADi/IPOPT model")
-    parser.add_argument("-o", "--output", help=f"write the {what} to .csv, .parquet or .json "
-                        f"(with its units and provenance: Parquet metadata, FILE.csv.json beside a "
-                        f"CSV file, or in the JSON)")
-    parser.add_argument("--json", action="store_true",
-                        help=f"print the {what} as one JSON document: its units, provenance and rows")
+    parser.add_argument(
+        "--method",
+        choices=("auto", "closed_form", "ipopt"),
+        default="auto",
+        help="design method: closed form where exact, else IPOPT (auto); ipopt: every "
+        "combination through the CasADi/IPOPT model",
+    )
+    parser.add_argument(
+        "-o",
+        "--output",
+        help=f"write the {what} to .csv, .parquet or .json "
+        f"(with its units and provenance: Parquet metadata, FILE.csv.json beside a "
+        f"CSV file, or in the JSON)",
+    )
+    parser.add_argument(
+        "--json", action="store_true", help=f"print the {what} as one JSON document: its units, provenance and rows"
+    )
     add_quiet_argument(parser)
 
 
@@ -205,12 +246,10 @@ def _span(text, other):
         return None
     dimension = PARETO_OBJECTIVES[other]
     if dimension is None:
-        raise SceneError("--range", f"the {other} front has no range: it is the set of "
-                         f"material x shaft designs")
+        raise SceneError("--range", f"the {other} front has no range: it is the set of material x shaft designs")
     parts = text.split(":")
     if len(parts) != 2:
-        raise SceneError("--range", f"{text!r}: expected LOW:HIGH with an optional unit, "
-                         f"e.g. 0.3:1.2 m")
+        raise SceneError("--range", f"{text!r}: expected LOW:HIGH with an optional unit, e.g. 0.3:1.2 m")
     trailing = _split_unit(parts[1])[1]
     ends = []
     for part in parts:
@@ -221,12 +260,21 @@ def _span(text, other):
 
 
 _SHOW = {
-    "outer_diameter": ["mass", "outer_diameter", "best_material", "best_shaft", "b", "h",
-                       "binding", "method"],
+    "outer_diameter": ["mass", "outer_diameter", "best_material", "best_shaft", "b", "h", "binding", "method"],
     "cost": ["mass", "cost", "best_material", "best_shaft", "d_outer", "binding", "method"],
     "delta": ["mass", "delta", "best_material", "best_shaft", "d_outer", "binding", "method"],
-    "motor_power": ["mass", "motor_power", "motor", "motor_ratio", "flywheel_ratio", "j_flywheel", "limit",
-                    "total_mass", "best_material", "d_outer"],
+    "motor_power": [
+        "mass",
+        "motor_power",
+        "motor",
+        "motor_ratio",
+        "flywheel_ratio",
+        "j_flywheel",
+        "limit",
+        "total_mass",
+        "best_material",
+        "d_outer",
+    ],
 }
 
 
@@ -238,8 +286,7 @@ def run_pareto(args):
     scene = load(args.scene)
     objectives, other = _pair(args.objectives)
     _check_output(args.output)
-    front = pareto(scene, objectives, points=args.points, span=_span(args.span, other),
-                   method=args.method)
+    front = pareto(scene, objectives, points=args.points, span=_span(args.span, other), method=args.method)
     if front.empty:
         message = front.attrs.get("message", "empty front")
         if not args.quiet:
@@ -248,10 +295,16 @@ def run_pareto(args):
     # the objectives first, mass then the other, in every format; the file's metadata names
     # them too, which flyopt plot --what pareto reads
     front = front[["mass", other, *(c for c in front.columns if c not in ("mass", other))]]
-    _emit(front, args, "pareto", scene, _SHOW[other],
-          f"{args.scene}: Pareto front, {' vs '.join(objectives)} "
-          f"({len(front)} non-dominated of {front.attrs['evaluated']} designs)",
-          objectives=("mass", other))
+    _emit(
+        front,
+        args,
+        "pareto",
+        scene,
+        _SHOW[other],
+        f"{args.scene}: Pareto front, {' vs '.join(objectives)} "
+        f"({len(front)} non-dominated of {front.attrs['evaluated']} designs)",
+        objectives=("mass", other),
+    )
     return EXIT_OK
 
 
@@ -261,8 +314,7 @@ def run_pareto(args):
 
 TRADEOFF_HELP = {
     "help": "the lightest design of each material",
-    "description": "For each material the lightest design: size, rim speed, mass, cost and "
-                   "which limit binds.",
+    "description": "For each material the lightest design: size, rim speed, mass, cost and which limit binds.",
 }
 
 
@@ -281,10 +333,14 @@ def run_tradeoff(args):
     scene = load(args.scene)
     _check_output(args.output)
     table = material_tradeoff(scene, method=args.method)
-    _emit(table, args, "tradeoff", scene,
-          ["material", "status", "shaft", "d_outer", "b", "rim_speed", "rim_speed_limit",
-           "mass", "cost", "limit"],
-          f"{args.scene}: lightest design per material")
+    _emit(
+        table,
+        args,
+        "tradeoff",
+        scene,
+        ["material", "status", "shaft", "d_outer", "b", "rim_speed", "rim_speed_limit", "mass", "cost", "limit"],
+        f"{args.scene}: lightest design per material",
+    )
     if (table["status"] == "infeasible").all():
         if not args.quiet:
             for reason in table["reason"]:
@@ -307,8 +363,7 @@ def _check_output(output):
     if output is None:
         return
     if Path(output).suffix.lower() not in _SUFFIXES:
-        raise SceneError("-o/--output", f"{output!r} must end in .csv, .parquet or .json "
-                         f"(the suffix picks the format)")
+        raise SceneError("-o/--output", f"{output!r} must end in .csv, .parquet or .json (the suffix picks the format)")
     check_folder(output, "-o/--output")
 
 
@@ -325,8 +380,13 @@ def _emit(frame, args, kind, scene, columns, title, objectives=None):
 
     frame = results.normalize(frame.copy())
     output = args.output
-    metadata = results.table_metadata(kind, list(frame.columns), scene=results.scene_record(scene, digest(scene)),
-                                      objectives=objectives, objective=results.objective_of(frame))
+    metadata = results.table_metadata(
+        kind,
+        list(frame.columns),
+        scene=results.scene_record(scene, digest(scene)),
+        objectives=objectives,
+        objective=results.objective_of(frame),
+    )
     if output is not None:
         if Path(output).suffix.lower() == ".json":
             results.write_text(output, results.json_text(results.table_document(frame, metadata)))
@@ -356,6 +416,7 @@ def _label(column, unit):
 # --------------------------------------------------------------------------
 # Entry points of one command each (the same as ``flyopt COMMAND ...``)
 # --------------------------------------------------------------------------
+
 
 def _one_command(name, add, texts):
     """The parser of one study command alone, as ``flyopt NAME`` has it."""

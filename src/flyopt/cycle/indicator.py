@@ -201,10 +201,16 @@ def energy_indicator(driving, resisting, cycle_angle):
     # Extremes of ΔE are at crossings (or the cycle ends): take them from the chain.
     index_max, index_min = _extremes(chain_de, segments.scale())
     return EnergyIndicator(
-        cycle_angle=cycle_angle, work_driving=w_d, work_resisting=w_r,
-        chain_angle=chain_angle, chain_delta_e=chain_de,
+        cycle_angle=cycle_angle,
+        work_driving=w_d,
+        work_resisting=w_r,
+        chain_angle=chain_angle,
+        chain_delta_e=chain_de,
         a_max=float(chain_de[index_max] - chain_de[index_min]),
-        index_max=index_max, index_min=index_min, imbalance=imbalance)
+        index_max=index_max,
+        index_min=index_min,
+        imbalance=imbalance,
+    )
 
 
 def energy_indicator_from_areas(areas, cycle_angle):
@@ -231,10 +237,16 @@ def energy_indicator_from_areas(areas, cycle_angle):
     _check_balance(imbalance, max(surplus, deficit), surplus + deficit)
     index_max, index_min = _extremes(chain, surplus + deficit)
     return EnergyIndicator(
-        cycle_angle=cycle_angle, work_driving=surplus, work_resisting=deficit,
-        chain_angle=None, chain_delta_e=chain,
+        cycle_angle=cycle_angle,
+        work_driving=surplus,
+        work_resisting=deficit,
+        chain_angle=None,
+        chain_delta_e=chain,
         a_max=float(chain[index_max] - chain[index_min]),
-        index_max=index_max, index_min=index_min, imbalance=imbalance)
+        index_max=index_max,
+        index_min=index_min,
+        imbalance=imbalance,
+    )
 
 
 class ExcessWork:
@@ -400,16 +412,16 @@ def _crossings(sign):
 class _Segments:
     """M_d − M_r on the pieces between the union of both curves' breakpoints."""
 
-    knots: np.ndarray      # (n+1,) angles [rad]
-    start: np.ndarray      # (n,) difference just right of each knot [N*m]
-    end: np.ndarray        # (n,) difference just left of the next knot [N*m]
+    knots: np.ndarray  # (n+1,) angles [rad]
+    start: np.ndarray  # (n,) difference just right of each knot [N*m]
+    end: np.ndarray  # (n,) difference just left of the next knot [N*m]
     linear: bool
     driving: object
     resisting: object
-    peak: float            # largest |M_d − M_r| seen (at the knots or on the sampling grid) [N*m]
-    at_knots: np.ndarray | None = None   # (n+1,) the difference at the knots when neither curve steps
-    noise: object = 0.0    # round-off bound of M_d − M_r as evaluated, a function of φ (see _round_off) [N*m]
-    _cache: dict = field(default_factory=dict, repr=False)   # integrals and a linear curve's piece ends
+    peak: float  # largest |M_d − M_r| seen (at the knots or on the sampling grid) [N*m]
+    at_knots: np.ndarray | None = None  # (n+1,) the difference at the knots when neither curve steps
+    noise: object = 0.0  # round-off bound of M_d − M_r as evaluated, a function of φ (see _round_off) [N*m]
+    _cache: dict = field(default_factory=dict, repr=False)  # integrals and a linear curve's piece ends
 
     def scale(self):
         """A work scale of the cycle, peak |M_d − M_r| times Φ, for tolerances [J]."""
@@ -428,6 +440,7 @@ class _Segments:
 
         def f(phi):
             return piece(self.driving, phi) - piece(self.resisting, phi)
+
         return f
 
     def _ends(self, curve):
@@ -435,8 +448,10 @@ class _Segments:
         key = ("ends", id(curve))
         if key not in self._cache:
             left, right = curve.limits(self.knots)
-            self._cache[key] = (np.broadcast_to(np.asarray(right, dtype=float), self.knots.shape)[:-1],
-                                np.broadcast_to(np.asarray(left, dtype=float), self.knots.shape)[1:])
+            self._cache[key] = (
+                np.broadcast_to(np.asarray(right, dtype=float), self.knots.shape)[:-1],
+                np.broadcast_to(np.asarray(left, dtype=float), self.knots.shape)[1:],
+            )
         return self._cache[key]
 
     def difference_many(self, phi, k, side="right"):
@@ -456,6 +471,7 @@ class _Segments:
                 a, b = self.knots[k], self.knots[k + 1]
                 return left[k] + (right[k] - left[k]) * (phi - a) / (b - a)
             return _values(curve, phi) if side == "right" else _sample_left(curve, phi)
+
         return piece(self.driving) - piece(self.resisting)
 
     def integrals(self):
@@ -464,8 +480,9 @@ class _Segments:
         if self.linear:
             return 0.5 * (self.start + self.end) * h
         if "integrals" not in self._cache:
-            self._cache["integrals"] = _quad_many(self.difference_many, self.knots[:-1], self.knots[1:],
-                                                  self.scale(), self.noise)
+            self._cache["integrals"] = _quad_many(
+                self.difference_many, self.knots[:-1], self.knots[1:], self.scale(), self.noise
+            )
         return self._cache["integrals"]
 
     def events(self):
@@ -508,8 +525,8 @@ class _Segments:
         signs[0::2] = a > 0
         signs[1::2] = b > 0
         flips = np.flatnonzero(signs[1:] != signs[:-1])
-        inside = (flips & 1) == 0            # between a_j and b_j: a zero inside piece j
-        piece = (flips + 1) >> 1              # inside: piece j; at a knot: the knot index j+1
+        inside = (flips & 1) == 0  # between a_j and b_j: a zero inside piece j
+        piece = (flips + 1) >> 1  # inside: piece j; at a knot: the knot index j+1
         jk = piece[inside]
         t = a[jk] / (a[jk] - b[jk])
         angle = self.knots[piece].copy()
@@ -533,10 +550,10 @@ class _Segments:
         interleaving of piece ends is needed)."""
         v, knots = self.at_knots, self.knots
         positive = v > 0
-        j = np.flatnonzero(positive[1:] != positive[:-1])      # pieces with a zero inside
+        j = np.flatnonzero(positive[1:] != positive[:-1])  # pieces with a zero inside
         a, b = v[j], v[j + 1]
-        if not (a.all() and b.all()):      # a zero on a knot that borders a sign change
-            return None                    # (a zero inside a run of one sign changes nothing)
+        if not (a.all() and b.all()):  # a zero on a knot that borders a sign change
+            return None  # (a zero inside a run of one sign changes nothing)
         h = np.diff(knots)
         hj = h[j]
         t = a / (a - b)
@@ -547,7 +564,7 @@ class _Segments:
         starts = j if lead == 0 else np.concatenate(([0], j))
         prefix = np.zeros(len(starts) + 1, dtype=np.longdouble)
         np.cumsum(np.add.reduceat(areas, starts), dtype=np.longdouble, out=prefix[1:])
-        delta_e = (prefix[lead:lead + len(j)] + 0.5 * a * t * hj).astype(float)
+        delta_e = (prefix[lead : lead + len(j)] + 0.5 * a * t * hj).astype(float)
         chain_angle = np.concatenate(([knots[0]], knots[j] + t * hj, [knots[-1]]))
         chain_de = np.concatenate(([0.0], delta_e, [float(prefix[-1])]))
         return chain_angle, chain_de
@@ -590,7 +607,7 @@ class _Segments:
         # knot would otherwise show a sign change that is no crossing (the next piece's value)
         y[last] = self.difference_many(x[last], piece[last], side="left")
         # the grid steps worth a look: a zero on the grid, a sign change, a dip of |f| (as in _roots)
-        step_at = np.flatnonzero(~last)                     # grid step from x[i] to x[i + 1], inside a piece
+        step_at = np.flatnonzero(~last)  # grid step from x[i] to x[i + 1], inside a piece
         k = piece[step_at]
         y0, y1 = y[step_at], y[step_at + 1]
         interior = local[step_at] > 0
@@ -598,8 +615,15 @@ class _Segments:
         zero = interior & (y0 == 0.0)
         s0, s1, s_prev = np.sign(y0), np.sign(y1), np.sign(y_prev)
         cross = ~zero & (s0 * s1 < 0)
-        dip = (~zero & ~cross & interior & (np.abs(y0) < np.abs(y_prev)) & (np.abs(y0) < np.abs(y1))
-               & (s0 * s_prev > 0) & (s0 * s1 > 0))
+        dip = (
+            ~zero
+            & ~cross
+            & interior
+            & (np.abs(y0) < np.abs(y_prev))
+            & (np.abs(y0) < np.abs(y1))
+            & (s0 * s_prev > 0)
+            & (s0 * s1 > 0)
+        )
         roots_of = [[] for _ in range(n)]
         for i in np.flatnonzero(zero):
             roots_of[k[i]].append(x[step_at[i]])
@@ -607,15 +631,24 @@ class _Segments:
         if len(c):
             p, q = x[step_at[c]], x[step_at[c] + 1]
             span = np.maximum(np.maximum(np.abs(p), np.abs(q)), b_all[k[c]] - a_all[k[c]])
-            found = brentq_many(lambda t, j: self.difference_many(t, k[c][j]), p, q, y0[c], y1[c],
-                                xtol=1e-15 * span, rtol=4 * EPS, maxiter=200)
+            found = brentq_many(
+                lambda t, j: self.difference_many(t, k[c][j]),
+                p,
+                q,
+                y0[c],
+                y1[c],
+                xtol=1e-15 * span,
+                rtol=4 * EPS,
+                maxiter=200,
+            )
             for i, r in zip(c, found):
                 roots_of[k[i]].append(float(r))
-        for i in np.flatnonzero(dip):         # rare: a minimum of |f| between grid points, one at a time
+        for i in np.flatnonzero(dip):  # rare: a minimum of |f| between grid points, one at a time
             j = k[i]
             f = self.difference(j)
-            roots_of[j] += _dip_roots(f, x[step_at[i] - 1], x[step_at[i]], x[step_at[i] + 1], np.sign(y0[i]),
-                                      a_all[j], b_all[j], scale)
+            roots_of[j] += _dip_roots(
+                f, x[step_at[i] - 1], x[step_at[i]], x[step_at[i] + 1], np.sign(y0[i]), a_all[j], b_all[j], scale
+            )
         # the parts between zeros: their signs (one call) and integrals (whole pieces reuse integrals())
         lo, hi, owner = [], [], []
         for j in range(n):
@@ -630,11 +663,12 @@ class _Segments:
         area[whole] = self.integrals()[owner[whole]]
         split = np.flatnonzero(~whole)
         if len(split):
-            area[split] = _quad_many(lambda t, j: self.difference_many(t, owner[split][j]), lo[split], hi[split],
-                                     scale, self.noise)
+            area[split] = _quad_many(
+                lambda t, j: self.difference_many(t, owner[split][j]), lo[split], hi[split], scale, self.noise
+            )
         e_after = np.cumsum(area)
         e_before = np.concatenate(([0.0], e_after[:-1]))
-        inner = hi < b_all[owner]                          # a part that ends at a zero inside its piece
+        inner = hi < b_all[owner]  # a part that ends at a zero inside its piece
         angle = np.stack([lo, hi, hi], axis=1)
         signs = np.stack([sign, sign, np.zeros(len(lo))], axis=1)
         delta_e = np.stack([e_before, e_after, e_after], axis=1)
@@ -655,7 +689,7 @@ def _segments(driving, resisting, cycle_angle):
     if key not in cache or cache[key][0] is not resisting:
         if len(cache) > 8:
             cache.clear()
-        cache[key] = (resisting, _new_segments(driving, resisting, cycle_angle))   # resisting kept: its id stays
+        cache[key] = (resisting, _new_segments(driving, resisting, cycle_angle))  # resisting kept: its id stays
     return cache[key][1]
 
 
@@ -665,7 +699,7 @@ def _new_segments(driving, resisting, cycle_angle):
     d_left, d_right = _relative_limits(driving, knots, pivot)
     r_left, r_right = _relative_limits(resisting, knots, pivot)
     at_knots = None
-    if d_left is d_right and r_left is r_right:      # no steps: one difference serves both sides
+    if d_left is d_right and r_left is r_right:  # no steps: one difference serves both sides
         at_knots = _difference(d_right, r_right)
         start, end = at_knots[:-1], at_knots[1:]
         peak = np.max(np.abs(at_knots), initial=0.0)
@@ -680,13 +714,15 @@ def _new_segments(driving, resisting, cycle_angle):
         d_values, r_values = _sample(driving, phi)[0], _sample(resisting, phi)[0]
         for curve in (driving, resisting):
             if not curve.is_linear:
-                _sample(curve, knots)            # the kinks are knots off the grid
+                _sample(curve, knots)  # the kinks are knots off the grid
                 _check_poles(curve, phi)
         peak = max(peak, float(np.max(np.abs(d_values - r_values))))
 
         def noise(phi):
-            return (_round_off(driving, phi, _sample(driving, phi)[0])
-                    + _round_off(resisting, phi, _sample(resisting, phi)[0]))
+            return _round_off(driving, phi, _sample(driving, phi)[0]) + _round_off(
+                resisting, phi, _sample(resisting, phi)[0]
+            )
+
     return _Segments(knots, start, end, linear, driving, resisting, float(peak), at_knots, noise)
 
 
@@ -698,7 +734,7 @@ def _round_off(curve, phi, values):
         # where the bound is not finite (sqrt at 0, 0 ** x) fall back to ROUNDOFF |M|: the quadrature
         # may then refuse what it cannot resolve, never accept a worse result
         return np.maximum(own, np.nan_to_num(curve.round_off(phi), nan=0.0, posinf=0.0))
-    if hasattr(curve, "parts"):          # a sum: its parts' bounds add up
+    if hasattr(curve, "parts"):  # a sum: its parts' bounds add up
         parts = [_round_off(p, phi, _sample(p, phi)[0]) for p in curve.parts]
         return np.maximum(own, np.sum(parts, axis=0))
     return own
@@ -729,13 +765,14 @@ def kinks_of(curve, cycle_angle):
     if cycle_angle not in cache:
         found = []
         for g in functions:
-            def signed(phi, g=g):        # ±inf keeps its sign, as a number Brent's method can use
+
+            def signed(phi, g=g):  # ±inf keeps its sign, as a number Brent's method can use
                 return np.nan_to_num(g(phi), nan=np.nan, posinf=1e300, neginf=-1e300)
+
             grid = g(np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1))
             size = float(np.max(np.abs(grid[np.isfinite(grid)]), initial=0.0))
             if size > 0.0:
-                found += _roots(signed, 0.0, cycle_angle, SAMPLES_PER_CYCLE, size * cycle_angle,
-                                zero_runs="ends")
+                found += _roots(signed, 0.0, cycle_angle, SAMPLES_PER_CYCLE, size * cycle_angle, zero_runs="ends")
         kinks = np.unique(np.asarray(found, dtype=float))
         kinks.setflags(write=False)
         cache[cycle_angle] = kinks
@@ -861,9 +898,12 @@ def _check_poles(curve, phi):
             poles = _poles(part, phi, _sample(part, phi)[0])
             if len(poles):
                 at = float(poles[0])
-                raise SceneError(part.where, f"the expression has a pole near φ = {at:.6g} rad "
-                                 f"({math.degrees(at):.6g} deg; |M| grows without bound): a torque must be "
-                                 "finite over the whole cycle")
+                raise SceneError(
+                    part.where,
+                    f"the expression has a pole near φ = {at:.6g} rad "
+                    f"({math.degrees(at):.6g} deg; |M| grows without bound): a torque must be "
+                    "finite over the whole cycle",
+                )
 
 
 def _poles(f, phi, values):
@@ -889,9 +929,9 @@ def _poles(f, phi, values):
     """
     k = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)
     lo, hi, f_lo, f_hi = phi[k], phi[k + 1], values[k], values[k + 1]
-    grid = np.minimum(np.abs(f_lo), np.abs(f_hi))    # the grid may land within an ulp of the pole
+    grid = np.minimum(np.abs(f_lo), np.abs(f_hi))  # the grid may land within an ulp of the pole
     infinite = np.zeros(len(k), dtype=bool)
-    for _ in range(1100):                        # a bracket in [0, 1e300] reaches adjacent floats in ~1100
+    for _ in range(1100):  # a bracket in [0, 1e300] reaches adjacent floats in ~1100
         mid = 0.5 * (lo + hi)
         active = (lo < mid) & (mid < hi) & ~infinite
         if not active.any():
@@ -908,7 +948,7 @@ def _poles(f, phi, values):
         values_mid[active] = f_mid
         lo, f_lo = np.where(low_side, mid, lo), np.where(low_side, values_mid, f_lo)
         hi, f_hi = np.where(high_side, mid, hi), np.where(high_side, values_mid, f_hi)
-        lo = np.where(zero, hi, lo)              # f = 0 exactly: a zero, bracket closed
+        lo = np.where(zero, hi, lo)  # f = 0 exactly: a zero, bracket closed
     end = np.minimum(np.abs(f_lo), np.abs(f_hi))
     return np.sort(lo[infinite | (end > POLE_GROWTH * grid)])
 
@@ -928,7 +968,7 @@ def _roots(f, a, b, samples, scale, zero_runs="all"):
     roots = []
 
     def brent(p, q):
-        from scipy import optimize   # only where a zero is refined: a constant-inertia solve never loads it
+        from scipy import optimize  # only where a zero is refined: a constant-inertia solve never loads it
 
         return optimize.brentq(f, p, q, xtol=1e-15 * max(abs(p), abs(q), b - a), rtol=4 * EPS, maxiter=200)
 
@@ -939,10 +979,17 @@ def _roots(f, a, b, samples, scale, zero_runs="all"):
     zero = interior & (y0 == 0.0)
     if zero_runs == "ends":
         zero &= (y_prev != 0.0) | (y1 != 0.0)
-    s0, s1, s_prev = np.sign(y0), np.sign(y1), np.sign(y_prev)     # signs: products of huge values overflow
+    s0, s1, s_prev = np.sign(y0), np.sign(y1), np.sign(y_prev)  # signs: products of huge values overflow
     cross = ~zero & (s0 * s1 < 0)
-    dip = (~zero & ~cross & interior & (np.abs(y0) < np.abs(y_prev)) & (np.abs(y0) < np.abs(y1))
-           & (s0 * s_prev > 0) & (s0 * s1 > 0))
+    dip = (
+        ~zero
+        & ~cross
+        & interior
+        & (np.abs(y0) < np.abs(y_prev))
+        & (np.abs(y0) < np.abs(y1))
+        & (s0 * s_prev > 0)
+        & (s0 * s1 > 0)
+    )
     for k in np.flatnonzero(zero | cross | dip):
         if zero[k]:
             roots.append(x[k])
@@ -963,13 +1010,15 @@ def _dip_roots(f, left, mid, right, sign, a, b, scale):
     """
     from scipy import optimize
 
-    del mid        # the dip's grid point: the search covers both of its grid steps
+    del mid  # the dip's grid point: the search covers both of its grid steps
     tiny = 1e-15 * scale / max(b - a, 1e-300)
 
     def brent(p, q):
         return optimize.brentq(f, p, q, xtol=1e-15 * max(abs(p), abs(q), b - a), rtol=4 * EPS, maxiter=200)
-    res = optimize.minimize_scalar(lambda p: sign * f(np.array([p]))[0], bounds=(left, right),
-                                   method="bounded", options={"xatol": 1e-14 * (b - a)})
+
+    res = optimize.minimize_scalar(
+        lambda p: sign * f(np.array([p]))[0], bounds=(left, right), method="bounded", options={"xatol": 1e-14 * (b - a)}
+    )
     if res.fun < 0:  # res.fun = s·f at the dip: the dip crosses zero
         return [brent(left, res.x), brent(res.x, right)]
     if abs(res.fun) <= tiny:
@@ -1018,8 +1067,9 @@ def brentq_many(f, a, b, fa, fb, xtol, rtol=4 * EPS, maxiter=200):
     if np.any(fpre * fcur > 0):
         raise ValueError("brentq_many: f(a) and f(b) must have different signs")
     if n <= BRENT_SCALAR:
-        return _brentq_few(f, xpre, xcur, fpre, fcur, np.broadcast_to(np.asarray(xtol, dtype=float), (n,)),
-                           rtol, maxiter)
+        return _brentq_few(
+            f, xpre, xcur, fpre, fcur, np.broadcast_to(np.asarray(xtol, dtype=float), (n,)), rtol, maxiter
+        )
     root = np.where(fpre == 0, xpre, xcur)
     active = (fpre != 0) & (fcur != 0)
     xblk, fblk, spre, scur = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
@@ -1046,8 +1096,11 @@ def brentq_many(f, a, b, fa, fb, xtol, rtol=4 * EPS, maxiter=200):
             interpolate = xpre == xblk
             dpre = (fpre - fcur) / (xpre - xcur)
             dblk = (fblk - fcur) / (xblk - xcur)
-            stry = np.where(interpolate, -fcur * (xcur - xpre) / (fcur - fpre),
-                            -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre)))
+            stry = np.where(
+                interpolate,
+                -fcur * (xcur - xpre) / (fcur - fpre),
+                -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre)),
+            )
             good = step_ok & (2 * np.abs(stry) < np.minimum(np.abs(spre), 3 * np.abs(sbis) - delta))
             spre, scur = np.where(m, np.where(good, scur, sbis), spre), np.where(m, np.where(good, stry, sbis), scur)
             xpre, fpre = np.where(m, xcur, xpre), np.where(m, fcur, fpre)
@@ -1104,7 +1157,7 @@ class _Brent:
                 if 2 * abs(stry) < min(abs(self.spre), 3 * abs(sbis) - delta):
                     self.spre, self.scur = self.scur, stry
                     bisect = False
-            except ZeroDivisionError:     # C gives inf or nan here, which fails the test above: bisection
+            except ZeroDivisionError:  # C gives inf or nan here, which fails the test above: bisection
                 pass
         if bisect:
             self.spre = self.scur = sbis
@@ -1115,8 +1168,7 @@ class _Brent:
 
 def _brentq_few(f, a, b, fa, fb, xtol, rtol, maxiter):
     """:func:`brentq_many` for a few brackets: their state in Python floats, ``f`` on all at once."""
-    states = [_Brent(float(a[i]), float(b[i]), float(fa[i]), float(fb[i]), float(xtol[i]), rtol)
-              for i in range(len(a))]
+    states = [_Brent(float(a[i]), float(b[i]), float(fa[i]), float(fb[i]), float(xtol[i]), rtol) for i in range(len(a))]
     active = [i for i, st in enumerate(states) if st.root is None]
     for _ in range(maxiter):
         active = [i for i in active if not states[i].advance()]
@@ -1128,42 +1180,76 @@ def _brentq_few(f, a, b, fa, fb, xtol, rtol, maxiter):
             states[i].fcur = float(v)
     else:
         if active:
-            raise RuntimeError(f"brentq_many: {len(active)} of {len(a)} zeros did not converge in {maxiter} "
-                               "iterations")
+            raise RuntimeError(f"brentq_many: {len(active)} of {len(a)} zeros did not converge in {maxiter} iterations")
     return np.array([st.root for st in states], dtype=float)
 
 
 # Gauss–Kronrod (G10, K21) nodes on [-1, 1] and weights, from QUADPACK's qk21 (as in
 # scipy.integrate.quad_vec); the Gauss nodes are the odd-indexed ones.
-_GK21_NODES = np.array([
-    0.995657163025808080735527280689003, 0.973906528517171720077964012084452,
-    0.930157491355708226001207180059508, 0.865063366688984510732096688423493,
-    0.780817726586416897063717578345042, 0.679409568299024406234327365114874,
-    0.562757134668604683339000099272694, 0.433395394129247190799265943165784,
-    0.294392862701460198131126603103866, 0.148874338981631210884826001129720, 0.0,
-    -0.148874338981631210884826001129720, -0.294392862701460198131126603103866,
-    -0.433395394129247190799265943165784, -0.562757134668604683339000099272694,
-    -0.679409568299024406234327365114874, -0.780817726586416897063717578345042,
-    -0.865063366688984510732096688423493, -0.930157491355708226001207180059508,
-    -0.973906528517171720077964012084452, -0.995657163025808080735527280689003])
-_K21_WEIGHTS = np.array([
-    0.011694638867371874278064396062192, 0.032558162307964727478818972459390,
-    0.054755896574351996031381300244580, 0.075039674810919952767043140916190,
-    0.093125454583697605535065465083366, 0.109387158802297641899210590325805,
-    0.123491976262065851077958109831074, 0.134709217311473325928054001771707,
-    0.142775938577060080797094273138717, 0.147739104901338491374841515972068,
-    0.149445554002916905664936468389821, 0.147739104901338491374841515972068,
-    0.142775938577060080797094273138717, 0.134709217311473325928054001771707,
-    0.123491976262065851077958109831074, 0.109387158802297641899210590325805,
-    0.093125454583697605535065465083366, 0.075039674810919952767043140916190,
-    0.054755896574351996031381300244580, 0.032558162307964727478818972459390,
-    0.011694638867371874278064396062192])
-_G10_WEIGHTS = np.array([
-    0.066671344308688137593568809893332, 0.149451349150580593145776339657697,
-    0.219086362515982043995534934228163, 0.269266719309996355091226921569469,
-    0.295524224714752870173892994651338, 0.295524224714752870173892994651338,
-    0.269266719309996355091226921569469, 0.219086362515982043995534934228163,
-    0.149451349150580593145776339657697, 0.066671344308688137593568809893332])
+_GK21_NODES = np.array(
+    [
+        0.995657163025808080735527280689003,
+        0.973906528517171720077964012084452,
+        0.930157491355708226001207180059508,
+        0.865063366688984510732096688423493,
+        0.780817726586416897063717578345042,
+        0.679409568299024406234327365114874,
+        0.562757134668604683339000099272694,
+        0.433395394129247190799265943165784,
+        0.294392862701460198131126603103866,
+        0.148874338981631210884826001129720,
+        0.0,
+        -0.148874338981631210884826001129720,
+        -0.294392862701460198131126603103866,
+        -0.433395394129247190799265943165784,
+        -0.562757134668604683339000099272694,
+        -0.679409568299024406234327365114874,
+        -0.780817726586416897063717578345042,
+        -0.865063366688984510732096688423493,
+        -0.930157491355708226001207180059508,
+        -0.973906528517171720077964012084452,
+        -0.995657163025808080735527280689003,
+    ]
+)
+_K21_WEIGHTS = np.array(
+    [
+        0.011694638867371874278064396062192,
+        0.032558162307964727478818972459390,
+        0.054755896574351996031381300244580,
+        0.075039674810919952767043140916190,
+        0.093125454583697605535065465083366,
+        0.109387158802297641899210590325805,
+        0.123491976262065851077958109831074,
+        0.134709217311473325928054001771707,
+        0.142775938577060080797094273138717,
+        0.147739104901338491374841515972068,
+        0.149445554002916905664936468389821,
+        0.147739104901338491374841515972068,
+        0.142775938577060080797094273138717,
+        0.134709217311473325928054001771707,
+        0.123491976262065851077958109831074,
+        0.109387158802297641899210590325805,
+        0.093125454583697605535065465083366,
+        0.075039674810919952767043140916190,
+        0.054755896574351996031381300244580,
+        0.032558162307964727478818972459390,
+        0.011694638867371874278064396062192,
+    ]
+)
+_G10_WEIGHTS = np.array(
+    [
+        0.066671344308688137593568809893332,
+        0.149451349150580593145776339657697,
+        0.219086362515982043995534934228163,
+        0.269266719309996355091226921569469,
+        0.295524224714752870173892994651338,
+        0.295524224714752870173892994651338,
+        0.269266719309996355091226921569469,
+        0.219086362515982043995534934228163,
+        0.149451349150580593145776339657697,
+        0.066671344308688137593568809893332,
+    ]
+)
 QUAD_MAX_INTERVALS = 2000
 """Most subintervals the adaptive quadrature of one piece refines at once."""
 
@@ -1232,7 +1318,7 @@ def _quad_many(f, a, b, scale, noise=0.0):
     m = len(open_)
     value, error = kronrod * half, np.abs(kronrod - gauss) * half
     whole, value, error = value[:m], value[m:], error[m:]
-    pair = value[0::2] + value[1::2]        # = math.fsum of the two halves: one correctly rounded sum
+    pair = value[0::2] + value[1::2]  # = math.fsum of the two halves: one correctly rounded sum
     pair_error = np.maximum(np.abs(whole - pair), error[0::2] + error[1::2])
     settled = pair_error <= np.maximum(0.1 * QUAD_EPSREL * scale, QUAD_EPSREL * np.abs(pair))
     out[open_[settled]] = pair[settled]
@@ -1307,7 +1393,7 @@ def _quad(f, a, b, scale, noise=0.0):
             kept_error += float(np.sum(pair_error[~done]))
             break
         mid = 0.5 * (lo + hi)
-        atomic = ~((lo < mid) & (mid < hi))           # too narrow to halve: keep as it is
+        atomic = ~((lo < mid) & (mid < hi))  # too narrow to halve: keep as it is
         if atomic.any():
             kept += whole[atomic].tolist()
             kept_error += float(np.sum(np.repeat(pair_error[~done], 2)[atomic])) / 2
@@ -1317,6 +1403,7 @@ def _quad(f, a, b, scale, noise=0.0):
         lo, hi = _halves(lo, hi)
     total = math.fsum(kept)
     if kept_error > max(10 * QUAD_EPSREL * abs(total), floor, kept_roundoff):
-        raise ArithmeticError(f"quadrature of the torque difference on [{a:.6g}, {b:.6g}] rad "
-                              f"reached only {kept_error:.3g} J")
+        raise ArithmeticError(
+            f"quadrature of the torque difference on [{a:.6g}, {b:.6g}] rad reached only {kept_error:.3g} J"
+        )
     return total

@@ -17,5 +17,13 @@ from flyopt.design.inputs import DesignInputs, design_inputs
 from flyopt.design.result import Candidate, DesignResult
 from flyopt.design.spec import OBJECTIVES, DesignSpec, MountShaft
 
-__all__ = ["Candidate", "DesignInputs", "DesignResult", "DesignSpec", "MountShaft", "OBJECTIVES", "design_flywheel",
-           "design_inputs"]
+__all__ = [
+    "Candidate",
+    "DesignInputs",
+    "DesignResult",
+    "DesignSpec",
+    "MountShaft",
+    "OBJECTIVES",
+    "design_flywheel",
+    "design_inputs",
+]

@@ -19,8 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["BINDING_NAMES", "BINDING_BITS", "ACTIVE_RTOL", "VERIFY_RTOL", "binding_mask", "binding_names",
-           "violations"]
+__all__ = ["BINDING_NAMES", "BINDING_BITS", "ACTIVE_RTOL", "VERIFY_RTOL", "binding_mask", "binding_names", "violations"]
 
 #: Names that ``Candidate.binding`` may contain, in the order reports list them.
 BINDING_NAMES = {
@@ -45,8 +44,10 @@ WHEEL_BINDING_NAMES = {
     "arm_within_rim": "the arms' axial minor axis equals the rim width",
     "arm_within_hub": "the arms' axial minor axis equals the hub length",
     "hub_wall": "the hub's wall is at min_wall",
-    "stress_rim": "the rim's stress is at its allowable", "stress_web": "the web's stress is at its allowable",
-    "stress_hub": "the hub's stress is at its allowable", "stress_arms": "the arms' stress is at their allowable",
+    "stress_rim": "the rim's stress is at its allowable",
+    "stress_web": "the web's stress is at its allowable",
+    "stress_hub": "the hub's stress is at its allowable",
+    "stress_arms": "the arms' stress is at their allowable",
     "stress_disc": "the disc's stress is at its allowable",
     "min_wall": "a section is at the thinnest the process makes (min_wall)",
     "strength_table": "a section is at the thickest its material's strength-by-thickness table covers",
@@ -63,8 +64,9 @@ ACTIVE_RTOL = 1e-6
 VERIFY_RTOL = 1e-6
 
 
-def binding_mask(geometry_name, j_wheel, j_shaft, d_outer, d_inner, b, hb, cap_speed, envelope, max_width,
-                 hb_min, hb_max):
+def binding_mask(
+    geometry_name, j_wheel, j_shaft, d_outer, d_inner, b, hb, cap_speed, envelope, max_width, hb_min, hb_max
+):
     """Bit mask of the active constraints of designed wheels (see :func:`binding_names`).
 
     Parameters

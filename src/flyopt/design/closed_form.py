@@ -127,8 +127,7 @@ def _array(x):
     return np.asarray(x, dtype=float)
 
 
-def max_inertia_one(geometry_name, density, d_outer_max, hb_ratio=(1.5, 2.0),
-                max_width=math.inf, d_mean=None):
+def max_inertia_one(geometry_name, density, d_outer_max, hb_ratio=(1.5, 2.0), max_width=math.inf, d_mean=None):
     """Largest inertia any admissible wheel gives, in closed form (one combination, plain floats).
 
     The scalar twin of :func:`max_inertia`, written with the same operations
@@ -211,6 +210,7 @@ def cap_needed(geometry_name, density, j_needed, cap, hb_ratio, max_width, d_mea
     Returns (cap_needed, j_sup): cap_needed is None when even an unlimited cap
     does not reach ``j_needed``; j_sup is then the largest reachable inertia.
     """
+
     def j_max(c):
         return max_inertia_one(geometry_name, density, c, hb_ratio, max_width, d_mean)[0]
 
@@ -238,10 +238,10 @@ def cap_needed(geometry_name, density, j_needed, cap, hb_ratio, max_width, d_mea
             power = 4.0 if geometry_name == "disc" else 5.0
             return cap * (j_needed / j_cap) ** (1.0 / power), math.inf
         low = cap * (j_needed / j_cap) ** 0.2
-        if j_max(low) >= j_needed:           # the width does not bind there: degree 5 is exact
+        if j_max(low) >= j_needed:  # the width does not bind there: degree 5 is exact
             return low, math.inf
         high = cap * (2.0 * j_needed / j_cap) ** (1.0 / 3.0)
-        while j_max(high) < j_needed:        # round-off at the bracket's edge only
+        while j_max(high) < j_needed:  # round-off at the bracket's edge only
             low, high = high, 2.0 * high
     return smallest_reaching(j_max, j_needed, low, high), math.inf
 
@@ -272,7 +272,7 @@ def smallest_reaching(j_max, j_needed, low, high):
     """
     while True:
         mid = low + 0.5 * (high - low)
-        if not low < mid < high:        # adjacent floats
+        if not low < mid < high:  # adjacent floats
             return high
         if j_max(mid) >= j_needed:
             high = mid
@@ -280,8 +280,7 @@ def smallest_reaching(j_max, j_needed, low, high):
             low = mid
 
 
-def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=np.inf,
-                d_mean=np.nan):
+def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=np.inf, d_mean=np.nan):
     """Largest inertia any admissible wheel gives, for arrays of combinations.
 
     The vectorized :func:`max_inertia_one`, written with the
@@ -309,8 +308,8 @@ def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=n
         width limit and free diameter.
     """
     rho, cap, a, c, b_max, pin = np.broadcast_arrays(
-        _array(density), _array(d_outer_max), _array(hb_min), _array(hb_max),
-        _array(max_width), _array(d_mean))
+        _array(density), _array(d_outer_max), _array(hb_min), _array(hb_max), _array(max_width), _array(d_mean)
+    )
     pinned = ~np.isnan(pin)
     out = np.zeros(rho.shape)
     if geometry_name == "disc":
@@ -336,8 +335,7 @@ def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=n
         trials = [h_top]
         if geometry_name == "thin_rim":
             h_break = np.minimum(a * b_max, h_top)
-            trials += [h_break, np.minimum(0.4 * cap, h_break),
-                       np.minimum(np.maximum(0.25 * cap, h_break), h_top)]
+            trials += [h_break, np.minimum(0.4 * cap, h_break), np.minimum(np.maximum(0.25 * cap, h_break), h_top)]
         best = np.zeros(rho.shape)
         for h in trials:
             j = np.where(h > 0.0, inertia(cap - h, h), 0.0)
@@ -377,7 +375,7 @@ def _rim_free_root(thin, j, rho, cap, a, c, b_max):
     """Smallest H with J_line(H) = J' (feasible combinations only) [m]."""
     h_hi = _rim_free_peak(thin, cap, a, c, b_max)
     with np.errstate(divide="ignore"):
-        base = math.pi * rho * cap ** 3
+        base = math.pi * rho * cap**3
         h_lo = np.maximum(np.sqrt(4.0 * a * j / base), 4.0 * j / (base * b_max))
     h_lo = np.minimum(h_lo, h_hi)
     lo, hi = np.log(h_lo), np.log(h_hi)
@@ -404,14 +402,12 @@ def _rim_free_root(thin, j, rho, cap, a, c, b_max):
         converged = (np.abs(step) <= tol) | (hi[active] - lo[active] <= tol)
         new = ua + step
         inside = (new >= lo[active]) & (new <= hi[active])
-        outside = ~((new > lo[active]) & (new < hi[active]))   # strictly inside, or bisect
-        new = np.where(converged, np.where(inside, new, ua),
-                       np.where(outside, 0.5 * (lo[active] + hi[active]), new))
+        outside = ~((new > lo[active]) & (new < hi[active]))  # strictly inside, or bisect
+        new = np.where(converged, np.where(inside, new, ua), np.where(outside, 0.5 * (lo[active] + hi[active]), new))
         u[active] = new
         active = active[~converged]
     else:  # pragma: no cover - the iteration converges quadratically in a few steps
-        raise ArithmeticError(f"closed-form rim root did not converge for {active.size} "
-                              f"combinations")
+        raise ArithmeticError(f"closed-form rim root did not converge for {active.size} combinations")
     return np.exp(u)
 
 
@@ -424,7 +420,7 @@ def _rim_free_root_one(thin, j, rho, cap, a, c, b_max):
     """
     h_top = min(cap / 2.0, c * b_max)
     h_hi = h_top if not thin else min(h_top, min(max(a * b_max, 0.25 * cap), 0.4 * cap))
-    base = math.pi * rho * cap ** 3
+    base = math.pi * rho * cap**3
     h_lo = min(max(math.sqrt(4.0 * a * j / base), 4.0 * j / (base * b_max)), h_hi)
     lo, hi = math.log(h_lo), math.log(h_hi)
     log_coef = math.log(math.pi * rho / 4.0) - math.log(j)
@@ -455,13 +451,12 @@ def _rim_free_root_one(thin, j, rho, cap, a, c, b_max):
         if abs(step) <= tol or hi - lo <= tol:
             return math.exp(u + step) if lo <= u + step <= hi else h
         u = u + step
-        if not lo < u < hi:                # strictly inside the bracket, or bisect
+        if not lo < u < hi:  # strictly inside the bracket, or bisect
             u = 0.5 * (lo + hi)
     raise ArithmeticError("closed-form rim root did not converge")  # pragma: no cover
 
 
-def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_width=math.inf,
-                 d_mean=None):
+def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_width=math.inf, d_mean=None):
     """Lightest admissible wheel of one feasible combination, exactly (plain floats).
 
     The scalar twin of :func:`lightest` for a ranking of a few combinations,
@@ -498,17 +493,17 @@ def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, m
         d_mean = None
     if geometry_name == "disc":
         d = cap if d_mean is None else d_mean
-        return d / 2.0, d / 2.0, 32.0 * j / (math.pi * rho * d ** 4)
+        return d / 2.0, d / 2.0, 32.0 * j / (math.pi * rho * d**4)
     if d_mean is None:
         h = _rim_free_root_one(geometry_name == "thin_rim", j, rho, cap, a, c, b_max)
         return cap - h, h, min(h / a, b_max)
     d = d_mean
     if geometry_name == "thin_rim":
-        base = math.pi * rho * d ** 3
+        base = math.pi * rho * d**3
         h = max(math.sqrt(4.0 * a * j / base), 4.0 * j / (base * b_max))
         return d, h, 4.0 * j / (base * h)
     q = 4.0 * c * j / (math.pi * rho * d)
-    h = min(cap - d, d, math.sqrt(2.0 * q / (d * d + math.sqrt(d ** 4 + 4.0 * q))))
+    h = min(cap - d, d, math.sqrt(2.0 * q / (d * d + math.sqrt(d**4 + 4.0 * q))))
     return d, h, 4.0 * j / (math.pi * rho * d * h * (d * d + h * h))
 
 
@@ -530,8 +525,7 @@ class Designs(dict):
             raise AttributeError(name) from None
 
 
-def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_width=np.inf,
-             d_mean=np.nan):
+def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_width=np.inf, d_mean=np.nan):
     """Lightest admissible wheel of each combination, exactly, or its infeasibility.
 
     Parameters
@@ -563,8 +557,14 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
     See the module notes for the derivation of each case.
     """
     j, rho, cap, a, c, b_max, pin = np.broadcast_arrays(
-        _array(j_shaft), _array(density), _array(d_outer_max), _array(hb_min),
-        _array(hb_max), _array(max_width), _array(d_mean))
+        _array(j_shaft),
+        _array(density),
+        _array(d_outer_max),
+        _array(hb_min),
+        _array(hb_max),
+        _array(max_width),
+        _array(d_mean),
+    )
     shape = j.shape
     j_max = max_inertia(geometry_name, rho, cap, a, c, b_max, pin)
     pinned = ~np.isnan(pin)
@@ -580,7 +580,7 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
         for mask in (feasible & ~pinned, feasible & pinned):
             if mask.any():
                 d = np.where(pinned[mask], pin[mask], cap[mask])
-                b = 32.0 * j[mask] / (math.pi * rho[mask] * d ** 4)
+                b = 32.0 * j[mask] / (math.pi * rho[mask] * d**4)
                 put(mask, d / 2.0, d / 2.0, b)
         mass = geometry.disc_mass(2.0 * d_mean_out, b_out, rho)
         j_wheel = geometry.disc_inertia(mass, 2.0 * d_mean_out)
@@ -594,13 +594,13 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
         if fixed.any():
             jj, rr, d, aa, cc, bm = (x[fixed] for x in (j, rho, pin, a, c, b_max))
             if thin:
-                base = math.pi * rr * d ** 3
+                base = math.pi * rr * d**3
                 h = np.maximum(np.sqrt(4.0 * aa * jj / base), 4.0 * jj / (base * bm))
                 b = 4.0 * jj / (base * h)
             else:
                 room = np.minimum(cap[fixed] - d, d)
                 q = 4.0 * cc * jj / (math.pi * rr * d)
-                h_c = np.sqrt(2.0 * q / (d * d + np.sqrt(d ** 4 + 4.0 * q)))
+                h_c = np.sqrt(2.0 * q / (d * d + np.sqrt(d**4 + 4.0 * q)))
                 h = np.minimum(room, h_c)
                 b = 4.0 * jj / (math.pi * rr * d * h * (d * d + h * h))
             put(fixed, d, h, b)
@@ -609,13 +609,22 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
             j_wheel = geometry.thin_rim_inertia(mass, d_mean_out)
         else:
             j_wheel = geometry.rim_inertia(mass, d_mean_out, h_out)
-    return Designs(feasible=feasible, j_max=j_max, d_mean=d_mean_out, h=h_out, b=b_out,
-                   mass=mass, j_flywheel=j_wheel)
+    return Designs(feasible=feasible, j_max=j_max, d_mean=d_mean_out, h=h_out, b=b_out, mass=mass, j_flywheel=j_wheel)
 
 
-def design_combinations(geometry_name, j_required, omega_ref, speed_ratio, density,
-                        max_rim_speed, hb_min, hb_max, max_outer_diameter=np.inf,
-                        max_width=np.inf, d_mean=np.nan):
+def design_combinations(
+    geometry_name,
+    j_required,
+    omega_ref,
+    speed_ratio,
+    density,
+    max_rim_speed,
+    hb_min,
+    hb_max,
+    max_outer_diameter=np.inf,
+    max_width=np.inf,
+    d_mean=np.nan,
+):
     """Design many material × shaft combinations at once (mass objective).
 
     The array counterpart of what :func:`flyopt.design.designer.design_flywheel`
@@ -650,12 +659,20 @@ def design_combinations(geometry_name, j_required, omega_ref, speed_ratio, densi
         ``hoop_stress``, ``j_at_reference``, ``binding`` (bit mask).
     """
     arrays = np.broadcast_arrays(
-        _array(j_required), _array(omega_ref), _array(speed_ratio), _array(density),
-        _array(max_rim_speed), _array(hb_min), _array(hb_max), _array(max_outer_diameter),
-        _array(max_width), _array(d_mean))
+        _array(j_required),
+        _array(omega_ref),
+        _array(speed_ratio),
+        _array(density),
+        _array(max_rim_speed),
+        _array(hb_min),
+        _array(hb_max),
+        _array(max_outer_diameter),
+        _array(max_width),
+        _array(d_mean),
+    )
     j_ref, omega_ref, ratio, rho, v_max, a, c, envelope, b_max, pin = arrays
     omega = omega_ref * ratio
-    j_shaft = j_ref / (ratio * ratio)                     # transmission.inertia_on_shaft
+    j_shaft = j_ref / (ratio * ratio)  # transmission.inertia_on_shaft
     cap_speed = geometry.outer_diameter_for_rim_speed(v_max, omega)
     cap = np.minimum(cap_speed, envelope)
     out = lightest(geometry_name, j_shaft, rho, cap, a, c, b_max, pin)
@@ -663,10 +680,23 @@ def design_combinations(geometry_name, j_required, omega_ref, speed_ratio, densi
     d_inner = geometry.inner_diameter(out.d_mean, out.h)
     speed = geometry.rim_speed(omega, d_outer)
     hb = out.h / out.b
-    out.update(j_shaft=j_shaft, omega=omega, cap=cap, cap_speed=cap_speed, d_outer=d_outer,
-               d_inner=np.maximum(d_inner, 0.0), hb_ratio=hb, rim_speed=speed,
-               hoop_stress=geometry.hoop_stress(rho, speed),
-               j_at_reference=out.j_flywheel * ratio * ratio)
-    out["binding"] = np.where(out.feasible, check.binding_mask(
-        geometry_name, out.j_flywheel, j_shaft, d_outer, d_inner, out.b, hb, cap_speed, envelope, b_max, a, c), 0)
+    out.update(
+        j_shaft=j_shaft,
+        omega=omega,
+        cap=cap,
+        cap_speed=cap_speed,
+        d_outer=d_outer,
+        d_inner=np.maximum(d_inner, 0.0),
+        hb_ratio=hb,
+        rim_speed=speed,
+        hoop_stress=geometry.hoop_stress(rho, speed),
+        j_at_reference=out.j_flywheel * ratio * ratio,
+    )
+    out["binding"] = np.where(
+        out.feasible,
+        check.binding_mask(
+            geometry_name, out.j_flywheel, j_shaft, d_outer, d_inner, out.b, hb, cap_speed, envelope, b_max, a, c
+        ),
+        0,
+    )
     return out

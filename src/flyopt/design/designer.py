@@ -25,14 +25,13 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Mapping, Sequence
 
-from flyopt.design import check, closed_form, geometry, rank
+from flyopt.design import check, closed_form, geometry, rank, wheel, wheel_design
 from flyopt.design.materials import Material
 from flyopt.design.result import Candidate, DesignResult
 from flyopt.design.spec import DesignSpec, MountShaft, _choice, _finite, _positive
-from flyopt.design import wheel, wheel_design
 from flyopt.design.wheel_design import bore_of
 from flyopt.errors import SolverFailed
 from flyopt.machine.transmission import inertia_at_reference, inertia_on_shaft
@@ -42,19 +41,20 @@ __all__ = ["design_flywheel", "METHODS"]
 #: How a feasible combination is optimized (see :func:`design_flywheel`).
 METHODS = ("auto", "ipopt", "closed_form")
 
+
 @dataclass
 class _Combination:
     material: Material
     shaft: MountShaft
-    omega: float          # speed of the carrying shaft [rad/s]
-    j_shaft: float        # required inertia on that shaft [kg*m^2]
+    omega: float  # speed of the carrying shaft [rad/s]
+    j_shaft: float  # required inertia on that shaft [kg*m^2]
     j_reference: float
-    cap_speed: float      # outer-diameter cap of the rim speed [m]
-    cap: float            # min(cap_speed, envelope) [m]
+    cap_speed: float  # outer-diameter cap of the rim speed [m]
+    cap: float  # min(cap_speed, envelope) [m]
     j_max: float = 0.0
-    bore: float = 0.0     # the shaft seat [m], 0: none
-    torque: float = 0.0   # peak torque on this shaft [N*m], 0: unknown
-    n_arms: int = 0       # a rim_arms wheel's arm count
+    bore: float = 0.0  # the shaft seat [m], 0: none
+    torque: float = 0.0  # peak torque on this shaft [N*m], 0: unknown
+    n_arms: int = 0  # a rim_arms wheel's arm count
     v_max: float = math.nan  # the material's safe rim speed [m/s] (nan: none, under the stress criterion)
 
     @property
@@ -62,11 +62,14 @@ class _Combination:
         arms = f" with {self.n_arms} arms" if self.n_arms else ""
         return f"{self.material.name.replace('_', ' ')} on the {_shaft_label(self.shaft.name)}{arms}"
 
+
 def _shaft_label(name):
     return name if name.lower().endswith("shaft") else f"{name} shaft"
 
+
 def _g(x):
     return f"{x:.3g}"
+
 
 def _g_apart(a, b):
     """Format two numbers with as few significant digits as keep them apart."""
@@ -75,6 +78,7 @@ def _g_apart(a, b):
         if sa != sb:
             return sa, sb
     return f"{a:.12g}", f"{b:.12g}"
+
 
 def _explain_infeasible(combo, spec):
     """Say in words and numbers why a combination cannot give its inertia.
@@ -99,14 +103,16 @@ def _explain_infeasible(combo, spec):
     pinned = spec.d_mean
     if pinned is not None and geo != "disc" and pinned >= combo.cap:
         cap, pin = _g_apart(combo.cap, pinned)
-        return (f"{combo.label}: {cap_text} at {cap} m, which leaves no room for a rim "
-                f"around the pinned mean diameter {pin} m"), None
+        return (
+            f"{combo.label}: {cap_text} at {cap} m, which leaves no room for a rim "
+            f"around the pinned mean diameter {pin} m"
+        ), None
     if pinned is not None and geo == "disc" and pinned > combo.cap:
         cap, pin = _g_apart(combo.cap, pinned)
-        return (f"{combo.label}: {cap_text} at {cap} m, below the pinned diameter "
-                f"{pin} m"), None
-    needed, j_sup = closed_form.cap_needed(geo, m.density, combo.j_shaft, combo.cap, spec.hb_ratio,
-                                spec.max_width, pinned)
+        return (f"{combo.label}: {cap_text} at {cap} m, below the pinned diameter {pin} m"), None
+    needed, j_sup = closed_form.cap_needed(
+        geo, m.density, combo.j_shaft, combo.cap, spec.hb_ratio, spec.max_width, pinned
+    )
     if needed is None:
         limits = []
         if pinned is not None:
@@ -118,12 +124,17 @@ def _explain_infeasible(combo, spec):
             limits.append("D_inner > 0")
         text = ", ".join(limits[:-1]) + " and " + limits[-1] if len(limits) > 1 else limits[0]
         j_sup_text, j_text = _g_apart(j_sup, combo.j_shaft)
-        return (f"{combo.label}: even with no limit on the outer diameter, the largest "
-                f"{word} with {text} gives {j_sup_text} kg·m², short of the "
-                f"{need(j_text)} required"), None
+        return (
+            f"{combo.label}: even with no limit on the outer diameter, the largest "
+            f"{word} with {text} gives {j_sup_text} kg·m², short of the "
+            f"{need(j_text)} required"
+        ), None
     cap, needed_text = _g_apart(combo.cap, needed)
-    return (f"{combo.label}: {cap_text} at {cap} m, where the smallest {word} that gives "
-            f"{need(_g(combo.j_shaft))} still needs {needed_text} m"), needed
+    return (
+        f"{combo.label}: {cap_text} at {cap} m, where the smallest {word} that gives "
+        f"{need(_g(combo.j_shaft))} still needs {needed_text} m"
+    ), needed
+
 
 def _solve_closed_form(pending, spec):
     """Design feasible combinations by the exact closed form.
@@ -141,20 +152,27 @@ def _solve_closed_form(pending, spec):
     for order, combo in pending:
         start = time.perf_counter()
         rho = combo.material.density
-        d_mean, h, b = closed_form.lightest_one(spec.geometry, combo.j_shaft, rho, combo.cap, hb_min, hb_max,
-                                          b_max, spec.d_mean)
+        d_mean, h, b = closed_form.lightest_one(
+            spec.geometry, combo.j_shaft, rho, combo.cap, hb_min, hb_max, b_max, spec.d_mean
+        )
         if spec.geometry == "disc":
             mass = geometry.disc_mass(2 * d_mean, b, rho)
             j_wheel = geometry.disc_inertia(mass, 2 * d_mean)
         else:
             mass = geometry.rim_mass(d_mean, h, b, rho)
             j_wheel = geometry.wheel_inertia(spec.geometry, rho, d_mean, h, b)
-        results.append((order, _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel,
-                                                      "closed_form", 0, time.perf_counter() - start)))
+        results.append(
+            (
+                order,
+                _candidate_from_design(
+                    combo, spec, d_mean, h, b, mass, j_wheel, "closed_form", 0, time.perf_counter() - start
+                ),
+            )
+        )
     return results
 
-def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, iterations,
-                           elapsed):
+
+def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, iterations, elapsed):
     """Verify a solved design against every constraint and describe it."""
     m = combo.material
     d_outer = geometry.outer_diameter(d_mean, h)
@@ -163,37 +181,70 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
     stress = geometry.hoop_stress(m.density, speed)
     hb = h / b
     hb_min, hb_max = spec.hb_ratio
-    violations = check.violations(spec.geometry, j_wheel, combo.j_shaft, d_outer, d_inner, b, hb, combo.cap,
-                                  spec.max_width, hb_min, hb_max)
+    violations = check.violations(
+        spec.geometry, j_wheel, combo.j_shaft, d_outer, d_inner, b, hb, combo.cap, spec.max_width, hb_min, hb_max
+    )
     if violations:
-        source = ("the closed-form design" if status == "closed_form"
-                  else f"IPOPT reported {status!r} but the design")
-        err = SolverFailed(f"{combo.label}: {source} violates {'; '.join(violations)}; "
-                           f"no design is reported")
+        source = "the closed-form design" if status == "closed_form" else f"IPOPT reported {status!r} but the design"
+        err = SolverFailed(f"{combo.label}: {source} violates {'; '.join(violations)}; no design is reported")
         err.status = status
         err.combination = combo.label
         raise err
-    binding = check.binding_names(check.binding_mask(
-        spec.geometry, j_wheel, combo.j_shaft, d_outer, d_inner, b, hb, combo.cap_speed,
-        spec.max_outer_diameter, spec.max_width, hb_min, hb_max))
+    binding = check.binding_names(
+        check.binding_mask(
+            spec.geometry,
+            j_wheel,
+            combo.j_shaft,
+            d_outer,
+            d_inner,
+            b,
+            hb,
+            combo.cap_speed,
+            spec.max_outer_diameter,
+            spec.max_width,
+            hb_min,
+            hb_max,
+        )
+    )
     cost = mass * m.cost if m.cost is not None else None
     objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
-    dims = (wheel.Dims(d_outer=d_outer, h=d_outer / 2.0, b=b) if spec.geometry == "disc"
-            else wheel.Dims(d_outer=d_outer, h=h, b=b))
+    dims = (
+        wheel.Dims(d_outer=d_outer, h=d_outer / 2.0, b=b)
+        if spec.geometry == "disc"
+        else wheel.Dims(d_outer=d_outer, h=h, b=b)
+    )
     structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec, 0.0)
-    return Candidate(**structure,
-        material=m.name, shaft=combo.shaft.name, speed_ratio=combo.shaft.speed_ratio,
-        geometry=spec.geometry, feasible=True,
+    return Candidate(
+        **structure,
+        material=m.name,
+        shaft=combo.shaft.name,
+        speed_ratio=combo.shaft.speed_ratio,
+        geometry=spec.geometry,
+        feasible=True,
         reason=f"{combo.label}: designed; binding: {', '.join(binding) or 'none'}",
-        d_mean=d_mean, d_outer=d_outer, d_inner=max(d_inner, 0.0),
-        h=h, b=b, hb_ratio=hb, mass=mass, rim_speed=speed, hoop_stress=stress,
+        d_mean=d_mean,
+        d_outer=d_outer,
+        d_inner=max(d_inner, 0.0),
+        h=h,
+        b=b,
+        hb_ratio=hb,
+        mass=mass,
+        rim_speed=speed,
+        hoop_stress=stress,
         safety_factor=(m.allowable_stress / stress if m.allowable_stress else None),
-        cost=cost, j_flywheel=j_wheel,
+        cost=cost,
+        j_flywheel=j_wheel,
         j_at_reference=inertia_at_reference(j_wheel, combo.shaft.speed_ratio),
-        binding=tuple(binding), objective=objective,
-        j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap,
-        rim_speed_limit=combo.v_max, j_max=combo.j_max, solver_status=status,
-        iterations=iterations, solve_time=elapsed)
+        binding=tuple(binding),
+        objective=objective,
+        j_required_on_shaft=combo.j_shaft,
+        d_outer_limit=combo.cap,
+        rim_speed_limit=combo.v_max,
+        j_max=combo.j_max,
+        solver_status=status,
+        iterations=iterations,
+        solve_time=elapsed,
+    )
 
 
 def _rim_speed_limit(material, spec):
@@ -204,7 +255,7 @@ def _rim_speed_limit(material, spec):
         try:
             return material.rim_speed_limit(safety_factor=spec.safety_factor)
         except ValueError:
-            return math.nan          # no factor on its strength: the stress criterion needs none
+            return math.nan  # no factor on its strength: the stress criterion needs none
     return material.rim_speed_limit(safety_factor=spec.safety_factor)
 
 
@@ -215,20 +266,28 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     combo_n = _Combination(**{**combo.__dict__, "n_arms": n_arms})
     label = combo_n.label
     m = combo.material
-    common = dict(material=m.name, shaft=combo.shaft.name, speed_ratio=combo.shaft.speed_ratio,
-                  geometry=spec.geometry, j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap,
-                  rim_speed_limit=combo.v_max, n_arms=n_arms or None, bore=combo.bore or None)
+    common = dict(
+        material=m.name,
+        shaft=combo.shaft.name,
+        speed_ratio=combo.shaft.speed_ratio,
+        geometry=spec.geometry,
+        j_required_on_shaft=combo.j_shaft,
+        d_outer_limit=combo.cap,
+        rim_speed_limit=combo.v_max,
+        n_arms=n_arms or None,
+        bore=combo.bore or None,
+    )
     start = time.perf_counter()
     try:
-        dims, solution, checked = wheel_design.design_combination(combo_n, spec, combo.bore, combo.torque,
-                                                                  n_arms, solver_options, method)
+        dims, solution, checked = wheel_design.design_combination(
+            combo_n, spec, combo.bore, combo.torque, n_arms, solver_options, method
+        )
     except wheel_design.NoWheel as err:
         return Candidate(feasible=False, reason=err.reason, j_max=err.j_max, **common), None
     except SolverFailed as err:
         err.combination = label
         raise
-    model = (wheel_nlp.get_model(solution.structure, solver_options) if solution.status != "closed_form"
-             else None)
+    model = wheel_nlp.get_model(solution.structure, solver_options) if solution.status != "closed_form" else None
     parts = wheel.parts(spec.geometry, dims, m.density)
     mass = float(wheel.wheel_mass(parts))
     j_wheel = float(wheel.wheel_inertia(parts))
@@ -237,38 +296,69 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     speed = geometry.rim_speed(combo.omega, d_outer)
     found = _whole_violations(combo, spec, dims, j_wheel, checked)
     if found:
-        err = SolverFailed(f"{label}: IPOPT reported {solution.status!r} but the wheel violates "
-                           f"{'; '.join(found)}; no design is reported")
+        err = SolverFailed(
+            f"{label}: IPOPT reported {solution.status!r} but the wheel violates "
+            f"{'; '.join(found)}; no design is reported"
+        )
         err.status = solution.status
         err.combination = label
         raise err
     binding = sorted(name for name, lam in solution.lam_g.items() if abs(lam) > 1e-9)
-    binding += sorted({"strength_table" if lam > 0 and name in (solution.caps or {}) else _BOUND_NAMES[name, lam > 0]
-                       for name, lam in solution.lam_x.items() if abs(lam) > 1e-9})
+    binding += sorted(
+        {
+            "strength_table" if lam > 0 and name in (solution.caps or {}) else _BOUND_NAMES[name, lam > 0]
+            for name, lam in solution.lam_x.items()
+            if abs(lam) > 1e-9
+        }
+    )
     cost = mass * m.cost if m.cost is not None else None
     objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
-    structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec,
-                                              combo.bore, checked)
-    limits = {"envelope": spec.max_outer_diameter, "max_rim_speed": combo.v_max,
-              "max_width": spec.max_width, "j_shaft": combo.j_shaft,
-              "allowable": {p.part: p.allowable for p in checked.parts} if checked else {},
-              "allow_power": 2 if getattr(m, "ductile", False) else 1,
-              "allow_param": solution.allow_params, "min_wall": wheel_design._min_wall(spec, m)}
-    sensitivities = (wheel_design.sensitivities(solution, mass, limits)
-                     if spec.objective != "outer_diameter" else ())
+    structure = wheel_design.structure_fields(
+        m, spec.geometry, dims, combo.omega, combo.torque, spec, combo.bore, checked
+    )
+    limits = {
+        "envelope": spec.max_outer_diameter,
+        "max_rim_speed": combo.v_max,
+        "max_width": spec.max_width,
+        "j_shaft": combo.j_shaft,
+        "allowable": {p.part: p.allowable for p in checked.parts} if checked else {},
+        "allow_power": 2 if getattr(m, "ductile", False) else 1,
+        "allow_param": solution.allow_params,
+        "min_wall": wheel_design._min_wall(spec, m),
+    }
+    sensitivities = wheel_design.sensitivities(solution, mass, limits) if spec.objective != "outer_diameter" else ()
     common.pop("bore")
     return Candidate(
-        feasible=True, reason=f"{label}: designed; binding: {', '.join(binding) or 'none'}",
-        d_mean=d_outer - h, d_outer=d_outer, d_inner=max(d_inner, 0.0), h=h, b=b, hb_ratio=h / b,
-        mass=mass, rim_speed=speed, hoop_stress=geometry.hoop_stress(m.density, speed),
-        safety_factor=(m.allowable_stress / geometry.hoop_stress(m.density, speed)
-                       if m.allowable_stress else None),
-        cost=cost, j_flywheel=j_wheel, j_at_reference=inertia_at_reference(j_wheel, combo.shaft.speed_ratio),
-        binding=tuple(binding), objective=objective, j_max=math.nan, solver_status=solution.status,
-        iterations=solution.iterations, solve_time=time.perf_counter() - start,
-        t_web=_dim(dims.t_web), d_hub=_dim(dims.d_hub), l_hub=_dim(dims.l_hub),
-        arm_major=_dim(dims.arm_major), arm_minor=_dim(dims.arm_major * wheel.ARM_MINOR_RATIO),
-        sensitivities=sensitivities, **structure, **common), model
+        feasible=True,
+        reason=f"{label}: designed; binding: {', '.join(binding) or 'none'}",
+        d_mean=d_outer - h,
+        d_outer=d_outer,
+        d_inner=max(d_inner, 0.0),
+        h=h,
+        b=b,
+        hb_ratio=h / b,
+        mass=mass,
+        rim_speed=speed,
+        hoop_stress=geometry.hoop_stress(m.density, speed),
+        safety_factor=(m.allowable_stress / geometry.hoop_stress(m.density, speed) if m.allowable_stress else None),
+        cost=cost,
+        j_flywheel=j_wheel,
+        j_at_reference=inertia_at_reference(j_wheel, combo.shaft.speed_ratio),
+        binding=tuple(binding),
+        objective=objective,
+        j_max=math.nan,
+        solver_status=solution.status,
+        iterations=solution.iterations,
+        solve_time=time.perf_counter() - start,
+        t_web=_dim(dims.t_web),
+        d_hub=_dim(dims.d_hub),
+        l_hub=_dim(dims.l_hub),
+        arm_major=_dim(dims.arm_major),
+        arm_minor=_dim(dims.arm_major * wheel.ARM_MINOR_RATIO),
+        sensitivities=sensitivities,
+        **structure,
+        **common,
+    ), model
 
 
 def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pruned):
@@ -290,12 +380,12 @@ def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pr
     tasks = []
     for order, combo in whole:
         bound, why = wheel_design.objective_bound(combo, spec)
-        for n_arms in (spec.arms if spec.geometry == "rim_arms" else (0,)):
+        for n_arms in spec.arms if spec.geometry == "rim_arms" else (0,):
             tasks.append((bound, order, n_arms, combo, why))
     tasks.sort(key=lambda t: t[:3])
     model = None
     for bound, order, n_arms, combo, why in tasks:
-        try:      # a combination shown unable to make any wheel is infeasible, not pruned
+        try:  # a combination shown unable to make any wheel is infeasible, not pruned
             wheel_design.screen(_Combination(**{**combo.__dict__, "n_arms": n_arms}), spec, combo.bore)
         except wheel_design.NoWheel:
             pass  # _design_whole reports it, without solving
@@ -331,20 +421,35 @@ def _pruned(combo, spec, n_arms, bound, why, feasible):
     label = _Combination(**{**combo.__dict__, "n_arms": n_arms}).label
     winner = f"{best.material} on the {_shaft_label(best.shaft)}" + (f" with {best.n_arms} arms" if best.n_arms else "")
     return Candidate(
-        material=combo.material.name, shaft=combo.shaft.name, speed_ratio=combo.shaft.speed_ratio,
-        geometry=spec.geometry, feasible=False, pruned=True, objective_bound=bound,
-        reason=(f"{label}: not designed, it cannot win: {why}, more than the "
-                f"{best.objective:.4g}{_OBJECTIVE_UNIT[spec.objective]} of {winner}"),
-        j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max,
-        n_arms=n_arms or None, bore=combo.bore or None)
+        material=combo.material.name,
+        shaft=combo.shaft.name,
+        speed_ratio=combo.shaft.speed_ratio,
+        geometry=spec.geometry,
+        feasible=False,
+        pruned=True,
+        objective_bound=bound,
+        reason=(
+            f"{label}: not designed, it cannot win: {why}, more than the "
+            f"{best.objective:.4g}{_OBJECTIVE_UNIT[spec.objective]} of {winner}"
+        ),
+        j_required_on_shaft=combo.j_shaft,
+        d_outer_limit=combo.cap,
+        rim_speed_limit=combo.v_max,
+        n_arms=n_arms or None,
+        bore=combo.bore or None,
+    )
 
 
 #: What an active bound on a wheel NLP variable means: (variable, upper bound) -> binding name.
 _BOUND_NAMES = {
-    ("h", False): "min_wall", ("b", False): "min_wall", ("t_web", False): "min_wall",
+    ("h", False): "min_wall",
+    ("b", False): "min_wall",
+    ("t_web", False): "min_wall",
     ("arm_major", False): "min_wall",
-    ("d_hub", False): "hub_diameter_min", ("d_hub", True): "hub_diameter_max",
-    ("l_hub", False): "hub_length_min", ("l_hub", True): "hub_length_max",
+    ("d_hub", False): "hub_diameter_min",
+    ("d_hub", True): "hub_diameter_max",
+    ("l_hub", False): "hub_length_min",
+    ("l_hub", True): "hub_length_max",
 }
 
 
@@ -368,13 +473,14 @@ def _whole_violations(combo, spec, dims, j_wheel, checked):
         if not spec.hb_ratio[0] * (1.0 - tol) <= hb <= spec.hb_ratio[1] * (1.0 + tol):
             found.append(f"H/B {hb:.9g} outside [{spec.hb_ratio[0]}, {spec.hb_ratio[1]}]")
         if dims.d_inner < max(dims.d_hub, 0.0) * (1.0 - tol):
-            found.append(f"the rim's inner diameter {dims.d_inner:.9g} m is inside the hub "
-                         f"({dims.d_hub:.9g} m)")
+            found.append(f"the rim's inner diameter {dims.d_inner:.9g} m is inside the hub ({dims.d_hub:.9g} m)")
     if spec.criterion == "stress" and checked is not None:
         for part in checked.parts:
             if part.stress > part.allowable * (1.0 + tol):
-                found.append(f"{part.part} stress {part.stress / 1e6:.9g} MPa > allowable "
-                             f"{part.allowable / 1e6:.9g} MPa at r = {part.radius:.6g} m")
+                found.append(
+                    f"{part.part} stress {part.stress / 1e6:.9g} MPa > allowable "
+                    f"{part.allowable / 1e6:.9g} MPa at r = {part.radius:.6g} m"
+                )
     return found
 
 
@@ -391,10 +497,18 @@ def _check_unique(items, kind, cls):
             raise ValueError(f"{kind} {item.name!r} is given twice")
         seen.add(item.name)
 
-def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft],
-                    materials: Sequence[Material], spec: DesignSpec = DesignSpec(), *,
-                    solver_options: Mapping | None = None, method: str = "auto",
-                    torque: float | None = None) -> DesignResult:
+
+def design_flywheel(
+    j_required: float,
+    omega: float,
+    shafts: Sequence[MountShaft],
+    materials: Sequence[Material],
+    spec: DesignSpec | None = None,
+    *,
+    solver_options: Mapping | None = None,
+    method: str = "auto",
+    torque: float | None = None,
+) -> DesignResult:
     """Design the flywheel: the best material, shaft and dimensions.
 
     Parameters
@@ -411,8 +525,8 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         Where the flywheel may go; speed ratios relative to the reference.
     materials : sequence of Material
         Materials to consider.
-    spec : DesignSpec
-        Geometry model, limits and objective.
+    spec : DesignSpec, optional
+        Geometry model, limits and objective (default: ``DesignSpec()``).
     solver_options : mapping, optional
         CasADi/IPOPT options merged over :data:`flyopt.design.nlp.DEFAULT_SOLVER_OPTIONS`; they
         act on the combinations IPOPT solves (all of them with method
@@ -460,37 +574,47 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
     omega = _positive(omega, "omega", "[rad/s]")
     _check_unique(shafts, "shaft", MountShaft)
     _check_unique(materials, "material", Material)
+    if spec is None:
+        spec = DesignSpec()
     if not isinstance(spec, DesignSpec):
         raise ValueError(f"spec must be a DesignSpec, got {spec!r}")
     if spec.objective == "cost":
         missing = [m.name for m in materials if m.cost is None]
         if missing:
-            raise ValueError(f"objective 'cost' needs a cost per kg on every material; "
-                             f"missing for {missing}")
+            raise ValueError(f"objective 'cost' needs a cost per kg on every material; missing for {missing}")
     _choice(method, ("ipopt", "auto", "closed_form"), "method")
     closed = False
     textbook = [spec.textbook(bore_of(spec, shaft)) for shaft in shafts]
     if method != "ipopt" and all(textbook):
         closed = closed_form.covers(spec.geometry, spec.objective, spec.d_mean is not None)
         if method == "closed_form" and not closed:
-            raise ValueError(f"the closed form does not cover geometry {spec.geometry!r} with objective "
-                             f"{spec.objective!r}; use method 'auto' or 'ipopt'")
+            raise ValueError(
+                f"the closed form does not cover geometry {spec.geometry!r} with objective "
+                f"{spec.objective!r}; use method 'auto' or 'ipopt'"
+            )
     if j_required <= 0.0:
         return DesignResult(
             status="not_needed",
-            message=(f"no flywheel needed: the required flywheel inertia J_F = "
-                     f"{_g(j_required)} kg·m² is not positive, so the machine's own "
-                     f"inertia already keeps the speed fluctuation within delta"),
-            j_required=j_required, omega=omega, spec=spec)
+            message=(
+                f"no flywheel needed: the required flywheel inertia J_F = "
+                f"{_g(j_required)} kg·m² is not positive, so the machine's own "
+                f"inertia already keeps the speed fluctuation within delta"
+            ),
+            j_required=j_required,
+            omega=omega,
+            spec=spec,
+        )
 
     model = wheel_model = None
     if not closed and any(textbook):
-        from flyopt.design import nlp   # CasADi only when IPOPT is asked for
+        from flyopt.design import nlp  # CasADi only when IPOPT is asked for
 
         structure = nlp.ModelStructure(
-            geometry=spec.geometry, pinned=spec.d_mean is not None,
+            geometry=spec.geometry,
+            pinned=spec.d_mean is not None,
             collapsed=spec.geometry != "disc" and spec.hb_ratio[0] == spec.hb_ratio[1],
-            objective="outer_diameter" if spec.objective == "outer_diameter" else "mass")
+            objective="outer_diameter" if spec.objective == "outer_diameter" else "mass",
+        )
         model = nlp.get_model(structure, solver_options)
     envelope = spec.max_outer_diameter
 
@@ -500,12 +624,18 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         for shaft, plain in zip(shafts, textbook):
             shaft_omega = omega * shaft.speed_ratio
             v_max = _rim_speed_limit(material, spec)
-            cap_speed = (geometry.outer_diameter_for_rim_speed(v_max, shaft_omega)
-                         if spec.criterion == "rim_speed" else math.inf)
+            cap_speed = (
+                geometry.outer_diameter_for_rim_speed(v_max, shaft_omega) if spec.criterion == "rim_speed" else math.inf
+            )
             combo = _Combination(
-                material=material, shaft=shaft, omega=shaft_omega,
+                material=material,
+                shaft=shaft,
+                omega=shaft_omega,
                 j_shaft=inertia_on_shaft(j_required, shaft.speed_ratio),
-                j_reference=j_required, cap_speed=cap_speed, cap=min(cap_speed, envelope))
+                j_reference=j_required,
+                cap_speed=cap_speed,
+                cap=min(cap_speed, envelope),
+            )
             combo.bore = bore_of(spec, shaft)
             combo.v_max = v_max
             combo.torque = torque / shaft.speed_ratio if torque else 0.0
@@ -513,44 +643,68 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
                 whole.append((order, combo))
                 order += 1
                 continue
-            combo.j_max = closed_form.max_inertia_one(spec.geometry, material.density, combo.cap,
-                                      spec.hb_ratio, spec.max_width, spec.d_mean)[0]
+            combo.j_max = closed_form.max_inertia_one(
+                spec.geometry, material.density, combo.cap, spec.hb_ratio, spec.max_width, spec.d_mean
+            )[0]
             pinned_fits = spec.d_mean is None or (
-                spec.d_mean <= combo.cap if spec.geometry == "disc"
-                else spec.d_mean < combo.cap)
+                spec.d_mean <= combo.cap if spec.geometry == "disc" else spec.d_mean < combo.cap
+            )
             if pinned_fits and combo.j_shaft <= combo.j_max:
                 if closed:
                     pending.append((order, combo))
                 else:
-                    feasible.append((order, _candidate_from_design(combo, spec,
-                                                                   *nlp.solve_combination(model, combo, spec))))
+                    feasible.append(
+                        (order, _candidate_from_design(combo, spec, *nlp.solve_combination(model, combo, spec)))
+                    )
             else:
                 reason, needed = _explain_infeasible(combo, spec)
-                infeasible.append(((order, 0), Candidate(
-                    material=material.name, shaft=shaft.name,
-                    speed_ratio=shaft.speed_ratio, geometry=spec.geometry,
-                    feasible=False, reason=reason, j_required_on_shaft=combo.j_shaft,
-                    d_outer_limit=combo.cap, rim_speed_limit=combo.v_max,
-                    j_max=combo.j_max, d_outer_needed=needed)))
+                infeasible.append(
+                    (
+                        (order, 0),
+                        Candidate(
+                            material=material.name,
+                            shaft=shaft.name,
+                            speed_ratio=shaft.speed_ratio,
+                            geometry=spec.geometry,
+                            feasible=False,
+                            reason=reason,
+                            j_required_on_shaft=combo.j_shaft,
+                            d_outer_limit=combo.cap,
+                            rim_speed_limit=combo.v_max,
+                            j_max=combo.j_max,
+                            d_outer_needed=needed,
+                        ),
+                    )
+                )
             order += 1
     if pending:
         feasible += _solve_closed_form(pending, spec)
     pruned = []
     if whole:
         wheel_model = _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pruned)
-    infeasible = [c for _, c in sorted(infeasible, key=lambda item: item[0])]    # in input order
-    ranked = (tuple(rank.ranking([c for _, c in feasible])) + tuple(sorted(pruned, key=lambda c: c.objective_bound))
-              + tuple(infeasible))
+    infeasible = [c for _, c in sorted(infeasible, key=lambda item: item[0])]  # in input order
+    ranked = (
+        tuple(rank.ranking([c for _, c in feasible]))
+        + tuple(sorted(pruned, key=lambda c: c.objective_bound))
+        + tuple(infeasible)
+    )
     best = ranked[0] if feasible else None
     if wheel_model is not None:
         description = wheel_model.describe()
     elif model is not None:
         description = model.describe()
     else:
-        description = {"geometry": spec.geometry, "inertia_model": geometry.GEOMETRIES[spec.geometry],
-                       "variables": [], "constraints": [], "pinned": ["d_mean"] if spec.d_mean is not None else [],
-                       "formulation": ("exact closed form (flyopt.design.closed_form): outer diameter at its cap, "
-                                       "a 1-D monotone root for the rim; verified against every constraint")}
+        description = {
+            "geometry": spec.geometry,
+            "inertia_model": geometry.GEOMETRIES[spec.geometry],
+            "variables": [],
+            "constraints": [],
+            "pinned": ["d_mean"] if spec.d_mean is not None else [],
+            "formulation": (
+                "exact closed form (flyopt.design.closed_form): outer diameter at its cap, "
+                "a 1-D monotone root for the rim; verified against every constraint"
+            ),
+        }
     description["objective"] = spec.objective
     bounds = []
     if spec.max_width < math.inf:
@@ -561,19 +715,25 @@ def design_flywheel(j_required: float, omega: float, shafts: Sequence[MountShaft
         bounds.append("outer_diameter and inner_diameter: H <= min(cap - D_m, D_m)")
     description["bounds"] = bounds
     limits = spec.to_dict()
-    description["limits"] = {name: limits[name] for name in ("max_outer_diameter", "max_width", "hb_ratio",
-                                                             "d_mean")}
+    description["limits"] = {name: limits[name] for name in ("max_outer_diameter", "max_width", "hb_ratio", "d_mean")}
     if best is None:
         status = "infeasible"
-        message = ("no material and shaft can give the required inertia: "
-                   + "; ".join(c.reason for c in infeasible))
+        message = "no material and shaft can give the required inertia: " + "; ".join(c.reason for c in infeasible)
     else:
         status = "designed"
-        message = (f"{best.material} on the {_shaft_label(best.shaft)}: {spec.geometry} "
-                   f"D_outer {_g(best.d_outer)} m, B {_g(best.b)} m, mass "
-                   f"{_g(best.mass)} kg ({len(feasible)} of {len(ranked)} combinations "
-                   f"feasible" + (f", {len(pruned)} not designed: a bound shows they cannot win" if pruned else "")
-                   + ")")
-    return DesignResult(status=status, message=message, j_required=j_required,
-                        omega=omega, spec=spec, best=best, candidates=ranked,
-                        model=description)
+        message = (
+            f"{best.material} on the {_shaft_label(best.shaft)}: {spec.geometry} "
+            f"D_outer {_g(best.d_outer)} m, B {_g(best.b)} m, mass "
+            f"{_g(best.mass)} kg ({len(feasible)} of {len(ranked)} combinations "
+            f"feasible" + (f", {len(pruned)} not designed: a bound shows they cannot win" if pruned else "") + ")"
+        )
+    return DesignResult(
+        status=status,
+        message=message,
+        j_required=j_required,
+        omega=omega,
+        spec=spec,
+        best=best,
+        candidates=ranked,
+        model=description,
+    )

@@ -62,7 +62,6 @@ THERMAL_RTOL = 1e-8
 MOTOR_MODEL = "kloss"
 
 
-
 @dataclass(frozen=True)
 class MotorRun:
     """One motor size of the catalogue, with the least flywheel it needs and that wheel designed.
@@ -157,15 +156,28 @@ class DriveDesign:
 
     def to_dict(self):
         relaxed = None if self.relaxation is None else self.relaxation.to_dict()
-        return {"status": self.status, "objective": self.objective, "message": self.message, "note": self.note,
-                "relaxation": relaxed,
-                "best": None if self.best is None else self.best.to_dict(),
-                "runs": [r.to_dict() for r in self.runs]}
+        return {
+            "status": self.status,
+            "objective": self.objective,
+            "message": self.message,
+            "note": self.note,
+            "relaxation": relaxed,
+            "best": None if self.best is None else self.best.to_dict(),
+            "runs": [r.to_dict() for r in self.runs],
+        }
 
 
 def _motor_dict(motor):
-    fields = ("name", "rated_power", "rated_speed", "synchronous_speed", "rotor_inertia", "breakdown_ratio",
-              "mass", "price")
+    fields = (
+        "name",
+        "rated_power",
+        "rated_speed",
+        "synchronous_speed",
+        "rotor_inertia",
+        "breakdown_ratio",
+        "mass",
+        "price",
+    )
     return {f: getattr(motor, f, None) for f in fields}
 
 
@@ -222,8 +234,9 @@ def motor_scene(scene, motor, ratio):
     from flyopt.machine.transmission import inertia_at_reference
 
     drive = MotorTorque(motor.motor(), ratio, scene.efficiency, MOTOR_MODEL, "drive.motors")
-    return dataclasses.replace(scene, driving=drive,
-                               j_constant=scene.j_constant + inertia_at_reference(motor.rotor_inertia, ratio))
+    return dataclasses.replace(
+        scene, driving=drive, j_constant=scene.j_constant + inertia_at_reference(motor.rotor_inertia, ratio)
+    )
 
 
 def chosen_scene(scene, run):
@@ -263,11 +276,18 @@ def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_sp
 
     ratio = motor_ratio_estimate(motor, load_torque, omega, scene.efficiency)
     if ratio is None:
-        return run(False, f"too small: its torque on the crank cannot reach the mean load {load_torque:.6g} N*m "
-                          f"at {omega:.6g} rad/s on the stable branch")
+        return run(
+            False,
+            f"too small: its torque on the crank cannot reach the mean load {load_torque:.6g} N*m "
+            f"at {omega:.6g} rad/s on the stable branch",
+        )
     if spec.thermal and load_torque / (ratio * scene.efficiency) > rated * (1 + 1e-12):
-        return run(False, f"thermal: its mean torque {load_torque / (ratio * scene.efficiency):.6g} N*m exceeds "
-                          f"its rated torque {rated:.6g} N*m whatever the flywheel", motor_ratio=ratio)
+        return run(
+            False,
+            f"thermal: its mean torque {load_torque / (ratio * scene.efficiency):.6g} N*m exceeds "
+            f"its rated torque {rated:.6g} N*m whatever the flywheel",
+            motor_ratio=ratio,
+        )
     try:
         ratio, machine, solution, j_delta = _settle(scene, motor, ratio, spec.thermal)
     except _Unsettled as err:
@@ -279,22 +299,36 @@ def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_sp
     rms, mean = rms_torque(solution, motor.motor(), ratio)
     omega_min_motor = float(np.min(solution.omega)) * ratio
     if omega_min_motor < motor.motor().breakdown_speed:
-        return run(False, f"breakdown: the motor slows to {omega_min_motor:.6g} rad/s in the cycle, past its "
-                          f"breakdown speed {motor.motor().breakdown_speed:.6g} rad/s",
-                   motor_ratio=ratio, j_delta=j_delta)
+        return run(
+            False,
+            f"breakdown: the motor slows to {omega_min_motor:.6g} rad/s in the cycle, past its "
+            f"breakdown speed {motor.motor().breakdown_speed:.6g} rad/s",
+            motor_ratio=ratio,
+            j_delta=j_delta,
+        )
     startup = startup_run(machine, solution.omega_mean, j_need)
-    facts = dict(motor_ratio=ratio, j_flywheel=j_need, limit=limit, j_delta=j_delta, rms_torque=rms,
-                 mean_torque=mean, omega_mean=solution.omega_mean, delta=solution.delta,
-                 startup_time=startup.time)
+    facts = dict(
+        motor_ratio=ratio,
+        j_flywheel=j_need,
+        limit=limit,
+        j_delta=j_delta,
+        rms_torque=rms,
+        mean_torque=mean,
+        omega_mean=solution.omega_mean,
+        delta=solution.delta,
+        startup_time=startup.time,
+    )
     if spec.max_startup is not None:
         if startup.time is None:
             return run(False, f"start-up: {startup.note}", **facts)
         if startup.time > spec.max_startup:
-            return run(False, f"start-up: {startup.time:.4g} s from rest, over max_startup "
-                              f"{spec.max_startup:.4g} s", **facts)
+            return run(
+                False, f"start-up: {startup.time:.4g} s from rest, over max_startup {spec.max_startup:.4g} s", **facts
+            )
     torque = flywheel_torque(machine, j_need) if j_need > 0 else None
-    result, r = _best_wheel(j_need, solution.omega_max, ratios, materials, design_spec, torque, spec.objective,
-                            solver_options)
+    result, r = _best_wheel(
+        j_need, solution.omega_max, ratios, materials, design_spec, torque, spec.objective, solver_options
+    )
     wheel = None if result is None else result.best
     if j_need > 0 and wheel is None:
         return run(False, "no wheel fits the design limits for the flywheel it needs", **facts)
@@ -304,8 +338,19 @@ def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_sp
     if getattr(motor, "price", None) is not None and (wheel is None or wheel.cost is not None):
         cost = motor.price + (wheel.cost if wheel is not None else 0.0)
     objective = total if spec.objective == "mass" else cost
-    return run(True, "", **facts, flywheel_ratio=r, wheel=wheel, design=result, motor_mass=motor.mass,
-               wheel_mass=wheel_mass, total_mass=total, cost=cost, objective=objective)
+    return run(
+        True,
+        "",
+        **facts,
+        flywheel_ratio=r,
+        wheel=wheel,
+        design=result,
+        motor_mass=motor.mass,
+        wheel_mass=wheel_mass,
+        total_mass=total,
+        cost=cost,
+        objective=objective,
+    )
 
 
 class _Unsettled(SolverFailed):
@@ -322,8 +367,9 @@ def _steady(scene, motor, ratio, j_flywheel):
     from flyopt.sizing.periodic import periodic_solution
 
     machine = reduce(motor_scene(scene, motor, ratio))
-    return machine, periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle,
-                                      scene.omega_mean, j_flywheel, machine.knots())
+    return machine, periodic_solution(
+        machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean, j_flywheel, machine.knots()
+    )
 
 
 def _hold_speed(scene, motor, ratio, j_flywheel, memo=None):
@@ -368,14 +414,14 @@ def _settle(scene, motor, ratio, thermal):
     try:
         ratio, machine, sol = _hold_speed(scene, motor, ratio, 0.0, memo)
         j_delta = _delta_flywheel(scene, machine) if sol.delta > delta else 0.0
-    except SolverFailed:          # without a flywheel the machine stalls: δ needs one (dynamic_requirement finds it)
+    except SolverFailed:  # without a flywheel the machine stalls: δ needs one (dynamic_requirement finds it)
         machine = reduce(motor_scene(scene, motor, ratio))
         j_delta = _delta_flywheel(scene, machine)
         if not j_delta > 0:
             raise
         sol = None
     j, limit = j_delta, ("delta" if j_delta > 0 else "none")
-    held = None if sol is None else 0.0          # the flywheel the ratio was last held with
+    held = None if sol is None else 0.0  # the flywheel the ratio was last held with
     if thermal:
         if j > 0:
             ratio, machine, sol = _hold_speed(scene, motor, ratio, j, memo)
@@ -383,8 +429,11 @@ def _settle(scene, motor, ratio, thermal):
         if rms_torque(sol, motor.motor(), ratio)[0] > rated:
             j = _thermal_flywheel(machine, motor, ratio, scene.omega_mean, j, rated)
             if j is None:
-                raise _Unsettled(f"thermal: its RMS torque stays above its rated torque {rated:.6g} N*m "
-                                 "for any flywheel", ratio, j_delta)
+                raise _Unsettled(
+                    f"thermal: its RMS torque stays above its rated torque {rated:.6g} N*m for any flywheel",
+                    ratio,
+                    j_delta,
+                )
             limit = "thermal"
     seq = [j]
     for _ in range(20):
@@ -411,7 +460,7 @@ def _settle(scene, motor, ratio, thermal):
                 held = j_new
             if limit == "thermal":
                 j_delta = _delta_flywheel(scene, machine) if sol.delta > delta or j_delta > 0 else 0.0
-                if sol.delta > delta * (1 + 1e-9):     # δ binds after all at this ratio: size for it
+                if sol.delta > delta * (1 + 1e-9):  # δ binds after all at this ratio: size for it
                     limit, j = "delta", j_delta
                     continue
             else:
@@ -425,8 +474,9 @@ def _delta_flywheel(scene, machine):
     """The least flywheel at the crank that keeps δ with the machine's motor (0 when none is needed)."""
     from flyopt.sizing.periodic import dynamic_requirement
 
-    need = dynamic_requirement(machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean,
-                               scene.delta, machine.knots())
+    need = dynamic_requirement(
+        machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean, scene.delta, machine.knots()
+    )
     return max(need.j_required, 0.0)
 
 
@@ -486,13 +536,20 @@ def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, s
     if j_need <= 0:
         return None, None
 
-    designs = {}            # r -> DesignResult: the scan, the minimization and the tie-break revisit ratios
+    designs = {}  # r -> DesignResult: the scan, the minimization and the tie-break revisit ratios
 
     def design(r):
         r = float(r)
         if r not in designs:
-            designs[r] = design_flywheel(j_need, omega_max, [MountShaft(FLYWHEEL_SHAFT, r)], materials, spec,
-                                         solver_options=solver_options, torque=torque)
+            designs[r] = design_flywheel(
+                j_need,
+                omega_max,
+                [MountShaft(FLYWHEEL_SHAFT, r)],
+                materials,
+                spec,
+                solver_options=solver_options,
+                torque=torque,
+            )
         return designs[r]
 
     def mass(r):
@@ -532,7 +589,7 @@ def _slowest_equal(mass, lo, r, m, rtol=1e-9):
     if mass(lo) <= m * (1 + rtol):
         return lo
     if mass(max(lo, r * (1 - 1e-6))) > m * (1 + rtol):
-        return r                              # no valley: the mass still falls toward r
+        return r  # no valley: the mass still falls toward r
     a, b = lo, r
     for _ in range(100):
         mid = 0.5 * (a + b)
@@ -576,34 +633,44 @@ def design_drive(scene, analysis=None, *, solver_options=None, every_size=False)
         analysis = analyse(scene)
     load = analysis.driving_torque
     if load is None or not load > 0:
-        raise SceneError("drive", "the drive needs a load to drive: the scene's mean driving torque is "
-                                  f"{load!r} N*m")
+        raise SceneError("drive", f"the drive needs a load to drive: the scene's mean driving torque is {load!r} N*m")
     inputs = design_inputs(scene)
     ratios = ("range", *spec.ratio_range) if spec.ratios is None else ("fixed", *spec.ratios)
-    motors = spec.motors.motors               # a Catalogue keeps its sizes in increasing rated power
+    motors = spec.motors.motors  # a Catalogue keeps its sizes in increasing rated power
     done = {}
 
     def evaluate(k):
         if k not in done:
-            done[k] = evaluate_motor(scene, motors[k], load, spec, ratios, inputs.materials, inputs.spec,
-                                     solver_options=solver_options)
+            done[k] = evaluate_motor(
+                scene, motors[k], load, spec, ratios, inputs.materials, inputs.spec, solver_options=solver_options
+            )
         return done[k]
 
-    relaxation, note = (None, "every catalogue size solved") if every_size else \
-        _relaxation(scene, analysis, spec, motors, inputs, load)
+    relaxation, note = (
+        (None, "every catalogue size solved")
+        if every_size
+        else _relaxation(scene, analysis, spec, motors, inputs, load)
+    )
     if relaxation is None:
         for k in range(len(motors)):
             evaluate(k)
     else:
         _neighbours(spec.motors, relaxation.rated_power, evaluate, done)
     runs = tuple(done[k] for k in sorted(done))
-    ranked = sorted((r for r in runs if r.feasible and r.objective is not None),
-                    key=lambda r: (r.objective, r.motor.rated_power))
+    ranked = sorted(
+        (r for r in runs if r.feasible and r.objective is not None), key=lambda r: (r.objective, r.motor.rated_power)
+    )
     if not ranked:
-        return DriveDesign("infeasible", spec.objective, None, runs,
-                           "no motor size of the catalogue drives the machine within the limits: "
-                           + "; ".join(f"{_name(r.motor)}: {r.reason}" for r in runs if not r.feasible)[:2000],
-                           relaxation=relaxation, note=note)
+        return DriveDesign(
+            "infeasible",
+            spec.objective,
+            None,
+            runs,
+            "no motor size of the catalogue drives the machine within the limits: "
+            + "; ".join(f"{_name(r.motor)}: {r.reason}" for r in runs if not r.feasible)[:2000],
+            relaxation=relaxation,
+            note=note,
+        )
     return DriveDesign("designed", spec.objective, ranked[0], runs, relaxation=relaxation, note=note)
 
 
@@ -614,7 +681,11 @@ def _relaxation(scene, analysis, spec, motors, inputs, load):
     from flyopt.design.wheel_design import bore_of, missing_poisson
 
     fit = CatalogueFit.of(motors)
-    if fit is None or (spec.objective == "mass" and fit.mass is None) or (spec.objective == "cost" and fit.price is None):
+    if (
+        fit is None
+        or (spec.objective == "mass" and fit.mass is None)
+        or (spec.objective == "cost" and fit.price is None)
+    ):
         return None, "every catalogue size solved (too few sizes, or one lacks a value, for a continuous relaxation)"
     design = inputs.spec
     bore = bore_of(design, MountShaft(FLYWHEEL_SHAFT, 1.0))
@@ -623,24 +694,25 @@ def _relaxation(scene, analysis, spec, motors, inputs, load):
         if spec.objective == "cost" and material.cost is None:
             continue
         if missing_poisson(material, design):
-            continue                  # the designer refuses it too
-        for n_arms in (design.arms if design.geometry == "rim_arms" else (0,)):
+            continue  # the designer refuses it too
+        for n_arms in design.arms if design.geometry == "rim_arms" else (0,):
             wheel = RelaxedWheel.of(material, design, bore, n_arms)
             if design.criterion == "rim_speed" and not math.isfinite(wheel.v_max):
                 continue
             if design.criterion == "stress" and not wheel.problem.allowable:
-                continue              # no allowable stress (no safety factor on its strength): nothing to limit
+                continue  # no allowable stress (no safety factor on its strength): nothing to limit
             try:
-                found = relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, spec, wheel,
-                              load)
+                found = relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, spec, wheel, load)
             except SolverFailed as err:
                 failures.append(f"{wheel.label}: {err}")
                 continue
             if best is None or found.objective < best.objective:
                 best = found
     if best is None:
-        return None, ("every catalogue size solved: the relaxation found no optimum"
-                      + (f" ({'; '.join(failures)})" if failures else ""))
+        return None, (
+            "every catalogue size solved: the relaxation found no optimum"
+            + (f" ({'; '.join(failures)})" if failures else "")
+        )
     return best, "the catalogue sizes around the relaxed optimum solved exactly"
 
 
@@ -652,7 +724,7 @@ def _neighbours(catalogue, power, evaluate, done):
     fitted laws mislead, so the search moves on past an end of the solved
     block as long as the best (or, when none is feasible yet, any) lies there.
     """
-    motors = catalogue.motors                 # in increasing rated power
+    motors = catalogue.motors  # in increasing rated power
     below, above = catalogue.neighbours(power)
     for motor in (below, above):
         if motor is not None:
@@ -662,8 +734,11 @@ def _neighbours(catalogue, power, evaluate, done):
         feasible = [k for k in done if done[k].feasible and done[k].objective is not None]
         if feasible:
             best = min(feasible, key=lambda k: (done[k].objective, motors[k].rated_power))
-            moves = [k for k in ((lo - 1) if best == lo else None, (hi + 1) if best == hi else None)
-                     if k is not None and 0 <= k < len(motors)]
+            moves = [
+                k
+                for k in ((lo - 1) if best == lo else None, (hi + 1) if best == hi else None)
+                if k is not None and 0 <= k < len(motors)
+            ]
         else:
             moves = [k for k in (lo - 1, hi + 1) if 0 <= k < len(motors)]
         if not moves:
@@ -716,8 +791,14 @@ class DriveCheck:
     notes: tuple = ()
 
     def to_dict(self):
-        return {**self.verification.to_dict(), "rms_torque": self.rms_torque, "rated_torque": self.rated_torque,
-                "startup_time": self.startup_time, "flagged": self.flagged, "notes": list(self.notes)}
+        return {
+            **self.verification.to_dict(),
+            "rms_torque": self.rms_torque,
+            "rated_torque": self.rated_torque,
+            "startup_time": self.startup_time,
+            "flagged": self.flagged,
+            "notes": list(self.notes),
+        }
 
 
 def verify_drive(scene, run, j_flywheel=None):
@@ -743,8 +824,15 @@ def verify_drive(scene, run, j_flywheel=None):
         j_flywheel = run.wheel.j_at_reference if run.wheel is not None else (run.j_flywheel or 0.0)
     built = motor_scene(scene, run.motor, run.motor_ratio)
     machine = reduce(built)
-    checked = periodic.verify(machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean,
-                              scene.delta, j_flywheel, machine.knots())
+    checked = periodic.verify(
+        machine.net_torque(),
+        machine.j_machine,
+        machine.cycle_angle,
+        scene.omega_mean,
+        scene.delta,
+        j_flywheel,
+        machine.knots(),
+    )
     rms, _ = rms_torque(checked.solution, run.motor.motor(), run.motor_ratio)
     startup = startup_run(machine, checked.omega_mean, j_flywheel)
     notes = []
@@ -754,7 +842,14 @@ def verify_drive(scene, run, j_flywheel=None):
     if scene.drive.thermal and rms > rated * (1 + 1e-6):
         notes.append(f"RMS torque {rms:.6g} N*m exceeds the rated {rated:.6g} N*m (thermal)")
     if scene.drive.max_startup is not None and (startup.time is None or startup.time > scene.drive.max_startup):
-        notes.append(f"start-up {startup.note or f'{startup.time:.4g} s'} over max_startup "
-                     f"{scene.drive.max_startup:.4g} s")
-    return DriveCheck(verification=checked, rms_torque=rms, rated_torque=rated, startup_time=startup.time,
-                      flagged=bool(notes), notes=tuple(notes))
+        notes.append(
+            f"start-up {startup.note or f'{startup.time:.4g} s'} over max_startup {scene.drive.max_startup:.4g} s"
+        )
+    return DriveCheck(
+        verification=checked,
+        rms_torque=rms,
+        rated_torque=rated,
+        startup_time=startup.time,
+        flagged=bool(notes),
+        notes=tuple(notes),
+    )

@@ -85,14 +85,18 @@ class CatalogueFit:
             return float(a), float(b)
 
         slips = [(m.synchronous_speed - m.rated_speed) / m.synchronous_speed for m in motors]
-        k = [m.motor().breakdown_ratio for m in motors]       # the motor's own, or the documented default
+        k = [m.motor().breakdown_ratio for m in motors]  # the motor's own, or the documented default
         b, a = np.polyfit(x, k, 1)
-        return cls(synchronous_speed=motors[0].synchronous_speed, p_min=float(min(m.rated_power for m in motors)),
-                   p_max=float(max(m.rated_power for m in motors)), slip=power_law(slips),
-                   rotor_inertia=power_law([m.rotor_inertia for m in motors]), breakdown=(float(a), float(b)),
-                   mass=power_law([getattr(m, "mass", None) for m in motors]),
-                   price=power_law([getattr(m, "price", None) for m in motors]))
-
+        return cls(
+            synchronous_speed=motors[0].synchronous_speed,
+            p_min=float(min(m.rated_power for m in motors)),
+            p_max=float(max(m.rated_power for m in motors)),
+            slip=power_law(slips),
+            rotor_inertia=power_law([m.rotor_inertia for m in motors]),
+            breakdown=(float(a), float(b)),
+            mass=power_law([getattr(m, "mass", None) for m in motors]),
+            price=power_law([getattr(m, "price", None) for m in motors]),
+        )
 
     def motor(self, power):
         """The relaxed motor of rating ``power`` [W]: (InductionMotor, rotor inertia [kg*m^2], mass [kg] or None)."""
@@ -130,15 +134,23 @@ class Relaxation:
     wheel: str = ""
 
     #: The SI unit of each limit a sensitivity is taken per.
-    LIMIT_UNITS = {"delta": "-", "max_startup": "s", "rim_speed": "m/s", "ratio_max": "-", "ratio_min": "-",
-                   "max_outer_diameter": "m"}
+    LIMIT_UNITS = {
+        "delta": "-",
+        "max_startup": "s",
+        "rim_speed": "m/s",
+        "ratio_max": "-",
+        "ratio_min": "-",
+        "max_outer_diameter": "m",
+    }
 
     def to_dict(self):
         """The relaxation for JSON: its sensitivities a list of entries (limit, its unit, d objective / d limit),
         as a design's are (their names are quantities of their own elsewhere in a document)."""
         out = {k: v for k, v in self.__dict__.items() if k != "sensitivities"}
-        out["sensitivities"] = [{"limit": name, "unit": self.LIMIT_UNITS[name], "dobjective_dlimit": value}
-                                for name, value in self.sensitivities.items()]
+        out["sensitivities"] = [
+            {"limit": name, "unit": self.LIMIT_UNITS[name], "dobjective_dlimit": value}
+            for name, value in self.sensitivities.items()
+        ]
         return out
 
 
@@ -154,8 +166,13 @@ def kloss_runup_time(inertia, ratio, efficiency, breakdown_torque, breakdown_sli
     ``lib``: math, numpy or casadi (the NLP's symbols).
     """
     s_e = 1 - ratio * omega / synchronous_speed
-    return (inertia / (ratio**2 * efficiency) * synchronous_speed / (2 * breakdown_torque * breakdown_slip)
-            * ((1 - s_e**2) / 2 + breakdown_slip**2 * lib.log(1 / s_e)))
+    return (
+        inertia
+        / (ratio**2 * efficiency)
+        * synchronous_speed
+        / (2 * breakdown_torque * breakdown_slip)
+        * ((1 - s_e**2) / 2 + breakdown_slip**2 * lib.log(1 / s_e))
+    )
 
 
 def _law(fit, lnp, ca):
@@ -208,16 +225,16 @@ class _Model:
     """The relaxation's NLP for one machine, catalogue fit and structure; its limits are parameters."""
 
     solver: object
-    values: object          # x, par -> (P, i, r, J_F, objective, wheel mass, wheel outer diameter)
-    n: int                  # collocation intervals
-    rows: tuple             # row sizes, in order
-    wheel_rows: tuple       # names of the wheel's rows, in order (they come last)
-    wheel_names: tuple      # the wheel's variables
-    scale: float            # of the objective
+    values: object  # x, par -> (P, i, r, J_F, objective, wheel mass, wheel outer diameter)
+    n: int  # collocation intervals
+    rows: tuple  # row sizes, in order
+    wheel_rows: tuple  # names of the wheel's rows, in order (they come last)
+    wheel_names: tuple  # the wheel's variables
+    scale: float  # of the objective
     extra_lo: tuple
     extra_hi: tuple
     extra_x0: tuple
-    lbg: np.ndarray         # without the wheel's rows
+    lbg: np.ndarray  # without the wheel's rows
     ubg: np.ndarray
 
 
@@ -227,12 +244,22 @@ def _model(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     Parameters of the NLP: ``par`` = (δ, cost per kg, max_startup [s], J scale [kg*m^2], density,
     Poisson's ratio, torque, bore, stress scale, the allowables of the wheel's parts).
     """
-    key = ("drive_relaxation", fit, float(omega_mean), float(efficiency), bool(thermal), bool(startup),
-           objective_name, float(load_torque), structure)
+    key = (
+        "drive_relaxation",
+        fit,
+        float(omega_mean),
+        float(efficiency),
+        bool(thermal),
+        bool(startup),
+        objective_name,
+        float(load_torque),
+        structure,
+    )
     cache = machine._cache
     if key not in cache:
-        cache[key] = _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque,
-                            structure)
+        cache[key] = _build(
+            machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque, structure
+        )
         BUILDS["count"] += 1
     return cache[key]
 
@@ -250,20 +277,20 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     resisting = machine.angle_only().resisting
     knots = np.asarray(machine.knots(), dtype=float)
     phi = np.union1d(np.linspace(0.0, cycle, NODES + 1), knots[(knots > 0) & (knots < cycle)])
-    left, right = resisting.limits(phi)       # M_r(φ⁻), M_r(φ⁺)
+    left, right = resisting.limits(phi)  # M_r(φ⁻), M_r(φ⁺)
     j_e = machine.j_machine(phi) if machine.variable_inertia else np.full(phi.shape, float(machine.j_machine))
     h = np.diff(phi)
-    n = len(phi) - 1                          # intervals; node n is node 0 again
+    n = len(phi) - 1  # intervals; node n is node 0 again
     w0 = fit.synchronous_speed
 
     lnp, i_m, jf, r = (ca.SX.sym(name) for name in ("lnp", "i_m", "jf", "r"))
     wheel_names = wheel_nlp.variables_of(structure)
     x_wheel = ca.SX.sym("wheel", len(wheel_names))
-    w = ca.SX.sym("w", n)                     # ω_k / ω_m, k = 0..n-1
+    w = ca.SX.sym("w", n)  # ω_k / ω_m, k = 0..n-1
     n_allow = len(wheel_nlp.stressed_parts(structure))
     par = ca.SX.sym("par", 4 + len(_WHEEL_PARAMETERS) + n_allow)
-    delta, cost_per_kg, t_max, j_scale = (par[k] for k in range(4))   # J_F = j_scale * jf
-    rows = []                                 # (expression, lower, upper)
+    delta, cost_per_kg, t_max, j_scale = (par[k] for k in range(4))  # J_F = j_scale * jf
+    rows = []  # (expression, lower, upper)
 
     p = ca.exp(lnp)
     s_n = _law(fit.slip, lnp, ca)
@@ -273,7 +300,7 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     m_n = p / w_n
     s_b = s_n * (k + ca.sqrt(k * k - 1))
 
-    def motor(speed):                         # Kloss torque at the motor shaft
+    def motor(speed):  # Kloss torque at the motor shaft
         s = (w0 - speed) / w0
         return 2 * k * m_n * s * s_b / (s * s + s_b * s_b)
 
@@ -285,7 +312,7 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     net_b = i_m * efficiency * m_motor[1:] - ca.DM(left[1:])
     e_scale = 0.5 * j_scale * omega_mean**2 * delta
     rows.append(((energy[1:] - energy[:-1] - ca.DM(h) / 2 * (net_a + net_b)) / e_scale, 0.0, 0.0))
-    rows.append((i_m * w - w0 * (1 - s_b) / omega_mean, 0.0, math.inf))        # above breakdown
+    rows.append((i_m * w - w0 * (1 - s_b) / omega_mean, 0.0, math.inf))  # above breakdown
     extra, extra_lo, extra_hi, extra_x0 = [], [], [], []
     if thermal:
         # ∫M² dt and ∫dt as variables of their own: their ratio written directly would couple every node
@@ -293,9 +320,16 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
         squares, period = ca.SX.sym("squares"), ca.SX.sym("period")
         inv = 1.0 / omega
         t_scale = cycle / omega_mean
-        m_scale = load_torque / (omega_mean * efficiency) * omega_mean / w0    # about the mean motor torque
-        rows.append((ca.sum1(ca.DM(h) / 2 * (m_motor[:-1] ** 2 * inv[:-1] + m_motor[1:] ** 2 * inv[1:]))
-                     / (m_scale**2 * t_scale) - squares, 0.0, 0.0))
+        m_scale = load_torque / (omega_mean * efficiency) * omega_mean / w0  # about the mean motor torque
+        rows.append(
+            (
+                ca.sum1(ca.DM(h) / 2 * (m_motor[:-1] ** 2 * inv[:-1] + m_motor[1:] ** 2 * inv[1:]))
+                / (m_scale**2 * t_scale)
+                - squares,
+                0.0,
+                0.0,
+            )
+        )
         rows.append((ca.sum1(ca.DM(h) / 2 * (inv[:-1] + inv[1:])) / t_scale - period, 0.0, 0.0))
         rows.append((squares * m_scale**2 - m_n**2 * period, -math.inf, 0.0))
         extra += [squares, period]
@@ -313,9 +347,11 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     shaft_omega = r * omega_mean * (1 + delta / 2)
     wheel_par = {name: par[4 + k] for k, name in enumerate(_WHEEL_PARAMETERS)}
     wheel_par.update(omega=shaft_omega, log_half_omega=ca.log(shaft_omega / 2))
-    form = wheel_nlp.formulate(structure, x_wheel, wheel_par, par[4 + len(_WHEEL_PARAMETERS):])
-    wheel_rows = [(name, (form.inertia * r**2 - j_f) / j_scale) if name == "inertia" else (name, expr)
-                  for name, expr in zip(form.row_names, form.rows)]
+    form = wheel_nlp.formulate(structure, x_wheel, wheel_par, par[4 + len(_WHEEL_PARAMETERS) :])
+    wheel_rows = [
+        (name, (form.inertia * r**2 - j_f) / j_scale) if name == "inertia" else (name, expr)
+        for name, expr in zip(form.row_names, form.rows)
+    ]
     if objective_name == "cost":
         objective = _law(fit.price, lnp, ca) + cost_per_kg * form.mass
         scale = float(_law(fit.price, math.log(fit.p_max), np))
@@ -324,15 +360,27 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
         scale = float(_law(fit.mass, math.log(fit.p_max), np))
     x = ca.vertcat(lnp, i_m, jf, r, x_wheel, w, *extra)
     g = ca.vertcat(*(row[0] for row in rows), *(expr for _, expr in wheel_rows))
-    solver = ca.nlpsol("drive", "ipopt", {"x": x, "p": par, "f": objective / scale, "g": g},
-                       {"print_time": False, "ipopt.print_level": 0, "ipopt.sb": "yes",
-                        "ipopt.max_iter": 3000, "ipopt.tol": 1e-10})
+    solver = ca.nlpsol(
+        "drive",
+        "ipopt",
+        {"x": x, "p": par, "f": objective / scale, "g": g},
+        {"print_time": False, "ipopt.print_level": 0, "ipopt.sb": "yes", "ipopt.max_iter": 3000, "ipopt.tol": 1e-10},
+    )
     values = ca.Function("values", [x, par], [p, i_m, r, j_f, objective, form.mass, form.dims.d_outer])
-    return _Model(solver=solver, values=values, n=n, rows=tuple(row[0].shape[0] for row in rows),
-                  wheel_rows=tuple(name for name, _ in wheel_rows), wheel_names=tuple(wheel_names),
-                  scale=scale, extra_lo=tuple(extra_lo), extra_hi=tuple(extra_hi), extra_x0=tuple(extra_x0),
-                  lbg=np.concatenate([np.full(row[0].shape[0], row[1]) for row in rows]),
-                  ubg=np.concatenate([np.full(row[0].shape[0], row[2]) for row in rows]))
+    return _Model(
+        solver=solver,
+        values=values,
+        n=n,
+        rows=tuple(row[0].shape[0] for row in rows),
+        wheel_rows=tuple(name for name, _ in wheel_rows),
+        wheel_names=tuple(wheel_names),
+        scale=scale,
+        extra_lo=tuple(extra_lo),
+        extra_hi=tuple(extra_hi),
+        extra_x0=tuple(extra_x0),
+        lbg=np.concatenate([np.full(row[0].shape[0], row[1]) for row in rows]),
+        ubg=np.concatenate([np.full(row[0].shape[0], row[2]) for row in rows]),
+    )
 
 
 def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque):
@@ -362,8 +410,17 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
     from flyopt.design import wheel_nlp
 
     structure, problem = wheel.structure, wheel.problem
-    model = _model(machine, omega_mean, efficiency, fit, spec.thermal, spec.max_startup is not None,
-                   spec.objective, load_torque, structure)
+    model = _model(
+        machine,
+        omega_mean,
+        efficiency,
+        fit,
+        spec.thermal,
+        spec.max_startup is not None,
+        spec.objective,
+        load_torque,
+        structure,
+    )
     n, w0 = model.n, fit.synchronous_speed
     j_scale = max(load_torque * machine.cycle_angle / (omega_mean**2 * delta), 1e-6)
     omega_top = omega_mean * (1 + delta / 2)
@@ -376,27 +433,43 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
     g_lo, g_hi = wheel_nlp.row_bounds(structure, model.wheel_rows, dataclasses.replace(problem, j_shaft=1.0))
     inertia = model.wheel_rows.index("inertia")
     g_lo[inertia], g_hi[inertia] = 0.0, math.inf
-    start = wheel_nlp._start(structure, dataclasses.replace(problem, j_shaft=j_scale / hi**2,
-                                                            omega=hi * omega_top), model.wheel_names)
-    w_x0 = [min(max(math.log(max(start[name], MIN_DIMENSION)), a), b)
-            for name, a, b in zip(model.wheel_names, w_lo, w_hi)]
+    start = wheel_nlp._start(
+        structure, dataclasses.replace(problem, j_shaft=j_scale / hi**2, omega=hi * omega_top), model.wheel_names
+    )
+    w_x0 = [
+        min(max(math.log(max(start[name], MIN_DIMENSION)), a), b) for name, a, b in zip(model.wheel_names, w_lo, w_hi)
+    ]
     stress_scale = problem.density * (hi * omega_top * start["d_outer"] / 2) ** 2
     allow = wheel_nlp.allowable_parameters(structure, problem.allowable, stress_scale)
-    par = ([delta, wheel.cost_per_kg or 0.0, spec.max_startup or 1.0, j_scale, problem.density, problem.poisson,
-            problem.torque, problem.bore, stress_scale] + allow)
+    par = [
+        delta,
+        wheel.cost_per_kg or 0.0,
+        spec.max_startup or 1.0,
+        j_scale,
+        problem.density,
+        problem.poisson,
+        problem.torque,
+        problem.bore,
+        stress_scale,
+    ] + allow
     nw = len(model.wheel_names)
     lbx = [math.log(fit.p_min), 1e-9, 0.0, lo] + w_lo + [1 - delta / 2] * n + list(model.extra_lo)
     ubx = [math.log(fit.p_max), math.inf, math.inf, hi] + w_hi + [1 + delta / 2] * n + list(model.extra_hi)
     # first guess: twice the mean power, the ratio of the work balance, a flywheel of the energy method
     p0 = min(max(2 * load_torque * omega_mean / efficiency, fit.p_min), fit.p_max)
     sn0 = float(_law(fit.slip, math.log(p0), np))
-    x0 = ([math.log(p0), w0 * (1 - 0.5 * sn0) / omega_mean, 1.0, hi] + w_x0 + [1.0] * n
-          + list(model.extra_x0))
+    x0 = [math.log(p0), w0 * (1 - 0.5 * sn0) / omega_mean, 1.0, hi] + w_x0 + [1.0] * n + list(model.extra_x0)
     solver = model.solver
     try:
         with quiet():
-            found = solver(x0=x0, p=par, lbx=lbx, ubx=ubx, lbg=np.concatenate([model.lbg, g_lo]),
-                           ubg=np.concatenate([model.ubg, g_hi]))
+            found = solver(
+                x0=x0,
+                p=par,
+                lbx=lbx,
+                ubx=ubx,
+                lbg=np.concatenate([model.lbg, g_lo]),
+                ubg=np.concatenate([model.ubg, g_hi]),
+            )
     except RuntimeError as err:
         raise SolverFailed(f"the drive's relaxation did not converge: {err}") from None
     status = solver.stats()["return_status"]
@@ -409,7 +482,7 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
     lam_x = np.asarray(found["lam_x"]).ravel() * model.scale
     lam_g = np.asarray(found["lam_g"]).ravel() * model.scale
     lam_p = np.asarray(found["lam_p"]).ravel() * model.scale
-    wheel_lam = dict(zip(model.wheel_rows, lam_g[sum(model.rows):]))
+    wheel_lam = dict(zip(model.wheel_rows, lam_g[sum(model.rows) :]))
     sens = {}
     if spec.max_startup is not None:
         sens["max_startup"] = -lam_p[2]
@@ -420,8 +493,17 @@ def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque)
         sens["ratio_min"] = -min(lam_x[3], 0.0)
     if "max_outer_diameter" in wheel_lam:
         sens["max_outer_diameter"] = -wheel_lam["max_outer_diameter"] / problem.envelope
-    lam_w = lam_x[4 + nw:4 + nw + n]
+    lam_w = lam_x[4 + nw : 4 + nw + n]
     sens["delta"] = -0.5 * float(np.sum(np.abs(lam_w))) - lam_p[0]
-    return Relaxation(rated_power=p, motor_ratio=i_m, flywheel_ratio=r, j_flywheel=j_f, objective=objective,
-                      status=status, sensitivities={k: float(v) for k, v in sens.items()},
-                      wheel_mass=wheel_mass, d_outer=d_outer, wheel=wheel.label)
+    return Relaxation(
+        rated_power=p,
+        motor_ratio=i_m,
+        flywheel_ratio=r,
+        j_flywheel=j_f,
+        objective=objective,
+        status=status,
+        sensitivities={k: float(v) for k, v in sens.items()},
+        wheel_mass=wheel_mass,
+        d_outer=d_outer,
+        wheel=wheel.label,
+    )

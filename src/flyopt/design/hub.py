@@ -87,6 +87,7 @@ refused the standard key of its own nominal length."""
 # input checks
 # --------------------------------------------------------------------------
 
+
 def _positive(value, name, unit):
     """``value`` as a float, or ValueError naming ``name`` unless finite and > 0."""
     if isinstance(value, (bool, np.bool_)):
@@ -105,19 +106,20 @@ def _finite_array(value, name, unit):
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as err:
-        raise ValueError(f"{name} must be a number or an array of numbers [{unit}], "
-                         f"got {shorten(value)}") from err
+        raise ValueError(f"{name} must be a number or an array of numbers [{unit}], got {shorten(value)}") from err
     if array.size == 0:
         raise ValueError(f"{name} must not be empty [{unit}]")
     if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} must be finite [{unit}]; it holds "
-                         f"{int(np.count_nonzero(~np.isfinite(array)))} non-finite value(s)")
+        raise ValueError(
+            f"{name} must be finite [{unit}]; it holds {int(np.count_nonzero(~np.isfinite(array)))} non-finite value(s)"
+        )
     return array
 
 
 # --------------------------------------------------------------------------
 # data
 # --------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Key:
@@ -199,11 +201,15 @@ def _mm(value, what):
 
 def _ratio_pair(table, key, kind):
     pair = table.get(key)
-    if (not isinstance(pair, list) or len(pair) != 2
-            or not all(isinstance(x, (int, float)) and math.isfinite(x) and x > 0 for x in pair)
-            or pair[0] > pair[1]):
-        raise ValueError(f"{_ORIGIN}: hub_proportions.{kind}.{key} must be [min, max] with "
-                         f"0 < min <= max, got {pair!r}")
+    if (
+        not isinstance(pair, list)
+        or len(pair) != 2
+        or not all(isinstance(x, (int, float)) and math.isfinite(x) and x > 0 for x in pair)
+        or pair[0] > pair[1]
+    ):
+        raise ValueError(
+            f"{_ORIGIN}: hub_proportions.{kind}.{key} must be [min, max] with 0 < min <= max, got {pair!r}"
+        )
     return float(pair[0]), float(pair[1])
 
 
@@ -222,36 +228,46 @@ def _load():
     keys = []
     for index, row in enumerate(table["rows"]):
         if len(row) != len(_COLUMNS):
-            raise ValueError(f"{_ORIGIN}: din_6885_1.rows[{index}] has {len(row)} values, "
-                             f"expected {len(_COLUMNS)} ({', '.join(_COLUMNS)})")
+            raise ValueError(
+                f"{_ORIGIN}: din_6885_1.rows[{index}] has {len(row)} values, "
+                f"expected {len(_COLUMNS)} ({', '.join(_COLUMNS)})"
+            )
         values = dict(zip(_COLUMNS, row))
         for end in ("l_min", "l_max"):
             if float(values[end]) not in lengths_mm:
-                raise ValueError(f"{_ORIGIN}: din_6885_1.rows[{index}]: {end} = {values[end]} mm "
-                                 f"is not in the series of standard lengths")
+                raise ValueError(
+                    f"{_ORIGIN}: din_6885_1.rows[{index}]: {end} = {values[end]} mm "
+                    f"is not in the series of standard lengths"
+                )
         si = {name: _mm(values[name], f"din_6885_1.rows[{index}].{name}") for name in _COLUMNS}
         if not (si["d_over"] < si["d_up_to"] and si["t1"] < si["h"] and si["l_min"] <= si["l_max"]):
-            raise ValueError(f"{_ORIGIN}: din_6885_1.rows[{index}] = {row!r} is inconsistent "
-                             f"(need d_over < d_up_to, t1 < h, l_min <= l_max)")
+            raise ValueError(
+                f"{_ORIGIN}: din_6885_1.rows[{index}] = {row!r} is inconsistent "
+                f"(need d_over < d_up_to, t1 < h, l_min <= l_max)"
+            )
         if keys and si["d_over"] != keys[-1].d_up_to:
-            raise ValueError(f"{_ORIGIN}: din_6885_1.rows[{index}] starts over {values['d_over']} mm, "
-                             f"the row before ends at {keys[-1].d_up_to * 1e3:g} mm")
+            raise ValueError(
+                f"{_ORIGIN}: din_6885_1.rows[{index}] starts over {values['d_over']} mm, "
+                f"the row before ends at {keys[-1].d_up_to * 1e3:g} mm"
+            )
         lengths_of_row = tuple(x for x in lengths if si["l_min"] <= x <= si["l_max"])
         keys.append(Key(lengths=lengths_of_row, **si))
 
     steel_table = data["key_steel"]
     yield_strength = float(steel_table["yield_strength"])
-    steel = KeySteel(name=steel_table["name"], yield_strength=yield_strength,
-                     tensile_strength=float(steel_table["tensile_strength"]),
-                     shear_yield_strength=float(steel_table["shear_yield_ratio"]) * yield_strength,
-                     source=steel_table["source"])
+    steel = KeySteel(
+        name=steel_table["name"],
+        yield_strength=yield_strength,
+        tensile_strength=float(steel_table["tensile_strength"]),
+        shear_yield_strength=float(steel_table["shear_yield_ratio"]) * yield_strength,
+        source=steel_table["source"],
+    )
 
     proportions = {}
     for kind, entry in data["hub_proportions"].items():
         if not entry.get("source", "").strip():
             raise ValueError(f"{_ORIGIN}: hub_proportions.{kind} cites no source")
-        proportions[kind] = (_ratio_pair(entry, "d_ratio", kind), _ratio_pair(entry, "l_ratio", kind),
-                             entry["source"])
+        proportions[kind] = (_ratio_pair(entry, "d_ratio", kind), _ratio_pair(entry, "l_ratio", kind), entry["source"])
     return tuple(keys), lengths, steel, proportions
 
 
@@ -298,6 +314,7 @@ def key_steel() -> KeySteel:
 # the key
 # --------------------------------------------------------------------------
 
+
 def key_for_shaft(d) -> Key:
     """The DIN 6885-1 parallel key section for a shaft seat.
 
@@ -329,9 +346,11 @@ def key_for_shaft(d) -> Key:
     for key in keys:
         if key.d_over < d <= key.d_up_to:
             return key
-    raise ValueError(f"shaft diameter d = {d!r} m ({d * 1e3:g} mm) is outside the DIN 6885-1 table "
-                     f"of {_ORIGIN}, which covers shafts over {keys[0].d_over * 1e3:g} mm up to "
-                     f"and including {keys[-1].d_up_to * 1e3:g} mm")
+    raise ValueError(
+        f"shaft diameter d = {d!r} m ({d * 1e3:g} mm) is outside the DIN 6885-1 table "
+        f"of {_ORIGIN}, which covers shafts over {keys[0].d_over * 1e3:g} mm up to "
+        f"and including {keys[-1].d_up_to * 1e3:g} mm"
+    )
 
 
 def key_length_for_hub(key: Key, hub_length) -> float:
@@ -365,8 +384,10 @@ def key_length_for_hub(key: Key, hub_length) -> float:
     hub_length = _positive(hub_length, "hub_length", "m")
     fitting = [length for length in key.lengths if length <= hub_length + FIT_ATOL]
     if not fitting:
-        raise ValueError(f"hub length {hub_length!r} m ({hub_length * 1e3:g} mm) is shorter than the "
-                         f"shortest standard {key.size} key, {key.l_min * 1e3:g} mm")
+        raise ValueError(
+            f"hub length {hub_length!r} m ({hub_length * 1e3:g} mm) is shorter than the "
+            f"shortest standard {key.size} key, {key.l_min * 1e3:g} mm"
+        )
     return fitting[-1]
 
 
@@ -427,8 +448,7 @@ class KeyCheck:
     @property
     def ok(self) -> bool:
         """Whether both stay within their allowables (up to :data:`LIMIT_RTOL`)."""
-        return _within(self.pressure, self.allowable_pressure) and _within(self.shear,
-                                                                           self.allowable_shear)
+        return _within(self.pressure, self.allowable_pressure) and _within(self.shear, self.allowable_shear)
 
 
 def _within(value, allowable):
@@ -439,8 +459,7 @@ def _key_stresses(torque, d, key, length):
     """(l_eff, pressure, shear) of a form A key of length ``length``."""
     effective_length = length - key.b
     force = 2.0 * torque / d
-    return (effective_length, force / (key.hub_flank_height * effective_length),
-            force / (key.b * effective_length))
+    return (effective_length, force / (key.hub_flank_height * effective_length), force / (key.b * effective_length))
 
 
 def _allowables(allowable_pressure, allowable_shear):
@@ -505,9 +524,18 @@ def check_key(torque, d, hub_length, allowable_pressure, allowable_shear=None) -
     key = key_for_shaft(d)
     length = key_length_for_hub(key, hub_length)
     effective_length, pressure, shear = _key_stresses(torque, d, key, length)
-    return KeyCheck(key=key, torque=torque, d=d, hub_length=hub_length, length=length,
-                    effective_length=effective_length, pressure=pressure, shear=shear,
-                    allowable_pressure=allowable_pressure, allowable_shear=allowable_shear)
+    return KeyCheck(
+        key=key,
+        torque=torque,
+        d=d,
+        hub_length=hub_length,
+        length=length,
+        effective_length=effective_length,
+        pressure=pressure,
+        shear=shear,
+        allowable_pressure=allowable_pressure,
+        allowable_shear=allowable_shear,
+    )
 
 
 def hub_length_for_key(torque, d, allowable_pressure, allowable_shear=None) -> float:
@@ -566,12 +594,14 @@ def hub_length_for_key(torque, d, allowable_pressure, allowable_shear=None) -> f
         f"({key.l_max * 1e3:g} mm) of the d = {d * 1e3:g} mm shaft is overloaded "
         f"(pressure {pressure / 1e6:.4g} MPa against {allowable_pressure / 1e6:.4g} MPa, "
         f"shear {shear / 1e6:.4g} MPa against {allowable_shear / 1e6:.4g} MPa); "
-        f"use a larger shaft seat, a stronger hub material or another shaft-hub joint")
+        f"use a larger shaft seat, a stronger hub material or another shaft-hub joint"
+    )
 
 
 # --------------------------------------------------------------------------
 # the hub
 # --------------------------------------------------------------------------
+
 
 class HubProportions(NamedTuple):
     """Ranges of a hub's outer diameter and length [m]."""
@@ -631,6 +661,7 @@ def hub_proportions(d, kind="cast_iron") -> HubProportions:
 # the torque on the flywheel's shaft
 # --------------------------------------------------------------------------
 
+
 def flywheel_peak_torque(j_flywheel_ref, j_total_ref, torque_difference_ref, speed_ratio) -> float:
     """The largest torque the flywheel's hub transmits to its own shaft over a cycle.
 
@@ -675,24 +706,28 @@ def flywheel_peak_torque(j_flywheel_ref, j_total_ref, torque_difference_ref, spe
     speed_ratio = _positive(speed_ratio, "speed_ratio", "-")
     j_total = _finite_array(j_total_ref, "j_total_ref", "kg*m^2")
     if np.any(j_total <= 0.0):
-        raise ValueError("j_total_ref must be positive [kg*m^2]; its smallest value is "
-                         f"{float(np.min(j_total))!r}")
+        raise ValueError(f"j_total_ref must be positive [kg*m^2]; its smallest value is {float(np.min(j_total))!r}")
     if np.any(j_total < j_flywheel):
-        raise ValueError(f"j_total_ref must include the flywheel, j_total_ref >= j_flywheel_ref = "
-                         f"{j_flywheel!r} kg*m^2; its smallest value is {float(np.min(j_total))!r}")
+        raise ValueError(
+            f"j_total_ref must include the flywheel, j_total_ref >= j_flywheel_ref = "
+            f"{j_flywheel!r} kg*m^2; its smallest value is {float(np.min(j_total))!r}"
+        )
     difference = _finite_array(torque_difference_ref, "torque_difference_ref", "N*m")
     try:
         j_total, difference = np.broadcast_arrays(j_total, difference)
     except ValueError as err:
-        raise ValueError(f"j_total_ref (shape {j_total.shape}) and torque_difference_ref "
-                         f"(shape {difference.shape}) must have the same shape, or one be a "
-                         f"number") from err
+        raise ValueError(
+            f"j_total_ref (shape {j_total.shape}) and torque_difference_ref "
+            f"(shape {difference.shape}) must have the same shape, or one be a "
+            f"number"
+        ) from err
     return float(np.max(j_flywheel / j_total * np.abs(difference))) / speed_ratio
 
 
 # --------------------------------------------------------------------------
 # balancing
 # --------------------------------------------------------------------------
+
 
 class PermissibleUnbalance(NamedTuple):
     """ISO 21940-11 permissible residual unbalance of a rotor, SI."""

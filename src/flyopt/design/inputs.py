@@ -53,7 +53,8 @@ def design_inputs(scene):
     library = scene.material_library()
     materials = tuple(library[name] for name in design_material_names(library, scene.design_materials))
     allowed = scene.design_shafts
-    shafts = tuple(MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts
-                   if allowed is None or s.name in allowed)
+    shafts = tuple(
+        MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts if allowed is None or s.name in allowed
+    )
     spec = scene.design if scene.design is not None else DesignSpec()
     return DesignInputs(materials=materials, shafts=shafts, spec=spec)

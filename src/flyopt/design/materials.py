@@ -40,9 +40,10 @@ import difflib
 import functools
 import math
 import sys
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields
 from importlib import resources
-from typing import Iterable, Mapping, NamedTuple
+from typing import NamedTuple
 
 from flyopt.errors import shorten
 
@@ -106,17 +107,20 @@ def _number(value, what, name, *, minimum=0.0, strict=True, below=None, allow_no
     """
     if value is None and allow_none:
         return None
-    allowed = (f"a finite number {'>' if strict else '>='} {minimum:g}"
-               + (f" and < {below:g}" if below is not None else ""))
+    allowed = f"a finite number {'>' if strict else '>='} {minimum:g}" + (
+        f" and < {below:g}" if below is not None else ""
+    )
     if isinstance(value, bool):
         raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, got {value!r}")
     try:
         number = float(value)
     except (TypeError, ValueError) as err:
-        raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, "
-                         f"got {shorten(value)}") from err
-    if (not math.isfinite(number) or (number <= minimum if strict else number < minimum)
-            or (below is not None and number >= below)):
+        raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, got {shorten(value)}") from err
+    if (
+        not math.isfinite(number)
+        or (number <= minimum if strict else number < minimum)
+        or (below is not None and number >= below)
+    ):
         raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, got {shorten(value)}")
     return number
 
@@ -135,37 +139,48 @@ def _rows(table, name):
     if table is None:
         return ()
     if isinstance(table, (str, bytes, Mapping)) or not isinstance(table, Iterable):
-        raise ValueError(f"material {shorten(name)}: {what} must be a list of rows "
-                         f"(max_thickness [m], tensile_strength [Pa], yield_strength [Pa] or none), "
-                         f"got {shorten(table)}")
+        raise ValueError(
+            f"material {shorten(name)}: {what} must be a list of rows "
+            f"(max_thickness [m], tensile_strength [Pa], yield_strength [Pa] or none), "
+            f"got {shorten(table)}"
+        )
     rows = []
     for k, row in enumerate(table):
         where = f"{what}[{k}]"
         if isinstance(row, Mapping):
             unknown = set(row) - set(StrengthRow._fields)
             if unknown:
-                raise ValueError(f"material {shorten(name)}: {where} has unknown keys "
-                                 f"{sorted(unknown)}; allowed are {list(StrengthRow._fields)}")
+                raise ValueError(
+                    f"material {shorten(name)}: {where} has unknown keys "
+                    f"{sorted(unknown)}; allowed are {list(StrengthRow._fields)}"
+                )
             row = (row.get("max_thickness"), row.get("tensile_strength"), row.get("yield_strength"))
         if isinstance(row, (str, bytes)) or not isinstance(row, Iterable):
-            raise ValueError(f"material {shorten(name)}: {where} must be (max_thickness [m], "
-                             f"tensile_strength [Pa]) or (..., yield_strength [Pa]), got {shorten(row)}")
+            raise ValueError(
+                f"material {shorten(name)}: {where} must be (max_thickness [m], "
+                f"tensile_strength [Pa]) or (..., yield_strength [Pa]), got {shorten(row)}"
+            )
         row = tuple(row)
         if len(row) not in (2, 3):
-            raise ValueError(f"material {shorten(name)}: {where} must have 2 or 3 numbers "
-                             f"(max_thickness [m], tensile_strength [Pa], yield_strength [Pa]), "
-                             f"got {len(row)}")
+            raise ValueError(
+                f"material {shorten(name)}: {where} must have 2 or 3 numbers "
+                f"(max_thickness [m], tensile_strength [Pa], yield_strength [Pa]), "
+                f"got {len(row)}"
+            )
         thickness = _number(row[0], f"{where}.max_thickness [m]", name)
         tensile = _number(row[1], f"{where}.tensile_strength [Pa]", name)
-        yield_ = _number(row[2] if len(row) == 3 else None, f"{where}.yield_strength [Pa]", name,
-                         allow_none=True)
+        yield_ = _number(row[2] if len(row) == 3 else None, f"{where}.yield_strength [Pa]", name, allow_none=True)
         if yield_ is not None and yield_ > tensile:
-            raise ValueError(f"material {shorten(name)}: {where}.yield_strength {yield_:g} Pa exceeds "
-                             f"its tensile_strength {tensile:g} Pa; yield must be <= tensile")
+            raise ValueError(
+                f"material {shorten(name)}: {where}.yield_strength {yield_:g} Pa exceeds "
+                f"its tensile_strength {tensile:g} Pa; yield must be <= tensile"
+            )
         if rows and thickness <= rows[-1].max_thickness:
-            raise ValueError(f"material {shorten(name)}: {where}.max_thickness {thickness:g} m must be "
-                             f"larger than the previous row's {rows[-1].max_thickness:g} m "
-                             f"(rows in increasing thickness)")
+            raise ValueError(
+                f"material {shorten(name)}: {where}.max_thickness {thickness:g} m must be "
+                f"larger than the previous row's {rows[-1].max_thickness:g} m "
+                f"(rows in increasing thickness)"
+            )
         rows.append(StrengthRow(thickness, tensile, yield_))
     return tuple(rows)
 
@@ -277,23 +292,22 @@ class Material:
         set_ = functools.partial(object.__setattr__, self)
         set_("density", _positive_finite(self.density, "density [kg/m^3]", name))
         set_("max_rim_speed", _number(self.max_rim_speed, "max_rim_speed [m/s]", name, allow_none=True))
-        set_("allowable_stress", _number(self.allowable_stress, "allowable_stress [Pa]", name,
-                                         allow_none=True))
+        set_("allowable_stress", _number(self.allowable_stress, "allowable_stress [Pa]", name, allow_none=True))
         set_("cost", _number(self.cost, "cost [1/kg]", name, strict=False, allow_none=True))
         if not isinstance(self.source, str):
             raise ValueError(f"material {shorten(name)}: source must be a string, got {shorten(self.source)}")
-        set_("elastic_modulus", _number(self.elastic_modulus, "elastic_modulus [Pa]", name,
-                                        allow_none=True))
-        set_("poisson_ratio", _number(self.poisson_ratio, "poisson_ratio [-]", name, strict=False,
-                                      below=0.5, allow_none=True))
+        set_("elastic_modulus", _number(self.elastic_modulus, "elastic_modulus [Pa]", name, allow_none=True))
+        set_(
+            "poisson_ratio",
+            _number(self.poisson_ratio, "poisson_ratio [-]", name, strict=False, below=0.5, allow_none=True),
+        )
         set_("min_wall", _number(self.min_wall, "min_wall [m]", name, allow_none=True))
-        set_("bearing_pressure", _number(self.bearing_pressure, "bearing_pressure [Pa]", name,
-                                         allow_none=True))
-        set_("safety_factor", _number(self.safety_factor, "safety_factor [-]", name, minimum=1.0,
-                                      allow_none=True))
+        set_("bearing_pressure", _number(self.bearing_pressure, "bearing_pressure [Pa]", name, allow_none=True))
+        set_("safety_factor", _number(self.safety_factor, "safety_factor [-]", name, minimum=1.0, allow_none=True))
         if self.hub_rule is not None and (not isinstance(self.hub_rule, str) or not self.hub_rule.strip()):
-            raise ValueError(f"material {shorten(name)}: hub_rule must be the name of a hub rule, "
-                             f"got {shorten(self.hub_rule)}")
+            raise ValueError(
+                f"material {shorten(name)}: hub_rule must be the name of a hub rule, got {shorten(self.hub_rule)}"
+            )
         self._check_strengths(set_)
         if self.max_rim_speed is None:
             set_("max_rim_speed", self._derived_rim_speed())
@@ -306,48 +320,65 @@ class Material:
         set_("strength_by_thickness", rows)
         if rows:
             weakest = _weakest(rows)
-            for field, given, row_value in (("tensile_strength", tensile, weakest[0]),
-                                            ("yield_strength", yield_, weakest[1])):
+            for field, given, row_value in (
+                ("tensile_strength", tensile, weakest[0]),
+                ("yield_strength", yield_, weakest[1]),
+            ):
                 if given is not None and given != row_value:
                     raise ValueError(
                         f"material {shorten(name)}: {field} {given:g} Pa differs from the weakest row "
                         f"of strength_by_thickness ({row_value!r} Pa); with a table leave {field} out "
-                        f"(it is then the weakest row)")
+                        f"(it is then the weakest row)"
+                    )
             tensile, yield_ = weakest
         if tensile is not None and yield_ is not None and yield_ > tensile:
-            raise ValueError(f"material {shorten(name)}: yield_strength {yield_:g} Pa exceeds "
-                             f"tensile_strength {tensile:g} Pa; yield must be <= tensile")
+            raise ValueError(
+                f"material {shorten(name)}: yield_strength {yield_:g} Pa exceeds "
+                f"tensile_strength {tensile:g} Pa; yield must be <= tensile"
+            )
         set_("tensile_strength", tensile)
         set_("yield_strength", yield_)
         if self.ductile is not None and not isinstance(self.ductile, bool):
-            raise ValueError(f"material {shorten(name)}: ductile must be true or false, "
-                             f"got {shorten(self.ductile)}")
+            raise ValueError(f"material {shorten(name)}: ductile must be true or false, got {shorten(self.ductile)}")
         has_strength = tensile is not None or yield_ is not None
         if has_strength and self.ductile is None:
-            raise ValueError(f"material {shorten(name)}: ductile must be given (true: von Mises against "
-                             f"yield_strength; false: largest principal stress against tensile_strength) "
-                             f"when strengths are")
+            raise ValueError(
+                f"material {shorten(name)}: ductile must be given (true: von Mises against "
+                f"yield_strength; false: largest principal stress against tensile_strength) "
+                f"when strengths are"
+            )
         if self.ductile is True and has_strength and yield_ is None:
-            raise ValueError(f"material {shorten(name)}: a ductile material is checked against "
-                             f"yield_strength [Pa]; give it (in every row of strength_by_thickness)")
+            raise ValueError(
+                f"material {shorten(name)}: a ductile material is checked against "
+                f"yield_strength [Pa]; give it (in every row of strength_by_thickness)"
+            )
         if self.ductile is False and has_strength and tensile is None:
-            raise ValueError(f"material {shorten(name)}: a brittle material is checked against "
-                             f"tensile_strength [Pa]; give it")
+            raise ValueError(
+                f"material {shorten(name)}: a brittle material is checked against tensile_strength [Pa]; give it"
+            )
         if self.safety_factor is not None and not has_strength:
-            raise ValueError(f"material {shorten(name)}: safety_factor applies to tensile_strength or "
-                             f"yield_strength, and none is given")
+            raise ValueError(
+                f"material {shorten(name)}: safety_factor applies to tensile_strength or "
+                f"yield_strength, and none is given"
+            )
         rule = self.thickness_rule
         if rows and rule not in THICKNESS_RULES:
-            raise ValueError(f"material {shorten(name)}: thickness_rule must be one of "
-                             f"{list(THICKNESS_RULES)} with a strength_by_thickness table "
-                             f"(part: each part's own wall, EN 1561/1563; wheel: the ruling section "
-                             f"of the whole piece, EN 10083-3), got {shorten(rule)}")
+            raise ValueError(
+                f"material {shorten(name)}: thickness_rule must be one of "
+                f"{list(THICKNESS_RULES)} with a strength_by_thickness table "
+                f"(part: each part's own wall, EN 1561/1563; wheel: the ruling section "
+                f"of the whole piece, EN 10083-3), got {shorten(rule)}"
+            )
         if not rows and rule is not None:
-            raise ValueError(f"material {shorten(name)}: thickness_rule {shorten(rule)} needs a "
-                             f"strength_by_thickness table, and none is given")
+            raise ValueError(
+                f"material {shorten(name)}: thickness_rule {shorten(rule)} needs a "
+                f"strength_by_thickness table, and none is given"
+            )
         if rows and self.min_wall is not None and self.min_wall > rows[-1].max_thickness:
-            raise ValueError(f"material {shorten(name)}: min_wall {self.min_wall:g} m is above the "
-                             f"thickest row of strength_by_thickness ({rows[-1].max_thickness:g} m)")
+            raise ValueError(
+                f"material {shorten(name)}: min_wall {self.min_wall:g} m is above the "
+                f"thickest row of strength_by_thickness ({rows[-1].max_thickness:g} m)"
+            )
 
     def _derived_rim_speed(self):
         """v_max from the allowable stress or the strengths, None if strengths lack a factor."""
@@ -360,13 +391,13 @@ class Material:
         raise ValueError(
             f"material {shorten(self.name)}: give max_rim_speed [m/s] or allowable_stress [Pa] "
             f"(the rim speed then follows from sigma = rho v^2), or tensile_strength/yield_strength "
-            f"[Pa] with ductile; neither was given")
+            f"[Pa] with ductile; neither was given"
+        )
 
     @property
     def is_strength_based(self) -> bool:
         """True when the allowable stress comes from strengths (no explicit allowable_stress)."""
-        return self.allowable_stress is None and (self.tensile_strength is not None
-                                                  or self.yield_strength is not None)
+        return self.allowable_stress is None and (self.tensile_strength is not None or self.yield_strength is not None)
 
     @property
     def failure_criterion(self) -> str | None:
@@ -422,7 +453,8 @@ class Material:
             raise ThicknessOutOfRange(
                 f"material {shorten(self.name)}: section thickness {thickness * 1e3:g} mm is above its "
                 f"strength table, which ends at {last * 1e3:g} mm ({self.thickness_rule} rule); "
-                f"no strength is extrapolated: choose a thinner section or another material")
+                f"no strength is extrapolated: choose a thinner section or another material"
+            )
         return self.tensile_strength, self.yield_strength
 
     def allowable(self, thickness=None, safety_factor=None):
@@ -460,8 +492,7 @@ class Material:
         changes an explicit allowable stress or a textbook rim-speed limit.
         """
         if safety_factor is not None:
-            safety_factor = _number(safety_factor, "safety_factor [-] of the design", self.name,
-                                    minimum=1.0)
+            safety_factor = _number(safety_factor, "safety_factor [-] of the design", self.name, minimum=1.0)
         if thickness is not None:
             _number(thickness, "thickness [m]", self.name)
         if self.allowable_stress is not None:
@@ -469,11 +500,13 @@ class Material:
         if self.is_strength_based:
             factor = safety_factor if safety_factor is not None else self.safety_factor
             if factor is None:
-                raise ValueError(f"material {shorten(self.name)}: no safety factor to divide its strength "
-                                 f"by; give the design's safety_factor (> 1) or the material's")
+                raise ValueError(
+                    f"material {shorten(self.name)}: no safety factor to divide its strength "
+                    f"by; give the design's safety_factor (> 1) or the material's"
+                )
             tensile, yield_ = self.strength(thickness)
             return (yield_ if self.ductile else tensile) / factor
-        return self.density * self.max_rim_speed ** 2
+        return self.density * self.max_rim_speed**2
 
     def rim_speed_limit(self, thickness=None, safety_factor=None):
         """Safe rim speed v_max [m/s] for the textbook rim-speed criterion.
@@ -499,8 +532,9 @@ class Material:
         ValueError
             If a material given by strengths has no safety factor.
         """
-        if self.is_strength_based and (thickness is not None or safety_factor is not None
-                                       or self.max_rim_speed is None):
+        if self.is_strength_based and (
+            thickness is not None or safety_factor is not None or self.max_rim_speed is None
+        ):
             return rim_speed_from_stress(self.allowable(thickness, safety_factor), self.density)
         return self.max_rim_speed
 
@@ -532,11 +566,27 @@ def rim_speed_from_stress(allowable_stress, density):
     return math.sqrt(allowable_stress / density)
 
 
-def make_material(name, density, max_rim_speed=None, allowable_stress=None,
-                  cost=None, source="", *, elastic_modulus=None, poisson_ratio=None,
-                  tensile_strength=None, yield_strength=None, ductile=None,
-                  safety_factor=None, strength_by_thickness=(), thickness_rule=None,
-                  min_wall=None, bearing_pressure=None, hub_rule=None, **unknown):
+def make_material(
+    name,
+    density,
+    max_rim_speed=None,
+    allowable_stress=None,
+    cost=None,
+    source="",
+    *,
+    elastic_modulus=None,
+    poisson_ratio=None,
+    tensile_strength=None,
+    yield_strength=None,
+    ductile=None,
+    safety_factor=None,
+    strength_by_thickness=(),
+    thickness_rule=None,
+    min_wall=None,
+    bearing_pressure=None,
+    hub_rule=None,
+    **unknown,
+):
     """Build a user material, checking every field; the rim speed may be derived.
 
     Parameters
@@ -576,17 +626,30 @@ def make_material(name, density, max_rim_speed=None, allowable_stress=None,
     if unknown:
         allowed = [f for f in _FIELDS if f != "name"]
         hints = {key: difflib.get_close_matches(key, allowed, n=1, cutoff=0.5) for key in unknown}
-        hint = "; ".join(f"{key!r} (did you mean {close[0]!r}?)" if close else repr(key)
-                         for key, close in sorted(hints.items()))
+        hint = "; ".join(
+            f"{key!r} (did you mean {close[0]!r}?)" if close else repr(key) for key, close in sorted(hints.items())
+        )
         raise ValueError(f"material {shorten(name)}: unknown field {hint}; allowed are {allowed}")
     density = _positive_finite(density, "density [kg/m^3]", name)
-    return Material(name=name, density=density, max_rim_speed=max_rim_speed,
-                    allowable_stress=allowable_stress, cost=cost, source=source,
-                    elastic_modulus=elastic_modulus, poisson_ratio=poisson_ratio,
-                    tensile_strength=tensile_strength, yield_strength=yield_strength,
-                    ductile=ductile, safety_factor=safety_factor,
-                    strength_by_thickness=strength_by_thickness, thickness_rule=thickness_rule,
-                    min_wall=min_wall, bearing_pressure=bearing_pressure, hub_rule=hub_rule)
+    return Material(
+        name=name,
+        density=density,
+        max_rim_speed=max_rim_speed,
+        allowable_stress=allowable_stress,
+        cost=cost,
+        source=source,
+        elastic_modulus=elastic_modulus,
+        poisson_ratio=poisson_ratio,
+        tensile_strength=tensile_strength,
+        yield_strength=yield_strength,
+        ductile=ductile,
+        safety_factor=safety_factor,
+        strength_by_thickness=strength_by_thickness,
+        thickness_rule=thickness_rule,
+        min_wall=min_wall,
+        bearing_pressure=bearing_pressure,
+        hub_rule=hub_rule,
+    )
 
 
 def _material_from_table(name, table, origin):
@@ -595,8 +658,9 @@ def _material_from_table(name, table, origin):
         raise ValueError(f"{origin}: material {name!r} must be a table of fields, got {shorten(table)}")
     unknown = set(table) - _KNOWN_KEYS
     if unknown:
-        raise ValueError(f"{origin}: material {name!r} has unknown keys {sorted(unknown)}; "
-                         f"allowed are {sorted(_KNOWN_KEYS)}")
+        raise ValueError(
+            f"{origin}: material {name!r} has unknown keys {sorted(unknown)}; allowed are {sorted(_KNOWN_KEYS)}"
+        )
     if "density" not in table:
         raise ValueError(f"{origin}: material {name!r} has no density")
     values = {key: value for key, value in table.items() if key != "default"}
@@ -618,8 +682,7 @@ def _load_builtin():
             raise ValueError(f"{origin}: built-in material {name!r} cites no source")
         flag = table.get("default", False)
         if not isinstance(flag, bool):
-            raise ValueError(f"{origin}: material {name!r}: default must be true or false, "
-                             f"got {shorten(flag)}")
+            raise ValueError(f"{origin}: material {name!r}: default must be true or false, got {shorten(flag)}")
         if flag:
             defaults.add(name)
         materials[name] = material
@@ -672,8 +735,7 @@ def default_materials(library: Mapping[str, Material] | None = None) -> dict[str
     if library is None:
         library = builtin_materials(default_only=False)
     builtins, defaults = _load_builtin()
-    return {name: m for name, m in library.items()
-            if name in defaults or name not in builtins or m != builtins[name]}
+    return {name: m for name, m in library.items() if name in defaults or name not in builtins or m != builtins[name]}
 
 
 def design_material_names(library: Mapping[str, Material], names: Iterable[str] | None = None) -> tuple:
@@ -681,8 +743,7 @@ def design_material_names(library: Mapping[str, Material], names: Iterable[str] 
     return tuple(names) if names else tuple(default_materials(library))
 
 
-def material_library(user_materials: Iterable[Material] | Mapping[str, Material] = ()
-                     ) -> dict[str, Material]:
+def material_library(user_materials: Iterable[Material] | Mapping[str, Material] = ()) -> dict[str, Material]:
     """Every built-in material, extended or overridden by the user's.
 
     Parameters
@@ -747,6 +808,5 @@ def get_material(name: str, library: Mapping[str, Material] | None = None) -> Ma
     if key in folded:
         return library[folded[key]]
     close = difflib.get_close_matches(key, list(folded), n=3, cutoff=0.5)
-    hint = (f"; best matches are {[folded[c] for c in close]}" if close
-            else f"; known materials are {sorted(library)}")
+    hint = f"; best matches are {[folded[c] for c in close]}" if close else f"; known materials are {sorted(library)}"
     raise ValueError(f"material {shorten(name)} not recognised{hint}")

@@ -44,16 +44,24 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Mapping, NamedTuple
+from typing import NamedTuple
 
 import casadi as ca
 
 from flyopt.design import geometry
 from flyopt.errors import SolverFailed
 
-__all__ = ["DEFAULT_SOLVER_OPTIONS", "ModelStructure", "NlpModel", "get_model", "clear_model_cache",
-           "solve_combination", "BUILDS"]
+__all__ = [
+    "DEFAULT_SOLVER_OPTIONS",
+    "ModelStructure",
+    "NlpModel",
+    "get_model",
+    "clear_model_cache",
+    "solve_combination",
+    "BUILDS",
+]
 
 #: IPOPT statuses accepted as converged (the design is still verified).
 _CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
@@ -70,13 +78,15 @@ DEFAULT_SOLVER_OPTIONS = {
     "ipopt.max_iter": 200,
 }
 
+
 class ModelStructure(NamedTuple):
     """What decides the shape of an NLP (its variables and constraints)."""
 
-    geometry: str          # "rim" | "thin_rim" | "disc"
-    pinned: bool           # d_mean given: D_m is not a variable
-    collapsed: bool        # hb_min == hb_max: B is not a variable (rims only)
-    objective: str         # "mass" | "outer_diameter" (cost ranks by mass times cost)
+    geometry: str  # "rim" | "thin_rim" | "disc"
+    pinned: bool  # d_mean given: D_m is not a variable
+    collapsed: bool  # hb_min == hb_max: B is not a variable (rims only)
+    objective: str  # "mass" | "outer_diameter" (cost ranks by mass times cost)
+
 
 @dataclass
 class NlpModel:
@@ -84,8 +94,8 @@ class NlpModel:
 
     structure: ModelStructure
     solver: ca.Function
-    variables: tuple          # physical names of the decision variables
-    constraints: tuple        # names of the rows of g
+    variables: tuple  # physical names of the decision variables
+    constraints: tuple  # names of the rows of g
     uses_p: bool
     build_time: float
 
@@ -98,9 +108,12 @@ class NlpModel:
             "variables": list(self.variables),
             "constraints": list(self.constraints),
             "pinned": ["d_mean"] if s.pinned else [],
-            "formulation": ("IPOPT (CasADi nlpsol) on the logarithms of non-dimensional "
-                            "variables; numbers enter as parameters and bounds"),
+            "formulation": (
+                "IPOPT (CasADi nlpsol) on the logarithms of non-dimensional "
+                "variables; numbers enter as parameters and bounds"
+            ),
         }
+
 
 _MODEL_CACHE: dict = {}
 #: How many NLPs have been built in this process (one per structure and solver options).
@@ -109,12 +122,15 @@ BUILDS = {"count": 0}
 #: Weight of the tie-break term in the log-mass objective (see _build_model).
 _TIE_BREAK = 1e-3
 
+
 def clear_model_cache():
     """Forget every built NLP (the next design rebuilds them)."""
     _MODEL_CACHE.clear()
 
+
 def _options_key(options):
     return tuple(sorted((k, repr(v)) for k, v in options.items()))
+
 
 def get_model(structure: ModelStructure, solver_options: Mapping | None = None) -> NlpModel:
     """The NLP solver of one structure, built once and cached.
@@ -153,6 +169,7 @@ def cached_model(cache, builds, build, structure, solver_options=None, defaults=
         builds["count"] += 1
     return model
 
+
 def _build_model(structure, options):
     """Build the NLP of one structure in log-scaled variables.
 
@@ -188,7 +205,7 @@ def _build_model(structure, options):
         if objective == "mass":
             f = 2.0 * xd + xb
         elif pinned:
-            f = xb      # diameter fixed: pick the lightest disc of that diameter
+            f = xb  # diameter fixed: pick the lightest disc of that diameter
         else:
             f = xd
     else:
@@ -204,12 +221,12 @@ def _build_model(structure, options):
         g_names.append("inertia")
         if not pinned:
             uses_p = True
-            g.append(xd + ca.log1p(ca.exp(t)))        # log(D_outer / L)
+            g.append(xd + ca.log1p(ca.exp(t)))  # log(D_outer / L)
             g_names.append("outer_diameter")
-            g.append(xh - xd)                          # log(H/D_m) - log(H_s/L)
+            g.append(xh - xd)  # log(H/D_m) - log(H_s/L)
             g_names.append("inner_diameter")
         if not collapsed:
-            g.append(xh - xb)                          # log(H/B) - log(hb_min)
+            g.append(xh - xb)  # log(H/B) - log(hb_min)
             g_names.append("hb_ratio")
         if objective == "mass":
             f = xd + xh + xb
@@ -224,7 +241,7 @@ def _build_model(structure, options):
                 # optimum vertex (and its mass) is unchanged.
                 f = f + _TIE_BREAK * xh
         elif pinned:
-            f = xh                                     # D_outer = D_m + H, D_m fixed
+            f = xh  # D_outer = D_m + H, D_m fixed
         else:
             uses_p = True
             f = xd + ca.log1p(ca.exp(t))
@@ -233,9 +250,15 @@ def _build_model(structure, options):
         nlp["p"] = p
     name = "flywheel_" + "_".join(str(v) for v in structure)
     solver = ca.nlpsol(name, "ipopt", nlp, options)
-    return NlpModel(structure=structure, solver=solver, variables=tuple(names),
-                    constraints=tuple(g_names), uses_p=uses_p,
-                    build_time=time.perf_counter() - start)
+    return NlpModel(
+        structure=structure,
+        solver=solver,
+        variables=tuple(names),
+        constraints=tuple(g_names),
+        uses_p=uses_p,
+        build_time=time.perf_counter() - start,
+    )
+
 
 def _scales(combo, spec):
     """Scales (L, H_s, B_s) [m] of the non-dimensional variables.
@@ -249,11 +272,12 @@ def _scales(combo, spec):
     rho, j = combo.material.density, combo.j_shaft
     length = combo.cap if spec.d_mean is None else spec.d_mean
     if spec.geometry == "disc":
-        b_s = 32.0 * j / (math.pi * rho * length ** 4)
+        b_s = 32.0 * j / (math.pi * rho * length**4)
         return length, None, b_s
     hb_min = spec.hb_ratio[0]
-    h_s = math.sqrt(4.0 * j * hb_min / (math.pi * rho * length ** 3))
+    h_s = math.sqrt(4.0 * j * hb_min / (math.pi * rho * length**3))
     return length, h_s, h_s / hb_min
+
 
 def solve_combination(model, combo, spec):
     """Solve one feasible combination by IPOPT, its status checked.
@@ -279,7 +303,7 @@ def solve_combination(model, combo, spec):
     p = []
     if s.geometry == "disc":
         if "diameter" in col:
-            ubx[col["diameter"]] = 0.0                     # D <= cap = L
+            ubx[col["diameter"]] = 0.0  # D <= cap = L
         if spec.max_width < math.inf:
             ubx[col["b"]] = math.log(spec.max_width / b_s)
         lbg, ubg = [0.0], [inf]
@@ -308,19 +332,19 @@ def solve_combination(model, combo, spec):
     try:
         sol = model.solver(**args)
     except RuntimeError as err:
-        raise SolverFailed(f"{combo.label}: IPOPT stopped with an error ({err}); "
-                           f"no design is reported") from err
+        raise SolverFailed(f"{combo.label}: IPOPT stopped with an error ({err}); no design is reported") from err
     elapsed = time.perf_counter() - start
     stats = model.solver.stats()
     status = stats.get("return_status", "unknown")
     iterations = int(stats.get("iter_count", -1))
     if status not in _CONVERGED:
-        after = (f" after {iterations} iterations" if 0 <= iterations <= 10 ** 6 else "")
+        after = f" after {iterations} iterations" if 0 <= iterations <= 10**6 else ""
         err = SolverFailed(
             f"{combo.label}: IPOPT did not converge (return status {status!r}{after}), "
             f"although the closed-form bound shows the "
             f"combination is feasible (it can give up to {combo.j_max:.3g} kg·m², "
-            f"{combo.j_shaft:.3g} needed); no design is reported")
+            f"{combo.j_shaft:.3g} needed); no design is reported"
+        )
         err.status = status
         err.combination = combo.label
         raise err

@@ -69,7 +69,7 @@ def winners(group, objective, cost, mass, rim_speed, material, shaft, n_groups=N
     n = group.size
     if n_groups is None:
         n_groups = int(group.max()) + 1 if n else 0
-    if n_groups == 1 and 0 < n <= _FEW:   # one point with a few designs (a solve's ranking)
+    if n_groups == 1 and 0 < n <= _FEW:  # one point with a few designs (a solve's ranking)
         return np.array([_winner_of_few(objective, cost, mass, rim_speed, material, shaft)], dtype=np.int64)
     alive = np.ones(n, dtype=bool)
     for key in (objective, cost, mass, rim_speed):
@@ -120,7 +120,13 @@ def ranking(candidates):
     left = list(candidates)
     ordered = []
     while left:
-        k = _winner_of_few([c.objective for c in left], [c.cost for c in left], [c.mass for c in left],
-                           [c.rim_speed for c in left], [c.material for c in left], [c.shaft for c in left])
+        k = _winner_of_few(
+            [c.objective for c in left],
+            [c.cost for c in left],
+            [c.mass for c in left],
+            [c.rim_speed for c in left],
+            [c.material for c in left],
+            [c.shaft for c in left],
+        )
         ordered.append(left.pop(k))
     return ordered

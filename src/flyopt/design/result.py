@@ -17,6 +17,7 @@ __all__ = ["Candidate", "DesignResult", "DESIGN_FIELDS", "TIMING_FIELDS"]
 #: Fields that hold wall-clock times, left out of ``to_dict`` unless ``timings=True``.
 TIMING_FIELDS = ("solve_time",)
 
+
 @dataclass(frozen=True)
 class Candidate:
     """One combination of material and shaft, designed or shown infeasible.
@@ -168,13 +169,47 @@ class Candidate:
             out[f.name] = value
         return out
 
+
 #: Fields of the top-level "design" object taken from the best candidate.
-DESIGN_FIELDS = ("material", "shaft", "speed_ratio", "geometry", "d_mean", "d_outer",
-                 "d_inner", "h", "b", "hb_ratio", "mass", "rim_speed", "hoop_stress",
-                 "safety_factor", "cost", "j_flywheel", "j_at_reference", "binding",
-                 "objective", "n_arms", "t_web", "d_hub", "l_hub", "arm_major", "arm_minor", "bore",
-                 "parts", "stress", "allowable_stress", "strength_safety", "burst_speed",
-                 "speed_margin", "unbalance_permissible", "key", "sensitivities", "notes")
+DESIGN_FIELDS = (
+    "material",
+    "shaft",
+    "speed_ratio",
+    "geometry",
+    "d_mean",
+    "d_outer",
+    "d_inner",
+    "h",
+    "b",
+    "hb_ratio",
+    "mass",
+    "rim_speed",
+    "hoop_stress",
+    "safety_factor",
+    "cost",
+    "j_flywheel",
+    "j_at_reference",
+    "binding",
+    "objective",
+    "n_arms",
+    "t_web",
+    "d_hub",
+    "l_hub",
+    "arm_major",
+    "arm_minor",
+    "bore",
+    "parts",
+    "stress",
+    "allowable_stress",
+    "strength_safety",
+    "burst_speed",
+    "speed_margin",
+    "unbalance_permissible",
+    "key",
+    "sensitivities",
+    "notes",
+)
+
 
 @dataclass(frozen=True)
 class DesignResult:
@@ -226,6 +261,12 @@ class DesignResult:
                 design[name] = design[name] or []
             design["candidates"] = [c.to_dict(timings) for c in self.candidates]
         spec = self.spec.to_dict()
-        return {"status": self.status, "message": self.message,
-                "j_required": self.j_required, "omega": self.omega,
-                "spec": spec, "model": self.model, "design": design}
+        return {
+            "status": self.status,
+            "message": self.message,
+            "j_required": self.j_required,
+            "omega": self.omega,
+            "spec": spec,
+            "model": self.model,
+            "design": design,
+        }

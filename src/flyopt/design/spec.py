@@ -30,14 +30,15 @@ OBJECTIVES = {
 #: Strength criteria understood by :func:`design_flywheel`.
 CRITERIA = {
     "rim_speed": "the textbook limit: the outer diameter's peripheral speed at omega_max stays below the "
-                 "material's safe rim speed (cast iron 36 m/s, cast steel 50 m/s)",
+    "material's safe rim speed (cast iron 36 m/s, cast steel 50 m/s)",
     "stress": "the governing stress of every part at omega_max stays below the allowable stress (von Mises "
-              "against yield for ductile materials, largest principal stress against tensile strength for "
-              "brittle ones)",
+    "against yield for ductile materials, largest principal stress against tensile strength for "
+    "brittle ones)",
 }
 
 #: Arm counts a rim_arms wheel considers unless the scene says (the machine-design texts' range).
 DEFAULT_ARMS = (4, 6, 8)
+
 
 def _finite(value, name):
     try:
@@ -48,11 +49,13 @@ def _finite(value, name):
         raise ValueError(f"{name} must be finite, got {value!r}")
     return number
 
+
 def _positive(value, name, unit):
     number = _finite(value, f"{name} {unit}")
     if number <= 0.0:
         raise ValueError(f"{name} {unit} must be > 0, got {value!r}")
     return number
+
 
 def _choice(value, allowed, name):
     if value in allowed:
@@ -60,6 +63,7 @@ def _choice(value, allowed, name):
     close = difflib.get_close_matches(str(value), list(allowed), n=2, cutoff=0.4)
     hint = f"; best matches are {close}" if close else ""
     raise ValueError(f"{name} {value!r} not recognised; allowed are {sorted(allowed)}{hint}")
+
 
 @dataclass(frozen=True)
 class MountShaft:
@@ -83,11 +87,10 @@ class MountShaft:
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():
             raise ValueError(f"shaft name must be a non-empty string, got {self.name!r}")
-        object.__setattr__(self, "speed_ratio",
-                           _positive(self.speed_ratio, f"shaft {self.name!r}: speed_ratio", "[-]"))
+        object.__setattr__(self, "speed_ratio", _positive(self.speed_ratio, f"shaft {self.name!r}: speed_ratio", "[-]"))
         if self.diameter is not None:
-            object.__setattr__(self, "diameter",
-                               _positive(self.diameter, f"shaft {self.name!r}: diameter", "[m]"))
+            object.__setattr__(self, "diameter", _positive(self.diameter, f"shaft {self.name!r}: diameter", "[m]"))
+
 
 @dataclass(frozen=True)
 class DesignSpec:
@@ -155,8 +158,9 @@ class DesignSpec:
         """Whether this is the textbook design: a bare wheel without a bore sized by the rim speed limit
         (the closed forms and the NLP of :mod:`flyopt.design.nlp`); anything else is a whole wheel
         (:mod:`flyopt.design.wheel`). ``bore`` [m] is the combination's (a disc with a bore is an annulus)."""
-        return (self.geometry in geometry.BARE and self.criterion == "rim_speed"
-                and not (self.geometry == "disc" and bore))
+        return (
+            self.geometry in geometry.BARE and self.criterion == "rim_speed" and not (self.geometry == "disc" and bore)
+        )
 
     @property
     def has_envelope(self):
@@ -165,12 +169,20 @@ class DesignSpec:
 
     def to_dict(self):
         """JSON-ready: limits that are not set are None."""
-        return {"geometry": self.geometry, "hb_ratio": list(self.hb_ratio),
-                "max_outer_diameter": _none_if_inf(self.max_outer_diameter),
-                "max_width": _none_if_inf(self.max_width), "d_mean": self.d_mean,
-                "objective": self.objective, "criterion": self.criterion,
-                "safety_factor": self.safety_factor, "bore": self.bore, "arms": list(self.arms),
-                "min_wall": self.min_wall, "prune": self.prune}
+        return {
+            "geometry": self.geometry,
+            "hb_ratio": list(self.hb_ratio),
+            "max_outer_diameter": _none_if_inf(self.max_outer_diameter),
+            "max_width": _none_if_inf(self.max_width),
+            "d_mean": self.d_mean,
+            "objective": self.objective,
+            "criterion": self.criterion,
+            "safety_factor": self.safety_factor,
+            "bore": self.bore,
+            "arms": list(self.arms),
+            "min_wall": self.min_wall,
+            "prune": self.prune,
+        }
 
     def __post_init__(self):
         _choice(self.geometry, geometry.GEOMETRIES, "geometry")
@@ -178,8 +190,7 @@ class DesignSpec:
         try:
             low, high = self.hb_ratio
         except (TypeError, ValueError) as err:
-            raise ValueError(f"hb_ratio must be a pair (min, max) of H/B, "
-                             f"got {self.hb_ratio!r}") from err
+            raise ValueError(f"hb_ratio must be a pair (min, max) of H/B, got {self.hb_ratio!r}") from err
         low = _positive(low, "hb_ratio min", "[-]")
         high = _positive(high, "hb_ratio max", "[-]")
         if low > high:
@@ -195,16 +206,17 @@ class DesignSpec:
         if self.safety_factor is not None:
             factor = _finite(self.safety_factor, "safety_factor [-]")
             if factor < 1.0:
-                raise ValueError(f"safety_factor [-] must be >= 1 (the allowable stress is the "
-                                 f"strength divided by it), got {self.safety_factor!r}")
+                raise ValueError(
+                    f"safety_factor [-] must be >= 1 (the allowable stress is the "
+                    f"strength divided by it), got {self.safety_factor!r}"
+                )
             object.__setattr__(self, "safety_factor", factor)
         if self.bore is not None:
             bore = _finite(self.bore, "bore [m]")
             if bore < 0.0:
                 raise ValueError(f"bore [m] must be >= 0 (0: no bore), got {self.bore!r}")
             if bore >= self.max_outer_diameter:
-                raise ValueError(f"bore {bore} m must be smaller than max_outer_diameter "
-                                 f"{self.max_outer_diameter} m")
+                raise ValueError(f"bore {bore} m must be smaller than max_outer_diameter {self.max_outer_diameter} m")
             object.__setattr__(self, "bore", bore)
         try:
             arms = tuple(self.arms)
@@ -219,11 +231,12 @@ class DesignSpec:
             raise ValueError(f"prune must be true or false, got {self.prune!r}")
         if self.min_wall is not None:
             object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
-        if (self.objective == "outer_diameter" and self.geometry == "disc"
-                and self.max_width == math.inf):
-            raise ValueError("objective 'outer_diameter' with geometry 'disc' needs "
-                             "max_width: without it an ever thinner, wider disc makes "
-                             "the diameter as small as one likes")
+        if self.objective == "outer_diameter" and self.geometry == "disc" and self.max_width == math.inf:
+            raise ValueError(
+                "objective 'outer_diameter' with geometry 'disc' needs "
+                "max_width: without it an ever thinner, wider disc makes "
+                "the diameter as small as one likes"
+            )
 
 
 def _none_if_inf(value):

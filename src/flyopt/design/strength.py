@@ -47,39 +47,52 @@ class PartStress:
     """The governing stress of one part at the checked speed."""
 
     part: str
-    stress: float         # von Mises (ductile) or largest principal (brittle) [Pa]
-    radius: float         # where [m]
-    allowable: float      # [Pa]
-    strength: float       # yield (ductile) or tensile (brittle) strength at the part's wall [Pa]
-    wall: float           # the wall thickness the strength was taken at [m]
+    stress: float  # von Mises (ductile) or largest principal (brittle) [Pa]
+    radius: float  # where [m]
+    allowable: float  # [Pa]
+    strength: float  # yield (ductile) or tensile (brittle) strength at the part's wall [Pa]
+    wall: float  # the wall thickness the strength was taken at [m]
 
 
 @dataclass(frozen=True)
 class StrengthCheck:
     """The stress check of a wheel at its highest speed (SI)."""
 
-    parts: tuple             # PartStress per stressed part
+    parts: tuple  # PartStress per stressed part
     max_principal: float
     von_mises: float
     hoop_max: float
     radial_max: float
-    where: dict              # {"part", "radius"} of the governing stress (the smallest margin)
+    where: dict  # {"part", "radius"} of the governing stress (the smallest margin)
     allowable_stress: float  # the governing part's allowable
-    strength_safety: float   # min over parts of strength / governing stress
-    burst_speed: float       # [rad/s] on the wheel's shaft
-    speed_margin: float      # burst_speed / omega
-    mean_hoop: float         # mean hoop stress of the radial section [Pa]
+    strength_safety: float  # min over parts of strength / governing stress
+    burst_speed: float  # [rad/s] on the wheel's shaft
+    speed_margin: float  # burst_speed / omega
+    mean_hoop: float  # mean hoop stress of the radial section [Pa]
 
     def utilisation(self):
         """The largest governing stress over allowable of any part [-]."""
         return max(p.stress / p.allowable for p in self.parts)
 
     def to_dict(self):
-        return {"max_principal": self.max_principal, "von_mises": self.von_mises,
-                "hoop_max": self.hoop_max, "radial_max": self.radial_max, "where": dict(self.where),
-                "parts": [{"part": p.part, "stress": p.stress, "radius": p.radius,
-                           "allowable": p.allowable, "strength": p.strength, "wall": p.wall}
-                          for p in self.parts]}
+        return {
+            "max_principal": self.max_principal,
+            "von_mises": self.von_mises,
+            "hoop_max": self.hoop_max,
+            "radial_max": self.radial_max,
+            "where": dict(self.where),
+            "parts": [
+                {
+                    "part": p.part,
+                    "stress": p.stress,
+                    "radius": p.radius,
+                    "allowable": p.allowable,
+                    "strength": p.strength,
+                    "wall": p.wall,
+                }
+                for p in self.parts
+            ],
+        }
 
 
 def _strength_thickness(material, part_wall, all_walls):
@@ -154,8 +167,9 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
         note(part, stress.von_mises(sr, st) if ductile else max(sr, st), float(r))
         hoop, radial = max(hoop, st), max(radial, sr)
         vm, principal = max(vm, stress.von_mises(sr, st)), max(principal, sr, st)
-    coefficients = [(float(c1), 0.0 if isinstance(c2, (int, float)) and c2 == 0 else float(c2))
-                    for c1, c2 in state.coefficients]
+    coefficients = [
+        (float(c1), 0.0 if isinstance(c2, (int, float)) and c2 == 0 else float(c2)) for c1, c2 in state.coefficients
+    ]
     radii = [float(r) for r in state.radii]
     single = len(coefficients) == 1 and not state.beams
     if single:
@@ -169,12 +183,14 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
         note(state.names[0], float(stress.von_mises(sr, st)) if ductile else max(sr, st), a)
         hoop, principal = st, max(st, sr)
         vm = float(stress.von_mises(sr, st))
-        radial = (3.0 + nu) / 8.0 * rho * omega ** 2 * (b - a) ** 2
+        radial = (3.0 + nu) / 8.0 * rho * omega**2 * (b - a) ** 2
     elif coefficients:
         # a stepped disc: each measure's maximum over each step, found on a grid and refined between
         # its points (the governing measure's per part, every measure's for the report)
-        found = {m: stress.max_stress_per_step(coefficients, radii, rho, nu, omega, m, _POINTS)
-                 for m in ("von_mises", "largest_principal", "hoop", "radial")}
+        found = {
+            m: stress.max_stress_per_step(coefficients, radii, rho, nu, omega, m, _POINTS)
+            for m in ("von_mises", "largest_principal", "hoop", "radial")
+        }
         for step_max in found[measure]:
             note(state.names[step_max.step], step_max.value, step_max.radius)
         vm = max(vm, *(f.value for f in found["von_mises"]))
@@ -182,28 +198,52 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
         hoop = max(hoop, *(f.value for f in found["hoop"]))
         radial = max(radial, *(f.value for f in found["radial"]))
     if coefficients:
-        mean_hoop = float(stress.mean_hoop_stress(coefficients, radii, [float(t) for t in state.thicknesses],
-                                                  rho, nu, omega))
-    if geometry_name == "rim_arms":    # the rim carries the hoop load of an arms wheel
+        mean_hoop = float(
+            stress.mean_hoop_stress(coefficients, radii, [float(t) for t in state.thicknesses], rho, nu, omega)
+        )
+    if geometry_name == "rim_arms":  # the rim carries the hoop load of an arms wheel
         mean_hoop = float(stress.rim_hoop_stress(rho, omega, dims.d_mean / 2.0))
-    parts = tuple(PartStress(part, value, r, limits[part][0], limits[part][1], limits[part][2])
-                  for part, (value, r) in worst.items())
+    parts = tuple(
+        PartStress(part, value, r, limits[part][0], limits[part][1], limits[part][2])
+        for part, (value, r) in worst.items()
+    )
     governing = max(parts, key=lambda p: p.stress / p.allowable)
-    safety = min(p.strength / p.stress for p in parts if p.stress > 0) if any(
-        p.stress > 0 for p in parts) else math.inf
-    tensile = [material.strength(p.wall if getattr(material, "thickness_rule", "part") != "wheel"
-                                 else max(q.wall for q in parts))[0] for p in parts]
+    safety = min(p.strength / p.stress for p in parts if p.stress > 0) if any(p.stress > 0 for p in parts) else math.inf
+    tensile = [
+        material.strength(
+            p.wall if getattr(material, "thickness_rule", "part") != "wheel" else max(q.wall for q in parts)
+        )[0]
+        for p in parts
+    ]
     if ductile:
         rim_tensile = min(t for t in tensile if t is not None) if any(t is not None for t in tensile) else None
-        burst = (float(stress.burst_speed_ductile(omega, mean_hoop, rim_tensile))
-                 if rim_tensile is not None and mean_hoop > 0 else math.inf)
+        burst = (
+            float(stress.burst_speed_ductile(omega, mean_hoop, rim_tensile))
+            if rim_tensile is not None and mean_hoop > 0
+            else math.inf
+        )
     else:
-        burst = min((float(stress.burst_speed_brittle(omega, p.stress, t)) for p, t in zip(parts, tensile)
-                     if t is not None and p.stress > 0), default=math.inf)
-    return StrengthCheck(parts=parts, max_principal=principal, von_mises=vm, hoop_max=hoop,
-                         radial_max=radial, where={"part": governing.part, "radius": governing.radius},
-                         allowable_stress=governing.allowable, strength_safety=safety,
-                         burst_speed=burst, speed_margin=burst / omega, mean_hoop=mean_hoop)
+        burst = min(
+            (
+                float(stress.burst_speed_brittle(omega, p.stress, t))
+                for p, t in zip(parts, tensile)
+                if t is not None and p.stress > 0
+            ),
+            default=math.inf,
+        )
+    return StrengthCheck(
+        parts=parts,
+        max_principal=principal,
+        von_mises=vm,
+        hoop_max=hoop,
+        radial_max=radial,
+        where={"part": governing.part, "radius": governing.radius},
+        allowable_stress=governing.allowable,
+        strength_safety=safety,
+        burst_speed=burst,
+        speed_margin=burst / omega,
+        mean_hoop=mean_hoop,
+    )
 
 
 def profile(material, geometry_name, dims, omega, torque, points=200):

@@ -119,7 +119,7 @@ def sqrt(x):
         A non-negative quantity (a negative Python float gives a complex
         number, a negative numpy value nan).
     """
-    return x ** 0.5
+    return x**0.5
 
 
 def _is_structural_zero(value):
@@ -140,8 +140,7 @@ def _spin_factors(density, poisson, omega):
     return (3.0 + poisson) / 8.0 * k, (1.0 + 3.0 * poisson) / 8.0 * k
 
 
-def disc_coefficients(radii, thickness, density, poisson, omega, *, solid=False, bore_pressure=0.0,
-                      outer_traction=0.0):
+def disc_coefficients(radii, thickness, density, poisson, omega, *, solid=False, bore_pressure=0.0, outer_traction=0.0):
     """Constants (c1, c2) of every step of a stepped rotating disc.
 
     Parameters
@@ -217,12 +216,13 @@ def disc_coefficients(radii, thickness, density, poisson, omega, *, solid=False,
     radii = _items(radii)
     thickness = _items(thickness)
     if len(radii) != len(thickness) + 1 or not thickness:
-        raise ValueError(f"a stepped disc needs N + 1 edge radii for N >= 1 thicknesses; got {len(radii)} radii "
-                         f"and {len(thickness)} thicknesses")
+        raise ValueError(
+            f"a stepped disc needs N + 1 edge radii for N >= 1 thicknesses; got {len(radii)} radii "
+            f"and {len(thickness)} thicknesses"
+        )
     if solid:
         if isinstance(radii[0], numbers.Real) and radii[0] != 0:
-            raise ValueError(f"a solid centre starts at r_0 = 0; got r_0 = {radii[0]!r} (pass solid=False for a "
-                             "bore)")
+            raise ValueError(f"a solid centre starts at r_0 = 0; got r_0 = {radii[0]!r} (pass solid=False for a bore)")
         if not _is_structural_zero(bore_pressure):
             raise ValueError(f"a solid centre has no bore to press; got bore_pressure = {bore_pressure!r}")
     alpha, beta = _spin_factors(density, poisson, omega)
@@ -252,8 +252,10 @@ def disc_coefficients(radii, thickness, density, poisson, omega, *, solid=False,
         sr_minus, st_minus = stresses_at(radii[i], *steps[-1])
         ratio = thickness[i - 1] / thickness[i]
         sr_plus = (ratio * sr_minus[0], ratio * sr_minus[1])
-        st_plus = (st_minus[0] + poisson * (sr_plus[0] - sr_minus[0]),
-                   st_minus[1] + poisson * (sr_plus[1] - sr_minus[1]))
+        st_plus = (
+            st_minus[0] + poisson * (sr_plus[0] - sr_minus[0]),
+            st_minus[1] + poisson * (sr_plus[1] - sr_minus[1]),
+        )
         steps.append(coefficients_at(radii[i], sr_plus, st_plus))
     sr_outer, _ = stresses_at(radii[-1], *steps[-1])
     x = (outer_traction - sr_outer[0]) / sr_outer[1]
@@ -331,9 +333,10 @@ def disc_edge_stresses(coefficients, radii, density, poisson, omega):
     finds the true maxima for a check.
     """
     radii = _items(radii)
-    return [(disc_stresses(c, density, poisson, omega, radii[i]),
-             disc_stresses(c, density, poisson, omega, radii[i + 1]))
-            for i, c in enumerate(coefficients)]
+    return [
+        (disc_stresses(c, density, poisson, omega, radii[i]), disc_stresses(c, density, poisson, omega, radii[i + 1]))
+        for i, c in enumerate(coefficients)
+    ]
 
 
 def von_mises_squared(sr, st):
@@ -473,6 +476,7 @@ def mean_hoop_stress(coefficients, radii, thickness, density, poisson, omega):
 
 # ---------------------------------------------------------------- closed forms
 
+
 def annulus_stresses(inner_radius, outer_radius, density, poisson, omega, r):
     """Stresses in a free rotating annulus of uniform thickness [Pa].
 
@@ -522,9 +526,14 @@ def annulus_bore_hoop_stress(inner_radius, outer_radius, density, poisson, omega
     .. [1] Timoshenko and Goodier, Theory of Elasticity, 3rd ed., 1970,
        article 32.
     """
-    return ((3.0 + poisson) / 4.0 * density * omega * omega
-            * (outer_radius * outer_radius
-               + (1.0 - poisson) / (3.0 + poisson) * inner_radius * inner_radius))
+    return (
+        (3.0 + poisson)
+        / 4.0
+        * density
+        * omega
+        * omega
+        * (outer_radius * outer_radius + (1.0 - poisson) / (3.0 + poisson) * inner_radius * inner_radius)
+    )
 
 
 def annulus_max_radial_stress(inner_radius, outer_radius, density, poisson, omega):
@@ -694,8 +703,12 @@ def max_stress_per_step(coefficients, radii, density, poisson, omega, measure="v
         k = int(np.argmax(values))
         best = StepMaximum(float(values[k]), i, float(grid[k]))
         low, high = grid[max(k - 1, 0)], grid[min(k + 1, points - 1)]
-        found = minimize_scalar(lambda r: -value(c, r), bounds=(low, high), method="bounded",
-                                options={"xatol": 1e-12 * radii[-1], "maxiter": 500})
+        found = minimize_scalar(
+            lambda r: -value(c, r),
+            bounds=(low, high),
+            method="bounded",
+            options={"xatol": 1e-12 * radii[-1], "maxiter": 500},
+        )
         if -found.fun > best.value:
             best = StepMaximum(float(-found.fun), i, float(found.x))
         result.append(best)
@@ -703,6 +716,7 @@ def max_stress_per_step(coefficients, radii, density, poisson, omega, measure="v
 
 
 # ------------------------------------------------------------- rim with arms
+
 
 def rim_hoop_stress(density, omega, mean_radius):
     """Hoop stress of a rim free of its arms, rho v^2 with v = omega R [Pa].
@@ -755,7 +769,7 @@ def rim_bending_stress(density, omega, mean_radius, radial_thickness, n_arms):
        "Stresses in a flywheel rim": "Tensile bending stress caused by
        restraint of the arms".
     """
-    return 2.0 * math.pi ** 2 * density * omega * omega * mean_radius ** 3 / (n_arms * n_arms * radial_thickness)
+    return 2.0 * math.pi**2 * density * omega * omega * mean_radius**3 / (n_arms * n_arms * radial_thickness)
 
 
 def rim_combined_stress(hoop_stress, bending_stress):
@@ -882,8 +896,7 @@ def arm_bending_stress(torque, n_arms, arm_end_radius, hub_radius, major, minor)
 
     See :func:`arm_bending_moment` (M) and :func:`arm_section_modulus` (Z).
     """
-    return (arm_bending_moment(torque, n_arms, arm_end_radius, hub_radius)
-            / arm_section_modulus(major, minor))
+    return arm_bending_moment(torque, n_arms, arm_end_radius, hub_radius) / arm_section_modulus(major, minor)
 
 
 def arm_centrifugal_force(density, arm_area, omega, arm_end_radius, hub_radius):
@@ -957,8 +970,9 @@ def arm_pull(density, arm_area, rim_area, omega, mean_radius, arm_end_radius, hu
     The sum of :func:`arm_centrifugal_force` and :func:`rim_segment_force`
     (a conservative bound, see there); ``n_arms`` is a plain number.
     """
-    return (arm_centrifugal_force(density, arm_area, omega, arm_end_radius, hub_radius)
-            + rim_segment_force(density, rim_area, omega, mean_radius, n_arms))
+    return arm_centrifugal_force(density, arm_area, omega, arm_end_radius, hub_radius) + rim_segment_force(
+        density, rim_area, omega, mean_radius, n_arms
+    )
 
 
 def arm_stress(bending_stress, pull, arm_area):
@@ -1011,6 +1025,7 @@ def arm_hub_traction(n_arms, pull, hub_radius, hub_length):
 
 
 # ----------------------------------------------------------------- burst speed
+
 
 def burst_speed(omega, stress, strength):
     """Speed at which a stress that scales with omega^2 reaches a strength [rad/s].

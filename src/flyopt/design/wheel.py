@@ -106,7 +106,7 @@ def _annulus(name, density, r_inner, r_outer, thickness, thin=False):
     (``thin``: J = m r_mean^2, the thin-rim model)."""
     from flyopt.design import geometry
 
-    d_mean, h = r_outer + r_inner, r_outer - r_inner      # an annulus is a rim of D_m and H
+    d_mean, h = r_outer + r_inner, r_outer - r_inner  # an annulus is a rim of D_m and H
     mass = geometry.rim_mass(d_mean, h, thickness, density)
     inertia = geometry.thin_rim_inertia(mass, d_mean) if thin else geometry.rim_inertia(mass, d_mean, h)
     return Part(name, mass, inertia, r_inner, r_outer, thickness)
@@ -145,14 +145,18 @@ def parts(geometry_name, dims, density):
     if geometry_name == "rim_web":
         if _zero(dims.bore):
             return [_annulus("web", density, 0.0, r_i, dims.t_web), rim]
-        return [_annulus("hub", density, r_bore, r_h, dims.l_hub),
-                _annulus("web", density, r_h, r_i, dims.t_web), rim]
+        return [_annulus("hub", density, r_bore, r_h, dims.l_hub), _annulus("web", density, r_h, r_i, dims.t_web), rim]
     if geometry_name == "rim_arms":
         area = math.pi * dims.arm_major * (ARM_MINOR_RATIO * dims.arm_major) / 4.0
         n = dims.n_arms
-        arms = Part("arms", n * density * area * (r_i - r_h),
-                    n * density * area * (r_i ** 3 - r_h ** 3) / 3.0, r_h, r_i,
-                    ARM_MINOR_RATIO * dims.arm_major)
+        arms = Part(
+            "arms",
+            n * density * area * (r_i - r_h),
+            n * density * area * (r_i**3 - r_h**3) / 3.0,
+            r_h,
+            r_i,
+            ARM_MINOR_RATIO * dims.arm_major,
+        )
         return [_annulus("hub", density, r_bore, r_h, dims.l_hub), arms, rim]
     raise ValueError(f"geometry {geometry_name!r} not known")
 
@@ -238,11 +242,11 @@ def walls(geometry_name, dims):
 class StressState(NamedTuple):
     """The stress state of a wheel at one speed (see :func:`stress_state`)."""
 
-    beams: list          # (part, r, sr, st) of the parts the texts treat as beams (rim_arms: rim, arms)
-    radii: list          # edge radii of the stepped-disc parts [m]
-    thicknesses: list    # their axial thicknesses [m]
-    names: list          # the part of each step
-    coefficients: list   # (c1, c2) of each step (flyopt.design.stress.disc_coefficients)
+    beams: list  # (part, r, sr, st) of the parts the texts treat as beams (rim_arms: rim, arms)
+    radii: list  # edge radii of the stepped-disc parts [m]
+    thicknesses: list  # their axial thicknesses [m]
+    names: list  # the part of each step
+    coefficients: list  # (c1, c2) of each step (flyopt.design.stress.disc_coefficients)
 
 
 def stress_state(geometry_name, dims, density, poisson, omega, torque):
@@ -287,15 +291,17 @@ def stress_state(geometry_name, dims, density, poisson, omega, torque):
         area = stress.arm_section_area(dims.arm_major, minor)
         rim = stress.rim_combined_stress(
             stress.rim_hoop_stress(density, omega, r_mean),
-            stress.rim_bending_stress(density, omega, r_mean, dims.h, dims.n_arms))
-        pull = stress.arm_pull(density, area, dims.b * dims.h, omega, r_mean, r_inner, r_hub,
-                               dims.n_arms)
-        arm = stress.arm_stress(stress.arm_bending_stress(torque, dims.n_arms, r_mean, r_hub,
-                                                          dims.arm_major, minor), pull, area)
+            stress.rim_bending_stress(density, omega, r_mean, dims.h, dims.n_arms),
+        )
+        pull = stress.arm_pull(density, area, dims.b * dims.h, omega, r_mean, r_inner, r_hub, dims.n_arms)
+        arm = stress.arm_stress(
+            stress.arm_bending_stress(torque, dims.n_arms, r_mean, r_hub, dims.arm_major, minor), pull, area
+        )
         traction = stress.arm_hub_traction(dims.n_arms, pull, r_hub, dims.l_hub)
         beams = [("arms", r_hub, arm, 0.0), ("rim", r_mean, 0.0, rim)]
-    coefficients = stress.disc_coefficients(radii, thicknesses, density, poisson, omega, solid=solid,
-                                            outer_traction=traction)
+    coefficients = stress.disc_coefficients(
+        radii, thicknesses, density, poisson, omega, solid=solid, outer_traction=traction
+    )
     return StressState(beams, radii, thicknesses, names, coefficients)
 
 

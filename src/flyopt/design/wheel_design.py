@@ -27,8 +27,17 @@ from flyopt.design import check, geometry, hub, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
 
-__all__ = ["needs_torque", "bore_of", "objective_bound", "stress_cap", "screen", "design_combination",
-           "structure_fields", "NoWheel", "sensitivities"]
+__all__ = [
+    "needs_torque",
+    "bore_of",
+    "objective_bound",
+    "stress_cap",
+    "screen",
+    "design_combination",
+    "structure_fields",
+    "NoWheel",
+    "sensitivities",
+]
 
 #: Re-solves allowed for the exact stress check and the strength of the walls to settle.
 _MAX_ROUNDS = 8
@@ -82,7 +91,7 @@ def _hub_bounds(material, bore, torque):
         try:
             l_low = max(l_low, hub.hub_length_for_key(torque, bore, pressure))
         except ValueError:
-            pass       # no standard key carries it: check_key says so in the report
+            pass  # no standard key carries it: check_key says so in the report
     return (p.d_hub_min, p.d_hub_max), (l_low, max(p.l_hub_max, l_low)), kind
 
 
@@ -92,8 +101,9 @@ def _strongest_allowable(material, spec):
     rows = getattr(material, "strength_by_thickness", ())
     try:
         if rows:
-            return max(material.allowable(thickness=row.max_thickness, safety_factor=spec.safety_factor)
-                       for row in rows)
+            return max(
+                material.allowable(thickness=row.max_thickness, safety_factor=spec.safety_factor) for row in rows
+            )
         return material.allowable(safety_factor=spec.safety_factor)
     except ValueError:
         return None
@@ -118,7 +128,7 @@ def stress_cap(combo, spec, bore):
     if nu is None or not sigma:
         return math.inf
     factor = 8.0 if spec.geometry == "disc" and not bore else 4.0
-    return 2.0 * math.sqrt(factor * sigma / ((3.0 + nu) * combo.material.density * combo.omega ** 2))
+    return 2.0 * math.sqrt(factor * sigma / ((3.0 + nu) * combo.material.density * combo.omega**2))
 
 
 def _upper_bound(combo, spec, bore=0.0):
@@ -131,7 +141,7 @@ def _upper_bound(combo, spec, bore=0.0):
         width = min(width, cap / (2.0 * spec.hb_ratio[0]))
     if not (math.isfinite(cap) and math.isfinite(width)):
         return math.inf, cap, width
-    return math.pi * combo.material.density * width * cap ** 4 / 32.0, cap, width
+    return math.pi * combo.material.density * width * cap**4 / 32.0, cap, width
 
 
 def objective_bound(combo, spec):
@@ -162,23 +172,28 @@ def objective_bound(combo, spec):
         if not math.isfinite(spec.max_width):
             return 0.0, "no width limit bounds the diameter"
         d = (32.0 * j / (math.pi * combo.material.density * spec.max_width)) ** 0.25
-        return d, (f"no wheel within the {spec.max_width:.4g} m width limit gives {j:.4g} kg·m² below "
-                   f"D {d:.4g} m (a solid cylinder of that width)")
-    cap = min(combo.cap, stress_cap(combo, spec, combo.bore))   # rim speed or stress cap, envelope
+        return d, (
+            f"no wheel within the {spec.max_width:.4g} m width limit gives {j:.4g} kg·m² below "
+            f"D {d:.4g} m (a solid cylinder of that width)"
+        )
+    cap = min(combo.cap, stress_cap(combo, spec, combo.bore))  # rim speed or stress cap, envelope
     if not math.isfinite(cap):
         return 0.0, "no cap on the outer diameter bounds the mass"
     mass = 4.0 * j / (cap * cap)
-    why = (f"every wheel that gives {j:.4g} kg·m² within D {cap:.4g} m weighs at least "
-           f"{mass:.4g} kg (m >= 4 J/D²: all of it at the outer radius)")
-    if spec.objective == "cost":           # design_flywheel refuses the cost objective without a price
+    why = (
+        f"every wheel that gives {j:.4g} kg·m² within D {cap:.4g} m weighs at least "
+        f"{mass:.4g} kg (m >= 4 J/D²: all of it at the outer radius)"
+    )
+    if spec.objective == "cost":  # design_flywheel refuses the cost objective without a price
         return mass * combo.material.cost, why + f", which costs at least {mass * combo.material.cost:.4g}"
     return mass, why
 
 
 def missing_poisson(material, spec):
     """Why a material can make no wheel under a spec on any shaft for want of a Poisson's ratio, or None."""
-    if ((spec.criterion == "stress" or spec.geometry in ("rim_web", "rim_arms"))
-            and getattr(material, "poisson_ratio", None) is None):
+    if (spec.criterion == "stress" or spec.geometry in ("rim_web", "rim_arms")) and getattr(
+        material, "poisson_ratio", None
+    ) is None:
         return f"material {material.name!r} gives no poisson_ratio, which the stress of a {spec.geometry} needs"
     return None
 
@@ -190,15 +205,23 @@ def screen(combo, spec, bore):
     material, geo = combo.material, spec.geometry
     j_sup, cap, width = _upper_bound(combo, spec, bore)
     if combo.j_shaft > j_sup:
-        where = ("the envelope" if cap >= combo.cap else
-                 f"the largest diameter its stress allows at {combo.omega:.4g} rad/s")
-        wide = (f"B {width:.4g} m" if width >= spec.max_width else
-                f"B {width:.4g} m, the widest a rim of H/B >= {spec.hb_ratio[0]:g} can be")
-        raise NoWheel(f"{combo.label}: even a solid disc filling {where} (D {cap:.4g} m, {wide}) "
-                      f"gives only {j_sup:.4g} kg·m², short of the {combo.j_shaft:.4g} kg·m² required", j_sup)
+        where = (
+            "the envelope" if cap >= combo.cap else f"the largest diameter its stress allows at {combo.omega:.4g} rad/s"
+        )
+        wide = (
+            f"B {width:.4g} m"
+            if width >= spec.max_width
+            else f"B {width:.4g} m, the widest a rim of H/B >= {spec.hb_ratio[0]:g} can be"
+        )
+        raise NoWheel(
+            f"{combo.label}: even a solid disc filling {where} (D {cap:.4g} m, {wide}) "
+            f"gives only {j_sup:.4g} kg·m², short of the {combo.j_shaft:.4g} kg·m² required",
+            j_sup,
+        )
     if geo == "rim_arms" and not bore:
-        raise NoWheel(f"{combo.label}: a wheel on arms needs a hub on a shaft: give design.bore or the "
-                      f"shaft's diameter")
+        raise NoWheel(
+            f"{combo.label}: a wheel on arms needs a hub on a shaft: give design.bore or the shaft's diameter"
+        )
     missing = missing_poisson(material, spec)
     if missing:
         raise NoWheel(f"{combo.label}: {missing}")
@@ -219,16 +242,33 @@ def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):
     if geo in ("rim_web", "rim_arms") and bore:
         d_hub_range, l_hub_range, _ = _hub_bounds(material, bore, torque)
     structure = wheel_nlp.WheelStructure(
-        geometry=geo, criterion=spec.criterion, ductile=bool(getattr(material, "ductile", False)),
-        bored=bool(bore), n_arms=n_arms, envelope=spec.has_envelope, width=spec.max_width < math.inf,
+        geometry=geo,
+        criterion=spec.criterion,
+        ductile=bool(getattr(material, "ductile", False)),
+        bored=bool(bore),
+        n_arms=n_arms,
+        envelope=spec.has_envelope,
+        width=spec.max_width < math.inf,
         pinned=spec.d_mean is not None,
-        objective="outer_diameter" if spec.objective == "outer_diameter" else "mass")
+        objective="outer_diameter" if spec.objective == "outer_diameter" else "mass",
+    )
     problem = wheel_nlp.WheelProblem(
-        j_shaft=j_shaft, omega=omega, density=material.density,
-        poisson=getattr(material, "poisson_ratio", None) or 0.3, torque=torque, bore=bore,
-        allowable={}, envelope=spec.max_outer_diameter, max_width=spec.max_width,
-        max_rim_speed=v_max, hb_ratio=spec.hb_ratio, d_mean=spec.d_mean,
-        min_wall=_min_wall(spec, material), d_hub_range=d_hub_range, l_hub_range=l_hub_range)
+        j_shaft=j_shaft,
+        omega=omega,
+        density=material.density,
+        poisson=getattr(material, "poisson_ratio", None) or 0.3,
+        torque=torque,
+        bore=bore,
+        allowable={},
+        envelope=spec.max_outer_diameter,
+        max_width=spec.max_width,
+        max_rim_speed=v_max,
+        hb_ratio=spec.hb_ratio,
+        d_mean=spec.d_mean,
+        min_wall=_min_wall(spec, material),
+        d_hub_range=d_hub_range,
+        l_hub_range=l_hub_range,
+    )
     return structure, problem
 
 
@@ -282,8 +322,7 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
     if exact is not None:
         dims, solution = exact
         return dims, solution, strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
-    structure, problem = wheel_problem(material, spec, bore, torque, n_arms, combo.j_shaft, combo.omega,
-                                       combo.v_max)
+    structure, problem = wheel_problem(material, spec, bore, torque, n_arms, combo.j_shaft, combo.omega, combo.v_max)
     model = wheel_nlp.get_model(structure, solver_options)
     parts = model.stress_parts
     # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
@@ -292,37 +331,52 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
     targets = {}
     if stressed:
         try:
-            targets = {p: a for p, (a, _s, _w) in strength.allowables(material, geo, start_dims,
-                                                                      spec.safety_factor).items()}
-        except ThicknessOutOfRange:      # the starting wheel is thicker than the table: its weakest row
+            targets = {
+                p: a for p, (a, _s, _w) in strength.allowables(material, geo, start_dims, spec.safety_factor).items()
+            }
+        except ThicknessOutOfRange:  # the starting wheel is thicker than the table: its weakest row
             targets = {p: material.allowable(safety_factor=spec.safety_factor) for p in parts}
     table_end = _table_end(material) if stressed else None
     best, tried, queue = None, set(), [()]
-    while queue:                     # the unconstrained wheel first, then sections capped at the table's end
+    while queue:  # the unconstrained wheel first, then sections capped at the table's end
         caps = queue.pop(0)
         if caps in tried:
             continue
         tried.add(caps)
         try:
-            found = _settle(model, _with(problem, caps=dict(caps) or None), combo, material, geo, spec,
-                            torque, parts, dict(targets), table_end)
+            found = _settle(
+                model,
+                _with(problem, caps=dict(caps) or None),
+                combo,
+                material,
+                geo,
+                spec,
+                torque,
+                parts,
+                dict(targets),
+                table_end,
+            )
         except _OverTable as over:
             if len(tried) >= _MAX_BRANCHES:
-                raise SolverFailed(f"{combo.label}: keeping every section within the material's strength "
-                                   f"table took more than {_MAX_BRANCHES} capped solves; no design is "
-                                   f"reported") from None
+                raise SolverFailed(
+                    f"{combo.label}: keeping every section within the material's strength "
+                    f"table took more than {_MAX_BRANCHES} capped solves; no design is "
+                    f"reported"
+                ) from None
             queue += _branches(over.walls, dict(caps), geo, bore, table_end)
             continue
         except NoWheel:
             if not caps:
                 raise
-            continue                 # this choice of capped sections leaves no wheel; another may
+            continue  # this choice of capped sections leaves no wheel; another may
         if best is None or found[1].objective < best[1].objective:
             best = found
     if best is None:
-        raise NoWheel(f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
-                      f"material's strength table, which ends at {table_end * 1e3:g} mm, and no wheel whose "
-                      f"sections stay within it meets every limit")
+        raise NoWheel(
+            f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
+            f"material's strength table, which ends at {table_end * 1e3:g} mm, and no wheel whose "
+            f"sections stay within it meets every limit"
+        )
     return best
 
 
@@ -354,11 +408,14 @@ def _branches(walls, caps, geo, bore, end):
     """
     import itertools
 
-    end = end * (1.0 - 1e-9)       # inside the last row, whatever the round-off of exp(log(cap))
-    options = {"rim": ({"h": end}, {"b": end}), "web": ({"t_web": end},),
-               "arms": ({"arm_major": end / wheel.ARM_MINOR_RATIO},),
-               "hub": ({"d_hub": bore + 2.0 * end}, {"l_hub": end}),
-               "disc": ({"b": end}, {"d_outer": bore + 2.0 * end})}
+    end = end * (1.0 - 1e-9)  # inside the last row, whatever the round-off of exp(log(cap))
+    options = {
+        "rim": ({"h": end}, {"b": end}),
+        "web": ({"t_web": end},),
+        "arms": ({"arm_major": end / wheel.ARM_MINOR_RATIO},),
+        "hub": ({"d_hub": bore + 2.0 * end}, {"l_hub": end}),
+        "disc": ({"b": end}, {"d_outer": bore + 2.0 * end}),
+    }
     children = []
     for choice in itertools.product(*(options[part] for part in sorted(walls))):
         child = dict(caps)
@@ -381,15 +438,20 @@ def _settle(model, problem, combo, material, geo, spec, torque, parts, used, tab
             solution = wheel_nlp.solve(model, problem, combo.label)
         except SolverFailed as err:
             if getattr(err, "status", "") == "Infeasible_Problem_Detected":
-                raise NoWheel(f"{combo.label}: IPOPT found no {geo.replace('_', ' ')} within every "
-                              f"limit (it reports the problem locally infeasible; no bound proves it)") from None
+                raise NoWheel(
+                    f"{combo.label}: IPOPT found no {geo.replace('_', ' ')} within every "
+                    f"limit (it reports the problem locally infeasible; no bound proves it)"
+                ) from None
             raise
         dims = solution.dims
         try:
-            checked = (strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
-                       if getattr(material, "poisson_ratio", None) is not None else None)
+            checked = (
+                strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
+                if getattr(material, "poisson_ratio", None) is not None
+                else None
+            )
         except ThicknessOutOfRange:
-            if not stressed:         # sized by the rim speed: the report says why no stress is given
+            if not stressed:  # sized by the rim speed: the report says why no stress is given
                 return dims, solution, None
             # the parts whose wall is beyond the table (under the "wheel" rule the ruling section is the
             # thickest wall, so the same parts)
@@ -407,9 +469,11 @@ def _settle(model, problem, combo, material, geo, spec, torque, parts, used, tab
             used[part.part] = min(new, target) if not binding else new
         if settled:
             return dims, solution, checked
-    raise SolverFailed(f"{combo.label}: the stress check of the whole wheel did not settle in "
-                       f"{_MAX_ROUNDS} solves (a part's stress peak or wall strength keeps moving); "
-                       f"no design is reported")
+    raise SolverFailed(
+        f"{combo.label}: the stress check of the whole wheel did not settle in "
+        f"{_MAX_ROUNDS} solves (a part's stress peak or wall strength keeps moving); "
+        f"no design is reported"
+    )
 
 
 def _disc_closed_form(combo, spec, bore, material):
@@ -432,13 +496,18 @@ def _disc_closed_form(combo, spec, bore, material):
     """
     from flyopt.design import wheel_nlp
 
-    if (spec.geometry != "disc" or spec.criterion != "stress" or spec.objective == "outer_diameter"
-            or spec.d_mean is not None or getattr(material, "strength_by_thickness", ())
-            or getattr(material, "poisson_ratio", None) is None):
+    if (
+        spec.geometry != "disc"
+        or spec.criterion != "stress"
+        or spec.objective == "outer_diameter"
+        or spec.d_mean is not None
+        or getattr(material, "strength_by_thickness", ())
+        or getattr(material, "poisson_ratio", None) is None
+    ):
         return None
     a, rho, nu, j = bore / 2.0, material.density, material.poisson_ratio, combo.j_shaft
     sigma = material.allowable(safety_factor=spec.safety_factor)
-    k = rho * combo.omega ** 2
+    k = rho * combo.omega**2
     if a > 0:
         slope = 4.0 / ((3.0 + nu) * k)
         b2_stress = slope * sigma - (1.0 - nu) / (3.0 + nu) * a * a
@@ -446,13 +515,15 @@ def _disc_closed_form(combo, spec, bore, material):
         slope = 8.0 / ((3.0 + nu) * k)
         b2_stress = slope * sigma
     if b2_stress <= a * a:
-        raise NoWheel(f"{combo.label}: at {combo.omega:.4g} rad/s the hoop stress at a {bore * 1e3:.4g} mm bore "
-                      f"exceeds the allowable {sigma / 1e6:.4g} MPa for any disc")
+        raise NoWheel(
+            f"{combo.label}: at {combo.omega:.4g} rad/s the hoop stress at a {bore * 1e3:.4g} mm bore "
+            f"exceeds the allowable {sigma / 1e6:.4g} MPa for any disc"
+        )
     b_stress = math.sqrt(b2_stress)
     half_envelope = spec.max_outer_diameter / 2.0
     by_stress = b_stress <= half_envelope
     b = b_stress if by_stress else half_envelope
-    width = 2.0 * j / (math.pi * rho * (b ** 4 - a ** 4))
+    width = 2.0 * j / (math.pi * rho * (b**4 - a**4))
     if width > spec.max_width or width < _min_wall(spec, material) or b - a < _min_wall(spec, material):
         return None
     mass = 2.0 * j / (a * a + b * b)
@@ -465,13 +536,15 @@ def _disc_closed_form(combo, spec, bore, material):
     if by_stress:
         dm_dsigma = dm_db * slope / (2.0 * b)
         lam_p["allow_disc"] = -dm_dsigma * sigma / (mass * power)
-        lam_g["stress_disc"] = lam_p["allow_disc"]     # the stress row binds (its name in the binding list)
+        lam_g["stress_disc"] = lam_p["allow_disc"]  # the stress row binds (its name in the binding list)
     else:
         lam_g["max_outer_diameter"] = -(dm_db / 2.0) * spec.max_outer_diameter / mass
-    structure = wheel_nlp.WheelStructure("disc", "stress", power == 2, bool(bore), 0, spec.has_envelope,
-                                         spec.max_width < math.inf, False, "mass")
-    return dims, wheel_nlp.WheelSolution(dims, math.log(mass), "closed_form", 0, 0.0, lam_g, {}, lam_p, 1.0,
-                                         structure, {"disc": 1.0})
+    structure = wheel_nlp.WheelStructure(
+        "disc", "stress", power == 2, bool(bore), 0, spec.has_envelope, spec.max_width < math.inf, False, "mass"
+    )
+    return dims, wheel_nlp.WheelSolution(
+        dims, math.log(mass), "closed_form", 0, 0.0, lam_g, {}, lam_p, 1.0, structure, {"disc": 1.0}
+    )
 
 
 def _with(problem, **changes):
@@ -495,14 +568,21 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
     """
     out = {"bore": bore or None, "notes": []}
     parts = wheel.parts(geometry_name, dims, material.density)
-    out["parts"] = tuple({"name": p.name, "mass": float(p.mass), "inertia": float(p.inertia),
-                          "r_inner": float(p.r_inner), "r_outer": float(p.r_outer),
-                          "thickness": float(p.thickness)} for p in parts)
+    out["parts"] = tuple(
+        {
+            "name": p.name,
+            "mass": float(p.mass),
+            "inertia": float(p.inertia),
+            "r_inner": float(p.r_inner),
+            "r_outer": float(p.r_outer),
+            "thickness": float(p.thickness),
+        }
+        for p in parts
+    )
     mass = float(wheel.wheel_mass(parts))
     balance = hub.permissible_unbalance(mass, omega, strength.BALANCE_GRADE)
     out["unbalance_permissible"] = float(balance.u_per)
-    out.update(stress=None, allowable_stress=None, strength_safety=None, burst_speed=None,
-               speed_margin=None, key=None)
+    out.update(stress=None, allowable_stress=None, strength_safety=None, burst_speed=None, speed_margin=None, key=None)
     if getattr(material, "poisson_ratio", None) is None:
         out["notes"].append(f"material {material.name} gives no poisson_ratio: stresses not computed")
     else:
@@ -513,10 +593,12 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
             out["notes"].append(f"stresses not computed: {err}")
         else:
             out["stress"] = {**checked.to_dict(), "mean_hoop": checked.mean_hoop}
-            out.update(allowable_stress=checked.allowable_stress,
-                       strength_safety=_finite_or_none(checked.strength_safety),
-                       burst_speed=_finite_or_none(checked.burst_speed),
-                       speed_margin=_finite_or_none(checked.speed_margin))
+            out.update(
+                allowable_stress=checked.allowable_stress,
+                strength_safety=_finite_or_none(checked.strength_safety),
+                burst_speed=_finite_or_none(checked.burst_speed),
+                speed_margin=_finite_or_none(checked.speed_margin),
+            )
     hub_length = {"rim_web": dims.l_hub, "rim_arms": dims.l_hub, "disc": dims.b}.get(geometry_name)
     if bore and hub_length and torque:
         pressure = getattr(material, "bearing_pressure", None)
@@ -528,11 +610,21 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
             except ValueError as err:
                 out["notes"].append(f"key not checked: {err}")
             else:
-                out["key"] = {"size": k.key.size, "b": k.key.b, "h": k.key.h, "t1": k.key.t1,
-                              "t2": k.key.t2, "length": k.length, "effective_length": k.effective_length,
-                              "torque": k.torque, "bearing_pressure": k.pressure,
-                              "allowable_pressure": k.allowable_pressure, "shear": k.shear,
-                              "allowable_shear": k.allowable_shear, "ok": k.ok}
+                out["key"] = {
+                    "size": k.key.size,
+                    "b": k.key.b,
+                    "h": k.key.h,
+                    "t1": k.key.t1,
+                    "t2": k.key.t2,
+                    "length": k.length,
+                    "effective_length": k.effective_length,
+                    "torque": k.torque,
+                    "bearing_pressure": k.pressure,
+                    "allowable_pressure": k.allowable_pressure,
+                    "shear": k.shear,
+                    "allowable_shear": k.allowable_shear,
+                    "ok": k.ok,
+                }
     elif bore and not torque:
         out["notes"].append("the cycle gives no torque curves: key not checked")
     out["notes"] = tuple(out["notes"])
@@ -583,26 +675,45 @@ def sensitivities(solution, mass, problem_limits):
 
     for row, (what, unit, step, words, factor) in _LIMITS.items():
         if abs(lam.get(row, 0.0)) > 0:
-            value = {"max_outer_diameter": problem_limits["envelope"], "rim_speed": problem_limits["max_rim_speed"],
-                     "max_width": problem_limits["max_width"], "max_width_hub": problem_limits["max_width"]}[row]
-            dm = -mass * lam[row] / value         # rows are log(limit)
-            add(row, unit, dm, f"{what} binds: +{step * factor:g} {words} changes the mass by "
-                               f"{dm * step:+.3g} kg", value)
+            value = {
+                "max_outer_diameter": problem_limits["envelope"],
+                "rim_speed": problem_limits["max_rim_speed"],
+                "max_width": problem_limits["max_width"],
+                "max_width_hub": problem_limits["max_width"],
+            }[row]
+            dm = -mass * lam[row] / value  # rows are log(limit)
+            add(
+                row,
+                unit,
+                dm,
+                f"{what} binds: +{step * factor:g} {words} changes the mass by {dm * step:+.3g} kg",
+                value,
+            )
     wall = problem_limits.get("min_wall") or 0.0
     at_wall = sum(v for n, v in solution.lam_x.items() if v < 0 and n in ("h", "b", "t_web", "arm_major"))
     if wall > 0 and (at_wall or lam.get("hub_wall", 0.0)):
         # variables are log(dimension) with lower bounds log(min_wall); the hub's wall row is in metres
         dm = -mass * at_wall / wall - mass * lam.get("hub_wall", 0.0)
-        add("min_wall", "m", dm, f"min_wall binds: -1 mm of the thinnest section changes the mass by "
-                                 f"{-dm * 1e-3:+.3g} kg", wall)
+        add(
+            "min_wall",
+            "m",
+            dm,
+            f"min_wall binds: -1 mm of the thinnest section changes the mass by {-dm * 1e-3:+.3g} kg",
+            wall,
+        )
     if abs(lam.get("inertia", 0.0)) > 0:
         dm = -mass * lam["inertia"] / problem_limits["j_shaft"]
-        add("inertia", "kg*m^2", dm, f"each +1 % of required inertia adds "
-                                     f"{dm * 0.01 * problem_limits['j_shaft']:+.3g} kg", problem_limits["j_shaft"])
+        add(
+            "inertia",
+            "kg*m^2",
+            dm,
+            f"each +1 % of required inertia adds {dm * 0.01 * problem_limits['j_shaft']:+.3g} kg",
+            problem_limits["j_shaft"],
+        )
     for key, value in solution.lam_p.items():
         if not key.startswith("allow_") or value == 0.0:
             continue
-        part = key[len("allow_"):]
+        part = key[len("allow_") :]
         allowable = problem_limits["allowable"].get(part)
         if not allowable or not math.isfinite(allowable):
             continue
@@ -610,6 +721,11 @@ def sensitivities(solution, mass, problem_limits):
         # (checked against re-solving in tests/test_wheel_nlp.py): d m / d sigma_a = -m lam_p k P / sigma_a
         k, param = problem_limits["allow_power"], problem_limits["allow_param"][part]
         dm = -mass * value * k * param / allowable
-        add(f"stress_{part}", "Pa", dm, f"the stress limit of the {part} binds: +1 MPa allowable changes "
-                                        f"the mass by {dm * 1e6:+.3g} kg", allowable)
+        add(
+            f"stress_{part}",
+            "Pa",
+            dm,
+            f"the stress limit of the {part} binds: +1 MPa allowable changes the mass by {dm * 1e6:+.3g} kg",
+            allowable,
+        )
     return tuple(out)

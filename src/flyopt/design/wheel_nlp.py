@@ -48,8 +48,7 @@ from flyopt.design import wheel
 from flyopt.design.nlp import _CONVERGED, cached_model
 from flyopt.errors import SolverFailed
 
-__all__ = ["WheelStructure", "WheelProblem", "WheelSolution", "SAMPLES", "get_model", "solve", "BUILDS",
-           "variables_of"]
+__all__ = ["WheelStructure", "WheelProblem", "WheelSolution", "SAMPLES", "get_model", "solve", "BUILDS", "variables_of"]
 
 #: Radii per disc part where the NLP writes the stress rows, as fractions of its radial extent.
 SAMPLES = (0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0)
@@ -66,14 +65,14 @@ class WheelStructure(NamedTuple):
     """What decides the shape of a wheel NLP."""
 
     geometry: str
-    criterion: str          # "rim_speed" | "stress"
+    criterion: str  # "rim_speed" | "stress"
     ductile: bool
-    bored: bool             # a bore (else a solid centre; rim and thin_rim have neither)
-    n_arms: int             # rim_arms only (0 otherwise)
-    envelope: bool          # an outer-diameter limit is set
-    width: bool             # an axial width limit is set
-    pinned: bool            # D_m pinned
-    objective: str          # "mass" | "outer_diameter"
+    bored: bool  # a bore (else a solid centre; rim and thin_rim have neither)
+    n_arms: int  # rim_arms only (0 otherwise)
+    envelope: bool  # an outer-diameter limit is set
+    width: bool  # an axial width limit is set
+    pinned: bool  # D_m pinned
+    objective: str  # "mass" | "outer_diameter"
 
 
 def variables_of(structure):
@@ -98,9 +97,17 @@ def _dims(structure, values, bore):
     if geo == "disc":
         bore = bore if structure.bored else 0.0
         return wheel.Dims(d_outer=v["d_outer"], h=(v["d_outer"] - bore) / 2.0, b=v["b"], bore=bore)
-    return wheel.Dims(d_outer=v["d_outer"], h=v["h"], b=v["b"], bore=bore if structure.bored else 0.0,
-                      t_web=v.get("t_web", 0.0), d_hub=v.get("d_hub", 0.0), l_hub=v.get("l_hub", 0.0),
-                      arm_major=v.get("arm_major", 0.0), n_arms=structure.n_arms)
+    return wheel.Dims(
+        d_outer=v["d_outer"],
+        h=v["h"],
+        b=v["b"],
+        bore=bore if structure.bored else 0.0,
+        t_web=v.get("t_web", 0.0),
+        d_hub=v.get("d_hub", 0.0),
+        l_hub=v.get("l_hub", 0.0),
+        arm_major=v.get("arm_major", 0.0),
+        n_arms=structure.n_arms,
+    )
 
 
 def stressed_parts(structure):
@@ -122,18 +129,25 @@ class WheelModel:
     structure: WheelStructure
     solver: ca.Function
     variables: tuple
-    constraints: tuple       # names of the rows of g
-    stress_parts: tuple      # which part each allowable parameter belongs to
+    constraints: tuple  # names of the rows of g
+    stress_parts: tuple  # which part each allowable parameter belongs to
     build_time: float
 
     def describe(self):
         s = self.structure
-        return {"geometry": s.geometry, "criterion": s.criterion, "objective": s.objective,
-                "variables": list(self.variables), "constraints": sorted(set(self.constraints)),
-                "pinned": ["d_mean"] if s.pinned else [],
-                "formulation": ("IPOPT (CasADi nlpsol) on the logarithms of the dimensions; every part "
-                                "counted in J and mass; stresses by the stepped-disc solution at "
-                                f"{len(SAMPLES)} radii per part, verified by the exact maxima")}
+        return {
+            "geometry": s.geometry,
+            "criterion": s.criterion,
+            "objective": s.objective,
+            "variables": list(self.variables),
+            "constraints": sorted(set(self.constraints)),
+            "pinned": ["d_mean"] if s.pinned else [],
+            "formulation": (
+                "IPOPT (CasADi nlpsol) on the logarithms of the dimensions; every part "
+                "counted in J and mass; stresses by the stepped-disc solution at "
+                f"{len(SAMPLES)} radii per part, verified by the exact maxima"
+            ),
+        }
 
 
 #: Solver options of the wheel NLP over flyopt.design.nlp.DEFAULT_SOLVER_OPTIONS. A feasible wheel
@@ -220,11 +234,12 @@ def formulate(structure, x, par, allow):
         row("arm_within_rim", ca.log(minor) - col["b"])
         row("arm_within_hub", ca.log(minor) - col["l_hub"])
     if "d_hub" in col:
-        row("hub_wall", (dims.d_hub - par["bore"]) / 2.0)     # >= min_wall
+        row("hub_wall", (dims.d_hub - par["bore"]) / 2.0)  # >= min_wall
     if structure.criterion == "stress":
         scale = par["stress_scale"]
-        samples = wheel.stress_samples(structure.geometry, dims, density, par["poisson"], par["omega"],
-                                       par["torque"], SAMPLES)
+        samples = wheel.stress_samples(
+            structure.geometry, dims, density, par["poisson"], par["omega"], par["torque"], SAMPLES
+        )
         for part, _r, sr, st in samples:
             k = stress_parts.index(part)
             if structure.ductile:
@@ -242,12 +257,11 @@ def _build(structure, options):
     x = ca.SX.sym("x", len(names))
     p = ca.SX.sym("p", len(PARAMETERS))
     stress_parts = stressed_parts(structure)
-    allow = ca.SX.sym("allow", len(stress_parts))       # (sigma_allow / S) per part, squared if ductile
+    allow = ca.SX.sym("allow", len(stress_parts))  # (sigma_allow / S) per part, squared if ductile
     form = formulate(structure, x, {name: p[k] for k, name in enumerate(PARAMETERS)}, allow)
     nlp = {"x": x, "p": ca.vertcat(p, allow), "f": form.objective, "g": ca.vertcat(*form.rows)}
     solver = ca.nlpsol("wheel_" + "_".join(str(v) for v in structure), "ipopt", nlp, options)
-    return WheelModel(structure, solver, names, form.row_names, stress_parts,
-                      time.perf_counter() - start)
+    return WheelModel(structure, solver, names, form.row_names, stress_parts, time.perf_counter() - start)
 
 
 @dataclass(frozen=True)
@@ -278,7 +292,7 @@ class WheelProblem:
     d_hub_range: tuple = (0.0, math.inf)
     l_hub_range: tuple = (0.0, math.inf)
     start: dict | None = None
-    caps: dict | None = None       # variable name -> upper bound [m] (a section kept within a strength table)
+    caps: dict | None = None  # variable name -> upper bound [m] (a section kept within a strength table)
 
 
 @dataclass(frozen=True)
@@ -290,20 +304,22 @@ class WheelSolution:
     status: str
     iterations: int
     elapsed: float
-    lam_g: dict            # row name -> multiplier (summed over rows of one name)
-    lam_x: dict            # variable name -> multiplier of its bounds
-    lam_p: dict            # parameter name -> d f / d p
+    lam_g: dict  # row name -> multiplier (summed over rows of one name)
+    lam_x: dict  # variable name -> multiplier of its bounds
+    lam_p: dict  # parameter name -> d f / d p
     stress_scale: float
     structure: WheelStructure
-    allow_params: dict     # part -> the allowable's parameter, (sigma_a / S)^2 (ductile) or sigma_a / S
-    caps: dict = None      # the caps that set a variable's upper bound (variable -> [m]), or None
+    allow_params: dict  # part -> the allowable's parameter, (sigma_a / S)^2 (ductile) or sigma_a / S
+    caps: dict = None  # the caps that set a variable's upper bound (variable -> [m]), or None
 
 
 def _start(structure, problem, names):
     """A starting wheel: the thin rim that gives J' at a diameter within every limit."""
     rho, j = problem.density, problem.j_shaft
-    cap = min(problem.envelope, 2.0 * problem.max_rim_speed / problem.omega
-              if structure.criterion == "rim_speed" else math.inf)
+    cap = min(
+        problem.envelope,
+        2.0 * problem.max_rim_speed / problem.omega if structure.criterion == "rim_speed" else math.inf,
+    )
     sigma = min(problem.allowable.values()) if problem.allowable else math.inf
     ring = 2.0 * math.sqrt(sigma / rho) / problem.omega if math.isfinite(sigma) else math.inf
     d = min(cap, 0.8 * ring)
@@ -313,9 +329,9 @@ def _start(structure, problem, names):
         d = (64.0 * j / (math.pi * rho)) ** 0.2
     hb = problem.hb_ratio[0]
     if structure.geometry == "disc":
-        b = 32.0 * j / (math.pi * rho * max(d ** 4 - problem.bore ** 4, 1e-30 * d ** 4))
+        b = 32.0 * j / (math.pi * rho * max(d**4 - problem.bore**4, 1e-30 * d**4))
         return {"d_outer": d, "b": max(b, problem.min_wall)}
-    h = min(math.sqrt(4.0 * j * hb / (math.pi * rho * d ** 3)), 0.2 * d)
+    h = min(math.sqrt(4.0 * j * hb / (math.pi * rho * d**3)), 0.2 * d)
     h = max(h, problem.min_wall * 1.01)
     b = max(h / hb, problem.min_wall * 1.01)
     start = {"d_outer": d, "h": h, "b": b, "t_web": max(problem.min_wall * 1.2, 0.3 * b)}
@@ -355,7 +371,7 @@ def variable_bounds(structure, problem):
         lo, hi = problem.l_hub_range
         lbx[col["l_hub"]] = math.log(lo) if lo > 0 else -inf
         ubx[col["l_hub"]] = math.log(hi) if math.isfinite(hi) else inf
-    capped = {}                        # the caps tighter than every other upper bound
+    capped = {}  # the caps tighter than every other upper bound
     for n, cap in (problem.caps or {}).items():
         if n in col and math.log(cap) < ubx[col[n]]:
             ubx[col[n]] = math.log(cap)
@@ -385,7 +401,7 @@ def row_bounds(structure, constraints, problem):
             "arm_within_rim": (-inf, 0.0),
             "arm_within_hub": (-inf, 0.0),
             "hub_wall": (problem.min_wall, inf),
-        }.get(name, (-inf, 1.0))               # stress rows: sigma / allowable <= 1
+        }.get(name, (-inf, 1.0))  # stress rows: sigma / allowable <= 1
         lbg.append(lo)
         ubg.append(hi)
     return lbg, ubg
@@ -419,21 +435,28 @@ def solve(model, problem, label):
     names = model.variables
     lbx, ubx, capped = variable_bounds(s, problem)
     crossed = [n for n, lo, hi in zip(names, lbx, ubx) if lo > hi]
-    if crossed:        # a cap below a lower bound: no wheel, and IPOPT is not asked
-        err = SolverFailed(f"{label}: the caps on {', '.join(crossed)} are below their lower bounds; "
-                           f"no wheel meets both")
+    if crossed:  # a cap below a lower bound: no wheel, and IPOPT is not asked
+        err = SolverFailed(
+            f"{label}: the caps on {', '.join(crossed)} are below their lower bounds; no wheel meets both"
+        )
         err.status = "Infeasible_Problem_Detected"
         err.combination = label
         raise err
     start = problem.start or _start(s, problem, names)
     x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
     length = start["d_outer"] / 2.0
-    scale = problem.density * problem.omega ** 2 * length ** 2
+    scale = problem.density * problem.omega**2 * length**2
     lbg, ubg = row_bounds(s, model.constraints, problem)
     allow = allowable_parameters(s, problem.allowable, scale)
-    values = {"omega": problem.omega, "density": problem.density, "poisson": problem.poisson,
-              "torque": problem.torque, "bore": problem.bore, "stress_scale": scale,
-              "log_half_omega": math.log(problem.omega / 2.0)}
+    values = {
+        "omega": problem.omega,
+        "density": problem.density,
+        "poisson": problem.poisson,
+        "torque": problem.torque,
+        "bore": problem.bore,
+        "stress_scale": scale,
+        "log_half_omega": math.log(problem.omega / 2.0),
+    }
     p = [values[n] for n in PARAMETERS] + allow
     begin = time.perf_counter()
     try:
@@ -445,8 +468,10 @@ def solve(model, problem, label):
     status = stats.get("return_status", "unknown")
     iterations = int(stats.get("iter_count", -1))
     if status not in _CONVERGED:
-        err = SolverFailed(f"{label}: IPOPT did not converge on the whole wheel (return status "
-                           f"{status!r} after {iterations} iterations); no design is reported")
+        err = SolverFailed(
+            f"{label}: IPOPT did not converge on the whole wheel (return status "
+            f"{status!r} after {iterations} iterations); no design is reported"
+        )
         err.status = status
         err.combination = label
         raise err
@@ -457,7 +482,19 @@ def solve(model, problem, label):
         lam_g[name] = lam_g.get(name, 0.0) + float(lam)
     lam_x = {n: float(v) for n, v in zip(names, sol["lam_x"].full().ravel())}
     lam_p = {n: float(v) for n, v in zip(PARAMETERS, sol["lam_p"].full().ravel())}
-    for part, v in zip(model.stress_parts, sol["lam_p"].full().ravel()[len(PARAMETERS):]):
+    for part, v in zip(model.stress_parts, sol["lam_p"].full().ravel()[len(PARAMETERS) :]):
         lam_p[f"allow_{part}"] = float(v)
-    return WheelSolution(dims, float(sol["f"]), status, iterations, elapsed, lam_g, lam_x, lam_p, scale,
-                         s, dict(zip(model.stress_parts, allow)), capped or None)
+    return WheelSolution(
+        dims,
+        float(sol["f"]),
+        status,
+        iterations,
+        elapsed,
+        lam_g,
+        lam_x,
+        lam_p,
+        scale,
+        s,
+        dict(zip(model.stress_parts, allow)),
+        capped or None,
+    )

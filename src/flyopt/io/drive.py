@@ -33,9 +33,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.press import _table   # scene._Table's key check; importing flyopt.io.scene would be a cycle
-from flyopt.machine.catalogue import (QUANTITIES, REQUIRED, TEXTS, Catalogue, CatalogueMotor, MotorDataError,
-                                      catalogue)
+from flyopt.io.press import _table  # scene._Table's key check; importing flyopt.io.scene would be a cycle
+from flyopt.machine.catalogue import QUANTITIES, REQUIRED, TEXTS, Catalogue, CatalogueMotor, MotorDataError, catalogue
 from flyopt.units import quantity
 
 __all__ = ["DriveSpec", "drive_spec", "OBJECTIVES", "DRIVE_KEYS", "MOTOR_OPTION_KEYS"]
@@ -123,8 +122,10 @@ def drive_spec(raw_drive, raw_motor_options, shafts, materials=None):
         allowed.
     """
     if raw_drive is None:
-        raise SceneError("drive", "is missing: [[motor_option]] tables are the motors of a [drive] section "
-                                  "(ratio, objective, ...); add one")
+        raise SceneError(
+            "drive",
+            "is missing: [[motor_option]] tables are the motors of a [drive] section (ratio, objective, ...); add one",
+        )
     table = _table(raw_drive, "drive", DRIVE_KEYS)
     motors = _motors(table, raw_motor_options)
     ratio_range, ratios = _ratios(table)
@@ -133,8 +134,9 @@ def drive_spec(raw_drive, raw_motor_options, shafts, materials=None):
     if "max_startup" in table:
         max_startup = quantity(table["max_startup"], "time", "drive.max_startup")
         if not max_startup > 0:
-            raise SceneError("drive.max_startup", f"must be a positive time (e.g. '12 s'), got "
-                                                  f"{shorten(table['max_startup'])}")
+            raise SceneError(
+                "drive.max_startup", f"must be a positive time (e.g. '12 s'), got {shorten(table['max_startup'])}"
+            )
     thermal = table.get("thermal", True)
     if not isinstance(thermal, bool):
         raise SceneError("drive.thermal", f"must be true or false, got {shorten(thermal)}")
@@ -144,23 +146,28 @@ def drive_spec(raw_drive, raw_motor_options, shafts, materials=None):
 def _motors(table, raw_options):
     """The Catalogue the drive chooses from: ``drive.motors`` or the [[motor_option]] tables, exactly one."""
     if "motors" in table and raw_options is not None:
-        raise SceneError("drive.motors", "give either a catalogue (drive.motors) or [[motor_option]] tables, "
-                                         "not both")
+        raise SceneError("drive.motors", "give either a catalogue (drive.motors) or [[motor_option]] tables, not both")
     if "motors" in table:
         name = table["motors"]
         if not isinstance(name, str):
-            raise SceneError("drive.motors", f"must be the name of a motor catalogue (a string, e.g. "
-                                             f"\"iec_4pole\"), got {shorten(name)}")
+            raise SceneError(
+                "drive.motors",
+                f'must be the name of a motor catalogue (a string, e.g. "iec_4pole"), got {shorten(name)}',
+            )
         try:
             return catalogue(name)
         except ValueError as err:
             raise SceneError("drive.motors", f"{err}; or give [[motor_option]] tables of your own") from None
     if raw_options is None:
-        raise SceneError("drive.motors", "is missing: name a motor catalogue (motors = \"iec_4pole\") or give "
-                                         "[[motor_option]] tables")
+        raise SceneError(
+            "drive.motors", 'is missing: name a motor catalogue (motors = "iec_4pole") or give [[motor_option]] tables'
+        )
     if not isinstance(raw_options, list) or not raw_options:
-        raise SceneError(_OPTIONS, "must be an array of tables: [[motor_option]] with rated_power, rated_speed, "
-                                   "synchronous_speed and rotor_inertia")
+        raise SceneError(
+            _OPTIONS,
+            "must be an array of tables: [[motor_option]] with rated_power, rated_speed, "
+            "synchronous_speed and rotor_inertia",
+        )
     motors = [_motor_option(item, k) for k, item in enumerate(raw_options)]
     try:
         return Catalogue(_OPTIONS, tuple(motors), "the scene's [[motor_option]] tables")
@@ -174,10 +181,10 @@ def _motor_option(raw, k):
     table = _table(raw, where, MOTOR_OPTION_KEYS)
     for key in REQUIRED:
         if key not in table:
-            raise SceneError(f"{where}.{key}", f"is missing: a motor option gives at least "
-                                               f"{', '.join(REQUIRED)}")
-    values = {key: quantity(table[key], dimension, f"{where}.{key}")
-              for key, dimension in QUANTITIES.items() if key in table}
+            raise SceneError(f"{where}.{key}", f"is missing: a motor option gives at least {', '.join(REQUIRED)}")
+    values = {
+        key: quantity(table[key], dimension, f"{where}.{key}") for key, dimension in QUANTITIES.items() if key in table
+    }
     texts = {key: table[key] for key in TEXTS if key in table}
     texts.setdefault("name", where)
     try:
@@ -189,15 +196,24 @@ def _motor_option(raw, k):
 def _ratios(table):
     """(ratio_range, ratios): one of ``ratio = [min, max]`` or ``ratios = [r, ...]``."""
     if "ratio" in table and "ratios" in table:
-        raise SceneError("drive.ratios", "give either ratio = [min, max] (a range the design chooses in) or "
-                                         "ratios = [r1, r2, ...] (fixed choices), not both")
+        raise SceneError(
+            "drive.ratios",
+            "give either ratio = [min, max] (a range the design chooses in) or "
+            "ratios = [r1, r2, ...] (fixed choices), not both",
+        )
     if "ratio" in table:
         raw = table["ratio"]
         if not isinstance(raw, list) or len(raw) != 2:
-            fixed = f"; for fixed ratios write ratios = [{raw}]" if not isinstance(raw, list) else \
-                "; for fixed ratios write ratios = [...]"
-            raise SceneError("drive.ratio", f"must be a range [min, max] of the flywheel shaft's speed ratio to "
-                                            f"the crank, got {shorten(raw)}{fixed}")
+            fixed = (
+                f"; for fixed ratios write ratios = [{raw}]"
+                if not isinstance(raw, list)
+                else "; for fixed ratios write ratios = [...]"
+            )
+            raise SceneError(
+                "drive.ratio",
+                f"must be a range [min, max] of the flywheel shaft's speed ratio to "
+                f"the crank, got {shorten(raw)}{fixed}",
+            )
         low, high = (quantity(v, "dimensionless", f"drive.ratio[{k}]") for k, v in enumerate(raw))
         if not low > 0:
             raise SceneError("drive.ratio", f"must be a range of positive ratios 0 < min < max, got {shorten(raw)}")
@@ -207,8 +223,9 @@ def _ratios(table):
     if "ratios" in table:
         raw = table["ratios"]
         if not isinstance(raw, list) or not raw:
-            raise SceneError("drive.ratios", f"must be a non-empty list of fixed speed ratios "
-                                             f"(e.g. [2, 3.5, 5]), got {shorten(raw)}")
+            raise SceneError(
+                "drive.ratios", f"must be a non-empty list of fixed speed ratios (e.g. [2, 3.5, 5]), got {shorten(raw)}"
+            )
         ratios = []
         for k, v in enumerate(raw):
             r = quantity(v, "dimensionless", f"drive.ratios[{k}]")
@@ -218,8 +235,11 @@ def _ratios(table):
                 raise SceneError(f"drive.ratios[{k}]", f"the ratio {shorten(v)} is given twice")
             ratios.append(r)
         return None, tuple(sorted(ratios))
-    raise SceneError("drive.ratio", "is missing: give ratio = [min, max] (the range of the flywheel shaft's "
-                                    "speed ratio to the crank) or ratios = [r1, r2, ...] (fixed choices)")
+    raise SceneError(
+        "drive.ratio",
+        "is missing: give ratio = [min, max] (the range of the flywheel shaft's "
+        "speed ratio to the crank) or ratios = [r1, r2, ...] (fixed choices)",
+    )
 
 
 def _objective(table, motors, materials):
@@ -230,21 +250,33 @@ def _objective(table, motors, materials):
     if objective == "mass":
         massless = tuple(m.name for m in motors if m.mass is None)
         if massless:
-            raise SceneError("drive.objective", f"'mass' is the motor's mass plus the wheel's, and none is given "
-                                                f"for {shorten(', '.join(massless), 200)} (give mass = ...)")
+            raise SceneError(
+                "drive.objective",
+                f"'mass' is the motor's mass plus the wheel's, and none is given "
+                f"for {shorten(', '.join(massless), 200)} (give mass = ...)",
+            )
         return objective
     unpriced = motors.unpriced
     if unpriced:
         if motors.name == _OPTIONS:
-            raise SceneError("drive.objective", f"'cost' needs a price for every motor option; none is given for "
-                                                f"{shorten(', '.join(unpriced), 200)} (give price = ...)")
-        raise SceneError("drive.objective", f"'cost' needs a price for every motor; the catalogue "
-                                            f"{shorten(motors.name)} gives none for {len(unpriced)} of its "
-                                            f"{len(motors)} sizes (no price source is on file): give "
-                                            "[[motor_option]] tables with prices, or objective = \"mass\"")
+            raise SceneError(
+                "drive.objective",
+                f"'cost' needs a price for every motor option; none is given for "
+                f"{shorten(', '.join(unpriced), 200)} (give price = ...)",
+            )
+        raise SceneError(
+            "drive.objective",
+            f"'cost' needs a price for every motor; the catalogue "
+            f"{shorten(motors.name)} gives none for {len(unpriced)} of its "
+            f"{len(motors)} sizes (no price source is on file): give "
+            '[[motor_option]] tables with prices, or objective = "mass"',
+        )
     if materials is not None:
         missing = [name for name, material in materials.items() if material.cost is None]
         if missing:
-            raise SceneError("drive.objective", f"'cost' needs a cost per kg for every material the flywheel may "
-                                                f"be made of; none is given for {shorten(', '.join(missing), 200)}")
+            raise SceneError(
+                "drive.objective",
+                f"'cost' needs a cost per kg for every material the flywheel may "
+                f"be made of; none is given for {shorten(', '.join(missing), 200)}",
+            )
     return objective

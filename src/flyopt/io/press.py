@@ -30,9 +30,22 @@ from flyopt.errors import SceneError, shorten
 from flyopt.machine import press as physics
 from flyopt.units import quantity
 
-PRESS_KEYS = ("strokes_per_minute", "stroke_period", "energy_per_stroke", "force", "force_unit", "position_unit",
-              "punching", "working_time", "working_angle", "slowdown", "delta", "flywheel_speed",
-              "flywheel_speed_min", "description")
+PRESS_KEYS = (
+    "strokes_per_minute",
+    "stroke_period",
+    "energy_per_stroke",
+    "force",
+    "force_unit",
+    "position_unit",
+    "punching",
+    "working_time",
+    "working_angle",
+    "slowdown",
+    "delta",
+    "flywheel_speed",
+    "flywheel_speed_min",
+    "description",
+)
 """Keys of the [press] table."""
 
 PUNCHING_KEYS = ("thickness", "shear_strength", "hole_diameter", "cut_length", "description")
@@ -108,37 +121,54 @@ def scene_data(data):
 
 def _crank(press):
     """(the key given, the crank's mean speed [rad/s], the stroke period [s])."""
-    key = _one_of(press, _RATE, "press.strokes_per_minute",
-                  "give the stroke rate as strokes_per_minute (e.g. 12) or stroke_period (e.g. '5 s')")
+    key = _one_of(
+        press,
+        _RATE,
+        "press.strokes_per_minute",
+        "give the stroke rate as strokes_per_minute (e.g. 12) or stroke_period (e.g. '5 s')",
+    )
     if key == "strokes_per_minute":
         strokes = _number(press, key, "dimensionless")
         if strokes <= 0:
-            raise SceneError("press.strokes_per_minute", f"must be positive (strokes a minute, one crank turn "
-                                                         f"each), got {shorten(press[key])}")
+            raise SceneError(
+                "press.strokes_per_minute",
+                f"must be positive (strokes a minute, one crank turn each), got {shorten(press[key])}",
+            )
         omega = physics.crank_speed(strokes)
         return key, omega, physics.stroke_period(omega)
     period = _time(press[key], "press.stroke_period")
     if period <= 0:
-        raise SceneError("press.stroke_period", f"must be positive (the time of one stroke, one crank turn), "
-                                                f"got {shorten(press[key])}")
+        raise SceneError(
+            "press.stroke_period",
+            f"must be positive (the time of one stroke, one crank turn), got {shorten(press[key])}",
+        )
     return key, physics.crank_speed_of_period(period), period
 
 
 def _working_angle(press, period):
     """The crank angle of the working stroke [rad], 0 < θ_w < 2π."""
-    key = _one_of(press, _WORKING, "press.working_time",
-                  "give how long the working stroke lasts as working_time (e.g. '2 s') or "
-                  "working_angle (e.g. '60 deg' of the crank)")
+    key = _one_of(
+        press,
+        _WORKING,
+        "press.working_time",
+        "give how long the working stroke lasts as working_time (e.g. '2 s') or "
+        "working_angle (e.g. '60 deg' of the crank)",
+    )
     if key == "working_time":
         time = _time(press[key], "press.working_time")
         if not 0 < time < period:
-            raise SceneError("press.working_time", f"must be positive and shorter than the stroke period "
-                                                   f"({period:.6g} s), got {shorten(press[key])}")
+            raise SceneError(
+                "press.working_time",
+                f"must be positive and shorter than the stroke period ({period:.6g} s), got {shorten(press[key])}",
+            )
         return physics.working_angle(time, period)
     angle = _number(press, key, "angle")
     if not 0 < angle < physics.TURN:
-        raise SceneError("press.working_angle", f"must lie between 0 and 360 deg (exclusive: one crank turn is "
-                                                f"the whole stroke), got {shorten(press[key])}")
+        raise SceneError(
+            "press.working_angle",
+            f"must lie between 0 and 360 deg (exclusive: one crank turn is "
+            f"the whole stroke), got {shorten(press[key])}",
+        )
     return angle
 
 
@@ -147,10 +177,14 @@ def _working_angle(press, period):
 
 def _load(press, angle):
     """(the key given, the resisting torque table over one turn, a description of it)."""
-    key = _one_of(press, _ENERGY, "press.energy_per_stroke",
-                  "give the work of one stroke as energy_per_stroke (e.g. '15 kJ'), force = [[position, force], "
-                  "...] over the working stroke, or punching = { thickness, shear_strength, hole_diameter or "
-                  "cut_length }")
+    key = _one_of(
+        press,
+        _ENERGY,
+        "press.energy_per_stroke",
+        "give the work of one stroke as energy_per_stroke (e.g. '15 kJ'), force = [[position, force], "
+        "...] over the working stroke, or punching = { thickness, shear_strength, hole_diameter or "
+        "cut_length }",
+    )
     for unit in ("force_unit", "position_unit"):
         if unit in press and key != "force":
             raise SceneError(f"press.{unit}", "belongs to press.force (the units of its table), which is not given")
@@ -162,17 +196,24 @@ def _load(press, angle):
         note = f"press: {energy:.6g} J a stroke, taken evenly over the working angle of {degrees:.6g} deg"
     elif key == "punching":
         energy, force = _punching(press[key])
-        note = (f"press: punching, F_max = {force:.6g} N, E = F_max t/2 = {energy:.6g} J a stroke, taken evenly "
-                f"over the working angle of {degrees:.6g} deg")
+        note = (
+            f"press: punching, F_max = {force:.6g} N, E = F_max t/2 = {energy:.6g} J a stroke, taken evenly "
+            f"over the working angle of {degrees:.6g} deg"
+        )
     else:
         positions, forces = _force_table(press)
         energy = physics.force_energy(positions, forces)
         if not energy > 0:
-            raise SceneError("press.force", f"the table does no work (∫F dx = {energy:.6g} J): give the force the "
-                             "ram works against over the working stroke")
+            raise SceneError(
+                "press.force",
+                f"the table does no work (∫F dx = {energy:.6g} J): give the force the "
+                "ram works against over the working stroke",
+            )
         angles, torques = physics.force_torque(positions, forces, angle)
-        note = (f"press: the force table, {energy:.6g} J a stroke, its positions uniform over the working angle "
-                f"of {degrees:.6g} deg")
+        note = (
+            f"press: the force table, {energy:.6g} J a stroke, its positions uniform over the working angle "
+            f"of {degrees:.6g} deg"
+        )
         return key, physics.resisting_table(angles, torques, angle), note
     torque = physics.working_torque(energy, angle)
     return key, physics.resisting_table([0.0, angle], [torque, torque], angle), note
@@ -184,12 +225,18 @@ def _punching(raw):
     values = {}
     for key, dimension in (("thickness", "length"), ("shear_strength", "stress")):
         if key not in table:
-            raise SceneError(f"press.punching.{key}", "is missing: punching needs the plate's thickness, its "
-                                                      "ultimate shear_strength, and hole_diameter or cut_length")
+            raise SceneError(
+                f"press.punching.{key}",
+                "is missing: punching needs the plate's thickness, its "
+                "ultimate shear_strength, and hole_diameter or cut_length",
+            )
         values[key] = _positive(table, key, dimension, "press.punching")
-    cut = _one_of(table, ("hole_diameter", "cut_length"), "press.punching.hole_diameter",
-                  "give the cut as hole_diameter (a round hole, cut length π d) or cut_length (the sheared "
-                  "edge's length)")
+    cut = _one_of(
+        table,
+        ("hole_diameter", "cut_length"),
+        "press.punching.hole_diameter",
+        "give the cut as hole_diameter (a round hole, cut length π d) or cut_length (the sheared edge's length)",
+    )
     length = _positive(table, cut, "length", "press.punching")
     if cut == "hole_diameter":
         length *= math.pi
@@ -203,11 +250,14 @@ def _force_table(press):
     raw = press["force"]
     position_unit = _unit(press, "position_unit", "length")
     force_unit = _unit(press, "force_unit", "force")
-    if hasattr(raw, "array"):                  # a large table read without tomllib (flyopt.io.scene.InlineRows)
+    if hasattr(raw, "array"):  # a large table read without tomllib (flyopt.io.scene.InlineRows)
         raw = raw.array.tolist()
     if not isinstance(raw, list) or len(raw) < 2:
-        raise SceneError(where, "must be a list of at least two [position, force] pairs over the working stroke, "
-                                "e.g. [[\"0 mm\", \"0 kN\"], [\"20 mm\", \"660 kN\"]]")
+        raise SceneError(
+            where,
+            "must be a list of at least two [position, force] pairs over the working stroke, "
+            'e.g. [["0 mm", "0 kN"], ["20 mm", "660 kN"]]',
+        )
     positions, forces = [], []
     for k, pair in enumerate(raw):
         if not isinstance(pair, list) or len(pair) != 2:
@@ -215,14 +265,21 @@ def _force_table(press):
         positions.append(_scaled(pair[0], "length", f"{where}[{k}] position", position_unit))
         forces.append(_scaled(pair[1], "force", f"{where}[{k}] force", force_unit))
         if forces[-1] < 0:
-            raise SceneError(f"{where}[{k}]", f"the force must not be negative (the force the ram works "
-                                              f"against), got {shorten(pair[1])}")
+            raise SceneError(
+                f"{where}[{k}]",
+                f"the force must not be negative (the force the ram works against), got {shorten(pair[1])}",
+            )
         if k and positions[k] < positions[k - 1]:
-            raise SceneError(f"{where}[{k}]", f"positions must not decrease over the working stroke: "
-                                              f"{positions[k]:.6g} m comes after {positions[k - 1]:.6g} m")
+            raise SceneError(
+                f"{where}[{k}]",
+                f"positions must not decrease over the working stroke: "
+                f"{positions[k]:.6g} m comes after {positions[k - 1]:.6g} m",
+            )
         if k >= 2 and positions[k] == positions[k - 2]:
-            raise SceneError(f"{where}[{k}]", f"three points at one position ({positions[k]:.6g} m); a step is "
-                                              "exactly two points at one position")
+            raise SceneError(
+                f"{where}[{k}]",
+                f"three points at one position ({positions[k]:.6g} m); a step is exactly two points at one position",
+            )
     if positions[-1] == positions[0]:
         raise SceneError(where, "the working stroke has no length: the last position must lie beyond the first")
     return positions, forces
@@ -233,38 +290,54 @@ def _force_table(press):
 
 def _delta(press):
     """(the key given, flyopt's δ)."""
-    key = _one_of(press, _FLUCTUATION, "press.slowdown",
-                  "give the allowed speed drop over the working stroke as slowdown ((ω_top − ω_bottom)/ω_top, "
-                  "e.g. 0.1), delta (δ = (ω_max − ω_min)/ω_mean), or flywheel_speed_min with flywheel_speed")
+    key = _one_of(
+        press,
+        _FLUCTUATION,
+        "press.slowdown",
+        "give the allowed speed drop over the working stroke as slowdown ((ω_top − ω_bottom)/ω_top, "
+        "e.g. 0.1), delta (δ = (ω_max − ω_min)/ω_mean), or flywheel_speed_min with flywheel_speed",
+    )
     if key == "slowdown":
         slowdown = _number(press, key, "dimensionless")
         if not 0 < slowdown < 1:
-            raise SceneError("press.slowdown", f"must lie between 0 and 1 (exclusive): the fraction of its top speed "
-                                               f"the flywheel loses over the working stroke (1 would stop it), got "
-                                               f"{shorten(press[key])}; presses about 0.1 (δ 1/10 to 1/7)")
+            raise SceneError(
+                "press.slowdown",
+                f"must lie between 0 and 1 (exclusive): the fraction of its top speed "
+                f"the flywheel loses over the working stroke (1 would stop it), got "
+                f"{shorten(press[key])}; presses about 0.1 (δ 1/10 to 1/7)",
+            )
         return key, physics.delta_from_slowdown(slowdown)
     if key == "delta":
         delta = _number(press, key, "dimensionless")
         if not 0 < delta < 2:
-            raise SceneError("press.delta", f"must lie between 0 and 2 (exclusive; the slowdown 2δ/(2 + δ) between "
-                                            f"0 and 1), got {shorten(press[key])}; presses 1/10 to 1/7")
+            raise SceneError(
+                "press.delta",
+                f"must lie between 0 and 2 (exclusive; the slowdown 2δ/(2 + δ) between "
+                f"0 and 1), got {shorten(press[key])}; presses 1/10 to 1/7",
+            )
         return key, delta
     if "flywheel_speed" not in press:
-        raise SceneError("press.flywheel_speed_min", "needs press.flywheel_speed, the top speed it is the "
-                                                     "lowest speed of")
+        raise SceneError(
+            "press.flywheel_speed_min", "needs press.flywheel_speed, the top speed it is the lowest speed of"
+        )
     top = _flywheel_top(press)
     bottom = _number(press, key, "angular_speed")
     if not 0 < bottom < top:
-        raise SceneError("press.flywheel_speed_min", f"must be positive and below flywheel_speed "
-                                                     f"({shorten(press['flywheel_speed'])}), got {shorten(press[key])}")
+        raise SceneError(
+            "press.flywheel_speed_min",
+            f"must be positive and below flywheel_speed "
+            f"({shorten(press['flywheel_speed'])}), got {shorten(press[key])}",
+        )
     return key, physics.delta_from_slowdown(1.0 - bottom / top)
 
 
 def _flywheel_top(press):
     top = _number(press, "flywheel_speed", "angular_speed")
     if top <= 0:
-        raise SceneError("press.flywheel_speed", f"must be positive (the flywheel shaft's top speed), got "
-                                                 f"{shorten(press['flywheel_speed'])}")
+        raise SceneError(
+            "press.flywheel_speed",
+            f"must be positive (the flywheel shaft's top speed), got {shorten(press['flywheel_speed'])}",
+        )
     return top
 
 
@@ -283,13 +356,17 @@ def _machine(raw, rate, fluctuation, omega_crank, delta):
     if raw is None:
         raw = {}
     if not isinstance(raw, dict):
-        return raw                                 # the scene reader says what is wrong
-    for key, press_key, what in (("speed", rate, "the crank's mean speed is the stroke rate"),
-                                 ("delta", fluctuation, "the speed fluctuation follows from the press's"),
-                                 ("cycle", rate, "a press's cycle is one crank turn a stroke")):
+        return raw  # the scene reader says what is wrong
+    for key, press_key, what in (
+        ("speed", rate, "the crank's mean speed is the stroke rate"),
+        ("delta", fluctuation, "the speed fluctuation follows from the press's"),
+        ("cycle", rate, "a press's cycle is one crank turn a stroke"),
+    ):
         if key in raw:
-            raise SceneError(f"press.{press_key}", f"machine.{key} is given too: {what}; give it once, "
-                                                   f"in [press] (leave machine.{key} out)")
+            raise SceneError(
+                f"press.{press_key}",
+                f"machine.{key} is given too: {what}; give it once, in [press] (leave machine.{key} out)",
+            )
     return {**raw, "speed": f"{omega_crank!r} rad/s", "delta": delta, "cycle": f"{physics.TURN!r} rad"}
 
 
@@ -301,8 +378,11 @@ def _torque(raw, source, rows, note):
         return raw
     for key in ("resisting", "net"):
         if key in raw:
-            raise SceneError(f"press.{source}", f"torque.{key} is given too: the process load of a [press] is its "
-                                                f"resisting torque; give the load once (leave [torque.{key}] out)")
+            raise SceneError(
+                f"press.{source}",
+                f"torque.{key} is given too: the process load of a [press] is its "
+                f"resisting torque; give the load once (leave [torque.{key}] out)",
+            )
     out = {**raw, "resisting": {"points": rows, "unit": "N*m", "angle_unit": "rad", "description": note}}
     out.setdefault("driving", {"constant": "unknown"})
     return out
@@ -310,16 +390,22 @@ def _torque(raw, source, rows, note):
 
 def _shafts(raw, ratio, top):
     """[[shaft]] with the flywheel's shaft added (and the crankshaft, when the scene gives none)."""
-    shaft = {"name": FLYWHEEL_SHAFT, "speed_ratio": ratio,
-             "description": f"the flywheel shaft, top speed {top} (press.flywheel_speed)"}
+    shaft = {
+        "name": FLYWHEEL_SHAFT,
+        "speed_ratio": ratio,
+        "description": f"the flywheel shaft, top speed {top} (press.flywheel_speed)",
+    }
     if raw is None:
         return [{"name": CRANKSHAFT, "speed_ratio": 1.0}, shaft]
     if not isinstance(raw, list):
         return raw
     for k, item in enumerate(raw):
         if isinstance(item, dict) and item.get("name") == FLYWHEEL_SHAFT:
-            raise SceneError("press.flywheel_speed", f"shaft[{k}] is named {FLYWHEEL_SHAFT!r} too: flywheel_speed "
-                                                     f"adds the flywheel's shaft under that name; rename yours")
+            raise SceneError(
+                "press.flywheel_speed",
+                f"shaft[{k}] is named {FLYWHEEL_SHAFT!r} too: flywheel_speed "
+                f"adds the flywheel's shaft under that name; rename yours",
+            )
     return [*raw, shaft]
 
 
@@ -382,6 +468,9 @@ def _scaled(raw, dimension, where, factor):
 def _time(raw, where):
     """A time [s]: a plain number of seconds, or a string with a unit of time ("2 s", "500 ms", "0.1 min")."""
     if isinstance(raw, bool):
-        raise SceneError(where, f"expected a time, got {shorten(raw)}: give seconds, or a time with its unit "
-                                "(e.g. '2 s', '500 ms', '0.1 min')")
+        raise SceneError(
+            where,
+            f"expected a time, got {shorten(raw)}: give seconds, or a time with its unit "
+            "(e.g. '2 s', '500 ms', '0.1 min')",
+        )
     return quantity(raw, "time", where)

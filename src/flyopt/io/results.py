@@ -54,11 +54,34 @@ import numpy as np
 from flyopt.errors import SceneError
 from flyopt.units import DIMENSIONS
 
-__all__ = ["CORE_INPUTS", "COUNTS", "INPUTS", "MISSING", "QUANTITIES", "RESULT_COLUMNS", "ResultWriter",
-           "arrow_table", "document_units", "json_text", "normalize", "objective_of", "output_format",
-           "read_results", "schema", "schema_version", "scene_record", "sidecar_path",
-           "solution_document", "solution_json", "table_document", "table_metadata", "table_units", "unit_of",
-           "write_results", "write_text"]
+__all__ = [
+    "CORE_INPUTS",
+    "COUNTS",
+    "INPUTS",
+    "MISSING",
+    "QUANTITIES",
+    "RESULT_COLUMNS",
+    "ResultWriter",
+    "arrow_table",
+    "document_units",
+    "json_text",
+    "normalize",
+    "objective_of",
+    "output_format",
+    "read_results",
+    "schema",
+    "schema_version",
+    "scene_record",
+    "sidecar_path",
+    "solution_document",
+    "solution_json",
+    "table_document",
+    "table_metadata",
+    "table_units",
+    "unit_of",
+    "write_results",
+    "write_text",
+]
 
 # --------------------------------------------------------------------------
 # Units
@@ -75,11 +98,20 @@ OUTPUT_DIMENSIONS = {"time": "s", "unbalance": "kg*m"}
 #: imports this module (for :func:`output_format`), so the table cannot be read from there;
 #: tests/test_outputs.py checks that the two agree, field by field.
 INPUTS = {
-    "delta": "dimensionless", "speed": "angular_speed", "inertia": "inertia",
-    "torque.scale": "dimensionless", "design.max_outer_diameter": "length",
-    "design.max_width": "length", "design.d_mean": "length", "design.hb_ratio": "dimensionless",
-    "design.hb_min": "dimensionless", "design.hb_max": "dimensionless",
-    "design.geometry": None, "design.objective": None, "material": None, "shaft": None,
+    "delta": "dimensionless",
+    "speed": "angular_speed",
+    "inertia": "inertia",
+    "torque.scale": "dimensionless",
+    "design.max_outer_diameter": "length",
+    "design.max_width": "length",
+    "design.d_mean": "length",
+    "design.hb_ratio": "dimensionless",
+    "design.hb_min": "dimensionless",
+    "design.hb_max": "dimensionless",
+    "design.geometry": None,
+    "design.objective": None,
+    "material": None,
+    "shaft": None,
 }
 #: Columns ``material.NAME.FIELD`` and ``shaft.NAME.FIELD`` of a sweep: FIELD and its dimension.
 MATERIAL_INPUTS = {"density": "density", "max_rim_speed": "speed", "cost": "cost_per_mass"}
@@ -91,70 +123,148 @@ SHAFT_INPUTS = {"speed_ratio": "dimensionless"}
 #: docs/flywheel-design.md.
 QUANTITIES = {
     # the cycle, sections 2-5: energy indicator diagram, A_max, J_F
-    "a_max": "energy", "delta_e": "energy", "work_per_cycle": "energy",
-    "angle": "angle", "cycle_angle": "angle", "angle_omega_max": "angle",
-    "angle_omega_min": "angle", "angle_delta_e_max": "angle", "angle_delta_e_min": "angle",
-    "driving_torque": "torque", "resisting_torque": "torque",
-    "omega": "angular_speed", "omega_mean": "angular_speed", "omega_max": "angular_speed",
-    "omega_min": "angular_speed", "omega_target": "angular_speed",
-    "j_constant": "inertia", "j_margin": "inertia", "j_required": "inertia",
+    "a_max": "energy",
+    "delta_e": "energy",
+    "work_per_cycle": "energy",
+    "angle": "angle",
+    "cycle_angle": "angle",
+    "angle_omega_max": "angle",
+    "angle_omega_min": "angle",
+    "angle_delta_e_max": "angle",
+    "angle_delta_e_min": "angle",
+    "driving_torque": "torque",
+    "resisting_torque": "torque",
+    "omega": "angular_speed",
+    "omega_mean": "angular_speed",
+    "omega_max": "angular_speed",
+    "omega_min": "angular_speed",
+    "omega_target": "angular_speed",
+    "j_constant": "inertia",
+    "j_margin": "inertia",
+    "j_required": "inertia",
     "gd2_required": "flywheel_moment",
-    "achieved_delta": "dimensionless", "delta_allowed": "dimensionless",
-    "j_error": "dimensionless", "tolerance": "dimensionless",
+    "achieved_delta": "dimensionless",
+    "delta_allowed": "dimensionless",
+    "j_error": "dimensionless",
+    "tolerance": "dimensionless",
     # power and efficiency, section 11; transfer to a shaft, section 8; start-up, section 7
-    "power": "power", "motor_power": "power", "efficiency": "dimensionless",
-    "speed_ratio": "dimensionless", "best_speed_ratio": "dimensionless",
-    "time": "time", "cycles": "dimensionless", "solve_time": "time",
+    "power": "power",
+    "motor_power": "power",
+    "efficiency": "dimensionless",
+    "speed_ratio": "dimensionless",
+    "best_speed_ratio": "dimensionless",
+    "time": "time",
+    "cycles": "dimensionless",
+    "solve_time": "time",
     # the wheel, sections 9, 10 and 13
-    "d_mean": "length", "d_outer": "length", "d_inner": "length", "h": "length", "b": "length",
-    "outer_diameter": "length", "d_outer_limit": "length", "d_outer_needed": "length",
-    "max_outer_diameter": "length", "max_width": "length",
-    "bore": "length", "t_web": "length", "d_hub": "length", "l_hub": "length",
-    "arm_major": "length", "arm_minor": "length",
-    "r_inner": "length", "r_outer": "length", "thickness": "length", "radius": "length",
+    "d_mean": "length",
+    "d_outer": "length",
+    "d_inner": "length",
+    "h": "length",
+    "b": "length",
+    "outer_diameter": "length",
+    "d_outer_limit": "length",
+    "d_outer_needed": "length",
+    "max_outer_diameter": "length",
+    "max_width": "length",
+    "bore": "length",
+    "t_web": "length",
+    "d_hub": "length",
+    "l_hub": "length",
+    "arm_major": "length",
+    "arm_minor": "length",
+    "r_inner": "length",
+    "r_outer": "length",
+    "thickness": "length",
+    "radius": "length",
     "wall": "length",
-    "hb_ratio": "dimensionless", "mass": "mass", "cost": "dimensionless", "density": "density",
-    "j_flywheel": "inertia", "j_at_reference": "inertia", "j_max": "inertia",
+    "hb_ratio": "dimensionless",
+    "mass": "mass",
+    "cost": "dimensionless",
+    "density": "density",
+    "j_flywheel": "inertia",
+    "j_at_reference": "inertia",
+    "j_max": "inertia",
     "j_required_on_shaft": "inertia",
-    "rim_speed": "speed", "rim_speed_limit": "speed",
-    "hoop_stress": "stress", "allowable_stress": "stress", "allowable": "stress",
-    "strength": "stress", "stress": "stress", "max_principal": "stress", "von_mises": "stress",
-    "hoop_max": "stress", "radial_max": "stress", "mean_hoop": "stress",
-    "safety_factor": "dimensionless", "strength_safety": "dimensionless",
-    "burst_speed": "angular_speed", "speed_margin": "dimensionless",
+    "rim_speed": "speed",
+    "rim_speed_limit": "speed",
+    "hoop_stress": "stress",
+    "allowable_stress": "stress",
+    "allowable": "stress",
+    "strength": "stress",
+    "stress": "stress",
+    "max_principal": "stress",
+    "von_mises": "stress",
+    "hoop_max": "stress",
+    "radial_max": "stress",
+    "mean_hoop": "stress",
+    "safety_factor": "dimensionless",
+    "strength_safety": "dimensionless",
+    "burst_speed": "angular_speed",
+    "speed_margin": "dimensionless",
     "unbalance_permissible": "unbalance",
     # the hub's key (DIN 6885-1), section 13
-    "length": "length", "effective_length": "length", "t1": "length", "t2": "length",
-    "torque": "torque", "bearing_pressure": "stress", "shear": "stress",
-    "allowable_pressure": "stress", "allowable_shear": "stress",
+    "length": "length",
+    "effective_length": "length",
+    "t1": "length",
+    "t2": "length",
+    "torque": "torque",
+    "bearing_pressure": "stress",
+    "shear": "stress",
+    "allowable_pressure": "stress",
+    "allowable_shear": "stress",
     # the drive designed with the flywheel, sections 7, 8 and 14: the motor, its ratio, its heating
-    "motor_ratio": "dimensionless", "flywheel_ratio": "dimensionless", "breakdown_ratio": "dimensionless",
-    "rated_power": "power", "rated_speed": "angular_speed", "synchronous_speed": "angular_speed",
-    "rotor_inertia": "inertia", "j_delta": "inertia",
-    "rms_torque": "torque", "mean_torque": "torque", "rated_torque": "torque", "startup_time": "time",
-    "motor_mass": "mass", "wheel_mass": "mass", "total_mass": "mass", "price": "dimensionless",
+    "motor_ratio": "dimensionless",
+    "flywheel_ratio": "dimensionless",
+    "breakdown_ratio": "dimensionless",
+    "rated_power": "power",
+    "rated_speed": "angular_speed",
+    "synchronous_speed": "angular_speed",
+    "rotor_inertia": "inertia",
+    "j_delta": "inertia",
+    "rms_torque": "torque",
+    "mean_torque": "torque",
+    "rated_torque": "torque",
+    "startup_time": "time",
+    "motor_mass": "mass",
+    "wheel_mass": "mass",
+    "total_mass": "mass",
+    "price": "dimensionless",
 }
 
 #: Numbers whose unit is set by another field, so that a table or document has no single
 #: unit for them where that field varies (their ``units`` entry is then null).
 UNIT_SET_BY = {
     "objective": "the unit of the quantity the design's objective names "
-                 "(mass: kg, outer_diameter: m, cost: 1; a drive's mass is motor plus wheel)",
+    "(mass: kg, outer_diameter: m, cost: 1; a drive's mass is motor plus wheel)",
     "objective_bound": "the unit of the design's objective, as for objective",
     "epsilon": "the unit of the Pareto front's second objective",
     "dmass_dlimit": "kg per the unit given in the same entry's 'unit'",
     "dobjective_dlimit": "the drive objective's unit (kg for mass, 1 for cost) per the unit given in the same "
-                         "entry's 'unit'",
+    "entry's 'unit'",
 }
 
 #: Whole numbers that count or index: no unit.
-COUNTS = frozenset({"index", "index_omega_max", "index_omega_min", "iterations", "n_arms",
-                    "point", "seed", "n_combinations", "n_feasible"})
+COUNTS = frozenset(
+    {
+        "index",
+        "index_omega_max",
+        "index_omega_min",
+        "iterations",
+        "n_arms",
+        "point",
+        "seed",
+        "n_combinations",
+        "n_feasible",
+    }
+)
 
 #: The convention for values that do not exist, as each file states it.
-MISSING = ("null where a value does not exist (nothing designed, no limit binding, no IPOPT "
-           "iterations, no price); an empty cell in CSV, which pandas reads as NaN. A limit "
-           "that is not set is +inf in tables (inf in CSV) and null in JSON")
+MISSING = (
+    "null where a value does not exist (nothing designed, no limit binding, no IPOPT "
+    "iterations, no price); an empty cell in CSV, which pandas reads as NaN. A limit "
+    "that is not set is +inf in tables (inf in CSV) and null in JSON"
+)
 
 
 def dimension_of(name):
@@ -316,11 +426,19 @@ def solution_document(solution, scene, timings=False):
     """
     data = json_safe(solution.to_dict(timings=timings))
     design, drive = getattr(solution, "design", None), getattr(solution, "drive", None)
-    objectives = {design.spec.objective if design is not None else None,
-                  drive.objective if drive is not None else None} - {None}
+    objectives = {
+        design.spec.objective if design is not None else None,
+        drive.objective if drive is not None else None,
+    } - {None}
     objective = objectives.pop() if len(objectives) == 1 else None
-    return {"schema_version": schema_version(), "kind": "solve", "flyopt_version": _flyopt_version(),
-            "scene": str(scene), "units": document_units(data, objective), **data}
+    return {
+        "schema_version": schema_version(),
+        "kind": "solve",
+        "flyopt_version": _flyopt_version(),
+        "scene": str(scene),
+        "units": document_units(data, objective),
+        **data,
+    }
 
 
 def solution_json(solution, scene, timings=False):
@@ -353,12 +471,10 @@ def scene_record(scene, digest=None):
             sha = hashlib.sha256(Path(source).read_bytes()).hexdigest()
         except OSError:
             sha = None
-    return {"scene": None if source is None else str(source), "scene_file_sha256": sha,
-            "scene_digest": digest}
+    return {"scene": None if source is None else str(source), "scene_file_sha256": sha, "scene_digest": digest}
 
 
-def table_metadata(kind, columns, *, kinds=None, scene=None, objectives=None, sweep=None,
-                   objective=None):
+def table_metadata(kind, columns, *, kinds=None, scene=None, objectives=None, sweep=None, objective=None):
     """What a table file says about itself: Parquet key-value metadata, the CSV sidecar.
 
     Parameters
@@ -384,11 +500,15 @@ def table_metadata(kind, columns, *, kinds=None, scene=None, objectives=None, sw
     """
     kinds = kinds or {}
     front = objectives[1] if objectives else None
-    meta = {"schema_version": schema_version(), "kind": kind, "flyopt_version": _flyopt_version(),
-            **(scene or {"scene": None, "scene_file_sha256": None, "scene_digest": None}),
-            "missing": MISSING,
-            "columns": [{"name": str(c), "type": _JSON_TYPES[kinds.get(c) or _kind(c)]} for c in columns],
-            "units": table_units(columns, objective, front)}
+    meta = {
+        "schema_version": schema_version(),
+        "kind": kind,
+        "flyopt_version": _flyopt_version(),
+        **(scene or {"scene": None, "scene_file_sha256": None, "scene_digest": None}),
+        "missing": MISSING,
+        "columns": [{"name": str(c), "type": _JSON_TYPES[kinds.get(c) or _kind(c)]} for c in columns],
+        "units": table_units(columns, objective, front),
+    }
     if objectives is not None:
         meta["objectives"] = list(objectives)
     if sweep is not None:
@@ -428,6 +548,7 @@ def write_text(path, text, label="-o/--output"):
             handle.write(text)
             if text and not text.endswith("\n"):
                 handle.write("\n")
+
     replace_atomically(path, write)
 
 
@@ -448,30 +569,58 @@ def replace_atomically(path, write, temporary_folder=None):
 # --------------------------------------------------------------------------
 
 #: Input columns present in every result table (SI; NaN for "none").
-CORE_INPUTS = ("delta", "speed", "inertia", "torque.scale", "design.geometry",
-               "design.objective", "design.hb_min", "design.hb_max",
-               "design.max_outer_diameter", "design.max_width", "design.d_mean")
+CORE_INPUTS = (
+    "delta",
+    "speed",
+    "inertia",
+    "torque.scale",
+    "design.geometry",
+    "design.objective",
+    "design.hb_min",
+    "design.hb_max",
+    "design.max_outer_diameter",
+    "design.max_width",
+    "design.d_mean",
+)
 
 #: Result columns, with their kind. Where a value does not exist it is null (see
 #: :func:`normalize`): text None, numbers NaN, ``iterations`` <NA>.
 RESULT_COLUMNS = {
-    "status": "str",            # designed | not_needed | infeasible | failed
-    "feasible": "bool",         # a design was found
-    "method": "str",            # closed_form | ipopt | none
+    "status": "str",  # designed | not_needed | infeasible | failed
+    "feasible": "bool",  # a design was found
+    "method": "str",  # closed_form | ipopt | none
     "best_material": "str",
     "best_shaft": "str",
     "best_speed_ratio": "float",
-    "d_mean": "float", "d_outer": "float", "d_inner": "float", "h": "float", "b": "float",
-    "hb_ratio": "float", "mass": "float", "cost": "float", "objective": "float",
-    "rim_speed": "float", "rim_speed_limit": "float", "hoop_stress": "float",
-    "safety_factor": "float", "j_flywheel": "float", "j_at_reference": "float",
-    "j_required_on_shaft": "float", "d_outer_limit": "float",
-    "binding": "str",           # comma-separated names of BINDING_NAMES
-    "n_combinations": "int",    # material x shaft combinations decided
+    "d_mean": "float",
+    "d_outer": "float",
+    "d_inner": "float",
+    "h": "float",
+    "b": "float",
+    "hb_ratio": "float",
+    "mass": "float",
+    "cost": "float",
+    "objective": "float",
+    "rim_speed": "float",
+    "rim_speed_limit": "float",
+    "hoop_stress": "float",
+    "safety_factor": "float",
+    "j_flywheel": "float",
+    "j_at_reference": "float",
+    "j_required_on_shaft": "float",
+    "d_outer_limit": "float",
+    "binding": "str",  # comma-separated names of BINDING_NAMES
+    "n_combinations": "int",  # material x shaft combinations decided
     "n_feasible": "int",
-    "a_max": "float", "j_margin": "float", "j_required": "float",
-    "driving_torque": "float", "power": "float", "motor_power": "float",
-    "solver_status": "str", "iterations": "int", "message": "str",
+    "a_max": "float",
+    "j_margin": "float",
+    "j_required": "float",
+    "driving_torque": "float",
+    "power": "float",
+    "motor_power": "float",
+    "solver_status": "str",
+    "iterations": "int",
+    "message": "str",
 }
 
 #: Whole-number columns that may have no value (IPOPT's iterations of a closed-form design):
@@ -532,7 +681,7 @@ def normalize(frame):
         column = frame[name]
         kind = _kind(name, column)
         if kind == "str":
-            values = column.astype(object)        # categorical in Parquet, str or object elsewhere
+            values = column.astype(object)  # categorical in Parquet, str or object elsewhere
             frame[name] = values.where(values.notna() & (values != ""), None).astype(_text_dtype())
         elif kind == "bool":
             frame[name] = column.astype(bool)
@@ -559,8 +708,7 @@ def output_format(path, label="output"):
     """``"parquet"`` or ``"csv"``, by the suffix of ``path``; SceneError naming ``label`` else."""
     kind = _SUFFIXES.get(Path(path).suffix.lower())
     if kind is None:
-        raise SceneError(label, f"{str(path)!r} must end in .parquet or .csv "
-                         f"(the suffix picks the format)")
+        raise SceneError(label, f"{str(path)!r} must end in .parquet or .csv (the suffix picks the format)")
     return kind
 
 
@@ -621,8 +769,10 @@ def _text(column):
         if array.type != pa.string():
             array = array.cast(pa.string())
     except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError):
-        array = pa.array([None if v is None or (isinstance(v, float) and math.isnan(v)) else str(v)
-                          for v in column.astype(object)], type=pa.string())
+        array = pa.array(
+            [None if v is None or (isinstance(v, float) and math.isnan(v)) else str(v) for v in column.astype(object)],
+            type=pa.string(),
+        )
     empty = pc.equal(array, "")
     if pc.any(empty).as_py():
         array = pc.if_else(empty, pa.scalar(None, pa.string()), array)
@@ -650,8 +800,7 @@ def _csv(frame, handle, header):
 def _write_sidecar(path, metadata):
     """Write the sidecar of CSV ``path`` (atomically) and return its path."""
     sidecar = sidecar_path(path)
-    text = json.dumps({**metadata, "csv": {"delimiter": ",", "header": True, "null": ""}},
-                      indent=2, allow_nan=False)
+    text = json.dumps({**metadata, "csv": {"delimiter": ",", "header": True, "null": ""}}, indent=2, allow_nan=False)
     write_text(sidecar, text, label="output")
     return sidecar
 
@@ -711,8 +860,7 @@ class ResultWriter:
         if self._columns is None:
             self._columns = list(frame.columns)
         elif list(frame.columns) != self._columns:
-            raise ValueError(f"a piece's columns differ from the file's: {list(frame.columns)} "
-                             f"vs {self._columns}")
+            raise ValueError(f"a piece's columns differ from the file's: {list(frame.columns)} vs {self._columns}")
         if self.kind == "parquet":
             self._pending.append(arrow_table(frame, self._file_metadata()))
             self._pending_rows += len(frame)
@@ -733,8 +881,7 @@ class ResultWriter:
         table = pa.concat_tables(self._pending) if len(self._pending) > 1 else self._pending[0]
         self._pending, self._pending_rows = [], 0
         if self._writer is None:
-            self._writer = pq.ParquetWriter(self.temporary, table.schema,
-                                            use_dictionary=_dictionary_columns(table))
+            self._writer = pq.ParquetWriter(self.temporary, table.schema, use_dictionary=_dictionary_columns(table))
         self._writer.write_table(table, row_group_size=max(len(table), 1))
 
     def close(self):
@@ -743,12 +890,13 @@ class ResultWriter:
         try:
             if self.kind == "parquet":
                 self._flush()
-                if self._writer is None:      # no rows: a file with the columns alone
+                if self._writer is None:  # no rows: a file with the columns alone
                     import pandas as pd
                     import pyarrow.parquet as pq
 
-                    pq.write_table(arrow_table(pd.DataFrame(columns=self._columns or []),
-                                               self._file_metadata()), self.temporary)
+                    pq.write_table(
+                        arrow_table(pd.DataFrame(columns=self._columns or []), self._file_metadata()), self.temporary
+                    )
                 else:
                     self._writer.close()
                     self._writer = None
@@ -827,6 +975,7 @@ def write_results(frame, path, temporary_folder=None, metadata=None):
                 _csv(frame, handle, header=True)
             if metadata is not None:
                 sidecar = _write_sidecar(path, metadata)
+
     try:
         replace_atomically(path, write, temporary_folder)
     except BaseException:
@@ -866,10 +1015,13 @@ def read_results(path, columns=None):
         header = pd.read_csv(path, nrows=0).columns
         strings = [c for c in header if _kind(c) == "str"]
         numbers = [c for c in header if c not in strings]
-        frame = pd.read_csv(path, dtype={c: str for c in strings}, keep_default_na=False,
-                            na_values={c: ["", "NaN", "nan"] if c in numbers else [""]
-                                       for c in header},
-                            usecols=columns)
+        frame = pd.read_csv(
+            path,
+            dtype={c: str for c in strings},
+            keep_default_na=False,
+            na_values={c: ["", "NaN", "nan"] if c in numbers else [""] for c in header},
+            usecols=columns,
+        )
         if columns is not None:
             frame = frame[list(columns)]
         sidecar = sidecar_path(path)

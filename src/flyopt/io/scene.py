@@ -13,9 +13,10 @@ import difflib
 import math
 import os
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -118,14 +119,14 @@ class Scene:
     resisting: object = None
     net: NetAreas | None = None
     shafts: tuple = (Shaft("reference", 1.0),)
-    design: object = None          # DesignSpec (defaults when the scene has no [design])
-    design_materials: tuple | None = None   # names the design may use; None: every known material
-    design_shafts: tuple | None = None      # names of [[shaft]] the design may use; None: all
-    materials: tuple = ()          # user materials ([[material]]), extending the built-in ones
-    members: tuple = ()            # flyopt.machine.mechanism.Member of [[member]]: J_e(φ) and member loads
-    mechanism: object = None       # SliderCrank or GearTrain of [mechanism]
-    drive: object = None           # flyopt.io.drive.DriveSpec of [drive]: the motor and ratio designed with the wheel
-    engine: object = None          # flyopt.machine.engine.Engine of [engine]; its members lead ``members``
+    design: object = None  # DesignSpec (defaults when the scene has no [design])
+    design_materials: tuple | None = None  # names the design may use; None: every known material
+    design_shafts: tuple | None = None  # names of [[shaft]] the design may use; None: all
+    materials: tuple = ()  # user materials ([[material]]), extending the built-in ones
+    members: tuple = ()  # flyopt.machine.mechanism.Member of [[member]]: J_e(φ) and member loads
+    mechanism: object = None  # SliderCrank or GearTrain of [mechanism]
+    drive: object = None  # flyopt.io.drive.DriveSpec of [drive]: the motor and ratio designed with the wheel
+    engine: object = None  # flyopt.machine.engine.Engine of [engine]; its members lead ``members``
     source: str | None = field(default=None, compare=False)
 
     def material_library(self):
@@ -195,17 +196,21 @@ def read_toml(path):
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as err:
-        raise SceneError("", f"cannot read the file: {err.strerror if hasattr(err, 'strerror') and err.strerror else err}",
-                         str(path)) from None
+        raise SceneError(
+            "", f"cannot read the file: {err.strerror if hasattr(err, 'strerror') and err.strerror else err}", str(path)
+        ) from None
     try:
         return _parse_toml(text)
     except tomllib.TOMLDecodeError as err:
         raise SceneError("", f"not valid TOML: {err}", str(path)) from None
-    except ValueError as err:        # an integer of over 4300 digits
+    except ValueError as err:  # an integer of over 4300 digits
         raise SceneError("", f"not a scene: {clip(str(err))}", str(path)) from None
     except (RecursionError, MemoryError):
-        raise SceneError("", "not a scene: arrays or tables nested too deeply (or too large) to read "
-                         f"({len(text)} characters)", str(path)) from None
+        raise SceneError(
+            "",
+            f"not a scene: arrays or tables nested too deeply (or too large) to read ({len(text)} characters)",
+            str(path),
+        ) from None
 
 
 # -- large inline tables ---------------------------------------------------------
@@ -217,11 +222,14 @@ FAST_TABLE_CHARACTERS = 2000
 #: exponent (no "_", "inf", "nan", hex: those go to tomllib). Possessive: no backtracking.
 _TOML_NUMBER = r"[+-]?+(?:0|[1-9][0-9]*+)(?:\.[0-9]++)?+(?:[eE][+-]?+[0-9]++)?+"
 _TOML_BLANK = r"[ \t\r\n]*+"
-_TOML_PAIR = rf"\[{_TOML_BLANK}{_TOML_NUMBER}{_TOML_BLANK},{_TOML_BLANK}{_TOML_NUMBER}{_TOML_BLANK}(?:,{_TOML_BLANK})?+\]"
-_TOML_PAIRS = re.compile(rf"\[{_TOML_BLANK}{_TOML_PAIR}(?:{_TOML_BLANK},{_TOML_BLANK}{_TOML_PAIR})*+{_TOML_BLANK}"
-                         rf"(?:,{_TOML_BLANK})?+\]")
-_TABLE_KEY = re.compile(r"^[ \t]*(?:points|force|torque|velocity_ratio|angular_ratio)[ \t]*=[ \t]*(?=\[)",
-                        re.MULTILINE)
+_TOML_PAIR = (
+    rf"\[{_TOML_BLANK}{_TOML_NUMBER}{_TOML_BLANK},{_TOML_BLANK}{_TOML_NUMBER}{_TOML_BLANK}(?:,{_TOML_BLANK})?+\]"
+)
+_TOML_PAIRS = re.compile(
+    rf"\[{_TOML_BLANK}{_TOML_PAIR}(?:{_TOML_BLANK},{_TOML_BLANK}{_TOML_PAIR})*+{_TOML_BLANK}"
+    rf"(?:,{_TOML_BLANK})?+\]"
+)
+_TABLE_KEY = re.compile(r"^[ \t]*(?:points|force|torque|velocity_ratio|angular_ratio)[ \t]*=[ \t]*(?=\[)", re.MULTILINE)
 _BRACKETS = str.maketrans("[],", "   ")
 
 
@@ -277,7 +285,7 @@ def _parse_toml(text):
                 nonce = _nonce(text)
             marker = f"flyopt-table-{nonce}-{len(tables)}"
             tables[marker] = rows
-            pieces += [text[end:match.start()], f'"{marker}"']
+            pieces += [text[end : match.start()], f'"{marker}"']
             end = match.end()
         key = _TABLE_KEY.search(text, match.end() if rows is not None else key.end())
     if not tables:
@@ -305,7 +313,7 @@ def _fast_rows(table):
     if not np.isfinite(numbers).all():
         return None
     for k in np.flatnonzero((numbers == 0) & np.signbit(numbers)):
-        if tokens[k].lstrip("+-").isdigit():       # the integer -0 is 0 in TOML, and float(0) is 0.0
+        if tokens[k].lstrip("+-").isdigit():  # the integer -0 is 0 in TOML, and float(0) is 0.0
             numbers[k] = 0.0
     return InlineRows(numbers.reshape(-1, 2))
 
@@ -353,22 +361,45 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     SceneError
         A field is missing, unknown or wrong.
     """
-    files = Path(source).parent if source else Path()   # a points_file is relative to the scene file
-    if isinstance(data, dict) and "press" in data:      # a press from its process data (docs/flywheel-design.md, section 11)
+    files = Path(source).parent if source else Path()  # a points_file is relative to the scene file
+    if (
+        isinstance(data, dict) and "press" in data
+    ):  # a press from its process data (docs/flywheel-design.md, section 11)
         from flyopt.io.press import scene_data
 
         data = scene_data(data)
-    top = _Table(data, "", {"title", "description", "machine", "torque", "shaft", "design", "material",
-                            "mechanism", "member", "sweep", "drive", "motor_option", "engine"})  # [sweep] is read by flyopt.studies.sweep.load_sweep
-    machine = _Table(top.require("machine"), "machine",
-                     {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"})
+    top = _Table(
+        data,
+        "",
+        {
+            "title",
+            "description",
+            "machine",
+            "torque",
+            "shaft",
+            "design",
+            "material",
+            "mechanism",
+            "member",
+            "sweep",
+            "drive",
+            "motor_option",
+            "engine",
+        },
+    )  # [sweep] is read by flyopt.studies.sweep.load_sweep
+    machine = _Table(
+        top.require("machine"), "machine", {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"}
+    )
     omega = machine.quantity("speed", "angular_speed", required=True)
     if omega <= 0:
         raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
     delta = machine.quantity("delta", "dimensionless", required=True)
     if not 0 < delta < 2:
-        raise SceneError("machine.delta", f"must lie between 0 and 2 (exclusive), got {shorten(machine.raw('delta'))}; "
-                         "typical values are 1/5 (crushers) to 1/300 (AC generators)")
+        raise SceneError(
+            "machine.delta",
+            f"must lie between 0 and 2 (exclusive), got {shorten(machine.raw('delta'))}; "
+            "typical values are 1/5 (crushers) to 1/300 (AC generators)",
+        )
     if machine.has("inertia") and machine.has("gd2"):
         raise SceneError("machine.gd2", "give either machine.inertia or machine.gd2, not both")
     j_c = machine.quantity("inertia", "inertia", default=0.0)
@@ -382,48 +413,80 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     engine = _engine(top.get("engine"), files) if top.has("engine") else None
     if engine is not None:
         if machine.has("cycle") and abs(cycle - engine.cycle_angle) > ANGLE_TOLERANCE * engine.cycle_angle:
-            raise SceneError("machine.cycle", f"is {math.degrees(cycle):.6g} deg, but the cycle of a {engine.cycle} "
-                             f"engine is {math.degrees(engine.cycle_angle):.6g} deg (leave machine.cycle out: "
-                             "[engine] cycle sets it)")
+            raise SceneError(
+                "machine.cycle",
+                f"is {math.degrees(cycle):.6g} deg, but the cycle of a {engine.cycle} "
+                f"engine is {math.degrees(engine.cycle_angle):.6g} deg (leave machine.cycle out: "
+                "[engine] cycle sets it)",
+            )
         cycle = engine.cycle_angle
 
     shafts = _shafts(top.get("shaft"))
     j_c = constant_inertia(j_c, shafts)
-    efficiency = _efficiency(machine.get("efficiency"), "machine.efficiency") if machine.has("efficiency") \
+    efficiency = (
+        _efficiency(machine.get("efficiency"), "machine.efficiency")
+        if machine.has("efficiency")
         else _reference_efficiency(shafts)
+    )
 
     mechanism = _mechanism(top.get("mechanism"))
     members = _members(top.get("member"), mechanism, cycle, files)
     if engine is not None:
         members = _with_engine(engine, mechanism, members)
     member_loads = any(m.force is not None or m.torque is not None for m in members)
-    driving, resisting, net = _torques(top.get("torque", {}) if member_loads else top.require("torque"),
-                                       cycle, shafts, efficiency, member_loads, files)
+    driving, resisting, net = _torques(
+        top.get("torque", {}) if member_loads else top.require("torque"), cycle, shafts, efficiency, member_loads, files
+    )
     if engine is not None and net is not None:
-        raise SceneError("torque.net", "an [engine] needs torque curves, not net areas: its gas torque is a curve "
-                         "over the crank angle (give [torque.resisting], e.g. constant = \"unknown\")")
+        raise SceneError(
+            "torque.net",
+            "an [engine] needs torque curves, not net areas: its gas torque is a curve "
+            'over the crank angle (give [torque.resisting], e.g. constant = "unknown")',
+        )
     if members and net is not None:
-        raise SceneError("member", "members need the torque curves ([torque.driving] and [torque.resisting]), "
-                         "not net areas: their inertia varies with the angle")
+        raise SceneError(
+            "member",
+            "members need the torque curves ([torque.driving] and [torque.resisting]), "
+            "not net areas: their inertia varies with the angle",
+        )
     materials = _materials(top.get("material"))
     design, design_materials, design_shafts = _design(top.get("design", {}), shafts, materials)
     drive = None
     if top.has("drive") or top.has("motor_option"):
+        from flyopt.design.materials import design_material_names, material_library
         from flyopt.io.drive import drive_spec
 
-        from flyopt.design.materials import design_material_names, material_library
-
         library = material_library(materials)
-        drive = drive_spec(top.get("drive"), top.get("motor_option"), shafts,
-                           materials={n: library[n] for n in design_material_names(library, design_materials)})
+        drive = drive_spec(
+            top.get("drive"),
+            top.get("motor_option"),
+            shafts,
+            materials={n: library[n] for n in design_material_names(library, design_materials)},
+        )
     title = top.get("title", "")
     if not isinstance(title, str):
         raise SceneError("title", f"must be a string, got {shorten(title)}")
-    return Scene(title=title or (Path(source).stem if source else "scene"), omega_mean=omega, delta=delta,
-                 j_constant=j_c, cycle_angle=cycle, efficiency=efficiency, driving=driving,
-                 resisting=resisting, net=net, shafts=shafts, design=design,
-                 design_materials=design_materials, design_shafts=design_shafts, materials=materials,
-                 members=members, mechanism=mechanism, drive=drive, engine=engine, source=source)
+    return Scene(
+        title=title or (Path(source).stem if source else "scene"),
+        omega_mean=omega,
+        delta=delta,
+        j_constant=j_c,
+        cycle_angle=cycle,
+        efficiency=efficiency,
+        driving=driving,
+        resisting=resisting,
+        net=net,
+        shafts=shafts,
+        design=design,
+        design_materials=design_materials,
+        design_shafts=design_shafts,
+        materials=materials,
+        members=members,
+        mechanism=mechanism,
+        drive=drive,
+        engine=engine,
+        source=source,
+    )
 
 
 def constant_inertia(j_machine, shafts):
@@ -460,8 +523,10 @@ def _torques(section, cycle, shafts=(), efficiency=1.0, member_loads=False, file
     torque = _Table(section, "torque", {"driving", "resisting", "net"})
     if torque.has("net"):
         if torque.has("driving") or torque.has("resisting"):
-            raise SceneError("torque.net", "give either the net areas or the driving and resisting "
-                             "torques, not both (the torque is given twice)")
+            raise SceneError(
+                "torque.net",
+                "give either the net areas or the driving and resisting torques, not both (the torque is given twice)",
+            )
         return None, None, _net_areas(torque.get("net"))
     curves = []
     for name in ("driving", "resisting"):
@@ -470,9 +535,12 @@ def _torques(section, cycle, shafts=(), efficiency=1.0, member_loads=False, file
         elif member_loads:
             curves.append(Constant(0.0))
         else:
-            raise SceneError(f"torque.{name}", "is missing: give [torque.driving] and [torque.resisting], "
-                             "or [torque.net] with the net areas (a curve may be left out, meaning zero, "
-                             "when [[member]] forces or torques carry the load)")
+            raise SceneError(
+                f"torque.{name}",
+                "is missing: give [torque.driving] and [torque.resisting], "
+                "or [torque.net] with the net areas (a curve may be left out, meaning zero, "
+                "when [[member]] forces or torques carry the load)",
+            )
     driving, resisting = curves
     if isinstance(driving, Constant) and isinstance(resisting, Constant) and driving.unknown and resisting.unknown:
         raise SceneError("torque.resisting.constant", "both torques are unknown; at most one may be")
@@ -480,12 +548,18 @@ def _torques(section, cycle, shafts=(), efficiency=1.0, member_loads=False, file
 
 
 def _curve(section, where, cycle, shafts=(), efficiency=1.0, files=Path()):
-    table = _Table(section, where, {"points", "points_file", "constant", "expression", "motor", "unit",
-                                    "angle_unit", "description"})
+    table = _Table(
+        section,
+        where,
+        {"points", "points_file", "constant", "expression", "motor", "unit", "angle_unit", "description"},
+    )
     forms = [k for k in ("points", "points_file", "constant", "expression", "motor") if table.has(k)]
     if len(forms) != 1:
-        raise SceneError(where, "give exactly one of points, points_file, constant, expression or motor"
-                         + (f" (the torque is given twice: {', '.join(forms)})" if forms else ""))
+        raise SceneError(
+            where,
+            "give exactly one of points, points_file, constant, expression or motor"
+            + (f" (the torque is given twice: {', '.join(forms)})" if forms else ""),
+        )
     form = forms[0]
     unit = 1.0
     if table.has("unit"):
@@ -504,12 +578,14 @@ def _curve(section, where, cycle, shafts=(), efficiency=1.0, files=Path()):
         except ExpressionError as err:
             raise SceneError(f"{where}.expression", str(err)) from None
         return ExpressionTorque(expr, unit, where=f"{where}.expression")
-    angle_unit = _unit_factor(table.get("angle_unit"), "angle", f"{where}.angle_unit") \
-        if table.has("angle_unit") else 1.0
+    angle_unit = (
+        _unit_factor(table.get("angle_unit"), "angle", f"{where}.angle_unit") if table.has("angle_unit") else 1.0
+    )
     if form == "points_file":
         units = (table.get("angle_unit", "rad"), table.get("unit", DIMENSIONS["torque"][1]))
-        return _points_file(table.get("points_file"), f"{where}.points_file", files, cycle, unit, angle_unit,
-                            "torque", units)
+        return _points_file(
+            table.get("points_file"), f"{where}.points_file", files, cycle, unit, angle_unit, "torque", units
+        )
     return _points(table.get("points"), f"{where}.points", cycle, unit, angle_unit)
 
 
@@ -522,7 +598,7 @@ def _points(raw, where, cycle, unit, angle_unit, dimension="torque", label=None,
     label = label or dimension
     if not isinstance(raw, (list, InlineRows)) or len(raw) < 2:
         raise SceneError(where, f"must be a list of at least two [angle, {label}] pairs")
-    if isinstance(raw, InlineRows):     # plain finite numbers: what _scaled gives each, float(x) * unit
+    if isinstance(raw, InlineRows):  # plain finite numbers: what _scaled gives each, float(x) * unit
         angles = raw.array[:, 0] * angle_unit
         values = raw.array[:, 1] * unit
     else:
@@ -536,19 +612,30 @@ def _points(raw, where, cycle, unit, angle_unit, dimension="torque", label=None,
     if minimum is not None and np.any(values < minimum[0]):
         k = int(np.argmax(values < minimum[0]))
         written = raw.array[k, 1] if isinstance(raw, InlineRows) else raw[k][1]
-        raise SceneError(f"{where}[{k}]", f"the {label} {shorten(written)} at {np.degrees(angles[k]):.6g} deg is "
-                         f"below {minimum[0]:g}: {minimum[1]}")
+        raise SceneError(
+            f"{where}[{k}]",
+            f"the {label} {shorten(written)} at {np.degrees(angles[k]):.6g} deg is below {minimum[0]:g}: {minimum[1]}",
+        )
     problem, k = _table_problem(angles, cycle)
     if problem == "decreasing":
-        raise SceneError(where, f"angles must not decrease: point {k} ({np.degrees(angles[k]):.6g} deg) "
-                         f"comes after {np.degrees(angles[k - 1]):.6g} deg")
+        raise SceneError(
+            where,
+            f"angles must not decrease: point {k} ({np.degrees(angles[k]):.6g} deg) "
+            f"comes after {np.degrees(angles[k - 1]):.6g} deg",
+        )
     if problem == "three":
-        raise SceneError(where, f"three points at one angle ({np.degrees(angles[k]):.6g} deg); "
-                         "a vertical step is exactly two points at one angle")
+        raise SceneError(
+            where,
+            f"three points at one angle ({np.degrees(angles[k]):.6g} deg); "
+            "a vertical step is exactly two points at one angle",
+        )
     if problem == "open":
-        raise SceneError(where, f"the table covers {np.degrees(angles[0]):.6g} to {np.degrees(angles[-1]):.6g} deg "
-                         f"but the cycle is 0 to {np.degrees(cycle):.6g} deg: the cycle does not close "
-                         "(the first point must be at 0 and the last at the cycle angle)")
+        raise SceneError(
+            where,
+            f"the table covers {np.degrees(angles[0]):.6g} to {np.degrees(angles[-1]):.6g} deg "
+            f"but the cycle is 0 to {np.degrees(cycle):.6g} deg: the cycle does not close "
+            "(the first point must be at 0 and the last at the cycle angle)",
+        )
     angles[0], angles[-1] = 0.0, cycle
     return PiecewiseLinear(angles, values)
 
@@ -614,20 +701,32 @@ def _points_file(raw, where, files, cycle, unit, angle_unit, column, units, mini
     values = numbers[:, 1] * unit
     if minimum is not None and np.any(values < minimum[0]):
         k = int(np.argmax(values < minimum[0]))
-        raise SceneError(where, f"{name} line {lines[k]}: the {column} {numbers[k, 1]:.6g} {units[1]} is below "
-                         f"{minimum[0]:g}: {minimum[1]}")
+        raise SceneError(
+            where,
+            f"{name} line {lines[k]}: the {column} {numbers[k, 1]:.6g} {units[1]} is below "
+            f"{minimum[0]:g}: {minimum[1]}",
+        )
     problem, k = _table_problem(angles, cycle)
     if problem == "decreasing":
-        raise SceneError(where, f"{name} line {lines[k]}: angles must not decrease: {np.degrees(angles[k]):.6g} deg "
-                         f"comes after {np.degrees(angles[k - 1]):.6g} deg on line {lines[k - 1]}")
+        raise SceneError(
+            where,
+            f"{name} line {lines[k]}: angles must not decrease: {np.degrees(angles[k]):.6g} deg "
+            f"comes after {np.degrees(angles[k - 1]):.6g} deg on line {lines[k - 1]}",
+        )
     if problem == "three":
-        raise SceneError(where, f"{name} line {lines[k]}: three rows at one angle ({np.degrees(angles[k]):.6g} deg, "
-                         f"lines {lines[k - 1]} to {lines[k + 1]}); a vertical step is exactly two rows at one angle")
+        raise SceneError(
+            where,
+            f"{name} line {lines[k]}: three rows at one angle ({np.degrees(angles[k]):.6g} deg, "
+            f"lines {lines[k - 1]} to {lines[k + 1]}); a vertical step is exactly two rows at one angle",
+        )
     if problem == "open":
-        raise SceneError(where, f"{name} lines {lines[0]} to {lines[-1]}: the table covers "
-                         f"{np.degrees(angles[0]):.6g} to {np.degrees(angles[-1]):.6g} deg but the cycle is 0 to "
-                         f"{np.degrees(cycle):.6g} deg: the cycle does not close (the first row must be at 0 and "
-                         "the last at the cycle angle)")
+        raise SceneError(
+            where,
+            f"{name} lines {lines[0]} to {lines[-1]}: the table covers "
+            f"{np.degrees(angles[0]):.6g} to {np.degrees(angles[-1]):.6g} deg but the cycle is 0 to "
+            f"{np.degrees(cycle):.6g} deg: the cycle does not close (the first row must be at 0 and "
+            "the last at the cycle angle)",
+        )
     angles[0], angles[-1] = 0.0, cycle
     return PiecewiseLinear(angles, values)
 
@@ -660,8 +759,13 @@ def _csv_table(raw, where, files, columns, units):
     try:
         text = path.read_text(encoding="utf-8-sig")
     except (OSError, UnicodeDecodeError) as err:
-        reason = err.strerror if isinstance(err, OSError) and err.strerror else "not UTF-8 text" \
-            if isinstance(err, UnicodeDecodeError) else str(err)
+        reason = (
+            err.strerror
+            if isinstance(err, OSError) and err.strerror
+            else "not UTF-8 text"
+            if isinstance(err, UnicodeDecodeError)
+            else str(err)
+        )
         raise SceneError(where, f"cannot read {name}: {reason}") from None
     numbers, lines = _read_csv(text, where, name, columns, units)
     return numbers, lines, name
@@ -687,12 +791,12 @@ def _read_csv(text, where, name, columns, units):
     """
     first = text.find("\n")
     header = _is_header(text if first < 0 else text[:first])
-    body = (text[first + 1:] if first >= 0 else "") if header else text
+    body = (text[first + 1 :] if first >= 0 else "") if header else text
     body = body.rstrip()
     codes = np.frombuffer(body.encode("utf-8"), dtype=np.uint8)
     ends, commas = np.flatnonzero(codes == 10), np.flatnonzero(codes == 44)
     if len(commas) == len(ends) + 1 >= 2 and np.all(commas[:-1] < ends) and np.all(commas[1:] > ends):
-        try:                                      # one comma on each line: rows of two fields
+        try:  # one comma on each line: rows of two fields
             numbers = np.array(body.replace("\n", ",").split(","), dtype=float)
         except ValueError:
             numbers = None
@@ -706,7 +810,7 @@ def _read_csv_lines(rows, where, name, columns, units):
     """:func:`_read_csv` line by line: the first wrong line, named, or the same numbers."""
     numbers, lines = [], []
     allowed = {k: f"a plain number, the {columns[k]} in {units[k]}" for k in (0, 1)}
-    header = True                             # the first line with text may name the columns
+    header = True  # the first line with text may name the columns
     for number, line in enumerate(rows, 1):
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
@@ -717,26 +821,36 @@ def _read_csv_lines(rows, where, name, columns, units):
                 continue
         fields = line.split(",")
         if len(fields) != 2:
-            raise SceneError(where, f"{name} line {number}: expected 2 columns, {columns[0]} and {columns[1]} separated by "
-                             f"a comma, got {len(fields)}: {shorten(stripped)}")
+            raise SceneError(
+                where,
+                f"{name} line {number}: expected 2 columns, {columns[0]} and {columns[1]} separated by "
+                f"a comma, got {len(fields)}: {shorten(stripped)}",
+            )
         row = []
         for k, text in enumerate(fields):
             try:
                 value = float(text)
             except ValueError:
-                raise SceneError(where, f"{name} line {number}, column {k + 1}: {shorten(text.strip())} is not a "
-                                 f"number (allowed: {allowed[k]})") from None
+                raise SceneError(
+                    where,
+                    f"{name} line {number}, column {k + 1}: {shorten(text.strip())} is not a "
+                    f"number (allowed: {allowed[k]})",
+                ) from None
             if not math.isfinite(value):
-                raise SceneError(where, f"{name} line {number}, column {k + 1}: {shorten(text.strip())} is not "
-                                 f"finite (allowed: {allowed[k]})")
+                raise SceneError(
+                    where,
+                    f"{name} line {number}, column {k + 1}: {shorten(text.strip())} is not "
+                    f"finite (allowed: {allowed[k]})",
+                )
             row.append(value)
         numbers.append(row)
         lines.append(number)
     if len(numbers) < 2:
         found = f"only line {lines[0]} holds one" if numbers else "there is none"
         first = "at angle 0, the last at the cycle angle" if columns[0] == "angle" else "at rest"
-        raise SceneError(where, f"{name}: a table needs at least two rows of {columns[0]},{columns[1]} (the first "
-                         f"{first}); {found}")
+        raise SceneError(
+            where, f"{name}: a table needs at least two rows of {columns[0]},{columns[1]} (the first {first}); {found}"
+        )
     return np.array(numbers), lines
 
 
@@ -758,12 +872,13 @@ def _motor(raw, where, shafts, efficiency, files=Path()):
     from flyopt.machine.motor import DCMotor, InductionMotor
     from flyopt.machine.torque import MotorTorque
 
-    kinds = {"induction": {"kind", "rated_power", "rated_speed", "synchronous_speed", "breakdown_ratio", "model",
-                           "shaft"},
-             "dc": {"kind", "no_load_speed", "stall_torque", "rated_power", "rated_speed", "shaft"},
-             "table": {"kind", "points", "points_file", "speed_unit", "unit", "shaft", "description"}}
+    kinds = {
+        "induction": {"kind", "rated_power", "rated_speed", "synchronous_speed", "breakdown_ratio", "model", "shaft"},
+        "dc": {"kind", "no_load_speed", "stall_torque", "rated_power", "rated_speed", "shaft"},
+        "table": {"kind", "points", "points_file", "speed_unit", "unit", "shaft", "description"},
+    }
     if not isinstance(raw, dict):
-        raise SceneError(where, "must be a table, e.g. { kind = \"induction\", rated_power = \"7.5 kW\", ... }")
+        raise SceneError(where, 'must be a table, e.g. { kind = "induction", rated_power = "7.5 kW", ... }')
     kind = raw.get("kind")
     if kind not in kinds:
         raise SceneError(f"{where}.kind", f"{shorten(kind)} is not known (allowed: induction, dc, table)")
@@ -773,8 +888,9 @@ def _motor(raw, where, shafts, efficiency, files=Path()):
         name = table.get("shaft")
         match = [s for s in shafts if s.name == name]
         if not match:
-            raise SceneError(f"{where}.shaft", f"no [[shaft]] is named {shorten(name)} "
-                             f"(known: {', '.join(s.name for s in shafts)})")
+            raise SceneError(
+                f"{where}.shaft", f"no [[shaft]] is named {shorten(name)} (known: {', '.join(s.name for s in shafts)})"
+            )
         speed_ratio = match[0].speed_ratio
     if kind == "table":
         return MotorTorque(_motor_table(table, where, files), speed_ratio, efficiency, None, where=where)
@@ -783,19 +899,25 @@ def _motor(raw, where, shafts, efficiency, files=Path()):
             model = table.get("model", "linear")
             if model not in ("linear", "kloss"):
                 raise SceneError(f"{where}.model", f"{shorten(model)} is not known (allowed: linear, kloss)")
-            motor = InductionMotor(table.quantity("rated_power", "power", required=True),
-                                   table.quantity("rated_speed", "angular_speed", required=True),
-                                   table.quantity("synchronous_speed", "angular_speed", required=True),
-                                   table.quantity("breakdown_ratio", "dimensionless"))
+            motor = InductionMotor(
+                table.quantity("rated_power", "power", required=True),
+                table.quantity("rated_speed", "angular_speed", required=True),
+                table.quantity("synchronous_speed", "angular_speed", required=True),
+                table.quantity("breakdown_ratio", "dimensionless"),
+            )
         else:
             model = None
             if table.has("stall_torque"):
-                motor = DCMotor(table.quantity("no_load_speed", "angular_speed", required=True),
-                                table.quantity("stall_torque", "torque"))
+                motor = DCMotor(
+                    table.quantity("no_load_speed", "angular_speed", required=True),
+                    table.quantity("stall_torque", "torque"),
+                )
             else:
-                motor = DCMotor.from_rated(table.quantity("rated_power", "power", required=True),
-                                           table.quantity("rated_speed", "angular_speed", required=True),
-                                           table.quantity("no_load_speed", "angular_speed", required=True))
+                motor = DCMotor.from_rated(
+                    table.quantity("rated_power", "power", required=True),
+                    table.quantity("rated_speed", "angular_speed", required=True),
+                    table.quantity("no_load_speed", "angular_speed", required=True),
+                )
     except ValueError as err:
         if isinstance(err, SceneError):
             raise
@@ -809,11 +931,17 @@ def _motor_table(table, where, files):
 
     forms = [k for k in ("points", "points_file") if table.has(k)]
     if len(forms) != 1:
-        raise SceneError(where, "a motor table needs exactly one of points = [[speed, torque], ...] or "
-                         "points_file = \"motor.csv\"" + (" (given both)" if forms else ""))
+        raise SceneError(
+            where,
+            "a motor table needs exactly one of points = [[speed, torque], ...] or "
+            'points_file = "motor.csv"' + (" (given both)" if forms else ""),
+        )
     unit = _unit_factor(table.get("unit"), "torque", f"{where}.unit") if table.has("unit") else 1.0
-    speed_unit = _unit_factor(table.get("speed_unit"), "angular_speed", f"{where}.speed_unit") \
-        if table.has("speed_unit") else 1.0
+    speed_unit = (
+        _unit_factor(table.get("speed_unit"), "angular_speed", f"{where}.speed_unit")
+        if table.has("speed_unit")
+        else 1.0
+    )
     field_name = f"{where}.{forms[0]}"
     if forms[0] == "points_file":
         units = (table.get("speed_unit", "rad/s"), table.get("unit", "N*m"))
@@ -825,8 +953,9 @@ def _motor_table(table, where, files):
     else:
         raw = table.get("points")
         if not isinstance(raw, (list, InlineRows)) or len(raw) < 2:
-            raise SceneError(field_name, "must be a list of at least two [speed, torque] pairs, from rest to the "
-                             "no-load speed")
+            raise SceneError(
+                field_name, "must be a list of at least two [speed, torque] pairs, from rest to the no-load speed"
+            )
         if isinstance(raw, InlineRows):
             speeds, torques = raw.array[:, 0] * speed_unit, raw.array[:, 1] * unit
         else:
@@ -839,36 +968,51 @@ def _motor_table(table, where, files):
 
         def row(k):
             return f"point {k}"
+
     steps = np.diff(speeds)
     if np.any(steps <= 0):
         k = int(np.argmax(steps <= 0)) + 1
-        raise SceneError(field_name, f"speeds must increase: {row(k)} ({speeds[k]:.6g} rad/s) comes after "
-                         f"{speeds[k - 1]:.6g} rad/s (a torque-speed curve has one torque at each speed)")
+        raise SceneError(
+            field_name,
+            f"speeds must increase: {row(k)} ({speeds[k]:.6g} rad/s) comes after "
+            f"{speeds[k - 1]:.6g} rad/s (a torque-speed curve has one torque at each speed)",
+        )
     if speeds[0] != 0.0:
-        raise SceneError(field_name, f"the table starts at {speeds[0]:.6g} rad/s ({row(0)}); it must start at rest, "
-                         "speed 0, where its torque is the starting torque")
+        raise SceneError(
+            field_name,
+            f"the table starts at {speeds[0]:.6g} rad/s ({row(0)}); it must start at rest, "
+            "speed 0, where its torque is the starting torque",
+        )
     if torques[-1] > 0.0:
-        raise SceneError(field_name, f"the torque at the last row ({row(len(speeds) - 1)}, {speeds[-1]:.6g} rad/s) "
-                         f"is {torques[-1]:.6g} N*m: the table must reach the motor's no-load speed (a torque of "
-                         "0 or below)")
+        raise SceneError(
+            field_name,
+            f"the torque at the last row ({row(len(speeds) - 1)}, {speeds[-1]:.6g} rad/s) "
+            f"is {torques[-1]:.6g} N*m: the table must reach the motor's no-load speed (a torque of "
+            "0 or below)",
+        )
     if torques[-1] > torques[-2]:
-        raise SceneError(field_name, f"the torque rises over the last segment ({row(len(speeds) - 2)} to "
-                         f"{row(len(speeds) - 1)}); it is extended beyond the last row, so it must not rise there")
+        raise SceneError(
+            field_name,
+            f"the torque rises over the last segment ({row(len(speeds) - 2)} to "
+            f"{row(len(speeds) - 1)}); it is extended beyond the last row, so it must not rise there",
+        )
     return TableMotor(speeds.tolist(), torques.tolist())
 
 
 def _mechanism(raw):
     if raw is None:
         return None
-    from flyopt.machine.mechanism import GearTrain, SliderCrank   # CasADi: only for a scene with a mechanism
+    from flyopt.machine.mechanism import GearTrain, SliderCrank  # CasADi: only for a scene with a mechanism
 
     kind = raw.get("kind") if isinstance(raw, dict) else None
     try:
         if kind == "slider_crank":
             table = _Table(raw, "mechanism", {"kind", "crank", "rod", "offset", "description"})
-            return SliderCrank(table.quantity("crank", "length", required=True),
-                               table.quantity("rod", "length", required=True),
-                               table.quantity("offset", "length", default=0.0))
+            return SliderCrank(
+                table.quantity("crank", "length", required=True),
+                table.quantity("rod", "length", required=True),
+                table.quantity("offset", "length", default=0.0),
+            )
         if kind == "gear_train":
             table = _Table(raw, "mechanism", {"kind", "ratios", "description"})
             ratios = table.require("ratios")
@@ -885,42 +1029,65 @@ def _mechanism(raw):
 def _members(raw, mechanism, cycle, files=Path()):
     if raw is None:
         return ()
-    from flyopt.machine.mechanism import FORCE_SENSES, GearTrain, Member   # CasADi: only with members
+    from flyopt.machine.mechanism import FORCE_SENSES, GearTrain, Member  # CasADi: only with members
 
     if not isinstance(raw, list):
         raise SceneError("member", "must be an array of tables: [[member]] with name, mass, ...")
     members, seen = [], set()
     for k, item in enumerate(raw):
         where = f"member[{k}]"
-        table = _Table(item, where, {"name", "mass", "inertia", "part", "centre", "velocity_ratio", "angular_ratio",
-                                     "force", "force_sense", "torque", "unit", "angle_unit", "description",
-                                     *(f"{key}_file" for key in _MEMBER_TABLES)})
+        table = _Table(
+            item,
+            where,
+            {
+                "name",
+                "mass",
+                "inertia",
+                "part",
+                "centre",
+                "velocity_ratio",
+                "angular_ratio",
+                "force",
+                "force_sense",
+                "torque",
+                "unit",
+                "angle_unit",
+                "description",
+                *(f"{key}_file" for key in _MEMBER_TABLES),
+            },
+        )
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
             raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
         if name in seen:
             raise SceneError(f"{where}.name", f"member {shorten(name)} is given twice")
         seen.add(name)
-        angle_unit = _unit_factor(table.get("angle_unit"), "angle", f"{where}.angle_unit") \
-            if table.has("angle_unit") else 1.0
+        angle_unit = (
+            _unit_factor(table.get("angle_unit"), "angle", f"{where}.angle_unit") if table.has("angle_unit") else 1.0
+        )
         mass = table.quantity("mass", "mass", default=0.0)
         inertia = table.quantity("inertia", "inertia", default=0.0)
         for key, value in (("mass", mass), ("inertia", inertia)):
             if value < 0:
                 raise SceneError(f"{where}.{key}", "must not be negative")
         if table.has("part"):
-            if any(table.has(k) for k in ("velocity_ratio", "angular_ratio", "velocity_ratio_file",
-                                          "angular_ratio_file")):
-                raise SceneError(f"{where}.part", "give either part (ratios from [mechanism]) or "
-                                 "velocity_ratio/angular_ratio, not both")
+            if any(
+                table.has(k) for k in ("velocity_ratio", "angular_ratio", "velocity_ratio_file", "angular_ratio_file")
+            ):
+                raise SceneError(
+                    f"{where}.part",
+                    "give either part (ratios from [mechanism]) or velocity_ratio/angular_ratio, not both",
+                )
             if mechanism is None:
                 raise SceneError(f"{where}.part", "needs a [mechanism] to take the ratios from")
             part = table.get("part")
             try:
                 if isinstance(mechanism, GearTrain):
                     if isinstance(part, bool) or not isinstance(part, int):
-                        raise SceneError(f"{where}.part", f"a gear train's part is a shaft number 0..."
-                                         f"{len(mechanism.ratios)}, got {shorten(part)}")
+                        raise SceneError(
+                            f"{where}.part",
+                            f"a gear train's part is a shaft number 0...{len(mechanism.ratios)}, got {shorten(part)}",
+                        )
                     kin = mechanism.kinematics(part)
                 else:
                     centre = table.quantity("centre", "length") if table.has("centre") else None
@@ -937,8 +1104,9 @@ def _members(raw, mechanism, cycle, files=Path()):
         torque = _member_curve(table, "torque", "torque", where, angle_unit, cycle, None, files)
         sense = table.get("force_sense", "resisting")
         if sense not in FORCE_SENSES:
-            raise SceneError(f"{where}.force_sense",
-                             f"{shorten(sense)} is not known (allowed: {', '.join(FORCE_SENSES)})")
+            raise SceneError(
+                f"{where}.force_sense", f"{shorten(sense)} is not known (allowed: {', '.join(FORCE_SENSES)})"
+            )
         try:
             members.append(Member(name, mass, inertia, velocity, angular, force, sense, torque))
         except ValueError as err:
@@ -948,48 +1116,79 @@ def _members(raw, mechanism, cycle, files=Path()):
 
 def _engine(raw, files=Path()):
     """The [engine] section: an :class:`~flyopt.machine.engine.Engine` (cylinders, crank train, indicator data)."""
-    from flyopt.machine.engine import CYCLE_ANGLES, MAX_CYLINDERS, STANDARD_ATMOSPHERE, Engine   # CasADi
+    from flyopt.machine.engine import CYCLE_ANGLES, MAX_CYLINDERS, STANDARD_ATMOSPHERE, Engine  # CasADi
 
-    table = _Table(raw, "engine", {"cycle", "cylinders", "firing_angles", "bore", "stroke", "rod",
-                                   "reciprocating_mass", "rod_mass", "rod_centre", "rod_inertia", "angle_unit",
-                                   "pressure_unit", "pressure", "pressure_file", "crankcase_pressure",
-                                   "description"})
+    table = _Table(
+        raw,
+        "engine",
+        {
+            "cycle",
+            "cylinders",
+            "firing_angles",
+            "bore",
+            "stroke",
+            "rod",
+            "reciprocating_mass",
+            "rod_mass",
+            "rod_centre",
+            "rod_inertia",
+            "angle_unit",
+            "pressure_unit",
+            "pressure",
+            "pressure_file",
+            "crankcase_pressure",
+            "description",
+        },
+    )
     kind = table.require("cycle")
     if kind not in CYCLE_ANGLES:
         close = difflib.get_close_matches(str(kind), list(CYCLE_ANGLES), n=1)
         hint = f"; did you mean {shorten(close[0])}?" if close else ""
-        raise SceneError("engine.cycle", f"{shorten(kind)} is not known{hint} (allowed: '4-stroke', a cycle of "
-                                         "720 deg, or '2-stroke', 360 deg)")
+        raise SceneError(
+            "engine.cycle",
+            f"{shorten(kind)} is not known{hint} (allowed: '4-stroke', a cycle of 720 deg, or '2-stroke', 360 deg)",
+        )
     cycle = CYCLE_ANGLES[kind]
     count = table.require("cylinders")
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= MAX_CYLINDERS:
-        raise SceneError("engine.cylinders", f"must be a whole number of cylinders from 1 to {MAX_CYLINDERS}, "
-                                             f"got {shorten(count)}")
-    angle_unit = _unit_factor(table.get("angle_unit"), "angle", "engine.angle_unit") \
-        if table.has("angle_unit") else 1.0
-    firing = [k * cycle / count for k in range(count)]          # default: evenly spaced over the cycle
+        raise SceneError(
+            "engine.cylinders", f"must be a whole number of cylinders from 1 to {MAX_CYLINDERS}, got {shorten(count)}"
+        )
+    angle_unit = _unit_factor(table.get("angle_unit"), "angle", "engine.angle_unit") if table.has("angle_unit") else 1.0
+    firing = [k * cycle / count for k in range(count)]  # default: evenly spaced over the cycle
     if table.has("firing_angles"):
         raw_angles = table.get("firing_angles")
         if not isinstance(raw_angles, list) or len(raw_angles) != count:
-            raise SceneError("engine.firing_angles", f"must be a list of {count} angles, one per cylinder (the "
-                                                     f"crank angle at which its cycle starts), got {shorten(raw_angles)}")
+            raise SceneError(
+                "engine.firing_angles",
+                f"must be a list of {count} angles, one per cylinder (the "
+                f"crank angle at which its cycle starts), got {shorten(raw_angles)}",
+            )
         for k, value in enumerate(raw_angles):
             firing[k] = _scaled(value, "angle", f"engine.firing_angles[{k}]", angle_unit)
             if not 0.0 <= firing[k] < cycle:
-                raise SceneError(f"engine.firing_angles[{k}]", f"{shorten(value)} lies outside the cycle: a firing "
-                                 f"angle is the crank angle at which the cylinder's cycle starts, from 0 up to "
-                                 f"(not including) {math.degrees(cycle):g} deg for a {kind} engine")
+                raise SceneError(
+                    f"engine.firing_angles[{k}]",
+                    f"{shorten(value)} lies outside the cycle: a firing "
+                    f"angle is the crank angle at which the cylinder's cycle starts, from 0 up to "
+                    f"(not including) {math.degrees(cycle):g} deg for a {kind} engine",
+                )
     sizes = {}
     for key in ("bore", "stroke", "rod"):
         sizes[key] = table.quantity(key, "length", required=True)
         if not (math.isfinite(sizes[key]) and sizes[key] > 0):
             raise SceneError(f"engine.{key}", f"must be a positive length, got {shorten(table.raw(key))}")
     if not sizes["rod"] > sizes["stroke"] / 2:
-        raise SceneError("engine.rod", f"{shorten(table.raw('rod'))} is not longer than the crank radius, "
-                                       f"stroke/2 = {sizes['stroke'] / 2 * 1e3:.6g} mm: the crank could not turn "
-                                       "(the connecting rod is measured centre to centre)")
-    masses = {"reciprocating_mass": table.quantity("reciprocating_mass", "mass", required=True),
-              "rod_mass": table.quantity("rod_mass", "mass", default=0.0)}
+        raise SceneError(
+            "engine.rod",
+            f"{shorten(table.raw('rod'))} is not longer than the crank radius, "
+            f"stroke/2 = {sizes['stroke'] / 2 * 1e3:.6g} mm: the crank could not turn "
+            "(the connecting rod is measured centre to centre)",
+        )
+    masses = {
+        "reciprocating_mass": table.quantity("reciprocating_mass", "mass", required=True),
+        "rod_mass": table.quantity("rod_mass", "mass", default=0.0),
+    }
     for key, value in masses.items():
         if not (math.isfinite(value) and value >= 0):
             raise SceneError(f"engine.{key}", f"must be a finite mass >= 0, got {shorten(table.raw(key))}")
@@ -997,44 +1196,86 @@ def _engine(raw, files=Path()):
     if table.has("rod_mass"):
         for key in rod:
             if not table.has(key):
-                raise SceneError(f"engine.{key}", "is missing: rod_mass, rod_centre (from the crank pin) and "
-                                                  "rod_inertia (about the rod's centre of mass) come together")
+                raise SceneError(
+                    f"engine.{key}",
+                    "is missing: rod_mass, rod_centre (from the crank pin) and "
+                    "rod_inertia (about the rod's centre of mass) come together",
+                )
         rod["rod_centre"] = table.quantity("rod_centre", "length")
         if not 0.0 <= rod["rod_centre"] <= sizes["rod"]:
-            raise SceneError("engine.rod_centre", f"{shorten(table.raw('rod_centre'))} is not between the pins: the "
-                                                  f"centre of mass lies 0 to {shorten(table.raw('rod'))} from the "
-                                                  "crank pin")
+            raise SceneError(
+                "engine.rod_centre",
+                f"{shorten(table.raw('rod_centre'))} is not between the pins: the "
+                f"centre of mass lies 0 to {shorten(table.raw('rod'))} from the "
+                "crank pin",
+            )
         rod["rod_inertia"] = table.quantity("rod_inertia", "inertia")
         if not (math.isfinite(rod["rod_inertia"]) and rod["rod_inertia"] >= 0):
-            raise SceneError("engine.rod_inertia", f"must be a finite number >= 0, got "
-                                                   f"{shorten(table.raw('rod_inertia'))}")
+            raise SceneError(
+                "engine.rod_inertia", f"must be a finite number >= 0, got {shorten(table.raw('rod_inertia'))}"
+            )
     else:
         for key in rod:
             if table.has(key):
                 raise SceneError(f"engine.{key}", "describes the rest of the connecting rod: give rod_mass with it")
-    unit = _unit_factor(table.get("pressure_unit"), "stress", "engine.pressure_unit") \
-        if table.has("pressure_unit") else 1.0
+    unit = (
+        _unit_factor(table.get("pressure_unit"), "stress", "engine.pressure_unit")
+        if table.has("pressure_unit")
+        else 1.0
+    )
     forms = [k for k in ("pressure", "pressure_file") if table.has(k)]
     if len(forms) != 1:
-        raise SceneError("engine.pressure", "give exactly one of pressure = [[angle, pressure], ...] or "
-                         "pressure_file = \"indicator.csv\": the absolute cylinder pressure of one cylinder over "
-                         "its cycle" + (" (given both)" if forms else ""))
+        raise SceneError(
+            "engine.pressure",
+            "give exactly one of pressure = [[angle, pressure], ...] or "
+            'pressure_file = "indicator.csv": the absolute cylinder pressure of one cylinder over '
+            "its cycle" + (" (given both)" if forms else ""),
+        )
     absolute = (0.0, "the table holds absolute pressures, which cannot be negative")
     if forms[0] == "pressure_file":
         units = (table.get("angle_unit", "rad"), table.get("pressure_unit", "Pa"))
-        pressure = _points_file(table.get("pressure_file"), "engine.pressure_file", files, cycle, unit, angle_unit,
-                                "pressure", units, minimum=absolute)
+        pressure = _points_file(
+            table.get("pressure_file"),
+            "engine.pressure_file",
+            files,
+            cycle,
+            unit,
+            angle_unit,
+            "pressure",
+            units,
+            minimum=absolute,
+        )
     else:
-        pressure = _points(table.get("pressure"), "engine.pressure", cycle, unit, angle_unit, "stress",
-                           label="pressure", minimum=absolute)
+        pressure = _points(
+            table.get("pressure"),
+            "engine.pressure",
+            cycle,
+            unit,
+            angle_unit,
+            "stress",
+            label="pressure",
+            minimum=absolute,
+        )
     crankcase = table.quantity("crankcase_pressure", "stress", default=STANDARD_ATMOSPHERE)
     if not (math.isfinite(crankcase) and crankcase >= 0):
-        raise SceneError("engine.crankcase_pressure", f"must be an absolute pressure >= 0, got "
-                                                      f"{shorten(table.raw('crankcase_pressure'))}")
+        raise SceneError(
+            "engine.crankcase_pressure",
+            f"must be an absolute pressure >= 0, got {shorten(table.raw('crankcase_pressure'))}",
+        )
     try:
-        return Engine(kind, tuple(firing), sizes["bore"], sizes["stroke"], sizes["rod"],
-                      masses["reciprocating_mass"], pressure, crankcase, masses["rod_mass"], rod["rod_centre"],
-                      rod["rod_inertia"])
+        return Engine(
+            kind,
+            tuple(firing),
+            sizes["bore"],
+            sizes["stroke"],
+            sizes["rod"],
+            masses["reciprocating_mass"],
+            pressure,
+            crankcase,
+            masses["rod_mass"],
+            rod["rod_centre"],
+            rod["rod_inertia"],
+        )
     except ValueError as err:
         raise SceneError("engine", str(err)) from None
 
@@ -1042,13 +1283,17 @@ def _engine(raw, files=Path()):
 def _with_engine(engine, mechanism, members):
     """The engine's pistons and rods followed by the scene's own [[member]]s (names checked apart)."""
     if mechanism is not None:
-        raise SceneError("mechanism", "an [engine] brings its own slider-cranks, one per cylinder; a [mechanism] "
-                         "cannot be added to it (give other members their velocity_ratio and angular_ratio)")
+        raise SceneError(
+            "mechanism",
+            "an [engine] brings its own slider-cranks, one per cylinder; a [mechanism] "
+            "cannot be added to it (give other members their velocity_ratio and angular_ratio)",
+        )
     own = {m.name for m in engine.members}
     for k, member in enumerate(members):
         if member.name in own:
-            raise SceneError(f"member[{k}].name", f"{shorten(member.name)} is the name of a member of the "
-                             "[engine]; choose another")
+            raise SceneError(
+                f"member[{k}].name", f"{shorten(member.name)} is the name of a member of the [engine]; choose another"
+            )
     return engine.members + tuple(members)
 
 
@@ -1067,11 +1312,15 @@ def _member_curve(table, key, dimension, where, angle_unit, cycle, default, file
     if table.has("unit") and key in ("force", "torque"):
         unit = _unit_factor(table.get("unit"), dimension, f"{where}.unit")
     if table.has(file_key):
-        units = (table.get("angle_unit", "rad"),
-                 table.get("unit") if table.has("unit") and key in ("force", "torque") else
-                 DIMENSIONS[dimension][1] or "plain numbers")
-        curve = _points_file(table.get(file_key), f"{where}.{file_key}", files, cycle, unit, angle_unit,
-                             key.replace("_", " "), units)
+        units = (
+            table.get("angle_unit", "rad"),
+            table.get("unit")
+            if table.has("unit") and key in ("force", "torque")
+            else DIMENSIONS[dimension][1] or "plain numbers",
+        )
+        curve = _points_file(
+            table.get(file_key), f"{where}.{file_key}", files, cycle, unit, angle_unit, key.replace("_", " "), units
+        )
         return (curve.angles, curve.values)
     raw = table.get(key)
     field_name = f"{where}.{key}"
@@ -1088,18 +1337,26 @@ def _net_areas(section):
         raise SceneError("torque.net.areas", "must be a list of at least two signed areas")
     drawing = [table.has(k) for k in ("area_unit", "torque_scale", "angle_scale")]
     if any(drawing) and not all(drawing):
-        raise SceneError("torque.net", "areas measured on a drawing need all of area_unit, torque_scale "
-                         "and angle_scale (energy = area x torque scale x angle scale)")
+        raise SceneError(
+            "torque.net",
+            "areas measured on a drawing need all of area_unit, torque_scale "
+            "and angle_scale (energy = area x torque scale x angle scale)",
+        )
     if all(drawing):
-        factor = (table.quantity("area_unit", "area") * table.quantity("torque_scale", "torque_scale")
-                  * table.quantity("angle_scale", "angle_scale"))
+        factor = (
+            table.quantity("area_unit", "area")
+            * table.quantity("torque_scale", "torque_scale")
+            * table.quantity("angle_scale", "angle_scale")
+        )
         if factor <= 0:
             raise SceneError("torque.net", "the drawing scales must be positive")
         energies = []
         for k, a in enumerate(areas):
             if isinstance(a, str):
-                raise SceneError(f"torque.net.areas[{k}]", "with drawing scales the areas are plain numbers "
-                                 f"(in area_unit), got {shorten(a)}")
+                raise SceneError(
+                    f"torque.net.areas[{k}]",
+                    f"with drawing scales the areas are plain numbers (in area_unit), got {shorten(a)}",
+                )
             energies.append(factor * quantity(a, "dimensionless", f"torque.net.areas[{k}]"))
     else:
         energies = [quantity(a, "energy", f"torque.net.areas[{k}]") for k, a in enumerate(areas)]
@@ -1114,8 +1371,7 @@ def _shafts(raw):
     shafts, seen = [], set()
     for k, item in enumerate(raw):
         where = f"shaft[{k}]"
-        table = _Table(item, where, {"name", "speed_ratio", "efficiency", "diameter", "inertia", "gd2",
-                                     "description"})
+        table = _Table(item, where, {"name", "speed_ratio", "efficiency", "diameter", "inertia", "gd2", "description"})
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
             raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
@@ -1128,8 +1384,9 @@ def _shafts(raw):
         eff = _efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
         diameter = table.quantity("diameter", "length")
         if diameter is not None and diameter <= 0:
-            raise SceneError(f"{where}.diameter", f"must be positive (the shaft seat), got "
-                                                  f"{shorten(table.raw('diameter'))}")
+            raise SceneError(
+                f"{where}.diameter", f"must be positive (the shaft seat), got {shorten(table.raw('diameter'))}"
+            )
         shafts.append(Shaft(name, ratio, eff, diameter, _shaft_inertia(table, where)))
     return tuple(shafts)
 
@@ -1143,15 +1400,24 @@ def _shaft_inertia(table, where):
         return 0.0
     value = table.quantity(key, "flywheel_moment" if key == "gd2" else "inertia")
     if not (math.isfinite(value) and value >= 0):
-        raise SceneError(f"{where}.{key}", f"must be a finite number >= 0 (the inertia already turning with the "
-                                           f"shaft), got {shorten(table.raw(key))}")
+        raise SceneError(
+            f"{where}.{key}",
+            f"must be a finite number >= 0 (the inertia already turning with the shaft), got {shorten(table.raw(key))}",
+        )
     return inertia_from_gd2(value) if key == "gd2" else value
 
 
 #: The strength fields of a [[material]] (beyond density, rim speed, allowable stress and cost).
-_MATERIAL_STRENGTH = {"elastic_modulus": "stress", "poisson_ratio": "dimensionless",
-                      "tensile_strength": "stress", "yield_strength": "stress", "ductile": "bool",
-                      "safety_factor": "dimensionless", "min_wall": "length", "bearing_pressure": "stress"}
+_MATERIAL_STRENGTH = {
+    "elastic_modulus": "stress",
+    "poisson_ratio": "dimensionless",
+    "tensile_strength": "stress",
+    "yield_strength": "stress",
+    "ductile": "bool",
+    "safety_factor": "dimensionless",
+    "min_wall": "length",
+    "bearing_pressure": "stress",
+}
 
 
 def _materials(raw):
@@ -1164,8 +1430,21 @@ def _materials(raw):
     materials, seen = [], set()
     for k, item in enumerate(raw):
         where = f"material[{k}]"
-        table = _Table(item, where, {"name", "density", "max_rim_speed", "allowable_stress", "cost",
-                                     "source", "description", "hub_rule", *_MATERIAL_STRENGTH})
+        table = _Table(
+            item,
+            where,
+            {
+                "name",
+                "density",
+                "max_rim_speed",
+                "allowable_stress",
+                "cost",
+                "source",
+                "description",
+                "hub_rule",
+                *_MATERIAL_STRENGTH,
+            },
+        )
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
             raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
@@ -1174,8 +1453,11 @@ def _materials(raw):
         seen.add(name)
         strength = "tensile_strength" if table.get("ductile") is not True else "yield_strength"
         if not (table.has("max_rim_speed") or table.has("allowable_stress") or table.has(strength)):
-            raise SceneError(where, f"give max_rim_speed, allowable_stress (v_max then follows from σ = ρ v²) "
-                                    f"or {strength} (the allowable stress is it over the safety factor)")
+            raise SceneError(
+                where,
+                f"give max_rim_speed, allowable_stress (v_max then follows from σ = ρ v²) "
+                f"or {strength} (the allowable stress is it over the safety factor)",
+            )
         values = {
             "density": table.quantity("density", "density", required=True),
             "max_rim_speed": table.quantity("max_rim_speed", "speed"),
@@ -1208,8 +1490,9 @@ def _materials(raw):
 
             rule = table.get("hub_rule")
             if rule not in hub_rules():
-                raise SceneError(f"{where}.hub_rule", f"{shorten(rule)} is not a hub rule (allowed: "
-                                                      f"{', '.join(hub_rules())})")
+                raise SceneError(
+                    f"{where}.hub_rule", f"{shorten(rule)} is not a hub rule (allowed: {', '.join(hub_rules())})"
+                )
             values["hub_rule"] = rule
         source = table.get("source", "scene file")
         try:
@@ -1220,15 +1503,31 @@ def _materials(raw):
 
 
 def _design(raw, shafts, materials):
-    from flyopt.design.materials import material_library
-    from flyopt.design.spec import DesignSpec
-
     from flyopt.design.geometry import GEOMETRIES
-    from flyopt.design.spec import CRITERIA, OBJECTIVES
+    from flyopt.design.materials import material_library
+    from flyopt.design.spec import CRITERIA, OBJECTIVES, DesignSpec
 
-    table = _Table(raw, "design", {"geometry", "materials", "shafts", "hb_ratio", "max_outer_diameter",
-                                   "max_width", "d_mean", "objective", "description", "criterion",
-                                   "safety_factor", "bore", "arms", "min_wall", "prune"})
+    table = _Table(
+        raw,
+        "design",
+        {
+            "geometry",
+            "materials",
+            "shafts",
+            "hb_ratio",
+            "max_outer_diameter",
+            "max_width",
+            "d_mean",
+            "objective",
+            "description",
+            "criterion",
+            "safety_factor",
+            "bore",
+            "arms",
+            "min_wall",
+            "prune",
+        },
+    )
     library = material_library(materials)
     names = _name_list(table, "materials", library, "material")
     shaft_names = _name_list(table, "shafts", {s.name: s for s in shafts}, "shaft")
@@ -1240,8 +1539,9 @@ def _design(raw, shafts, materials):
             if value not in allowed:
                 close = difflib.get_close_matches(str(value), allowed, n=1)
                 hint = f"; did you mean {shorten(close[0])}?" if close else ""
-                raise SceneError(f"design.{key}",
-                                 f"{shorten(value)} is not known{hint} (allowed: {', '.join(allowed)})")
+                raise SceneError(
+                    f"design.{key}", f"{shorten(value)} is not known{hint} (allowed: {', '.join(allowed)})"
+                )
             options[key] = value
     if table.has("hb_ratio"):
         hb = table.get("hb_ratio")
@@ -1264,22 +1564,33 @@ def _design(raw, shafts, materials):
             raise SceneError("design.bore", f"must be >= 0 (0: no bore), got {shorten(table.raw('bore'))}")
         envelope = options.get("max_outer_diameter", math.inf)
         if value >= envelope:
-            raise SceneError("design.bore", f"{shorten(table.raw('bore'))} does not fit inside "
-                                            f"max_outer_diameter {shorten(table.raw('max_outer_diameter'))}")
+            raise SceneError(
+                "design.bore",
+                f"{shorten(table.raw('bore'))} does not fit inside "
+                f"max_outer_diameter {shorten(table.raw('max_outer_diameter'))}",
+            )
         options["bore"] = value
     if table.has("safety_factor"):
         value = table.quantity("safety_factor", "dimensionless")
         if value < 1:
-            raise SceneError("design.safety_factor", f"must be >= 1 (the allowable stress is the strength "
-                                                     f"over it), got {shorten(table.raw('safety_factor'))}")
+            raise SceneError(
+                "design.safety_factor",
+                f"must be >= 1 (the allowable stress is the strength "
+                f"over it), got {shorten(table.raw('safety_factor'))}",
+            )
         options["safety_factor"] = value
     if table.has("arms"):
         arms = table.get("arms")
         arms = arms if isinstance(arms, list) else [arms]
-        if (not arms or any(isinstance(n, bool) or not isinstance(n, int) or n < 3 for n in arms)
-                or len(set(arms)) != len(arms)):
-            raise SceneError("design.arms", f"must be whole arm counts >= 3, each once (e.g. [4, 6, 8]), "
-                                            f"got {shorten(table.raw('arms'))}")
+        if (
+            not arms
+            or any(isinstance(n, bool) or not isinstance(n, int) or n < 3 for n in arms)
+            or len(set(arms)) != len(arms)
+        ):
+            raise SceneError(
+                "design.arms",
+                f"must be whole arm counts >= 3, each once (e.g. [4, 6, 8]), got {shorten(table.raw('arms'))}",
+            )
         options["arms"] = tuple(arms)
     if table.has("prune"):
         value = table.get("prune")
@@ -1292,8 +1603,10 @@ def _design(raw, shafts, materials):
         chosen = design_material_names(library, names)
         missing = [n for n in chosen if library[n].cost is None]
         if missing:
-            raise SceneError("design.objective", f"'cost' needs a cost per kg for every material; "
-                             f"none is given for {', '.join(missing)}")
+            raise SceneError(
+                "design.objective",
+                f"'cost' needs a cost per kg for every material; none is given for {', '.join(missing)}",
+            )
     try:
         spec = DesignSpec(**options)
     except ValueError as err:
@@ -1311,8 +1624,7 @@ def _name_list(table, key, known, what):
         if name not in known:
             close = difflib.get_close_matches(name, list(known), n=1)
             hint = f"; did you mean {shorten(close[0])}?" if close else ""
-            raise SceneError(f"design.{key}[{k}]", f"unknown {what} {shorten(name)}{hint} "
-                             f"(known: {', '.join(known)})")
+            raise SceneError(f"design.{key}[{k}]", f"unknown {what} {shorten(name)}{hint} (known: {', '.join(known)})")
     if len(set(raw)) != len(raw):
         raise SceneError(f"design.{key}", f"a {what} is named twice")
     return tuple(raw)
@@ -1322,8 +1634,11 @@ def _reference_efficiency(shafts):
     """Efficiency from the motor to the reference shaft: that of the shaft turning at ratio 1."""
     at_reference = {s.efficiency for s in shafts if s.speed_ratio == 1.0}
     if len(at_reference) > 1:
-        raise SceneError("machine.efficiency", "several shafts turn at the reference speed with different "
-                         "efficiencies; say which applies with machine.efficiency")
+        raise SceneError(
+            "machine.efficiency",
+            "several shafts turn at the reference speed with different "
+            "efficiencies; say which applies with machine.efficiency",
+        )
     return at_reference.pop() if at_reference else 1.0
 
 

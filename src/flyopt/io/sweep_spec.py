@@ -42,17 +42,26 @@ from __future__ import annotations
 import difflib
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Mapping
 
 import numpy as np
 
 from flyopt.errors import SceneError, shorten
 from flyopt.units import quantity
 
-__all__ = ["FIELDS", "METHODS", "Axis", "parse_vary", "vary_from_texts", "check_options",
-           "option_label", "whole_number", "load_sweep"]
+__all__ = [
+    "FIELDS",
+    "METHODS",
+    "Axis",
+    "parse_vary",
+    "vary_from_texts",
+    "check_options",
+    "option_label",
+    "whole_number",
+    "load_sweep",
+]
 
 try:  # Python >= 3.11
     import tomllib
@@ -62,11 +71,12 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 
 # --------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class _Field:
-    kind: str              # "number" | "name"
+    kind: str  # "number" | "name"
     dimension: str = "dimensionless"
-    minimum: float = 0.0   # values must exceed it (or reach it when inclusive)
+    minimum: float = 0.0  # values must exceed it (or reach it when inclusive)
     inclusive: bool = False
     maximum: float | None = None
     optional: bool = False  # "none" allowed
@@ -78,16 +88,18 @@ class _Field:
 FIELDS = {
     "delta": _Field("number", what="coefficient of speed fluctuation, 0 < δ < 2", maximum=2.0),
     "speed": _Field("number", "angular_speed", what="mean speed of the reference shaft (> 0)"),
-    "inertia": _Field("number", "inertia", inclusive=True,
-                      what="the constant inertia J_c at the reference shaft, the shafts' own inertia "
-                           "included (>= 0)"),
+    "inertia": _Field(
+        "number",
+        "inertia",
+        inclusive=True,
+        what="the constant inertia J_c at the reference shaft, the shafts' own inertia included (>= 0)",
+    ),
     "torque.scale": _Field("number", what="factor on both torques (> 0)"),
-    "design.max_outer_diameter": _Field("number", "length", optional=True,
-                                        what="envelope on the outer diameter (> 0 or none)"),
-    "design.max_width": _Field("number", "length", optional=True,
-                               what="limit on the axial width (> 0 or none)"),
-    "design.d_mean": _Field("number", "length", optional=True,
-                            what="pinned mean diameter (> 0 or none)"),
+    "design.max_outer_diameter": _Field(
+        "number", "length", optional=True, what="envelope on the outer diameter (> 0 or none)"
+    ),
+    "design.max_width": _Field("number", "length", optional=True, what="limit on the axial width (> 0 or none)"),
+    "design.d_mean": _Field("number", "length", optional=True, what="pinned mean diameter (> 0 or none)"),
     "design.hb_ratio": _Field("number", what="H/B, one value (> 0)"),
     "design.hb_min": _Field("number", what="lower end of the H/B range (> 0)"),
     "design.hb_max": _Field("number", what="upper end of the H/B range (> 0)"),
@@ -105,22 +117,34 @@ _MATERIAL_FIELDS = {
 }
 
 _ALIASES = {
-    "machine.delta": "delta", "machine.speed": "speed", "omega_mean": "speed",
-    "machine.inertia": "inertia", "j_constant": "inertia",
-    "envelope": "design.max_outer_diameter", "max_outer_diameter": "design.max_outer_diameter",
-    "max_width": "design.max_width", "width": "design.max_width",
-    "d_mean": "design.d_mean", "hb_ratio": "design.hb_ratio", "hb_min": "design.hb_min",
-    "hb_max": "design.hb_max", "geometry": "design.geometry", "objective": "design.objective",
-    "design.material": "material", "design.shaft": "shaft", "materials": "material",
-    "shafts": "shaft", "design.materials": "material", "design.shafts": "shaft",
+    "machine.delta": "delta",
+    "machine.speed": "speed",
+    "omega_mean": "speed",
+    "machine.inertia": "inertia",
+    "j_constant": "inertia",
+    "envelope": "design.max_outer_diameter",
+    "max_outer_diameter": "design.max_outer_diameter",
+    "max_width": "design.max_width",
+    "width": "design.max_width",
+    "d_mean": "design.d_mean",
+    "hb_ratio": "design.hb_ratio",
+    "hb_min": "design.hb_min",
+    "hb_max": "design.hb_max",
+    "geometry": "design.geometry",
+    "objective": "design.objective",
+    "design.material": "material",
+    "design.shaft": "shaft",
+    "materials": "material",
+    "shafts": "shaft",
+    "design.materials": "material",
+    "design.shafts": "shaft",
 }
 
 
 def _known_fields(scene):
     names = list(FIELDS)
     names.append(f"shaft.<name>.speed_ratio (shafts: {', '.join(s.name for s in scene.shafts)})")
-    names.append("material.<name>.density|max_rim_speed|cost "
-                 f"(materials: {', '.join(scene.material_library())})")
+    names.append(f"material.<name>.density|max_rim_speed|cost (materials: {', '.join(scene.material_library())})")
     return names
 
 
@@ -133,29 +157,36 @@ def _resolve(scene, path, where):
     if len(parts) == 3 and parts[0] == "shaft":
         names = [s.name for s in scene.shafts]
         if parts[1] not in names:
-            raise SceneError(_where(where, path), f"unknown shaft {parts[1]!r}"
-                             f"{_hint(parts[1], names)} (shafts: {', '.join(names)})")
+            raise SceneError(
+                _where(where, path), f"unknown shaft {parts[1]!r}{_hint(parts[1], names)} (shafts: {', '.join(names)})"
+            )
         if parts[2] not in _SHAFT_FIELDS:
-            raise SceneError(_where(where, path), f"a shaft's field is "
-                             f"{', '.join(_SHAFT_FIELDS)}, not {parts[2]!r}")
+            raise SceneError(_where(where, path), f"a shaft's field is {', '.join(_SHAFT_FIELDS)}, not {parts[2]!r}")
         shaft = next(s for s in scene.shafts if s.name == parts[1])
         if getattr(shaft, "inertia", 0.0):
-            raise SceneError(_where(where, path), f"shaft {parts[1]!r} carries inertia, which its speed ratio "
-                             "moves to the reference shaft (J i²): the machine's J_c would change with it; vary "
-                             "the ratio of a shaft without inertia, or make a scene per ratio")
+            raise SceneError(
+                _where(where, path),
+                f"shaft {parts[1]!r} carries inertia, which its speed ratio "
+                "moves to the reference shaft (J i²): the machine's J_c would change with it; vary "
+                "the ratio of a shaft without inertia, or make a scene per ratio",
+            )
         return key, _SHAFT_FIELDS[parts[2]]
     if len(parts) == 3 and parts[0] == "material":
         library = scene.material_library()
         if parts[1] not in library:
-            raise SceneError(_where(where, path), f"unknown material {parts[1]!r}"
-                             f"{_hint(parts[1], library)} (known: {', '.join(library)})")
+            raise SceneError(
+                _where(where, path),
+                f"unknown material {parts[1]!r}{_hint(parts[1], library)} (known: {', '.join(library)})",
+            )
         if parts[2] not in _MATERIAL_FIELDS:
-            raise SceneError(_where(where, path), f"a material's field is one of "
-                             f"{', '.join(_MATERIAL_FIELDS)}, not {parts[2]!r}")
+            raise SceneError(
+                _where(where, path), f"a material's field is one of {', '.join(_MATERIAL_FIELDS)}, not {parts[2]!r}"
+            )
         return key, _MATERIAL_FIELDS[parts[2]]
     candidates = list(FIELDS) + list(_ALIASES)
-    raise SceneError(_where(where, path), f"unknown sweep field{_hint(key, candidates)}; "
-                     f"allowed: {'; '.join(_known_fields(scene))}")
+    raise SceneError(
+        _where(where, path), f"unknown sweep field{_hint(key, candidates)}; allowed: {'; '.join(_known_fields(scene))}"
+    )
 
 
 def _hint(name, known):
@@ -195,7 +226,7 @@ def option_label(where, key):
     str
         ``--chunk-size``, ``sweep.chunk_size`` or ``chunk_size``.
     """
-    base = where[:-len("vary")] if where.endswith("vary") else where
+    base = where[: -len("vary")] if where.endswith("vary") else where
     if base.startswith("--"):
         return "--" + key.replace("_", "-")
     base = base.rstrip(".")
@@ -234,24 +265,20 @@ def check_options(options, where="sweep"):
             whole_number(options[key], option_label(where, key), lowest)
     method = options.get("method")
     if method is not None and method not in METHODS:
-        raise SceneError(option_label(where, "method"), f"{method!r} is not known "
-                         f"(allowed: {', '.join(METHODS)})")
+        raise SceneError(option_label(where, "method"), f"{method!r} is not known (allowed: {', '.join(METHODS)})")
     workers = options.get("workers")
     if workers is not None and workers != "auto":
         try:
             whole_number(workers, option_label(where, "workers"), 1)
         except SceneError as err:
-            raise SceneError(err.field, f"must be 'auto' or a whole number >= 1, "
-                             f"got {workers!r}") from None
+            raise SceneError(err.field, f"must be 'auto' or a whole number >= 1, got {workers!r}") from None
     output = options.get("output")
     if output is not None:
         if not isinstance(output, (str, Path)):
-            raise SceneError(option_label(where, "output"), f"must be a file name (.csv or "
-                             f".parquet), got {output!r}")
+            raise SceneError(option_label(where, "output"), f"must be a file name (.csv or .parquet), got {output!r}")
         output_format(output, option_label(where, "output"))
     if options.get("resume") and output is None:
-        raise SceneError(option_label(where, "resume"), "needs an output file (its parts hold "
-                         "the finished chunks)")
+        raise SceneError(option_label(where, "resume"), "needs an output file (its parts hold the finished chunks)")
 
 
 # --------------------------------------------------------------------------
@@ -291,7 +318,7 @@ def _split_unit(item):
     """'1200rpm' -> ('1200', 'rpm'); '1/20' -> ('1/20', '')."""
     m = _NUMBER.match(item)
     if m:
-        rest = item[m.end():].strip()
+        rest = item[m.end() :].strip()
         if rest and (rest[0].isalpha() or rest[0] in "°%"):
             return m.group().strip(), rest
     return item.strip(), ""
@@ -344,14 +371,17 @@ def _parse_text(scene, name, spec, text, label, sampled, cap=None):
 def _parse_range(name, spec, text, label, sampled, cap=None):
     parts = text.split(":")
     if len(parts) not in (2, 3):
-        raise SceneError(label, f"{shorten(text)}: a range is a:b:n (linear) or a:b:logn (log), "
-                         f"with an optional unit at the end")
+        raise SceneError(
+            label, f"{shorten(text)}: a range is a:b:n (linear) or a:b:logn (log), with an optional unit at the end"
+        )
     if len(parts) == 3:
         m = _COUNT.match(parts[2])
         log, count, trailing = bool(m.group(1)), m.group(2), m.group(3)
         if count is None and not log:
-            raise SceneError(label, f"{text!r}: the third part must be a count n or logn "
-                             f"(e.g. 0.01:0.1:log20), then an optional unit")
+            raise SceneError(
+                label,
+                f"{text!r}: the third part must be a count n or logn (e.g. 0.01:0.1:log20), then an optional unit",
+            )
     else:
         log, count = False, None
         trailing = _split_unit(parts[1])[1]
@@ -371,10 +401,13 @@ def _parse_range(name, spec, text, label, sampled, cap=None):
     n = 1 if count is None else int(count)
     if n < 1:
         raise SceneError(label, f"{text!r}: the count must be at least 1")
-    if cap is not None and n * cap[0] > cap[1]:   # (points of the fields before, most points)
-        raise SceneError(label, f"{text!r}: {n} values make a grid of {n * cap[0]} points, "
-                         f"more than the {cap[1]} a sweep may have; use fewer values or "
-                         f"Latin hypercube samples")
+    if cap is not None and n * cap[0] > cap[1]:  # (points of the fields before, most points)
+        raise SceneError(
+            label,
+            f"{text!r}: {n} values make a grid of {n * cap[0]} points, "
+            f"more than the {cap[1]} a sweep may have; use fewer values or "
+            f"Latin hypercube samples",
+        )
     if log:
         values = np.geomspace(low, high, n) if n > 1 else np.array([low])
     else:
@@ -387,17 +420,20 @@ def _parse_range(name, spec, text, label, sampled, cap=None):
 def _check_name(scene, name, item, label):
     if name == "design.geometry":
         from flyopt.design.geometry import GEOMETRIES
+
         known = list(GEOMETRIES)
     elif name == "design.objective":
         from flyopt.design.spec import OBJECTIVES
+
         known = list(OBJECTIVES)
     elif name == "material":
         known = list(scene.material_library())
     else:
         known = [s.name for s in scene.shafts]
     if item not in known:
-        raise SceneError(label, f"unknown {name.split('.')[-1]} {item!r}{_hint(item, known)} "
-                         f"(allowed: {', '.join(known)})")
+        raise SceneError(
+            label, f"unknown {name.split('.')[-1]} {item!r}{_hint(item, known)} (allowed: {', '.join(known)})"
+        )
     return item
 
 
@@ -430,8 +466,9 @@ def _text_items(texts, where):
     items = []
     for text in texts:
         if not isinstance(text, str) or "=" not in text:
-            raise SceneError(where, f"{text!r}: expected FIELD=VALUES, e.g. "
-                             f"delta=0.01:0.1:log20 or speed=300,600,1200rpm")
+            raise SceneError(
+                where, f"{text!r}: expected FIELD=VALUES, e.g. delta=0.01:0.1:log20 or speed=300,600,1200rpm"
+            )
         path, values = text.split("=", 1)
         if not path.strip():
             raise SceneError(where, "a field name is missing before '='")
@@ -445,8 +482,10 @@ def _check_once(scene, items, where):
     for path, _ in items:
         name = _resolve(scene, path, where)[0]
         if name in seen:
-            raise SceneError(_where(where, path), f"is varied twice (also as {seen[name]!r}); "
-                             f"give each field once, with all its values")
+            raise SceneError(
+                _where(where, path),
+                f"is varied twice (also as {seen[name]!r}); give each field once, with all its values",
+            )
         seen[name] = path
 
 
@@ -518,24 +557,22 @@ def parse_vary(scene, vary, *, where="--vary", samples=None, max_points=None):
     for path, values in items:
         name, spec = _resolve(scene, path, where)
         cap = None if max_points is None else (points, max_points)
-        axes.append(_parse_value(scene, name, spec, values, _where(where, path),
-                                 samples is not None, cap))
+        axes.append(_parse_value(scene, name, spec, values, _where(where, path), samples is not None, cap))
         if samples is None:
             points *= len(axes[-1].values)
     names = {a.field for a in axes}
     if "design.hb_ratio" in names and names & {"design.hb_min", "design.hb_max"}:
-        raise SceneError(_where(where, "design.hb_ratio"), "vary either design.hb_ratio or "
-                         "design.hb_min/design.hb_max, not both")
+        raise SceneError(
+            _where(where, "design.hb_ratio"), "vary either design.hb_ratio or design.hb_min/design.hb_max, not both"
+        )
     return axes
-
 
 
 # --------------------------------------------------------------------------
 # [sweep] tables in scene files
 # --------------------------------------------------------------------------
 
-_SWEEP_KEYS = {"vary", "samples", "seed", "output", "chunk_size", "method", "workers",
-               "description"}
+_SWEEP_KEYS = {"vary", "samples", "seed", "output", "chunk_size", "method", "workers", "description"}
 
 
 def _flatten(table, prefix=""):
@@ -602,8 +639,10 @@ def load_sweep(path):
             raise SceneError("sweep", "must be a table")
         unknown = sorted(set(table) - _SWEEP_KEYS)
         if unknown:
-            raise SceneError(f"sweep.{unknown[0]}", f"unknown key{_hint(unknown[0], _SWEEP_KEYS)} "
-                             f"(allowed here: {', '.join(sorted(_SWEEP_KEYS))})")
+            raise SceneError(
+                f"sweep.{unknown[0]}",
+                f"unknown key{_hint(unknown[0], _SWEEP_KEYS)} (allowed here: {', '.join(sorted(_SWEEP_KEYS))})",
+            )
         options = {k: v for k, v in table.items() if k != "description"}
         check_options(options, "sweep")
         vary = options.pop("vary", {})

@@ -41,8 +41,20 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - exercised only on Python 3.10
     import tomli as tomllib
 
-__all__ = ["QUANTITIES", "TEXTS", "REQUIRED", "EFFICIENCY_CLASSES", "RATING_TOLERANCE", "MotorDataError",
-           "CatalogueMotor", "Catalogue", "Neighbours", "catalogue", "catalogue_names", "read_catalogues"]
+__all__ = [
+    "QUANTITIES",
+    "TEXTS",
+    "REQUIRED",
+    "EFFICIENCY_CLASSES",
+    "RATING_TOLERANCE",
+    "MotorDataError",
+    "CatalogueMotor",
+    "Catalogue",
+    "Neighbours",
+    "catalogue",
+    "catalogue_names",
+    "read_catalogues",
+]
 
 _DATA_FILE = "motors.toml"
 
@@ -99,14 +111,18 @@ class MotorDataError(ValueError):
 
 def _number(value, field, name, *, minimum=0.0, strict=True, below=None, allowed=None):
     """``value`` as a finite float above ``minimum`` (and under ``below``), else MotorDataError."""
-    allowed = allowed or (f"a finite number {'>' if strict else '>='} {minimum:g}"
-                          + (f" and < {below:g}" if below is not None else ""))
+    allowed = allowed or (
+        f"a finite number {'>' if strict else '>='} {minimum:g}" + (f" and < {below:g}" if below is not None else "")
+    )
     try:
         number = math.nan if isinstance(value, bool) else float(value)
     except (TypeError, ValueError):
         number = math.nan
-    if (not math.isfinite(number) or (number <= minimum if strict else number < minimum)
-            or (below is not None and number >= below)):
+    if (
+        not math.isfinite(number)
+        or (number <= minimum if strict else number < minimum)
+        or (below is not None and number >= below)
+    ):
         raise MotorDataError(field, f"motor {shorten(name)}: {field} must be {allowed}, got {shorten(value)}")
     return number
 
@@ -180,29 +196,39 @@ class CatalogueMotor:
 
         for key in ("rated_power", "rated_speed", "synchronous_speed", "rotor_inertia"):
             set_(key, _number(getattr(self, key), key, name))
-        optional = {"breakdown_ratio": {"minimum": 1.0, "allowed": "a finite number > 1 (M_b/M_n; the "
-                                        "pull-out torque exceeds the rated torque)"},
-                    "locked_rotor_ratio": {},
-                    "efficiency": {"below": 1.0, "allowed": "a fraction in (0, 1), e.g. 0.92 or '92 %'"},
-                    "mass": {},
-                    "price": {"strict": False},
-                    "published_rated_torque": {}}
+        optional = {
+            "breakdown_ratio": {
+                "minimum": 1.0,
+                "allowed": "a finite number > 1 (M_b/M_n; the pull-out torque exceeds the rated torque)",
+            },
+            "locked_rotor_ratio": {},
+            "efficiency": {"below": 1.0, "allowed": "a fraction in (0, 1), e.g. 0.92 or '92 %'"},
+            "mass": {},
+            "price": {"strict": False},
+            "published_rated_torque": {},
+        }
         for key, limits in optional.items():
             if getattr(self, key) is not None:
                 set_(key, _number(getattr(self, key), key, name, **limits))
         if not self.rated_speed < self.synchronous_speed:
-            raise MotorDataError("rated_speed", f"motor {shorten(name)}: the rated speed "
-                                 f"({_rpm(self.rated_speed)} rpm) must be below the synchronous speed "
-                                 f"({_rpm(self.synchronous_speed)} rpm): an induction motor runs with slip")
+            raise MotorDataError(
+                "rated_speed",
+                f"motor {shorten(name)}: the rated speed "
+                f"({_rpm(self.rated_speed)} rpm) must be below the synchronous speed "
+                f"({_rpm(self.synchronous_speed)} rpm): an induction motor runs with slip",
+            )
         if self.efficiency_class is not None and self.efficiency_class not in EFFICIENCY_CLASSES:
-            raise MotorDataError("efficiency_class", f"motor {shorten(name)}: {shorten(self.efficiency_class)} "
-                                 f"is not an IE code of IEC 60034-30-1 (allowed: {', '.join(EFFICIENCY_CLASSES)})")
+            raise MotorDataError(
+                "efficiency_class",
+                f"motor {shorten(name)}: {shorten(self.efficiency_class)} "
+                f"is not an IE code of IEC 60034-30-1 (allowed: {', '.join(EFFICIENCY_CLASSES)})",
+            )
         for key in ("frame", "source"):
             value = getattr(self, key)
             if value is not None and not isinstance(value, str):
                 raise MotorDataError(key, f"motor {shorten(name)}: {key} must be a string, got {shorten(value)}")
         try:
-            self.motor()            # what the torque model refuses, the catalogue refuses
+            self.motor()  # what the torque model refuses, the catalogue refuses
         except ValueError as err:
             raise MotorDataError("", f"motor {shorten(name)}: {err}") from None
 
@@ -280,16 +306,19 @@ class Catalogue:
             raise MotorDataError("", f"catalogue {shorten(self.name)} has no motor")
         for k, motor in enumerate(motors):
             if not isinstance(motor, CatalogueMotor):
-                raise MotorDataError("", f"catalogue {shorten(self.name)}: entry {k} is not a CatalogueMotor",
-                                     index=k)
+                raise MotorDataError("", f"catalogue {shorten(self.name)}: entry {k} is not a CatalogueMotor", index=k)
             for j in range(k):
                 other = motors[j]
                 if other.name == motor.name:
                     raise MotorDataError("name", f"motor {shorten(motor.name)} is given twice", index=k)
                 if abs(other.rated_power - motor.rated_power) <= RATING_TOLERANCE * motor.rated_power:
-                    raise MotorDataError("rated_power", f"motor {shorten(motor.name)} has the same rated power "
-                                         f"({motor.rated_power:.6g} W) as {shorten(other.name)}: a catalogue has "
-                                         "one size per rating", index=k)
+                    raise MotorDataError(
+                        "rated_power",
+                        f"motor {shorten(motor.name)} has the same rated power "
+                        f"({motor.rated_power:.6g} W) as {shorten(other.name)}: a catalogue has "
+                        "one size per rating",
+                        index=k,
+                    )
         object.__setattr__(self, "motors", tuple(sorted(motors, key=lambda m: m.rated_power)))
 
     def __iter__(self):
@@ -327,8 +356,7 @@ class Catalogue:
         ValueError
             ``rating`` is not a positive finite number.
         """
-        if isinstance(rating, bool) or not isinstance(rating, (int, float)) or not math.isfinite(rating) \
-                or rating <= 0:
+        if isinstance(rating, bool) or not isinstance(rating, (int, float)) or not math.isfinite(rating) or rating <= 0:
             raise ValueError(f"a rating must be a positive finite power [W], got {shorten(rating)}")
         threshold = float(rating) * (1.0 - RATING_TOLERANCE)
         above = next((m for m in self.motors if m.rated_power >= threshold), None)
@@ -380,8 +408,9 @@ def read_catalogues(text, origin=f"flyopt/data/{_DATA_FILE}"):
             raise ValueError(f"{where} has no [[{name}.motor]] sizes")
         motors = [_motor_from_table(entry, f"{where}, motor[{k}]") for k, entry in enumerate(entries)]
         try:
-            catalogues[name] = Catalogue(name, tuple(motors), str(table.get("description", "")),
-                                         str(table.get("source", "")))
+            catalogues[name] = Catalogue(
+                name, tuple(motors), str(table.get("description", "")), str(table.get("source", ""))
+            )
         except MotorDataError as err:
             raise ValueError(f"{where}, motor[{err.index}]: {err.message}") from None
     return catalogues

@@ -107,27 +107,32 @@ class Engine:
             raise ValueError(f"an engine has 1 to {MAX_CYLINDERS} cylinders, got {len(angles)} firing angles")
         for k, a in enumerate(angles):
             if not (math.isfinite(a) and 0.0 <= a < cycle):
-                raise ValueError(f"firing angle {k + 1} is {a!r} rad: it must lie in [0, {cycle!r}) rad, "
-                                 "within the cycle")
+                raise ValueError(
+                    f"firing angle {k + 1} is {a!r} rad: it must lie in [0, {cycle!r}) rad, within the cycle"
+                )
         object.__setattr__(self, "firing_angles", angles)
         for name in ("bore", "stroke", "rod"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise ValueError(f"engine {name} must be a positive length [m], got {value!r}")
         if not self.rod > self.crank:
-            raise ValueError(f"the connecting rod ({self.rod!r} m) must be longer than the crank radius "
-                             f"stroke/2 = {self.crank!r} m")
+            raise ValueError(
+                f"the connecting rod ({self.rod!r} m) must be longer than the crank radius stroke/2 = {self.crank!r} m"
+            )
         for name in ("reciprocating_mass", "rod_mass", "rod_inertia", "crankcase_pressure"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
                 raise ValueError(f"engine {name} must be a finite number >= 0, got {value!r}")
         if not 0.0 <= self.rod_centre <= self.rod:
-            raise ValueError(f"the rod's centre of mass must lie between the pins, 0..{self.rod!r} m from the "
-                             f"crank pin, got {self.rod_centre!r}")
+            raise ValueError(
+                f"the rod's centre of mass must lie between the pins, 0..{self.rod!r} m from the "
+                f"crank pin, got {self.rod_centre!r}"
+            )
         x, p = np.asarray(self.pressure.angles), np.asarray(self.pressure.values)
         if x[0] != 0.0 or x[-1] != cycle:
-            raise ValueError(f"the pressure table must span the cycle, 0 to {cycle!r} rad; it spans "
-                             f"{x[0]!r} to {x[-1]!r}")
+            raise ValueError(
+                f"the pressure table must span the cycle, 0 to {cycle!r} rad; it spans {x[0]!r} to {x[-1]!r}"
+            )
         if np.any(p < 0) or not np.all(np.isfinite(p)):
             raise ValueError("the pressure table holds absolute pressures: each must be finite and >= 0 [Pa]")
 
@@ -193,12 +198,30 @@ class Engine:
         members = []
         for k, cylinder in enumerate(self.cylinders):
             piston = cylinder.kinematics("slider")
-            members.append(Member(f"cylinder {k + 1} piston", self.reciprocating_mass, 0.0, piston.velocity_ratio,
-                                  piston.angular_ratio, self.gas_force(k), "axial", owner=self))
+            members.append(
+                Member(
+                    f"cylinder {k + 1} piston",
+                    self.reciprocating_mass,
+                    0.0,
+                    piston.velocity_ratio,
+                    piston.angular_ratio,
+                    self.gas_force(k),
+                    "axial",
+                    owner=self,
+                )
+            )
             if self.rod_mass > 0 or self.rod_inertia > 0:
                 rod = cylinder.kinematics("rod", self.rod_centre)
-                members.append(Member(f"cylinder {k + 1} rod", self.rod_mass, self.rod_inertia, rod.velocity_ratio,
-                                      rod.angular_ratio, owner=self))
+                members.append(
+                    Member(
+                        f"cylinder {k + 1} rod",
+                        self.rod_mass,
+                        self.rod_inertia,
+                        rod.velocity_ratio,
+                        rod.angular_ratio,
+                        owner=self,
+                    )
+                )
         return tuple(members)
 
     @cached_property
@@ -260,8 +283,7 @@ def phase_table(table, shift, cycle):
     cut = cycle - shift
     left, right = (float(v[0]) for v in table.limits(np.array([cut])))
     later, earlier = x > cut, x < cut
-    angles = np.concatenate(([0.0], np.minimum(x[later] - cut, shift),
-                             np.maximum(x[earlier] + shift, shift), [cycle]))
+    angles = np.concatenate(([0.0], np.minimum(x[later] - cut, shift), np.maximum(x[earlier] + shift, shift), [cycle]))
     values = np.concatenate(([right], y[later], y[earlier], [left]))
     angles = np.minimum(np.maximum.accumulate(angles), cycle)
     # a run of rows at one angle keeps its first (left limit) and last (right limit) row
@@ -376,12 +398,12 @@ def textbook_requirement(machine, omega_mean=None, delta=None):
         balanced = machine.angle_only(omega)
         driving = balanced.driving
         if machine.variable_inertia:
-            driving = TorqueSum([driving, InertiaTorque(machine.j_machine, omega)],
-                                "crank effort at the mean speed")
+            driving = TorqueSum([driving, InertiaTorque(machine.j_machine, omega)], "crank effort at the mean speed")
         indicator = energy_indicator(driving, balanced.resisting, machine.cycle_angle)
         j_mean = machine.j_mean()
-        cache[key] = TextbookRequirement(required_inertia(indicator.a_max, omega, delta, j_mean), indicator.a_max,
-                                         omega, delta, j_mean, indicator)
+        cache[key] = TextbookRequirement(
+            required_inertia(indicator.a_max, omega, delta, j_mean), indicator.a_max, omega, delta, j_mean, indicator
+        )
     return cache[key]
 
 

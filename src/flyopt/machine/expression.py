@@ -46,11 +46,21 @@ _BINARY = {
     ast.Sub: lambda a, b: a - b,
     ast.Mult: lambda a, b: a * b,
     ast.Div: lambda a, b: a / b,
-    ast.Pow: lambda a, b: a ** b,
+    ast.Pow: lambda a, b: a**b,
 }
 _UNARY = {ast.USub: lambda a: -a, ast.UAdd: lambda a: a}
-_OTHER_OPERATORS = {ast.FloorDiv: "//", ast.Mod: "%", ast.BitXor: "^", ast.BitAnd: "&", ast.BitOr: "|",
-                    ast.MatMult: "@", ast.LShift: "<<", ast.RShift: ">>", ast.Invert: "~", ast.Not: "not"}
+_OTHER_OPERATORS = {
+    ast.FloorDiv: "//",
+    ast.Mod: "%",
+    ast.BitXor: "^",
+    ast.BitAnd: "&",
+    ast.BitOr: "|",
+    ast.MatMult: "@",
+    ast.LShift: "<<",
+    ast.RShift: ">>",
+    ast.Invert: "~",
+    ast.Not: "not",
+}
 
 
 _EPS = float(np.finfo(float).eps)
@@ -77,9 +87,10 @@ def _bound(node, values):
             e = np.abs(b) * ea + np.abs(a) * eb
         elif isinstance(node.op, ast.Div):
             e = (ea + np.abs(v) * eb) / np.abs(b)
-        else:   # a ** b
-            e = (np.where(ea > 0, np.abs(b * a ** (b - 1)) * ea, 0.0)
-                 + np.where(eb > 0, np.abs(v * np.log(np.abs(a))) * eb, 0.0))
+        else:  # a ** b
+            e = np.where(ea > 0, np.abs(b * a ** (b - 1)) * ea, 0.0) + np.where(
+                eb > 0, np.abs(v * np.log(np.abs(a))) * eb, 0.0
+            )
         return v, e + _EPS * np.abs(v)
     name = node.func.id
     args = [_bound(a, values) for a in node.args]
@@ -87,14 +98,18 @@ def _bound(node, values):
         (a, ea), (b, eb) = args
         # the branch taken carries its error; where round-off could swap the branches, the larger
         first = (a <= b) if name == "min" else (a >= b)
-        return FUNCTIONS[name][1](a, b), np.where(np.abs(a - b) <= ea + eb, np.maximum(ea, eb),
-                                                  np.where(first, ea, eb))
-    (x, ex), = args
+        return FUNCTIONS[name][1](a, b), np.where(np.abs(a - b) <= ea + eb, np.maximum(ea, eb), np.where(first, ea, eb))
+    ((x, ex),) = args
     v = FUNCTIONS[name][1](x)
-    slope = {"sin": lambda: np.abs(np.cos(x)), "cos": lambda: np.abs(np.sin(x)),
-             "tan": lambda: 1.0 / np.cos(x) ** 2, "exp": lambda: np.abs(v),
-             "log": lambda: 1.0 / np.abs(x), "sqrt": lambda: 0.5 / np.abs(v),
-             "abs": lambda: 1.0}[name]()
+    slope = {
+        "sin": lambda: np.abs(np.cos(x)),
+        "cos": lambda: np.abs(np.sin(x)),
+        "tan": lambda: 1.0 / np.cos(x) ** 2,
+        "exp": lambda: np.abs(v),
+        "log": lambda: 1.0 / np.abs(x),
+        "sqrt": lambda: 0.5 / np.abs(v),
+        "abs": lambda: 1.0,
+    }[name]()
     return v, np.where(ex > 0, slope * ex, 0.0) + (0.0 if name == "abs" else _EPS * np.abs(v))
 
 
@@ -138,13 +153,15 @@ class Expression:
             raise ExpressionError(f"expression longer than {MAX_LENGTH} characters")
         self.text = text
         self.variables = tuple(variables)
-        too_deep = f"{shorten(text)}: operations nested more than {MAX_DEPTH} deep (a sum nests one level " \
-                   "per term: give a long curve as a points table)"
+        too_deep = (
+            f"{shorten(text)}: operations nested more than {MAX_DEPTH} deep (a sum nests one level "
+            "per term: give a long curve as a points table)"
+        )
         try:
             tree = ast.parse(text.strip(), mode="eval")
         except SyntaxError as err:
             raise ExpressionError(f"cannot parse {shorten(text)}: {err.msg}") from None
-        except (RecursionError, MemoryError):       # Python's own parser gives up
+        except (RecursionError, MemoryError):  # Python's own parser gives up
             raise ExpressionError(too_deep) from None
         if _depth(tree.body) > MAX_DEPTH:
             raise ExpressionError(too_deep)
@@ -232,11 +249,12 @@ class Expression:
     def _compile(self, node):
         if isinstance(node, ast.Constant):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
-                raise ExpressionError(f"{shorten(self.text)}: only numbers are allowed as constants, "
-                                      f"got {shorten(node.value)}")
+                raise ExpressionError(
+                    f"{shorten(self.text)}: only numbers are allowed as constants, got {shorten(node.value)}"
+                )
             try:
                 number = float(node.value)
-            except OverflowError:      # an integer beyond the floats
+            except OverflowError:  # an integer beyond the floats
                 number = math.inf
             if not math.isfinite(number):
                 raise ExpressionError(f"{shorten(self.text)}: {shorten(node.value)} is not a finite number")
@@ -263,8 +281,9 @@ class Expression:
                 raise ExpressionError(f"{shorten(self.text)}: only plain function calls are allowed")
             name = node.func.id
             if name not in FUNCTIONS:
-                raise ExpressionError(f"{shorten(self.text)}: unknown function {shorten(name)}"
-                                      f"{self._hint(name, functions=True)}")
+                raise ExpressionError(
+                    f"{shorten(self.text)}: unknown function {shorten(name)}{self._hint(name, functions=True)}"
+                )
             if node.keywords:
                 raise ExpressionError(f"{shorten(self.text)}: {name}() takes no keyword arguments")
             arity = FUNCTIONS[name][0]
@@ -280,9 +299,11 @@ class Expression:
         op = type(getattr(node, "op", None))
         what = f"the operator {_OTHER_OPERATORS[op]}" if op in _OTHER_OPERATORS else type(node).__name__
         hint = "; use ** for powers" if op is ast.BitXor else ""
-        raise ExpressionError(f"{shorten(self.text)}: {what!s} is not allowed{hint} (numbers, "
-                              f"{', '.join(self.variables)}, pi, + - * / **, and "
-                              f"{' '.join(FUNCTIONS)} only)")
+        raise ExpressionError(
+            f"{shorten(self.text)}: {what!s} is not allowed{hint} (numbers, "
+            f"{', '.join(self.variables)}, pi, + - * / **, and "
+            f"{' '.join(FUNCTIONS)} only)"
+        )
 
     def _constant(self, node):
         """The value of a checked subtree that holds no variable (None if it holds one).
@@ -294,7 +315,7 @@ class Expression:
         floats would raise.
         """
         if isinstance(node, ast.Constant):
-            return np.float64(float(node.value))    # checked finite by _compile
+            return np.float64(float(node.value))  # checked finite by _compile
         if isinstance(node, ast.Name):
             return None if node.id in self.variables else np.float64(CONSTANTS[node.id])
         if isinstance(node, ast.UnaryOp):
@@ -310,8 +331,10 @@ class Expression:
             return None
         value = np.float64(function(*parts))
         if not np.isfinite(value):
-            raise ExpressionError(f"{shorten(self.text)}: {shorten(ast.unparse(node))} is {value} "
-                                  "(it overflows or is undefined): every value must be a finite number")
+            raise ExpressionError(
+                f"{shorten(self.text)}: {shorten(ast.unparse(node))} is {value} "
+                "(it overflows or is undefined): every value must be a finite number"
+            )
         return value
 
     def _hint(self, name, functions=False):

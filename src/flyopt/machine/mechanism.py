@@ -125,7 +125,8 @@ class SliderCrank:
         if rod <= crank + abs(offset):
             raise ValueError(
                 f"slider-crank with crank {crank!r} m, rod {rod!r} m and offset {offset!r} m cannot turn fully: "
-                f"the rod must be longer than crank + |offset| = {crank + abs(offset)!r} m")
+                f"the rod must be longer than crank + |offset| = {crank + abs(offset)!r} m"
+            )
         if not (isinstance(phase, (int, float)) and math.isfinite(phase)):
             raise ValueError(f"slider-crank phase must be a finite angle [rad], got {phase!r}")
         self.crank = float(crank)
@@ -237,8 +238,10 @@ class SliderCrank:
             if not 0 <= c <= self.rod:
                 raise ValueError(f"rod centre of mass must lie between the pins, 0..{self.rod!r} m, got {c!r}")
             s = c / self.rod
-            return Kinematics(velocity_ratio=SliderCrankRatio(self, "rod_point", s),
-                              angular_ratio=SliderCrankRatio(self, "rod_angular"))
+            return Kinematics(
+                velocity_ratio=SliderCrankRatio(self, "rod_point", s),
+                angular_ratio=SliderCrankRatio(self, "rod_angular"),
+            )
         if part == "slider":
             return Kinematics(velocity_ratio=SliderCrankRatio(self, "slider"), angular_ratio=0.0)
         raise ValueError(f"slider-crank part {shorten(part)} is not known (allowed: 'crank', 'rod', 'slider')")
@@ -536,8 +539,10 @@ class Member:
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
                 raise ValueError(f"member {self.name!r}: {what} must be a finite number >= 0, got {value!r}")
         if self.force_sense not in FORCE_SENSES:
-            raise ValueError(f"member {self.name!r}: force_sense {self.force_sense!r} is not known "
-                             f"(allowed: {', '.join(FORCE_SENSES)})")
+            raise ValueError(
+                f"member {self.name!r}: force_sense {self.force_sense!r} is not known "
+                f"(allowed: {', '.join(FORCE_SENSES)})"
+            )
 
     @cached_property
     def _curves(self):
@@ -558,8 +563,9 @@ class Member:
         c = self._curves
         if _is_casadi(phi):
             return self.inertia * _square(c["w"].casadi(phi)) + self.mass * _square(c["v"].casadi(phi))
-        return self.inertia * _square(c["w"].numpy(phi, cache=cache)) + \
-            self.mass * _square(c["v"].numpy(phi, cache=cache))
+        return self.inertia * _square(c["w"].numpy(phi, cache=cache)) + self.mass * _square(
+            c["v"].numpy(phi, cache=cache)
+        )
 
     @property
     def has_inertia_slope(self):
@@ -599,8 +605,10 @@ class Member:
             v = c[ratio].casadi(phi) if symbolic else c[ratio].numpy(phi)
             if self.force_sense == "axial":
                 if isinstance(v, tuple):
-                    raise ValueError(f"member {self.name!r}: an 'axial' force needs a scalar (signed) "
-                                     f"velocity ratio, not a planar one")
+                    raise ValueError(
+                        f"member {self.name!r}: an 'axial' force needs a scalar (signed) "
+                        f"velocity ratio, not a planar one"
+                    )
                 total = total + f * v
             else:
                 sign = 1.0 if self.force_sense == "driving" else -1.0
@@ -623,8 +631,10 @@ class Member:
             v = c[ratio].numpy(phi, cache=cache)
             if self.force_sense == "axial":
                 if isinstance(v, tuple):
-                    raise ValueError(f"member {self.name!r}: an 'axial' force needs a scalar (signed) "
-                                     f"velocity ratio, not a planar one")
+                    raise ValueError(
+                        f"member {self.name!r}: an 'axial' force needs a scalar (signed) "
+                        f"velocity ratio, not a planar one"
+                    )
                 left, right = left + f_left * v, right + f_right * v
             else:
                 sign = 1.0 if self.force_sense == "driving" else -1.0
@@ -675,8 +685,7 @@ class EquivalentInertia:
             raise ValueError(f"j_constant must be a finite number >= 0 [kg*m^2], got {j_constant!r}")
         self.members = tuple(_check_members(members))
         self.j_constant = float(j_constant)
-        self.knots = (np.unique(np.concatenate([m.knots() for m in self.members]))
-                      if self.members else np.empty(0))
+        self.knots = np.unique(np.concatenate([m.knots() for m in self.members])) if self.members else np.empty(0)
         self.is_constant = all(m.inertia_is_constant for m in self.members)
 
     def __call__(self, phi):

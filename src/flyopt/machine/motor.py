@@ -122,8 +122,10 @@ class InductionMotor(_Motor):
         self.rated_speed = _positive(rated_speed, "rated_speed [rad/s]")
         self.synchronous_speed = _positive(synchronous_speed, "synchronous_speed [rad/s]")
         if not self.rated_speed < self.synchronous_speed:
-            raise ValueError(f"an induction motor's rated speed ({rated_speed!r} rad/s) must be below its "
-                             f"synchronous speed ({synchronous_speed!r} rad/s)")
+            raise ValueError(
+                f"an induction motor's rated speed ({rated_speed!r} rad/s) must be below its "
+                f"synchronous speed ({synchronous_speed!r} rad/s)"
+            )
         k = DEFAULT_BREAKDOWN_RATIO if breakdown_ratio is None else _positive(breakdown_ratio, "breakdown_ratio")
         if k <= 1:
             raise ValueError(f"breakdown_ratio M_b/M_n must exceed 1, got {breakdown_ratio!r}")
@@ -134,8 +136,10 @@ class InductionMotor(_Motor):
         self.breakdown_torque = k * self.rated_torque
 
     def __repr__(self):
-        return (f"InductionMotor(rated_power={self.rated_power!r}, rated_speed={self.rated_speed!r}, "
-                f"synchronous_speed={self.synchronous_speed!r}, breakdown_ratio={self.breakdown_ratio!r})")
+        return (
+            f"InductionMotor(rated_power={self.rated_power!r}, rated_speed={self.rated_speed!r}, "
+            f"synchronous_speed={self.synchronous_speed!r}, breakdown_ratio={self.breakdown_ratio!r})"
+        )
 
     @property
     def slope(self):
@@ -213,8 +217,9 @@ class DCMotor(_Motor):
         wn = _positive(rated_speed, "rated_speed [rad/s]")
         w0 = _positive(no_load_speed, "no_load_speed [rad/s]")
         if not wn < w0:
-            raise ValueError(f"rated speed ({rated_speed!r} rad/s) must be below the no-load speed "
-                             f"({no_load_speed!r} rad/s)")
+            raise ValueError(
+                f"rated speed ({rated_speed!r} rad/s) must be below the no-load speed ({no_load_speed!r} rad/s)"
+            )
         return cls(w0, p / wn * w0 / (w0 - wn))
 
     def __repr__(self):
@@ -258,25 +263,32 @@ class TableMotor(_Motor):
         if not all(math.isfinite(x) for x in w + m):
             raise ValueError("a motor table's speeds and torques must be finite")
         if w[0] != 0.0:
-            raise ValueError(f"a motor table starts at rest (speed 0), not at {w[0]:.6g} rad/s: "
-                             "its torque there is the starting torque")
+            raise ValueError(
+                f"a motor table starts at rest (speed 0), not at {w[0]:.6g} rad/s: "
+                "its torque there is the starting torque"
+            )
         for k in range(1, len(w)):
             if not w[k] > w[k - 1]:
-                raise ValueError(f"a motor table's speeds must increase: row {k} ({w[k]:.6g} rad/s) "
-                                 f"comes after {w[k - 1]:.6g} rad/s")
+                raise ValueError(
+                    f"a motor table's speeds must increase: row {k} ({w[k]:.6g} rad/s) comes after {w[k - 1]:.6g} rad/s"
+                )
         if m[-1] > 0.0:
-            raise ValueError(f"a motor table must reach its no-load speed: the torque at its last row "
-                             f"({w[-1]:.6g} rad/s) is {m[-1]:.6g} N*m, above zero")
+            raise ValueError(
+                f"a motor table must reach its no-load speed: the torque at its last row "
+                f"({w[-1]:.6g} rad/s) is {m[-1]:.6g} N*m, above zero"
+            )
         if m[-1] > m[-2]:
-            raise ValueError("a motor table's torque must not rise over its last segment "
-                             "(it is extended beyond the last row)")
+            raise ValueError(
+                "a motor table's torque must not rise over its last segment (it is extended beyond the last row)"
+            )
         self.speeds, self.torques = tuple(w), tuple(m)
         self._slopes = tuple((m[k + 1] - m[k]) / (w[k + 1] - w[k]) for k in range(len(w) - 1))
         self.stall_torque = m[0]
         self.largest_torque = max(m)
         k = next(k for k in range(len(m)) if m[k] <= 0.0)
-        self.no_load_speed = w[k] if k == 0 or m[k] == 0.0 else \
-            w[k - 1] + m[k - 1] * (w[k] - w[k - 1]) / (m[k - 1] - m[k])
+        self.no_load_speed = (
+            w[k] if k == 0 or m[k] == 0.0 else w[k - 1] + m[k - 1] * (w[k] - w[k - 1]) / (m[k - 1] - m[k])
+        )
 
     def __repr__(self):
         return f"TableMotor(speeds={list(self.speeds)!r}, torques={list(self.torques)!r})"

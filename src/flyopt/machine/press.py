@@ -158,8 +158,9 @@ def force_energy(positions, forces):
     forces : sequence of float
         Force at each position [N].
     """
-    return math.fsum(0.5 * (forces[k] + forces[k + 1]) * (positions[k + 1] - positions[k])
-                     for k in range(len(positions) - 1))
+    return math.fsum(
+        0.5 * (forces[k] + forces[k + 1]) * (positions[k + 1] - positions[k]) for k in range(len(positions) - 1)
+    )
 
 
 def force_torque(positions, forces, angle):
@@ -186,7 +187,7 @@ def force_torque(positions, forces, angle):
         [rad] from 0 to θ_w, and [N*m].
     """
     x0, stroke = positions[0], positions[-1] - positions[0]
-    lever = stroke / angle                      # dx/dφ [m/rad]
+    lever = stroke / angle  # dx/dφ [m/rad]
     angles = [angle * (x - x0) / stroke for x in positions]
     angles[-1] = angle
     return angles, [f * lever for f in forces]
@@ -210,7 +211,7 @@ def resisting_table(angles, torques, angle):
     """
     rows = [[float(a), float(m)] for a, m in zip(angles, torques)]
     if rows[-1][1] != 0.0:
-        if len(rows) >= 2 and rows[-2][0] == rows[-1][0]:   # already a step at θ_w: step to zero instead
+        if len(rows) >= 2 and rows[-2][0] == rows[-1][0]:  # already a step at θ_w: step to zero instead
             rows[-1][1] = 0.0
         else:
             rows.append([angle, 0.0])

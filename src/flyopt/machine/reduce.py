@@ -53,8 +53,9 @@ class Machine:
         omega = self.omega_mean if omega is None else float(omega)
         key = ("angle_only", omega)
         if key not in self._cache:  # built once: its knot integrals may cost many quadratures
-            self._cache[key] = ExcessWork(_frozen(self.driving, omega), _frozen(self.resisting, omega),
-                                          self.cycle_angle)
+            self._cache[key] = ExcessWork(
+                _frozen(self.driving, omega), _frozen(self.resisting, omega), self.cycle_angle
+            )
         return self._cache[key]
 
     def net_torque(self):
@@ -73,8 +74,11 @@ class Machine:
             phi = np.linspace(0.0, self.cycle_angle, 4097)
             work = self.cycle_angle * float(np.mean(np.abs(balanced.driving.limits(phi)[1])))
             self._cache["net_torque"] = NetTorque(
-                driving, resisting, work,
-                balanced=self.speed_dependent and (_unknown(self.driving) or _unknown(self.resisting)))
+                driving,
+                resisting,
+                work,
+                balanced=self.speed_dependent and (_unknown(self.driving) or _unknown(self.resisting)),
+            )
         return self._cache["net_torque"]
 
     def knots(self):
@@ -92,7 +96,6 @@ class Machine:
             return float(self.j_machine)
         phi = np.linspace(0.0, self.cycle_angle, 4097)
         return float(np.mean(self.j_machine(phi[:-1])))
-
 
 
 class NetTorque:
@@ -180,24 +183,34 @@ def reduce(scene):
     driving, resisting = scene.driving, scene.resisting
     j_machine = scene.j_constant
     if scene.members:
-        from flyopt.machine.mechanism import equivalent_inertia, equivalent_torque   # CasADi: only with members
+        from flyopt.machine.mechanism import equivalent_inertia, equivalent_torque  # CasADi: only with members
 
         j_machine = equivalent_inertia(scene.members, scene.j_constant)
         if j_machine.is_constant:
             j_machine = float(j_machine(np.array([0.0]))[0])
         if any(m.force is not None or m.torque is not None for m in scene.members):
-            loads = equivalent_torque(scene.members)          # positive drives
+            loads = equivalent_torque(scene.members)  # positive drives
             if _unknown(resisting):
                 driving = TorqueSum([driving, loads], "torque.driving + members")
             else:
                 resisting = TorqueSum([resisting, loads.resisting()], "torque.resisting + members")
     speed = any(getattr(c, "speed_dependent", False) for c in (driving, resisting))
-    if speed and (_unknown(driving) or _unknown(resisting)) and \
-            any(isinstance(c, MotorTorque) for c in (driving, resisting)):
+    if (
+        speed
+        and (_unknown(driving) or _unknown(resisting))
+        and any(isinstance(c, MotorTorque) for c in (driving, resisting))
+    ):
         raise SceneError("torque.resisting", "with a motor driving, the load must be given (not an unknown constant)")
-    machine = Machine(driving=driving, resisting=resisting, j_machine=j_machine, cycle_angle=scene.cycle_angle,
-                      omega_mean=scene.omega_mean, delta=scene.delta, speed_dependent=speed,
-                      variable_inertia=not isinstance(j_machine, (int, float)))
+    machine = Machine(
+        driving=driving,
+        resisting=resisting,
+        j_machine=j_machine,
+        cycle_angle=scene.cycle_angle,
+        omega_mean=scene.omega_mean,
+        delta=scene.delta,
+        speed_dependent=speed,
+        variable_inertia=not isinstance(j_machine, (int, float)),
+    )
     _check_drive(machine)
     return machine
 
@@ -234,8 +247,11 @@ def _check_drive(machine):
         speeds += list(np.linspace(0.0, no_load / curve.speed_ratio, 17)[1:])
     load = min(float(machine.angle_only(w).driving.value) for w in speeds)
     if largest < load:
-        raise SceneError("torque.driving", f"the motor's largest torque on the reference shaft, {largest:.6g} N*m "
-                         f"({what}), is below the mean load {load:.6g} N*m: no steady running")
+        raise SceneError(
+            "torque.driving",
+            f"the motor's largest torque on the reference shaft, {largest:.6g} N*m "
+            f"({what}), is below the mean load {load:.6g} N*m: no steady running",
+        )
 
 
 # -- internals -------------------------------------------------------------------

@@ -46,7 +46,7 @@ class PiecewiseLinear:
         new = np.empty(len(x), dtype=bool)
         new[0] = True
         np.not_equal(x[1:], x[:-1], out=new[1:])
-        if new.all():                        # no steps: no copies
+        if new.all():  # no steps: no copies
             return x, y, y
         last = np.empty(len(x), dtype=bool)
         last[-1] = True
@@ -82,7 +82,7 @@ class PiecewiseLinear:
         if phi is own:
             return (left, left) if self._no_steps else (left, right)
         phi = np.asarray(phi, dtype=float)
-        if self._no_steps:                   # continuous: one array serves both sides
+        if self._no_steps:  # continuous: one array serves both sides
             values = np.interp(phi, x, y)
             return values, values
         first = np.searchsorted(x, phi, side="left")
@@ -139,7 +139,7 @@ class Constant:
 
     def limits(self, phi):
         v = np.full(np.shape(phi), float(self.value))
-        return v, v          # the same array twice: no steps
+        return v, v  # the same array twice: no steps
 
     def work(self, cycle_angle):
         """∫_0^Φ M dφ = M Φ [J]."""
@@ -208,11 +208,14 @@ class ExpressionTorque:
 
         def argument(index):
             def g(phi):
-                phi = np.asarray(phi, dtype=float)       # numpy scalars: 1/0 is inf, not an exception
+                phi = np.asarray(phi, dtype=float)  # numpy scalars: 1/0 is inf, not an exception
                 with np.errstate(all="ignore"):
-                    return np.broadcast_to(np.asarray(self.expression.kink_argument(index, phi=phi, **extra),
-                                                      dtype=float), np.shape(phi))
+                    return np.broadcast_to(
+                        np.asarray(self.expression.kink_argument(index, phi=phi, **extra), dtype=float), np.shape(phi)
+                    )
+
             return g
+
         return [argument(k) for k in range(self.expression.kink_count)]
 
     def _values(self, phi):
@@ -276,8 +279,9 @@ class MotorTorque:
 
     def at_speed(self, omega):
         """The motor's torque at the reference speed ``omega`` [rad/s], as a Constant."""
-        return Constant(float(self.motor.reference_torque(np.asarray(float(omega)), self.speed_ratio,
-                                                          self.efficiency, self.model)))
+        return Constant(
+            float(self.motor.reference_torque(np.asarray(float(omega)), self.speed_ratio, self.efficiency, self.model))
+        )
 
 
 class TorqueSum:
@@ -316,5 +320,6 @@ class TorqueSum:
         return total
 
     def at_speed(self, omega):
-        return TorqueSum([p.at_speed(omega) if getattr(p, "speed_dependent", False) else p for p in self.parts],
-                         self.where)
+        return TorqueSum(
+            [p.at_speed(omega) if getattr(p, "speed_dependent", False) else p for p in self.parts], self.where
+        )

@@ -95,7 +95,6 @@ def reduced_load_torque(torque, ratio, efficiency=1.0):
     return torque / (ratio * efficiency)
 
 
-
 def inertia_on_shaft(j_reference, speed_ratio):
     """Inertia a flywheel needs on a shaft to replace J at the reference shaft.
 

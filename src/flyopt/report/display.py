@@ -31,15 +31,24 @@ DEFAULT = "engineering"
 
 #: dimension -> system -> (label, factor: SI value of one displayed unit).
 UNITS = {
-    "angle": {"si": ("rad", 1.0), "engineering": ("deg", 0.017453292519943295),
-              "imperial": ("deg", 0.017453292519943295)},
-    "angular_speed": {"si": ("rad/s", 1.0), "engineering": ("rpm", 0.10471975511965977),
-                      "imperial": ("rpm", 0.10471975511965977)},
+    "angle": {
+        "si": ("rad", 1.0),
+        "engineering": ("deg", 0.017453292519943295),
+        "imperial": ("deg", 0.017453292519943295),
+    },
+    "angular_speed": {
+        "si": ("rad/s", 1.0),
+        "engineering": ("rpm", 0.10471975511965977),
+        "imperial": ("rpm", 0.10471975511965977),
+    },
     "torque": {"si": ("N·m", 1.0), "engineering": ("kN·m", 1000.0), "imperial": ("lbf·ft", 1.3558179483314004)},
     "energy": {"si": ("J", 1.0), "engineering": ("kJ", 1000.0), "imperial": ("ft·lbf", 1.3558179483314004)},
     "inertia": {"si": ("kg·m²", 1.0), "engineering": ("kg·m²", 1.0), "imperial": ("lb·ft²", 0.04214011009380480)},
-    "flywheel_moment": {"si": ("N·m²", 1.0), "engineering": ("N·m²", 1.0),
-                        "imperial": ("lbf·ft²", 0.41325331065141085)},
+    "flywheel_moment": {
+        "si": ("N·m²", 1.0),
+        "engineering": ("N·m²", 1.0),
+        "imperial": ("lbf·ft²", 0.41325331065141085),
+    },
     "length": {"si": ("m", 1.0), "engineering": ("mm", 0.001), "imperial": ("in", 0.0254)},
     "mass": {"si": ("kg", 1.0), "engineering": ("kg", 1.0), "imperial": ("lb", 0.45359237)},
     "density": {"si": ("kg/m³", 1.0), "engineering": ("kg/m³", 1.0), "imperial": ("lb/in³", 27679.904710203125)},
@@ -85,7 +94,7 @@ def show(value, dimension, system=DEFAULT):
 
 
 def quantity_text(value, dimension, system=DEFAULT, digits=6):
-    """"<number> <label>" with ``digits`` significant digits ("-" for None, "inf"/"nan" as such)."""
+    """ "<number> <label>" with ``digits`` significant digits ("-" for None, "inf"/"nan" as such)."""
     if value is None:
         return "-"
     shown = show(float(value), dimension, system)
@@ -105,7 +114,7 @@ def number(value, digits=6):
     if value is None:
         return "-"
     if not math.isfinite(value):
-        return str(value)            # inf, -inf, nan: say so rather than fail
+        return str(value)  # inf, -inf, nan: say so rather than fail
     if value == 0:
         return "0"
     magnitude = math.floor(math.log10(abs(value)))

@@ -39,8 +39,8 @@ def drive_report(drive, check=None, units=DEFAULT):
             f"rotor {q(m.rotor_inertia, 'rotor_inertia', 4)})",
             f"  motor ratio          {number(best.motor_ratio, 6)} (motor speed over crank speed)",
             f"  flywheel             {q(best.j_flywheel, 'j_flywheel', 6)} at the crank, set by "
-            f"{_limit_words(best.limit)}" + (f" (δ alone needs {q(best.j_delta, 'j_delta', 6)})"
-                                              if best.limit == "thermal" else ""),
+            f"{_limit_words(best.limit)}"
+            + (f" (δ alone needs {q(best.j_delta, 'j_delta', 6)})" if best.limit == "thermal" else ""),
         ]
         if best.flywheel_ratio is not None:
             lines.append(f"  flywheel shaft       ratio {number(best.flywheel_ratio, 6)} to the crank; the wheel below")
@@ -54,25 +54,47 @@ def drive_report(drive, check=None, units=DEFAULT):
         ]
         if drive.relaxation is not None:
             lines += _relaxation_lines(drive, units)
-    head = ["motor", heading("P", "rated_power", units), "ratio", heading("J_F", "j_flywheel", units), "limit",
-            "RMS/rated", heading("start", "startup_time", units), "r", heading("wheel", "wheel_mass", units),
-            heading("total", "total_mass", units), "verdict"]
+    head = [
+        "motor",
+        heading("P", "rated_power", units),
+        "ratio",
+        heading("J_F", "j_flywheel", units),
+        "limit",
+        "RMS/rated",
+        heading("start", "startup_time", units),
+        "r",
+        heading("wheel", "wheel_mass", units),
+        heading("total", "total_mass", units),
+        "verdict",
+    ]
     rows = []
     for run in drive.runs:
-        rows.append([run.motor.name, n(run.motor.rated_power, "rated_power", 4), number(run.motor_ratio, 5),
-                     n(run.j_flywheel, "j_flywheel", 5), run.limit or "-",
-                     number(run.rms_torque / run.rated_torque, 4) if run.rms_torque else "-",
-                     n(run.startup_time, "startup_time", 4), number(run.flywheel_ratio, 4),
-                     n(run.wheel_mass, "wheel_mass", 5), n(run.total_mass, "total_mass", 5),
-                     ("best" if run is best else "ok") if run.feasible else run.reason])
+        rows.append(
+            [
+                run.motor.name,
+                n(run.motor.rated_power, "rated_power", 4),
+                number(run.motor_ratio, 5),
+                n(run.j_flywheel, "j_flywheel", 5),
+                run.limit or "-",
+                number(run.rms_torque / run.rated_torque, 4) if run.rms_torque else "-",
+                n(run.startup_time, "startup_time", 4),
+                number(run.flywheel_ratio, 4),
+                n(run.wheel_mass, "wheel_mass", 5),
+                n(run.total_mass, "total_mass", 5),
+                ("best" if run is best else "ok") if run.feasible else run.reason,
+            ]
+        )
     lines += ["", "Every motor size solved:"] + ["  " + line for line in table(head, rows, ["<"] + [">"] * 9 + ["<"])]
     if check is not None:
         v = check.verification
         verdict = "FLAGGED: " + "; ".join(check.notes) if check.flagged else "ok"
-        lines += ["", f"Drive verification (the machine simulated with the wheel as built): {verdict}",
-                  f"  achieved δ {number(v.achieved_delta)} against {number(v.delta_allowed)}; mean speed "
-                  f"{q(v.omega_mean, 'omega_mean', 6)}; RMS torque {n(check.rms_torque, 'rms_torque', 5)} of "
-                  f"{q(check.rated_torque, 'rated_torque', 5)}; start-up {q(check.startup_time, 'startup_time', 4)}"]
+        lines += [
+            "",
+            f"Drive verification (the machine simulated with the wheel as built): {verdict}",
+            f"  achieved δ {number(v.achieved_delta)} against {number(v.delta_allowed)}; mean speed "
+            f"{q(v.omega_mean, 'omega_mean', 6)}; RMS torque {n(check.rms_torque, 'rms_torque', 5)} of "
+            f"{q(check.rated_torque, 'rated_torque', 5)}; start-up {q(check.startup_time, 'startup_time', 4)}",
+        ]
     return lines
 
 
@@ -80,21 +102,26 @@ def relaxation_summary(drive, units):
     """(the relaxed optimum in words, what relaxing each binding limit by a round step saves, first order),
     in ``units``: the text report and the HTML/PDF document say the same."""
     r = drive.relaxation
-    summary = (f"{field_text(r.rated_power, 'rated_power', units)}, motor ratio {number(r.motor_ratio, 5)}, "
-               f"flywheel ratio {number(r.flywheel_ratio, 4)}, {field_text(r.j_flywheel, 'j_flywheel', units, 5)}, "
-               f"wheel {r.wheel} {field_text(r.wheel_mass, 'wheel_mass', units, 5)}, D "
-               f"{field_text(r.d_outer, 'd_outer', units, 4)} ({r.status}; the whole-wheel NLP at the strongest "
-               f"allowable, no torque on the hub)")
+    summary = (
+        f"{field_text(r.rated_power, 'rated_power', units)}, motor ratio {number(r.motor_ratio, 5)}, "
+        f"flywheel ratio {number(r.flywheel_ratio, 4)}, {field_text(r.j_flywheel, 'j_flywheel', units, 5)}, "
+        f"wheel {r.wheel} {field_text(r.wheel_mass, 'wheel_mass', units, 5)}, D "
+        f"{field_text(r.d_outer, 'd_outer', units, 4)} ({r.status}; the whole-wheel NLP at the strongest "
+        f"allowable, no torque on the hub)"
+    )
     moved = []
     for name, words, dimension, steps in RELAXED_STEPS:
-        sensitivity = r.sensitivities.get(name, 0.0)      # objective per SI unit of the limit
+        sensitivity = r.sensitivities.get(name, 0.0)  # objective per SI unit of the limit
         if abs(sensitivity) <= 1e-9 * max(abs(r.objective), 1.0):
             continue
         shown = steps[units] if isinstance(steps, dict) else steps
-        step = shown * unit(dimension, units)[1]          # the step in SI
+        step = shown * unit(dimension, units)[1]  # the step in SI
         change = sensitivity * step
-        amount = field_text(change, "total_mass", units, 4) if drive.objective == "mass" \
+        amount = (
+            field_text(change, "total_mass", units, 4)
+            if drive.objective == "mass"
             else f"{number(change, 4)} (currency)"
+        )
         sign = "+" if shown > 0 else "−"
         name = label(dimension, units)
         step_text = number(abs(shown), 4) + ("" if name == "-" else f" {name}")
@@ -112,5 +139,8 @@ def _relaxation_lines(drive, units):
 
 
 def _limit_words(limit):
-    return {"delta": "the speed fluctuation δ", "thermal": "the motor's thermal limit (RMS torque = rated)",
-            "none": "nothing: the machine needs no flywheel"}.get(limit, str(limit))
+    return {
+        "delta": "the speed fluctuation δ",
+        "thermal": "the motor's thermal limit (RMS torque = rated)",
+        "none": "nothing: the machine needs no flywheel",
+    }.get(limit, str(limit))

@@ -82,10 +82,17 @@ def render(document) -> str:
     str
         A complete HTML5 document with no external reference.
     """
-    out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
-           '<meta name="viewport" content="width=device-width, initial-scale=1">',
-           f"<title>{_escape(document.title)}: flywheel design report</title>",
-           f"<style>{CSS}</style>", "</head>", "<body>"]
+    out = [
+        "<!DOCTYPE html>",
+        '<html lang="en">',
+        "<head>",
+        '<meta charset="utf-8">',
+        '<meta name="viewport" content="width=device-width, initial-scale=1">',
+        f"<title>{_escape(document.title)}: flywheel design report</title>",
+        f"<style>{CSS}</style>",
+        "</head>",
+        "<body>",
+    ]
     out.append(f'<header class="title" data-status="{_escape(document.status)}">')
     out.append('<div class="kind">Flywheel design report</div>')
     out.append(f"<h1>{_escape(document.title)}</h1>")
@@ -108,8 +115,10 @@ def render(document) -> str:
                 figures += 1
             out.append(_block(block, figures))
         out.append("</section>")
-    out.append(f"<footer>{_escape(document.title)}: written by flyopt. Equations in SI; tables in "
-               f"{_escape(document.units)} units.</footer>")
+    out.append(
+        f"<footer>{_escape(document.title)}: written by flyopt. Equations in SI; tables in "
+        f"{_escape(document.units)} units.</footer>"
+    )
     out += ["</body>", "</html>"]
     return "\n".join(out) + "\n"
 
@@ -132,11 +141,15 @@ def _block(block, figure_number):
     if isinstance(block, Figure):
         if block.figure is None:
             state = "failed" if block.failed else "refused"
-            return (f'<figure class="missing" data-figure="{_escape(block.key)}" data-state="{state}">'
-                    f"<figcaption>{_text(block.caption)}. {_text(block.note)}</figcaption></figure>")
+            return (
+                f'<figure class="missing" data-figure="{_escape(block.key)}" data-state="{state}">'
+                f"<figcaption>{_text(block.caption)}. {_text(block.note)}</figcaption></figure>"
+            )
         svg = svg_of(block.figure, f"f{figure_number}-")
-        return (f'<figure data-figure="{_escape(block.key)}" data-state="drawn">{svg}'
-                f"<figcaption>Figure {figure_number}: {_text(block.caption)}.</figcaption></figure>")
+        return (
+            f'<figure data-figure="{_escape(block.key)}" data-state="drawn">{svg}'
+            f"<figcaption>Figure {figure_number}: {_text(block.caption)}.</figcaption></figure>"
+        )
     if isinstance(block, Code):
         caption = f"<figcaption>{_escape(block.caption)}</figcaption>" if block.caption else ""
         return f'<figure class="code">{caption}<pre>{html.escape(block.text)}</pre></figure>'
@@ -146,7 +159,7 @@ def _block(block, figure_number):
 def _table(table):
     out = [f'<p class="caption">{_text(table.caption)}</p>'] if table.caption else []
     out.append(f'<table data-table="{_escape(table.name or "")}">')
-    head = "".join(f'<th{_align(a)}>{_text(h)}</th>' for h, a in zip(table.head, table.align))
+    head = "".join(f"<th{_align(a)}>{_text(h)}</th>" for h, a in zip(table.head, table.align))
     out.append(f"<thead><tr>{head}</tr></thead><tbody>")
     for k, row in enumerate(table.rows):
         total = ' class="total"' if table.total and k == len(table.rows) - 1 else ""
@@ -193,7 +206,7 @@ def svg_of(figure, prefix):
     with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": prefix}):
         figure.savefig(buffer, format="svg", metadata={"Date": None})
     text = buffer.getvalue()
-    text = text[text.index("<svg"):]
+    text = text[text.index("<svg") :]
     text = re.sub(r"<metadata>.*?</metadata>\s*", "", text, flags=re.S)
     seen = {}
 
@@ -204,6 +217,7 @@ def svg_of(figure, prefix):
         seen[name] = seen.get(name, 0) + 1
         suffix = "" if seen[name] == 1 else f"-{seen[name]}"
         return f' id="{prefix}{name}{suffix}"'
+
     text = re.sub(r'\sid="([^"]+)"', unique, text)
     text = re.sub(r'href="#([^"]+)"', lambda m: f'href="#{prefix}{m.group(1)}"', text)
     return re.sub(r"url\(#([^)]+)\)", lambda m: f"url(#{prefix}{m.group(1)})", text)

@@ -35,9 +35,18 @@ def render(document) -> bytes:
     styles = _styles()
     buffer = io.BytesIO()
     margin = 16 * mm
-    page = SimpleDocTemplate(buffer, pagesize=A4, leftMargin=margin, rightMargin=margin, topMargin=15 * mm,
-                             bottomMargin=17 * mm, title=f"{document.title}: flywheel design report",
-                             author="flyopt", subject="Flywheel design report", creator="flyopt")
+    page = SimpleDocTemplate(
+        buffer,
+        pagesize=A4,
+        leftMargin=margin,
+        rightMargin=margin,
+        topMargin=15 * mm,
+        bottomMargin=17 * mm,
+        title=f"{document.title}: flywheel design report",
+        author="flyopt",
+        subject="Flywheel design report",
+        creator="flyopt",
+    )
     width = A4[0] - 2 * margin
     height = A4[1] - 32 * mm
     story = _title(document, styles, width)
@@ -69,8 +78,12 @@ def _fonts():
     import matplotlib
 
     folder = os.path.join(matplotlib.get_data_path(), "fonts", "ttf")
-    for name, file in ((_FONT, "DejaVuSans.ttf"), (_BOLD, "DejaVuSans-Bold.ttf"),
-                       (_ITALIC, "DejaVuSans-Oblique.ttf"), (_MONO, "DejaVuSansMono.ttf")):
+    for name, file in (
+        (_FONT, "DejaVuSans.ttf"),
+        (_BOLD, "DejaVuSans-Bold.ttf"),
+        (_ITALIC, "DejaVuSans-Oblique.ttf"),
+        (_MONO, "DejaVuSansMono.ttf"),
+    ):
         pdfmetrics.registerFont(TTFont(name, os.path.join(folder, file)))
     pdfmetrics.registerFontFamily(_FONT, normal=_FONT, bold=_BOLD, italic=_ITALIC, boldItalic=_BOLD)
 
@@ -85,17 +98,25 @@ def _styles():
         "lead": ParagraphStyle("lead", base, keepWithNext=1),
         "title": ParagraphStyle("title", base, fontName=_BOLD, fontSize=17, leading=21, spaceAfter=2),
         "kind": ParagraphStyle("kind", base, fontSize=7.5, textColor=colors.HexColor("#555555"), spaceAfter=2),
-        "h1": ParagraphStyle("h1", base, fontName=_BOLD, fontSize=13, leading=16, spaceBefore=12, spaceAfter=6,
-                             keepWithNext=1),
-        "h2": ParagraphStyle("h2", base, fontName=_BOLD, fontSize=10.5, leading=13, spaceBefore=9, spaceAfter=4,
-                             keepWithNext=1),
+        "h1": ParagraphStyle(
+            "h1", base, fontName=_BOLD, fontSize=13, leading=16, spaceBefore=12, spaceAfter=6, keepWithNext=1
+        ),
+        "h2": ParagraphStyle(
+            "h2", base, fontName=_BOLD, fontSize=10.5, leading=13, spaceBefore=9, spaceAfter=4, keepWithNext=1
+        ),
         "cell": ParagraphStyle("cell", base, fontSize=7.6, leading=9.4, spaceAfter=0),
         "head": ParagraphStyle("head", base, fontName=_BOLD, fontSize=7.6, leading=9.4, spaceAfter=0),
         "cell_r": ParagraphStyle("cell_r", base, fontSize=7.6, leading=9.4, spaceAfter=0, alignment=2),
-        "head_r": ParagraphStyle("head_r", base, fontName=_BOLD, fontSize=7.6, leading=9.4, spaceAfter=0,
-                                 alignment=2),
-        "caption": ParagraphStyle("caption", base, fontName=_ITALIC, fontSize=8, leading=10, spaceAfter=3,
-                                  textColor=colors.HexColor("#333333")),
+        "head_r": ParagraphStyle("head_r", base, fontName=_BOLD, fontSize=7.6, leading=9.4, spaceAfter=0, alignment=2),
+        "caption": ParagraphStyle(
+            "caption",
+            base,
+            fontName=_ITALIC,
+            fontSize=8,
+            leading=10,
+            spaceAfter=3,
+            textColor=colors.HexColor("#333333"),
+        ),
         "eq": ParagraphStyle("eq", base, fontSize=9, leading=12, spaceAfter=0),
         "eq_b": ParagraphStyle("eq_b", base, fontName=_BOLD, fontSize=9, leading=12, spaceAfter=0),
         "ref": ParagraphStyle("ref", base, fontSize=7, leading=9, spaceAfter=0, textColor=colors.HexColor("#555555")),
@@ -128,15 +149,26 @@ def _title(document, styles, width):
     from reportlab.platypus import Spacer
     from reportlab.platypus import Table as RLTable
 
-    rows = [[_paragraph("FLYWHEEL DESIGN REPORT", styles["kind"]), ""],
-            [_paragraph(document.title, styles["title"]), ""]]
-    rows += [[_paragraph(label, styles["cell"]), _paragraph(value, styles["cell"])]
-             for label, value in document.title_block]
+    rows = [
+        [_paragraph("FLYWHEEL DESIGN REPORT", styles["kind"]), ""],
+        [_paragraph(document.title, styles["title"]), ""],
+    ]
+    rows += [
+        [_paragraph(label, styles["cell"]), _paragraph(value, styles["cell"])] for label, value in document.title_block
+    ]
     table = RLTable(rows, colWidths=[0.2 * width, 0.8 * width - 12])
-    table.setStyle([("BOX", (0, 0), (-1, -1), 1.4, colors.black), ("SPAN", (0, 0), (1, 0)), ("SPAN", (0, 1), (1, 1)),
-                    ("VALIGN", (0, 0), (-1, -1), "TOP"), ("LEFTPADDING", (0, 0), (-1, -1), 6),
-                    ("TOPPADDING", (0, 0), (-1, -1), 1.5), ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5),
-                    ("TEXTCOLOR", (0, 2), (0, -1), colors.HexColor("#555555"))])
+    table.setStyle(
+        [
+            ("BOX", (0, 0), (-1, -1), 1.4, colors.black),
+            ("SPAN", (0, 0), (1, 0)),
+            ("SPAN", (0, 1), (1, 1)),
+            ("VALIGN", (0, 0), (-1, -1), "TOP"),
+            ("LEFTPADDING", (0, 0), (-1, -1), 6),
+            ("TOPPADDING", (0, 0), (-1, -1), 1.5),
+            ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5),
+            ("TEXTCOLOR", (0, 2), (0, -1), colors.HexColor("#555555")),
+        ]
+    )
     return [table, Spacer(1, 8)]
 
 
@@ -152,19 +184,30 @@ def _block(block, styles, width, height):
             return [_paragraph(block.text, styles["lead"] if lead else styles["body"])]
         colour = {"ok": "#1e7a46", "warning": "#b3261e", "note": "#8a7300"}[block.kind]
         box = RLTable([[_paragraph(block.text, styles[block.kind])]], colWidths=[width])
-        box.setStyle([("LINEBEFORE", (0, 0), (0, -1), 3, colors.HexColor(colour)),
-                      ("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
-                      ("LEFTPADDING", (0, 0), (-1, -1), 7), ("TOPPADDING", (0, 0), (-1, -1), 3),
-                      ("BOTTOMPADDING", (0, 0), (-1, -1), 1)])
+        box.setStyle(
+            [
+                ("LINEBEFORE", (0, 0), (0, -1), 3, colors.HexColor(colour)),
+                ("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
+                ("LEFTPADDING", (0, 0), (-1, -1), 7),
+                ("TOPPADDING", (0, 0), (-1, -1), 3),
+                ("BOTTOMPADDING", (0, 0), (-1, -1), 1),
+            ]
+        )
         return [box, Spacer(1, 4)]
     if isinstance(block, Facts):
         rows = [[_paragraph(label, styles["cell"]), _paragraph(value, styles["cell"])] for label, value in block.rows]
         table = RLTable(rows, colWidths=[0.33 * width, 0.67 * width])
-        table.setStyle([("LINEBELOW", (0, 0), (-1, -1), 0.4, colors.HexColor("#c9ced6")),
-                        ("VALIGN", (0, 0), (-1, -1), "TOP"), ("TOPPADDING", (0, 0), (-1, -1), 1.5),
-                        ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5), ("LEFTPADDING", (0, 0), (-1, -1), 2),
-                        ("TEXTCOLOR", (0, 0), (0, -1), colors.HexColor("#444444"))])
-        return [KeepTogether([table]) if len(rows) <= 12 else table, Spacer(1, 6)]   # a short list is not cut
+        table.setStyle(
+            [
+                ("LINEBELOW", (0, 0), (-1, -1), 0.4, colors.HexColor("#c9ced6")),
+                ("VALIGN", (0, 0), (-1, -1), "TOP"),
+                ("TOPPADDING", (0, 0), (-1, -1), 1.5),
+                ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5),
+                ("LEFTPADDING", (0, 0), (-1, -1), 2),
+                ("TEXTCOLOR", (0, 0), (0, -1), colors.HexColor("#444444")),
+            ]
+        )
+        return [KeepTogether([table]) if len(rows) <= 12 else table, Spacer(1, 6)]  # a short list is not cut
     if isinstance(block, Table):
         return _table(block, styles, width)
     if isinstance(block, Equation):
@@ -172,10 +215,15 @@ def _block(block, styles, width, height):
         rows += [[_paragraph(line, styles["eq"])] for line in block.lines[1:-1]]
         rows += [[_paragraph(block.lines[-1], styles["eq_b"])], [_paragraph(block.reference, styles["ref"])]]
         table = RLTable(rows, colWidths=[width])
-        table.setStyle([("LINEBEFORE", (0, 0), (0, -1), 2.2, colors.HexColor("#4a6fa5")),
-                        ("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
-                        ("LEFTPADDING", (0, 0), (-1, -1), 8), ("TOPPADDING", (0, 0), (-1, -1), 0.8),
-                        ("BOTTOMPADDING", (0, 0), (-1, -1), 0.8)])
+        table.setStyle(
+            [
+                ("LINEBEFORE", (0, 0), (0, -1), 2.2, colors.HexColor("#4a6fa5")),
+                ("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
+                ("LEFTPADDING", (0, 0), (-1, -1), 8),
+                ("TOPPADDING", (0, 0), (-1, -1), 0.8),
+                ("BOTTOMPADDING", (0, 0), (-1, -1), 0.8),
+            ]
+        )
         return [KeepTogether([table]), Spacer(1, 5)]
     if isinstance(block, Figure):
         caption = f"{block.caption}." if block.figure is not None else f"{block.caption}. {block.note}"
@@ -196,13 +244,24 @@ def _split_code(text, style, chars, width):
     from reportlab.platypus import Table as RLTable
 
     # a blank line is a space of one line (Preformatted drops a line of white space)
-    rows = [[Preformatted(line, style, maxLineLength=chars, newLineChars="↪ ") if line.strip()
-             else Spacer(1, style.leading)] for line in text.rstrip("\n").split("\n")]
+    rows = [
+        [
+            Preformatted(line, style, maxLineLength=chars, newLineChars="↪ ")
+            if line.strip()
+            else Spacer(1, style.leading)
+        ]
+        for line in text.rstrip("\n").split("\n")
+    ]
     table = RLTable(rows, colWidths=[width], repeatRows=0)
-    table.setStyle([("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
-                    ("LEFTPADDING", (0, 0), (-1, -1), 5), ("TOPPADDING", (0, 0), (-1, -1), 0),
-                    ("BOTTOMPADDING", (0, 0), (-1, -1), 0.4),
-                    ("BOX", (0, 0), (-1, -1), 0.5, colors.HexColor("#c9ced6"))])
+    table.setStyle(
+        [
+            ("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
+            ("LEFTPADDING", (0, 0), (-1, -1), 5),
+            ("TOPPADDING", (0, 0), (-1, -1), 0),
+            ("BOTTOMPADDING", (0, 0), (-1, -1), 0.4),
+            ("BOX", (0, 0), (-1, -1), 0.5, colors.HexColor("#c9ced6")),
+        ]
+    )
     return table
 
 
@@ -220,20 +279,28 @@ def _table(block, styles, width):
         body = [plain(row[k]) for row in block.rows]
         widest = max([stringWidth(t, _FONT, size) for t in body] + [0.0])
         natural.append(max(widest, stringWidth(head, _BOLD, size)) + pad)
-        words = max([stringWidth(w, _BOLD, size) for w in head.split() or [""]]
-                    + [stringWidth(w, _FONT, size) for t in body for w in t.split() or [""]])
+        words = max(
+            [stringWidth(w, _BOLD, size) for w in head.split() or [""]]
+            + [stringWidth(w, _FONT, size) for t in body for w in t.split() or [""]]
+        )
         # a number is never broken over lines: a right-aligned column keeps its cells' width
         least.append(max(words, widest if align == ">" else 0.0) + pad)
     widths = _fit(natural, least, width)
     head = [_paragraph(h, styles["head_r" if a == ">" else "head"]) for h, a in zip(block.head, block.align)]
-    rows = [head] + [[_paragraph(cell, styles["cell_r" if a == ">" else "cell"]) for cell, a in zip(row, block.align)]
-                     for row in block.rows]
+    rows = [head] + [
+        [_paragraph(cell, styles["cell_r" if a == ">" else "cell"]) for cell, a in zip(row, block.align)]
+        for row in block.rows
+    ]
     table = RLTable(rows, colWidths=widths, repeatRows=1, hAlign="LEFT")
-    style = [("GRID", (0, 0), (-1, -1), 0.4, colors.HexColor("#c9ced6")),
-             ("BACKGROUND", (0, 0), (-1, 0), colors.HexColor("#f3f5f8")),
-             ("VALIGN", (0, 0), (-1, -1), "TOP"), ("TOPPADDING", (0, 0), (-1, -1), 1.5),
-             ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5), ("LEFTPADDING", (0, 0), (-1, -1), 3),
-             ("RIGHTPADDING", (0, 0), (-1, -1), 3)]
+    style = [
+        ("GRID", (0, 0), (-1, -1), 0.4, colors.HexColor("#c9ced6")),
+        ("BACKGROUND", (0, 0), (-1, 0), colors.HexColor("#f3f5f8")),
+        ("VALIGN", (0, 0), (-1, -1), "TOP"),
+        ("TOPPADDING", (0, 0), (-1, -1), 1.5),
+        ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5),
+        ("LEFTPADDING", (0, 0), (-1, -1), 3),
+        ("RIGHTPADDING", (0, 0), (-1, -1), 3),
+    ]
     if block.total:
         style.append(("LINEABOVE", (0, -1), (-1, -1), 1.2, colors.black))
     table.setStyle(style)
@@ -293,7 +360,7 @@ def _figure(figure, caption, width, height):
             return self.width, self.height
 
         def split(self, available_width, available_height):
-            return []        # a diagram is never cut: it goes to the next page whole
+            return []  # a diagram is never cut: it goes to the next page whole
 
         def draw(self):
             shown_w, shown_h = w * self.scale, h * self.scale

@@ -42,7 +42,7 @@ PLOTS = {
     "stress": "σ_r, σ_t and von Mises over the radius at ω_max, each part's allowable, the governing point",
     "speed": "ω(φ) over the cycle with the required flywheel, from the model that ran",
     "energy_mass": "energy–mass (Wittenbauer) diagram: ΔE against J_e with the two tangents "
-                   "(an inertia that varies with the angle)",
+    "(an inertia that varies with the angle)",
 }
 #: Image formats :func:`save` writes, by the suffix of the file.
 FORMATS = ("png", "svg", "pdf")
@@ -72,8 +72,7 @@ def check_output(path):
     """
     path = Path(path)
     if path.suffix.lower().lstrip(".") not in FORMATS:
-        raise SceneError("-o/--output", f"{str(path)!r} must end in .png, .svg or .pdf "
-                         f"(the suffix picks the format)")
+        raise SceneError("-o/--output", f"{str(path)!r} must end in .png, .svg or .pdf (the suffix picks the format)")
     folder = path.parent
     if not folder.is_dir():
         raise SceneError("-o/--output", f"the folder {str(folder)!r} does not exist")
@@ -92,6 +91,7 @@ def _pyplot():
 # --------------------------------------------------------------------------
 # The visual standard: figures, units, titles, legends
 # --------------------------------------------------------------------------
+
 
 def _axes(ax, figsize=(9, 5.2)):
     """(Axes, own): the caller's Axes, or one on a new figure of constrained layout (own True)."""
@@ -117,7 +117,7 @@ def _q(value, dimension, units, digits=_DIGITS):
 
 
 def _axis_label(words, dimension, units):
-    """"words [unit]" ("[-]" for a ratio: every axis says its unit)."""
+    """ "words [unit]" ("[-]" for a ratio: every axis says its unit)."""
     return f"{words} [{display.label(dimension, units)}]"
 
 
@@ -153,10 +153,27 @@ def _legend(ax, own, title=None, ncol=2, handles=None):
     if title:
         title = _fill(title, title_wrap)
     if own:
-        return ax.figure.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=_FONT,
-                                title=title, title_fontsize=_FONT, frameon=False)
-    return ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
-                     fontsize=_FONT, title=title, title_fontsize=_FONT, frameon=False)
+        return ax.figure.legend(
+            handles,
+            labels,
+            loc="outside lower center",
+            ncol=ncol,
+            fontsize=_FONT,
+            title=title,
+            title_fontsize=_FONT,
+            frameon=False,
+        )
+    return ax.legend(
+        handles,
+        labels,
+        loc="upper left",
+        bbox_to_anchor=(1.02, 1.0),
+        borderaxespad=0.0,
+        fontsize=_FONT,
+        title=title,
+        title_fontsize=_FONT,
+        frameon=False,
+    )
 
 
 def _fill(text, width):
@@ -200,8 +217,9 @@ def _dead_centres(scene):
     if scene.engine is not None:
         engine = scene.engine
         start = float(engine.firing_angles[0])
-        names = ("intake", "compression", "power", "exhaust") if engine.cycle == "4-stroke" else \
-            ("power", "compression")
+        names = (
+            ("intake", "compression", "power", "exhaust") if engine.cycle == "4-stroke" else ("power", "compression")
+        )
         major, minor = [], []
         for k in range(-turns, turns + 1):
             angle = start + k * math.pi
@@ -211,8 +229,11 @@ def _dead_centres(scene):
             if 0.0 < middle < cycle:
                 minor.append((middle, names[k % len(names)]))
         cylinders = engine.cylinder_count
-        words = (f"cylinder 1 of {cylinders}: dead centres and strokes" if cylinders > 1
-                 else f"the cylinder's dead centres and strokes ({engine.cycle})")
+        words = (
+            f"cylinder 1 of {cylinders}: dead centres and strokes"
+            if cylinders > 1
+            else f"the cylinder's dead centres and strokes ({engine.cycle})"
+        )
         return major, minor, words
     mechanism = scene.mechanism
     if isinstance(mechanism, SliderCrank):
@@ -238,8 +259,7 @@ def _mark_dead_centres(ax, scene, units):
     top = ax.secondary_xaxis("top")
     top.set_gid("dead_centres")
     top.set_xticks([float(_show(a, "angle", units)) for a, _n in major], labels=[n for _a, n in major])
-    top.set_xticks([float(_show(a, "angle", units)) for a, _n in minor], labels=[n for _a, n in minor],
-                   minor=True)
+    top.set_xticks([float(_show(a, "angle", units)) for a, _n in minor], labels=[n for _a, n in minor], minor=True)
     top.tick_params(axis="x", which="major", labelsize=7.5)
     top.tick_params(axis="x", which="minor", length=0, labelsize=7, labelcolor="dimgray")
     top.set_xlabel(words, fontsize=_FONT)
@@ -251,6 +271,7 @@ def _mark_dead_centres(ax, scene, units):
 # --------------------------------------------------------------------------
 # The torques over the cycle, as the model that ran saw them
 # --------------------------------------------------------------------------
+
 
 def _excess_work(scene, analysis):
     """ΔE of the torques as the analysis saw them (members' loads joined, a motor at its mean)."""
@@ -287,8 +308,12 @@ def _along(curve, phi, omega):
     if isinstance(curve, TorqueSum):
         return sum(_along(part, phi, omega) for part in curve.parts)
     if isinstance(curve, MotorTorque):
-        return np.asarray(curve.motor.reference_torque(omega, curve.speed_ratio, curve.efficiency, curve.model),
-                          dtype=float) + 0.0 * phi
+        return (
+            np.asarray(
+                curve.motor.reference_torque(omega, curve.speed_ratio, curve.efficiency, curve.model), dtype=float
+            )
+            + 0.0 * phi
+        )
     if isinstance(curve, ExpressionTorque) and curve.speed_dependent:
         with np.errstate(all="ignore"):
             return curve.scale * np.asarray(curve.expression.numpy(phi=phi, omega=omega), dtype=float) + 0.0 * phi
@@ -314,14 +339,20 @@ class _Torques:
         self.motor = _is_motor(machine.driving)
         self.resisting_speed = bool(getattr(machine.resisting, "speed_dependent", False))
         if self.along:
-            speed = analysis.requirement.detail.solution     # the periodic solution the dynamic model found
+            speed = analysis.requirement.detail.solution  # the periodic solution the dynamic model found
             phi, omega = np.asarray(speed.phi, dtype=float), np.asarray(speed.omega, dtype=float)
             offset = float(getattr(speed, "torque_offset", 0.0) or 0.0)
             # the periodic model's net torque: an unknown constant is the balancing one plus the offset
-            self.driving = (np.full(phi.shape, balanced.driving.value + offset) if self.driving_solved
-                            else _along(machine.driving, phi, omega))
-            self.resisting = (np.full(phi.shape, balanced.resisting.value - offset) if self.resisting_solved
-                              else _along(machine.resisting, phi, omega))
+            self.driving = (
+                np.full(phi.shape, balanced.driving.value + offset)
+                if self.driving_solved
+                else _along(machine.driving, phi, omega)
+            )
+            self.resisting = (
+                np.full(phi.shape, balanced.resisting.value - offset)
+                if self.resisting_solved
+                else _along(machine.resisting, phi, omega)
+            )
         else:
             ind = analysis.indicator
             phi = np.union1d(np.linspace(0.0, scene.cycle_angle, 3001), np.asarray(balanced.knots, dtype=float))
@@ -381,6 +412,7 @@ def _is_motor(curve):
 # Labels placed where nothing else is
 # --------------------------------------------------------------------------
 
+
 def _to_pixels(ax, x, y):
     return ax.transData.transform(np.column_stack([x, y]))
 
@@ -431,8 +463,9 @@ def _place_area_labels(ax, x, lower, upper, spans, obstacles_x=(), obstacles_y=(
         for mode in ("inside", "above", "below", "across"):
             for cx in centres:
                 window = (px >= cx - w / 2) & (px <= cx + w / 2)
-                if not window.any() or (mode != "across" and any(cx - w / 2 - 3 <= v <= cx + w / 2 + 3
-                                                                  for v in lines_px)):
+                if not window.any() or (
+                    mode != "across" and any(cx - w / 2 - 3 <= v <= cx + w / 2 + 3 for v in lines_px)
+                ):
                     continue
                 top, bottom = hi_px[window, 1], lo_px[window, 1]
                 if mode in ("inside", "across"):
@@ -445,9 +478,12 @@ def _place_area_labels(ax, x, lower, upper, spans, obstacles_x=(), obstacles_y=(
                 else:
                     cy, score = float(bottom.min()) - 1.0 - h / 2, -abs(cx - middle)
                 candidate = Bbox.from_bounds(cx - w / 2, cy - h / 2, w, h)
-                if candidate.y0 < axes_box.y0 or candidate.y1 > axes_box.y1 or \
-                        any(candidate.y0 <= v <= candidate.y1 for v in levels_px) or \
-                        any(_boxes_overlap(candidate, other) for other in placed):
+                if (
+                    candidate.y0 < axes_box.y0
+                    or candidate.y1 > axes_box.y1
+                    or any(candidate.y0 <= v <= candidate.y1 for v in levels_px)
+                    or any(_boxes_overlap(candidate, other) for other in placed)
+                ):
                     continue
                 if best is None or score > best[0]:
                     best = (score, cx, cy, candidate)
@@ -469,6 +505,7 @@ def _place_area_labels(ax, x, lower, upper, spans, obstacles_x=(), obstacles_y=(
 # The turning-moment diagram
 # --------------------------------------------------------------------------
 
+
 def _omega_marks(analysis, units):
     """The vertical marks of the speed extremes and of the ends of A_max: (angle, label, colour, style, gid).
 
@@ -482,9 +519,12 @@ def _omega_marks(analysis, units):
     if analysis.a_max <= 0 and not (analysis.machine is not None and analysis.machine.variable_inertia):
         return marks, "steady running: M_d = M_r at every angle, A_max = 0, the speed does not fluctuate"
     model = {"energy": "energy method", "energy_mass": "energy–mass model", "dynamic": "periodic solution"}[
-        analysis.model]
-    pairs = (("max", analysis.angle_omega_max, analysis.angle_delta_e_max, "largest", SURPLUS),
-             ("min", analysis.angle_omega_min, analysis.angle_delta_e_min, "smallest", DEFICIT))
+        analysis.model
+    ]
+    pairs = (
+        ("max", analysis.angle_omega_max, analysis.angle_delta_e_max, "largest", SURPLUS),
+        ("min", analysis.angle_omega_min, analysis.angle_delta_e_min, "smallest", DEFICIT),
+    )
     differ = False
     for name, omega_at, delta_e_at, word, colour in pairs:
         if omega_at is None:
@@ -492,19 +532,37 @@ def _omega_marks(analysis, units):
         apart = delta_e_at is not None and abs(omega_at - delta_e_at) > 1e-3
         differ |= apart
         if analysis.model == "dynamic":
-            marks.append((omega_at, f"ω_{name} ({model}): φ = {_q(omega_at, 'angle', units)}", colour, "--",
-                          f"omega_{name}"))
+            marks.append(
+                (omega_at, f"ω_{name} ({model}): φ = {_q(omega_at, 'angle', units)}", colour, "--", f"omega_{name}")
+            )
         elif not apart:
-            marks.append((omega_at, f"ω_{name} where ΔE is {word}: φ = {_q(omega_at, 'angle', units)}",
-                          colour, "--", f"omega_{name}"))
+            marks.append(
+                (
+                    omega_at,
+                    f"ω_{name} where ΔE is {word}: φ = {_q(omega_at, 'angle', units)}",
+                    colour,
+                    "--",
+                    f"omega_{name}",
+                )
+            )
         else:
-            marks.append((omega_at, f"ω_{name} ({model}): φ = {_q(omega_at, 'angle', units)}", colour, "--",
-                          f"omega_{name}"))
-            marks.append((delta_e_at, f"ΔE {word} (an end of A_max): φ = {_q(delta_e_at, 'angle', units)}",
-                          colour, ":", f"delta_e_{name}"))
+            marks.append(
+                (omega_at, f"ω_{name} ({model}): φ = {_q(omega_at, 'angle', units)}", colour, "--", f"omega_{name}")
+            )
+            marks.append(
+                (
+                    delta_e_at,
+                    f"ΔE {word} (an end of A_max): φ = {_q(delta_e_at, 'angle', units)}",
+                    colour,
+                    ":",
+                    f"delta_e_{name}",
+                )
+            )
     if differ and analysis.model == "energy_mass":
-        note = ("J_e varies with φ: the speed is extreme where the energy–mass tangents touch (section 6 of "
-                "the notes), not where ΔE is, at the ends of A_max")
+        note = (
+            "J_e varies with φ: the speed is extreme where the energy–mass tangents touch (section 6 of "
+            "the notes), not where ΔE is, at the ends of A_max"
+        )
     elif analysis.model == "dynamic":
         note = "a torque depends on speed: the torques and the speed extremes along the periodic solution (section 7)"
     return marks, note
@@ -547,18 +605,26 @@ def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
     if scene.net is not None:
         areas = ind.areas
         k = np.arange(1, len(areas) + 1)
-        ax.bar(k - 0.5, _show(areas, "energy", units), width=0.8,
-               color=[SURPLUS if a > 0 else DEFICIT for a in areas])
+        ax.bar(k - 0.5, _show(areas, "energy", units), width=0.8, color=[SURPLUS if a > 0 else DEFICIT for a in areas])
         ax.axhline(0, color="black", lw=0.8)
         for x, a in zip(k - 0.5, areas):
-            ax.annotate(_q(a, "energy", units), (x, float(_show(a, "energy", units))), xytext=(0, 3 if a > 0 else -3),
-                        textcoords="offset points", ha="center", va="bottom" if a > 0 else "top", fontsize=_FONT,
-                        gid="area")
+            ax.annotate(
+                _q(a, "energy", units),
+                (x, float(_show(a, "energy", units))),
+                xytext=(0, 3 if a > 0 else -3),
+                textcoords="offset points",
+                ha="center",
+                va="bottom" if a > 0 else "top",
+                fontsize=_FONT,
+                gid="area",
+            )
         ax.set_xlim(0, len(areas))
         ax.set_xticks(k - 0.5, labels=[str(i) for i in k])
         ax.margins(y=0.15)
-        ax.set(xlabel="area between the torque curves, in order over the cycle",
-               ylabel=_axis_label("energy of the area", "energy", units))
+        ax.set(
+            xlabel="area between the torque curves, in order over the cycle",
+            ylabel=_axis_label("energy of the area", "energy", units),
+        )
         _title(ax, own, scene.title, f"net areas between the torque curves (A_max = {_q(ind.a_max, 'energy', units)})")
         return ax
     torques = _Torques(scene, analysis)
@@ -566,16 +632,32 @@ def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
     md, mr = _show(torques.driving, "torque", units), _show(torques.resisting, "torque", units)
     ax.fill_between(x, md, mr, where=md >= mr, color=SURPLUS, alpha=0.25, interpolate=True, lw=0)
     ax.fill_between(x, md, mr, where=md < mr, color=DEFICIT, alpha=0.25, interpolate=True, lw=0)
-    ax.plot(x, md, color="tab:blue", lw=1.8, label=_torque_words("driving M_d", torques.driving_solved,
-                                                                    torques.driving, torques, units))
-    ax.plot(x, mr, color="black", lw=1.8, label=_torque_words("resisting M_r", torques.resisting_solved,
-                                                                torques.resisting, torques, units))
+    ax.plot(
+        x,
+        md,
+        color="tab:blue",
+        lw=1.8,
+        label=_torque_words("driving M_d", torques.driving_solved, torques.driving, torques, units),
+    )
+    ax.plot(
+        x,
+        mr,
+        color="black",
+        lw=1.8,
+        label=_torque_words("resisting M_r", torques.resisting_solved, torques.resisting, torques, units),
+    )
     levels = []
     if torques.along and not torques.driving_solved and np.ptp(torques.driving) > 0:
         mean = analysis.driving_torque
         levels.append(float(_show(mean, "torque", units)))
-        ax.axhline(float(_show(mean, "torque", units)), color="tab:blue", ls="--", lw=1.0,
-                   label=f"mean M_d = W/Φ = {_q(mean, 'torque', units)}", gid="mean_driving")
+        ax.axhline(
+            float(_show(mean, "torque", units)),
+            color="tab:blue",
+            ls="--",
+            lw=1.0,
+            label=f"mean M_d = W/Φ = {_q(mean, 'torque', units)}",
+            gid="mean_driving",
+        )
     marks, note = _omega_marks(analysis, units)
     for angle, words, colour, style, gid in marks:
         ax.axvline(float(_show(angle, "angle", units)), color=colour, ls=style, lw=1.1, label=words, gid=gid)
@@ -597,13 +679,27 @@ def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
         ax.set_ylim(low - 0.12 * span, high + 0.22 * span)
     _legend(ax, own, title=note)
     largest = max([abs(a) for _l, _r, a in areas] + [0.0])
-    spans = [(float(_show(left, "angle", units)), float(_show(right, "angle", units)),
-              f"{'+' if area > 0 else '−'}{_q(abs(area), 'energy', units)}", SURPLUS if area > 0 else DEFICIT)
-             for left, right, area in areas
-             if largest > 0 and (abs(area) >= 0.01 * largest or right - left >= 0.02 * scene.cycle_angle)
-             and abs(area) > 1e-9 * largest]
-    _place_area_labels(ax, x, np.minimum(md, mr), np.maximum(md, mr), spans,
-                       [float(_show(a, "angle", units)) for a, *_r in marks], levels)
+    spans = [
+        (
+            float(_show(left, "angle", units)),
+            float(_show(right, "angle", units)),
+            f"{'+' if area > 0 else '−'}{_q(abs(area), 'energy', units)}",
+            SURPLUS if area > 0 else DEFICIT,
+        )
+        for left, right, area in areas
+        if largest > 0
+        and (abs(area) >= 0.01 * largest or right - left >= 0.02 * scene.cycle_angle)
+        and abs(area) > 1e-9 * largest
+    ]
+    _place_area_labels(
+        ax,
+        x,
+        np.minimum(md, mr),
+        np.maximum(md, mr),
+        spans,
+        [float(_show(a, "angle", units)) for a, *_r in marks],
+        levels,
+    )
     ax.set_xlim(0.0, end)
     del top, energy
     return ax
@@ -626,6 +722,7 @@ def _torque_words(words, solved, values, torques, units):
 # --------------------------------------------------------------------------
 # The energy indicator diagram
 # --------------------------------------------------------------------------
+
 
 def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
     """Energy indicator diagram: ΔE from the cycle start, the chain points, ΔE's extremes and A_max.
@@ -660,59 +757,129 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
         ew = _excess_work(scene, analysis)
         phi = np.union1d(np.linspace(0, scene.cycle_angle, 1501), ind.chain_angle)
         frozen = " (torques frozen at ω_m, the motor at its mean)" if analysis.model == "dynamic" else ""
-        ax.plot(_show(phi, "angle", units), _show(ew(phi), "energy", units), color="tab:blue", lw=1.5,
-                label=f"ΔE(φ) = ∫(M_d − M_r) dφ{frozen}")
+        ax.plot(
+            _show(phi, "angle", units),
+            _show(ew(phi), "energy", units),
+            color="tab:blue",
+            lw=1.5,
+            label=f"ΔE(φ) = ∫(M_d − M_r) dφ{frozen}",
+        )
         if analysis.model == "dynamic":
             torques = _Torques(scene, analysis)
-            ax.plot(_show(torques.phi, "angle", units), _show(torques.excess_work(), "energy", units),
-                    color="tab:purple", lw=1.2, ls="--", label="ΔE along the periodic solution (the motor on "
-                    "its characteristic)", gid="along")
+            ax.plot(
+                _show(torques.phi, "angle", units),
+                _show(torques.excess_work(), "energy", units),
+                color="tab:purple",
+                lw=1.2,
+                ls="--",
+                label="ΔE along the periodic solution (the motor on its characteristic)",
+                gid="along",
+            )
         _angle_axis(ax, scene.cycle_angle, units)
         _mark_dead_centres(ax, scene, units)
     y_chain = _show(chain, "energy", units)
-    ax.plot(x_chain, y_chain, "o", color="black", ms=3.5, zorder=4,
-            label="ends of the areas" if ind.chain_angle is None else "ends of the areas: crossings of the torques")
+    ax.plot(
+        x_chain,
+        y_chain,
+        "o",
+        color="black",
+        ms=3.5,
+        zorder=4,
+        label="ends of the areas" if ind.chain_angle is None else "ends of the areas: crossings of the torques",
+    )
     hi, lo = float(y_chain[ind.index_max]), float(y_chain[ind.index_min])
-    names = (("ω_max", "ω_min") if constant and analysis.model != "dynamic" else ("ΔE largest", "ΔE smallest"))
+    names = ("ω_max", "ω_min") if constant and analysis.model != "dynamic" else ("ΔE largest", "ΔE smallest")
     steady = not hi > lo and constant
     extremes = () if steady else ((ind.index_max, names[0], SURPLUS, 1), (ind.index_min, names[1], DEFICIT, -1))
     for k, name, colour, where in extremes:
         ax.axhline(y_chain[k], color=colour, ls=":", lw=1)
-        angle = f" at φ = {_q(ind.chain_angle[k], 'angle', units)}" if ind.chain_angle is not None else \
-            f" at the end of area {k}"
-        ax.plot([x_chain[k]], [y_chain[k]], "o", ms=7, mfc="none", mec=colour, mew=1.6, zorder=5,
-                label=f"{name}: ΔE = {_q(chain[k], 'energy', units)}{angle}",
-                gid="chain_max" if where > 0 else "chain_min")
-        ax.annotate(name, (x_chain[k], y_chain[k]), xytext=(0, 7 * where), textcoords="offset points",
-                    ha="center", va="bottom" if where > 0 else "top", fontsize=_FONT, color=colour,
-                    gid="extreme_label")
+        angle = (
+            f" at φ = {_q(ind.chain_angle[k], 'angle', units)}"
+            if ind.chain_angle is not None
+            else f" at the end of area {k}"
+        )
+        ax.plot(
+            [x_chain[k]],
+            [y_chain[k]],
+            "o",
+            ms=7,
+            mfc="none",
+            mec=colour,
+            mew=1.6,
+            zorder=5,
+            label=f"{name}: ΔE = {_q(chain[k], 'energy', units)}{angle}",
+            gid="chain_max" if where > 0 else "chain_min",
+        )
+        ax.annotate(
+            name,
+            (x_chain[k], y_chain[k]),
+            xytext=(0, 7 * where),
+            textcoords="offset points",
+            ha="center",
+            va="bottom" if where > 0 else "top",
+            fontsize=_FONT,
+            color=colour,
+            gid="extreme_label",
+        )
     if ind.chain_angle is not None and (not constant or analysis.model == "dynamic") and not steady:
         ew = _excess_work(scene, analysis)
-        for angle, name, colour, marker in ((analysis.angle_omega_max, "ω_max", SURPLUS, "^"),
-                                            (analysis.angle_omega_min, "ω_min", DEFICIT, "v")):
+        for angle, name, colour, marker in (
+            (analysis.angle_omega_max, "ω_max", SURPLUS, "^"),
+            (analysis.angle_omega_min, "ω_min", DEFICIT, "v"),
+        ):
             if angle is None:
                 continue
-            ax.plot([float(_show(angle, "angle", units))], [float(_show(ew(np.array([angle]))[0], "energy", units))],
-                    marker, color=colour, ms=7, zorder=6, gid=f"omega_{name[-3:]}",
-                    label=f"{name} ({analysis.model} model) at φ = {_q(angle, 'angle', units)}")
+            ax.plot(
+                [float(_show(angle, "angle", units))],
+                [float(_show(ew(np.array([angle]))[0], "energy", units))],
+                marker,
+                color=colour,
+                ms=7,
+                zorder=6,
+                gid=f"omega_{name[-3:]}",
+                label=f"{name} ({analysis.model} model) at φ = {_q(angle, 'angle', units)}",
+            )
     top, bottom = hi, lo
-    for line in ax.get_lines():     # every curve drawn (ΔE along the periodic solution too) within the plot
+    for line in ax.get_lines():  # every curve drawn (ΔE along the periodic solution too) within the plot
         values = np.asarray(line.get_ydata(), dtype=float)
         if values.size > 2:
             top, bottom = max(top, float(np.nanmax(values))), min(bottom, float(np.nanmin(values)))
     span = top - bottom
     ax.set_ylim(bottom - 0.2 * span if span > 0 else bottom - 1.0, top + 0.2 * span if span > 0 else top + 1.0)
-    if hi > lo:   # A_max as a dimension right of the plot, clear of the curve
+    if hi > lo:  # A_max as a dimension right of the plot, clear of the curve
         from matplotlib.transforms import blended_transform_factory
 
         where = blended_transform_factory(ax.transAxes, ax.transData)
-        ax.annotate("", (1.025, hi), (1.025, lo), xycoords=where, textcoords=where, annotation_clip=False,
-                    arrowprops={"arrowstyle": "<|-|>", "color": "black", "lw": 0.9, "shrinkA": 0, "shrinkB": 0,
-                                "mutation_scale": 8}, gid="a_max")
+        ax.annotate(
+            "",
+            (1.025, hi),
+            (1.025, lo),
+            xycoords=where,
+            textcoords=where,
+            annotation_clip=False,
+            arrowprops={
+                "arrowstyle": "<|-|>",
+                "color": "black",
+                "lw": 0.9,
+                "shrinkA": 0,
+                "shrinkB": 0,
+                "mutation_scale": 8,
+            },
+            gid="a_max",
+        )
         for level in (hi, lo):
             ax.plot([1.0, 1.045], [level, level], transform=where, clip_on=False, color="gray", lw=0.6)
-        ax.text(1.04, 0.5 * (hi + lo), f"A_max = {_q(ind.a_max, 'energy', units)}", transform=where, rotation=90,
-                ha="left", va="center", fontsize=_FONT, clip_on=False)
+        ax.text(
+            1.04,
+            0.5 * (hi + lo),
+            f"A_max = {_q(ind.a_max, 'energy', units)}",
+            transform=where,
+            rotation=90,
+            ha="left",
+            va="center",
+            fontsize=_FONT,
+            clip_on=False,
+        )
     ax.set_ylabel(_axis_label("excess work ΔE", "energy", units))
     ax.grid(True, alpha=0.25)
     _title(ax, own, scene.title, f"energy indicator diagram (A_max = {_q(ind.a_max, 'energy', units)})")
@@ -724,10 +891,12 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
 # J_F against δ
 # --------------------------------------------------------------------------
 
+
 def check_inertia_delta(analysis):
     """Raise NothingToDraw when no flywheel is needed at any δ: a steady machine of constant inertia."""
-    steady = analysis.a_max <= 0 and not (analysis.machine is not None and
-                                           (analysis.machine.variable_inertia or analysis.machine.speed_dependent))
+    steady = analysis.a_max <= 0 and not (
+        analysis.machine is not None and (analysis.machine.variable_inertia or analysis.machine.speed_dependent)
+    )
     if steady:
         raise NothingToDraw("no flywheel is needed for any δ (A_max = 0 J, so J_F(δ) = 0): nothing to draw")
 
@@ -780,8 +949,10 @@ def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=No
     j_mean = analysis.machine.j_mean() if analysis.machine is not None else analysis.j_constant
     if curve is None:
         if analysis.model != "energy":
-            raise ValueError(f"J_F(δ) of the {analysis.model} model comes from analysing the scene again at each "
-                             f"δ: pass curve (flyopt.cli.plot.inertia_curve)")
+            raise ValueError(
+                f"J_F(δ) of the {analysis.model} model comes from analysing the scene again at each "
+                f"δ: pass curve (flyopt.cli.plot.inertia_curve)"
+            )
         delta = np.geomspace(*delta_range(analysis)[[0, -1]], 200)
         delta = np.union1d(delta, [analysis.delta])
         j = np.array([required_inertia(analysis.a_max, analysis.omega_mean, d, analysis.j_constant) for d in delta])
@@ -793,33 +964,69 @@ def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=No
     inertia = _unit("inertia", units)[0]
     shown = _show(np.where(j > 0, j, np.nan), "inertia", units)
     exact = analysis.model != "energy"
-    ax.plot(delta, shown, "-" if not exact else ".-", ms=3, color="tab:blue", lw=1.6, gid="j_delta",
-            label=f"J_F(δ), {analysis.model} model" + (" (the scene analysed at each δ)" if exact else
-                                                       " = A_max/(ω_m² δ) − J_c (section 5)"))
+    ax.plot(
+        delta,
+        shown,
+        "-" if not exact else ".-",
+        ms=3,
+        color="tab:blue",
+        lw=1.6,
+        gid="j_delta",
+        label=f"J_F(δ), {analysis.model} model"
+        + (" (the scene analysed at each δ)" if exact else " = A_max/(ω_m² δ) − J_c (section 5)"),
+    )
     if exact and analysis.a_max > 0:
         # the constant-inertia method of section 5, J_e replaced by its cycle mean, for comparison
         d = np.geomspace(delta[0], delta[-1], 200)
         approx = np.array([required_inertia(analysis.a_max, scene.omega_mean, v, j_mean) for v in d])
-        ax.plot(d, _show(np.where(approx > 0, approx, np.nan), "inertia", units), color="gray", ls="--", lw=1,
-                label="constant-inertia method, A_max/(ω_m² δ) − mean J_e (section 5), for comparison",
-                gid="constant_inertia")
+        ax.plot(
+            d,
+            _show(np.where(approx > 0, approx, np.nan), "inertia", units),
+            color="gray",
+            ls="--",
+            lw=1,
+            label="constant-inertia method, A_max/(ω_m² δ) − mean J_e (section 5), for comparison",
+            gid="constant_inertia",
+        )
     free, about = _zero_crossing(delta, j), "≈ "
     if analysis.model == "energy" and analysis.j_constant > 0 and analysis.a_max > 0:
-        free, about = analysis.a_max / (analysis.omega_mean**2 * analysis.j_constant), "= "   # section 5, exact
+        free, about = analysis.a_max / (analysis.omega_mean**2 * analysis.j_constant), "= "  # section 5, exact
     if free is not None and delta[0] <= free <= delta[-1]:
-        ax.axvline(free, color="gray", ls=":", lw=1, gid="delta_free",
-                   label=f"δ* {about}{display.number(free, _DIGITS if about == '= ' else 2)}: above it J_F = 0 "
-                         f"(the machine's own inertia suffices)")
+        ax.axvline(
+            free,
+            color="gray",
+            ls=":",
+            lw=1,
+            gid="delta_free",
+            label=f"δ* {about}{display.number(free, _DIGITS if about == '= ' else 2)}: above it J_F = 0 "
+            f"(the machine's own inertia suffices)",
+        )
     if analysis.flywheel_needed:
-        ax.plot([analysis.delta], [float(_show(analysis.j_required, "inertia", units))], "o", color=DEFICIT, ms=7,
-                zorder=5, gid="design_point",
-                label=f"the scene: δ = {display.number(analysis.delta, _DIGITS)}, "
-                      f"J_F = {_q(analysis.j_required, 'inertia', units)}")
+        ax.plot(
+            [analysis.delta],
+            [float(_show(analysis.j_required, "inertia", units))],
+            "o",
+            color=DEFICIT,
+            ms=7,
+            zorder=5,
+            gid="design_point",
+            label=f"the scene: δ = {display.number(analysis.delta, _DIGITS)}, "
+            f"J_F = {_q(analysis.j_required, 'inertia', units)}",
+        )
     else:
-        ax.axvline(analysis.delta, color=DEFICIT, lw=1, gid="design_point",
-                   label=f"the scene's δ = {display.number(analysis.delta, _DIGITS)}: no flywheel needed")
-    ax.set(xscale="log", yscale="log", xlabel="coefficient of speed fluctuation δ [-]",
-           ylabel=f"required flywheel J_F at the reference shaft [{inertia}]")
+        ax.axvline(
+            analysis.delta,
+            color=DEFICIT,
+            lw=1,
+            gid="design_point",
+            label=f"the scene's δ = {display.number(analysis.delta, _DIGITS)}: no flywheel needed",
+        )
+    ax.set(
+        xscale="log",
+        yscale="log",
+        xlabel="coefficient of speed fluctuation δ [-]",
+        ylabel=f"required flywheel J_F at the reference shaft [{inertia}]",
+    )
     ax.set_xlim(delta[0], delta[-1])
     _plain_log_ticks(ax)
     ax.grid(True, which="both", alpha=0.25)
@@ -876,8 +1083,7 @@ def _length_text(value, decimals):
 class _InUnits:
     """A candidate's lengths in the drawing's unit (its other fields as they are)."""
 
-    LENGTHS = ("d_outer", "d_inner", "d_mean", "h", "b", "bore", "t_web", "d_hub", "l_hub", "arm_major",
-               "arm_minor")
+    LENGTHS = ("d_outer", "d_inner", "d_mean", "h", "b", "bore", "t_web", "d_hub", "l_hub", "arm_major", "arm_minor")
 
     def __init__(self, candidate, factor):
         self._c, self._factor = candidate, factor
@@ -907,8 +1113,19 @@ class _Sheet:
         return inches / self.scale
 
     def _arrow(self, tip, tail):
-        self.ax.annotate("", tip, tail, arrowprops={"arrowstyle": "-|>", "lw": 0.7, "color": "black",
-                                                     "mutation_scale": 7, "shrinkA": 0, "shrinkB": 0})
+        self.ax.annotate(
+            "",
+            tip,
+            tail,
+            arrowprops={
+                "arrowstyle": "-|>",
+                "lw": 0.7,
+                "color": "black",
+                "mutation_scale": 7,
+                "shrinkA": 0,
+                "shrinkB": 0,
+            },
+        )
 
     def linear(self, a, b, line, text, vertical, feature=None, room=None, beside=None):
         """A dimension between ``a`` and ``b`` (along y if ``vertical``, else along x).
@@ -944,7 +1161,7 @@ class _Sheet:
         def point(along, across):
             return (across, along) if vertical else (along, across)
 
-        away = 1.0 if feature is None or line >= feature[0] else -1.0   # from the part towards the line
+        away = 1.0 if feature is None or line >= feature[0] else -1.0  # from the part towards the line
         if feature is not None:
             for end, start in zip((a, b), feature):
                 p0, p1 = point(end, start + away * d(_EXT_GAP)), point(end, line + away * d(_EXT_OVER))
@@ -954,7 +1171,7 @@ class _Sheet:
         arrow = {"lw": 0.7, "color": "black", "mutation_scale": 7, "shrinkA": 0, "shrinkB": 0}
         if inside:
             ax.annotate("", point(lo, line), point(hi, line), arrowprops={"arrowstyle": "<|-|>", **arrow})
-        else:   # too short for arrows inside: arrows from outside, pointing in
+        else:  # too short for arrows inside: arrows from outside, pointing in
             ax.plot(*zip(point(lo, line), point(hi, line)), color="black", lw=0.7)
             for tip, tail in ((lo, lo - d(0.16)), (hi, hi + d(0.16))):
                 ax.annotate("", point(tip, line), point(tail, line), arrowprops={"arrowstyle": "-|>", **arrow})
@@ -962,16 +1179,33 @@ class _Sheet:
         off = d(_EXT_OVER + 0.03)
         if vertical:
             side = -1.0 if fits or (feature is not None and away < 0) else away
-            ax.text(line + side * off, 0.5 * (lo + hi), text, rotation=90, rotation_mode="anchor",
-                    ha="center", va="bottom" if side < 0 else "top", fontsize=_DIM_FONT)
-        elif beside is None and feature is not None and \
-                _text_width(text) < max(length, (room or 0.0) * self.scale) - 0.08:
+            ax.text(
+                line + side * off,
+                0.5 * (lo + hi),
+                text,
+                rotation=90,
+                rotation_mode="anchor",
+                ha="center",
+                va="bottom" if side < 0 else "top",
+                fontsize=_DIM_FONT,
+            )
+        elif (
+            beside is None
+            and feature is not None
+            and _text_width(text) < max(length, (room or 0.0) * self.scale) - 0.08
+        ):
             ax.text(0.5 * (lo + hi), line + off, text, ha="center", va="bottom", fontsize=_DIM_FONT)
         else:
             right = beside > 0 if beside is not None else 0.5 * (lo + hi) >= 0
             gap = d(0.2) if not inside else d(0.06)
-            ax.text(hi + gap if right else lo - gap, line, text, ha="left" if right else "right",
-                    va="center", fontsize=_DIM_FONT)
+            ax.text(
+                hi + gap if right else lo - gap,
+                line,
+                text,
+                ha="left" if right else "right",
+                va="center",
+                fontsize=_DIM_FONT,
+            )
 
 
 def _diameter_lines(diameters, texts, scale):
@@ -1087,7 +1321,7 @@ def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
         diameters.append((blocks[-1][1], c.b / 2.0, "D_inner"))
     diameters.append((r_o, c.b / 2.0, "D_outer"))
     texts = [f"Ø{_mm_text(2 * r)}" for r, _x, _n in diameters]
-    left_in = (_DIM_FIRST + 0.45) if has_rim else 0.3           # H (and the arm's a) on the left
+    left_in = (_DIM_FIRST + 0.45) if has_rim else 0.3  # H (and the arm's a) on the left
     lines_in, right_in = _diameter_lines(diameters, texts, None)
     top_in = _DIM_FIRST + 0.25
     note_lines = sum(len(textwrap.wrap(n, 95)) for n in notes)
@@ -1095,11 +1329,11 @@ def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
     own = ax is None
     if own:
         plt = _pyplot()
-        scale = min(_SECTION_HEIGHT / (2 * r_o), 5.0 / w_max)      # [in per drawing unit]
+        scale = min(_SECTION_HEIGHT / (2 * r_o), 5.0 / w_max)  # [in per drawing unit]
         lines_in, right_in = _diameter_lines(diameters, texts, scale)
         width_in = w_max * scale + left_in + right_in
         height_in = 2 * r_o * scale + top_in + bottom_in
-        front_in = 0.62 * 2 * r_o * scale + 0.6 if arms else 0.0   # the front view, smaller
+        front_in = 0.62 * 2 * r_o * scale + 0.6 if arms else 0.0  # the front view, smaller
         title_in, margin = 0.75, 0.3
         notes_in = 0.17 * note_lines + (0.15 if notes else 0.0)
         fig_w = max(width_in + front_in + 2 * margin, 7.0)
@@ -1109,15 +1343,22 @@ def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
         ax = fig.add_axes([x0 / fig_w, (margin + notes_in) / fig_h, width_in / fig_w, height_in / fig_h])
         if arms:
             size = 0.62 * 2 * r_o * scale + 0.3
-            front = fig.add_axes([(x0 + width_in + 0.3) / fig_w,
-                                  (margin + notes_in + (height_in - size) / 2) / fig_h, size / fig_w, size / fig_h])
+            front = fig.add_axes(
+                [
+                    (x0 + width_in + 0.3) / fig_w,
+                    (margin + notes_in + (height_in - size) / 2) / fig_h,
+                    size / fig_w,
+                    size / fig_h,
+                ]
+            )
             _front_view(front, c, arms, _mm_text)
     else:
         box = ax.get_position()
         fig_w, fig_h = ax.figure.get_size_inches()
-        for _pass in range(2):     # the room the diameters need depends on the scale, and the scale on it
-            scale = min((box.height * fig_h - top_in - bottom_in) / (2 * r_o),
-                        (box.width * fig_w - left_in - right_in) / w_max)
+        for _pass in range(2):  # the room the diameters need depends on the scale, and the scale on it
+            scale = min(
+                (box.height * fig_h - top_in - bottom_in) / (2 * r_o), (box.width * fig_w - left_in - right_in) / w_max
+            )
             scale = max(scale, 1e-9)
             lines_in, right_in = _diameter_lines(diameters, texts, scale)
     sheet = _Sheet(ax, scale)
@@ -1126,12 +1367,13 @@ def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
         for sign in (1, -1):
             for name, r0, r1, w in group:
                 y = r0 if sign > 0 else -r1
-                ax.add_patch(Rectangle((-w / 2.0, y), w, r1 - r0, gid=f"{name}{'+' if sign > 0 else '-'}",
-                                       **_SECTION_HATCH))
+                ax.add_patch(
+                    Rectangle((-w / 2.0, y), w, r1 - r0, gid=f"{name}{'+' if sign > 0 else '-'}", **_SECTION_HATCH)
+                )
         upper = _outline(group)
-        if group[0][1] > 0:      # a bore: the halves are two sections
+        if group[0][1] > 0:  # a bore: the halves are two sections
             outlines = [upper, [(x, -y) for x, y in upper]]
-        else:                    # solid to the centre: one section, no line on the axis
+        else:  # solid to the centre: one section, no line on the axis
             right = upper[: len(upper) // 2]
             side = [(x, -y) for x, y in reversed(right)] + right[1:]
             outlines = [side + [(-x, y) for x, y in reversed(side)]]
@@ -1140,32 +1382,56 @@ def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
     if arms:
         r0, r1, major, minor = arms
         for sign in (1, -1):
-            ax.add_patch(Rectangle((-minor / 2.0, r0 if sign > 0 else -r1), minor, r1 - r0, fill=False,
-                                   edgecolor="black", lw=1.0, gid=f"arms{'+' if sign > 0 else '-'}"))
+            ax.add_patch(
+                Rectangle(
+                    (-minor / 2.0, r0 if sign > 0 else -r1),
+                    minor,
+                    r1 - r0,
+                    fill=False,
+                    edgecolor="black",
+                    lw=1.0,
+                    gid=f"arms{'+' if sign > 0 else '-'}",
+                )
+            )
         middle = 0.5 * (r0 + r1)
         ax.add_patch(Ellipse((0.0, middle), minor, major, gid="arm_section", zorder=3, **_SECTION_HATCH))
         ax.add_patch(Ellipse((0.0, middle), minor, major, fill=False, edgecolor="black", lw=1.0, zorder=3))
     # the axis: dash-dot, a little past the outline
-    reach = w_max / 2.0 + d(0.06)   # short of the text of the first diameter
+    reach = w_max / 2.0 + d(0.06)  # short of the text of the first diameter
     ax.plot([-reach, reach], [0, 0], color="black", lw=0.6, ls=(0, (12, 3, 2, 3)))
     # diameters, right of the section
     for (r, x_edge, _name), text, at in zip(diameters, texts, lines_in):
         sheet.linear(-r, r, w_max / 2.0 + d(at), text, vertical=True, feature=(x_edge, x_edge))
     # the width above (nothing else is there: its text may overhang the extension lines)
-    sheet.linear(-c.b / 2.0, c.b / 2.0, r_o + d(_DIM_FIRST), f"B {_mm_text(c.b)}", vertical=False,
-                 feature=(r_o, r_o), room=c.b + d(1.0))
-    if has_hub:   # the hub's length just outside it (not above the rim: its extension lines would
+    sheet.linear(
+        -c.b / 2.0,
+        c.b / 2.0,
+        r_o + d(_DIM_FIRST),
+        f"B {_mm_text(c.b)}",
+        vertical=False,
+        feature=(r_o, r_o),
+        room=c.b + d(1.0),
+    )
+    if has_hub:  # the hub's length just outside it (not above the rim: its extension lines would
         # run the height of the drawing and read as outlines), its text left, clear of the diameters;
         # under the axis when the arms' dimension a takes the upper left
         hub = blocks[0]
         side = -1.0 if arms else 1.0
-        sheet.linear(-hub[3] / 2.0, hub[3] / 2.0, side * (hub[2] + d(0.22)), f"l_hub {_mm_text(hub[3])}",
-                     vertical=False, feature=(side * hub[2], side * hub[2]), beside=-1)
+        sheet.linear(
+            -hub[3] / 2.0,
+            hub[3] / 2.0,
+            side * (hub[2] + d(0.22)),
+            f"l_hub {_mm_text(hub[3])}",
+            vertical=False,
+            feature=(side * hub[2], side * hub[2]),
+            beside=-1,
+        )
     if has_rim:
         rim = blocks[-1]
         line = -w_max / 2.0 - d(_DIM_FIRST)
-        sheet.linear(rim[1], rim[2], line, f"H {_mm_text(rim[2] - rim[1])}", vertical=True,
-                     feature=(-c.b / 2.0, -c.b / 2.0))
+        sheet.linear(
+            rim[1], rim[2], line, f"H {_mm_text(rim[2] - rim[1])}", vertical=True, feature=(-c.b / 2.0, -c.b / 2.0)
+        )
     # web or arm thickness, across it in the lower half
     thin = [b for b in blocks if b[0] == "web"]
     if thin:
@@ -1175,27 +1441,53 @@ def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
         r0, r1, major, minor = arms
         middle = 0.5 * (r0 + r1)
         sheet.linear(-minor / 2.0, minor / 2.0, -middle, f"a/2 {_mm_text(minor)}", vertical=False)
-        sheet.linear(middle - major / 2.0, middle + major / 2.0, -w_max / 2.0 - d(_DIM_FIRST),
-                     f"a {_mm_text(major)}", vertical=True, feature=(0.0, 0.0))
+        sheet.linear(
+            middle - major / 2.0,
+            middle + major / 2.0,
+            -w_max / 2.0 - d(_DIM_FIRST),
+            f"a {_mm_text(major)}",
+            vertical=True,
+            feature=(0.0, 0.0),
+        )
     ax.set_aspect("equal")
     ax.set_xlim(-w_max / 2.0 - d(left_in), w_max / 2.0 + d(right_in))
     ax.set_ylim(-r_o - d(bottom_in), r_o + d(top_in))
     ax.set_axis_off()
     what = {"rim_arms": f"rim on {c.n_arms} arms", "rim_web": "rim and web", "thin_rim": "thin rim"}.get(
-        c.geometry, c.geometry)
-    title = (f"Flywheel, {what}: {c.material}, {_q(c.mass, 'mass', units)}, "
-             f"J = {_q(c.j_flywheel, 'inertia', units)} on {c.shaft}\n"
-             f"axial section{', arm section revolved' if arms else ''}, dimensions in {length}")
-    if own:   # the figure is this drawing's: its title over both views, the notes under them
+        c.geometry, c.geometry
+    )
+    title = (
+        f"Flywheel, {what}: {c.material}, {_q(c.mass, 'mass', units)}, "
+        f"J = {_q(c.j_flywheel, 'inertia', units)} on {c.shaft}\n"
+        f"axial section{', arm section revolved' if arms else ''}, dimensions in {length}"
+    )
+    if own:  # the figure is this drawing's: its title over both views, the notes under them
         ax.figure.suptitle(title, fontsize=10)
         if notes:
-            ax.figure.text(0.5, margin / fig_h, "\n".join(textwrap.fill(n, 95) for n in notes), ha="center",
-                           va="bottom", fontsize=_DIM_FONT, color="dimgray", gid="note")
+            ax.figure.text(
+                0.5,
+                margin / fig_h,
+                "\n".join(textwrap.fill(n, 95) for n in notes),
+                ha="center",
+                va="bottom",
+                fontsize=_DIM_FONT,
+                color="dimgray",
+                gid="note",
+            )
     else:
         ax.set_title(title, fontsize=9)
         if notes:
-            ax.text(0.5, -0.01, "\n".join(textwrap.fill(n, 70) for n in notes), transform=ax.transAxes,
-                    ha="center", va="top", fontsize=_DIM_FONT, color="dimgray", gid="note")
+            ax.text(
+                0.5,
+                -0.01,
+                "\n".join(textwrap.fill(n, 70) for n in notes),
+                transform=ax.transAxes,
+                ha="center",
+                va="top",
+                fontsize=_DIM_FONT,
+                color="dimgray",
+                gid="note",
+            )
     return ax
 
 
@@ -1213,17 +1505,21 @@ def _section_notes(c, length, text):
     """
     notes = []
     if c.geometry in ("rim", "thin_rim"):
-        notes.append(f"The rim alone, as designed (geometry '{c.geometry}'): its hub and arms or web are not part "
-                     "of this design, and their inertia is left out, on the safe side (docs/flywheel-design.md, "
-                     "section 9).")
+        notes.append(
+            f"The rim alone, as designed (geometry '{c.geometry}'): its hub and arms or web are not part "
+            "of this design, and their inertia is left out, on the safe side (docs/flywheel-design.md, "
+            "section 9)."
+        )
     disc = c.geometry == "disc"
     ratio = c.d_outer / (c.b if disc else min(c.b, c.h))
     if ratio >= _SLENDER:
         binding = ", ".join(c.binding) if c.binding else "none"
         sides = f"{text(c.b)} {length} thick" if disc else f"B {text(c.b)} × H {text(c.h)} {length}"
-        notes.append(f"A slender {'disc' if disc else 'rim'}: {sides} at Ø{text(c.d_outer)} {length}, the diameter "
-                     f"{ratio:.0f} times its thinnest side. It is the lightest the design's limits allow (binding: "
-                     f"{binding}); its stiffness, casting and mounting are not checked.")
+        notes.append(
+            f"A slender {'disc' if disc else 'rim'}: {sides} at Ø{text(c.d_outer)} {length}, the diameter "
+            f"{ratio:.0f} times its thinnest side. It is the lightest the design's limits allow (binding: "
+            f"{binding}); its stiffness, casting and mounting are not checked."
+        )
     return notes
 
 
@@ -1252,8 +1548,16 @@ def _front_view(ax, c, arms, _mm_text):
     ax.add_patch(Circle((0, 0), r_bore, facecolor="white", edgecolor="black", lw=0.9))
     if c.key:
         b_key, t2 = c.key["b"], c.key["t2"]
-        ax.add_patch(Rectangle((-b_key / 2, r_bore - 0.002 * r_o), b_key, t2 + 0.002 * r_o, facecolor="white",
-                               edgecolor="black", lw=0.9))
+        ax.add_patch(
+            Rectangle(
+                (-b_key / 2, r_bore - 0.002 * r_o),
+                b_key,
+                t2 + 0.002 * r_o,
+                facecolor="white",
+                edgecolor="black",
+                lw=0.9,
+            )
+        )
     reach = 1.08 * r_o
     for xs, ys in (([-reach, reach], [0, 0]), ([0, 0], [-reach, reach])):
         ax.plot(xs, ys, color="black", lw=0.5, ls=(0, (12, 3, 2, 3)))
@@ -1261,8 +1565,10 @@ def _front_view(ax, c, arms, _mm_text):
     ax.set_xlim(-1.1 * r_o, 1.1 * r_o)
     ax.set_ylim(-1.1 * r_o, 1.1 * r_o)
     ax.set_axis_off()
-    ax.set_title(f"front view: {c.n_arms} arms of elliptical section\n{_mm_text(arms[2])} × "
-                 f"{_mm_text(arms[3])} (a × a/2)", fontsize=_DIM_FONT)
+    ax.set_title(
+        f"front view: {c.n_arms} arms of elliptical section\n{_mm_text(arms[2])} × {_mm_text(arms[3])} (a × a/2)",
+        fontsize=_DIM_FONT,
+    )
 
 
 #: Colours of the stress curves.
@@ -1306,8 +1612,7 @@ def plot_stress(candidate, profile, beams=(), omega=None, ductile=True, ax=None,
     if not c.feasible or not c.parts:
         raise ValueError(f"{c.material} on {c.shaft} is not a design: no stresses to draw")
     if not c.stress:
-        raise ValueError(f"the design of {c.material} carries no stresses (its notes: "
-                         f"{'; '.join(c.notes) or 'none'})")
+        raise ValueError(f"the design of {c.material} carries no stresses (its notes: {'; '.join(c.notes) or 'none'})")
     ax, own = _axes(ax, figsize=(9, 5.6))
     mm, mpa = 1.0 / _unit("length", units)[1], 1.0 / _unit("stress", units)[1]
     r_unit, s_unit = _unit("length", units)[0], _unit("stress", units)[0]
@@ -1319,39 +1624,88 @@ def plot_stress(candidate, profile, beams=(), omega=None, ductile=True, ax=None,
         ax.axvspan(r0, r1, color=_PART_SHADES[k % 2], lw=0, zorder=0)
         ax.axvline(r0, color="gray", lw=0.5, zorder=1)
         narrow = (r1 - r0) < 0.06 * c.d_outer / 2 * mm
-        ax.text(0.5 * (r0 + r1), 0.985, p["name"], transform=ax.get_xaxis_transform(), ha="center", va="top",
-                fontsize=8, color="dimgray", rotation=90 if narrow else 0)
+        ax.text(
+            0.5 * (r0 + r1),
+            0.985,
+            p["name"],
+            transform=ax.get_xaxis_transform(),
+            ha="center",
+            va="top",
+            fontsize=8,
+            color="dimgray",
+            rotation=90 if narrow else 0,
+        )
     # the curves of the disc parts
     names = {"sr": "σ_r", "st": "σ_t", "vm": "von Mises"}
-    for k, (part, r, sr, st, vm) in enumerate(profile):
+    for k, (_part, r, sr, st, vm) in enumerate(profile):
         for key, values, style in (("sr", sr, "-"), ("st", st, "-"), ("vm", vm, "--")):
-            ax.plot(np.asarray(r) * mm, np.asarray(values) * mpa, style, color=_STRESS_COLOURS[key], lw=1.5,
-                    label=names[key] if k == 0 else f"_{names[key]}")
+            ax.plot(
+                np.asarray(r) * mm,
+                np.asarray(values) * mpa,
+                style,
+                color=_STRESS_COLOURS[key],
+                lw=1.5,
+                label=names[key] if k == 0 else f"_{names[key]}",
+            )
     # each part's allowable over its span
-    allowables = [(name, checked[name]["allowable"]) for name in spans
-                  if name in checked and _finite_positive(checked[name].get("allowable"))]
+    allowables = [
+        (name, checked[name]["allowable"])
+        for name in spans
+        if name in checked and _finite_positive(checked[name].get("allowable"))
+    ]
     same = len({a for _n, a in allowables}) == 1
     for k, (name, allowable) in enumerate(allowables):
-        label = (f"allowable {_q(allowable, 'stress', units)}" if same else "allowable of each part") if k == 0 else \
-            "_allowable"
-        ax.hlines(allowable * mpa, spans[name][0] * mm, spans[name][1] * mm, colors=DEFICIT, linestyles=":",
-                  lw=1.8, label=label)
+        label = (
+            (f"allowable {_q(allowable, 'stress', units)}" if same else "allowable of each part")
+            if k == 0
+            else "_allowable"
+        )
+        ax.hlines(
+            allowable * mpa,
+            spans[name][0] * mm,
+            spans[name][1] * mm,
+            colors=DEFICIT,
+            linestyles=":",
+            lw=1.8,
+            label=label,
+        )
         if not same:
-            ax.annotate(display.number(allowable * mpa, _DIGITS), (0.5 * (spans[name][0] + spans[name][1]) * mm,
-                                                                    allowable * mpa),
-                        xytext=(0, 2), textcoords="offset points", ha="center", va="bottom", fontsize=7,
-                        color=DEFICIT)
+            ax.annotate(
+                display.number(allowable * mpa, _DIGITS),
+                (0.5 * (spans[name][0] + spans[name][1]) * mm, allowable * mpa),
+                xytext=(0, 2),
+                textcoords="offset points",
+                ha="center",
+                va="bottom",
+                fontsize=7,
+                color=DEFICIT,
+            )
     # the beams of an arms wheel
     beam_words = {"arms": ("arm root (pull + bending)", "^"), "rim": ("rim (hoop + bending)", "s")}
     for part, r, sr, st in beams:
         value = sr if part == "arms" else st
         words, marker = beam_words.get(part, (part, "o"))
-        ax.plot([r * mm], [value * mpa], marker, color="tab:purple", ms=8, zorder=4,
-                label=f"{words}: {_q(value, 'stress', units)}")
-        at = r / (c.d_outer / 2)       # near an end of the axis the label turns inwards
+        ax.plot(
+            [r * mm],
+            [value * mpa],
+            marker,
+            color="tab:purple",
+            ms=8,
+            zorder=4,
+            label=f"{words}: {_q(value, 'stress', units)}",
+        )
+        at = r / (c.d_outer / 2)  # near an end of the axis the label turns inwards
         ha, dx = ("left", -4) if at < 0.15 else ("right", 4) if at > 0.85 else ("center", 0)
-        ax.annotate(f"{words}\n{_q(value, 'stress', units)}", (r * mm, value * mpa), xytext=(dx, -12),
-                    textcoords="offset points", ha=ha, va="top", fontsize=8, color="tab:purple")
+        ax.annotate(
+            f"{words}\n{_q(value, 'stress', units)}",
+            (r * mm, value * mpa),
+            xytext=(dx, -12),
+            textcoords="offset points",
+            ha=ha,
+            va="top",
+            fontsize=8,
+            color="tab:purple",
+        )
     # the governing point
     where = c.stress.get("where") or {}
     governing = checked.get(where.get("part"))
@@ -1359,9 +1713,18 @@ def plot_stress(candidate, profile, beams=(), omega=None, ductile=True, ax=None,
         measure = "von Mises" if ductile else "largest principal"
         utilisation = governing["stress"] / governing["allowable"] if governing.get("allowable") else math.nan
         x, y = governing["radius"] * mm, governing["stress"] * mpa
-        ax.plot([x], [y], "o", ms=11, mfc="none", mec="black", mew=1.5, zorder=5,
-                label=f"governing: {governing['part']}, {measure} {_q(governing['stress'], 'stress', units)} at "
-                      f"r = {_q(governing['radius'], 'length', units)} ({100 * utilisation:.0f} % of allowable)")
+        ax.plot(
+            [x],
+            [y],
+            "o",
+            ms=11,
+            mfc="none",
+            mec="black",
+            mew=1.5,
+            zorder=5,
+            label=f"governing: {governing['part']}, {measure} {_q(governing['stress'], 'stress', units)} at "
+            f"r = {_q(governing['radius'], 'length', units)} ({100 * utilisation:.0f} % of allowable)",
+        )
     ax.axhline(0, color="black", lw=0.6)
     top = max([a for _n, a in allowables] + [governing["stress"] if governing else 0.0]) * mpa
     r_in, r_out = min(spans.values())[0] * mm, c.d_outer / 2 * mm
@@ -1378,7 +1741,6 @@ def plot_stress(candidate, profile, beams=(), omega=None, ductile=True, ax=None,
     return ax
 
 
-
 def _finite_positive(value):
     return value is not None and math.isfinite(value) and value > 0
 
@@ -1386,6 +1748,7 @@ def _finite_positive(value):
 # --------------------------------------------------------------------------
 # The speed over the cycle
 # --------------------------------------------------------------------------
+
 
 def plot_speed(scene, analysis, speed=None, simulation=None, ax=None, units=display.DEFAULT):
     """ω(φ) over the cycle with the required flywheel, from the model that ran.
@@ -1427,33 +1790,61 @@ def plot_speed(scene, analysis, speed=None, simulation=None, ax=None, units=disp
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
     if speed is None:
         if analysis.requirement is None or analysis.requirement.model != "dynamic":
-            raise ValueError(f"the {analysis.model} model's result carries no ω(φ): pass speed "
-                             f"(Analysis.speed_curve())")
+            raise ValueError(
+                f"the {analysis.model} model's result carries no ω(φ): pass speed (Analysis.speed_curve())"
+            )
         speed = analysis.speed_curve()
     ax, own = _axes(ax)
     omega = np.asarray(speed.omega, dtype=float)
     x = _show(speed.phi, "angle", units)
-    ax.plot(x, _show(omega, "angular_speed", units), color="tab:blue", lw=1.6, gid="model",
-            label=f"ω(φ), {analysis.model} model, J_F = {_q(analysis.j_required, 'inertia', units)}")
+    ax.plot(
+        x,
+        _show(omega, "angular_speed", units),
+        color="tab:blue",
+        lw=1.6,
+        gid="model",
+        label=f"ω(φ), {analysis.model} model, J_F = {_q(analysis.j_required, 'inertia', units)}",
+    )
     if simulation is not None:
-        ax.plot(_show(simulation.phi, "angle", units), _show(simulation.omega, "angular_speed", units),
-                color=DEFICIT, ls="--", lw=1, gid="simulation",
-                label=f"periodic simulation (δ = {display.number(simulation.delta, 6)})")
+        ax.plot(
+            _show(simulation.phi, "angle", units),
+            _show(simulation.omega, "angular_speed", units),
+            color=DEFICIT,
+            ls="--",
+            lw=1,
+            gid="simulation",
+            label=f"periodic simulation (δ = {display.number(simulation.delta, 6)})",
+        )
     w_max, w_min = float(np.max(omega)), float(np.min(omega))
     w_max = float(getattr(speed, "omega_max", w_max))
     w_min = float(getattr(speed, "omega_min", w_min))
     w_mean = 0.5 * (w_max + w_min)
     where = {"max": getattr(speed, "phi_omega_max", None), "min": getattr(speed, "phi_omega_min", None)}
-    for value, name, colour, style in ((w_max, "max", SURPLUS, ":"), (w_mean, "mean", "gray", "-."),
-                                       (w_min, "min", DEFICIT, ":")):
+    for value, name, colour, style in (
+        (w_max, "max", SURPLUS, ":"),
+        (w_mean, "mean", "gray", "-."),
+        (w_min, "min", DEFICIT, ":"),
+    ):
         at = where.get(name)
         angle = f" at φ = {_q(at, 'angle', units)}" if at is not None and w_max > w_min else ""
         symbol = "ω_m = (ω_max + ω_min)/2" if name == "mean" else f"ω_{name}"
-        ax.axhline(float(_show(value, "angular_speed", units)), color=colour, ls=style, lw=1, gid=f"omega_{name}",
-                   label=f"{symbol} = {_q(value, 'angular_speed', units, 6)}{angle}")
+        ax.axhline(
+            float(_show(value, "angular_speed", units)),
+            color=colour,
+            ls=style,
+            lw=1,
+            gid=f"omega_{name}",
+            label=f"{symbol} = {_q(value, 'angular_speed', units, 6)}{angle}",
+        )
         if at is not None and name != "mean" and w_max > w_min:
-            ax.plot([float(_show(at, "angle", units))], [float(_show(value, "angular_speed", units))], "o",
-                    color=colour, ms=5, zorder=5)
+            ax.plot(
+                [float(_show(at, "angle", units))],
+                [float(_show(value, "angular_speed", units))],
+                "o",
+                color=colour,
+                ms=5,
+                zorder=5,
+            )
     _angle_axis(ax, scene.cycle_angle, units)
     _mark_dead_centres(ax, scene, units)
     span = max(w_max - w_min, 1e-9 * w_mean)
@@ -1461,8 +1852,13 @@ def plot_speed(scene, analysis, speed=None, simulation=None, ax=None, units=disp
     ax.set_ylabel(_axis_label("speed of the reference shaft ω", "angular_speed", units))
     ax.grid(True, alpha=0.25)
     achieved = float(getattr(speed, "delta", (w_max - w_min) / w_mean))
-    _title(ax, own, scene.title, f"speed over the cycle: δ = {display.number(achieved, 4)} achieved, "
-                                 f"{display.number(analysis.delta, 4)} allowed")
+    _title(
+        ax,
+        own,
+        scene.title,
+        f"speed over the cycle: δ = {display.number(achieved, 4)} achieved, "
+        f"{display.number(analysis.delta, 4)} allowed",
+    )
     _legend(ax, own)
     return ax
 
@@ -1470,6 +1866,7 @@ def plot_speed(scene, analysis, speed=None, simulation=None, ax=None, units=disp
 # --------------------------------------------------------------------------
 # The energy–mass diagram
 # --------------------------------------------------------------------------
+
 
 def check_energy_mass(analysis):
     """Raise ValueError unless the energy–mass diagram applies: curves of the angle only, J_e varying.
@@ -1479,14 +1876,20 @@ def check_energy_mass(analysis):
     (docs/flywheel-design.md, section 6 reduces to section 5).
     """
     if analysis.machine is None:
-        raise ValueError("a net-area scene has no curves, and the energy–mass diagram needs torques of the angle "
-                         "only given as curves")
+        raise ValueError(
+            "a net-area scene has no curves, and the energy–mass diagram needs torques of the angle "
+            "only given as curves"
+        )
     if analysis.machine.speed_dependent:
-        raise ValueError("a torque depends on speed, and the energy–mass diagram needs torques of the angle only "
-                         "given as curves: see turning_moment and speed (the periodic solution)")
+        raise ValueError(
+            "a torque depends on speed, and the energy–mass diagram needs torques of the angle only "
+            "given as curves: see turning_moment and speed (the periodic solution)"
+        )
     if not analysis.machine.variable_inertia:
-        raise ValueError("the energy–mass diagram is drawn for an inertia that varies with the angle; this "
-                         "machine's J_e is constant, so it would be a vertical line: see the energy diagram")
+        raise ValueError(
+            "the energy–mass diagram is drawn for an inertia that varies with the angle; this "
+            "machine's J_e is constant, so it would be a vertical line: see the energy diagram"
+        )
 
 
 def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
@@ -1529,8 +1932,10 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
     display.check_system(units)
     check_energy_mass(analysis)
     if analysis.requirement is None or analysis.requirement.model != "energy_mass":
-        raise ValueError(f"the energy–mass diagram draws the energy–mass model's result, and this "
-                         f"analysis ran the {analysis.model} model: analyse with model='energy_mass'")
+        raise ValueError(
+            f"the energy–mass diagram draws the energy–mass model's result, and this "
+            f"analysis ran the {analysis.model} model: analyse with model='energy_mass'"
+        )
     machine = analysis.machine
     em = analysis.requirement.detail
     ew = machine.angle_only()
@@ -1542,8 +1947,9 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
     own = ax is None
     if own:
         plt = _pyplot()
-        fig, (overview, ax) = plt.subplots(1, 2, figsize=(11, 5.6), layout="constrained",
-                                           gridspec_kw={"width_ratios": [1, 1.5]})
+        fig, (overview, ax) = plt.subplots(
+            1, 2, figsize=(11, 5.6), layout="constrained", gridspec_kw={"width_ratios": [1, 1.5]}
+        )
     else:
         overview = None
     inertia, energy = _unit("inertia", units)[0], _unit("energy", units)[0]
@@ -1551,7 +1957,7 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
     tangents = ((em.omega_max, em.phi_omega_max, SURPLUS, "max"), (em.omega_min, em.phi_omega_min, DEFICIT, "min"))
     points = np.column_stack([sj(j), se(de)])
     segments = np.stack([points[:-1], points[1:]], axis=1)
-    coloured = LineCollection(segments, cmap="twilight", lw=2.2, gid="curve")   # cyclic: φ = Φ meets φ = 0
+    coloured = LineCollection(segments, cmap="twilight", lw=2.2, gid="curve")  # cyclic: φ = Φ meets φ = 0
     coloured.set_array(_show(0.5 * (phi[:-1] + phi[1:]), "angle", units))
     ax.add_collection(coloured)
     coloured.set_clim(0.0, float(_show(scene.cycle_angle, "angle", units)))
@@ -1564,18 +1970,35 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
     xs = np.array([j.min() - 0.3 * span_x, j.max() + 0.3 * span_x])
     for w, at, colour, name in tangents:
         slope = 0.5 * w**2
-        ax.plot(sj(xs), se(y0 + slope * (xs - x0)), color=colour, lw=1, ls="--",
-                label=f"tangent of slope ω_{name}²/2, ω_{name} = {_q(w, 'angular_speed', units, 5)}")
+        ax.plot(
+            sj(xs),
+            se(y0 + slope * (xs - x0)),
+            color=colour,
+            lw=1,
+            ls="--",
+            label=f"tangent of slope ω_{name}²/2, ω_{name} = {_q(w, 'angular_speed', units, 5)}",
+        )
         touch = np.array([at])
-        ax.plot([sj(machine.j_machine(touch)[0])], [se(ew(touch)[0])], "o", ms=8, mfc="white", mec=colour, mew=2,
-                zorder=6, gid=f"tangent_{name}",
-                label=f"touches where the speed is ω_{name}: φ = {_q(at, 'angle', units)}")
+        ax.plot(
+            [sj(machine.j_machine(touch)[0])],
+            [se(ew(touch)[0])],
+            "o",
+            ms=8,
+            mfc="white",
+            mec=colour,
+            mew=2,
+            zorder=6,
+            gid=f"tangent_{name}",
+            label=f"touches where the speed is ω_{name}: φ = {_q(at, 'angle', units)}",
+        )
     ax.set_xlim(sj(j.min() - 0.15 * max(span_x, 1e-12)), sj(j.max() + 0.15 * max(span_x, 1e-12)))
     ax.set_ylim(se(de.min() - 0.15 * max(span_y, 1e-12)), se(de.max() + 0.15 * max(span_y, 1e-12)))
     ax.set(xlabel=f"equivalent inertia of the machine J_e [{inertia}]", ylabel=f"excess work ΔE [{energy}]")
     ax.grid(True, alpha=0.25)
-    origin = (f"the tangents meet at the true origin (−J_F, −E_0) = ({_q(x0, 'inertia', units)}, "
-              f"{_q(y0, 'energy', units)}): J_F = {_q(j_f, 'inertia', units)}")
+    origin = (
+        f"the tangents meet at the true origin (−J_F, −E_0) = ({_q(x0, 'inertia', units)}, "
+        f"{_q(y0, 'energy', units)}): J_F = {_q(j_f, 'inertia', units)}"
+    )
     if overview is not None:
         overview.plot(sj(j), se(de), color="tab:blue", lw=1.5)
         ends = np.array([x0, j.max() + 0.1 * (j.max() - x0)])
@@ -1585,7 +2008,7 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
         overview.axhline(0, color="gray", lw=0.5)
         overview.axvline(0, color="gray", lw=0.5)
         overview.set(xlabel=f"J_e [{inertia}]", ylabel=f"ΔE [{energy}]")
-        overview.xaxis.set_major_locator(MaxNLocator(4))     # a narrow panel: few ticks, none overlapping
+        overview.xaxis.set_major_locator(MaxNLocator(4))  # a narrow panel: few ticks, none overlapping
         overview.set_title("the whole: from the true origin", fontsize=_FONT + 1)
         overview.grid(True, alpha=0.25)
         ax.set_title("near the curve: the tangent points", fontsize=_FONT + 1)
@@ -1701,9 +2124,11 @@ def varied_fields(frame):
     return [c for c in names if frame[c].nunique(dropna=True) > 1]
 
 
-_NOT_DESIGNED = {"infeasible": ("x", "infeasible: no material and shaft can give J_F"),
-                 "failed": ("X", "failed: the solver did not converge"),
-                 "not_needed": ("o", "no flywheel needed")}
+_NOT_DESIGNED = {
+    "infeasible": ("x", "infeasible: no material and shaft can give J_F"),
+    "failed": ("X", "failed: the solver did not converge"),
+    "not_needed": ("o", "no flywheel needed"),
+}
 
 
 def plot_sweep(frame, x, y="mass", by=None, ax=None, units=display.DEFAULT):
@@ -1732,8 +2157,10 @@ def plot_sweep(frame, x, y="mass", by=None, ax=None, units=display.DEFAULT):
     keys = ([by] if by else []) + others
     groups = list(frame.groupby(keys, sort=True, dropna=False)) if keys else [((), frame)]
     if len(groups) > MAX_LINES:
-        raise ValueError(f"the sweep varies {', '.join(keys)} besides {x}: {len(groups)} lines would be drawn "
-                         f"(at most {MAX_LINES}); sweep fewer fields at once, or plot one of them along x")
+        raise ValueError(
+            f"the sweep varies {', '.join(keys)} besides {x}: {len(groups)} lines would be drawn "
+            f"(at most {MAX_LINES}); sweep fewer fields at once, or plot one of them along x"
+        )
     ax, own = _axes(ax)
     status = frame["status"] if "status" in frame.columns else None
     bottom = blended_transform_factory(ax.transData, ax.transAxes)
@@ -1744,17 +2171,32 @@ def plot_sweep(frame, x, y="mass", by=None, ax=None, units=display.DEFAULT):
         words = ", ".join(_value_text(v, k, units, frame) for k, v in zip(keys, key)) or y
         ok = (part["status"] == "designed").to_numpy() if status is not None else np.ones(len(part), bool)
         xs, ys = _values(part, x, units), _values(part, y, units)
-        line, = ax.plot(xs[ok], ys[ok], "o-", ms=3.5, lw=1.3, label=words)
+        (line,) = ax.plot(xs[ok], ys[ok], "o-", ms=3.5, lw=1.3, label=words)
         for kind, (marker, _w) in _NOT_DESIGNED.items():
             miss = (part["status"] == kind).to_numpy() if status is not None else np.zeros(len(part), bool)
             if miss.any():
-                ax.plot(xs[miss], np.full(miss.sum(), 0.03), marker, transform=bottom, color=line.get_color(),
-                        ms=6, mfc="none" if marker == "o" else line.get_color(), clip_on=False, gid=kind)
+                ax.plot(
+                    xs[miss],
+                    np.full(miss.sum(), 0.03),
+                    marker,
+                    transform=bottom,
+                    color=line.get_color(),
+                    ms=6,
+                    mfc="none" if marker == "o" else line.get_color(),
+                    clip_on=False,
+                    gid=kind,
+                )
                 counts[kind] = counts.get(kind, 0) + int(miss.sum())
     for kind, n in counts.items():
         marker, words = _NOT_DESIGNED[kind]
-        ax.plot([], [], marker, color="gray", mfc="none" if marker == "o" else "gray",
-                label=f"{words} ({n} point{'s' if n > 1 else ''}), marked at the bottom")
+        ax.plot(
+            [],
+            [],
+            marker,
+            color="gray",
+            mfc="none" if marker == "o" else "gray",
+            label=f"{words} ({n} point{'s' if n > 1 else ''}), marked at the bottom",
+        )
     values = _values(frame, x, units) if np.issubdtype(frame[x].dtype, np.number) else np.array([])
     positive = values[np.isfinite(values) & (values > 0)]
     if positive.size and positive.max() / positive.min() > 10:
@@ -1784,14 +2226,18 @@ def plot_pareto(frame, x, y, ax=None, units=display.DEFAULT):
 
     display.check_system(units)
     x, y = _column(frame, x), _column(frame, y)
-    mixed = [f for f in PHYSICS_FIELDS if f in frame.columns and f not in (x, y)
-             and frame[f].nunique(dropna=True) > 1]
+    mixed = [f for f in PHYSICS_FIELDS if f in frame.columns and f not in (x, y) and frame[f].nunique(dropna=True) > 1]
     if mixed:
-        spans = "; ".join(f"{f} from {_value_text(frame[f].min(), f, units, frame).split(' = ')[1]} to "
-                          f"{_value_text(frame[f].max(), f, units, frame).split(' = ')[1]}" for f in mixed)
+        spans = "; ".join(
+            f"{f} from {_value_text(frame[f].min(), f, units, frame).split(' = ')[1]} to "
+            f"{_value_text(frame[f].max(), f, units, frame).split(' = ')[1]}"
+            for f in mixed
+        )
         hint = ", or make δ an objective (flyopt pareto --objectives mass,delta)" if mixed == ["delta"] else ""
-        raise ValueError(f"the points differ in {' and '.join(mixed)} ({spans}), and a Pareto front compares "
-                         f"designs of one machine: plot the points of one {' and '.join(mixed)} at a time{hint}")
+        raise ValueError(
+            f"the points differ in {' and '.join(mixed)} ({spans}), and a Pareto front compares "
+            f"designs of one machine: plot the points of one {' and '.join(mixed)} at a time{hint}"
+        )
     ax, own = _axes(ax)
     usable = frame[[x, y]].notna().all(axis=1).to_numpy()
     if "status" in frame.columns:
@@ -1801,11 +2247,18 @@ def plot_pareto(frame, x, y, ax=None, units=display.DEFAULT):
     data = data[order]
     front = data[np.concatenate(([True], data[1:, 1] < np.minimum.accumulate(data[:, 1])[:-1]))]
     dropped = int((~usable).sum())
-    ax.plot(data[:, 0], data[:, 1], "o", color="lightgray", ms=4,
-            label=f"designs ({len(data)})" + (f"; {dropped} without a design left out" if dropped else ""))
+    ax.plot(
+        data[:, 0],
+        data[:, 1],
+        "o",
+        color="lightgray",
+        ms=4,
+        label=f"designs ({len(data)})" + (f"; {dropped} without a design left out" if dropped else ""),
+    )
     ax.step(front[:, 0], front[:, 1], where="post", color=DEFICIT, lw=1.2)
-    ax.plot(front[:, 0], front[:, 1], "o", color=DEFICIT, ms=5, label=f"Pareto front ({len(front)} points)",
-            gid="front")
+    ax.plot(
+        front[:, 0], front[:, 1], "o", color=DEFICIT, ms=5, label=f"Pareto front ({len(front)} points)", gid="front"
+    )
     ax.set(xlabel=_label(x, units, frame), ylabel=_label(y, units, frame))
     ax.grid(True, alpha=0.3)
     _title(ax, own, f"Pareto front: {y} against {x}, both minimized")

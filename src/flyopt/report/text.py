@@ -11,11 +11,19 @@ is shown as the design wrote it.
 
 import math
 
-from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, \
-    quantity_text
+from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, quantity_text
 
-__all__ = ["analysis_report", "design_report", "engine_report", "formatters", "number", "power", "table",
-           "verification_report", "wheel_report"]
+__all__ = [
+    "analysis_report",
+    "design_report",
+    "engine_report",
+    "formatters",
+    "number",
+    "power",
+    "table",
+    "verification_report",
+    "wheel_report",
+]
 
 
 def power(watts, units=DEFAULT):
@@ -30,11 +38,13 @@ def formatters(units):
     ("1.25633 kJ" for ``a_max``), ``n(value, name, digits=6)`` the number alone,
     for a table under a heading that carries the unit or a list that ends in it.
     """
+
     def q(value, name, digits=6):
         return field_text(value, name, units, digits)
 
     def n(value, name, digits=6):
         return field_number(value, name, units, digits)
+
     return q, n
 
 
@@ -56,8 +66,11 @@ def table(header, rows, align=None):
 def no_flywheel_words(analysis):
     """(before, after) ``j_margin``: why no flywheel is needed (the text and the document say the same)."""
     if analysis.delta_holds_at_any_inertia:
-        return ("δ stays within the allowed value however small the inertia (the motor's slip holds the speed; "
-                "J_F could go down to", ", the machine's whole inertia)")
+        return (
+            "δ stays within the allowed value however small the inertia (the motor's slip holds the speed; "
+            "J_F could go down to",
+            ", the machine's whole inertia)",
+        )
     return "the machine's own inertia suffices (J_F would be", ")"
 
 
@@ -91,19 +104,32 @@ def analysis_report(result, source=None, units=DEFAULT):
         ]
     facts.append(("A_max", q(r.a_max, "a_max")))
     if r.angle_omega_max is not None:
-        facts.append(("ω_max / ω_min at", f"{n(r.angle_omega_max, 'angle_omega_max')} / "
-                                          f"{q(r.angle_omega_min, 'angle_omega_min')}"))
+        facts.append(
+            (
+                "ω_max / ω_min at",
+                f"{n(r.angle_omega_max, 'angle_omega_max')} / {q(r.angle_omega_min, 'angle_omega_min')}",
+            )
+        )
         if (r.angle_delta_e_max, r.angle_delta_e_min) != (r.angle_omega_max, r.angle_omega_min):
-            facts.append(("ΔE max / min at", f"{n(r.angle_delta_e_max, 'angle_delta_e_max')} / "
-                          f"{q(r.angle_delta_e_min, 'angle_delta_e_min')} (where the speed is extreme differs: "
-                          f"the inertia varies or a torque depends on speed)"))
+            facts.append(
+                (
+                    "ΔE max / min at",
+                    f"{n(r.angle_delta_e_max, 'angle_delta_e_max')} / "
+                    f"{q(r.angle_delta_e_min, 'angle_delta_e_min')} (where the speed is extreme differs: "
+                    f"the inertia varies or a torque depends on speed)",
+                )
+            )
     else:
         facts.append(("ω_max / ω_min at", f"the end of area {r.index_omega_max} / area {r.index_omega_min}"))
     if r.j_constant:
         facts.append(("J_c (machine and shafts)", q(r.j_constant, "j_constant")))
     if r.flywheel_needed:
-        facts.append(("required flywheel J_F", f"{q(r.j_required, 'j_required')} "
-                                                f"(GD² {q(r.gd2_required, 'gd2_required')}) at the reference shaft"))
+        facts.append(
+            (
+                "required flywheel J_F",
+                f"{q(r.j_required, 'j_required')} (GD² {q(r.gd2_required, 'gd2_required')}) at the reference shaft",
+            )
+        )
     else:
         before, after = no_flywheel_words(r)
         facts.append(("required flywheel", f"none: {before} {q(r.j_margin, 'j_margin')}{after}"))
@@ -112,16 +138,25 @@ def analysis_report(result, source=None, units=DEFAULT):
 
     if r.startup is not None:
         st = r.startup
-        facts_text = (f"{q(st.time, 'time')} ({number(st.cycles, 4)} cycles) to {q(st.omega_target, 'omega_target')}"
-                      if st.time is not None else f"not reached: {st.note}")
+        facts_text = (
+            f"{q(st.time, 'time')} ({number(st.cycles, 4)} cycles) to {q(st.omega_target, 'omega_target')}"
+            if st.time is not None
+            else f"not reached: {st.note}"
+        )
         lines.append(f"  {'start-up':<{width}}  {facts_text}; {st.method}")
     if len(r.models) > 1 or (r.models and not r.models[0]["exact"]):
         lines += ["", "Models (J_F each asks for, and the δ it really gives by the exact model):"]
         rows = []
         for m in r.models:
-            rows.append([m["model"] + (" (exact)" if m["exact"] else ""), n(m["j_required"], "j_required"),
-                         "-" if m["j_error"] is None else f"{100 * m['j_error']:+.3g} %",
-                         number(m["achieved_delta"]), m["note"]])
+            rows.append(
+                [
+                    m["model"] + (" (exact)" if m["exact"] else ""),
+                    n(m["j_required"], "j_required"),
+                    "-" if m["j_error"] is None else f"{100 * m['j_error']:+.3g} %",
+                    number(m["achieved_delta"]),
+                    m["note"],
+                ]
+            )
         head = ["model", heading("J_F", "j_required", units), "vs exact", "achieved δ", "note"]
         lines += ["  " + line for line in table(head, rows, ["<", ">", ">", ">", "<"])]
     lines += engine_report(r, units)
@@ -131,18 +166,37 @@ def analysis_report(result, source=None, units=DEFAULT):
         same = (r.angle_delta_e_max, r.angle_delta_e_min) == (r.angle_omega_max, r.angle_omega_min)
         top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")
         mark = top if e["index"] == r.index_omega_max else bottom if e["index"] == r.index_omega_min else ""
-        where = n(e["angle"], "angle") if e["angle"] is not None else \
-            ("start" if e["index"] == 0 else f"after area {e['index']}")
+        where = (
+            n(e["angle"], "angle")
+            if e["angle"] is not None
+            else ("start" if e["index"] == 0 else f"after area {e['index']}")
+        )
         rows.append([where, n(e["delta_e"], "delta_e"), mark])
-    head = [heading("angle", "angle", units) if r.angle_omega_max is not None else "point",
-            heading("ΔE", "delta_e", units), ""]
+    head = [
+        heading("angle", "angle", units) if r.angle_omega_max is not None else "point",
+        heading("ΔE", "delta_e", units),
+        "",
+    ]
     lines += ["  " + line for line in table(head, rows, ["<", ">", "<"])]
 
     lines += ["", "Flywheel needed on each shaft (same kinetic energy, J' = J (ω/ω')²):"]
-    rows = [[s.name, number(s.speed_ratio), n(s.omega, "omega"), n(s.j_required, "j_required"),
-             n(s.gd2_required, "gd2_required")] for s in r.shafts]
-    head = ["shaft", "speed ratio", heading("speed", "omega", units), heading("J", "j_required", units),
-            heading("GD²", "gd2_required", units)]
+    rows = [
+        [
+            s.name,
+            number(s.speed_ratio),
+            n(s.omega, "omega"),
+            n(s.j_required, "j_required"),
+            n(s.gd2_required, "gd2_required"),
+        ]
+        for s in r.shafts
+    ]
+    head = [
+        "shaft",
+        "speed ratio",
+        heading("speed", "omega", units),
+        heading("J", "j_required", units),
+        heading("GD²", "gd2_required", units),
+    ]
     lines += ["  " + line for line in table(head, rows)]
     return "\n".join(lines)
 
@@ -161,7 +215,7 @@ def engine_report(result, units=DEFAULT):
     machine = result.machine
     if machine is None or not machine.variable_inertia:
         return []
-    from flyopt.machine.engine import engine_of, textbook_requirement   # CasADi: loaded with the members
+    from flyopt.machine.engine import engine_of, textbook_requirement  # CasADi: loaded with the members
 
     engine = engine_of(machine)
     if engine is None:
@@ -177,21 +231,25 @@ def engine_report(result, units=DEFAULT):
         off = (textbook.j_required - exact["j_required"]) / exact["j_required"]
         found += f", {100 * off:+.3g} % against the exact J_F {q(exact['j_required'], 'j_required')} ({exact['model']})"
     else:
-        found += (f"; the exact model ({exact['model']}) needs no flywheel (J_F would be "
-                  f"{q(exact['j_required'], 'j_required')})")
-    return ["", f"Engine: {engine.cylinder_count} cylinder{'s' if engine.cylinder_count > 1 else ''}, "
-                f"{engine.cycle}, cycles starting at {angles} {_label('angle', units)}",
-            f"  textbook method (the crank effort at the mean speed, gas torque − ½ J_e′(φ) ω_m², on the constant "
-            f"mean J_e {q(textbook.j_machine_mean, 'inertia')}):",
-            f"    {found}"]
+        found += (
+            f"; the exact model ({exact['model']}) needs no flywheel (J_F would be "
+            f"{q(exact['j_required'], 'j_required')})"
+        )
+    return [
+        "",
+        f"Engine: {engine.cylinder_count} cylinder{'s' if engine.cylinder_count > 1 else ''}, "
+        f"{engine.cycle}, cycles starting at {angles} {_label('angle', units)}",
+        f"  textbook method (the crank effort at the mean speed, gas torque − ½ J_e′(φ) ω_m², on the constant "
+        f"mean J_e {q(textbook.j_machine_mean, 'inertia')}):",
+        f"    {found}",
+    ]
 
 
 def _solved_by(candidate):
     """How a design was found, in words: the exact closed form or IPOPT with its status."""
     if candidate.solver_status == "closed_form":
         return "the exact closed form of the lightest wheel, checked against every constraint"
-    return (f"IPOPT ({candidate.solver_status}, {candidate.iterations} iterations), checked against every "
-            f"constraint")
+    return f"IPOPT ({candidate.solver_status}, {candidate.iterations} iterations), checked against every constraint"
 
 
 def design_report(result, spec=None, units=DEFAULT):
@@ -208,36 +266,66 @@ def design_report(result, spec=None, units=DEFAULT):
         facts = [
             ("material / shaft", f"{best.material} on {best.shaft} (speed ratio {number(best.speed_ratio)})"),
             ("mass", q(best.mass, "mass") + (f" (cost {number(best.cost)})" if best.cost is not None else "")),
-            ("outer / mean / inner diameter", f"{n(best.d_outer, 'd_outer')} / {n(best.d_mean, 'd_mean')} / "
-                                              f"{q(best.d_inner, 'd_inner')}"),
+            (
+                "outer / mean / inner diameter",
+                f"{n(best.d_outer, 'd_outer')} / {n(best.d_mean, 'd_mean')} / {q(best.d_inner, 'd_inner')}",
+            ),
             ("rim H x B", f"{n(best.h, 'h')} x {q(best.b, 'b')} (H/B {number(best.hb_ratio, 4)})"),
-            ("inertia", f"{q(best.j_flywheel, 'j_flywheel')} on its shaft = "
-                        f"{q(best.j_at_reference, 'j_at_reference')} at the reference shaft"),
-            ("rim speed", f"{q(best.rim_speed, 'rim_speed')} (limit {q(best.rim_speed_limit, 'rim_speed_limit')}), "
-                          f"hoop stress ρv² {q(best.hoop_stress, 'hoop_stress')}"
-             + (f", safety factor {number(best.safety_factor, 3)}" if best.safety_factor else "")),
+            (
+                "inertia",
+                f"{q(best.j_flywheel, 'j_flywheel')} on its shaft = "
+                f"{q(best.j_at_reference, 'j_at_reference')} at the reference shaft",
+            ),
+            (
+                "rim speed",
+                f"{q(best.rim_speed, 'rim_speed')} (limit {q(best.rim_speed_limit, 'rim_speed_limit')}), "
+                f"hoop stress ρv² {q(best.hoop_stress, 'hoop_stress')}"
+                + (f", safety factor {number(best.safety_factor, 3)}" if best.safety_factor else ""),
+            ),
             ("binding", ", ".join(best.binding) or "none"),
             ("solved by", _solved_by(best)),
         ]
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {v}" for k, v in facts]
         if not result.spec.has_envelope:
-            lines.append("  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
-                         "bounds the diameter")
+            lines.append(
+                "  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
+                "bounds the diameter"
+            )
         lines += wheel_report(best, result.omega * best.speed_ratio, units)
     else:
         lines.append("  no feasible design: no material and shaft can give the required inertia")
     rows = []
     for k, c in enumerate(result.candidates, 1):
         if c.feasible:
-            rows.append([str(k), c.material, c.shaft, n(c.mass, "mass"), n(c.d_outer, "d_outer"), n(c.h, "h"),
-                         n(c.b, "b"), n(c.rim_speed, "rim_speed"), ", ".join(c.binding)])
+            rows.append(
+                [
+                    str(k),
+                    c.material,
+                    c.shaft,
+                    n(c.mass, "mass"),
+                    n(c.d_outer, "d_outer"),
+                    n(c.h, "h"),
+                    n(c.b, "b"),
+                    n(c.rim_speed, "rim_speed"),
+                    ", ".join(c.binding),
+                ]
+            )
         else:
             rows.append(["-", c.material, c.shaft, "cannot win" if c.pruned else "infeasible", "", "", "", "", ""])
-    head = ["rank", "material", "shaft", heading("mass", "mass", units), heading("D_outer", "d_outer", units),
-            heading("H", "h", units), heading("B", "b", units), heading("v", "rim_speed", units), "binding"]
+    head = [
+        "rank",
+        "material",
+        "shaft",
+        heading("mass", "mass", units),
+        heading("D_outer", "d_outer", units),
+        heading("H", "h", units),
+        heading("B", "b", units),
+        heading("v", "rim_speed", units),
+        "binding",
+    ]
     align = ["<", "<", "<", ">", ">", ">", ">", ">", "<"]
-    if any(c.n_arms for c in result.candidates):   # one combination per arm count: say which
+    if any(c.n_arms for c in result.candidates):  # one combination per arm count: say which
         for row, c in zip(rows, result.candidates):
             row.insert(3, str(c.n_arms or "-"))
         head.insert(3, "arms")
@@ -279,55 +367,97 @@ def wheel_report(candidate, omega, units=DEFAULT):
     """
     c = candidate
 
-    def n(value, name, digits=6):        # a number of a table or list whose unit is written once; "-" if none
+    def n(value, name, digits=6):  # a number of a table or list whose unit is written once; "-" if none
         return field_number(value, name, units, digits) if _finite(value) else "-"
 
-    def q(value, name, digits=6):        # a number with its unit; "-" if none
+    def q(value, name, digits=6):  # a number with its unit; "-" if none
         return field_text(value, name, units, digits) if _finite(value) else "-"
 
     lines = []
     if c.parts:
         total_j = sum(p["inertia"] for p in c.parts)
-        rows = [[p["name"], f"{n(p['r_inner'], 'r_inner', 4)} – {n(p['r_outer'], 'r_outer', 4)}",
-                 n(p["thickness"], "thickness", 4), n(p["mass"], "mass"), n(p["inertia"], "inertia"),
-                 f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-"]
-                for p in c.parts]
-        rows.append(["total", f"{n(min(p['r_inner'] for p in c.parts), 'r_inner', 4)} – "
-                              f"{n(max(p['r_outer'] for p in c.parts), 'r_outer', 4)}", "",
-                     n(sum(p["mass"] for p in c.parts), "mass"), n(total_j, "inertia"),
-                     "100.0 %" if total_j > 0 else "-"])
-        head = ["part", heading("r_inner – r_outer", "r_inner", units), heading("thickness", "thickness", units),
-                heading("mass", "mass", units), heading("inertia", "inertia", units), "share of J"]
+        rows = [
+            [
+                p["name"],
+                f"{n(p['r_inner'], 'r_inner', 4)} – {n(p['r_outer'], 'r_outer', 4)}",
+                n(p["thickness"], "thickness", 4),
+                n(p["mass"], "mass"),
+                n(p["inertia"], "inertia"),
+                f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-",
+            ]
+            for p in c.parts
+        ]
+        rows.append(
+            [
+                "total",
+                f"{n(min(p['r_inner'] for p in c.parts), 'r_inner', 4)} – "
+                f"{n(max(p['r_outer'] for p in c.parts), 'r_outer', 4)}",
+                "",
+                n(sum(p["mass"] for p in c.parts), "mass"),
+                n(total_j, "inertia"),
+                "100.0 %" if total_j > 0 else "-",
+            ]
+        )
+        head = [
+            "part",
+            heading("r_inner – r_outer", "r_inner", units),
+            heading("thickness", "thickness", units),
+            heading("mass", "mass", units),
+            heading("inertia", "inertia", units),
+            "share of J",
+        ]
         lines += ["", "Parts of the wheel (thickness: axial):"]
         body = table(head, rows, ["<", ">", ">", ">", ">", ">"])
         body.insert(len(body) - 1, "  ".join("-" * len(cell) for cell in body[1].split("  ")))
         lines += ["  " + line for line in body]
         if c.n_arms and c.arm_major:
-            lines.append(f"  arms: {c.n_arms} of elliptical section {n(c.arm_major, 'arm_major', 4)} x "
-                         f"{q(c.arm_minor, 'arm_minor', 4)} (major axis in the plane of rotation, minor axial)")
+            lines.append(
+                f"  arms: {c.n_arms} of elliptical section {n(c.arm_major, 'arm_major', 4)} x "
+                f"{q(c.arm_minor, 'arm_minor', 4)} (major axis in the plane of rotation, minor axial)"
+            )
     if c.stress:
         s = c.stress
         lines += ["", f"Stress check at ω_max = {q(omega, 'omega_max')} on its shaft:"]
         rows = []
         for p in s.get("parts", []):
             utilisation = p["stress"] / p["allowable"] if _finite(p["allowable"]) and p["allowable"] > 0 else None
-            rows.append([p["part"], n(p["stress"], "stress", 4), n(p["radius"], "radius", 4),
-                         n(p["allowable"], "allowable", 4),
-                         "-" if utilisation is None else f"{100 * utilisation:.1f} %",
-                         n(p.get("strength"), "strength", 4), n(p.get("wall"), "wall", 4)])
-        head = ["part", heading("stress", "stress", units), heading("at r", "radius", units),
-                heading("allowable", "allowable", units), "utilisation", heading("strength", "strength", units),
-                heading("at wall", "wall", units)]
+            rows.append(
+                [
+                    p["part"],
+                    n(p["stress"], "stress", 4),
+                    n(p["radius"], "radius", 4),
+                    n(p["allowable"], "allowable", 4),
+                    "-" if utilisation is None else f"{100 * utilisation:.1f} %",
+                    n(p.get("strength"), "strength", 4),
+                    n(p.get("wall"), "wall", 4),
+                ]
+            )
+        head = [
+            "part",
+            heading("stress", "stress", units),
+            heading("at r", "radius", units),
+            heading("allowable", "allowable", units),
+            "utilisation",
+            heading("strength", "strength", units),
+            heading("at wall", "wall", units),
+        ]
         lines += ["  " + line for line in table(head, rows)]
-        lines.append("  (stress: von Mises if ductile, largest principal if brittle; strength: yield if ductile, "
-                     "tensile if brittle, at the part's wall)")
+        lines.append(
+            "  (stress: von Mises if ductile, largest principal if brittle; strength: yield if ductile, "
+            "tensile if brittle, at the part's wall)"
+        )
         where = s.get("where") or {}
         facts = []
         if where:
             facts.append(("governing", f"{where['part']} at r = {q(where['radius'], 'radius', 4)}"))
-        facts.append(("largest σ_t / σ_r", f"{n(s.get('hoop_max'), 'hoop_max', 4)} / "
-                                           f"{q(s.get('radial_max'), 'radial_max', 4)} "
-                                           f"(von Mises {q(s.get('von_mises'), 'von_mises', 4)})"))
+        facts.append(
+            (
+                "largest σ_t / σ_r",
+                f"{n(s.get('hoop_max'), 'hoop_max', 4)} / "
+                f"{q(s.get('radial_max'), 'radial_max', 4)} "
+                f"(von Mises {q(s.get('von_mises'), 'von_mises', 4)})",
+            )
+        )
         if _finite(s.get("mean_hoop")):
             facts.append(("mean hoop stress", f"{q(s['mean_hoop'], 'mean_hoop', 4)} over the radial section"))
         if _finite(c.strength_safety):
@@ -339,19 +469,25 @@ def wheel_report(candidate, omega, units=DEFAULT):
         lines += [f"  {k:<{width}}  {v}" for k, v in facts]
     if _finite(c.unbalance_permissible):
         eccentricity = quantity_text(c.unbalance_permissible / c.mass, "eccentricity", units, 4) if c.mass else None
-        lines += ["", f"Permissible unbalance (ISO 21940-11, G6.3 at ω_max): "
-                      f"{q(c.unbalance_permissible, 'unbalance_permissible')}"
-                      + (f" (e_per {eccentricity})" if eccentricity else "")]
+        lines += [
+            "",
+            f"Permissible unbalance (ISO 21940-11, G6.3 at ω_max): "
+            f"{q(c.unbalance_permissible, 'unbalance_permissible')}"
+            + (f" (e_per {eccentricity})" if eccentricity else ""),
+        ]
     if c.key:
         k = c.key
         verdict = "OK" if k["ok"] else "NOT OK"
-        lines += ["", f"Key (DIN 6885-1 form A) on a {q(c.bore, 'bore', 4)} bore: {k['size']}, length "
-                      f"{q(k['length'], 'length', 4)} (effective {q(k['effective_length'], 'effective_length', 4)}): "
-                      f"{verdict}",
-                  f"  at the peak torque {q(k['torque'], 'torque')}: bearing pressure "
-                  f"{q(k['bearing_pressure'], 'bearing_pressure', 4)} (allowable "
-                  f"{q(k['allowable_pressure'], 'allowable_pressure', 4)}), shear {q(k['shear'], 'shear', 4)} "
-                  f"(allowable {q(k['allowable_shear'], 'allowable_shear', 4)})"]
+        lines += [
+            "",
+            f"Key (DIN 6885-1 form A) on a {q(c.bore, 'bore', 4)} bore: {k['size']}, length "
+            f"{q(k['length'], 'length', 4)} (effective {q(k['effective_length'], 'effective_length', 4)}): "
+            f"{verdict}",
+            f"  at the peak torque {q(k['torque'], 'torque')}: bearing pressure "
+            f"{q(k['bearing_pressure'], 'bearing_pressure', 4)} (allowable "
+            f"{q(k['allowable_pressure'], 'allowable_pressure', 4)}), shear {q(k['shear'], 'shear', 4)} "
+            f"(allowable {q(k['allowable_shear'], 'allowable_shear', 4)})",
+        ]
     if c.sensitivities:
         lines += ["", "Sensitivities of the mass:"]
         lines += [f"  - {s['text']}" for s in c.sensitivities]
@@ -364,8 +500,11 @@ def verification_report(v, units=DEFAULT):
     """The verification part of the ``flyopt solve --verify`` report (``units``: the unit system)."""
     q, _ = formatters(units)
     verdict = "FLAGGED: the design misses the allowed δ" if v.flagged else "ok"
-    return ["", f"Verification ({v.method}): {verdict}",
-            f"  achieved δ {number(v.achieved_delta)} against the allowed {number(v.delta_allowed)} "
-            f"(tolerance {number(v.tolerance, 3)}); ω {field_number(v.omega_min, 'omega_min', units)} to "
-            f"{q(v.omega_max, 'omega_max')}, mean {q(v.omega_mean, 'omega_mean')}; flywheel "
-            f"{q(v.j_flywheel, 'j_flywheel')} at the reference shaft"]
+    return [
+        "",
+        f"Verification ({v.method}): {verdict}",
+        f"  achieved δ {number(v.achieved_delta)} against the allowed {number(v.delta_allowed)} "
+        f"(tolerance {number(v.tolerance, 3)}); ω {field_number(v.omega_min, 'omega_min', units)} to "
+        f"{q(v.omega_max, 'omega_max')}, mean {q(v.omega_mean, 'omega_mean')}; flywheel "
+        f"{q(v.j_flywheel, 'j_flywheel')} at the reference shaft",
+    ]

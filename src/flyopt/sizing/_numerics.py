@@ -42,7 +42,7 @@ class Inertia:
             self.knots, self._is_constant = np.empty(0), True
         elif hasattr(j, "casadi"):
             self.knots = np.asarray(getattr(j, "knots", np.empty(0)), dtype=float)
-            self._is_constant = bool(getattr(j, "is_constant", False)) or None    # None: ask CasADi
+            self._is_constant = bool(getattr(j, "is_constant", False)) or None  # None: ask CasADi
             if getattr(j, "has_numpy_derivative", False) and hasattr(j, "value_and_derivative"):
                 self._numpy = j
         elif callable(j):
@@ -50,8 +50,9 @@ class Inertia:
             try:
                 self._expr = ca.SX(j(phi))
             except Exception as err:  # noqa: BLE001 -- any failure means "not CasADi-capable"
-                raise ValueError(f"{what} must accept a CasADi symbol (use numpy-free arithmetic or "
-                                 f"an EquivalentInertia): {err}") from err
+                raise ValueError(
+                    f"{what} must accept a CasADi symbol (use numpy-free arithmetic or an EquivalentInertia): {err}"
+                ) from err
             self._phi = phi
             self.knots, self._is_constant = np.empty(0), None
         else:
@@ -102,7 +103,7 @@ class Inertia:
         if self._numpy is not None:
             phi = np.asarray(phi, dtype=float)
             return self._numpy(phi) if which == 0 else self._numpy.derivative(phi)
-        if self._constant_value is not None or self.is_constant:   # no CasADi call per angle for a constant
+        if self._constant_value is not None or self.is_constant:  # no CasADi call per angle for a constant
             shape = np.shape(phi)
             value = self._constant_value if self._constant_value is not None else float(self.function(0.0)[0])
             pair = (np.full(shape, value), np.zeros(shape))
@@ -122,8 +123,9 @@ def call(function, *args):
     own shapes (a column vector as a 1-D array). A function with a sparse input or
     output is called the ordinary way.
     """
-    if not all(function.sparsity_in(i).is_dense() for i in range(function.n_in())) or \
-            not all(function.sparsity_out(i).is_dense() for i in range(function.n_out())):
+    if not all(function.sparsity_in(i).is_dense() for i in range(function.n_in())) or not all(
+        function.sparsity_out(i).is_dense() for i in range(function.n_out())
+    ):
         out = function(*args)
         out = out if isinstance(out, tuple) else (out,)
         return tuple(np.asarray(o, dtype=float) for o in out)
@@ -134,7 +136,7 @@ def call(function, *args):
         if flat.size != function.nnz_in(i):
             raise ValueError(f"{function.name()}: input {i} has {flat.size} numbers, {function.nnz_in(i)} expected")
         flat = np.ascontiguousarray(flat)
-        inputs.append(flat)                    # the buffer keeps no reference: these must live
+        inputs.append(flat)  # the buffer keeps no reference: these must live
         buffer.set_arg(i, memoryview(flat))
     outputs = []
     for i in range(function.n_out()):
@@ -176,11 +178,9 @@ def check_cycle(cycle_angle):
     return float(cycle_angle)
 
 
-
 def hermite(f0, f1, m0, m1, t):
     """Cubic Hermite interpolant on [0, 1] with end values f and end slopes m."""
     return f0 + t * (m0 + t * (3 * (f1 - f0) - 2 * m0 - m1 + t * (2 * (f0 - f1) + m0 + m1)))
-
 
 
 #: How much steeper than the larger of the rises beside its node an end slope may be for the cubic to be
@@ -199,11 +199,12 @@ def _neighbour_rises(phi, f, rise):
     """
     pieces = rise.shape[0]
     previous = np.roll(np.arange(pieces), 1)
-    joins = phi[previous, -1] == phi[:, 0]                       # row r starts where row r-1 ends
+    joins = phi[previous, -1] == phi[:, 0]  # row r starts where row r-1 ends
     joins[0] = pieces > 1 and abs(f[-1, -1] - f[0, 0]) <= 1e-9 * max(float(np.max(np.abs(f))), EPS)
     before = np.concatenate([np.where(joins, rise[previous, -1], np.inf)[:, None], rise[:, :-1]], axis=1)
-    after = np.concatenate([rise[:, 1:], np.where(np.roll(joins, -1), np.roll(rise[:, 0], -1), np.inf)[:, None]],
-                           axis=1)
+    after = np.concatenate(
+        [rise[:, 1:], np.where(np.roll(joins, -1), np.roll(rise[:, 0], -1), np.inf)[:, None]], axis=1
+    )
     return before, after
 
 
@@ -236,8 +237,9 @@ def hermite_extremes(phi, f, df):
     # over the interval but a boundary layer's (a stiff motor relaxing within a fraction of the step)
     before, after = _neighbour_rises(phi, f, rise)
     floor = 1e-12 * max(float(np.max(np.abs(f))), EPS)
-    resolved = ((np.abs(m0) <= STEEP * np.maximum(np.abs(rise), np.abs(before)) + floor)
-                & (np.abs(m1) <= STEEP * np.maximum(np.abs(rise), np.abs(after)) + floor))
+    resolved = (np.abs(m0) <= STEEP * np.maximum(np.abs(rise), np.abs(before)) + floor) & (
+        np.abs(m1) <= STEEP * np.maximum(np.abs(rise), np.abs(after)) + floor
+    )
     turning &= resolved
     c = m0
     b = 3 * (f1 - f0) - 2 * m0 - m1

@@ -36,10 +36,14 @@ def choose(machine):
     if machine.speed_dependent:
         return DYNAMIC, "a torque depends on speed, so only the periodic solution of the equation of motion is exact"
     if machine.variable_inertia:
-        return ENERGY_MASS, ("the equivalent inertia varies with the angle and the torques depend on the angle "
-                             "only, so the energy–mass closed form is exact")
-    return ENERGY, ("the equivalent inertia is constant and the torques depend on the angle only, so the "
-                    "constant-inertia energy method is exact")
+        return ENERGY_MASS, (
+            "the equivalent inertia varies with the angle and the torques depend on the angle "
+            "only, so the energy–mass closed form is exact"
+        )
+    return ENERGY, (
+        "the equivalent inertia is constant and the torques depend on the angle only, so the "
+        "constant-inertia energy method is exact"
+    )
 
 
 @dataclass(frozen=True)
@@ -101,25 +105,52 @@ def requirement(machine, model, indicator=None):
             indicator = energy_indicator(ew.driving, ew.resisting, machine.cycle_angle)
         j = required_inertia(indicator.a_max, w, d, machine.j_mean())
         note = "" if not machine.variable_inertia else "J_e replaced by its cycle mean"
-        return Requirement(ENERGY, j, w, w * (1 + d / 2), w * (1 - d / 2), indicator.angle_omega_max,
-                           indicator.angle_omega_min, None, note)
+        return Requirement(
+            ENERGY,
+            j,
+            w,
+            w * (1 + d / 2),
+            w * (1 - d / 2),
+            indicator.angle_omega_max,
+            indicator.angle_omega_min,
+            None,
+            note,
+        )
     if model == ENERGY_MASS:
         from flyopt.sizing import energy_mass
 
         em = energy_mass.energy_mass_requirement(machine.angle_only(), machine.j_machine, w, d)
-        return Requirement(ENERGY_MASS, em.j_required, em.omega_mean, em.omega_max, em.omega_min,
-                           em.phi_omega_max, em.phi_omega_min, em)
+        return Requirement(
+            ENERGY_MASS,
+            em.j_required,
+            em.omega_mean,
+            em.omega_max,
+            em.omega_min,
+            em.phi_omega_max,
+            em.phi_omega_min,
+            em,
+        )
     if model == DYNAMIC:
-        from flyopt.sizing import periodic   # CasADi: only for a machine whose torque depends on speed
+        from flyopt.sizing import periodic  # CasADi: only for a machine whose torque depends on speed
 
-        dyn = periodic.dynamic_requirement(machine.net_torque(), machine.j_machine, machine.cycle_angle, w, d,
-                                           machine.knots())
+        dyn = periodic.dynamic_requirement(
+            machine.net_torque(), machine.j_machine, machine.cycle_angle, w, d, machine.knots()
+        )
         sol = dyn.solution
         note = dyn.held
         if dyn.limit == "stall":
             note += "; δ stays within the limit down to the smallest flywheel that still runs steadily (stall)"
-        return Requirement(DYNAMIC, dyn.j_required, sol.omega_mean, sol.omega_max, sol.omega_min,
-                           sol.phi_omega_max, sol.phi_omega_min, dyn, note)
+        return Requirement(
+            DYNAMIC,
+            dyn.j_required,
+            sol.omega_mean,
+            sol.omega_max,
+            sol.omega_min,
+            sol.phi_omega_max,
+            sol.phi_omega_min,
+            dyn,
+            note,
+        )
     raise ValueError(f"model {model!r} is not known (allowed: {', '.join(ORDER)})")
 
 
@@ -130,13 +161,14 @@ def achieved_delta(machine, j_flywheel):
     exact, _ = choose(machine)
     if exact in (ENERGY, ENERGY_MASS):
         if machine.j_mean() + j_flywheel <= 0:  # no inertia: the speed is constant only if nothing fluctuates
-            model = periodic.periodic_model(machine.net_torque(), machine.j_machine, machine.cycle_angle,
-                                            machine.knots())
+            model = periodic.periodic_model(
+                machine.net_torque(), machine.j_machine, machine.cycle_angle, machine.knots()
+            )
             return 0.0 if model.steady else float("inf")
-        return energy_mass.achieved_speed(machine.angle_only(), machine.j_machine, machine.omega_mean,
-                                       j_flywheel).delta
-    sol = periodic.periodic_solution(machine.net_torque(), machine.j_machine, machine.cycle_angle,
-                                     machine.omega_mean, j_flywheel, machine.knots())
+        return energy_mass.achieved_speed(machine.angle_only(), machine.j_machine, machine.omega_mean, j_flywheel).delta
+    sol = periodic.periodic_solution(
+        machine.net_torque(), machine.j_machine, machine.cycle_angle, machine.omega_mean, j_flywheel, machine.knots()
+    )
     return sol.delta
 
 
@@ -165,8 +197,16 @@ def compare(machine, chosen, indicator=None, known=None):
         try:
             results[model] = requirement(machine, model, indicator if model == ENERGY else None)
         except (NonPeriodicCycle, SolverFailed, ValueError) as err:
-            rows.append({"model": model, "exact": model == exact, "j_required": None, "achieved_delta": None,
-                         "j_error": None, "note": f"not applicable: {err}"})
+            rows.append(
+                {
+                    "model": model,
+                    "exact": model == exact,
+                    "j_required": None,
+                    "achieved_delta": None,
+                    "j_error": None,
+                    "note": f"not applicable: {err}",
+                }
+            )
     reference = results.get(exact) or results.get(chosen)
     for model, res in results.items():
         j = res.j_required
@@ -180,7 +220,15 @@ def compare(machine, chosen, indicator=None, known=None):
         error = None
         if reference is not None and reference.j_required > 0:
             error = (j - reference.j_required) / reference.j_required
-        rows.append({"model": model, "exact": model == exact, "j_required": j, "achieved_delta": delta,
-                     "j_error": error, "note": note})
+        rows.append(
+            {
+                "model": model,
+                "exact": model == exact,
+                "j_required": j,
+                "achieved_delta": delta,
+                "j_error": error,
+                "note": note,
+            }
+        )
     rows.sort(key=lambda r: ORDER.index(r["model"]))
     return rows

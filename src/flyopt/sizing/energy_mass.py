@@ -107,6 +107,7 @@ def _extremes(x, problems, slope, value, span):
         def g(t, i):
             inside = slope(t, k[i], p[i])
             return np.where(t <= a[i], da[i], np.where(t >= b[i], db[i], inside))
+
         roots = brentq_many(g, a, b, da, db, xtol=1e-15 * span, rtol=4 * EPS)
         signs = np.array([1.0 if problem[3] else -1.0 for problem in problems])
         values = signs[p] * value(roots, k, p)
@@ -156,7 +157,7 @@ class _CycleGrid:
         if len(at):
             eps = 1e-12 * cycle
             sides = inertia.derivative(np.concatenate((x[at] + eps, x[at] - eps)))
-            self.dj_right[at], self.dj_left[at] = sides[:len(at)], sides[len(at):]
+            self.dj_right[at], self.dj_left[at] = sides[: len(at)], sides[len(at) :]
         self.linear = linear
 
     def _composite(self, nodes, weights):
@@ -180,7 +181,7 @@ class _CycleGrid:
         inner = np.unique(((np.arange(GRID_CHECK_POINTS) + 0.382) * n / GRID_CHECK_POINTS).astype(int))
         try:
             reference = np.concatenate((ew.at_knots, ew(x[inner])))
-        except ArithmeticError:      # the adaptive quadrature cannot reach 1e-13 from a knot to there
+        except ArithmeticError:  # the adaptive quadrature cannot reach 1e-13 from a knot to there
             return False
         got = self.delta_e[np.concatenate((knots, inner))]
         return bool(np.all(np.abs(got - reference) <= GRID_CHECK * ew.scale()))
@@ -353,9 +354,12 @@ def energy_mass_requirement(excess_work, j_machine, omega_mean, delta):
 
     # max[½ω_min² J − ΔE], min[½ω_max² J − ΔE], and max ΔE, min ΔE (as min and max of −ΔE): one refinement
     upper, lower, neg_de_max, neg_de_min = _energy_mass_extremes(
-        grid, [(half_min, True), (half_max, False), (0.0, False), (0.0, True)])
-    grid.__dict__.setdefault("delta_e_extremes",     # the forward use needs them again
-                             ((neg_de_max[0], -neg_de_max[1]), (neg_de_min[0], -neg_de_min[1])))
+        grid, [(half_min, True), (half_max, False), (0.0, False), (0.0, True)]
+    )
+    grid.__dict__.setdefault(
+        "delta_e_extremes",  # the forward use needs them again
+        ((neg_de_max[0], -neg_de_max[1]), (neg_de_min[0], -neg_de_min[1])),
+    )
     j_required = (upper[1] - lower[1]) / (half_max - half_min)
     e0 = lower[1] + half_max * j_required
 
@@ -365,9 +369,19 @@ def energy_mass_requirement(excess_work, j_machine, omega_mean, delta):
     j_mean = grid.mean_inertia
     j_ci = a_max / (omega_mean**2 * delta) - j_mean
     return EnergyMassRequirement(
-        j_required=float(j_required), e0=float(e0), phi_omega_max=lower[0], phi_omega_min=upper[0],
-        omega_mean=float(omega_mean), delta=float(delta), omega_max=w_max, omega_min=w_min, a_max=float(a_max),
-        j_machine_mean=j_mean, j_constant_inertia=float(j_ci), _grid=grid)
+        j_required=float(j_required),
+        e0=float(e0),
+        phi_omega_max=lower[0],
+        phi_omega_min=upper[0],
+        omega_mean=float(omega_mean),
+        delta=float(delta),
+        omega_max=w_max,
+        omega_min=w_min,
+        a_max=float(a_max),
+        j_machine_mean=j_mean,
+        j_constant_inertia=float(j_ci),
+        _grid=grid,
+    )
 
 
 def _energy_mass_extremes(grid, wanted):
@@ -390,8 +404,9 @@ def _energy_mass_extremes(grid, wanted):
         if c == 0.0:
             problems.append((-grid.delta_e, -grid.m_right, -grid.m_left, find_max))
         else:
-            problems.append((c * grid.j - grid.delta_e, c * grid.dj_right - grid.m_right,
-                             c * grid.dj_left - grid.m_left, find_max))
+            problems.append(
+                (c * grid.j - grid.delta_e, c * grid.dj_right - grid.m_right, c * grid.dj_left - grid.m_left, find_max)
+            )
     need_j = bool(np.any(coefficients != 0.0))
 
     def slope(t, k, p):
@@ -407,6 +422,7 @@ def _energy_mass_extremes(grid, wanted):
         if not need_j:
             return -de
         return np.where(c == 0.0, -de, c * grid.inertia(t) - de)
+
     return _extremes(grid.x, problems, slope, value, grid.cycle)
 
 
@@ -474,8 +490,10 @@ def achieved_speed(excess_work, j_machine, omega_mean, j_flywheel=0.0):
 def _achieved(grid, j_flywheel, omega_mean):
     j = grid.j + j_flywheel
     if not np.all(j > 0):
-        raise ValueError(f"the total inertia J_F + J_e(φ) must be positive; with J_F = {j_flywheel!r} kg*m^2 "
-                         f"it reaches {float(j.min())!r} kg*m^2")
+        raise ValueError(
+            f"the total inertia J_F + J_e(φ) must be positive; with J_F = {j_flywheel!r} kg*m^2 "
+            f"it reaches {float(j.min())!r} kg*m^2"
+        )
     (_, de_max), (_, de_min) = grid.delta_e_extremes
 
     def extremes(e0):
@@ -491,9 +509,9 @@ def _achieved(grid, j_flywheel, omega_mean):
 
         def value(t, k, p):
             return (e0 + grid.delta_e_at(t, k)) / (j_flywheel + grid.inertia(t))
+
         f = e / j
-        return _extremes(grid.x, [(f, d_right, d_left, True), (f, d_right, d_left, False)], slope, value,
-                         grid.cycle)
+        return _extremes(grid.x, [(f, d_right, d_left, True), (f, d_right, d_left, False)], slope, value, grid.cycle)
 
     evaluated = {}
 
@@ -512,14 +530,29 @@ def _achieved(grid, j_flywheel, omega_mean):
     e_low = -de_min
     scale = max(de_max - de_min, EPS * 0.5 * float(j.max()) * omega_mean**2)
     e_high = 0.5 * float(j.max()) * omega_mean**2 - de_min + scale
-    e0 = _newton(mismatch, e_low, e_high, 0.5 * omega_mean**2 * float(np.mean(j)) - float(np.mean(grid.delta_e)),
-                 j_flywheel, omega_mean)
+    e0 = _newton(
+        mismatch,
+        e_low,
+        e_high,
+        0.5 * omega_mean**2 * float(np.mean(j)) - float(np.mean(grid.delta_e)),
+        j_flywheel,
+        omega_mean,
+    )
     _, _, hi, lo = mismatch(e0)
     w_max, w_min = math.sqrt(2 * hi[1]), math.sqrt(2 * lo[1])
     w_mean = 0.5 * (w_max + w_min)
     omega = np.sqrt(2 * np.maximum(e0 + grid.delta_e, 0.0) / j)
-    return SpeedFluctuation(phi=grid.x, omega=omega, omega_max=w_max, omega_min=w_min, omega_mean=w_mean,
-                            delta=(w_max - w_min) / w_mean, phi_omega_max=hi[0], phi_omega_min=lo[0], e0=e0)
+    return SpeedFluctuation(
+        phi=grid.x,
+        omega=omega,
+        omega_max=w_max,
+        omega_min=w_min,
+        omega_mean=w_mean,
+        delta=(w_max - w_min) / w_mean,
+        phi_omega_max=hi[0],
+        phi_omega_min=lo[0],
+        e0=e0,
+    )
 
 
 def _newton(mismatch, e_low, e_high, guess, j_flywheel, omega_mean):
@@ -546,9 +579,12 @@ def _newton(mismatch, e_low, e_high, guess, j_flywheel, omega_mean):
 
     def check_low():
         if mismatch(e_low)[0] > 0:
-            raise ValueError(f"with J_F = {j_flywheel!r} kg*m^2 the machine cannot keep the mean speed "
-                             f"{omega_mean!r} rad/s: its speed would fall to zero within the cycle")
+            raise ValueError(
+                f"with J_F = {j_flywheel!r} kg*m^2 the machine cannot keep the mean speed "
+                f"{omega_mean!r} rad/s: its speed would fall to zero within the cycle"
+            )
         return True
+
     e = min(max(guess, e_low), e_high)
     if e == e_low:
         e = 0.5 * (e_low + e_high)
@@ -568,7 +604,7 @@ def _newton(mismatch, e_low, e_high, guess, j_flywheel, omega_mean):
             new = 0.5 * (a + b)
         step_before, e_before, e = abs(new - e), e, new
         if step_before <= 1e-16 * e_high + 4 * EPS * abs(e) or e == e_before:
-            if a == e_low and not low_checked:   # never below the root: it may not exist
+            if a == e_low and not low_checked:  # never below the root: it may not exist
                 low_checked = check_low()
             return e
     raise RuntimeError("the energy–mass forward method did not find E_0 in 500 steps")

@@ -50,9 +50,17 @@ from scipy import optimize
 from flyopt.cycle.indicator import BALANCE_TOLERANCE
 from flyopt.errors import NonPeriodicCycle, SceneError, SolverFailed
 from flyopt.sizing import shooting
+from flyopt.sizing._numerics import (
+    EDGE,
+    EPS,
+    Inertia,
+    check_cycle,
+    check_speed_delta,
+    evaluate,
+    hermite_extremes,
+    quiet,
+)
 from flyopt.sizing.shooting import NotSettled
-from flyopt.sizing._numerics import (EDGE, EPS, Inertia, check_cycle, check_speed_delta, evaluate, hermite_extremes,
-                                     quiet)
 
 PIECES_PER_CYCLE = 32
 """The simulation splits the cycle at every knot and into at least this many pieces."""
@@ -116,6 +124,7 @@ def angle_torque(excess_work):
 
     def net(phi, omega):
         return driving.casadi(phi) - resisting.casadi(phi)
+
     return net
 
 
@@ -247,8 +256,11 @@ class PeriodicModel:
             raise ValueError(f"net_torque must return a scalar, got shape {m.shape}")
         self.speed_dependent = bool(ca.depends_on(m, omega))
         self.balanced = self.speed_dependent and bool(getattr(net_torque, "balanced", False))
-        self.steady = (self.inertia.is_constant and not ca.depends_on(m, phi)
-                       and bool(np.all(self.table_ends == self.table_ends[0, 0])))
+        self.steady = (
+            self.inertia.is_constant
+            and not ca.depends_on(m, phi)
+            and bool(np.all(self.table_ends == self.table_ends[0, 0]))
+        )
         self.torque_function = ca.Function("M", [phi, omega], [m])
         self._rest_constant = not (ca.depends_on(m, phi) or self.speed_dependent)
         self.torque_slope_function = ca.Function("dM", [phi, omega], [ca.jacobian(m, omega)])
@@ -290,10 +302,15 @@ class PeriodicModel:
 
     def _integrator(self, with_time):
         BUILDS["timed integrator" if with_time else "integrator"] += 1
-        opts = {"abstol": ABSTOL, "reltol": RELTOL, "max_num_steps": 200000,
-                "disable_internal_warnings": True, "print_stats": False, "verbose": False}
-        return ca.integrator("piece_t" if with_time else "piece", "cvodes", self._rhs(with_time),
-                             0.0, self.tau, opts)
+        opts = {
+            "abstol": ABSTOL,
+            "reltol": RELTOL,
+            "max_num_steps": 200000,
+            "disable_internal_warnings": True,
+            "print_stats": False,
+            "verbose": False,
+        }
+        return ca.integrator("piece_t" if with_time else "piece", "cvodes", self._rhs(with_time), 0.0, self.tau, opts)
 
     @cached_property
     def piece(self):
@@ -336,7 +353,7 @@ class PeriodicModel:
     def _chunked(self):
         """(start, data) of each chunk of at most :data:`CHUNK` pieces."""
         data = np.column_stack((self.pieces, self.table_ends)).T
-        return [(k, data[:, k:k + CHUNK]) for k in range(0, len(self.pieces), CHUNK)]
+        return [(k, data[:, k : k + CHUNK]) for k in range(0, len(self.pieces), CHUNK)]
 
     def shoot(self, j_flywheel, e_ref, w_s, offset=0.0, balancing=False):
         """One cycle from y = 0: (y(Φ), stall(Φ), dy(Φ)/dE_ref[, dy(Φ)/dc]).
@@ -422,9 +439,11 @@ class PeriodicModel:
         m = self.torque(phi, omega)
         bad = ~np.isfinite(m)
         if bad.any():
-            raise ValueError(f"net_torque is not finite at phi = {float(phi[bad][0]):.6g} rad, omega = {omega:.6g} "
-                             f"rad/s; it must accept CasADi symbols (casadi functions, not math or numpy) and "
-                             f"be finite over the cycle")
+            raise ValueError(
+                f"net_torque is not finite at phi = {float(phi[bad][0]):.6g} rad, omega = {omega:.6g} "
+                f"rad/s; it must accept CasADi symbols (casadi functions, not math or numpy) and "
+                f"be finite over the cycle"
+            )
 
     def work_scale(self, omega):
         """An upper bound of the energy swing over the cycle at speed ``omega`` [J].
@@ -461,8 +480,9 @@ class PeriodicModel:
                     parts.append(np.asarray(outs, dtype=float))
                     x = np.asarray(ends, dtype=float)[:, -1]
         except RuntimeError as err:
-            raise SolverFailed(f"the integration of the cycle failed (CVODES: "
-                               f"{str(err).strip().splitlines()[-1]})") from err
+            raise SolverFailed(
+                f"the integration of the cycle failed (CVODES: {str(err).strip().splitlines()[-1]})"
+            ) from err
         out = np.concatenate(parts, axis=1)
         y = out[0].reshape(len(self.pieces), len(self.tau))
         return y, float(out[1, -1])
@@ -595,8 +615,10 @@ def _periodic(model, j_flywheel, omega_guess):
     phi_grid = model.grid_angles()
     j_min = float(np.min(model.inertia(phi_grid))) + j_flywheel
     if not j_min > 0:
-        raise ValueError(f"the total inertia J_F + J_e(φ) must be positive; with J_F = {j_flywheel!r} kg*m^2 "
-                         f"it reaches {j_min!r} kg*m^2")
+        raise ValueError(
+            f"the total inertia J_F + J_e(φ) must be positive; with J_F = {j_flywheel!r} kg*m^2 "
+            f"it reaches {j_min!r} kg*m^2"
+        )
     j_ref = float(model.inertia(0.0)) + j_flywheel
     model.check_finite(omega_guess)
     if model.balanced:
@@ -616,8 +638,9 @@ def _steady(model, j_flywheel, omega_guess):
     """
     j = float(model.inertia(0.0)) + j_flywheel
     if j < 0:
-        raise ValueError(f"the total inertia J_F + J_e must not be negative; with J_F = {j_flywheel!r} kg*m^2 "
-                         f"it is {j!r} kg*m^2")
+        raise ValueError(
+            f"the total inertia J_F + J_e must not be negative; with J_F = {j_flywheel!r} kg*m^2 it is {j!r} kg*m^2"
+        )
     model.check_finite(omega_guess)
 
     def torque(omega):
@@ -632,8 +655,10 @@ def _steady(model, j_flywheel, omega_guess):
         status = "steady: the torques balance and do not vary with the angle, so the speed is constant"
     elif model.balanced:
         offset = -torque(omega)
-        status = ("steady: the torques do not vary with the angle; the unknown constant torque balances them "
-                  "at the prescribed speed")
+        status = (
+            "steady: the torques do not vary with the angle; the unknown constant torque balances them "
+            "at the prescribed speed"
+        )
     else:
         omega = shooting.speed_balance(torque, omega_guess)
         slope = float(evaluate(model.torque_slope_function, model._maps, 0.0, omega)[0])
@@ -641,18 +666,36 @@ def _steady(model, j_flywheel, omega_guess):
         status = "steady: the torques do not vary with the angle; the torque-speed balance sets the speed"
     phi = model.grid_angles().reshape(-1)
     return PeriodicSolution(
-        phi=phi, omega=np.full(phi.shape, float(omega)), omega_max=float(omega), omega_min=float(omega),
-        omega_mean=float(omega), delta=0.0, phi_omega_max=0.0, phi_omega_min=0.0, converged=True, status=status,
-        periodicity_residual=0.0, periodicity_tolerance=0.0, tolerance=0.0, multiplier=multiplier,
-        speed_dependent=model.speed_dependent, iterations=0, j_flywheel=j_flywheel, e0=0.5 * j * omega**2,
-        period=model.cycle / omega, torque_offset=offset)
+        phi=phi,
+        omega=np.full(phi.shape, float(omega)),
+        omega_max=float(omega),
+        omega_min=float(omega),
+        omega_mean=float(omega),
+        delta=0.0,
+        phi_omega_max=0.0,
+        phi_omega_min=0.0,
+        converged=True,
+        status=status,
+        periodicity_residual=0.0,
+        periodicity_tolerance=0.0,
+        tolerance=0.0,
+        multiplier=multiplier,
+        speed_dependent=model.speed_dependent,
+        iterations=0,
+        j_flywheel=j_flywheel,
+        e0=0.5 * j * omega**2,
+        period=model.cycle / omega,
+        torque_offset=offset,
+    )
 
 
 def _finish(model, y, j_flywheel, e_ref, w_s, shift, status, residual, tol, multiplier, iterations, offset=0.0):
     phi, q, dq, energy = model.speed_profile(y, j_flywheel, e_ref, w_s, shift, offset)
     if q is None:
-        raise SolverFailed(f"the speed reaches zero within the cycle (status: {status}); "
-                           f"the machine stalls: more flywheel inertia or a stronger motor is needed")
+        raise SolverFailed(
+            f"the speed reaches zero within the cycle (status: {status}); "
+            f"the machine stalls: more flywheel inertia or a stronger motor is needed"
+        )
     hi, lo = hermite_extremes(phi, q, dq)
     if lo[1] <= 0.0:
         # the grid's ω²/2 is positive but its cubic interpolant dips below zero: the speed is
@@ -661,17 +704,34 @@ def _finish(model, y, j_flywheel, e_ref, w_s, shift, status, residual, tol, mult
             f"the periodic speed is not resolved with J_F = {j_flywheel:.3g} kg·m² (status: {status}): "
             f"ω²/2 lies in [{float(np.min(q)):.4g}, {float(np.max(q)):.4g}] rad²/s² on the output grid, but "
             f"its interpolant reaches {lo[1]:.3g} at φ = {lo[0]:.4g} rad (slopes up to "
-            f"{float(np.max(np.abs(dq))):.3g} rad²/s² per rad)")
+            f"{float(np.max(np.abs(dq))):.3g} rad²/s² per rad)"
+        )
     w_max, w_min = math.sqrt(2 * hi[1]), math.sqrt(2 * lo[1])
     omega = np.sqrt(2 * q)
     w_mean = 0.5 * (w_max + w_min)
     delta = (w_max - w_min) / w_mean
     return PeriodicSolution(
-        phi=phi.reshape(-1), omega=omega.reshape(-1), omega_max=w_max, omega_min=w_min, omega_mean=w_mean,
-        delta=delta, phi_omega_max=hi[0], phi_omega_min=lo[0], converged=True, status=status,
-        periodicity_residual=abs(residual), periodicity_tolerance=tol, tolerance=DELTA_RTOL * delta,
-        multiplier=multiplier, speed_dependent=model.speed_dependent, iterations=iterations,
-        j_flywheel=j_flywheel, e0=float(energy[0, 0]), period=_simpson_time(phi, omega), torque_offset=offset)
+        phi=phi.reshape(-1),
+        omega=omega.reshape(-1),
+        omega_max=w_max,
+        omega_min=w_min,
+        omega_mean=w_mean,
+        delta=delta,
+        phi_omega_max=hi[0],
+        phi_omega_min=lo[0],
+        converged=True,
+        status=status,
+        periodicity_residual=abs(residual),
+        periodicity_tolerance=tol,
+        tolerance=DELTA_RTOL * delta,
+        multiplier=multiplier,
+        speed_dependent=model.speed_dependent,
+        iterations=iterations,
+        j_flywheel=j_flywheel,
+        e0=float(energy[0, 0]),
+        period=_simpson_time(phi, omega),
+        torque_offset=offset,
+    )
 
 
 def _periodic_angle_only(model, j_flywheel, omega_mean, j_ref):
@@ -703,16 +763,29 @@ def _periodic_angle_only(model, j_flywheel, omega_mean, j_ref):
     low = -e_ref / w_s - y_min  # the speed touches zero
     low += 1e-12 * max(1.0, abs(low))
     if mismatch(low) > 0:
-        raise SolverFailed(f"with J_F = {j_flywheel!r} kg*m^2 the machine cannot keep the mean speed "
-                           f"{omega_mean!r} rad/s: its speed would fall to zero within the cycle")
+        raise SolverFailed(
+            f"with J_F = {j_flywheel!r} kg*m^2 the machine cannot keep the mean speed "
+            f"{omega_mean!r} rad/s: its speed would fall to zero within the cycle"
+        )
     high = 1.0
     for _ in range(200):
         if mismatch(high) >= 0:
             break
         high = 2 * high + 1
     shift = optimize.brentq(mismatch, low, high, xtol=1e-15 * (e_ref / w_s + 1), rtol=4 * EPS, maxiter=500)
-    return _finish(model, y, j_flywheel, e_ref, w_s, shift, "periodic: torques of the angle only, the mean "
-                   "speed prescribed", residual * w_s, tol * w_s, 1.0, 0)
+    return _finish(
+        model,
+        y,
+        j_flywheel,
+        e_ref,
+        w_s,
+        shift,
+        "periodic: torques of the angle only, the mean speed prescribed",
+        residual * w_s,
+        tol * w_s,
+        1.0,
+        0,
+    )
 
 
 def _angle_only_tolerance(model, y, omega_mean, w_s):
@@ -757,17 +830,20 @@ def _periodic_speed_dependent(model, j_flywheel, omega_guess, j_ref):
     swing = float(y.max() - y.min())
     tol_abs = tol * max(swing, EPS)
     if stall > 0 or abs(residual) > tol_abs:
-        raise SolverFailed(f"periodic solution not found: after {iterations} Newton iterations E(Φ) − E(0) = "
-                           f"{residual * w_s:.3g} J exceeds the tolerance {tol_abs * w_s:.3g} J ({status})")
+        raise SolverFailed(
+            f"periodic solution not found: after {iterations} Newton iterations E(Φ) − E(0) = "
+            f"{residual * w_s:.3g} J exceeds the tolerance {tol_abs * w_s:.3g} J ({status})"
+        )
     with quiet():
         dy = model.shoot(j_flywheel, e_ref, w_s)[2]
     multiplier = 1.0 + w_s * dy
     if not multiplier < 1.0:
-        raise SolverFailed(f"the periodic solution found (mean energy {e_ref:.6g} J) is unstable: its Floquet "
-                           f"multiplier dE(Φ)/dE(0) = {multiplier:.6g} >= 1, so the machine would not settle "
-                           f"there (a motor beyond its breakdown torque?)")
-    return _finish(model, y, j_flywheel, e_ref, w_s, 0.0, status, residual * w_s, tol_abs * w_s,
-                   multiplier, iterations)
+        raise SolverFailed(
+            f"the periodic solution found (mean energy {e_ref:.6g} J) is unstable: its Floquet "
+            f"multiplier dE(Φ)/dE(0) = {multiplier:.6g} >= 1, so the machine would not settle "
+            f"there (a motor beyond its breakdown torque?)"
+        )
+    return _finish(model, y, j_flywheel, e_ref, w_s, 0.0, status, residual * w_s, tol_abs * w_s, multiplier, iterations)
 
 
 def _periodic_balanced(model, j_flywheel, omega_mean, j_ref):
@@ -784,16 +860,20 @@ def _periodic_balanced(model, j_flywheel, omega_mean, j_ref):
     w_s = model.work_scale(omega_mean)
 
     def stalls():
-        return SolverFailed(f"the speed reaches zero within the cycle at the mean speed {omega_mean:.6g} rad/s "
-                            f"with J_F = {j_flywheel:.6g} kg*m^2: more flywheel inertia is needed")
+        return SolverFailed(
+            f"the speed reaches zero within the cycle at the mean speed {omega_mean:.6g} rad/s "
+            f"with J_F = {j_flywheel:.6g} kg*m^2: more flywheel inertia is needed"
+        )
 
     def shoot(e_ref, offset, balancing):
         try:
             with quiet():
                 out = model.shoot(j_flywheel, e_ref, w_s, offset, balancing=balancing)
         except RuntimeError as err:
-            raise SolverFailed(f"the integration of the cycle failed at E_ref = {e_ref:.6g} J, c = {offset:.6g} "
-                               f"N*m (CVODES: {str(err).strip().splitlines()[-1]})") from err
+            raise SolverFailed(
+                f"the integration of the cycle failed at E_ref = {e_ref:.6g} J, c = {offset:.6g} "
+                f"N*m (CVODES: {str(err).strip().splitlines()[-1]})"
+            ) from err
         if out[1] > 0:
             raise stalls()
         return out
@@ -816,12 +896,13 @@ def _periodic_balanced(model, j_flywheel, omega_mean, j_ref):
         w_s *= swing
     _, _, d_e, d_c = shoot(x[0] ** 2, 0.0, True)
     if not d_c > 0:
-        raise SolverFailed(f"the balancing constant cannot be solved: dE(Φ)/dc = {d_c * w_s:.6g} J/(N*m) is not "
-                           f"positive")
+        raise SolverFailed(
+            f"the balancing constant cannot be solved: dE(Φ)/dc = {d_c * w_s:.6g} J/(N*m) is not positive"
+        )
     jac = np.array([[2 * x[0] * d_e, d_c], [1 / x[0], 0.0]])
     ftol = 0.1 * PERIODIC_RTOL
     values, y = conditions(x)
-    for iterations in range(1, MAX_NEWTON + 1):
+    for iterations in range(1, MAX_NEWTON + 1):  # noqa: B007 -- the count is reported after the loop
         if abs(values[0]) <= ftol and abs(values[1]) <= MEAN_TARGET:
             break
         step = -np.linalg.solve(jac, values)
@@ -834,15 +915,20 @@ def _periodic_balanced(model, j_flywheel, omega_mean, j_ref):
     swing = float(y.max() - y.min())
     tol_abs = PERIODIC_RTOL * max(swing, EPS)
     if abs(f) > MEAN_RTOL or abs(residual) > tol_abs:
-        raise SolverFailed(f"periodic solution at the mean speed {omega_mean:.6g} rad/s not found in "
-                           f"{iterations} iterations: E(Φ) − E(0) = {residual * w_s:.3g} J (tolerance "
-                           f"{tol_abs * w_s:.3g} J), mean speed off by {f:.3g} (tolerance {MEAN_RTOL:g})")
+        raise SolverFailed(
+            f"periodic solution at the mean speed {omega_mean:.6g} rad/s not found in "
+            f"{iterations} iterations: E(Φ) − E(0) = {residual * w_s:.3g} J (tolerance "
+            f"{tol_abs * w_s:.3g} J), mean speed off by {f:.3g} (tolerance {MEAN_RTOL:g})"
+        )
     e_ref, offset = x[0] ** 2, float(x[1])
     multiplier = 1.0 + w_s * shoot(e_ref, offset, False)[2]
-    status = (f"periodic: the mean speed prescribed, the unknown constant torque corrected by {offset:.6g} N*m "
-              f"to balance the cycle ({iterations} iterations)")
-    return _finish(model, y, j_flywheel, e_ref, w_s, 0.0, status, residual * w_s, tol_abs * w_s, multiplier,
-                   iterations, offset)
+    status = (
+        f"periodic: the mean speed prescribed, the unknown constant torque corrected by {offset:.6g} N*m "
+        f"to balance the cycle ({iterations} iterations)"
+    )
+    return _finish(
+        model, y, j_flywheel, e_ref, w_s, 0.0, status, residual * w_s, tol_abs * w_s, multiplier, iterations, offset
+    )
 
 
 class _NoGain(SolverFailed):
@@ -903,12 +989,16 @@ def _periodic_energy(shoot, e0, ftol, monotone=lambda: False):
             return bracket_from(float(ks[j]))
     # A band narrower than the scan step: maximize the gain around the best local maxima.
     finite = np.isfinite(values)
-    peaks = [j for j in range(1, len(ks) - 1)
-             if finite[j] and values[j] >= values[j - 1] and values[j] >= values[j + 1]]
+    peaks = [
+        j for j in range(1, len(ks) - 1) if finite[j] and values[j] >= values[j - 1] and values[j] >= values[j + 1]
+    ]
     for j in sorted(peaks, key=lambda i: -values[i])[:3]:
-        res = optimize.minimize_scalar(lambda k: -max(gain(k), -1e100), bounds=(ks[j] - 1, ks[j] + 1),
-                                       method="bounded",
-                                       options={"xatol": 1e-6, "maxiter": 60})
+        res = optimize.minimize_scalar(
+            lambda k: -max(gain(k), -1e100),
+            bounds=(ks[j] - 1, ks[j] + 1),
+            method="bounded",
+            options={"xatol": 1e-6, "maxiter": 60},
+        )
         if -res.fun > 0:
             return bracket_from(float(res.x))
     raise failure
@@ -951,21 +1041,29 @@ def _newton_energy(shoot, e0, ftol, bracket=(0.0, math.inf)):
                 else:
                     e_next = e / 4
         if e_next > 1e12 * e0:
-            raise SolverFailed("no periodic steady state: the machine keeps gaining energy over every cycle "
-                               "(it runs away: the driving torque exceeds the load at every speed tried, up "
-                               "to 1e6 times the guessed speed)")
+            raise SolverFailed(
+                "no periodic steady state: the machine keeps gaining energy over every cycle "
+                "(it runs away: the driving torque exceeds the load at every speed tried, up "
+                "to 1e6 times the guessed speed)"
+            )
         if e_next < 1e-12 * e0 or (math.isfinite(hi) and hi < 1e-10 * e0):
-            raise SolverFailed("no periodic steady state: the machine loses energy over every cycle down to a "
-                               "stall (the load exceeds what the drive gives at every speed tried)")
+            raise SolverFailed(
+                "no periodic steady state: the machine loses energy over every cycle down to a "
+                "stall (the load exceeds what the drive gives at every speed tried)"
+            )
         if math.isfinite(hi) and lo > 0 and (hi - lo) <= 1e-12 * hi:
             break
         e = e_next
     if not gains and math.isfinite(hi):
-        raise _NoGain(f"no periodic steady state: at every speed the machine passes the cycle at, it loses "
-                           f"energy over the cycle, and slower it stalls (the speed reaches zero); the load "
-                           f"exceeds what the drive gives (bracket [{lo:.6g}, {hi:.6g}] J of kinetic energy)")
-    raise SolverFailed(f"periodic solution not found: Newton on E(Φ) − E(0) did not converge in "
-                       f"{MAX_NEWTON} iterations (last residual {last!r} W_s, bracket [{lo:.6g}, {hi:.6g}] J)")
+        raise _NoGain(
+            f"no periodic steady state: at every speed the machine passes the cycle at, it loses "
+            f"energy over the cycle, and slower it stalls (the speed reaches zero); the load "
+            f"exceeds what the drive gives (bracket [{lo:.6g}, {hi:.6g}] J of kinetic energy)"
+        )
+    raise SolverFailed(
+        f"periodic solution not found: Newton on E(Φ) − E(0) did not converge in "
+        f"{MAX_NEWTON} iterations (last residual {last!r} W_s, bracket [{lo:.6g}, {hi:.6g}] J)"
+    )
 
 
 # -- required flywheel with the dynamic model -------------------------------------
@@ -1044,13 +1142,19 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
     j_grid = model.inertia(phi)
     j_low = float(j_grid.min())
     if model.steady:  # nothing fluctuates: the machine's own inertia (even none) suffices
-        return DynamicRequirement(j_required=0.0 - j_low, solution=_steady(model, 0.0, omega_mean), iterations=1,
-                                  held=_held(model), j_initial=0.0 - j_low, limit="delta")
+        return DynamicRequirement(
+            j_required=0.0 - j_low,
+            solution=_steady(model, 0.0, omega_mean),
+            iterations=1,
+            held=_held(model),
+            j_initial=0.0 - j_low,
+            limit="delta",
+        )
     j_mean = float(np.mean(j_grid[:, :-1]))  # an estimate only, for the start
     # constant-inertia estimate at the guessed speed
     j_tot0 = shooting.energy_swing(model, omega_mean) / (omega_mean**2 * delta)
     j_initial = j_tot0 - j_mean
-    try:   # the one Newton solve; the search below settles what it cannot
+    try:  # the one Newton solve; the search below settles what it cannot
         return _one_solve(model, delta, omega_mean, j_tot0, j_initial)
     except NotSettled:
         BUILDS["fallback to the CVODES search"] += 1
@@ -1073,8 +1177,9 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
         except SolverFailed as err:
             sol, failure = None, str(err)
         if sol is not None and sol.delta <= 0:  # no fluctuation at all: any flywheel will do
-            return DynamicRequirement(j_required=-j_low, solution=sol, iterations=it, held=_held(model),
-                                      j_initial=j_initial, limit="delta")
+            return DynamicRequirement(
+                j_required=-j_low, solution=sol, iterations=it, held=_held(model), j_initial=j_initial, limit="delta"
+            )
         if sol is None:
             if u > lo:
                 lo, lo_failed = u, True
@@ -1083,8 +1188,9 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
             guess = sol.omega_mean
             f = math.log(sol.delta) - target
             if abs(f) <= rtol:
-                return DynamicRequirement(j_required=j_f, solution=sol, iterations=it, held=_held(model),
-                                          j_initial=j_initial, limit="delta")
+                return DynamicRequirement(
+                    j_required=j_f, solution=sol, iterations=it, held=_held(model), j_initial=j_initial, limit="delta"
+                )
             if f > 0 and u > lo:
                 lo, lo_failed = u, False
             elif f < 0 and u < hi:
@@ -1102,17 +1208,31 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
                     u_next = u + (2.0 if f > 0 else -2.0)
         if math.isfinite(lo) and math.isfinite(hi) and lo_failed and hi - lo <= STALL_RTOL:
             # δ stays below the allowed value down to where the steady state ceases to exist
-            return DynamicRequirement(j_required=math.exp(hi) - j_low, solution=hi_solution, iterations=it,
-                                      held=_held(model), j_initial=j_initial, limit="stall")
+            return DynamicRequirement(
+                j_required=math.exp(hi) - j_low,
+                solution=hi_solution,
+                iterations=it,
+                held=_held(model),
+                j_initial=j_initial,
+                limit="stall",
+            )
         if u_next < u_floor:
             if hi <= u_floor:  # δ is below the allowed value even at a vanishing inertia
-                return DynamicRequirement(j_required=0.0 - j_low, solution=hi_solution, iterations=it,
-                                          held=_held(model), j_initial=j_initial, limit="delta")
+                return DynamicRequirement(
+                    j_required=0.0 - j_low,
+                    solution=hi_solution,
+                    iterations=it,
+                    held=_held(model),
+                    j_initial=j_initial,
+                    limit="delta",
+                )
             u_next = max(u_floor, 0.5 * (lo + u_floor)) if math.isfinite(lo) else u_floor
         u = u_next
-    raise SolverFailed(f"the flywheel for delta = {delta!r} was not found in {MAX_DYNAMIC} periodic solutions "
-                       f"(bracket J_F in [{math.exp(lo) - j_low:.6g}, {math.exp(hi) - j_low:.6g}] kg*m^2; "
-                       f"last failure: {failure})")
+    raise SolverFailed(
+        f"the flywheel for delta = {delta!r} was not found in {MAX_DYNAMIC} periodic solutions "
+        f"(bracket J_F in [{math.exp(lo) - j_low:.6g}, {math.exp(hi) - j_low:.6g}] kg*m^2; "
+        f"last failure: {failure})"
+    )
 
 
 def _one_solve(model, delta, omega_mean, j_tot0, j_initial):
@@ -1122,14 +1242,33 @@ def _one_solve(model, delta, omega_mean, j_tot0, j_initial):
     swing = float(np.ptp(y))
     residual = float(y[-1, -1] - y[0, 0])
     if not model.speed_dependent and abs(residual) > _angle_only_tolerance(model, y, omega_mean, w_s):
-        raise NotSettled("the angle-only torques do not balance over the cycle")   # the search says by how much
-    status = (f"periodic, flywheel and steady state in one Newton solve ({found['iterations']} iterations, "
-              f"fixed-step RK4 with {found['substeps']} step(s) per grid interval, checked against twice as many)")
-    sol = _finish(model, y, found["j_flywheel"], found["e_ref"], w_s, 0.0, status, residual * w_s,
-                  shooting.PERIODIC_RTOL * max(swing, EPS) * w_s, found["multiplier"], found["iterations"],
-                  found["offset"])
-    return DynamicRequirement(j_required=found["j_flywheel"], solution=sol, iterations=found["iterations"],
-                              held=_held(model), j_initial=j_initial, limit="delta")
+        raise NotSettled("the angle-only torques do not balance over the cycle")  # the search says by how much
+    status = (
+        f"periodic, flywheel and steady state in one Newton solve ({found['iterations']} iterations, "
+        f"fixed-step RK4 with {found['substeps']} step(s) per grid interval, checked against twice as many)"
+    )
+    sol = _finish(
+        model,
+        y,
+        found["j_flywheel"],
+        found["e_ref"],
+        w_s,
+        0.0,
+        status,
+        residual * w_s,
+        shooting.PERIODIC_RTOL * max(swing, EPS) * w_s,
+        found["multiplier"],
+        found["iterations"],
+        found["offset"],
+    )
+    return DynamicRequirement(
+        j_required=found["j_flywheel"],
+        solution=sol,
+        iterations=found["iterations"],
+        held=_held(model),
+        j_initial=j_initial,
+        limit="delta",
+    )
 
 
 def _held(model):
@@ -1177,10 +1316,17 @@ class Verification:
 
     def to_dict(self):
         """The fields of the report's "verification" entry (SI)."""
-        return {"method": self.method, "achieved_delta": self.achieved_delta,
-                "delta_allowed": self.delta_allowed, "omega_max": self.omega_max,
-                "omega_min": self.omega_min, "omega_mean": self.omega_mean,
-                "tolerance": self.tolerance, "flagged": self.flagged, "j_flywheel": self.j_flywheel}
+        return {
+            "method": self.method,
+            "achieved_delta": self.achieved_delta,
+            "delta_allowed": self.delta_allowed,
+            "omega_max": self.omega_max,
+            "omega_min": self.omega_min,
+            "omega_mean": self.omega_mean,
+            "tolerance": self.tolerance,
+            "flagged": self.flagged,
+            "j_flywheel": self.j_flywheel,
+        }
 
 
 def verify(net_torque, j_machine, cycle_angle, omega_mean, delta_allowed, j_flywheel, knots=()):
@@ -1213,14 +1359,28 @@ def verify(net_torque, j_machine, cycle_angle, omega_mean, delta_allowed, j_flyw
     model = periodic_model(net_torque, j_machine, cycle_angle, knots)
     j_low = float(np.min(model.inertia(model.grid_angles()))) + float(j_flywheel)
     if not model.steady and j_low == 0:
-        raise SceneError("machine.inertia", "the machine and its flywheel have no inertia (J = 0 kg*m^2) while "
-                         "its torque varies with the angle: the speed would jump, so δ is undefined; give the "
-                         "machine's inertia (> 0)")
+        raise SceneError(
+            "machine.inertia",
+            "the machine and its flywheel have no inertia (J = 0 kg*m^2) while "
+            "its torque varies with the angle: the speed would jump, so δ is undefined; give the "
+            "machine's inertia (> 0)",
+        )
     sol = _periodic(model, float(j_flywheel), omega_mean)
-    method = ("no fluctuation: neither the torques nor the inertia vary with the angle, so the speed is constant "
-              "(δ = 0 whatever the inertia)" if model.steady else
-              "periodic simulation (CVODES shooting, Newton on the periodicity condition)")
+    method = (
+        "no fluctuation: neither the torques nor the inertia vary with the angle, so the speed is constant "
+        "(δ = 0 whatever the inertia)"
+        if model.steady
+        else "periodic simulation (CVODES shooting, Newton on the periodicity condition)"
+    )
     return Verification(
-        method=method, achieved_delta=sol.delta, delta_allowed=float(delta_allowed), omega_max=sol.omega_max,
-        omega_min=sol.omega_min, omega_mean=sol.omega_mean, tolerance=sol.tolerance,
-        flagged=bool(sol.delta - delta_allowed > sol.tolerance), j_flywheel=float(j_flywheel), solution=sol)
+        method=method,
+        achieved_delta=sol.delta,
+        delta_allowed=float(delta_allowed),
+        omega_max=sol.omega_max,
+        omega_min=sol.omega_min,
+        omega_mean=sol.omega_mean,
+        tolerance=sol.tolerance,
+        flagged=bool(sol.delta - delta_allowed > sol.tolerance),
+        j_flywheel=float(j_flywheel),
+        solution=sol,
+    )

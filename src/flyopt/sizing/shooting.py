@@ -117,11 +117,15 @@ def _functions(model, substeps):
     if structure is None:
         # what the compiled steps depend on: the net torque's and the inertia's expressions, the
         # grid and the balancing constant; the pieces and the table's values are inputs
-        structure = model._structure = (model.torque_function.serialize(), model.inertia.function.serialize(),
-                                        len(model.tau), bool(model.balanced))
+        structure = model._structure = (
+            model.torque_function.serialize(),
+            model.inertia.function.serialize(),
+            len(model.tau),
+            bool(model.balanced),
+        )
     key = structure + (substeps,)
     if key in _STRUCTURES:
-        _STRUCTURES[key] = _STRUCTURES.pop(key)      # most recently used last
+        _STRUCTURES[key] = _STRUCTURES.pop(key)  # most recently used last
         return _STRUCTURES[key]
     if len(_STRUCTURES) >= MAX_STRUCTURES:
         _STRUCTURES.pop(next(iter(_STRUCTURES)))
@@ -150,9 +154,13 @@ def _functions(model, substeps):
     if not model.balanced:
         source = ca.vertcat(source, 0)
     s_next = ca.jacobian(y_next, y) * sens + source
-    steps = {"plain": (y, ca.Function("rk4", [y, p, t], [y_next])),
-             "jacobian": (ca.vertcat(y, sens),
-                          ca.Function("rk4_tangent", [ca.vertcat(y, sens), p, t], [ca.vertcat(y_next, s_next)]))}
+    steps = {
+        "plain": (y, ca.Function("rk4", [y, p, t], [y_next])),
+        "jacobian": (
+            ca.vertcat(y, sens),
+            ca.Function("rk4_tangent", [ca.vertcat(y, sens), p, t], [ca.vertcat(y_next, s_next)]),
+        ),
+    }
     _STRUCTURES[key] = {"steps": steps, "outputs": outputs, "h": h, "substeps": substeps, "chunks": {}}
     return _STRUCTURES[key]
 
@@ -164,7 +172,7 @@ def _piece(functions, kind):
         n, outputs, h, substeps = state.shape[0], functions["outputs"], functions["h"], functions["substeps"]
         if substeps == 1:
             interval = rk4
-        else:   # the steps of one grid interval as a loop, not unrolled: the graph stays small
+        else:  # the steps of one grid interval as a loop, not unrolled: the graph stays small
             loop = rk4.mapaccum("steps", substeps)
             xm, pm, t0 = ca.MX.sym("x", n), ca.MX.sym("p", 8), ca.MX.sym("t0")
             times = t0 + ca.DM(np.arange(substeps, dtype=float).reshape(1, -1) * h)
@@ -195,9 +203,9 @@ def cycle(model, substeps, j_flywheel, e_ref, w_s, offset, derivatives):
     jac : ndarray (pieces, outputs + 1, 3) or None
         ∂y/∂(J_F, E_ref, c) on the grid (with ``derivatives``).
     """
-    q = np.array([[j_flywheel], [e_ref], [w_s], [offset]])   # the same for every piece
+    q = np.array([[j_flywheel], [e_ref], [w_s], [offset]])  # the same for every piece
     kind = "jacobian" if derivatives else "plain"
-    x = np.zeros(4 if derivatives else 1)   # the sensitivities start at zero with y
+    x = np.zeros(4 if derivatives else 1)  # the sensitivities start at zero with y
     parts = []
     for _, data in model._chunked():
         size = data.shape[1]
@@ -250,30 +258,34 @@ class _State:
             return
         log_delta = math.log(self.delta) - solve.log_delta
         mean = self.omega_mean / solve.omega_m - 1
-        self.r = np.array({"motor": [self.y_end, log_delta], "balanced": [self.y_end, log_delta, mean],
-                           "angle": [mean, log_delta]}[solve.mode])
+        self.r = np.array(
+            {"motor": [self.y_end, log_delta], "balanced": [self.y_end, log_delta, mean], "angle": [mean, log_delta]}[
+                solve.mode
+            ]
+        )
         if model.speed_dependent:
             # |∂(dy/dτ)/∂y| Δτ = |∂M/∂ω| Δφ/(J ω) per grid interval
             h = np.diff(phi, axis=1)
             slope = evaluate(model.torque_slope_function, model._maps, phi[:, :-1], np.sqrt(2 * q[:, :-1]))[0]
-            self.stiffness = float(np.max(np.abs(slope) * h / (j_total(model, phi[:, :-1], self.j_flywheel)
-                                                            * np.sqrt(2 * q[:, :-1]))))
+            self.stiffness = float(
+                np.max(np.abs(slope) * h / (j_total(model, phi[:, :-1], self.j_flywheel) * np.sqrt(2 * q[:, :-1])))
+            )
         else:
             self.stiffness = 0.0
         if not derivatives:
             return
-        if not np.all(np.isfinite(jac)):      # the steps are unstable for the derivatives
+        if not np.all(np.isfinite(jac)):  # the steps are unstable for the derivatives
             self.ok = False
             return
         # d(J_F, E_ref, c)/d(v, u, w)
         e_u = math.exp(u)
-        chain = np.array([[0.0, e_u, 0.0],
-                          [2 * self.e_ref, 0.5 * self.omega_ref**2 * e_u, 0.0],
-                          [0.0, 0.0, solve.m_scale]])
-        dy = jac @ chain                        # ∂y/∂(v, u, w) on the grid
+        chain = np.array(
+            [[0.0, e_u, 0.0], [2 * self.e_ref, 0.5 * self.omega_ref**2 * e_u, 0.0], [0.0, 0.0, solve.m_scale]]
+        )
+        dy = jac @ chain  # ∂y/∂(v, u, w) on the grid
         j_grid = model.inertia(phi) + self.j_flywheel
-        dj = np.array([0.0, e_u, 0.0])          # ∂J/∂(v, u, w)
-        de = chain[1]                            # ∂E_ref/∂(v, u, w)
+        dj = np.array([0.0, e_u, 0.0])  # ∂J/∂(v, u, w)
+        de = chain[1]  # ∂E_ref/∂(v, u, w)
 
         self.raw_jac = jac
 
@@ -287,10 +299,12 @@ class _State:
         s = w_max + w_min
         d_delta = (4 * w_min * dw_max - 4 * w_max * dw_min) / s**2
         d_mean = 0.5 * (dw_max + dw_min) / solve.omega_m
-        rows = {"motor": [dy[-1, -1], d_delta / self.delta],
-                "balanced": [dy[-1, -1], d_delta / self.delta, d_mean],
-                "angle": [d_mean, d_delta / self.delta]}[solve.mode]
-        self.jac = np.array(rows)[:, :len(x)]
+        rows = {
+            "motor": [dy[-1, -1], d_delta / self.delta],
+            "balanced": [dy[-1, -1], d_delta / self.delta, d_mean],
+            "angle": [d_mean, d_delta / self.delta],
+        }[solve.mode]
+        self.jac = np.array(rows)[:, : len(x)]
 
 
 def j_total(model, phi, j_flywheel):
@@ -307,7 +321,7 @@ class _Solve:
         self.omega_m = omega_m
         self.w_s = w_s
         self.j_low = j_low
-        self.j0 = j0                    # J_e(0)
+        self.j0 = j0  # J_e(0)
         self.m_scale = m_scale
 
     def settled(self, state):
@@ -324,8 +338,11 @@ class _Solve:
         if not finer.ok:
             return math.inf
         swing = max(state.swing, EPS)
-        return max(abs(finer.r[1] - state.r[1]), abs(finer.y_end - state.y_end) / swing,
-                   abs(finer.omega_mean / state.omega_mean - 1))
+        return max(
+            abs(finer.r[1] - state.r[1]),
+            abs(finer.y_end - state.y_end) / swing,
+            abs(finer.omega_mean / state.omega_mean - 1),
+        )
 
 
 def required_flywheel(model, delta, omega_guess, j_initial_total):
@@ -372,16 +389,20 @@ def required_flywheel(model, delta, omega_guess, j_initial_total):
     substeps = SUBSTEPS
     state = _State(solve, x, substeps, True)
     if not state.ok:
-        raise NotSettled(f"the cycle cannot be integrated at the estimate (J_F = {state.j_flywheel:.6g} kg*m^2, "
-                         f"ω = {omega0:.6g} rad/s)")
+        raise NotSettled(
+            f"the cycle cannot be integrated at the estimate (J_F = {state.j_flywheel:.6g} kg*m^2, "
+            f"ω = {omega0:.6g} rad/s)"
+        )
     norms = []
     for iteration in range(1, MAX_ITERATIONS + 1):
         needed = SUBSTEPS
         while state.stiffness * 1.0 / needed > STIFFNESS:
             needed *= 2
         if needed > MAX_SUBSTEPS:
-            raise NotSettled(f"the motor is too stiff for fixed steps at J_F = {state.j_flywheel:.6g} kg*m^2: "
-                             f"{needed} steps per grid interval would be needed")
+            raise NotSettled(
+                f"the motor is too stiff for fixed steps at J_F = {state.j_flywheel:.6g} kg*m^2: "
+                f"{needed} steps per grid interval would be needed"
+            )
         if needed > substeps:
             substeps = needed
             state = _State(solve, state.x, substeps, True)
@@ -394,8 +415,10 @@ def required_flywheel(model, delta, omega_guess, j_initial_total):
             if moved <= STEP_RTOL:
                 return _result(solve, state, iteration, substeps)
             if 2 * substeps > MAX_SUBSTEPS:
-                raise NotSettled(f"the fixed steps do not resolve the cycle: the result moves by {moved:.3g} "
-                                 f"(relative) with {2 * substeps} steps per grid interval")
+                raise NotSettled(
+                    f"the fixed steps do not resolve the cycle: the result moves by {moved:.3g} "
+                    f"(relative) with {2 * substeps} steps per grid interval"
+                )
             substeps *= 2
             state = _State(solve, state.x, substeps, True)
             if not state.ok:
@@ -411,16 +434,19 @@ def required_flywheel(model, delta, omega_guess, j_initial_total):
         norm = float(np.linalg.norm(state.r))
         norms.append(norm)
         if len(norms) > STALLED and norm > 0.5 * norms[-1 - STALLED]:
-            raise NotSettled(f"Newton stalls at |r| = {norm:.3g} (J_F = {state.j_flywheel:.6g} kg*m^2): the "
-                             f"extremes of the speed do not move smoothly with the flywheel")
+            raise NotSettled(
+                f"Newton stalls at |r| = {norm:.3g} (J_F = {state.j_flywheel:.6g} kg*m^2): the "
+                f"extremes of the speed do not move smoothly with the flywheel"
+            )
         for _ in range(LINE_SEARCH):
             trial = _State(solve, state.x + scale * step, substeps, True)
             if trial.ok and (np.linalg.norm(trial.r) < norm or scale == 1.0 and norm < 1e-6):
                 break
             scale *= 0.5
         else:
-            raise NotSettled(f"Newton's steps do not reduce the residual (|r| = {norm:.3g}) at "
-                             f"J_F = {state.j_flywheel:.6g} kg*m^2")
+            raise NotSettled(
+                f"Newton's steps do not reduce the residual (|r| = {norm:.3g}) at J_F = {state.j_flywheel:.6g} kg*m^2"
+            )
         state = trial
     raise NotSettled(f"no convergence in {MAX_ITERATIONS} Newton iterations (residuals {state.r})")
 
@@ -428,11 +454,19 @@ def required_flywheel(model, delta, omega_guess, j_initial_total):
 def _result(solve, state, iterations, substeps):
     # dE(Φ)/dE(0) at a fixed flywheel; exactly 1 when the torques do not depend on speed
     multiplier = 1.0 if solve.mode == "angle" else 1.0 + solve.w_s * float(state.raw_jac[-1, -1, 1])
-    if solve.mode == "motor" and not multiplier < 1.0:   # as the CVODES path: a motor's orbit must attract
+    if solve.mode == "motor" and not multiplier < 1.0:  # as the CVODES path: a motor's orbit must attract
         raise NotSettled(f"the steady state found is unstable (Floquet multiplier {multiplier:.6g} >= 1)")
-    return {"j_flywheel": state.j_flywheel, "e_ref": state.e_ref, "w_s": solve.w_s, "offset": state.offset,
-            "y": state.y, "iterations": iterations, "substeps": substeps, "multiplier": multiplier,
-            "periodicity": abs(state.y_end) / max(state.swing, EPS)}
+    return {
+        "j_flywheel": state.j_flywheel,
+        "e_ref": state.e_ref,
+        "w_s": solve.w_s,
+        "offset": state.offset,
+        "y": state.y,
+        "iterations": iterations,
+        "substeps": substeps,
+        "multiplier": multiplier,
+        "periodicity": abs(state.y_end) / max(state.swing, EPS),
+    }
 
 
 def _mean_balance(model, omega_guess):
@@ -448,7 +482,7 @@ def _mean_balance(model, omega_guess):
         m = model.torque(phi, omega)
         return float(np.sum(0.5 * (m[:, 1:] + m[:, :-1]) * h)) / model.cycle
 
-    try:   # a starting point: Newton refines it
+    try:  # a starting point: Newton refines it
         return speed_balance(mean, omega_guess, rtol=1e-6)
     except SolverFailed as err:
         raise NotSettled(f"the cycle's mean torque: {err}") from None
@@ -469,18 +503,20 @@ def speed_balance(torque, omega_guess, rtol=4 * EPS):
     for _ in range(60):
         if m_lo > 0 > m_hi:
             break
-        if m_hi >= 0:      # still gains energy: the balance lies faster
+        if m_hi >= 0:  # still gains energy: the balance lies faster
             lo, m_lo = hi, m_hi
             hi *= 2.0
             m_hi = torque(hi)
-        else:              # loses energy: it lies slower
+        else:  # loses energy: it lies slower
             hi, m_hi = lo, m_lo
             lo *= 0.5
             m_lo = torque(lo)
     else:
-        raise SolverFailed(f"no steady speed: the net torque does not fall through zero between "
-                           f"{lo:.6g} and {hi:.6g} rad/s (it is {m_lo:.6g} and {m_hi:.6g} N*m there): the "
-                           f"machine runs away or stalls")
+        raise SolverFailed(
+            f"no steady speed: the net torque does not fall through zero between "
+            f"{lo:.6g} and {hi:.6g} rad/s (it is {m_lo:.6g} and {m_hi:.6g} N*m there): the "
+            f"machine runs away or stalls"
+        )
     if m_lo == 0:
         return lo
     from scipy.optimize import brentq

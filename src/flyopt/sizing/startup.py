@@ -38,8 +38,9 @@ class Startup:
     omega_target: float
 
 
-def startup_time(net_torque, j_machine, cycle_angle, omega_target, j_flywheel=0.0, knots=(), phi_start=0.0,
-                 max_cycles=100000):
+def startup_time(
+    net_torque, j_machine, cycle_angle, omega_target, j_flywheel=0.0, knots=(), phi_start=0.0, max_cycles=100000
+):
     """Time from rest until the speed first reaches ``omega_target``.
 
     Parameters
@@ -89,8 +90,10 @@ def startup_time(net_torque, j_machine, cycle_angle, omega_target, j_flywheel=0.
     if not j0 > 0:
         raise ValueError(f"the total inertia at phi_start must be positive, got {j0!r} kg*m^2")
     if not m0 > 0:
-        raise SolverFailed(f"the machine cannot start from rest at phi = {phi_start!r} rad: the net torque at rest "
-                           f"there is {m0:.6g} N*m (the motor's starting torque does not exceed the load)")
+        raise SolverFailed(
+            f"the machine cannot start from rest at phi = {phi_start!r} rad: the net torque at rest "
+            f"there is {m0:.6g} N*m (the motor's starting torque does not exceed the load)"
+        )
     j_mean = float(np.mean(model.inertia(model.grid_angles()))) + j_flywheel
     e_target = 0.5 * j_mean * omega_target**2
     t_scale = cycle / omega_target
@@ -100,21 +103,25 @@ def startup_time(net_torque, j_machine, cycle_angle, omega_target, j_flywheel=0.
     dphi = 1e-9 * first
     x = np.array([m0 * dphi / e_target, 0.0, math.sqrt(2 * j0 * dphi / m0) / t_scale])
     angle = 0.0
-    pieces = [(phi_start + dphi, seg[k0, 1])] + [tuple(s) for s in seg[k0 + 1:]]
+    pieces = [(phi_start + dphi, seg[k0, 1])] + [tuple(s) for s in seg[k0 + 1 :]]
     peaks = []
     for n in range(int(max_cycles) + 1):
         peak = 0.0
         for (a, b), (m_a, m_b) in zip(pieces, model.table_at(*np.transpose(pieces))):
             try:
                 with quiet():
-                    xf = np.asarray(model.piece_timed(
-                        x0=x, p=[a, b, j_flywheel, 0.0, e_target, 0.0, m_a, m_b, t_scale])["xf"])
+                    xf = np.asarray(
+                        model.piece_timed(x0=x, p=[a, b, j_flywheel, 0.0, e_target, 0.0, m_a, m_b, t_scale])["xf"]
+                    )
             except RuntimeError as err:
-                raise SolverFailed(f"start-up integration failed near phi = {a:.6g} rad in cycle {n}: "
-                                   f"{str(err).splitlines()[-1]}") from err
+                raise SolverFailed(
+                    f"start-up integration failed near phi = {a:.6g} rad in cycle {n}: {str(err).splitlines()[-1]}"
+                ) from err
             if xf[1, -1] > 0:
-                raise SolverFailed(f"the machine stalls during start-up between phi = {a:.6g} and {b:.6g} rad "
-                                   f"(cycle {n}): the load there exceeds the motor torque and the stored energy")
+                raise SolverFailed(
+                    f"the machine stalls during start-up between phi = {a:.6g} and {b:.6g} rad "
+                    f"(cycle {n}): the load there exceeds the motor torque and the stored energy"
+                )
             phi, omega, gap, slope = _piece_gap(model, a, b, e_target * xf[0], j_flywheel, omega_target)
             reach = _first_reach(phi, gap, slope)
             if reach is not None:
@@ -124,8 +131,9 @@ def startup_time(net_torque, j_machine, cycle_angle, omega_target, j_flywheel=0.
                 g0, g1 = d / omega[i], d / omega[i + 1]  # dt/ds at the ends (s = (φ − φ_i)/d)
                 t_hit = hermite(t0, t1, g0, g1, s)
                 angle += phi[i] + s * d - a
-                return Startup(time=float(t_hit), angle=float(angle), cycles=float(angle / cycle),
-                               omega_target=float(omega_target))
+                return Startup(
+                    time=float(t_hit), angle=float(angle), cycles=float(angle / cycle), omega_target=float(omega_target)
+                )
             peak = max(peak, float(np.max(omega)))
             angle += b - a
             x = xf[:, -1]
@@ -133,10 +141,11 @@ def startup_time(net_torque, j_machine, cycle_angle, omega_target, j_flywheel=0.
         peaks.append(peak)
         limit = _settled_peak(peaks, omega_target)
         if limit is not None:
-            raise SolverFailed(f"the machine settles below the target speed {omega_target!r} rad/s during start-up: "
-                               f"its peak speed converges to about {limit:.6g} rad/s")
+            raise SolverFailed(
+                f"the machine settles below the target speed {omega_target!r} rad/s during start-up: "
+                f"its peak speed converges to about {limit:.6g} rad/s"
+            )
     raise SolverFailed(f"the target speed {omega_target!r} rad/s was not reached in {max_cycles} cycles")
-
 
 
 def _piece_gap(model, a, b, energy, j_flywheel, target):
@@ -164,13 +173,17 @@ def _first_reach(phi, gap, slope):
         return None
     for i in np.flatnonzero(np.maximum(f0, f1) + np.abs(m0) + np.abs(m1) >= 0):
         a3, b2, c1 = 2 * (f0[i] - f1[i]) + m0[i] + m1[i], 3 * (f1[i] - f0[i]) - 2 * m0[i] - m1[i], m0[i]
-        crit = [r.real for r in np.atleast_1d(np.roots([3 * a3, 2 * b2, c1]) if (a3 or b2) else [])
-                if abs(r.imag) < 1e-12 and 0 < r.real < 1]
+        crit = [
+            r.real
+            for r in np.atleast_1d(np.roots([3 * a3, 2 * b2, c1]) if (a3 or b2) else [])
+            if abs(r.imag) < 1e-12 and 0 < r.real < 1
+        ]
         points = sorted([0.0, *crit, 1.0])
         for lower, upper in zip(points[:-1], points[1:]):
             if hermite(f0[i], f1[i], m0[i], m1[i], upper) >= 0:
-                s = optimize.brentq(lambda t, i=i: hermite(f0[i], f1[i], m0[i], m1[i], t), lower, upper,
-                                    xtol=1e-15, rtol=4 * EPS)
+                s = optimize.brentq(
+                    lambda t, i=i: hermite(f0[i], f1[i], m0[i], m1[i], t), lower, upper, xtol=1e-15, rtol=4 * EPS
+                )
                 return int(i), float(s)
     return None
 

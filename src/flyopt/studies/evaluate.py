@@ -46,17 +46,25 @@ import pandas as pd
 from flyopt.cycle.indicator import required_inertia, speed_extremes
 from flyopt.design import closed_form as batch
 from flyopt.design import design_inputs, rank
+from flyopt.design.check import binding_names
 from flyopt.design.hub import flywheel_peak_torque
 from flyopt.design.spec import MountShaft
-from flyopt.design.check import binding_names
 from flyopt.errors import SceneError, SolverFailed
 from flyopt.io.results import RESULT_COLUMNS
 from flyopt.io.scene import NetAreas
 from flyopt.io.sweep_spec import _where
 from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 
-__all__ = ["PHYSICS_FIELDS", "Task", "design_counts", "evaluate_points", "physics_analysis",
-           "physics_codes", "point_scene", "task_of"]
+__all__ = [
+    "PHYSICS_FIELDS",
+    "Task",
+    "design_counts",
+    "evaluate_points",
+    "physics_analysis",
+    "physics_codes",
+    "point_scene",
+    "task_of",
+]
 
 #: The fields of a point that change its physics (its analysis); every other field changes
 #: only the design, and points that differ only in those share one analysis.
@@ -85,24 +93,31 @@ def _check_points(scene, points, where):
     if bad.size:
         k = int(bad[0])
         low, high = np.broadcast_to(hb_min, (len(points),)), np.broadcast_to(hb_max, (len(points),))
-        raise SceneError(_where(where, "design.hb_min"), f"H/B min {low[k]:.6g} "
-                         f"exceeds max {high[k]:.6g} at point {k} (and "
-                         f"{bad.size - 1} other points)")
+        raise SceneError(
+            _where(where, "design.hb_min"),
+            f"H/B min {low[k]:.6g} exceeds max {high[k]:.6g} at point {k} (and {bad.size - 1} other points)",
+        )
     varied = [name for name in _SPEC_COLUMNS if name in points]
-    settings = (points[varied].drop_duplicates().to_dict("records") if varied and len(points)
-                else [{}])
+    settings = points[varied].drop_duplicates().to_dict("records") if varied and len(points) else [{}]
     for row in settings:
-        hb = (row["design.hb_ratio"],) * 2 if "design.hb_ratio" in row else (
-            row.get("design.hb_min", spec.hb_ratio[0]), row.get("design.hb_max", spec.hb_ratio[1]))
+        hb = (
+            (row["design.hb_ratio"],) * 2
+            if "design.hb_ratio" in row
+            else (row.get("design.hb_min", spec.hb_ratio[0]), row.get("design.hb_max", spec.hb_ratio[1]))
+        )
         envelope = row.get("design.max_outer_diameter", spec.max_outer_diameter)
         width = row.get("design.max_width", spec.max_width)
         d_mean = row.get("design.d_mean", spec.d_mean)
         try:
-            dataclasses.replace(spec, geometry=row.get("design.geometry", spec.geometry), hb_ratio=hb,
-                                objective=row.get("design.objective", spec.objective),
-                                max_outer_diameter=math.inf if _is_none(envelope) else envelope,
-                                max_width=math.inf if _is_none(width) else width,
-                                d_mean=None if _is_none(d_mean) else d_mean)
+            dataclasses.replace(
+                spec,
+                geometry=row.get("design.geometry", spec.geometry),
+                hb_ratio=hb,
+                objective=row.get("design.objective", spec.objective),
+                max_outer_diameter=math.inf if _is_none(envelope) else envelope,
+                max_width=math.inf if _is_none(width) else width,
+                d_mean=None if _is_none(d_mean) else d_mean,
+            )
         except ValueError as err:
             raise SceneError(_where(where, "design"), str(err)) from None
     inputs = design_inputs(scene)
@@ -111,29 +126,41 @@ def _check_points(scene, points, where):
         material_names = list(dict.fromkeys(material_names + list(points["material"].unique())))
     if len(points) and not material_names:
         raise SceneError("design.materials", "no material to design with")
-    objective = (points["design.objective"].to_numpy(dtype=object) == "cost"
-                 if "design.objective" in points else np.asarray(spec.objective == "cost"))
+    objective = (
+        points["design.objective"].to_numpy(dtype=object) == "cost"
+        if "design.objective" in points
+        else np.asarray(spec.objective == "cost")
+    )
     cost = np.broadcast_to(objective, (len(points),))
     if not cost.any():
         return
     library = scene.material_library()
     for name in material_names:
-        used = cost & (points["material"].to_numpy(dtype=object) == name
-                       if "material" in points else True)
+        used = cost & (points["material"].to_numpy(dtype=object) == name if "material" in points else True)
         if not used.any():
             continue
         field = f"material.{name}.cost"
-        missing = (np.isnan(points[field].to_numpy(dtype=float)[used]).any() if field in points
-                   else library[name].cost is None)
+        missing = (
+            np.isnan(points[field].to_numpy(dtype=float)[used]).any() if field in points else library[name].cost is None
+        )
         if missing:
-            raise SceneError(_where(where, "design.objective"), f"'cost' needs a cost per kg "
-                             f"for every material; none is given for {name}")
+            raise SceneError(
+                _where(where, "design.objective"),
+                f"'cost' needs a cost per kg for every material; none is given for {name}",
+            )
 
 
 #: Point columns that set the design specification (checked together by DesignSpec).
-_SPEC_COLUMNS = ("design.geometry", "design.objective", "design.hb_ratio", "design.hb_min",
-                 "design.hb_max", "design.max_outer_diameter", "design.max_width",
-                 "design.d_mean")
+_SPEC_COLUMNS = (
+    "design.geometry",
+    "design.objective",
+    "design.hb_ratio",
+    "design.hb_min",
+    "design.hb_max",
+    "design.max_outer_diameter",
+    "design.max_width",
+    "design.d_mean",
+)
 
 
 def design_counts(scene, points, method="auto"):
@@ -166,9 +193,13 @@ def design_counts(scene, points, method="auto"):
     if geometry is None and objective is None:
         ipopt = np.full(n, not _vectorized(inputs, spec.geometry, spec.objective))
     else:
-        pairs = pd.DataFrame({"g": geometry if geometry is not None else spec.geometry,
-                              "o": objective if objective is not None else spec.objective},
-                             index=points.index)
+        pairs = pd.DataFrame(
+            {
+                "g": geometry if geometry is not None else spec.geometry,
+                "o": objective if objective is not None else spec.objective,
+            },
+            index=points.index,
+        )
         codes, uniques = pd.MultiIndex.from_frame(pairs).factorize()
         covered = np.array([_vectorized(inputs, g, o) for g, o in uniques], dtype=bool)
         ipopt = ~covered[codes]
@@ -181,7 +212,8 @@ def _vectorized(inputs, geometry_name, objective):
     Every other point goes through :func:`flyopt.design.designer.design_flywheel` one by one."""
     spec = dataclasses.replace(inputs.spec, geometry=geometry_name)
     return batch.covers(geometry_name, objective) and all(
-        spec.textbook(spec.bore if spec.bore is not None else s.diameter) for s in inputs.shafts)
+        spec.textbook(spec.bore if spec.bore is not None else s.diameter) for s in inputs.shafts
+    )
 
 
 def physics_codes(points):
@@ -214,6 +246,7 @@ def physics_codes(points):
 
 
 # --------------------------------------------------------------------------
+
 
 def _scale_curve(curve, k):
     if curve is None:
@@ -300,6 +333,7 @@ def _is_none(value):
 # Evaluation of a chunk of points
 # --------------------------------------------------------------------------
 
+
 def _reusable(scene):
     """Whether J_F = A_max/(ω_m² δ) − J_c with one A_max holds at every point.
 
@@ -327,7 +361,7 @@ class _Context:
     method: str = "auto"
     solver_options: dict | None = None
     axes: tuple = ()
-    torque_peak: float | None = None    # max |M_d - M_r| of the cycle when reusable [N*m]
+    torque_peak: float | None = None  # max |M_d - M_r| of the cycle when reusable [N*m]
 
 
 def _context(scene, method="auto", solver_options=None, axes=()):
@@ -335,11 +369,17 @@ def _context(scene, method="auto", solver_options=None, axes=()):
     if reusable:
         analysis = physics_analysis(scene)
         stripped = scene.replace(driving=None, resisting=None, net=None)
-        return _Context(stripped, analysis.a_max, analysis.driving_torque, True, method,
-                        dict(solver_options) if solver_options else None, tuple(axes),
-                        analysis.net_torque_peak() if _needs_torque(scene) else None)
-    return _Context(scene, None, None, False, method,
-                    dict(solver_options) if solver_options else None, tuple(axes))
+        return _Context(
+            stripped,
+            analysis.a_max,
+            analysis.driving_torque,
+            True,
+            method,
+            dict(solver_options) if solver_options else None,
+            tuple(axes),
+            analysis.net_torque_peak() if _needs_torque(scene) else None,
+        )
+    return _Context(scene, None, None, False, method, dict(solver_options) if solver_options else None, tuple(axes))
 
 
 @dataclass(frozen=True)
@@ -381,17 +421,33 @@ class Task:
 
     def context(self):
         """The chunk context of this process, built on first use and kept."""
-        key = (self.scene.key, self.method, repr(sorted((self.solver_options or {}).items())),
-               self.axes, self.reusable, self.a_max, self.driving_torque, self.torque_peak)
+        key = (
+            self.scene.key,
+            self.method,
+            repr(sorted((self.solver_options or {}).items())),
+            self.axes,
+            self.reusable,
+            self.a_max,
+            self.driving_torque,
+            self.torque_peak,
+        )
         with _TASK_LOCK:
             ctx = _TASK_CONTEXTS.get(key)
             if ctx is None:
                 scene = self.scene.scene()
                 if self.reusable:
                     scene = scene.replace(driving=None, resisting=None, net=None)
-                ctx = _Context(scene, self.a_max, self.driving_torque, self.reusable,
-                               self.method, self.solver_options, self.axes, self.torque_peak)
-                while len(_TASK_CONTEXTS) >= 4:       # a worker that serves several sweeps
+                ctx = _Context(
+                    scene,
+                    self.a_max,
+                    self.driving_torque,
+                    self.reusable,
+                    self.method,
+                    self.solver_options,
+                    self.axes,
+                    self.torque_peak,
+                )
+                while len(_TASK_CONTEXTS) >= 4:  # a worker that serves several sweeps
                     _TASK_CONTEXTS.pop(next(iter(_TASK_CONTEXTS)))
                 _TASK_CONTEXTS[key] = ctx
         return ctx
@@ -421,8 +477,9 @@ def task_of(ctx, scene):
     data, reason = payload(scene)
     if data is None:
         return None, reason
-    return Task(data, ctx.method, ctx.solver_options, ctx.axes, ctx.reusable, ctx.a_max,
-                ctx.driving_torque, ctx.torque_peak), ""
+    return Task(
+        data, ctx.method, ctx.solver_options, ctx.axes, ctx.reusable, ctx.a_max, ctx.driving_torque, ctx.torque_peak
+    ), ""
 
 
 class _Inputs:
@@ -466,23 +523,17 @@ class _Inputs:
         self.material_names = [m.name for m in defaults.materials]
         self.material = names("material", None) if "material" in points else None
         if self.material is not None:
-            self.material_names = list(dict.fromkeys(
-                self.material_names + [m for m in dict.fromkeys(self.material)]))
+            self.material_names = list(dict.fromkeys(self.material_names + [m for m in dict.fromkeys(self.material)]))
         self.shaft_names = [s.name for s in defaults.shafts]
         self.shaft = names("shaft", None) if "shaft" in points else None
         if self.shaft is not None:
-            self.shaft_names = [s.name for s in scene.shafts
-                                if s.name in self.shaft_names or s.name in set(self.shaft)]
+            self.shaft_names = [s.name for s in scene.shafts if s.name in self.shaft_names or s.name in set(self.shaft)]
         shafts = {s.name: s for s in scene.shafts}
         # per-point properties, made for the materials and shafts a chunk uses (on first use)
-        self.ratio = _PerName(lambda name: col(f"shaft.{name}.speed_ratio",
-                                               shafts[name].speed_ratio))
-        self.density = _PerName(lambda name: col(f"material.{name}.density",
-                                                 library[name].density))
-        self.max_rim_speed = _PerName(lambda name: col(f"material.{name}.max_rim_speed",
-                                                       library[name].max_rim_speed))
-        self.material_cost = _PerName(lambda name: col(f"material.{name}.cost",
-                                                       library[name].cost))
+        self.ratio = _PerName(lambda name: col(f"shaft.{name}.speed_ratio", shafts[name].speed_ratio))
+        self.density = _PerName(lambda name: col(f"material.{name}.density", library[name].density))
+        self.max_rim_speed = _PerName(lambda name: col(f"material.{name}.max_rim_speed", library[name].max_rim_speed))
+        self.material_cost = _PerName(lambda name: col(f"material.{name}.cost", library[name].cost))
         self.allowable = _PerName(lambda name: col("", library[name].allowable_stress))
 
 
@@ -537,8 +588,7 @@ def evaluate_points(scene_or_context, points, *, method="auto", solver_options=N
     """
     ctx = scene_or_context
     if not isinstance(ctx, _Context):
-        ctx = _context(ctx, method, solver_options, tuple(c for c in points.columns
-                                                         if c != "point"))
+        ctx = _context(ctx, method, solver_options, tuple(c for c in points.columns if c != "point"))
     return _evaluate(ctx, points)
 
 
@@ -551,10 +601,9 @@ def _evaluate(ctx, points):
     # -- the cycle: analysed once, A_max scaled (see the module notes) ------
     if ctx.reusable:
         a_max = inputs.scale * ctx.a_max
-        driving = (inputs.scale * ctx.driving_torque if ctx.driving_torque is not None
-                   else np.full(n, np.nan))
+        driving = inputs.scale * ctx.driving_torque if ctx.driving_torque is not None else np.full(n, np.nan)
         j_margin = required_inertia(a_max, inputs.speed, inputs.delta, inputs.inertia)
-        inputs.omega_rim = speed_extremes(inputs.speed, inputs.delta)[0]   # ω_max: the rim is checked there
+        inputs.omega_rim = speed_extremes(inputs.speed, inputs.delta)[0]  # ω_max: the rim is checked there
         power = driving * inputs.speed
         motor_power = power / scene.efficiency
     else:  # varying inertia or speed-dependent torques: each distinct physics by its exact model
@@ -578,24 +627,35 @@ def _evaluate(ctx, points):
     res["status"][idle] = "not_needed"
     res["method"][idle] = "none"
     for k in np.flatnonzero(idle):
-        res["message"][k] = (f"no flywheel needed: J_F = {j_margin[k]:.4g} kg·m² is not "
-                             f"positive")
+        res["message"][k] = f"no flywheel needed: J_F = {j_margin[k]:.4g} kg·m² is not positive"
     design, seen = design_inputs(scene), {}
-    covered = np.array([seen[g, o] if (g, o) in seen else seen.setdefault((g, o), _vectorized(design, g, o))
-                        for g, o in zip(inputs.geometry, inputs.objective)],
-                       dtype=bool) if n else np.zeros(0, dtype=bool)
+    covered = (
+        np.array(
+            [
+                seen[g, o] if (g, o) in seen else seen.setdefault((g, o), _vectorized(design, g, o))
+                for g, o in zip(inputs.geometry, inputs.objective)
+            ],
+            dtype=bool,
+        )
+        if n
+        else np.zeros(0, dtype=bool)
+    )
     if ctx.method == "closed_form" and (needed & ~covered).any():
         k = int(np.flatnonzero(needed & ~covered)[0])
-        raise SceneError("method", f"the closed form does not cover objective "
-                         f"{inputs.objective[k]!r} (point {int(points['point'].iloc[k])}); "
-                         f"use method 'auto' or 'ipopt'")
+        raise SceneError(
+            "method",
+            f"the closed form does not cover objective "
+            f"{inputs.objective[k]!r} (point {int(points['point'].iloc[k])}); "
+            f"use method 'auto' or 'ipopt'",
+        )
     use_batch = needed & covered if ctx.method != "ipopt" else np.zeros(n, dtype=bool)
     _design_closed_form(inputs, j_margin, use_batch, res)
     for k in np.flatnonzero(needed & ~use_batch):
         torque = None
         if needs_torque and ctx.reusable and ctx.torque_peak is not None:
-            torque = flywheel_peak_torque(j_margin[k], j_margin[k] + inputs.inertia[k],
-                                          inputs.scale[k] * ctx.torque_peak, 1.0)
+            torque = flywheel_peak_torque(
+                j_margin[k], j_margin[k] + inputs.inertia[k], inputs.scale[k] * ctx.torque_peak, 1.0
+            )
         elif needs_torque and not ctx.reusable:
             torque = torques[k]
         _design_ipopt(ctx, inputs, k, j_margin[k], res, torque)
@@ -654,7 +714,7 @@ def physics_analysis(scene, point=None):
     point = dict(point or {})
     own = {"delta": scene.delta, "speed": scene.omega_mean, "inertia": scene.j_constant, "torque.scale": 1.0}
     key = tuple(float(point.get(name, own[name])) for name in PHYSICS_FIELDS)
-    with _MEMO_LOCK:    # Dask workers in threads share this process's memo
+    with _MEMO_LOCK:  # Dask workers in threads share this process's memo
         entry = _ANALYSES.get(id(scene))
         if entry is None or entry[0]() is not scene:
             for stale in [k for k, (ref, *_) in _ANALYSES.items() if ref() is None]:
@@ -684,10 +744,10 @@ def _design_closed_form(inputs, j_margin, mask, res):
         return
     geometries = list(dict.fromkeys(inputs.geometry[mask]))
     m_names, s_names = inputs.material_names, inputs.shaft_names
-    m_code = (np.array([m_names.index(m) for m in inputs.material]) if inputs.material is not None
-              else np.full(inputs.n, -1))
-    s_code = (np.array([s_names.index(s) for s in inputs.shaft]) if inputs.shaft is not None
-              else np.full(inputs.n, -1))
+    m_code = (
+        np.array([m_names.index(m) for m in inputs.material]) if inputs.material is not None else np.full(inputs.n, -1)
+    )
+    s_code = np.array([s_names.index(s) for s in inputs.shaft]) if inputs.shaft is not None else np.full(inputs.n, -1)
     for geo in geometries:
         in_geo = mask & (inputs.geometry == geo)
         keys = np.stack([m_code[in_geo], s_code[in_geo]], axis=1)
@@ -718,8 +778,18 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
     allowable = table(inputs.allowable, mats, mi)
     ratio = table(inputs.ratio, shafts, si)
     out = batch.design_combinations(
-        geo, j_margin[p], inputs.omega_rim[p], ratio, density, v_max, inputs.hb_min[p],
-        inputs.hb_max[p], inputs.envelope[p], inputs.width[p], inputs.d_mean[p])
+        geo,
+        j_margin[p],
+        inputs.omega_rim[p],
+        ratio,
+        density,
+        v_max,
+        inputs.hb_min[p],
+        inputs.hb_max[p],
+        inputs.envelope[p],
+        inputs.width[p],
+        inputs.d_mean[p],
+    )
     mass = out.mass
     cost = mass * cost_per_kg
     objective = np.where(inputs.objective[p] == "cost", cost, mass)
@@ -731,10 +801,17 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
     # the winner of each point, by the one ranking rule (flyopt.design.rank)
     f = np.flatnonzero(feasible)
     if f.size:
-        local = np.searchsorted(pts, p[f])            # pts is sorted: each point's group number
-        best = rank.winners(local, objective[f], cost[f], mass[f],
-                            out.rim_speed[f], np.asarray(mats, dtype=object)[mi[f]],
-                            np.asarray(shafts, dtype=object)[si[f]], n_groups=len(pts))
+        local = np.searchsorted(pts, p[f])  # pts is sorted: each point's group number
+        best = rank.winners(
+            local,
+            objective[f],
+            cost[f],
+            mass[f],
+            out.rim_speed[f],
+            np.asarray(mats, dtype=object)[mi[f]],
+            np.asarray(shafts, dtype=object)[si[f]],
+            n_groups=len(pts),
+        )
         w = f[best[best >= 0]]
         q = p[w]
         res["status"][q] = "designed"
@@ -742,8 +819,19 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
         res["best_material"][q] = np.asarray(mats, dtype=object)[mi[w]]
         res["best_shaft"][q] = np.asarray(shafts, dtype=object)[si[w]]
         res["best_speed_ratio"][q] = ratio[w]
-        for name in ("d_mean", "d_outer", "d_inner", "h", "b", "hb_ratio", "mass",
-                     "rim_speed", "hoop_stress", "j_flywheel", "j_at_reference"):
+        for name in (
+            "d_mean",
+            "d_outer",
+            "d_inner",
+            "h",
+            "b",
+            "hb_ratio",
+            "mass",
+            "rim_speed",
+            "hoop_stress",
+            "j_flywheel",
+            "j_at_reference",
+        ):
             res[name][q] = out[name][w]
         res["j_required_on_shaft"][q] = out.j_shaft[w]
         res["d_outer_limit"][q] = out.cap[w]
@@ -766,7 +854,8 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
             res["message"][k] = (
                 f"no material and shaft can give the inertia; the closest, "
                 f"{mats[mi[c]]} on the {shafts[si[c]]} shaft, can give at most "
-                f"{out.j_max[c]:.4g} of the {out.j_shaft[c]:.4g} kg·m² it needs there")
+                f"{out.j_max[c]:.4g} of the {out.j_shaft[c]:.4g} kg·m² it needs there"
+            )
 
 
 _IPOPT_LOCK = threading.Lock()
@@ -787,30 +876,45 @@ def _design_ipopt(ctx, inputs, k, j_required, res, torque=None):
     mats = [inputs.material[k]] if inputs.material is not None else inputs.material_names
     shafts = [inputs.shaft[k]] if inputs.shaft is not None else inputs.shaft_names
     materials = []
-    for name in mats:   # the scene's material with this point's values: every other field kept
+    for name in mats:  # the scene's material with this point's values: every other field kept
         cost = inputs.material_cost[name][k]
         speed = float(inputs.max_rim_speed[name][k])
-        materials.append(dataclasses.replace(
-            inputs.library[name], density=float(inputs.density[name][k]),
-            max_rim_speed=inputs.library[name].max_rim_speed if math.isnan(speed) else speed,
-            cost=None if math.isnan(cost) else float(cost)))
-    mounts = [dataclasses.replace(inputs.mounts[name], speed_ratio=float(inputs.ratio[name][k]))
-              for name in shafts]
+        materials.append(
+            dataclasses.replace(
+                inputs.library[name],
+                density=float(inputs.density[name][k]),
+                max_rim_speed=inputs.library[name].max_rim_speed if math.isnan(speed) else speed,
+                cost=None if math.isnan(cost) else float(cost),
+            )
+        )
+    mounts = [dataclasses.replace(inputs.mounts[name], speed_ratio=float(inputs.ratio[name][k])) for name in shafts]
 
     def opt(x):
         return None if math.isnan(x) else float(x)
 
     spec = dataclasses.replace(
-        inputs.spec, geometry=inputs.geometry[k], hb_ratio=(inputs.hb_min[k], inputs.hb_max[k]),
-        max_outer_diameter=inputs.envelope[k], max_width=inputs.width[k],
-        d_mean=opt(inputs.d_mean[k]), objective=inputs.objective[k])
+        inputs.spec,
+        geometry=inputs.geometry[k],
+        hb_ratio=(inputs.hb_min[k], inputs.hb_max[k]),
+        max_outer_diameter=inputs.envelope[k],
+        max_width=inputs.width[k],
+        d_mean=opt(inputs.d_mean[k]),
+        objective=inputs.objective[k],
+    )
     res["method"][k] = "ipopt"
     res["n_combinations"][k] = len(materials) * len(mounts)
     try:
         with _IPOPT_LOCK:  # a CasADi Function is not to be called from two threads at once
-            result = design_flywheel(float(j_required), float(inputs.omega_rim[k]), mounts,
-                                     materials, spec, solver_options=ctx.solver_options,
-                                     method="ipopt", torque=torque)
+            result = design_flywheel(
+                float(j_required),
+                float(inputs.omega_rim[k]),
+                mounts,
+                materials,
+                spec,
+                solver_options=ctx.solver_options,
+                method="ipopt",
+                torque=torque,
+            )
     except SolverFailed as err:
         res["status"][k] = "failed"
         res["solver_status"][k] = str(getattr(err, "status", "") or "error")
@@ -827,9 +931,23 @@ def _design_ipopt(ctx, inputs, k, j_required, res, torque=None):
     res["best_material"][k] = best.material
     res["best_shaft"][k] = best.shaft
     res["best_speed_ratio"][k] = best.speed_ratio
-    for name in ("d_mean", "d_outer", "d_inner", "h", "b", "hb_ratio", "mass", "rim_speed",
-                 "hoop_stress", "j_flywheel", "j_at_reference", "j_required_on_shaft",
-                 "d_outer_limit", "rim_speed_limit", "objective"):
+    for name in (
+        "d_mean",
+        "d_outer",
+        "d_inner",
+        "h",
+        "b",
+        "hb_ratio",
+        "mass",
+        "rim_speed",
+        "hoop_stress",
+        "j_flywheel",
+        "j_at_reference",
+        "j_required_on_shaft",
+        "d_outer_limit",
+        "rim_speed_limit",
+        "objective",
+    ):
         res[name][k] = getattr(best, name)
     res["cost"][k] = math.nan if best.cost is None else best.cost
     res["safety_factor"][k] = math.nan if best.safety_factor is None else best.safety_factor
@@ -841,16 +959,22 @@ def _design_ipopt(ctx, inputs, k, j_required, res, torque=None):
 def _table(inputs, points, axes, res):
     n = inputs.n
     data = {"point": points["point"].to_numpy(dtype=np.int64)}
-    core = {"delta": inputs.delta, "speed": inputs.speed, "inertia": inputs.inertia,
-            "torque.scale": inputs.scale, "design.geometry": inputs.geometry,
-            "design.objective": inputs.objective, "design.hb_min": inputs.hb_min,
-            "design.hb_max": inputs.hb_max, "design.max_outer_diameter": inputs.envelope,
-            "design.max_width": inputs.width, "design.d_mean": inputs.d_mean}
+    core = {
+        "delta": inputs.delta,
+        "speed": inputs.speed,
+        "inertia": inputs.inertia,
+        "torque.scale": inputs.scale,
+        "design.geometry": inputs.geometry,
+        "design.objective": inputs.objective,
+        "design.hb_min": inputs.hb_min,
+        "design.hb_max": inputs.hb_max,
+        "design.max_outer_diameter": inputs.envelope,
+        "design.max_width": inputs.width,
+        "design.d_mean": inputs.d_mean,
+    }
     data.update(core)
     for name in axes:
         if name not in data:
             data[name] = points[name].to_numpy()
     data.update(res)
     return pd.DataFrame(data, index=pd.RangeIndex(n), copy=False)
-
-

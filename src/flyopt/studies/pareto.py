@@ -27,7 +27,8 @@ value that produced it; ``attrs["objectives"]`` names the objectives, which
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 import pandas as pd
@@ -52,13 +53,14 @@ PARETO_OBJECTIVES = {
     "outer_diameter": "length",
     "cost": None,
     "delta": "dimensionless",
-    "motor_power": None,          # the motor sizes of a scene's [drive], each with its lightest wheel
+    "motor_power": None,  # the motor sizes of a scene's [drive], each with its lightest wheel
 }
 
 
 # --------------------------------------------------------------------------
 # Pareto fronts
 # --------------------------------------------------------------------------
+
 
 def non_dominated(first, second):
     """Mask of the points no other point dominates (both objectives minimized).
@@ -93,15 +95,24 @@ def _pair(objectives):
     objectives = tuple(objectives)
     other = [o for o in objectives if o != "mass"]
     if len(objectives) != 2 or objectives.count("mass") != 1 or other[0] not in PARETO_OBJECTIVES:
-        raise SceneError("objectives", f"{','.join(objectives)!r} is not a known pair: "
-                         f"give mass and one of {', '.join(PARETO_OBJECTIVES)} "
-                         f"(e.g. mass,outer_diameter)")
+        raise SceneError(
+            "objectives",
+            f"{','.join(objectives)!r} is not a known pair: "
+            f"give mass and one of {', '.join(PARETO_OBJECTIVES)} "
+            f"(e.g. mass,outer_diameter)",
+        )
     return objectives, other[0]
 
 
-def pareto(scene: Scene, objectives: str | Sequence[str] = ("mass", "outer_diameter"), *, points: int = 25,
-           span: tuple[float, float] | None = None, method: Literal["auto", "closed_form", "ipopt"] = "auto",
-           solver_options: Mapping[str, Any] | None = None) -> pd.DataFrame:
+def pareto(
+    scene: Scene,
+    objectives: str | Sequence[str] = ("mass", "outer_diameter"),
+    *,
+    points: int = 25,
+    span: tuple[float, float] | None = None,
+    method: Literal["auto", "closed_form", "ipopt"] = "auto",
+    solver_options: Mapping[str, Any] | None = None,
+) -> pd.DataFrame:
     """Pareto front of mass against a second objective, by an ε-constraint.
 
     Parameters
@@ -140,11 +151,13 @@ def pareto(scene: Scene, objectives: str | Sequence[str] = ("mass", "outer_diame
     empty = pd.DataFrame()
     if other == "motor_power":
         if scene.drive is None:
-            raise SceneError("objectives", "a front of flywheel mass against motor power needs the scene's "
-                                           "[drive] (the motor sizes to choose from)")
+            raise SceneError(
+                "objectives",
+                "a front of flywheel mass against motor power needs the scene's "
+                "[drive] (the motor sizes to choose from)",
+            )
     elif analysis.j_margin <= 0.0 and other != "delta":
-        empty.attrs["message"] = (f"no flywheel needed (J_F = {analysis.j_margin:.4g} kg·m²): "
-                                  f"nothing to trade")
+        empty.attrs["message"] = f"no flywheel needed (J_F = {analysis.j_margin:.4g} kg·m²): nothing to trade"
         return empty
     if other == "outer_diameter":
         rows = _front_outer_diameter(scene, points, span, method, solver_options)
@@ -159,14 +172,15 @@ def pareto(scene: Scene, objectives: str | Sequence[str] = ("mass", "outer_diame
         return rows
     rows = rows.copy()
     rows["mass"] = np.where(rows["status"] == "not_needed", 0.0, rows["mass"])
-    rows[other] = rows[{"outer_diameter": "d_outer", "cost": "cost", "delta": "delta",
-                        "motor_power": "rated_power"}[other]]
+    rows[other] = rows[
+        {"outer_diameter": "d_outer", "cost": "cost", "delta": "delta", "motor_power": "rated_power"}[other]
+    ]
     if other == "outer_diameter":
         rows[other] = np.where(rows["status"] == "not_needed", 0.0, rows[other])
     usable = rows["status"].isin(["designed", "not_needed"]).to_numpy()
     keep = non_dominated(np.where(usable, rows[other], np.nan), rows["mass"])
     front = rows[keep].sort_values([other, "mass"], kind="stable").reset_index(drop=True)
-    front = normalize(front)   # the rows of single designs and of sweeps alike: nulls where no value
+    front = normalize(front)  # the rows of single designs and of sweeps alike: nulls where no value
     front.attrs["objectives"] = list(objectives)
     front.attrs["evaluated"] = len(rows)
     return front
@@ -175,16 +189,20 @@ def pareto(scene: Scene, objectives: str | Sequence[str] = ("mass", "outer_diame
 def _front_outer_diameter(scene, points, span, method, solver_options):
     spec = scene.design
     envelope = spec.max_outer_diameter
-    lightest = evaluate_points(scene, pd.DataFrame({"point": [0], "design.objective": ["mass"]}),
-                               method=method, solver_options=solver_options)
+    lightest = evaluate_points(
+        scene, pd.DataFrame({"point": [0], "design.objective": ["mass"]}), method=method, solver_options=solver_options
+    )
     if span is None:
         if spec.geometry == "disc" and spec.max_width == math.inf:
-            raise SceneError("design.max_width", "a disc with no width limit can be made as "
-                             "small as one likes (thinner and wider): give max_width or a "
-                             "range for the outer diameter")
+            raise SceneError(
+                "design.max_width",
+                "a disc with no width limit can be made as "
+                "small as one likes (thinner and wider): give max_width or a "
+                "range for the outer diameter",
+            )
         smallest = evaluate_points(
-            scene, pd.DataFrame({"point": [1], "design.objective": ["outer_diameter"]}),
-            solver_options=solver_options)
+            scene, pd.DataFrame({"point": [1], "design.objective": ["outer_diameter"]}), solver_options=solver_options
+        )
         if lightest["status"].iloc[0] != "designed" or smallest["status"].iloc[0] != "designed":
             return pd.DataFrame()
         low, high = float(smallest["d_outer"].iloc[0]), float(lightest["d_outer"].iloc[0])
@@ -196,14 +214,18 @@ def _front_outer_diameter(scene, points, span, method, solver_options):
         low, high = span
         high = min(high, envelope)
         if not 0 < low <= high:
-            raise SceneError("range", f"the outer diameter range {low:.6g}..{high:.6g} m is "
-                             f"empty or not positive")
+            raise SceneError("range", f"the outer diameter range {low:.6g}..{high:.6g} m is empty or not positive")
         grid = np.geomspace(low, high, points)
         smallest = None
     frames = [] if smallest is None else [smallest]
     if grid.size:
-        swept = sweep(scene, {"design.max_outer_diameter": list(grid), "design.objective": "mass"},
-                      method=method, solver_options=solver_options, workers=WORKERS)
+        swept = sweep(
+            scene,
+            {"design.max_outer_diameter": list(grid), "design.objective": "mass"},
+            method=method,
+            solver_options=solver_options,
+            workers=WORKERS,
+        )
         frames.append(swept.assign(epsilon=swept["design.max_outer_diameter"]))
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
 
@@ -213,12 +235,20 @@ def _front_cost(scene, method, solver_options):
     names = [m.name for m in inputs.materials]
     missing = [m.name for m in inputs.materials if m.cost is None]
     if missing:
-        raise SceneError("material", f"a mass-cost front needs a cost per kg on every "
-                         f"material; none is given for {', '.join(missing)} "
-                         f"(add cost = \"... 1/kg\" in [[material]])")
+        raise SceneError(
+            "material",
+            f"a mass-cost front needs a cost per kg on every "
+            f"material; none is given for {', '.join(missing)} "
+            f'(add cost = "... 1/kg" in [[material]])',
+        )
     shafts = [s.name for s in inputs.shafts]
-    swept = sweep(scene, {"material": names, "shaft": shafts, "design.objective": "mass"},
-                  method=method, solver_options=solver_options, workers=WORKERS)
+    swept = sweep(
+        scene,
+        {"material": names, "shaft": shafts, "design.objective": "mass"},
+        method=method,
+        solver_options=solver_options,
+        workers=WORKERS,
+    )
     return swept.assign(epsilon=swept["cost"])
 
 
@@ -235,15 +265,23 @@ def _front_motor_power(scene, analysis, solver_options):
     for run in drive.runs:
         wheel = run.wheel
         status = "infeasible" if not run.feasible else ("designed" if wheel is not None else "not_needed")
-        rows.append({"motor": run.motor.name, "rated_power": run.motor.rated_power, "status": status,
-                     "mass": wheel.mass if wheel is not None else math.nan,
-                     "total_mass": run.total_mass if run.total_mass is not None else math.nan,
-                     "motor_ratio": run.motor_ratio if run.motor_ratio is not None else math.nan,
-                     "flywheel_ratio": run.flywheel_ratio if run.flywheel_ratio is not None else math.nan,
-                     "j_flywheel": run.j_flywheel if run.j_flywheel is not None else math.nan,
-                     "limit": run.limit, "best_material": wheel.material if wheel is not None else None,
-                     "d_outer": wheel.d_outer if wheel is not None else math.nan,
-                     "epsilon": run.motor.rated_power, "message": run.reason})
+        rows.append(
+            {
+                "motor": run.motor.name,
+                "rated_power": run.motor.rated_power,
+                "status": status,
+                "mass": wheel.mass if wheel is not None else math.nan,
+                "total_mass": run.total_mass if run.total_mass is not None else math.nan,
+                "motor_ratio": run.motor_ratio if run.motor_ratio is not None else math.nan,
+                "flywheel_ratio": run.flywheel_ratio if run.flywheel_ratio is not None else math.nan,
+                "j_flywheel": run.j_flywheel if run.j_flywheel is not None else math.nan,
+                "limit": run.limit,
+                "best_material": wheel.material if wheel is not None else None,
+                "d_outer": wheel.d_outer if wheel is not None else math.nan,
+                "epsilon": run.motor.rated_power,
+                "message": run.reason,
+            }
+        )
     return pd.DataFrame(rows)
 
 
@@ -254,6 +292,11 @@ def _front_delta(scene, points, span, method, solver_options):
     if not 0 < low <= high < 2:
         raise SceneError("range", f"the δ range {low:.6g}..{high:.6g} must lie in (0, 2)")
     grid = np.geomspace(low, high, points)
-    swept = sweep(scene, {"delta": list(grid), "design.objective": "mass"}, method=method,
-                  solver_options=solver_options, workers=WORKERS)
+    swept = sweep(
+        scene,
+        {"delta": list(grid), "design.objective": "mass"},
+        method=method,
+        solver_options=solver_options,
+        workers=WORKERS,
+    )
     return swept.assign(epsilon=swept["delta"])

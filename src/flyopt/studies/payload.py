@@ -38,6 +38,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 # An exact digest of a scene
 # --------------------------------------------------------------------------
 
+
 def digest(obj, skip=("source",)):
     """A SHA-256 hex digest of ``obj`` by value.
 
@@ -91,7 +92,7 @@ def _feed(h, obj, skip, seen):
         for key in sorted(obj, key=repr):
             _feed(h, key, skip, seen)
             _feed(h, obj[key], skip, seen)
-    elif id(obj) in seen:          # a cycle (an object that refers back to itself)
+    elif id(obj) in seen:  # a cycle (an object that refers back to itself)
         put("seen", type(obj).__qualname__.encode())
     else:
         seen.add(id(obj))
@@ -109,7 +110,7 @@ def _feed(h, obj, skip, seen):
             _feed_function(h, obj, skip, seen)
         elif isinstance(obj, (types.BuiltinFunctionType, type)):
             put("named", f"{getattr(obj, '__module__', '')}.{obj.__qualname__}".encode())
-        elif type(obj).__reduce__ is not object.__reduce__:   # says how to rebuild it
+        elif type(obj).__reduce__ is not object.__reduce__:  # says how to rebuild it
             _feed(h, obj.__reduce__()[1:], skip, seen)
         elif hasattr(obj, "__dict__"):
             _feed(h, {k: v for k, v in vars(obj).items() if not k.startswith("_")}, skip, seen)
@@ -130,6 +131,7 @@ def _feed_function(h, fn, skip, seen):
 # --------------------------------------------------------------------------
 # A scene as data
 # --------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class ScenePayload:
@@ -195,11 +197,14 @@ def payload(scene):
     if text is not None:
         try:
             base = ScenePayload(text, scene.source, {}, key).scene()
-        except Exception:   # noqa: BLE001 - the file changed, or no longer reads: use the fields
+        except Exception:  # noqa: BLE001 - the file changed, or no longer reads: use the fields
             base = None
         if base is not None:
-            changed = {n: getattr(scene, n) for n in names
-                       if n != "source" and digest(getattr(base, n)) != digest(getattr(scene, n))}
+            changed = {
+                n: getattr(scene, n)
+                for n in names
+                if n != "source" and digest(getattr(base, n)) != digest(getattr(scene, n))
+            }
             if _plain(changed):
                 candidate = ScenePayload(text, scene.source, changed, key)
                 if not changed or digest(candidate.scene()) == key:
@@ -207,10 +212,15 @@ def payload(scene):
     fields = {n: getattr(scene, n) for n in names}
     if _plain(fields):
         return ScenePayload(None, scene.source, fields, key), ""
-    why = ("its members' kinematics are functions of this process"
-           if getattr(scene, "members", ()) else "it holds objects that cannot be copied")
-    return None, (f"the scene cannot be sent to workers as data ({why}, and it "
-                  f"{'differs from' if text is not None else 'has no'} file to rebuild it from)")
+    why = (
+        "its members' kinematics are functions of this process"
+        if getattr(scene, "members", ())
+        else "it holds objects that cannot be copied"
+    )
+    return None, (
+        f"the scene cannot be sent to workers as data ({why}, and it "
+        f"{'differs from' if text is not None else 'has no'} file to rebuild it from)"
+    )
 
 
 def _file_text(source):

@@ -20,7 +20,6 @@ from flyopt.studies.evaluate import _check_points
 __all__ = ["MAX_POINTS", "SweepPlan", "plan_sweep"]
 
 
-
 #: Largest number of points a sweep may have.
 MAX_POINTS = 20_000_000
 
@@ -89,8 +88,9 @@ def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
     if samples is not None:
         samples = whole_number(samples, option_label(where, "samples"), 1)
         if samples > MAX_POINTS:
-            raise SceneError(option_label(where, "samples"), f"{samples} samples, more than "
-                             f"the {MAX_POINTS} points a sweep may have")
+            raise SceneError(
+                option_label(where, "samples"), f"{samples} samples, more than the {MAX_POINTS} points a sweep may have"
+            )
         if seed is None:
             seed = _drawn_seed()
     else:
@@ -98,8 +98,7 @@ def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
     axes = parse_vary(scene, vary, where=where, samples=samples, max_points=MAX_POINTS)
     if samples is not None:
         if not axes:
-            raise SceneError(option_label(where, "samples"), "Latin hypercube sampling needs "
-                             "at least one varied field")
+            raise SceneError(option_label(where, "samples"), "Latin hypercube sampling needs at least one varied field")
         from scipy.stats import qmc
 
         unit = qmc.LatinHypercube(d=len(axes), rng=seed).random(samples)
@@ -119,8 +118,11 @@ def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
     else:
         n = math.prod(len(a.values) for a in axes)
         if n > MAX_POINTS:
-            raise SceneError(where, f"the grid has {n} points, more than the {MAX_POINTS} a "
-                             f"sweep may have; use fewer values or Latin hypercube samples")
+            raise SceneError(
+                where,
+                f"the grid has {n} points, more than the {MAX_POINTS} a "
+                f"sweep may have; use fewer values or Latin hypercube samples",
+            )
         columns = {}
         if axes:
             grids = np.meshgrid(*[np.arange(len(a.values)) for a in axes], indexing="ij")

@@ -54,8 +54,18 @@ import pandas as pd
 from flyopt.errors import Interrupted, SceneError
 from flyopt.io.results import check_folder, read_results, write_results
 
-__all__ = ["CHUNK_SECONDS", "GUIDED", "MAX_CHUNK_POINTS", "MIN_CHUNK_SECONDS",
-           "SERIAL_SECONDS", "Parts", "chunk_bounds", "connect", "fingerprint", "run_chunks"]
+__all__ = [
+    "CHUNK_SECONDS",
+    "GUIDED",
+    "MAX_CHUNK_POINTS",
+    "MIN_CHUNK_SECONDS",
+    "SERIAL_SECONDS",
+    "Parts",
+    "chunk_bounds",
+    "connect",
+    "fingerprint",
+    "run_chunks",
+]
 
 #: Longest estimated time of one chunk [s] in one process: long enough that the cost of a
 #: chunk (sending it, saving its part, ~5-10 ms) is small, short enough that a crash or
@@ -157,8 +167,8 @@ def chunk_bounds(costs, *, workers=1, starts=None, breaks=None, chunk_size=None)
         end = int(np.searchsorted(cum, cum[start] + aim * (1 - 1e-9), side="left"))
         end = min(max(end, start + 1), limit)
         if group is not None and end < limit:
-            k = int(np.searchsorted(group, end, side="right"))    # groups starting after `end`
-            begin = int(group[k - 1]) if k else 0                  # the group `end` falls in
+            k = int(np.searchsorted(group, end, side="right"))  # groups starting after `end`
+            begin = int(group[k - 1]) if k else 0  # the group `end` falls in
             if begin != end:
                 after = int(group[k]) if k < len(group) else n
                 if after <= limit and cum[after] - cum[start] <= 2 * aim:
@@ -166,7 +176,7 @@ def chunk_bounds(costs, *, workers=1, starts=None, breaks=None, chunk_size=None)
                 elif begin > start:
                     end = begin
                 elif after <= limit and cum[after] - cum[start + 1] <= 2 * aim:
-                    end = after    # one group: split only where its designs outweigh its analysis
+                    end = after  # one group: split only where its designs outweigh its analysis
         bounds.append(end)
         start = end
     return np.array(bounds, dtype=np.int64)
@@ -193,6 +203,7 @@ def fingerprint(identity, points, layout):
 # --------------------------------------------------------------------------
 # The parts folder
 # --------------------------------------------------------------------------
+
 
 class Parts:
     """The folder ``OUTPUT.parts``: one file per finished chunk, a manifest, temporary files.
@@ -250,13 +261,19 @@ class Parts:
             (self.folder / self.MANIFEST).write_text(json.dumps(record), encoding="utf-8")
             return []
         if not resume:
-            raise SceneError("--output", f"{str(self.folder)!r} holds the chunks of an earlier, "
-                             f"unfinished sweep: resume it (--resume) or delete the folder")
+            raise SceneError(
+                "--output",
+                f"{str(self.folder)!r} holds the chunks of an earlier, "
+                f"unfinished sweep: resume it (--resume) or delete the folder",
+            )
         if self.manifest().get("fingerprint") != record["fingerprint"]:
-            raise SceneError("--resume", f"the parts in {str(self.folder)!r} come from a "
-                             f"different sweep (scene, fields, values or chunk size differ); "
-                             f"delete the folder to start over")
-        for stale in self.folder.glob("*.tmp-*"):   # left by a killed run
+            raise SceneError(
+                "--resume",
+                f"the parts in {str(self.folder)!r} come from a "
+                f"different sweep (scene, fields, values or chunk size differ); "
+                f"delete the folder to start over",
+            )
+        for stale in self.folder.glob("*.tmp-*"):  # left by a killed run
             stale.unlink(missing_ok=True)
         done = []
         for i, chunk in chunks:
@@ -265,8 +282,7 @@ class Parts:
                 continue
             problem = _damage(path, chunk)
             if problem:
-                print(f"flyopt sweep: {path}: {problem}; computing chunk {i} again",
-                      file=sys.stderr)
+                print(f"flyopt sweep: {path}: {problem}; computing chunk {i} again", file=sys.stderr)
                 path.unlink()
             else:
                 done.append(i)
@@ -289,7 +305,7 @@ def _damage(path, chunk):
     """What is wrong with the part file of ``chunk`` ("" when it is sound)."""
     try:
         frame = read_results(path)
-    except Exception as err:   # noqa: BLE001 - whatever the reader says, the part is unusable
+    except Exception as err:  # noqa: BLE001 - whatever the reader says, the part is unusable
         text = str(err).strip().splitlines()
         return f"cannot be read ({type(err).__name__}: {text[0] if text else ''})"
     if len(frame) != len(chunk):
@@ -305,6 +321,7 @@ def _damage(path, chunk):
 # --------------------------------------------------------------------------
 # Progress
 # --------------------------------------------------------------------------
+
 
 class _Progress:
     """A progress line with rate and ETA on stderr (a bar on a terminal)."""
@@ -343,9 +360,11 @@ class _Progress:
         eta = left / rate if rate > 0 else math.inf
         fraction = done / self.total if self.total else 1.0
         bar = "#" * int(24 * fraction) + "-" * (24 - int(24 * fraction))
-        text = (f"sweep [{bar}] {done}/{self.total} points ({100 * fraction:.0f}%), "
-                f"{self.designs / elapsed:,.0f} designs/s, "
-                f"{'done in ' + _clock(elapsed) if final else 'ETA ' + _clock(eta)}")
+        text = (
+            f"sweep [{bar}] {done}/{self.total} points ({100 * fraction:.0f}%), "
+            f"{self.designs / elapsed:,.0f} designs/s, "
+            f"{'done in ' + _clock(elapsed) if final else 'ETA ' + _clock(eta)}"
+        )
         end = "\n" if final or not self.tty else ""
         self.stream.write(("\r" if self.tty else "") + text + end)
         self.stream.flush()
@@ -361,6 +380,7 @@ def _clock(seconds):
 # --------------------------------------------------------------------------
 # Running
 # --------------------------------------------------------------------------
+
 
 @contextmanager
 def connect(scheduler):
@@ -381,8 +401,9 @@ def connect(scheduler):
     try:
         from dask.distributed import Client
     except ImportError as err:  # pragma: no cover - dask is in the test extras
-        raise SceneError("--scheduler", "running on a Dask cluster needs dask[distributed] "
-                         "(pip install 'flyopt[cluster]')") from err
+        raise SceneError(
+            "--scheduler", "running on a Dask cluster needs dask[distributed] (pip install 'flyopt[cluster]')"
+        ) from err
     if isinstance(scheduler, Client):
         yield scheduler
         return
@@ -390,16 +411,16 @@ def connect(scheduler):
         client = Client(scheduler, timeout=CONNECT_SECONDS, set_as_default=False)
     except (OSError, TimeoutError, ValueError, TypeError) as err:
         reason = (str(err).strip().splitlines() or [type(err).__name__])[0]
-        raise SceneError("--scheduler", f"cannot connect to the Dask scheduler {scheduler!r} "
-                         f"within {CONNECT_SECONDS:g} s: {reason}") from None
+        raise SceneError(
+            "--scheduler", f"cannot connect to the Dask scheduler {scheduler!r} within {CONNECT_SECONDS:g} s: {reason}"
+        ) from None
     try:
         yield client
     finally:
         client.close()
 
 
-def run_chunks(task, chunks, pending, *, parts=None, done=None, sink=None, workers=1,
-               client=None, progress=False):
+def run_chunks(task, chunks, pending, *, parts=None, done=None, sink=None, workers=1, client=None, progress=False):
     """Run ``task`` on the ``pending`` chunks; save each as it finishes.
 
     Parameters
@@ -443,8 +464,7 @@ def run_chunks(task, chunks, pending, *, parts=None, done=None, sink=None, worke
     results = {}
     ran = []
     sizes = {i: len(chunk) for i, chunk in chunks}
-    meter = _Progress(sum(sizes.values()), len(chunks), progress,
-                      done_points=sum(sizes[i] for i in done))
+    meter = _Progress(sum(sizes.values()), len(chunks), progress, done_points=sum(sizes[i] for i in done))
 
     def finished(i, frame):
         if parts is not None:
@@ -454,8 +474,7 @@ def run_chunks(task, chunks, pending, *, parts=None, done=None, sink=None, worke
         else:
             sink(i, frame)
         ran.append(i)
-        meter.update(len(frame), int(frame["n_combinations"].sum())
-                     if "n_combinations" in frame else len(frame))
+        meter.update(len(frame), int(frame["n_combinations"].sum()) if "n_combinations" in frame else len(frame))
 
     try:
         with _ctrl_c() as stop:
@@ -472,8 +491,7 @@ def run_chunks(task, chunks, pending, *, parts=None, done=None, sink=None, worke
                     finished(i, frame)
                     stop.check()
     except KeyboardInterrupt:
-        raise Interrupted(stopped("interrupted", parts, len(done) + len(ran),
-                                  len(chunks))) from None
+        raise Interrupted(stopped("interrupted", parts, len(done) + len(ran), len(chunks))) from None
     except _WorkersLost as err:
         raise Interrupted(stopped(str(err), parts, len(done) + len(ran), len(chunks))) from None
     finally:
@@ -485,8 +503,7 @@ def stopped(why, parts, saved, total):
     """One line: why a sweep stopped, what it kept and how to continue."""
     if parts is None:
         return f"{why}; nothing was saved (no output file: give one to keep finished chunks)"
-    return (f"{why}; {saved} of {total} chunks saved in {parts.folder}; "
-            f"--resume continues")
+    return f"{why}; {saved} of {total} chunks saved in {parts.folder}; --resume continues"
 
 
 class _WorkersLost(Exception):
@@ -536,7 +553,7 @@ def _ctrl_c():
     """Hand Ctrl-C to a :class:`_Stop` for the duration (main thread only)."""
     stop = _Stop()
     if threading.current_thread() is not threading.main_thread():
-        yield stop    # signals reach the main thread only; nothing to catch here
+        yield stop  # signals reach the main thread only; nothing to catch here
         return
     previous = signal.signal(signal.SIGINT, stop.handler)
     try:
@@ -553,7 +570,7 @@ _TASK = None
 def _init_worker(task):
     global _TASK
     _TASK = task
-    signal.signal(signal.SIGINT, signal.SIG_IGN)   # Ctrl-C is the parent's to handle
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
     _die_with_parent()
 
 
@@ -566,7 +583,7 @@ def _die_with_parent():
     parent = os.getppid()
     pr_set_pdeathsig = 1
     ctypes.CDLL(None, use_errno=True).prctl(pr_set_pdeathsig, signal.SIGKILL, 0, 0, 0)
-    if parent == 1 or os.getppid() != parent:   # the parent died before the request
+    if parent == 1 or os.getppid() != parent:  # the parent died before the request
         os._exit(1)
 
 
@@ -594,8 +611,9 @@ def _run_processes(task, pending, n_workers, finished, stop):
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
     module = getattr(task, "func", task).__module__
-    pool = ProcessPoolExecutor(max_workers=n_workers, mp_context=_mp_context(module),
-                               initializer=_init_worker, initargs=(task,))
+    pool = ProcessPoolExecutor(
+        max_workers=n_workers, mp_context=_mp_context(module), initializer=_init_worker, initargs=(task,)
+    )
     try:
         # a few chunks in flight per worker, not all: the results of chunks that finish
         # while this process saves others wait in memory, and a 10^6-point sweep's would pile up
@@ -634,6 +652,7 @@ def _terminate(pool):
 
 # -- Dask ------------------------------------------------------------------
 
+
 def _run_task(task, index, points):
     return index, task(points)
 
@@ -665,8 +684,7 @@ def _run_dask(client, task, pending, finished, stop):
             try:
                 batch = queue.next_batch(block=False)
             except KilledWorker as err:
-                raise _WorkersLost(f"a chunk killed every Dask worker that ran it "
-                                   f"({type(err).__name__})") from None
+                raise _WorkersLost(f"a chunk killed every Dask worker that ran it ({type(err).__name__})") from None
             for _, result in batch:
                 finished(*result)
             flight["chunks"] -= len(batch)
@@ -677,8 +695,7 @@ def _run_dask(client, task, pending, finished, stop):
             try:
                 workers = client.scheduler_info()["workers"]
             except (OSError, TimeoutError) as err:
-                raise _WorkersLost(f"the connection to the Dask scheduler was lost "
-                                   f"({type(err).__name__})") from None
+                raise _WorkersLost(f"the connection to the Dask scheduler was lost ({type(err).__name__})") from None
             flight["threads"] = sum(int(w.get("nthreads", 1)) for w in workers.values())
             top_up()
             if workers:
@@ -686,8 +703,7 @@ def _run_dask(client, task, pending, finished, stop):
             elif alone_since is None:
                 alone_since = time.monotonic()
             elif time.monotonic() - alone_since > NO_WORKERS_SECONDS:
-                raise _WorkersLost(f"all Dask workers were lost (none for "
-                                   f"{NO_WORKERS_SECONDS:g} s)")
+                raise _WorkersLost(f"all Dask workers were lost (none for {NO_WORKERS_SECONDS:g} s)")
             time.sleep(POLL_SECONDS)
     except BaseException:
         try:

@@ -27,7 +27,8 @@ from __future__ import annotations
 import functools
 import os
 import time
-from typing import TYPE_CHECKING, Any, Iterable, Literal, Mapping
+from collections.abc import Iterable, Mapping
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 import pandas as pd
@@ -37,8 +38,16 @@ from flyopt.errors import Interrupted, SceneError
 from flyopt.io.results import ResultWriter, normalize, scene_record, table_metadata
 from flyopt.io.sweep_spec import check_options, option_label
 from flyopt.studies import runner
-from flyopt.studies.evaluate import (_context, _evaluate, design_counts, evaluate_points,
-                                     physics_analysis, physics_codes, task_of, PHYSICS_FIELDS)
+from flyopt.studies.evaluate import (
+    PHYSICS_FIELDS,
+    _context,
+    _evaluate,
+    design_counts,
+    evaluate_points,
+    physics_analysis,
+    physics_codes,
+    task_of,
+)
 from flyopt.studies.payload import digest
 from flyopt.studies.plan import plan_sweep
 from flyopt.studies.runner import Parts, connect, cpu_count, fingerprint, run_chunks, stopped
@@ -89,20 +98,36 @@ def check_sweep(scene, options, where="sweep"):
     """
     try:
         check_options(options, where)
-        return plan_sweep(scene, options.get("vary") or {}, samples=options.get("samples"),
-                          seed=options.get("seed"), where=option_label(where, "vary"))
+        return plan_sweep(
+            scene,
+            options.get("vary") or {},
+            samples=options.get("samples"),
+            seed=options.get("seed"),
+            where=option_label(where, "vary"),
+        )
     except SceneError as err:
         if where.startswith("--") or scene.source is None:
             raise
         raise err.with_source(scene.source) from None
 
 
-def sweep(scene: Scene, vary: Mapping[str, Any] | Iterable[str] | None = None, *, samples: int | None = None,
-          seed: int | None = None, output: str | os.PathLike[str] | None = None,
-          workers: int | Literal["auto"] = "auto", chunk_size: int | None = None, scheduler: Any = None,
-          resume: bool = False, max_chunks: int | None = None, progress: bool = False,
-          method: Literal["auto", "closed_form", "ipopt"] = "auto",
-          solver_options: Mapping[str, Any] | None = None, keep_parts: bool = False) -> pd.DataFrame:
+def sweep(
+    scene: Scene,
+    vary: Mapping[str, Any] | Iterable[str] | None = None,
+    *,
+    samples: int | None = None,
+    seed: int | None = None,
+    output: str | os.PathLike[str] | None = None,
+    workers: int | Literal["auto"] = "auto",
+    chunk_size: int | None = None,
+    scheduler: Any = None,
+    resume: bool = False,
+    max_chunks: int | None = None,
+    progress: bool = False,
+    method: Literal["auto", "closed_form", "ipopt"] = "auto",
+    solver_options: Mapping[str, Any] | None = None,
+    keep_parts: bool = False,
+) -> pd.DataFrame:
     """Sweep a scene over a grid (or Latin hypercube) of its fields.
 
     Parameters
@@ -191,19 +216,29 @@ def sweep(scene: Scene, vary: Mapping[str, Any] | Iterable[str] | None = None, *
     :data:`BLOCK_POINTS` consecutive points they are gathered by physics,
     and put back in point order when written.
     """
-    check_options(dict(samples=samples, seed=seed, output=output, chunk_size=chunk_size,
-                       max_chunks=max_chunks, method=method, workers=workers, resume=resume),
-                  "--")
+    check_options(
+        dict(
+            samples=samples,
+            seed=seed,
+            output=output,
+            chunk_size=chunk_size,
+            max_chunks=max_chunks,
+            method=method,
+            workers=workers,
+            resume=resume,
+        ),
+        "--",
+    )
     parts = None if output is None else Parts(output)
     recorded = parts.manifest() if resume and parts is not None else {}
     if resume and samples is not None and seed is None:
-        seed = recorded.get("seed")   # the samples of the sweep being continued
+        seed = recorded.get("seed")  # the samples of the sweep being continued
     plan = plan_sweep(scene, vary or {}, samples=samples, seed=seed)
     points = plan.points
     axes = tuple(a.field for a in plan.axes)
     ctx = _context(scene, method, solver_options, axes)
-    with connect(scheduler) as client:   # before anything is written
-        start = time.perf_counter()       # the analyses timed for the layout count too
+    with connect(scheduler) as client:  # before anything is written
+        start = time.perf_counter()  # the analyses timed for the layout count too
         layout = _layout(scene, ctx, points, method, workers, chunk_size, client, recorded)
         mode, n_workers, task = layout["mode"], layout["workers"], None
         if mode != "serial":
@@ -213,15 +248,17 @@ def sweep(scene: Scene, vary: Mapping[str, Any] | Iterable[str] | None = None, *
                     raise SceneError("--scheduler", f"cannot run on a Dask cluster: {reason}")
                 mode, n_workers, layout["serial_because"] = "serial", 1, reason
         order, bounds = layout["order"], layout["bounds"]
-        chunks = [(i, _chunk(points, order, bounds[i], bounds[i + 1]))
-                  for i in range(len(bounds) - 1)]
+        chunks = [(i, _chunk(points, order, bounds[i], bounds[i + 1])) for i in range(len(bounds) - 1)]
         done = []
         if parts is not None:
             identity = (digest(scene), method, sorted((solver_options or {}).items()), axes)
-            record = {"fingerprint": fingerprint(identity, points, (layout["grouped"],
-                                                                    bounds.tolist())),
-                      "points": len(points), "chunk_size": layout["chunk_size"],
-                      "chunks": len(chunks), "seed": plan.seed}
+            record = {
+                "fingerprint": fingerprint(identity, points, (layout["grouped"], bounds.tolist())),
+                "points": len(points),
+                "chunk_size": layout["chunk_size"],
+                "chunks": len(chunks),
+                "seed": plan.seed,
+            }
             if layout["chunk_size"] == "auto":
                 record["bounds"] = bounds.tolist()
                 record["grouped"] = layout["grouped"]
@@ -245,31 +282,50 @@ def sweep(scene: Scene, vary: Mapping[str, Any] | Iterable[str] | None = None, *
         try:
             for i in reused:
                 assembly.add(i)
-            _, ran = run_chunks(task, chunks, pending, parts=parts, done=done, sink=assembly.add,
-                                workers=n_workers if mode == "processes" else 1,
-                                client=client if mode == "dask" else None, progress=progress)
+            _, ran = run_chunks(
+                task,
+                chunks,
+                pending,
+                parts=parts,
+                done=done,
+                sink=assembly.add,
+                workers=n_workers if mode == "processes" else 1,
+                client=client if mode == "dask" else None,
+                progress=progress,
+            )
             seconds = time.perf_counter() - start
             complete = len(reused) + len(ran) == len(chunks)
             assembly.finish(complete)
         except KeyboardInterrupt:
             assembly.abort()
-            raise Interrupted(stopped("interrupted while writing the output", parts,
-                                      len(assembly.finished), len(chunks))) from None
+            raise Interrupted(
+                stopped("interrupted while writing the output", parts, len(assembly.finished), len(chunks))
+            ) from None
         except BaseException:
             assembly.abort()
             raise
     if complete and parts is not None and not keep_parts:
         parts.remove()
     frame = assembly.frame()
-    if frame is None:     # no chunk finished, no output: the columns alone
+    if frame is None:  # no chunk finished, no output: the columns alone
         frame = prepare(evaluate_points(ctx, points.iloc[:0]))
     info = {
-        "points": len(points), "chunks": len(chunks), "chunk_size": layout["chunk_size"],
-        "chunks_run": sorted(ran), "chunks_reused": reused, "complete": complete,
-        "mode": mode, "workers": n_workers, "seconds": seconds, "seed": plan.seed,
-        "designs": assembly.designs_run(ran), "estimated_seconds": layout["estimate"],
-        "analysis_seconds": layout["analysis_seconds"], "physics": layout["physics"],
-        "output": None if output is None else str(output), "summary": output is not None,
+        "points": len(points),
+        "chunks": len(chunks),
+        "chunk_size": layout["chunk_size"],
+        "chunks_run": sorted(ran),
+        "chunks_reused": reused,
+        "complete": complete,
+        "mode": mode,
+        "workers": n_workers,
+        "seconds": seconds,
+        "seed": plan.seed,
+        "designs": assembly.designs_run(ran),
+        "estimated_seconds": layout["estimate"],
+        "analysis_seconds": layout["analysis_seconds"],
+        "physics": layout["physics"],
+        "output": None if output is None else str(output),
+        "summary": output is not None,
     }
     if "serial_because" in layout:
         info["serial_because"] = layout["serial_because"]
@@ -289,10 +345,12 @@ def _chunk(points, order, start, end):
 def _seed_column(plan):
     """A function making rows the sweep's table: a Latin hypercube's ``seed`` column after
     ``point`` (grids: none), and nulls for missing values (:func:`flyopt.io.results.normalize`)."""
+
     def prepare(frame):
         if plan.samples is not None and "seed" not in frame:
             frame.insert(1, "seed", np.full(len(frame), plan.seed, dtype=np.int64))
         return normalize(frame)
+
     return prepare
 
 
@@ -301,13 +359,21 @@ def _describe(scene, plan, method):
     from its columns: units, flyopt's version, the scene, and the sweep that made it."""
     varied = {a.field for a in plan.axes}
     objective = None if "design.objective" in varied else design_inputs(scene).spec.objective
-    spec = {"vary": {a.field: {"kind": a.kind, "values": list(a.values), "low": a.low, "high": a.high,
-                               "log": bool(a.log)} for a in plan.axes},
-            "samples": plan.samples, "seed": plan.seed, "method": method, "points": len(plan.points)}
+    spec = {
+        "vary": {
+            a.field: {"kind": a.kind, "values": list(a.values), "low": a.low, "high": a.high, "log": bool(a.log)}
+            for a in plan.axes
+        },
+        "samples": plan.samples,
+        "seed": plan.seed,
+        "method": method,
+        "points": len(plan.points),
+    }
     record = scene_record(scene, digest(scene))
 
     def describe(columns):
         return table_metadata("sweep", columns, scene=record, sweep=spec, objective=objective)
+
     return describe
 
 
@@ -326,7 +392,7 @@ def _layout(scene, ctx, points, method, workers, chunk_size, client, recorded):
     """
     n = len(points)
     if chunk_size is None and isinstance(recorded.get("chunk_size"), int):
-        chunk_size = recorded["chunk_size"]    # resuming a sweep cut by the user's size
+        chunk_size = recorded["chunk_size"]  # resuming a sweep cut by the user's size
     per_point, ipopt = design_counts(ctx.scene, points, method)
     costs = per_point * np.where(ipopt, runner.SECONDS_IPOPT, runner.SECONDS_CLOSED_FORM)
     if ctx.reusable:
@@ -346,35 +412,41 @@ def _layout(scene, ctx, points, method, workers, chunk_size, client, recorded):
     # the points of one physics together: within blocks, grouped by first appearance
     order, grouped, starts, breaks = None, False, None, None
     if codes is not None and n_physics < n:
-        if np.any(np.diff(codes) < 0):            # some physics come back later: gather them
+        if np.any(np.diff(codes) < 0):  # some physics come back later: gather them
             grouped = True
-            order = np.concatenate([
-                b + np.argsort(codes[b:b + BLOCK_POINTS], kind="stable")
-                for b in range(0, n, BLOCK_POINTS)])
+            order = np.concatenate(
+                [b + np.argsort(codes[b : b + BLOCK_POINTS], kind="stable") for b in range(0, n, BLOCK_POINTS)]
+            )
             breaks = np.arange(BLOCK_POINTS, n, BLOCK_POINTS)
         run_codes = codes if order is None else codes[order]
         starts = np.concatenate([[True], run_codes[1:] != run_codes[:-1]])
         costs = (costs if order is None else costs[order]) + starts * analysis_seconds
-    elif codes is not None:                          # every point a physics of its own
+    elif codes is not None:  # every point a physics of its own
         costs = costs + analysis_seconds
     bounds = None
-    if chunk_size is None and recorded.get("bounds") is not None and \
-            recorded.get("grouped") == grouped:
+    if chunk_size is None and recorded.get("bounds") is not None and recorded.get("grouped") == grouped:
         bounds = _recorded_bounds(recorded["bounds"], n)
     if bounds is None:
-        bounds = runner.chunk_bounds(costs, workers=n_workers, starts=starts, breaks=breaks,
-                                     chunk_size=chunk_size)
-    if grouped:   # a block's chunks are written together, once all are done
+        bounds = runner.chunk_bounds(costs, workers=n_workers, starts=starts, breaks=breaks, chunk_size=chunk_size)
+    if grouped:  # a block's chunks are written together, once all are done
         block_of = (bounds[:-1] // BLOCK_POINTS).tolist()
         units = [[] for _ in range(max(block_of) + 1)]
         for i, b in enumerate(block_of):
             units[b].append(i)
     else:
         units = [[i] for i in range(len(bounds) - 1)]
-    return {"mode": mode, "workers": n_workers, "order": order, "grouped": grouped,
-            "bounds": bounds, "units": units, "estimate": estimate,
-            "chunk_size": "auto" if chunk_size is None else int(chunk_size),
-            "analysis_seconds": analysis_seconds, "physics": n_physics}
+    return {
+        "mode": mode,
+        "workers": n_workers,
+        "order": order,
+        "grouped": grouped,
+        "bounds": bounds,
+        "units": units,
+        "estimate": estimate,
+        "chunk_size": "auto" if chunk_size is None else int(chunk_size),
+        "analysis_seconds": analysis_seconds,
+        "physics": n_physics,
+    }
 
 
 def _time_first_analysis(scene, points, codes):
@@ -404,8 +476,7 @@ def _recorded_bounds(values, n):
         bounds = np.asarray(values, dtype=np.int64)
     except (TypeError, ValueError):
         return None
-    if bounds.ndim != 1 or len(bounds) < 2 or bounds[0] != 0 or bounds[-1] != n or \
-            np.any(np.diff(bounds) <= 0):
+    if bounds.ndim != 1 or len(bounds) < 2 or bounds[0] != 0 or bounds[-1] != n or np.any(np.diff(bounds) <= 0):
         return None
     return bounds
 
@@ -442,9 +513,8 @@ class _Assembly:
         self.held = {}
         self.kept = []
         self.designs = {}
-        self.writer = (None if output is None else
-                       ResultWriter(output, temporary_folder=parts.folder, metadata=describe))
-        if self.writer is not None:     # the summary, by point
+        self.writer = None if output is None else ResultWriter(output, temporary_folder=parts.folder, metadata=describe)
+        if self.writer is not None:  # the summary, by point
             self.have = np.zeros(n_points, dtype=bool)
             self.status = np.zeros(n_points, dtype=np.int8)
             self.method = np.zeros(n_points, dtype=np.int8)
@@ -458,8 +528,7 @@ class _Assembly:
             self._note(self.parts.read(index, columns=list(SUMMARY_COLUMNS)))
         else:
             self.designs[index] = int(frame["n_combinations"].sum())
-            if (self.writer is None or self.unit_of[index] == self.next
-                    or len(self.held) < HELD_CHUNKS):
+            if self.writer is None or self.unit_of[index] == self.next or len(self.held) < HELD_CHUNKS:
                 self.held[index] = frame
             if self.writer is not None:
                 self._note(frame)
@@ -476,13 +545,11 @@ class _Assembly:
             target[point] = codes[local] if len(codes) else 0
 
     def _flush(self):
-        while self.next < len(self.units) and all(c in self.finished
-                                                  for c in self.units[self.next]):
+        while self.next < len(self.units) and all(c in self.finished for c in self.units[self.next]):
             if self.writer is None and len(self.units[self.next]) == 1:
                 self.kept.append(self.held.pop(self.units[self.next][0]))
             else:
-                frames = [self.held.pop(c) if c in self.held else self.parts.read(c)
-                          for c in self.units[self.next]]
+                frames = [self.held.pop(c) if c in self.held else self.parts.read(c) for c in self.units[self.next]]
                 rows = frames[0] if len(frames) == 1 else _in_point_order(frames)
                 if self.writer is None:
                     self.kept.append(rows)
@@ -512,8 +579,7 @@ class _Assembly:
             point = np.flatnonzero(self.have)
             summary = {"point": point.astype(np.int64)}
             for name, codes in (("status", self.status), ("method", self.method)):
-                summary[name] = pd.Categorical.from_codes(codes[point],
-                                                          categories=list(self.names[name]))
+                summary[name] = pd.Categorical.from_codes(codes[point], categories=list(self.names[name]))
             summary["n_combinations"] = self.combinations[point]
             return pd.DataFrame(summary)
         # chunks that finished, in point order (after max_chunks some may be missing)

@@ -10,7 +10,8 @@ The command line is in :mod:`flyopt.cli.studies`.
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING, Any, Literal, Mapping
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any, Literal
 
 import pandas as pd
 
@@ -22,13 +23,33 @@ if TYPE_CHECKING:  # the annotations only
 
 __all__ = ["TRADEOFF_COLUMNS", "material_tradeoff"]
 
-TRADEOFF_COLUMNS = ("material", "status", "shaft", "speed_ratio", "d_outer", "d_mean", "h", "b",
-                    "hb_ratio", "rim_speed", "rim_speed_limit", "mass", "cost", "binding", "limit",
-                    "reason", "method", "solver_status")
+TRADEOFF_COLUMNS = (
+    "material",
+    "status",
+    "shaft",
+    "speed_ratio",
+    "d_outer",
+    "d_mean",
+    "h",
+    "b",
+    "hb_ratio",
+    "rim_speed",
+    "rim_speed_limit",
+    "mass",
+    "cost",
+    "binding",
+    "limit",
+    "reason",
+    "method",
+    "solver_status",
+)
 
 
-def material_tradeoff(scene: Scene, solver_options: Mapping[str, Any] | None = None,
-                      method: Literal["auto", "ipopt", "closed_form"] = "auto") -> pd.DataFrame:
+def material_tradeoff(
+    scene: Scene,
+    solver_options: Mapping[str, Any] | None = None,
+    method: Literal["auto", "ipopt", "closed_form"] = "auto",
+) -> pd.DataFrame:
     """For each material, its lightest design: size, rim speed, mass, cost, binding limit.
 
     Parameters
@@ -68,21 +89,45 @@ def material_tradeoff(scene: Scene, solver_options: Mapping[str, Any] | None = N
     for material in inputs.materials:
         name = material.name
         row = dict.fromkeys(TRADEOFF_COLUMNS)
-        row.update(material=name, rim_speed_limit=material.max_rim_speed, binding="", limit="",
-                   reason="", method="", solver_status="", shaft="")
-        result = design_flywheel(analysis.j_margin, analysis.omega_max, inputs.shafts, [material], spec,
-                                 solver_options=solver_options, method=method)
+        row.update(
+            material=name,
+            rim_speed_limit=material.max_rim_speed,
+            binding="",
+            limit="",
+            reason="",
+            method="",
+            solver_status="",
+            shaft="",
+        )
+        result = design_flywheel(
+            analysis.j_margin,
+            analysis.omega_max,
+            inputs.shafts,
+            [material],
+            spec,
+            solver_options=solver_options,
+            method=method,
+        )
         row["status"] = result.status
         best = result.best
         if best is not None:
             bests[name] = best
-            row.update(shaft=best.shaft, speed_ratio=best.speed_ratio, d_outer=best.d_outer,
-                       d_mean=best.d_mean, h=best.h, b=best.b, hb_ratio=best.hb_ratio,
-                       rim_speed=best.rim_speed, mass=best.mass, cost=best.cost,
-                       binding=",".join(best.binding),
-                       limit=",".join(b for b in best.binding if b != "inertia"),
-                       method="closed_form" if best.solver_status == "closed_form" else "ipopt",
-                       solver_status=best.solver_status)
+            row.update(
+                shaft=best.shaft,
+                speed_ratio=best.speed_ratio,
+                d_outer=best.d_outer,
+                d_mean=best.d_mean,
+                h=best.h,
+                b=best.b,
+                hb_ratio=best.hb_ratio,
+                rim_speed=best.rim_speed,
+                mass=best.mass,
+                cost=best.cost,
+                binding=",".join(best.binding),
+                limit=",".join(b for b in best.binding if b != "inertia"),
+                method="closed_form" if best.solver_status == "closed_form" else "ipopt",
+                solver_status=best.solver_status,
+            )
         elif result.status == "infeasible":
             row["reason"] = "; ".join(c.reason for c in result.candidates)
             row["method"] = "closed_form"
@@ -91,8 +136,18 @@ def material_tradeoff(scene: Scene, solver_options: Mapping[str, Any] | None = N
             row["method"] = "none"
         rows.append(row)
     table = pd.DataFrame(rows, columns=list(TRADEOFF_COLUMNS))
-    for column in ("speed_ratio", "d_outer", "d_mean", "h", "b", "hb_ratio", "rim_speed",
-                   "rim_speed_limit", "mass", "cost"):
+    for column in (
+        "speed_ratio",
+        "d_outer",
+        "d_mean",
+        "h",
+        "b",
+        "hb_ratio",
+        "rim_speed",
+        "rim_speed_limit",
+        "mass",
+        "cost",
+    ):
         table[column] = pd.to_numeric(table[column]).astype(float)
     # the designed materials in the order of flyopt's one ranking rule, then the others
     ranked = [c.material for c in rank.ranking(list(bests.values()))]
