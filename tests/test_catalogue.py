@@ -29,7 +29,7 @@ import pytest
 from conftest import assert_published
 from numpy.testing import assert_allclose
 
-from flyopt.design.drive_nlp import CatalogueFit
+from flyopt.drive.relaxation import CatalogueFit
 from flyopt.machine.catalogue import (
     RATING_TOLERANCE,
     Catalogue,

@@ -10,10 +10,10 @@ from conftest import assert_published
 from numpy.testing import assert_allclose
 from reference import exact_chain
 
+from flyopt.cycle.expression import Expression
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, kinks_of, required_inertia, work
+from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.errors import NonPeriodicCycle, SceneError
-from flyopt.machine.expression import Expression
-from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.machine.transmission import inertia_on_shaft
 
 TWO_PI = 2 * math.pi
@@ -495,7 +495,7 @@ def test_two_kinks_within_one_grid_step():
 def test_kinks_of_sums_and_of_a_torque_at_a_fixed_speed():
     """A sum passes on its parts' kinks; an ω-dependent argument is searched at the speed the
     torque is held at (at_speed), and not at all while the speed is free."""
-    from flyopt.machine.torque import TorqueSum
+    from flyopt.cycle.torque import TorqueSum
 
     held = ExpressionTorque(Expression("max(0, sin(phi) - omega/100)", ("phi", "omega")), 1.0).at_speed(50.0)
     assert_allclose(kinks_of(held, TWO_PI), [math.pi / 6, 5 * math.pi / 6], rtol=1e-13)
@@ -569,7 +569,7 @@ def test_a_torque_with_a_pole_is_refused_naming_it(text, pole):
 
 
 def test_a_pole_in_a_part_of_a_sum_names_that_part():
-    from flyopt.machine.torque import TorqueSum
+    from flyopt.cycle.torque import TorqueSum
 
     load = TorqueSum([expr("100"), ExpressionTorque(Expression("tan(phi/4)"), 1.0, "torque.resisting.expression")])
     with pytest.raises(SceneError, match=r"^torque.resisting.expression: the expression has a pole near φ = 6.28"):

@@ -1,4 +1,4 @@
-"""The drive designed with the flywheel (flyopt.design.drive, flyopt.design.drive_nlp).
+"""The drive designed with the flywheel (flyopt.drive.codesign, flyopt.drive.relaxation).
 
 References are independent of the code under test: a brute-force enumeration
 of every motor size over a fine grid of flywheel ratios; quadrature (scipy
@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from flyopt.design import drive
-from flyopt.design.drive_nlp import CatalogueFit, kloss_runup_time
+from flyopt.drive import codesign as drive
+from flyopt.drive.relaxation import CatalogueFit, kloss_runup_time
 from flyopt.io.drive import DriveSpec
 from flyopt.io.scene import load
 from flyopt.machine.catalogue import Catalogue, CatalogueMotor
@@ -166,8 +166,8 @@ def test_one_size_smaller_breaks_a_limit_in_the_simulation(designed):
 def test_relaxation_collocation_against_the_periodic_solution(designed):
     """The relaxed motor and flywheel, simulated by CVODES shooting: δ and the mean speed within the collocation error."""
     from flyopt.analysis import analyse
+    from flyopt.cycle.torque import MotorTorque
     from flyopt.machine.reduce import reduce
-    from flyopt.machine.torque import MotorTorque
     from flyopt.machine.transmission import inertia_at_reference
     from flyopt.sizing.periodic import periodic_solution
 
@@ -278,7 +278,7 @@ def test_relaxation_sensitivities_against_central_differences():
 
     from flyopt.analysis import analyse
     from flyopt.design import design_inputs
-    from flyopt.design.drive_nlp import RelaxedWheel, relax
+    from flyopt.drive.relaxation import RelaxedWheel, relax
 
     scene = _scene(max_startup=2.5)  # the run-up binds too (3.2 s unbound)
     analysis = analyse(scene)
@@ -316,7 +316,8 @@ def test_relaxation_sensitivities_against_central_differences():
 def test_the_relaxation_is_built_once_per_machine():
     """Another material or limit solves the relaxation again without building its NLP (limits are parameters)."""
     from flyopt.analysis import analyse
-    from flyopt.design import design_inputs, drive_nlp
+    from flyopt.design import design_inputs
+    from flyopt.drive import relaxation as drive_nlp
 
     scene = _scene()
     analysis = analyse(scene)
@@ -367,8 +368,8 @@ def test_relaxation_wheel_is_the_designers_wheel(geometry, criterion, material, 
     from flyopt.analysis import analyse
     from flyopt.design import design_inputs
     from flyopt.design.designer import design_flywheel
-    from flyopt.design.drive_nlp import RelaxedWheel, relax
     from flyopt.design.spec import MountShaft
+    from flyopt.drive.relaxation import RelaxedWheel, relax
 
     scene = _scene()
     analysis = analyse(scene)

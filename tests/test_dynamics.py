@@ -22,12 +22,12 @@ from conftest import assert_published
 from numpy.testing import assert_allclose
 from scipy import integrate, optimize
 
+from flyopt.cycle.expression import Expression
 from flyopt.cycle.indicator import ExcessWork, energy_indicator, required_inertia
+from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.errors import NonPeriodicCycle, SolverFailed
-from flyopt.machine.expression import Expression
 from flyopt.machine.mechanism import Member, SliderCrank, equivalent_inertia, equivalent_torque
 from flyopt.machine.motor import DCMotor, InductionMotor
-from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.sizing import periodic
 from flyopt.sizing.energy_mass import achieved_speed, energy_mass_requirement
 from flyopt.sizing.periodic import angle_torque, dynamic_requirement, periodic_solution, verify

@@ -28,9 +28,10 @@ from numpy.testing import assert_allclose
 from scipy import optimize
 
 import flyopt
-from flyopt.machine.engine import Engine, engine_of, phase_table, textbook_requirement
+from flyopt.cycle.torque import PiecewiseLinear
+from flyopt.machine.engine import Engine, engine_of, phase_table
 from flyopt.machine.reduce import reduce
-from flyopt.machine.torque import PiecewiseLinear
+from flyopt.sizing.textbook import textbook_requirement
 
 BAR = 1e5
 FOUR_CYLINDER = PROBLEMS / "four-cylinder-engine.toml"

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
+from flyopt.cycle.expression import Expression
 from flyopt.errors import ExpressionError
-from flyopt.machine.expression import Expression
 
 CASES = [
     ("25000 + 3600*sin(phi)", lambda p: 25000 + 3600 * np.sin(p)),

@@ -18,7 +18,6 @@ from numpy.testing import assert_allclose
 from flyopt.design.hub import (
     LIMIT_RTOL,
     check_key,
-    flywheel_peak_torque,
     hub_length_for_key,
     hub_proportions,
     key_for_shaft,
@@ -28,6 +27,7 @@ from flyopt.design.hub import (
     permissible_unbalance,
     standard_key_lengths,
 )
+from flyopt.sizing.peak_torque import flywheel_peak_torque
 
 if sys.version_info >= (3, 11):
     import tomllib

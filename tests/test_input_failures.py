@@ -240,7 +240,7 @@ def test_a_toml_file_python_cannot_read_is_refused_naming_the_file(cli, write_sc
 
 
 def test_an_expression_of_the_deepest_allowed_nesting_evaluates():
-    from flyopt.machine.expression import MAX_DEPTH, Expression
+    from flyopt.cycle.expression import MAX_DEPTH, Expression
 
     # -(-(...(phi))) with an even number of signs is phi itself
     expression = Expression("-" * (MAX_DEPTH - 2) + "phi")

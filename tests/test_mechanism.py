@@ -21,8 +21,8 @@ from numpy.testing import assert_allclose
 from scipy import integrate, optimize
 
 from flyopt.cycle.indicator import ExcessWork
+from flyopt.cycle.torque import Constant
 from flyopt.machine.mechanism import GearTrain, Member, SliderCrank, equivalent_inertia, equivalent_torque
-from flyopt.machine.torque import Constant
 
 TWO_PI = 2 * math.pi
 ANGLES = np.array([0.0, 0.3, 1.0, math.pi / 2, 2.0, math.pi, 4.0, 5.5])

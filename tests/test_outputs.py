@@ -39,8 +39,8 @@ from conftest import PROBLEMS, ROOT
 
 import flyopt
 from flyopt.cli.main import main
-from flyopt.io import results
-from flyopt.io.results import COUNTS, QUANTITIES, UNIT_SET_BY, read_results, unit_of
+from flyopt.outputs import results
+from flyopt.outputs.results import COUNTS, QUANTITIES, UNIT_SET_BY, read_results, unit_of
 from flyopt.studies.payload import digest
 
 try:  # Python >= 3.11
@@ -172,8 +172,8 @@ def _drive_document():
     """A solution with a drive, assembled from the drive's own result types around punch-press's
     design and verification (designing a drive takes a minute: the real one is the slow
     press-drive scene). Its numbers are placeholders; its structure is what to_dict writes."""
-    from flyopt.design.drive import DriveCheck, DriveDesign, MotorRun
-    from flyopt.design.drive_nlp import Relaxation
+    from flyopt.drive.codesign import DriveCheck, DriveDesign, MotorRun
+    from flyopt.drive.relaxation import Relaxation
     from flyopt.machine.catalogue import CatalogueMotor
 
     solution = flyopt.solve(flyopt.load(PROBLEMS / "punch-press.toml"), verify_design=True)

@@ -688,7 +688,7 @@ def test_sweep_lines_never_join_points_of_another_field_and_show_display_units()
 
 
 def test_sweep_axes_in_the_chosen_units():
-    """The unit of a column is flyopt.io.results' (m, rad/s), shown in the system's (mm, rpm; in)."""
+    """The unit of a column is flyopt.outputs.results' (m, rad/s), shown in the system's (mm, rpm; in)."""
     from flyopt.report import plots
 
     frame = _sweep_frame()
@@ -747,7 +747,7 @@ def test_speed_without_a_flywheel_is_the_machine_as_it_is():
     own curve, and its δ the CVODES verification's. A machine with no inertia of its own (motor-press at
     δ 0.7) is drawn at the vanishing inertia it tends to."""
     from flyopt.analysis import analyse
-    from flyopt.design.drive import MotorRun, chosen_scene
+    from flyopt.drive.codesign import MotorRun, chosen_scene
     from flyopt.io.scene import load
     from flyopt.machine.catalogue import catalogue
     from flyopt.report import plots

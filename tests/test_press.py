@@ -397,7 +397,7 @@ def test_without_a_flywheel_speed_the_flywheel_may_sit_on_any_shaft(write_scene)
 
 def test_a_motor_the_user_gives_drives_the_press(write_scene):
     """[torque.driving] is the user's: a motor on the flywheel shaft drives, the press's load resists."""
-    from flyopt.machine.torque import MotorTorque, PiecewiseLinear
+    from flyopt.cycle.torque import MotorTorque, PiecewiseLinear
 
     text = KHURMI.format(slowdown=0.1) + (
         '[torque.driving]\nmotor = { kind = "induction", rated_power = "4 kW", '

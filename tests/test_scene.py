@@ -6,8 +6,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 import flyopt
+from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.errors import SceneError
-from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 
 VALID = """
 title = "t"

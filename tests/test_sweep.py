@@ -21,8 +21,8 @@ import flyopt
 from flyopt.cli.studies import sweep_main
 from flyopt.design import nlp
 from flyopt.errors import SceneError
-from flyopt.io.results import CORE_INPUTS, RESULT_COLUMNS, read_results
 from flyopt.io.sweep_spec import load_sweep, parse_vary
+from flyopt.outputs.results import CORE_INPUTS, RESULT_COLUMNS, read_results
 from flyopt.studies.evaluate import point_scene
 from flyopt.studies.plan import plan_sweep
 from flyopt.studies.sweep import SUMMARY_COLUMNS, sweep
@@ -367,13 +367,13 @@ def test_check_sweep_finds_what_sweep_refuses(tmp_path, vary, field, words):
 def test_flyopt_sweep_is_the_function_and_the_modules_are_reachable():
     """Regression (issue 11): the function ``flyopt.sweep`` shadowed the module, so
     ``flyopt.sweep.read_results`` failed; the module is now flyopt.studies.sweep and the
-    file functions are in flyopt.io.results."""
-    import flyopt.io.results
+    file functions are in flyopt.outputs.results."""
+    import flyopt.outputs.results
     import flyopt.studies.sweep
 
     assert callable(flyopt.sweep) and flyopt.sweep is sweep_module.sweep
     assert flyopt.studies.sweep is sweep_module
-    assert flyopt.io.results.read_results is read_results
+    assert flyopt.outputs.results.read_results is read_results
 
 
 def test_declared_scipy_floor_has_latin_hypercube_rng():

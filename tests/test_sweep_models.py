@@ -27,7 +27,7 @@ import pytest
 from conftest import PROBLEMS
 
 import flyopt
-from flyopt.io.results import read_results
+from flyopt.outputs.results import read_results
 from flyopt.studies import runner
 from flyopt.studies import sweep as sweep_module
 from flyopt.studies.evaluate import _context, point_scene, task_of
@@ -451,7 +451,7 @@ def test_with_an_output_the_table_is_not_returned_but_summarized(tmp_path):
 
 @pytest.mark.parametrize("suffix", [".csv", ".parquet"])
 def test_result_writer_appends_pieces_and_puts_the_file_in_place_only_when_complete(tmp_path, suffix):
-    from flyopt.io.results import ResultWriter, write_results
+    from flyopt.outputs.results import ResultWriter, write_results
 
     whole = sweep(load("energy"), {"delta": "0.01:0.2:7", "material": "cast_iron,cast_steel"}, chunk_size=3)
     one = tmp_path / f"one{suffix}"

@@ -26,7 +26,7 @@ from conftest import PROBLEMS
 
 import flyopt
 from flyopt.errors import Interrupted, SceneError
-from flyopt.io.results import ResultWriter, read_results
+from flyopt.outputs.results import ResultWriter, read_results
 from flyopt.studies import runner
 from flyopt.studies.sweep import sweep
 

@@ -597,8 +597,8 @@ def test_the_report_code_has_no_conversion_of_its_own():
 def _drive(solution):
     """A drive result assembled from the drive's own types (designing one takes a minute: the real one,
     press-drive, is in the slow test). Its numbers are placeholders chosen apart from each other."""
-    from flyopt.design.drive import DriveCheck, DriveDesign, MotorRun
-    from flyopt.design.drive_nlp import Relaxation
+    from flyopt.drive.codesign import DriveCheck, DriveDesign, MotorRun
+    from flyopt.drive.relaxation import Relaxation
     from flyopt.machine.catalogue import CatalogueMotor
 
     motor = CatalogueMotor(

@@ -32,12 +32,12 @@ from numpy.testing import assert_allclose, assert_array_equal
 from scipy import integrate, optimize
 
 from flyopt.analysis import analyse
+from flyopt.cycle.expression import Expression
 from flyopt.cycle.indicator import ExcessWork, _quad, _quad_many, _segments, brentq_many
+from flyopt.cycle.torque import Constant, ExpressionTorque
 from flyopt.io.scene import load
-from flyopt.machine.expression import Expression
 from flyopt.machine.mechanism import GearTrain, Member, SliderCrank, SliderCrankRatio, equivalent_inertia
 from flyopt.machine.reduce import reduce
-from flyopt.machine.torque import Constant, ExpressionTorque
 from flyopt.sizing import energy_mass
 from flyopt.sizing._numerics import Inertia
 

@@ -9,7 +9,7 @@ and ends with conclusions built from the computed values (a final cell that
 writes them as Markdown), so that they cannot go stale; a number typed in the
 text is checked by an assert in the notebook. Only the public API is used:
 what ``flyopt`` exports, the plots of ``flyopt.report.plots``, the display
-units of ``flyopt.report.display`` and the unit table of ``flyopt.io.results``.
+units of ``flyopt.report.display`` and the unit table of ``flyopt.outputs.results``.
 """
 
 import sys
@@ -27,11 +27,11 @@ def notebook(cells):
     return nb
 
 
-#: Every notebook's table helper: flyopt's own unit table (flyopt.io.results) and the
+#: Every notebook's table helper: flyopt's own unit table (flyopt.outputs.results) and the
 #: engineer's units (flyopt.report.display), so that no printed number goes without its unit.
 UNITS_HELPER = '''
 import pandas as pd
-from flyopt.io.results import COUNTS
+from flyopt.outputs.results import COUNTS
 from flyopt.report import display
 
 SYSTEM = "engineering"     # what people read: mm, rpm, kN·m, kJ, MPa (flyopt.report.display)

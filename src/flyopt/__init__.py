@@ -27,7 +27,7 @@ _API = {
     "design_scene": "flyopt.pipeline",
     "solve": "flyopt.pipeline",
     "Scene": "flyopt.io.scene",
-    "Shaft": "flyopt.io.scene",
+    "Shaft": "flyopt.machine.transmission",
     "from_dict": "flyopt.io.scene",
     "load": "flyopt.io.scene",
     "material_tradeoff": "flyopt.studies.tradeoff",

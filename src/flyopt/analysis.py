@@ -170,7 +170,7 @@ class Analysis:
         the required one (``j_margin``).
 
         Its share J_F / J(phi) of the net torque |M_d - M_r| at the worst angle
-        (:func:`flyopt.design.hub.flywheel_peak_torque`), over the torque curves
+        (:func:`flyopt.sizing.peak_torque.flywheel_peak_torque`), over the torque curves
         on a grid of 4097 angles and every knot, both sides of a step; speed-
         dependent torques are taken at the mean speed. None for a net-area scene
         (no curves) or when no flywheel is needed. Computed once.
@@ -185,7 +185,7 @@ class Analysis:
         """The largest |M_d - M_r| of the cycle at the reference shaft [N*m] (None for net areas).
 
         A sweep that scales the torques of a constant-inertia machine scales this and
-        takes the flywheel's share of it (:func:`flyopt.design.hub.flywheel_peak_torque`)."""
+        takes the flywheel's share of it (:func:`flyopt.sizing.peak_torque.flywheel_peak_torque`)."""
         samples = _net_torque_samples(self.machine)
         return None if samples is None else float(abs(samples[1]).max())
 
@@ -214,7 +214,7 @@ def flywheel_torque(machine, j_flywheel):
 
     None for a net-area scene (``machine`` None) or no flywheel; see :meth:`Analysis.flywheel_torque`.
     """
-    from flyopt.design.hub import flywheel_peak_torque
+    from flyopt.sizing.peak_torque import flywheel_peak_torque
 
     samples = _net_torque_samples(machine)
     if samples is None or j_flywheel <= 0.0:
@@ -389,7 +389,7 @@ def startup_run(machine, omega_target, j_flywheel):
     near the rated point: at rest it would give 25 times the rated torque).
     Returns None when no motor drives the machine.
     """
-    from flyopt.machine.torque import MotorTorque
+    from flyopt.cycle.torque import MotorTorque
 
     motor = machine.driving if isinstance(machine.driving, MotorTorque) else None
     if motor is None:

@@ -42,8 +42,8 @@ class Solution:
     analysis: Analysis
     design: object = None
     verification: Verification | None = None
-    drive: object = None  # flyopt.design.drive.DriveDesign of a scene with a [drive]
-    drive_check: object = None  # flyopt.design.drive.DriveCheck of the chosen drive
+    drive: object = None  # flyopt.drive.codesign.DriveDesign of a scene with a [drive]
+    drive_check: object = None  # flyopt.drive.codesign.DriveCheck of the chosen drive
 
     @property
     def status(self):
@@ -286,7 +286,7 @@ def solve(
 
 
 def solve_drive(scene, analysis, solver_options=None):
-    """Design the drive and the flywheel together (flyopt.design.drive), then analyse and check the machine as built.
+    """Design the drive and the flywheel together (flyopt.drive.codesign), then analyse and check the machine as built.
 
     The Solution's scene and analysis are the machine with the chosen motor
     on its curve at its ratio (the periodic model), its design the wheel on
@@ -294,7 +294,7 @@ def solve_drive(scene, analysis, solver_options=None):
     (δ, the motor's RMS torque, the start-up); an infeasible drive gives the
     scene's own analysis and no design.
     """
-    from flyopt.design.drive import chosen_scene, design_drive, verify_drive
+    from flyopt.drive.codesign import chosen_scene, design_drive, verify_drive
 
     drive = design_drive(scene, analysis, solver_options=solver_options)
     if drive.best is None:

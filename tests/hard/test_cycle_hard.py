@@ -14,7 +14,7 @@ from numpy.testing import assert_allclose
 from reference import exact_a_max_against_mean, exact_chain
 
 from flyopt.cycle.indicator import energy_indicator, required_inertia
-from flyopt.machine.torque import Constant, PiecewiseLinear
+from flyopt.cycle.torque import Constant, PiecewiseLinear
 
 TWO_PI = 2 * math.pi
 BAR = 1e-9
@@ -119,8 +119,8 @@ def test_cancellation_inside_an_expression(text):
     """An expression whose own evaluation cancels (1e6 − 1e6): its running error bound,
     not the size of its result, sets the round-off the quadrature accepts (regression: it
     was refused like the offset case before the noise existed). A_max = 2 J."""
-    from flyopt.machine.expression import Expression
-    from flyopt.machine.torque import ExpressionTorque
+    from flyopt.cycle.expression import Expression
+    from flyopt.cycle.torque import ExpressionTorque
 
     ind = energy_indicator(ExpressionTorque(Expression(text), 1.0), Constant(None), TWO_PI)
     assert_allclose(ind.a_max, 2.0, rtol=BAR)
@@ -132,8 +132,8 @@ def test_huge_offset_on_an_expression(offset, bar):
     pivot, so M_d − M_r is known only to the round-off of the offset (1e6 N·m: ~1e-10 N·m):
     the quadrature must accept that level, not refuse it (regression: the vectorized
     quadrature refused it until it was told the integrand's noise), and stay within the bar."""
-    from flyopt.machine.expression import Expression
-    from flyopt.machine.torque import ExpressionTorque
+    from flyopt.cycle.expression import Expression
+    from flyopt.cycle.torque import ExpressionTorque
 
     ind = energy_indicator(ExpressionTorque(Expression(f"{offset!r} + sin(phi)"), 1.0), Constant(None), TWO_PI)
     assert_allclose(ind.a_max, 2.0, rtol=bar)

@@ -8,9 +8,9 @@ from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from flyopt.cycle.indicator import energy_indicator, required_inertia
+from flyopt.cycle.torque import Constant, PiecewiseLinear
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.design.materials import builtin_materials
-from flyopt.machine.torque import Constant, PiecewiseLinear
 from flyopt.machine.transmission import inertia_on_shaft
 
 TWO_PI = 2 * math.pi

@@ -22,9 +22,9 @@ import numpy as np
 from flyopt.bench.peers import SAMPLED_RULES, integrate_samples, sampled_a_max
 from flyopt.bench.references import exact_a_max_against_mean, exact_a_max_tables
 from flyopt.bench.timing import Row, measure, set_ratios
+from flyopt.cycle.expression import Expression
 from flyopt.cycle.indicator import energy_indicator
-from flyopt.machine.expression import Expression
-from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 
 __all__ = [
     "TWO_PI",

@@ -151,7 +151,7 @@ def _printed_to_file(handler):
         from pathlib import Path
 
         from flyopt.errors import SceneError
-        from flyopt.io.results import check_folder, write_text
+        from flyopt.outputs.results import check_folder, write_text
 
         check_folder(args.output, "-o/--output")
         scene = getattr(args, "scene", None)

@@ -231,7 +231,7 @@ def _draw_stress(scene, analysis, design, plots, units="engineering"):
 
 
 def _plot_results(args):
-    from flyopt.io.results import read_results
+    from flyopt.outputs.results import read_results
     from flyopt.report import plots
 
     if args.what not in plots.RESULT_PLOTS:

@@ -66,7 +66,7 @@ def run_report(args):
     from pathlib import Path
 
     from flyopt.errors import SceneError
-    from flyopt.io.results import check_folder
+    from flyopt.outputs.results import check_folder
 
     kind = output_kind(args.output)
     check_folder(args.output, "-o/--output")
@@ -91,7 +91,7 @@ def write(document, path, kind):
     """Render ``document`` as ``kind`` ("html" or "pdf") and write it to ``path`` atomically."""
     from pathlib import Path
 
-    from flyopt.io.results import replace_atomically, write_text
+    from flyopt.outputs.results import replace_atomically, write_text
 
     if kind == "html":
         from flyopt.report.html import render
@@ -206,7 +206,8 @@ def _machine(inputs):
         inputs.j_machine = (j, j, j)
     if not machine.variable_inertia:
         return  # constant inertia: the energy–mass diagram is a vertical line, and no engine textbook step
-    from flyopt.machine.engine import engine_of, textbook_requirement
+    from flyopt.machine.engine import engine_of
+    from flyopt.sizing.textbook import textbook_requirement
 
     if engine_of(machine) is not None:
         inputs.textbook = textbook_requirement(machine, analysis.omega_mean, analysis.delta)
@@ -285,7 +286,7 @@ def provenance(scene, command="", pdf=False, files=()):
     import platform
 
     import flyopt
-    from flyopt.io.results import scene_record
+    from flyopt.outputs.results import scene_record
 
     record = scene_record(scene)
     rows = [

@@ -69,7 +69,7 @@ def run_solve(args):
         design_method=args.design_method,
     )
     if args.json:
-        from flyopt.io.results import solution_json
+        from flyopt.outputs.results import solution_json
 
         text = solution_json(solution, args.scene, timings=args.timings)
     else:

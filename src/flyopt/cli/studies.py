@@ -5,7 +5,7 @@ the command line, calls them and prints or writes what they return. Errors
 are raised and said by :func:`flyopt.cli.exits.status_of` (one line, one
 exit code from the table there).
 
-Every file a study writes describes itself (:mod:`flyopt.io.results`): the
+Every file a study writes describes itself (:mod:`flyopt.outputs.results`): the
 units of its columns, the flyopt version, the scene and its digest, and for
 a Pareto front its objectives (``flyopt plot`` reads them), as Parquet
 metadata, as the sidecar ``FILE.csv.json`` of a CSV file, or in the JSON
@@ -169,7 +169,7 @@ def run_sweep(args):
             )
         return EXIT_OK
     if output is None:  # missing values as empty cells, as in a CSV file
-        from flyopt.io.results import _csv
+        from flyopt.outputs.results import _csv
 
         _csv(frame, sys.stdout, header=True)
     if args.quiet:
@@ -358,7 +358,7 @@ _SUFFIXES = (".csv", ".parquet", ".pq", ".json")
 
 def _check_output(output):
     """The output file of a front or table, checked before anything is computed."""
-    from flyopt.io.results import check_folder
+    from flyopt.outputs.results import check_folder
 
     if output is None:
         return
@@ -375,7 +375,7 @@ def _emit(frame, args, kind, scene, columns, title, objectives=None):
     file is written atomically like the others. With ``--quiet`` and a file,
     nothing is printed.
     """
-    from flyopt.io import results
+    from flyopt.outputs import results
     from flyopt.studies.payload import digest
 
     frame = results.normalize(frame.copy())

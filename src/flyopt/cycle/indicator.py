@@ -29,8 +29,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from flyopt.cycle.torque import Constant, PiecewiseLinear
 from flyopt.errors import NonPeriodicCycle, SceneError
-from flyopt.machine.torque import Constant, PiecewiseLinear
 
 BALANCE_TOLERANCE = 1e-9
 """Largest accepted |net work| per cycle, relative to the cycle work."""

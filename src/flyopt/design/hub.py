@@ -8,8 +8,6 @@ module sizes and checks that joint and the balancing the finished wheel needs:
   pressure and shear at a torque, and the shortest hub that carries it;
 * :func:`hub_proportions` -- the outer diameter and length of a hub from the
   machine-design rules of thumb;
-* :func:`flywheel_peak_torque` -- the largest torque the flywheel's own shaft
-  joint transmits over a cycle;
 * :func:`permissible_unbalance` -- the ISO 21940-11 residual unbalance of a
   balance quality grade.
 
@@ -41,9 +39,8 @@ from dataclasses import dataclass
 from importlib import resources
 from typing import NamedTuple
 
-import numpy as np
-
 from flyopt.errors import shorten
+from flyopt.validate import positive as _positive
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -57,7 +54,6 @@ __all__ = [
     "KeySteel",
     "PermissibleUnbalance",
     "check_key",
-    "flywheel_peak_torque",
     "hub_length_for_key",
     "hub_proportions",
     "key_for_shaft",
@@ -86,34 +82,6 @@ refused the standard key of its own nominal length."""
 # --------------------------------------------------------------------------
 # input checks
 # --------------------------------------------------------------------------
-
-
-def _positive(value, name, unit):
-    """``value`` as a float, or ValueError naming ``name`` unless finite and > 0."""
-    if isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} must be a positive number [{unit}], got {value!r}")
-    try:
-        number = float(value)
-    except (TypeError, ValueError) as err:
-        raise ValueError(f"{name} must be a positive number [{unit}], got {shorten(value)}") from err
-    if not math.isfinite(number) or number <= 0.0:
-        raise ValueError(f"{name} must be a positive finite number [{unit}], got {shorten(value)}")
-    return number
-
-
-def _finite_array(value, name, unit):
-    """``value`` as a non-empty float array, or ValueError naming ``name``."""
-    try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as err:
-        raise ValueError(f"{name} must be a number or an array of numbers [{unit}], got {shorten(value)}") from err
-    if array.size == 0:
-        raise ValueError(f"{name} must not be empty [{unit}]")
-    if not np.all(np.isfinite(array)):
-        raise ValueError(
-            f"{name} must be finite [{unit}]; it holds {int(np.count_nonzero(~np.isfinite(array)))} non-finite value(s)"
-        )
-    return array
 
 
 # --------------------------------------------------------------------------
@@ -478,7 +446,7 @@ def check_key(torque, d, hub_length, allowable_pressure, allowable_shear=None) -
     ----------
     torque : float
         Largest torque the joint transmits, T [N*m] (e.g.
-        :func:`flywheel_peak_torque`).
+        :func:`flyopt.sizing.peak_torque.flywheel_peak_torque`).
     d : float
         Shaft seat diameter [m].
     hub_length : float
@@ -660,68 +628,6 @@ def hub_proportions(d, kind="cast_iron") -> HubProportions:
 # --------------------------------------------------------------------------
 # the torque on the flywheel's shaft
 # --------------------------------------------------------------------------
-
-
-def flywheel_peak_torque(j_flywheel_ref, j_total_ref, torque_difference_ref, speed_ratio) -> float:
-    """The largest torque the flywheel's hub transmits to its own shaft over a cycle.
-
-    Parameters
-    ----------
-    j_flywheel_ref : float
-        The flywheel's inertia moved to the reference shaft, J_F [kg*m^2].
-    j_total_ref : float or array_like
-        Total inertia at the reference shaft, flywheel included, J(phi)
-        [kg*m^2]: a number for a constant-inertia machine, or its values at
-        the angles of ``torque_difference_ref`` (same shape, or broadcastable).
-    torque_difference_ref : float or array_like
-        M_d - M_r at the reference shaft over the cycle [N*m].
-    speed_ratio : float
-        r = omega_shaft / omega_ref of the flywheel's shaft [-].
-
-    Returns
-    -------
-    float
-        max over the cycle of (J_F / J(phi)) |M_d - M_r| / r [N*m].
-
-    Raises
-    ------
-    ValueError
-        If J_F, J or r is not positive and finite, J < J_F anywhere, a torque
-        difference is not finite, or the arrays do not broadcast.
-
-    Notes
-    -----
-    The net torque M_d - M_r accelerates all the inertia at the reference
-    shaft, J dω/dt = M_d - M_r; the flywheel takes its share of it,
-    J_F dω/dt = (J_F / J)(M_d - M_r). On its own shaft the flywheel has
-    J_F / r² and turns r times as fast, so its torque is (J_F / J)(M_d - M_r) / r:
-    power is conserved and torque divides by the speed ratio. This is the
-    torque its hub, key and shaft seat carry.
-
-    For a variable inertia J(phi) the equation of motion is J dω/dt =
-    (M_d - M_r) - ½ (dJ/dphi) ω²; the share taken here at each angle neglects
-    the ½ (dJ/dphi) ω² term, exact only where dJ/dphi = 0.
-    """
-    j_flywheel = _positive(j_flywheel_ref, "j_flywheel_ref", "kg*m^2")
-    speed_ratio = _positive(speed_ratio, "speed_ratio", "-")
-    j_total = _finite_array(j_total_ref, "j_total_ref", "kg*m^2")
-    if np.any(j_total <= 0.0):
-        raise ValueError(f"j_total_ref must be positive [kg*m^2]; its smallest value is {float(np.min(j_total))!r}")
-    if np.any(j_total < j_flywheel):
-        raise ValueError(
-            f"j_total_ref must include the flywheel, j_total_ref >= j_flywheel_ref = "
-            f"{j_flywheel!r} kg*m^2; its smallest value is {float(np.min(j_total))!r}"
-        )
-    difference = _finite_array(torque_difference_ref, "torque_difference_ref", "N*m")
-    try:
-        j_total, difference = np.broadcast_arrays(j_total, difference)
-    except ValueError as err:
-        raise ValueError(
-            f"j_total_ref (shape {j_total.shape}) and torque_difference_ref "
-            f"(shape {difference.shape}) must have the same shape, or one be a "
-            f"number"
-        ) from err
-    return float(np.max(j_flywheel / j_total * np.abs(difference))) / speed_ratio
 
 
 # --------------------------------------------------------------------------

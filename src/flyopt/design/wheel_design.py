@@ -232,7 +232,7 @@ def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):
 
     The one place where a design's limits become a wheel NLP's structure and
     numbers: :func:`design_combination` solves it, and the drive's relaxation
-    (:mod:`flyopt.design.drive_nlp`) writes the same rows with the shaft's
+    (:mod:`flyopt.drive.relaxation`) writes the same rows with the shaft's
     speed as a variable.
     """
     from flyopt.design import wheel_nlp

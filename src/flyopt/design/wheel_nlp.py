@@ -183,7 +183,7 @@ def formulate(structure, x, par, allow):
         The logarithms of the dimensions [ln m], in the order of :func:`variables_of`.
     par : mapping
         Each name of :data:`PARAMETERS` to a symbol or an expression: the
-        wheel NLP's own parameters, or (:mod:`flyopt.design.drive_nlp`) the
+        wheel NLP's own parameters, or (:mod:`flyopt.drive.relaxation`) the
         shaft speed as an expression of the drive's variables.
     allow : casadi.SX
         The allowable of each part of :func:`stressed_parts`, (sigma_a / S)^2 if ductile, else sigma_a / S.

@@ -1,7 +1,7 @@
 """The [drive] section and [[motor_option]] tables: the drive designed with the flywheel.
 
 A scene with [drive] asks flyopt to choose the motor and the flywheel's speed
-ratio together with the wheel (:mod:`flyopt.design.drive`;
+ratio together with the wheel (:mod:`flyopt.drive.codesign`;
 docs/flywheel-design.md, sections 7 and 8). This module reads and checks that
 request into a :class:`DriveSpec`; every wrong value is a
 :class:`~flyopt.errors.SceneError` naming the field (``drive.ratio``,

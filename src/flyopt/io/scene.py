@@ -20,10 +20,10 @@ from typing import Any
 
 import numpy as np
 
+from flyopt.cycle.expression import Expression
+from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.errors import ExpressionError, SceneError, clip, shorten
-from flyopt.machine.expression import Expression
-from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
-from flyopt.machine.transmission import inertia_at_reference
+from flyopt.machine.transmission import Shaft, inertia_at_reference
 from flyopt.units import DIMENSIONS, inertia_from_gd2, quantity
 
 try:  # Python >= 3.11
@@ -33,32 +33,6 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 
 ANGLE_TOLERANCE = 1e-9
 """Relative tolerance on a table's first and last angle against 0 and Φ."""
-
-
-@dataclass(frozen=True)
-class Shaft:
-    """A shaft a flywheel may sit on.
-
-    Attributes
-    ----------
-    name : str
-    speed_ratio : float
-        ω_shaft / ω_reference [-].
-    efficiency : float
-        Efficiency of the transmission from the motor to this shaft [-].
-    diameter : float or None
-        The shaft seat [m] (sets a wheel's bore, hub and key), when given.
-    inertia : float
-        Inertia already turning with this shaft (a motor rotor, pulleys,
-        gears), about its axis [kg*m^2]; it counts towards the machine's J_c
-        as inertia * speed_ratio² at the reference shaft.
-    """
-
-    name: str
-    speed_ratio: float
-    efficiency: float = 1.0
-    diameter: float | None = None
-    inertia: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -869,8 +843,8 @@ def _is_header(line):
 
 def _motor(raw, where, shafts, efficiency, files=Path()):
     """A motor characteristic as the driving torque at the reference shaft."""
+    from flyopt.cycle.torque import MotorTorque
     from flyopt.machine.motor import DCMotor, InductionMotor
-    from flyopt.machine.torque import MotorTorque
 
     kinds = {
         "induction": {"kind", "rated_power", "rated_speed", "synchronous_speed", "breakdown_ratio", "model", "shaft"},

@@ -257,7 +257,7 @@ def check_options(options, where="sweep"):
     SceneError
         The first bad option, named as the user wrote it, with what is allowed.
     """
-    from flyopt.io.results import output_format
+    from flyopt.outputs.results import output_format
 
     minimum = {"samples": 1, "seed": 0, "chunk_size": 1, "max_chunks": 0}
     for key, lowest in minimum.items():

@@ -35,8 +35,8 @@ from functools import cached_property
 
 import numpy as np
 
+from flyopt.cycle.torque import PiecewiseLinear
 from flyopt.machine.mechanism import Member, SliderCrank, equivalent_inertia, equivalent_torque
-from flyopt.machine.torque import PiecewiseLinear, TorqueSum
 
 CYCLE_ANGLES = {"4-stroke": 4 * math.pi, "2-stroke": 2 * math.pi}
 """Cycle angle Φ of each kind of engine [rad]: two crank turns per cycle, or one."""
@@ -299,7 +299,7 @@ def phase_table(table, shift, cycle):
 class InertiaTorque:
     """−½ J_e'(φ) ω² at a constant speed ω: the inertia torque of a machine's varying inertia [N*m].
 
-    A torque curve (the questions of flyopt.machine.torque: ``breakpoints``,
+    A torque curve (the questions of flyopt.cycle.torque: ``breakpoints``,
     ``limits``, ``__call__``, ``casadi``) that drives the reference shaft
     where J_e falls. Its work over a cycle is zero (J_e is periodic).
 
@@ -335,76 +335,6 @@ class InertiaTorque:
 
     def casadi(self, phi):
         return -0.5 * self.omega**2 * self.inertia.casadi_derivative(phi)
-
-
-@dataclass(frozen=True)
-class TextbookRequirement:
-    """The flywheel of the textbook's method: the crank effort at the mean speed on a constant inertia.
-
-    Attributes
-    ----------
-    j_required : float
-        J_F = A_max/(ω_m² δ) − mean J_e [kg*m^2] (zero or negative: none needed).
-    a_max : float
-        A_max of the crank effort at the mean speed against the resisting torque [J].
-    omega_mean, delta : float
-        [rad/s], [-].
-    j_machine_mean : float
-        Cycle mean of J_e, the constant inertia the method puts in its place [kg*m^2].
-    indicator : flyopt.cycle.indicator.EnergyIndicator
-        Its energy indicator diagram.
-    """
-
-    j_required: float
-    a_max: float
-    omega_mean: float
-    delta: float
-    j_machine_mean: float
-    indicator: object
-
-
-def textbook_requirement(machine, omega_mean=None, delta=None):
-    """The flywheel the textbook's "inertia torque at the mean speed" method asks for.
-
-    The textbook (e.g. Khurmi & Gupta, *Theory of Machines*, turning-moment
-    diagrams of engines) adds to the gas torque the inertia torque of the
-    reciprocating parts at the mean speed, −½ J_e'(φ) ω_m² here with exact
-    kinematics, treats that crank effort as a torque curve on a constant
-    inertia, and sizes the flywheel by the constant-inertia method
-    (docs/flywheel-design.md, section 5) with the cycle mean of J_e in place
-    of J_c, as flyopt does wherever it compares that method with a variable
-    J_e. The exact answer is the energy–mass method (section 6), which keeps
-    J_e(φ) varying; the difference is of second order in the fluctuation.
-
-    Parameters
-    ----------
-    machine : flyopt.machine.reduce.Machine
-    omega_mean : float, optional
-        ω_m [rad/s]; default the machine's (the scene's) mean speed.
-    delta : float, optional
-        δ [-]; default the machine's.
-
-    Returns
-    -------
-    TextbookRequirement
-    """
-    from flyopt.cycle.indicator import energy_indicator, required_inertia
-
-    omega = machine.omega_mean if omega_mean is None else float(omega_mean)
-    delta = machine.delta if delta is None else float(delta)
-    key = ("textbook", omega, delta)
-    cache = machine._cache
-    if key not in cache:
-        balanced = machine.angle_only(omega)
-        driving = balanced.driving
-        if machine.variable_inertia:
-            driving = TorqueSum([driving, InertiaTorque(machine.j_machine, omega)], "crank effort at the mean speed")
-        indicator = energy_indicator(driving, balanced.resisting, machine.cycle_angle)
-        j_mean = machine.j_mean()
-        cache[key] = TextbookRequirement(
-            required_inertia(indicator.a_max, omega, delta, j_mean), indicator.a_max, omega, delta, j_mean, indicator
-        )
-    return cache[key]
 
 
 def engine_of(machine):

@@ -24,8 +24,8 @@ from functools import cached_property
 import casadi as ca
 import numpy as np
 
+from flyopt.cycle.torque import PiecewiseLinear
 from flyopt.errors import shorten
-from flyopt.machine.torque import PiecewiseLinear
 
 FORCE_SENSES = ("resisting", "driving", "axial")
 """How a member's force (or torque) does work:
@@ -766,7 +766,7 @@ class EquivalentTorque:
     reference shaft; :meth:`resisting` gives the same curve with the sign of
     a resisting torque, M_r = −M_e.
 
-    It answers the torque-curve questions of :mod:`flyopt.machine.torque`
+    It answers the torque-curve questions of :mod:`flyopt.cycle.torque`
     (``breakpoints``, ``limits``, ``__call__``, ``casadi``), so it can enter
     :class:`flyopt.cycle.indicator.ExcessWork` directly as a driving or resisting curve.
     """

@@ -12,9 +12,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from flyopt.cycle.indicator import ExcessWork
+from flyopt.cycle.torque import Constant, MotorTorque, TorqueSum
 from flyopt.errors import SceneError
 from flyopt.machine.motor import InductionMotor, TableMotor
-from flyopt.machine.torque import Constant, MotorTorque, TorqueSum
 
 
 @dataclass(frozen=True)

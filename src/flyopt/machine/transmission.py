@@ -6,6 +6,33 @@ a transmission stage.
 """
 
 import math
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Shaft:
+    """A shaft a flywheel may sit on.
+
+    Attributes
+    ----------
+    name : str
+    speed_ratio : float
+        ω_shaft / ω_reference [-].
+    efficiency : float
+        Efficiency of the transmission from the motor to this shaft [-].
+    diameter : float or None
+        The shaft seat [m] (sets a wheel's bore, hub and key), when given.
+    inertia : float
+        Inertia already turning with this shaft (a motor rotor, pulleys,
+        gears), about its axis [kg*m^2]; it counts towards the machine's J_c
+        as inertia * speed_ratio² at the reference shaft.
+    """
+
+    name: str
+    speed_ratio: float
+    efficiency: float = 1.0
+    diameter: float | None = None
+    inertia: float = 0.0
 
 
 def series_efficiency(stages):

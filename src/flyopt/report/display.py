@@ -12,10 +12,10 @@ of three systems (``--units``):
 Every factor is pint's own (``Quantity(1, unit).to(SI).magnitude``), written
 out so that showing a number loads no unit library; tests/test_display.py
 checks each against pint. One table, by dimension (the dimensions of
-:data:`flyopt.units.DIMENSIONS` and :data:`flyopt.io.results.OUTPUT_DIMENSIONS`):
+:data:`flyopt.units.DIMENSIONS` and :data:`flyopt.outputs.results.OUTPUT_DIMENSIONS`):
 a quantity is shown as ``value_SI / factor`` followed by its label.
 An output field is shown by its name (:func:`field_text`, :func:`heading`),
-its dimension read from flyopt.io.results' table of every field flyopt
+its dimension read from flyopt.outputs.results' table of every field flyopt
 writes (:func:`dimension_of`), the table behind the JSON's ``units`` map.
 """
 
@@ -129,15 +129,15 @@ def number(value, digits=6):
 def dimension_of(name):
     """The dimension of an output field (``a_max``: "energy", ``d_outer``: "length", a part's ``inertia``).
 
-    From flyopt.io.results' one table of the fields flyopt writes (QUANTITIES
+    From flyopt.outputs.results' one table of the fields flyopt writes (QUANTITIES
     and the sweep inputs), so that the JSON's ``units`` map and what people
     read cannot disagree. ValueError for a name that is no quantity.
     """
-    from flyopt.io import results
+    from flyopt.outputs import results
 
     dimension = results.dimension_of(name)
     if dimension is None:
-        raise ValueError(f"{name!r} is not a quantity of flyopt.io.results (no dimension to show it in)")
+        raise ValueError(f"{name!r} is not a quantity of flyopt.outputs.results (no dimension to show it in)")
     return dimension
 
 

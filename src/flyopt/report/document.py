@@ -245,7 +245,7 @@ class ReportInputs:
         ``(profile, beams, omega, material)`` of :func:`flyopt.cli.plot.stress_profile`.
     stress_note : str
     textbook : object or None
-        :func:`flyopt.machine.engine.textbook_requirement` of an [engine].
+        :func:`flyopt.sizing.textbook.textbook_requirement` of an [engine].
     provenance : tuple of (str, str)
         Versions, file hash, date, command line.
     """
@@ -878,7 +878,7 @@ class _Builder:
         a, si, res = self.analysis, self.si, self.result
         blocks = self.section("Work balance and power", "work", 2)
         ind = a.indicator
-        from flyopt.machine.torque import Constant
+        from flyopt.cycle.torque import Constant
 
         solved = [
             name

@@ -1,4 +1,4 @@
-"""The drive part of the text report: the motor, ratios and wheel designed together (flyopt.design.drive).
+"""The drive part of the text report: the motor, ratios and wheel designed together (flyopt.drive.codesign).
 
 Quantities are shown in the reader's unit system through :mod:`flyopt.report.display`,
 like the rest of the report (:mod:`flyopt.report.text`); the JSON stays SI.
@@ -22,7 +22,7 @@ RELAXED_STEPS = (
 
 
 def drive_report(drive, check=None, units=DEFAULT):
-    """Lines of the report for a :class:`flyopt.design.drive.DriveDesign` (and its :class:`DriveCheck`).
+    """Lines of the report for a :class:`flyopt.drive.codesign.DriveDesign` (and its :class:`DriveCheck`).
 
     ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
     """

@@ -281,7 +281,7 @@ def _excess_work(scene, analysis):
 
 
 def _unknown(curve):
-    from flyopt.machine.torque import Constant
+    from flyopt.cycle.torque import Constant
 
     return isinstance(curve, Constant) and curve.unknown
 
@@ -303,7 +303,7 @@ def _along(curve, phi, omega):
     docs/flywheel-design.md, sections 3 and 7); an expression in ``omega`` is
     evaluated with ω(φ); angle-only curves as they are.
     """
-    from flyopt.machine.torque import ExpressionTorque, MotorTorque, TorqueSum
+    from flyopt.cycle.torque import ExpressionTorque, MotorTorque, TorqueSum
 
     if isinstance(curve, TorqueSum):
         return sum(_along(part, phi, omega) for part in curve.parts)
@@ -401,7 +401,7 @@ class _Torques:
 
 
 def _is_motor(curve):
-    from flyopt.machine.torque import MotorTorque, TorqueSum
+    from flyopt.cycle.torque import MotorTorque, TorqueSum
 
     if isinstance(curve, TorqueSum):
         return any(_is_motor(p) for p in curve.parts)
@@ -2036,7 +2036,7 @@ MAX_LINES = 12
 
 
 def _dimension(column, frame=None):
-    """The dimension of a results column (flyopt.io.results' table), or None (text, counts, unknown)."""
+    """The dimension of a results column (flyopt.outputs.results' table), or None (text, counts, unknown)."""
     metadata = (frame.attrs.get("flyopt", {}) if frame is not None else {}) or {}
     if column == "objective":
         column = metadata.get("objective") or _objective_of(frame)
@@ -2061,7 +2061,7 @@ def _objective_of(frame):
 
 
 def _label(column, units=display.DEFAULT, frame=None):
-    """A column's axis label with its unit in the system (flyopt.io.results: the one table of units)."""
+    """A column's axis label with its unit in the system (flyopt.outputs.results: the one table of units)."""
     dimension = _dimension(column, frame)
     if column == "cost":
         return "cost [currency of the prices]"
@@ -2114,8 +2114,8 @@ def pareto_objectives(frame):
 
 def varied_fields(frame):
     """The inputs a sweep varied: its recorded sweep specification, else the input columns that take
-    more than one value (flyopt.io.results.INPUTS and the material and shaft fields)."""
-    from flyopt.io.results import INPUTS
+    more than one value (flyopt.outputs.results.INPUTS and the material and shaft fields)."""
+    from flyopt.outputs.results import INPUTS
 
     recorded = ((frame.attrs.get("flyopt") or {}).get("sweep") or {}).get("vary")
     if recorded:

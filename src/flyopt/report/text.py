@@ -2,7 +2,7 @@
 
 Every quantity is shown in the unit system the reader chose (``--units``:
 engineering, the default, si or imperial) through :mod:`flyopt.report.display`,
-the one table of display units; a field's dimension is the one flyopt.io.results
+the one table of display units; a field's dimension is the one flyopt.outputs.results
 gives it for the JSON, which stays SI. A table's heading carries its column's
 unit ("mass [kg]"), a line its numbers' ("1.25633 kJ"). Prose written by the
 design itself (why a combination fails, the sensitivities' sentences, notes)
@@ -204,7 +204,7 @@ def analysis_report(result, source=None, units=DEFAULT):
 def engine_report(result, units=DEFAULT):
     """For an [engine]: the textbook's flywheel beside the exact one, and by how much it is off.
 
-    The textbook's method (flyopt.machine.engine.textbook_requirement) takes
+    The textbook's method (flyopt.sizing.textbook.textbook_requirement) takes
     the crank effort at the mean speed (gas torque plus the inertia torque
     −½ J_e' ω_m²) as a torque curve on a constant inertia; the exact model
     keeps J_e(φ) varying (docs/flywheel-design.md, sections 5 and 6). The
@@ -215,7 +215,8 @@ def engine_report(result, units=DEFAULT):
     machine = result.machine
     if machine is None or not machine.variable_inertia:
         return []
-    from flyopt.machine.engine import engine_of, textbook_requirement  # CasADi: loaded with the members
+    from flyopt.machine.engine import engine_of
+    from flyopt.sizing.textbook import textbook_requirement  # CasADi: loaded with the members
 
     engine = engine_of(machine)
     if engine is None:

@@ -553,7 +553,7 @@ def periodic_solution(net_torque, j_machine, cycle_angle, omega_mean, j_flywheel
     net_torque : callable (phi, omega) -> torque
         M_d − M_r at the reference shaft [N*m], accepting CasADi symbols
         (e.g. :meth:`flyopt.machine.reduce.Machine.net_torque`, or built from
-        :mod:`flyopt.machine.motor` and :mod:`flyopt.machine.torque`, or
+        :mod:`flyopt.machine.motor` and :mod:`flyopt.cycle.torque`, or
         :func:`angle_torque`).
     j_machine : float, EquivalentInertia or callable
         The machine's J_e(φ) [kg*m^2].

@@ -44,16 +44,16 @@ import numpy as np
 import pandas as pd
 
 from flyopt.cycle.indicator import required_inertia, speed_extremes
+from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.design import closed_form as batch
 from flyopt.design import design_inputs, rank
 from flyopt.design.check import binding_names
-from flyopt.design.hub import flywheel_peak_torque
 from flyopt.design.spec import MountShaft
 from flyopt.errors import SceneError, SolverFailed
-from flyopt.io.results import RESULT_COLUMNS
 from flyopt.io.scene import NetAreas
 from flyopt.io.sweep_spec import _where
-from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.outputs.results import RESULT_COLUMNS
+from flyopt.sizing.peak_torque import flywheel_peak_torque
 
 __all__ = [
     "PHYSICS_FIELDS",

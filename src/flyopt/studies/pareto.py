@@ -35,7 +35,7 @@ import pandas as pd
 
 from flyopt.design import design_inputs
 from flyopt.errors import SceneError
-from flyopt.io.results import normalize
+from flyopt.outputs.results import normalize
 from flyopt.studies.evaluate import evaluate_points, physics_analysis
 from flyopt.studies.sweep import sweep
 
@@ -253,12 +253,12 @@ def _front_cost(scene, method, solver_options):
 
 
 def _front_motor_power(scene, analysis, solver_options):
-    """Every motor size of the drive with its lightest wheel (flyopt.design.drive, every size solved).
+    """Every motor size of the drive with its lightest wheel (flyopt.drive.codesign, every size solved).
 
     ``mass`` is the flywheel's (0 where the motor needs none), ``rated_power``
     the motor's; the drive's own objective (motor plus wheel) is ``total_mass``.
     """
-    from flyopt.design.drive import design_drive
+    from flyopt.drive.codesign import design_drive
 
     drive = design_drive(scene, analysis, solver_options=solver_options, every_size=True)
     rows = []

@@ -52,7 +52,7 @@ import numpy as np
 import pandas as pd
 
 from flyopt.errors import Interrupted, SceneError
-from flyopt.io.results import check_folder, read_results, write_results
+from flyopt.outputs.results import check_folder, read_results, write_results
 
 __all__ = [
     "CHUNK_SECONDS",

@@ -16,7 +16,7 @@ The stages, each in its own module, joined here:
   to workers as data (:mod:`flyopt.studies.payload`),
 - the chunks, sized by their estimated cost and run serially, in processes
   or on Dask, with resume (:mod:`flyopt.studies.runner`),
-- the result table and its files, written piece by piece (:mod:`flyopt.io.results`),
+- the result table and its files, written piece by piece (:mod:`flyopt.outputs.results`),
   with their metadata: units, flyopt's version, the scene (its file, the file's
   SHA-256 and flyopt's digest of it) and the sweep (fields, values, samples,
   seed, method), also in ``frame.attrs["flyopt"]``. Missing values are nulls.
@@ -35,8 +35,8 @@ import pandas as pd
 
 from flyopt.design import design_inputs
 from flyopt.errors import Interrupted, SceneError
-from flyopt.io.results import ResultWriter, normalize, scene_record, table_metadata
 from flyopt.io.sweep_spec import check_options, option_label
+from flyopt.outputs.results import ResultWriter, normalize, scene_record, table_metadata
 from flyopt.studies import runner
 from flyopt.studies.evaluate import (
     PHYSICS_FIELDS,
@@ -184,7 +184,7 @@ def sweep(
         :func:`flyopt.studies.evaluate.evaluate_points`), in point order; a
         Latin hypercube's table has a ``seed`` column after ``point``.
         With ``output``: the rows are in the file (read it with
-        :func:`flyopt.io.results.read_results`) and the frame holds only
+        :func:`flyopt.outputs.results.read_results`) and the frame holds only
         :data:`SUMMARY_COLUMNS` of each finished point, in point order
         (``status`` and ``method`` as categoricals).
         ``frame.attrs["sweep"]`` tells how it ran: chunks run and reused,
@@ -344,7 +344,7 @@ def _chunk(points, order, start, end):
 
 def _seed_column(plan):
     """A function making rows the sweep's table: a Latin hypercube's ``seed`` column after
-    ``point`` (grids: none), and nulls for missing values (:func:`flyopt.io.results.normalize`)."""
+    ``point`` (grids: none), and nulls for missing values (:func:`flyopt.outputs.results.normalize`)."""
 
     def prepare(frame):
         if plan.samples is not None and "seed" not in frame:
@@ -355,7 +355,7 @@ def _seed_column(plan):
 
 
 def _describe(scene, plan, method):
-    """A function giving a sweep table's metadata (:func:`flyopt.io.results.table_metadata`)
+    """A function giving a sweep table's metadata (:func:`flyopt.outputs.results.table_metadata`)
     from its columns: units, flyopt's version, the scene, and the sweep that made it."""
     varied = {a.field for a in plan.axes}
     objective = None if "design.objective" in varied else design_inputs(scene).spec.objective

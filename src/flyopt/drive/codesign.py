@@ -140,7 +140,7 @@ class DriveDesign:
     runs : tuple of MotorRun
         Every motor size solved, in order of rating.
     message : str
-    relaxation : flyopt.design.drive_nlp.Relaxation or None
+    relaxation : flyopt.drive.relaxation.Relaxation or None
         The continuous optimum that located the sizes solved (None: every size solved).
     note : str
         How the sizes were chosen.
@@ -230,7 +230,7 @@ def rms_torque(solution, motor, ratio, model=MOTOR_MODEL):
 
 def motor_scene(scene, motor, ratio):
     """The scene driven by ``motor`` at speed ratio ``ratio``: its Kloss curve, its rotor's inertia at the crank."""
-    from flyopt.machine.torque import MotorTorque
+    from flyopt.cycle.torque import MotorTorque
     from flyopt.machine.transmission import inertia_at_reference
 
     drive = MotorTorque(motor.motor(), ratio, scene.efficiency, MOTOR_MODEL, "drive.motors")
@@ -241,7 +241,7 @@ def motor_scene(scene, motor, ratio):
 
 def chosen_scene(scene, run):
     """The scene as built: the run's motor at its ratio, and the flywheel's shaft and the motor's among its shafts."""
-    from flyopt.io.scene import Shaft
+    from flyopt.machine.transmission import Shaft
 
     built = motor_scene(scene, run.motor, run.motor_ratio)
     shafts = tuple(s for s in scene.shafts if s.name not in (FLYWHEEL_SHAFT, MOTOR_SHAFT))
@@ -676,9 +676,9 @@ def design_drive(scene, analysis=None, *, solver_options=None, every_size=False)
 
 def _relaxation(scene, analysis, spec, motors, inputs, load):
     """(Relaxation or None, note): the continuous relaxation, best over the design's materials (and arm counts)."""
-    from flyopt.design.drive_nlp import CatalogueFit, RelaxedWheel, relax
     from flyopt.design.spec import MountShaft
     from flyopt.design.wheel_design import bore_of, missing_poisson
+    from flyopt.drive.relaxation import CatalogueFit, RelaxedWheel, relax
 
     fit = CatalogueFit.of(motors)
     if (

@@ -33,7 +33,7 @@ constraints:
   designer's (and is the same where the allowable does not depend on the wall).
 
 The objective is the motor's mass (or price) plus the wheel's mass (or cost).
-It is a relaxation: it locates the motor size; :func:`flyopt.design.drive.design_drive`
+It is a relaxation: it locates the motor size; :func:`flyopt.drive.codesign.design_drive`
 then solves the catalogue sizes around it exactly (periodic shooting, the
 wheel designer) and ranks them.
 """

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from flyopt.machine.expression import Expression
+from flyopt.cycle.expression import Expression
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,39 @@
+"""Checks of numeric arguments shared by every stage: one wording for each kind of refusal.
+
+Each check returns the value as the type the caller computes with, or raises
+ValueError naming the argument, its unit and what is allowed.
+"""
+
+import math
+
+import numpy as np
+
+from flyopt.errors import shorten
+
+
+def positive(value, name, unit):
+    """``value`` as a float, or ValueError naming ``name`` unless finite and > 0."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be a positive number [{unit}], got {value!r}")
+    try:
+        number = float(value)
+    except (TypeError, ValueError) as err:
+        raise ValueError(f"{name} must be a positive number [{unit}], got {shorten(value)}") from err
+    if not math.isfinite(number) or number <= 0.0:
+        raise ValueError(f"{name} must be a positive finite number [{unit}], got {shorten(value)}")
+    return number
+
+
+def finite_array(value, name, unit):
+    """``value`` as a non-empty float array, or ValueError naming ``name``."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as err:
+        raise ValueError(f"{name} must be a number or an array of numbers [{unit}], got {shorten(value)}") from err
+    if array.size == 0:
+        raise ValueError(f"{name} must not be empty [{unit}]")
+    if not np.all(np.isfinite(array)):
+        raise ValueError(
+            f"{name} must be finite [{unit}]; it holds {int(np.count_nonzero(~np.isfinite(array)))} non-finite value(s)"
+        )
+    return array
