@@ -194,6 +194,7 @@ def test_relaxation_collocation_against_the_periodic_solution(designed):
     assert analyse(scene).driving_torque > 0
 
 
+@pytest.mark.slow  # two motor sizes solved exactly, no relaxation to prune: about 12 s
 def test_every_size_without_a_relaxation_when_too_few():
     """Two sizes are no ladder to fit: every size is solved, and the note says so."""
     few = Catalogue("motor_option", OPTIONS.motors[3:5])

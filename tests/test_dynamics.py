@@ -382,6 +382,7 @@ def test_hard_cases_converge_to_a_periodic_solution(label, rpm, slip, delta):
     assert "outcome" in result.held
 
 
+@pytest.mark.slow  # a stiff motor's periodic search over its whole delta range: about 8 s
 def test_stiff_motor_never_swings_to_delta_03():
     """Slip 0.5 % and a 50× spike: the speed cannot fall further than the motor's line lets it at the spike,
     ω_min = ω_0 (1 − 50 s_n) = 0.75 ω_0, with ω_max = ω_0 at no load, so δ < (0.25)/(0.875) = 2/7 for every

@@ -138,6 +138,7 @@ def test_slider_crank_press_matches_the_energy_mass_closed_form():
     assert_allclose(fast.j_required, exact.j_required, rtol=1e-9)
 
 
+@pytest.mark.slow  # the CVODES search runs to the stall: about 20 s
 def test_a_motor_too_weak_is_not_settled_and_the_search_says_why():
     """A DC motor whose stall torque is half the mean load: the one-solve gives up (it never
     returns a speed that is not a steady state), and the CVODES search reports the stall."""
