@@ -36,7 +36,7 @@ from flyopt.design.wheel_design import bore_of
 from flyopt.errors import SolverFailed
 from flyopt.machine.transmission import inertia_at_reference, inertia_on_shaft
 
-__all__ = ["design_flywheel", "METHODS"]
+__all__ = ["design_flywheel", "rim_speed_limit", "METHODS"]
 
 #: How a feasible combination is optimized (see :func:`design_flywheel`).
 METHODS = ("auto", "ipopt", "closed_form")
@@ -247,10 +247,13 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
     )
 
 
-def _rim_speed_limit(material, spec):
-    """The material's safe rim speed [m/s]: its own, else from its allowable stress (sigma = rho v^2)."""
-    if material.max_rim_speed is not None:
-        return material.max_rim_speed
+def rim_speed_limit(material, spec):
+    """The material's safe rim speed [m/s] under a design spec: :meth:`Material.rim_speed_limit` with the
+    design's safety factor (the one rule; the design's factor wins over the material's).
+
+    Under the stress criterion, which needs no rim speed limit, a material given by strengths with no
+    factor from either gives NaN instead of refusing.
+    """
     if spec.criterion != "rim_speed":
         try:
             return material.rim_speed_limit(safety_factor=spec.safety_factor)
@@ -623,7 +626,7 @@ def design_flywheel(
     for material in materials:
         for shaft, plain in zip(shafts, textbook):
             shaft_omega = omega * shaft.speed_ratio
-            v_max = _rim_speed_limit(material, spec)
+            v_max = rim_speed_limit(material, spec)
             cap_speed = (
                 geometry.outer_diameter_for_rim_speed(v_max, shaft_omega) if spec.criterion == "rim_speed" else math.inf
             )

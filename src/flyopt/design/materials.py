@@ -509,23 +509,31 @@ class Material:
         return self.density * self.max_rim_speed**2
 
     def rim_speed_limit(self, thickness=None, safety_factor=None):
-        """Safe rim speed v_max [m/s] for the textbook rim-speed criterion.
+        """Safe rim speed v_max [m/s] for the textbook rim-speed criterion: flyopt's one rule.
+
+        Every path (solve, sweep, trade-off, Pareto, drive, report) takes the
+        limit from here with the design's safety factor
+        (:func:`flyopt.design.designer.rim_speed_limit`).
 
         Parameters
         ----------
         thickness : float, optional
             Section thickness [m] for a strength table.
         safety_factor : float, optional
-            The design's factor on strength (> 1).
+            The design's factor on strength (> 1); it wins over the
+            material's :attr:`safety_factor`, as in :meth:`allowable`.
 
         Returns
         -------
         float
             For a material given by strengths, when a thickness or a safety
             factor is given or no :attr:`max_rim_speed` is stored:
-            sqrt(allowable(thickness, safety_factor) / rho). Otherwise
-            :attr:`max_rim_speed` (a textbook limit, the user's, or the one
-            derived at construction).
+            sqrt(allowable(thickness, safety_factor) / rho), so that the
+            design's factor replaces the rim speed derived at construction
+            from the material's own factor. Otherwise :attr:`max_rim_speed`
+            (a textbook limit, the user's, or the one derived at construction
+            from an explicit allowable stress or the material's factor),
+            which no design factor changes.
 
         Raises
         ------

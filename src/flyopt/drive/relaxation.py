@@ -209,10 +209,10 @@ class RelaxedWheel:
     @classmethod
     def of(cls, material, spec, bore=0.0, n_arms=0):
         """The relaxed wheel of a material under a design spec, on a seat of diameter ``bore`` [m]."""
-        from flyopt.design.designer import _rim_speed_limit
+        from flyopt.design.designer import rim_speed_limit
         from flyopt.design.wheel_design import strongest_allowables, wheel_problem
 
-        v_max = _rim_speed_limit(material, spec)
+        v_max = rim_speed_limit(material, spec)
         structure, problem = wheel_problem(material, spec, bore, 0.0, n_arms, 1.0, 1.0, v_max)
         structure = structure._replace(objective="mass")
         problem = dataclasses.replace(problem, allowable=strongest_allowables(material, spec, structure))

@@ -535,6 +535,30 @@ class _Inputs:
         self.max_rim_speed = _PerName(lambda name: col(f"material.{name}.max_rim_speed", library[name].max_rim_speed))
         self.material_cost = _PerName(lambda name: col(f"material.{name}.cost", library[name].cost))
         self.allowable = _PerName(lambda name: col("", library[name].allowable_stress))
+        self.rim_speed_limit = _PerName(self._rim_speed_limit)
+
+    def _rim_speed_limit(self, name):
+        """The material's safe rim speed [m/s] at each point: the one rule (:func:`designer.rim_speed_limit`,
+        the design's safety factor winning over the material's) on the material with the point's values."""
+        from flyopt.design.designer import rim_speed_limit
+
+        density, speed = self.density[name], self.max_rim_speed[name]
+        values = np.stack([density, np.where(np.isnan(speed), -1.0, speed)], axis=1)
+        distinct, inverse = np.unique(values, axis=0, return_inverse=True)
+        limits = np.array(
+            [rim_speed_limit(_point_material(self.library[name], d, s), self.spec) for d, s in distinct], dtype=float
+        )
+        return limits[inverse.ravel()]
+
+
+def _point_material(base, density, speed, cost=math.nan):
+    """The scene's material with a point's density, rim speed and cost (NaN or negative: the scene's own)."""
+    return dataclasses.replace(
+        base,
+        density=float(density),
+        max_rim_speed=base.max_rim_speed if math.isnan(speed) or speed < 0 else float(speed),
+        cost=base.cost if math.isnan(cost) else float(cost),
+    )
 
 
 class _PerName(dict):
@@ -773,7 +797,7 @@ def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
         return np.stack([values[name] for name in names])[index, p]
 
     density = table(inputs.density, mats, mi)
-    v_max = table(inputs.max_rim_speed, mats, mi)
+    v_max = table(inputs.rim_speed_limit, mats, mi)
     cost_per_kg = table(inputs.material_cost, mats, mi)
     allowable = table(inputs.allowable, mats, mi)
     ratio = table(inputs.ratio, shafts, si)
@@ -877,14 +901,12 @@ def _design_ipopt(ctx, inputs, k, j_required, res, torque=None):
     shafts = [inputs.shaft[k]] if inputs.shaft is not None else inputs.shaft_names
     materials = []
     for name in mats:  # the scene's material with this point's values: every other field kept
-        cost = inputs.material_cost[name][k]
-        speed = float(inputs.max_rim_speed[name][k])
         materials.append(
-            dataclasses.replace(
+            _point_material(
                 inputs.library[name],
-                density=float(inputs.density[name][k]),
-                max_rim_speed=inputs.library[name].max_rim_speed if math.isnan(speed) else speed,
-                cost=None if math.isnan(cost) else float(cost),
+                inputs.density[name][k],
+                float(inputs.max_rim_speed[name][k]),
+                float(inputs.material_cost[name][k]),
             )
         )
     mounts = [dataclasses.replace(inputs.mounts[name], speed_ratio=float(inputs.ratio[name][k])) for name in shafts]

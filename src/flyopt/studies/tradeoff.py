@@ -81,6 +81,7 @@ def material_tradeoff(
     of ``flyopt solve`` with the objective mass.
     """
     from flyopt.design import design_flywheel
+    from flyopt.design.designer import rim_speed_limit
 
     analysis = physics_analysis(scene)
     inputs = design_inputs(scene)
@@ -91,7 +92,7 @@ def material_tradeoff(
         row = dict.fromkeys(TRADEOFF_COLUMNS)
         row.update(
             material=name,
-            rim_speed_limit=material.max_rim_speed,
+            rim_speed_limit=rim_speed_limit(material, spec),
             binding="",
             limit="",
             reason="",
