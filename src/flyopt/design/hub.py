@@ -36,19 +36,14 @@ from __future__ import annotations
 import difflib
 import functools
 import math
-import sys
 from dataclasses import dataclass
 from importlib import resources
 from typing import NamedTuple
 
 import numpy as np
 
+from flyopt._toml import tomllib
 from flyopt.errors import shorten
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised only on Python 3.10
-    import tomli as tomllib
 
 __all__ = [
     "HubProportions",

@@ -39,18 +39,13 @@ from __future__ import annotations
 import difflib
 import functools
 import math
-import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields
 from importlib import resources
 from typing import NamedTuple
 
+from flyopt._toml import tomllib
 from flyopt.errors import shorten
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised only on Python 3.10
-    import tomli as tomllib
 
 __all__ = [
     "Material",

@@ -20,16 +20,12 @@ from typing import Any
 
 import numpy as np
 
+from flyopt._toml import tomllib
 from flyopt.errors import ExpressionError, SceneError, clip, shorten
 from flyopt.machine.expression import Expression
 from flyopt.machine.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.machine.transmission import inertia_at_reference
 from flyopt.units import DIMENSIONS, inertia_from_gd2, quantity
-
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 ANGLE_TOLERANCE = 1e-9
 """Relative tolerance on a table's first and last angle against 0 and Φ."""

@@ -63,11 +63,7 @@ __all__ = [
     "load_sweep",
 ]
 
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
-
+from flyopt._toml import tomllib
 
 # --------------------------------------------------------------------------
 

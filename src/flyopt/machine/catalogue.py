@@ -27,19 +27,14 @@ from __future__ import annotations
 import difflib
 import functools
 import math
-import sys
 from dataclasses import dataclass, field
 from importlib import resources
 from typing import NamedTuple
 
+from flyopt._toml import tomllib
 from flyopt.errors import SceneError, shorten
 from flyopt.machine.motor import InductionMotor
 from flyopt.units import quantity
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised only on Python 3.10
-    import tomli as tomllib
 
 __all__ = [
     "QUANTITIES",
