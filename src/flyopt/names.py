@@ -38,6 +38,7 @@ __all__ = [
     "closest",
     "hint",
     "choice",
+    "unknown",
 ]
 
 CUTOFF = 0.6
@@ -179,4 +180,14 @@ def choice(value, allowed, field):
     names = [str(a) for a in allowed]
     if isinstance(value, str) and value in names:
         return value
-    raise ValueError(f"{field} {shorten(value)} is not known{hint(value, names)} (allowed: {', '.join(names)})")
+    raise ValueError(f"{field} {unknown(value, names)}")
+
+
+def unknown(value, allowed) -> str:
+    """The words for a name not in ``allowed``: ``'rimm' is not known; did you mean 'rim'? (allowed: ...)``.
+
+    The scene loader puts them after the field's path (a SceneError);
+    :func:`choice` after the field's name.
+    """
+    names = [str(a) for a in allowed]
+    return f"{shorten(value)} is not known{hint(value, names)} (allowed: {', '.join(names)})"

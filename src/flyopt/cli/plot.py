@@ -14,6 +14,7 @@ drawn in (flyopt.report.display); files of results stay SI.
 
 from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_INPUT, EXIT_OK, fail
 from flyopt.errors import FlyoptError
+from flyopt.names import Model
 
 
 def add_plot_arguments(parser):
@@ -119,11 +120,11 @@ def _draw(args, plots):
         return plots.plot_speed(scene, analysis, speed, simulation, units=units)
     if args.what == "energy_mass":
         plots.check_energy_mass(analysis)
-        if analysis.model != "energy_mass":  # the diagram draws that model's tangents
+        if analysis.model != Model.ENERGY_MASS:  # the diagram draws that model's tangents
             analysis = analyse(scene, model="energy_mass")
     if args.what == "inertia_delta":
         plots.check_inertia_delta(analysis)
-        curve = None if analysis.model == "energy" else inertia_curve(scene, analysis)
+        curve = None if analysis.model == Model.ENERGY else inertia_curve(scene, analysis)
         return plots.plot_inertia_delta(scene, analysis, units=units, curve=curve)
     return getattr(plots, f"plot_{args.what}")(scene, analysis, units=units)
 
@@ -164,7 +165,7 @@ def inertia_curve(scene, analysis, deltas=None):
     if deltas is None:
         from flyopt.report.plots import delta_range
 
-        delta, j = inertia_curve(scene, analysis, delta_range(analysis, 25 if analysis.model == "dynamic" else 41))
+        delta, j = inertia_curve(scene, analysis, delta_range(analysis, 25 if analysis.model == Model.DYNAMIC else 41))
         falls = np.flatnonzero((j[:-1] > 0) & (j[1:] <= 0))
         if len(falls):
             k = falls[0]
