@@ -383,7 +383,7 @@ NAN, INF = float("nan"), float("inf")
         (lambda: hub_length_for_key(100.0, 0.05, 90e6, allowable_shear=0.0), "allowable_shear"),
         (lambda: hub_proportions(0.0), "shaft diameter d"),
         (lambda: hub_proportions(NAN), "shaft diameter d"),
-        (lambda: hub_proportions(0.05, "cast iron"), r"not recognised; best matches are \['cast_iron'"),
+        (lambda: hub_proportions(0.05, "cast iron"), r"kind 'cast iron' is not known; did you mean 'cast_iron'\? \(allowed: "),
         (lambda: flywheel_peak_torque(0.0, 4.0, [1.0], 1.0), "j_flywheel_ref"),
         (lambda: flywheel_peak_torque(-2.0, 4.0, [1.0], 1.0), "j_flywheel_ref"),
         (lambda: flywheel_peak_torque(NAN, 4.0, [1.0], 1.0), "j_flywheel_ref"),

@@ -14,7 +14,7 @@ drawn in (flyopt.report.display); files of results stay SI.
 
 from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_INPUT, EXIT_OK, fail
 from flyopt.errors import FlyoptError
-from flyopt.names import Model
+from flyopt.names import Model, hint
 
 
 def add_plot_arguments(parser):
@@ -59,11 +59,10 @@ def run_plot(args):
     if args.scene.lower().endswith((".csv", ".parquet")):
         return _plot_results(args)
     if args.what not in plots.PLOTS:
-        import difflib
-
-        close = difflib.get_close_matches(args.what, list(plots.PLOTS), n=1)
-        hint = f"; did you mean {close[0]!r}?" if close else ""
-        return fail(f"--what: unknown diagram {args.what!r}{hint} (known: {', '.join(plots.PLOTS)})", EXIT_INPUT)
+        return fail(
+            f"--what: unknown diagram {args.what!r}{hint(args.what, plots.PLOTS)} (known: {', '.join(plots.PLOTS)})",
+            EXIT_INPUT,
+        )
     plots.check_output(args.output)
     try:
         ax = _draw(args, plots)

@@ -33,7 +33,6 @@ References
 
 from __future__ import annotations
 
-import difflib
 import functools
 import math
 from dataclasses import dataclass
@@ -44,6 +43,7 @@ import numpy as np
 
 from flyopt._toml import tomllib
 from flyopt.errors import shorten
+from flyopt.names import unknown
 
 __all__ = [
     "HubProportions",
@@ -645,9 +645,7 @@ def hub_proportions(d, kind="cast_iron") -> HubProportions:
     d = _positive(d, "shaft diameter d", "m")
     proportions = _load()[3]
     if kind not in proportions:
-        close = difflib.get_close_matches(str(kind), list(proportions), n=3, cutoff=0.5)
-        hint = f"best matches are {close}" if close else f"known are {sorted(proportions)}"
-        raise ValueError(f"hub proportions kind {shorten(kind)} not recognised; {hint}")
+        raise ValueError(f"hub proportions kind {unknown(kind, proportions)}")
     (d_lo, d_hi), (l_lo, l_hi), _ = proportions[kind]
     return HubProportions(d_lo * d, d_hi * d, l_lo * d, l_hi * d)
 

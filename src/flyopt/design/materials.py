@@ -36,7 +36,6 @@ References
 
 from __future__ import annotations
 
-import difflib
 import functools
 import math
 from collections.abc import Iterable, Mapping
@@ -46,6 +45,7 @@ from typing import NamedTuple
 
 from flyopt._toml import tomllib
 from flyopt.errors import shorten
+from flyopt.names import closest
 
 __all__ = [
     "Material",
@@ -620,9 +620,9 @@ def make_material(
     """
     if unknown:
         allowed = [f for f in _FIELDS if f != "name"]
-        hints = {key: difflib.get_close_matches(key, allowed, n=1, cutoff=0.5) for key in unknown}
+        hints = {key: closest(key, allowed) for key in unknown}
         hint = "; ".join(
-            f"{key!r} (did you mean {close[0]!r}?)" if close else repr(key) for key, close in sorted(hints.items())
+            f"{key!r} (did you mean {close!r}?)" if close else repr(key) for key, close in sorted(hints.items())
         )
         raise ValueError(f"material {shorten(name)}: unknown field {hint}; allowed are {allowed}")
     density = _positive_finite(density, "density [kg/m^3]", name)
@@ -802,6 +802,6 @@ def get_material(name: str, library: Mapping[str, Material] | None = None) -> Ma
     key = _fold(name)
     if key in folded:
         return library[folded[key]]
-    close = difflib.get_close_matches(key, list(folded), n=3, cutoff=0.5)
-    hint = f"; best matches are {[folded[c] for c in close]}" if close else f"; known materials are {sorted(library)}"
-    raise ValueError(f"material {shorten(name)} not recognised{hint}")
+    close = closest(key, folded)
+    hint = f"; did you mean {shorten(folded[close])}?" if close else f"; known materials are {sorted(library)}"
+    raise ValueError(f"material {shorten(name)} is not known{hint}")

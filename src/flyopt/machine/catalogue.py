@@ -24,7 +24,6 @@ References
 
 from __future__ import annotations
 
-import difflib
 import functools
 import math
 from dataclasses import dataclass, field
@@ -34,6 +33,7 @@ from typing import NamedTuple
 from flyopt._toml import tomllib
 from flyopt.errors import SceneError, shorten
 from flyopt.machine.motor import InductionMotor
+from flyopt.names import hint
 from flyopt.units import quantity
 
 __all__ = [
@@ -470,6 +470,6 @@ def catalogue(name):
     catalogues = _load()
     if isinstance(name, str) and name in catalogues:
         return catalogues[name]
-    close = difflib.get_close_matches(str(name), list(catalogues), n=1)
-    hint = f"; did you mean {shorten(close[0])}?" if close else ""
-    raise ValueError(f"motor catalogue {shorten(name)} is not known{hint} (known: {', '.join(catalogue_names())})")
+    raise ValueError(
+        f"motor catalogue {shorten(name)} is not known{hint(name, catalogues)} (known: {', '.join(catalogue_names())})"
+    )
