@@ -44,6 +44,7 @@ import numpy as np
 from flyopt._toml import tomllib
 from flyopt.errors import shorten
 from flyopt.names import unknown
+from flyopt.validate import positive
 
 __all__ = [
     "HubProportions",
@@ -85,15 +86,7 @@ refused the standard key of its own nominal length."""
 
 def _positive(value, name, unit):
     """``value`` as a float, or ValueError naming ``name`` unless finite and > 0."""
-    if isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} must be a positive number [{unit}], got {value!r}")
-    try:
-        number = float(value)
-    except (TypeError, ValueError) as err:
-        raise ValueError(f"{name} must be a positive number [{unit}], got {shorten(value)}") from err
-    if not math.isfinite(number) or number <= 0.0:
-        raise ValueError(f"{name} must be a positive finite number [{unit}], got {shorten(value)}")
-    return number
+    return positive(value, f"{name} [{unit}]")
 
 
 def _finite_array(value, name, unit):

@@ -46,6 +46,7 @@ from typing import NamedTuple
 from flyopt._toml import tomllib
 from flyopt.errors import shorten
 from flyopt.names import closest
+from flyopt.validate import number
 
 __all__ = [
     "Material",
@@ -102,22 +103,7 @@ def _number(value, what, name, *, minimum=0.0, strict=True, below=None, allow_no
     """
     if value is None and allow_none:
         return None
-    allowed = f"a finite number {'>' if strict else '>='} {minimum:g}" + (
-        f" and < {below:g}" if below is not None else ""
-    )
-    if isinstance(value, bool):
-        raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, got {value!r}")
-    try:
-        number = float(value)
-    except (TypeError, ValueError) as err:
-        raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, got {shorten(value)}") from err
-    if (
-        not math.isfinite(number)
-        or (number <= minimum if strict else number < minimum)
-        or (below is not None and number >= below)
-    ):
-        raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, got {shorten(value)}")
-    return number
+    return number(value, f"material {shorten(name)}: {what}", minimum=minimum, strict=strict, below=below)
 
 
 def _positive_finite(value, what, name):

@@ -35,6 +35,7 @@ from flyopt.errors import SceneError, shorten
 from flyopt.machine.motor import InductionMotor
 from flyopt.names import hint
 from flyopt.units import quantity
+from flyopt.validate import number
 
 __all__ = [
     "QUANTITIES",
@@ -106,20 +107,12 @@ class MotorDataError(ValueError):
 
 def _number(value, field, name, *, minimum=0.0, strict=True, below=None, allowed=None):
     """``value`` as a finite float above ``minimum`` (and under ``below``), else MotorDataError."""
-    allowed = allowed or (
-        f"a finite number {'>' if strict else '>='} {minimum:g}" + (f" and < {below:g}" if below is not None else "")
-    )
     try:
-        number = math.nan if isinstance(value, bool) else float(value)
-    except (TypeError, ValueError):
-        number = math.nan
-    if (
-        not math.isfinite(number)
-        or (number <= minimum if strict else number < minimum)
-        or (below is not None and number >= below)
-    ):
-        raise MotorDataError(field, f"motor {shorten(name)}: {field} must be {allowed}, got {shorten(value)}")
-    return number
+        return number(
+            value, f"motor {shorten(name)}: {field}", minimum=minimum, strict=strict, below=below, allowed=allowed
+        )
+    except ValueError as err:
+        raise MotorDataError(field, str(err)) from None
 
 
 @dataclass(frozen=True)
