@@ -33,7 +33,7 @@ import inspect
 import math
 from dataclasses import dataclass, field
 
-from flyopt.names import Model
+from flyopt.names import Geometry, Model
 from flyopt.report import display
 from flyopt.report.display import number
 
@@ -568,7 +568,7 @@ class _Builder:
 
     def width_row(self, c):
         """The wheel's width and, for a rim, its radial thickness (a disc is the annulus with no hole, section 9)."""
-        if c.geometry == "disc":
+        if c.geometry == Geometry.DISC:
             return (
                 "axial width B",
                 (
@@ -1407,7 +1407,7 @@ class _Builder:
         """The wheel's mass and inertia (section 9) and its rim speed (section 10), numbers substituted."""
         si, res, sq = self.si, self.result, self.squared
         rho = getattr(material, "density", None)
-        if c.geometry == "disc" and not c.d_inner and len(c.parts) <= 1 and rho:
+        if c.geometry == Geometry.DISC and not c.d_inner and len(c.parts) <= 1 and rho:
             d = si(c.d_outer, "length")
             blocks.append(
                 self.eq(
@@ -1438,7 +1438,7 @@ class _Builder:
                     9,
                 )
             )
-            if c.geometry == "thin_rim":
+            if c.geometry == Geometry.THIN_RIM:
                 blocks.append(
                     self.eq(
                         "rim_inertia_thin",

@@ -31,7 +31,7 @@ import numpy as np
 
 from flyopt.cycle.indicator import ExcessWork, required_inertia
 from flyopt.errors import SceneError
-from flyopt.names import Model
+from flyopt.names import Geometry, Model
 from flyopt.report import display
 
 SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
@@ -1229,15 +1229,15 @@ def _section_parts(c):
     and the arms (r_inner, r_outer, major, minor) or None."""
     r_o = c.d_outer / 2.0
     r_bore = (c.bore or 0.0) / 2.0
-    if c.geometry == "disc":
+    if c.geometry == Geometry.DISC:
         return [("disc", r_bore, r_o, c.b)], None
     r_i = c.d_inner / 2.0
     rim = ("rim", r_i, r_o, c.b)
-    if c.geometry == "rim_web":
+    if c.geometry == Geometry.RIM_WEB:
         if not c.bore:
             return [("web", 0.0, r_i, c.t_web), rim], None
         return [("hub", r_bore, c.d_hub / 2.0, c.l_hub), ("web", c.d_hub / 2.0, r_i, c.t_web), rim], None
-    if c.geometry == "rim_arms":
+    if c.geometry == Geometry.RIM_ARMS:
         return [("hub", r_bore, c.d_hub / 2.0, c.l_hub), rim], (c.d_hub / 2.0, r_i, c.arm_major, c.arm_minor)
     return [rim], None
 
@@ -1511,7 +1511,7 @@ def _section_notes(c, length, text):
             "of this design, and their inertia is left out, on the safe side (docs/flywheel-design.md, "
             "section 9)."
         )
-    disc = c.geometry == "disc"
+    disc = c.geometry == Geometry.DISC
     ratio = c.d_outer / (c.b if disc else min(c.b, c.h))
     if ratio >= _SLENDER:
         binding = ", ".join(c.binding) if c.binding else "none"
