@@ -682,8 +682,8 @@ def test_design_flywheel_rejects(kwargs, match):
 @pytest.mark.parametrize(
     "kwargs, match",
     [
-        (dict(geometry="rimm"), "best matches.*rim"),
-        (dict(objective="weight"), "objective 'weight' not recognised"),
+        (dict(geometry="rimm"), r"geometry 'rimm' is not known; did you mean 'rim'\? \(allowed: thin_rim, rim, "),
+        (dict(objective="weight"), r"objective 'weight' is not known \(allowed: mass, outer_diameter, cost\)"),
         (dict(hb_ratio=(2.0, 1.5)), "must not exceed"),
         (dict(hb_ratio=(0.0, 1.5)), "hb_ratio min"),
         (dict(hb_ratio=1.5), "pair"),

@@ -67,10 +67,8 @@ def _version():
     from pathlib import Path
 
     try:
-        try:
-            import tomllib
-        except ModuleNotFoundError:  # pragma: no cover - Python 3.10 without tomli
-            import tomli as tomllib
+        from flyopt._toml import tomllib  # ImportError: Python 3.10 without tomli
+
         project = tomllib.loads(
             (Path(__file__).resolve().parents[2] / "pyproject.toml").read_text(encoding="utf-8")
         ).get("project", {})

@@ -20,6 +20,7 @@ if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
     from flyopt.machine.reduce import Machine
     from flyopt.sizing.choose import Requirement
 from flyopt.machine.transmission import inertia_on_shaft
+from flyopt.names import Model
 from flyopt.units import gd2_from_inertia
 
 
@@ -119,7 +120,7 @@ class Analysis:
         """Whether δ stays below the allowed value however small the inertia (the dynamic model, a motor
         stiff enough that its slip alone holds the speed): ``j_margin`` is then not a flywheel at which δ
         reaches its limit but the bound −min J_e, where the machine would have no inertia left."""
-        if self.requirement is None or self.requirement.model != "dynamic" or self.flywheel_needed:
+        if self.requirement is None or self.requirement.model != Model.DYNAMIC or self.flywheel_needed:
             return False
         detail = self.requirement.detail
         return detail.limit == "delta" and detail.solution.delta < self.delta * (1 - 1e-6)
@@ -428,7 +429,7 @@ def _speed_curve(analysis):
     machine = analysis.machine
     if machine is None:
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
-    if analysis.requirement.model == "dynamic":
+    if analysis.requirement.model == Model.DYNAMIC:
         solution = analysis.requirement.detail.solution
         if solution.j_flywheel == analysis.j_required:
             return solution

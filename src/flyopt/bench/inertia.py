@@ -11,11 +11,7 @@ from __future__ import annotations
 
 import math
 
-try:
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
-
+from flyopt._toml import tomllib
 from flyopt.bench.timing import Row, measure, once, set_ratios
 from flyopt.io.scene import from_dict
 from flyopt.machine.reduce import reduce

@@ -14,6 +14,7 @@ drawn in (flyopt.report.display); files of results stay SI.
 
 from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_INPUT, EXIT_OK, fail
 from flyopt.errors import FlyoptError
+from flyopt.names import Model, hint
 
 
 def add_plot_arguments(parser):
@@ -58,11 +59,10 @@ def run_plot(args):
     if args.scene.lower().endswith((".csv", ".parquet")):
         return _plot_results(args)
     if args.what not in plots.PLOTS:
-        import difflib
-
-        close = difflib.get_close_matches(args.what, list(plots.PLOTS), n=1)
-        hint = f"; did you mean {close[0]!r}?" if close else ""
-        return fail(f"--what: unknown diagram {args.what!r}{hint} (known: {', '.join(plots.PLOTS)})", EXIT_INPUT)
+        return fail(
+            f"--what: unknown diagram {args.what!r}{hint(args.what, plots.PLOTS)} (known: {', '.join(plots.PLOTS)})",
+            EXIT_INPUT,
+        )
     plots.check_output(args.output)
     try:
         ax = _draw(args, plots)
@@ -119,11 +119,11 @@ def _draw(args, plots):
         return plots.plot_speed(scene, analysis, speed, simulation, units=units)
     if args.what == "energy_mass":
         plots.check_energy_mass(analysis)
-        if analysis.model != "energy_mass":  # the diagram draws that model's tangents
+        if analysis.model != Model.ENERGY_MASS:  # the diagram draws that model's tangents
             analysis = analyse(scene, model="energy_mass")
     if args.what == "inertia_delta":
         plots.check_inertia_delta(analysis)
-        curve = None if analysis.model == "energy" else inertia_curve(scene, analysis)
+        curve = None if analysis.model == Model.ENERGY else inertia_curve(scene, analysis)
         return plots.plot_inertia_delta(scene, analysis, units=units, curve=curve)
     return getattr(plots, f"plot_{args.what}")(scene, analysis, units=units)
 
@@ -164,7 +164,7 @@ def inertia_curve(scene, analysis, deltas=None):
     if deltas is None:
         from flyopt.report.plots import delta_range
 
-        delta, j = inertia_curve(scene, analysis, delta_range(analysis, 25 if analysis.model == "dynamic" else 41))
+        delta, j = inertia_curve(scene, analysis, delta_range(analysis, 25 if analysis.model == Model.DYNAMIC else 41))
         falls = np.flatnonzero((j[:-1] > 0) & (j[1:] <= 0))
         if len(falls):
             k = falls[0]

@@ -21,6 +21,7 @@ so), 4 the verification flagged the design (written, and says so).
 """
 
 from flyopt.cli.exits import solution_exit
+from flyopt.names import Model
 
 #: The report's formats, by the suffix of the output file.
 FORMATS = {".html": "html", ".htm": "html", ".pdf": "pdf"}
@@ -213,7 +214,7 @@ def _machine(inputs):
         inputs.textbook = textbook_requirement(machine, analysis.omega_mean, analysis.delta)
     if machine.speed_dependent:
         return  # the energy–mass diagram needs torques of the angle only (flyopt.report.plots refuses it)
-    if analysis.model == "energy_mass":
+    if analysis.model == Model.ENERGY_MASS:
         inputs.energy_mass = analysis
         detail = analysis.requirement.detail
         excess = machine.angle_only()
@@ -236,7 +237,7 @@ def _inertia_delta(inputs):
     from flyopt.report import plots
 
     analysis = inputs.solution.analysis
-    if analysis.model == "energy":
+    if analysis.model == Model.ENERGY:
         return  # the diagram draws the closed form itself
     try:
         plots.check_inertia_delta(analysis)

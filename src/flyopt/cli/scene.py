@@ -1,6 +1,7 @@
 """``flyopt solve`` and ``flyopt check``: one scene, analysed and designed or checked."""
 
 from flyopt.cli.exits import EXIT_OK, solution_exit
+from flyopt.names import Model
 from flyopt.report import display
 
 
@@ -30,7 +31,7 @@ def add_solve_arguments(parser):
     )
     parser.add_argument(
         "--model",
-        choices=("energy", "energy_mass", "dynamic"),
+        choices=Model.values(),
         help="force the model that sizes the flywheel (default: the cheapest exact one)",
     )
     parser.add_argument(

@@ -12,12 +12,12 @@ arithmetic happens.
 """
 
 import ast
-import difflib
 import math
 
 import numpy as np
 
 from flyopt.errors import ExpressionError, shorten
+from flyopt.names import closest
 
 MAX_LENGTH = 2000
 """Longest expression accepted [characters]: a torque curve, not a program."""
@@ -339,6 +339,6 @@ class Expression:
 
     def _hint(self, name, functions=False):
         pool = list(FUNCTIONS) if functions else [*self.variables, *CONSTANTS]
-        close = difflib.get_close_matches(name, pool, n=1)
+        close = closest(name, pool)
         allowed = ", ".join(pool)
-        return f" (did you mean {shorten(close[0])}? allowed: {allowed})" if close else f" (allowed: {allowed})"
+        return f" (did you mean {shorten(close)}? allowed: {allowed})" if close else f" (allowed: {allowed})"

@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from flyopt.names import Geometry
+
 __all__ = ["BINDING_NAMES", "BINDING_BITS", "ACTIVE_RTOL", "VERIFY_RTOL", "binding_mask", "binding_names", "violations"]
 
 #: Names that ``Candidate.binding`` may contain, in the order reports list them.
@@ -97,7 +99,7 @@ def binding_mask(
         "max_outer_diameter": d_outer >= envelope * (1.0 - rtol),
         "max_width": b >= max_width * (1.0 - rtol),
     }
-    if geometry_name != "disc":
+    if geometry_name != Geometry.DISC:
         flags["hb_min"] = hb <= hb_min * (1.0 + rtol)
         flags["hb_max"] = hb >= hb_max * (1.0 - rtol)
         flags["inner_diameter"] = d_inner <= d_outer * rtol
@@ -146,7 +148,7 @@ def violations(geometry_name, j_wheel, j_shaft, d_outer, d_inner, b, hb, cap, ma
         found.append(f"outer diameter {d_outer:.9g} > cap {cap:.9g} m")
     if b > max_width * (1.0 + tol):
         found.append(f"width {b:.9g} > {max_width:.9g} m")
-    if geometry_name != "disc":
+    if geometry_name != Geometry.DISC:
         if not hb_min * (1.0 - tol) <= hb <= hb_max * (1.0 + tol):
             found.append(f"H/B {hb:.9g} outside [{hb_min}, {hb_max}]")
         if d_inner < -tol * d_outer:

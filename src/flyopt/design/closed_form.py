@@ -79,6 +79,7 @@ import math
 import numpy as np
 
 from flyopt.design import check, geometry
+from flyopt.names import Geometry
 
 __all__ = [
     "METHOD",
@@ -171,7 +172,7 @@ def max_inertia_one(geometry_name, density, d_outer_max, hb_ratio=(1.5, 2.0), ma
     hb_min, hb_max = hb_ratio
     b_max = max_width
     cap = d_outer_max
-    if geometry_name == "disc":
+    if geometry_name == Geometry.DISC:
         d = cap if d_mean is None else d_mean
         if d > cap:
             return 0.0, None
@@ -191,7 +192,7 @@ def max_inertia_one(geometry_name, density, d_outer_max, hb_ratio=(1.5, 2.0), ma
 
     h_top = min(cap / 2.0, hb_max * b_max)
     trials = [h_top]
-    if geometry_name == "thin_rim":
+    if geometry_name == Geometry.THIN_RIM:
         h_break = min(hb_min * b_max, h_top)
         trials += [h_break, min(0.4 * cap, h_break), min(max(0.25 * cap, h_break), h_top)]
     best = (0.0, None)
@@ -215,7 +216,7 @@ def cap_needed(geometry_name, density, j_needed, cap, hb_ratio, max_width, d_mea
         return max_inertia_one(geometry_name, density, c, hb_ratio, max_width, d_mean)[0]
 
     if d_mean is not None:
-        if geometry_name == "disc":
+        if geometry_name == Geometry.DISC:
             saturated = d_mean
         else:
             hb_max = hb_ratio[1]
@@ -224,7 +225,7 @@ def cap_needed(geometry_name, density, j_needed, cap, hb_ratio, max_width, d_mea
         if j_sup < j_needed:
             return None, j_sup
         low, high = max(cap, d_mean), saturated
-        if geometry_name == "disc" or j_max(low) >= j_needed:
+        if geometry_name == Geometry.DISC or j_max(low) >= j_needed:
             return low, j_sup
     else:
         # D_m free. J_max is homogeneous of degree 5 in (C, B_max): scaling an admissible
@@ -234,8 +235,8 @@ def cap_needed(geometry_name, density, j_needed, cap, hb_ratio, max_width, d_mea
         # cap) and at least λ^3 / 2 (keep H and B, push D_m out to >= λ D_m; with
         # H <= D_m, D_m^2 + H^2 <= 2 D_m^2), which brackets the root.
         j_cap = j_max(cap)
-        if max_width == math.inf or geometry_name == "disc":
-            power = 4.0 if geometry_name == "disc" else 5.0
+        if max_width == math.inf or geometry_name == Geometry.DISC:
+            power = 4.0 if geometry_name == Geometry.DISC else 5.0
             return cap * (j_needed / j_cap) ** (1.0 / power), math.inf
         low = cap * (j_needed / j_cap) ** 0.2
         if j_max(low) >= j_needed:  # the width does not bind there: degree 5 is exact
@@ -312,7 +313,7 @@ def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=n
     )
     pinned = ~np.isnan(pin)
     out = np.zeros(rho.shape)
-    if geometry_name == "disc":
+    if geometry_name == Geometry.DISC:
         d = np.where(pinned, pin, cap)
         fits = d <= cap
         limited = np.isfinite(b_max)
@@ -322,7 +323,7 @@ def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=n
     def inertia(d, h):
         b = np.minimum(h / a, b_max)
         mass = geometry.rim_mass(d, h, b, rho)
-        if geometry_name == "thin_rim":
+        if geometry_name == Geometry.THIN_RIM:
             return geometry.thin_rim_inertia(mass, d)
         return geometry.rim_inertia(mass, d, h)
 
@@ -333,7 +334,7 @@ def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=n
         # free: the same trial thicknesses as max_inertia_one, best of them
         h_top = np.minimum(cap / 2.0, c * b_max)
         trials = [h_top]
-        if geometry_name == "thin_rim":
+        if geometry_name == Geometry.THIN_RIM:
             h_break = np.minimum(a * b_max, h_top)
             trials += [h_break, np.minimum(0.4 * cap, h_break), np.minimum(np.maximum(0.25 * cap, h_break), h_top)]
         best = np.zeros(rho.shape)
@@ -491,14 +492,14 @@ def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, m
     j, rho, cap, a, c, b_max = j_shaft, density, d_outer_max, hb_min, hb_max, max_width
     if d_mean is not None and math.isnan(d_mean):
         d_mean = None
-    if geometry_name == "disc":
+    if geometry_name == Geometry.DISC:
         d = cap if d_mean is None else d_mean
         return d / 2.0, d / 2.0, 32.0 * j / (math.pi * rho * d**4)
     if d_mean is None:
-        h = _rim_free_root_one(geometry_name == "thin_rim", j, rho, cap, a, c, b_max)
+        h = _rim_free_root_one(geometry_name == Geometry.THIN_RIM, j, rho, cap, a, c, b_max)
         return cap - h, h, min(h / a, b_max)
     d = d_mean
-    if geometry_name == "thin_rim":
+    if geometry_name == Geometry.THIN_RIM:
         base = math.pi * rho * d**3
         h = max(math.sqrt(4.0 * a * j / base), 4.0 * j / (base * b_max))
         return d, h, 4.0 * j / (base * h)
@@ -568,7 +569,7 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
     shape = j.shape
     j_max = max_inertia(geometry_name, rho, cap, a, c, b_max, pin)
     pinned = ~np.isnan(pin)
-    fits = np.where(geometry_name == "disc", pin <= cap, pin < cap) | ~pinned
+    fits = np.where(geometry_name == Geometry.DISC, pin <= cap, pin < cap) | ~pinned
     feasible = fits & (j > 0.0) & (j <= j_max)
     nan = np.full(shape, np.nan)
     d_mean_out, h_out, b_out = nan.copy(), nan.copy(), nan.copy()
@@ -576,7 +577,7 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
     def put(mask, d, h, b):
         d_mean_out[mask], h_out[mask], b_out[mask] = d, h, b
 
-    if geometry_name == "disc":
+    if geometry_name == Geometry.DISC:
         for mask in (feasible & ~pinned, feasible & pinned):
             if mask.any():
                 d = np.where(pinned[mask], pin[mask], cap[mask])
@@ -585,7 +586,7 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
         mass = geometry.disc_mass(2.0 * d_mean_out, b_out, rho)
         j_wheel = geometry.disc_inertia(mass, 2.0 * d_mean_out)
     else:
-        thin = geometry_name == "thin_rim"
+        thin = geometry_name == Geometry.THIN_RIM
         free = feasible & ~pinned
         if free.any():
             h = _rim_free_root(thin, j[free], rho[free], cap[free], a[free], c[free], b_max[free])

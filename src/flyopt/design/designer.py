@@ -31,10 +31,12 @@ from dataclasses import dataclass
 from flyopt.design import check, closed_form, geometry, rank, wheel, wheel_design
 from flyopt.design.materials import Material
 from flyopt.design.result import Candidate, DesignResult
-from flyopt.design.spec import DesignSpec, MountShaft, _choice, _finite, _positive
+from flyopt.design.spec import DesignSpec, MountShaft
 from flyopt.design.wheel_design import bore_of
 from flyopt.errors import SolverFailed
 from flyopt.machine.transmission import inertia_at_reference, inertia_on_shaft
+from flyopt.names import Criterion, Geometry, Method, Objective
+from flyopt.validate import choice, finite, positive
 
 __all__ = ["design_flywheel", "rim_speed_limit", "METHODS"]
 
@@ -101,13 +103,13 @@ def _explain_infeasible(combo, spec):
         return text
 
     pinned = spec.d_mean
-    if pinned is not None and geo != "disc" and pinned >= combo.cap:
+    if pinned is not None and geo != Geometry.DISC and pinned >= combo.cap:
         cap, pin = _g_apart(combo.cap, pinned)
         return (
             f"{combo.label}: {cap_text} at {cap} m, which leaves no room for a rim "
             f"around the pinned mean diameter {pin} m"
         ), None
-    if pinned is not None and geo == "disc" and pinned > combo.cap:
+    if pinned is not None and geo == Geometry.DISC and pinned > combo.cap:
         cap, pin = _g_apart(combo.cap, pinned)
         return (f"{combo.label}: {cap_text} at {cap} m, below the pinned diameter {pin} m"), None
     needed, j_sup = closed_form.cap_needed(
@@ -119,7 +121,7 @@ def _explain_infeasible(combo, spec):
             limits.append(f"{'D' if geo == 'disc' else 'D_m'} pinned at {_g(pinned)} m")
         if spec.max_width < math.inf:
             limits.append(f"B <= {_g(spec.max_width)} m")
-        if geo != "disc":
+        if geo != Geometry.DISC:
             limits.append(f"{_g(hb_min)} <= H/B <= {_g(hb_max)}")
             limits.append("D_inner > 0")
         text = ", ".join(limits[:-1]) + " and " + limits[-1] if len(limits) > 1 else limits[0]
@@ -155,7 +157,7 @@ def _solve_closed_form(pending, spec):
         d_mean, h, b = closed_form.lightest_one(
             spec.geometry, combo.j_shaft, rho, combo.cap, hb_min, hb_max, b_max, spec.d_mean
         )
-        if spec.geometry == "disc":
+        if spec.geometry == Geometry.DISC:
             mass = geometry.disc_mass(2 * d_mean, b, rho)
             j_wheel = geometry.disc_inertia(mass, 2 * d_mean)
         else:
@@ -210,7 +212,7 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
     objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
     dims = (
         wheel.Dims(d_outer=d_outer, h=d_outer / 2.0, b=b)
-        if spec.geometry == "disc"
+        if spec.geometry == Geometry.DISC
         else wheel.Dims(d_outer=d_outer, h=h, b=b)
     )
     structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec, 0.0)
@@ -254,7 +256,7 @@ def rim_speed_limit(material, spec):
     Under the stress criterion, which needs no rim speed limit, a material given by strengths with no
     factor from either gives NaN instead of refusing.
     """
-    if spec.criterion != "rim_speed":
+    if spec.criterion != Criterion.RIM_SPEED:
         try:
             return material.rim_speed_limit(safety_factor=spec.safety_factor)
         except ValueError:
@@ -329,7 +331,9 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
         "allow_param": solution.allow_params,
         "min_wall": wheel_design._min_wall(spec, m),
     }
-    sensitivities = wheel_design.sensitivities(solution, mass, limits) if spec.objective != "outer_diameter" else ()
+    sensitivities = (
+        wheel_design.sensitivities(solution, mass, limits) if spec.objective != Objective.OUTER_DIAMETER else ()
+    )
     common.pop("bore")
     return Candidate(
         feasible=True,
@@ -383,7 +387,7 @@ def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pr
     tasks = []
     for order, combo in whole:
         bound, why = wheel_design.objective_bound(combo, spec)
-        for n_arms in spec.arms if spec.geometry == "rim_arms" else (0,):
+        for n_arms in spec.arms if spec.geometry == Geometry.RIM_ARMS else (0,):
             tasks.append((bound, order, n_arms, combo, why))
     tasks.sort(key=lambda t: t[:3])
     model = None
@@ -471,13 +475,13 @@ def _whole_violations(combo, spec, dims, j_wheel, checked):
         found.append(f"outer diameter {dims.d_outer:.9g} > cap {combo.cap:.9g} m")
     if dims.b > spec.max_width * (1.0 + tol) or dims.l_hub > spec.max_width * (1.0 + tol):
         found.append(f"width {max(dims.b, dims.l_hub):.9g} > {spec.max_width:.9g} m")
-    if spec.geometry != "disc":
+    if spec.geometry != Geometry.DISC:
         hb = dims.h / dims.b
         if not spec.hb_ratio[0] * (1.0 - tol) <= hb <= spec.hb_ratio[1] * (1.0 + tol):
             found.append(f"H/B {hb:.9g} outside [{spec.hb_ratio[0]}, {spec.hb_ratio[1]}]")
         if dims.d_inner < max(dims.d_hub, 0.0) * (1.0 - tol):
             found.append(f"the rim's inner diameter {dims.d_inner:.9g} m is inside the hub ({dims.d_hub:.9g} m)")
-    if spec.criterion == "stress" and checked is not None:
+    if spec.criterion == Criterion.STRESS and checked is not None:
         for part in checked.parts:
             if part.stress > part.allowable * (1.0 + tol):
                 found.append(
@@ -573,24 +577,24 @@ def design_flywheel(
     infeasibility exactly (no NLP is solved then); every feasible combination
     is solved to optimality. Ranking is by the one rule of :mod:`flyopt.design.rank`.
     """
-    j_required = _finite(j_required, "j_required [kg*m^2]")
-    omega = _positive(omega, "omega", "[rad/s]")
+    j_required = finite(j_required, "j_required [kg*m^2]")
+    omega = positive(omega, "omega [rad/s]")
     _check_unique(shafts, "shaft", MountShaft)
     _check_unique(materials, "material", Material)
     if spec is None:
         spec = DesignSpec()
     if not isinstance(spec, DesignSpec):
         raise ValueError(f"spec must be a DesignSpec, got {spec!r}")
-    if spec.objective == "cost":
+    if spec.objective == Objective.COST:
         missing = [m.name for m in materials if m.cost is None]
         if missing:
             raise ValueError(f"objective 'cost' needs a cost per kg on every material; missing for {missing}")
-    _choice(method, ("ipopt", "auto", "closed_form"), "method")
+    choice(method, Method, "method")
     closed = False
     textbook = [spec.textbook(bore_of(spec, shaft)) for shaft in shafts]
-    if method != "ipopt" and all(textbook):
+    if method != Method.IPOPT and all(textbook):
         closed = closed_form.covers(spec.geometry, spec.objective, spec.d_mean is not None)
-        if method == "closed_form" and not closed:
+        if method == Method.CLOSED_FORM and not closed:
             raise ValueError(
                 f"the closed form does not cover geometry {spec.geometry!r} with objective "
                 f"{spec.objective!r}; use method 'auto' or 'ipopt'"
@@ -615,8 +619,8 @@ def design_flywheel(
         structure = nlp.ModelStructure(
             geometry=spec.geometry,
             pinned=spec.d_mean is not None,
-            collapsed=spec.geometry != "disc" and spec.hb_ratio[0] == spec.hb_ratio[1],
-            objective="outer_diameter" if spec.objective == "outer_diameter" else "mass",
+            collapsed=spec.geometry != Geometry.DISC and spec.hb_ratio[0] == spec.hb_ratio[1],
+            objective="outer_diameter" if spec.objective == Objective.OUTER_DIAMETER else "mass",
         )
         model = nlp.get_model(structure, solver_options)
     envelope = spec.max_outer_diameter
@@ -628,7 +632,9 @@ def design_flywheel(
             shaft_omega = omega * shaft.speed_ratio
             v_max = rim_speed_limit(material, spec)
             cap_speed = (
-                geometry.outer_diameter_for_rim_speed(v_max, shaft_omega) if spec.criterion == "rim_speed" else math.inf
+                geometry.outer_diameter_for_rim_speed(v_max, shaft_omega)
+                if spec.criterion == Criterion.RIM_SPEED
+                else math.inf
             )
             combo = _Combination(
                 material=material,
@@ -650,7 +656,7 @@ def design_flywheel(
                 spec.geometry, material.density, combo.cap, spec.hb_ratio, spec.max_width, spec.d_mean
             )[0]
             pinned_fits = spec.d_mean is None or (
-                spec.d_mean <= combo.cap if spec.geometry == "disc" else spec.d_mean < combo.cap
+                spec.d_mean <= combo.cap if spec.geometry == Geometry.DISC else spec.d_mean < combo.cap
             )
             if pinned_fits and combo.j_shaft <= combo.j_max:
                 if closed:
@@ -712,9 +718,9 @@ def design_flywheel(
     bounds = []
     if spec.max_width < math.inf:
         bounds.append("max_width: B <= max_width")
-    if spec.geometry == "disc" and spec.d_mean is None:
+    if spec.geometry == Geometry.DISC and spec.d_mean is None:
         bounds.append("outer_diameter: D <= min(2 v_max/omega', max_outer_diameter)")
-    if spec.geometry != "disc" and spec.d_mean is not None:
+    if spec.geometry != Geometry.DISC and spec.d_mean is not None:
         bounds.append("outer_diameter and inner_diameter: H <= min(cap - D_m, D_m)")
     description["bounds"] = bounds
     limits = spec.to_dict()

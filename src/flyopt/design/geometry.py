@@ -30,6 +30,8 @@ References
 
 import math
 
+from flyopt.names import Geometry
+
 __all__ = [
     "GEOMETRIES",
     "BARE",
@@ -49,15 +51,15 @@ __all__ = [
 
 #: The bare wheels of the textbook: one body, sized by a closed form where it is exact.
 BARE = {
-    "thin_rim": "thin rim, J = m D_m^2/4 (textbook model; slightly low, errs safe)",
-    "rim": "exact annulus, J = m (D_m^2 + H^2)/4",
-    "disc": "solid disc, J = m D^2/8, m = pi D^2 B rho/4 (an annulus when it has a bore)",
+    Geometry.THIN_RIM: "thin rim, J = m D_m^2/4 (textbook model; slightly low, errs safe)",
+    Geometry.RIM: "exact annulus, J = m (D_m^2 + H^2)/4",
+    Geometry.DISC: "solid disc, J = m D^2/8, m = pi D^2 B rho/4 (an annulus when it has a bore)",
 }
 #: Whole wheels: a rim carried on a web or on arms, with a hub on the shaft
 #: (flyopt.design.wheel holds their parts).
 WHEELS = {
-    "rim_web": "rim, web and hub: a stepped disc, every part counted in J and mass",
-    "rim_arms": "rim on n elliptical arms and a hub, every part counted in J and mass",
+    Geometry.RIM_WEB: "rim, web and hub: a stepped disc, every part counted in J and mass",
+    Geometry.RIM_ARMS: "rim on n elliptical arms and a hub, every part counted in J and mass",
 }
 #: Geometry model names understood by flyopt, with their inertia formula.
 GEOMETRIES = {**BARE, **WHEELS}
@@ -249,10 +251,10 @@ def wheel_inertia(geometry_name, density, d_mean, h, b):
     float or ndarray
         J on the wheel's own shaft [kg*m^2].
     """
-    if geometry_name == "disc":
+    if geometry_name == Geometry.DISC:
         d = 2.0 * d_mean
         return disc_inertia(disc_mass(d, b, density), d)
     mass = rim_mass(d_mean, h, b, density)
-    if geometry_name == "thin_rim":
+    if geometry_name == Geometry.THIN_RIM:
         return thin_rim_inertia(mass, d_mean)
     return rim_inertia(mass, d_mean, h)

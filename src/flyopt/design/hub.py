@@ -31,21 +31,15 @@ References
 
 from __future__ import annotations
 
-import difflib
 import functools
 import math
-import sys
 from dataclasses import dataclass
 from importlib import resources
 from typing import NamedTuple
 
-from flyopt.errors import shorten
-from flyopt.validate import positive as _positive
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised only on Python 3.10
-    import tomli as tomllib
+from flyopt._toml import tomllib
+from flyopt.names import unknown
+from flyopt.validate import positive
 
 __all__ = [
     "HubProportions",
@@ -82,6 +76,11 @@ refused the standard key of its own nominal length."""
 # --------------------------------------------------------------------------
 # input checks
 # --------------------------------------------------------------------------
+
+
+def _positive(value, name, unit):
+    """``value`` as a float, or ValueError naming ``name`` unless finite and > 0."""
+    return positive(value, f"{name} [{unit}]")
 
 
 # --------------------------------------------------------------------------
@@ -618,9 +617,7 @@ def hub_proportions(d, kind="cast_iron") -> HubProportions:
     d = _positive(d, "shaft diameter d", "m")
     proportions = _load()[3]
     if kind not in proportions:
-        close = difflib.get_close_matches(str(kind), list(proportions), n=3, cutoff=0.5)
-        hint = f"best matches are {close}" if close else f"known are {sorted(proportions)}"
-        raise ValueError(f"hub proportions kind {shorten(kind)} not recognised; {hint}")
+        raise ValueError(f"hub proportions kind {unknown(kind, proportions)}")
     (d_lo, d_hi), (l_lo, l_hi), _ = proportions[kind]
     return HubProportions(d_lo * d, d_hi * d, l_lo * d, l_hi * d)
 

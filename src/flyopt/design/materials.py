@@ -36,21 +36,17 @@ References
 
 from __future__ import annotations
 
-import difflib
 import functools
 import math
-import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields
 from importlib import resources
 from typing import NamedTuple
 
+from flyopt._toml import tomllib
 from flyopt.errors import shorten
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised only on Python 3.10
-    import tomli as tomllib
+from flyopt.names import closest
+from flyopt.validate import number
 
 __all__ = [
     "Material",
@@ -107,22 +103,7 @@ def _number(value, what, name, *, minimum=0.0, strict=True, below=None, allow_no
     """
     if value is None and allow_none:
         return None
-    allowed = f"a finite number {'>' if strict else '>='} {minimum:g}" + (
-        f" and < {below:g}" if below is not None else ""
-    )
-    if isinstance(value, bool):
-        raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, got {value!r}")
-    try:
-        number = float(value)
-    except (TypeError, ValueError) as err:
-        raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, got {shorten(value)}") from err
-    if (
-        not math.isfinite(number)
-        or (number <= minimum if strict else number < minimum)
-        or (below is not None and number >= below)
-    ):
-        raise ValueError(f"material {shorten(name)}: {what} must be {allowed}, got {shorten(value)}")
-    return number
+    return number(value, f"material {shorten(name)}: {what}", minimum=minimum, strict=strict, below=below)
 
 
 def _positive_finite(value, what, name):
@@ -633,9 +614,9 @@ def make_material(
     """
     if unknown:
         allowed = [f for f in _FIELDS if f != "name"]
-        hints = {key: difflib.get_close_matches(key, allowed, n=1, cutoff=0.5) for key in unknown}
+        hints = {key: closest(key, allowed) for key in unknown}
         hint = "; ".join(
-            f"{key!r} (did you mean {close[0]!r}?)" if close else repr(key) for key, close in sorted(hints.items())
+            f"{key!r} (did you mean {close!r}?)" if close else repr(key) for key, close in sorted(hints.items())
         )
         raise ValueError(f"material {shorten(name)}: unknown field {hint}; allowed are {allowed}")
     density = _positive_finite(density, "density [kg/m^3]", name)
@@ -815,6 +796,6 @@ def get_material(name: str, library: Mapping[str, Material] | None = None) -> Ma
     key = _fold(name)
     if key in folded:
         return library[folded[key]]
-    close = difflib.get_close_matches(key, list(folded), n=3, cutoff=0.5)
-    hint = f"; best matches are {[folded[c] for c in close]}" if close else f"; known materials are {sorted(library)}"
-    raise ValueError(f"material {shorten(name)} not recognised{hint}")
+    close = closest(key, folded)
+    hint = f"; did you mean {shorten(folded[close])}?" if close else f"; known materials are {sorted(library)}"
+    raise ValueError(f"material {shorten(name)} is not known{hint}")

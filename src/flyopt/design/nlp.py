@@ -52,6 +52,7 @@ import casadi as ca
 
 from flyopt.design import geometry
 from flyopt.errors import SolverFailed
+from flyopt.names import Geometry, Objective
 
 __all__ = [
     "DEFAULT_SOLVER_OPTIONS",
@@ -182,11 +183,11 @@ def _build_model(structure, options):
     geo, pinned, collapsed, objective = structure
     names = []
     cols = {}
-    order = ["d_mean", "h", "b"] if geo != "disc" else ["diameter", "b"]
+    order = ["d_mean", "h", "b"] if geo != Geometry.DISC else ["diameter", "b"]
     for name in order:
         if name in ("d_mean", "diameter") and pinned:
             continue
-        if name == "b" and geo != "disc" and collapsed:
+        if name == "b" and geo != Geometry.DISC and collapsed:
             continue
         cols[name] = len(names)
         names.append(name)
@@ -198,11 +199,11 @@ def _build_model(structure, options):
     g, g_names = [], []
     uses_p = False
     p = ca.SX.sym("p", 1)
-    if geo == "disc":
+    if geo == Geometry.DISC:
         xd, xb = var("diameter"), var("b")
         g.append(4.0 * xd + xb)
         g_names.append("inertia")
-        if objective == "mass":
+        if objective == Objective.MASS:
             f = 2.0 * xd + xb
         elif pinned:
             f = xb  # diameter fixed: pick the lightest disc of that diameter
@@ -213,7 +214,7 @@ def _build_model(structure, options):
         xb = xh if collapsed else var("b")
         # t = log(H/D_m) <= 0 by the inner-diameter constraint
         t = xh + p[0] - xd
-        if geo == "rim":
+        if geo == Geometry.RIM:
             uses_p = True
             g.append(3.0 * xd + xh + xb + ca.log1p(ca.exp(2.0 * t)))
         else:
@@ -228,9 +229,9 @@ def _build_model(structure, options):
         if not collapsed:
             g.append(xh - xb)  # log(H/B) - log(hb_min)
             g_names.append("hb_ratio")
-        if objective == "mass":
+        if objective == Objective.MASS:
             f = xd + xh + xb
-            if not pinned or (geo == "thin_rim" and not collapsed):
+            if not pinned or (geo == Geometry.THIN_RIM and not collapsed):
                 # Tie-break towards a thinner rim. With D_m pinned, the thin
                 # rim's mass 4 J / D_m^2 does not depend on H at all: take the
                 # thinnest of the equally light rims. With D_m free the
@@ -271,7 +272,7 @@ def _scales(combo, spec):
     """
     rho, j = combo.material.density, combo.j_shaft
     length = combo.cap if spec.d_mean is None else spec.d_mean
-    if spec.geometry == "disc":
+    if spec.geometry == Geometry.DISC:
         b_s = 32.0 * j / (math.pi * rho * length**4)
         return length, None, b_s
     hb_min = spec.hb_ratio[0]
@@ -301,7 +302,7 @@ def solve_combination(model, combo, spec):
     col = {name: i for i, name in enumerate(model.variables)}
     hb_min, hb_max = spec.hb_ratio
     p = []
-    if s.geometry == "disc":
+    if s.geometry == Geometry.DISC:
         if "diameter" in col:
             ubx[col["diameter"]] = 0.0  # D <= cap = L
         if spec.max_width < math.inf:
@@ -354,7 +355,7 @@ def solve_combination(model, combo, spec):
         return xs[col[name]] if name in col else default
 
     rho = combo.material.density
-    if s.geometry == "disc":
+    if s.geometry == Geometry.DISC:
         d = length * math.exp(value("diameter"))
         b = b_s * math.exp(value("b"))
         d_mean = h = d / 2.0

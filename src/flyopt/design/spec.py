@@ -12,26 +12,27 @@ References
 
 from __future__ import annotations
 
-import difflib
 import math
 from dataclasses import dataclass
 
 from flyopt.design import geometry
+from flyopt.names import Criterion, Geometry, Objective
+from flyopt.validate import choice, finite, positive
 
 __all__ = ["OBJECTIVES", "CRITERIA", "MountShaft", "DesignSpec"]
 
 #: Objectives understood by :func:`design_flywheel`.
 OBJECTIVES = {
-    "mass": "minimize the flywheel mass [kg]",
-    "outer_diameter": "minimize the outer diameter [m]",
-    "cost": "minimize mass times the material's cost per kg",
+    Objective.MASS: "minimize the flywheel mass [kg]",
+    Objective.OUTER_DIAMETER: "minimize the outer diameter [m]",
+    Objective.COST: "minimize mass times the material's cost per kg",
 }
 
 #: Strength criteria understood by :func:`design_flywheel`.
 CRITERIA = {
-    "rim_speed": "the textbook limit: the outer diameter's peripheral speed at omega_max stays below the "
+    Criterion.RIM_SPEED: "the textbook limit: the outer diameter's peripheral speed at omega_max stays below the "
     "material's safe rim speed (cast iron 36 m/s, cast steel 50 m/s)",
-    "stress": "the governing stress of every part at omega_max stays below the allowable stress (von Mises "
+    Criterion.STRESS: "the governing stress of every part at omega_max stays below the allowable stress (von Mises "
     "against yield for ductile materials, largest principal stress against tensile strength for "
     "brittle ones)",
 }
@@ -40,29 +41,8 @@ CRITERIA = {
 DEFAULT_ARMS = (4, 6, 8)
 
 
-def _finite(value, name):
-    try:
-        number = float(value)
-    except (TypeError, ValueError) as err:
-        raise ValueError(f"{name} must be a number, got {value!r}") from err
-    if not math.isfinite(number):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return number
-
-
 def _positive(value, name, unit):
-    number = _finite(value, f"{name} {unit}")
-    if number <= 0.0:
-        raise ValueError(f"{name} {unit} must be > 0, got {value!r}")
-    return number
-
-
-def _choice(value, allowed, name):
-    if value in allowed:
-        return value
-    close = difflib.get_close_matches(str(value), list(allowed), n=2, cutoff=0.4)
-    hint = f"; best matches are {close}" if close else ""
-    raise ValueError(f"{name} {value!r} not recognised; allowed are {sorted(allowed)}{hint}")
+    return positive(value, f"{name} {unit}")
 
 
 @dataclass(frozen=True)
@@ -159,7 +139,9 @@ class DesignSpec:
         (the closed forms and the NLP of :mod:`flyopt.design.nlp`); anything else is a whole wheel
         (:mod:`flyopt.design.wheel`). ``bore`` [m] is the combination's (a disc with a bore is an annulus)."""
         return (
-            self.geometry in geometry.BARE and self.criterion == "rim_speed" and not (self.geometry == "disc" and bore)
+            self.geometry in geometry.BARE
+            and self.criterion == Criterion.RIM_SPEED
+            and not (self.geometry == Geometry.DISC and bore)
         )
 
     @property
@@ -185,8 +167,8 @@ class DesignSpec:
         }
 
     def __post_init__(self):
-        _choice(self.geometry, geometry.GEOMETRIES, "geometry")
-        _choice(self.objective, OBJECTIVES, "objective")
+        choice(self.geometry, geometry.GEOMETRIES, "geometry")
+        choice(self.objective, OBJECTIVES, "objective")
         try:
             low, high = self.hb_ratio
         except (TypeError, ValueError) as err:
@@ -202,9 +184,9 @@ class DesignSpec:
             object.__setattr__(self, name, limit)
         if self.d_mean is not None:
             object.__setattr__(self, "d_mean", _positive(self.d_mean, "d_mean", "[m]"))
-        _choice(self.criterion, CRITERIA, "criterion")
+        choice(self.criterion, CRITERIA, "criterion")
         if self.safety_factor is not None:
-            factor = _finite(self.safety_factor, "safety_factor [-]")
+            factor = finite(self.safety_factor, "safety_factor [-]")
             if factor < 1.0:
                 raise ValueError(
                     f"safety_factor [-] must be >= 1 (the allowable stress is the "
@@ -212,7 +194,7 @@ class DesignSpec:
                 )
             object.__setattr__(self, "safety_factor", factor)
         if self.bore is not None:
-            bore = _finite(self.bore, "bore [m]")
+            bore = finite(self.bore, "bore [m]")
             if bore < 0.0:
                 raise ValueError(f"bore [m] must be >= 0 (0: no bore), got {self.bore!r}")
             if bore >= self.max_outer_diameter:
@@ -231,7 +213,7 @@ class DesignSpec:
             raise ValueError(f"prune must be true or false, got {self.prune!r}")
         if self.min_wall is not None:
             object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
-        if self.objective == "outer_diameter" and self.geometry == "disc" and self.max_width == math.inf:
+        if self.objective == Objective.OUTER_DIAMETER and self.geometry == Geometry.DISC and self.max_width == math.inf:
             raise ValueError(
                 "objective 'outer_diameter' with geometry 'disc' needs "
                 "max_width: without it an ever thinner, wider disc makes "

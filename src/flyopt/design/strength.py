@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flyopt.design import stress, wheel
+from flyopt.names import Geometry
 
 __all__ = ["PartStress", "StrengthCheck", "allowables", "check_wheel", "profile", "BALANCE_GRADE"]
 
@@ -201,7 +202,7 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
         mean_hoop = float(
             stress.mean_hoop_stress(coefficients, radii, [float(t) for t in state.thicknesses], rho, nu, omega)
         )
-    if geometry_name == "rim_arms":  # the rim carries the hoop load of an arms wheel
+    if geometry_name == Geometry.RIM_ARMS:  # the rim carries the hoop load of an arms wheel
         mean_hoop = float(stress.rim_hoop_stress(rho, omega, dims.d_mean / 2.0))
     parts = tuple(
         PartStress(part, value, r, limits[part][0], limits[part][1], limits[part][2])

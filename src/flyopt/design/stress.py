@@ -71,6 +71,8 @@ from collections import namedtuple
 
 import numpy as np
 
+from flyopt.names import unknown
+
 __all__ = [
     "sqrt",
     "disc_coefficients",
@@ -674,12 +676,9 @@ def max_stress_per_step(coefficients, radii, density, poisson, omega, measure="v
         For an unknown measure (naming the closest one) or fewer than 3
         points.
     """
-    import difflib
 
     if measure not in MEASURES:
-        close = difflib.get_close_matches(str(measure), MEASURES, n=1)
-        hint = f"; did you mean {close[0]!r}?" if close else ""
-        raise ValueError(f"stress measure {measure!r} not recognised; use one of {sorted(MEASURES)}{hint}")
+        raise ValueError(f"stress measure {unknown(measure, MEASURES)}")
     if points < 3:
         raise ValueError(f"points must be at least 3 per step, got {points!r}")
     from scipy.optimize import minimize_scalar

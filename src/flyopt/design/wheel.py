@@ -41,6 +41,8 @@ import math
 from dataclasses import dataclass, fields
 from typing import NamedTuple
 
+from flyopt.names import Geometry
+
 __all__ = ["Dims", "Part", "ARM_MINOR_RATIO", "parts", "wheel_mass", "wheel_inertia", "steps"]
 
 #: Minor over major axis of an arm's elliptical section (the texts' proportion, [2]).
@@ -136,17 +138,17 @@ def parts(geometry_name, dims, density):
     r_o = dims.d_outer / 2.0
     r_i = dims.d_inner / 2.0
     r_bore = dims.bore / 2.0
-    if geometry_name == "disc":
+    if geometry_name == Geometry.DISC:
         return [_annulus("disc", density, r_bore, r_o, dims.b)]
-    rim = _annulus("rim", density, r_i, r_o, dims.b, thin=geometry_name == "thin_rim")
-    if geometry_name in ("rim", "thin_rim"):
+    rim = _annulus("rim", density, r_i, r_o, dims.b, thin=geometry_name == Geometry.THIN_RIM)
+    if geometry_name in (Geometry.RIM, Geometry.THIN_RIM):
         return [rim]
     r_h = dims.d_hub / 2.0
-    if geometry_name == "rim_web":
+    if geometry_name == Geometry.RIM_WEB:
         if _zero(dims.bore):
             return [_annulus("web", density, 0.0, r_i, dims.t_web), rim]
         return [_annulus("hub", density, r_bore, r_h, dims.l_hub), _annulus("web", density, r_h, r_i, dims.t_web), rim]
-    if geometry_name == "rim_arms":
+    if geometry_name == Geometry.RIM_ARMS:
         area = math.pi * dims.arm_major * (ARM_MINOR_RATIO * dims.arm_major) / 4.0
         n = dims.n_arms
         arms = Part(
@@ -203,16 +205,16 @@ def steps(geometry_name, dims):
     r_i = dims.d_inner / 2.0
     r_bore = dims.bore / 2.0
     solid = _zero(dims.bore)
-    if geometry_name == "disc":
+    if geometry_name == Geometry.DISC:
         return [r_bore, r_o], [dims.b], solid, ["disc"]
-    if geometry_name in ("rim", "thin_rim"):
+    if geometry_name in (Geometry.RIM, Geometry.THIN_RIM):
         return [r_i, r_o], [dims.b], False, ["rim"]
     r_h = dims.d_hub / 2.0
-    if geometry_name == "rim_web":
+    if geometry_name == Geometry.RIM_WEB:
         if solid:
             return [0.0, r_i, r_o], [dims.t_web, dims.b], True, ["web", "rim"]
         return [r_bore, r_h, r_i, r_o], [dims.l_hub, dims.t_web, dims.b], False, ["hub", "web", "rim"]
-    if geometry_name == "rim_arms":
+    if geometry_name == Geometry.RIM_ARMS:
         return [r_bore, r_h], [dims.l_hub], solid, ["hub"]
     raise ValueError(f"geometry {geometry_name!r} not known")
 
@@ -283,7 +285,7 @@ def stress_state(geometry_name, dims, density, poisson, omega, torque):
     radii, thicknesses, solid, names = steps(geometry_name, dims)
     beams = []
     traction = 0.0
-    if geometry_name == "rim_arms":
+    if geometry_name == Geometry.RIM_ARMS:
         r_mean = dims.d_mean / 2.0
         r_inner = dims.d_inner / 2.0
         r_hub = dims.d_hub / 2.0

@@ -26,6 +26,7 @@ import math
 from flyopt.design import check, geometry, hub, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
+from flyopt.names import Criterion, Geometry, Method, Objective
 
 __all__ = [
     "needs_torque",
@@ -62,7 +63,7 @@ def bore_of(spec, shaft):
 def needs_torque(inputs):
     """Whether a design problem (:class:`flyopt.design.inputs.DesignInputs`) has arms or a keyed hub,
     which the flywheel's peak torque loads (the textbook bare rim has neither)."""
-    return inputs.spec.geometry == "rim_arms" or any(bore_of(inputs.spec, s) for s in inputs.shafts)
+    return inputs.spec.geometry == Geometry.RIM_ARMS or any(bore_of(inputs.spec, s) for s in inputs.shafts)
 
 
 #: The thinnest section of a web or arms wheel when neither the design nor the material gives
@@ -121,13 +122,13 @@ def stress_cap(combo, spec, bore):
     or disc whose stress stays within the material's strongest allowable can be wider
     than 2 b with (3+nu)/4 (or /8, solid) rho omega^2 b^2 = sigma_allow.
     """
-    if spec.criterion != "stress" or spec.geometry not in ("rim", "disc"):
+    if spec.criterion != Criterion.STRESS or spec.geometry not in (Geometry.RIM, Geometry.DISC):
         return math.inf
     nu = getattr(combo.material, "poisson_ratio", None)
     sigma = _strongest_allowable(combo.material, spec)
     if nu is None or not sigma:
         return math.inf
-    factor = 8.0 if spec.geometry == "disc" and not bore else 4.0
+    factor = 8.0 if spec.geometry == Geometry.DISC and not bore else 4.0
     return 2.0 * math.sqrt(factor * sigma / ((3.0 + nu) * combo.material.density * combo.omega**2))
 
 
@@ -137,7 +138,7 @@ def _upper_bound(combo, spec, bore=0.0):
     the cap and :func:`stress_cap`) and of the width limit (for a rim, also H/B: B <= D/(2 hb_min))."""
     cap = min(combo.cap, stress_cap(combo, spec, bore))
     width = spec.max_width
-    if spec.geometry in ("rim", "thin_rim"):
+    if spec.geometry in (Geometry.RIM, Geometry.THIN_RIM):
         width = min(width, cap / (2.0 * spec.hb_ratio[0]))
     if not (math.isfinite(cap) and math.isfinite(width)):
         return math.inf, cap, width
@@ -168,7 +169,7 @@ def objective_bound(combo, spec):
         The bound in the objective's unit (kg, the material's currency or m) and a phrase saying why.
     """
     j = combo.j_shaft
-    if spec.objective == "outer_diameter":
+    if spec.objective == Objective.OUTER_DIAMETER:
         if not math.isfinite(spec.max_width):
             return 0.0, "no width limit bounds the diameter"
         d = (32.0 * j / (math.pi * combo.material.density * spec.max_width)) ** 0.25
@@ -184,14 +185,14 @@ def objective_bound(combo, spec):
         f"every wheel that gives {j:.4g} kg·m² within D {cap:.4g} m weighs at least "
         f"{mass:.4g} kg (m >= 4 J/D²: all of it at the outer radius)"
     )
-    if spec.objective == "cost":  # design_flywheel refuses the cost objective without a price
+    if spec.objective == Objective.COST:  # design_flywheel refuses the cost objective without a price
         return mass * combo.material.cost, why + f", which costs at least {mass * combo.material.cost:.4g}"
     return mass, why
 
 
 def missing_poisson(material, spec):
     """Why a material can make no wheel under a spec on any shaft for want of a Poisson's ratio, or None."""
-    if (spec.criterion == "stress" or spec.geometry in ("rim_web", "rim_arms")) and getattr(
+    if (spec.criterion == Criterion.STRESS or spec.geometry in (Geometry.RIM_WEB, Geometry.RIM_ARMS)) and getattr(
         material, "poisson_ratio", None
     ) is None:
         return f"material {material.name!r} gives no poisson_ratio, which the stress of a {spec.geometry} needs"
@@ -218,7 +219,7 @@ def screen(combo, spec, bore):
             f"gives only {j_sup:.4g} kg·m², short of the {combo.j_shaft:.4g} kg·m² required",
             j_sup,
         )
-    if geo == "rim_arms" and not bore:
+    if geo == Geometry.RIM_ARMS and not bore:
         raise NoWheel(
             f"{combo.label}: a wheel on arms needs a hub on a shaft: give design.bore or the shaft's diameter"
         )
@@ -239,7 +240,7 @@ def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):
 
     geo = spec.geometry
     d_hub_range = l_hub_range = (0.0, math.inf)
-    if geo in ("rim_web", "rim_arms") and bore:
+    if geo in (Geometry.RIM_WEB, Geometry.RIM_ARMS) and bore:
         d_hub_range, l_hub_range, _ = _hub_bounds(material, bore, torque)
     structure = wheel_nlp.WheelStructure(
         geometry=geo,
@@ -250,7 +251,7 @@ def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):
         envelope=spec.has_envelope,
         width=spec.max_width < math.inf,
         pinned=spec.d_mean is not None,
-        objective="outer_diameter" if spec.objective == "outer_diameter" else "mass",
+        objective="outer_diameter" if spec.objective == Objective.OUTER_DIAMETER else "mass",
     )
     problem = wheel_nlp.WheelProblem(
         j_shaft=j_shaft,
@@ -277,7 +278,7 @@ def strongest_allowables(material, spec, structure):
     (empty under the rim-speed criterion, or when the material gives none): no wheel's allowable is higher."""
     from flyopt.design import wheel_nlp
 
-    sigma = _strongest_allowable(material, spec) if spec.criterion == "stress" else None
+    sigma = _strongest_allowable(material, spec) if spec.criterion == Criterion.STRESS else None
     return {} if sigma is None else {part: sigma for part in wheel_nlp.stressed_parts(structure)}
 
 
@@ -317,8 +318,8 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
 
     screen(combo, spec, bore)
     material, geo = combo.material, spec.geometry
-    stressed = spec.criterion == "stress"
-    exact = _disc_closed_form(combo, spec, bore, material) if method != "ipopt" else None
+    stressed = spec.criterion == Criterion.STRESS
+    exact = _disc_closed_form(combo, spec, bore, material) if method != Method.IPOPT else None
     if exact is not None:
         dims, solution = exact
         return dims, solution, strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
@@ -431,7 +432,7 @@ def _settle(model, problem, combo, material, geo, spec, torque, parts, used, tab
     they agree with the NLP's rows. Raises _OverTable where a section leaves the strength table."""
     from flyopt.design import wheel_nlp
 
-    stressed = spec.criterion == "stress"
+    stressed = spec.criterion == Criterion.STRESS
     for _round in range(_MAX_ROUNDS):
         problem = _with(problem, allowable={p: used.get(p, math.inf) for p in parts})
         try:
@@ -497,9 +498,9 @@ def _disc_closed_form(combo, spec, bore, material):
     from flyopt.design import wheel_nlp
 
     if (
-        spec.geometry != "disc"
-        or spec.criterion != "stress"
-        or spec.objective == "outer_diameter"
+        spec.geometry != Geometry.DISC
+        or spec.criterion != Criterion.STRESS
+        or spec.objective == Objective.OUTER_DIAMETER
         or spec.d_mean is not None
         or getattr(material, "strength_by_thickness", ())
         or getattr(material, "poisson_ratio", None) is None

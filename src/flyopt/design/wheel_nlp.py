@@ -47,6 +47,7 @@ import casadi as ca
 from flyopt.design import wheel
 from flyopt.design.nlp import _CONVERGED, cached_model
 from flyopt.errors import SolverFailed
+from flyopt.names import Criterion, Geometry, Objective
 
 __all__ = ["WheelStructure", "WheelProblem", "WheelSolution", "SAMPLES", "get_model", "solve", "BUILDS", "variables_of"]
 
@@ -78,14 +79,14 @@ class WheelStructure(NamedTuple):
 def variables_of(structure):
     """The dimensions IPOPT chooses for a structure, in order."""
     geo = structure.geometry
-    if geo == "disc":
+    if geo == Geometry.DISC:
         return ("d_outer", "b")
     names = ["d_outer", "h", "b"]
-    if geo == "rim_web":
+    if geo == Geometry.RIM_WEB:
         names.append("t_web")
         if structure.bored:
             names += ["d_hub", "l_hub"]
-    elif geo == "rim_arms":
+    elif geo == Geometry.RIM_ARMS:
         names += ["arm_major", "d_hub", "l_hub"]
     return tuple(names)
 
@@ -94,7 +95,7 @@ def _dims(structure, values, bore):
     """A wheel's Dims from its variables (floats or symbols)."""
     v = dict(values)
     geo = structure.geometry
-    if geo == "disc":
+    if geo == Geometry.DISC:
         bore = bore if structure.bored else 0.0
         return wheel.Dims(d_outer=v["d_outer"], h=(v["d_outer"] - bore) / 2.0, b=v["b"], bore=bore)
     return wheel.Dims(
@@ -113,11 +114,11 @@ def _dims(structure, values, bore):
 def stressed_parts(structure):
     """The parts whose stress the NLP limits, in the order of the allowable-stress parameters."""
     geo = structure.geometry
-    if geo == "disc":
+    if geo == Geometry.DISC:
         return ("disc",)
-    if geo in ("rim", "thin_rim"):
+    if geo in (Geometry.RIM, Geometry.THIN_RIM):
         return ("rim",)
-    if geo == "rim_web":
+    if geo == Geometry.RIM_WEB:
         return ("hub", "web", "rim") if structure.bored else ("web", "rim")
     return ("hub", "arms", "rim")
 
@@ -207,13 +208,13 @@ def formulate(structure, x, par, allow):
     row("inertia", ca.log(inertia))
     if structure.envelope:
         row("max_outer_diameter", col["d_outer"])
-    if structure.criterion == "rim_speed":
+    if structure.criterion == Criterion.RIM_SPEED:
         row("rim_speed", col["d_outer"] + par["log_half_omega"])
     if structure.width:
         row("max_width", col["b"])
         if "l_hub" in col:
             row("max_width_hub", col["l_hub"])
-    if structure.geometry != "disc":
+    if structure.geometry != Geometry.DISC:
         row("hb_ratio", col["h"] - col["b"])
         # the rim clears the hub (or is a ring whose inner diameter stays positive)
         inner = dims.d_inner
@@ -235,7 +236,7 @@ def formulate(structure, x, par, allow):
         row("arm_within_hub", ca.log(minor) - col["l_hub"])
     if "d_hub" in col:
         row("hub_wall", (dims.d_hub - par["bore"]) / 2.0)  # >= min_wall
-    if structure.criterion == "stress":
+    if structure.criterion == Criterion.STRESS:
         scale = par["stress_scale"]
         samples = wheel.stress_samples(
             structure.geometry, dims, density, par["poisson"], par["omega"], par["torque"], SAMPLES
@@ -247,7 +248,7 @@ def formulate(structure, x, par, allow):
             else:
                 row(f"stress_{part}", sr / scale / allow[k])
                 row(f"stress_{part}", st / scale / allow[k])
-    objective = col["d_outer"] if structure.objective == "outer_diameter" else ca.log(mass)
+    objective = col["d_outer"] if structure.objective == Objective.OUTER_DIAMETER else ca.log(mass)
     return Formulation(dims, mass, inertia, objective, tuple(rows), tuple(row_names))
 
 
@@ -318,7 +319,7 @@ def _start(structure, problem, names):
     rho, j = problem.density, problem.j_shaft
     cap = min(
         problem.envelope,
-        2.0 * problem.max_rim_speed / problem.omega if structure.criterion == "rim_speed" else math.inf,
+        2.0 * problem.max_rim_speed / problem.omega if structure.criterion == Criterion.RIM_SPEED else math.inf,
     )
     sigma = min(problem.allowable.values()) if problem.allowable else math.inf
     ring = 2.0 * math.sqrt(sigma / rho) / problem.omega if math.isfinite(sigma) else math.inf
@@ -328,7 +329,7 @@ def _start(structure, problem, names):
     if not math.isfinite(d):
         d = (64.0 * j / (math.pi * rho)) ** 0.2
     hb = problem.hb_ratio[0]
-    if structure.geometry == "disc":
+    if structure.geometry == Geometry.DISC:
         b = 32.0 * j / (math.pi * rho * max(d**4 - problem.bore**4, 1e-30 * d**4))
         return {"d_outer": d, "b": max(b, problem.min_wall)}
     h = min(math.sqrt(4.0 * j * hb / (math.pi * rho * d**3)), 0.2 * d)
@@ -360,7 +361,7 @@ def variable_bounds(structure, problem):
     for n in ("h", "b", "t_web"):
         if n in col:
             lbx[col[n]] = log_wall
-    if structure.geometry == "disc":
+    if structure.geometry == Geometry.DISC:
         lbx[col["b"]] = log_wall
     if "arm_major" in col:
         lbx[col["arm_major"]] = log_wall - math.log(wheel.ARM_MINOR_RATIO) if problem.min_wall > 0 else -inf

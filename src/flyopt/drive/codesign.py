@@ -43,6 +43,7 @@ import numpy as np
 
 from flyopt.analysis import flywheel_torque, startup_run
 from flyopt.errors import SceneError, SolverFailed
+from flyopt.names import Criterion, Geometry, Objective
 
 #: Name of the shaft the drive puts the flywheel on, and of the motor's.
 FLYWHEEL_SHAFT, MOTOR_SHAFT = "flywheel", "motor"
@@ -337,7 +338,7 @@ def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_sp
     cost = None
     if getattr(motor, "price", None) is not None and (wheel is None or wheel.cost is not None):
         cost = motor.price + (wheel.cost if wheel is not None else 0.0)
-    objective = total if spec.objective == "mass" else cost
+    objective = total if spec.objective == Objective.MASS else cost
     return run(
         True,
         "",
@@ -556,7 +557,7 @@ def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, s
         best = design(r).best
         if best is None:
             return math.inf
-        value = best.mass if objective == "mass" else best.cost
+        value = best.mass if objective == Objective.MASS else best.cost
         return math.inf if value is None else value
 
     kind, *values = ratios
@@ -683,23 +684,23 @@ def _relaxation(scene, analysis, spec, motors, inputs, load):
     fit = CatalogueFit.of(motors)
     if (
         fit is None
-        or (spec.objective == "mass" and fit.mass is None)
-        or (spec.objective == "cost" and fit.price is None)
+        or (spec.objective == Objective.MASS and fit.mass is None)
+        or (spec.objective == Objective.COST and fit.price is None)
     ):
         return None, "every catalogue size solved (too few sizes, or one lacks a value, for a continuous relaxation)"
     design = inputs.spec
     bore = bore_of(design, MountShaft(FLYWHEEL_SHAFT, 1.0))
     best, failures = None, []
     for material in inputs.materials:
-        if spec.objective == "cost" and material.cost is None:
+        if spec.objective == Objective.COST and material.cost is None:
             continue
         if missing_poisson(material, design):
             continue  # the designer refuses it too
-        for n_arms in design.arms if design.geometry == "rim_arms" else (0,):
+        for n_arms in design.arms if design.geometry == Geometry.RIM_ARMS else (0,):
             wheel = RelaxedWheel.of(material, design, bore, n_arms)
-            if design.criterion == "rim_speed" and not math.isfinite(wheel.v_max):
+            if design.criterion == Criterion.RIM_SPEED and not math.isfinite(wheel.v_max):
                 continue
-            if design.criterion == "stress" and not wheel.problem.allowable:
+            if design.criterion == Criterion.STRESS and not wheel.problem.allowable:
                 continue  # no allowable stress (no safety factor on its strength): nothing to limit
             try:
                 found = relax(analysis.machine, scene.omega_mean, scene.delta, scene.efficiency, fit, spec, wheel, load)

@@ -23,11 +23,11 @@ physics (the conversions) is :mod:`flyopt.machine.press`; the model is the
 textbook's (docs/flywheel-design.md, sections 2, 8 and 11).
 """
 
-import difflib
 import math
 
 from flyopt.errors import SceneError, shorten
 from flyopt.machine import press as physics
+from flyopt.names import hint
 from flyopt.units import quantity
 
 PRESS_KEYS = (
@@ -419,9 +419,9 @@ def _table(raw, where, allowed):
     unknown = sorted(set(raw) - set(allowed))
     if unknown:
         key = unknown[0]
-        close = difflib.get_close_matches(key, sorted(allowed), n=1)
-        hint = f"; did you mean {shorten(close[0])}?" if close else ""
-        raise SceneError(f"{where}.{key}", f"unknown key{hint} (allowed here: {', '.join(sorted(allowed))})")
+        raise SceneError(
+            f"{where}.{key}", f"unknown key{hint(key, sorted(allowed))} (allowed here: {', '.join(sorted(allowed))})"
+        )
     return raw
 
 

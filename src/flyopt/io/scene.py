@@ -9,7 +9,6 @@ is wrong is reported as a :class:`~flyopt.errors.SceneError` naming the field.
 See README.md for the format with an example, and problems/ for scenes.
 """
 
-import difflib
 import math
 import os
 import re
@@ -20,16 +19,13 @@ from typing import Any
 
 import numpy as np
 
+from flyopt._toml import tomllib
 from flyopt.cycle.expression import Expression
 from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.errors import ExpressionError, SceneError, clip, shorten
 from flyopt.machine.transmission import Shaft, inertia_at_reference
+from flyopt.names import hint, unknown
 from flyopt.units import DIMENSIONS, inertia_from_gd2, quantity
-
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 ANGLE_TOLERANCE = 1e-9
 """Relative tolerance on a table's first and last angle against 0 and Φ."""
@@ -1116,11 +1112,9 @@ def _engine(raw, files=Path()):
     )
     kind = table.require("cycle")
     if kind not in CYCLE_ANGLES:
-        close = difflib.get_close_matches(str(kind), list(CYCLE_ANGLES), n=1)
-        hint = f"; did you mean {shorten(close[0])}?" if close else ""
         raise SceneError(
             "engine.cycle",
-            f"{shorten(kind)} is not known{hint} (allowed: '4-stroke', a cycle of 720 deg, or '2-stroke', 360 deg)",
+            f"{shorten(kind)} is not known{hint(kind, CYCLE_ANGLES)} (allowed: '4-stroke', a cycle of 720 deg, or '2-stroke', 360 deg)",
         )
     cycle = CYCLE_ANGLES[kind]
     count = table.require("cylinders")
@@ -1511,11 +1505,7 @@ def _design(raw, shafts, materials):
             value = table.get(key)
             allowed = tuple({"geometry": GEOMETRIES, "objective": OBJECTIVES, "criterion": CRITERIA}[key])
             if value not in allowed:
-                close = difflib.get_close_matches(str(value), allowed, n=1)
-                hint = f"; did you mean {shorten(close[0])}?" if close else ""
-                raise SceneError(
-                    f"design.{key}", f"{shorten(value)} is not known{hint} (allowed: {', '.join(allowed)})"
-                )
+                raise SceneError(f"design.{key}", unknown(value, allowed))
             options[key] = value
     if table.has("hb_ratio"):
         hb = table.get("hb_ratio")
@@ -1596,9 +1586,9 @@ def _name_list(table, key, known, what):
         raise SceneError(f"design.{key}", f"must be a non-empty list of {what} names")
     for k, name in enumerate(raw):
         if name not in known:
-            close = difflib.get_close_matches(name, list(known), n=1)
-            hint = f"; did you mean {shorten(close[0])}?" if close else ""
-            raise SceneError(f"design.{key}[{k}]", f"unknown {what} {shorten(name)}{hint} (known: {', '.join(known)})")
+            raise SceneError(
+                f"design.{key}[{k}]", f"unknown {what} {shorten(name)}{hint(name, known)} (known: {', '.join(known)})"
+            )
     if len(set(raw)) != len(raw):
         raise SceneError(f"design.{key}", f"a {what} is named twice")
     return tuple(raw)
@@ -1653,10 +1643,10 @@ class _Table:
         unknown = sorted(set(data) - set(allowed))
         if unknown:
             key = unknown[0]
-            close = difflib.get_close_matches(key, sorted(allowed), n=1)
-            hint = f"; did you mean {shorten(close[0])}?" if close else ""
             path = f"{where}.{key}" if where else key
-            raise SceneError(path, f"unknown key{hint} (allowed here: {', '.join(sorted(allowed))})")
+            raise SceneError(
+                path, f"unknown key{hint(key, sorted(allowed))} (allowed here: {', '.join(sorted(allowed))})"
+            )
         self.data, self.where = data, where
 
     def _path(self, key):

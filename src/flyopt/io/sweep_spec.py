@@ -39,7 +39,6 @@ list is sampled as categories, each equally often.
 
 from __future__ import annotations
 
-import difflib
 import math
 import re
 from collections.abc import Mapping
@@ -63,11 +62,8 @@ __all__ = [
     "load_sweep",
 ]
 
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
-
+from flyopt._toml import tomllib
+from flyopt.names import closest
 
 # --------------------------------------------------------------------------
 
@@ -190,8 +186,8 @@ def _resolve(scene, path, where):
 
 
 def _hint(name, known):
-    close = difflib.get_close_matches(str(name), list(known), n=1)
-    return f" (did you mean {close[0]!r}?)" if close else ""
+    close = closest(name, known)
+    return f" (did you mean {close!r}?)" if close else ""
 
 
 def _where(where, path):

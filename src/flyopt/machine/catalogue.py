@@ -24,22 +24,18 @@ References
 
 from __future__ import annotations
 
-import difflib
 import functools
 import math
-import sys
 from dataclasses import dataclass, field
 from importlib import resources
 from typing import NamedTuple
 
+from flyopt._toml import tomllib
 from flyopt.errors import SceneError, shorten
 from flyopt.machine.motor import InductionMotor
+from flyopt.names import hint
 from flyopt.units import quantity
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised only on Python 3.10
-    import tomli as tomllib
+from flyopt.validate import number
 
 __all__ = [
     "QUANTITIES",
@@ -111,20 +107,12 @@ class MotorDataError(ValueError):
 
 def _number(value, field, name, *, minimum=0.0, strict=True, below=None, allowed=None):
     """``value`` as a finite float above ``minimum`` (and under ``below``), else MotorDataError."""
-    allowed = allowed or (
-        f"a finite number {'>' if strict else '>='} {minimum:g}" + (f" and < {below:g}" if below is not None else "")
-    )
     try:
-        number = math.nan if isinstance(value, bool) else float(value)
-    except (TypeError, ValueError):
-        number = math.nan
-    if (
-        not math.isfinite(number)
-        or (number <= minimum if strict else number < minimum)
-        or (below is not None and number >= below)
-    ):
-        raise MotorDataError(field, f"motor {shorten(name)}: {field} must be {allowed}, got {shorten(value)}")
-    return number
+        return number(
+            value, f"motor {shorten(name)}: {field}", minimum=minimum, strict=strict, below=below, allowed=allowed
+        )
+    except ValueError as err:
+        raise MotorDataError(field, str(err)) from None
 
 
 @dataclass(frozen=True)
@@ -475,6 +463,6 @@ def catalogue(name):
     catalogues = _load()
     if isinstance(name, str) and name in catalogues:
         return catalogues[name]
-    close = difflib.get_close_matches(str(name), list(catalogues), n=1)
-    hint = f"; did you mean {shorten(close[0])}?" if close else ""
-    raise ValueError(f"motor catalogue {shorten(name)} is not known{hint} (known: {', '.join(catalogue_names())})")
+    raise ValueError(
+        f"motor catalogue {shorten(name)} is not known{hint(name, catalogues)} (known: {', '.join(catalogue_names())})"
+    )

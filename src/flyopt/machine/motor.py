@@ -22,6 +22,8 @@ section 3).
 
 import math
 
+from flyopt.validate import positive
+
 DEFAULT_BREAKDOWN_RATIO = 2.5
 """Default breakdown (pull-out) torque over rated torque, M_b/M_n [-].
 
@@ -33,9 +35,7 @@ for smaller motors). Give the catalogue value when it is known.
 
 
 def _positive(value, what):
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-        raise ValueError(f"{what} must be a positive finite number, got {value!r}")
-    return float(value)
+    return positive(value, what)
 
 
 class _Motor:

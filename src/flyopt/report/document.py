@@ -33,6 +33,7 @@ import inspect
 import math
 from dataclasses import dataclass, field
 
+from flyopt.names import Geometry, Model
 from flyopt.report import display
 from flyopt.report.display import number
 
@@ -567,7 +568,7 @@ class _Builder:
 
     def width_row(self, c):
         """The wheel's width and, for a rim, its radial thickness (a disc is the annulus with no hole, section 9)."""
-        if c.geometry == "disc":
+        if c.geometry == Geometry.DISC:
             return (
                 "axial width B",
                 (
@@ -694,7 +695,7 @@ class _Builder:
                 )
             )
             exact = next((m for m in models if m["exact"]), None)
-            textbook = next((m for m in models if m["model"] == "energy"), None)
+            textbook = next((m for m in models if m["model"] == Model.ENERGY), None)
             if (
                 exact is not None
                 and textbook is not None
@@ -720,7 +721,7 @@ class _Builder:
                         )
                     )
                 )
-            elif exact is not None and exact["model"] == "energy":
+            elif exact is not None and exact["model"] == Model.ENERGY:
                 blocks.append(
                     Paragraph(f"The textbook constant-inertia method ({NOTES}, section 5) is exact for this machine.")
                 )
@@ -766,7 +767,7 @@ class _Builder:
                 "omega_mean", "ω_{m} = 2π n / 60", f"2π × {number(rad_s_to_rpm(w))} / 60", res(w, "angular_speed"), 2
             )
         )
-        if a.model == "dynamic":
+        if a.model == Model.DYNAMIC:
             blocks.append(
                 Paragraph(
                     "A torque depends on speed: the mean speed is an outcome of the torque–speed balance, and the "
@@ -889,7 +890,7 @@ class _Builder:
             if isinstance(curve, Constant) and curve.unknown
         ]
         phi = si(ind.cycle_angle, "angle")
-        if a.model == "dynamic":
+        if a.model == Model.DYNAMIC:
             blocks.append(
                 Paragraph(
                     f"The torques are taken at the mean speed, a motor replaced by the constant "
@@ -906,7 +907,7 @@ class _Builder:
                     4,
                 )
             )
-        elif solved == ["driving"] or a.model == "dynamic":
+        elif solved == ["driving"] or a.model == Model.DYNAMIC:
             blocks.append(
                 self.eq(
                     "driving_torque",
@@ -1033,8 +1034,8 @@ class _Builder:
         blocks = self.section("The required flywheel", "requirement", 2)
         from flyopt.report import plots
 
-        textbook = next((m for m in a.models if m["model"] == "energy"), None)
-        if a.model == "energy":
+        textbook = next((m for m in a.models if m["model"] == Model.ENERGY), None)
+        if a.model == Model.ENERGY:
             blocks.append(
                 self.eq(
                     "j_energy",
@@ -1064,7 +1065,7 @@ class _Builder:
                         5,
                     )
                 )
-            if a.model == "energy_mass":
+            if a.model == Model.ENERGY_MASS:
                 self.energy_mass_steps(blocks, textbook)
             else:
                 self.dynamic_steps(blocks, textbook)
@@ -1406,7 +1407,7 @@ class _Builder:
         """The wheel's mass and inertia (section 9) and its rim speed (section 10), numbers substituted."""
         si, res, sq = self.si, self.result, self.squared
         rho = getattr(material, "density", None)
-        if c.geometry == "disc" and not c.d_inner and len(c.parts) <= 1 and rho:
+        if c.geometry == Geometry.DISC and not c.d_inner and len(c.parts) <= 1 and rho:
             d = si(c.d_outer, "length")
             blocks.append(
                 self.eq(
@@ -1437,7 +1438,7 @@ class _Builder:
                     9,
                 )
             )
-            if c.geometry == "thin_rim":
+            if c.geometry == Geometry.THIN_RIM:
                 blocks.append(
                     self.eq(
                         "rim_inertia_thin",

@@ -31,6 +31,7 @@ import numpy as np
 
 from flyopt.cycle.indicator import ExcessWork, required_inertia
 from flyopt.errors import SceneError
+from flyopt.names import Geometry, Model
 from flyopt.report import display
 
 SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
@@ -333,7 +334,7 @@ class _Torques:
     def __init__(self, scene, analysis):
         machine = analysis.machine
         balanced = machine.angle_only()
-        self.along = analysis.model == "dynamic"
+        self.along = analysis.model == Model.DYNAMIC
         self.driving_solved = _unknown(machine.driving)
         self.resisting_solved = _unknown(machine.resisting)
         self.motor = _is_motor(machine.driving)
@@ -531,7 +532,7 @@ def _omega_marks(analysis, units):
             continue
         apart = delta_e_at is not None and abs(omega_at - delta_e_at) > 1e-3
         differ |= apart
-        if analysis.model == "dynamic":
+        if analysis.model == Model.DYNAMIC:
             marks.append(
                 (omega_at, f"ω_{name} ({model}): φ = {_q(omega_at, 'angle', units)}", colour, "--", f"omega_{name}")
             )
@@ -558,12 +559,12 @@ def _omega_marks(analysis, units):
                     f"delta_e_{name}",
                 )
             )
-    if differ and analysis.model == "energy_mass":
+    if differ and analysis.model == Model.ENERGY_MASS:
         note = (
             "J_e varies with φ: the speed is extreme where the energy–mass tangents touch (section 6 of "
             "the notes), not where ΔE is, at the ends of A_max"
         )
-    elif analysis.model == "dynamic":
+    elif analysis.model == Model.DYNAMIC:
         note = "a torque depends on speed: the torques and the speed extremes along the periodic solution (section 7)"
     return marks, note
 
@@ -756,7 +757,7 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
         x_chain = _show(ind.chain_angle, "angle", units)
         ew = _excess_work(scene, analysis)
         phi = np.union1d(np.linspace(0, scene.cycle_angle, 1501), ind.chain_angle)
-        frozen = " (torques frozen at ω_m, the motor at its mean)" if analysis.model == "dynamic" else ""
+        frozen = " (torques frozen at ω_m, the motor at its mean)" if analysis.model == Model.DYNAMIC else ""
         ax.plot(
             _show(phi, "angle", units),
             _show(ew(phi), "energy", units),
@@ -764,7 +765,7 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
             lw=1.5,
             label=f"ΔE(φ) = ∫(M_d − M_r) dφ{frozen}",
         )
-        if analysis.model == "dynamic":
+        if analysis.model == Model.DYNAMIC:
             torques = _Torques(scene, analysis)
             ax.plot(
                 _show(torques.phi, "angle", units),
@@ -788,7 +789,7 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
         label="ends of the areas" if ind.chain_angle is None else "ends of the areas: crossings of the torques",
     )
     hi, lo = float(y_chain[ind.index_max]), float(y_chain[ind.index_min])
-    names = ("ω_max", "ω_min") if constant and analysis.model != "dynamic" else ("ΔE largest", "ΔE smallest")
+    names = ("ω_max", "ω_min") if constant and analysis.model != Model.DYNAMIC else ("ΔE largest", "ΔE smallest")
     steady = not hi > lo and constant
     extremes = () if steady else ((ind.index_max, names[0], SURPLUS, 1), (ind.index_min, names[1], DEFICIT, -1))
     for k, name, colour, where in extremes:
@@ -821,7 +822,7 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
             color=colour,
             gid="extreme_label",
         )
-    if ind.chain_angle is not None and (not constant or analysis.model == "dynamic") and not steady:
+    if ind.chain_angle is not None and (not constant or analysis.model == Model.DYNAMIC) and not steady:
         ew = _excess_work(scene, analysis)
         for angle, name, colour, marker in (
             (analysis.angle_omega_max, "ω_max", SURPLUS, "^"),
@@ -948,7 +949,7 @@ def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=No
     check_inertia_delta(analysis)
     j_mean = analysis.machine.j_mean() if analysis.machine is not None else analysis.j_constant
     if curve is None:
-        if analysis.model != "energy":
+        if analysis.model != Model.ENERGY:
             raise ValueError(
                 f"J_F(δ) of the {analysis.model} model comes from analysing the scene again at each "
                 f"δ: pass curve (flyopt.cli.plot.inertia_curve)"
@@ -963,7 +964,7 @@ def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=No
     ax, own = _axes(ax)
     inertia = _unit("inertia", units)[0]
     shown = _show(np.where(j > 0, j, np.nan), "inertia", units)
-    exact = analysis.model != "energy"
+    exact = analysis.model != Model.ENERGY
     ax.plot(
         delta,
         shown,
@@ -989,7 +990,7 @@ def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=No
             gid="constant_inertia",
         )
     free, about = _zero_crossing(delta, j), "≈ "
-    if analysis.model == "energy" and analysis.j_constant > 0 and analysis.a_max > 0:
+    if analysis.model == Model.ENERGY and analysis.j_constant > 0 and analysis.a_max > 0:
         free, about = analysis.a_max / (analysis.omega_mean**2 * analysis.j_constant), "= "  # section 5, exact
     if free is not None and delta[0] <= free <= delta[-1]:
         ax.axvline(
@@ -1228,15 +1229,15 @@ def _section_parts(c):
     and the arms (r_inner, r_outer, major, minor) or None."""
     r_o = c.d_outer / 2.0
     r_bore = (c.bore or 0.0) / 2.0
-    if c.geometry == "disc":
+    if c.geometry == Geometry.DISC:
         return [("disc", r_bore, r_o, c.b)], None
     r_i = c.d_inner / 2.0
     rim = ("rim", r_i, r_o, c.b)
-    if c.geometry == "rim_web":
+    if c.geometry == Geometry.RIM_WEB:
         if not c.bore:
             return [("web", 0.0, r_i, c.t_web), rim], None
         return [("hub", r_bore, c.d_hub / 2.0, c.l_hub), ("web", c.d_hub / 2.0, r_i, c.t_web), rim], None
-    if c.geometry == "rim_arms":
+    if c.geometry == Geometry.RIM_ARMS:
         return [("hub", r_bore, c.d_hub / 2.0, c.l_hub), rim], (c.d_hub / 2.0, r_i, c.arm_major, c.arm_minor)
     return [rim], None
 
@@ -1510,7 +1511,7 @@ def _section_notes(c, length, text):
             "of this design, and their inertia is left out, on the safe side (docs/flywheel-design.md, "
             "section 9)."
         )
-    disc = c.geometry == "disc"
+    disc = c.geometry == Geometry.DISC
     ratio = c.d_outer / (c.b if disc else min(c.b, c.h))
     if ratio >= _SLENDER:
         binding = ", ".join(c.binding) if c.binding else "none"
@@ -1789,7 +1790,7 @@ def plot_speed(scene, analysis, speed=None, simulation=None, ax=None, units=disp
     if scene.net is not None:
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
     if speed is None:
-        if analysis.requirement is None or analysis.requirement.model != "dynamic":
+        if analysis.requirement is None or analysis.requirement.model != Model.DYNAMIC:
             raise ValueError(
                 f"the {analysis.model} model's result carries no ω(φ): pass speed (Analysis.speed_curve())"
             )
@@ -1931,7 +1932,7 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
 
     display.check_system(units)
     check_energy_mass(analysis)
-    if analysis.requirement is None or analysis.requirement.model != "energy_mass":
+    if analysis.requirement is None or analysis.requirement.model != Model.ENERGY_MASS:
         raise ValueError(
             f"the energy–mass diagram draws the energy–mass model's result, and this "
             f"analysis ran the {analysis.model} model: analyse with model='energy_mass'"

@@ -21,8 +21,9 @@ from dataclasses import dataclass
 from flyopt.cycle.indicator import required_inertia
 from flyopt.errors import NonPeriodicCycle, SolverFailed
 from flyopt.machine.reduce import Machine, reduce  # noqa: F401 -- callers reach the reduction as models.reduce
+from flyopt.names import Model
 
-ENERGY, ENERGY_MASS, DYNAMIC = "energy", "energy_mass", "dynamic"
+ENERGY, ENERGY_MASS, DYNAMIC = Model.ENERGY, Model.ENERGY_MASS, Model.DYNAMIC
 MODELS = {
     ENERGY: "constant-inertia energy method, J_F = A_max/(ω_m² δ) − J_c",
     ENERGY_MASS: "energy–mass (Wittenbauer) closed form for an inertia that varies with the angle",

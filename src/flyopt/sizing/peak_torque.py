@@ -49,9 +49,9 @@ def flywheel_peak_torque(j_flywheel_ref, j_total_ref, torque_difference_ref, spe
     (M_d - M_r) - ½ (dJ/dphi) ω²; the share taken here at each angle neglects
     the ½ (dJ/dphi) ω² term, exact only where dJ/dphi = 0.
     """
-    j_flywheel = positive(j_flywheel_ref, "j_flywheel_ref", "kg*m^2")
-    speed_ratio = positive(speed_ratio, "speed_ratio", "-")
-    j_total = finite_array(j_total_ref, "j_total_ref", "kg*m^2")
+    j_flywheel = positive(j_flywheel_ref, "j_flywheel_ref [kg*m^2]")
+    speed_ratio = positive(speed_ratio, "speed_ratio [-]")
+    j_total = finite_array(j_total_ref, "j_total_ref [kg*m^2]")
     if np.any(j_total <= 0.0):
         raise ValueError(f"j_total_ref must be positive [kg*m^2]; its smallest value is {float(np.min(j_total))!r}")
     if np.any(j_total < j_flywheel):
@@ -59,7 +59,7 @@ def flywheel_peak_torque(j_flywheel_ref, j_total_ref, torque_difference_ref, spe
             f"j_total_ref must include the flywheel, j_total_ref >= j_flywheel_ref = "
             f"{j_flywheel!r} kg*m^2; its smallest value is {float(np.min(j_total))!r}"
         )
-    difference = finite_array(torque_difference_ref, "torque_difference_ref", "N*m")
+    difference = finite_array(torque_difference_ref, "torque_difference_ref [N*m]")
     try:
         j_total, difference = np.broadcast_arrays(j_total, difference)
     except ValueError as err:

@@ -28,11 +28,7 @@ import numpy as np
 
 __all__ = ["ScenePayload", "digest", "payload"]
 
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
-
+from flyopt._toml import tomllib
 
 # --------------------------------------------------------------------------
 # An exact digest of a scene
