@@ -16,7 +16,7 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -25,6 +25,9 @@ from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.errors import ExpressionError, SceneError, clip, shorten
 from flyopt.machine.transmission import Shaft, inertia_at_reference
 from flyopt.units import DIMENSIONS, inertia_from_gd2, quantity
+
+if TYPE_CHECKING:
+    from flyopt.design.materials import Material
 
 try:  # Python >= 3.11
     import tomllib
@@ -103,13 +106,13 @@ class Scene:
     engine: object = None  # flyopt.machine.engine.Engine of [engine]; its members lead ``members``
     source: str | None = field(default=None, compare=False)
 
-    def material_library(self):
+    def material_library(self) -> "dict[str, Material]":
         """Built-in materials extended or overridden by the scene's own."""
         from flyopt.design.materials import material_library
 
         return material_library(self.materials)
 
-    def replace(self, **changes):
+    def replace(self, **changes: Any) -> "Scene":
         """A copy with some fields changed (for studies and tests)."""
         return replace(self, **changes)
 
