@@ -4,14 +4,18 @@ Each check returns the value as the type the caller computes with, or raises
 ValueError naming the argument, its unit and what is allowed.
 """
 
+from __future__ import annotations
+
 import math
+from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.errors import shorten
 
 
-def positive(value, name, unit):
+def positive(value: Any, name: str, unit: str) -> float:  # anything: what is not a number is refused
     """``value`` as a float, or ValueError naming ``name`` unless finite and > 0."""
     if isinstance(value, (bool, np.bool_)):
         raise ValueError(f"{name} must be a positive number [{unit}], got {value!r}")
@@ -24,7 +28,7 @@ def positive(value, name, unit):
     return number
 
 
-def finite_array(value, name, unit):
+def finite_array(value: npt.ArrayLike, name: str, unit: str) -> npt.NDArray[np.float64]:
     """``value`` as a non-empty float array, or ValueError naming ``name``."""
     try:
         array = np.asarray(value, dtype=float)
