@@ -20,18 +20,24 @@ import dataclasses
 import hashlib
 import math
 import pickle
+import sys
 import types
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 __all__ = ["ScenePayload", "digest", "payload"]
 
-try:  # Python >= 3.11
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
+
+if TYPE_CHECKING:  # the annotations only
+    from flyopt.io.scene import Scene
 
 
 # --------------------------------------------------------------------------
@@ -39,7 +45,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 # --------------------------------------------------------------------------
 
 
-def digest(obj, skip=("source",)):
+def digest(obj: object, skip: Iterable[str] = ("source",)) -> str:
     """A SHA-256 hex digest of ``obj`` by value.
 
     Floats count to the bit, arrays in full (their dtype, shape and bytes),
@@ -64,8 +70,8 @@ def digest(obj, skip=("source",)):
     return h.hexdigest()
 
 
-def _feed(h, obj, skip, seen):
-    def put(tag, data=b""):
+def _feed(h: hashlib._Hash, obj: object, skip: set[str], seen: set[int]) -> None:
+    def put(tag: str, data: bytes = b"") -> None:
         h.update(tag.encode() + len(data).to_bytes(8, "little") + data)
 
     if obj is None or isinstance(obj, (bool, int, str, bytes)):
@@ -118,7 +124,7 @@ def _feed(h, obj, skip, seen):
             put("repr", repr(obj).encode())
 
 
-def _feed_function(h, fn, skip, seen):
+def _feed_function(h: hashlib._Hash, fn: Callable[..., Any], skip: set[str], seen: set[int]) -> None:
     code = fn.__code__
     h.update(f"{fn.__module__}.{fn.__qualname__}".encode())
     h.update(code.co_code)
@@ -152,10 +158,10 @@ class ScenePayload:
 
     text: str | None
     source: str | None
-    fields: dict
+    fields: dict[str, Any]
     key: str
 
-    def scene(self):
+    def scene(self) -> Scene:
         """The scene, rebuilt.
 
         Returns
@@ -170,7 +176,7 @@ class ScenePayload:
         return base.replace(**self.fields) if self.fields else base
 
 
-def payload(scene):
+def payload(scene: Scene) -> tuple[ScenePayload | None, str]:
     """The scene as data for workers, or why it cannot travel.
 
     Parameters
@@ -223,7 +229,7 @@ def payload(scene):
     )
 
 
-def _file_text(source):
+def _file_text(source: str | None) -> str | None:
     if not source:
         return None
     try:
@@ -232,7 +238,7 @@ def _file_text(source):
         return None
 
 
-def _plain(values):
+def _plain(values: object) -> bool:
     """Whether ``values`` pickle (plain data: no function made at run time)."""
     try:
         pickle.dumps(values)
