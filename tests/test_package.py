@@ -30,7 +30,7 @@ def test_public_names_are_the_functions_not_modules():
 
 
 def _imports(path, modules):
-    """Modules of flyopt that a file imports, at its top level or inside a function.
+    """Modules of flyopt that a file imports, at its top level or inside a function, if it runs.
 
     A lazy import inside a function still makes the two modules depend on each
     other, so it counts. ``from package import module`` counts as an import of the module, not of the
@@ -38,7 +38,16 @@ def _imports(path, modules):
     """
     tree = ast.parse(path.read_text())
     found = set()
+    # an import under ``if TYPE_CHECKING:`` never runs (flyopt/__init__.py names the public types so)
+    skipped = {
+        id(inner)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.If) and getattr(node.test, "id", getattr(node.test, "attr", None)) == "TYPE_CHECKING"
+        for inner in ast.walk(node)
+    }
     for node in ast.walk(tree):
+        if id(node) in skipped:
+            continue
         if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("flyopt"):
             submodules = {f"{node.module}.{a.name}" for a in node.names} & set(modules)
             found.update(submodules or {node.module})
@@ -71,3 +80,17 @@ def test_no_import_cycle_between_modules():
         if name not in state:
             visit(name, [name])
     assert not cycles, cycles
+
+
+def test_type_checking_imports_name_the_same_api():
+    """flyopt/__init__.py names each public type twice (the lazy table and, for type checkers, an
+    import under TYPE_CHECKING): the two must name the same objects in the same modules."""
+    tree = ast.parse((SRC / "__init__.py").read_text())
+    block = next(n for n in tree.body if isinstance(n, ast.If) and getattr(n.test, "id", None) == "TYPE_CHECKING")
+    typed = {}
+    for node in block.body:
+        if isinstance(node, ast.ImportFrom):
+            for alias in node.names:
+                assert alias.asname == alias.name, f"{alias.name} must be imported as itself to be re-exported"
+                typed[alias.name] = node.module
+    assert typed == flyopt._API

@@ -9,12 +9,38 @@ Pipeline: load a scene → analyse its cycle → design the flywheel.
 >>> flyopt.solve(scene).design.best.mass              # doctest: +SKIP
 """
 
+from __future__ import annotations
+
 import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # the real types, for type checkers and editors (``X as X``: re-exported);
+    # at run time each name is imported on first use, by __getattr__
+    from flyopt.analysis import Analysis as Analysis
+    from flyopt.analysis import analyse as analyse
+    from flyopt.errors import ExpressionError as ExpressionError
+    from flyopt.errors import FlyoptError as FlyoptError
+    from flyopt.errors import Interrupted as Interrupted
+    from flyopt.errors import NonPeriodicCycle as NonPeriodicCycle
+    from flyopt.errors import SceneError as SceneError
+    from flyopt.errors import SolverFailed as SolverFailed
+    from flyopt.io.scene import Scene as Scene
+    from flyopt.io.scene import from_dict as from_dict
+    from flyopt.io.scene import load as load
+    from flyopt.machine.transmission import Shaft as Shaft
+    from flyopt.pipeline import Solution as Solution
+    from flyopt.pipeline import design_scene as design_scene
+    from flyopt.pipeline import solve as solve
+    from flyopt.studies.pareto import pareto as pareto
+    from flyopt.studies.sweep import sweep as sweep
+    from flyopt.studies.tradeoff import material_tradeoff as material_tradeoff
+
+    __version__: str
 
 #: The public API and the module each name lives in. Imported on first use, so that
 #: ``import flyopt`` costs nothing: pandas and pyarrow come with the studies, CasADi with
 #: a model that needs it (the periodic solution, IPOPT), scipy.optimize where it is used.
-_API = {
+_API: dict[str, str] = {
     "Analysis": "flyopt.analysis",
     "analyse": "flyopt.analysis",
     "ExpressionError": "flyopt.errors",
@@ -38,7 +64,7 @@ _API = {
 __all__ = sorted(_API) + ["__version__"]
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> Any:
     if name == "__version__":
         value = _version()
     else:
@@ -50,7 +76,7 @@ def __getattr__(name):
     return value
 
 
-def _version():
+def _version() -> str:
     """The version of flyopt: the installed distribution's metadata, the one source.
 
     Read on first use of ``flyopt.__version__`` (importing importlib.metadata
@@ -78,5 +104,5 @@ def _version():
     return version if project.get("name") == "flyopt" and isinstance(version, str) else "unknown"
 
 
-def __dir__():
+def __dir__() -> list[str]:
     return __all__

@@ -9,7 +9,7 @@ ratio-squared transfer.
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia, speed_extremes
 from flyopt.errors import NonPeriodicCycle, SceneError
@@ -19,6 +19,8 @@ if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
     from flyopt.io.scene import Scene
     from flyopt.machine.reduce import Machine
     from flyopt.sizing.choose import Requirement
+    from flyopt.sizing.energy_mass import SpeedFluctuation
+    from flyopt.sizing.periodic import PeriodicSolution
 from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.names import Model
 from flyopt.units import gd2_from_inertia
@@ -35,7 +37,7 @@ class ShaftRequirement:
     j_required: float  # [kg*m^2], 0 when no flywheel is needed
     gd2_required: float  # [N*m^2]
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         return dict(self.__dict__)
 
 
@@ -116,7 +118,7 @@ class Analysis:
     _lazy: dict = field(default_factory=dict, compare=False, repr=False)
 
     @property
-    def delta_holds_at_any_inertia(self):
+    def delta_holds_at_any_inertia(self) -> bool:
         """Whether δ stays below the allowed value however small the inertia (the dynamic model, a motor
         stiff enough that its slip alone holds the speed): ``j_margin`` is then not a flywheel at which δ
         reaches its limit but the bound −min J_e, where the machine would have no inertia left."""
@@ -126,7 +128,7 @@ class Analysis:
         return detail.limit == "delta" and detail.solution.delta < self.delta * (1 - 1e-6)
 
     @property
-    def models(self):
+    def models(self) -> tuple[dict[str, Any], ...]:
         """Every applicable model's J_F and the δ it really gives (flyopt.sizing.choose.compare).
 
         Computed on first use, not by every analysis: a sweep point needs only
@@ -135,11 +137,11 @@ class Analysis:
         return self._get("models")
 
     @property
-    def startup(self):
+    def startup(self) -> StartupRun | None:
         """The run-up from rest with the motor (:class:`StartupRun`), or None without a motor; computed on first use."""
         return self._get("startup")
 
-    def speed_curve(self):
+    def speed_curve(self) -> SpeedFluctuation | PeriodicSolution | None:
         """ω(φ) over the cycle with the required flywheel, by the model that sized it (computed once).
 
         The dynamic model's periodic solution; for the energy models the forward
@@ -164,7 +166,7 @@ class Analysis:
             self._lazy["speed"] = _speed_curve(self)
         return self._lazy["speed"]
 
-    def flywheel_torque(self, j_flywheel=None):
+    def flywheel_torque(self, j_flywheel: float | None = None) -> float | None:
         """The largest torque a flywheel exchanges with the reference shaft [N*m], or None.
 
         ``j_flywheel``: the flywheel at the reference shaft [kg*m^2]; default
@@ -182,7 +184,7 @@ class Analysis:
             self._lazy["flywheel_torque"] = flywheel_torque(self.machine, self.j_margin)
         return self._lazy["flywheel_torque"]
 
-    def net_torque_peak(self):
+    def net_torque_peak(self) -> float | None:
         """The largest |M_d - M_r| of the cycle at the reference shaft [N*m] (None for net areas).
 
         A sweep that scales the torques of a constant-inertia machine scales this and
@@ -190,13 +192,13 @@ class Analysis:
         samples = _net_torque_samples(self.machine)
         return None if samples is None else float(abs(samples[1]).max())
 
-    def _get(self, name):
+    def _get(self, name: str) -> Any:
         value = self._lazy[name]
         if callable(value):
             value = self._lazy[name] = value()
         return value
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         """Plain JSON-ready dictionary, every number in SI (the comparison and start-up included)."""
         out = {
             k: v

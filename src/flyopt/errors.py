@@ -13,7 +13,7 @@ QUOTE_LENGTH = 60
 """Longest quotation of user text in a message [characters]; longer text is cut."""
 
 
-def shorten(value, limit=QUOTE_LENGTH):
+def shorten(value: object, limit: int = QUOTE_LENGTH) -> str:
     """The ``repr`` of a value the user gave, cut to about ``limit`` characters.
 
     Parameters
@@ -48,7 +48,7 @@ def shorten(value, limit=QUOTE_LENGTH):
     return clip(repr(value), limit)
 
 
-def clip(text, limit=2 * QUOTE_LENGTH):
+def clip(text: str, limit: int = 2 * QUOTE_LENGTH) -> str:
     """Text cut to ``limit`` characters with an ellipsis and its length (unquoted, e.g. a field path)."""
     return text if len(text) <= limit else f"{text[: limit - 1]}… ({len(text)} characters)"
 
@@ -76,7 +76,7 @@ class SceneError(FlyoptError, ValueError):
         self.source = source
         super().__init__(self._text())
 
-    def _text(self):
+    def _text(self) -> str:
         where = f"{self.source}: " if self.source else ""
         field = f"{clip(self.field)}: " if self.field else ""  # a field path may hold a key the user wrote
         return f"{where}{field}{self.message}"

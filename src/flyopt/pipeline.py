@@ -15,6 +15,7 @@ from flyopt.analysis import Analysis, analyse
 
 if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     from flyopt.design.result import DesignResult
+    from flyopt.drive.codesign import DriveCheck, DriveDesign
     from flyopt.io.scene import Scene
     from flyopt.sizing.periodic import Verification
 
@@ -38,15 +39,15 @@ class Solution:
         The chosen drive simulated with the wheel as built.
     """
 
-    scene: object
+    scene: Scene
     analysis: Analysis
-    design: object = None
+    design: DesignResult | None = None
     verification: Verification | None = None
-    drive: object = None  # flyopt.drive.codesign.DriveDesign of a scene with a [drive]
-    drive_check: object = None  # flyopt.drive.codesign.DriveCheck of the chosen drive
+    drive: DriveDesign | None = None  # of a scene with a [drive]
+    drive_check: DriveCheck | None = None  # of the chosen drive
 
     @property
-    def status(self):
+    def status(self) -> str:
         """ "designed", "not_needed", "infeasible", or "analysed" (design skipped)."""
         if self.drive is not None and self.drive.best is None:
             return "infeasible"
@@ -54,7 +55,7 @@ class Solution:
             return "not_needed"  # the chosen motor holds δ without a flywheel
         return self.design.status if self.design is not None else "analysed"
 
-    def to_dict(self, timings=False):
+    def to_dict(self, timings: bool = False) -> dict[str, Any]:
         """The JSON of ``flyopt solve``: the analysis fields plus a "design" object.
 
         Wall-clock times (``solve_time`` of each design) only with ``timings``:

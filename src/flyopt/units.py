@@ -14,9 +14,12 @@ gives the same float as pint, bit for bit (tests/test_units_fast.py checks
 each entry against pint).
 """
 
+from __future__ import annotations
+
 import functools
 import math
 import re
+from typing import Any
 
 from flyopt.errors import SceneError, clip, shorten
 
@@ -164,16 +167,16 @@ _INTEGER = re.compile(r"[+-]?[0-9]+\Z")
 
 
 @functools.lru_cache(maxsize=1)
-def registry():
+def registry() -> Any:  # a pint.UnitRegistry (pint is imported here, on first use)
     """The one pint UnitRegistry of flyopt (built lazily: it takes a while)."""
     import pint
 
-    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    ureg: Any = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     ureg.define("rev = revolution")
     return ureg
 
 
-def quantity(value, dimension, field="value"):
+def quantity(value: object, dimension: str, field: str = "value") -> float:
     """Convert a scene value to an SI float of the given dimension.
 
     Parameters
@@ -217,14 +220,14 @@ def quantity(value, dimension, field="value"):
     return number
 
 
-def _si_number(text, dimension, field):
+def _si_number(text: str, dimension: str, field: str) -> float:
     """The SI float of a string with a unit (see :func:`quantity`)."""
     _check_size(text, field, DIMENSIONS[dimension][2])
     number = _table_number(text, dimension)
     return _pint_number(text, dimension, field) if number is None else number
 
 
-def _table_number(text, dimension):
+def _table_number(text: str, dimension: str) -> float | None:
     """The SI float of a common form ("1500 rpm", "0.8 m", "0.05", "mm^2"), or None when pint must read it.
 
     Gives what :func:`_pint_number` gives, to the last bit: pint reads an
@@ -253,7 +256,8 @@ def _table_number(text, dimension):
     """
     text = text.strip()
     if text in FAST_UNITS[dimension] and text[0] != "/":  # a unit alone ("mm^2") is one of it, as pint reads it
-        number, unit = 1, text
+        number: int | float = 1
+        unit = text
     else:
         match = _COMMON_FORM.match(text)
         if match is None:
@@ -271,7 +275,7 @@ def _table_number(text, dimension):
     return value
 
 
-def _pint_number(text, dimension, field):
+def _pint_number(text: str, dimension: str, field: str) -> float:
     """The SI float of a string with a unit, read by pint (see :func:`quantity`)."""
     dim, si_unit, words = DIMENSIONS[dimension]
     try:
@@ -291,7 +295,7 @@ def _pint_number(text, dimension, field):
     return number
 
 
-def _check_size(text, field, words):
+def _check_size(text: str, field: str, words: str) -> None:
     """Refuse a string whose arithmetic could run for long: too long, or a power of a power."""
     if len(text) > MAX_QUANTITY_LENGTH:
         raise SceneError(
@@ -309,31 +313,31 @@ def _check_size(text, field, words):
             )
 
 
-def _is_angle(q):
+def _is_angle(q: Any) -> bool:
     """True when the units hold an angle ("90 deg", "1 turn", "rpm"), not a ratio ("50 %") or a bare 1/time."""
     return "radian" in str(q.to_root_units().units)
 
 
-def _pint_reason(err):
+def _pint_reason(err: Exception) -> str:
     text = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
     return clip(text)
 
 
-def rpm_to_rad_s(n):
+def rpm_to_rad_s(n: float) -> float:
     """Rotational speed n [rev/min] to angular speed [rad/s]: ω = 2πn/60."""
     return 2.0 * math.pi * n / 60.0
 
 
-def rad_s_to_rpm(omega):
+def rad_s_to_rpm(omega: float) -> float:
     """Angular speed ω [rad/s] to rotational speed [rev/min]: n = 60ω/(2π)."""
     return 60.0 * omega / (2.0 * math.pi)
 
 
-def gd2_from_inertia(j, g=G_STANDARD):
+def gd2_from_inertia(j: float, g: float = G_STANDARD) -> float:
     """Flywheel moment GD² [N*m^2] of a moment of inertia J [kg*m^2]: GD² = 4 g J."""
     return 4.0 * g * j
 
 
-def inertia_from_gd2(gd2, g=G_STANDARD):
+def inertia_from_gd2(gd2: float, g: float = G_STANDARD) -> float:
     """Moment of inertia J [kg*m^2] of a flywheel moment GD² [N*m^2]: J = GD²/(4 g)."""
     return gd2 / (4.0 * g)

@@ -14,6 +14,7 @@ and :mod:`flyopt.names`, so every stage may use it.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from flyopt.errors import shorten
 from flyopt.names import choice
@@ -21,7 +22,15 @@ from flyopt.names import choice
 __all__ = ["number", "finite", "positive", "finite_array", "choice"]
 
 
-def number(value, field, *, minimum=None, strict=True, below=None, allowed=None):
+def number(
+    value: Any,
+    field: str,
+    *,
+    minimum: float | None = None,
+    strict: bool = True,
+    below: float | None = None,
+    allowed: str | None = None,
+) -> float:
     """``value`` as a finite float in its range, else a ValueError of one line.
 
     Parameters
@@ -64,17 +73,17 @@ def number(value, field, *, minimum=None, strict=True, below=None, allowed=None)
     return result
 
 
-def finite(value, field):
+def finite(value: Any, field: str) -> float:
     """``value`` as a finite float (see :func:`number`)."""
     return number(value, field)
 
 
-def positive(value, field):
+def positive(value: Any, field: str) -> float:
     """``value`` as a finite float > 0 (see :func:`number`)."""
     return number(value, field, minimum=0.0)
 
 
-def finite_array(value, field):
+def finite_array(value: Any, field: str) -> Any:  # a float ndarray
     """``value`` as a non-empty array of finite floats, else a ValueError of one line.
 
     ``field`` names the argument with its unit, as for :func:`number`.

@@ -23,10 +23,18 @@ Every error is one line on stderr: ``flyopt: error: FILE: FIELD: what is
 wrong``.
 """
 
+from __future__ import annotations
+
+import argparse
 import os
 import sys
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from flyopt.errors import ExpressionError, FlyoptError, Interrupted, NonPeriodicCycle, SceneError
+
+if TYPE_CHECKING:
+    from flyopt.pipeline import Solution
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -37,7 +45,7 @@ EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141
 
 
-def solution_exit(solution):
+def solution_exit(solution: Solution) -> int:
     """The exit status of a solved scene (``flyopt solve``, ``flyopt report``): 3 infeasible,
     4 a verification (of the flywheel or of the drive) flagged, else 0."""
     if solution.status == "infeasible":
@@ -48,19 +56,19 @@ def solution_exit(solution):
     return EXIT_OK
 
 
-def fail(message, status):
+def fail(message: object, status: int) -> int:
     """Say ``message`` in one line on stderr and return ``status``."""
     print(f"flyopt: error: {_one_line(message)}", file=sys.stderr)
     return status
 
 
-def _one_line(message, limit=1000):
+def _one_line(message: object, limit: int = 1000) -> str:
     """The message on one line, cut to ``limit`` characters (an echoed input may be huge)."""
     text = " ".join(str(message).split())
     return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
-def status_of(err, where):
+def status_of(err: BaseException, where: str | None) -> int:
     """Say a failure in one line on stderr and return its exit status.
 
     Parameters
@@ -103,7 +111,7 @@ def status_of(err, where):
     raise err
 
 
-def run(parser, argv=None):
+def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None = None) -> int:
     """Parse a command line, run its handler, and turn what it raises into its exit status.
 
     The one error handler of every ``flyopt`` command.
@@ -137,7 +145,7 @@ def run(parser, argv=None):
         return status_of(err, getattr(args, "scene", None))
 
 
-def _stdout_closed():
+def _stdout_closed() -> int:
     """The reader of stdout went away (``flyopt solve ... | head``): stop quietly.
 
     Python would print "Exception ignored ... BrokenPipeError" when it flushes

@@ -33,16 +33,20 @@ Two conventions hold for every command (bench has its own options):
 nothing for it.
 """
 
+from __future__ import annotations
+
 import argparse
 import contextlib
 import io
 import signal
 import sys
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from flyopt.cli.exits import run
 
 
-def main(argv=None):
+def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``flyopt`` command; returns the exit status.
 
     Parameters
@@ -59,7 +63,7 @@ def main(argv=None):
     return run(_parser(), argv)
 
 
-def entry():
+def entry() -> int:
     """The ``flyopt`` console script and ``python -m flyopt``: :func:`main`, then exit quietly.
 
     Once the command has its status the work is over: a Ctrl-C that arrives
@@ -71,7 +75,7 @@ def entry():
     return status
 
 
-def _parser():
+def _parser() -> argparse.ArgumentParser:
     from flyopt.cli import plot, report, scene, studies
 
     parser = argparse.ArgumentParser(
@@ -126,18 +130,28 @@ class _Version(argparse.Action):
     """``--version``: print ``flyopt VERSION`` on stdout and exit 0; the version is read only then."""
 
     def __init__(
-        self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help="print flyopt's version and exit"
-    ):
+        self,
+        option_strings: Sequence[str],
+        dest: str = argparse.SUPPRESS,
+        default: Any = argparse.SUPPRESS,
+        help: str = "print flyopt's version and exit",
+    ) -> None:
         super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
 
-    def __call__(self, parser, namespace, values, option_string=None):
+    def __call__(
+        self,
+        parser: argparse.ArgumentParser,
+        namespace: argparse.Namespace,
+        values: Any,
+        option_string: str | None = None,
+    ) -> None:
         import flyopt
 
         print(f"flyopt {flyopt.__version__}")
         parser.exit()
 
 
-def _printed_to_file(handler):
+def _printed_to_file(handler: Callable[[argparse.Namespace], int]) -> Callable[[argparse.Namespace], int]:
     """A handler whose printed result goes to ``-o FILE`` instead of stdout, atomically.
 
     The file's folder is checked before anything is computed; the file is
@@ -145,7 +159,7 @@ def _printed_to_file(handler):
     nothing), then "wrote FILE" is said unless ``--quiet``.
     """
 
-    def run_to_file(args):
+    def run_to_file(args: argparse.Namespace) -> int:
         if args.output is None:
             return handler(args)
         from pathlib import Path
@@ -170,10 +184,10 @@ def _printed_to_file(handler):
     return run_to_file
 
 
-def _silenced(handler):
+def _silenced(handler: Callable[[argparse.Namespace], int]) -> Callable[[argparse.Namespace], int]:
     """A handler whose stdout ``--quiet`` silences: its result is a file or its exit status."""
 
-    def run_quietly(args):
+    def run_quietly(args: argparse.Namespace) -> int:
         if not args.quiet:
             return handler(args)
         with contextlib.redirect_stdout(io.StringIO()):
@@ -182,7 +196,7 @@ def _silenced(handler):
     return run_quietly
 
 
-def _bench(args):
+def _bench(args: argparse.Namespace) -> int:
     from flyopt.bench import main as bench_main
 
     return bench_main(args.rest)

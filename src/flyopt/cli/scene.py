@@ -1,11 +1,15 @@
 """``flyopt solve`` and ``flyopt check``: one scene, analysed and designed or checked."""
 
+from __future__ import annotations
+
+import argparse
+
 from flyopt.cli.exits import EXIT_OK, solution_exit
 from flyopt.names import Model
 from flyopt.report import display
 
 
-def units_help(what="the text report"):
+def units_help(what: str = "the text report") -> str:
     """The help of ``--units``, its units read from the display table (``flyopt plot`` takes the same choices)."""
     shown = ("length", "angular_speed", "torque", "energy", "stress", "power", "mass")
     systems = "; ".join(
@@ -14,7 +18,7 @@ def units_help(what="the text report"):
     return f"unit system of {what} (default {display.DEFAULT}; {systems})"
 
 
-def add_solve_arguments(parser):
+def add_solve_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt solve``; the handler is :func:`run_solve`."""
     parser.add_argument("scene", help="scene file (TOML)")
     parser.add_argument(
@@ -56,7 +60,7 @@ def add_solve_arguments(parser):
     parser.set_defaults(run=run_solve)
 
 
-def run_solve(args):
+def run_solve(args: argparse.Namespace) -> int:
     """``flyopt solve``: 0 a design or none needed, 3 infeasible, 4 verification flagged."""
     from flyopt.io.scene import load
     from flyopt.pipeline import solve
@@ -90,13 +94,13 @@ def run_solve(args):
     return solution_exit(solution)
 
 
-def add_check_arguments(parser):
+def add_check_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt check``; the handler is :func:`run_check`."""
     parser.add_argument("scene", help="scene file (TOML)")
     parser.set_defaults(run=run_check)
 
 
-def run_check(args):
+def run_check(args: argparse.Namespace) -> int:
     """``flyopt check``: 0 when the scene reads, its cycle closes and its ``[sweep]`` table would run."""
     from flyopt.analysis import analyse
     from flyopt.io.scene import load, read_toml

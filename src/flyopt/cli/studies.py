@@ -13,16 +13,25 @@ document itself; missing values are nulls. ``-o`` and ``--quiet`` follow the
 conventions of :mod:`flyopt.cli.main`.
 """
 
+from __future__ import annotations
+
 import argparse
 import math
 import sys
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Literal
 
 from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_OK, run
 from flyopt.errors import SceneError
 
+if TYPE_CHECKING:
+    import pandas as pd
 
-def _workers(text):
+    from flyopt.io.scene import Scene
+
+
+def _workers(text: str) -> int | Literal["auto"]:
     if text == "auto":
         return "auto"
     try:
@@ -34,7 +43,7 @@ def _workers(text):
     return value
 
 
-def _positive_int(text):
+def _positive_int(text: str) -> int:
     try:
         value = int(text)
     except ValueError:
@@ -44,7 +53,7 @@ def _positive_int(text):
     return value
 
 
-def add_quiet_argument(parser):
+def add_quiet_argument(parser: argparse.ArgumentParser) -> None:
     """``-q``/``--quiet``, in the words of every flyopt command (see :mod:`flyopt.cli.main`)."""
     parser.add_argument(
         "-q",
@@ -58,7 +67,7 @@ def add_quiet_argument(parser):
 # flyopt sweep
 # --------------------------------------------------------------------------
 
-SWEEP_HELP = {
+SWEEP_HELP: dict[str, Any] = {  # keyword options of an argparse (sub)parser
     "help": "a parameter sweep (grid or Latin hypercube) to CSV/Parquet",
     "description": "Sweep a scene over a grid (or Latin hypercube) of its fields: one row "
     "per point with every input and result, to Parquet or CSV.",
@@ -71,7 +80,7 @@ SWEEP_HELP = {
 }
 
 
-def add_sweep_arguments(parser):
+def add_sweep_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt sweep``; the handler is :func:`run_sweep`."""
     parser.add_argument("scene", help="scene file (TOML); a [sweep] table in it is read too")
     parser.add_argument(
@@ -110,7 +119,7 @@ def add_sweep_arguments(parser):
     parser.set_defaults(run=run_sweep)
 
 
-def run_sweep(args):
+def run_sweep(args: argparse.Namespace) -> int:
     """``flyopt sweep``: returns the exit status (0 done, or stopped by --max-chunks)."""
     from flyopt.io.sweep_spec import _resolve, check_options, load_sweep, vary_from_texts
     from flyopt.studies.sweep import check_sweep, sweep
@@ -184,7 +193,7 @@ def run_sweep(args):
     return EXIT_OK
 
 
-def _parts_name(output):
+def _parts_name(output: str | None) -> str:
     return f"{output}.parts" if output is not None else "no output file"
 
 
@@ -192,14 +201,14 @@ def _parts_name(output):
 # flyopt pareto
 # --------------------------------------------------------------------------
 
-PARETO_HELP = {
+PARETO_HELP: dict[str, Any] = {
     "help": "a Pareto front of two objectives",
     "description": "Pareto front of mass against outer diameter, cost or delta, by an "
     "epsilon-constraint swept through the design model.",
 }
 
 
-def add_pareto_arguments(parser):
+def add_pareto_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt pareto``; the handler is :func:`run_pareto`."""
     parser.add_argument("scene", help="scene file (TOML)")
     parser.add_argument(
@@ -214,7 +223,7 @@ def add_pareto_arguments(parser):
     parser.set_defaults(run=run_pareto)
 
 
-def _method_and_output(parser, what):
+def _method_and_output(parser: argparse.ArgumentParser, what: str) -> None:
     """The options ``flyopt pareto`` and ``flyopt tradeoff`` share: the design method and the output."""
     parser.add_argument(
         "--method",
@@ -236,7 +245,7 @@ def _method_and_output(parser, what):
     add_quiet_argument(parser)
 
 
-def _span(text, other):
+def _span(text: str | None, other: str) -> tuple[float, float] | None:
     """``--range LOW:HIGH [unit]`` in SI, in the dimension of the front's second objective."""
     from flyopt.io.sweep_spec import _split_unit
     from flyopt.studies.pareto import PARETO_OBJECTIVES
@@ -256,7 +265,8 @@ def _span(text, other):
         number, unit = _split_unit(part)
         raw = f"{number} {unit or trailing}".strip()
         ends.append(quantity(raw, dimension, "--range"))
-    return tuple(ends)
+    low, high = ends  # two parts, checked above
+    return low, high
 
 
 _SHOW = {
@@ -278,7 +288,7 @@ _SHOW = {
 }
 
 
-def run_pareto(args):
+def run_pareto(args: argparse.Namespace) -> int:
     """``flyopt pareto``: returns the exit status (0 a front or none needed, 3 no design)."""
     from flyopt.io.scene import load
     from flyopt.studies.pareto import _pair, pareto
@@ -312,20 +322,20 @@ def run_pareto(args):
 # flyopt tradeoff
 # --------------------------------------------------------------------------
 
-TRADEOFF_HELP = {
+TRADEOFF_HELP: dict[str, Any] = {
     "help": "the lightest design of each material",
     "description": "For each material the lightest design: size, rim speed, mass, cost and which limit binds.",
 }
 
 
-def add_tradeoff_arguments(parser):
+def add_tradeoff_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt tradeoff``; the handler is :func:`run_tradeoff`."""
     parser.add_argument("scene", help="scene file (TOML)")
     _method_and_output(parser, "table")
     parser.set_defaults(run=run_tradeoff)
 
 
-def run_tradeoff(args):
+def run_tradeoff(args: argparse.Namespace) -> int:
     """``flyopt tradeoff``: returns the exit status (0 a design, 3 none feasible)."""
     from flyopt.io.scene import load
     from flyopt.studies.tradeoff import material_tradeoff
@@ -356,7 +366,7 @@ def run_tradeoff(args):
 _SUFFIXES = (".csv", ".parquet", ".pq", ".json")
 
 
-def _check_output(output):
+def _check_output(output: str | None) -> None:
     """The output file of a front or table, checked before anything is computed."""
     from flyopt.outputs.results import check_folder
 
@@ -367,7 +377,15 @@ def _check_output(output):
     check_folder(output, "-o/--output")
 
 
-def _emit(frame, args, kind, scene, columns, title, objectives=None):
+def _emit(
+    frame: pd.DataFrame,
+    args: argparse.Namespace,
+    kind: str,
+    scene: Scene,
+    columns: Sequence[str],
+    title: str,
+    objectives: Sequence[str] | None = None,
+) -> None:
     """Write a study's table to ``args.output`` (by its suffix) and print it, or its JSON.
 
     The table goes out with its metadata (units, provenance, a front's
@@ -406,7 +424,7 @@ def _emit(frame, args, kind, scene, columns, title, objectives=None):
         print(f"wrote {output}")
 
 
-def _label(column, unit):
+def _label(column: str, unit: str | None) -> str:
     """A printed column's heading: its name and unit, ``[-]`` for a plain number."""
     if unit is None:
         return column
@@ -418,7 +436,9 @@ def _label(column, unit):
 # --------------------------------------------------------------------------
 
 
-def _one_command(name, add, texts):
+def _one_command(
+    name: str, add: Callable[[argparse.ArgumentParser], None], texts: dict[str, Any]
+) -> argparse.ArgumentParser:
     """The parser of one study command alone, as ``flyopt NAME`` has it."""
     texts = {k: v for k, v in texts.items() if k != "help"}
     parser = argparse.ArgumentParser(prog=f"flyopt {name}", **texts)
@@ -426,16 +446,16 @@ def _one_command(name, add, texts):
     return parser
 
 
-def sweep_main(argv=None):
+def sweep_main(argv: Sequence[str] | None = None) -> int:
     """``flyopt sweep ARGV``; returns the exit status."""
     return run(_one_command("sweep", add_sweep_arguments, SWEEP_HELP), argv)
 
 
-def pareto_main(argv=None):
+def pareto_main(argv: Sequence[str] | None = None) -> int:
     """``flyopt pareto ARGV``; returns the exit status."""
     return run(_one_command("pareto", add_pareto_arguments, PARETO_HELP), argv)
 
 
-def tradeoff_main(argv=None):
+def tradeoff_main(argv: Sequence[str] | None = None) -> int:
     """``flyopt tradeoff ARGV``; returns the exit status."""
     return run(_one_command("tradeoff", add_tradeoff_arguments, TRADEOFF_HELP), argv)

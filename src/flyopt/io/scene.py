@@ -15,7 +15,7 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -26,6 +26,9 @@ from flyopt.errors import ExpressionError, SceneError, clip, shorten
 from flyopt.machine.transmission import Shaft, inertia_at_reference
 from flyopt.names import hint, unknown
 from flyopt.units import DIMENSIONS, inertia_from_gd2, quantity
+
+if TYPE_CHECKING:
+    from flyopt.design.materials import Material
 
 ANGLE_TOLERANCE = 1e-9
 """Relative tolerance on a table's first and last angle against 0 and Φ."""
@@ -99,13 +102,13 @@ class Scene:
     engine: object = None  # flyopt.machine.engine.Engine of [engine]; its members lead ``members``
     source: str | None = field(default=None, compare=False)
 
-    def material_library(self):
+    def material_library(self) -> "dict[str, Material]":
         """Built-in materials extended or overridden by the scene's own."""
         from flyopt.design.materials import material_library
 
         return material_library(self.materials)
 
-    def replace(self, **changes):
+    def replace(self, **changes: Any) -> "Scene":
         """A copy with some fields changed (for studies and tests)."""
         return replace(self, **changes)
 

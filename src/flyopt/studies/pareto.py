@@ -31,6 +31,7 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
+import numpy.typing as npt
 import pandas as pd
 
 from flyopt.design import design_inputs
@@ -40,13 +41,14 @@ from flyopt.studies.evaluate import evaluate_points, physics_analysis
 from flyopt.studies.sweep import sweep
 
 if TYPE_CHECKING:  # the annotations only
+    from flyopt.analysis import Analysis
     from flyopt.io.scene import Scene
 
 __all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto"]
 
 #: Worker processes of a front's sweep: "auto" runs it serially unless its points are
 #: estimated to take over a second (a front of δ on a scene analysed at every δ).
-WORKERS = "auto"
+WORKERS: Literal["auto"] = "auto"
 
 #: Second objectives a front may trade against mass, with the unit of --range.
 PARETO_OBJECTIVES = {
@@ -62,7 +64,7 @@ PARETO_OBJECTIVES = {
 # --------------------------------------------------------------------------
 
 
-def non_dominated(first, second):
+def non_dominated(first: npt.ArrayLike, second: npt.ArrayLike) -> npt.NDArray[np.bool_]:
     """Mask of the points no other point dominates (both objectives minimized).
 
     A point is dominated when another is no worse in both objectives and
@@ -89,7 +91,7 @@ def non_dominated(first, second):
     return keep
 
 
-def _pair(objectives):
+def _pair(objectives: str | Sequence[str]) -> tuple[tuple[str, ...], str]:
     if isinstance(objectives, str):
         objectives = [o.strip() for o in objectives.split(",")]
     objectives = tuple(objectives)
@@ -186,7 +188,13 @@ def pareto(
     return front
 
 
-def _front_outer_diameter(scene, points, span, method, solver_options):
+def _front_outer_diameter(
+    scene: Scene,
+    points: int,
+    span: tuple[float, float] | None,
+    method: Literal["auto", "closed_form", "ipopt"],
+    solver_options: Mapping[str, Any] | None,
+) -> pd.DataFrame:
     spec = scene.design
     envelope = spec.max_outer_diameter
     lightest = evaluate_points(
@@ -230,7 +238,9 @@ def _front_outer_diameter(scene, points, span, method, solver_options):
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
 
 
-def _front_cost(scene, method, solver_options):
+def _front_cost(
+    scene: Scene, method: Literal["auto", "closed_form", "ipopt"], solver_options: Mapping[str, Any] | None
+) -> pd.DataFrame:
     inputs = design_inputs(scene)
     names = [m.name for m in inputs.materials]
     missing = [m.name for m in inputs.materials if m.cost is None]
@@ -252,7 +262,7 @@ def _front_cost(scene, method, solver_options):
     return swept.assign(epsilon=swept["cost"])
 
 
-def _front_motor_power(scene, analysis, solver_options):
+def _front_motor_power(scene: Scene, analysis: Analysis, solver_options: Mapping[str, Any] | None) -> pd.DataFrame:
     """Every motor size of the drive with its lightest wheel (flyopt.drive.codesign, every size solved).
 
     ``mass`` is the flywheel's (0 where the motor needs none), ``rated_power``
@@ -285,7 +295,13 @@ def _front_motor_power(scene, analysis, solver_options):
     return pd.DataFrame(rows)
 
 
-def _front_delta(scene, points, span, method, solver_options):
+def _front_delta(
+    scene: Scene,
+    points: int,
+    span: tuple[float, float] | None,
+    method: Literal["auto", "closed_form", "ipopt"],
+    solver_options: Mapping[str, Any] | None,
+) -> pd.DataFrame:
     if span is None:
         span = (scene.delta / 10.0, min(scene.delta * 10.0, 1.0))
     low, high = span

@@ -21,8 +21,10 @@ import hashlib
 import math
 import pickle
 import types
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -30,12 +32,16 @@ __all__ = ["ScenePayload", "digest", "payload"]
 
 from flyopt._toml import tomllib
 
+if TYPE_CHECKING:  # the annotations only
+    from flyopt.io.scene import Scene
+
+
 # --------------------------------------------------------------------------
 # An exact digest of a scene
 # --------------------------------------------------------------------------
 
 
-def digest(obj, skip=("source",)):
+def digest(obj: object, skip: Iterable[str] = ("source",)) -> str:
     """A SHA-256 hex digest of ``obj`` by value.
 
     Floats count to the bit, arrays in full (their dtype, shape and bytes),
@@ -60,8 +66,8 @@ def digest(obj, skip=("source",)):
     return h.hexdigest()
 
 
-def _feed(h, obj, skip, seen):
-    def put(tag, data=b""):
+def _feed(h: hashlib._Hash, obj: object, skip: set[str], seen: set[int]) -> None:
+    def put(tag: str, data: bytes = b"") -> None:
         h.update(tag.encode() + len(data).to_bytes(8, "little") + data)
 
     if obj is None or isinstance(obj, (bool, int, str, bytes)):
@@ -114,7 +120,7 @@ def _feed(h, obj, skip, seen):
             put("repr", repr(obj).encode())
 
 
-def _feed_function(h, fn, skip, seen):
+def _feed_function(h: hashlib._Hash, fn: Callable[..., Any], skip: set[str], seen: set[int]) -> None:
     code = fn.__code__
     h.update(f"{fn.__module__}.{fn.__qualname__}".encode())
     h.update(code.co_code)
@@ -148,10 +154,10 @@ class ScenePayload:
 
     text: str | None
     source: str | None
-    fields: dict
+    fields: dict[str, Any]
     key: str
 
-    def scene(self):
+    def scene(self) -> Scene:
         """The scene, rebuilt.
 
         Returns
@@ -166,7 +172,7 @@ class ScenePayload:
         return base.replace(**self.fields) if self.fields else base
 
 
-def payload(scene):
+def payload(scene: Scene) -> tuple[ScenePayload | None, str]:
     """The scene as data for workers, or why it cannot travel.
 
     Parameters
@@ -219,7 +225,7 @@ def payload(scene):
     )
 
 
-def _file_text(source):
+def _file_text(source: str | None) -> str | None:
     if not source:
         return None
     try:
@@ -228,7 +234,7 @@ def _file_text(source):
         return None
 
 
-def _plain(values):
+def _plain(values: object) -> bool:
     """Whether ``values`` pickle (plain data: no function made at run time)."""
     try:
         pickle.dumps(values)

@@ -8,7 +8,9 @@ settings are invalid before anything runs.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
@@ -16,6 +18,10 @@ import pandas as pd
 from flyopt.errors import SceneError
 from flyopt.io.sweep_spec import FIELDS, _Field, option_label, parse_vary, whole_number
 from flyopt.studies.evaluate import _check_points
+
+if TYPE_CHECKING:  # the annotations only
+    from flyopt.io.scene import Scene
+    from flyopt.io.sweep_spec import Axis
 
 __all__ = ["MAX_POINTS", "SweepPlan", "plan_sweep"]
 
@@ -40,13 +46,20 @@ class SweepPlan:
         was given (so that the samples can be made again); None for a grid.
     """
 
-    axes: list
+    axes: list[Axis]
     points: pd.DataFrame
     samples: int | None = None
     seed: int | None = None
 
 
-def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
+def plan_sweep(
+    scene: Scene,
+    vary: Mapping[str, Any] | Iterable[str],
+    *,
+    samples: int | None = None,
+    seed: int | None = None,
+    where: str = "--vary",
+) -> SweepPlan:
     """The points of a sweep: a full-factorial grid, or Latin hypercube samples.
 
     Parameters
@@ -139,6 +152,7 @@ def plan_sweep(scene, vary, *, samples=None, seed=None, where="--vary"):
     return SweepPlan(axes=axes, points=points, samples=samples, seed=seed)
 
 
-def _drawn_seed():
+def _drawn_seed() -> int:
     """A fresh seed from the operating system's entropy, in 0 <= seed < 2**63 (an int64)."""
-    return int(np.random.SeedSequence().entropy % 2**63)
+    # a SeedSequence made without entropy draws an int; numpy's stubs give the type of any entropy argument
+    return int(np.random.SeedSequence().entropy % 2**63)  # type: ignore[operator]

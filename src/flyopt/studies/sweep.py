@@ -27,10 +27,11 @@ from __future__ import annotations
 import functools
 import os
 import time
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
+import numpy.typing as npt
 import pandas as pd
 
 from flyopt.design import design_inputs
@@ -54,6 +55,8 @@ from flyopt.studies.runner import Parts, connect, cpu_count, fingerprint, run_ch
 
 if TYPE_CHECKING:  # the annotations only
     from flyopt.io.scene import Scene
+    from flyopt.studies.evaluate import _Context
+    from flyopt.studies.plan import SweepPlan
 
 __all__ = ["SUMMARY_COLUMNS", "sweep"]
 
@@ -70,7 +73,7 @@ HELD_CHUNKS = 4
 RETIME_SECONDS = 0.5
 
 
-def check_sweep(scene, options, where="sweep"):
+def check_sweep(scene: Scene, options: Mapping[str, Any], where: str = "sweep") -> SweepPlan:
     """Check a sweep as :func:`sweep` would, without running it.
 
     ``flyopt check`` and ``flyopt sweep`` call it on a scene's ``[sweep]``
@@ -335,18 +338,18 @@ def sweep(
     return frame
 
 
-def _chunk(points, order, start, end):
+def _chunk(points: pd.DataFrame, order: npt.NDArray[np.intp] | None, start: int, end: int) -> pd.DataFrame:
     """The points of one chunk, in point order."""
     if order is None:
         return points.iloc[start:end]
     return points.iloc[np.sort(order[start:end])]
 
 
-def _seed_column(plan):
+def _seed_column(plan: SweepPlan) -> Callable[[pd.DataFrame], pd.DataFrame]:
     """A function making rows the sweep's table: a Latin hypercube's ``seed`` column after
     ``point`` (grids: none), and nulls for missing values (:func:`flyopt.outputs.results.normalize`)."""
 
-    def prepare(frame):
+    def prepare(frame: pd.DataFrame) -> pd.DataFrame:
         if plan.samples is not None and "seed" not in frame:
             frame.insert(1, "seed", np.full(len(frame), plan.seed, dtype=np.int64))
         return normalize(frame)
@@ -354,7 +357,7 @@ def _seed_column(plan):
     return prepare
 
 
-def _describe(scene, plan, method):
+def _describe(scene: Scene, plan: SweepPlan, method: str) -> Callable[[Sequence[str]], dict[str, Any]]:
     """A function giving a sweep table's metadata (:func:`flyopt.outputs.results.table_metadata`)
     from its columns: units, flyopt's version, the scene, and the sweep that made it."""
     varied = {a.field for a in plan.axes}
@@ -371,13 +374,22 @@ def _describe(scene, plan, method):
     }
     record = scene_record(scene, digest(scene))
 
-    def describe(columns):
+    def describe(columns: Sequence[str]) -> dict[str, Any]:
         return table_metadata("sweep", columns, scene=record, sweep=spec, objective=objective)
 
     return describe
 
 
-def _layout(scene, ctx, points, method, workers, chunk_size, client, recorded):
+def _layout(
+    scene: Scene,
+    ctx: _Context,
+    points: pd.DataFrame,
+    method: str,
+    workers: int | Literal["auto"],
+    chunk_size: int | None,
+    client: Any,
+    recorded: Mapping[str, Any],
+) -> dict[str, Any]:
     """How a sweep runs: mode, workers, the order of its points and its chunks.
 
     Returns
@@ -430,7 +442,7 @@ def _layout(scene, ctx, points, method, workers, chunk_size, client, recorded):
         bounds = runner.chunk_bounds(costs, workers=n_workers, starts=starts, breaks=breaks, chunk_size=chunk_size)
     if grouped:  # a block's chunks are written together, once all are done
         block_of = (bounds[:-1] // BLOCK_POINTS).tolist()
-        units = [[] for _ in range(max(block_of) + 1)]
+        units: list[list[int]] = [[] for _ in range(max(block_of) + 1)]
         for i, b in enumerate(block_of):
             units[b].append(i)
     else:
@@ -449,7 +461,7 @@ def _layout(scene, ctx, points, method, workers, chunk_size, client, recorded):
     }
 
 
-def _time_first_analysis(scene, points, codes):
+def _time_first_analysis(scene: Scene, points: pd.DataFrame, codes: npt.NDArray[np.int64]) -> float:
     """Seconds one analysis of a point's physics takes here [s] (the analyses are remembered).
 
     The first physics is timed; when it took under :data:`RETIME_SECONDS`, the
@@ -470,7 +482,7 @@ def _time_first_analysis(scene, points, codes):
     return seconds
 
 
-def _recorded_bounds(values, n):
+def _recorded_bounds(values: object, n: int) -> npt.NDArray[np.int64] | None:
     """The chunk bounds a parts folder recorded, if they fit ``n`` points (else None)."""
     try:
         bounds = np.asarray(values, dtype=np.int64)
@@ -505,23 +517,31 @@ class _Assembly:
         The metadata of the output file, from its columns.
     """
 
-    def __init__(self, units, n_points, parts, output, prepare, describe):
+    def __init__(
+        self,
+        units: list[list[int]],
+        n_points: int,
+        parts: Parts | None,
+        output: str | os.PathLike[str] | None,
+        prepare: Callable[[pd.DataFrame], pd.DataFrame],
+        describe: Callable[[Sequence[str]], dict[str, Any]],
+    ) -> None:
         self.units, self.parts, self.prepare = units, parts, prepare
         self.unit_of = {c: u for u, unit in enumerate(units) for c in unit}
         self.next = 0
-        self.finished = set()
-        self.held = {}
-        self.kept = []
-        self.designs = {}
+        self.finished: set[int] = set()
+        self.held: dict[int, pd.DataFrame] = {}
+        self.kept: list[pd.DataFrame] = []
+        self.designs: dict[int, int] = {}
         self.writer = None if output is None else ResultWriter(output, temporary_folder=parts.folder, metadata=describe)
         if self.writer is not None:  # the summary, by point
             self.have = np.zeros(n_points, dtype=bool)
             self.status = np.zeros(n_points, dtype=np.int8)
             self.method = np.zeros(n_points, dtype=np.int8)
             self.combinations = np.zeros(n_points, dtype=np.int64)
-            self.names = {"status": {}, "method": {}}
+            self.names: dict[str, dict[str, int]] = {"status": {}, "method": {}}
 
-    def add(self, index, frame=None):
+    def add(self, index: int, frame: pd.DataFrame | None = None) -> None:
         """Chunk ``index`` is done: its results ``frame``, or (None) its part on disk."""
         self.finished.add(index)
         if frame is None:
@@ -534,7 +554,7 @@ class _Assembly:
                 self._note(frame)
         self._flush()
 
-    def _note(self, frame):
+    def _note(self, frame: pd.DataFrame) -> None:
         point = frame["point"].to_numpy(dtype=np.int64)
         self.have[point] = True
         self.combinations[point] = frame["n_combinations"].to_numpy(dtype=np.int64)
@@ -544,7 +564,7 @@ class _Assembly:
             codes = np.array([names.setdefault(u, len(names)) for u in uniques], dtype=np.int8)
             target[point] = codes[local] if len(codes) else 0
 
-    def _flush(self):
+    def _flush(self) -> None:
         while self.next < len(self.units) and all(c in self.finished for c in self.units[self.next]):
             if self.writer is None and len(self.units[self.next]) == 1:
                 self.kept.append(self.held.pop(self.units[self.next][0]))
@@ -557,7 +577,7 @@ class _Assembly:
                     self.writer.append(self.prepare(rows))
             self.next += 1
 
-    def finish(self, complete):
+    def finish(self, complete: bool) -> None:
         """Put the output file in place (complete) or drop it (stopped early)."""
         if self.writer is None:
             return
@@ -566,14 +586,14 @@ class _Assembly:
         else:
             self.writer.abort()
 
-    def abort(self):
+    def abort(self) -> None:
         if self.writer is not None:
             self.writer.abort()
 
-    def designs_run(self, ran):
+    def designs_run(self, ran: Iterable[int]) -> int:
         return int(sum(self.designs.get(i, 0) for i in ran))
 
-    def frame(self):
+    def frame(self) -> pd.DataFrame | None:
         """The table to return: every kept row, or the summary (None when nothing finished)."""
         if self.writer is not None:
             point = np.flatnonzero(self.have)
@@ -593,6 +613,6 @@ class _Assembly:
         return self.prepare(whole.reset_index(drop=True))
 
 
-def _in_point_order(frames):
+def _in_point_order(frames: Sequence[pd.DataFrame]) -> pd.DataFrame:
     whole = pd.concat(frames, ignore_index=True)
     return whole.sort_values("point", kind="stable", ignore_index=True)
