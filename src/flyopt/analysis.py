@@ -23,7 +23,6 @@ if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
 from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.units import gd2_from_inertia
 
-
 #: What an analysis carries beyond the sizing, each computed only when asked for (:func:`complete`): the
 #: comparison of the models, the start-up, an engine's textbook flywheel, ω(φ) with the required flywheel.
 EXTRAS = ("models", "startup", "textbook", "speed")

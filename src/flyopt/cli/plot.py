@@ -86,9 +86,7 @@ def run_plot(args):
 
         close = difflib.get_close_matches(args.what, [*plots.PLOTS, ALL], n=1)
         hint = f"; did you mean {close[0]!r}?" if close else ""
-        return fail(
-            f"--what: unknown diagram {args.what!r}{hint} (known: {', '.join(plots.PLOTS)}, {ALL})", EXIT_INPUT
-        )
+        return fail(f"--what: unknown diagram {args.what!r}{hint} (known: {', '.join(plots.PLOTS)}, {ALL})", EXIT_INPUT)
     plots.check_output(args.output)
     solution = _solve(args, [args.what])
     return _plot_one(args, plots, solution, args.what, args.output)
