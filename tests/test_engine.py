@@ -28,6 +28,7 @@ from numpy.testing import assert_allclose
 from scipy import optimize
 
 import flyopt
+from flyopt.analysis import EXTRAS
 from flyopt.cycle.torque import PiecewiseLinear
 from flyopt.machine.engine import Engine, engine_of, phase_table
 from flyopt.machine.reduce import reduce
@@ -249,7 +250,7 @@ class Reference:
 @pytest.fixture(scope="module")
 def four():
     scene = flyopt.load(FOUR_CYLINDER)
-    return scene, flyopt.analyse(scene), Reference(FOUR_CYLINDER)
+    return scene, flyopt.analyse(scene, extras=EXTRAS), Reference(FOUR_CYLINDER)  # the text report reads them
 
 
 def test_the_reference_kinematics_are_those_of_mpmath():

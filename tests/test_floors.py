@@ -30,7 +30,7 @@ FLOORS = (
     ("cycle", ("flyopt.cycle",)),
     ("machine", ("flyopt.machine",)),
     ("sizing", ("flyopt.sizing",)),
-    ("analysis", ("flyopt.analysis",)),
+    ("analysis", ("flyopt.analysis", "flyopt.delta_curve")),
     ("design", ("flyopt.design",)),
     ("drive", ("flyopt.drive",)),
     ("pipeline", ("flyopt.pipeline",)),

@@ -45,7 +45,7 @@ def test_all_models_agree_where_the_cheap_one_is_exact(scene, forced):
 
 def test_cheaper_model_is_off_on_a_variable_inertia_press():
     """The slider-crank press: J_e varies, so the constant-inertia method misses δ."""
-    analysis = flyopt.analyse(flyopt.load(PROBLEMS / "slider-crank-press.toml"))
+    analysis = flyopt.analyse(flyopt.load(PROBLEMS / "slider-crank-press.toml"), extras=("models",))
     rows = models_of(analysis)
     exact, cheap = rows["energy_mass"], rows["energy"]
     assert exact["exact"] and not cheap["exact"]
@@ -55,7 +55,7 @@ def test_cheaper_model_is_off_on_a_variable_inertia_press():
 
 
 def test_cheaper_models_are_off_on_a_speed_dependent_press():
-    analysis = flyopt.analyse(flyopt.load(PROBLEMS / "motor-press.toml"))
+    analysis = flyopt.analyse(flyopt.load(PROBLEMS / "motor-press.toml"), extras=("models", "startup"))
     rows = models_of(analysis)
     assert analysis.model == "dynamic" and "energy_mass" not in rows  # constant J: energy_mass adds nothing
     assert abs(rows["energy"]["j_error"]) > 1e-3
@@ -256,7 +256,7 @@ def test_the_chosen_model_is_solved_once(monkeypatch):
         return solve(machine, model, indicator)
 
     monkeypatch.setattr(choose, "requirement", counted)
-    analysis = flyopt.analyse(scene)
+    analysis = flyopt.analyse(scene, extras=("models",))
     assert analysis.model == choose.DYNAMIC and calls.count(choose.DYNAMIC) == 1
     fresh = choose.compare(analysis.machine, analysis.model, analysis.indicator)
     assert [row["model"] for row in fresh] == [row["model"] for row in analysis.models]

@@ -71,8 +71,8 @@ def test_a_table_on_the_induction_line_is_the_induction_motor(tmp_path):
 def test_a_table_on_the_dc_line_is_the_dc_motor_start_up_included(tmp_path):
     dc = 'motor = { kind = "dc", no_load_speed = "1500 rpm", stall_torque = "120 N*m", shaft = "motor" }'
     table = inline_motor([(0.0, 120.0), (1500.0, 0.0)])
-    a = flyopt.analyse(flyopt.load(scene_with(tmp_path, dc, name="dc.toml")))
-    b = flyopt.analyse(flyopt.load(scene_with(tmp_path, table, name="table.toml")))
+    a = flyopt.analyse(flyopt.load(scene_with(tmp_path, dc, name="dc.toml")), extras=("startup",))
+    b = flyopt.analyse(flyopt.load(scene_with(tmp_path, table, name="table.toml")), extras=("startup",))
     for name in ("j_required", "omega_mean", "omega_max", "omega_min"):
         assert_allclose(getattr(b, name), getattr(a, name), rtol=1e-9, err_msg=name)
     assert_allclose(b.startup.time, a.startup.time, rtol=1e-6)

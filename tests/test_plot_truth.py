@@ -156,7 +156,7 @@ def test_speed_extremes_and_the_ends_of_a_max_are_both_marked_and_explained(draw
     import flyopt
 
     ax = drawn(scene, "turning_moment")
-    analysis = flyopt.analyse(flyopt.load(PROBLEMS / f"{scene}.toml"))
+    analysis = flyopt.analyse(flyopt.load(PROBLEMS / f"{scene}.toml"), extras=("speed",))
     for gid, angle in (("omega_min", analysis.angle_omega_min), ("delta_e_min", analysis.angle_delta_e_min)):
         (mark,) = _gid(ax, gid)
         assert math.isclose(mark.get_xdata()[0], math.degrees(angle), rel_tol=1e-12)
@@ -577,7 +577,7 @@ def test_speed_plot_has_the_mean_speed_and_the_achieved_delta(drawn, scene):
     import flyopt
 
     ax = drawn(scene, "speed")
-    analysis = flyopt.analyse(flyopt.load(PROBLEMS / f"{scene}.toml"))
+    analysis = flyopt.analyse(flyopt.load(PROBLEMS / f"{scene}.toml"), extras=("speed",))
     omega = np.asarray(_gid(ax, "model")[0].get_ydata(), dtype=float)
     (mean,) = _gid(ax, "omega_mean")
     shown = mean.get_ydata()[0]
@@ -746,7 +746,7 @@ def test_speed_without_a_flywheel_is_the_machine_as_it_is():
     labelled J_F = 0). The speed drawn is the machine with no flywheel: J_F = 0, its extremes those of its
     own curve, and its δ the CVODES verification's. A machine with no inertia of its own (motor-press at
     δ 0.7) is drawn at the vanishing inertia it tends to."""
-    from flyopt.analysis import analyse
+    from flyopt.analysis import EXTRAS, analyse
     from flyopt.drive.codesign import MotorRun, chosen_scene
     from flyopt.io.scene import load
     from flyopt.machine.catalogue import catalogue
@@ -756,7 +756,7 @@ def test_speed_without_a_flywheel_is_the_machine_as_it_is():
     scene = load(PROBLEMS / "press-drive.toml")
     motor = next(m for m in catalogue("iec_4pole").motors if m.name.startswith("132S-4"))
     built = chosen_scene(scene, MotorRun(motor=motor, feasible=True, motor_ratio=122.363))
-    analysis = analyse(built, "dynamic")
+    analysis = analyse(built, "dynamic", extras=EXTRAS)  # what the text report reads, and ω(φ)
     assert analysis.j_required == 0 and analysis.j_margin < 0
     # δ holds however small the inertia: j_margin is the bound -min J_e, and the report says so
     assert analysis.delta_holds_at_any_inertia
@@ -789,7 +789,7 @@ def test_speed_without_a_flywheel_is_the_machine_as_it_is():
     y = np.asarray(line.get_ydata())
     assert np.ptp(y) / (0.5 * (y.max() + y.min())) == pytest.approx(speed.delta, rel=1e-6)
     loose = load(PROBLEMS / "motor-press.toml").replace(delta=0.7)
-    bare = analyse(loose)
+    bare = analyse(loose, extras=("speed",))
     assert bare.j_margin == 0 and bare.delta_holds_at_any_inertia
     assert bare.speed_curve().delta < 0.7
     plots.plot_speed(loose, bare)

@@ -129,7 +129,7 @@ def test_speed_plot_with_the_simulation_overlaid(tmp_path):
     from flyopt.report import plots
 
     scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
-    analysis = flyopt.analyse(scene)
+    analysis = flyopt.analyse(scene, extras=("speed",))
     ax = plots.plot_speed(scene, analysis, analysis.speed_curve(), verify(scene, analysis).solution)
     model, simulated = (
         next(line for line in ax.lines if line.get_gid() == gid).get_ydata() for gid in ("model", "simulation")
@@ -504,7 +504,7 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
 
 
 def _stress_axes(geometry):
-    from flyopt.cli.plot import stress_profile
+    from flyopt.pipeline import stress_profile
     from flyopt.report import plots
 
     scene, analysis, design = _designed(WHEELS / f"engine-{geometry}.toml")

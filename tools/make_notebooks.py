@@ -123,7 +123,7 @@ flyopt chooses the cheapest model that is exact for the scene and says why:""",
     ),
     (
         "code",
-        """analysis = flyopt.analyse(scene)
+        """analysis = flyopt.analyse(scene, extras=("models", "speed"))  # the comparison of models, ω(φ): read below
 print(f"model: {analysis.model} — {analysis.model_reason}")
 print(f"driving torque M_d = {text(analysis.driving_torque, 'torque')} (from the work balance, section 4)")
 print(f"power {text(analysis.power, 'power')} at the crank, {text(analysis.motor_power, 'power')} at the motor")

@@ -8,7 +8,8 @@ ratio-squared transfer.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal
 
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia, speed_extremes
@@ -19,11 +20,21 @@ if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
     from flyopt.io.scene import Scene
     from flyopt.machine.reduce import Machine
     from flyopt.sizing.choose import Requirement
-    from flyopt.sizing.energy_mass import SpeedFluctuation
-    from flyopt.sizing.periodic import PeriodicSolution
 from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.names import Model
 from flyopt.units import gd2_from_inertia
+
+#: What an analysis carries beyond the sizing, each computed only when asked for (:func:`complete`): the
+#: comparison of the models, the start-up, an engine's textbook flywheel, ω(φ) with the required flywheel.
+EXTRAS = ("models", "startup", "textbook", "speed")
+
+
+class NotComputed(LookupError):
+    """A result read from an analysis or a solution that was not asked to compute it.
+
+    Readers (the reports, the diagrams) never compute: what they show is asked
+    for when the scene is solved (``flyopt.pipeline.solve(..., extras=...)``).
+    """
 
 
 @dataclass(frozen=True)
@@ -81,7 +92,10 @@ class Analysis:
     ``energy_chain``). For the energy model the pairs are the same angles.
 
     ``indicator``, ``machine`` and ``requirement`` are the computed results
-    the report and the plots draw from (they never run a model again).
+    the report and the plots draw from (they never run a model again); so
+    are ``models``, ``startup``, ``textbook`` and ``speed_curve()``, computed
+    by :func:`complete` when asked for (:data:`EXTRAS`) and read only:
+    reading one that was not asked for raises :class:`NotComputed`.
     """
 
     title: str
@@ -115,7 +129,8 @@ class Analysis:
     indicator: EnergyIndicator | None = None
     machine: Machine | None = None
     requirement: Requirement | None = None
-    _lazy: dict = field(default_factory=dict, compare=False, repr=False)
+    _extras: MappingProxyType = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
+    _lazy: dict = field(default_factory=dict, compare=False, repr=False)  # flywheel_torque() of the stages
 
     @property
     def delta_holds_at_any_inertia(self) -> bool:
@@ -131,18 +146,25 @@ class Analysis:
     def models(self) -> tuple[dict[str, Any], ...]:
         """Every applicable model's J_F and the δ it really gives (flyopt.sizing.choose.compare).
 
-        Computed on first use, not by every analysis: a sweep point needs only
-        J_F and ω_max, and the comparison solves the cheaper models again.
+        Computed only when asked for (:func:`complete`), not by every analysis: a
+        sweep point needs only J_F and ω_max, and the comparison solves the
+        cheaper models again.
         """
-        return self._get("models")
+        return self._extra("models")
 
     @property
-    def startup(self) -> StartupRun | None:
-        """The run-up from rest with the motor (:class:`StartupRun`), or None without a motor; computed on first use."""
-        return self._get("startup")
+    def startup(self):
+        """The run-up from rest with the motor (:class:`StartupRun`), or None without a motor (:func:`complete`)."""
+        return self._extra("startup")
 
-    def speed_curve(self) -> SpeedFluctuation | PeriodicSolution | None:
-        """ω(φ) over the cycle with the required flywheel, by the model that sized it (computed once).
+    @property
+    def textbook(self):
+        """An [engine]'s textbook flywheel (flyopt.sizing.textbook.textbook_requirement), or None for a
+        machine that is not an engine or whose inertia is constant (:func:`complete`)."""
+        return self._extra("textbook")
+
+    def speed_curve(self):
+        """ω(φ) over the cycle with the required flywheel, by the model that sized it (:func:`complete`).
 
         The dynamic model's periodic solution; for the energy models the forward
         use of the energy–mass method, ω² = 2 (E_0 + ΔE)/J_e with E_0 such that
@@ -161,10 +183,22 @@ class Analysis:
         ValueError
             A net-area scene (it has no angles), or no inertia at all while
             the energy fluctuates (ω(φ) is undefined).
+        NotComputed
+            The analysis was not asked for it.
         """
-        if "speed" not in self._lazy:
-            self._lazy["speed"] = _speed_curve(self)
-        return self._lazy["speed"]
+        speed, error = self._extra("speed")
+        if error is not None:
+            raise ValueError(error)
+        return speed
+
+    def _extra(self, name):
+        try:
+            return self._extras[name]
+        except KeyError:
+            raise NotComputed(
+                f"Analysis.{name} was not computed: ask for it when the scene is solved "
+                f"(flyopt.pipeline.solve(scene, extras=...) or flyopt.analysis.complete(analysis, ({name!r},)))"
+            ) from None
 
     def flywheel_torque(self, j_flywheel: float | None = None) -> float | None:
         """The largest torque a flywheel exchanges with the reference shaft [N*m], or None.
@@ -192,18 +226,12 @@ class Analysis:
         samples = _net_torque_samples(self.machine)
         return None if samples is None else float(abs(samples[1]).max())
 
-    def _get(self, name: str) -> Any:
-        value = self._lazy[name]
-        if callable(value):
-            value = self._lazy[name] = value()
-        return value
-
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self):
         """Plain JSON-ready dictionary, every number in SI (the comparison and start-up included)."""
         out = {
             k: v
             for k, v in self.__dict__.items()
-            if k not in ("indicator", "machine", "requirement", "shafts", "energy_chain", "_lazy")
+            if k not in ("indicator", "machine", "requirement", "shafts", "energy_chain", "_extras", "_lazy")
         }
         out["startup"] = None if self.startup is None else asdict(self.startup)
         out["models"] = [dict(m) for m in self.models]
@@ -242,7 +270,11 @@ def _net_torque_samples(machine):
 
 
 def analyse(
-    scene: Scene, model: Literal["energy", "energy_mass", "dynamic"] | None = None, *, like: Analysis | None = None
+    scene: Scene,
+    model: Literal["energy", "energy_mass", "dynamic"] | None = None,
+    *,
+    like: Analysis | None = None,
+    extras: tuple = (),
 ) -> Analysis:
     """Analyse a scene's cycle and size the flywheel it needs.
 
@@ -257,6 +289,9 @@ def analyse(
         (and the compiled models cached on it) and its energy indicator,
         none of which depends on delta, are reused instead of reducing the
         scene and integrating its torques again.
+    extras : tuple of str
+        What else to compute (:data:`EXTRAS`, see :func:`complete`); nothing
+        beyond the sizing by default.
 
     Returns
     -------
@@ -270,7 +305,7 @@ def analyse(
         The periodic solution did not converge.
     """
     try:
-        return _analyse(scene, model, like)
+        return complete(_analyse(scene, model, like), extras)
     except (SceneError, NonPeriodicCycle) as err:
         raise err.with_source(scene.source) from None
 
@@ -293,19 +328,6 @@ def _analyse(scene, forced=None, like=None):
         omega_mean = scene.omega_mean
         omega_max, omega_min = speed_extremes(omega_mean, scene.delta)
         angles = (ind.angle_omega_max, ind.angle_omega_min)
-        lazy = {
-            "models": (
-                {
-                    "model": model,
-                    "exact": True,
-                    "j_required": j_margin,
-                    "achieved_delta": scene.delta,
-                    "j_error": 0.0,
-                    "note": "",
-                },
-            ),
-            "startup": None,
-        }
     else:
         if like is not None and like.machine is not None:
             import dataclasses
@@ -332,10 +354,6 @@ def _analyse(scene, forced=None, like=None):
             {"index": k, "angle": float(a), "delta_e": float(e)}
             for k, (a, e) in enumerate(zip(ind.chain_angle, ind.chain_delta_e))
         )
-        lazy = {
-            "models": lambda: tuple(models.compare(machine, model, ind, known=requirement)),
-            "startup": lambda: startup_run(machine, omega_mean, max(j_margin, 0.0)),
-        }
     needed = j_margin > 0
     j_req = j_margin if needed else 0.0
     shafts = tuple(
@@ -353,7 +371,6 @@ def _analyse(scene, forced=None, like=None):
         title=scene.title,
         model=model,
         model_reason=reason,
-        _lazy=lazy,
         omega_mean=omega_mean,
         delta=scene.delta,
         cycle_angle=scene.cycle_angle,
@@ -383,6 +400,83 @@ def _analyse(scene, forced=None, like=None):
         machine=machine,
         requirement=requirement,
     )
+
+
+def complete(analysis, extras=EXTRAS):
+    """The analysis with ``extras`` computed (:data:`EXTRAS`), those it already has kept.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    extras : iterable of str
+        "models" (every applicable model's J_F and the δ it gives,
+        flyopt.sizing.choose.compare), "startup" (:func:`startup_run` with the
+        required flywheel), "textbook" (an engine's textbook flywheel,
+        flyopt.sizing.textbook.textbook_requirement), "speed" (ω(φ) with the
+        required flywheel, or why it cannot be drawn).
+
+    Returns
+    -------
+    Analysis
+        A new, frozen analysis; ``analysis`` itself when nothing is missing.
+    """
+    missing = [name for name in extras if name not in analysis._extras]
+    unknown = [name for name in missing if name not in EXTRAS]
+    if unknown:
+        raise ValueError(f"unknown extras {unknown} (known: {', '.join(EXTRAS)})")
+    if not missing:
+        return analysis
+    have = dict(analysis._extras)
+    for name in EXTRAS:  # in one order, whatever the caller's
+        if name in missing:
+            have[name] = _COMPUTE[name](analysis)
+    return replace(analysis, _extras=MappingProxyType(have))
+
+
+def _models(analysis):
+    if analysis.machine is None:  # net areas: the energy method alone, exact
+        return (
+            {
+                "model": analysis.model,
+                "exact": True,
+                "j_required": analysis.j_margin,
+                "achieved_delta": analysis.delta,
+                "j_error": 0.0,
+                "note": "",
+            },
+        )
+    from flyopt.sizing import choose as models
+
+    return tuple(models.compare(analysis.machine, analysis.model, analysis.indicator, known=analysis.requirement))
+
+
+def _startup(analysis):
+    if analysis.machine is None:
+        return None
+    return startup_run(analysis.machine, analysis.omega_mean, max(analysis.j_margin, 0.0))
+
+
+def _textbook(analysis):
+    machine = analysis.machine
+    if machine is None or not machine.variable_inertia:
+        return None  # no moving masses: the textbook method and the exact one are one
+    from flyopt.machine.engine import engine_of  # CasADi: loaded with the members
+    from flyopt.sizing.textbook import textbook_requirement
+
+    if engine_of(machine) is None:
+        return None
+    return textbook_requirement(machine, analysis.omega_mean, analysis.delta)
+
+
+def _speed(analysis):
+    """(ω(φ) or None, None), or (None, why it cannot be drawn)."""
+    try:
+        return _speed_curve(analysis), None
+    except ValueError as err:
+        return None, str(err)
+
+
+_COMPUTE = {"models": _models, "startup": _startup, "textbook": _textbook, "speed": _speed}
 
 
 def startup_run(machine, omega_target, j_flywheel):

@@ -8,10 +8,12 @@ PyBaMM Simulation pattern).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal
 
-from flyopt.analysis import Analysis, analyse
+from flyopt.analysis import EXTRAS as ANALYSIS_EXTRAS
+from flyopt.analysis import Analysis, NotComputed, analyse, complete
 
 if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     from flyopt.design.result import DesignResult
@@ -20,9 +22,25 @@ if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     from flyopt.sizing.periodic import Verification
 
 
+#: What ``flyopt solve`` shows beyond the sizing and the design (its text and its JSON): computed by default.
+SHOWN = ("models", "startup", "textbook")
+#: What the solution itself can carry beyond the analysis' :data:`flyopt.analysis.EXTRAS`: J_F at other δ
+#: (``inertia_curve``), the analysis by the energy–mass model (``energy_mass``), the chosen wheel's stresses
+#: over its radius (``stress``), the simulation with the required flywheel (``speed_simulation``).
+SOLUTION_EXTRAS = ("inertia_curve", "energy_mass", "stress", "speed_simulation")
+#: Every extra: what the engineering report and every diagram of a scene show, computed in one solve.
+COMPLETE = (*ANALYSIS_EXTRAS, *SOLUTION_EXTRAS)
+
+
 @dataclass(frozen=True)
 class Solution:
     """A scene analysed and (unless asked not to) its flywheel designed.
+
+    Everything a report or a diagram shows is computed here, by :func:`solve`,
+    when asked for (its ``extras``), and only read afterwards: the analysis'
+    extras (:data:`flyopt.analysis.EXTRAS`) and those of :data:`SOLUTION_EXTRAS`,
+    read through the properties of the same names; one that was not asked for
+    raises :class:`flyopt.analysis.NotComputed`.
 
     Attributes
     ----------
@@ -37,6 +55,20 @@ class Solution:
         chosen motor at its ratio) and ``design`` its wheel's.
     drive_check : DriveCheck or None
         The chosen drive simulated with the wheel as built.
+    inertia_curve : (ndarray, ndarray) or None
+        δ and J_F there by the analysis' own model
+        (:func:`flyopt.delta_curve.inertia_curve`); None for the energy
+        method (its closed form is drawn), a steady machine, or when it could
+        not be found (``inertia_error``).
+    energy_mass : Analysis or None
+        The analysis by the energy–mass model where it applies (an inertia
+        that varies, torques of the angle only).
+    stress : tuple or None
+        ``(profile, beams, omega, material)`` of :func:`stress_profile` for the
+        chosen wheel, or None (no wheel; ``stress_note`` says why when it failed).
+    speed_simulation : PeriodicSolution or None
+        The periodic simulation with the required flywheel (:func:`verify`
+        without a design), for a scene with curves.
     """
 
     scene: Scene
@@ -45,6 +77,42 @@ class Solution:
     verification: Verification | None = None
     drive: DriveDesign | None = None  # of a scene with a [drive]
     drive_check: DriveCheck | None = None  # of the chosen drive
+    _extras: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
+
+    def _extra(self, name):
+        try:
+            return self._extras[name]
+        except KeyError:
+            raise NotComputed(
+                f"Solution.{name} was not computed: ask for it when the scene is solved "
+                f"(flyopt.pipeline.solve(scene, extras=({name!r},)))"
+            ) from None
+
+    @property
+    def inertia_curve(self):
+        return self._extra("inertia_curve")[0]
+
+    @property
+    def inertia_error(self):
+        """The exception that kept J_F from being found at every δ, or None."""
+        return self._extra("inertia_curve")[1]
+
+    @property
+    def energy_mass(self):
+        return self._extra("energy_mass")
+
+    @property
+    def stress(self):
+        return self._extra("stress")[0]
+
+    @property
+    def stress_note(self):
+        """Why there is no stress profile of a chosen wheel ("" when there is one, or no wheel)."""
+        return self._extra("stress")[1]
+
+    @property
+    def speed_simulation(self):
+        return self._extra("speed_simulation")
 
     @property
     def status(self) -> str:
@@ -255,6 +323,7 @@ def solve(
     model: Literal["energy", "energy_mass", "dynamic"] | None = None,
     verify_design: bool = False,
     design_method: Literal["auto", "ipopt", "closed_form"] = "auto",
+    extras: tuple = SHOWN,
 ) -> Solution:
     """Analyse a scene and design its flywheel.
 
@@ -273,17 +342,118 @@ def solve(
         Simulate the machine with the chosen flywheel (:func:`verify`).
     design_method : {"auto", "ipopt", "closed_form"}
         How each combination is optimized (see :func:`design_scene`).
+    extras : tuple of str
+        What else to compute, of :data:`COMPLETE`: by default what ``flyopt
+        solve`` shows (:data:`SHOWN`); the report and the diagrams ask for
+        what they draw, and then only read the solution.
 
     Returns
     -------
     Solution
     """
+    unknown = [name for name in extras if name not in COMPLETE]
+    if unknown:
+        raise ValueError(f"unknown extras {unknown} (known: {', '.join(COMPLETE)})")
     analysis = analyse(scene, model)
     if scene.drive is not None and design_flywheel:
-        return solve_drive(scene, analysis, solver_options)
-    result = design_scene(scene, analysis, solver_options, design_method) if design_flywheel else None
-    checked = verify(scene, analysis, result) if verify_design else None
-    return Solution(scene=scene, analysis=analysis, design=result, verification=checked)
+        solution = solve_drive(scene, analysis, solver_options)
+    else:
+        result = design_scene(scene, analysis, solver_options, design_method) if design_flywheel else None
+        checked = verify(scene, analysis, result) if verify_design else None
+        solution = Solution(scene=scene, analysis=analysis, design=result, verification=checked)
+    return with_extras(solution, extras)
+
+
+def with_extras(solution, extras=COMPLETE):
+    """``solution`` with ``extras`` (of :data:`COMPLETE`) computed on its scene, analysis and design."""
+    analysis = complete(solution.analysis, [name for name in extras if name in ANALYSIS_EXTRAS])
+    have = dict(solution._extras)
+    scene, design = solution.scene, solution.design
+    for name in SOLUTION_EXTRAS:
+        if name not in extras or name in have:
+            continue
+        if name == "inertia_curve":
+            have[name] = _inertia_curve(scene, analysis)
+        elif name == "energy_mass":
+            have[name] = _energy_mass(scene, analysis)
+        elif name == "stress":
+            have[name] = _stress(scene, analysis, design)
+        else:
+            have[name] = verify(scene, analysis).solution if scene.net is None else None
+    return replace(solution, analysis=analysis, _extras=MappingProxyType(have))
+
+
+def _inertia_curve(scene, analysis):
+    """(curve or None, the error that kept it from being found or None); see :data:`SOLUTION_EXTRAS`."""
+    from flyopt.delta_curve import flywheel_at_some_delta, inertia_curve
+
+    if analysis.model == "energy" or not flywheel_at_some_delta(analysis):
+        return None, None  # the energy method's closed form is drawn as it is; a steady machine has no curve
+    try:
+        return inertia_curve(scene, analysis), None
+    except (ValueError, RuntimeError) as err:
+        return None, err
+
+
+def _energy_mass(scene, analysis):
+    """The analysis by the energy–mass model where its diagram applies (J_e varies, torques of the angle only)."""
+    machine = analysis.machine
+    if machine is None or not machine.variable_inertia or machine.speed_dependent:
+        return None
+    if analysis.model == "energy_mass":
+        return analysis
+    return analyse(scene, "energy_mass", like=analysis)
+
+
+def _stress(scene, analysis, design):
+    """(the chosen wheel's :func:`stress_profile` or None, why it could not be computed or "")."""
+    if design is None or design.best is None:
+        return None, ""
+    try:
+        return stress_profile(scene, analysis, design), ""
+    except ValueError as err:
+        return None, str(err)
+
+
+def wheel_dims(candidate):
+    """The :class:`flyopt.design.wheel.Dims` of a designed candidate [m] (0 where it has no such part)."""
+    from flyopt.design.wheel import Dims
+
+    c = candidate
+    return Dims(
+        d_outer=c.d_outer,
+        h=c.h,
+        b=c.b,
+        bore=c.bore or 0.0,
+        t_web=c.t_web or 0.0,
+        d_hub=c.d_hub or 0.0,
+        l_hub=c.l_hub or 0.0,
+        arm_major=c.arm_major or 0.0,
+        n_arms=c.n_arms or 0,
+    )
+
+
+def stress_profile(scene, analysis, design):
+    """The stresses of the design's best wheel over its radius, at omega_max on its own shaft.
+
+    Returns
+    -------
+    profile, beams : see :func:`flyopt.design.strength.profile`
+    omega : float
+        omega_max on the wheel's shaft [rad/s].
+    material : flyopt.design.materials.Material
+    """
+    from flyopt.design import strength
+
+    best = design.best
+    material = scene.material_library()[best.material]
+    if getattr(material, "poisson_ratio", None) is None:
+        raise ValueError(f"material {best.material!r} gives no poisson_ratio: its stresses cannot be computed")
+    omega = design.omega * best.speed_ratio
+    torque = analysis.flywheel_torque()
+    torque = torque / best.speed_ratio if torque else 0.0
+    profile, beams = strength.profile(material, best.geometry, wheel_dims(best), omega, torque)
+    return profile, beams, omega, material
 
 
 def solve_drive(scene, analysis, solver_options=None):

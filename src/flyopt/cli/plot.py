@@ -1,8 +1,11 @@
 """``flyopt plot``: a diagram of a scene, or of the results of a sweep or a Pareto front.
 
-The handler computes what a diagram needs (the analysis, the design, the
-speed over the cycle, the simulation) and hands it to :mod:`flyopt.report.plots`,
-which only draws. The output file is checked before anything is computed.
+The handler solves the scene once (:func:`flyopt.pipeline.solve`, asked for
+what the diagrams draw: the design, the speed over the cycle, the simulation,
+J_F at other δ, the stresses) and hands the solution to
+:mod:`flyopt.report.plots`, which only draws; nothing is computed after the
+solve. ``--what all -o DIR/`` draws every diagram of the scene from that one
+solve. The output file is checked before anything is computed.
 A diagram that would be empty because no flywheel is needed is said in one
 line on stdout with exit status 0 and no file: the scene is valid and the
 answer (no flywheel) is the one ``flyopt solve`` gives with status 0. A
@@ -25,7 +28,8 @@ def add_plot_arguments(parser):
         required=True,
         metavar="DIAGRAM",
         help="turning_moment | energy | inertia_delta | cross_section | stress | speed | "
-        "energy_mass; for results: sweep | pareto",
+        "energy_mass, or all (every diagram of the scene, from one solve, as DIR/<diagram>.png); "
+        "for results: sweep | pareto",
     )
     parser.add_argument(
         "--x",
@@ -45,9 +49,27 @@ def add_plot_arguments(parser):
         "-o",
         "--output",
         required=True,
-        help="file to write (its folder must exist); the suffix picks the format: png, svg, pdf",
+        help="file to write (its folder must exist); the suffix picks the format: png, svg, pdf; "
+        "with --what all, the existing folder to write every diagram into",
     )
     parser.set_defaults(run=run_plot)
+
+
+#: ``--what all``: every diagram of the scene, each written as DIR/<diagram>.png.
+ALL = "all"
+
+
+def needs(whats, verify=False):
+    """(whether to design, the extras of :func:`flyopt.pipeline.solve`) the diagrams ``whats`` draw."""
+    extras = set()
+    for what in whats:
+        extras |= {
+            "inertia_delta": {"inertia_curve"},
+            "stress": {"stress"},
+            "speed": {"speed", "speed_simulation"} if verify else {"speed"},
+            "energy_mass": {"energy_mass"},
+        }.get(what, set())
+    return any(what in ("cross_section", "stress") for what in whats), tuple(sorted(extras))
 
 
 def run_plot(args):
@@ -58,176 +80,116 @@ def run_plot(args):
         return fail(f"--units: unknown unit system {args.units!r} (allowed: {', '.join(display.SYSTEMS)})", EXIT_INPUT)
     if args.scene.lower().endswith((".csv", ".parquet")):
         return _plot_results(args)
+    if args.what == ALL:
+        return _plot_all(args, plots)
     if args.what not in plots.PLOTS:
         return fail(
-            f"--what: unknown diagram {args.what!r}{hint(args.what, plots.PLOTS)} (known: {', '.join(plots.PLOTS)})",
+            f"--what: unknown diagram {args.what!r}{hint(args.what, [*plots.PLOTS, ALL])} (known: {', '.join(plots.PLOTS)}, {ALL})",
             EXIT_INPUT,
         )
     plots.check_output(args.output)
+    solution = _solve(args, [args.what])
+    return _plot_one(args, plots, solution, args.what, args.output)
+
+
+def _solve(args, whats):
+    """The scene solved once, with what the diagrams ``whats`` draw (:func:`flyopt.pipeline.solve`)."""
+    from flyopt.io.scene import load
+    from flyopt.pipeline import solve
+
+    design, extras = needs(whats, args.verify)
+    return solve(load(args.scene), design_flywheel=design, extras=extras)
+
+
+def _plot_one(args, plots, solution, what, output, every=False):
+    """Draw ``what`` from ``solution`` into ``output``; the exit status.
+
+    ``every`` (``--what all``): a diagram that does not apply to the scene is
+    said on stdout and left out (status 0) instead of refused (status 2).
+    """
     try:
-        ax = _draw(args, plots)
+        ax = _draw(solution, what, plots, args.units, args.verify)
     except plots.NothingToDraw as said:
-        print(f"{args.scene}: {args.what}: {said} (no file written)")
+        print(f"{args.scene}: {what}: {said} (no file written)")
         return EXIT_OK
     except _Infeasible as said:
-        return fail(f"{args.scene}: no flywheel to draw ({said})", EXIT_INFEASIBLE)
+        return fail(f"{args.scene}: {what}: no flywheel to draw ({said})", EXIT_INFEASIBLE)
     except ValueError as err:
         if isinstance(err, FlyoptError):  # an input error names its file and field itself
             raise
-        return fail(f"{args.scene}: {args.what}: {err}", EXIT_INPUT)
-    plots.save(ax, args.output)
-    print(f"wrote {args.output}")
+        if every:
+            print(f"{args.scene}: {what}: does not apply: {err} (no file written)")
+            return EXIT_OK
+        return fail(f"{args.scene}: {what}: {err}", EXIT_INPUT)
+    plots.save(ax, output)
+    print(f"wrote {output}")
     return EXIT_OK
+
+
+def _plot_all(args, plots):
+    """``--what all -o DIR/``: every diagram of the scene from one solve, each as DIR/<diagram>.png.
+
+    A diagram that does not apply to the scene is said in one line and left
+    out; the exit status is 3 when a flywheel is needed and none is feasible
+    (its diagrams are left out, the others written), else 0.
+    """
+    from pathlib import Path
+
+    from flyopt.errors import SceneError
+
+    folder = Path(args.output)
+    if not folder.is_dir():
+        raise SceneError("-o/--output", f"{args.output!r}: with --what all, -o names an existing folder")
+    whats = list(plots.PLOTS)
+    solution = _solve(args, whats)
+    statuses = [_plot_one(args, plots, solution, what, folder / f"{what}.png", every=True) for what in whats]
+    return EXIT_INFEASIBLE if EXIT_INFEASIBLE in statuses else EXIT_OK
 
 
 class _Infeasible(Exception):
     """A flywheel is needed and no material and shaft can give it (exit 3)."""
 
 
-def _draw(args, plots):
-    """Compute what the diagram needs, then draw it; returns the Axes."""
-    from flyopt.analysis import analyse
-    from flyopt.io.scene import load
-
-    units = args.units
-    scene = load(args.scene)
-    analysis = analyse(scene)
-    if args.what in ("cross_section", "stress"):
-        from flyopt.pipeline import design_scene
-
-        design = design_scene(scene, analysis)
-        if design.status == "not_needed":
+def _draw(solution, what, plots, units, verify=False):
+    """Draw ``what`` from the solved scene (read only: every model ran in the solve); returns the Axes."""
+    scene, analysis = solution.scene, solution.analysis
+    if what in ("cross_section", "stress"):
+        design = solution.design
+        if solution.status == "not_needed":
             raise plots.NothingToDraw("no flywheel is needed: nothing to draw")
-        if design.best is None:
-            raise _Infeasible(design.message)
-        if args.what == "cross_section":
+        if design is None or design.best is None:
+            raise _Infeasible(design.message if design is not None else "no drive and wheel meet the limits")
+        if what == "cross_section":
             return plots.plot_cross_section(design.best, units=units)
-        return _draw_stress(scene, analysis, design, plots, units)
-    if args.what == "speed":
-        if scene.net is not None:  # said by the plot, before any model runs
+        if solution.stress is None:
+            raise ValueError(solution.stress_note)
+        profile, beams, omega, material = solution.stress
+        return plots.plot_stress(
+            design.best, profile, beams, omega, ductile=bool(getattr(material, "ductile", False)), units=units
+        )
+    if what == "speed":
+        if scene.net is not None:  # said by the plot
             return plots.plot_speed(scene, analysis, units=units)
-        from flyopt.pipeline import verify
-
-        # the simulation --verify checks, with the required flywheel: pipeline.verify, the one path
-        simulation = verify(scene, analysis).solution if args.verify else None
         speed = analysis.speed_curve()
         if speed is None:
             raise plots.NothingToDraw(
                 "no flywheel is needed and the speed does not fluctuate (A_max = 0 J, "
                 "no inertia at all): nothing to draw"
             )
+        simulation = solution.speed_simulation if verify else None
         return plots.plot_speed(scene, analysis, speed, simulation, units=units)
-    if args.what == "energy_mass":
+    if what == "energy_mass":
         plots.check_energy_mass(analysis)
-        if analysis.model != Model.ENERGY_MASS:  # the diagram draws that model's tangents
-            analysis = analyse(scene, model="energy_mass")
-    if args.what == "inertia_delta":
+        analysis = solution.energy_mass  # the diagram draws that model's tangents
+    if what == "inertia_delta":
         plots.check_inertia_delta(analysis)
-        curve = None if analysis.model == Model.ENERGY else inertia_curve(scene, analysis)
+        curve = None
+        if analysis.model != Model.ENERGY:
+            if solution.inertia_error is not None:
+                raise solution.inertia_error
+            curve = solution.inertia_curve
         return plots.plot_inertia_delta(scene, analysis, units=units, curve=curve)
-    return getattr(plots, f"plot_{args.what}")(scene, analysis, units=units)
-
-
-def inertia_curve(scene, analysis, deltas=None):
-    """J_F at each δ by the analysis' own model: the scene analysed again at that δ.
-
-    With a variable inertia or a speed-dependent torque, J_F is not
-    A_max/(ω_m² δ) − J_c (docs/flywheel-design.md, sections 6 and 7): each
-    δ is a new sizing by the exact model. The reduced machine and its
-    compiled models are reused (``analyse(..., like=analysis)``).
-
-    Parameters
-    ----------
-    scene : Scene
-    analysis : Analysis
-    deltas : sequence of float, optional
-        δ [-], each in (0, 2). By default those of
-        :func:`flyopt.report.plots.delta_range` (41; 25 for the dynamic model,
-        whose every point is a periodic solution), and where J_F falls to zero
-        between two of them (δ*, where the machine's own inertia starts to
-        suffice, and the curve is steep) eight more between those two.
-
-    Returns
-    -------
-    (ndarray, ndarray)
-        δ and J_F there (``j_margin``: negative where none is needed)
-        [kg*m^2]; NaN where the model has no answer at that δ (the periodic
-        solution stalls, say).
-    """
-    import dataclasses
-
-    import numpy as np
-
-    from flyopt.analysis import analyse
-    from flyopt.errors import SolverFailed
-
-    if deltas is None:
-        from flyopt.report.plots import delta_range
-
-        delta, j = inertia_curve(scene, analysis, delta_range(analysis, 25 if analysis.model == Model.DYNAMIC else 41))
-        falls = np.flatnonzero((j[:-1] > 0) & (j[1:] <= 0))
-        if len(falls):
-            k = falls[0]
-            more = inertia_curve(scene, analysis, np.geomspace(delta[k], delta[k + 1], 10)[1:-1])
-            order = np.argsort(np.concatenate([delta, more[0]]))
-            return np.concatenate([delta, more[0]])[order], np.concatenate([j, more[1]])[order]
-        return delta, j
-    deltas = np.asarray(deltas, dtype=float)
-    j = np.full(deltas.shape, np.nan)
-    for k, delta in enumerate(deltas):
-        try:
-            j[k] = analyse(dataclasses.replace(scene, delta=float(delta)), analysis.model, like=analysis).j_margin
-        except SolverFailed:
-            continue
-    return deltas, j
-
-
-def wheel_dims(candidate):
-    """The :class:`flyopt.design.wheel.Dims` of a designed candidate [m] (0 where it has no such part)."""
-    from flyopt.design.wheel import Dims
-
-    c = candidate
-    return Dims(
-        d_outer=c.d_outer,
-        h=c.h,
-        b=c.b,
-        bore=c.bore or 0.0,
-        t_web=c.t_web or 0.0,
-        d_hub=c.d_hub or 0.0,
-        l_hub=c.l_hub or 0.0,
-        arm_major=c.arm_major or 0.0,
-        n_arms=c.n_arms or 0,
-    )
-
-
-def stress_profile(scene, analysis, design):
-    """The stresses of the design's best wheel over its radius, at omega_max on its own shaft.
-
-    Returns
-    -------
-    profile, beams : see :func:`flyopt.design.strength.profile`
-    omega : float
-        omega_max on the wheel's shaft [rad/s].
-    material : flyopt.design.materials.Material
-    """
-    from flyopt.design import strength
-
-    best = design.best
-    material = scene.material_library()[best.material]
-    if getattr(material, "poisson_ratio", None) is None:
-        raise ValueError(f"material {best.material!r} gives no poisson_ratio: its stresses cannot be computed")
-    omega = design.omega * best.speed_ratio
-    torque = analysis.flywheel_torque()
-    torque = torque / best.speed_ratio if torque else 0.0
-    profile, beams = strength.profile(material, best.geometry, wheel_dims(best), omega, torque)
-    return profile, beams, omega, material
-
-
-def _draw_stress(scene, analysis, design, plots, units="engineering"):
-    profile, beams, omega, material = stress_profile(scene, analysis, design)
-    return plots.plot_stress(
-        design.best, profile, beams, omega, ductile=bool(getattr(material, "ductile", False)), units=units
-    )
+    return getattr(plots, f"plot_{what}")(scene, analysis, units=units)
 
 
 def _plot_results(args):

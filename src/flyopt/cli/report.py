@@ -5,13 +5,14 @@
     flyopt report SCENE.toml -o report.html [--units engineering|si|imperial]
     flyopt report SCENE.toml -o report.pdf
 
-The scene is solved as ``flyopt solve --verify`` solves it
-(:func:`flyopt.pipeline.solve` with ``verify_design=True``); :func:`collect`
-then gathers what the diagrams and the worked steps need beyond the solution
-(the speed over the cycle, the stress profile, the energy–mass tangent points,
-an engine's textbook flywheel, the provenance), as ``flyopt plot`` does for
-one diagram, and :mod:`flyopt.report.document` builds the report from them
-without running a model. The suffix of ``-o`` picks the format; the file is
+The scene is solved once, as ``flyopt solve --verify`` solves it
+(:func:`flyopt.pipeline.solve` with ``verify_design=True``) and with every
+extra the report shows (``extras=COMPLETE``: the model comparison, the
+start-up, the speed over the cycle, J_F at other δ, the energy–mass analysis,
+an engine's textbook flywheel, the stress profile); :func:`collect` then only
+reads them out of the solution (with the provenance), and
+:mod:`flyopt.report.document` builds the report from them without running a
+model. The suffix of ``-o`` picks the format; the file is
 written atomically (nothing half-written on an error or Ctrl-C) and its
 folder is checked before anything is computed.
 
@@ -139,14 +140,12 @@ def collect(path, command="", pdf=False):
     from pathlib import Path
 
     from flyopt.io.scene import load, read_toml
-    from flyopt.pipeline import solve
+    from flyopt.pipeline import COMPLETE, solve
     from flyopt.report.document import ReportInputs
 
     data = read_toml(path)
     scene = load(path, data)
-    solution = solve(scene, verify_design=True)
-    analysis = solution.analysis
-    _ = (analysis.models, analysis.startup)  # computed on first use: here, not while the report is built
+    solution = solve(scene, verify_design=True, extras=COMPLETE)  # the one solve: what follows only reads
     inputs = ReportInputs(
         scene_file=str(path),
         scene_text=Path(path).read_text(encoding="utf-8"),
@@ -194,7 +193,8 @@ def _machine(inputs):
     """J_e(φ)'s range and mean, the energy–mass tangent points and analysis, an engine's textbook flywheel."""
     import numpy as np
 
-    analysis = inputs.solution.analysis
+    solution = inputs.solution
+    analysis = solution.analysis
     machine = analysis.machine
     if machine is None:
         return
@@ -205,17 +205,9 @@ def _machine(inputs):
     else:
         j = float(machine.j_machine)
         inputs.j_machine = (j, j, j)
-    if not machine.variable_inertia:
-        return  # constant inertia: the energy–mass diagram is a vertical line, and no engine textbook step
-    from flyopt.machine.engine import engine_of
-    from flyopt.sizing.textbook import textbook_requirement
-
-    if engine_of(machine) is not None:
-        inputs.textbook = textbook_requirement(machine, analysis.omega_mean, analysis.delta)
-    if machine.speed_dependent:
-        return  # the energy–mass diagram needs torques of the angle only (flyopt.report.plots refuses it)
-    if analysis.model == Model.ENERGY_MASS:
-        inputs.energy_mass = analysis
+    inputs.textbook = analysis.textbook
+    inputs.energy_mass = solution.energy_mass  # None where the diagram does not apply
+    if inputs.energy_mass is not None and analysis.model == Model.ENERGY_MASS:
         detail = analysis.requirement.detail
         excess = machine.angle_only()
         inputs.tangents = {
@@ -226,44 +218,25 @@ def _machine(inputs):
             )
             for key, phi_k in (("max", detail.phi_omega_max), ("min", detail.phi_omega_min))
         }
-    else:
-        from flyopt.analysis import analyse
-
-        inputs.energy_mass = analyse(inputs.solution.scene, "energy_mass", like=analysis)
 
 
 def _inertia_delta(inputs):
     """J_F at each δ by the exact model, where it is not the energy method's closed form (as ``flyopt plot``)."""
-    from flyopt.report import plots
-
-    analysis = inputs.solution.analysis
-    if analysis.model == Model.ENERGY:
-        return  # the diagram draws the closed form itself
-    try:
-        plots.check_inertia_delta(analysis)
-    except plots.NothingToDraw:
-        return  # said by the diagram
-    from flyopt.cli.plot import inertia_curve
-
-    try:  # at the δ flyopt plot --what inertia_delta takes (the function's own choice)
-        inputs.inertia_curve = inertia_curve(inputs.solution.scene, analysis)
-    except (ValueError, RuntimeError) as err:  # the report goes on; the diagram says why it is missing
-        inputs.inertia_note = f"J_F could not be found at every δ by the {analysis.model} model ({err})"
+    solution = inputs.solution
+    inputs.inertia_curve = solution.inertia_curve
+    if solution.inertia_error is not None:  # the report goes on; the diagram says why it is missing
+        model = solution.analysis.model
+        inputs.inertia_note = f"J_F could not be found at every δ by the {model} model ({solution.inertia_error})"
 
 
 def _stress(inputs):
-    """The stresses over the radius of the chosen wheel (:func:`flyopt.cli.plot.stress_profile`)."""
+    """The stresses over the radius of the chosen wheel (:func:`flyopt.pipeline.stress_profile`)."""
     solution = inputs.solution
     design = solution.design
     best = design.best if design is not None else None
     if best is None or not best.stress or not best.parts:
         return
-    from flyopt.cli.plot import stress_profile
-
-    try:
-        inputs.stress = stress_profile(solution.scene, solution.analysis, design)
-    except ValueError as err:
-        inputs.stress_note = str(err)
+    inputs.stress, inputs.stress_note = solution.stress, solution.stress_note
 
 
 def provenance(scene, command="", pdf=False, files=()):

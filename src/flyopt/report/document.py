@@ -239,11 +239,11 @@ class ReportInputs:
         (min, cycle mean, max) of the machine's J_e(φ) [kg*m^2].
     inertia_curve : tuple or None
         (δ, J_F) of the exact model at each δ, for the J_F(δ) diagram of a model other than
-        the energy method (:func:`flyopt.cli.plot.inertia_curve`).
+        the energy method (:func:`flyopt.delta_curve.inertia_curve`).
     inertia_note : str
         Why there is no ``inertia_curve`` where one was needed.
     stress : tuple or None
-        ``(profile, beams, omega, material)`` of :func:`flyopt.cli.plot.stress_profile`.
+        ``(profile, beams, omega, material)`` of :func:`flyopt.pipeline.stress_profile`.
     stress_note : str
     textbook : object or None
         :func:`flyopt.sizing.textbook.textbook_requirement` of an [engine].

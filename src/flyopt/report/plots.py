@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from flyopt.cycle.indicator import ExcessWork, required_inertia
+from flyopt.delta_curve import delta_range, flywheel_at_some_delta
 from flyopt.errors import SceneError
 from flyopt.names import Geometry, Model
 from flyopt.report import display
@@ -895,27 +896,8 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
 
 def check_inertia_delta(analysis):
     """Raise NothingToDraw when no flywheel is needed at any δ: a steady machine of constant inertia."""
-    steady = analysis.a_max <= 0 and not (
-        analysis.machine is not None and (analysis.machine.variable_inertia or analysis.machine.speed_dependent)
-    )
-    if steady:
+    if not flywheel_at_some_delta(analysis):
         raise NothingToDraw("no flywheel is needed for any δ (A_max = 0 J, so J_F(δ) = 0): nothing to draw")
-
-
-def delta_range(analysis, points=41):
-    """The δ at which J_F(δ) is drawn: log-spaced about the scene's δ, the scene's δ itself among them.
-
-    From a fifth of the smaller of the scene's δ and δ* (where J_F reaches 0;
-    the constant-inertia estimate A_max/(ω_m² J_e,mean) for the others) to five
-    times the scene's δ, at most 0.5 (the classical table of
-    docs/flywheel-design.md, section 2, ends at 1/5) unless the scene's δ is
-    larger.
-    """
-    j_mean = analysis.machine.j_mean() if analysis.machine is not None else analysis.j_constant
-    free = analysis.a_max / (analysis.omega_mean**2 * j_mean) if j_mean > 0 and analysis.a_max > 0 else math.inf
-    lo = min(analysis.delta, free) / 5.0
-    hi = min(5.0 * analysis.delta, max(0.5, 1.5 * analysis.delta), 1.9)
-    return np.union1d(np.geomspace(lo, hi, points), [analysis.delta])
 
 
 def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=None):
@@ -925,7 +907,7 @@ def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=No
     − J_c (docs/flywheel-design.md, section 5), drawn from the closed form;
     with a variable inertia or a speed-dependent torque A_max no longer
     decides alone, and J_F(δ) is the exact model's answer at each δ, which
-    the caller computes (``curve``; :func:`flyopt.cli.plot.inertia_curve`
+    the caller computes (``curve``; :func:`flyopt.delta_curve.inertia_curve`
     analyses the scene again at each δ of :func:`delta_range`). The
     constant-inertia method is drawn beside it for comparison. J_F is
     positive only below δ*, where the machine's own inertia starts to suffice;
@@ -952,7 +934,7 @@ def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=No
         if analysis.model != Model.ENERGY:
             raise ValueError(
                 f"J_F(δ) of the {analysis.model} model comes from analysing the scene again at each "
-                f"δ: pass curve (flyopt.cli.plot.inertia_curve)"
+                f"δ: pass curve (flyopt.delta_curve.inertia_curve)"
             )
         delta = np.geomspace(*delta_range(analysis)[[0, -1]], 200)
         delta = np.union1d(delta, [analysis.delta])

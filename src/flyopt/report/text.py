@@ -204,7 +204,7 @@ def analysis_report(result, source=None, units=DEFAULT):
 def engine_report(result, units=DEFAULT):
     """For an [engine]: the textbook's flywheel beside the exact one, and by how much it is off.
 
-    The textbook's method (flyopt.sizing.textbook.textbook_requirement) takes
+    The textbook's method (flyopt.sizing.textbook.textbook_requirement, ``result.textbook``) takes
     the crank effort at the mean speed (gas torque plus the inertia torque
     −½ J_e' ω_m²) as a torque curve on a constant inertia; the exact model
     keeps J_e(φ) varying (docs/flywheel-design.md, sections 5 and 6). The
@@ -212,17 +212,13 @@ def engine_report(result, units=DEFAULT):
     is not an engine, or whose inertia is constant (no moving masses: the
     two methods are one).
     """
-    machine = result.machine
-    if machine is None or not machine.variable_inertia:
+    textbook = result.textbook  # computed by the solve (flyopt.analysis.complete): read here
+    if textbook is None:
         return []
     from flyopt.machine.engine import engine_of
-    from flyopt.sizing.textbook import textbook_requirement  # CasADi: loaded with the members
 
-    engine = engine_of(machine)
-    if engine is None:
-        return []
+    engine = engine_of(result.machine)
     q, _ = formatters(units)
-    textbook = textbook_requirement(machine, result.omega_mean, result.delta)
     exact = next((m for m in result.models if m["exact"]), None)
     angles = ", ".join(field_number(a, "angle", units, 4) for a in engine.firing_angles)
     found = f"A_max {q(textbook.a_max, 'a_max')}, J_F {q(textbook.j_required, 'j_required')}"
