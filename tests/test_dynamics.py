@@ -26,7 +26,8 @@ from flyopt.cycle.expression import Expression
 from flyopt.cycle.indicator import ExcessWork, energy_indicator, required_inertia
 from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.errors import NonPeriodicCycle, SolverFailed
-from flyopt.machine.mechanism import Member, SliderCrank, equivalent_inertia, equivalent_torque
+from flyopt.machine.kinematics import SliderCrank
+from flyopt.machine.mechanism import Member, equivalent_inertia, equivalent_torque
 from flyopt.machine.motor import DCMotor, InductionMotor
 from flyopt.sizing import periodic
 from flyopt.sizing.energy_mass import achieved_speed, energy_mass_requirement

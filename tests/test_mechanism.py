@@ -22,7 +22,8 @@ from scipy import integrate, optimize
 
 from flyopt.cycle.indicator import ExcessWork
 from flyopt.cycle.torque import Constant
-from flyopt.machine.mechanism import GearTrain, Member, SliderCrank, equivalent_inertia, equivalent_torque
+from flyopt.machine.kinematics import GearTrain, SliderCrank
+from flyopt.machine.mechanism import Member, equivalent_inertia, equivalent_torque
 
 TWO_PI = 2 * math.pi
 ANGLES = np.array([0.0, 0.3, 1.0, math.pi / 2, 2.0, math.pi, 4.0, 5.5])

@@ -36,7 +36,8 @@ from flyopt.cycle.expression import Expression
 from flyopt.cycle.indicator import ExcessWork, _quad, _quad_many, _segments, brentq_many
 from flyopt.cycle.torque import Constant, ExpressionTorque
 from flyopt.io.scene import load
-from flyopt.machine.mechanism import GearTrain, Member, SliderCrank, SliderCrankRatio, equivalent_inertia
+from flyopt.machine.kinematics import GearTrain, SliderCrank, SliderCrankRatio
+from flyopt.machine.mechanism import Member, equivalent_inertia
 from flyopt.machine.reduce import reduce
 from flyopt.sizing import energy_mass
 from flyopt.sizing._numerics import Inertia

@@ -975,7 +975,7 @@ def _motor_table(table, where, files):
 def _mechanism(raw):
     if raw is None:
         return None
-    from flyopt.machine.mechanism import GearTrain, SliderCrank  # CasADi: only for a scene with a mechanism
+    from flyopt.machine.kinematics import GearTrain, SliderCrank  # CasADi: only for a scene with a mechanism
 
     kind = raw.get("kind") if isinstance(raw, dict) else None
     try:
@@ -1002,7 +1002,8 @@ def _mechanism(raw):
 def _members(raw, mechanism, cycle, files=Path()):
     if raw is None:
         return ()
-    from flyopt.machine.mechanism import FORCE_SENSES, GearTrain, Member  # CasADi: only with members
+    from flyopt.machine.kinematics import GearTrain  # CasADi: only with members
+    from flyopt.machine.mechanism import FORCE_SENSES, Member
 
     if not isinstance(raw, list):
         raise SceneError("member", "must be an array of tables: [[member]] with name, mass, ...")

@@ -36,7 +36,8 @@ from functools import cached_property
 import numpy as np
 
 from flyopt.cycle.torque import PiecewiseLinear
-from flyopt.machine.mechanism import Member, SliderCrank, equivalent_inertia, equivalent_torque
+from flyopt.machine.kinematics import SliderCrank
+from flyopt.machine.mechanism import Member, equivalent_inertia, equivalent_torque
 
 CYCLE_ANGLES = {"4-stroke": 4 * math.pi, "2-stroke": 2 * math.pi}
 """Cycle angle Φ of each kind of engine [rad]: two crank turns per cycle, or one."""

@@ -1,4 +1,4 @@
-"""Reduction of a real mechanism to the reference shaft.
+"""Reduction of a real mechanism to the reference shaft: the members and J_e(φ), M_e(φ).
 
 The machine's members are replaced by one shaft (angle φ, speed ω) with the
 same kinetic energy and the same instantaneous power (docs/flywheel-design.md, section 3):
@@ -6,16 +6,17 @@ same kinetic energy and the same instantaneous power (docs/flywheel-design.md, s
     J_e(φ) = J_c + Σ_i [ J_Si (ω_i/ω)² + m_i (v_Si/ω)² ],
     M_e(φ) = Σ_i [ T_i (ω_i/ω) + F_i (v_i/ω) cos α_i ].
 
-Both need only the velocity *ratios* v_S/ω [m/rad] and ω_i/ω [-]. They are
-constant for gear trains and vary with φ for linkages; here the slider-crank
-is given by its analytic kinematics (closed-form positions differentiated by
-hand, not finite differences). Every kinematic function accepts a numpy
-array **or** a CasADi SX/MX symbol and returns the same kind, so one
-definition serves the numpy analysis and the CasADi models.
+Both need only the velocity *ratios* v_S/ω [m/rad] and ω_i/ω [-], which a
+member takes as numbers, tables or functions of φ (those of the slider-crank
+and the gear train are in :mod:`flyopt.machine.kinematics`). Every function
+here accepts a numpy array **or** a CasADi SX/MX symbol and returns the same
+kind, so one definition serves the numpy analysis and the CasADi models.
 
 Sign convention of the equivalent torque: positive drives the reference
 shaft (acts in its sense of rotation), negative resists it.
 """
+
+from __future__ import annotations
 
 import math
 from dataclasses import dataclass
@@ -25,7 +26,7 @@ import casadi as ca
 import numpy as np
 
 from flyopt.cycle.torque import PiecewiseLinear
-from flyopt.errors import shorten
+from flyopt.machine.kinematics import SliderCrankRatio, is_casadi, known_ratio
 
 FORCE_SENSES = ("resisting", "driving", "axial")
 """How a member's force (or torque) does work:
@@ -35,349 +36,6 @@ FORCE_SENSES = ("resisting", "driving", "axial")
 - ``"axial"``: it acts along the fixed axis on which the (scalar, signed)
   velocity ratio is measured: power F·v, F positive along +axis.
 """
-
-
-def _is_casadi(x):
-    return isinstance(x, (ca.SX, ca.MX, ca.DM))
-
-
-def _lib(x):
-    """numpy or casadi, whichever matches ``x``."""
-    return ca if _is_casadi(x) else np
-
-
-# -- mechanisms ------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class Kinematics:
-    """Velocity ratios of one member of a mechanism.
-
-    Attributes
-    ----------
-    velocity_ratio : callable
-        φ ↦ v_S/ω of the member's centre of mass [m/rad]; returns a scalar
-        (signed, along a fixed axis) or a pair (v_x/ω, v_y/ω).
-    angular_ratio : callable
-        φ ↦ ω_member/ω [-].
-    """
-
-    velocity_ratio: object
-    angular_ratio: object
-
-
-class SliderCrank:
-    """Slider-crank (crank OA, rod AB, slider B) driven by the reference crank.
-
-    The crank turns about O at the origin; the crank angle φ [rad] is measured
-    from the slider axis, positive counter-clockwise. The slider moves along
-    the line y = ``offset`` on the side x > 0, so φ = 0 is (for zero offset)
-    the outer dead centre.
-
-    Parameters
-    ----------
-    crank : float
-        Crank radius r = |OA| [m].
-    rod : float
-        Connecting-rod length l = |AB| [m]; must exceed r + |offset| so that
-        the crank turns fully.
-    offset : float
-        Distance e of the slider axis from O [m] (positive: the axis lies on
-        the side y > 0).
-    phase : float
-        Angle of the reference shaft at which this crank points along the
-        slider axis [rad] (default 0): the crank's own angle is
-        ψ = φ − phase, and every formula below is written in ψ. A
-        multi-cylinder engine is one slider-crank per cylinder, each phased
-        by its firing angle (flyopt.machine.engine). Derivatives with
-        respect to φ and ψ are the same.
-
-    Raises
-    ------
-    ValueError
-        For non-positive or non-finite lengths, l <= r + |e|, or a
-        non-finite phase.
-
-    Notes
-    -----
-    With u = r sin ψ − e and w = sqrt(l² − u²) (ψ = φ for phase 0):
-
-        x_B = r cos ψ + w,
-        v_B/ω = dx_B/dφ = −r sin ψ − u r cos ψ / w,
-        rod angle β = atan2(−u, w)  (direction of A→B),
-        ω_rod/ω = dβ/dφ = −r cos ψ / w.
-
-    A point of the rod at the fraction s = |AP|/l from the crank pin moves at
-    ((1 − s)(−r sin ψ) + s v_B/ω, (1 − s) r cos ψ) times ω.
-
-    References
-    ----------
-    .. [1] Shigley, J. E., Uicker, J. J., *Theory of Machines and Mechanisms*,
-       slider-crank position and velocity analysis (loop-closure equations).
-    """
-
-    def __init__(self, crank, rod, offset=0.0, phase=0.0):
-        for name, value in (("crank", crank), ("rod", rod)):
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-                raise ValueError(f"slider-crank {name} length must be a positive finite number [m], got {value!r}")
-        if not (isinstance(offset, (int, float)) and math.isfinite(offset)):
-            raise ValueError(f"slider-crank offset must be a finite number [m], got {offset!r}")
-        if rod <= crank + abs(offset):
-            raise ValueError(
-                f"slider-crank with crank {crank!r} m, rod {rod!r} m and offset {offset!r} m cannot turn fully: "
-                f"the rod must be longer than crank + |offset| = {crank + abs(offset)!r} m"
-            )
-        if not (isinstance(phase, (int, float)) and math.isfinite(phase)):
-            raise ValueError(f"slider-crank phase must be a finite angle [rad], got {phase!r}")
-        self.crank = float(crank)
-        self.rod = float(rod)
-        self.offset = float(offset)
-        self.phase = float(phase)
-
-    def __repr__(self):
-        phase = f", phase={self.phase!r}" if self.phase else ""
-        return f"SliderCrank(crank={self.crank!r}, rod={self.rod!r}, offset={self.offset!r}{phase})"
-
-    def _own(self, phi):
-        """The crank's own angle ψ = φ − phase (φ itself, untouched, for phase 0)."""
-        return phi - self.phase if self.phase else phi
-
-    def _uw(self, psi):
-        """u and w at the crank's own angle ψ (see Notes)."""
-        lib = _lib(psi)
-        u = self.crank * lib.sin(psi) - self.offset
-        return u, lib.sqrt(self.rod**2 - u * u)
-
-    def _state(self, phi, cache=None):
-        """sin φ, cos φ, u and w on a numpy array, computed once per evaluation.
-
-        ``cache`` (a dict, or None) is shared by the members of one
-        evaluation of J_e or M_e, so that a mechanism's trigonometry is done
-        once however many of its parts are members. The values are those of
-        the methods below, operation for operation.
-        """
-        key = id(self)
-        if cache is not None and key in cache and cache[key][0] is phi:
-            return cache[key][1]
-        psi = self._own(phi)
-        s, c = np.sin(psi), np.cos(psi)
-        u = self.crank * s - self.offset
-        state = (s, c, u, np.sqrt(self.rod**2 - u * u))
-        if cache is not None:
-            cache[key] = (phi, state)
-        return state
-
-    def slider_position(self, phi):
-        """Slider position x_B along its axis [m]."""
-        lib = _lib(phi)
-        psi = self._own(phi)
-        return self.crank * lib.cos(psi) + self._uw(psi)[1]
-
-    def stroke(self):
-        """Slider stroke, x_B max − x_B min [m] (closed form, valid with offset)."""
-        r, l, e = self.crank, self.rod, self.offset
-        return math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e)
-
-    def slider_velocity_ratio(self, phi):
-        """v_B/ω of the slider [m/rad], signed along +x."""
-        lib = _lib(phi)
-        psi = self._own(phi)
-        u, w = self._uw(psi)
-        return -self.crank * lib.sin(psi) - u * self.crank * lib.cos(psi) / w
-
-    def rod_angle(self, phi):
-        """Angle β of the rod, direction crank pin → slider, from +x [rad]."""
-        lib = _lib(phi)
-        u, w = self._uw(self._own(phi))
-        return lib.arctan2(-u, w) if lib is np else ca.atan2(-u, w)
-
-    def rod_angular_ratio(self, phi):
-        """ω_rod/ω [-] (signed, counter-clockwise positive)."""
-        lib = _lib(phi)
-        psi = self._own(phi)
-        return -self.crank * lib.cos(psi) / self._uw(psi)[1]
-
-    def rod_point_velocity_ratio(self, phi, fraction):
-        """Velocity ratio of a point of the rod, (v_x/ω, v_y/ω) [m/rad].
-
-        Parameters
-        ----------
-        phi : array or casadi symbol
-            Crank angle [rad].
-        fraction : float
-            s = |AP|/l: 0 at the crank pin, 1 at the slider pin.
-        """
-        lib = _lib(phi)
-        s = float(fraction)
-        psi = self._own(phi)
-        vx = (1 - s) * (-self.crank * lib.sin(psi)) + s * self.slider_velocity_ratio(phi)
-        vy = (1 - s) * self.crank * lib.cos(psi)
-        return vx, vy
-
-    def kinematics(self, part, centre=None):
-        """Velocity ratios of one part of the mechanism, for a :class:`Member`.
-
-        Parameters
-        ----------
-        part : {"crank", "rod", "slider"}
-        centre : float, optional
-            Position of the part's centre of mass [m]: for the crank, its
-            distance from O along OA (negative: behind O, e.g. a
-            counterweight; default r/2); for the rod, its distance from the
-            crank pin A along AB (default l/2); unused for the slider.
-
-        Returns
-        -------
-        Kinematics
-        """
-        if part == "crank":
-            c = 0.5 * self.crank if centre is None else float(centre)
-            return Kinematics(velocity_ratio=abs(c), angular_ratio=1.0)
-        if part == "rod":
-            c = 0.5 * self.rod if centre is None else float(centre)
-            if not 0 <= c <= self.rod:
-                raise ValueError(f"rod centre of mass must lie between the pins, 0..{self.rod!r} m, got {c!r}")
-            s = c / self.rod
-            return Kinematics(
-                velocity_ratio=SliderCrankRatio(self, "rod_point", s),
-                angular_ratio=SliderCrankRatio(self, "rod_angular"),
-            )
-        if part == "slider":
-            return Kinematics(velocity_ratio=SliderCrankRatio(self, "slider"), angular_ratio=0.0)
-        raise ValueError(f"slider-crank part {shorten(part)} is not known (allowed: 'crank', 'rod', 'slider')")
-
-
-class SliderCrankRatio:
-    """One velocity ratio of a :class:`SliderCrank` as a function of φ, with its exact derivative.
-
-    Callable like the mechanism's methods (numpy arrays or CasADi symbols);
-    for numpy it also gives the derivative with respect to φ by the
-    hand-differentiated closed form, so that J_e(φ) and dJ_e/dφ are
-    evaluated on arrays without CasADi.
-
-    Parameters
-    ----------
-    mechanism : SliderCrank
-    kind : {"slider", "rod_angular", "rod_point"}
-        v_B/ω of the slider [m/rad], ω_rod/ω [-], or the velocity ratio
-        (v_x/ω, v_y/ω) of a point of the rod [m/rad].
-    fraction : float
-        For "rod_point": s = |AP|/l.
-
-    Notes
-    -----
-    With s = sin φ, c = cos φ, u = r s − e, w = sqrt(l² − u²), so that
-    u' = r c and w' = −u r c / w (:class:`SliderCrank`):
-
-        (v_B/ω)'   = −r c − r² c²/w + u r s/w − u² r² c²/w³,
-        (ω_rod/ω)' = r s/w − u r² c²/w³,
-        rod point: ((1 − s_f)(−r c) + s_f (v_B/ω)',  −(1 − s_f) r s).
-    """
-
-    def __init__(self, mechanism, kind, fraction=0.0):
-        if kind not in ("slider", "rod_angular", "rod_point"):
-            raise ValueError(f"slider-crank ratio {shorten(kind)} is not known")
-        self.mechanism, self.kind, self.fraction = mechanism, kind, float(fraction)
-
-    def __repr__(self):
-        extra = f", {self.fraction!r}" if self.kind == "rod_point" else ""
-        return f"SliderCrankRatio({self.mechanism!r}, {self.kind!r}{extra})"
-
-    def __call__(self, phi):
-        sc = self.mechanism
-        if self.kind == "slider":
-            return sc.slider_velocity_ratio(phi)
-        if self.kind == "rod_angular":
-            return sc.rod_angular_ratio(phi)
-        return sc.rod_point_velocity_ratio(phi, self.fraction)
-
-    def numpy(self, phi, cache=None):
-        """The ratio on a numpy array (the same operations as calling it) [m/rad] or [-]."""
-        sc = self.mechanism
-        s, c, u, w = sc._state(phi, cache)
-        r = sc.crank
-        if self.kind == "rod_angular":
-            return -r * c / w
-        slider = -r * s - u * r * c / w
-        if self.kind == "slider":
-            return slider
-        f = self.fraction
-        return (1 - f) * (-r * s) + f * slider, (1 - f) * r * c
-
-    def slope(self, phi, cache=None):
-        """d/dφ of the ratio on a numpy array [m/rad²] or [1/rad] (see Notes)."""
-        sc = self.mechanism
-        s, c, u, w = sc._state(phi, cache)
-        r = sc.crank
-        rc2_w3 = (r * c) ** 2 / (w * w * w)
-        if self.kind == "rod_angular":
-            return r * s / w - u * rc2_w3
-        slider = -r * c - (r * c) ** 2 / w + u * r * s / w - u * u * rc2_w3
-        if self.kind == "slider":
-            return slider
-        f = self.fraction
-        return (1 - f) * (-r * c) + f * slider, -(1 - f) * r * s
-
-
-def _known_ratio(function):
-    """A SliderCrank's own ratio method, given bound, as a :class:`SliderCrankRatio` (else None)."""
-    owner = getattr(function, "__self__", None)
-    if isinstance(owner, SliderCrank):
-        name = getattr(function, "__name__", "")
-        if name == "slider_velocity_ratio":
-            return SliderCrankRatio(owner, "slider")
-        if name == "rod_angular_ratio":
-            return SliderCrankRatio(owner, "rod_angular")
-    return None
-
-
-class GearTrain:
-    """A train of gear (or belt) stages with constant speed ratios.
-
-    Parameters
-    ----------
-    ratios : sequence of float
-        Speed ratio of each stage, ω_out/ω_in [-], from the reference shaft
-        outwards. Shaft 0 is the reference shaft; shaft k turns at
-        ratios[0]·…·ratios[k−1] times its speed.
-
-    Notes
-    -----
-    For a pair of gears with z_in and z_out teeth, ω_out/ω_in = z_in/z_out
-    (the sense of rotation does not enter the inertia; a torque on a gear
-    uses the "driving"/"resisting" sense of :class:`Member`).
-    """
-
-    def __init__(self, ratios):
-        ratios = [float(r) for r in ratios]
-        for r in ratios:
-            if not (math.isfinite(r) and r != 0):
-                raise ValueError(f"a gear stage ratio must be a finite non-zero number, got {r!r}")
-        self.ratios = tuple(ratios)
-
-    @classmethod
-    def from_teeth(cls, pairs):
-        """Gear train from tooth counts ``[(z_in, z_out), ...]`` per stage."""
-        stages = []
-        for pair in pairs:
-            z_in, z_out = pair
-            if not (z_in > 0 and z_out > 0):
-                raise ValueError(f"tooth counts must be positive, got {pair!r}")
-            stages.append(z_in / z_out)
-        return cls(stages)
-
-    def angular_ratio(self, shaft):
-        """ω_shaft/ω of shaft ``shaft`` (0 = reference) [-]."""
-        if not 0 <= shaft <= len(self.ratios):
-            raise ValueError(f"gear train has shafts 0..{len(self.ratios)}, got {shaft!r}")
-        return math.prod(self.ratios[:shaft])
-
-    def kinematics(self, shaft):
-        """Velocity ratios of a gear on shaft ``shaft`` (centre on the axis)."""
-        return Kinematics(velocity_ratio=0.0, angular_ratio=self.angular_ratio(shaft))
-
-
-# -- members and the reduction -------------------------------------------------
 
 
 class _Curve:
@@ -411,7 +69,7 @@ class _Curve:
                 raise ValueError(f"{what} table angles must be non-decreasing")
             self.kind, self.table = "table", PiecewiseLinear(angles, values)
         elif callable(value):
-            self.kind, self.function = "function", _known_ratio(value) or value
+            self.kind, self.function = "function", known_ratio(value) or value
         else:
             raise ValueError(f"{what} must be a number, a table (angles, values) or a function of phi, got {value!r}")
         if self.kind == "table" and not steps_allowed and np.any(np.diff(self.table.angles) == 0):
@@ -500,7 +158,7 @@ class Member:
         v_S/ω of the centre of mass [m/rad]: a number, a table
         ``(angles [rad], values [m/rad])``, or a function of φ returning a
         scalar (signed along a fixed axis) or a pair (v_x/ω, v_y/ω) — e.g.
-        from :meth:`SliderCrank.kinematics`.
+        from :meth:`flyopt.machine.kinematics.SliderCrank.kinematics`.
     angular_ratio : float, table, or callable
         ω_member/ω [-].
     force : float, table, or callable, optional
@@ -558,10 +216,10 @@ class Member:
         """J_S (ω_i/ω)² + m (v_S/ω)² at ``phi`` [kg*m^2] (numpy or CasADi).
 
         ``cache`` shares a mechanism's trigonometry between the members of
-        one numpy evaluation (:meth:`SliderCrank._state`).
+        one numpy evaluation (:meth:`flyopt.machine.kinematics.SliderCrank._state`).
         """
         c = self._curves
-        if _is_casadi(phi):
+        if is_casadi(phi):
             return self.inertia * _square(c["w"].casadi(phi)) + self.mass * _square(c["v"].casadi(phi))
         return self.inertia * _square(c["w"].numpy(phi, cache=cache)) + self.mass * _square(
             c["v"].numpy(phi, cache=cache)
@@ -592,7 +250,7 @@ class Member:
         limit where a force table steps (numpy only).
         """
         c = self._curves
-        symbolic = _is_casadi(phi)
+        symbolic = is_casadi(phi)
         if not symbolic:
             left, right = self.torque_limits(phi)
             return right if side == "right" else left

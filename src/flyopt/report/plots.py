@@ -212,7 +212,7 @@ def _dead_centres(scene):
         a [mechanism] slider-crank's outer and inner dead centres, where the
         crank and the rod are in line: (l + r) sin ψ = e and (l − r) sin ψ = −e.
     """
-    from flyopt.machine.mechanism import SliderCrank
+    from flyopt.machine.kinematics import SliderCrank
 
     cycle = scene.cycle_angle
     turns = int(round(cycle / math.pi)) + 2
