@@ -20,6 +20,7 @@ from scipy.integrate import quad, solve_ivp
 from test_input_failures import assert_refused, cli  # noqa: F401 (cli is a fixture)
 
 import flyopt
+from flyopt.analysis import EXTRAS
 
 RPM = 2 * math.pi / 60
 
@@ -80,7 +81,7 @@ def test_the_report_states_khurmis_3_kw_motor():
     """The text report's mean driving power and motor power lines say 3 kW."""
     from flyopt.report.text import analysis_report
 
-    text = analysis_report(flyopt.analyse(flyopt.load(PROBLEMS / "press-from-process.toml")))
+    text = analysis_report(flyopt.analyse(flyopt.load(PROBLEMS / "press-from-process.toml"), extras=EXTRAS))
     lines = text.splitlines()
     assert re.search(r"^  mean driving power +3 kW$", text, re.M), lines
     assert re.search(r"^  motor power +3 kW \(efficiency 1\)$", text, re.M), lines

@@ -40,13 +40,15 @@ def test_machines_of_one_structure_share_the_compiled_one_solve(write_scene):
     at another δ and with a heavier load build nothing again; another motor builds its own."""
     text = (PROBLEMS / "motor-press.toml").read_text()
     scene = flyopt.load(PROBLEMS / "motor-press.toml")
-    flyopt.solve(scene)
+    flyopt.solve(scene, extras=())
     periodic.BUILDS.clear()
-    flyopt.solve(flyopt.load(PROBLEMS / "motor-press.toml"))
-    flyopt.solve(scene.replace(delta=0.05))
-    flyopt.solve(flyopt.load(write_scene(text.replace("[165, 9000], [180, 9000]", "[165, 9500], [180, 9500]"))))
+    flyopt.solve(flyopt.load(PROBLEMS / "motor-press.toml"), extras=())
+    flyopt.solve(scene.replace(delta=0.05), extras=())
+    flyopt.solve(
+        flyopt.load(write_scene(text.replace("[165, 9000], [180, 9000]", "[165, 9500], [180, 9500]"))), extras=()
+    )
     assert periodic.BUILDS["fixed-step function"] == 0 and periodic.BUILDS["periodic model"] == 3
-    flyopt.solve(flyopt.load(write_scene(text.replace('rated_power = "5.5 kW"', 'rated_power = "7.5 kW"'))))
+    flyopt.solve(flyopt.load(write_scene(text.replace('rated_power = "5.5 kW"', 'rated_power = "7.5 kW"'))), extras=())
     assert periodic.BUILDS["fixed-step function"] >= 1
 
 

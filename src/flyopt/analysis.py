@@ -227,14 +227,16 @@ class Analysis:
         return None if samples is None else float(abs(samples[1]).max())
 
     def to_dict(self):
-        """Plain JSON-ready dictionary, every number in SI (the comparison and start-up included)."""
+        """Plain JSON-ready dictionary, every number in SI (the comparison and start-up where computed)."""
         out = {
             k: v
             for k, v in self.__dict__.items()
             if k not in ("indicator", "machine", "requirement", "shafts", "energy_chain", "_extras", "_lazy")
         }
-        out["startup"] = None if self.startup is None else asdict(self.startup)
-        out["models"] = [dict(m) for m in self.models]
+        if "startup" in self._extras:
+            out["startup"] = None if self.startup is None else asdict(self.startup)
+        if "models" in self._extras:
+            out["models"] = [dict(m) for m in self.models]
         out["energy_chain"] = [dict(e) for e in self.energy_chain]
         out["shafts"] = [s.to_dict() for s in self.shafts]
         return out
