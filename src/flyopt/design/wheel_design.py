@@ -719,7 +719,7 @@ def sensitivities(solution, mass, problem_limits):
         if not allowable or not math.isfinite(allowable):
             continue
         # the parameter is P = (sigma_a / S)^k, k = 2 (ductile) or 1, and CasADi's lam_p is -d f*/d P
-        # (checked against re-solving in tests/test_wheel_nlp.py): d m / d sigma_a = -m lam_p k P / sigma_a
+        # (checked against re-solving in tests/design/test_wheel_nlp.py): d m / d sigma_a = -m lam_p k P / sigma_a
         k, param = problem_limits["allow_power"], problem_limits["allow_param"][part]
         dm = -mass * value * k * param / allowable
         add(

@@ -154,7 +154,7 @@ class WheelModel:
 #: Solver options of the wheel NLP over flyopt.design.nlp.DEFAULT_SOLVER_OPTIONS. A feasible wheel
 #: converges in 10-60 iterations, but IPOPT can need several hundred to call a wheel NLP locally
 #: infeasible (a rim_web whose hub, key and stress leave no room: 200 iterations ran out on one of
-#: tests/test_prune.py's random problems, which IPOPT then proves infeasible within 1000).
+#: tests/design/test_prune.py's random problems, which IPOPT then proves infeasible within 1000).
 WHEEL_SOLVER_OPTIONS = {"ipopt.max_iter": 1000}
 
 

@@ -96,7 +96,7 @@ OUTPUT_DIMENSIONS = {"time": "s", "unbalance": "kg*m"}
 #: The columns of a sweep's inputs: the fields of :data:`flyopt.io.sweep_spec.FIELDS` (which
 #: reads their values in these dimensions) and their dimension, None for a name. sweep_spec
 #: imports this module (for :func:`output_format`), so the table cannot be read from there;
-#: tests/test_outputs.py checks that the two agree, field by field.
+#: tests/outputs/test_results.py checks that the two agree, field by field.
 INPUTS = {
     "delta": "dimensionless",
     "speed": "angular_speed",

@@ -10,7 +10,7 @@ of three systems (``--units``):
 - ``imperial``: in, rpm, lbf·ft, psi, hp, lb.
 
 Every factor is pint's own (``Quantity(1, unit).to(SI).magnitude``), written
-out so that showing a number loads no unit library; tests/test_display.py
+out so that showing a number loads no unit library; tests/report/test_display.py
 checks each against pint. One table, by dimension (the dimensions of
 :data:`flyopt.units.DIMENSIONS` and :data:`flyopt.outputs.results.OUTPUT_DIMENSIONS`):
 a quantity is shown as ``value_SI / factor`` followed by its label.

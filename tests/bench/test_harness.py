@@ -24,7 +24,7 @@ from numpy.testing import assert_allclose
 from flyopt.bench import cycle, main, peers, references
 from flyopt.bench.sections import SECTIONS
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 COMMITTED = ("speed_error.csv", "speed_error.md", "speed_error.png", "hard.csv", "hard.md")
 
 

@@ -16,7 +16,7 @@ from flyopt.io.scene import load
 from flyopt.pipeline import solve
 from flyopt.studies.sweep import sweep
 
-DATA = Path(__file__).parent / "data" / "wheels"
+DATA = Path(__file__).parents[1] / "data" / "wheels"
 
 
 @pytest.mark.parametrize("name", ["engine-arms-sweep.toml", "press-web-sweep.toml"])

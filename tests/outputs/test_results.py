@@ -748,7 +748,7 @@ def test_pareto_files_record_their_objectives_and_plot_needs_no_x(tmp_path, caps
 def test_pareto_and_tradeoff_json_are_documents_with_nulls(tmp_path, capsys):
     scene = _variant(
         tmp_path, "s", (PROBLEMS / "shear-press.toml").read_text().replace("delta = 0.05", "delta = 0.004")
-    )  # cast iron cannot give J_F (tests/test_studies.py)
+    )  # cast iron cannot give J_F (tests/studies/test_pareto_tradeoff.py)
     assert main(["tradeoff", str(scene), "--json"]) == 0
     document = json.loads(capsys.readouterr().out)
     assert _errors(document) == [] and document["kind"] == "tradeoff"

@@ -402,7 +402,7 @@ def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):
 # Whole wheels: the dimensioned section and the stresses over the radius
 # --------------------------------------------------------------------------
 
-WHEELS = Path(__file__).parent / "data" / "wheels"
+WHEELS = Path(__file__).parents[1] / "data" / "wheels"
 WHEEL_GEOMETRIES = ["rim", "disc", "rim_web", "rim_arms"]
 #: The ductile iron of the wheel scenes (tests/data/wheels): density [kg/m^3] and Poisson's ratio.
 RHO, NU = 7100.0, 0.275

@@ -385,7 +385,7 @@ def test_declared_scipy_floor_has_latin_hypercube_rng():
 
     import tomllib
 
-    pyproject = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
+    pyproject = tomllib.loads((Path(__file__).parents[2] / "pyproject.toml").read_text())
     (floor,) = [
         re.match(r"scipy\s*>=\s*([\d.]+)", d).group(1)
         for d in pyproject["project"]["dependencies"]

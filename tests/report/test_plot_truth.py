@@ -520,7 +520,7 @@ def test_cross_section_draws_in_the_chosen_units_and_comments_an_odd_design():
     assert not _overlap(box, ax.get_window_extent())
 
 
-WHEELS = Path(__file__).parent / "data" / "wheels"
+WHEELS = Path(__file__).parents[1] / "data" / "wheels"
 
 
 @pytest.mark.parametrize(

@@ -13,7 +13,7 @@ import math
 import pytest
 from conftest import PROBLEMS
 from numpy.testing import assert_allclose
-from test_dynamics import HARD_CASES, N_COMPRESSOR, TWO_PI, compressor, press
+from test_periodic import HARD_CASES, N_COMPRESSOR, TWO_PI, compressor, press
 from test_sizing_failures import speed_load
 
 import flyopt

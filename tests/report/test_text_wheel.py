@@ -17,7 +17,7 @@ from conftest import PROBLEMS
 
 from flyopt.cli.main import main
 
-WHEELS = Path(__file__).parent / "data" / "wheels"
+WHEELS = Path(__file__).parents[1] / "data" / "wheels"
 GEOMETRIES = ["rim_web", "rim_arms", "disc", "rim"]
 
 #: Printed numbers carry 6 significant digits (flyopt.report.text.number): the sum of three
