@@ -14,14 +14,16 @@ from conftest import PROBLEMS
 
 from flyopt.cli.main import main
 
+#: Each kind of machine in the default run; the others, which the default ones cover kind for kind
+#: (an energy-mass press, an engine without moving masses, a constant-inertia press), in the slow run.
 SCENES = [
-    "slider-crank-press",
-    "motor-press",
-    "punch-press-wheel",
-    "four-stroke-engine",
-    "shear-press",
-    "engine-members",  # an [engine] with moving masses: the textbook flywheel
+    "motor-press",  # the dynamic model: the start-up and ω(φ) of a motor
+    "punch-press-wheel",  # a whole wheel: its stresses
+    "engine-members",  # an [engine] with moving masses: the textbook flywheel, the energy-mass diagram
     "example1-net-areas",  # no curves: the diagrams that do not apply say so
+    pytest.param("slider-crank-press", marks=pytest.mark.slow),
+    pytest.param("four-stroke-engine", marks=pytest.mark.slow),
+    pytest.param("shear-press", marks=pytest.mark.slow),
 ]
 DIAGRAMS = ["turning_moment", "energy", "inertia_delta", "cross_section", "stress", "speed", "energy_mass"]
 
