@@ -101,9 +101,9 @@ def write(document, path, kind):
         write_text(path, render(document))
         return
     try:
-        from flyopt.report.pdf import render
+        from flyopt.report.pdf import render as render_pdf
 
-        data = render(document)
+        data = render_pdf(document)
     except ImportError as err:  # reportlab is a dependency: only a broken installation lacks it
         from flyopt.errors import SceneError
 
@@ -203,8 +203,8 @@ def _machine(inputs):
         j = np.asarray(machine.j_machine(phi), dtype=float)
         inputs.j_machine = (float(j.min()), machine.j_mean(), float(j.max()))
     else:
-        j = float(machine.j_machine)
-        inputs.j_machine = (j, j, j)
+        j_c = float(machine.j_machine)
+        inputs.j_machine = (j_c, j_c, j_c)
     inputs.textbook = analysis.textbook
     inputs.energy_mass = solution.energy_mass  # None where the diagram does not apply
     if inputs.energy_mass is not None and analysis.model == Model.ENERGY_MASS:
@@ -305,7 +305,9 @@ def ipopt_version():
         found = re.search(r"BUILD_IPOPT_VERSION=([^)\s]+)", ca.CasadiMeta.feature_list())
     except (ImportError, AttributeError, RuntimeError):
         return "not reported by CasADi"
-    return f"{found.group(1)} (built into CasADi {ca.__version__})" if found else "not reported by CasADi"
+    return (
+        f"{found.group(1)} (built into CasADi {getattr(ca, '__version__', '?')})" if found else "not reported by CasADi"
+    )
 
 
 def _title_lines(inputs):

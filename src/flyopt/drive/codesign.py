@@ -38,6 +38,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -61,6 +62,11 @@ THERMAL_RTOL = 1e-8
 #: (the linear line holds near the rated point only, and a press's slowdown of several per cent takes
 #: a standard motor of 2-4 % rated slip far from it).
 MOTOR_MODEL = "kloss"
+
+if TYPE_CHECKING:
+    from flyopt.design.result import Candidate
+    from flyopt.drive.relaxation import Relaxation
+    from flyopt.sizing.periodic import Verification
 
 
 @dataclass(frozen=True)
@@ -114,7 +120,7 @@ class MotorRun:
     delta: float | None = None
     startup_time: float | None = None
     flywheel_ratio: float | None = None
-    wheel: object = None
+    wheel: Candidate | None = None
     motor_mass: float | None = None
     wheel_mass: float | None = None
     total_mass: float | None = None
@@ -152,7 +158,7 @@ class DriveDesign:
     best: MotorRun | None
     runs: tuple
     message: str = ""
-    relaxation: object = None
+    relaxation: Relaxation | None = None
     note: str = ""
 
     def to_dict(self):
@@ -411,7 +417,7 @@ def _settle(scene, motor, ratio, thermal):
     from flyopt.machine.reduce import reduce
 
     delta, rated = scene.delta, motor.rated_torque
-    memo = {}
+    memo: dict[Any, Any] = {}
     try:
         ratio, machine, sol = _hold_speed(scene, motor, ratio, 0.0, memo)
         j_delta = _delta_flywheel(scene, machine) if sol.delta > delta else 0.0
@@ -784,7 +790,7 @@ class DriveCheck:
         Each limit exceeded, in words.
     """
 
-    verification: object
+    verification: Verification
     rms_torque: float
     rated_torque: float
     startup_time: float | None

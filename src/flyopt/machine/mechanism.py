@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -350,7 +351,7 @@ class EquivalentInertia:
         """J_e at the angles ``phi`` [kg*m^2] (numpy, vectorized)."""
         phi = np.asarray(phi, dtype=float)
         total = np.full(phi.shape, self.j_constant)
-        cache = {}
+        cache: dict[Any, Any] = {}
         for m in self.members:
             total = total + m.inertia_contribution(phi, cache)
         return total
@@ -391,7 +392,7 @@ class EquivalentInertia:
             return self(phi), self.derivative(phi)
         total = np.full(phi.shape, self.j_constant)
         slope = np.zeros(phi.shape)
-        cache = {}
+        cache: dict[Any, Any] = {}
         for m in self.members:
             total = total + m.inertia_contribution(phi, cache)
             slope = slope + m.inertia_slope(phi, cache)
@@ -406,7 +407,7 @@ class EquivalentInertia:
         phi = np.asarray(phi, dtype=float)
         if self.has_numpy_derivative:
             slope = np.zeros(phi.shape)
-            cache = {}
+            cache: dict[Any, Any] = {}
             for m in self.members:
                 slope = slope + m.inertia_slope(phi, cache)
             return slope
@@ -455,7 +456,7 @@ class EquivalentTorque:
         phi = np.asarray(phi, dtype=float)
         left = np.zeros(phi.shape)
         right = np.zeros(phi.shape)
-        cache = {}
+        cache: dict[Any, Any] = {}
         for m in self.members:
             lm, rm = m.torque_limits(phi, cache)
             left, right = left + lm, right + rm

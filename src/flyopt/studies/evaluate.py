@@ -39,9 +39,11 @@ import threading
 import weakref
 from collections import OrderedDict
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
+from numpy.typing import NDArray
 
 from flyopt.cycle.indicator import required_inertia, speed_extremes
 from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
@@ -54,6 +56,10 @@ from flyopt.io.scene import NetAreas
 from flyopt.io.sweep_spec import _where
 from flyopt.outputs.results import RESULT_COLUMNS
 from flyopt.sizing.peak_torque import flywheel_peak_torque
+
+if TYPE_CHECKING:
+    from flyopt.io.scene import Scene
+    from flyopt.studies.payload import ScenePayload
 
 __all__ = [
     "PHYSICS_FIELDS",
@@ -276,8 +282,8 @@ def point_scene(scene, point):
     """
     from flyopt.design.materials import material_library
 
-    changes = {}
-    design = {}
+    changes: dict[str, Any] = {}
+    design: dict[str, Any] = {}
     shafts = {s.name: s for s in scene.shafts}
     library = material_library(scene.materials)
     user = {m.name: m for m in scene.materials}
@@ -354,7 +360,7 @@ def _reusable(scene):
 class _Context:
     """What every chunk needs; picklable (the torques are left out when reusable)."""
 
-    scene: object
+    scene: Scene
     a_max: float | None
     driving_torque: float | None
     reusable: bool
@@ -407,7 +413,7 @@ class Task:
         Its driving torque [N*m] when reusable and known.
     """
 
-    scene: object
+    scene: ScenePayload
     method: str = "auto"
     solver_options: dict | None = None
     axes: tuple = ()
@@ -484,6 +490,8 @@ def task_of(ctx, scene):
 
 class _Inputs:
     """Per-point input arrays of a chunk, defaults from the scene."""
+
+    omega_rim: NDArray[np.float64]  # ω_max of each point, where its rim is checked [rad/s]: set by the cycle step
 
     def __init__(self, scene, points):
         n = len(points)
@@ -650,19 +658,20 @@ def _evaluate(ctx, points):
     idle = ~needed
     res["status"][idle] = "not_needed"
     res["method"][idle] = "none"
-    for k in np.flatnonzero(idle):
+    for k in np.flatnonzero(idle).tolist():
         res["message"][k] = f"no flywheel needed: J_F = {j_margin[k]:.4g} kg·m² is not positive"
-    design, seen = design_inputs(scene), {}
+    design = design_inputs(scene)
+    seen: dict[tuple[str, str], bool] = {}
     covered = (
         np.array(
             [
                 seen[g, o] if (g, o) in seen else seen.setdefault((g, o), _vectorized(design, g, o))
                 for g, o in zip(inputs.geometry, inputs.objective)
             ],
-            dtype=bool,
+            dtype=np.bool_,
         )
         if n
-        else np.zeros(0, dtype=bool)
+        else np.zeros(0, dtype=np.bool_)
     )
     if ctx.method == "closed_form" and (needed & ~covered).any():
         k = int(np.flatnonzero(needed & ~covered)[0])
@@ -674,7 +683,7 @@ def _evaluate(ctx, points):
         )
     use_batch = needed & covered if ctx.method != "ipopt" else np.zeros(n, dtype=bool)
     _design_closed_form(inputs, j_margin, use_batch, res)
-    for k in np.flatnonzero(needed & ~use_batch):
+    for k in np.flatnonzero(needed & ~use_batch).tolist():
         torque = None
         if needs_torque and ctx.reusable and ctx.torque_peak is not None:
             torque = flywheel_peak_torque(
@@ -704,7 +713,7 @@ def _analyses(scene, points):
 
 #: Analyses of this process, per scene object: {id(scene): (weak reference, {physics: Analysis},
 #: {physics but δ: the latest Analysis})}.
-_ANALYSES: dict = {}
+_ANALYSES: dict[int, tuple[Any, OrderedDict[Any, Any], OrderedDict[Any, Any]]] = {}
 #: Analyses kept per scene, the most recently used (~0.1-0.2 MB each): a sweep's chunks hold
 #: the points of one physics together, so only a chunk's own physics need to stay.
 MEMO_SIZE = 256

@@ -45,8 +45,10 @@ import signal
 import sys
 import threading
 import time
+from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -564,7 +566,7 @@ def _ctrl_c():
 
 # -- worker processes ------------------------------------------------------
 
-_TASK = None
+_TASK: Callable[[Any], Any] | None = None
 
 
 def _init_worker(task):
@@ -588,6 +590,8 @@ def _die_with_parent():
 
 
 def _run_in_worker(index, points):
+    if _TASK is None:  # set by the pool's initializer before any chunk arrives
+        raise RuntimeError("a sweep worker got a chunk before its task")
     return index, _TASK(points)
 
 

@@ -533,7 +533,9 @@ class _Assembly:
         self.held: dict[int, pd.DataFrame] = {}
         self.kept: list[pd.DataFrame] = []
         self.designs: dict[int, int] = {}
-        self.writer = None if output is None else ResultWriter(output, temporary_folder=parts.folder, metadata=describe)
+        self.writer = (
+            None if output is None else ResultWriter(output, temporary_folder=self._disk().folder, metadata=describe)
+        )
         if self.writer is not None:  # the summary, by point
             self.have = np.zeros(n_points, dtype=bool)
             self.status = np.zeros(n_points, dtype=np.int8)
@@ -541,11 +543,17 @@ class _Assembly:
             self.combinations = np.zeros(n_points, dtype=np.int64)
             self.names: dict[str, dict[str, int]] = {"status": {}, "method": {}}
 
+    def _disk(self) -> Parts:
+        """The parts on disk, which only a sweep that writes an output file keeps."""
+        if self.parts is None:
+            raise RuntimeError("this sweep keeps no parts on disk: it writes no output file")
+        return self.parts
+
     def add(self, index: int, frame: pd.DataFrame | None = None) -> None:
         """Chunk ``index`` is done: its results ``frame``, or (None) its part on disk."""
         self.finished.add(index)
         if frame is None:
-            self._note(self.parts.read(index, columns=list(SUMMARY_COLUMNS)))
+            self._note(self._disk().read(index, columns=list(SUMMARY_COLUMNS)))
         else:
             self.designs[index] = int(frame["n_combinations"].sum())
             if self.writer is None or self.unit_of[index] == self.next or len(self.held) < HELD_CHUNKS:
@@ -569,7 +577,7 @@ class _Assembly:
             if self.writer is None and len(self.units[self.next]) == 1:
                 self.kept.append(self.held.pop(self.units[self.next][0]))
             else:
-                frames = [self.held.pop(c) if c in self.held else self.parts.read(c) for c in self.units[self.next]]
+                frames = [self.held.pop(c) if c in self.held else self._disk().read(c) for c in self.units[self.next]]
                 rows = frames[0] if len(frames) == 1 else _in_point_order(frames)
                 if self.writer is None:
                     self.kept.append(rows)
