@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 
-from flyopt.design import check, geometry, hub, strength, wheel
+from flyopt.design import balance, check, geometry, hub, key, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Method, Objective
@@ -90,7 +90,7 @@ def _hub_bounds(material, bore, torque):
     pressure = getattr(material, "bearing_pressure", None)
     if torque and pressure:
         try:
-            l_low = max(l_low, hub.hub_length_for_key(torque, bore, pressure))
+            l_low = max(l_low, key.hub_length_for_key(torque, bore, pressure))
         except ValueError:
             pass  # no standard key carries it: check_key says so in the report
     return (p.d_hub_min, p.d_hub_max), (l_low, max(p.l_hub_max, l_low)), kind
@@ -581,8 +581,8 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
         for p in parts
     )
     mass = float(wheel.wheel_mass(parts))
-    balance = hub.permissible_unbalance(mass, omega, strength.BALANCE_GRADE)
-    out["unbalance_permissible"] = float(balance.u_per)
+    unbalance = balance.permissible_unbalance(mass, omega, strength.BALANCE_GRADE)
+    out["unbalance_permissible"] = float(unbalance.u_per)
     out.update(stress=None, allowable_stress=None, strength_safety=None, burst_speed=None, speed_margin=None, key=None)
     if getattr(material, "poisson_ratio", None) is None:
         out["notes"].append(f"material {material.name} gives no poisson_ratio: stresses not computed")
@@ -607,7 +607,7 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
             out["notes"].append(f"material {material.name} gives no bearing_pressure: key not checked")
         else:
             try:
-                k = hub.check_key(torque, bore, float(hub_length), pressure)
+                k = key.check_key(torque, bore, float(hub_length), pressure)
             except ValueError as err:
                 out["notes"].append(f"key not checked: {err}")
             else:
@@ -711,10 +711,10 @@ def sensitivities(solution, mass, problem_limits):
             f"each +1 % of required inertia adds {dm * 0.01 * problem_limits['j_shaft']:+.3g} kg",
             problem_limits["j_shaft"],
         )
-    for key, value in solution.lam_p.items():
-        if not key.startswith("allow_") or value == 0.0:
+    for param, value in solution.lam_p.items():
+        if not param.startswith("allow_") or value == 0.0:
             continue
-        part = key[len("allow_") :]
+        part = param[len("allow_") :]
         allowable = problem_limits["allowable"].get(part)
         if not allowable or not math.isfinite(allowable):
             continue
