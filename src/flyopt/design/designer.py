@@ -27,7 +27,7 @@ import math
 import time
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 from flyopt.design import check, closed_form, geometry, rank, wheel, wheel_design
 from flyopt.design.materials import Material
@@ -302,13 +302,13 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     speed = geometry.rim_speed(combo.omega, d_outer)
     found = _whole_violations(combo, spec, dims, j_wheel, checked)
     if found:
-        err = SolverFailed(
+        failure = SolverFailed(
             f"{label}: IPOPT reported {solution.status!r} but the wheel violates "
             f"{'; '.join(found)}; no design is reported"
         )
-        err.status = solution.status
-        err.combination = label
-        raise err
+        failure.status = solution.status
+        failure.combination = label
+        raise failure
     binding = sorted(name for name, lam in solution.lam_g.items() if abs(lam) > 1e-9)
     binding += sorted(
         {
@@ -785,7 +785,7 @@ def _rank(decided: _Decided) -> tuple[tuple[Candidate, ...], list[Candidate]]:
     infeasible = [c for _, c in sorted(decided.infeasible, key=lambda item: item[0])]  # in input order
     ranked = (
         tuple(rank.ranking([c for _, c in decided.feasible]))
-        + tuple(sorted(decided.pruned, key=lambda c: c.objective_bound))
+        + tuple(sorted(decided.pruned, key=lambda c: cast(float, c.objective_bound)))  # a pruned one has its bound
         + tuple(infeasible)
     )
     return ranked, infeasible

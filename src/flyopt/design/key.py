@@ -163,7 +163,7 @@ def _load():
     if lengths_mm != sorted(set(lengths_mm)):
         raise ValueError(f"{_ORIGIN}: din_6885_1.lengths must increase strictly")
     lengths = tuple(_mm(x, "a standard key length") for x in lengths_mm)
-    keys = []
+    keys: list[Key] = []
     for index, row in enumerate(table["rows"]):
         if len(row) != len(_COLUMNS):
             raise ValueError(

@@ -22,6 +22,7 @@ References
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from flyopt.design import balance, check, geometry, hub, key, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
@@ -373,6 +374,8 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
         if best is None or found[1].objective < best[1].objective:
             best = found
     if best is None:
+        # only sections beyond the strength table (raised only where a table exists) leave no design
+        assert table_end is not None
         raise NoWheel(
             f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
             f"material's strength table, which ends at {table_end * 1e3:g} mm, and no wheel whose "
@@ -459,6 +462,8 @@ def _settle(model, problem, combo, material, geo, spec, torque, parts, used, tab
             raise _OverTable({p: w for p, w in wheel.walls(geo, dims).items() if w > table_end}) from None
         if not stressed:
             return dims, solution, checked
+        # under the stress criterion screen() has refused a material without poisson_ratio
+        assert checked is not None
         settled = True
         for part in checked.parts:
             target = part.allowable
@@ -567,7 +572,8 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
         :func:`flyopt.design.strength.check_wheel` of these dims, when the
         designer has made it already (it is not made twice).
     """
-    out = {"bore": bore or None, "notes": []}
+    notes: list[str] = []
+    out: dict[str, Any] = {"bore": bore or None, "notes": notes}
     parts = wheel.parts(geometry_name, dims, material.density)
     out["parts"] = tuple(
         {
