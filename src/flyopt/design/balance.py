@@ -30,7 +30,7 @@ class PermissibleUnbalance(NamedTuple):
     """Permissible residual unbalance, e_per m [kg*m]."""
 
 
-def permissible_unbalance(mass, omega_max, grade=6.3) -> PermissibleUnbalance:
+def permissible_unbalance(mass: float, omega_max: float, grade: float = 6.3) -> PermissibleUnbalance:
     """Permissible residual unbalance of a rigid rotor for a balance quality grade.
 
     Parameters

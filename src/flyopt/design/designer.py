@@ -61,7 +61,7 @@ class _Combination:
     v_max: float = math.nan  # the material's safe rim speed [m/s] (nan: none, under the stress criterion)
 
     @property
-    def label(self):
+    def label(self) -> str:
         arms = f" with {self.n_arms} arms" if self.n_arms else ""
         return f"{self.material.name.replace('_', ' ')} on the {_shaft_label(self.shaft.name)}{arms}"
 
@@ -250,7 +250,7 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
     )
 
 
-def rim_speed_limit(material, spec):
+def rim_speed_limit(material: Material, spec: DesignSpec) -> float:
     """The material's safe rim speed [m/s] under a design spec: :meth:`Material.rim_speed_limit` with the
     design's safety factor (the one rule; the design's factor wins over the material's).
 

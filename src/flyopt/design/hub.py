@@ -62,12 +62,12 @@ class HubProportions(NamedTuple):
     l_hub_max: float
 
 
-def hub_rules() -> tuple:
+def hub_rules() -> tuple[str, ...]:
     """The names of the hub proportions of ``keys.toml`` (a material's ``hub_rule``)."""
     return tuple(_load())
 
 
-def hub_proportions(d, kind="cast_iron") -> HubProportions:
+def hub_proportions(d: float, kind: str = "cast_iron") -> HubProportions:
     """Outer diameter and length of a hub from the machine-design rules of thumb.
 
     Parameters

@@ -104,7 +104,7 @@ class Key:
     d_up_to: float
     l_min: float
     l_max: float
-    lengths: tuple
+    lengths: tuple[float, ...]
 
     @property
     def size(self) -> str:
@@ -203,7 +203,7 @@ def _load():
     return tuple(keys), lengths, steel
 
 
-def key_table() -> tuple:
+def key_table() -> tuple[Key, ...]:
     """The DIN 6885-1 key sections of ``flyopt/data/keys.toml``, smallest shaft first.
 
     Returns
@@ -214,7 +214,7 @@ def key_table() -> tuple:
     return _load()[0]
 
 
-def standard_key_lengths() -> tuple:
+def standard_key_lengths() -> tuple[float, ...]:
     """The series of standard key lengths of DIN 6885-1 [m], shortest first.
 
     Returns
@@ -247,7 +247,7 @@ def key_steel() -> KeySteel:
 # --------------------------------------------------------------------------
 
 
-def key_for_shaft(d) -> Key:
+def key_for_shaft(d: float) -> Key:
     """The DIN 6885-1 parallel key section for a shaft seat.
 
     Parameters
@@ -285,7 +285,7 @@ def key_for_shaft(d) -> Key:
     )
 
 
-def key_length_for_hub(key: Key, hub_length) -> float:
+def key_length_for_hub(key: Key, hub_length: float) -> float:
     """The longest standard length of a key section that fits in a hub.
 
     Parameters
@@ -403,7 +403,9 @@ def _allowables(allowable_pressure, allowable_shear):
     return allowable_pressure, allowable_shear
 
 
-def check_key(torque, d, hub_length, allowable_pressure, allowable_shear=None) -> KeyCheck:
+def check_key(
+    torque: float, d: float, hub_length: float, allowable_pressure: float, allowable_shear: float | None = None
+) -> KeyCheck:
     """Check the DIN 6885-1 form A key of a hub at a torque.
 
     Parameters
@@ -470,7 +472,9 @@ def check_key(torque, d, hub_length, allowable_pressure, allowable_shear=None) -
     )
 
 
-def hub_length_for_key(torque, d, allowable_pressure, allowable_shear=None) -> float:
+def hub_length_for_key(
+    torque: float, d: float, allowable_pressure: float, allowable_shear: float | None = None
+) -> float:
     """The shortest hub whose DIN 6885-1 key passes :func:`check_key`.
 
     Parameters
