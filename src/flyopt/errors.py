@@ -115,6 +115,11 @@ class NonPeriodicCycle(FlyoptError, ValueError):
 class SolverFailed(FlyoptError, RuntimeError):
     """A numerical solver did not converge; its result is not a design."""
 
+    #: The solver's return status (IPOPT's ``return_status``), set where it is known.
+    status: str
+    #: The design combination whose solve failed, set where there is one.
+    combination: str
+
 
 class Interrupted(FlyoptError, RuntimeError):
     """A long run (a sweep) was stopped by the user (Ctrl-C) or lost its workers.

@@ -1,5 +1,6 @@
-"""Tests of flyopt.design.hub: DIN 6885-1 keys, the key check, hub proportions,
-the flywheel's peak torque and the ISO 21940-11 permissible unbalance.
+"""Tests of flyopt.design.key (DIN 6885-1 keys, the key check), flyopt.design.hub (hub proportions),
+flyopt.design.balance (the ISO 21940-11 permissible unbalance) and
+flyopt.sizing.peak_torque (the flywheel's peak torque).
 
 Reference values are the published tables (cited per test) or hand
 calculations written out in the test; none is the module's own output.
@@ -15,16 +16,16 @@ import pytest
 from conftest import assert_published
 from numpy.testing import assert_allclose
 
-from flyopt.design.hub import (
+from flyopt.design.balance import permissible_unbalance
+from flyopt.design.hub import hub_proportions
+from flyopt.design.key import (
     LIMIT_RTOL,
     check_key,
     hub_length_for_key,
-    hub_proportions,
     key_for_shaft,
     key_length_for_hub,
     key_steel,
     key_table,
-    permissible_unbalance,
     standard_key_lengths,
 )
 from flyopt.sizing.peak_torque import flywheel_peak_torque

@@ -195,7 +195,7 @@ def max_inertia_one(geometry_name, density, d_outer_max, hb_ratio=(1.5, 2.0), ma
     if geometry_name == Geometry.THIN_RIM:
         h_break = min(hb_min * b_max, h_top)
         trials += [h_break, min(0.4 * cap, h_break), min(max(0.25 * cap, h_break), h_top)]
-    best = (0.0, None)
+    best: tuple[float, tuple[float, float, float] | None] = (0.0, None)
     for h in trials:
         if h <= 0.0:
             continue

@@ -25,8 +25,9 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any, cast
 
 from flyopt.design import check, closed_form, geometry, rank, wheel, wheel_design
 from flyopt.design.materials import Material
@@ -60,7 +61,7 @@ class _Combination:
     v_max: float = math.nan  # the material's safe rim speed [m/s] (nan: none, under the stress criterion)
 
     @property
-    def label(self):
+    def label(self) -> str:
         arms = f" with {self.n_arms} arms" if self.n_arms else ""
         return f"{self.material.name.replace('_', ' ')} on the {_shaft_label(self.shaft.name)}{arms}"
 
@@ -249,7 +250,7 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
     )
 
 
-def rim_speed_limit(material, spec):
+def rim_speed_limit(material: Material, spec: DesignSpec) -> float:
     """The material's safe rim speed [m/s] under a design spec: :meth:`Material.rim_speed_limit` with the
     design's safety factor (the one rule; the design's factor wins over the material's).
 
@@ -301,13 +302,13 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     speed = geometry.rim_speed(combo.omega, d_outer)
     found = _whole_violations(combo, spec, dims, j_wheel, checked)
     if found:
-        err = SolverFailed(
+        failure = SolverFailed(
             f"{label}: IPOPT reported {solution.status!r} but the wheel violates "
             f"{'; '.join(found)}; no design is reported"
         )
-        err.status = solution.status
-        err.combination = label
-        raise err
+        failure.status = solution.status
+        failure.combination = label
+        raise failure
     binding = sorted(name for name, lam in solution.lam_g.items() if abs(lam) > 1e-9)
     binding += sorted(
         {
@@ -577,6 +578,42 @@ def design_flywheel(
     infeasibility exactly (no NLP is solved then); every feasible combination
     is solved to optimality. Ranking is by the one rule of :mod:`flyopt.design.rank`.
     """
+    j_required, omega, spec = _check_arguments(j_required, omega, shafts, materials, spec, method)
+    textbook = [spec.textbook(bore_of(spec, shaft)) for shaft in shafts]
+    closed = _closed_form_covers(spec, method, textbook)
+    if j_required <= 0.0:
+        return _not_needed(j_required, omega, spec)
+    model = _textbook_model(spec, solver_options) if not closed and any(textbook) else None
+    decided = _Decided()
+    for order, combo, plain in _combinations(j_required, omega, torque, shafts, textbook, materials, spec):
+        if plain:
+            _decide_textbook(order, combo, spec, closed, model, decided)
+        else:
+            decided.whole.append((order, combo))
+    if decided.pending:
+        decided.feasible += _solve_closed_form(decided.pending, spec)
+    wheel_model = None
+    if decided.whole:
+        wheel_model = _design_wholes(
+            decided.whole, spec, solver_options, method, decided.feasible, decided.infeasible, decided.pruned
+        )
+    ranked, infeasible = _rank(decided)
+    description = _describe_model(spec, wheel_model if wheel_model is not None else model)
+    return _result(j_required, omega, spec, ranked, infeasible, decided, description)
+
+
+def _check_arguments(
+    j_required: float,
+    omega: float,
+    shafts: Sequence[MountShaft],
+    materials: Sequence[Material],
+    spec: DesignSpec | None,
+    method: str,
+) -> tuple[float, float, DesignSpec]:
+    """Check the arguments of :func:`design_flywheel`; return J_F, omega and the spec (default filled in).
+
+    Raises ValueError naming the bad argument and what is allowed.
+    """
     j_required = finite(j_required, "j_required [kg*m^2]")
     omega = positive(omega, "omega [rad/s]")
     _check_unique(shafts, "shaft", MountShaft)
@@ -590,8 +627,16 @@ def design_flywheel(
         if missing:
             raise ValueError(f"objective 'cost' needs a cost per kg on every material; missing for {missing}")
     choice(method, Method, "method")
+    return j_required, omega, spec
+
+
+def _closed_form_covers(spec: DesignSpec, method: str, textbook: Sequence[bool]) -> bool:
+    """Whether the exact closed form designs the feasible combinations (else IPOPT does).
+
+    Only when every shaft carries the textbook design and the method allows it; ``method``
+    "closed_form" on a structure the closed form does not cover raises ValueError.
+    """
     closed = False
-    textbook = [spec.textbook(bore_of(spec, shaft)) for shaft in shafts]
     if method != Method.IPOPT and all(textbook):
         closed = closed_form.covers(spec.geometry, spec.objective, spec.d_mean is not None)
         if method == Method.CLOSED_FORM and not closed:
@@ -599,33 +644,53 @@ def design_flywheel(
                 f"the closed form does not cover geometry {spec.geometry!r} with objective "
                 f"{spec.objective!r}; use method 'auto' or 'ipopt'"
             )
-    if j_required <= 0.0:
-        return DesignResult(
-            status="not_needed",
-            message=(
-                f"no flywheel needed: the required flywheel inertia J_F = "
-                f"{_g(j_required)} kg·m² is not positive, so the machine's own "
-                f"inertia already keeps the speed fluctuation within delta"
-            ),
-            j_required=j_required,
-            omega=omega,
-            spec=spec,
-        )
+    return closed
 
-    model = wheel_model = None
-    if not closed and any(textbook):
-        from flyopt.design import nlp  # CasADi only when IPOPT is asked for
 
-        structure = nlp.ModelStructure(
-            geometry=spec.geometry,
-            pinned=spec.d_mean is not None,
-            collapsed=spec.geometry != Geometry.DISC and spec.hb_ratio[0] == spec.hb_ratio[1],
-            objective="outer_diameter" if spec.objective == Objective.OUTER_DIAMETER else "mass",
-        )
-        model = nlp.get_model(structure, solver_options)
+def _not_needed(j_required: float, omega: float, spec: DesignSpec) -> DesignResult:
+    """The result when J_F <= 0: the machine's own inertia already keeps the fluctuation within delta."""
+    return DesignResult(
+        status="not_needed",
+        message=(
+            f"no flywheel needed: the required flywheel inertia J_F = "
+            f"{_g(j_required)} kg·m² is not positive, so the machine's own "
+            f"inertia already keeps the speed fluctuation within delta"
+        ),
+        j_required=j_required,
+        omega=omega,
+        spec=spec,
+    )
+
+
+def _textbook_model(spec: DesignSpec, solver_options: Mapping | None) -> Any:
+    """The cached NLP of :mod:`flyopt.design.nlp` for the textbook combinations IPOPT solves."""
+    from flyopt.design import nlp  # CasADi only when IPOPT is asked for
+
+    structure = nlp.ModelStructure(
+        geometry=spec.geometry,
+        pinned=spec.d_mean is not None,
+        collapsed=spec.geometry != Geometry.DISC and spec.hb_ratio[0] == spec.hb_ratio[1],
+        objective="outer_diameter" if spec.objective == Objective.OUTER_DIAMETER else "mass",
+    )
+    return nlp.get_model(structure, solver_options)
+
+
+def _combinations(
+    j_required: float,
+    omega: float,
+    torque: float | None,
+    shafts: Sequence[MountShaft],
+    textbook: Sequence[bool],
+    materials: Sequence[Material],
+    spec: DesignSpec,
+) -> Iterator[tuple[int, _Combination, bool]]:
+    """Every material x shaft combination in input order: (order, combination, textbook design?).
+
+    Each carries its shaft's speed, the inertia required on that shaft (J_F / r^2), the material's safe
+    rim speed and the outer-diameter cap it sets (with the envelope), the bore and the peak torque on
+    that shaft (torque / r). A generator, so that each combination is decided before the next is built.
+    """
     envelope = spec.max_outer_diameter
-
-    feasible, infeasible, pending, whole = [], [], [], []
     order = 0
     for material in materials:
         for shaft, plain in zip(shafts, textbook):
@@ -648,59 +713,90 @@ def design_flywheel(
             combo.bore = bore_of(spec, shaft)
             combo.v_max = v_max
             combo.torque = torque / shaft.speed_ratio if torque else 0.0
-            if not plain:
-                whole.append((order, combo))
-                order += 1
-                continue
-            combo.j_max = closed_form.max_inertia_one(
-                spec.geometry, material.density, combo.cap, spec.hb_ratio, spec.max_width, spec.d_mean
-            )[0]
-            pinned_fits = spec.d_mean is None or (
-                spec.d_mean <= combo.cap if spec.geometry == Geometry.DISC else spec.d_mean < combo.cap
-            )
-            if pinned_fits and combo.j_shaft <= combo.j_max:
-                if closed:
-                    pending.append((order, combo))
-                else:
-                    feasible.append(
-                        (order, _candidate_from_design(combo, spec, *nlp.solve_combination(model, combo, spec)))
-                    )
-            else:
-                reason, needed = _explain_infeasible(combo, spec)
-                infeasible.append(
-                    (
-                        (order, 0),
-                        Candidate(
-                            material=material.name,
-                            shaft=shaft.name,
-                            speed_ratio=shaft.speed_ratio,
-                            geometry=spec.geometry,
-                            feasible=False,
-                            reason=reason,
-                            j_required_on_shaft=combo.j_shaft,
-                            d_outer_limit=combo.cap,
-                            rim_speed_limit=combo.v_max,
-                            j_max=combo.j_max,
-                            d_outer_needed=needed,
-                        ),
-                    )
-                )
+            yield order, combo, plain
             order += 1
-    if pending:
-        feasible += _solve_closed_form(pending, spec)
-    pruned = []
-    if whole:
-        wheel_model = _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pruned)
-    infeasible = [c for _, c in sorted(infeasible, key=lambda item: item[0])]  # in input order
+
+
+@dataclass
+class _Decided:
+    """The combinations as they are decided, each keyed by its input order for the ranking."""
+
+    feasible: list[tuple[int, Candidate]] = field(default_factory=list)
+    infeasible: list[tuple[tuple[int, int], Candidate]] = field(default_factory=list)  # key: (order, arm index)
+    pending: list[tuple[int, _Combination]] = field(default_factory=list)  # feasible, for the closed form
+    whole: list[tuple[int, _Combination]] = field(default_factory=list)  # whole wheels, designed last
+    pruned: list[Candidate] = field(default_factory=list)
+
+
+def _decide_textbook(
+    order: int, combo: _Combination, spec: DesignSpec, closed: bool, model: Any, decided: _Decided
+) -> None:
+    """Decide one textbook combination: prove it infeasible, or design it (IPOPT now, the closed form later).
+
+    The exact bound :func:`flyopt.design.closed_form.max_inertia_one` sets ``combo.j_max``; a combination
+    whose pinned mean diameter fits under its cap and whose required inertia is within the bound is
+    feasible: it is solved by IPOPT on ``model`` at once or, when ``closed``, queued in ``decided.pending``
+    for the closed form. Otherwise it is infeasible, with the reason in numbers.
+    """
+    material = combo.material
+    combo.j_max = closed_form.max_inertia_one(
+        spec.geometry, material.density, combo.cap, spec.hb_ratio, spec.max_width, spec.d_mean
+    )[0]
+    pinned_fits = spec.d_mean is None or (
+        spec.d_mean <= combo.cap if spec.geometry == Geometry.DISC else spec.d_mean < combo.cap
+    )
+    if pinned_fits and combo.j_shaft <= combo.j_max:
+        if closed:
+            decided.pending.append((order, combo))
+        else:
+            from flyopt.design import nlp  # CasADi only when IPOPT is asked for
+
+            decided.feasible.append(
+                (order, _candidate_from_design(combo, spec, *nlp.solve_combination(model, combo, spec)))
+            )
+        return
+    reason, needed = _explain_infeasible(combo, spec)
+    decided.infeasible.append(
+        (
+            (order, 0),
+            Candidate(
+                material=material.name,
+                shaft=combo.shaft.name,
+                speed_ratio=combo.shaft.speed_ratio,
+                geometry=spec.geometry,
+                feasible=False,
+                reason=reason,
+                j_required_on_shaft=combo.j_shaft,
+                d_outer_limit=combo.cap,
+                rim_speed_limit=combo.v_max,
+                j_max=combo.j_max,
+                d_outer_needed=needed,
+            ),
+        )
+    )
+
+
+def _rank(decided: _Decided) -> tuple[tuple[Candidate, ...], list[Candidate]]:
+    """The candidates in reported order, and the infeasible ones in input order.
+
+    Feasible ones by the one rule of :func:`flyopt.design.rank.ranking`, then the pruned ones by their
+    objective bound, then the infeasible ones in input order.
+    """
+    infeasible = [c for _, c in sorted(decided.infeasible, key=lambda item: item[0])]  # in input order
     ranked = (
-        tuple(rank.ranking([c for _, c in feasible]))
-        + tuple(sorted(pruned, key=lambda c: c.objective_bound))
+        tuple(rank.ranking([c for _, c in decided.feasible]))
+        + tuple(sorted(decided.pruned, key=lambda c: cast(float, c.objective_bound)))  # a pruned one has its bound
         + tuple(infeasible)
     )
-    best = ranked[0] if feasible else None
-    if wheel_model is not None:
-        description = wheel_model.describe()
-    elif model is not None:
+    return ranked, infeasible
+
+
+def _describe_model(spec: DesignSpec, model: Any) -> dict[str, Any]:
+    """The description of the optimization model used (the last one built), for the report.
+
+    ``model`` is the whole-wheel or textbook NLP model, or None when only the closed form was used.
+    """
+    if model is not None:
         description = model.describe()
     else:
         description = {
@@ -725,6 +821,20 @@ def design_flywheel(
     description["bounds"] = bounds
     limits = spec.to_dict()
     description["limits"] = {name: limits[name] for name in ("max_outer_diameter", "max_width", "hb_ratio", "d_mean")}
+    return description
+
+
+def _result(
+    j_required: float,
+    omega: float,
+    spec: DesignSpec,
+    ranked: tuple[Candidate, ...],
+    infeasible: Sequence[Candidate],
+    decided: _Decided,
+    description: dict[str, Any],
+) -> DesignResult:
+    """The DesignResult: "designed" with the best candidate, or "infeasible" with every reason."""
+    best = ranked[0] if decided.feasible else None
     if best is None:
         status = "infeasible"
         message = "no material and shaft can give the required inertia: " + "; ".join(c.reason for c in infeasible)
@@ -733,8 +843,10 @@ def design_flywheel(
         message = (
             f"{best.material} on the {_shaft_label(best.shaft)}: {spec.geometry} "
             f"D_outer {_g(best.d_outer)} m, B {_g(best.b)} m, mass "
-            f"{_g(best.mass)} kg ({len(feasible)} of {len(ranked)} combinations "
-            f"feasible" + (f", {len(pruned)} not designed: a bound shows they cannot win" if pruned else "") + ")"
+            f"{_g(best.mass)} kg ({len(decided.feasible)} of {len(ranked)} combinations "
+            f"feasible"
+            + (f", {len(decided.pruned)} not designed: a bound shows they cannot win" if decided.pruned else "")
+            + ")"
         )
     return DesignResult(
         status=status,

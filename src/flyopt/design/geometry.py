@@ -50,14 +50,14 @@ __all__ = [
 ]
 
 #: The bare wheels of the textbook: one body, sized by a closed form where it is exact.
-BARE = {
+BARE: dict[str, str] = {
     Geometry.THIN_RIM: "thin rim, J = m D_m^2/4 (textbook model; slightly low, errs safe)",
     Geometry.RIM: "exact annulus, J = m (D_m^2 + H^2)/4",
     Geometry.DISC: "solid disc, J = m D^2/8, m = pi D^2 B rho/4 (an annulus when it has a bore)",
 }
 #: Whole wheels: a rim carried on a web or on arms, with a hub on the shaft
 #: (flyopt.design.wheel holds their parts).
-WHEELS = {
+WHEELS: dict[str, str] = {
     Geometry.RIM_WEB: "rim, web and hub: a stepped disc, every part counted in J and mass",
     Geometry.RIM_ARMS: "rim on n elliptical arms and a hub, every part counted in J and mass",
 }

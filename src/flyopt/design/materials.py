@@ -125,7 +125,7 @@ def _rows(table, name):
             f"(max_thickness [m], tensile_strength [Pa], yield_strength [Pa] or none), "
             f"got {shorten(table)}"
         )
-    rows = []
+    rows: list[StrengthRow] = []
     for k, row in enumerate(table):
         where = f"{what}[{k}]"
         if isinstance(row, Mapping):
@@ -487,6 +487,9 @@ class Material:
                 )
             tensile, yield_ = self.strength(thickness)
             return (yield_ if self.ductile else tensile) / factor
+        # __post_init__ refuses a material with neither allowable_stress, strengths nor max_rim_speed
+        if self.max_rim_speed is None:
+            raise RuntimeError(f"material {shorten(self.name)}: no allowable stress, strengths or rim speed")
         return self.density * self.max_rim_speed**2
 
     def rim_speed_limit(self, thickness=None, safety_factor=None):

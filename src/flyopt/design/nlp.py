@@ -181,7 +181,7 @@ def _build_model(structure, options):
     """
     start = time.perf_counter()
     geo, pinned, collapsed, objective = structure
-    names = []
+    names: list[str] = []
     cols = {}
     order = ["d_mean", "h", "b"] if geo != Geometry.DISC else ["diameter", "b"]
     for name in order:
@@ -340,15 +340,15 @@ def solve_combination(model, combo, spec):
     iterations = int(stats.get("iter_count", -1))
     if status not in _CONVERGED:
         after = f" after {iterations} iterations" if 0 <= iterations <= 10**6 else ""
-        err = SolverFailed(
+        failure = SolverFailed(
             f"{combo.label}: IPOPT did not converge (return status {status!r}{after}), "
             f"although the closed-form bound shows the "
             f"combination is feasible (it can give up to {combo.j_max:.3g} kg·m², "
             f"{combo.j_shaft:.3g} needed); no design is reported"
         )
-        err.status = status
-        err.combination = combo.label
-        raise err
+        failure.status = status
+        failure.combination = combo.label
+        raise failure
     xs = [float(v) for v in sol["x"].full().ravel()]
 
     def value(name, default=0.0):

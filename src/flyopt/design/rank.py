@@ -28,6 +28,7 @@ two designs are the same wheel to 1e-9.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -95,7 +96,7 @@ def _winner_of_few(objective, cost, mass, rim_speed, material, shaft):
     The same steps in the same order: NaN counts as inf, each numeric key keeps
     the designs within TIE_RTOL of its lowest, then the names decide.
     """
-    alive = range(len(material))
+    alive: Sequence[int] = range(len(material))
     for key in (objective, cost, mass, rim_speed):
         values = [math.inf if v is None or v != v else float(v) for v in key]
         lowest = min(values[k] for k in alive)

@@ -17,7 +17,7 @@ section reaches the tensile strength, for a brittle one where the governing
 stress does; both scale with omega^2 (:func:`flyopt.design.stress.burst_speed`).
 
 Balance: the permissible residual unbalance of ISO 21940-11 grade G6.3,
-e_per = G / Omega, U_per = e_per m (:func:`flyopt.design.hub.permissible_unbalance`).
+e_per = G / Omega, U_per = e_per m (:func:`flyopt.design.balance.permissible_unbalance`).
 
 References
 ----------

@@ -924,7 +924,7 @@ def arm_centrifugal_force(density, arm_area, omega, arm_end_radius, hub_radius):
 def _sin_pi_over(n):
     """sin(pi/n) for a plain number or a numpy array of numbers of arms."""
     if isinstance(n, numbers.Real):
-        return math.sin(math.pi / n)
+        return math.sin(math.pi / float(n))
     return np.sin(np.pi / np.asarray(n, dtype=float))
 
 

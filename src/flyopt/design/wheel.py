@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 from flyopt.names import Geometry
 
@@ -51,16 +51,19 @@ ARM_MINOR_RATIO = 0.5
 
 @dataclass(frozen=True)
 class Dims:
-    """The dimensions of a wheel [m] (``n_arms`` a count); what a geometry does not use is 0."""
+    """The dimensions of a wheel [m] (``n_arms`` a count); what a geometry does not use is 0.
 
-    d_outer: object
-    h: object
-    b: object
-    bore: object = 0.0
-    t_web: object = 0.0
-    d_hub: object = 0.0
-    l_hub: object = 0.0
-    arm_major: object = 0.0
+    Plain floats or CasADi symbols (the NLP builds its rows from the same arithmetic), hence ``Any``.
+    """
+
+    d_outer: Any
+    h: Any
+    b: Any
+    bore: Any = 0.0
+    t_web: Any = 0.0
+    d_hub: Any = 0.0
+    l_hub: Any = 0.0
+    arm_major: Any = 0.0
     n_arms: int = 0
 
     @property

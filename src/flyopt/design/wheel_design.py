@@ -22,8 +22,9 @@ References
 from __future__ import annotations
 
 import math
+from typing import Any
 
-from flyopt.design import check, geometry, hub, strength, wheel
+from flyopt.design import balance, check, geometry, hub, key, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Method, Objective
@@ -90,7 +91,7 @@ def _hub_bounds(material, bore, torque):
     pressure = getattr(material, "bearing_pressure", None)
     if torque and pressure:
         try:
-            l_low = max(l_low, hub.hub_length_for_key(torque, bore, pressure))
+            l_low = max(l_low, key.hub_length_for_key(torque, bore, pressure))
         except ValueError:
             pass  # no standard key carries it: check_key says so in the report
     return (p.d_hub_min, p.d_hub_max), (l_low, max(p.l_hub_max, l_low)), kind
@@ -373,6 +374,9 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
         if best is None or found[1].objective < best[1].objective:
             best = found
     if best is None:
+        # only sections beyond the strength table (raised only where a table exists) leave no design
+        if table_end is None:
+            raise RuntimeError(f"{combo.label}: no wheel, and no strength table to blame")
         raise NoWheel(
             f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
             f"material's strength table, which ends at {table_end * 1e3:g} mm, and no wheel whose "
@@ -459,6 +463,9 @@ def _settle(model, problem, combo, material, geo, spec, torque, parts, used, tab
             raise _OverTable({p: w for p, w in wheel.walls(geo, dims).items() if w > table_end}) from None
         if not stressed:
             return dims, solution, checked
+        # under the stress criterion screen() has refused a material without poisson_ratio
+        if checked is None:
+            raise RuntimeError("a stressed wheel was designed without its strength check")
         settled = True
         for part in checked.parts:
             target = part.allowable
@@ -567,7 +574,8 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
         :func:`flyopt.design.strength.check_wheel` of these dims, when the
         designer has made it already (it is not made twice).
     """
-    out = {"bore": bore or None, "notes": []}
+    notes: list[str] = []
+    out: dict[str, Any] = {"bore": bore or None, "notes": notes}
     parts = wheel.parts(geometry_name, dims, material.density)
     out["parts"] = tuple(
         {
@@ -581,8 +589,8 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
         for p in parts
     )
     mass = float(wheel.wheel_mass(parts))
-    balance = hub.permissible_unbalance(mass, omega, strength.BALANCE_GRADE)
-    out["unbalance_permissible"] = float(balance.u_per)
+    unbalance = balance.permissible_unbalance(mass, omega, strength.BALANCE_GRADE)
+    out["unbalance_permissible"] = float(unbalance.u_per)
     out.update(stress=None, allowable_stress=None, strength_safety=None, burst_speed=None, speed_margin=None, key=None)
     if getattr(material, "poisson_ratio", None) is None:
         out["notes"].append(f"material {material.name} gives no poisson_ratio: stresses not computed")
@@ -607,7 +615,7 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
             out["notes"].append(f"material {material.name} gives no bearing_pressure: key not checked")
         else:
             try:
-                k = hub.check_key(torque, bore, float(hub_length), pressure)
+                k = key.check_key(torque, bore, float(hub_length), pressure)
             except ValueError as err:
                 out["notes"].append(f"key not checked: {err}")
             else:
@@ -711,10 +719,10 @@ def sensitivities(solution, mass, problem_limits):
             f"each +1 % of required inertia adds {dm * 0.01 * problem_limits['j_shaft']:+.3g} kg",
             problem_limits["j_shaft"],
         )
-    for key, value in solution.lam_p.items():
-        if not key.startswith("allow_") or value == 0.0:
+    for param, value in solution.lam_p.items():
+        if not param.startswith("allow_") or value == 0.0:
             continue
-        part = key[len("allow_") :]
+        part = param[len("allow_") :]
         allowable = problem_limits["allowable"].get(part)
         if not allowable or not math.isfinite(allowable):
             continue

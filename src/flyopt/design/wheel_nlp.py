@@ -311,7 +311,7 @@ class WheelSolution:
     stress_scale: float
     structure: WheelStructure
     allow_params: dict  # part -> the allowable's parameter, (sigma_a / S)^2 (ductile) or sigma_a / S
-    caps: dict = None  # the caps that set a variable's upper bound (variable -> [m]), or None
+    caps: dict | None = None  # the caps that set a variable's upper bound (variable -> [m]), or None
 
 
 def _start(structure, problem, names):
@@ -469,13 +469,13 @@ def solve(model, problem, label):
     status = stats.get("return_status", "unknown")
     iterations = int(stats.get("iter_count", -1))
     if status not in _CONVERGED:
-        err = SolverFailed(
+        failure = SolverFailed(
             f"{label}: IPOPT did not converge on the whole wheel (return status "
             f"{status!r} after {iterations} iterations); no design is reported"
         )
-        err.status = status
-        err.combination = label
-        raise err
+        failure.status = status
+        failure.combination = label
+        raise failure
     xs = [float(v) for v in sol["x"].full().ravel()]
     dims = _dims(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
     lam_g: dict = {}

@@ -1683,7 +1683,7 @@ class _Builder:
         si, res = self.si, self.result
         omega = self.design.omega * c.speed_ratio
         if c.unbalance_permissible is not None and math.isfinite(c.unbalance_permissible) and c.mass:
-            from flyopt.design.hub import permissible_unbalance
+            from flyopt.design.balance import permissible_unbalance
 
             grade = inspect.signature(permissible_unbalance).parameters["grade"].default
             e_per = c.unbalance_permissible / c.mass

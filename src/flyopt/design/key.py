@@ -1,0 +1,534 @@
+"""The parallel key of a flywheel's hub: its DIN 6885-1 section, its standard length and its check.
+
+A flywheel sits on its shaft by a hub and, usually, a parallel key. This
+module sizes and checks that key:
+
+* :func:`key_for_shaft` -- the DIN 6885-1 key section for a shaft seat;
+* :func:`key_length_for_hub` -- the longest standard key that fits a hub;
+* :func:`check_key` and :func:`hub_length_for_key` -- the key's bearing
+  pressure and shear at a torque, and the shortest hub that carries it.
+
+The DIN 6885-1 table and the key steel live in the package data file
+``flyopt/data/keys.toml`` with their sources (the table in mm, as the
+standard prints it); this module converts them to SI on loading. Every
+argument and result here is SI: m, N*m, Pa.
+
+References
+----------
+.. [1] DIN 6885-1 (1968, 2021), Drive type fastenings without taper action;
+   parallel keys, keyways, deep pattern. Sources of each number in
+   ``flyopt/data/keys.toml``.
+.. [2] ingenieurkurse.de, Maschinenelemente 1, "Festigkeitsberechnung einer
+   Passfederverbindung": tau = F_u / (b l_t), p = F_u / ((h - t1) l_t),
+   l_t = l - b for a round-ended key.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+from importlib import resources
+
+from flyopt._toml import tomllib
+from flyopt.validate import positive
+
+__all__ = [
+    "FIT_ATOL",
+    "LIMIT_RTOL",
+    "Key",
+    "KeyCheck",
+    "KeySteel",
+    "check_key",
+    "hub_length_for_key",
+    "key_for_shaft",
+    "key_length_for_hub",
+    "key_steel",
+    "key_table",
+    "standard_key_lengths",
+]
+
+_DATA_FILE = "keys.toml"
+_ORIGIN = f"flyopt/data/{_DATA_FILE}"
+_COLUMNS = ["d_over", "d_up_to", "b", "h", "t1", "t2", "l_min", "l_max"]
+
+LIMIT_RTOL = 1e-12
+"""Relative round-off allowed on a limit: a pressure or stress within this
+fraction above its allowable still passes (a design may sit exactly at its
+limit, as flyopt's rim speed limit is an allowed maximum)."""
+
+FIT_ATOL = 1e-9
+"""Round-off allowed when a key is fitted into a hub [m]: a key fits a hub
+that is at most 1 nm shorter, so a hub length computed in metres is not
+refused the standard key of its own nominal length."""
+
+
+def _positive(value, name, unit):
+    """``value`` as a float, or ValueError naming ``name`` unless finite and > 0."""
+    return positive(value, f"{name} [{unit}]")
+
+
+# --------------------------------------------------------------------------
+# data
+# --------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Key:
+    """A DIN 6885-1 parallel key section and the shaft seats it serves, all in SI.
+
+    Parameters
+    ----------
+    b : float
+        Key width [m].
+    h : float
+        Key height [m].
+    t1 : float
+        Keyway depth in the shaft [m].
+    t2 : float
+        Keyway depth in the hub (clearance on the key's back) [m].
+    d_over, d_up_to : float
+        The shaft seats of this section: d_over < d <= d_up_to [m] (the
+        standard's "over ... up to and including").
+    l_min, l_max : float
+        Shortest and longest standard length of this section [m].
+    lengths : tuple of float
+        The standard key lengths of this section, l_min to l_max [m].
+    """
+
+    b: float
+    h: float
+    t1: float
+    t2: float
+    d_over: float
+    d_up_to: float
+    l_min: float
+    l_max: float
+    lengths: tuple[float, ...]
+
+    @property
+    def size(self) -> str:
+        """The section as the standard names it, b x h in mm, e.g. ``"14 x 9"``."""
+        return f"{self.b * 1e3:g} x {self.h * 1e3:g}"
+
+    @property
+    def hub_flank_height(self) -> float:
+        """Height of the key's flank in the hub, h - t1 [m]."""
+        return self.h - self.t1
+
+
+@dataclass(frozen=True)
+class KeySteel:
+    """The key material and its strengths.
+
+    Parameters
+    ----------
+    name : str
+        Material designation, e.g. ``"C45+C"``.
+    yield_strength : float
+        S_y [Pa].
+    tensile_strength : float
+        S_ut [Pa].
+    shear_yield_strength : float
+        S_sy = k S_y by the distortion-energy theory, k = 0.577 [Pa].
+    source : str
+        Where the numbers come from.
+    """
+
+    name: str
+    yield_strength: float
+    tensile_strength: float
+    shear_yield_strength: float
+    source: str
+
+
+def _mm(value, what):
+    """A length of the data file [mm] in metres; ``value / 1000`` is the
+    correctly rounded metre value of the printed millimetres."""
+    number = float(value)
+    if not math.isfinite(number) or number <= 0.0:
+        raise ValueError(f"{_ORIGIN}: {what} must be a positive length in mm, got {value!r}")
+    return number / 1000.0
+
+
+@functools.lru_cache(maxsize=1)
+def _load():
+    """Read and check the key table and the key steel of ``keys.toml`` once: (keys, lengths, steel)."""
+    text = resources.files("flyopt").joinpath("data", _DATA_FILE).read_text(encoding="utf-8")
+    data = tomllib.loads(text)
+    table = data["din_6885_1"]
+    if table.get("unit") != "mm" or table.get("columns") != _COLUMNS:
+        raise ValueError(f"{_ORIGIN}: din_6885_1 must give unit = 'mm' and columns = {_COLUMNS}")
+    lengths_mm = [float(x) for x in table["lengths"]]
+    if lengths_mm != sorted(set(lengths_mm)):
+        raise ValueError(f"{_ORIGIN}: din_6885_1.lengths must increase strictly")
+    lengths = tuple(_mm(x, "a standard key length") for x in lengths_mm)
+    keys: list[Key] = []
+    for index, row in enumerate(table["rows"]):
+        if len(row) != len(_COLUMNS):
+            raise ValueError(
+                f"{_ORIGIN}: din_6885_1.rows[{index}] has {len(row)} values, "
+                f"expected {len(_COLUMNS)} ({', '.join(_COLUMNS)})"
+            )
+        values = dict(zip(_COLUMNS, row))
+        for end in ("l_min", "l_max"):
+            if float(values[end]) not in lengths_mm:
+                raise ValueError(
+                    f"{_ORIGIN}: din_6885_1.rows[{index}]: {end} = {values[end]} mm "
+                    f"is not in the series of standard lengths"
+                )
+        si = {name: _mm(values[name], f"din_6885_1.rows[{index}].{name}") for name in _COLUMNS}
+        if not (si["d_over"] < si["d_up_to"] and si["t1"] < si["h"] and si["l_min"] <= si["l_max"]):
+            raise ValueError(
+                f"{_ORIGIN}: din_6885_1.rows[{index}] = {row!r} is inconsistent "
+                f"(need d_over < d_up_to, t1 < h, l_min <= l_max)"
+            )
+        if keys and si["d_over"] != keys[-1].d_up_to:
+            raise ValueError(
+                f"{_ORIGIN}: din_6885_1.rows[{index}] starts over {values['d_over']} mm, "
+                f"the row before ends at {keys[-1].d_up_to * 1e3:g} mm"
+            )
+        lengths_of_row = tuple(x for x in lengths if si["l_min"] <= x <= si["l_max"])
+        keys.append(Key(lengths=lengths_of_row, **si))
+
+    steel_table = data["key_steel"]
+    yield_strength = float(steel_table["yield_strength"])
+    steel = KeySteel(
+        name=steel_table["name"],
+        yield_strength=yield_strength,
+        tensile_strength=float(steel_table["tensile_strength"]),
+        shear_yield_strength=float(steel_table["shear_yield_ratio"]) * yield_strength,
+        source=steel_table["source"],
+    )
+    return tuple(keys), lengths, steel
+
+
+def key_table() -> tuple[Key, ...]:
+    """The DIN 6885-1 key sections of ``flyopt/data/keys.toml``, smallest shaft first.
+
+    Returns
+    -------
+    tuple of Key
+        In SI units [m].
+    """
+    return _load()[0]
+
+
+def standard_key_lengths() -> tuple[float, ...]:
+    """The series of standard key lengths of DIN 6885-1 [m], shortest first.
+
+    Returns
+    -------
+    tuple of float
+    """
+    return _load()[1]
+
+
+def key_steel() -> KeySteel:
+    """The key steel (C45+C) and its strengths, from ``flyopt/data/keys.toml``.
+
+    Returns
+    -------
+    KeySteel
+        Its ``shear_yield_strength`` is the default allowable key shear of
+        :func:`check_key`.
+
+    Notes
+    -----
+    S_y is that of AISI 1045 cold drawn (the equivalent of C45+C) in Shigley's
+    Table A-20, and S_sy = 0.577 S_y by the distortion-energy theory; the
+    data file gives the sources.
+    """
+    return _load()[2]
+
+
+# --------------------------------------------------------------------------
+# the key
+# --------------------------------------------------------------------------
+
+
+def key_for_shaft(d: float) -> Key:
+    """The DIN 6885-1 parallel key section for a shaft seat.
+
+    Parameters
+    ----------
+    d : float
+        Shaft seat diameter [m].
+
+    Returns
+    -------
+    Key
+        The section whose row holds ``d``: d_over < d <= d_up_to.
+
+    Raises
+    ------
+    ValueError
+        If ``d`` is not a positive finite number, or lies outside the table
+        (the message names the diameter and the table's range).
+
+    Notes
+    -----
+    The standard's rows read "over ... up to and including": d = 50 mm takes
+    the 14 x 9 key of the row over 44 up to 50 mm, d = 50.001 mm the 16 x 10
+    of the next. Boundaries compare exactly in metres, against the table's
+    millimetres divided by 1000.
+    """
+    d = _positive(d, "shaft diameter d", "m")
+    keys = key_table()
+    for key in keys:
+        if key.d_over < d <= key.d_up_to:
+            return key
+    raise ValueError(
+        f"shaft diameter d = {d!r} m ({d * 1e3:g} mm) is outside the DIN 6885-1 table "
+        f"of {_ORIGIN}, which covers shafts over {keys[0].d_over * 1e3:g} mm up to "
+        f"and including {keys[-1].d_up_to * 1e3:g} mm"
+    )
+
+
+def key_length_for_hub(key: Key, hub_length: float) -> float:
+    """The longest standard length of a key section that fits in a hub.
+
+    Parameters
+    ----------
+    key : Key
+        The key section (:func:`key_for_shaft`).
+    hub_length : float
+        Length of the hub [m].
+
+    Returns
+    -------
+    float
+        The longest standard length l <= hub_length of the section, at most
+        its l_max [m].
+
+    Raises
+    ------
+    ValueError
+        If the hub is shorter than the section's shortest standard key.
+
+    Notes
+    -----
+    A key fits a hub up to :data:`FIT_ATOL` (1 nm) shorter than itself, so
+    that a hub length computed in metres keeps the key of its nominal
+    length. The key is taken as long as the hub allows; a keyway that stops
+    short of the hub's faces shortens it further.
+    """
+    hub_length = _positive(hub_length, "hub_length", "m")
+    fitting = [length for length in key.lengths if length <= hub_length + FIT_ATOL]
+    if not fitting:
+        raise ValueError(
+            f"hub length {hub_length!r} m ({hub_length * 1e3:g} mm) is shorter than the "
+            f"shortest standard {key.size} key, {key.l_min * 1e3:g} mm"
+        )
+    return fitting[-1]
+
+
+@dataclass(frozen=True)
+class KeyCheck:
+    """The key of a hub checked at a torque; all SI.
+
+    Parameters
+    ----------
+    key : Key
+        The key section.
+    torque : float
+        Torque the joint transmits [N*m].
+    d : float
+        Shaft seat diameter [m].
+    hub_length : float
+        Hub length [m].
+    length : float
+        Standard key length used, the longest that fits in the hub [m].
+    effective_length : float
+        Bearing length of the form A key, l - b [m].
+    pressure : float
+        Bearing pressure on the hub's keyway flank, 2 T / (d (h - t1) l_eff) [Pa].
+    shear : float
+        Shear stress in the key, 2 T / (d b l_eff) [Pa].
+    allowable_pressure : float
+        Allowable bearing pressure of the hub material [Pa].
+    allowable_shear : float
+        Allowable shear stress of the key [Pa].
+    """
+
+    key: Key
+    torque: float
+    d: float
+    hub_length: float
+    length: float
+    effective_length: float
+    pressure: float
+    shear: float
+    allowable_pressure: float
+    allowable_shear: float
+
+    @property
+    def pressure_ratio(self) -> float:
+        """pressure / allowable_pressure [-]."""
+        return self.pressure / self.allowable_pressure
+
+    @property
+    def shear_ratio(self) -> float:
+        """shear / allowable_shear [-]."""
+        return self.shear / self.allowable_shear
+
+    @property
+    def governing(self) -> str:
+        """``"pressure"`` or ``"shear"``: the check nearer its limit."""
+        return "pressure" if self.pressure_ratio >= self.shear_ratio else "shear"
+
+    @property
+    def ok(self) -> bool:
+        """Whether both stay within their allowables (up to :data:`LIMIT_RTOL`)."""
+        return _within(self.pressure, self.allowable_pressure) and _within(self.shear, self.allowable_shear)
+
+
+def _within(value, allowable):
+    return value <= allowable * (1.0 + LIMIT_RTOL)
+
+
+def _key_stresses(torque, d, key, length):
+    """(l_eff, pressure, shear) of a form A key of length ``length``."""
+    effective_length = length - key.b
+    force = 2.0 * torque / d
+    return (effective_length, force / (key.hub_flank_height * effective_length), force / (key.b * effective_length))
+
+
+def _allowables(allowable_pressure, allowable_shear):
+    allowable_pressure = _positive(allowable_pressure, "allowable_pressure", "Pa")
+    if allowable_shear is None:
+        allowable_shear = key_steel().shear_yield_strength
+    else:
+        allowable_shear = _positive(allowable_shear, "allowable_shear", "Pa")
+    return allowable_pressure, allowable_shear
+
+
+def check_key(
+    torque: float, d: float, hub_length: float, allowable_pressure: float, allowable_shear: float | None = None
+) -> KeyCheck:
+    """Check the DIN 6885-1 form A key of a hub at a torque.
+
+    Parameters
+    ----------
+    torque : float
+        Largest torque the joint transmits, T [N*m] (e.g.
+        :func:`flyopt.sizing.peak_torque.flywheel_peak_torque`).
+    d : float
+        Shaft seat diameter [m].
+    hub_length : float
+        Hub length [m]; the key is the longest standard one that fits.
+    allowable_pressure : float
+        Allowable bearing pressure of the hub material [Pa]; the hub, usually
+        the weaker part, gives it.
+    allowable_shear : float, optional
+        Allowable shear stress of the key [Pa]. By default the shear yield
+        strength of the key steel C45+C, S_sy = 0.577 S_y (:func:`key_steel`):
+        the limit itself, with no safety factor; pass S_sy / n for a design
+        factor n.
+
+    Returns
+    -------
+    KeyCheck
+        Key, length, pressures and stresses; ``ok`` tells whether it passes.
+
+    Raises
+    ------
+    ValueError
+        If an argument is not a positive finite number, the shaft is outside
+        the key table, or the hub is shorter than the section's shortest key.
+
+    Notes
+    -----
+    The circumferential force at the seat is F = 2 T / d. A form A (round-
+    ended) key bears along its straight part only, l_eff = l - b [2]_. The
+    key's flank stands h - t1 high in the hub's keyway, so
+
+        p = 2 T / (d (h - t1) l_eff),    tau = 2 T / (d b l_eff)
+
+    as in [2]_; mechanixcalc.com's DIN 6885 calculator, after Roloff/Matek,
+    also bears on h - t1 (one key, load share 1; Roloff/Matek itself was not at
+    hand). Some texts take the hub's flank as t2 (strokeforge.tech) or h/2
+    (Shigley, Khurmi) instead; h - t1 is the height the key offers the hub.
+    Chamfers of key and keyway are neglected.
+    """
+    torque = _positive(torque, "torque", "N*m")
+    d = _positive(d, "shaft diameter d", "m")
+    hub_length = _positive(hub_length, "hub_length", "m")
+    allowable_pressure, allowable_shear = _allowables(allowable_pressure, allowable_shear)
+    key = key_for_shaft(d)
+    length = key_length_for_hub(key, hub_length)
+    effective_length, pressure, shear = _key_stresses(torque, d, key, length)
+    return KeyCheck(
+        key=key,
+        torque=torque,
+        d=d,
+        hub_length=hub_length,
+        length=length,
+        effective_length=effective_length,
+        pressure=pressure,
+        shear=shear,
+        allowable_pressure=allowable_pressure,
+        allowable_shear=allowable_shear,
+    )
+
+
+def hub_length_for_key(
+    torque: float, d: float, allowable_pressure: float, allowable_shear: float | None = None
+) -> float:
+    """The shortest hub whose DIN 6885-1 key passes :func:`check_key`.
+
+    Parameters
+    ----------
+    torque : float
+        Largest torque the joint transmits [N*m].
+    d : float
+        Shaft seat diameter [m].
+    allowable_pressure : float
+        Allowable bearing pressure of the hub material [Pa].
+    allowable_shear : float, optional
+        Allowable shear stress of the key [Pa]; default as in :func:`check_key`.
+
+    Returns
+    -------
+    float
+        The shortest standard key length l of the section for which both
+        the pressure and the shear stay within their allowables: a hub of
+        exactly this length passes :func:`check_key` [m]. A lower bound on the
+        hub length.
+
+    Raises
+    ------
+    ValueError
+        If an argument is not a positive finite number, the shaft is outside
+        the table, or even the section's longest key cannot carry the torque.
+
+    Notes
+    -----
+    Without rounding the key would need l = b + l_eff with
+    l_eff = max(2 T / (d (h - t1) p_allow), 2 T / (d b tau_allow)). But the key
+    is a standard length, and a hub of length L holds the longest standard
+    key l <= L, so the check is a step function of L: a hub between two
+    standard lengths carries no more than one of the shorter length. The
+    shortest passing hub is therefore the shortest standard length l >= b +
+    l_eff (and >= the section's l_min); there the pressure is at most the
+    allowable, and equal to it only when b + l_eff falls on a standard length.
+    Any hub at least this long passes; any shorter one fails. The answer is
+    found by running the same check over the section's standard lengths, so
+    the two functions cannot disagree.
+    """
+    torque = _positive(torque, "torque", "N*m")
+    d = _positive(d, "shaft diameter d", "m")
+    allowable_pressure, allowable_shear = _allowables(allowable_pressure, allowable_shear)
+    key = key_for_shaft(d)
+    for length in key.lengths:
+        _, pressure, shear = _key_stresses(torque, d, key, length)
+        if _within(pressure, allowable_pressure) and _within(shear, allowable_shear):
+            return length
+    _, pressure, shear = _key_stresses(torque, d, key, key.l_max)
+    raise ValueError(
+        f"torque {torque:.6g} N*m: even the longest standard {key.size} key "
+        f"({key.l_max * 1e3:g} mm) of the d = {d * 1e3:g} mm shaft is overloaded "
+        f"(pressure {pressure / 1e6:.4g} MPa against {allowable_pressure / 1e6:.4g} MPa, "
+        f"shear {shear / 1e6:.4g} MPa against {allowable_shear / 1e6:.4g} MPa); "
+        f"use a larger shaft seat, a stronger hub material or another shaft-hub joint"
+    )
