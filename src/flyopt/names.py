@@ -55,7 +55,7 @@ class Name(str, Enum):
     """
 
     __str__ = str.__str__
-    __format__ = str.__format__
+    __format__ = str.__format__  # type: ignore[assignment]  # str's format is Enum's in signature; its stub differs
     __hash__ = str.__hash__
 
     def __repr__(self) -> str:

@@ -21,6 +21,7 @@ section 3).
 """
 
 import math
+from collections.abc import Callable
 
 from flyopt.validate import positive
 
@@ -39,6 +40,8 @@ def _positive(value, what):
 
 
 class _Motor:
+    torque: Callable[..., float]  # each motor's law: torque at a shaft speed [N*m]
+
     def reference_torque(self, omega, speed_ratio=1.0, efficiency=1.0, model=None):
         """Motor torque reduced to the reference shaft [N*m].
 
