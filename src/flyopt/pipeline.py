@@ -223,7 +223,7 @@ def _with_delta_sensitivity(scene, analysis, result, solver_options, method):
     best = result.best
     if best is None or scene.delta is None or analysis.machine is None and analysis.indicator is None:
         return result
-    masses = []
+    masses: list[float] = []
     for sign in (1.0, -1.0):
         delta = scene.delta * (1.0 + sign * DELTA_STEP)
         try:
@@ -243,7 +243,7 @@ def _with_delta_sensitivity(scene, analysis, result, solver_options, method):
             )
         except (ValueError, RuntimeError):
             return result
-        if again.best is None:
+        if again.best is None or again.best.mass is None:
             return result
         masses.append(again.best.mass)
     slope = (masses[0] - masses[1]) / (2.0 * DELTA_STEP * scene.delta)

@@ -28,7 +28,7 @@ import functools
 import math
 from dataclasses import dataclass, field
 from importlib import resources
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 from flyopt._toml import tomllib
 from flyopt.errors import SceneError, shorten
@@ -184,7 +184,7 @@ class CatalogueMotor:
 
         for key in ("rated_power", "rated_speed", "synchronous_speed", "rotor_inertia"):
             set_(key, _number(getattr(self, key), key, name))
-        optional = {
+        optional: dict[str, dict[str, Any]] = {
             "breakdown_ratio": {
                 "minimum": 1.0,
                 "allowed": "a finite number > 1 (M_b/M_n; the pull-out torque exceeds the rated torque)",
@@ -414,7 +414,7 @@ def _motor_from_table(entry, where):
     for key in (*REQUIRED, "name", "source"):
         if key not in entry:
             raise ValueError(f"{where} has no {key}" + (" (every size cites its source)" if key == "source" else ""))
-    values = {}
+    values: dict[str, Any] = {}
     try:
         for key, dimension in QUANTITIES.items():
             if key in entry:

@@ -8,6 +8,7 @@ is known (docs/flywheel-design.md, sections 5–7).
 """
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -33,9 +34,9 @@ class Machine:
     speed_dependent, variable_inertia : bool
     """
 
-    driving: object
-    resisting: object
-    j_machine: object
+    driving: Any  # a torque curve (flyopt.cycle.torque)
+    resisting: Any
+    j_machine: Any  # a number, or J_e(φ) (flyopt.machine.mechanism.EquivalentInertia)
     cycle_angle: float
     omega_mean: float
     delta: float
@@ -235,7 +236,8 @@ def _check_drive(machine):
     curve = machine.driving
     if not isinstance(curve, MotorTorque):
         return
-    motor, gain = curve.motor, curve.speed_ratio * curve.efficiency
+    motor: Any = curve.motor
+    gain = curve.speed_ratio * curve.efficiency
     if isinstance(motor, InductionMotor):
         largest, what, no_load = motor.breakdown_torque * gain, "breakdown", motor.synchronous_speed
     elif isinstance(motor, TableMotor):

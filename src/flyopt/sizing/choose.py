@@ -17,6 +17,7 @@ far a cheaper method would be off — in J_F and in the δ it would really give.
 """
 
 from dataclasses import dataclass
+from typing import Any
 
 from flyopt.cycle.indicator import required_inertia
 from flyopt.errors import NonPeriodicCycle, SolverFailed
@@ -73,7 +74,7 @@ class Requirement:
     omega_min: float
     angle_omega_max: float | None
     angle_omega_min: float | None
-    detail: object = None
+    detail: Any = None
     note: str = ""
 
 
