@@ -47,7 +47,8 @@ import casadi as ca
 import numpy as np
 from scipy import optimize
 
-from flyopt.cycle.indicator import BALANCE_TOLERANCE
+from flyopt.cycle.balance import BALANCE_TOLERANCE
+from flyopt.cycle.numerics import hermite_extremes
 from flyopt.errors import NonPeriodicCycle, SceneError, SolverFailed
 from flyopt.sizing import shooting
 from flyopt.sizing._numerics import (
@@ -57,7 +58,6 @@ from flyopt.sizing._numerics import (
     check_cycle,
     check_speed_delta,
     evaluate,
-    hermite_extremes,
     quiet,
 )
 from flyopt.sizing.shooting import NotSettled

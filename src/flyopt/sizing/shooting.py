@@ -53,8 +53,9 @@ from collections import Counter
 import casadi as ca
 import numpy as np
 
+from flyopt.cycle.numerics import hermite_extremes
 from flyopt.errors import SolverFailed
-from flyopt.sizing._numerics import EPS, call, evaluate, hermite_extremes
+from flyopt.sizing._numerics import EPS, call, evaluate
 
 BUILDS = Counter()
 """CasADi structures built, by kind; :data:`flyopt.sizing.periodic.BUILDS` is this counter."""
