@@ -10,8 +10,10 @@ from conftest import assert_published
 from numpy.testing import assert_allclose
 from reference import exact_chain
 
+from flyopt.cycle.balance import work
+from flyopt.cycle.difference import kinks_of
 from flyopt.cycle.expression import Expression
-from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, kinks_of, required_inertia, work
+from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia
 from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.errors import NonPeriodicCycle, SceneError
 from flyopt.machine.transmission import inertia_on_shaft
@@ -379,13 +381,13 @@ KINK = 0.7639094994194499
 def test_quadrature_against_mpmath(name, f, mp_f, a, b, rtol):
     """The adaptive Gauss–Kronrod rule (one vectorized call per round) against mpmath at
     30 digits (split at the kinks and the peak so that mpmath is exact)."""
-    from flyopt.cycle.indicator import _quad
+    from flyopt.cycle.numerics import quad
 
     mpmath.mp.dps = 30
     kink = mpmath.asin(mpmath.mpf(KINK))
     points = [a, kink, mpmath.pi - kink, 1.234, b]
     ref = mpmath.quad(mp_f, sorted(p for p in points if a <= p <= b))
-    assert_allclose(_quad(f, a, b, scale=1.0), float(ref), rtol=rtol)
+    assert_allclose(quad(f, a, b, scale=1.0), float(ref), rtol=rtol)
 
 
 def test_quadrature_kink_beside_a_halving_point_is_the_known_limit():
@@ -395,23 +397,23 @@ def test_quadrature_kink_beside_a_halving_point_is_the_known_limit():
     about 2.4e-11 J, a relative 2e-11: held within 5e-11. (The cycle analysis never
     integrates across such a kink: it makes the kinks of abs/min/max knots; see
     test_kinks_of_abs_min_max_are_knots.)"""
-    from flyopt.cycle.indicator import _quad
+    from flyopt.cycle.numerics import quad
 
     mpmath.mp.dps = 30
     c = mpmath.mpf(0.3)
     kink = mpmath.asin(c)
     ref = mpmath.quad(lambda x: abs(mpmath.sin(x) - c), [0, kink, mpmath.pi - kink, 3])
     assert abs(float(kink) - 0.3046875) < 6e-6
-    assert_allclose(_quad(lambda x: np.abs(np.sin(x) - 0.3), 0.0, 3.0, scale=1.0), float(ref), rtol=5e-11)
+    assert_allclose(quad(lambda x: np.abs(np.sin(x) - 0.3), 0.0, 3.0, scale=1.0), float(ref), rtol=5e-11)
 
 
 def test_quadrature_refuses_what_it_cannot_resolve():
     """A torque oscillating a billion times per radian cannot be integrated to 1e-13: refused
     with the error reached, never returned as a number."""
-    from flyopt.cycle.indicator import _quad
+    from flyopt.cycle.numerics import quad
 
     with pytest.raises(ArithmeticError, match="reached only"):
-        _quad(lambda x: np.sin(1e9 * x) + 1.0, 0.0, 1.0, scale=1.0)
+        quad(lambda x: np.sin(1e9 * x) + 1.0, 0.0, 1.0, scale=1.0)
 
 
 @pytest.mark.parametrize("shift", [0.0, 1e-9, 0.002, 0.3])

@@ -32,8 +32,11 @@ from numpy.testing import assert_allclose, assert_array_equal
 from scipy import integrate, optimize
 
 from flyopt.analysis import analyse
+from flyopt.cycle import numerics
+from flyopt.cycle.difference import segments
 from flyopt.cycle.expression import Expression
-from flyopt.cycle.indicator import ExcessWork, _quad, _quad_many, _segments, brentq_many
+from flyopt.cycle.indicator import ExcessWork
+from flyopt.cycle.numerics import brentq_many
 from flyopt.cycle.torque import Constant, ExpressionTorque
 from flyopt.io.scene import load
 from flyopt.machine.kinematics import GearTrain, SliderCrank, SliderCrankRatio
@@ -307,8 +310,8 @@ def test_batched_quadrature_is_the_one_piece_quadrature_piece_for_piece():
             out[sel] = fs[k](phi[sel])
         return out
 
-    batched = _quad_many(f, a, b, scale=1.0)
-    single = np.array([_quad(fs[w], lo, hi, scale=1.0) for w, lo, hi in zip(which, a, b)])
+    batched = numerics.quad_many(f, a, b, scale=1.0)
+    single = np.array([numerics.quad(fs[w], lo, hi, scale=1.0) for w, lo, hi in zip(which, a, b)])
     assert_array_equal(batched, single)
     mpmath.mp.dps = 30
     for w, lo, hi, got in zip(which, a, b, batched):
@@ -354,7 +357,7 @@ def test_events_see_a_step_at_a_knot_from_the_piece_itself():
     after 41 Brent steps, when it sampled the next piece's value at the knot)."""
     machine = reduce(load(SLIDER_CRANK))
     ew = machine.angle_only()
-    angle, sign, _ = _segments(ew.driving, ew.resisting, machine.cycle_angle).events()
+    angle, sign, _ = segments(ew.driving, ew.resisting, machine.cycle_angle).events()
     knot = 140 * DEG
     assert not np.any((angle > knot - 1e-9) & (angle < knot))
     assert np.any(angle == knot)

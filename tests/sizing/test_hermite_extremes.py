@@ -1,4 +1,4 @@
-"""flyopt.sizing._numerics.hermite_extremes: the speed extremes between grid nodes.
+"""flyopt.cycle.numerics.hermite_extremes: the speed extremes between grid nodes.
 
 References are closed forms: the maximum of a sampled sine, and a first-order
 relaxation (a stiff motor's speed) whose extremes are its end values.
@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from flyopt.sizing._numerics import hermite_extremes
+from flyopt.cycle.numerics import hermite_extremes
 
 
 def test_a_smooth_extremum_between_nodes_is_refined():

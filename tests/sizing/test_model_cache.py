@@ -8,7 +8,7 @@ import casadi as ca
 from conftest import PROBLEMS
 
 import flyopt
-from flyopt.sizing import choose, periodic, shooting
+from flyopt.sizing import choose, periodic, periodic_model, shooting
 
 
 def test_one_solve_verify_of_the_motor_press_builds_each_structure_once():
@@ -60,7 +60,7 @@ def test_a_machine_keeps_one_model_for_as_long_as_it_lives():
     assert machine.net_torque() is machine.net_torque()
 
     def model_of(m):
-        return periodic.periodic_model(m.net_torque(), m.j_machine, m.cycle_angle, m.knots())
+        return periodic_model.periodic_model(m.net_torque(), m.j_machine, m.cycle_angle, m.knots())
 
     first = model_of(machine)
     assert model_of(machine) is first

@@ -20,7 +20,7 @@ import flyopt
 from flyopt.errors import NonPeriodicCycle, SolverFailed
 from flyopt.machine.motor import DCMotor
 from flyopt.machine.reduce import reduce
-from flyopt.sizing import energy_mass, periodic, shooting
+from flyopt.sizing import energy_mass, periodic, periodic_model, shooting
 
 
 def requirement_args(machine):
@@ -109,7 +109,7 @@ def test_balancing_constant_agrees_with_cvodes(monkeypatch, write_scene):
     machine = reduce(flyopt.load(write_scene(speed_load("200 + 50*sin(phi)*omega/157", inertia="1 kg*m^2"))))
     args = requirement_args(machine)
     fast, fell_back = one_solve(args)
-    assert not fell_back and periodic.periodic_model(*args[:3], args[5]).balanced
+    assert not fell_back and periodic_model.periodic_model(*args[:3], args[5]).balanced
     reference = by_cvodes(monkeypatch, args)
     assert_agree(fast, reference)
     assert_allclose(fast.solution.omega_mean, machine.omega_mean, rtol=1e-12)
@@ -148,7 +148,7 @@ def test_a_motor_too_weak_is_not_settled_and_the_search_says_why():
     def net(phi, omega):
         return motor.torque(omega) - load.casadi(phi)
 
-    model = periodic.periodic_model(net, 0.0, TWO_PI, load.breakpoints())
+    model = periodic_model.periodic_model(net, 0.0, TWO_PI, load.breakpoints())
     with pytest.raises(shooting.NotSettled):
         shooting.required_flywheel(model, 0.05, omega_n, 1.0)
     with pytest.raises(SolverFailed, match="stall"):
@@ -172,8 +172,8 @@ def test_fixed_steps_are_refined_until_halving_them_changes_nothing(monkeypatch)
     holds 1e-11: the solve refines its steps and still agrees with CVODES."""
     net, load, _, omega_n = press(1500, 0.04)
     args = (net, 0.0, TWO_PI, omega_n, 0.05, load.breakpoints())
-    monkeypatch.setattr(periodic, "OUTPUTS_PER_PIECE", 16)
-    periodic._MODELS.clear()
+    monkeypatch.setattr(periodic_model, "OUTPUTS_PER_PIECE", 16)
+    periodic_model._MODELS.clear()
     seen = []
     original = shooting._State
 
@@ -186,7 +186,7 @@ def test_fixed_steps_are_refined_until_halving_them_changes_nothing(monkeypatch)
     monkeypatch.setattr(shooting, "_State", original)
     assert not fell_back and max(seen) >= 2
     reference = by_cvodes(monkeypatch, args)
-    periodic._MODELS.clear()
+    periodic_model._MODELS.clear()
     assert math.isclose(fast.j_required, reference.j_required, rel_tol=1e-8)
 
 
@@ -226,7 +226,7 @@ def test_the_carried_tangent_is_the_derivative_of_the_discrete_cycle():
 
     machine = reduce(flyopt.load(PROBLEMS / "motor-press.toml"))
     net = machine.net_torque()
-    model = periodic.periodic_model(net, machine.j_machine, machine.cycle_angle, machine.knots())
+    model = periodic_model.periodic_model(net, machine.j_machine, machine.cycle_angle, machine.knots())
     omega = machine.omega_mean
     w_s = shooting.energy_swing(model, omega)
     j_f = w_s / (omega**2 * 0.05)

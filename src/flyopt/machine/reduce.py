@@ -65,7 +65,7 @@ class Machine:
         An unknown constant is first solved from the work balance (at the
         mean speed when another torque depends on speed). Built once per
         machine: the periodic model's CasADi functions are cached on this
-        object (flyopt.sizing.periodic.periodic_model), so every model run
+        object (flyopt.sizing.periodic_model.periodic_model), so every model run
         on the machine shares them.
         """
         if "net_torque" not in self._cache:

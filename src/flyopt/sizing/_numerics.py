@@ -1,8 +1,9 @@
 """Numerical helpers shared by the sizing models (private).
 
 The inertia J(φ) as a CasADi function, elementwise evaluation of CasADi
-functions on numpy arrays, argument checks, and the cubic Hermite
-interpolant with its exact extremes (docs/flywheel-design.md, sections 6–7).
+functions on numpy arrays, and argument checks (docs/flywheel-design.md,
+sections 6–7). The cubic Hermite interpolant and its exact extremes, pure
+numerics, are in :mod:`flyopt.cycle.numerics`.
 """
 
 import contextlib
@@ -176,101 +177,6 @@ def check_cycle(cycle_angle):
     if not (isinstance(cycle_angle, (int, float)) and math.isfinite(cycle_angle) and cycle_angle > 0):
         raise ValueError(f"cycle_angle must be a positive finite angle [rad], got {cycle_angle!r}")
     return float(cycle_angle)
-
-
-def hermite(f0, f1, m0, m1, t):
-    """Cubic Hermite interpolant on [0, 1] with end values f and end slopes m."""
-    return f0 + t * (m0 + t * (3 * (f1 - f0) - 2 * m0 - m1 + t * (2 * (f0 - f1) + m0 + m1)))
-
-
-#: How much steeper than the larger of the rises beside its node an end slope may be for the cubic to be
-#: trusted between the nodes [-]: on a smooth function the scaled slope h f' lies between the rises
-#: f_i - f_{i-1} and f_{i+1} - f_i up to O(h²) (near an extremum one rise vanishes, not both), and 3 is
-#: where the cubic Hermite interpolant starts to overshoot (Fritsch & Carlson 1980).
-STEEP = 3.0
-
-
-def _neighbour_rises(phi, f, rise):
-    """The rise of the interval before and after each one [same shape as ``rise``].
-
-    Within a row, its neighbours'. At a row's ends, the adjacent row's end interval where the rows join
-    (the same node: a periodic cycle's pieces, the last row joining the first when f closes); where
-    nothing joins, +inf, so that the steepness test never refuses an extremum for want of a neighbour.
-    """
-    pieces = rise.shape[0]
-    previous = np.roll(np.arange(pieces), 1)
-    joins = phi[previous, -1] == phi[:, 0]  # row r starts where row r-1 ends
-    joins[0] = pieces > 1 and abs(f[-1, -1] - f[0, 0]) <= 1e-9 * max(float(np.max(np.abs(f))), EPS)
-    before = np.concatenate([np.where(joins, rise[previous, -1], np.inf)[:, None], rise[:, :-1]], axis=1)
-    after = np.concatenate(
-        [rise[:, 1:], np.where(np.roll(joins, -1), np.roll(rise[:, 0], -1), np.inf)[:, None]], axis=1
-    )
-    return before, after
-
-
-def hermite_extremes(phi, f, df):
-    """Max and min of the piecewise cubic Hermite interpolant, with their angles.
-
-    ``phi``, ``f``, ``df`` have shape (pieces, outputs); each row is
-    interpolated on its own (slopes are one-sided at piece ends).
-
-    An extremum inside an interval is taken only where the data say there is
-    one: an end slope against the rise f1 − f0 (or the two end slopes of
-    opposite signs). Where both end slopes go the way of the rise, the
-    function is monotone between the nodes as far as the data show, and a
-    cubic extremum there is overshoot, not the function's: it appears where
-    the slopes are far steeper than the secant (Fritsch & Carlson, SIAM J.
-    Numer. Anal. 17 (1980) 238, need α² + β² > 9 for it), as at a stiff
-    motor's speed relaxing within a fraction of one grid step, whose cubic
-    reached 12.68 rpm between nodes of at most 12.26. Nor is it taken where
-    an end slope (times the step) exceeds :data:`STEEP` times the rises on
-    both sides of its node: that slope is a boundary layer's, not the
-    function's over the interval, whichever way it points. The extremes are
-    then the nodes'.
-    """
-    h = np.diff(phi, axis=1)
-    f0, f1 = f[:, :-1], f[:, 1:]
-    m0, m1 = df[:, :-1] * h, df[:, 1:] * h
-    rise = f1 - f0
-    turning = (m0 * rise < 0) | (m1 * rise < 0) | (rise == 0)
-    # an end slope far steeper than the rises on either side of its node is not the function's slope
-    # over the interval but a boundary layer's (a stiff motor relaxing within a fraction of the step)
-    before, after = _neighbour_rises(phi, f, rise)
-    floor = 1e-12 * max(float(np.max(np.abs(f))), EPS)
-    resolved = (np.abs(m0) <= STEEP * np.maximum(np.abs(rise), np.abs(before)) + floor) & (
-        np.abs(m1) <= STEEP * np.maximum(np.abs(rise), np.abs(after)) + floor
-    )
-    turning &= resolved
-    c = m0
-    b = 3 * (f1 - f0) - 2 * m0 - m1
-    a = 2 * (f0 - f1) + m0 + m1
-    # p'(t) = 3a t² + 2b t + c = 0
-    qa, qb, qc = 3 * a, 2 * b, c
-    disc = qb * qb - 4 * qa * qc
-    sq = np.sqrt(np.where(disc >= 0, disc, 0.0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        big = np.abs(qa) > 1e-14 * (np.abs(qb) + np.abs(qc))
-        r1 = np.where(big, (-qb + sq) / (2 * qa), np.where(qb != 0, -qc / np.where(qb != 0, qb, 1), -1.0))
-        r2 = np.where(big, (-qb - sq) / (2 * qa), -1.0)
-    best_hi = (float(np.max(f)), np.unravel_index(np.argmax(f), f.shape))
-    best_lo = (float(np.min(f)), np.unravel_index(np.argmin(f), f.shape))
-    hi_val, hi_phi = best_hi[0], float(phi[best_hi[1]])
-    lo_val, lo_phi = best_lo[0], float(phi[best_lo[1]])
-    for r in (r1, r2):
-        ok = (disc >= 0) & (r > 0) & (r < 1) & turning
-        t = np.where(ok, r, 0.0)
-        p = f0 + t * (c + t * (b + t * a))
-        where = phi[:, :-1] + t * h
-        if np.any(ok):
-            pm = np.where(ok, p, -np.inf)
-            i = np.unravel_index(np.argmax(pm), pm.shape)
-            if pm[i] > hi_val:
-                hi_val, hi_phi = float(pm[i]), float(where[i])
-            pm = np.where(ok, p, np.inf)
-            i = np.unravel_index(np.argmin(pm), pm.shape)
-            if pm[i] < lo_val:
-                lo_val, lo_phi = float(pm[i]), float(where[i])
-    return (hi_phi, hi_val), (lo_phi, lo_val)
 
 
 class _Discard:

@@ -158,12 +158,12 @@ def requirement(machine, model, indicator=None):
 
 def achieved_delta(machine, j_flywheel):
     """δ the machine really reaches with a flywheel J_F at the reference shaft (by the exact model)."""
-    from flyopt.sizing import energy_mass, periodic
+    from flyopt.sizing import energy_mass, periodic, periodic_model
 
     exact, _ = choose(machine)
     if exact in (ENERGY, ENERGY_MASS):
         if machine.j_mean() + j_flywheel <= 0:  # no inertia: the speed is constant only if nothing fluctuates
-            model = periodic.periodic_model(
+            model = periodic_model.periodic_model(
                 machine.net_torque(), machine.j_machine, machine.cycle_angle, machine.knots()
             )
             return 0.0 if model.steady else float("inf")

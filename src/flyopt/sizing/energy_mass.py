@@ -9,7 +9,7 @@ Maxima and minima over the continuous angle are exact, not sampled: a dense
 grid that contains every knot (where a torque steps or kinks) brackets them,
 and each bracket is refined by Brent's method on the derivative — every
 bracket of every extreme that one answer needs in one vectorized run
-(:func:`flyopt.cycle.indicator.brentq_many`), with J_e(φ), dJ_e/dφ and the
+(:func:`flyopt.cycle.numerics.brentq_many`), with J_e(φ), dJ_e/dφ and the
 torques evaluated on arrays.
 Results are SI: [rad], [rad/s], [kg*m^2], [J].
 """
@@ -20,7 +20,7 @@ from functools import cached_property
 
 import numpy as np
 
-from flyopt.cycle.indicator import _quad_many, brentq_many
+from flyopt.cycle.numerics import brentq_many, quad_many
 from flyopt.sizing._numerics import EPS, Inertia, check_speed_delta
 
 GRID = 4096
@@ -219,7 +219,7 @@ class _CycleGrid:
         lo = ends[piece] + step * (np.diff(ends) / count)[piece]
         hi = np.append(lo[1:], cycle)
         scale = cycle * float(np.max(np.abs(self.j)))
-        parts = _quad_many(lambda phi, i: self.inertia(phi), lo, hi, scale)
+        parts = quad_many(lambda phi, i: self.inertia(phi), lo, hi, scale)
         return math.fsum(parts) / cycle
 
     @cached_property

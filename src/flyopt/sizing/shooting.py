@@ -23,7 +23,7 @@ Newton solve:
                                              of the angle only: the mean speed is given).
 
 One cycle is integrated by the classical fourth-order Runge–Kutta method with
-fixed steps on :class:`flyopt.sizing.periodic.PeriodicModel`'s output grid (the same
+fixed steps on :class:`flyopt.sizing.periodic_model.PeriodicModel`'s output grid (the same
 pieces, cut at every knot of the torque or the inertia, and the same scaled
 energy y = (E − E_ref)/W_s), compiled once per machine structure with CasADi.
 The Jacobian is exact for the discrete cycle (the forward sensitivities of y
@@ -53,8 +53,9 @@ from collections import Counter
 import casadi as ca
 import numpy as np
 
+from flyopt.cycle.numerics import hermite_extremes
 from flyopt.errors import SolverFailed
-from flyopt.sizing._numerics import EPS, call, evaluate, hermite_extremes
+from flyopt.sizing._numerics import EPS, call, evaluate
 
 BUILDS = Counter()
 """CasADi structures built, by kind; :data:`flyopt.sizing.periodic.BUILDS` is this counter."""

@@ -11,9 +11,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize
 
+from flyopt.cycle.numerics import hermite, hermite_extremes
 from flyopt.errors import SolverFailed
-from flyopt.sizing._numerics import EDGE, EPS, check_speed_delta, hermite, hermite_extremes, quiet
-from flyopt.sizing.periodic import periodic_model
+from flyopt.sizing._numerics import EDGE, EPS, check_speed_delta, quiet
+from flyopt.sizing.periodic_model import periodic_model
 
 
 @dataclass(frozen=True)

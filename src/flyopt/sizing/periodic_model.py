@@ -1,0 +1,393 @@
+"""The periodic model: the equation of motion of one machine, built once for CasADi.
+
+d(½ J(φ) ω²)/dφ = M(φ, ω) over one cycle (docs/flywheel-design.md, section 7),
+cut at every knot and into pieces, integrated by CVODES in the scaled energy
+y = (E − E_ref)/W_s with exact sensitivities, a torque table entering as its
+values at the ends of each piece. :func:`periodic_model` caches one model per
+net torque, inertia, cycle and knots (:data:`BUILDS` counts the builds), so the
+requirement, the comparison of models and the verification of one machine share
+it; the searches for a periodic solution (:mod:`flyopt.sizing.periodic`) and the
+one-solve requirement (:mod:`flyopt.sizing.shooting`) run on it.
+"""
+
+import weakref
+from functools import cached_property
+
+import casadi as ca
+import numpy as np
+
+from flyopt.errors import SolverFailed
+from flyopt.sizing import shooting
+from flyopt.sizing._numerics import (
+    EDGE,
+    Inertia,
+    check_cycle,
+    evaluate,
+    quiet,
+)
+
+PIECES_PER_CYCLE = 32
+"""The simulation splits the cycle at every knot and into at least this many pieces."""
+
+OUTPUTS_PER_PIECE = 64
+"""Integrator outputs per piece (the simulation grid: at least 2048 per cycle)."""
+
+MAX_OUTPUTS = 2**17
+"""Outputs per cycle above which a piece gets fewer than :data:`OUTPUTS_PER_PIECE`
+(a table of many points cuts the cycle into many short pieces; memory stays bounded)."""
+
+CHUNK = 256
+"""Pieces integrated by one CasADi call (a ``mapaccum``); longer cycles are chained in chunks."""
+
+BUILDS = shooting.BUILDS
+"""CasADi structures built, by kind ("periodic model", "integrator", "timed integrator",
+"cycle function", "shooting function", "balancing function", and the one-solve's
+"fixed-step function"). Each is built once per machine and reused for every flywheel and
+speed; tests count them. (The counter lives in :mod:`flyopt.sizing.shooting`, which this
+module imports.)"""
+
+RELTOL = 1e-11
+ABSTOL = 1e-12
+"""CVODES tolerances on the scaled energy y = (E − E_ref)/W_s, of order one."""
+
+
+class PeriodicModel:
+    """The equation of motion of one machine, built once for CasADi.
+
+    d(½ J ω²)/dφ = M(φ, ω) over one cycle, cut at every knot and into at
+    least :data:`PIECES_PER_CYCLE` pieces. Each piece is integrated by CVODES
+    in a normalized time τ ∈ [0, 1] with the piece's ends, the flywheel and
+    the energy scales as parameters, so one integrator serves every piece,
+    flywheel and speed. The cycle is integrated in chunks of at most
+    :data:`CHUNK` pieces (a CasADi ``mapaccum`` each), so that time and
+    memory grow linearly with the number of pieces. Build it through
+    :func:`periodic_model` (cached).
+
+    Parameters
+    ----------
+    net_torque : callable (phi, omega) -> torque
+        M_d − M_r at the reference shaft [N*m]; must accept CasADi symbols.
+        A :class:`flyopt.machine.reduce.NetTorque` is taken apart: its
+        ``table`` (piecewise linear in the angle) enters each piece as its
+        two end values, its ``rest`` as CasADi, its ``work`` sets the scale of
+        the work balance and ``balanced`` says that an unknown constant
+        holds the mean speed (see :func:`flyopt.sizing.periodic.periodic_solution`).
+    j_machine : float, EquivalentInertia or callable
+        J(φ) of the machine [kg*m^2].
+    cycle_angle : float
+        Φ [rad].
+    knots : sequence of float
+        Angles where the torque steps or kinks [rad].
+    """
+
+    def __init__(self, net_torque, j_machine, cycle_angle, knots=()):
+        BUILDS["periodic model"] += 1
+        self.cycle = check_cycle(cycle_angle)
+        self.inertia = Inertia(j_machine)
+        self.table = getattr(net_torque, "table", None)
+        rest = net_torque.rest if self.table is not None else net_torque
+        knots = np.asarray(list(knots), dtype=float).reshape(-1)
+        if not np.all(np.isfinite(knots)):
+            raise ValueError("knots must be finite angles [rad]")
+        table_knots = self.table.breakpoints() if self.table is not None else np.empty(0)
+        inner = np.concatenate((knots, table_knots, self.inertia.knots))
+        inner = inner[(inner > 0) & (inner < self.cycle)]
+        edges = np.union1d([0.0, self.cycle], inner)
+        counts = np.maximum(1, np.ceil((edges[1:] - edges[:-1]) / self.cycle * PIECES_PER_CYCLE - 1e-9)).astype(int)
+        pieces = [np.linspace(a, b, n + 1) for a, b, n in zip(edges[:-1], edges[1:], counts)]
+        self.pieces = np.concatenate([np.column_stack((c[:-1], c[1:])) for c in pieces])
+        self.segments = np.column_stack((edges[:-1], edges[1:]))
+        outputs = OUTPUTS_PER_PIECE
+        if len(self.pieces) * OUTPUTS_PER_PIECE > MAX_OUTPUTS:
+            outputs = max(2, MAX_OUTPUTS // len(self.pieces) // 2 * 2)
+        self.tau = np.linspace(0.0, 1.0, outputs + 1)
+        self.table_ends = self.table_at(self.pieces[:, 0], self.pieces[:, 1])
+        self.work = float(getattr(net_torque, "work", 0.0))
+
+        phi, omega = ca.SX.sym("phi"), ca.SX.sym("omega")
+        try:
+            m = ca.SX(rest(phi, omega))
+        except Exception as err:  # noqa: BLE001 -- any failure means "not CasADi-capable"
+            raise ValueError(f"net_torque(phi, omega) must accept CasADi symbols: {err}") from err
+        if m.shape != (1, 1):
+            raise ValueError(f"net_torque must return a scalar, got shape {m.shape}")
+        self.speed_dependent = bool(ca.depends_on(m, omega))
+        self.balanced = self.speed_dependent and bool(getattr(net_torque, "balanced", False))
+        self.steady = (
+            self.inertia.is_constant
+            and not ca.depends_on(m, phi)
+            and bool(np.all(self.table_ends == self.table_ends[0, 0]))
+        )
+        self.torque_function = ca.Function("M", [phi, omega], [m])
+        self._rest_constant = not (ca.depends_on(m, phi) or self.speed_dependent)
+        self.torque_slope_function = ca.Function("dM", [phi, omega], [ca.jacobian(m, omega)])
+        self._maps = {}
+        self._chunks = {}
+        self._table_values = {}
+
+    def table_at(self, a, b):
+        """The table's values at the ends of pieces [a, b], seen from inside them [N*m], shape (n, 2)."""
+        a, b = np.atleast_1d(np.asarray(a, dtype=float)), np.atleast_1d(np.asarray(b, dtype=float))
+        if self.table is None:
+            return np.zeros((len(a), 2))
+        return np.column_stack((self.table.limits(a)[1], self.table.limits(b)[0]))
+
+    # -- CasADi building blocks --------------------------------------------------
+    def _rhs(self, with_time):
+        """States [y, stall(, t)], parameters [φ_a, φ_b, J_F, E_ref, W_s, c, M_a, M_b(, T_s)].
+
+        c is a constant added to the net torque (the correction of a
+        balancing constant); M_a and M_b are the table's values at the
+        piece's ends, between which it is linear.
+        """
+        tau = ca.SX.sym("tau")
+        x = ca.SX.sym("x", 3 if with_time else 2)
+        p = ca.SX.sym("p", 9 if with_time else 8)
+        a, b, j_f, e_ref, w_s, c, m_a, m_b = (p[k] for k in range(8))
+        h = b - a
+        phi = a + tau * h
+        tau_torque = ca.fmin(ca.fmax(tau, EDGE), 1 - EDGE)
+        phi_torque = a + tau_torque * h
+        j = self.inertia.casadi(phi) + j_f
+        energy = e_ref + w_s * x[0]
+        omega = ca.sqrt(ca.fmax(2 * energy / j, 1e-300))
+        torque = self.torque_function(phi_torque, omega) + (m_a + (m_b - m_a) * tau_torque) + c
+        ode = [h * torque / w_s, h * ca.fmax(-energy / w_s, 0)]
+        if with_time:
+            ode.append(h / (omega * p[8]))
+        return {"x": x, "p": p, "t": tau, "ode": ca.vertcat(*ode)}
+
+    def _integrator(self, with_time):
+        BUILDS["timed integrator" if with_time else "integrator"] += 1
+        opts = {
+            "abstol": ABSTOL,
+            "reltol": RELTOL,
+            "max_num_steps": 200000,
+            "disable_internal_warnings": True,
+            "print_stats": False,
+            "verbose": False,
+        }
+        return ca.integrator("piece_t" if with_time else "piece", "cvodes", self._rhs(with_time), 0.0, self.tau, opts)
+
+    @cached_property
+    def piece(self):
+        """CVODES over one piece: states [y, stall], outputs at ``tau``."""
+        return self._integrator(False)
+
+    @cached_property
+    def piece_timed(self):
+        """CVODES over one piece with time: states [y, stall, t]."""
+        return self._integrator(True)
+
+    def _chunk(self, kind, size):
+        """A CasADi function over ``size`` consecutive pieces (built once per kind and size).
+
+        Inputs: the states at the chunk's start, q = [J_F, E_ref, W_s, c], and
+        the pieces' data [φ_a, φ_b, M_a, M_b] (4 × size). Outputs by kind:
+        "cycle": the states at the chunk's end and at every output;
+        "shooting": the states at the end and ∂y/∂E_ref there;
+        "balancing": the same and ∂y/∂c.
+        """
+        key = (kind, size)
+        if key not in self._chunks:
+            BUILDS[f"{kind} function"] += 1
+            x0, q, data = ca.MX.sym("x0", 2), ca.MX.sym("q", 4), ca.MX.sym("data", 4)
+            xf = self.piece(x0=x0, p=ca.vertcat(data[0], data[1], q, data[2], data[3]))["xf"]
+            if kind == "cycle":
+                step = ca.Function("step", [x0, q, data], [xf[:, -1], xf])
+                self._chunks[key] = step.mapaccum(f"cycle_{size}", size)
+            else:
+                step = ca.Function("step", [x0, q, data], [xf[:, -1]])
+                chain = step.mapaccum(f"chain_{size}", size)
+                xs, ds = ca.MX.sym("x0", 2), ca.MX.sym("data", 4, size)
+                qs = [ca.MX.sym(name) for name in ("j_f", "e_ref", "w_s", "c")]
+                end = chain(xs, ca.vertcat(*qs), ds)[:, -1]
+                wrt = [qs[1]] if kind == "shooting" else [qs[1], qs[3]]
+                outs = [end] + [ca.jacobian(end[0], v) for v in wrt]
+                self._chunks[key] = ca.Function(f"{kind}_{size}", [xs, ca.vertcat(*qs), ds], outs)
+        return self._chunks[key]
+
+    def _chunked(self):
+        """(start, data) of each chunk of at most :data:`CHUNK` pieces."""
+        data = np.column_stack((self.pieces, self.table_ends)).T
+        return [(k, data[:, k : k + CHUNK]) for k in range(0, len(self.pieces), CHUNK)]
+
+    def shoot(self, j_flywheel, e_ref, w_s, offset=0.0, balancing=False):
+        """One cycle from y = 0: (y(Φ), stall(Φ), dy(Φ)/dE_ref[, dy(Φ)/dc]).
+
+        The chunks are chained by the chain rule: y depends on the energy
+        E_ref + W_s y only, so ∂y_end/∂y_start = 1 + W_s ∂y_end/∂E_ref.
+
+        Raises
+        ------
+        RuntimeError
+            When CVODES fails (CasADi's message).
+        """
+        kind = "balancing" if balancing else "shooting"
+        q = [j_flywheel, e_ref, w_s, offset]
+        x, d_e, d_c = np.zeros(2), 0.0, 0.0
+        for _, data in self._chunked():
+            out = self._chunk(kind, data.shape[1])(x, q, data)
+            b_e = float(out[1])
+            gain = 1.0 + w_s * b_e
+            d_e = gain * d_e + b_e
+            if balancing:
+                d_c = gain * d_c + float(out[2])
+            x = np.asarray(out[0], dtype=float).reshape(-1)
+        return (x[0], x[1], d_e, d_c) if balancing else (x[0], x[1], d_e)
+
+    # -- numbers --------------------------------------------------------------
+    def grid_angles(self):
+        """Angles of the simulation outputs, piece by piece, shape (pieces, outputs) (read-only)."""
+        return self._grid
+
+    @cached_property
+    def _grid(self):
+        a, b = self.pieces[:, :1], self.pieces[:, 1:]
+        grid = a + self.tau[None, :] * (b - a)
+        grid.setflags(write=False)
+        return grid
+
+    @cached_property
+    def inner_angles(self):
+        """The output angles seen from inside each piece (:data:`EDGE` in from its ends), where the
+        torques are evaluated so that a step at a knot is taken from the correct side (read-only)."""
+        h = self.pieces[:, 1] - self.pieces[:, 0]
+        inner = self.pieces[:, :1] + np.clip(self.tau, EDGE, 1 - EDGE)[None, :] * h[:, None]
+        inner.setflags(write=False)
+        return inner
+
+    def torque(self, phi, omega):
+        """Net torque at numpy arrays (broadcast) [N*m]; on a knot, the value right of it."""
+        if self._rest_constant:  # a table alone: no CasADi call per point
+            shape = np.broadcast_shapes(np.shape(phi), np.shape(omega))
+            values = np.full(shape, float(self.torque_function(0.0, 0.0)))
+        else:
+            values = evaluate(self.torque_function, self._maps, phi, omega)[0]
+        if self.table is not None:
+            values = values + self._table_right(phi, values.shape)
+        return values
+
+    def _table_right(self, phi, shape):
+        """The table's values right of ``phi``, broadcast to ``shape``; kept for the model's own grids,
+        at which every solve evaluates the torque again and again."""
+        grid = "grid" if phi is self._grid else "inner" if phi is self.inner_angles else None
+        if grid is None or phi.shape != shape:
+            return self.table.limits(np.broadcast_to(np.asarray(phi, dtype=float), shape))[1]
+        if grid not in self._table_values:
+            values = self.table.limits(phi)[1]
+            values.setflags(write=False)
+            self._table_values[grid] = values
+        return self._table_values[grid]
+
+    def falls_with_speed(self, omega):
+        """Whether ∂M/∂ω <= 0 on the grid for speeds up to 4 ω (sampled; the torque
+        then has a unique periodic solution, see :func:`flyopt.sizing.periodic._periodic_energy`)."""
+        if not self.speed_dependent:
+            return True
+        phi = self.grid_angles()[:, :-1].reshape(-1)
+        speeds = np.linspace(0.0, 4 * omega, 65)[1:]
+        slope = evaluate(self.torque_slope_function, self._maps, phi[:, None], speeds[None, :])[0]
+        return bool(np.all(slope <= 0))
+
+    def check_finite(self, omega):
+        """Raise ValueError when the net torque is not finite on the grid at speed ``omega``."""
+        phi = self.grid_angles()
+        m = self.torque(phi, omega)
+        bad = ~np.isfinite(m)
+        if bad.any():
+            raise ValueError(
+                f"net_torque is not finite at phi = {float(phi[bad][0]):.6g} rad, omega = {omega:.6g} "
+                f"rad/s; it must accept CasADi symbols (casadi functions, not math or numpy) and "
+                f"be finite over the cycle"
+            )
+
+    def work_scale(self, omega):
+        """An upper bound of the energy swing over the cycle at speed ``omega`` [J].
+
+        The larger of Φ · max |M(φ, ω)| and ½ (max J − min J) ω² (the energy
+        a varying inertia trades at that speed, even when M is nil).
+        """
+        phi = self.grid_angles()
+        m = self.torque(phi[:, :-1].reshape(-1), omega)
+        j = self.inertia(phi)
+        scale = max(self.cycle * float(np.max(np.abs(m))), 0.5 * float(np.ptp(j)) * omega**2)
+        return scale if scale > 0 else 1.0
+
+    def absolute_work(self, omega):
+        """∫ |M(φ, ω)| dφ over the cycle at speed ``omega`` [J] (trapezoid on the simulation grid)."""
+        phi = self.grid_angles()
+        m = np.abs(self.torque(self.inner_angles, omega))
+        return float(np.sum(0.5 * (m[:, 1:] + m[:, :-1]) * np.diff(phi, axis=1)))
+
+    def trajectory(self, j_flywheel, e_ref, w_s, offset=0.0):
+        """Integrate one cycle from y = 0; returns y (pieces, outputs) and the stall measure.
+
+        Raises
+        ------
+        SolverFailed
+            When CVODES fails (its status in the message).
+        """
+        q = [j_flywheel, e_ref, w_s, offset]
+        x, parts = np.zeros(2), []
+        try:
+            with quiet():
+                for _, data in self._chunked():
+                    ends, outs = self._chunk("cycle", data.shape[1])(x, q, data)
+                    parts.append(np.asarray(outs, dtype=float))
+                    x = np.asarray(ends, dtype=float)[:, -1]
+        except RuntimeError as err:
+            raise SolverFailed(
+                f"the integration of the cycle failed (CVODES: {str(err).strip().splitlines()[-1]})"
+            ) from err
+        out = np.concatenate(parts, axis=1)
+        y = out[0].reshape(len(self.pieces), len(self.tau))
+        return y, float(out[1, -1])
+
+    def speed_profile(self, y, j_flywheel, e_ref, w_s, shift=0.0, offset=0.0):
+        """q = E/J = ω²/2 and its slope dq/dφ = (M J − E J')/J² on the simulation grid.
+
+        q is smooth even where ω is small (ω itself has a square-root
+        singularity at zero speed), so extremes are located on q.
+
+        Returns
+        -------
+        phi, q, dq, energy : ndarray (pieces, outputs)
+            q and dq are None when the energy is not positive everywhere.
+        """
+        phi = self.grid_angles()
+        j = self.inertia(phi) + j_flywheel
+        dj = self.inertia.derivative(phi)
+        energy = e_ref + w_s * (y + shift)
+        if np.any(energy <= 0):
+            return phi, None, None, energy
+        q = energy / j
+        m = self.torque(self.inner_angles, np.sqrt(2 * q)) + offset
+        return phi, q, (m * j - energy * dj) / j**2, energy
+
+
+_MODELS = weakref.WeakKeyDictionary()
+"""Periodic models by net torque, then by (inertia, cycle, knots). A machine's
+net torque is one object (flyopt.machine.reduce.Machine.net_torque), so the
+requirement, the comparison of models and the verification of one machine
+share one model; the entry lives as long as that torque."""
+
+
+def periodic_model(net_torque, j_machine, cycle_angle, knots=()):
+    """The (cached) :class:`PeriodicModel` of one machine structure.
+
+    The CasADi integrators and cycle functions are built once per net torque
+    (its identity: the physics it stands for), inertia, cycle angle and
+    knots, and reused for every flywheel and speed. :data:`BUILDS` counts
+    the builds.
+    """
+    knots = tuple(float(k) for k in np.asarray(list(knots), dtype=float).reshape(-1))
+    inertia = ("value", float(j_machine)) if isinstance(j_machine, (int, float)) else ("object", id(j_machine))
+    key = (inertia, float(cycle_angle), knots)
+    try:
+        models = _MODELS.setdefault(net_torque, {})
+    except TypeError:  # not weakly referenceable: build without the cache
+        return PeriodicModel(net_torque, j_machine, cycle_angle, knots)
+    if key not in models:  # the model keeps j_machine alive, so its id is not reused meanwhile
+        models[key] = PeriodicModel(net_torque, j_machine, cycle_angle, knots)
+    return models[key]
