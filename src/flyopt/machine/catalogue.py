@@ -28,9 +28,10 @@ import difflib
 import functools
 import math
 import sys
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from importlib import resources
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 from flyopt.errors import SceneError, shorten
 from flyopt.machine.motor import InductionMotor
@@ -104,7 +105,7 @@ class MotorDataError(ValueError):
         fault between two motors (a name or a rating given twice).
     """
 
-    def __init__(self, field, message, index=None):
+    def __init__(self, field: str, message: str, index: int | None = None) -> None:
         self.field, self.message, self.index = field, message, index
         super().__init__(message)
 
@@ -186,7 +187,7 @@ class CatalogueMotor:
     published_rated_torque: float | None = None
     source: str = field(default="", repr=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         name = self.name
         if not isinstance(name, str) or not name.strip():
             raise MotorDataError("name", f"a motor's name must be a non-empty string, got {shorten(name)}")
@@ -196,7 +197,7 @@ class CatalogueMotor:
 
         for key in ("rated_power", "rated_speed", "synchronous_speed", "rotor_inertia"):
             set_(key, _number(getattr(self, key), key, name))
-        optional = {
+        optional: dict[str, dict[str, Any]] = {
             "breakdown_ratio": {
                 "minimum": 1.0,
                 "allowed": "a finite number > 1 (M_b/M_n; the pull-out torque exceeds the rated torque)",
@@ -233,16 +234,16 @@ class CatalogueMotor:
             raise MotorDataError("", f"motor {shorten(name)}: {err}") from None
 
     @property
-    def rated_torque(self):
+    def rated_torque(self) -> float:
         """M_n = P_n/ω_n [N*m]."""
         return self.rated_power / self.rated_speed
 
     @property
-    def slip(self):
+    def slip(self) -> float:
         """Rated slip s_n = (ω_0 − ω_n)/ω_0 [-]."""
         return (self.synchronous_speed - self.rated_speed) / self.synchronous_speed
 
-    def motor(self):
+    def motor(self) -> InductionMotor:
         """The motor's torque-speed characteristic, :class:`~flyopt.machine.motor.InductionMotor`.
 
         Its ``torque(omega, model)`` gives either model, the linear line
@@ -296,11 +297,11 @@ class Catalogue:
     """
 
     name: str
-    motors: tuple
+    motors: tuple[CatalogueMotor, ...]
     description: str = field(default="", repr=False)
     source: str = field(default="", repr=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         motors = tuple(self.motors)
         if not motors:
             raise MotorDataError("", f"catalogue {shorten(self.name)} has no motor")
@@ -321,23 +322,23 @@ class Catalogue:
                     )
         object.__setattr__(self, "motors", tuple(sorted(motors, key=lambda m: m.rated_power)))
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[CatalogueMotor]:
         return iter(self.motors)
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.motors)
 
     @property
-    def names(self):
+    def names(self) -> tuple[str, ...]:
         """The sizes' names, in increasing rated power."""
         return tuple(m.name for m in self.motors)
 
     @property
-    def unpriced(self):
+    def unpriced(self) -> tuple[str, ...]:
         """Names of the sizes without a price (a design by cost needs every one)."""
         return tuple(m.name for m in self.motors if m.price is None)
 
-    def neighbours(self, rating):
+    def neighbours(self, rating: float) -> Neighbours:
         """The sizes next to a continuous rating: the one at or above it and the one below.
 
         Parameters
@@ -370,7 +371,7 @@ _CATALOGUE_KEYS = {"description", "source", "motor"}
 _MOTOR_KEYS = set(QUANTITIES) | set(TEXTS) | {"rated_torque"}
 
 
-def read_catalogues(text, origin=f"flyopt/data/{_DATA_FILE}"):
+def read_catalogues(text: str, origin: str = f"flyopt/data/{_DATA_FILE}") -> dict[str, Catalogue]:
     """The catalogues of a motors TOML text, checked.
 
     Parameters
@@ -416,7 +417,7 @@ def read_catalogues(text, origin=f"flyopt/data/{_DATA_FILE}"):
     return catalogues
 
 
-def _motor_from_table(entry, where):
+def _motor_from_table(entry: Any, where: str) -> CatalogueMotor:
     """A CatalogueMotor from one [[NAME.motor]] table of unit strings; ValueError naming ``where`` and the field."""
     if not isinstance(entry, dict):
         raise ValueError(f"{where} must be a table, got {shorten(entry)}")
@@ -426,7 +427,7 @@ def _motor_from_table(entry, where):
     for key in (*REQUIRED, "name", "source"):
         if key not in entry:
             raise ValueError(f"{where} has no {key}" + (" (every size cites its source)" if key == "source" else ""))
-    values = {}
+    values: dict[str, Any] = {}
     try:
         for key, dimension in QUANTITIES.items():
             if key in entry:
@@ -450,12 +451,12 @@ def _load():
     return read_catalogues(text)
 
 
-def catalogue_names():
+def catalogue_names() -> tuple[str, ...]:
     """The names of the catalogues shipped with flyopt, sorted."""
     return tuple(sorted(_load()))
 
 
-def catalogue(name):
+def catalogue(name: str) -> Catalogue:
     """A motor catalogue shipped with flyopt, read once from ``flyopt/data/motors.toml``.
 
     Parameters
