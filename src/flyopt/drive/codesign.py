@@ -38,7 +38,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -46,6 +46,15 @@ from flyopt.analysis import flywheel_torque, startup_run
 from flyopt.errors import SceneError, SolverFailed
 from flyopt.names import Criterion, Geometry, Objective
 
+if TYPE_CHECKING:
+    from flyopt.analysis import Analysis
+    from flyopt.design.materials import Material
+    from flyopt.design.result import Candidate, DesignResult
+    from flyopt.design.spec import DesignSpec
+    from flyopt.drive.relaxation import Relaxation
+    from flyopt.machine.catalogue import CatalogueMotor
+    from flyopt.machine.motor import InductionMotor
+    from flyopt.sizing.periodic import PeriodicSolution, Verification
 #: Name of the shaft the drive puts the flywheel on, and of the motor's.
 FLYWHEEL_SHAFT, MOTOR_SHAFT = "flywheel", "motor"
 
@@ -106,7 +115,7 @@ class MotorRun:
         The ranked value (``total_mass`` or ``cost``).
     """
 
-    motor: object
+    motor: CatalogueMotor
     feasible: bool
     reason: str = ""
     motor_ratio: float | None = None
@@ -126,9 +135,9 @@ class MotorRun:
     total_mass: float | None = None
     cost: float | None = None
     objective: float | None = None
-    design: object = field(default=None, compare=False, repr=False)
+    design: DesignResult | None = field(default=None, compare=False, repr=False)
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         out = {k: v for k, v in self.__dict__.items() if k not in ("motor", "wheel", "design")}
         out["motor"] = _motor_dict(self.motor)
         out["wheel"] = None if self.wheel is None else self.wheel.to_dict()
@@ -156,12 +165,12 @@ class DriveDesign:
     status: str
     objective: str
     best: MotorRun | None
-    runs: tuple
+    runs: tuple[MotorRun, ...]
     message: str = ""
     relaxation: Relaxation | None = None
     note: str = ""
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         relaxed = None if self.relaxation is None else self.relaxation.to_dict()
         return {
             "status": self.status,
@@ -191,7 +200,9 @@ def _motor_dict(motor):
 # -- one motor -------------------------------------------------------------------
 
 
-def motor_ratio_estimate(motor, load_torque, omega_crank, efficiency):
+def motor_ratio_estimate(
+    motor: CatalogueMotor, load_torque: float, omega_crank: float, efficiency: float
+) -> float | None:
     """The motor ratio that runs the crank at ``omega_crank`` on average, from the work balance [-].
 
     Over a cycle the motor's work equals the load's: with the linear
@@ -219,7 +230,9 @@ def motor_ratio_estimate(motor, load_torque, omega_crank, efficiency):
     return (-b + math.sqrt(disc)) / (2 * a)
 
 
-def rms_torque(solution, motor, ratio, model=MOTOR_MODEL):
+def rms_torque(
+    solution: PeriodicSolution, motor: InductionMotor, ratio: float, model: str = MOTOR_MODEL
+) -> tuple[float, float]:
     """(RMS, mean) of the motor shaft's torque over the cycle, in time [N*m].
 
     T_rms² = ∫ M(i ω)² dt / T with dt = dφ/ω, by the trapezoidal rule on the
@@ -235,7 +248,7 @@ def rms_torque(solution, motor, ratio, model=MOTOR_MODEL):
     return math.sqrt(squares.sum() / period), means.sum() / period
 
 
-def motor_scene(scene, motor, ratio):
+def motor_scene(scene: Any, motor: CatalogueMotor, ratio: float) -> Any:
     """The scene driven by ``motor`` at speed ratio ``ratio``: its Kloss curve, its rotor's inertia at the crank."""
     from flyopt.cycle.torque import MotorTorque
     from flyopt.machine.transmission import inertia_at_reference
@@ -246,19 +259,30 @@ def motor_scene(scene, motor, ratio):
     )
 
 
-def chosen_scene(scene, run):
+def chosen_scene(scene: Any, run: MotorRun) -> Any:
     """The scene as built: the run's motor at its ratio, and the flywheel's shaft and the motor's among its shafts."""
     from flyopt.machine.transmission import Shaft
 
-    built = motor_scene(scene, run.motor, run.motor_ratio)
+    ratio = cast(float, run.motor_ratio)  # a feasible run has its ratio
+    built = motor_scene(scene, run.motor, ratio)
     shafts = tuple(s for s in scene.shafts if s.name not in (FLYWHEEL_SHAFT, MOTOR_SHAFT))
-    shafts += (Shaft(MOTOR_SHAFT, run.motor_ratio),)
+    shafts += (Shaft(MOTOR_SHAFT, ratio),)
     if run.flywheel_ratio is not None:
         shafts += (Shaft(FLYWHEEL_SHAFT, run.flywheel_ratio),)
     return dataclasses.replace(built, shafts=shafts, design_shafts=None)
 
 
-def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_spec, *, solver_options=None):
+def evaluate_motor(
+    scene: Any,
+    motor: CatalogueMotor,
+    load_torque: float,
+    spec: Any,
+    ratios: tuple,
+    materials: list[Material],
+    design_spec: DesignSpec,
+    *,
+    solver_options: dict | None = None,
+) -> MotorRun:
     """One motor size: its ratio, the least flywheel it needs, the checks, and the wheel (:class:`MotorRun`).
 
     Parameters
@@ -342,8 +366,10 @@ def evaluate_motor(scene, motor, load_torque, spec, ratios, materials, design_sp
     wheel_mass = wheel.mass if wheel is not None else 0.0
     total = motor.mass + wheel_mass if motor.mass is not None else None
     cost = None
-    if getattr(motor, "price", None) is not None and (wheel is None or wheel.cost is not None):
-        cost = motor.price + (wheel.cost if wheel is not None else 0.0)
+    wheel_cost = 0.0 if wheel is None else wheel.cost
+    price = getattr(motor, "price", None)
+    if price is not None and wheel_cost is not None:
+        cost = price + wheel_cost
     objective = total if spec.objective == Objective.MASS else cost
     return run(
         True,
@@ -417,7 +443,7 @@ def _settle(scene, motor, ratio, thermal):
     from flyopt.machine.reduce import reduce
 
     delta, rated = scene.delta, motor.rated_torque
-    memo: dict[Any, Any] = {}
+    memo: dict[str, float] = {}
     try:
         ratio, machine, sol = _hold_speed(scene, motor, ratio, 0.0, memo)
         j_delta = _delta_flywheel(scene, machine) if sol.delta > delta else 0.0
@@ -612,7 +638,9 @@ def _slowest_equal(mass, lo, r, m, rtol=1e-9):
 # -- the drive -------------------------------------------------------------------
 
 
-def design_drive(scene, analysis=None, *, solver_options=None, every_size=False):
+def design_drive(
+    scene: Any, analysis: Analysis | None = None, *, solver_options: dict | None = None, every_size: bool = False
+) -> DriveDesign:
     """Design the motor, its ratio and the flywheel of a scene with a [drive] together.
 
     Parameters
@@ -754,14 +782,15 @@ def _neighbours(catalogue, power, evaluate, done):
             evaluate(k)
 
 
-def motor_power_front(drive):
+def motor_power_front(drive: DriveDesign) -> tuple[MotorRun, ...]:
     """The runs no other run beats in both motor power and wheel mass (a Pareto front), by rising power."""
     feasible = sorted((r for r in drive.runs if r.feasible), key=lambda r: (r.motor.rated_power, r.wheel_mass))
     front, lightest = [], math.inf
     for run in feasible:
-        if run.wheel_mass < lightest:
+        mass = cast(float, run.wheel_mass)  # a feasible run has its wheel's mass (0 with no wheel)
+        if mass < lightest:
             front.append(run)
-            lightest = run.wheel_mass
+            lightest = mass
     return tuple(front)
 
 
@@ -795,9 +824,9 @@ class DriveCheck:
     rated_torque: float
     startup_time: float | None
     flagged: bool
-    notes: tuple = ()
+    notes: tuple[str, ...] = ()
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         return {
             **self.verification.to_dict(),
             "rms_torque": self.rms_torque,
@@ -808,7 +837,7 @@ class DriveCheck:
         }
 
 
-def verify_drive(scene, run, j_flywheel=None):
+def verify_drive(scene: Any, run: MotorRun, j_flywheel: float | None = None) -> DriveCheck:
     """Simulate the scene with the run's motor and flywheel and check δ, the thermal limit and the start-up.
 
     Parameters
@@ -829,7 +858,8 @@ def verify_drive(scene, run, j_flywheel=None):
 
     if j_flywheel is None:
         j_flywheel = run.wheel.j_at_reference if run.wheel is not None else (run.j_flywheel or 0.0)
-    built = motor_scene(scene, run.motor, run.motor_ratio)
+    ratio = cast(float, run.motor_ratio)  # a feasible run has its ratio
+    built = motor_scene(scene, run.motor, ratio)
     machine = reduce(built)
     checked = periodic.verify(
         machine.net_torque(),
@@ -840,7 +870,7 @@ def verify_drive(scene, run, j_flywheel=None):
         j_flywheel,
         machine.knots(),
     )
-    rms, _ = rms_torque(checked.solution, run.motor.motor(), run.motor_ratio)
+    rms, _ = rms_torque(checked.solution, run.motor.motor(), ratio)
     startup = startup_run(machine, checked.omega_mean, j_flywheel)
     notes = []
     if checked.flagged:

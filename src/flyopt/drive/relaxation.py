@@ -43,12 +43,22 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from flyopt.errors import SolverFailed
 from flyopt.sizing._numerics import quiet
 
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    from flyopt.design.materials import Material
+    from flyopt.design.spec import DesignSpec
+    from flyopt.design.wheel_nlp import WheelProblem, WheelStructure
+    from flyopt.machine.catalogue import CatalogueMotor
+    from flyopt.machine.motor import InductionMotor
+    from flyopt.machine.reduce import Machine
 #: Collocation intervals over the cycle (plus one node at every knot).
 NODES = 240
 
@@ -70,7 +80,7 @@ class CatalogueFit:
     price: tuple | None
 
     @classmethod
-    def of(cls, motors):
+    def of(cls, motors: Iterable[CatalogueMotor]) -> CatalogueFit | None:
         """Fit a catalogue (at least three sizes of one synchronous speed), or None when it cannot be."""
         motors = list(motors)
         speeds = {round(m.synchronous_speed, 9) for m in motors}
@@ -98,7 +108,7 @@ class CatalogueFit:
             price=power_law([getattr(m, "price", None) for m in motors]),
         )
 
-    def motor(self, power):
+    def motor(self, power: float) -> tuple[InductionMotor, float, float | None]:
         """The relaxed motor of rating ``power`` [W]: (InductionMotor, rotor inertia [kg*m^2], mass [kg] or None)."""
         from flyopt.machine.motor import InductionMotor
 
@@ -143,7 +153,7 @@ class Relaxation:
         "max_outer_diameter": "m",
     }
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         """The relaxation for JSON: its sensitivities a list of entries (limit, its unit, d objective / d limit),
         as a design's are (their names are quantities of their own elsewhere in a document)."""
         out = {k: v for k, v in self.__dict__.items() if k != "sensitivities"}
@@ -154,7 +164,16 @@ class Relaxation:
         return out
 
 
-def kloss_runup_time(inertia, ratio, efficiency, breakdown_torque, breakdown_slip, synchronous_speed, omega, lib=math):
+def kloss_runup_time(
+    inertia: Any,
+    ratio: Any,
+    efficiency: Any,
+    breakdown_torque: Any,
+    breakdown_slip: Any,
+    synchronous_speed: float,
+    omega: Any,
+    lib: Any = math,
+) -> Any:
     """Run-up time from rest to ``omega`` of a constant inertia on an induction motor's Kloss curve, no load [s].
 
     J dω/dt = i η M(i ω), M = 2 M_b s s_b/(s² + s_b²), s = 1 − i ω/ω_0, so with
@@ -200,14 +219,14 @@ class RelaxedWheel:
     the rim-speed criterion); ``cost_per_kg``: its cost, or None.
     """
 
-    structure: object
-    problem: object
+    structure: WheelStructure
+    problem: WheelProblem
     v_max: float
     cost_per_kg: float | None
     label: str
 
     @classmethod
-    def of(cls, material, spec, bore=0.0, n_arms=0):
+    def of(cls, material: Material, spec: DesignSpec, bore: float = 0.0, n_arms: int = 0) -> RelaxedWheel:
         """The relaxed wheel of a material under a design spec, on a seat of diameter ``bore`` [m]."""
         from flyopt.design.designer import rim_speed_limit
         from flyopt.design.wheel_design import strongest_allowables, wheel_problem
@@ -383,7 +402,16 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     )
 
 
-def relax(machine, omega_mean, delta, efficiency, fit, spec, wheel, load_torque):
+def relax(
+    machine: Machine,
+    omega_mean: float,
+    delta: float,
+    efficiency: float,
+    fit: CatalogueFit,
+    spec: Any,  # flyopt.io.drive.DriveSpec (io sits above drive)
+    wheel: RelaxedWheel,
+    load_torque: float,
+) -> Relaxation:
     """Solve the relaxation (:class:`Relaxation`).
 
     The NLP is built once per machine, catalogue fit and structure (thermal,

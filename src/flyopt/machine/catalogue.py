@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from importlib import resources
 from typing import Any, NamedTuple
@@ -100,7 +101,7 @@ class MotorDataError(ValueError):
         fault between two motors (a name or a rating given twice).
     """
 
-    def __init__(self, field, message, index=None):
+    def __init__(self, field: str, message: str, index: int | None = None) -> None:
         self.field, self.message, self.index = field, message, index
         super().__init__(message)
 
@@ -174,7 +175,7 @@ class CatalogueMotor:
     published_rated_torque: float | None = None
     source: str = field(default="", repr=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         name = self.name
         if not isinstance(name, str) or not name.strip():
             raise MotorDataError("name", f"a motor's name must be a non-empty string, got {shorten(name)}")
@@ -221,16 +222,16 @@ class CatalogueMotor:
             raise MotorDataError("", f"motor {shorten(name)}: {err}") from None
 
     @property
-    def rated_torque(self):
+    def rated_torque(self) -> float:
         """M_n = P_n/ω_n [N*m]."""
         return self.rated_power / self.rated_speed
 
     @property
-    def slip(self):
+    def slip(self) -> float:
         """Rated slip s_n = (ω_0 − ω_n)/ω_0 [-]."""
         return (self.synchronous_speed - self.rated_speed) / self.synchronous_speed
 
-    def motor(self):
+    def motor(self) -> InductionMotor:
         """The motor's torque-speed characteristic, :class:`~flyopt.machine.motor.InductionMotor`.
 
         Its ``torque(omega, model)`` gives either model, the linear line
@@ -284,11 +285,11 @@ class Catalogue:
     """
 
     name: str
-    motors: tuple
+    motors: tuple[CatalogueMotor, ...]
     description: str = field(default="", repr=False)
     source: str = field(default="", repr=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         motors = tuple(self.motors)
         if not motors:
             raise MotorDataError("", f"catalogue {shorten(self.name)} has no motor")
@@ -309,23 +310,23 @@ class Catalogue:
                     )
         object.__setattr__(self, "motors", tuple(sorted(motors, key=lambda m: m.rated_power)))
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[CatalogueMotor]:
         return iter(self.motors)
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.motors)
 
     @property
-    def names(self):
+    def names(self) -> tuple[str, ...]:
         """The sizes' names, in increasing rated power."""
         return tuple(m.name for m in self.motors)
 
     @property
-    def unpriced(self):
+    def unpriced(self) -> tuple[str, ...]:
         """Names of the sizes without a price (a design by cost needs every one)."""
         return tuple(m.name for m in self.motors if m.price is None)
 
-    def neighbours(self, rating):
+    def neighbours(self, rating: float) -> Neighbours:
         """The sizes next to a continuous rating: the one at or above it and the one below.
 
         Parameters
@@ -358,7 +359,7 @@ _CATALOGUE_KEYS = {"description", "source", "motor"}
 _MOTOR_KEYS = set(QUANTITIES) | set(TEXTS) | {"rated_torque"}
 
 
-def read_catalogues(text, origin=f"flyopt/data/{_DATA_FILE}"):
+def read_catalogues(text: str, origin: str = f"flyopt/data/{_DATA_FILE}") -> dict[str, Catalogue]:
     """The catalogues of a motors TOML text, checked.
 
     Parameters
@@ -404,7 +405,7 @@ def read_catalogues(text, origin=f"flyopt/data/{_DATA_FILE}"):
     return catalogues
 
 
-def _motor_from_table(entry, where):
+def _motor_from_table(entry: Any, where: str) -> CatalogueMotor:
     """A CatalogueMotor from one [[NAME.motor]] table of unit strings; ValueError naming ``where`` and the field."""
     if not isinstance(entry, dict):
         raise ValueError(f"{where} must be a table, got {shorten(entry)}")
@@ -438,12 +439,12 @@ def _load():
     return read_catalogues(text)
 
 
-def catalogue_names():
+def catalogue_names() -> tuple[str, ...]:
     """The names of the catalogues shipped with flyopt, sorted."""
     return tuple(sorted(_load()))
 
 
-def catalogue(name):
+def catalogue(name: str) -> Catalogue:
     """A motor catalogue shipped with flyopt, read once from ``flyopt/data/motors.toml``.
 
     Parameters

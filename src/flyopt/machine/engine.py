@@ -29,15 +29,22 @@ Conventions (docs/flywheel-design.md, "Engines from indicator data"):
   F = −(p − p_crankcase) π d²/4.
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from flyopt.cycle.torque import PiecewiseLinear
 from flyopt.machine.kinematics import SliderCrank
-from flyopt.machine.mechanism import Member, equivalent_inertia, equivalent_torque
+from flyopt.machine.mechanism import EquivalentInertia, Member, equivalent_inertia, equivalent_torque
+
+if TYPE_CHECKING:
+    from flyopt.machine.reduce import Machine
 
 CYCLE_ANGLES = {"4-stroke": 4 * math.pi, "2-stroke": 2 * math.pi}
 """Cycle angle Φ of each kind of engine [rad]: two crank turns per cycle, or one."""
@@ -88,7 +95,7 @@ class Engine:
     """
 
     cycle: str
-    firing_angles: tuple
+    firing_angles: tuple[float, ...]
     bore: float
     stroke: float
     rod: float
@@ -99,7 +106,7 @@ class Engine:
     rod_centre: float = 0.0
     rod_inertia: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.cycle not in CYCLE_ANGLES:
             raise ValueError(f"engine cycle {self.cycle!r} is not known (allowed: {', '.join(CYCLE_ANGLES)})")
         cycle = CYCLE_ANGLES[self.cycle]
@@ -140,32 +147,32 @@ class Engine:
     # -- geometry -------------------------------------------------------------------------
 
     @property
-    def cycle_angle(self):
+    def cycle_angle(self) -> float:
         """Φ [rad]: 4π for a four-stroke engine, 2π for a two-stroke one."""
         return CYCLE_ANGLES[self.cycle]
 
     @property
-    def crank(self):
+    def crank(self) -> float:
         """Crank radius r = stroke/2 [m]."""
         return 0.5 * self.stroke
 
     @property
-    def piston_area(self):
+    def piston_area(self) -> float:
         """π d²/4 [m^2]."""
         return math.pi * self.bore**2 / 4.0
 
     @property
-    def cylinder_count(self):
+    def cylinder_count(self) -> int:
         return len(self.firing_angles)
 
     @cached_property
-    def cylinders(self):
+    def cylinders(self) -> tuple[SliderCrank, ...]:
         """One :class:`SliderCrank` per cylinder, phased by its firing angle (its outer dead centre at θ_i)."""
         return tuple(SliderCrank(self.crank, self.rod, 0.0, theta % (2 * math.pi)) for theta in self.firing_angles)
 
     # -- the gas force ----------------------------------------------------------------------
 
-    def gas_force(self, cylinder):
+    def gas_force(self, cylinder: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Net gas force on the piston of one cylinder along the slider axis, as a table over φ.
 
         F_i(φ) = −(p(φ − θ_i) − p_crankcase) π d²/4, the pressure table
@@ -188,7 +195,7 @@ class Engine:
     # -- the members and what they reduce to -------------------------------------------------
 
     @cached_property
-    def members(self):
+    def members(self) -> tuple[Member, ...]:
         """The engine as members of the machine: per cylinder its piston and, when given, the rest of its rod.
 
         The piston (``cylinder i piston``) is the slider of cylinder i with
@@ -233,18 +240,18 @@ class Engine:
     def _inertia(self):
         return equivalent_inertia(self.members)
 
-    def gas_torque(self, phi):
+    def gas_torque(self, phi: ArrayLike) -> NDArray[np.float64]:
         """The gas forces' torque on the crankshaft [N*m] (positive drives; right limits at a step).
 
         Σ_i F_i(φ) (v_Bi/ω)(φ), exact kinematics (docs/flywheel-design.md, section 3).
         """
         return self._torque(phi)
 
-    def inertia(self, phi):
+    def inertia(self, phi: ArrayLike) -> NDArray[np.float64]:
         """The crank train's equivalent inertia at the crankshaft, without J_c [kg*m^2]."""
         return self._inertia(phi)
 
-    def inertia_torque(self, phi, omega):
+    def inertia_torque(self, phi: ArrayLike, omega: float) -> NDArray[np.float64]:
         """The torque of the moving masses at the constant speed ω: −½ J_e'(φ) ω² [N*m].
 
         From d(½ J_e ω²)/dφ = M with ω constant. For a reciprocating mass
@@ -253,12 +260,12 @@ class Engine:
         """
         return -0.5 * float(omega) ** 2 * self._inertia.derivative(phi)
 
-    def crank_effort(self, phi, omega):
+    def crank_effort(self, phi: ArrayLike, omega: float) -> NDArray[np.float64]:
         """Gas torque plus inertia torque at the constant speed ω [N*m]: the textbook's turning moment."""
         return self.gas_torque(phi) + self.inertia_torque(phi, omega)
 
 
-def phase_table(table, shift, cycle):
+def phase_table(table: PiecewiseLinear, shift: float, cycle: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """A periodic table over [0, Φ] moved later by ``shift``: g(φ) = f(φ − shift), wrapped.
 
     Parameters
@@ -315,17 +322,19 @@ class InertiaTorque:
     is_linear = False
     speed_dependent = False
 
-    def __init__(self, inertia, omega, where="inertia torque at the mean speed"):
+    def __init__(
+        self, inertia: EquivalentInertia, omega: float, where: str = "inertia torque at the mean speed"
+    ) -> None:
         self.inertia, self.omega, self.where = inertia, float(omega), where
 
-    def breakpoints(self):
+    def breakpoints(self) -> NDArray[np.float64]:
         """Angles where J_e kinks (a table of a velocity ratio) [rad]."""
         return self.inertia.knots
 
-    def __call__(self, phi):
+    def __call__(self, phi: ArrayLike) -> NDArray[np.float64]:
         return -0.5 * self.omega**2 * self.inertia.derivative(np.asarray(phi, dtype=float))
 
-    def limits(self, phi):
+    def limits(self, phi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Left and right limits [N*m]: they differ only at a kink of J_e (the slope of a table's pieces)."""
         phi = np.asarray(phi, dtype=float)
         right = self(phi)
@@ -334,11 +343,11 @@ class InertiaTorque:
             return right, right
         return self(np.where(at, np.nextafter(phi, -np.inf), phi)), right
 
-    def casadi(self, phi):
+    def casadi(self, phi: Any) -> Any:
         return -0.5 * self.omega**2 * self.inertia.casadi_derivative(phi)
 
 
-def engine_of(machine):
+def engine_of(machine: Machine) -> Engine | None:
     """The :class:`Engine` whose pistons and rods are members of the machine, or None."""
     members = list(getattr(machine.j_machine, "members", ()))
     curves = [machine.driving, machine.resisting]

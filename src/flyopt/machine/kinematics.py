@@ -14,11 +14,13 @@ CasADi models.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
 import casadi as ca
 import numpy as np
+from numpy.typing import NDArray
 
 from flyopt.errors import shorten
 
@@ -46,8 +48,8 @@ class Kinematics:
         φ ↦ ω_member/ω [-].
     """
 
-    velocity_ratio: object
-    angular_ratio: object
+    velocity_ratio: Any  # a number, or a function of φ (numpy or CasADi) giving a scalar or a pair
+    angular_ratio: Any  # a number, or a function of φ
 
 
 class SliderCrank:
@@ -100,7 +102,7 @@ class SliderCrank:
        slider-crank position and velocity analysis (loop-closure equations).
     """
 
-    def __init__(self, crank, rod, offset=0.0, phase=0.0):
+    def __init__(self, crank: float, rod: float, offset: float = 0.0, phase: float = 0.0) -> None:
         for name, value in (("crank", crank), ("rod", rod)):
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise ValueError(f"slider-crank {name} length must be a positive finite number [m], got {value!r}")
@@ -118,7 +120,7 @@ class SliderCrank:
         self.offset = float(offset)
         self.phase = float(phase)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         phase = f", phase={self.phase!r}" if self.phase else ""
         return f"SliderCrank(crank={self.crank!r}, rod={self.rod!r}, offset={self.offset!r}{phase})"
 
@@ -151,37 +153,37 @@ class SliderCrank:
             cache[key] = (phi, state)
         return state
 
-    def slider_position(self, phi):
+    def slider_position(self, phi: Any) -> Any:
         """Slider position x_B along its axis [m]."""
         lib = _lib(phi)
         psi = self._own(phi)
         return self.crank * lib.cos(psi) + self._uw(psi)[1]
 
-    def stroke(self):
+    def stroke(self) -> float:
         """Slider stroke, x_B max − x_B min [m] (closed form, valid with offset)."""
         r, l, e = self.crank, self.rod, self.offset
         return math.sqrt((l + r) ** 2 - e * e) - math.sqrt((l - r) ** 2 - e * e)
 
-    def slider_velocity_ratio(self, phi):
+    def slider_velocity_ratio(self, phi: Any) -> Any:
         """v_B/ω of the slider [m/rad], signed along +x."""
         lib = _lib(phi)
         psi = self._own(phi)
         u, w = self._uw(psi)
         return -self.crank * lib.sin(psi) - u * self.crank * lib.cos(psi) / w
 
-    def rod_angle(self, phi):
+    def rod_angle(self, phi: Any) -> Any:
         """Angle β of the rod, direction crank pin → slider, from +x [rad]."""
         lib = _lib(phi)
         u, w = self._uw(self._own(phi))
         return lib.arctan2(-u, w) if lib is np else ca.atan2(-u, w)
 
-    def rod_angular_ratio(self, phi):
+    def rod_angular_ratio(self, phi: Any) -> Any:
         """ω_rod/ω [-] (signed, counter-clockwise positive)."""
         lib = _lib(phi)
         psi = self._own(phi)
         return -self.crank * lib.cos(psi) / self._uw(psi)[1]
 
-    def rod_point_velocity_ratio(self, phi, fraction):
+    def rod_point_velocity_ratio(self, phi: Any, fraction: float) -> tuple[Any, Any]:
         """Velocity ratio of a point of the rod, (v_x/ω, v_y/ω) [m/rad].
 
         Parameters
@@ -198,7 +200,7 @@ class SliderCrank:
         vy = (1 - s) * self.crank * lib.cos(psi)
         return vx, vy
 
-    def kinematics(self, part, centre=None):
+    def kinematics(self, part: str, centre: float | None = None) -> Kinematics:
         """Velocity ratios of one part of the mechanism, for a :class:`flyopt.machine.mechanism.Member`.
 
         Parameters
@@ -258,16 +260,16 @@ class SliderCrankRatio:
         rod point: ((1 − s_f)(−r c) + s_f (v_B/ω)',  −(1 − s_f) r s).
     """
 
-    def __init__(self, mechanism, kind, fraction=0.0):
+    def __init__(self, mechanism: SliderCrank, kind: str, fraction: float = 0.0) -> None:
         if kind not in ("slider", "rod_angular", "rod_point"):
             raise ValueError(f"slider-crank ratio {shorten(kind)} is not known")
         self.mechanism, self.kind, self.fraction = mechanism, kind, float(fraction)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         extra = f", {self.fraction!r}" if self.kind == "rod_point" else ""
         return f"SliderCrankRatio({self.mechanism!r}, {self.kind!r}{extra})"
 
-    def __call__(self, phi):
+    def __call__(self, phi: Any) -> Any:
         sc = self.mechanism
         if self.kind == "slider":
             return sc.slider_velocity_ratio(phi)
@@ -275,7 +277,9 @@ class SliderCrankRatio:
             return sc.rod_angular_ratio(phi)
         return sc.rod_point_velocity_ratio(phi, self.fraction)
 
-    def numpy(self, phi, cache=None):
+    def numpy(
+        self, phi: NDArray[np.float64], cache: dict | None = None
+    ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The ratio on a numpy array (the same operations as calling it) [m/rad] or [-]."""
         sc = self.mechanism
         s, c, u, w = sc._state(phi, cache)
@@ -288,7 +292,9 @@ class SliderCrankRatio:
         f = self.fraction
         return (1 - f) * (-r * s) + f * slider, (1 - f) * r * c
 
-    def slope(self, phi, cache=None):
+    def slope(
+        self, phi: NDArray[np.float64], cache: dict | None = None
+    ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
         """d/dφ of the ratio on a numpy array [m/rad²] or [1/rad] (see Notes)."""
         sc = self.mechanism
         s, c, u, w = sc._state(phi, cache)
@@ -303,7 +309,7 @@ class SliderCrankRatio:
         return (1 - f) * (-r * c) + f * slider, -(1 - f) * r * s
 
 
-def known_ratio(function):
+def known_ratio(function: object) -> SliderCrankRatio | None:
     """A SliderCrank's own ratio method, given bound, as a :class:`SliderCrankRatio` (else None)."""
     owner = getattr(function, "__self__", None)
     if isinstance(owner, SliderCrank):
@@ -332,7 +338,7 @@ class GearTrain:
     uses the "driving"/"resisting" sense of :class:`flyopt.machine.mechanism.Member`).
     """
 
-    def __init__(self, ratios):
+    def __init__(self, ratios: Iterable[float]) -> None:
         ratios = [float(r) for r in ratios]
         for r in ratios:
             if not (math.isfinite(r) and r != 0):
@@ -340,7 +346,7 @@ class GearTrain:
         self.ratios = tuple(ratios)
 
     @classmethod
-    def from_teeth(cls, pairs):
+    def from_teeth(cls, pairs: Iterable[tuple[float, float]]) -> GearTrain:
         """Gear train from tooth counts ``[(z_in, z_out), ...]`` per stage."""
         stages = []
         for pair in pairs:
@@ -350,12 +356,12 @@ class GearTrain:
             stages.append(z_in / z_out)
         return cls(stages)
 
-    def angular_ratio(self, shaft):
+    def angular_ratio(self, shaft: int) -> float:
         """ω_shaft/ω of shaft ``shaft`` (0 = reference) [-]."""
         if not 0 <= shaft <= len(self.ratios):
             raise ValueError(f"gear train has shafts 0..{len(self.ratios)}, got {shaft!r}")
         return math.prod(self.ratios[:shaft])
 
-    def kinematics(self, shaft):
+    def kinematics(self, shaft: int) -> Kinematics:
         """Velocity ratios of a gear on shaft ``shaft`` (centre on the axis)."""
         return Kinematics(velocity_ratio=0.0, angular_ratio=self.angular_ratio(shaft))

@@ -19,12 +19,14 @@ shaft (acts in its sense of rotation), negative resists it.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
 
 import casadi as ca
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from flyopt.cycle.torque import PiecewiseLinear
 from flyopt.machine.kinematics import SliderCrankRatio, is_casadi, known_ratio
@@ -183,14 +185,14 @@ class Member:
     name: str
     mass: float = 0.0
     inertia: float = 0.0
-    velocity_ratio: object = 0.0
-    angular_ratio: object = 0.0
-    force: object = None
+    velocity_ratio: Any = 0.0  # a number, a table (angles, values) or a function of φ
+    angular_ratio: Any = 0.0
+    force: Any = None
     force_sense: str = "resisting"
-    torque: object = None
+    torque: Any = None
     owner: object = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
             raise ValueError(f"a member needs a non-empty name, got {self.name!r}")
         for what in ("mass", "inertia"):
@@ -213,7 +215,7 @@ class Member:
             "t": _Curve(self.torque, where + "torque", steps_allowed=True),
         }
 
-    def inertia_contribution(self, phi, cache=None):
+    def inertia_contribution(self, phi: Any, cache: dict | None = None) -> Any:
         """J_S (ω_i/ω)² + m (v_S/ω)² at ``phi`` [kg*m^2] (numpy or CasADi).
 
         ``cache`` shares a mechanism's trigonometry between the members of
@@ -227,12 +229,12 @@ class Member:
         )
 
     @property
-    def has_inertia_slope(self):
+    def has_inertia_slope(self) -> bool:
         """Whether :meth:`inertia_slope` can give d/dφ of the contribution in numpy."""
         c = self._curves
         return (self.inertia == 0 or c["w"].has_slope) and (self.mass == 0 or c["v"].has_slope)
 
-    def inertia_slope(self, phi, cache=None):
+    def inertia_slope(self, phi: NDArray[np.float64], cache: dict | None = None) -> NDArray[np.float64] | float:
         """d/dφ [J_S (ω_i/ω)² + m (v_S/ω)²] = 2 J_S (ω_i/ω)(ω_i/ω)' + 2 m (v_S/ω)·(v_S/ω)' [kg*m^2/rad]."""
         c = self._curves
         total = 0.0
@@ -244,7 +246,7 @@ class Member:
             total = total + 2.0 * coefficient * dot
         return total
 
-    def torque_contribution(self, phi, side="right"):
+    def torque_contribution(self, phi: Any, side: str = "right") -> Any:
         """Equivalent torque of the member's force and moment at ``phi`` [N*m].
 
         Positive drives the reference shaft. ``side`` picks the left or right
@@ -274,7 +276,7 @@ class Member:
                 total = total + sign * f * _magnitude(v, lib)
         return total
 
-    def torque_limits(self, phi, cache=None):
+    def torque_limits(self, phi: ArrayLike, cache: dict | None = None) -> tuple[Any, Any]:
         """Left and right limits of :meth:`torque_contribution` at ``phi`` (numpy) [N*m].
 
         The velocity ratio is evaluated once for both sides, a table of
@@ -301,12 +303,12 @@ class Member:
                 left, right = left + sign * f_left * size, right + sign * f_right * size
         return left, right
 
-    def knots(self):
+    def knots(self) -> NDArray[np.float64]:
         """Angles where a table of this member breaks [rad]."""
         return np.unique(np.concatenate([c.breakpoints() for c in self._curves.values()]))
 
     @property
-    def inertia_is_constant(self):
+    def inertia_is_constant(self) -> bool:
         c = self._curves
         return (c["v"].is_constant or self.mass == 0) and (c["w"].is_constant or self.inertia == 0)
 
@@ -339,7 +341,7 @@ class EquivalentInertia:
         True when no member's ratios depend on φ.
     """
 
-    def __init__(self, members, j_constant=0.0):
+    def __init__(self, members: Iterable[Member], j_constant: float = 0.0) -> None:
         if not (isinstance(j_constant, (int, float)) and math.isfinite(j_constant) and j_constant >= 0):
             raise ValueError(f"j_constant must be a finite number >= 0 [kg*m^2], got {j_constant!r}")
         self.members = tuple(_check_members(members))
@@ -347,7 +349,7 @@ class EquivalentInertia:
         self.knots = np.unique(np.concatenate([m.knots() for m in self.members])) if self.members else np.empty(0)
         self.is_constant = all(m.inertia_is_constant for m in self.members)
 
-    def __call__(self, phi):
+    def __call__(self, phi: ArrayLike) -> NDArray[np.float64]:
         """J_e at the angles ``phi`` [kg*m^2] (numpy, vectorized)."""
         phi = np.asarray(phi, dtype=float)
         total = np.full(phi.shape, self.j_constant)
@@ -356,14 +358,14 @@ class EquivalentInertia:
             total = total + m.inertia_contribution(phi, cache)
         return total
 
-    def casadi(self, phi):
+    def casadi(self, phi: Any) -> Any:
         """J_e as a CasADi expression of ``phi`` [kg*m^2]."""
         total = self.j_constant
         for m in self.members:
             total = total + m.inertia_contribution(phi)
         return total
 
-    def contributions(self, phi):
+    def contributions(self, phi: ArrayLike) -> dict[str, NDArray[np.float64]]:
         """Each member's part of J_e at ``phi``: dict name → array [kg*m^2]."""
         phi = np.asarray(phi, dtype=float)
         return {m.name: m.inertia_contribution(phi) for m in self.members}
@@ -375,11 +377,11 @@ class EquivalentInertia:
         return ca.Function("dJ", [phi], [ca.jacobian(ca.SX(j), phi)])
 
     @cached_property
-    def has_numpy_derivative(self):
+    def has_numpy_derivative(self) -> bool:
         """True when every member's ratios are constants, tables or a slider-crank's (closed-form slopes)."""
         return all(m.has_inertia_slope for m in self.members)
 
-    def value_and_derivative(self, phi):
+    def value_and_derivative(self, phi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """J_e and dJ_e/dφ at ``phi`` in one numpy evaluation [kg*m^2], [kg*m^2/rad].
 
         The derivative is the closed form of each ratio's slope (a table's
@@ -398,11 +400,11 @@ class EquivalentInertia:
             slope = slope + m.inertia_slope(phi, cache)
         return total, slope
 
-    def casadi_derivative(self, phi):
+    def casadi_derivative(self, phi: Any) -> Any:
         """dJ_e/dφ as a CasADi expression of ``phi`` [kg*m^2/rad] (algorithmic differentiation)."""
         return self._derivative_function(phi)
 
-    def derivative(self, phi):
+    def derivative(self, phi: ArrayLike) -> NDArray[np.float64]:
         """dJ_e/dφ at ``phi`` [kg*m^2/rad] (exact: closed forms, or CasADi's algorithmic differentiation)."""
         phi = np.asarray(phi, dtype=float)
         if self.has_numpy_derivative:
@@ -432,26 +434,26 @@ class EquivalentTorque:
 
     is_linear = False
 
-    def __init__(self, members, sign=1.0, where="members"):
+    def __init__(self, members: Iterable[Member], sign: float = 1.0, where: str = "members") -> None:
         self.members = tuple(_check_members(members))
         self.sign = float(sign)
         self.where = where
 
-    def resisting(self):
+    def resisting(self) -> EquivalentTorque:
         """The same torque with the resisting sign, M_r = −M_e."""
         return EquivalentTorque(self.members, -self.sign, self.where)
 
-    def breakpoints(self):
+    def breakpoints(self) -> NDArray[np.float64]:
         """Angles where a table of a member breaks [rad]."""
         if not self.members:
             return np.empty(0)
         return np.unique(np.concatenate([m.knots() for m in self.members]))
 
-    def __call__(self, phi):
+    def __call__(self, phi: ArrayLike) -> NDArray[np.float64]:
         """Torque at ``phi`` [N*m] (numpy; right limits where a force steps)."""
         return self.limits(phi)[1]
 
-    def limits(self, phi):
+    def limits(self, phi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Left and right limits of the torque at ``phi`` [N*m]."""
         phi = np.asarray(phi, dtype=float)
         left = np.zeros(phi.shape)
@@ -462,20 +464,20 @@ class EquivalentTorque:
             left, right = left + lm, right + rm
         return self.sign * left, self.sign * right
 
-    def casadi(self, phi):
+    def casadi(self, phi: Any) -> Any:
         """The torque as a CasADi expression of ``phi`` [N*m] (right-continuous)."""
         total = 0.0
         for m in self.members:
             total = total + m.torque_contribution(phi)
         return self.sign * total
 
-    def contributions(self, phi):
+    def contributions(self, phi: ArrayLike) -> dict[str, Any]:
         """Each member's part at ``phi``: dict name → array [N*m]."""
         phi = np.asarray(phi, dtype=float)
         return {m.name: self.sign * m.torque_contribution(phi) for m in self.members}
 
 
-def equivalent_inertia(members, j_constant=0.0):
+def equivalent_inertia(members: Iterable[Member], j_constant: float = 0.0) -> EquivalentInertia:
     """Equivalent inertia of a machine at the reference shaft.
 
     J_e(φ) = J_c + Σ_i [ J_Si (ω_i/ω)² + m_i (v_Si/ω)² ]  (docs/flywheel-design.md, section 3).
@@ -496,7 +498,7 @@ def equivalent_inertia(members, j_constant=0.0):
     return EquivalentInertia(members, j_constant)
 
 
-def equivalent_torque(members):
+def equivalent_torque(members: Iterable[Member]) -> EquivalentTorque:
     """Equivalent torque of the members' forces and moments at the reference shaft.
 
     M_e(φ) = Σ_i [ T_i (ω_i/ω) + F_i (v_i/ω) cos α_i ]  (docs/flywheel-design.md, section 3),

@@ -20,8 +20,11 @@ its torque reduced to the reference shaft, M' = M(i ω) i η (docs/flywheel-desi
 section 3).
 """
 
+from __future__ import annotations
+
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from flyopt.validate import positive
 
@@ -35,14 +38,17 @@ for smaller motors). Give the catalogue value when it is known.
 """
 
 
-def _positive(value, what):
+def _positive(value: object, what: str) -> float:
     return positive(value, what)
 
 
 class _Motor:
-    torque: Callable[..., float]  # each motor's law: torque at a shaft speed [N*m]
+    # M(ω_motor) [N*m], numpy or CasADi; each kind of motor defines it (an induction motor also takes ``model``)
+    torque: Callable[..., Any]
 
-    def reference_torque(self, omega, speed_ratio=1.0, efficiency=1.0, model=None):
+    def reference_torque(
+        self, omega: Any, speed_ratio: float = 1.0, efficiency: float = 1.0, model: str | None = None
+    ) -> Any:
         """Motor torque reduced to the reference shaft [N*m].
 
         M' = M(i ω) · i · η, i = ω_motor/ω the speed ratio, η the efficiency
@@ -120,7 +126,9 @@ class InductionMotor(_Motor):
 
     MODELS = ("linear", "kloss")
 
-    def __init__(self, rated_power, rated_speed, synchronous_speed, breakdown_ratio=None):
+    def __init__(
+        self, rated_power: float, rated_speed: float, synchronous_speed: float, breakdown_ratio: float | None = None
+    ) -> None:
         self.rated_power = _positive(rated_power, "rated_power [W]")
         self.rated_speed = _positive(rated_speed, "rated_speed [rad/s]")
         self.synchronous_speed = _positive(synchronous_speed, "synchronous_speed [rad/s]")
@@ -138,18 +146,18 @@ class InductionMotor(_Motor):
         self.breakdown_slip = self.rated_slip * (k + math.sqrt(k * k - 1))
         self.breakdown_torque = k * self.rated_torque
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (
             f"InductionMotor(rated_power={self.rated_power!r}, rated_speed={self.rated_speed!r}, "
             f"synchronous_speed={self.synchronous_speed!r}, breakdown_ratio={self.breakdown_ratio!r})"
         )
 
     @property
-    def slope(self):
+    def slope(self) -> float:
         """dM/dω of the linear model [N*m*s/rad] (negative)."""
         return -self.rated_torque / (self.synchronous_speed - self.rated_speed)
 
-    def torque(self, omega, model="linear"):
+    def torque(self, omega: Any, model: str = "linear") -> Any:
         """Motor torque at the motor speed ``omega`` [N*m].
 
         Parameters
@@ -167,7 +175,7 @@ class InductionMotor(_Motor):
         raise ValueError(f"induction motor model {model!r} is not known (allowed: {', '.join(self.MODELS)})")
 
     @property
-    def linear_limit_speed(self):
+    def linear_limit_speed(self) -> float:
         """Speed where the linear line reaches the breakdown torque, ω_0 − k (ω_0 − ω_n) [rad/s].
 
         Below it the linear model promises more torque than the motor has: a
@@ -177,11 +185,11 @@ class InductionMotor(_Motor):
         return self.synchronous_speed - self.breakdown_ratio * (self.synchronous_speed - self.rated_speed)
 
     @property
-    def breakdown_speed(self):
+    def breakdown_speed(self) -> float:
         """Speed of the breakdown torque on the Kloss curve, ω_0 (1 − s_b) [rad/s]."""
         return self.synchronous_speed * (1 - self.breakdown_slip)
 
-    def starting_torque(self, model="kloss"):
+    def starting_torque(self, model: str = "kloss") -> float:
         """Torque at rest [N*m]."""
         return float(self.torque(0.0, model))
 
@@ -202,12 +210,12 @@ class DCMotor(_Motor):
     constant armature voltage and field (armature reaction neglected).
     """
 
-    def __init__(self, no_load_speed, stall_torque):
+    def __init__(self, no_load_speed: float, stall_torque: float) -> None:
         self.no_load_speed = _positive(no_load_speed, "no_load_speed [rad/s]")
         self.stall_torque = _positive(stall_torque, "stall_torque [N*m]")
 
     @classmethod
-    def from_rated(cls, rated_power, rated_speed, no_load_speed):
+    def from_rated(cls, rated_power: float, rated_speed: float, no_load_speed: float) -> DCMotor:
         """The line through the rated point (P_n/ω_n at ω_n) and the no-load speed.
 
         Parameters
@@ -225,15 +233,15 @@ class DCMotor(_Motor):
             )
         return cls(w0, p / wn * w0 / (w0 - wn))
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"DCMotor(no_load_speed={self.no_load_speed!r}, stall_torque={self.stall_torque!r})"
 
     @property
-    def slope(self):
+    def slope(self) -> float:
         """dM/dω [N*m*s/rad] (negative)."""
         return -self.stall_torque / self.no_load_speed
 
-    def torque(self, omega):
+    def torque(self, omega: Any) -> Any:
         """Motor torque at the motor speed ``omega`` [N*m] (numpy or CasADi)."""
         return self.stall_torque * (1 - omega / self.no_load_speed)
 
@@ -258,7 +266,7 @@ class TableMotor(_Motor):
     A table of n rows costs n − 2 ramps per evaluation.
     """
 
-    def __init__(self, speeds, torques):
+    def __init__(self, speeds: Sequence[float], torques: Sequence[float]) -> None:
         w = [float(x) for x in speeds]
         m = [float(x) for x in torques]
         if len(w) != len(m) or len(w) < 2:
@@ -293,10 +301,10 @@ class TableMotor(_Motor):
             w[k] if k == 0 or m[k] == 0.0 else w[k - 1] + m[k - 1] * (w[k] - w[k - 1]) / (m[k - 1] - m[k])
         )
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"TableMotor(speeds={list(self.speeds)!r}, torques={list(self.torques)!r})"
 
-    def torque(self, omega):
+    def torque(self, omega: Any) -> Any:
         """Motor torque at the motor speed ``omega`` [N*m] (numpy arrays, floats or CasADi symbols)."""
         ramp = _ramp(omega)
         s = self._slopes
@@ -306,7 +314,7 @@ class TableMotor(_Motor):
         return total
 
 
-def _ramp(omega):
+def _ramp(omega: Any) -> Callable[[Any], Any]:
     """max(x, 0) for the type of ``omega``: CasADi's fmax for its symbols, numpy's maximum otherwise."""
     if type(omega).__module__.startswith("casadi"):
         import casadi as ca

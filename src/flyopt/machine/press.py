@@ -25,7 +25,10 @@ Angles are measured from the start of the working stroke (φ = 0), so the
 speed is highest at φ = 0 and lowest at φ = θ_w.
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Sequence
 
 from flyopt.cycle.indicator import speed_extremes
 from flyopt.units import rpm_to_rad_s
@@ -34,7 +37,7 @@ TURN = 2.0 * math.pi
 """The cycle of a press: one turn of the crank per stroke [rad]."""
 
 
-def crank_speed(strokes_per_minute):
+def crank_speed(strokes_per_minute: float) -> float:
     """Mean speed of the crank [rad/s] of a press making ``strokes_per_minute`` strokes a minute.
 
     One stroke per crank turn: ω_m = 2π n/60 with n the strokes per minute
@@ -43,17 +46,17 @@ def crank_speed(strokes_per_minute):
     return rpm_to_rad_s(strokes_per_minute)
 
 
-def crank_speed_of_period(period):
+def crank_speed_of_period(period: float) -> float:
     """Mean speed of the crank ω_m = 2π/T [rad/s] of a press making one stroke in ``period`` [s]."""
     return TURN / period
 
 
-def stroke_period(omega_crank):
+def stroke_period(omega_crank: float) -> float:
     """Duration of one stroke T = 2π/ω_m [s] at a mean crank speed ``omega_crank`` [rad/s]."""
     return TURN / omega_crank
 
 
-def working_angle(working_time, period):
+def working_angle(working_time: float, period: float) -> float:
     """Crank angle of the working stroke, θ_w = 2π t_w/T [rad].
 
     The textbook's assumption: the crank turns at its mean speed while the
@@ -70,7 +73,7 @@ def working_angle(working_time, period):
     return TURN * working_time / period
 
 
-def delta_from_slowdown(slowdown):
+def delta_from_slowdown(slowdown: float) -> float:
     """flyopt's δ of a slowdown s = (ω_top − ω_bottom)/ω_top over the working stroke.
 
     With ω_top = ω_m (1 + δ/2) and ω_bottom = ω_m (1 − δ/2) (docs/flywheel-design.md,
@@ -85,12 +88,12 @@ def delta_from_slowdown(slowdown):
     return 2.0 * slowdown / (2.0 - slowdown)
 
 
-def slowdown_from_delta(delta):
+def slowdown_from_delta(delta: float) -> float:
     """The slowdown s = 2δ/(2 + δ) of a coefficient of fluctuation δ (the inverse of :func:`delta_from_slowdown`)."""
     return 2.0 * delta / (2.0 + delta)
 
 
-def mean_from_top_speed(omega_top, delta):
+def mean_from_top_speed(omega_top: float, delta: float) -> float:
     """Mean speed ω_m [rad/s] of a shaft whose top speed is ``omega_top`` [rad/s] at fluctuation δ.
 
     ω_top = ω_m (1 + δ/2) (:func:`flyopt.cycle.indicator.speed_extremes`), so
@@ -99,7 +102,7 @@ def mean_from_top_speed(omega_top, delta):
     return omega_top / speed_extremes(1.0, delta)[0]
 
 
-def flywheel_speed_ratio(omega_top, delta, omega_crank):
+def flywheel_speed_ratio(omega_top: float, delta: float, omega_crank: float) -> float:
     """Speed ratio i = ω_flywheel/ω_crank of the flywheel shaft whose top speed is ``omega_top``.
 
     The ratio of the mean speeds (docs/flywheel-design.md, section 8): the
@@ -119,7 +122,7 @@ def flywheel_speed_ratio(omega_top, delta, omega_crank):
     return mean_from_top_speed(omega_top, delta) / omega_crank
 
 
-def working_torque(energy, angle):
+def working_torque(energy: float, angle: float) -> float:
     """The constant torque E/θ_w [N*m] that does the work ``energy`` [J] over the working angle [rad].
 
     The textbook's load of a press: the energy of a stroke taken at a
@@ -128,7 +131,7 @@ def working_torque(energy, angle):
     return energy / angle
 
 
-def punching_force(shear_strength, cut_length, thickness):
+def punching_force(shear_strength: float, cut_length: float, thickness: float) -> float:
     """Largest force of punching or shearing, F_max = τ L t [N].
 
     The sheared area L t (cut length times plate thickness; a round hole:
@@ -137,7 +140,7 @@ def punching_force(shear_strength, cut_length, thickness):
     return shear_strength * cut_length * thickness
 
 
-def punching_energy(max_force, thickness):
+def punching_energy(max_force: float, thickness: float) -> float:
     """Energy of one punch or cut, E = ½ F_max t [J].
 
     The force falls from F_max when the punch enters the plate to zero when
@@ -148,7 +151,7 @@ def punching_energy(max_force, thickness):
     return 0.5 * max_force * thickness
 
 
-def force_energy(positions, forces):
+def force_energy(positions: Sequence[float], forces: Sequence[float]) -> float:
     """Work ∫F dx [J] of a force table, piecewise linear in the position (exact: the trapezoids).
 
     Parameters
@@ -163,7 +166,7 @@ def force_energy(positions, forces):
     )
 
 
-def force_torque(positions, forces, angle):
+def force_torque(positions: Sequence[float], forces: Sequence[float], angle: float) -> tuple[list[float], list[float]]:
     """A force table over the working stroke as a torque table over the working angle.
 
     The ram's position is taken uniform in the crank angle over the working
@@ -193,7 +196,7 @@ def force_torque(positions, forces, angle):
     return angles, [f * lever for f in forces]
 
 
-def resisting_table(angles, torques, angle):
+def resisting_table(angles: Sequence[float], torques: Sequence[float], angle: float) -> list[list[float]]:
     """The process load over one crank turn: the working-stroke table, then zero to 2π.
 
     Parameters

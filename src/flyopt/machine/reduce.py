@@ -7,15 +7,18 @@ torques at the reference shaft, the members' loads joined into the side that
 is known (docs/flywheel-design.md, sections 5–7).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from flyopt.cycle.indicator import ExcessWork
 from flyopt.cycle.torque import Constant, MotorTorque, TorqueSum
 from flyopt.errors import SceneError
-from flyopt.machine.motor import InductionMotor, TableMotor
+from flyopt.machine.motor import DCMotor, InductionMotor, TableMotor
 
 
 @dataclass(frozen=True)
@@ -34,9 +37,11 @@ class Machine:
     speed_dependent, variable_inertia : bool
     """
 
-    driving: Any  # a torque curve (flyopt.cycle.torque)
+    # torque curves (flyopt.cycle.torque's, or an EquivalentTorque): duck-typed, no common base class
+    driving: Any
     resisting: Any
-    j_machine: Any  # a number, or J_e(φ) (flyopt.machine.mechanism.EquivalentInertia)
+    # a float, or an EquivalentInertia when ``variable_inertia``
+    j_machine: Any
     cycle_angle: float
     omega_mean: float
     delta: float
@@ -44,7 +49,7 @@ class Machine:
     variable_inertia: bool
     _cache: dict = field(default_factory=dict, compare=False, repr=False)
 
-    def angle_only(self, omega=None):
+    def angle_only(self, omega: float | None = None) -> ExcessWork:
         """ExcessWork of the torques with every speed dependence frozen.
 
         A motor becomes the constant that balances the cycle (its mean
@@ -59,7 +64,7 @@ class Machine:
             )
         return self._cache[key]
 
-    def net_torque(self):
+    def net_torque(self) -> NetTorque:
         """M_d − M_r at the reference shaft, as the periodic model takes it (:class:`NetTorque`).
 
         An unknown constant is first solved from the work balance (at the
@@ -82,7 +87,7 @@ class Machine:
             )
         return self._cache["net_torque"]
 
-    def knots(self):
+    def knots(self) -> NDArray[np.float64]:
         """Angles where a torque steps or kinks [rad] (the simulation cuts there).
 
         The kinks of a speed-dependent expression are those at the mean speed
@@ -91,7 +96,7 @@ class Machine:
         """
         return self.angle_only().knots
 
-    def j_mean(self):
+    def j_mean(self) -> float:
         """Cycle mean of J_e [kg*m^2] (J_c for a constant inertia)."""
         if not self.variable_inertia:
             return float(self.j_machine)
@@ -127,7 +132,7 @@ class NetTorque:
         characteristic sets the mean speed).
     """
 
-    def __init__(self, driving, resisting, work, balanced=False):
+    def __init__(self, driving: Any, resisting: Any, work: float, balanced: bool = False) -> None:
         self.work = float(work)
         self.balanced = bool(balanced)
         parts = [(1.0, p) for p in _parts(driving)] + [(-1.0, p) for p in _parts(resisting)]
@@ -135,14 +140,14 @@ class NetTorque:
         self.table = LinearTable([part for part, flag in zip(parts, linear) if flag])
         self._rest = [part for part, flag in zip(parts, linear) if not flag]
 
-    def rest(self, phi, omega):
+    def rest(self, phi: Any, omega: Any) -> Any:
         """The parts that are not tables, as a CasADi expression [N*m]."""
         total = 0.0
         for sign, part in self._rest:
             total = total + sign * _casadi(part, phi, omega)
         return total
 
-    def __call__(self, phi, omega):
+    def __call__(self, phi: Any, omega: Any) -> Any:
         return self.table.casadi(phi) + self.rest(phi, omega)
 
 
@@ -155,15 +160,15 @@ class LinearTable:
         Curves with ``limits(phi)``, ``breakpoints()`` and ``casadi(phi)``.
     """
 
-    def __init__(self, parts):
+    def __init__(self, parts: list[tuple[float, Any]]) -> None:
         self.parts = list(parts)
 
-    def breakpoints(self):
+    def breakpoints(self) -> NDArray[np.float64]:
         """Angles where the sum kinks or steps [rad]."""
         points = [np.asarray(p.breakpoints(), dtype=float) for _, p in self.parts]
         return np.unique(np.concatenate(points)) if points else np.empty(0)
 
-    def limits(self, phi):
+    def limits(self, phi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Left and right limits at the angles ``phi`` [N*m]."""
         phi = np.asarray(phi, dtype=float)
         left, right = np.zeros(phi.shape), np.zeros(phi.shape)
@@ -172,17 +177,21 @@ class LinearTable:
             left, right = left + sign * np.asarray(lp, dtype=float), right + sign * np.asarray(rp, dtype=float)
         return left, right
 
-    def casadi(self, phi):
+    def casadi(self, phi: Any) -> Any:
         total = 0.0
         for sign, part in self.parts:
             total = total + sign * part.casadi(phi)
         return total
 
 
-def reduce(scene):
-    """Reduce a scene (torques, J_c, members) to a :class:`Machine`."""
+def reduce(scene: Any) -> Machine:
+    """Reduce a scene (torques, J_c, members) to a :class:`Machine`.
+
+    ``scene`` is a :class:`flyopt.io.scene.Scene`, typed ``Any`` because naming it would
+    make machine and io import each other (tests/test_package.py forbids the cycle).
+    """
     driving, resisting = scene.driving, scene.resisting
-    j_machine = scene.j_constant
+    j_machine: Any = scene.j_constant  # a float, or an EquivalentInertia below
     if scene.members:
         from flyopt.machine.mechanism import equivalent_inertia, equivalent_torque  # CasADi: only with members
 
@@ -216,7 +225,7 @@ def reduce(scene):
     return machine
 
 
-def _check_drive(machine):
+def _check_drive(machine: Machine) -> None:
     """Refuse a motor whose largest torque is below the mean load: it cannot run steadily at any speed.
 
     The largest torque on the reference shaft is the breakdown torque of an
@@ -242,8 +251,9 @@ def _check_drive(machine):
         largest, what, no_load = motor.breakdown_torque * gain, "breakdown", motor.synchronous_speed
     elif isinstance(motor, TableMotor):
         largest, what, no_load = motor.largest_torque * gain, "the largest of its table", motor.no_load_speed
-    else:
-        largest, what, no_load = motor.stall_torque * gain, "stall", motor.no_load_speed
+    else:  # the third kind of motor a MotorTorque holds (flyopt.cycle.torque types it loosely)
+        dc = cast(DCMotor, motor)
+        largest, what, no_load = dc.stall_torque * gain, "stall", dc.no_load_speed
     speeds = [machine.omega_mean]
     if getattr(machine.resisting, "speed_dependent", False):
         speeds += list(np.linspace(0.0, no_load / curve.speed_ratio, 17)[1:])

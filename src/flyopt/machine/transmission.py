@@ -5,7 +5,10 @@ Domain page, sections 3 and 11. A speed ratio ``j`` is ω_motor / ω_shaft
 a transmission stage.
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 
@@ -35,7 +38,7 @@ class Shaft:
     inertia: float = 0.0
 
 
-def series_efficiency(stages):
+def series_efficiency(stages: Iterable[float]) -> float:
     """Efficiency of transmission stages in series: η = η_1 η_2 ⋯ η_k.
 
     Parameters
@@ -54,7 +57,7 @@ def series_efficiency(stages):
     return math.prod(stages)
 
 
-def motor_power(branches):
+def motor_power(branches: Iterable[tuple[float, float | Iterable[float]]]) -> float:
     """Motor power for machines driven in parallel branches: Σ P_k / η_path,k.
 
     Parameters
@@ -79,7 +82,13 @@ def motor_power(branches):
     return total
 
 
-def reduced_inertia(j_motor=0.0, shafts=(), masses=(), omega_motor=None, efficiencies=None):
+def reduced_inertia(
+    j_motor: float = 0.0,
+    shafts: Iterable[tuple[float, float]] = (),
+    masses: Iterable[tuple[float, float]] = (),
+    omega_motor: float | None = None,
+    efficiencies: Iterable[float] | None = None,
+) -> float:
     """Inertia of a drive reduced to the motor shaft.
 
     J = J_M + Σ_k J_k / j_k² + Σ_i m_i v_i² / ω_M²  (docs/flywheel-design.md, section 3).
@@ -117,12 +126,12 @@ def reduced_inertia(j_motor=0.0, shafts=(), masses=(), omega_motor=None, efficie
     return total
 
 
-def reduced_load_torque(torque, ratio, efficiency=1.0):
+def reduced_load_torque(torque: float, ratio: float, efficiency: float = 1.0) -> float:
     """Static load torque reduced to the motor shaft: T_L' = T_L / (j η) [N*m]."""
     return torque / (ratio * efficiency)
 
 
-def inertia_on_shaft(j_reference, speed_ratio):
+def inertia_on_shaft(j_reference: float, speed_ratio: float) -> float:
     """Inertia a flywheel needs on a shaft to replace J at the reference shaft.
 
     Equal kinetic energy, ½ J' ω'² = ½ J ω², gives J' = J (ω/ω')² (domain
@@ -143,6 +152,6 @@ def inertia_on_shaft(j_reference, speed_ratio):
     return j_reference / (speed_ratio * speed_ratio)
 
 
-def inertia_at_reference(j_shaft, speed_ratio):
+def inertia_at_reference(j_shaft: float, speed_ratio: float) -> float:
     """Inertia of a flywheel on a shaft, moved to the reference shaft: J = J' (ω'/ω)² [kg*m^2]."""
     return j_shaft * speed_ratio * speed_ratio
