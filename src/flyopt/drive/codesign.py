@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, cast
 
@@ -281,7 +282,7 @@ def evaluate_motor(
     materials: list[Material],
     design_spec: DesignSpec,
     *,
-    solver_options: dict | None = None,
+    solver_options: Mapping[str, Any] | None = None,
 ) -> MotorRun:
     """One motor size: its ratio, the least flywheel it needs, the checks, and the wheel (:class:`MotorRun`).
 
@@ -639,7 +640,11 @@ def _slowest_equal(mass, lo, r, m, rtol=1e-9):
 
 
 def design_drive(
-    scene: Any, analysis: Analysis | None = None, *, solver_options: dict | None = None, every_size: bool = False
+    scene: Any,
+    analysis: Analysis | None = None,
+    *,
+    solver_options: Mapping[str, Any] | None = None,
+    every_size: bool = False,
 ) -> DriveDesign:
     """Design the motor, its ratio and the flywheel of a scene with a [drive] together.
 

@@ -31,6 +31,7 @@ or, instead of ``motors``, the scene's own motors::
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.press import _table  # scene._Table's key check; importing flyopt.io.scene would be a cycle
@@ -182,7 +183,7 @@ def _motor_option(raw, k):
     for key in REQUIRED:
         if key not in table:
             raise SceneError(f"{where}.{key}", f"is missing: a motor option gives at least {', '.join(REQUIRED)}")
-    values = {
+    values: dict[str, Any] = {
         key: quantity(table[key], dimension, f"{where}.{key}") for key, dimension in QUANTITIES.items() if key in table
     }
     texts = {key: table[key] for key in TEXTS if key in table}

@@ -34,7 +34,7 @@ import numpy as np
 import numpy.typing as npt
 import pandas as pd
 
-from flyopt.design import design_inputs
+from flyopt.design import DesignSpec, design_inputs
 from flyopt.errors import SceneError
 from flyopt.outputs.results import normalize
 from flyopt.studies.evaluate import evaluate_points, physics_analysis
@@ -196,6 +196,8 @@ def _front_outer_diameter(
     solver_options: Mapping[str, Any] | None,
 ) -> pd.DataFrame:
     spec = scene.design
+    if not isinstance(spec, DesignSpec):  # the loader always gives one
+        raise TypeError(f"a Pareto front needs the scene's design spec, got {spec!r}")
     envelope = spec.max_outer_diameter
     lightest = evaluate_points(
         scene, pd.DataFrame({"point": [0], "design.objective": ["mass"]}), method=method, solver_options=solver_options
