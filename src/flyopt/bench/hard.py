@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 import time
 from fractions import Fraction
+from typing import Any, cast
 
 import numpy as np
 
@@ -143,9 +144,9 @@ def hard_design_scenes(config, rng, cycles):
         shafts = [MountShaft(f"shaft{k}", r) for k, r in enumerate(ratios)]
         low = float(rng.uniform(1.0, 2.5))
         high = low if rng.random() < 0.2 else low + float(rng.uniform(0.0, 1.0))
-        cap = 2.0 * materials[0].max_rim_speed / omega
-        envelope = float(cap * rng.uniform(0.3, 1.5)) if rng.random() < 0.3 else None
-        width = None
+        cap = 2.0 * cast(float, materials[0].max_rim_speed) / omega  # built-in cast iron has one
+        envelope = float(cap * rng.uniform(0.3, 1.5)) if rng.random() < 0.3 else math.inf
+        width = math.inf  # no limit (DesignSpec reads None as inf)
         if rng.random() < 0.25:
             j_est = a_ref * math.ldexp(1.0, power) / (omega**2 * delta)
             h_s = math.sqrt(4 * j_est * low / (math.pi * materials[0].density * cap**3))
@@ -181,7 +182,7 @@ def _boundary_scenes(config, base):
     """
     factors = (1 - 1e-4, 1 + 1e-4, 1 - 1e-7, 1 + 1e-5)
     count = 2 if config.quick else 16
-    out = []
+    out: list[dict[str, Any]] = []
     for scene in base:
         if len(out) >= count:
             break
@@ -220,8 +221,8 @@ def run_hard(config, progress=None):
             ind = energy_indicator(flyopt_curve(case.driving), flyopt_curve(case.resisting), case.cycle_angle)
             elapsed = time.perf_counter() - start
             value, status = ind.a_max, "ok"
-        except (ArithmeticError, ValueError) as err:
-            value, status, elapsed = math.nan, f"{type(err).__name__}: {err}", math.nan
+        except (ArithmeticError, ValueError) as exc:
+            value, status, elapsed = math.nan, f"{type(exc).__name__}: {exc}", math.nan
         err = abs(value - ref) / ref if math.isfinite(value) else math.inf
         cycle_rows.append(
             {
@@ -247,7 +248,7 @@ def run_hard(config, progress=None):
     for geometry in ("rim", "thin_rim"):  # build the NLPs outside the timings
         design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry), method="ipopt")
     design_rows = []
-    solvers = {"flyopt-ipopt": "ipopt", "flyopt-auto": "auto"}  # flyopt's design paths
+    solvers: dict[str, Any] = {"flyopt-ipopt": "ipopt", "flyopt-auto": "auto"}  # flyopt's design paths
     for ftol in SLSQP_FTOLS:
         solvers[f"slsqp(ftol={ftol:g})"] = lambda c, ftol=ftol: slsqp_combination(c, "scaled", ftol)
     solvers[f"slsqp-log(ftol={SLSQP_FTOL:g})"] = lambda c: slsqp_combination(c, "log", SLSQP_FTOL)
@@ -268,9 +269,9 @@ def run_hard(config, progress=None):
             try:
                 j_fly = required_inertia(flyopt_a_max(cycle), omega, delta)
                 status = "ok"
-            except (ArithmeticError, ValueError) as err:
+            except (ArithmeticError, ValueError) as exc:
                 # the cycle analysis refused the scene: record it, and design for the exact J_F
-                j_fly, status = j_ref, f"{type(err).__name__}: {err}"
+                j_fly, status = j_ref, f"{type(exc).__name__}: {exc}"
             check_j = abs(j_fly - j_ref) / j_ref if status == "ok" else math.inf
             cycle_rows.append(
                 {
@@ -307,7 +308,7 @@ def run_hard(config, progress=None):
                 else:
                     outcome = solver(combo)
                 elapsed = time.perf_counter() - start
-                ref_mass = ref.mass if ref.verdict == "design" else math.inf
+                ref_mass = cast(float, ref.mass) if ref.verdict == "design" else math.inf  # a design has its mass
                 if outcome.verdict == "design":
                     # measured against the reference combination (J from the exact A_max)
                     outcome.violation = (

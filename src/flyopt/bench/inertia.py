@@ -10,10 +10,11 @@ itself checked.
 from __future__ import annotations
 
 import math
+import sys
 
-try:
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from flyopt.bench.timing import Row, measure, once, set_ratios

@@ -13,6 +13,7 @@ import csv
 import math
 import statistics
 from dataclasses import fields
+from typing import Any
 
 from flyopt.bench.hard import CYCLE_BAR, MASS_BAR
 from flyopt.bench.peers import SLSQP_FTOL
@@ -391,7 +392,7 @@ def write_hard_csv(path, cycle_rows, design_rows):
                 "failures": "" if r["passed"] else r["status"][:160],
             }
         )
-    combos = {}
+    combos: dict[tuple, dict[str, Any]] = {}
     for r in design_rows:
         key = (r["scene"], r["material"], r["speed_ratio"])
         line = combos.get(key)
@@ -528,12 +529,12 @@ def hard_summary(cycle_rows, design_rows, header, command):
         )
     lines.append("")
     by_key = {(r["scene"], r["material"], r["speed_ratio"], r["method"]): r for r in design_rows}
-    for mine in [m for m in ("flyopt-ipopt", "flyopt-auto") if m in methods]:
+    for ours in [m for m in ("flyopt-ipopt", "flyopt-auto") if m in methods]:
         for other in [m for m in methods if not m.startswith("flyopt")]:
             fails = [r for r in design_rows if r["method"] == other and not r["passed"]]
-            rescued = [r for r in fails if by_key[(r["scene"], r["material"], r["speed_ratio"], mine)]["passed"]]
+            rescued = [r for r in fails if by_key[(r["scene"], r["material"], r["speed_ratio"], ours)]["passed"]]
             text = (
-                f"- {other} fails on {len(fails)} combinations; {mine} succeeds on {len(rescued)} of "
+                f"- {other} fails on {len(fails)} combinations; {ours} succeeds on {len(rescued)} of "
                 f"them (target, flyopt converges on every hard case where SLSQP fails: "
                 f"{'met' if len(rescued) == len(fails) else 'NOT met'})"
             )

@@ -157,7 +157,11 @@ def slsqp_combination(combo, variables="scaled", ftol=SLSQP_FTOL, maxiter=200):
             )
         else:
             cons.append({"type": "eq", "fun": lambda z: z[1] - z[2], "jac": lambda z: np.array([0.0, 1.0, -1.0])})
-        bounds = [(1e-12, None), (1e-12, None), (1e-12, b_top if math.isfinite(b_top) else None)]
+        bounds: list[tuple[float | None, float | None]] = [
+            (1e-12, None),
+            (1e-12, None),
+            (1e-12, b_top if math.isfinite(b_top) else None),
+        ]
         x0 = np.array([1.0 - min(eps, 0.5), 1.0, min(1.0, b_top)])
 
         def dims(z):

@@ -15,10 +15,12 @@ import statistics
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 
 __all__ = ["Config", "Timing", "Row", "measure", "once", "set_ratios", "pin_one_core", "machine_header"]
+T = TypeVar("T")
 
 
 @dataclass
@@ -121,7 +123,7 @@ def measure(fn: Callable[[], object], repeats: int, min_time: float = 0.0) -> Ti
     return Timing(statistics.median(samples), float(q25), float(q75), repeats, number)
 
 
-def once(fn: Callable[[], object]) -> tuple[object, Timing]:
+def once(fn: Callable[[], T]) -> tuple[T, Timing]:
     """One call of ``fn()``, timed: its value and a Timing of that single call.
 
     The figure of a smoke run (``--quick``) where one call takes seconds: no
@@ -229,8 +231,11 @@ def machine_header(pinning):
     import casadi as ca
     import scipy
 
+    # casadi sets __version__ at run time, but the types mypy reads for it do not declare it
+    casadi_version = ca.__version__  # type: ignore[attr-defined]
+
     return (
         f"Machine: {platform.platform()}, {platform.processor() or platform.machine()}, "
         f"{os.cpu_count()} CPUs, {pinning}; Python {platform.python_version()}, numpy "
-        f"{np.__version__}, scipy {scipy.__version__}, CasADi {ca.__version__} (IPOPT bundled)."
+        f"{np.__version__}, scipy {scipy.__version__}, CasADi {casadi_version} (IPOPT bundled)."
     )
