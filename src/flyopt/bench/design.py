@@ -17,7 +17,7 @@ the constraint violation. The random scenes also feed the geometry section.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from functools import partial
 from typing import Any, cast
 
@@ -25,7 +25,7 @@ import numpy as np
 
 from flyopt.bench.peers import SLSQP_FTOL, SLSQP_FTOLS, grid_combination, slsqp_combination
 from flyopt.bench.references import Combination, Outcome, checked_design, combinations, lightest_rim_1d
-from flyopt.bench.timing import Row, measure, set_ratios
+from flyopt.bench.timing import Config, Row, measure, set_ratios
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.design.materials import Material, builtin_materials
 from flyopt.errors import SolverFailed
@@ -38,7 +38,14 @@ REFERENCE_RTOL = 1e-12
 """A candidate may join the reference optimum only if it violates nothing by more than this."""
 
 
-def ipopt_combinations(j_required, omega_mean, shafts, materials, spec, method="ipopt"):
+def ipopt_combinations(
+    j_required: float,
+    omega_mean: float,
+    shafts: Sequence[MountShaft],
+    materials: Sequence[Material],
+    spec: DesignSpec,
+    method: str = "ipopt",
+) -> list[Outcome]:
     """flyopt's ranking (one design_flywheel call) as one Outcome per combination."""
     combos = combinations(j_required, omega_mean, shafts, materials, spec)
     try:
@@ -86,7 +93,7 @@ def _flyopt_ranking(method):
     return rank
 
 
-def design_methods(config):
+def design_methods(config: Config) -> list[tuple[Any, ...]]:
     """Name, setting and solver of every design method: solver(j, ω, shafts, materials, spec).
 
     flyopt's entries carry a fourth item, the call that is timed: its ranking
@@ -120,7 +127,7 @@ def design_methods(config):
     return methods
 
 
-def random_design_scenes(count, seed):
+def random_design_scenes(count: int, seed: int) -> list[dict[str, Any]]:
     """Random scenes of 2 built-in materials × 3 shafts (as benchmarks/bench_design.py).
 
     J_F log-uniform 1e-3..1e4 kg*m^2, 50..5000 rpm, shafts 1, 0.1..1 and
@@ -176,7 +183,7 @@ def _judge(outcome, ref_mass):
     return not feasible, None
 
 
-def section_design(config):
+def section_design(config: Config) -> list[Row]:
     """Design ranking, 2 materials × 3 shafts: IPOPT, SLSQP, grids, 1-D root search."""
     scenes = random_design_scenes(config.scenes, config.seed)
     methods = design_methods(config)

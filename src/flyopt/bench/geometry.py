@@ -17,13 +17,13 @@ import numpy as np
 
 from flyopt.bench.design import random_design_scenes
 from flyopt.bench.references import exact_annulus_inertia
-from flyopt.bench.timing import Row, measure, set_ratios
+from flyopt.bench.timing import Config, Row, measure, set_ratios
 from flyopt.design import design_flywheel, geometry
 
 __all__ = ["section_geometry"]
 
 
-def section_geometry(config):
+def section_geometry(config: Config) -> list[Row]:
     """Inertia of thin rim and exact annulus against the exact integral, over H/D_m."""
     rows = []
     density, d_mean = 7200.0, 1.0

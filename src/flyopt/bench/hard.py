@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from fractions import Fraction
 from typing import Any, cast
 
@@ -34,6 +35,7 @@ from flyopt.bench.cycle import (
 from flyopt.bench.design import RPM, ipopt_combinations
 from flyopt.bench.peers import SLSQP_FTOL, SLSQP_FTOLS, slsqp_combination
 from flyopt.bench.references import combinations, exact_a_max_tables, largest_rim_inertia, lightest_rim_1d, violation
+from flyopt.bench.timing import Config
 from flyopt.cycle.indicator import energy_indicator, required_inertia
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.design.materials import builtin_materials
@@ -46,7 +48,7 @@ MASS_BAR = 1e-6
 """Relative error allowed on an optimized mass in the hard set."""
 
 
-def hard_cycle_cases(config, rng):
+def hard_cycle_cases(config: Config, rng: np.random.Generator) -> list[CycleCase]:
     """Generated cycles across the extremes, each with an exact reference."""
     sizes = (2, 3, 10, 1000) if config.quick else (2, 3, 10, 100, 1000, 10_000, 100_000)
     cases = []
@@ -113,7 +115,7 @@ def hard_cycle_cases(config, rng):
     return cases
 
 
-def hard_design_scenes(config, rng, cycles):
+def hard_design_scenes(config: Config, rng: np.random.Generator, cycles: list[CycleCase]) -> list[dict[str, Any]]:
     """Scenes over δ 1e-5..0.5, J_F 1e-6..1e6, 1..50,000 rpm, shafts 1/20..50.
 
     Each scene takes a cycle case, scales its torques by a power of two so
@@ -201,7 +203,9 @@ def _boundary_scenes(config, base):
     return out
 
 
-def run_hard(config, progress=None):
+def run_hard(
+    config: Config, progress: Callable[[str], object] | None = None
+) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
     """The hard set: cycle checks against exact references, design checks against the 1-D root search.
 
     Returns
@@ -214,7 +218,7 @@ def run_hard(config, progress=None):
     cycle_rows = []
     for case in cycles:
         start = time.perf_counter()
-        ref = reference_a_max(case)
+        a_max_ref = reference_a_max(case)
         ref_time = time.perf_counter() - start
         try:
             start = time.perf_counter()
@@ -223,7 +227,7 @@ def run_hard(config, progress=None):
             value, status = ind.a_max, "ok"
         except (ArithmeticError, ValueError) as exc:
             value, status, elapsed = math.nan, f"{type(exc).__name__}: {exc}", math.nan
-        err = abs(value - ref) / ref if math.isfinite(value) else math.inf
+        err = abs(value - a_max_ref) / a_max_ref if math.isfinite(value) else math.inf
         cycle_rows.append(
             {
                 "kind": "cycle",
@@ -231,7 +235,7 @@ def run_hard(config, progress=None):
                 "points": case.points,
                 "check": "a_max",
                 "value": value,
-                "reference": ref,
+                "reference": a_max_ref,
                 "reference_how": case.reference_how,
                 "rel_error": err,
                 "bar": CYCLE_BAR,
@@ -312,7 +316,9 @@ def run_hard(config, progress=None):
                 if outcome.verdict == "design":
                     # measured against the reference combination (J from the exact A_max)
                     outcome.violation = (
-                        violation(ref_combo, *outcome.dims) if ref.verdict == "design" else outcome.violation
+                        violation(ref_combo, *cast(tuple, outcome.dims))
+                        if ref.verdict == "design"
+                        else outcome.violation
                     )
                 err = None
                 last = last_error = None
@@ -320,7 +326,7 @@ def run_hard(config, progress=None):
                     last_error = (outcome.mass - ref_mass) / ref_mass
                     last = f"last point: mass error {last_error:.2e}, violation {outcome.violation:.2e}"
                 if outcome.verdict == "design" and math.isfinite(ref_mass):
-                    err = abs(outcome.mass - ref_mass) / ref_mass
+                    err = abs(cast(float, outcome.mass) - ref_mass) / ref_mass  # a design has its mass
                     passed = err <= MASS_BAR
                 elif outcome.verdict == "design":
                     passed = False

@@ -15,7 +15,7 @@ import statistics
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TypeVar
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -63,7 +63,7 @@ class Config:
     hard_scenes: int = 400
 
     @classmethod
-    def make(cls, quick=False, **overrides):
+    def make(cls, quick: bool = False, **overrides: Any) -> Config:
         """The full configuration, or the quick one; ``None`` overrides are ignored."""
         config = (
             cls(
@@ -190,7 +190,7 @@ class Row:
     note: str = ""
 
     @classmethod
-    def timed(cls, section, case, method, setting, timing, **values):
+    def timed(cls, section: str, case: str, method: str, setting: str, timing: Timing, **values: Any) -> Row:
         return cls(
             section,
             case,
@@ -205,7 +205,7 @@ class Row:
         )
 
 
-def set_ratios(rows, is_reference):
+def set_ratios(rows: list[Row], is_reference: Callable[[Row], bool]) -> None:
     """Fill time_ratio = time / time of the reference row of the same case.
 
     ``is_reference(row)`` says which row of a case is its reference (one per case).
@@ -216,7 +216,7 @@ def set_ratios(rows, is_reference):
             r.time_ratio = r.time_median_s / base[r.case]
 
 
-def pin_one_core():
+def pin_one_core() -> tuple[str, set[int] | None]:
     """Pin this process to one CPU; return (description, previous affinity or None)."""
     if hasattr(os, "sched_setaffinity"):
         previous = os.sched_getaffinity(0)
@@ -226,7 +226,7 @@ def pin_one_core():
     return "not pinned (os.sched_setaffinity unavailable)", None
 
 
-def machine_header(pinning):
+def machine_header(pinning: str) -> str:
     """One line naming the machine, the pinning and the versions that the timings depend on."""
     import casadi as ca
     import scipy
