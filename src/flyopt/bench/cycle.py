@@ -18,10 +18,11 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
+from numpy.typing import NDArray
 
 from flyopt.bench.peers import SAMPLED_RULES, integrate_samples, sampled_a_max
 from flyopt.bench.references import exact_a_max_against_mean, exact_a_max_tables
-from flyopt.bench.timing import Row, measure, set_ratios
+from flyopt.bench.timing import Config, Row, measure, set_ratios
 from flyopt.cycle.expression import Expression
 from flyopt.cycle.indicator import energy_indicator
 from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
@@ -64,10 +65,10 @@ class CycleCase:
     reference_how: str = ""
 
     @property
-    def points(self):
+    def points(self) -> int:
         return max((len(c[1]) for c in (self.driving, self.resisting) if c[0] == "table"), default=0)
 
-    def scaled(self, power):
+    def scaled(self, power: int) -> CycleCase:
         """The same cycle with every torque times 2**power (exact in floats)."""
         factor = math.ldexp(1.0, power)
 
@@ -89,7 +90,7 @@ class CycleCase:
         )
 
 
-def flyopt_curve(curve):
+def flyopt_curve(curve: tuple) -> Constant | PiecewiseLinear | ExpressionTorque:
     """flyopt's torque object of a case's curve (``("mean",)``, ``("table", x, y)`` or ``("expr", ...)``)."""
     if curve[0] == "mean":
         return Constant(None)
@@ -98,12 +99,12 @@ def flyopt_curve(curve):
     return ExpressionTorque(Expression(curve[1]), curve[3] if len(curve) > 3 else 1.0)
 
 
-def flyopt_a_max(case):
+def flyopt_a_max(case: CycleCase) -> float:
     """A_max by flyopt's exact energy indicator (the torque objects built anew)."""
     return energy_indicator(flyopt_curve(case.driving), flyopt_curve(case.resisting), case.cycle_angle).a_max
 
 
-def reference_a_max(case):
+def reference_a_max(case: CycleCase) -> float:
     """The exact A_max of a case (cached on it): rationals for tables, else the closed form."""
     if case.reference is not None:
         return case.reference
@@ -120,13 +121,17 @@ def reference_a_max(case):
     return case.reference
 
 
-def table_noisy(n, rng, noise=40.0):
+def table_noisy(
+    n: int, rng: np.random.Generator, noise: float = 40.0
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """500 + 300 sin 2φ plus Gaussian noise, n equally spaced points over one turn."""
     x = np.linspace(0.0, TWO_PI, n)
     return x, 500.0 + 300.0 * np.sin(2.0 * x) + rng.normal(0.0, noise, n)
 
 
-def table_spike(offset=0.0, idle=100.0, stroke_fraction=0.02, peak=50.0):
+def table_spike(
+    offset: float = 0.0, idle: float = 100.0, stroke_fraction: float = 0.02, peak: float = 50.0
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """A press: a working stroke of 2 % of the cycle at 50 × the idle torque, with steps."""
     stroke = stroke_fraction * TWO_PI
     x = np.array([0.0, 1.0, 1.0, 1.0 + stroke, 1.0 + stroke, TWO_PI])
@@ -134,7 +139,7 @@ def table_spike(offset=0.0, idle=100.0, stroke_fraction=0.02, peak=50.0):
     return x, y
 
 
-def table_staircase(steps=200):
+def table_staircase(steps: int = 200) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """A staircase: ``steps`` vertical steps, every crossing at a step."""
     k = np.arange(steps)
     x = np.repeat(np.linspace(0.0, TWO_PI, steps + 1), 2)[1:-1]
@@ -142,13 +147,13 @@ def table_staircase(steps=200):
     return x, y
 
 
-def table_ripple(offset, n, rng):
+def table_ripple(offset: float, n: int, rng: np.random.Generator) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """``offset`` N·m plus a ±1 N·m random ripple at n random angles."""
     x = np.concatenate(([0.0], np.sort(rng.uniform(0.0, TWO_PI, n - 2)), [TWO_PI]))
     return x, offset + rng.uniform(-1.0, 1.0, x.size)
 
 
-def case_near_tangent(gap, level=300.0):
+def case_near_tangent(gap: float, level: float = 300.0) -> CycleCase:
     """A peak that touches (gap 0) or nearly touches a constant driving level.
 
     The work is balanced by a block over [5, 6] rad whose height is the exact
@@ -166,7 +171,7 @@ def case_near_tangent(gap, level=300.0):
     )
 
 
-def main_cycle_cases(config, rng):
+def main_cycle_cases(config: Config, rng: np.random.Generator) -> list[CycleCase]:
     """The cases of the cycle section: all a table against its balancing mean."""
     n = config.table_points
     x, y = table_noisy(n, rng)
@@ -179,7 +184,7 @@ def main_cycle_cases(config, rng):
     ]
 
 
-def section_cycle(config):
+def section_cycle(config: Config) -> list[Row]:
     """A_max from tables: flyopt's exact path against sampled rules, error vs rationals."""
     rng = np.random.default_rng(config.seed)
     rows = []

@@ -17,14 +17,17 @@ the constraint violation. The random scenes also feed the geometry section.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
+from functools import partial
+from typing import Any, cast
 
 import numpy as np
 
 from flyopt.bench.peers import SLSQP_FTOL, SLSQP_FTOLS, grid_combination, slsqp_combination
-from flyopt.bench.references import Outcome, checked_design, combinations, lightest_rim_1d
-from flyopt.bench.timing import Row, measure, set_ratios
+from flyopt.bench.references import Combination, Outcome, checked_design, combinations, lightest_rim_1d
+from flyopt.bench.timing import Config, Row, measure, set_ratios
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
-from flyopt.design.materials import builtin_materials
+from flyopt.design.materials import Material, builtin_materials
 from flyopt.errors import SolverFailed
 
 __all__ = ["RPM", "REFERENCE_RTOL", "ipopt_combinations", "design_methods", "random_design_scenes", "section_design"]
@@ -35,7 +38,14 @@ REFERENCE_RTOL = 1e-12
 """A candidate may join the reference optimum only if it violates nothing by more than this."""
 
 
-def ipopt_combinations(j_required, omega_mean, shafts, materials, spec, method="ipopt"):
+def ipopt_combinations(
+    j_required: float,
+    omega_mean: float,
+    shafts: Sequence[MountShaft],
+    materials: Sequence[Material],
+    spec: DesignSpec,
+    method: str = "ipopt",
+) -> list[Outcome]:
     """flyopt's ranking (one design_flywheel call) as one Outcome per combination."""
     combos = combinations(j_required, omega_mean, shafts, materials, spec)
     try:
@@ -53,12 +63,25 @@ def ipopt_combinations(j_required, omega_mean, shafts, materials, spec, method="
     return out
 
 
-def _per_combination(solver):
-    def solve(j_required, omega_mean, shafts, materials, spec):
-        return [solver(c) for c in combinations(j_required, omega_mean, shafts, materials, spec)]
+class _PerCombination:
+    """A solver of one combination run over a scene's combinations: solve(j, ω, shafts, materials, spec)."""
 
-    solve.per_combination = solver  # timed on combinations built outside the timing
-    return solve
+    def __init__(self, solver: Callable[[Combination], Outcome]) -> None:
+        self.per_combination = solver  # timed on combinations built outside the timing
+
+    def __call__(
+        self,
+        j_required: float,
+        omega_mean: float,
+        shafts: list[MountShaft],
+        materials: list[Material],
+        spec: DesignSpec,
+    ) -> list[Outcome]:
+        return [self.per_combination(c) for c in combinations(j_required, omega_mean, shafts, materials, spec)]
+
+
+def _per_combination(solver: Callable[[Combination], Outcome]) -> _PerCombination:
+    return _PerCombination(solver)
 
 
 def _flyopt_ranking(method):
@@ -70,7 +93,7 @@ def _flyopt_ranking(method):
     return rank
 
 
-def design_methods(config):
+def design_methods(config: Config) -> list[tuple[Any, ...]]:
     """Name, setting and solver of every design method: solver(j, ω, shafts, materials, spec).
 
     flyopt's entries carry a fourth item, the call that is timed: its ranking
@@ -78,18 +101,20 @@ def design_methods(config):
     other methods are timed on their combinations built beforehand (the caps
     and inertias per material and shaft, which flyopt's timing includes).
     """
-    methods = [
+    methods: list[tuple[Any, ...]] = [
         ("flyopt-ipopt", "casadi/ipopt", ipopt_combinations, _flyopt_ranking("ipopt")),
         (
             "flyopt-auto",
             "closed form where exact",
-            lambda *args: ipopt_combinations(*args, method="auto"),
+            lambda j, omega, shafts, materials, spec: ipopt_combinations(
+                j, omega, shafts, materials, spec, method="auto"
+            ),
             _flyopt_ranking("auto"),
         ),
     ]
     for ftol in SLSQP_FTOLS:
         methods.append(
-            ("slsqp", f"ftol={ftol:g}", _per_combination(lambda c, ftol=ftol: slsqp_combination(c, "scaled", ftol)))
+            ("slsqp", f"ftol={ftol:g}", _per_combination(partial(slsqp_combination, variables="scaled", ftol=ftol)))
         )
     methods += [
         ("slsqp-log", f"ftol={SLSQP_FTOL:g}", _per_combination(lambda c: slsqp_combination(c, "log", SLSQP_FTOL))),
@@ -97,12 +122,12 @@ def design_methods(config):
     ]
     for n_d, n_k in config.grids:
         methods.append(
-            ("grid", f"{n_d}x{n_k}", _per_combination(lambda c, n_d=n_d, n_k=n_k: grid_combination(c, n_d, n_k)))
+            ("grid", f"{n_d}x{n_k}", _per_combination(partial(grid_combination, n_diameters=n_d, n_ratios=n_k)))
         )
     return methods
 
 
-def random_design_scenes(count, seed):
+def random_design_scenes(count: int, seed: int) -> list[dict[str, Any]]:
     """Random scenes of 2 built-in materials × 3 shafts (as benchmarks/bench_design.py).
 
     J_F log-uniform 1e-3..1e4 kg*m^2, 50..5000 rpm, shafts 1, 0.1..1 and
@@ -124,9 +149,9 @@ def random_design_scenes(count, seed):
             MountShaft("faster", float(10 ** rng.uniform(0.0, 1.0))),
         ]
         geometry = str(rng.choice(["rim", "thin_rim"]))
-        cap = 2.0 * materials[0].max_rim_speed / omega
-        envelope = float(cap * rng.uniform(0.3, 1.5)) if rng.random() < 1 / 3 else None
-        width = None
+        cap = 2.0 * cast(float, materials[0].max_rim_speed) / omega  # built-in cast iron has one
+        envelope = float(cap * rng.uniform(0.3, 1.5)) if rng.random() < 1 / 3 else math.inf
+        width = math.inf  # no limit (DesignSpec reads None as inf)
         if rng.random() < 0.25:
             h_s = math.sqrt(4 * j * 1.5 / (math.pi * materials[0].density * cap**3))
             width = float(h_s / 1.5 * rng.uniform(0.5, 3.0))
@@ -158,7 +183,7 @@ def _judge(outcome, ref_mass):
     return not feasible, None
 
 
-def section_design(config):
+def section_design(config: Config) -> list[Row]:
     """Design ranking, 2 materials × 3 shafts: IPOPT, SLSQP, grids, 1-D root search."""
     scenes = random_design_scenes(config.scenes, config.seed)
     methods = design_methods(config)

@@ -11,18 +11,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import cast
 
 import numpy as np
 
 from flyopt.bench.design import random_design_scenes
 from flyopt.bench.references import exact_annulus_inertia
-from flyopt.bench.timing import Row, measure, set_ratios
+from flyopt.bench.timing import Config, Row, measure, set_ratios
 from flyopt.design import design_flywheel, geometry
 
 __all__ = ["section_geometry"]
 
 
-def section_geometry(config):
+def section_geometry(config: Config) -> list[Row]:
     """Inertia of thin rim and exact annulus against the exact integral, over H/D_m."""
     rows = []
     density, d_mean = 7200.0, 1.0
@@ -91,14 +92,16 @@ def _geometry_at_designs(config):
         if exact is None or thin is None:
             continue
         rho = next(m.density for m in scene["materials"] if m.name == exact.material)
-        ref = exact_annulus_inertia(exact.d_outer, exact.d_outer - 2 * exact.h, exact.b, rho)
+        # a design (best) has its dimensions and mass
+        d_outer, h, b = cast(float, exact.d_outer), cast(float, exact.h), cast(float, exact.b)
+        ref = exact_annulus_inertia(d_outer, d_outer - 2 * h, b, rho)
 
         def thin_model(exact=exact, rho=rho):
             return geometry.thin_rim_inertia(geometry.rim_mass(exact.d_mean, exact.h, exact.b, rho), exact.d_mean)
 
         times.append(measure(thin_model, max(3, config.repeats // 3), config.min_time).median)
         errors.append(abs(thin_model() - ref) / ref)
-        penalties.append(thin.mass / exact.mass - 1.0)
+        penalties.append(cast(float, thin.mass) / cast(float, exact.mass) - 1.0)
     if not errors:
         return []
     t = float(np.median(times))

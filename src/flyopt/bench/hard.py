@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from fractions import Fraction
+from typing import Any, cast
 
 import numpy as np
 
@@ -33,6 +35,7 @@ from flyopt.bench.cycle import (
 from flyopt.bench.design import RPM, ipopt_combinations
 from flyopt.bench.peers import SLSQP_FTOL, SLSQP_FTOLS, slsqp_combination
 from flyopt.bench.references import combinations, exact_a_max_tables, largest_rim_inertia, lightest_rim_1d, violation
+from flyopt.bench.timing import Config
 from flyopt.cycle.indicator import energy_indicator, required_inertia
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.design.materials import builtin_materials
@@ -45,7 +48,7 @@ MASS_BAR = 1e-6
 """Relative error allowed on an optimized mass in the hard set."""
 
 
-def hard_cycle_cases(config, rng):
+def hard_cycle_cases(config: Config, rng: np.random.Generator) -> list[CycleCase]:
     """Generated cycles across the extremes, each with an exact reference."""
     sizes = (2, 3, 10, 1000) if config.quick else (2, 3, 10, 100, 1000, 10_000, 100_000)
     cases = []
@@ -112,7 +115,7 @@ def hard_cycle_cases(config, rng):
     return cases
 
 
-def hard_design_scenes(config, rng, cycles):
+def hard_design_scenes(config: Config, rng: np.random.Generator, cycles: list[CycleCase]) -> list[dict[str, Any]]:
     """Scenes over δ 1e-5..0.5, J_F 1e-6..1e6, 1..50,000 rpm, shafts 1/20..50.
 
     Each scene takes a cycle case, scales its torques by a power of two so
@@ -143,9 +146,9 @@ def hard_design_scenes(config, rng, cycles):
         shafts = [MountShaft(f"shaft{k}", r) for k, r in enumerate(ratios)]
         low = float(rng.uniform(1.0, 2.5))
         high = low if rng.random() < 0.2 else low + float(rng.uniform(0.0, 1.0))
-        cap = 2.0 * materials[0].max_rim_speed / omega
-        envelope = float(cap * rng.uniform(0.3, 1.5)) if rng.random() < 0.3 else None
-        width = None
+        cap = 2.0 * cast(float, materials[0].max_rim_speed) / omega  # built-in cast iron has one
+        envelope = float(cap * rng.uniform(0.3, 1.5)) if rng.random() < 0.3 else math.inf
+        width = math.inf  # no limit (DesignSpec reads None as inf)
         if rng.random() < 0.25:
             j_est = a_ref * math.ldexp(1.0, power) / (omega**2 * delta)
             h_s = math.sqrt(4 * j_est * low / (math.pi * materials[0].density * cap**3))
@@ -181,7 +184,7 @@ def _boundary_scenes(config, base):
     """
     factors = (1 - 1e-4, 1 + 1e-4, 1 - 1e-7, 1 + 1e-5)
     count = 2 if config.quick else 16
-    out = []
+    out: list[dict[str, Any]] = []
     for scene in base:
         if len(out) >= count:
             break
@@ -200,7 +203,9 @@ def _boundary_scenes(config, base):
     return out
 
 
-def run_hard(config, progress=None):
+def run_hard(
+    config: Config, progress: Callable[[str], object] | None = None
+) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
     """The hard set: cycle checks against exact references, design checks against the 1-D root search.
 
     Returns
@@ -213,16 +218,16 @@ def run_hard(config, progress=None):
     cycle_rows = []
     for case in cycles:
         start = time.perf_counter()
-        ref = reference_a_max(case)
+        a_max_ref = reference_a_max(case)
         ref_time = time.perf_counter() - start
         try:
             start = time.perf_counter()
             ind = energy_indicator(flyopt_curve(case.driving), flyopt_curve(case.resisting), case.cycle_angle)
             elapsed = time.perf_counter() - start
             value, status = ind.a_max, "ok"
-        except (ArithmeticError, ValueError) as err:
-            value, status, elapsed = math.nan, f"{type(err).__name__}: {err}", math.nan
-        err = abs(value - ref) / ref if math.isfinite(value) else math.inf
+        except (ArithmeticError, ValueError) as exc:
+            value, status, elapsed = math.nan, f"{type(exc).__name__}: {exc}", math.nan
+        err = abs(value - a_max_ref) / a_max_ref if math.isfinite(value) else math.inf
         cycle_rows.append(
             {
                 "kind": "cycle",
@@ -230,7 +235,7 @@ def run_hard(config, progress=None):
                 "points": case.points,
                 "check": "a_max",
                 "value": value,
-                "reference": ref,
+                "reference": a_max_ref,
                 "reference_how": case.reference_how,
                 "rel_error": err,
                 "bar": CYCLE_BAR,
@@ -247,7 +252,7 @@ def run_hard(config, progress=None):
     for geometry in ("rim", "thin_rim"):  # build the NLPs outside the timings
         design_flywheel(1.0, 100.0, scenes[0]["shafts"], scenes[0]["materials"], DesignSpec(geometry), method="ipopt")
     design_rows = []
-    solvers = {"flyopt-ipopt": "ipopt", "flyopt-auto": "auto"}  # flyopt's design paths
+    solvers: dict[str, Any] = {"flyopt-ipopt": "ipopt", "flyopt-auto": "auto"}  # flyopt's design paths
     for ftol in SLSQP_FTOLS:
         solvers[f"slsqp(ftol={ftol:g})"] = lambda c, ftol=ftol: slsqp_combination(c, "scaled", ftol)
     solvers[f"slsqp-log(ftol={SLSQP_FTOL:g})"] = lambda c: slsqp_combination(c, "log", SLSQP_FTOL)
@@ -268,9 +273,9 @@ def run_hard(config, progress=None):
             try:
                 j_fly = required_inertia(flyopt_a_max(cycle), omega, delta)
                 status = "ok"
-            except (ArithmeticError, ValueError) as err:
+            except (ArithmeticError, ValueError) as exc:
                 # the cycle analysis refused the scene: record it, and design for the exact J_F
-                j_fly, status = j_ref, f"{type(err).__name__}: {err}"
+                j_fly, status = j_ref, f"{type(exc).__name__}: {exc}"
             check_j = abs(j_fly - j_ref) / j_ref if status == "ok" else math.inf
             cycle_rows.append(
                 {
@@ -307,11 +312,13 @@ def run_hard(config, progress=None):
                 else:
                     outcome = solver(combo)
                 elapsed = time.perf_counter() - start
-                ref_mass = ref.mass if ref.verdict == "design" else math.inf
+                ref_mass = cast(float, ref.mass) if ref.verdict == "design" else math.inf  # a design has its mass
                 if outcome.verdict == "design":
                     # measured against the reference combination (J from the exact A_max)
                     outcome.violation = (
-                        violation(ref_combo, *outcome.dims) if ref.verdict == "design" else outcome.violation
+                        violation(ref_combo, *cast(tuple, outcome.dims))
+                        if ref.verdict == "design"
+                        else outcome.violation
                     )
                 err = None
                 last = last_error = None
@@ -319,7 +326,7 @@ def run_hard(config, progress=None):
                     last_error = (outcome.mass - ref_mass) / ref_mass
                     last = f"last point: mass error {last_error:.2e}, violation {outcome.violation:.2e}"
                 if outcome.verdict == "design" and math.isfinite(ref_mass):
-                    err = abs(outcome.mass - ref_mass) / ref_mass
+                    err = abs(cast(float, outcome.mass) - ref_mass) / ref_mass  # a design has its mass
                     passed = err <= MASS_BAR
                 elif outcome.verdict == "design":
                     passed = False

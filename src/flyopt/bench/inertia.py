@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 from flyopt._toml import tomllib
-from flyopt.bench.timing import Row, measure, once, set_ratios
+from flyopt.bench.timing import Config, Row, measure, once, set_ratios
 from flyopt.io.scene import from_dict
 from flyopt.machine.reduce import reduce
 from flyopt.sizing.choose import ENERGY_MASS, ORDER, achieved_delta, choose, requirement
@@ -78,7 +78,7 @@ speed_ratio = 24.0
 }
 
 
-def section_required_inertia(config):
+def section_required_inertia(config: Config) -> list[Row]:
     """J_F by the constant-inertia, energy–mass and dynamic models on scenes that need each.
 
     Error: relative to the exact model's J_F (for worked example 2, to its closed

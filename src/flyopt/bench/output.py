@@ -13,6 +13,8 @@ import csv
 import math
 import statistics
 from dataclasses import fields
+from pathlib import Path
+from typing import Any
 
 from flyopt.bench.hard import CYCLE_BAR, MASS_BAR
 from flyopt.bench.peers import SLSQP_FTOL
@@ -30,7 +32,7 @@ PLOT_FLOOR = 1e-17
 # ------------------------------------------------------------------------------
 
 
-def write_csv(path, rows):
+def write_csv(path: Path, rows: list[Row]) -> None:
     """One line per Row, floats to 6 significant digits (errors to 3)."""
     names = [f.name for f in fields(Row)]
     with open(path, "w", newline="", encoding="utf-8") as handle:
@@ -42,7 +44,7 @@ def write_csv(path, rows):
             )
 
 
-def plot(path, rows):
+def plot(path: Path, rows: list[Row]) -> None:
     """Speed–error plot: log time vs log error, one panel per section, one marker per method and setting."""
     import matplotlib
 
@@ -145,7 +147,7 @@ def _main_cycle(rows, *wanted):
     return [_find(rows, "cycle", method, setting, case=case) if case else None for method, setting in wanted]
 
 
-def targets(rows):
+def targets(rows: list[Row]) -> list[tuple[str, bool | None, str]]:
     """The issue's targets, each as (text, met or None when not measured, figures)."""
     out = []
     exact, trap = _main_cycle(rows, ("flyopt-exact", None), ("trapezoid", "100000"))
@@ -206,7 +208,7 @@ def targets(rows):
     return out
 
 
-def comparisons(rows):
+def comparisons(rows: list[Row]) -> list[tuple[str, str]]:
     """Comparisons beyond the issue's targets, as (text, figures)."""
     out = []
     exact, given, own = _main_cycle(
@@ -241,7 +243,7 @@ def _fmt(value, spec=".3g"):
     return format(value, spec)
 
 
-def summary(rows, header, command):
+def summary(rows: list[Row], header: str, command: str) -> str:
     """The Markdown summary: machine, targets, one table per section."""
     lines = [
         "# Speed against error",
@@ -335,7 +337,7 @@ def _method_key(method):
     return method.replace("slsqp-log", "slsqplog").replace("(ftol=", "_").rstrip(")")
 
 
-def write_hard_csv(path, cycle_rows, design_rows):
+def write_hard_csv(path: Path, cycle_rows: list[dict[str, Any]], design_rows: list[dict[str, Any]]) -> None:
     """hard.csv, one line per check: a cycle (A_max or J_F) or a design combination.
 
     A design line holds the scene, the combination and the reference, then
@@ -391,7 +393,7 @@ def write_hard_csv(path, cycle_rows, design_rows):
                 "failures": "" if r["passed"] else r["status"][:160],
             }
         )
-    combos = {}
+    combos: dict[tuple, dict[str, Any]] = {}
     for r in design_rows:
         key = (r["scene"], r["material"], r["speed_ratio"])
         line = combos.get(key)
@@ -437,7 +439,7 @@ def write_hard_csv(path, cycle_rows, design_rows):
         writer.writerows(lines)
 
 
-def hard_summary(cycle_rows, design_rows, header, command):
+def hard_summary(cycle_rows: list[dict[str, Any]], design_rows: list[dict[str, Any]], header: str, command: str) -> str:
     """The Markdown summary of the hard set (hard.md): success rates and the worst cases."""
     lines = ["# Hard set", "", f"Command: `{command}`", "", header, ""]
     a_rows = [r for r in cycle_rows if r["kind"] == "cycle"]
@@ -528,12 +530,12 @@ def hard_summary(cycle_rows, design_rows, header, command):
         )
     lines.append("")
     by_key = {(r["scene"], r["material"], r["speed_ratio"], r["method"]): r for r in design_rows}
-    for mine in [m for m in ("flyopt-ipopt", "flyopt-auto") if m in methods]:
+    for ours in [m for m in ("flyopt-ipopt", "flyopt-auto") if m in methods]:
         for other in [m for m in methods if not m.startswith("flyopt")]:
             fails = [r for r in design_rows if r["method"] == other and not r["passed"]]
-            rescued = [r for r in fails if by_key[(r["scene"], r["material"], r["speed_ratio"], mine)]["passed"]]
+            rescued = [r for r in fails if by_key[(r["scene"], r["material"], r["speed_ratio"], ours)]["passed"]]
             text = (
-                f"- {other} fails on {len(fails)} combinations; {mine} succeeds on {len(rescued)} of "
+                f"- {other} fails on {len(fails)} combinations; {ours} succeeds on {len(rescued)} of "
                 f"them (target, flyopt converges on every hard case where SLSQP fails: "
                 f"{'met' if len(rescued) == len(fails) else 'NOT met'})"
             )

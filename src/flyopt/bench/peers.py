@@ -13,11 +13,13 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Sequence
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy import integrate, optimize
 
-from flyopt.bench.references import Outcome, checked_design, violation
+from flyopt.bench.references import Combination, Outcome, checked_design, violation
 
 __all__ = [
     "SAMPLED_RULES",
@@ -38,7 +40,13 @@ __all__ = [
 SAMPLED_RULES = ("rectangle", "trapezoid", "cumtrapz", "simpson")
 
 
-def sampled_a_max(x, y, cycle_angle, samples, rule):
+def sampled_a_max(
+    x: Sequence[float] | NDArray[np.float64],
+    y: Sequence[float] | NDArray[np.float64],
+    cycle_angle: float,
+    samples: int | None,
+    rule: str,
+) -> float:
     """A_max of a table against its mean by sampling and a quadrature rule.
 
     The table is resampled at ``samples`` equally spaced angles (``np.interp``),
@@ -57,7 +65,7 @@ def sampled_a_max(x, y, cycle_angle, samples, rule):
     return integrate_samples(phi, m, cycle_angle, rule)
 
 
-def integrate_samples(phi, m, cycle_angle, rule):
+def integrate_samples(phi: NDArray[np.float64], m: NDArray[np.float64], cycle_angle: float, rule: str) -> float:
     """A_max of torque samples ``m`` at angles ``phi`` against their mean, by one rule."""
     if rule == "rectangle":
         dphi = np.diff(phi)
@@ -100,7 +108,9 @@ SLSQP_FTOL = 1e-9
 """The SLSQP setting the targets compare with (tight enough for 1e-6 in mass, loose enough to converge)."""
 
 
-def slsqp_combination(combo, variables="scaled", ftol=SLSQP_FTOL, maxiter=200):
+def slsqp_combination(
+    combo: Combination, variables: str = "scaled", ftol: float = SLSQP_FTOL, maxiter: int = 200
+) -> Outcome:
     """One combination by ``scipy.optimize.minimize(method="SLSQP")`` on the same model.
 
     Same variables (D_m, H, B), constraints and scales as flyopt's NLP, with
@@ -157,7 +167,11 @@ def slsqp_combination(combo, variables="scaled", ftol=SLSQP_FTOL, maxiter=200):
             )
         else:
             cons.append({"type": "eq", "fun": lambda z: z[1] - z[2], "jac": lambda z: np.array([0.0, 1.0, -1.0])})
-        bounds = [(1e-12, None), (1e-12, None), (1e-12, b_top if math.isfinite(b_top) else None)]
+        bounds: list[tuple[float | None, float | None]] = [
+            (1e-12, None),
+            (1e-12, None),
+            (1e-12, b_top if math.isfinite(b_top) else None),
+        ]
         x0 = np.array([1.0 - min(eps, 0.5), 1.0, min(1.0, b_top)])
 
         def dims(z):
@@ -243,7 +257,7 @@ def slsqp_combination(combo, variables="scaled", ftol=SLSQP_FTOL, maxiter=200):
     return checked_design(combo, d, h, b, message)
 
 
-def grid_combination(combo, n_diameters, n_ratios):
+def grid_combination(combo: Combination, n_diameters: int, n_ratios: int) -> Outcome:
     """Lightest rim on a brute-force grid of mean diameter × H/B (what flywheel scripts do).
 
     D_m takes ``n_diameters`` equally spaced values in (0, cap], H/B

@@ -13,12 +13,17 @@ from __future__ import annotations
 
 import bisect
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 from scipy import optimize
 
+if TYPE_CHECKING:
+    from flyopt.design.materials import Material
+    from flyopt.design.spec import DesignSpec, MountShaft
 __all__ = [
     "VERIFY_RTOL",
     "exact_a_max_against_mean",
@@ -43,7 +48,7 @@ VERIFY_RTOL = 1e-6
 # ------------------------------------------------------------------------------
 
 
-def exact_a_max_against_mean(x, y):
+def exact_a_max_against_mean(x: Iterable[float], y: Iterable[float]) -> Fraction:
     """A_max of a table against the constant that balances its work, exactly.
 
     Every float is a rational, so with :class:`fractions.Fraction` the
@@ -64,7 +69,7 @@ def exact_a_max_against_mean(x, y):
     """
     xs = [Fraction(float(v)) for v in x]
     ys = [Fraction(float(v)) for v in y]
-    work = sum((ys[k] + ys[k + 1]) * (xs[k + 1] - xs[k]) for k in range(len(xs) - 1)) / 2
+    work = sum(((ys[k] + ys[k + 1]) * (xs[k + 1] - xs[k]) for k in range(len(xs) - 1)), Fraction(0)) / 2
     mean = work / (xs[-1] - xs[0])
     e, high, low = Fraction(0), Fraction(0), Fraction(0)
     for k in range(len(xs) - 1):
@@ -78,7 +83,9 @@ def exact_a_max_against_mean(x, y):
     return high - low
 
 
-def exact_a_max_tables(xd, yd, xr, yr):
+def exact_a_max_tables(
+    xd: Iterable[float], yd: Iterable[float], xr: Iterable[float], yr: Iterable[float]
+) -> tuple[Fraction, Fraction]:
     """A_max and net work of two tables (driving, resisting), exactly.
 
     Both polylines are evaluated at the union of their breakpoints with
@@ -89,7 +96,7 @@ def exact_a_max_tables(xd, yd, xr, yr):
     a_max, net : Fraction
         max ΔE − min ΔE and ΔE at the cycle end [J].
     """
-    xd, yd, xr, yr = ([Fraction(float(v)) for v in a] for a in (xd, yd, xr, yr))
+    xs_d, ys_d, xs_r, ys_r = ([Fraction(float(v)) for v in a] for a in (xd, yd, xr, yr))
 
     def at(x, y, p, side):
         first, last = bisect.bisect_left(x, p), bisect.bisect_right(x, p) - 1
@@ -98,11 +105,11 @@ def exact_a_max_tables(xd, yd, xr, yr):
         k = last
         return y[k] + (y[k + 1] - y[k]) * (p - x[k]) / (x[k + 1] - x[k])
 
-    knots = sorted(set(xd) | set(xr))
+    knots = sorted(set(xs_d) | set(xs_r))
     e, high, low = Fraction(0), Fraction(0), Fraction(0)
     for p, q in zip(knots[:-1], knots[1:]):
-        a = at(xd, yd, p, "right") - at(xr, yr, p, "right")
-        b = at(xd, yd, q, "left") - at(xr, yr, q, "left")
+        a = at(xs_d, ys_d, p, "right") - at(xs_r, ys_r, p, "right")
+        b = at(xs_d, ys_d, q, "left") - at(xs_r, ys_r, q, "left")
         h = q - p
         if a * b < 0:
             t = a / (a - b)
@@ -118,7 +125,7 @@ def exact_a_max_tables(xd, yd, xr, yr):
 # ------------------------------------------------------------------------------
 
 
-def exact_annulus_inertia(d_outer, d_inner, b, density):
+def exact_annulus_inertia(d_outer: float, d_inner: float, b: float, density: float) -> float:
     """∫ r² dm over an annulus, π ρ B (R₁⁴ − R₂⁴)/2, in rationals (π and ρ as floats at the end)."""
     r1, r2, bw = Fraction(d_outer) / 2, Fraction(d_inner) / 2, Fraction(b)
     return math.pi * density * float(bw * (r1**4 - r2**4) / 2)
@@ -142,21 +149,28 @@ class Combination:
     density: float
     j: float
     cap: float
-    hb: tuple
+    hb: tuple[float, ...]  # (lowest, highest) H/B
     b_max: float
     material: str = ""
     shaft: str = ""
     speed_ratio: float = 1.0
 
 
-def combinations(j_required, omega_mean, shafts, materials, spec):
+def combinations(
+    j_required: float,
+    omega_mean: float,
+    shafts: Sequence[MountShaft],
+    materials: Sequence[Material],
+    spec: DesignSpec,
+) -> list[Combination]:
     """The Combination of every material × shaft of a scene."""
     envelope = math.inf if spec.max_outer_diameter is None else spec.max_outer_diameter
     b_max = math.inf if spec.max_width is None else spec.max_width
     out = []
     for m in materials:
         for s in shafts:
-            cap = min(2.0 * m.max_rim_speed / (omega_mean * s.speed_ratio), envelope)
+            v_max = cast(float, m.max_rim_speed)  # the bench's materials (built-in irons) all give one
+            cap = min(2.0 * v_max / (omega_mean * s.speed_ratio), envelope)
             out.append(
                 Combination(
                     spec.geometry,
@@ -173,13 +187,13 @@ def combinations(j_required, omega_mean, shafts, materials, spec):
     return out
 
 
-def rim_inertia(geometry, density, d_mean, h, b):
+def rim_inertia(geometry: str, density: float, d_mean: float, h: float, b: float) -> float:
     """J of a rim [kg*m^2]: π ρ D_m H B (D_m² + H²)/4 (annulus) or without H² (thin rim)."""
     k = d_mean * d_mean + (h * h if geometry == "rim" else 0.0)
     return math.pi * density * d_mean * h * b * k / 4.0
 
 
-def violation(combo, d_mean, h, b):
+def violation(combo: Combination, d_mean: float, h: float, b: float) -> float:
     """Largest relative violation of the combination's constraints by a rim [-] (0 if none)."""
     j = rim_inertia(combo.geometry, combo.density, d_mean, h, b)
     hb = h / b
@@ -206,7 +220,7 @@ class Outcome:
     reason: str = ""
 
 
-def checked_design(combo, d_mean, h, b, reason=""):
+def checked_design(combo: Combination, d_mean: float, h: float, b: float, reason: str = "") -> Outcome:
     """An Outcome for a solved rim, checked against the constraints: a design, or failed
     when a dimension is not finite or a constraint is violated by more than VERIFY_RTOL."""
     v = violation(combo, d_mean, h, b)
@@ -216,7 +230,7 @@ def checked_design(combo, d_mean, h, b, reason=""):
     return Outcome("design", mass, (d_mean, h, b), v, reason)
 
 
-def lightest_rim_1d(combo, points=3000):
+def lightest_rim_1d(combo: Combination, points: int = 3000) -> Outcome:
     """Lightest rim of a combination by a 1-D root search (the design reference).
 
     With D_m free the lightest rim has its outer diameter at the cap and the
@@ -271,7 +285,7 @@ def lightest_rim_1d(combo, points=3000):
     return Outcome("design", mass, (d, h, b), violation(combo, d, h, b), "1-D root search")
 
 
-def largest_rim_inertia(combo):
+def largest_rim_inertia(combo: Combination) -> float:
     """Largest inertia a combination's rim can give [kg*m^2]: a scan refined by ``minimize_scalar``.
 
     The rim has its outer diameter at the cap and B = min(H/hb_min, B_max), as

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 
 from flyopt.bench.cycle import section_cycle
 from flyopt.bench.design import section_design
@@ -22,7 +22,9 @@ SECTIONS: dict[str, Callable[[Config], list[Row]]] = {
 """Sections of the speed-against-error run, in order: name -> function(config) -> list of Row."""
 
 
-def run(config, sections=None, progress=None):
+def run(
+    config: Config, sections: Iterable[str] | None = None, progress: Callable[[str], object] | None = None
+) -> list[Row]:
     """Run the named sections (default all); return their rows in order."""
     rows = []
     for name in sections or SECTIONS:

@@ -15,10 +15,12 @@ import statistics
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any, TypeVar
 
 import numpy as np
 
 __all__ = ["Config", "Timing", "Row", "measure", "once", "set_ratios", "pin_one_core", "machine_header"]
+T = TypeVar("T")
 
 
 @dataclass
@@ -61,7 +63,7 @@ class Config:
     hard_scenes: int = 400
 
     @classmethod
-    def make(cls, quick=False, **overrides):
+    def make(cls, quick: bool = False, **overrides: Any) -> Config:
         """The full configuration, or the quick one; ``None`` overrides are ignored."""
         config = (
             cls(
@@ -121,7 +123,7 @@ def measure(fn: Callable[[], object], repeats: int, min_time: float = 0.0) -> Ti
     return Timing(statistics.median(samples), float(q25), float(q75), repeats, number)
 
 
-def once(fn: Callable[[], object]) -> tuple[object, Timing]:
+def once(fn: Callable[[], T]) -> tuple[T, Timing]:
     """One call of ``fn()``, timed: its value and a Timing of that single call.
 
     The figure of a smoke run (``--quick``) where one call takes seconds: no
@@ -188,7 +190,7 @@ class Row:
     note: str = ""
 
     @classmethod
-    def timed(cls, section, case, method, setting, timing, **values):
+    def timed(cls, section: str, case: str, method: str, setting: str, timing: Timing, **values: Any) -> Row:
         return cls(
             section,
             case,
@@ -203,7 +205,7 @@ class Row:
         )
 
 
-def set_ratios(rows, is_reference):
+def set_ratios(rows: list[Row], is_reference: Callable[[Row], bool]) -> None:
     """Fill time_ratio = time / time of the reference row of the same case.
 
     ``is_reference(row)`` says which row of a case is its reference (one per case).
@@ -214,7 +216,7 @@ def set_ratios(rows, is_reference):
             r.time_ratio = r.time_median_s / base[r.case]
 
 
-def pin_one_core():
+def pin_one_core() -> tuple[str, set[int] | None]:
     """Pin this process to one CPU; return (description, previous affinity or None)."""
     if hasattr(os, "sched_setaffinity"):
         previous = os.sched_getaffinity(0)
@@ -224,13 +226,16 @@ def pin_one_core():
     return "not pinned (os.sched_setaffinity unavailable)", None
 
 
-def machine_header(pinning):
+def machine_header(pinning: str) -> str:
     """One line naming the machine, the pinning and the versions that the timings depend on."""
     import casadi as ca
     import scipy
 
+    # casadi sets __version__ at run time, but the types mypy reads for it do not declare it
+    casadi_version = ca.__version__  # type: ignore[attr-defined]
+
     return (
         f"Machine: {platform.platform()}, {platform.processor() or platform.machine()}, "
         f"{os.cpu_count()} CPUs, {pinning}; Python {platform.python_version()}, numpy "
-        f"{np.__version__}, scipy {scipy.__version__}, CasADi {ca.__version__} (IPOPT bundled)."
+        f"{np.__version__}, scipy {scipy.__version__}, CasADi {casadi_version} (IPOPT bundled)."
     )
