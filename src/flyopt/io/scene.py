@@ -245,7 +245,9 @@ def _parse_toml(text):
     is left to ``tomllib`` whole, so what is read, and every error, is
     ``tomllib``'s.
     """
-    tables, pieces, end = {}, [], 0
+    tables: dict[str, Any] = {}
+    pieces: list[str] = []
+    end = 0
     nonce = None
     key = _TABLE_KEY.search(text)
     while key is not None:
@@ -253,14 +255,14 @@ def _parse_toml(text):
         rows = None
         if match is not None and match.end() - match.start() >= FAST_TABLE_CHARACTERS:
             rows = _fast_rows(match.group())
-        if rows is not None:
+        if match is not None and rows is not None:
             if nonce is None:
                 nonce = _nonce(text)
             marker = f"flyopt-table-{nonce}-{len(tables)}"
             tables[marker] = rows
             pieces += [text[end : match.start()], f'"{marker}"']
             end = match.end()
-        key = _TABLE_KEY.search(text, match.end() if rows is not None else key.end())
+        key = _TABLE_KEY.search(text, match.end() if match is not None and rows is not None else key.end())
     if not tables:
         return tomllib.loads(text)
     try:
@@ -867,6 +869,7 @@ def _motor(raw, where, shafts, efficiency, files=Path()):
         speed_ratio = match[0].speed_ratio
     if kind == "table":
         return MotorTorque(_motor_table(table, where, files), speed_ratio, efficiency, None, where=where)
+    motor: InductionMotor | DCMotor
     try:
         if kind == "induction":
             model = table.get("model", "linear")
@@ -1507,7 +1510,8 @@ def _design(raw, shafts, materials):
     for key in ("geometry", "objective", "criterion"):
         if table.has(key):
             value = table.get(key)
-            allowed = tuple({"geometry": GEOMETRIES, "objective": OBJECTIVES, "criterion": CRITERIA}[key])
+            vocabulary: Any = {"geometry": GEOMETRIES, "objective": OBJECTIVES, "criterion": CRITERIA}[key]
+            allowed = tuple(vocabulary)
             if value not in allowed:
                 raise SceneError(f"design.{key}", unknown(value, allowed))
             options[key] = value

@@ -372,6 +372,8 @@ def _parse_range(name, spec, text, label, sampled, cap=None):
         )
     if len(parts) == 3:
         m = _COUNT.match(parts[2])
+        if m is None:  # every part of the pattern is optional: it matches any text
+            raise SceneError(label, f"{shorten(text)}: the third part of a range is a count")
         log, count, trailing = bool(m.group(1)), m.group(2), m.group(3)
         if count is None and not log:
             raise SceneError(
@@ -474,7 +476,7 @@ def _text_items(texts, where):
 
 def _check_once(scene, items, where):
     """Refuse a field given twice, under its name or an alias (the first would be lost)."""
-    seen = {}
+    seen: dict[str, str] = {}
     for path, _ in items:
         name = _resolve(scene, path, where)[0]
         if name in seen:
