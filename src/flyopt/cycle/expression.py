@@ -13,6 +13,7 @@ arithmetic happens.
 
 import ast
 import math
+from typing import Any, cast
 
 import numpy as np
 
@@ -70,7 +71,7 @@ def _bound(node, values):
     """(value, error bound) of a checked expression tree under numpy (see Expression.error_bound)."""
     # numbers, constants and variables are exact: the expression means the floats it holds
     if isinstance(node, ast.Constant):
-        return float(node.value), 0.0
+        return float(cast(float, node.value)), 0.0  # a number: checked by _compile
     if isinstance(node, ast.Name):
         if node.id in values:
             return np.asarray(values[node.id], dtype=float), 0.0
@@ -273,9 +274,9 @@ class Expression:
             left, right = self._compile(node.left), self._compile(node.right)
             return lambda values, fns: op(left(values, fns), right(values, fns))
         if isinstance(node, ast.UnaryOp) and type(node.op) in _UNARY:
-            op = _UNARY[type(node.op)]
+            unary: Any = _UNARY[type(node.op)]
             operand = self._compile(node.operand)
-            return lambda values, fns: op(operand(values, fns))
+            return lambda values, fns: unary(operand(values, fns))
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name):
                 raise ExpressionError(f"{shorten(self.text)}: only plain function calls are allowed")
@@ -315,7 +316,7 @@ class Expression:
         floats would raise.
         """
         if isinstance(node, ast.Constant):
-            return np.float64(float(node.value))  # checked finite by _compile
+            return np.float64(float(cast(float, node.value)))  # checked finite by _compile
         if isinstance(node, ast.Name):
             return None if node.id in self.variables else np.float64(CONSTANTS[node.id])
         if isinstance(node, ast.UnaryOp):

@@ -9,6 +9,7 @@ Nothing here knows a torque or a flywheel: functions of an angle in, numbers out
 """
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -39,7 +40,7 @@ def accurate_cumsum(terms):
     n = len(terms)
     if n <= 4 * CUMSUM_BLOCK:
         return np.cumsum(terms.astype(np.longdouble)).astype(float)
-    blocks = np.zeros(-(-n // CUMSUM_BLOCK) * CUMSUM_BLOCK)
+    blocks: np.ndarray = np.zeros(-(-n // CUMSUM_BLOCK) * CUMSUM_BLOCK)
     blocks[:n] = terms
     blocks = blocks.reshape(-1, CUMSUM_BLOCK)
     inner = np.cumsum(blocks, axis=1)
@@ -511,7 +512,8 @@ def quad(f, a, b, scale, noise=0.0):
     floor = 0.1 * QUAD_EPSREL * scale
     whole, _, _ = _gauss_kronrod(f, np.array([a]), np.array([b]))
     lo, hi = _halves(np.array([a]), np.array([b]))
-    kept, kept_error, kept_roundoff = [], 0.0, 0.0
+    kept: list[Any] = []
+    kept_error, kept_roundoff = 0.0, 0.0
     while True:
         value, error, roundoff = _gauss_kronrod(f, lo, hi, noise)
         pair = value[0::2] + value[1::2]

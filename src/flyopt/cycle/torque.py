@@ -16,6 +16,7 @@ use) a CasADi expression.
 
 import functools
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -134,19 +135,25 @@ class Constant:
     def unknown(self):
         return self.value is None
 
+    def known(self) -> float:
+        """The value [N*m]; a ValueError while it is still unknown (solved by the work balance)."""
+        if self.value is None:
+            raise ValueError("the unknown constant torque has not been solved from the work balance yet")
+        return float(self.value)
+
     def breakpoints(self):
         return np.empty(0)
 
     def limits(self, phi):
-        v = np.full(np.shape(phi), float(self.value))
+        v = np.full(np.shape(phi), self.known())
         return v, v  # the same array twice: no steps
 
     def work(self, cycle_angle):
         """∫_0^Φ M dφ = M Φ [J]."""
-        return float(self.value) * cycle_angle
+        return self.known() * cycle_angle
 
     def casadi(self, phi):
-        return float(self.value)
+        return self.known()
 
 
 @dataclass(frozen=True)
@@ -261,7 +268,7 @@ class MotorTorque:
         Scene field, for messages.
     """
 
-    motor: object
+    motor: Any  # InductionMotor, DCMotor or TableMotor (flyopt.machine.motor: the floor above)
     speed_ratio: float = 1.0
     efficiency: float = 1.0
     model: str | None = None

@@ -20,6 +20,7 @@ a knot is seen from the correct side."""
 
 
 class Inertia:
+    _is_constant: bool | None  # None: not known until CasADi is asked
     """J(φ) from a number, an EquivalentInertia or a CasADi-capable callable.
 
     ``inertia(phi)`` and ``inertia.derivative(phi)`` evaluate on numpy
@@ -138,12 +139,12 @@ def call(function, *args):
             raise ValueError(f"{function.name()}: input {i} has {flat.size} numbers, {function.nnz_in(i)} expected")
         flat = np.ascontiguousarray(flat)
         inputs.append(flat)  # the buffer keeps no reference: these must live
-        buffer.set_arg(i, memoryview(flat))
+        buffer.set_arg(i, flat.data)  # the array's buffer, as a memoryview
     outputs = []
     for i in range(function.n_out()):
         rows, cols = function.size_out(i)
         out = np.empty(rows * cols)
-        buffer.set_res(i, memoryview(out))
+        buffer.set_res(i, out.data)
         outputs.append(out.reshape((rows, cols), order="F") if cols > 1 else out)
     run()
     return tuple(outputs)

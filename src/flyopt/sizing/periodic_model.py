@@ -12,6 +12,7 @@ one-solve requirement (:mod:`flyopt.sizing.shooting`) run on it.
 
 import weakref
 from functools import cached_property
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -271,11 +272,14 @@ class PeriodicModel:
     def _table_right(self, phi, shape):
         """The table's values right of ``phi``, broadcast to ``shape``; kept for the model's own grids,
         at which every solve evaluates the torque again and again."""
+        table = self.table
+        if table is None:
+            raise RuntimeError("the model has no table of the angle to evaluate")
         grid = "grid" if phi is self._grid else "inner" if phi is self.inner_angles else None
         if grid is None or phi.shape != shape:
-            return self.table.limits(np.broadcast_to(np.asarray(phi, dtype=float), shape))[1]
+            return table.limits(np.broadcast_to(np.asarray(phi, dtype=float), shape))[1]
         if grid not in self._table_values:
-            values = self.table.limits(phi)[1]
+            values = table.limits(phi)[1]
             values.setflags(write=False)
             self._table_values[grid] = values
         return self._table_values[grid]
@@ -366,7 +370,7 @@ class PeriodicModel:
         return phi, q, (m * j - energy * dj) / j**2, energy
 
 
-_MODELS = weakref.WeakKeyDictionary()
+_MODELS: weakref.WeakKeyDictionary[Any, Any] = weakref.WeakKeyDictionary()
 """Periodic models by net torque, then by (inertia, cycle, knots). A machine's
 net torque is one object (flyopt.machine.reduce.Machine.net_torque), so the
 requirement, the comparison of models and the verification of one machine

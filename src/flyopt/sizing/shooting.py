@@ -49,6 +49,7 @@ stays the independent verifier (``--verify``).
 
 import math
 from collections import Counter
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -57,7 +58,7 @@ from flyopt.cycle.numerics import hermite_extremes
 from flyopt.errors import SolverFailed
 from flyopt.sizing._numerics import EPS, call, evaluate
 
-BUILDS = Counter()
+BUILDS: Counter[str] = Counter()
 """CasADi structures built, by kind; :data:`flyopt.sizing.periodic.BUILDS` is this counter."""
 
 STEP_RTOL = 1e-11
@@ -96,7 +97,7 @@ class NotSettled(SolverFailed):
     """The one-solve did not settle; the CVODES search takes over (the reason in the message)."""
 
 
-_STRUCTURES = {}
+_STRUCTURES: dict[Any, Any] = {}
 """Compiled fixed-step functions by structure (see :func:`_functions`): shared by every machine
 of the same torque law and inertia, so a sweep over δ, the envelope or the material, or a second
 reduction of the same scene, builds nothing again."""
