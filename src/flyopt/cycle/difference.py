@@ -12,6 +12,7 @@ balance, the energy indicator diagram and ΔE(φ) of one machine share them.
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -169,6 +170,8 @@ class Segments:
         continuous broken line, so every crossing lies inside a piece (no sign
         interleaving of piece ends is needed)."""
         v, knots = self.at_knots, self.knots
+        if v is None:  # no values at the knots: the general chain applies
+            return None
         positive = v > 0
         j = np.flatnonzero(positive[1:] != positive[:-1])  # pieces with a zero inside
         a, b = v[j], v[j + 1]
@@ -244,7 +247,7 @@ class Segments:
             & (s0 * s_prev > 0)
             & (s0 * s1 > 0)
         )
-        roots_of = [[] for _ in range(n)]
+        roots_of: list[list[float]] = [[] for _ in range(n)]
         for i in np.flatnonzero(zero):
             roots_of[k[i]].append(x[step_at[i]])
         c = np.flatnonzero(cross)
@@ -270,7 +273,9 @@ class Segments:
                 f, x[step_at[i] - 1], x[step_at[i]], x[step_at[i] + 1], np.sign(y0[i]), a_all[j], b_all[j], scale
             )
         # the parts between zeros: their signs (one call) and integrals (whole pieces reuse integrals())
-        lo, hi, owner = [], [], []
+        lo: Any = []
+        hi: Any = []
+        owner: Any = []
         for j in range(n):
             points = [a_all[j], *sorted(r for r in set(roots_of[j]) if a_all[j] < r < b_all[j]), b_all[j]]
             lo += points[:-1]
@@ -328,7 +333,7 @@ def _new_segments(driving, resisting, cycle_angle):
         end = _difference(d_left, r_left)[1:]
         peak = max(np.max(np.abs(start), initial=0.0), np.max(np.abs(end), initial=0.0))
     linear = driving.is_linear and resisting.is_linear
-    noise = 0.0
+    noise: Any = 0.0
     if not linear:
         phi = np.linspace(0.0, cycle_angle, SAMPLES_PER_CYCLE + 1)
         d_values, r_values = sample(driving, phi)[0], sample(resisting, phi)[0]

@@ -17,6 +17,7 @@ Results are SI: [rad], [rad/s], [kg*m^2], [J].
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 
@@ -86,7 +87,7 @@ def _extremes(x, problems, slope, value, span):
     """
     h = np.diff(x)
     best, ks, ps, lows, highs = [], [], [], [], []
-    for p, (f, d_right, d_left, find_max) in enumerate(problems):
+    for q, (f, d_right, d_left, find_max) in enumerate(problems):
         s = 1.0 if find_max else -1.0
         fs = s * f
         i = int(np.argmax(fs))
@@ -94,9 +95,9 @@ def _extremes(x, problems, slope, value, span):
         dr, dl = s * d_right[:-1], s * d_left[1:]
         cand = np.flatnonzero((dr > 0) & (dl < 0) & (h > 0))
         bulge = h[cand] * np.maximum(np.abs(dr[cand]), np.abs(dl[cand]))
-        cand = cand[np.maximum(fs[cand], fs[cand + 1]) + 2 * bulge >= best[p][1]]
+        cand = cand[np.maximum(fs[cand], fs[cand + 1]) + 2 * bulge >= best[q][1]]
         ks.append(cand)
-        ps.append(np.full(len(cand), p))
+        ps.append(np.full(len(cand), q))
         lows.append(d_right[cand])
         highs.append(d_left[cand + 1])
     k, p = np.concatenate(ks), np.concatenate(ps)
@@ -513,7 +514,7 @@ def _achieved(grid, j_flywheel, omega_mean):
         f = e / j
         return _extremes(grid.x, [(f, d_right, d_left, True), (f, d_right, d_left, False)], slope, value, grid.cycle)
 
-    evaluated = {}
+    evaluated: dict[float, Any] = {}
 
     def mismatch(e0):
         """(ω_max + ω_min)/(2 ω_m) − 1 at E_0, its derivative in E_0 [1/J], and the extremes."""

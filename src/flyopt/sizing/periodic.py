@@ -731,6 +731,13 @@ class DynamicRequirement:
     limit: str
 
 
+def _found(solution):
+    """A periodic solution the search has found (its bracket's high end is set before it is read)."""
+    if solution is None:
+        raise RuntimeError("the search ended on a bracket whose periodic solution was never found")
+    return solution
+
+
 def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, knots=(), rtol=1e-10):
     """Smallest J_F whose periodic solution keeps (ω_max − ω_min)/ω_mean <= δ.
 
@@ -839,7 +846,7 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
             # δ stays below the allowed value down to where the steady state ceases to exist
             return DynamicRequirement(
                 j_required=math.exp(hi) - j_low,
-                solution=hi_solution,
+                solution=_found(hi_solution),
                 iterations=it,
                 held=_held(model),
                 j_initial=j_initial,
@@ -849,7 +856,7 @@ def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, k
             if hi <= u_floor:  # δ is below the allowed value even at a vanishing inertia
                 return DynamicRequirement(
                     j_required=0.0 - j_low,
-                    solution=hi_solution,
+                    solution=_found(hi_solution),
                     iterations=it,
                     held=_held(model),
                     j_initial=j_initial,
