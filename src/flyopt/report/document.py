@@ -32,6 +32,7 @@ from __future__ import annotations
 import inspect
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 from flyopt.names import Geometry, Model
 from flyopt.report import display
@@ -131,7 +132,7 @@ class Figure:
 
     key: str
     caption: str
-    figure: object = None
+    figure: Any = None  # a matplotlib Figure
     note: str = ""
     failed: bool = False
 
@@ -842,7 +843,7 @@ class _Builder:
         blocks.append(Paragraph("".join(text)))
         inertia = [s for s in scene.shafts if s.inertia]
         if inertia:
-            rows = [
+            rows: list[Any] = [
                 [
                     s.name,
                     self.n(s.inertia, "inertia"),
@@ -1637,7 +1638,7 @@ class _Builder:
                 "stress",
             )
         )
-        facts = []
+        facts: list[Any] = []
         where = s.get("where") or {}
         if where:
             facts.append(("governing", (f"{where['part']} at r = ", self.q(where["radius"], "length"))))
@@ -1870,7 +1871,7 @@ class _Builder:
             m = best.motor
             from flyopt.report.drive import _limit_words
 
-            rows = [
+            rows: list[Any] = [
                 (
                     "motor",
                     (
@@ -2054,7 +2055,7 @@ class _Builder:
         if a.startup is not None:
             st = a.startup
             if st.time is not None:
-                text = (
+                text: str | tuple[Any, ...] = (
                     "Start-up from rest: ",
                     self.q(st.time, "time"),
                     f" ({number(st.cycles, 4)} cycles) to ",

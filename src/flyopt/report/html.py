@@ -15,6 +15,7 @@ from __future__ import annotations
 import html
 import io
 import re
+from typing import Any
 
 from flyopt.report.document import Code, Equation, Facts, Figure, Paragraph, Quantity, Table
 
@@ -208,7 +209,7 @@ def svg_of(figure, prefix):
     text = buffer.getvalue()
     text = text[text.index("<svg") :]
     text = re.sub(r"<metadata>.*?</metadata>\s*", "", text, flags=re.S)
-    seen = {}
+    seen: dict[str, Any] = {}
 
     def unique(match):
         # an artist's gid may name several elements (a plot's "area" labels): the second and later get a

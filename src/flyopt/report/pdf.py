@@ -313,7 +313,7 @@ def _fit(natural, least, width):
     if sum(natural) <= width:
         return natural
     widths = list(natural)
-    fixed = set()
+    fixed: set[int] = set()
     while True:
         free = [k for k in range(len(widths)) if k not in fixed]
         room = width - sum(widths[k] for k in fixed)

@@ -26,6 +26,7 @@ import os
 import tempfile
 import textwrap
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -453,7 +454,9 @@ def _place_area_labels(ax, x, lower, upper, spans, obstacles_x=(), obstacles_y=(
     axes_box = ax.get_window_extent(renderer)
     lines_px = [ax.transData.transform((v, 0.0))[0] for v in obstacles_x]
     levels_px = [ax.transData.transform((0.0, v))[1] for v in obstacles_y]
-    placed, texts, pad = [], [], 2.0
+    placed: list[Any] = []
+    texts: list[Any] = []
+    pad = 2.0
     for left, right, text, colour in spans:
         label = ax.text(0, 0, text, ha="center", va="center", fontsize=_FONT, color=colour, gid="area")
         box = label.get_window_extent(renderer)
@@ -517,7 +520,8 @@ def _omega_marks(analysis, units):
     (section 6), with a speed-dependent torque where the periodic solution
     says (section 7): both pairs are marked, and the legend says why.
     """
-    marks, note = [], None
+    marks: list[Any] = []
+    note = None
     if analysis.a_max <= 0 and not (analysis.machine is not None and analysis.machine.variable_inertia):
         return marks, "steady running: M_d = M_r at every angle, A_max = 0, the speed does not fluctuate"
     model = {"energy": "energy method", "energy_mass": "energy–mass model", "dynamic": "periodic solution"}[
@@ -851,13 +855,13 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
     if hi > lo:  # A_max as a dimension right of the plot, clear of the curve
         from matplotlib.transforms import blended_transform_factory
 
-        where = blended_transform_factory(ax.transAxes, ax.transData)
+        dimension_at = blended_transform_factory(ax.transAxes, ax.transData)
         ax.annotate(
             "",
             (1.025, hi),
             (1.025, lo),
-            xycoords=where,
-            textcoords=where,
+            xycoords=dimension_at,
+            textcoords=dimension_at,
             annotation_clip=False,
             arrowprops={
                 "arrowstyle": "<|-|>",
@@ -870,12 +874,12 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
             gid="a_max",
         )
         for level in (hi, lo):
-            ax.plot([1.0, 1.045], [level, level], transform=where, clip_on=False, color="gray", lw=0.6)
+            ax.plot([1.0, 1.045], [level, level], transform=dimension_at, clip_on=False, color="gray", lw=0.6)
         ax.text(
             1.04,
             0.5 * (hi + lo),
             f"A_max = {_q(ind.a_max, 'energy', units)}",
-            transform=where,
+            transform=dimension_at,
             rotation=90,
             ha="left",
             va="center",
@@ -936,7 +940,8 @@ def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=No
                 f"J_F(δ) of the {analysis.model} model comes from analysing the scene again at each "
                 f"δ: pass curve (flyopt.delta_curve.inertia_curve)"
             )
-        delta = np.geomspace(*delta_range(analysis)[[0, -1]], 200)
+        low, high = delta_range(analysis)[[0, -1]]
+        delta = np.geomspace(float(low), float(high), 200)
         delta = np.union1d(delta, [analysis.delta])
         j = np.array([required_inertia(analysis.a_max, analysis.omega_mean, d, analysis.j_constant) for d in delta])
     else:
@@ -1050,7 +1055,7 @@ _DIM_STEP, _DIM_FIRST = 0.30, 0.34
 _EXT_GAP, _EXT_OVER = 0.03, 0.06
 #: Height the wheel's outer diameter is drawn at when the function makes its own figure [in].
 _SECTION_HEIGHT = 6.4
-_SECTION_HATCH = dict(facecolor="#e8ebf0", edgecolor="black", linewidth=0, hatch="////")
+_SECTION_HATCH: dict[str, Any] = dict(facecolor="#e8ebf0", edgecolor="black", linewidth=0, hatch="////")
 
 
 def _length_decimals(units):
@@ -1940,7 +1945,7 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
     tangents = ((em.omega_max, em.phi_omega_max, SURPLUS, "max"), (em.omega_min, em.phi_omega_min, DEFICIT, "min"))
     points = np.column_stack([sj(j), se(de)])
     segments = np.stack([points[:-1], points[1:]], axis=1)
-    coloured = LineCollection(segments, cmap="twilight", lw=2.2, gid="curve")  # cyclic: φ = Φ meets φ = 0
+    coloured = LineCollection(list(segments), cmap="twilight", lw=2.2, gid="curve")  # cyclic: φ = Φ meets φ = 0
     coloured.set_array(_show(0.5 * (phi[:-1] + phi[1:]), "angle", units))
     ax.add_collection(coloured)
     coloured.set_clim(0.0, float(_show(scene.cycle_angle, "angle", units)))
@@ -2147,7 +2152,7 @@ def plot_sweep(frame, x, y="mass", by=None, ax=None, units=display.DEFAULT):
     ax, own = _axes(ax)
     status = frame["status"] if "status" in frame.columns else None
     bottom = blended_transform_factory(ax.transData, ax.transAxes)
-    counts = {}
+    counts: dict[Any, int] = {}
     for key, part in groups:
         part = part.sort_values(x)
         key = key if isinstance(key, tuple) else (key,)

@@ -218,6 +218,8 @@ def engine_report(result, units=DEFAULT):
     from flyopt.machine.engine import engine_of
 
     engine = engine_of(result.machine)
+    if engine is None:  # a variable inertia of members, not of an [engine]
+        return []
     q, _ = formatters(units)
     exact = next((m for m in result.models if m["exact"]), None)
     angles = ", ".join(field_number(a, "angle", units, 4) for a in engine.firing_angles)
