@@ -30,7 +30,7 @@ import flyopt
 from flyopt.outputs.results import read_results
 from flyopt.studies import runner
 from flyopt.studies import sweep as sweep_module
-from flyopt.studies.evaluate import _context, point_scene, task_of
+from flyopt.studies.evaluate import chunk_context, point_scene, task_of
 from flyopt.studies.payload import digest, payload
 from flyopt.studies.sweep import SUMMARY_COLUMNS, sweep
 
@@ -222,7 +222,7 @@ def test_the_task_sent_to_workers_is_the_scene_text_and_values():
     """The task a worker gets holds the scene's file text (rebuilt there by the same
     reader, to the same digest), not the scene's objects."""
     scene = load("energy_mass")
-    task, reason = task_of(_context(scene), scene)
+    task, reason = task_of(chunk_context(scene), scene)
     assert reason == "" and task.scene.text == (PROBLEMS / "slider-crank-press.toml").read_text()
     assert task.scene.fields == {}
     shipped = pickle.loads(pickle.dumps(task))
@@ -334,7 +334,7 @@ def test_a_costly_sweep_is_cut_for_the_workers(monkeypatch):
     monkeypatch.setattr(sweep_module, "_time_first_analysis", lambda scene, points, codes: 0.5)
     monkeypatch.setattr(sweep_module, "cpu_count", lambda: 2)
     plan_points = flyopt.studies.plan.plan_sweep(scene, {"delta": "0.05:0.2:6", "envelope": "0.8:1.6:10 m"}).points
-    ctx = _context(scene)
+    ctx = chunk_context(scene)
     layout = sweep_module._layout(scene, ctx, plan_points, "auto", "auto", None, None, {})
     assert layout["mode"] == "processes" and layout["workers"] == 2
     assert layout["physics"] == 6 and layout["estimate"] == pytest.approx(3.0, rel=0.01)
@@ -342,7 +342,7 @@ def test_a_costly_sweep_is_cut_for_the_workers(monkeypatch):
     assert layout["bounds"].tolist() == [0, 20, 30, 40, 50, 60]
     # a closed-form sweep of the same size is estimated to take milliseconds: serial
     punch = load("energy")
-    small = sweep_module._layout(punch, _context(punch), plan_points, "auto", "auto", None, None, {})
+    small = sweep_module._layout(punch, chunk_context(punch), plan_points, "auto", "auto", None, None, {})
     assert small["mode"] == "serial" and len(small["bounds"]) == 2
 
 

@@ -588,7 +588,7 @@ def test_resume_after_a_crash(tmp_path, monkeypatch):
     """A chunk raises: the finished chunks are on disk, the crash loses the chunk
     in flight only, and --resume completes the sweep."""
     out = tmp_path / "study.csv"
-    original = sweep_module._evaluate
+    original = sweep_module.evaluate_chunk
     calls = []
 
     def crashing(ctx, points):
@@ -597,12 +597,12 @@ def test_resume_after_a_crash(tmp_path, monkeypatch):
             raise MemoryError("simulated crash")
         return original(ctx, points)
 
-    monkeypatch.setattr(sweep_module, "_evaluate", crashing)
+    monkeypatch.setattr(sweep_module, "evaluate_chunk", crashing)
     with pytest.raises(MemoryError):
         sweep(PUNCH, VARY, output=out, chunk_size=4, workers=1)
     parts = tmp_path / "study.csv.parts"
     assert sorted(p.name for p in parts.glob("chunk-*")) == ["chunk-00000.parquet", "chunk-00001.parquet"]
-    monkeypatch.setattr(sweep_module, "_evaluate", original)
+    monkeypatch.setattr(sweep_module, "evaluate_chunk", original)
     done = sweep(PUNCH, VARY, output=out, chunk_size=4, resume=True)
     assert done.attrs["sweep"]["chunks_run"] == [2, 3, 4]
     pd.testing.assert_frame_equal(read_results(out), sweep(PUNCH, VARY, chunk_size=4))

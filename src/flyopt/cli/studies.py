@@ -121,7 +121,7 @@ def add_sweep_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run_sweep(args: argparse.Namespace) -> int:
     """``flyopt sweep``: returns the exit status (0 done, or stopped by --max-chunks)."""
-    from flyopt.io.sweep_spec import _resolve, check_options, load_sweep, vary_from_texts
+    from flyopt.io.sweep_spec import check_options, load_sweep, resolve_field, vary_from_texts
     from flyopt.studies.sweep import check_sweep, sweep
 
     scene, options = load_sweep(args.scene)
@@ -140,9 +140,9 @@ def run_sweep(args: argparse.Namespace) -> int:
     check_options({**cli, "resume": args.resume, "output": cli.get("output", options.get("output"))}, "--")
     vary = options.pop("vary")
     for path, values in vary_from_texts(scene, args.vary, "--vary").items():
-        canonical = _resolve(scene, path, "--vary")[0]
+        canonical = resolve_field(scene, path, "--vary")[0]
         for key in list(vary):  # the command line overrides the file
-            if _resolve(scene, key, "sweep.vary")[0] == canonical:
+            if resolve_field(scene, key, "sweep.vary")[0] == canonical:
                 del vary[key]
         vary[path] = values
     max_chunks = cli.pop("max_chunks", None)
@@ -178,9 +178,9 @@ def run_sweep(args: argparse.Namespace) -> int:
             )
         return EXIT_OK
     if output is None:  # missing values as empty cells, as in a CSV file
-        from flyopt.outputs.results import _csv
+        from flyopt.outputs.results import csv_rows
 
-        _csv(frame, sys.stdout, header=True)
+        csv_rows(frame, sys.stdout, header=True)
     if args.quiet:
         return EXIT_OK
     where = f"wrote {output}" if output is not None else "done"
@@ -247,7 +247,7 @@ def _method_and_output(parser: argparse.ArgumentParser, what: str) -> None:
 
 def _span(text: str | None, other: str) -> tuple[float, float] | None:
     """``--range LOW:HIGH [unit]`` in SI, in the dimension of the front's second objective."""
-    from flyopt.io.sweep_spec import _split_unit
+    from flyopt.io.sweep_spec import split_unit
     from flyopt.studies.pareto import PARETO_OBJECTIVES
     from flyopt.units import quantity
 
@@ -259,10 +259,10 @@ def _span(text: str | None, other: str) -> tuple[float, float] | None:
     parts = text.split(":")
     if len(parts) != 2:
         raise SceneError("--range", f"{text!r}: expected LOW:HIGH with an optional unit, e.g. 0.3:1.2 m")
-    trailing = _split_unit(parts[1])[1]
+    trailing = split_unit(parts[1])[1]
     ends = []
     for part in parts:
-        number, unit = _split_unit(part)
+        number, unit = split_unit(part)
         raw = f"{number} {unit or trailing}".strip()
         ends.append(quantity(raw, dimension, "--range"))
     low, high = ends  # two parts, checked above
@@ -291,10 +291,10 @@ _SHOW = {
 def run_pareto(args: argparse.Namespace) -> int:
     """``flyopt pareto``: returns the exit status (0 a front or none needed, 3 no design)."""
     from flyopt.io.scene import load
-    from flyopt.studies.pareto import _pair, pareto
+    from flyopt.studies.pareto import objective_pair, pareto
 
     scene = load(args.scene)
-    objectives, other = _pair(args.objectives)
+    objectives, other = objective_pair(args.objectives)
     _check_output(args.output)
     front = pareto(scene, objectives, points=args.points, span=_span(args.span, other), method=args.method)
     if front.empty:

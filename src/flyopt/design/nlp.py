@@ -65,7 +65,7 @@ __all__ = [
 ]
 
 #: IPOPT statuses accepted as converged (the design is still verified).
-_CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 
 #: Solver options, merged in this one place; explicit options passed to
 #: design_flywheel(..., solver_options=...) win.
@@ -338,7 +338,7 @@ def solve_combination(model, combo, spec):
     stats = model.solver.stats()
     status = stats.get("return_status", "unknown")
     iterations = int(stats.get("iter_count", -1))
-    if status not in _CONVERGED:
+    if status not in CONVERGED:
         after = f" after {iterations} iterations" if 0 <= iterations <= 10**6 else ""
         failure = SolverFailed(
             f"{combo.label}: IPOPT did not converge (return status {status!r}{after}), "

@@ -45,7 +45,7 @@ from typing import NamedTuple
 import casadi as ca
 
 from flyopt.design import wheel
-from flyopt.design.nlp import _CONVERGED, cached_model
+from flyopt.design.nlp import CONVERGED, cached_model
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Objective
 
@@ -468,7 +468,7 @@ def solve(model, problem, label):
     stats = model.solver.stats()
     status = stats.get("return_status", "unknown")
     iterations = int(stats.get("iter_count", -1))
-    if status not in _CONVERGED:
+    if status not in CONVERGED:
         failure = SolverFailed(
             f"{label}: IPOPT did not converge on the whole wheel (return status "
             f"{status!r} after {iterations} iterations); no design is reported"

@@ -98,7 +98,7 @@ def scene_data(data):
     ratio of the flywheel shaft) and 11 (presses); the conversions are
     :mod:`flyopt.machine.press`.
     """
-    press = _table(data["press"], "press", PRESS_KEYS)
+    press = checked_table(data["press"], "press", PRESS_KEYS)
     rate, omega_crank, period = _crank(press)
     angle = _working_angle(press, period)
     source, rows, note = _load(press, angle)
@@ -221,7 +221,7 @@ def _load(press, angle):
 
 def _punching(raw):
     """(E = ½ F_max t [J], F_max = τ L t [N]) of ``press.punching``."""
-    table = _table(raw, "press.punching", PUNCHING_KEYS)
+    table = checked_table(raw, "press.punching", PUNCHING_KEYS)
     values = {}
     for key, dimension in (("thickness", "length"), ("shear_strength", "stress")):
         if key not in table:
@@ -412,7 +412,7 @@ def _shafts(raw, ratio, top):
 # -- reading --------------------------------------------------------------------
 
 
-def _table(raw, where, allowed):
+def checked_table(raw, where, allowed):
     """``raw`` as a table whose keys are all ``allowed``."""
     if not isinstance(raw, dict):
         raise SceneError(where, f"must be a table, got {type(raw).__name__}")

@@ -69,7 +69,7 @@ from flyopt.names import closest
 
 
 @dataclass(frozen=True)
-class _Field:
+class SweepField:
     kind: str  # "number" | "name"
     dimension: str = "dimensionless"
     minimum: float = 0.0  # values must exceed it (or reach it when inclusive)
@@ -82,34 +82,34 @@ class _Field:
 #: The scene fields a sweep may vary (besides shaft.NAME.speed_ratio and
 #: material.NAME.density|max_rim_speed|cost).
 FIELDS = {
-    "delta": _Field("number", what="coefficient of speed fluctuation, 0 < δ < 2", maximum=2.0),
-    "speed": _Field("number", "angular_speed", what="mean speed of the reference shaft (> 0)"),
-    "inertia": _Field(
+    "delta": SweepField("number", what="coefficient of speed fluctuation, 0 < δ < 2", maximum=2.0),
+    "speed": SweepField("number", "angular_speed", what="mean speed of the reference shaft (> 0)"),
+    "inertia": SweepField(
         "number",
         "inertia",
         inclusive=True,
         what="the constant inertia J_c at the reference shaft, the shafts' own inertia included (>= 0)",
     ),
-    "torque.scale": _Field("number", what="factor on both torques (> 0)"),
-    "design.max_outer_diameter": _Field(
+    "torque.scale": SweepField("number", what="factor on both torques (> 0)"),
+    "design.max_outer_diameter": SweepField(
         "number", "length", optional=True, what="envelope on the outer diameter (> 0 or none)"
     ),
-    "design.max_width": _Field("number", "length", optional=True, what="limit on the axial width (> 0 or none)"),
-    "design.d_mean": _Field("number", "length", optional=True, what="pinned mean diameter (> 0 or none)"),
-    "design.hb_ratio": _Field("number", what="H/B, one value (> 0)"),
-    "design.hb_min": _Field("number", what="lower end of the H/B range (> 0)"),
-    "design.hb_max": _Field("number", what="upper end of the H/B range (> 0)"),
-    "design.geometry": _Field("name", what="thin_rim, rim or disc"),
-    "design.objective": _Field("name", what="mass, cost or outer_diameter"),
-    "material": _Field("name", what="a material name"),
-    "shaft": _Field("name", what="a shaft name"),
+    "design.max_width": SweepField("number", "length", optional=True, what="limit on the axial width (> 0 or none)"),
+    "design.d_mean": SweepField("number", "length", optional=True, what="pinned mean diameter (> 0 or none)"),
+    "design.hb_ratio": SweepField("number", what="H/B, one value (> 0)"),
+    "design.hb_min": SweepField("number", what="lower end of the H/B range (> 0)"),
+    "design.hb_max": SweepField("number", what="upper end of the H/B range (> 0)"),
+    "design.geometry": SweepField("name", what="thin_rim, rim or disc"),
+    "design.objective": SweepField("name", what="mass, cost or outer_diameter"),
+    "material": SweepField("name", what="a material name"),
+    "shaft": SweepField("name", what="a shaft name"),
 }
 
-_SHAFT_FIELDS = {"speed_ratio": _Field("number", what="ω_shaft / ω_reference (> 0)")}
+_SHAFT_FIELDS = {"speed_ratio": SweepField("number", what="ω_shaft / ω_reference (> 0)")}
 _MATERIAL_FIELDS = {
-    "density": _Field("number", "density", what="density (> 0)"),
-    "max_rim_speed": _Field("number", "speed", what="safe rim speed (> 0)"),
-    "cost": _Field("number", "cost_per_mass", inclusive=True, what="cost per kg (>= 0)"),
+    "density": SweepField("number", "density", what="density (> 0)"),
+    "max_rim_speed": SweepField("number", "speed", what="safe rim speed (> 0)"),
+    "cost": SweepField("number", "cost_per_mass", inclusive=True, what="cost per kg (>= 0)"),
 }
 
 _ALIASES = {
@@ -144,7 +144,7 @@ def _known_fields(scene):
     return names
 
 
-def _resolve(scene, path, where):
+def resolve_field(scene, path, where):
     """Canonical field name and its description, or SceneError."""
     key = _ALIASES.get(path.strip(), path.strip())
     if key in FIELDS:
@@ -154,14 +154,17 @@ def _resolve(scene, path, where):
         names = [s.name for s in scene.shafts]
         if parts[1] not in names:
             raise SceneError(
-                _where(where, path), f"unknown shaft {parts[1]!r}{_hint(parts[1], names)} (shafts: {', '.join(names)})"
+                field_path(where, path),
+                f"unknown shaft {parts[1]!r}{_hint(parts[1], names)} (shafts: {', '.join(names)})",
             )
         if parts[2] not in _SHAFT_FIELDS:
-            raise SceneError(_where(where, path), f"a shaft's field is {', '.join(_SHAFT_FIELDS)}, not {parts[2]!r}")
+            raise SceneError(
+                field_path(where, path), f"a shaft's field is {', '.join(_SHAFT_FIELDS)}, not {parts[2]!r}"
+            )
         shaft = next(s for s in scene.shafts if s.name == parts[1])
         if getattr(shaft, "inertia", 0.0):
             raise SceneError(
-                _where(where, path),
+                field_path(where, path),
                 f"shaft {parts[1]!r} carries inertia, which its speed ratio "
                 "moves to the reference shaft (J i²): the machine's J_c would change with it; vary "
                 "the ratio of a shaft without inertia, or make a scene per ratio",
@@ -171,17 +174,18 @@ def _resolve(scene, path, where):
         library = scene.material_library()
         if parts[1] not in library:
             raise SceneError(
-                _where(where, path),
+                field_path(where, path),
                 f"unknown material {parts[1]!r}{_hint(parts[1], library)} (known: {', '.join(library)})",
             )
         if parts[2] not in _MATERIAL_FIELDS:
             raise SceneError(
-                _where(where, path), f"a material's field is one of {', '.join(_MATERIAL_FIELDS)}, not {parts[2]!r}"
+                field_path(where, path), f"a material's field is one of {', '.join(_MATERIAL_FIELDS)}, not {parts[2]!r}"
             )
         return key, _MATERIAL_FIELDS[parts[2]]
     candidates = list(FIELDS) + list(_ALIASES)
     raise SceneError(
-        _where(where, path), f"unknown sweep field{_hint(key, candidates)}; allowed: {'; '.join(_known_fields(scene))}"
+        field_path(where, path),
+        f"unknown sweep field{_hint(key, candidates)}; allowed: {'; '.join(_known_fields(scene))}",
     )
 
 
@@ -190,7 +194,7 @@ def _hint(name, known):
     return f" (did you mean {close!r}?)" if close else ""
 
 
-def _where(where, path):
+def field_path(where, path):
     if not where:
         return path
     return f"{where} {path}" if where.startswith("--") else f"{where}.{path}"
@@ -310,7 +314,7 @@ class Axis:
     log: bool = False
 
 
-def _split_unit(item):
+def split_unit(item):
     """'1200rpm' -> ('1200', 'rpm'); '1/20' -> ('1/20', '')."""
     m = _NUMBER.match(item)
     if m:
@@ -351,13 +355,13 @@ def _parse_text(scene, name, spec, text, label, sampled, cap=None):
     items = [t.strip() for t in text.split(",")]
     if any(not t for t in items):
         raise SceneError(label, f"{text!r}: an empty value in the list")
-    trailing = _split_unit(items[-1])[1]
+    trailing = split_unit(items[-1])[1]
     values = []
     for item in items:
         if spec.optional and item.lower() == "none":
             values.append(math.nan)
             continue
-        number, unit = _split_unit(item)
+        number, unit = split_unit(item)
         value = _number(number, unit or trailing, spec, label)
         _check_value(value, spec, label, item)
         values.append(value)
@@ -382,12 +386,12 @@ def _parse_range(name, spec, text, label, sampled, cap=None):
             )
     else:
         log, count = False, None
-        trailing = _split_unit(parts[1])[1]
+        trailing = split_unit(parts[1])[1]
     if count is None and not sampled:
         raise SceneError(label, f"{text!r}: a grid range needs a count: a:b:n or a:b:logn")
     ends = []
     for part in parts[:2]:
-        number, unit = _split_unit(part)
+        number, unit = split_unit(part)
         if not number:
             raise SceneError(label, f"{text!r}: a range end is missing")
         value = _number(number, unit or trailing, spec, label)
@@ -478,10 +482,10 @@ def _check_once(scene, items, where):
     """Refuse a field given twice, under its name or an alias (the first would be lost)."""
     seen: dict[str, str] = {}
     for path, _ in items:
-        name = _resolve(scene, path, where)[0]
+        name = resolve_field(scene, path, where)[0]
         if name in seen:
             raise SceneError(
-                _where(where, path),
+                field_path(where, path),
                 f"is varied twice (also as {seen[name]!r}); give each field once, with all its values",
             )
         seen[name] = path
@@ -553,15 +557,15 @@ def parse_vary(scene, vary, *, where="--vary", samples=None, max_points=None):
     _check_once(scene, items, where)
     axes, points = [], 1
     for path, values in items:
-        name, spec = _resolve(scene, path, where)
+        name, spec = resolve_field(scene, path, where)
         cap = None if max_points is None else (points, max_points)
-        axes.append(_parse_value(scene, name, spec, values, _where(where, path), samples is not None, cap))
+        axes.append(_parse_value(scene, name, spec, values, field_path(where, path), samples is not None, cap))
         if samples is None:
             points *= len(axes[-1].values)
     names = {a.field for a in axes}
     if "design.hb_ratio" in names and names & {"design.hb_min", "design.hb_max"}:
         raise SceneError(
-            _where(where, "design.hb_ratio"), "vary either design.hb_ratio or design.hb_min/design.hb_max, not both"
+            field_path(where, "design.hb_ratio"), "vary either design.hb_ratio or design.hb_min/design.hb_max, not both"
         )
     return axes
 

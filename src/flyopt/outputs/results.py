@@ -787,7 +787,7 @@ def _dictionary_columns(table):
     return [f.name for f in table.schema if pa.types.is_dictionary(f.type)]
 
 
-def _csv(frame, handle, header):
+def csv_rows(frame, handle, header):
     """Rows as CSV: a missing value is an empty cell (also a -1 of :data:`NULLABLE_INTS`)."""
     nullable = [c for c in frame.columns if c in NULLABLE_INTS]
     if nullable:
@@ -869,7 +869,7 @@ class ResultWriter:
         else:
             if self._file is None:
                 self._file = open(self.temporary, "w", encoding="utf-8", newline="")
-            _csv(frame, self._file, header=self.rows == 0)
+            csv_rows(frame, self._file, header=self.rows == 0)
         self.rows += len(frame)
 
     def _flush(self):
@@ -972,7 +972,7 @@ def write_results(frame, path, temporary_folder=None, metadata=None):
             pq.write_table(table, tmp, use_dictionary=_dictionary_columns(table))
         else:
             with open(tmp, "w", encoding="utf-8", newline="") as handle:
-                _csv(frame, handle, header=True)
+                csv_rows(frame, handle, header=True)
             if metadata is not None:
                 sidecar = _write_sidecar(path, metadata)
 

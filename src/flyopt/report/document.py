@@ -1400,9 +1400,9 @@ class _Builder:
 
     @staticmethod
     def solved_by(candidate):
-        from flyopt.report.text import _solved_by
+        from flyopt.report.text import solver_words
 
-        return _solved_by(candidate)
+        return solver_words(candidate)
 
     def geometry_steps(self, blocks, c, material):
         """The wheel's mass and inertia (section 9) and its rim speed (section 10), numbers substituted."""
@@ -1869,7 +1869,7 @@ class _Builder:
             blocks.append(Paragraph(f"INFEASIBLE: {drive.message}", "warning"))
         else:
             m = best.motor
-            from flyopt.report.drive import _limit_words
+            from flyopt.report.drive import limit_words
 
             rows: list[Any] = [
                 (
@@ -1892,7 +1892,7 @@ class _Builder:
                     (
                         self.q(best.j_flywheel, "inertia", "j_flywheel"),
                         " at the crank, set by ",
-                        _limit_words(best.limit),
+                        limit_words(best.limit),
                     ),
                 ),
                 (

@@ -39,7 +39,7 @@ def drive_report(drive, check=None, units=DEFAULT):
             f"rotor {q(m.rotor_inertia, 'rotor_inertia', 4)})",
             f"  motor ratio          {number(best.motor_ratio, 6)} (motor speed over crank speed)",
             f"  flywheel             {q(best.j_flywheel, 'j_flywheel', 6)} at the crank, set by "
-            f"{_limit_words(best.limit)}"
+            f"{limit_words(best.limit)}"
             + (f" (δ alone needs {q(best.j_delta, 'j_delta', 6)})" if best.limit == "thermal" else ""),
         ]
         if best.flywheel_ratio is not None:
@@ -138,7 +138,7 @@ def _relaxation_lines(drive, units):
     return lines
 
 
-def _limit_words(limit):
+def limit_words(limit):
     return {
         "delta": "the speed fluctuation δ",
         "thermal": "the motor's thermal limit (RMS torque = rated)",

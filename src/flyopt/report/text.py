@@ -244,7 +244,7 @@ def engine_report(result, units=DEFAULT):
     ]
 
 
-def _solved_by(candidate):
+def solver_words(candidate):
     """How a design was found, in words: the exact closed form or IPOPT with its status."""
     if candidate.solver_status == "closed_form":
         return "the exact closed form of the lightest wheel, checked against every constraint"
@@ -282,7 +282,7 @@ def design_report(result, spec=None, units=DEFAULT):
                 + (f", safety factor {number(best.safety_factor, 3)}" if best.safety_factor else ""),
             ),
             ("binding", ", ".join(best.binding) or "none"),
-            ("solved by", _solved_by(best)),
+            ("solved by", solver_words(best)),
         ]
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {v}" for k, v in facts]

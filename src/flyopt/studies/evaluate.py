@@ -53,7 +53,7 @@ from flyopt.design.check import binding_names
 from flyopt.design.spec import MountShaft
 from flyopt.errors import SceneError, SolverFailed
 from flyopt.io.scene import NetAreas
-from flyopt.io.sweep_spec import _where
+from flyopt.io.sweep_spec import field_path
 from flyopt.outputs.results import RESULT_COLUMNS
 from flyopt.sizing.peak_torque import flywheel_peak_torque
 
@@ -77,7 +77,7 @@ __all__ = [
 PHYSICS_FIELDS = ("delta", "speed", "inertia", "torque.scale")
 
 
-def _check_points(scene, points, where):
+def check_points(scene, points, where):
     """Reject points whose design settings are invalid, naming the field.
 
     Works on the varied columns only (a 10⁶-point plan is checked without
@@ -100,7 +100,7 @@ def _check_points(scene, points, where):
         k = int(bad[0])
         low, high = np.broadcast_to(hb_min, (len(points),)), np.broadcast_to(hb_max, (len(points),))
         raise SceneError(
-            _where(where, "design.hb_min"),
+            field_path(where, "design.hb_min"),
             f"H/B min {low[k]:.6g} exceeds max {high[k]:.6g} at point {k} (and {bad.size - 1} other points)",
         )
     varied = [name for name in _SPEC_COLUMNS if name in points]
@@ -125,7 +125,7 @@ def _check_points(scene, points, where):
                 d_mean=None if _is_none(d_mean) else d_mean,
             )
         except ValueError as err:
-            raise SceneError(_where(where, "design"), str(err)) from None
+            raise SceneError(field_path(where, "design"), str(err)) from None
     inputs = design_inputs(scene)
     material_names = [m.name for m in inputs.materials]
     if "material" in points:
@@ -151,7 +151,7 @@ def _check_points(scene, points, where):
         )
         if missing:
             raise SceneError(
-                _where(where, "design.objective"),
+                field_path(where, "design.objective"),
                 f"'cost' needs a cost per kg for every material; none is given for {name}",
             )
 
@@ -357,7 +357,7 @@ def _reusable(scene):
 
 
 @dataclass(frozen=True)
-class _Context:
+class ChunkContext:
     """What every chunk needs; picklable (the torques are left out when reusable)."""
 
     scene: Scene
@@ -370,12 +370,12 @@ class _Context:
     torque_peak: float | None = None  # max |M_d - M_r| of the cycle when reusable [N*m]
 
 
-def _context(scene, method="auto", solver_options=None, axes=()):
+def chunk_context(scene, method="auto", solver_options=None, axes=()):
     reusable = _reusable(scene)
     if reusable:
         analysis = physics_analysis(scene)
         stripped = scene.replace(driving=None, resisting=None, net=None)
-        return _Context(
+        return ChunkContext(
             stripped,
             analysis.a_max,
             analysis.driving_torque,
@@ -385,7 +385,7 @@ def _context(scene, method="auto", solver_options=None, axes=()):
             tuple(axes),
             analysis.net_torque_peak() if _needs_torque(scene) else None,
         )
-    return _Context(scene, None, None, False, method, dict(solver_options) if solver_options else None, tuple(axes))
+    return ChunkContext(scene, None, None, False, method, dict(solver_options) if solver_options else None, tuple(axes))
 
 
 @dataclass(frozen=True)
@@ -423,7 +423,7 @@ class Task:
     torque_peak: float | None = None
 
     def __call__(self, points):
-        return _evaluate(self.context(), points)
+        return evaluate_chunk(self.context(), points)
 
     def context(self):
         """The chunk context of this process, built on first use and kept."""
@@ -443,7 +443,7 @@ class Task:
                 scene = self.scene.scene()
                 if self.reusable:
                     scene = scene.replace(driving=None, resisting=None, net=None)
-                ctx = _Context(
+                ctx = ChunkContext(
                     scene,
                     self.a_max,
                     self.driving_torque,
@@ -468,7 +468,7 @@ def task_of(ctx, scene):
 
     Parameters
     ----------
-    ctx : _Context
+    ctx : ChunkContext
     scene : Scene
         The scene the sweep varies (``ctx.scene`` may have its torques stripped).
 
@@ -619,12 +619,12 @@ def evaluate_points(scene_or_context, points, *, method="auto", solver_options=N
         fields, then :data:`RESULT_COLUMNS`.
     """
     ctx = scene_or_context
-    if not isinstance(ctx, _Context):
-        ctx = _context(ctx, method, solver_options, tuple(c for c in points.columns if c != "point"))
-    return _evaluate(ctx, points)
+    if not isinstance(ctx, ChunkContext):
+        ctx = chunk_context(ctx, method, solver_options, tuple(c for c in points.columns if c != "point"))
+    return evaluate_chunk(ctx, points)
 
 
-def _evaluate(ctx, points):
+def evaluate_chunk(ctx, points):
     scene = ctx.scene
     inputs = _Inputs(scene, points)
     n = inputs.n

@@ -91,7 +91,7 @@ def non_dominated(first: npt.ArrayLike, second: npt.ArrayLike) -> npt.NDArray[np
     return keep
 
 
-def _pair(objectives: str | Sequence[str]) -> tuple[tuple[str, ...], str]:
+def objective_pair(objectives: str | Sequence[str]) -> tuple[tuple[str, ...], str]:
     if isinstance(objectives, str):
         objectives = [o.strip() for o in objectives.split(",")]
     objectives = tuple(objectives)
@@ -146,7 +146,7 @@ def pareto(
     SceneError
         Unknown objectives, bad span, materials without a cost for ``cost``.
     """
-    objectives, other = _pair(objectives)
+    objectives, other = objective_pair(objectives)
     if not isinstance(points, (int, np.integer)) or points < 2:
         raise SceneError("points", f"must be a whole number >= 2, got {points!r}")
     analysis = physics_analysis(scene)

@@ -16,8 +16,8 @@ import numpy as np
 import pandas as pd
 
 from flyopt.errors import SceneError
-from flyopt.io.sweep_spec import FIELDS, _Field, option_label, parse_vary, whole_number
-from flyopt.studies.evaluate import _check_points
+from flyopt.io.sweep_spec import FIELDS, SweepField, option_label, parse_vary, whole_number
+from flyopt.studies.evaluate import check_points
 
 if TYPE_CHECKING:  # the annotations only
     from flyopt.io.scene import Scene
@@ -144,11 +144,11 @@ def plan_sweep(
     points = pd.DataFrame({"point": np.arange(n, dtype=np.int64)})
     for axis in axes:
         values = columns[axis.field]
-        if FIELDS.get(axis.field, _Field("number")).kind == "name":
+        if FIELDS.get(axis.field, SweepField("number")).kind == "name":
             points[axis.field] = np.asarray(values, dtype=object)
         else:
             points[axis.field] = np.asarray(values, dtype=float)
-    _check_points(scene, points, where)
+    check_points(scene, points, where)
     return SweepPlan(axes=axes, points=points, samples=samples, seed=seed)
 
 

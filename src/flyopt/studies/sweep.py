@@ -41,9 +41,9 @@ from flyopt.outputs.results import ResultWriter, normalize, scene_record, table_
 from flyopt.studies import runner
 from flyopt.studies.evaluate import (
     PHYSICS_FIELDS,
-    _context,
-    _evaluate,
+    chunk_context,
     design_counts,
+    evaluate_chunk,
     evaluate_points,
     physics_analysis,
     physics_codes,
@@ -55,7 +55,7 @@ from flyopt.studies.runner import Parts, connect, cpu_count, fingerprint, run_ch
 
 if TYPE_CHECKING:  # the annotations only
     from flyopt.io.scene import Scene
-    from flyopt.studies.evaluate import _Context
+    from flyopt.studies.evaluate import ChunkContext
     from flyopt.studies.plan import SweepPlan
 
 __all__ = ["SUMMARY_COLUMNS", "sweep"]
@@ -239,7 +239,7 @@ def sweep(
     plan = plan_sweep(scene, vary or {}, samples=samples, seed=seed)
     points = plan.points
     axes = tuple(a.field for a in plan.axes)
-    ctx = _context(scene, method, solver_options, axes)
+    ctx = chunk_context(scene, method, solver_options, axes)
     with connect(scheduler) as client:  # before anything is written
         start = time.perf_counter()  # the analyses timed for the layout count too
         layout = _layout(scene, ctx, points, method, workers, chunk_size, client, recorded)
@@ -278,7 +278,7 @@ def sweep(
         elif mode == "dask":
             n_workers = None
         if mode == "serial":
-            task = functools.partial(_evaluate, ctx)
+            task = functools.partial(evaluate_chunk, ctx)
         prepare = _seed_column(plan)
         describe = _describe(scene, plan, method)
         assembly = _Assembly(layout["units"], len(points), parts, output, prepare, describe)
@@ -382,7 +382,7 @@ def _describe(scene: Scene, plan: SweepPlan, method: str) -> Callable[[Sequence[
 
 def _layout(
     scene: Scene,
-    ctx: _Context,
+    ctx: ChunkContext,
     points: pd.DataFrame,
     method: str,
     workers: int | Literal["auto"],
