@@ -94,3 +94,20 @@ def test_type_checking_imports_name_the_same_api():
                 assert alias.asname == alias.name, f"{alias.name} must be imported as itself to be re-exported"
                 typed[alias.name] = node.module
     assert typed == flyopt._API
+
+
+def test_no_module_imports_a_private_name_of_another():
+    """A leading underscore means "this module's own": what another module needs is public where it is owned.
+
+    (A private *module* whose names are public, such as ``flyopt._toml``, is imported by name as usual.)
+    """
+    reached = []
+    for path in sorted(SRC.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("flyopt"):
+                reached += [
+                    f"{path.relative_to(SRC)}:{node.lineno} imports {node.module}.{alias.name}"
+                    for alias in node.names
+                    if alias.name.startswith("_") and not alias.name.startswith("__")
+                ]
+    assert not reached, "\n".join(reached)
