@@ -728,3 +728,16 @@ def test_check_wheel_maxima_of_a_web_wheel_against_a_dense_grid():
     ):
         assert reported >= dense[name] * (1.0 - 1e-14), name
         assert_allclose(reported, dense[name], rtol=1e-9, err_msg=name)
+
+
+@pytest.mark.parametrize("call", ["check_wheel", "profile"])
+def test_stress_check_of_a_material_without_poisson_ratio_names_it(call):
+    """The exact stress check needs nu: a material without one is refused by name (it was a TypeError
+    from deep inside the disc solution)."""
+    from flyopt.design import strength, wheel
+    from flyopt.design.materials import make_material
+
+    steel = make_material("plain_steel", 7850.0, allowable_stress=100e6)
+    dims = wheel.Dims(d_outer=1.0, h=0.5, b=0.05)
+    with pytest.raises(ValueError, match=r"material plain_steel: the stress check needs its poisson_ratio"):
+        getattr(strength, call)(steel, "disc", dims, 100.0, 0.0)

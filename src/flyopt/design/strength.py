@@ -28,11 +28,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from flyopt.design import stress, wheel
 from flyopt.names import Geometry
+
+if TYPE_CHECKING:
+    from flyopt.design.materials import Material
 
 __all__ = ["PartStress", "StrengthCheck", "allowables", "check_wheel", "profile", "BALANCE_GRADE"]
 
@@ -96,6 +100,13 @@ class StrengthCheck:
         }
 
 
+def _poisson_ratio(material: Material) -> float:
+    """The material's Poisson's ratio ν, which the exact stress check needs; a ValueError naming it otherwise."""
+    if material.poisson_ratio is None:
+        raise ValueError(f"material {material.name}: the stress check needs its poisson_ratio [-], and none is given")
+    return material.poisson_ratio
+
+
 def _strength_thickness(material, part_wall, all_walls):
     """The thickness a part's strength is read at: its own wall for a casting, the wheel's thickest
     section for a heat-treated forging (the material's ``section_rule``)."""
@@ -151,7 +162,7 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
     -------
     StrengthCheck
     """
-    rho, nu = material.density, material.poisson_ratio
+    rho, nu = material.density, _poisson_ratio(material)
     ductile = bool(material.ductile)
     measure = "von_mises" if ductile else "largest_principal"
     state = wheel.stress_state(geometry_name, dims, rho, nu, omega, torque)
@@ -254,7 +265,7 @@ def profile(material, geometry_name, dims, omega, torque, points=200):
     -------
     list of (part, r, sr, st, vm) arrays, one per disc part; and the beams' (part, r, sr, st).
     """
-    rho, nu = material.density, material.poisson_ratio
+    rho, nu = material.density, _poisson_ratio(material)
     state = wheel.stress_state(geometry_name, dims, rho, nu, omega, torque)
     out = []
     for k, c in enumerate(state.coefficients):
