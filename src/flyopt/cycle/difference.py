@@ -10,14 +10,17 @@ the pieces and their integrals are kept on the curves (immutable), so the work
 balance, the energy indicator diagram and ΔE(φ) of one machine share them.
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from flyopt.cycle.numerics import EPS, accurate_cumsum, brentq_many, dip_roots, poles, quad_many, roots
-from flyopt.cycle.torque import Constant
+from flyopt.cycle.torque import Array, Constant, TorqueCurve
 from flyopt.errors import SceneError
 
 SAMPLES_PER_CYCLE = 4096
@@ -37,34 +40,36 @@ class Segments:
     start: np.ndarray  # (n,) difference just right of each knot [N*m]
     end: np.ndarray  # (n,) difference just left of the next knot [N*m]
     linear: bool
-    driving: object
-    resisting: object
+    driving: Any  # TorqueCurve; Any: the expressions' own methods (round_off, __call__) are used too
+    resisting: Any
     peak: float  # largest |M_d − M_r| seen (at the knots or on the sampling grid) [N*m]
     at_knots: np.ndarray | None = None  # (n+1,) the difference at the knots when neither curve steps
-    noise: object = 0.0  # round-off bound of M_d − M_r as evaluated, a function of φ (see _round_off) [N*m]
-    _cache: dict = field(default_factory=dict, repr=False)  # integrals and a linear curve's piece ends
+    noise: float | Callable[[Array], Array] = (
+        0.0  # round-off bound of M_d − M_r as evaluated, a function of φ (see _round_off) [N*m]
+    )
+    _cache: dict[Any, Any] = field(default_factory=dict, repr=False)  # integrals and a linear curve's piece ends
 
-    def scale(self):
+    def scale(self) -> float:
         """A work scale of the cycle, peak |M_d − M_r| times Φ, for tolerances [J]."""
         return float(self.peak * (self.knots[-1] - self.knots[0])) or 1.0
 
-    def difference(self, k):
+    def difference(self, k: int) -> Callable[[Array], Array]:
         """M_d − M_r inside piece k as a vectorized function of φ."""
         a, b = self.knots[k], self.knots[k + 1]
 
-        def piece(curve, phi):
+        def piece(curve: Any, phi: Array) -> Array:
             if curve.is_linear:
                 left = curve.limits(np.array([a]))[1][0]
                 right = curve.limits(np.array([b]))[0][0]
                 return left + (right - left) * (phi - a) / (b - a)
             return curve(phi)
 
-        def f(phi):
+        def f(phi: Array) -> Array:
             return piece(self.driving, phi) - piece(self.resisting, phi)
 
         return f
 
-    def _ends(self, curve):
+    def _ends(self, curve: TorqueCurve) -> tuple[Array, Array]:
         """A linear curve's value just right of each knot and just left of the next, per piece [N*m]."""
         key = ("ends", id(curve))
         if key not in self._cache:
@@ -75,7 +80,7 @@ class Segments:
             )
         return self._cache[key]
 
-    def difference_many(self, phi, k, side="right"):
+    def difference_many(self, phi: Array, k: Array, side: str = "right") -> Array:
         """M_d − M_r at the angles ``phi`` inside the pieces ``k`` (arrays of one length) [N*m].
 
         The values of :meth:`difference`, elementwise: a linear curve is
@@ -86,7 +91,7 @@ class Segments:
         """
         phi = np.asarray(phi, dtype=float)
 
-        def piece(curve):
+        def piece(curve: Any) -> Array:
             if curve.is_linear:
                 left, right = self._ends(curve)
                 a, b = self.knots[k], self.knots[k + 1]
@@ -95,7 +100,7 @@ class Segments:
 
         return piece(self.driving) - piece(self.resisting)
 
-    def integrals(self):
+    def integrals(self) -> Array:
         """Work of M_d − M_r over each piece [J] (computed once; all pieces in one vectorized quadrature)."""
         h = np.diff(self.knots)
         if self.linear:
@@ -106,7 +111,7 @@ class Segments:
             )
         return self._cache["integrals"]
 
-    def events(self):
+    def events(self) -> tuple[Array, Array, Array]:
         """Ordered points of the cycle with the sign of M_d − M_r and ΔE there.
 
         Returns
@@ -119,7 +124,7 @@ class Segments:
             return self._linear_events()
         return self._smooth_events()
 
-    def linear_chain(self):
+    def linear_chain(self) -> tuple[Array, Array] | None:
         """Chain of a linear difference (start, every crossing, end), without an event list.
 
         ΔE is needed only at the crossings, where its extremes are. Between two
@@ -165,7 +170,7 @@ class Segments:
         chain_de = np.concatenate(([0.0], delta_e, [float(prefix[-1])]))
         return chain_angle, chain_de
 
-    def _continuous_chain(self):
+    def _continuous_chain(self) -> tuple[Array, Array] | None:
         """:meth:`linear_chain` when neither curve steps: the difference is one
         continuous broken line, so every crossing lies inside a piece (no sign
         interleaving of piece ends is needed)."""
@@ -192,7 +197,7 @@ class Segments:
         chain_de = np.concatenate(([0.0], delta_e, [float(prefix[-1])]))
         return chain_angle, chain_de
 
-    def _linear_events(self):
+    def _linear_events(self) -> tuple[Array, Array, Array]:
         a, b = self.start, self.end
         h = np.diff(self.knots)
         n = len(h)
@@ -208,7 +213,7 @@ class Segments:
         keep = np.stack([np.ones(n, bool), crosses, crosses, crosses, np.ones(n, bool)], axis=1)
         return angle[keep], sign[keep], de[keep]
 
-    def _smooth_events(self):
+    def _smooth_events(self) -> tuple[Array, Array, Array]:
         """:meth:`events` with an expression: every piece sampled, its zeros found and its parts
         integrated, all pieces at once (see :func:`roots`, which this does piece by piece)."""
         scale = self.scale()
@@ -301,7 +306,7 @@ class Segments:
         return angle[keep], signs[keep], delta_e[keep]
 
 
-def segments(driving, resisting, cycle_angle):
+def segments(driving: TorqueCurve, resisting: TorqueCurve, cycle_angle: float) -> Segments:
     """M_d − M_r on its pieces (:class:`Segments`), made once per pair of curves and cycle.
 
     Curves are immutable, so the pieces (and the integrals over them that
@@ -318,7 +323,7 @@ def segments(driving, resisting, cycle_angle):
     return cache[key][1]
 
 
-def _new_segments(driving, resisting, cycle_angle):
+def _new_segments(driving: Any, resisting: Any, cycle_angle: float) -> Segments:
     knots = _knots(_breakpoints(driving, cycle_angle), _breakpoints(resisting, cycle_angle), cycle_angle)
     pivot = next((c.pivot for c in (driving, resisting) if isinstance(c, Constant) and c.pivot is not None), None)
     d_left, d_right = _relative_limits(driving, knots, pivot)
@@ -351,7 +356,7 @@ def _new_segments(driving, resisting, cycle_angle):
     return Segments(knots, start, end, linear, driving, resisting, float(peak), at_knots, noise)
 
 
-def _round_off(curve, phi, values):
+def _round_off(curve: Any, phi: Array, values: Array) -> Array:
     """A bound on a curve's round-off at ``phi`` [N*m]: its own (an expression's running
     error bound, which sees cancellation inside it) or ROUNDOFF of its values."""
     own = ROUNDOFF * np.abs(values)
@@ -365,14 +370,14 @@ def _round_off(curve, phi, values):
     return own
 
 
-def _breakpoints(curve, cycle_angle):
+def _breakpoints(curve: TorqueCurve, cycle_angle: float) -> Array:
     """A curve's breakpoints and, for expressions with abs/min/max, its kinks [rad]."""
     points = curve.breakpoints()
     kinks = kinks_of(curve, cycle_angle)
     return np.union1d(points, kinks) if len(kinks) else points
 
 
-def kinks_of(curve, cycle_angle):
+def kinks_of(curve: TorqueCurve, cycle_angle: float) -> Array:
     """Angles in (0, Φ) where ``abs``, ``min`` or ``max`` make a torque kink [rad].
 
     Each kink function of the curve (``kink_functions``: the argument of
@@ -404,7 +409,7 @@ def kinks_of(curve, cycle_angle):
     return cache[cycle_angle]
 
 
-def _relative_limits(curve, knots, pivot):
+def _relative_limits(curve: TorqueCurve, knots: Array, pivot: float | None) -> tuple[Array, Array]:
     """Left and right limits of a curve at the knots, less ``pivot`` when one is set."""
     if pivot is None:
         return curve.limits(knots)
@@ -418,7 +423,7 @@ def _relative_limits(curve, knots, pivot):
     return left - pivot, right - pivot
 
 
-def _knots(first, second, cycle_angle):
+def _knots(first: Array, second: Array, cycle_angle: float) -> Array:
     """Sorted union of two curves' breakpoints and the cycle ends, within [0, Φ].
 
     A table's own breakpoints span the cycle exactly and are returned as the
@@ -431,7 +436,7 @@ def _knots(first, second, cycle_angle):
     return knots[(knots >= 0.0) & (knots <= cycle_angle)]
 
 
-def _difference(driving, resisting):
+def _difference(driving: Array, resisting: Array) -> Array:
     """M_d − M_r with the round-off of the subtraction set to zero."""
     diff = driving - resisting
     diff[np.abs(diff) <= ROUNDOFF * (np.abs(driving) + np.abs(resisting))] = 0.0
@@ -449,7 +454,7 @@ class _Transient(dict):
         return _Transient, ()
 
 
-def _kept(curve):
+def _kept(curve: object) -> dict[str, Any]:
     """The cycle analysis's caches for one curve (a dict kept on it).
 
     A curve is part of its scene, and a scene is pickled to workers: these
@@ -462,7 +467,7 @@ def _kept(curve):
     return _Transient() if own is None else own.setdefault("_analysis_kept", _Transient())
 
 
-def _values(curve, phi):
+def _values(curve: Any, phi: Array) -> Array:
     """``curve(phi)`` for a curve that is not linear, its last few evaluations kept on it.
 
     The analysis of one cycle asks a curve for the same angles more than once
@@ -485,7 +490,7 @@ def _values(curve, phi):
     return values
 
 
-def sample(curve, phi):
+def sample(curve: Any, phi: Array) -> tuple[Array, Array]:
     """Limits of a curve at ``phi``; expressions checked finite there."""
     if curve.is_linear:
         return curve.limits(phi)
@@ -500,7 +505,7 @@ def sample(curve, phi):
     return values, values
 
 
-def _sample_left(curve, phi):
+def _sample_left(curve: Any, phi: Array) -> Array:
     """Left limits of a curve at ``phi`` (expressions checked finite there, as by :func:`sample`)."""
     if curve.is_linear:
         return curve.limits(phi)[0]
@@ -509,7 +514,7 @@ def _sample_left(curve, phi):
     return left
 
 
-def _check_poles(curve, phi):
+def _check_poles(curve: Any, phi: Array) -> None:
     """Refuse a torque expression with a pole on the grid ``phi`` [rad] (see :func:`poles`).
 
     A torque must be finite and bounded over the whole cycle; across a pole

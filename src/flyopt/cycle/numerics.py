@@ -9,9 +9,16 @@ Nothing here knows a torque or a flywheel: functions of an angle in, numbers out
 """
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+from numpy import ndarray
+
+VectorFunction = Callable[[ndarray], ndarray]
+"""A vectorized function of the angle: an array of φ [rad] in, an array of values out."""
+IndexedFunction = Callable[[ndarray, ndarray], ndarray]
+"""A vectorized function of many problems at once: f(x, index) is problem ``index[k]`` at ``x[k]``."""
 
 QUAD_EPSREL = 1e-13
 """Relative tolerance of the adaptive quadrature of expression torques."""
@@ -28,7 +35,7 @@ EPS = float(np.finfo(float).eps)
 CUMSUM_BLOCK = 64
 
 
-def accurate_cumsum(terms):
+def accurate_cumsum(terms: ndarray) -> ndarray:
     """Prefix sums with an error of ~CUMSUM_BLOCK·eps instead of n·eps.
 
     Float64 running sums inside blocks of CUMSUM_BLOCK terms, plus block
@@ -49,7 +56,7 @@ def accurate_cumsum(terms):
     return (inner + offsets.astype(float)[:, None]).ravel()[:n]
 
 
-def poles(f, phi, values):
+def poles(f: VectorFunction, phi: ndarray, values: ndarray) -> ndarray:
     """Angles of the sign changes of f on a grid across which |f| grows without bound.
 
     Every bracket [φ_k, φ_k+1] where f changes sign is halved (all at once)
@@ -96,7 +103,7 @@ def poles(f, phi, values):
     return np.sort(lo[infinite | (end > POLE_GROWTH * grid)])
 
 
-def roots(f, a, b, samples, scale, zero_runs="all"):
+def roots(f: VectorFunction, a: float, b: float, samples: int, scale: float, zero_runs: str = "all") -> list[float]:
     """All zeros of f in the open interval (a, b), in order.
 
     Sign changes on a grid are refined by Brent's method; a grid point whose
@@ -143,7 +150,16 @@ def roots(f, a, b, samples, scale, zero_runs="all"):
     return sorted(r for r in set(roots) if a < r < b)
 
 
-def dip_roots(f, left, mid, right, sign, a, b, scale):
+def dip_roots(
+    f: VectorFunction,
+    left: float,
+    mid: float,
+    right: float,
+    sign: float,
+    a: float,
+    b: float,
+    scale: float,
+) -> list[float]:
     """Zeros of f near a grid point ``mid`` where |f| dips below both neighbours (see :func:`roots`).
 
     The minimum of sign·f on [left, right] is searched; if it crosses zero,
@@ -169,7 +185,16 @@ def dip_roots(f, left, mid, right, sign, a, b, scale):
     return []
 
 
-def brentq_many(f, a, b, fa, fb, xtol, rtol=4 * EPS, maxiter=200):
+def brentq_many(
+    f: IndexedFunction,
+    a: ndarray,
+    b: ndarray,
+    fa: ndarray,
+    fb: ndarray,
+    xtol: float | ndarray,
+    rtol: float = 4 * EPS,
+    maxiter: int = 200,
+) -> ndarray:
     """Zeros of many functions at once, each bracketed, by Brent's method.
 
     Brent's method (Brent 1973, ch. 4: inverse quadratic extrapolation
@@ -268,13 +293,13 @@ class _Brent:
 
     __slots__ = ("xpre", "xcur", "xblk", "fpre", "fcur", "fblk", "spre", "scur", "xtol", "rtol", "root")
 
-    def __init__(self, xa, xb, fa, fb, xtol, rtol):
+    def __init__(self, xa: float, xb: float, fa: float, fb: float, xtol: float, rtol: float) -> None:
         self.xpre, self.xcur, self.fpre, self.fcur = xa, xb, fa, fb
         self.xblk = self.fblk = self.spre = self.scur = 0.0
         self.xtol, self.rtol = xtol, rtol
         self.root = xa if fa == 0 else xb if fb == 0 else None
 
-    def advance(self):
+    def advance(self) -> bool:
         """One iteration of scipy's brentq from the current f value: True when converged
         (``root`` set), else ``xcur`` is the next point to evaluate."""
         if self.fpre * self.fcur < 0:
@@ -309,7 +334,9 @@ class _Brent:
         return False
 
 
-def _brentq_few(f, a, b, fa, fb, xtol, rtol, maxiter):
+def _brentq_few(
+    f: IndexedFunction, a: ndarray, b: ndarray, fa: ndarray, fb: ndarray, xtol: ndarray, rtol: float, maxiter: int
+) -> ndarray:
     """:func:`brentq_many` for a few brackets: their state in Python floats, ``f`` on all at once."""
     states = [_Brent(float(a[i]), float(b[i]), float(fa[i]), float(fb[i]), float(xtol[i]), rtol) for i in range(len(a))]
     active = [i for i, st in enumerate(states) if st.root is None]
@@ -397,7 +424,9 @@ QUAD_MAX_INTERVALS = 2000
 """Most subintervals the adaptive quadrature of one piece refines at once."""
 
 
-def _gauss_kronrod(f, lo, hi, noise=0.0):
+def _gauss_kronrod(
+    f: VectorFunction, lo: ndarray, hi: ndarray, noise: float | VectorFunction = 0.0
+) -> tuple[ndarray, ndarray, ndarray]:
     """The K21 rule on every interval [lo_i, hi_i] at once (one call of f on all nodes).
 
     Returns the integrals, the differences |K21 − G10| and the round-off
@@ -414,13 +443,13 @@ def _gauss_kronrod(f, lo, hi, noise=0.0):
     return kronrod * half, np.abs(kronrod - gauss) * half, roundoff
 
 
-def _kronrod_gauss(values):
+def _kronrod_gauss(values: ndarray) -> tuple[ndarray, ndarray]:
     """The K21 and G10 sums of rows of 21 values (per-row sums, so that a row's result does not
     depend on how many rows are summed with it, as a BLAS product's may)."""
     return (values * _K21_WEIGHTS).sum(axis=1), (values[:, 1::2] * _G10_WEIGHTS).sum(axis=1)
 
 
-def quad_many(f, a, b, scale, noise=0.0):
+def quad_many(f: IndexedFunction, a: ndarray, b: ndarray, scale: float, noise: float | VectorFunction = 0.0) -> ndarray:
     """∫_{a_i}^{b_i} f dφ for many intervals at once, each as :func:`quad` computes it.
 
     The first round of :func:`quad` (the K21 rule on the whole interval and
@@ -465,12 +494,16 @@ def quad_many(f, a, b, scale, noise=0.0):
     pair_error = np.maximum(np.abs(whole - pair), error[0::2] + error[1::2])
     settled = pair_error <= np.maximum(0.1 * QUAD_EPSREL * scale, QUAD_EPSREL * np.abs(pair))
     out[open_[settled]] = pair[settled]
+
+    def problem(i: int) -> VectorFunction:
+        return lambda phi: f(phi, np.full(len(phi), i))
+
     for i in open_[~settled]:
-        out[i] = quad(lambda phi, i=i: f(phi, np.full(len(phi), i)), a[i], b[i], scale, noise)
+        out[i] = quad(problem(i), a[i], b[i], scale, noise)
     return out
 
 
-def _halves(lo, hi):
+def _halves(lo: ndarray, hi: ndarray) -> tuple[ndarray, ndarray]:
     """Each interval [lo_i, hi_i] split at its middle, the two halves side by side."""
     mid = 0.5 * (lo + hi)
     left, right = np.empty(2 * len(lo)), np.empty(2 * len(lo))
@@ -479,7 +512,7 @@ def _halves(lo, hi):
     return left, right
 
 
-def quad(f, a, b, scale, noise=0.0):
+def quad(f: VectorFunction, a: float, b: float, scale: float, noise: float | VectorFunction = 0.0) -> float:
     """∫_a^b f dφ by adaptive Gauss–Kronrod quadrature, vectorized.
 
     Accurate to QUAD_EPSREL of the result or, where the result is near zero
@@ -553,7 +586,7 @@ def quad(f, a, b, scale, noise=0.0):
     return total
 
 
-def hermite(f0, f1, m0, m1, t):
+def hermite(f0: float, f1: float, m0: float, m1: float, t: float) -> float:
     """Cubic Hermite interpolant on [0, 1] with end values f and end slopes m."""
     return f0 + t * (m0 + t * (3 * (f1 - f0) - 2 * m0 - m1 + t * (2 * (f0 - f1) + m0 + m1)))
 
@@ -565,7 +598,7 @@ def hermite(f0, f1, m0, m1, t):
 STEEP = 3.0
 
 
-def _neighbour_rises(phi, f, rise):
+def _neighbour_rises(phi: ndarray, f: ndarray, rise: ndarray) -> tuple[ndarray, ndarray]:
     """The rise of the interval before and after each one [same shape as ``rise``].
 
     Within a row, its neighbours'. At a row's ends, the adjacent row's end interval where the rows join
@@ -583,7 +616,7 @@ def _neighbour_rises(phi, f, rise):
     return before, after
 
 
-def hermite_extremes(phi, f, df):
+def hermite_extremes(phi: ndarray, f: ndarray, df: ndarray) -> tuple[tuple[float, float], tuple[float, float]]:
     """Max and min of the piecewise cubic Hermite interpolant, with their angles.
 
     ``phi``, ``f``, ``df`` have shape (pieces, outputs); each row is

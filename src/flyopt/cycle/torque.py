@@ -14,13 +14,39 @@ right limits at given angles, its value inside a segment, and (for symbolic
 use) a CasADi expression.
 """
 
+from __future__ import annotations
+
 import functools
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol, TypeAlias
 
 import numpy as np
 
 from flyopt.cycle.expression import Expression
+
+Array: TypeAlias = np.ndarray
+"""An array of floats: angles [rad] or torques [N*m]."""
+Symbolic: TypeAlias = Any
+"""A CasADi expression (casadi ships no type stubs) or a float where the curve is constant."""
+
+
+class TorqueCurve(Protocol):
+    """What every torque curve of the angle answers: the tables, constants and expressions here,
+    their sums, and the machine's reduced curves (:mod:`flyopt.machine.reduce`)."""
+
+    @property
+    def is_linear(self) -> bool:
+        """True when the curve is linear between its breakpoints (integrated exactly)."""
+        ...
+
+    def breakpoints(self) -> Array:
+        """Angles where the value or the slope may jump [rad]."""
+        ...
+
+    def limits(self, phi: Array) -> tuple[Array, Array]:
+        """Left and right limits at the angles ``phi`` [N*m]."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -41,7 +67,7 @@ class PiecewiseLinear:
     is_linear = True
 
     @functools.cached_property
-    def _own_limits(self):
+    def _own_limits(self) -> tuple[Array, Array, Array]:
         """(distinct angles, left limits, right limits) at the table's own points."""
         x, y = self.angles, self.values
         new = np.empty(len(x), dtype=bool)
@@ -55,23 +81,23 @@ class PiecewiseLinear:
         return x[new], y[new], y[last]
 
     @functools.cached_property
-    def _no_steps(self):
+    def _no_steps(self) -> bool:
         return len(self._own_limits[0]) == len(self.angles)
 
-    def breakpoints(self):
+    def breakpoints(self) -> Array:
         """Distinct angles where the slope or value may change [rad]."""
         return self._own_limits[0]
 
     @functools.cached_property
-    def _work(self):
+    def _work(self) -> float:
         x, y = self.angles, self.values
         return float(np.sum((y[1:] + y[:-1]) * np.diff(x))) / 2  # np.sum is pairwise: error ~ log2(n) eps
 
-    def work(self, cycle_angle):
+    def work(self, cycle_angle: float) -> float:
         """∫_0^Φ M dφ [J]: exact trapezoids (the table spans the cycle)."""
         return self._work
 
-    def limits(self, phi):
+    def limits(self, phi: Array) -> tuple[Array, Array]:
         """Left and right limits of the torque at the angles ``phi`` [N*m].
 
         Inside a piece both equal the linear interpolation; at a vertical
@@ -99,7 +125,7 @@ class PiecewiseLinear:
         right = np.where(on_point, y[np.clip(last, 0, len(x) - 1)], inside)
         return left, right
 
-    def casadi(self, phi):
+    def casadi(self, phi: Symbolic) -> Symbolic:
         """Right-continuous CasADi expression of the curve in ``phi`` [rad]."""
         import casadi as ca
 
@@ -132,7 +158,8 @@ class Constant:
     is_linear = True
 
     @property
-    def unknown(self):
+    def unknown(self) -> bool:
+        """True while the value is still to be solved from the work balance."""
         return self.value is None
 
     def known(self) -> float:
@@ -141,18 +168,21 @@ class Constant:
             raise ValueError("the unknown constant torque has not been solved from the work balance yet")
         return float(self.value)
 
-    def breakpoints(self):
+    def breakpoints(self) -> Array:
+        """None: a constant has no breakpoints."""
         return np.empty(0)
 
-    def limits(self, phi):
+    def limits(self, phi: Array) -> tuple[Array, Array]:
+        """The value at every angle, twice (no steps)."""
         v = np.full(np.shape(phi), self.known())
         return v, v  # the same array twice: no steps
 
-    def work(self, cycle_angle):
+    def work(self, cycle_angle: float) -> float:
         """∫_0^Φ M dφ = M Φ [J]."""
         return self.known() * cycle_angle
 
-    def casadi(self, phi):
+    def casadi(self, phi: Symbolic) -> Symbolic:
+        """The value (a constant needs no symbol)."""
         return self.known()
 
 
@@ -180,18 +210,19 @@ class ExpressionTorque:
     is_linear = False
 
     @property
-    def speed_dependent(self):
+    def speed_dependent(self) -> bool:
         """True when the expression uses ``omega`` and no fixed speed is set."""
         return "omega" in self.expression.depends_on and self.omega is None
 
-    def at_speed(self, omega):
+    def at_speed(self, omega: float) -> ExpressionTorque:
         """The same torque with ω held at ``omega`` [rad/s] (an angle-only curve)."""
         return ExpressionTorque(self.expression, self.scale, self.where, float(omega))
 
-    def breakpoints(self):
+    def breakpoints(self) -> Array:
+        """None: an expression's kinks are found from its arguments (:meth:`kink_functions`)."""
         return np.empty(0)
 
-    def round_off(self, phi):
+    def round_off(self, phi: Array) -> Array:
         """A bound on the round-off of the torque as evaluated at ``phi`` [N*m]
         (:meth:`Expression.error_bound`, scaled)."""
         phi = np.asarray(phi, dtype=float)
@@ -202,7 +233,7 @@ class ExpressionTorque:
             bound = abs(self.scale) * np.asarray(bound, dtype=float)
         return np.broadcast_to(bound + 2.0 * np.finfo(float).eps * np.abs(torque), phi.shape)
 
-    def kink_functions(self):
+    def kink_functions(self) -> list[Callable[[Array], Array]]:
         """Functions of the angle whose sign changes are kinks of the torque.
 
         One per ``abs``, ``min`` or ``max`` in the expression
@@ -213,8 +244,8 @@ class ExpressionTorque:
             return []
         extra = {"omega": self.omega} if "omega" in self.expression.depends_on else {}
 
-        def argument(index):
-            def g(phi):
+        def argument(index: int) -> Callable[[Array], Array]:
+            def g(phi: Array) -> Array:
                 phi = np.asarray(phi, dtype=float)  # numpy scalars: 1/0 is inf, not an exception
                 with np.errstate(all="ignore"):
                     return np.broadcast_to(
@@ -225,22 +256,24 @@ class ExpressionTorque:
 
         return [argument(k) for k in range(self.expression.kink_count)]
 
-    def _values(self, phi):
+    def _values(self, phi: Array) -> Any:
         if "omega" in self.expression.depends_on:
             if self.omega is None:
                 raise ValueError(f"{self.where}: the torque depends on omega; give a speed (at_speed)")
             return self.expression.numpy(phi=phi, omega=self.omega)
         return self.expression.numpy(phi=phi)
 
-    def __call__(self, phi):
+    def __call__(self, phi: Array) -> Array:
+        """The torque at the angles ``phi`` [N*m]."""
         with np.errstate(all="ignore"):
             return self.scale * np.asarray(self._values(phi), dtype=float) + 0.0 * phi
 
-    def limits(self, phi):
+    def limits(self, phi: Array) -> tuple[Array, Array]:
+        """The torque at every angle, twice (an expression has no steps)."""
         v = self(np.asarray(phi, dtype=float))
         return v, v
 
-    def casadi(self, phi, omega=None):
+    def casadi(self, phi: Symbolic, omega: Symbolic | None = None) -> Symbolic:
         """CasADi expression in ``phi`` (and ``omega``, a symbol, when the torque depends on speed)."""
         if "omega" in self.expression.depends_on:
             speed = self.omega if self.omega is not None else omega
@@ -276,15 +309,17 @@ class MotorTorque:
     is_linear = False
     speed_dependent = True
 
-    def breakpoints(self):
+    def breakpoints(self) -> Array:
+        """None: a motor's torque depends on the speed, not on the angle."""
         return np.empty(0)
 
-    def casadi(self, phi, omega=None):
+    def casadi(self, phi: Symbolic, omega: Symbolic | None = None) -> Symbolic:
+        """The reduced motor torque at the speed symbol ``omega``."""
         if omega is None:
             raise ValueError(f"{self.where}: a motor torque depends on omega; pass it")
         return self.motor.reference_torque(omega, self.speed_ratio, self.efficiency, self.model) + 0 * phi
 
-    def at_speed(self, omega):
+    def at_speed(self, omega: float) -> Constant:
         """The motor's torque at the reference speed ``omega`` [rad/s], as a Constant."""
         return Constant(
             float(self.motor.reference_torque(np.asarray(float(omega)), self.speed_ratio, self.efficiency, self.model))
@@ -296,37 +331,44 @@ class TorqueSum:
 
     speed_dependent = False
 
-    def __init__(self, parts, where=""):
+    def __init__(self, parts: Iterable[Any], where: str = "") -> None:
+        # The parts are duck-typed: TorqueCurves and MotorTorques (speed-dependent, no limits).
         self.parts = tuple(parts)
         self.where = where
         self.is_linear = all(p.is_linear for p in self.parts)
         self.speed_dependent = any(getattr(p, "speed_dependent", False) for p in self.parts)
 
-    def breakpoints(self):
+    def breakpoints(self) -> Array:
+        """The breakpoints of every part, sorted, once each."""
         points = [p.breakpoints() for p in self.parts]
         return np.unique(np.concatenate(points)) if points else np.empty(0)
 
-    def kink_functions(self):
+    def kink_functions(self) -> list[Callable[[Array], Array]]:
         """The kink functions of the parts that have them (see :meth:`ExpressionTorque.kink_functions`)."""
         return [g for p in self.parts if hasattr(p, "kink_functions") for g in p.kink_functions()]
 
-    def limits(self, phi):
-        left = right = 0.0
+    def limits(self, phi: Array) -> tuple[Array, Array]:
+        """Left and right limits of the sum: the sums of the parts' limits."""
+        left: Any = 0.0
+        right: Any = 0.0
         for p in self.parts:
             lp, rp = p.limits(phi)
             left, right = left + lp, right + rp
         return left, right
 
-    def __call__(self, phi):
+    def __call__(self, phi: Array) -> Array:
+        """The sum at the angles ``phi`` (right limits) [N*m]."""
         return self.limits(np.asarray(phi, dtype=float))[1]
 
-    def casadi(self, phi, omega=None):
-        total = 0.0
+    def casadi(self, phi: Symbolic, omega: Symbolic | None = None) -> Symbolic:
+        """The sum as one CasADi expression (ω passed to the speed-dependent parts)."""
+        total: Symbolic = 0.0
         for p in self.parts:
             total = total + (p.casadi(phi, omega) if getattr(p, "speed_dependent", False) else p.casadi(phi))
         return total
 
-    def at_speed(self, omega):
+    def at_speed(self, omega: float) -> TorqueSum:
+        """The sum with every speed-dependent part held at ``omega`` [rad/s]."""
         return TorqueSum(
             [p.at_speed(omega) if getattr(p, "speed_dependent", False) else p for p in self.parts], self.where
         )
