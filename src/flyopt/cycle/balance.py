@@ -5,17 +5,23 @@ W = ∫_0^Φ M dφ; an unknown constant torque is M = W_other/Φ
 is refused (non-periodic fluctuation).
 """
 
+from __future__ import annotations
+
+from typing import Any, cast
+
 import numpy as np
 
 from flyopt.cycle.difference import segments
-from flyopt.cycle.torque import Constant, PiecewiseLinear
+from flyopt.cycle.torque import Constant, PiecewiseLinear, TorqueCurve
 from flyopt.errors import NonPeriodicCycle
 
 BALANCE_TOLERANCE = 1e-9
 """Largest accepted |net work| per cycle, relative to the cycle work."""
 
 
-def solve_unknown_constant(driving, resisting, cycle_angle):
+def solve_unknown_constant(
+    driving: TorqueCurve, resisting: TorqueCurve, cycle_angle: float
+) -> tuple[TorqueCurve, TorqueCurve]:
     """Replace an unknown constant torque by the value that balances the cycle.
 
     M = W_other / Φ (docs/flywheel-design.md, section 4).
@@ -32,7 +38,7 @@ def solve_unknown_constant(driving, resisting, cycle_angle):
     return driving, resisting
 
 
-def _balancing_constant(curve, cycle_angle):
+def _balancing_constant(curve: TorqueCurve, cycle_angle: float) -> Constant:
     """The constant whose work over the cycle equals that of ``curve``.
 
     Against a table it is kept as pivot + excess (a two-pass mean): the
@@ -49,15 +55,15 @@ def _balancing_constant(curve, cycle_angle):
     return Constant(work(curve, cycle_angle) / cycle_angle)
 
 
-def work(curve, cycle_angle):
+def work(curve: TorqueCurve, cycle_angle: float) -> float:
     """Work of one torque curve over one cycle, ∫_0^Φ M dφ [J].
 
     Curves are immutable, so the quadrature of a nonlinear one is done once
     per cycle angle and kept on the curve (solving an unknown constant and
     building the indicator diagram both need it).
     """
-    if curve.is_linear:
-        return curve.work(cycle_angle)
+    if curve.is_linear:  # a table or a constant, or a machine's linear curve: each integrates itself exactly
+        return float(cast(Any, curve).work(cycle_angle))
     cache = curve.__dict__.setdefault("_work_per_cycle", {})
     if cycle_angle not in cache:
         zero = Constant(0.0)
@@ -65,7 +71,7 @@ def work(curve, cycle_angle):
     return cache[cycle_angle]
 
 
-def check_balance(imbalance, cycle_work, fluctuation_scale):
+def check_balance(imbalance: float, cycle_work: float, fluctuation_scale: float) -> None:
     """Refuse a cycle whose net work exceeds BALANCE_TOLERANCE of its work.
 
     The work is the larger of the cycle work of the torques and the work

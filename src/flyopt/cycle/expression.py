@@ -11,11 +11,15 @@ arguments, strings, comprehensions and unknown names are rejected before any
 arithmetic happens.
 """
 
+from __future__ import annotations
+
 import ast
 import math
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any, cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from flyopt.errors import ExpressionError, shorten
 from flyopt.names import closest
@@ -147,7 +151,7 @@ class Expression:
     1.0
     """
 
-    def __init__(self, text, variables=("phi",)):
+    def __init__(self, text: str, variables: Sequence[str] = ("phi",)) -> None:
         if not isinstance(text, str):
             raise ExpressionError(f"an expression must be a string, got {shorten(text)}")
         if len(text) > MAX_LENGTH:
@@ -166,27 +170,27 @@ class Expression:
             raise ExpressionError(too_deep) from None
         if _depth(tree.body) > MAX_DEPTH:
             raise ExpressionError(too_deep)
-        self.used = set()
-        self._kinks = []
+        self.used: set[str] = set()
+        self._kinks: list[Callable[..., Any]] = []
         self._build = self._compile(tree.body)
         self._tree = tree.body
         with np.errstate(all="ignore"):
             self._constant(tree.body)
 
     @property
-    def depends_on(self):
+    def depends_on(self) -> frozenset[str]:
         """The variables that actually occur in the expression (a frozenset)."""
         return frozenset(self.used)
 
-    def numpy(self, **values):
+    def numpy(self, **values: ArrayLike) -> Any:
         """Evaluate with numpy; variables are floats or arrays [SI]."""
         return self._evaluate(values, backend="numpy")
 
-    def casadi(self, **values):
+    def casadi(self, **values: Any) -> Any:
         """Build the CasADi expression; variables are SX/MX/DM symbols or numbers."""
         return self._evaluate(values, backend="casadi")
 
-    def _evaluate(self, values, backend):
+    def _evaluate(self, values: Mapping[str, Any], backend: str) -> Any:
         missing = [v for v in self.used if v not in values]
         if missing:
             raise ExpressionError(f"{shorten(self.text)} needs a value for {', '.join(sorted(missing))}")
@@ -199,11 +203,11 @@ class Expression:
         return self._build(values, functions)
 
     @property
-    def has_kinks(self):
+    def has_kinks(self) -> bool:
         """True when ``abs``, ``min`` or ``max`` may make the expression kink."""
         return bool(self._kinks)
 
-    def error_bound(self, **values):
+    def error_bound(self, **values: ArrayLike) -> Any:
         """A bound on the round-off of :meth:`numpy` at these values (same units).
 
         A running forward error bound: every operation adds half an ulp of
@@ -215,17 +219,17 @@ class Expression:
         """
         return self.numpy_with_bound(**values)[1]
 
-    def numpy_with_bound(self, **values):
+    def numpy_with_bound(self, **values: ArrayLike) -> tuple[Any, Any]:
         """(:meth:`numpy`, :meth:`error_bound`) from one pass over the tree."""
         with np.errstate(all="ignore"):
             return _bound(self._tree, values)
 
     @property
-    def kink_count(self):
+    def kink_count(self) -> int:
         """How many ``abs``, ``min`` and ``max`` calls the expression holds."""
         return len(self._kinks)
 
-    def kink_argument(self, index, **values):
+    def kink_argument(self, index: int, **values: ArrayLike) -> Any:
         """One quantity whose sign changes are kinks of the expression (numpy).
 
         ``abs(g)`` kinks where g changes sign, ``min(g, h)`` and ``max(g, h)``
@@ -235,14 +239,14 @@ class Expression:
         functions = {name: fn for name, (_, fn, _) in FUNCTIONS.items()}
         return self._kinks[index](values, functions)
 
-    def kink_arguments(self, **values):
+    def kink_arguments(self, **values: ArrayLike) -> list[Any]:
         """Every kink quantity (:meth:`kink_argument`), in their order."""
         return [self.kink_argument(k, **values) for k in range(len(self._kinks))]
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Expression({self.text!r})"
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[type[Expression], tuple[str, tuple[str, ...]]]:
         """Pickle by text: the compiled closures are rebuilt (for worker processes)."""
         return (Expression, (self.text, self.variables))
 

@@ -242,7 +242,7 @@ class ExpressionTorque:
         """
         if self.speed_dependent:
             return []
-        extra = {"omega": self.omega} if "omega" in self.expression.depends_on else {}
+        extra: dict[str, Any] = {"omega": self.omega} if "omega" in self.expression.depends_on else {}
 
         def argument(index: int) -> Callable[[Array], Array]:
             def g(phi: Array) -> Array:

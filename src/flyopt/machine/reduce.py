@@ -257,7 +257,7 @@ def _check_drive(machine: Machine) -> None:
     speeds = [machine.omega_mean]
     if getattr(machine.resisting, "speed_dependent", False):
         speeds += list(np.linspace(0.0, no_load / curve.speed_ratio, 17)[1:])
-    load = min(float(machine.angle_only(w).driving.value) for w in speeds)
+    load = min(cast(Constant, machine.angle_only(w).driving).known() for w in speeds)  # a motor's is a Constant
     if largest < load:
         raise SceneError(
             "torque.driving",
