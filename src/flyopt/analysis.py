@@ -8,6 +8,7 @@ ratio-squared transfer.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import asdict, dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal
@@ -16,10 +17,15 @@ from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas
 from flyopt.errors import NonPeriodicCycle, SceneError
 
 if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
+    import numpy as np
+
     from flyopt.cycle.indicator import EnergyIndicator
     from flyopt.io.scene import Scene
     from flyopt.machine.reduce import Machine
     from flyopt.sizing.choose import Requirement
+    from flyopt.sizing.energy_mass import SpeedFluctuation
+    from flyopt.sizing.periodic import PeriodicSolution
+    from flyopt.sizing.textbook import TextbookRequirement
 from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.names import Model
 from flyopt.units import gd2_from_inertia
@@ -153,17 +159,17 @@ class Analysis:
         return self._extra("models")
 
     @property
-    def startup(self):
+    def startup(self) -> StartupRun | None:
         """The run-up from rest with the motor (:class:`StartupRun`), or None without a motor (:func:`complete`)."""
         return self._extra("startup")
 
     @property
-    def textbook(self):
+    def textbook(self) -> TextbookRequirement | None:
         """An [engine]'s textbook flywheel (flyopt.sizing.textbook.textbook_requirement), or None for a
         machine that is not an engine or whose inertia is constant (:func:`complete`)."""
         return self._extra("textbook")
 
-    def speed_curve(self):
+    def speed_curve(self) -> SpeedFluctuation | PeriodicSolution | None:
         """ω(φ) over the cycle with the required flywheel, by the model that sized it (:func:`complete`).
 
         The dynamic model's periodic solution; for the energy models the forward
@@ -191,7 +197,7 @@ class Analysis:
             raise ValueError(error)
         return speed
 
-    def _extra(self, name):
+    def _extra(self, name: str) -> Any:
         try:
             return self._extras[name]
         except KeyError:
@@ -226,7 +232,7 @@ class Analysis:
         samples = _net_torque_samples(self.machine)
         return None if samples is None else float(abs(samples[1]).max())
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         """Plain JSON-ready dictionary, every number in SI (the comparison and start-up where computed)."""
         out = {
             k: v
@@ -242,7 +248,7 @@ class Analysis:
         return out
 
 
-def flywheel_torque(machine, j_flywheel):
+def flywheel_torque(machine: Machine | None, j_flywheel: float) -> float | None:
     """The largest torque a flywheel ``j_flywheel`` [kg*m^2] exchanges with the reference shaft of ``machine`` [N*m].
 
     None for a net-area scene (``machine`` None) or no flywheel; see :meth:`Analysis.flywheel_torque`.
@@ -256,7 +262,7 @@ def flywheel_torque(machine, j_flywheel):
     return flywheel_peak_torque(j_flywheel, j_machine + j_flywheel, differences, 1.0)
 
 
-def _net_torque_samples(machine):
+def _net_torque_samples(machine: Machine | None) -> tuple[np.ndarray, np.ndarray] | None:
     """(J_e, M_d - M_r) at the reference shaft on 4097 angles and every knot, both sides of a step;
     None for a net-area scene (no machine)."""
     import numpy as np
@@ -273,7 +279,7 @@ def _net_torque_samples(machine):
 
 def analyse(
     scene: Scene,
-    model: Literal["energy", "energy_mass", "dynamic"] | None = None,
+    model: Model | Literal["energy", "energy_mass", "dynamic"] | None = None,
     *,
     like: Analysis | None = None,
     extras: tuple = (),
@@ -312,7 +318,7 @@ def analyse(
         raise err.with_source(scene.source) from None
 
 
-def _analyse(scene, forced=None, like=None):
+def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = None) -> Analysis:
     from flyopt.machine.reduce import reduce
     from flyopt.sizing import choose as models
 
@@ -336,6 +342,7 @@ def _analyse(scene, forced=None, like=None):
 
             base = like.machine
             machine = dataclasses.replace(base, delta=scene.delta, _cache=base._cache)
+            assert like.indicator is not None  # a machine's analysis has its diagram
             ind = like.indicator  # the torques at the frozen speed do not depend on δ
         else:
             machine = reduce(scene)
@@ -344,7 +351,7 @@ def _analyse(scene, forced=None, like=None):
         model, reason = models.choose(machine)
         if forced is not None and forced != model:
             reason = f"forced by --model; the exact model for this scene is {model}: {reason}"
-            model = forced
+            model = Model(forced)
         requirement = models.requirement(machine, model, ind)
         j_margin = requirement.j_required
         omega_mean, omega_max, omega_min = requirement.omega_mean, requirement.omega_max, requirement.omega_min
@@ -352,6 +359,7 @@ def _analyse(scene, forced=None, like=None):
         work, driving, resisting = ind.work_driving, ind.driving_mean, ind.resisting_mean
         power = driving * omega_mean
         motor_power = power / scene.efficiency
+        assert ind.chain_angle is not None  # a machine's diagram has its angles (only net areas have none)
         chain = tuple(
             {"index": k, "angle": float(a), "delta_e": float(e)}
             for k, (a, e) in enumerate(zip(ind.chain_angle, ind.chain_delta_e))
@@ -404,7 +412,7 @@ def _analyse(scene, forced=None, like=None):
     )
 
 
-def complete(analysis, extras=EXTRAS):
+def complete(analysis: Analysis, extras: Iterable[str] = EXTRAS) -> Analysis:
     """The analysis with ``extras`` computed (:data:`EXTRAS`), those it already has kept.
 
     Parameters
@@ -435,7 +443,7 @@ def complete(analysis, extras=EXTRAS):
     return replace(analysis, _extras=MappingProxyType(have))
 
 
-def _models(analysis):
+def _models(analysis: Analysis) -> tuple[dict[str, Any], ...]:
     if analysis.machine is None:  # net areas: the energy method alone, exact
         return (
             {
@@ -452,13 +460,13 @@ def _models(analysis):
     return tuple(models.compare(analysis.machine, analysis.model, analysis.indicator, known=analysis.requirement))
 
 
-def _startup(analysis):
+def _startup(analysis: Analysis) -> StartupRun | None:
     if analysis.machine is None:
         return None
     return startup_run(analysis.machine, analysis.omega_mean, max(analysis.j_margin, 0.0))
 
 
-def _textbook(analysis):
+def _textbook(analysis: Analysis) -> TextbookRequirement | None:
     machine = analysis.machine
     if machine is None or not machine.variable_inertia:
         return None  # no moving masses: the textbook method and the exact one are one
@@ -470,7 +478,7 @@ def _textbook(analysis):
     return textbook_requirement(machine, analysis.omega_mean, analysis.delta)
 
 
-def _speed(analysis):
+def _speed(analysis: Analysis) -> tuple[SpeedFluctuation | PeriodicSolution | None, str | None]:
     """(ω(φ) or None, None), or (None, why it cannot be drawn)."""
     try:
         return _speed_curve(analysis), None
@@ -481,7 +489,7 @@ def _speed(analysis):
 _COMPUTE = {"models": _models, "startup": _startup, "textbook": _textbook, "speed": _speed}
 
 
-def startup_run(machine, omega_target, j_flywheel):
+def startup_run(machine: Machine, omega_target: float, j_flywheel: float) -> StartupRun | None:
     """Run-up from rest to the mean speed, declutched: the motor against the inertia alone (:class:`StartupRun`).
 
     Induction motors use the Kloss curve here (the linear line is valid only
@@ -522,11 +530,12 @@ def startup_run(machine, omega_target, j_flywheel):
     return StartupRun(method, run.time, run.cycles, omega_target, "")
 
 
-def _speed_curve(analysis):
+def _speed_curve(analysis: Analysis) -> SpeedFluctuation | PeriodicSolution | None:
     """See :meth:`Analysis.speed_curve`."""
     machine = analysis.machine
     if machine is None:
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
+    assert analysis.requirement is not None  # a machine's analysis has its requirement
     if analysis.requirement.model == Model.DYNAMIC:
         solution = analysis.requirement.detail.solution
         if solution.j_flywheel == analysis.j_required:

@@ -6,19 +6,27 @@ rule, and :func:`flyopt.pipeline.solve` computes the curve when a reader asks
 for it (``extras=("inertia_curve",)``).
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from flyopt.analysis import Analysis
+    from flyopt.io.scene import Scene
 
 
-def flywheel_at_some_delta(analysis):
+def flywheel_at_some_delta(analysis: Analysis) -> bool:
     """Whether J_F(δ) has anything to show: False for a steady machine of constant inertia (A_max = 0 J,
     torques of the angle only), which needs no flywheel at any δ."""
     machine = analysis.machine
     return analysis.a_max > 0 or (machine is not None and (machine.variable_inertia or machine.speed_dependent))
 
 
-def delta_range(analysis, points=41):
+def delta_range(analysis: Analysis, points: int = 41) -> np.ndarray:
     """The δ at which J_F(δ) is drawn: log-spaced about the scene's δ, the scene's δ itself among them.
 
     From a fifth of the smaller of the scene's δ and δ* (where J_F reaches 0;
@@ -34,7 +42,7 @@ def delta_range(analysis, points=41):
     return np.union1d(np.geomspace(lo, hi, points), [analysis.delta])
 
 
-def inertia_curve(scene, analysis, deltas=None):
+def inertia_curve(scene: Scene, analysis: Analysis, deltas: ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """J_F at each δ by the analysis' own model: the scene analysed again at that δ.
 
     With a variable inertia or a speed-dependent torque, J_F is not
@@ -64,6 +72,7 @@ def inertia_curve(scene, analysis, deltas=None):
 
     from flyopt.analysis import analyse
     from flyopt.errors import SolverFailed
+    from flyopt.names import Model
 
     if deltas is None:
         delta, j = inertia_curve(scene, analysis, delta_range(analysis, 25 if analysis.model == "dynamic" else 41))
@@ -78,7 +87,9 @@ def inertia_curve(scene, analysis, deltas=None):
     j = np.full(deltas.shape, np.nan)
     for k, delta in enumerate(deltas):
         try:
-            j[k] = analyse(dataclasses.replace(scene, delta=float(delta)), analysis.model, like=analysis).j_margin
+            j[k] = analyse(
+                dataclasses.replace(scene, delta=float(delta)), Model(analysis.model), like=analysis
+            ).j_margin
         except SolverFailed:
             continue
     return deltas, j

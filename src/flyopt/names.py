@@ -21,6 +21,7 @@ stage may use it.
 from __future__ import annotations
 
 import difflib
+from collections.abc import Iterable
 from enum import Enum
 
 from flyopt.errors import shorten
@@ -124,7 +125,7 @@ class MotorModel(Name):
     KLOSS = "kloss"
 
 
-def closest(name, allowed) -> str | None:
+def closest(name: object, allowed: Iterable[object]) -> str | None:
     """The allowed name closest to ``name``, or None when none is close.
 
     The one rule behind every "did you mean" of flyopt: difflib's ratio of
@@ -146,13 +147,13 @@ def closest(name, allowed) -> str | None:
     return close[0] if close else None
 
 
-def hint(name, allowed) -> str:
+def hint(name: object, allowed: Iterable[object]) -> str:
     """``"; did you mean 'x'?"`` for the closest allowed name, or ``""`` when none is close."""
     close = closest(name, allowed)
     return f"; did you mean {shorten(close)}?" if close is not None else ""
 
 
-def choice(value, allowed, field):
+def choice(value: object, allowed: Iterable[object], field: str) -> str:
     """``value`` when it is one of ``allowed``; else a ValueError of one line.
 
     The message names the field, quotes the value, offers the closest name
@@ -183,7 +184,7 @@ def choice(value, allowed, field):
     raise ValueError(f"{field} {unknown(value, names)}")
 
 
-def unknown(value, allowed) -> str:
+def unknown(value: object, allowed: Iterable[object]) -> str:
     """The words for a name not in ``allowed``: ``'rimm' is not known; did you mean 'rim'? (allowed: ...)``.
 
     The scene loader puts them after the field's path (a SceneError);

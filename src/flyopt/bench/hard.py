@@ -227,7 +227,7 @@ def run_hard(
             value, status = ind.a_max, "ok"
         except (ArithmeticError, ValueError) as exc:
             value, status, elapsed = math.nan, f"{type(exc).__name__}: {exc}", math.nan
-        err = abs(value - a_max_ref) / a_max_ref if math.isfinite(value) else math.inf
+        cycle_error = abs(value - a_max_ref) / a_max_ref if math.isfinite(value) else math.inf
         cycle_rows.append(
             {
                 "kind": "cycle",
@@ -237,9 +237,9 @@ def run_hard(
                 "value": value,
                 "reference": a_max_ref,
                 "reference_how": case.reference_how,
-                "rel_error": err,
+                "rel_error": cycle_error,
                 "bar": CYCLE_BAR,
-                "passed": err <= CYCLE_BAR,
+                "passed": cycle_error <= CYCLE_BAR,
                 "status": status,
                 "time_s": elapsed,
                 "reference_time_s": ref_time,

@@ -26,14 +26,19 @@ J_F = A_max/(ω_m² δ) − J_c and the speeds ω_m (1 ± δ/2) (:func:`required
 :func:`speed_extremes`).
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from flyopt.cycle.balance import check_balance, solve_unknown_constant, work
 from flyopt.cycle.difference import sample, segments
 from flyopt.cycle.numerics import EPS, accurate_cumsum, quad_many
+from flyopt.cycle.torque import Array, TorqueCurve
 
 
 @dataclass(frozen=True)
@@ -70,32 +75,32 @@ class EnergyIndicator:
     imbalance: float
 
     @property
-    def driving_mean(self):
+    def driving_mean(self) -> float:
         """Mean driving torque M_d = W_d/Φ [N*m]."""
         return self.work_driving / self.cycle_angle
 
     @property
-    def resisting_mean(self):
+    def resisting_mean(self) -> float:
         """Mean resisting torque M_r = W_r/Φ [N*m]."""
         return self.work_resisting / self.cycle_angle
 
     @property
-    def angle_omega_max(self):
+    def angle_omega_max(self) -> float | None:
         """Angle of the highest speed [rad] (None for net-area scenes)."""
         return None if self.chain_angle is None else float(self.chain_angle[self.index_max])
 
     @property
-    def angle_omega_min(self):
+    def angle_omega_min(self) -> float | None:
         """Angle of the lowest speed [rad] (None for net-area scenes)."""
         return None if self.chain_angle is None else float(self.chain_angle[self.index_min])
 
     @property
-    def areas(self):
+    def areas(self) -> Array:
         """Signed areas between consecutive chain points [J] (+ surplus, − deficit)."""
         return np.diff(self.chain_delta_e)
 
 
-def energy_indicator(driving, resisting, cycle_angle):
+def energy_indicator(driving: TorqueCurve, resisting: TorqueCurve, cycle_angle: float) -> EnergyIndicator:
     """Exact energy indicator diagram of two torque curves over one cycle.
 
     Parameters
@@ -145,7 +150,7 @@ def energy_indicator(driving, resisting, cycle_angle):
     )
 
 
-def energy_indicator_from_areas(areas, cycle_angle):
+def energy_indicator_from_areas(areas: Sequence[float] | Array, cycle_angle: float) -> EnergyIndicator:
     """Energy indicator diagram from the signed net areas between the curves.
 
     Parameters
@@ -196,14 +201,14 @@ class ExcessWork:
     driving, resisting : torque curves (an unknown constant already solved)
     """
 
-    def __init__(self, driving, resisting, cycle_angle):
+    def __init__(self, driving: TorqueCurve, resisting: TorqueCurve, cycle_angle: float) -> None:
         self.driving, self.resisting = solve_unknown_constant(driving, resisting, cycle_angle)
         self._segments = segments(self.driving, self.resisting, cycle_angle)
         self.knots = self._segments.knots
         self._at_knots = np.concatenate(([0.0], accurate_cumsum(self._segments.integrals())))
         self.cycle_angle = cycle_angle
 
-    def __call__(self, phi):
+    def __call__(self, phi: ArrayLike) -> Array:
         """ΔE at the angles ``phi`` in [0, Φ] [J] (vectorized)."""
         phi = np.asarray(phi, dtype=float)
         k = np.clip(np.searchsorted(self.knots, phi, side="right") - 1, 0, len(self.knots) - 2)
@@ -220,15 +225,15 @@ class ExcessWork:
         return (self._at_knots[ks] + parts).reshape(phi.shape)
 
     @property
-    def at_knots(self):
+    def at_knots(self) -> Array:
         """ΔE at :attr:`knots` [J] (sums of the pieces' integrals, in extended precision)."""
         return self._at_knots
 
-    def scale(self):
+    def scale(self) -> float:
         """Work scale of the cycle, peak |M_d − M_r| times Φ, for tolerances [J]."""
         return self._segments.scale()
 
-    def net_torque(self, phi):
+    def net_torque(self, phi: ArrayLike) -> Array:
         """M_d − M_r at ``phi`` [N*m] (right limits at steps; vectorized)."""
         phi = np.asarray(phi, dtype=float)
         return (sample(self.driving, phi)[1] - sample(self.resisting, phi)[1]).astype(float)

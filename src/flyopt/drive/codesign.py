@@ -339,6 +339,7 @@ def evaluate_motor(
             j_delta=j_delta,
         )
     startup = startup_run(machine, solution.omega_mean, j_need)
+    assert startup is not None  # a drive's machine is driven by its motor
     facts = dict(
         motor_ratio=ratio,
         j_flywheel=j_need,
@@ -863,6 +864,7 @@ def verify_drive(scene: Any, run: MotorRun, j_flywheel: float | None = None) -> 
 
     if j_flywheel is None:
         j_flywheel = run.wheel.j_at_reference if run.wheel is not None else (run.j_flywheel or 0.0)
+    assert j_flywheel is not None  # a designed wheel has its inertia
     ratio = cast(float, run.motor_ratio)  # a feasible run has its ratio
     built = motor_scene(scene, run.motor, ratio)
     machine = reduce(built)
@@ -877,6 +879,7 @@ def verify_drive(scene: Any, run: MotorRun, j_flywheel: float | None = None) -> 
     )
     rms, _ = rms_torque(checked.solution, run.motor.motor(), ratio)
     startup = startup_run(machine, checked.omega_mean, j_flywheel)
+    assert startup is not None  # a drive's machine is driven by its motor
     notes = []
     if checked.flagged:
         notes.append(f"delta {checked.achieved_delta:.6g} exceeds the allowed {scene.delta:.6g}")
