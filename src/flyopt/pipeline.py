@@ -7,7 +7,7 @@ PyBaMM Simulation pattern).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal
@@ -16,10 +16,14 @@ from flyopt.analysis import EXTRAS as ANALYSIS_EXTRAS
 from flyopt.analysis import Analysis, NotComputed, analyse, complete
 
 if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
-    from flyopt.design.result import DesignResult
+    import numpy as np
+
+    from flyopt.design.materials import Material
+    from flyopt.design.result import Candidate, DesignResult
+    from flyopt.design.wheel import Dims
     from flyopt.drive.codesign import DriveCheck, DriveDesign
     from flyopt.io.scene import Scene
-    from flyopt.sizing.periodic import Verification
+    from flyopt.sizing.periodic import PeriodicSolution, Verification
 
 
 #: What ``flyopt solve`` shows beyond the sizing and the design (its text and its JSON): computed by default.
@@ -79,7 +83,7 @@ class Solution:
     drive_check: DriveCheck | None = None  # of the chosen drive
     _extras: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
 
-    def _extra(self, name):
+    def _extra(self, name: str) -> Any:
         try:
             return self._extras[name]
         except KeyError:
@@ -89,29 +93,33 @@ class Solution:
             ) from None
 
     @property
-    def inertia_curve(self):
+    def inertia_curve(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """(δ, J_F at each δ [kg*m^2]) by the scene's own model, or None where there is no curve to draw."""
         return self._extra("inertia_curve")[0]
 
     @property
-    def inertia_error(self):
+    def inertia_error(self) -> Exception | None:
         """The exception that kept J_F from being found at every δ, or None."""
         return self._extra("inertia_curve")[1]
 
     @property
-    def energy_mass(self):
+    def energy_mass(self) -> Analysis | None:
+        """The analysis by the energy–mass model where its diagram applies (J_e varies, torques of the angle only)."""
         return self._extra("energy_mass")
 
     @property
-    def stress(self):
+    def stress(self) -> tuple[Any, Any, float, Material] | None:
+        """The chosen wheel's :func:`stress_profile`, or None (no wheel, or see :attr:`stress_note`)."""
         return self._extra("stress")[0]
 
     @property
-    def stress_note(self):
+    def stress_note(self) -> str:
         """Why there is no stress profile of a chosen wheel ("" when there is one, or no wheel)."""
         return self._extra("stress")[1]
 
     @property
-    def speed_simulation(self):
+    def speed_simulation(self) -> PeriodicSolution | None:
+        """The periodic simulation of the machine with its flywheel (None for net areas)."""
         return self._extra("speed_simulation")
 
     @property
@@ -141,7 +149,7 @@ class Solution:
         return out
 
 
-def design_dict(result, timings=False):
+def design_dict(result: DesignResult, timings: bool = False) -> dict[str, Any]:
     """The "design" object: the winner's fields, its ranking, status and model."""
     raw = result.to_dict(timings)
     design = raw["design"] or {"candidates": []}
@@ -206,7 +214,13 @@ def design_scene(
 DELTA_STEP = 1e-4
 
 
-def _with_delta_sensitivity(scene, analysis, result, solver_options, method):
+def _with_delta_sensitivity(
+    scene: Scene,
+    analysis: Analysis,
+    result: DesignResult,
+    solver_options: Mapping[str, Any] | None,
+    method: str,
+) -> DesignResult:
     """The winner's d(mass)/d(delta), by designing its combination again at delta (1 +- DELTA_STEP).
 
     delta moves the required inertia and the highest speed together, through
@@ -219,6 +233,7 @@ def _with_delta_sensitivity(scene, analysis, result, solver_options, method):
 
     from flyopt.design import design_flywheel, design_inputs
     from flyopt.design.wheel_design import needs_torque
+    from flyopt.names import Model
 
     best = result.best
     if best is None or scene.delta is None or analysis.machine is None and analysis.indicator is None:
@@ -227,7 +242,7 @@ def _with_delta_sensitivity(scene, analysis, result, solver_options, method):
     for sign in (1.0, -1.0):
         delta = scene.delta * (1.0 + sign * DELTA_STEP)
         try:
-            moved = analyse(dataclasses.replace(scene, delta=delta), analysis.model, like=analysis)
+            moved = analyse(dataclasses.replace(scene, delta=delta), Model(analysis.model), like=analysis)
             inputs = design_inputs(dataclasses.replace(scene, delta=delta))
             spec = inputs.spec if best.n_arms is None else dataclasses.replace(inputs.spec, arms=(best.n_arms,))
             torque = moved.flywheel_torque() if needs_torque(inputs) else None
@@ -259,7 +274,7 @@ def _with_delta_sensitivity(scene, analysis, result, solver_options, method):
     return dataclasses.replace(result, best=winner, candidates=candidates)
 
 
-def verify(scene, analysis, design_result=None):
+def verify(scene: Scene, analysis: Analysis, design_result: DesignResult | None = None) -> Verification | None:
     """Simulate the machine with its flywheel and report the δ it really achieves.
 
     The periodic solution of the equation of motion (flyopt.sizing.periodic.verify)
@@ -279,7 +294,9 @@ def verify(scene, analysis, design_result=None):
     if design_result is not None and design_result.status == "infeasible":
         return None
     if design_result is not None and design_result.best is not None:
-        j_flywheel = design_result.best.j_at_reference
+        j_chosen = design_result.best.j_at_reference
+        assert j_chosen is not None  # a designed wheel has its inertia
+        j_flywheel = j_chosen
     else:
         j_flywheel = max(analysis.j_margin, 0.0)
     machine = analysis.machine
@@ -364,7 +381,7 @@ def solve(
     return with_extras(solution, extras)
 
 
-def with_extras(solution, extras=COMPLETE):
+def with_extras(solution: Solution, extras: Iterable[str] = COMPLETE) -> Solution:
     """``solution`` with ``extras`` (of :data:`COMPLETE`) computed on its scene, analysis and design."""
     analysis = complete(solution.analysis, [name for name in extras if name in ANALYSIS_EXTRAS])
     have = dict(solution._extras)
@@ -379,11 +396,12 @@ def with_extras(solution, extras=COMPLETE):
         elif name == "stress":
             have[name] = _stress(scene, analysis, design)
         else:
-            have[name] = verify(scene, analysis).solution if scene.net is None else None
+            checked = verify(scene, analysis) if scene.net is None else None  # no design: never None
+            have[name] = checked.solution if checked is not None else None
     return replace(solution, analysis=analysis, _extras=MappingProxyType(have))
 
 
-def _inertia_curve(scene, analysis):
+def _inertia_curve(scene: Scene, analysis: Analysis) -> tuple[tuple[np.ndarray, np.ndarray] | None, Exception | None]:
     """(curve or None, the error that kept it from being found or None); see :data:`SOLUTION_EXTRAS`."""
     from flyopt.delta_curve import flywheel_at_some_delta, inertia_curve
 
@@ -395,7 +413,7 @@ def _inertia_curve(scene, analysis):
         return None, err
 
 
-def _energy_mass(scene, analysis):
+def _energy_mass(scene: Scene, analysis: Analysis) -> Analysis | None:
     """The analysis by the energy–mass model where its diagram applies (J_e varies, torques of the angle only)."""
     machine = analysis.machine
     if machine is None or not machine.variable_inertia or machine.speed_dependent:
@@ -405,7 +423,9 @@ def _energy_mass(scene, analysis):
     return analyse(scene, "energy_mass", like=analysis)
 
 
-def _stress(scene, analysis, design):
+def _stress(
+    scene: Scene, analysis: Analysis, design: DesignResult | None
+) -> tuple[tuple[Any, Any, float, Material] | None, str]:
     """(the chosen wheel's :func:`stress_profile` or None, why it could not be computed or "")."""
     if design is None or design.best is None:
         return None, ""
@@ -415,7 +435,7 @@ def _stress(scene, analysis, design):
         return None, str(err)
 
 
-def wheel_dims(candidate):
+def wheel_dims(candidate: Candidate) -> Dims:
     """The :class:`flyopt.design.wheel.Dims` of a designed candidate [m] (0 where it has no such part)."""
     from flyopt.design.wheel import Dims
 
@@ -433,7 +453,7 @@ def wheel_dims(candidate):
     )
 
 
-def stress_profile(scene, analysis, design):
+def stress_profile(scene: Scene, analysis: Analysis, design: DesignResult) -> tuple[Any, Any, float, Material]:
     """The stresses of the design's best wheel over its radius, at omega_max on its own shaft.
 
     Returns
@@ -446,6 +466,8 @@ def stress_profile(scene, analysis, design):
     from flyopt.design import strength
 
     best = design.best
+    if best is None:
+        raise ValueError("no wheel was designed: there are no stresses to compute")
     material = scene.material_library()[best.material]
     if getattr(material, "poisson_ratio", None) is None:
         raise ValueError(f"material {best.material!r} gives no poisson_ratio: its stresses cannot be computed")
@@ -456,7 +478,7 @@ def stress_profile(scene, analysis, design):
     return profile, beams, omega, material
 
 
-def solve_drive(scene, analysis, solver_options=None):
+def solve_drive(scene: Scene, analysis: Analysis, solver_options: Mapping[str, Any] | None = None) -> Solution:
     """Design the drive and the flywheel together (flyopt.drive.codesign), then analyse and check the machine as built.
 
     The Solution's scene and analysis are the machine with the chosen motor
