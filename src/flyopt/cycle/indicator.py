@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -39,6 +40,9 @@ from flyopt.cycle.balance import check_balance, solve_unknown_constant, work
 from flyopt.cycle.difference import sample, segments
 from flyopt.cycle.numerics import EPS, accurate_cumsum, quad_many
 from flyopt.cycle.torque import Array, TorqueCurve
+
+Value = TypeVar("Value", float, np.ndarray)
+"""A number or an array of them: the closed forms below hold elementwise (a sweep's points at once)."""
 
 
 @dataclass(frozen=True)
@@ -239,7 +243,9 @@ class ExcessWork:
         return (sample(self.driving, phi)[1] - sample(self.resisting, phi)[1]).astype(float)
 
 
-def required_inertia(a_max, omega_mean, delta, j_constant=0.0):
+def required_inertia(
+    a_max: Value, omega_mean: Value | float, delta: Value | float, j_constant: Value | float = 0.0
+) -> Value:
     """Flywheel inertia at the reference shaft by the constant-inertia method.
 
     J_F = A_max / (ω_m² δ) − J_c  (docs/flywheel-design.md, section 5).
@@ -263,7 +269,7 @@ def required_inertia(a_max, omega_mean, delta, j_constant=0.0):
     return a_max / (omega_mean**2 * delta) - j_constant
 
 
-def speed_extremes(omega_mean, delta):
+def speed_extremes(omega_mean: Value, delta: Value | float) -> tuple[Value, Value]:
     """Highest and lowest speed of a cycle of mean speed ω_m and fluctuation δ [rad/s].
 
     ω_max = ω_m (1 + δ/2), ω_min = ω_m (1 − δ/2), from δ = (ω_max − ω_min)/ω_m
