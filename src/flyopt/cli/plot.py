@@ -15,12 +15,17 @@ nothing written. ``--units`` picks the unit system every axis and label is
 drawn in (flyopt.report.display); files of results stay SI.
 """
 
+from __future__ import annotations
+
+import argparse
+from collections.abc import Iterable
+
 from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_INPUT, EXIT_OK, fail
 from flyopt.errors import FlyoptError
 from flyopt.names import Model, hint
 
 
-def add_plot_arguments(parser):
+def add_plot_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt plot``; the handler is :func:`run_plot`."""
     parser.add_argument("scene", help="scene file (TOML), or results (.csv/.parquet) of flyopt sweep or pareto")
     parser.add_argument(
@@ -59,7 +64,7 @@ def add_plot_arguments(parser):
 ALL = "all"
 
 
-def needs(whats, verify=False):
+def needs(whats: Iterable[str], verify: bool = False) -> tuple[bool, tuple[str, ...]]:
     """(whether to design, the extras of :func:`flyopt.pipeline.solve`) the diagrams ``whats`` draw."""
     extras = set()
     for what in whats:
@@ -72,7 +77,7 @@ def needs(whats, verify=False):
     return any(what in ("cross_section", "stress") for what in whats), tuple(sorted(extras))
 
 
-def run_plot(args):
+def run_plot(args: argparse.Namespace) -> int:
     """``flyopt plot``: 0 written (or nothing to draw), 2 a bad request, 3 no feasible flywheel to draw."""
     from flyopt.report import display, plots
 

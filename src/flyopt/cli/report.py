@@ -21,14 +21,27 @@ file and the field), 3 infeasible (the report is still written and says
 so), 4 the verification flagged the design (written, and says so).
 """
 
+from __future__ import annotations
+
+import argparse
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any, cast
+
 from flyopt.cli.exits import solution_exit
 from flyopt.names import Model
+
+if TYPE_CHECKING:
+    import os
+
+    from flyopt.io.scene import Scene
+    from flyopt.pipeline import Solution
+    from flyopt.report.document import Document, ReportInputs
 
 #: The report's formats, by the suffix of the output file.
 FORMATS = {".html": "html", ".htm": "html", ".pdf": "pdf"}
 
 
-def add_report_arguments(parser):
+def add_report_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt report``; the handler is :func:`run_report`."""
     from flyopt.report.display import DEFAULT, SYSTEMS
 
@@ -50,7 +63,7 @@ def add_report_arguments(parser):
     parser.set_defaults(run=run_report)
 
 
-def output_kind(path):
+def output_kind(path: str | os.PathLike[str]) -> str:
     """ "html" or "pdf" from the suffix of ``path``; SceneError at ``-o/--output`` otherwise."""
     from pathlib import Path
 
@@ -62,7 +75,7 @@ def output_kind(path):
     return kind
 
 
-def run_report(args):
+def run_report(args: argparse.Namespace) -> int:
     """``flyopt report``: 0 written, 3 infeasible (written), 4 verification flagged (written)."""
     import sys
     from pathlib import Path
@@ -86,10 +99,10 @@ def run_report(args):
     for failure in document.failures:
         print(f"flyopt: warning: {args.scene}: diagram {failure}", file=sys.stderr)
     print(f"wrote {args.output}")
-    return solution_exit(inputs.solution)
+    return solution_exit(cast("Solution", inputs.solution))  # collect solved it
 
 
-def write(document, path, kind):
+def write(document: Document, path: str | os.PathLike[str], kind: str) -> None:
     """Render ``document`` as ``kind`` ("html" or "pdf") and write it to ``path`` atomically."""
     from pathlib import Path
 
@@ -118,7 +131,7 @@ def write(document, path, kind):
     replace_atomically(Path(path), write_bytes)
 
 
-def collect(path, command="", pdf=False):
+def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) -> ReportInputs:
     """Solve a scene and gather what its report shows (:class:`flyopt.report.document.ReportInputs`).
 
     Parameters
@@ -161,7 +174,7 @@ def collect(path, command="", pdf=False):
     return inputs
 
 
-def data_files(data, where=""):
+def data_files(data: Any, where: str = "") -> list[tuple[str, str]]:
     """The files a scene names (``points_file``, a member's ``force_file``, ...): [(field, value)]."""
     found = []
     items = data.items() if isinstance(data, dict) else enumerate(data) if isinstance(data, list) else ()
@@ -239,7 +252,9 @@ def _stress(inputs):
     inputs.stress, inputs.stress_note = solution.stress, solution.stress_note
 
 
-def provenance(scene, command="", pdf=False, files=()):
+def provenance(
+    scene: Scene, command: str = "", pdf: bool = False, files: Sequence[tuple[str, str]] = ()
+) -> tuple[tuple[str, str], ...]:
     """Where the report came from: flyopt's version, the scene file and its SHA-256, the date, the solvers.
 
     Parameters
@@ -286,7 +301,7 @@ def provenance(scene, command="", pdf=False, files=()):
     return tuple(rows)
 
 
-def _version_of(name):
+def _version_of(name: str) -> str:
     from importlib import metadata
 
     try:
@@ -295,7 +310,7 @@ def _version_of(name):
         return "not installed"
 
 
-def ipopt_version():
+def ipopt_version() -> str:
     """IPOPT's version as CasADi's build reports it (``CasadiMeta.feature_list``), or why it is not known."""
     import re
 

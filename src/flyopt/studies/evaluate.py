@@ -38,8 +38,9 @@ import math
 import threading
 import weakref
 from collections import OrderedDict
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 import pandas as pd
@@ -58,6 +59,8 @@ from flyopt.outputs.results import RESULT_COLUMNS
 from flyopt.sizing.peak_torque import flywheel_peak_torque
 
 if TYPE_CHECKING:
+    from flyopt.analysis import Analysis
+    from flyopt.design.spec import DesignSpec
     from flyopt.io.scene import Scene
     from flyopt.studies.payload import ScenePayload
 
@@ -77,7 +80,7 @@ __all__ = [
 PHYSICS_FIELDS = ("delta", "speed", "inertia", "torque.scale")
 
 
-def check_points(scene, points, where):
+def check_points(scene: Scene, points: pd.DataFrame, where: str) -> None:
     """Reject points whose design settings are invalid, naming the field.
 
     Works on the varied columns only (a 10⁶-point plan is checked without
@@ -169,7 +172,7 @@ _SPEC_COLUMNS = (
 )
 
 
-def design_counts(scene, points, method="auto"):
+def design_counts(scene: Scene, points: pd.DataFrame, method: str = "auto") -> tuple[int, np.ndarray]:
     """How many designs each point asks for, and how many of them need IPOPT.
 
     Parameters
@@ -222,7 +225,7 @@ def _vectorized(inputs, geometry_name, objective):
     )
 
 
-def physics_codes(points):
+def physics_codes(points: pd.DataFrame) -> tuple[np.ndarray, int]:
     """A number per point naming its physics (see :data:`PHYSICS_FIELDS`), by first appearance.
 
     Parameters
@@ -266,7 +269,7 @@ def _scale_curve(curve, k):
     raise SceneError("torque.scale", f"cannot scale a torque of type {type(curve).__name__}")
 
 
-def point_scene(scene, point):
+def point_scene(scene: Scene, point: Mapping[str, Any]) -> Scene:
     """The scene of one sweep point (for individual solves and checks).
 
     Parameters
@@ -284,6 +287,7 @@ def point_scene(scene, point):
 
     changes: dict[str, Any] = {}
     design: dict[str, Any] = {}
+    spec = cast("DesignSpec", scene.design)  # the loader fills in the defaults when the scene has no [design]
     shafts = {s.name: s for s in scene.shafts}
     library = material_library(scene.materials)
     user = {m.name: m for m in scene.materials}
@@ -305,7 +309,7 @@ def point_scene(scene, point):
         elif name == "design.hb_ratio":
             design["hb_ratio"] = (float(value), float(value))
         elif name in ("design.hb_min", "design.hb_max"):
-            low, high = design.get("hb_ratio", scene.design.hb_ratio)
+            low, high = design.get("hb_ratio", spec.hb_ratio)
             design["hb_ratio"] = (float(value), high) if name.endswith("min") else (low, float(value))
         elif name in ("design.max_outer_diameter", "design.max_width", "design.d_mean"):
             design[name.split(".")[1]] = None if _is_none(value) else float(value)
@@ -325,7 +329,7 @@ def point_scene(scene, point):
         else:
             raise SceneError(name, "unknown sweep field")
     if design:
-        changes["design"] = dataclasses.replace(scene.design, **design)
+        changes["design"] = dataclasses.replace(spec, **design)
     changes["shafts"] = tuple(shafts.values())
     changes["materials"] = tuple(user.values())
     return scene.replace(**changes)
@@ -370,7 +374,9 @@ class ChunkContext:
     torque_peak: float | None = None  # max |M_d - M_r| of the cycle when reusable [N*m]
 
 
-def chunk_context(scene, method="auto", solver_options=None, axes=()):
+def chunk_context(
+    scene: Scene, method: str = "auto", solver_options: Mapping[str, Any] | None = None, axes: Sequence[str] = ()
+) -> ChunkContext:
     reusable = _reusable(scene)
     if reusable:
         analysis = physics_analysis(scene)
@@ -422,10 +428,11 @@ class Task:
     driving_torque: float | None = None
     torque_peak: float | None = None
 
-    def __call__(self, points):
+    def __call__(self, points: pd.DataFrame) -> pd.DataFrame:
+        """The results of the chunk ``points`` (one row per point)."""
         return evaluate_chunk(self.context(), points)
 
-    def context(self):
+    def context(self) -> ChunkContext:
         """The chunk context of this process, built on first use and kept."""
         key = (
             self.scene.key,
@@ -463,7 +470,7 @@ _TASK_CONTEXTS: dict = {}
 _TASK_LOCK = threading.Lock()
 
 
-def task_of(ctx, scene):
+def task_of(ctx: ChunkContext, scene: Scene) -> tuple[Task | None, str]:
     """The :class:`Task` of a sweep context, or why it cannot leave this process.
 
     Parameters
@@ -596,7 +603,13 @@ def _empty_results(n):
     return out
 
 
-def evaluate_points(scene_or_context, points, *, method="auto", solver_options=None):
+def evaluate_points(
+    scene_or_context: Scene | ChunkContext,
+    points: pd.DataFrame,
+    *,
+    method: str = "auto",
+    solver_options: Mapping[str, Any] | None = None,
+) -> pd.DataFrame:
     """Design every point of a table of sweep points.
 
     Parameters
@@ -624,7 +637,7 @@ def evaluate_points(scene_or_context, points, *, method="auto", solver_options=N
     return evaluate_chunk(ctx, points)
 
 
-def evaluate_chunk(ctx, points):
+def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
     scene = ctx.scene
     inputs = _Inputs(scene, points)
     n = inputs.n
@@ -720,7 +733,7 @@ MEMO_SIZE = 256
 _MEMO_LOCK = threading.Lock()
 
 
-def physics_analysis(scene, point=None):
+def physics_analysis(scene: Scene, point: Mapping[str, Any] | None = None) -> Analysis:
     """The analysis of a scene at one physics (δ, ω_m, J_c, torque scale), computed once.
 
     Every study (sweep chunks, the points of a Pareto front, the materials of

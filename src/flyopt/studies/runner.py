@@ -45,13 +45,14 @@ import signal
 import sys
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pandas as pd
+from numpy.typing import ArrayLike
 
 from flyopt.errors import Interrupted, SceneError
 from flyopt.outputs.results import check_folder, read_results, write_results
@@ -101,7 +102,7 @@ NO_WORKERS_SECONDS = 10.0
 POLL_SECONDS = 0.1
 
 
-def cpu_count():
+def cpu_count() -> int:
     """CPUs this process may run on."""
     try:
         return len(os.sched_getaffinity(0))
@@ -109,7 +110,14 @@ def cpu_count():
         return os.cpu_count() or 1
 
 
-def chunk_bounds(costs, *, workers=1, starts=None, breaks=None, chunk_size=None):
+def chunk_bounds(
+    costs: ArrayLike,
+    *,
+    workers: int = 1,
+    starts: ArrayLike | None = None,
+    breaks: Iterable[int] | None = None,
+    chunk_size: int | None = None,
+) -> np.ndarray:
     """Where to cut a sweep's points (in the order they run) into chunks.
 
     Parameters
@@ -184,7 +192,7 @@ def chunk_bounds(costs, *, workers=1, starts=None, breaks=None, chunk_size=None)
     return np.array(bounds, dtype=np.int64)
 
 
-def fingerprint(identity, points, layout):
+def fingerprint(identity: object, points: pd.DataFrame, layout: object) -> str:
     """A digest of what a sweep computes: parts of another sweep are never reused.
 
     Parameters
@@ -218,22 +226,22 @@ class Parts:
 
     MANIFEST = "sweep.json"
 
-    def __init__(self, output):
+    def __init__(self, output: str | os.PathLike[str]) -> None:
         output = Path(output)
         self.folder = output.with_name(output.name + ".parts")
 
-    def path(self, index):
+    def path(self, index: int) -> Path:
         """The file of chunk ``index``."""
         return self.folder / f"chunk-{index:05d}.parquet"
 
-    def manifest(self):
+    def manifest(self) -> dict[str, Any]:
         """What the folder's manifest records (``{}`` when there is none or it is unreadable)."""
         try:
             return json.loads((self.folder / self.MANIFEST).read_text(encoding="utf-8"))
         except (OSError, ValueError):
             return {}
 
-    def open(self, record, chunks, resume):
+    def open(self, record: Mapping[str, Any], chunks: Sequence[tuple[int, pd.DataFrame]], resume: bool) -> list[int]:
         """Create the folder, or (``resume``) find the chunks already in it.
 
         Parameters
@@ -290,15 +298,15 @@ class Parts:
                 done.append(i)
         return done
 
-    def read(self, index, columns=None):
+    def read(self, index: int, columns: Sequence[str] | None = None) -> pd.DataFrame:
         """The results of chunk ``index`` (``columns`` only, when given)."""
         return read_results(self.path(index), columns=columns)
 
-    def save(self, index, frame):
+    def save(self, index: int, frame: pd.DataFrame) -> None:
         """Write the results of chunk ``index`` (atomically)."""
         write_results(frame, self.path(index), temporary_folder=self.folder)
 
-    def remove(self):
+    def remove(self) -> None:
         """Remove the folder and everything in it."""
         shutil.rmtree(self.folder, ignore_errors=True)
 
@@ -385,7 +393,7 @@ def _clock(seconds):
 
 
 @contextmanager
-def connect(scheduler):
+def connect(scheduler: Any) -> Iterator[Any]:
     """A Dask client for ``scheduler`` (None: no client), closed at the end if opened here.
 
     Connects (within :data:`CONNECT_SECONDS`) before the sweep writes
@@ -422,7 +430,18 @@ def connect(scheduler):
         client.close()
 
 
-def run_chunks(task, chunks, pending, *, parts=None, done=None, sink=None, workers=1, client=None, progress=False):
+def run_chunks(
+    task: Callable[[pd.DataFrame], pd.DataFrame],
+    chunks: Sequence[tuple[int, pd.DataFrame]],
+    pending: Sequence[tuple[int, pd.DataFrame]],
+    *,
+    parts: Parts | None = None,
+    done: Iterable[int] | None = None,
+    sink: Callable[[int, pd.DataFrame], None] | None = None,
+    workers: int = 1,
+    client: Any = None,
+    progress: bool = False,
+) -> tuple[dict[int, pd.DataFrame], list[int]]:
     """Run ``task`` on the ``pending`` chunks; save each as it finishes.
 
     Parameters
@@ -501,7 +520,7 @@ def run_chunks(task, chunks, pending, *, parts=None, done=None, sink=None, worke
     return results, ran
 
 
-def stopped(why, parts, saved, total):
+def stopped(why: str, parts: Parts | None, saved: int, total: int) -> str:
     """One line: why a sweep stopped, what it kept and how to continue."""
     if parts is None:
         return f"{why}; nothing was saved (no output file: give one to keep finished chunks)"

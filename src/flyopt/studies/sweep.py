@@ -243,7 +243,8 @@ def sweep(
     with connect(scheduler) as client:  # before anything is written
         start = time.perf_counter()  # the analyses timed for the layout count too
         layout = _layout(scene, ctx, points, method, workers, chunk_size, client, recorded)
-        mode, n_workers, task = layout["mode"], layout["workers"], None
+        mode, n_workers = layout["mode"], layout["workers"]
+        task: Callable[[pd.DataFrame], pd.DataFrame] | None = None
         if mode != "serial":
             task, reason = task_of(ctx, scene)
             if task is None:
@@ -279,6 +280,7 @@ def sweep(
             n_workers = None
         if mode == "serial":
             task = functools.partial(evaluate_chunk, ctx)
+        assert task is not None  # a mode other than serial fell back to it when it had no task
         prepare = _seed_column(plan)
         describe = _describe(scene, plan, method)
         assembly = _Assembly(layout["units"], len(points), parts, output, prepare, describe)
