@@ -45,7 +45,7 @@ import casadi as ca
 import numpy as np
 
 import flyopt
-from flyopt.studies.evaluate import point_scene
+from flyopt.studies.points import point_scene
 from flyopt.studies.sweep import sweep
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -28,10 +28,10 @@ from conftest import PROBLEMS
 
 import flyopt
 from flyopt.outputs.results import read_results
-from flyopt.studies import runner
 from flyopt.studies import sweep as sweep_module
-from flyopt.studies.evaluate import chunk_context, point_scene, task_of
+from flyopt.studies.evaluate import chunk_context, task_of
 from flyopt.studies.payload import digest, payload
+from flyopt.studies.points import point_scene
 from flyopt.studies.sweep import SUMMARY_COLUMNS, sweep
 
 #: The solve of a point and the sweep's row of it run the same analysis and the same
@@ -281,51 +281,6 @@ def fake_dask(monkeypatch):
 # --------------------------------------------------------------------------
 
 
-def test_chunk_bounds_by_cost():
-    # 60 points of 0.1 s, 2 workers: a chunk takes a quarter of what is left, at most 1 s
-    # (10 points), so the chunks shrink towards the end, down to a point
-    assert runner.chunk_bounds(np.full(60, 0.1), workers=2).tolist() == [
-        0,
-        10,
-        20,
-        30,
-        38,
-        44,
-        48,
-        51,
-        54,
-        56,
-        57,
-        58,
-        59,
-        60,
-    ]
-    # 10^6 closed-form points: 1 s would be 55,556 points, held to MAX_CHUNK_POINTS
-    bounds = runner.chunk_bounds(np.full(1_000_000, 1.8e-5), workers=2)
-    sizes = np.diff(bounds)
-    assert sizes.max() == runner.MAX_CHUNK_POINTS and (sizes[:90] == sizes.max()).all()
-    assert 100 < len(sizes) < 110 and sizes[-1] < sizes[-5] < sizes.max()
-    # a small sweep: chunks of at least MIN_CHUNK_SECONDS (0.05 s), not of 0.01 s
-    assert runner.chunk_bounds(np.full(24, 0.01), workers=2).tolist() == [0, 6, 11, 16, 21, 24]
-    # the user's chunk size, cut again at the breaks
-    assert runner.chunk_bounds(np.ones(10), chunk_size=4, breaks=[6]).tolist() == [0, 4, 6, 10]
-
-
-def test_chunk_bounds_keep_groups_together():
-    # 6 physics of 10 points; the first point of each carries its analysis (0.5 s)
-    costs = np.full(60, 1e-3)
-    costs[::10] += 0.5
-    starts = np.zeros(60, dtype=bool)
-    starts[::10] = True
-    bounds = runner.chunk_bounds(costs, workers=2, starts=starts)
-    assert bounds.tolist() == [0, 20, 30, 40, 50, 60]  # never a physics in two chunks
-    assert runner.chunk_bounds(costs, workers=2).tolist() == [0, 11, 24, 31, 41, 51, 60]
-    # a group whose designs alone outweigh a chunk is split (aim 0.125 s: 12,500 points,
-    # held to MAX_CHUNK_POINTS)
-    big = runner.chunk_bounds(np.full(25_000, 1e-5), starts=np.r_[True, np.zeros(24_999, bool)])
-    assert big.tolist() == [0, 10_000, 17_500, 25_000]
-
-
 def test_a_costly_sweep_is_cut_for_the_workers(monkeypatch):
     """Regression (issue 12): chunks were sized by the designs alone (2,500 closed-form
     points a chunk), so a 60-point motor sweep, ~1 s of periodic solutions a point, was
@@ -384,47 +339,6 @@ def test_resume_keeps_the_chunks_of_the_run_it_continues(tmp_path, monkeypatch):
     done = sweep(load("energy_mass"), vary, workers=1, output=out, resume=True)
     assert done.attrs["sweep"]["chunks"] == 3 and done.attrs["sweep"]["chunks_reused"] == [0]
     pd.testing.assert_frame_equal(read_results(out), sweep(scene, vary, workers=1))
-
-
-@pytest.mark.parametrize("model, speeds", [("energy_mass", "60,90rpm"), ("dynamic", "40,50rpm")])
-def test_a_physics_differing_in_delta_alone_reuses_the_machine_and_gives_the_same_analysis(monkeypatch, model, speeds):
-    """Along a δ axis each analysis is handed ``like`` an earlier one at the same speed (its reduced
-    machine and indicator), never one at another speed; and what it gives equals a fresh analysis
-    of the same point (the reference: flyopt.analysis.analyse without ``like``)."""
-    from flyopt import analysis
-    from flyopt.studies.evaluate import point_scene
-
-    original = analysis.analyse
-    calls = []
-
-    def analyse(scene, model=None, like=None):
-        result = original(scene, model, like=like)
-        calls.append((scene.delta, scene.omega_mean, like, result))
-        return result
-
-    monkeypatch.setattr(analysis, "analyse", analyse)
-    scene = load(model)
-    frame = sweep(scene, {"speed": speeds, "delta": "0.05,0.1,0.15"}, workers=1)
-    assert len(calls) == 6 and {c[3].model for c in calls} == {model}
-    physics = {id(result): (delta, speed) for delta, speed, _, result in calls}
-    seen = set()
-    for delta, speed, like, result in calls:
-        if speed in seen:
-            assert like is not None and physics[id(like)][1] == speed and physics[id(like)][0] != delta
-            assert result.machine._cache is like.machine._cache and result.indicator is like.indicator
-        else:
-            assert like is None
-        seen.add(speed)
-    monkeypatch.setattr(analysis, "analyse", original)
-    for (delta, speed, _like, result), row in zip(calls, frame.itertuples()):
-        fresh = original(point_scene(scene, {"delta": delta, "speed": speed}))
-        assert row.delta == delta and row.speed == speed
-        np.testing.assert_allclose(result.j_required, fresh.j_required, rtol=1e-12)
-        np.testing.assert_allclose(
-            [result.omega_max, result.omega_min, result.a_max],
-            [fresh.omega_max, fresh.omega_min, fresh.a_max],
-            rtol=1e-12,
-        )
 
 
 # --------------------------------------------------------------------------

@@ -23,8 +23,8 @@ from flyopt.design import nlp
 from flyopt.errors import SceneError
 from flyopt.io.sweep_spec import load_sweep, parse_vary
 from flyopt.outputs.results import CORE_INPUTS, RESULT_COLUMNS, read_results
-from flyopt.studies.evaluate import point_scene
 from flyopt.studies.plan import plan_sweep
+from flyopt.studies.points import point_scene
 from flyopt.studies.sweep import SUMMARY_COLUMNS, sweep
 
 sweep_module = importlib.import_module("flyopt.studies.sweep")  # the module (flyopt.sweep is the function)

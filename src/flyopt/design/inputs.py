@@ -4,7 +4,7 @@
 take the materials, the mounting shafts and the design specification of a
 scene from :func:`design_inputs`, so a scene means the same design problem
 wherever it is used. A sweep point is first made a scene of its own
-(:func:`flyopt.studies.evaluate.point_scene`), or, vectorized, its columns
+(:func:`flyopt.studies.points.point_scene`), or, vectorized, its columns
 override exactly these defaults.
 """
 

@@ -2201,7 +2201,7 @@ def plot_pareto(frame, x, y, ax=None, units=display.DEFAULT):
 
     A front compares designs of one machine: the points must share the
     fields that set the machine's physics (``delta``, ``speed``, ``inertia``,
-    ``torque.scale``: flyopt.studies.evaluate.PHYSICS_FIELDS), unless the
+    ``torque.scale``: flyopt.studies.points.PHYSICS_FIELDS), unless the
     field is an objective itself (``flyopt pareto --objectives mass,delta``).
     Points without a design are left out and counted in the legend.
 
@@ -2210,7 +2210,7 @@ def plot_pareto(frame, x, y, ax=None, units=display.DEFAULT):
     ValueError
         A column that does not exist, or points of different physics.
     """
-    from flyopt.studies.evaluate import PHYSICS_FIELDS
+    from flyopt.studies.points import PHYSICS_FIELDS
 
     display.check_system(units)
     x, y = _column(frame, x), _column(frame, y)

@@ -15,9 +15,10 @@ with IPOPT's status, never a mass.
 
 Where one A_max does not serve every point (a varying inertia, a torque that
 depends on speed), each point's physics (δ, ω_m, J_c, torque scale) is
-analysed by :func:`flyopt.analysis.analyse`, once per distinct physics: the
-points that vary only the design (envelope, material, shaft, H/B, geometry,
-objective) reuse it.
+analysed once (:mod:`flyopt.studies.physics`): the points that vary only the
+design (envelope, material, shaft, H/B, geometry, objective) reuse it. The
+points themselves (their checks, counts and scenes) are
+:mod:`flyopt.studies.points`.
 
 Worker processes and Dask workers run a :class:`Task`: the scene as data
 (its file's text, see :mod:`flyopt.studies.payload`) and the cycle's A_max
@@ -36,218 +37,30 @@ from __future__ import annotations
 import dataclasses
 import math
 import threading
-import weakref
-from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
 from numpy.typing import NDArray
 
 from flyopt.cycle.indicator import required_inertia, speed_extremes
-from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.design import closed_form as batch
 from flyopt.design import design_inputs, rank
 from flyopt.design.check import binding_names
 from flyopt.design.spec import MountShaft
 from flyopt.errors import SceneError, SolverFailed
-from flyopt.io.scene import NetAreas
-from flyopt.io.sweep_spec import field_path
 from flyopt.outputs.results import RESULT_COLUMNS
 from flyopt.sizing.peak_torque import flywheel_peak_torque
+from flyopt.studies.physics import analyses_of, physics_analysis, reusable_cycle
+from flyopt.studies.points import vectorized
 
 if TYPE_CHECKING:
-    from flyopt.analysis import Analysis
-    from flyopt.design.spec import DesignSpec
     from flyopt.io.scene import Scene
     from flyopt.studies.payload import ScenePayload
 
-__all__ = [
-    "PHYSICS_FIELDS",
-    "Task",
-    "design_counts",
-    "evaluate_points",
-    "physics_analysis",
-    "physics_codes",
-    "point_scene",
-    "task_of",
-]
-
-#: The fields of a point that change its physics (its analysis); every other field changes
-#: only the design, and points that differ only in those share one analysis.
-PHYSICS_FIELDS = ("delta", "speed", "inertia", "torque.scale")
-
-
-def check_points(scene: Scene, points: pd.DataFrame, where: str) -> None:
-    """Reject points whose design settings are invalid, naming the field.
-
-    Works on the varied columns only (a 10⁶-point plan is checked without
-    per-point copies of the scene's defaults).
-    """
-    spec = design_inputs(scene).spec
-
-    def column(name, default):
-        if name in points:
-            return points[name].to_numpy(dtype=float)
-        return np.asarray(math.nan if default is None else float(default))
-
-    if "design.hb_ratio" in points:
-        hb_min = hb_max = points["design.hb_ratio"].to_numpy(dtype=float)
-    else:
-        hb_min = column("design.hb_min", spec.hb_ratio[0])
-        hb_max = column("design.hb_max", spec.hb_ratio[1])
-    bad = np.flatnonzero(np.broadcast_to(hb_min > hb_max, (len(points),)))
-    if bad.size:
-        k = int(bad[0])
-        low, high = np.broadcast_to(hb_min, (len(points),)), np.broadcast_to(hb_max, (len(points),))
-        raise SceneError(
-            field_path(where, "design.hb_min"),
-            f"H/B min {low[k]:.6g} exceeds max {high[k]:.6g} at point {k} (and {bad.size - 1} other points)",
-        )
-    varied = [name for name in _SPEC_COLUMNS if name in points]
-    settings = points[varied].drop_duplicates().to_dict("records") if varied and len(points) else [{}]
-    for row in settings:
-        hb = (
-            (row["design.hb_ratio"],) * 2
-            if "design.hb_ratio" in row
-            else (row.get("design.hb_min", spec.hb_ratio[0]), row.get("design.hb_max", spec.hb_ratio[1]))
-        )
-        envelope = row.get("design.max_outer_diameter", spec.max_outer_diameter)
-        width = row.get("design.max_width", spec.max_width)
-        d_mean = row.get("design.d_mean", spec.d_mean)
-        try:
-            dataclasses.replace(
-                spec,
-                geometry=row.get("design.geometry", spec.geometry),
-                hb_ratio=hb,
-                objective=row.get("design.objective", spec.objective),
-                max_outer_diameter=math.inf if _is_none(envelope) else envelope,
-                max_width=math.inf if _is_none(width) else width,
-                d_mean=None if _is_none(d_mean) else d_mean,
-            )
-        except ValueError as err:
-            raise SceneError(field_path(where, "design"), str(err)) from None
-    inputs = design_inputs(scene)
-    material_names = [m.name for m in inputs.materials]
-    if "material" in points:
-        material_names = list(dict.fromkeys(material_names + list(points["material"].unique())))
-    if len(points) and not material_names:
-        raise SceneError("design.materials", "no material to design with")
-    objective = (
-        points["design.objective"].to_numpy(dtype=object) == "cost"
-        if "design.objective" in points
-        else np.asarray(spec.objective == "cost")
-    )
-    cost = np.broadcast_to(objective, (len(points),))
-    if not cost.any():
-        return
-    library = scene.material_library()
-    for name in material_names:
-        used = cost & (points["material"].to_numpy(dtype=object) == name if "material" in points else True)
-        if not used.any():
-            continue
-        field = f"material.{name}.cost"
-        missing = (
-            np.isnan(points[field].to_numpy(dtype=float)[used]).any() if field in points else library[name].cost is None
-        )
-        if missing:
-            raise SceneError(
-                field_path(where, "design.objective"),
-                f"'cost' needs a cost per kg for every material; none is given for {name}",
-            )
-
-
-#: Point columns that set the design specification (checked together by DesignSpec).
-_SPEC_COLUMNS = (
-    "design.geometry",
-    "design.objective",
-    "design.hb_ratio",
-    "design.hb_min",
-    "design.hb_max",
-    "design.max_outer_diameter",
-    "design.max_width",
-    "design.d_mean",
-)
-
-
-def design_counts(scene: Scene, points: pd.DataFrame, method: str = "auto") -> tuple[int, np.ndarray]:
-    """How many designs each point asks for, and how many of them need IPOPT.
-
-    Parameters
-    ----------
-    scene : Scene
-    points : pandas.DataFrame
-        Rows of :attr:`SweepPlan.points`.
-    method : {"auto", "closed_form", "ipopt"}
-
-    Returns
-    -------
-    per_point : int
-        Material × shaft combinations of every point.
-    ipopt : ndarray of bool
-        Per point: designed by IPOPT (the closed form does not cover its
-        geometry and objective, or ``method`` is ``ipopt``).
-    """
-    inputs = design_inputs(scene)
-    n_materials = 1 if "material" in points else len(inputs.materials)
-    n_shafts = 1 if "shaft" in points else len(inputs.shafts)
-    n = len(points)
-    if method == "ipopt":
-        return n_materials * n_shafts, np.ones(n, dtype=bool)
-    spec = inputs.spec
-    geometry = points["design.geometry"] if "design.geometry" in points else None
-    objective = points["design.objective"] if "design.objective" in points else None
-    if geometry is None and objective is None:
-        ipopt = np.full(n, not _vectorized(inputs, spec.geometry, spec.objective))
-    else:
-        pairs = pd.DataFrame(
-            {
-                "g": geometry if geometry is not None else spec.geometry,
-                "o": objective if objective is not None else spec.objective,
-            },
-            index=points.index,
-        )
-        codes, uniques = pd.MultiIndex.from_frame(pairs).factorize()
-        covered = np.array([_vectorized(inputs, g, o) for g, o in uniques], dtype=bool)
-        ipopt = ~covered[codes]
-    return n_materials * n_shafts, ipopt
-
-
-def _vectorized(inputs, geometry_name, objective):
-    """Whether the vectorized closed form designs a point: the textbook design (a bare wheel, no bore,
-    sized by the rim speed: :meth:`DesignSpec.textbook`) with an objective the closed form covers.
-    Every other point goes through :func:`flyopt.design.designer.design_flywheel` one by one."""
-    spec = dataclasses.replace(inputs.spec, geometry=geometry_name)
-    return batch.covers(geometry_name, objective) and all(
-        spec.textbook(spec.bore if spec.bore is not None else s.diameter) for s in inputs.shafts
-    )
-
-
-def physics_codes(points: pd.DataFrame) -> tuple[np.ndarray, int]:
-    """A number per point naming its physics (see :data:`PHYSICS_FIELDS`), by first appearance.
-
-    Parameters
-    ----------
-    points : pandas.DataFrame
-
-    Returns
-    -------
-    codes : ndarray of int
-        Equal for points of equal physics; 0, 1, 2, ... in the order each
-        physics first appears.
-    count : int
-        Distinct physics.
-    """
-    fields = [name for name in PHYSICS_FIELDS if name in points]
-    if not fields or not len(points):
-        return np.zeros(len(points), dtype=np.int64), min(len(points), 1)
-    if len(fields) == 1:
-        codes, uniques = pd.factorize(points[fields[0]], sort=False)
-    else:
-        codes, uniques = pd.MultiIndex.from_frame(points[fields]).factorize()
-    return np.asarray(codes, dtype=np.int64), len(uniques)
+__all__ = ["ChunkContext", "Task", "chunk_context", "evaluate_chunk", "evaluate_points", "task_of"]
 
 
 # --------------------------------------------------------------------------
@@ -257,107 +70,9 @@ def physics_codes(points: pd.DataFrame) -> tuple[np.ndarray, int]:
 # --------------------------------------------------------------------------
 
 
-def _scale_curve(curve, k):
-    if curve is None:
-        return None
-    if isinstance(curve, PiecewiseLinear):
-        return PiecewiseLinear(curve.angles, curve.values * k)
-    if isinstance(curve, Constant):
-        return curve if curve.unknown else Constant(curve.value * k)
-    if isinstance(curve, ExpressionTorque):
-        return dataclasses.replace(curve, scale=curve.scale * k)
-    raise SceneError("torque.scale", f"cannot scale a torque of type {type(curve).__name__}")
-
-
-def point_scene(scene: Scene, point: Mapping[str, Any]) -> Scene:
-    """The scene of one sweep point (for individual solves and checks).
-
-    Parameters
-    ----------
-    scene : Scene
-    point : mapping
-        Canonical field name to value (SI, names, NaN for none), e.g. a row
-        of :attr:`SweepPlan.points`.
-
-    Returns
-    -------
-    Scene
-    """
-    from flyopt.design.materials import material_library
-
-    changes: dict[str, Any] = {}
-    design: dict[str, Any] = {}
-    spec = cast("DesignSpec", scene.design)  # the loader fills in the defaults when the scene has no [design]
-    shafts = {s.name: s for s in scene.shafts}
-    library = material_library(scene.materials)
-    user = {m.name: m for m in scene.materials}
-    for name, value in point.items():
-        if name == "point":
-            continue
-        if name == "delta":
-            changes["delta"] = float(value)
-        elif name == "speed":
-            changes["omega_mean"] = float(value)
-        elif name == "inertia":
-            changes["j_constant"] = float(value)
-        elif name == "torque.scale":
-            k = float(value)
-            changes["driving"] = _scale_curve(scene.driving, k)
-            changes["resisting"] = _scale_curve(scene.resisting, k)
-            if scene.net is not None:
-                changes["net"] = NetAreas(tuple(e * k for e in scene.net.energies))
-        elif name == "design.hb_ratio":
-            design["hb_ratio"] = (float(value), float(value))
-        elif name in ("design.hb_min", "design.hb_max"):
-            low, high = design.get("hb_ratio", spec.hb_ratio)
-            design["hb_ratio"] = (float(value), high) if name.endswith("min") else (low, float(value))
-        elif name in ("design.max_outer_diameter", "design.max_width", "design.d_mean"):
-            design[name.split(".")[1]] = None if _is_none(value) else float(value)
-        elif name in ("design.geometry", "design.objective"):
-            design[name.split(".")[1]] = str(value)
-        elif name == "material":
-            changes["design_materials"] = (str(value),)
-        elif name == "shaft":
-            changes["design_shafts"] = (str(value),)
-        elif name.startswith("shaft."):
-            shaft_name = name.split(".")[1]
-            shafts[shaft_name] = dataclasses.replace(shafts[shaft_name], speed_ratio=float(value))
-        elif name.startswith("material."):
-            _, material_name, prop = name.split(".")
-            base = user.get(material_name, library[material_name])
-            user[material_name] = dataclasses.replace(base, **{prop: float(value)})
-        else:
-            raise SceneError(name, "unknown sweep field")
-    if design:
-        changes["design"] = dataclasses.replace(spec, **design)
-    changes["shafts"] = tuple(shafts.values())
-    changes["materials"] = tuple(user.values())
-    return scene.replace(**changes)
-
-
-def _is_none(value):
-    return value is None or (isinstance(value, float) and math.isnan(value))
-
-
 # --------------------------------------------------------------------------
 # Evaluation of a chunk of points
 # --------------------------------------------------------------------------
-
-
-def _reusable(scene):
-    """Whether J_F = A_max/(ω_m² δ) − J_c with one A_max holds at every point.
-
-    True where the energy model is the exact one (flyopt's one model chooser
-    decides): a constant inertia and torques of the angle only, so A_max does
-    not depend on δ, ω_m or J_c, and scales with the torques. Otherwise each
-    distinct physics is analysed by its exact model.
-    """
-    if scene.net is not None:
-        return True
-    from flyopt.machine.reduce import reduce
-    from flyopt.sizing.choose import ENERGY, choose
-
-    return choose(reduce(scene))[0] == ENERGY
 
 
 @dataclass(frozen=True)
@@ -377,7 +92,7 @@ class ChunkContext:
 def chunk_context(
     scene: Scene, method: str = "auto", solver_options: Mapping[str, Any] | None = None, axes: Sequence[str] = ()
 ) -> ChunkContext:
-    reusable = _reusable(scene)
+    reusable = reusable_cycle(scene)
     if reusable:
         analysis = physics_analysis(scene)
         stripped = scene.replace(driving=None, resisting=None, net=None)
@@ -412,7 +127,7 @@ class Task:
     solver_options : dict or None
     axes : tuple of str
     reusable : bool
-        One A_max serves every point (see :func:`_reusable`).
+        One A_max serves every point (see :func:`reusable`).
     a_max : float or None
         The cycle's A_max [J] when reusable.
     driving_torque : float or None
@@ -655,7 +370,7 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
         a_max, driving, j_margin, power, motor_power = (np.empty(n) for _ in range(5))
         inputs.omega_rim = np.empty(n)
         torques = needs_torque and []
-        for k, analysis in enumerate(_analyses(scene, points)):
+        for k, analysis in enumerate(analyses_of(scene, points)):
             if needs_torque:
                 torques.append(analysis.flywheel_torque())
             a_max[k], j_margin[k] = analysis.a_max, analysis.j_margin
@@ -678,7 +393,7 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
     covered = (
         np.array(
             [
-                seen[g, o] if (g, o) in seen else seen.setdefault((g, o), _vectorized(design, g, o))
+                seen[g, o] if (g, o) in seen else seen.setdefault((g, o), vectorized(design, g, o))
                 for g, o in zip(inputs.geometry, inputs.objective)
             ],
             dtype=np.bool_,
@@ -710,78 +425,6 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
 
 def _float(value):
     return np.nan if value is None else float(value)
-
-
-def _analyses(scene, points):
-    """The analysis of each point, computed once per distinct physics (see PHYSICS_FIELDS)."""
-    fields = [name for name in PHYSICS_FIELDS if name in points]
-    if not fields:
-        analysis = physics_analysis(scene)
-        for _ in range(len(points)):
-            yield analysis
-        return
-    for values in zip(*(points[name].to_numpy(dtype=float) for name in fields)):
-        yield physics_analysis(scene, dict(zip(fields, values)))
-
-
-#: Analyses of this process, per scene object: {id(scene): (weak reference, {physics: Analysis},
-#: {physics but δ: the latest Analysis})}.
-_ANALYSES: dict[int, tuple[Any, OrderedDict[Any, Any], OrderedDict[Any, Any]]] = {}
-#: Analyses kept per scene, the most recently used (~0.1-0.2 MB each): a sweep's chunks hold
-#: the points of one physics together, so only a chunk's own physics need to stay.
-MEMO_SIZE = 256
-_MEMO_LOCK = threading.Lock()
-
-
-def physics_analysis(scene: Scene, point: Mapping[str, Any] | None = None) -> Analysis:
-    """The analysis of a scene at one physics (δ, ω_m, J_c, torque scale), computed once.
-
-    Every study (sweep chunks, the points of a Pareto front, the materials of
-    a trade-off) asks here, so that variations of the design alone (envelope,
-    material, shaft, H/B, geometry, objective) never analyse the cycle again.
-    The memo lives as long as the scene object does, and keeps the
-    :data:`MEMO_SIZE` most recently used analyses. A physics that differs
-    from one analysed before in δ alone is analysed ``like`` it (the reduced
-    machine, its compiled models and the energy indicator do not depend on
-    δ), which makes the points of a δ axis several times cheaper.
-
-    Parameters
-    ----------
-    scene : Scene
-    point : mapping, optional
-        Values of :data:`PHYSICS_FIELDS` (SI); the scene's own where absent.
-
-    Returns
-    -------
-    flyopt.analysis.Analysis
-    """
-    from flyopt import analysis as _analysis
-
-    point = dict(point or {})
-    own = {"delta": scene.delta, "speed": scene.omega_mean, "inertia": scene.j_constant, "torque.scale": 1.0}
-    key = tuple(float(point.get(name, own[name])) for name in PHYSICS_FIELDS)
-    with _MEMO_LOCK:  # Dask workers in threads share this process's memo
-        entry = _ANALYSES.get(id(scene))
-        if entry is None or entry[0]() is not scene:
-            for stale in [k for k, (ref, *_) in _ANALYSES.items() if ref() is None]:
-                del _ANALYSES[stale]
-            entry = _ANALYSES[id(scene)] = (weakref.ref(scene), OrderedDict(), OrderedDict())
-        memo, by_rest = entry[1], entry[2]
-        if key in memo:
-            memo.move_to_end(key)
-            return memo[key]
-        # the same physics but δ (PHYSICS_FIELDS[0]): its reduced machine and indicator serve again
-        like = by_rest.get(key[1:])
-    changed = {name: value for name, value in zip(PHYSICS_FIELDS, key) if value != own[name]}
-    result = _analysis.analyse(point_scene(scene, changed) if changed else scene, like=like)
-    with _MEMO_LOCK:
-        memo[key] = result
-        by_rest[key[1:]] = result
-        by_rest.move_to_end(key[1:])
-        for kept in (memo, by_rest):
-            while len(kept) > MEMO_SIZE:
-                kept.popitem(last=False)
-    return result
 
 
 def _design_closed_form(inputs, j_margin, mask, res):

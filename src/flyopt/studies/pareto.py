@@ -37,7 +37,8 @@ import pandas as pd
 from flyopt.design import DesignSpec, design_inputs
 from flyopt.errors import SceneError
 from flyopt.outputs.results import normalize
-from flyopt.studies.evaluate import evaluate_points, physics_analysis
+from flyopt.studies.evaluate import evaluate_points
+from flyopt.studies.physics import physics_analysis
 from flyopt.studies.sweep import sweep
 
 if TYPE_CHECKING:  # the annotations only

@@ -3,7 +3,7 @@
 Worker processes and Dask workers receive a sweep's scene as data, never as
 live objects: the TOML text of its file (rebuilt there by the same reader),
 plus, where the scene object differs from its file (a scene changed by
-``scene.replace`` or :func:`flyopt.studies.evaluate.point_scene`), the
+``scene.replace`` or :func:`flyopt.studies.points.point_scene`), the
 fields that differ, as plain values. A scene without a file travels as its
 fields when they are plain values. What cannot travel as data (a member
 whose kinematics is a function made in this process, in a scene that has no

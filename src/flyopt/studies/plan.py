@@ -17,7 +17,7 @@ import pandas as pd
 
 from flyopt.errors import SceneError
 from flyopt.io.sweep_spec import FIELDS, SweepField, option_label, parse_vary, whole_number
-from flyopt.studies.evaluate import check_points
+from flyopt.studies.points import check_points
 
 if TYPE_CHECKING:  # the annotations only
     from flyopt.io.scene import Scene

@@ -39,18 +39,11 @@ from flyopt.errors import Interrupted, SceneError
 from flyopt.io.sweep_spec import check_options, option_label
 from flyopt.outputs.results import ResultWriter, normalize, scene_record, table_metadata
 from flyopt.studies import runner
-from flyopt.studies.evaluate import (
-    PHYSICS_FIELDS,
-    chunk_context,
-    design_counts,
-    evaluate_chunk,
-    evaluate_points,
-    physics_analysis,
-    physics_codes,
-    task_of,
-)
+from flyopt.studies.evaluate import chunk_context, evaluate_chunk, evaluate_points, task_of
 from flyopt.studies.payload import digest
+from flyopt.studies.physics import physics_analysis
 from flyopt.studies.plan import plan_sweep
+from flyopt.studies.points import PHYSICS_FIELDS, design_counts, physics_codes
 from flyopt.studies.runner import Parts, connect, cpu_count, fingerprint, run_chunks, stopped
 
 if TYPE_CHECKING:  # the annotations only

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import pandas as pd
 
 from flyopt.design import design_inputs, rank
-from flyopt.studies.evaluate import physics_analysis
+from flyopt.studies.physics import physics_analysis
 
 if TYPE_CHECKING:  # the annotations only
     from flyopt.io.scene import Scene

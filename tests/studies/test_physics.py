@@ -1,4 +1,4 @@
-"""The cycle is analysed once per distinct physics; design-only variations reuse it.
+"""flyopt.studies.physics: the cycle is analysed once per distinct physics; design-only variations reuse it.
 
 A sweep, Pareto front or trade-off over the envelope, the material, the shaft,
 H/B, the geometry or the objective changes nothing in the machine, so the
@@ -7,10 +7,12 @@ wrapping flyopt.analysis.analyse. Before, every sweep point of a
 variable-inertia or motor scene was analysed afresh.
 """
 
+import numpy as np
 import pytest
 from conftest import PROBLEMS
 
 import flyopt
+from flyopt.studies.sweep import sweep
 
 
 @pytest.fixture
@@ -84,3 +86,44 @@ def test_a_sweep_computes_neither_the_model_comparison_nor_the_startup(monkeypat
     assert (table["status"] == "designed").all()
     data = flyopt.solve(flyopt.load(PROBLEMS / "slider-crank-press.toml")).to_dict()
     assert [m["model"] for m in data["models"]] == ["energy", "energy_mass"]
+
+
+@pytest.mark.parametrize("model, speeds", [("energy_mass", "60,90rpm"), ("dynamic", "40,50rpm")])
+def test_a_physics_differing_in_delta_alone_reuses_the_machine_and_gives_the_same_analysis(monkeypatch, model, speeds):
+    """Along a δ axis each analysis is handed ``like`` an earlier one at the same speed (its reduced
+    machine and indicator), never one at another speed; and what it gives equals a fresh analysis
+    of the same point (the reference: flyopt.analysis.analyse without ``like``)."""
+    from flyopt import analysis
+    from flyopt.studies.points import point_scene
+
+    original = analysis.analyse
+    calls = []
+
+    def analyse(scene, model=None, like=None):
+        result = original(scene, model, like=like)
+        calls.append((scene.delta, scene.omega_mean, like, result))
+        return result
+
+    monkeypatch.setattr(analysis, "analyse", analyse)
+    scene = flyopt.load(PROBLEMS / {"energy_mass": "slider-crank-press.toml", "dynamic": "motor-press.toml"}[model])
+    frame = sweep(scene, {"speed": speeds, "delta": "0.05,0.1,0.15"}, workers=1)
+    assert len(calls) == 6 and {c[3].model for c in calls} == {model}
+    physics = {id(result): (delta, speed) for delta, speed, _, result in calls}
+    seen = set()
+    for delta, speed, like, result in calls:
+        if speed in seen:
+            assert like is not None and physics[id(like)][1] == speed and physics[id(like)][0] != delta
+            assert result.machine._cache is like.machine._cache and result.indicator is like.indicator
+        else:
+            assert like is None
+        seen.add(speed)
+    monkeypatch.setattr(analysis, "analyse", original)
+    for (delta, speed, _like, result), row in zip(calls, frame.itertuples()):
+        fresh = original(point_scene(scene, {"delta": delta, "speed": speed}))
+        assert row.delta == delta and row.speed == speed
+        np.testing.assert_allclose(result.j_required, fresh.j_required, rtol=1e-12)
+        np.testing.assert_allclose(
+            [result.omega_max, result.omega_min, result.a_max],
+            [fresh.omega_max, fresh.omega_min, fresh.a_max],
+            rtol=1e-12,
+        )
