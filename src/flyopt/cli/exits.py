@@ -58,11 +58,11 @@ def solution_exit(solution: Solution) -> int:
 
 def fail(message: object, status: int) -> int:
     """Say ``message`` in one line on stderr and return ``status``."""
-    print(f"flyopt: error: {_one_line(message)}", file=sys.stderr)
+    print(f"flyopt: error: {one_line(message)}", file=sys.stderr)
     return status
 
 
-def _one_line(message: object, limit: int = 1000) -> str:
+def one_line(message: object, limit: int = 1000) -> str:
     """The message on one line, cut to ``limit`` characters (an echoed input may be huge)."""
     text = " ".join(str(message).split())
     return text if len(text) <= limit else text[: limit - 1] + "…"

@@ -41,7 +41,7 @@ import io
 import signal
 import sys
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, NoReturn
 
 from flyopt.cli.exits import run
 
@@ -58,7 +58,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     -------
     int
         An exit status of :mod:`flyopt.cli.exits`. Bad options exit through
-        argparse (status 2, its usage line and one error line).
+        argparse (status 2, one error line).
     """
     return run(_parser(), argv)
 
@@ -78,7 +78,7 @@ def entry() -> int:
 def _parser() -> argparse.ArgumentParser:
     from flyopt.cli import plot, report, scene, studies
 
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="flyopt",
         description="Flywheel design for speed regulation.",
         epilog="exit status: 0 ok, 1 solver failed or design failed its check, 2 bad input, "
@@ -124,6 +124,22 @@ def _parser() -> argparse.ArgumentParser:
     )
     bench.set_defaults(run=_bench, takes_rest=True)  # its own options, parsed by flyopt.bench
     return parser
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with a bad option said in one line (exit status 2) instead of the usage block.
+
+    ``flyopt solve: error: argument --units: invalid choice: 'furlongs' (choose from ...); see flyopt
+    solve --help``: the usage of a command with a dozen options is five to seven lines that bury the
+    one that matters. The subcommands' parsers are of this class too (argparse makes them so).
+    """
+
+    def error(self, message: str) -> NoReturn:
+        from flyopt.cli.exits import EXIT_INPUT, one_line
+
+        if message.endswith("expected one argument"):  # e.g. --range -1:0.5: argparse takes -1:0.5 for an option
+            message += " (write a value that starts with '-' as --option=VALUE)"
+        self.exit(EXIT_INPUT, f"{self.prog}: error: {one_line(message)}; see {self.prog} --help\n")
 
 
 class _Version(argparse.Action):
