@@ -359,6 +359,42 @@ def test_unreachable_scheduler_is_one_line_and_leaves_nothing(tmp_path):
     assert out.exists()
 
 
+@pytest.mark.parametrize("address", ["not a url", "tcp://x:99999", "tcp://host", "http://host:8786", "tcp://:8786", ""])
+def test_a_malformed_scheduler_address_is_refused_before_connecting(tmp_path, address, monkeypatch):
+    """Issue 25, item 7: 'not a url' waited 11 s for Dask's timeout and ended in a traceback from
+    the client's clean-up. The address is checked first: refused in words, no client made, nothing written."""
+    import dask.distributed
+
+    class NoClient:
+        def __init__(self, *args, **kwargs):
+            raise AssertionError("a client was made for a malformed address")
+
+    monkeypatch.setattr(dask.distributed, "Client", NoClient)
+    out = tmp_path / "study.parquet"
+    with pytest.raises(SceneError, match="is not a scheduler address") as info:
+        sweep(PUNCH, VARY, output=out, scheduler=address)
+    assert info.value.field == "--scheduler"
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("address", ["tcp://10.0.0.5:8786", "10.0.0.5:8786", "tls://sched.example.com:8786", "[::1]:1"])
+def test_a_scheduler_address_of_every_form_is_taken(address):
+    assert runner.scheduler_address(address) == address
+
+
+def test_a_malformed_scheduler_on_the_command_line_is_one_line_at_once(tmp_path):
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "sweep", str(PUNCH), "--vary", "delta=0.01:0.1:3", "--scheduler", "not a url"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        cwd=tmp_path,
+    )
+    assert run.returncode == 2 and len(run.stderr.splitlines()) == 1 and "Traceback" not in run.stderr
+    assert "'not a url' is not a scheduler address" in run.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_losing_every_dask_worker_stops_the_sweep(tmp_path, monkeypatch):
     """Regression (issue 11): a sweep whose Dask workers all went away waited forever.
     Without a worker for NO_WORKERS_SECONDS it stops with Interrupted, the finished

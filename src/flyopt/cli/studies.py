@@ -103,7 +103,12 @@ def add_sweep_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="N",
         help="points per chunk (default: sized by the estimated cost of the points, 1 s at most each)",
     )
-    parser.add_argument("--scheduler", metavar="ADDRESS", help="run on a Dask cluster, e.g. tcp://host:8786")
+    parser.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        type=_scheduler,
+        help="run on a Dask cluster, e.g. tcp://host:8786 (one you trust: Dask sends it pickles)",
+    )
     parser.add_argument("--resume", action="store_true", help="continue an interrupted sweep from OUTPUT.parts/")
     parser.add_argument(
         "--max-chunks", type=int, metavar="K", help="stop after K chunks (continue later with --resume)"
@@ -459,3 +464,14 @@ def pareto_main(argv: Sequence[str] | None = None) -> int:
 def tradeoff_main(argv: Sequence[str] | None = None) -> int:
     """``flyopt tradeoff ARGV``; returns the exit status."""
     return run(_one_command("tradeoff", add_tradeoff_arguments, TRADEOFF_HELP), argv)
+
+
+def _scheduler(text: str) -> str:
+    """``--scheduler``: the address checked as the option is read (:func:`flyopt.studies.runner.scheduler_address`)."""
+    from flyopt.errors import SceneError
+    from flyopt.studies.runner import scheduler_address
+
+    try:
+        return scheduler_address(text)
+    except SceneError as err:
+        raise argparse.ArgumentTypeError(err.message) from None

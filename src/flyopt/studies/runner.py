@@ -40,6 +40,7 @@ import hashlib
 import json
 import math
 import os
+import re
 import shutil
 import signal
 import sys
@@ -54,7 +55,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 
-from flyopt.errors import Interrupted, SceneError
+from flyopt.errors import Interrupted, SceneError, shorten
 from flyopt.outputs.results import check_folder, read_results, write_results
 
 __all__ = [
@@ -392,6 +393,30 @@ def _clock(seconds):
 # --------------------------------------------------------------------------
 
 
+#: The address of a Dask scheduler: an optional protocol, a host name, IPv4 or [IPv6] address, a port.
+_ADDRESS = re.compile(
+    r"(?:(?P<protocol>tcp|tls|ws|wss|ucx)://)?(?P<host>[A-Za-z0-9](?:[A-Za-z0-9.-]{0,252})|\[[0-9A-Fa-f:.]{2,45}\]):(?P<port>[0-9]{1,5})"
+)
+
+
+def scheduler_address(text: str) -> str:
+    """``text`` when it is the address of a Dask scheduler, ``[protocol://]host:port``; else a SceneError.
+
+    Checked before anything connects: Dask would otherwise wait for its
+    timeout on a malformed address and leave a traceback from its client's
+    clean-up. The scheduler must be one you trust: Dask sends it and its
+    workers pickles, which can run code.
+    """
+    found = _ADDRESS.fullmatch(text) if isinstance(text, str) else None
+    if found is None or not 0 < int(found["port"]) < 65536:
+        raise SceneError(
+            "--scheduler",
+            f"{shorten(text)} is not a scheduler address: give [tcp|tls|ws|wss|ucx://]host:port, "
+            "e.g. tcp://10.0.0.5:8786, with a port from 1 to 65535",
+        )
+    return text
+
+
 @contextmanager
 def connect(scheduler: Any) -> Iterator[Any]:
     """A Dask client for ``scheduler`` (None: no client), closed at the end if opened here.
@@ -417,6 +442,7 @@ def connect(scheduler: Any) -> Iterator[Any]:
     if isinstance(scheduler, Client):
         yield scheduler
         return
+    scheduler_address(scheduler)
     try:
         client = Client(scheduler, timeout=CONNECT_SECONDS, set_as_default=False)
     except (OSError, TimeoutError, ValueError, TypeError) as err:
