@@ -291,3 +291,15 @@ def test_cli_tradeoff(tmp_path, capsys):
     by_ipopt = json.loads(out_ipopt.read_text())["rows"]
     assert [r["method"] for r in by_ipopt] == ["ipopt"] * 3
     assert_allclose([r["mass"] for r in by_ipopt], [r["mass"] for r in rows], rtol=1e-6)
+
+
+@pytest.mark.parametrize("points", [1, 1001, 10**9, 2.5])
+def test_a_front_of_too_many_or_too_few_points_is_refused_at_once(points):
+    """Issue 25, item 5: ``pareto --points 1000000000`` ran without end. The count has a documented
+    bound (MAX_FRONT_POINTS), checked before anything is designed."""
+    from flyopt.errors import SceneError
+    from flyopt.studies.pareto import MAX_FRONT_POINTS, pareto
+
+    scene = flyopt.load(PROBLEMS / "punch-press.toml")
+    with pytest.raises(SceneError, match=f"from 2 to {MAX_FRONT_POINTS}"):
+        pareto(scene, ("mass", "outer_diameter"), points=points)

@@ -222,7 +222,9 @@ def add_pareto_arguments(parser: argparse.ArgumentParser) -> None:
         help="mass,outer_diameter | mass,cost | mass,delta | mass,motor_power (a [drive]) "
         "(default mass,outer_diameter)",
     )
-    parser.add_argument("--points", type=_positive_int, default=25, help="number of epsilon values (default 25)")
+    parser.add_argument(
+        "--points", type=_positive_int, default=25, help="number of epsilon values, 2 to 1000 (default 25)"
+    )
     parser.add_argument("--range", dest="span", metavar="LOW:HIGH", help="range of epsilon, e.g. 0.3:1.2 m or 0.01:0.1")
     _method_and_output(parser, "front")
     parser.set_defaults(run=run_pareto)

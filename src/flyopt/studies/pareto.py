@@ -35,7 +35,7 @@ import numpy.typing as npt
 import pandas as pd
 
 from flyopt.design import DesignSpec, design_inputs
-from flyopt.errors import SceneError
+from flyopt.errors import SceneError, shorten
 from flyopt.outputs.results import normalize
 from flyopt.studies.evaluate import evaluate_points
 from flyopt.studies.physics import physics_analysis
@@ -45,11 +45,15 @@ if TYPE_CHECKING:  # the annotations only
     from flyopt.analysis import Analysis
     from flyopt.io.scene import Scene
 
-__all__ = ["PARETO_OBJECTIVES", "non_dominated", "pareto"]
+__all__ = ["MAX_FRONT_POINTS", "PARETO_OBJECTIVES", "non_dominated", "pareto"]
 
 #: Worker processes of a front's sweep: "auto" runs it serially unless its points are
 #: estimated to take over a second (a front of δ on a scene analysed at every δ).
 WORKERS: Literal["auto"] = "auto"
+
+#: Most ε values of a front: a front of a thousand designs is drawn as finely as a plot shows,
+#: and (at some 100 whole-wheel designs a second) computed within seconds; more is refused.
+MAX_FRONT_POINTS = 1000
 
 #: Second objectives a front may trade against mass, with the unit of --range.
 PARETO_OBJECTIVES = {
@@ -148,8 +152,8 @@ def pareto(
         Unknown objectives, bad span, materials without a cost for ``cost``.
     """
     objectives, other = objective_pair(objectives)
-    if not isinstance(points, (int, np.integer)) or points < 2:
-        raise SceneError("points", f"must be a whole number >= 2, got {points!r}")
+    if not isinstance(points, (int, np.integer)) or not 2 <= points <= MAX_FRONT_POINTS:
+        raise SceneError("points", f"must be a whole number from 2 to {MAX_FRONT_POINTS}, got {shorten(points)}")
     analysis = physics_analysis(scene)
     empty = pd.DataFrame()
     if other == "motor_power":
