@@ -528,7 +528,8 @@ def punch_press_wheel():
 
 def _document_quantities(inputs, units):
     """Every Quantity of the report built in ``units`` (what the renderers print verbatim), with its section."""
-    from flyopt.report.document import Quantity, build
+    from flyopt.report.builder import build
+    from flyopt.report.document import Quantity
 
     document = build(inputs, units)
     document.close()

@@ -11,7 +11,7 @@ extra the report shows (``extras=COMPLETE``: the model comparison, the
 start-up, the speed over the cycle, J_F at other δ, the energy–mass analysis,
 an engine's textbook flywheel, the stress profile); :func:`collect` then only
 reads them out of the solution (with the provenance), and
-:mod:`flyopt.report.document` builds the report from them without running a
+:mod:`flyopt.report.builder` builds the report from them without running a
 model. The suffix of ``-o`` picks the format; the file is
 written atomically (nothing half-written on an error or Ctrl-C) and its
 folder is checked before anything is computed.
@@ -35,7 +35,8 @@ if TYPE_CHECKING:
 
     from flyopt.io.scene import Scene
     from flyopt.pipeline import Solution
-    from flyopt.report.document import Document, ReportInputs
+    from flyopt.report.builder import ReportInputs
+    from flyopt.report.document import Document
 
 #: The report's formats, by the suffix of the output file.
 FORMATS = {".html": "html", ".htm": "html", ".pdf": "pdf"}
@@ -89,7 +90,7 @@ def run_report(args: argparse.Namespace) -> int:
         raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: name another file for the report")
     command = f"flyopt report {args.scene} -o {args.output} --units {args.units}"
     inputs = collect(args.scene, command, pdf=kind == "pdf")
-    from flyopt.report.document import build
+    from flyopt.report.builder import build
 
     document = build(inputs, args.units, title_block=_title_lines(inputs))
     try:
@@ -132,7 +133,7 @@ def write(document: Document, path: str | os.PathLike[str], kind: str) -> None:
 
 
 def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) -> ReportInputs:
-    """Solve a scene and gather what its report shows (:class:`flyopt.report.document.ReportInputs`).
+    """Solve a scene and gather what its report shows (:class:`flyopt.report.builder.ReportInputs`).
 
     Parameters
     ----------
@@ -154,7 +155,7 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
 
     from flyopt.io.scene import load, read_toml
     from flyopt.pipeline import COMPLETE, solve
-    from flyopt.report.document import ReportInputs
+    from flyopt.report.builder import ReportInputs
 
     data = read_toml(path)
     scene = load(path, data)

@@ -1,0 +1,187 @@
+"""What every section of the report is written with: its numbers in the reader's units and in SI, its numbered sections, its figures and equations, and the facts of the solution several sections state."""
+
+from __future__ import annotations
+
+import inspect
+import math
+
+from flyopt.names import Geometry
+from flyopt.report import display
+from flyopt.report.display import number
+from flyopt.report.document import Equation, Figure, Quantity, Section
+
+#: The domain notes every step cites.
+NOTES = "docs/flywheel-design.md"
+
+
+class BuilderBase:
+    """The state of a report being built and the tools every section is written with."""
+
+    def __init__(self, inputs, units):
+        self.inputs = inputs
+        self.units = units
+        self.solution = inputs.solution
+        self.scene = inputs.solution.scene
+        self.analysis = inputs.solution.analysis
+        self.design = inputs.solution.design
+        self.sections = []
+        self.failures = []
+        self._numbers = [0, 0]
+
+    def q(self, value, dimension, name=None, digits=6):
+        """A Quantity in the report's units, its unit after it ("-" where the value does not exist)."""
+        if value is None or math.isnan(value):
+            return Quantity("-", name, None, dimension)
+        return Quantity(display.quantity_text(value, dimension, self.units, digits), name, float(value), dimension)
+
+    def n(self, value, dimension, name=None, digits=6):
+        """A Quantity in the report's units without its unit (a table cell: the unit is in the column's head)."""
+        if value is None or math.isnan(value):
+            return Quantity("-", name, None, dimension)
+        return Quantity(
+            number(display.show(float(value), dimension, self.units), digits), name, float(value), dimension
+        )
+
+    def head(self, title, dimension):
+        """A column's head with the unit of its numbers, "mass [kg]"."""
+        unit = display.label(dimension, self.units)
+        return title if unit == "-" else f"{title} [{unit}]"
+
+    @staticmethod
+    def squared(text):
+        """A number with its unit, squared: "(157.08 rad/s)²" (a bare number needs no brackets)."""
+        return f"({text})²" if " " in text and not text.startswith("(") else f"{text}²"
+
+    @staticmethod
+    def si(value, dimension, digits=6, bracket=True):
+        """A number with its SI unit, as an equation shows it; a negative one in brackets."""
+        text = number(value, digits)
+        unit = display.label(dimension, "si")
+        text = text if unit == "-" else f"{text} {unit}"
+        return f"({text})" if bracket and value is not None and value < 0 else text
+
+    def result(self, value, dimension, digits=6):
+        """An equation's result in SI, and in the report's units where those differ."""
+        shown = self.si(value, dimension, digits, bracket=False)
+        if display.label(dimension, self.units) != display.label(dimension, "si"):
+            shown += f"   ({display.quantity_text(value, dimension, self.units, digits)})"
+        return shown
+
+    def section(self, title, key, level=1):
+        if level == 1:
+            self._numbers = [self._numbers[0] + 1, 0]
+            label = str(self._numbers[0])
+        else:
+            self._numbers[1] += 1
+            label = f"{self._numbers[0]}.{self._numbers[1]}"
+        section = Section(label, title, [], level, key)
+        self.sections.append(section)
+        return section.blocks
+
+    def figure(self, blocks, key, caption, draw, *args, **kwargs):
+        """Draw a diagram with a function of :mod:`flyopt.report.plots` (``units=`` where it takes it)."""
+        from flyopt.report import plots
+
+        try:
+            parameters = inspect.signature(draw).parameters
+            if "units" in parameters:
+                kwargs["units"] = self.units
+            ax = draw(*args, **kwargs)
+        except plots.NothingToDraw as said:
+            blocks.append(Figure(key, caption, note=f"Not drawn: {said}."))
+            return
+        except ValueError as said:  # the diagram does not apply to this scene: said by the plot
+            blocks.append(Figure(key, caption, note=f"Not drawn: {said}."))
+            return
+        except Exception as err:  # noqa: BLE001 -- a diagram that fails must not cost the whole report
+            self.failures.append(f"{key}: {type(err).__name__}: {err}")
+            blocks.append(
+                Figure(
+                    key, caption, note=f"This diagram could not be drawn ({type(err).__name__}: {err}).", failed=True
+                )
+            )
+            return
+        blocks.append(Figure(key, caption, figure=ax.figure))
+
+    @staticmethod
+    def eq(key, formula, numbers, result, section):
+        """A worked step: the formula, "= " the numbers substituted, "= " the result, citing a section of the notes."""
+        return Equation(key, (formula, f"= {numbers}", f"= {result}"), f"{NOTES}, section {section}")
+
+    def units_words(self):
+        dims = ("length", "angular_speed", "torque", "energy", "stress", "power", "mass", "inertia")
+        return ", ".join(dict.fromkeys(display.label(d, self.units) for d in dims))
+
+    def flagged(self):
+        v, check = self.solution.verification, self.solution.drive_check
+        return bool((v is not None and v.flagged) or (check is not None and check.flagged))
+
+    def status_words(self):
+        status = self.solution.status
+        words = {
+            "designed": "designed",
+            "not_needed": "no flywheel needed",
+            "infeasible": "INFEASIBLE: no material and shaft can give the required flywheel",
+            "analysed": "analysed (no design)",
+        }.get(status, status)
+        if self.flagged():
+            words += "; VERIFICATION FLAGGED: the simulated δ exceeds the allowed one"
+        elif self.solution.verification is not None or self.solution.drive_check is not None:
+            words += "; verified"
+        return words
+
+    def best(self):
+        return self.design.best if self.design is not None else None
+
+    @staticmethod
+    def governing(candidate):
+        where = (candidate.stress or {}).get("where") or {}
+        for part in (candidate.stress or {}).get("parts", []):
+            if part["part"] == where.get("part"):
+                return part
+        return None
+
+    @staticmethod
+    def model_description(model):
+        from flyopt.sizing.choose import MODELS
+
+        return MODELS.get(model, model)
+
+    def width_row(self, c):
+        """The wheel's width and, for a rim, its radial thickness (a disc is the annulus with no hole, section 9)."""
+        if c.geometry == Geometry.DISC:
+            return (
+                "axial width B",
+                (
+                    self.q(c.b, "length", "b"),
+                    " (a disc: D_m = H = D/2, no hole)" if not c.d_inner else " (an annulus on its bore)",
+                ),
+            )
+        return (
+            "rim: radial thickness H × axial width B",
+            (self.q(c.h, "length", "h"), " × ", self.q(c.b, "length", "b"), f" (H/B {number(c.hb_ratio, 4)})"),
+        )
+
+    def limit(self, value):
+        return "not set" if value is None or not math.isfinite(value) else self.q(value, "length")
+
+    def omega_given(self):
+        """The mean speed the sizing took as given [rad/s] (a speed-dependent machine's is only a guess)."""
+        machine = self.analysis.machine
+        return machine.omega_mean if machine is not None else self.scene.omega_mean
+
+    def off_words(self, textbook):
+        a = self.analysis
+        off = (textbook["j_required"] - a.j_margin) / a.j_margin
+        gives = (
+            ""
+            if textbook["achieved_delta"] is None
+            else f"; that flywheel would really give δ = {number(textbook['achieved_delta'])}"
+        )
+        return (f"The textbook step is {100 * off:+.3g} % off the exact J_F", gives, f" (allowed {number(a.delta)}).")
+
+    @staticmethod
+    def solved_by(candidate):
+        from flyopt.report.text import solver_words
+
+        return solver_words(candidate)

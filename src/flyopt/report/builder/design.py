@@ -1,0 +1,479 @@
+"""Section 5 of the report: the design with its geometry, parts, stress check, hub, key and balance."""
+
+from __future__ import annotations
+
+import inspect
+import math
+from typing import Any
+
+from flyopt.names import Geometry
+from flyopt.report.builder.base import NOTES, BuilderBase
+from flyopt.report.display import number
+from flyopt.report.document import Facts, Figure, Paragraph, Table
+
+
+class DesignSection(BuilderBase):
+    """Section 5 of the report."""
+
+    def design_section(self):
+        d, best = self.design, self.best()
+        if d is None and self.solution.drive is None:
+            return
+        blocks = self.section("The design", "design")
+        if d is None:
+            blocks.append(Paragraph("The chosen drive needs no flywheel: no wheel is designed (see the drive).", "ok"))
+            return
+        blocks.append(
+            Paragraph(
+                f"Geometry {d.spec.geometry}, criterion {d.spec.criterion}, objective "
+                f"{d.spec.objective}: every material and shaft is designed and ranked ({NOTES}, "
+                "sections 9, 10 and 13)."
+            )
+        )
+        if d.status == "not_needed":
+            blocks.append(Paragraph(d.message, "ok"))
+            return
+        if best is None:
+            blocks.append(Paragraph(f"No feasible design: {d.message}", "warning"))
+            return
+        material = self.scene.material_library().get(best.material)
+        rows = [
+            ("material / shaft", f"{best.material} on {best.shaft} (speed ratio {number(best.speed_ratio)})"),
+            ("mass", (self.q(best.mass, "mass", "mass"), "" if best.cost is None else f" (cost {number(best.cost)})")),
+            (
+                "outer / mean / inner diameter",
+                (
+                    self.q(best.d_outer, "length", "d_outer"),
+                    " / ",
+                    self.q(best.d_mean, "length", "d_mean"),
+                    " / ",
+                    self.q(best.d_inner, "length", "d_inner"),
+                ),
+            ),
+            self.width_row(best),
+            (
+                "inertia",
+                (
+                    self.q(best.j_flywheel, "inertia", "j_flywheel"),
+                    " on its shaft = ",
+                    self.q(best.j_at_reference, "inertia", "j_at_reference"),
+                    " at the reference shaft",
+                ),
+            ),
+            (
+                "rim speed",
+                (
+                    self.q(best.rim_speed, "speed", "rim_speed"),
+                    " (limit ",
+                    self.q(best.rim_speed_limit, "speed", "rim_speed_limit"),
+                    ")",
+                ),
+            ),
+            ("binding", ", ".join(best.binding) or "none"),
+            ("solved by", self.solved_by(best)),
+        ]
+        if best.bore:
+            rows.insert(3, ("bore", self.q(best.bore, "length", "bore")))
+        blocks.append(Facts(tuple(rows), "design"))
+        if not d.spec.has_envelope:
+            blocks.append(
+                Paragraph(
+                    "No envelope (design.max_outer_diameter) is set, so only the rim speed limit bounds the diameter.",
+                    "note",
+                )
+            )
+        self.geometry_steps(blocks, best, material)
+        self.parts(blocks, best)
+        self.stress(blocks, best)
+        self.hub_key_balance(blocks, best)
+        from flyopt.report import plots
+
+        self.figure(
+            blocks, "cross_section", "Axial section of the chosen wheel, dimensioned", plots.plot_cross_section, best
+        )
+        if best.sensitivities:
+            blocks.append(
+                Table(
+                    ("sensitivity of the mass",),
+                    tuple([s["text"]] for s in best.sensitivities),
+                    ("<",),
+                    "How the mass moves with each limit (first order)",
+                    "sensitivities",
+                )
+            )
+        if best.notes:
+            blocks.append(Table(("note",), tuple([n] for n in best.notes), ("<",), "Notes of the design", "notes"))
+
+    def geometry_steps(self, blocks, c, material):
+        """The wheel's mass and inertia (section 9) and its rim speed (section 10), numbers substituted."""
+        si, res, sq = self.si, self.result, self.squared
+        rho = getattr(material, "density", None)
+        if c.geometry == Geometry.DISC and not c.d_inner and len(c.parts) <= 1 and rho:
+            d = si(c.d_outer, "length")
+            blocks.append(
+                self.eq(
+                    "disc_mass",
+                    "m = π D² B ρ / 4",
+                    f"π × {sq(d)} × {si(c.b, 'length')} × {si(rho, 'density')} / 4",
+                    res(c.mass, "mass"),
+                    9,
+                )
+            )
+            blocks.append(
+                self.eq(
+                    "disc_inertia",
+                    "J = m D² / 8",
+                    f"{si(c.mass, 'mass')} × {sq(d)} / 8",
+                    res(c.j_flywheel, "inertia"),
+                    9,
+                )
+            )
+        elif c.geometry in ("rim", "thin_rim", "disc") and len(c.parts) <= 1 and rho:
+            d_m, h = si(c.d_mean, "length"), si(c.h, "length")
+            blocks.append(
+                self.eq(
+                    "rim_mass",
+                    "m = π D_{m} H B ρ",
+                    f"π × {d_m} × {h} × {si(c.b, 'length')} × {si(rho, 'density')}",
+                    res(c.mass, "mass"),
+                    9,
+                )
+            )
+            if c.geometry == Geometry.THIN_RIM:
+                blocks.append(
+                    self.eq(
+                        "rim_inertia_thin",
+                        "J = m D_{m}² / 4",
+                        f"{si(c.mass, 'mass')} × {sq(d_m)} / 4",
+                        res(c.j_flywheel, "inertia"),
+                        9,
+                    )
+                )
+            else:
+                blocks.append(
+                    self.eq(
+                        "rim_inertia",
+                        "J = m (D_{m}² + H²) / 4",
+                        f"{si(c.mass, 'mass')} × ({sq(d_m)} + {sq(h)}) / 4",
+                        res(c.j_flywheel, "inertia"),
+                        9,
+                    )
+                )
+        elif c.parts:
+            blocks.append(
+                self.eq(
+                    "parts_inertia",
+                    "J = Σ J_{part}",
+                    " + ".join(si(p["inertia"], "inertia") for p in c.parts),
+                    res(c.j_flywheel, "inertia"),
+                    9,
+                )
+            )
+            blocks.append(
+                self.eq(
+                    "parts_mass",
+                    "m = Σ m_{part}",
+                    " + ".join(si(p["mass"], "mass") for p in c.parts),
+                    res(c.mass, "mass"),
+                    9,
+                )
+            )
+        blocks.append(
+            self.eq(
+                "j_at_reference",
+                "J_{F} = J' i²",
+                f"{si(c.j_flywheel, 'inertia')} × {number(c.speed_ratio)}²",
+                res(c.j_at_reference, "inertia"),
+                8,
+            )
+        )
+        blocks.append(
+            self.eq(
+                "rim_speed",
+                "v = i ω_{max} D_{1} / 2",
+                f"{number(c.speed_ratio)} × {si(self.design.omega, 'angular_speed')} × {si(c.d_outer, 'length')} / 2",
+                res(c.rim_speed, "speed"),
+                10,
+            )
+        )
+        within = c.rim_speed <= c.rim_speed_limit * (1 + 1e-9)
+        blocks.append(
+            Paragraph(
+                (
+                    "The rim speed is ",
+                    "within" if within else "BEYOND",
+                    " the limit v_max = ",
+                    self.q(c.rim_speed_limit, "speed", "rim_speed_limit"),
+                    f" of {c.material} ({NOTES}, section 10).",
+                ),
+                "ok" if within else "warning",
+            )
+        )
+        if rho and c.hoop_stress is not None:
+            blocks.append(
+                self.eq(
+                    "hoop_stress",
+                    "σ ≈ ρ v²",
+                    f"{si(rho, 'density')} × {sq(si(c.rim_speed, 'speed'))}",
+                    res(c.hoop_stress, "stress"),
+                    10,
+                )
+            )
+            if c.stress:
+                blocks.append(
+                    Paragraph(
+                        f"ρv² is the thin ring's hoop stress at the outer diameter, the textbook's "
+                        f"estimate; the stress check below takes every part exactly ({NOTES}, "
+                        "section 13)."
+                    )
+                )
+
+    def parts(self, blocks, c):
+        if not c.parts:
+            return
+        n = self.n
+        total_j = sum(p["inertia"] for p in c.parts)
+        rows = [
+            [
+                p["name"],
+                (n(p["r_inner"], "length"), " – ", n(p["r_outer"], "length")),
+                n(p["thickness"], "length"),
+                n(p["mass"], "mass"),
+                n(p["inertia"], "inertia"),
+                f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-",
+            ]
+            for p in c.parts
+        ]
+        rows.append(
+            [
+                "total",
+                (
+                    n(min(p["r_inner"] for p in c.parts), "length"),
+                    " – ",
+                    n(max(p["r_outer"] for p in c.parts), "length"),
+                ),
+                "",
+                n(sum(p["mass"] for p in c.parts), "mass"),
+                n(total_j, "inertia"),
+                "100.0 %" if total_j > 0 else "-",
+            ]
+        )
+        blocks.append(
+            Table(
+                (
+                    "part",
+                    self.head("r_{inner} – r_{outer}", "length"),
+                    self.head("thickness (axial)", "length"),
+                    self.head("mass", "mass"),
+                    self.head("inertia", "inertia"),
+                    "share of J",
+                ),
+                tuple(rows),
+                ("<", ">", ">", ">", ">", ">"),
+                "Parts of the wheel",
+                "parts",
+                total=True,
+            )
+        )
+        if c.n_arms and c.arm_major:
+            blocks.append(
+                Paragraph(
+                    (
+                        f"Arms: {c.n_arms} of elliptical section ",
+                        self.q(c.arm_major, "length"),
+                        " × ",
+                        self.q(c.arm_minor, "length"),
+                        " (major axis in the plane of rotation, minor axial).",
+                    )
+                )
+            )
+
+    def stress(self, blocks, c):
+        if not c.stress:
+            return
+        from flyopt.report import plots
+
+        s, n = c.stress, self.n
+        omega = self.design.omega * c.speed_ratio
+        blocks.append(
+            Paragraph(
+                (
+                    "Stress check at ω_max on the wheel's shaft, ",
+                    self.q(omega, "angular_speed"),
+                    f" ({NOTES}, section 13): von Mises against the yield strength for a ductile "
+                    "material, the largest principal stress against the tensile strength for a brittle "
+                    "one, each over the safety factor.",
+                )
+            )
+        )
+        rows = []
+        for p in s.get("parts", []):
+            allowable = p.get("allowable")
+            use = p["stress"] / allowable if allowable and math.isfinite(allowable) and allowable > 0 else None
+            rows.append(
+                [
+                    p["part"],
+                    n(p["stress"], "stress", "stress", 4),
+                    n(p["radius"], "length"),
+                    n(allowable, "stress", "allowable", 4),
+                    "-" if use is None else f"{100 * use:.1f} %",
+                    n(p.get("strength"), "stress", digits=4),
+                    n(p.get("wall"), "length"),
+                ]
+            )
+        blocks.append(
+            Table(
+                (
+                    "part",
+                    self.head("stress", "stress"),
+                    self.head("at r", "length"),
+                    self.head("allowable", "stress"),
+                    "utilisation",
+                    self.head("strength", "stress"),
+                    self.head("at wall", "length"),
+                ),
+                tuple(rows),
+                ("<", ">", ">", ">", ">", ">", ">"),
+                "Each part's governing stress against its allowable",
+                "stress",
+            )
+        )
+        facts: list[Any] = []
+        where = s.get("where") or {}
+        if where:
+            facts.append(("governing", (f"{where['part']} at r = ", self.q(where["radius"], "length"))))
+        facts.append(
+            (
+                "largest σ_{t} / σ_{r}",
+                (
+                    self.q(s.get("hoop_max"), "stress", digits=4),
+                    " / ",
+                    self.q(s.get("radial_max"), "stress", digits=4),
+                    " (von Mises ",
+                    self.q(s.get("von_mises"), "stress", digits=4),
+                    ")",
+                ),
+            )
+        )
+        if s.get("mean_hoop") is not None and math.isfinite(s["mean_hoop"]):
+            facts.append(("mean hoop stress over the radial section", self.q(s["mean_hoop"], "stress", digits=4)))
+        if c.strength_safety is not None and math.isfinite(c.strength_safety):
+            facts.append(("safety on strength", number(c.strength_safety, 3)))
+        if c.burst_speed is not None and math.isfinite(c.burst_speed):
+            margin = "" if c.speed_margin is None else f" ({number(c.speed_margin, 3)} × ω_max)"
+            facts.append(("burst speed on its shaft", (self.q(c.burst_speed, "angular_speed", "burst_speed"), margin)))
+        blocks.append(Facts(tuple(facts), "stress_facts"))
+        if self.inputs.stress is not None:
+            profile, beams, omega_w, material = self.inputs.stress
+            self.figure(
+                blocks,
+                "stress",
+                "Stresses over the radius at ω_max, each part's allowable and the governing point",
+                plots.plot_stress,
+                c,
+                profile,
+                beams,
+                omega_w,
+                ductile=bool(getattr(material, "ductile", False)),
+            )
+        elif self.inputs.stress_note:
+            blocks.append(Figure("stress", "Stresses over the radius", note=f"Not drawn: {self.inputs.stress_note}."))
+
+    def hub_key_balance(self, blocks, c):
+        """The permissible unbalance and the key, numbers substituted (section 13)."""
+        si, res = self.si, self.result
+        omega = self.design.omega * c.speed_ratio
+        if c.unbalance_permissible is not None and math.isfinite(c.unbalance_permissible) and c.mass:
+            from flyopt.design.balance import permissible_unbalance
+
+            grade = inspect.signature(permissible_unbalance).parameters["grade"].default
+            e_per = c.unbalance_permissible / c.mass
+            blocks.append(
+                Paragraph(
+                    f"Permissible residual unbalance, ISO 21940-11 grade G{number(grade)} at the "
+                    f"highest speed of the wheel's shaft ({NOTES}, section 13):"
+                )
+            )
+            blocks.append(
+                self.eq(
+                    "e_per",
+                    "e_{per} = G / Ω",
+                    f"{number(grade * 1e-3)} m/s / {si(omega, 'angular_speed')}",
+                    res(e_per, "length"),
+                    13,
+                )
+            )
+            blocks.append(
+                self.eq(
+                    "u_per",
+                    "U_{per} = e_{per} m",
+                    f"{si(e_per, 'length')} × {si(c.mass, 'mass')}",
+                    res(c.unbalance_permissible, "unbalance"),
+                    13,
+                )
+            )
+        if not c.key:
+            return
+        k = c.key
+        blocks.append(
+            Paragraph(
+                (
+                    f"Key (DIN 6885-1 form A) {k['size']} on the ",
+                    self.q(c.bore, "length"),
+                    " bore, length ",
+                    self.q(k["length"], "length"),
+                    " (effective ",
+                    self.q(k["effective_length"], "length"),
+                    f"): {'OK' if k['ok'] else 'NOT OK'}, at the flywheel's peak torque ",
+                    self.q(k["torque"], "torque", "torque"),
+                    f" ({NOTES}, section 13).",
+                ),
+                "ok" if k["ok"] else "warning",
+            )
+        )
+        if all(name in k for name in ("h", "t1", "b")) and c.bore:
+            torque, d, length = si(k["torque"], "torque"), si(c.bore, "length"), si(k["effective_length"], "length")
+            blocks.append(
+                self.eq(
+                    "key_pressure",
+                    "p = 2 T / (d (h − t_{1}) l_{eff})",
+                    f"2 × {torque} / ({d} × ({si(k['h'], 'length')} − {si(k['t1'], 'length')}) × {length})",
+                    res(k["bearing_pressure"], "stress"),
+                    13,
+                )
+            )
+            blocks.append(
+                self.eq(
+                    "key_shear",
+                    "τ = 2 T / (d b l_{eff})",
+                    f"2 × {torque} / ({d} × {si(k['b'], 'length')} × {length})",
+                    res(k["shear"], "stress"),
+                    13,
+                )
+            )
+        q = self.q
+        blocks.append(
+            Facts(
+                (
+                    (
+                        "bearing pressure",
+                        (
+                            q(k["bearing_pressure"], "stress", digits=4),
+                            " (allowable ",
+                            q(k["allowable_pressure"], "stress", digits=4),
+                            ")",
+                        ),
+                    ),
+                    (
+                        "shear",
+                        (
+                            q(k["shear"], "stress", digits=4),
+                            " (allowable ",
+                            q(k["allowable_shear"], "stress", digits=4),
+                            ")",
+                        ),
+                    ),
+                ),
+                "key",
+            )
+        )

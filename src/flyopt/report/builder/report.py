@@ -1,0 +1,58 @@
+"""The engineering report of one scene built as one :class:`~flyopt.report.document.Document`, its sections in the order of the domain notes."""
+
+from __future__ import annotations
+
+from flyopt.report import display
+from flyopt.report.builder.design import DesignSection
+from flyopt.report.builder.drive import DriveSection
+from flyopt.report.builder.inputs import ReportInputs
+from flyopt.report.builder.ranking import Ranking
+from flyopt.report.builder.scene import SceneAndModel
+from flyopt.report.builder.steps import Steps
+from flyopt.report.builder.summary import Summary
+from flyopt.report.builder.verification import VerificationAndProvenance
+from flyopt.report.document import Document
+
+
+def build(inputs: ReportInputs, units: str = display.DEFAULT, title_block: tuple = ()) -> Document:
+    """The report of a solved scene, in a unit system.
+
+    Parameters
+    ----------
+    inputs : ReportInputs
+    units : {"engineering", "si", "imperial"}
+        The units of the summary, facts and tables (equations stay SI).
+    title_block : tuple of (str, str)
+        Lines added to the title block (the date, the file's hash).
+
+    Returns
+    -------
+    Document
+        Its figures are open matplotlib Figures: render it, then :meth:`Document.close`.
+    """
+    display.check_system(units)
+    return Builder(inputs, units).document(title_block)
+
+
+class Builder(Summary, SceneAndModel, Steps, DesignSection, Ranking, DriveSection, VerificationAndProvenance):
+    """Builds the sections in the order of the domain notes."""
+
+    def document(self, extra):
+        self.summary()
+        self.scene_section()
+        self.model_section()
+        self.steps()
+        self.design_section()
+        self.ranking_section()
+        self.drive_section()
+        self.verification_section()
+        self.provenance_section()
+        status = self.solution.status
+        if self.flagged():
+            status += " flagged"
+        head = (
+            (("scene file", self.inputs.scene_file),)
+            + tuple(extra)
+            + (("units", f"{self.units}: {self.units_words()}; equations in SI"), ("status", self.status_words()))
+        )
+        return Document(self.analysis.title, head, self.sections, self.units, status, self.failures)

@@ -1,0 +1,147 @@
+"""Section 1 of the report: the answer first (required J_F, the chosen wheel, its mass and dimensions, the binding limits, the verified δ)."""
+
+from __future__ import annotations
+
+from flyopt.report import display
+from flyopt.report.builder.base import BuilderBase
+from flyopt.report.display import number
+from flyopt.report.document import Facts, Paragraph
+
+
+class Summary(BuilderBase):
+    """Section 1 of the report."""
+
+    def summary(self):
+        a, d, best = self.analysis, self.design, self.best()
+        blocks = self.section("Summary", "summary")
+        blocks.append(
+            Paragraph(self.answer(), "warning" if self.solution.status == "infeasible" or self.flagged() else "ok")
+        )
+        rows = [
+            ("model", f"{a.model} ({self.model_description(a.model)})"),
+            ("mean speed ω_{m}", self.q(a.omega_mean, "angular_speed", "omega_mean")),
+            ("allowed δ", (self.q(a.delta, "dimensionless", "delta"), f" (1/{number(1 / a.delta, 4)})")),
+            ("A_{max}", self.q(a.a_max, "energy", "a_max")),
+        ]
+        if a.flywheel_needed:
+            rows.append(
+                (
+                    "required flywheel J_{F}",
+                    (
+                        self.q(a.j_required, "inertia", "j_required"),
+                        " at the reference shaft (GD² ",
+                        self.q(a.gd2_required, "flywheel_moment", "gd2_required"),
+                        ")",
+                    ),
+                )
+            )
+        else:
+            from flyopt.report.text import no_flywheel_words
+
+            before, after = no_flywheel_words(a)
+            rows.append(
+                ("required flywheel J_{F}", (f"none: {before} ", self.q(a.j_margin, "inertia", "j_margin"), after))
+            )
+        if a.motor_power is not None:
+            rows.append(
+                (
+                    "motor power",
+                    (self.q(a.motor_power, "power", "motor_power"), f" (efficiency {number(a.efficiency, 4)})"),
+                )
+            )
+        if best is not None:
+            rows += [
+                (
+                    "chosen wheel",
+                    f"{best.geometry} of {best.material} on the {best.shaft} shaft "
+                    f"(speed ratio {number(best.speed_ratio)})",
+                ),
+                ("mass", self.q(best.mass, "mass", "mass")),
+                ("outer diameter", self.q(best.d_outer, "length", "d_outer")),
+                self.width_row(best),
+                ("inertia on its shaft", self.q(best.j_flywheel, "inertia", "j_flywheel")),
+                (
+                    "rim speed",
+                    (
+                        self.q(best.rim_speed, "speed", "rim_speed"),
+                        " (limit ",
+                        self.q(best.rim_speed_limit, "speed", "rim_speed_limit"),
+                        ")",
+                    ),
+                ),
+                ("binding limits", ", ".join(best.binding) or "none"),
+            ]
+            if best.stress and (best.stress.get("where") or {}).get("part"):
+                governing = self.governing(best)
+                if governing is not None:
+                    rows.append(
+                        (
+                            "governing stress",
+                            (
+                                self.q(governing["stress"], "stress", "stress"),
+                                f" in the {governing['part']}, ",
+                                f"{100 * governing['stress'] / governing['allowable']:.1f} % of its allowable"
+                                if governing.get("allowable")
+                                else "",
+                            ),
+                        )
+                    )
+        elif d is not None and d.status == "infeasible":
+            rows.append(("design", "no feasible design: " + d.message))
+        drive = self.solution.drive
+        if drive is not None and drive.best is not None:
+            m = drive.best.motor
+            rows += [
+                ("motor", (f"{m.name}: ", self.q(m.rated_power, "power", "rated_power"))),
+                ("motor ratio", number(drive.best.motor_ratio)),
+                ("motor + wheel mass", self.q(drive.best.total_mass, "mass", "total_mass")),
+            ]
+        v = self.solution.verification or (
+            self.solution.drive_check.verification if self.solution.drive_check is not None else None
+        )
+        if v is not None:
+            verdict = "FLAGGED" if self.flagged() else "ok"
+            rows.append(
+                (
+                    "verified δ",
+                    (
+                        self.q(v.achieved_delta, "dimensionless", "achieved_delta"),
+                        f" against the allowed {number(v.delta_allowed)}: {verdict}",
+                    ),
+                )
+            )
+        blocks.append(Facts(tuple(rows), "summary"))
+
+    def answer(self):
+        """The answer in one sentence."""
+        a, best, status = self.analysis, self.best(), self.solution.status
+        if status == "infeasible":
+            return "No feasible design: " + (
+                self.design.message if self.design is not None else self.solution.drive.message
+            )
+        if best is None:
+            if self.solution.drive is not None and self.solution.drive.best is not None:
+                return (
+                    f"The drive needs no flywheel: the motor {self.solution.drive.best.motor.name} at ratio "
+                    f"{number(self.solution.drive.best.motor_ratio)} holds δ = {number(a.delta)} by itself."
+                )
+            if not a.flywheel_needed:
+                return (
+                    f"No flywheel is needed: the machine's own inertia keeps δ within {number(a.delta)} "
+                    f"(J_F would be {display.quantity_text(a.j_margin, 'inertia', self.units)})."
+                )
+            return f"The machine needs a flywheel of {display.quantity_text(a.j_required, 'inertia', self.units)}."
+        v = self.solution.verification or (
+            self.solution.drive_check.verification if self.solution.drive_check is not None else None
+        )
+        checked = (
+            ""
+            if v is None
+            else (f"; simulated, it gives δ = {number(v.achieved_delta, 4)}" + (" (FLAGGED)" if self.flagged() else ""))
+        )
+        return (
+            f"A {best.geometry} flywheel of {best.material} on the {best.shaft} shaft, "
+            f"{display.quantity_text(best.mass, 'mass', self.units, 4)}, outer diameter "
+            f"{display.quantity_text(best.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
+            f"within δ = {number(a.delta, 4)}{checked}."
+        )

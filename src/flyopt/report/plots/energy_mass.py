@@ -1,0 +1,166 @@
+"""The energy–mass (Wittenbauer) diagram: ΔE against J_e with the two tangents."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flyopt.names import Model
+from flyopt.report import display
+from flyopt.report.plots import standard
+
+
+def check_energy_mass(analysis):
+    """Raise ValueError unless the energy–mass diagram applies: curves of the angle only, J_e varying.
+
+    With a constant inertia the diagram is a vertical line (every point at
+    J_e = J_c) and its tangents say nothing the energy diagram does not
+    (docs/flywheel-design.md, section 6 reduces to section 5).
+    """
+    if analysis.machine is None:
+        raise ValueError(
+            "a net-area scene has no curves, and the energy–mass diagram needs torques of the angle "
+            "only given as curves"
+        )
+    if analysis.machine.speed_dependent:
+        raise ValueError(
+            "a torque depends on speed, and the energy–mass diagram needs torques of the angle only "
+            "given as curves: see turning_moment and speed (the periodic solution)"
+        )
+    if not analysis.machine.variable_inertia:
+        raise ValueError(
+            "the energy–mass diagram is drawn for an inertia that varies with the angle; this "
+            "machine's J_e is constant, so it would be a vertical line: see the energy diagram"
+        )
+
+
+def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
+    """Wittenbauer's energy–mass diagram: ΔE against J_e over the cycle, with the two tangents.
+
+    From the true origin (−J_F, −E_0) the lines of slope ω_max²/2 and ω_min²/2
+    touch the curve where the speed is highest and lowest
+    (docs/flywheel-design.md, section 6); the tangent points are marked with
+    their angles, and the curve is coloured by the crank angle φ. On a figure
+    the function makes, a second panel left of the diagram shows the whole
+    picture: the origin where the tangents meet, and the curve beside it.
+
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+        Sized by the energy–mass model (``analyse(scene, model="energy_mass")``):
+        ``analysis.requirement.detail`` is its EnergyMassRequirement
+        (``j_required``, ``e0``, ``omega_max``, ``omega_min``, ``phi_omega_max``,
+        ``phi_omega_min``).
+    ax : matplotlib Axes, optional
+        The diagram near the curve only (the origin then given in the legend).
+    units : {"engineering", "si", "imperial"}
+
+    Returns
+    -------
+    matplotlib Axes
+        The diagram near the curve; the tangent points have gids ``tangent_max``
+        and ``tangent_min``, the origin (on the overview panel) ``origin``.
+
+    Raises
+    ------
+    ValueError
+        Torques that depend on speed, net areas or a constant inertia; or an
+        analysis by another model.
+    """
+    from matplotlib.collections import LineCollection
+    from matplotlib.ticker import MaxNLocator
+
+    display.check_system(units)
+    check_energy_mass(analysis)
+    if analysis.requirement is None or analysis.requirement.model != Model.ENERGY_MASS:
+        raise ValueError(
+            f"the energy–mass diagram draws the energy–mass model's result, and this "
+            f"analysis ran the {analysis.model} model: analyse with model='energy_mass'"
+        )
+    machine = analysis.machine
+    em = analysis.requirement.detail
+    ew = machine.angle_only()
+    phi = np.union1d(np.linspace(0, scene.cycle_angle, 1441), ew.knots)
+    j = np.asarray(machine.j_machine(phi), dtype=float)
+    de = np.asarray(ew(phi), dtype=float)
+    j_f = max(em.j_required, 0.0)
+    x0, y0 = -j_f, -em.e0
+    own = ax is None
+    if own:
+        plt = standard.pyplot()
+        fig, (overview, ax) = plt.subplots(
+            1, 2, figsize=(11, 5.6), layout="constrained", gridspec_kw={"width_ratios": [1, 1.5]}
+        )
+    else:
+        overview = None
+    inertia, energy = standard.unit("inertia", units)[0], standard.unit("energy", units)[0]
+    sj, se = (lambda v: standard.show(v, "inertia", units)), (lambda v: standard.show(v, "energy", units))
+    tangents = (
+        (em.omega_max, em.phi_omega_max, standard.SURPLUS, "max"),
+        (em.omega_min, em.phi_omega_min, standard.DEFICIT, "min"),
+    )
+    points = np.column_stack([sj(j), se(de)])
+    segments = np.stack([points[:-1], points[1:]], axis=1)
+    coloured = LineCollection(list(segments), cmap="twilight", lw=2.2, gid="curve")  # cyclic: φ = Φ meets φ = 0
+    coloured.set_array(standard.show(0.5 * (phi[:-1] + phi[1:]), "angle", units))
+    ax.add_collection(coloured)
+    coloured.set_clim(0.0, float(standard.show(scene.cycle_angle, "angle", units)))
+    bar = ax.figure.colorbar(coloured, ax=ax, pad=0.01)
+    bar.set_label(standard.axis_label("crank angle φ", "angle", units))
+    if display.label("angle", units) == "deg":
+        bar.set_ticks(np.arange(0.0, float(standard.show(scene.cycle_angle, "angle", units)) + 1.0, 90.0))
+    ax.plot([sj(j[0])], [se(de[0])], "s", color="black", ms=5, label="φ = 0, the cycle's start", zorder=5)
+    span_x, span_y = float(np.ptp(j)), float(np.ptp(de))
+    xs = np.array([j.min() - 0.3 * span_x, j.max() + 0.3 * span_x])
+    for w, at, colour, name in tangents:
+        slope = 0.5 * w**2
+        ax.plot(
+            sj(xs),
+            se(y0 + slope * (xs - x0)),
+            color=colour,
+            lw=1,
+            ls="--",
+            label=f"tangent of slope ω_{name}²/2, ω_{name} = {standard.q(w, 'angular_speed', units, 5)}",
+        )
+        touch = np.array([at])
+        ax.plot(
+            [sj(machine.j_machine(touch)[0])],
+            [se(ew(touch)[0])],
+            "o",
+            ms=8,
+            mfc="white",
+            mec=colour,
+            mew=2,
+            zorder=6,
+            gid=f"tangent_{name}",
+            label=f"touches where the speed is ω_{name}: φ = {standard.q(at, 'angle', units)}",
+        )
+    ax.set_xlim(sj(j.min() - 0.15 * max(span_x, 1e-12)), sj(j.max() + 0.15 * max(span_x, 1e-12)))
+    ax.set_ylim(se(de.min() - 0.15 * max(span_y, 1e-12)), se(de.max() + 0.15 * max(span_y, 1e-12)))
+    ax.set(xlabel=f"equivalent inertia of the machine J_e [{inertia}]", ylabel=f"excess work ΔE [{energy}]")
+    ax.grid(True, alpha=0.25)
+    origin = (
+        f"the tangents meet at the true origin (−J_F, −E_0) = ({standard.q(x0, 'inertia', units)}, "
+        f"{standard.q(y0, 'energy', units)}): J_F = {standard.q(j_f, 'inertia', units)}"
+    )
+    if overview is not None:
+        overview.plot(sj(j), se(de), color="tab:blue", lw=1.5)
+        ends = np.array([x0, j.max() + 0.1 * (j.max() - x0)])
+        for w, _at, colour, _name in tangents:
+            overview.plot(sj(ends), se(y0 + 0.5 * w**2 * (ends - x0)), color=colour, lw=1, ls="--")
+        overview.plot([sj(x0)], [se(y0)], "ko", ms=6, gid="origin", label=origin)
+        overview.axhline(0, color="gray", lw=0.5)
+        overview.axvline(0, color="gray", lw=0.5)
+        overview.set(xlabel=f"J_e [{inertia}]", ylabel=f"ΔE [{energy}]")
+        overview.xaxis.set_major_locator(MaxNLocator(4))  # a narrow panel: few ticks, none overlapping
+        overview.set_title("the whole: from the true origin", fontsize=standard.FONT + 1)
+        overview.grid(True, alpha=0.25)
+        ax.set_title("near the curve: the tangent points", fontsize=standard.FONT + 1)
+        fig.suptitle(f"{scene.title}\nenergy–mass diagram (Wittenbauer), {analysis.model} model", fontsize=11)
+        handles = overview.get_legend_handles_labels()[0] + ax.get_legend_handles_labels()[0]
+        standard.legend(ax, True, handles=handles)
+    else:
+        ax.plot([], [], " ", label=origin)
+        standard.title(ax, False, scene.title, "energy–mass diagram (Wittenbauer)")
+        standard.legend(ax, False)
+    return ax

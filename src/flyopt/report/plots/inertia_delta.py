@@ -1,0 +1,158 @@
+"""The required flywheel J_F against δ by the model that ran, the scene's δ marked."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from flyopt.cycle.indicator import required_inertia
+from flyopt.delta_curve import delta_range, flywheel_at_some_delta
+from flyopt.names import Model
+from flyopt.report import display
+from flyopt.report.plots import standard
+
+
+def check_inertia_delta(analysis):
+    """Raise NothingToDraw when no flywheel is needed at any δ: a steady machine of constant inertia."""
+    if not flywheel_at_some_delta(analysis):
+        raise standard.NothingToDraw("no flywheel is needed for any δ (A_max = 0 J, so J_F(δ) = 0): nothing to draw")
+
+
+def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=None):
+    """J_F against δ by the model that ran, the scene's δ marked on the curve.
+
+    With a constant inertia and torques of the angle only J_F = A_max/(ω_m² δ)
+    − J_c (docs/flywheel-design.md, section 5), drawn from the closed form;
+    with a variable inertia or a speed-dependent torque A_max no longer
+    decides alone, and J_F(δ) is the exact model's answer at each δ, which
+    the caller computes (``curve``; :func:`flyopt.delta_curve.inertia_curve`
+    analyses the scene again at each δ of :func:`delta_range`). The
+    constant-inertia method is drawn beside it for comparison. J_F is
+    positive only below δ*, where the machine's own inertia starts to suffice;
+    δ* is marked when it lies in range.
+
+    Parameters
+    ----------
+    curve : (ndarray, ndarray), optional
+        δ [-] and J_F there (``j_margin``, negative where none is needed)
+        [kg*m^2], by the analysis' model; required unless that is the
+        energy method.
+
+    Raises
+    ------
+    NothingToDraw
+        A steady machine of constant inertia: no flywheel for any δ.
+    ValueError
+        An exact model other than the energy method without ``curve``.
+    """
+    display.check_system(units)
+    check_inertia_delta(analysis)
+    j_mean = analysis.machine.j_mean() if analysis.machine is not None else analysis.j_constant
+    if curve is None:
+        if analysis.model != Model.ENERGY:
+            raise ValueError(
+                f"J_F(δ) of the {analysis.model} model comes from analysing the scene again at each "
+                f"δ: pass curve (flyopt.delta_curve.inertia_curve)"
+            )
+        low, high = delta_range(analysis)[[0, -1]]
+        delta = np.geomspace(float(low), float(high), 200)
+        delta = np.union1d(delta, [analysis.delta])
+        j = np.array([required_inertia(analysis.a_max, analysis.omega_mean, d, analysis.j_constant) for d in delta])
+    else:
+        delta, j = (np.asarray(v, dtype=float) for v in curve)
+        order = np.argsort(delta)
+        delta, j = delta[order], j[order]
+    ax, own = standard.axes(ax)
+    inertia = standard.unit("inertia", units)[0]
+    shown = standard.show(np.where(j > 0, j, np.nan), "inertia", units)
+    exact = analysis.model != Model.ENERGY
+    ax.plot(
+        delta,
+        shown,
+        "-" if not exact else ".-",
+        ms=3,
+        color="tab:blue",
+        lw=1.6,
+        gid="j_delta",
+        label=f"J_F(δ), {analysis.model} model"
+        + (" (the scene analysed at each δ)" if exact else " = A_max/(ω_m² δ) − J_c (section 5)"),
+    )
+    if exact and analysis.a_max > 0:
+        # the constant-inertia method of section 5, J_e replaced by its cycle mean, for comparison
+        d = np.geomspace(delta[0], delta[-1], 200)
+        approx = np.array([required_inertia(analysis.a_max, scene.omega_mean, v, j_mean) for v in d])
+        ax.plot(
+            d,
+            standard.show(np.where(approx > 0, approx, np.nan), "inertia", units),
+            color="gray",
+            ls="--",
+            lw=1,
+            label="constant-inertia method, A_max/(ω_m² δ) − mean J_e (section 5), for comparison",
+            gid="constant_inertia",
+        )
+    free, about = _zero_crossing(delta, j), "≈ "
+    if analysis.model == Model.ENERGY and analysis.j_constant > 0 and analysis.a_max > 0:
+        free, about = analysis.a_max / (analysis.omega_mean**2 * analysis.j_constant), "= "  # section 5, exact
+    if free is not None and delta[0] <= free <= delta[-1]:
+        ax.axvline(
+            free,
+            color="gray",
+            ls=":",
+            lw=1,
+            gid="delta_free",
+            label=f"δ* {about}{display.number(free, standard.DIGITS if about == '= ' else 2)}: above it J_F = 0 "
+            f"(the machine's own inertia suffices)",
+        )
+    if analysis.flywheel_needed:
+        ax.plot(
+            [analysis.delta],
+            [float(standard.show(analysis.j_required, "inertia", units))],
+            "o",
+            color=standard.DEFICIT,
+            ms=7,
+            zorder=5,
+            gid="design_point",
+            label=f"the scene: δ = {display.number(analysis.delta, standard.DIGITS)}, "
+            f"J_F = {standard.q(analysis.j_required, 'inertia', units)}",
+        )
+    else:
+        ax.axvline(
+            analysis.delta,
+            color=standard.DEFICIT,
+            lw=1,
+            gid="design_point",
+            label=f"the scene's δ = {display.number(analysis.delta, standard.DIGITS)}: no flywheel needed",
+        )
+    ax.set(
+        xscale="log",
+        yscale="log",
+        xlabel="coefficient of speed fluctuation δ [-]",
+        ylabel=f"required flywheel J_F at the reference shaft [{inertia}]",
+    )
+    ax.set_xlim(delta[0], delta[-1])
+    _plain_log_ticks(ax)
+    ax.grid(True, which="both", alpha=0.25)
+    standard.title(ax, own, scene.title, f"required flywheel J_F against δ ({analysis.model} model)")
+    standard.legend(ax, own, ncol=1)
+    return ax
+
+
+def _plain_log_ticks(ax):
+    """Numbers as numbers on log axes (0.05, 200), not powers of ten, at 1, 2 and 5 of each decade."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+        axis.set_major_formatter(FuncFormatter(lambda v, _pos: display.number(v, 3)))
+        axis.set_minor_formatter(NullFormatter())
+
+
+def _zero_crossing(delta, j):
+    """The δ where a sampled J_F(δ) falls through zero (log-linear interpolation), or None."""
+    k = np.flatnonzero((j[:-1] > 0) & (j[1:] <= 0))
+    if not len(k):
+        return None
+    k = k[0]
+    t = j[k] / (j[k] - j[k + 1])
+    return float(math.exp(math.log(delta[k]) + t * (math.log(delta[k + 1]) - math.log(delta[k]))))

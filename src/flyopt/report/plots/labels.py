@@ -1,0 +1,103 @@
+"""Labels placed where nothing else is: the areas of the turning-moment diagram written inside their shading."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from flyopt.report.plots import standard
+
+# --------------------------------------------------------------------------
+# Labels placed where nothing else is
+# --------------------------------------------------------------------------
+
+
+def _to_pixels(ax, x, y):
+    return ax.transData.transform(np.column_stack([x, y]))
+
+
+def _boxes_overlap(a, b, pad=0.0):
+    return not (a.x1 + pad <= b.x0 or b.x1 + pad <= a.x0 or a.y1 + pad <= b.y0 or b.y1 + pad <= a.y0)
+
+
+def place_area_labels(ax, x, lower, upper, spans, obstacles_x=(), obstacles_y=()):
+    """Write each area's text inside its shading where it clears both curves, else just above (or below) them.
+
+    The marks of the cycle (vertical lines) and horizontal levels are avoided
+    too; where an area is too narrow between its marks, its text is written
+    across a mark, on a white ground that interrupts the mark.
+
+    Parameters
+    ----------
+    x, lower, upper : ndarray
+        The drawn angle and the two envelopes (min and max of the curves), in data units.
+    spans : list of (x_left, x_right, text, colour)
+    obstacles_x, obstacles_y : sequence of float
+        Vertical and horizontal lines (data x, data y) a label should not cover.
+
+    Returns
+    -------
+    list of Text
+        The labels placed (gid ``area``); a label that finds no free place is left out.
+    """
+    from matplotlib.transforms import Bbox
+
+    fig = ax.figure
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    lo_px, hi_px = _to_pixels(ax, x, lower), _to_pixels(ax, x, upper)
+    px = lo_px[:, 0]
+    axes_box = ax.get_window_extent(renderer)
+    lines_px = [ax.transData.transform((v, 0.0))[0] for v in obstacles_x]
+    levels_px = [ax.transData.transform((0.0, v))[1] for v in obstacles_y]
+    placed: list[Any] = []
+    texts: list[Any] = []
+    pad = 2.0
+    for left, right, text, colour in spans:
+        label = ax.text(0, 0, text, ha="center", va="center", fontsize=standard.FONT, color=colour, gid="area")
+        box = label.get_window_extent(renderer)
+        w, h = box.width + 2 * pad, box.height + 2 * pad
+        a, b = ax.transData.transform((left, 0))[0], ax.transData.transform((right, 0))[0]
+        middle = 0.5 * (a + b)
+        centres = np.linspace(a + w / 2, b - w / 2, 61) if b - a > w else np.array([middle])
+        best = None
+        for mode in ("inside", "above", "below", "across"):
+            for cx in centres:
+                window = (px >= cx - w / 2) & (px <= cx + w / 2)
+                if not window.any() or (
+                    mode != "across" and any(cx - w / 2 - 3 <= v <= cx + w / 2 + 3 for v in lines_px)
+                ):
+                    continue
+                top, bottom = hi_px[window, 1], lo_px[window, 1]
+                if mode in ("inside", "across"):
+                    slack = float(top.min() - bottom.max()) - h
+                    cy, score = 0.5 * float(top.min() + bottom.max()), slack
+                    if slack < 0:
+                        continue
+                elif mode == "above":
+                    cy, score = float(top.max()) + 1.0 + h / 2, -abs(cx - middle)
+                else:
+                    cy, score = float(bottom.min()) - 1.0 - h / 2, -abs(cx - middle)
+                candidate = Bbox.from_bounds(cx - w / 2, cy - h / 2, w, h)
+                if (
+                    candidate.y0 < axes_box.y0
+                    or candidate.y1 > axes_box.y1
+                    or any(candidate.y0 <= v <= candidate.y1 for v in levels_px)
+                    or any(_boxes_overlap(candidate, other) for other in placed)
+                ):
+                    continue
+                if best is None or score > best[0]:
+                    best = (score, cx, cy, candidate)
+            if best is not None:
+                break
+        if best is None:
+            label.remove()
+            continue
+        if mode == "across":
+            label.set_bbox({"facecolor": "white", "edgecolor": "none", "alpha": 0.85, "pad": 0.5})
+            label.set_zorder(5)
+        placed.append(best[3])
+        label.set_position(ax.transData.inverted().transform((best[1], best[2])))
+        texts.append(label)
+    return texts

@@ -1,0 +1,255 @@
+"""Diagrams of results tables: a sweep against a varied field, a Pareto front of two objectives."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from flyopt.report import display
+from flyopt.report.plots import standard
+
+RESULT_PLOTS = {
+    "sweep": "a result of a sweep against a varied field, one line per group (--by) and per other varied field",
+    "pareto": "a Pareto front: the non-dominated designs of two objectives",
+}
+
+#: Most lines a sweep diagram draws (one per group of the other varied fields).
+MAX_LINES = 12
+
+
+def _dimension(column, frame=None):
+    """The dimension of a results column (flyopt.outputs.results' table), or None (text, counts, unknown)."""
+    metadata = (frame.attrs.get("flyopt", {}) if frame is not None else {}) or {}
+    if column == "objective":
+        column = metadata.get("objective") or _objective_of(frame)
+        if column is None:
+            return None
+    if column == "epsilon":
+        objectives = metadata.get("objectives") or (pareto_objectives(frame) if frame is not None else None)
+        if not objectives:
+            return None
+        column = objectives[1]
+    try:
+        return display.dimension_of(column)
+    except ValueError:
+        return None
+
+
+def _objective_of(frame):
+    if frame is None or "design.objective" not in frame.columns:
+        return None
+    names = frame["design.objective"].dropna().unique()
+    return str(names[0]) if len(names) == 1 else None
+
+
+def _label(column, units=display.DEFAULT, frame=None):
+    """A column's axis label with its unit in the system (flyopt.outputs.results: the one table of units)."""
+    dimension = _dimension(column, frame)
+    if column == "cost":
+        return "cost [currency of the prices]"
+    if dimension is None:
+        return column
+    return standard.axis_label(column, dimension, units)
+
+
+def _column(frame, name):
+    """The column a user names: itself, or the result of that name (``material`` is ``best_material``)."""
+    for column in (name, f"best_{name}"):
+        if column in frame.columns:
+            return column
+    raise ValueError(f"the results have no column {name!r} (columns: {', '.join(frame.columns)})")
+
+
+def _values(frame, column, units):
+    """A column's numbers in the system's unit of its dimension."""
+    values = frame[column].to_numpy(dtype=float)
+    dimension = _dimension(column, frame)
+    return values if dimension is None else standard.show(values, dimension, units)
+
+
+def _value_text(value, column, units, frame=None):
+    """A varied field's value as a legend writes it: "speed = 600 rpm", "material = cast_iron"."""
+    if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(value, bool):
+        dimension = _dimension(column, frame)
+        if dimension is None:
+            return f"{column} = {display.number(float(value), standard.DIGITS)}"
+        return f"{column} = {standard.q(float(value), dimension, units)}"
+    return f"{column} = {value}"
+
+
+def pareto_objectives(frame):
+    """The two objectives of a front written by ``flyopt pareto``, or None.
+
+    A front has an ``epsilon`` column (the constraint value of each point)
+    and its two objectives as its first two columns, mass first.
+
+    Returns
+    -------
+    tuple of str or None
+        ``("mass", "outer_diameter")`` and so on; None for other results (a sweep).
+    """
+    columns = list(frame.columns)
+    if "epsilon" not in columns or len(columns) < 3 or columns[0] != "mass":
+        return None
+    return tuple(columns[:2])
+
+
+def varied_fields(frame):
+    """The inputs a sweep varied: its recorded sweep specification, else the input columns that take
+    more than one value (flyopt.outputs.results.INPUTS and the material and shaft fields)."""
+    from flyopt.outputs.results import INPUTS
+
+    recorded = ((frame.attrs.get("flyopt") or {}).get("sweep") or {}).get("vary")
+    if recorded:
+        return [name for name in recorded if name in frame.columns]
+    names = [c for c in frame.columns if c in INPUTS or c.startswith(("material.", "shaft."))]
+    return [c for c in names if frame[c].nunique(dropna=True) > 1]
+
+
+_NOT_DESIGNED = {
+    "infeasible": ("x", "infeasible: no material and shaft can give J_F"),
+    "failed": ("X", "failed: the solver did not converge"),
+    "not_needed": ("o", "no flywheel needed"),
+}
+
+
+def plot_sweep(frame, x, y="mass", by=None, ax=None, units=display.DEFAULT):
+    """A sweep's result ``y`` against a varied field ``x``: one line per value of ``by`` and of every
+    other varied field, so that a line never joins points that differ in anything but ``x``.
+
+    Points that are not designed (infeasible, failed, not needed) have no
+    ``y``: each is marked at its ``x`` along the bottom of the plot, by kind,
+    and counted in the legend. Values are shown in the system's units, the
+    legends' too (``speed = 600 rpm``). A field spanning more than a decade is
+    drawn on a log axis. A name that is not a column may name a result:
+    ``material`` and ``shaft`` are the winner's, ``best_material`` and
+    ``best_shaft``, when the sweep did not vary them.
+
+    Raises
+    ------
+    ValueError
+        A column that does not exist, or more than :data:`MAX_LINES` lines.
+    """
+    from matplotlib.transforms import blended_transform_factory
+
+    display.check_system(units)
+    x, y = _column(frame, x), _column(frame, y)
+    by = _column(frame, by) if by else None
+    others = [f for f in varied_fields(frame) if f not in (x, by)]
+    keys = ([by] if by else []) + others
+    groups = list(frame.groupby(keys, sort=True, dropna=False)) if keys else [((), frame)]
+    if len(groups) > MAX_LINES:
+        raise ValueError(
+            f"the sweep varies {', '.join(keys)} besides {x}: {len(groups)} lines would be drawn "
+            f"(at most {MAX_LINES}); sweep fewer fields at once, or plot one of them along x"
+        )
+    ax, own = standard.axes(ax)
+    status = frame["status"] if "status" in frame.columns else None
+    bottom = blended_transform_factory(ax.transData, ax.transAxes)
+    counts: dict[Any, int] = {}
+    for key, part in groups:
+        part = part.sort_values(x)
+        key = key if isinstance(key, tuple) else (key,)
+        words = ", ".join(_value_text(v, k, units, frame) for k, v in zip(keys, key)) or y
+        ok = (part["status"] == "designed").to_numpy() if status is not None else np.ones(len(part), bool)
+        xs, ys = _values(part, x, units), _values(part, y, units)
+        (line,) = ax.plot(xs[ok], ys[ok], "o-", ms=3.5, lw=1.3, label=words)
+        for kind, (marker, _w) in _NOT_DESIGNED.items():
+            miss = (part["status"] == kind).to_numpy() if status is not None else np.zeros(len(part), bool)
+            if miss.any():
+                ax.plot(
+                    xs[miss],
+                    np.full(miss.sum(), 0.03),
+                    marker,
+                    transform=bottom,
+                    color=line.get_color(),
+                    ms=6,
+                    mfc="none" if marker == "o" else line.get_color(),
+                    clip_on=False,
+                    gid=kind,
+                )
+                counts[kind] = counts.get(kind, 0) + int(miss.sum())
+    for kind, n in counts.items():
+        marker, words = _NOT_DESIGNED[kind]
+        ax.plot(
+            [],
+            [],
+            marker,
+            color="gray",
+            mfc="none" if marker == "o" else "gray",
+            label=f"{words} ({n} point{'s' if n > 1 else ''}), marked at the bottom",
+        )
+    values = _values(frame, x, units) if np.issubdtype(frame[x].dtype, np.number) else np.array([])
+    positive = values[np.isfinite(values) & (values > 0)]
+    if positive.size and positive.max() / positive.min() > 10:
+        ax.set_xscale("log")
+    ax.set(xlabel=_label(x, units, frame), ylabel=_label(y, units, frame))
+    ax.grid(True, alpha=0.3)
+    standard.title(ax, own, f"sweep: {y} against {x}" + (f", one line per {', '.join(keys)}" if keys else ""))
+    standard.legend(ax, own, ncol=3)
+    return ax
+
+
+def plot_pareto(frame, x, y, ax=None, units=display.DEFAULT):
+    """The Pareto front of two objectives (both minimized), non-dominated points joined.
+
+    A front compares designs of one machine: the points must share the
+    fields that set the machine's physics (``delta``, ``speed``, ``inertia``,
+    ``torque.scale``: flyopt.studies.points.PHYSICS_FIELDS), unless the
+    field is an objective itself (``flyopt pareto --objectives mass,delta``).
+    Points without a design are left out and counted in the legend.
+
+    Raises
+    ------
+    ValueError
+        A column that does not exist, or points of different physics.
+    """
+    from flyopt.studies.points import PHYSICS_FIELDS
+
+    display.check_system(units)
+    x, y = _column(frame, x), _column(frame, y)
+    mixed = [f for f in PHYSICS_FIELDS if f in frame.columns and f not in (x, y) and frame[f].nunique(dropna=True) > 1]
+    if mixed:
+        spans = "; ".join(
+            f"{f} from {_value_text(frame[f].min(), f, units, frame).split(' = ')[1]} to "
+            f"{_value_text(frame[f].max(), f, units, frame).split(' = ')[1]}"
+            for f in mixed
+        )
+        hint = ", or make δ an objective (flyopt pareto --objectives mass,delta)" if mixed == ["delta"] else ""
+        raise ValueError(
+            f"the points differ in {' and '.join(mixed)} ({spans}), and a Pareto front compares "
+            f"designs of one machine: plot the points of one {' and '.join(mixed)} at a time{hint}"
+        )
+    ax, own = standard.axes(ax)
+    usable = frame[[x, y]].notna().all(axis=1).to_numpy()
+    if "status" in frame.columns:
+        usable = usable & frame["status"].isin(["designed", "not_needed"]).to_numpy()
+    data = np.column_stack([_values(frame, x, units), _values(frame, y, units)])[usable]
+    order = np.lexsort((data[:, 1], data[:, 0]))
+    data = data[order]
+    front = data[np.concatenate(([True], data[1:, 1] < np.minimum.accumulate(data[:, 1])[:-1]))]
+    dropped = int((~usable).sum())
+    ax.plot(
+        data[:, 0],
+        data[:, 1],
+        "o",
+        color="lightgray",
+        ms=4,
+        label=f"designs ({len(data)})" + (f"; {dropped} without a design left out" if dropped else ""),
+    )
+    ax.step(front[:, 0], front[:, 1], where="post", color=standard.DEFICIT, lw=1.2)
+    ax.plot(
+        front[:, 0],
+        front[:, 1],
+        "o",
+        color=standard.DEFICIT,
+        ms=5,
+        label=f"Pareto front ({len(front)} points)",
+        gid="front",
+    )
+    ax.set(xlabel=_label(x, units, frame), ylabel=_label(y, units, frame))
+    ax.grid(True, alpha=0.3)
+    standard.title(ax, own, f"Pareto front: {y} against {x}, both minimized")
+    standard.legend(ax, own)
+    return ax

@@ -1,0 +1,123 @@
+"""The speed over the cycle, ω(φ) with the required flywheel, from the model that ran."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flyopt.names import Model
+from flyopt.report import display
+from flyopt.report.plots import standard
+from flyopt.report.plots.cycle import angle_axis, mark_dead_centres
+
+
+def plot_speed(scene, analysis, speed=None, simulation=None, ax=None, units=display.DEFAULT):
+    """ω(φ) over the cycle with the required flywheel, from the model that ran.
+
+    The mean speed ω_m and the extremes ω_max and ω_min are drawn as levels,
+    the angles of the extremes marked; the title gives the δ the curve
+    achieves beside the δ allowed.
+
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+    speed : SpeedFluctuation or PeriodicSolution, optional
+        The model's speed over the cycle: ``phi`` [rad], ``omega`` [rad/s]
+        and ``delta``. Energy models: ω² = 2 (E_0 + ΔE)/J_e with E_0 such
+        that (ω_max + ω_min)/2 = ω_m (docs/flywheel-design.md, section 6,
+        forward use: :meth:`Analysis.speed_curve`); the dynamic model: its
+        periodic solution, which the analysis carries (the default).
+    simulation : PeriodicSolution, optional
+        The periodic simulation of the machine with that flywheel (the
+        verification's), drawn over it: ``phi``, ``omega`` and ``delta``.
+    ax : matplotlib Axes, optional
+    units : {"engineering", "si", "imperial"}
+
+    Returns
+    -------
+    matplotlib Axes
+        The model's line has gid ``model``, the simulation's ``simulation``,
+        the levels ``omega_mean``, ``omega_max``, ``omega_min``.
+
+    Raises
+    ------
+    ValueError
+        A net-area scene: it has no angles; or no ``speed`` for an analysis
+        whose result does not carry one (the energy models).
+    """
+    display.check_system(units)
+    if scene.net is not None:
+        raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
+    if speed is None:
+        if analysis.requirement is None or analysis.requirement.model != Model.DYNAMIC:
+            raise ValueError(
+                f"the {analysis.model} model's result carries no ω(φ): pass speed (Analysis.speed_curve())"
+            )
+        speed = analysis.speed_curve()
+    ax, own = standard.axes(ax)
+    omega = np.asarray(speed.omega, dtype=float)
+    x = standard.show(speed.phi, "angle", units)
+    ax.plot(
+        x,
+        standard.show(omega, "angular_speed", units),
+        color="tab:blue",
+        lw=1.6,
+        gid="model",
+        label=f"ω(φ), {analysis.model} model, J_F = {standard.q(analysis.j_required, 'inertia', units)}",
+    )
+    if simulation is not None:
+        ax.plot(
+            standard.show(simulation.phi, "angle", units),
+            standard.show(simulation.omega, "angular_speed", units),
+            color=standard.DEFICIT,
+            ls="--",
+            lw=1,
+            gid="simulation",
+            label=f"periodic simulation (δ = {display.number(simulation.delta, 6)})",
+        )
+    w_max, w_min = float(np.max(omega)), float(np.min(omega))
+    w_max = float(getattr(speed, "omega_max", w_max))
+    w_min = float(getattr(speed, "omega_min", w_min))
+    w_mean = 0.5 * (w_max + w_min)
+    where = {"max": getattr(speed, "phi_omega_max", None), "min": getattr(speed, "phi_omega_min", None)}
+    for value, name, colour, style in (
+        (w_max, "max", standard.SURPLUS, ":"),
+        (w_mean, "mean", "gray", "-."),
+        (w_min, "min", standard.DEFICIT, ":"),
+    ):
+        at = where.get(name)
+        angle = f" at φ = {standard.q(at, 'angle', units)}" if at is not None and w_max > w_min else ""
+        symbol = "ω_m = (ω_max + ω_min)/2" if name == "mean" else f"ω_{name}"
+        ax.axhline(
+            float(standard.show(value, "angular_speed", units)),
+            color=colour,
+            ls=style,
+            lw=1,
+            gid=f"omega_{name}",
+            label=f"{symbol} = {standard.q(value, 'angular_speed', units, 6)}{angle}",
+        )
+        if at is not None and name != "mean" and w_max > w_min:
+            ax.plot(
+                [float(standard.show(at, "angle", units))],
+                [float(standard.show(value, "angular_speed", units))],
+                "o",
+                color=colour,
+                ms=5,
+                zorder=5,
+            )
+    angle_axis(ax, scene.cycle_angle, units)
+    mark_dead_centres(ax, scene, units)
+    span = max(w_max - w_min, 1e-9 * w_mean)
+    ax.set_ylim(*(float(standard.show(v, "angular_speed", units)) for v in (w_min - 0.12 * span, w_max + 0.12 * span)))
+    ax.set_ylabel(standard.axis_label("speed of the reference shaft ω", "angular_speed", units))
+    ax.grid(True, alpha=0.25)
+    achieved = float(getattr(speed, "delta", (w_max - w_min) / w_mean))
+    standard.title(
+        ax,
+        own,
+        scene.title,
+        f"speed over the cycle: δ = {display.number(achieved, 4)} achieved, "
+        f"{display.number(analysis.delta, 4)} allowed",
+    )
+    standard.legend(ax, own)
+    return ax

@@ -1,0 +1,129 @@
+"""The visual standard every diagram shares: the figure, units on every axis, wrapped titles, legends outside the data."""
+
+from __future__ import annotations
+
+import os
+import textwrap
+
+import numpy as np
+
+from flyopt.report import display
+
+SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
+
+
+#: Font size of legends and labels on the data [pt].
+FONT = 8.5
+#: Significant digits of the numbers written on a diagram.
+DIGITS = 4
+
+
+class NothingToDraw(Exception):
+    """The diagram would be empty for this machine (no flywheel is needed): not an error."""
+
+
+def pyplot():
+    import matplotlib
+
+    if "MPLBACKEND" not in os.environ and matplotlib.get_backend().lower() not in ("agg", "pdf", "svg"):
+        matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+# --------------------------------------------------------------------------
+# The visual standard: figures, units, titles, legends
+# --------------------------------------------------------------------------
+
+
+def axes(ax, figsize=(9, 5.2)):
+    """(Axes, own): the caller's Axes, or one on a new figure of constrained layout (own True)."""
+    if ax is not None:
+        return ax, False
+    plt = pyplot()
+    return plt.figure(figsize=figsize, layout="constrained").add_subplot(), True
+
+
+def unit(dimension, units):
+    """(label, factor) of a dimension in the unit system: shown = SI / factor."""
+    return display.unit(dimension, units)
+
+
+def show(value, dimension, units):
+    """An SI value or array in the system's unit of its dimension."""
+    return display.show(np.asarray(value, dtype=float) if np.ndim(value) else float(value), dimension, units)
+
+
+def q(value, dimension, units, digits=DIGITS):
+    """A quantity as people read it, "0.4625 kN·m"."""
+    return display.quantity_text(value, dimension, units, digits)
+
+
+def axis_label(words, dimension, units):
+    """ "words [unit]" ("[-]" for a ratio: every axis says its unit)."""
+    return f"{words} [{display.label(dimension, units)}]"
+
+
+def title(ax, own, *lines, size=11):
+    """A title of several lines, each wrapped to the width it has (the figure's, or the Axes')."""
+    fig = ax.figure
+    width = fig.get_size_inches()[0] * (1.0 if own else ax.get_position().width)
+    chars = max(int(width * 72 / (0.6 * size)) - 4, 20)
+    text = "\n".join(textwrap.fill(line, chars) for line in lines if line)
+    ax.set_title(text, fontsize=size)
+
+
+def legend(ax, own, title=None, ncol=2, handles=None):
+    """The legend outside the data: below the figure the function made, right of a given Axes.
+
+    Entries and title are wrapped to the width there is (the figure's, shared by ``ncol`` columns;
+    about 40 characters beside a given Axes). Returns the Legend (``ax.figure.legends[-1]`` for an
+    own figure, else ``ax.get_legend()``).
+    """
+    if handles is None:
+        handles, labels = ax.get_legend_handles_labels()
+    else:
+        labels = [h.get_label() for h in handles]
+    if not handles:
+        return None
+    ncol = min(ncol, len(handles))
+    if own:
+        chars = int((ax.figure.get_size_inches()[0] - 0.4) * 72 / (0.6 * FONT))
+        wrap, title_wrap = chars // ncol - 8, chars - 4
+    else:
+        ncol, wrap, title_wrap = 1, 40, 40
+    labels = [fill(label, wrap) for label in labels]
+    if title:
+        title = fill(title, title_wrap)
+    if own:
+        return ax.figure.legend(
+            handles,
+            labels,
+            loc="outside lower center",
+            ncol=ncol,
+            fontsize=FONT,
+            title=title,
+            title_fontsize=FONT,
+            frameon=False,
+        )
+    return ax.legend(
+        handles,
+        labels,
+        loc="upper left",
+        bbox_to_anchor=(1.02, 1.0),
+        borderaxespad=0.0,
+        fontsize=FONT,
+        title=title,
+        title_fontsize=FONT,
+        frameon=False,
+    )
+
+
+def fill(text, width):
+    """Wrap a line to ``width`` characters, never between a number and its unit ("0 mm", "1,512 rpm"),
+    nor inside "name = value"."""
+    import re
+
+    kept = re.sub(r"(\d) (?=[^\s(=+−-])", "\\1\u00a0", text).replace(" = ", "\u00a0=\u00a0")
+    return textwrap.fill(kept, width).replace("\u00a0", " ")

@@ -1,0 +1,171 @@
+"""The turning-moment diagram: driving and resisting torque over the cycle, the areas between them shaded and labelled."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flyopt.report import display
+from flyopt.report.plots import standard
+from flyopt.report.plots.cycle import Torques, angle_axis, mark_dead_centres, omega_marks
+from flyopt.report.plots.labels import place_area_labels
+
+
+def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
+    """Turning-moment diagram: M_d and M_r over the cycle, surplus and deficit shaded.
+
+    Each area between crossings is labelled with its energy where it has room
+    (areas under 1 % of A_max and 2 % of the cycle are left unlabelled); the
+    angles of ω_max and ω_min by the model that ran are marked, and where they
+    are not the ends of A_max (a variable inertia, a speed-dependent torque)
+    those are marked too and the legend says why. A torque solved from the
+    work balance is given with its value. With the dynamic model the torques
+    are drawn along its periodic solution ω(φ): a motor on its characteristic,
+    its mean dashed. An [engine]'s dead centres and strokes, a slider-crank's
+    dead centres, are marked on a top axis. Net-area scenes have no curves:
+    their areas are drawn as bars, area k over [k − 1, k] like the chain of
+    :func:`plot_energy`.
+
+    Parameters
+    ----------
+    scene : Scene
+    analysis : Analysis
+    ax : matplotlib Axes, optional
+    units : {"engineering", "si", "imperial"}
+        The unit system of the axes and labels (:mod:`flyopt.report.display`).
+
+    Returns
+    -------
+    matplotlib Axes
+        Lines labelled by their meaning; the marks of the extremes carry gids
+        ``omega_max``, ``omega_min`` (and ``delta_e_max``, ``delta_e_min``),
+        the area texts gid ``area``.
+    """
+    display.check_system(units)
+    ax, own = standard.axes(ax)
+    energy = standard.unit("energy", units)[0]
+    ind = analysis.indicator
+    if scene.net is not None:
+        areas = ind.areas
+        k = np.arange(1, len(areas) + 1)
+        ax.bar(
+            k - 0.5,
+            standard.show(areas, "energy", units),
+            width=0.8,
+            color=[standard.SURPLUS if a > 0 else standard.DEFICIT for a in areas],
+        )
+        ax.axhline(0, color="black", lw=0.8)
+        for x, a in zip(k - 0.5, areas):
+            ax.annotate(
+                standard.q(a, "energy", units),
+                (x, float(standard.show(a, "energy", units))),
+                xytext=(0, 3 if a > 0 else -3),
+                textcoords="offset points",
+                ha="center",
+                va="bottom" if a > 0 else "top",
+                fontsize=standard.FONT,
+                gid="area",
+            )
+        ax.set_xlim(0, len(areas))
+        ax.set_xticks(k - 0.5, labels=[str(i) for i in k])
+        ax.margins(y=0.15)
+        ax.set(
+            xlabel="area between the torque curves, in order over the cycle",
+            ylabel=standard.axis_label("energy of the area", "energy", units),
+        )
+        standard.title(
+            ax,
+            own,
+            scene.title,
+            f"net areas between the torque curves (A_max = {standard.q(ind.a_max, 'energy', units)})",
+        )
+        return ax
+    torques = Torques(scene, analysis)
+    x = standard.show(torques.phi, "angle", units)
+    md, mr = standard.show(torques.driving, "torque", units), standard.show(torques.resisting, "torque", units)
+    ax.fill_between(x, md, mr, where=md >= mr, color=standard.SURPLUS, alpha=0.25, interpolate=True, lw=0)
+    ax.fill_between(x, md, mr, where=md < mr, color=standard.DEFICIT, alpha=0.25, interpolate=True, lw=0)
+    ax.plot(
+        x,
+        md,
+        color="tab:blue",
+        lw=1.8,
+        label=_torque_words("driving M_d", torques.driving_solved, torques.driving, torques, units),
+    )
+    ax.plot(
+        x,
+        mr,
+        color="black",
+        lw=1.8,
+        label=_torque_words("resisting M_r", torques.resisting_solved, torques.resisting, torques, units),
+    )
+    levels = []
+    if torques.along and not torques.driving_solved and np.ptp(torques.driving) > 0:
+        mean = analysis.driving_torque
+        levels.append(float(standard.show(mean, "torque", units)))
+        ax.axhline(
+            float(standard.show(mean, "torque", units)),
+            color="tab:blue",
+            ls="--",
+            lw=1.0,
+            label=f"mean M_d = W/Φ = {standard.q(mean, 'torque', units)}",
+            gid="mean_driving",
+        )
+    marks, note = omega_marks(analysis, units)
+    for angle, words, colour, style, gid in marks:
+        ax.axvline(float(standard.show(angle, "angle", units)), color=colour, ls=style, lw=1.1, label=words, gid=gid)
+    end = angle_axis(ax, scene.cycle_angle, units)
+    top = mark_dead_centres(ax, scene, units)
+    ax.set_ylabel(standard.axis_label("torque at the reference shaft", "torque", units))
+    if torques.along:
+        areas = torques.areas()
+        what = "along the periodic solution"
+    else:
+        areas = list(zip(ind.chain_angle[:-1], ind.chain_angle[1:], ind.areas))
+        what = f"A_max = {standard.q(analysis.a_max, 'energy', units)}"
+    standard.title(ax, own, scene.title, f"turning-moment diagram, {what} ({analysis.model} model)")
+    span = max(float(np.ptp(np.concatenate([md, mr]))), 1e-12 * max(1.0, float(np.max(np.abs(md)))))
+    low, high = float(min(md.min(), mr.min())), float(max(md.max(), mr.max()))
+    if span <= 1e-9 * max(abs(high), 1.0):
+        ax.set_ylim(low - 0.5 * max(abs(low), 1.0), high + 0.5 * max(abs(high), 1.0))
+    else:
+        ax.set_ylim(low - 0.12 * span, high + 0.22 * span)
+    standard.legend(ax, own, title=note)
+    largest = max([abs(a) for _l, _r, a in areas] + [0.0])
+    spans = [
+        (
+            float(standard.show(left, "angle", units)),
+            float(standard.show(right, "angle", units)),
+            f"{'+' if area > 0 else '−'}{standard.q(abs(area), 'energy', units)}",
+            standard.SURPLUS if area > 0 else standard.DEFICIT,
+        )
+        for left, right, area in areas
+        if largest > 0
+        and (abs(area) >= 0.01 * largest or right - left >= 0.02 * scene.cycle_angle)
+        and abs(area) > 1e-9 * largest
+    ]
+    place_area_labels(
+        ax,
+        x,
+        np.minimum(md, mr),
+        np.maximum(md, mr),
+        spans,
+        [float(standard.show(a, "angle", units)) for a, *_r in marks],
+        levels,
+    )
+    ax.set_xlim(0.0, end)
+    del top, energy
+    return ax
+
+
+def _torque_words(words, solved, values, torques, units):
+    """A torque's legend entry: its value when it is a constant solved from the work balance."""
+    if solved:
+        how = "with the periodic solution" if torques.along else "from the work balance"
+        return f"{words} = {standard.q(float(values[0]), 'torque', units)} (constant, solved {how})"
+    if torques.along and words.startswith("driving") and torques.motor:
+        return f"{words}: the motor on its characteristic along ω(φ)"
+    if torques.along and torques.resisting_speed and words.startswith("resisting"):
+        return f"{words} along ω(φ)"
+    if np.ptp(values) == 0:
+        return f"{words} = {standard.q(float(values[0]), 'torque', units)}"
+    return words
