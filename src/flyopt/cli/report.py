@@ -139,7 +139,8 @@ def collect(path, command="", pdf=False):
     """
     from pathlib import Path
 
-    from flyopt.io.scene import load, read_toml
+    from flyopt.io.scene import load
+    from flyopt.io.toml_file import read_toml
     from flyopt.pipeline import COMPLETE, solve
     from flyopt.report.document import ReportInputs
 

@@ -103,7 +103,8 @@ def add_check_arguments(parser: argparse.ArgumentParser) -> None:
 def run_check(args: argparse.Namespace) -> int:
     """``flyopt check``: 0 when the scene reads, its cycle closes and its ``[sweep]`` table would run."""
     from flyopt.analysis import analyse
-    from flyopt.io.scene import load, read_toml
+    from flyopt.io.scene import load
+    from flyopt.io.toml_file import read_toml
 
     data = read_toml(args.scene)
     scene = load(args.scene, data)

@@ -52,8 +52,8 @@ from flyopt.design import design_inputs, rank
 from flyopt.design.check import binding_names
 from flyopt.design.spec import MountShaft
 from flyopt.errors import SceneError, SolverFailed
-from flyopt.io.scene import NetAreas
 from flyopt.io.sweep_spec import field_path
+from flyopt.io.torque_section import NetAreas
 from flyopt.outputs.results import RESULT_COLUMNS
 from flyopt.sizing.peak_torque import flywheel_peak_torque
 
