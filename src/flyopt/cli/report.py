@@ -68,7 +68,7 @@ def run_report(args):
     from pathlib import Path
 
     from flyopt.errors import SceneError
-    from flyopt.outputs.results import check_folder
+    from flyopt.outputs.files import check_folder
 
     kind = output_kind(args.output)
     check_folder(args.output, "-o/--output")
@@ -93,7 +93,7 @@ def write(document, path, kind):
     """Render ``document`` as ``kind`` ("html" or "pdf") and write it to ``path`` atomically."""
     from pathlib import Path
 
-    from flyopt.outputs.results import replace_atomically, write_text
+    from flyopt.outputs.files import replace_atomically, write_text
 
     if kind == "html":
         from flyopt.report.html import render
@@ -261,7 +261,7 @@ def provenance(scene, command="", pdf=False, files=()):
     import platform
 
     import flyopt
-    from flyopt.outputs.results import scene_record
+    from flyopt.outputs.documents import scene_record
 
     record = scene_record(scene)
     rows = [

@@ -74,7 +74,7 @@ def run_solve(args: argparse.Namespace) -> int:
         design_method=args.design_method,
     )
     if args.json:
-        from flyopt.outputs.results import solution_json
+        from flyopt.outputs.documents import solution_json
 
         text = solution_json(solution, args.scene, timings=args.timings)
     else:

@@ -54,7 +54,8 @@ import numpy as np
 import pandas as pd
 
 from flyopt.errors import Interrupted, SceneError
-from flyopt.outputs.results import check_folder, read_results, write_results
+from flyopt.outputs.files import check_folder
+from flyopt.outputs.results import read_results, write_results
 
 __all__ = [
     "CHUNK_SECONDS",
