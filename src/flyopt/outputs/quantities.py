@@ -13,6 +13,9 @@ docs/nomenclature.md lists the names with their meaning).
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
+from typing import Any
+
 from flyopt.units import DIMENSIONS
 
 __all__ = [
@@ -212,7 +215,7 @@ MISSING = (
 )
 
 
-def dimension_of(name):
+def dimension_of(name: str) -> str | None:
     """The dimension of a numeric field, or None (text, counts, unknown names)."""
     if name in INPUTS:
         return INPUTS[name]
@@ -224,18 +227,18 @@ def dimension_of(name):
     return QUANTITIES.get(name)
 
 
-def _si(dimension):
+def _si(dimension: str) -> str:
     if dimension in OUTPUT_DIMENSIONS:
         return OUTPUT_DIMENSIONS[dimension]
     return DIMENSIONS[dimension][1] or "1"
 
 
-def has_unit(name):
+def has_unit(name: str) -> bool:
     """Whether ``name`` is a quantity: a unit of its own, or one set by another field."""
     return name in UNIT_SET_BY or dimension_of(name) is not None
 
 
-def unit_of(name, objective=None, front=None):
+def unit_of(name: str, objective: str | None = None, front: str | None = None) -> str | None:
     """The SI unit of a field, as pint writes it ("kg", "kg*m**2", "rad/s"; "1": dimensionless).
 
     Parameters
@@ -263,12 +266,14 @@ def unit_of(name, objective=None, front=None):
     return None if dimension is None else _si(dimension)
 
 
-def table_units(columns, objective=None, front=None):
+def table_units(
+    columns: Iterable[object], objective: str | None = None, front: str | None = None
+) -> dict[str, str | None]:
     """The ``units`` map of a table: every quantity column and its unit (null: no single unit)."""
     return {str(c): unit_of(str(c), objective, front) for c in columns if has_unit(str(c))}
 
 
-def document_units(document, objective=None):
+def document_units(document: Mapping[str, Any], objective: str | None = None) -> dict[str, str | None]:
     """The ``units`` map of a JSON document: every numeric field that occurs in it, and its unit.
 
     A field counts where it holds a number, a list of numbers or null (a
@@ -287,9 +292,9 @@ def document_units(document, objective=None):
     dict
         Field name to unit, sorted by name.
     """
-    found = set()
+    found: set[str | None] = set()
 
-    def visit(key, value):
+    def visit(key: str | None, value: object) -> None:
         if isinstance(value, dict):
             for k, v in value.items():
                 visit(k, v)
