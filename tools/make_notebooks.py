@@ -31,7 +31,7 @@ def notebook(cells):
 #: engineer's units (flyopt.report.display), so that no printed number goes without its unit.
 UNITS_HELPER = '''
 import pandas as pd
-from flyopt.outputs.results import COUNTS
+from flyopt.outputs.quantities import COUNTS
 from flyopt.report import display
 
 SYSTEM = "engineering"     # what people read: mm, rpm, kN·m, kJ, MPa (flyopt.report.display)

@@ -628,7 +628,8 @@ def test_a_long_force_table_read_without_tomllib_gives_the_work_of_its_rows(writ
     InlineRows, not a list): the same cycle as the table handed over as a list, and the work
     of its trapezoids summed here by numpy."""
     from flyopt.io.press import scene_data
-    from flyopt.io.scene import InlineRows, from_dict, read_toml
+    from flyopt.io.scene import from_dict
+    from flyopt.io.toml_file import InlineRows, read_toml
 
     x = np.linspace(0.0, 30.0, 400)  # mm
     f = 500.0 * np.sin(np.pi * x / 30.0) ** 2  # kN

@@ -39,8 +39,11 @@ from conftest import PROBLEMS, ROOT
 
 import flyopt
 from flyopt.cli.main import main
-from flyopt.outputs import results
-from flyopt.outputs.results import COUNTS, QUANTITIES, UNIT_SET_BY, read_results, unit_of
+from flyopt.outputs import quantities, results
+from flyopt.outputs.documents import SCHEMA_FILE, json_text, schema, schema_version, solution_document, table_metadata
+from flyopt.outputs.files import write_text
+from flyopt.outputs.quantities import COUNTS, QUANTITIES, UNIT_SET_BY, unit_of
+from flyopt.outputs.results import read_results
 from flyopt.studies.payload import digest
 
 try:  # Python >= 3.11
@@ -49,7 +52,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 SCENES = sorted(PROBLEMS.glob("*.toml"))
-VALIDATOR = jsonschema.Draft202012Validator(results.schema(), format_checker=jsonschema.FormatChecker())
+VALIDATOR = jsonschema.Draft202012Validator(schema(), format_checker=jsonschema.FormatChecker())
 UREG = pint.UnitRegistry()
 
 
@@ -74,8 +77,7 @@ def _documents(stem):
         solution = flyopt.solve(scene, verify_design=True)
         bare = flyopt.solve(scene, design_flywheel=False)
         _DOCUMENTS[stem] = [
-            json.loads(results.json_text(results.solution_document(s, name, timings=t)))
-            for s, t in ((solution, True), (bare, False))
+            json.loads(json_text(solution_document(s, name, timings=t))) for s, t in ((solution, True), (bare, False))
         ]
     return _DOCUMENTS[stem]
 
@@ -106,7 +108,7 @@ def _punch(**changes):
 
 def _solve_document(path, **options):
     solution = flyopt.solve(flyopt.load(path), **options)
-    return json.loads(results.json_text(results.solution_document(solution, str(path))))
+    return json.loads(json_text(solution_document(solution, str(path))))
 
 
 # --------------------------------------------------------------------------
@@ -115,8 +117,8 @@ def _solve_document(path, **options):
 
 
 def test_the_schema_is_a_valid_draft_2020_12_schema():
-    jsonschema.Draft202012Validator.check_schema(results.schema())
-    assert results.schema()["$schema"] == "https://json-schema.org/draft/2020-12/schema"
+    jsonschema.Draft202012Validator.check_schema(schema())
+    assert schema()["$schema"] == "https://json-schema.org/draft/2020-12/schema"
 
 
 @pytest.mark.parametrize("stem", _scene_params())
@@ -125,7 +127,7 @@ def test_every_problem_scene_validates(stem):
     validates, and every number in it has its unit (or is a count)."""
     for document in _documents(stem):
         assert _errors(document) == []
-        assert document["schema_version"] == results.schema_version() and document["kind"] == "solve"
+        assert document["schema_version"] == schema_version() and document["kind"] == "solve"
         assert document["flyopt_version"] == importlib.metadata.version("flyopt")
         _assert_units_cover(document)
 
@@ -218,7 +220,7 @@ def _drive_document():
         verification=solution.verification, rms_torque=30.0, rated_torque=36.0, startup_time=5.0, flagged=False
     )
     with_drive = dataclasses.replace(solution, drive=drive, drive_check=check)
-    return json.loads(results.json_text(results.solution_document(with_drive, "drive.toml")))
+    return json.loads(json_text(solution_document(with_drive, "drive.toml")))
 
 
 def _set(path, value):
@@ -287,9 +289,9 @@ def test_the_schema_ships_with_the_package():
     from fnmatch import fnmatch
     from importlib import resources
 
-    assert resources.files("flyopt").joinpath("data", results.SCHEMA_FILE).is_file()
+    assert resources.files("flyopt").joinpath("data", SCHEMA_FILE).is_file()
     patterns = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["package-data"]["flyopt"]
-    assert any(fnmatch(f"data/{results.SCHEMA_FILE}", p) for p in patterns)
+    assert any(fnmatch(f"data/{SCHEMA_FILE}", p) for p in patterns)
     assert any(fnmatch("py.typed", p) for p in patterns)
 
 
@@ -521,19 +523,19 @@ def test_every_quantity_is_in_a_relation_and_every_unit_is_coherent_si():
 
 
 def test_the_sweep_inputs_have_the_dimensions_their_values_are_read_in():
-    """results.INPUTS against the sweep grammar itself (flyopt.io.sweep_spec), field by field:
+    """quantities.INPUTS against the sweep grammar itself (flyopt.io.sweep_spec), field by field:
     a new sweep field, or one read in another dimension, fails here."""
     from flyopt.io import sweep_spec
 
-    assert set(results.INPUTS) == set(sweep_spec.FIELDS)
+    assert set(quantities.INPUTS) == set(sweep_spec.FIELDS)
     for name, field in sweep_spec.FIELDS.items():
-        assert results.INPUTS[name] == (field.dimension if field.kind == "number" else None), name
+        assert quantities.INPUTS[name] == (field.dimension if field.kind == "number" else None), name
     for table, mine in (
-        (sweep_spec._MATERIAL_FIELDS, results.MATERIAL_INPUTS),
-        (sweep_spec._SHAFT_FIELDS, results.SHAFT_INPUTS),
+        (sweep_spec._MATERIAL_FIELDS, quantities.MATERIAL_INPUTS),
+        (sweep_spec._SHAFT_FIELDS, quantities.SHAFT_INPUTS),
     ):
         assert {k: f.dimension for k, f in table.items()} == mine
-    assert not set(results.INPUTS) & set(QUANTITIES)  # one entry per name
+    assert not set(quantities.INPUTS) & set(QUANTITIES)  # one entry per name
     assert unit_of("material.cast_iron.density") == "kg/m**3" and unit_of("shaft.motor.speed_ratio") == "1"
 
 
@@ -655,7 +657,7 @@ def test_the_frame_in_memory_has_the_same_nulls(study):
     assert frame["best_material"].isna().equals(frame["status"] != "designed")
     assert str(frame["iterations"].dtype) == "Int64"
     assert frame["iterations"].isna().equals((frame["method"] != "ipopt") | (frame["status"] != "designed"))
-    text = [c for c in frame.columns if results._kind(c, frame[c]) == "str"]
+    text = [c for c in frame.columns if results.column_kind(c, frame[c]) == "str"]
     assert len(text) >= 9 and not any(frame[c].dropna().eq("").any() for c in text)
     for suffix in ("parquet", "csv"):
         pd.testing.assert_frame_equal(read_results(folder / f"study.{suffix}"), frame)
@@ -736,7 +738,7 @@ def test_pareto_files_record_their_objectives_and_plot_needs_no_x(tmp_path, caps
             results.write_results(
                 frame[columns],
                 shuffled,
-                metadata=results.table_metadata("pareto", columns, objectives=document["objectives"]),
+                metadata=table_metadata("pareto", columns, objectives=document["objectives"]),
             )
             assert main(["plot", str(shuffled), "--what", "pareto", "-o", str(tmp_path / f"{suffix}.png")]) == 0
             assert drawn[-1] == "delta" and capsys.readouterr().out.startswith("wrote ")
@@ -835,9 +837,9 @@ def test_a_text_file_is_written_whole_or_not_at_all(tmp_path):
     out = tmp_path / "result.txt"
     out.write_text("earlier\n")
     with pytest.raises(UnicodeEncodeError):
-        results.write_text(out, "A_max = 1 J\n" * 1000 + "\ud800")  # fails half-way through
+        write_text(out, "A_max = 1 J\n" * 1000 + "\ud800")  # fails half-way through
     assert out.read_text() == "earlier\n" and [p.name for p in tmp_path.iterdir()] == ["result.txt"]
-    results.write_text(out, "A_max = 1 J")
+    write_text(out, "A_max = 1 J")
     assert out.read_text() == "A_max = 1 J\n"
 
 

@@ -87,7 +87,7 @@ def test_numbers_carry_the_digits_asked_for(value, digits, text):
 
 def test_a_field_is_shown_in_the_dimension_the_json_gives_it():
     """dimension_of reads flyopt.outputs.results' table: the JSON's unit and the shown one are one dimension."""
-    from flyopt.outputs.results import unit_of
+    from flyopt.outputs.quantities import unit_of
 
     for name in (
         "a_max",

@@ -163,7 +163,7 @@ def test_pareto_mass_delta_and_no_flywheel_needed():
         ("cost,outer_diameter", {}, "not a known pair"),
         ("mass,cost", {}, "needs a cost per kg on every material"),
         ("mass,delta", {"span": (0.1, 3.0)}, "must lie in"),
-        ("mass,outer_diameter", {"points": 1}, ">= 2"),
+        ("mass,outer_diameter", {"points": 1}, "from 2 to 1000"),
     ],
 )
 def test_pareto_errors(objectives, kwargs, match):

@@ -377,7 +377,10 @@ def test_a_malformed_scheduler_address_is_refused_before_connecting(tmp_path, ad
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.parametrize("address", ["tcp://10.0.0.5:8786", "10.0.0.5:8786", "tls://sched.example.com:8786", "[::1]:1"])
+@pytest.mark.parametrize(
+    "address",
+    ["tcp://10.0.0.5:8786", "10.0.0.5:8786", "tls://sched.example.com:8786", "[::1]:1", "inproc://192.0.2.2/18458/1"],
+)
 def test_a_scheduler_address_of_every_form_is_taken(address):
     assert runner.scheduler_address(address) == address
 

@@ -181,7 +181,7 @@ def _printed_to_file(handler: Callable[[argparse.Namespace], int]) -> Callable[[
         from pathlib import Path
 
         from flyopt.errors import SceneError
-        from flyopt.outputs.results import check_folder, write_text
+        from flyopt.outputs.files import check_folder, write_text
 
         check_folder(args.output, "-o/--output")
         scene = getattr(args, "scene", None)

@@ -82,7 +82,7 @@ def run_report(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from flyopt.errors import SceneError
-    from flyopt.outputs.results import check_folder
+    from flyopt.outputs.files import check_folder
 
     kind = output_kind(args.output)
     check_folder(args.output, "-o/--output")
@@ -107,7 +107,7 @@ def write(document: Document, path: str | os.PathLike[str], kind: str) -> None:
     """Render ``document`` as ``kind`` ("html" or "pdf") and write it to ``path`` atomically."""
     from pathlib import Path
 
-    from flyopt.outputs.results import replace_atomically, write_text
+    from flyopt.outputs.files import replace_atomically, write_text
 
     if kind == "html":
         from flyopt.report.html import render
@@ -153,7 +153,8 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
     """
     from pathlib import Path
 
-    from flyopt.io.scene import load, read_toml
+    from flyopt.io.scene import load
+    from flyopt.io.toml_file import read_toml
     from flyopt.pipeline import COMPLETE, solve
     from flyopt.report.builder import ReportInputs
 
@@ -276,7 +277,7 @@ def provenance(
     import platform
 
     import flyopt
-    from flyopt.outputs.results import scene_record
+    from flyopt.outputs.documents import scene_record
 
     record = scene_record(scene)
     rows = [

@@ -74,7 +74,7 @@ def run_solve(args: argparse.Namespace) -> int:
         design_method=args.design_method,
     )
     if args.json:
-        from flyopt.outputs.results import solution_json
+        from flyopt.outputs.documents import solution_json
 
         text = solution_json(solution, args.scene, timings=args.timings)
     else:
@@ -103,7 +103,8 @@ def add_check_arguments(parser: argparse.ArgumentParser) -> None:
 def run_check(args: argparse.Namespace) -> int:
     """``flyopt check``: 0 when the scene reads, its cycle closes and its ``[sweep]`` table would run."""
     from flyopt.analysis import analyse
-    from flyopt.io.scene import load, read_toml
+    from flyopt.io.scene import load
+    from flyopt.io.toml_file import read_toml
 
     data = read_toml(args.scene)
     scene = load(args.scene, data)

@@ -375,7 +375,7 @@ _SUFFIXES = (".csv", ".parquet", ".pq", ".json")
 
 def _check_output(output: str | None) -> None:
     """The output file of a front or table, checked before anything is computed."""
-    from flyopt.outputs.results import check_folder
+    from flyopt.outputs.files import check_folder
 
     if output is None:
         return
@@ -400,31 +400,31 @@ def _emit(
     file is written atomically like the others. With ``--quiet`` and a file,
     nothing is printed.
     """
-    from flyopt.outputs import results
+    from flyopt.outputs import documents, files, quantities, results
     from flyopt.studies.payload import digest
 
     frame = results.normalize(frame.copy())
     output = args.output
-    metadata = results.table_metadata(
+    metadata = documents.table_metadata(
         kind,
         list(frame.columns),
-        scene=results.scene_record(scene, digest(scene)),
+        scene=documents.scene_record(scene, digest(scene)),
         objectives=objectives,
-        objective=results.objective_of(frame),
+        objective=documents.objective_of(frame),
     )
     if output is not None:
         if Path(output).suffix.lower() == ".json":
-            results.write_text(output, results.json_text(results.table_document(frame, metadata)))
+            files.write_text(output, documents.json_text(documents.table_document(frame, metadata)))
         else:
             results.write_results(frame, output, metadata=metadata)
     if args.quiet and output is not None:
         return
     if args.json:
-        print(results.json_text(results.table_document(frame, metadata)))
+        print(documents.json_text(documents.table_document(frame, metadata)))
         return
     front = objectives[1] if objectives else None
     shown = frame[[c for c in columns if c in frame]].copy()
-    shown.columns = [_label(c, results.unit_of(c, results.objective_of(frame), front)) for c in shown.columns]
+    shown.columns = [_label(c, quantities.unit_of(c, documents.objective_of(frame), front)) for c in shown.columns]
     print(title)
     print(shown.to_string(index=False, float_format=lambda x: f"{x:.5g}", na_rep="-"))
     if output is not None:

@@ -250,7 +250,7 @@ def _force_table(press):
     raw = press["force"]
     position_unit = _unit(press, "position_unit", "length")
     force_unit = _unit(press, "force_unit", "force")
-    if hasattr(raw, "array"):  # a large table read without tomllib (flyopt.io.scene.InlineRows)
+    if hasattr(raw, "array"):  # a large table read without tomllib (flyopt.io.toml_file.InlineRows)
         raw = raw.array.tolist()
     if not isinstance(raw, list) or len(raw) < 2:
         raise SceneError(

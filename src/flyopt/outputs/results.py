@@ -1,21 +1,4 @@
-"""What flyopt writes: the units of every number, the JSON documents, and the result tables.
-
-Units
-    :data:`QUANTITIES` gives the dimension of every number flyopt writes,
-    :data:`INPUTS` that of a sweep's inputs (the fields of
-    :data:`flyopt.io.sweep_spec.FIELDS`); :func:`unit_of` turns a name into
-    its SI unit through :data:`flyopt.units.DIMENSIONS`. This is the one
-    table behind the ``units`` map of ``flyopt solve --json``, the units of
-    the columns of sweep, Pareto and trade-off files, and the unit labels of
-    the printed tables. A name means one quantity wherever it appears
-    (``mass`` is kg in ``design``, in ``parts[]`` and in a sweep's column;
-    docs/nomenclature.md lists the names with their meaning).
-
-JSON documents
-    Every JSON object flyopt writes carries ``schema_version`` and ``kind``
-    (``solve``, ``sweep``, ``pareto``, ``tradeoff``) and is described by the
-    JSON Schema shipped with the package, ``flyopt/data/output.schema.json``
-    (:func:`schema`); the version is the schema's.
+"""The result tables: their columns, nulls for missing values, and their Parquet and CSV files.
 
 Result tables
     A sweep's table has one row per point: ``point``, :data:`CORE_INPUTS`,
@@ -34,7 +17,7 @@ Missing values are nulls
     null in Parquet and JSON, an empty cell in CSV (pandas reads it back as
     NaN). A limit that is not set is a number, +inf (``inf`` in CSV), and
     null in JSON, which has no infinity. A file's metadata says so
-    (:data:`MISSING`): in Parquet the key ``flyopt`` of the file's key-value
+    (:data:`~flyopt.outputs.quantities.MISSING`): in Parquet the key ``flyopt`` of the file's key-value
     metadata, for CSV a sidecar ``FILE.csv.json`` (:func:`sidecar_path`),
     with the units, the column types and the provenance (flyopt version,
     the scene and its digest, the sweep's fields and values).
@@ -42,8 +25,6 @@ Missing values are nulls
 
 from __future__ import annotations
 
-import functools
-import hashlib
 import json
 import math
 import os
@@ -52,516 +33,25 @@ from pathlib import Path
 import numpy as np
 
 from flyopt.errors import SceneError
-from flyopt.units import DIMENSIONS
+from flyopt.outputs.files import check_folder, replace_atomically, write_text
+from flyopt.outputs.quantities import COUNTS, INPUTS, has_unit
 
 __all__ = [
     "CORE_INPUTS",
-    "COUNTS",
-    "INPUTS",
-    "MISSING",
-    "QUANTITIES",
+    "JSON_TYPES",
+    "NULLABLE_INTS",
+    "PARQUET_KEY",
     "RESULT_COLUMNS",
     "ResultWriter",
     "arrow_table",
-    "document_units",
-    "json_text",
+    "column_kind",
+    "csv_rows",
     "normalize",
-    "objective_of",
     "output_format",
     "read_results",
-    "schema",
-    "schema_version",
-    "scene_record",
     "sidecar_path",
-    "solution_document",
-    "solution_json",
-    "table_document",
-    "table_metadata",
-    "table_units",
-    "unit_of",
     "write_results",
-    "write_text",
 ]
-
-# --------------------------------------------------------------------------
-# Units
-# --------------------------------------------------------------------------
-
-#: Dimensions of outputs that no input has, with their SI unit (the others are
-#: :data:`flyopt.units.DIMENSIONS`'). Money is a plain number: a material's cost is read
-#: per kilogram (``"2.1 1/kg"``, dimension ``cost_per_mass``), so a wheel's cost is
-#: ``dimensionless``, in the currency the scene's prices are given in.
-OUTPUT_DIMENSIONS = {"time": "s", "unbalance": "kg*m"}
-
-#: The columns of a sweep's inputs: the fields of :data:`flyopt.io.sweep_spec.FIELDS` (which
-#: reads their values in these dimensions) and their dimension, None for a name. sweep_spec
-#: imports this module (for :func:`output_format`), so the table cannot be read from there;
-#: tests/outputs/test_results.py checks that the two agree, field by field.
-INPUTS = {
-    "delta": "dimensionless",
-    "speed": "angular_speed",
-    "inertia": "inertia",
-    "torque.scale": "dimensionless",
-    "design.max_outer_diameter": "length",
-    "design.max_width": "length",
-    "design.d_mean": "length",
-    "design.hb_ratio": "dimensionless",
-    "design.hb_min": "dimensionless",
-    "design.hb_max": "dimensionless",
-    "design.geometry": None,
-    "design.objective": None,
-    "material": None,
-    "shaft": None,
-}
-#: Columns ``material.NAME.FIELD`` and ``shaft.NAME.FIELD`` of a sweep: FIELD and its dimension.
-MATERIAL_INPUTS = {"density": "density", "max_rim_speed": "speed", "cost": "cost_per_mass"}
-SHAFT_INPUTS = {"speed_ratio": "dimensionless"}
-
-#: The dimension of every other number flyopt writes: the JSON of ``flyopt solve`` and the
-#: columns of sweep, Pareto and trade-off tables (a name of :data:`INPUTS` that the JSON also
-#: holds, ``delta`` or a part's ``inertia``, has that entry's dimension). Sections of
-#: docs/flywheel-design.md.
-QUANTITIES = {
-    # the cycle, sections 2-5: energy indicator diagram, A_max, J_F
-    "a_max": "energy",
-    "delta_e": "energy",
-    "work_per_cycle": "energy",
-    "angle": "angle",
-    "cycle_angle": "angle",
-    "angle_omega_max": "angle",
-    "angle_omega_min": "angle",
-    "angle_delta_e_max": "angle",
-    "angle_delta_e_min": "angle",
-    "driving_torque": "torque",
-    "resisting_torque": "torque",
-    "omega": "angular_speed",
-    "omega_mean": "angular_speed",
-    "omega_max": "angular_speed",
-    "omega_min": "angular_speed",
-    "omega_target": "angular_speed",
-    "j_constant": "inertia",
-    "j_margin": "inertia",
-    "j_required": "inertia",
-    "gd2_required": "flywheel_moment",
-    "achieved_delta": "dimensionless",
-    "delta_allowed": "dimensionless",
-    "j_error": "dimensionless",
-    "tolerance": "dimensionless",
-    # power and efficiency, section 11; transfer to a shaft, section 8; start-up, section 7
-    "power": "power",
-    "motor_power": "power",
-    "efficiency": "dimensionless",
-    "speed_ratio": "dimensionless",
-    "best_speed_ratio": "dimensionless",
-    "time": "time",
-    "cycles": "dimensionless",
-    "solve_time": "time",
-    # the wheel, sections 9, 10 and 13
-    "d_mean": "length",
-    "d_outer": "length",
-    "d_inner": "length",
-    "h": "length",
-    "b": "length",
-    "outer_diameter": "length",
-    "d_outer_limit": "length",
-    "d_outer_needed": "length",
-    "max_outer_diameter": "length",
-    "max_width": "length",
-    "bore": "length",
-    "t_web": "length",
-    "d_hub": "length",
-    "l_hub": "length",
-    "arm_major": "length",
-    "arm_minor": "length",
-    "r_inner": "length",
-    "r_outer": "length",
-    "thickness": "length",
-    "radius": "length",
-    "wall": "length",
-    "hb_ratio": "dimensionless",
-    "mass": "mass",
-    "cost": "dimensionless",
-    "density": "density",
-    "j_flywheel": "inertia",
-    "j_at_reference": "inertia",
-    "j_max": "inertia",
-    "j_required_on_shaft": "inertia",
-    "rim_speed": "speed",
-    "rim_speed_limit": "speed",
-    "hoop_stress": "stress",
-    "allowable_stress": "stress",
-    "allowable": "stress",
-    "strength": "stress",
-    "stress": "stress",
-    "max_principal": "stress",
-    "von_mises": "stress",
-    "hoop_max": "stress",
-    "radial_max": "stress",
-    "mean_hoop": "stress",
-    "safety_factor": "dimensionless",
-    "strength_safety": "dimensionless",
-    "burst_speed": "angular_speed",
-    "speed_margin": "dimensionless",
-    "unbalance_permissible": "unbalance",
-    # the hub's key (DIN 6885-1), section 13
-    "length": "length",
-    "effective_length": "length",
-    "t1": "length",
-    "t2": "length",
-    "torque": "torque",
-    "bearing_pressure": "stress",
-    "shear": "stress",
-    "allowable_pressure": "stress",
-    "allowable_shear": "stress",
-    # the drive designed with the flywheel, sections 7, 8 and 14: the motor, its ratio, its heating
-    "motor_ratio": "dimensionless",
-    "flywheel_ratio": "dimensionless",
-    "breakdown_ratio": "dimensionless",
-    "rated_power": "power",
-    "rated_speed": "angular_speed",
-    "synchronous_speed": "angular_speed",
-    "rotor_inertia": "inertia",
-    "j_delta": "inertia",
-    "rms_torque": "torque",
-    "mean_torque": "torque",
-    "rated_torque": "torque",
-    "startup_time": "time",
-    "motor_mass": "mass",
-    "wheel_mass": "mass",
-    "total_mass": "mass",
-    "price": "dimensionless",
-}
-
-#: Numbers whose unit is set by another field, so that a table or document has no single
-#: unit for them where that field varies (their ``units`` entry is then null).
-UNIT_SET_BY = {
-    "objective": "the unit of the quantity the design's objective names "
-    "(mass: kg, outer_diameter: m, cost: 1; a drive's mass is motor plus wheel)",
-    "objective_bound": "the unit of the design's objective, as for objective",
-    "epsilon": "the unit of the Pareto front's second objective",
-    "dmass_dlimit": "kg per the unit given in the same entry's 'unit'",
-    "dobjective_dlimit": "the drive objective's unit (kg for mass, 1 for cost) per the unit given in the same "
-    "entry's 'unit'",
-}
-
-#: Whole numbers that count or index: no unit.
-COUNTS = frozenset(
-    {
-        "index",
-        "index_omega_max",
-        "index_omega_min",
-        "iterations",
-        "n_arms",
-        "point",
-        "seed",
-        "n_combinations",
-        "n_feasible",
-    }
-)
-
-#: The convention for values that do not exist, as each file states it.
-MISSING = (
-    "null where a value does not exist (nothing designed, no limit binding, no IPOPT "
-    "iterations, no price); an empty cell in CSV, which pandas reads as NaN. A limit "
-    "that is not set is +inf in tables (inf in CSV) and null in JSON"
-)
-
-
-def dimension_of(name):
-    """The dimension of a numeric field, or None (text, counts, unknown names)."""
-    if name in INPUTS:
-        return INPUTS[name]
-    parts = name.split(".")
-    if len(parts) == 3 and parts[0] == "material":
-        return MATERIAL_INPUTS.get(parts[2])
-    if len(parts) == 3 and parts[0] == "shaft":
-        return SHAFT_INPUTS.get(parts[2])
-    return QUANTITIES.get(name)
-
-
-def _si(dimension):
-    if dimension in OUTPUT_DIMENSIONS:
-        return OUTPUT_DIMENSIONS[dimension]
-    return DIMENSIONS[dimension][1] or "1"
-
-
-def has_unit(name):
-    """Whether ``name`` is a quantity: a unit of its own, or one set by another field."""
-    return name in UNIT_SET_BY or dimension_of(name) is not None
-
-
-def unit_of(name, objective=None, front=None):
-    """The SI unit of a field, as pint writes it ("kg", "kg*m**2", "rad/s"; "1": dimensionless).
-
-    Parameters
-    ----------
-    name : str
-        A JSON field or a table column: ``mass``, ``shafts``' ``omega``,
-        ``design.max_width``, ``material.cast_iron.density`` ...
-    objective : str, optional
-        The objective the ``objective`` values are of (``mass``,
-        ``outer_diameter``, ``cost``).
-    front : str, optional
-        The second objective of a Pareto front, the unit of ``epsilon``.
-
-    Returns
-    -------
-    str or None
-        None for text, counts and names that are no quantity, and for a
-        field of :data:`UNIT_SET_BY` whose unit is not fixed by the arguments.
-    """
-    if name in ("objective", "objective_bound"):
-        return unit_of(objective) if objective else None
-    if name == "epsilon":
-        return unit_of(front) if front else None
-    dimension = dimension_of(name)
-    return None if dimension is None else _si(dimension)
-
-
-def table_units(columns, objective=None, front=None):
-    """The ``units`` map of a table: every quantity column and its unit (null: no single unit)."""
-    return {str(c): unit_of(str(c), objective, front) for c in columns if has_unit(str(c))}
-
-
-def document_units(document, objective=None):
-    """The ``units`` map of a JSON document: every numeric field that occurs in it, and its unit.
-
-    A field counts where it holds a number, a list of numbers or null (a
-    value that may be a number elsewhere); text, booleans, counts and
-    objects do not.
-
-    Parameters
-    ----------
-    document : dict
-        Plain JSON data.
-    objective : str, optional
-        The objective the document's ``objective`` values are of.
-
-    Returns
-    -------
-    dict
-        Field name to unit, sorted by name.
-    """
-    found = set()
-
-    def visit(key, value):
-        if isinstance(value, dict):
-            for k, v in value.items():
-                visit(k, v)
-        elif isinstance(value, list):
-            if value and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
-                found.add(key)
-            for v in value:
-                if isinstance(v, (dict, list)):
-                    visit(key, v)
-        elif value is None or (isinstance(value, (int, float)) and not isinstance(value, bool)):
-            found.add(key)
-
-    visit(None, document)
-    return {name: unit_of(name, objective) for name in sorted(n for n in found if n and has_unit(n))}
-
-
-# --------------------------------------------------------------------------
-# JSON documents
-# --------------------------------------------------------------------------
-
-SCHEMA_FILE = "output.schema.json"
-
-
-@functools.lru_cache(maxsize=1)
-def schema():
-    """The JSON Schema of every JSON document flyopt writes (``flyopt/data/output.schema.json``)."""
-    from importlib import resources
-
-    return json.loads(resources.files("flyopt").joinpath("data", SCHEMA_FILE).read_text(encoding="utf-8"))
-
-
-def schema_version():
-    """The version of flyopt's output schema, which every document and file metadata carries."""
-    return schema()["$defs"]["schema_version"]["const"]
-
-
-def _flyopt_version():
-    import flyopt
-
-    return flyopt.__version__
-
-
-def json_safe(value):
-    """Plain JSON data: NaN and ±inf (no value, no limit) become null, numpy scalars Python ones."""
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, dict):
-        return {str(k): json_safe(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [json_safe(v) for v in value]
-    if isinstance(value, np.generic):
-        return json_safe(value.item())
-    return value
-
-
-def json_text(document):
-    """A document as JSON text, every float as Python prints it (round-trip exact)."""
-    return json.dumps(json_safe(document), indent=2, allow_nan=False)
-
-
-def solution_document(solution, scene, timings=False):
-    """The JSON of ``flyopt solve``: the solution's fields, its schema version and its units.
-
-    Parameters
-    ----------
-    solution : flyopt.pipeline.Solution
-    scene : str
-        The scene file as given on the command line.
-    timings : bool
-        Also the wall-clock time of each design solve (``solve_time``).
-
-    Returns
-    -------
-    dict
-        ``schema_version``, ``kind`` ("solve"), ``flyopt_version``,
-        ``scene``, ``units`` (every numeric field of the document and its SI
-        unit), then the fields of :meth:`flyopt.pipeline.Solution.to_dict`
-        (docs/nomenclature.md), every number in SI, null for no value.
-    """
-    data = json_safe(solution.to_dict(timings=timings))
-    design, drive = getattr(solution, "design", None), getattr(solution, "drive", None)
-    objectives = {
-        design.spec.objective if design is not None else None,
-        drive.objective if drive is not None else None,
-    } - {None}
-    objective = objectives.pop() if len(objectives) == 1 else None
-    return {
-        "schema_version": schema_version(),
-        "kind": "solve",
-        "flyopt_version": _flyopt_version(),
-        "scene": str(scene),
-        "units": document_units(data, objective),
-        **data,
-    }
-
-
-def solution_json(solution, scene, timings=False):
-    """The text ``flyopt solve --json`` prints: :func:`solution_document` as JSON."""
-    return json_text(solution_document(solution, scene, timings))
-
-
-def scene_record(scene, digest=None):
-    """Where a table's scene came from: its file, the file's SHA-256, flyopt's digest of it.
-
-    Parameters
-    ----------
-    scene : Scene
-    digest : str, optional
-        :func:`flyopt.studies.payload.digest` of the scene (what a sweep's
-        parts are identified by): two scenes with the same digest compute
-        the same, whatever file they came from.
-
-    Returns
-    -------
-    dict
-        ``scene`` (the file, or None for a scene made in Python),
-        ``scene_file_sha256`` (of the file's bytes now, None without one)
-        and ``scene_digest``.
-    """
-    source = getattr(scene, "source", None)
-    sha = None
-    if source is not None:
-        try:
-            sha = hashlib.sha256(Path(source).read_bytes()).hexdigest()
-        except OSError:
-            sha = None
-    return {"scene": None if source is None else str(source), "scene_file_sha256": sha, "scene_digest": digest}
-
-
-def table_metadata(kind, columns, *, kinds=None, scene=None, objectives=None, sweep=None, objective=None):
-    """What a table file says about itself: Parquet key-value metadata, the CSV sidecar.
-
-    Parameters
-    ----------
-    kind : {"sweep", "pareto", "tradeoff"}
-    columns : list of str
-    kinds : mapping, optional
-        Column name to its kind ("str", "bool", "int", "float"); by default
-        each column's kind by its name.
-    scene : dict, optional
-        :func:`scene_record` of the scene.
-    objectives : pair of str, optional
-        A Pareto front's objectives, mass first: ``flyopt plot`` draws the
-        second along x.
-    sweep : dict, optional
-        The sweep: its fields and values, samples, seed, method.
-    objective : str, optional
-        The objective every row's ``objective`` is of, when there is one.
-
-    Returns
-    -------
-    dict
-    """
-    kinds = kinds or {}
-    front = objectives[1] if objectives else None
-    meta = {
-        "schema_version": schema_version(),
-        "kind": kind,
-        "flyopt_version": _flyopt_version(),
-        **(scene or {"scene": None, "scene_file_sha256": None, "scene_digest": None}),
-        "missing": MISSING,
-        "columns": [{"name": str(c), "type": _JSON_TYPES[kinds.get(c) or _kind(c)]} for c in columns],
-        "units": table_units(columns, objective, front),
-    }
-    if objectives is not None:
-        meta["objectives"] = list(objectives)
-    if sweep is not None:
-        meta["sweep"] = sweep
-    return json_safe(meta)
-
-
-def objective_of(frame):
-    """The objective every row of a table is designed for (its one ``design.objective``), or None."""
-    if "design.objective" not in frame.columns:
-        return None
-    names = frame["design.objective"].dropna().unique()
-    return str(names[0]) if len(names) == 1 else None
-
-
-def table_document(frame, metadata):
-    """A table as one JSON document: its metadata and ``rows``, one object per row (null: no value)."""
-    records = frame.astype(object).where(frame.notna(), None).to_dict(orient="records")
-    return {**metadata, "rows": json_safe(records)}
-
-
-def write_text(path, text, label="-o/--output"):
-    """Write ``text`` to ``path`` atomically: a temporary file beside it, moved into place.
-
-    Nothing is left under the final name if writing fails or is interrupted.
-
-    Raises
-    ------
-    SceneError
-        Field ``label``: the folder of ``path`` does not exist.
-    """
-    path = Path(path)
-    check_folder(path, label)
-
-    def write(tmp):
-        with open(tmp, "w", encoding="utf-8") as handle:
-            handle.write(text)
-            if text and not text.endswith("\n"):
-                handle.write("\n")
-
-    replace_atomically(path, write)
-
-
-def replace_atomically(path, write, temporary_folder=None):
-    """Call ``write(tmp)`` on a temporary file, then move it to ``path`` (removed on any failure)."""
-    folder = path.parent if temporary_folder is None else Path(temporary_folder)
-    tmp = folder / f"{path.name}.tmp-{os.getpid()}"
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
 
 
 # --------------------------------------------------------------------------
@@ -631,10 +121,10 @@ NULLABLE_INTS = frozenset({"iterations"})
 #: other than the inertia, and why it is infeasible).
 _TEXT = frozenset({"limit", "reason"})
 
-_JSON_TYPES = {"str": "string", "bool": "boolean", "int": "integer", "float": "number"}
+JSON_TYPES = {"str": "string", "bool": "boolean", "int": "integer", "float": "number"}
 
 
-def _kind(name, column=None):
+def column_kind(name, column=None):
     """The kind of a column: "str", "bool", "int" or "float".
 
     By its name; a column no table of flyopt names (a user's own) by its values."""
@@ -655,7 +145,7 @@ def _kind(name, column=None):
     return "float"
 
 
-def _no_minus_one(column):
+def no_minus_one(column):
     """A whole-number column of :data:`NULLABLE_INTS` as nullable Int64, its -1 (no value) null."""
     values = column.astype("Int64")
     return values.mask((values == -1).fillna(False))
@@ -679,14 +169,14 @@ def normalize(frame):
     """
     for name in frame.columns:
         column = frame[name]
-        kind = _kind(name, column)
+        kind = column_kind(name, column)
         if kind == "str":
             values = column.astype(object)  # categorical in Parquet, str or object elsewhere
             frame[name] = values.where(values.notna() & (values != ""), None).astype(_text_dtype())
         elif kind == "bool":
             frame[name] = column.astype(bool)
         elif kind == "int" and name in NULLABLE_INTS:
-            frame[name] = _no_minus_one(column)
+            frame[name] = no_minus_one(column)
         elif kind == "int":
             frame[name] = column.astype(np.int64)
         else:
@@ -742,13 +232,13 @@ def arrow_table(frame, metadata=None):
     arrays = []
     for name in frame.columns:
         column = frame[name]
-        kind = _kind(name, column)
+        kind = column_kind(name, column)
         if kind == "str":
             arrays.append(_text(column))
         elif kind == "bool":
             arrays.append(pa.array(column.to_numpy(dtype=bool), type=pa.bool_()))
         elif kind == "int" and name in NULLABLE_INTS:
-            arrays.append(pa.array(_no_minus_one(column), type=pa.int64(), from_pandas=True))
+            arrays.append(pa.array(no_minus_one(column), type=pa.int64(), from_pandas=True))
         elif kind == "int":
             arrays.append(pa.array(column.to_numpy(dtype=np.int64), type=pa.int64()))
         else:
@@ -793,7 +283,7 @@ def csv_rows(frame, handle, header):
     if nullable:
         frame = frame.copy()
         for name in nullable:
-            frame[name] = _no_minus_one(frame[name])
+            frame[name] = no_minus_one(frame[name])
     frame.to_csv(handle, index=False, header=header)
 
 
@@ -1013,7 +503,7 @@ def read_results(path, columns=None):
             metadata = json.loads(stored[PARQUET_KEY])
     else:
         header = pd.read_csv(path, nrows=0).columns
-        strings = [c for c in header if _kind(c) == "str"]
+        strings = [c for c in header if column_kind(c) == "str"]
         numbers = [c for c in header if c not in strings]
         frame = pd.read_csv(
             path,
@@ -1031,10 +521,3 @@ def read_results(path, columns=None):
     if metadata is not None:
         frame.attrs["flyopt"] = metadata
     return frame
-
-
-def check_folder(path, label="output"):
-    """The folder of an output must exist: flyopt does not create folders the user did not ask for."""
-    folder = Path(path).parent
-    if not folder.is_dir():
-        raise SceneError(label, f"the folder {str(folder)!r} of {str(path)!r} does not exist")

@@ -133,9 +133,9 @@ def dimension_of(name):
     and the sweep inputs), so that the JSON's ``units`` map and what people
     read cannot disagree. ValueError for a name that is no quantity.
     """
-    from flyopt.outputs import results
+    from flyopt.outputs import quantities
 
-    dimension = results.dimension_of(name)
+    dimension = quantities.dimension_of(name)
     if dimension is None:
         raise ValueError(f"{name!r} is not a quantity of flyopt.outputs.results (no dimension to show it in)")
     return dimension

@@ -20,8 +20,8 @@ from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 from flyopt.design import closed_form as batch
 from flyopt.design import design_inputs
 from flyopt.errors import SceneError
-from flyopt.io.scene import NetAreas
 from flyopt.io.sweep_spec import field_path
+from flyopt.io.torque_section import NetAreas
 
 if TYPE_CHECKING:
     from flyopt.design.inputs import DesignInputs

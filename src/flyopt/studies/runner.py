@@ -56,7 +56,8 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from flyopt.errors import Interrupted, SceneError, shorten
-from flyopt.outputs.results import check_folder, read_results, write_results
+from flyopt.outputs.files import check_folder
+from flyopt.outputs.results import read_results, write_results
 
 __all__ = [
     "CHUNK_SECONDS",
@@ -398,15 +399,21 @@ _ADDRESS = re.compile(
     r"(?:(?P<protocol>tcp|tls|ws|wss|ucx)://)?(?P<host>[A-Za-z0-9](?:[A-Za-z0-9.-]{0,252})|\[[0-9A-Fa-f:.]{2,45}\]):(?P<port>[0-9]{1,5})"
 )
 
+#: The address of a scheduler in this process (a LocalCluster(processes=False)): inproc://host/pid/n.
+_IN_PROCESS = re.compile(r"inproc://[A-Za-z0-9.:\[\]-]+/[0-9]+/[0-9]+")
+
 
 def scheduler_address(text: str) -> str:
-    """``text`` when it is the address of a Dask scheduler, ``[protocol://]host:port``; else a SceneError.
+    """``text`` when it is the address of a Dask scheduler, ``[protocol://]host:port`` (or a scheduler of this
+    process, ``inproc://host/pid/n``); else a SceneError.
 
     Checked before anything connects: Dask would otherwise wait for its
     timeout on a malformed address and leave a traceback from its client's
     clean-up. The scheduler must be one you trust: Dask sends it and its
     workers pickles, which can run code.
     """
+    if isinstance(text, str) and _IN_PROCESS.fullmatch(text):
+        return text
     found = _ADDRESS.fullmatch(text) if isinstance(text, str) else None
     if found is None or not 0 < int(found["port"]) < 65536:
         raise SceneError(
@@ -442,7 +449,8 @@ def connect(scheduler: Any) -> Iterator[Any]:
     if isinstance(scheduler, Client):
         yield scheduler
         return
-    scheduler_address(scheduler)
+    if isinstance(scheduler, str):  # else a cluster object (LocalCluster) that Client takes as it is
+        scheduler_address(scheduler)
     try:
         client = Client(scheduler, timeout=CONNECT_SECONDS, set_as_default=False)
     except (OSError, TimeoutError, ValueError, TypeError) as err:

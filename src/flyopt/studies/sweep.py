@@ -37,7 +37,8 @@ import pandas as pd
 from flyopt.design import design_inputs
 from flyopt.errors import Interrupted, SceneError
 from flyopt.io.sweep_spec import check_options, option_label
-from flyopt.outputs.results import ResultWriter, normalize, scene_record, table_metadata
+from flyopt.outputs.documents import scene_record, table_metadata
+from flyopt.outputs.results import ResultWriter, normalize
 from flyopt.studies import runner
 from flyopt.studies.evaluate import chunk_context, evaluate_chunk, evaluate_points, task_of
 from flyopt.studies.payload import digest

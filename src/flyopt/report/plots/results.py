@@ -98,7 +98,7 @@ def pareto_objectives(frame):
 def varied_fields(frame):
     """The inputs a sweep varied: its recorded sweep specification, else the input columns that take
     more than one value (flyopt.outputs.results.INPUTS and the material and shaft fields)."""
-    from flyopt.outputs.results import INPUTS
+    from flyopt.outputs.quantities import INPUTS
 
     recorded = ((frame.attrs.get("flyopt") or {}).get("sweep") or {}).get("vary")
     if recorded:

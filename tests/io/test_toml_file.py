@@ -1,6 +1,6 @@
 """Large inline tables are read without tomllib, and read exactly as tomllib reads them (issue 12).
 
-``flyopt.io.scene.read_toml`` cuts large ``points = [[a, b], ...]`` tables
+``flyopt.io.toml_file.read_toml`` cuts large ``points = [[a, b], ...]`` tables
 out of the text and reads their numbers with ``float``; everything else, and
 every table it is not sure of, is tomllib's. The reference here is tomllib
 itself: the same numbers to the bit (the sign of zero included), and the
@@ -16,7 +16,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import flyopt
-from flyopt.io import scene as scene_io
+from flyopt.io import toml_file
+from flyopt.io.scene import from_dict
 
 HEAD = """title = "t"
 [machine]
@@ -43,11 +44,11 @@ def table_text(angles, values, fmt=repr, sep=", ", row_sep=", ", wrap=0):
 
 
 def tomllib_scene(text):
-    return scene_io.from_dict(tomllib.loads(text))
+    return from_dict(tomllib.loads(text))
 
 
 def fast_scene(text):
-    return scene_io.from_dict(scene_io._parse_toml(text))
+    return from_dict(toml_file.parse_toml(text))
 
 
 def large(n=400):
@@ -58,9 +59,9 @@ def large(n=400):
 def test_a_large_table_is_read_without_tomllib_and_gives_tomllibs_floats():
     angles, values = large()
     text = HEAD + table_text(angles.tolist(), values.tolist())
-    data = scene_io._parse_toml(text)
+    data = toml_file.parse_toml(text)
     rows = data["torque"]["resisting"]["points"]
-    assert isinstance(rows, scene_io.InlineRows) and len(rows) == 400  # the fast reading took it
+    assert isinstance(rows, toml_file.InlineRows) and len(rows) == 400  # the fast reading took it
     expected = np.array(tomllib.loads(text)["torque"]["resisting"]["points"], dtype=float)
     assert np.array_equal(bits(rows.array), bits(expected))
     a, b = fast_scene(text), tomllib_scene(text)
@@ -85,15 +86,15 @@ def test_every_layout_of_blanks_and_commas_is_read_fast(sep, row_sep, end):
         for k, (a, v) in enumerate(zip(angles.tolist(), values.tolist()))
     ]
     text = HEAD + "points = [" + row_sep.join(rows) + end + "\n"
-    rows = scene_io._parse_toml(text)["torque"]["resisting"]["points"]
-    assert isinstance(rows, scene_io.InlineRows)
+    rows = toml_file.parse_toml(text)["torque"]["resisting"]["points"]
+    assert isinstance(rows, toml_file.InlineRows)
     expected = np.array(tomllib.loads(text)["torque"]["resisting"]["points"], dtype=float)
     assert np.array_equal(bits(rows.array), bits(expected))
 
 
 def test_a_small_table_is_left_to_tomllib():
     text = HEAD + "points = [[0, 1], [360, 1]]\n"
-    assert isinstance(scene_io._parse_toml(text)["torque"]["resisting"]["points"], list)
+    assert isinstance(toml_file.parse_toml(text)["torque"]["resisting"]["points"], list)
 
 
 @pytest.mark.parametrize(
@@ -134,10 +135,10 @@ def test_what_the_fast_reading_is_not_sure_of_is_tomllibs(variant):
             "dotted key": body.replace("points", "resisting.points", 1).replace("[torque.resisting]", "[torque]"),
         }[variant]
     )
-    data = scene_io._parse_toml(text) if _reads(text) else None
+    data = toml_file.parse_toml(text) if _reads(text) else None
     if data is None:
         with pytest.raises(tomllib.TOMLDecodeError) as fast:
-            scene_io._parse_toml(text)
+            toml_file.parse_toml(text)
         with pytest.raises(tomllib.TOMLDecodeError) as reference:
             tomllib.loads(text)
         assert str(fast.value) == str(reference.value)
@@ -161,8 +162,8 @@ def test_signed_zeros_are_tomllibs(token, expected):
     angles, values = large()
     values = [token] + [repr(v) for v in values[1:].tolist()]
     text = HEAD + table_text(angles.tolist(), values, fmt=str)
-    rows = scene_io._parse_toml(text)["torque"]["resisting"]["points"]
-    assert isinstance(rows, scene_io.InlineRows)
+    rows = toml_file.parse_toml(text)["torque"]["resisting"]["points"]
+    assert isinstance(rows, toml_file.InlineRows)
     reference = float(tomllib.loads(text)["torque"]["resisting"]["points"][0][1])
     assert math.copysign(1, rows.array[0, 1]) == math.copysign(1, reference) == math.copysign(1, expected)
 
@@ -194,8 +195,8 @@ def test_member_tables_and_two_tables_in_one_file():
         + '[[member]]\nname = "ram"\nmass = 1\nvelocity_ratio = 0.1\nangle_unit = "deg"\nunit = "N"\n'
         + table_text(angles.tolist(), (-values).tolist(), sep=",", row_sep=",\n  ").replace("points", "force")
     )
-    data = scene_io._parse_toml(text)
-    assert isinstance(data["member"][0]["force"], scene_io.InlineRows)
+    data = toml_file.parse_toml(text)
+    assert isinstance(data["member"][0]["force"], toml_file.InlineRows)
     a, b = fast_scene(text), tomllib_scene(text)
     assert np.array_equal(bits(a.resisting.values), bits(b.resisting.values))
     assert np.array_equal(bits(a.members[0].force[1]), bits(b.members[0].force[1]))
@@ -233,18 +234,18 @@ def test_random_tables_read_as_tomllib_reads_them(rows, trailing, bad):
         reference = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         with pytest.raises(tomllib.TOMLDecodeError) as fast:
-            scene_io._parse_toml(text)
+            toml_file.parse_toml(text)
         assert str(fast.value) == str(err)
         return
-    data = scene_io._parse_toml(text)
+    data = toml_file.parse_toml(text)
     points = data["points"]
     expected = np.array(reference["points"], dtype=float)
-    if isinstance(points, scene_io.InlineRows):
+    if isinstance(points, toml_file.InlineRows):
         got = points.array
     else:  # left to tomllib: a short table, or a number beyond the floats
         assert isinstance(points, list)
         assert (
-            len(text) < scene_io.FAST_TABLE_CHARACTERS + 20
+            len(text) < toml_file.FAST_TABLE_CHARACTERS + 20
             or not np.isfinite(expected).all()
             or (bad is not None and bad[1] in TOML_NOT_FAST)
         )

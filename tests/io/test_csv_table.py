@@ -16,7 +16,7 @@ import tomllib
 from conftest import PROBLEMS, ROOT
 
 import flyopt
-from flyopt.io import scene as scene_io
+from flyopt.io import csv_table
 
 BASE = """
 title = "t"
@@ -130,8 +130,8 @@ def test_the_fast_reading_gives_what_the_line_by_line_reading_gives():
         "".join(f"{a:.3f}, {v:.6e}\r\n" for a, v in zip(angles, values)),
         "".join(f"{a!r},{v!r}\n" for a, v in zip(angles.tolist(), values.tolist())) + "\n\n  \n",
     ):
-        fast, lines = scene_io._read_csv(text, "f", "t.csv", ("angle", "torque"), ("deg", "N*m"))
-        slow, slow_lines = scene_io._read_csv_lines(text.split("\n"), "f", "t.csv", ("angle", "torque"), ("deg", "N*m"))
+        fast, lines = csv_table.read_csv(text, "f", "t.csv", ("angle", "torque"), ("deg", "N*m"))
+        slow, slow_lines = csv_table.read_csv_lines(text.split("\n"), "f", "t.csv", ("angle", "torque"), ("deg", "N*m"))
         assert isinstance(lines, range)  # the one-pass reading took it
         assert np.array_equal(fast, slow) and list(lines) == list(slow_lines)
 

@@ -1,0 +1,146 @@
+"""Two-column CSV tables named by a scene field (``points_file``, a member's ``force_file``, ...).
+
+Every wrong line is reported by its number, with what is allowed.
+"""
+
+import math
+
+import numpy as np
+
+from flyopt.errors import SceneError, clip, shorten
+
+
+def csv_table(raw, where, files, columns, units):
+    """The rows of a two-column CSV file named by a scene field (see :func:`read_csv`).
+
+    Parameters
+    ----------
+    raw : object
+        The field's value: a path, relative to the scene file's folder ``files``.
+    where : str
+        The field, for messages.
+    files : Path
+    columns, units : tuple of str
+        What the two columns hold and their units as written (for messages).
+
+    Returns
+    -------
+    numbers : ndarray, shape (n, 2)
+    lines : sequence of int
+        Line number of each row.
+    name : str
+        The file as messages name it.
+    """
+    if not isinstance(raw, str) or not raw.strip():
+        raise SceneError(where, f"must be the name of a CSV file (a string), got {shorten(raw)}")
+    path = files / raw
+    name = clip(str(path))
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as err:
+        reason = (
+            err.strerror
+            if isinstance(err, OSError) and err.strerror
+            else "not UTF-8 text"
+            if isinstance(err, UnicodeDecodeError)
+            else str(err)
+        )
+        raise SceneError(where, f"cannot read {name}: {reason}") from None
+    numbers, lines = read_csv(text, where, name, columns, units)
+    return numbers, lines, name
+
+
+def read_csv(text, where, name, columns, units):
+    """The numbers of a two-column CSV table, and the line of each row.
+
+    A header line (the first line with text, when it has a letter and none
+    of its fields is a number), blank lines and lines starting with ``#``
+    are skipped; lines end at
+    ``\\n`` (a ``\\r`` before it is a blank). A clean file (a header at most,
+    then one row ``angle,value`` per line) is read in one pass over its
+    fields; anything else line by line, which names the first wrong line.
+    Both give the same rows (Python's ``float`` reads every number).
+
+    Returns
+    -------
+    numbers : ndarray, shape (n, 2)
+        Rows of the two columns (angle and value, speed and torque) in the file's units, n >= 2.
+    lines : sequence of int
+        Line number (from 1) of each row.
+    """
+    first = text.find("\n")
+    header = _is_header(text if first < 0 else text[:first])
+    body = (text[first + 1 :] if first >= 0 else "") if header else text
+    body = body.rstrip()
+    codes = np.frombuffer(body.encode("utf-8"), dtype=np.uint8)
+    ends, commas = np.flatnonzero(codes == 10), np.flatnonzero(codes == 44)
+    if len(commas) == len(ends) + 1 >= 2 and np.all(commas[:-1] < ends) and np.all(commas[1:] > ends):
+        try:  # one comma on each line: rows of two fields
+            numbers = np.array(body.replace("\n", ",").split(","), dtype=float)
+        except ValueError:
+            numbers = None
+        if numbers is not None and np.isfinite(numbers).all():
+            offset = 2 if header else 1
+            return numbers.reshape(-1, 2), range(offset, offset + len(commas))
+    return read_csv_lines(text.split("\n"), where, name, columns, units)
+
+
+def read_csv_lines(rows, where, name, columns, units):
+    """:func:`read_csv` line by line: the first wrong line, named, or the same numbers."""
+    numbers, lines = [], []
+    allowed = {k: f"a plain number, the {columns[k]} in {units[k]}" for k in (0, 1)}
+    header = True  # the first line with text may name the columns
+    for number, line in enumerate(rows, 1):
+        stripped = line.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        if header:
+            header = False
+            if _is_header(line):
+                continue
+        fields = line.split(",")
+        if len(fields) != 2:
+            raise SceneError(
+                where,
+                f"{name} line {number}: expected 2 columns, {columns[0]} and {columns[1]} separated by "
+                f"a comma, got {len(fields)}: {shorten(stripped)}",
+            )
+        row = []
+        for k, text in enumerate(fields):
+            try:
+                value = float(text)
+            except ValueError:
+                raise SceneError(
+                    where,
+                    f"{name} line {number}, column {k + 1}: {shorten(text.strip())} is not a "
+                    f"number (allowed: {allowed[k]})",
+                ) from None
+            if not math.isfinite(value):
+                raise SceneError(
+                    where,
+                    f"{name} line {number}, column {k + 1}: {shorten(text.strip())} is not "
+                    f"finite (allowed: {allowed[k]})",
+                )
+            row.append(value)
+        numbers.append(row)
+        lines.append(number)
+    if len(numbers) < 2:
+        found = f"only line {lines[0]} holds one" if numbers else "there is none"
+        first = "at angle 0, the last at the cycle angle" if columns[0] == "angle" else "at rest"
+        raise SceneError(
+            where, f"{name}: a table needs at least two rows of {columns[0]},{columns[1]} (the first {first}); {found}"
+        )
+    return np.array(numbers), lines
+
+
+def _is_header(line):
+    """A first line naming the columns: it has a letter, and none of its comma-separated fields is a number."""
+    if line.lstrip().startswith("#") or not any(c.isalpha() for c in line):
+        return False
+    for text in line.split(","):
+        try:
+            float(text)
+            return False
+        except ValueError:
+            pass
+    return True

@@ -1,0 +1,134 @@
+"""The [design] section: geometry, H/B range, envelope, objective, and the materials and shafts to choose from."""
+
+import math
+from typing import Any
+
+from flyopt.errors import SceneError, shorten
+from flyopt.io.fields import Table
+from flyopt.names import hint, unknown
+from flyopt.units import quantity
+
+
+def read_design(raw, shafts, materials):
+    from flyopt.design.geometry import GEOMETRIES
+    from flyopt.design.materials import material_library
+    from flyopt.design.spec import CRITERIA, OBJECTIVES, DesignSpec
+
+    table = Table(
+        raw,
+        "design",
+        {
+            "geometry",
+            "materials",
+            "shafts",
+            "hb_ratio",
+            "max_outer_diameter",
+            "max_width",
+            "d_mean",
+            "objective",
+            "description",
+            "criterion",
+            "safety_factor",
+            "bore",
+            "arms",
+            "min_wall",
+            "prune",
+        },
+    )
+    library = material_library(materials)
+    names = _name_list(table, "materials", library, "material")
+    shaft_names = _name_list(table, "shafts", {s.name: s for s in shafts}, "shaft")
+    options = {}
+    for key in ("geometry", "objective", "criterion"):
+        if table.has(key):
+            value = table.get(key)
+            vocabulary: Any = {"geometry": GEOMETRIES, "objective": OBJECTIVES, "criterion": CRITERIA}[key]
+            allowed = tuple(vocabulary)
+            if value not in allowed:
+                raise SceneError(f"design.{key}", unknown(value, allowed))
+            options[key] = value
+    if table.has("hb_ratio"):
+        hb = table.get("hb_ratio")
+        pair = hb if isinstance(hb, list) else [hb, hb]
+        if len(pair) != 2:
+            raise SceneError("design.hb_ratio", f"must be one number or a range [min, max], got {shorten(hb)}")
+        low, high = (quantity(v, "dimensionless", "design.hb_ratio") for v in pair)
+        if not 0 < low <= high:
+            raise SceneError("design.hb_ratio", f"must be a range 0 < min <= max, got {shorten(hb)}")
+        options["hb_ratio"] = (low, high)
+    for key in ("max_outer_diameter", "max_width", "d_mean", "min_wall"):
+        if table.has(key):
+            value = table.quantity(key, "length")
+            if value <= 0:
+                raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
+            options[key] = value
+    if table.has("bore"):
+        value = table.quantity("bore", "length")
+        if value < 0:
+            raise SceneError("design.bore", f"must be >= 0 (0: no bore), got {shorten(table.raw('bore'))}")
+        envelope = options.get("max_outer_diameter", math.inf)
+        if value >= envelope:
+            raise SceneError(
+                "design.bore",
+                f"{shorten(table.raw('bore'))} does not fit inside "
+                f"max_outer_diameter {shorten(table.raw('max_outer_diameter'))}",
+            )
+        options["bore"] = value
+    if table.has("safety_factor"):
+        value = table.quantity("safety_factor", "dimensionless")
+        if value < 1:
+            raise SceneError(
+                "design.safety_factor",
+                f"must be >= 1 (the allowable stress is the strength "
+                f"over it), got {shorten(table.raw('safety_factor'))}",
+            )
+        options["safety_factor"] = value
+    if table.has("arms"):
+        arms = table.get("arms")
+        arms = arms if isinstance(arms, list) else [arms]
+        if (
+            not arms
+            or any(isinstance(n, bool) or not isinstance(n, int) or n < 3 for n in arms)
+            or len(set(arms)) != len(arms)
+        ):
+            raise SceneError(
+                "design.arms",
+                f"must be whole arm counts >= 3, each once (e.g. [4, 6, 8]), got {shorten(table.raw('arms'))}",
+            )
+        options["arms"] = tuple(arms)
+    if table.has("prune"):
+        value = table.get("prune")
+        if not isinstance(value, bool):
+            raise SceneError("design.prune", f"must be true or false, got {shorten(table.raw('prune'))}")
+        options["prune"] = value
+    if options.get("objective") == "cost":
+        from flyopt.design.materials import design_material_names
+
+        chosen = design_material_names(library, names)
+        missing = [n for n in chosen if library[n].cost is None]
+        if missing:
+            raise SceneError(
+                "design.objective",
+                f"'cost' needs a cost per kg for every material; none is given for {', '.join(missing)}",
+            )
+    try:
+        spec = DesignSpec(**options)
+    except ValueError as err:
+        raise SceneError("design", str(err)) from None
+    return spec, names, shaft_names
+
+
+def _name_list(table, key, known, what):
+    if not table.has(key):
+        return None
+    raw = table.get(key)
+    if not isinstance(raw, list) or not raw or not all(isinstance(n, str) for n in raw):
+        raise SceneError(f"design.{key}", f"must be a non-empty list of {what} names")
+    for k, name in enumerate(raw):
+        if name not in known:
+            raise SceneError(
+                f"design.{key}[{k}]", f"unknown {what} {shorten(name)}{hint(name, known)} (known: {', '.join(known)})"
+            )
+    if len(set(raw)) != len(raw):
+        raise SceneError(f"design.{key}", f"a {what} is named twice")
+    return tuple(raw)

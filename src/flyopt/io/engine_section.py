@@ -1,0 +1,171 @@
+"""The [engine] section: cylinders, crank train and indicator data of a piston engine."""
+
+import math
+from pathlib import Path
+
+from flyopt.errors import SceneError, shorten
+from flyopt.io.angle_tables import angle_curve, angle_curve_file
+from flyopt.io.fields import Table, scaled, unit_factor
+from flyopt.names import hint
+
+
+def read_engine(raw, files=Path()):
+    """The [engine] section: an :class:`~flyopt.machine.engine.Engine` (cylinders, crank train, indicator data)."""
+    from flyopt.machine.engine import CYCLE_ANGLES, MAX_CYLINDERS, STANDARD_ATMOSPHERE, Engine  # CasADi
+
+    table = Table(
+        raw,
+        "engine",
+        {
+            "cycle",
+            "cylinders",
+            "firing_angles",
+            "bore",
+            "stroke",
+            "rod",
+            "reciprocating_mass",
+            "rod_mass",
+            "rod_centre",
+            "rod_inertia",
+            "angle_unit",
+            "pressure_unit",
+            "pressure",
+            "pressure_file",
+            "crankcase_pressure",
+            "description",
+        },
+    )
+    kind = table.require("cycle")
+    if kind not in CYCLE_ANGLES:
+        raise SceneError(
+            "engine.cycle",
+            f"{shorten(kind)} is not known{hint(kind, CYCLE_ANGLES)} (allowed: '4-stroke', a cycle of 720 deg, or '2-stroke', 360 deg)",
+        )
+    cycle = CYCLE_ANGLES[kind]
+    count = table.require("cylinders")
+    if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= MAX_CYLINDERS:
+        raise SceneError(
+            "engine.cylinders", f"must be a whole number of cylinders from 1 to {MAX_CYLINDERS}, got {shorten(count)}"
+        )
+    angle_unit = unit_factor(table.get("angle_unit"), "angle", "engine.angle_unit") if table.has("angle_unit") else 1.0
+    firing = [k * cycle / count for k in range(count)]  # default: evenly spaced over the cycle
+    if table.has("firing_angles"):
+        raw_angles = table.get("firing_angles")
+        if not isinstance(raw_angles, list) or len(raw_angles) != count:
+            raise SceneError(
+                "engine.firing_angles",
+                f"must be a list of {count} angles, one per cylinder (the "
+                f"crank angle at which its cycle starts), got {shorten(raw_angles)}",
+            )
+        for k, value in enumerate(raw_angles):
+            firing[k] = scaled(value, "angle", f"engine.firing_angles[{k}]", angle_unit)
+            if not 0.0 <= firing[k] < cycle:
+                raise SceneError(
+                    f"engine.firing_angles[{k}]",
+                    f"{shorten(value)} lies outside the cycle: a firing "
+                    f"angle is the crank angle at which the cylinder's cycle starts, from 0 up to "
+                    f"(not including) {math.degrees(cycle):g} deg for a {kind} engine",
+                )
+    sizes = {}
+    for key in ("bore", "stroke", "rod"):
+        sizes[key] = table.quantity(key, "length", required=True)
+        if not (math.isfinite(sizes[key]) and sizes[key] > 0):
+            raise SceneError(f"engine.{key}", f"must be a positive length, got {shorten(table.raw(key))}")
+    if not sizes["rod"] > sizes["stroke"] / 2:
+        raise SceneError(
+            "engine.rod",
+            f"{shorten(table.raw('rod'))} is not longer than the crank radius, "
+            f"stroke/2 = {sizes['stroke'] / 2 * 1e3:.6g} mm: the crank could not turn "
+            "(the connecting rod is measured centre to centre)",
+        )
+    masses = {
+        "reciprocating_mass": table.quantity("reciprocating_mass", "mass", required=True),
+        "rod_mass": table.quantity("rod_mass", "mass", default=0.0),
+    }
+    for key, value in masses.items():
+        if not (math.isfinite(value) and value >= 0):
+            raise SceneError(f"engine.{key}", f"must be a finite mass >= 0, got {shorten(table.raw(key))}")
+    rod = {"rod_centre": 0.0, "rod_inertia": 0.0}
+    if table.has("rod_mass"):
+        for key in rod:
+            if not table.has(key):
+                raise SceneError(
+                    f"engine.{key}",
+                    "is missing: rod_mass, rod_centre (from the crank pin) and "
+                    "rod_inertia (about the rod's centre of mass) come together",
+                )
+        rod["rod_centre"] = table.quantity("rod_centre", "length")
+        if not 0.0 <= rod["rod_centre"] <= sizes["rod"]:
+            raise SceneError(
+                "engine.rod_centre",
+                f"{shorten(table.raw('rod_centre'))} is not between the pins: the "
+                f"centre of mass lies 0 to {shorten(table.raw('rod'))} from the "
+                "crank pin",
+            )
+        rod["rod_inertia"] = table.quantity("rod_inertia", "inertia")
+        if not (math.isfinite(rod["rod_inertia"]) and rod["rod_inertia"] >= 0):
+            raise SceneError(
+                "engine.rod_inertia", f"must be a finite number >= 0, got {shorten(table.raw('rod_inertia'))}"
+            )
+    else:
+        for key in rod:
+            if table.has(key):
+                raise SceneError(f"engine.{key}", "describes the rest of the connecting rod: give rod_mass with it")
+    unit = (
+        unit_factor(table.get("pressure_unit"), "stress", "engine.pressure_unit") if table.has("pressure_unit") else 1.0
+    )
+    forms = [k for k in ("pressure", "pressure_file") if table.has(k)]
+    if len(forms) != 1:
+        raise SceneError(
+            "engine.pressure",
+            "give exactly one of pressure = [[angle, pressure], ...] or "
+            'pressure_file = "indicator.csv": the absolute cylinder pressure of one cylinder over '
+            "its cycle" + (" (given both)" if forms else ""),
+        )
+    absolute = (0.0, "the table holds absolute pressures, which cannot be negative")
+    if forms[0] == "pressure_file":
+        units = (table.get("angle_unit", "rad"), table.get("pressure_unit", "Pa"))
+        pressure = angle_curve_file(
+            table.get("pressure_file"),
+            "engine.pressure_file",
+            files,
+            cycle,
+            unit,
+            angle_unit,
+            "pressure",
+            units,
+            minimum=absolute,
+        )
+    else:
+        pressure = angle_curve(
+            table.get("pressure"),
+            "engine.pressure",
+            cycle,
+            unit,
+            angle_unit,
+            "stress",
+            label="pressure",
+            minimum=absolute,
+        )
+    crankcase = table.quantity("crankcase_pressure", "stress", default=STANDARD_ATMOSPHERE)
+    if not (math.isfinite(crankcase) and crankcase >= 0):
+        raise SceneError(
+            "engine.crankcase_pressure",
+            f"must be an absolute pressure >= 0, got {shorten(table.raw('crankcase_pressure'))}",
+        )
+    try:
+        return Engine(
+            kind,
+            tuple(firing),
+            sizes["bore"],
+            sizes["stroke"],
+            sizes["rod"],
+            masses["reciprocating_mass"],
+            pressure,
+            crankcase,
+            masses["rod_mass"],
+            rod["rod_centre"],
+            rod["rod_inertia"],
+        )
+    except ValueError as err:
+        raise SceneError("engine", str(err)) from None

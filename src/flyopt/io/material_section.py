@@ -1,0 +1,98 @@
+"""The scene's own [[material]]s, extending or overriding the built-in ones."""
+
+from flyopt.errors import SceneError, shorten
+from flyopt.io.fields import Table
+
+#: The strength fields of a [[material]] (beyond density, rim speed, allowable stress and cost).
+_MATERIAL_STRENGTH = {
+    "elastic_modulus": "stress",
+    "poisson_ratio": "dimensionless",
+    "tensile_strength": "stress",
+    "yield_strength": "stress",
+    "ductile": "bool",
+    "safety_factor": "dimensionless",
+    "min_wall": "length",
+    "bearing_pressure": "stress",
+}
+
+
+def read_materials(raw):
+    from flyopt.design.materials import make_material
+
+    if raw is None:
+        return ()
+    if not isinstance(raw, list):
+        raise SceneError("material", "must be an array of tables: [[material]] with name and density")
+    materials, seen = [], set()
+    for k, item in enumerate(raw):
+        where = f"material[{k}]"
+        table = Table(
+            item,
+            where,
+            {
+                "name",
+                "density",
+                "max_rim_speed",
+                "allowable_stress",
+                "cost",
+                "source",
+                "description",
+                "hub_rule",
+                *_MATERIAL_STRENGTH,
+            },
+        )
+        name = table.require("name")
+        if not isinstance(name, str) or not name.strip():
+            raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
+        if name in seen:
+            raise SceneError(f"{where}.name", f"material {shorten(name)} is given twice")
+        seen.add(name)
+        strength = "tensile_strength" if table.get("ductile") is not True else "yield_strength"
+        if not (table.has("max_rim_speed") or table.has("allowable_stress") or table.has(strength)):
+            raise SceneError(
+                where,
+                f"give max_rim_speed, allowable_stress (v_max then follows from σ = ρ v²) "
+                f"or {strength} (the allowable stress is it over the safety factor)",
+            )
+        values = {
+            "density": table.quantity("density", "density", required=True),
+            "max_rim_speed": table.quantity("max_rim_speed", "speed"),
+            "allowable_stress": table.quantity("allowable_stress", "stress"),
+            "cost": table.quantity("cost", "cost_per_mass"),
+        }
+        for key, value in values.items():
+            if value is not None and (value < 0 or (value == 0 and key != "cost")):
+                raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
+        for key, dimension in _MATERIAL_STRENGTH.items():
+            if not table.has(key):
+                continue
+            if dimension == "bool":
+                if not isinstance(table.get(key), bool):
+                    raise SceneError(f"{where}.{key}", f"must be true or false, got {shorten(table.raw(key))}")
+                values[key] = table.get(key)
+                continue
+            value = table.quantity(key, dimension)
+            if key == "poisson_ratio":
+                if not 0.0 <= value < 0.5:
+                    raise SceneError(f"{where}.{key}", f"must be in [0, 0.5), got {shorten(table.raw(key))}")
+            elif key == "safety_factor":
+                if value < 1.0:
+                    raise SceneError(f"{where}.{key}", f"must be >= 1, got {shorten(table.raw(key))}")
+            elif value <= 0:
+                raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
+            values[key] = value
+        if table.has("hub_rule"):
+            from flyopt.design.hub import hub_rules
+
+            rule = table.get("hub_rule")
+            if rule not in hub_rules():
+                raise SceneError(
+                    f"{where}.hub_rule", f"{shorten(rule)} is not a hub rule (allowed: {', '.join(hub_rules())})"
+                )
+            values["hub_rule"] = rule
+        source = table.get("source", "scene file")
+        try:
+            materials.append(make_material(name, source=str(source), **values))
+        except ValueError as err:
+            raise SceneError(where, str(err)) from None
+    return tuple(materials)

@@ -1,0 +1,185 @@
+"""Reading a scene file's TOML: ``tomllib``, with large inline tables of plain numbers read by string handling.
+
+A table ``points = [[0, 150], [5, 152.5], ...]`` of 10,000 rows takes
+``tomllib`` 60 ms; :func:`parse_toml` cuts such tables out and reads them
+with ``float`` (the same floats), leaving everything else to ``tomllib``.
+"""
+
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from flyopt._toml import tomllib
+from flyopt.errors import SceneError, clip
+
+
+def read_toml(path):
+    """The contents of a TOML scene file, as ``tomllib`` reads them.
+
+    Large tables of plain numbers (``points = [[0, 150], [5, 152.5], ...]``,
+    a member's ``force = [[...]]``, ...) are read by string handling and
+    ``float`` instead of ``tomllib``, which takes 60 ms for 10,000 rows; such a
+    table comes back as an :class:`InlineRows` that :func:`flyopt.io.scene.from_dict` reads as
+    the list it stands for (see :func:`parse_toml`).
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    SceneError
+        The file cannot be read or is not TOML (the message names the file).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise SceneError(
+            "", f"cannot read the file: {err.strerror if hasattr(err, 'strerror') and err.strerror else err}", str(path)
+        ) from None
+    try:
+        return parse_toml(text)
+    except tomllib.TOMLDecodeError as err:
+        raise SceneError("", f"not valid TOML: {err}", str(path)) from None
+    except ValueError as err:  # an integer of over 4300 digits
+        raise SceneError("", f"not a scene: {clip(str(err))}", str(path)) from None
+    except (RecursionError, MemoryError):
+        raise SceneError(
+            "",
+            f"not a scene: arrays or tables nested too deeply (or too large) to read ({len(text)} characters)",
+            str(path),
+        ) from None
+
+
+FAST_TABLE_CHARACTERS = 2000
+"""Inline tables at least this long [characters] are read without ``tomllib`` (shorter ones: no gain)."""
+
+#: A TOML number of the forms tables use: an integer without leading zeros, a fraction, an
+#: exponent (no "_", "inf", "nan", hex: those go to tomllib). Possessive: no backtracking.
+_TOML_NUMBER = r"[+-]?+(?:0|[1-9][0-9]*+)(?:\.[0-9]++)?+(?:[eE][+-]?+[0-9]++)?+"
+_TOML_BLANK = r"[ \t\r\n]*+"
+_TOML_PAIR = (
+    rf"\[{_TOML_BLANK}{_TOML_NUMBER}{_TOML_BLANK},{_TOML_BLANK}{_TOML_NUMBER}{_TOML_BLANK}(?:,{_TOML_BLANK})?+\]"
+)
+_TOML_PAIRS = re.compile(
+    rf"\[{_TOML_BLANK}{_TOML_PAIR}(?:{_TOML_BLANK},{_TOML_BLANK}{_TOML_PAIR})*+{_TOML_BLANK}"
+    rf"(?:,{_TOML_BLANK})?+\]"
+)
+_TABLE_KEY = re.compile(r"^[ \t]*(?:points|force|torque|velocity_ratio|angular_ratio)[ \t]*=[ \t]*(?=\[)", re.MULTILINE)
+_BRACKETS = str.maketrans("[],", "   ")
+
+
+class InlineRows:
+    """A large inline table ``[[a, b], ...]`` of plain numbers, read without ``tomllib``.
+
+    Stands for the list of pairs ``tomllib`` would have given: :func:`flyopt.io.angle_tables.angle_curve`
+    and the [[member]] tables of :mod:`flyopt.io.member_section` read it as that list (the same floats: TOML
+    and Python's ``float`` round a decimal the same way).
+
+    Attributes
+    ----------
+    array : ndarray, shape (n, 2)
+        The numbers, as ``float`` of each TOML number (an integer ``-0`` is 0.0, as ``float(0)``).
+    """
+
+    __slots__ = ("array",)
+
+    def __init__(self, array):
+        self.array = array
+
+    def __len__(self):
+        return len(self.array)
+
+    def __repr__(self):
+        return f"a table of {len(self.array)} rows"
+
+
+def parse_toml(text):
+    """``tomllib.loads(text)``, with every large table of plain-number pairs read by :func:`_fast_rows`.
+
+    Each such table (``KEY = [[number, number], ...]`` at the start of a
+    line, KEY one of points, force, torque, velocity_ratio, angular_ratio,
+    blanks and newlines only between its items, at least
+    ``FAST_TABLE_CHARACTERS`` long) is cut out of the text and replaced by a
+    unique string; ``tomllib`` reads the rest, and each string, found exactly
+    once as a value, becomes the :class:`InlineRows` of its table. Anything
+    else (a comment inside the table, a unit string, a text in which a
+    replacement is not found as one value, e.g. inside a multi-line string)
+    is left to ``tomllib`` whole, so what is read, and every error, is
+    ``tomllib``'s.
+    """
+    tables: dict[str, Any] = {}
+    pieces: list[str] = []
+    end = 0
+    nonce = None
+    key = _TABLE_KEY.search(text)
+    while key is not None:
+        match = _TOML_PAIRS.match(text, key.end())
+        rows = None
+        if match is not None and match.end() - match.start() >= FAST_TABLE_CHARACTERS:
+            rows = _fast_rows(match.group())
+        if match is not None and rows is not None:
+            if nonce is None:
+                nonce = _nonce(text)
+            marker = f"flyopt-table-{nonce}-{len(tables)}"
+            tables[marker] = rows
+            pieces += [text[end : match.start()], f'"{marker}"']
+            end = match.end()
+        key = _TABLE_KEY.search(text, match.end() if match is not None and rows is not None else key.end())
+    if not tables:
+        return tomllib.loads(text)
+    try:
+        data = tomllib.loads("".join(pieces) + text[end:])
+    except (tomllib.TOMLDecodeError, ValueError, RecursionError):
+        return tomllib.loads(text)
+    expected = len(tables)
+    if _put_rows(data, tables) != expected:
+        return tomllib.loads(text)
+    return data
+
+
+def _fast_rows(table):
+    """The :class:`InlineRows` of a matched ``[[a, b], ...]`` text, or None to leave it to tomllib.
+
+    None for a carriage return not followed by a newline (not TOML), and for
+    a number beyond the floats (tomllib and the field's checks say what is wrong).
+    """
+    if "\r" in table and table.count("\r") != table.count("\r\n"):
+        return None
+    tokens = table.translate(_BRACKETS).split()
+    numbers = np.array(tokens, dtype=float)
+    if not np.isfinite(numbers).all():
+        return None
+    for k in np.flatnonzero((numbers == 0) & np.signbit(numbers)):
+        if tokens[k].lstrip("+-").isdigit():  # the integer -0 is 0 in TOML, and float(0) is 0.0
+            numbers[k] = 0.0
+    return InlineRows(numbers.reshape(-1, 2))
+
+
+def _nonce(text):
+    """A string that does not occur in ``text`` (for the markers of :func:`parse_toml`)."""
+    k = 0
+    while f"flyopt-table-{k}x" in text:
+        k += 1
+    return f"{k}x"
+
+
+def _put_rows(data, tables):
+    """Replace each marker string of ``tables`` in the parsed ``data`` by its rows; the count replaced."""
+    found = 0
+    items = data.items() if isinstance(data, dict) else enumerate(data)
+    for key, value in items:
+        if isinstance(value, str):
+            if value in tables:
+                data[key] = tables.pop(value)
+                found += 1
+        elif isinstance(value, (dict, list)):
+            found += _put_rows(value, tables)
+    return found
