@@ -87,7 +87,10 @@ def connect(scheduler: Any) -> Iterator[Any]:
     if isinstance(scheduler, Client):
         yield scheduler
         return
-    scheduler_address(scheduler)
+    from distributed.deploy import Cluster
+
+    if not isinstance(scheduler, Cluster):  # a cluster object knows its own address
+        scheduler_address(scheduler)
     try:
         client = Client(scheduler, timeout=CONNECT_SECONDS, set_as_default=False)
     except (OSError, TimeoutError, ValueError, TypeError) as err:
