@@ -469,9 +469,9 @@ def tradeoff_main(argv: Sequence[str] | None = None) -> int:
 
 
 def _scheduler(text: str) -> str:
-    """``--scheduler``: the address checked as the option is read (:func:`flyopt.studies.runner.scheduler_address`)."""
+    """``--scheduler``: the address checked as the option is read (:func:`flyopt.studies.cluster.scheduler_address`)."""
     from flyopt.errors import SceneError
-    from flyopt.studies.runner import scheduler_address
+    from flyopt.studies.cluster import scheduler_address
 
     try:
         return scheduler_address(text)

@@ -20,10 +20,8 @@ design (envelope, material, shaft, H/B, geometry, objective) reuse it. The
 points themselves (their checks, counts and scenes) are
 :mod:`flyopt.studies.points`.
 
-Worker processes and Dask workers run a :class:`Task`: the scene as data
-(its file's text, see :mod:`flyopt.studies.payload`) and the cycle's A_max
-when one serves every point. Each worker rebuilds the scene once, so its
-memo of analyses serves every chunk it runs.
+Worker processes and Dask workers run the same evaluation as a
+:class:`~flyopt.studies.task.Task` (:mod:`flyopt.studies.task`).
 
 One path for each decision: the scene's design problem comes from
 :func:`flyopt.design.design_inputs` (the columns of a point override it), the
@@ -34,288 +32,27 @@ point and ``flyopt solve`` of the same scene name the same winner.
 
 from __future__ import annotations
 
-import dataclasses
-import math
-import threading
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
-from numpy.typing import NDArray
 
 from flyopt.cycle.indicator import required_inertia, speed_extremes
-from flyopt.design import closed_form as batch
-from flyopt.design import design_inputs, rank
-from flyopt.design.check import binding_names
-from flyopt.design.spec import MountShaft
-from flyopt.errors import SceneError, SolverFailed
-from flyopt.outputs.results import RESULT_COLUMNS
+from flyopt.design import design_inputs
+from flyopt.errors import SceneError
 from flyopt.sizing.peak_torque import flywheel_peak_torque
-from flyopt.studies.physics import analyses_of, physics_analysis, reusable_cycle
+from flyopt.studies.chunk_arrays import ChunkInputs, empty_results, result_table
+from flyopt.studies.closed_form_design import design_closed_form
+from flyopt.studies.context import ChunkContext, chunk_context, scene_needs_torque
+from flyopt.studies.ipopt_design import design_ipopt
+from flyopt.studies.physics import analyses_of
 from flyopt.studies.points import vectorized
 
 if TYPE_CHECKING:
     from flyopt.io.scene import Scene
-    from flyopt.studies.payload import ScenePayload
 
-__all__ = ["ChunkContext", "Task", "chunk_context", "evaluate_chunk", "evaluate_points", "task_of"]
-
-
-# --------------------------------------------------------------------------
-# One point as a scene
-
-
-# --------------------------------------------------------------------------
-
-
-# --------------------------------------------------------------------------
-# Evaluation of a chunk of points
-# --------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class ChunkContext:
-    """What every chunk needs; picklable (the torques are left out when reusable)."""
-
-    scene: Scene
-    a_max: float | None
-    driving_torque: float | None
-    reusable: bool
-    method: str = "auto"
-    solver_options: dict | None = None
-    axes: tuple = ()
-    torque_peak: float | None = None  # max |M_d - M_r| of the cycle when reusable [N*m]
-
-
-def chunk_context(
-    scene: Scene, method: str = "auto", solver_options: Mapping[str, Any] | None = None, axes: Sequence[str] = ()
-) -> ChunkContext:
-    reusable = reusable_cycle(scene)
-    if reusable:
-        analysis = physics_analysis(scene)
-        stripped = scene.replace(driving=None, resisting=None, net=None)
-        return ChunkContext(
-            stripped,
-            analysis.a_max,
-            analysis.driving_torque,
-            True,
-            method,
-            dict(solver_options) if solver_options else None,
-            tuple(axes),
-            analysis.net_torque_peak() if _needs_torque(scene) else None,
-        )
-    return ChunkContext(scene, None, None, False, method, dict(solver_options) if solver_options else None, tuple(axes))
-
-
-@dataclass(frozen=True)
-class Task:
-    """The evaluation of a sweep's chunks, as data for worker processes and Dask workers.
-
-    Called with a table of points, it designs them as :func:`evaluate_points`
-    does. It holds no live object: the scene travels as a
-    :class:`~flyopt.studies.payload.ScenePayload` (its file's text, the
-    fields that differ), the once-analysed cycle of a reusable scene as two
-    numbers. Each worker rebuilds the scene once and keeps it (with its
-    memo of analyses, :func:`physics_analysis`) for every chunk it runs.
-
-    Attributes
-    ----------
-    scene : ScenePayload
-    method : str
-    solver_options : dict or None
-    axes : tuple of str
-    reusable : bool
-        One A_max serves every point (see :func:`reusable`).
-    a_max : float or None
-        The cycle's A_max [J] when reusable.
-    driving_torque : float or None
-        Its driving torque [N*m] when reusable and known.
-    """
-
-    scene: ScenePayload
-    method: str = "auto"
-    solver_options: dict | None = None
-    axes: tuple = ()
-    reusable: bool = False
-    a_max: float | None = None
-    driving_torque: float | None = None
-    torque_peak: float | None = None
-
-    def __call__(self, points: pd.DataFrame) -> pd.DataFrame:
-        """The results of the chunk ``points`` (one row per point)."""
-        return evaluate_chunk(self.context(), points)
-
-    def context(self) -> ChunkContext:
-        """The chunk context of this process, built on first use and kept."""
-        key = (
-            self.scene.key,
-            self.method,
-            repr(sorted((self.solver_options or {}).items())),
-            self.axes,
-            self.reusable,
-            self.a_max,
-            self.driving_torque,
-            self.torque_peak,
-        )
-        with _TASK_LOCK:
-            ctx = _TASK_CONTEXTS.get(key)
-            if ctx is None:
-                scene = self.scene.scene()
-                if self.reusable:
-                    scene = scene.replace(driving=None, resisting=None, net=None)
-                ctx = ChunkContext(
-                    scene,
-                    self.a_max,
-                    self.driving_torque,
-                    self.reusable,
-                    self.method,
-                    self.solver_options,
-                    self.axes,
-                    self.torque_peak,
-                )
-                while len(_TASK_CONTEXTS) >= 4:  # a worker that serves several sweeps
-                    _TASK_CONTEXTS.pop(next(iter(_TASK_CONTEXTS)))
-                _TASK_CONTEXTS[key] = ctx
-        return ctx
-
-
-_TASK_CONTEXTS: dict = {}
-_TASK_LOCK = threading.Lock()
-
-
-def task_of(ctx: ChunkContext, scene: Scene) -> tuple[Task | None, str]:
-    """The :class:`Task` of a sweep context, or why it cannot leave this process.
-
-    Parameters
-    ----------
-    ctx : ChunkContext
-    scene : Scene
-        The scene the sweep varies (``ctx.scene`` may have its torques stripped).
-
-    Returns
-    -------
-    task : Task or None
-    reason : str
-        Why there is no task ("" when there is one).
-    """
-    from flyopt.studies.payload import payload
-
-    data, reason = payload(scene)
-    if data is None:
-        return None, reason
-    return Task(
-        data, ctx.method, ctx.solver_options, ctx.axes, ctx.reusable, ctx.a_max, ctx.driving_torque, ctx.torque_peak
-    ), ""
-
-
-class _Inputs:
-    """Per-point input arrays of a chunk, defaults from the scene."""
-
-    omega_rim: NDArray[np.float64]  # ω_max of each point, where its rim is checked [rad/s]: set by the cycle step
-
-    def __init__(self, scene, points):
-        n = len(points)
-        self.n = n
-        defaults = design_inputs(scene)
-        spec = defaults.spec
-        self.spec = spec
-        self.mounts = {s.name: MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts}
-
-        def col(name, default):
-            if name in points:
-                return points[name].to_numpy(dtype=float)
-            return np.full(n, math.nan if default is None else float(default))
-
-        def names(name, default):
-            if name in points:
-                return points[name].to_numpy(dtype=object)
-            return np.full(n, default, dtype=object)
-
-        self.delta = col("delta", scene.delta)
-        self.speed = col("speed", scene.omega_mean)
-        self.inertia = col("inertia", scene.j_constant)
-        self.scale = col("torque.scale", 1.0)
-        self.geometry = names("design.geometry", spec.geometry)
-        self.objective = names("design.objective", spec.objective)
-        if "design.hb_ratio" in points:
-            self.hb_min = self.hb_max = points["design.hb_ratio"].to_numpy(dtype=float)
-        else:
-            self.hb_min = col("design.hb_min", spec.hb_ratio[0])
-            self.hb_max = col("design.hb_max", spec.hb_ratio[1])
-        # one representation of a limit that is not set: inf (a sweep's "none" arrives as NaN)
-        self.envelope = np.where(np.isnan(e := col("design.max_outer_diameter", spec.max_outer_diameter)), np.inf, e)
-        self.width = np.where(np.isnan(w := col("design.max_width", spec.max_width)), np.inf, w)
-        self.d_mean = col("design.d_mean", spec.d_mean)
-        library = scene.material_library()
-        self.library = library
-        self.material_names = [m.name for m in defaults.materials]
-        self.material = names("material", None) if "material" in points else None
-        if self.material is not None:
-            self.material_names = list(dict.fromkeys(self.material_names + [m for m in dict.fromkeys(self.material)]))
-        self.shaft_names = [s.name for s in defaults.shafts]
-        self.shaft = names("shaft", None) if "shaft" in points else None
-        if self.shaft is not None:
-            self.shaft_names = [s.name for s in scene.shafts if s.name in self.shaft_names or s.name in set(self.shaft)]
-        shafts = {s.name: s for s in scene.shafts}
-        # per-point properties, made for the materials and shafts a chunk uses (on first use)
-        self.ratio = _PerName(lambda name: col(f"shaft.{name}.speed_ratio", shafts[name].speed_ratio))
-        self.density = _PerName(lambda name: col(f"material.{name}.density", library[name].density))
-        self.max_rim_speed = _PerName(lambda name: col(f"material.{name}.max_rim_speed", library[name].max_rim_speed))
-        self.material_cost = _PerName(lambda name: col(f"material.{name}.cost", library[name].cost))
-        self.allowable = _PerName(lambda name: col("", library[name].allowable_stress))
-        self.rim_speed_limit = _PerName(self._rim_speed_limit)
-
-    def _rim_speed_limit(self, name):
-        """The material's safe rim speed [m/s] at each point: the one rule (:func:`designer.rim_speed_limit`,
-        the design's safety factor winning over the material's) on the material with the point's values."""
-        from flyopt.design.designer import rim_speed_limit
-
-        density, speed = self.density[name], self.max_rim_speed[name]
-        values = np.stack([density, np.where(np.isnan(speed), -1.0, speed)], axis=1)
-        distinct, inverse = np.unique(values, axis=0, return_inverse=True)
-        limits = np.array(
-            [rim_speed_limit(_point_material(self.library[name], d, s), self.spec) for d, s in distinct], dtype=float
-        )
-        return limits[inverse.ravel()]
-
-
-def _point_material(base, density, speed, cost=math.nan):
-    """The scene's material with a point's density, rim speed and cost (NaN or negative: the scene's own)."""
-    return dataclasses.replace(
-        base,
-        density=float(density),
-        max_rim_speed=base.max_rim_speed if math.isnan(speed) or speed < 0 else float(speed),
-        cost=base.cost if math.isnan(cost) else float(cost),
-    )
-
-
-class _PerName(dict):
-    """Name to its per-point array, each made on first use by ``make(name)``."""
-
-    def __init__(self, make):
-        super().__init__()
-        self._make = make
-
-    def __missing__(self, name):
-        value = self[name] = self._make(name)
-        return value
-
-
-def _empty_results(n):
-    out = {}
-    for name, kind in RESULT_COLUMNS.items():
-        if kind == "str":
-            out[name] = np.full(n, "", dtype=object)
-        elif kind == "bool":
-            out[name] = np.zeros(n, dtype=bool)
-        elif kind == "int":
-            out[name] = np.zeros(n, dtype=np.int64)
-        else:
-            out[name] = np.full(n, np.nan)
-    out["iterations"][:] = -1
-    return out
+__all__ = ["evaluate_chunk", "evaluate_points"]
 
 
 def evaluate_points(
@@ -354,12 +91,13 @@ def evaluate_points(
 
 def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
     scene = ctx.scene
-    inputs = _Inputs(scene, points)
+    inputs = ChunkInputs(scene, points)
     n = inputs.n
-    res = _empty_results(n)
-    needs_torque = _needs_torque(scene)
+    res = empty_results(n)
+    needs_torque = scene_needs_torque(scene)
     # -- the cycle: analysed once, A_max scaled (see the module notes) ------
     if ctx.reusable:
+        assert ctx.a_max is not None  # a reusable context carries the cycle's A_max (chunk_context)
         a_max = inputs.scale * ctx.a_max
         driving = inputs.scale * ctx.driving_torque if ctx.driving_torque is not None else np.full(n, np.nan)
         j_margin = required_inertia(a_max, inputs.speed, inputs.delta, inputs.inertia)
@@ -369,7 +107,7 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
     else:  # varying inertia or speed-dependent torques: each distinct physics by its exact model
         a_max, driving, j_margin, power, motor_power = (np.empty(n) for _ in range(5))
         inputs.omega_rim = np.empty(n)
-        torques = needs_torque and []
+        torques: list[float | None] = []
         for k, analysis in enumerate(analyses_of(scene, points)):
             if needs_torque:
                 torques.append(analysis.flywheel_torque())
@@ -410,7 +148,7 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
             f"use method 'auto' or 'ipopt'",
         )
     use_batch = needed & covered if ctx.method != "ipopt" else np.zeros(n, dtype=bool)
-    _design_closed_form(inputs, j_margin, use_batch, res)
+    design_closed_form(inputs, j_margin, use_batch, res)
     for k in np.flatnonzero(needed & ~use_batch).tolist():
         torque = None
         if needs_torque and ctx.reusable and ctx.torque_peak is not None:
@@ -419,249 +157,9 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
             )
         elif needs_torque and not ctx.reusable:
             torque = torques[k]
-        _design_ipopt(ctx, inputs, k, j_margin[k], res, torque)
-    return _table(inputs, points, ctx.axes, res)
+        design_ipopt(ctx, inputs, k, j_margin[k], res, torque)
+    return result_table(inputs, points, ctx.axes, res)
 
 
-def _float(value):
+def _float(value: float | None) -> float:
     return np.nan if value is None else float(value)
-
-
-def _design_closed_form(inputs, j_margin, mask, res):
-    """Fill the rows of ``mask`` from the vectorized closed form."""
-    if not mask.any():
-        return
-    geometries = list(dict.fromkeys(inputs.geometry[mask]))
-    m_names, s_names = inputs.material_names, inputs.shaft_names
-    m_code = (
-        np.array([m_names.index(m) for m in inputs.material]) if inputs.material is not None else np.full(inputs.n, -1)
-    )
-    s_code = np.array([s_names.index(s) for s in inputs.shaft]) if inputs.shaft is not None else np.full(inputs.n, -1)
-    for geo in geometries:
-        in_geo = mask & (inputs.geometry == geo)
-        keys = np.stack([m_code[in_geo], s_code[in_geo]], axis=1)
-        groups, inverse = np.unique(keys, axis=0, return_inverse=True)
-        points_geo = np.flatnonzero(in_geo)
-        for g, (mc, sc) in enumerate(groups):
-            pts = points_geo[inverse.ravel() == g]
-            mats = m_names if mc < 0 else [m_names[mc]]
-            shafts = s_names if sc < 0 else [s_names[sc]]
-            _design_group(inputs, geo, pts, mats, shafts, j_margin, res)
-
-
-def _design_group(inputs, geo, pts, mats, shafts, j_margin, res):
-    """One geometry, one material list and one shaft list, for points ``pts``."""
-    n_m, n_s = len(mats), len(shafts)
-    per = n_m * n_s
-    p = np.repeat(pts, per)
-    mi = np.tile(np.repeat(np.arange(n_m), n_s), len(pts))
-    si = np.tile(np.tile(np.arange(n_s), n_m), len(pts))
-    order = mi * n_s + si
-
-    def table(values, names, index):
-        return np.stack([values[name] for name in names])[index, p]
-
-    density = table(inputs.density, mats, mi)
-    v_max = table(inputs.rim_speed_limit, mats, mi)
-    cost_per_kg = table(inputs.material_cost, mats, mi)
-    allowable = table(inputs.allowable, mats, mi)
-    ratio = table(inputs.ratio, shafts, si)
-    out = batch.design_combinations(
-        geo,
-        j_margin[p],
-        inputs.omega_rim[p],
-        ratio,
-        density,
-        v_max,
-        inputs.hb_min[p],
-        inputs.hb_max[p],
-        inputs.envelope[p],
-        inputs.width[p],
-        inputs.d_mean[p],
-    )
-    mass = out.mass
-    cost = mass * cost_per_kg
-    objective = np.where(inputs.objective[p] == "cost", cost, mass)
-    feasible = out.feasible
-    res["n_combinations"][pts] = per
-    counts = np.bincount(p[feasible], minlength=inputs.n)
-    res["n_feasible"][pts] = counts[pts]
-    res["method"][pts] = batch.METHOD
-    # the winner of each point, by the one ranking rule (flyopt.design.rank)
-    f = np.flatnonzero(feasible)
-    if f.size:
-        local = np.searchsorted(pts, p[f])  # pts is sorted: each point's group number
-        best = rank.winners(
-            local,
-            objective[f],
-            cost[f],
-            mass[f],
-            out.rim_speed[f],
-            np.asarray(mats, dtype=object)[mi[f]],
-            np.asarray(shafts, dtype=object)[si[f]],
-            n_groups=len(pts),
-        )
-        w = f[best[best >= 0]]
-        q = p[w]
-        res["status"][q] = "designed"
-        res["feasible"][q] = True
-        res["best_material"][q] = np.asarray(mats, dtype=object)[mi[w]]
-        res["best_shaft"][q] = np.asarray(shafts, dtype=object)[si[w]]
-        res["best_speed_ratio"][q] = ratio[w]
-        for name in (
-            "d_mean",
-            "d_outer",
-            "d_inner",
-            "h",
-            "b",
-            "hb_ratio",
-            "mass",
-            "rim_speed",
-            "hoop_stress",
-            "j_flywheel",
-            "j_at_reference",
-        ):
-            res[name][q] = out[name][w]
-        res["j_required_on_shaft"][q] = out.j_shaft[w]
-        res["d_outer_limit"][q] = out.cap[w]
-        res["rim_speed_limit"][q] = v_max[w]
-        res["cost"][q] = cost[w]
-        res["objective"][q] = objective[w]
-        res["safety_factor"][q] = allowable[w] / out.hoop_stress[w]
-        res["binding"][q] = [",".join(binding_names(b)) for b in out.binding[w]]
-    none = pts[counts[pts] == 0]
-    if none.size:
-        # the combination that comes closest: largest J_max / J' (for the message)
-        closeness = out.j_max / out.j_shaft
-        lost = np.isin(p, none)
-        idx = np.flatnonzero(lost)
-        ranked = idx[np.lexsort((order[idx], -closeness[idx], p[idx]))]
-        _, first = np.unique(p[ranked], return_index=True)
-        for c in ranked[first]:
-            k = p[c]
-            res["status"][k] = "infeasible"
-            res["message"][k] = (
-                f"no material and shaft can give the inertia; the closest, "
-                f"{mats[mi[c]]} on the {shafts[si[c]]} shaft, can give at most "
-                f"{out.j_max[c]:.4g} of the {out.j_shaft[c]:.4g} kg·m² it needs there"
-            )
-
-
-_IPOPT_LOCK = threading.Lock()
-
-
-def _needs_torque(scene):
-    """Whether the scene's designs have arms or a keyed hub, which the flywheel's peak torque loads
-    (the same rule as :func:`flyopt.pipeline.design_scene`)."""
-    from flyopt.design.wheel_design import needs_torque
-
-    return needs_torque(design_inputs(scene))
-
-
-def _design_ipopt(ctx, inputs, k, j_required, res, torque=None):
-    """One point by optimize.design_flywheel (IPOPT, NLP cached per structure)."""
-    from flyopt.design import design_flywheel
-
-    mats = [inputs.material[k]] if inputs.material is not None else inputs.material_names
-    shafts = [inputs.shaft[k]] if inputs.shaft is not None else inputs.shaft_names
-    materials = []
-    for name in mats:  # the scene's material with this point's values: every other field kept
-        materials.append(
-            _point_material(
-                inputs.library[name],
-                inputs.density[name][k],
-                float(inputs.max_rim_speed[name][k]),
-                float(inputs.material_cost[name][k]),
-            )
-        )
-    mounts = [dataclasses.replace(inputs.mounts[name], speed_ratio=float(inputs.ratio[name][k])) for name in shafts]
-
-    def opt(x):
-        return None if math.isnan(x) else float(x)
-
-    spec = dataclasses.replace(
-        inputs.spec,
-        geometry=inputs.geometry[k],
-        hb_ratio=(inputs.hb_min[k], inputs.hb_max[k]),
-        max_outer_diameter=inputs.envelope[k],
-        max_width=inputs.width[k],
-        d_mean=opt(inputs.d_mean[k]),
-        objective=inputs.objective[k],
-    )
-    res["method"][k] = "ipopt"
-    res["n_combinations"][k] = len(materials) * len(mounts)
-    try:
-        with _IPOPT_LOCK:  # a CasADi Function is not to be called from two threads at once
-            result = design_flywheel(
-                float(j_required),
-                float(inputs.omega_rim[k]),
-                mounts,
-                materials,
-                spec,
-                solver_options=ctx.solver_options,
-                method="ipopt",
-                torque=torque,
-            )
-    except SolverFailed as err:
-        res["status"][k] = "failed"
-        res["solver_status"][k] = str(getattr(err, "status", "") or "error")
-        res["message"][k] = str(err)
-        return
-    res["n_feasible"][k] = sum(c.feasible for c in result.candidates)
-    best = result.best
-    if best is None:
-        res["status"][k] = "infeasible"
-        res["message"][k] = result.message
-        return
-    res["status"][k] = "designed"
-    res["feasible"][k] = True
-    res["best_material"][k] = best.material
-    res["best_shaft"][k] = best.shaft
-    res["best_speed_ratio"][k] = best.speed_ratio
-    for name in (
-        "d_mean",
-        "d_outer",
-        "d_inner",
-        "h",
-        "b",
-        "hb_ratio",
-        "mass",
-        "rim_speed",
-        "hoop_stress",
-        "j_flywheel",
-        "j_at_reference",
-        "j_required_on_shaft",
-        "d_outer_limit",
-        "rim_speed_limit",
-        "objective",
-    ):
-        res[name][k] = getattr(best, name)
-    res["cost"][k] = math.nan if best.cost is None else best.cost
-    res["safety_factor"][k] = math.nan if best.safety_factor is None else best.safety_factor
-    res["binding"][k] = ",".join(best.binding)
-    res["solver_status"][k] = best.solver_status
-    res["iterations"][k] = best.iterations
-
-
-def _table(inputs, points, axes, res):
-    n = inputs.n
-    data = {"point": points["point"].to_numpy(dtype=np.int64)}
-    core = {
-        "delta": inputs.delta,
-        "speed": inputs.speed,
-        "inertia": inputs.inertia,
-        "torque.scale": inputs.scale,
-        "design.geometry": inputs.geometry,
-        "design.objective": inputs.objective,
-        "design.hb_min": inputs.hb_min,
-        "design.hb_max": inputs.hb_max,
-        "design.max_outer_diameter": inputs.envelope,
-        "design.max_width": inputs.width,
-        "design.d_mean": inputs.d_mean,
-    }
-    data.update(core)
-    for name in axes:
-        if name not in data:
-            data[name] = points[name].to_numpy()
-    data.update(res)
-    return pd.DataFrame(data, index=pd.RangeIndex(n), copy=False)

@@ -14,8 +14,9 @@ The stages, each in its own module, joined here:
 - the points, a grid or a Latin hypercube (:mod:`flyopt.studies.plan`),
 - the design of every point (:mod:`flyopt.studies.evaluate`), its scene sent
   to workers as data (:mod:`flyopt.studies.payload`),
-- the chunks, sized by their estimated cost and run serially, in processes
-  or on Dask, with resume (:mod:`flyopt.studies.runner`),
+- the chunks, sized by their estimated cost (:mod:`flyopt.studies.chunks`) and
+  run serially, in processes or on Dask (:mod:`flyopt.studies.runner`), with
+  resume (:mod:`flyopt.studies.parts`),
 - the result table and its files, written piece by piece (:mod:`flyopt.outputs.results`),
   with their metadata: units, flyopt's version, the scene (its file, the file's
   SHA-256 and flyopt's digest of it) and the sweep (fields, values, samples,
@@ -39,17 +40,22 @@ from flyopt.errors import Interrupted, SceneError
 from flyopt.io.sweep_spec import check_options, option_label
 from flyopt.outputs.documents import scene_record, table_metadata
 from flyopt.outputs.results import ResultWriter, normalize
-from flyopt.studies import runner
-from flyopt.studies.evaluate import chunk_context, evaluate_chunk, evaluate_points, task_of
+from flyopt.studies.chunks import SECONDS_CLOSED_FORM, SECONDS_IPOPT, SERIAL_SECONDS, chunk_bounds
+from flyopt.studies.cluster import connect, threads
+from flyopt.studies.context import chunk_context
+from flyopt.studies.evaluate import evaluate_chunk, evaluate_points
+from flyopt.studies.parts import Parts, fingerprint
 from flyopt.studies.payload import digest
 from flyopt.studies.physics import physics_analysis
 from flyopt.studies.plan import plan_sweep
 from flyopt.studies.points import PHYSICS_FIELDS, design_counts, physics_codes
-from flyopt.studies.runner import Parts, connect, cpu_count, fingerprint, run_chunks, stopped
+from flyopt.studies.processes import cpu_count
+from flyopt.studies.runner import run_chunks, stopped
+from flyopt.studies.task import task_of
 
 if TYPE_CHECKING:  # the annotations only
     from flyopt.io.scene import Scene
-    from flyopt.studies.evaluate import ChunkContext
+    from flyopt.studies.context import ChunkContext
     from flyopt.studies.plan import SweepPlan
 
 __all__ = ["SUMMARY_COLUMNS", "sweep"]
@@ -149,13 +155,13 @@ def sweep(
     workers : int or "auto"
         Worker processes on this machine (1: serial, in this process).
         ``auto``: one per available CPU, or serial when the sweep is
-        estimated to take under :data:`~flyopt.studies.runner.SERIAL_SECONDS`
+        estimated to take under :data:`~flyopt.studies.chunks.SERIAL_SECONDS`
         in one process (the estimate counts the designs and, for a scene
         whose every physics needs its own analysis, that analysis, timed on
         the first point).
     chunk_size : int, optional
         Points per chunk. By default chunks are sized by their estimated
-        cost (see :func:`flyopt.studies.runner.chunk_bounds`).
+        cost (see :func:`flyopt.studies.chunks.chunk_bounds`).
     scheduler : str or dask.distributed Client or cluster, optional
         Run the chunks on a Dask cluster (``"tcp://host:8786"``).
     resume : bool
@@ -393,7 +399,7 @@ def _layout(
     dict
         ``mode`` ("serial", "processes", "dask"), ``workers``, ``order``
         (positions of the points in run order, None for point order),
-        ``grouped``, ``bounds`` (see :func:`runner.chunk_bounds`), ``units``
+        ``grouped``, ``bounds`` (see :func:`~flyopt.studies.chunks.chunk_bounds`), ``units``
         (lists of chunks whose rows form the next points, in order),
         ``chunk_size`` (int or "auto"), ``estimate`` (seconds in one
         process), ``analysis_seconds``, ``physics`` (distinct physics).
@@ -402,7 +408,7 @@ def _layout(
     if chunk_size is None and isinstance(recorded.get("chunk_size"), int):
         chunk_size = recorded["chunk_size"]  # resuming a sweep cut by the user's size
     per_point, ipopt = design_counts(ctx.scene, points, method)
-    costs = per_point * np.where(ipopt, runner.SECONDS_IPOPT, runner.SECONDS_CLOSED_FORM)
+    costs = per_point * np.where(ipopt, SECONDS_IPOPT, SECONDS_CLOSED_FORM)
     if ctx.reusable:
         codes, n_physics, analysis_seconds = None, 1, 0.0
     else:
@@ -410,9 +416,9 @@ def _layout(
         analysis_seconds = _time_first_analysis(scene, points, codes) if n else 0.0
     estimate = float(costs.sum()) + n_physics * analysis_seconds
     if client is not None:
-        mode, n_workers = "dask", max(runner._threads(client), 1)
+        mode, n_workers = "dask", max(threads(client), 1)
     elif workers == "auto":
-        n_workers = 1 if estimate < runner.SERIAL_SECONDS else cpu_count()
+        n_workers = 1 if estimate < SERIAL_SECONDS else cpu_count()
         mode = "processes" if n_workers > 1 else "serial"
     else:
         n_workers = int(workers)
@@ -435,7 +441,7 @@ def _layout(
     if chunk_size is None and recorded.get("bounds") is not None and recorded.get("grouped") == grouped:
         bounds = _recorded_bounds(recorded["bounds"], n)
     if bounds is None:
-        bounds = runner.chunk_bounds(costs, workers=n_workers, starts=starts, breaks=breaks, chunk_size=chunk_size)
+        bounds = chunk_bounds(costs, workers=n_workers, starts=starts, breaks=breaks, chunk_size=chunk_size)
     if grouped:  # a block's chunks are written together, once all are done
         block_of = (bounds[:-1] // BLOCK_POINTS).tolist()
         units: list[list[int]] = [[] for _ in range(max(block_of) + 1)]

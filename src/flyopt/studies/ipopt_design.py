@@ -1,0 +1,113 @@
+"""One point of a chunk designed by IPOPT (:func:`flyopt.design.design_flywheel`, its NLP built once
+per structure and process); a failed solve is a ``failed`` row with IPOPT's status, never a mass."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import threading
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from flyopt.errors import SolverFailed
+from flyopt.studies.chunk_arrays import ChunkInputs, point_material
+
+if TYPE_CHECKING:
+    from flyopt.studies.context import ChunkContext
+
+__all__ = ["design_ipopt"]
+
+_IPOPT_LOCK = threading.Lock()
+
+
+def design_ipopt(
+    ctx: ChunkContext,
+    inputs: ChunkInputs,
+    k: int,
+    j_required: float,
+    res: dict[str, np.ndarray],
+    torque: float | None = None,
+) -> None:
+    """One point by optimize.design_flywheel (IPOPT, NLP cached per structure)."""
+    from flyopt.design import design_flywheel
+
+    mats = [inputs.material[k]] if inputs.material is not None else inputs.material_names
+    shafts = [inputs.shaft[k]] if inputs.shaft is not None else inputs.shaft_names
+    materials = []
+    for name in mats:  # the scene's material with this point's values: every other field kept
+        materials.append(
+            point_material(
+                inputs.library[name],
+                inputs.density[name][k],
+                float(inputs.max_rim_speed[name][k]),
+                float(inputs.material_cost[name][k]),
+            )
+        )
+    mounts = [dataclasses.replace(inputs.mounts[name], speed_ratio=float(inputs.ratio[name][k])) for name in shafts]
+
+    def opt(x):
+        return None if math.isnan(x) else float(x)
+
+    spec = dataclasses.replace(
+        inputs.spec,
+        geometry=inputs.geometry[k],
+        hb_ratio=(inputs.hb_min[k], inputs.hb_max[k]),
+        max_outer_diameter=inputs.envelope[k],
+        max_width=inputs.width[k],
+        d_mean=opt(inputs.d_mean[k]),
+        objective=inputs.objective[k],
+    )
+    res["method"][k] = "ipopt"
+    res["n_combinations"][k] = len(materials) * len(mounts)
+    try:
+        with _IPOPT_LOCK:  # a CasADi Function is not to be called from two threads at once
+            result = design_flywheel(
+                float(j_required),
+                float(inputs.omega_rim[k]),
+                mounts,
+                materials,
+                spec,
+                solver_options=ctx.solver_options,
+                method="ipopt",
+                torque=torque,
+            )
+    except SolverFailed as err:
+        res["status"][k] = "failed"
+        res["solver_status"][k] = str(getattr(err, "status", "") or "error")
+        res["message"][k] = str(err)
+        return
+    res["n_feasible"][k] = sum(c.feasible for c in result.candidates)
+    best = result.best
+    if best is None:
+        res["status"][k] = "infeasible"
+        res["message"][k] = result.message
+        return
+    res["status"][k] = "designed"
+    res["feasible"][k] = True
+    res["best_material"][k] = best.material
+    res["best_shaft"][k] = best.shaft
+    res["best_speed_ratio"][k] = best.speed_ratio
+    for name in (
+        "d_mean",
+        "d_outer",
+        "d_inner",
+        "h",
+        "b",
+        "hb_ratio",
+        "mass",
+        "rim_speed",
+        "hoop_stress",
+        "j_flywheel",
+        "j_at_reference",
+        "j_required_on_shaft",
+        "d_outer_limit",
+        "rim_speed_limit",
+        "objective",
+    ):
+        res[name][k] = getattr(best, name)
+    res["cost"][k] = math.nan if best.cost is None else best.cost
+    res["safety_factor"][k] = math.nan if best.safety_factor is None else best.safety_factor
+    res["binding"][k] = ",".join(best.binding)
+    res["solver_status"][k] = best.solver_status
+    res["iterations"][k] = best.iterations

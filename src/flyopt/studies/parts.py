@@ -1,0 +1,160 @@
+"""The parts folder of a sweep: each finished chunk on disk, checked before a resume reuses it.
+
+With an output file every finished chunk is written to
+``OUTPUT.parts/chunk-NNNNN.parquet`` at once, so a crash loses at most the
+chunks in flight; ``resume`` reuses the chunks on disk after checking that
+each is the chunk it claims to be (a damaged one is computed again), and
+only when the folder's manifest holds the same :func:`fingerprint`. Every
+temporary file lives in ``OUTPUT.parts/`` too, so nothing is left that a
+rerun does not see.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+import sys
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from flyopt.errors import SceneError
+from flyopt.outputs.files import check_folder
+from flyopt.outputs.results import read_results, write_results
+
+__all__ = ["Parts", "fingerprint"]
+
+
+def fingerprint(identity: object, points: pd.DataFrame, layout: object) -> str:
+    """A digest of what a sweep computes: parts of another sweep are never reused.
+
+    Parameters
+    ----------
+    identity : str
+        Everything the results depend on besides the points (the scene, the
+        method, solver options), as a text stable across processes.
+    points : pandas.DataFrame
+    layout : object
+        How the points are cut into chunks (its ``repr`` is hashed).
+    """
+    digest = hashlib.sha256(repr(identity).encode())
+    digest.update(repr(layout).encode())
+    digest.update(pd.util.hash_pandas_object(points, index=False).to_numpy().tobytes())
+    return digest.hexdigest()
+
+
+class Parts:
+    """The folder ``OUTPUT.parts``: one file per finished chunk, a manifest, temporary files.
+
+    Parameters
+    ----------
+    output : str or Path
+        The sweep's output file; the folder is beside it.
+    """
+
+    MANIFEST = "sweep.json"
+
+    def __init__(self, output: str | os.PathLike[str]) -> None:
+        output = Path(output)
+        self.folder = output.with_name(output.name + ".parts")
+
+    def path(self, index: int) -> Path:
+        """The file of chunk ``index``."""
+        return self.folder / f"chunk-{index:05d}.parquet"
+
+    def manifest(self) -> dict[str, Any]:
+        """What the folder's manifest records (``{}`` when there is none or it is unreadable)."""
+        try:
+            return json.loads((self.folder / self.MANIFEST).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return {}
+
+    def open(self, record: Mapping[str, Any], chunks: Sequence[tuple[int, pd.DataFrame]], resume: bool) -> list[int]:
+        """Create the folder, or (``resume``) find the chunks already in it.
+
+        Parameters
+        ----------
+        record : dict
+            The manifest: ``fingerprint`` and what else identifies the sweep.
+        chunks : list of (int, pandas.DataFrame)
+            Every chunk of the sweep, to check the parts against.
+        resume : bool
+
+        Returns
+        -------
+        list of int
+            The chunks whose part is sound (each read and checked, then let
+            go: the results are read again when they are needed). A part
+            that cannot be read or does not hold its chunk's points is said
+            on stderr (one line), removed and left to be computed again.
+
+        Raises
+        ------
+        SceneError
+            The folder exists without ``resume``, or holds another sweep.
+        """
+        if not self.folder.exists():
+            check_folder(self.folder)
+            self.folder.mkdir()
+            (self.folder / self.MANIFEST).write_text(json.dumps(record), encoding="utf-8")
+            return []
+        if not resume:
+            raise SceneError(
+                "--output",
+                f"{str(self.folder)!r} holds the chunks of an earlier, "
+                f"unfinished sweep: resume it (--resume) or delete the folder",
+            )
+        if self.manifest().get("fingerprint") != record["fingerprint"]:
+            raise SceneError(
+                "--resume",
+                f"the parts in {str(self.folder)!r} come from a "
+                f"different sweep (scene, fields, values or chunk size differ); "
+                f"delete the folder to start over",
+            )
+        for stale in self.folder.glob("*.tmp-*"):  # left by a killed run
+            stale.unlink(missing_ok=True)
+        done = []
+        for i, chunk in chunks:
+            path = self.path(i)
+            if not path.exists():
+                continue
+            problem = _damage(path, chunk)
+            if problem:
+                print(f"flyopt sweep: {path}: {problem}; computing chunk {i} again", file=sys.stderr)
+                path.unlink()
+            else:
+                done.append(i)
+        return done
+
+    def read(self, index: int, columns: Sequence[str] | None = None) -> pd.DataFrame:
+        """The results of chunk ``index`` (``columns`` only, when given)."""
+        return read_results(self.path(index), columns=columns)
+
+    def save(self, index: int, frame: pd.DataFrame) -> None:
+        """Write the results of chunk ``index`` (atomically)."""
+        write_results(frame, self.path(index), temporary_folder=self.folder)
+
+    def remove(self) -> None:
+        """Remove the folder and everything in it."""
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def _damage(path: Path, chunk: pd.DataFrame) -> str:
+    """What is wrong with the part file of ``chunk`` ("" when it is sound)."""
+    try:
+        frame = read_results(path)
+    except Exception as err:  # noqa: BLE001 - whatever the reader says, the part is unusable
+        text = str(err).strip().splitlines()
+        return f"cannot be read ({type(err).__name__}: {text[0] if text else ''})"
+    if len(frame) != len(chunk):
+        return f"holds {len(frame)} rows, not the chunk's {len(chunk)}"
+    missing = [c for c in chunk.columns if c not in frame.columns]
+    if missing:
+        return f"lacks the column {missing[0]!r}"
+    if not (frame["point"].to_numpy() == chunk["point"].to_numpy()).all():
+        return "holds other points than its chunk"
+    return ""

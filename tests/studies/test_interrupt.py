@@ -1,0 +1,81 @@
+"""Tests of flyopt.studies.interrupt: Ctrl-C while chunks run is acted on where it is safe.
+
+A save in progress completes and no other chunk starts, also when Ctrl-C
+comes twice; a chunk computed in this process is stopped at once; the
+previous SIGINT handler is put back.
+"""
+
+import os
+import re
+import signal
+import time
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from flyopt.errors import Interrupted
+from flyopt.studies import runner
+
+
+class _SavingParts:
+    """Stands in for parts.Parts: records saves; Ctrl-C (twice) arrives inside the first."""
+
+    folder = Path("parts")
+
+    def __init__(self):
+        self.saved = []
+
+    def save(self, index, frame):
+        if not self.saved:
+            os.kill(os.getpid(), signal.SIGINT)
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)  # the handler runs here, in the middle of the save
+        self.saved.append((index, len(frame)))
+
+
+def _points(n):
+    return [(i, pd.DataFrame({"x": [float(i)]})) for i in range(n)]
+
+
+def _square(points):
+    time.sleep(0.3)  # long enough that no worker finishes a second chunk first
+    return pd.DataFrame({"y": points["x"] ** 2})
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_ctrl_c_during_a_save_finishes_the_save_then_stops(workers):
+    """Regression (issue 11): Ctrl-C raised KeyboardInterrupt wherever the main thread
+    was: in the middle of saving a chunk (a chunk lost), inside the process pool's
+    bookkeeping (a hang on a lock at shutdown) or in ``logging`` (a traceback, and the
+    sweep went on). Ctrl-C now only asks to stop; the save in progress completes and
+    the run stops without starting another chunk, also when Ctrl-C comes twice.
+    (Worker processes may have finished a chunk in the same instant; that one is saved
+    too, so the count is checked against the saves.)"""
+    chunks, parts = _points(6), _SavingParts()
+    previous = signal.getsignal(signal.SIGINT)
+    with pytest.raises(Interrupted) as stop:
+        runner.run_chunks(_square, chunks, chunks, parts=parts, workers=workers)
+    assert re.fullmatch(r"interrupted; (\d) of 6 chunks saved in parts; --resume continues", str(stop.value)), str(
+        stop.value
+    )
+    saved = int(str(stop.value).split("; ")[1].split()[0])
+    assert saved == len(parts.saved) and all(rows == 1 for _, rows in parts.saved)
+    assert saved == 1 if workers == 1 else 1 <= saved <= workers
+    assert signal.getsignal(signal.SIGINT) is previous  # the handler is put back
+
+
+def _interrupted_serial_chunk(points):
+    os.kill(os.getpid(), signal.SIGINT)
+    time.sleep(5)  # a long computation: Ctrl-C must not wait for it
+    return _square(points)
+
+
+def test_ctrl_c_stops_a_serial_chunk_at_once():
+    """A chunk computed in this process is stopped at once: it is only computation,
+    and waiting for it could take minutes."""
+    chunks = _points(3)
+    start = time.monotonic()
+    with pytest.raises(Interrupted, match=r"^interrupted; 0 of 3 chunks saved"):
+        runner.run_chunks(_interrupted_serial_chunk, chunks, chunks, parts=_SavingParts())
+    assert time.monotonic() - start < 4

@@ -1,0 +1,72 @@
+"""Tests of flyopt.studies.parts: a resume checks each part on disk and computes a damaged one again.
+
+Temporary files a kill left in the parts folder are removed; a part that
+cannot be read, holds another chunk or lacks rows is said on stderr in one
+line and computed again, and the file equals an uninterrupted run's.
+"""
+
+import pandas as pd
+import pytest
+from test_runner import PUNCH, VARY
+
+from flyopt.outputs.results import read_results
+from flyopt.studies.sweep import sweep
+
+
+def test_resume_removes_temporary_files_a_kill_left_in_the_parts(tmp_path):
+    out = tmp_path / "study.parquet"
+    sweep(PUNCH, VARY, chunk_size=4, output=out, max_chunks=2)
+    parts = tmp_path / "study.parquet.parts"
+    (parts / "study.parquet.tmp-99999").write_bytes(b"PAR1 half a file")
+    (parts / "chunk-00002.parquet.tmp-99999").write_bytes(b"PAR1")
+    sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["study.parquet"]
+
+
+def truncate(path):
+    data = path.read_bytes()
+    path.write_bytes(data[: len(data) // 2])
+
+
+def other_chunk(path):
+    path.write_bytes(path.with_name("chunk-00000.parquet").read_bytes())
+
+
+def empty(path):
+    path.write_bytes(b"")
+
+
+@pytest.mark.parametrize(
+    "damage, words",
+    [
+        (truncate, "cannot be read"),
+        (empty, "cannot be read"),
+        (other_chunk, "holds other points than its chunk"),
+    ],
+)
+def test_resume_recomputes_a_damaged_part(tmp_path, capsys, damage, words):
+    """Regression (issue 11): a truncated part file crashed --resume (pyarrow's error).
+    Each part is read back and checked against its chunk; a damaged one is said in one
+    line on stderr and computed again, never used."""
+    out = tmp_path / "study.parquet"
+    whole = sweep(PUNCH, VARY, chunk_size=4)
+    sweep(PUNCH, VARY, chunk_size=4, output=out, max_chunks=3)
+    damage(tmp_path / "study.parquet.parts" / "chunk-00001.parquet")
+    capsys.readouterr()
+    done = sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "chunk-00001.parquet: " in err and words in err
+    assert "computing chunk 1 again" in err
+    assert done.attrs["sweep"]["chunks_reused"] == [0, 2]
+    assert done.attrs["sweep"]["chunks_run"] == [1, 3, 4]
+    pd.testing.assert_frame_equal(read_results(out), whole)
+
+
+def test_part_with_missing_rows_is_recomputed(tmp_path, capsys):
+    out = tmp_path / "study.parquet"
+    sweep(PUNCH, VARY, chunk_size=4, output=out, max_chunks=2)
+    part = tmp_path / "study.parquet.parts" / "chunk-00001.parquet"
+    read_results(part).iloc[:3].to_parquet(part, index=False)
+    sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)
+    assert "holds 3 rows, not the chunk's 4" in capsys.readouterr().err
+    pd.testing.assert_frame_equal(read_results(out), sweep(PUNCH, VARY, chunk_size=4))
