@@ -161,7 +161,7 @@ def objective_bound(combo, spec):
 
     Parameters
     ----------
-    combo : flyopt.design.designer._Combination
+    combo : flyopt.design.combination.Combination
     spec : DesignSpec
 
     Returns
@@ -288,7 +288,7 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
 
     Parameters
     ----------
-    combo : flyopt.design.designer._Combination
+    combo : flyopt.design.combination.Combination
         Material, shaft, speed on it (omega_max of the cycle) and inertia needed on it.
     spec : DesignSpec
     bore : float
