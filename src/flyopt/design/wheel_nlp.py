@@ -39,8 +39,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import casadi as ca
 
@@ -76,7 +77,7 @@ class WheelStructure(NamedTuple):
     objective: str  # "mass" | "outer_diameter"
 
 
-def variables_of(structure):
+def variables_of(structure: WheelStructure) -> tuple[str, ...]:
     """The dimensions IPOPT chooses for a structure, in order."""
     geo = structure.geometry
     if geo == Geometry.DISC:
@@ -111,7 +112,7 @@ def _dims(structure, values, bore):
     )
 
 
-def stressed_parts(structure):
+def stressed_parts(structure: WheelStructure) -> tuple[str, ...]:
     """The parts whose stress the NLP limits, in the order of the allowable-stress parameters."""
     geo = structure.geometry
     if geo == Geometry.DISC:
@@ -129,12 +130,13 @@ class WheelModel:
 
     structure: WheelStructure
     solver: ca.Function
-    variables: tuple
-    constraints: tuple  # names of the rows of g
-    stress_parts: tuple  # which part each allowable parameter belongs to
+    variables: tuple[str, ...]
+    constraints: tuple[str, ...]  # names of the rows of g
+    stress_parts: tuple[str, ...]  # which part each allowable parameter belongs to
     build_time: float
 
-    def describe(self):
+    def describe(self) -> dict[str, Any]:
+        """What the model is, for the report: geometry, objective, variables, constraint rows."""
         s = self.structure
         return {
             "geometry": s.geometry,
@@ -158,7 +160,7 @@ class WheelModel:
 WHEEL_SOLVER_OPTIONS = {"ipopt.max_iter": 1000}
 
 
-def get_model(structure, solver_options=None):
+def get_model(structure: WheelStructure, solver_options: Mapping | None = None) -> WheelModel:
     """The wheel NLP of a structure, built once per structure and solver options."""
     return cached_model(_CACHE, BUILDS, _build, structure, solver_options, WHEEL_SOLVER_OPTIONS)
 
@@ -167,14 +169,14 @@ class Formulation(NamedTuple):
     """A wheel NLP's symbols: its dimensions, mass, inertia, objective and constraint rows (named)."""
 
     dims: wheel.Dims
-    mass: object
-    inertia: object
-    objective: object
-    rows: tuple
-    row_names: tuple
+    mass: Any  # CasADi expressions
+    inertia: Any
+    objective: Any
+    rows: tuple[Any, ...]
+    row_names: tuple[str, ...]
 
 
-def formulate(structure, x, par, allow):
+def formulate(structure: WheelStructure, x: Any, par: Mapping[str, Any], allow: Any) -> Formulation:
     """The wheel NLP of a structure in CasADi symbols (:class:`Formulation`).
 
     Parameters
@@ -283,17 +285,17 @@ class WheelProblem:
     poisson: float
     torque: float
     bore: float
-    allowable: dict
+    allowable: dict[str, float]
     envelope: float
     max_width: float
     max_rim_speed: float
-    hb_ratio: tuple
+    hb_ratio: tuple[float, float]
     d_mean: float | None
     min_wall: float
-    d_hub_range: tuple = (0.0, math.inf)
-    l_hub_range: tuple = (0.0, math.inf)
-    start: dict | None = None
-    caps: dict | None = None  # variable name -> upper bound [m] (a section kept within a strength table)
+    d_hub_range: tuple[float, float] = (0.0, math.inf)
+    l_hub_range: tuple[float, float] = (0.0, math.inf)
+    start: dict[str, float] | None = None
+    caps: dict[str, float] | None = None  # variable name -> upper bound [m] (a section kept within a strength table)
 
 
 @dataclass(frozen=True)
@@ -347,7 +349,9 @@ def _start(structure, problem, names):
     return start
 
 
-def variable_bounds(structure, problem):
+def variable_bounds(
+    structure: WheelStructure, problem: WheelProblem
+) -> tuple[list[float], list[float], dict[str, float]]:
     """(lbx, ubx, capped) of a wheel NLP's variables (logarithms of metres) for a problem's limits.
 
     ``capped``: the caps of ``problem.caps`` tighter than every other upper bound (variable -> [m]).
@@ -380,7 +384,9 @@ def variable_bounds(structure, problem):
     return lbx, ubx, capped
 
 
-def row_bounds(structure, constraints, problem):
+def row_bounds(
+    structure: WheelStructure, constraints: Iterable[str], problem: WheelProblem
+) -> tuple[list[float], list[float]]:
     """(lbg, ubg) of a wheel NLP's rows (``constraints``: their names, as :func:`formulate` gives them)."""
     s, inf = structure, math.inf
     lbg, ubg = [], []
@@ -408,7 +414,7 @@ def row_bounds(structure, constraints, problem):
     return lbg, ubg
 
 
-def allowable_parameters(structure, allowable, scale):
+def allowable_parameters(structure: WheelStructure, allowable: Mapping[str, float], scale: float) -> list[float]:
     """The allowable parameters of a wheel NLP: sigma_a / S of each stressed part, squared if ductile
     (``allowable``: part -> sigma_a [Pa]; a part not given is not limited)."""
     out = []
@@ -418,7 +424,7 @@ def allowable_parameters(structure, allowable, scale):
     return out
 
 
-def solve(model, problem, label):
+def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution:
     """Solve one combination's wheel NLP, its status checked.
 
     Returns
@@ -437,12 +443,12 @@ def solve(model, problem, label):
     lbx, ubx, capped = variable_bounds(s, problem)
     crossed = [n for n, lo, hi in zip(names, lbx, ubx) if lo > hi]
     if crossed:  # a cap below a lower bound: no wheel, and IPOPT is not asked
-        err = SolverFailed(
+        failure = SolverFailed(
             f"{label}: the caps on {', '.join(crossed)} are below their lower bounds; no wheel meets both"
         )
-        err.status = "Infeasible_Problem_Detected"
-        err.combination = label
-        raise err
+        failure.status = "Infeasible_Problem_Detected"
+        failure.combination = label
+        raise failure
     start = problem.start or _start(s, problem, names)
     x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
     length = start["d_outer"] / 2.0
