@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, cast
 
@@ -279,7 +279,7 @@ def evaluate_motor(
     load_torque: float,
     spec: Any,
     ratios: tuple,
-    materials: list[Material],
+    materials: Sequence[Material],
     design_spec: DesignSpec,
     *,
     solver_options: Mapping[str, Any] | None = None,
