@@ -589,7 +589,7 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
         for p in parts
     )
     mass = float(wheel.wheel_mass(parts))
-    unbalance = balance.permissible_unbalance(mass, omega, strength.BALANCE_GRADE)
+    unbalance = balance.permissible_unbalance(mass, omega, balance.BALANCE_GRADE)
     out["unbalance_permissible"] = float(unbalance.u_per)
     out.update(stress=None, allowable_stress=None, strength_safety=None, burst_speed=None, speed_margin=None, key=None)
     if getattr(material, "poisson_ratio", None) is None:
