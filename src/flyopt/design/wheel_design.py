@@ -22,12 +22,22 @@ References
 from __future__ import annotations
 
 import math
-from typing import Any
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
 
 from flyopt.design import balance, check, geometry, hub, key, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Method, Objective
+
+if TYPE_CHECKING:  # annotations only: CasADi is imported where IPOPT is used
+    from flyopt.design.combination import Combination
+    from flyopt.design.inputs import DesignInputs
+    from flyopt.design.materials import Material
+    from flyopt.design.spec import DesignSpec, MountShaft
+    from flyopt.design.strength import StrengthCheck
+    from flyopt.design.wheel import Dims
+    from flyopt.design.wheel_nlp import WheelProblem, WheelSolution, WheelStructure
 
 __all__ = [
     "needs_torque",
@@ -48,20 +58,20 @@ _MAX_ROUNDS = 8
 class NoWheel(Exception):
     """The combination cannot be built: ``reason`` says why, in numbers."""
 
-    def __init__(self, reason, j_max=math.nan):
+    def __init__(self, reason: str, j_max: float = math.nan) -> None:
         super().__init__(reason)
         self.reason = reason
         self.j_max = j_max
 
 
-def bore_of(spec, shaft):
+def bore_of(spec: DesignSpec, shaft: MountShaft) -> float:
     """The bore of a wheel on a shaft [m]: the design's, else the shaft's seat, else 0 (none)."""
     if spec.bore is not None:
         return spec.bore
     return shaft.diameter or 0.0
 
 
-def needs_torque(inputs):
+def needs_torque(inputs: DesignInputs) -> bool:
     """Whether a design problem (:class:`flyopt.design.inputs.DesignInputs`) has arms or a keyed hub,
     which the flywheel's peak torque loads (the textbook bare rim has neither)."""
     return inputs.spec.geometry == Geometry.RIM_ARMS or any(bore_of(inputs.spec, s) for s in inputs.shafts)
@@ -111,7 +121,7 @@ def _strongest_allowable(material, spec):
         return None
 
 
-def stress_cap(combo, spec, bore):
+def stress_cap(combo: Combination, spec: DesignSpec, bore: float) -> float:
     """The largest outer diameter the stress allows a bare rim or disc [m] (inf where no closed form says).
 
     A free annulus a < b at speed omega has its largest stress at the bore,
@@ -146,7 +156,7 @@ def _upper_bound(combo, spec, bore=0.0):
     return math.pi * combo.material.density * width * cap**4 / 32.0, cap, width
 
 
-def objective_bound(combo, spec):
+def objective_bound(combo: Combination, spec: DesignSpec) -> tuple[float, str]:
     """A lower bound on the objective of every wheel of a combination, and how it is found.
 
     No mass sits farther out than half the largest outer diameter the
@@ -186,12 +196,14 @@ def objective_bound(combo, spec):
         f"every wheel that gives {j:.4g} kg·m² within D {cap:.4g} m weighs at least "
         f"{mass:.4g} kg (m >= 4 J/D²: all of it at the outer radius)"
     )
-    if spec.objective == Objective.COST:  # design_flywheel refuses the cost objective without a price
-        return mass * combo.material.cost, why + f", which costs at least {mass * combo.material.cost:.4g}"
+    if spec.objective == Objective.COST:
+        price = combo.material.cost
+        assert price is not None  # design_flywheel refuses the cost objective without a price
+        return mass * price, why + f", which costs at least {mass * price:.4g}"
     return mass, why
 
 
-def missing_poisson(material, spec):
+def missing_poisson(material: Material, spec: DesignSpec) -> str | None:
     """Why a material can make no wheel under a spec on any shaft for want of a Poisson's ratio, or None."""
     if (spec.criterion == Criterion.STRESS or spec.geometry in (Geometry.RIM_WEB, Geometry.RIM_ARMS)) and getattr(
         material, "poisson_ratio", None
@@ -200,7 +212,7 @@ def missing_poisson(material, spec):
     return None
 
 
-def screen(combo, spec, bore):
+def screen(combo: Combination, spec: DesignSpec, bore: float) -> None:
     """Raise :class:`NoWheel` where a combination is shown unable to make a wheel without solving:
     its inertia above that of a solid disc filling the envelope, arms with no hub, or a stress
     that needs a Poisson's ratio the material does not give."""
@@ -229,7 +241,16 @@ def screen(combo, spec, bore):
         raise NoWheel(f"{combo.label}: {missing}")
 
 
-def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):
+def wheel_problem(
+    material: Material,
+    spec: DesignSpec,
+    bore: float,
+    torque: float,
+    n_arms: int,
+    j_shaft: float,
+    omega: float,
+    v_max: float,
+) -> tuple[WheelStructure, WheelProblem]:
     """(WheelStructure, WheelProblem) of a whole wheel of a material on a shaft, its allowables not yet set.
 
     The one place where a design's limits become a wheel NLP's structure and
@@ -274,7 +295,7 @@ def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):
     return structure, problem
 
 
-def strongest_allowables(material, spec, structure):
+def strongest_allowables(material: Material, spec: DesignSpec, structure: WheelStructure) -> dict[str, float]:
     """Each stressed part of a structure to the largest allowable stress any section of the material has [Pa]
     (empty under the rim-speed criterion, or when the material gives none): no wheel's allowable is higher."""
     from flyopt.design import wheel_nlp
@@ -283,7 +304,15 @@ def strongest_allowables(material, spec, structure):
     return {} if sigma is None else {part: sigma for part in wheel_nlp.stressed_parts(structure)}
 
 
-def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None, method="auto"):
+def design_combination(
+    combo: Combination,
+    spec: DesignSpec,
+    bore: float,
+    torque: float,
+    n_arms: int = 0,
+    solver_options: Mapping[str, Any] | None = None,
+    method: str = "auto",
+) -> tuple[Dims, WheelSolution, StrengthCheck | None]:
     """Design one combination as a whole wheel.
 
     Parameters
@@ -561,7 +590,16 @@ def _with(problem, **changes):
     return dataclasses.replace(problem, **changes)
 
 
-def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, checked=None):
+def structure_fields(
+    material: Material,
+    geometry_name: str,
+    dims: Dims,
+    omega: float,
+    torque: float,
+    spec: DesignSpec,
+    bore: float,
+    checked: StrengthCheck | None = None,
+) -> dict[str, Any]:
     """The structural fields of a design (any geometry, any criterion).
 
     Returns
@@ -656,7 +694,7 @@ _LIMITS = {
 }
 
 
-def sensitivities(solution, mass, problem_limits):
+def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str, Any]) -> tuple[dict[str, Any], ...]:
     """The multipliers of the binding limits in engineering units: d(mass)/d(limit).
 
     Parameters
