@@ -306,7 +306,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
         "allowable": {p.part: p.allowable for p in checked.parts} if checked else {},
         "allow_power": 2 if getattr(m, "ductile", False) else 1,
         "allow_param": solution.allow_params,
-        "min_wall": wheel_design._min_wall(spec, m),
+        "min_wall": wheel_design.min_wall_of(spec, m),
     }
     sensitivities = (
         wheel_design.sensitivities(solution, mass, limits) if spec.objective != Objective.OUTER_DIAMETER else ()

@@ -42,6 +42,7 @@ if TYPE_CHECKING:  # annotations only: CasADi is imported where IPOPT is used
 __all__ = [
     "needs_torque",
     "bore_of",
+    "min_wall_of",
     "objective_bound",
     "stress_cap",
     "screen",
@@ -84,7 +85,8 @@ def needs_torque(inputs: DesignInputs) -> bool:
 DEFAULT_MIN_WALL = 1e-3
 
 
-def _min_wall(spec, material):
+def min_wall_of(spec: DesignSpec, material: Material) -> float:
+    """The thinnest wall a wheel may have [m]: the spec's, else the material's, else the default of a whole wheel."""
     if spec.min_wall is not None:
         return spec.min_wall
     own = getattr(material, "min_wall", None)
@@ -288,7 +290,7 @@ def wheel_problem(
         max_rim_speed=v_max,
         hb_ratio=spec.hb_ratio,
         d_mean=spec.d_mean,
-        min_wall=_min_wall(spec, material),
+        min_wall=min_wall_of(spec, material),
         d_hub_range=d_hub_range,
         l_hub_range=l_hub_range,
     )
@@ -357,8 +359,8 @@ def design_combination(
     model = wheel_nlp.get_model(structure, solver_options)
     parts = model.stress_parts
     # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
-    start = wheel_nlp._start(structure, problem, model.variables)
-    start_dims = wheel_nlp._dims(structure, start, bore)
+    start = wheel_nlp.starting_wheel(structure, problem, model.variables)
+    start_dims = wheel_nlp.dims_of(structure, start, bore)
     targets = {}
     if stressed:
         try:
@@ -561,7 +563,7 @@ def _disc_closed_form(combo, spec, bore, material):
     by_stress = b_stress <= half_envelope
     b = b_stress if by_stress else half_envelope
     width = 2.0 * j / (math.pi * rho * (b**4 - a**4))
-    if width > spec.max_width or width < _min_wall(spec, material) or b - a < _min_wall(spec, material):
+    if width > spec.max_width or width < min_wall_of(spec, material) or b - a < min_wall_of(spec, material):
         return None
     mass = 2.0 * j / (a * a + b * b)
     dims = wheel.Dims(d_outer=2.0 * b, h=b - a, b=width, bore=bore)

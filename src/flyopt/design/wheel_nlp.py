@@ -50,7 +50,18 @@ from flyopt.design.nlp import CONVERGED, cached_model
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Objective
 
-__all__ = ["WheelStructure", "WheelProblem", "WheelSolution", "SAMPLES", "get_model", "solve", "BUILDS", "variables_of"]
+__all__ = [
+    "WheelStructure",
+    "WheelProblem",
+    "WheelSolution",
+    "SAMPLES",
+    "get_model",
+    "solve",
+    "BUILDS",
+    "variables_of",
+    "dims_of",
+    "starting_wheel",
+]
 
 #: Radii per disc part where the NLP writes the stress rows, as fractions of its radial extent.
 SAMPLES = (0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0)
@@ -92,8 +103,8 @@ def variables_of(structure: WheelStructure) -> tuple[str, ...]:
     return tuple(names)
 
 
-def _dims(structure, values, bore):
-    """A wheel's Dims from its variables (floats or symbols)."""
+def dims_of(structure: WheelStructure, values: Mapping[str, Any], bore: float) -> wheel.Dims:
+    """A wheel's Dims from its variables (floats or symbols) by name [m]."""
     v = dict(values)
     geo = structure.geometry
     if geo == Geometry.DISC:
@@ -195,7 +206,7 @@ def formulate(structure: WheelStructure, x: Any, par: Mapping[str, Any], allow: 
     """
     names = variables_of(structure)
     stress_parts = stressed_parts(structure)
-    dims = _dims(structure, {n: ca.exp(x[k]) for k, n in enumerate(names)}, par["bore"])
+    dims = dims_of(structure, {n: ca.exp(x[k]) for k, n in enumerate(names)}, par["bore"])
     density = par["density"]
     parts = wheel.parts(structure.geometry, dims, density)
     mass = wheel.wheel_mass(parts)
@@ -316,8 +327,9 @@ class WheelSolution:
     caps: dict | None = None  # the caps that set a variable's upper bound (variable -> [m]), or None
 
 
-def _start(structure, problem, names):
-    """A starting wheel: the thin rim that gives J' at a diameter within every limit."""
+def starting_wheel(structure: WheelStructure, problem: WheelProblem, names: Iterable[str]) -> dict[str, float]:
+    """A starting wheel for IPOPT: the thin rim that gives J' at a diameter within every limit
+    (variable name -> [m]; ``names``: the NLP's variables)."""
     rho, j = problem.density, problem.j_shaft
     cap = min(
         problem.envelope,
@@ -449,7 +461,7 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         failure.status = "Infeasible_Problem_Detected"
         failure.combination = label
         raise failure
-    start = problem.start or _start(s, problem, names)
+    start = problem.start or starting_wheel(s, problem, names)
     x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
     length = start["d_outer"] / 2.0
     scale = problem.density * problem.omega**2 * length**2
@@ -483,7 +495,7 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         failure.combination = label
         raise failure
     xs = [float(v) for v in sol["x"].full().ravel()]
-    dims = _dims(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
+    dims = dims_of(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
     lam_g: dict = {}
     for name, lam in zip(model.constraints, sol["lam_g"].full().ravel()):
         lam_g[name] = lam_g.get(name, 0.0) + float(lam)
