@@ -266,7 +266,7 @@ class Material:
     bearing_pressure: float | None = None
     hub_rule: str | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         name = self.name
         if not isinstance(name, str) or not name.strip():
             raise ValueError(f"material name must be a non-empty string, got {shorten(name)}")

@@ -65,7 +65,7 @@ class MountShaft:
     speed_ratio: float
     diameter: float | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():
             raise ValueError(f"shaft name must be a non-empty string, got {self.name!r}")
         object.__setattr__(self, "speed_ratio", _positive(self.speed_ratio, f"shaft {self.name!r}: speed_ratio", "[-]"))
@@ -167,7 +167,7 @@ class DesignSpec:
             "prune": self.prune,
         }
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         choice(self.geometry, geometry.GEOMETRIES, "geometry")
         choice(self.objective, OBJECTIVES, "objective")
         try:
