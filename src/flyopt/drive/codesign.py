@@ -877,6 +877,7 @@ def verify_drive(scene: Any, run: MotorRun, j_flywheel: float | None = None) -> 
         j_flywheel,
         machine.knots(),
     )
+    assert checked.solution is not None  # verify keeps the periodic solution it simulated
     rms, _ = rms_torque(checked.solution, run.motor.motor(), ratio)
     startup = startup_run(machine, checked.omega_mean, j_flywheel)
     assert startup is not None  # a drive's machine is driven by its motor
