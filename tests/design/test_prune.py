@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from flyopt.design import DesignSpec, MountShaft, design_flywheel, wheel_design
-from flyopt.design.designer import _Combination
+from flyopt.design.combination import Combination
 from flyopt.design.materials import make_material
 from flyopt.design.rank import TIE_RTOL
 from flyopt.errors import SolverFailed
@@ -97,7 +97,7 @@ def compare(seed):
         assert pruned.best.mass == full.best.mass and pruned.best.d_outer == full.best.d_outer
     # the bound holds on every design, whichever run made it
     for c in full.candidates:
-        combo = _Combination(
+        combo = Combination(
             material=next(m for m in materials if m.name == c.material),
             shaft=next(s for s in shafts if s.name == c.shaft),
             omega=omega * c.speed_ratio,
@@ -145,7 +145,7 @@ def test_objective_bound_is_the_thin_ring_and_the_solid_cylinder():
     """The bound's three forms against their geometry: a thin ring at the cap gives exactly J with
     the bounding mass, and a solid cylinder of the width limit at the bounding diameter gives J."""
     material = make_material("steel", 7800.0, max_rim_speed=50.0, cost=3.0)
-    combo = _Combination(
+    combo = Combination(
         material=material,
         shaft=MountShaft("s", 2.0),
         omega=100.0,
@@ -184,7 +184,7 @@ def test_stress_cap_against_the_published_disc_figures():
     shaft = MountShaft("s", 1.0)
 
     def cap(allowable, geometry, bore):
-        combo = _Combination(
+        combo = Combination(
             material=_steel(allowable),
             shaft=shaft,
             omega=omega,
@@ -202,7 +202,7 @@ def test_stress_cap_against_the_published_disc_figures():
     assert cap(without_a2, "disc", 0.1) == pytest.approx(1.0, rel=1e-14)
     assert cap(without_a2, "rim", 0.0) == pytest.approx(1.0, rel=1e-14)  # a rim is an annulus
     assert cap(without_a2, "rim_web", 0.1) == math.inf  # no closed form: no cap
-    combo = _Combination(
+    combo = Combination(
         material=_steel(without_a2),
         shaft=shaft,
         omega=omega,
@@ -221,7 +221,7 @@ def test_a_rim_the_stress_bound_refuses_ipopt_finds_infeasible():
 
     material, omega, width = _steel(60e6), 300.0, 0.1
     spec = DesignSpec(geometry="rim", criterion="stress", hb_ratio=(0.5, 2.0), max_width=width)
-    combo = _Combination(
+    combo = Combination(
         material=material,
         shaft=MountShaft("s", 1.0),
         omega=omega,

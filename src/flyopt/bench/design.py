@@ -59,6 +59,8 @@ def ipopt_combinations(
         if not c.feasible:
             out.append(Outcome("infeasible", reason=c.reason))
         else:
+            # a feasible candidate has its dimensions
+            assert c.d_mean is not None and c.h is not None and c.b is not None
             out.append(checked_design(combo, c.d_mean, c.h, c.b, f"IPOPT {c.solver_status}, {c.iterations} it"))
     return out
 

@@ -18,7 +18,10 @@ from typing import NamedTuple
 
 from flyopt.validate import positive
 
-__all__ = ["PermissibleUnbalance", "permissible_unbalance"]
+__all__ = ["BALANCE_GRADE", "PermissibleUnbalance", "permissible_unbalance"]
+
+#: ISO 21940-11 balance quality grade of a flywheel [mm/s] (crankshaft drives and flywheels: G6.3).
+BALANCE_GRADE = 6.3
 
 
 class PermissibleUnbalance(NamedTuple):
@@ -30,7 +33,7 @@ class PermissibleUnbalance(NamedTuple):
     """Permissible residual unbalance, e_per m [kg*m]."""
 
 
-def permissible_unbalance(mass: float, omega_max: float, grade: float = 6.3) -> PermissibleUnbalance:
+def permissible_unbalance(mass: float, omega_max: float, grade: float = BALANCE_GRADE) -> PermissibleUnbalance:
     """Permissible residual unbalance of a rigid rotor for a balance quality grade.
 
     Parameters
@@ -41,7 +44,7 @@ def permissible_unbalance(mass: float, omega_max: float, grade: float = 6.3) -> 
         Maximum service angular speed, Omega [rad/s]; for a flywheel the
         highest speed of its shaft over the cycle.
     grade : float
-        Balance quality grade G [mm/s]; default G 6.3, the grade whose
+        Balance quality grade G [mm/s]; default :data:`BALANCE_GRADE`, G 6.3, the grade whose
         examples in ISO 1940's table include flywheels (as reproduced by
         balancemaster.com, "ISO balancing grades").
 

@@ -17,9 +17,15 @@ References
 
 from __future__ import annotations
 
+from typing import SupportsInt
+
 import numpy as np
+from numpy.typing import NDArray
 
 from flyopt.names import Geometry
+
+#: One design (a float) or many (an array), by the same operators.
+FloatOrArray = float | NDArray[np.float64]
 
 __all__ = ["BINDING_NAMES", "BINDING_BITS", "ACTIVE_RTOL", "VERIFY_RTOL", "binding_mask", "binding_names", "violations"]
 
@@ -67,8 +73,19 @@ VERIFY_RTOL = 1e-6
 
 
 def binding_mask(
-    geometry_name, j_wheel, j_shaft, d_outer, d_inner, b, hb, cap_speed, envelope, max_width, hb_min, hb_max
-):
+    geometry_name: str,
+    j_wheel: FloatOrArray,
+    j_shaft: FloatOrArray,
+    d_outer: FloatOrArray,
+    d_inner: FloatOrArray,
+    b: FloatOrArray,
+    hb: FloatOrArray,
+    cap_speed: FloatOrArray,
+    envelope: FloatOrArray,
+    max_width: FloatOrArray,
+    hb_min: FloatOrArray,
+    hb_max: FloatOrArray,
+) -> int | NDArray[np.int64]:
     """Bit mask of the active constraints of designed wheels (see :func:`binding_names`).
 
     Parameters
@@ -111,10 +128,10 @@ def binding_mask(
     return mask
 
 
-_NAMES_OF_MASK: dict = {}
+_NAMES_OF_MASK: dict[int, tuple[str, ...]] = {}
 
 
-def binding_names(mask):
+def binding_names(mask: SupportsInt) -> tuple[str, ...]:
     """The constraint names of a binding bit mask, in :data:`BINDING_NAMES` order.
 
     Returns
@@ -129,7 +146,19 @@ def binding_names(mask):
     return names
 
 
-def violations(geometry_name, j_wheel, j_shaft, d_outer, d_inner, b, hb, cap, max_width, hb_min, hb_max):
+def violations(
+    geometry_name: str,
+    j_wheel: float,
+    j_shaft: float,
+    d_outer: float,
+    d_inner: float,
+    b: float,
+    hb: float,
+    cap: float,
+    max_width: float,
+    hb_min: float,
+    hb_max: float,
+) -> list[str]:
     """The constraints one design violates by more than :data:`VERIFY_RTOL`, in words.
 
     Parameters are those of :func:`binding_mask` for one design (plain floats),

@@ -75,11 +75,17 @@ References
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from flyopt.design import check, geometry
 from flyopt.names import Geometry
+
+Rim = tuple[float, float, float]
+"""A wheel's (d_mean, h, b) [m] (a disc: d_mean = h = D/2)."""
 
 __all__ = [
     "METHOD",
@@ -105,7 +111,7 @@ _NEWTON_MAX_ITER = 200
 _NEWTON_RTOL = 16 * np.finfo(float).eps
 
 
-def covers(geometry_name, objective, pinned=False):
+def covers(geometry_name: str, objective: str, pinned: bool = False) -> bool:
     """Whether the closed form is exact for a structure.
 
     Parameters
@@ -128,7 +134,14 @@ def _array(x):
     return np.asarray(x, dtype=float)
 
 
-def max_inertia_one(geometry_name, density, d_outer_max, hb_ratio=(1.5, 2.0), max_width=math.inf, d_mean=None):
+def max_inertia_one(
+    geometry_name: str,
+    density: float,
+    d_outer_max: float,
+    hb_ratio: tuple[float, float] = (1.5, 2.0),
+    max_width: float = math.inf,
+    d_mean: float | None = None,
+) -> tuple[float, Rim | None]:
     """Largest inertia any admissible wheel gives, in closed form (one combination, plain floats).
 
     The scalar twin of :func:`max_inertia`, written with the same operations
@@ -195,7 +208,7 @@ def max_inertia_one(geometry_name, density, d_outer_max, hb_ratio=(1.5, 2.0), ma
     if geometry_name == Geometry.THIN_RIM:
         h_break = min(hb_min * b_max, h_top)
         trials += [h_break, min(0.4 * cap, h_break), min(max(0.25 * cap, h_break), h_top)]
-    best: tuple[float, tuple[float, float, float] | None] = (0.0, None)
+    best: tuple[float, Rim | None] = (0.0, None)
     for h in trials:
         if h <= 0.0:
             continue
@@ -205,7 +218,15 @@ def max_inertia_one(geometry_name, density, d_outer_max, hb_ratio=(1.5, 2.0), ma
     return best
 
 
-def cap_needed(geometry_name, density, j_needed, cap, hb_ratio, max_width, d_mean):
+def cap_needed(
+    geometry_name: str,
+    density: float,
+    j_needed: float,
+    cap: float,
+    hb_ratio: tuple[float, float],
+    max_width: float,
+    d_mean: float | None,
+) -> tuple[float | None, float]:
     """Smallest outer-diameter cap at which ``j_needed`` becomes reachable.
 
     Returns (cap_needed, j_sup): cap_needed is None when even an unlimited cap
@@ -247,7 +268,7 @@ def cap_needed(geometry_name, density, j_needed, cap, hb_ratio, max_width, d_mea
     return smallest_reaching(j_max, j_needed, low, high), math.inf
 
 
-def smallest_reaching(j_max, j_needed, low, high):
+def smallest_reaching(j_max: Callable[[float], float], j_needed: float, low: float, high: float) -> float:
     """The smallest float ``c`` in (low, high] with ``j_max(c) >= j_needed``, by bisection.
 
     Bisection down to two adjacent floats: about 60 calls of a function of
@@ -281,7 +302,15 @@ def smallest_reaching(j_max, j_needed, low, high):
             low = mid
 
 
-def max_inertia(geometry_name, density, d_outer_max, hb_min, hb_max, max_width=np.inf, d_mean=np.nan):
+def max_inertia(
+    geometry_name: str,
+    density: ArrayLike,
+    d_outer_max: ArrayLike,
+    hb_min: ArrayLike,
+    hb_max: ArrayLike,
+    max_width: ArrayLike = np.inf,
+    d_mean: ArrayLike = np.nan,
+) -> NDArray[np.float64]:
     """Largest inertia any admissible wheel gives, for arrays of combinations.
 
     The vectorized :func:`max_inertia_one`, written with the
@@ -457,7 +486,16 @@ def _rim_free_root_one(thin, j, rho, cap, a, c, b_max):
     raise ArithmeticError("closed-form rim root did not converge")  # pragma: no cover
 
 
-def lightest_one(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_width=math.inf, d_mean=None):
+def lightest_one(
+    geometry_name: str,
+    j_shaft: float,
+    density: float,
+    d_outer_max: float,
+    hb_min: float,
+    hb_max: float,
+    max_width: float = math.inf,
+    d_mean: float | None = None,
+) -> Rim:
     """Lightest admissible wheel of one feasible combination, exactly (plain floats).
 
     The scalar twin of :func:`lightest` for a ranking of a few combinations,
@@ -519,14 +557,23 @@ class Designs(dict):
     :func:`flyopt.design.check.binding_names`).
     """
 
-    def __getattr__(self, name):
+    def __getattr__(self, name: str) -> Any:
         try:
             return self[name]
         except KeyError:
             raise AttributeError(name) from None
 
 
-def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_width=np.inf, d_mean=np.nan):
+def lightest(
+    geometry_name: str,
+    j_shaft: ArrayLike,
+    density: ArrayLike,
+    d_outer_max: ArrayLike,
+    hb_min: ArrayLike,
+    hb_max: ArrayLike,
+    max_width: ArrayLike = np.inf,
+    d_mean: ArrayLike = np.nan,
+) -> Designs:
     """Lightest admissible wheel of each combination, exactly, or its infeasibility.
 
     Parameters
@@ -614,18 +661,18 @@ def lightest(geometry_name, j_shaft, density, d_outer_max, hb_min, hb_max, max_w
 
 
 def design_combinations(
-    geometry_name,
-    j_required,
-    omega_ref,
-    speed_ratio,
-    density,
-    max_rim_speed,
-    hb_min,
-    hb_max,
-    max_outer_diameter=np.inf,
-    max_width=np.inf,
-    d_mean=np.nan,
-):
+    geometry_name: str,
+    j_required: ArrayLike,
+    omega_ref: ArrayLike,
+    speed_ratio: ArrayLike,
+    density: ArrayLike,
+    max_rim_speed: ArrayLike,
+    hb_min: ArrayLike,
+    hb_max: ArrayLike,
+    max_outer_diameter: ArrayLike = np.inf,
+    max_width: ArrayLike = np.inf,
+    d_mean: ArrayLike = np.nan,
+) -> Designs:
     """Design many material × shaft combinations at once (mass objective).
 
     The array counterpart of what :func:`flyopt.design.designer.design_flywheel`

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 from typing import Any, cast
 
 from flyopt.design import check, closed_form, geometry, rank, wheel, wheel_design
+from flyopt.design.combination import Combination, shaft_label
 from flyopt.design.materials import Material
 from flyopt.design.result import Candidate, DesignResult
 from flyopt.design.spec import DesignSpec, MountShaft
@@ -43,31 +44,6 @@ __all__ = ["design_flywheel", "rim_speed_limit", "METHODS"]
 
 #: How a feasible combination is optimized (see :func:`design_flywheel`).
 METHODS = ("auto", "ipopt", "closed_form")
-
-
-@dataclass
-class _Combination:
-    material: Material
-    shaft: MountShaft
-    omega: float  # speed of the carrying shaft [rad/s]
-    j_shaft: float  # required inertia on that shaft [kg*m^2]
-    j_reference: float
-    cap_speed: float  # outer-diameter cap of the rim speed [m]
-    cap: float  # min(cap_speed, envelope) [m]
-    j_max: float = 0.0
-    bore: float = 0.0  # the shaft seat [m], 0: none
-    torque: float = 0.0  # peak torque on this shaft [N*m], 0: unknown
-    n_arms: int = 0  # a rim_arms wheel's arm count
-    v_max: float = math.nan  # the material's safe rim speed [m/s] (nan: none, under the stress criterion)
-
-    @property
-    def label(self) -> str:
-        arms = f" with {self.n_arms} arms" if self.n_arms else ""
-        return f"{self.material.name.replace('_', ' ')} on the {_shaft_label(self.shaft.name)}{arms}"
-
-
-def _shaft_label(name):
-    return name if name.lower().endswith("shaft") else f"{name} shaft"
 
 
 def _g(x):
@@ -269,7 +245,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     """One combination (and arm count) as a whole wheel: its Candidate, designed or not, and the model."""
     from flyopt.design import wheel_nlp
 
-    combo_n = _Combination(**{**combo.__dict__, "n_arms": n_arms})
+    combo_n = Combination(**{**combo.__dict__, "n_arms": n_arms})
     label = combo_n.label
     m = combo.material
     common = dict(
@@ -330,7 +306,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
         "allowable": {p.part: p.allowable for p in checked.parts} if checked else {},
         "allow_power": 2 if getattr(m, "ductile", False) else 1,
         "allow_param": solution.allow_params,
-        "min_wall": wheel_design._min_wall(spec, m),
+        "min_wall": wheel_design.min_wall_of(spec, m),
     }
     sensitivities = (
         wheel_design.sensitivities(solution, mass, limits) if spec.objective != Objective.OUTER_DIAMETER else ()
@@ -394,7 +370,7 @@ def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pr
     model = None
     for bound, order, n_arms, combo, why in tasks:
         try:  # a combination shown unable to make any wheel is infeasible, not pruned
-            wheel_design.screen(_Combination(**{**combo.__dict__, "n_arms": n_arms}), spec, combo.bore)
+            wheel_design.screen(Combination(**{**combo.__dict__, "n_arms": n_arms}), spec, combo.bore)
         except wheel_design.NoWheel:
             pass  # _design_whole reports it, without solving
         else:
@@ -426,8 +402,8 @@ _OBJECTIVE_UNIT = {"mass": " kg", "outer_diameter": " m", "cost": ""}
 def _pruned(combo, spec, n_arms, bound, why, feasible):
     """The Candidate of a combination left undesigned because its bound shows it cannot win."""
     best = _best_of(feasible)
-    label = _Combination(**{**combo.__dict__, "n_arms": n_arms}).label
-    winner = f"{best.material} on the {_shaft_label(best.shaft)}" + (f" with {best.n_arms} arms" if best.n_arms else "")
+    label = Combination(**{**combo.__dict__, "n_arms": n_arms}).label
+    winner = f"{best.material} on the {shaft_label(best.shaft)}" + (f" with {best.n_arms} arms" if best.n_arms else "")
     return Candidate(
         material=combo.material.name,
         shaft=combo.shaft.name,
@@ -683,7 +659,7 @@ def _combinations(
     textbook: Sequence[bool],
     materials: Sequence[Material],
     spec: DesignSpec,
-) -> Iterator[tuple[int, _Combination, bool]]:
+) -> Iterator[tuple[int, Combination, bool]]:
     """Every material x shaft combination in input order: (order, combination, textbook design?).
 
     Each carries its shaft's speed, the inertia required on that shaft (J_F / r^2), the material's safe
@@ -701,7 +677,7 @@ def _combinations(
                 if spec.criterion == Criterion.RIM_SPEED
                 else math.inf
             )
-            combo = _Combination(
+            combo = Combination(
                 material=material,
                 shaft=shaft,
                 omega=shaft_omega,
@@ -723,13 +699,13 @@ class _Decided:
 
     feasible: list[tuple[int, Candidate]] = field(default_factory=list)
     infeasible: list[tuple[tuple[int, int], Candidate]] = field(default_factory=list)  # key: (order, arm index)
-    pending: list[tuple[int, _Combination]] = field(default_factory=list)  # feasible, for the closed form
-    whole: list[tuple[int, _Combination]] = field(default_factory=list)  # whole wheels, designed last
+    pending: list[tuple[int, Combination]] = field(default_factory=list)  # feasible, for the closed form
+    whole: list[tuple[int, Combination]] = field(default_factory=list)  # whole wheels, designed last
     pruned: list[Candidate] = field(default_factory=list)
 
 
 def _decide_textbook(
-    order: int, combo: _Combination, spec: DesignSpec, closed: bool, model: Any, decided: _Decided
+    order: int, combo: Combination, spec: DesignSpec, closed: bool, model: Any, decided: _Decided
 ) -> None:
     """Decide one textbook combination: prove it infeasible, or design it (IPOPT now, the closed form later).
 
@@ -841,7 +817,7 @@ def _result(
     else:
         status = "designed"
         message = (
-            f"{best.material} on the {_shaft_label(best.shaft)}: {spec.geometry} "
+            f"{best.material} on the {shaft_label(best.shaft)}: {spec.geometry} "
             f"D_outer {_g(best.d_outer)} m, B {_g(best.b)} m, mass "
             f"{_g(best.mass)} kg ({len(decided.feasible)} of {len(ranked)} combinations "
             f"feasible"

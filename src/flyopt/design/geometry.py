@@ -28,9 +28,15 @@ References
 .. [1] flyopt domain notes, docs/flywheel-design.md, sections 9 and 10.
 """
 
+from __future__ import annotations
+
 import math
+from typing import Any
 
 from flyopt.names import Geometry
+
+# The functions here take floats, numpy arrays and CasADi symbols alike (one formula for
+# the closed forms, the checks and the NLPs): their arguments and results are typed Any.
 
 __all__ = [
     "GEOMETRIES",
@@ -65,7 +71,7 @@ WHEELS: dict[str, str] = {
 GEOMETRIES = {**BARE, **WHEELS}
 
 
-def rim_mass(d_mean, h, b, density):
+def rim_mass(d_mean: Any, h: Any, b: Any, density: Any) -> Any:
     """Mass of a rim (annulus).
 
     Parameters
@@ -91,7 +97,7 @@ def rim_mass(d_mean, h, b, density):
     return math.pi * d_mean * h * b * density
 
 
-def rim_inertia(mass, d_mean, h):
+def rim_inertia(mass: Any, d_mean: Any, h: Any) -> Any:
     """Moment of inertia of a rim, exact annulus.
 
     Parameters
@@ -115,7 +121,7 @@ def rim_inertia(mass, d_mean, h):
     return mass * (d_mean * d_mean + h * h) / 4.0
 
 
-def thin_rim_inertia(mass, d_mean):
+def thin_rim_inertia(mass: Any, d_mean: Any) -> Any:
     """Moment of inertia of a rim in the thin-rim approximation.
 
     Parameters
@@ -138,7 +144,7 @@ def thin_rim_inertia(mass, d_mean):
     return mass * d_mean * d_mean / 4.0
 
 
-def disc_mass(d, b, density):
+def disc_mass(d: Any, b: Any, density: Any) -> Any:
     """Mass of a solid disc.
 
     Parameters
@@ -158,7 +164,7 @@ def disc_mass(d, b, density):
     return math.pi * d * d * b * density / 4.0
 
 
-def disc_inertia(mass, d):
+def disc_inertia(mass: Any, d: Any) -> Any:
     """Moment of inertia of a solid disc.
 
     Parameters
@@ -176,17 +182,17 @@ def disc_inertia(mass, d):
     return mass * d * d / 8.0
 
 
-def outer_diameter(d_mean, h):
+def outer_diameter(d_mean: Any, h: Any) -> Any:
     """Outer diameter of a rim, D_1 = D_m + H [m]."""
     return d_mean + h
 
 
-def inner_diameter(d_mean, h):
+def inner_diameter(d_mean: Any, h: Any) -> Any:
     """Inner diameter of a rim, D_2 = D_m - H [m] (a rim needs D_2 > 0)."""
     return d_mean - h
 
 
-def rim_speed(omega, d_outer):
+def rim_speed(omega: Any, d_outer: Any) -> Any:
     """Peripheral speed at the outer diameter.
 
     Parameters
@@ -204,7 +210,7 @@ def rim_speed(omega, d_outer):
     return omega * d_outer / 2.0
 
 
-def outer_diameter_for_rim_speed(max_rim_speed, omega):
+def outer_diameter_for_rim_speed(max_rim_speed: Any, omega: Any) -> Any:
     """Largest outer diameter a rim speed limit allows, D_1 = 2 v_max / omega [m].
 
     Parameters
@@ -217,7 +223,7 @@ def outer_diameter_for_rim_speed(max_rim_speed, omega):
     return 2.0 * max_rim_speed / omega
 
 
-def hoop_stress(density, rim_speed):
+def hoop_stress(density: Any, rim_speed: Any) -> Any:
     """Hoop stress of a thin rotating ring, sigma = rho v^2 [Pa].
 
     Parameters
@@ -234,7 +240,7 @@ def hoop_stress(density, rim_speed):
     return density * rim_speed * rim_speed
 
 
-def wheel_inertia(geometry_name, density, d_mean, h, b):
+def wheel_inertia(geometry_name: str, density: Any, d_mean: Any, h: Any, b: Any) -> Any:
     """Inertia of a wheel of one of the GEOMETRIES from its dimensions [kg*m^2].
 
     Parameters

@@ -11,8 +11,13 @@ override exactly these defaults.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, cast
 
 from flyopt.design.spec import DesignSpec, MountShaft
+
+if TYPE_CHECKING:  # annotations only
+    from flyopt.design.materials import Material
+    from flyopt.io.scene import Scene
 
 __all__ = ["DesignInputs", "design_inputs"]
 
@@ -32,12 +37,12 @@ class DesignInputs:
         Geometry, limits and objective.
     """
 
-    materials: tuple
-    shafts: tuple
+    materials: tuple[Material, ...]
+    shafts: tuple[MountShaft, ...]
     spec: DesignSpec
 
 
-def design_inputs(scene):
+def design_inputs(scene: Scene) -> DesignInputs:
     """The materials, mounting shafts and design specification of a scene.
 
     Parameters
@@ -56,5 +61,6 @@ def design_inputs(scene):
     shafts = tuple(
         MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts if allowed is None or s.name in allowed
     )
-    spec = scene.design if scene.design is not None else DesignSpec()
+    # Scene types its design as object; the scene reader stores a DesignSpec there
+    spec = cast(DesignSpec, scene.design) if scene.design is not None else DesignSpec()
     return DesignInputs(materials=materials, shafts=shafts, spec=spec)

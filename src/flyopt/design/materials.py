@@ -41,7 +41,7 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields
 from importlib import resources
-from typing import NamedTuple
+from typing import Any, NamedTuple, cast
 
 from flyopt._toml import tomllib
 from flyopt.errors import shorten
@@ -260,13 +260,13 @@ class Material:
     yield_strength: float | None = None
     ductile: bool | None = None
     safety_factor: float | None = None
-    strength_by_thickness: tuple = ()
+    strength_by_thickness: tuple[StrengthRow, ...] = ()
     thickness_rule: str | None = None
     min_wall: float | None = None
     bearing_pressure: float | None = None
     hub_rule: str | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         name = self.name
         if not isinstance(name, str) or not name.strip():
             raise ValueError(f"material name must be a non-empty string, got {shorten(name)}")
@@ -399,7 +399,7 @@ class Material:
             return self.hub_rule
         return "steel" if self.ductile else "cast_iron"
 
-    def strength(self, thickness=None):
+    def strength(self, thickness: float | None = None) -> tuple[float | None, float | None]:
         """Tensile and yield strength at a section thickness.
 
         Parameters
@@ -438,7 +438,7 @@ class Material:
             )
         return self.tensile_strength, self.yield_strength
 
-    def allowable(self, thickness=None, safety_factor=None):
+    def allowable(self, thickness: float | None = None, safety_factor: float | None = None) -> float:
         """Allowable stress [Pa] of the material at a section thickness.
 
         Parameters
@@ -486,13 +486,19 @@ class Material:
                     f"by; give the design's safety_factor (> 1) or the material's"
                 )
             tensile, yield_ = self.strength(thickness)
-            return (yield_ if self.ductile else tensile) / factor
+            governing = yield_ if self.ductile else tensile
+            # __post_init__ refuses a ductile material without yield_strength and a brittle one without tensile_strength
+            if governing is None:
+                raise RuntimeError(
+                    f"material {shorten(self.name)}: no {'yield' if self.ductile else 'tensile'} strength"
+                )
+            return governing / factor
         # __post_init__ refuses a material with neither allowable_stress, strengths nor max_rim_speed
         if self.max_rim_speed is None:
             raise RuntimeError(f"material {shorten(self.name)}: no allowable stress, strengths or rim speed")
         return self.density * self.max_rim_speed**2
 
-    def rim_speed_limit(self, thickness=None, safety_factor=None):
+    def rim_speed_limit(self, thickness: float | None = None, safety_factor: float | None = None) -> float:
         """Safe rim speed v_max [m/s] for the textbook rim-speed criterion: flyopt's one rule.
 
         Every path (solve, sweep, trade-off, Pareto, drive, report) takes the
@@ -528,6 +534,7 @@ class Material:
             thickness is not None or safety_factor is not None or self.max_rim_speed is None
         ):
             return rim_speed_from_stress(self.allowable(thickness, safety_factor), self.density)
+        assert self.max_rim_speed is not None  # given, or derived by __post_init__ (which refuses neither)
         return self.max_rim_speed
 
 
@@ -536,7 +543,7 @@ _FIELDS = tuple(f.name for f in fields(Material))
 _KNOWN_KEYS = frozenset(_FIELDS[1:]) | {"default"}
 
 
-def rim_speed_from_stress(allowable_stress, density):
+def rim_speed_from_stress(allowable_stress: float, density: float) -> float:
     """Safe rim speed of a thin ring from its allowable hoop stress.
 
     Parameters
@@ -559,26 +566,26 @@ def rim_speed_from_stress(allowable_stress, density):
 
 
 def make_material(
-    name,
-    density,
-    max_rim_speed=None,
-    allowable_stress=None,
-    cost=None,
-    source="",
+    name: str,
+    density: float,
+    max_rim_speed: float | None = None,
+    allowable_stress: float | None = None,
+    cost: float | None = None,
+    source: str = "",
     *,
-    elastic_modulus=None,
-    poisson_ratio=None,
-    tensile_strength=None,
-    yield_strength=None,
-    ductile=None,
-    safety_factor=None,
-    strength_by_thickness=(),
-    thickness_rule=None,
-    min_wall=None,
-    bearing_pressure=None,
-    hub_rule=None,
-    **unknown,
-):
+    elastic_modulus: float | None = None,
+    poisson_ratio: float | None = None,
+    tensile_strength: float | None = None,
+    yield_strength: float | None = None,
+    ductile: bool | None = None,
+    safety_factor: float | None = None,
+    strength_by_thickness: Iterable[Any] = (),
+    thickness_rule: str | None = None,
+    min_wall: float | None = None,
+    bearing_pressure: float | None = None,
+    hub_rule: str | None = None,
+    **unknown: Any,
+) -> Material:
     """Build a user material, checking every field; the rim speed may be derived.
 
     Parameters
@@ -636,7 +643,8 @@ def make_material(
         yield_strength=yield_strength,
         ductile=ductile,
         safety_factor=safety_factor,
-        strength_by_thickness=strength_by_thickness,
+        # any rows as the user gave them: Material.__post_init__ checks them and stores a tuple of StrengthRow
+        strength_by_thickness=cast("tuple[StrengthRow, ...]", strength_by_thickness),
         thickness_rule=thickness_rule,
         min_wall=min_wall,
         bearing_pressure=bearing_pressure,

@@ -44,15 +44,19 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import casadi as ca
 
 from flyopt.design import geometry
 from flyopt.errors import SolverFailed
 from flyopt.names import Geometry, Objective
+
+if TYPE_CHECKING:  # annotations only
+    from flyopt.design.combination import Combination
+    from flyopt.design.spec import DesignSpec
 
 __all__ = [
     "DEFAULT_SOLVER_OPTIONS",
@@ -62,6 +66,7 @@ __all__ = [
     "clear_model_cache",
     "solve_combination",
     "BUILDS",
+    "CONVERGED",
 ]
 
 #: IPOPT statuses accepted as converged (the design is still verified).
@@ -95,12 +100,13 @@ class NlpModel:
 
     structure: ModelStructure
     solver: ca.Function
-    variables: tuple  # physical names of the decision variables
-    constraints: tuple  # names of the rows of g
+    variables: tuple[str, ...]  # physical names of the decision variables
+    constraints: tuple[str, ...]  # names of the rows of g
     uses_p: bool
     build_time: float
 
-    def describe(self):
+    def describe(self) -> dict[str, Any]:
+        """What the model is, for the report: geometry, objective, variables, constraint rows."""
         s = self.structure
         return {
             "geometry": s.geometry,
@@ -116,7 +122,7 @@ class NlpModel:
         }
 
 
-_MODEL_CACHE: dict = {}
+_MODEL_CACHE: dict[Any, Any] = {}
 #: How many NLPs have been built in this process (one per structure and solver options).
 BUILDS = {"count": 0}
 
@@ -124,7 +130,7 @@ BUILDS = {"count": 0}
 _TIE_BREAK = 1e-3
 
 
-def clear_model_cache():
+def clear_model_cache() -> None:
     """Forget every built NLP (the next design rebuilds them)."""
     _MODEL_CACHE.clear()
 
@@ -151,7 +157,14 @@ def get_model(structure: ModelStructure, solver_options: Mapping | None = None) 
     return cached_model(_MODEL_CACHE, BUILDS, _build_model, structure, solver_options)
 
 
-def cached_model(cache, builds, build, structure, solver_options=None, defaults=None):
+def cached_model(
+    cache: dict[Any, Any],
+    builds: dict[str, int],
+    build: Callable[[Any, dict[str, Any]], Any],
+    structure: Any,
+    solver_options: Mapping | None = None,
+    defaults: Mapping | None = None,
+) -> Any:
     """The NLP of ``structure`` from ``cache``, built by ``build(structure, options)`` on first use.
 
     The one place where solver options are merged: :data:`DEFAULT_SOLVER_OPTIONS`, then the
@@ -280,7 +293,9 @@ def _scales(combo, spec):
     return length, h_s, h_s / hb_min
 
 
-def solve_combination(model, combo, spec):
+def solve_combination(
+    model: NlpModel, combo: Combination, spec: DesignSpec
+) -> tuple[float, float, float, float, float, str, int, float]:
     """Solve one feasible combination by IPOPT, its status checked.
 
     Returns
@@ -315,6 +330,7 @@ def solve_combination(model, combo, spec):
         if spec.max_width < math.inf:
             ubx[col[width_col]] = math.log(spec.max_width / b_s)
         if s.pinned:
+            assert spec.d_mean is not None  # a pinned structure is one with spec.d_mean
             room = min(combo.cap - spec.d_mean, spec.d_mean)
             ubx[col["h"]] = min(ubx[col["h"]], math.log(room / h_s))
         lbg, ubg = [0.0], [inf]

@@ -28,9 +28,14 @@ two designs are the same wheel to 1e-9.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:  # annotations only
+    from flyopt.design.result import Candidate
 
 __all__ = ["TIE_RTOL", "winners", "ranking"]
 
@@ -45,7 +50,16 @@ def _numeric(values, n):
     return np.where(np.isnan(out), np.inf, out)
 
 
-def winners(group, objective, cost, mass, rim_speed, material, shaft, n_groups=None):
+def winners(
+    group: ArrayLike,
+    objective: ArrayLike,
+    cost: ArrayLike,
+    mass: ArrayLike,
+    rim_speed: ArrayLike,
+    material: ArrayLike,
+    shaft: ArrayLike,
+    n_groups: int | None = None,
+) -> NDArray[np.int64]:
     """The winning design of each group (point) by the ranking rule of this module.
 
     Parameters
@@ -104,7 +118,7 @@ def _winner_of_few(objective, cost, mass, rim_speed, material, shaft):
     return min(alive, key=lambda k: (str(material[k]), str(shaft[k])))
 
 
-def ranking(candidates):
+def ranking(candidates: Iterable[Candidate]) -> list[Candidate]:
     """Feasible candidates of one point, best first, by the rule of :func:`winners`.
 
     Parameters

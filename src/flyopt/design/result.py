@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from typing import Any
 
 from flyopt.design.spec import DesignSpec
 
@@ -125,7 +126,7 @@ class Candidate:
     cost: float | None = None
     j_flywheel: float | None = None
     j_at_reference: float | None = None
-    binding: tuple = ()
+    binding: tuple[str, ...] = ()
     objective: float | None = None
     j_required_on_shaft: float = math.nan
     d_outer_limit: float = math.nan
@@ -142,20 +143,20 @@ class Candidate:
     arm_major: float | None = None
     arm_minor: float | None = None
     bore: float | None = None
-    parts: tuple = ()
-    stress: dict | None = None
+    parts: tuple[dict[str, Any], ...] = ()
+    stress: dict[str, Any] | None = None
     allowable_stress: float | None = None
     strength_safety: float | None = None
     burst_speed: float | None = None
     speed_margin: float | None = None
     unbalance_permissible: float | None = None
-    key: dict | None = None
-    sensitivities: tuple = ()
-    notes: tuple = ()
+    key: dict[str, Any] | None = None
+    sensitivities: tuple[dict[str, Any], ...] = ()
+    notes: tuple[str, ...] = ()
     pruned: bool = False
     objective_bound: float | None = None
 
-    def to_dict(self, timings=False):
+    def to_dict(self, timings: bool = False) -> dict[str, Any]:
         """Plain, JSON-ready dictionary (inf becomes None; wall times only with ``timings``)."""
         out = {}
         for f in fields(self):
@@ -238,10 +239,10 @@ class DesignResult:
     omega: float
     spec: DesignSpec
     best: Candidate | None = None
-    candidates: tuple = ()
-    model: dict | None = None
+    candidates: tuple[Candidate, ...] = ()
+    model: dict[str, Any] | None = None
 
-    def to_dict(self, timings=False):
+    def to_dict(self, timings: bool = False) -> dict[str, Any]:
         """JSON-ready plain Python (wall-clock times only with ``timings``).
 
         Returns

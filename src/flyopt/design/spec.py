@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from flyopt.design import geometry
 from flyopt.names import Criterion, Geometry, Objective
@@ -64,7 +65,7 @@ class MountShaft:
     speed_ratio: float
     diameter: float | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():
             raise ValueError(f"shaft name must be a non-empty string, got {self.name!r}")
         object.__setattr__(self, "speed_ratio", _positive(self.speed_ratio, f"shaft {self.name!r}: speed_ratio", "[-]"))
@@ -130,11 +131,11 @@ class DesignSpec:
     criterion: str = "rim_speed"
     safety_factor: float | None = None
     bore: float | None = None
-    arms: tuple = DEFAULT_ARMS
+    arms: tuple[int, ...] = DEFAULT_ARMS
     min_wall: float | None = None
     prune: bool = True
 
-    def textbook(self, bore=None):
+    def textbook(self, bore: float | None = None) -> bool:
         """Whether this is the textbook design: a bare wheel without a bore sized by the rim speed limit
         (the closed forms and the NLP of :mod:`flyopt.design.nlp`); anything else is a whole wheel
         (:mod:`flyopt.design.wheel`). ``bore`` [m] is the combination's (a disc with a bore is an annulus)."""
@@ -145,11 +146,11 @@ class DesignSpec:
         )
 
     @property
-    def has_envelope(self):
+    def has_envelope(self) -> bool:
         """Whether an envelope limits the outer diameter."""
         return self.max_outer_diameter < math.inf
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready: limits that are not set are None."""
         return {
             "geometry": self.geometry,
@@ -166,7 +167,7 @@ class DesignSpec:
             "prune": self.prune,
         }
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         choice(self.geometry, geometry.GEOMETRIES, "geometry")
         choice(self.objective, OBJECTIVES, "objective")
         try:

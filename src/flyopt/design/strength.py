@@ -28,9 +28,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from flyopt.design import stress, wheel
 from flyopt.names import Geometry
@@ -38,10 +39,7 @@ from flyopt.names import Geometry
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
 
-__all__ = ["PartStress", "StrengthCheck", "allowables", "check_wheel", "profile", "BALANCE_GRADE"]
-
-#: ISO 21940-11 balance quality grade of a flywheel [mm/s] (crankshaft drives and flywheels: G6.3).
-BALANCE_GRADE = 6.3
+__all__ = ["PartStress", "StrengthCheck", "allowables", "check_wheel", "profile"]
 
 #: Grid points per disc part for the exact maxima (then refined by a bounded scalar search).
 _POINTS = 201
@@ -63,23 +61,24 @@ class PartStress:
 class StrengthCheck:
     """The stress check of a wheel at its highest speed (SI)."""
 
-    parts: tuple  # PartStress per stressed part
+    parts: tuple[PartStress, ...]  # PartStress per stressed part
     max_principal: float
     von_mises: float
     hoop_max: float
     radial_max: float
-    where: dict  # {"part", "radius"} of the governing stress (the smallest margin)
+    where: dict[str, Any]  # {"part", "radius"} of the governing stress (the smallest margin)
     allowable_stress: float  # the governing part's allowable
     strength_safety: float  # min over parts of strength / governing stress
     burst_speed: float  # [rad/s] on the wheel's shaft
     speed_margin: float  # burst_speed / omega
     mean_hoop: float  # mean hoop stress of the radial section [Pa]
 
-    def utilisation(self):
+    def utilisation(self) -> float:
         """The largest governing stress over allowable of any part [-]."""
         return max(p.stress / p.allowable for p in self.parts)
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready plain Python."""
         return {
             "max_principal": self.max_principal,
             "von_mises": self.von_mises,
@@ -115,7 +114,9 @@ def _strength_thickness(material, part_wall, all_walls):
     return part_wall
 
 
-def allowables(material, geometry_name, dims, safety_factor=None):
+def allowables(
+    material: Material, geometry_name: str, dims: wheel.Dims, safety_factor: float | None = None
+) -> dict[str, tuple[float, float, float]]:
     """Allowable stress and strength of every stressed part of a wheel.
 
     Parameters
@@ -142,7 +143,14 @@ def allowables(material, geometry_name, dims, safety_factor=None):
     return out
 
 
-def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None):
+def check_wheel(
+    material: Material,
+    geometry_name: str,
+    dims: wheel.Dims,
+    omega: float,
+    torque: float,
+    safety_factor: float | None = None,
+) -> StrengthCheck:
     """Every part's governing stress at omega, the burst speed and the margins.
 
     Parameters
@@ -167,7 +175,7 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
     measure = "von_mises" if ductile else "largest_principal"
     state = wheel.stress_state(geometry_name, dims, rho, nu, omega, torque)
     limits = allowables(material, geometry_name, dims, safety_factor)
-    worst: dict = {}
+    worst: dict[str, tuple[float, float]] = {}
     hoop, radial, vm, principal = -math.inf, -math.inf, -math.inf, -math.inf
 
     def note(part, value, r):
@@ -258,7 +266,9 @@ def check_wheel(material, geometry_name, dims, omega, torque, safety_factor=None
     )
 
 
-def profile(material, geometry_name, dims, omega, torque, points=200):
+def profile(
+    material: Material, geometry_name: str, dims: wheel.Dims, omega: float, torque: float, points: int = 200
+) -> tuple[list[tuple[str, NDArray[np.float64], Any, Any, Any]], list[tuple[str, float, float, float]]]:
     """sigma_r, sigma_t and von Mises over the radius of the disc parts, for plots.
 
     Returns

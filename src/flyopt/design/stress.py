@@ -65,13 +65,20 @@ References
    flywheel arms" and "Design of flywheel arms".
 """
 
+from __future__ import annotations
+
 import math
 import numbers
 from collections import namedtuple
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
 from flyopt.names import unknown
+
+# The formulas here take floats, numpy arrays and CasADi expressions alike (the exact check, the
+# sweeps and the wheel NLP share them): their arguments and results are typed Any.
 
 __all__ = [
     "sqrt",
@@ -112,7 +119,7 @@ __all__ = [
 ]
 
 
-def sqrt(x):
+def sqrt(x: Any) -> Any:
     """Square root as ``x ** 0.5``: floats, numpy arrays and CasADi alike.
 
     Parameters
@@ -142,7 +149,17 @@ def _spin_factors(density, poisson, omega):
     return (3.0 + poisson) / 8.0 * k, (1.0 + 3.0 * poisson) / 8.0 * k
 
 
-def disc_coefficients(radii, thickness, density, poisson, omega, *, solid=False, bore_pressure=0.0, outer_traction=0.0):
+def disc_coefficients(
+    radii: Sequence[Any],
+    thickness: Sequence[Any],
+    density: Any,
+    poisson: Any,
+    omega: Any,
+    *,
+    solid: bool = False,
+    bore_pressure: Any = 0.0,
+    outer_traction: Any = 0.0,
+) -> list[tuple[Any, Any]]:
     """Constants (c1, c2) of every step of a stepped rotating disc.
 
     Parameters
@@ -268,7 +285,7 @@ def disc_coefficients(radii, thickness, density, poisson, omega, *, solid=False,
     return result
 
 
-def disc_stresses(coefficients, density, poisson, omega, r):
+def disc_stresses(coefficients: Any, density: Any, poisson: Any, omega: Any, r: Any) -> tuple[Any, Any]:
     """Radial and hoop stress at radius r of one step of a rotating disc.
 
     Parameters
@@ -309,7 +326,9 @@ def disc_stresses(coefficients, density, poisson, omega, r):
     return c1 - c2 / r2 - alpha * r2, c1 + c2 / r2 - beta * r2
 
 
-def disc_edge_stresses(coefficients, radii, density, poisson, omega):
+def disc_edge_stresses(
+    coefficients: Any, radii: Any, density: Any, poisson: Any, omega: Any
+) -> list[tuple[tuple[Any, Any], tuple[Any, Any]]]:
     """Stresses at both edges of every step (where an NLP constrains them).
 
     Parameters
@@ -341,7 +360,7 @@ def disc_edge_stresses(coefficients, radii, density, poisson, omega):
     ]
 
 
-def von_mises_squared(sr, st):
+def von_mises_squared(sr: Any, st: Any) -> Any:
     """Square of the plane-stress von Mises stress [Pa^2] (no square root, for an NLP).
 
     Parameters
@@ -363,7 +382,7 @@ def von_mises_squared(sr, st):
     return sr * sr - sr * st + st * st
 
 
-def von_mises(sr, st):
+def von_mises(sr: Any, st: Any) -> Any:
     """Plane-stress von Mises stress [Pa], sqrt(sigma_r^2 - sigma_r sigma_t + sigma_t^2).
 
     See :func:`von_mises_squared`.
@@ -371,7 +390,7 @@ def von_mises(sr, st):
     return sqrt(von_mises_squared(sr, st))
 
 
-def principal_stresses(sr, st):
+def principal_stresses(sr: Any, st: Any) -> tuple[Any, Any]:
     """The in-plane principal stresses of an axisymmetric disc [Pa].
 
     Parameters
@@ -390,7 +409,7 @@ def principal_stresses(sr, st):
     return sr, st
 
 
-def radial_displacement(sr, st, r, elastic_modulus, poisson):
+def radial_displacement(sr: Any, st: Any, r: Any, elastic_modulus: Any, poisson: Any) -> Any:
     """Radial displacement of a point of a disc in plane stress [m].
 
     Parameters
@@ -418,7 +437,7 @@ def radial_displacement(sr, st, r, elastic_modulus, poisson):
     return r / elastic_modulus * (st - poisson * sr)
 
 
-def mean_hoop_stress(coefficients, radii, thickness, density, poisson, omega):
+def mean_hoop_stress(coefficients: Any, radii: Any, thickness: Any, density: Any, poisson: Any, omega: Any) -> Any:
     """Mean hoop stress over the radial section of a stepped disc [Pa].
 
     Parameters
@@ -479,7 +498,9 @@ def mean_hoop_stress(coefficients, radii, thickness, density, poisson, omega):
 # ---------------------------------------------------------------- closed forms
 
 
-def annulus_stresses(inner_radius, outer_radius, density, poisson, omega, r):
+def annulus_stresses(
+    inner_radius: Any, outer_radius: Any, density: Any, poisson: Any, omega: Any, r: Any
+) -> tuple[Any, Any]:
     """Stresses in a free rotating annulus of uniform thickness [Pa].
 
     Parameters
@@ -515,7 +536,7 @@ def annulus_stresses(inner_radius, outer_radius, density, poisson, omega, r):
     return sr, st
 
 
-def annulus_bore_hoop_stress(inner_radius, outer_radius, density, poisson, omega):
+def annulus_bore_hoop_stress(inner_radius: Any, outer_radius: Any, density: Any, poisson: Any, omega: Any) -> Any:
     """Hoop stress at the bore of a free rotating annulus, its largest stress [Pa].
 
     Notes
@@ -538,7 +559,7 @@ def annulus_bore_hoop_stress(inner_radius, outer_radius, density, poisson, omega
     )
 
 
-def annulus_max_radial_stress(inner_radius, outer_radius, density, poisson, omega):
+def annulus_max_radial_stress(inner_radius: Any, outer_radius: Any, density: Any, poisson: Any, omega: Any) -> Any:
     """Largest radial stress of a free rotating annulus [Pa].
 
     Notes
@@ -554,12 +575,12 @@ def annulus_max_radial_stress(inner_radius, outer_radius, density, poisson, omeg
     return (3.0 + poisson) / 8.0 * density * omega * omega * gap * gap
 
 
-def annulus_max_radial_stress_radius(inner_radius, outer_radius):
+def annulus_max_radial_stress_radius(inner_radius: Any, outer_radius: Any) -> Any:
     """Where the radial stress of a free rotating annulus peaks, r = sqrt(a b) [m]."""
     return sqrt(inner_radius * outer_radius)
 
 
-def annulus_mean_hoop_stress(inner_radius, outer_radius, density, omega):
+def annulus_mean_hoop_stress(inner_radius: Any, outer_radius: Any, density: Any, omega: Any) -> Any:
     """Mean hoop stress over the section of a free rotating annulus [Pa].
 
     Notes
@@ -573,7 +594,7 @@ def annulus_mean_hoop_stress(inner_radius, outer_radius, density, omega):
     return density * omega * omega * (a * a + a * b + b * b) / 3.0
 
 
-def solid_disc_stresses(radius, density, poisson, omega, r):
+def solid_disc_stresses(radius: Any, density: Any, poisson: Any, omega: Any, r: Any) -> tuple[Any, Any]:
     """Stresses in a free rotating solid disc of uniform thickness [Pa].
 
     Notes
@@ -591,7 +612,7 @@ def solid_disc_stresses(radius, density, poisson, omega, r):
     return (3.0 + poisson) / 8.0 * k * (b2 - r2), ((3.0 + poisson) * b2 - (1.0 + 3.0 * poisson) * r2) / 8.0 * k
 
 
-def solid_disc_centre_stress(radius, density, poisson, omega):
+def solid_disc_centre_stress(radius: Any, density: Any, poisson: Any, omega: Any) -> Any:
     """Stress at the centre of a free rotating solid disc, its largest [Pa].
 
     Notes
@@ -606,7 +627,7 @@ def solid_disc_centre_stress(radius, density, poisson, omega):
     return (3.0 + poisson) / 8.0 * density * omega * omega * radius * radius
 
 
-def thin_ring_hoop_stress(density, rim_speed):
+def thin_ring_hoop_stress(density: Any, rim_speed: Any) -> Any:
     """Hoop stress of a thin rotating ring, sigma = rho v^2 [Pa].
 
     Parameters
@@ -645,7 +666,9 @@ StepMaximum = namedtuple("StepMaximum", ["value", "step", "radius"])
 StepMaximum.__doc__ = """The largest stress measure in one step: value [Pa], step index, radius [m]."""
 
 
-def max_stress_per_step(coefficients, radii, density, poisson, omega, measure="von_mises", points=401):
+def max_stress_per_step(
+    coefficients: Any, radii: Any, density: Any, poisson: Any, omega: Any, measure: str = "von_mises", points: int = 401
+) -> list[StepMaximum]:
     """Maximum of a stress measure over each step, found numerically (floats only).
 
     An independent check of constraints written at chosen radii: a dense
@@ -717,7 +740,7 @@ def max_stress_per_step(coefficients, radii, density, poisson, omega, measure="v
 # ------------------------------------------------------------- rim with arms
 
 
-def rim_hoop_stress(density, omega, mean_radius):
+def rim_hoop_stress(density: Any, omega: Any, mean_radius: Any) -> Any:
     """Hoop stress of a rim free of its arms, rho v^2 with v = omega R [Pa].
 
     See :func:`thin_ring_hoop_stress`; the rim's mean radius R [m] sets v.
@@ -725,7 +748,7 @@ def rim_hoop_stress(density, omega, mean_radius):
     return thin_ring_hoop_stress(density, omega * mean_radius)
 
 
-def rim_bending_stress(density, omega, mean_radius, radial_thickness, n_arms):
+def rim_bending_stress(density: Any, omega: Any, mean_radius: Any, radial_thickness: Any, n_arms: Any) -> Any:
     """Bending stress in a rim held by its arms [Pa].
 
     Parameters
@@ -771,7 +794,7 @@ def rim_bending_stress(density, omega, mean_radius, radial_thickness, n_arms):
     return 2.0 * math.pi**2 * density * omega * omega * mean_radius**3 / (n_arms * n_arms * radial_thickness)
 
 
-def rim_combined_stress(hoop_stress, bending_stress):
+def rim_combined_stress(hoop_stress: Any, bending_stress: Any) -> Any:
     """Resultant rim stress of the machine-design texts, 0.75 sigma_t + 0.25 sigma_b [Pa].
 
     Parameters
@@ -804,7 +827,7 @@ def rim_combined_stress(hoop_stress, bending_stress):
     return 0.75 * hoop_stress + 0.25 * bending_stress
 
 
-def arm_section_area(major, minor):
+def arm_section_area(major: Any, minor: Any) -> Any:
     """Area of an arm's elliptical section, pi a b_a / 4 [m^2].
 
     Parameters
@@ -823,7 +846,7 @@ def arm_section_area(major, minor):
     return math.pi * major * minor / 4.0
 
 
-def arm_section_modulus(major, minor):
+def arm_section_modulus(major: Any, minor: Any) -> Any:
     """Section modulus of an elliptical arm bending in the plane of rotation [m^3].
 
     Parameters
@@ -851,7 +874,7 @@ def arm_section_modulus(major, minor):
     return math.pi * minor * major * major / 32.0
 
 
-def arm_bending_moment(torque, n_arms, arm_end_radius, hub_radius):
+def arm_bending_moment(torque: Any, n_arms: Any, arm_end_radius: Any, hub_radius: Any) -> Any:
     """Bending moment at the hub end of each arm from the torque [N*m].
 
     Parameters
@@ -890,7 +913,7 @@ def arm_bending_moment(torque, n_arms, arm_end_radius, hub_radius):
     return torque / n_arms * (arm_end_radius - hub_radius) / arm_end_radius
 
 
-def arm_bending_stress(torque, n_arms, arm_end_radius, hub_radius, major, minor):
+def arm_bending_stress(torque: Any, n_arms: Any, arm_end_radius: Any, hub_radius: Any, major: Any, minor: Any) -> Any:
     """Bending stress at the hub end of an elliptical arm, M/Z [Pa].
 
     See :func:`arm_bending_moment` (M) and :func:`arm_section_modulus` (Z).
@@ -898,7 +921,7 @@ def arm_bending_stress(torque, n_arms, arm_end_radius, hub_radius, major, minor)
     return arm_bending_moment(torque, n_arms, arm_end_radius, hub_radius) / arm_section_modulus(major, minor)
 
 
-def arm_centrifugal_force(density, arm_area, omega, arm_end_radius, hub_radius):
+def arm_centrifugal_force(density: Any, arm_area: Any, omega: Any, arm_end_radius: Any, hub_radius: Any) -> Any:
     """Tension at the root of an arm from its own centrifugal load [N].
 
     Parameters
@@ -924,11 +947,11 @@ def arm_centrifugal_force(density, arm_area, omega, arm_end_radius, hub_radius):
 def _sin_pi_over(n):
     """sin(pi/n) for a plain number or a numpy array of numbers of arms."""
     if isinstance(n, numbers.Real):
-        return math.sin(math.pi / float(n))
+        return math.sin(math.pi / float(n))  # float(n): exact for any count of arms
     return np.sin(np.pi / np.asarray(n, dtype=float))
 
 
-def rim_segment_force(density, rim_area, omega, mean_radius, n_arms):
+def rim_segment_force(density: Any, rim_area: Any, omega: Any, mean_radius: Any, n_arms: Any) -> Any:
     """Resultant centrifugal force of the rim segment one arm carries [N].
 
     Parameters
@@ -963,7 +986,16 @@ def rim_segment_force(density, rim_area, omega, mean_radius, n_arms):
     return 2.0 * density * rim_area * omega * omega * mean_radius * mean_radius * _sin_pi_over(n_arms)
 
 
-def arm_pull(density, arm_area, rim_area, omega, mean_radius, arm_end_radius, hub_radius, n_arms):
+def arm_pull(
+    density: Any,
+    arm_area: Any,
+    rim_area: Any,
+    omega: Any,
+    mean_radius: Any,
+    arm_end_radius: Any,
+    hub_radius: Any,
+    n_arms: Any,
+) -> Any:
     """Radial pull of one arm at the hub: its own centrifugal load plus the rim's share [N].
 
     The sum of :func:`arm_centrifugal_force` and :func:`rim_segment_force`
@@ -974,7 +1006,7 @@ def arm_pull(density, arm_area, rim_area, omega, mean_radius, arm_end_radius, hu
     )
 
 
-def arm_stress(bending_stress, pull, arm_area):
+def arm_stress(bending_stress: Any, pull: Any, arm_area: Any) -> Any:
     """Largest stress at the root of an arm, sigma_b + F/A [Pa].
 
     Parameters
@@ -994,7 +1026,7 @@ def arm_stress(bending_stress, pull, arm_area):
     return bending_stress + pull / arm_area
 
 
-def arm_hub_traction(n_arms, pull, hub_radius, hub_length):
+def arm_hub_traction(n_arms: Any, pull: Any, hub_radius: Any, hub_length: Any) -> Any:
     """The arms' pull on the hub spread over its outer surface [Pa].
 
     Parameters
@@ -1026,7 +1058,7 @@ def arm_hub_traction(n_arms, pull, hub_radius, hub_length):
 # ----------------------------------------------------------------- burst speed
 
 
-def burst_speed(omega, stress, strength):
+def burst_speed(omega: Any, stress: Any, strength: Any) -> Any:
     """Speed at which a stress that scales with omega^2 reaches a strength [rad/s].
 
     Parameters
@@ -1052,7 +1084,7 @@ def burst_speed(omega, stress, strength):
     return omega * sqrt(strength / stress)
 
 
-def burst_speed_ductile(omega, mean_hoop, tensile_strength):
+def burst_speed_ductile(omega: Any, mean_hoop: Any, tensile_strength: Any) -> Any:
     """Burst speed of a ductile disc: the mean hoop stress reaches the tensile strength [rad/s].
 
     Parameters
@@ -1076,7 +1108,7 @@ def burst_speed_ductile(omega, mean_hoop, tensile_strength):
     return burst_speed(omega, mean_hoop, tensile_strength)
 
 
-def burst_speed_brittle(omega, largest_principal, tensile_strength):
+def burst_speed_brittle(omega: Any, largest_principal: Any, tensile_strength: Any) -> Any:
     """Burst speed of a brittle disc: the largest principal stress reaches the tensile strength [rad/s].
 
     Parameters

@@ -38,6 +38,7 @@ References
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass, fields
 from typing import Any, NamedTuple
 
@@ -67,16 +68,17 @@ class Dims:
     n_arms: int = 0
 
     @property
-    def d_mean(self):
+    def d_mean(self) -> Any:
         """Mean rim diameter D_m = D_outer - H [m]."""
         return self.d_outer - self.h
 
     @property
-    def d_inner(self):
+    def d_inner(self) -> Any:
         """Inner rim diameter D_outer - 2 H [m] (the bore for a disc)."""
         return self.d_outer - 2.0 * self.h
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
+        """The dimensions by field name."""
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
@@ -99,11 +101,11 @@ class Part:
     """
 
     name: str
-    mass: object
-    inertia: object
-    r_inner: object
-    r_outer: object
-    thickness: object
+    mass: Any
+    inertia: Any
+    r_inner: Any
+    r_outer: Any
+    thickness: Any
 
 
 def _annulus(name, density, r_inner, r_outer, thickness, thin=False):
@@ -117,7 +119,7 @@ def _annulus(name, density, r_inner, r_outer, thickness, thin=False):
     return Part(name, mass, inertia, r_inner, r_outer, thickness)
 
 
-def parts(geometry_name, dims, density):
+def parts(geometry_name: str, dims: Dims, density: Any) -> list[Part]:
     """The parts of a wheel, inner to outer.
 
     Parameters
@@ -171,7 +173,7 @@ def _zero(value):
     return isinstance(value, (int, float)) and value == 0
 
 
-def wheel_mass(wheel_parts):
+def wheel_mass(wheel_parts: Iterable[Part]) -> Any:
     """Total mass of the parts [kg]."""
     total = 0.0
     for part in wheel_parts:
@@ -179,7 +181,7 @@ def wheel_mass(wheel_parts):
     return total
 
 
-def wheel_inertia(wheel_parts):
+def wheel_inertia(wheel_parts: Iterable[Part]) -> Any:
     """Total inertia of the parts about the axis [kg*m^2]."""
     total = 0.0
     for part in wheel_parts:
@@ -187,7 +189,7 @@ def wheel_inertia(wheel_parts):
     return total
 
 
-def steps(geometry_name, dims):
+def steps(geometry_name: str, dims: Dims) -> tuple[list[Any], list[Any], bool, list[str]]:
     """The wheel as a stepped disc for the plane-stress solver: (radii, thicknesses, solid, names).
 
     For ``rim_arms`` only the hub is a disc (the rim and the arms follow the
@@ -222,7 +224,7 @@ def steps(geometry_name, dims):
     raise ValueError(f"geometry {geometry_name!r} not known")
 
 
-def walls(geometry_name, dims):
+def walls(geometry_name: str, dims: Dims) -> dict[str, Any]:
     """The wall thickness of every part, the section its strength depends on [m].
 
     A casting's strength falls with its wall thickness (EN 1561, EN 1563:
@@ -247,14 +249,16 @@ def walls(geometry_name, dims):
 class StressState(NamedTuple):
     """The stress state of a wheel at one speed (see :func:`stress_state`)."""
 
-    beams: list  # (part, r, sr, st) of the parts the texts treat as beams (rim_arms: rim, arms)
-    radii: list  # edge radii of the stepped-disc parts [m]
-    thicknesses: list  # their axial thicknesses [m]
-    names: list  # the part of each step
-    coefficients: list  # (c1, c2) of each step (flyopt.design.stress.disc_coefficients)
+    beams: list[
+        tuple[str, Any, Any, Any]
+    ]  # (part, r, sr, st) of the parts the texts treat as beams (rim_arms: rim, arms)
+    radii: list[Any]  # edge radii of the stepped-disc parts [m]
+    thicknesses: list[Any]  # their axial thicknesses [m]
+    names: list[str]  # the part of each step
+    coefficients: list[tuple[Any, Any]]  # (c1, c2) of each step (flyopt.design.stress.disc_coefficients)
 
 
-def stress_state(geometry_name, dims, density, poisson, omega, torque):
+def stress_state(geometry_name: str, dims: Dims, density: Any, poisson: Any, omega: Any, torque: Any) -> StressState:
     """The stresses of a wheel at speed omega: its disc parts exactly, its arms' parts by the texts.
 
     Parameters
@@ -310,7 +314,9 @@ def stress_state(geometry_name, dims, density, poisson, omega, torque):
     return StressState(beams, radii, thicknesses, names, coefficients)
 
 
-def stress_samples(geometry_name, dims, density, poisson, omega, torque, fractions):
+def stress_samples(
+    geometry_name: str, dims: Dims, density: Any, poisson: Any, omega: Any, torque: Any, fractions: Iterable[float]
+) -> list[tuple[str, Any, Any, Any]]:
     """Radial and hoop stress at sample points of every part (see :func:`stress_state`).
 
     ``fractions`` (0..1 of each disc part's radial extent) say where to sample

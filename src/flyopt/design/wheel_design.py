@@ -22,16 +22,27 @@ References
 from __future__ import annotations
 
 import math
-from typing import Any
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
 
 from flyopt.design import balance, check, geometry, hub, key, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Method, Objective
 
+if TYPE_CHECKING:  # annotations only: CasADi is imported where IPOPT is used
+    from flyopt.design.combination import Combination
+    from flyopt.design.inputs import DesignInputs
+    from flyopt.design.materials import Material
+    from flyopt.design.spec import DesignSpec, MountShaft
+    from flyopt.design.strength import StrengthCheck
+    from flyopt.design.wheel import Dims
+    from flyopt.design.wheel_nlp import WheelProblem, WheelSolution, WheelStructure
+
 __all__ = [
     "needs_torque",
     "bore_of",
+    "min_wall_of",
     "objective_bound",
     "stress_cap",
     "screen",
@@ -48,20 +59,20 @@ _MAX_ROUNDS = 8
 class NoWheel(Exception):
     """The combination cannot be built: ``reason`` says why, in numbers."""
 
-    def __init__(self, reason, j_max=math.nan):
+    def __init__(self, reason: str, j_max: float = math.nan) -> None:
         super().__init__(reason)
         self.reason = reason
         self.j_max = j_max
 
 
-def bore_of(spec, shaft):
+def bore_of(spec: DesignSpec, shaft: MountShaft) -> float:
     """The bore of a wheel on a shaft [m]: the design's, else the shaft's seat, else 0 (none)."""
     if spec.bore is not None:
         return spec.bore
     return shaft.diameter or 0.0
 
 
-def needs_torque(inputs):
+def needs_torque(inputs: DesignInputs) -> bool:
     """Whether a design problem (:class:`flyopt.design.inputs.DesignInputs`) has arms or a keyed hub,
     which the flywheel's peak torque loads (the textbook bare rim has neither)."""
     return inputs.spec.geometry == Geometry.RIM_ARMS or any(bore_of(inputs.spec, s) for s in inputs.shafts)
@@ -74,7 +85,8 @@ def needs_torque(inputs):
 DEFAULT_MIN_WALL = 1e-3
 
 
-def _min_wall(spec, material):
+def min_wall_of(spec: DesignSpec, material: Material) -> float:
+    """The thinnest wall a wheel may have [m]: the spec's, else the material's, else the default of a whole wheel."""
     if spec.min_wall is not None:
         return spec.min_wall
     own = getattr(material, "min_wall", None)
@@ -111,7 +123,7 @@ def _strongest_allowable(material, spec):
         return None
 
 
-def stress_cap(combo, spec, bore):
+def stress_cap(combo: Combination, spec: DesignSpec, bore: float) -> float:
     """The largest outer diameter the stress allows a bare rim or disc [m] (inf where no closed form says).
 
     A free annulus a < b at speed omega has its largest stress at the bore,
@@ -146,7 +158,7 @@ def _upper_bound(combo, spec, bore=0.0):
     return math.pi * combo.material.density * width * cap**4 / 32.0, cap, width
 
 
-def objective_bound(combo, spec):
+def objective_bound(combo: Combination, spec: DesignSpec) -> tuple[float, str]:
     """A lower bound on the objective of every wheel of a combination, and how it is found.
 
     No mass sits farther out than half the largest outer diameter the
@@ -161,7 +173,7 @@ def objective_bound(combo, spec):
 
     Parameters
     ----------
-    combo : flyopt.design.designer._Combination
+    combo : flyopt.design.combination.Combination
     spec : DesignSpec
 
     Returns
@@ -186,12 +198,14 @@ def objective_bound(combo, spec):
         f"every wheel that gives {j:.4g} kg·m² within D {cap:.4g} m weighs at least "
         f"{mass:.4g} kg (m >= 4 J/D²: all of it at the outer radius)"
     )
-    if spec.objective == Objective.COST:  # design_flywheel refuses the cost objective without a price
-        return mass * combo.material.cost, why + f", which costs at least {mass * combo.material.cost:.4g}"
+    if spec.objective == Objective.COST:
+        price = combo.material.cost
+        assert price is not None  # design_flywheel refuses the cost objective without a price
+        return mass * price, why + f", which costs at least {mass * price:.4g}"
     return mass, why
 
 
-def missing_poisson(material, spec):
+def missing_poisson(material: Material, spec: DesignSpec) -> str | None:
     """Why a material can make no wheel under a spec on any shaft for want of a Poisson's ratio, or None."""
     if (spec.criterion == Criterion.STRESS or spec.geometry in (Geometry.RIM_WEB, Geometry.RIM_ARMS)) and getattr(
         material, "poisson_ratio", None
@@ -200,7 +214,7 @@ def missing_poisson(material, spec):
     return None
 
 
-def screen(combo, spec, bore):
+def screen(combo: Combination, spec: DesignSpec, bore: float) -> None:
     """Raise :class:`NoWheel` where a combination is shown unable to make a wheel without solving:
     its inertia above that of a solid disc filling the envelope, arms with no hub, or a stress
     that needs a Poisson's ratio the material does not give."""
@@ -229,7 +243,16 @@ def screen(combo, spec, bore):
         raise NoWheel(f"{combo.label}: {missing}")
 
 
-def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):
+def wheel_problem(
+    material: Material,
+    spec: DesignSpec,
+    bore: float,
+    torque: float,
+    n_arms: int,
+    j_shaft: float,
+    omega: float,
+    v_max: float,
+) -> tuple[WheelStructure, WheelProblem]:
     """(WheelStructure, WheelProblem) of a whole wheel of a material on a shaft, its allowables not yet set.
 
     The one place where a design's limits become a wheel NLP's structure and
@@ -267,14 +290,14 @@ def wheel_problem(material, spec, bore, torque, n_arms, j_shaft, omega, v_max):
         max_rim_speed=v_max,
         hb_ratio=spec.hb_ratio,
         d_mean=spec.d_mean,
-        min_wall=_min_wall(spec, material),
+        min_wall=min_wall_of(spec, material),
         d_hub_range=d_hub_range,
         l_hub_range=l_hub_range,
     )
     return structure, problem
 
 
-def strongest_allowables(material, spec, structure):
+def strongest_allowables(material: Material, spec: DesignSpec, structure: WheelStructure) -> dict[str, float]:
     """Each stressed part of a structure to the largest allowable stress any section of the material has [Pa]
     (empty under the rim-speed criterion, or when the material gives none): no wheel's allowable is higher."""
     from flyopt.design import wheel_nlp
@@ -283,12 +306,20 @@ def strongest_allowables(material, spec, structure):
     return {} if sigma is None else {part: sigma for part in wheel_nlp.stressed_parts(structure)}
 
 
-def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None, method="auto"):
+def design_combination(
+    combo: Combination,
+    spec: DesignSpec,
+    bore: float,
+    torque: float,
+    n_arms: int = 0,
+    solver_options: Mapping[str, Any] | None = None,
+    method: str = "auto",
+) -> tuple[Dims, WheelSolution, StrengthCheck | None]:
     """Design one combination as a whole wheel.
 
     Parameters
     ----------
-    combo : flyopt.design.designer._Combination
+    combo : flyopt.design.combination.Combination
         Material, shaft, speed on it (omega_max of the cycle) and inertia needed on it.
     spec : DesignSpec
     bore : float
@@ -328,8 +359,8 @@ def design_combination(combo, spec, bore, torque, n_arms=0, solver_options=None,
     model = wheel_nlp.get_model(structure, solver_options)
     parts = model.stress_parts
     # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
-    start = wheel_nlp._start(structure, problem, model.variables)
-    start_dims = wheel_nlp._dims(structure, start, bore)
+    start = wheel_nlp.starting_wheel(structure, problem, model.variables)
+    start_dims = wheel_nlp.dims_of(structure, start, bore)
     targets = {}
     if stressed:
         try:
@@ -532,7 +563,7 @@ def _disc_closed_form(combo, spec, bore, material):
     by_stress = b_stress <= half_envelope
     b = b_stress if by_stress else half_envelope
     width = 2.0 * j / (math.pi * rho * (b**4 - a**4))
-    if width > spec.max_width or width < _min_wall(spec, material) or b - a < _min_wall(spec, material):
+    if width > spec.max_width or width < min_wall_of(spec, material) or b - a < min_wall_of(spec, material):
         return None
     mass = 2.0 * j / (a * a + b * b)
     dims = wheel.Dims(d_outer=2.0 * b, h=b - a, b=width, bore=bore)
@@ -561,7 +592,16 @@ def _with(problem, **changes):
     return dataclasses.replace(problem, **changes)
 
 
-def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, checked=None):
+def structure_fields(
+    material: Material,
+    geometry_name: str,
+    dims: Dims,
+    omega: float,
+    torque: float,
+    spec: DesignSpec,
+    bore: float,
+    checked: StrengthCheck | None = None,
+) -> dict[str, Any]:
     """The structural fields of a design (any geometry, any criterion).
 
     Returns
@@ -589,7 +629,7 @@ def structure_fields(material, geometry_name, dims, omega, torque, spec, bore, c
         for p in parts
     )
     mass = float(wheel.wheel_mass(parts))
-    unbalance = balance.permissible_unbalance(mass, omega, strength.BALANCE_GRADE)
+    unbalance = balance.permissible_unbalance(mass, omega, balance.BALANCE_GRADE)
     out["unbalance_permissible"] = float(unbalance.u_per)
     out.update(stress=None, allowable_stress=None, strength_safety=None, burst_speed=None, speed_margin=None, key=None)
     if getattr(material, "poisson_ratio", None) is None:
@@ -656,7 +696,7 @@ _LIMITS = {
 }
 
 
-def sensitivities(solution, mass, problem_limits):
+def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str, Any]) -> tuple[dict[str, Any], ...]:
     """The multipliers of the binding limits in engineering units: d(mass)/d(limit).
 
     Parameters

@@ -39,8 +39,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import casadi as ca
 
@@ -49,7 +50,18 @@ from flyopt.design.nlp import CONVERGED, cached_model
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Objective
 
-__all__ = ["WheelStructure", "WheelProblem", "WheelSolution", "SAMPLES", "get_model", "solve", "BUILDS", "variables_of"]
+__all__ = [
+    "WheelStructure",
+    "WheelProblem",
+    "WheelSolution",
+    "SAMPLES",
+    "get_model",
+    "solve",
+    "BUILDS",
+    "variables_of",
+    "dims_of",
+    "starting_wheel",
+]
 
 #: Radii per disc part where the NLP writes the stress rows, as fractions of its radial extent.
 SAMPLES = (0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0)
@@ -76,7 +88,7 @@ class WheelStructure(NamedTuple):
     objective: str  # "mass" | "outer_diameter"
 
 
-def variables_of(structure):
+def variables_of(structure: WheelStructure) -> tuple[str, ...]:
     """The dimensions IPOPT chooses for a structure, in order."""
     geo = structure.geometry
     if geo == Geometry.DISC:
@@ -91,8 +103,8 @@ def variables_of(structure):
     return tuple(names)
 
 
-def _dims(structure, values, bore):
-    """A wheel's Dims from its variables (floats or symbols)."""
+def dims_of(structure: WheelStructure, values: Mapping[str, Any], bore: float) -> wheel.Dims:
+    """A wheel's Dims from its variables (floats or symbols) by name [m]."""
     v = dict(values)
     geo = structure.geometry
     if geo == Geometry.DISC:
@@ -111,7 +123,7 @@ def _dims(structure, values, bore):
     )
 
 
-def stressed_parts(structure):
+def stressed_parts(structure: WheelStructure) -> tuple[str, ...]:
     """The parts whose stress the NLP limits, in the order of the allowable-stress parameters."""
     geo = structure.geometry
     if geo == Geometry.DISC:
@@ -129,12 +141,13 @@ class WheelModel:
 
     structure: WheelStructure
     solver: ca.Function
-    variables: tuple
-    constraints: tuple  # names of the rows of g
-    stress_parts: tuple  # which part each allowable parameter belongs to
+    variables: tuple[str, ...]
+    constraints: tuple[str, ...]  # names of the rows of g
+    stress_parts: tuple[str, ...]  # which part each allowable parameter belongs to
     build_time: float
 
-    def describe(self):
+    def describe(self) -> dict[str, Any]:
+        """What the model is, for the report: geometry, objective, variables, constraint rows."""
         s = self.structure
         return {
             "geometry": s.geometry,
@@ -158,7 +171,7 @@ class WheelModel:
 WHEEL_SOLVER_OPTIONS = {"ipopt.max_iter": 1000}
 
 
-def get_model(structure, solver_options=None):
+def get_model(structure: WheelStructure, solver_options: Mapping | None = None) -> WheelModel:
     """The wheel NLP of a structure, built once per structure and solver options."""
     return cached_model(_CACHE, BUILDS, _build, structure, solver_options, WHEEL_SOLVER_OPTIONS)
 
@@ -167,14 +180,14 @@ class Formulation(NamedTuple):
     """A wheel NLP's symbols: its dimensions, mass, inertia, objective and constraint rows (named)."""
 
     dims: wheel.Dims
-    mass: object
-    inertia: object
-    objective: object
-    rows: tuple
-    row_names: tuple
+    mass: Any  # CasADi expressions
+    inertia: Any
+    objective: Any
+    rows: tuple[Any, ...]
+    row_names: tuple[str, ...]
 
 
-def formulate(structure, x, par, allow):
+def formulate(structure: WheelStructure, x: Any, par: Mapping[str, Any], allow: Any) -> Formulation:
     """The wheel NLP of a structure in CasADi symbols (:class:`Formulation`).
 
     Parameters
@@ -193,7 +206,7 @@ def formulate(structure, x, par, allow):
     """
     names = variables_of(structure)
     stress_parts = stressed_parts(structure)
-    dims = _dims(structure, {n: ca.exp(x[k]) for k, n in enumerate(names)}, par["bore"])
+    dims = dims_of(structure, {n: ca.exp(x[k]) for k, n in enumerate(names)}, par["bore"])
     density = par["density"]
     parts = wheel.parts(structure.geometry, dims, density)
     mass = wheel.wheel_mass(parts)
@@ -283,17 +296,17 @@ class WheelProblem:
     poisson: float
     torque: float
     bore: float
-    allowable: dict
+    allowable: dict[str, float]
     envelope: float
     max_width: float
     max_rim_speed: float
-    hb_ratio: tuple
+    hb_ratio: tuple[float, float]
     d_mean: float | None
     min_wall: float
-    d_hub_range: tuple = (0.0, math.inf)
-    l_hub_range: tuple = (0.0, math.inf)
-    start: dict | None = None
-    caps: dict | None = None  # variable name -> upper bound [m] (a section kept within a strength table)
+    d_hub_range: tuple[float, float] = (0.0, math.inf)
+    l_hub_range: tuple[float, float] = (0.0, math.inf)
+    start: dict[str, float] | None = None
+    caps: dict[str, float] | None = None  # variable name -> upper bound [m] (a section kept within a strength table)
 
 
 @dataclass(frozen=True)
@@ -314,8 +327,9 @@ class WheelSolution:
     caps: dict | None = None  # the caps that set a variable's upper bound (variable -> [m]), or None
 
 
-def _start(structure, problem, names):
-    """A starting wheel: the thin rim that gives J' at a diameter within every limit."""
+def starting_wheel(structure: WheelStructure, problem: WheelProblem, names: Iterable[str]) -> dict[str, float]:
+    """A starting wheel for IPOPT: the thin rim that gives J' at a diameter within every limit
+    (variable name -> [m]; ``names``: the NLP's variables)."""
     rho, j = problem.density, problem.j_shaft
     cap = min(
         problem.envelope,
@@ -347,7 +361,9 @@ def _start(structure, problem, names):
     return start
 
 
-def variable_bounds(structure, problem):
+def variable_bounds(
+    structure: WheelStructure, problem: WheelProblem
+) -> tuple[list[float], list[float], dict[str, float]]:
     """(lbx, ubx, capped) of a wheel NLP's variables (logarithms of metres) for a problem's limits.
 
     ``capped``: the caps of ``problem.caps`` tighter than every other upper bound (variable -> [m]).
@@ -380,7 +396,9 @@ def variable_bounds(structure, problem):
     return lbx, ubx, capped
 
 
-def row_bounds(structure, constraints, problem):
+def row_bounds(
+    structure: WheelStructure, constraints: Iterable[str], problem: WheelProblem
+) -> tuple[list[float], list[float]]:
     """(lbg, ubg) of a wheel NLP's rows (``constraints``: their names, as :func:`formulate` gives them)."""
     s, inf = structure, math.inf
     lbg, ubg = [], []
@@ -408,7 +426,7 @@ def row_bounds(structure, constraints, problem):
     return lbg, ubg
 
 
-def allowable_parameters(structure, allowable, scale):
+def allowable_parameters(structure: WheelStructure, allowable: Mapping[str, float], scale: float) -> list[float]:
     """The allowable parameters of a wheel NLP: sigma_a / S of each stressed part, squared if ductile
     (``allowable``: part -> sigma_a [Pa]; a part not given is not limited)."""
     out = []
@@ -418,7 +436,7 @@ def allowable_parameters(structure, allowable, scale):
     return out
 
 
-def solve(model, problem, label):
+def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution:
     """Solve one combination's wheel NLP, its status checked.
 
     Returns
@@ -437,13 +455,13 @@ def solve(model, problem, label):
     lbx, ubx, capped = variable_bounds(s, problem)
     crossed = [n for n, lo, hi in zip(names, lbx, ubx) if lo > hi]
     if crossed:  # a cap below a lower bound: no wheel, and IPOPT is not asked
-        err = SolverFailed(
+        failure = SolverFailed(
             f"{label}: the caps on {', '.join(crossed)} are below their lower bounds; no wheel meets both"
         )
-        err.status = "Infeasible_Problem_Detected"
-        err.combination = label
-        raise err
-    start = problem.start or _start(s, problem, names)
+        failure.status = "Infeasible_Problem_Detected"
+        failure.combination = label
+        raise failure
+    start = problem.start or starting_wheel(s, problem, names)
     x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
     length = start["d_outer"] / 2.0
     scale = problem.density * problem.omega**2 * length**2
@@ -477,7 +495,7 @@ def solve(model, problem, label):
         failure.combination = label
         raise failure
     xs = [float(v) for v in sol["x"].full().ravel()]
-    dims = _dims(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
+    dims = dims_of(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
     lam_g: dict = {}
     for name, lam in zip(model.constraints, sol["lam_g"].full().ravel()):
         lam_g[name] = lam_g.get(name, 0.0) + float(lam)

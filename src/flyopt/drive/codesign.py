@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, cast
 
@@ -279,7 +279,7 @@ def evaluate_motor(
     load_torque: float,
     spec: Any,
     ratios: tuple,
-    materials: list[Material],
+    materials: Sequence[Material],
     design_spec: DesignSpec,
     *,
     solver_options: Mapping[str, Any] | None = None,
@@ -877,6 +877,7 @@ def verify_drive(scene: Any, run: MotorRun, j_flywheel: float | None = None) -> 
         j_flywheel,
         machine.knots(),
     )
+    assert checked.solution is not None  # verify keeps the periodic solution it simulated
     rms, _ = rms_torque(checked.solution, run.motor.motor(), ratio)
     startup = startup_run(machine, checked.omega_mean, j_flywheel)
     assert startup is not None  # a drive's machine is driven by its motor

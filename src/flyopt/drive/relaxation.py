@@ -461,7 +461,7 @@ def relax(
     g_lo, g_hi = wheel_nlp.row_bounds(structure, model.wheel_rows, dataclasses.replace(problem, j_shaft=1.0))
     inertia = model.wheel_rows.index("inertia")
     g_lo[inertia], g_hi[inertia] = 0.0, math.inf
-    start = wheel_nlp._start(
+    start = wheel_nlp.starting_wheel(
         structure, dataclasses.replace(problem, j_shaft=j_scale / hi**2, omega=hi * omega_top), model.wheel_names
     )
     w_x0 = [

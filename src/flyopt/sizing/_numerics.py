@@ -6,13 +6,29 @@ sections 6–7). The cubic Hermite interpolant and its exact extremes, pure
 numerics, are in :mod:`flyopt.cycle.numerics`.
 """
 
+from __future__ import annotations
+
 import contextlib
 import math
+from collections.abc import Callable
+from typing import Any
 
 import casadi as ca
 import numpy as np
+import numpy.typing as npt
 
 EPS = float(np.finfo(float).eps)
+
+FloatArray = npt.NDArray[np.float64]
+"""An array of floats (angles [rad], speeds [rad/s], torques [N*m], energies [J])."""
+
+NetTorqueLike = Callable[[Any, Any], Any]
+"""A net torque M(φ [rad], ω [rad/s]) [N*m] that accepts floats, numpy arrays and CasADi symbols
+(e.g. :class:`flyopt.machine.reduce.NetTorque`, which also carries its table and its work)."""
+
+InertiaLike = float | Callable[[Any], Any]
+"""The machine's inertia J(φ) [kg*m^2]: a number, or a CasADi-capable callable such as
+:class:`flyopt.machine.mechanism.EquivalentInertia`."""
 
 EDGE = 1e-10
 """Torques are evaluated this fraction of a piece inside its ends, so a step at

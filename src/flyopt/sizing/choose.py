@@ -16,10 +16,12 @@ the cheapest exact model and why; :func:`requirement` runs one model, and
 far a cheaper method would be off — in J_F and in the δ it would really give.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from typing import Any
 
-from flyopt.cycle.indicator import required_inertia
+from flyopt.cycle.indicator import EnergyIndicator, required_inertia
 from flyopt.errors import NonPeriodicCycle, SolverFailed
 from flyopt.machine.reduce import Machine, reduce  # noqa: F401 -- callers reach the reduction as models.reduce
 from flyopt.names import Model
@@ -33,7 +35,7 @@ MODELS = {
 ORDER = (ENERGY, ENERGY_MASS, DYNAMIC)
 
 
-def choose(machine):
+def choose(machine: Machine) -> tuple[Model, str]:
     """The cheapest model that is exact for the machine, and why (a sentence)."""
     if machine.speed_dependent:
         return DYNAMIC, "a torque depends on speed, so only the periodic solution of the equation of motion is exact"
@@ -78,7 +80,7 @@ class Requirement:
     note: str = ""
 
 
-def requirement(machine, model, indicator=None):
+def requirement(machine: Machine, model: str, indicator: EnergyIndicator | None = None) -> Requirement:
     """Size the flywheel with one model.
 
     Parameters
@@ -156,7 +158,7 @@ def requirement(machine, model, indicator=None):
     raise ValueError(f"model {model!r} is not known (allowed: {', '.join(ORDER)})")
 
 
-def achieved_delta(machine, j_flywheel):
+def achieved_delta(machine: Machine, j_flywheel: float) -> float:
     """δ the machine really reaches with a flywheel J_F at the reference shaft (by the exact model)."""
     from flyopt.sizing import energy_mass, periodic, periodic_model
 
@@ -174,7 +176,9 @@ def achieved_delta(machine, j_flywheel):
     return sol.delta
 
 
-def compare(machine, chosen, indicator=None, known=None):
+def compare(
+    machine: Machine, chosen: str, indicator: EnergyIndicator | None = None, known: Requirement | None = None
+) -> list[dict[str, Any]]:
     """Every applicable model's J_F and the δ it really gives (by the exact model).
 
     ``known`` is a :class:`Requirement` already computed (the chosen model's,
@@ -187,7 +191,9 @@ def compare(machine, chosen, indicator=None, known=None):
     if known is not None and known.model != chosen:
         raise ValueError(f"the known requirement is of model {known.model!r}, not of the chosen {chosen!r}")
     exact, _ = choose(machine)
-    rows, results = [], {}
+    rows: list[dict[str, Any]] = []
+    results: dict[str, Requirement] = {}
+    model: str  # a Model, or the name a caller gave
     for model in ORDER:
         if model != chosen and ORDER.index(model) > ORDER.index(exact):
             continue  # a costlier model than the exact one adds nothing

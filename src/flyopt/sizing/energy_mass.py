@@ -14,6 +14,8 @@ torques evaluated on arrays.
 Results are SI: [rad], [rad/s], [kg*m^2], [J].
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -21,8 +23,9 @@ from typing import Any
 
 import numpy as np
 
+from flyopt.cycle.indicator import ExcessWork
 from flyopt.cycle.numerics import brentq_many, quad_many
-from flyopt.sizing._numerics import EPS, Inertia, check_speed_delta
+from flyopt.sizing._numerics import EPS, Inertia, InertiaLike, check_speed_delta
 
 GRID = 4096
 """Points per cycle of the grid that brackets maxima and minima (knots added)."""
@@ -290,7 +293,7 @@ class EnergyMassRequirement:
     _lazy: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
-    def delta_constant_inertia(self):
+    def delta_constant_inertia(self) -> float | None:
         """The δ the constant-inertia flywheel really achieves [-] (None: it cannot keep the machine
         turning), by the forward use of the energy–mass method (docs/flywheel-design.md, section 6)."""
         if "delta_ci" not in self._lazy:
@@ -301,12 +304,14 @@ class EnergyMassRequirement:
         return self._lazy["delta_ci"]
 
     @property
-    def j_error(self):
+    def j_error(self) -> float:
         """Relative error of the constant-inertia J_F against the exact one [-]."""
         return (self.j_constant_inertia - self.j_required) / self.j_required if self.j_required else math.nan
 
 
-def energy_mass_requirement(excess_work, j_machine, omega_mean, delta):
+def energy_mass_requirement(
+    excess_work: ExcessWork, j_machine: InertiaLike, omega_mean: float, delta: float
+) -> EnergyMassRequirement:
     """Flywheel for a machine of variable inertia, by the energy–mass closed form.
 
     With ω_max,min = ω_m (1 ± δ/2) and J(φ) the machine's equivalent inertia
@@ -457,7 +462,9 @@ class SpeedFluctuation:
     e0: float
 
 
-def achieved_speed(excess_work, j_machine, omega_mean, j_flywheel=0.0):
+def achieved_speed(
+    excess_work: ExcessWork, j_machine: InertiaLike, omega_mean: float, j_flywheel: float = 0.0
+) -> SpeedFluctuation:
     """Speed fluctuation that a given flywheel achieves (energy–mass forward use).
 
     ω(φ) = sqrt(2 (E_0 + ΔE(φ)) / (J_F + J(φ))), with E_0 chosen so that

@@ -4,12 +4,17 @@ A cycle quantity: the analysis computes it from the torque curves and the
 inertia, and the design sizes the hub's key and the arms' bending from it.
 """
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from flyopt.validate import finite_array, positive
 
 
-def flywheel_peak_torque(j_flywheel_ref, j_total_ref, torque_difference_ref, speed_ratio) -> float:
+def flywheel_peak_torque(
+    j_flywheel_ref: float, j_total_ref: ArrayLike, torque_difference_ref: ArrayLike, speed_ratio: float
+) -> float:
     """The largest torque the flywheel's hub transmits to its own shaft over a cycle.
 
     Parameters

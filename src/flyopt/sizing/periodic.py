@@ -38,18 +38,25 @@ W_s the energy swing of the cycle), so the integrator's tolerances act on the
 fluctuation, whatever the speed (1 rpm or 20,000 rpm) and δ (1e-4 or 0.3).
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass, field
+from typing import Any, cast
 
 import numpy as np
 from scipy import optimize
 
 from flyopt.cycle.balance import BALANCE_TOLERANCE
+from flyopt.cycle.indicator import ExcessWork
 from flyopt.cycle.numerics import hermite_extremes
 from flyopt.errors import NonPeriodicCycle, SceneError, SolverFailed
 from flyopt.sizing import shooting
 from flyopt.sizing._numerics import (
     EPS,
+    InertiaLike,
+    NetTorqueLike,
     check_speed_delta,
     evaluate,
     quiet,
@@ -85,15 +92,16 @@ MEAN_RTOL = 1e-10
 iteration aims at MEAN_TARGET and fails beyond MEAN_RTOL."""
 
 
-def angle_torque(excess_work):
+def angle_torque(excess_work: ExcessWork) -> NetTorqueLike:
     """The net torque M_d − M_r of an ExcessWork as a CasADi callable (phi, omega).
 
     For simulating angle-only cycles with :func:`periodic_solution` and
     :func:`verify`; pass ``excess_work.knots`` as the knots.
     """
-    driving, resisting = excess_work.driving, excess_work.resisting
+    # the TorqueCurve protocol does not name .casadi; every curve of an ExcessWork flyopt builds has it
+    driving, resisting = cast(Any, excess_work.driving), cast(Any, excess_work.resisting)
 
-    def net(phi, omega):
+    def net(phi: Any, omega: Any) -> Any:
         return driving.casadi(phi) - resisting.casadi(phi)
 
     return net
@@ -174,7 +182,14 @@ def _simpson_time(phi, omega):
     return float(np.sum(h[:, 0] / 3 * (g @ w)))
 
 
-def periodic_solution(net_torque, j_machine, cycle_angle, omega_mean, j_flywheel=0.0, knots=()):
+def periodic_solution(
+    net_torque: NetTorqueLike,
+    j_machine: InertiaLike,
+    cycle_angle: float,
+    omega_mean: float,
+    j_flywheel: float = 0.0,
+    knots: Iterable[float] = (),
+) -> PeriodicSolution:
     """Periodic steady state of d(½ J(φ) ω²)/dφ = M(φ, ω) over one cycle.
 
     Parameters
@@ -290,7 +305,7 @@ def _steady(model, j_flywheel, omega_guess):
         )
     else:
         omega = shooting.speed_balance(torque, omega_guess)
-        slope = float(evaluate(model.torque_slope_function, model._maps, 0.0, omega)[0])
+        slope = float(evaluate(model.torque_slope_function, model.maps, 0.0, omega)[0])
         multiplier = math.exp(model.cycle * slope / (j * omega)) if j > 0 else 0.0
         status = "steady: the torques do not vary with the angle; the torque-speed balance sets the speed"
     phi = model.grid_angles().reshape(-1)
@@ -738,7 +753,15 @@ def _found(solution):
     return solution
 
 
-def dynamic_requirement(net_torque, j_machine, cycle_angle, omega_mean, delta, knots=(), rtol=1e-10):
+def dynamic_requirement(
+    net_torque: NetTorqueLike,
+    j_machine: InertiaLike,
+    cycle_angle: float,
+    omega_mean: float,
+    delta: float,
+    knots: Iterable[float] = (),
+    rtol: float = 1e-10,
+) -> DynamicRequirement:
     """Smallest J_F whose periodic solution keeps (ω_max − ω_min)/ω_mean <= δ.
 
     Parameters
@@ -950,7 +973,7 @@ class Verification:
     j_flywheel: float
     solution: PeriodicSolution | None = field(default=None, repr=False, compare=False)
 
-    def to_dict(self):
+    def to_dict(self) -> dict[str, Any]:
         """The fields of the report's "verification" entry (SI)."""
         return {
             "method": self.method,
@@ -965,7 +988,15 @@ class Verification:
         }
 
 
-def verify(net_torque, j_machine, cycle_angle, omega_mean, delta_allowed, j_flywheel, knots=()):
+def verify(
+    net_torque: NetTorqueLike,
+    j_machine: InertiaLike,
+    cycle_angle: float,
+    omega_mean: float,
+    delta_allowed: float,
+    j_flywheel: float,
+    knots: Iterable[float] = (),
+) -> Verification:
     """Simulate the periodic steady state with a chosen flywheel and compare δ.
 
     Parameters

@@ -10,18 +10,25 @@ it; the searches for a periodic solution (:mod:`flyopt.sizing.periodic`) and the
 one-solve requirement (:mod:`flyopt.sizing.shooting`) run on it.
 """
 
+from __future__ import annotations
+
 import weakref
+from collections.abc import Iterable
 from functools import cached_property
-from typing import Any
+from typing import Any, cast
 
 import casadi as ca
 import numpy as np
+from numpy.typing import ArrayLike
 
 from flyopt.errors import SolverFailed
 from flyopt.sizing import shooting
 from flyopt.sizing._numerics import (
     EDGE,
+    FloatArray,
     Inertia,
+    InertiaLike,
+    NetTorqueLike,
     check_cycle,
     evaluate,
     quiet,
@@ -81,12 +88,15 @@ class PeriodicModel:
         Angles where the torque steps or kinks [rad].
     """
 
-    def __init__(self, net_torque, j_machine, cycle_angle, knots=()):
+    def __init__(
+        self, net_torque: NetTorqueLike, j_machine: InertiaLike, cycle_angle: float, knots: Iterable[float] = ()
+    ) -> None:
         BUILDS["periodic model"] += 1
         self.cycle = check_cycle(cycle_angle)
         self.inertia = Inertia(j_machine)
         self.table = getattr(net_torque, "table", None)
-        rest = net_torque.rest if self.table is not None else net_torque
+        # a torque with a table (flyopt.machine.reduce.NetTorque) carries the rest of itself as ``rest``
+        rest = cast(Any, net_torque).rest if self.table is not None else net_torque
         knots = np.asarray(list(knots), dtype=float).reshape(-1)
         if not np.all(np.isfinite(knots)):
             raise ValueError("knots must be finite angles [rad]")
@@ -122,11 +132,12 @@ class PeriodicModel:
         self.torque_function = ca.Function("M", [phi, omega], [m])
         self._rest_constant = not (ca.depends_on(m, phi) or self.speed_dependent)
         self.torque_slope_function = ca.Function("dM", [phi, omega], [ca.jacobian(m, omega)])
-        self._maps = {}
-        self._chunks = {}
-        self._table_values = {}
+        #: CasADi maps of the torque functions over arrays, by size (for :func:`flyopt.sizing._numerics.evaluate`).
+        self.maps: dict[Any, Any] = {}
+        self._chunks: dict[tuple[str, int], Any] = {}
+        self._table_values: dict[str, FloatArray] = {}
 
-    def table_at(self, a, b):
+    def table_at(self, a: ArrayLike, b: ArrayLike) -> FloatArray:
         """The table's values at the ends of pieces [a, b], seen from inside them [N*m], shape (n, 2)."""
         a, b = np.atleast_1d(np.asarray(a, dtype=float)), np.atleast_1d(np.asarray(b, dtype=float))
         if self.table is None:
@@ -134,7 +145,7 @@ class PeriodicModel:
         return np.column_stack((self.table.limits(a)[1], self.table.limits(b)[0]))
 
     # -- CasADi building blocks --------------------------------------------------
-    def _rhs(self, with_time):
+    def rhs(self, with_time: bool) -> dict[str, Any]:
         """States [y, stall(, t)], parameters [φ_a, φ_b, J_F, E_ref, W_s, c, M_a, M_b(, T_s)].
 
         c is a constant added to the net torque (the correction of a
@@ -168,15 +179,15 @@ class PeriodicModel:
             "print_stats": False,
             "verbose": False,
         }
-        return ca.integrator("piece_t" if with_time else "piece", "cvodes", self._rhs(with_time), 0.0, self.tau, opts)
+        return ca.integrator("piece_t" if with_time else "piece", "cvodes", self.rhs(with_time), 0.0, self.tau, opts)
 
     @cached_property
-    def piece(self):
+    def piece(self) -> ca.Function:
         """CVODES over one piece: states [y, stall], outputs at ``tau``."""
         return self._integrator(False)
 
     @cached_property
-    def piece_timed(self):
+    def piece_timed(self) -> ca.Function:
         """CVODES over one piece with time: states [y, stall, t]."""
         return self._integrator(True)
 
@@ -208,12 +219,14 @@ class PeriodicModel:
                 self._chunks[key] = ca.Function(f"{kind}_{size}", [xs, ca.vertcat(*qs), ds], outs)
         return self._chunks[key]
 
-    def _chunked(self):
+    def chunked(self) -> list[tuple[int, FloatArray]]:
         """(start, data) of each chunk of at most :data:`CHUNK` pieces."""
         data = np.column_stack((self.pieces, self.table_ends)).T
         return [(k, data[:, k : k + CHUNK]) for k in range(0, len(self.pieces), CHUNK)]
 
-    def shoot(self, j_flywheel, e_ref, w_s, offset=0.0, balancing=False):
+    def shoot(
+        self, j_flywheel: float, e_ref: float, w_s: float, offset: float = 0.0, balancing: bool = False
+    ) -> tuple[float, ...]:
         """One cycle from y = 0: (y(Φ), stall(Φ), dy(Φ)/dE_ref[, dy(Φ)/dc]).
 
         The chunks are chained by the chain rule: y depends on the energy
@@ -227,7 +240,7 @@ class PeriodicModel:
         kind = "balancing" if balancing else "shooting"
         q = [j_flywheel, e_ref, w_s, offset]
         x, d_e, d_c = np.zeros(2), 0.0, 0.0
-        for _, data in self._chunked():
+        for _, data in self.chunked():
             out = self._chunk(kind, data.shape[1])(x, q, data)
             b_e = float(out[1])
             gain = 1.0 + w_s * b_e
@@ -237,20 +250,32 @@ class PeriodicModel:
             x = np.asarray(out[0], dtype=float).reshape(-1)
         return (x[0], x[1], d_e, d_c) if balancing else (x[0], x[1], d_e)
 
+    @cached_property
+    def structure(self) -> tuple[Any, ...]:
+        """What functions compiled from this model depend on (:mod:`flyopt.sizing.shooting` caches them by it):
+        the net torque's and the inertia's expressions, the grid and the balancing constant; the pieces and
+        the table's values are inputs."""
+        return (
+            self.torque_function.serialize(),
+            self.inertia.function.serialize(),
+            len(self.tau),
+            bool(self.balanced),
+        )
+
     # -- numbers --------------------------------------------------------------
-    def grid_angles(self):
+    def grid_angles(self) -> FloatArray:
         """Angles of the simulation outputs, piece by piece, shape (pieces, outputs) (read-only)."""
         return self._grid
 
     @cached_property
-    def _grid(self):
+    def _grid(self) -> FloatArray:
         a, b = self.pieces[:, :1], self.pieces[:, 1:]
         grid = a + self.tau[None, :] * (b - a)
         grid.setflags(write=False)
         return grid
 
     @cached_property
-    def inner_angles(self):
+    def inner_angles(self) -> FloatArray:
         """The output angles seen from inside each piece (:data:`EDGE` in from its ends), where the
         torques are evaluated so that a step at a knot is taken from the correct side (read-only)."""
         h = self.pieces[:, 1] - self.pieces[:, 0]
@@ -258,13 +283,13 @@ class PeriodicModel:
         inner.setflags(write=False)
         return inner
 
-    def torque(self, phi, omega):
+    def torque(self, phi: ArrayLike, omega: ArrayLike) -> FloatArray:
         """Net torque at numpy arrays (broadcast) [N*m]; on a knot, the value right of it."""
         if self._rest_constant:  # a table alone: no CasADi call per point
             shape = np.broadcast_shapes(np.shape(phi), np.shape(omega))
             values = np.full(shape, float(self.torque_function(0.0, 0.0)))
         else:
-            values = evaluate(self.torque_function, self._maps, phi, omega)[0]
+            values = evaluate(self.torque_function, self.maps, phi, omega)[0]
         if self.table is not None:
             values = values + self._table_right(phi, values.shape)
         return values
@@ -284,17 +309,17 @@ class PeriodicModel:
             self._table_values[grid] = values
         return self._table_values[grid]
 
-    def falls_with_speed(self, omega):
+    def falls_with_speed(self, omega: float) -> bool:
         """Whether ∂M/∂ω <= 0 on the grid for speeds up to 4 ω (sampled; the torque
         then has a unique periodic solution, see :func:`flyopt.sizing.periodic._periodic_energy`)."""
         if not self.speed_dependent:
             return True
         phi = self.grid_angles()[:, :-1].reshape(-1)
         speeds = np.linspace(0.0, 4 * omega, 65)[1:]
-        slope = evaluate(self.torque_slope_function, self._maps, phi[:, None], speeds[None, :])[0]
+        slope = evaluate(self.torque_slope_function, self.maps, phi[:, None], speeds[None, :])[0]
         return bool(np.all(slope <= 0))
 
-    def check_finite(self, omega):
+    def check_finite(self, omega: float) -> None:
         """Raise ValueError when the net torque is not finite on the grid at speed ``omega``."""
         phi = self.grid_angles()
         m = self.torque(phi, omega)
@@ -306,7 +331,7 @@ class PeriodicModel:
                 f"be finite over the cycle"
             )
 
-    def work_scale(self, omega):
+    def work_scale(self, omega: float) -> float:
         """An upper bound of the energy swing over the cycle at speed ``omega`` [J].
 
         The larger of Φ · max |M(φ, ω)| and ½ (max J − min J) ω² (the energy
@@ -318,13 +343,13 @@ class PeriodicModel:
         scale = max(self.cycle * float(np.max(np.abs(m))), 0.5 * float(np.ptp(j)) * omega**2)
         return scale if scale > 0 else 1.0
 
-    def absolute_work(self, omega):
+    def absolute_work(self, omega: float) -> float:
         """∫ |M(φ, ω)| dφ over the cycle at speed ``omega`` [J] (trapezoid on the simulation grid)."""
         phi = self.grid_angles()
         m = np.abs(self.torque(self.inner_angles, omega))
         return float(np.sum(0.5 * (m[:, 1:] + m[:, :-1]) * np.diff(phi, axis=1)))
 
-    def trajectory(self, j_flywheel, e_ref, w_s, offset=0.0):
+    def trajectory(self, j_flywheel: float, e_ref: float, w_s: float, offset: float = 0.0) -> tuple[FloatArray, float]:
         """Integrate one cycle from y = 0; returns y (pieces, outputs) and the stall measure.
 
         Raises
@@ -336,7 +361,7 @@ class PeriodicModel:
         x, parts = np.zeros(2), []
         try:
             with quiet():
-                for _, data in self._chunked():
+                for _, data in self.chunked():
                     ends, outs = self._chunk("cycle", data.shape[1])(x, q, data)
                     parts.append(np.asarray(outs, dtype=float))
                     x = np.asarray(ends, dtype=float)[:, -1]
@@ -348,7 +373,9 @@ class PeriodicModel:
         y = out[0].reshape(len(self.pieces), len(self.tau))
         return y, float(out[1, -1])
 
-    def speed_profile(self, y, j_flywheel, e_ref, w_s, shift=0.0, offset=0.0):
+    def speed_profile(
+        self, y: FloatArray, j_flywheel: float, e_ref: float, w_s: float, shift: float = 0.0, offset: float = 0.0
+    ) -> tuple[FloatArray, FloatArray | None, FloatArray | None, FloatArray]:
         """q = E/J = ω²/2 and its slope dq/dφ = (M J − E J')/J² on the simulation grid.
 
         q is smooth even where ω is small (ω itself has a square-root
@@ -377,7 +404,9 @@ requirement, the comparison of models and the verification of one machine
 share one model; the entry lives as long as that torque."""
 
 
-def periodic_model(net_torque, j_machine, cycle_angle, knots=()):
+def periodic_model(
+    net_torque: NetTorqueLike, j_machine: InertiaLike, cycle_angle: float, knots: Iterable[float] = ()
+) -> PeriodicModel:
     """The (cached) :class:`PeriodicModel` of one machine structure.
 
     The CasADi integrators and cycle functions are built once per net torque

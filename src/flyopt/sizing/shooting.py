@@ -47,16 +47,22 @@ and the caller falls back on the CVODES search, which handles every case and
 stays the independent verifier (``--verify``).
 """
 
+from __future__ import annotations
+
 import math
 from collections import Counter
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 import casadi as ca
 import numpy as np
 
 from flyopt.cycle.numerics import hermite_extremes
 from flyopt.errors import SolverFailed
-from flyopt.sizing._numerics import EPS, call, evaluate
+from flyopt.sizing._numerics import EPS, FloatArray, call, evaluate
+
+if TYPE_CHECKING:  # annotations only: periodic_model imports this module
+    from flyopt.sizing.periodic_model import PeriodicModel
 
 BUILDS: Counter[str] = Counter()
 """CasADi structures built, by kind; :data:`flyopt.sizing.periodic.BUILDS` is this counter."""
@@ -115,24 +121,14 @@ def _functions(model, substeps):
     ∂y/∂c] (4 rows). q = [J_F, E_ref, W_s, c]; data = [φ_a, φ_b, M_a, M_b] of
     each piece (4 × size).
     """
-    structure = model.__dict__.get("_structure")
-    if structure is None:
-        # what the compiled steps depend on: the net torque's and the inertia's expressions, the
-        # grid and the balancing constant; the pieces and the table's values are inputs
-        structure = model._structure = (
-            model.torque_function.serialize(),
-            model.inertia.function.serialize(),
-            len(model.tau),
-            bool(model.balanced),
-        )
-    key = structure + (substeps,)
+    key = model.structure + (substeps,)
     if key in _STRUCTURES:
         _STRUCTURES[key] = _STRUCTURES.pop(key)  # most recently used last
         return _STRUCTURES[key]
     if len(_STRUCTURES) >= MAX_STRUCTURES:
         _STRUCTURES.pop(next(iter(_STRUCTURES)))
     BUILDS["fixed-step function"] += 1
-    rhs = model._rhs(False)
+    rhs = model.rhs(False)
     # y alone: the stall measure (the model's second state) never enters dy/dτ and is not used here
     f = ca.Function("f", [rhs["t"], rhs["x"], rhs["p"]], [rhs["ode"][0]])
     outputs = len(model.tau) - 1
@@ -195,7 +191,15 @@ def _chunk(model, substeps, kind, size):
     return functions["chunks"][key]
 
 
-def cycle(model, substeps, j_flywheel, e_ref, w_s, offset, derivatives):
+def cycle(
+    model: PeriodicModel,
+    substeps: int,
+    j_flywheel: float,
+    e_ref: float,
+    w_s: float,
+    offset: float,
+    derivatives: bool,
+) -> tuple[FloatArray, FloatArray | None]:
     """One cycle by fixed-step RK4 from y = 0.
 
     Returns
@@ -209,7 +213,7 @@ def cycle(model, substeps, j_flywheel, e_ref, w_s, offset, derivatives):
     kind = "jacobian" if derivatives else "plain"
     x = np.zeros(4 if derivatives else 1)  # the sensitivities start at zero with y
     parts = []
-    for _, data in model._chunked():
+    for _, data in model.chunked():
         size = data.shape[1]
         end, states = call(_chunk(model, substeps, kind, size), x, np.repeat(q, size, axis=1), data)
         states = states.reshape(len(x), -1, order="F")
@@ -268,7 +272,7 @@ class _State:
         if model.speed_dependent:
             # |∂(dy/dτ)/∂y| Δτ = |∂M/∂ω| Δφ/(J ω) per grid interval
             h = np.diff(phi, axis=1)
-            slope = evaluate(model.torque_slope_function, model._maps, phi[:, :-1], np.sqrt(2 * q[:, :-1]))[0]
+            slope = evaluate(model.torque_slope_function, model.maps, phi[:, :-1], np.sqrt(2 * q[:, :-1]))[0]
             self.stiffness = float(
                 np.max(np.abs(slope) * h / (j_total(model, phi[:, :-1], self.j_flywheel) * np.sqrt(2 * q[:, :-1])))
             )
@@ -276,6 +280,7 @@ class _State:
             self.stiffness = 0.0
         if not derivatives:
             return
+        assert jac is not None  # cycle gives the sensitivities when asked for them
         if not np.all(np.isfinite(jac)):  # the steps are unstable for the derivatives
             self.ok = False
             return
@@ -309,7 +314,7 @@ class _State:
         self.jac = np.array(rows)[:, : len(x)]
 
 
-def j_total(model, phi, j_flywheel):
+def j_total(model: PeriodicModel, phi: FloatArray, j_flywheel: float) -> FloatArray:
     """J_e(φ) + J_F [kg*m^2]."""
     return model.inertia(phi) + j_flywheel
 
@@ -347,7 +352,7 @@ class _Solve:
         )
 
 
-def required_flywheel(model, delta, omega_guess, j_initial_total):
+def required_flywheel(model: PeriodicModel, delta: float, omega_guess: float, j_initial_total: float) -> dict[str, Any]:
     """J_F, the periodic grid and the iteration count of the one-solve.
 
     Parameters
@@ -490,7 +495,7 @@ def _mean_balance(model, omega_guess):
         raise NotSettled(f"the cycle's mean torque: {err}") from None
 
 
-def speed_balance(torque, omega_guess, rtol=4 * EPS):
+def speed_balance(torque: Callable[[float], float], omega_guess: float, rtol: float = 4 * EPS) -> float:
     """The speed where a torque of speed alone, M(ω), falls through zero (a stable balance) [rad/s].
 
     Bracketed outward from the guess by factors of 2, then refined by Brent's method to ``rtol``.
@@ -526,7 +531,7 @@ def speed_balance(torque, omega_guess, rtol=4 * EPS):
     return brentq(torque, lo, hi, xtol=1e-15 * hi, rtol=rtol, maxiter=500)
 
 
-def energy_swing(model, omega):
+def energy_swing(model: PeriodicModel, omega: float) -> float:
     """max − min of ∫ (M − mean M) dφ on the grid at a frozen speed [J] (the energy method's A_max)."""
     phi = model.grid_angles()
     m = model.torque(phi, omega)

@@ -5,7 +5,10 @@ The equation of motion in the angle, as the periodic model
 rest with the time as a third state.
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -13,7 +16,7 @@ from scipy import optimize
 
 from flyopt.cycle.numerics import hermite, hermite_extremes
 from flyopt.errors import SolverFailed
-from flyopt.sizing._numerics import EDGE, EPS, check_speed_delta, quiet
+from flyopt.sizing._numerics import EDGE, EPS, InertiaLike, NetTorqueLike, check_speed_delta, quiet
 from flyopt.sizing.periodic_model import periodic_model
 
 
@@ -40,8 +43,15 @@ class Startup:
 
 
 def startup_time(
-    net_torque, j_machine, cycle_angle, omega_target, j_flywheel=0.0, knots=(), phi_start=0.0, max_cycles=100000
-):
+    net_torque: NetTorqueLike,
+    j_machine: InertiaLike,
+    cycle_angle: float,
+    omega_target: float,
+    j_flywheel: float = 0.0,
+    knots: Iterable[float] = (),
+    phi_start: float = 0.0,
+    max_cycles: int = 100000,
+) -> Startup:
     """Time from rest until the speed first reaches ``omega_target``.
 
     Parameters

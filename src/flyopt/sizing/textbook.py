@@ -7,11 +7,17 @@ sizes such a machine exactly (the energy-mass method, docs/flywheel-design.md,
 section 6) and keeps this method to compare with the book.
 """
 
-from dataclasses import dataclass
+from __future__ import annotations
 
-from flyopt.cycle.indicator import energy_indicator, required_inertia
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from flyopt.cycle.indicator import EnergyIndicator, energy_indicator, required_inertia
 from flyopt.cycle.torque import TorqueSum
 from flyopt.machine.engine import InertiaTorque
+
+if TYPE_CHECKING:  # annotations only
+    from flyopt.machine.reduce import Machine
 
 
 @dataclass(frozen=True)
@@ -37,10 +43,12 @@ class TextbookRequirement:
     omega_mean: float
     delta: float
     j_machine_mean: float
-    indicator: object
+    indicator: EnergyIndicator
 
 
-def textbook_requirement(machine, omega_mean=None, delta=None):
+def textbook_requirement(
+    machine: Machine, omega_mean: float | None = None, delta: float | None = None
+) -> TextbookRequirement:
     """The flywheel the textbook's "inertia torque at the mean speed" method asks for.
 
     The textbook (e.g. Khurmi & Gupta, *Theory of Machines*, turning-moment

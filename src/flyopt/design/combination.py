@@ -1,0 +1,49 @@
+"""One material x mounting shaft combination, as the designer decides it.
+
+The designer (:func:`flyopt.design.designer.design_flywheel`) builds one
+:class:`Combination` per material and shaft: the speed of that shaft, the
+inertia required there (J_F / r^2), the caps on the outer diameter, the
+shaft seat and the peak torque there. The textbook NLP
+(:mod:`flyopt.design.nlp`) and the whole-wheel design
+(:mod:`flyopt.design.wheel_design`) read it; its :attr:`Combination.label`
+names it in every message.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from flyopt.design.materials import Material
+from flyopt.design.spec import MountShaft
+
+__all__ = ["Combination", "shaft_label"]
+
+
+@dataclass
+class Combination:
+    """A material on a mounting shaft, with what the design of its wheel needs (SI)."""
+
+    material: Material
+    shaft: MountShaft
+    omega: float  # speed of the carrying shaft [rad/s]
+    j_shaft: float  # required inertia on that shaft [kg*m^2]
+    j_reference: float
+    cap_speed: float  # outer-diameter cap of the rim speed [m]
+    cap: float  # min(cap_speed, envelope) [m]
+    j_max: float = 0.0
+    bore: float = 0.0  # the shaft seat [m], 0: none
+    torque: float = 0.0  # peak torque on this shaft [N*m], 0: unknown
+    n_arms: int = 0  # a rim_arms wheel's arm count
+    v_max: float = math.nan  # the material's safe rim speed [m/s] (nan: none, under the stress criterion)
+
+    @property
+    def label(self) -> str:
+        """The combination in words, e.g. ``"grey cast iron on the crank shaft with 6 arms"``."""
+        arms = f" with {self.n_arms} arms" if self.n_arms else ""
+        return f"{self.material.name.replace('_', ' ')} on the {shaft_label(self.shaft.name)}{arms}"
+
+
+def shaft_label(name: str) -> str:
+    """A shaft's name as a phrase: ``"crank"`` becomes ``"crank shaft"``; ``"output shaft"`` stays."""
+    return name if name.lower().endswith("shaft") else f"{name} shaft"
