@@ -5,6 +5,9 @@ cannot be read, holds another chunk or lacks rows is said on stderr in one
 line and computed again, and the file equals an uninterrupted run's.
 """
 
+import subprocess
+import sys
+
 import pandas as pd
 import pytest
 from test_runner import PUNCH, VARY
@@ -70,3 +73,35 @@ def test_part_with_missing_rows_is_recomputed(tmp_path, capsys):
     sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)
     assert "holds 3 rows, not the chunk's 4" in capsys.readouterr().err
     pd.testing.assert_frame_equal(read_results(out), sweep(PUNCH, VARY, chunk_size=4))
+
+
+def test_a_second_sweep_of_a_running_sweeps_output_is_refused_naming_its_process(tmp_path):
+    """Issue 25, item 10: two sweeps to one output were not locked out; the second was told to
+    --resume a sweep still running, and if it did it failed on a bare chunk path. The parts folder
+    is held by the running sweep (flock): a second sweep, resumed or not, is refused and told whose
+    it is; once the first has stopped, --resume takes it."""
+    import os
+
+    from flyopt.studies.parts import Parts
+
+    out = tmp_path / "study.parquet"
+    first = Parts(out)
+    record = {"fingerprint": "f"}
+    assert first.open(record, [], resume=False) == []
+    script = (
+        "import sys\n"
+        "from flyopt.errors import SceneError\n"
+        "from flyopt.studies.parts import Parts\n"
+        "try:\n"
+        f"    Parts({str(out)!r}).open({{'fingerprint': 'f'}}, [], resume=sys.argv[1] == 'resume')\n"
+        "except SceneError as err:\n"
+        "    print(err)\n"
+        "else:\n"
+        "    print('taken')\n"
+    )
+    for mode in ("new", "resume"):
+        run = subprocess.run([sys.executable, "-c", script, mode], capture_output=True, text=True, timeout=60)
+        assert f"is being written by the sweep of process {os.getpid()}, still running" in run.stdout, run
+    first.release()
+    run = subprocess.run([sys.executable, "-c", script, "resume"], capture_output=True, text=True, timeout=60)
+    assert run.stdout.strip() == "taken", run

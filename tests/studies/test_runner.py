@@ -158,7 +158,7 @@ def test_ctrl_c_stops_workers_keeps_chunks_and_resume_completes(tmp_path, uninte
     wait_for(lambda: not alive(workers), 10, "the workers to end")
     parts = tmp_path / "study.parquet.parts"
     chunks = sorted(p.name for p in parts.glob("chunk-*"))
-    assert sorted(p.name for p in parts.iterdir()) == chunks + ["sweep.json"]  # no temporary
+    assert sorted(p.name for p in parts.iterdir()) == chunks + ["lock", "sweep.json"]  # no temporary
     assert all(re.fullmatch(r"chunk-\d{5}\.parquet", name) for name in chunks)
     assert len(chunks) == int(stdout.split("; ")[1].split(" of ")[0]) >= 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["driver.py", "study.parquet.parts"]
@@ -200,6 +200,7 @@ def test_interrupt_while_writing_the_output_leaves_no_hidden_file(tmp_path, monk
     assert sorted(p.name for p in tmp_path.iterdir()) == ["study.parquet.parts"]
     assert sorted(p.name for p in (tmp_path / "study.parquet.parts").iterdir()) == [
         *(f"chunk-{i:05d}.parquet" for i in range(5)),
+        "lock",
         "sweep.json",
     ]
     monkeypatch.setattr(ResultWriter, "close", original)

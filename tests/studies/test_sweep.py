@@ -10,6 +10,8 @@ agreement; the closed form and IPOPT both reach ~1e-10).
 import importlib
 import json
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pandas as pd
@@ -567,6 +569,7 @@ def test_resume_after_stopping_and_after_a_lost_part(tmp_path):
         "chunk-00000.parquet",
         "chunk-00001.parquet",
         "chunk-00002.parquet",
+        "lock",
         "sweep.json",
     ]
     assert not out.exists()
@@ -775,3 +778,20 @@ def test_sweep_output_in_a_missing_folder_is_refused_not_created(tmp_path, capsy
     assert main(["sweep", str(PROBLEMS / "shear-press.toml"), "--vary", "delta=0.1,0.2", "-o", str(target)]) == 2
     assert "does not exist" in capsys.readouterr().err
     assert not (tmp_path / "no").exists()
+
+
+def test_max_chunks_zero_is_refused(tmp_path):
+    """Issue 25, item 10: --max-chunks 0 made a parts folder, ran nothing and exited 0."""
+    out = tmp_path / "study.parquet"
+    with pytest.raises(SceneError, match="max-chunks: must be a whole number >= 1, got 0"):
+        sweep(PUNCH, VARY, output=out, chunk_size=4, max_chunks=0)
+    assert list(tmp_path.iterdir()) == []
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "sweep", str(PROBLEMS / "punch-press.toml"), "--vary", "delta=0.05:0.1:3"]
+        + ["-o", str(out), "--max-chunks", "0"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert run.returncode == 2 and "--max-chunks" in run.stderr and len(run.stderr.splitlines()) == 1
+    assert list(tmp_path.iterdir()) == []

@@ -111,7 +111,7 @@ def add_sweep_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--resume", action="store_true", help="continue an interrupted sweep from OUTPUT.parts/")
     parser.add_argument(
-        "--max-chunks", type=int, metavar="K", help="stop after K chunks (continue later with --resume)"
+        "--max-chunks", type=_positive_int, metavar="K", help="stop after K chunks (continue later with --resume)"
     )
     parser.add_argument(
         "--method",

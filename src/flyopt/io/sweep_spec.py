@@ -259,7 +259,7 @@ def check_options(options, where="sweep"):
     """
     from flyopt.outputs.results import output_format
 
-    minimum = {"samples": 1, "seed": 0, "chunk_size": 1, "max_chunks": 0}
+    minimum = {"samples": 1, "seed": 0, "chunk_size": 1, "max_chunks": 1}  # 0 chunks: a sweep that does nothing
     for key, lowest in minimum.items():
         if options.get(key) is not None:
             whole_number(options[key], option_label(where, key), lowest)

@@ -26,6 +26,24 @@ from flyopt.errors import SceneError
 from flyopt.outputs.files import check_folder
 from flyopt.outputs.results import read_results, write_results
 
+#: The descriptors of the parts folders this process holds. A worker process forked from it gets copies,
+#: and a flock lasts while any copy is open: each child closes them at once, so the lock is the sweep's alone
+#: (a pool that outlives the sweep would otherwise keep its folder from --resume).
+_HELD: set[int] = set()
+
+
+def _close_held() -> None:
+    for fd in list(_HELD):
+        try:
+            os.close(fd)
+        except OSError:  # pragma: no cover - already closed
+            pass
+    _HELD.clear()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_close_held)
+
 __all__ = ["Parts", "fingerprint"]
 
 
@@ -57,10 +75,45 @@ class Parts:
     """
 
     MANIFEST = "sweep.json"
+    LOCK = "lock"
+    """Held (``flock``) by the sweep writing the folder, with its process id: a second sweep of the same
+    output is refused while the first runs; the lock goes with its process (a kill -9 frees it)."""
 
     def __init__(self, output: str | os.PathLike[str]) -> None:
         output = Path(output)
         self.folder = output.with_name(output.name + ".parts")
+        self._lock: int | None = None
+
+    def lock(self) -> None:
+        """Take the folder for this process, or refuse (SceneError) while another sweep writes it."""
+        try:
+            import fcntl
+        except ImportError:  # pragma: no cover - not POSIX: no lock, as before
+            return
+        if self._lock is not None:
+            return
+        fd = os.open(self.folder / self.LOCK, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            holder = os.read(fd, 20).decode("ascii", errors="replace").strip() or "?"
+            os.close(fd)
+            raise SceneError(
+                "--output",
+                f"{str(self.folder)!r} is being written by the sweep of process {holder}, still running: "
+                "wait for it, or stop it and continue with --resume",
+            ) from None
+        os.ftruncate(fd, 0)
+        os.write(fd, str(os.getpid()).encode("ascii"))
+        self._lock = fd
+        _HELD.add(fd)
+
+    def release(self) -> None:
+        """Let the folder go (the end of the sweep; the process's end does it too)."""
+        if self._lock is not None:
+            _HELD.discard(self._lock)
+            os.close(self._lock)  # closing the descriptor drops the flock
+            self._lock = None
 
     def path(self, index: int) -> Path:
         """The file of chunk ``index``."""
@@ -99,9 +152,23 @@ class Parts:
         """
         if not self.folder.exists():
             check_folder(self.folder)
-            self.folder.mkdir()
-            (self.folder / self.MANIFEST).write_text(json.dumps(record), encoding="utf-8")
-            return []
+            try:
+                self.folder.mkdir()
+            except FileExistsError:  # another sweep made it a moment ago: its lock says so below
+                pass
+            else:
+                self.lock()
+                (self.folder / self.MANIFEST).write_text(json.dumps(record), encoding="utf-8")
+                return []
+        self.lock()  # before anything is read: a running sweep's folder is neither resumed nor reported stale
+        try:
+            return self._reopen(record, chunks, resume)
+        except BaseException:
+            self.release()  # refused (or interrupted): the folder is not this sweep's
+            raise
+
+    def _reopen(self, record: Mapping[str, Any], chunks: Sequence[tuple[int, pd.DataFrame]], resume: bool) -> list[int]:
+        """:meth:`open` of a folder that exists, held by this process."""
         if not resume:
             raise SceneError(
                 "--output",
@@ -141,6 +208,7 @@ class Parts:
     def remove(self) -> None:
         """Remove the folder and everything in it."""
         shutil.rmtree(self.folder, ignore_errors=True)
+        self.release()
 
 
 def _damage(path: Path, chunk: pd.DataFrame) -> str:

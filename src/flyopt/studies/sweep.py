@@ -284,6 +284,7 @@ def sweep(
         prepare = _seed_column(plan)
         describe = _describe(scene, plan, method)
         assembly = _Assembly(layout["units"], len(points), parts, output, prepare, describe)
+        complete = written = False  # written: the whole output is in place (the parts folder goes next)
         try:
             for i in reused:
                 assembly.add(i)
@@ -301,6 +302,7 @@ def sweep(
             seconds = time.perf_counter() - start
             complete = len(reused) + len(ran) == len(chunks)
             assembly.finish(complete)
+            written = complete
         except KeyboardInterrupt:
             assembly.abort()
             raise Interrupted(
@@ -309,6 +311,9 @@ def sweep(
         except BaseException:
             assembly.abort()
             raise
+        finally:
+            if parts is not None and not (written and not keep_parts):
+                parts.release()  # the folder stays for --resume; another sweep may now take it
     if complete and parts is not None and not keep_parts:
         parts.remove()
     frame = assembly.frame()
