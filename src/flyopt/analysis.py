@@ -225,7 +225,8 @@ class Analysis:
         (:func:`flyopt.sizing.peak_torque.flywheel_peak_torque`), over the torque curves
         on a grid of 4097 angles and every knot, both sides of a step; speed-
         dependent torques are taken at the mean speed. None for a net-area scene
-        (no curves) or when no flywheel is needed. Computed once.
+        (no curves) or when no flywheel is needed. Computed once, by the stages that need it (the design's
+        arms and key, the stress profile, a sweep's points); no reader asks for it (tests/test_computed_once.py).
         """
         if j_flywheel is not None:
             return flywheel_torque(self.machine, j_flywheel)
