@@ -29,7 +29,7 @@ DIAGRAMS = ["turning_moment", "energy", "inertia_delta", "cross_section", "stres
 
 
 def _entry_points():
-    """(module, name) of every function that runs a model or designs, which a reader must not call."""
+    """(module, name) of every function that runs a model, designs or samples the cycle, which a reader must not call."""
     import flyopt.analysis
     import flyopt.delta_curve
     import flyopt.design
@@ -47,6 +47,9 @@ def _entry_points():
         (flyopt.analysis, "complete"),
         (flyopt.analysis, "startup_run"),
         (flyopt.analysis, "_speed_curve"),
+        # the flywheel's peak torque samples the torque curves: the design stage asks for it (the arms, the key,
+        # the stress profile), a reader never does
+        (flyopt.analysis, "flywheel_torque"),
         (flyopt.sizing.choose, "requirement"),
         (flyopt.sizing.choose, "compare"),
         (flyopt.sizing.periodic, "periodic_solution"),

@@ -8,10 +8,10 @@ ratio-squared transfer.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Collection, Iterable
 from dataclasses import asdict, dataclass, field, replace
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, Literal, TypedDict
 
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia, speed_extremes
 from flyopt.errors import NonPeriodicCycle, SceneError
@@ -41,6 +41,14 @@ class NotComputed(LookupError):
     Readers (the reports, the diagrams) never compute: what they show is asked
     for when the scene is solved (``flyopt.pipeline.solve(..., extras=...)``).
     """
+
+
+class ChainPoint(TypedDict):
+    """One point of the energy indicator diagram's chain (:attr:`Analysis.energy_chain`)."""
+
+    index: int
+    angle: float | None  # [rad]; None for a scene given as net areas (it has no angles)
+    delta_e: float  # excess work ΔE there [J]
 
 
 @dataclass(frozen=True)
@@ -130,13 +138,14 @@ class Analysis:
     j_required: float
     gd2_required: float
     flywheel_needed: bool
-    energy_chain: tuple
-    shafts: tuple
+    energy_chain: tuple[ChainPoint, ...]
+    shafts: tuple[ShaftRequirement, ...]
     indicator: EnergyIndicator | None = None
     machine: Machine | None = None
     requirement: Requirement | None = None
-    _extras: MappingProxyType = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
-    _lazy: dict = field(default_factory=dict, compare=False, repr=False)  # flywheel_torque() of the stages
+    _extras: MappingProxyType[str, Any] = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
+    # flywheel_torque() for the stages that need it (the design, its stress profile), computed once
+    _lazy: dict[str, float | None] = field(default_factory=dict, compare=False, repr=False)
 
     @property
     def delta_holds_at_any_inertia(self) -> bool:
@@ -216,7 +225,8 @@ class Analysis:
         (:func:`flyopt.sizing.peak_torque.flywheel_peak_torque`), over the torque curves
         on a grid of 4097 angles and every knot, both sides of a step; speed-
         dependent torques are taken at the mean speed. None for a net-area scene
-        (no curves) or when no flywheel is needed. Computed once.
+        (no curves) or when no flywheel is needed. Computed once, by the stages that need it (the design's
+        arms and key, the stress profile, a sweep's points); no reader asks for it (tests/test_computed_once.py).
         """
         if j_flywheel is not None:
             return flywheel_torque(self.machine, j_flywheel)
@@ -282,7 +292,7 @@ def analyse(
     model: Model | Literal["energy", "energy_mass", "dynamic"] | None = None,
     *,
     like: Analysis | None = None,
-    extras: tuple = (),
+    extras: Collection[str] = (),
 ) -> Analysis:
     """Analyse a scene's cycle and size the flywheel it needs.
 
@@ -297,7 +307,7 @@ def analyse(
         (and the compiled models cached on it) and its energy indicator,
         none of which depends on delta, are reused instead of reducing the
         scene and integrating its torques again.
-    extras : tuple of str
+    extras : collection of str
         What else to compute (:data:`EXTRAS`, see :func:`complete`); nothing
         beyond the sizing by default.
 
@@ -330,7 +340,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
             raise SceneError("--model", "a scene given as net areas has no curves: only the energy model applies")
         ind = energy_indicator_from_areas(scene.net.energies, scene.cycle_angle)
         work = driving = resisting = power = motor_power = None
-        chain = tuple({"index": k, "angle": None, "delta_e": float(e)} for k, e in enumerate(ind.chain_delta_e))
+        chain = tuple(ChainPoint(index=k, angle=None, delta_e=float(e)) for k, e in enumerate(ind.chain_delta_e))
         model, reason = models.ENERGY, "net areas of a constant-inertia machine: the energy method is exact"
         j_margin = required_inertia(ind.a_max, scene.omega_mean, scene.delta, scene.j_constant)
         omega_mean = scene.omega_mean
@@ -361,7 +371,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         motor_power = power / scene.efficiency
         assert ind.chain_angle is not None  # a machine's diagram has its angles (only net areas have none)
         chain = tuple(
-            {"index": k, "angle": float(a), "delta_e": float(e)}
+            ChainPoint(index=k, angle=float(a), delta_e=float(e))
             for k, (a, e) in enumerate(zip(ind.chain_angle, ind.chain_delta_e))
         )
     needed = j_margin > 0

@@ -7,7 +7,7 @@ PyBaMM Simulation pattern).
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal
@@ -340,7 +340,7 @@ def solve(
     model: Literal["energy", "energy_mass", "dynamic"] | None = None,
     verify_design: bool = False,
     design_method: Literal["auto", "ipopt", "closed_form"] = "auto",
-    extras: tuple = SHOWN,
+    extras: Collection[str] = SHOWN,
 ) -> Solution:
     """Analyse a scene and design its flywheel.
 
@@ -359,7 +359,7 @@ def solve(
         Simulate the machine with the chosen flywheel (:func:`verify`).
     design_method : {"auto", "ipopt", "closed_form"}
         How each combination is optimized (see :func:`design_scene`).
-    extras : tuple of str
+    extras : collection of str
         What else to compute, of :data:`COMPLETE`: by default what ``flyopt
         solve`` shows (:data:`SHOWN`); the report and the diagrams ask for
         what they draw, and then only read the solution.

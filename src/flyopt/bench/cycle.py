@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -29,6 +30,7 @@ from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
 
 __all__ = [
     "TWO_PI",
+    "CurveSpec",
     "CycleCase",
     "flyopt_curve",
     "flyopt_a_max",
@@ -46,6 +48,10 @@ TWO_PI = 2.0 * math.pi
 """The cycle angle of one turn [rad]."""
 
 
+CurveSpec = tuple[Any, ...]
+"""A case's curve: ``("mean",)``, ``("table", x, y)`` or ``("expr", text, closed_form_a_max[, scale])``."""
+
+
 @dataclass
 class CycleCase:
     """A cycle to analyse and its exact answer.
@@ -57,8 +63,8 @@ class CycleCase:
     """
 
     name: str
-    driving: tuple
-    resisting: tuple
+    driving: CurveSpec
+    resisting: CurveSpec
     cycle_angle: float = TWO_PI
     kind: str = ""
     reference: float | None = None
@@ -90,7 +96,7 @@ class CycleCase:
         )
 
 
-def flyopt_curve(curve: tuple) -> Constant | PiecewiseLinear | ExpressionTorque:
+def flyopt_curve(curve: CurveSpec) -> Constant | PiecewiseLinear | ExpressionTorque:
     """flyopt's torque object of a case's curve (``("mean",)``, ``("table", x, y)`` or ``("expr", ...)``)."""
     if curve[0] == "mean":
         return Constant(None)

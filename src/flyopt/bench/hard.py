@@ -316,7 +316,7 @@ def run_hard(
                 if outcome.verdict == "design":
                     # measured against the reference combination (J from the exact A_max)
                     outcome.violation = (
-                        violation(ref_combo, *cast(tuple, outcome.dims))
+                        violation(ref_combo, *cast(tuple[float, float, float], outcome.dims))
                         if ref.verdict == "design"
                         else outcome.violation
                     )

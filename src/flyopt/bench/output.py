@@ -393,7 +393,7 @@ def write_hard_csv(path: Path, cycle_rows: list[dict[str, Any]], design_rows: li
                 "failures": "" if r["passed"] else r["status"][:160],
             }
         )
-    combos: dict[tuple, dict[str, Any]] = {}
+    combos: dict[tuple[str, str, float], dict[str, Any]] = {}
     for r in design_rows:
         key = (r["scene"], r["material"], r["speed_ratio"])
         line = combos.get(key)

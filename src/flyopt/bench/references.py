@@ -215,7 +215,7 @@ class Outcome:
 
     verdict: str  # "design" | "infeasible" | "failed"
     mass: float | None = None
-    dims: tuple | None = None  # (d_mean, h, b) [m]
+    dims: tuple[float, float, float] | None = None  # (d_mean, h, b) [m]
     violation: float = 0.0
     reason: str = ""
 

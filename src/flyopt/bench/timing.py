@@ -57,8 +57,8 @@ class Config:
     design_repeats: int = 5
     min_time: float = 0.005
     scenes: int = 40
-    samples: tuple = (64, 256, 1024, 4096, 16384, 100_000)
-    grids: tuple = ((10, 3), (30, 3), (100, 5), (300, 5), (1000, 5), (3000, 10), (10000, 10))
+    samples: tuple[int, ...] = (64, 256, 1024, 4096, 16384, 100_000)
+    grids: tuple[tuple[int, int], ...] = ((10, 3), (30, 3), (100, 5), (300, 5), (1000, 5), (3000, 10), (10000, 10))
     table_points: int = 10_000
     hard_scenes: int = 400
 

@@ -447,7 +447,7 @@ VALUES_KEPT = 4
 """Evaluations of a curve that it keeps (:func:`_values`)."""
 
 
-class _Transient(dict):
+class _Transient(dict[str, Any]):
     """A cache that pickles and copies as an empty one (see :func:`_kept`)."""
 
     def __reduce__(self):

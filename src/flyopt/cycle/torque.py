@@ -19,11 +19,14 @@ from __future__ import annotations
 import functools
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from typing import Any, Protocol, TypeAlias
+from typing import TYPE_CHECKING, Any, Protocol, TypeAlias
 
 import numpy as np
 
 from flyopt.cycle.expression import Expression
+
+if TYPE_CHECKING:  # the annotations only: the motors are on the floor above
+    from flyopt.machine.motor import DCMotor, InductionMotor, TableMotor
 
 Array: TypeAlias = np.ndarray
 """An array of floats: angles [rad] or torques [N*m]."""
@@ -301,7 +304,7 @@ class MotorTorque:
         Scene field, for messages.
     """
 
-    motor: Any  # InductionMotor, DCMotor or TableMotor (flyopt.machine.motor: the floor above)
+    motor: InductionMotor | DCMotor | TableMotor
     speed_ratio: float = 1.0
     efficiency: float = 1.0
     model: str | None = None

@@ -48,11 +48,15 @@ from flyopt.errors import SceneError, SolverFailed
 from flyopt.names import Criterion, Geometry, Objective
 
 if TYPE_CHECKING:
+    from typing import Unpack  # Python 3.11; the annotations are never evaluated
+
     from flyopt.analysis import Analysis
     from flyopt.design.materials import Material
     from flyopt.design.result import Candidate, DesignResult
     from flyopt.design.spec import DesignSpec
     from flyopt.drive.relaxation import Relaxation
+    from flyopt.io.drive import DriveSpec
+    from flyopt.io.scene import Scene
     from flyopt.machine.catalogue import CatalogueMotor
     from flyopt.machine.motor import InductionMotor
     from flyopt.sizing.periodic import PeriodicSolution, Verification
@@ -249,7 +253,7 @@ def rms_torque(
     return math.sqrt(squares.sum() / period), means.sum() / period
 
 
-def motor_scene(scene: Any, motor: CatalogueMotor, ratio: float) -> Any:
+def motor_scene(scene: Scene, motor: CatalogueMotor, ratio: float) -> Scene:
     """The scene driven by ``motor`` at speed ratio ``ratio``: its Kloss curve, its rotor's inertia at the crank."""
     from flyopt.cycle.torque import MotorTorque
     from flyopt.machine.transmission import inertia_at_reference
@@ -260,7 +264,7 @@ def motor_scene(scene: Any, motor: CatalogueMotor, ratio: float) -> Any:
     )
 
 
-def chosen_scene(scene: Any, run: MotorRun) -> Any:
+def chosen_scene(scene: Scene, run: MotorRun) -> Scene:
     """The scene as built: the run's motor at its ratio, and the flywheel's shaft and the motor's among its shafts."""
     from flyopt.machine.transmission import Shaft
 
@@ -274,11 +278,11 @@ def chosen_scene(scene: Any, run: MotorRun) -> Any:
 
 
 def evaluate_motor(
-    scene: Any,
+    scene: Scene,
     motor: CatalogueMotor,
     load_torque: float,
-    spec: Any,
-    ratios: tuple,
+    spec: DriveSpec,
+    ratios: tuple[str, Unpack[tuple[float, ...]]],
     materials: Sequence[Material],
     design_spec: DesignSpec,
     *,
@@ -641,7 +645,7 @@ def _slowest_equal(mass, lo, r, m, rtol=1e-9):
 
 
 def design_drive(
-    scene: Any,
+    scene: Scene,
     analysis: Analysis | None = None,
     *,
     solver_options: Mapping[str, Any] | None = None,
@@ -667,7 +671,7 @@ def design_drive(
     from flyopt.analysis import analyse
     from flyopt.design import design_inputs
 
-    spec = scene.drive
+    spec = cast("DriveSpec | None", scene.drive)  # Scene.drive is typed object in io/scene.py
     if spec is None:
         raise ValueError("the scene has no [drive]")
     if analysis is None:
@@ -676,7 +680,12 @@ def design_drive(
     if load is None or not load > 0:
         raise SceneError("drive", f"the drive needs a load to drive: the scene's mean driving torque is {load!r} N*m")
     inputs = design_inputs(scene)
-    ratios = ("range", *spec.ratio_range) if spec.ratios is None else ("fixed", *spec.ratios)
+    ratios: tuple[str, Unpack[tuple[float, ...]]]
+    if spec.ratios is None:
+        assert spec.ratio_range is not None  # a drive gives a ratio range or fixed ratios (DriveSpec checks)
+        ratios = ("range", *spec.ratio_range)
+    else:
+        ratios = ("fixed", *spec.ratios)
     motors = spec.motors.motors  # a Catalogue keeps its sizes in increasing rated power
     done = {}
 
@@ -843,7 +852,7 @@ class DriveCheck:
         }
 
 
-def verify_drive(scene: Any, run: MotorRun, j_flywheel: float | None = None) -> DriveCheck:
+def verify_drive(scene: Scene, run: MotorRun, j_flywheel: float | None = None) -> DriveCheck:
     """Simulate the scene with the run's motor and flywheel and check δ, the thermal limit and the start-up.
 
     Parameters
@@ -885,12 +894,11 @@ def verify_drive(scene: Any, run: MotorRun, j_flywheel: float | None = None) -> 
     if checked.flagged:
         notes.append(f"delta {checked.achieved_delta:.6g} exceeds the allowed {scene.delta:.6g}")
     rated = run.motor.rated_torque
-    if scene.drive.thermal and rms > rated * (1 + 1e-6):
+    spec = cast("DriveSpec", scene.drive)  # a run is of a scene with a [drive]; Scene.drive is typed object
+    if spec.thermal and rms > rated * (1 + 1e-6):
         notes.append(f"RMS torque {rms:.6g} N*m exceeds the rated {rated:.6g} N*m (thermal)")
-    if scene.drive.max_startup is not None and (startup.time is None or startup.time > scene.drive.max_startup):
-        notes.append(
-            f"start-up {startup.note or f'{startup.time:.4g} s'} over max_startup {scene.drive.max_startup:.4g} s"
-        )
+    if spec.max_startup is not None and (startup.time is None or startup.time > spec.max_startup):
+        notes.append(f"start-up {startup.note or f'{startup.time:.4g} s'} over max_startup {spec.max_startup:.4g} s")
     return DriveCheck(
         verification=checked,
         rms_torque=rms,

@@ -56,6 +56,7 @@ if TYPE_CHECKING:
     from flyopt.design.materials import Material
     from flyopt.design.spec import DesignSpec
     from flyopt.design.wheel_nlp import WheelProblem, WheelStructure
+    from flyopt.io.drive import DriveSpec
     from flyopt.machine.catalogue import CatalogueMotor
     from flyopt.machine.motor import InductionMotor
     from flyopt.machine.reduce import Machine
@@ -73,11 +74,11 @@ class CatalogueFit:
     synchronous_speed: float
     p_min: float
     p_max: float
-    slip: tuple
-    rotor_inertia: tuple
-    breakdown: tuple
-    mass: tuple | None
-    price: tuple | None
+    slip: tuple[float, float]  # (a, b) of each power law
+    rotor_inertia: tuple[float, float]
+    breakdown: tuple[float, float]
+    mass: tuple[float, float] | None
+    price: tuple[float, float] | None
 
     @classmethod
     def of(cls, motors: Iterable[CatalogueMotor]) -> CatalogueFit | None:
@@ -138,7 +139,7 @@ class Relaxation:
     j_flywheel: float
     objective: float
     status: str
-    sensitivities: dict = field(default_factory=dict)
+    sensitivities: dict[str, float] = field(default_factory=dict)
     wheel_mass: float | None = None
     d_outer: float | None = None
     wheel: str = ""
@@ -246,13 +247,13 @@ class _Model:
     solver: object
     values: object  # x, par -> (P, i, r, J_F, objective, wheel mass, wheel outer diameter)
     n: int  # collocation intervals
-    rows: tuple  # row sizes, in order
-    wheel_rows: tuple  # names of the wheel's rows, in order (they come last)
-    wheel_names: tuple  # the wheel's variables
+    rows: tuple[int, ...]  # row sizes, in order
+    wheel_rows: tuple[str, ...]  # names of the wheel's rows, in order (they come last)
+    wheel_names: tuple[str, ...]  # the wheel's variables
     scale: float  # of the objective
-    extra_lo: tuple
-    extra_hi: tuple
-    extra_x0: tuple
+    extra_lo: tuple[float, ...]
+    extra_hi: tuple[float, ...]
+    extra_x0: tuple[float, ...]
     lbg: np.ndarray  # without the wheel's rows
     ubg: np.ndarray
 
@@ -408,7 +409,7 @@ def relax(
     delta: float,
     efficiency: float,
     fit: CatalogueFit,
-    spec: Any,  # flyopt.io.drive.DriveSpec (io sits above drive)
+    spec: DriveSpec,
     wheel: RelaxedWheel,
     load_torque: float,
 ) -> Relaxation:
@@ -452,7 +453,11 @@ def relax(
     n, w0 = model.n, fit.synchronous_speed
     j_scale = max(load_torque * machine.cycle_angle / (omega_mean**2 * delta), 1e-6)
     omega_top = omega_mean * (1 + delta / 2)
-    lo, hi = spec.ratio_range if spec.ratios is None else (min(spec.ratios), max(spec.ratios))
+    if spec.ratios is None:
+        assert spec.ratio_range is not None  # a drive gives a ratio range or fixed ratios (DriveSpec checks)
+        lo, hi = spec.ratio_range
+    else:
+        lo, hi = min(spec.ratios), max(spec.ratios)
     # the wheel: its variables' bounds and rows' bounds as the designer's (the inertia row: J r² >= J_F, written
     # as a difference), every dimension at least MIN_DIMENSION
     floor = math.log(MIN_DIMENSION)

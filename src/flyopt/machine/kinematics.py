@@ -24,6 +24,12 @@ from numpy.typing import NDArray
 
 from flyopt.errors import shorten
 
+#: A mechanism's trigonometry in one numpy evaluation (:meth:`SliderCrank._state`), shared by its members:
+#: id(mechanism) -> (the angles it was computed at, (sin φ, cos φ, u, w)).
+StateCache = dict[
+    int, tuple[object, tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]]
+]
+
 
 def is_casadi(x: object) -> bool:
     """Whether ``x`` is a CasADi value (SX, MX or DM) rather than a number or a numpy array."""
@@ -278,7 +284,7 @@ class SliderCrankRatio:
         return sc.rod_point_velocity_ratio(phi, self.fraction)
 
     def numpy(
-        self, phi: NDArray[np.float64], cache: dict | None = None
+        self, phi: NDArray[np.float64], cache: StateCache | None = None
     ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The ratio on a numpy array (the same operations as calling it) [m/rad] or [-]."""
         sc = self.mechanism
@@ -293,7 +299,7 @@ class SliderCrankRatio:
         return (1 - f) * (-r * s) + f * slider, (1 - f) * r * c
 
     def slope(
-        self, phi: NDArray[np.float64], cache: dict | None = None
+        self, phi: NDArray[np.float64], cache: StateCache | None = None
     ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
         """d/dφ of the ratio on a numpy array [m/rad²] or [1/rad] (see Notes)."""
         sc = self.mechanism

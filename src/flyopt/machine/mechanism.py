@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from flyopt.cycle.torque import PiecewiseLinear
-from flyopt.machine.kinematics import SliderCrankRatio, is_casadi, known_ratio
+from flyopt.machine.kinematics import SliderCrankRatio, StateCache, is_casadi, known_ratio
 
 FORCE_SENSES = ("resisting", "driving", "axial")
 """How a member's force (or torque) does work:
@@ -215,7 +215,7 @@ class Member:
             "t": _Curve(self.torque, where + "torque", steps_allowed=True),
         }
 
-    def inertia_contribution(self, phi: Any, cache: dict | None = None) -> Any:
+    def inertia_contribution(self, phi: Any, cache: StateCache | None = None) -> Any:
         """J_S (ω_i/ω)² + m (v_S/ω)² at ``phi`` [kg*m^2] (numpy or CasADi).
 
         ``cache`` shares a mechanism's trigonometry between the members of
@@ -234,7 +234,7 @@ class Member:
         c = self._curves
         return (self.inertia == 0 or c["w"].has_slope) and (self.mass == 0 or c["v"].has_slope)
 
-    def inertia_slope(self, phi: NDArray[np.float64], cache: dict | None = None) -> NDArray[np.float64] | float:
+    def inertia_slope(self, phi: NDArray[np.float64], cache: StateCache | None = None) -> NDArray[np.float64] | float:
         """d/dφ [J_S (ω_i/ω)² + m (v_S/ω)²] = 2 J_S (ω_i/ω)(ω_i/ω)' + 2 m (v_S/ω)·(v_S/ω)' [kg*m^2/rad]."""
         c = self._curves
         total = 0.0
@@ -276,7 +276,7 @@ class Member:
                 total = total + sign * f * _magnitude(v, lib)
         return total
 
-    def torque_limits(self, phi: ArrayLike, cache: dict | None = None) -> tuple[Any, Any]:
+    def torque_limits(self, phi: ArrayLike, cache: StateCache | None = None) -> tuple[Any, Any]:
         """Left and right limits of :meth:`torque_contribution` at ``phi`` (numpy) [N*m].
 
         The velocity ratio is evaluated once for both sides, a table of
@@ -353,7 +353,7 @@ class EquivalentInertia:
         """J_e at the angles ``phi`` [kg*m^2] (numpy, vectorized)."""
         phi = np.asarray(phi, dtype=float)
         total = np.full(phi.shape, self.j_constant)
-        cache: dict[Any, Any] = {}
+        cache: StateCache = {}
         for m in self.members:
             total = total + m.inertia_contribution(phi, cache)
         return total
@@ -394,7 +394,7 @@ class EquivalentInertia:
             return self(phi), self.derivative(phi)
         total = np.full(phi.shape, self.j_constant)
         slope = np.zeros(phi.shape)
-        cache: dict[Any, Any] = {}
+        cache: StateCache = {}
         for m in self.members:
             total = total + m.inertia_contribution(phi, cache)
             slope = slope + m.inertia_slope(phi, cache)
@@ -409,7 +409,7 @@ class EquivalentInertia:
         phi = np.asarray(phi, dtype=float)
         if self.has_numpy_derivative:
             slope = np.zeros(phi.shape)
-            cache: dict[Any, Any] = {}
+            cache: StateCache = {}
             for m in self.members:
                 slope = slope + m.inertia_slope(phi, cache)
             return slope
@@ -458,7 +458,7 @@ class EquivalentTorque:
         phi = np.asarray(phi, dtype=float)
         left = np.zeros(phi.shape)
         right = np.zeros(phi.shape)
-        cache: dict[Any, Any] = {}
+        cache: StateCache = {}
         for m in self.members:
             lm, rm = m.torque_limits(phi, cache)
             left, right = left + lm, right + rm

@@ -9,6 +9,7 @@ is known (docs/flywheel-design.md, sections 5–7).
 
 from __future__ import annotations
 
+from collections.abc import Hashable
 from dataclasses import dataclass, field
 from typing import Any, cast
 
@@ -47,7 +48,7 @@ class Machine:
     delta: float
     speed_dependent: bool
     variable_inertia: bool
-    _cache: dict = field(default_factory=dict, compare=False, repr=False)
+    _cache: dict[Hashable, Any] = field(default_factory=dict, compare=False, repr=False)
 
     def angle_only(self, omega: float | None = None) -> ExcessWork:
         """ExcessWork of the torques with every speed dependence frozen.
