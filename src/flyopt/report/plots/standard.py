@@ -76,7 +76,8 @@ def show(value: npt.NDArray[np.floating] | Sequence[float], dimension: str, unit
 def show(value: npt.ArrayLike, dimension: str, units: str) -> npt.NDArray[np.float64] | float:
     """An SI value or array in the system's unit of its dimension (a number for a number)."""
     array = np.asarray(value, dtype=float)
-    return display.show(array if array.ndim else float(array), dimension, units)
+    factor = display.unit(dimension, units)[1]
+    return array / factor if array.ndim else float(array) / factor
 
 
 def q(value: float | None, dimension: str, units: str, digits: int = DIGITS) -> str:
