@@ -292,6 +292,21 @@ def test_plots_never_run_a_model(monkeypatch, tmp_path, scene, what, options):
         assert "simulation" in drawn[0].lines[1].get_label()
 
 
+def test_speed_of_a_dynamic_analysis_that_does_not_fluctuate_is_nothing_to_draw(monkeypatch):
+    """Analysis.speed_curve() is None when the speed does not fluctuate (its documented answer): the
+    plot says there is nothing to draw, as the CLI does, instead of failing on None's ``omega``."""
+    import flyopt
+    from flyopt.analysis import Analysis
+    from flyopt.report import plots
+
+    scene = flyopt.load(PROBLEMS / "motor-press.toml")
+    analysis = flyopt.analyse(scene)
+    assert analysis.model == "dynamic"
+    monkeypatch.setattr(Analysis, "speed_curve", lambda self: None)
+    with pytest.raises(plots.NothingToDraw, match="does not fluctuate"):
+        plots.plot_speed(scene, analysis)
+
+
 def test_energy_mass_refuses_an_analysis_by_another_model():
     import flyopt
     from flyopt.report import plots

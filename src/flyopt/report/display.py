@@ -22,6 +22,13 @@ writes (:func:`dimension_of`), the table behind the JSON's ``units`` map.
 from __future__ import annotations
 
 import math
+from typing import TypeVar
+
+import numpy as np
+import numpy.typing as npt
+
+#: A value shown in a unit: a number, or an array of them.
+Shown = TypeVar("Shown", float, npt.NDArray[np.floating])
 
 #: The unit systems, the default first for reports.
 SYSTEMS = ("engineering", "si", "imperial")
@@ -65,14 +72,14 @@ UNITS = {
 }
 
 
-def check_system(system):
+def check_system(system: str) -> str:
     """``system`` if it is known; ValueError naming the allowed ones otherwise."""
     if system not in SYSTEMS:
         raise ValueError(f"unit system {system!r} is not known (allowed: {', '.join(SYSTEMS)})")
     return system
 
 
-def unit(dimension, system=DEFAULT):
+def unit(dimension: str, system: str = DEFAULT) -> tuple[str, float]:
     """(label, factor) of a dimension in a system: shown value = SI value / factor."""
     check_system(system)
     try:
@@ -81,29 +88,29 @@ def unit(dimension, system=DEFAULT):
         raise ValueError(f"no display unit for dimension {dimension!r} (known: {', '.join(UNITS)})") from None
 
 
-def label(dimension, system=DEFAULT):
+def label(dimension: str, system: str = DEFAULT) -> str:
     """The unit's label, e.g. "mm"."""
     return unit(dimension, system)[0]
 
 
-def show(value, dimension, system=DEFAULT):
+def show(value: Shown | None, dimension: str, system: str = DEFAULT) -> Shown | None:
     """An SI value (number or numpy array) in the system's unit of its dimension (None stays None)."""
     if value is None:
         return None
     return value / unit(dimension, system)[1]
 
 
-def quantity_text(value, dimension, system=DEFAULT, digits=6):
+def quantity_text(value: float | None, dimension: str, system: str = DEFAULT, digits: int = 6) -> str:
     """ "<number> <label>" with ``digits`` significant digits ("-" for None, "inf"/"nan" as such)."""
     if value is None:
         return "-"
-    shown = show(float(value), dimension, system)
+    shown = float(value) / unit(dimension, system)[1]
     text = number(shown, digits) if math.isfinite(shown) else str(shown)
     name = label(dimension, system)
     return text if name == "-" else f"{text} {name}"
 
 
-def number(value, digits=6):
+def number(value: float | None, digits: int = 6) -> str:
     """A number with ``digits`` significant digits, no exponent for everyday sizes ("-" for None).
 
     The one way flyopt writes a number for people (the text report, plots'
@@ -126,7 +133,7 @@ def number(value, digits=6):
     return f"{value:.{digits - 1}e}"
 
 
-def dimension_of(name):
+def dimension_of(name: str) -> str:
     """The dimension of an output field (``a_max``: "energy", ``d_outer``: "length", a part's ``inertia``).
 
     From flyopt.outputs.results' one table of the fields flyopt writes (QUANTITIES
@@ -141,17 +148,17 @@ def dimension_of(name):
     return dimension
 
 
-def field_text(value, name, system=DEFAULT, digits=6):
+def field_text(value: float | None, name: str, system: str = DEFAULT, digits: int = 6) -> str:
     """An output field's SI value as "<number> <label>" in ``system`` (:func:`quantity_text` by its name)."""
     return quantity_text(value, dimension_of(name), system, digits)
 
 
-def field_number(value, name, system=DEFAULT, digits=6):
+def field_number(value: float | None, name: str, system: str = DEFAULT, digits: int = 6) -> str:
     """The number alone of :func:`field_text`: for a table whose heading carries the unit ("-" for None)."""
     return number(show(None if value is None else float(value), dimension_of(name), system), digits)
 
 
-def heading(title, name, system=DEFAULT):
+def heading(title: str, name: str, system: str = DEFAULT) -> str:
     """A table heading with the unit of the field ``name``: "mass [kg]" (the title alone if dimensionless)."""
     text = label(dimension_of(name), system)
     return title if text == "-" else f"{title} [{text}]"

@@ -153,7 +153,7 @@ class Document:
     status: str
     failures: list = field(default_factory=list)
 
-    def close(self):
+    def close(self) -> None:
         """Close the figures' matplotlib windows (memory) once rendered."""
         import matplotlib.pyplot as plt
 
@@ -163,7 +163,7 @@ class Document:
                     plt.close(block.figure)
 
 
-def plain(text):
+def plain(text: object) -> str:
     """A Text as plain characters (markup braces removed): for widths and for tests."""
     import re
 

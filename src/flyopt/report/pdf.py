@@ -286,8 +286,8 @@ def _table(block, styles, width):
         # a number is never broken over lines: a right-aligned column keeps its cells' width
         least.append(max(words, widest if align == ">" else 0.0) + pad)
     widths = _fit(natural, least, width)
-    head = [_paragraph(h, styles["head_r" if a == ">" else "head"]) for h, a in zip(block.head, block.align)]
-    rows = [head] + [
+    heads = [_paragraph(h, styles["head_r" if a == ">" else "head"]) for h, a in zip(block.head, block.align)]
+    rows = [heads] + [
         [_paragraph(cell, styles["cell_r" if a == ">" else "cell"]) for cell, a in zip(row, block.align)]
         for row in block.rows
     ]

@@ -4,11 +4,18 @@ from __future__ import annotations
 
 import inspect
 import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, cast
 
-from flyopt.names import Geometry
+from flyopt.names import Geometry, Model
 from flyopt.report import display
 from flyopt.report.display import number
 from flyopt.report.document import Equation, Figure, Quantity, Section
+
+if TYPE_CHECKING:
+    from flyopt.design.result import Candidate
+    from flyopt.pipeline import Solution
+    from flyopt.report.builder.inputs import ReportInputs
 
 #: The domain notes every step cites.
 NOTES = "docs/flywheel-design.md"
@@ -17,24 +24,24 @@ NOTES = "docs/flywheel-design.md"
 class BuilderBase:
     """The state of a report being built and the tools every section is written with."""
 
-    def __init__(self, inputs, units):
+    def __init__(self, inputs: ReportInputs, units: str) -> None:
         self.inputs = inputs
         self.units = units
-        self.solution = inputs.solution
-        self.scene = inputs.solution.scene
-        self.analysis = inputs.solution.analysis
-        self.design = inputs.solution.design
-        self.sections = []
-        self.failures = []
+        self.solution = cast("Solution", inputs.solution)
+        self.scene = self.solution.scene
+        self.analysis = self.solution.analysis
+        self.design = self.solution.design
+        self.sections: list[Section] = []
+        self.failures: list[str] = []
         self._numbers = [0, 0]
 
-    def q(self, value, dimension, name=None, digits=6):
+    def q(self, value: float | None, dimension: str, name: str | None = None, digits: int = 6) -> Quantity:
         """A Quantity in the report's units, its unit after it ("-" where the value does not exist)."""
         if value is None or math.isnan(value):
             return Quantity("-", name, None, dimension)
         return Quantity(display.quantity_text(value, dimension, self.units, digits), name, float(value), dimension)
 
-    def n(self, value, dimension, name=None, digits=6):
+    def n(self, value: float | None, dimension: str, name: str | None = None, digits: int = 6) -> Quantity:
         """A Quantity in the report's units without its unit (a table cell: the unit is in the column's head)."""
         if value is None or math.isnan(value):
             return Quantity("-", name, None, dimension)
@@ -42,32 +49,33 @@ class BuilderBase:
             number(display.show(float(value), dimension, self.units), digits), name, float(value), dimension
         )
 
-    def head(self, title, dimension):
+    def head(self, title: str, dimension: str) -> str:
         """A column's head with the unit of its numbers, "mass [kg]"."""
         unit = display.label(dimension, self.units)
         return title if unit == "-" else f"{title} [{unit}]"
 
     @staticmethod
-    def squared(text):
+    def squared(text: str) -> str:
         """A number with its unit, squared: "(157.08 rad/s)²" (a bare number needs no brackets)."""
         return f"({text})²" if " " in text and not text.startswith("(") else f"{text}²"
 
     @staticmethod
-    def si(value, dimension, digits=6, bracket=True):
+    def si(value: float | None, dimension: str, digits: int = 6, bracket: bool = True) -> str:
         """A number with its SI unit, as an equation shows it; a negative one in brackets."""
         text = number(value, digits)
         unit = display.label(dimension, "si")
         text = text if unit == "-" else f"{text} {unit}"
         return f"({text})" if bracket and value is not None and value < 0 else text
 
-    def result(self, value, dimension, digits=6):
+    def result(self, value: float | None, dimension: str, digits: int = 6) -> str:
         """An equation's result in SI, and in the report's units where those differ."""
         shown = self.si(value, dimension, digits, bracket=False)
         if display.label(dimension, self.units) != display.label(dimension, "si"):
             shown += f"   ({display.quantity_text(value, dimension, self.units, digits)})"
         return shown
 
-    def section(self, title, key, level=1):
+    def section(self, title: str, key: str, level: int = 1) -> list[Any]:
+        """Open a numbered section (level 1) or subsection (level 2): its list of blocks, to fill."""
         if level == 1:
             self._numbers = [self._numbers[0] + 1, 0]
             label = str(self._numbers[0])
@@ -78,9 +86,12 @@ class BuilderBase:
         self.sections.append(section)
         return section.blocks
 
-    def figure(self, blocks, key, caption, draw, *args, **kwargs):
+    def figure(
+        self, blocks: list[Any], key: str, caption: str, draw: Callable[..., Any], *args: Any, **kwargs: Any
+    ) -> None:
         """Draw a diagram with a function of :mod:`flyopt.report.plots` (``units=`` where it takes it)."""
         from flyopt.report import plots
+        from flyopt.report.plots.standard import figure_of
 
         try:
             parameters = inspect.signature(draw).parameters
@@ -101,22 +112,25 @@ class BuilderBase:
                 )
             )
             return
-        blocks.append(Figure(key, caption, figure=ax.figure))
+        blocks.append(Figure(key, caption, figure=figure_of(ax)))
 
     @staticmethod
-    def eq(key, formula, numbers, result, section):
+    def eq(key: str, formula: str, numbers: str, result: str, section: str | int) -> Equation:
         """A worked step: the formula, "= " the numbers substituted, "= " the result, citing a section of the notes."""
         return Equation(key, (formula, f"= {numbers}", f"= {result}"), f"{NOTES}, section {section}")
 
-    def units_words(self):
+    def units_words(self) -> str:
+        """The units of the report's system, in a line ("mm, rpm, kN·m, ...")."""
         dims = ("length", "angular_speed", "torque", "energy", "stress", "power", "mass", "inertia")
         return ", ".join(dict.fromkeys(display.label(d, self.units) for d in dims))
 
-    def flagged(self):
+    def flagged(self) -> bool:
+        """Whether a verification (of the design or of the drive) flagged the solution."""
         v, check = self.solution.verification, self.solution.drive_check
         return bool((v is not None and v.flagged) or (check is not None and check.flagged))
 
-    def status_words(self):
+    def status_words(self) -> str:
+        """The solution's status as the title block says it."""
         status = self.solution.status
         words = {
             "designed": "designed",
@@ -130,11 +144,13 @@ class BuilderBase:
             words += "; verified"
         return words
 
-    def best(self):
+    def best(self) -> Candidate | None:
+        """The chosen wheel, or None."""
         return self.design.best if self.design is not None else None
 
     @staticmethod
-    def governing(candidate):
+    def governing(candidate: Candidate) -> dict[str, Any] | None:
+        """The stress check of the part where the governing stress is, or None."""
         where = (candidate.stress or {}).get("where") or {}
         for part in (candidate.stress or {}).get("parts", []):
             if part["part"] == where.get("part"):
@@ -142,12 +158,13 @@ class BuilderBase:
         return None
 
     @staticmethod
-    def model_description(model):
+    def model_description(model: str) -> str:
+        """What a sizing model is, in words."""
         from flyopt.sizing.choose import MODELS
 
-        return MODELS.get(model, model)
+        return MODELS.get(Model(model), model) if model in MODELS else model
 
-    def width_row(self, c):
+    def width_row(self, c: Candidate) -> tuple[str, tuple[Any, ...]]:
         """The wheel's width and, for a rim, its radial thickness (a disc is the annulus with no hole, section 9)."""
         if c.geometry == Geometry.DISC:
             return (
@@ -162,15 +179,17 @@ class BuilderBase:
             (self.q(c.h, "length", "h"), " × ", self.q(c.b, "length", "b"), f" (H/B {number(c.hb_ratio, 4)})"),
         )
 
-    def limit(self, value):
+    def limit(self, value: float | None) -> Quantity | str:
+        """A length limit, or "not set"."""
         return "not set" if value is None or not math.isfinite(value) else self.q(value, "length")
 
-    def omega_given(self):
+    def omega_given(self) -> float:
         """The mean speed the sizing took as given [rad/s] (a speed-dependent machine's is only a guess)."""
         machine = self.analysis.machine
         return machine.omega_mean if machine is not None else self.scene.omega_mean
 
-    def off_words(self, textbook):
+    def off_words(self, textbook: dict[str, Any]) -> tuple[str, str, str]:
+        """How far the textbook flywheel is from the exact J_F, in words."""
         a = self.analysis
         off = (textbook["j_required"] - a.j_margin) / a.j_margin
         gives = (
@@ -181,7 +200,8 @@ class BuilderBase:
         return (f"The textbook step is {100 * off:+.3g} % off the exact J_F", gives, f" (allowed {number(a.delta)}).")
 
     @staticmethod
-    def solved_by(candidate):
+    def solved_by(candidate: Candidate) -> str:
+        """How the candidate's sizing problem was solved, in words."""
         from flyopt.report.text import solver_words
 
         return solver_words(candidate)

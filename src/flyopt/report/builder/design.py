@@ -4,18 +4,22 @@ from __future__ import annotations
 
 import inspect
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from flyopt.names import Geometry
 from flyopt.report.builder.base import NOTES, BuilderBase
 from flyopt.report.display import number
 from flyopt.report.document import Facts, Figure, Paragraph, Table
 
+if TYPE_CHECKING:
+    from flyopt.design.materials import Material
+    from flyopt.design.result import Candidate
+
 
 class DesignSection(BuilderBase):
     """Section 5 of the report."""
 
-    def design_section(self):
+    def design_section(self) -> None:
         d, best = self.design, self.best()
         if d is None and self.solution.drive is None:
             return
@@ -37,7 +41,7 @@ class DesignSection(BuilderBase):
             blocks.append(Paragraph(f"No feasible design: {d.message}", "warning"))
             return
         material = self.scene.material_library().get(best.material)
-        rows = [
+        rows: list[tuple[str, Any]] = [
             ("material / shaft", f"{best.material} on {best.shaft} (speed ratio {number(best.speed_ratio)})"),
             ("mass", (self.q(best.mass, "mass", "mass"), "" if best.cost is None else f" (cost {number(best.cost)})")),
             (
@@ -104,8 +108,9 @@ class DesignSection(BuilderBase):
         if best.notes:
             blocks.append(Table(("note",), tuple([n] for n in best.notes), ("<",), "Notes of the design", "notes"))
 
-    def geometry_steps(self, blocks, c, material):
+    def geometry_steps(self, blocks: list[Any], c: Candidate, material: Material | None) -> None:
         """The wheel's mass and inertia (section 9) and its rim speed (section 10), numbers substituted."""
+        assert self.design is not None  # a candidate comes from the design
         si, res, sq = self.si, self.result, self.squared
         rho = getattr(material, "density", None)
         if c.geometry == Geometry.DISC and not c.d_inner and len(c.parts) <= 1 and rho:
@@ -196,6 +201,7 @@ class DesignSection(BuilderBase):
                 10,
             )
         )
+        assert c.rim_speed is not None  # the chosen wheel is a design: it has its rim speed
         within = c.rim_speed <= c.rim_speed_limit * (1 + 1e-9)
         blocks.append(
             Paragraph(
@@ -228,7 +234,7 @@ class DesignSection(BuilderBase):
                     )
                 )
 
-    def parts(self, blocks, c):
+    def parts(self, blocks: list[Any], c: Candidate) -> None:
         if not c.parts:
             return
         n = self.n
@@ -288,7 +294,9 @@ class DesignSection(BuilderBase):
                 )
             )
 
-    def stress(self, blocks, c):
+    def stress(self, blocks: list[Any], c: Candidate) -> None:
+        """The stress check of each part and the diagram of the stresses over the radius (section 10)."""
+        assert self.design is not None  # a candidate comes from the design
         if not c.stress:
             return
         from flyopt.report import plots
@@ -379,8 +387,9 @@ class DesignSection(BuilderBase):
         elif self.inputs.stress_note:
             blocks.append(Figure("stress", "Stresses over the radius", note=f"Not drawn: {self.inputs.stress_note}."))
 
-    def hub_key_balance(self, blocks, c):
+    def hub_key_balance(self, blocks: list[Any], c: Candidate) -> None:
         """The permissible unbalance and the key, numbers substituted (section 13)."""
+        assert self.design is not None  # a candidate comes from the design
         si, res = self.si, self.result
         omega = self.design.omega * c.speed_ratio
         if c.unbalance_permissible is not None and math.isfinite(c.unbalance_permissible) and c.mass:

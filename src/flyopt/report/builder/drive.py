@@ -12,7 +12,7 @@ from flyopt.report.document import Facts, Paragraph, Table
 class DriveSection(BuilderBase):
     """Section 7 of the report."""
 
-    def drive_section(self):
+    def drive_section(self) -> None:
         drive, check = self.solution.drive, self.solution.drive_check
         if drive is None:
             return
@@ -102,7 +102,7 @@ class DriveSection(BuilderBase):
                     number(run.motor_ratio, 5),
                     self.n(run.j_flywheel, "inertia"),
                     run.limit or "-",
-                    number(run.rms_torque / run.rated_torque, 4) if run.rms_torque else "-",
+                    number(run.rms_torque / run.rated_torque, 4) if run.rms_torque and run.rated_torque else "-",
                     self.n(run.startup_time, "time"),
                     number(run.flywheel_ratio, 4),
                     self.n(run.wheel_mass, "mass"),

@@ -3,6 +3,17 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    import numpy as np
+    import numpy.typing as npt
+
+    from flyopt.analysis import Analysis
+    from flyopt.io.scene import Scene
+    from flyopt.sizing.energy_mass import SpeedFluctuation
+    from flyopt.sizing.periodic import PeriodicSolution
+    from flyopt.sizing.textbook import TextbookRequirement
 
 
 @dataclass
@@ -49,17 +60,17 @@ class ReportInputs:
 
     scene_file: str
     scene_text: str
-    scene_tables: tuple
-    scene: object
-    solution: object
-    speed: object = None
+    scene_tables: tuple[str, ...]
+    scene: Scene
+    solution: object  # flyopt.pipeline.Solution (typed so once flyopt.cli.report drops its cast of it)
+    speed: SpeedFluctuation | PeriodicSolution | None = None
     speed_note: str = ""
-    energy_mass: object = None
-    tangents: dict | None = None
-    j_machine: tuple | None = None
-    inertia_curve: tuple | None = None
+    energy_mass: Analysis | None = None
+    tangents: dict[str, tuple[float, float, float]] | None = None
+    j_machine: tuple[float, float, float] | None = None
+    inertia_curve: tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]] | None = None
     inertia_note: str = ""
-    stress: tuple | None = None
+    stress: tuple[Any, ...] | None = None
     stress_note: str = ""
-    textbook: object = None
-    provenance: tuple = ()
+    textbook: TextbookRequirement | None = None
+    provenance: tuple[tuple[str, str], ...] = ()

@@ -9,7 +9,7 @@ from flyopt.report.document import Paragraph, Table
 class Ranking(BuilderBase):
     """Section 6 of the report."""
 
-    def ranking_section(self):
+    def ranking_section(self) -> None:
         d = self.design
         if d is None or d.status == "not_needed" or not d.candidates:
             return

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from flyopt.report import display
 from flyopt.report.builder.design import DesignSection
 from flyopt.report.builder.drive import DriveSection
@@ -14,7 +16,9 @@ from flyopt.report.builder.verification import VerificationAndProvenance
 from flyopt.report.document import Document
 
 
-def build(inputs: ReportInputs, units: str = display.DEFAULT, title_block: tuple = ()) -> Document:
+def build(
+    inputs: ReportInputs, units: str = display.DEFAULT, title_block: tuple[tuple[str, Any], ...] = ()
+) -> Document:
     """The report of a solved scene, in a unit system.
 
     Parameters
@@ -37,7 +41,8 @@ def build(inputs: ReportInputs, units: str = display.DEFAULT, title_block: tuple
 class Builder(Summary, SceneAndModel, Steps, DesignSection, Ranking, DriveSection, VerificationAndProvenance):
     """Builds the sections in the order of the domain notes."""
 
-    def document(self, extra):
+    def document(self, extra: tuple[tuple[str, Any], ...]) -> Document:
+        """Every section in order, and the title block with ``extra`` lines."""
         self.summary()
         self.scene_section()
         self.model_section()

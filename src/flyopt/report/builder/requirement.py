@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from flyopt.names import Model
 from flyopt.report.builder.base import NOTES, BuilderBase
@@ -13,7 +14,7 @@ from flyopt.report.document import Facts, Figure, Paragraph
 class Requirement(BuilderBase):
     """The step of the report that gives the required flywheel, by the model that ran (energy method, energy–mass, dynamic, an engine's textbook).."""
 
-    def step_requirement(self):
+    def step_requirement(self) -> None:
         a, si, res, sq = self.analysis, self.si, self.result, self.squared
         blocks = self.section("The required flywheel", "requirement", 2)
         from flyopt.report import plots
@@ -111,7 +112,7 @@ class Requirement(BuilderBase):
                 self.inputs.energy_mass,
             )
 
-    def energy_mass_steps(self, blocks, textbook):
+    def energy_mass_steps(self, blocks: list[Any], textbook: dict[str, Any] | None) -> None:
         """Section 6's closed form, at the two tangent points of the energy–mass diagram."""
         a, sq = self.analysis, self.squared
         blocks.append(
@@ -166,7 +167,7 @@ class Requirement(BuilderBase):
         if textbook is not None and textbook["j_required"] is not None and a.j_margin > 0:
             blocks.append(Paragraph(self.off_words(textbook), "note"))
 
-    def dynamic_steps(self, blocks, textbook):
+    def dynamic_steps(self, blocks: list[Any], textbook: dict[str, Any] | None) -> None:
         a = self.analysis
         detail = getattr(a.requirement, "detail", None)
         blocks.append(
@@ -203,7 +204,7 @@ class Requirement(BuilderBase):
         if textbook is not None and textbook["j_required"] is not None and a.j_margin > 0:
             blocks.append(Paragraph(self.off_words(textbook), "note"))
 
-    def engine_step(self, blocks):
+    def engine_step(self, blocks: list[Any]) -> None:
         """An [engine]: the textbook's crank-effort method beside the exact one (section 14)."""
         tb = self.inputs.textbook
         if tb is None:

@@ -11,7 +11,7 @@ from flyopt.report.document import Code, Facts, Paragraph, Table
 class SceneAndModel(BuilderBase):
     """Sections 2 and 3 of the report."""
 
-    def scene_section(self):
+    def scene_section(self) -> None:
         scene = self.scene
         blocks = self.section("The scene as given", "scene")
         rows = [
@@ -73,7 +73,7 @@ class SceneAndModel(BuilderBase):
             blocks.append(Facts(tuple(brief), "brief"))
         blocks.append(Code(self.inputs.scene_text, f"{self.inputs.scene_file}, as given"))
 
-    def model_section(self):
+    def model_section(self) -> None:
         a = self.analysis
         blocks = self.section("The model and why", "model")
         blocks.append(Paragraph(f"Model: {a.model}, the {self.model_description(a.model)}. Why: {a.model_reason}."))

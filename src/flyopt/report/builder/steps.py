@@ -14,7 +14,7 @@ from flyopt.report.document import Facts, Paragraph, Table
 class Steps(Requirement):
     """Section 4 of the report."""
 
-    def steps(self):
+    def steps(self) -> None:
         a = self.analysis
         self.section("The calculation, step by step", "steps")
         self.sections[-1].blocks.append(
@@ -32,7 +32,7 @@ class Steps(Requirement):
         self.step_requirement()
         self.step_shafts()
 
-    def step_speeds(self):
+    def step_speeds(self) -> None:
         a, si, res = self.analysis, self.si, self.result
         blocks = self.section("Speeds and the allowed fluctuation", "speeds", 2)
         w = self.omega_given()
@@ -73,12 +73,12 @@ class Steps(Requirement):
                 "the highest and lowest speeds of the cycle, where the rim is checked:"
             )
         )
-        w = si(a.omega_mean, "angular_speed")
+        w_si = si(a.omega_mean, "angular_speed")
         blocks.append(
             self.eq(
                 "omega_max",
                 "ω_{max} = ω_{m} (1 + δ/2)",
-                f"{w} × (1 + {number(a.delta)}/2)",
+                f"{w_si} × (1 + {number(a.delta)}/2)",
                 res(a.omega_max, "angular_speed"),
                 2,
             )
@@ -87,13 +87,13 @@ class Steps(Requirement):
             self.eq(
                 "omega_min",
                 "ω_{min} = ω_{m} (1 − δ/2)",
-                f"{w} × (1 − {number(a.delta)}/2)",
+                f"{w_si} × (1 − {number(a.delta)}/2)",
                 res(a.omega_min, "angular_speed"),
                 2,
             )
         )
 
-    def step_reduction(self):
+    def step_reduction(self) -> None:
         scene, a = self.scene, self.analysis
         blocks = self.section("The machine reduced to one shaft", "reduction", 2)
         tables = set(self.inputs.scene_tables)
@@ -151,10 +151,11 @@ class Steps(Requirement):
         rows.append(("efficiency motor → reference shaft η", number(scene.efficiency, 4)))
         blocks.append(Facts(tuple(rows), "reduction"))
 
-    def step_work(self):
+    def step_work(self) -> None:
         a, si, res = self.analysis, self.si, self.result
         blocks = self.section("Work balance and power", "work", 2)
         ind = a.indicator
+        assert ind is not None  # every analysis carries its energy indicator diagram (flyopt.analysis)
         from flyopt.cycle.torque import Constant
 
         solved = [
@@ -234,7 +235,7 @@ class Steps(Requirement):
             )
         )
 
-    def step_a_max(self):
+    def step_a_max(self) -> None:
         a, scene = self.analysis, self.scene
         blocks = self.section("Energy indicator diagram and A_max", "a_max", 2)
         from flyopt.report import plots
@@ -305,7 +306,7 @@ class Steps(Requirement):
             a,
         )
 
-    def step_shafts(self):
+    def step_shafts(self) -> None:
         a = self.analysis
         blocks = self.section("The flywheel on each shaft", "shafts", 2)
         blocks.append(

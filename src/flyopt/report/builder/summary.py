@@ -11,7 +11,7 @@ from flyopt.report.document import Facts, Paragraph
 class Summary(BuilderBase):
     """Section 1 of the report."""
 
-    def summary(self):
+    def summary(self) -> None:
         a, d, best = self.analysis, self.design, self.best()
         blocks = self.section("Summary", "summary")
         blocks.append(
@@ -112,13 +112,13 @@ class Summary(BuilderBase):
             )
         blocks.append(Facts(tuple(rows), "summary"))
 
-    def answer(self):
+    def answer(self) -> str:
         """The answer in one sentence."""
         a, best, status = self.analysis, self.best(), self.solution.status
         if status == "infeasible":
-            return "No feasible design: " + (
-                self.design.message if self.design is not None else self.solution.drive.message
-            )
+            said = self.design if self.design is not None else self.solution.drive
+            assert said is not None  # an infeasible solution is the design's or the drive design's
+            return "No feasible design: " + said.message
         if best is None:
             if self.solution.drive is not None and self.solution.drive.best is not None:
                 return (

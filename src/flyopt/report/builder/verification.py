@@ -12,7 +12,7 @@ from flyopt.report.document import Equation, Facts, Figure, Paragraph
 class VerificationAndProvenance(BuilderBase):
     """Sections 8 and 9 of the report."""
 
-    def verification_section(self):
+    def verification_section(self) -> None:
         v = self.solution.verification
         a = self.analysis
         blocks = self.section("Verification", "verification")
@@ -108,6 +108,6 @@ class VerificationAndProvenance(BuilderBase):
                 simulation,
             )
 
-    def provenance_section(self):
+    def provenance_section(self) -> None:
         blocks = self.section("Provenance", "provenance")
         blocks.append(Facts(tuple(self.inputs.provenance), "provenance"))

@@ -4,13 +4,18 @@ from __future__ import annotations
 
 import math
 import textwrap
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from flyopt.names import Geometry
 from flyopt.report import display
 from flyopt.report.plots import standard
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from flyopt.design.result import Candidate
 
 #: Font size of dimensions and notes on the drawing [pt].
 _DIM_FONT = 8
@@ -213,7 +218,7 @@ def _groups(blocks):
     return out
 
 
-def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
+def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
     """Dimensioned axial section of a designed wheel, mirrored about the axis, in the system's length unit.
 
     The hub (bore to D_hub, length l_hub), the web (t_web) and the rim (H x B)
@@ -280,7 +285,7 @@ def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
     note_lines = sum(len(textwrap.wrap(n, 95)) for n in notes)
     bottom_in = 0.25
     own = ax is None
-    if own:
+    if ax is None:
         plt = standard.pyplot()
         scale = min(_SECTION_HEIGHT / (2 * r_o), 5.0 / w_max)  # [in per drawing unit]
         lines_in, right_in = _diameter_lines(diameters, texts, scale)
@@ -307,7 +312,7 @@ def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
             _front_view(front, c, arms, _mm_text)
     else:
         box = ax.get_position()
-        fig_w, fig_h = ax.figure.get_size_inches()
+        fig_w, fig_h = standard.figure_of(ax).get_size_inches()
         for _pass in range(2):  # the room the diameters need depends on the scale, and the scale on it
             scale = min(
                 (box.height * fig_h - top_in - bottom_in) / (2 * r_o), (box.width * fig_w - left_in - right_in) / w_max
@@ -415,9 +420,9 @@ def plot_cross_section(candidate, ax=None, units=display.DEFAULT):
         f"axial section{', arm section revolved' if arms else ''}, dimensions in {length}"
     )
     if own:  # the figure is this drawing's: its title over both views, the notes under them
-        ax.figure.suptitle(title, fontsize=10)
+        standard.figure_of(ax).suptitle(title, fontsize=10)
         if notes:
-            ax.figure.text(
+            standard.figure_of(ax).text(
                 0.5,
                 margin / fig_h,
                 "\n".join(textwrap.fill(n, 95) for n in notes),

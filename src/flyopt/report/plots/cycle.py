@@ -3,17 +3,30 @@
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.cycle.indicator import ExcessWork
+from flyopt.cycle.torque import Constant
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import standard
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.axes._secondary_axes import SecondaryAxis
 
-def angle_axis(ax, cycle_angle, units):
+    from flyopt.analysis import Analysis
+    from flyopt.cycle.torque import TorqueCurve
+    from flyopt.io.scene import Scene
+
+#: A vertical mark of a speed extreme: (angle [rad], label, colour, line style, gid).
+Mark = tuple[float, str, str, str, str]
+
+
+def angle_axis(ax: Axes, cycle_angle: float, units: str) -> float:
     """The x axis of every diagram of the cycle: the crank angle from 0 to Φ, ticks at whole fractions."""
     from matplotlib.ticker import MultipleLocator
 
@@ -78,7 +91,7 @@ def _dead_centres(scene):
     return None
 
 
-def mark_dead_centres(ax, scene, units):
+def mark_dead_centres(ax: Axes, scene: Scene, units: str) -> SecondaryAxis | None:
     """The dead centres (and an engine's strokes) on a top axis, faint lines through the data."""
     marks = _dead_centres(scene)
     if marks is None:
@@ -103,17 +116,27 @@ def mark_dead_centres(ax, scene, units):
 # --------------------------------------------------------------------------
 
 
-def excess_work(scene, analysis):
-    """ΔE of the torques as the analysis saw them (members' loads joined, a motor at its mean)."""
-    if analysis.machine is not None:
-        return analysis.machine.angle_only()
-    return ExcessWork(scene.driving, scene.resisting, scene.cycle_angle)
+def excess_work(scene: Scene, analysis: Analysis) -> ExcessWork:
+    """ΔE of the torques as the analysis saw them (members' loads joined, a motor at its mean).
+
+    Raises
+    ------
+    ValueError
+        A net-area scene: it has areas, no torques of the angle.
+    """
+    if analysis.machine is None:
+        raise ValueError(f"{scene.title!r} is given as net areas: it has no ΔE(φ) to draw")
+    return analysis.machine.angle_only()
 
 
 def _unknown(curve):
-    from flyopt.cycle.torque import Constant
-
     return isinstance(curve, Constant) and curve.unknown
+
+
+def _solved(curve: TorqueCurve) -> float:
+    """The value of a constant torque solved from the work balance [N*m]."""
+    assert isinstance(curve, Constant)  # the balanced curve of an unknown constant is the solved constant
+    return curve.known()
 
 
 def _sides(phi, curve):
@@ -160,8 +183,10 @@ class Torques:
     torque steps (left limit first), so lines and shading draw the steps.
     """
 
-    def __init__(self, scene, analysis):
+    def __init__(self, scene: Scene, analysis: Analysis) -> None:
         machine = analysis.machine
+        if machine is None:
+            raise ValueError("a net-area scene has no torque curves to draw over the cycle")
         balanced = machine.angle_only()
         self.along = analysis.model == Model.DYNAMIC
         self.driving_solved = _unknown(machine.driving)
@@ -169,22 +194,24 @@ class Torques:
         self.motor = _is_motor(machine.driving)
         self.resisting_speed = bool(getattr(machine.resisting, "speed_dependent", False))
         if self.along:
+            assert analysis.requirement is not None  # the dynamic model's analysis carries its requirement
             speed = analysis.requirement.detail.solution  # the periodic solution the dynamic model found
             phi, omega = np.asarray(speed.phi, dtype=float), np.asarray(speed.omega, dtype=float)
             offset = float(getattr(speed, "torque_offset", 0.0) or 0.0)
             # the periodic model's net torque: an unknown constant is the balancing one plus the offset
             self.driving = (
-                np.full(phi.shape, balanced.driving.value + offset)
+                np.full(phi.shape, _solved(balanced.driving) + offset)
                 if self.driving_solved
                 else _along(machine.driving, phi, omega)
             )
             self.resisting = (
-                np.full(phi.shape, balanced.resisting.value - offset)
+                np.full(phi.shape, _solved(balanced.resisting) - offset)
                 if self.resisting_solved
                 else _along(machine.resisting, phi, omega)
             )
         else:
             ind = analysis.indicator
+            assert ind is not None and ind.chain_angle is not None  # a machine's analysis has its diagram's angles
             phi = np.union1d(np.linspace(0.0, scene.cycle_angle, 3001), np.asarray(balanced.knots, dtype=float))
             phi = np.union1d(phi, ind.chain_angle)
             steps = np.zeros(phi.shape, bool)
@@ -197,16 +224,17 @@ class Torques:
         self.phi = phi
 
     @property
-    def net(self):
+    def net(self) -> npt.NDArray[np.float64]:
+        """M_d − M_r on the drawn grid [N*m]."""
         return self.driving - self.resisting
 
-    def excess_work(self):
+    def excess_work(self) -> npt.NDArray[np.float64]:
         """ΔE(φ) = ∫_0^φ (M_d − M_r) dφ of the drawn torques, by the trapezoidal rule [J]."""
         from scipy.integrate import cumulative_trapezoid
 
         return cumulative_trapezoid(self.net, self.phi, initial=0.0)
 
-    def areas(self):
+    def areas(self) -> list[tuple[float, float, float]]:
         """(left, right, area) between the drawn curves from crossing to crossing [rad, rad, J]."""
         net, phi = self.net, self.phi
         scale = max(float(np.max(np.abs(net))), 1e-300)
@@ -243,7 +271,7 @@ def _is_motor(curve):
 # --------------------------------------------------------------------------
 
 
-def omega_marks(analysis, units):
+def omega_marks(analysis: Analysis, units: str) -> tuple[list[Mark], str | None]:
     """The vertical marks of the speed extremes and of the ends of A_max: (angle, label, colour, style, gid).
 
     With a constant inertia and torques of the angle only the speed is extreme
@@ -252,8 +280,8 @@ def omega_marks(analysis, units):
     (section 6), with a speed-dependent torque where the periodic solution
     says (section 7): both pairs are marked, and the legend says why.
     """
-    marks: list[Any] = []
-    note = None
+    marks: list[Mark] = []
+    note: str | None = None
     if analysis.a_max <= 0 and not (analysis.machine is not None and analysis.machine.variable_inertia):
         return marks, "steady running: M_d = M_r at every angle, A_max = 0, the speed does not fluctuate"
     model = {"energy": "energy method", "energy_mass": "energy–mass model", "dynamic": "periodic solution"}[
@@ -279,7 +307,7 @@ def omega_marks(analysis, units):
                     f"omega_{name}",
                 )
             )
-        elif not apart:
+        elif delta_e_at is None or not apart:
             marks.append(
                 (
                     omega_at,

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from flyopt.names import Model
@@ -9,8 +11,14 @@ from flyopt.report import display
 from flyopt.report.plots import standard
 from flyopt.report.plots.cycle import Torques, angle_axis, excess_work, mark_dead_centres
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
-def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
+    from flyopt.analysis import Analysis
+    from flyopt.io.scene import Scene
+
+
+def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
     """Energy indicator diagram: ΔE from the cycle start, the chain points, ΔE's extremes and A_max.
 
     The x axis is the turning-moment diagram's (0 to Φ). A_max is dimensioned
@@ -30,6 +38,7 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
     display.check_system(units)
     ax, own = standard.axes(ax)
     ind = analysis.indicator
+    assert ind is not None  # every analysis carries its energy indicator diagram (flyopt.analysis)
     chain = np.asarray(ind.chain_delta_e, dtype=float)
     constant = analysis.machine is None or not analysis.machine.variable_inertia
     if ind.chain_angle is None:
@@ -85,7 +94,7 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
     )
     for k, name, colour, where in extremes:
         ax.axhline(y_chain[k], color=colour, ls=":", lw=1)
-        angle = (
+        at = (
             f" at φ = {standard.q(ind.chain_angle[k], 'angle', units)}"
             if ind.chain_angle is not None
             else f" at the end of area {k}"
@@ -99,7 +108,7 @@ def plot_energy(scene, analysis, ax=None, units=display.DEFAULT):
             mec=colour,
             mew=1.6,
             zorder=5,
-            label=f"{name}: ΔE = {standard.q(chain[k], 'energy', units)}{angle}",
+            label=f"{name}: ΔE = {standard.q(chain[k], 'energy', units)}{at}",
             gid="chain_max" if where > 0 else "chain_min",
         )
         ax.annotate(

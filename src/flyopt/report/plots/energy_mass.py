@@ -2,14 +2,22 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import standard
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
-def check_energy_mass(analysis):
+    from flyopt.analysis import Analysis
+    from flyopt.io.scene import Scene
+
+
+def check_energy_mass(analysis: Analysis) -> None:
     """Raise ValueError unless the energy–mass diagram applies: curves of the angle only, J_e varying.
 
     With a constant inertia the diagram is a vertical line (every point at
@@ -33,7 +41,7 @@ def check_energy_mass(analysis):
         )
 
 
-def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
+def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
     """Wittenbauer's energy–mass diagram: ΔE against J_e over the cycle, with the two tangents.
 
     From the true origin (−J_F, −E_0) the lines of slope ω_max²/2 and ω_min²/2
@@ -78,6 +86,7 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
             f"analysis ran the {analysis.model} model: analyse with model='energy_mass'"
         )
     machine = analysis.machine
+    assert machine is not None  # check_energy_mass: torques given as curves
     em = analysis.requirement.detail
     ew = machine.angle_only()
     phi = np.union1d(np.linspace(0, scene.cycle_angle, 1441), ew.knots)
@@ -85,14 +94,12 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
     de = np.asarray(ew(phi), dtype=float)
     j_f = max(em.j_required, 0.0)
     x0, y0 = -j_f, -em.e0
-    own = ax is None
-    if own:
+    overview: Axes | None = None
+    if ax is None:
         plt = standard.pyplot()
         fig, (overview, ax) = plt.subplots(
             1, 2, figsize=(11, 5.6), layout="constrained", gridspec_kw={"width_ratios": [1, 1.5]}
         )
-    else:
-        overview = None
     inertia, energy = standard.unit("inertia", units)[0], standard.unit("energy", units)[0]
     sj, se = (lambda v: standard.show(v, "inertia", units)), (lambda v: standard.show(v, "energy", units))
     tangents = (
@@ -108,7 +115,7 @@ def plot_energy_mass(scene, analysis, ax=None, units=display.DEFAULT):
     bar = ax.figure.colorbar(coloured, ax=ax, pad=0.01)
     bar.set_label(standard.axis_label("crank angle φ", "angle", units))
     if display.label("angle", units) == "deg":
-        bar.set_ticks(np.arange(0.0, float(standard.show(scene.cycle_angle, "angle", units)) + 1.0, 90.0))
+        bar.set_ticks(np.arange(0.0, float(standard.show(scene.cycle_angle, "angle", units)) + 1.0, 90.0).tolist())
     ax.plot([sj(j[0])], [se(de[0])], "s", color="black", ms=5, label="φ = 0, the cycle's start", zorder=5)
     span_x, span_y = float(np.ptp(j)), float(np.ptp(de))
     xs = np.array([j.min() - 0.3 * span_x, j.max() + 0.3 * span_x])

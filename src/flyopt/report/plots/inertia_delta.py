@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.cycle.indicator import required_inertia
 from flyopt.delta_curve import delta_range, flywheel_at_some_delta
@@ -12,14 +14,26 @@ from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import standard
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
-def check_inertia_delta(analysis):
+    from flyopt.analysis import Analysis
+    from flyopt.io.scene import Scene
+
+
+def check_inertia_delta(analysis: Analysis) -> None:
     """Raise NothingToDraw when no flywheel is needed at any δ: a steady machine of constant inertia."""
     if not flywheel_at_some_delta(analysis):
         raise standard.NothingToDraw("no flywheel is needed for any δ (A_max = 0 J, so J_F(δ) = 0): nothing to draw")
 
 
-def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=None):
+def plot_inertia_delta(
+    scene: Scene,
+    analysis: Analysis,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    curve: tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
+) -> Axes:
     """J_F against δ by the model that ran, the scene's δ marked on the curve.
 
     With a constant inertia and torques of the angle only J_F = A_max/(ω_m² δ)
@@ -138,7 +152,7 @@ def plot_inertia_delta(scene, analysis, ax=None, units=display.DEFAULT, curve=No
     return ax
 
 
-def _plain_log_ticks(ax):
+def _plain_log_ticks(ax: Axes) -> None:
     """Numbers as numbers on log axes (0.05, 200), not powers of ten, at 1, 2 and 5 of each decade."""
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
@@ -148,7 +162,7 @@ def _plain_log_ticks(ax):
         axis.set_minor_formatter(NullFormatter())
 
 
-def _zero_crossing(delta, j):
+def _zero_crossing(delta: npt.NDArray[np.float64], j: npt.NDArray[np.float64]) -> float | None:
     """The δ where a sampled J_F(δ) falls through zero (log-linear interpolation), or None."""
     k = np.flatnonzero((j[:-1] > 0) & (j[1:] <= 0))
     if not len(k):

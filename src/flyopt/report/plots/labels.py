@@ -2,26 +2,41 @@
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.report.plots import standard
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.text import Text
+    from matplotlib.transforms import BboxBase
 
 # --------------------------------------------------------------------------
 # Labels placed where nothing else is
 # --------------------------------------------------------------------------
 
 
-def _to_pixels(ax, x, y):
+def _to_pixels(ax: Axes, x: npt.ArrayLike, y: npt.ArrayLike) -> npt.NDArray[np.float64]:
     return ax.transData.transform(np.column_stack([x, y]))
 
 
-def _boxes_overlap(a, b, pad=0.0):
+def _boxes_overlap(a: BboxBase, b: BboxBase, pad: float = 0.0) -> bool:
     return not (a.x1 + pad <= b.x0 or b.x1 + pad <= a.x0 or a.y1 + pad <= b.y0 or b.y1 + pad <= a.y0)
 
 
-def place_area_labels(ax, x, lower, upper, spans, obstacles_x=(), obstacles_y=()):
+def place_area_labels(
+    ax: Axes,
+    x: npt.ArrayLike,
+    lower: npt.ArrayLike,
+    upper: npt.ArrayLike,
+    spans: Sequence[tuple[float, float, str, str]],
+    obstacles_x: Sequence[float] = (),
+    obstacles_y: Sequence[float] = (),
+) -> list[Text]:
     """Write each area's text inside its shading where it clears both curves, else just above (or below) them.
 
     The marks of the cycle (vertical lines) and horizontal levels are avoided
@@ -43,20 +58,18 @@ def place_area_labels(ax, x, lower, upper, spans, obstacles_x=(), obstacles_y=()
     """
     from matplotlib.transforms import Bbox
 
-    fig = ax.figure
-    fig.canvas.draw()
-    renderer = fig.canvas.get_renderer()
+    standard.figure_of(ax).canvas.draw()  # lay the figure out: the extents below are those drawn
     lo_px, hi_px = _to_pixels(ax, x, lower), _to_pixels(ax, x, upper)
     px = lo_px[:, 0]
-    axes_box = ax.get_window_extent(renderer)
+    axes_box = ax.get_window_extent()
     lines_px = [ax.transData.transform((v, 0.0))[0] for v in obstacles_x]
     levels_px = [ax.transData.transform((0.0, v))[1] for v in obstacles_y]
-    placed: list[Any] = []
-    texts: list[Any] = []
+    placed: list[Bbox] = []
+    texts: list[Text] = []
     pad = 2.0
     for left, right, text, colour in spans:
         label = ax.text(0, 0, text, ha="center", va="center", fontsize=standard.FONT, color=colour, gid="area")
-        box = label.get_window_extent(renderer)
+        box = label.get_window_extent()
         w, h = box.width + 2 * pad, box.height + 2 * pad
         a, b = ax.transData.transform((left, 0))[0], ax.transData.transform((right, 0))[0]
         middle = 0.5 * (a + b)
@@ -98,6 +111,7 @@ def place_area_labels(ax, x, lower, upper, spans, obstacles_x=(), obstacles_y=()
             label.set_bbox({"facecolor": "white", "edgecolor": "none", "alpha": 0.85, "pad": 0.5})
             label.set_zorder(5)
         placed.append(best[3])
-        label.set_position(ax.transData.inverted().transform((best[1], best[2])))
+        at = ax.transData.inverted().transform((best[1], best[2]))
+        label.set_position((float(at[0]), float(at[1])))
         texts.append(label)
     return texts

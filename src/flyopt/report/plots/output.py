@@ -5,15 +5,19 @@ from __future__ import annotations
 import os
 import tempfile
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError
 from flyopt.report.plots import standard
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 #: Image formats :func:`save` writes, by the suffix of the file.
 FORMATS = ("png", "svg", "pdf")
 
 
-def check_output(path):
+def check_output(path: str | os.PathLike[str]) -> None:
     """Check the file a diagram will go to, before anything is computed.
 
     Parameters
@@ -35,7 +39,7 @@ def check_output(path):
         raise SceneError("-o/--output", f"the folder {str(folder)!r} does not exist")
 
 
-def save(ax, path, dpi=150):
+def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
     """Write the Axes' figure to ``path`` (png, svg or pdf by suffix), atomically.
 
     Raises
@@ -48,7 +52,7 @@ def save(ax, path, dpi=150):
     check_output(path)
     path = Path(path)
     suffix = path.suffix.lower().lstrip(".")
-    fig = ax.figure
+    fig = standard.figure_of(ax)
     try:
         handle, tmp = tempfile.mkstemp(suffix=path.suffix, dir=path.parent)
     except OSError as err:

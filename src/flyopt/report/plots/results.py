@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from flyopt.report import display
 from flyopt.report.plots import standard
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.axes import Axes
 
 RESULT_PLOTS = {
     "sweep": "a result of a sweep against a varied field, one line per group (--by) and per other varied field",
@@ -78,7 +82,7 @@ def _value_text(value, column, units, frame=None):
     return f"{column} = {value}"
 
 
-def pareto_objectives(frame):
+def pareto_objectives(frame: pd.DataFrame) -> tuple[str, str] | None:
     """The two objectives of a front written by ``flyopt pareto``, or None.
 
     A front has an ``epsilon`` column (the constraint value of each point)
@@ -92,10 +96,10 @@ def pareto_objectives(frame):
     columns = list(frame.columns)
     if "epsilon" not in columns or len(columns) < 3 or columns[0] != "mass":
         return None
-    return tuple(columns[:2])
+    return str(columns[0]), str(columns[1])
 
 
-def varied_fields(frame):
+def varied_fields(frame: pd.DataFrame) -> list[str]:
     """The inputs a sweep varied: its recorded sweep specification, else the input columns that take
     more than one value (flyopt.outputs.results.INPUTS and the material and shaft fields)."""
     from flyopt.outputs.quantities import INPUTS
@@ -114,7 +118,14 @@ _NOT_DESIGNED = {
 }
 
 
-def plot_sweep(frame, x, y="mass", by=None, ax=None, units=display.DEFAULT):
+def plot_sweep(
+    frame: pd.DataFrame,
+    x: str,
+    y: str = "mass",
+    by: str | None = None,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+) -> Axes:
     """A sweep's result ``y`` against a varied field ``x``: one line per value of ``by`` and of every
     other varied field, so that a line never joins points that differ in anything but ``x``.
 
@@ -191,7 +202,7 @@ def plot_sweep(frame, x, y="mass", by=None, ax=None, units=display.DEFAULT):
     return ax
 
 
-def plot_pareto(frame, x, y, ax=None, units=display.DEFAULT):
+def plot_pareto(frame: pd.DataFrame, x: str, y: str, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
     """The Pareto front of two objectives (both minimized), non-dominated points joined.
 
     A front compares designs of one machine: the points must share the

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from flyopt.names import Model
@@ -9,8 +11,23 @@ from flyopt.report import display
 from flyopt.report.plots import standard
 from flyopt.report.plots.cycle import angle_axis, mark_dead_centres
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
-def plot_speed(scene, analysis, speed=None, simulation=None, ax=None, units=display.DEFAULT):
+    from flyopt.analysis import Analysis
+    from flyopt.io.scene import Scene
+    from flyopt.sizing.energy_mass import SpeedFluctuation
+    from flyopt.sizing.periodic import PeriodicSolution
+
+
+def plot_speed(
+    scene: Scene,
+    analysis: Analysis,
+    speed: SpeedFluctuation | PeriodicSolution | None = None,
+    simulation: PeriodicSolution | None = None,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+) -> Axes:
     """ω(φ) over the cycle with the required flywheel, from the model that ran.
 
     The mean speed ω_m and the extremes ω_max and ω_min are drawn as levels,
@@ -54,6 +71,10 @@ def plot_speed(scene, analysis, speed=None, simulation=None, ax=None, units=disp
                 f"the {analysis.model} model's result carries no ω(φ): pass speed (Analysis.speed_curve())"
             )
         speed = analysis.speed_curve()
+        if speed is None:
+            raise standard.NothingToDraw(
+                "no flywheel is needed and the speed does not fluctuate (A_max = 0 J, no inertia at all): nothing to draw"
+            )
     ax, own = standard.axes(ax)
     omega = np.asarray(speed.omega, dtype=float)
     x = standard.show(speed.phi, "angle", units)

@@ -4,10 +4,20 @@ from __future__ import annotations
 
 import os
 import textwrap
+from collections.abc import Sequence
+from types import ModuleType
+from typing import TYPE_CHECKING, overload
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.report import display
+
+if TYPE_CHECKING:
+    from matplotlib.artist import Artist
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.legend import Legend
 
 SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
 
@@ -22,7 +32,8 @@ class NothingToDraw(Exception):
     """The diagram would be empty for this machine (no flywheel is needed): not an error."""
 
 
-def pyplot():
+def pyplot() -> ModuleType:
+    """matplotlib.pyplot, on the Agg backend unless the caller chose one (imported only when a diagram is drawn)."""
     import matplotlib
 
     if "MPLBACKEND" not in os.environ and matplotlib.get_backend().lower() not in ("agg", "pdf", "svg"):
@@ -37,7 +48,7 @@ def pyplot():
 # --------------------------------------------------------------------------
 
 
-def axes(ax, figsize=(9, 5.2)):
+def axes(ax: Axes | None, figsize: tuple[float, float] = (9, 5.2)) -> tuple[Axes, bool]:
     """(Axes, own): the caller's Axes, or one on a new figure of constrained layout (own True)."""
     if ax is not None:
         return ax, False
@@ -45,36 +56,52 @@ def axes(ax, figsize=(9, 5.2)):
     return plt.figure(figsize=figsize, layout="constrained").add_subplot(), True
 
 
-def unit(dimension, units):
+def figure_of(ax: Axes) -> Figure:
+    """The figure an Axes is drawn on (the root figure, for an Axes of a subfigure)."""
+    from matplotlib.figure import Figure
+
+    fig = ax.figure
+    return fig if isinstance(fig, Figure) else fig.figure
+
+
+def unit(dimension: str, units: str) -> tuple[str, float]:
     """(label, factor) of a dimension in the unit system: shown = SI / factor."""
     return display.unit(dimension, units)
 
 
-def show(value, dimension, units):
-    """An SI value or array in the system's unit of its dimension."""
-    return display.show(np.asarray(value, dtype=float) if np.ndim(value) else float(value), dimension, units)
+@overload
+def show(value: float, dimension: str, units: str) -> float: ...
+@overload
+def show(value: npt.NDArray[np.floating] | Sequence[float], dimension: str, units: str) -> npt.NDArray[np.float64]: ...
+def show(value: npt.ArrayLike, dimension: str, units: str) -> npt.NDArray[np.float64] | float:
+    """An SI value or array in the system's unit of its dimension (a number for a number)."""
+    array = np.asarray(value, dtype=float)
+    factor = display.unit(dimension, units)[1]
+    return array / factor if array.ndim else float(array) / factor
 
 
-def q(value, dimension, units, digits=DIGITS):
+def q(value: float | None, dimension: str, units: str, digits: int = DIGITS) -> str:
     """A quantity as people read it, "0.4625 kN·m"."""
     return display.quantity_text(value, dimension, units, digits)
 
 
-def axis_label(words, dimension, units):
+def axis_label(words: str, dimension: str, units: str) -> str:
     """ "words [unit]" ("[-]" for a ratio: every axis says its unit)."""
     return f"{words} [{display.label(dimension, units)}]"
 
 
-def title(ax, own, *lines, size=11):
+def title(ax: Axes, own: bool, *lines: str | None, size: float = 11) -> None:
     """A title of several lines, each wrapped to the width it has (the figure's, or the Axes')."""
-    fig = ax.figure
+    fig = figure_of(ax)
     width = fig.get_size_inches()[0] * (1.0 if own else ax.get_position().width)
     chars = max(int(width * 72 / (0.6 * size)) - 4, 20)
     text = "\n".join(textwrap.fill(line, chars) for line in lines if line)
     ax.set_title(text, fontsize=size)
 
 
-def legend(ax, own, title=None, ncol=2, handles=None):
+def legend(
+    ax: Axes, own: bool, title: str | None = None, ncol: int = 2, handles: list[Artist] | None = None
+) -> Legend | None:
     """The legend outside the data: below the figure the function made, right of a given Axes.
 
     Entries and title are wrapped to the width there is (the figure's, shared by ``ncol`` columns;
@@ -89,7 +116,7 @@ def legend(ax, own, title=None, ncol=2, handles=None):
         return None
     ncol = min(ncol, len(handles))
     if own:
-        chars = int((ax.figure.get_size_inches()[0] - 0.4) * 72 / (0.6 * FONT))
+        chars = int((figure_of(ax).get_size_inches()[0] - 0.4) * 72 / (0.6 * FONT))
         wrap, title_wrap = chars // ncol - 8, chars - 4
     else:
         ncol, wrap, title_wrap = 1, 40, 40
@@ -97,7 +124,7 @@ def legend(ax, own, title=None, ncol=2, handles=None):
     if title:
         title = fill(title, title_wrap)
     if own:
-        return ax.figure.legend(
+        return figure_of(ax).legend(
             handles,
             labels,
             loc="outside lower center",
@@ -120,7 +147,7 @@ def legend(ax, own, title=None, ncol=2, handles=None):
     )
 
 
-def fill(text, width):
+def fill(text: str, width: int) -> str:
     """Wrap a line to ``width`` characters, never between a number and its unit ("0 mm", "1,512 rpm"),
     nor inside "name = value"."""
     import re

@@ -3,11 +3,19 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.report import display
 from flyopt.report.plots import standard
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from flyopt.design.result import Candidate
 
 #: Colours of the stress curves.
 _STRESS_COLOURS = {"sr": "tab:blue", "st": "tab:red", "vm": "black"}
@@ -15,7 +23,15 @@ _STRESS_COLOURS = {"sr": "tab:blue", "st": "tab:red", "vm": "black"}
 _PART_SHADES = ("#eef1f6", "#f8f4ea")
 
 
-def plot_stress(candidate, profile, beams=(), omega=None, ductile=True, ax=None, units=display.DEFAULT):
+def plot_stress(
+    candidate: Candidate,
+    profile: Sequence[tuple[str, npt.ArrayLike, npt.ArrayLike, npt.ArrayLike, npt.ArrayLike]],
+    beams: Sequence[tuple[str, float, float, float]] = (),
+    omega: float | None = None,
+    ductile: bool = True,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+) -> Axes:
     """sigma_r, sigma_t and von Mises over the radius at omega_max, each part's span and allowable.
 
     Parameters
@@ -47,7 +63,7 @@ def plot_stress(candidate, profile, beams=(), omega=None, ductile=True, ax=None,
     """
     display.check_system(units)
     c = candidate
-    if not c.feasible or not c.parts:
+    if not c.feasible or not c.parts or c.d_outer is None:
         raise ValueError(f"{c.material} on {c.shaft} is not a design: no stresses to draw")
     if not c.stress:
         raise ValueError(f"the design of {c.material} carries no stresses (its notes: {'; '.join(c.notes) or 'none'})")
@@ -179,5 +195,5 @@ def plot_stress(candidate, profile, beams=(), omega=None, ductile=True, ax=None,
     return ax
 
 
-def _finite_positive(value):
+def _finite_positive(value: float | None) -> bool:
     return value is not None and math.isfinite(value) and value > 0

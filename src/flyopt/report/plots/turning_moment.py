@@ -2,15 +2,24 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.report import display
 from flyopt.report.plots import standard
 from flyopt.report.plots.cycle import Torques, angle_axis, mark_dead_centres, omega_marks
 from flyopt.report.plots.labels import place_area_labels
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
-def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
+    from flyopt.analysis import Analysis
+    from flyopt.io.scene import Scene
+
+
+def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
     """Turning-moment diagram: M_d and M_r over the cycle, surplus and deficit shaded.
 
     Each area between crossings is labelled with its energy where it has room
@@ -44,6 +53,7 @@ def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
     ax, own = standard.axes(ax)
     energy = standard.unit("energy", units)[0]
     ind = analysis.indicator
+    assert ind is not None  # every analysis carries its energy indicator diagram (flyopt.analysis)
     if scene.net is not None:
         areas = ind.areas
         k = np.arange(1, len(areas) + 1)
@@ -101,6 +111,7 @@ def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
     levels = []
     if torques.along and not torques.driving_solved and np.ptp(torques.driving) > 0:
         mean = analysis.driving_torque
+        assert mean is not None  # a scene of torque curves has its mean driving torque
         levels.append(float(standard.show(mean, "torque", units)))
         ax.axhline(
             float(standard.show(mean, "torque", units)),
@@ -116,11 +127,15 @@ def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
     end = angle_axis(ax, scene.cycle_angle, units)
     top = mark_dead_centres(ax, scene, units)
     ax.set_ylabel(standard.axis_label("torque at the reference shaft", "torque", units))
+    between: list[tuple[float, float, float]]  # (left, right, energy) of each area between the curves
     if torques.along:
-        areas = torques.areas()
+        between = torques.areas()
         what = "along the periodic solution"
     else:
-        areas = list(zip(ind.chain_angle[:-1], ind.chain_angle[1:], ind.areas))
+        assert ind.chain_angle is not None  # a scene of torque curves has the angles of its chain
+        between = [
+            (float(l), float(r), float(a)) for l, r, a in zip(ind.chain_angle[:-1], ind.chain_angle[1:], ind.areas)
+        ]
         what = f"A_max = {standard.q(analysis.a_max, 'energy', units)}"
     standard.title(ax, own, scene.title, f"turning-moment diagram, {what} ({analysis.model} model)")
     span = max(float(np.ptp(np.concatenate([md, mr]))), 1e-12 * max(1.0, float(np.max(np.abs(md)))))
@@ -130,7 +145,7 @@ def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
     else:
         ax.set_ylim(low - 0.12 * span, high + 0.22 * span)
     standard.legend(ax, own, title=note)
-    largest = max([abs(a) for _l, _r, a in areas] + [0.0])
+    largest = max([abs(a) for _l, _r, a in between] + [0.0])
     spans = [
         (
             float(standard.show(left, "angle", units)),
@@ -138,7 +153,7 @@ def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
             f"{'+' if area > 0 else '−'}{standard.q(abs(area), 'energy', units)}",
             standard.SURPLUS if area > 0 else standard.DEFICIT,
         )
-        for left, right, area in areas
+        for left, right, area in between
         if largest > 0
         and (abs(area) >= 0.01 * largest or right - left >= 0.02 * scene.cycle_angle)
         and abs(area) > 1e-9 * largest
@@ -157,7 +172,7 @@ def plot_turning_moment(scene, analysis, ax=None, units=display.DEFAULT):
     return ax
 
 
-def _torque_words(words, solved, values, torques, units):
+def _torque_words(words: str, solved: bool, values: npt.NDArray[np.float64], torques: Torques, units: str) -> str:
     """A torque's legend entry: its value when it is a constant solved from the work balance."""
     if solved:
         how = "with the periodic solution" if torques.along else "from the work balance"
