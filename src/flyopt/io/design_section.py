@@ -58,12 +58,12 @@ def read_design(raw, shafts, materials):
         options["hb_ratio"] = (low, high)
     for key in ("max_outer_diameter", "max_width", "d_mean", "min_wall"):
         if table.has(key):
-            value = table.quantity(key, "length")
+            value = table.quantity(key, "length", required=True)
             if value <= 0:
                 raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
             options[key] = value
     if table.has("bore"):
-        value = table.quantity("bore", "length")
+        value = table.quantity("bore", "length", required=True)
         if value < 0:
             raise SceneError("design.bore", f"must be >= 0 (0: no bore), got {shorten(table.raw('bore'))}")
         envelope = options.get("max_outer_diameter", math.inf)
@@ -75,7 +75,7 @@ def read_design(raw, shafts, materials):
             )
         options["bore"] = value
     if table.has("safety_factor"):
-        value = table.quantity("safety_factor", "dimensionless")
+        value = table.quantity("safety_factor", "dimensionless", required=True)
         if value < 1:
             raise SceneError(
                 "design.safety_factor",

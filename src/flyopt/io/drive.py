@@ -34,7 +34,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.press import checked_table  # scene._Table's key check; importing flyopt.io.scene would be a cycle
+from flyopt.io.fields import Table
 from flyopt.machine.catalogue import QUANTITIES, REQUIRED, TEXTS, Catalogue, CatalogueMotor, MotorDataError, catalogue
 from flyopt.units import quantity
 
@@ -127,7 +127,7 @@ def drive_spec(raw_drive, raw_motor_options, shafts, materials=None):
             "drive",
             "is missing: [[motor_option]] tables are the motors of a [drive] section (ratio, objective, ...); add one",
         )
-    table = checked_table(raw_drive, "drive", DRIVE_KEYS)
+    table = Table(raw_drive, "drive", DRIVE_KEYS).data
     motors = _motors(table, raw_motor_options)
     ratio_range, ratios = _ratios(table)
     objective = _objective(table, motors, materials)
@@ -179,7 +179,7 @@ def _motors(table, raw_options):
 def _motor_option(raw, k):
     """One [[motor_option]] table as a CatalogueMotor."""
     where = f"{_OPTIONS}[{k}]"
-    table = checked_table(raw, where, MOTOR_OPTION_KEYS)
+    table = Table(raw, where, MOTOR_OPTION_KEYS).data
     for key in REQUIRED:
         if key not in table:
             raise SceneError(f"{where}.{key}", f"is missing: a motor option gives at least {', '.join(REQUIRED)}")

@@ -94,7 +94,7 @@ def read_engine(raw, files=Path()):
                     "is missing: rod_mass, rod_centre (from the crank pin) and "
                     "rod_inertia (about the rod's centre of mass) come together",
                 )
-        rod["rod_centre"] = table.quantity("rod_centre", "length")
+        rod["rod_centre"] = table.quantity("rod_centre", "length", required=True)
         if not 0.0 <= rod["rod_centre"] <= sizes["rod"]:
             raise SceneError(
                 "engine.rod_centre",
@@ -102,7 +102,7 @@ def read_engine(raw, files=Path()):
                 f"centre of mass lies 0 to {shorten(table.raw('rod'))} from the "
                 "crank pin",
             )
-        rod["rod_inertia"] = table.quantity("rod_inertia", "inertia")
+        rod["rod_inertia"] = table.quantity("rod_inertia", "inertia", required=True)
         if not (math.isfinite(rod["rod_inertia"]) and rod["rod_inertia"] >= 0):
             raise SceneError(
                 "engine.rod_inertia", f"must be a finite number >= 0, got {shorten(table.raw('rod_inertia'))}"

@@ -71,7 +71,7 @@ def read_materials(raw):
                     raise SceneError(f"{where}.{key}", f"must be true or false, got {shorten(table.raw(key))}")
                 values[key] = table.get(key)
                 continue
-            value = table.quantity(key, dimension)
+            value = table.quantity(key, dimension, required=True)
             if key == "poisson_ratio":
                 if not 0.0 <= value < 0.5:
                     raise SceneError(f"{where}.{key}", f"must be in [0, 0.5), got {shorten(table.raw(key))}")

@@ -54,7 +54,7 @@ def read_motor(raw, where, shafts, efficiency, files=Path()):
             if table.has("stall_torque"):
                 motor = DCMotor(
                     table.quantity("no_load_speed", "angular_speed", required=True),
-                    table.quantity("stall_torque", "torque"),
+                    table.quantity("stall_torque", "torque", required=True),
                 )
             else:
                 motor = DCMotor.from_rated(

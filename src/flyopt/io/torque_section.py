@@ -16,7 +16,7 @@ from flyopt.units import DIMENSIONS, quantity
 class NetAreas:
     """The signed areas between the torque curves, in order, as energies [J]."""
 
-    energies: tuple
+    energies: tuple[float, ...]
 
 
 def read_torques(section, cycle, shafts=(), efficiency=1.0, member_loads=False, files=Path()):
@@ -109,9 +109,9 @@ def read_net_areas(section):
         )
     if all(drawing):
         factor = (
-            table.quantity("area_unit", "area")
-            * table.quantity("torque_scale", "torque_scale")
-            * table.quantity("angle_scale", "angle_scale")
+            table.quantity("area_unit", "area", required=True)
+            * table.quantity("torque_scale", "torque_scale", required=True)
+            * table.quantity("angle_scale", "angle_scale", required=True)
         )
         if factor <= 0:
             raise SceneError("torque.net", "the drawing scales must be positive")
