@@ -1,15 +1,27 @@
 """The [design] section: geometry, H/B range, envelope, objective, and the materials and shafts to choose from."""
 
+from __future__ import annotations
+
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table
 from flyopt.names import hint, unknown
 from flyopt.units import quantity
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
-def read_design(raw, shafts, materials):
+    from flyopt.design.materials import Material
+    from flyopt.design.spec import DesignSpec
+    from flyopt.machine.transmission import Shaft
+
+
+def read_design(
+    raw: object, shafts: Sequence[Shaft], materials: Sequence[Material]
+) -> tuple[DesignSpec, tuple[str, ...] | None, tuple[str, ...] | None]:
+    """The [design] section: the spec, and the names of the materials and shafts it may use (None: all)."""
     from flyopt.design.geometry import GEOMETRIES
     from flyopt.design.materials import material_library
     from flyopt.design.spec import CRITERIA, OBJECTIVES, DesignSpec

@@ -31,12 +31,18 @@ or, instead of ``motors``, the scene's own motors::
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table
 from flyopt.machine.catalogue import QUANTITIES, REQUIRED, TEXTS, Catalogue, CatalogueMotor, MotorDataError, catalogue
 from flyopt.units import quantity
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping, Sequence
+
+    from flyopt.design.materials import Material
+    from flyopt.machine.transmission import Shaft
 
 __all__ = ["DriveSpec", "drive_spec", "OBJECTIVES", "DRIVE_KEYS", "MOTOR_OPTION_KEYS"]
 
@@ -85,18 +91,23 @@ class DriveSpec:
     """
 
     motors: Catalogue
-    ratio_range: tuple | None = None
-    ratios: tuple | None = None
+    ratio_range: tuple[float, float] | None = None
+    ratios: tuple[float, ...] | None = None
     objective: str = "mass"
     max_startup: float | None = None
     thermal: bool = True
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if (self.ratio_range is None) == (self.ratios is None):
             raise ValueError("a drive gives either a ratio range or fixed ratios, not both or neither")
 
 
-def drive_spec(raw_drive, raw_motor_options, shafts, materials=None):
+def drive_spec(
+    raw_drive: object,
+    raw_motor_options: object,
+    shafts: Sequence[Shaft],
+    materials: Mapping[str, Material] | None = None,
+) -> DriveSpec:
     """Read and check a scene's [drive] table and [[motor_option]] tables.
 
     Parameters

@@ -1,15 +1,21 @@
 """The [engine] section: cylinders, crank train and indicator data of a piston engine."""
 
+from __future__ import annotations
+
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import angle_curve, angle_curve_file
 from flyopt.io.fields import Table, scaled, unit_factor
 from flyopt.names import hint
 
+if TYPE_CHECKING:
+    from flyopt.machine.engine import Engine
 
-def read_engine(raw, files=Path()):
+
+def read_engine(raw: object, files: Path = Path()) -> Engine:
     """The [engine] section: an :class:`~flyopt.machine.engine.Engine` (cylinders, crank train, indicator data)."""
     from flyopt.machine.engine import CYCLE_ANGLES, MAX_CYLINDERS, STANDARD_ATMOSPHERE, Engine  # CasADi
 

@@ -23,12 +23,18 @@ physics (the conversions) is :mod:`flyopt.machine.press`; the model is the
 textbook's (docs/flywheel-design.md, sections 2, 8 and 11).
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, scaled
 from flyopt.machine import press as physics
 from flyopt.units import quantity
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
 
 PRESS_KEYS = (
     "strokes_per_minute",
@@ -63,7 +69,7 @@ _WORKING = ("working_time", "working_angle")
 _FLUCTUATION = ("slowdown", "delta", "flywheel_speed_min")
 
 
-def scene_data(data):
+def scene_data(data: Mapping[str, Any]) -> dict[str, Any]:
     """The scene dictionary a [press] table stands for.
 
     Parameters

@@ -32,7 +32,7 @@ from flyopt.machine.transmission import Shaft, inertia_at_reference
 from flyopt.units import inertia_from_gd2
 
 if TYPE_CHECKING:
-    from flyopt.cycle.torque import TorqueCurve
+    from flyopt.cycle.torque import MotorTorque, TorqueCurve
     from flyopt.design.materials import Material
     from flyopt.design.spec import DesignSpec
     from flyopt.io.drive import DriveSpec
@@ -88,8 +88,8 @@ class Scene:
     j_constant: float = 0.0
     cycle_angle: float = 2 * math.pi
     efficiency: float = 1.0
-    driving: TorqueCurve | None = None
-    resisting: TorqueCurve | None = None
+    driving: TorqueCurve | MotorTorque | None = None
+    resisting: TorqueCurve | MotorTorque | None = None
     net: NetAreas | None = None
     shafts: tuple[Shaft, ...] = (Shaft("reference", 1.0),)
     design: DesignSpec | None = None  # the loader always gives one (the defaults when the scene has no [design])
