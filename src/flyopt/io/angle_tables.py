@@ -4,6 +4,10 @@ The angles must not decrease, a vertical step is two rows at one angle, and
 the table must cover the cycle from 0 to Φ (within :data:`ANGLE_TOLERANCE`).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from flyopt.cycle.torque import PiecewiseLinear
@@ -12,11 +16,24 @@ from flyopt.io.csv_table import csv_table
 from flyopt.io.fields import scaled
 from flyopt.io.toml_file import InlineRows
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
+
 ANGLE_TOLERANCE = 1e-9
 """Relative tolerance on a table's first and last angle against 0 and Φ."""
 
 
-def angle_curve(raw, where, cycle, unit, angle_unit, dimension="torque", label=None, minimum=None):
+def angle_curve(
+    raw: object,
+    where: str,
+    cycle: float,
+    unit: float,
+    angle_unit: float,
+    dimension: str = "torque",
+    label: str | None = None,
+    minimum: tuple[float, str] | None = None,
+) -> PiecewiseLinear:
     """A table [[angle, value], ...] over the cycle as a PiecewiseLinear (values in SI).
 
     ``label`` names the values in messages (default: the dimension);
@@ -91,7 +108,17 @@ def _table_problem(angles, cycle):
     return None, None
 
 
-def angle_curve_file(raw, where, files, cycle, unit, angle_unit, column, units, minimum=None):
+def angle_curve_file(
+    raw: object,
+    where: str,
+    files: Path,
+    cycle: float,
+    unit: float,
+    angle_unit: float,
+    column: str,
+    units: Sequence[str],
+    minimum: tuple[float, str] | None = None,
+) -> PiecewiseLinear:
     """A table [angle, value] read from a CSV file, with the checks of inline points.
 
     Parameters

@@ -3,14 +3,24 @@
 Every wrong line is reported by its number, with what is allowed.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.errors import SceneError, clip, shorten
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
 
-def csv_table(raw, where, files, columns, units):
+
+def csv_table(
+    raw: object, where: str, files: Path, columns: Sequence[str], units: Sequence[str]
+) -> tuple[npt.NDArray[np.float64], Sequence[int], str]:
     """The rows of a two-column CSV file named by a scene field (see :func:`read_csv`).
 
     Parameters
@@ -50,7 +60,9 @@ def csv_table(raw, where, files, columns, units):
     return numbers, lines, name
 
 
-def read_csv(text, where, name, columns, units):
+def read_csv(
+    text: str, where: str, name: str, columns: Sequence[str], units: Sequence[str]
+) -> tuple[npt.NDArray[np.float64], Sequence[int]]:
     """The numbers of a two-column CSV table, and the line of each row.
 
     A header line (the first line with text, when it has a letter and none
@@ -85,7 +97,9 @@ def read_csv(text, where, name, columns, units):
     return read_csv_lines(text.split("\n"), where, name, columns, units)
 
 
-def read_csv_lines(rows, where, name, columns, units):
+def read_csv_lines(
+    rows: Sequence[str], where: str, name: str, columns: Sequence[str], units: Sequence[str]
+) -> tuple[npt.NDArray[np.float64], Sequence[int]]:
     """:func:`read_csv` line by line: the first wrong line, named, or the same numbers."""
     numbers, lines = [], []
     allowed = {k: f"a plain number, the {columns[k]} in {units[k]}" for k in (0, 1)}

@@ -1,15 +1,27 @@
 """The [design] section: geometry, H/B range, envelope, objective, and the materials and shafts to choose from."""
 
+from __future__ import annotations
+
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table
 from flyopt.names import hint, unknown
 from flyopt.units import quantity
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
-def read_design(raw, shafts, materials):
+    from flyopt.design.materials import Material
+    from flyopt.design.spec import DesignSpec
+    from flyopt.machine.transmission import Shaft
+
+
+def read_design(
+    raw: object, shafts: Sequence[Shaft], materials: Sequence[Material]
+) -> tuple[DesignSpec, tuple[str, ...] | None, tuple[str, ...] | None]:
+    """The [design] section: the spec, and the names of the materials and shafts it may use (None: all)."""
     from flyopt.design.geometry import GEOMETRIES
     from flyopt.design.materials import material_library
     from flyopt.design.spec import CRITERIA, OBJECTIVES, DesignSpec
@@ -58,12 +70,12 @@ def read_design(raw, shafts, materials):
         options["hb_ratio"] = (low, high)
     for key in ("max_outer_diameter", "max_width", "d_mean", "min_wall"):
         if table.has(key):
-            value = table.quantity(key, "length")
+            value = table.quantity(key, "length", required=True)
             if value <= 0:
                 raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
             options[key] = value
     if table.has("bore"):
-        value = table.quantity("bore", "length")
+        value = table.quantity("bore", "length", required=True)
         if value < 0:
             raise SceneError("design.bore", f"must be >= 0 (0: no bore), got {shorten(table.raw('bore'))}")
         envelope = options.get("max_outer_diameter", math.inf)
@@ -75,7 +87,7 @@ def read_design(raw, shafts, materials):
             )
         options["bore"] = value
     if table.has("safety_factor"):
-        value = table.quantity("safety_factor", "dimensionless")
+        value = table.quantity("safety_factor", "dimensionless", required=True)
         if value < 1:
             raise SceneError(
                 "design.safety_factor",

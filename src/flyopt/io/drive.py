@@ -31,12 +31,18 @@ or, instead of ``motors``, the scene's own motors::
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.press import checked_table  # scene._Table's key check; importing flyopt.io.scene would be a cycle
+from flyopt.io.fields import Table
 from flyopt.machine.catalogue import QUANTITIES, REQUIRED, TEXTS, Catalogue, CatalogueMotor, MotorDataError, catalogue
 from flyopt.units import quantity
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping, Sequence
+
+    from flyopt.design.materials import Material
+    from flyopt.machine.transmission import Shaft
 
 __all__ = ["DriveSpec", "drive_spec", "OBJECTIVES", "DRIVE_KEYS", "MOTOR_OPTION_KEYS"]
 
@@ -85,18 +91,23 @@ class DriveSpec:
     """
 
     motors: Catalogue
-    ratio_range: tuple | None = None
-    ratios: tuple | None = None
+    ratio_range: tuple[float, float] | None = None
+    ratios: tuple[float, ...] | None = None
     objective: str = "mass"
     max_startup: float | None = None
     thermal: bool = True
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if (self.ratio_range is None) == (self.ratios is None):
             raise ValueError("a drive gives either a ratio range or fixed ratios, not both or neither")
 
 
-def drive_spec(raw_drive, raw_motor_options, shafts, materials=None):
+def drive_spec(
+    raw_drive: object,
+    raw_motor_options: object,
+    shafts: Sequence[Shaft],
+    materials: Mapping[str, Material] | None = None,
+) -> DriveSpec:
     """Read and check a scene's [drive] table and [[motor_option]] tables.
 
     Parameters
@@ -127,7 +138,7 @@ def drive_spec(raw_drive, raw_motor_options, shafts, materials=None):
             "drive",
             "is missing: [[motor_option]] tables are the motors of a [drive] section (ratio, objective, ...); add one",
         )
-    table = checked_table(raw_drive, "drive", DRIVE_KEYS)
+    table = Table(raw_drive, "drive", DRIVE_KEYS).data
     motors = _motors(table, raw_motor_options)
     ratio_range, ratios = _ratios(table)
     objective = _objective(table, motors, materials)
@@ -179,7 +190,7 @@ def _motors(table, raw_options):
 def _motor_option(raw, k):
     """One [[motor_option]] table as a CatalogueMotor."""
     where = f"{_OPTIONS}[{k}]"
-    table = checked_table(raw, where, MOTOR_OPTION_KEYS)
+    table = Table(raw, where, MOTOR_OPTION_KEYS).data
     for key in REQUIRED:
         if key not in table:
             raise SceneError(f"{where}.{key}", f"is missing: a motor option gives at least {', '.join(REQUIRED)}")

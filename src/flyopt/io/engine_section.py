@@ -1,15 +1,21 @@
 """The [engine] section: cylinders, crank train and indicator data of a piston engine."""
 
+from __future__ import annotations
+
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import angle_curve, angle_curve_file
 from flyopt.io.fields import Table, scaled, unit_factor
 from flyopt.names import hint
 
+if TYPE_CHECKING:
+    from flyopt.machine.engine import Engine
 
-def read_engine(raw, files=Path()):
+
+def read_engine(raw: object, files: Path = Path()) -> Engine:
     """The [engine] section: an :class:`~flyopt.machine.engine.Engine` (cylinders, crank train, indicator data)."""
     from flyopt.machine.engine import CYCLE_ANGLES, MAX_CYLINDERS, STANDARD_ATMOSPHERE, Engine  # CasADi
 
@@ -94,7 +100,7 @@ def read_engine(raw, files=Path()):
                     "is missing: rod_mass, rod_centre (from the crank pin) and "
                     "rod_inertia (about the rod's centre of mass) come together",
                 )
-        rod["rod_centre"] = table.quantity("rod_centre", "length")
+        rod["rod_centre"] = table.quantity("rod_centre", "length", required=True)
         if not 0.0 <= rod["rod_centre"] <= sizes["rod"]:
             raise SceneError(
                 "engine.rod_centre",
@@ -102,7 +108,7 @@ def read_engine(raw, files=Path()):
                 f"centre of mass lies 0 to {shorten(table.raw('rod'))} from the "
                 "crank pin",
             )
-        rod["rod_inertia"] = table.quantity("rod_inertia", "inertia")
+        rod["rod_inertia"] = table.quantity("rod_inertia", "inertia", required=True)
         if not (math.isfinite(rod["rod_inertia"]) and rod["rod_inertia"] >= 0):
             raise SceneError(
                 "engine.rod_inertia", f"must be a finite number >= 0, got {shorten(table.raw('rod_inertia'))}"

@@ -5,18 +5,24 @@ reads each value as a quantity of a dimension; :func:`unit_factor` and
 :func:`scaled` read a section's ``unit`` and the numbers written in it.
 """
 
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any, Literal, overload
+
 from flyopt.errors import SceneError, shorten
 from flyopt.names import hint
 from flyopt.units import quantity
 
 
-def unit_factor(raw, dimension, where):
+def unit_factor(raw: object, dimension: str, where: str) -> float:
+    """The SI value of one ``raw`` unit (a section's ``unit = "mm"``)."""
     if not isinstance(raw, str):
         raise SceneError(where, f"must be a unit string, got {shorten(raw)}")
     return quantity(f"1 {raw}", dimension, where)
 
 
-def scaled(raw, dimension, where, factor):
+def scaled(raw: object, dimension: str, where: str, factor: float) -> float:
     """A number times the section's unit, or a string with its own unit."""
     if isinstance(raw, str):
         return quantity(raw, dimension, where)
@@ -26,36 +32,50 @@ def scaled(raw, dimension, where, factor):
 class Table:
     """A dictionary from TOML with checked keys and typed accessors."""
 
-    def __init__(self, data, where, allowed):
+    def __init__(self, data: object, where: str, allowed: Iterable[str]) -> None:
         if not isinstance(data, dict):
             raise SceneError(where or "(top level)", f"must be a table, got {type(data).__name__}")
-        unknown = sorted(set(data) - set(allowed))
+        allowed = set(allowed)
+        unknown = sorted(set(data) - allowed)
         if unknown:
             key = unknown[0]
             path = f"{where}.{key}" if where else key
             raise SceneError(
                 path, f"unknown key{hint(key, sorted(allowed))} (allowed here: {', '.join(sorted(allowed))})"
             )
-        self.data, self.where = data, where
+        self.data: dict[str, Any] = data
+        self.where = where
 
-    def _path(self, key):
+    def _path(self, key: str) -> str:
         return f"{self.where}.{key}" if self.where else key
 
-    def has(self, key):
+    def has(self, key: str) -> bool:
+        """Whether the table gives ``key``."""
         return key in self.data
 
-    def raw(self, key):
+    def raw(self, key: str) -> Any:
+        """The value of ``key`` as written (None when not given), for messages."""
         return self.data.get(key)
 
-    def get(self, key, default=None):
+    def get(self, key: str, default: Any = None) -> Any:
+        """The value of ``key`` as written, or ``default``."""
         return self.data.get(key, default)
 
-    def require(self, key):
+    def require(self, key: str) -> Any:
+        """The value of ``key`` as written; an error naming the field when it is missing."""
         if key not in self.data:
             raise SceneError(self._path(key), "is missing")
         return self.data[key]
 
-    def quantity(self, key, dimension, required=False, default=None):
+    @overload
+    def quantity(self, key: str, dimension: str, required: Literal[True], default: float | None = None) -> float: ...
+    @overload
+    def quantity(self, key: str, dimension: str, required: bool = False, *, default: float) -> float: ...
+    @overload
+    def quantity(self, key: str, dimension: str, required: bool = False, default: None = None) -> float | None: ...
+
+    def quantity(self, key: str, dimension: str, required: bool = False, default: float | None = None) -> float | None:
+        """The SI float of ``key`` in ``dimension``; ``default`` when not given (an error when ``required``)."""
         if key not in self.data:
             if required:
                 raise SceneError(self._path(key), "is missing")

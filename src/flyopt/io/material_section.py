@@ -1,7 +1,14 @@
 """The scene's own [[material]]s, extending or overriding the built-in ones."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table
+
+if TYPE_CHECKING:
+    from flyopt.design.materials import Material
 
 #: The strength fields of a [[material]] (beyond density, rim speed, allowable stress and cost).
 _MATERIAL_STRENGTH = {
@@ -16,7 +23,8 @@ _MATERIAL_STRENGTH = {
 }
 
 
-def read_materials(raw):
+def read_materials(raw: object) -> tuple[Material, ...]:
+    """The [[material]] tables: the scene's own materials (none when it gives none)."""
     from flyopt.design.materials import make_material
 
     if raw is None:
@@ -71,7 +79,7 @@ def read_materials(raw):
                     raise SceneError(f"{where}.{key}", f"must be true or false, got {shorten(table.raw(key))}")
                 values[key] = table.get(key)
                 continue
-            value = table.quantity(key, dimension)
+            value = table.quantity(key, dimension, required=True)
             if key == "poisson_ratio":
                 if not 0.0 <= value < 0.5:
                     raise SceneError(f"{where}.{key}", f"must be in [0, 0.5), got {shorten(table.raw(key))}")

@@ -1,6 +1,9 @@
 """The [mechanism] and the [[member]]s whose inertia and loads are reduced to the reference shaft."""
 
+from __future__ import annotations
+
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import angle_curve, angle_curve_file
@@ -8,8 +11,16 @@ from flyopt.io.fields import Table, scaled, unit_factor
 from flyopt.io.toml_file import InlineRows
 from flyopt.units import DIMENSIONS, quantity
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
-def read_mechanism(raw):
+    from flyopt.machine.engine import Engine
+    from flyopt.machine.kinematics import GearTrain, SliderCrank
+    from flyopt.machine.mechanism import Member
+
+
+def read_mechanism(raw: object) -> SliderCrank | GearTrain | None:
+    """The [mechanism] section: a slider-crank or a gear train (None when the scene gives none)."""
     if raw is None:
         return None
     from flyopt.machine.kinematics import GearTrain, SliderCrank  # CasADi: only for a scene with a mechanism
@@ -36,7 +47,10 @@ def read_mechanism(raw):
     raise SceneError("mechanism.kind", f"{shorten(kind)} is not known (allowed: slider_crank, gear_train)")
 
 
-def read_members(raw, mechanism, cycle, files=Path()):
+def read_members(
+    raw: object, mechanism: SliderCrank | GearTrain | None, cycle: float, files: Path = Path()
+) -> tuple[Member, ...]:
+    """The [[member]] tables: members whose inertia and loads are reduced to the reference shaft."""
     if raw is None:
         return ()
     from flyopt.machine.kinematics import GearTrain  # CasADi: only with members
@@ -125,7 +139,9 @@ def read_members(raw, mechanism, cycle, files=Path()):
     return tuple(members)
 
 
-def with_engine(engine, mechanism, members):
+def with_engine(
+    engine: Engine, mechanism: SliderCrank | GearTrain | None, members: Sequence[Member]
+) -> tuple[Member, ...]:
     """The engine's pistons and rods followed by the scene's own [[member]]s (names checked apart)."""
     if mechanism is not None:
         raise SceneError(

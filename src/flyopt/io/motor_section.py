@@ -1,6 +1,9 @@
 """A motor's characteristic as a driving torque: an induction or DC motor, or a torque-speed table."""
 
+from __future__ import annotations
+
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -9,8 +12,16 @@ from flyopt.io.csv_table import csv_table
 from flyopt.io.fields import Table, scaled, unit_factor
 from flyopt.io.toml_file import InlineRows
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
-def read_motor(raw, where, shafts, efficiency, files=Path()):
+    from flyopt.cycle.torque import MotorTorque
+    from flyopt.machine.transmission import Shaft
+
+
+def read_motor(
+    raw: object, where: str, shafts: Sequence[Shaft], efficiency: float, files: Path = Path()
+) -> MotorTorque:
     """A motor characteristic as the driving torque at the reference shaft."""
     from flyopt.cycle.torque import MotorTorque
     from flyopt.machine.motor import DCMotor, InductionMotor
@@ -54,7 +65,7 @@ def read_motor(raw, where, shafts, efficiency, files=Path()):
             if table.has("stall_torque"):
                 motor = DCMotor(
                     table.quantity("no_load_speed", "angular_speed", required=True),
-                    table.quantity("stall_torque", "torque"),
+                    table.quantity("stall_torque", "torque", required=True),
                 )
             else:
                 motor = DCMotor.from_rated(

@@ -23,12 +23,18 @@ physics (the conversions) is :mod:`flyopt.machine.press`; the model is the
 textbook's (docs/flywheel-design.md, sections 2, 8 and 11).
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
+from flyopt.io.fields import Table, scaled
 from flyopt.machine import press as physics
-from flyopt.names import hint
 from flyopt.units import quantity
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
 
 PRESS_KEYS = (
     "strokes_per_minute",
@@ -63,7 +69,7 @@ _WORKING = ("working_time", "working_angle")
 _FLUCTUATION = ("slowdown", "delta", "flywheel_speed_min")
 
 
-def scene_data(data):
+def scene_data(data: Mapping[str, Any]) -> dict[str, Any]:
     """The scene dictionary a [press] table stands for.
 
     Parameters
@@ -98,7 +104,7 @@ def scene_data(data):
     ratio of the flywheel shaft) and 11 (presses); the conversions are
     :mod:`flyopt.machine.press`.
     """
-    press = checked_table(data["press"], "press", PRESS_KEYS)
+    press = Table(data["press"], "press", PRESS_KEYS).data
     rate, omega_crank, period = _crank(press)
     angle = _working_angle(press, period)
     source, rows, note = _load(press, angle)
@@ -221,7 +227,7 @@ def _load(press, angle):
 
 def _punching(raw):
     """(E = ½ F_max t [J], F_max = τ L t [N]) of ``press.punching``."""
-    table = checked_table(raw, "press.punching", PUNCHING_KEYS)
+    table = Table(raw, "press.punching", PUNCHING_KEYS).data
     values = {}
     for key, dimension in (("thickness", "length"), ("shear_strength", "stress")):
         if key not in table:
@@ -262,8 +268,8 @@ def _force_table(press):
     for k, pair in enumerate(raw):
         if not isinstance(pair, list) or len(pair) != 2:
             raise SceneError(f"{where}[{k}]", f"must be a [position, force] pair, got {shorten(pair)}")
-        positions.append(_scaled(pair[0], "length", f"{where}[{k}] position", position_unit))
-        forces.append(_scaled(pair[1], "force", f"{where}[{k}] force", force_unit))
+        positions.append(scaled(pair[0], "length", f"{where}[{k}] position", position_unit))
+        forces.append(scaled(pair[1], "force", f"{where}[{k}] force", force_unit))
         if forces[-1] < 0:
             raise SceneError(
                 f"{where}[{k}]",
@@ -412,19 +418,6 @@ def _shafts(raw, ratio, top):
 # -- reading --------------------------------------------------------------------
 
 
-def checked_table(raw, where, allowed):
-    """``raw`` as a table whose keys are all ``allowed``."""
-    if not isinstance(raw, dict):
-        raise SceneError(where, f"must be a table, got {type(raw).__name__}")
-    unknown = sorted(set(raw) - set(allowed))
-    if unknown:
-        key = unknown[0]
-        raise SceneError(
-            f"{where}.{key}", f"unknown key{hint(key, sorted(allowed))} (allowed here: {', '.join(sorted(allowed))})"
-        )
-    return raw
-
-
 def _one_of(table, keys, where, allowed):
     """The one key of ``keys`` the table gives; an error naming them when none or several are given."""
     given = [k for k in keys if k in table]
@@ -456,13 +449,6 @@ def _unit(press, key, dimension):
     if not isinstance(raw, str):
         raise SceneError(f"press.{key}", f"must be a unit string (e.g. 'mm', 'kN'), got {shorten(raw)}")
     return quantity(f"1 {raw}", dimension, f"press.{key}")
-
-
-def _scaled(raw, dimension, where, factor):
-    """A plain number times the table's unit, or a string with its own unit."""
-    if isinstance(raw, str):
-        return quantity(raw, dimension, where)
-    return quantity(raw, "dimensionless", where) * factor
 
 
 def _time(raw, where):

@@ -9,9 +9,11 @@ is wrong is reported as a :class:`~flyopt.errors.SceneError` naming the field.
 See README.md for the format with an example, and problems/ for scenes.
 """
 
+from __future__ import annotations
+
 import math
 import os
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -30,7 +32,13 @@ from flyopt.machine.transmission import Shaft, inertia_at_reference
 from flyopt.units import inertia_from_gd2
 
 if TYPE_CHECKING:
+    from flyopt.cycle.torque import MotorTorque, TorqueCurve
     from flyopt.design.materials import Material
+    from flyopt.design.spec import DesignSpec
+    from flyopt.io.drive import DriveSpec
+    from flyopt.machine.engine import Engine
+    from flyopt.machine.kinematics import GearTrain, SliderCrank
+    from flyopt.machine.mechanism import Member
 
 
 @dataclass(frozen=True)
@@ -80,27 +88,27 @@ class Scene:
     j_constant: float = 0.0
     cycle_angle: float = 2 * math.pi
     efficiency: float = 1.0
-    driving: object = None
-    resisting: object = None
+    driving: TorqueCurve | MotorTorque | None = None
+    resisting: TorqueCurve | MotorTorque | None = None
     net: NetAreas | None = None
-    shafts: tuple = (Shaft("reference", 1.0),)
-    design: object = None  # DesignSpec (defaults when the scene has no [design])
-    design_materials: tuple | None = None  # names the design may use; None: every known material
-    design_shafts: tuple | None = None  # names of [[shaft]] the design may use; None: all
-    materials: tuple = ()  # user materials ([[material]]), extending the built-in ones
-    members: tuple = ()  # flyopt.machine.mechanism.Member of [[member]]: J_e(φ) and member loads
-    mechanism: object = None  # SliderCrank or GearTrain of [mechanism]
-    drive: object = None  # flyopt.io.drive.DriveSpec of [drive]: the motor and ratio designed with the wheel
-    engine: object = None  # flyopt.machine.engine.Engine of [engine]; its members lead ``members``
+    shafts: tuple[Shaft, ...] = (Shaft("reference", 1.0),)
+    design: DesignSpec | None = None  # the loader always gives one (the defaults when the scene has no [design])
+    design_materials: tuple[str, ...] | None = None  # names the design may use; None: every known material
+    design_shafts: tuple[str, ...] | None = None  # names of [[shaft]] the design may use; None: all
+    materials: tuple[Material, ...] = ()  # user materials ([[material]]), extending the built-in ones
+    members: tuple[Member, ...] = ()  # the [[member]]: J_e(φ) and member loads
+    mechanism: SliderCrank | GearTrain | None = None  # [mechanism]
+    drive: DriveSpec | None = None  # [drive]: the motor and ratio designed with the wheel
+    engine: Engine | None = None  # [engine]; its members lead ``members``
     source: str | None = field(default=None, compare=False)
 
-    def material_library(self) -> "dict[str, Material]":
+    def material_library(self) -> dict[str, Material]:
         """Built-in materials extended or overridden by the scene's own."""
         from flyopt.design.materials import material_library
 
         return material_library(self.materials)
 
-    def replace(self, **changes: Any) -> "Scene":
+    def replace(self, **changes: Any) -> Scene:
         """A copy with some fields changed (for studies and tests)."""
         return replace(self, **changes)
 
@@ -199,7 +207,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         raise SceneError("machine.gd2", "give either machine.inertia or machine.gd2, not both")
     j_c = machine.quantity("inertia", "inertia", default=0.0)
     if machine.has("gd2"):
-        j_c = inertia_from_gd2(machine.quantity("gd2", "flywheel_moment"))
+        j_c = inertia_from_gd2(machine.quantity("gd2", "flywheel_moment", required=True))
     if j_c < 0:
         raise SceneError("machine.inertia" if machine.has("inertia") else "machine.gd2", "must not be negative")
     cycle = machine.quantity("cycle", "angle", default=2 * math.pi)
@@ -284,7 +292,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     )
 
 
-def constant_inertia(j_machine, shafts):
+def constant_inertia(j_machine: float, shafts: Iterable[Shaft]) -> float:
     """J_c at the reference shaft: the machine's own plus the inertia on each shaft [kg*m^2].
 
     J_c = J_machine + Σ_k J_k i_k², i_k = ω_k/ω the shaft's speed ratio: the

@@ -1,14 +1,21 @@
 """The [[shaft]]s a flywheel may sit on, and the efficiencies from the motor to the reference shaft."""
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table
 from flyopt.machine.transmission import Shaft
 from flyopt.units import inertia_from_gd2, quantity
 
+if TYPE_CHECKING:
+    from collections.abc import Iterable
 
-def read_shafts(raw):
+
+def read_shafts(raw: object) -> tuple[Shaft, ...]:
+    """The [[shaft]] tables (the reference shaft alone when the scene gives none)."""
     if raw is None:
         return (Shaft("reference", 1.0),)
     if not isinstance(raw, list) or not raw:
@@ -52,7 +59,7 @@ def _shaft_inertia(table, where):
     return inertia_from_gd2(value) if key == "gd2" else value
 
 
-def reference_efficiency(shafts):
+def reference_efficiency(shafts: Iterable[Shaft]) -> float:
     """Efficiency from the motor to the reference shaft: that of the shaft turning at ratio 1."""
     at_reference = {s.efficiency for s in shafts if s.speed_ratio == 1.0}
     if len(at_reference) > 1:
@@ -64,7 +71,7 @@ def reference_efficiency(shafts):
     return at_reference.pop() if at_reference else 1.0
 
 
-def read_efficiency(raw, where):
+def read_efficiency(raw: object, where: str) -> float:
     """An efficiency in (0, 1], or a list of stage efficiencies in series (their product)."""
     stages = raw if isinstance(raw, list) else [raw]
     if not stages:

@@ -41,14 +41,20 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from flyopt.errors import SceneError, shorten
 from flyopt.units import quantity
+
+if TYPE_CHECKING:
+    import os
+
+    from flyopt.io.scene import Scene
 
 __all__ = [
     "FIELDS",
@@ -144,7 +150,7 @@ def _known_fields(scene):
     return names
 
 
-def resolve_field(scene, path, where):
+def resolve_field(scene: Scene, path: str, where: str) -> tuple[str, SweepField]:
     """Canonical field name and its description, or SceneError."""
     key = _ALIASES.get(path.strip(), path.strip())
     if key in FIELDS:
@@ -194,7 +200,8 @@ def _hint(name, known):
     return f" (did you mean {close!r}?)" if close else ""
 
 
-def field_path(where, path):
+def field_path(where: str, path: str) -> str:
+    """The field ``path`` as messages name it under ``where`` (``--vary delta``, ``sweep.vary.delta``)."""
     if not where:
         return path
     return f"{where} {path}" if where.startswith("--") else f"{where}.{path}"
@@ -209,7 +216,7 @@ def field_path(where, path):
 METHODS = ("auto", "closed_form", "ipopt")
 
 
-def option_label(where, key):
+def option_label(where: str, key: str) -> str:
     """The name of option ``key`` as the user wrote it.
 
     Parameters
@@ -233,14 +240,14 @@ def option_label(where, key):
     return f"{base}.{key}" if base else key
 
 
-def whole_number(value, label, minimum):
+def whole_number(value: object, label: str, minimum: int) -> int:
     """``value`` as an int, or SceneError naming ``label`` and the lowest value allowed."""
     if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value >= minimum:
         return int(value)
     raise SceneError(label, f"must be a whole number >= {minimum}, got {value!r}")
 
 
-def check_options(options, where="sweep"):
+def check_options(options: Mapping[str, Any], where: str = "sweep") -> None:
     """Check the options of a sweep other than ``vary`` (their values, not the scene's).
 
     Parameters
@@ -307,14 +314,20 @@ class Axis:
     """
 
     field: str
-    values: tuple
+    values: tuple[float | str, ...]
     kind: str = "list"
     low: float | None = None
     high: float | None = None
     log: bool = False
 
+    def ends(self) -> tuple[float, float]:
+        """(low, high) of a range axis; ValueError for a list."""
+        if self.low is None or self.high is None:
+            raise ValueError(f"{self.field} is a list of values, not a range")
+        return self.low, self.high
 
-def split_unit(item):
+
+def split_unit(item: str) -> tuple[str, str]:
     """'1200rpm' -> ('1200', 'rpm'); '1/20' -> ('1/20', '')."""
     m = _NUMBER.match(item)
     if m:
@@ -491,7 +504,7 @@ def _check_once(scene, items, where):
         seen[name] = path
 
 
-def vary_from_texts(scene, texts, where="--vary"):
+def vary_from_texts(scene: Scene, texts: Iterable[str], where: str = "--vary") -> dict[str, str]:
     """The fields to vary, from ``FIELD=VALUES`` texts (e.g. repeated ``--vary`` options).
 
     Parameters
@@ -520,7 +533,14 @@ def vary_from_texts(scene, texts, where="--vary"):
     return dict(items)
 
 
-def parse_vary(scene, vary, *, where="--vary", samples=None, max_points=None):
+def parse_vary(
+    scene: Scene,
+    vary: Mapping[str, Any] | Iterable[str],
+    *,
+    where: str = "--vary",
+    samples: int | None = None,
+    max_points: int | None = None,
+) -> list[Axis]:
     """Read the fields to vary and their values.
 
     Parameters
@@ -588,7 +608,7 @@ def _flatten(table, prefix=""):
     return out
 
 
-def load_sweep(path):
+def load_sweep(path: str | os.PathLike[str]) -> tuple[Scene, dict[str, Any]]:
     """Read a scene file that may hold a ``[sweep]`` table.
 
     ::

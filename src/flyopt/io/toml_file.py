@@ -5,17 +5,23 @@ A table ``points = [[0, 150], [5, 152.5], ...]`` of 10,000 rows takes
 with ``float`` (the same floats), leaving everything else to ``tomllib``.
 """
 
+from __future__ import annotations
+
 import re
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt._toml import tomllib
 from flyopt.errors import SceneError, clip
 
+if TYPE_CHECKING:
+    import os
 
-def read_toml(path):
+
+def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
     """The contents of a TOML scene file, as ``tomllib`` reads them.
 
     Large tables of plain numbers (``points = [[0, 150], [5, 152.5], ...]``,
@@ -91,17 +97,17 @@ class InlineRows:
 
     __slots__ = ("array",)
 
-    def __init__(self, array):
+    def __init__(self, array: npt.NDArray[np.float64]) -> None:
         self.array = array
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.array)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"a table of {len(self.array)} rows"
 
 
-def parse_toml(text):
+def parse_toml(text: str) -> dict[str, Any]:
     """``tomllib.loads(text)``, with every large table of plain-number pairs read by :func:`_fast_rows`.
 
     Each such table (``KEY = [[number, number], ...]`` at the start of a

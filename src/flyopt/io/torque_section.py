@@ -1,7 +1,10 @@
 """The [torque] section: the driving and resisting torque curves, or the net areas between them."""
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from flyopt.cycle.expression import Expression
 from flyopt.cycle.torque import Constant, ExpressionTorque
@@ -11,15 +14,28 @@ from flyopt.io.fields import Table, scaled, unit_factor
 from flyopt.io.motor_section import read_motor
 from flyopt.units import DIMENSIONS, quantity
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from flyopt.cycle.torque import MotorTorque, TorqueCurve
+    from flyopt.machine.transmission import Shaft
+
 
 @dataclass(frozen=True)
 class NetAreas:
     """The signed areas between the torque curves, in order, as energies [J]."""
 
-    energies: tuple
+    energies: tuple[float, ...]
 
 
-def read_torques(section, cycle, shafts=(), efficiency=1.0, member_loads=False, files=Path()):
+def read_torques(
+    section: object,
+    cycle: float,
+    shafts: Sequence[Shaft] = (),
+    efficiency: float = 1.0,
+    member_loads: bool = False,
+    files: Path = Path(),
+) -> tuple[TorqueCurve | MotorTorque | None, TorqueCurve | MotorTorque | None, NetAreas | None]:
     """(driving, resisting, net) of the [torque] table.
 
     With forces or torques on [[member]]s (``member_loads``), a curve left
@@ -53,7 +69,15 @@ def read_torques(section, cycle, shafts=(), efficiency=1.0, member_loads=False, 
     return driving, resisting, None
 
 
-def read_curve(section, where, cycle, shafts=(), efficiency=1.0, files=Path()):
+def read_curve(
+    section: object,
+    where: str,
+    cycle: float,
+    shafts: Sequence[Shaft] = (),
+    efficiency: float = 1.0,
+    files: Path = Path(),
+) -> TorqueCurve | MotorTorque:
+    """One torque curve of [torque]: a constant, an expression, a motor, or a table (inline or CSV)."""
     table = Table(
         section,
         where,
@@ -95,7 +119,8 @@ def read_curve(section, where, cycle, shafts=(), efficiency=1.0, files=Path()):
     return angle_curve(table.get("points"), f"{where}.points", cycle, unit, angle_unit)
 
 
-def read_net_areas(section):
+def read_net_areas(section: object) -> NetAreas:
+    """[torque.net]: the signed areas between the curves, as energies [J] (or a drawing's areas and scales)."""
     table = Table(section, "torque.net", {"areas", "area_unit", "torque_scale", "angle_scale", "description"})
     areas = table.require("areas")
     if not isinstance(areas, list) or len(areas) < 2:
@@ -109,9 +134,9 @@ def read_net_areas(section):
         )
     if all(drawing):
         factor = (
-            table.quantity("area_unit", "area")
-            * table.quantity("torque_scale", "torque_scale")
-            * table.quantity("angle_scale", "angle_scale")
+            table.quantity("area_unit", "area", required=True)
+            * table.quantity("torque_scale", "torque_scale", required=True)
+            * table.quantity("angle_scale", "angle_scale", required=True)
         )
         if factor <= 0:
             raise SceneError("torque.net", "the drawing scales must be positive")

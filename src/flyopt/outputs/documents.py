@@ -12,12 +12,22 @@ import functools
 import hashlib
 import json
 import math
+from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from flyopt.outputs.quantities import MISSING, document_units, table_units
 from flyopt.outputs.results import JSON_TYPES, column_kind
+
+if TYPE_CHECKING:
+    import os
+
+    import pandas as pd
+
+    from flyopt.io.scene import Scene
+    from flyopt.pipeline import Solution
 
 __all__ = [
     "SCHEMA_FILE",
@@ -38,25 +48,25 @@ SCHEMA_FILE = "output.schema.json"
 
 
 @functools.lru_cache(maxsize=1)
-def schema():
+def schema() -> dict[str, Any]:
     """The JSON Schema of every JSON document flyopt writes (``flyopt/data/output.schema.json``)."""
     from importlib import resources
 
     return json.loads(resources.files("flyopt").joinpath("data", SCHEMA_FILE).read_text(encoding="utf-8"))
 
 
-def schema_version():
+def schema_version() -> str:
     """The version of flyopt's output schema, which every document and file metadata carries."""
     return schema()["$defs"]["schema_version"]["const"]
 
 
-def _flyopt_version():
+def _flyopt_version() -> str:
     import flyopt
 
     return flyopt.__version__
 
 
-def json_safe(value):
+def json_safe(value: object) -> Any:
     """Plain JSON data: NaN and ±inf (no value, no limit) become null, numpy scalars Python ones."""
     if isinstance(value, float):
         return value if math.isfinite(value) else None
@@ -69,12 +79,12 @@ def json_safe(value):
     return value
 
 
-def json_text(document):
+def json_text(document: object) -> str:
     """A document as JSON text, every float as Python prints it (round-trip exact)."""
     return json.dumps(json_safe(document), indent=2, allow_nan=False)
 
 
-def solution_document(solution, scene, timings=False):
+def solution_document(solution: Solution, scene: str | os.PathLike[str], timings: bool = False) -> dict[str, Any]:
     """The JSON of ``flyopt solve``: the solution's fields, its schema version and its units.
 
     Parameters
@@ -110,12 +120,12 @@ def solution_document(solution, scene, timings=False):
     }
 
 
-def solution_json(solution, scene, timings=False):
+def solution_json(solution: Solution, scene: str | os.PathLike[str], timings: bool = False) -> str:
     """The text ``flyopt solve --json`` prints: :func:`solution_document` as JSON."""
     return json_text(solution_document(solution, scene, timings))
 
 
-def scene_record(scene, digest=None):
+def scene_record(scene: Scene, digest: str | None = None) -> dict[str, str | None]:
     """Where a table's scene came from: its file, the file's SHA-256, flyopt's digest of it.
 
     Parameters
@@ -143,7 +153,16 @@ def scene_record(scene, digest=None):
     return {"scene": None if source is None else str(source), "scene_file_sha256": sha, "scene_digest": digest}
 
 
-def table_metadata(kind, columns, *, kinds=None, scene=None, objectives=None, sweep=None, objective=None):
+def table_metadata(
+    kind: str,
+    columns: Sequence[str],
+    *,
+    kinds: Mapping[str, str] | None = None,
+    scene: Mapping[str, str | None] | None = None,
+    objectives: Sequence[str] | None = None,
+    sweep: Mapping[str, Any] | None = None,
+    objective: str | None = None,
+) -> dict[str, Any]:
     """What a table file says about itself: Parquet key-value metadata, the CSV sidecar.
 
     Parameters
@@ -169,7 +188,7 @@ def table_metadata(kind, columns, *, kinds=None, scene=None, objectives=None, sw
     """
     kinds = kinds or {}
     front = objectives[1] if objectives else None
-    meta = {
+    meta: dict[str, Any] = {
         "schema_version": schema_version(),
         "kind": kind,
         "flyopt_version": _flyopt_version(),
@@ -185,7 +204,7 @@ def table_metadata(kind, columns, *, kinds=None, scene=None, objectives=None, sw
     return json_safe(meta)
 
 
-def objective_of(frame):
+def objective_of(frame: pd.DataFrame) -> str | None:
     """The objective every row of a table is designed for (its one ``design.objective``), or None."""
     if "design.objective" not in frame.columns:
         return None
@@ -193,7 +212,7 @@ def objective_of(frame):
     return str(names[0]) if len(names) == 1 else None
 
 
-def table_document(frame, metadata):
+def table_document(frame: pd.DataFrame, metadata: Mapping[str, Any]) -> dict[str, Any]:
     """A table as one JSON document: its metadata and ``rows``, one object per row (null: no value)."""
     records = frame.astype(object).where(frame.notna(), None).to_dict(orient="records")
     return {**metadata, "rows": json_safe(records)}

@@ -28,13 +28,20 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
+from types import TracebackType
+from typing import TYPE_CHECKING, Any, Literal, TextIO
 
 import numpy as np
 
 from flyopt.errors import SceneError
 from flyopt.outputs.files import check_folder, replace_atomically, write_text
 from flyopt.outputs.quantities import COUNTS, INPUTS, has_unit
+
+if TYPE_CHECKING:
+    import pandas as pd
+    import pyarrow as pa
 
 __all__ = [
     "CORE_INPUTS",
@@ -124,7 +131,7 @@ _TEXT = frozenset({"limit", "reason"})
 JSON_TYPES = {"str": "string", "bool": "boolean", "int": "integer", "float": "number"}
 
 
-def column_kind(name, column=None):
+def column_kind(name: str, column: pd.Series | None = None) -> str:
     """The kind of a column: "str", "bool", "int" or "float".
 
     By its name; a column no table of flyopt names (a user's own) by its values."""
@@ -145,7 +152,7 @@ def column_kind(name, column=None):
     return "float"
 
 
-def no_minus_one(column):
+def no_minus_one(column: pd.Series) -> pd.Series:
     """A whole-number column of :data:`NULLABLE_INTS` as nullable Int64, its -1 (no value) null."""
     values = column.astype("Int64")
     return values.mask((values == -1).fillna(False))
@@ -158,7 +165,7 @@ def _text_dtype():
     return "str" if int(pd.__version__.split(".")[0]) >= 3 else object
 
 
-def normalize(frame):
+def normalize(frame: pd.DataFrame) -> pd.DataFrame:
     """One dtype per column and nulls for missing values, whatever the source.
 
     The frame of an evaluation, a CSV or a Parquet file comes out the same:
@@ -194,7 +201,7 @@ _SUFFIXES = {".parquet": "parquet", ".pq": "parquet", ".csv": "csv"}
 PARQUET_KEY = b"flyopt"
 
 
-def output_format(path, label="output"):
+def output_format(path: str | os.PathLike[str], label: str = "output") -> str:
     """``"parquet"`` or ``"csv"``, by the suffix of ``path``; SceneError naming ``label`` else."""
     kind = _SUFFIXES.get(Path(path).suffix.lower())
     if kind is None:
@@ -202,13 +209,13 @@ def output_format(path, label="output"):
     return kind
 
 
-def sidecar_path(path):
+def sidecar_path(path: str | os.PathLike[str]) -> Path:
     """The sidecar of a CSV file, which holds its metadata: ``FILE.csv`` → ``FILE.csv.json``."""
     path = Path(path)
     return path.with_name(path.name + ".json")
 
 
-def arrow_table(frame, metadata=None):
+def arrow_table(frame: pd.DataFrame, metadata: Mapping[str, Any] | None = None) -> pa.Table:
     """A result table as a pyarrow Table, its text columns dictionary-encoded, nulls as nulls.
 
     Every column gets its kind's type (string columns ``dictionary<int32,
@@ -277,7 +284,7 @@ def _dictionary_columns(table):
     return [f.name for f in table.schema if pa.types.is_dictionary(f.type)]
 
 
-def csv_rows(frame, handle, header):
+def csv_rows(frame: pd.DataFrame, handle: TextIO, header: bool) -> None:
     """Rows as CSV: a missing value is an empty cell (also a -1 of :data:`NULLABLE_INTS`)."""
     nullable = [c for c in frame.columns if c in NULLABLE_INTS]
     if nullable:
@@ -327,25 +334,32 @@ class ResultWriter:
     #: Rows gathered into one Parquet row group (~30 MB of a sweep's columns).
     ROW_GROUP_ROWS = 65_536
 
-    def __init__(self, path, temporary_folder=None, metadata=None):
+    def __init__(
+        self,
+        path: str | os.PathLike[str],
+        temporary_folder: str | os.PathLike[str] | None = None,
+        metadata: Callable[[list[str]], Mapping[str, Any]] | None = None,
+    ) -> None:
         self.path = Path(path)
         self.kind = output_format(self.path)
         check_folder(self.path)
         folder = self.path.parent if temporary_folder is None else Path(temporary_folder)
         self.temporary = folder / f"{self.path.name}.tmp-{os.getpid()}"
         self.rows = 0
-        self._writer = self._file = None
-        self._pending, self._pending_rows = [], 0
-        self._columns = None
+        self._writer: Any = None  # a pyarrow.parquet.ParquetWriter
+        self._file: TextIO | None = None
+        self._pending: list[pa.Table] = []
+        self._pending_rows = 0
+        self._columns: list[str] | None = None
         self._metadata = metadata
-        self._meta = None
+        self._meta: Mapping[str, Any] | None = None
 
-    def _file_metadata(self):
+    def _file_metadata(self) -> Mapping[str, Any] | None:
         if self._meta is None and self._metadata is not None:
             self._meta = self._metadata(list(self._columns or []))
         return self._meta
 
-    def append(self, frame):
+    def append(self, frame: pd.DataFrame) -> None:
         """Add the rows of ``frame`` (the columns of the first piece, in its order)."""
         if self._columns is None:
             self._columns = list(frame.columns)
@@ -374,7 +388,7 @@ class ResultWriter:
             self._writer = pq.ParquetWriter(self.temporary, table.schema, use_dictionary=_dictionary_columns(table))
         self._writer.write_table(table, row_group_size=max(len(table), 1))
 
-    def close(self):
+    def close(self) -> None:
         """Finish the file and move it to its name (it then replaces any file there)."""
         sidecar = None
         try:
@@ -406,7 +420,7 @@ class ResultWriter:
             self.abort()
             raise
 
-    def abort(self):
+    def abort(self) -> None:
         """Stop writing and remove the temporary file."""
         writer, handle = self._writer, self._file
         self._writer = self._file = None
@@ -419,16 +433,23 @@ class ResultWriter:
         finally:
             self.temporary.unlink(missing_ok=True)
 
-    def __enter__(self):
+    def __enter__(self) -> ResultWriter:
         return self
 
-    def __exit__(self, kind, value, traceback):
+    def __exit__(
+        self, kind: type[BaseException] | None, value: BaseException | None, traceback: TracebackType | None
+    ) -> Literal[False]:
         if kind is not None or self._writer is not None or self._file is not None:
             self.abort()
         return False
 
 
-def write_results(frame, path, temporary_folder=None, metadata=None):
+def write_results(
+    frame: pd.DataFrame,
+    path: str | os.PathLike[str],
+    temporary_folder: str | os.PathLike[str] | None = None,
+    metadata: Mapping[str, Any] | None = None,
+) -> None:
     """Write a result table to Parquet or CSV (by the suffix), atomically.
 
     The table is written to a temporary file and moved into place, so a
@@ -474,7 +495,7 @@ def write_results(frame, path, temporary_folder=None, metadata=None):
         raise
 
 
-def read_results(path, columns=None):
+def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = None) -> pd.DataFrame:
     """Read a result table written by flyopt (Parquet or CSV), dtypes and nulls restored.
 
     Parameters

@@ -119,11 +119,12 @@ def plan_sweep(
         for k, axis in enumerate(axes):
             u = unit[:, k]
             if axis.kind == "range":
+                low, high = axis.ends()
                 if axis.log:
-                    lo, hi = math.log(axis.low), math.log(axis.high)
+                    lo, hi = math.log(low), math.log(high)
                     columns[axis.field] = np.exp(lo + u * (hi - lo))
                 else:
-                    columns[axis.field] = axis.low + u * (axis.high - axis.low)
+                    columns[axis.field] = low + u * (high - low)
             else:
                 index = np.minimum((u * len(axis.values)).astype(int), len(axis.values) - 1)
                 columns[axis.field] = np.asarray(axis.values, dtype=object)[index]

@@ -274,7 +274,8 @@ def point_scene(scene: Scene, point: Mapping[str, Any]) -> Scene:
         elif name.startswith("material."):
             _, material_name, prop = name.split(".")
             base = user.get(material_name, library[material_name])
-            user[material_name] = dataclasses.replace(base, **{prop: float(value)})
+            changed: dict[str, Any] = {prop: float(value)}  # a numeric property named by the sweep
+            user[material_name] = dataclasses.replace(base, **changed)
         else:
             raise SceneError(name, "unknown sweep field")
     if design:
