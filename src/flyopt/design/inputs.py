@@ -11,7 +11,7 @@ override exactly these defaults.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING
 
 from flyopt.design.spec import DesignSpec, MountShaft
 
@@ -61,6 +61,5 @@ def design_inputs(scene: Scene) -> DesignInputs:
     shafts = tuple(
         MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts if allowed is None or s.name in allowed
     )
-    # Scene types its design as object; the scene reader stores a DesignSpec there
-    spec = cast(DesignSpec, scene.design) if scene.design is not None else DesignSpec()
+    spec = scene.design if scene.design is not None else DesignSpec()
     return DesignInputs(materials=materials, shafts=shafts, spec=spec)

@@ -671,7 +671,7 @@ def design_drive(
     from flyopt.analysis import analyse
     from flyopt.design import design_inputs
 
-    spec = cast("DriveSpec | None", scene.drive)  # Scene.drive is typed object in io/scene.py
+    spec = scene.drive
     if spec is None:
         raise ValueError("the scene has no [drive]")
     if analysis is None:
@@ -894,7 +894,8 @@ def verify_drive(scene: Scene, run: MotorRun, j_flywheel: float | None = None) -
     if checked.flagged:
         notes.append(f"delta {checked.achieved_delta:.6g} exceeds the allowed {scene.delta:.6g}")
     rated = run.motor.rated_torque
-    spec = cast("DriveSpec", scene.drive)  # a run is of a scene with a [drive]; Scene.drive is typed object
+    spec = scene.drive
+    assert spec is not None  # a run is of a scene with a [drive]
     if spec.thermal and rms > rated * (1 + 1e-6):
         notes.append(f"RMS torque {rms:.6g} N*m exceeds the rated {rated:.6g} N*m (thermal)")
     if spec.max_startup is not None and (startup.time is None or startup.time > spec.max_startup):

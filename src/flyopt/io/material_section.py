@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table
@@ -62,7 +62,7 @@ def read_materials(raw: object) -> tuple[Material, ...]:
                 f"give max_rim_speed, allowable_stress (v_max then follows from σ = ρ v²) "
                 f"or {strength} (the allowable stress is it over the safety factor)",
             )
-        values = {
+        values: dict[str, Any] = {  # make_material's keywords: numbers, a flag, a hub rule
             "density": table.quantity("density", "density", required=True),
             "max_rim_speed": table.quantity("max_rim_speed", "speed"),
             "allowable_stress": table.quantity("allowable_stress", "stress"),

@@ -22,13 +22,14 @@ writes (:func:`dimension_of`), the table behind the JSON's ``units`` map.
 from __future__ import annotations
 
 import math
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
-import numpy as np
-import numpy.typing as npt
+if TYPE_CHECKING:  # the command-line parser reads this module's tables: numpy stays unloaded for it
+    import numpy as np
+    import numpy.typing as npt
 
 #: A value shown in a unit: a number, or an array of them.
-Shown = TypeVar("Shown", float, npt.NDArray[np.floating])
+Shown = TypeVar("Shown", float, "npt.NDArray[np.floating]")
 
 #: The unit systems, the default first for reports.
 SYSTEMS = ("engineering", "si", "imperial")

@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
@@ -25,7 +25,6 @@ from flyopt.io.torque_section import NetAreas
 
 if TYPE_CHECKING:
     from flyopt.design.inputs import DesignInputs
-    from flyopt.design.spec import DesignSpec
     from flyopt.io.scene import Scene
 
 
@@ -236,7 +235,7 @@ def point_scene(scene: Scene, point: Mapping[str, Any]) -> Scene:
 
     changes: dict[str, Any] = {}
     design: dict[str, Any] = {}
-    spec = cast("DesignSpec", scene.design)  # the loader fills in the defaults when the scene has no [design]
+    spec = design_inputs(scene).spec  # the scene's [design], or the defaults (one rule: design_inputs)
     shafts = {s.name: s for s in scene.shafts}
     library = material_library(scene.materials)
     user = {m.name: m for m in scene.materials}
