@@ -1,0 +1,107 @@
+"""flyopt.outputs.files: ``-o FILE`` is written whole or not at all, a bad one is one line;
+``--quiet`` leaves the result and nothing else (issue 15, part 5).
+"""
+
+import pytest
+from conftest import PROBLEMS
+
+from flyopt.cli.main import main
+from flyopt.outputs.files import write_text
+from flyopt.outputs.results import read_results
+
+# --------------------------------------------------------------------------
+# -o FILE and --quiet
+# --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("options", [[], ["--json"]])
+def test_solve_to_a_file_writes_what_it_prints(tmp_path, capsys, options):
+    scene = str(PROBLEMS / "shear-press.toml")
+    assert main(["solve", scene, *options]) == 0
+    printed = capsys.readouterr().out
+    out = tmp_path / "result.txt"
+    assert main(["solve", scene, *options, "-o", str(out)]) == 0
+    said = capsys.readouterr()
+    assert said.out == f"wrote {out}\n" and said.err == ""
+    assert out.read_text() == printed
+    assert main(["solve", scene, *options, "-o", str(out), "--quiet"]) == 0
+    assert capsys.readouterr() == ("", "") and out.read_text() == printed
+    assert [p.name for p in tmp_path.iterdir()] == ["result.txt"]  # no temporary file left
+
+
+def test_solve_to_a_file_is_all_or_nothing(tmp_path, capsys, monkeypatch):
+    """A failure after part of the result was printed, or Ctrl-C, leaves the old file as it was
+    and no temporary file."""
+    import flyopt.cli.scene
+
+    out = tmp_path / "result.json"
+    out.write_text("earlier result\n")
+
+    def half_then(error):
+        def handler(args):
+            print('{"a_max": 1,')
+            raise error
+
+        return handler
+
+    for error, status in ((flyopt.SolverFailed("did not converge"), 1), (KeyboardInterrupt(), 130)):
+        monkeypatch.setattr(flyopt.cli.scene, "run_solve", half_then(error))
+        assert main(["solve", str(PROBLEMS / "shear-press.toml"), "-o", str(out)]) == status
+        assert out.read_text() == "earlier result\n"
+        assert [p.name for p in tmp_path.iterdir()] == ["result.json"]
+        assert capsys.readouterr().out == ""
+
+
+def test_a_text_file_is_written_whole_or_not_at_all(tmp_path):
+    out = tmp_path / "result.txt"
+    out.write_text("earlier\n")
+    with pytest.raises(UnicodeEncodeError):
+        write_text(out, "A_max = 1 J\n" * 1000 + "\ud800")  # fails half-way through
+    assert out.read_text() == "earlier\n" and [p.name for p in tmp_path.iterdir()] == ["result.txt"]
+    write_text(out, "A_max = 1 J")
+    assert out.read_text() == "A_max = 1 J\n"
+
+
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (
+            ["solve", str(PROBLEMS / "shear-press.toml"), "-o", "no/such/folder/x.json"],
+            "-o/--output: the folder 'no/such/folder' of 'no/such/folder/x.json' does not exist",
+        ),
+        (
+            ["solve", str(PROBLEMS / "shear-press.toml"), "-o", str(PROBLEMS / "shear-press.toml")],
+            "is the scene file itself",
+        ),
+        (
+            ["pareto", str(PROBLEMS / "shear-press.toml"), "-o", "front.txt"],
+            "-o/--output: 'front.txt' must end in .csv, .parquet or .json",
+        ),
+        (
+            ["tradeoff", str(PROBLEMS / "shear-press.toml"), "-o", "no/such/folder/t.json", "-q"],
+            "-o/--output: the folder 'no/such/folder'",
+        ),
+        (["solve", str(PROBLEMS / "missing.toml"), "-q"], "missing.toml"),
+    ],
+)
+def test_a_bad_output_is_one_line_and_status_2_even_when_quiet(args, match, capsys):
+    assert main(args) == 2
+    said = capsys.readouterr()
+    assert said.out == "" and said.err.count("\n") == 1 and match in said.err
+    assert "Traceback" not in said.err
+
+
+def test_quiet_leaves_the_result_and_nothing_else(tmp_path, capsys):
+    scene = str(PROBLEMS / "shear-press.toml")
+    assert main(["check", scene, "--quiet"]) == 0
+    assert capsys.readouterr() == ("", "")
+    assert main(["plot", scene, "--what", "energy", "-o", str(tmp_path / "e.png"), "-q"]) == 0
+    assert capsys.readouterr() == ("", "") and (tmp_path / "e.png").stat().st_size > 0
+    assert main(["sweep", scene, "--vary", "delta=0.02,0.05", "-o", str(tmp_path / "s.csv"), "-q"]) == 0
+    assert capsys.readouterr() == ("", "") and len(read_results(tmp_path / "s.csv")) == 2
+    assert main(["sweep", scene, "--vary", "delta=0.02,0.05", "-q"]) == 0  # the result is stdout
+    said = capsys.readouterr()
+    assert said.err == "" and said.out.splitlines()[0].startswith("point,delta,")
+    assert main(["solve", scene, "-q"]) == 0 and "A_max" in capsys.readouterr().out
+    assert main(["sweep", scene, "--vary", "delta=0.02,0.05", "-o", str(tmp_path / "t.csv")]) == 0
+    assert "flyopt sweep: wrote" in capsys.readouterr().err  # and without --quiet, the summary
