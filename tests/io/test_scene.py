@@ -1,34 +1,14 @@
-"""Scene files: what is accepted, and one clear error for everything that is not."""
+"""flyopt.io.scene: scene files, what is accepted, and one clear error for everything that is not."""
 
 import math
 
 import pytest
 from numpy.testing import assert_allclose
+from scene_cases import scene_text
 
 import flyopt
-from flyopt.cycle.torque import Constant, ExpressionTorque, PiecewiseLinear
+from flyopt.cycle.torque import Constant, PiecewiseLinear
 from flyopt.errors import SceneError
-
-VALID = """
-title = "t"
-[machine]
-speed = "1500 rpm"
-delta = 0.05
-[torque.resisting]
-points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]
-[torque.driving]
-constant = "unknown"
-[[shaft]]
-name = "main"
-speed_ratio = 1.0
-"""
-
-
-def scene_text(old=None, new=None, extra=""):
-    text = VALID if old is None else VALID.replace(old, new)
-    if old is not None and old not in VALID:
-        raise ValueError(f"test bug: {old!r} is not in the base scene")
-    return text + extra
 
 
 def test_valid_scene_units_are_converted_to_si(write_scene):
@@ -51,27 +31,11 @@ def test_plain_numbers_are_si_and_section_units_apply(write_scene):
     assert_allclose(flyopt.analyse(scene).a_max, math.pi / 4 * 1137.5 * (1 + 0.8125 / 2), rtol=1e-13)
 
 
-def test_expression_with_unit(write_scene):
-    text = scene_text('constant = "unknown"', 'expression = "2.5 + 0.36*sin(phi)"\nunit = "kN*m"')
-    text = text.replace(
-        'points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]',
-        'constant = "2500 N*m"',
-    )
-    scene = flyopt.load(write_scene(text))
-    assert isinstance(scene.driving, ExpressionTorque)
-    assert_allclose(flyopt.analyse(scene).a_max, 720, rtol=1e-12)
-
-
 def test_gd2_and_efficiency_lists(write_scene):
     text = scene_text("delta = 0.05", 'delta = 0.05\ngd2 = "39.24 N*m^2"\nefficiency = [0.95, 0.97]')
     scene = flyopt.load(write_scene(text))
     assert_allclose(scene.j_constant, 1.0, rtol=1e-15)  # 39.24 / (4 * 9.81)
     assert_allclose(scene.efficiency, 0.95 * 0.97, rtol=1e-15)
-
-
-def test_reference_efficiency_comes_from_the_shaft_at_ratio_one(write_scene):
-    text = scene_text("speed_ratio = 1.0", "speed_ratio = 1.0\nefficiency = 0.9")
-    assert flyopt.load(write_scene(text)).efficiency == 0.9
 
 
 SPEED_LINE = 'speed = "1500 rpm"'
@@ -165,141 +129,3 @@ def test_bad_scenes_name_the_file_and_the_field(write_scene, old, new, extra, fi
     import re
 
     assert re.search(words, message), message
-
-
-NET_BAD = [
-    ("areas = [1500, -1000]", "torque", "non-periodic"),
-    ('areas = ["1500 J", "-1500 m"]', "torque.net.areas[1]", "wrong dimension"),
-    ('areas = [580, -580]\narea_unit = "mm^2"', "torque.net", "need all of area_unit, torque_scale"),
-    ('areas = ["1 J"]', "torque.net.areas", "at least two"),
-    (
-        'areas = [580, -580]\narea_unit = "mm^2"\ntorque_scale = "100 N*m/mm"\nangle_scale = "0.01 rad"',
-        "torque.net.angle_scale",
-        "wrong dimension",
-    ),
-]
-
-
-@pytest.mark.parametrize("body, field, words", NET_BAD)
-def test_bad_net_areas(write_scene, body, field, words):
-    path = write_scene(f'[machine]\nspeed = "1500 rpm"\ndelta = 0.02\n[torque.net]\n{body}\n')
-    with pytest.raises(Exception) as info:
-        flyopt.analyse(flyopt.load(path))
-    assert isinstance(info.value, ValueError)
-    if field != "torque":
-        assert str(info.value).startswith(f"{path}: {field}: ")
-    assert words in str(info.value)
-
-
-def test_toml_syntax_and_duplicate_tables(write_scene):
-    with pytest.raises(SceneError, match=r"scene.toml: not valid TOML"):
-        flyopt.load(write_scene("[machine\nspeed = 1"))
-    dup = scene_text() + '[torque.driving]\nconstant = "10 N*m"\n'
-    with pytest.raises(SceneError, match=r"not valid TOML.*torque"):
-        flyopt.load(write_scene(dup))
-
-
-def test_missing_file():
-    with pytest.raises(SceneError, match=r"no-such.toml: cannot read the file"):
-        flyopt.load("no-such.toml")
-
-
-DESIGN_BAD = [
-    ('geometry = "rimm"', "design.geometry", "'rimm' is not known; did you mean 'rim'"),
-    ('materials = ["cast_iorn"]', "design.materials[0]", "unknown material 'cast_iorn'; did you mean 'cast_iron'"),
-    ("materials = []", "design.materials", "non-empty list"),
-    ('shafts = ["mian"]', "design.shafts[0]", "unknown shaft 'mian'; did you mean 'main'"),
-    ("hb_ratio = [2.0, 1.5]", "design.hb_ratio", "0 < min <= max"),
-    ("hb_ratio = [1, 2, 3]", "design.hb_ratio", "one number or a range"),
-    ('max_outer_diameter = "-1 m"', "design.max_outer_diameter", "must be positive"),
-    ('max_width = "25 kg"', "design.max_width", "wrong dimension"),
-    ('objective = "cost"', "design.objective", "needs a cost per kg"),
-    ('objective = "volume"', "design.objective", "not known"),
-    ('colour = "red"', "design.colour", "unknown key"),
-]
-
-
-@pytest.mark.parametrize("line, field, words", DESIGN_BAD)
-def test_bad_design_section(write_scene, line, field, words):
-    path = write_scene(scene_text() + f"[design]\n{line}\n")
-    with pytest.raises(SceneError) as info:
-        flyopt.load(path)
-    assert str(info.value).startswith(f"{path}: {field}: ")
-    assert words in str(info.value)
-
-
-MATERIAL_BAD = [
-    ('name = "x"\ndensity = "7000 kg/m^3"', "material[0]", "give max_rim_speed, allowable_stress"),
-    ('name = "x"\nmax_rim_speed = "40 m/s"', "material[0].density", "is missing"),
-    ('name = "x"\ndensity = "7000 kg"\nmax_rim_speed = "40 m/s"', "material[0].density", "wrong dimension"),
-    ('name = "x"\ndensity = "7000 kg/m^3"\nmax_rim_speed = "-4 m/s"', "material[0].max_rim_speed", "positive"),
-    (
-        'name = "x"\ndensity = "7000 kg/m^3"\nmax_rim_speed = "40 m/s"\nyield = "1 MPa"',
-        "material[0].yield",
-        "unknown key",
-    ),
-]
-
-
-@pytest.mark.parametrize("body, field, words", MATERIAL_BAD)
-def test_bad_user_material(write_scene, body, field, words):
-    path = write_scene(scene_text() + f"[[material]]\n{body}\n")
-    with pytest.raises(SceneError) as info:
-        flyopt.load(path)
-    assert str(info.value).startswith(f"{path}: {field}: ")
-    assert words in str(info.value)
-
-
-def test_user_material_overrides_builtin_and_cost_objective(write_scene):
-    path = write_scene(
-        scene_text() + '[design]\nobjective = "cost"\nmaterials = ["cast_iron"]\n'
-        '[[material]]\nname = "cast_iron"\ndensity = "7100 kg/m^3"\nmax_rim_speed = "30 m/s"\n'
-        'cost = "1.5 1/kg"\n'
-    )
-    scene = flyopt.load(path)
-    assert scene.material_library()["cast_iron"].max_rim_speed == 30.0
-    result = flyopt.solve(scene)
-    assert_allclose(result.design.best.cost, 1.5 * result.design.best.mass, rtol=1e-15)
-
-
-SLIDER_CRANK = """
-[machine]
-speed = "120 rpm"
-delta = 0.15
-inertia = "2 kg*m^2"
-[mechanism]
-kind = "slider_crank"
-crank = "0.08 m"
-rod = "0.45 m"
-[[member]]
-name = "ram"
-part = "slider"
-mass = "400 kg"
-angle_unit = "deg"
-unit = "kN"
-force = [[0, 0], [140, 0], [140, 25], [175, 60], [180, 0], [360, 0]]
-[torque.driving]
-constant = "unknown"
-"""
-
-
-def test_a_member_force_may_carry_the_whole_load(write_scene):
-    # a [torque.resisting] left out means zero when [[member]] forces carry the load
-    left_out = flyopt.load(write_scene(SLIDER_CRANK, "left_out.toml"))
-    explicit = flyopt.load(write_scene(SLIDER_CRANK + "[torque.resisting]\nconstant = 0\n", "explicit.toml"))
-    assert left_out.resisting == Constant(0.0)
-    assert_allclose(flyopt.analyse(left_out).a_max, flyopt.analyse(explicit).a_max, rtol=1e-15)
-    assert flyopt.analyse(left_out).a_max > 0
-
-
-def test_member_loads_alone_must_balance_over_the_cycle(write_scene):
-    # no [torque] at all: nothing is unknown, and a resisting force alone cannot be periodic
-    path = write_scene(SLIDER_CRANK.replace('[torque.driving]\nconstant = "unknown"\n', ""))
-    with pytest.raises(flyopt.NonPeriodicCycle, match="does not balance"):
-        flyopt.analyse(flyopt.load(path))
-
-
-def test_a_missing_torque_curve_without_member_loads_is_an_error(write_scene):
-    path = write_scene(scene_text('[torque.driving]\nconstant = "unknown"\n', ""))
-    with pytest.raises(SceneError, match=r"torque.driving: is missing.*\[\[member\]\] forces or torques"):
-        flyopt.load(path)

@@ -4,7 +4,8 @@
 out of the text and reads their numbers with ``float``; everything else, and
 every table it is not sure of, is tomllib's. The reference here is tomllib
 itself: the same numbers to the bit (the sign of zero included), and the
-same error for a file tomllib refuses.
+same error for a file tomllib refuses. A file that cannot be read, or is not
+TOML, is one SceneError naming it.
 """
 
 import math
@@ -14,8 +15,10 @@ import pytest
 import tomllib
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scene_cases import scene_text
 
 import flyopt
+from flyopt.errors import SceneError
 from flyopt.io import toml_file
 from flyopt.io.scene import from_dict
 
@@ -252,3 +255,16 @@ def test_random_tables_read_as_tomllib_reads_them(rows, trailing, bad):
         got = np.array(points, dtype=float)
     assert np.array_equal(bits(got), bits(expected))
     assert data["x"] == 1
+
+
+def test_toml_syntax_and_duplicate_tables(write_scene):
+    with pytest.raises(SceneError, match=r"scene.toml: not valid TOML"):
+        flyopt.load(write_scene("[machine\nspeed = 1"))
+    dup = scene_text() + '[torque.driving]\nconstant = "10 N*m"\n'
+    with pytest.raises(SceneError, match=r"not valid TOML.*torque"):
+        flyopt.load(write_scene(dup))
+
+
+def test_missing_file():
+    with pytest.raises(SceneError, match=r"no-such.toml: cannot read the file"):
+        flyopt.load("no-such.toml")

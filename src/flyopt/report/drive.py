@@ -4,8 +4,15 @@ Quantities are shown in the reader's unit system through :mod:`flyopt.report.dis
 like the rest of the report (:mod:`flyopt.report.text`); the JSON stays SI.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 from flyopt.report.display import DEFAULT, field_text, heading, label, number, unit
 from flyopt.report.text import formatters, table
+
+if TYPE_CHECKING:
+    from flyopt.drive.codesign import DriveCheck, DriveDesign
 
 #: The step of a relaxed limit that the report gives the objective's change for, in the shown
 #: unit of the limit's dimension: a round amount in each system (the envelope +100 mm, +0.1 m
@@ -21,7 +28,7 @@ RELAXED_STEPS = (
 )
 
 
-def drive_report(drive, check=None, units=DEFAULT):
+def drive_report(drive: DriveDesign, check: DriveCheck | None = None, units: str = DEFAULT) -> list[str]:
     """Lines of the report for a :class:`flyopt.drive.codesign.DriveDesign` (and its :class:`DriveCheck`).
 
     ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
@@ -76,7 +83,7 @@ def drive_report(drive, check=None, units=DEFAULT):
                 number(run.motor_ratio, 5),
                 n(run.j_flywheel, "j_flywheel", 5),
                 run.limit or "-",
-                number(run.rms_torque / run.rated_torque, 4) if run.rms_torque else "-",
+                number(run.rms_torque / run.rated_torque, 4) if run.rms_torque and run.rated_torque else "-",
                 n(run.startup_time, "startup_time", 4),
                 number(run.flywheel_ratio, 4),
                 n(run.wheel_mass, "wheel_mass", 5),
@@ -98,10 +105,12 @@ def drive_report(drive, check=None, units=DEFAULT):
     return lines
 
 
-def relaxation_summary(drive, units):
+def relaxation_summary(drive: DriveDesign, units: str) -> tuple[str, list[str]]:
     """(the relaxed optimum in words, what relaxing each binding limit by a round step saves, first order),
     in ``units``: the text report and the HTML/PDF document say the same."""
     r = drive.relaxation
+    if r is None:
+        raise ValueError("the drive has no relaxation to summarise")
     summary = (
         f"{field_text(r.rated_power, 'rated_power', units)}, motor ratio {number(r.motor_ratio, 5)}, "
         f"flywheel ratio {number(r.flywheel_ratio, 4)}, {field_text(r.j_flywheel, 'j_flywheel', units, 5)}, "
@@ -138,9 +147,10 @@ def _relaxation_lines(drive, units):
     return lines
 
 
-def limit_words(limit):
+def limit_words(limit: str | None) -> str:
+    """What a binding limit of the drive is, in words."""
     return {
         "delta": "the speed fluctuation δ",
         "thermal": "the motor's thermal limit (RMS torque = rated)",
         "none": "nothing: the machine needs no flywheel",
-    }.get(limit, str(limit))
+    }.get(str(limit), str(limit))

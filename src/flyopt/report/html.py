@@ -15,9 +15,12 @@ from __future__ import annotations
 import html
 import io
 import re
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from flyopt.report.document import Code, Equation, Facts, Figure, Paragraph, Quantity, Table
+from flyopt.report.document import Code, Document, Equation, Facts, Figure, Paragraph, Quantity, Table
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure as MplFigure
 
 CSS = """
 :root { --ink: #1d232b; --rule: #c9ced6; --shade: #f3f5f8; --ok: #1e7a46; --warn: #b3261e; --note: #6b5800; }
@@ -75,7 +78,7 @@ footer { margin-top: 2.5rem; font-size: 0.78rem; color: #666; border-top: 1px so
 """
 
 
-def render(document) -> str:
+def render(document: Document) -> str:
     """The HTML page of a :class:`~flyopt.report.document.Document`.
 
     Returns
@@ -194,7 +197,7 @@ def _text(text):
     return re.sub(r"\^\{([^{}]*)\}", r"<sup>\1</sup>", escaped)
 
 
-def svg_of(figure, prefix):
+def svg_of(figure: MplFigure, prefix: str) -> str:
     """A matplotlib figure as an inline ``<svg>`` element, its ids prefixed with ``prefix``.
 
     The XML declaration, the DOCTYPE (which names an external DTD) and the

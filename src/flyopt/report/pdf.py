@@ -17,7 +17,7 @@ import os
 import re
 from xml.sax.saxutils import escape
 
-from flyopt.report.document import Code, Equation, Facts, Figure, Paragraph, Quantity, Table, plain
+from flyopt.report.document import Code, Document, Equation, Facts, Figure, Paragraph, Quantity, Table, plain
 
 #: Resolution of the diagrams in the PDF [dpi].
 DPI = 200
@@ -25,7 +25,7 @@ DPI = 200
 _FONT, _BOLD, _ITALIC, _MONO = "FlyoptSans", "FlyoptSans-Bold", "FlyoptSans-Oblique", "FlyoptMono"
 
 
-def render(document) -> bytes:
+def render(document: Document) -> bytes:
     """The PDF of a :class:`~flyopt.report.document.Document`, as bytes."""
     from reportlab.lib.pagesizes import A4
     from reportlab.lib.units import mm

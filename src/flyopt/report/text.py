@@ -9,9 +9,19 @@ design itself (why a combination fails, the sensitivities' sentences, notes)
 is shown as the design wrote it.
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
 
 from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, quantity_text
+
+if TYPE_CHECKING:
+    from flyopt.analysis import Analysis
+    from flyopt.design.result import Candidate, DesignResult
+    from flyopt.design.spec import DesignSpec
+    from flyopt.sizing.periodic import Verification
 
 __all__ = [
     "analysis_report",
@@ -26,12 +36,12 @@ __all__ = [
 ]
 
 
-def power(watts, units=DEFAULT):
+def power(watts: float | None, units: str = DEFAULT) -> str:
     """A power [W] in the unit system's unit ("72.6493 kW"; "-" for None)."""
     return field_text(watts, "power", units)
 
 
-def formatters(units):
+def formatters(units: str) -> tuple[Callable[..., str], Callable[..., str]]:
     """The two ways a report line shows a field in a unit system, by the field's name.
 
     Returns ``(q, n)``: ``q(value, name, digits=6)`` gives "<number> <label>"
@@ -39,21 +49,21 @@ def formatters(units):
     for a table under a heading that carries the unit or a list that ends in it.
     """
 
-    def q(value, name, digits=6):
+    def q(value: Any, name: str, digits: int = 6) -> str:
         return field_text(value, name, units, digits)
 
-    def n(value, name, digits=6):
+    def n(value: Any, name: str, digits: int = 6) -> str:
         return field_number(value, name, units, digits)
 
     return q, n
 
 
-def _label(name, units):
+def _label(name: str, units: str) -> str:
     """The label of a field's unit in the system ("mm"), for a list of numbers that ends in one."""
     return label(dimension_of(name), units)
 
 
-def table(header, rows, align=None):
+def table(header: Sequence[str], rows: Sequence[Sequence[Any]], align: Sequence[str] | None = None) -> list[str]:
     """Fixed-width table: a header row, a rule, then the rows."""
     cells = [header] + [[str(c) for c in r] for r in rows]
     widths = [max(len(r[i]) for r in cells) for i in range(len(header))]
@@ -63,7 +73,7 @@ def table(header, rows, align=None):
     return lines
 
 
-def no_flywheel_words(analysis):
+def no_flywheel_words(analysis: Analysis) -> tuple[str, str]:
     """(before, after) ``j_margin``: why no flywheel is needed (the text and the document say the same)."""
     if analysis.delta_holds_at_any_inertia:
         return (
@@ -74,7 +84,7 @@ def no_flywheel_words(analysis):
     return "the machine's own inertia suffices (J_F would be", ")"
 
 
-def analysis_report(result, source=None, units=DEFAULT):
+def analysis_report(result: Analysis, source: str | None = None, units: str = DEFAULT) -> str:
     """The report of ``flyopt solve`` for the cycle analysis, as text.
 
     Parameters
@@ -201,7 +211,7 @@ def analysis_report(result, source=None, units=DEFAULT):
     return "\n".join(lines)
 
 
-def engine_report(result, units=DEFAULT):
+def engine_report(result: Analysis, units: str = DEFAULT) -> list[str]:
     """For an [engine]: the textbook's flywheel beside the exact one, and by how much it is off.
 
     The textbook's method (flyopt.sizing.textbook.textbook_requirement, ``result.textbook``) takes
@@ -217,6 +227,7 @@ def engine_report(result, units=DEFAULT):
         return []
     from flyopt.machine.engine import engine_of
 
+    assert result.machine is not None  # an engine's textbook flywheel is of its machine
     engine = engine_of(result.machine)
     if engine is None:  # a variable inertia of members, not of an [engine]
         return []
@@ -244,14 +255,14 @@ def engine_report(result, units=DEFAULT):
     ]
 
 
-def solver_words(candidate):
+def solver_words(candidate: Candidate) -> str:
     """How a design was found, in words: the exact closed form or IPOPT with its status."""
     if candidate.solver_status == "closed_form":
         return "the exact closed form of the lightest wheel, checked against every constraint"
     return f"IPOPT ({candidate.solver_status}, {candidate.iterations} iterations), checked against every constraint"
 
 
-def design_report(result, spec=None, units=DEFAULT):
+def design_report(result: DesignResult, spec: DesignSpec | None = None, units: str = DEFAULT) -> list[str]:
     """The design part of the ``flyopt solve`` report: the winner and the ranking of every combination.
 
     ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
@@ -346,7 +357,7 @@ def _finite(value):
     return value is not None and math.isfinite(value)
 
 
-def wheel_report(candidate, omega, units=DEFAULT):
+def wheel_report(candidate: Candidate, omega: float, units: str = DEFAULT) -> list[str]:
     """The whole wheel of a design: its parts, stress check, burst speed, balance, key, sensitivities, notes.
 
     Parameters
@@ -466,7 +477,7 @@ def wheel_report(candidate, omega, units=DEFAULT):
             facts.append(("burst speed", f"{q(c.burst_speed, 'burst_speed')} on its shaft{margin}"))
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {v}" for k, v in facts]
-    if _finite(c.unbalance_permissible):
+    if c.unbalance_permissible is not None and _finite(c.unbalance_permissible):
         eccentricity = quantity_text(c.unbalance_permissible / c.mass, "eccentricity", units, 4) if c.mass else None
         lines += [
             "",
@@ -495,7 +506,7 @@ def wheel_report(candidate, omega, units=DEFAULT):
     return lines
 
 
-def verification_report(v, units=DEFAULT):
+def verification_report(v: Verification, units: str = DEFAULT) -> list[str]:
     """The verification part of the ``flyopt solve --verify`` report (``units``: the unit system)."""
     q, _ = formatters(units)
     verdict = "FLAGGED: the design misses the allowed δ" if v.flagged else "ok"

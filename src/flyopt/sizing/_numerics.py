@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 import casadi as ca
@@ -48,10 +48,12 @@ class Inertia:
     first use; a callable is checked at once by calling it on a symbol.
     """
 
-    def __init__(self, j, what="j_machine"):
-        self._maps = {}
+    def __init__(self, j: Any, what: str = "j_machine") -> None:
+        self._maps: dict[int, Any] = {}
         self._numpy = None
-        self._expr = self._phi = self._function = None
+        self._expr: Any = None
+        self._phi: Any = None
+        self._function: Any = None
         self._constant_value = None
         if isinstance(j, (int, float)) and not isinstance(j, bool):
             if not (math.isfinite(j) and j >= 0):
@@ -87,7 +89,7 @@ class Inertia:
         return self._phi, self._expr
 
     @property
-    def is_constant(self):
+    def is_constant(self) -> bool:
         """True when J does not depend on φ (asked of CasADi when the source does not say)."""
         if self._is_constant is None:
             phi, expr = self._symbolic()
@@ -95,23 +97,26 @@ class Inertia:
         return self._is_constant
 
     @property
-    def function(self):
+    def function(self) -> Any:
         """The CasADi Function φ ↦ (J, dJ/dφ)."""
         if self._function is None:
             phi, expr = self._symbolic()
             self._function = ca.Function("J", [phi], [expr, ca.jacobian(expr, phi)])
         return self._function
 
-    def casadi(self, phi):
+    def casadi(self, phi: Any) -> Any:
+        """J at the symbol ``phi`` (a CasADi expression)."""
         return self.function(phi)[0]
 
-    def __call__(self, phi):
+    def __call__(self, phi: npt.ArrayLike) -> Any:
+        """J at ``phi`` (numpy) [kg*m^2]."""
         return self._eval(phi, 0)
 
-    def derivative(self, phi):
+    def derivative(self, phi: npt.ArrayLike) -> Any:
+        """dJ/dφ at ``phi`` (numpy) [kg*m^2/rad]."""
         return self._eval(phi, 1)
 
-    def value_and_derivative(self, phi):
+    def value_and_derivative(self, phi: npt.ArrayLike) -> Any:
         """J and dJ/dφ at ``phi`` (numpy) [kg*m^2], [kg*m^2/rad]."""
         if self._numpy is not None:
             return self._numpy.value_and_derivative(np.asarray(phi, dtype=float))
@@ -124,13 +129,13 @@ class Inertia:
         if self._constant_value is not None or self.is_constant:  # no CasADi call per angle for a constant
             shape = np.shape(phi)
             value = self._constant_value if self._constant_value is not None else float(self.function(0.0)[0])
-            pair = (np.full(shape, value), np.zeros(shape))
+            pair: tuple[FloatArray, ...] = (np.full(shape, value), np.zeros(shape))
         else:
             pair = evaluate(self.function, self._maps, phi)
         return pair if which is None else pair[which]
 
 
-def call(function, *args):
+def call(function: Any, *args: npt.ArrayLike) -> tuple[FloatArray, ...]:
     """Evaluate a CasADi Function on numpy inputs into numpy outputs.
 
     The inputs are copied once into column-major buffers and the outputs
@@ -166,7 +171,7 @@ def call(function, *args):
     return tuple(outputs)
 
 
-def evaluate(function, maps, *args):
+def evaluate(function: Any, maps: dict[int, Any], *args: npt.ArrayLike) -> tuple[FloatArray, ...]:
     """Evaluate a scalar CasADi Function elementwise on broadcast numpy arrays.
 
     The mapped function for each size is built once and kept in ``maps``.
@@ -183,14 +188,16 @@ def evaluate(function, maps, *args):
     return tuple(o.reshape(shape) for o in call(maps[n], *(a.reshape(1, -1) for a in arrays)))
 
 
-def check_speed_delta(omega_mean, delta, delta_max=2.0):
+def check_speed_delta(omega_mean: float, delta: float | None, delta_max: float = 2.0) -> None:
+    """Refuse a mean speed that is not a positive finite number, or δ outside (0, delta_max) (ValueError)."""
     if not (isinstance(omega_mean, (int, float)) and math.isfinite(omega_mean) and omega_mean > 0):
         raise ValueError(f"omega_mean must be a positive finite speed [rad/s], got {omega_mean!r}")
     if delta is not None and not (isinstance(delta, (int, float)) and math.isfinite(delta) and 0 < delta < delta_max):
         raise ValueError(f"delta must lie in (0, {delta_max:g}), got {delta!r}")
 
 
-def check_cycle(cycle_angle):
+def check_cycle(cycle_angle: float) -> float:
+    """The cycle angle as a float; a ValueError unless it is a positive finite angle [rad]."""
     if not (isinstance(cycle_angle, (int, float)) and math.isfinite(cycle_angle) and cycle_angle > 0):
         raise ValueError(f"cycle_angle must be a positive finite angle [rad], got {cycle_angle!r}")
     return float(cycle_angle)
@@ -207,7 +214,7 @@ class _Discard:
 
 
 @contextlib.contextmanager
-def quiet():
+def quiet() -> Iterator[None]:
     """Keep CasADi's diagnostics off stderr while CasADi evaluates.
 
     When a function called inside a CasADi graph fails (CVODES giving up
