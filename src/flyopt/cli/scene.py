@@ -109,6 +109,9 @@ def run_check(args: argparse.Namespace) -> int:
     data = read_toml(args.scene)
     scene = load(args.scene, data)
     analyse(scene)  # a cycle that does not close is an input error too
+    from flyopt.design import design_inputs
+
+    design_inputs(scene)  # the design's own refusals of its inputs, as flyopt solve makes them
     if "sweep" in data:  # the sweep's modules (pandas, pyarrow) only for a [sweep] table
         from flyopt.io.sweep_spec import load_sweep
         from flyopt.studies.sweep import check_sweep

@@ -62,4 +62,24 @@ def design_inputs(scene: Scene) -> DesignInputs:
         MountShaft(s.name, s.speed_ratio, s.diameter) for s in scene.shafts if allowed is None or s.name in allowed
     )
     spec = scene.design if scene.design is not None else DesignSpec()
+    _check_own_materials(scene, materials, spec)
     return DesignInputs(materials=materials, shafts=shafts, spec=spec)
+
+
+def _check_own_materials(scene: Scene, materials: tuple[Material, ...], spec: DesignSpec) -> None:
+    """Refuse a ``[[material]]`` of the scene that the design cannot use for want of a field the scene
+    could have given: its Poisson's ratio under the stress criterion or for a web or arms. A
+    shipped material without one is a material that cannot make such a wheel (its combinations
+    say so); a material the user wrote for this design lacks a field (SceneError, as ``check`` says)."""
+    from flyopt.design.wheel_design import missing_poisson
+    from flyopt.errors import SceneError
+
+    own = {m.name for m in scene.materials}
+    for material in materials:
+        if material.name in own and missing_poisson(material, spec):
+            raise SceneError(
+                f"material.{material.name}.poisson_ratio",
+                f"missing: the {spec.criterion} criterion and the stress of a {spec.geometry} need it "
+                "(e.g. 0.26 for grey cast iron, 0.3 for steel)",
+                scene.source,
+            )
