@@ -392,6 +392,11 @@ def _parse_range(name, spec, text, label, sampled, cap=None):
         if m is None:  # every part of the pattern is optional: it matches any text
             raise SceneError(label, f"{shorten(text)}: the third part of a range is a count")
         log, count, trailing = bool(m.group(1)), m.group(2), m.group(3)
+        if count is not None and re.match(r"[.,\d]|[eE][+-]?\d", trailing):  # 3.2 is not 3 points in a unit ".2"
+            raise SceneError(
+                label,
+                f"{shorten(text)}: the count of a range is a whole number of values, got {shorten(parts[2].strip())}",
+            )
         if count is None and not log:
             raise SceneError(
                 label,

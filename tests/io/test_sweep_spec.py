@@ -1,0 +1,37 @@
+"""flyopt.io.sweep_spec: the grammar of --vary and of a scene's [sweep] table."""
+
+import math
+
+import pytest
+from conftest import PROBLEMS
+
+import flyopt
+from flyopt.errors import SceneError
+from flyopt.io.sweep_spec import parse_vary
+
+SCENE = flyopt.load(PROBLEMS / "punch-press.toml")
+
+
+@pytest.mark.parametrize("count", ["3.2", "log3.5", "3e2", "3,5", "2.0"])
+def test_a_range_count_that_is_not_a_whole_number_is_refused(count):
+    """Issue 25, item 2: 0.01:0.1:3.2 gave δ = 0.002, 0.011, 0.020 (3 values, '.2' taken for a unit
+    factor scaling every one); in --vary and in [sweep.vary] alike (one parser)."""
+    with pytest.raises(SceneError, match="the count of a range is a whole number of values"):
+        parse_vary(SCENE, {"delta": f"0.01:0.1:{count}"})
+
+
+@pytest.mark.parametrize(
+    "text, values",
+    [
+        ("0.01:0.1:3", (0.01, 0.055, 0.1)),
+        ("0.01:0.1:log3", (0.01, (0.01 * 0.1) ** 0.5, 0.1)),  # the geometric mean in the middle
+    ],
+)
+def test_a_whole_count_still_gives_its_values(text, values):
+    axis = parse_vary(SCENE, {"delta": text})[0]
+    assert axis.values == pytest.approx(values, rel=1e-12)
+
+
+def test_a_unit_after_the_count_is_still_a_unit():
+    axis = parse_vary(SCENE, {"speed": "300:600:3rpm"})[0]
+    assert axis.values == pytest.approx([rpm * 2 * math.pi / 60 for rpm in (300, 450, 600)], rel=1e-12)
