@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, scaled
+from flyopt.io.input_files import check_rows
 from flyopt.machine import press as physics
 from flyopt.units import quantity
 
@@ -257,6 +258,7 @@ def _force_table(press):
     position_unit = _unit(press, "position_unit", "length")
     force_unit = _unit(press, "force_unit", "force")
     if hasattr(raw, "array"):  # a large table read without tomllib (flyopt.io.toml_file.InlineRows)
+        check_rows(len(raw), where)
         raw = raw.array.tolist()
     if not isinstance(raw, list) or len(raw) < 2:
         raise SceneError(
@@ -264,6 +266,7 @@ def _force_table(press):
             "must be a list of at least two [position, force] pairs over the working stroke, "
             'e.g. [["0 mm", "0 kN"], ["20 mm", "660 kN"]]',
         )
+    check_rows(len(raw), where)
     positions, forces = [], []
     for k, pair in enumerate(raw):
         if not isinstance(pair, list) or len(pair) != 2:
