@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table
-from flyopt.names import hint, unknown
+from flyopt.names import Geometry, hint, unknown
 from flyopt.units import quantity
 
 if TYPE_CHECKING:
@@ -127,7 +127,36 @@ def read_design(
         spec = DesignSpec(**options)
     except ValueError as err:
         raise SceneError("design", str(err)) from None
+    if spec.min_wall is not None:
+        _check_min_wall(spec, table)
     return spec, names, shaft_names
+
+
+def _check_min_wall(spec, table):
+    """Refuse a ``min_wall`` that does not fit in the envelope (the design would start from negative walls).
+
+    Every section is at least ``min_wall`` thick: the rim's width must fit in
+    ``max_width``, and across the radius, from the bore to the outer
+    diameter, lie one wall (a disc, a rim) or two (the rim and the hub of a
+    rim_web or rim_arms wheel).
+    """
+    wall, raw = spec.min_wall, shorten(table.raw("min_wall"))
+    if wall >= spec.max_width:
+        raise SceneError(
+            "design.min_wall",
+            f"{raw} does not fit in max_width {shorten(table.raw('max_width'))} "
+            "(allowed: a wall thinner than the wheel's widest width)",
+        )
+    walls = 2 if spec.geometry in (Geometry.RIM_WEB, Geometry.RIM_ARMS) else 1
+    room = (spec.max_outer_diameter - (spec.bore or 0.0)) / 2
+    if walls * wall >= room:
+        across = "the radius" if not spec.bore else "the radius outside the bore"
+        raise SceneError(
+            "design.min_wall",
+            f"{raw} does not fit in max_outer_diameter {shorten(table.raw('max_outer_diameter'))}: "
+            f"{'the rim and the hub, each' if walls == 2 else 'a section'} at least min_wall thick, "
+            f"must lie across {across}, {room:.6g} m (allowed: below {room / walls:.6g} m)",
+        )
 
 
 def _name_list(table, key, known, what):

@@ -41,6 +41,10 @@ if TYPE_CHECKING:
     from flyopt.machine.mechanism import Member
 
 
+MAX_TITLE_LENGTH = 200
+"""Longest scene title [characters]: it heads every report, plot and table."""
+
+
 @dataclass(frozen=True)
 class Scene:
     """A machine to regulate, in SI units.
@@ -269,6 +273,11 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     title = top.get("title", "")
     if not isinstance(title, str):
         raise SceneError("title", f"must be a string, got {shorten(title)}")
+    if len(title) > MAX_TITLE_LENGTH:
+        raise SceneError(
+            "title",
+            f"is {len(title)} characters long (allowed: at most {MAX_TITLE_LENGTH}; a longer text belongs in description)",
+        )
     return Scene(
         title=title or (Path(source).stem if source else "scene"),
         omega_mean=omega,
