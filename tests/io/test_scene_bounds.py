@@ -4,6 +4,7 @@ A 200 kB title made ``report`` take 65 s; ``min_wall = "5 m"`` ended in an
 internal "thickness ... got -4.5" (exit 1) after ``check`` said ok.
 """
 
+import re
 import subprocess
 import sys
 
@@ -75,3 +76,37 @@ def test_a_disc_may_have_one_wall_across_its_radius(tmp_path):
     with pytest.raises(SceneError, match="allowed: below 0.5 m") as error:
         flyopt.load(path)
     assert error.value.field == "design.min_wall"
+
+
+@pytest.mark.parametrize(
+    "problem, old, new, field, match",
+    [
+        ("conveyor.toml", 'speed = "', 'speed = "1e300 rpm" #', "machine.speed", "allowed: 1e-06 to 1e+06 rad/s"),
+        ("conveyor.toml", 'speed = "', 'speed = "1e-300 rpm" #', "machine.speed", "allowed: 1e-06 to 1e+06 rad/s"),
+        ("slider-crank-press.toml", "delta = ", "delta = 1e-300 #", "machine.delta", "allowed: 1e-06 to 2"),
+        ("motor-press.toml", "speed_ratio = ", "speed_ratio = 1e-300 #", "shaft[0].speed_ratio", "1e-06 to 1e+06"),
+        ("shear-press.toml", "speed_ratio = ", "speed_ratio = 1e300 #", "shaft[0].speed_ratio", "1e-06 to 1e+06"),
+        ("compressor.toml", "max_width = ", 'max_width = "1e-300 m" #', "design.max_width", "1e-06 to 1000 m"),
+        ("press-drive.toml", "ratio = ", "ratio = [1e6, 1e9] #", "drive.ratio[1]", "1e-06 to 1e+06"),
+        ("press-drive.toml", "strokes_per_minute = ", "strokes_per_minute = 1e-300 #", "press.strokes_per_minute", "the range of machine.speed"),
+        ("press-drive.toml", "working_time = ", 'working_time = "1e-300 s" #', "press.working_time", "at least 1e-06"),
+    ],
+)
+def test_a_magnitude_that_cannot_be_computed_is_refused_at_load(tmp_path, problem, old, new, field, match):
+    text = (PROBLEMS / problem).read_text(encoding="utf-8")
+    start = text.index(f"\n{old}") + 1
+    path = tmp_path / "scene.toml"
+    path.write_text(text[:start] + new + text[start + len(old) :], encoding="utf-8")
+    with pytest.raises(SceneError, match=re.escape(match)) as error:
+        flyopt.load(path)
+    assert error.value.field == field, str(error.value)
+
+
+def test_a_scene_at_the_bounds_still_solves(tmp_path):
+    text = (PROBLEMS / "conveyor.toml").read_text(encoding="utf-8")
+    start = text.index('\nspeed = "') + 1
+    for speed in ("1e6 rad/s", "1e-6 rad/s"):
+        path = tmp_path / "scene.toml"
+        path.write_text(text[:start] + f'speed = "{speed}" #' + text[start + len('speed = "') :], encoding="utf-8")
+        run = cli("solve", path, "-q")
+        assert run.returncode in (0, 3) and run.stderr.count("\n") <= 1, run.stderr

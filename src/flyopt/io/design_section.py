@@ -6,7 +6,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table
+from flyopt.io.fields import Table, check_magnitude
 from flyopt.names import Geometry, hint, unknown
 from flyopt.units import quantity
 
@@ -16,6 +16,9 @@ if TYPE_CHECKING:
     from flyopt.design.materials import Material
     from flyopt.design.spec import DesignSpec
     from flyopt.machine.transmission import Shaft
+
+LENGTH_RANGE = (1e-6, 1e3)
+"""Allowed lengths of the [design] envelope and walls [m]; beyond them the wheel's powers of length overflow."""
 
 
 def read_design(
@@ -73,6 +76,7 @@ def read_design(
             value = table.quantity(key, "length", required=True)
             if value <= 0:
                 raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
+            check_magnitude(value, f"design.{key}", table.raw(key), *LENGTH_RANGE, "m", "a micron to a kilometre")
             options[key] = value
     if table.has("bore"):
         value = table.quantity("bore", "length", required=True)

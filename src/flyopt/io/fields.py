@@ -81,3 +81,13 @@ class Table:
                 raise SceneError(self._path(key), "is missing")
             return default
         return quantity(self.data[key], dimension, self._path(key))
+
+
+def check_magnitude(value: float, where: str, raw: object, low: float, high: float, unit: str, why: str) -> None:
+    """Refuse a positive ``value`` outside ``[low, high]`` (SI, in ``unit``): beyond them the computation overflows.
+
+    ``why`` says what the bounds are (documented in README's Limits).
+    """
+    if not low <= value <= high:
+        unit = f" {unit}" if unit else ""
+        raise SceneError(where, f"{shorten(raw)} is out of range (allowed: {low:g} to {high:g}{unit}; {why})")
