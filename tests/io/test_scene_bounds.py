@@ -88,7 +88,13 @@ def test_a_disc_may_have_one_wall_across_its_radius(tmp_path):
         ("shear-press.toml", "speed_ratio = ", "speed_ratio = 1e300 #", "shaft[0].speed_ratio", "1e-06 to 1e+06"),
         ("compressor.toml", "max_width = ", 'max_width = "1e-300 m" #', "design.max_width", "1e-06 to 1000 m"),
         ("press-drive.toml", "ratio = ", "ratio = [1e6, 1e9] #", "drive.ratio[1]", "1e-06 to 1e+06"),
-        ("press-drive.toml", "strokes_per_minute = ", "strokes_per_minute = 1e-300 #", "press.strokes_per_minute", "the range of machine.speed"),
+        (
+            "press-drive.toml",
+            "strokes_per_minute = ",
+            "strokes_per_minute = 1e-300 #",
+            "press.strokes_per_minute",
+            "the range of machine.speed",
+        ),
         ("press-drive.toml", "working_time = ", 'working_time = "1e-300 s" #', "press.working_time", "at least 1e-06"),
     ],
 )

@@ -29,7 +29,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, scaled
+from flyopt.io.fields import SPEED_RANGE, Table, scaled
 from flyopt.io.input_files import check_rows
 from flyopt.machine import press as physics
 from flyopt.units import quantity
@@ -161,8 +161,6 @@ def _crank(press):
 
 def _check_crank_speed(omega, where, raw):
     """Refuse a stroke rate whose crank speed is outside the machine speeds flyopt computes (machine.speed's range)."""
-    from flyopt.io.scene import SPEED_RANGE
-
     low, high = SPEED_RANGE
     if not low <= omega <= high:
         raise SceneError(

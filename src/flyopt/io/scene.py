@@ -22,7 +22,7 @@ from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import ANGLE_TOLERANCE
 from flyopt.io.design_section import read_design
 from flyopt.io.engine_section import read_engine
-from flyopt.io.fields import Table, check_magnitude
+from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_magnitude
 from flyopt.io.material_section import read_materials
 from flyopt.io.member_section import read_mechanism, read_members, with_engine
 from flyopt.io.shaft_section import read_efficiency, read_shafts, reference_efficiency
@@ -40,10 +40,6 @@ if TYPE_CHECKING:
     from flyopt.machine.kinematics import GearTrain, SliderCrank
     from flyopt.machine.mechanism import Member
 
-
-SPEED_RANGE = (1e-6, 1e6)
-"""Allowed machine.speed [rad/s]: 1e6 rad/s is about 9.5 million rpm; beyond either end ω² and the energies overflow."""
-SPEED_WHY = "about 1e-5 to 9.5 million rpm, beyond any machine a flywheel regulates"
 
 MIN_DELTA = 1e-6
 """Smallest machine.delta: the inertia grows as 1/δ (1/300 is a tight generator)."""
