@@ -14,6 +14,7 @@ from flyopt.cycle.torque import PiecewiseLinear
 from flyopt.errors import SceneError, shorten
 from flyopt.io.csv_table import csv_table
 from flyopt.io.fields import scaled
+from flyopt.io.input_files import check_rows
 from flyopt.io.toml_file import InlineRows
 
 if TYPE_CHECKING:
@@ -42,6 +43,7 @@ def angle_curve(
     label = label or dimension
     if not isinstance(raw, (list, InlineRows)) or len(raw) < 2:
         raise SceneError(where, f"must be a list of at least two [angle, {label}] pairs")
+    check_rows(len(raw), where)
     if isinstance(raw, InlineRows):  # plain finite numbers: what scaled gives each, float(x) * unit
         angles = raw.array[:, 0] * angle_unit
         values = raw.array[:, 1] * unit

@@ -11,7 +11,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
-from flyopt.errors import SceneError, clip, shorten
+from flyopt.errors import SceneError, clip
+from flyopt.io.input_files import check_rows, inside_scene, quote_from_file, read_input
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -30,6 +31,7 @@ def csv_table(
     where : str
         The field, for messages.
     files : Path
+        The scene file's folder: the file must be inside it (see :func:`~flyopt.io.input_files.inside_scene`).
     columns, units : tuple of str
         What the two columns hold and their units as written (for messages).
 
@@ -41,21 +43,10 @@ def csv_table(
     name : str
         The file as messages name it.
     """
-    if not isinstance(raw, str) or not raw.strip():
-        raise SceneError(where, f"must be the name of a CSV file (a string), got {shorten(raw)}")
-    path = files / raw
+    path = inside_scene(raw, where, files, "CSV file")
     name = clip(str(path))
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as err:
-        reason = (
-            err.strerror
-            if isinstance(err, OSError) and err.strerror
-            else "not UTF-8 text"
-            if isinstance(err, UnicodeDecodeError)
-            else str(err)
-        )
-        raise SceneError(where, f"cannot read {name}: {reason}") from None
+    text = read_input(path, where, name, encoding="utf-8-sig")
+    check_rows(text.count("\n") + 1, where, name)
     numbers, lines = read_csv(text, where, name, columns, units)
     return numbers, lines, name
 
@@ -117,7 +108,7 @@ def read_csv_lines(
             raise SceneError(
                 where,
                 f"{name} line {number}: expected 2 columns, {columns[0]} and {columns[1]} separated by "
-                f"a comma, got {len(fields)}: {shorten(stripped)}",
+                f"a comma, got {len(fields)}: {quote_from_file(stripped)}",
             )
         row = []
         for k, text in enumerate(fields):
@@ -126,13 +117,13 @@ def read_csv_lines(
             except ValueError:
                 raise SceneError(
                     where,
-                    f"{name} line {number}, column {k + 1}: {shorten(text.strip())} is not a "
+                    f"{name} line {number}, column {k + 1}: {quote_from_file(text.strip())} is not a "
                     f"number (allowed: {allowed[k]})",
                 ) from None
             if not math.isfinite(value):
                 raise SceneError(
                     where,
-                    f"{name} line {number}, column {k + 1}: {shorten(text.strip())} is not "
+                    f"{name} line {number}, column {k + 1}: {quote_from_file(text.strip())} is not "
                     f"finite (allowed: {allowed[k]})",
                 )
             row.append(value)

@@ -6,8 +6,8 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table
-from flyopt.names import hint, unknown
+from flyopt.io.fields import Table, check_magnitude
+from flyopt.names import Geometry, hint, unknown
 from flyopt.units import quantity
 
 if TYPE_CHECKING:
@@ -16,6 +16,9 @@ if TYPE_CHECKING:
     from flyopt.design.materials import Material
     from flyopt.design.spec import DesignSpec
     from flyopt.machine.transmission import Shaft
+
+LENGTH_RANGE = (1e-6, 1e3)
+"""Allowed lengths of the [design] envelope and walls [m]; beyond them the wheel's powers of length overflow."""
 
 
 def read_design(
@@ -73,6 +76,7 @@ def read_design(
             value = table.quantity(key, "length", required=True)
             if value <= 0:
                 raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
+            check_magnitude(value, f"design.{key}", table.raw(key), *LENGTH_RANGE, "m", "a micron to a kilometre")
             options[key] = value
     if table.has("bore"):
         value = table.quantity("bore", "length", required=True)
@@ -127,7 +131,36 @@ def read_design(
         spec = DesignSpec(**options)
     except ValueError as err:
         raise SceneError("design", str(err)) from None
+    if spec.min_wall is not None:
+        _check_min_wall(spec, table)
     return spec, names, shaft_names
+
+
+def _check_min_wall(spec, table):
+    """Refuse a ``min_wall`` that does not fit in the envelope (the design would start from negative walls).
+
+    Every section is at least ``min_wall`` thick: the rim's width must fit in
+    ``max_width``, and across the radius, from the bore to the outer
+    diameter, lie one wall (a disc, a rim) or two (the rim and the hub of a
+    rim_web or rim_arms wheel).
+    """
+    wall, raw = spec.min_wall, shorten(table.raw("min_wall"))
+    if wall >= spec.max_width:
+        raise SceneError(
+            "design.min_wall",
+            f"{raw} does not fit in max_width {shorten(table.raw('max_width'))} "
+            "(allowed: a wall thinner than the wheel's widest width)",
+        )
+    walls = 2 if spec.geometry in (Geometry.RIM_WEB, Geometry.RIM_ARMS) else 1
+    room = (spec.max_outer_diameter - (spec.bore or 0.0)) / 2
+    if walls * wall >= room:
+        across = "the radius" if not spec.bore else "the radius outside the bore"
+        raise SceneError(
+            "design.min_wall",
+            f"{raw} does not fit in max_outer_diameter {shorten(table.raw('max_outer_diameter'))}: "
+            f"{'the rim and the hub, each' if walls == 2 else 'a section'} at least min_wall thick, "
+            f"must lie across {across}, {room:.6g} m (allowed: below {room / walls:.6g} m)",
+        )
 
 
 def _name_list(table, key, known, what):

@@ -34,7 +34,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table
+from flyopt.io.fields import Table, check_magnitude
+from flyopt.io.shaft_section import RATIO_RANGE
 from flyopt.machine.catalogue import QUANTITIES, REQUIRED, TEXTS, Catalogue, CatalogueMotor, MotorDataError, catalogue
 from flyopt.units import quantity
 
@@ -231,6 +232,10 @@ def _ratios(table):
             raise SceneError("drive.ratio", f"must be a range of positive ratios 0 < min < max, got {shorten(raw)}")
         if not low < high:
             raise SceneError("drive.ratio", f"must be a range 0 < min < max (min first), got {shorten(raw)}")
+        for k, value in enumerate((low, high)):
+            check_magnitude(
+                value, f"drive.ratio[{k}]", raw[k], *RATIO_RANGE, "", "the range of a [[shaft]] speed_ratio"
+            )
         return (low, high), None
     if "ratios" in table:
         raw = table["ratios"]
@@ -243,6 +248,7 @@ def _ratios(table):
             r = quantity(v, "dimensionless", f"drive.ratios[{k}]")
             if not r > 0:
                 raise SceneError(f"drive.ratios[{k}]", f"must be a positive ratio, got {shorten(v)}")
+            check_magnitude(r, f"drive.ratios[{k}]", v, *RATIO_RANGE, "", "the range of a [[shaft]] speed_ratio")
             if r in ratios:
                 raise SceneError(f"drive.ratios[{k}]", f"the ratio {shorten(v)} is given twice")
             ratios.append(r)

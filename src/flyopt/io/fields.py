@@ -81,3 +81,19 @@ class Table:
                 raise SceneError(self._path(key), "is missing")
             return default
         return quantity(self.data[key], dimension, self._path(key))
+
+
+SPEED_RANGE = (1e-6, 1e6)
+"""Allowed machine.speed (and a press's crank speed) [rad/s]: 1e6 rad/s is about 9.5 million rpm; beyond
+either end ω² and the energies overflow."""
+SPEED_WHY = "about 1e-5 to 9.5 million rpm, beyond any machine a flywheel regulates"
+
+
+def check_magnitude(value: float, where: str, raw: object, low: float, high: float, unit: str, why: str) -> None:
+    """Refuse a positive ``value`` outside ``[low, high]`` (SI, in ``unit``): beyond them the computation overflows.
+
+    ``why`` says what the bounds are (documented in README's Limits).
+    """
+    if not low <= value <= high:
+        unit = f" {unit}" if unit else ""
+        raise SceneError(where, f"{shorten(raw)} is out of range (allowed: {low:g} to {high:g}{unit}; {why})")

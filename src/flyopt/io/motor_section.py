@@ -10,6 +10,7 @@ import numpy as np
 from flyopt.errors import SceneError, shorten
 from flyopt.io.csv_table import csv_table
 from flyopt.io.fields import Table, scaled, unit_factor
+from flyopt.io.input_files import check_rows
 from flyopt.io.toml_file import InlineRows
 
 if TYPE_CHECKING:
@@ -109,6 +110,7 @@ def _motor_table(table, where, files):
             raise SceneError(
                 field_name, "must be a list of at least two [speed, torque] pairs, from rest to the no-load speed"
             )
+        check_rows(len(raw), field_name)
         if isinstance(raw, InlineRows):
             speeds, torques = raw.array[:, 0] * speed_unit, raw.array[:, 1] * unit
         else:

@@ -29,7 +29,8 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, scaled
+from flyopt.io.fields import SPEED_RANGE, Table, scaled
+from flyopt.io.input_files import check_rows
 from flyopt.machine import press as physics
 from flyopt.units import quantity
 
@@ -125,6 +126,10 @@ def scene_data(data: Mapping[str, Any]) -> dict[str, Any]:
 # -- the crank and the working stroke ---------------------------------------------
 
 
+MIN_WORKING_ANGLE = 1e-6
+"""Shortest working stroke [rad of the crank]: a shorter one is a step the cycle cannot resolve."""
+
+
 def _crank(press):
     """(the key given, the crank's mean speed [rad/s], the stroke period [s])."""
     key = _one_of(
@@ -141,6 +146,7 @@ def _crank(press):
                 f"must be positive (strokes a minute, one crank turn each), got {shorten(press[key])}",
             )
         omega = physics.crank_speed(strokes)
+        _check_crank_speed(omega, "press.strokes_per_minute", press[key])
         return key, omega, physics.stroke_period(omega)
     period = _time(press[key], "press.stroke_period")
     if period <= 0:
@@ -148,7 +154,20 @@ def _crank(press):
             "press.stroke_period",
             f"must be positive (the time of one stroke, one crank turn), got {shorten(press[key])}",
         )
-    return key, physics.crank_speed_of_period(period), period
+    omega = physics.crank_speed_of_period(period)
+    _check_crank_speed(omega, "press.stroke_period", press[key])
+    return key, omega, period
+
+
+def _check_crank_speed(omega, where, raw):
+    """Refuse a stroke rate whose crank speed is outside the machine speeds flyopt computes (machine.speed's range)."""
+    low, high = SPEED_RANGE
+    if not low <= omega <= high:
+        raise SceneError(
+            where,
+            f"{shorten(raw)} makes the crank turn at {omega:.3g} rad/s (allowed: {low:g} to {high:g} rad/s, "
+            "the range of machine.speed)",
+        )
 
 
 def _working_angle(press, period):
@@ -167,12 +186,19 @@ def _working_angle(press, period):
                 "press.working_time",
                 f"must be positive and shorter than the stroke period ({period:.6g} s), got {shorten(press[key])}",
             )
-        return physics.working_angle(time, period)
+        angle = physics.working_angle(time, period)
+        if angle < MIN_WORKING_ANGLE:
+            raise SceneError(
+                "press.working_time",
+                f"{shorten(press[key])} is {angle:.3g} rad of the crank (allowed: at least "
+                f"{MIN_WORKING_ANGLE:g} rad, {MIN_WORKING_ANGLE / physics.TURN:g} of the stroke period)",
+            )
+        return angle
     angle = _number(press, key, "angle")
-    if not 0 < angle < physics.TURN:
+    if not MIN_WORKING_ANGLE <= angle < physics.TURN:
         raise SceneError(
             "press.working_angle",
-            f"must lie between 0 and 360 deg (exclusive: one crank turn is "
+            f"must lie between {MIN_WORKING_ANGLE:g} rad and 360 deg (exclusive: one crank turn is "
             f"the whole stroke), got {shorten(press[key])}",
         )
     return angle
@@ -257,6 +283,7 @@ def _force_table(press):
     position_unit = _unit(press, "position_unit", "length")
     force_unit = _unit(press, "force_unit", "force")
     if hasattr(raw, "array"):  # a large table read without tomllib (flyopt.io.toml_file.InlineRows)
+        check_rows(len(raw), where)
         raw = raw.array.tolist()
     if not isinstance(raw, list) or len(raw) < 2:
         raise SceneError(
@@ -264,6 +291,7 @@ def _force_table(press):
             "must be a list of at least two [position, force] pairs over the working stroke, "
             'e.g. [["0 mm", "0 kN"], ["20 mm", "660 kN"]]',
         )
+    check_rows(len(raw), where)
     positions, forces = [], []
     for k, pair in enumerate(raw):
         if not isinstance(pair, list) or len(pair) != 2:

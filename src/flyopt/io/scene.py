@@ -22,7 +22,7 @@ from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import ANGLE_TOLERANCE
 from flyopt.io.design_section import read_design
 from flyopt.io.engine_section import read_engine
-from flyopt.io.fields import Table
+from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_magnitude
 from flyopt.io.material_section import read_materials
 from flyopt.io.member_section import read_mechanism, read_members, with_engine
 from flyopt.io.shaft_section import read_efficiency, read_shafts, reference_efficiency
@@ -39,6 +39,13 @@ if TYPE_CHECKING:
     from flyopt.machine.engine import Engine
     from flyopt.machine.kinematics import GearTrain, SliderCrank
     from flyopt.machine.mechanism import Member
+
+
+MIN_DELTA = 1e-6
+"""Smallest machine.delta: the inertia grows as 1/δ (1/300 is a tight generator)."""
+
+MAX_TITLE_LENGTH = 200
+"""Longest scene title [characters]: it heads every report, plot and table."""
 
 
 @dataclass(frozen=True)
@@ -196,6 +203,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     omega = machine.quantity("speed", "angular_speed", required=True)
     if omega <= 0:
         raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
+    check_magnitude(omega, "machine.speed", machine.raw("speed"), *SPEED_RANGE, "rad/s", SPEED_WHY)
     delta = machine.quantity("delta", "dimensionless", required=True)
     if not 0 < delta < 2:
         raise SceneError(
@@ -203,6 +211,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             f"must lie between 0 and 2 (exclusive), got {shorten(machine.raw('delta'))}; "
             "typical values are 1/5 (crushers) to 1/300 (AC generators)",
         )
+    check_magnitude(delta, "machine.delta", machine.raw("delta"), MIN_DELTA, 2, "", "a smaller one cannot be computed")
     if machine.has("inertia") and machine.has("gd2"):
         raise SceneError("machine.gd2", "give either machine.inertia or machine.gd2, not both")
     j_c = machine.quantity("inertia", "inertia", default=0.0)
@@ -269,6 +278,11 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     title = top.get("title", "")
     if not isinstance(title, str):
         raise SceneError("title", f"must be a string, got {shorten(title)}")
+    if len(title) > MAX_TITLE_LENGTH:
+        raise SceneError(
+            "title",
+            f"is {len(title)} characters long (allowed: at most {MAX_TITLE_LENGTH}; a longer text belongs in description)",
+        )
     return Scene(
         title=title or (Path(source).stem if source else "scene"),
         omega_mean=omega,

@@ -6,12 +6,15 @@ import math
 from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table
+from flyopt.io.fields import Table, check_magnitude
 from flyopt.machine.transmission import Shaft
 from flyopt.units import inertia_from_gd2, quantity
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
+
+RATIO_RANGE = (1e-6, 1e6)
+"""Allowed speed ratio ω_shaft/ω_reference of a [[shaft]]: inertias scale as its square, beyond it they overflow."""
 
 
 def read_shafts(raw: object) -> tuple[Shaft, ...]:
@@ -33,6 +36,14 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
         ratio = table.quantity("speed_ratio", "dimensionless", required=True)
         if ratio <= 0:
             raise SceneError(f"{where}.speed_ratio", f"must be positive (ω_shaft/ω_reference), got {shorten(ratio)}")
+        check_magnitude(
+            ratio,
+            f"{where}.speed_ratio",
+            table.raw("speed_ratio"),
+            *RATIO_RANGE,
+            "",
+            "ω_shaft/ω_reference of a gear train",
+        )
         eff = read_efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
         diameter = table.quantity("diameter", "length")
         if diameter is not None and diameter <= 0:

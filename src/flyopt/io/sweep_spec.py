@@ -68,7 +68,8 @@ __all__ = [
     "load_sweep",
 ]
 
-from flyopt._toml import tomllib
+from flyopt.io.input_files import inside_scene
+from flyopt.io.toml_file import read_toml
 from flyopt.names import closest
 
 # --------------------------------------------------------------------------
@@ -653,12 +654,7 @@ def load_sweep(path: str | os.PathLike[str]) -> tuple[Scene, dict[str, Any]]:
     from flyopt.io.scene import from_dict
 
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as err:
-        raise SceneError("", f"cannot read the file: {err}", str(path)) from None
-    except tomllib.TOMLDecodeError as err:
-        raise SceneError("", f"not valid TOML: {err}", str(path)) from None
+    data = read_toml(path)  # the reading of flyopt.io.scene.load: regular files within the caps only
     table = data.pop("sweep", {})
     try:
         scene = from_dict(data, source=str(path))
@@ -672,6 +668,8 @@ def load_sweep(path: str | os.PathLike[str]) -> tuple[Scene, dict[str, Any]]:
             )
         options = {k: v for k, v in table.items() if k != "description"}
         check_options(options, "sweep")
+        if options.get("output") is not None:  # written where the scene's author says: inside its folder
+            inside_scene(options["output"], "sweep.output", path.parent, "output file")
         vary = options.pop("vary", {})
         if not isinstance(vary, dict):
             raise SceneError("sweep.vary", "must be a table of FIELD = VALUES")

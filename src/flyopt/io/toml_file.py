@@ -16,6 +16,7 @@ import numpy.typing as npt
 
 from flyopt._toml import tomllib
 from flyopt.errors import SceneError, clip
+from flyopt.io.input_files import read_input
 
 if TYPE_CHECKING:
     import os
@@ -41,15 +42,12 @@ def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
     Raises
     ------
     SceneError
-        The file cannot be read or is not TOML (the message names the file).
+        The file cannot be read (not a regular file, over the size cap of
+        :func:`~flyopt.io.input_files.max_file_bytes`) or is not TOML (the
+        message names the file).
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as err:
-        raise SceneError(
-            "", f"cannot read the file: {err.strerror if hasattr(err, 'strerror') and err.strerror else err}", str(path)
-        ) from None
+    text = read_input(path, "", "the file", source=str(path))
     try:
         return parse_toml(text)
     except tomllib.TOMLDecodeError as err:

@@ -1,0 +1,189 @@
+"""The files a scene reads: where they may be, what they may be, and how large.
+
+A file named inside a scene (``points_file``, ``pressure_file``, a member's
+``force_file``, ``[sweep] output``, ...) is relative to the scene file's
+folder and must stay inside it once symbolic links are resolved: a scene
+from elsewhere cannot read ``/etc/shadow`` nor write over ``../../x``. A path
+given on the command line is the user's own and may go anywhere.
+
+Every input (the scene file itself and each file it names) must be a regular
+file (not a folder, FIFO or device such as ``/dev/zero``) of at most
+:func:`max_file_bytes` bytes, checked before a byte is read; a table holds at
+most :func:`max_table_rows` rows. Both limits are raised by an environment
+variable (``FLYOPT_MAX_FILE_BYTES``, ``FLYOPT_MAX_TABLE_ROWS``), read here only.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+from pathlib import Path
+
+from flyopt.errors import SceneError, clip, shorten
+
+MAX_FILE_BYTES = 100_000_000
+"""Default largest input file [bytes] (100 MB); ``FLYOPT_MAX_FILE_BYTES`` raises it."""
+
+MAX_TABLE_ROWS = 2_000_000
+"""Default largest table [rows], inline or in a CSV file; ``FLYOPT_MAX_TABLE_ROWS`` raises it."""
+
+FILE_BYTES_VARIABLE = "FLYOPT_MAX_FILE_BYTES"
+TABLE_ROWS_VARIABLE = "FLYOPT_MAX_TABLE_ROWS"
+
+QUOTE_FROM_FILE = 40
+"""Longest quotation of a data file's text (a cell, a line) in a message [characters]."""
+
+
+def max_file_bytes() -> int:
+    """The largest input file [bytes]: ``FLYOPT_MAX_FILE_BYTES``, or :data:`MAX_FILE_BYTES`."""
+    return _limit(FILE_BYTES_VARIABLE, MAX_FILE_BYTES)
+
+
+def max_table_rows() -> int:
+    """The largest table [rows]: ``FLYOPT_MAX_TABLE_ROWS``, or :data:`MAX_TABLE_ROWS`."""
+    return _limit(TABLE_ROWS_VARIABLE, MAX_TABLE_ROWS)
+
+
+def _limit(variable: str, default: int) -> int:
+    text = os.environ.get(variable, "").strip()
+    if not text:
+        return default
+    try:
+        value = int(text.replace("_", ""))
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise SceneError(
+            "", f"the environment variable {variable} must be a whole number of at least 1, got {shorten(text)}"
+        )
+    return value
+
+
+def quote_from_file(text: str) -> str:
+    """A piece of a data file (a cell, a line) as a message may quote it: at most 40 characters."""
+    return shorten(text, QUOTE_FROM_FILE)
+
+
+def inside_scene(raw: object, where: str, folder: Path, what: str = "file") -> Path:
+    """The path a scene field names, relative to the scene's ``folder`` and kept inside it.
+
+    Parameters
+    ----------
+    raw : object
+        The field's value as written (a relative path).
+    where : str
+        The field, for messages (``torque.resisting.points_file``).
+    folder : Path
+        The folder of the scene file.
+    what : str
+        What the field names, for messages ("CSV file", "output file").
+
+    Returns
+    -------
+    Path
+        ``folder / raw``, as written (not resolved), for reading or writing.
+
+    Raises
+    ------
+    SceneError
+        Not a non-empty string, a NUL in it, an absolute path, or a path
+        that leaves ``folder`` once ``..`` and symbolic links are resolved.
+    """
+    if not isinstance(raw, str) or not raw.strip():
+        raise SceneError(where, f"must be the name of a {what} (a string), got {shorten(raw)}")
+    allowed = "allowed: a path relative to the scene file's folder that stays inside it"
+    if "\0" in raw:
+        raise SceneError(where, f"{shorten(raw)} holds a NUL character ({allowed})")
+    if os.path.isabs(raw) or raw.startswith("~"):
+        raise SceneError(where, f"{shorten(raw)} is not relative to the scene file's folder ({allowed})")
+    path = folder / raw
+    try:
+        root = folder.resolve()
+        target = path.resolve()
+    except (OSError, RuntimeError) as err:  # a loop of symbolic links
+        raise SceneError(where, f"cannot resolve {shorten(raw)}: {getattr(err, 'strerror', None) or err}") from None
+    if not target.is_relative_to(root):
+        raise SceneError(where, f"{shorten(raw)} leads outside the scene file's folder ({allowed})")
+    return path
+
+
+def read_input(path: Path, where: str, name: str, encoding: str = "utf-8", source: str | None = None) -> str:
+    """The text of an input file, refused before reading unless it is a regular file within the size cap.
+
+    The file is opened without blocking (a FIFO returns at once) and checked
+    on its open descriptor: a regular file of at most :func:`max_file_bytes`
+    bytes; then at most that many bytes are read (a file growing meanwhile is
+    refused too).
+
+    Parameters
+    ----------
+    path : Path
+    where : str
+        The field that names the file ("" for the scene file itself).
+    name : str
+        The file as messages name it ("the file" for the scene file).
+    encoding : str
+    source : str, optional
+        The scene file, for the message.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    SceneError
+        ``cannot read NAME: REASON``: it cannot be opened, is not a regular
+        file, is over the size cap, or is not text in ``encoding``.
+    """
+
+    def refuse(reason: str) -> SceneError:
+        return SceneError(where, f"cannot read {name}: {reason}", source)
+
+    limit = max_file_bytes()
+    try:
+        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
+    except ValueError:  # a NUL in the path
+        raise refuse("not a file name (it holds a NUL character)") from None
+    except OSError as err:
+        raise refuse(err.strerror or type(err).__name__) from None
+    try:
+        info = os.fstat(descriptor)
+        if not stat.S_ISREG(info.st_mode):
+            raise refuse(f"{_kind(info.st_mode)} (allowed: a regular file)")
+        if info.st_size > limit:
+            raise refuse(f"{info.st_size} bytes, over the limit of {limit} ({_raise_it(FILE_BYTES_VARIABLE)})")
+        with os.fdopen(descriptor, "rb", closefd=False) as handle:
+            data = handle.read(limit + 1)
+    except OSError as err:
+        raise refuse(err.strerror or type(err).__name__) from None
+    finally:
+        os.close(descriptor)
+    if len(data) > limit:
+        raise refuse(f"over the limit of {limit} bytes ({_raise_it(FILE_BYTES_VARIABLE)})")
+    try:
+        return data.decode(encoding)
+    except UnicodeDecodeError:
+        raise refuse("not UTF-8 text" if encoding.lower().startswith("utf") else f"not {encoding} text") from None
+
+
+def check_rows(count: int, where: str, name: str = "the table") -> None:
+    """Refuse a table of more than :func:`max_table_rows` rows (``count`` counted, or bounded, before parsing)."""
+    limit = max_table_rows()
+    if count > limit:
+        raise SceneError(
+            where, f"{clip(name)} has over {limit} rows (allowed: at most {limit}; {_raise_it(TABLE_ROWS_VARIABLE)})"
+        )
+
+
+def _raise_it(variable: str) -> str:
+    return f"the environment variable {variable} raises it"
+
+
+def _kind(mode: int) -> str:
+    """What a file that is not a regular file is, as a refusal says it."""
+    if stat.S_ISDIR(mode):
+        return "Is a directory"  # the words of the system's own error for a folder
+    kinds = ((stat.S_ISFIFO, "FIFO"), (stat.S_ISCHR, "device"), (stat.S_ISBLK, "device"), (stat.S_ISSOCK, "socket"))
+    kind = next((name for test, name in kinds if test(mode)), "special file")
+    return f"not a regular file but a {kind}"
