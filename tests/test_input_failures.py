@@ -272,3 +272,42 @@ def test_a_torque_with_a_pole_is_refused_naming_the_field(cli, write_scene, comm
         "torque.driving.expression",
         rf"the expression has a pole near φ = {near} rad .*\|M\| grows without bound",
     )
+
+
+def _string_fields(document, path=()):
+    """The paths of every string value of a TOML document (tables and lists of tables walked)."""
+    if isinstance(document, dict):
+        for key, value in document.items():
+            yield from _string_fields(value, (*path, key))
+    elif isinstance(document, list) and document and all(isinstance(v, dict) for v in document):
+        for k, value in enumerate(document):
+            yield from _string_fields(value, (*path, k))
+    elif isinstance(document, str):
+        yield path
+
+
+@pytest.mark.parametrize("scene_name", [p.name for p in sorted(PROBLEMS.glob("*.toml"))])
+@pytest.mark.parametrize("hostile", [[1, 2, 3], {"a": 1}], ids=["list", "table"])
+def test_a_list_or_table_where_a_text_belongs_is_one_line_exit_2(cli, tmp_path, scene_name, hostile):
+    """Issue 25, item 6: a list for torque.driving.motor.kind ended in a TypeError traceback (exit 1):
+    an unhashable value met a dictionary of names. Every text field of these scenes, given a list
+    or a table, is refused in one line with exit 2 by check (which reads what solve reads)."""
+    import sys
+
+    sys.path.insert(0, str(PROBLEMS.parent / "tools"))
+    from hostile import toml_text
+
+    from flyopt._toml import tomllib
+
+    original = tomllib.loads((PROBLEMS / scene_name).read_text())
+    for path in _string_fields(original):
+        document = tomllib.loads((PROBLEMS / scene_name).read_text())
+        target = document
+        for key in path[:-1]:
+            target = target[key]
+        target[path[-1]] = hostile
+        scene = tmp_path / "scene.toml"
+        scene.write_text(toml_text(document))
+        run = cli("check", scene)
+        assert run.returncode == 2, (path, run.stderr)
+        assert len(run.stderr.splitlines()) == 1 and "Traceback" not in run.stderr, (path, run.stderr)

@@ -42,7 +42,7 @@ def read_engine(raw: object, files: Path = Path()) -> Engine:
         },
     )
     kind = table.require("cycle")
-    if kind not in CYCLE_ANGLES:
+    if not isinstance(kind, str) or kind not in CYCLE_ANGLES:  # a list or table is unhashable
         raise SceneError(
             "engine.cycle",
             f"{shorten(kind)} is not known{hint(kind, CYCLE_ANGLES)} (allowed: '4-stroke', a cycle of 720 deg, or '2-stroke', 360 deg)",

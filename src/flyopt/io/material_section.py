@@ -93,14 +93,16 @@ def read_materials(raw: object) -> tuple[Material, ...]:
             from flyopt.design.hub import hub_rules
 
             rule = table.get("hub_rule")
-            if rule not in hub_rules():
+            if not isinstance(rule, str) or rule not in hub_rules():
                 raise SceneError(
                     f"{where}.hub_rule", f"{shorten(rule)} is not a hub rule (allowed: {', '.join(hub_rules())})"
                 )
             values["hub_rule"] = rule
         source = table.get("source", "scene file")
+        if not isinstance(source, str):
+            raise SceneError(f"{where}.source", f"must be text (where the values come from), got {shorten(source)}")
         try:
-            materials.append(make_material(name, source=str(source), **values))
+            materials.append(make_material(name, source=source, **values))
         except ValueError as err:
             raise SceneError(where, str(err)) from None
     return tuple(materials)

@@ -35,7 +35,7 @@ def read_motor(
     if not isinstance(raw, dict):
         raise SceneError(where, 'must be a table, e.g. { kind = "induction", rated_power = "7.5 kW", ... }')
     kind = raw.get("kind")
-    if kind not in kinds:
+    if not isinstance(kind, str) or kind not in kinds:  # a list or table is unhashable: refuse it as unknown
         raise SceneError(f"{where}.kind", f"{shorten(kind)} is not known (allowed: induction, dc, table)")
     table = Table(raw, where, kinds[kind])
     speed_ratio = 1.0
