@@ -127,3 +127,12 @@ class Interrupted(FlyoptError, RuntimeError):
     What was finished is kept; the message says how to continue (``--resume``).
     The command line exits with status 130 for a user's interrupt.
     """
+
+
+class OutputError(FlyoptError, OSError):
+    """An output file could not be written (disk full, no permission, a read-only file system).
+
+    Not bad input: the scene and the options were fine. The message names the
+    file that could not be written; nothing is left under its name. The
+    command line exits with status 5.
+    """

@@ -105,3 +105,85 @@ def test_quiet_leaves_the_result_and_nothing_else(tmp_path, capsys):
     assert main(["solve", scene, "-q"]) == 0 and "A_max" in capsys.readouterr().out
     assert main(["sweep", scene, "--vary", "delta=0.02,0.05", "-o", str(tmp_path / "t.csv")]) == 0
     assert "flyopt sweep: wrote" in capsys.readouterr().err  # and without --quiet, the summary
+
+
+# --------------------------------------------------------------------------
+# Issue 25, item 1: -o replaces only a regular file; a link is followed
+# --------------------------------------------------------------------------
+
+SHEAR = PROBLEMS / "shear-press.toml"
+COMMANDS = {
+    "solve": ["solve", str(SHEAR), "--json", "-o"],
+    "report": ["report", str(SHEAR), "-o"],
+    "plot": ["plot", str(SHEAR), "--what", "turning_moment", "-o"],
+    "tradeoff": ["tradeoff", str(SHEAR), "-o"],
+}
+SUFFIX = {"solve": ".json", "report": ".html", "plot": ".svg", "tradeoff": ".csv"}
+
+
+def _device(path):
+    """A character device with /dev/null's numbers, made in the test's folder (never the machine's own)."""
+    import os
+    import stat
+
+    os.mknod(path, 0o666 | stat.S_IFCHR, os.makedev(1, 3))
+
+
+@pytest.mark.parametrize("command", list(COMMANDS))
+@pytest.mark.parametrize("kind", ["device", "folder", "fifo"])
+def test_an_output_that_is_not_a_regular_file_is_refused(tmp_path, capsys, command, kind):
+    """`flyopt solve ... --json -o /dev/full` run as root turned /dev/full into a JSON file; a folder or
+    a FIFO at -o was renamed over or hung. Each is refused in one line, exit 2, and left as it was."""
+    import os
+    import stat
+
+    out = tmp_path / f"out{SUFFIX[command]}"
+    if kind == "device":
+        if os.geteuid() != 0:
+            pytest.fail("making a device node needs root (this test's machine runs as root)")
+        _device(out)
+    elif kind == "folder":
+        out.mkdir()
+    else:
+        os.mkfifo(out)
+    mode = os.lstat(out).st_mode
+    assert main([*COMMANDS[command], str(out)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and f"is a {kind if kind != 'fifo' else 'FIFO'}" in err, err
+    assert os.lstat(out).st_mode == mode and stat.S_IFMT(mode) != stat.S_IFREG
+    assert sorted(p.name for p in tmp_path.iterdir()) == [out.name]  # no temporary left beside it
+
+
+@pytest.mark.parametrize("command", list(COMMANDS))
+def test_an_output_that_is_a_link_writes_its_target(tmp_path, capsys, command):
+    """A symlink at -o was replaced by a file; it is followed, its target written, the link kept."""
+    target = tmp_path / "real" / f"target{SUFFIX[command]}"
+    target.parent.mkdir()
+    target.write_text("old")
+    link = tmp_path / f"out{SUFFIX[command]}"
+    link.symlink_to(target)
+    assert main([*COMMANDS[command], str(link)]) == 0
+    capsys.readouterr()
+    assert link.is_symlink() and link.resolve() == target
+    assert target.stat().st_size > 3 and target.read_bytes()[:3] != b"old"
+    assert sorted(p.name for p in target.parent.iterdir()) == [target.name]
+
+
+def test_a_disk_that_fills_up_is_its_own_exit_status_naming_the_file(tmp_path, capsys, monkeypatch):
+    """A full disk was reported as bad input (exit 2) naming the scene; it is status 5, the line
+    names the file that could not be written, and nothing is left under its name."""
+    import errno
+    import os
+
+    real_replace = os.replace
+
+    def full(src, dst):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(dst))
+
+    monkeypatch.setattr(os, "replace", full)
+    out = tmp_path / "out.json"
+    assert main(["solve", str(SHEAR), "--json", "-o", str(out)]) == 5
+    err = capsys.readouterr().err
+    assert err.splitlines() == [f"flyopt: error: {out}: cannot be written: No space left on device"]
+    monkeypatch.setattr(os, "replace", real_replace)
+    assert list(tmp_path.iterdir()) == []

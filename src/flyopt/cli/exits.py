@@ -12,6 +12,9 @@ status      meaning
 3           infeasible: no material and shaft can give the inertia
 4           verification flagged: the simulation finds the design misses
             the allowed δ
+5           an output could not be written (disk full, no permission, a
+            read-only file system): one line naming the file; nothing is
+            left under its name
 130         interrupted (Ctrl-C, or a sweep that lost its workers); what
             was finished is kept and ``--resume`` continues
 141         stdout was closed early (``flyopt solve ... | head``): the
@@ -31,7 +34,7 @@ import sys
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from flyopt.errors import ExpressionError, FlyoptError, Interrupted, NonPeriodicCycle, SceneError
+from flyopt.errors import ExpressionError, FlyoptError, Interrupted, NonPeriodicCycle, OutputError, SceneError
 
 if TYPE_CHECKING:
     from flyopt.pipeline import Solution
@@ -41,6 +44,7 @@ EXIT_FAILED = 1
 EXIT_INPUT = 2
 EXIT_INFEASIBLE = 3
 EXIT_FLAGGED = 4
+EXIT_OUTPUT = 5
 EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141
 
@@ -101,6 +105,8 @@ def status_of(err: BaseException, where: str | None) -> int:
         return fail(f"{prefix}{err}", EXIT_INTERRUPTED)
     if isinstance(err, KeyboardInterrupt):
         return fail(f"{prefix}interrupted", EXIT_INTERRUPTED)
+    if isinstance(err, OutputError):
+        return fail(f"{err.filename}: {err.strerror}", EXIT_OUTPUT)
     if isinstance(err, OSError):
         name = f"{err.filename}: " if getattr(err, "filename", None) else prefix
         return fail(f"{name}{err.strerror or err}", EXIT_INPUT)

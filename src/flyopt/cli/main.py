@@ -82,7 +82,8 @@ def _parser() -> argparse.ArgumentParser:
         prog="flyopt",
         description="Flywheel design for speed regulation.",
         epilog="exit status: 0 ok, 1 solver failed or design failed its check, 2 bad input, "
-        "3 infeasible, 4 verification flagged, 130 interrupted, 141 stdout closed early "
+        "3 infeasible, 4 verification flagged, 5 an output could not be written, 130 interrupted, "
+        "141 stdout closed early "
         "(see flyopt.cli.exits)",
     )
     parser.add_argument("--version", action=_Version)

@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING, Any, Literal, TextIO
 import numpy as np
 
 from flyopt.errors import SceneError
-from flyopt.outputs.files import check_folder, replace_atomically, write_text
+from flyopt.outputs.files import check_folder, move_into_place, replace_atomically, write_text
 from flyopt.outputs.quantities import COUNTS, INPUTS, has_unit
 
 if TYPE_CHECKING:
@@ -413,7 +413,7 @@ class ResultWriter:
                 self._file = None
                 if self._file_metadata() is not None:
                     sidecar = _write_sidecar(self.path, self._file_metadata())
-            os.replace(self.temporary, self.path)
+            move_into_place(self.temporary, self.path, "output")
         except BaseException:
             if sidecar is not None:
                 sidecar.unlink(missing_ok=True)

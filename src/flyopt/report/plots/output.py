@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -31,12 +30,12 @@ def check_output(path: str | os.PathLike[str]) -> None:
         Field ``-o/--output``: an unsupported suffix, or a folder that does
         not exist (flyopt does not create folders the user did not ask for).
     """
+    from flyopt.outputs.files import check_folder
+
     path = Path(path)
     if path.suffix.lower().lstrip(".") not in FORMATS:
         raise SceneError("-o/--output", f"{str(path)!r} must end in .png, .svg or .pdf (the suffix picks the format)")
-    folder = path.parent
-    if not folder.is_dir():
-        raise SceneError("-o/--output", f"the folder {str(folder)!r} does not exist")
+    check_folder(path, "-o/--output")
 
 
 def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
@@ -50,20 +49,13 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
         The folder cannot be written; the error names ``path``.
     """
     check_output(path)
+    from flyopt.outputs.files import replace_atomically
+
     path = Path(path)
     suffix = path.suffix.lower().lstrip(".")
     fig = standard.figure_of(ax)
     try:
-        handle, tmp = tempfile.mkstemp(suffix=path.suffix, dir=path.parent)
-    except OSError as err:
-        standard.pyplot().close(fig)
-        raise OSError(err.errno, err.strerror, str(path)) from err
-    os.close(handle)
-    try:
-        fig.savefig(tmp, format=suffix, dpi=dpi)
-        os.replace(tmp, path)
+        replace_atomically(path, lambda tmp: fig.savefig(tmp, format=suffix, dpi=dpi))
     finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
         standard.pyplot().close(fig)
     return path
