@@ -582,3 +582,30 @@ def test_stress_plot_of_an_arms_wheel_marks_rim_and_arm_root():
     segments = [seg for coll in ax.collections if "allowable" in coll.get_label() for seg in coll.get_segments()]
     assert sorted((s[0][0], s[1][0]) for s in segments) == sorted(spans.values())
     ax.figure.clf()
+
+
+def test_text_the_font_cannot_draw_becomes_a_placeholder_not_a_warning():
+    """Issue 25, item 8: a title with control characters or emoji gave 30+ 'Glyph missing' warnings on
+    stderr (with -q too) and blanks in the figure. Every text is made drawable when a figure is drawn."""
+    from flyopt.report.plots.standard import drawable
+
+    assert drawable("Punch press, δ = 0.1, ω²") == "Punch press, δ = 0.1, ω²"  # the font has these
+    assert drawable("line one\nline two") == "line one\nline two"
+    made = drawable("a\x00b\x07c\x1bd\u202eevil \U0001f525")
+    assert made == "a\ufffdb\ufffdc\ufffdd\ufffdevil \ufffd"
+
+
+def test_a_report_of_a_scene_with_an_undrawable_title_writes_nothing_on_stderr(tmp_path):
+    import subprocess
+    import sys
+
+    text = (PROBLEMS / "slider-crank-press.toml").read_text()
+    title = next(line for line in text.splitlines() if line.startswith("title"))
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text.replace(title, 'title = "a\\u0000b\\u0007c\\u001bd\\u202eevil \\U0001f525 press"'))
+    for args in (
+        ["report", str(scene), "-o", str(tmp_path / "r.html")],
+        ["plot", str(scene), "--what", "all", "-o", f"{tmp_path}/"],
+    ):
+        run = subprocess.run([sys.executable, "-m", "flyopt", *args, "-q"], capture_output=True, text=True, timeout=300)
+        assert run.returncode == 0 and run.stderr == "", run.stderr[:500]

@@ -296,7 +296,7 @@ def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str 
         notes_in = 0.17 * note_lines + (0.15 if notes else 0.0)
         fig_w = max(width_in + front_in + 2 * margin, 7.0)
         fig_h = height_in + title_in + notes_in + 2 * margin
-        fig = plt.figure(figsize=(fig_w, fig_h))
+        fig = plt.figure(figsize=(fig_w, fig_h), FigureClass=standard.figure_class())
         x0 = (fig_w - width_in - front_in) / 2.0
         ax = fig.add_axes([x0 / fig_w, (margin + notes_in) / fig_h, width_in / fig_w, height_in / fig_h])
         if arms:

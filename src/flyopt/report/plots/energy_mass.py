@@ -98,7 +98,12 @@ def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, u
     if ax is None:
         plt = standard.pyplot()
         fig, (overview, ax) = plt.subplots(
-            1, 2, figsize=(11, 5.6), layout="constrained", gridspec_kw={"width_ratios": [1, 1.5]}
+            1,
+            2,
+            figsize=(11, 5.6),
+            layout="constrained",
+            gridspec_kw={"width_ratios": [1, 1.5]},
+            FigureClass=standard.figure_class(),
         )
     inertia, energy = standard.unit("inertia", units)[0], standard.unit("energy", units)[0]
     sj, se = (lambda v: standard.show(v, "inertia", units)), (lambda v: standard.show(v, "energy", units))

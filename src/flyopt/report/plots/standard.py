@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import os
 import textwrap
+import unicodedata
 from collections.abc import Sequence
 from types import ModuleType
-from typing import TYPE_CHECKING, overload
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -53,7 +54,55 @@ def axes(ax: Axes | None, figsize: tuple[float, float] = (9, 5.2)) -> tuple[Axes
     if ax is not None:
         return ax, False
     plt = pyplot()
-    return plt.figure(figsize=figsize, layout="constrained").add_subplot(), True
+    return plt.figure(figsize=figsize, layout="constrained", FigureClass=figure_class()).add_subplot(), True
+
+
+def figure_class() -> type[Figure]:
+    """The class of every figure flyopt makes: a matplotlib Figure whose texts are made drawable
+    (:func:`drawable`) each time it is drawn, wherever a text came from (a title, a material's or a
+    shaft's name in a legend): a character the font lacks is drawn as a placeholder instead of a
+    missing-glyph warning on stderr (and a blank), control and direction-override characters never."""
+    global _FIGURE_CLASS
+    if _FIGURE_CLASS is None:
+        from matplotlib.figure import Figure
+        from matplotlib.text import Text
+
+        class DrawableFigure(Figure):
+            def draw(self, renderer: Any) -> None:
+                for text in self.findobj(Text):
+                    shown = text.get_text()
+                    made = drawable(shown)
+                    if made != shown:
+                        text.set_text(made)
+                super().draw(renderer)
+
+        _FIGURE_CLASS = DrawableFigure
+    return _FIGURE_CLASS
+
+
+_FIGURE_CLASS: type[Figure] | None = None
+_GLYPHS: frozenset[int] | None = None
+
+
+def drawable(text: str) -> str:
+    """``text`` with every character the diagrams' font has no glyph for, and every control, format
+    (bidirectional overrides) or private-use character, replaced by U+FFFD (or ``?``)."""
+    global _GLYPHS
+    if not text or (text.isascii() and text.isprintable()):
+        return text
+    if _GLYPHS is None:
+        from matplotlib import font_manager
+        from matplotlib.ft2font import FT2Font
+
+        path = font_manager.findfont(font_manager.FontProperties())
+        _GLYPHS = frozenset(FT2Font(path).get_charmap())
+    placeholder = "\ufffd" if 0xFFFD in _GLYPHS else "?"
+    return "".join(
+        c
+        if c == "\n" or (ord(c) in _GLYPHS and unicodedata.category(c) not in ("Cc", "Cf", "Co", "Cs"))
+        else placeholder
+        for c in text
+    )
 
 
 def figure_of(ax: Axes) -> Figure:
