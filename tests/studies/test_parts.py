@@ -105,3 +105,17 @@ def test_a_second_sweep_of_a_running_sweeps_output_is_refused_naming_its_process
     first.release()
     run = subprocess.run([sys.executable, "-c", script, "resume"], capture_output=True, text=True, timeout=60)
     assert run.stdout.strip() == "taken", run
+
+
+def test_a_sweep_to_an_output_that_is_not_a_regular_file_makes_nothing(tmp_path):
+    """A FIFO at a sweep's output was refused only after the parts folder was made (and the layout
+    analysed): the folder stayed, and the next run was told to resume it. The output is checked first."""
+    import os
+
+    from flyopt.errors import SceneError
+
+    out = tmp_path / "study.csv"
+    os.mkfifo(out)
+    with pytest.raises(SceneError, match="is a FIFO"):
+        sweep(PUNCH, VARY, output=out, chunk_size=4)
+    assert [p.name for p in tmp_path.iterdir()] == ["study.csv"]
