@@ -105,4 +105,4 @@ def test_a_42crmo4_wheel_is_designed_by_stress(tmp_path):
     path.write_text(GOOD.replace('materials = ["gjs"]', 'materials = ["42crmo4_qt"]\nsafety_factor = 3'))
     best = flyopt.solve(flyopt.load(path)).design.best
     assert best is not None and best.material == "42crmo4_qt"
-    assert best.strength_safety >= 3 * (1 - 1e-6)
+    assert best.stresses.strength_safety >= 3 * (1 - 1e-6)

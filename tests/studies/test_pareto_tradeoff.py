@@ -187,9 +187,9 @@ def test_material_tradeoff_table():
         assert row["status"] == "designed" and row["shaft"] == best.shaft
         assert row["method"] == "closed_form" and row["solver_status"] == "closed_form"
         assert_allclose(row["mass"], best.mass, rtol=1e-12)
-        assert_allclose([row["d_outer"], row["rim_speed"]], [best.d_outer, best.rim_speed], rtol=1e-12)
+        assert_allclose([row["d_outer"], row["rim_speed"]], [best.dims.d_outer, best.stresses.rim_speed], rtol=1e-12)
         assert row["rim_speed_limit"] == library[row["material"]].max_rim_speed
-        assert row["limit"] == ",".join(b for b in best.binding if b != "inertia")
+        assert row["limit"] == ",".join(b for b in best.limits.binding if b != "inertia")
         assert "inertia" not in row["limit"].split(",") and row["limit"]
         assert math.isnan(row["cost"])  # the built-in materials have no cost
 
