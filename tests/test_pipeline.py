@@ -66,8 +66,8 @@ def test_user_material_and_shaft_choice():
     names = {(c.material, c.shaft) for c in solution.design.candidates}
     assert len(names) == 9 and ("ductile_iron", "motor") in names
     ductile = next(c for c in solution.design.candidates if c.material == "ductile_iron" and c.feasible)
-    assert_allclose(ductile.rim_speed_limit, math.sqrt(14e6 / 7100), rtol=1e-15)
-    assert ductile.safety_factor is not None and ductile.safety_factor >= 1 - 1e-9
+    assert_allclose(ductile.limits.rim_speed_limit, math.sqrt(14e6 / 7100), rtol=1e-15)
+    assert ductile.stresses.safety_factor is not None and ductile.stresses.safety_factor >= 1 - 1e-9
 
 
 def test_no_flywheel_needed_designs_none(capsys):
@@ -155,7 +155,7 @@ def test_every_problem_scene_solves_with_a_checked_status(path):
     assert solution.status in ("designed", "not_needed"), path
     if solution.status == "designed":
         ipopt = flyopt.design_scene(solution.scene, solution.analysis, method="ipopt").best
-        assert ipopt.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+        assert ipopt.provenance.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
         best = solution.design.best
         textbook = solution.scene.design is None or solution.scene.design.textbook(best.bore)
         assert best.provenance.solver_status == ("closed_form" if textbook else "Solve_Succeeded"), path

@@ -456,7 +456,7 @@ def test_infeasible_reason_in_words_and_numbers():
         f"diameter at {72 / omega:.3g} m, where the smallest rim that gives "
         f"10 kg·m² still needs {needed:.3g} m"
     )
-    assert_allclose(result.candidates[0].d_outer_needed, needed, rtol=1e-9)
+    assert_allclose(result.candidates[0].limits.d_outer_needed, needed, rtol=1e-9)
     assert reason in result.message
 
 
@@ -558,7 +558,7 @@ def test_objective_outer_diameter_matches_closed_form():
         "inner_diameter"
         in design_ipopt(
             j, omega, [MountShaft("m", 1.0)], [CAST_STEEL], DesignSpec(objective="outer_diameter")
-        ).best.binding
+        ).best.limits.binding
     )
 
 
@@ -571,7 +571,7 @@ def test_objective_cost_ranks_by_mass_times_cost():
     auto = design_flywheel(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap], DesignSpec(objective="cost"))
     assert [c.material for c in auto.candidates] == [c.material for c in result.candidates]
     assert_allclose([c.objective for c in auto.candidates], [c.objective for c in result.candidates], rtol=1e-6)
-    assert auto.best.solver_status == "closed_form"
+    assert auto.best.provenance.solver_status == "closed_form"
     for c in result.candidates:
         assert_allclose(c.cost, c.mass * (1.0 if c.material == "cheap iron" else 3.0), rtol=1e-14)
     by_mass = design_ipopt(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap])
@@ -587,7 +587,7 @@ def test_safety_factor_from_allowable_stress():
     best = result.best
     assert "rim_speed" in best.limits.binding
     assert_allclose(best.stresses.safety_factor, 1.0, rtol=1e-9)
-    assert design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [CAST_IRON]).best.safety_factor is None
+    assert design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [CAST_IRON]).best.stresses.safety_factor is None
 
 
 def test_to_dict_is_json_ready_design_object():
@@ -729,7 +729,7 @@ def test_closed_form_method_agrees_with_ipopt(geometry, pinned):
         for ca, cb in zip(sorted(a.candidates, key=key), sorted(b.candidates, key=key)):
             assert ca.feasible == cb.feasible
             if ca.feasible:
-                assert cb.solver_status == "closed_form"
+                assert cb.provenance.solver_status == "closed_form"
                 assert_allclose(cb.mass, ca.mass, rtol=1e-6)
 
 

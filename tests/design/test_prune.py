@@ -94,7 +94,7 @@ def compare(seed):
     assert set(by_key) == {_key(c) for c in pruned.candidates}
     if full.best is not None:
         assert _key(pruned.best) == _key(full.best)
-        assert pruned.best.mass == full.best.mass and pruned.best.d_outer == full.best.d_outer
+        assert pruned.best.mass == full.best.mass and pruned.best.dims.d_outer == full.best.dims.d_outer
     # the bound holds on every design, whichever run made it
     for c in full.candidates:
         combo = Combination(

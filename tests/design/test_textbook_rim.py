@@ -64,7 +64,7 @@ def test_flyopts_default_checks_the_outer_diameter_at_the_highest_speed():
     textbook = _textbook_design()
     # 0.730 m outside (D_m 0.618 m) against the textbook's 0.744 m mean diameter: the thick rim
     # (B = 5 H) loses inertia twice, to the higher speed and to its radial thickness
-    assert best.dims.d_outer < textbook.d_mean
+    assert best.dims.d_outer < textbook.dims.d_mean
     # by hand: thin rim m = 4 J / D_m^2 = 5 pi rho D_m H^2 with D_m + H = D_outer, one root in H
     from scipy.optimize import brentq
 

@@ -92,7 +92,7 @@ def test_pareto_mass_outer_diameter_matches_individual_solves():
     smallest = flyopt.solve(
         PUNCH.replace(design=dataclasses.replace(PUNCH.design, objective="outer_diameter"))
     ).design.best
-    assert_allclose(front["outer_diameter"].iloc[0], smallest.d_outer, rtol=1e-12)
+    assert_allclose(front["outer_diameter"].iloc[0], smallest.dims.d_outer, rtol=1e-12)
     assert front["method"].iloc[0] == "ipopt"
     for row in front.iloc[1:].to_dict("records"):
         scene = PUNCH.replace(design=dataclasses.replace(PUNCH.design, max_outer_diameter=row["epsilon"]))

@@ -324,16 +324,19 @@ class Candidate:
 
 @dataclass(frozen=True, kw_only=True)
 class Design(Candidate):
-    """A feasible Candidate: one with its dimensions, parts, stresses, mass, inertia and objective."""
+    """A feasible Candidate: one with its dimensions, parts, stresses, mass, inertia and objective.
+
+    Each of them is required (``field()``: without it the Candidate's default None would be inherited).
+    """
 
     feasible: bool = True
-    mass: float
-    j_flywheel: float
-    j_at_reference: float
-    objective: float
-    dims: Dimensions
-    parts: Parts
-    stresses: Stresses
+    mass: float = field()
+    j_flywheel: float = field()
+    j_at_reference: float = field()
+    objective: float = field()
+    dims: Dimensions = field()
+    parts: Parts = field()
+    stresses: Stresses = field()
 
 
 #: The keys of :meth:`Candidate.to_dict`, in order (the JSON of every candidate; flat since before the records).
