@@ -137,9 +137,9 @@ def run(count, seed):
             scene["j_required"], scene["omega_mean"], scene["shafts"], materials, scene["spec"], method="ipopt"
         )
         elapsed = time.perf_counter() - start
-        solved = [c for c in result.candidates if c.solve_time is not None]
-        nlp_times += [c.solve_time for c in solved]
-        nlp_iters += [c.iterations for c in solved]
+        solved = [c for c in result.candidates if c.provenance.solve_time is not None]
+        nlp_times += [c.provenance.solve_time for c in solved]
+        nlp_iters += [c.provenance.iterations for c in solved]
         rows.append(
             {
                 "scene": index,

@@ -38,7 +38,7 @@ def test_dmass_ddelta_of_a_disc_at_its_rim_speed_limit(tmp_path, delta):
     best = solve(load(path)).design.best
     a_max, v_max = 1600.0, 50.0
     assert best.mass == pytest.approx(2 * a_max * (1 + delta / 2) ** 2 / (v_max**2 * delta), rel=1e-12)
-    slope = {s["limit"]: s["dmass_dlimit"] for s in best.sensitivities}["delta"]
+    slope = {s["limit"]: s["dmass_dlimit"] for s in best.limits.sensitivities}["delta"]
     exact = 2 * a_max / v_max**2 * ((1 + delta / 2) / delta - (1 + delta / 2) ** 2 / delta**2)
     assert slope == pytest.approx(exact, rel=1e-6)
     assert math.copysign(1, slope) == -1

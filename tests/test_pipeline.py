@@ -40,8 +40,8 @@ def test_domain_example6_rim_sizing_scene():
     assert_allclose(solution.analysis.j_required, 76.0, rtol=1e-15)
     best = solution.design.best
     assert_published(best.mass, "475")
-    assert_published(best.b, "0.110")
-    assert_published(best.h, "0.220")
+    assert_published(best.dims.b, "0.110")
+    assert_published(best.dims.h, "0.220")
     assert_allclose(best.mass, 4 * 76 / 0.8**2, rtol=1e-9)  # thin rim: m = 4 J / D_m², exact
 
 
@@ -66,8 +66,8 @@ def test_user_material_and_shaft_choice():
     names = {(c.material, c.shaft) for c in solution.design.candidates}
     assert len(names) == 9 and ("ductile_iron", "motor") in names
     ductile = next(c for c in solution.design.candidates if c.material == "ductile_iron" and c.feasible)
-    assert_allclose(ductile.rim_speed_limit, math.sqrt(14e6 / 7100), rtol=1e-15)
-    assert ductile.safety_factor is not None and ductile.safety_factor >= 1 - 1e-9
+    assert_allclose(ductile.limits.rim_speed_limit, math.sqrt(14e6 / 7100), rtol=1e-15)
+    assert ductile.stresses.safety_factor is not None and ductile.stresses.safety_factor >= 1 - 1e-9
 
 
 def test_no_flywheel_needed_designs_none(capsys):
@@ -155,17 +155,17 @@ def test_every_problem_scene_solves_with_a_checked_status(path):
     assert solution.status in ("designed", "not_needed"), path
     if solution.status == "designed":
         ipopt = flyopt.design_scene(solution.scene, solution.analysis, method="ipopt").best
-        assert ipopt.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+        assert ipopt.provenance.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
         best = solution.design.best
         textbook = solution.scene.design is None or solution.scene.design.textbook(best.bore)
-        assert best.solver_status == ("closed_form" if textbook else "Solve_Succeeded"), path
+        assert best.provenance.solver_status == ("closed_form" if textbook else "Solve_Succeeded"), path
         assert (best.material, best.shaft) == (ipopt.material, ipopt.shaft), path
         assert_allclose(best.mass, ipopt.mass, rtol=1e-6)
         assert best.j_at_reference >= solution.analysis.j_required * (1 - 1e-6)
         if solution.scene.design is None or solution.scene.design.criterion == "rim_speed":
-            assert best.rim_speed <= best.rim_speed_limit * (1 + 1e-6)
+            assert best.stresses.rim_speed <= best.limits.rim_speed_limit * (1 + 1e-6)
         else:  # the stress criterion: every part within its allowable
-            assert all(p["stress"] <= p["allowable"] * (1 + 1e-6) for p in best.stress["parts"])
+            assert all(p["stress"] <= p["allowable"] * (1 + 1e-6) for p in best.stresses.stress["parts"])
 
 
 @pytest.mark.parametrize(
@@ -184,7 +184,7 @@ def test_rim_speed_holds_at_the_simulated_top_speed(tmp_path, scene, nominal):
     best = solution.design.best
     top = solution.verification.omega_max * best.speed_ratio  # [rad/s] of the flywheel's shaft
     limit = solution.scene.material_library()[best.material].max_rim_speed
-    assert top * best.d_outer / 2 <= limit * (1 + 1e-6)
+    assert top * best.dims.d_outer / 2 <= limit * (1 + 1e-6)
 
 
 def test_zero_fluctuation_verifies_to_zero_delta(tmp_path, capsys):

@@ -79,23 +79,23 @@ def test_the_numbers_of_the_issue():
 def test_solve_takes_the_designs_factor(method):
     best = flyopt.solve(SCENE, design_method=method).design.best
     assert best.material == "strong_iron"
-    assert_allclose(best.rim_speed_limit, V_DESIGN, rtol=RTOL)
-    assert "rim_speed" in best.binding
+    assert_allclose(best.limits.rim_speed_limit, V_DESIGN, rtol=RTOL)
+    assert "rim_speed" in best.limits.binding
     rtol = RTOL if method == "auto" else RTOL_IPOPT
-    assert_allclose(best.rim_speed, V_DESIGN, rtol=rtol)
-    assert_allclose(best.d_outer, 2.0 * V_DESIGN / _omega_max(SCENE), rtol=rtol)
+    assert_allclose(best.stresses.rim_speed, V_DESIGN, rtol=rtol)
+    assert_allclose(best.dims.d_outer, 2.0 * V_DESIGN / _omega_max(SCENE), rtol=rtol)
 
 
 def test_without_a_design_factor_the_materials_own_applies():
     best = flyopt.solve(_scene(design_factor=None)).design.best
-    assert_allclose(best.rim_speed_limit, V_MATERIAL, rtol=RTOL)
-    assert_allclose(best.d_outer, 2.0 * V_MATERIAL / _omega_max(SCENE), rtol=RTOL)
+    assert_allclose(best.limits.rim_speed_limit, V_MATERIAL, rtol=RTOL)
+    assert_allclose(best.dims.d_outer, 2.0 * V_MATERIAL / _omega_max(SCENE), rtol=RTOL)
 
 
 def test_a_textbook_speed_limit_is_not_changed_by_the_designs_factor():
     """Cast iron's 36 m/s is a speed, not a strength: no factor divides it."""
     result = flyopt.solve(_scene(materials=("cast_iron", "strong_iron"))).design
-    limits = {c.material: c.rim_speed_limit for c in result.candidates}
+    limits = {c.material: c.limits.rim_speed_limit for c in result.candidates}
     assert limits["cast_iron"] == 36.0
     assert_allclose(limits["strong_iron"], V_DESIGN, rtol=RTOL)
 

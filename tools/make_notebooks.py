@@ -217,11 +217,11 @@ v = i ω_max D_1/2 with ω_max = ω_m (1 + δ/2) (section 10):""",
         """rho = scene.material_library()[best.material].density
 omega_max = scene.omega_mean * (1 + scene.delta / 2)
 checks = pd.DataFrame({
-    "flyopt": [best.j_required_on_shaft, best.j_flywheel, best.mass, best.rim_speed],
+    "flyopt": [best.limits.j_required_on_shaft, best.j_flywheel, best.mass, best.stresses.rim_speed],
     "closed form": [analysis.j_required / best.speed_ratio**2,
-                    best.mass * (best.d_outer**2 + best.d_inner**2) / 8,
-                    rho * math.pi * (best.d_outer**2 - best.d_inner**2) * best.b / 4,
-                    best.speed_ratio * omega_max * best.d_outer / 2]},
+                    best.mass * (best.dims.d_outer**2 + best.dims.d_inner**2) / 8,
+                    rho * math.pi * (best.dims.d_outer**2 - best.dims.d_inner**2) * best.dims.b / 4,
+                    best.speed_ratio * omega_max * best.dims.d_outer / 2]},
     index=["J' = J_F/i² [kg·m²]", "J = m (D_1² + D_2²)/8 [kg·m²]", "m = ρπ(D_1² − D_2²)B/4 [kg]",
            "v = i ω_max D_1/2 [m/s]"])
 checks["relative difference [-]"] = checks["flyopt"] / checks["closed form"] - 1
@@ -258,7 +258,7 @@ plots.plot_speed(scene, analysis, analysis.speed_curve(), simulation=v.solution)
 
 energy = models.loc["energy"]
 crank = candidates[(candidates["shaft"] == "crankshaft") & candidates["feasible"]].sort_values("mass").iloc[0]
-assert best.shaft == "motor" and best.speed_ratio == 12 and "rim_speed" in best.binding
+assert best.shaft == "motor" and best.speed_ratio == 12 and "rim_speed" in best.limits.binding
 Markdown(f\"\"\"
 - **The model.** The ram makes J_e(φ) vary, so flyopt sized the flywheel with the exact
   `{analysis.model}` model: A_max = {text(analysis.a_max, "energy")} and J_F =
@@ -270,10 +270,10 @@ Markdown(f\"\"\"
   ({text(analysis.angle_delta_e_min, "angle")}): with a variable inertia the speed extremes are the
   tangent points of the energy–mass diagram.
 - **The lightest flywheel** is a {best.material.replace("_", " ")} rim on the {best.shaft} shaft:
-  {text(best.mass, "mass")}, D_outer {text(best.d_outer, "length")}, B {text(best.b, "length")} ×
-  H {text(best.h, "length")}, at its rim speed limit of {text(best.rim_speed, "speed")}. The motor shaft
+  {text(best.mass, "mass")}, D_outer {text(best.dims.d_outer, "length")}, B {text(best.dims.b, "length")} ×
+  H {text(best.dims.h, "length")}, at its rim speed limit of {text(best.stresses.rim_speed, "speed")}. The motor shaft
   turns {best.speed_ratio:g} times faster than the crank, so it needs only J_F/{best.speed_ratio**2:g} =
-  {text(best.j_required_on_shaft, "inertia")}; the lightest rim on the crankshaft weighs
+  {text(best.limits.j_required_on_shaft, "inertia")}; the lightest rim on the crankshaft weighs
   {text(crank["mass"], "mass")} ({crank["mass"] / best.mass:.0f} times as much) at the
   {text(crank["d_outer"], "length")} envelope.
 - **Checked.** Its inertia, mass and rim speed agree with the textbook closed forms to

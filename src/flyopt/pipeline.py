@@ -19,8 +19,7 @@ if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     import numpy as np
 
     from flyopt.design.materials import Material
-    from flyopt.design.result import Candidate, DesignResult
-    from flyopt.design.wheel import Dims
+    from flyopt.design.result import DesignResult
     from flyopt.drive.codesign import DriveCheck, DriveDesign
     from flyopt.io.scene import Scene
     from flyopt.sizing.periodic import PeriodicSolution, Verification
@@ -258,7 +257,7 @@ def _with_delta_sensitivity(
             )
         except (ValueError, RuntimeError):
             return result
-        if again.best is None or again.best.mass is None:
+        if again.best is None:
             return result
         masses.append(again.best.mass)
     slope = (masses[0] - masses[1]) / (2.0 * DELTA_STEP * scene.delta)
@@ -269,7 +268,8 @@ def _with_delta_sensitivity(
         "text": f"delta: +0.01 (e.g. {scene.delta:.3g} to {scene.delta + 0.01:.3g}) changes the mass "
         f"by {slope * 0.01:+.3g} kg (central difference of the whole design)",
     }
-    winner = dataclasses.replace(best, sensitivities=tuple(best.sensitivities) + (entry,))
+    limits = dataclasses.replace(best.limits, sensitivities=best.limits.sensitivities + (entry,))
+    winner = dataclasses.replace(best, limits=limits)
     candidates = tuple(winner if c is best else c for c in result.candidates)
     return dataclasses.replace(result, best=winner, candidates=candidates)
 
@@ -435,24 +435,6 @@ def _stress(
         return None, str(err)
 
 
-def wheel_dims(candidate: Candidate) -> Dims:
-    """The :class:`flyopt.design.wheel.Dims` of a designed candidate [m] (0 where it has no such part)."""
-    from flyopt.design.wheel import Dims
-
-    c = candidate
-    return Dims(
-        d_outer=c.d_outer,
-        h=c.h,
-        b=c.b,
-        bore=c.bore or 0.0,
-        t_web=c.t_web or 0.0,
-        d_hub=c.d_hub or 0.0,
-        l_hub=c.l_hub or 0.0,
-        arm_major=c.arm_major or 0.0,
-        n_arms=c.n_arms or 0,
-    )
-
-
 def stress_profile(scene: Scene, analysis: Analysis, design: DesignResult) -> tuple[Any, Any, float, Material]:
     """The stresses of the design's best wheel over its radius, at omega_max on its own shaft.
 
@@ -474,7 +456,7 @@ def stress_profile(scene: Scene, analysis: Analysis, design: DesignResult) -> tu
     omega = design.omega * best.speed_ratio
     torque = analysis.flywheel_torque()
     torque = torque / best.speed_ratio if torque else 0.0
-    profile, beams = strength.profile(material, best.geometry, wheel_dims(best), omega, torque)
+    profile, beams = strength.profile(material, best.geometry, best.dims.wheel(best.n_arms, best.bore), omega, torque)
     return profile, beams, omega, material
 
 

@@ -58,15 +58,15 @@ def test_the_cap_needed_of_a_problem_scene_is_where_its_inertia_is_first_reached
     result = flyopt.solve(flyopt.load(PROBLEMS / "punch-press.toml")).design
     checked = 0
     for c in result.candidates:
-        if c.feasible or c.d_outer_needed is None:
+        if c.feasible or c.limits.d_outer_needed is None:
             continue
         density = {"cast_iron": 7200.0, "cast_steel": 7800.0, "ductile_iron": 7100.0}[c.material]
         hb = (1.5, 2.0)
-        j = c.j_required_on_shaft
+        j = c.limits.j_required_on_shaft
 
         def j_max(cap):
             return closed_form.max_inertia_one("rim", density, cap, hb, 0.2, None)[0]
 
-        assert j_max(c.d_outer_needed) >= j > j_max(np.nextafter(c.d_outer_needed, 0.0))
+        assert j_max(c.limits.d_outer_needed) >= j > j_max(np.nextafter(c.limits.d_outer_needed, 0.0))
         checked += 1
     assert checked == 3

@@ -159,9 +159,9 @@ def test_closed_form_agrees_with_ipopt_on_random_combinations(seed):
             # IPOPT's dimensions are well settled here: the same wheel and the same
             # active constraints (for a pinned annulus its mass is almost flat in H,
             # so IPOPT stops with H loose by ~1e-3 while the mass agrees to 1e-10)
-            assert_allclose(float(got.d_outer), ipopt.d_outer, rtol=1e-5)
-            assert_allclose(float(got.b), ipopt.b, rtol=1e-4)
-            assert set(binding_names(got.binding)) == set(ipopt.binding)
+            assert_allclose(float(got.d_outer), ipopt.dims.d_outer, rtol=1e-5)
+            assert_allclose(float(got.b), ipopt.dims.b, rtol=1e-4)
+            assert set(binding_names(got.binding)) == set(ipopt.limits.binding)
         else:
             assert float(got.mass) <= ipopt.mass * (1 + 1e-9)  # the exact vertex is no heavier
     assert counts["feasible"] >= 40 and counts["infeasible"] >= 15, counts

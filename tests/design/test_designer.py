@@ -150,11 +150,11 @@ def test_domain_example6_textbook_rim_sizing_pinned_d_mean():
     best = result.best
     assert result.status == "designed"
     assert_allclose(best.mass, 475.0, rtol=1e-8)
-    assert_allclose(best.b, 0.110, rtol=5e-3)
-    assert_allclose(best.h, 0.220, rtol=5e-3)
-    assert_allclose(best.d_mean, 0.8, rtol=1e-15)
+    assert_allclose(best.dims.b, 0.110, rtol=5e-3)
+    assert_allclose(best.dims.h, 0.220, rtol=5e-3)
+    assert_allclose(best.dims.d_mean, 0.8, rtol=1e-15)
     assert_allclose(best.j_flywheel, 76.0, rtol=1e-8)
-    assert "inertia" in best.binding
+    assert "inertia" in best.limits.binding
     assert result.model["variables"] == ["h"]  # D_m pinned, B = H/2: one variable
 
 
@@ -169,10 +169,10 @@ def test_domain_example6_by_the_default_method():
         DesignSpec(geometry="thin_rim", hb_ratio=(2.0, 2.0), d_mean=0.8),
     )
     best = result.best
-    assert best.solver_status == "closed_form" and result.model["variables"] == []
+    assert best.provenance.solver_status == "closed_form" and result.model["variables"] == []
     assert_allclose(best.mass, 475.0, rtol=1e-13)
-    assert_allclose([best.b, best.h], [0.110, 0.220], rtol=5e-3)
-    assert "inertia" in best.binding
+    assert_allclose([best.dims.b, best.dims.h], [0.110, 0.220], rtol=5e-3)
+    assert "inertia" in best.limits.binding
 
 
 def test_default_method_takes_ipopt_where_the_closed_form_does_not_reach():
@@ -180,7 +180,7 @@ def test_default_method_takes_ipopt_where_the_closed_form_does_not_reach():
     spec = DesignSpec(objective="outer_diameter", max_width=0.05)
     result = design_flywheel(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [CAST_STEEL], spec)
     assert result.status == "designed"
-    assert result.best.solver_status == "Solve_Succeeded"
+    assert result.best.provenance.solver_status == "Solve_Succeeded"
     assert result.model["variables"]
 
 
@@ -219,13 +219,13 @@ def check_against_reference(j, omega, shafts, materials, spec, counts):
             assert got.feasible == (ref is not None), got.reason
             if ref is None:
                 counts["infeasible"] += 1
-                assert got.mass is None and got.solver_status is None
+                assert got.mass is None and got.provenance.solver_status is None
                 continue
             counts["feasible"] += 1
             # 1e-6 is the agreement; IPOPT reaches ~1e-10 here
             assert_allclose(got.mass, ref["mass"], rtol=1e-6)
-            assert_allclose(got.d_outer, cap, rtol=1e-9)
-            assert_allclose(got.h, ref["h"], rtol=1e-5)
+            assert_allclose(got.dims.d_outer, cap, rtol=1e-9)
+            assert_allclose(got.dims.h, ref["h"], rtol=1e-5)
     return result
 
 
@@ -278,9 +278,9 @@ def test_width_limited_rims_match_reference_and_brute_force(seed):
     assert (brute is not None) <= got.feasible
     if ref is not None:
         assert_allclose(got.mass, ref["mass"], rtol=1e-6)
-        assert_allclose(got.b, ref["b"], rtol=1e-5)
+        assert_allclose(got.dims.b, ref["b"], rtol=1e-5)
         if b_max < free["b"]:
-            assert "max_width" in got.binding
+            assert "max_width" in got.limits.binding
     if brute is not None:
         assert got.mass <= brute * (1 + 1e-9)
 
@@ -300,8 +300,8 @@ def test_pinned_d_mean_exact_annulus_matches_closed_form(d_mean, hb):
     assert got.feasible == (ref is not None), got.reason
     if ref is not None:
         assert_allclose(got.mass, ref["mass"], rtol=1e-6)
-        assert_allclose(got.h, ref["h"], rtol=1e-6)
-        assert_allclose(got.d_mean, d_mean, rtol=1e-15)
+        assert_allclose(got.dims.h, ref["h"], rtol=1e-6)
+        assert_allclose(got.dims.d_mean, d_mean, rtol=1e-15)
 
 
 def test_disc_matches_closed_form():
@@ -311,16 +311,16 @@ def test_disc_matches_closed_form():
     d = speed_cap(CAST_STEEL, omega)
     result = design_ipopt(j, omega, [MountShaft("m", 1.0)], [CAST_STEEL], DesignSpec(geometry="disc"))
     best = result.best
-    assert_allclose(best.d_outer, d, rtol=1e-8)
-    assert_allclose(best.b, 32 * j / (math.pi * CAST_STEEL.density * d**4), rtol=1e-8)
+    assert_allclose(best.dims.d_outer, d, rtol=1e-8)
+    assert_allclose(best.dims.b, 32 * j / (math.pi * CAST_STEEL.density * d**4), rtol=1e-8)
     assert_allclose(best.mass, 8 * j / d**2, rtol=1e-8)
-    assert best.d_inner == 0.0 and best.d_mean == best.h == best.d_outer / 2
+    assert best.dims.d_inner == 0.0 and best.dims.d_mean == best.dims.h == best.dims.d_outer / 2
     narrow = design_ipopt(
-        j, omega, [MountShaft("m", 1.0)], [CAST_STEEL], DesignSpec(geometry="disc", max_width=0.5 * best.b)
+        j, omega, [MountShaft("m", 1.0)], [CAST_STEEL], DesignSpec(geometry="disc", max_width=0.5 * best.dims.b)
     )
     assert narrow.status == "infeasible"
     # needs D^4 = 32 J / (pi rho B_max)
-    needed = (32 * j / (math.pi * CAST_STEEL.density * 0.5 * best.b)) ** 0.25
+    needed = (32 * j / (math.pi * CAST_STEEL.density * 0.5 * best.dims.b)) ** 0.25
     assert f"still needs {needed:.3g} m" in narrow.candidates[0].reason
 
 
@@ -334,7 +334,7 @@ def _check_hard(j, omega, shafts, materials, spec):
     result = check_against_reference(j, omega, shafts, materials, spec, counts)
     for c in result.candidates:
         if c.feasible:
-            assert c.solver_status == "Solve_Succeeded"
+            assert c.provenance.solver_status == "Solve_Succeeded"
     return result, counts
 
 
@@ -378,13 +378,13 @@ def test_hard_envelope_active_by_1e_minus_9(factor):
         1.0, omega, [MountShaft("motor", 1.0)], [CAST_STEEL], DesignSpec(max_outer_diameter=envelope)
     )
     # both limits are within the 1e-6 activity tolerance of the outer diameter
-    assert {"rim_speed", "max_outer_diameter", "inertia", "hb_min"} <= set(result.best.binding)
+    assert {"rim_speed", "max_outer_diameter", "inertia", "hb_min"} <= set(result.best.limits.binding)
 
 
 def test_hard_hb_range_collapsed_to_one_value():
     result, _ = _check_hard(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [CAST_STEEL], DesignSpec(hb_ratio=(1.7, 1.7)))
-    assert_allclose(result.best.hb_ratio, 1.7, rtol=1e-9)
-    assert {"hb_min", "hb_max"} <= set(result.best.binding)
+    assert_allclose(result.best.dims.hb_ratio, 1.7, rtol=1e-9)
+    assert {"hb_min", "hb_max"} <= set(result.best.limits.binding)
     assert result.model["variables"] == ["d_mean", "h"]
 
 
@@ -434,13 +434,13 @@ def test_every_combination_reported_and_ranked():
     assert result.best is feasible[0]
     assert infeasible, "this scene has infeasible combinations on the motor shaft"
     for c in feasible:
-        assert set(c.binding) <= set(BINDING_NAMES)
-        assert_allclose(c.d_outer, c.d_mean + c.h, rtol=1e-14)
-        assert_allclose(c.d_inner, c.d_mean - c.h, rtol=1e-12)
-        assert_allclose(c.hoop_stress, MATERIALS[c.material].density * c.rim_speed**2, rtol=1e-14)
+        assert set(c.limits.binding) <= set(BINDING_NAMES)
+        assert_allclose(c.dims.d_outer, c.dims.d_mean + c.dims.h, rtol=1e-14)
+        assert_allclose(c.dims.d_inner, c.dims.d_mean - c.dims.h, rtol=1e-12)
+        assert_allclose(c.stresses.hoop_stress, MATERIALS[c.material].density * c.stresses.rim_speed**2, rtol=1e-14)
         assert_allclose(c.j_at_reference, c.j_flywheel * c.speed_ratio**2, rtol=1e-14)
-        assert c.j_flywheel >= c.j_required_on_shaft * (1 - 1e-9)
-        assert c.rim_speed <= MATERIALS[c.material].max_rim_speed * (1 + 1e-9)
+        assert c.j_flywheel >= c.limits.j_required_on_shaft * (1 - 1e-9)
+        assert c.stresses.rim_speed <= MATERIALS[c.material].max_rim_speed * (1 + 1e-9)
 
 
 def test_infeasible_reason_in_words_and_numbers():
@@ -456,7 +456,7 @@ def test_infeasible_reason_in_words_and_numbers():
         f"diameter at {72 / omega:.3g} m, where the smallest rim that gives "
         f"10 kg·m² still needs {needed:.3g} m"
     )
-    assert_allclose(result.candidates[0].d_outer_needed, needed, rtol=1e-9)
+    assert_allclose(result.candidates[0].limits.d_outer_needed, needed, rtol=1e-9)
     assert reason in result.message
 
 
@@ -509,7 +509,7 @@ def test_outer_diameter_needed_is_the_smallest_cap_that_reaches_the_inertia(geom
             )
 
         needed = math.exp(brentq(short, math.log(cap), math.log(cap) + 20.0, xtol=1e-13))
-        assert_allclose(c.d_outer_needed, needed, rtol=1e-9)
+        assert_allclose(c.limits.d_outer_needed, needed, rtol=1e-9)
         checked += 1
     assert checked >= 10
 
@@ -552,13 +552,13 @@ def test_objective_outer_diameter_matches_closed_form():
         result = design_ipopt(
             j, omega, [MountShaft("m", 1.0)], [CAST_STEEL], DesignSpec(geometry=model, objective="outer_diameter")
         )
-        assert_allclose(result.best.d_outer, d, rtol=1e-7)
-        assert_allclose(result.best.objective, result.best.d_outer, rtol=0)
+        assert_allclose(result.best.dims.d_outer, d, rtol=1e-7)
+        assert_allclose(result.best.objective, result.best.dims.d_outer, rtol=0)
     assert (
         "inner_diameter"
         in design_ipopt(
             j, omega, [MountShaft("m", 1.0)], [CAST_STEEL], DesignSpec(objective="outer_diameter")
-        ).best.binding
+        ).best.limits.binding
     )
 
 
@@ -571,7 +571,7 @@ def test_objective_cost_ranks_by_mass_times_cost():
     auto = design_flywheel(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap], DesignSpec(objective="cost"))
     assert [c.material for c in auto.candidates] == [c.material for c in result.candidates]
     assert_allclose([c.objective for c in auto.candidates], [c.objective for c in result.candidates], rtol=1e-6)
-    assert auto.best.solver_status == "closed_form"
+    assert auto.best.provenance.solver_status == "closed_form"
     for c in result.candidates:
         assert_allclose(c.cost, c.mass * (1.0 if c.material == "cheap iron" else 3.0), rtol=1e-14)
     by_mass = design_ipopt(1.0, 1500 * RPM, [MountShaft("motor", 1.0)], [dear, cheap])
@@ -585,9 +585,9 @@ def test_safety_factor_from_allowable_stress():
     material = make_material("steel", 7850.0, allowable_stress=40e6)
     result = design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [material])
     best = result.best
-    assert "rim_speed" in best.binding
-    assert_allclose(best.safety_factor, 1.0, rtol=1e-9)
-    assert design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [CAST_IRON]).best.safety_factor is None
+    assert "rim_speed" in best.limits.binding
+    assert_allclose(best.stresses.safety_factor, 1.0, rtol=1e-9)
+    assert design_ipopt(1.0, 1500 * RPM, [MountShaft("m", 1.0)], [CAST_IRON]).best.stresses.safety_factor is None
 
 
 def test_to_dict_is_json_ready_design_object():
@@ -729,7 +729,7 @@ def test_closed_form_method_agrees_with_ipopt(geometry, pinned):
         for ca, cb in zip(sorted(a.candidates, key=key), sorted(b.candidates, key=key)):
             assert ca.feasible == cb.feasible
             if ca.feasible:
-                assert cb.solver_status == "closed_form"
+                assert cb.provenance.solver_status == "closed_form"
                 assert_allclose(cb.mass, ca.mass, rtol=1e-6)
 
 

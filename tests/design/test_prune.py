@@ -88,42 +88,42 @@ def compare(seed):
     torque = 2.0 * j * omega  # some torque for the arms and the key
     pruned = design_flywheel(j, omega, shafts, materials, spec, torque=torque)
     full = design_flywheel(j, omega, shafts, materials, dataclasses.replace(spec, prune=False), torque=torque)
-    assert not any(c.pruned for c in full.candidates)
+    assert not any(c.provenance.pruned for c in full.candidates)
     assert pruned.status == full.status
     by_key = {_key(c): c for c in full.candidates}
     assert set(by_key) == {_key(c) for c in pruned.candidates}
     if full.best is not None:
         assert _key(pruned.best) == _key(full.best)
-        assert pruned.best.mass == full.best.mass and pruned.best.d_outer == full.best.d_outer
+        assert pruned.best.mass == full.best.mass and pruned.best.dims.d_outer == full.best.dims.d_outer
     # the bound holds on every design, whichever run made it
     for c in full.candidates:
         combo = Combination(
             material=next(m for m in materials if m.name == c.material),
             shaft=next(s for s in shafts if s.name == c.shaft),
             omega=omega * c.speed_ratio,
-            j_shaft=c.j_required_on_shaft,
+            j_shaft=c.limits.j_required_on_shaft,
             j_reference=j,
             cap_speed=math.inf,
-            cap=c.d_outer_limit,
+            cap=c.limits.d_outer_limit,
         )
         bound, _why = wheel_design.objective_bound(combo, spec)
         if c.feasible:
             assert c.objective >= bound * (1.0 - 1e-12), (c.reason, c.objective, bound)
     for c in pruned.candidates:
         twin = by_key[_key(c)]
-        if c.pruned:
-            assert c.objective_bound > pruned.best.objective * (1.0 + TIE_RTOL)
+        if c.provenance.pruned:
+            assert c.provenance.objective_bound > pruned.best.objective * (1.0 + TIE_RTOL)
             assert "cannot win" in c.reason
             if twin.feasible:
-                assert twin.objective >= c.objective_bound * (1.0 - 1e-12)
+                assert twin.objective >= c.provenance.objective_bound * (1.0 - 1e-12)
                 assert twin.objective > full.best.objective * (1.0 + TIE_RTOL)
         else:
             assert c.feasible == twin.feasible and c.reason == twin.reason
-    left_out = {_key(c) for c in pruned.candidates if c.pruned}
-    assert [_key(c) for c in pruned.candidates if not c.feasible and not c.pruned] == [
+    left_out = {_key(c) for c in pruned.candidates if c.provenance.pruned}
+    assert [_key(c) for c in pruned.candidates if not c.feasible and not c.provenance.pruned] == [
         _key(c) for c in full.candidates if not c.feasible and _key(c) not in left_out
     ]
-    return sum(c.pruned for c in pruned.candidates)
+    return sum(c.provenance.pruned for c in pruned.candidates)
 
 
 FAST_SEEDS = range(16)

@@ -60,9 +60,9 @@ def test_a_rim_beyond_the_table_is_designed_within_it():
     B = 30 mm and H = 56 mm; the mass is the grid's least to its resolution, and no lighter."""
     result = design_flywheel(14.0, OMEGA, [MountShaft("main", 1.0)], [GJS], SPEC)
     best = result.best
-    assert result.status == "designed" and "strength_table" in best.binding
-    assert min(best.h, best.b) <= 0.03
-    assert max(p["wall"] for p in best.stress["parts"]) <= 0.03
+    assert result.status == "designed" and "strength_table" in best.limits.binding
+    assert min(best.dims.h, best.dims.b) <= 0.03
+    assert max(p["wall"] for p in best.stresses.stress["parts"]) <= 0.03
     reference = brute_force_rim(14.0)
     assert best.mass <= reference * (1.0 + 1e-9)  # at least as light as every grid rim
     assert best.mass >= reference * (1.0 - 2e-3)  # and no lighter than the grid's resolution allows
@@ -91,5 +91,5 @@ def test_whole_wheels_keep_every_section_within_the_table(geometry):
     )
     j = {"rim_web": 40.0, "rim_arms": 18.0}[geometry]
     result = design_flywheel(j, OMEGA, [MountShaft("main", 1.0, 0.05)], [GJS], spec, torque=500.0)
-    assert result.status == "designed" and "strength_table" in result.best.binding
-    assert max(p["wall"] for p in result.best.stress["parts"]) <= 0.03
+    assert result.status == "designed" and "strength_table" in result.best.limits.binding
+    assert max(p["wall"] for p in result.best.stresses.stress["parts"]) <= 0.03

@@ -41,16 +41,16 @@ def _textbook_design():
 def test_khurmi_rim_example_with_the_textbooks_convention():
     best = _textbook_design()
     # published figures, to the digits Khurmi prints
-    assert best.d_mean == pytest.approx(0.744, abs=0.0005)
+    assert best.dims.d_mean == pytest.approx(0.744, abs=0.0005)
     assert best.mass == pytest.approx(606, abs=0.5)
-    assert best.b == pytest.approx(0.424, abs=0.0005)
+    assert best.dims.b == pytest.approx(0.424, abs=0.0005)
     # Khurmi prints H = 84 mm; his own A = 0.036 m^2 = 5 H^2 gives H = 84.8 mm (he truncates; B = 5 H
     # = 424 mm agrees with 84.8, not with 84)
-    assert best.h == pytest.approx(0.0848, abs=0.00005)
+    assert best.dims.h == pytest.approx(0.0848, abs=0.00005)
     # the closed form by hand: m = 4 J / D_m^2 and H = sqrt(m / (5 pi D_m rho))
     d_mean = 2 * math.sqrt(SIGMA / RHO) / OMEGA
     assert best.mass == pytest.approx(4 * J / d_mean**2, rel=1e-12)
-    assert best.h == pytest.approx(math.sqrt(best.mass / (5 * math.pi * d_mean * RHO)), rel=1e-9)
+    assert best.dims.h == pytest.approx(math.sqrt(best.mass / (5 * math.pi * d_mean * RHO)), rel=1e-9)
 
 
 def test_flyopts_default_checks_the_outer_diameter_at_the_highest_speed():
@@ -60,11 +60,11 @@ def test_flyopts_default_checks_the_outer_diameter_at_the_highest_speed():
     ).best
     v_max = math.sqrt(SIGMA / RHO)
     # the outer diameter sits at the rim speed limit at omega_max
-    assert best.d_outer == pytest.approx(2 * v_max / omega_max, rel=1e-9)
+    assert best.dims.d_outer == pytest.approx(2 * v_max / omega_max, rel=1e-9)
     textbook = _textbook_design()
     # 0.730 m outside (D_m 0.618 m) against the textbook's 0.744 m mean diameter: the thick rim
     # (B = 5 H) loses inertia twice, to the higher speed and to its radial thickness
-    assert best.d_outer < textbook.d_mean
+    assert best.dims.d_outer < textbook.dims.d_mean
     # by hand: thin rim m = 4 J / D_m^2 = 5 pi rho D_m H^2 with D_m + H = D_outer, one root in H
     from scipy.optimize import brentq
 

@@ -31,11 +31,11 @@ def test_disc_closed_form_agrees_with_ipopt(material, bore, envelope, j):
     assert exact.status == solved.status
     if exact.best is None:
         return
-    assert exact.best.solver_status == "closed_form"
-    assert solved.best.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+    assert exact.best.provenance.solver_status == "closed_form"
+    assert solved.best.provenance.solver_status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
     assert exact.best.mass == pytest.approx(solved.best.mass, rel=1e-9)
-    assert exact.best.d_outer == pytest.approx(solved.best.d_outer, rel=1e-8)
-    by_limit = {s["limit"]: s["dmass_dlimit"] for s in solved.best.sensitivities}
-    assert {s["limit"] for s in exact.best.sensitivities} == set(by_limit)
-    for s in exact.best.sensitivities:
+    assert exact.best.dims.d_outer == pytest.approx(solved.best.dims.d_outer, rel=1e-8)
+    by_limit = {s["limit"]: s["dmass_dlimit"] for s in solved.best.limits.sensitivities}
+    assert {s["limit"] for s in exact.best.limits.sensitivities} == set(by_limit)
+    for s in exact.best.limits.sensitivities:
         assert s["dmass_dlimit"] == pytest.approx(by_limit[s["limit"]], rel=1e-6)

@@ -587,7 +587,7 @@ def test_design_flywheel_sensitivities_match_re_designs(case, limit, kwargs, key
     """
     base = {"j": ENGINE["j"], **kwargs}
     best = _design(**base)
-    reported = _reported(best.sensitivities)
+    reported = _reported(best.limits.sensitivities)
     if limit == "stress":
         value = sum(v for k, v in reported.items() if k.startswith("stress_"))
         assert value < 0.0, f"{case}: no stress limit binds ({reported})"
@@ -687,13 +687,13 @@ def test_disc_under_stress_matches_closed_form(case, ductile, bore, envelope, me
     spec = DesignSpec(geometry="disc", criterion="stress", bore=bore, max_outer_diameter=envelope)
     best = design_flywheel(j, omega, [MountShaft("shaft", 1.0)], [material], spec, method=method).best
     if method == "ipopt":
-        assert best.solver_status == "Solve_Succeeded"
+        assert best.provenance.solver_status == "Solve_Succeeded"
     expected = lightest_disc(j, rho, nu, omega, sigma, bore, envelope)
     assert expected["B"] > 0.005  # the wall bound does not bind: the closed form holds
     assert_allclose(best.mass, expected["mass"], rtol=DISC_RTOL)
-    assert_allclose(best.d_outer, 2.0 * expected["b"], rtol=DISC_RTOL)
-    assert_allclose(best.b, expected["B"], rtol=10 * DISC_RTOL)  # B ~ 1/(b^4 - a^4): four times b's error
-    reported = _reported(best.sensitivities)
+    assert_allclose(best.dims.d_outer, 2.0 * expected["b"], rtol=DISC_RTOL)
+    assert_allclose(best.dims.b, expected["B"], rtol=10 * DISC_RTOL)  # B ~ 1/(b^4 - a^4): four times b's error
+    reported = _reported(best.limits.sensitivities)
     assert_allclose(reported.get("stress_disc", 0.0), expected["dm_dsigma"], rtol=DISC_SENSITIVITY_RTOL)
     assert_allclose(reported.get("max_outer_diameter", 0.0), expected["dm_denvelope"], rtol=DISC_SENSITIVITY_RTOL)
     assert_allclose(reported["inertia"], expected["mass"] / j, rtol=DISC_SENSITIVITY_RTOL)  # m is linear in J
@@ -720,7 +720,7 @@ def test_disc_closed_form_names_the_binding_limits_ipopt_names(case, ductile, bo
     spec = DesignSpec(geometry="disc", criterion="stress", bore=bore, max_outer_diameter=envelope)
     binding = {
         method: set(
-            design_flywheel(5.0, 300.0, [MountShaft("shaft", 1.0)], [material], spec, method=method).best.binding
+            design_flywheel(5.0, 300.0, [MountShaft("shaft", 1.0)], [material], spec, method=method).best.limits.binding
         )
         for method in ("ipopt", "auto")
     }
@@ -767,16 +767,16 @@ def _dims_of(c):
     """The design's dimensions, read from the Candidate's fields (None: not a part of this geometry)."""
     bore = c.bore or 0.0
     if c.geometry == "disc":
-        return wheel.Dims(d_outer=c.d_outer, h=(c.d_outer - bore) / 2.0, b=c.b, bore=bore)
+        return wheel.Dims(d_outer=c.dims.d_outer, h=(c.dims.d_outer - bore) / 2.0, b=c.dims.b, bore=bore)
     return wheel.Dims(
-        d_outer=c.d_outer,
-        h=c.h,
-        b=c.b,
+        d_outer=c.dims.d_outer,
+        h=c.dims.h,
+        b=c.dims.b,
         bore=bore,
-        t_web=c.t_web or 0.0,
-        d_hub=c.d_hub or 0.0,
-        l_hub=c.l_hub or 0.0,
-        arm_major=c.arm_major or 0.0,
+        t_web=c.dims.t_web or 0.0,
+        d_hub=c.dims.d_hub or 0.0,
+        l_hub=c.dims.l_hub or 0.0,
+        arm_major=c.dims.arm_major or 0.0,
         n_arms=c.n_arms or 0,
     )
 

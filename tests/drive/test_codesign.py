@@ -402,7 +402,7 @@ def test_relaxation_wheel_is_the_designers_wheel(geometry, criterion, material, 
     assert relaxed.wheel_mass <= designed.best.mass * (1 + 1e-7)
     if material == "cast_steel" or criterion == "rim_speed":
         assert relaxed.wheel_mass == pytest.approx(designed.best.mass, rel=1e-6)
-        assert relaxed.d_outer == pytest.approx(designed.best.d_outer, rel=1e-4)
+        assert relaxed.d_outer == pytest.approx(designed.best.dims.d_outer, rel=1e-4)
     else:
         assert relaxed.wheel_mass < designed.best.mass * (1 - 1e-6)
 

@@ -92,7 +92,7 @@ def test_a_materials_hub_rule_sets_its_hub(tmp_path):
         path.write_text(GOOD.replace("safety_factor = 4", f'safety_factor = 4\nhub_rule = "{rule}"'))
         scene = flyopt.load(path)
         assert scene.materials[0].hub_kind == rule
-        found[rule] = flyopt.solve(scene).design.best.d_hub / 0.080
+        found[rule] = flyopt.solve(scene).design.best.dims.d_hub / 0.080
     assert 1.8 - 1e-6 <= found["cast_iron"] <= 2.0 + 1e-6
     assert 1.6 - 1e-6 <= found["steel"] <= 1.8 + 1e-6
 
@@ -105,4 +105,4 @@ def test_a_42crmo4_wheel_is_designed_by_stress(tmp_path):
     path.write_text(GOOD.replace('materials = ["gjs"]', 'materials = ["42crmo4_qt"]\nsafety_factor = 3'))
     best = flyopt.solve(flyopt.load(path)).design.best
     assert best is not None and best.material == "42crmo4_qt"
-    assert best.strength_safety >= 3 * (1 - 1e-6)
+    assert best.stresses.strength_safety >= 3 * (1 - 1e-6)

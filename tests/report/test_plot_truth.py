@@ -505,15 +505,15 @@ def test_cross_section_draws_in_the_chosen_units_and_comments_an_odd_design():
     best = _designed(PROBLEMS / "slider-crank-press.toml")
     ax = plots.plot_cross_section(best, units="imperial")
     rim = next(p for p in ax.patches if p.get_gid() == "rim+")
-    assert math.isclose(rim.get_y() + rim.get_height(), best.d_outer / 2 / 0.0254, rel_tol=1e-12)
-    assert math.isclose(rim.get_width(), best.b / 0.0254, rel_tol=1e-12)
+    assert math.isclose(rim.get_y() + rim.get_height(), best.dims.d_outer / 2 / 0.0254, rel_tol=1e-12)
+    assert math.isclose(rim.get_width(), best.dims.b / 0.0254, rel_tol=1e-12)
     texts = {t.get_text() for t in ax.texts}
-    assert f"Ø{best.d_outer / 0.0254:.3f}".rstrip("0") in texts
+    assert f"Ø{best.dims.d_outer / 0.0254:.3f}".rstrip("0") in texts
     assert "dimensions in in" in ax.figure.get_suptitle()
     (note,) = [t for t in ax.figure.texts if t.get_gid() == "note"]
     words = " ".join(note.get_text().split())
     assert "The rim alone" in words and "A slender rim" in words
-    assert f"{best.d_outer / min(best.b, best.h):.0f} times its thinnest side" in words
+    assert f"{best.dims.d_outer / min(best.dims.b, best.dims.h):.0f} times its thinnest side" in words
     ax.figure.canvas.draw()
     box = note.get_window_extent()
     assert ax.figure.bbox.contains(box.x0, box.y0) and ax.figure.bbox.contains(box.x1, box.y1)

@@ -466,38 +466,41 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
     ax = plots.plot_cross_section(c)
     # the drawing is in mm (the engineering units, the default): its coordinates too, not metres
     blocks = {gid: tuple(v / 1e3 for v in box) for gid, box in _blocks(ax).items()}
-    r_o, b = c.d_outer / 2, c.b
+    r_o, b = c.dims.d_outer / 2, c.dims.b
     expected = {}
     if geometry == "disc":
         expected["disc"] = (-b / 2, b / 2, c.bore / 2, r_o)
     else:
-        expected["rim"] = (-b / 2, b / 2, r_o - c.h, r_o)
+        expected["rim"] = (-b / 2, b / 2, r_o - c.dims.h, r_o)
     if geometry in ("rim_web", "rim_arms"):
-        expected["hub"] = (-c.l_hub / 2, c.l_hub / 2, c.bore / 2, c.d_hub / 2)
+        expected["hub"] = (-c.dims.l_hub / 2, c.dims.l_hub / 2, c.bore / 2, c.dims.d_hub / 2)
     if geometry == "rim_web":
-        expected["web"] = (-c.t_web / 2, c.t_web / 2, c.d_hub / 2, r_o - c.h)
+        expected["web"] = (-c.dims.t_web / 2, c.dims.t_web / 2, c.dims.d_hub / 2, r_o - c.dims.h)
     if geometry == "rim_arms":
-        expected["arms"] = (-c.arm_minor / 2, c.arm_minor / 2, c.d_hub / 2, r_o - c.h)
+        expected["arms"] = (-c.dims.arm_minor / 2, c.dims.arm_minor / 2, c.dims.d_hub / 2, r_o - c.dims.h)
     for name, (x0, x1, y0, y1) in expected.items():
         np.testing.assert_allclose(blocks[f"{name}+"], (x0, x1, y0, y1), rtol=0, atol=1e-12)
         np.testing.assert_allclose(blocks[f"{name}-"], (x0, x1, -y1, -y0), rtol=0, atol=1e-12)  # mirrored
-    assert c.d_outer * 1e3 / 2 < ax.get_ylim()[1] < c.d_outer * 1e3  # the axes hold millimetres
+    assert c.dims.d_outer * 1e3 / 2 < ax.get_ylim()[1] < c.dims.d_outer * 1e3  # the axes hold millimetres
     assert {g[:-1] for g in blocks} == set(expected)
     # every dimension the brief names is written, in mm
     texts = {t.get_text() for t in ax.texts}
-    wanted = {f"Ø{c.d_outer * 1e3:.1f}".rstrip("0").rstrip("."), f"B {c.b * 1e3:.1f}".rstrip("0").rstrip(".")}
+    wanted = {f"Ø{c.dims.d_outer * 1e3:.1f}".rstrip("0").rstrip("."), f"B {c.dims.b * 1e3:.1f}".rstrip("0").rstrip(".")}
     if geometry != "disc":
-        wanted |= {f"Ø{c.d_inner * 1e3:.1f}".rstrip("0").rstrip("."), f"H {c.h * 1e3:.1f}".rstrip("0").rstrip(".")}
+        wanted |= {
+            f"Ø{c.dims.d_inner * 1e3:.1f}".rstrip("0").rstrip("."),
+            f"H {c.dims.h * 1e3:.1f}".rstrip("0").rstrip("."),
+        }
     if geometry in ("rim_web", "rim_arms"):
         wanted |= {
-            f"Ø{c.d_hub * 1e3:.1f}".rstrip("0").rstrip("."),
+            f"Ø{c.dims.d_hub * 1e3:.1f}".rstrip("0").rstrip("."),
             "Ø60",
-            f"l_hub {c.l_hub * 1e3:.1f}".rstrip("0").rstrip("."),
+            f"l_hub {c.dims.l_hub * 1e3:.1f}".rstrip("0").rstrip("."),
         }
     if geometry == "disc":
         wanted.add("Ø60")
     if geometry == "rim_web":
-        wanted.add(f"t_web {c.t_web * 1e3:.1f}".rstrip("0").rstrip("."))
+        wanted.add(f"t_web {c.dims.t_web * 1e3:.1f}".rstrip("0").rstrip("."))
     assert wanted <= texts, wanted - texts
     if geometry == "rim_arms":
         from matplotlib.patches import Ellipse, Polygon
@@ -505,7 +508,7 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
         section = [p for p in ax.patches if isinstance(p, Ellipse) and p.get_gid() == "arm_section"]
         assert len(section) == 1
         np.testing.assert_allclose(
-            (section[0].width, section[0].height), (c.arm_minor * 1e3, c.arm_major * 1e3), rtol=1e-12
+            (section[0].width, section[0].height), (c.dims.arm_minor * 1e3, c.dims.arm_major * 1e3), rtol=1e-12
         )
         front = [a for a in ax.figure.axes if a is not ax]
         assert len(front) == 1
@@ -514,7 +517,7 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
         # each arm is a strip of width a (the major axis lies in the plane of rotation)
         for arm in arms:
             xy = arm.get_xy()[:4]
-            np.testing.assert_allclose(np.hypot(*(xy[0] - xy[3])), c.arm_major * 1e3, rtol=1e-9)
+            np.testing.assert_allclose(np.hypot(*(xy[0] - xy[3])), c.dims.arm_major * 1e3, rtol=1e-9)
     ax.figure.clf()
 
 
@@ -542,8 +545,8 @@ def test_stress_plot_at_the_bore_is_the_annulus_closed_form(geometry):
     ax, design, analysis = _stress_axes(geometry)
     c = design.best
     omega = analysis.omega_max  # the speed ratio of the crankshaft is 1
-    a = (c.bore if geometry == "disc" else c.d_inner) / 2
-    b = c.d_outer / 2
+    a = (c.bore if geometry == "disc" else c.dims.d_inner) / 2
+    b = c.dims.d_outer / 2
     hoop = (3 + NU) / 4 * RHO * omega**2 * (b**2 + (1 - NU) / (3 + NU) * a**2)
     r, st = _line(ax, "σ_t").get_data()
     r_sr, sr = _line(ax, "σ_r").get_data()
@@ -565,20 +568,22 @@ def test_stress_plot_of_an_arms_wheel_marks_rim_and_arm_root():
     ax, design, analysis = _stress_axes("rim_arms")
     c = design.best
     omega = analysis.omega_max
-    r_mean = c.d_mean / 2
+    r_mean = c.dims.d_mean / 2
     # Khurmi ch. 22: 3/4 rho v^2 + 1/4 of the bending of a rim fixed at its arms, 2 pi^2 rho w^2 R^3/(n^2 H)
-    rim = 0.75 * RHO * (omega * r_mean) ** 2 + 0.25 * 2 * math.pi**2 * RHO * omega**2 * r_mean**3 / (c.n_arms**2 * c.h)
+    rim = 0.75 * RHO * (omega * r_mean) ** 2 + 0.25 * 2 * math.pi**2 * RHO * omega**2 * r_mean**3 / (
+        c.n_arms**2 * c.dims.h
+    )
     rim_point = [line for line in ax.lines if line.get_label().startswith("rim (hoop + bending)")]
     arm_point = [line for line in ax.lines if line.get_label().startswith("arm root")]
     assert len(rim_point) == 1 and len(arm_point) == 1
     x, y = rim_point[0].get_data()
     assert math.isclose(x[0], r_mean * 1e3, rel_tol=1e-12) and math.isclose(y[0], rim / 1e6, rel_tol=1e-9)
-    assert math.isclose(arm_point[0].get_xdata()[0], c.d_hub / 2 * 1e3, rel_tol=1e-12)
+    assert math.isclose(arm_point[0].get_xdata()[0], c.dims.d_hub / 2 * 1e3, rel_tol=1e-12)
     # both labelled on the plot, not only in the legend
     labels = " ".join(t.get_text() for t in ax.texts)
     assert "arm root" in labels and "rim (hoop + bending)" in labels
     # the allowable of each part spans that part
-    spans = {p["name"]: (p["r_inner"] * 1e3, p["r_outer"] * 1e3) for p in c.parts}
+    spans = {p["name"]: (p["r_inner"] * 1e3, p["r_outer"] * 1e3) for p in c.parts.items}
     segments = [seg for coll in ax.collections if "allowable" in coll.get_label() for seg in coll.get_segments()]
     assert sorted((s[0][0], s[1][0]) for s in segments) == sorted(spans.values())
     ax.figure.clf()

@@ -277,14 +277,18 @@ def test_the_design_in_the_chosen_units(name, system, solutions, report):
     best = design.best
     assert close(quantity(fact(text, "mass"), "mass", system), best.mass, "mass", system)
     outer, mean, inner = fact(text, "outer / mean / inner diameter").split(" / ")
-    assert close(value(outer), best.d_outer, "length", system)
-    assert close(value(mean), best.d_mean, "length", system)
-    assert close(quantity(inner, "length", system), best.d_inner, "length", system)
+    assert close(value(outer), best.dims.d_outer, "length", system)
+    assert close(value(mean), best.dims.d_mean, "length", system)
+    assert close(quantity(inner, "length", system), best.dims.d_inner, "length", system)
     h, b = fact(text, "rim H x B").split(" x ", 1)
-    assert close(value(h), best.h, "length", system) and close(quantity(b, "length", system), best.b, "length", system)
+    assert close(value(h), best.dims.h, "length", system) and close(
+        quantity(b, "length", system), best.dims.b, "length", system
+    )
     rim = fact(text, "rim speed")
-    assert close(quantity(rim, "speed", system), best.rim_speed, "speed", system)
-    assert close(quantity(re.search(r"ρv² (.+)", rim).group(1), "stress", system), best.hoop_stress, "stress", system)
+    assert close(quantity(rim, "speed", system), best.stresses.rim_speed, "speed", system)
+    assert close(
+        quantity(re.search(r"ρv² (.+)", rim).group(1), "stress", system), best.stresses.hoop_stress, "stress", system
+    )
     j = fact(text, "inertia")
     assert close(quantity(j, "inertia", system), best.j_flywheel, "inertia", system)
 
@@ -297,7 +301,7 @@ def test_the_design_in_the_chosen_units(name, system, solutions, report):
         UNITS[system]["inertia"],
         None,
     ]
-    for row, part in zip(rows, best.parts):
+    for row, part in zip(rows, best.parts.items):
         r_inner, r_outer = row[1].split(" – ")
         assert close(value(r_inner), part["r_inner"], "length", system, 4)
         assert close(value(r_outer), part["r_outer"], "length", system, 4)
@@ -315,28 +319,34 @@ def test_the_design_in_the_chosen_units(name, system, solutions, report):
         ("strength", UNITS[system]["stress"]),
         ("at wall", UNITS[system]["length"]),
     ]
-    for row, part in zip(rows, best.stress["parts"], strict=True):
+    for row, part in zip(rows, best.stresses.stress["parts"], strict=True):
         assert row[0] == part["part"]
         assert close(value(row[1]), part["stress"], "stress", system, 4)
         assert close(value(row[2]), part["radius"], "length", system, 4)
         assert close(value(row[3]), part["allowable"], "stress", system, 4)
     mean_hoop = fact(text, "mean hoop stress")
-    assert close(quantity(mean_hoop, "stress", system), best.stress["mean_hoop"], "stress", system, 4)
-    if best.burst_speed is not None and math.isfinite(best.burst_speed):
+    assert close(quantity(mean_hoop, "stress", system), best.stresses.stress["mean_hoop"], "stress", system, 4)
+    if best.stresses.burst_speed is not None and math.isfinite(best.stresses.burst_speed):
         burst = fact(text, "burst speed")
-        assert close(quantity(burst, "angular_speed", system), best.burst_speed, "angular_speed", system)
+        assert close(quantity(burst, "angular_speed", system), best.stresses.burst_speed, "angular_speed", system)
 
     balance = next(line for line in text.splitlines() if line.startswith("Permissible unbalance"))
     u_per, e_per = re.fullmatch(r".*G6\.3 at ω_max\): (.+) \(e_per (.+)\)", balance).groups()
-    assert close(quantity(u_per, "unbalance", system), best.unbalance_permissible, "unbalance", system)
+    assert close(quantity(u_per, "unbalance", system), best.stresses.unbalance_permissible, "unbalance", system)
     assert close(
-        quantity(e_per, "eccentricity", system), best.unbalance_permissible / best.mass, "eccentricity", system, 4
+        quantity(e_per, "eccentricity", system),
+        best.stresses.unbalance_permissible / best.mass,
+        "eccentricity",
+        system,
+        4,
     )
-    if best.key:
+    if best.parts.key:
         key = text.splitlines()[[k for k, x in enumerate(text.splitlines()) if x.startswith("Key (DIN")][0] + 1]
         torque = re.search(r"peak torque (.+?): bearing pressure (.+?) \(allowable", key)
-        assert close(quantity(torque.group(1), "torque", system), best.key["torque"], "torque", system)
-        assert close(quantity(torque.group(2), "stress", system), best.key["bearing_pressure"], "stress", system, 4)
+        assert close(quantity(torque.group(1), "torque", system), best.parts.key["torque"], "torque", system)
+        assert close(
+            quantity(torque.group(2), "stress", system), best.parts.key["bearing_pressure"], "stress", system, 4
+        )
 
     head, rows = table(text, "Every combination")
     units = dict(heading_unit(c) for c in head)
@@ -351,8 +361,8 @@ def test_the_design_in_the_chosen_units(name, system, solutions, report):
     for row, candidate in zip(rows, design.candidates, strict=True):
         if candidate.feasible:
             assert close(value(row[column["mass"]]), candidate.mass, "mass", system)
-            assert close(value(row[column["D_outer"]]), candidate.d_outer, "length", system)
-            assert close(value(row[column["v"]]), candidate.rim_speed, "speed", system)
+            assert close(value(row[column["D_outer"]]), candidate.dims.d_outer, "length", system)
+            assert close(value(row[column["v"]]), candidate.stresses.rim_speed, "speed", system)
 
 
 # --------------------------------------------------------------------------

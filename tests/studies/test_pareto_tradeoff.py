@@ -92,7 +92,7 @@ def test_pareto_mass_outer_diameter_matches_individual_solves():
     smallest = flyopt.solve(
         PUNCH.replace(design=dataclasses.replace(PUNCH.design, objective="outer_diameter"))
     ).design.best
-    assert_allclose(front["outer_diameter"].iloc[0], smallest.d_outer, rtol=1e-12)
+    assert_allclose(front["outer_diameter"].iloc[0], smallest.dims.d_outer, rtol=1e-12)
     assert front["method"].iloc[0] == "ipopt"
     for row in front.iloc[1:].to_dict("records"):
         scene = PUNCH.replace(design=dataclasses.replace(PUNCH.design, max_outer_diameter=row["epsilon"]))
@@ -187,9 +187,9 @@ def test_material_tradeoff_table():
         assert row["status"] == "designed" and row["shaft"] == best.shaft
         assert row["method"] == "closed_form" and row["solver_status"] == "closed_form"
         assert_allclose(row["mass"], best.mass, rtol=1e-12)
-        assert_allclose([row["d_outer"], row["rim_speed"]], [best.d_outer, best.rim_speed], rtol=1e-12)
+        assert_allclose([row["d_outer"], row["rim_speed"]], [best.dims.d_outer, best.stresses.rim_speed], rtol=1e-12)
         assert row["rim_speed_limit"] == library[row["material"]].max_rim_speed
-        assert row["limit"] == ",".join(b for b in best.binding if b != "inertia")
+        assert row["limit"] == ",".join(b for b in best.limits.binding if b != "inertia")
         assert "inertia" not in row["limit"].split(",") and row["limit"]
         assert math.isnan(row["cost"])  # the built-in materials have no cost
 

@@ -65,7 +65,7 @@ def check_against_individual_solves(scene, frame, rtol=1e-6):
                     if (c.material, c.shaft) == (row["best_material"], row["best_shaft"])
                 ]
                 assert_allclose(same.mass, best.mass, rtol=1e-9)
-            assert_allclose(row["d_outer"], same.d_outer, rtol=1e-5)
+            assert_allclose(row["d_outer"], same.dims.d_outer, rtol=1e-5)
             assert row["n_feasible"] == sum(c.feasible for c in solution.design.candidates)
         else:
             assert np.isnan(row["mass"]) and not row["feasible"]

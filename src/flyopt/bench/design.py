@@ -56,12 +56,11 @@ def ipopt_combinations(
     out = []
     for combo in combos:
         c = found[(combo.material, combo.shaft)]
-        if not c.feasible:
+        if c.dims is None:  # infeasible: no dimensions
             out.append(Outcome("infeasible", reason=c.reason))
         else:
-            # a feasible candidate has its dimensions
-            assert c.d_mean is not None and c.h is not None and c.b is not None
-            out.append(checked_design(combo, c.d_mean, c.h, c.b, f"IPOPT {c.solver_status}, {c.iterations} it"))
+            solved = f"IPOPT {c.provenance.solver_status}, {c.provenance.iterations} it"
+            out.append(checked_design(combo, c.dims.d_mean, c.dims.h, c.dims.b, solved))
     return out
 
 

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from typing import cast
 
 import numpy as np
 
@@ -92,16 +91,15 @@ def _geometry_at_designs(config):
         if exact is None or thin is None:
             continue
         rho = next(m.density for m in scene["materials"] if m.name == exact.material)
-        # a design (best) has its dimensions and mass
-        d_outer, h, b = cast(float, exact.d_outer), cast(float, exact.h), cast(float, exact.b)
+        d_outer, h, b = exact.dims.d_outer, exact.dims.h, exact.dims.b
         ref = exact_annulus_inertia(d_outer, d_outer - 2 * h, b, rho)
 
-        def thin_model(exact=exact, rho=rho):
-            return geometry.thin_rim_inertia(geometry.rim_mass(exact.d_mean, exact.h, exact.b, rho), exact.d_mean)
+        def thin_model(dims=exact.dims, rho=rho):
+            return geometry.thin_rim_inertia(geometry.rim_mass(dims.d_mean, dims.h, dims.b, rho), dims.d_mean)
 
         times.append(measure(thin_model, max(3, config.repeats // 3), config.min_time).median)
         errors.append(abs(thin_model() - ref) / ref)
-        penalties.append(cast(float, thin.mass) / cast(float, exact.mass) - 1.0)
+        penalties.append(thin.mass / exact.mass - 1.0)
     if not errors:
         return []
     t = float(np.median(times))

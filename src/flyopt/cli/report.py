@@ -249,7 +249,7 @@ def _stress(inputs):
     solution = inputs.solution
     design = solution.design
     best = design.best if design is not None else None
-    if best is None or not best.stress or not best.parts:
+    if best is None or not best.stresses.stress or not best.parts.items:
         return
     inputs.stress, inputs.stress_note = solution.stress, solution.stress_note
 

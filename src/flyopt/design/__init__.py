@@ -14,16 +14,22 @@ combination decided and ranked).
 
 from flyopt.design.designer import design_flywheel
 from flyopt.design.inputs import DesignInputs, design_inputs
-from flyopt.design.result import Candidate, DesignResult
+from flyopt.design.result import Candidate, Design, DesignResult, Dimensions, Limits, Parts, Provenance, Stresses
 from flyopt.design.spec import OBJECTIVES, DesignSpec, MountShaft
 
 __all__ = [
     "Candidate",
+    "Design",
     "DesignInputs",
     "DesignResult",
     "DesignSpec",
+    "Dimensions",
+    "Limits",
     "MountShaft",
     "OBJECTIVES",
+    "Parts",
+    "Provenance",
+    "Stresses",
     "design_flywheel",
     "design_inputs",
 ]

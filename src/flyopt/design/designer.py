@@ -32,7 +32,7 @@ from typing import Any, cast
 from flyopt.design import check, closed_form, geometry, rank, wheel, wheel_design
 from flyopt.design.combination import Combination, shaft_label
 from flyopt.design.materials import Material
-from flyopt.design.result import Candidate, DesignResult
+from flyopt.design.result import Candidate, Design, DesignResult, Dimensions, Limits, Provenance
 from flyopt.design.spec import DesignSpec, MountShaft
 from flyopt.design.wheel_design import bore_of
 from flyopt.errors import SolverFailed
@@ -156,8 +156,6 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
     m = combo.material
     d_outer = geometry.outer_diameter(d_mean, h)
     d_inner = geometry.inner_diameter(d_mean, h)
-    speed = geometry.rim_speed(combo.omega, d_outer)
-    stress = geometry.hoop_stress(m.density, speed)
     hb = h / b
     hb_min, hb_max = spec.hb_ratio
     violations = check.violations(
@@ -186,44 +184,45 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
         )
     )
     cost = mass * m.cost if m.cost is not None else None
-    objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
+    objective = _objective(spec.objective, mass, d_outer, cost)
     dims = (
         wheel.Dims(d_outer=d_outer, h=d_outer / 2.0, b=b)
         if spec.geometry == Geometry.DISC
         else wheel.Dims(d_outer=d_outer, h=h, b=b)
     )
     structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec, 0.0)
-    return Candidate(
-        **structure,
+    return Design(
         material=m.name,
         shaft=combo.shaft.name,
         speed_ratio=combo.shaft.speed_ratio,
         geometry=spec.geometry,
-        feasible=True,
         reason=f"{combo.label}: designed; binding: {', '.join(binding) or 'none'}",
-        d_mean=d_mean,
-        d_outer=d_outer,
-        d_inner=max(d_inner, 0.0),
-        h=h,
-        b=b,
-        hb_ratio=hb,
         mass=mass,
-        rim_speed=speed,
-        hoop_stress=stress,
-        safety_factor=(m.allowable_stress / stress if m.allowable_stress else None),
         cost=cost,
         j_flywheel=j_wheel,
         j_at_reference=inertia_at_reference(j_wheel, combo.shaft.speed_ratio),
-        binding=tuple(binding),
         objective=objective,
-        j_required_on_shaft=combo.j_shaft,
-        d_outer_limit=combo.cap,
-        rim_speed_limit=combo.v_max,
-        j_max=combo.j_max,
-        solver_status=status,
-        iterations=iterations,
-        solve_time=elapsed,
+        dims=Dimensions(d_mean=d_mean, d_outer=d_outer, d_inner=max(d_inner, 0.0), h=h, b=b),
+        parts=structure.parts,
+        stresses=structure.stresses,
+        limits=Limits(
+            j_required_on_shaft=combo.j_shaft,
+            d_outer_limit=combo.cap,
+            rim_speed_limit=combo.v_max,
+            j_max=combo.j_max,
+            binding=tuple(binding),
+        ),
+        provenance=Provenance(solver_status=status, iterations=iterations, solve_time=elapsed, notes=structure.notes),
     )
+
+
+def _objective(objective: str, mass: float, d_outer: float, cost: float | None) -> float:
+    """The value of the ranking objective of a design."""
+    if objective == Objective.COST:
+        if cost is None:  # design_flywheel refuses the cost objective unless every material has a cost
+            raise ValueError("objective 'cost' needs a cost per kg on the material")
+        return cost
+    return d_outer if objective == Objective.OUTER_DIAMETER else mass
 
 
 def rim_speed_limit(material: Material, spec: DesignSpec) -> float:
@@ -248,24 +247,22 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     combo_n = Combination(**{**combo.__dict__, "n_arms": n_arms})
     label = combo_n.label
     m = combo.material
-    common = dict(
+    identity: dict[str, Any] = dict(
         material=m.name,
         shaft=combo.shaft.name,
         speed_ratio=combo.shaft.speed_ratio,
         geometry=spec.geometry,
-        j_required_on_shaft=combo.j_shaft,
-        d_outer_limit=combo.cap,
-        rim_speed_limit=combo.v_max,
         n_arms=n_arms or None,
         bore=combo.bore or None,
     )
+    given = dict(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max)
     start = time.perf_counter()
     try:
         dims, solution, checked = wheel_design.design_combination(
             combo_n, spec, combo.bore, combo.torque, n_arms, solver_options, method
         )
     except wheel_design.NoWheel as err:
-        return Candidate(feasible=False, reason=err.reason, j_max=err.j_max, **common), None
+        return Candidate(feasible=False, reason=err.reason, limits=Limits(**given, j_max=err.j_max), **identity), None
     except SolverFailed as err:
         err.combination = label
         raise
@@ -275,7 +272,6 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     j_wheel = float(wheel.wheel_inertia(parts))
     d_outer, h, b = float(dims.d_outer), float(dims.h), float(dims.b)
     d_inner = float(dims.d_inner)
-    speed = geometry.rim_speed(combo.omega, d_outer)
     found = _whole_violations(combo, spec, dims, j_wheel, checked)
     if found:
         failure = SolverFailed(
@@ -294,7 +290,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
         }
     )
     cost = mass * m.cost if m.cost is not None else None
-    objective = {"mass": mass, "outer_diameter": d_outer, "cost": cost}[spec.objective]
+    objective = _objective(spec.objective, mass, d_outer, cost)
     structure = wheel_design.structure_fields(
         m, spec.geometry, dims, combo.omega, combo.torque, spec, combo.bore, checked
     )
@@ -311,37 +307,34 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     sensitivities = (
         wheel_design.sensitivities(solution, mass, limits) if spec.objective != Objective.OUTER_DIAMETER else ()
     )
-    common.pop("bore")
-    return Candidate(
-        feasible=True,
+    return Design(
         reason=f"{label}: designed; binding: {', '.join(binding) or 'none'}",
-        d_mean=d_outer - h,
-        d_outer=d_outer,
-        d_inner=max(d_inner, 0.0),
-        h=h,
-        b=b,
-        hb_ratio=h / b,
         mass=mass,
-        rim_speed=speed,
-        hoop_stress=geometry.hoop_stress(m.density, speed),
-        safety_factor=(m.allowable_stress / geometry.hoop_stress(m.density, speed) if m.allowable_stress else None),
         cost=cost,
         j_flywheel=j_wheel,
         j_at_reference=inertia_at_reference(j_wheel, combo.shaft.speed_ratio),
-        binding=tuple(binding),
         objective=objective,
-        j_max=math.nan,
-        solver_status=solution.status,
-        iterations=solution.iterations,
-        solve_time=time.perf_counter() - start,
-        t_web=_dim(dims.t_web),
-        d_hub=_dim(dims.d_hub),
-        l_hub=_dim(dims.l_hub),
-        arm_major=_dim(dims.arm_major),
-        arm_minor=_dim(dims.arm_major * wheel.ARM_MINOR_RATIO),
-        sensitivities=sensitivities,
-        **structure,
-        **common,
+        dims=Dimensions(
+            d_mean=d_outer - h,
+            d_outer=d_outer,
+            d_inner=max(d_inner, 0.0),
+            h=h,
+            b=b,
+            t_web=_dim(dims.t_web),
+            d_hub=_dim(dims.d_hub),
+            l_hub=_dim(dims.l_hub),
+            arm_major=_dim(dims.arm_major),
+        ),
+        parts=structure.parts,
+        stresses=structure.stresses,
+        limits=Limits(**given, binding=tuple(binding), sensitivities=sensitivities),
+        provenance=Provenance(
+            solver_status=solution.status,
+            iterations=solution.iterations,
+            solve_time=time.perf_counter() - start,
+            notes=structure.notes,
+        ),
+        **identity,
     ), model
 
 
@@ -410,17 +403,14 @@ def _pruned(combo, spec, n_arms, bound, why, feasible):
         speed_ratio=combo.shaft.speed_ratio,
         geometry=spec.geometry,
         feasible=False,
-        pruned=True,
-        objective_bound=bound,
         reason=(
             f"{label}: not designed, it cannot win: {why}, more than the "
             f"{best.objective:.4g}{_OBJECTIVE_UNIT[spec.objective]} of {winner}"
         ),
-        j_required_on_shaft=combo.j_shaft,
-        d_outer_limit=combo.cap,
-        rim_speed_limit=combo.v_max,
         n_arms=n_arms or None,
         bore=combo.bore or None,
+        limits=Limits(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max),
+        provenance=Provenance(pruned=True, objective_bound=bound),
     )
 
 
@@ -573,9 +563,9 @@ def design_flywheel(
         wheel_model = _design_wholes(
             decided.whole, spec, solver_options, method, decided.feasible, decided.infeasible, decided.pruned
         )
-    ranked, infeasible = _rank(decided)
+    ranked, infeasible, best = _rank(decided)
     description = _describe_model(spec, wheel_model if wheel_model is not None else model)
-    return _result(j_required, omega, spec, ranked, infeasible, decided, description)
+    return _result(j_required, omega, spec, ranked, best, infeasible, decided, description)
 
 
 def _check_arguments(
@@ -697,7 +687,7 @@ def _combinations(
 class _Decided:
     """The combinations as they are decided, each keyed by its input order for the ranking."""
 
-    feasible: list[tuple[int, Candidate]] = field(default_factory=list)
+    feasible: list[tuple[int, Design]] = field(default_factory=list)
     infeasible: list[tuple[tuple[int, int], Candidate]] = field(default_factory=list)  # key: (order, arm index)
     pending: list[tuple[int, Combination]] = field(default_factory=list)  # feasible, for the closed form
     whole: list[tuple[int, Combination]] = field(default_factory=list)  # whole wheels, designed last
@@ -742,29 +732,32 @@ def _decide_textbook(
                 geometry=spec.geometry,
                 feasible=False,
                 reason=reason,
-                j_required_on_shaft=combo.j_shaft,
-                d_outer_limit=combo.cap,
-                rim_speed_limit=combo.v_max,
-                j_max=combo.j_max,
-                d_outer_needed=needed,
+                limits=Limits(
+                    j_required_on_shaft=combo.j_shaft,
+                    d_outer_limit=combo.cap,
+                    rim_speed_limit=combo.v_max,
+                    j_max=combo.j_max,
+                    d_outer_needed=needed,
+                ),
             ),
         )
     )
 
 
-def _rank(decided: _Decided) -> tuple[tuple[Candidate, ...], list[Candidate]]:
-    """The candidates in reported order, and the infeasible ones in input order.
+def _rank(decided: _Decided) -> tuple[tuple[Candidate, ...], list[Candidate], Design | None]:
+    """The candidates in reported order, the infeasible ones in input order, and the best design (None: none).
 
     Feasible ones by the one rule of :func:`flyopt.design.rank.ranking`, then the pruned ones by their
     objective bound, then the infeasible ones in input order.
     """
     infeasible = [c for _, c in sorted(decided.infeasible, key=lambda item: item[0])]  # in input order
+    designs = rank.ranking([c for _, c in decided.feasible])
     ranked = (
-        tuple(rank.ranking([c for _, c in decided.feasible]))
-        + tuple(sorted(decided.pruned, key=lambda c: cast(float, c.objective_bound)))  # a pruned one has its bound
+        tuple(designs)
+        + tuple(sorted(decided.pruned, key=lambda c: cast(float, c.provenance.objective_bound)))  # it has its bound
         + tuple(infeasible)
     )
-    return ranked, infeasible
+    return ranked, infeasible, (designs[0] if designs else None)
 
 
 def _describe_model(spec: DesignSpec, model: Any) -> dict[str, Any]:
@@ -805,12 +798,12 @@ def _result(
     omega: float,
     spec: DesignSpec,
     ranked: tuple[Candidate, ...],
+    best: Design | None,
     infeasible: Sequence[Candidate],
     decided: _Decided,
     description: dict[str, Any],
 ) -> DesignResult:
     """The DesignResult: "designed" with the best candidate, or "infeasible" with every reason."""
-    best = ranked[0] if decided.feasible else None
     if best is None:
         status = "infeasible"
         message = "no material and shaft can give the required inertia: " + "; ".join(c.reason for c in infeasible)
@@ -818,7 +811,7 @@ def _result(
         status = "designed"
         message = (
             f"{best.material} on the {shaft_label(best.shaft)}: {spec.geometry} "
-            f"D_outer {_g(best.d_outer)} m, B {_g(best.b)} m, mass "
+            f"D_outer {_g(best.dims.d_outer)} m, B {_g(best.dims.b)} m, mass "
             f"{_g(best.mass)} kg ({len(decided.feasible)} of {len(ranked)} combinations "
             f"feasible"
             + (f", {len(decided.pruned)} not designed: a bound shows they cannot win" if decided.pruned else "")

@@ -35,7 +35,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 if TYPE_CHECKING:  # annotations only
-    from flyopt.design.result import Candidate
+    from flyopt.design.result import Design
 
 __all__ = ["TIE_RTOL", "winners", "ranking"]
 
@@ -118,12 +118,12 @@ def _winner_of_few(objective, cost, mass, rim_speed, material, shaft):
     return min(alive, key=lambda k: (str(material[k]), str(shaft[k])))
 
 
-def ranking(candidates: Iterable[Candidate]) -> list[Candidate]:
+def ranking(candidates: Iterable[Design]) -> list[Design]:
     """Feasible candidates of one point, best first, by the rule of :func:`winners`.
 
     Parameters
     ----------
-    candidates : sequence of flyopt.design.result.Candidate
+    candidates : sequence of flyopt.design.result.Design
         Feasible designs (``objective``, ``cost``, ``mass``, ``rim_speed``,
         ``material``, ``shaft``).
 
@@ -139,7 +139,7 @@ def ranking(candidates: Iterable[Candidate]) -> list[Candidate]:
             [c.objective for c in left],
             [c.cost for c in left],
             [c.mass for c in left],
-            [c.rim_speed for c in left],
+            [c.stresses.rim_speed for c in left],
             [c.material for c in left],
             [c.shaft for c in left],
         )

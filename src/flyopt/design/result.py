@@ -1,5 +1,11 @@
 """Results of a design: one Candidate per material x shaft combination, and the DesignResult.
 
+A Candidate holds its identity (the combination) and its outcome, and nested
+records along their ideas: the wheel's dimensions (:class:`Dimensions`), its
+parts (:class:`Parts`), its stresses (:class:`Stresses`), the limits it was
+designed against (:class:`Limits`) and how it was found (:class:`Provenance`).
+The JSON (``to_dict``) is flat, as before the records: one key per number.
+
 Every number in SI: lengths [m], mass [kg], inertia [kg*m^2], speed [m/s],
 stress [Pa]. Wall-clock times are kept out of the JSON unless asked for
 (``timings=True``): they are not results, and a result must be reproducible.
@@ -8,81 +14,111 @@ stress [Pa]. Wall-clock times are kept out of the JSON unless asked for
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 from flyopt.design.spec import DesignSpec
+from flyopt.design.wheel import ARM_MINOR_RATIO, Dims
 
-__all__ = ["Candidate", "DesignResult", "DESIGN_FIELDS", "TIMING_FIELDS"]
+__all__ = [
+    "Candidate",
+    "Design",
+    "Dimensions",
+    "Parts",
+    "Stresses",
+    "Limits",
+    "Provenance",
+    "DesignResult",
+    "CANDIDATE_FIELDS",
+    "DESIGN_FIELDS",
+    "TIMING_FIELDS",
+]
 
 #: Fields that hold wall-clock times, left out of ``to_dict`` unless ``timings=True``.
 TIMING_FIELDS = ("solve_time",)
 
 
 @dataclass(frozen=True)
-class Candidate:
-    """One combination of material and shaft, designed or shown infeasible.
+class Dimensions:
+    """The dimensions of a designed wheel, as reported [m] (``n_arms`` a count is the candidate's).
 
-    All lengths in [m], mass [kg], inertia [kg*m^2], speed [m/s], stress [Pa].
-    For a disc, d_mean = h = D/2 and d_inner = 0 (the annulus with no hole),
-    so that every rim formula holds. Dimensions are None when not feasible.
+    The rim's ``d_outer``, ``h``, ``b`` and its ``d_mean`` and ``d_inner`` as
+    the design found them (a textbook design's NLP solves for ``d_mean`` and
+    ``h``, so ``d_outer - h`` may differ from its ``d_mean`` in the last bit);
+    the web, hub and arms of a whole wheel, None where the geometry has no such
+    part. For a disc, d_mean = h = D/2 and d_inner = 0 (the annulus with no
+    hole), so that every rim formula holds. :meth:`wheel` gives the
+    :class:`flyopt.design.wheel.Dims` the wheel's arithmetic takes.
+    """
+
+    d_mean: float
+    d_outer: float
+    d_inner: float
+    h: float
+    b: float
+    t_web: float | None = None
+    d_hub: float | None = None
+    l_hub: float | None = None
+    arm_major: float | None = None
+
+    @property
+    def hb_ratio(self) -> float:
+        """H/B [-]."""
+        return self.h / self.b
+
+    @property
+    def arm_minor(self) -> float | None:
+        """The arms' minor axis [m] (:data:`flyopt.design.wheel.ARM_MINOR_RATIO` of the major), None: no arms."""
+        return None if self.arm_major is None else self.arm_major * ARM_MINOR_RATIO
+
+    def wheel(self, n_arms: int | None = None, bore: float | None = None) -> Dims:
+        """The :class:`flyopt.design.wheel.Dims` of these dimensions (0 where the wheel has no such part)."""
+        return Dims(
+            d_outer=self.d_outer,
+            h=self.h,
+            b=self.b,
+            bore=bore or 0.0,
+            t_web=self.t_web or 0.0,
+            d_hub=self.d_hub or 0.0,
+            l_hub=self.l_hub or 0.0,
+            arm_major=self.arm_major or 0.0,
+            n_arms=n_arms or 0,
+        )
+
+
+@dataclass(frozen=True)
+class Parts:
+    """The parts of a designed wheel and the key of its hub.
 
     Attributes
     ----------
-    material, shaft : str
-    speed_ratio : float
-        omega_shaft / omega_reference.
-    geometry : str
-    feasible : bool
-    reason : str
-        Why infeasible, in words and numbers; for a design, what binds.
-    d_mean, d_outer, d_inner, h, b, hb_ratio, mass : float or None
-    rim_speed : float or None
-        omega' D_outer / 2 [m/s].
-    hoop_stress : float or None
-        rho v^2 at the outer rim [Pa].
-    safety_factor : float or None
-        allowable_stress / hoop_stress, when the allowable stress is known.
-    cost : float or None
-        mass times cost per kg, when the material has a cost.
-    j_flywheel : float or None
-        Inertia of the wheel on its own shaft (the chosen model).
-    j_at_reference : float or None
-        j_flywheel moved to the reference shaft, J' r^2.
-    binding : tuple of str
-        Active constraints (see :data:`BINDING_NAMES`), relative tolerance
-        :data:`ACTIVE_RTOL`.
-    objective : float or None
-        Value of the ranking objective.
-    j_required_on_shaft : float
-        J_F / r^2.
-    d_outer_limit : float
-        min(2 v_max / omega', max_outer_diameter).
-    rim_speed_limit : float
-        The material's v_max.
-    j_max : float
-        Largest inertia the combination can give on its shaft (closed form).
-    d_outer_needed : float or None
-        For a combination stopped by the outer-diameter cap: the cap it needs.
-    solver_status : str or None
-        IPOPT return status; None when the closed form proved infeasibility
-        and no NLP was solved.
-    iterations : int or None
-    solve_time : float or None
-        Wall time of the NLP solve [s].
-    n_arms, t_web, d_hub, l_hub, arm_major, arm_minor : int or float or None
-        The arm count and the dimensions of the web, hub and arms of a whole
-        wheel [m] (None where the geometry has no such part).
-    bore : float or None
-        The shaft seat [m]; None: no bore.
-    parts : tuple of dict
+    items : tuple of dict
         One per part: ``name``, ``mass`` [kg], ``inertia`` [kg*m^2],
         ``r_inner``, ``r_outer``, ``thickness`` [m].
+    key : dict or None
+        The DIN 6885-1 key of the hub and its check at the peak torque.
+    """
+
+    items: tuple[dict[str, Any], ...] = ()
+    key: dict[str, Any] | None = None
+
+
+@dataclass(frozen=True)
+class Stresses:
+    """The speed and stresses of a designed wheel at omega_max on its shaft.
+
+    Attributes
+    ----------
+    rim_speed : float
+        omega' D_outer / 2 [m/s].
+    hoop_stress : float
+        rho v^2 at the outer rim [Pa].
+    safety_factor : float or None
+        allowable_stress / hoop_stress, when the material's allowable stress is known.
     stress : dict or None
-        At omega_max on the wheel's shaft [Pa]: ``max_principal``,
-        ``von_mises``, ``hoop_max``, ``radial_max``, ``where`` (part and
-        radius of the governing stress), ``mean_hoop`` and ``parts`` (each
-        part's governing stress, radius, allowable, strength and wall).
+        [Pa]: ``max_principal``, ``von_mises``, ``hoop_max``, ``radial_max``,
+        ``where`` (part and radius of the governing stress), ``mean_hoop`` and
+        ``parts`` (each part's governing stress, radius, allowable, strength and wall).
     allowable_stress : float or None
         The governing part's allowable stress [Pa].
     strength_safety : float or None
@@ -91,10 +127,62 @@ class Candidate:
         [rad/s] on the wheel's shaft; ``speed_margin`` = burst_speed / omega_max.
     unbalance_permissible : float or None
         ISO 21940-11 G6.3: U_per = e_per m [kg*m].
-    key : dict or None
-        The DIN 6885-1 key of the hub and its check at the peak torque.
+    """
+
+    rim_speed: float
+    hoop_stress: float
+    safety_factor: float | None = None
+    stress: dict[str, Any] | None = None
+    allowable_stress: float | None = None
+    strength_safety: float | None = None
+    burst_speed: float | None = None
+    speed_margin: float | None = None
+    unbalance_permissible: float | None = None
+
+
+@dataclass(frozen=True)
+class Limits:
+    """What a combination was designed against, and what binds.
+
+    Attributes
+    ----------
+    j_required_on_shaft : float
+        J_F / r^2 [kg*m^2].
+    d_outer_limit : float
+        min(2 v_max / omega', max_outer_diameter) [m].
+    rim_speed_limit : float
+        The material's v_max [m/s].
+    j_max : float
+        Largest inertia the combination can give on its shaft (closed form); NaN: not computed.
+    d_outer_needed : float or None
+        For a combination stopped by the outer-diameter cap: the cap it needs [m].
+    binding : tuple of str
+        Active constraints (see :data:`flyopt.design.check.BINDING_NAMES`).
     sensitivities : tuple of dict
         For a design by the wheel NLP: d(mass)/d(limit) of every binding limit.
+    """
+
+    j_required_on_shaft: float = math.nan
+    d_outer_limit: float = math.nan
+    rim_speed_limit: float = math.nan
+    j_max: float = math.nan
+    d_outer_needed: float | None = None
+    binding: tuple[str, ...] = ()
+    sensitivities: tuple[dict[str, Any], ...] = ()
+
+
+@dataclass(frozen=True)
+class Provenance:
+    """How a candidate was found.
+
+    Attributes
+    ----------
+    solver_status : str or None
+        IPOPT return status ("closed_form" for a closed-form design); None when
+        no NLP was solved.
+    iterations : int or None
+    solve_time : float or None
+        Wall time of the solve [s].
     notes : tuple of str
         What could not be computed, and why.
     pruned : bool
@@ -107,68 +195,201 @@ class Candidate:
         in the unit of the objective.
     """
 
+    solver_status: str | None = None
+    iterations: int | None = None
+    solve_time: float | None = None
+    notes: tuple[str, ...] = ()
+    pruned: bool = False
+    objective_bound: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class Candidate:
+    """One combination of material and shaft (and arm count), designed or shown infeasible.
+
+    All lengths in [m], mass [kg], inertia [kg*m^2]. A :class:`Design` is a
+    feasible one, with its dimensions, parts and stresses; an infeasible or
+    pruned one has none of them.
+
+    Attributes
+    ----------
+    material, shaft : str
+    speed_ratio : float
+        omega_shaft / omega_reference.
+    geometry : str
+    feasible : bool
+    reason : str
+        Why infeasible, in words and numbers; for a design, what binds.
+    n_arms : int or None
+        The arm count of a wheel with arms (part of the combination).
+    bore : float or None
+        The shaft seat [m] (the shaft's); None: no bore.
+    mass : float or None
+    cost : float or None
+        mass times cost per kg, when the material has a cost.
+    j_flywheel : float or None
+        Inertia of the wheel on its own shaft (the chosen model).
+    j_at_reference : float or None
+        j_flywheel moved to the reference shaft, J' r^2.
+    objective : float or None
+        Value of the ranking objective.
+    dims, parts, stresses : Dimensions, Parts, Stresses or None
+        None unless designed.
+    limits : Limits
+    provenance : Provenance
+    """
+
     material: str
     shaft: str
     speed_ratio: float
     geometry: str
     feasible: bool
     reason: str
-    d_mean: float | None = None
-    d_outer: float | None = None
-    d_inner: float | None = None
-    h: float | None = None
-    b: float | None = None
-    hb_ratio: float | None = None
+    n_arms: int | None = None
+    bore: float | None = None
     mass: float | None = None
-    rim_speed: float | None = None
-    hoop_stress: float | None = None
-    safety_factor: float | None = None
     cost: float | None = None
     j_flywheel: float | None = None
     j_at_reference: float | None = None
-    binding: tuple[str, ...] = ()
     objective: float | None = None
-    j_required_on_shaft: float = math.nan
-    d_outer_limit: float = math.nan
-    rim_speed_limit: float = math.nan
-    j_max: float = math.nan
-    d_outer_needed: float | None = None
-    solver_status: str | None = None
-    iterations: int | None = None
-    solve_time: float | None = None
-    n_arms: int | None = None
-    t_web: float | None = None
-    d_hub: float | None = None
-    l_hub: float | None = None
-    arm_major: float | None = None
-    arm_minor: float | None = None
-    bore: float | None = None
-    parts: tuple[dict[str, Any], ...] = ()
-    stress: dict[str, Any] | None = None
-    allowable_stress: float | None = None
-    strength_safety: float | None = None
-    burst_speed: float | None = None
-    speed_margin: float | None = None
-    unbalance_permissible: float | None = None
-    key: dict[str, Any] | None = None
-    sensitivities: tuple[dict[str, Any], ...] = ()
-    notes: tuple[str, ...] = ()
-    pruned: bool = False
-    objective_bound: float | None = None
+    dims: Dimensions | None = None
+    parts: Parts | None = None
+    stresses: Stresses | None = None
+    limits: Limits = field(default_factory=Limits)
+    provenance: Provenance = field(default_factory=Provenance)
 
     def to_dict(self, timings: bool = False) -> dict[str, Any]:
-        """Plain, JSON-ready dictionary (inf becomes None; wall times only with ``timings``)."""
+        """Plain, JSON-ready dictionary, flat (inf becomes None; wall times only with ``timings``).
+
+        The keys are :data:`CANDIDATE_FIELDS` in that order (``solve_time`` only with ``timings``).
+        """
+        d, p, s, lim, prov = self.dims, self.parts, self.stresses, self.limits, self.provenance
+        values: dict[str, Any] = {
+            "material": self.material,
+            "shaft": self.shaft,
+            "speed_ratio": self.speed_ratio,
+            "geometry": self.geometry,
+            "feasible": self.feasible,
+            "reason": self.reason,
+            "d_mean": d and d.d_mean,
+            "d_outer": d and d.d_outer,
+            "d_inner": d and d.d_inner,
+            "h": d and d.h,
+            "b": d and d.b,
+            "hb_ratio": d and d.hb_ratio,
+            "mass": self.mass,
+            "rim_speed": s and s.rim_speed,
+            "hoop_stress": s and s.hoop_stress,
+            "safety_factor": s and s.safety_factor,
+            "cost": self.cost,
+            "j_flywheel": self.j_flywheel,
+            "j_at_reference": self.j_at_reference,
+            "binding": list(lim.binding),
+            "objective": self.objective,
+            "j_required_on_shaft": lim.j_required_on_shaft,
+            "d_outer_limit": lim.d_outer_limit,
+            "rim_speed_limit": lim.rim_speed_limit,
+            "j_max": lim.j_max,
+            "d_outer_needed": lim.d_outer_needed,
+            "solver_status": prov.solver_status,
+            "iterations": prov.iterations,
+            "solve_time": prov.solve_time,
+            "n_arms": self.n_arms,
+            "t_web": d and d.t_web,
+            "d_hub": d and d.d_hub,
+            "l_hub": d and d.l_hub,
+            "arm_major": d and d.arm_major,
+            "arm_minor": d and d.arm_minor,
+            "bore": self.bore,
+            "parts": [dict(v) for v in p.items] if p else [],
+            "stress": s and s.stress,
+            "allowable_stress": s and s.allowable_stress,
+            "strength_safety": s and s.strength_safety,
+            "burst_speed": s and s.burst_speed,
+            "speed_margin": s and s.speed_margin,
+            "unbalance_permissible": s and s.unbalance_permissible,
+            "key": p and p.key,
+            "sensitivities": [dict(v) for v in lim.sensitivities],
+            "notes": list(prov.notes),
+            "pruned": prov.pruned,
+            "objective_bound": prov.objective_bound,
+        }
         out = {}
-        for f in fields(self):
-            if f.name in TIMING_FIELDS and not timings:
+        for name, value in values.items():
+            if name in TIMING_FIELDS and not timings:
                 continue
-            value = getattr(self, f.name)
-            if isinstance(value, tuple):
-                value = [dict(v) if isinstance(v, dict) else v for v in value]
-            elif isinstance(value, float) and not math.isfinite(value):
-                value = None
-            out[f.name] = value
+            out[name] = None if isinstance(value, float) and not math.isfinite(value) else value
         return out
+
+
+@dataclass(frozen=True, kw_only=True)
+class Design(Candidate):
+    """A feasible Candidate: one with its dimensions, parts, stresses, mass, inertia and objective.
+
+    Each of them is required (``field()``: without it the Candidate's default None would be inherited).
+    """
+
+    feasible: bool = True
+    mass: float = field()
+    j_flywheel: float = field()
+    j_at_reference: float = field()
+    objective: float = field()
+    dims: Dimensions = field()
+    parts: Parts = field()
+    stresses: Stresses = field()
+
+
+#: The keys of :meth:`Candidate.to_dict`, in order (the JSON of every candidate; flat since before the records).
+CANDIDATE_FIELDS = (
+    "material",
+    "shaft",
+    "speed_ratio",
+    "geometry",
+    "feasible",
+    "reason",
+    "d_mean",
+    "d_outer",
+    "d_inner",
+    "h",
+    "b",
+    "hb_ratio",
+    "mass",
+    "rim_speed",
+    "hoop_stress",
+    "safety_factor",
+    "cost",
+    "j_flywheel",
+    "j_at_reference",
+    "binding",
+    "objective",
+    "j_required_on_shaft",
+    "d_outer_limit",
+    "rim_speed_limit",
+    "j_max",
+    "d_outer_needed",
+    "solver_status",
+    "iterations",
+    "solve_time",
+    "n_arms",
+    "t_web",
+    "d_hub",
+    "l_hub",
+    "arm_major",
+    "arm_minor",
+    "bore",
+    "parts",
+    "stress",
+    "allowable_stress",
+    "strength_safety",
+    "burst_speed",
+    "speed_margin",
+    "unbalance_permissible",
+    "key",
+    "sensitivities",
+    "notes",
+    "pruned",
+    "objective_bound",
+)
 
 
 #: Fields of the top-level "design" object taken from the best candidate.
@@ -225,7 +446,7 @@ class DesignResult:
     omega : float
         Speed of the reference shaft at which the rim speed was checked (ω_max) [rad/s].
     spec : DesignSpec
-    best : Candidate or None
+    best : Design or None
     candidates : tuple of Candidate
         Every material x shaft combination, ranked: feasible ones by the
         objective (best first), then the infeasible ones in input order.
@@ -238,7 +459,7 @@ class DesignResult:
     j_required: float
     omega: float
     spec: DesignSpec
-    best: Candidate | None = None
+    best: Design | None = None
     candidates: tuple[Candidate, ...] = ()
     model: dict[str, Any] | None = None
 

@@ -21,12 +21,14 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from flyopt.design import balance, check, geometry, hub, key, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
+from flyopt.design.result import Parts, Stresses
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Method, Objective
 
@@ -47,6 +49,7 @@ __all__ = [
     "stress_cap",
     "screen",
     "design_combination",
+    "Structure",
     "structure_fields",
     "NoWheel",
     "sensitivities",
@@ -587,9 +590,15 @@ def _disc_closed_form(combo, spec, bore, material):
 
 
 def _with(problem, **changes):
-    import dataclasses
-
     return dataclasses.replace(problem, **changes)
+
+
+class Structure(NamedTuple):
+    """What :func:`structure_fields` finds of a designed wheel."""
+
+    parts: Parts
+    stresses: Stresses
+    notes: tuple[str, ...]
 
 
 def structure_fields(
@@ -601,23 +610,21 @@ def structure_fields(
     spec: DesignSpec,
     bore: float,
     checked: StrengthCheck | None = None,
-) -> dict[str, Any]:
-    """The structural fields of a design (any geometry, any criterion).
+) -> Structure:
+    """The structure of a design (any geometry, any criterion): its parts, key, speed and stresses.
 
     Returns
     -------
-    dict
-        ``parts``, ``bore``, ``stress``, ``allowable_stress``,
-        ``strength_safety``, ``burst_speed``, ``speed_margin``,
-        ``unbalance_permissible``, ``key`` (values None where the material
-        lacks what they need; ``notes`` say why). ``checked``: the
+    Structure
+        ``parts`` (the parts and the key), ``stresses`` (the rim speed and
+        hoop stress at ``omega`` and the wheel's stresses, None where the
+        material lacks what they need) and ``notes`` (why). ``checked``: the
         :func:`flyopt.design.strength.check_wheel` of these dims, when the
         designer has made it already (it is not made twice).
     """
     notes: list[str] = []
-    out: dict[str, Any] = {"bore": bore or None, "notes": notes}
     parts = wheel.parts(geometry_name, dims, material.density)
-    out["parts"] = tuple(
+    items = tuple(
         {
             "name": p.name,
             "mass": float(p.mass),
@@ -630,36 +637,44 @@ def structure_fields(
     )
     mass = float(wheel.wheel_mass(parts))
     unbalance = balance.permissible_unbalance(mass, omega, balance.BALANCE_GRADE)
-    out["unbalance_permissible"] = float(unbalance.u_per)
-    out.update(stress=None, allowable_stress=None, strength_safety=None, burst_speed=None, speed_margin=None, key=None)
+    speed = geometry.rim_speed(omega, float(dims.d_outer))
+    hoop = geometry.hoop_stress(material.density, speed)
+    stresses = Stresses(
+        rim_speed=speed,
+        hoop_stress=hoop,
+        safety_factor=material.allowable_stress / hoop if material.allowable_stress else None,
+        unbalance_permissible=float(unbalance.u_per),
+    )
     if getattr(material, "poisson_ratio", None) is None:
-        out["notes"].append(f"material {material.name} gives no poisson_ratio: stresses not computed")
+        notes.append(f"material {material.name} gives no poisson_ratio: stresses not computed")
     else:
         try:
             if checked is None:
                 checked = strength.check_wheel(material, geometry_name, dims, omega, torque, spec.safety_factor)
         except ValueError as err:
-            out["notes"].append(f"stresses not computed: {err}")
+            notes.append(f"stresses not computed: {err}")
         else:
-            out["stress"] = {**checked.to_dict(), "mean_hoop": checked.mean_hoop}
-            out.update(
+            stresses = dataclasses.replace(
+                stresses,
+                stress={**checked.to_dict(), "mean_hoop": checked.mean_hoop},
                 allowable_stress=checked.allowable_stress,
                 strength_safety=_finite_or_none(checked.strength_safety),
                 burst_speed=_finite_or_none(checked.burst_speed),
                 speed_margin=_finite_or_none(checked.speed_margin),
             )
+    key_check = None
     hub_length = {"rim_web": dims.l_hub, "rim_arms": dims.l_hub, "disc": dims.b}.get(geometry_name)
     if bore and hub_length and torque:
         pressure = getattr(material, "bearing_pressure", None)
         if pressure is None:
-            out["notes"].append(f"material {material.name} gives no bearing_pressure: key not checked")
+            notes.append(f"material {material.name} gives no bearing_pressure: key not checked")
         else:
             try:
                 k = key.check_key(torque, bore, float(hub_length), pressure)
             except ValueError as err:
-                out["notes"].append(f"key not checked: {err}")
+                notes.append(f"key not checked: {err}")
             else:
-                out["key"] = {
+                key_check = {
                     "size": k.key.size,
                     "b": k.key.b,
                     "h": k.key.h,
@@ -675,9 +690,8 @@ def structure_fields(
                     "ok": k.ok,
                 }
     elif bore and not torque:
-        out["notes"].append("the cycle gives no torque curves: key not checked")
-    out["notes"] = tuple(out["notes"])
-    return out
+        notes.append("the cycle gives no torque curves: key not checked")
+    return Structure(Parts(items, key_check), stresses, tuple(notes))
 
 
 def _finite_or_none(x):

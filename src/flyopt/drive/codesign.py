@@ -52,7 +52,7 @@ if TYPE_CHECKING:
 
     from flyopt.analysis import Analysis
     from flyopt.design.materials import Material
-    from flyopt.design.result import Candidate, DesignResult
+    from flyopt.design.result import Design, DesignResult
     from flyopt.design.spec import DesignSpec
     from flyopt.drive.relaxation import Relaxation
     from flyopt.io.drive import DriveSpec
@@ -78,7 +78,7 @@ THERMAL_RTOL = 1e-8
 MOTOR_MODEL = "kloss"
 
 if TYPE_CHECKING:
-    from flyopt.design.result import Candidate
+    from flyopt.design.result import Design
     from flyopt.drive.relaxation import Relaxation
     from flyopt.sizing.periodic import Verification
 
@@ -109,7 +109,7 @@ class MotorRun:
         Run-up from rest [s] with ``j_flywheel``.
     flywheel_ratio : float or None
         r = ω_flywheel_shaft / ω_crank [-] of the wheel chosen.
-    wheel : Candidate or None
+    wheel : Design or None
     design : DesignResult or None
         The wheel's design on its shaft (every material ranked), for the report.
     motor_mass, wheel_mass, total_mass : float or None
@@ -134,7 +134,7 @@ class MotorRun:
     delta: float | None = None
     startup_time: float | None = None
     flywheel_ratio: float | None = None
-    wheel: Candidate | None = None
+    wheel: Design | None = None
     motor_mass: float | None = None
     wheel_mass: float | None = None
     total_mass: float | None = None
@@ -565,7 +565,7 @@ def _thermal_flywheel(machine, motor, ratio, omega, j_low, rated, guess=None):
 
 
 def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, solver_options):
-    """(best Candidate, its shaft ratio) over the drive's flywheel ratios; (None, None) when no flywheel is needed.
+    """(best Design, its shaft ratio) over the drive's flywheel ratios; (None, None) when no flywheel is needed.
 
     The wheel's share of the drive's objective (its mass, or its cost) is what is minimized over r.
     """

@@ -15,6 +15,7 @@ import math
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
+from flyopt.design.result import Design
 from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, quantity_text
 
 if TYPE_CHECKING:
@@ -257,9 +258,9 @@ def engine_report(result: Analysis, units: str = DEFAULT) -> list[str]:
 
 def solver_words(candidate: Candidate) -> str:
     """How a design was found, in words: the exact closed form or IPOPT with its status."""
-    if candidate.solver_status == "closed_form":
+    if candidate.provenance.solver_status == "closed_form":
         return "the exact closed form of the lightest wheel, checked against every constraint"
-    return f"IPOPT ({candidate.solver_status}, {candidate.iterations} iterations), checked against every constraint"
+    return f"IPOPT ({candidate.provenance.solver_status}, {candidate.provenance.iterations} iterations), checked against every constraint"
 
 
 def design_report(result: DesignResult, spec: DesignSpec | None = None, units: str = DEFAULT) -> list[str]:
@@ -278,9 +279,9 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
             ("mass", q(best.mass, "mass") + (f" (cost {number(best.cost)})" if best.cost is not None else "")),
             (
                 "outer / mean / inner diameter",
-                f"{n(best.d_outer, 'd_outer')} / {n(best.d_mean, 'd_mean')} / {q(best.d_inner, 'd_inner')}",
+                f"{n(best.dims.d_outer, 'd_outer')} / {n(best.dims.d_mean, 'd_mean')} / {q(best.dims.d_inner, 'd_inner')}",
             ),
-            ("rim H x B", f"{n(best.h, 'h')} x {q(best.b, 'b')} (H/B {number(best.hb_ratio, 4)})"),
+            ("rim H x B", f"{n(best.dims.h, 'h')} x {q(best.dims.b, 'b')} (H/B {number(best.dims.hb_ratio, 4)})"),
             (
                 "inertia",
                 f"{q(best.j_flywheel, 'j_flywheel')} on its shaft = "
@@ -288,11 +289,11 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
             ),
             (
                 "rim speed",
-                f"{q(best.rim_speed, 'rim_speed')} (limit {q(best.rim_speed_limit, 'rim_speed_limit')}), "
-                f"hoop stress ρv² {q(best.hoop_stress, 'hoop_stress')}"
-                + (f", safety factor {number(best.safety_factor, 3)}" if best.safety_factor else ""),
+                f"{q(best.stresses.rim_speed, 'rim_speed')} (limit {q(best.limits.rim_speed_limit, 'rim_speed_limit')}), "
+                f"hoop stress ρv² {q(best.stresses.hoop_stress, 'hoop_stress')}"
+                + (f", safety factor {number(best.stresses.safety_factor, 3)}" if best.stresses.safety_factor else ""),
             ),
-            ("binding", ", ".join(best.binding) or "none"),
+            ("binding", ", ".join(best.limits.binding) or "none"),
             ("solved by", solver_words(best)),
         ]
         width = max(len(k) for k, _ in facts)
@@ -307,22 +308,24 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
         lines.append("  no feasible design: no material and shaft can give the required inertia")
     rows = []
     for k, c in enumerate(result.candidates, 1):
-        if c.feasible:
+        if isinstance(c, Design):
             rows.append(
                 [
                     str(k),
                     c.material,
                     c.shaft,
                     n(c.mass, "mass"),
-                    n(c.d_outer, "d_outer"),
-                    n(c.h, "h"),
-                    n(c.b, "b"),
-                    n(c.rim_speed, "rim_speed"),
-                    ", ".join(c.binding),
+                    n(c.dims.d_outer, "d_outer"),
+                    n(c.dims.h, "h"),
+                    n(c.dims.b, "b"),
+                    n(c.stresses.rim_speed, "rim_speed"),
+                    ", ".join(c.limits.binding),
                 ]
             )
         else:
-            rows.append(["-", c.material, c.shaft, "cannot win" if c.pruned else "infeasible", "", "", "", "", ""])
+            rows.append(
+                ["-", c.material, c.shaft, "cannot win" if c.provenance.pruned else "infeasible", "", "", "", "", ""]
+            )
     head = [
         "rank",
         "material",
@@ -342,10 +345,10 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
         align.insert(3, ">")
     lines += ["", "Every combination (ranked):"]
     lines += ["  " + line for line in table(head, rows, align)]
-    reasons = [c.reason for c in result.candidates if not c.feasible and not c.pruned]
+    reasons = [c.reason for c in result.candidates if not c.feasible and not c.provenance.pruned]
     if reasons:
         lines += ["", "Why the infeasible ones fail:"] + [f"  - {r}" for r in reasons]
-    reasons = [c.reason for c in result.candidates if c.pruned]
+    reasons = [c.reason for c in result.candidates if c.provenance.pruned]
     if reasons:
         lines += ["", "Not designed, since a bound shows they cannot win (design.prune = false designs them):"]
         lines += [f"  - {r}" for r in reasons]
@@ -357,12 +360,12 @@ def _finite(value):
     return value is not None and math.isfinite(value)
 
 
-def wheel_report(candidate: Candidate, omega: float, units: str = DEFAULT) -> list[str]:
+def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[str]:
     """The whole wheel of a design: its parts, stress check, burst speed, balance, key, sensitivities, notes.
 
     Parameters
     ----------
-    candidate : flyopt.design.result.Candidate
+    candidate : flyopt.design.result.Design
         A feasible design.
     omega : float
         omega_max on the wheel's own shaft [rad/s] (the speed the stresses were checked at).
@@ -384,8 +387,8 @@ def wheel_report(candidate: Candidate, omega: float, units: str = DEFAULT) -> li
         return field_text(value, name, units, digits) if _finite(value) else "-"
 
     lines = []
-    if c.parts:
-        total_j = sum(p["inertia"] for p in c.parts)
+    if c.parts.items:
+        total_j = sum(p["inertia"] for p in c.parts.items)
         rows = [
             [
                 p["name"],
@@ -395,15 +398,15 @@ def wheel_report(candidate: Candidate, omega: float, units: str = DEFAULT) -> li
                 n(p["inertia"], "inertia"),
                 f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-",
             ]
-            for p in c.parts
+            for p in c.parts.items
         ]
         rows.append(
             [
                 "total",
-                f"{n(min(p['r_inner'] for p in c.parts), 'r_inner', 4)} – "
-                f"{n(max(p['r_outer'] for p in c.parts), 'r_outer', 4)}",
+                f"{n(min(p['r_inner'] for p in c.parts.items), 'r_inner', 4)} – "
+                f"{n(max(p['r_outer'] for p in c.parts.items), 'r_outer', 4)}",
                 "",
-                n(sum(p["mass"] for p in c.parts), "mass"),
+                n(sum(p["mass"] for p in c.parts.items), "mass"),
                 n(total_j, "inertia"),
                 "100.0 %" if total_j > 0 else "-",
             ]
@@ -420,13 +423,13 @@ def wheel_report(candidate: Candidate, omega: float, units: str = DEFAULT) -> li
         body = table(head, rows, ["<", ">", ">", ">", ">", ">"])
         body.insert(len(body) - 1, "  ".join("-" * len(cell) for cell in body[1].split("  ")))
         lines += ["  " + line for line in body]
-        if c.n_arms and c.arm_major:
+        if c.n_arms and c.dims.arm_major:
             lines.append(
-                f"  arms: {c.n_arms} of elliptical section {n(c.arm_major, 'arm_major', 4)} x "
-                f"{q(c.arm_minor, 'arm_minor', 4)} (major axis in the plane of rotation, minor axial)"
+                f"  arms: {c.n_arms} of elliptical section {n(c.dims.arm_major, 'arm_major', 4)} x "
+                f"{q(c.dims.arm_minor, 'arm_minor', 4)} (major axis in the plane of rotation, minor axial)"
             )
-    if c.stress:
-        s = c.stress
+    if c.stresses.stress:
+        s = c.stresses.stress
         lines += ["", f"Stress check at ω_max = {q(omega, 'omega_max')} on its shaft:"]
         rows = []
         for p in s.get("parts", []):
@@ -470,23 +473,25 @@ def wheel_report(candidate: Candidate, omega: float, units: str = DEFAULT) -> li
         )
         if _finite(s.get("mean_hoop")):
             facts.append(("mean hoop stress", f"{q(s['mean_hoop'], 'mean_hoop', 4)} over the radial section"))
-        if _finite(c.strength_safety):
-            facts.append(("safety on strength", number(c.strength_safety, 3)))
-        if _finite(c.burst_speed):
-            margin = f" ({number(c.speed_margin, 3)} x ω_max)" if _finite(c.speed_margin) else ""
-            facts.append(("burst speed", f"{q(c.burst_speed, 'burst_speed')} on its shaft{margin}"))
+        if _finite(c.stresses.strength_safety):
+            facts.append(("safety on strength", number(c.stresses.strength_safety, 3)))
+        if _finite(c.stresses.burst_speed):
+            margin = f" ({number(c.stresses.speed_margin, 3)} x ω_max)" if _finite(c.stresses.speed_margin) else ""
+            facts.append(("burst speed", f"{q(c.stresses.burst_speed, 'burst_speed')} on its shaft{margin}"))
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {v}" for k, v in facts]
-    if c.unbalance_permissible is not None and _finite(c.unbalance_permissible):
-        eccentricity = quantity_text(c.unbalance_permissible / c.mass, "eccentricity", units, 4) if c.mass else None
+    if c.stresses.unbalance_permissible is not None and _finite(c.stresses.unbalance_permissible):
+        eccentricity = (
+            quantity_text(c.stresses.unbalance_permissible / c.mass, "eccentricity", units, 4) if c.mass else None
+        )
         lines += [
             "",
             f"Permissible unbalance (ISO 21940-11, G6.3 at ω_max): "
-            f"{q(c.unbalance_permissible, 'unbalance_permissible')}"
+            f"{q(c.stresses.unbalance_permissible, 'unbalance_permissible')}"
             + (f" (e_per {eccentricity})" if eccentricity else ""),
         ]
-    if c.key:
-        k = c.key
+    if c.parts.key:
+        k = c.parts.key
         verdict = "OK" if k["ok"] else "NOT OK"
         lines += [
             "",
@@ -498,11 +503,11 @@ def wheel_report(candidate: Candidate, omega: float, units: str = DEFAULT) -> li
             f"{q(k['allowable_pressure'], 'allowable_pressure', 4)}), shear {q(k['shear'], 'shear', 4)} "
             f"(allowable {q(k['allowable_shear'], 'allowable_shear', 4)})",
         ]
-    if c.sensitivities:
+    if c.limits.sensitivities:
         lines += ["", "Sensitivities of the mass:"]
-        lines += [f"  - {s['text']}" for s in c.sensitivities]
-    if c.notes:
-        lines += ["", "Notes:"] + [f"  - {n}" for n in c.notes]
+        lines += [f"  - {s['text']}" for s in c.limits.sensitivities]
+    if c.provenance.notes:
+        lines += ["", "Notes:"] + [f"  - {n}" for n in c.provenance.notes]
     return lines
 
 

@@ -88,26 +88,28 @@ def design_ipopt(
     res["best_material"][k] = best.material
     res["best_shaft"][k] = best.shaft
     res["best_speed_ratio"][k] = best.speed_ratio
-    for name in (
-        "d_mean",
-        "d_outer",
-        "d_inner",
-        "h",
-        "b",
-        "hb_ratio",
-        "mass",
-        "rim_speed",
-        "hoop_stress",
-        "j_flywheel",
-        "j_at_reference",
-        "j_required_on_shaft",
-        "d_outer_limit",
-        "rim_speed_limit",
-        "objective",
-    ):
-        res[name][k] = getattr(best, name)
+    dims, stresses, limits = best.dims, best.stresses, best.limits
+    values = {
+        "d_mean": dims.d_mean,
+        "d_outer": dims.d_outer,
+        "d_inner": dims.d_inner,
+        "h": dims.h,
+        "b": dims.b,
+        "hb_ratio": dims.hb_ratio,
+        "mass": best.mass,
+        "rim_speed": stresses.rim_speed,
+        "hoop_stress": stresses.hoop_stress,
+        "j_flywheel": best.j_flywheel,
+        "j_at_reference": best.j_at_reference,
+        "j_required_on_shaft": limits.j_required_on_shaft,
+        "d_outer_limit": limits.d_outer_limit,
+        "rim_speed_limit": limits.rim_speed_limit,
+        "objective": best.objective,
+    }
+    for name, value in values.items():
+        res[name][k] = value
     res["cost"][k] = math.nan if best.cost is None else best.cost
-    res["safety_factor"][k] = math.nan if best.safety_factor is None else best.safety_factor
-    res["binding"][k] = ",".join(best.binding)
-    res["solver_status"][k] = best.solver_status
-    res["iterations"][k] = best.iterations
+    res["safety_factor"][k] = math.nan if stresses.safety_factor is None else stresses.safety_factor
+    res["binding"][k] = ",".join(limits.binding)
+    res["solver_status"][k] = best.provenance.solver_status
+    res["iterations"][k] = best.provenance.iterations

@@ -294,7 +294,7 @@ def _front_motor_power(scene: Scene, analysis: Analysis, solver_options: Mapping
                 "j_flywheel": run.j_flywheel if run.j_flywheel is not None else math.nan,
                 "limit": run.limit,
                 "best_material": wheel.material if wheel is not None else None,
-                "d_outer": wheel.d_outer if wheel is not None else math.nan,
+                "d_outer": wheel.dims.d_outer if wheel is not None else math.nan,
                 "epsilon": run.motor.rated_power,
                 "message": run.reason,
             }

@@ -116,18 +116,18 @@ def material_tradeoff(
             row.update(
                 shaft=best.shaft,
                 speed_ratio=best.speed_ratio,
-                d_outer=best.d_outer,
-                d_mean=best.d_mean,
-                h=best.h,
-                b=best.b,
-                hb_ratio=best.hb_ratio,
-                rim_speed=best.rim_speed,
+                d_outer=best.dims.d_outer,
+                d_mean=best.dims.d_mean,
+                h=best.dims.h,
+                b=best.dims.b,
+                hb_ratio=best.dims.hb_ratio,
+                rim_speed=best.stresses.rim_speed,
                 mass=best.mass,
                 cost=best.cost,
-                binding=",".join(best.binding),
-                limit=",".join(b for b in best.binding if b != "inertia"),
-                method="closed_form" if best.solver_status == "closed_form" else "ipopt",
-                solver_status=best.solver_status,
+                binding=",".join(best.limits.binding),
+                limit=",".join(b for b in best.limits.binding if b != "inertia"),
+                method="closed_form" if best.provenance.solver_status == "closed_form" else "ipopt",
+                solver_status=best.provenance.solver_status,
             )
         elif result.status == "infeasible":
             row["reason"] = "; ".join(c.reason for c in result.candidates)

@@ -13,7 +13,7 @@ from flyopt.report.display import number
 from flyopt.report.document import Equation, Figure, Quantity, Section
 
 if TYPE_CHECKING:
-    from flyopt.design.result import Candidate
+    from flyopt.design.result import Design
     from flyopt.pipeline import Solution
     from flyopt.report.builder.inputs import ReportInputs
 
@@ -144,15 +144,15 @@ class BuilderBase:
             words += "; verified"
         return words
 
-    def best(self) -> Candidate | None:
+    def best(self) -> Design | None:
         """The chosen wheel, or None."""
         return self.design.best if self.design is not None else None
 
     @staticmethod
-    def governing(candidate: Candidate) -> dict[str, Any] | None:
+    def governing(candidate: Design) -> dict[str, Any] | None:
         """The stress check of the part where the governing stress is, or None."""
-        where = (candidate.stress or {}).get("where") or {}
-        for part in (candidate.stress or {}).get("parts", []):
+        where = (candidate.stresses.stress or {}).get("where") or {}
+        for part in (candidate.stresses.stress or {}).get("parts", []):
             if part["part"] == where.get("part"):
                 return part
         return None
@@ -164,19 +164,24 @@ class BuilderBase:
 
         return MODELS.get(Model(model), model) if model in MODELS else model
 
-    def width_row(self, c: Candidate) -> tuple[str, tuple[Any, ...]]:
+    def width_row(self, c: Design) -> tuple[str, tuple[Any, ...]]:
         """The wheel's width and, for a rim, its radial thickness (a disc is the annulus with no hole, section 9)."""
         if c.geometry == Geometry.DISC:
             return (
                 "axial width B",
                 (
-                    self.q(c.b, "length", "b"),
-                    " (a disc: D_m = H = D/2, no hole)" if not c.d_inner else " (an annulus on its bore)",
+                    self.q(c.dims.b, "length", "b"),
+                    " (a disc: D_m = H = D/2, no hole)" if not c.dims.d_inner else " (an annulus on its bore)",
                 ),
             )
         return (
             "rim: radial thickness H × axial width B",
-            (self.q(c.h, "length", "h"), " × ", self.q(c.b, "length", "b"), f" (H/B {number(c.hb_ratio, 4)})"),
+            (
+                self.q(c.dims.h, "length", "h"),
+                " × ",
+                self.q(c.dims.b, "length", "b"),
+                f" (H/B {number(c.dims.hb_ratio, 4)})",
+            ),
         )
 
     def limit(self, value: float | None) -> Quantity | str:
@@ -200,7 +205,7 @@ class BuilderBase:
         return (f"The textbook step is {100 * off:+.3g} % off the exact J_F", gives, f" (allowed {number(a.delta)}).")
 
     @staticmethod
-    def solved_by(candidate: Candidate) -> str:
+    def solved_by(candidate: Design) -> str:
         """How the candidate's sizing problem was solved, in words."""
         from flyopt.report.text import solver_words
 

@@ -13,7 +13,7 @@ from flyopt.report.document import Facts, Figure, Paragraph, Table
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
-    from flyopt.design.result import Candidate
+    from flyopt.design.result import Design
 
 
 class DesignSection(BuilderBase):
@@ -47,11 +47,11 @@ class DesignSection(BuilderBase):
             (
                 "outer / mean / inner diameter",
                 (
-                    self.q(best.d_outer, "length", "d_outer"),
+                    self.q(best.dims.d_outer, "length", "d_outer"),
                     " / ",
-                    self.q(best.d_mean, "length", "d_mean"),
+                    self.q(best.dims.d_mean, "length", "d_mean"),
                     " / ",
-                    self.q(best.d_inner, "length", "d_inner"),
+                    self.q(best.dims.d_inner, "length", "d_inner"),
                 ),
             ),
             self.width_row(best),
@@ -67,13 +67,13 @@ class DesignSection(BuilderBase):
             (
                 "rim speed",
                 (
-                    self.q(best.rim_speed, "speed", "rim_speed"),
+                    self.q(best.stresses.rim_speed, "speed", "rim_speed"),
                     " (limit ",
-                    self.q(best.rim_speed_limit, "speed", "rim_speed_limit"),
+                    self.q(best.limits.rim_speed_limit, "speed", "rim_speed_limit"),
                     ")",
                 ),
             ),
-            ("binding", ", ".join(best.binding) or "none"),
+            ("binding", ", ".join(best.limits.binding) or "none"),
             ("solved by", self.solved_by(best)),
         ]
         if best.bore:
@@ -95,31 +95,33 @@ class DesignSection(BuilderBase):
         self.figure(
             blocks, "cross_section", "Axial section of the chosen wheel, dimensioned", plots.plot_cross_section, best
         )
-        if best.sensitivities:
+        if best.limits.sensitivities:
             blocks.append(
                 Table(
                     ("sensitivity of the mass",),
-                    tuple([s["text"]] for s in best.sensitivities),
+                    tuple([s["text"]] for s in best.limits.sensitivities),
                     ("<",),
                     "How the mass moves with each limit (first order)",
                     "sensitivities",
                 )
             )
-        if best.notes:
-            blocks.append(Table(("note",), tuple([n] for n in best.notes), ("<",), "Notes of the design", "notes"))
+        if best.provenance.notes:
+            blocks.append(
+                Table(("note",), tuple([n] for n in best.provenance.notes), ("<",), "Notes of the design", "notes")
+            )
 
-    def geometry_steps(self, blocks: list[Any], c: Candidate, material: Material | None) -> None:
+    def geometry_steps(self, blocks: list[Any], c: Design, material: Material | None) -> None:
         """The wheel's mass and inertia (section 9) and its rim speed (section 10), numbers substituted."""
         assert self.design is not None  # a candidate comes from the design
         si, res, sq = self.si, self.result, self.squared
         rho = getattr(material, "density", None)
-        if c.geometry == Geometry.DISC and not c.d_inner and len(c.parts) <= 1 and rho:
-            d = si(c.d_outer, "length")
+        if c.geometry == Geometry.DISC and not c.dims.d_inner and len(c.parts.items) <= 1 and rho:
+            d = si(c.dims.d_outer, "length")
             blocks.append(
                 self.eq(
                     "disc_mass",
                     "m = π D² B ρ / 4",
-                    f"π × {sq(d)} × {si(c.b, 'length')} × {si(rho, 'density')} / 4",
+                    f"π × {sq(d)} × {si(c.dims.b, 'length')} × {si(rho, 'density')} / 4",
                     res(c.mass, "mass"),
                     9,
                 )
@@ -133,13 +135,13 @@ class DesignSection(BuilderBase):
                     9,
                 )
             )
-        elif c.geometry in ("rim", "thin_rim", "disc") and len(c.parts) <= 1 and rho:
-            d_m, h = si(c.d_mean, "length"), si(c.h, "length")
+        elif c.geometry in ("rim", "thin_rim", "disc") and len(c.parts.items) <= 1 and rho:
+            d_m, h = si(c.dims.d_mean, "length"), si(c.dims.h, "length")
             blocks.append(
                 self.eq(
                     "rim_mass",
                     "m = π D_{m} H B ρ",
-                    f"π × {d_m} × {h} × {si(c.b, 'length')} × {si(rho, 'density')}",
+                    f"π × {d_m} × {h} × {si(c.dims.b, 'length')} × {si(rho, 'density')}",
                     res(c.mass, "mass"),
                     9,
                 )
@@ -164,12 +166,12 @@ class DesignSection(BuilderBase):
                         9,
                     )
                 )
-        elif c.parts:
+        elif c.parts.items:
             blocks.append(
                 self.eq(
                     "parts_inertia",
                     "J = Σ J_{part}",
-                    " + ".join(si(p["inertia"], "inertia") for p in c.parts),
+                    " + ".join(si(p["inertia"], "inertia") for p in c.parts.items),
                     res(c.j_flywheel, "inertia"),
                     9,
                 )
@@ -178,7 +180,7 @@ class DesignSection(BuilderBase):
                 self.eq(
                     "parts_mass",
                     "m = Σ m_{part}",
-                    " + ".join(si(p["mass"], "mass") for p in c.parts),
+                    " + ".join(si(p["mass"], "mass") for p in c.parts.items),
                     res(c.mass, "mass"),
                     9,
                 )
@@ -196,36 +198,35 @@ class DesignSection(BuilderBase):
             self.eq(
                 "rim_speed",
                 "v = i ω_{max} D_{1} / 2",
-                f"{number(c.speed_ratio)} × {si(self.design.omega, 'angular_speed')} × {si(c.d_outer, 'length')} / 2",
-                res(c.rim_speed, "speed"),
+                f"{number(c.speed_ratio)} × {si(self.design.omega, 'angular_speed')} × {si(c.dims.d_outer, 'length')} / 2",
+                res(c.stresses.rim_speed, "speed"),
                 10,
             )
         )
-        assert c.rim_speed is not None  # the chosen wheel is a design: it has its rim speed
-        within = c.rim_speed <= c.rim_speed_limit * (1 + 1e-9)
+        within = c.stresses.rim_speed <= c.limits.rim_speed_limit * (1 + 1e-9)
         blocks.append(
             Paragraph(
                 (
                     "The rim speed is ",
                     "within" if within else "BEYOND",
                     " the limit v_max = ",
-                    self.q(c.rim_speed_limit, "speed", "rim_speed_limit"),
+                    self.q(c.limits.rim_speed_limit, "speed", "rim_speed_limit"),
                     f" of {c.material} ({NOTES}, section 10).",
                 ),
                 "ok" if within else "warning",
             )
         )
-        if rho and c.hoop_stress is not None:
+        if rho and c.stresses.hoop_stress is not None:
             blocks.append(
                 self.eq(
                     "hoop_stress",
                     "σ ≈ ρ v²",
-                    f"{si(rho, 'density')} × {sq(si(c.rim_speed, 'speed'))}",
-                    res(c.hoop_stress, "stress"),
+                    f"{si(rho, 'density')} × {sq(si(c.stresses.rim_speed, 'speed'))}",
+                    res(c.stresses.hoop_stress, "stress"),
                     10,
                 )
             )
-            if c.stress:
+            if c.stresses.stress:
                 blocks.append(
                     Paragraph(
                         f"ρv² is the thin ring's hoop stress at the outer diameter, the textbook's "
@@ -234,11 +235,11 @@ class DesignSection(BuilderBase):
                     )
                 )
 
-    def parts(self, blocks: list[Any], c: Candidate) -> None:
-        if not c.parts:
+    def parts(self, blocks: list[Any], c: Design) -> None:
+        if not c.parts.items:
             return
         n = self.n
-        total_j = sum(p["inertia"] for p in c.parts)
+        total_j = sum(p["inertia"] for p in c.parts.items)
         rows = [
             [
                 p["name"],
@@ -248,18 +249,18 @@ class DesignSection(BuilderBase):
                 n(p["inertia"], "inertia"),
                 f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-",
             ]
-            for p in c.parts
+            for p in c.parts.items
         ]
         rows.append(
             [
                 "total",
                 (
-                    n(min(p["r_inner"] for p in c.parts), "length"),
+                    n(min(p["r_inner"] for p in c.parts.items), "length"),
                     " – ",
-                    n(max(p["r_outer"] for p in c.parts), "length"),
+                    n(max(p["r_outer"] for p in c.parts.items), "length"),
                 ),
                 "",
-                n(sum(p["mass"] for p in c.parts), "mass"),
+                n(sum(p["mass"] for p in c.parts.items), "mass"),
                 n(total_j, "inertia"),
                 "100.0 %" if total_j > 0 else "-",
             ]
@@ -281,27 +282,27 @@ class DesignSection(BuilderBase):
                 total=True,
             )
         )
-        if c.n_arms and c.arm_major:
+        if c.n_arms and c.dims.arm_major:
             blocks.append(
                 Paragraph(
                     (
                         f"Arms: {c.n_arms} of elliptical section ",
-                        self.q(c.arm_major, "length"),
+                        self.q(c.dims.arm_major, "length"),
                         " × ",
-                        self.q(c.arm_minor, "length"),
+                        self.q(c.dims.arm_minor, "length"),
                         " (major axis in the plane of rotation, minor axial).",
                     )
                 )
             )
 
-    def stress(self, blocks: list[Any], c: Candidate) -> None:
+    def stress(self, blocks: list[Any], c: Design) -> None:
         """The stress check of each part and the diagram of the stresses over the radius (section 10)."""
         assert self.design is not None  # a candidate comes from the design
-        if not c.stress:
+        if not c.stresses.stress:
             return
         from flyopt.report import plots
 
-        s, n = c.stress, self.n
+        s, n = c.stresses.stress, self.n
         omega = self.design.omega * c.speed_ratio
         blocks.append(
             Paragraph(
@@ -365,11 +366,13 @@ class DesignSection(BuilderBase):
         )
         if s.get("mean_hoop") is not None and math.isfinite(s["mean_hoop"]):
             facts.append(("mean hoop stress over the radial section", self.q(s["mean_hoop"], "stress", digits=4)))
-        if c.strength_safety is not None and math.isfinite(c.strength_safety):
-            facts.append(("safety on strength", number(c.strength_safety, 3)))
-        if c.burst_speed is not None and math.isfinite(c.burst_speed):
-            margin = "" if c.speed_margin is None else f" ({number(c.speed_margin, 3)} × ω_max)"
-            facts.append(("burst speed on its shaft", (self.q(c.burst_speed, "angular_speed", "burst_speed"), margin)))
+        if c.stresses.strength_safety is not None and math.isfinite(c.stresses.strength_safety):
+            facts.append(("safety on strength", number(c.stresses.strength_safety, 3)))
+        if c.stresses.burst_speed is not None and math.isfinite(c.stresses.burst_speed):
+            margin = "" if c.stresses.speed_margin is None else f" ({number(c.stresses.speed_margin, 3)} × ω_max)"
+            facts.append(
+                ("burst speed on its shaft", (self.q(c.stresses.burst_speed, "angular_speed", "burst_speed"), margin))
+            )
         blocks.append(Facts(tuple(facts), "stress_facts"))
         if self.inputs.stress is not None:
             profile, beams, omega_w, material = self.inputs.stress
@@ -387,16 +390,16 @@ class DesignSection(BuilderBase):
         elif self.inputs.stress_note:
             blocks.append(Figure("stress", "Stresses over the radius", note=f"Not drawn: {self.inputs.stress_note}."))
 
-    def hub_key_balance(self, blocks: list[Any], c: Candidate) -> None:
+    def hub_key_balance(self, blocks: list[Any], c: Design) -> None:
         """The permissible unbalance and the key, numbers substituted (section 13)."""
         assert self.design is not None  # a candidate comes from the design
         si, res = self.si, self.result
         omega = self.design.omega * c.speed_ratio
-        if c.unbalance_permissible is not None and math.isfinite(c.unbalance_permissible) and c.mass:
+        if c.stresses.unbalance_permissible is not None and math.isfinite(c.stresses.unbalance_permissible) and c.mass:
             from flyopt.design.balance import permissible_unbalance
 
             grade = inspect.signature(permissible_unbalance).parameters["grade"].default
-            e_per = c.unbalance_permissible / c.mass
+            e_per = c.stresses.unbalance_permissible / c.mass
             blocks.append(
                 Paragraph(
                     f"Permissible residual unbalance, ISO 21940-11 grade G{number(grade)} at the "
@@ -417,13 +420,13 @@ class DesignSection(BuilderBase):
                     "u_per",
                     "U_{per} = e_{per} m",
                     f"{si(e_per, 'length')} × {si(c.mass, 'mass')}",
-                    res(c.unbalance_permissible, "unbalance"),
+                    res(c.stresses.unbalance_permissible, "unbalance"),
                     13,
                 )
             )
-        if not c.key:
+        if not c.parts.key:
             return
-        k = c.key
+        k = c.parts.key
         blocks.append(
             Paragraph(
                 (

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from flyopt.design.result import Design
 from flyopt.report.builder.base import BuilderBase
 from flyopt.report.document import Paragraph, Table
 
@@ -23,21 +24,31 @@ class Ranking(BuilderBase):
         arms = any(c.n_arms for c in d.candidates)
         rows, rank = [], 0
         for c in d.candidates:
-            if c.feasible:
+            if isinstance(c, Design):
                 rank += 1
                 row = [
                     str(rank),
                     c.material,
                     c.shaft,
                     self.n(c.mass, "mass"),
-                    self.n(c.d_outer, "length"),
-                    self.n(c.h, "length"),
-                    self.n(c.b, "length"),
-                    self.n(c.rim_speed, "speed"),
-                    ", ".join(c.binding),
+                    self.n(c.dims.d_outer, "length"),
+                    self.n(c.dims.h, "length"),
+                    self.n(c.dims.b, "length"),
+                    self.n(c.stresses.rim_speed, "speed"),
+                    ", ".join(c.limits.binding),
                 ]
             else:
-                row = ["-", c.material, c.shaft, "cannot win" if c.pruned else "infeasible", "", "", "", "", ""]
+                row = [
+                    "-",
+                    c.material,
+                    c.shaft,
+                    "cannot win" if c.provenance.pruned else "infeasible",
+                    "",
+                    "",
+                    "",
+                    "",
+                    "",
+                ]
             if arms:
                 row.insert(3, str(c.n_arms or "-"))
             rows.append(row)
@@ -57,7 +68,7 @@ class Ranking(BuilderBase):
             head.insert(3, "arms")
             align.insert(3, ">")
         blocks.append(Table(tuple(head), tuple(rows), tuple(align), "Every material × shaft combination", "ranking"))
-        reasons = [c.reason for c in d.candidates if not c.feasible and not c.pruned]
+        reasons = [c.reason for c in d.candidates if not c.feasible and not c.provenance.pruned]
         if reasons:
             blocks.append(
                 Table(
@@ -68,7 +79,7 @@ class Ranking(BuilderBase):
                     "infeasible",
                 )
             )
-        reasons = [c.reason for c in d.candidates if c.pruned]
+        reasons = [c.reason for c in d.candidates if c.provenance.pruned]
         if reasons:
             blocks.append(
                 Table(

@@ -57,21 +57,21 @@ class Summary(BuilderBase):
                     f"(speed ratio {number(best.speed_ratio)})",
                 ),
                 ("mass", self.q(best.mass, "mass", "mass")),
-                ("outer diameter", self.q(best.d_outer, "length", "d_outer")),
+                ("outer diameter", self.q(best.dims.d_outer, "length", "d_outer")),
                 self.width_row(best),
                 ("inertia on its shaft", self.q(best.j_flywheel, "inertia", "j_flywheel")),
                 (
                     "rim speed",
                     (
-                        self.q(best.rim_speed, "speed", "rim_speed"),
+                        self.q(best.stresses.rim_speed, "speed", "rim_speed"),
                         " (limit ",
-                        self.q(best.rim_speed_limit, "speed", "rim_speed_limit"),
+                        self.q(best.limits.rim_speed_limit, "speed", "rim_speed_limit"),
                         ")",
                     ),
                 ),
-                ("binding limits", ", ".join(best.binding) or "none"),
+                ("binding limits", ", ".join(best.limits.binding) or "none"),
             ]
-            if best.stress and (best.stress.get("where") or {}).get("part"):
+            if best.stresses.stress and (best.stresses.stress.get("where") or {}).get("part"):
                 governing = self.governing(best)
                 if governing is not None:
                     rows.append(
@@ -142,6 +142,6 @@ class Summary(BuilderBase):
         return (
             f"A {best.geometry} flywheel of {best.material} on the {best.shaft} shaft, "
             f"{display.quantity_text(best.mass, 'mass', self.units, 4)}, outer diameter "
-            f"{display.quantity_text(best.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
+            f"{display.quantity_text(best.dims.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
             f"within δ = {number(a.delta, 4)}{checked}."
         )

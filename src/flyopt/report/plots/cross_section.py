@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from flyopt.design.result import Design
 from flyopt.names import Geometry
 from flyopt.report import display
 from flyopt.report.plots import standard
@@ -39,20 +40,22 @@ def _length_text(value, decimals):
 
 
 class _InUnits:
-    """A candidate's lengths in the drawing's unit (its other fields as they are)."""
+    """What the drawing reads of a design, its lengths in the drawing's unit (divided by ``factor``)."""
 
-    LENGTHS = ("d_outer", "d_inner", "d_mean", "h", "b", "bore", "t_web", "d_hub", "l_hub", "arm_major", "arm_minor")
+    def __init__(self, design: Design, factor: float) -> None:
+        def scaled(value: float | None) -> float | None:
+            return None if value is None else value / factor
 
-    def __init__(self, candidate, factor):
-        self._c, self._factor = candidate, factor
-
-    def __getattr__(self, name):
-        value = getattr(self._c, name)
-        if name in self.LENGTHS and value is not None:
-            return value / self._factor
-        if name == "key" and value:
-            return {k: (v / self._factor if k in ("b", "t2", "h", "t1", "length") else v) for k, v in value.items()}
-        return value
+        dims, key = design.dims, design.parts.key
+        self.geometry, self.material, self.shaft = design.geometry, design.material, design.shaft
+        self.mass, self.j_flywheel, self.n_arms = design.mass, design.j_flywheel, design.n_arms
+        self.binding = design.limits.binding
+        self.d_outer, self.d_inner, self.h, self.b = (v / factor for v in (dims.d_outer, dims.d_inner, dims.h, dims.b))
+        self.bore, self.t_web, self.d_hub = scaled(design.bore), scaled(dims.t_web), scaled(dims.d_hub)
+        self.l_hub, self.arm_major, self.arm_minor = scaled(dims.l_hub), scaled(dims.arm_major), scaled(dims.arm_minor)
+        self.key = (
+            {k: (v / factor if k in ("b", "t2", "h", "t1", "length") else v) for k, v in key.items()} if key else key
+        )
 
 
 def _text_width(text, size=_DIM_FONT):
@@ -253,7 +256,7 @@ def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str 
     from matplotlib.patches import Ellipse, Polygon, Rectangle
 
     display.check_system(units)
-    if not candidate.feasible or candidate.d_outer is None:
+    if not isinstance(candidate, Design):
         raise ValueError(f"{candidate.material} on {candidate.shaft} is not a design: nothing to draw")
     length, factor = standard.unit("length", units)
     decimals = _length_decimals(units)

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
+from flyopt.design.result import Design
 from flyopt.report import display
 from flyopt.report.plots import standard
 
@@ -63,21 +64,23 @@ def plot_stress(
     """
     display.check_system(units)
     c = candidate
-    if not c.feasible or not c.parts or c.d_outer is None:
+    if not isinstance(c, Design) or not c.parts.items:
         raise ValueError(f"{c.material} on {c.shaft} is not a design: no stresses to draw")
-    if not c.stress:
-        raise ValueError(f"the design of {c.material} carries no stresses (its notes: {'; '.join(c.notes) or 'none'})")
+    if not c.stresses.stress:
+        raise ValueError(
+            f"the design of {c.material} carries no stresses (its notes: {'; '.join(c.provenance.notes) or 'none'})"
+        )
     ax, own = standard.axes(ax, figsize=(9, 5.6))
     mm, mpa = 1.0 / standard.unit("length", units)[1], 1.0 / standard.unit("stress", units)[1]
     r_unit, s_unit = standard.unit("length", units)[0], standard.unit("stress", units)[0]
-    checked = {p["part"]: p for p in c.stress.get("parts", [])}
-    spans = {p["name"]: (p["r_inner"], p["r_outer"]) for p in c.parts}
+    checked = {p["part"]: p for p in c.stresses.stress.get("parts", [])}
+    spans = {p["name"]: (p["r_inner"], p["r_outer"]) for p in c.parts.items}
     # the parts' spans, shaded and named at the top
-    for k, p in enumerate(c.parts):
+    for k, p in enumerate(c.parts.items):
         r0, r1 = p["r_inner"] * mm, p["r_outer"] * mm
         ax.axvspan(r0, r1, color=_PART_SHADES[k % 2], lw=0, zorder=0)
         ax.axvline(r0, color="gray", lw=0.5, zorder=1)
-        narrow = (r1 - r0) < 0.06 * c.d_outer / 2 * mm
+        narrow = (r1 - r0) < 0.06 * c.dims.d_outer / 2 * mm
         ax.text(
             0.5 * (r0 + r1),
             0.985,
@@ -148,7 +151,7 @@ def plot_stress(
             zorder=4,
             label=f"{words}: {standard.q(value, 'stress', units)}",
         )
-        at = r / (c.d_outer / 2)  # near an end of the axis the label turns inwards
+        at = r / (c.dims.d_outer / 2)  # near an end of the axis the label turns inwards
         ha, dx = ("left", -4) if at < 0.15 else ("right", 4) if at > 0.85 else ("center", 0)
         ax.annotate(
             f"{words}\n{standard.q(value, 'stress', units)}",
@@ -161,7 +164,7 @@ def plot_stress(
             color="tab:purple",
         )
     # the governing point
-    where = c.stress.get("where") or {}
+    where = c.stresses.stress.get("where") or {}
     governing = checked.get(where.get("part"))
     if governing is not None:
         measure = "von Mises" if ductile else "largest principal"
@@ -181,7 +184,7 @@ def plot_stress(
         )
     ax.axhline(0, color="black", lw=0.6)
     top = max([a for _n, a in allowables] + [governing["stress"] if governing else 0.0]) * mpa
-    r_in, r_out = min(spans.values())[0] * mm, c.d_outer / 2 * mm
+    r_in, r_out = min(spans.values())[0] * mm, c.dims.d_outer / 2 * mm
     # from the axis, unless the wheel is a ring far from it (a bare rim): then its own span
     left = 0.0 if r_in < 0.4 * r_out else r_in - 0.08 * (r_out - r_in)
     ax.set_xlim(left, r_out + 0.03 * (r_out - left))
