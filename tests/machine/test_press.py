@@ -453,8 +453,8 @@ BAD = [
     (GOOD, 'working_time = "2 s"', 'working_time = "6 s"', "press.working_time", "shorter than"),
     (GOOD, 'working_time = "2 s"', "working_time = 0", "press.working_time", "positive"),
     (GOOD, 'working_time = "2 s"', 'working_time = "2 kg"', "press.working_time", "expected a time"),
-    (GOOD, 'working_time = "2 s"', 'working_angle = "360 deg"', "press.working_angle", "between 0 and 360 deg"),
-    (GOOD, 'working_time = "2 s"', 'working_angle = "-10 deg"', "press.working_angle", "between 0 and 360 deg"),
+    (GOOD, 'working_time = "2 s"', 'working_angle = "360 deg"', "press.working_angle", "between 1e-06 rad and 360 deg"),
+    (GOOD, 'working_time = "2 s"', 'working_angle = "-10 deg"', "press.working_angle", "between 1e-06 rad and 360 deg"),
     (GOOD, 'working_time = "2 s"', 'working_angle = "60 s"', "press.working_angle", "wrong dimension"),
     (
         GOOD,
