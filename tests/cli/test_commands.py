@@ -2,6 +2,7 @@
 
 import json
 import math
+import os
 import shutil
 import subprocess
 import sys
@@ -355,3 +356,29 @@ def test_json_is_the_same_on_every_run_and_timings_only_when_asked():
     candidates = json.loads(timed.stdout)["design"]["candidates"]
     solved = [c for c in candidates if c["solver_status"]]
     assert "solve_time" in _keys(candidates) and solved and all(c["solve_time"] > 0 for c in solved)
+
+
+@pytest.mark.parametrize("suffix", ["html", "pdf"])
+def test_a_quiet_report_of_a_hostile_title_writes_nothing_to_stderr(tmp_path, suffix):
+    # -q leaves only errors: a title of emoji and control characters put 30 "Glyph missing" warnings of
+    # matplotlib on stderr (and "$\frac$" in it stopped the report with exit 1). Run as a user runs it, in
+    # a fresh interpreter whose warnings are Python's defaults
+    scene = tmp_path / "scene.toml"
+    scene.write_text(
+        'title = "a\\u0000b\\u0007c\\u001bd\\u202eevil \\U0001F525 \\u2603 $\\\\frac$"\n'
+        '[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n'
+        '[torque.resisting]\npoints = [["0 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]\n'
+        '[torque.driving]\nconstant = "unknown"\n',
+        encoding="utf-8",
+    )
+    out = tmp_path / f"r.{suffix}"
+    env = {**os.environ, "PYTHONWARNINGS": "", "MPLCONFIGDIR": str(tmp_path / "mpl")}
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out), "-q"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
+    assert (run.returncode, run.stderr, run.stdout) == (0, "", "")
+    assert out.stat().st_size > 10_000

@@ -60,7 +60,7 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
         raise OSError(err.errno, err.strerror, str(path)) from err
     os.close(handle)
     try:
-        fig.savefig(tmp, format=suffix, dpi=dpi)
+        standard.make_drawable(fig).savefig(tmp, format=suffix, dpi=dpi)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

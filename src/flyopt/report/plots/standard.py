@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import functools
 import os
+import re
 import textwrap
 from collections.abc import Sequence
 from types import ModuleType
@@ -12,11 +14,13 @@ import numpy as np
 import numpy.typing as npt
 
 from flyopt.report import display
+from flyopt.report.characters import visible
 
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from matplotlib.font_manager import FontProperties
     from matplotlib.legend import Legend
 
 SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
@@ -41,6 +45,80 @@ def pyplot() -> ModuleType:
     import matplotlib.pyplot as plt
 
     return plt
+
+
+# --------------------------------------------------------------------------
+# Drawable text: what a figure shows is what the font can draw
+# --------------------------------------------------------------------------
+
+#: What a diagram shows in place of a character its font cannot draw (an emoji): visible, so that nothing
+#: of a name goes missing unseen.
+PLACEHOLDER = "\ufffd"
+
+
+@functools.lru_cache(maxsize=8)
+def glyphs(font: str) -> frozenset[int]:
+    """The code points the font file ``font`` has a glyph for."""
+    from matplotlib import ft2font
+
+    return frozenset(ft2font.FT2Font(font).get_charmap())
+
+
+def font_file(properties: FontProperties | None = None) -> str:
+    """The font file matplotlib draws text of these properties with (the default font without)."""
+    from matplotlib import font_manager
+
+    return str(font_manager.findfont(properties if properties is not None else font_manager.FontProperties()))
+
+
+def in_font(text: str, font: str | None = None) -> str:
+    """``text`` with every character the font has no glyph for (but the line break and the tab) as
+    :data:`PLACEHOLDER`.
+
+    Parameters
+    ----------
+    text : str
+    font : str, optional
+        The font file the text is drawn with (default: matplotlib's default font, DejaVu Sans).
+    """
+    covered = glyphs(font if font is not None else font_file())
+    return "".join(c if c in "\n\t" or ord(c) in covered else PLACEHOLDER for c in text)
+
+
+def drawable(text: str, font: str | None = None) -> str:
+    """``text`` as a figure can draw it.
+
+    A control or bidirectional-override character is its escape (:func:`flyopt.report.characters.visible`,
+    as in every report), a tab a space, a character the font has no glyph for is :data:`PLACEHOLDER`
+    (:func:`in_font`), and a ``$`` is escaped, so that a name is never read as mathtext (where ``$\\frac$`` would stop the drawing).
+
+    Parameters
+    ----------
+    text : str
+    font : str, optional
+        The font file the text is drawn with (default: matplotlib's default font).
+    """
+    kept = in_font(visible(text).replace("\t", " "), font)
+    return re.sub(r"(?<!\\)\$", r"\\$", kept)
+
+
+def make_drawable(figure: Figure) -> Figure:
+    """Make every text of the figure :func:`drawable` in its own font (titles, labels, legends, notes).
+
+    Called before a figure is drawn (laid out or saved), so that whatever a scene names (its title, a
+    shaft, a material) reaches the figure drawable, whichever way it came in; the text is changed
+    only where it must be (a second call changes nothing).
+    """
+    from matplotlib.text import Text
+
+    for artist in figure.findobj(Text):
+        assert isinstance(artist, Text)
+        text = artist.get_text()
+        if text:
+            shown = drawable(text, font_file(artist.get_fontproperties()))
+            if shown != text:
+                artist.set_text(shown)
+    return figure
 
 
 # --------------------------------------------------------------------------
