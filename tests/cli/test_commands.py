@@ -382,3 +382,38 @@ def test_a_quiet_report_of_a_hostile_title_writes_nothing_to_stderr(tmp_path, su
     )
     assert (run.returncode, run.stderr, run.stdout) == (0, "", "")
     assert out.stat().st_size > 10_000
+
+
+NEGATIVE_WORK = {
+    # the load gives work over the whole cycle: the unknown driving constant came out -0.375 kN·m and the
+    # report printed a motor power of -58.9 kW, divided by the efficiency as if the motor drove
+    "torque.resisting": '[torque.resisting]\npoints = [["0 deg", "-1600 N*m"], ["90 deg", "-200 N*m"], '
+    '["360 deg", "-200 N*m"]]\n[torque.driving]\nconstant = "unknown"\n',
+    # a driving torque that takes work out: the resisting constant balancing it came out negative
+    "torque.driving": '[torque.driving]\npoints = [["0 deg", "-1600 N*m"], ["90 deg", "-200 N*m"], '
+    '["360 deg", "-200 N*m"]]\n[torque.resisting]\nconstant = "unknown"\n',
+    "torque": '[torque.driving]\nconstant = "-100 N*m"\n[torque.resisting]\nconstant = "-100 N*m"\n',
+}
+
+
+@pytest.mark.parametrize("command", ["solve", "check"])
+@pytest.mark.parametrize("field", sorted(NEGATIVE_WORK))
+def test_a_cycle_of_negative_work_is_refused_in_one_line(field, command, main_cli, write_scene):
+    scene = write_scene('title = "t"\n[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n' + NEGATIVE_WORK[field])
+    status, out, err = main_cli(command, scene)
+    assert status == 2 and out == ""
+    assert err.count("\n") == 1
+    assert f"{field}: the work per cycle is negative" in err
+    assert "[torque.driving]" in err and "braking" in err
+
+
+def test_a_load_that_gives_work_only_in_part_of_the_cycle_is_not_refused(main_cli, write_scene):
+    # a return stroke that helps (negative resisting torque over part of the cycle) is an ordinary machine
+    scene = write_scene(
+        'title = "t"\n[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n'
+        '[torque.resisting]\npoints = [["0 deg", "1600 N*m"], ["180 deg", "-200 N*m"], ["360 deg", "-200 N*m"]]\n'
+        '[torque.driving]\nconstant = "unknown"\n'
+    )
+    status, out, err = main_cli("solve", scene, "--json")
+    assert status == 0, err
+    assert json.loads(out)["motor_power"] > 0
