@@ -328,6 +328,36 @@ def analyse(
         raise err.with_source(scene.source) from None
 
 
+def refuse_negative_work(scene: Scene, work: float, a_max: float) -> None:
+    """Refuse a cycle whose driving side takes work out of the machine (docs/flywheel-design.md, section 4).
+
+    flyopt's signs are those of the cycle balance ∫(M_d − M_r) dφ = 0: the driving torque supplies
+    the work the resisting torque absorbs. A load that gives work over the cycle (W < 0) drives the
+    machine, and the "motor" balancing it would brake it: its power would be negative and divided by
+    the efficiency as if it drove. The same machine, with its torques named for what they do, gives
+    the same flywheel, so it is refused with the way to say it.
+
+    Raises
+    ------
+    SceneError
+        ``W < 0`` beyond rounding (one part in 10⁹ of A_max).
+    """
+    if not work < -1e-9 * a_max:
+        return
+    from flyopt.cycle.torque import Constant
+
+    def unknown(curve: object) -> bool:
+        return isinstance(curve, Constant) and curve.unknown
+
+    field = "torque.resisting" if unknown(scene.driving) else "torque.driving" if unknown(scene.resisting) else "torque"
+    raise SceneError(
+        field,
+        f"the work per cycle is negative ({work:.6g} J): the load drives the machine and the driving torque "
+        "would brake it; give the torque that supplies the work as [torque.driving] and the braking one as "
+        "[torque.resisting], each positive where it does what it is named for (the flywheel is the same)",
+    )
+
+
 def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = None) -> Analysis:
     from flyopt.machine.reduce import reduce
     from flyopt.sizing import choose as models
@@ -367,6 +397,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         omega_mean, omega_max, omega_min = requirement.omega_mean, requirement.omega_max, requirement.omega_min
         angles = (requirement.angle_omega_max, requirement.angle_omega_min)
         work, driving, resisting = ind.work_driving, ind.driving_mean, ind.resisting_mean
+        refuse_negative_work(scene, work, ind.a_max)
         power = driving * omega_mean
         motor_power = power / scene.efficiency
         assert ind.chain_angle is not None  # a machine's diagram has its angles (only net areas have none)

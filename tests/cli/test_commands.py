@@ -2,6 +2,7 @@
 
 import json
 import math
+import os
 import shutil
 import subprocess
 import sys
@@ -355,3 +356,64 @@ def test_json_is_the_same_on_every_run_and_timings_only_when_asked():
     candidates = json.loads(timed.stdout)["design"]["candidates"]
     solved = [c for c in candidates if c["solver_status"]]
     assert "solve_time" in _keys(candidates) and solved and all(c["solve_time"] > 0 for c in solved)
+
+
+@pytest.mark.parametrize("suffix", ["html", "pdf"])
+def test_a_quiet_report_of_a_hostile_title_writes_nothing_to_stderr(tmp_path, suffix):
+    # -q leaves only errors: a title of emoji and control characters put 30 "Glyph missing" warnings of
+    # matplotlib on stderr (and "$\frac$" in it stopped the report with exit 1). Run as a user runs it, in
+    # a fresh interpreter whose warnings are Python's defaults
+    scene = tmp_path / "scene.toml"
+    scene.write_text(
+        'title = "a\\u0000b\\u0007c\\u001bd\\u202eevil \\U0001F525 \\u2603 $\\\\frac$"\n'
+        '[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n'
+        '[torque.resisting]\npoints = [["0 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]\n'
+        '[torque.driving]\nconstant = "unknown"\n',
+        encoding="utf-8",
+    )
+    out = tmp_path / f"r.{suffix}"
+    env = {**os.environ, "PYTHONWARNINGS": "", "MPLCONFIGDIR": str(tmp_path / "mpl")}
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out), "-q"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
+    assert (run.returncode, run.stderr, run.stdout) == (0, "", "")
+    assert out.stat().st_size > 10_000
+
+
+NEGATIVE_WORK = {
+    # the load gives work over the whole cycle: the unknown driving constant came out -0.375 kN·m and the
+    # report printed a motor power of -58.9 kW, divided by the efficiency as if the motor drove
+    "torque.resisting": '[torque.resisting]\npoints = [["0 deg", "-1600 N*m"], ["90 deg", "-200 N*m"], '
+    '["360 deg", "-200 N*m"]]\n[torque.driving]\nconstant = "unknown"\n',
+    # a driving torque that takes work out: the resisting constant balancing it came out negative
+    "torque.driving": '[torque.driving]\npoints = [["0 deg", "-1600 N*m"], ["90 deg", "-200 N*m"], '
+    '["360 deg", "-200 N*m"]]\n[torque.resisting]\nconstant = "unknown"\n',
+    "torque": '[torque.driving]\nconstant = "-100 N*m"\n[torque.resisting]\nconstant = "-100 N*m"\n',
+}
+
+
+@pytest.mark.parametrize("command", ["solve", "check"])
+@pytest.mark.parametrize("field", sorted(NEGATIVE_WORK))
+def test_a_cycle_of_negative_work_is_refused_in_one_line(field, command, main_cli, write_scene):
+    scene = write_scene('title = "t"\n[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n' + NEGATIVE_WORK[field])
+    status, out, err = main_cli(command, scene)
+    assert status == 2 and out == ""
+    assert err.count("\n") == 1
+    assert f"{field}: the work per cycle is negative" in err
+    assert "[torque.driving]" in err and "braking" in err
+
+
+def test_a_load_that_gives_work_only_in_part_of_the_cycle_is_not_refused(main_cli, write_scene):
+    # a return stroke that helps (negative resisting torque over part of the cycle) is an ordinary machine
+    scene = write_scene(
+        'title = "t"\n[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n'
+        '[torque.resisting]\npoints = [["0 deg", "1600 N*m"], ["180 deg", "-200 N*m"], ["360 deg", "-200 N*m"]]\n'
+        '[torque.driving]\nconstant = "unknown"\n'
+    )
+    status, out, err = main_cli("solve", scene, "--json")
+    assert status == 0, err
+    assert json.loads(out)["motor_power"] > 0

@@ -765,3 +765,56 @@ def test_press_drive_reports_the_drive(folder):
     assert "drive" in page.sections
     whole = " ".join("".join(page.text).split())
     assert "Every motor size solved" in whole and "Drive verification" in whole
+
+
+# --------------------------------------------------------------------------
+# A hostile title (issue 25, items 8 and 10)
+# --------------------------------------------------------------------------
+
+HOSTILE_TITLE = "a\x00b\x07c\x1bd\u202eevil \U0001f525 \u2603 $\\frac$ cost"
+HOSTILE_SCENE = (
+    'title = "a\\u0000b\\u0007c\\u001bd\\u202eevil \\U0001F525 \\u2603 $\\\\frac$ cost"\n'
+    '[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n'
+    '[torque.resisting]\npoints = [["0 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]\n'
+    '[torque.driving]\nconstant = "unknown"\n'
+)
+
+
+def _acting(text):
+    import unicodedata
+
+    return sorted({c for c in text if c not in "\n\t" and unicodedata.category(c) in ("Cc", "Cf", "Co", "Cs", "Cn")})
+
+
+def test_a_hostile_title_reaches_the_page_escaped_and_every_figure_is_drawn(tmp_path, main_cli, write_scene):
+    # NUL, BEL, ESC and U+202E were copied raw into the page; the title's emoji and control characters
+    # made matplotlib warn for every glyph its font lacks (an error under the tests' filter: the figure
+    # failed), and "$\frac$" was read as mathtext, which stopped the drawing
+    scene = write_scene(HOSTILE_SCENE)
+    assert tomllib_title(scene) == HOSTILE_TITLE
+    out = tmp_path / "r.html"
+    status, _out, err = main_cli("report", scene, "-o", out, "-q")
+    assert (status, err) == (0, "")
+    text = out.read_text(encoding="utf-8")
+    assert _acting(text) == []
+    assert "<h1>a\\x00b\\x07c\\x1bd\\u202eevil \U0001f525 \u2603 $\\frac$ cost</h1>" in text
+    page = _page(out)
+    assert page.errors == []
+    drawn = {k: states for k, states in page.figures.items() if states}
+    assert drawn and all(s == ["drawn"] for s in drawn.values()), drawn
+
+
+def test_a_hostile_title_reaches_the_pdf_escaped(tmp_path, main_cli, write_scene):
+    scene = write_scene(HOSTILE_SCENE)
+    out = tmp_path / "r.pdf"
+    status, _out, err = main_cli("report", scene, "-o", out, "-q")
+    assert (status, err) == (0, "")
+    text = _pdf_text(out)
+    assert _acting(text) == []
+    assert "a\\x00b\\x07c\\x1bd\\u202eevil" in text
+
+
+def tomllib_title(path):
+    from flyopt._toml import tomllib
+
+    return tomllib.loads(path.read_text(encoding="utf-8"))["title"]

@@ -589,15 +589,36 @@ def test_stress_plot_of_an_arms_wheel_marks_rim_and_arm_root():
     ax.figure.clf()
 
 
-def test_text_the_font_cannot_draw_becomes_a_placeholder_not_a_warning():
-    """Issue 25, item 8: a title with control characters or emoji gave 30+ 'Glyph missing' warnings on
-    stderr (with -q too) and blanks in the figure. Every text is made drawable when a figure is drawn."""
-    from flyopt.report.plots.standard import drawable
+# --------------------------------------------------------------------------
+# Text a figure can draw (issue 25, item 8)
+# --------------------------------------------------------------------------
 
-    assert drawable("Punch press, δ = 0.1, ω²") == "Punch press, δ = 0.1, ω²"  # the font has these
-    assert drawable("line one\nline two") == "line one\nline two"
-    made = drawable("a\x00b\x07c\x1bd\u202eevil \U0001f525")
-    assert made == "a\ufffdb\ufffdc\ufffdd\ufffdevil \ufffd"
+
+def test_drawable_text_is_what_the_font_has_and_never_mathtext():
+    from flyopt.report.plots import standard
+
+    assert standard.drawable("a\x00b\u202e\U0001f525\t☃ ΔE $\\frac$") == "a\\x00b\\u202e\ufffd ☃ ΔE \\$\\frac\\$"
+    assert standard.drawable("plain, φ = 90 deg\nsecond line") == "plain, φ = 90 deg\nsecond line"
+    once = standard.drawable("a\x00 $x$ \U0001f525")
+    assert standard.drawable(once) == once  # a second pass changes nothing
+
+
+@pytest.mark.parametrize("what", ["turning_moment", "speed", "energy"])
+def test_a_hostile_title_is_drawn_without_a_warning(tmp_path, what, capsys, write_scene):
+    # emoji and control characters made matplotlib warn once per glyph and drawing (30 lines on stderr for
+    # a report), and "$\frac$" in a title stopped the drawing with a mathtext error (exit 1); the tests'
+    # filter turns any warning into an error
+    scene = write_scene(
+        'title = "a\\u0000b\\u0007c\\u001bd\\u202eevil \\U0001F525 $\\\\frac$"\n'
+        '[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n'
+        '[torque.resisting]\npoints = [["0 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]\n'
+        '[torque.driving]\nconstant = "unknown"\n'
+    )
+    out = tmp_path / f"{what}.svg"
+    assert main(["plot", str(scene), "--what", what, "-o", str(out), "-q"]) == 0
+    assert capsys.readouterr().err == ""
+    svg = out.read_text(encoding="utf-8")
+    assert "\x00" not in svg and "\u202e" not in svg
 
 
 def test_a_report_of_a_scene_with_an_undrawable_title_writes_nothing_on_stderr(tmp_path):

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from flyopt.report.characters import visible
 from flyopt.report.display import DEFAULT, field_text, heading, label, number, unit
 from flyopt.report.text import formatters, table
 
@@ -41,7 +42,7 @@ def drive_report(drive: DriveDesign, check: DriveCheck | None = None, units: str
     else:
         m = best.motor
         lines += [
-            f"  motor                {m.name}: {q(m.rated_power, 'rated_power')} at "
+            f"  motor                {visible(m.name)}: {q(m.rated_power, 'rated_power')} at "
             f"{q(m.rated_speed, 'rated_speed', 5)} (rated torque {q(m.rated_torque, 'rated_torque', 4)}, "
             f"rotor {q(m.rotor_inertia, 'rotor_inertia', 4)})",
             f"  motor ratio          {number(best.motor_ratio, 6)} (motor speed over crank speed)",

@@ -17,6 +17,7 @@ import io
 import re
 from typing import TYPE_CHECKING, Any
 
+from flyopt.report.characters import visible
 from flyopt.report.document import Code, Document, Equation, Facts, Figure, Paragraph, Quantity, Table
 
 if TYPE_CHECKING:
@@ -113,7 +114,7 @@ def render(document: Document) -> str:
     for section in document.sections:
         tag = "h2" if section.level == 1 else "h3"
         out.append(f'<section data-section="{_escape(section.key)}">')
-        out.append(f"<{tag}>{section.number} {_escape(section.title)}</{tag}>")
+        out.append(f"<{tag}>{_escape(section.number)} {_escape(section.title)}</{tag}>")
         for block in section.blocks:
             if isinstance(block, Figure) and block.figure is not None:
                 figures += 1
@@ -156,7 +157,7 @@ def _block(block, figure_number):
         )
     if isinstance(block, Code):
         caption = f"<figcaption>{_escape(block.caption)}</figcaption>" if block.caption else ""
-        return f'<figure class="code">{caption}<pre>{html.escape(block.text)}</pre></figure>'
+        return f'<figure class="code">{caption}<pre>{_escape(block.text)}</pre></figure>'
     raise TypeError(f"no HTML for a {type(block).__name__}")
 
 
@@ -177,8 +178,10 @@ def _align(align):
     return ' class="r"' if align == ">" else ""
 
 
-def _escape(text):
-    return html.escape(str(text), quote=True)
+def _escape(text: object) -> str:
+    """Text as HTML, the one way every text reaches the page: markup escaped, and every control or
+    bidirectional-override character written as its escape (:func:`~flyopt.report.characters.visible`)."""
+    return html.escape(visible(str(text)), quote=True)
 
 
 def _text(text):
@@ -186,7 +189,7 @@ def _text(text):
     if isinstance(text, tuple):
         return "".join(_text(t) for t in text)
     if isinstance(text, Quantity):
-        attributes = f' data-dimension="{text.dimension}"'
+        attributes = f' data-dimension="{_escape(text.dimension)}"'
         if text.name:
             attributes += f' data-q="{_escape(text.name)}"'
         if text.si is not None:
@@ -208,7 +211,7 @@ def svg_of(figure: MplFigure, prefix: str) -> str:
 
     buffer = io.StringIO()
     with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": prefix}):
-        figure.savefig(buffer, format="svg", metadata={"Date": None})
+        figure.savefig(buffer, format="svg", metadata={"Date": None})  # made drawable by its class
     text = buffer.getvalue()
     text = text[text.index("<svg") :]
     text = re.sub(r"<metadata>.*?</metadata>\s*", "", text, flags=re.S)

@@ -17,12 +17,20 @@ import os
 import re
 from xml.sax.saxutils import escape
 
+from flyopt.report.characters import visible
 from flyopt.report.document import Code, Document, Equation, Facts, Figure, Paragraph, Quantity, Table, plain
+from flyopt.report.plots import standard
 
 #: Resolution of the diagrams in the PDF [dpi].
 DPI = 200
 
 _FONT, _BOLD, _ITALIC, _MONO = "FlyoptSans", "FlyoptSans-Bold", "FlyoptSans-Oblique", "FlyoptMono"
+_FILES = {
+    _FONT: "DejaVuSans.ttf",
+    _BOLD: "DejaVuSans-Bold.ttf",
+    _ITALIC: "DejaVuSans-Oblique.ttf",
+    _MONO: "DejaVuSansMono.ttf",
+}
 
 
 def render(document: Document) -> bytes:
@@ -42,7 +50,7 @@ def render(document: Document) -> bytes:
         rightMargin=margin,
         topMargin=15 * mm,
         bottomMargin=17 * mm,
-        title=f"{document.title}: flywheel design report",
+        title=f"{_shown(document.title)}: flywheel design report",
         author="flyopt",
         subject="Flywheel design report",
         creator="flyopt",
@@ -60,12 +68,26 @@ def render(document: Document) -> bytes:
         canvas.saveState()
         canvas.setFont(_FONT, 7.5)
         canvas.setFillGray(0.35)
-        canvas.drawString(margin, 9 * mm, f"{document.title}: flywheel design report (flyopt)")
+        canvas.drawString(margin, 9 * mm, f"{_shown(document.title)}: flywheel design report (flyopt)")
         canvas.drawRightString(A4[0] - margin, 9 * mm, f"page {doc.page}")
         canvas.restoreState()
 
     page.build(story, onFirstPage=footer, onLaterPages=footer)
     return buffer.getvalue()
+
+
+def _shown(text: str, font: str = _FONT) -> str:
+    """Text as the PDF shows it: every control or bidirectional-override character as its escape
+    (:func:`~flyopt.report.characters.visible`), every character the font lacks as
+    :data:`~flyopt.report.plots.standard.PLACEHOLDER` (reportlab would write its empty glyph 0)."""
+    return standard.in_font(visible(text), _font_file(font))
+
+
+def _font_file(font: str) -> str:
+    """The file of one of the report's fonts: matplotlib's own DejaVu."""
+    import matplotlib
+
+    return os.path.join(matplotlib.get_data_path(), "fonts", "ttf", _FILES[font])
 
 
 def _fonts():
@@ -75,16 +97,8 @@ def _fonts():
 
     if _FONT in pdfmetrics.getRegisteredFontNames():
         return
-    import matplotlib
-
-    folder = os.path.join(matplotlib.get_data_path(), "fonts", "ttf")
-    for name, file in (
-        (_FONT, "DejaVuSans.ttf"),
-        (_BOLD, "DejaVuSans-Bold.ttf"),
-        (_ITALIC, "DejaVuSans-Oblique.ttf"),
-        (_MONO, "DejaVuSansMono.ttf"),
-    ):
-        pdfmetrics.registerFont(TTFont(name, os.path.join(folder, file)))
+    for name in _FILES:
+        pdfmetrics.registerFont(TTFont(name, _font_file(name)))
     pdfmetrics.registerFontFamily(_FONT, normal=_FONT, bold=_BOLD, italic=_ITALIC, boldItalic=_BOLD)
 
 
@@ -132,8 +146,8 @@ def _markup(text):
     if isinstance(text, tuple):
         return "".join(_markup(t) for t in text)
     if isinstance(text, Quantity):
-        return escape(text.text)
-    escaped = escape(str(text))
+        return escape(_shown(text.text))
+    escaped = escape(_shown(str(text)))
     escaped = re.sub(r"_\{([^{}]*)\}", r"<sub>\1</sub>", escaped)
     return re.sub(r"\^\{([^{}]*)\}", r"<super>\1</super>", escaped)
 
@@ -250,7 +264,7 @@ def _split_code(text, style, chars, width):
             if line.strip()
             else Spacer(1, style.leading)
         ]
-        for line in text.rstrip("\n").split("\n")
+        for line in _shown(text, _MONO).rstrip("\n").split("\n")
     ]
     table = RLTable(rows, colWidths=[width], repeatRows=0)
     table.setStyle(
@@ -344,7 +358,7 @@ def _figure(figure, caption, width, height):
     from reportlab.platypus import Flowable
 
     buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=DPI)
+    figure.savefig(buffer, format="png", dpi=DPI)  # made drawable by its class
     buffer.seek(0)
     image = ImageReader(buffer)
     w, h = figure.get_size_inches() * 72.0

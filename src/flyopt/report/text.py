@@ -16,6 +16,7 @@ from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 from flyopt.design.result import Design
+from flyopt.report.characters import visible
 from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, quantity_text
 
 if TYPE_CHECKING:
@@ -66,7 +67,7 @@ def _label(name: str, units: str) -> str:
 
 def table(header: Sequence[str], rows: Sequence[Sequence[Any]], align: Sequence[str] | None = None) -> list[str]:
     """Fixed-width table: a header row, a rule, then the rows."""
-    cells = [header] + [[str(c) for c in r] for r in rows]
+    cells = [[visible(str(c)) for c in r] for r in [header, *rows]]
     widths = [max(len(r[i]) for r in cells) for i in range(len(header))]
     align = align or ["<"] + [">"] * (len(header) - 1)
     lines = ["  ".join(f"{c:{a}{w}}" for c, a, w in zip(r, align, widths)).rstrip() for r in cells]
@@ -98,7 +99,7 @@ def analysis_report(result: Analysis, source: str | None = None, units: str = DE
     """
     r = result
     q, n = formatters(units)
-    lines = [f"{r.title}" + (f"  ({source})" if source else ""), f"model: {r.model}: {r.model_reason}", ""]
+    lines = [visible(r.title) + (f"  ({visible(source)})" if source else ""), f"model: {r.model}: {r.model_reason}", ""]
     facts = [
         ("mean speed", q(r.omega_mean, "omega_mean")),
         ("allowed δ", f"{number(r.delta)} (1/{number(1 / r.delta, 4)})"),
@@ -297,7 +298,7 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
             ("solved by", solver_words(best)),
         ]
         width = max(len(k) for k, _ in facts)
-        lines += [f"  {k:<{width}}  {v}" for k, v in facts]
+        lines += [f"  {k:<{width}}  {visible(v)}" for k, v in facts]
         if not result.spec.has_envelope:
             lines.append(
                 "  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "

@@ -58,7 +58,7 @@ def place_area_labels(
     """
     from matplotlib.transforms import Bbox
 
-    standard.figure_of(ax).canvas.draw()  # lay the figure out: the extents below are those drawn
+    standard.figure_of(ax).canvas.draw()  # lay the figure out (made drawable by its class): the extents drawn
     lo_px, hi_px = _to_pixels(ax, x, lower), _to_pixels(ax, x, upper)
     px = lo_px[:, 0]
     axes_box = ax.get_window_extent()

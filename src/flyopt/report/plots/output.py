@@ -55,7 +55,7 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
     suffix = path.suffix.lower().lstrip(".")
     fig = standard.figure_of(ax)
     try:
-        replace_atomically(path, lambda tmp: fig.savefig(tmp, format=suffix, dpi=dpi))
+        replace_atomically(path, lambda tmp: fig.savefig(tmp, format=suffix, dpi=dpi))  # drawable: figure_class
     finally:
         standard.pyplot().close(fig)
     return path

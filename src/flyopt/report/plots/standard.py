@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import functools
 import os
+import re
 import textwrap
-import unicodedata
 from collections.abc import Sequence
 from types import ModuleType
 from typing import TYPE_CHECKING, Any, overload
@@ -13,11 +14,13 @@ import numpy as np
 import numpy.typing as npt
 
 from flyopt.report import display
+from flyopt.report.characters import visible
 
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from matplotlib.font_manager import FontProperties
     from matplotlib.legend import Legend
 
 SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
@@ -45,6 +48,80 @@ def pyplot() -> ModuleType:
 
 
 # --------------------------------------------------------------------------
+# Drawable text: what a figure shows is what the font can draw
+# --------------------------------------------------------------------------
+
+#: What a diagram shows in place of a character its font cannot draw (an emoji): visible, so that nothing
+#: of a name goes missing unseen.
+PLACEHOLDER = "\ufffd"
+
+
+@functools.lru_cache(maxsize=8)
+def glyphs(font: str) -> frozenset[int]:
+    """The code points the font file ``font`` has a glyph for."""
+    from matplotlib import ft2font
+
+    return frozenset(ft2font.FT2Font(font).get_charmap())
+
+
+def font_file(properties: FontProperties | None = None) -> str:
+    """The font file matplotlib draws text of these properties with (the default font without)."""
+    from matplotlib import font_manager
+
+    return str(font_manager.findfont(properties if properties is not None else font_manager.FontProperties()))
+
+
+def in_font(text: str, font: str | None = None) -> str:
+    """``text`` with every character the font has no glyph for (but the line break and the tab) as
+    :data:`PLACEHOLDER`.
+
+    Parameters
+    ----------
+    text : str
+    font : str, optional
+        The font file the text is drawn with (default: matplotlib's default font, DejaVu Sans).
+    """
+    covered = glyphs(font if font is not None else font_file())
+    return "".join(c if c in "\n\t" or ord(c) in covered else PLACEHOLDER for c in text)
+
+
+def drawable(text: str, font: str | None = None) -> str:
+    """``text`` as a figure can draw it.
+
+    A control or bidirectional-override character is its escape (:func:`flyopt.report.characters.visible`,
+    as in every report), a tab a space, a character the font has no glyph for is :data:`PLACEHOLDER`
+    (:func:`in_font`), and a ``$`` is escaped, so that a name is never read as mathtext (where ``$\\frac$`` would stop the drawing).
+
+    Parameters
+    ----------
+    text : str
+    font : str, optional
+        The font file the text is drawn with (default: matplotlib's default font).
+    """
+    kept = in_font(visible(text).replace("\t", " "), font)
+    return re.sub(r"(?<!\\)\$", r"\\$", kept)
+
+
+def make_drawable(figure: Figure) -> Figure:
+    """Make every text of the figure :func:`drawable` in its own font (titles, labels, legends, notes).
+
+    Called before a figure is drawn (laid out or saved), so that whatever a scene names (its title, a
+    shaft, a material) reaches the figure drawable, whichever way it came in; the text is changed
+    only where it must be (a second call changes nothing).
+    """
+    from matplotlib.text import Text
+
+    for artist in figure.findobj(Text):
+        assert isinstance(artist, Text)
+        text = artist.get_text()
+        if text:
+            shown = drawable(text, font_file(artist.get_fontproperties()))
+            if shown != text:
+                artist.set_text(shown)
+    return figure
+
+
+# --------------------------------------------------------------------------
 # The visual standard: figures, units, titles, legends
 # --------------------------------------------------------------------------
 
@@ -58,22 +135,16 @@ def axes(ax: Axes | None, figsize: tuple[float, float] = (9, 5.2)) -> tuple[Axes
 
 
 def figure_class() -> type[Figure]:
-    """The class of every figure flyopt makes: a matplotlib Figure whose texts are made drawable
-    (:func:`drawable`) each time it is drawn, wherever a text came from (a title, a material's or a
-    shaft's name in a legend): a character the font lacks is drawn as a placeholder instead of a
-    missing-glyph warning on stderr (and a blank), control and direction-override characters never."""
+    """The class of every figure flyopt makes: a matplotlib Figure made drawable (:func:`make_drawable`)
+    each time it is drawn (laid out, saved, rendered into a report), wherever a text came from (a title,
+    a material's or a shaft's name in a legend)."""
     global _FIGURE_CLASS
     if _FIGURE_CLASS is None:
         from matplotlib.figure import Figure
-        from matplotlib.text import Text
 
         class DrawableFigure(Figure):
             def draw(self, renderer: Any) -> None:
-                for text in self.findobj(Text):
-                    shown = text.get_text()
-                    made = drawable(shown)
-                    if made != shown:
-                        text.set_text(made)
+                make_drawable(self)
                 super().draw(renderer)
 
         _FIGURE_CLASS = DrawableFigure
@@ -81,28 +152,6 @@ def figure_class() -> type[Figure]:
 
 
 _FIGURE_CLASS: type[Figure] | None = None
-_GLYPHS: frozenset[int] | None = None
-
-
-def drawable(text: str) -> str:
-    """``text`` with every character the diagrams' font has no glyph for, and every control, format
-    (bidirectional overrides) or private-use character, replaced by U+FFFD (or ``?``)."""
-    global _GLYPHS
-    if not text or (text.isascii() and text.isprintable()):
-        return text
-    if _GLYPHS is None:
-        from matplotlib import font_manager
-        from matplotlib.ft2font import FT2Font
-
-        path = font_manager.findfont(font_manager.FontProperties())
-        _GLYPHS = frozenset(FT2Font(path).get_charmap())
-    placeholder = "\ufffd" if 0xFFFD in _GLYPHS else "?"
-    return "".join(
-        c
-        if c == "\n" or (ord(c) in _GLYPHS and unicodedata.category(c) not in ("Cc", "Cf", "Co", "Cs"))
-        else placeholder
-        for c in text
-    )
 
 
 def figure_of(ax: Axes) -> Figure:
