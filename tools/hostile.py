@@ -75,7 +75,9 @@ def _toml_value(value: Any) -> str:
             return "inf" if value > 0 else "-inf"
         return repr(value)
     if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=True)  # JSON's escapes are TOML basic-string escapes
+        # JSON's escapes are TOML basic-string escapes, but for characters beyond the BMP (JSON writes a
+        # surrogate pair, which TOML refuses): those stay raw, as does everything but what TOML forbids raw
+        return json.dumps(value, ensure_ascii=False).replace("\x7f", "\\u007f")
     if isinstance(value, list):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
     if isinstance(value, dict):
