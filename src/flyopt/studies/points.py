@@ -9,6 +9,7 @@ points that differ only in those share one analysis (:mod:`flyopt.studies.physic
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
@@ -235,7 +236,9 @@ def point_scene(scene: Scene, point: Mapping[str, Any]) -> Scene:
 
     changes: dict[str, Any] = {}
     design: dict[str, Any] = {}
-    spec = design_inputs(scene).spec  # the scene's [design], or the defaults (one rule: design_inputs)
+    # the scene's [design], or the defaults (one rule: design_inputs), built only for a point that varies it:
+    # a point of a physics axis (δ, speed) is made for every analysis and needs none of it
+    spec = functools.cache(lambda: design_inputs(scene).spec)
     shafts = {s.name: s for s in scene.shafts}
     library = material_library(scene.materials)
     user = {m.name: m for m in scene.materials}
@@ -257,7 +260,7 @@ def point_scene(scene: Scene, point: Mapping[str, Any]) -> Scene:
         elif name == "design.hb_ratio":
             design["hb_ratio"] = (float(value), float(value))
         elif name in ("design.hb_min", "design.hb_max"):
-            low, high = design.get("hb_ratio", spec.hb_ratio)
+            low, high = design.get("hb_ratio", spec().hb_ratio)
             design["hb_ratio"] = (float(value), high) if name.endswith("min") else (low, float(value))
         elif name in ("design.max_outer_diameter", "design.max_width", "design.d_mean"):
             design[name.split(".")[1]] = None if is_none(value) else float(value)
@@ -278,7 +281,7 @@ def point_scene(scene: Scene, point: Mapping[str, Any]) -> Scene:
         else:
             raise SceneError(name, "unknown sweep field")
     if design:
-        changes["design"] = dataclasses.replace(spec, **design)
+        changes["design"] = dataclasses.replace(spec(), **design)
     changes["shafts"] = tuple(shafts.values())
     changes["materials"] = tuple(user.values())
     return scene.replace(**changes)
