@@ -680,12 +680,7 @@ def design_drive(
     if load is None or not load > 0:
         raise SceneError("drive", f"the drive needs a load to drive: the scene's mean driving torque is {load!r} N*m")
     inputs = design_inputs(scene)
-    ratios: tuple[str, Unpack[tuple[float, ...]]]
-    if spec.ratios is None:
-        assert spec.ratio_range is not None  # a drive gives a ratio range or fixed ratios (DriveSpec checks)
-        ratios = ("range", *spec.ratio_range)
-    else:
-        ratios = ("fixed", *spec.ratios)
+    ratios = spec.ratio_choice()
     motors = spec.motors.motors  # a Catalogue keeps its sizes in increasing rated power
     done = {}
 

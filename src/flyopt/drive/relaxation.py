@@ -453,11 +453,7 @@ def relax(
     n, w0 = model.n, fit.synchronous_speed
     j_scale = max(load_torque * machine.cycle_angle / (omega_mean**2 * delta), 1e-6)
     omega_top = omega_mean * (1 + delta / 2)
-    if spec.ratios is None:
-        assert spec.ratio_range is not None  # a drive gives a ratio range or fixed ratios (DriveSpec checks)
-        lo, hi = spec.ratio_range
-    else:
-        lo, hi = min(spec.ratios), max(spec.ratios)
+    lo, hi = spec.ratio_bounds()
     # the wheel: its variables' bounds and rows' bounds as the designer's (the inertia row: J r² >= J_F, written
     # as a difference), every dimension at least MIN_DIMENSION
     floor = math.log(MIN_DIMENSION)

@@ -41,6 +41,7 @@ from flyopt.units import quantity
 
 if TYPE_CHECKING:
     from collections.abc import Mapping, Sequence
+    from typing import Unpack  # Python 3.11; the annotations are never evaluated
 
     from flyopt.design.materials import Material
     from flyopt.machine.transmission import Shaft
@@ -101,6 +102,21 @@ class DriveSpec:
     def __post_init__(self) -> None:
         if (self.ratio_range is None) == (self.ratios is None):
             raise ValueError("a drive gives either a ratio range or fixed ratios, not both or neither")
+
+    def ratio_choice(self) -> tuple[str, Unpack[tuple[float, ...]]]:
+        """``("range", lo, hi)`` for a ratio designed continuously, ``("fixed", r1, r2, ...)`` for fixed ratios."""
+        if self.ratios is not None:
+            return ("fixed", *self.ratios)
+        lo, hi = self.ratio_bounds()
+        return ("range", lo, hi)
+
+    def ratio_bounds(self) -> tuple[float, float]:
+        """The smallest and largest ratio the drive may take [-]."""
+        if self.ratios is not None:
+            return min(self.ratios), max(self.ratios)
+        if self.ratio_range is None:  # pragma: no cover - __post_init__ refuses a drive with neither
+            raise ValueError("a drive gives either a ratio range or fixed ratios")
+        return self.ratio_range
 
 
 def drive_spec(
