@@ -49,7 +49,7 @@ class Inertia:
     """
 
     def __init__(self, j: Any, what: str = "j_machine") -> None:
-        self._maps: dict[int, Any] = {}
+        self._maps: dict[Any, Any] = {}
         self._numpy = None
         self._expr: Any = None
         self._phi: Any = None
@@ -171,21 +171,23 @@ def call(function: Any, *args: npt.ArrayLike) -> tuple[FloatArray, ...]:
     return tuple(outputs)
 
 
-def evaluate(function: Any, maps: dict[int, Any], *args: npt.ArrayLike) -> tuple[FloatArray, ...]:
+def evaluate(function: Any, maps: dict[Any, Any], *args: npt.ArrayLike) -> tuple[FloatArray, ...]:
     """Evaluate a scalar CasADi Function elementwise on broadcast numpy arrays.
 
-    The mapped function for each size is built once and kept in ``maps``.
+    The mapped function for each function and size is built once and kept in ``maps`` (keyed by the
+    function's name and the size: one dictionary may serve several functions of a model).
     """
     arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in args))
     shape = arrays[0].shape
     n = arrays[0].size
     if n == 0:
         return tuple(np.zeros(shape) for _ in range(function.n_out()))
-    if n not in maps:
+    key = (function.name(), n)
+    if key not in maps:
         if len(maps) > 64:
             maps.clear()
-        maps[n] = function.map(n) if n > 1 else function
-    return tuple(o.reshape(shape) for o in call(maps[n], *(a.reshape(1, -1) for a in arrays)))
+        maps[key] = function.map(n) if n > 1 else function
+    return tuple(o.reshape(shape) for o in call(maps[key], *(a.reshape(1, -1) for a in arrays)))
 
 
 def check_speed_delta(omega_mean: float, delta: float | None, delta_max: float = 2.0) -> None:

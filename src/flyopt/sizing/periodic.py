@@ -58,7 +58,6 @@ from flyopt.sizing._numerics import (
     InertiaLike,
     NetTorqueLike,
     check_speed_delta,
-    evaluate,
     quiet,
 )
 from flyopt.sizing.periodic_model import ABSTOL, BUILDS, RELTOL, periodic_model
@@ -305,7 +304,7 @@ def _steady(model, j_flywheel, omega_guess):
         )
     else:
         omega = shooting.speed_balance(torque, omega_guess)
-        slope = float(evaluate(model.torque_slope_function, model.maps, 0.0, omega)[0])
+        slope = float(model.torque_slope(0.0, omega))
         multiplier = math.exp(model.cycle * slope / (j * omega)) if j > 0 else 0.0
         status = "steady: the torques do not vary with the angle; the torque-speed balance sets the speed"
     phi = model.grid_angles().reshape(-1)

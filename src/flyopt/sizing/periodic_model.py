@@ -12,6 +12,7 @@ one-solve requirement (:mod:`flyopt.sizing.shooting`) run on it.
 
 from __future__ import annotations
 
+import copy
 import weakref
 from collections.abc import Iterable
 from functools import cached_property
@@ -116,8 +117,16 @@ class PeriodicModel:
         self.work = float(getattr(net_torque, "work", 0.0))
 
         phi, omega = ca.SX.sym("phi"), ca.SX.sym("omega")
+        # a net torque with parameters (a motor whose ratio and curve a drive search varies) takes them
+        # as symbols: every function below has them as inputs, so one build serves every value
+        self.n_theta = int(getattr(net_torque, "parameters", 0))
+        theta = [ca.SX.sym(f"theta{k}") for k in range(self.n_theta)]
+        #: The parameters' values (:meth:`bind` gives the model at others).
+        self.theta: tuple[float, ...] = (
+            tuple(float(v) for v in cast(Any, net_torque).parameter_values()) if self.n_theta else ()
+        )
         try:
-            m = ca.SX(rest(phi, omega))
+            m = ca.SX(rest(phi, omega, *theta))
         except Exception as err:  # noqa: BLE001 -- any failure means "not CasADi-capable"
             raise ValueError(f"net_torque(phi, omega) must accept CasADi symbols: {err}") from err
         if m.shape != (1, 1):
@@ -129,13 +138,22 @@ class PeriodicModel:
             and not ca.depends_on(m, phi)
             and bool(np.all(self.table_ends == self.table_ends[0, 0]))
         )
-        self.torque_function = ca.Function("M", [phi, omega], [m])
+        self.torque_function = ca.Function("M", [phi, omega, *theta], [m])
         self._rest_constant = not (ca.depends_on(m, phi) or self.speed_dependent)
-        self.torque_slope_function = ca.Function("dM", [phi, omega], [ca.jacobian(m, omega)])
+        self.torque_slope_function = ca.Function("dM", [phi, omega, *theta], [ca.jacobian(m, omega)])
         #: CasADi maps of the torque functions over arrays, by size (for :func:`flyopt.sizing._numerics.evaluate`).
         self.maps: dict[Any, Any] = {}
         self._chunks: dict[tuple[str, int], Any] = {}
         self._table_values: dict[str, FloatArray] = {}
+
+    def bind(self, theta: Iterable[float]) -> PeriodicModel:
+        """The model at other values of its parameters (it shares every compiled function with this one)."""
+        values = tuple(float(v) for v in theta)
+        if len(values) != self.n_theta:
+            raise ValueError(f"the model has {self.n_theta} parameters, got {len(values)} values")
+        bound = copy.copy(self)
+        bound.theta = values
+        return bound
 
     def table_at(self, a: ArrayLike, b: ArrayLike) -> FloatArray:
         """The table's values at the ends of pieces [a, b], seen from inside them [N*m], shape (n, 2)."""
@@ -146,16 +164,19 @@ class PeriodicModel:
 
     # -- CasADi building blocks --------------------------------------------------
     def rhs(self, with_time: bool) -> dict[str, Any]:
-        """States [y, stall(, t)], parameters [φ_a, φ_b, J_F, E_ref, W_s, c, M_a, M_b(, T_s)].
+        """States [y, stall(, t)], parameters [φ_a, φ_b, J_F, E_ref, W_s, c, M_a, M_b(, T_s), θ...].
 
         c is a constant added to the net torque (the correction of a
         balancing constant); M_a and M_b are the table's values at the
-        piece's ends, between which it is linear.
+        piece's ends, between which it is linear; θ the net torque's own
+        parameters (none for most machines).
         """
         tau = ca.SX.sym("tau")
         x = ca.SX.sym("x", 3 if with_time else 2)
-        p = ca.SX.sym("p", 9 if with_time else 8)
+        first = 9 if with_time else 8
+        p = ca.SX.sym("p", first + self.n_theta)
         a, b, j_f, e_ref, w_s, c, m_a, m_b = (p[k] for k in range(8))
+        theta = [p[first + k] for k in range(self.n_theta)]
         h = b - a
         phi = a + tau * h
         tau_torque = ca.fmin(ca.fmax(tau, EDGE), 1 - EDGE)
@@ -163,7 +184,7 @@ class PeriodicModel:
         j = self.inertia.casadi(phi) + j_f
         energy = e_ref + w_s * x[0]
         omega = ca.sqrt(ca.fmax(2 * energy / j, 1e-300))
-        torque = self.torque_function(phi_torque, omega) + (m_a + (m_b - m_a) * tau_torque) + c
+        torque = self.torque_function(phi_torque, omega, *theta) + (m_a + (m_b - m_a) * tau_torque) + c
         ode = [h * torque / w_s, h * ca.fmax(-energy / w_s, 0)]
         if with_time:
             ode.append(h / (omega * p[8]))
@@ -194,7 +215,7 @@ class PeriodicModel:
     def _chunk(self, kind, size):
         """A CasADi function over ``size`` consecutive pieces (built once per kind and size).
 
-        Inputs: the states at the chunk's start, q = [J_F, E_ref, W_s, c], and
+        Inputs: the states at the chunk's start, q = [J_F, E_ref, W_s, c, θ...], and
         the pieces' data [φ_a, φ_b, M_a, M_b] (4 × size). Outputs by kind:
         "cycle": the states at the chunk's end and at every output;
         "shooting": the states at the end and ∂y/∂E_ref there;
@@ -203,8 +224,8 @@ class PeriodicModel:
         key = (kind, size)
         if key not in self._chunks:
             BUILDS[f"{kind} function"] += 1
-            x0, q, data = ca.MX.sym("x0", 2), ca.MX.sym("q", 4), ca.MX.sym("data", 4)
-            xf = self.piece(x0=x0, p=ca.vertcat(data[0], data[1], q, data[2], data[3]))["xf"]
+            x0, q, data = ca.MX.sym("x0", 2), ca.MX.sym("q", 4 + self.n_theta), ca.MX.sym("data", 4)
+            xf = self.piece(x0=x0, p=ca.vertcat(data[0], data[1], q[:4], data[2], data[3], q[4:]))["xf"]
             if kind == "cycle":
                 step = ca.Function("step", [x0, q, data], [xf[:, -1], xf])
                 self._chunks[key] = step.mapaccum(f"cycle_{size}", size)
@@ -213,6 +234,7 @@ class PeriodicModel:
                 chain = step.mapaccum(f"chain_{size}", size)
                 xs, ds = ca.MX.sym("x0", 2), ca.MX.sym("data", 4, size)
                 qs = [ca.MX.sym(name) for name in ("j_f", "e_ref", "w_s", "c")]
+                qs += [ca.MX.sym(f"theta{k}") for k in range(self.n_theta)]
                 end = chain(xs, ca.vertcat(*qs), ds)[:, -1]
                 wrt = [qs[1]] if kind == "shooting" else [qs[1], qs[3]]
                 outs = [end] + [ca.jacobian(end[0], v) for v in wrt]
@@ -238,7 +260,7 @@ class PeriodicModel:
             When CVODES fails (CasADi's message).
         """
         kind = "balancing" if balancing else "shooting"
-        q = [j_flywheel, e_ref, w_s, offset]
+        q = [j_flywheel, e_ref, w_s, offset, *self.theta]
         x, d_e, d_c = np.zeros(2), 0.0, 0.0
         for _, data in self.chunked():
             out = self._chunk(kind, data.shape[1])(x, q, data)
@@ -287,9 +309,9 @@ class PeriodicModel:
         """Net torque at numpy arrays (broadcast) [N*m]; on a knot, the value right of it."""
         if self._rest_constant:  # a table alone: no CasADi call per point
             shape = np.broadcast_shapes(np.shape(phi), np.shape(omega))
-            values = np.full(shape, float(self.torque_function(0.0, 0.0)))
+            values = np.full(shape, float(self.torque_function(0.0, 0.0, *self.theta)))
         else:
-            values = evaluate(self.torque_function, self.maps, phi, omega)[0]
+            values = evaluate(self.torque_function, self.maps, phi, omega, *self.theta)[0]
         if self.table is not None:
             values = values + self._table_right(phi, values.shape)
         return values
@@ -309,6 +331,10 @@ class PeriodicModel:
             self._table_values[grid] = values
         return self._table_values[grid]
 
+    def torque_slope(self, phi: ArrayLike, omega: ArrayLike) -> FloatArray:
+        """∂M/∂ω at numpy arrays (broadcast) [N*m*s/rad] (a table of the angle has none)."""
+        return evaluate(self.torque_slope_function, self.maps, phi, omega, *self.theta)[0]
+
     def falls_with_speed(self, omega: float) -> bool:
         """Whether ∂M/∂ω <= 0 on the grid for speeds up to 4 ω (sampled; the torque
         then has a unique periodic solution, see :func:`flyopt.sizing.periodic._periodic_energy`)."""
@@ -316,7 +342,7 @@ class PeriodicModel:
             return True
         phi = self.grid_angles()[:, :-1].reshape(-1)
         speeds = np.linspace(0.0, 4 * omega, 65)[1:]
-        slope = evaluate(self.torque_slope_function, self.maps, phi[:, None], speeds[None, :])[0]
+        slope = self.torque_slope(phi[:, None], speeds[None, :])
         return bool(np.all(slope <= 0))
 
     def check_finite(self, omega: float) -> None:
@@ -357,7 +383,7 @@ class PeriodicModel:
         SolverFailed
             When CVODES fails (its status in the message).
         """
-        q = [j_flywheel, e_ref, w_s, offset]
+        q = [j_flywheel, e_ref, w_s, offset, *self.theta]
         x, parts = np.zeros(2), []
         try:
             with quiet():

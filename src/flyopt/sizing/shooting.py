@@ -59,7 +59,7 @@ import numpy as np
 
 from flyopt.cycle.numerics import hermite_extremes
 from flyopt.errors import SolverFailed
-from flyopt.sizing._numerics import EPS, FloatArray, call, evaluate
+from flyopt.sizing._numerics import EPS, FloatArray, call
 
 if TYPE_CHECKING:  # annotations only: periodic_model imports this module
     from flyopt.sizing.periodic_model import PeriodicModel
@@ -118,8 +118,9 @@ def _functions(model, substeps):
     ``"plain", size``: (y0, q, data) -> (y_end, Y) with Y the scaled energy at
     every output of every piece (1 × size·outputs); ``"jacobian", size``: the
     same with y carrying its forward sensitivities, x = [y, ∂y/∂J_F, ∂y/∂E_ref,
-    ∂y/∂c] (4 rows). q = [J_F, E_ref, W_s, c]; data = [φ_a, φ_b, M_a, M_b] of
-    each piece (4 × size).
+    ∂y/∂c] (4 rows), and ∂y/∂θ₀ (5 rows) when the net torque has parameters θ
+    (the first is the one a search varies: a drive's motor ratio). q = [J_F,
+    E_ref, W_s, c, θ...]; data = [φ_a, φ_b, M_a, M_b] of each piece (4 × size).
     """
     key = model.structure + (substeps,)
     if key in _STRUCTURES:
@@ -133,7 +134,8 @@ def _functions(model, substeps):
     f = ca.Function("f", [rhs["t"], rhs["x"], rhs["p"]], [rhs["ode"][0]])
     outputs = len(model.tau) - 1
     h = 1.0 / (outputs * substeps)
-    y, p, t = ca.SX.sym("y"), ca.SX.sym("p", 8), ca.SX.sym("t")
+    n_p = 8 + model.n_theta
+    y, p, t = ca.SX.sym("y"), ca.SX.sym("p", n_p), ca.SX.sym("t")
 
     def dydt(tau, value):
         return f(tau, ca.vertcat(value, 0), p)
@@ -146,11 +148,10 @@ def _functions(model, substeps):
     # the same step with its tangent: s' = ∂y'/∂y s + ∂y'/∂(J_F, E_ref, c), exactly the forward
     # derivative of the discrete steps, carried as states so that one SX loop computes both
     # (an MX Jacobian of the chained steps costs several times more)
-    sens = ca.SX.sym("s", 3)
-    wrt = [p[2], p[3]] + ([p[5]] if model.balanced else [])
-    source = ca.jacobian(y_next, ca.vertcat(*wrt)).T
-    if not model.balanced:
-        source = ca.vertcat(source, 0)
+    with_theta = model.n_theta > 0
+    sens = ca.SX.sym("s", 4 if with_theta else 3)
+    wrt = [p[2], p[3], p[5] if model.balanced else None, p[8] if with_theta else None]
+    source = ca.vertcat(*(0 if v is None else ca.jacobian(y_next, v) for v in wrt[: sens.shape[0]]))
     s_next = ca.jacobian(y_next, y) * sens + source
     steps = {
         "plain": (y, ca.Function("rk4", [y, p, t], [y_next])),
@@ -159,7 +160,14 @@ def _functions(model, substeps):
             ca.Function("rk4_tangent", [ca.vertcat(y, sens), p, t], [ca.vertcat(y_next, s_next)]),
         ),
     }
-    _STRUCTURES[key] = {"steps": steps, "outputs": outputs, "h": h, "substeps": substeps, "chunks": {}}
+    _STRUCTURES[key] = {
+        "steps": steps,
+        "outputs": outputs,
+        "h": h,
+        "substeps": substeps,
+        "n_q": 4 + model.n_theta,
+        "chunks": {},
+    }
     return _STRUCTURES[key]
 
 
@@ -172,13 +180,14 @@ def _piece(functions, kind):
             interval = rk4
         else:  # the steps of one grid interval as a loop, not unrolled: the graph stays small
             loop = rk4.mapaccum("steps", substeps)
-            xm, pm, t0 = ca.MX.sym("x", n), ca.MX.sym("p", 8), ca.MX.sym("t0")
+            xm, pm, t0 = ca.MX.sym("x", n), ca.MX.sym("p", 4 + functions["n_q"]), ca.MX.sym("t0")
             times = t0 + ca.DM(np.arange(substeps, dtype=float).reshape(1, -1) * h)
             interval = ca.Function("interval", [xm, pm, t0], [loop(xm, pm, times)[:, -1]])
         along = interval.mapaccum("along", outputs)
         starts = ca.DM(np.arange(outputs, dtype=float).reshape(1, -1) / outputs)
-        x0, q, data = ca.MX.sym("x0", n), ca.MX.sym("q", 4), ca.MX.sym("data", 4)
-        states = along(x0, ca.vertcat(data[0], data[1], q, data[2], data[3]), starts)
+        n_q = functions["n_q"]
+        x0, q, data = ca.MX.sym("x0", n), ca.MX.sym("q", n_q), ca.MX.sym("data", 4)
+        states = along(x0, ca.vertcat(data[0], data[1], q[:4], data[2], data[3], q[4:]), starts)
         functions[kind] = ca.Function("piece", [x0, q, data], [states[:, -1], ca.horzcat(x0, states)]).expand()
     return functions[kind]
 
@@ -206,12 +215,13 @@ def cycle(
     -------
     y : ndarray (pieces, outputs + 1)
         The scaled energy on the model's grid.
-    jac : ndarray (pieces, outputs + 1, 3) or None
-        ∂y/∂(J_F, E_ref, c) on the grid (with ``derivatives``).
+    jac : ndarray (pieces, outputs + 1, 3 or 4) or None
+        ∂y/∂(J_F, E_ref, c[, θ₀]) on the grid (with ``derivatives``; θ₀ when the model has parameters).
     """
-    q = np.array([[j_flywheel], [e_ref], [w_s], [offset]])  # the same for every piece
+    q = np.array([[j_flywheel], [e_ref], [w_s], [offset], *([v] for v in model.theta)])  # the same for every piece
     kind = "jacobian" if derivatives else "plain"
-    x = np.zeros(4 if derivatives else 1)  # the sensitivities start at zero with y
+    n_sens = 4 if model.n_theta else 3
+    x = np.zeros(1 + n_sens if derivatives else 1)  # the sensitivities start at zero with y
     parts = []
     for _, data in model.chunked():
         size = data.shape[1]
@@ -222,7 +232,7 @@ def cycle(
     states = np.concatenate(parts, axis=1)
     shape = (len(model.pieces), len(model.tau))
     y = states[0].reshape(shape)
-    jac = states[1:].T.reshape(shape + (3,)) if derivatives else None
+    jac = states[1:].T.reshape(shape + (n_sens,)) if derivatives else None
     return y, jac
 
 
@@ -272,7 +282,7 @@ class _State:
         if model.speed_dependent:
             # |∂(dy/dτ)/∂y| Δτ = |∂M/∂ω| Δφ/(J ω) per grid interval
             h = np.diff(phi, axis=1)
-            slope = evaluate(model.torque_slope_function, model.maps, phi[:, :-1], np.sqrt(2 * q[:, :-1]))[0]
+            slope = model.torque_slope(phi[:, :-1], np.sqrt(2 * q[:, :-1]))
             self.stiffness = float(
                 np.max(np.abs(slope) * h / (j_total(model, phi[:, :-1], self.j_flywheel) * np.sqrt(2 * q[:, :-1])))
             )
@@ -289,7 +299,7 @@ class _State:
         chain = np.array(
             [[0.0, e_u, 0.0], [2 * self.e_ref, 0.5 * self.omega_ref**2 * e_u, 0.0], [0.0, 0.0, solve.m_scale]]
         )
-        dy = jac @ chain  # ∂y/∂(v, u, w) on the grid
+        dy = jac[..., :3] @ chain  # ∂y/∂(v, u, w) on the grid
         j_grid = model.inertia(phi) + self.j_flywheel
         dj = np.array([0.0, e_u, 0.0])  # ∂J/∂(v, u, w)
         de = chain[1]  # ∂E_ref/∂(v, u, w)

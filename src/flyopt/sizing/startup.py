@@ -122,7 +122,9 @@ def startup_time(
             try:
                 with quiet():
                     xf = np.asarray(
-                        model.piece_timed(x0=x, p=[a, b, j_flywheel, 0.0, e_target, 0.0, m_a, m_b, t_scale])["xf"]
+                        model.piece_timed(
+                            x0=x, p=[a, b, j_flywheel, 0.0, e_target, 0.0, m_a, m_b, t_scale, *model.theta]
+                        )["xf"]
                     )
             except RuntimeError as err:
                 raise SolverFailed(
