@@ -45,6 +45,7 @@ import numpy as np
 
 from flyopt.analysis import flywheel_torque, startup_run
 from flyopt.errors import SceneError, SolverFailed
+from flyopt.machine.reduce import reduce
 from flyopt.names import Criterion, Geometry, Objective
 
 if TYPE_CHECKING:
@@ -55,6 +56,7 @@ if TYPE_CHECKING:
     from flyopt.design.result import Design, DesignResult
     from flyopt.design.spec import DesignSpec
     from flyopt.drive.relaxation import Relaxation
+    from flyopt.drive.steady import DriveModel
     from flyopt.io.drive import DriveSpec
     from flyopt.io.scene import Scene
     from flyopt.machine.catalogue import CatalogueMotor
@@ -244,13 +246,10 @@ def rms_torque(
     periodic solution's grid (2048+ points a cycle, every knot; the error is
     O(h²) of the torque's curvature, below 1e-6 relative on the scenes tested).
     """
-    phi, omega = np.asarray(solution.phi, float), np.asarray(solution.omega, float)
-    torque = np.asarray(motor.torque(ratio * omega, model), float)
-    dt = np.diff(phi) * 0.5 * (1.0 / omega[1:] + 1.0 / omega[:-1])
-    period = dt.sum()
-    squares = np.diff(phi) * 0.5 * (torque[1:] ** 2 / omega[1:] + torque[:-1] ** 2 / omega[:-1])
-    means = np.diff(phi) * 0.5 * (torque[1:] / omega[1:] + torque[:-1] / omega[:-1])
-    return math.sqrt(squares.sum() / period), means.sum() / period
+    from flyopt.drive.steady import rms_of
+
+    omega = np.asarray(solution.omega, float)
+    return rms_of(np.asarray(solution.phi, float), omega, np.asarray(motor.torque(ratio * omega, model), float))
 
 
 def motor_scene(scene: Scene, motor: CatalogueMotor, ratio: float) -> Scene:
@@ -287,6 +286,8 @@ def evaluate_motor(
     design_spec: DesignSpec,
     *,
     solver_options: Mapping[str, Any] | None = None,
+    drive_model: DriveModel | None = None,
+    start: dict[str, Any] | None = None,
 ) -> MotorRun:
     """One motor size: its ratio, the least flywheel it needs, the checks, and the wheel (:class:`MotorRun`).
 
@@ -302,6 +303,12 @@ def evaluate_motor(
         ("range", lo, hi) or ("fixed", r1, r2, ...) of the flywheel shaft.
     materials, design_spec
         As for :func:`flyopt.design.designer.design_flywheel`.
+    drive_model : flyopt.drive.steady.DriveModel, optional
+        The scene's compiled drive model (:func:`drive_model`): the ratio and
+        the flywheel by one Newton solve on it, the CVODES search only should
+        it not settle. Default: the CVODES search.
+    start : dict, optional
+        Carries the last size's solution to the next (a warm start); updated.
     """
 
     omega = scene.omega_mean
@@ -324,16 +331,38 @@ def evaluate_motor(
             f"its rated torque {rated:.6g} N*m whatever the flywheel",
             motor_ratio=ratio,
         )
-    try:
-        ratio, machine, solution, j_delta = _settle(scene, motor, ratio, spec.thermal)
-    except _Unsettled as err:
-        return run(False, str(err), motor_ratio=err.ratio, j_delta=err.j_delta)
-    except (SolverFailed, SceneError) as err:
-        return run(False, f"no steady running: {err}", motor_ratio=ratio)
-    j_need = solution.j_flywheel
+    found = None
+    if drive_model is not None:
+        from flyopt.drive.steady import Unreachable
+        from flyopt.sizing.shooting import NotSettled
+
+        try:
+            found = _settle_compiled(drive_model, motor, ratio, spec.thermal, {} if start is None else start)
+        except Unreachable as err:
+            return run(False, str(err), motor_ratio=ratio)
+        except NotSettled:
+            found = None  # the CVODES search below handles every case
+        except _Unsettled as err:
+            return run(False, str(err), motor_ratio=err.ratio, j_delta=err.j_delta)
+    if found is not None:
+        steady, j_delta = found
+        ratio, j_need = steady.ratio, steady.j_flywheel
+        machine = reduce(motor_scene(scene, motor, ratio))
+        rms, mean = steady.rms_torque, steady.mean_torque
+        omega_min, omega_mean, omega_max, delta = steady.omega_min, steady.omega_mean, steady.omega_max, steady.delta
+    else:
+        try:
+            ratio, machine, solution, j_delta = _settle(scene, motor, ratio, spec.thermal)
+        except _Unsettled as err:
+            return run(False, str(err), motor_ratio=err.ratio, j_delta=err.j_delta)
+        except (SolverFailed, SceneError) as err:
+            return run(False, f"no steady running: {err}", motor_ratio=ratio)
+        j_need = solution.j_flywheel
+        rms, mean = rms_torque(solution, motor.motor(), ratio)
+        omega_min, omega_mean = float(np.min(solution.omega)), solution.omega_mean
+        omega_max, delta = solution.omega_max, solution.delta
     limit = "thermal" if j_need > j_delta * (1 + 1e-8) else ("delta" if j_delta > 0 else "none")
-    rms, mean = rms_torque(solution, motor.motor(), ratio)
-    omega_min_motor = float(np.min(solution.omega)) * ratio
+    omega_min_motor = omega_min * ratio
     if omega_min_motor < motor.motor().breakdown_speed:
         return run(
             False,
@@ -342,7 +371,7 @@ def evaluate_motor(
             motor_ratio=ratio,
             j_delta=j_delta,
         )
-    startup = startup_run(machine, solution.omega_mean, j_need)
+    startup = startup_run(machine, omega_mean, j_need)
     assert startup is not None  # a drive's machine is driven by its motor
     facts = dict(
         motor_ratio=ratio,
@@ -351,8 +380,8 @@ def evaluate_motor(
         j_delta=j_delta,
         rms_torque=rms,
         mean_torque=mean,
-        omega_mean=solution.omega_mean,
-        delta=solution.delta,
+        omega_mean=omega_mean,
+        delta=delta,
         startup_time=startup.time,
     )
     if spec.max_startup is not None:
@@ -363,9 +392,7 @@ def evaluate_motor(
                 False, f"start-up: {startup.time:.4g} s from rest, over max_startup {spec.max_startup:.4g} s", **facts
             )
     torque = flywheel_torque(machine, j_need) if j_need > 0 else None
-    result, r = _best_wheel(
-        j_need, solution.omega_max, ratios, materials, design_spec, torque, spec.objective, solver_options
-    )
+    result, r = _best_wheel(j_need, omega_max, ratios, materials, design_spec, torque, spec.objective, solver_options)
     wheel = None if result is None else result.best
     if j_need > 0 and wheel is None:
         return run(False, "no wheel fits the design limits for the flywheel it needs", **facts)
@@ -402,7 +429,6 @@ class _Unsettled(SolverFailed):
 
 def _steady(scene, motor, ratio, j_flywheel):
     """(machine, periodic solution) of the scene driven by ``motor`` at ``ratio`` with a flywheel at the crank."""
-    from flyopt.machine.reduce import reduce
     from flyopt.sizing.periodic import periodic_solution
 
     machine = reduce(motor_scene(scene, motor, ratio))
@@ -446,7 +472,6 @@ def _settle(scene, motor, ratio, thermal):
     speed a little, so the ratio is held again with it and the binding limit's
     flywheel refined from where it was (a secant), until the flywheel settles.
     """
-    from flyopt.machine.reduce import reduce
 
     delta, rated = scene.delta, motor.rated_torque
     memo: dict[str, float] = {}
@@ -507,6 +532,69 @@ def _settle(scene, motor, ratio, thermal):
             return ratio, machine, sol, j_delta
         j = j_new
     raise _Unsettled("the flywheel and the motor ratio did not settle together", ratio, j_delta)
+
+
+def drive_model(scene: Scene, analysis: Analysis, motor: CatalogueMotor) -> DriveModel:
+    """The scene's load with a motor whose ratio and Kloss curve are parameters, compiled once for every size.
+
+    The load is the analysed machine's (its resisting torque, members' loads
+    included, and its inertia, the rotor's not in it); ``motor`` gives the
+    parameters' first values.
+    """
+    from flyopt.cycle.torque import Constant
+    from flyopt.drive.steady import DriveModel, MotorLoad, motor_parameters
+    from flyopt.machine.reduce import NetTorque
+    from flyopt.sizing.periodic_model import periodic_model
+
+    machine = analysis.machine
+    if machine is None:
+        raise SceneError("drive", "the drive needs the machine's torque curves (not net areas)")
+    load = NetTorque(Constant(0.0), machine.resisting, machine.net_torque().work)
+    net = MotorLoad(load, scene.efficiency, motor_parameters(motor, 1.0))
+    model = periodic_model(net, machine.j_machine, machine.cycle_angle, machine.knots())
+    return DriveModel(model, scene.omega_mean, scene.delta, scene.efficiency)
+
+
+def _settle_compiled(model, motor, ratio, thermal, start):
+    """(Steady with the least flywheel, J for δ alone) of one motor by Newton on the compiled drive model.
+
+    The same rule as :func:`_settle`: without a flywheel when δ and the thermal
+    limit hold; else the least flywheel for δ; raised to the thermal limit's
+    when the RMS torque still exceeds the rating (then J for δ alone is the
+    one at that ratio). ``start`` carries the last size's solution.
+    """
+    from flyopt.sizing.shooting import NotSettled
+
+    delta, rated = model.delta, motor.rated_torque
+    v0 = start.get("v", math.log(model.omega_m))
+    x = (v0, start.get("u", math.nan), math.log(ratio))
+    try:
+        free = model.steady(motor, "none", x)
+    except SolverFailed:
+        free = None  # without a flywheel the machine stalls or cannot be settled: δ needs one
+    if free is not None:
+        x = (free.x[0], x[1], free.x[2])
+        if free.delta <= delta and not (thermal and free.rms_torque > rated):
+            start.update(v=free.x[0])
+            return free, 0.0
+    current = free
+    j_delta = 0.0
+    if free is None or free.delta > delta:
+        current = model.steady(motor, "delta", x)
+        j_delta = current.j_flywheel
+        x = current.x
+        if not j_delta > 0:  # δ holds without a flywheel, yet the run without one did not settle
+            raise NotSettled("the run without a flywheel did not settle, though δ needs none")
+    assert current is not None  # the free run, or the δ run
+    if thermal and current.rms_torque > rated:
+        current = model.steady(motor, "thermal", x)
+        if j_delta > 0:
+            j_delta = model.steady(motor, "delta", current.x, ratio=current.ratio).j_flywheel
+        if current.delta > delta * (1 + 1e-9):  # δ binds after all at this ratio
+            current = model.steady(motor, "delta", current.x)
+            j_delta = current.j_flywheel
+    start.update(v=current.x[0], u=current.x[1])
+    return current, j_delta
 
 
 def _delta_flywheel(scene, machine):
@@ -683,11 +771,22 @@ def design_drive(
     ratios = spec.ratio_choice()
     motors = spec.motors.motors  # a Catalogue keeps its sizes in increasing rated power
     done = {}
+    compiled = drive_model(scene, analysis, motors[0])
+    start: dict[str, Any] = {}  # each size starts from the last one's solution
 
     def evaluate(k):
         if k not in done:
             done[k] = evaluate_motor(
-                scene, motors[k], load, spec, ratios, inputs.materials, inputs.spec, solver_options=solver_options
+                scene,
+                motors[k],
+                load,
+                spec,
+                ratios,
+                inputs.materials,
+                inputs.spec,
+                solver_options=solver_options,
+                drive_model=compiled,
+                start=start,
             )
         return done[k]
 
@@ -863,7 +962,6 @@ def verify_drive(scene: Scene, run: MotorRun, j_flywheel: float | None = None) -
     -------
     DriveCheck
     """
-    from flyopt.machine.reduce import reduce
     from flyopt.sizing import periodic
 
     if j_flywheel is None:

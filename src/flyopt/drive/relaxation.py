@@ -48,6 +48,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from flyopt.errors import SolverFailed
+from flyopt.machine.motor import kloss_torque
 from flyopt.sizing._numerics import quiet
 
 if TYPE_CHECKING:
@@ -321,8 +322,7 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     s_b = s_n * (k + ca.sqrt(k * k - 1))
 
     def motor(speed):  # Kloss torque at the motor shaft
-        s = (w0 - speed) / w0
-        return 2 * k * m_n * s * s_b / (s * s + s_b * s_b)
+        return kloss_torque(speed, w0, k * m_n, s_b)
 
     omega = omega_mean * ca.vertcat(w, w[0])
     j_f = j_scale * jf

@@ -42,6 +42,16 @@ def _positive(value: object, what: str) -> float:
     return positive(value, what)
 
 
+def kloss_torque(omega: Any, synchronous_speed: Any, breakdown_torque: Any, breakdown_slip: Any) -> Any:
+    """The Kloss curve M = 2 M_b s s_b / (s² + s_b²), s = (ω_0 − ω)/ω_0 [N*m] (numpy or CasADi, any argument).
+
+    The one formula of an induction motor's whole curve: :meth:`InductionMotor.torque` evaluates it at
+    a motor's figures, a drive search at symbols for them.
+    """
+    s = (synchronous_speed - omega) / synchronous_speed
+    return 2 * breakdown_torque * s * breakdown_slip / (s * s + breakdown_slip * breakdown_slip)
+
+
 class _Motor:
     # M(ω_motor) [N*m], numpy or CasADi; each kind of motor defines it (an induction motor also takes ``model``)
     torque: Callable[..., Any]
@@ -169,9 +179,7 @@ class InductionMotor(_Motor):
         if model == "linear":
             return self.rated_torque * (self.synchronous_speed - omega) / (self.synchronous_speed - self.rated_speed)
         if model == "kloss":
-            s = (self.synchronous_speed - omega) / self.synchronous_speed
-            sb = self.breakdown_slip
-            return 2 * self.breakdown_torque * s * sb / (s * s + sb * sb)
+            return kloss_torque(omega, self.synchronous_speed, self.breakdown_torque, self.breakdown_slip)
         raise ValueError(f"induction motor model {model!r} is not known (allowed: {', '.join(self.MODELS)})")
 
     @property

@@ -188,7 +188,8 @@ def _piece(functions, kind):
         n_q = functions["n_q"]
         x0, q, data = ca.MX.sym("x0", n), ca.MX.sym("q", n_q), ca.MX.sym("data", 4)
         states = along(x0, ca.vertcat(data[0], data[1], q[:4], data[2], data[3], q[4:]), starts)
-        functions[kind] = ca.Function("piece", [x0, q, data], [states[:, -1], ca.horzcat(x0, states)]).expand()
+        piece = ca.Function("piece", [x0, q, data], [states[:, -1], ca.horzcat(x0, states)])
+        functions[kind] = piece.expand() if substeps == 1 else piece
     return functions[kind]
 
 

@@ -1,0 +1,104 @@
+"""A motor's steady running by Newton on the compiled shooting (flyopt.drive.steady).
+
+The references are independent of the compiled path: the CVODES search of the
+same motor (flyopt.drive.codesign's fallback, adaptive BDF at rtol 1e-11 with
+its own secant on the ratio and roots for the flywheel), CVODES's periodic
+solution at the ratio and flywheel found, and central differences of the
+residuals for the Newton Jacobian.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from flyopt.analysis import analyse
+from flyopt.design import design_inputs
+from flyopt.drive import codesign, steady
+from flyopt.io.scene import load
+from flyopt.machine.motor import InductionMotor
+from flyopt.sizing.periodic import periodic_solution
+
+
+@pytest.fixture(scope="module")
+def press():
+    scene = load("problems/press-drive.toml")
+    analysis = analyse(scene)
+    motors = {m.name: m for m in scene.drive.motors.motors}
+    return scene, analysis, motors, codesign.drive_model(scene, analysis, scene.drive.motors.motors[0])
+
+
+@pytest.mark.parametrize("name", ["112M-4 4 kW", "132S-4 5.5 kW", "132MA-4 7.5 kW"])
+def test_each_motor_as_the_cvodes_search_finds_it(press, name):
+    # the three sizes press-drive solves: one held by the thermal limit (a flywheel), two by none
+    scene, analysis, motors, model = press
+    inputs = design_inputs(scene)
+    args = (scene, motors[name], analysis.driving_torque, scene.drive, scene.drive.ratio_choice())
+    fast = codesign.evaluate_motor(*args, inputs.materials, inputs.spec, drive_model=model)
+    slow = codesign.evaluate_motor(*args, inputs.materials, inputs.spec)
+    assert fast.feasible and slow.feasible and fast.limit == slow.limit
+    # the CVODES search holds the mean speed to 1e-7 (SPEED_RTOL) and the flywheel to 1e-6 (SETTLE_RTOL);
+    # the compiled solve holds them to 1e-12 and 1e-10, so the two agree to the search's tolerances
+    assert fast.omega_mean == pytest.approx(scene.omega_mean, rel=1e-11)
+    assert fast.motor_ratio == pytest.approx(slow.motor_ratio, rel=2e-7)
+    assert fast.j_flywheel == pytest.approx(slow.j_flywheel, rel=2e-6, abs=1e-9)
+    assert fast.rms_torque == pytest.approx(slow.rms_torque, rel=2e-6)
+    assert fast.startup_time == pytest.approx(slow.startup_time, rel=1e-5)
+    assert fast.total_mass == pytest.approx(slow.total_mass, rel=1e-5)
+
+
+def test_the_solution_is_cvodes_periodic_solution(press):
+    # the thermal-limited size: CVODES at the ratio and flywheel found gives the same speeds and RMS torque
+    scene, analysis, motors, model = press
+    motor = motors["112M-4 4 kW"]
+    ratio = codesign.motor_ratio_estimate(motor, analysis.driving_torque, scene.omega_mean, scene.efficiency)
+    found, _ = codesign._settle_compiled(model, motor, ratio, True, {})
+    machine = codesign.reduce(codesign.motor_scene(scene, motor, found.ratio))
+    sol = periodic_solution(
+        machine.net_torque(),
+        machine.j_machine,
+        machine.cycle_angle,
+        scene.omega_mean,
+        found.j_flywheel,
+        machine.knots(),
+    )
+    assert sol.omega_mean == pytest.approx(found.omega_mean, rel=1e-9)
+    assert sol.delta == pytest.approx(found.delta, rel=1e-8)
+    assert codesign.rms_torque(sol, motor.motor(), found.ratio)[0] == pytest.approx(found.rms_torque, rel=1e-8)
+    assert found.rms_torque == pytest.approx(motor.rated_torque, rel=1e-9)
+
+
+@pytest.mark.parametrize("limit", ["delta", "thermal"])
+def test_newton_jacobian_against_central_differences(press, limit):
+    scene, analysis, motors, model = press
+    motor = motors["112M-4 4 kW"]
+    newton = steady._Newton(model, motor, limit, None)
+    full = np.array([math.log(scene.omega_mean), math.log(newton.j_s + 1e5), math.log(118.0)])
+    point = newton.state(full, 2, True)
+    assert point is not None
+    numeric = np.zeros((3, 3))
+    for column in range(3):
+        h = 1e-6
+        up, down = full.copy(), full.copy()
+        up[column] += h
+        down[column] -= h
+        numeric[:, column] = (newton.state(up, 2, False).residuals() - newton.state(down, 2, False).residuals()) / (
+            2 * h
+        )
+    # the extremes' derivatives are taken at their grid points (the envelope theorem): exact where the
+    # extreme is a smooth maximum, off by the grid's spacing otherwise
+    np.testing.assert_allclose(point.jacobian(), numeric, rtol=1e-5, atol=1e-8)
+
+
+def test_a_motor_whose_mean_torque_exceeds_its_rating_is_refused_in_words(press):
+    scene, analysis, motors, model = press
+    motor = motors["100LA-4 2.2 kW"]
+    with pytest.raises(steady.Unreachable, match="mean torque .* exceeds its rated torque"):
+        model.steady(motor, "thermal", (math.log(scene.omega_mean), math.log(1e5), math.log(115.0)))
+
+
+def test_kloss_curve_is_one_formula():
+    # the Kloss curve through the rated point at M_b/M_n = k: M(ω_n) = M_n, M(ω_b) = M_b (its maximum)
+    motor = InductionMotor(rated_power=5500.0, rated_speed=150.0, synchronous_speed=157.0796, breakdown_ratio=2.5)
+    assert motor.torque(150.0, "kloss") == pytest.approx(motor.rated_torque, rel=1e-12)
+    assert motor.torque(motor.breakdown_speed, "kloss") == pytest.approx(2.5 * motor.rated_torque, rel=1e-12)
