@@ -1,0 +1,147 @@
+"""Benchmark of the drive co-design (issue 26): press-drive's solve, compiled search against CVODES's.
+
+Measured in one run, pinned to one core where the OS allows it:
+
+* ``flyopt solve problems/press-drive.toml``, the whole process (wall and CPU
+  time of the child), the issue's target 1 s CPU;
+* in this process, after a warm-up (every compiled function built):
+  :func:`flyopt.pipeline.solve` of press-drive, and its drive search alone
+  (:func:`flyopt.drive.codesign.design_drive`) by the compiled Newton and by
+  the CVODES search it falls back on (``drive_model`` withheld), with the
+  largest relative difference of the motor ratio and flywheel of every size.
+
+Writes ``benchmarks/results/drive.md`` and ``drive.csv`` beside this script.
+
+Usage::
+
+    python benchmarks/bench_drive.py [--repeat 5] [--quick]
+"""
+
+import argparse
+import csv
+import os
+import platform
+import resource
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+SCENE = ROOT / "problems" / "press-drive.toml"
+RESULTS = Path(__file__).resolve().parent / "results"
+TARGET_CPU = 1.0  # s, the whole solve
+
+
+def pin_one_core():
+    if hasattr(os, "sched_setaffinity"):
+        cpu = min(os.sched_getaffinity(0))
+        os.sched_setaffinity(0, {cpu})
+        return f"pinned to CPU {cpu} (os.sched_setaffinity)"
+    return "not pinned"
+
+
+def child_times(repeat):
+    """(wall, CPU) of each whole `flyopt solve` process [s]."""
+    walls, cpus = [], []
+    for _ in range(repeat):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        start = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "flyopt", "solve", str(SCENE)], check=True, capture_output=True, cwd=ROOT)
+        walls.append(time.perf_counter() - start)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+    return walls, cpus
+
+
+def cpu_times(call, repeat):
+    call()  # warm-up: every compiled function built, every module imported
+    times = []
+    for _ in range(repeat):
+        start = time.process_time()
+        result = call()
+        times.append(time.process_time() - start)
+    return times, result
+
+
+def spread(values):
+    return statistics.median(values), min(values), max(values)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--quick", action="store_true", help="two repeats; writes nothing")
+    args = parser.parse_args(argv)
+    repeat = 2 if args.quick else args.repeat
+    pinning = pin_one_core()
+
+    from flyopt import pipeline
+    from flyopt.analysis import analyse
+    from flyopt.drive import codesign
+    from flyopt.io.scene import load
+
+    scene = load(SCENE)
+    analysis = analyse(scene)
+    walls, cpus = child_times(repeat)
+    solve_times, _ = cpu_times(lambda: pipeline.solve(scene), repeat)
+    fast_times, fast = cpu_times(lambda: codesign.design_drive(scene, analysis), repeat)
+    compiled = codesign.drive_model
+    codesign.drive_model = lambda *a: None  # the CVODES search every size falls back on
+    try:
+        slow_times, slow = cpu_times(lambda: codesign.design_drive(scene, analysis), max(1, repeat // 2))
+    finally:
+        codesign.drive_model = compiled
+    differences = []
+    for a, b in zip(fast.runs, slow.runs):
+        assert a.motor.name == b.motor.name and a.feasible == b.feasible
+        if a.feasible:
+            differences.append(abs(a.motor_ratio / b.motor_ratio - 1))
+            if b.j_flywheel:
+                differences.append(abs(a.j_flywheel / b.j_flywheel - 1))
+    same = fast.best.motor.name == slow.best.motor.name
+    rows = [
+        ("flyopt solve press-drive (process, CPU)", *spread(cpus)),
+        ("flyopt solve press-drive (process, wall)", *spread(walls)),
+        ("pipeline.solve in-process (CPU)", *spread(solve_times)),
+        ("design_drive, compiled Newton (CPU)", *spread(fast_times)),
+        ("design_drive, CVODES search (CPU)", *spread(slow_times)),
+    ]
+    cpu = statistics.median(cpus)
+    lines = [
+        "# Drive co-design benchmark",
+        "",
+        f"Command: `python benchmarks/bench_drive.py --repeat {args.repeat}`",
+        "",
+        f"Machine: {platform.platform()}, {os.cpu_count()} CPUs, {pinning}; Python {platform.python_version()}, "
+        f"numpy {np.__version__}. The host was shared (other jobs running): medians with [min, max].",
+        "",
+        "| what | median [s] | min | max |",
+        "|---|---|---|---|",
+        *(f"| {name} | {m:.3f} | {lo:.3f} | {hi:.3f} |" for name, m, lo, hi in rows),
+        "",
+        f"- compiled search {statistics.median(slow_times) / statistics.median(fast_times):.1f}x faster than "
+        f"the CVODES search in this run; same best motor: {same} ({fast.best.motor.name}); largest relative "
+        f"difference of a size's motor ratio or flywheel: {max(differences):.2g} (the CVODES search holds "
+        f"the mean speed to 1e-7 and the flywheel to 1e-6, the compiled one to 1e-12 and 1e-10)",
+        f"- target: `flyopt solve problems/press-drive.toml` <= {TARGET_CPU:g} s CPU: "
+        + ("met" if cpu <= TARGET_CPU else f"**NOT met** ({cpu:.2f} s)"),
+        "",
+    ]
+    text = "\n".join(lines)
+    if not args.quick:
+        RESULTS.mkdir(exist_ok=True)
+        (RESULTS / "drive.md").write_text(text, encoding="utf-8")
+        with open(RESULTS / "drive.csv", "w", newline="", encoding="utf-8") as f:
+            writer = csv.writer(f)
+            writer.writerow(["case", "median_s", "min_s", "max_s"])
+            writer.writerows(rows)
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
