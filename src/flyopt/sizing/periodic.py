@@ -60,7 +60,7 @@ from flyopt.sizing._numerics import (
     check_speed_delta,
     quiet,
 )
-from flyopt.sizing.periodic_model import ABSTOL, BUILDS, RELTOL, periodic_model
+from flyopt.sizing.periodic_model import ABSTOL, BUILDS, RELTOL, PeriodicModel, periodic_model
 from flyopt.sizing.shooting import NotSettled
 
 PERIODIC_RTOL = 1e-9
@@ -816,6 +816,22 @@ def dynamic_requirement(
         return _one_solve(model, delta, omega_mean, j_tot0, j_initial)
     except NotSettled:
         BUILDS["fallback to the CVODES search"] += 1
+    if model.speed_dependent and not model.balanced and j_low > 0:
+        # a motor whose torque–speed balance alone keeps δ (the speed at a vanishing inertia) needs no
+        # flywheel of any size: δ only falls as the inertia grows; the machine as it is is simulated once
+        # (the search below would walk down to a vanishing inertia to find the same)
+        held = quasi_static_delta(model, omega_mean)
+        if held is not None and held <= delta:
+            sol = _periodic(model, 0.0, omega_mean)
+            if sol.delta <= delta:
+                return DynamicRequirement(
+                    j_required=0.0 - j_low,
+                    solution=sol,
+                    iterations=1,
+                    held=_held(model),
+                    j_initial=j_initial,
+                    limit="delta",
+                )
     # unknown u = log(J_F + j_low)
     u = math.log(max(j_tot0 - (j_mean - j_low), 0.25 * j_tot0, 1e-300) if j_tot0 > 0 else max(j_mean, 1e-300))
     target = math.log(delta)
@@ -891,6 +907,29 @@ def dynamic_requirement(
         f"(bracket J_F in [{math.exp(lo) - j_low:.6g}, {math.exp(hi) - j_low:.6g}] kg*m^2; "
         f"last failure: {failure})"
     )
+
+
+def quasi_static_delta(model: PeriodicModel, omega_guess: float, max_iterations: int = 60) -> float | None:
+    """δ of the speed at which the net torque vanishes at every angle (the limit of a vanishing inertia) [-].
+
+    At each angle of the model's grid (inside each piece, so a step is taken
+    from its own side) Newton finds ω with M(φ, ω) = 0 on the branch where the
+    torque falls with speed (a motor's stable branch). None when that branch
+    is left (past a motor's breakdown: the machine would stall) or Newton does
+    not settle to 1e-13.
+    """
+    phi = model.inner_angles
+    omega = np.full(phi.shape, float(omega_guess))
+    for _ in range(max_iterations):
+        torque, slope = model.torque(phi, omega), model.torque_slope(phi, omega)
+        if not np.all(slope < 0):
+            return None
+        step = np.clip(-torque / slope, -0.5 * omega, omega)
+        omega = omega + step
+        if np.max(np.abs(step) / omega) <= 1e-13:
+            high, low = float(omega.max()), float(omega.min())
+            return (high - low) / (0.5 * (high + low))
+    return None
 
 
 def _one_solve(model, delta, omega_mean, j_tot0, j_initial):
