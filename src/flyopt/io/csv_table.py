@@ -12,6 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from flyopt.errors import SceneError, clip
+from flyopt.io.compiled_reader import COMPILED_READER_BYTES, compiled_numbers
 from flyopt.io.input_files import check_rows, inside_scene, quote_from_file, read_input
 
 if TYPE_CHECKING:
@@ -61,8 +62,11 @@ def read_csv(
     are skipped; lines end at
     ``\\n`` (a ``\\r`` before it is a blank). A clean file (a header at most,
     then one row ``angle,value`` per line) is read in one pass over its
-    fields; anything else line by line, which names the first wrong line.
-    Both give the same rows (Python's ``float`` reads every number).
+    fields (by pyarrow's compiled reader when it is large, see
+    :mod:`flyopt.io.compiled_reader`, else by ``float``); anything else, or a
+    field either refuses, line by line, which names the first wrong line.
+    Each gives the same rows: Python's ``float`` decides what is a number,
+    and the compiled reader accepts only what it accepts, to the same double.
 
     Returns
     -------
@@ -75,6 +79,15 @@ def read_csv(
     header = _is_header(text if first < 0 else text[:first])
     body = (text[first + 1 :] if first >= 0 else "") if header else text
     body = body.rstrip()
+    offset = 2 if header else 1
+    lone_return = "\r" in body and body.count("\r") != body.count("\r\n")  # pyarrow would end a line there
+    if len(body) >= COMPILED_READER_BYTES and body.isascii() and not lone_return:
+        # each line a row: pyarrow refuses a line of other than two fields, an empty one included
+        numbers = compiled_numbers(body.encode("ascii"), None, 2)
+        if numbers is not None and np.isfinite(numbers).all():
+            return numbers, range(offset, offset + len(numbers))
+        if numbers is not None:  # each field a number, as float reads it: a NaN or infinity, named below
+            return read_csv_lines(text.split("\n"), where, name, columns, units)
     codes = np.frombuffer(body.encode("utf-8"), dtype=np.uint8)
     ends, commas = np.flatnonzero(codes == 10), np.flatnonzero(codes == 44)
     if len(commas) == len(ends) + 1 >= 2 and np.all(commas[:-1] < ends) and np.all(commas[1:] > ends):
@@ -83,7 +96,6 @@ def read_csv(
         except ValueError:
             numbers = None
         if numbers is not None and np.isfinite(numbers).all():
-            offset = 2 if header else 1
             return numbers.reshape(-1, 2), range(offset, offset + len(commas))
     return read_csv_lines(text.split("\n"), where, name, columns, units)
 
