@@ -319,3 +319,19 @@ def test_a_large_inline_table_by_the_compiled_reader_names_the_point(tmp_path):
     path.write_text(SCENE.format(table=table))
     with pytest.raises(SceneError, match=r"torque\.resisting\.points: angles must not decrease: point 20000 \(1 deg\)"):
         flyopt.load(path)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "a" * 1_100_000 + ",b\n0,1\n",  # a header over the threshold, one row: too few rows
+        "a" * 1_100_000 + ",b\n",  # a header alone
+        large_csv() + " \n" * 100,  # blank lines at the end, more than the tail looked at
+        large_csv() + "\r\n\r\n",
+        large_csv().replace("\n", "\r\n"),
+        large_csv().replace("\n", "\r\n", 1000),  # CRLF and LF mixed
+        large_csv().replace("\n", "\n\n", 1),  # a blank line after the header
+    ],
+)
+def test_edges_of_a_large_csv_are_the_exact_readers(text):
+    assert_same(fast_csv(text), exact_csv(text))

@@ -18,17 +18,20 @@ import numpy.typing as npt
 
 COMPILED_READER_BYTES = 1_000_000
 """Tables of at least this many bytes (about 25,000 rows) are read by pyarrow: below it, importing
-pyarrow (about 60 ms in a fresh process) costs more than the compiled reader saves."""
+pyarrow (about 35-60 ms in a fresh process) costs more than the compiled reader saves.
+
+The reader runs in the calling thread: on a 2-core host shared with a sweep's
+workers, pyarrow's thread pool took as much CPU and more wall-clock time."""
 
 
 def compiled_numbers(
-    data: bytes, rows: int | None, columns: int, skip_empty: bool = False
+    data: bytes | memoryview, rows: int | None, columns: int, skip_empty: bool = False
 ) -> npt.NDArray[np.float64] | None:
     """The ``rows`` × ``columns`` numbers of ``data``, or None where the compiled reader refuses a field.
 
     Parameters
     ----------
-    data : bytes
+    data : bytes or memoryview
         ASCII text of ``rows`` lines of ``columns`` comma-separated numbers,
         lines ending at ``\\n`` or ``\\r\\n`` (pyarrow also ends a line at a
         lone ``\\r``: the caller refuses one). A quote is a character like
@@ -57,7 +60,7 @@ def compiled_numbers(
     try:
         table = pa_csv.read_csv(
             pa.py_buffer(data),
-            read_options=pa_csv.ReadOptions(column_names=names),
+            read_options=pa_csv.ReadOptions(column_names=names, use_threads=False),
             parse_options=pa_csv.ParseOptions(
                 delimiter=",",
                 quote_char=False,

@@ -77,17 +77,14 @@ def read_csv(
     """
     first = text.find("\n")
     header = _is_header(text if first < 0 else text[:first])
+    offset = 2 if header else 1
+    numbers = _compiled_rows(text, (first + 1 if first >= 0 else len(text)) if header else 0)
+    if numbers is not None and np.isfinite(numbers).all():
+        return numbers, range(offset, offset + len(numbers))
+    if numbers is not None:  # each field a number, as float reads it: a NaN or infinity, named below
+        return read_csv_lines(text.split("\n"), where, name, columns, units)
     body = (text[first + 1 :] if first >= 0 else "") if header else text
     body = body.rstrip()
-    offset = 2 if header else 1
-    lone_return = "\r" in body and body.count("\r") != body.count("\r\n")  # pyarrow would end a line there
-    if len(body) >= COMPILED_READER_BYTES and body.isascii() and not lone_return:
-        # each line a row: pyarrow refuses a line of other than two fields, an empty one included
-        numbers = compiled_numbers(body.encode("ascii"), None, 2)
-        if numbers is not None and np.isfinite(numbers).all():
-            return numbers, range(offset, offset + len(numbers))
-        if numbers is not None:  # each field a number, as float reads it: a NaN or infinity, named below
-            return read_csv_lines(text.split("\n"), where, name, columns, units)
     codes = np.frombuffer(body.encode("utf-8"), dtype=np.uint8)
     ends, commas = np.flatnonzero(codes == 10), np.flatnonzero(codes == 44)
     if len(commas) == len(ends) + 1 >= 2 and np.all(commas[:-1] < ends) and np.all(commas[1:] > ends):
@@ -148,6 +145,28 @@ def read_csv_lines(
             where, f"{name}: a table needs at least two rows of {columns[0]},{columns[1]} (the first {first}); {found}"
         )
     return np.array(numbers), lines
+
+
+def _compiled_rows(text, start):
+    """The rows of ``text[start:]`` (blanks at its end left out) by the compiled reader, or None.
+
+    None for a table below :data:`~flyopt.io.compiled_reader.COMPILED_READER_BYTES`,
+    one not in ASCII, one with a carriage return not before a newline (pyarrow
+    would end a line there, Python's ``split`` does not), one ending in 64
+    blanks, and one whose lines are not each two fields the compiled reader
+    takes for numbers: all these are read by ``float``.
+    """
+    if len(text) < COMPILED_READER_BYTES or not text.isascii():
+        return None
+    if "\r" in text and text.count("\r") != text.count("\r\n"):
+        return None
+    tail = text[-64:]
+    kept = len(tail.rstrip())  # str.rstrip's blanks, as the body's rstrip
+    if kept == 0:
+        return None
+    data = memoryview(text.encode("ascii"))[start : len(text) - len(tail) + kept]
+    numbers = compiled_numbers(data, None, 2)  # each line a row: a line of other than two fields is refused
+    return numbers if numbers is not None and len(numbers) >= 2 else None  # fewer: said by the exact reader
 
 
 def _is_header(line):
