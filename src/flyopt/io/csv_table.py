@@ -12,6 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from flyopt.errors import SceneError, clip
+from flyopt.io.compiled_reader import COMPILED_READER_BYTES, compiled_numbers
 from flyopt.io.input_files import check_rows, inside_scene, quote_from_file, read_input
 
 if TYPE_CHECKING:
@@ -61,8 +62,11 @@ def read_csv(
     are skipped; lines end at
     ``\\n`` (a ``\\r`` before it is a blank). A clean file (a header at most,
     then one row ``angle,value`` per line) is read in one pass over its
-    fields; anything else line by line, which names the first wrong line.
-    Both give the same rows (Python's ``float`` reads every number).
+    fields (by pyarrow's compiled reader when it is large, see
+    :mod:`flyopt.io.compiled_reader`, else by ``float``); anything else, or a
+    field either refuses, line by line, which names the first wrong line.
+    Each gives the same rows: Python's ``float`` decides what is a number,
+    and the compiled reader accepts only what it accepts, to the same double.
 
     Returns
     -------
@@ -73,6 +77,12 @@ def read_csv(
     """
     first = text.find("\n")
     header = _is_header(text if first < 0 else text[:first])
+    offset = 2 if header else 1
+    numbers = _compiled_rows(text, (first + 1 if first >= 0 else len(text)) if header else 0)
+    if numbers is not None and np.isfinite(numbers).all():
+        return numbers, range(offset, offset + len(numbers))
+    if numbers is not None:  # each field a number, as float reads it: a NaN or infinity, named below
+        return read_csv_lines(text.split("\n"), where, name, columns, units)
     body = (text[first + 1 :] if first >= 0 else "") if header else text
     body = body.rstrip()
     codes = np.frombuffer(body.encode("utf-8"), dtype=np.uint8)
@@ -83,7 +93,6 @@ def read_csv(
         except ValueError:
             numbers = None
         if numbers is not None and np.isfinite(numbers).all():
-            offset = 2 if header else 1
             return numbers.reshape(-1, 2), range(offset, offset + len(commas))
     return read_csv_lines(text.split("\n"), where, name, columns, units)
 
@@ -136,6 +145,28 @@ def read_csv_lines(
             where, f"{name}: a table needs at least two rows of {columns[0]},{columns[1]} (the first {first}); {found}"
         )
     return np.array(numbers), lines
+
+
+def _compiled_rows(text, start):
+    """The rows of ``text[start:]`` (blanks at its end left out) by the compiled reader, or None.
+
+    None for a table below :data:`~flyopt.io.compiled_reader.COMPILED_READER_BYTES`,
+    one not in ASCII, one with a carriage return not before a newline (pyarrow
+    would end a line there, Python's ``split`` does not), one ending in 64
+    blanks, and one whose lines are not each two fields the compiled reader
+    takes for numbers: all these are read by ``float``.
+    """
+    if len(text) < COMPILED_READER_BYTES or not text.isascii():
+        return None
+    if "\r" in text and text.count("\r") != text.count("\r\n"):
+        return None
+    tail = text[-64:]
+    kept = len(tail.rstrip())  # str.rstrip's blanks, as the body's rstrip
+    if kept == 0:
+        return None
+    data = memoryview(text.encode("ascii"))[start : len(text) - len(tail) + kept]
+    numbers = compiled_numbers(data, None, 2)  # each line a row: a line of other than two fields is refused
+    return numbers if numbers is not None and len(numbers) >= 2 else None  # fewer: said by the exact reader
 
 
 def _is_header(line):

@@ -2,7 +2,8 @@
 
 A table ``points = [[0, 150], [5, 152.5], ...]`` of 10,000 rows takes
 ``tomllib`` 60 ms; :func:`parse_toml` cuts such tables out and reads them
-with ``float`` (the same floats), leaving everything else to ``tomllib``.
+with ``float``, or a large one with pyarrow's compiled reader (the same
+floats), leaving everything else to ``tomllib``.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ import numpy.typing as npt
 
 from flyopt._toml import tomllib
 from flyopt.errors import SceneError, clip
+from flyopt.io.compiled_reader import COMPILED_READER_BYTES, compiled_numbers
 from flyopt.io.input_files import read_input
 
 if TYPE_CHECKING:
@@ -78,6 +80,7 @@ _TOML_PAIRS = re.compile(
 )
 _TABLE_KEY = re.compile(r"^[ \t]*(?:points|force|torque|velocity_ratio|angular_ratio)[ \t]*=[ \t]*(?=\[)", re.MULTILINE)
 _BRACKETS = str.maketrans("[],", "   ")
+_ONE_A_LINE = bytes.maketrans(b"[],", b"\n\n\n")
 
 
 class InlineRows:
@@ -154,9 +157,22 @@ def _fast_rows(table):
 
     None for a carriage return not followed by a newline (not TOML), and for
     a number beyond the floats (tomllib and the field's checks say what is wrong).
+    A large table is read by pyarrow's compiled reader (see
+    :mod:`flyopt.io.compiled_reader`): the pattern has already decided that
+    each number is a TOML number, which that reader and ``float`` read to
+    the same double; a table holding a zero with a minus sign is read by
+    ``float``, which keeps the written text to tell ``-0`` from ``-0.0``.
     """
     if "\r" in table and table.count("\r") != table.count("\r\n"):
         return None
+    if len(table) >= COMPILED_READER_BYTES:  # ASCII (the pattern), one number a line for the compiled reader
+        numbers = compiled_numbers(
+            table.encode("ascii").translate(_ONE_A_LINE, b" \t\r"), 2 * table.count("[") - 2, 1, skip_empty=True
+        )
+        if numbers is not None and not np.isfinite(numbers).all():
+            return None  # the compiled reader's doubles are float's
+        if numbers is not None and not np.signbit(numbers[numbers == 0]).any():
+            return InlineRows(numbers.reshape(-1, 2))  # a -0 (integer or not?) is told below
     tokens = table.translate(_BRACKETS).split()
     numbers = np.array(tokens, dtype=float)
     if not np.isfinite(numbers).all():
