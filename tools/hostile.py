@@ -320,6 +320,57 @@ def output_attacks() -> Iterator[Case]:
             yield Case(f"output-{command}-{target}", [*args, path], {"scene.toml": good}, setup, check=check)
 
 
+def temporary_attacks() -> Iterator[Case]:
+    """Links planted where an output's temporary file used to go, ``NAME.tmp-PID``, for the PIDs the
+    run is likely to get (the next few thousand), each to a canary outside: a temporary opened by
+    its name would write the canary (touched outside its folder) or replace the link."""
+    good = toml_text(base())
+    commands = {
+        "solve": (["solve", "scene.toml", "--json", "-o"], "out.json"),
+        "report": (["report", "scene.toml", "-o"], "out.html"),
+        "plot": (["plot", "scene.toml", "--what", "turning_moment", "-o"], "out.svg"),
+        "tradeoff": (["tradeoff", "scene.toml", "-o"], "out.csv"),
+    }
+    for command, (args, name) in commands.items():
+        names = [name, name + ".json"] if name.endswith(".csv") else [name]
+        yield Case(
+            f"output-{command}-planted-temporary-links",
+            [*args, name],
+            {"scene.toml": good},
+            _plant_temporary_links(names),
+            check=_links_kept(names),
+        )
+
+
+PLANTED_PIDS = 5000
+"""How many PIDs after the corpus's own get a planted link (the run's PID is among them unless
+the machine started that many processes in between)."""
+
+
+def _plant_temporary_links(names: list[str]) -> Callable[[Path, Path], None]:
+    def setup(case: Path, outside: Path) -> None:
+        first = os.getpid()
+        for name in names:
+            for pid in range(first, first + PLANTED_PIDS):
+                (case / f"{name}.tmp-{pid}").symlink_to(outside / "secret.csv")
+
+    return setup
+
+
+def _links_kept(names: list[str]) -> Callable[[Path], list[str]]:
+    def check(case: Path) -> list[str]:
+        first = os.getpid()
+        gone = [
+            f"{name}.tmp-{pid}"
+            for name in names
+            for pid in range(first, first + PLANTED_PIDS)
+            if not (case / f"{name}.tmp-{pid}").is_symlink()
+        ]
+        return [f"replaced or removed a planted link: {gone[:2]}"] if gone else []
+
+    return check
+
+
 def _still_a_device(name: str) -> Callable[[Path], list[str]]:
     def check(case: Path) -> list[str]:
         mode = (case / name).lstat().st_mode
@@ -433,6 +484,29 @@ def option_attacks() -> Iterator[Case]:
         mutated = json.loads(json.dumps(drive))
         mutated["drive"]["max_startup"] = "1 ms"
         yield Case("scene-drive-startup-1ms", ["solve", "scene.toml"], {"scene.toml": toml_text(mutated)})
+    # A press's working stroke made tiny (a press with a drive was seen to hang): each value on the
+    # press without a drive and on the one whose drive is designed with the wheel.
+    for stem in ("press-from-process", "press-drive"):
+        press_doc = tomllib.loads((PROBLEMS / f"{stem}.toml").read_text())
+        for label, key, value in (
+            ("1e-9s", "working_time", "1e-9 s"),
+            ("1ns", "working_time", "1 ns"),
+            ("1e-300s", "working_time", "1e-300 s"),
+            ("bare-1e-9", "working_time", 1e-9),
+            ("1us", "working_time", "1 us"),
+            ("1ms", "working_time", "1 ms"),
+            ("1e-6rad", "working_angle", "1e-6 rad"),
+        ):
+            mutated = json.loads(json.dumps(press_doc))
+            for other in ("working_time", "working_angle"):
+                mutated["press"].pop(other, None)
+            mutated["press"][key] = value
+            for command in ("check", "solve"):
+                yield Case(
+                    f"scene-{stem}-{key.replace('_', '-')}-{label}-{command}",
+                    [command, "scene.toml"],
+                    {"scene.toml": toml_text(mutated)},
+                )
     wheel_doc = tomllib.loads(wheel["scene.toml"])
     for name, change in (
         ("min-wall-5m", {"min_wall": "5 m"}),
@@ -450,7 +524,13 @@ def option_attacks() -> Iterator[Case]:
 
 def corpus(seed: int, per_scene: int) -> list[Case]:
     rng = random.Random(seed)
-    cases = [*file_attacks(), *output_attacks(), *option_attacks(), *field_mutations(rng, per_scene)]
+    cases = [
+        *file_attacks(),
+        *output_attacks(),
+        *temporary_attacks(),
+        *option_attacks(),
+        *field_mutations(rng, per_scene),
+    ]
     names = [c.name for c in cases]
     duplicate = {n for n in names if names.count(n) > 1}
     for case in cases:  # two mutations may share a name (a field and a value picked twice): number them

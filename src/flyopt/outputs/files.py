@@ -5,18 +5,134 @@ flyopt never creates a folder the user did not ask for (:func:`check_folder`).
 An output replaces only a regular file: a folder, a device, a FIFO or a socket
 at its path is refused (before anything is computed, and again at the rename),
 and a symbolic link is followed, its target written atomically (the link stays).
+
+Every temporary file is new (:class:`Temporary`): created by this process
+alone (``O_CREAT | O_EXCL``, under a name no other run predicts), so a link or
+a file planted where a temporary goes is neither followed nor overwritten, and
+what is renamed into place is checked to be the file that was created.
 """
 
 from __future__ import annotations
 
+import errno
 import os
+import secrets
 import stat
 from collections.abc import Callable
 from pathlib import Path
+from typing import BinaryIO
 
 from flyopt.errors import FlyoptError, OutputError, SceneError
 
-__all__ = ["check_folder", "move_into_place", "output_target", "replace_atomically", "write_text"]
+__all__ = [
+    "Temporary",
+    "check_folder",
+    "move_into_place",
+    "output_error",
+    "output_target",
+    "replace_atomically",
+    "write_atomically",
+    "write_text",
+]
+
+#: The flags of a new temporary file: created here or not at all, never through a link.
+_NEW_FILE = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
+
+#: The longest name of a file (bytes; POSIX's NAME_MAX on the file systems flyopt writes to).
+_NAME_MAX = 255
+
+
+class Temporary:
+    """A new file for the output at ``path``, in ``folder`` (default: beside the file it becomes).
+
+    Created exclusively (``O_CREAT | O_EXCL | O_NOFOLLOW``) under the name
+    ``NAME.tmp-PID-RANDOM``: whatever already has a name tried (a planted link,
+    a file) is left alone and another name is tried. :attr:`handle` writes to the
+    file that was created; :meth:`finish` renames that same file into place (a
+    file swapped in under its name meanwhile is refused), :meth:`discard` removes it.
+
+    Raises
+    ------
+    OutputError
+        The file cannot be created (no permission, a full disk), naming ``path``.
+    """
+
+    #: Names tried before giving up (each a fresh random one).
+    ATTEMPTS = 100
+
+    def __init__(self, path: str | os.PathLike[str], folder: str | os.PathLike[str] | None = None) -> None:
+        self.target = output_target(path)
+        self.named = Path(path)
+        place = self.target.parent if folder is None else Path(folder)
+        for _ in range(self.ATTEMPTS):
+            candidate = place / _temporary_name(self.target.name)
+            try:
+                fd = os.open(candidate, _NEW_FILE, 0o666)
+            except FileExistsError:
+                continue
+            except OSError as err:
+                if err.errno == errno.ELOOP:  # a link at the name (O_NOFOLLOW): try another
+                    continue
+                raise output_error(err, path) from err
+            break
+        else:
+            raise OutputError(errno.EEXIST, "cannot be written: no new temporary file could be created", str(path))
+        self.path = candidate
+        self._identity = _identity(os.fstat(fd))
+        self.handle: BinaryIO = os.fdopen(fd, "wb")
+
+    def write(self, data: bytes) -> None:
+        """Write ``data`` to the file (an ``OSError`` is an :class:`OutputError` naming the output)."""
+        try:
+            self.handle.write(data)
+        except OSError as err:
+            raise output_error(err, self.named) from err
+
+    def close(self) -> None:
+        """Close :attr:`handle` (for a writer that opens the file by its name)."""
+        if not self.handle.closed:
+            self.handle.close()
+
+    def finish(self, label: str = "-o/--output") -> None:
+        """Close the file and rename it to the output (:func:`move_into_place`); removed on any failure."""
+        try:
+            try:
+                self.close()
+                now = os.lstat(self.path)
+            except OSError as err:
+                raise output_error(err, self.named) from err
+            if not stat.S_ISREG(now.st_mode) or _identity(now) != self._identity:
+                raise OutputError(
+                    errno.EEXIST,
+                    f"cannot be written: its temporary file {self.path.name!r} was replaced by another while writing",
+                    str(self.named),
+                )
+            move_into_place(self.path, self.named, label)
+        except BaseException:
+            self.discard()
+            raise
+
+    def discard(self) -> None:
+        """Close and remove the file (nothing else: an unlink never follows a link)."""
+        try:
+            self.close()
+        except OSError:
+            pass
+        finally:
+            self.path.unlink(missing_ok=True)
+
+
+def _temporary_name(name: str) -> str:
+    """``NAME.tmp-PID-RANDOM``, ``NAME`` cut so that the whole stays within a file name's length."""
+    tail = f".tmp-{os.getpid()}-{secrets.token_hex(6)}"
+    room = _NAME_MAX - len(os.fsencode(tail))
+    while name and len(os.fsencode(name)) > room:
+        name = name[:-1]
+    return name + tail
+
+
+def _identity(status: os.stat_result) -> tuple[int, int]:
+    return status.st_dev, status.st_ino
 
 
 def write_text(path: str | os.PathLike[str], text: str, label: str = "-o/--output") -> None:
@@ -31,14 +147,34 @@ def write_text(path: str | os.PathLike[str], text: str, label: str = "-o/--outpu
     """
     path = Path(path)
     check_folder(path, label)
+    data = text.encode("utf-8")  # before any file is made: a text that cannot be written leaves none
+    if text and not text.endswith("\n"):
+        data += b"\n"
+    write_atomically(path, lambda handle: handle.write(data), label=label)
 
-    def write(tmp: Path) -> None:
-        with open(tmp, "w", encoding="utf-8") as handle:
-            handle.write(text)
-            if text and not text.endswith("\n"):
-                handle.write("\n")
 
-    replace_atomically(path, write, label=label)
+def write_atomically(
+    path: str | os.PathLike[str],
+    write: Callable[[BinaryIO], object],
+    temporary_folder: str | os.PathLike[str] | None = None,
+    label: str = "-o/--output",
+) -> None:
+    """Call ``write(handle)`` on a new temporary file (:class:`Temporary`, binary), then move it to ``path``.
+
+    The temporary file is removed on any failure; an ``OSError`` while writing is an
+    :class:`OutputError` naming ``path``.
+    """
+    temporary = Temporary(path, temporary_folder)
+    try:
+        try:
+            write(temporary.handle)
+            temporary.close()  # a full disk may only show when the last bytes are flushed
+        except OSError as err:
+            raise output_error(err, path) from err
+    except BaseException:
+        temporary.discard()
+        raise
+    temporary.finish(label)
 
 
 def replace_atomically(
@@ -47,23 +183,24 @@ def replace_atomically(
     temporary_folder: str | os.PathLike[str] | None = None,
     label: str = "-o/--output",
 ) -> None:
-    """Call ``write(tmp)`` on a temporary file, then move it to ``path`` (removed on any failure).
+    """Call ``write(tmp)`` on a new temporary file, then move it to ``path`` (removed on any failure).
 
-    A symbolic link at ``path`` is followed (:func:`output_target`); the file at the end is replaced
-    only if it is a regular file, checked again just before the rename.
+    For a writer that opens a file by its name: ``tmp`` was created empty by this process
+    (:class:`Temporary`) and is renamed only if it is still that file. A symbolic link at
+    ``path`` is followed (:func:`output_target`); the file at the end is replaced only if it
+    is a regular file, checked again just before the rename.
     """
-    target = output_target(path)
-    folder = target.parent if temporary_folder is None else Path(temporary_folder)
-    tmp = folder / f"{target.name}.tmp-{os.getpid()}"
+    temporary = Temporary(path, temporary_folder)
     try:
+        temporary.close()
         try:
-            write(tmp)
+            write(temporary.path)
         except OSError as err:
-            raise _output_error(err, path) from err
-        move_into_place(tmp, path, label)
+            raise output_error(err, path) from err
     except BaseException:
-        tmp.unlink(missing_ok=True)
+        temporary.discard()
         raise
+    temporary.finish(label)
 
 
 def move_into_place(tmp: Path, path: str | os.PathLike[str], label: str = "-o/--output") -> None:
@@ -75,10 +212,10 @@ def move_into_place(tmp: Path, path: str | os.PathLike[str], label: str = "-o/--
     try:
         os.replace(tmp, target)
     except OSError as err:
-        raise _output_error(err, path) from err
+        raise output_error(err, path) from err
 
 
-def _output_error(err: OSError, path: str | os.PathLike[str]) -> OSError:
+def output_error(err: OSError, path: str | os.PathLike[str]) -> OSError:
     """The error of an output that could not be written, naming the file the user named (not the
     temporary one): ``out.json: cannot be written: No space left on device``."""
     if isinstance(err, FlyoptError):

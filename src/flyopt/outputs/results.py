@@ -25,6 +25,7 @@ Missing values are nulls
 
 from __future__ import annotations
 
+import io
 import json
 import math
 import os
@@ -36,7 +37,7 @@ from typing import TYPE_CHECKING, Any, Literal, TextIO
 import numpy as np
 
 from flyopt.errors import SceneError
-from flyopt.outputs.files import check_folder, move_into_place, replace_atomically, write_text
+from flyopt.outputs.files import Temporary, check_folder, output_error, output_target
 from flyopt.outputs.quantities import COUNTS, INPUTS, has_unit
 
 if TYPE_CHECKING:
@@ -294,12 +295,50 @@ def csv_rows(frame: pd.DataFrame, handle: TextIO, header: bool) -> None:
     frame.to_csv(handle, index=False, header=header)
 
 
-def _write_sidecar(path, metadata):
-    """Write the sidecar of CSV ``path`` (atomically) and return its path."""
-    sidecar = sidecar_path(path)
+def _sidecar_text(metadata: Mapping[str, Any]) -> bytes:
+    """The sidecar of a CSV file: its metadata and how the CSV is written."""
     text = json.dumps({**metadata, "csv": {"delimiter": ",", "header": True, "null": ""}}, indent=2, allow_nan=False)
-    write_text(sidecar, text, label="output")
-    return sidecar
+    return (text + "\n").encode("utf-8")
+
+
+def _finish(
+    table: Temporary,
+    path: Path,
+    sidecar_of: Mapping[str, Any] | None,
+    folder: str | os.PathLike[str] | None,
+    label: str,
+) -> None:
+    """Move the finished temporary ``table`` to ``path``, with the CSV's sidecar when ``sidecar_of`` is given.
+
+    Both files are written to temporaries first, and both names are checked (a folder, a
+    device) before either is renamed: a refusal or a failure leaves the earlier pair as it
+    was. Only a rename of the table failing after its sidecar's removes the new sidecar
+    (it describes a table that is not there). The temporaries are removed on any failure.
+    """
+    if sidecar_of is None:
+        table.finish(label)
+        return
+    sidecar = sidecar_path(path)
+    try:
+        side = Temporary(sidecar, folder)
+    except BaseException:
+        table.discard()
+        raise
+    try:
+        side.write(_sidecar_text(sidecar_of))
+        check_folder(path, label)
+        check_folder(sidecar, label)
+        written = output_target(sidecar)
+        side.finish(label)
+    except BaseException:
+        side.discard()
+        table.discard()
+        raise
+    try:
+        table.finish(label)
+    except BaseException:
+        written.unlink(missing_ok=True)
+        raise
 
 
 class ResultWriter:
@@ -343,8 +382,8 @@ class ResultWriter:
         self.path = Path(path)
         self.kind = output_format(self.path)
         check_folder(self.path)
-        folder = self.path.parent if temporary_folder is None else Path(temporary_folder)
-        self.temporary = folder / f"{self.path.name}.tmp-{os.getpid()}"
+        self._folder = temporary_folder
+        self._temporary: Temporary | None = None  # made on the first write (Temporary: a new file)
         self.rows = 0
         self._writer: Any = None  # a pyarrow.parquet.ParquetWriter
         self._file: TextIO | None = None
@@ -353,6 +392,19 @@ class ResultWriter:
         self._columns: list[str] | None = None
         self._metadata = metadata
         self._meta: Mapping[str, Any] | None = None
+
+    @property
+    def temporary(self) -> Path | None:
+        """The temporary file the rows go to (``None`` before the first is written)."""
+        return None if self._temporary is None else self._temporary.path
+
+    def _new_file(self) -> Temporary:
+        if self._temporary is None:
+            self._temporary = Temporary(self.path, self._folder)
+        return self._temporary
+
+    def _text_file(self) -> TextIO:
+        return io.TextIOWrapper(self._new_file().handle, encoding="utf-8", newline="")
 
     def _file_metadata(self) -> Mapping[str, Any] | None:
         if self._meta is None and self._metadata is not None:
@@ -372,7 +424,7 @@ class ResultWriter:
                 self._flush()
         else:
             if self._file is None:
-                self._file = open(self.temporary, "w", encoding="utf-8", newline="")
+                self._file = self._text_file()
             csv_rows(frame, self._file, header=self.rows == 0)
         self.rows += len(frame)
 
@@ -385,12 +437,16 @@ class ResultWriter:
         table = pa.concat_tables(self._pending) if len(self._pending) > 1 else self._pending[0]
         self._pending, self._pending_rows = [], 0
         if self._writer is None:
-            self._writer = pq.ParquetWriter(self.temporary, table.schema, use_dictionary=_dictionary_columns(table))
+            self._writer = pq.ParquetWriter(
+                self._new_file().handle, table.schema, use_dictionary=_dictionary_columns(table)
+            )
         self._writer.write_table(table, row_group_size=max(len(table), 1))
 
     def close(self) -> None:
-        """Finish the file and move it to its name (it then replaces any file there)."""
-        sidecar = None
+        """Finish the file and move it to its name (it then replaces any file there).
+
+        A CSV file's sidecar is written beside it first, and the pair moved into place
+        only when both are written (:func:`_finish`)."""
         try:
             if self.kind == "parquet":
                 self._flush()
@@ -399,26 +455,25 @@ class ResultWriter:
                     import pyarrow.parquet as pq
 
                     pq.write_table(
-                        arrow_table(pd.DataFrame(columns=self._columns or []), self._file_metadata()), self.temporary
+                        arrow_table(pd.DataFrame(columns=self._columns or []), self._file_metadata()),
+                        self._new_file().handle,
                     )
                 else:
                     self._writer.close()
                     self._writer = None
             else:
                 if self._file is None:
-                    self._file = open(self.temporary, "w", encoding="utf-8", newline="")
+                    self._file = self._text_file()
                     if self._columns:
                         self._file.write(",".join(self._columns) + "\n")
                 self._file.close()
                 self._file = None
-                if self._file_metadata() is not None:
-                    sidecar = _write_sidecar(self.path, self._file_metadata())
-            move_into_place(self.temporary, self.path, "output")
+            sidecar_of = self._file_metadata() if self.kind == "csv" else None
+            table, self._temporary = self._new_file(), None
         except BaseException:
-            if sidecar is not None:
-                sidecar.unlink(missing_ok=True)
             self.abort()
             raise
+        _finish(table, self.path, sidecar_of, self._folder, "output")
 
     def abort(self) -> None:
         """Stop writing and remove the temporary file."""
@@ -431,7 +486,9 @@ class ResultWriter:
             if handle is not None:
                 handle.close()
         finally:
-            self.temporary.unlink(missing_ok=True)
+            temporary, self._temporary = self._temporary, None
+            if temporary is not None:
+                temporary.discard()
 
     def __enter__(self) -> ResultWriter:
         return self
@@ -472,27 +529,25 @@ def write_results(
     path = Path(path)
     kind = output_format(path)
     check_folder(path)
-    sidecar = None
-
-    def write(tmp):
-        nonlocal sidecar
-        if kind == "parquet":
-            import pyarrow.parquet as pq
-
-            table = arrow_table(frame, metadata)
-            pq.write_table(table, tmp, use_dictionary=_dictionary_columns(table))
-        else:
-            with open(tmp, "w", encoding="utf-8", newline="") as handle:
-                csv_rows(frame, handle, header=True)
-            if metadata is not None:
-                sidecar = _write_sidecar(path, metadata)
-
+    table = Temporary(path, temporary_folder)
     try:
-        replace_atomically(path, write, temporary_folder)
+        try:
+            if kind == "parquet":
+                import pyarrow.parquet as pq
+
+                arrow = arrow_table(frame, metadata)
+                pq.write_table(arrow, table.handle, use_dictionary=_dictionary_columns(arrow))
+            else:
+                handle = io.TextIOWrapper(table.handle, encoding="utf-8", newline="")
+                csv_rows(frame, handle, header=True)
+                handle.close()
+            table.close()
+        except OSError as err:
+            raise output_error(err, path) from err
     except BaseException:
-        if sidecar is not None:
-            sidecar.unlink(missing_ok=True)
+        table.discard()
         raise
+    _finish(table, path, metadata if kind == "csv" else None, temporary_folder, "-o/--output")
 
 
 def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = None) -> pd.DataFrame:
