@@ -119,3 +119,18 @@ def test_a_sweep_to_an_output_that_is_not_a_regular_file_makes_nothing(tmp_path)
     with pytest.raises(SceneError, match="is a FIFO"):
         sweep(PUNCH, VARY, output=out, chunk_size=4)
     assert [p.name for p in tmp_path.iterdir()] == ["study.csv"]
+
+
+def test_a_link_planted_at_the_lock_is_never_followed(tmp_path):
+    # the lock was opened with O_CREAT and truncated: a link at its name emptied the file it points at
+    from flyopt.errors import SceneError
+    from flyopt.studies.parts import Parts
+
+    victim = tmp_path / "victim.txt"
+    victim.write_text("keep me")
+    parts = Parts(tmp_path / "study.parquet")
+    parts.folder.mkdir()
+    (parts.folder / Parts.LOCK).symlink_to(victim)
+    with pytest.raises(SceneError, match="lock"):
+        parts.lock()
+    assert victim.read_text() == "keep me"

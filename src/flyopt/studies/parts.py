@@ -15,6 +15,7 @@ import hashlib
 import json
 import os
 import shutil
+import stat
 import sys
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -92,7 +93,15 @@ class Parts:
             return
         if self._lock is not None:
             return
-        fd = os.open(self.folder / self.LOCK, os.O_RDWR | os.O_CREAT, 0o644)
+        try:  # never through a link planted at the lock's name: it would empty the file it points at
+            fd = os.open(self.folder / self.LOCK, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_CLOEXEC, 0o644)
+        except OSError as err:
+            raise SceneError(
+                "--output", f"{str(self.folder / self.LOCK)!r} cannot be opened as the sweep's lock: {err.strerror}"
+            ) from None
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            os.close(fd)
+            raise SceneError("--output", f"{str(self.folder / self.LOCK)!r} is not a regular file: remove it")
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
