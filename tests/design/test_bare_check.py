@@ -38,7 +38,7 @@ def _random_batch(rng, geometry_name):
         materials.append(rng.choice(MATERIALS))
         d = 10 ** rng.uniform(-1.5, 0.7)
         b = 10 ** rng.uniform(-2.5, -0.3)  # up to 0.5 m: beyond the end of some strength tables
-        h = d / 2.0 if geometry_name == "disc" else d * rng.uniform(0.01, 0.5)
+        h = d / 2.0 if geometry_name == "disc" or rng.random() < 0.1 else d * rng.uniform(0.01, 0.5)
         dims.append(wheel.Dims(d_outer=d, h=h, b=b))
     omega = [10 ** rng.uniform(0.5, 3.0) for _ in range(n)]
     torque = [rng.choice([0.0, 150.0]) for _ in range(n)]

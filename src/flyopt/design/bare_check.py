@@ -17,7 +17,7 @@ each number is made by the same operations in the same order and is the
 same float; the material's strengths by the one rule,
 :func:`flyopt.design.strength.allowables`, per candidate. A candidate that
 leaves the closed form's ground (a material without Poisson's ratio, a
-section outside its strength table, a bore) is checked by
+section outside its strength table, a rim grown to a disc) is checked by
 :func:`~flyopt.design.wheel_design.structure_fields` itself, which writes
 the note that says why. ``tests/design/test_bare_check.py`` holds the two
 equal, float for float, over random designs and every shipped material.
@@ -33,6 +33,7 @@ import numpy as np
 
 from flyopt.design import balance, geometry, strength, stress, wheel, wheel_design
 from flyopt.design.result import Parts, Stresses
+from flyopt.names import Geometry
 
 if TYPE_CHECKING:  # annotations only
     from flyopt.design.materials import Material
@@ -84,8 +85,14 @@ def structures(
         return []
     if any(not covers(geometry_name, d) for d in dims):
         raise ValueError(f"the closed-form check covers {sorted(geometry.BARE)} without a bore")
-    nus = [m.poisson_ratio for m in materials]
-    plain = [k for k in range(n) if nus[k] is not None]
+    # a rim whose inner diameter is exactly 0 is a solid disc to the scalar check (its c2 is the plain
+    # zero there, so r = 0 is never divided by); it is left to that check
+    plain = [
+        k
+        for k in range(n)
+        if materials[k].poisson_ratio is not None
+        and (geometry_name == Geometry.DISC or dims[k].d_outer - 2.0 * dims[k].h != 0.0)
+    ]
     out: list[Any] = [None] * n
     if plain:
         _check_plain(out, plain, materials, geometry_name, dims, omega, torque, spec)
