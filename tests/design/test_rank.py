@@ -59,3 +59,38 @@ def test_exact_tie_goes_to_the_cheaper_then_the_name():
         )[0]
         == 1
     )
+
+
+def test_ranking_is_the_rule_applied_place_by_place():
+    # reference: the winner of what is left, by rank.winners, one place at a time
+    from types import SimpleNamespace
+
+    rng = np.random.default_rng(11)
+    for _ in range(400):
+        n = int(rng.integers(1, 9))
+        apart = rng.random() < 0.5  # objectives clearly apart (one sort) or with ties (place by place)
+        objective = rng.uniform(1, 2, n) if apart else rng.choice([1.0, 1.0 * (1 + 1e-12), 1.5, 2.0], n)
+        candidates = [
+            SimpleNamespace(
+                objective=float(objective[k]),
+                cost=None if rng.random() < 0.3 else float(rng.choice([3.0, 5.0])),
+                mass=float(rng.choice([1.0, 2.0])),
+                stresses=SimpleNamespace(rim_speed=float(rng.choice([30.0, 36.0]))),
+                material=str(rng.choice(["cast_iron", "cast_steel"])),
+                shaft=f"s{k}",
+            )
+            for k in range(n)
+        ]
+        left, expected = list(candidates), []
+        while left:
+            k = rank.winners(
+                np.zeros(len(left), dtype=np.int64),
+                [c.objective for c in left],
+                [np.nan if c.cost is None else c.cost for c in left],
+                [c.mass for c in left],
+                [c.stresses.rim_speed for c in left],
+                [c.material for c in left],
+                [c.shaft for c in left],
+            )[0]
+            expected.append(left.pop(k))
+        assert [c.shaft for c in rank.ranking(candidates)] == [c.shaft for c in expected]

@@ -14,11 +14,11 @@ References
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 from flyopt.validate import positive
 
-__all__ = ["BALANCE_GRADE", "PermissibleUnbalance", "permissible_unbalance"]
+__all__ = ["BALANCE_GRADE", "PermissibleUnbalance", "permissible_unbalance", "unbalance"]
 
 #: ISO 21940-11 balance quality grade of a flywheel [mm/s] (crankshaft drives and flywheels: G6.3).
 BALANCE_GRADE = 6.3
@@ -75,5 +75,14 @@ def permissible_unbalance(mass: float, omega_max: float, grade: float = BALANCE_
     mass = positive(mass, "mass [kg]")
     omega_max = positive(omega_max, "omega_max [rad/s]")
     grade = positive(grade, "grade [mm/s]")
+    e_per, u_per = unbalance(mass, omega_max, grade)
+    return PermissibleUnbalance(e_per=e_per, u_per=u_per)
+
+
+def unbalance(mass: Any, omega_max: Any, grade: float = BALANCE_GRADE) -> tuple[Any, Any]:
+    """(e_per [m], U_per [kg*m]) of :func:`permissible_unbalance`, unchecked, for floats or arrays.
+
+    The formula itself, for callers whose arguments are already checked (arrays of designs).
+    """
     e_per = grade * 1e-3 / omega_max
-    return PermissibleUnbalance(e_per=e_per, u_per=e_per * mass)
+    return e_per, e_per * mass

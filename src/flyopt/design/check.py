@@ -120,6 +120,12 @@ def binding_mask(
         flags["hb_min"] = hb <= hb_min * (1.0 + rtol)
         flags["hb_max"] = hb >= hb_max * (1.0 - rtol)
         flags["inner_diameter"] = d_inner <= d_outer * rtol
+    if set(map(type, flags.values())) == {bool}:  # one design in plain floats (a ranking's): no generator
+        bits = 0
+        for name, flag in flags.items():
+            if flag:
+                bits |= BINDING_BITS[name]
+        return bits
     if not any(isinstance(flag, np.ndarray) for flag in flags.values()):
         return sum(BINDING_BITS[name] for name, flag in flags.items() if flag)
     mask = np.zeros(np.shape(d_outer), dtype=np.int64)

@@ -133,6 +133,9 @@ def ranking(candidates: Iterable[Design]) -> list[Design]:
         The same candidates, best first.
     """
     left = list(candidates)
+    order = _clearly_apart(left)
+    if order is not None:
+        return [left[k] for k in order]
     ordered = []
     while left:
         k = _winner_of_few(
@@ -145,3 +148,20 @@ def ranking(candidates: Iterable[Design]) -> list[Design]:
         )
         ordered.append(left.pop(k))
     return ordered
+
+
+def _clearly_apart(candidates):
+    """The order of the rule when every objective is positive and beyond TIE_RTOL of the next one; else None.
+
+    Then each step of :func:`ranking` has one design within TIE_RTOL of the
+    lowest objective, which wins on the first step of the rule: the order is
+    the objectives' order, found by one sort instead of a pick per place.
+    """
+    values = [c.objective for c in candidates]
+    if any(v is None or not 0.0 < v < math.inf for v in values):
+        return None
+    order = sorted(range(len(values)), key=values.__getitem__)
+    for k, next_k in zip(order, order[1:]):
+        if not values[next_k] > values[k] * (1.0 + TIE_RTOL):
+            return None
+    return order
