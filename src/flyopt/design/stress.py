@@ -745,29 +745,32 @@ def _stationary_radii(c, alpha, beta, low, high, measure):
     if measure in ("hoop", "largest_principal") and c2 < 0 and beta > 0:
         found.append(math.sqrt(-c2 / beta))
     if measure == "von_mises":
-        # in s = u / u_high (order one): u sigma_r / u_high = -a s^2 + c1 s - k, u sigma_t / u_high = -b s^2 + c1 s + k
+        # in s = u / u_high (order one): P = u sigma_r / u_high = -a s^2 + c1 s - k and Q = u sigma_t / u_high
+        # = -b s^2 + c1 s + k; R = P^2 - P Q + Q^2 = sum r_j s^j and s R' - 2 R = sum (j - 2) r_j s^j, a quartic
         a, b, k = alpha * u_high, beta * u_high, c2 / u_high
-        p = np.array([-k, c1, -a])  # ascending powers of s
-        q = np.array([k, c1, -b])
-        poly = np.polynomial.polynomial
-        r_poly = poly.polyadd(poly.polysub(poly.polymul(p, p), poly.polymul(p, q)), poly.polymul(q, q))
-        d_poly = poly.polysub(poly.polymulx(poly.polyder(r_poly)), 2.0 * r_poly)
-        d_poly = np.trim_zeros(d_poly, "b")
-        if len(d_poly) > 1:
-            dd_poly = poly.polyder(d_poly)
-            for root in poly.polyroots(d_poly):
-                if abs(root.imag) > 1e-6 * max(abs(root), 1e-300):
-                    continue
-                s = float(root.real)
-                for _ in range(3):  # Newton on the stationarity polynomial, from the eigenvalue's root
-                    slope = float(poly.polyval(s, dd_poly))
-                    if slope == 0.0:
-                        break
-                    step = float(poly.polyval(s, d_poly)) / slope
-                    s -= step
-                    if abs(step) <= 1e-16 * abs(s):
-                        break
-                found.append(s * u_high)
+        p, q = (-k, c1, -a), (k, c1, -b)
+        r = [
+            sum(p[i] * p[j - i] - p[i] * q[j - i] + q[i] * q[j - i] for i in range(max(0, j - 2), min(j, 2) + 1))
+            for j in range(5)
+        ]
+        d_poly = [(j - 2) * r[j] for j in range(5)]  # ascending powers of s; d_poly[2] == 0
+        dd_poly = [j * d_poly[j] for j in range(1, 5)]
+        while d_poly and d_poly[-1] == 0.0:
+            d_poly.pop()
+        roots = np.roots(d_poly[::-1]) if len(d_poly) > 1 else ()
+        for root in roots:
+            if abs(root.imag) > 1e-6 * max(abs(root), 1e-300):
+                continue
+            s = float(root.real)
+            for _ in range(3):  # Newton on the stationarity polynomial, from the eigenvalue's root
+                slope = sum(c * s**j for j, c in enumerate(dd_poly))
+                if slope == 0.0:
+                    break
+                step = sum(c * s**j for j, c in enumerate(d_poly)) / slope
+                s -= step
+                if abs(step) <= 1e-16 * abs(s):
+                    break
+            found.append(s * u_high)
     return [math.sqrt(u) for u in found if u_low < u < u_high]
 
 

@@ -401,26 +401,28 @@ def row_bounds(
 ) -> tuple[list[float], list[float]]:
     """(lbg, ubg) of a wheel NLP's rows (``constraints``: their names, as :func:`formulate` gives them)."""
     s, inf = structure, math.inf
+    bounds = {
+        "inertia": (math.log(problem.j_shaft), inf),
+        "max_outer_diameter": (-inf, math.log(problem.envelope) if s.envelope else inf),
+        "rim_speed": (-inf, math.log(problem.max_rim_speed)),
+        "max_width": (-inf, math.log(problem.max_width) if s.width else inf),
+        "max_width_hub": (-inf, math.log(problem.max_width) if s.width else inf),
+        "hb_ratio": (math.log(problem.hb_ratio[0]), math.log(problem.hb_ratio[1])),
+        "inner_diameter": (0.0, inf),
+        "rim_clears_hub": (0.0, inf),
+        "bore_clear": (0.0, inf),
+        "d_mean": ((math.log(problem.d_mean),) * 2 if problem.d_mean is not None else (-inf, inf)),
+        "web_below_rim": (-inf, 0.0),
+        "web_below_hub": (-inf, 0.0),
+        "arms_fit_hub": (-inf, 1.0),
+        "arm_within_rim": (-inf, 0.0),
+        "arm_within_hub": (-inf, 0.0),
+        "hub_wall": (problem.min_wall, inf),
+    }
+    stress_row = (-inf, 1.0)  # stress rows: sigma / allowable <= 1
     lbg, ubg = [], []
     for name in constraints:
-        lo, hi = {
-            "inertia": (math.log(problem.j_shaft), inf),
-            "max_outer_diameter": (-inf, math.log(problem.envelope) if s.envelope else inf),
-            "rim_speed": (-inf, math.log(problem.max_rim_speed)),
-            "max_width": (-inf, math.log(problem.max_width) if s.width else inf),
-            "max_width_hub": (-inf, math.log(problem.max_width) if s.width else inf),
-            "hb_ratio": (math.log(problem.hb_ratio[0]), math.log(problem.hb_ratio[1])),
-            "inner_diameter": (0.0, inf),
-            "rim_clears_hub": (0.0, inf),
-            "bore_clear": (0.0, inf),
-            "d_mean": ((math.log(problem.d_mean),) * 2 if problem.d_mean is not None else (-inf, inf)),
-            "web_below_rim": (-inf, 0.0),
-            "web_below_hub": (-inf, 0.0),
-            "arms_fit_hub": (-inf, 1.0),
-            "arm_within_rim": (-inf, 0.0),
-            "arm_within_hub": (-inf, 0.0),
-            "hub_wall": (problem.min_wall, inf),
-        }.get(name, (-inf, 1.0))  # stress rows: sigma / allowable <= 1
+        lo, hi = bounds.get(name, stress_row)
         lbg.append(lo)
         ubg.append(hi)
     return lbg, ubg
