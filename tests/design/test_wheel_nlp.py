@@ -398,6 +398,71 @@ def test_random_set_has_both_verdicts():
     assert all(verdicts.get((c, v), 0) >= 2 for c in ("rim_speed", "stress") for v in (True, False)), verdicts
 
 
+# ------------------------------------------------------- sqpmethod against IPOPT
+
+#: sqpmethod (SOLVER_OPTION "sqpmethod") against IPOPT on the same NLP: both stop at 1e-10 (IPOPT's
+#: tol, sqpmethod's tol_pr and tol_du); measured over the fast set and punch-press-wheel at most
+#: 6.4e-11 apart in the objective (log mass), so 1e-9 leaves a factor of ten and still tells a
+#: different local optimum. Only the objective is compared: where the optimum is not unique (the
+#: scene's rim, whose H trades against the web at the same mass to 1e-10) the two stop at
+#: different wheels of the same mass.
+SQP_RTOL = 1e-9
+
+
+def _sqp(structure, problem):
+    """(solution or None where infeasible) by the sqpmethod model, with IPOPT behind it."""
+    model = wheel_nlp.get_model(structure, {wheel_nlp.SOLVER_OPTION: "sqpmethod"})
+    try:
+        return wheel_nlp.solve(model, problem, "random wheel")
+    except SolverFailed as err:
+        if getattr(err, "status", "") == "Infeasible_Problem_Detected":
+            return None
+        raise
+
+
+def test_sqpmethod_agrees_with_ipopt_on_random_wheels():
+    """Every structure, both criteria, ductile and brittle (the fast set): the sqpmethod model gives
+    IPOPT's verdict and IPOPT's objective to SQP_RTOL, and sqpmethod itself (not the IPOPT behind
+    it) answers most feasible wheels, or the comparison would be of IPOPT with itself."""
+    answered, feasible = 0, 0
+    for seed in FAST_SEEDS:
+        structure, problem = random_case(seed)
+        reference, fast = _ipopt(structure, problem), _sqp(structure, problem)
+        assert (reference is None) == (fast is None), seed
+        if reference is None:
+            continue
+        feasible += 1
+        answered += fast.solver == "sqpmethod"
+        assert abs(fast.objective - reference.objective) <= SQP_RTOL, (seed, fast.objective, reference.objective)
+    assert answered >= 0.8 * feasible, (answered, feasible)
+
+
+def test_sqpmethod_designs_punch_press_wheel_as_ipopt():
+    """The shipped whole-wheel scene (three materials, a web and hub on a keyed seat, by stress),
+    designed with the sqpmethod model: the same choice of material and shaft, and every candidate's
+    mass IPOPT's to SQP_RTOL (log mass to 1e-9, so mass to ~1e-9 relative)."""
+    from conftest import PROBLEMS
+
+    import flyopt
+
+    scene = flyopt.load(PROBLEMS / "punch-press-wheel.toml")
+    reference = flyopt.solve(scene).design
+    fast = flyopt.solve(scene, solver_options={wheel_nlp.SOLVER_OPTION: "sqpmethod"}).design
+    assert (fast.best.material, fast.best.shaft) == (reference.best.material, reference.best.shaft)
+    assert len(fast.candidates) == len(reference.candidates)
+    for mine, theirs in zip(fast.candidates, reference.candidates):
+        assert (mine.material, mine.shaft, mine.feasible) == (theirs.material, theirs.shaft, theirs.feasible)
+        if theirs.feasible:
+            assert abs(math.log(mine.mass / theirs.mass)) <= SQP_RTOL
+
+
+def test_unknown_wheel_solver_is_refused():
+    """A misspelt solver choice is an error naming both choices, never a silent IPOPT."""
+    structure, _ = random_case(0)
+    with pytest.raises(ValueError, match="'ipopt' or 'sqpmethod'"):
+        wheel_nlp.get_model(structure, {wheel_nlp.SOLVER_OPTION: "sqp"})
+
+
 # --------------------------------------------- 2. sensitivities against re-solves
 
 #: Steps of the central differences, relative to the limit. A central difference errs by O(h^2)
