@@ -190,7 +190,7 @@ SQP_OPTIONS: dict[str, Any] = {
     "print_status": False,
     "show_eval_warnings": False,  # a NaN on a trial step is its failure, which IPOPT then answers
     "qpsol": "qrqp",
-    "qpsol_options": {"print_iter": False, "print_header": False, "error_on_fail": False},
+    "qpsol_options": {"print_iter": False, "print_header": False, "error_on_fail": False, "max_iter": 100},
     "convexify_strategy": "eigen-clip",
     "max_iter": 100,
     "tol_pr": 1e-10,
