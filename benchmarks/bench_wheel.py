@@ -457,10 +457,10 @@ def write(rows, pinning, load, firsts, designs, fast_designs, sweeps, paretos, a
         f"- A design is more than a solve: the scene's solve makes {len(designs)} whole-wheel designs, each one "
         "NLP solve (the exact stress check asked for no re-solve: no part's stress binds in this scene), "
         "plus the allowables, the exact stress check and the structural fields.",
-        "- IPOPT warm-started from a neighbouring wheel saves no iterations: an interior point method moves a "
+        "- IPOPT warm-started from a neighbouring wheel saves little (the ipopt-warm row): an interior point method moves a "
         "start off its bounds (bound_push) and re-walks the barrier path, so a primal start barely helps; no "
         "warm-start API was added for it.",
-        "- sqpmethod with qrqp is 20-30x faster per solve where it converges, but alone it did not converge on "
+        "- sqpmethod with qrqp is several times faster per solve where it converges (the sqp rows), but alone it did not converge on "
         "every wheel IPOPT solves (the 'converged' column) and took up to seconds on others. flyopt offers it "
         "opt-in (solver option flyopt.wheel_solver = sqpmethod, the wheel-sqpmethod row): the Hessian clipped to "
         "positive definite, its status checked, IPOPT where it fails, so it answers every wheel IPOPT answers; "
