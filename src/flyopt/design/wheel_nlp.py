@@ -175,8 +175,8 @@ WHEEL_SOLVER_OPTIONS = {"ipopt.max_iter": 1000}
 #: or "sqpmethod", CasADi's SQP with its dense active-set QP solver qrqp, tried first and checked by its
 #: status; where it does not converge the same wheel is solved by IPOPT, so it answers every wheel
 #: IPOPT answers. It agrees with IPOPT to IPOPT's tolerance (tests/design/test_wheel_nlp.py), not to
-#: the last digit, which is why the default stays IPOPT (benchmarks/results/wheel.md: ~20x faster
-#: per solve where it converges, 45 of 48 random and shipped wheels). Not an nlpsol option: it is
+#: the last digit, which is why the default stays IPOPT (benchmarks/results/wheel.md: ~5x faster
+#: per solve, median over 48 random and shipped wheels, IPOPT behind it included). Not an nlpsol option: it is
 #: taken out before IPOPT is built (here and in flyopt.design.nlp).
 SOLVER_OPTION = WHEEL_SOLVER
 
