@@ -67,10 +67,15 @@ __all__ = [
     "solve_combination",
     "BUILDS",
     "CONVERGED",
+    "WHEEL_SOLVER",
 ]
 
 #: IPOPT statuses accepted as converged (the design is still verified).
 CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+
+#: The solver option that chooses the whole wheel's solver (flyopt.design.wheel_nlp: "ipopt" or
+#: "sqpmethod"); not an nlpsol option, so it is taken out before a solver is built.
+WHEEL_SOLVER = "flyopt.wheel_solver"
 
 #: Solver options, merged in this one place; explicit options passed to
 #: design_flywheel(..., solver_options=...) win.
@@ -193,6 +198,7 @@ def _build_model(structure, options):
     inertia row reads ``>= 0``.
     """
     start = time.perf_counter()
+    options = {k: v for k, v in options.items() if k != WHEEL_SOLVER}  # the whole wheel's choice, not IPOPT's
     geo, pinned, collapsed, objective = structure
     names: list[str] = []
     cols = {}

@@ -1,8 +1,8 @@
 """The strength of a designed wheel: every part's governing stress found exactly, its burst speed and balance.
 
 This is the independent check of a design (the NLP writes its stress rows at
-a few radii; here the maximum of each disc part is found on a dense grid and
-refined, :func:`flyopt.design.stress.max_stress_per_step`), and the source of
+a few radii; here the maximum of each disc part is found in closed form,
+:func:`flyopt.design.stress.max_stress_per_step`), and the source of
 the stress fields of every design flyopt reports, whichever criterion sized it.
 
 The allowable stress of a part is the material's
@@ -40,9 +40,6 @@ if TYPE_CHECKING:
     from flyopt.design.materials import Material
 
 __all__ = ["PartStress", "StrengthCheck", "allowables", "check_wheel", "profile"]
-
-#: Grid points per disc part for the exact maxima (then refined by a bounded scalar search).
-_POINTS = 201
 
 
 @dataclass(frozen=True)
@@ -205,10 +202,10 @@ def check_wheel(
         vm = float(stress.von_mises(sr, st))
         radial = (3.0 + nu) / 8.0 * rho * omega**2 * (b - a) ** 2
     elif coefficients:
-        # a stepped disc: each measure's maximum over each step, found on a grid and refined between
-        # its points (the governing measure's per part, every measure's for the report)
+        # a stepped disc: each measure's maximum over each step, in closed form (the governing
+        # measure's per part, every measure's for the report)
         found = {
-            m: stress.max_stress_per_step(coefficients, radii, rho, nu, omega, m, _POINTS)
+            m: stress.max_stress_per_step(coefficients, radii, rho, nu, omega, m)
             for m in ("von_mises", "largest_principal", "hoop", "radial")
         }
         for step_max in found[measure]:

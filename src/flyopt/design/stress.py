@@ -8,7 +8,7 @@ thicknesses and speeds. No function branches on a value that may be symbolic;
 the only Python-level decisions are on arguments documented as plain Python
 (the number of steps, the ``solid`` flag, the number of arms) and on the
 structural zero ``c2 = 0.0`` of a solid centre. Only
-:func:`max_stress_per_step`, the numeric check, needs floats (and scipy).
+:func:`max_stress_per_step`, the check, needs floats.
 
 Sign conventions: tension is positive; ``bore_pressure`` is a pressure on the
 bore (positive compresses it, sigma_r(r_0) = -bore_pressure); ``outer_traction``
@@ -667,13 +667,20 @@ StepMaximum.__doc__ = """The largest stress measure in one step: value [Pa], ste
 
 
 def max_stress_per_step(
-    coefficients: Any, radii: Any, density: Any, poisson: Any, omega: Any, measure: str = "von_mises", points: int = 401
+    coefficients: Any, radii: Any, density: Any, poisson: Any, omega: Any, measure: str = "von_mises"
 ) -> list[StepMaximum]:
-    """Maximum of a stress measure over each step, found numerically (floats only).
+    """Maximum of a stress measure over each step, in closed form (floats only).
 
-    An independent check of constraints written at chosen radii: a dense
-    grid finds the best sample, a bounded scalar search (Brent) refines it
-    between its neighbours.
+    An independent check of constraints written at chosen radii. In a step,
+    with u = r^2, sigma_r = c1 - c2/u - alpha u and sigma_t = c1 + c2/u - beta u
+    (:func:`disc_stresses`), so each measure's stationary points are roots of
+    a polynomial in u: sigma_r at u^2 = c2/alpha, sigma_t at u^2 = -c2/beta, and
+    von Mises, whose square is R(u)/u^2 with R = P^2 - P Q + Q^2 (P = u sigma_r,
+    Q = u sigma_t, quadratics), where u R'(u) - 2 R(u) = 0, a quartic. The largest
+    principal stress max(sigma_r, sigma_t) peaks where one of the two does. The
+    maximum over a step is the largest of the measure at its edges and at the
+    real roots inside it (every candidate is a true value of the measure in the
+    step, so a spurious root cannot raise it; the roots are refined by Newton).
 
     Parameters
     ----------
@@ -685,56 +692,86 @@ def max_stress_per_step(
         rho [kg/m^3], nu [-], angular speed [rad/s].
     measure : {"von_mises", "largest_principal", "radial", "hoop"}
         What to maximise; see :data:`MEASURES`.
-    points : int
-        Grid points per step (at least 3).
 
     Returns
     -------
     list of StepMaximum
-        For every step, (value [Pa], step index, radius [m]) of the maximum.
+        For every step, (value [Pa], step index, radius [m]) of the maximum;
+        where the edge and an interior point tie, the inner edge.
 
     Raises
     ------
     ValueError
-        For an unknown measure (naming the closest one) or fewer than 3
-        points.
+        For an unknown measure (naming the closest one).
     """
-
     if measure not in MEASURES:
         raise ValueError(f"stress measure {unknown(measure, MEASURES)}")
-    if points < 3:
-        raise ValueError(f"points must be at least 3 per step, got {points!r}")
-    from scipy.optimize import minimize_scalar
+    density, poisson, omega = float(density), float(poisson), float(omega)
+    alpha, beta = _spin_factors(density, poisson, omega)
 
     def value(c, r):
         sr, st = disc_stresses(c, density, poisson, omega, r)
         if measure == "von_mises":
-            return von_mises(sr, st)
+            return float(von_mises(sr, st))
         if measure == "radial":
-            return sr
+            return float(sr)
         if measure == "hoop":
-            return st
-        return np.maximum(sr, st)
+            return float(st)
+        return float(max(sr, st))
 
     radii = [float(r) for r in _items(radii)]
     result = []
     for i, c in enumerate(coefficients):
         c = (float(c[0]), 0.0 if _is_structural_zero(c[1]) else float(c[1]))
-        grid = np.linspace(radii[i], radii[i + 1], points)
-        values = value(c, grid)
-        k = int(np.argmax(values))
-        best = StepMaximum(float(values[k]), i, float(grid[k]))
-        low, high = grid[max(k - 1, 0)], grid[min(k + 1, points - 1)]
-        found = minimize_scalar(
-            lambda r: -value(c, r),
-            bounds=(low, high),
-            method="bounded",
-            options={"xatol": 1e-12 * radii[-1], "maxiter": 500},
-        )
-        if -found.fun > best.value:
-            best = StepMaximum(float(-found.fun), i, float(found.x))
+        low, high = radii[i], radii[i + 1]
+        best = StepMaximum(value(c, low), i, low)
+        for r in (*_stationary_radii(c, alpha, beta, low, high, measure), high):
+            v = value(c, r)
+            if v > best.value:
+                best = StepMaximum(v, i, r)
         result.append(best)
     return result
+
+
+def _stationary_radii(c, alpha, beta, low, high, measure):
+    """The radii strictly inside (low, high) where a measure of a step is stationary (see max_stress_per_step)."""
+    c1, c2 = c
+    u_low, u_high = low * low, high * high
+    if u_high <= u_low:
+        return []
+    found = []
+    if measure in ("radial", "largest_principal") and c2 > 0 and alpha > 0:
+        found.append(math.sqrt(c2 / alpha))
+    if measure in ("hoop", "largest_principal") and c2 < 0 and beta > 0:
+        found.append(math.sqrt(-c2 / beta))
+    if measure == "von_mises":
+        # in s = u / u_high (order one): P = u sigma_r / u_high = -a s^2 + c1 s - k and Q = u sigma_t / u_high
+        # = -b s^2 + c1 s + k; R = P^2 - P Q + Q^2 = sum r_j s^j and s R' - 2 R = sum (j - 2) r_j s^j, a quartic
+        a, b, k = alpha * u_high, beta * u_high, c2 / u_high
+        p, q = (-k, c1, -a), (k, c1, -b)
+        r = [
+            sum(p[i] * p[j - i] - p[i] * q[j - i] + q[i] * q[j - i] for i in range(max(0, j - 2), min(j, 2) + 1))
+            for j in range(5)
+        ]
+        d_poly = [(j - 2) * r[j] for j in range(5)]  # ascending powers of s; d_poly[2] == 0
+        dd_poly = [j * d_poly[j] for j in range(1, 5)]
+        while d_poly and d_poly[-1] == 0.0:
+            d_poly.pop()
+        roots = np.roots(d_poly[::-1]) if len(d_poly) > 1 else ()
+        for root in roots:
+            if abs(root.imag) > 1e-6 * max(abs(root), 1e-300):
+                continue
+            s = float(root.real)
+            for _ in range(3):  # Newton on the stationarity polynomial, from the eigenvalue's root
+                slope = sum(c * s**j for j, c in enumerate(dd_poly))
+                if slope == 0.0:
+                    break
+                step = sum(c * s**j for j, c in enumerate(d_poly)) / slope
+                s -= step
+                if abs(step) <= 1e-16 * abs(s):
+                    break
+            found.append(s * u_high)
+    return [math.sqrt(u) for u in found if u_low < u < u_high]
 
 
 # ------------------------------------------------------------- rim with arms

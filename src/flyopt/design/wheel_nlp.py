@@ -46,7 +46,7 @@ from typing import Any, NamedTuple
 import casadi as ca
 
 from flyopt.design import wheel
-from flyopt.design.nlp import CONVERGED, cached_model
+from flyopt.design.nlp import CONVERGED, WHEEL_SOLVER, cached_model
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Objective
 
@@ -145,6 +145,7 @@ class WheelModel:
     constraints: tuple[str, ...]  # names of the rows of g
     stress_parts: tuple[str, ...]  # which part each allowable parameter belongs to
     build_time: float
+    fast: ca.Function | None = None  # sqpmethod, tried before IPOPT (SOLVER_OPTION "sqpmethod")
 
     def describe(self) -> dict[str, Any]:
         """What the model is, for the report: geometry, objective, variables, constraint rows."""
@@ -169,6 +170,32 @@ class WheelModel:
 #: infeasible (a rim_web whose hub, key and stress leave no room: 200 iterations ran out on one of
 #: tests/design/test_prune.py's random problems, which IPOPT then proves infeasible within 1000).
 WHEEL_SOLVER_OPTIONS = {"ipopt.max_iter": 1000}
+
+#: The solver option that chooses the whole wheel's solver: "ipopt" (the default and the reference)
+#: or "sqpmethod", CasADi's SQP with its dense active-set QP solver qrqp, tried first and checked by its
+#: status; where it does not converge the same wheel is solved by IPOPT, so it answers every wheel
+#: IPOPT answers. It agrees with IPOPT to IPOPT's tolerance (tests/design/test_wheel_nlp.py), not to
+#: the last digit, which is why the default stays IPOPT (benchmarks/results/wheel.md: ~5x faster
+#: per solve, median over 48 random and shipped wheels, IPOPT behind it included). Not an nlpsol option: it is
+#: taken out before IPOPT is built (here and in flyopt.design.nlp).
+SOLVER_OPTION = WHEEL_SOLVER
+
+#: sqpmethod's options for the wheel NLP: exact Hessian clipped to positive definite (qrqp needs a
+#: convex QP; without it 6 of the 48 wheels failed, with it 3), the rows met to 1e-10 as IPOPT's tol.
+SQP_OPTIONS: dict[str, Any] = {
+    "print_time": False,
+    "error_on_fail": False,
+    "print_header": False,
+    "print_iteration": False,
+    "print_status": False,
+    "show_eval_warnings": False,  # a NaN on a trial step is its failure, which IPOPT then answers
+    "qpsol": "qrqp",
+    "qpsol_options": {"print_iter": False, "print_header": False, "error_on_fail": False, "max_iter": 100},
+    "convexify_strategy": "eigen-clip",
+    "max_iter": 100,
+    "tol_pr": 1e-10,
+    "tol_du": 1e-10,
+}
 
 
 def get_model(structure: WheelStructure, solver_options: Mapping | None = None) -> WheelModel:
@@ -267,6 +294,10 @@ def formulate(structure: WheelStructure, x: Any, par: Mapping[str, Any], allow: 
 
 def _build(structure, options):
     start = time.perf_counter()
+    options = dict(options)
+    choice = options.pop(SOLVER_OPTION, "ipopt")
+    if choice not in ("ipopt", "sqpmethod"):
+        raise ValueError(f"{SOLVER_OPTION} is 'ipopt' or 'sqpmethod', not {choice!r}")
     names = variables_of(structure)
     x = ca.SX.sym("x", len(names))
     p = ca.SX.sym("p", len(PARAMETERS))
@@ -274,8 +305,10 @@ def _build(structure, options):
     allow = ca.SX.sym("allow", len(stress_parts))  # (sigma_allow / S) per part, squared if ductile
     form = formulate(structure, x, {name: p[k] for k, name in enumerate(PARAMETERS)}, allow)
     nlp = {"x": x, "p": ca.vertcat(p, allow), "f": form.objective, "g": ca.vertcat(*form.rows)}
-    solver = ca.nlpsol("wheel_" + "_".join(str(v) for v in structure), "ipopt", nlp, options)
-    return WheelModel(structure, solver, names, form.row_names, stress_parts, time.perf_counter() - start)
+    name = "wheel_" + "_".join(str(v) for v in structure)
+    solver = ca.nlpsol(name, "ipopt", nlp, options)
+    fast = ca.nlpsol(name + "_sqp", "sqpmethod", nlp, SQP_OPTIONS) if choice == "sqpmethod" else None
+    return WheelModel(structure, solver, names, form.row_names, stress_parts, time.perf_counter() - start, fast)
 
 
 @dataclass(frozen=True)
@@ -325,6 +358,7 @@ class WheelSolution:
     structure: WheelStructure
     allow_params: dict  # part -> the allowable's parameter, (sigma_a / S)^2 (ductile) or sigma_a / S
     caps: dict | None = None  # the caps that set a variable's upper bound (variable -> [m]), or None
+    solver: str = "ipopt"  # which solver's converged result this is: "ipopt" or "sqpmethod"
 
 
 def starting_wheel(structure: WheelStructure, problem: WheelProblem, names: Iterable[str]) -> dict[str, float]:
@@ -401,26 +435,28 @@ def row_bounds(
 ) -> tuple[list[float], list[float]]:
     """(lbg, ubg) of a wheel NLP's rows (``constraints``: their names, as :func:`formulate` gives them)."""
     s, inf = structure, math.inf
+    bounds = {
+        "inertia": (math.log(problem.j_shaft), inf),
+        "max_outer_diameter": (-inf, math.log(problem.envelope) if s.envelope else inf),
+        "rim_speed": (-inf, math.log(problem.max_rim_speed)),
+        "max_width": (-inf, math.log(problem.max_width) if s.width else inf),
+        "max_width_hub": (-inf, math.log(problem.max_width) if s.width else inf),
+        "hb_ratio": (math.log(problem.hb_ratio[0]), math.log(problem.hb_ratio[1])),
+        "inner_diameter": (0.0, inf),
+        "rim_clears_hub": (0.0, inf),
+        "bore_clear": (0.0, inf),
+        "d_mean": ((math.log(problem.d_mean),) * 2 if problem.d_mean is not None else (-inf, inf)),
+        "web_below_rim": (-inf, 0.0),
+        "web_below_hub": (-inf, 0.0),
+        "arms_fit_hub": (-inf, 1.0),
+        "arm_within_rim": (-inf, 0.0),
+        "arm_within_hub": (-inf, 0.0),
+        "hub_wall": (problem.min_wall, inf),
+    }
+    stress_row = (-inf, 1.0)  # stress rows: sigma / allowable <= 1
     lbg, ubg = [], []
     for name in constraints:
-        lo, hi = {
-            "inertia": (math.log(problem.j_shaft), inf),
-            "max_outer_diameter": (-inf, math.log(problem.envelope) if s.envelope else inf),
-            "rim_speed": (-inf, math.log(problem.max_rim_speed)),
-            "max_width": (-inf, math.log(problem.max_width) if s.width else inf),
-            "max_width_hub": (-inf, math.log(problem.max_width) if s.width else inf),
-            "hb_ratio": (math.log(problem.hb_ratio[0]), math.log(problem.hb_ratio[1])),
-            "inner_diameter": (0.0, inf),
-            "rim_clears_hub": (0.0, inf),
-            "bore_clear": (0.0, inf),
-            "d_mean": ((math.log(problem.d_mean),) * 2 if problem.d_mean is not None else (-inf, inf)),
-            "web_below_rim": (-inf, 0.0),
-            "web_below_hub": (-inf, 0.0),
-            "arms_fit_hub": (-inf, 1.0),
-            "arm_within_rim": (-inf, 0.0),
-            "arm_within_hub": (-inf, 0.0),
-            "hub_wall": (problem.min_wall, inf),
-        }.get(name, (-inf, 1.0))  # stress rows: sigma / allowable <= 1
+        lo, hi = bounds.get(name, stress_row)
         lbg.append(lo)
         ubg.append(hi)
     return lbg, ubg
@@ -478,12 +514,16 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     }
     p = [values[n] for n in PARAMETERS] + allow
     begin = time.perf_counter()
-    try:
-        sol = model.solver(x0=x0, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg, p=p)
-    except RuntimeError as err:
-        raise SolverFailed(f"{label}: IPOPT stopped with an error ({err}); no design is reported") from err
+    args = {"x0": x0, "lbx": lbx, "ubx": ubx, "lbg": lbg, "ubg": ubg, "p": p}
+    sol, stats = _solve_fast(model.fast, args) if model.fast is not None else (None, {})
+    solver = "sqpmethod" if sol is not None else "ipopt"
+    if sol is None:  # IPOPT: the default, and where sqpmethod did not converge
+        try:
+            sol = model.solver(**args)
+        except RuntimeError as err:
+            raise SolverFailed(f"{label}: IPOPT stopped with an error ({err}); no design is reported") from err
+        stats = model.solver.stats()
     elapsed = time.perf_counter() - begin
-    stats = model.solver.stats()
     status = stats.get("return_status", "unknown")
     iterations = int(stats.get("iter_count", -1))
     if status not in CONVERGED:
@@ -516,4 +556,17 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         s,
         dict(zip(model.stress_parts, allow)),
         capped or None,
+        solver,
     )
+
+
+def _solve_fast(fast, args):
+    """(solution, stats) of sqpmethod where it converged (its status checked), else (None, its stats)."""
+    try:
+        sol = fast(**args)
+    except RuntimeError:
+        return None, {}
+    stats = fast.stats()
+    if stats.get("success") and stats.get("return_status") in CONVERGED:
+        return sol, stats
+    return None, stats
