@@ -10,6 +10,7 @@ from flyopt.bench.design import section_design
 from flyopt.bench.geometry import section_geometry
 from flyopt.bench.inertia import section_required_inertia
 from flyopt.bench.timing import Config, Row
+from flyopt.bench.wheel import section_wheel
 
 __all__ = ["SECTIONS", "run"]
 
@@ -18,6 +19,7 @@ SECTIONS: dict[str, Callable[[Config], list[Row]]] = {
     "design": section_design,
     "geometry": section_geometry,
     "required_inertia": section_required_inertia,
+    "wheel": section_wheel,
 }
 """Sections of the speed-against-error run, in order: name -> function(config) -> list of Row."""
 
