@@ -280,12 +280,13 @@ def grid_wheel(nlp: WheelNlp, box: Sequence[tuple[float, float]], points: int) -
     """The lightest point of a log-spaced grid of ``points`` per variable whose rows hold to REFERENCE_TOL."""
     axes = [np.linspace(lo, hi, points) for lo, hi in box]
     n, total = len(axes), points ** len(axes)
-    g_map = nlp.g.map(_CHUNK)
-    m_map = nlp.mass.map(_CHUNK)
+    chunk = min(total, _CHUNK)
+    g_map = nlp.g.map(chunk)
+    m_map = nlp.mass.map(chunk)
     best_mass, best_x = math.inf, None
     lbg, ubg = nlp.lbg[:, None], nlp.ubg[:, None]
-    for begin in range(0, total, _CHUNK):
-        index = np.arange(begin, begin + _CHUNK) % total  # the last chunk wraps round (points seen twice)
+    for begin in range(0, total, chunk):
+        index = np.arange(begin, begin + chunk) % total  # the last chunk wraps round (points seen twice)
         x = np.array([axes[k][i] for k, i in enumerate(np.unravel_index(index, (points,) * n))])
         g = np.asarray(g_map(x, nlp.p))
         with np.errstate(invalid="ignore"):
@@ -450,11 +451,15 @@ def random_wheel_cases(count: int, seed: int) -> list[WheelCase]:
     """``count`` seeded random wheels that IPOPT solves, the structures of _RANDOM_STRUCTURES in turn.
 
     Cast irons and steels (density 6800..7900 kg/m^3, Poisson 0.2..0.3),
-    60..400 rad/s, allowables 30..200 MPa (or a rim speed of 25..80 m/s), J'
-    from 2 % to 200 % of a ring of a tenth of the natural diameter, an
-    envelope in 60 % of the wheels, a width limit in 40 %, H/B from 0.3..2
-    over a span of 1..3, min_wall 3..12 mm, bores of 20..80 mm with hubs in
-    the textbook's proportions. A draw IPOPT does not solve is replaced by the next.
+    60..400 rad/s, allowables 30..200 MPa (or a rim speed of 25..80 m/s; the
+    natural diameter is that of a free ring at the limit), an envelope of
+    0.3..1.2 natural diameters in 60 % of the wheels, a width limit of
+    20..300 mm in 40 %, J' from 2 % to 200 % of a ring of square section D/10
+    at D = the smaller of 2/3 of the natural diameter and the envelope, H/B from
+    0.3..2 over a span of 1..3, min_wall 3..12 mm, torque 0..1000 N*m, bores of
+    20..80 mm with hubs in the textbook's proportions (after
+    benchmarks/bench_wheel.py's generator). A draw IPOPT does not solve (no
+    wheel, or no convergence) is replaced by the next draw.
     """
     from flyopt.design import wheel_nlp
 
@@ -524,9 +529,10 @@ def random_wheel_cases(count: int, seed: int) -> list[WheelCase]:
 
 
 def section_wheel(config: Config) -> list[Row]:
-    """Whole wheels: punch-press-wheel's combinations and seeded random wheels (one of each in a quick run)."""
+    """Whole wheels: punch-press-wheel's combinations and one seeded random wheel of each structure of
+    _RANDOM_STRUCTURES (a quick run: the scene's first combination and one random wheel)."""
     cases = scene_cases() if SCENE.is_file() else []
-    random = random_wheel_cases(1 if config.quick else 4, config.seed)
+    random = random_wheel_cases(1 if config.quick else len(_RANDOM_STRUCTURES), config.seed)
     if config.quick:
         cases = cases[:1]
     return wheel_rows(cases + random, config)
