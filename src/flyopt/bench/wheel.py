@@ -339,7 +339,7 @@ def wheel_rows(cases: Sequence[WheelCase], config: Config, grids: Sequence[int] 
         known = [r.mass for _, _, r, _ in results if r.x is not None and r.violation <= REFERENCE_TOL]
         best = min(known, default=math.nan)
         for method, setting, result, timing in results:
-            designed = result.x is not None
+            designed = result.x is not None and result.violation <= COUNT_TOL  # a grid point outside a bound too
             rows.append(
                 Row.timed(
                     "wheel",
