@@ -205,13 +205,26 @@ def svg_of(figure: MplFigure, prefix: str) -> str:
 
     The XML declaration, the DOCTYPE (which names an external DTD) and the
     metadata block are left out; text is drawn as paths (matplotlib's
-    default ``svg.fonttype``), so the figure needs no font.
+    default ``svg.fonttype``), so the figure needs no font. The figure is drawn
+    once, by matplotlib's SVG renderer (:func:`~flyopt.report.plots.output.draw_vector`:
+    ``savefig`` would draw it twice, once to lay it out).
     """
     import matplotlib
+    from matplotlib.backends.backend_mixed import MixedModeRenderer
+    from matplotlib.backends.backend_svg import RendererSVG
+
+    from flyopt.report.plots.output import VECTOR_DPI, draw_vector
 
     buffer = io.StringIO()
+    width, height = figure.get_size_inches()
     with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": prefix}):
-        figure.savefig(buffer, format="svg", metadata={"Date": None})  # made drawable by its class
+        # as matplotlib's print_svg: a raster part (none is drawn today) at the figure's own dpi
+        svg = RendererSVG(
+            width * VECTOR_DPI, height * VECTOR_DPI, buffer, image_dpi=figure.dpi, metadata={"Date": None}
+        )
+        renderer = MixedModeRenderer(figure, width, height, figure.dpi, svg)
+        draw_vector(figure, renderer)
+        renderer.finalize()
     text = buffer.getvalue()
     text = text[text.index("<svg") :]
     text = re.sub(r"<metadata>.*?</metadata>\s*", "", text, flags=re.S)

@@ -23,14 +23,13 @@ import numpy as np
 from matplotlib.backend_bases import GraphicsContextBase, RendererBase
 from matplotlib.path import Path
 
+from flyopt.report.plots.output import VECTOR_DPI, draw_vector
+
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from matplotlib.font_manager import FontProperties
     from matplotlib.transforms import Transform
     from reportlab.pdfgen.canvas import Canvas
-
-#: Points per inch: the figure is drawn with one pixel a point.
-DPI = 72.0
 
 _CAPS = {"butt": 0, "round": 1, "projecting": 2}
 _JOINS = {"miter": 0, "round": 1, "bevel": 2}
@@ -44,16 +43,13 @@ def draw(figure: Figure, canvas: Canvas, x: float, y: float, scale: float) -> No
     The figure's layout engine (constrained layout) runs in this one draw; the
     figure's dpi is 72 while it draws and its own again afterwards.
     """
-    width, height = figure.get_size_inches() * DPI
-    dpi = figure.dpi
+    width, height = figure.get_size_inches() * VECTOR_DPI
     canvas.saveState()
     canvas.translate(x, y)
     canvas.scale(scale, scale)
     try:
-        figure.dpi = DPI
-        figure.draw(CanvasRenderer(canvas, float(width), float(height)))
+        draw_vector(figure, CanvasRenderer(canvas, float(width), float(height)))
     finally:
-        figure.dpi = dpi
         canvas.restoreState()
 
 

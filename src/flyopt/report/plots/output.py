@@ -11,6 +11,8 @@ from flyopt.report.plots import standard
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.backend_bases import RendererBase
+    from matplotlib.figure import Figure
 
 #: Image formats :func:`save` writes, by the suffix of the file.
 FORMATS = ("png", "svg", "pdf")
@@ -59,3 +61,35 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
     finally:
         standard.pyplot().close(fig)
     return path
+
+
+#: Resolution a vector renderer draws a figure at: one pixel a point, as matplotlib's PDF and SVG backends.
+VECTOR_DPI = 72.0
+
+
+def draw_vector(figure: Figure, renderer: RendererBase) -> None:
+    """Draw ``figure`` once with a vector ``renderer`` (sized in points), at :data:`VECTOR_DPI`.
+
+    The figure's layout engine (constrained layout) runs within this one draw and
+    measures the texts with ``renderer`` itself, as ``savefig`` lays a figure out
+    with the renderer of its format; but ``savefig`` lays it out in a draw of its
+    own first and then draws it again, with a second renderer, so every text is
+    measured twice. The figure's dpi and canvas are its own again afterwards; its
+    texts are made drawable by its class (:func:`~flyopt.report.plots.standard.figure_class`).
+    """
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    class Measuring(FigureCanvasBase):
+        """The canvas the layout engine asks for a renderer while the figure is drawn."""
+
+        def get_renderer(self) -> RendererBase:
+            return renderer
+
+    canvas, dpi = figure.canvas, figure.dpi
+    try:
+        Measuring(figure)  # the figure's canvas until the finally
+        figure.dpi = VECTOR_DPI
+        figure.draw(renderer)
+    finally:
+        figure.dpi = dpi
+        figure.set_canvas(canvas)
