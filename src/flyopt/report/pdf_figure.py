@@ -55,10 +55,15 @@ def draw(figure: Figure, canvas: Canvas, x: float, y: float, scale: float) -> No
 
 @functools.lru_cache(maxsize=16)
 def font_name(path: str) -> str:
-    """The reportlab name of the TrueType font file ``path``, registered once (embedded as a subset)."""
+    """The reportlab name of the TrueType font file ``path``: the font already registered from that file
+    (the report's own DejaVu, :func:`flyopt.report.pdf.render`), else the file registered once (a font is
+    parsed in about 60 ms and embedded as one subset however many names it has)."""
     from reportlab.pdfbase import pdfmetrics
     from reportlab.pdfbase.ttfonts import TTFont
 
+    for name in pdfmetrics.getRegisteredFontNames():
+        if getattr(getattr(pdfmetrics.getFont(name), "face", None), "filename", None) == path:
+            return name
     name = f"mpl-{len(pdfmetrics.getRegisteredFontNames())}-{path.rsplit('/', 1)[-1].rsplit('.', 1)[0]}"
     pdfmetrics.registerFont(TTFont(name, path))
     return name
