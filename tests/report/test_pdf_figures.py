@@ -70,3 +70,44 @@ def test_the_renderer_draws_every_kind_of_mark(tmp_path):
     assert re.search(r"W n", stream), "no clipping"
     assert re.search(r" c\n", stream), "no curve (the circle, the marker)"
     assert "/GS" in stream or "gs" in stream, "no transparency state (alpha 0.5)"
+
+
+def test_an_html_figure_is_laid_out_and_placed_as_savefig_places_it():
+    """The HTML's figures are drawn once (flyopt.report.plots.output.draw_vector) where savefig draws twice: every
+    text, mark and image stands where matplotlib's own savefig puts it, to the digit it writes, on each diagram of
+    slider-crank-press (the energy–mass diagram has a colour bar whose solids are rasterised, after which the
+    figure must be back at the vector dpi). Each is compared on its first draw, with the same diagram of a second
+    build (a second draw of a figure may move a text: matplotlib's layout starts from the last one). The figure
+    keeps its own dpi and canvas."""
+    import io
+
+    import matplotlib
+
+    from flyopt.cli.report import collect
+    from flyopt.report.builder import build
+    from flyopt.report.document import Figure
+    from flyopt.report.html import svg_of
+
+    inputs = collect(PROBLEMS / "slider-crank-press.toml")
+    ours, theirs = build(inputs, "engineering"), build(inputs, "engineering")
+    try:
+        pairs = [
+            (a.figure, b.figure)
+            for x, y in zip(ours.sections, theirs.sections)
+            for a, b in zip(x.blocks, y.blocks)
+            if isinstance(a, Figure) and a.figure is not None
+        ]
+        assert len(pairs) == 7
+        place = re.compile(r'translate\([^)]*\)| x="[^"]*" y="[^"]*"| width="[^"]*" height="[^"]*"')
+        for figure, twin in pairs:
+            canvas, dpi = figure.canvas, figure.dpi
+            drawn = place.findall(svg_of(figure, "p"))
+            assert (figure.canvas, figure.dpi) == (canvas, dpi)
+            buffer = io.StringIO()
+            with matplotlib.rc_context({"svg.fonttype": "path"}):
+                twin.savefig(buffer, format="svg")
+            assert drawn == place.findall(buffer.getvalue())
+            assert len(drawn) > 50
+    finally:
+        ours.close()
+        theirs.close()

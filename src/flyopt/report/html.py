@@ -217,14 +217,17 @@ def svg_of(figure: MplFigure, prefix: str) -> str:
 
     buffer = io.StringIO()
     width, height = figure.get_size_inches()
+    dpi = figure.dpi  # as matplotlib's print_svg: a rasterised part (a colour bar's solids) at the figure's own dpi
+    made: list[MixedModeRenderer] = []
+
+    def renderer() -> MixedModeRenderer:
+        svg = RendererSVG(width * VECTOR_DPI, height * VECTOR_DPI, buffer, image_dpi=dpi, metadata={"Date": None})
+        made.append(MixedModeRenderer(figure, width, height, dpi, svg))
+        return made[-1]
+
     with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": prefix}):
-        # as matplotlib's print_svg: a raster part (none is drawn today) at the figure's own dpi
-        svg = RendererSVG(
-            width * VECTOR_DPI, height * VECTOR_DPI, buffer, image_dpi=figure.dpi, metadata={"Date": None}
-        )
-        renderer = MixedModeRenderer(figure, width, height, figure.dpi, svg)
         draw_vector(figure, renderer)
-        renderer.finalize()
+        made[0].finalize()
     text = buffer.getvalue()
     text = text[text.index("<svg") :]
     text = re.sub(r"<metadata>.*?</metadata>\s*", "", text, flags=re.S)

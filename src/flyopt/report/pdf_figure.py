@@ -48,7 +48,7 @@ def draw(figure: Figure, canvas: Canvas, x: float, y: float, scale: float) -> No
     canvas.translate(x, y)
     canvas.scale(scale, scale)
     try:
-        draw_vector(figure, CanvasRenderer(canvas, float(width), float(height)))
+        draw_vector(figure, lambda: CanvasRenderer(canvas, float(width), float(height)))
     finally:
         canvas.restoreState()
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -67,29 +68,35 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
 VECTOR_DPI = 72.0
 
 
-def draw_vector(figure: Figure, renderer: RendererBase) -> None:
-    """Draw ``figure`` once with a vector ``renderer`` (sized in points), at :data:`VECTOR_DPI`.
+def draw_vector(figure: Figure, make_renderer: Callable[[], RendererBase]) -> None:
+    """Draw ``figure`` once with the vector renderer ``make_renderer()`` (sized in points), at :data:`VECTOR_DPI`.
 
-    The figure's layout engine (constrained layout) runs within this one draw and
-    measures the texts with ``renderer`` itself, as ``savefig`` lays a figure out
-    with the renderer of its format; but ``savefig`` lays it out in a draw of its
-    own first and then draws it again, with a second renderer, so every text is
-    measured twice. The figure's dpi and canvas are its own again afterwards; its
-    texts are made drawable by its class (:func:`~flyopt.report.plots.standard.figure_class`).
+    The renderer is made once the figure is at :data:`VECTOR_DPI` (matplotlib's
+    mixed-mode renderer takes the figure's dpi as the one to return to after a
+    rasterised artist). The figure's layout engine (constrained layout) runs
+    within this one draw and measures the texts with that renderer, as
+    ``savefig`` lays a figure out with the renderer of its format; but
+    ``savefig`` lays it out in a draw of its own first and then draws it again,
+    with a second renderer, so every text is measured twice. The figure's dpi
+    and canvas are its own again afterwards; its texts are made drawable by its
+    class (:func:`~flyopt.report.plots.standard.figure_class`).
     """
     from matplotlib.backend_bases import FigureCanvasBase
 
     class Measuring(FigureCanvasBase):
         """The canvas the layout engine asks for a renderer while the figure is drawn."""
 
-        def get_renderer(self) -> RendererBase:
-            return renderer
+        renderer: RendererBase | None = None
+
+        def get_renderer(self) -> RendererBase | None:
+            return self.renderer
 
     canvas, dpi = figure.canvas, figure.dpi
+    measuring = Measuring(figure)  # the figure's canvas until the finally
     try:
-        Measuring(figure)  # the figure's canvas until the finally
         figure.dpi = VECTOR_DPI
-        figure.draw(renderer)
+        measuring.renderer = make_renderer()
+        figure.draw(measuring.renderer)
     finally:
         figure.dpi = dpi
         figure.set_canvas(canvas)
