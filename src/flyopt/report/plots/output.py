@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from flyopt.errors import SceneError
 from flyopt.report.plots import standard
@@ -13,6 +13,7 @@ from flyopt.report.plots import standard
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.backend_bases import RendererBase
+    from matplotlib.backends.backend_mixed import MixedModeRenderer
     from matplotlib.figure import Figure
 
 #: Image formats :func:`save` writes, by the suffix of the file.
@@ -68,7 +69,7 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
 VECTOR_DPI = 72.0
 
 
-def draw_vector(figure: Figure, make_renderer: Callable[[], RendererBase]) -> None:
+def draw_vector(figure: Figure, make_renderer: Callable[[], RendererBase | MixedModeRenderer]) -> None:
     """Draw ``figure`` once with the vector renderer ``make_renderer()`` (sized in points), at :data:`VECTOR_DPI`.
 
     The renderer is made once the figure is at :data:`VECTOR_DPI` (matplotlib's
@@ -86,9 +87,9 @@ def draw_vector(figure: Figure, make_renderer: Callable[[], RendererBase]) -> No
     class Measuring(FigureCanvasBase):
         """The canvas the layout engine asks for a renderer while the figure is drawn."""
 
-        renderer: RendererBase | None = None
+        renderer: RendererBase | MixedModeRenderer | None = None
 
-        def get_renderer(self) -> RendererBase | None:
+        def get_renderer(self) -> RendererBase | MixedModeRenderer | None:
             return self.renderer
 
     canvas, dpi = figure.canvas, figure.dpi
@@ -96,7 +97,7 @@ def draw_vector(figure: Figure, make_renderer: Callable[[], RendererBase]) -> No
     try:
         figure.dpi = VECTOR_DPI
         measuring.renderer = make_renderer()
-        figure.draw(measuring.renderer)
+        figure.draw(cast("RendererBase", measuring.renderer))  # a MixedModeRenderer passes each call on
     finally:
         figure.dpi = dpi
         figure.set_canvas(canvas)
