@@ -12,13 +12,17 @@ medians over the repeats with their ranges. Beside them, in the same run:
   (collect: the one solve; build: the document and its figures drawn; write: the figures rendered
   and the file written), CPU time.
 
+With ``--baseline SRC`` (a ``src`` folder of another flyopt, for example the commit before
+issue 26's changes, checked out with ``git worktree`` or ``git archive``) the reports are run with that
+package too, in the same repeats: "before" and "after" measured side by side.
+
 Targets (issue 26): the report of problems/slider-crank-press.toml in at most 1.5 s wall as HTML
 and 2.5 s as PDF. Pinned to one core when the OS allows it (the child processes inherit it).
 Writes ``benchmarks/results/report.md`` and ``report.csv`` beside this script.
 
 Usage::
 
-    python benchmarks/bench_report.py [--repeat 7] [--quick]
+    python benchmarks/bench_report.py [--repeat 7] [--quick] [--baseline OTHER/src]
 """
 
 import argparse
@@ -63,11 +67,11 @@ def load():
     return " ".join(f"{x:.2f}" for x in os.getloadavg()) if hasattr(os, "getloadavg") else "unknown"
 
 
-def run_once(command):
-    """(wall, CPU of the child) [s] of one run of ``command``; it must succeed."""
+def run_once(command, env=None):
+    """(wall, CPU of the child) [s] of one run of ``command`` (in ``env``, default this one's); it must succeed."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    done = subprocess.run(command, capture_output=True, cwd=ROOT)
+    done = subprocess.run(command, capture_output=True, cwd=ROOT, env=env)
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode not in (0, 3, 4):
@@ -75,29 +79,42 @@ def run_once(command):
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def cases(folder):
-    """(name, scene, setting, command) of every process timed."""
+def cases(folder, baseline=None):
+    """(name, scene, setting, command, env) of every process timed; the baseline's reports with its ``src`` first."""
     out = []
+    before = None
+    if baseline is not None:
+        before = dict(os.environ, PYTHONPATH=os.pathsep.join([str(baseline), os.environ.get("PYTHONPATH", "")]))
     for scene in (TARGET_SCENE, OTHER_SCENE):
         path = str(PROBLEMS / f"{scene}.toml")
         for kind in ("html", "pdf"):
-            out.append(("report", scene, kind, [*FLYOPT, "report", path, "-o", str(folder / f"{scene}.{kind}")]))
-        out.append(("solve --verify", scene, "floor", [*FLYOPT, "solve", "--verify", path]))
-    out.append(("import numpy", "-", "yardstick", [sys.executable, "-c", "import numpy"]))
+            out.append(("report", scene, kind, [*FLYOPT, "report", path, "-o", str(folder / f"{scene}.{kind}")], None))
+            if before is not None:
+                out.append(
+                    (
+                        "report (baseline)",
+                        scene,
+                        kind,
+                        [*FLYOPT, "report", path, "-o", str(folder / f"baseline-{scene}.{kind}")],
+                        before,
+                    )
+                )
+        out.append(("solve --verify", scene, "floor", [*FLYOPT, "solve", "--verify", path], None))
+    out.append(("import numpy", "-", "yardstick", [sys.executable, "-c", "import numpy"], None))
     return out
 
 
-def bench_commands(repeat, folder):
+def bench_commands(repeat, folder, baseline=None):
     """Rows of the whole-process times: median, min and max of wall and CPU time over the repeats."""
-    todo = cases(folder)
-    for _name, _scene, _setting, command in todo:  # a warm-up of each: the OS's file cache, the .pyc files
-        run_once(command)
+    todo = cases(folder, baseline)
+    for _name, _scene, _setting, command, env in todo:  # a warm-up of each: the OS's file cache, the .pyc files
+        run_once(command, env)
     times = {k: [] for k in range(len(todo))}
     for _ in range(repeat):
-        for k, (_name, _scene, _setting, command) in enumerate(todo):
-            times[k].append(run_once(command))
+        for k, (_name, _scene, _setting, command, env) in enumerate(todo):
+            times[k].append(run_once(command, env))
     rows = []
-    for k, (name, scene, setting, _command) in enumerate(todo):
+    for k, (name, scene, setting, _command, _env) in enumerate(todo):
         walls, cpus = [w for w, _c in times[k]], [c for _w, c in times[k]]
         rows.append(
             {
@@ -112,9 +129,18 @@ def bench_commands(repeat, folder):
             }
         )
     for row in rows:
-        if row["section"] == "report":
-            size = (folder / f"{row['case']}.{row['setting']}").stat().st_size
+        if row["section"].startswith("report"):
+            prefix = "baseline-" if "baseline" in row["section"] else ""
+            size = (folder / f"{prefix}{row['case']}.{row['setting']}").stat().st_size
             row["note"] = f"{size / 1024:.0f} kB"
+    after = {(r["case"], r["setting"]): r for r in rows if r["section"] == "report"}
+    for row in rows:
+        if row["section"] == "report (baseline)":
+            now = after[(row["case"], row["setting"])]
+            row["note"] += (
+                f"; now {row['wall_median_s'] / now['wall_median_s']:.2f}x faster in wall time, "
+                f"{row['cpu_median_s'] / now['cpu_median_s']:.2f}x in CPU time"
+            )
     return rows
 
 
@@ -161,12 +187,13 @@ def seconds(value):
     return "" if value == "" else f"{value:.3f} s"
 
 
-def summary(rows, header, repeat):
+def summary(rows, header, repeat, baseline=None):
     found = {(r["section"], r["case"], r["setting"]): r for r in rows}
+    command = f"python benchmarks/bench_report.py --repeat {repeat}" + (f" --baseline {baseline}" if baseline else "")
     lines = [
         "# flyopt report: speed",
         "",
-        f"Command: `python benchmarks/bench_report.py --repeat {repeat}`",
+        f"Command: `{command}`",
         "",
         header,
         "",
@@ -206,6 +233,9 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=7)
     parser.add_argument("--quick", action="store_true", help="3 repeats; writes nothing")
+    parser.add_argument(
+        "--baseline", type=Path, help="the src folder of another flyopt: its reports timed in the same repeats"
+    )
     args = parser.parse_args(argv)
     repeat = 3 if args.quick else args.repeat
     pinning = pin_one_core()
@@ -213,7 +243,7 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         print("bench_report: whole processes", file=sys.stderr, flush=True)
-        rows = bench_commands(repeat, folder)
+        rows = bench_commands(repeat, folder, args.baseline)
         print("bench_report: in-process phases", file=sys.stderr, flush=True)
         rows += bench_phases(repeat, folder)
     header = (
@@ -221,7 +251,7 @@ def main(argv=None):
         f"numpy {np.__version__}, flyopt {flyopt.__version__}. Load averages (1, 5, 15 min) at the start "
         f"{start_load}, at the end {load()}."
     )
-    text = summary(rows, header, repeat)
+    text = summary(rows, header, repeat, args.baseline)
     if not args.quick:
         RESULTS.mkdir(exist_ok=True)
         (RESULTS / "report.md").write_text(text, encoding="utf-8")
