@@ -625,8 +625,10 @@ def test_energy_mass_shows_the_origin_and_its_tangent_points(drawn):
     (left, right), (bottom, top) = overview.get_xlim(), overview.get_ylim()
     assert left < x0 < right and bottom < y0 < top
     (curve,) = _gid(ax, "curve")
-    segments = np.asarray(curve.get_segments())
-    j, de = segments[:, 0, 0], segments[:, 0, 1] * 1e3
+    pieces = curve.get_segments()  # polylines, each coloured by its span of φ, each starting where the last ended
+    assert all(np.array_equal(a[-1], b[0]) for a, b in zip(pieces[:-1], pieces[1:]))
+    drawn_points = np.concatenate([pieces[0][:1]] + [piece[1:] for piece in pieces])
+    j, de = drawn_points[:, 0], drawn_points[:, 1] * 1e3
     for w, gid, pick in ((em.omega_max, "tangent_max", np.argmin), (em.omega_min, "tangent_min", np.argmax)):
         k = pick(0.5 * w**2 * j - de)
         (point,) = _gid(ax, gid)

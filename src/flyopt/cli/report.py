@@ -7,9 +7,12 @@
 
 The scene is solved once, as ``flyopt solve --verify`` solves it
 (:func:`flyopt.pipeline.solve` with ``verify_design=True``) and with every
-extra the report shows (``extras=COMPLETE``: the model comparison, the
-start-up, the speed over the cycle, J_F at other δ, the energy–mass analysis,
-an engine's textbook flywheel, the stress profile); :func:`collect` then only
+extra the report shows (:func:`report_extras`: what ``flyopt solve`` shows,
+the model comparison, the start-up, an engine's textbook flywheel, and what
+its diagrams draw, the speed over the cycle, J_F at other δ, the energy–mass
+analysis, the stress profile; not the simulation with the required flywheel,
+which only ``flyopt plot --what speed --verify`` draws: the report's
+simulation is the verification of the design); :func:`collect` then only
 reads them out of the solution (with the provenance), and
 :mod:`flyopt.report.builder` builds the report from them without running a
 model. The suffix of ``-o`` picks the format; the file is
@@ -155,12 +158,12 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
 
     from flyopt.io.scene import load
     from flyopt.io.toml_file import read_toml
-    from flyopt.pipeline import COMPLETE, solve
+    from flyopt.pipeline import solve
     from flyopt.report.builder import ReportInputs
 
     data = read_toml(path)
     scene = load(path, data)
-    solution = solve(scene, verify_design=True, extras=COMPLETE)  # the one solve: what follows only reads
+    solution = solve(scene, verify_design=True, extras=report_extras())  # the one solve: what follows only reads
     inputs = ReportInputs(
         scene_file=str(path),
         scene_text=Path(path).read_text(encoding="utf-8"),
@@ -174,6 +177,19 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
     _stress(inputs)
     inputs.provenance = provenance(scene, command, pdf, data_files(data))
     return inputs
+
+
+def report_extras() -> tuple[str, ...]:
+    """The extras of :func:`flyopt.pipeline.solve` the report reads: what ``flyopt solve`` shows
+    (:data:`flyopt.pipeline.SHOWN`) and what its diagrams, every one of :data:`flyopt.report.plots.PLOTS`,
+    draw without ``--verify`` (:func:`flyopt.cli.plot.needs`). A reader that reads any other extra gets
+    :class:`flyopt.analysis.NotComputed`, so that nothing is computed that the report does not show (the
+    simulation with the required flywheel cost slider-crank-press half of its solve, motor-press a quarter)."""
+    from flyopt.cli.plot import needs
+    from flyopt.pipeline import SHOWN
+    from flyopt.report.plots import PLOTS
+
+    return tuple(dict.fromkeys((*SHOWN, *needs(PLOTS)[1])))
 
 
 def data_files(data: Any, where: str = "") -> list[tuple[str, str]]:

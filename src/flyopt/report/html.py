@@ -205,13 +205,29 @@ def svg_of(figure: MplFigure, prefix: str) -> str:
 
     The XML declaration, the DOCTYPE (which names an external DTD) and the
     metadata block are left out; text is drawn as paths (matplotlib's
-    default ``svg.fonttype``), so the figure needs no font.
+    default ``svg.fonttype``), so the figure needs no font. The figure is drawn
+    once, by matplotlib's SVG renderer (:func:`~flyopt.report.plots.output.draw_vector`:
+    ``savefig`` would draw it twice, once to lay it out).
     """
     import matplotlib
+    from matplotlib.backends.backend_mixed import MixedModeRenderer
+    from matplotlib.backends.backend_svg import RendererSVG
+
+    from flyopt.report.plots.output import VECTOR_DPI, draw_vector
 
     buffer = io.StringIO()
+    width, height = figure.get_size_inches()
+    dpi = figure.dpi  # as matplotlib's print_svg: a rasterised part (a colour bar's solids) at the figure's own dpi
+    made: list[MixedModeRenderer] = []
+
+    def renderer() -> MixedModeRenderer:
+        svg = RendererSVG(width * VECTOR_DPI, height * VECTOR_DPI, buffer, image_dpi=dpi, metadata={"Date": None})
+        made.append(MixedModeRenderer(figure, width, height, dpi, svg))
+        return made[-1]
+
     with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": prefix}):
-        figure.savefig(buffer, format="svg", metadata={"Date": None})  # made drawable by its class
+        draw_vector(figure, renderer)
+        made[0].finalize()
     text = buffer.getvalue()
     text = text[text.index("<svg") :]
     text = re.sub(r"<metadata>.*?</metadata>\s*", "", text, flags=re.S)

@@ -3,7 +3,7 @@
 :func:`render` lays a :class:`flyopt.report.document.Document` out on A4
 pages with reportlab's platypus: the title block, numbered sections, tables
 that repeat their header across pages, equations in shaded boxes, every
-diagram as a 200 dpi image, and a footer with the scene's title and the page
+diagram drawn as vectors onto its page (:mod:`flyopt.report.pdf_figure`), and a footer with the scene's title and the page
 number. The text is set in DejaVu Sans, the font matplotlib ships (it has
 the Greek letters, superscripts and the minus sign the engineering needs),
 embedded in the file. reportlab is imported here only, when a PDF is asked
@@ -20,9 +20,6 @@ from xml.sax.saxutils import escape
 from flyopt.report.characters import visible
 from flyopt.report.document import Code, Document, Equation, Facts, Figure, Paragraph, Quantity, Table, plain
 from flyopt.report.plots import standard
-
-#: Resolution of the diagrams in the PDF [dpi].
-DPI = 200
 
 _FONT, _BOLD, _ITALIC, _MONO = "FlyoptSans", "FlyoptSans-Bold", "FlyoptSans-Oblique", "FlyoptMono"
 _FILES = {
@@ -348,19 +345,18 @@ SHRINK = 0.72
 
 
 def _figure(figure, caption, width, height):
-    """A matplotlib figure as a PNG flowable with its caption below, kept together.
+    """A matplotlib figure as a vector flowable with its caption below, kept together.
 
     Scaled to fit ``width`` x ``height`` [pt] and never enlarged; where the rest
     of a page holds at least :data:`SHRINK` of that size the diagram shrinks to
-    fit it, so that a page is not left half empty for want of a few points.
+    fit it, so that a page is not left half empty for want of a few points. The
+    figure is drawn onto the page itself (:func:`flyopt.report.pdf_figure.draw`,
+    paths and text, no image), once, when reportlab places it.
     """
-    from reportlab.lib.utils import ImageReader
     from reportlab.platypus import Flowable
 
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=DPI)  # made drawable by its class
-    buffer.seek(0)
-    image = ImageReader(buffer)
+    from flyopt.report.pdf_figure import draw as draw_figure
+
     w, h = figure.get_size_inches() * 72.0
     scale = min(1.0, width / w, height / h)
 
@@ -377,8 +373,8 @@ def _figure(figure, caption, width, height):
             return []  # a diagram is never cut: it goes to the next page whole
 
         def draw(self):
-            shown_w, shown_h = w * self.scale, h * self.scale
-            self.canv.drawImage(image, (self.width - shown_w) / 2, self.caption_height + 4, shown_w, shown_h)
+            shown_w = w * self.scale
+            draw_figure(figure, self.canv, (self.width - shown_w) / 2, self.caption_height + 4, self.scale)
             caption.drawOn(self.canv, 0, 0)
 
     return FigureFlowable()

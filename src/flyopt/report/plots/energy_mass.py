@@ -41,6 +41,10 @@ def check_energy_mass(analysis: Analysis) -> None:
         )
 
 
+#: Colour steps of the energy–mass curve over the cycle (one a degree of a 360° cycle).
+COLOURS = 360
+
+
 def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
     """Wittenbauer's energy–mass diagram: ΔE against J_e over the cycle, with the two tangents.
 
@@ -112,9 +116,13 @@ def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, u
         (em.omega_min, em.phi_omega_min, standard.DEFICIT, "min"),
     )
     points = np.column_stack([sj(j), se(de)])
-    segments = np.stack([points[:-1], points[1:]], axis=1)
-    coloured = LineCollection(list(segments), cmap="twilight", lw=2.2, gid="curve")  # cyclic: φ = Φ meets φ = 0
-    coloured.set_array(standard.show(0.5 * (phi[:-1] + phi[1:]), "angle", units))
+    # the curve coloured by φ in at most COLOURS pieces, each a polyline through every computed point of its
+    # span (the shape is all the points; the colour steps by 1/COLOURS of the cycle, finer than the eye or the
+    # colour map): one path per piece, not one per pair of points (1441 angles and the knots)
+    ends = np.unique(np.linspace(0, len(phi) - 1, min(COLOURS, len(phi) - 1) + 1).round().astype(int))
+    pieces = [points[a : b + 1] for a, b in zip(ends[:-1], ends[1:])]
+    coloured = LineCollection(pieces, cmap="twilight", lw=2.2, gid="curve")  # cyclic: φ = Φ meets φ = 0
+    coloured.set_array(standard.show(0.5 * (phi[ends[:-1]] + phi[ends[1:]]), "angle", units))
     ax.add_collection(coloured)
     coloured.set_clim(0.0, float(standard.show(scene.cycle_angle, "angle", units)))
     bar = ax.figure.colorbar(coloured, ax=ax, pad=0.01)

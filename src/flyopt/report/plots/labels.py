@@ -58,7 +58,8 @@ def place_area_labels(
     """
     from matplotlib.transforms import Bbox
 
-    standard.figure_of(ax).canvas.draw()  # lay the figure out (made drawable by its class): the extents drawn
+    # lay the figure out (made drawable by its class) for the extents, without rendering it
+    standard.figure_of(ax).draw_without_rendering()
     lo_px, hi_px = _to_pixels(ax, x, lower), _to_pixels(ax, x, upper)
     px = lo_px[:, 0]
     axes_box = ax.get_window_extent()

@@ -3,14 +3,18 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from flyopt.errors import SceneError
 from flyopt.report.plots import standard
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.backend_bases import RendererBase
+    from matplotlib.backends.backend_mixed import MixedModeRenderer
+    from matplotlib.figure import Figure
 
 #: Image formats :func:`save` writes, by the suffix of the file.
 FORMATS = ("png", "svg", "pdf")
@@ -59,3 +63,41 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
     finally:
         standard.pyplot().close(fig)
     return path
+
+
+#: Resolution a vector renderer draws a figure at: one pixel a point, as matplotlib's PDF and SVG backends.
+VECTOR_DPI = 72.0
+
+
+def draw_vector(figure: Figure, make_renderer: Callable[[], RendererBase | MixedModeRenderer]) -> None:
+    """Draw ``figure`` once with the vector renderer ``make_renderer()`` (sized in points), at :data:`VECTOR_DPI`.
+
+    The renderer is made once the figure is at :data:`VECTOR_DPI` (matplotlib's
+    mixed-mode renderer takes the figure's dpi as the one to return to after a
+    rasterised artist). The figure's layout engine (constrained layout) runs
+    within this one draw and measures the texts with that renderer, as
+    ``savefig`` lays a figure out with the renderer of its format; but
+    ``savefig`` lays it out in a draw of its own first and then draws it again,
+    with a second renderer, so every text is measured twice. The figure's dpi
+    and canvas are its own again afterwards; its texts are made drawable by its
+    class (:func:`~flyopt.report.plots.standard.figure_class`).
+    """
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    class Measuring(FigureCanvasBase):
+        """The canvas the layout engine asks for a renderer while the figure is drawn."""
+
+        renderer: RendererBase | MixedModeRenderer | None = None
+
+        def get_renderer(self) -> RendererBase | MixedModeRenderer | None:
+            return self.renderer
+
+    canvas, dpi = figure.canvas, figure.dpi
+    measuring = Measuring(figure)  # the figure's canvas until the finally
+    try:
+        figure.dpi = VECTOR_DPI
+        measuring.renderer = make_renderer()
+        figure.draw(cast("RendererBase", measuring.renderer))  # a MixedModeRenderer passes each call on
+    finally:
+        figure.dpi = dpi
+        figure.set_canvas(canvas)

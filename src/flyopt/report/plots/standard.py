@@ -6,7 +6,7 @@ import functools
 import os
 import re
 import textwrap
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from types import ModuleType
 from typing import TYPE_CHECKING, Any, overload
 
@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from matplotlib.font_manager import FontProperties
     from matplotlib.legend import Legend
+    from matplotlib.text import Text
 
 SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
 
@@ -109,16 +110,30 @@ def make_drawable(figure: Figure) -> Figure:
     shaft, a material) reaches the figure drawable, whichever way it came in; the text is changed
     only where it must be (a second call changes nothing).
     """
-    from matplotlib.text import Text
-
-    for artist in figure.findobj(Text):
-        assert isinstance(artist, Text)
+    for artist in _texts(figure):
         text = artist.get_text()
         if text:
             shown = drawable(text, font_file(artist.get_fontproperties()))
             if shown != text:
                 artist.set_text(shown)
     return figure
+
+
+def _texts(artist: Artist) -> Iterator[Text]:
+    """Every Text of ``artist`` and its children, but the tick labels of an axis.
+
+    A tick label is written by the axis' formatter as the figure is drawn, after
+    :func:`make_drawable` ran, whatever it held before; the ticks are not asked
+    for, so that they are not made (and their locations found) twice a draw.
+    """
+    from matplotlib.axis import Axis
+    from matplotlib.text import Text
+
+    if isinstance(artist, Text):
+        yield artist
+    children = [artist.label, artist.offsetText] if isinstance(artist, Axis) else artist.get_children()
+    for child in children:
+        yield from _texts(child)
 
 
 # --------------------------------------------------------------------------

@@ -1,0 +1,267 @@
+"""Benchmark of ``flyopt report`` (issue 26): the whole command, HTML and PDF, wall and CPU time.
+
+Each case runs the command as a user does (``python -m flyopt report SCENE -o FILE``, a new
+process: the interpreter's start, the imports, the one solve, the figures, the writing), the
+cases of one repeat one after another, so that the host's load hits all alike; the figures are
+medians over the repeats with their ranges. Beside them, in the same run:
+
+* ``flyopt solve --verify`` of the same scene, the floor a report cannot go below (the same solve,
+  without the report's extras, its figures and its writing);
+* ``python -c "import numpy"``, the yardstick of the interpreter's start;
+* the report of slider-crank-press in this process after a warm-up, split into its phases
+  (collect: the one solve; build: the document and its figures drawn; write: the figures rendered
+  and the file written), CPU time.
+
+With ``--baseline SRC`` (a ``src`` folder of another flyopt, for example the commit before
+issue 26's changes, checked out with ``git worktree`` or ``git archive``) the reports are run with that
+package too, in the same repeats: "before" and "after" measured side by side.
+
+Targets (issue 26): the report of problems/slider-crank-press.toml in at most 1.5 s wall as HTML
+and 2.5 s as PDF. Pinned to one core when the OS allows it (the child processes inherit it).
+Writes ``benchmarks/results/report.md`` and ``report.csv`` beside this script.
+
+Usage::
+
+    python benchmarks/bench_report.py [--repeat 7] [--quick] [--baseline OTHER/src]
+"""
+
+import argparse
+import csv
+import os
+import platform
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+import flyopt
+
+ROOT = Path(__file__).resolve().parent.parent
+PROBLEMS = ROOT / "problems"
+RESULTS = Path(__file__).resolve().parent / "results"
+FLYOPT = [sys.executable, "-m", "flyopt"]
+
+#: Issue 26's targets [s, wall] for slider-crank-press.
+TARGETS = {"html": 1.5, "pdf": 2.5}
+TARGET_SCENE = "slider-crank-press"
+#: The other scene: the dynamic model, a motor on its curve (the heaviest solve of the shipped presses).
+OTHER_SCENE = "motor-press"
+
+
+def pin_one_core():
+    """Pin the process (and so its children) to one CPU; return a description of what was done."""
+    if hasattr(os, "sched_setaffinity"):
+        cpu = min(os.sched_getaffinity(0))
+        os.sched_setaffinity(0, {cpu})
+        return f"pinned to CPU {cpu} (os.sched_setaffinity)"
+    return "not pinned (os.sched_setaffinity unavailable)"
+
+
+def load():
+    """The host's load averages (1, 5, 15 min), as text."""
+    return " ".join(f"{x:.2f}" for x in os.getloadavg()) if hasattr(os, "getloadavg") else "unknown"
+
+
+def run_once(command, env=None):
+    """(wall, CPU of the child) [s] of one run of ``command`` (in ``env``, default this one's); it must succeed."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    done = subprocess.run(command, capture_output=True, cwd=ROOT, env=env)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if done.returncode not in (0, 3, 4):
+        raise RuntimeError(f"{' '.join(map(str, command))}: exit {done.returncode}\n{done.stderr.decode()}")
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def cases(folder, baseline=None):
+    """(name, scene, setting, command, env) of every process timed; the baseline's reports with its ``src`` first."""
+    out = []
+    before = None
+    if baseline is not None:
+        before = dict(os.environ, PYTHONPATH=os.pathsep.join([str(baseline), os.environ.get("PYTHONPATH", "")]))
+    for scene in (TARGET_SCENE, OTHER_SCENE):
+        path = str(PROBLEMS / f"{scene}.toml")
+        for kind in ("html", "pdf"):
+            out.append(("report", scene, kind, [*FLYOPT, "report", path, "-o", str(folder / f"{scene}.{kind}")], None))
+            if before is not None:
+                out.append(
+                    (
+                        "report (baseline)",
+                        scene,
+                        kind,
+                        [*FLYOPT, "report", path, "-o", str(folder / f"baseline-{scene}.{kind}")],
+                        before,
+                    )
+                )
+        out.append(("solve --verify", scene, "floor", [*FLYOPT, "solve", "--verify", path], None))
+    out.append(("import numpy", "-", "yardstick", [sys.executable, "-c", "import numpy"], None))
+    return out
+
+
+def bench_commands(repeat, folder, baseline=None):
+    """Rows of the whole-process times: median, min and max of wall and CPU time over the repeats."""
+    todo = cases(folder, baseline)
+    for _name, _scene, _setting, command, env in todo:  # a warm-up of each: the OS's file cache, the .pyc files
+        run_once(command, env)
+    times = {k: [] for k in range(len(todo))}
+    for _ in range(repeat):
+        for k, (_name, _scene, _setting, command, env) in enumerate(todo):
+            times[k].append(run_once(command, env))
+    rows = []
+    for k, (name, scene, setting, _command, _env) in enumerate(todo):
+        walls, cpus = [w for w, _c in times[k]], [c for _w, c in times[k]]
+        rows.append(
+            {
+                "section": name,
+                "case": scene,
+                "setting": setting,
+                "wall_median_s": statistics.median(walls),
+                "wall_min_s": min(walls),
+                "wall_max_s": max(walls),
+                "cpu_median_s": statistics.median(cpus),
+                "note": "",
+            }
+        )
+    for row in rows:
+        if row["section"].startswith("report"):
+            prefix = "baseline-" if "baseline" in row["section"] else ""
+            size = (folder / f"{prefix}{row['case']}.{row['setting']}").stat().st_size
+            row["note"] = f"{size / 1024:.0f} kB"
+    after = {(r["case"], r["setting"]): r for r in rows if r["section"] == "report"}
+    for row in rows:
+        if row["section"] == "report (baseline)":
+            now = after[(row["case"], row["setting"])]
+            row["note"] += (
+                f"; now {row['wall_median_s'] / now['wall_median_s']:.2f}x faster in wall time, "
+                f"{row['cpu_median_s'] / now['cpu_median_s']:.2f}x in CPU time"
+            )
+    return rows
+
+
+def bench_phases(repeat, folder):
+    """Rows of the report of slider-crank-press in this process, by phase: CPU time, median of ``repeat``."""
+    from flyopt.cli import report
+    from flyopt.report.builder import build
+
+    path = PROBLEMS / f"{TARGET_SCENE}.toml"
+    rows = []
+    for kind in ("html", "pdf"):
+        phases = {"collect": [], "build": [], "write": []}
+        for k in range(repeat + 1):
+            t0 = time.process_time()
+            inputs = report.collect(path, "bench", pdf=kind == "pdf")
+            t1 = time.process_time()
+            document = build(inputs, "engineering", title_block=report._title_lines(inputs))
+            t2 = time.process_time()
+            try:
+                report.write(document, folder / f"phases.{kind}", kind)
+            finally:
+                document.close()
+            t3 = time.process_time()
+            if k:  # the first run is the warm-up: imports, the font cache
+                for name, value in (("collect", t1 - t0), ("build", t2 - t1), ("write", t3 - t2)):
+                    phases[name].append(value)
+        for name, values in phases.items():
+            rows.append(
+                {
+                    "section": "in process",
+                    "case": TARGET_SCENE,
+                    "setting": f"{kind}: {name}",
+                    "wall_median_s": "",
+                    "wall_min_s": "",
+                    "wall_max_s": "",
+                    "cpu_median_s": statistics.median(values),
+                    "note": f"CPU min {min(values):.3f} s, max {max(values):.3f} s",
+                }
+            )
+    return rows
+
+
+def seconds(value):
+    return "" if value == "" else f"{value:.3f} s"
+
+
+def summary(rows, header, repeat, baseline=None):
+    found = {(r["section"], r["case"], r["setting"]): r for r in rows}
+    command = f"python benchmarks/bench_report.py --repeat {repeat}" + (f" --baseline {baseline}" if baseline else "")
+    lines = [
+        "# flyopt report: speed",
+        "",
+        f"Command: `{command}`",
+        "",
+        header,
+        "",
+        "Whole processes (`python -m flyopt report SCENE -o FILE`, as a user runs it), the cases of one repeat "
+        "one after another; medians over the repeats with their ranges, CPU time of the process beside its wall "
+        "time. The host is shared: its load averages are given at the start and the end of the run.",
+        "",
+        "## Targets (issue 26)",
+        "",
+        "| target | status | measured (median, range) |",
+        "|---|---|---|",
+    ]
+    for kind, limit in TARGETS.items():
+        row = found[("report", TARGET_SCENE, kind)]
+        status = "met" if row["wall_median_s"] <= limit else "NOT met"
+        lines.append(
+            f"| flyopt report {TARGET_SCENE} -o x.{kind} <= {limit} s wall | {status} | "
+            f"{row['wall_median_s']:.3f} s ({row['wall_min_s']:.3f}–{row['wall_max_s']:.3f} s), "
+            f"CPU {row['cpu_median_s']:.3f} s |"
+        )
+    lines += [
+        "",
+        "## Every row",
+        "",
+        "| section | case | setting | wall median | wall min | wall max | CPU median | note |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        lines.append(
+            f"| {r['section']} | {r['case']} | {r['setting']} | {seconds(r['wall_median_s'])} | "
+            f"{seconds(r['wall_min_s'])} | {seconds(r['wall_max_s'])} | {seconds(r['cpu_median_s'])} | {r['note']} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=7)
+    parser.add_argument("--quick", action="store_true", help="3 repeats; writes nothing")
+    parser.add_argument(
+        "--baseline", type=Path, help="the src folder of another flyopt: its reports timed in the same repeats"
+    )
+    args = parser.parse_args(argv)
+    repeat = 3 if args.quick else args.repeat
+    pinning = pin_one_core()
+    start_load = load()
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        print("bench_report: whole processes", file=sys.stderr, flush=True)
+        rows = bench_commands(repeat, folder, args.baseline)
+        print("bench_report: in-process phases", file=sys.stderr, flush=True)
+        rows += bench_phases(repeat, folder)
+    header = (
+        f"Machine: {platform.platform()}, {os.cpu_count()} CPUs, {pinning}; Python {platform.python_version()}, "
+        f"numpy {np.__version__}, flyopt {flyopt.__version__}. Load averages (1, 5, 15 min) at the start "
+        f"{start_load}, at the end {load()}."
+    )
+    text = summary(rows, header, repeat, args.baseline)
+    if not args.quick:
+        RESULTS.mkdir(exist_ok=True)
+        (RESULTS / "report.md").write_text(text, encoding="utf-8")
+        with open(RESULTS / "report.csv", "w", newline="", encoding="utf-8") as f:
+            writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
