@@ -83,3 +83,10 @@ def test_the_watch_sees_an_import():
     """The driver does report a heavy import: a sweep imports pandas (a test that could not fail is none)."""
     found = imported("import flyopt.studies.sweep\n", watched=("pandas",))
     assert "pandas" in found
+
+
+def test_a_dynamic_solve_that_needs_no_root_search_imports_no_scipy_optimize():
+    """The one-solve of the variable-inertia press (CasADi) never needs scipy.optimize (~0.3 s to import):
+    periodic.py and startup.py import it only where Brent's method or a bounded minimum is called."""
+    found = imported(command("solve", PROBLEMS / "slider-crank-press.toml"))
+    assert "casadi" in found and "scipy.optimize" not in found, found

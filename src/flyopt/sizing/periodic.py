@@ -46,7 +46,6 @@ from dataclasses import dataclass, field
 from typing import Any, cast
 
 import numpy as np
-from scipy import optimize
 
 from flyopt.cycle.balance import BALANCE_TOLERANCE
 from flyopt.cycle.indicator import ExcessWork
@@ -415,6 +414,8 @@ def _periodic_angle_only(model, j_flywheel, omega_mean, j_ref):
         if mismatch(high) >= 0:
             break
         high = 2 * high + 1
+    from scipy import optimize  # scipy.optimize costs ~0.3 s to import: only where needed
+
     shift = optimize.brentq(mismatch, low, high, xtol=1e-15 * (e_ref / w_s + 1), rtol=4 * EPS, maxiter=500)
     return _finish(
         model,
@@ -636,6 +637,8 @@ def _periodic_energy(shoot, e0, ftol, monotone=lambda: False):
         j for j in range(1, len(ks) - 1) if finite[j] and values[j] >= values[j - 1] and values[j] >= values[j + 1]
     ]
     for j in sorted(peaks, key=lambda i: -values[i])[:3]:
+        from scipy import optimize  # scipy.optimize costs ~0.3 s to import: only where needed
+
         res = optimize.minimize_scalar(
             lambda k: -max(gain(k), -1e100),
             bounds=(ks[j] - 1, ks[j] + 1),

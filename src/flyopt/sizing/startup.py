@@ -12,7 +12,6 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
 
 from flyopt.cycle.numerics import hermite, hermite_extremes
 from flyopt.errors import SolverFailed
@@ -194,6 +193,8 @@ def _first_reach(phi, gap, slope):
         points = sorted([0.0, *crit, 1.0])
         for lower, upper in zip(points[:-1], points[1:]):
             if hermite(f0[i], f1[i], m0[i], m1[i], upper) >= 0:
+                from scipy import optimize  # scipy.optimize costs ~0.3 s to import: only where needed
+
                 s = optimize.brentq(
                     lambda t, i=i: hermite(f0[i], f1[i], m0[i], m1[i], t), lower, upper, xtol=1e-15, rtol=4 * EPS
                 )
