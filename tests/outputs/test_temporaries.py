@@ -247,3 +247,21 @@ def test_a_csv_and_its_sidecar_are_written_together(tmp_path):
     back = read_results(out)
     assert back.attrs["flyopt"]["note"] == "new" and len(back) == 2
     assert sorted(p.name for p in tmp_path.iterdir()) == ["study.csv", "study.csv.json"]
+
+
+def test_the_pdf_report_and_a_plot_are_written_into_the_handle_of_their_temporary(tmp_path, monkeypatch):
+    """The report's PDF and a saved plot go through write_atomically (the file it made, by its handle):
+    replace_atomically, which hands a writer the temporary's name to open again, is not used for them."""
+    import flyopt.outputs.files as files
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("written by the temporary's name")
+
+    monkeypatch.setattr(files, "replace_atomically", refuse)
+    from flyopt.cli.main import main
+
+    pdf = tmp_path / "report.pdf"
+    png = tmp_path / "torque.png"
+    assert main(["report", "problems/shear-press.toml", "-o", str(pdf), "-q"]) == 0
+    assert main(["plot", "problems/shear-press.toml", "--what", "turning_moment", "-o", str(png), "-q"]) == 0
+    assert pdf.read_bytes().startswith(b"%PDF") and png.read_bytes().startswith(b"\x89PNG")

@@ -108,9 +108,7 @@ def run_report(args: argparse.Namespace) -> int:
 
 def write(document: Document, path: str | os.PathLike[str], kind: str) -> None:
     """Render ``document`` as ``kind`` ("html" or "pdf") and write it to ``path`` atomically."""
-    from pathlib import Path
-
-    from flyopt.outputs.files import replace_atomically, write_text
+    from flyopt.outputs.files import write_atomically, write_text
 
     if kind == "html":
         from flyopt.report.html import render
@@ -128,11 +126,7 @@ def write(document: Document, path: str | os.PathLike[str], kind: str) -> None:
             "-o/--output", f"a PDF report needs reportlab ({err}); install it (pip install reportlab) or write .html"
         ) from None
 
-    def write_bytes(tmp):
-        with open(tmp, "wb") as handle:
-            handle.write(data)
-
-    replace_atomically(Path(path), write_bytes)
+    write_atomically(path, lambda handle: handle.write(data))  # the handle of the file it made, not a name
 
 
 def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) -> ReportInputs:

@@ -53,13 +53,14 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
         The folder cannot be written; the error names ``path``.
     """
     check_output(path)
-    from flyopt.outputs.files import replace_atomically
+    from flyopt.outputs.files import write_atomically
 
     path = Path(path)
     suffix = path.suffix.lower().lstrip(".")
     fig = standard.figure_of(ax)
     try:
-        replace_atomically(path, lambda tmp: fig.savefig(tmp, format=suffix, dpi=dpi))  # drawable: figure_class
+        # into the handle of the file made for it (never reopened by its name); drawable: figure_class
+        write_atomically(path, lambda handle: fig.savefig(handle, format=suffix, dpi=dpi))
     finally:
         standard.pyplot().close(fig)
     return path
