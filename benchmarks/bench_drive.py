@@ -78,6 +78,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     repeat = 2 if args.quick else args.repeat
     pinning = pin_one_core()
+    load_before = os.getloadavg()
 
     from flyopt import pipeline
     from flyopt.analysis import analyse
@@ -111,13 +112,15 @@ def main(argv=None):
         ("design_drive, CVODES search (CPU)", *spread(slow_times)),
     ]
     cpu = statistics.median(cpus)
+    load_after = os.getloadavg()
     lines = [
         "# Drive co-design benchmark",
         "",
         f"Command: `python benchmarks/bench_drive.py --repeat {args.repeat}`",
         "",
         f"Machine: {platform.platform()}, {os.cpu_count()} CPUs, {pinning}; Python {platform.python_version()}, "
-        f"numpy {np.__version__}. The host was shared (other jobs running): medians with [min, max].",
+        f"numpy {np.__version__}. Load average {load_before[0]:.2f} at the start, {load_after[0]:.2f} at the end (a shared "
+        "host): medians with [min, max].",
         "",
         "| what | median [s] | min | max |",
         "|---|---|---|---|",
