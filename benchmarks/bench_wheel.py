@@ -37,6 +37,7 @@ Usage::
 
 import argparse
 import csv
+import dataclasses
 import math
 import os
 import platform
@@ -186,26 +187,13 @@ def solver_of(structure, variant):
 
 
 def arguments(structure, problem, start=None):
-    """The nlpsol arguments wheel_nlp.solve passes, with an optional start (variable -> [m])."""
-    names = wheel_nlp.variables_of(structure)
-    lbx, ubx, _ = wheel_nlp.variable_bounds(structure, problem)
-    s = start or wheel_nlp.starting_wheel(structure, problem, names)
-    x0 = [min(max(math.log(s[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
-    base = wheel_nlp.starting_wheel(structure, problem, names)  # the scale of wheel_nlp.solve: the cold start's
-    scale = problem.density * problem.omega**2 * (base["d_outer"] / 2.0) ** 2
-    rows = _rows(structure)
-    lbg, ubg = wheel_nlp.row_bounds(structure, rows, problem)
-    values = {
-        "omega": problem.omega,
-        "density": problem.density,
-        "poisson": problem.poisson,
-        "torque": problem.torque,
-        "bore": problem.bore,
-        "stress_scale": scale,
-        "log_half_omega": math.log(problem.omega / 2.0),
-    }
-    p = [values[n] for n in wheel_nlp.PARAMETERS] + wheel_nlp.allowable_parameters(structure, problem.allowable, scale)
-    return {"x0": x0, "lbx": lbx, "ubx": ubx, "lbg": lbg, "ubg": ubg, "p": p}
+    """The nlpsol arguments wheel_nlp.solve passes (its stress scale: the cold start's), started at ``start``."""
+    cold = dataclasses.replace(problem, start=None)
+    args = wheel_nlp.solve_arguments(structure, _rows(structure), cold)[0]
+    if start is not None:
+        names = wheel_nlp.variables_of(structure)
+        args["x0"] = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, args["lbx"], args["ubx"])]
+    return args
 
 
 def _rows(structure):

@@ -128,24 +128,12 @@ class WheelNlp:
         self.jac = ca.Function("jac_g", [x, p], [ca.jacobian(g, x)])
         self.mass = ca.Function("mass", [x, p], [form.mass])
         self.row_names = form.row_names
-        lbx, ubx, _ = wheel_nlp.variable_bounds(s, problem)
-        self.lbx, self.ubx = np.array(lbx), np.array(ubx)
+        args, self.scale, self.allow = wheel_nlp.solve_arguments(s, self.row_names, problem)  # as flyopt solves it
+        self.lbx, self.ubx = np.array(args["lbx"]), np.array(args["ubx"])
+        self.x0 = np.array(args["x0"])
+        self.lbg, self.ubg = np.array(args["lbg"]), np.array(args["ubg"])
+        self.p = np.array(args["p"])
         start = problem.start or wheel_nlp.starting_wheel(s, problem, self.names)
-        self.x0 = np.clip([math.log(start[n]) for n in self.names], self.lbx, self.ubx)
-        self.scale = problem.density * problem.omega**2 * (start["d_outer"] / 2.0) ** 2
-        lbg, ubg = wheel_nlp.row_bounds(s, self.row_names, problem)
-        self.lbg, self.ubg = np.array(lbg), np.array(ubg)
-        values = {
-            "omega": problem.omega,
-            "density": problem.density,
-            "poisson": problem.poisson,
-            "torque": problem.torque,
-            "bore": problem.bore,
-            "stress_scale": self.scale,
-            "log_half_omega": math.log(problem.omega / 2.0),
-        }
-        self.allow = wheel_nlp.allowable_parameters(s, problem.allowable, self.scale)
-        self.p = np.array([values[n] for n in wheel_nlp.PARAMETERS] + self.allow)
         self.start = start
         if case.solution is not None:
             self.check_against(case.solution)

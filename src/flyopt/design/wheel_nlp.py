@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
@@ -472,6 +472,35 @@ def allowable_parameters(structure: WheelStructure, allowable: Mapping[str, floa
     return out
 
 
+def solve_arguments(
+    structure: WheelStructure, constraints: Sequence[str], problem: WheelProblem
+) -> tuple[dict[str, Any], float, list[float]]:
+    """(the nlpsol arguments x0, lbx, ubx, lbg, ubg, p of a wheel, its stress scale, its allowables' parameters).
+
+    The start is ``problem.start`` or the thin ring of :func:`starting_wheel`, clipped to the bounds; the
+    stress scale is ρ ω² (D/2)² of that start. :func:`solve` passes exactly these, and a benchmark that
+    solves the same NLP another way takes them from here.
+    """
+    names = variables_of(structure)
+    lbx, ubx, _ = variable_bounds(structure, problem)
+    start = problem.start or starting_wheel(structure, problem, names)
+    x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
+    scale = problem.density * problem.omega**2 * (start["d_outer"] / 2.0) ** 2
+    lbg, ubg = row_bounds(structure, constraints, problem)
+    allow = allowable_parameters(structure, problem.allowable, scale)
+    values = {
+        "omega": problem.omega,
+        "density": problem.density,
+        "poisson": problem.poisson,
+        "torque": problem.torque,
+        "bore": problem.bore,
+        "stress_scale": scale,
+        "log_half_omega": math.log(problem.omega / 2.0),
+    }
+    p = [values[n] for n in PARAMETERS] + allow
+    return {"x0": x0, "lbx": lbx, "ubx": ubx, "lbg": lbg, "ubg": ubg, "p": p}, scale, allow
+
+
 def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution:
     """Solve one combination's wheel NLP, its status checked.
 
@@ -497,24 +526,8 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         failure.status = "Infeasible_Problem_Detected"
         failure.combination = label
         raise failure
-    start = problem.start or starting_wheel(s, problem, names)
-    x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
-    length = start["d_outer"] / 2.0
-    scale = problem.density * problem.omega**2 * length**2
-    lbg, ubg = row_bounds(s, model.constraints, problem)
-    allow = allowable_parameters(s, problem.allowable, scale)
-    values = {
-        "omega": problem.omega,
-        "density": problem.density,
-        "poisson": problem.poisson,
-        "torque": problem.torque,
-        "bore": problem.bore,
-        "stress_scale": scale,
-        "log_half_omega": math.log(problem.omega / 2.0),
-    }
-    p = [values[n] for n in PARAMETERS] + allow
+    args, scale, allow = solve_arguments(s, model.constraints, problem)
     begin = time.perf_counter()
-    args = {"x0": x0, "lbx": lbx, "ubx": ubx, "lbg": lbg, "ubg": ubg, "p": p}
     sol, stats = _solve_fast(model.fast, args) if model.fast is not None else (None, {})
     solver = "sqpmethod" if sol is not None else "ipopt"
     if sol is None:  # IPOPT: the default, and where sqpmethod did not converge
