@@ -32,6 +32,7 @@ from pathlib import Path
 
 import casadi as ca
 import numpy as np
+from common import pin_one_core
 
 import flyopt
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
@@ -39,15 +40,6 @@ from flyopt.design.materials import builtin_materials
 from flyopt.design.nlp import ModelStructure, clear_model_cache, get_model
 
 TARGET_MS = 30.0
-
-
-def pin_one_core():
-    """Pin the process to one CPU; return a description of what was done."""
-    if hasattr(os, "sched_setaffinity"):
-        cpu = min(os.sched_getaffinity(0))
-        os.sched_setaffinity(0, {cpu})
-        return f"pinned to CPU {cpu} (os.sched_setaffinity)"
-    return "not pinned (os.sched_setaffinity unavailable)"
 
 
 def random_scenes(count, seed):

@@ -29,19 +29,12 @@ import time
 from pathlib import Path
 
 import numpy as np
+from common import pin_one_core
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENE = ROOT / "problems" / "press-drive.toml"
 RESULTS = Path(__file__).resolve().parent / "results"
 TARGET_CPU = 1.0  # s, the whole solve
-
-
-def pin_one_core():
-    if hasattr(os, "sched_setaffinity"):
-        cpu = min(os.sched_getaffinity(0))
-        os.sched_setaffinity(0, {cpu})
-        return f"pinned to CPU {cpu} (os.sched_setaffinity)"
-    return "not pinned"
 
 
 def child_times(repeat):

@@ -38,6 +38,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from common import load_average, pin_one_core
 
 import flyopt
 
@@ -51,20 +52,6 @@ TARGETS = {"html": 1.5, "pdf": 2.5}
 TARGET_SCENE = "slider-crank-press"
 #: The other scene: the dynamic model, a motor on its curve (the heaviest solve of the shipped presses).
 OTHER_SCENE = "motor-press"
-
-
-def pin_one_core():
-    """Pin the process (and so its children) to one CPU; return a description of what was done."""
-    if hasattr(os, "sched_setaffinity"):
-        cpu = min(os.sched_getaffinity(0))
-        os.sched_setaffinity(0, {cpu})
-        return f"pinned to CPU {cpu} (os.sched_setaffinity)"
-    return "not pinned (os.sched_setaffinity unavailable)"
-
-
-def load():
-    """The host's load averages (1, 5, 15 min), as text."""
-    return " ".join(f"{x:.2f}" for x in os.getloadavg()) if hasattr(os, "getloadavg") else "unknown"
 
 
 def run_once(command, env=None):
@@ -239,7 +226,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     repeat = 3 if args.quick else args.repeat
     pinning = pin_one_core()
-    start_load = load()
+    start_load = load_average()
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         print("bench_report: whole processes", file=sys.stderr, flush=True)
@@ -249,7 +236,7 @@ def main(argv=None):
     header = (
         f"Machine: {platform.platform()}, {os.cpu_count()} CPUs, {pinning}; Python {platform.python_version()}, "
         f"numpy {np.__version__}, flyopt {flyopt.__version__}. Load averages (1, 5, 15 min) at the start "
-        f"{start_load}, at the end {load()}."
+        f"{start_load}, at the end {load_average()}."
     )
     text = summary(rows, header, repeat, args.baseline)
     if not args.quick:

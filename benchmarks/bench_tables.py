@@ -40,6 +40,7 @@ from pathlib import Path
 from unittest import mock
 
 import numpy as np
+from common import load_average, pin_one_core
 
 import flyopt
 from flyopt.io import compiled_reader, csv_table, toml_file
@@ -66,19 +67,6 @@ unit = "N*m"
 angle_unit = "deg"
 {points}
 """
-
-
-def pin_one_core():
-    """Pin the process to one CPU; return a description of what was done."""
-    if hasattr(os, "sched_setaffinity"):
-        cpu = min(os.sched_getaffinity(0))
-        os.sched_setaffinity(0, {cpu})
-        return f"pinned to CPU {cpu} (os.sched_setaffinity)"
-    return "not pinned (os.sched_setaffinity unavailable)"
-
-
-def load_average():
-    return "/".join(f"{x:.2f}" for x in os.getloadavg()) if hasattr(os, "getloadavg") else "unknown"
 
 
 def timed(call, repeat, warm=1):
@@ -250,7 +238,7 @@ def main(argv=None):
     pinned = pin_one_core()
     import pyarrow
 
-    before = load_average()
+    before = load_average("/")
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
@@ -262,7 +250,7 @@ def main(argv=None):
     header = (
         f"Machine: {platform.platform()}, {platform.machine()}, {os.cpu_count()} CPUs, {pinned}; "
         f"Python {platform.python_version()}, numpy {np.__version__}, pyarrow {pyarrow.__version__}. "
-        f"Load average (1/5/15 min) {before} before the run, {load_average()} after. "
+        f"Load average (1/5/15 min) {before} before the run, {load_average('/')} after. "
         f"Compiled reader from {compiled_reader.COMPILED_READER_BYTES:,} bytes."
     )
     text = summary(results, header)

@@ -49,6 +49,7 @@ from pathlib import Path
 
 import casadi as ca
 import numpy as np
+from common import pin_one_core
 
 import flyopt
 from flyopt.design import wheel_nlp
@@ -75,15 +76,6 @@ STRUCTURES = (
     ("rim_arms", True, 6),
     ("rim_arms", True, 8),
 )
-
-
-def pin_one_core():
-    """Pin the process to one CPU; return a description of what was done."""
-    if hasattr(os, "sched_setaffinity"):
-        cpu = min(os.sched_getaffinity(0))
-        os.sched_setaffinity(0, {cpu})
-        return f"pinned to CPU {cpu} (os.sched_setaffinity)"
-    return "not pinned (os.sched_setaffinity unavailable)"
 
 
 def random_case(seed):
