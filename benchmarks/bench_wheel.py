@@ -52,6 +52,7 @@ import numpy as np
 from common import pin_one_core
 
 import flyopt
+from flyopt.bench.wheel import random_wheel
 from flyopt.design import wheel_nlp
 from flyopt.design.nlp import CONVERGED
 
@@ -64,68 +65,6 @@ TARGET = 3e-3
 #: A variant agrees with IPOPT where its objective (log mass or log D) is within this (the
 #: tests' MASS_RTOL of two optimizers on the same NLP).
 AGREE = 1e-6
-
-STRUCTURES = (
-    ("rim", False, 0),
-    ("thin_rim", False, 0),
-    ("disc", False, 0),
-    ("disc", True, 0),
-    ("rim_web", False, 0),
-    ("rim_web", True, 0),
-    ("rim_arms", True, 4),
-    ("rim_arms", True, 6),
-    ("rim_arms", True, 8),
-)
-
-
-def random_case(seed):
-    """(structure, problem) of one random wheel: tests/design/test_wheel_nlp.py's generator."""
-    geometry, bored, n_arms = STRUCTURES[seed % len(STRUCTURES)]
-    criterion = ("rim_speed", "stress")[(seed // len(STRUCTURES)) % 2]
-    ductile = bool((seed // (2 * len(STRUCTURES))) % 2)
-    rng = np.random.default_rng(seed)
-    rho, nu = rng.uniform(6800.0, 7900.0), rng.uniform(0.2, 0.3)
-    omega = math.exp(rng.uniform(math.log(60.0), math.log(400.0)))
-    sigma = math.exp(rng.uniform(math.log(30e6), math.log(200e6)))
-    v_max = rng.uniform(25.0, 80.0)
-    parts = wheel_nlp.stressed_parts(
-        wheel_nlp.WheelStructure(geometry, criterion, ductile, bored, n_arms, *[False] * 3, "mass")
-    )
-    allowable = {p: sigma * rng.uniform(0.6, 1.0) for p in parts}
-    d_natural = 2.0 * (v_max if criterion == "rim_speed" else math.sqrt(sigma / rho)) / omega
-    envelope = d_natural * rng.uniform(0.3, 1.2) if rng.random() < 0.6 else math.inf
-    max_width = math.exp(rng.uniform(math.log(0.02), math.log(0.3))) if rng.random() < 0.4 else math.inf
-    low = rng.uniform(0.3, 2.0)
-    hb_ratio = (low, low if rng.random() < 0.1 else low * rng.uniform(1.0, 3.0))
-    min_wall = rng.uniform(0.003, 0.012)
-    bore = rng.uniform(0.02, 0.08) if bored else 0.0
-    d_hub_range = (bore * rng.uniform(1.6, 1.8), bore * rng.uniform(1.8, 2.0)) if bored else (0.0, math.inf)
-    l_hub_range = (bore * rng.uniform(1.2, 1.5), bore * rng.uniform(1.5, 2.5)) if bored else (0.0, math.inf)
-    d = min(d_natural / (1.5 if geometry == "rim_arms" and criterion == "stress" else 1.0), envelope)
-    ring = rho * math.pi * (0.1 * d) ** 2 * d**3 / 4.0
-    j_shaft = ring * math.exp(rng.uniform(math.log(0.02), math.log(0.5 if geometry == "rim_arms" else 3.0)))
-    torque = rng.uniform(0.0, 1500.0) if geometry == "rim_arms" else rng.uniform(0.0, 500.0)
-    structure = wheel_nlp.WheelStructure(
-        geometry, criterion, ductile, bored, n_arms, math.isfinite(envelope), math.isfinite(max_width), False, "mass"
-    )
-    problem = wheel_nlp.WheelProblem(
-        j_shaft=j_shaft,
-        omega=omega,
-        density=rho,
-        poisson=nu,
-        torque=torque,
-        bore=bore,
-        allowable=allowable if criterion == "stress" else {},
-        envelope=envelope,
-        max_width=max_width,
-        max_rim_speed=v_max,
-        hb_ratio=hb_ratio,
-        d_mean=None,
-        min_wall=min_wall,
-        d_hub_range=d_hub_range,
-        l_hub_range=l_hub_range,
-    )
-    return structure, problem
 
 
 def scene_cases():
@@ -286,7 +225,7 @@ def main(argv=None):
     cases = [(f"punch-press-wheel solve {k}", s, p) for k, (s, p) in enumerate(scene_cases())]
     designs = design_seconds(args.repeat)
     fast_designs = design_seconds(args.repeat, FAST)
-    cases += [(f"random {seed}", *random_case(seed)) for seed in range(args.random)]
+    cases += [(f"random {seed}", *random_wheel(seed)) for seed in range(args.random)]
     rows = []
     for name, structure, problem in cases:
         reference = run(solver_of(structure, "ipopt"), arguments(structure, problem))

@@ -25,23 +25,14 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.optimize import minimize
 
+from flyopt.bench.wheel import WHEEL_STRUCTURES, random_wheel
 from flyopt.design import DesignSpec, MountShaft, design_flywheel, hub, stress, wheel, wheel_design, wheel_nlp
 from flyopt.design.key import hub_length_for_key
 from flyopt.design.materials import StrengthRow, make_material
 from flyopt.errors import SolverFailed
 
 #: Every structure of a wheel NLP: (geometry, bored, n_arms).
-STRUCTURES = (
-    ("rim", False, 0),
-    ("thin_rim", False, 0),
-    ("disc", False, 0),
-    ("disc", True, 0),
-    ("rim_web", False, 0),
-    ("rim_web", True, 0),
-    ("rim_arms", True, 4),
-    ("rim_arms", True, 6),
-    ("rim_arms", True, 8),
-)
+STRUCTURES = WHEEL_STRUCTURES
 
 #: The fast set: every structure x criterion x (ductile, brittle) once.
 FAST_SEEDS = range(4 * len(STRUCTURES))
@@ -69,71 +60,7 @@ INFEASIBLE_T = 1e-6
 # ------------------------------------------------------------------ random wheels
 
 
-def _parts_stressed(geometry, bored):
-    return {
-        "disc": ("disc",),
-        "rim": ("rim",),
-        "thin_rim": ("rim",),
-        "rim_web": ("hub", "web", "rim") if bored else ("web", "rim"),
-        "rim_arms": ("hub", "arms", "rim"),
-    }[geometry]
-
-
-def random_case(seed):
-    """One combination's numbers (SI) for the NLP; the structure cycles with the seed."""
-    geometry, bored, n_arms = STRUCTURES[seed % len(STRUCTURES)]
-    criterion = ("rim_speed", "stress")[(seed // len(STRUCTURES)) % 2]
-    ductile = bool((seed // (2 * len(STRUCTURES))) % 2)
-    rng = np.random.default_rng(seed)
-    rho, nu = rng.uniform(6800.0, 7900.0), rng.uniform(0.2, 0.3)
-    omega = math.exp(rng.uniform(math.log(60.0), math.log(400.0)))
-    sigma = math.exp(rng.uniform(math.log(30e6), math.log(200e6)))
-    v_max = rng.uniform(25.0, 80.0)
-    allowable = {p: sigma * rng.uniform(0.6, 1.0) for p in _parts_stressed(geometry, bored)}
-    d_natural = 2.0 * (v_max if criterion == "rim_speed" else math.sqrt(sigma / rho)) / omega
-    envelope = d_natural * rng.uniform(0.3, 1.2) if rng.random() < 0.6 else math.inf
-    max_width = math.exp(rng.uniform(math.log(0.02), math.log(0.3))) if rng.random() < 0.4 else math.inf
-    low = rng.uniform(0.3, 2.0)
-    hb_ratio = (low, low if rng.random() < 0.1 else low * rng.uniform(1.0, 3.0))
-    min_wall = rng.uniform(0.003, 0.012)
-    bore = rng.uniform(0.02, 0.08) if bored else 0.0
-    d_hub_range = (bore * rng.uniform(1.6, 1.8), bore * rng.uniform(1.8, 2.0)) if bored else (0.0, math.inf)
-    l_hub_range = (bore * rng.uniform(1.2, 1.5), bore * rng.uniform(1.5, 2.5)) if bored else (0.0, math.inf)
-    # the inertia asked: a ring of H = B = D/10 within the limits, times a random factor (a wheel on
-    # arms gives less: its rim bends between the arms, its arms must fit round the hub)
-    d = min(d_natural / (1.5 if geometry == "rim_arms" and criterion == "stress" else 1.0), envelope)
-    ring = rho * math.pi * (0.1 * d) ** 2 * d**3 / 4.0
-    j_shaft = ring * math.exp(rng.uniform(math.log(0.02), math.log(0.5 if geometry == "rim_arms" else 3.0)))
-    torque = rng.uniform(0.0, 1500.0) if geometry == "rim_arms" else rng.uniform(0.0, 500.0)
-    structure = wheel_nlp.WheelStructure(
-        geometry=geometry,
-        criterion=criterion,
-        ductile=ductile,
-        bored=bored,
-        n_arms=n_arms,
-        envelope=math.isfinite(envelope),
-        width=math.isfinite(max_width),
-        pinned=False,
-        objective="mass",
-    )
-    problem = wheel_nlp.WheelProblem(
-        j_shaft=j_shaft,
-        omega=omega,
-        density=rho,
-        poisson=nu,
-        torque=torque,
-        bore=bore,
-        allowable=allowable if criterion == "stress" else {},
-        envelope=envelope,
-        max_width=max_width,
-        max_rim_speed=v_max,
-        hb_ratio=hb_ratio,
-        d_mean=None,
-        min_wall=min_wall,
-        d_hub_range=d_hub_range,
-        l_hub_range=l_hub_range,
-    )
-    return structure, problem
+random_case = random_wheel  # one generator: flyopt.bench.wheel's
 
 
 def _ipopt(structure, problem):

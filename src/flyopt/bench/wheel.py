@@ -39,7 +39,6 @@ wheel's CasADi functions and IPOPT's NLP built beforehand).
 
 from __future__ import annotations
 
-import itertools
 import math
 import warnings
 from collections.abc import Callable, Sequence
@@ -67,6 +66,8 @@ __all__ = [
     "WheelCase",
     "WheelNlp",
     "scene_cases",
+    "WHEEL_STRUCTURES",
+    "random_wheel",
     "random_wheel_cases",
     "grid_box",
     "slsqp_wheel",
@@ -424,83 +425,104 @@ def _solved(structure: Any, problem: Any, label: str) -> Dims:
     return wheel_nlp.solve(wheel_nlp.get_model(structure), problem, label).dims
 
 
-#: (geometry, bored, arms, criterion, ductile) of the random wheels, in turn.
-_RANDOM_STRUCTURES = (
-    ("rim_web", True, 0, "stress", True),
-    ("rim", False, 0, "rim_speed", False),
-    ("rim_web", False, 0, "stress", False),
-    ("disc", True, 0, "stress", True),
-    ("rim_arms", True, 6, "stress", True),
-    ("thin_rim", False, 0, "rim_speed", False),
+#: (geometry, bored, arms) of the random wheels: :func:`random_wheel` cycles through them with its seed.
+WHEEL_STRUCTURES = (
+    ("rim", False, 0),
+    ("thin_rim", False, 0),
+    ("disc", False, 0),
+    ("disc", True, 0),
+    ("rim_web", False, 0),
+    ("rim_web", True, 0),
+    ("rim_arms", True, 4),
+    ("rim_arms", True, 6),
+    ("rim_arms", True, 8),
 )
 
 
-def random_wheel_cases(count: int, seed: int) -> list[WheelCase]:
-    """``count`` seeded random wheels that IPOPT solves, the structures of _RANDOM_STRUCTURES in turn.
+def random_wheel(seed: int) -> tuple[Any, Any]:
+    """(WheelStructure, WheelProblem) of one seeded random whole wheel, in SI.
 
-    Cast irons and steels (density 6800..7900 kg/m^3, Poisson 0.2..0.3),
-    60..400 rad/s, allowables 30..200 MPa (or a rim speed of 25..80 m/s; the
-    natural diameter is that of a free ring at the limit), an envelope of
-    0.3..1.2 natural diameters in 60 % of the wheels, a width limit of
-    20..300 mm in 40 %, J' from 2 % to 200 % of a ring of square section D/10
-    at D = the smaller of 2/3 of the natural diameter and the envelope, H/B from
-    0.3..2 over a span of 1..3, min_wall 3..12 mm, torque 0..1000 N*m, bores of
-    20..80 mm with hubs in the textbook's proportions (after
-    benchmarks/bench_wheel.py's generator). A draw IPOPT does not solve (no
-    wheel, or no convergence) is replaced by the next draw.
+    The structure cycles with the seed through :data:`WHEEL_STRUCTURES`, then
+    the criterion (rim speed, stress), then brittle or ductile. Cast irons and
+    steels (density 6800..7900 kg/m^3, Poisson 0.2..0.3), 60..400 rad/s,
+    allowables 30..200 MPa (or a rim speed of 25..80 m/s; the natural diameter
+    is that of a free ring at the limit), an envelope of 0.3..1.2 natural
+    diameters in 60 % of the wheels, a width limit of 20..300 mm in 40 %, J'
+    from 2 % to 300 % of a ring of H = B = D/10 (50 % on arms), H/B from 0.3..2
+    over a span of 1..3, min_wall 3..12 mm, bores of 20..80 mm with hubs in the
+    textbook's proportions. Some draws have no wheel at all: the NLP's tests
+    and benchmarks use them as they come (tests/design/test_wheel_nlp.py,
+    benchmarks/bench_wheel.py, :func:`random_wheel_cases`).
     """
     from flyopt.design import wheel_nlp
 
+    geometry, bored, n_arms = WHEEL_STRUCTURES[seed % len(WHEEL_STRUCTURES)]
+    criterion = ("rim_speed", "stress")[(seed // len(WHEEL_STRUCTURES)) % 2]
+    ductile = bool((seed // (2 * len(WHEEL_STRUCTURES))) % 2)
     rng = np.random.default_rng(seed)
+    rho, nu = rng.uniform(6800.0, 7900.0), rng.uniform(0.2, 0.3)
+    omega = math.exp(rng.uniform(math.log(60.0), math.log(400.0)))
+    sigma = math.exp(rng.uniform(math.log(30e6), math.log(200e6)))
+    v_max = rng.uniform(25.0, 80.0)
+    parts = wheel_nlp.stressed_parts(
+        wheel_nlp.WheelStructure(geometry, criterion, ductile, bored, n_arms, False, False, False, "mass")
+    )
+    allowable = {p: sigma * rng.uniform(0.6, 1.0) for p in parts}
+    d_natural = 2.0 * (v_max if criterion == "rim_speed" else math.sqrt(sigma / rho)) / omega
+    envelope = d_natural * rng.uniform(0.3, 1.2) if rng.random() < 0.6 else math.inf
+    max_width = math.exp(rng.uniform(math.log(0.02), math.log(0.3))) if rng.random() < 0.4 else math.inf
+    low = rng.uniform(0.3, 2.0)
+    hb_ratio = (low, low if rng.random() < 0.1 else low * rng.uniform(1.0, 3.0))
+    min_wall = rng.uniform(0.003, 0.012)
+    bore = rng.uniform(0.02, 0.08) if bored else 0.0
+    d_hub_range = (bore * rng.uniform(1.6, 1.8), bore * rng.uniform(1.8, 2.0)) if bored else (0.0, math.inf)
+    l_hub_range = (bore * rng.uniform(1.2, 1.5), bore * rng.uniform(1.5, 2.5)) if bored else (0.0, math.inf)
+    # the inertia asked: a ring of H = B = D/10 within the limits, times a random factor (a wheel on
+    # arms gives less: its rim bends between the arms, its arms must fit round the hub)
+    d = min(d_natural / (1.5 if geometry == "rim_arms" and criterion == "stress" else 1.0), envelope)
+    ring = rho * math.pi * (0.1 * d) ** 2 * d**3 / 4.0
+    j_shaft = ring * math.exp(rng.uniform(math.log(0.02), math.log(0.5 if geometry == "rim_arms" else 3.0)))
+    torque = rng.uniform(0.0, 1500.0) if geometry == "rim_arms" else rng.uniform(0.0, 500.0)
+    structure = wheel_nlp.WheelStructure(
+        geometry, criterion, ductile, bored, n_arms, math.isfinite(envelope), math.isfinite(max_width), False, "mass"
+    )
+    problem = wheel_nlp.WheelProblem(
+        j_shaft=j_shaft,
+        omega=omega,
+        density=rho,
+        poisson=nu,
+        torque=torque,
+        bore=bore,
+        allowable=allowable if criterion == "stress" else {},
+        envelope=envelope,
+        max_width=max_width,
+        max_rim_speed=v_max,
+        hb_ratio=hb_ratio,
+        d_mean=None,
+        min_wall=min_wall,
+        d_hub_range=d_hub_range,
+        l_hub_range=l_hub_range,
+    )
+    return structure, problem
+
+
+def random_wheel_cases(count: int, seed: int) -> list[WheelCase]:
+    """``count`` random wheels (:func:`random_wheel`, seeds from ``1000 * seed`` on) that IPOPT solves.
+
+    The seeds run through every structure in turn; a draw IPOPT does not solve (no wheel, or no
+    convergence) is passed over: a case needs a known optimum.
+    """
+    from flyopt.design import wheel_nlp
+
     cases: list[WheelCase] = []
-    for k in itertools.count():
-        if len(cases) >= count or k > 20 * count:
+    for k in range(20 * count + len(WHEEL_STRUCTURES)):
+        if len(cases) >= count:
             break
-        geometry, bored, n_arms, criterion, ductile = _RANDOM_STRUCTURES[len(cases) % len(_RANDOM_STRUCTURES)]
-        rho, nu = rng.uniform(6800.0, 7900.0), rng.uniform(0.2, 0.3)
-        omega = math.exp(rng.uniform(math.log(60.0), math.log(400.0)))
-        sigma = math.exp(rng.uniform(math.log(30e6), math.log(200e6)))
-        v_max = rng.uniform(25.0, 80.0)
-        d_natural = 2.0 * (v_max if criterion == "rim_speed" else math.sqrt(sigma / rho)) / omega
-        envelope = d_natural * rng.uniform(0.3, 1.2) if rng.random() < 0.6 else math.inf
-        max_width = math.exp(rng.uniform(math.log(0.02), math.log(0.3))) if rng.random() < 0.4 else math.inf
-        low = rng.uniform(0.3, 2.0)
-        bore = rng.uniform(0.02, 0.08) if bored else 0.0
-        d = min(d_natural / 1.5, envelope)
-        j_shaft = rho * math.pi * (0.1 * d) ** 2 * d**3 / 4.0 * math.exp(rng.uniform(math.log(0.02), math.log(2.0)))
-        structure = wheel_nlp.WheelStructure(
-            geometry,
-            criterion,
-            ductile,
-            bored,
-            n_arms,
-            math.isfinite(envelope),
-            math.isfinite(max_width),
-            False,
-            "mass",
-        )
-        parts = wheel_nlp.stressed_parts(structure)
-        problem = wheel_nlp.WheelProblem(
-            j_shaft=j_shaft,
-            omega=omega,
-            density=rho,
-            poisson=nu,
-            torque=rng.uniform(0.0, 1000.0),
-            bore=bore,
-            allowable={p: sigma * rng.uniform(0.6, 1.0) for p in parts} if criterion == "stress" else {},
-            envelope=envelope,
-            max_width=max_width,
-            max_rim_speed=v_max,
-            hb_ratio=(low, low * rng.uniform(1.0, 3.0)),
-            d_mean=None,
-            min_wall=rng.uniform(0.003, 0.012),
-            d_hub_range=(bore * rng.uniform(1.6, 1.8), bore * rng.uniform(1.8, 2.0)) if bored else (0.0, math.inf),
-            l_hub_range=(bore * rng.uniform(1.2, 1.5), bore * rng.uniform(1.5, 2.5)) if bored else (0.0, math.inf),
-        )
-        model = wheel_nlp.get_model(structure)
-        name = f"random {seed}.{k}: {geometry}" + (f" {n_arms} arms" if n_arms else "") + f", {criterion}"
+        structure, problem = random_wheel(1000 * seed + k)
+        arms = f" {structure.n_arms} arms" if structure.n_arms else ""
+        name = f"random {1000 * seed + k}: {structure.geometry}{arms}, {structure.criterion}"
         try:
-            solution = wheel_nlp.solve(model, problem, name)
+            solution = wheel_nlp.solve(wheel_nlp.get_model(structure), problem, name)
         except SolverFailed:
             continue  # no wheel, or IPOPT fails: not a case with a known optimum
         cases.append(
@@ -517,10 +539,10 @@ def random_wheel_cases(count: int, seed: int) -> list[WheelCase]:
 
 
 def section_wheel(config: Config) -> list[Row]:
-    """Whole wheels: punch-press-wheel's combinations and one seeded random wheel of each structure of
-    _RANDOM_STRUCTURES (a quick run: the scene's first combination and one random wheel)."""
+    """Whole wheels: punch-press-wheel's combinations and six seeded random wheels of several structures
+    (a quick run: the scene's first combination and one random wheel)."""
     cases = scene_cases() if SCENE.is_file() else []
-    random = random_wheel_cases(1 if config.quick else len(_RANDOM_STRUCTURES), config.seed)
+    random = random_wheel_cases(1 if config.quick else 6, config.seed)
     if config.quick:
         cases = cases[:1]
     return wheel_rows(cases + random, config)
