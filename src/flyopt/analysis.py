@@ -378,10 +378,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         angles = (ind.angle_omega_max, ind.angle_omega_min)
     else:
         if like is not None and like.machine is not None:
-            import dataclasses
-
-            base = like.machine
-            machine = dataclasses.replace(base, delta=scene.delta, _cache=base._cache)
+            machine = like.machine.with_delta(scene.delta)
             assert like.indicator is not None  # a machine's analysis has its diagram
             ind = like.indicator  # the torques at the frozen speed do not depend on δ
         else:

@@ -276,13 +276,12 @@ def _model(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
         float(load_torque),
         structure,
     )
-    cache = machine._cache
-    if key not in cache:
-        cache[key] = _build(
-            machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque, structure
-        )
+
+    def build() -> _Model:
         BUILDS["count"] += 1
-    return cache[key]
+        return _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_name, load_torque, structure)
+
+    return machine.memo(key, build)
 
 
 #: The wheel's parameters in the relaxation, after (δ, cost per kg, max_startup, J scale).

@@ -9,9 +9,10 @@ is known (docs/flywheel-design.md, sections 5–7).
 
 from __future__ import annotations
 
-from collections.abc import Hashable
+import dataclasses
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
-from typing import Any, cast
+from typing import Any, TypeVar, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -20,6 +21,8 @@ from flyopt.cycle.indicator import ExcessWork
 from flyopt.cycle.torque import Constant, MotorTorque, TorqueSum
 from flyopt.errors import SceneError
 from flyopt.machine.motor import DCMotor, InductionMotor, TableMotor
+
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -49,6 +52,18 @@ class Machine:
     speed_dependent: bool
     variable_inertia: bool
     _cache: dict[Hashable, Any] = field(default_factory=dict, compare=False, repr=False)
+
+    def memo(self, key: Hashable, build: Callable[[], T]) -> T:
+        """``build()`` once per machine and ``key``, kept with the machine (and with its copy at another δ,
+        :func:`flyopt.analysis.analyse` ``like=``): what the stages above compute from the machine alone,
+        such as the textbook method's indicator or the drive relaxation's NLP."""
+        if key not in self._cache:
+            self._cache[key] = build()
+        return cast(T, self._cache[key])
+
+    def with_delta(self, delta: float) -> Machine:
+        """The same machine at another allowed δ, sharing everything computed from it (nothing of it depends on δ)."""
+        return dataclasses.replace(self, delta=delta, _cache=self._cache)
 
     def angle_only(self, omega: float | None = None) -> ExcessWork:
         """ExcessWork of the torques with every speed dependence frozen.

@@ -75,16 +75,16 @@ def textbook_requirement(
     """
     omega = machine.omega_mean if omega_mean is None else float(omega_mean)
     delta = machine.delta if delta is None else float(delta)
-    key = ("textbook", omega, delta)
-    cache = machine._cache
-    if key not in cache:
+
+    def build() -> TextbookRequirement:
         balanced = machine.angle_only(omega)
         driving = balanced.driving
         if machine.variable_inertia:
             driving = TorqueSum([driving, InertiaTorque(machine.j_machine, omega)], "crank effort at the mean speed")
         indicator = energy_indicator(driving, balanced.resisting, machine.cycle_angle)
         j_mean = machine.j_mean()
-        cache[key] = TextbookRequirement(
+        return TextbookRequirement(
             required_inertia(indicator.a_max, omega, delta, j_mean), indicator.a_max, omega, delta, j_mean, indicator
         )
-    return cache[key]
+
+    return machine.memo(("textbook", omega, delta), build)
