@@ -1,4 +1,4 @@
-"""A machine's memo (flyopt.machine.reduce.Machine.memo, with_delta)."""
+"""The reduction of a scene to one machine (flyopt.machine.reduce): its memo and its copy at another δ."""
 
 from flyopt.io.scene import load
 from flyopt.machine.reduce import reduce
