@@ -555,6 +555,9 @@ def startup_run(machine: Machine, omega_target: float, j_flywheel: float) -> Sta
         else ", DC motor line"
     )
     method = "declutched run-up: the motor against the inertia of machine and flywheel alone" + line
+    closed = _kloss_runup(machine, curve, omega_target, j_flywheel)
+    if closed is not None:
+        return StartupRun(method + ", in closed form", closed[0], closed[1], omega_target, "")
     try:
         run = startup_time(
             lambda phi, omega: curve.casadi(phi, omega),
@@ -566,6 +569,33 @@ def startup_run(machine: Machine, omega_target: float, j_flywheel: float) -> Sta
     except (SolverFailed, ValueError) as err:
         return StartupRun(method, None, None, omega_target, str(err))
     return StartupRun(method, run.time, run.cycles, omega_target, "")
+
+
+def _kloss_runup(machine: Machine, curve: Any, omega_target: float, j_flywheel: float) -> tuple[float, float] | None:
+    """(time [s], cycles) of the declutched run-up in closed form, or None where it does not apply.
+
+    Exact for a constant inertia on an induction motor's Kloss curve
+    (:func:`flyopt.sizing.startup.kloss_runup_time`, ``kloss_runup_angle``):
+    the speed then rises monotonically, so the target is first reached at the
+    end. Anything else (an inertia varying with the angle, another motor, a
+    target at or above the synchronous speed, a run-up longer than the
+    integration allows) is integrated by :func:`flyopt.sizing.startup.startup_time`.
+    """
+    from flyopt.machine.motor import InductionMotor
+    from flyopt.sizing.startup import MAX_CYCLES, kloss_runup_angle, kloss_runup_time
+
+    motor = curve.motor
+    if machine.variable_inertia or curve.model != "kloss" or not isinstance(motor, InductionMotor):
+        return None
+    inertia = float(machine.j_machine) + j_flywheel
+    ratio, efficiency = curve.speed_ratio, curve.efficiency
+    if not (inertia > 0 and 0 < ratio * omega_target < motor.synchronous_speed):
+        return None
+    args = (inertia, ratio, efficiency, motor.breakdown_torque, motor.breakdown_slip, motor.synchronous_speed)
+    cycles = kloss_runup_angle(*args, omega_target) / machine.cycle_angle
+    if not cycles <= MAX_CYCLES:
+        return None
+    return float(kloss_runup_time(*args, omega_target)), cycles
 
 
 def _speed_curve(analysis: Analysis) -> SpeedFluctuation | PeriodicSolution | None:

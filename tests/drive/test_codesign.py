@@ -2,7 +2,7 @@
 
 References are independent of the code under test: a brute-force enumeration
 of every motor size over a fine grid of flywheel ratios; quadrature (scipy
-quad) of the RMS torque and of the Kloss run-up; the root of the work balance
+quad) of the RMS torque; the root of the work balance
 checked by substitution; the collocation of the relaxation against flyopt's
 CVODES periodic solution of the same relaxed motor; and the smaller motor shown
 to break a limit in the simulation.
@@ -17,7 +17,7 @@ import pytest
 from scipy import integrate
 
 from flyopt.drive import codesign as drive
-from flyopt.drive.relaxation import CatalogueFit, kloss_runup_time
+from flyopt.drive.relaxation import CatalogueFit
 from flyopt.io.drive import DriveSpec
 from flyopt.io.scene import load
 from flyopt.machine.catalogue import Catalogue, CatalogueMotor
@@ -92,19 +92,6 @@ def test_rms_torque_against_quadrature():
     means = integrate.quad(lambda p: m(p) / w(p), 0, 2 * math.pi, epsabs=0, epsrel=1e-13)[0]
     assert rms == pytest.approx(math.sqrt(squares / period), rel=1e-7)
     assert mean == pytest.approx(means / period, rel=1e-7)
-
-
-def test_kloss_runup_closed_form_against_quadrature():
-    """t = J/(i² η) ∫ dω_m / M_kloss(ω_m), integrated numerically from rest to i ω."""
-    motor = OPTIONS.motors[1].motor()
-    inertia, ratio, eta, omega = 300.0, 24.0, 0.92, 6.2
-    found = kloss_runup_time(
-        inertia, ratio, eta, motor.breakdown_torque, motor.breakdown_slip, motor.synchronous_speed, omega
-    )
-    integral = integrate.quad(
-        lambda wm: 1 / float(motor.torque(wm, "kloss")), 0, ratio * omega, epsabs=0, epsrel=1e-12, limit=200
-    )[0]
-    assert found == pytest.approx(inertia / (ratio**2 * eta) * integral, rel=1e-9)
 
 
 @pytest.mark.slow  # every size of the ladder solved exactly: about a minute

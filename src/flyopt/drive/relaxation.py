@@ -50,6 +50,7 @@ import numpy as np
 from flyopt.errors import SolverFailed
 from flyopt.machine.motor import kloss_torque
 from flyopt.sizing._numerics import quiet
+from flyopt.sizing.startup import kloss_runup_time
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -164,36 +165,6 @@ class Relaxation:
             for name, value in self.sensitivities.items()
         ]
         return out
-
-
-def kloss_runup_time(
-    inertia: Any,
-    ratio: Any,
-    efficiency: Any,
-    breakdown_torque: Any,
-    breakdown_slip: Any,
-    synchronous_speed: float,
-    omega: Any,
-    lib: Any = math,
-) -> Any:
-    """Run-up time from rest to ``omega`` of a constant inertia on an induction motor's Kloss curve, no load [s].
-
-    J dω/dt = i η M(i ω), M = 2 M_b s s_b/(s² + s_b²), s = 1 − i ω/ω_0, so with
-    dω_motor = −ω_0 ds,
-
-        t = J/(i² η) ∫ dω_motor/M = J/(i² η) · ω_0/(2 M_b s_b) [(1 − s_e²)/2 + s_b² ln(1/s_e)],
-
-    s_e = 1 − i ω/ω_0 the slip at the target speed (which must be positive).
-    ``lib``: math, numpy or casadi (the NLP's symbols).
-    """
-    s_e = 1 - ratio * omega / synchronous_speed
-    return (
-        inertia
-        / (ratio**2 * efficiency)
-        * synchronous_speed
-        / (2 * breakdown_torque * breakdown_slip)
-        * ((1 - s_e**2) / 2 + breakdown_slip**2 * lib.log(1 / s_e))
-    )
 
 
 def _law(fit, lnp, ca):

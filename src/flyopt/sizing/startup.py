@@ -2,7 +2,9 @@
 
 The equation of motion in the angle, as the periodic model
 (flyopt.sizing.periodic; docs/flywheel-design.md, section 7), integrated from
-rest with the time as a third state.
+rest with the time as a third state (:func:`startup_time`); for a constant
+inertia on an induction motor's Kloss curve with no load, in closed form
+(:func:`kloss_runup_time`, :func:`kloss_runup_angle`).
 """
 
 from __future__ import annotations
@@ -10,6 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -17,6 +20,69 @@ from flyopt.cycle.numerics import hermite, hermite_extremes
 from flyopt.errors import SolverFailed
 from flyopt.sizing._numerics import EDGE, EPS, InertiaLike, NetTorqueLike, check_speed_delta, quiet
 from flyopt.sizing.periodic_model import periodic_model
+
+#: The speed at the start of the output interval where the target is reached, relative to its end, above
+#: which the time is interpolated by a cubic (below it the interval is integrated again, finer).
+SMOOTH_SPEED_RATIO = 0.999
+
+#: Cycles a run-up may take before it is reported as not reaching its target.
+MAX_CYCLES = 100000
+
+
+def kloss_runup_time(
+    inertia: Any,
+    ratio: Any,
+    efficiency: Any,
+    breakdown_torque: Any,
+    breakdown_slip: Any,
+    synchronous_speed: float,
+    omega: Any,
+    lib: Any = math,
+) -> Any:
+    """Run-up time from rest to ``omega`` of a constant inertia on an induction motor's Kloss curve, no load [s].
+
+    J dω/dt = i η M(i ω), M = 2 M_b s s_b/(s² + s_b²), s = 1 − i ω/ω_0, so with
+    dω_motor = −ω_0 ds,
+
+        t = J/(i² η) ∫ dω_motor/M = J/(i² η) · ω_0/(2 M_b s_b) [(1 − s_e²)/2 + s_b² ln(1/s_e)],
+
+    s_e = 1 − i ω/ω_0 the slip at the target speed (which must be positive).
+    ``lib``: math, numpy or casadi (the drive relaxation's symbols).
+    """
+    s_e = 1 - ratio * omega / synchronous_speed
+    return (
+        inertia
+        / (ratio**2 * efficiency)
+        * synchronous_speed
+        / (2 * breakdown_torque * breakdown_slip)
+        * ((1 - s_e**2) / 2 + breakdown_slip**2 * lib.log(1 / s_e))
+    )
+
+
+def kloss_runup_angle(
+    inertia: float,
+    ratio: float,
+    efficiency: float,
+    breakdown_torque: float,
+    breakdown_slip: float,
+    synchronous_speed: float,
+    omega: float,
+) -> float:
+    """Angle the crank turns in :func:`kloss_runup_time`'s run-up [rad].
+
+    dφ = ω dt = J ω dω/(i η M(i ω)); with ω = ω_0 (1 − s)/i,
+
+        φ = J ω_0²/(2 η i³ M_b s_b) [F(1) − F(s_e)],  F(s) = s²/2 + s_b² ln s − s³/3 − s_b² s,
+
+    the antiderivative of (1 − s)(s² + s_b²)/s = s + s_b²/s − s² − s_b².
+    """
+    s_b, s_e = breakdown_slip, 1 - ratio * omega / synchronous_speed
+
+    def antiderivative(s: float) -> float:
+        return s * s / 2 + s_b * s_b * math.log(s) - s**3 / 3 - s_b * s_b * s
+
+    scale = inertia * synchronous_speed**2 / (2 * efficiency * ratio**3 * breakdown_torque * s_b)
+    return scale * (antiderivative(1.0) - antiderivative(s_e))
 
 
 @dataclass(frozen=True)
@@ -49,7 +115,7 @@ def startup_time(
     j_flywheel: float = 0.0,
     knots: Iterable[float] = (),
     phi_start: float = 0.0,
-    max_cycles: int = 100000,
+    max_cycles: int = MAX_CYCLES,
 ) -> Startup:
     """Time from rest until the speed first reaches ``omega_target``.
 
@@ -112,7 +178,7 @@ def startup_time(
     first = seg[k0, 1] - phi_start
     dphi = 1e-9 * first
     x = np.array([m0 * dphi / e_target, 0.0, math.sqrt(2 * j0 * dphi / m0) / t_scale])
-    angle = 0.0
+    angle = dphi  # turned in the constant-acceleration start
     pieces = [(phi_start + dphi, seg[k0, 1])] + [tuple(s) for s in seg[k0 + 1 :]]
     peaks = []
     for n in range(int(max_cycles) + 1):
@@ -136,13 +202,34 @@ def startup_time(
                 )
             phi, omega, gap, slope = _piece_gap(model, a, b, e_target * xf[0], j_flywheel, omega_target)
             reach = _first_reach(phi, gap, slope)
+            start_of_piece = a
+            while (
+                reach is not None
+                and omega[reach[0]] < SMOOTH_SPEED_RATIO * omega[reach[0] + 1]
+                and phi[reach[0] + 1] - phi[reach[0]] > 1e-12 * first
+            ):
+                # reached where the speed still changes fast across an output interval (near rest ω ~
+                # sqrt(φ − φ_0), and dt/dφ = 1/ω is singular at the start): the cubic through the ends of
+                # the time is no interpolant there (a run-up of 0.075 s was read as 5.9 s). That interval
+                # is integrated again from its start, with outputs as close again.
+                i = reach[0]
+                x_i, a, b = xf[:, i], float(phi[i]), float(phi[i + 1])
+                m_a, m_b = model.table_at(a, b)[0]  # the table is linear inside a piece
+                with quiet():
+                    xf = np.asarray(
+                        model.piece_timed(
+                            x0=x_i, p=[a, b, j_flywheel, 0.0, e_target, 0.0, m_a, m_b, t_scale, *model.theta]
+                        )["xf"]
+                    )
+                phi, omega, gap, slope = _piece_gap(model, a, b, e_target * xf[0], j_flywheel, omega_target)
+                reach = _first_reach(phi, gap, slope)
             if reach is not None:
                 i, s = reach
                 d = phi[i + 1] - phi[i]
                 t0, t1 = xf[2, i] * t_scale, xf[2, i + 1] * t_scale
                 g0, g1 = d / omega[i], d / omega[i + 1]  # dt/ds at the ends (s = (φ − φ_i)/d)
                 t_hit = hermite(t0, t1, g0, g1, s)
-                angle += phi[i] + s * d - a
+                angle += phi[i] + s * d - start_of_piece
                 return Startup(
                     time=float(t_hit), angle=float(angle), cycles=float(angle / cycle), omega_target=float(omega_target)
                 )
