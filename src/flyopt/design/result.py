@@ -392,45 +392,26 @@ CANDIDATE_FIELDS = (
 )
 
 
-#: Fields of the top-level "design" object taken from the best candidate.
-DESIGN_FIELDS = (
-    "material",
-    "shaft",
-    "speed_ratio",
-    "geometry",
-    "d_mean",
-    "d_outer",
-    "d_inner",
-    "h",
-    "b",
-    "hb_ratio",
-    "mass",
-    "rim_speed",
-    "hoop_stress",
-    "safety_factor",
-    "cost",
-    "j_flywheel",
-    "j_at_reference",
-    "binding",
-    "objective",
-    "n_arms",
-    "t_web",
-    "d_hub",
-    "l_hub",
-    "arm_major",
-    "arm_minor",
-    "bore",
-    "parts",
-    "stress",
-    "allowable_stress",
-    "strength_safety",
-    "burst_speed",
-    "speed_margin",
-    "unbalance_permissible",
-    "key",
-    "sensitivities",
-    "notes",
+#: The candidate's fields that say how it was found, not what it is: left out of the top-level "design".
+SEARCH_FIELDS = frozenset(
+    {
+        "feasible",
+        "reason",
+        "j_required_on_shaft",
+        "d_outer_limit",
+        "rim_speed_limit",
+        "j_max",
+        "d_outer_needed",
+        "solver_status",
+        "iterations",
+        "solve_time",
+        "pruned",
+        "objective_bound",
+    }
 )
+
+#: Fields of the top-level "design" object taken from the best candidate (the candidate's, in its order).
+DESIGN_FIELDS = tuple(name for name in CANDIDATE_FIELDS if name not in SEARCH_FIELDS)
 
 
 @dataclass(frozen=True)
