@@ -577,15 +577,14 @@ def _settle_compiled(model, motor, ratio, thermal, start):
         if free.delta <= delta and not (thermal and free.rms_torque > rated):
             start.update(v=free.x[0])
             return free, 0.0
-    current = free
-    j_delta = 0.0
-    if free is None or free.delta > delta:
+    if free is not None and free.delta <= delta:  # δ holds without a flywheel: the thermal limit binds
+        current, j_delta = free, 0.0
+    else:
         current = model.steady(motor, "delta", x)
         j_delta = current.j_flywheel
         x = current.x
         if not j_delta > 0:  # δ holds without a flywheel, yet the run without one did not settle
             raise NotSettled("the run without a flywheel did not settle, though δ needs none")
-    assert current is not None  # the free run, or the δ run
     if thermal and current.rms_torque > rated:
         current = model.steady(motor, "thermal", x)
         if j_delta > 0:
