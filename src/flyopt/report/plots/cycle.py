@@ -297,36 +297,12 @@ def omega_marks(analysis: Analysis, units: str) -> tuple[list[Mark], str | None]
             continue
         apart = delta_e_at is not None and abs(omega_at - delta_e_at) > 1e-3
         differ |= apart
-        if analysis.model == Model.DYNAMIC:
-            marks.append(
-                (
-                    omega_at,
-                    f"ω_{name} ({model}): φ = {standard.q(omega_at, 'angle', units)}",
-                    colour,
-                    "--",
-                    f"omega_{name}",
-                )
-            )
-        elif delta_e_at is None or not apart:
-            marks.append(
-                (
-                    omega_at,
-                    f"ω_{name} where ΔE is {word}: φ = {standard.q(omega_at, 'angle', units)}",
-                    colour,
-                    "--",
-                    f"omega_{name}",
-                )
-            )
-        else:
-            marks.append(
-                (
-                    omega_at,
-                    f"ω_{name} ({model}): φ = {standard.q(omega_at, 'angle', units)}",
-                    colour,
-                    "--",
-                    f"omega_{name}",
-                )
-            )
+        # where the model's speed extreme and ΔE's extreme coincide, one mark says both; where they are
+        # apart, each has its own, and the dynamic model (whose ΔE is not drawn) marks only the speed's
+        separate = analysis.model != Model.DYNAMIC and apart
+        label = f"ω_{name} ({model})" if analysis.model == Model.DYNAMIC or separate else f"ω_{name} where ΔE is {word}"
+        marks.append((omega_at, f"{label}: φ = {standard.q(omega_at, 'angle', units)}", colour, "--", f"omega_{name}"))
+        if separate and delta_e_at is not None:
             marks.append(
                 (
                     delta_e_at,
