@@ -102,3 +102,12 @@ def test_kloss_curve_is_one_formula():
     motor = InductionMotor(rated_power=5500.0, rated_speed=150.0, synchronous_speed=157.0796, breakdown_ratio=2.5)
     assert motor.torque(150.0, "kloss") == pytest.approx(motor.rated_torque, rel=1e-12)
     assert motor.torque(motor.breakdown_speed, "kloss") == pytest.approx(2.5 * motor.rated_torque, rel=1e-12)
+
+
+def test_verifying_a_run_against_a_scene_without_a_drive_is_refused_in_words(press):
+    import dataclasses
+
+    scene, analysis, motors, model = press
+    run = codesign.MotorRun(motor=motors["132S-4 5.5 kW"], feasible=True, motor_ratio=122.0, j_flywheel=0.0)
+    with pytest.raises(ValueError, match=r"no \[drive\]"):
+        codesign.verify_drive(dataclasses.replace(scene, drive=None), run)

@@ -43,9 +43,9 @@ from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
-from flyopt.analysis import flywheel_torque, startup_run
+from flyopt.analysis import StartupRun, flywheel_torque, startup_run
 from flyopt.errors import SceneError, SolverFailed
-from flyopt.machine.reduce import reduce
+from flyopt.machine.reduce import Machine, reduce
 from flyopt.names import Criterion, Geometry, Objective
 
 if TYPE_CHECKING:
@@ -371,8 +371,7 @@ def evaluate_motor(
             motor_ratio=ratio,
             j_delta=j_delta,
         )
-    startup = startup_run(machine, omega_mean, j_need)
-    assert startup is not None  # a drive's machine is driven by its motor
+    startup = _runup(machine, omega_mean, j_need)
     facts = dict(
         motor_ratio=ratio,
         j_flywheel=j_need,
@@ -417,6 +416,14 @@ def evaluate_motor(
         cost=cost,
         objective=objective,
     )
+
+
+def _runup(machine: Machine, omega: float, j_flywheel: float) -> StartupRun:
+    """The declutched run-up of a drive's machine (:func:`flyopt.analysis.startup_run`), whose motor drives it."""
+    startup = startup_run(machine, omega, j_flywheel)
+    if startup is None:
+        raise SolverFailed("the drive's machine has no motor driving it to run up")
+    return startup
 
 
 class _Unsettled(SolverFailed):
@@ -963,9 +970,12 @@ def verify_drive(scene: Scene, run: MotorRun, j_flywheel: float | None = None) -
     """
     from flyopt.sizing import periodic
 
+    spec = scene.drive
+    if spec is None:
+        raise ValueError("the scene has no [drive]: a motor run is checked against its drive's limits")
     if j_flywheel is None:
-        j_flywheel = run.wheel.j_at_reference if run.wheel is not None else (run.j_flywheel or 0.0)
-    assert j_flywheel is not None  # a designed wheel has its inertia
+        built_j = run.wheel.j_at_reference if run.wheel is not None else None
+        j_flywheel = built_j if built_j is not None else (run.j_flywheel or 0.0)
     ratio = cast(float, run.motor_ratio)  # a feasible run has its ratio
     built = motor_scene(scene, run.motor, ratio)
     machine = reduce(built)
@@ -978,16 +988,14 @@ def verify_drive(scene: Scene, run: MotorRun, j_flywheel: float | None = None) -
         j_flywheel,
         machine.knots(),
     )
-    assert checked.solution is not None  # verify keeps the periodic solution it simulated
+    if checked.solution is None:
+        raise SolverFailed(f"the chosen drive's simulation ({checked.method}) kept no speed curve to check")
     rms, _ = rms_torque(checked.solution, run.motor.motor(), ratio)
-    startup = startup_run(machine, checked.omega_mean, j_flywheel)
-    assert startup is not None  # a drive's machine is driven by its motor
+    startup = _runup(machine, checked.omega_mean, j_flywheel)
     notes = []
     if checked.flagged:
         notes.append(f"delta {checked.achieved_delta:.6g} exceeds the allowed {scene.delta:.6g}")
     rated = run.motor.rated_torque
-    spec = scene.drive
-    assert spec is not None  # a run is of a scene with a [drive]
     if spec.thermal and rms > rated * (1 + 1e-6):
         notes.append(f"RMS torque {rms:.6g} N*m exceeds the rated {rated:.6g} N*m (thermal)")
     if spec.max_startup is not None and (startup.time is None or startup.time > spec.max_startup):
