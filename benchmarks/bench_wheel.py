@@ -13,6 +13,9 @@ objective's relative error against IPOPT as shipped (the reference):
   :func:`flyopt.design.wheel_nlp.starting_wheel`);
 * ``ipopt-warm``: the same, started from the wheel of a neighbouring problem
   (J' 2 % lower), as a sweep, a Pareto front or a sensitivity re-design would;
+* ``ipopt-warm-dual``: IPOPT built with ``warm_start_init_point`` (the start's bound pushes and
+  ``mu_init`` at 1e-9), started from the neighbouring wheel's primal **and** dual solution
+  (its ``lam_x`` and ``lam_g``): the warm start an interior point method can use;
 * ``ipopt-adaptive``: IPOPT with ``mu_strategy adaptive``, cold;
 * ``sqp-qrqp``: CasADi's ``sqpmethod`` with its ``qrqp`` QP solver, cold and warm (no
   convexification: the plain method);
@@ -86,15 +89,24 @@ def scene_cases():
 
 _SOLVERS = {}
 
+#: IPOPT's options for a primal-dual warm start (the ipopt-warm-dual variant): the start and its
+#: multipliers are kept where they are instead of pushed into the interior and re-walked from mu_init 0.1.
+WARM_DUAL = {
+    "ipopt.warm_start_init_point": "yes",
+    "ipopt.warm_start_bound_push": 1e-9,
+    "ipopt.warm_start_mult_bound_push": 1e-9,
+    "ipopt.warm_start_slack_bound_push": 1e-9,
+    "ipopt.mu_init": 1e-9,
+}
+
 
 def solver_of(structure, variant):
     """A CasADi nlpsol of the wheel NLP (wheel_nlp.formulate) for a variant, built once."""
     key = (structure, variant)
     if key not in _SOLVERS:
         if variant.startswith("ipopt"):
-            return wheel_nlp.get_model(
-                structure, {"ipopt.mu_strategy": "adaptive"} if variant == "ipopt-adaptive" else None
-            ).solver
+            options = {"ipopt-adaptive": {"ipopt.mu_strategy": "adaptive"}, "ipopt-warm-dual": WARM_DUAL}
+            return wheel_nlp.get_model(structure, options.get(variant)).solver
         names = wheel_nlp.variables_of(structure)
         x = ca.SX.sym("x", len(names))
         p = ca.SX.sym("p", len(wheel_nlp.PARAMETERS))
@@ -151,16 +163,20 @@ def timed(call, repeat):
 
 
 def neighbour_start(structure, problem):
-    """The wheel IPOPT finds for J' 2 % lower (variable -> [m]), or None where it does not converge."""
+    """(the wheel IPOPT finds for J' 2 % lower (variable -> [m]), its multipliers {"lam_x0", "lam_g0"}),
+    or None where it does not converge."""
     near = wheel_nlp.WheelProblem(**{**problem.__dict__, "j_shaft": problem.j_shaft * 0.98})
-    f, status, _, x = run(solver_of(structure, "ipopt"), arguments(structure, near))
+    solver = solver_of(structure, "ipopt")
+    f, status, _, x = run(solver, arguments(structure, near))
     if status.startswith("FAILED"):
         return None
+    sol = solver(**arguments(structure, near))  # again, for its multipliers (run keeps the primal only)
     names = wheel_nlp.variables_of(structure)
-    return {n: math.exp(float(v)) for n, v in zip(names, np.asarray(x).ravel())}
+    dims = {n: math.exp(float(v)) for n, v in zip(names, np.asarray(x).ravel())}
+    return dims, {"lam_x0": sol["lam_x"], "lam_g0": sol["lam_g"]}
 
 
-VARIANTS = ("ipopt", "ipopt-warm", "ipopt-adaptive", "sqp-qrqp", "sqp-qrqp-warm", "wheel-sqpmethod")
+VARIANTS = ("ipopt", "ipopt-warm", "ipopt-warm-dual", "ipopt-adaptive", "sqp-qrqp", "sqp-qrqp-warm", "wheel-sqpmethod")
 FAST = {wheel_nlp.SOLVER_OPTION: "sqpmethod"}
 
 
@@ -234,7 +250,7 @@ def main(argv=None):
             continue  # infeasible random wheels: no design to compare
         start = neighbour_start(structure, problem)
         for variant in VARIANTS:
-            warm = variant.endswith("warm")
+            warm = "warm" in variant
             if warm and start is None:
                 continue
             if variant == "wheel-sqpmethod":
@@ -243,8 +259,10 @@ def main(argv=None):
                 f, status, iterations = found.objective, f"{found.solver}: {found.status}", found.iterations
                 seconds = timed(lambda: wheel_nlp.solve(model, problem, name), args.repeat)
             else:
-                solver = solver_of(structure, variant.replace("-warm", "") if variant != "ipopt-warm" else "ipopt")
-                a = arguments(structure, problem, start if warm else None)
+                solver = solver_of(structure, {"ipopt-warm": "ipopt", "sqp-qrqp-warm": "sqp-qrqp"}.get(variant, variant))
+                a = arguments(structure, problem, start[0] if warm else None)
+                if variant == "ipopt-warm-dual":
+                    a.update(start[1])
                 f, status, iterations, _ = run(solver, a)
                 seconds = timed(lambda: solver(**a), args.repeat)
             error = abs(math.expm1(f - reference[0])) if not status.startswith("FAILED") else math.nan
@@ -376,9 +394,14 @@ def write(rows, pinning, load, firsts, designs, fast_designs, sweeps, paretos, a
         f"- A design is more than a solve: the scene's solve makes {len(designs)} whole-wheel designs, each one "
         "NLP solve (the exact stress check asked for no re-solve: no part's stress binds in this scene), "
         "plus the allowables, the exact stress check and the structural fields.",
-        "- IPOPT warm-started from a neighbouring wheel saves little (the ipopt-warm row): an interior point method moves a "
-        "start off its bounds (bound_push) and re-walks the barrier path, so a primal start barely helps; no "
-        "warm-start API was added for it.",
+        "- IPOPT started from a neighbouring wheel's primal point alone saves little (the ipopt-warm row): an interior "
+        "point method moves a start off its bounds (bound_push) and re-walks the barrier path from mu_init. Given the "
+        "neighbour's multipliers too, with warm_start_init_point and the pushes and mu_init at 1e-9 (the "
+        "ipopt-warm-dual row), it converges in a few iterations. flyopt does not use it yet: the options are fixed "
+        "when IPOPT is built, so a warm solver is a second build of some 60 ms per structure (more than a "
+        "scene's few re-designs save); and where the optimum is not unique (next note) a warm start keeps the "
+        "neighbour's dimensions, so a sweep's rows would depend on how its points were cut into chunks. Both "
+        "go once the wheel has one optimum (issue 28's castable proportions: a rim distinct from its web).",
         "- sqpmethod with qrqp is several times faster per solve where it converges (the sqp rows), but alone it did not converge on "
         "every wheel IPOPT solves (the 'converged' column) and took up to seconds on others. flyopt offers it "
         "opt-in (solver option flyopt.wheel_solver = sqpmethod, the wheel-sqpmethod row): the Hessian clipped to "
