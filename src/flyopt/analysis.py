@@ -372,13 +372,13 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         work = driving = resisting = power = motor_power = None
         chain = tuple(ChainPoint(index=k, angle=None, delta_e=float(e)) for k, e in enumerate(ind.chain_delta_e))
         model, reason = models.ENERGY, "net areas of a constant-inertia machine: the energy method is exact"
-        j_margin = required_inertia(ind.a_max, scene.omega_mean, scene.delta, scene.j_constant)
+        j_margin = required_inertia(ind.a_max, scene.omega_mean, scene.allowed_delta, scene.j_constant)
         omega_mean = scene.omega_mean
-        omega_max, omega_min = speed_extremes(omega_mean, scene.delta)
+        omega_max, omega_min = speed_extremes(omega_mean, scene.allowed_delta)
         angles = (ind.angle_omega_max, ind.angle_omega_min)
     else:
         if like is not None and like.machine is not None:
-            machine = like.machine.with_delta(scene.delta)
+            machine = like.machine.with_delta(scene.allowed_delta)
             assert like.indicator is not None  # a machine's analysis has its diagram
             ind = like.indicator  # the torques at the frozen speed do not depend on δ
         else:
@@ -420,7 +420,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         model=model,
         model_reason=reason,
         omega_mean=omega_mean,
-        delta=scene.delta,
+        delta=scene.allowed_delta,
         cycle_angle=scene.cycle_angle,
         j_constant=scene.j_constant,
         a_max=ind.a_max,

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any, Literal
 
 from flyopt.analysis import EXTRAS as ANALYSIS_EXTRAS
 from flyopt.analysis import Analysis, NotComputed, analyse, complete
+from flyopt.cycle.indicator import speed_extremes
 
 if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     import numpy as np
@@ -22,6 +23,7 @@ if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     from flyopt.design.result import DesignResult
     from flyopt.drive.codesign import DriveCheck, DriveDesign
     from flyopt.io.scene import Scene
+    from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.periodic import PeriodicSolution, Verification
 
 
@@ -58,6 +60,10 @@ class Solution:
         chosen motor at its ratio) and ``design`` its wheel's.
     drive_check : DriveCheck or None
         The chosen drive simulated with the wheel as built.
+    flywheel : FlywheelCheck or None
+        What the scene's [flywheel] that exists does: the δ it leaves, the
+        speeds, the accelerations (:func:`check_flywheel`); ``analysis`` is
+        then the machine's own, at machine.delta or, without one, at that δ.
     inertia_curve : (ndarray, ndarray) or None
         δ and J_F there by the analysis' own model
         (:func:`flyopt.delta_curve.inertia_curve`); None for the energy
@@ -80,6 +86,7 @@ class Solution:
     verification: Verification | None = None
     drive: DriveDesign | None = None  # of a scene with a [drive]
     drive_check: DriveCheck | None = None  # of the chosen drive
+    flywheel: FlywheelCheck | None = None  # of a scene's [flywheel] that exists (no design then)
     _extras: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
 
     def _extra(self, name: str) -> Any:
@@ -123,11 +130,14 @@ class Solution:
 
     @property
     def status(self) -> str:
-        """ "designed", "not_needed", "infeasible", or "analysed" (design skipped)."""
+        """ "designed", "not_needed", "infeasible", "analysed" (design skipped), or for a [flywheel] that
+        exists "checked" (it holds machine.delta, or none was given) or "insufficient"."""
         if self.drive is not None and self.drive.best is None:
             return "infeasible"
         if self.drive is not None and self.design is None:
             return "not_needed"  # the chosen motor holds δ without a flywheel
+        if self.flywheel is not None:
+            return "insufficient" if self.flywheel.suffices is False else "checked"
         return self.design.status if self.design is not None else "analysed"
 
     def to_dict(self, timings: bool = False) -> dict[str, Any]:
@@ -141,6 +151,8 @@ class Solution:
             out["design"] = design_dict(self.design, timings)
         if self.verification is not None:
             out["verification"] = self.verification.to_dict()
+        if self.flywheel is not None:
+            out["flywheel"] = self.flywheel.to_dict()
         if self.drive is not None:
             out["drive"] = self.drive.to_dict()
             if self.drive_check is not None:
@@ -371,6 +383,10 @@ def solve(
     unknown = [name for name in extras if name not in COMPLETE]
     if unknown:
         raise ValueError(f"unknown extras {unknown} (known: {', '.join(COMPLETE)})")
+    if scene.flywheel is not None:
+        analysis, checked_wheel = check_flywheel(scene, model)
+        solution = Solution(scene=scene.replace(delta=analysis.delta), analysis=analysis, flywheel=checked_wheel)
+        return with_extras(solution, [name for name in extras if name not in ("inertia_curve", "stress")])
     analysis = analyse(scene, model)
     if scene.drive is not None and design_flywheel:
         solution = solve_drive(scene, analysis, solver_options)
@@ -379,6 +395,101 @@ def solve(
         checked = verify(scene, analysis, result) if verify_design else None
         solution = Solution(scene=scene, analysis=analysis, design=result, verification=checked)
     return with_extras(solution, extras)
+
+
+#: δ of the first, energy-method look at a scene whose [flywheel] is given without machine.delta: only its
+#: A_max is read (the energy method's A_max does not depend on δ), so any allowed value serves.
+PROVISIONAL_DELTA = 0.01
+
+
+def check_flywheel(
+    scene: Scene, model: Literal["energy", "energy_mass", "dynamic"] | None = None
+) -> tuple[Analysis, FlywheelCheck]:
+    """Analyse a scene whose [flywheel] exists: the δ, speeds and accelerations it leaves.
+
+    The analysis is the machine's own (the wheel left out), at machine.delta, or where the
+    scene gives none at the δ the wheel reaches (its J_F is then the wheel's, to the model's
+    tolerance). The energy method inverts in closed form for a constant inertia and torques of
+    the angle only; any other model is answered by the periodic simulation with the wheel.
+    """
+    from flyopt.sizing import existing, periodic
+
+    wheel = scene.flywheel
+    if wheel is None:
+        raise ValueError("check_flywheel needs a scene with a [flywheel]")
+    j_wheel = wheel.j_at_reference
+    if scene.delta is None:
+        first = analyse(scene.replace(delta=PROVISIONAL_DELTA), "energy")
+        guess = existing.energy_delta(first.a_max, scene.omega_mean, first.j_constant + j_wheel)
+        analysis = analyse(scene.replace(delta=min(guess, 1.9)), model, like=first)
+    else:
+        analysis = analyse(scene, model)
+    machine = analysis.machine
+    accelerations: tuple[float | None, ...] = (None, None, None, None)  # net areas: no torques over the angle
+    if analysis.model == "energy" or machine is None:  # net areas: the energy method alone
+        achieved = existing.energy_delta(analysis.a_max, analysis.omega_mean, analysis.j_constant + j_wheel)
+        omega_max, omega_min = speed_extremes(analysis.omega_mean, achieved)
+        angles: tuple[float | None, float | None] = (analysis.angle_omega_max, analysis.angle_omega_min)
+        swing, tolerance = analysis.a_max, 1e-12 * achieved
+        method = "energy method, exact for a constant inertia and torques of the angle only: δ = A_max/(ω_m² J)"
+        if machine is not None:  # dω/dt = (M_d - M_r)/J at every angle
+            high, at_high, low, at_low = existing.net_torque_extremes(machine)
+            j_total = analysis.j_constant + j_wheel
+            accelerations = (high / j_total, at_high, low / j_total, at_low)
+    else:
+        simulation = periodic.verify(
+            machine.net_torque(),
+            machine.j_machine,
+            machine.cycle_angle,
+            analysis.omega_mean,
+            analysis.delta,
+            j_wheel,
+            machine.knots(),
+        )
+        sol = simulation.solution
+        if sol is None:
+            raise RuntimeError("the periodic simulation returned no speed curve")
+        achieved, omega_max, omega_min = simulation.achieved_delta, sol.omega_max, sol.omega_min
+        angles = (sol.phi_omega_max, sol.phi_omega_min)
+        swing = existing.kinetic_energy_swing(sol, _plus(machine.j_machine, j_wheel))
+        tolerance = simulation.tolerance
+        method = f"{simulation.method} with the flywheel given"
+        accelerations = existing.solution_accelerations(sol)
+        if scene.delta is None:  # the machine's analysis at the δ the wheel reaches
+            analysis = analyse(scene.replace(delta=achieved), model, like=analysis)
+    required = suffices = margin = None
+    if scene.delta is not None:
+        required = max(analysis.j_margin, 0.0)
+        suffices = achieved <= scene.delta + tolerance
+        margin = j_wheel / required - 1.0 if required > 0 else None
+    check = existing.FlywheelCheck(
+        flywheel=wheel,
+        j_machine=analysis.j_constant if machine is None or not machine.variable_inertia else machine.j_mean(),
+        achieved_delta=achieved,
+        omega_mean=analysis.omega_mean,
+        omega_max=omega_max,
+        omega_min=omega_min,
+        angle_omega_max=angles[0],
+        angle_omega_min=angles[1],
+        a_max=analysis.a_max,
+        energy_swing=swing,
+        acceleration_max=accelerations[0],
+        angle_acceleration_max=accelerations[1],
+        acceleration_min=accelerations[2],
+        angle_acceleration_min=accelerations[3],
+        method=method,
+        tolerance=tolerance,
+        delta_allowed=scene.delta,
+        j_required=required,
+        suffices=suffices,
+        margin=margin,
+    )
+    return analysis, check
+
+
+def _plus(inertia: Any, extra: float) -> Any:
+    """J(φ) + a constant, for a number or a function of φ."""
+    return (lambda phi: inertia(phi) + extra) if callable(inertia) else float(inertia) + extra
 
 
 def with_extras(solution: Solution, extras: Iterable[str] = COMPLETE) -> Solution:

@@ -51,6 +51,15 @@ RELATIONS = {
     "delta_allowed": "delta",
     "tolerance": "delta",
     "j_error": "j_required / j_required",
+    # a flywheel that exists: J dω/dt = M_d - M_r, the energy swing ½ J (ω_max² - ω_min²), J = m k²
+    "acceleration_max": "driving_torque / j_required",
+    "acceleration_min": "acceleration_max",
+    "angle_acceleration_max": "angle",
+    "angle_acceleration_min": "angle",
+    "energy_swing": "j_required * omega_max**2",
+    "j_machine": "j_required",
+    "radius_of_gyration": "(j_required / mass)**0.5",
+    "margin": "j_required / j_required",
     # angles of the cycle
     "cycle_angle": "angle",
     "angle_omega_max": "angle",

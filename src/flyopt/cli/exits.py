@@ -51,9 +51,12 @@ EXIT_BROKEN_PIPE = 141
 
 def solution_exit(solution: Solution) -> int:
     """The exit status of a solved scene (``flyopt solve``, ``flyopt report``): 3 infeasible,
-    4 a verification (of the flywheel or of the drive) flagged, else 0."""
+    4 a verification (of the flywheel or of the drive) flagged or a [flywheel] that exists short
+    of machine.delta, else 0."""
     if solution.status == "infeasible":
         return EXIT_INFEASIBLE
+    if solution.status == "insufficient":
+        return EXIT_FLAGGED
     for check in (solution.verification, getattr(solution, "drive_check", None)):
         if check is not None and check.flagged:
             return EXIT_FLAGGED

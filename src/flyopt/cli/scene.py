@@ -78,9 +78,13 @@ def run_solve(args: argparse.Namespace) -> int:
 
         text = solution_json(solution, args.scene, timings=args.timings)
     else:
-        from flyopt.report.text import analysis_report, design_report, verification_report
+        from flyopt.report.text import analysis_report, design_report, flywheel_report, verification_report
 
-        lines = [analysis_report(solution.analysis, args.scene, units=args.units)]
+        reached = solution.flywheel is not None and solution.flywheel.delta_allowed is None
+        label = "δ reached by the flywheel" if reached else "allowed δ"
+        lines = [analysis_report(solution.analysis, args.scene, units=args.units, delta_label=label)]
+        if solution.flywheel is not None:
+            lines += flywheel_report(solution.flywheel, units=args.units)
         if solution.design is not None:
             lines += design_report(solution.design, units=args.units)
         if solution.drive is not None:

@@ -559,7 +559,7 @@ def drive_model(scene: Scene, analysis: Analysis, motor: CatalogueMotor) -> Driv
     load = NetTorque(Constant(0.0), machine.resisting, machine.net_torque().work)
     net = MotorLoad(load, scene.efficiency, motor_parameters(motor, 1.0))
     model = periodic_model(net, machine.j_machine, machine.cycle_angle, machine.knots())
-    return DriveModel(model, scene.omega_mean, scene.delta, scene.efficiency)
+    return DriveModel(model, scene.omega_mean, scene.allowed_delta, scene.efficiency)
 
 
 def _settle_compiled(model, motor, ratio, thermal, start):
@@ -984,7 +984,7 @@ def verify_drive(scene: Scene, run: MotorRun, j_flywheel: float | None = None) -
         machine.j_machine,
         machine.cycle_angle,
         scene.omega_mean,
-        scene.delta,
+        scene.allowed_delta,
         j_flywheel,
         machine.knots(),
     )

@@ -37,6 +37,7 @@ if TYPE_CHECKING:
     from flyopt.design.spec import DesignSpec
     from flyopt.io.drive import DriveSpec
     from flyopt.machine.engine import Engine
+    from flyopt.machine.flywheel import ExistingFlywheel
     from flyopt.machine.kinematics import GearTrain, SliderCrank
     from flyopt.machine.mechanism import Member
 
@@ -85,13 +86,16 @@ class Scene:
     mechanism : SliderCrank, GearTrain or None
     engine : flyopt.machine.engine.Engine or None
         The [engine]: its pistons and rods are the first of ``members``.
+    flywheel : flyopt.machine.flywheel.ExistingFlywheel or None
+        The [flywheel] that exists: analysed, not designed. ``delta`` may then
+        be None (the δ it reaches is found instead; :attr:`allowed_delta`).
     source : str or None
         File the scene came from.
     """
 
     title: str
     omega_mean: float
-    delta: float
+    delta: float | None  # None only with a [flywheel] that exists: the δ it reaches is the answer
     j_constant: float = 0.0
     cycle_angle: float = 2 * math.pi
     efficiency: float = 1.0
@@ -107,7 +111,17 @@ class Scene:
     mechanism: SliderCrank | GearTrain | None = None  # [mechanism]
     drive: DriveSpec | None = None  # [drive]: the motor and ratio designed with the wheel
     engine: Engine | None = None  # [engine]; its members lead ``members``
+    flywheel: ExistingFlywheel | None = None  # [flywheel]: a wheel that exists, analysed instead of designed
     source: str | None = field(default=None, compare=False)
+
+    @property
+    def allowed_delta(self) -> float:
+        """machine.delta, where a computation needs it (a scene with a [flywheel] may leave it out)."""
+        if self.delta is None:
+            raise SceneError(
+                "machine.delta", "is needed here (only the analysis of a [flywheel] that exists can do without it)"
+            )
+        return self.delta
 
     def material_library(self) -> dict[str, Material]:
         """Built-in materials extended or overridden by the scene's own."""
@@ -195,6 +209,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             "drive",
             "motor_option",
             "engine",
+            "flywheel",
         },
     )  # [sweep] is read by flyopt.studies.sweep.load_sweep
     machine = Table(
@@ -204,14 +219,10 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     if omega <= 0:
         raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
     check_magnitude(omega, "machine.speed", machine.raw("speed"), *SPEED_RANGE, "rad/s", SPEED_WHY)
-    delta = machine.quantity("delta", "dimensionless", required=True)
-    if not 0 < delta < 2:
-        raise SceneError(
-            "machine.delta",
-            f"must lie between 0 and 2 (exclusive), got {shorten(machine.raw('delta'))}; "
-            "typical values are 1/5 (crushers) to 1/300 (AC generators)",
-        )
-    check_magnitude(delta, "machine.delta", machine.raw("delta"), MIN_DELTA, 2, "", "a smaller one cannot be computed")
+    existing = top.has("flywheel")
+    delta = machine.quantity("delta", "dimensionless", required=not existing)
+    if delta is not None:
+        _check_delta(delta, machine)
     if machine.has("inertia") and machine.has("gd2"):
         raise SceneError("machine.gd2", "give either machine.inertia or machine.gd2, not both")
     j_c = machine.quantity("inertia", "inertia", default=0.0)
@@ -275,6 +286,18 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             shafts,
             materials={n: library[n] for n in design_material_names(library, design_materials)},
         )
+    flywheel = None
+    if existing:
+        from flyopt.io.flywheel_section import read_flywheel
+
+        for other in ("drive", "motor_option", "design"):
+            if top.has(other):
+                raise SceneError(
+                    "flywheel",
+                    f"gives the flywheel, and [{other}] asks to design one: give one of them "
+                    "(a [flywheel] that exists is analysed, not designed)",
+                )
+        flywheel = read_flywheel(top.get("flywheel"), shafts)
     title = top.get("title", "")
     if not isinstance(title, str):
         raise SceneError("title", f"must be a string, got {shorten(title)}")
@@ -302,8 +325,20 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         mechanism=mechanism,
         drive=drive,
         engine=engine,
+        flywheel=flywheel,
         source=source,
     )
+
+
+def _check_delta(delta: float, machine: Table) -> None:
+    """Refuse a machine.delta outside (0, 2) or too small to compute with."""
+    if not 0 < delta < 2:
+        raise SceneError(
+            "machine.delta",
+            f"must lie between 0 and 2 (exclusive), got {shorten(machine.raw('delta'))}; "
+            "typical values are 1/5 (crushers) to 1/300 (AC generators)",
+        )
+    check_magnitude(delta, "machine.delta", machine.raw("delta"), MIN_DELTA, 2, "", "a smaller one cannot be computed")
 
 
 def constant_inertia(j_machine: float, shafts: Iterable[Shaft]) -> float:

@@ -39,7 +39,7 @@ __all__ = [
 #: :data:`flyopt.units.DIMENSIONS`'). Money is a plain number: a material's cost is read
 #: per kilogram (``"2.1 1/kg"``, dimension ``cost_per_mass``), so a wheel's cost is
 #: ``dimensionless``, in the currency the scene's prices are given in.
-OUTPUT_DIMENSIONS = {"time": "s", "unbalance": "kg*m"}
+OUTPUT_DIMENSIONS = {"time": "s", "unbalance": "kg*m", "angular_acceleration": "rad/s**2"}
 
 #: The columns of a sweep's inputs: the fields of :data:`flyopt.io.sweep_spec.FIELDS` (which
 #: reads their values in these dimensions) and their dimension, None for a name. sweep_spec
@@ -92,6 +92,15 @@ QUANTITIES = {
     "j_required": "inertia",
     "gd2_required": "flywheel_moment",
     "achieved_delta": "dimensionless",
+    # a flywheel that exists ([flywheel]): what it leaves of the speed, and what it is
+    "energy_swing": "energy",
+    "acceleration_max": "angular_acceleration",
+    "acceleration_min": "angular_acceleration",
+    "angle_acceleration_max": "angle",
+    "angle_acceleration_min": "angle",
+    "j_machine": "inertia",
+    "margin": "dimensionless",
+    "radius_of_gyration": "length",
     "delta_allowed": "dimensionless",
     "j_error": "dimensionless",
     "tolerance": "dimensionless",

@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from flyopt.analysis import Analysis
     from flyopt.design.result import Candidate, DesignResult
     from flyopt.design.spec import DesignSpec
+    from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.periodic import Verification
 
 __all__ = [
@@ -86,7 +87,9 @@ def no_flywheel_words(analysis: Analysis) -> tuple[str, str]:
     return "the machine's own inertia suffices (J_F would be", ")"
 
 
-def analysis_report(result: Analysis, source: str | None = None, units: str = DEFAULT) -> str:
+def analysis_report(
+    result: Analysis, source: str | None = None, units: str = DEFAULT, delta_label: str = "allowed δ"
+) -> str:
     """The report of ``flyopt solve`` for the cycle analysis, as text.
 
     Parameters
@@ -96,13 +99,15 @@ def analysis_report(result: Analysis, source: str | None = None, units: str = DE
         The scene file, named after the title.
     units : str
         The unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
+    delta_label : str
+        What the analysis' δ is: the allowed one, or the δ a [flywheel] that exists reaches.
     """
     r = result
     q, n = formatters(units)
     lines = [visible(r.title) + (f"  ({visible(source)})" if source else ""), f"model: {r.model}: {r.model_reason}", ""]
     facts = [
         ("mean speed", q(r.omega_mean, "omega_mean")),
-        ("allowed δ", f"{number(r.delta)} (1/{number(1 / r.delta, 4)})"),
+        (delta_label, f"{number(r.delta)} (1/{number(1 / r.delta, 4)})"),
         ("speed range", f"{n(r.omega_min, 'omega_min')} to {q(r.omega_max, 'omega_max')}"),
         ("cycle", q(r.cycle_angle, "cycle_angle")),
     ]
@@ -523,4 +528,70 @@ def verification_report(v: Verification, units: str = DEFAULT) -> list[str]:
         f"(tolerance {number(v.tolerance, 3)}); ω {field_number(v.omega_min, 'omega_min', units)} to "
         f"{q(v.omega_max, 'omega_max')}, mean {q(v.omega_mean, 'omega_mean')}; flywheel "
         f"{q(v.j_flywheel, 'j_flywheel')} at the reference shaft",
+    ]
+
+
+def flywheel_report(check: FlywheelCheck, units: str = DEFAULT) -> list[str]:
+    """The part of ``flyopt solve`` for a [flywheel] that exists: the δ it leaves and what it does."""
+    q, n = formatters(units)
+    wheel = check.flywheel
+    given = q(wheel.inertia, "j_flywheel")
+    if wheel.mass is not None and wheel.radius_of_gyration is not None:
+        given += f" (m = {q(wheel.mass, 'mass')}, k = {q(wheel.radius_of_gyration, 'radius_of_gyration')})"
+    facts = [
+        ("flywheel given", f"{given} on shaft {visible(wheel.shaft)} (speed ratio {number(wheel.speed_ratio)})"),
+        (
+            "at the reference shaft",
+            f"{q(wheel.j_at_reference, 'j_at_reference')}, with the machine's {q(check.j_machine, 'j_machine')}",
+        ),
+        (
+            "δ reached",
+            f"{number(check.achieved_delta)} (1/{number(1 / check.achieved_delta, 4)}, "
+            f"±{number(50 * check.achieved_delta, 4)} % of the mean speed)"
+            if check.achieved_delta > 0
+            else "0",
+        ),
+        ("speed range", f"{n(check.omega_min, 'omega_min')} to {q(check.omega_max, 'omega_max')}"),
+    ]
+    if check.angle_omega_max is not None and check.angle_omega_min is not None:
+        facts.append(
+            (
+                "ω_max / ω_min at",
+                f"{n(check.angle_omega_max, 'angle_omega_max')} / {q(check.angle_omega_min, 'angle_omega_min')}",
+            )
+        )
+    facts += [("A_max", q(check.a_max, "a_max")), ("energy swing", q(check.energy_swing, "energy_swing"))]
+    if check.acceleration_max is not None and check.angle_acceleration_max is not None:
+        facts.append(
+            (
+                "largest acceleration",
+                f"{q(check.acceleration_max, 'acceleration_max')} at {q(check.angle_acceleration_max, 'angle')}",
+            )
+        )
+    if check.acceleration_min is not None and check.angle_acceleration_min is not None:
+        facts.append(
+            (
+                "largest deceleration",
+                f"{q(-check.acceleration_min, 'acceleration_min')} at {q(check.angle_acceleration_min, 'angle')}",
+            )
+        )
+    if check.delta_allowed is not None:
+        if check.suffices:
+            verdict = "suffices"
+        else:
+            verdict = "does NOT suffice"
+        if check.j_required is not None and check.j_required > 0:
+            share = f"{number(abs(100 * (check.margin or 0.0)), 4)} %"
+            verdict += f": it gives {q(wheel.j_at_reference, 'j_at_reference')} at the reference shaft where "
+            verdict += (
+                f"{q(check.j_required, 'j_required')} is needed ({share} {'over' if check.suffices else 'short'})"
+            )
+        else:
+            verdict += ": the machine holds δ without any flywheel"
+        facts.append((f"against the allowed δ {number(check.delta_allowed)}", verdict))
+    width = max(len(label) for label, _ in facts)
+    return [
+        "",
+        f"The flywheel that exists ({check.method}):",
+        *(f"  {label:<{width}}  {text}" for label, text in facts),
     ]

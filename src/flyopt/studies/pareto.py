@@ -310,7 +310,7 @@ def _front_delta(
     solver_options: Mapping[str, Any] | None,
 ) -> pd.DataFrame:
     if span is None:
-        span = (scene.delta / 10.0, min(scene.delta * 10.0, 1.0))
+        span = (scene.allowed_delta / 10.0, min(scene.allowed_delta * 10.0, 1.0))
     low, high = span
     if not 0 < low <= high < 2:
         raise SceneError("range", f"the δ range {low:.6g}..{high:.6g} must lie in (0, 2)")

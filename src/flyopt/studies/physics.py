@@ -90,7 +90,7 @@ def physics_analysis(scene: Scene, point: Mapping[str, Any] | None = None) -> An
     from flyopt import analysis as _analysis
 
     point = dict(point or {})
-    own = {"delta": scene.delta, "speed": scene.omega_mean, "inertia": scene.j_constant, "torque.scale": 1.0}
+    own = {"delta": scene.allowed_delta, "speed": scene.omega_mean, "inertia": scene.j_constant, "torque.scale": 1.0}
     key = tuple(float(point.get(name, own[name])) for name in PHYSICS_FIELDS)
     with _MEMO_LOCK:  # Dask workers in threads share this process's memo
         entry = _ANALYSES.get(id(scene))
