@@ -164,3 +164,14 @@ def test_the_json_holds_the_check_and_meets_the_schema(name):
     errors = [e.message for e in jsonschema.Draft202012Validator(schema()).iter_errors(document)]
     assert errors == []
     assert document["flywheel"]["achieved_delta"] == pytest.approx(document["delta"], rel=1e-12)
+
+
+def test_the_report_refuses_a_flywheel_that_exists_in_one_line(tmp_path):
+    out = tmp_path / "k.html"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(TEXTBOOK / "khurmi-16-12.toml"), "-o", str(out)],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 2 and "Traceback" not in run.stderr and not out.exists()
+    assert len(run.stderr.strip().splitlines()) == 1 and "flywheel" in run.stderr

@@ -157,6 +157,13 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
 
     data = read_toml(path)
     scene = load(path, data)
+    if scene.flywheel is not None:
+        from flyopt.errors import SceneError
+
+        raise SceneError(
+            "flywheel",
+            "the report does not show a [flywheel] that exists yet: flyopt solve (and --json) gives its check",
+        ).with_source(str(path))
     solution = solve(scene, verify_design=True, extras=report_extras())  # the one solve: what follows only reads
     inputs = ReportInputs(
         scene_file=str(path),
