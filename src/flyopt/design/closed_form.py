@@ -231,11 +231,14 @@ def cap_needed(
     hb_ratio: tuple[float, float],
     max_width: float,
     d_mean: float | None,
+    *,
+    j_cap: float | None = None,
 ) -> tuple[float | None, float]:
     """Smallest outer-diameter cap at which ``j_needed`` becomes reachable.
 
     Returns (cap_needed, j_sup): cap_needed is None when even an unlimited cap
     does not reach ``j_needed``; j_sup is then the largest reachable inertia.
+    ``j_cap``: :func:`max_inertia_one` at ``cap`` when the caller has it.
     """
 
     def j_max(c):
@@ -251,7 +254,10 @@ def cap_needed(
         if j_sup < j_needed:
             return None, j_sup
         low, high = max(cap, d_mean), saturated
-        if geometry_name == Geometry.DISC or j_max(low) >= j_needed:
+        if geometry_name == Geometry.DISC:
+            return low, j_sup
+        j_low, j_high = j_max(low), j_sup
+        if j_low >= j_needed:
             return low, j_sup
     else:
         # D_m free. J_max is homogeneous of degree 5 in (C, B_max): scaling an admissible
@@ -260,20 +266,32 @@ def cap_needed(
         # C by λ >= 1 multiplies J_max by at most λ^5 (scale down any wheel of the larger
         # cap) and at least λ^3 / 2 (keep H and B, push D_m out to >= λ D_m; with
         # H <= D_m, D_m^2 + H^2 <= 2 D_m^2), which brackets the root.
-        j_cap = j_max(cap)
+        if j_cap is None:
+            j_cap = j_max(cap)
         if max_width == math.inf or geometry_name == Geometry.DISC:
             power = 4.0 if geometry_name == Geometry.DISC else 5.0
             return cap * (j_needed / j_cap) ** (1.0 / power), math.inf
         low = cap * (j_needed / j_cap) ** 0.2
-        if j_max(low) >= j_needed:  # the width does not bind there: degree 5 is exact
+        j_low = j_max(low)
+        if j_low >= j_needed:  # the width does not bind there: degree 5 is exact
             return low, math.inf
         high = cap * (2.0 * j_needed / j_cap) ** (1.0 / 3.0)
-        while j_max(high) < j_needed:  # round-off at the bracket's edge only
-            low, high = high, 2.0 * high
-    return smallest_reaching(j_max, j_needed, low, high), math.inf
+        j_high = j_max(high)
+        while j_high < j_needed:  # round-off at the bracket's edge only
+            low, j_low, high = high, j_high, 2.0 * high
+            j_high = j_max(high)
+    return smallest_reaching(j_max, j_needed, low, high, j_low=j_low, j_high=j_high), math.inf
 
 
-def smallest_reaching(j_max: Callable[[float], float], j_needed: float, low: float, high: float) -> float:
+def smallest_reaching(
+    j_max: Callable[[float], float],
+    j_needed: float,
+    low: float,
+    high: float,
+    *,
+    j_low: float | None = None,
+    j_high: float | None = None,
+) -> float:
     """The smallest float ``c`` in (low, high] with ``j_max(c) >= j_needed``: a bracket narrowed to adjacent floats.
 
     The bracket is narrowed first by interpolation in log-log (Illinois
@@ -295,6 +313,8 @@ def smallest_reaching(j_max: Callable[[float], float], j_needed: float, low: flo
         The inertia to reach [kg*m^2].
     low, high : float
         A bracket [m]: ``j_max(low) < j_needed <= j_max(high)``.
+    j_low, j_high : float, optional
+        ``j_max(low)`` and ``j_max(high)`` when the caller has them (else they are computed).
 
     Returns
     -------
@@ -303,7 +323,11 @@ def smallest_reaching(j_max: Callable[[float], float], j_needed: float, low: flo
         ``c`` short of it (for a function that is not monotone to the last
         bit, one such change within the bracket).
     """
-    f_low, f_high = _log_excess(j_max(low), j_needed), _log_excess(j_max(high), j_needed)
+    if j_low is None:
+        j_low = j_max(low)
+    if j_high is None:
+        j_high = j_max(high)
+    f_low, f_high = _log_excess(j_low, j_needed), _log_excess(j_high, j_needed)
     side = 0  # which end the last interpolated step moved: -1 low, +1 high (Illinois)
     previous = math.nan
     for _ in range(_INTERPOLATION_STEPS):

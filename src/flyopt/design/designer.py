@@ -90,7 +90,7 @@ def _explain_infeasible(combo, spec):
         cap, pin = _g_apart(combo.cap, pinned)
         return (f"{combo.label}: {cap_text} at {cap} m, below the pinned diameter {pin} m"), None
     needed, j_sup = closed_form.cap_needed(
-        geo, m.density, combo.j_shaft, combo.cap, spec.hb_ratio, spec.max_width, pinned
+        geo, m.density, combo.j_shaft, combo.cap, spec.hb_ratio, spec.max_width, pinned, j_cap=combo.j_max
     )
     if needed is None:
         limits = []
