@@ -335,7 +335,8 @@ def smallest_reaching(
             break  # J_max(low) = 0 (a pinned mean diameter at its cap) or overflow: halving only
         log_low, log_high = math.log(low), math.log(high)
         mid = math.exp(log_low + (log_high - log_low) * f_low / (f_low - f_high))
-        if not low < mid < high:
+        if not low < mid < high:  # the root is within round-off of an end: close the bracket from there
+            side = -1 if mid <= low else 1
             break
         j = j_max(mid)
         f_mid = _log_excess(j, j_needed)
