@@ -213,9 +213,10 @@ def max_inertia_one(
     h_break = min(hb_min * b_max, h_top)
     best_j, best_h = 0.0, 0.0
     for h in (h_top, h_break, min(0.4 * cap, h_break), min(max(0.25 * cap, h_break), h_top)):
-        if h <= 0.0:
+        if h <= 0.0 or h == best_h:  # a trial equal to the best so far cannot beat it
             continue
-        j = geometry.wheel_inertia(geometry_name, density, cap - h, h, min(h / hb_min, b_max))
+        d = cap - h
+        j = geometry.thin_rim_inertia(geometry.rim_mass(d, h, min(h / hb_min, b_max), density), d)
         if j > best_j:
             best_j, best_h = j, h
     if best_j > 0.0:
