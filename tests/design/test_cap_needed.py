@@ -1,6 +1,6 @@
 """The outer-diameter cap an infeasible combination needs: the smallest float that reaches the inertia.
 
-``closed_form.cap_needed`` finds it by bisection to adjacent floats (no
+``closed_form.cap_needed`` narrows a bracket to adjacent floats (no
 scipy.optimize at start-up). The property is checked directly (the cap
 reaches J, the float below it does not), and the cap against scipy's brentq,
 an independent solver, within brentq's own tolerance.

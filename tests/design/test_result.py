@@ -84,3 +84,30 @@ def test_dimensions_give_the_wheel_dims_with_zero_for_absent_parts():
     )
     rim = Dimensions(d_mean=0.9, d_outer=1.0, d_inner=0.8, h=0.1, b=0.2).wheel()
     assert (rim.bore, rim.t_web, rim.d_hub, rim.l_hub, rim.arm_major, rim.n_arms) == (0.0, 0.0, 0.0, 0.0, 0.0, 0)
+
+
+@pytest.mark.parametrize("record", [Dimensions, Parts, Stresses, Limits, Provenance, Candidate, Design])
+def test_records_are_built_as_their_dataclass_declares_them(record):
+    """The records' faster __init__ (one __dict__ update) takes the dataclass's own parameters, in order,
+    with its defaults; a default factory gives a new object each time; the record stays frozen."""
+    import dataclasses
+    import inspect
+
+    params = list(inspect.signature(record.__init__).parameters.values())[1:]
+    assert [p.name for p in params] == [f.name for f in dataclasses.fields(record)]
+    for p, f in zip(params, dataclasses.fields(record)):
+        assert (p.kind == p.KEYWORD_ONLY) == f.kw_only
+        if f.default is not dataclasses.MISSING:
+            assert p.default is f.default
+        elif f.default_factory is dataclasses.MISSING:
+            assert p.default is p.empty
+    required = {p.name: 1.0 for p in params if p.default is p.empty}
+    one, two = record(**required), record(**required)
+    assert list(vars(one)) == [f.name for f in dataclasses.fields(record)]
+    for f in dataclasses.fields(record):
+        if f.default_factory is not dataclasses.MISSING:
+            assert getattr(one, f.name) == f.default_factory() and getattr(one, f.name) is not getattr(two, f.name)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        one.__setattr__(params[0].name, 2.0)
+    with pytest.raises(TypeError):
+        record(**required, not_a_field=1.0)

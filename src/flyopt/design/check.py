@@ -66,6 +66,7 @@ WHEEL_BINDING_NAMES = {
 }
 #: Bits of a binding mask, in the order of :data:`BINDING_NAMES`.
 BINDING_BITS = {name: 1 << k for k, name in enumerate(BINDING_NAMES)}
+_BITS = tuple(BINDING_BITS.values())
 #: Relative tolerance for calling a constraint binding.
 ACTIVE_RTOL = 1e-6
 #: Relative tolerance when checking a solved design against its constraints.
@@ -109,28 +110,25 @@ def binding_mask(
         OR of :data:`BINDING_BITS` of the constraints within :data:`ACTIVE_RTOL` of their limit.
     """
     rtol = ACTIVE_RTOL
-    # plain operators: the same rule for floats (one design, no numpy overhead) and for arrays
-    flags = {
-        "inertia": j_wheel <= j_shaft * (1.0 + rtol),
-        "rim_speed": d_outer >= cap_speed * (1.0 - rtol),
-        "max_outer_diameter": d_outer >= envelope * (1.0 - rtol),
-        "max_width": b >= max_width * (1.0 - rtol),
-    }
+    # plain operators: the same rule for floats (one design, no numpy overhead) and for arrays;
+    # in the order of BINDING_NAMES (the last three for rims only)
+    flags = [
+        j_wheel <= j_shaft * (1.0 + rtol),
+        d_outer >= cap_speed * (1.0 - rtol),
+        d_outer >= envelope * (1.0 - rtol),
+        b >= max_width * (1.0 - rtol),
+    ]
     if geometry_name != Geometry.DISC:
-        flags["hb_min"] = hb <= hb_min * (1.0 + rtol)
-        flags["hb_max"] = hb >= hb_max * (1.0 - rtol)
-        flags["inner_diameter"] = d_inner <= d_outer * rtol
-    if set(map(type, flags.values())) == {bool}:  # one design in plain floats (a ranking's): no generator
+        flags += [hb <= hb_min * (1.0 + rtol), hb >= hb_max * (1.0 - rtol), d_inner <= d_outer * rtol]
+    if set(map(type, flags)) == {bool} or not any(isinstance(flag, np.ndarray) for flag in flags):  # one design
         bits = 0
-        for name, flag in flags.items():
+        for bit, flag in zip(_BITS, flags):
             if flag:
-                bits |= BINDING_BITS[name]
+                bits |= bit
         return bits
-    if not any(isinstance(flag, np.ndarray) for flag in flags.values()):
-        return sum(BINDING_BITS[name] for name, flag in flags.items() if flag)
     mask = np.zeros(np.shape(d_outer), dtype=np.int64)
-    for name, flag in flags.items():
-        mask |= np.where(flag, BINDING_BITS[name], 0)
+    for bit, flag in zip(_BITS, flags):
+        mask |= np.where(flag, bit, 0)
     return mask
 
 

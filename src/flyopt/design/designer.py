@@ -90,7 +90,7 @@ def _explain_infeasible(combo, spec):
         cap, pin = _g_apart(combo.cap, pinned)
         return (f"{combo.label}: {cap_text} at {cap} m, below the pinned diameter {pin} m"), None
     needed, j_sup = closed_form.cap_needed(
-        geo, m.density, combo.j_shaft, combo.cap, spec.hb_ratio, spec.max_width, pinned
+        geo, m.density, combo.j_shaft, combo.cap, spec.hb_ratio, spec.max_width, pinned, j_cap=combo.j_max
     )
     if needed is None:
         limits = []
@@ -127,19 +127,21 @@ def _solve_closed_form(pending, spec):
     """
     hb_min, hb_max = spec.hb_ratio
     b_max = spec.max_width
+    geometry_name = spec.geometry
+    disc = geometry_name == Geometry.DISC
     results = []
     for order, combo in pending:
         start = time.perf_counter()
         rho = combo.material.density
         d_mean, h, b = closed_form.lightest_one(
-            spec.geometry, combo.j_shaft, rho, combo.cap, hb_min, hb_max, b_max, spec.d_mean
+            geometry_name, combo.j_shaft, rho, combo.cap, hb_min, hb_max, b_max, spec.d_mean
         )
-        if spec.geometry == Geometry.DISC:
+        if disc:
             mass = geometry.disc_mass(2 * d_mean, b, rho)
             j_wheel = geometry.disc_inertia(mass, 2 * d_mean)
         else:
             mass = geometry.rim_mass(d_mean, h, b, rho)
-            j_wheel = geometry.wheel_inertia(spec.geometry, rho, d_mean, h, b)
+            j_wheel = geometry.wheel_inertia(geometry_name, rho, d_mean, h, b)
         results.append(
             (
                 order,
@@ -154,12 +156,13 @@ def _solve_closed_form(pending, spec):
 def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, iterations, elapsed):
     """Verify a solved design against every constraint and describe it."""
     m = combo.material
+    geometry_name = spec.geometry
     d_outer = geometry.outer_diameter(d_mean, h)
     d_inner = geometry.inner_diameter(d_mean, h)
     hb = h / b
     hb_min, hb_max = spec.hb_ratio
     violations = check.violations(
-        spec.geometry, j_wheel, combo.j_shaft, d_outer, d_inner, b, hb, combo.cap, spec.max_width, hb_min, hb_max
+        geometry_name, j_wheel, combo.j_shaft, d_outer, d_inner, b, hb, combo.cap, spec.max_width, hb_min, hb_max
     )
     if violations:
         source = "the closed-form design" if status == "closed_form" else f"IPOPT reported {status!r} but the design"
@@ -169,7 +172,7 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
         raise err
     binding = check.binding_names(
         check.binding_mask(
-            spec.geometry,
+            geometry_name,
             j_wheel,
             combo.j_shaft,
             d_outer,
@@ -184,24 +187,20 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
         )
     )
     cost = mass * m.cost if m.cost is not None else None
-    objective = _objective(spec.objective, mass, d_outer, cost)
-    dims = (
-        wheel.Dims(d_outer=d_outer, h=d_outer / 2.0, b=b)
-        if spec.geometry == Geometry.DISC
-        else wheel.Dims(d_outer=d_outer, h=h, b=b)
-    )
-    structure = wheel_design.structure_fields(m, spec.geometry, dims, combo.omega, combo.torque, spec, 0.0)
+    shaft = combo.shaft
+    dims = wheel.Dims(d_outer=d_outer, h=d_outer / 2.0 if geometry_name == Geometry.DISC else h, b=b)
+    structure = wheel_design.structure_fields(m, geometry_name, dims, combo.omega, combo.torque, spec, 0.0)
     return Design(
         material=m.name,
-        shaft=combo.shaft.name,
-        speed_ratio=combo.shaft.speed_ratio,
-        geometry=spec.geometry,
+        shaft=shaft.name,
+        speed_ratio=shaft.speed_ratio,
+        geometry=geometry_name,
         reason=f"{combo.label}: designed; binding: {', '.join(binding) or 'none'}",
         mass=mass,
         cost=cost,
         j_flywheel=j_wheel,
-        j_at_reference=inertia_at_reference(j_wheel, combo.shaft.speed_ratio),
-        objective=objective,
+        j_at_reference=inertia_at_reference(j_wheel, shaft.speed_ratio),
+        objective=_objective(spec.objective, mass, d_outer, cost),
         dims=Dimensions(d_mean=d_mean, d_outer=d_outer, d_inner=max(d_inner, 0.0), h=h, b=b),
         parts=structure.parts,
         stresses=structure.stresses,
@@ -210,7 +209,7 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
             d_outer_limit=combo.cap,
             rim_speed_limit=combo.v_max,
             j_max=combo.j_max,
-            binding=tuple(binding),
+            binding=binding,
         ),
         provenance=Provenance(solver_status=status, iterations=iterations, solve_time=elapsed, notes=structure.notes),
     )
@@ -459,7 +458,7 @@ def _whole_violations(combo, spec, dims, j_wheel, checked):
 
 
 def _check_unique(items, kind, cls):
-    if isinstance(items, (str, bytes)) or not isinstance(items, Sequence):
+    if type(items) not in (list, tuple) and (isinstance(items, (str, bytes)) or not isinstance(items, Sequence)):
         raise ValueError(f"{kind}s must be a sequence of {cls.__name__}, got {items!r}")
     if not items:
         raise ValueError(f"{kind}s must not be empty: give at least one {kind}")
@@ -657,28 +656,36 @@ def _combinations(
     that shaft (torque / r). A generator, so that each combination is decided before the next is built.
     """
     envelope = spec.max_outer_diameter
+    by_speed = spec.criterion == Criterion.RIM_SPEED
+    # what depends on the shaft alone, once per shaft (not once per material and shaft)
+    per_shaft = [
+        (
+            shaft,
+            plain,
+            omega * shaft.speed_ratio,
+            inertia_on_shaft(j_required, shaft.speed_ratio),
+            bore_of(spec, shaft),
+            torque / shaft.speed_ratio if torque else 0.0,
+        )
+        for shaft, plain in zip(shafts, textbook)
+    ]
     order = 0
     for material in materials:
-        for shaft, plain in zip(shafts, textbook):
-            shaft_omega = omega * shaft.speed_ratio
-            v_max = rim_speed_limit(material, spec)
-            cap_speed = (
-                geometry.outer_diameter_for_rim_speed(v_max, shaft_omega)
-                if spec.criterion == Criterion.RIM_SPEED
-                else math.inf
-            )
+        v_max = rim_speed_limit(material, spec)
+        for shaft, plain, shaft_omega, j_shaft, bore, shaft_torque in per_shaft:
+            cap_speed = geometry.outer_diameter_for_rim_speed(v_max, shaft_omega) if by_speed else math.inf
             combo = Combination(
                 material=material,
                 shaft=shaft,
                 omega=shaft_omega,
-                j_shaft=inertia_on_shaft(j_required, shaft.speed_ratio),
+                j_shaft=j_shaft,
                 j_reference=j_required,
                 cap_speed=cap_speed,
                 cap=min(cap_speed, envelope),
+                bore=bore,
+                torque=shaft_torque,
+                v_max=v_max,
             )
-            combo.bore = bore_of(spec, shaft)
-            combo.v_max = v_max
-            combo.torque = torque / shaft.speed_ratio if torque else 0.0
             yield order, combo, plain
             order += 1
 

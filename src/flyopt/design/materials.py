@@ -103,6 +103,13 @@ def _number(value, what, name, *, minimum=0.0, strict=True, below=None, allow_no
     """
     if value is None and allow_none:
         return None
+    if (  # a plain float in range (every call of a design's check): no message made
+        type(value) is float
+        and (value > minimum if strict else value >= minimum)
+        and (below is None or value < below)
+        and value < math.inf
+    ):
+        return value
     return number(value, f"material {shorten(name)}: {what}", minimum=minimum, strict=strict, below=below)
 
 
