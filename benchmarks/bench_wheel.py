@@ -259,7 +259,9 @@ def main(argv=None):
                 f, status, iterations = found.objective, f"{found.solver}: {found.status}", found.iterations
                 seconds = timed(lambda: wheel_nlp.solve(model, problem, name), args.repeat)
             else:
-                solver = solver_of(structure, {"ipopt-warm": "ipopt", "sqp-qrqp-warm": "sqp-qrqp"}.get(variant, variant))
+                solver = solver_of(
+                    structure, {"ipopt-warm": "ipopt", "sqp-qrqp-warm": "sqp-qrqp"}.get(variant, variant)
+                )
                 a = arguments(structure, problem, start[0] if warm else None)
                 if variant == "ipopt-warm-dual":
                     a.update(start[1])
