@@ -26,10 +26,15 @@ PINT = {
     "kg·m": "kg*m",
     "g·mm": "g*mm",
     "oz·in": "oz*in",
+    "rad/s²": "rad/s**2",
 }
 #: The SI unit of each dimension (flyopt.units.DIMENSIONS, and the outputs' own for unbalance;
 #: the specific unbalance e_per = U/m of ISO 21940-11 is a length).
-SI = {name: entry[1] for name, entry in DIMENSIONS.items()} | {"unbalance": "kg*m", "eccentricity": "m"}
+SI = {name: entry[1] for name, entry in DIMENSIONS.items()} | {
+    "unbalance": "kg*m",
+    "eccentricity": "m",
+    "angular_acceleration": "rad/s**2",
+}
 
 
 @pytest.mark.parametrize("dimension", sorted(display.UNITS))
