@@ -435,7 +435,7 @@ BAD = [
         "strokes_per_minute = 12",
         'strokes_per_minute = 12\nstroke_period = "5 s"',
         "press.stroke_period",
-        "exactly one of strokes_per_minute, stroke_period",
+        "exactly one of strokes_per_minute, strokes_per_hour, stroke_period",
     ),
     (GOOD, "strokes_per_minute = 12\n", "", "press.strokes_per_minute", "exactly one of"),
     (GOOD, "strokes_per_minute = 12", 'stroke_period = "0 s"', "press.stroke_period", "positive"),

@@ -3,9 +3,10 @@
 A scene with a [press] table gives the process instead of the torques::
 
     [press]
-    strokes_per_minute = 12         # or stroke_period = "5 s"
+    strokes_per_minute = 12         # or strokes_per_hour = 720, or stroke_period = "5 s"
     energy_per_stroke = "15 kJ"     # or force = [[position, force], ...] over the working stroke,
-                                    # or punching = { thickness, shear_strength, hole_diameter or cut_length }
+                                    # or punching = { thickness, shear_strength or energy_per_area,
+                                    #                 hole_diameter or cut_length }
     working_time = "2 s"            # or working_angle = "144 deg" of the crank
     slowdown = 0.111                # (ω_top − ω_bottom)/ω_top over the working stroke; or delta,
                                     # or flywheel_speed_min (with flywheel_speed)
@@ -39,6 +40,7 @@ if TYPE_CHECKING:
 
 PRESS_KEYS = (
     "strokes_per_minute",
+    "strokes_per_hour",
     "stroke_period",
     "energy_per_stroke",
     "force",
@@ -55,7 +57,7 @@ PRESS_KEYS = (
 )
 """Keys of the [press] table."""
 
-PUNCHING_KEYS = ("thickness", "shear_strength", "hole_diameter", "cut_length", "description")
+PUNCHING_KEYS = ("thickness", "shear_strength", "energy_per_area", "hole_diameter", "cut_length", "description")
 """Keys of ``press.punching``."""
 
 FLYWHEEL_SHAFT = "flywheel"
@@ -64,7 +66,7 @@ FLYWHEEL_SHAFT = "flywheel"
 CRANKSHAFT = "crankshaft"
 """Name of the reference shaft added beside it when the scene gives no [[shaft]]."""
 
-_RATE = ("strokes_per_minute", "stroke_period")
+_RATE = ("strokes_per_minute", "strokes_per_hour", "stroke_period")
 _ENERGY = ("energy_per_stroke", "force", "punching")
 _WORKING = ("working_time", "working_angle")
 _FLUCTUATION = ("slowdown", "delta", "flywheel_speed_min")
@@ -136,16 +138,18 @@ def _crank(press):
         press,
         _RATE,
         "press.strokes_per_minute",
-        "give the stroke rate as strokes_per_minute (e.g. 12) or stroke_period (e.g. '5 s')",
+        "give the stroke rate as strokes_per_minute (e.g. 12), strokes_per_hour (e.g. 720: holes an hour) "
+        "or stroke_period (e.g. '5 s')",
     )
-    if key == "strokes_per_minute":
+    if key in ("strokes_per_minute", "strokes_per_hour"):
         strokes = _number(press, key, "dimensionless")
+        per = "a minute" if key == "strokes_per_minute" else "an hour"
         if strokes <= 0:
             raise SceneError(
-                "press.strokes_per_minute",
-                f"must be positive (strokes a minute, one crank turn each), got {shorten(press[key])}",
+                f"press.{key}",
+                f"must be positive (strokes {per}, one crank turn each), got {shorten(press[key])}",
             )
-        omega = physics.crank_speed(strokes)
+        omega = physics.crank_speed(strokes if key == "strokes_per_minute" else strokes / 60.0)
         _check_crank_speed(omega, "press.strokes_per_minute", press[key])
         return key, omega, physics.stroke_period(omega)
     period = _time(press[key], "press.stroke_period")
@@ -214,8 +218,8 @@ def _load(press, angle):
         _ENERGY,
         "press.energy_per_stroke",
         "give the work of one stroke as energy_per_stroke (e.g. '15 kJ'), force = [[position, force], "
-        "...] over the working stroke, or punching = { thickness, shear_strength, hole_diameter or "
-        "cut_length }",
+        "...] over the working stroke, or punching = { thickness, shear_strength or energy_per_area, "
+        "hole_diameter or cut_length }",
     )
     for unit in ("force_unit", "position_unit"):
         if unit in press and key != "force":
@@ -228,10 +232,8 @@ def _load(press, angle):
         note = f"press: {energy:.6g} J a stroke, taken evenly over the working angle of {degrees:.6g} deg"
     elif key == "punching":
         energy, force = _punching(press[key])
-        note = (
-            f"press: punching, F_max = {force:.6g} N, E = F_max t/2 = {energy:.6g} J a stroke, taken evenly "
-            f"over the working angle of {degrees:.6g} deg"
-        )
+        how = f"F_max = {force:.6g} N, E = F_max t/2" if force is not None else "E = w L t, the sheared area's energy"
+        note = f"press: punching, {how} = {energy:.6g} J a stroke, taken evenly over the working angle of {degrees:.6g} deg"
     else:
         positions, forces = _force_table(press)
         energy = physics.force_energy(positions, forces)
@@ -252,17 +254,25 @@ def _load(press, angle):
 
 
 def _punching(raw):
-    """(E = ½ F_max t [J], F_max = τ L t [N]) of ``press.punching``."""
+    """(E [J], F_max [N] or None) of ``press.punching``: E = ½ F_max t with F_max = τ L t from the
+    shear strength, or E = w L t from the energy per sheared area (the book's "N·m per mm² sheared")."""
     table = Table(raw, "press.punching", PUNCHING_KEYS).data
-    values = {}
-    for key, dimension in (("thickness", "length"), ("shear_strength", "stress")):
-        if key not in table:
-            raise SceneError(
-                f"press.punching.{key}",
-                "is missing: punching needs the plate's thickness, its "
-                "ultimate shear_strength, and hole_diameter or cut_length",
-            )
-        values[key] = _positive(table, key, dimension, "press.punching")
+    if "thickness" not in table:
+        raise SceneError(
+            "press.punching.thickness",
+            "is missing: punching needs the plate's thickness, its ultimate shear_strength (or the "
+            "energy_per_area sheared), and hole_diameter or cut_length",
+        )
+    thickness = _positive(table, "thickness", "length", "press.punching")
+    strength = _one_of(
+        table,
+        ("shear_strength", "energy_per_area"),
+        "press.punching.shear_strength",
+        "give the plate's ultimate shear_strength (e.g. '350 MPa') or the energy_per_area sheared (e.g. '6 J/mm^2')",
+    )
+    value = _positive(
+        table, strength, "stress" if strength == "shear_strength" else "energy_per_area", "press.punching"
+    )
     cut = _one_of(
         table,
         ("hole_diameter", "cut_length"),
@@ -272,8 +282,10 @@ def _punching(raw):
     length = _positive(table, cut, "length", "press.punching")
     if cut == "hole_diameter":
         length *= math.pi
-    force = physics.punching_force(values["shear_strength"], length, values["thickness"])
-    return physics.punching_energy(force, values["thickness"]), force
+    if strength == "energy_per_area":
+        return physics.sheared_area_energy(value, length, thickness), None
+    force = physics.punching_force(value, length, thickness)
+    return physics.punching_energy(force, thickness), force
 
 
 def _force_table(press):

@@ -151,6 +151,16 @@ def punching_energy(max_force: float, thickness: float) -> float:
     return 0.5 * max_force * thickness
 
 
+def sheared_area_energy(energy_per_area: float, cut_length: float, thickness: float) -> float:
+    """Energy of one punch or cut from the energy per unit of sheared area, E = w L t [J].
+
+    The courses' other form of the same datum (Khurmi & Gupta, example 16.22: "6 N·m of
+    energy per mm² of sheared area"): the sheared area L t times the energy w it takes per unit
+    area [J/m²].
+    """
+    return energy_per_area * cut_length * thickness
+
+
 def force_energy(positions: Sequence[float], forces: Sequence[float]) -> float:
     """Work ∫F dx [J] of a force table, piecewise linear in the position (exact: the trapezoids).
 

@@ -1,0 +1,99 @@
+"""Presses stated in the book's terms (issue 27, item 4): Khurmi & Gupta 16.19 and 16.22 in problems/textbook/.
+
+The published answers at the book's rounding, and the closed forms written out in each scene's
+header comment (the flywheel supplies the stroke's energy less what the motor gives during the
+punch, m = 2 A_max / (k² (ω1² − ω2²))).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+import flyopt
+from flyopt.errors import SceneError
+from flyopt.io.scene import from_dict
+
+TEXTBOOK = Path(__file__).resolve().parent.parent / "problems" / "textbook"
+RPM = math.pi / 30
+
+
+def _solve(name):
+    return flyopt.solve(flyopt.load(TEXTBOOK / name))
+
+
+def test_khurmi_16_19_motor_and_flywheel():
+    solution = _solve("khurmi-16-19.toml")
+    assert round(solution.analysis.motor_power / 1e3, 1) == 3.0  # the book: 3 kW
+    mass = solution.design.best.mass
+    assert round(mass) == 618  # the book: 618 kg
+    a_max = 15e3 * (1 - 2 / 5)
+    assert solution.analysis.a_max == pytest.approx(a_max, rel=1e-12)
+    assert mass == pytest.approx(2 * a_max / (0.5**2 * ((225 * RPM) ** 2 - (200 * RPM) ** 2)), rel=1e-9)
+
+
+def test_khurmi_16_22_energy_per_sheared_area():
+    solution = _solve("khurmi-16-22.toml")
+    energy = 6e6 * math.pi * 0.040 * 0.015  # 6 J/mm² over the sheared area π d t
+    assert solution.analysis.work_per_cycle == pytest.approx(energy, rel=1e-12)
+    a_max = energy * (1 - 0.1 / 2)
+    assert solution.analysis.a_max == pytest.approx(a_max, rel=1e-12)
+    mass = solution.design.best.mass
+    assert round(mass) == 327  # the book: 327 kg
+    assert mass == pytest.approx(2 * a_max / (1.0**2 * ((160 * RPM) ** 2 - (140 * RPM) ** 2)), rel=1e-9)
+
+
+PRESS = {
+    "strokes_per_minute": 30,
+    "working_time": "0.1 s",
+    "flywheel_speed": "160 rpm",
+    "flywheel_speed_min": "140 rpm",
+}
+
+
+@pytest.mark.parametrize(
+    ("changes", "field", "words"),
+    [
+        (
+            {"punching": {"thickness": "15 mm", "hole_diameter": "40 mm"}},
+            "press.punching.shear_strength",
+            "exactly one",
+        ),
+        (
+            {
+                "punching": {
+                    "thickness": "15 mm",
+                    "hole_diameter": "40 mm",
+                    "shear_strength": "300 MPa",
+                    "energy_per_area": "6 J/mm^2",
+                }
+            },
+            "press.punching.energy_per_area",
+            "exactly one",
+        ),
+        (
+            {"punching": {"thickness": "15 mm", "hole_diameter": "40 mm", "energy_per_area": "-6 J/mm^2"}},
+            "press.punching.energy_per_area",
+            "positive",
+        ),
+        (
+            {"punching": {"thickness": "15 mm", "hole_diameter": "40 mm", "energy_per_area": "6 J"}},
+            "press.punching.energy_per_area",
+            "",
+        ),
+        ({"energy_per_stroke": "1 kJ", "strokes_per_hour": 720}, "press.strokes_per_hour", "exactly one"),
+        (
+            {"energy_per_stroke": "1 kJ", "strokes_per_minute": None, "strokes_per_hour": 0},
+            "press.strokes_per_hour",
+            "positive",
+        ),
+    ],
+)
+def test_bad_press_data_is_refused_in_one_line(changes, field, words):
+    press = {**PRESS, **changes}
+    press = {k: v for k, v in press.items() if v is not None}
+    with pytest.raises(SceneError) as err:
+        from_dict({"press": press})
+    assert err.value.field == field and words in str(err.value)
