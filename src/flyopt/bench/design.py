@@ -26,11 +26,19 @@ import numpy as np
 from flyopt.bench.peers import SLSQP_FTOL, SLSQP_FTOLS, grid_combination, slsqp_combination
 from flyopt.bench.references import Combination, Outcome, checked_design, combinations, lightest_rim_1d
 from flyopt.bench.timing import Config, Row, measure, set_ratios
-from flyopt.design import DesignSpec, MountShaft, design_flywheel
+from flyopt.design import Design, DesignResult, DesignSpec, MountShaft, design_flywheel, wheel, wheel_design
 from flyopt.design.materials import Material, builtin_materials
 from flyopt.errors import SolverFailed
 
-__all__ = ["RPM", "REFERENCE_RTOL", "ipopt_combinations", "design_methods", "random_design_scenes", "section_design"]
+__all__ = [
+    "RPM",
+    "REFERENCE_RTOL",
+    "ipopt_combinations",
+    "design_methods",
+    "structural_checks",
+    "random_design_scenes",
+    "section_design",
+]
 
 RPM = math.pi / 30.0
 """One revolution per minute [rad/s]."""
@@ -128,6 +136,29 @@ def design_methods(config: Config) -> list[tuple[Any, ...]]:
     return methods
 
 
+def structural_checks(result: DesignResult, omega: float, materials: Sequence[Material]) -> Callable[[], list[Any]]:
+    """The structural check of every design a ranking reports, made again on its dimensions (to be timed).
+
+    The one-at-a-time check the designer makes of each reported candidate,
+    :func:`flyopt.design.wheel_design.structure_fields` (parts, stresses, burst
+    speed, unbalance), with the arguments the designer gives it on a bare
+    wheel without a bore or torque: the part of the ranking's time no faster
+    closed form removes.
+    """
+    by_name = {m.name: m for m in materials}
+    calls = []
+    for c in result.candidates:
+        if isinstance(c, Design):
+            disc = c.geometry == "disc"
+            dims = wheel.Dims(d_outer=c.dims.d_outer, h=c.dims.d_outer / 2.0 if disc else c.dims.h, b=c.dims.b)
+            calls.append((by_name[c.material], c.geometry, dims, omega * c.speed_ratio, result.spec))
+
+    def check_all() -> list[Any]:
+        return [wheel_design.structure_fields(m, g, d, w, 0.0, spec, 0.0) for m, g, d, w, spec in calls]
+
+    return check_all
+
+
 def random_design_scenes(count: int, seed: int) -> list[dict[str, Any]]:
     """Random scenes of 2 built-in materials × 3 shafts (as benchmarks/bench_design.py).
 
@@ -203,6 +234,7 @@ def section_design(config: Config) -> list[Row]:
             "name": name,
             "setting": setting,
             "repeats": 0,
+            "checks": [],
         }
         for name, setting, *_ in methods
     }
@@ -215,6 +247,9 @@ def section_design(config: Config) -> list[Row]:
             outcomes = solve(*args)
             if timed:
                 timing = measure(lambda: timed[0](*args), config.design_repeats)
+                if name == "flyopt-auto":  # what of its time is the structural check of what it reports
+                    check_all = structural_checks(timed[0](*args), scene["omega_mean"], scene["materials"])
+                    stats[name + setting]["checks"].append(measure(check_all, config.design_repeats).median)
             else:
                 per = solve.per_combination
                 timing = measure(lambda: [per(c) for c in combos], config.design_repeats)
@@ -259,6 +294,14 @@ def section_design(config: Config) -> list[Row]:
             note += f"; no design at all in {missing} scenes"
         if reasons:
             note += f"; wrong verdicts: {reasons}"
+        if s["checks"]:
+            share = np.array(s["checks"]) / times
+            note += (
+                f"; of which the structural check of the reported candidates (wheel_design.structure_fields, "
+                f"timed again on the same candidates): median {1e3 * np.median(s['checks']):.3g} ms per ranking "
+                f"({1e3 * np.quantile(s['checks'], 0.25):.3g}–{1e3 * np.quantile(s['checks'], 0.75):.3g}), "
+                f"{100 * np.median(share):.0f} % of the ranking's time (median over scenes)"
+            )
         if s["name"] == "root-1d" and beat_reference:
             note += (
                 f"; beaten by a verified candidate (violation <= {REFERENCE_RTOL:g}) in {beat_reference} "
