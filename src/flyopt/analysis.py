@@ -362,6 +362,10 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
     from flyopt.machine.reduce import reduce
     from flyopt.sizing import choose as models
 
+    if scene.operation is not None:
+        raise SceneError(
+            "operation", "is one operation, not a cycle: it has no cycle to analyse (flyopt solve answers it)"
+        )
     if forced is not None and forced not in models.MODELS:
         raise SceneError("--model", f"{forced!r} is not known (allowed: {', '.join(models.ORDER)})")
     machine = requirement = None

@@ -24,6 +24,7 @@ if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     from flyopt.drive.codesign import DriveCheck, DriveDesign
     from flyopt.io.scene import Scene
     from flyopt.sizing.existing import FlywheelCheck
+    from flyopt.sizing.operation import OperationResult
     from flyopt.sizing.periodic import PeriodicSolution, Verification
 
 
@@ -383,6 +384,12 @@ def solve(
     unknown = [name for name in extras if name not in COMPLETE]
     if unknown:
         raise ValueError(f"unknown extras {unknown} (known: {', '.join(COMPLETE)})")
+    if scene.operation is not None:
+        from flyopt.errors import SceneError
+
+        raise SceneError(
+            "operation", "is one operation, not a cycle: solve_operation(scene) answers it (as flyopt solve does)"
+        ).with_source(scene.source)
     if scene.flywheel is not None:
         analysis, checked_wheel = check_flywheel(scene, model)
         solution = Solution(scene=scene.replace(delta=analysis.delta), analysis=analysis, flywheel=checked_wheel)
@@ -395,6 +402,22 @@ def solve(
         checked = verify(scene, analysis, result) if verify_design else None
         solution = Solution(scene=scene, analysis=analysis, design=result, verification=checked)
     return with_extras(solution, extras)
+
+
+def solve_operation(scene: Scene) -> OperationResult:
+    """One operation of a scene's [operation] on its [flywheel] (flyopt.sizing.operation): the speed after it,
+    the recovery time and the operations a minute the motor sustains; J is the machine's J_c plus the wheel's."""
+    from flyopt.errors import SceneError
+    from flyopt.sizing.operation import one_operation
+
+    if scene.operation is None or scene.flywheel is None:
+        raise ValueError("solve_operation needs a scene with an [operation] and a [flywheel]")
+    try:
+        return one_operation(
+            scene.operation, scene.j_constant + scene.flywheel.j_at_reference, scene.omega_mean, scene.delta
+        )
+    except SceneError as err:
+        raise err.with_source(scene.source) from None
 
 
 #: δ of the first, energy-method look at a scene whose [flywheel] is given without machine.delta: only its

@@ -60,6 +60,17 @@ RELATIONS = {
     "j_machine": "j_required",
     "radius_of_gyration": "(j_required / mass)**0.5",
     "margin": "j_required / j_required",
+    # one operation: ω₂² = ω₁² − 2 ΔE / J, t_r = ΔE / P, the rate P / E
+    "omega_before": "omega_mean",
+    "omega_after": "omega_mean",
+    "energy_from_motor": "a_max",
+    "energy_from_flywheel": "j_required * omega_before**2",
+    "energy": "a_max",
+    "speed_drop": "omega_after / omega_before",
+    "recovery_time": "energy_from_flywheel / power",
+    "shortest_interval": "recovery_time",
+    "duration": "recovery_time",
+    "operation_rate": "power / energy",
     # angles of the cycle
     "cycle_angle": "angle",
     "angle_omega_max": "angle",

@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
 
-from flyopt.cli.exits import EXIT_OK, solution_exit
+from flyopt.cli.exits import EXIT_FLAGGED, EXIT_OK, solution_exit
 from flyopt.names import Model
 from flyopt.report import display
+
+if TYPE_CHECKING:
+    from flyopt.io.scene import Scene
 
 
 def units_help(what: str = "the text report") -> str:
@@ -66,6 +70,8 @@ def run_solve(args: argparse.Namespace) -> int:
     from flyopt.pipeline import solve
 
     scene = load(args.scene)
+    if scene.operation is not None:
+        return _run_operation(scene, args)
     solution = solve(
         scene,
         design_flywheel=args.design,
@@ -98,6 +104,22 @@ def run_solve(args: argparse.Namespace) -> int:
     return solution_exit(solution)
 
 
+def _run_operation(scene: Scene, args: argparse.Namespace) -> int:
+    """``flyopt solve`` of an [operation]: 0, or 4 when the speed falls beyond machine.delta."""
+    from flyopt.pipeline import solve_operation
+
+    result = solve_operation(scene)
+    if args.json:
+        from flyopt.outputs.documents import json_text, operation_document
+
+        print(json_text(operation_document(result, scene.title, args.scene)))
+    else:
+        from flyopt.report.text import operation_report
+
+        print(operation_report(result, scene.title, args.scene, units=args.units))
+    return EXIT_FLAGGED if result.holds is False else EXIT_OK
+
+
 def add_check_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt check``; the handler is :func:`run_check`."""
     parser.add_argument("scene", help="scene file (TOML)")
@@ -112,6 +134,15 @@ def run_check(args: argparse.Namespace) -> int:
 
     data = read_toml(args.scene)
     scene = load(args.scene, data)
+    if scene.operation is not None or scene.flywheel is not None:  # no cycle, or a wheel to check, not design
+        from flyopt.pipeline import check_flywheel, solve_operation
+
+        if scene.operation is not None:
+            solve_operation(scene)
+        else:
+            check_flywheel(scene)
+        print(f"{args.scene}: ok ({scene.title})")
+        return EXIT_OK
     analyse(scene)  # a cycle that does not close is an input error too
     from flyopt.design import design_inputs
 

@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     from flyopt.machine.flywheel import ExistingFlywheel
     from flyopt.machine.kinematics import GearTrain, SliderCrank
     from flyopt.machine.mechanism import Member
+    from flyopt.sizing.operation import Operation
 
 
 MIN_DELTA = 1e-6
@@ -89,6 +90,9 @@ class Scene:
     flywheel : flyopt.machine.flywheel.ExistingFlywheel or None
         The [flywheel] that exists: analysed, not designed. ``delta`` may then
         be None (the δ it reaches is found instead; :attr:`allowed_delta`).
+    operation : flyopt.sizing.operation.Operation or None
+        The [operation]: one load that comes once, acting on the [flywheel];
+        the scene then has no torques (``driving``, ``resisting``, ``net`` None).
     source : str or None
         File the scene came from.
     """
@@ -112,6 +116,7 @@ class Scene:
     drive: DriveSpec | None = None  # [drive]: the motor and ratio designed with the wheel
     engine: Engine | None = None  # [engine]; its members lead ``members``
     flywheel: ExistingFlywheel | None = None  # [flywheel]: a wheel that exists, analysed instead of designed
+    operation: Operation | None = None  # [operation]: one load, not a cycle (with a [flywheel]; no torques)
     source: str | None = field(default=None, compare=False)
 
     @property
@@ -120,7 +125,7 @@ class Scene:
         if self.delta is None:
             raise SceneError(
                 "machine.delta", "is needed here (only the analysis of a [flywheel] that exists can do without it)"
-            )
+            ).with_source(self.source)
         return self.delta
 
     def material_library(self) -> dict[str, Material]:
@@ -210,6 +215,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             "motor_option",
             "engine",
             "flywheel",
+            "operation",
         },
     )  # [sweep] is read by flyopt.studies.sweep.load_sweep
     machine = Table(
@@ -220,7 +226,8 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
     check_magnitude(omega, "machine.speed", machine.raw("speed"), *SPEED_RANGE, "rad/s", SPEED_WHY)
     existing = top.has("flywheel")
-    delta = machine.quantity("delta", "dimensionless", required=not existing)
+    once = top.has("operation")  # one operation: the wheel is given, its δ is found
+    delta = machine.quantity("delta", "dimensionless", required=not (existing or once))
     if delta is not None:
         _check_delta(delta, machine)
     if machine.has("inertia") and machine.has("gd2"):
@@ -257,9 +264,18 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     if engine is not None:
         members = with_engine(engine, mechanism, members)
     member_loads = any(m.force is not None or m.torque is not None for m in members)
-    driving, resisting, net = read_torques(
-        top.get("torque", {}) if member_loads else top.require("torque"), cycle, shafts, efficiency, member_loads, files
-    )
+    operation = _operation(top) if top.has("operation") else None
+    if operation is not None:  # one operation: no torques over a cycle
+        driving = resisting = net = None
+    else:
+        driving, resisting, net = read_torques(
+            top.get("torque", {}) if member_loads else top.require("torque"),
+            cycle,
+            shafts,
+            efficiency,
+            member_loads,
+            files,
+        )
     if engine is not None and net is not None:
         raise SceneError(
             "torque.net",
@@ -326,8 +342,26 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         drive=drive,
         engine=engine,
         flywheel=flywheel,
+        operation=operation,
         source=source,
     )
+
+
+def _operation(top: Table) -> Operation:
+    """[operation], with the flywheel it acts on and none of the sections that describe a cycle."""
+    from flyopt.io.operation_section import read_operation
+
+    for other in ("torque", "press", "engine", "member", "mechanism", "design", "drive", "motor_option", "sweep"):
+        if top.has(other):
+            raise SceneError(
+                "operation",
+                f"is one operation, not a cycle, and [{other}] describes a cycle or a design: give one of them",
+            )
+    if not top.has("flywheel"):
+        raise SceneError(
+            "operation", "acts on a flywheel that exists: give [flywheel] (inertia, or mass with radius_of_gyration)"
+        )
+    return read_operation(top.get("operation"))
 
 
 def _check_delta(delta: float, machine: Table) -> None:

@@ -28,6 +28,7 @@ if TYPE_CHECKING:
 
     from flyopt.io.scene import Scene
     from flyopt.pipeline import Solution
+    from flyopt.sizing.operation import OperationResult
 
 __all__ = [
     "SCHEMA_FILE",
@@ -116,6 +117,19 @@ def solution_document(solution: Solution, scene: str | os.PathLike[str], timings
         "flyopt_version": _flyopt_version(),
         "scene": str(scene),
         "units": document_units(data, objective),
+        **data,
+    }
+
+
+def operation_document(result: OperationResult, title: str, scene: str | os.PathLike[str]) -> dict[str, Any]:
+    """The JSON of ``flyopt solve`` for an [operation] (kind "operation"): one load on the flywheel, SI."""
+    data = json_safe({"title": title, **result.to_dict()})
+    return {
+        "schema_version": schema_version(),
+        "kind": "operation",
+        "flyopt_version": _flyopt_version(),
+        "scene": str(scene),
+        "units": document_units(data, None),
         **data,
     }
 

@@ -39,7 +39,7 @@ __all__ = [
 #: :data:`flyopt.units.DIMENSIONS`'). Money is a plain number: a material's cost is read
 #: per kilogram (``"2.1 1/kg"``, dimension ``cost_per_mass``), so a wheel's cost is
 #: ``dimensionless``, in the currency the scene's prices are given in.
-OUTPUT_DIMENSIONS = {"time": "s", "unbalance": "kg*m", "angular_acceleration": "rad/s**2"}
+OUTPUT_DIMENSIONS = {"time": "s", "unbalance": "kg*m", "angular_acceleration": "rad/s**2", "frequency": "1/s"}
 
 #: The columns of a sweep's inputs: the fields of :data:`flyopt.io.sweep_spec.FIELDS` (which
 #: reads their values in these dimensions) and their dimension, None for a name. sweep_spec
@@ -101,6 +101,17 @@ QUANTITIES = {
     "j_machine": "inertia",
     "margin": "dimensionless",
     "radius_of_gyration": "length",
+    # one operation ([operation])
+    "omega_before": "angular_speed",
+    "omega_after": "angular_speed",
+    "energy_from_motor": "energy",
+    "energy_from_flywheel": "energy",
+    "speed_drop": "dimensionless",
+    "recovery_time": "time",
+    "shortest_interval": "time",
+    "operation_rate": "frequency",
+    "energy": "energy",
+    "duration": "time",
     "delta_allowed": "dimensionless",
     "j_error": "dimensionless",
     "tolerance": "dimensionless",

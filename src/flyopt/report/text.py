@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from flyopt.design.result import Candidate, DesignResult
     from flyopt.design.spec import DesignSpec
     from flyopt.sizing.existing import FlywheelCheck
+    from flyopt.sizing.operation import OperationResult
     from flyopt.sizing.periodic import Verification
 
 __all__ = [
@@ -595,3 +596,40 @@ def flywheel_report(check: FlywheelCheck, units: str = DEFAULT) -> list[str]:
         f"The flywheel that exists ({check.method}):",
         *(f"  {label:<{width}}  {text}" for label, text in facts),
     ]
+
+
+def operation_report(result: OperationResult, title: str, source: str | None = None, units: str = DEFAULT) -> str:
+    """``flyopt solve`` of an [operation]: one load on the flywheel, the speed after it, the rate the motor sustains."""
+    q, n = formatters(units)
+    op = result.operation
+    facts = [
+        (
+            "operation",
+            f"{q(op.energy, 'energy')} in {q(op.duration, 'duration')}, the motor giving {q(op.motor_power, 'motor_power')}",
+        ),
+        ("inertia", f"{q(result.inertia, 'inertia')} at the reference shaft (machine and flywheel)"),
+        ("from the motor meanwhile", q(result.energy_from_motor, "energy_from_motor")),
+        ("from the flywheel", q(result.energy_from_flywheel, "energy_from_flywheel")),
+        ("speed before / after", f"{n(result.omega_before, 'omega_before')} / {q(result.omega_after, 'omega_after')}"),
+        (
+            "speed drop",
+            f"{number(100 * result.speed_drop, 4)} % (δ = {number(result.delta)} about the mean of the two)",
+        ),
+        ("recovery time", f"{q(result.recovery_time, 'recovery_time')} (the motor refills the flywheel, unloaded)"),
+        ("shortest interval", q(result.shortest_interval, "shortest_interval")),
+        ("operations a minute", f"{number(60.0 * result.operation_rate, 6)} at most (60 P / E)"),
+    ]
+    if result.delta_allowed is not None:
+        facts.append(
+            (f"against the allowed δ {number(result.delta_allowed)}", "holds" if result.holds else "does NOT hold")
+        )
+    width = max(len(label) for label, _ in facts)
+    head = visible(title) + (f"  ({visible(source)})" if source else "")
+    return "\n".join(
+        [
+            head,
+            "model: one operation, not a cycle: energy balance over its duration",
+            "",
+            *(f"  {a:<{width}}  {b}" for a, b in facts),
+        ]
+    )
