@@ -358,6 +358,12 @@ def refuse_negative_work(scene: Scene, work: float, a_max: float) -> None:
     )
 
 
+def _powers(driving: float, omega_mean: float, efficiency: float) -> tuple[float, float]:
+    """(the mean driving power M_d ω_m, the motor's power M_d ω_m / η) [W] (docs/flywheel-design.md, section 11)."""
+    power = driving * omega_mean
+    return power, power / efficiency
+
+
 def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = None) -> Analysis:
     from flyopt.machine.reduce import reduce
     from flyopt.sizing import choose as models
@@ -374,6 +380,10 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
             raise SceneError("--model", "a scene given as net areas has no curves: only the energy model applies")
         ind = energy_indicator_from_areas(scene.net.energies, scene.cycle_angle)
         work = driving = resisting = power = motor_power = None
+        if scene.net.work is not None:  # the work per cycle given: the mean torques and the power follow
+            work = scene.net.work
+            driving = resisting = work / scene.cycle_angle
+            power, motor_power = _powers(driving, scene.omega_mean, scene.efficiency)
         chain = tuple(ChainPoint(index=k, angle=None, delta_e=float(e)) for k, e in enumerate(ind.chain_delta_e))
         model, reason = models.ENERGY, "net areas of a constant-inertia machine: the energy method is exact"
         j_margin = required_inertia(ind.a_max, scene.omega_mean, scene.allowed_delta, scene.j_constant)
@@ -399,8 +409,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         angles = (requirement.angle_omega_max, requirement.angle_omega_min)
         work, driving, resisting = ind.work_driving, ind.driving_mean, ind.resisting_mean
         refuse_negative_work(scene, work, ind.a_max)
-        power = driving * omega_mean
-        motor_power = power / scene.efficiency
+        power, motor_power = _powers(driving, omega_mean, scene.efficiency)
         assert ind.chain_angle is not None  # a machine's diagram has its angles (only net areas have none)
         chain = tuple(
             ChainPoint(index=k, angle=float(a), delta_e=float(e))

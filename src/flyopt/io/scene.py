@@ -191,6 +191,10 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         A field is missing, unknown or wrong.
     """
     files = Path(source).parent if source else Path()  # a points_file is relative to the scene file
+    if isinstance(data, dict) and ("energy" in data or "strokes" in data):  # the courses' energy terms
+        from flyopt.io.energy_form import scene_data as energy_scene_data
+
+        data = energy_scene_data(data)
     if (
         isinstance(data, dict) and "press" in data
     ):  # a press from its process data (docs/flywheel-design.md, section 11)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -23,9 +24,11 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class NetAreas:
-    """The signed areas between the torque curves, in order, as energies [J]."""
+    """The signed areas between the torque curves, in order, as energies [J], and the work per
+    cycle [J] where it is known (``work_per_cycle``: the mean torque and the power follow)."""
 
     energies: tuple[float, ...]
+    work: float | None = None
 
 
 def read_torques(
@@ -121,7 +124,9 @@ def read_curve(
 
 def read_net_areas(section: object) -> NetAreas:
     """[torque.net]: the signed areas between the curves, as energies [J] (or a drawing's areas and scales)."""
-    table = Table(section, "torque.net", {"areas", "area_unit", "torque_scale", "angle_scale", "description"})
+    table = Table(
+        section, "torque.net", {"areas", "area_unit", "torque_scale", "angle_scale", "work_per_cycle", "description"}
+    )
     areas = table.require("areas")
     if not isinstance(areas, list) or len(areas) < 2:
         raise SceneError("torque.net.areas", "must be a list of at least two signed areas")
@@ -150,4 +155,7 @@ def read_net_areas(section: object) -> NetAreas:
             energies.append(factor * quantity(a, "dimensionless", f"torque.net.areas[{k}]"))
     else:
         energies = [quantity(a, "energy", f"torque.net.areas[{k}]") for k, a in enumerate(areas)]
-    return NetAreas(tuple(energies))
+    work = table.quantity("work_per_cycle", "energy")
+    if work is not None and not (math.isfinite(work) and work > 0):
+        raise SceneError("torque.net.work_per_cycle", f"must be positive, got {shorten(table.raw('work_per_cycle'))}")
+    return NetAreas(tuple(energies), work)
