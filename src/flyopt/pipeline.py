@@ -23,6 +23,7 @@ if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     from flyopt.design.result import DesignResult
     from flyopt.drive.codesign import DriveCheck, DriveDesign
     from flyopt.io.scene import Scene
+    from flyopt.machine.crank_forces import CrankForces
     from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.operation import OperationResult
     from flyopt.sizing.periodic import PeriodicSolution, Verification
@@ -384,11 +385,14 @@ def solve(
     unknown = [name for name in extras if name not in COMPLETE]
     if unknown:
         raise ValueError(f"unknown extras {unknown} (known: {', '.join(COMPLETE)})")
-    if scene.operation is not None:
+    if scene.operation is not None or scene.position is not None:
         from flyopt.errors import SceneError
 
+        what, answer = (
+            ("operation", "solve_operation") if scene.operation is not None else ("position", "solve_position")
+        )
         raise SceneError(
-            "operation", "is one operation, not a cycle: solve_operation(scene) answers it (as flyopt solve does)"
+            what, f"is one {what}, not a cycle: {answer}(scene) answers it (as flyopt solve does)"
         ).with_source(scene.source)
     if scene.flywheel is not None:
         analysis, checked_wheel = check_flywheel(scene, model)
@@ -418,6 +422,15 @@ def solve_operation(scene: Scene) -> OperationResult:
         )
     except SceneError as err:
         raise err.with_source(scene.source) from None
+
+
+def solve_position(scene: Scene) -> CrankForces:
+    """The forces of a scene's [position] (flyopt.machine.crank_forces) at its machine.speed."""
+    from flyopt.machine.crank_forces import crank_forces
+
+    if scene.position is None:
+        raise ValueError("solve_position needs a scene with a [position]")
+    return crank_forces(scene.position, scene.omega_mean)
 
 
 #: δ of the first, energy-method look at a scene whose [flywheel] is given without machine.delta: only its

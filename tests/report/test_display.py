@@ -27,6 +27,8 @@ PINT = {
     "g·mm": "g*mm",
     "oz·in": "oz*in",
     "rad/s²": "rad/s**2",
+    "m/s²": "m/s**2",
+    "ft/s²": "ft/s**2",
 }
 #: The SI unit of each dimension (flyopt.units.DIMENSIONS, and the outputs' own for unbalance;
 #: the specific unbalance e_per = U/m of ISO 21940-11 is a length).
@@ -34,6 +36,7 @@ SI = {name: entry[1] for name, entry in DIMENSIONS.items()} | {
     "unbalance": "kg*m",
     "eccentricity": "m",
     "angular_acceleration": "rad/s**2",
+    "acceleration": "m/s**2",
 }
 
 

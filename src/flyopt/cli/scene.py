@@ -72,6 +72,8 @@ def run_solve(args: argparse.Namespace) -> int:
     scene = load(args.scene)
     if scene.operation is not None:
         return _run_operation(scene, args)
+    if scene.position is not None:
+        return _run_position(scene, args)
     solution = solve(
         scene,
         design_flywheel=args.design,
@@ -120,6 +122,22 @@ def _run_operation(scene: Scene, args: argparse.Namespace) -> int:
     return EXIT_FLAGGED if result.holds is False else EXIT_OK
 
 
+def _run_position(scene: Scene, args: argparse.Namespace) -> int:
+    """``flyopt solve`` of a [position]: the slider-crank's forces at that crank angle; 0."""
+    from flyopt.pipeline import solve_position
+
+    forces = solve_position(scene)
+    if args.json:
+        from flyopt.outputs.documents import json_text, position_document
+
+        print(json_text(position_document(forces, scene.title, args.scene)))
+    else:
+        from flyopt.report.text import position_report
+
+        print(position_report(forces, scene.title, args.scene, units=args.units))
+    return EXIT_OK
+
+
 def add_check_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt check``; the handler is :func:`run_check`."""
     parser.add_argument("scene", help="scene file (TOML)")
@@ -134,11 +152,13 @@ def run_check(args: argparse.Namespace) -> int:
 
     data = read_toml(args.scene)
     scene = load(args.scene, data)
-    if scene.operation is not None or scene.flywheel is not None:  # no cycle, or a wheel to check, not design
-        from flyopt.pipeline import check_flywheel, solve_operation
+    if scene.operation is not None or scene.position is not None or scene.flywheel is not None:
+        from flyopt.pipeline import check_flywheel, solve_operation, solve_position  # no cycle, or no design
 
         if scene.operation is not None:
             solve_operation(scene)
+        elif scene.position is not None:
+            solve_position(scene)
         else:
             check_flywheel(scene)
         print(f"{args.scene}: ok ({scene.title})")

@@ -36,6 +36,7 @@ if TYPE_CHECKING:
     from flyopt.design.materials import Material
     from flyopt.design.spec import DesignSpec
     from flyopt.io.drive import DriveSpec
+    from flyopt.machine.crank_forces import CrankPosition
     from flyopt.machine.engine import Engine
     from flyopt.machine.flywheel import ExistingFlywheel
     from flyopt.machine.kinematics import GearTrain, SliderCrank
@@ -93,6 +94,9 @@ class Scene:
     operation : flyopt.sizing.operation.Operation or None
         The [operation]: one load that comes once, acting on the [flywheel];
         the scene then has no torques (``driving``, ``resisting``, ``net`` None).
+    position : flyopt.machine.crank_forces.CrankPosition or None
+        The [position]: a slider-crank engine at one crank angle, for its forces there;
+        no torques either.
     source : str or None
         File the scene came from.
     """
@@ -117,6 +121,7 @@ class Scene:
     engine: Engine | None = None  # [engine]; its members lead ``members``
     flywheel: ExistingFlywheel | None = None  # [flywheel]: a wheel that exists, analysed instead of designed
     operation: Operation | None = None  # [operation]: one load, not a cycle (with a [flywheel]; no torques)
+    position: CrankPosition | None = None  # [position]: a slider-crank engine at one crank angle (no torques)
     source: str | None = field(default=None, compare=False)
 
     @property
@@ -220,6 +225,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             "engine",
             "flywheel",
             "operation",
+            "position",
         },
     )  # [sweep] is read by flyopt.studies.sweep.load_sweep
     machine = Table(
@@ -230,7 +236,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
     check_magnitude(omega, "machine.speed", machine.raw("speed"), *SPEED_RANGE, "rad/s", SPEED_WHY)
     existing = top.has("flywheel")
-    once = top.has("operation")  # one operation: the wheel is given, its δ is found
+    once = top.has("operation") or top.has("position")  # one operation, or one crank position: no δ to hold
     delta = machine.quantity("delta", "dimensionless", required=not (existing or once))
     if delta is not None:
         _check_delta(delta, machine)
@@ -269,7 +275,8 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         members = with_engine(engine, mechanism, members)
     member_loads = any(m.force is not None or m.torque is not None for m in members)
     operation = _operation(top) if top.has("operation") else None
-    if operation is not None:  # one operation: no torques over a cycle
+    position = _position(top) if top.has("position") else None
+    if operation is not None or position is not None:  # one operation, one crank position: no torques over a cycle
         driving = resisting = net = None
     else:
         driving, resisting, net = read_torques(
@@ -347,8 +354,35 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         engine=engine,
         flywheel=flywheel,
         operation=operation,
+        position=position,
         source=source,
     )
+
+
+def _position(top: Table) -> CrankPosition:
+    """[position], with none of the sections that describe a cycle, a design or a flywheel."""
+    from flyopt.io.position_section import read_position
+
+    for other in (
+        "torque",
+        "press",
+        "engine",
+        "member",
+        "mechanism",
+        "design",
+        "drive",
+        "motor_option",
+        "sweep",
+        "flywheel",
+        "operation",
+    ):
+        if top.has(other):
+            raise SceneError(
+                "position",
+                f"is one crank position of a slider-crank engine, and [{other}] describes something else: "
+                "give one of them",
+            )
+    return read_position(top.get("position"))
 
 
 def _operation(top: Table) -> Operation:

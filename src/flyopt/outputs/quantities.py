@@ -39,7 +39,13 @@ __all__ = [
 #: :data:`flyopt.units.DIMENSIONS`'). Money is a plain number: a material's cost is read
 #: per kilogram (``"2.1 1/kg"``, dimension ``cost_per_mass``), so a wheel's cost is
 #: ``dimensionless``, in the currency the scene's prices are given in.
-OUTPUT_DIMENSIONS = {"time": "s", "unbalance": "kg*m", "angular_acceleration": "rad/s**2", "frequency": "1/s"}
+OUTPUT_DIMENSIONS = {
+    "time": "s",
+    "unbalance": "kg*m",
+    "angular_acceleration": "rad/s**2",
+    "frequency": "1/s",
+    "acceleration": "m/s**2",
+}
 
 #: The columns of a sweep's inputs: the fields of :data:`flyopt.io.sweep_spec.FIELDS` (which
 #: reads their values in these dimensions) and their dimension, None for a name. sweep_spec
@@ -112,6 +118,24 @@ QUANTITIES = {
     "operation_rate": "frequency",
     "energy": "energy",
     "duration": "time",
+    # one crank position ([position])
+    "crank": "length",
+    "rod": "length",
+    "pressure": "stress",
+    "reciprocating_mass": "mass",
+    "obliquity": "angle",
+    "displacement": "length",
+    "velocity": "speed",
+    "acceleration": "acceleration",
+    "gas_force": "force",
+    "inertia_force": "force",
+    "weight": "force",
+    "piston_effort": "force",
+    "rod_force": "force",
+    "thrust": "force",
+    "tangential_force": "force",
+    "radial_force": "force",
+    "turning_moment": "torque",
     "delta_allowed": "dimensionless",
     "j_error": "dimensionless",
     "tolerance": "dimensionless",

@@ -54,6 +54,7 @@ UNITS = {
         "engineering": ("rad/s²", 1.0),
         "imperial": ("rad/s²", 1.0),
     },
+    "acceleration": {"si": ("m/s²", 1.0), "engineering": ("m/s²", 1.0), "imperial": ("ft/s²", 0.3048)},
     "torque": {"si": ("N·m", 1.0), "engineering": ("kN·m", 1000.0), "imperial": ("lbf·ft", 1.3558179483314004)},
     "energy": {"si": ("J", 1.0), "engineering": ("kJ", 1000.0), "imperial": ("ft·lbf", 1.3558179483314004)},
     "inertia": {"si": ("kg·m²", 1.0), "engineering": ("kg·m²", 1.0), "imperial": ("lb·ft²", 0.04214011009380480)},

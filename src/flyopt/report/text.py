@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from flyopt.analysis import Analysis
     from flyopt.design.result import Candidate, DesignResult
     from flyopt.design.spec import DesignSpec
+    from flyopt.machine.crank_forces import CrankForces
     from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.operation import OperationResult
     from flyopt.sizing.periodic import Verification
@@ -633,3 +634,38 @@ def operation_report(result: OperationResult, title: str, source: str | None = N
             *(f"  {a:<{width}}  {b}" for a, b in facts),
         ]
     )
+
+
+def position_report(forces: CrankForces, title: str, source: str | None = None, units: str = DEFAULT) -> str:
+    """``flyopt solve`` of a [position]: a slider-crank engine's kinematics and forces at one crank angle."""
+    q, _ = formatters(units)
+    p = forces.position
+    load = f"{q(p.pressure, 'pressure')} on a {q(p.bore, 'bore')} bore" if p.gas_force is None else "given directly"
+    facts = [
+        ("crank angle", f"{q(p.angle, 'angle')} from the inner dead centre"),
+        ("crank / rod", f"{q(p.crank, 'crank')} / {q(p.rod, 'rod')} (n = l/r = {number(p.rod / p.crank, 6)})"),
+        ("speed", q(forces.omega, "omega")),
+        ("obliquity of the rod β", q(forces.obliquity, "obliquity")),
+        ("piston from the i.d.c.", q(forces.displacement, "displacement")),
+        ("piston velocity", q(forces.velocity, "velocity")),
+        ("piston acceleration", f"{q(forces.acceleration, 'acceleration')} (towards the crank +)"),
+        ("gas force F_L", f"{q(forces.gas_force, 'gas_force')} ({load})"),
+        (
+            "inertia force F_I",
+            f"{q(forces.inertia_force, 'inertia_force')} (m_R a, m_R = {q(p.reciprocating_mass, 'mass')})",
+        ),
+    ]
+    if p.orientation == "vertical":
+        facts.append(("weight m_R g", q(forces.weight, "weight")))
+    facts += [
+        ("piston effort F_P", q(forces.piston_effort, "piston_effort")),
+        ("force in the rod F_Q", q(forces.rod_force, "rod_force")),
+        ("thrust on the walls F_N", q(forces.thrust, "thrust")),
+        ("crank pin, tangential F_T", q(forces.tangential_force, "tangential_force")),
+        ("crank pin, radial F_R", q(forces.radial_force, "radial_force")),
+        ("turning moment T", q(forces.turning_moment, "turning_moment")),
+    ]
+    width = max(len(label) for label, _ in facts)
+    head = visible(title) + (f"  ({visible(source)})" if source else "")
+    model = "one crank position of a slider-crank engine: exact kinematics, forces along the line of stroke"
+    return "\n".join([head, f"model: {model}", "", *(f"  {a:<{width}}  {b}" for a, b in facts)])
