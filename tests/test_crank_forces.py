@@ -18,7 +18,7 @@ import flyopt
 from flyopt.errors import SceneError
 from flyopt.io.scene import from_dict
 from flyopt.machine.crank_forces import GRAVITY, CrankPosition, crank_forces
-from flyopt.outputs.documents import json_text, position_document, schema
+from flyopt.outputs.documents import calculation_document, json_text, schema
 from flyopt.pipeline import solve, solve_position
 
 SCENE = Path(__file__).resolve().parent.parent / "problems" / "textbook" / "khurmi-15-crank-forces.toml"
@@ -68,7 +68,9 @@ def test_turning_moment_is_the_power_balance_and_the_triangles_close(degrees, or
 
 
 def test_the_json_is_its_own_kind_and_meets_the_schema():
-    document = json.loads(json_text(position_document(solve_position(flyopt.load(SCENE)), "t", str(SCENE))))
+    document = json.loads(
+        json_text(calculation_document("position", "t", str(SCENE), solve_position(flyopt.load(SCENE)).to_dict()))
+    )
     assert document["kind"] == "position"
     assert [e.message for e in jsonschema.Draft202012Validator(schema()).iter_errors(document)] == []
     with pytest.raises(SceneError) as err:

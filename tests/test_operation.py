@@ -17,7 +17,7 @@ import pytest
 import flyopt
 from flyopt.errors import SceneError
 from flyopt.io.scene import from_dict
-from flyopt.outputs.documents import json_text, operation_document, schema
+from flyopt.outputs.documents import calculation_document, json_text, schema
 from flyopt.pipeline import solve, solve_operation
 
 SCENE = Path(__file__).resolve().parent.parent / "problems" / "textbook" / "khurmi-16-21.toml"
@@ -37,7 +37,9 @@ def test_khurmi_16_21_speed_after_a_rivet_and_rivets_a_minute():
 
 
 def test_the_json_is_its_own_kind_and_meets_the_schema():
-    document = json.loads(json_text(operation_document(solve_operation(flyopt.load(SCENE)), "t", str(SCENE))))
+    document = json.loads(
+        json_text(calculation_document("operation", "t", str(SCENE), solve_operation(flyopt.load(SCENE)).to_dict()))
+    )
     assert document["kind"] == "operation"
     assert [e.message for e in jsonschema.Draft202012Validator(schema()).iter_errors(document)] == []
     assert set(document["units"]) >= {"omega_after", "recovery_time", "operation_rate"}

@@ -358,6 +358,14 @@ def refuse_negative_work(scene: Scene, work: float, a_max: float) -> None:
     )
 
 
+def calculation_of(scene: Scene) -> str | None:
+    """The section of a scene that is one calculation rather than a cycle (flyopt.io.scene.CALCULATIONS), or None."""
+    for name in ("operation", "position", "electric_drive"):
+        if getattr(scene, name) is not None:
+            return name
+    return None
+
+
 def _powers(driving: float, omega_mean: float, efficiency: float) -> tuple[float, float]:
     """(the mean driving power M_d ω_m, the motor's power M_d ω_m / η) [W] (docs/flywheel-design.md, section 11)."""
     power = driving * omega_mean

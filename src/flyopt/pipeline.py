@@ -13,7 +13,7 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal
 
 from flyopt.analysis import EXTRAS as ANALYSIS_EXTRAS
-from flyopt.analysis import Analysis, NotComputed, analyse, complete
+from flyopt.analysis import Analysis, NotComputed, analyse, calculation_of, complete
 from flyopt.cycle.indicator import speed_extremes
 
 if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
@@ -24,6 +24,7 @@ if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     from flyopt.drive.codesign import DriveCheck, DriveDesign
     from flyopt.io.scene import Scene
     from flyopt.machine.crank_forces import CrankForces
+    from flyopt.machine.electric_drive import ReducedDrive
     from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.operation import OperationResult
     from flyopt.sizing.periodic import PeriodicSolution, Verification
@@ -406,6 +407,21 @@ def solve(
         checked = verify(scene, analysis, result) if verify_design else None
         solution = Solution(scene=scene, analysis=analysis, design=result, verification=checked)
     return with_extras(solution, extras)
+
+
+def solve_calculation(scene: Scene) -> OperationResult | CrankForces | ReducedDrive:
+    """The answer of a scene that is one calculation rather than a cycle: an [operation] (:func:`solve_operation`),
+    a [position] (:func:`solve_position`) or an [electric_drive] (flyopt.machine.electric_drive.reduce_drive)."""
+    what = calculation_of(scene)
+    if what == "operation":
+        return solve_operation(scene)
+    if what == "position":
+        return solve_position(scene)
+    if what == "electric_drive" and scene.electric_drive is not None:
+        from flyopt.machine.electric_drive import reduce_drive
+
+        return reduce_drive(scene.electric_drive)
+    raise ValueError("solve_calculation needs a scene with an [operation], a [position] or an [electric_drive]")
 
 
 def solve_operation(scene: Scene) -> OperationResult:

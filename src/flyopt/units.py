@@ -57,6 +57,7 @@ DIMENSIONS = {
     "dimensionless": ("", "", "a plain number"),
     "cost_per_mass": ("1/[mass]", "1/kg", "a cost per kilogram (e.g. '2.1 1/kg')"),
     "time": ("[time]", "s", "a time (e.g. '2 s')"),
+    "angular_acceleration": ("1/[time]**2", "rad/s**2", "an angular acceleration (e.g. '800 rpm/s' or rad/s^2)"),
 }
 
 #: Units read without pint, per dimension: the unit as written -> pint's factor to the SI unit of
@@ -132,6 +133,11 @@ FAST_UNITS = {
     "power": {"W": 1.0, "kW": 1000.0, "MW": 1000000.0, "hp": 745.6998715822701},
     "force": {"N": 1.0, "kN": 1000.0, "MN": 1000000.0},
     "area": {"m^2": 1.0, "m**2": 1.0, "cm^2": 0.0001, "cm**2": 0.0001, "mm^2": 1e-06, "mm**2": 1e-06},
+    "angular_acceleration": {
+        "rad/s^2": 1.0,
+        "rad/s**2": 1.0,
+        "rpm/s": 0.10471975511965977,
+    },
     "energy_per_area": {
         "J/m^2": 1.0,
         "J/m**2": 1.0,

@@ -66,14 +66,14 @@ def add_solve_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run_solve(args: argparse.Namespace) -> int:
     """``flyopt solve``: 0 a design or none needed, 3 infeasible, 4 verification flagged."""
+    from flyopt.analysis import calculation_of
     from flyopt.io.scene import load
     from flyopt.pipeline import solve
 
     scene = load(args.scene)
-    if scene.operation is not None:
-        return _run_operation(scene, args)
-    if scene.position is not None:
-        return _run_position(scene, args)
+    what = calculation_of(scene)
+    if what is not None:
+        return _run_calculation(what, scene, args)
     solution = solve(
         scene,
         design_flywheel=args.design,
@@ -106,36 +106,21 @@ def run_solve(args: argparse.Namespace) -> int:
     return solution_exit(solution)
 
 
-def _run_operation(scene: Scene, args: argparse.Namespace) -> int:
-    """``flyopt solve`` of an [operation]: 0, or 4 when the speed falls beyond machine.delta."""
-    from flyopt.pipeline import solve_operation
+def _run_calculation(what: str, scene: Scene, args: argparse.Namespace) -> int:
+    """``flyopt solve`` of a scene that is one calculation (an [operation], a [position], an [electric_drive]):
+    0, or 4 when an operation's speed falls beyond machine.delta."""
+    from flyopt.pipeline import solve_calculation
 
-    result = solve_operation(scene)
+    result = solve_calculation(scene)
     if args.json:
-        from flyopt.outputs.documents import json_text, operation_document
+        from flyopt.outputs.documents import calculation_document, json_text
 
-        print(json_text(operation_document(result, scene.title, args.scene)))
+        print(json_text(calculation_document(what, scene.title, args.scene, result.to_dict())))
     else:
-        from flyopt.report.text import operation_report
+        from flyopt.report.text import CALCULATION_REPORTS
 
-        print(operation_report(result, scene.title, args.scene, units=args.units))
-    return EXIT_FLAGGED if result.holds is False else EXIT_OK
-
-
-def _run_position(scene: Scene, args: argparse.Namespace) -> int:
-    """``flyopt solve`` of a [position]: the slider-crank's forces at that crank angle; 0."""
-    from flyopt.pipeline import solve_position
-
-    forces = solve_position(scene)
-    if args.json:
-        from flyopt.outputs.documents import json_text, position_document
-
-        print(json_text(position_document(forces, scene.title, args.scene)))
-    else:
-        from flyopt.report.text import position_report
-
-        print(position_report(forces, scene.title, args.scene, units=args.units))
-    return EXIT_OK
+        print(CALCULATION_REPORTS[what](result, scene.title, args.scene, units=args.units))
+    return EXIT_FLAGGED if getattr(result, "holds", None) is False else EXIT_OK
 
 
 def add_check_arguments(parser: argparse.ArgumentParser) -> None:
@@ -146,19 +131,17 @@ def add_check_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run_check(args: argparse.Namespace) -> int:
     """``flyopt check``: 0 when the scene reads, its cycle closes and its ``[sweep]`` table would run."""
-    from flyopt.analysis import analyse
+    from flyopt.analysis import analyse, calculation_of
     from flyopt.io.scene import load
     from flyopt.io.toml_file import read_toml
 
     data = read_toml(args.scene)
     scene = load(args.scene, data)
-    if scene.operation is not None or scene.position is not None or scene.flywheel is not None:
-        from flyopt.pipeline import check_flywheel, solve_operation, solve_position  # no cycle, or no design
+    if calculation_of(scene) is not None or scene.flywheel is not None:
+        from flyopt.pipeline import check_flywheel, solve_calculation  # no cycle, or no design
 
-        if scene.operation is not None:
-            solve_operation(scene)
-        elif scene.position is not None:
-            solve_position(scene)
+        if calculation_of(scene) is not None:
+            solve_calculation(scene)
         else:
             check_flywheel(scene)
         print(f"{args.scene}: ok ({scene.title})")

@@ -37,6 +37,7 @@ if TYPE_CHECKING:
     from flyopt.design.spec import DesignSpec
     from flyopt.io.drive import DriveSpec
     from flyopt.machine.crank_forces import CrankPosition
+    from flyopt.machine.electric_drive import ElectricDrive
     from flyopt.machine.engine import Engine
     from flyopt.machine.flywheel import ExistingFlywheel
     from flyopt.machine.kinematics import GearTrain, SliderCrank
@@ -97,6 +98,9 @@ class Scene:
     position : flyopt.machine.crank_forces.CrankPosition or None
         The [position]: a slider-crank engine at one crank angle, for its forces there;
         no torques either.
+    electric_drive : flyopt.machine.electric_drive.ElectricDrive or None
+        The [electric_drive]: a motor, its reduction stages and its load, reduced to the
+        motor shaft (machine.speed is the motor's); no torques either.
     source : str or None
         File the scene came from.
     """
@@ -122,6 +126,7 @@ class Scene:
     flywheel: ExistingFlywheel | None = None  # [flywheel]: a wheel that exists, analysed instead of designed
     operation: Operation | None = None  # [operation]: one load, not a cycle (with a [flywheel]; no torques)
     position: CrankPosition | None = None  # [position]: a slider-crank engine at one crank angle (no torques)
+    electric_drive: ElectricDrive | None = None  # [electric_drive]: a drive reduced to its motor shaft (no torques)
     source: str | None = field(default=None, compare=False)
 
     @property
@@ -226,6 +231,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             "flywheel",
             "operation",
             "position",
+            "electric_drive",
         },
     )  # [sweep] is read by flyopt.studies.sweep.load_sweep
     machine = Table(
@@ -236,7 +242,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
     check_magnitude(omega, "machine.speed", machine.raw("speed"), *SPEED_RANGE, "rad/s", SPEED_WHY)
     existing = top.has("flywheel")
-    once = top.has("operation") or top.has("position")  # one operation, or one crank position: no δ to hold
+    once = any(top.has(k) for k in CALCULATIONS)  # one calculation, not a cycle: no δ to hold
     delta = machine.quantity("delta", "dimensionless", required=not (existing or once))
     if delta is not None:
         _check_delta(delta, machine)
@@ -276,7 +282,8 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     member_loads = any(m.force is not None or m.torque is not None for m in members)
     operation = _operation(top) if top.has("operation") else None
     position = _position(top) if top.has("position") else None
-    if operation is not None or position is not None:  # one operation, one crank position: no torques over a cycle
+    electric = _electric_drive(top, omega) if top.has("electric_drive") else None
+    if operation is not None or position is not None or electric is not None:  # one calculation: no torques
         driving = resisting = net = None
     else:
         driving, resisting, net = read_torques(
@@ -355,8 +362,31 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         flywheel=flywheel,
         operation=operation,
         position=position,
+        electric_drive=electric,
         source=source,
     )
+
+
+def _electric_drive(top: Table, omega: float) -> ElectricDrive:
+    """[electric_drive], the motor at machine.speed, with none of the sections that describe something else."""
+    from flyopt.io.electric_drive_section import read_electric_drive
+
+    _alone(top, "electric_drive", "an electric drive reduced to its motor shaft")
+    return read_electric_drive(top.get("electric_drive"), omega)
+
+
+#: Sections that are one calculation rather than a cycle: each stands alone in its scene
+#: (an [operation] with its [flywheel]); flyopt.pipeline.solve_calculation answers them.
+CALCULATIONS = ("operation", "position", "electric_drive")
+#: The sections that describe a cycle, a design or a wheel, which a calculation's scene does not have.
+_CYCLE_SECTIONS = ("torque", "press", "engine", "member", "mechanism", "design", "drive", "motor_option", "sweep")
+
+
+def _alone(top: Table, key: str, what: str, allowed: tuple[str, ...] = ()) -> None:
+    """Refuse a calculation's section beside a cycle's, a design's or another calculation's."""
+    for other in (*_CYCLE_SECTIONS, "flywheel", *CALCULATIONS):
+        if other != key and other not in allowed and top.has(other):
+            raise SceneError(key, f"is {what}, and [{other}] describes something else: give one of them")
 
 
 def _position(top: Table) -> CrankPosition:
@@ -389,12 +419,7 @@ def _operation(top: Table) -> Operation:
     """[operation], with the flywheel it acts on and none of the sections that describe a cycle."""
     from flyopt.io.operation_section import read_operation
 
-    for other in ("torque", "press", "engine", "member", "mechanism", "design", "drive", "motor_option", "sweep"):
-        if top.has(other):
-            raise SceneError(
-                "operation",
-                f"is one operation, not a cycle, and [{other}] describes a cycle or a design: give one of them",
-            )
+    _alone(top, "operation", "one operation, not a cycle", allowed=("flywheel",))
     if not top.has("flywheel"):
         raise SceneError(
             "operation", "acts on a flywheel that exists: give [flywheel] (inertia, or mass with radius_of_gyration)"

@@ -26,8 +26,10 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-#: Standard gravity [m/s²] (the weight of a vertical engine's reciprocating parts).
-GRAVITY = 9.80665
+from flyopt.units import G_STANDARD
+
+#: Standard gravity [m/s²] (the weight of a vertical engine's reciprocating parts): flyopt's one g.
+GRAVITY = G_STANDARD
 ORIENTATIONS = ("horizontal", "vertical")
 
 

@@ -27,9 +27,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from flyopt.io.scene import Scene
-    from flyopt.machine.crank_forces import CrankForces
     from flyopt.pipeline import Solution
-    from flyopt.sizing.operation import OperationResult
 
 __all__ = [
     "SCHEMA_FILE",
@@ -122,20 +120,11 @@ def solution_document(solution: Solution, scene: str | os.PathLike[str], timings
     }
 
 
-def operation_document(result: OperationResult, title: str, scene: str | os.PathLike[str]) -> dict[str, Any]:
-    """The JSON of ``flyopt solve`` for an [operation] (kind "operation"): one load on the flywheel, SI."""
-    return _calculation_document("operation", title, scene, result.to_dict())
-
-
-def position_document(forces: CrankForces, title: str, scene: str | os.PathLike[str]) -> dict[str, Any]:
-    """The JSON of ``flyopt solve`` for a [position] (kind "position"): a slider-crank's forces at one angle, SI."""
-    return _calculation_document("position", title, scene, forces.to_dict())
-
-
-def _calculation_document(
+def calculation_document(
     kind: str, title: str, scene: str | os.PathLike[str], fields: Mapping[str, Any]
 ) -> dict[str, Any]:
-    """A document of a scene that is one calculation rather than a cycle (kinds "operation", "position")."""
+    """The JSON of ``flyopt solve`` for a scene that is one calculation (kinds "operation", "position",
+    "electric_drive"): its result's fields (``to_dict``), every number in SI, with the document's header."""
     data = json_safe({"title": title, **fields})
     return {
         "schema_version": schema_version(),

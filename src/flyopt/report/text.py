@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from flyopt.design.result import Candidate, DesignResult
     from flyopt.design.spec import DesignSpec
     from flyopt.machine.crank_forces import CrankForces
+    from flyopt.machine.electric_drive import ReducedDrive
     from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.operation import OperationResult
     from flyopt.sizing.periodic import Verification
@@ -669,3 +670,70 @@ def position_report(forces: CrankForces, title: str, source: str | None = None, 
     head = visible(title) + (f"  ({visible(source)})" if source else "")
     model = "one crank position of a slider-crank engine: exact kinematics, forces along the line of stroke"
     return "\n".join([head, f"model: {model}", "", *(f"  {a:<{width}}  {b}" for a, b in facts)])
+
+
+def electric_drive_report(drive: ReducedDrive, title: str, source: str | None = None, units: str = DEFAULT) -> str:
+    """``flyopt solve`` of an [electric_drive]: the drive reduced to the motor shaft, in the texts' terms."""
+    q, n = formatters(units)
+    d = drive.drive
+    rows = [
+        ["motor", "-", "-", n(d.motor_speed, "omega"), number(d.motor_gd2), number(d.motor_gd2), number(d.motor_gd2)]
+    ]
+    ratio = eta = 1.0
+    for k, (stage, speed) in enumerate(zip(d.stages, drive.shaft_speeds)):
+        ratio *= stage.ratio
+        eta *= stage.efficiency
+        rows.append(
+            [
+                f"after stage {k + 1}",
+                number(stage.ratio),
+                number(stage.efficiency),
+                n(speed, "omega"),
+                number(stage.gd2),
+                number(stage.gd2 / ratio**2),
+                number(stage.gd2 / (ratio**2 * eta)),
+            ]
+        )
+    speed_unit = _label("omega", units)
+    lines = [
+        visible(title) + (f"  ({visible(source)})" if source else ""),
+        "model: an electric drive reduced to the motor shaft (equal kinetic energy; the texts' GD² with losses)",
+        "",
+        *table(
+            ["shaft", "ratio", "efficiency", f"speed [{speed_unit}]", "GD² [N·m²]", "GD²/j²", "GD²/(j² η)"],
+            rows,
+        ),
+        "",
+    ]
+    facts = [
+        ("total ratio / efficiency", f"{number(drive.total_ratio)} / {number(drive.efficiency)}"),
+        ("load", f"{q(d.load_torque, 'torque')} at {q(drive.load_speed, 'omega')}: {q(drive.load_power, 'power')}"),
+        ("motor output power", f"{q(drive.motor_power, 'power')} (the load's over the efficiency)"),
+        ("load torque at the motor", f"{q(drive.load_torque_at_motor, 'torque')} (T_L / (j η))"),
+        (
+            "GD² at the motor",
+            f"{number(drive.gd2_total)} N·m² (J = {q(drive.inertia_total, 'inertia')}, equal kinetic energy)",
+        ),
+        (
+            "GD² with the losses",
+            f"{number(drive.gd2_with_losses)} N·m² (J = {q(drive.inertia_with_losses, 'inertia')}, the texts' convention for accelerating)",
+        ),
+    ]
+    if drive.accelerating_torque is not None and drive.motor_torque is not None and d.acceleration is not None:
+        facts += [
+            (
+                "accelerating torque",
+                f"{q(drive.accelerating_torque, 'torque')} at dn/dt = {number(d.acceleration * 30 / math.pi)} rpm/s",
+            ),
+            ("motor torque, loaded", f"{q(drive.motor_torque, 'torque')} (load at the motor + accelerating)"),
+        ]
+    width = max(len(a) for a, _ in facts)
+    return "\n".join([*lines, *(f"  {a:<{width}}  {b}" for a, b in facts)])
+
+
+#: The text of ``flyopt solve`` for each kind of scene that is one calculation (flyopt.io.scene.CALCULATIONS).
+CALCULATION_REPORTS: dict[str, Callable[..., str]] = {
+    "operation": operation_report,
+    "position": position_report,
+    "electric_drive": electric_drive_report,
+}
