@@ -31,7 +31,8 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table
+from flyopt.io.fields import Table, check_magnitude
+from flyopt.io.operation_section import ENERGY_RANGE, POWER_RANGE
 from flyopt.units import quantity
 
 if TYPE_CHECKING:
@@ -124,6 +125,8 @@ def _work_per_cycle(table: Table, where: str, omega: float, cycle: float, requir
     value = table.quantity(form, "power" if form == "power" else "energy", required=True)
     if not (math.isfinite(value) and value > 0):
         raise SceneError(f"{where}.{form}", f"must be positive, got {shorten(table.raw(form))}")
+    bounds, unit = (POWER_RANGE, "W") if form == "power" else (ENERGY_RANGE, "J")
+    check_magnitude(value, f"{where}.{form}", table.raw(form), *bounds, unit, "beyond it the flywheel overflows")
     return value * cycle / omega if form == "power" else value
 
 
@@ -158,6 +161,12 @@ def _stroke_works(table: Table, omega: float) -> list[float]:
                 "is only for strokes' work given as multiples of the cycle's work (the energies give it already)",
             )
     works = [quantity(w, "energy", f"strokes.work[{k}]") for k, w in enumerate(raw)]
+    for k, w in enumerate(works):
+        if w and not ENERGY_RANGE[0] <= abs(w) <= ENERGY_RANGE[1]:
+            raise SceneError(
+                f"strokes.work[{k}]",
+                f"{shorten(raw[k])} is out of range (allowed: 0 or ±{ENERGY_RANGE[0]:g} to ±{ENERGY_RANGE[1]:g} J)",
+            )
     total = math.fsum(works)
     if not total > 0:
         raise SceneError(

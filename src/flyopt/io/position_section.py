@@ -11,6 +11,10 @@ from flyopt.machine.crank_forces import ORIENTATIONS, CrankPosition
 KEYS = {"angle", "crank", "rod", "bore", "pressure", "gas_force", "reciprocating_mass", "orientation", "description"}
 LENGTH_RANGE = (1e-6, 1e3)
 MASS_RANGE = (0.0, 1e9)
+#: Largest |crank angle| [rad] (a thousand turns), |pressure| [Pa] and |gas force| [N] a [position] takes.
+MAX_ANGLE = 2e3 * math.pi
+MAX_PRESSURE = 1e12
+MAX_FORCE = 1e15
 
 
 def read_position(raw: object) -> CrankPosition:
@@ -18,8 +22,10 @@ def read_position(raw: object) -> CrankPosition:
     gas force) and the reciprocating mass; ``orientation`` "vertical" adds the reciprocating parts' weight."""
     table = Table(raw, "position", KEYS)
     angle = table.quantity("angle", "angle", required=True)
-    if not math.isfinite(angle):
-        raise SceneError("position.angle", f"must be a finite angle, got {shorten(table.raw('angle'))}")
+    if not (math.isfinite(angle) and abs(angle) <= MAX_ANGLE):
+        raise SceneError(
+            "position.angle", f"must be a finite angle within ±1000 turns, got {shorten(table.raw('angle'))}"
+        )
     lengths = {}
     for key in ("crank", "rod"):
         value = table.quantity(key, "length", required=True)
@@ -36,15 +42,24 @@ def read_position(raw: object) -> CrankPosition:
     mass = table.quantity("reciprocating_mass", "mass", required=True)
     if not (math.isfinite(mass) and mass >= 0):
         raise SceneError("position.reciprocating_mass", f"must be >= 0, got {shorten(table.raw('reciprocating_mass'))}")
-    check_magnitude(mass, "position.reciprocating_mass", table.raw("reciprocating_mass"), *MASS_RANGE, "kg", "")
+    check_magnitude(
+        mass,
+        "position.reciprocating_mass",
+        table.raw("reciprocating_mass"),
+        *MASS_RANGE,
+        "kg",
+        "piston, pin and rod end",
+    )
     if table.has("gas_force") and (table.has("pressure") or table.has("bore")):
         raise SceneError("position.gas_force", "give either the gas_force or the bore with the pressure, not both")
     bore = gas = None
     pressure = 0.0
     if table.has("gas_force"):
         gas = table.quantity("gas_force", "force", required=True)
-        if not math.isfinite(gas):
-            raise SceneError("position.gas_force", f"must be finite, got {shorten(table.raw('gas_force'))}")
+        if not (math.isfinite(gas) and abs(gas) <= MAX_FORCE):
+            raise SceneError(
+                "position.gas_force", f"must be finite, at most ±{MAX_FORCE:g} N, got {shorten(table.raw('gas_force'))}"
+            )
     elif table.has("pressure") or table.has("bore"):
         for key in ("pressure", "bore"):
             if not table.has(key):
@@ -54,8 +69,11 @@ def read_position(raw: object) -> CrankPosition:
             raise SceneError("position.bore", f"must be positive, got {shorten(table.raw('bore'))}")
         check_magnitude(bore, "position.bore", table.raw("bore"), *LENGTH_RANGE, "m", "a micron to a kilometre")
         pressure = table.quantity("pressure", "stress", required=True)
-        if not math.isfinite(pressure):
-            raise SceneError("position.pressure", f"must be finite, got {shorten(table.raw('pressure'))}")
+        if not (math.isfinite(pressure) and abs(pressure) <= MAX_PRESSURE):
+            raise SceneError(
+                "position.pressure",
+                f"must be finite, at most ±{MAX_PRESSURE:g} Pa, got {shorten(table.raw('pressure'))}",
+            )
     orientation = table.get("orientation", "horizontal")
     if orientation not in ORIENTATIONS:
         raise SceneError(
