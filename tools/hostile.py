@@ -183,7 +183,7 @@ def scene_files(scene: Path) -> dict[str, str | bytes]:
 
 def field_mutations(rng: random.Random, per_scene: int) -> Iterator[Case]:
     """Each problem scene with one field made hostile; ``per_scene`` picked at random per scene."""
-    for scene in sorted(PROBLEMS.glob("*.toml")):
+    for scene in sorted(PROBLEMS.rglob("*.toml")):  # the textbook gallery too
         document = tomllib.loads(scene.read_text())
         paths = [p for p, _ in leaves(document)]
         options = [(p, label, v) for p in paths for label, v in HOSTILE_VALUES]

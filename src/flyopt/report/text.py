@@ -723,7 +723,7 @@ def electric_drive_report(drive: ReducedDrive, title: str, source: str | None = 
         facts += [
             (
                 "accelerating torque",
-                f"{q(drive.accelerating_torque, 'torque')} at dn/dt = {number(d.acceleration * 30 / math.pi)} rpm/s",
+                f"{q(drive.accelerating_torque, 'torque')} at dω/dt = {q(d.acceleration, 'motor_acceleration')}",
             ),
             ("motor torque, loaded", f"{q(drive.motor_torque, 'torque')} (load at the motor + accelerating)"),
         ]
