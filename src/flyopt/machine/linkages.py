@@ -376,11 +376,12 @@ class FourBar(Linkage):
                 f"than the other three together"
             )
         low, high = abs(d - a), d + a
-        if not (abs(b - c) < low and high < b + c):
+        margin = 1e-12 * sum(lengths)  # equal within rounding is the dead point, refused
+        if not (abs(b - c) + margin < low and high + margin < b + c):
             raise ValueError(
-                f"four-bar crank {a!r} m cannot turn fully: the diagonal |BD| runs from {low!r} to {high!r} m, "
-                f"but coupler {b!r} m and rocker {c!r} m close the loop only for |BD| strictly between "
-                f"{abs(b - c)!r} and {b + c!r} m (Grashof, with the crank or the frame the shortest link)"
+                f"four-bar crank {a:.6g} m cannot turn fully: the diagonal |BD| runs from {low:.6g} to {high:.6g} m, "
+                f"but coupler {b:.6g} m and rocker {c:.6g} m close the loop only for |BD| strictly between "
+                f"{abs(b - c):.6g} and {b + c:.6g} m (Grashof, with the crank or the frame the shortest link)"
             )
         self.crank, self.coupler, self.rocker, self.frame, self.branch = a, b, c, d, branch
 
@@ -401,8 +402,10 @@ class FourBar(Linkage):
         bx, by = a * lib.cos(psi), a * lib.sin(psi)
         f2 = a * a + d * d - 2 * a * d * lib.cos(psi)
         delta = _atan2(lib, by, bx - d)
-        gamma = lib.arccos((c * c + f2 - b * b) / (2 * c * lib.sqrt(f2))) if lib is np else ca.acos(
-            (c * c + f2 - b * b) / (2 * c * ca.sqrt(f2))
+        gamma = (
+            lib.arccos((c * c + f2 - b * b) / (2 * c * lib.sqrt(f2)))
+            if lib is np
+            else ca.acos((c * c + f2 - b * b) / (2 * c * ca.sqrt(f2)))
         )
         theta4 = delta - gamma if self.branch == "open" else delta + gamma
         theta3 = _atan2(lib, c * lib.sin(theta4) - by, d + c * lib.cos(theta4) - bx)
@@ -575,7 +578,9 @@ class Cam(Linkage):
         start, level, top = 0.0, 0.0, 0.0
         for k, (motion, law, angle, lift) in enumerate(segments):
             if motion not in CAM_MOTIONS:
-                raise ValueError(f"cam segment {k}: motion {shorten(motion)} is not known (allowed: rise, dwell, return)")
+                raise ValueError(
+                    f"cam segment {k}: motion {shorten(motion)} is not known (allowed: rise, dwell, return)"
+                )
             beta = _positive("angle", angle, f"cam segment {k}")
             if motion == "dwell":
                 rows.append((start, beta, level, 0.0, "uniform_velocity"))
@@ -593,9 +598,7 @@ class Cam(Linkage):
                 top = max(top, level)
             start += beta
         if abs(start - TWO_PI) > 1e-9:
-            raise ValueError(
-                f"cam segments cover {math.degrees(start)!r} deg; they must add up to one turn, 360 deg"
-            )
+            raise ValueError(f"cam segments cover {math.degrees(start)!r} deg; they must add up to one turn, 360 deg")
         if abs(level) > 1e-9 * max(top, 1e-300):
             raise ValueError(
                 f"cam: the follower ends {level!r} m from where it started; the rises and returns must balance"
@@ -610,7 +613,7 @@ class Cam(Linkage):
         """s (order 0), ds/dψ (1) or d²s/dψ² (2) of the follower, piecewise over the segments."""
         turn = psi - TWO_PI * lib.floor(psi / TWO_PI)
         out = 0.0 * turn
-        for start, beta, level, signed, law in reversed(self.segments):
+        for start, beta, level, signed, law in self.segments:  # a later segment overrides from its start
             x = (turn - start) / beta
             f = _law(law, x, lib)[order]
             value = (level if order == 0 else 0.0) + signed * f / beta**order
