@@ -57,7 +57,7 @@ def read_mechanism(raw: object) -> SliderCrank | GearTrain | Linkage | None:
     raise SceneError("mechanism.kind", f"{shorten(kind)} is not known (allowed: {', '.join(MECHANISM_KINDS)})")
 
 
-def _read_linkage(raw: dict[str, object], kind: str) -> Linkage:
+def _read_linkage(raw: object, kind: str) -> Linkage:
     """A guide_bar, four_bar or cam, in the book's terms (link lengths, angles, the follower's laws)."""
     from flyopt.machine.linkages import CAM_LAWS, CAM_MOTIONS, Cam, FourBar, GuideBar
 
@@ -81,8 +81,8 @@ def _read_linkage(raw: dict[str, object], kind: str) -> Linkage:
         branch = table.get("branch", "open")
         if branch not in ("open", "crossed"):
             raise SceneError("mechanism.branch", f"{shorten(branch)} is not known (allowed: open, crossed)")
-        lengths = [table.quantity(key, "length", required=True) for key in ("crank", "coupler", "rocker", "frame")]
-        return FourBar(*lengths, branch=branch, speed_ratio=speed_ratio, phase=phase)
+        a, b, c, d = (table.quantity(key, "length", required=True) for key in ("crank", "coupler", "rocker", "frame"))
+        return FourBar(a, b, c, d, branch, speed_ratio, phase)
     lift = table.quantity("lift", "length")
     segments = table.require("segments")
     if not isinstance(segments, list) or not segments:

@@ -146,7 +146,7 @@ class LinkageRatio(ClosedFormRatio):
         self, phi: NDArray[np.float64], cache: StateCache | None = None
     ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The ratio on a numpy array (``cache`` unused: each ratio is computed on its own)."""
-        return self.mechanism.ratio(self.kind, np.asarray(phi, dtype=float), self.centre)  # type: ignore[no-any-return]
+        return self.mechanism.ratio(self.kind, np.asarray(phi, dtype=float), self.centre)
 
     def slope(
         self, phi: NDArray[np.float64], cache: StateCache | None = None

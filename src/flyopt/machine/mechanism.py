@@ -8,7 +8,8 @@ same kinetic energy and the same instantaneous power (docs/flywheel-design.md, s
 
 Both need only the velocity *ratios* v_S/ω [m/rad] and ω_i/ω [-], which a
 member takes as numbers, tables or functions of φ (those of the slider-crank
-and the gear train are in :mod:`flyopt.machine.kinematics`). Every function
+and the gear train are in :mod:`flyopt.machine.kinematics`, those of the
+guide-bar, the four-bar and the cam in :mod:`flyopt.machine.linkages`). Every function
 here accepts a numpy array **or** a CasADi SX/MX symbol and returns the same
 kind, so one definition serves the numpy analysis and the CasADi models.
 
