@@ -175,3 +175,42 @@ def test_bad_mechanism_scenes_are_refused_in_one_line(main_cli, write_scene, mec
     line = err.strip()
     assert "\n" not in line
     assert f"{path}: {field}: " in line and words in line
+
+
+FOUR_BAR_MOTOR = """
+[machine]
+speed = "60 rpm"
+delta = 0.05
+[mechanism]
+kind = "four_bar"
+crank = "100 mm"
+coupler = "350 mm"
+rocker = "300 mm"
+frame = "400 mm"
+[[member]]
+name = "rocker"
+part = "rocker"
+mass = "20 kg"
+inertia = "0.5 kg*m^2"
+torque = "300 N*m"
+[[member]]
+name = "coupler"
+part = "coupler"
+mass = "8 kg"
+inertia = "0.1 kg*m^2"
+[torque.driving]
+motor = { kind = "induction", rated_power = "7.5 kW", rated_speed = "1420 rpm", synchronous_speed = "1500 rpm" }
+[[shaft]]
+name = "motor"
+speed_ratio = 24.0
+[design]
+geometry = "disc"
+max_outer_diameter = "0.6 m"
+"""
+
+
+def test_a_four_bar_driven_by_a_motor_goes_through_the_dynamic_model(main_cli, write_scene):
+    """A speed-dependent motor torque: the periodic solution (CasADi) of a machine with a four-bar's J_e(φ)."""
+    status, out, err = main_cli("solve", write_scene(FOUR_BAR_MOTOR))
+    assert status == 0, err
+    assert "model: dynamic" in out and "dynamic (exact)" in out
