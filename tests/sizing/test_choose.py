@@ -163,7 +163,7 @@ def test_bad_members(tmp_path, extra, field, words):
     "mechanism, field, words",
     [
         ('kind = "slider_crank"\ncrank = "0.5 m"\nrod = "0.4 m"', "mechanism", "cannot turn fully"),
-        ('kind = "cam"', "mechanism.kind", "'cam' is not known"),
+        ('kind = "geneva"', "mechanism.kind", "'geneva' is not known"),
     ],
 )
 def test_bad_mechanism(tmp_path, mechanism, field, words):

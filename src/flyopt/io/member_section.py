@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -16,17 +17,26 @@ if TYPE_CHECKING:
 
     from flyopt.machine.engine import Engine
     from flyopt.machine.kinematics import GearTrain, SliderCrank
+    from flyopt.machine.linkages import Linkage
     from flyopt.machine.mechanism import Member
 
+MECHANISM_KINDS = ("slider_crank", "gear_train", "guide_bar", "four_bar", "cam")
+"""The kinds of [mechanism] a scene may name."""
 
-def read_mechanism(raw: object) -> SliderCrank | GearTrain | None:
-    """The [mechanism] section: a slider-crank or a gear train (None when the scene gives none)."""
+_LINKAGE_KEYS = {"kind", "speed_ratio", "phase", "description"}
+"""Keys every guide_bar, four_bar and cam takes: its input's speed against the reference shaft and its phase."""
+
+
+def read_mechanism(raw: object) -> SliderCrank | GearTrain | Linkage | None:
+    """The [mechanism] section: a slider-crank, a gear train, a guide-bar, a four-bar or a cam (None when none)."""
     if raw is None:
         return None
     from flyopt.machine.kinematics import GearTrain, SliderCrank  # CasADi: only for a scene with a mechanism
 
     kind = raw.get("kind") if isinstance(raw, dict) else None
     try:
+        if kind in ("guide_bar", "four_bar", "cam"):
+            return _read_linkage(raw, kind)
         if kind == "slider_crank":
             table = Table(raw, "mechanism", {"kind", "crank", "rod", "offset", "description"})
             return SliderCrank(
@@ -44,16 +54,71 @@ def read_mechanism(raw: object) -> SliderCrank | GearTrain | None:
         if isinstance(err, SceneError):
             raise
         raise SceneError("mechanism", str(err)) from None
-    raise SceneError("mechanism.kind", f"{shorten(kind)} is not known (allowed: slider_crank, gear_train)")
+    raise SceneError("mechanism.kind", f"{shorten(kind)} is not known (allowed: {', '.join(MECHANISM_KINDS)})")
+
+
+def _read_linkage(raw: object, kind: str) -> Linkage:
+    """A guide_bar, four_bar or cam, in the book's terms (link lengths, angles, the follower's laws)."""
+    from flyopt.machine.linkages import CAM_LAWS, CAM_MOTIONS, Cam, FourBar, GuideBar
+
+    if kind == "guide_bar":
+        table = Table(raw, "mechanism", _LINKAGE_KEYS | {"crank", "frame", "lever"})
+    elif kind == "four_bar":
+        table = Table(raw, "mechanism", _LINKAGE_KEYS | {"crank", "coupler", "rocker", "frame", "branch"})
+    else:
+        table = Table(raw, "mechanism", _LINKAGE_KEYS | {"lift", "segments"})
+    speed_ratio = table.quantity("speed_ratio", "dimensionless", default=1.0)
+    phase = table.quantity("phase", "angle", default=0.0)
+    if kind == "guide_bar":
+        return GuideBar(
+            table.quantity("crank", "length", required=True),
+            table.quantity("frame", "length", required=True),
+            table.quantity("lever", "length"),
+            speed_ratio,
+            phase,
+        )
+    if kind == "four_bar":
+        branch = table.get("branch", "open")
+        if branch not in ("open", "crossed"):
+            raise SceneError("mechanism.branch", f"{shorten(branch)} is not known (allowed: open, crossed)")
+        a, b, c, d = (table.quantity(key, "length", required=True) for key in ("crank", "coupler", "rocker", "frame"))
+        return FourBar(a, b, c, d, branch, speed_ratio, phase)
+    lift = table.quantity("lift", "length")
+    segments = table.require("segments")
+    if not isinstance(segments, list) or not segments:
+        raise SceneError("mechanism.segments", "must be a list of tables {motion, law, angle, lift}")
+    rows = []
+    for k, item in enumerate(segments):
+        where = f"mechanism.segments[{k}]"
+        row = Table(item, where, {"motion", "law", "angle", "lift"})
+        motion = row.require("motion")
+        if motion not in CAM_MOTIONS:
+            raise SceneError(f"{where}.motion", f"{shorten(motion)} is not known (allowed: {', '.join(CAM_MOTIONS)})")
+        angle = row.quantity("angle", "angle", required=True)
+        if motion == "dwell":
+            for key in ("law", "lift"):
+                if row.has(key):
+                    raise SceneError(f"{where}.{key}", "a dwell has no law and no lift")
+            rows.append((motion, None, angle, 0.0))
+            continue
+        law = row.require("law")
+        if law not in CAM_LAWS:
+            raise SceneError(f"{where}.law", f"{shorten(law)} is not known (allowed: {', '.join(CAM_LAWS)})")
+        h = row.quantity("lift", "length", default=lift) if row.has("lift") or lift is not None else None
+        if h is None:
+            raise SceneError(f"{where}.lift", "is missing (give it here or the cam's lift in [mechanism])")
+        rows.append((motion, law, angle, h))
+    return Cam(rows, speed_ratio, phase)
 
 
 def read_members(
-    raw: object, mechanism: SliderCrank | GearTrain | None, cycle: float, files: Path = Path()
+    raw: object, mechanism: SliderCrank | GearTrain | Linkage | None, cycle: float, files: Path = Path()
 ) -> tuple[Member, ...]:
     """The [[member]] tables: members whose inertia and loads are reduced to the reference shaft."""
     if raw is None:
         return ()
     from flyopt.machine.kinematics import GearTrain  # CasADi: only with members
+    from flyopt.machine.linkages import Linkage
     from flyopt.machine.mechanism import FORCE_SENSES, Member
 
     if not isinstance(raw, list):
@@ -105,6 +170,14 @@ def read_members(
                 )
             if mechanism is None:
                 raise SceneError(f"{where}.part", "needs a [mechanism] to take the ratios from")
+            if isinstance(mechanism, Linkage):
+                turns = cycle / mechanism.period
+                if abs(turns - round(turns)) > 1e-9 * max(turns, 1.0) or round(turns) < 1:
+                    raise SceneError(
+                        "mechanism.speed_ratio",
+                        f"the mechanism repeats every {math.degrees(mechanism.period):.10g} deg of the reference "
+                        f"shaft, which does not divide machine.cycle ({math.degrees(cycle):.10g} deg)",
+                    )
             part = table.get("part")
             try:
                 if isinstance(mechanism, GearTrain):
@@ -140,7 +213,7 @@ def read_members(
 
 
 def with_engine(
-    engine: Engine, mechanism: SliderCrank | GearTrain | None, members: Sequence[Member]
+    engine: Engine, mechanism: SliderCrank | GearTrain | Linkage | None, members: Sequence[Member]
 ) -> tuple[Member, ...]:
     """The engine's pistons and rods followed by the scene's own [[member]]s (names checked apart)."""
     if mechanism is not None:

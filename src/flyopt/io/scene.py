@@ -41,6 +41,7 @@ if TYPE_CHECKING:
     from flyopt.machine.engine import Engine
     from flyopt.machine.flywheel import ExistingFlywheel
     from flyopt.machine.kinematics import GearTrain, SliderCrank
+    from flyopt.machine.linkages import Linkage
     from flyopt.machine.mechanism import Member
     from flyopt.sizing.operation import Operation
 
@@ -86,7 +87,7 @@ class Scene:
     members : tuple of flyopt.machine.mechanism.Member
         Members whose kinetic energy and loads are reduced to the reference
         shaft (J_e(φ) = J_c + Σ ..., their forces join the resisting torque).
-    mechanism : SliderCrank, GearTrain or None
+    mechanism : SliderCrank, GearTrain, Linkage (guide-bar, four-bar, cam) or None
     engine : flyopt.machine.engine.Engine or None
         The [engine]: its pistons and rods are the first of ``members``.
     flywheel : flyopt.machine.flywheel.ExistingFlywheel or None
@@ -120,7 +121,7 @@ class Scene:
     design_shafts: tuple[str, ...] | None = None  # names of [[shaft]] the design may use; None: all
     materials: tuple[Material, ...] = ()  # user materials ([[material]]), extending the built-in ones
     members: tuple[Member, ...] = ()  # the [[member]]: J_e(φ) and member loads
-    mechanism: SliderCrank | GearTrain | None = None  # [mechanism]
+    mechanism: SliderCrank | GearTrain | Linkage | None = None  # [mechanism]
     drive: DriveSpec | None = None  # [drive]: the motor and ratio designed with the wheel
     engine: Engine | None = None  # [engine]; its members lead ``members``
     flywheel: ExistingFlywheel | None = None  # [flywheel]: a wheel that exists, analysed instead of designed

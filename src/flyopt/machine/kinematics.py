@@ -239,7 +239,34 @@ class SliderCrank:
         raise ValueError(f"slider-crank part {shorten(part)} is not known (allowed: 'crank', 'rod', 'slider')")
 
 
-class SliderCrankRatio:
+class ClosedFormRatio:
+    """A velocity ratio of a linkage given in closed form, with its exact slope.
+
+    Callable on a numpy array or a CasADi symbol (returning the same kind);
+    :meth:`numpy` and :meth:`slope` give the ratio and its derivative with
+    respect to φ on numpy arrays without CasADi. The reduction
+    (:mod:`flyopt.machine.mechanism`) recognises this class and takes
+    dJ_e/dφ from :meth:`slope`. Subclasses: :class:`SliderCrankRatio` and
+    :class:`flyopt.machine.linkages.LinkageRatio`.
+    """
+
+    def __call__(self, phi: Any) -> Any:
+        raise NotImplementedError
+
+    def numpy(
+        self, phi: NDArray[np.float64], cache: StateCache | None = None
+    ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The ratio on a numpy array [m/rad] or [-]."""
+        raise NotImplementedError
+
+    def slope(
+        self, phi: NDArray[np.float64], cache: StateCache | None = None
+    ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """d/dφ of the ratio on a numpy array [m/rad²] or [1/rad]."""
+        raise NotImplementedError
+
+
+class SliderCrankRatio(ClosedFormRatio):
     """One velocity ratio of a :class:`SliderCrank` as a function of φ, with its exact derivative.
 
     Callable like the mechanism's methods (numpy arrays or CasADi symbols);

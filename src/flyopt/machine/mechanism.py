@@ -8,7 +8,8 @@ same kinetic energy and the same instantaneous power (docs/flywheel-design.md, s
 
 Both need only the velocity *ratios* v_S/ω [m/rad] and ω_i/ω [-], which a
 member takes as numbers, tables or functions of φ (those of the slider-crank
-and the gear train are in :mod:`flyopt.machine.kinematics`). Every function
+and the gear train are in :mod:`flyopt.machine.kinematics`, those of the
+guide-bar, the four-bar and the cam in :mod:`flyopt.machine.linkages`). Every function
 here accepts a numpy array **or** a CasADi SX/MX symbol and returns the same
 kind, so one definition serves the numpy analysis and the CasADi models.
 
@@ -29,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from flyopt.cycle.torque import PiecewiseLinear
-from flyopt.machine.kinematics import SliderCrankRatio, StateCache, is_casadi, known_ratio
+from flyopt.machine.kinematics import ClosedFormRatio, StateCache, is_casadi, known_ratio
 
 FORCE_SENSES = ("resisting", "driving", "axial")
 """How a member's force (or torque) does work:
@@ -92,7 +93,7 @@ class _Curve:
         if self.kind == "table":
             left, right = self.table.limits(phi)
             return right if side == "right" else left
-        if isinstance(self.function, SliderCrankRatio):
+        if isinstance(self.function, ClosedFormRatio):
             return self.function.numpy(phi, cache)
         out = self.function(phi)
         if isinstance(out, tuple):
@@ -108,12 +109,12 @@ class _Curve:
 
     @property
     def has_slope(self):
-        """Whether :meth:`slope` is available (constants, tables, a slider-crank's ratios)."""
-        return self.kind != "function" or isinstance(self.function, SliderCrankRatio)
+        """Whether :meth:`slope` is available (constants, tables, a linkage's closed-form ratios)."""
+        return self.kind != "function" or isinstance(self.function, ClosedFormRatio)
 
     def slope(self, phi, cache=None):
         """d/dφ at ``phi`` (numpy): 0 for a constant, the piece's slope for a table (the right
-        one at a point), the closed form for a slider-crank ratio."""
+        one at a point), the closed form for a linkage's ratio (:class:`ClosedFormRatio`)."""
         phi = np.asarray(phi, dtype=float)
         if self.kind == "constant":
             return np.zeros(phi.shape)
@@ -124,7 +125,7 @@ class _Curve:
             k = np.clip(k, 0, len(x) - 2)
             h = x[k + 1] - x[k]
             return np.where(inside & (h > 0), (y[k + 1] - y[k]) / np.where(h > 0, h, 1.0), 0.0)
-        if isinstance(self.function, SliderCrankRatio):
+        if isinstance(self.function, ClosedFormRatio):
             return self.function.slope(phi, cache)
         raise ValueError(f"{self.what}: the derivative of a function is taken by CasADi, not here")
 
