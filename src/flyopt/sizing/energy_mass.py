@@ -530,7 +530,9 @@ def _achieved(grid, j_flywheel, omega_mean):
             j_hi, j_lo = j_flywheel + grid.inertia(np.array([hi[0], lo[0]]))
             w_hi, w_lo = math.sqrt(2 * hi[1]), math.sqrt(2 * max(lo[1], 0.0))
             # envelope theorem: d(max_φ (E_0 + ΔE)/J)/dE_0 = 1/J at the maximum, and dω = dv/ω
-            slope = (1 / (w_hi * j_hi) + (1 / (w_lo * j_lo) if w_lo > 0 else 0.0)) / (2 * omega_mean)
+            # at E_0 = -min ΔE with ΔE ≡ 0 (balanced constant torques) the top speed is 0 too: dω/dE_0 is infinite there
+            top = 1 / (w_hi * j_hi) if w_hi > 0 else math.inf
+            slope = (top + (1 / (w_lo * j_lo) if w_lo > 0 else 0.0)) / (2 * omega_mean)
             evaluated.clear()
             evaluated[e0] = ((w_hi + w_lo) / (2 * omega_mean) - 1, slope, hi, lo)
         return evaluated[e0]
