@@ -304,7 +304,7 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     rows.append(((energy[1:] - energy[:-1] - ca.DM(h) / 2 * (net_a + net_b)) / e_scale, 0.0, 0.0))
     rows.append((i_m * w - w0 * (1 - s_b) / omega_mean, 0.0, math.inf))  # above breakdown
     extra, extra_lo, extra_hi, extra_x0 = [], [], [], []
-    sums = {}  # index in rows -> (terms, their symbol t, the row of t): rows that add a term of every interval
+    sums = {}  # index in rows -> (terms, a symbol of their sum, its variable, the row): see _jacobian
     if thermal:
         # ∫M² dt and ∫dt as variables of their own: their ratio written directly would couple every node
         # in a dense Hessian
@@ -313,15 +313,16 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
         t_scale = cycle / omega_mean
         m_scale = load_torque / (omega_mean * efficiency) * omega_mean / w0  # about the mean motor torque
         # two rows that add a term of every interval: dense rows, whose Jacobian is formed apart (_jacobian)
-        for terms, finish in (
+        for terms, extra_var, finish in (
             (
                 ca.DM(h) / 2 * (m_motor[:-1] ** 2 * inv[:-1] + m_motor[1:] ** 2 * inv[1:]),
+                squares,
                 lambda total: total / (m_scale**2 * t_scale) - squares,
             ),
-            (ca.DM(h) / 2 * (inv[:-1] + inv[1:]), lambda total: total / t_scale - period),
+            (ca.DM(h) / 2 * (inv[:-1] + inv[1:]), period, lambda total: total / t_scale - period),
         ):
             total = ca.SX.sym("total")
-            sums[len(rows)] = (terms, total, finish(total))
+            sums[len(rows)] = (terms, total, extra_var, finish(total))
             rows.append((finish(ca.sum1(terms)), 0.0, 0.0))
         rows.append((squares * m_scale**2 - m_n**2 * period, -math.inf, 0.0))
         extra += [squares, period]
@@ -403,7 +404,8 @@ def _jacobian(parts, sums, x):
     parts : list of SX
         The constraints' blocks, in order.
     sums : dict
-        Index of a dense block -> (terms, a symbol t of their size, the block as a function of t).
+        Index of a dense block -> (its terms, a symbol for their sum, the one variable the block
+        holds besides the terms, the block as a function of the two).
     x : SX
         The variables.
     """
@@ -419,10 +421,10 @@ def _jacobian(parts, sums, x):
         if plain:
             blocks.append(ca.jacobian(ca.vertcat(*plain), x, forward))
             plain = []
-        terms, total, row = sums[k]
-        finish = ca.Function("finish", [total, x], [row]).forward(n)
+        terms, total, var, row = sums[k]
+        finish = ca.Function("finish", [total, var], [row]).forward(n)
         d_total = ca.sum1(ca.jacobian(terms, x, forward))  # the sum's forward derivatives: its terms' in order
-        blocks.append(ca.sparsify(finish(ca.sum1(terms), x, part, d_total, ca.SX.eye(n))))
+        blocks.append(ca.sparsify(finish(ca.sum1(terms), var, part, d_total, ca.jacobian(var, x))))
     if plain:
         blocks.append(ca.jacobian(ca.vertcat(*plain), x, forward))
     return ca.vertcat(*blocks)
