@@ -708,8 +708,8 @@ def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, s
         return None, None
     a, b = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
     # any point it tried is a designed wheel: unconverged, its best is still a candidate against the grid's
-    found = bounded_minimum(mass, a, b, xatol=1e-10 * b)
-    r, m = min([(masses[k], grid[k]), (found.fun, found.x)], key=lambda pair: pair[0])[::-1]
+    minimum = bounded_minimum(mass, a, b, xatol=1e-10 * b)
+    r, m = min([(masses[k], grid[k]), (minimum.fun, minimum.x)], key=lambda pair: pair[0])[::-1]
     r = _slowest_equal(mass, lo, r, m)
     return design(r), r
 

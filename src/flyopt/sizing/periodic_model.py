@@ -486,6 +486,14 @@ _MODELS: weakref.WeakKeyDictionary[Any, Any] = weakref.WeakKeyDictionary()
 MAX_RESULTS, MAX_CYCLES = 256, 8
 _CYCLES: dict[Any, tuple[FloatArray, float]] = {}
 
+
+def forget_cycles() -> None:
+    """Drop every cycle kept by its inputs (the compiled functions stay): a benchmark times their integration."""
+    _CYCLES.clear()
+    for compiled in _COMPILED.values():
+        compiled.pop("results", None)
+
+
 _COMPILED: dict[Any, dict[Any, Any]] = {}
 """CVODES functions by model structure (see :attr:`PeriodicModel._compiled`), the least recently used dropped
 past :data:`flyopt.sizing.shooting.MAX_STRUCTURES`."""
