@@ -150,6 +150,7 @@ class PeriodicModel:
         values = tuple(float(v) for v in theta)
         if len(values) != self.n_theta:
             raise ValueError(f"the model has {self.n_theta} parameters, got {len(values)} values")
+        self.structure  # noqa: B018 -- computed once here, so that every bound copy shares it
         bound = copy.copy(self)
         bound.theta = values
         return bound
