@@ -10,6 +10,7 @@ A case the one-solve cannot settle must fall back on the CVODES search, never re
 
 import math
 
+import numpy as np
 import pytest
 from conftest import PROBLEMS
 from numpy.testing import assert_allclose
@@ -244,3 +245,29 @@ def test_the_carried_tangent_is_the_derivative_of_the_discrete_cycle():
         scale = np.max(np.abs(central))
         assert scale > 0
         assert np.max(np.abs(jac[..., k] - central)) <= 1e-7 * scale
+
+
+@pytest.mark.parametrize(
+    "torque, guess",
+    [
+        (lambda w: 10.0 - 0.5 * w, 3.0),  # linear: the balance at 20 rad/s, bracketed outward
+        (lambda w: 100.0 * (1.0 - w / 157.08) - 2.0 - 1e-3 * w * w, 50.0),
+        (lambda w: math.atan(5.0 - w) + 0.01, 40.0),  # from above
+    ],
+)
+def test_speed_balance_is_scipys_brentq_bit_for_bit(torque, guess):
+    """speed_balance refines by flyopt's port of Brent's method: the same zero as scipy.optimize.brentq."""
+    from scipy.optimize import brentq
+
+    from flyopt.sizing.shooting import speed_balance
+
+    found = speed_balance(torque, guess)
+    # the bracket speed_balance searches, from the guess outward by factors of 2
+    lo = hi = guess
+    while not (torque(lo) > 0 > torque(hi)):
+        if torque(hi) >= 0:
+            lo, hi = hi, 2 * hi
+        else:
+            hi, lo = lo, 0.5 * lo
+    assert found == brentq(torque, lo, hi, xtol=1e-15 * hi, rtol=4 * np.finfo(float).eps, maxiter=500)
+    assert torque(found) == pytest.approx(0.0, abs=1e-12)

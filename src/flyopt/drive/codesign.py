@@ -698,7 +698,7 @@ def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, s
         m, r = min(found, key=lambda pair: (pair[0], pair[1]))
         return (None, None) if math.isinf(m) else (design(r), r)
     lo, hi = values
-    from scipy.optimize import minimize_scalar
+    from flyopt.cycle.minimize import bounded_minimum
 
     grid = np.geomspace(lo, hi, 9)
     grid[0], grid[-1] = lo, hi
@@ -707,8 +707,9 @@ def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, s
     if math.isinf(masses[k]):
         return None, None
     a, b = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
-    found = minimize_scalar(mass, bounds=(a, b), method="bounded", options={"xatol": 1e-10 * b})
-    r, m = min([(masses[k], grid[k]), (found.fun, found.x)], key=lambda pair: pair[0])[::-1]
+    # any point it tried is a designed wheel: unconverged, its best is still a candidate against the grid's
+    minimum = bounded_minimum(mass, a, b, xatol=1e-10 * b)
+    r, m = min([(masses[k], grid[k]), (minimum.fun, minimum.x)], key=lambda pair: pair[0])[::-1]
     r = _slowest_equal(mass, lo, r, m)
     return design(r), r
 

@@ -143,7 +143,6 @@ class PeriodicModel:
         self.torque_slope_function = ca.Function("dM", [phi, omega, *theta], [ca.jacobian(m, omega)])
         #: CasADi maps of the torque functions over arrays, by size (for :func:`flyopt.sizing._numerics.evaluate`).
         self.maps: dict[Any, Any] = {}
-        self._chunks: dict[tuple[str, int], Any] = {}
         self._table_values: dict[str, FloatArray] = {}
 
     def bind(self, theta: Iterable[float]) -> PeriodicModel:
@@ -151,6 +150,7 @@ class PeriodicModel:
         values = tuple(float(v) for v in theta)
         if len(values) != self.n_theta:
             raise ValueError(f"the model has {self.n_theta} parameters, got {len(values)} values")
+        self.structure  # noqa: B018 -- computed once here, so that every bound copy shares it
         bound = copy.copy(self)
         bound.theta = values
         return bound
@@ -203,14 +203,36 @@ class PeriodicModel:
         return ca.integrator("piece_t" if with_time else "piece", "cvodes", self.rhs(with_time), 0.0, self.tau, opts)
 
     @cached_property
+    def _compiled(self) -> dict[Any, Any]:
+        """The CVODES functions of this model's structure, shared by every model of it (:data:`_COMPILED`).
+
+        They depend on the torque law, the inertia and the output grid (:attr:`structure`; the grid
+        is ``tau``, fixed by its length), not on the pieces, the table's values or θ, which are
+        inputs: the drive's verification of the chosen machine, its analysis and the comparison of
+        models reduce the same machine apart, and compiled it three times.
+        """
+        key = self.structure
+        if key in _COMPILED:
+            _COMPILED[key] = _COMPILED.pop(key)  # most recently used last
+        else:
+            if len(_COMPILED) >= shooting.MAX_STRUCTURES:
+                _COMPILED.pop(next(iter(_COMPILED)))
+            _COMPILED[key] = {}
+        return _COMPILED[key]
+
+    @property
     def piece(self) -> ca.Function:
         """CVODES over one piece: states [y, stall], outputs at ``tau``."""
-        return self._integrator(False)
+        if "piece" not in self._compiled:
+            self._compiled["piece"] = self._integrator(False)
+        return self._compiled["piece"]
 
-    @cached_property
+    @property
     def piece_timed(self) -> ca.Function:
         """CVODES over one piece with time: states [y, stall, t]."""
-        return self._integrator(True)
+        if "piece_timed" not in self._compiled:
+            self._compiled["piece_timed"] = self._integrator(True)
+        return self._compiled["piece_timed"]
 
     def _chunk(self, kind, size):
         """A CasADi function over ``size`` consecutive pieces (built once per kind and size).
@@ -222,13 +244,14 @@ class PeriodicModel:
         "balancing": the same and ∂y/∂c.
         """
         key = (kind, size)
-        if key not in self._chunks:
+        chunks = self._compiled.setdefault("chunks", {})
+        if key not in chunks:
             BUILDS[f"{kind} function"] += 1
             x0, q, data = ca.MX.sym("x0", 2), ca.MX.sym("q", 4 + self.n_theta), ca.MX.sym("data", 4)
             xf = self.piece(x0=x0, p=ca.vertcat(data[0], data[1], q[:4], data[2], data[3], q[4:]))["xf"]
             if kind == "cycle":
                 step = ca.Function("step", [x0, q, data], [xf[:, -1], xf])
-                self._chunks[key] = step.mapaccum(f"cycle_{size}", size)
+                chunks[key] = step.mapaccum(f"cycle_{size}", size)
             else:
                 step = ca.Function("step", [x0, q, data], [xf[:, -1]])
                 chain = step.mapaccum(f"chain_{size}", size)
@@ -238,8 +261,8 @@ class PeriodicModel:
                 end = chain(xs, ca.vertcat(*qs), ds)[:, -1]
                 wrt = [qs[1]] if kind == "shooting" else [qs[1], qs[3]]
                 outs = [end] + [ca.jacobian(end[0], v) for v in wrt]
-                self._chunks[key] = ca.Function(f"{kind}_{size}", [xs, ca.vertcat(*qs), ds], outs)
-        return self._chunks[key]
+                chunks[key] = ca.Function(f"{kind}_{size}", [xs, ca.vertcat(*qs), ds], outs)
+        return chunks[key]
 
     def chunked(self) -> list[tuple[int, FloatArray]]:
         """(start, data) of each chunk of at most :data:`CHUNK` pieces."""
@@ -260,6 +283,10 @@ class PeriodicModel:
             When CVODES fails (CasADi's message).
         """
         kind = "balancing" if balancing else "shooting"
+        key = (kind, float(j_flywheel), float(e_ref), float(w_s), float(offset))
+        known = self._known(key)
+        if known is not None:
+            return cast(tuple[float, ...], known)
         q = [j_flywheel, e_ref, w_s, offset, *self.theta]
         x, d_e, d_c = np.zeros(2), 0.0, 0.0
         for _, data in self.chunked():
@@ -270,7 +297,33 @@ class PeriodicModel:
             if balancing:
                 d_c = gain * d_c + float(out[2])
             x = np.asarray(out[0], dtype=float).reshape(-1)
-        return (x[0], x[1], d_e, d_c) if balancing else (x[0], x[1], d_e)
+        return self._keep(key, (x[0], x[1], d_e, d_c) if balancing else (x[0], x[1], d_e))
+
+    def _known(self, key: tuple[Any, ...]) -> Any:
+        """A cycle this model's structure integrated before from the same pieces, table, θ and inputs, or None.
+
+        CVODES gives the same numbers for the same inputs: a machine reduced apart (the drive's
+        verification of the chosen machine repeats its analysis's periodic solution without a
+        flywheel) is not integrated again. The ends of :data:`MAX_RESULTS` shots are kept per
+        structure, the whole curves of the last :data:`MAX_CYCLES` cycles of any.
+        """
+        if key[0] == "cycle":
+            return _CYCLES.get((self.structure, self._content, key))
+        return self._compiled.get("results", {}).get(self._content + key)
+
+    def _keep(self, key: tuple[Any, ...], value: Any) -> Any:
+        results, size, full = self._compiled.setdefault("results", {}), MAX_RESULTS, self._content + key
+        if key[0] == "cycle":
+            results, size, full = _CYCLES, MAX_CYCLES, (self.structure, self._content, key)
+        if len(results) >= size:
+            results.pop(next(iter(results)))
+        results[full] = value
+        return value
+
+    @cached_property
+    def _content(self) -> tuple[Any, ...]:
+        """What a cycle depends on besides the structure and its inputs: the pieces, the table's values, θ."""
+        return (self.pieces.tobytes(), self.table_ends.tobytes(), self.theta)
 
     @cached_property
     def structure(self) -> tuple[Any, ...]:
@@ -383,6 +436,10 @@ class PeriodicModel:
         SolverFailed
             When CVODES fails (its status in the message).
         """
+        key = ("cycle", float(j_flywheel), float(e_ref), float(w_s), float(offset))
+        known = self._known(key)
+        if known is not None:
+            return known[0].copy(), known[1]
         q = [j_flywheel, e_ref, w_s, offset, *self.theta]
         x, parts = np.zeros(2), []
         try:
@@ -397,6 +454,7 @@ class PeriodicModel:
             ) from err
         out = np.concatenate(parts, axis=1)
         y = out[0].reshape(len(self.pieces), len(self.tau))
+        self._keep(key, (y.copy(), float(out[1, -1])))
         return y, float(out[1, -1])
 
     def speed_profile(
@@ -424,6 +482,22 @@ class PeriodicModel:
 
 
 _MODELS: weakref.WeakKeyDictionary[Any, Any] = weakref.WeakKeyDictionary()
+
+#: Shots kept per structure, and whole cycles kept in all (:meth:`PeriodicModel._known`), the oldest dropped first.
+MAX_RESULTS, MAX_CYCLES = 256, 8
+_CYCLES: dict[Any, tuple[FloatArray, float]] = {}
+
+
+def forget_cycles() -> None:
+    """Drop every cycle kept by its inputs (the compiled functions stay): a benchmark times their integration."""
+    _CYCLES.clear()
+    for compiled in _COMPILED.values():
+        compiled.pop("results", None)
+
+
+_COMPILED: dict[Any, dict[Any, Any]] = {}
+"""CVODES functions by model structure (see :attr:`PeriodicModel._compiled`), the least recently used dropped
+past :data:`flyopt.sizing.shooting.MAX_STRUCTURES`."""
 """Periodic models by net torque, then by (inertia, cycle, knots). A machine's
 net torque is one object (flyopt.machine.reduce.Machine.net_torque), so the
 requirement, the comparison of models and the verification of one machine
