@@ -430,4 +430,6 @@ def test_codesign_by_cost_matches_brute_force():
     assert result.best.motor.name == best.motor.name
     assert result.best.objective <= best.objective * (1 + 1e-6)
     assert result.best.objective == pytest.approx(best.objective, rel=1e-6)
-    assert result.best.cost == pytest.approx(best.motor.price + best.wheel.cost, rel=1e-12)
+    # the reported cost is its own motor's price and its own wheel's cost (the brute force's best is another design,
+    # on a grid of ratios: the co-design's continuous optimum is 1.5e-8 cheaper, within the 1e-6 above)
+    assert result.best.cost == pytest.approx(result.best.motor.price + result.best.wheel.cost, rel=1e-12)
