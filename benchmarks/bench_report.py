@@ -7,7 +7,8 @@ medians over the repeats with their ranges. Beside them, in the same run:
 
 * ``flyopt solve --verify`` of the same scene, the floor a report cannot go below (the same solve,
   without the report's extras, its figures and its writing);
-* ``python -c "import numpy"``, the yardstick of the interpreter's start;
+* ``python -c "import numpy"``, the yardstick of the interpreter's start, and the import of
+  matplotlib.pyplot, what every report pays before it draws (the two beside the solve: the report's floor);
 * the report of slider-crank-press in this process after a warm-up, split into its phases
   (collect: the one solve; build: the document and its figures drawn; write: the figures rendered
   and the file written), CPU time.
@@ -88,6 +89,9 @@ def cases(folder, baseline=None):
                 )
         out.append(("solve --verify", scene, "floor", [*FLYOPT, "solve", "--verify", path], None))
     out.append(("import numpy", "-", "yardstick", [sys.executable, "-c", "import numpy"], None))
+    # what every report pays before it draws a figure: matplotlib's import (its own numpy with it)
+    plotting = "import matplotlib; matplotlib.use('Agg'); import matplotlib.pyplot"
+    out.append(("import matplotlib.pyplot", "-", "yardstick", [sys.executable, "-c", plotting], None))
     return out
 
 
@@ -201,6 +205,17 @@ def summary(rows, header, repeat, baseline=None):
             f"{row['wall_median_s']:.3f} s ({row['wall_min_s']:.3f}–{row['wall_max_s']:.3f} s), "
             f"CPU {row['cpu_median_s']:.3f} s |"
         )
+    solve = found[("solve --verify", TARGET_SCENE, "floor")]["wall_median_s"]
+    numpy_only = found[("import numpy", "-", "yardstick")]["wall_median_s"]
+    plotting = found[("import matplotlib.pyplot", "-", "yardstick")]["wall_median_s"]
+    floor = solve + plotting - numpy_only
+    lines += [
+        "",
+        f"Where the time goes: `solve --verify` of the same scene is {solve:.3f} s and importing matplotlib "
+        f"{plotting - numpy_only:.3f} s beyond numpy, so a report that draws with matplotlib starts at about "
+        f"{floor:.3f} s before its first figure; the rest is the figures (laid out and drawn) and the writing "
+        "(the in-process phases below).",
+    ]
     lines += [
         "",
         "## Every row",

@@ -28,6 +28,27 @@ def _boxes_overlap(a: BboxBase, b: BboxBase, pad: float = 0.0) -> bool:
     return not (a.x1 + pad <= b.x0 or b.x1 + pad <= a.x0 or a.y1 + pad <= b.y0 or b.y1 + pad <= a.y0)
 
 
+def lay_out(ax: Axes) -> None:
+    """Put ``ax`` where its figure will draw it, so that data map to the pixels they will be drawn at.
+
+    The figure's texts are made drawable (:func:`~flyopt.report.plots.standard.make_drawable`, as its
+    class does before a draw) and its layout engine (constrained layout), if it has one, is run, as the
+    figure's own draw runs it before drawing anything; the view limits are settled. Nothing is drawn:
+    a whole draw without rendering (``Figure.draw_without_rendering``) lays the figure out just so and
+    then walks every artist and tick for nothing, which cost the turning-moment diagram as much again as
+    its layout.
+    """
+    figure = standard.figure_of(ax)
+    standard.make_drawable(figure)
+    engine = figure.get_layout_engine()
+    if figure.axes and engine is not None:
+        try:
+            engine.execute(figure)
+        except ValueError:  # as Figure.draw: the layout gives up on a figure too small, the draw goes on
+            pass
+    ax.viewLim  # noqa: B018 -- reading it settles the autoscaled limits transData maps from
+
+
 def place_area_labels(
     ax: Axes,
     x: npt.ArrayLike,
@@ -58,8 +79,7 @@ def place_area_labels(
     """
     from matplotlib.transforms import Bbox
 
-    # lay the figure out (made drawable by its class) for the extents, without rendering it
-    standard.figure_of(ax).draw_without_rendering()
+    lay_out(ax)
     lo_px, hi_px = _to_pixels(ax, x, lower), _to_pixels(ax, x, upper)
     px = lo_px[:, 0]
     axes_box = ax.get_window_extent()
