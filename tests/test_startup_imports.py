@@ -90,3 +90,19 @@ def test_a_dynamic_solve_that_needs_no_root_search_imports_no_scipy_optimize():
     periodic.py and startup.py import it only where Brent's method or a bounded minimum is called."""
     found = imported(command("solve", PROBLEMS / "slider-crank-press.toml"))
     assert "casadi" in found and "scipy.optimize" not in found, found
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("solve", "slider-crank-press.toml", "--verify"),  # the verification's root searches (the ported Brent)
+        ("solve", "motor-press.toml"),  # a motor: the start-up and the speed balance
+        ("solve", "compressor.toml", "--verify"),  # expression torques: the crossings refined by Brent
+    ],
+)
+def test_no_solve_imports_scipy_optimize(args):
+    """Brent's root and the bounded minimum are scipy's, ported operation for operation (flyopt.cycle.numerics.brentq,
+    flyopt.cycle.minimize.bounded_minimum, tested bit for bit against scipy): no solve pays ~0.3 s to import it."""
+    verb, scene, *rest = args
+    found = imported(command(verb, PROBLEMS / scene, *rest))
+    assert "scipy.optimize" not in found, found

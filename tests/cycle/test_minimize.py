@@ -59,3 +59,33 @@ def test_bad_bounds():
         bounded_minimum(lambda x: x, 2.0, 1.0)
     with pytest.raises(ValueError):
         bounded_minimum(lambda x: x, 0.0, np.inf)
+
+
+def test_the_scalar_brentq_is_scipys_bit_for_bit():
+    """flyopt.cycle.numerics.brentq against scipy.optimize.brentq on functions whose zeros need every kind of step."""
+    import math
+
+    from scipy import optimize
+
+    from flyopt.cycle.numerics import brentq
+
+    cases = [
+        (lambda x: x**3 - 2 * x - 5, 2.0, 3.0),
+        (lambda x: math.cos(x) - x, 0.0, 1.0),
+        (lambda x: math.exp(x) - 1e6, 0.0, 30.0),
+        (lambda x: (x - 1.0) ** 5, 0.0, 3.0),
+        (lambda x: math.atan(1e6 * (x - 0.3)), -1.0, 1.0),
+        (lambda x: 0.0 if x == 0.25 else x - 0.25, 0.25, 2.0),
+    ]
+    failed = 0
+    for f, a, b in cases:
+        for xtol, rtol in ((2e-12, 8.881784197001252e-16), (1e-15, 4 * 2.220446049250313e-16), (1e-3, 1e-3)):
+            try:
+                expected = optimize.brentq(f, a, b, xtol=xtol, rtol=rtol)
+            except RuntimeError:  # the flat quintic's zero at the tightest tolerances: neither converges in 100
+                failed += 1
+                with pytest.raises(RuntimeError):
+                    brentq(f, a, b, xtol=xtol, rtol=rtol)
+                continue
+            assert brentq(f, a, b, xtol=xtol, rtol=rtol) == expected
+    assert failed == 2

@@ -118,9 +118,7 @@ def roots(f: VectorFunction, a: float, b: float, samples: int, scale: float, zer
     roots = []
 
     def brent(p, q):
-        from scipy import optimize  # only where a zero is refined: a constant-inertia solve never loads it
-
-        return optimize.brentq(f, p, q, xtol=1e-15 * max(abs(p), abs(q), b - a), rtol=4 * EPS, maxiter=200)
+        return brentq(f, p, q, xtol=1e-15 * max(abs(p), abs(q), b - a), rtol=4 * EPS, maxiter=200)
 
     # the grid steps worth a look, found at once: a zero on the grid, a sign change, a dip of |f|
     y0, y1 = y[:-1], y[1:]
@@ -167,17 +165,15 @@ def dip_roots(
     only touches zero (to 1e-15 of the work scale), the touching point is a
     zero. ``a``, ``b`` are the ends of the whole interval searched.
     """
-    from scipy import optimize
+    from flyopt.cycle.minimize import bounded_minimum
 
     del mid  # the dip's grid point: the search covers both of its grid steps
     tiny = 1e-15 * scale / max(b - a, 1e-300)
 
     def brent(p, q):
-        return optimize.brentq(f, p, q, xtol=1e-15 * max(abs(p), abs(q), b - a), rtol=4 * EPS, maxiter=200)
+        return brentq(f, p, q, xtol=1e-15 * max(abs(p), abs(q), b - a), rtol=4 * EPS, maxiter=200)
 
-    res = optimize.minimize_scalar(
-        lambda p: sign * f(np.array([p]))[0], bounds=(left, right), method="bounded", options={"xatol": 1e-14 * (b - a)}
-    )
+    res = bounded_minimum(lambda p: sign * f(np.array([p]))[0], left, right, xatol=1e-14 * (b - a))
     if res.fun < 0:  # res.fun = s·f at the dip: the dip crosses zero
         return [brent(left, res.x), brent(res.x, right)]
     if abs(res.fun) <= tiny:
@@ -232,7 +228,7 @@ def brentq_many(
     xpre, xcur = np.array(a, dtype=float), np.array(b, dtype=float)
     fpre, fcur = np.array(fa, dtype=float), np.array(fb, dtype=float)
     n = len(xpre)
-    if np.any(fpre * fcur > 0):
+    if np.any(np.sign(fpre) * np.sign(fcur) > 0):  # signs: the product of two huge values overflows
         raise ValueError("brentq_many: f(a) and f(b) must have different signs")
     if n <= BRENT_SCALAR:
         return _brentq_few(
@@ -280,6 +276,22 @@ def brentq_many(
     if active.any():
         raise RuntimeError(f"brentq_many: {int(active.sum())} of {n} zeros did not converge in {maxiter} iterations")
     return root
+
+
+def brentq(
+    f: Callable[[Any], Any], a: float, b: float, xtol: float, rtol: float = 4 * EPS, maxiter: int = 100
+) -> float:
+    """``scipy.optimize.brentq(f, a, b, xtol=xtol, rtol=rtol, maxiter=maxiter)``, operation for operation, on one
+    scalar function (:func:`brentq_many` on one bracket), without importing scipy.optimize (~0.3 s of a process).
+
+    ``f`` is called at ``a``, then at ``b``, then at each iterate, with Python floats, as scipy calls it.
+    """
+    fa, fb = float(f(a)), float(f(b))
+
+    def at(x: ndarray, index: ndarray) -> ndarray:
+        return np.array([float(f(float(v))) for v in x])
+
+    return float(brentq_many(at, np.array([a]), np.array([b]), np.array([fa]), np.array([fb]), xtol, rtol, maxiter)[0])
 
 
 BRENT_SCALAR = 16

@@ -621,8 +621,7 @@ def _thermal_flywheel(machine, motor, ratio, omega, j_low, rated, guess=None):
     inertia, then Brent's root. None when no flywheel brings the RMS torque
     to the rating (it tends to the mean torque as J_F grows).
     """
-    from scipy.optimize import brentq
-
+    from flyopt.cycle.numerics import brentq
     from flyopt.sizing.periodic import periodic_solution
 
     net, knots = machine.net_torque(), machine.knots()

@@ -414,9 +414,9 @@ def _periodic_angle_only(model, j_flywheel, omega_mean, j_ref):
         if mismatch(high) >= 0:
             break
         high = 2 * high + 1
-    from scipy import optimize  # scipy.optimize costs ~0.3 s to import: only where needed
+    from flyopt.cycle.numerics import brentq  # scipy's, ported: scipy.optimize costs ~0.3 s to import
 
-    shift = optimize.brentq(mismatch, low, high, xtol=1e-15 * (e_ref / w_s + 1), rtol=4 * EPS, maxiter=500)
+    shift = brentq(mismatch, low, high, xtol=1e-15 * (e_ref / w_s + 1), rtol=4 * EPS, maxiter=500)
     return _finish(
         model,
         y,
@@ -637,14 +637,9 @@ def _periodic_energy(shoot, e0, ftol, monotone=lambda: False):
         j for j in range(1, len(ks) - 1) if finite[j] and values[j] >= values[j - 1] and values[j] >= values[j + 1]
     ]
     for j in sorted(peaks, key=lambda i: -values[i])[:3]:
-        from scipy import optimize  # scipy.optimize costs ~0.3 s to import: only where needed
+        from flyopt.cycle.minimize import bounded_minimum  # scipy's, ported: scipy.optimize costs ~0.3 s to import
 
-        res = optimize.minimize_scalar(
-            lambda k: -max(gain(k), -1e100),
-            bounds=(ks[j] - 1, ks[j] + 1),
-            method="bounded",
-            options={"xatol": 1e-6, "maxiter": 60},
-        )
+        res = bounded_minimum(lambda k: -max(gain(k), -1e100), ks[j] - 1, ks[j] + 1, xatol=1e-6, maxiter=60)
         if -res.fun > 0:
             return bracket_from(float(res.x))
     raise failure
