@@ -166,12 +166,33 @@ def test_the_json_holds_the_check_and_meets_the_schema(name):
     assert document["flywheel"]["achieved_delta"] == pytest.approx(document["delta"], rel=1e-12)
 
 
-def test_the_report_refuses_a_flywheel_that_exists_in_one_line(tmp_path):
+def test_the_report_shows_the_wheel_given_and_exits_4_when_it_falls_short(tmp_path):
     out = tmp_path / "k.html"
     run = subprocess.run(
         [sys.executable, "-m", "flyopt", "report", str(TEXTBOOK / "khurmi-16-12.toml"), "-o", str(out)],
         capture_output=True,
         text=True,
     )
+    assert run.returncode == 0, run.stderr
+    html = out.read_text()
+    assert "The flywheel that exists" in html and "not given: the δ the flywheel given reaches is found" in html
+    assert "0.0610038" in html and "12.203" in html  # δ reached, the largest acceleration (rad/s²)
+    short = tmp_path / "short.toml"
+    short.write_text(
+        (TEXTBOOK / "khurmi-16-12.toml").read_text().replace('speed = "150 rpm"', 'speed = "150 rpm"\ndelta = 0.05')
+    )
+    pdf = tmp_path / "short.pdf"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(short), "-o", str(pdf)], capture_output=True, text=True
+    )
+    assert run.returncode == 4 and pdf.exists(), run.stderr
+
+
+def test_the_report_of_a_calculation_is_refused_in_one_line(tmp_path):
+    out = tmp_path / "r.html"
+    scene = TEXTBOOK / "khurmi-16-21.toml"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out)], capture_output=True, text=True
+    )
     assert run.returncode == 2 and "Traceback" not in run.stderr and not out.exists()
-    assert len(run.stderr.strip().splitlines()) == 1 and "flywheel" in run.stderr
+    assert len(run.stderr.strip().splitlines()) == 1 and "operation" in run.stderr

@@ -398,7 +398,7 @@ def solve(
     if scene.flywheel is not None:
         analysis, checked_wheel = check_flywheel(scene, model)
         solution = Solution(scene=scene.replace(delta=analysis.delta), analysis=analysis, flywheel=checked_wheel)
-        return with_extras(solution, [name for name in extras if name not in ("inertia_curve", "stress")])
+        return with_extras(solution, extras)
     analysis = analyse(scene, model)
     if scene.drive is not None and design_flywheel:
         solution = solve_drive(scene, analysis, solver_options)
@@ -459,10 +459,13 @@ def check_flywheel(
 ) -> tuple[Analysis, FlywheelCheck]:
     """Analyse a scene whose [flywheel] exists: the δ, speeds and accelerations it leaves.
 
-    The analysis is the machine's own (the wheel left out), at machine.delta, or where the
-    scene gives none at the δ the wheel reaches (its J_F is then the wheel's, to the model's
-    tolerance). The energy method inverts in closed form for a constant inertia and torques of
-    the angle only; any other model is answered by the periodic simulation with the wheel.
+    The analysis returned is the machine's own (the wheel left out) at the δ the wheel reaches,
+    so that its J_F is the wheel's (to the model's tolerance, a check of the two methods against
+    each other) and everything drawn from it (the speed over the cycle) is the machine with that
+    wheel; where the scene gives machine.delta, the J_F it asks for, whether the wheel suffices and
+    by what margin are in the check. The energy method inverts in closed form for a constant
+    inertia and torques of the angle only; any other model is answered by the periodic
+    simulation with the wheel.
     """
     from flyopt.sizing import existing, periodic
 
@@ -470,12 +473,10 @@ def check_flywheel(
     if wheel is None:
         raise ValueError("check_flywheel needs a scene with a [flywheel]")
     j_wheel = wheel.j_at_reference
-    if scene.delta is None:
-        first = analyse(scene.replace(delta=PROVISIONAL_DELTA), "energy")
-        guess = existing.energy_delta(first.a_max, scene.omega_mean, first.j_constant + j_wheel)
-        analysis = analyse(scene.replace(delta=min(guess, 1.9)), model, like=first)
-    else:
-        analysis = analyse(scene, model)
+    allowed = analyse(scene, model) if scene.delta is not None else None  # the J_F machine.delta asks for
+    first = allowed if allowed is not None else analyse(scene.replace(delta=PROVISIONAL_DELTA), "energy")
+    guess = existing.energy_delta(first.a_max, scene.omega_mean, first.j_constant + j_wheel)
+    analysis = analyse(scene.replace(delta=min(guess, 1.9)), model, like=first)
     machine = analysis.machine
     accelerations: tuple[float | None, ...] = (None, None, None, None)  # net areas: no torques over the angle
     if analysis.model == "energy" or machine is None:  # net areas: the energy method alone
@@ -507,11 +508,10 @@ def check_flywheel(
         tolerance = simulation.tolerance
         method = f"{simulation.method} with the flywheel given"
         accelerations = existing.solution_accelerations(sol)
-        if scene.delta is None:  # the machine's analysis at the δ the wheel reaches
-            analysis = analyse(scene.replace(delta=achieved), model, like=analysis)
+        analysis = analyse(scene.replace(delta=achieved), model, like=analysis)  # at the δ the wheel reaches
     required = suffices = margin = None
-    if scene.delta is not None:
-        required = max(analysis.j_margin, 0.0)
+    if scene.delta is not None and allowed is not None:
+        required = max(allowed.j_margin, 0.0)
         suffices = achieved <= scene.delta + tolerance
         margin = j_wheel / required - 1.0 if required > 0 else None
     check = existing.FlywheelCheck(

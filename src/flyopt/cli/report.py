@@ -157,12 +157,14 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
 
     data = read_toml(path)
     scene = load(path, data)
-    if scene.flywheel is not None:
+    from flyopt.analysis import calculation_of
+
+    what = calculation_of(scene)
+    if what is not None:
         from flyopt.errors import SceneError
 
         raise SceneError(
-            "flywheel",
-            "the report does not show a [flywheel] that exists yet: flyopt solve (and --json) gives its check",
+            what, "is one calculation, not a cycle: the report is of a cycle; flyopt solve (and --json) gives it"
         ).with_source(str(path))
     solution = solve(scene, verify_design=True, extras=report_extras())  # the one solve: what follows only reads
     inputs = ReportInputs(

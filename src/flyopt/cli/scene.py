@@ -88,8 +88,7 @@ def run_solve(args: argparse.Namespace) -> int:
     else:
         from flyopt.report.text import analysis_report, design_report, flywheel_report, verification_report
 
-        reached = solution.flywheel is not None and solution.flywheel.delta_allowed is None
-        label = "δ reached by the flywheel" if reached else "allowed δ"
+        label = "δ reached by the flywheel" if solution.flywheel is not None else "allowed δ"
         lines = [analysis_report(solution.analysis, args.scene, units=args.units, delta_label=label)]
         if solution.flywheel is not None:
             lines += flywheel_report(solution.flywheel, units=args.units)

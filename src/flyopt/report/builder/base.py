@@ -137,6 +137,8 @@ class BuilderBase:
             "not_needed": "no flywheel needed",
             "infeasible": "INFEASIBLE: no material and shaft can give the required flywheel",
             "analysed": "analysed (no design)",
+            "checked": "the flywheel given, checked",
+            "insufficient": "INSUFFICIENT: the flywheel given misses the allowed δ",
         }.get(status, status)
         if self.flagged():
             words += "; VERIFICATION FLAGGED: the simulated δ exceeds the allowed one"

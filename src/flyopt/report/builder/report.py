@@ -7,6 +7,7 @@ from typing import Any
 from flyopt.report import display
 from flyopt.report.builder.design import DesignSection
 from flyopt.report.builder.drive import DriveSection
+from flyopt.report.builder.existing import ExistingFlywheelSection
 from flyopt.report.builder.inputs import ReportInputs
 from flyopt.report.builder.ranking import Ranking
 from flyopt.report.builder.scene import SceneAndModel
@@ -38,7 +39,16 @@ def build(
     return Builder(inputs, units).document(title_block)
 
 
-class Builder(Summary, SceneAndModel, Steps, DesignSection, Ranking, DriveSection, VerificationAndProvenance):
+class Builder(
+    Summary,
+    SceneAndModel,
+    Steps,
+    ExistingFlywheelSection,
+    DesignSection,
+    Ranking,
+    DriveSection,
+    VerificationAndProvenance,
+):
     """Builds the sections in the order of the domain notes."""
 
     def document(self, extra: tuple[tuple[str, Any], ...]) -> Document:
@@ -47,6 +57,7 @@ class Builder(Summary, SceneAndModel, Steps, DesignSection, Ranking, DriveSectio
         self.scene_section()
         self.model_section()
         self.steps()
+        self.existing_flywheel_section()
         self.design_section()
         self.ranking_section()
         self.drive_section()

@@ -19,7 +19,12 @@ class SceneAndModel(BuilderBase):
             ("file", self.inputs.scene_file),
             ("cycle angle Φ", self.q(scene.cycle_angle, "angle", "cycle_angle")),
             ("mean speed (as given)", self.q(self.inputs.scene.omega_mean, "angular_speed")),
-            ("allowed δ", number(scene.delta)),
+            (
+                "allowed δ",
+                number(self.inputs.scene.delta)
+                if self.inputs.scene.delta is not None
+                else "not given: the δ the flywheel given reaches is found",
+            ),
             ("efficiency motor → reference shaft", number(scene.efficiency, 4)),
             ("J_{c} (machine and shafts)", self.q(scene.j_constant, "inertia", "j_constant")),
         ]

@@ -14,13 +14,15 @@ class Summary(BuilderBase):
     def summary(self) -> None:
         a, d, best = self.analysis, self.design, self.best()
         blocks = self.section("Summary", "summary")
-        blocks.append(
-            Paragraph(self.answer(), "warning" if self.solution.status == "infeasible" or self.flagged() else "ok")
-        )
+        bad = self.solution.status in ("infeasible", "insufficient") or self.flagged()
+        blocks.append(Paragraph(self.answer(), "warning" if bad else "ok"))
         rows = [
             ("model", f"{a.model} ({self.model_description(a.model)})"),
             ("mean speed ω_{m}", self.q(a.omega_mean, "angular_speed", "omega_mean")),
-            ("allowed δ", (self.q(a.delta, "dimensionless", "delta"), f" (1/{number(1 / a.delta, 4)})")),
+            (
+                "δ reached with the flywheel given" if self.solution.flywheel is not None else "allowed δ",
+                (self.q(a.delta, "dimensionless", "delta"), f" (1/{number(1 / a.delta, 4)})"),
+            ),
             ("A_{max}", self.q(a.a_max, "energy", "a_max")),
         ]
         if a.flywheel_needed:
@@ -115,6 +117,18 @@ class Summary(BuilderBase):
     def answer(self) -> str:
         """The answer in one sentence."""
         a, best, status = self.analysis, self.best(), self.solution.status
+        check = self.solution.flywheel
+        if check is not None:  # a wheel that exists: the analysis is at the δ it reaches
+            given = (
+                f"The flywheel given ({display.quantity_text(check.flywheel.j_at_reference, 'inertia', self.units)} "
+                f"at the reference shaft) leaves δ = {number(check.achieved_delta, 4)}, the speed between "
+                f"{display.quantity_text(check.omega_min, 'angular_speed', self.units)} and "
+                f"{display.quantity_text(check.omega_max, 'angular_speed', self.units)}"
+            )
+            if check.delta_allowed is None:
+                return given + "."
+            holds = "within" if check.suffices else "NOT within"
+            return given + f": {holds} the allowed δ = {number(check.delta_allowed, 4)}."
         if status == "infeasible":
             said = self.design if self.design is not None else self.solution.drive
             assert said is not None  # an infeasible solution is the design's or the drive design's

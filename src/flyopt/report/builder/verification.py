@@ -17,7 +17,12 @@ class VerificationAndProvenance(BuilderBase):
         a = self.analysis
         blocks = self.section("Verification", "verification")
         if v is None and self.solution.drive_check is None:
-            blocks.append(Paragraph("Nothing to verify: no flywheel was designed.", "note"))
+            nothing = (
+                "Nothing to verify: the flywheel was given, and its check is its own section."
+                if self.solution.flywheel is not None
+                else "Nothing to verify: no flywheel was designed."
+            )
+            blocks.append(Paragraph(nothing, "note"))
         if v is not None:
             verdict = "FLAGGED: the design misses the allowed δ" if v.flagged else "ok"
             blocks.append(
@@ -99,7 +104,11 @@ class VerificationAndProvenance(BuilderBase):
             self.figure(
                 blocks,
                 "speed",
-                "Speed over the cycle with the required flywheel"
+                (
+                    "Speed over the cycle with the flywheel given"
+                    if self.solution.flywheel is not None
+                    else "Speed over the cycle with the required flywheel"
+                )
                 + (", and the simulation of the design over it" if simulation is not None else ""),
                 plots.plot_speed,
                 self.scene,
