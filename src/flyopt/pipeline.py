@@ -289,13 +289,16 @@ def _with_delta_sensitivity(
     return dataclasses.replace(result, best=winner, candidates=candidates)
 
 
-def verify(scene: Scene, analysis: Analysis, design_result: DesignResult | None = None) -> Verification | None:
+def verify(
+    scene: Scene, analysis: Analysis, design_result: DesignResult | None = None, j_flywheel: float | None = None
+) -> Verification | None:
     """Simulate the machine with its flywheel and report the δ it really achieves.
 
     The periodic solution of the equation of motion (flyopt.sizing.periodic.verify)
     with the chosen flywheel moved to the reference shaft (J' i²); with no
     flywheel needed, the machine alone. A design whose δ exceeds the allowed
-    one by more than the simulation tolerance is ``flagged``.
+    one by more than the simulation tolerance is ``flagged``. ``j_flywheel`` [kg*m^2], at the reference
+    shaft, simulates that wheel instead (a [flywheel] that exists, :func:`check_flywheel`).
 
     Returns
     -------
@@ -308,11 +311,11 @@ def verify(scene: Scene, analysis: Analysis, design_result: DesignResult | None 
 
     if design_result is not None and design_result.status == "infeasible":
         return None
-    if design_result is not None and design_result.best is not None:
+    if j_flywheel is None and design_result is not None and design_result.best is not None:
         j_chosen = design_result.best.j_at_reference
         assert j_chosen is not None  # a designed wheel has its inertia
         j_flywheel = j_chosen
-    else:
+    elif j_flywheel is None:
         j_flywheel = max(analysis.j_margin, 0.0)
     machine = analysis.machine
     if machine is None:  # net areas: no curves to simulate; the energy method is exact for them
@@ -467,7 +470,7 @@ def check_flywheel(
     inertia and torques of the angle only; any other model is answered by the periodic
     simulation with the wheel.
     """
-    from flyopt.sizing import existing, periodic
+    from flyopt.sizing import existing
 
     wheel = scene.flywheel
     if wheel is None:
@@ -490,17 +493,9 @@ def check_flywheel(
             j_total = analysis.j_constant + j_wheel
             accelerations = (high / j_total, at_high, low / j_total, at_low)
     else:
-        simulation = periodic.verify(
-            machine.net_torque(),
-            machine.j_machine,
-            machine.cycle_angle,
-            analysis.omega_mean,
-            analysis.delta,
-            j_wheel,
-            machine.knots(),
-        )
-        sol = simulation.solution
-        if sol is None:
+        simulation = verify(scene.replace(delta=analysis.delta), analysis, j_flywheel=j_wheel)
+        sol = simulation.solution if simulation is not None else None
+        if simulation is None or sol is None:
             raise RuntimeError("the periodic simulation returned no speed curve")
         achieved, omega_max, omega_min = simulation.achieved_delta, sol.omega_max, sol.omega_min
         angles = (sol.phi_omega_max, sol.phi_omega_min)
