@@ -84,6 +84,24 @@ PRESS = {
             "",
         ),
         ({"energy_per_stroke": "1 kJ", "strokes_per_hour": 720}, "press.strokes_per_hour", "exactly one"),
+        ({"energy_per_stroke": "1 kJ", "working_time": None, "stroke": "100 mm"}, "press.stroke", "punching"),
+        (
+            {
+                "punching": {"thickness": "15 mm", "hole_diameter": "40 mm", "energy_per_area": "6 J/mm^2"},
+                "working_time": None,
+                "stroke": "5 mm",
+            },
+            "press.stroke",
+            "clear the plate",
+        ),
+        (
+            {
+                "punching": {"thickness": "15 mm", "hole_diameter": "40 mm", "energy_per_area": "6 J/mm^2"},
+                "stroke": "100 mm",
+            },
+            "press.stroke",
+            "exactly one",
+        ),
         (
             {"energy_per_stroke": "1 kJ", "strokes_per_minute": None, "strokes_per_hour": 0},
             "press.strokes_per_hour",
@@ -97,3 +115,15 @@ def test_bad_press_data_is_refused_in_one_line(changes, field, words):
     with pytest.raises(SceneError) as err:
         from_dict({"press": press})
     assert err.value.field == field and words in str(err.value)
+
+
+def test_khurmi_16_20_punching_time_from_the_punch_stroke():
+    solution = _solve("khurmi-16-20.toml")
+    energy = 7e6 * math.pi * 0.038 * 0.032  # 7 J/mm² over the sheared area π d t
+    assert solution.analysis.power == pytest.approx(energy / 10.0, rel=1e-12)  # one hole every 10 s
+    assert round(solution.analysis.power / 1e3, 3) == 2.674
+    a_max = energy * (1 - 0.032 / (2 * 0.100))  # punching t/(2 s) of the period
+    assert solution.analysis.a_max == pytest.approx(a_max, rel=1e-12)
+    speed = 25.0 * (1.615421 / (2 * 25.0 / (10 * math.pi / 1.015)))  # the rim's mean speed, as the scene's D_m gives it
+    assert solution.design.best.mass == pytest.approx(a_max / (speed**2 * 0.03), rel=1e-9)
+    assert round(a_max / (25.0**2 * 0.03)) == 1198

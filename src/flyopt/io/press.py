@@ -49,6 +49,7 @@ PRESS_KEYS = (
     "punching",
     "working_time",
     "working_angle",
+    "stroke",
     "slowdown",
     "delta",
     "flywheel_speed",
@@ -68,7 +69,7 @@ CRANKSHAFT = "crankshaft"
 
 _RATE = ("strokes_per_minute", "strokes_per_hour", "stroke_period")
 _ENERGY = ("energy_per_stroke", "force", "punching")
-_WORKING = ("working_time", "working_angle")
+_WORKING = ("working_time", "working_angle", "stroke")
 _FLUCTUATION = ("slowdown", "delta", "flywheel_speed_min")
 
 
@@ -180,9 +181,11 @@ def _working_angle(press, period):
         press,
         _WORKING,
         "press.working_time",
-        "give how long the working stroke lasts as working_time (e.g. '2 s') or "
-        "working_angle (e.g. '60 deg' of the crank)",
+        "give how long the working stroke lasts as working_time (e.g. '2 s'), "
+        "working_angle (e.g. '60 deg' of the crank), or the punch's stroke (e.g. '100 mm', with punching.thickness)",
     )
+    if key == "stroke":
+        return _stroke_angle(press)
     if key == "working_time":
         time = _time(press[key], "press.working_time")
         if not 0 < time < period:
@@ -206,6 +209,29 @@ def _working_angle(press, period):
             f"the whole stroke), got {shorten(press[key])}",
         )
     return angle
+
+
+def _stroke_angle(press):
+    """The working angle from the punch's stroke s and the plate's thickness t: the courses' punching time,
+    t / (2 s) of a turn (the punch taken to move uniformly, 2 s a turn), i.e. θ_w = π t / s."""
+    stroke = _number(press, "stroke", "length")
+    if not (math.isfinite(stroke) and stroke > 0):
+        raise SceneError("press.stroke", f"must be positive (the punch's stroke), got {shorten(press['stroke'])}")
+    punching = press.get("punching")
+    if not isinstance(punching, dict) or "thickness" not in punching:
+        raise SceneError(
+            "press.stroke",
+            "sets the punching time from the plate's thickness: give punching = { thickness, ... } with it",
+        )
+    thickness = _positive(
+        Table(punching, "press.punching", PUNCHING_KEYS).data, "thickness", "length", "press.punching"
+    )
+    if not thickness < 2 * stroke:
+        raise SceneError(
+            "press.stroke",
+            f"{shorten(press['stroke'])} is not longer than half the plate's thickness: the punch must clear the plate",
+        )
+    return physics.punching_angle(thickness, stroke)
 
 
 # -- the load -----------------------------------------------------------------

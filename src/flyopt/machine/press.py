@@ -131,6 +131,15 @@ def working_torque(energy: float, angle: float) -> float:
     return energy / angle
 
 
+def punching_angle(thickness: float, stroke: float) -> float:
+    """The crank angle of punching from the plate's thickness t and the punch's stroke s [rad]: θ_w = π t / s.
+
+    The courses' assumption (Khurmi & Gupta, "Flywheel in punching press"): the punch travels 2 s in a
+    crank turn at a uniform speed, so punching through t takes t / (2 s) of the turn.
+    """
+    return math.pi * thickness / stroke
+
+
 def punching_force(shear_strength: float, cut_length: float, thickness: float) -> float:
     """Largest force of punching or shearing, F_max = τ L t [N].
 
