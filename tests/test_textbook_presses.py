@@ -127,3 +127,26 @@ def test_khurmi_16_20_punching_time_from_the_punch_stroke():
     speed = 25.0 * (1.615421 / (2 * 25.0 / (10 * math.pi / 1.015)))  # the rim's mean speed, as the scene's D_m gives it
     assert solution.design.best.mass == pytest.approx(a_max / (speed**2 * 0.03), rel=1e-9)
     assert round(a_max / (25.0**2 * 0.03)) == 1198
+
+
+@pytest.mark.parametrize(
+    ("punching", "field"),
+    [
+        ({"thickness": 1e-300, "hole_diameter": "40 mm", "energy_per_area": "6 J/mm^2"}, "press.punching.thickness"),
+        (
+            {"thickness": "15 mm", "hole_diameter": "1e9 m", "energy_per_area": "6 J/mm^2"},
+            "press.punching.hole_diameter",
+        ),
+        (
+            {"thickness": "15 mm", "hole_diameter": "40 mm", "energy_per_area": "1e-300 J/m^2"},
+            "press.punching.energy_per_area",
+        ),
+        ({"thickness": "0.001 mm", "cut_length": "0.001 mm", "energy_per_area": "0.001 J/m^2"}, "press.punching"),
+    ],
+)
+def test_a_punch_too_small_or_too_large_is_refused_in_words(punching, field):
+    """The hostile corpus found it: a plate 1e-300 m thick made a stroke of no energy and the designer failed
+    inside; every length, strength and energy of a press is bounded, and so is the stroke's energy."""
+    with pytest.raises(SceneError) as err:
+        from_dict({"press": {**PRESS, "punching": punching}})
+    assert err.value.field == field and "out of range" in str(err.value)

@@ -30,8 +30,10 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import SPEED_RANGE, Table, scaled
+from flyopt.io.design_section import LENGTH_RANGE
+from flyopt.io.fields import SPEED_RANGE, Table, check_magnitude, scaled
 from flyopt.io.input_files import check_rows
+from flyopt.io.operation_section import ENERGY_RANGE
 from flyopt.machine import press as physics
 from flyopt.units import quantity
 
@@ -275,6 +277,7 @@ def _load(press, angle):
             f"of {degrees:.6g} deg"
         )
         return key, physics.resisting_table(angles, torques, angle), note
+    check_magnitude(energy, f"press.{key}", press[key], *ENERGY_RANGE, "J", "the energy of one stroke")
     torque = physics.working_torque(energy, angle)
     return key, physics.resisting_table([0.0, angle], [torque, torque], angle), note
 
@@ -500,10 +503,22 @@ def _number(table, key, dimension, where="press"):
     return quantity(table[key], dimension, f"{where}.{key}")
 
 
+#: Magnitudes a press's positive inputs may take, by dimension (SI): beyond them the stroke's energy or the
+#: flywheel under- or overflows. Lengths as [design]'s; energies and powers as an [operation]'s.
+MAGNITUDES = {
+    "length": (*LENGTH_RANGE, "m", "a micron to a kilometre"),
+    "stress": (1.0, 1e12, "Pa", "a pascal to a terapascal"),
+    "energy_per_area": (1e-3, 1e12, "J/m^2", "a millijoule to a terajoule a square metre"),
+}
+
+
 def _positive(table, key, dimension, where):
     value = _number(table, key, dimension, where)
     if value <= 0:
         raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table[key])}")
+    if dimension in MAGNITUDES:
+        low, high, unit, why = MAGNITUDES[dimension]
+        check_magnitude(value, f"{where}.{key}", table[key], low, high, unit, why)
     return value
 
 
