@@ -88,8 +88,8 @@ def test_dimensions_give_the_wheel_dims_with_zero_for_absent_parts():
 
 @pytest.mark.parametrize("record", [Dimensions, Parts, Stresses, Limits, Provenance, Candidate, Design])
 def test_records_are_built_as_their_dataclass_declares_them(record):
-    """The records' faster __init__ (one __dict__ update) takes the dataclass's own parameters, in order,
-    with its defaults; a default factory gives a new object each time; the record stays frozen."""
+    """The records' __init__ takes the dataclass's own parameters, in order, with its defaults; a default
+    factory gives a new object each time; the record stays frozen."""
     import dataclasses
     import inspect
 

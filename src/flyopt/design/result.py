@@ -13,10 +13,9 @@ stress [Pa]. Wall-clock times are kept out of the JSON unless asked for
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass, field
-from typing import Any, TypeVar
+from typing import Any
 
 from flyopt.design.spec import DesignSpec
 from flyopt.design.wheel import ARM_MINOR_RATIO, Dims
@@ -35,67 +34,10 @@ __all__ = [
     "TIMING_FIELDS",
 ]
 
-_Record = TypeVar("_Record")
-
-
-def _filled_at_once(cls: type[_Record]) -> type[_Record]:
-    """A frozen dataclass whose ``__init__`` fills the new instance's ``__dict__`` in one step.
-
-    The ``__init__`` dataclasses writes for a frozen class sets each field by
-    ``object.__setattr__``, about four times the cost of a plain one; a
-    ranking makes several of these records per candidate (issue 26). This one
-    takes the same parameters in the same order, with the same defaults and
-    default factories (it is generated from the dataclass's own fields), and
-    the class stays frozen: only the construction is faster. None of these
-    records has a ``__post_init__``.
-    """
-    if "__post_init__" in vars(cls) or not cls.__dataclass_params__.frozen:  # type: ignore[attr-defined]
-        raise TypeError(f"{cls.__name__}: only a frozen dataclass without __post_init__")
-    names: list[str] = []
-    positional: list[str] = []
-    keyword: list[str] = []
-    factories: list[str] = []
-    namespace: dict[str, Any] = {"_FACTORY": _FACTORY}
-    for f in dataclasses.fields(cls):  # type: ignore[arg-type]
-        if not f.init:
-            raise TypeError(f"{cls.__name__}.{f.name}: every field must be an __init__ parameter")
-        names.append(f.name)
-        if f.default is not dataclasses.MISSING:
-            namespace[f"_default_{f.name}"] = f.default
-            param = f"{f.name}=_default_{f.name}"
-        elif f.default_factory is not dataclasses.MISSING:
-            namespace[f"_factory_{f.name}"] = f.default_factory
-            factories.append(f"    if {f.name} is _FACTORY:\n        {f.name} = _factory_{f.name}()\n")
-            param = f"{f.name}=_FACTORY"
-        else:
-            param = f.name
-        (keyword if f.kw_only else positional).append(param)
-    params = ", ".join(["self", *positional, *(["*", *keyword] if keyword else [])])
-    fill = ", ".join(f"{name!r}: {name}" for name in names)
-    source = f"def __init__({params}):\n{''.join(factories)}    self.__dict__.update({{{fill}}})\n"
-    exec(source, namespace)
-    init = namespace["__init__"]
-    init.__qualname__ = f"{cls.__qualname__}.__init__"
-    init.__doc__ = cls.__init__.__doc__
-    cls.__init__ = init  # type: ignore[method-assign]
-    return cls
-
-
-class _Factory:
-    """The default of a field with a default factory (the factory is called when it is left out)."""
-
-    def __repr__(self) -> str:
-        return "<factory>"
-
-
-_FACTORY = _Factory()
-
-
 #: Fields that hold wall-clock times, left out of ``to_dict`` unless ``timings=True``.
 TIMING_FIELDS = ("solve_time",)
 
 
-@_filled_at_once
 @dataclass(frozen=True)
 class Dimensions:
     """The dimensions of a designed wheel, as reported [m] (``n_arms`` a count is the candidate's).
@@ -144,7 +86,6 @@ class Dimensions:
         )
 
 
-@_filled_at_once
 @dataclass(frozen=True)
 class Parts:
     """The parts of a designed wheel and the key of its hub.
@@ -162,7 +103,6 @@ class Parts:
     key: dict[str, Any] | None = None
 
 
-@_filled_at_once
 @dataclass(frozen=True)
 class Stresses:
     """The speed and stresses of a designed wheel at omega_max on its shaft.
@@ -200,7 +140,6 @@ class Stresses:
     unbalance_permissible: float | None = None
 
 
-@_filled_at_once
 @dataclass(frozen=True)
 class Limits:
     """What a combination was designed against, and what binds.
@@ -232,7 +171,6 @@ class Limits:
     sensitivities: tuple[dict[str, Any], ...] = ()
 
 
-@_filled_at_once
 @dataclass(frozen=True)
 class Provenance:
     """How a candidate was found.
@@ -265,7 +203,6 @@ class Provenance:
     objective_bound: float | None = None
 
 
-@_filled_at_once
 @dataclass(frozen=True, kw_only=True)
 class Candidate:
     """One combination of material and shaft (and arm count), designed or shown infeasible.
@@ -385,7 +322,6 @@ class Candidate:
         return out
 
 
-@_filled_at_once
 @dataclass(frozen=True, kw_only=True)
 class Design(Candidate):
     """A feasible Candidate: one with its dimensions, parts, stresses, mass, inertia and objective.
