@@ -14,7 +14,7 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal, TypedDict
 
 from flyopt.cycle.indicator import energy_indicator, energy_indicator_from_areas, required_inertia, speed_extremes
-from flyopt.errors import NonPeriodicCycle, SceneError
+from flyopt.errors import BrokenInvariant, NonPeriodicCycle, SceneError
 
 if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
     import numpy as np
@@ -401,7 +401,8 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
     else:
         if like is not None and like.machine is not None:
             machine = like.machine.with_delta(scene.allowed_delta)
-            assert like.indicator is not None  # a machine's analysis has its diagram
+            if like.indicator is None:
+                raise BrokenInvariant("a machine's analysis has its diagram")
             ind = like.indicator  # the torques at the frozen speed do not depend on δ
         else:
             machine = reduce(scene)
@@ -418,7 +419,8 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         work, driving, resisting = ind.work_driving, ind.driving_mean, ind.resisting_mean
         refuse_negative_work(scene, work, ind.a_max)
         power, motor_power = _powers(driving, omega_mean, scene.efficiency)
-        assert ind.chain_angle is not None  # a machine's diagram has its angles (only net areas have none)
+        if ind.chain_angle is None:
+            raise BrokenInvariant("a machine's diagram has its angles (only net areas have none)")
         chain = tuple(
             ChainPoint(index=k, angle=float(a), delta_e=float(e))
             for k, (a, e) in enumerate(zip(ind.chain_angle, ind.chain_delta_e))
@@ -624,7 +626,8 @@ def _speed_curve(analysis: Analysis) -> SpeedFluctuation | PeriodicSolution | No
     machine = analysis.machine
     if machine is None:
         raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
-    assert analysis.requirement is not None  # a machine's analysis has its requirement
+    if analysis.requirement is None:
+        raise BrokenInvariant("a machine's analysis has its requirement")
     if analysis.requirement.model == Model.DYNAMIC:
         solution = analysis.requirement.detail.solution
         if solution.j_flywheel == analysis.j_required:

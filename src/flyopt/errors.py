@@ -121,6 +121,13 @@ class SolverFailed(FlyoptError, RuntimeError):
     combination: str
 
 
+class BrokenInvariant(FlyoptError, RuntimeError):
+    """A fact flyopt's own code relies on does not hold: a defect of flyopt, never of the input.
+
+    Raised where an ``assert`` would stand (``python -O`` strips those); the message says which fact.
+    """
+
+
 class Interrupted(FlyoptError, RuntimeError):
     """A long run (a sweep) was stopped by the user (Ctrl-C) or lost its workers.
 

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any, Literal
 from flyopt.analysis import EXTRAS as ANALYSIS_EXTRAS
 from flyopt.analysis import Analysis, NotComputed, analyse, calculation_of, complete
 from flyopt.cycle.indicator import speed_extremes
+from flyopt.errors import BrokenInvariant
 
 if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     import numpy as np
@@ -313,7 +314,8 @@ def verify(
         return None
     if j_flywheel is None and design_result is not None and design_result.best is not None:
         j_chosen = design_result.best.j_at_reference
-        assert j_chosen is not None  # a designed wheel has its inertia
+        if j_chosen is None:
+            raise BrokenInvariant("a designed wheel has its inertia")
         j_flywheel = j_chosen
     elif j_flywheel is None:
         j_flywheel = max(analysis.j_margin, 0.0)

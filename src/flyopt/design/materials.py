@@ -44,7 +44,7 @@ from importlib import resources
 from typing import Any, NamedTuple, cast
 
 from flyopt._toml import tomllib
-from flyopt.errors import shorten
+from flyopt.errors import BrokenInvariant, shorten
 from flyopt.names import closest
 from flyopt.validate import number
 
@@ -541,7 +541,8 @@ class Material:
             thickness is not None or safety_factor is not None or self.max_rim_speed is None
         ):
             return rim_speed_from_stress(self.allowable(thickness, safety_factor), self.density)
-        assert self.max_rim_speed is not None  # given, or derived by __post_init__ (which refuses neither)
+        if self.max_rim_speed is None:
+            raise BrokenInvariant("a material has its max_rim_speed, given or derived by __post_init__")
         return self.max_rim_speed
 
 

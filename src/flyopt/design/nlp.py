@@ -51,7 +51,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import casadi as ca
 
 from flyopt.design import geometry
-from flyopt.errors import SolverFailed
+from flyopt.errors import BrokenInvariant, SolverFailed
 from flyopt.names import Geometry, Objective
 
 if TYPE_CHECKING:  # annotations only
@@ -336,7 +336,8 @@ def solve_combination(
         if spec.max_width < math.inf:
             ubx[col[width_col]] = math.log(spec.max_width / b_s)
         if s.pinned:
-            assert spec.d_mean is not None  # a pinned structure is one with spec.d_mean
+            if spec.d_mean is None:
+                raise BrokenInvariant("a pinned structure is one with spec.d_mean")
             room = min(combo.cap - spec.d_mean, spec.d_mean)
             ubx[col["h"]] = min(ubx[col["h"]], math.log(room / h_s))
         lbg, ubg = [0.0], [inf]

@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 from flyopt.design import balance, check, geometry, hub, key, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.design.result import Parts, Stresses
-from flyopt.errors import SolverFailed
+from flyopt.errors import BrokenInvariant, SolverFailed
 from flyopt.names import Criterion, Geometry, Method, Objective
 
 if TYPE_CHECKING:  # annotations only: CasADi is imported where IPOPT is used
@@ -203,7 +203,8 @@ def objective_bound(combo: Combination, spec: DesignSpec) -> tuple[float, str]:
     )
     if spec.objective == Objective.COST:
         price = combo.material.cost
-        assert price is not None  # design_flywheel refuses the cost objective without a price
+        if price is None:
+            raise BrokenInvariant("design_flywheel refuses the cost objective without a price")
         return mass * price, why + f", which costs at least {mass * price:.4g}"
     return mass, why
 

@@ -42,6 +42,7 @@ import casadi as ca
 import numpy as np
 
 from flyopt.cycle.numerics import hermite_extremes
+from flyopt.errors import BrokenInvariant
 from flyopt.machine.motor import kloss_torque
 from flyopt.sizing import shooting
 from flyopt.sizing._numerics import EPS, FloatArray, evaluate
@@ -315,7 +316,8 @@ class _Newton:
                 if 2 * substeps > shooting.MAX_SUBSTEPS:
                     raise NotSettled(f"the fixed steps do not resolve the cycle (it moves by {moved:.3g})")
                 substeps *= 2
-                assert finer is not None  # it moved by a finite amount
+                if finer is None:
+                    raise BrokenInvariant("a point that moved by a finite amount has its state on the finer steps")
                 point, fresh, norms = finer, False, []
                 continue
             if self.limit == "thermal" and point.mean_torque > self.rated * (1 + 1e-9):
@@ -443,7 +445,8 @@ class _Point:
 
     def jacobian(self) -> FloatArray:
         n, drive = self.newton, self.newton.drive
-        assert self.jac_y is not None  # a point for Newton carries its sensitivities
+        if self.jac_y is None:
+            raise BrokenInvariant("a point for Newton carries its sensitivities")
         v, u, rho = self.full
         i = self.ratio
         e_u = 0.0 if n.limit == "none" else math.exp(u)

@@ -16,6 +16,7 @@ from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 from flyopt.design.result import Design
+from flyopt.errors import BrokenInvariant
 from flyopt.report.characters import visible
 from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, quantity_text
 
@@ -237,7 +238,8 @@ def engine_report(result: Analysis, units: str = DEFAULT) -> list[str]:
         return []
     from flyopt.machine.engine import engine_of
 
-    assert result.machine is not None  # an engine's textbook flywheel is of its machine
+    if result.machine is None:
+        raise BrokenInvariant("an engine's textbook flywheel is of its machine")
     engine = engine_of(result.machine)
     if engine is None:  # a variable inertia of members, not of an [engine]
         return []

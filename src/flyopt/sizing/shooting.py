@@ -58,7 +58,7 @@ import casadi as ca
 import numpy as np
 
 from flyopt.cycle.numerics import hermite_extremes
-from flyopt.errors import SolverFailed
+from flyopt.errors import BrokenInvariant, SolverFailed
 from flyopt.sizing._numerics import EPS, FloatArray, call
 
 if TYPE_CHECKING:  # annotations only: periodic_model imports this module
@@ -293,7 +293,8 @@ class _State:
             self.stiffness = 0.0
         if not derivatives:
             return
-        assert jac is not None  # cycle gives the sensitivities when asked for them
+        if jac is None:
+            raise BrokenInvariant("cycle gives the sensitivities when asked for them")
         if not np.all(np.isfinite(jac)):  # the steps are unstable for the derivatives
             self.ok = False
             return

@@ -40,7 +40,7 @@ import pandas as pd
 
 from flyopt.cycle.indicator import required_inertia, speed_extremes
 from flyopt.design import design_inputs
-from flyopt.errors import SceneError
+from flyopt.errors import BrokenInvariant, SceneError
 from flyopt.sizing.peak_torque import flywheel_peak_torque
 from flyopt.studies.chunk_arrays import ChunkInputs, empty_results, result_table
 from flyopt.studies.closed_form_design import design_closed_form
@@ -97,7 +97,8 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
     needs_torque = scene_needs_torque(scene)
     # -- the cycle: analysed once, A_max scaled (see the module notes) ------
     if ctx.reusable:
-        assert ctx.a_max is not None  # a reusable context carries the cycle's A_max (chunk_context)
+        if ctx.a_max is None:
+            raise BrokenInvariant("a reusable context carries the cycle's A_max (chunk_context)")
         a_max = inputs.scale * ctx.a_max
         driving = inputs.scale * ctx.driving_torque if ctx.driving_torque is not None else np.full(n, np.nan)
         j_margin = required_inertia(a_max, inputs.speed, inputs.delta, inputs.inertia)

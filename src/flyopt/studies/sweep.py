@@ -36,7 +36,7 @@ import numpy.typing as npt
 import pandas as pd
 
 from flyopt.design import design_inputs
-from flyopt.errors import Interrupted, SceneError
+from flyopt.errors import BrokenInvariant, Interrupted, SceneError
 from flyopt.io.sweep_spec import check_options, option_label
 from flyopt.outputs.documents import scene_record, table_metadata
 from flyopt.outputs.files import check_folder
@@ -283,7 +283,8 @@ def sweep(
             n_workers = None
         if mode == "serial":
             task = functools.partial(evaluate_chunk, ctx)
-        assert task is not None  # a mode other than serial fell back to it when it had no task
+        if task is None:
+            raise BrokenInvariant("a sweep mode other than serial has its task (or fell back to serial)")
         prepare = _seed_column(plan)
         describe = _describe(scene, plan, method)
         assembly = _Assembly(layout["units"], len(points), parts, output, prepare, describe)

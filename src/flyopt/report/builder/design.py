@@ -6,6 +6,7 @@ import inspect
 import math
 from typing import TYPE_CHECKING, Any
 
+from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
 from flyopt.report.builder.base import NOTES, BuilderBase
 from flyopt.report.display import number
@@ -112,7 +113,8 @@ class DesignSection(BuilderBase):
 
     def geometry_steps(self, blocks: list[Any], c: Design, material: Material | None) -> None:
         """The wheel's mass and inertia (section 9) and its rim speed (section 10), numbers substituted."""
-        assert self.design is not None  # a candidate comes from the design
+        if self.design is None:
+            raise BrokenInvariant("a candidate comes from the design")
         si, res, sq = self.si, self.result, self.squared
         rho = getattr(material, "density", None)
         if c.geometry == Geometry.DISC and not c.dims.d_inner and len(c.parts.items) <= 1 and rho:
@@ -297,7 +299,8 @@ class DesignSection(BuilderBase):
 
     def stress(self, blocks: list[Any], c: Design) -> None:
         """The stress check of each part and the diagram of the stresses over the radius (section 10)."""
-        assert self.design is not None  # a candidate comes from the design
+        if self.design is None:
+            raise BrokenInvariant("a candidate comes from the design")
         if not c.stresses.stress:
             return
         from flyopt.report import plots
@@ -392,7 +395,8 @@ class DesignSection(BuilderBase):
 
     def hub_key_balance(self, blocks: list[Any], c: Design) -> None:
         """The permissible unbalance and the key, numbers substituted (section 13)."""
-        assert self.design is not None  # a candidate comes from the design
+        if self.design is None:
+            raise BrokenInvariant("a candidate comes from the design")
         si, res = self.si, self.result
         omega = self.design.omega * c.speed_ratio
         if c.stresses.unbalance_permissible is not None and math.isfinite(c.stresses.unbalance_permissible) and c.mass:

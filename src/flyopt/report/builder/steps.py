@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report.builder.base import NOTES
 from flyopt.report.builder.requirement import Requirement
@@ -155,7 +156,8 @@ class Steps(Requirement):
         a, si, res = self.analysis, self.si, self.result
         blocks = self.section("Work balance and power", "work", 2)
         ind = a.indicator
-        assert ind is not None  # every analysis carries its energy indicator diagram (flyopt.analysis)
+        if ind is None:
+            raise BrokenInvariant("every analysis carries its energy indicator diagram (flyopt.analysis)")
         from flyopt.cycle.torque import Constant
 
         solved = [

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from flyopt.errors import BrokenInvariant
 from flyopt.report import display
 from flyopt.report.builder.base import BuilderBase
 from flyopt.report.display import number
@@ -131,7 +132,8 @@ class Summary(BuilderBase):
             return given + f": {holds} the allowed δ = {number(check.delta_allowed, 4)}."
         if status == "infeasible":
             said = self.design if self.design is not None else self.solution.drive
-            assert said is not None  # an infeasible solution is the design's or the drive design's
+            if said is None:
+                raise BrokenInvariant("an infeasible solution is the design's or the drive design's")
             return "No feasible design: " + said.message
         if best is None:
             if self.solution.drive is not None and self.solution.drive.best is not None:

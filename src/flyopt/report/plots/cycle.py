@@ -10,6 +10,7 @@ import numpy.typing as npt
 
 from flyopt.cycle.indicator import ExcessWork
 from flyopt.cycle.torque import Constant
+from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import standard
@@ -135,7 +136,8 @@ def _unknown(curve):
 
 def _solved(curve: TorqueCurve) -> float:
     """The value of a constant torque solved from the work balance [N*m]."""
-    assert isinstance(curve, Constant)  # the balanced curve of an unknown constant is the solved constant
+    if not isinstance(curve, Constant):
+        raise BrokenInvariant("the balanced curve of an unknown constant is the solved constant")
     return curve.known()
 
 
@@ -194,7 +196,8 @@ class Torques:
         self.motor = _is_motor(machine.driving)
         self.resisting_speed = bool(getattr(machine.resisting, "speed_dependent", False))
         if self.along:
-            assert analysis.requirement is not None  # the dynamic model's analysis carries its requirement
+            if analysis.requirement is None:
+                raise BrokenInvariant("the dynamic model's analysis carries its requirement")
             speed = analysis.requirement.detail.solution  # the periodic solution the dynamic model found
             phi, omega = np.asarray(speed.phi, dtype=float), np.asarray(speed.omega, dtype=float)
             offset = float(getattr(speed, "torque_offset", 0.0) or 0.0)
@@ -211,7 +214,8 @@ class Torques:
             )
         else:
             ind = analysis.indicator
-            assert ind is not None and ind.chain_angle is not None  # a machine's analysis has its diagram's angles
+            if ind is None or ind.chain_angle is None:
+                raise BrokenInvariant("a machine's analysis has its diagram's angles")
             phi = np.union1d(np.linspace(0.0, scene.cycle_angle, 3001), np.asarray(balanced.knots, dtype=float))
             phi = np.union1d(phi, ind.chain_angle)
             steps = np.zeros(phi.shape, bool)

@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import standard
@@ -38,7 +39,8 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
     display.check_system(units)
     ax, own = standard.axes(ax)
     ind = analysis.indicator
-    assert ind is not None  # every analysis carries its energy indicator diagram (flyopt.analysis)
+    if ind is None:
+        raise BrokenInvariant("every analysis carries its energy indicator diagram (flyopt.analysis)")
     chain = np.asarray(ind.chain_delta_e, dtype=float)
     constant = analysis.machine is None or not analysis.machine.variable_inertia
     if ind.chain_angle is None:

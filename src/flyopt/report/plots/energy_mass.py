@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import standard
@@ -90,7 +91,8 @@ def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, u
             f"analysis ran the {analysis.model} model: analyse with model='energy_mass'"
         )
     machine = analysis.machine
-    assert machine is not None  # check_energy_mass: torques given as curves
+    if machine is None:
+        raise BrokenInvariant("the energy–mass diagram is of a machine given by torque curves (check_energy_mass)")
     em = analysis.requirement.detail
     ew = machine.angle_only()
     phi = np.union1d(np.linspace(0, scene.cycle_angle, 1441), ew.knots)

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
+from flyopt.errors import BrokenInvariant
 from flyopt.report import display
 from flyopt.report.plots import standard
 from flyopt.report.plots.cycle import Torques, angle_axis, mark_dead_centres, omega_marks
@@ -53,7 +54,8 @@ def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None
     ax, own = standard.axes(ax)
     energy = standard.unit("energy", units)[0]
     ind = analysis.indicator
-    assert ind is not None  # every analysis carries its energy indicator diagram (flyopt.analysis)
+    if ind is None:
+        raise BrokenInvariant("every analysis carries its energy indicator diagram (flyopt.analysis)")
     if scene.net is not None:
         areas = ind.areas
         k = np.arange(1, len(areas) + 1)
@@ -111,7 +113,8 @@ def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None
     levels = []
     if torques.along and not torques.driving_solved and np.ptp(torques.driving) > 0:
         mean = analysis.driving_torque
-        assert mean is not None  # a scene of torque curves has its mean driving torque
+        if mean is None:
+            raise BrokenInvariant("a scene of torque curves has its mean driving torque")
         levels.append(float(standard.show(mean, "torque", units)))
         ax.axhline(
             float(standard.show(mean, "torque", units)),
@@ -132,7 +135,8 @@ def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None
         between = torques.areas()
         what = "along the periodic solution"
     else:
-        assert ind.chain_angle is not None  # a scene of torque curves has the angles of its chain
+        if ind.chain_angle is None:
+            raise BrokenInvariant("a scene of torque curves has the angles of its chain")
         between = [
             (float(l), float(r), float(a)) for l, r, a in zip(ind.chain_angle[:-1], ind.chain_angle[1:], ind.areas)
         ]
