@@ -14,6 +14,7 @@ CasADi models.
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
@@ -239,7 +240,7 @@ class SliderCrank:
         raise ValueError(f"slider-crank part {shorten(part)} is not known (allowed: 'crank', 'rod', 'slider')")
 
 
-class ClosedFormRatio:
+class ClosedFormRatio(ABC):
     """A velocity ratio of a linkage given in closed form, with its exact slope.
 
     Callable on a numpy array or a CasADi symbol (returning the same kind);
@@ -250,20 +251,21 @@ class ClosedFormRatio:
     :class:`flyopt.machine.linkages.LinkageRatio`.
     """
 
+    @abstractmethod
     def __call__(self, phi: Any) -> Any:
-        raise NotImplementedError
+        """The ratio on a numpy array or a CasADi symbol."""
 
+    @abstractmethod
     def numpy(
         self, phi: NDArray[np.float64], cache: StateCache | None = None
     ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The ratio on a numpy array [m/rad] or [-]."""
-        raise NotImplementedError
 
+    @abstractmethod
     def slope(
         self, phi: NDArray[np.float64], cache: StateCache | None = None
     ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
         """d/dφ of the ratio on a numpy array [m/rad²] or [1/rad]."""
-        raise NotImplementedError
 
 
 class SliderCrankRatio(ClosedFormRatio):

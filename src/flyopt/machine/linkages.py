@@ -19,6 +19,7 @@ slope speed_ratio² times.
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from typing import Any
 
@@ -52,7 +53,7 @@ def _finite(name: str, value: object, what: str) -> float:
     return float(value)
 
 
-class Linkage:
+class Linkage(ABC):
     """What the guide-bar, the four-bar and the cam share: the input's angle and the ratios' chain rule.
 
     Parameters
@@ -83,13 +84,13 @@ class Linkage:
         """The input's own angle ψ = speed_ratio·φ − phase [rad]."""
         return self.speed_ratio * phi - self.phase
 
-    def _ratio(self, kind: str, psi: Any, lib: Any, centre: float) -> Any:  # pragma: no cover - abstract
+    @abstractmethod
+    def _ratio(self, kind: str, psi: Any, lib: Any, centre: float) -> Any:
         """A ratio with respect to ψ (scalar or pair)."""
-        raise NotImplementedError
 
-    def _slope(self, kind: str, psi: NDArray[np.float64], centre: float) -> Any:  # pragma: no cover - abstract
+    @abstractmethod
+    def _slope(self, kind: str, psi: NDArray[np.float64], centre: float) -> Any:
         """d/dψ of :meth:`_ratio` (numpy)."""
-        raise NotImplementedError
 
     def ratio(self, kind: str, phi: Any, centre: float = 0.0) -> Any:
         """A velocity ratio with respect to φ: speed_ratio × the ratio with respect to ψ."""
@@ -97,8 +98,9 @@ class Linkage:
         out = self._ratio(kind, self.own_angle(phi), _lib(phi), centre)
         return (k * out[0], k * out[1]) if isinstance(out, tuple) else k * out
 
-    def _part(self, part: str, centre: float | None) -> Kinematics:  # pragma: no cover - abstract
-        raise NotImplementedError
+    @abstractmethod
+    def _part(self, part: str, centre: float | None) -> Kinematics:
+        """The velocity ratios of one named part."""
 
     def kinematics(self, part: str, centre: float | None = None) -> Kinematics:
         """Velocity ratios of one part, for a :class:`flyopt.machine.mechanism.Member`.
