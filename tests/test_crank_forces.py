@@ -17,9 +17,10 @@ import pytest
 import flyopt
 from flyopt.errors import SceneError
 from flyopt.io.scene import from_dict
-from flyopt.machine.crank_forces import GRAVITY, CrankPosition, crank_forces
+from flyopt.machine.crank_forces import CrankPosition, crank_forces
 from flyopt.outputs.documents import calculation_document, json_text, schema
 from flyopt.pipeline import solve, solve_position
+from flyopt.units import G_STANDARD as GRAVITY
 
 SCENE = Path(__file__).resolve().parent.parent / "problems" / "textbook" / "khurmi-15-crank-forces.toml"
 

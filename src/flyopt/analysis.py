@@ -27,7 +27,7 @@ if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
     from flyopt.sizing.periodic import PeriodicSolution
     from flyopt.sizing.textbook import TextbookRequirement
 from flyopt.machine.transmission import inertia_on_shaft
-from flyopt.names import Model
+from flyopt.names import CALCULATIONS, Model
 from flyopt.units import gd2_from_inertia
 
 #: What an analysis carries beyond the sizing, each computed only when asked for (:func:`complete`): the
@@ -279,10 +279,8 @@ def _net_torque_samples(machine: Machine | None) -> tuple[np.ndarray, np.ndarray
 
     if machine is None:
         return None
-    balanced = machine.angle_only()
-    phi = np.union1d(np.linspace(0.0, machine.cycle_angle, 4097), np.asarray(balanced.knots, dtype=float))
-    driving, resisting = balanced.driving.limits(phi), balanced.resisting.limits(phi)
-    differences = np.concatenate([driving[0] - resisting[0], driving[1] - resisting[1]])
+    phi, before, after = machine.net_torque_grid()
+    differences = np.concatenate([before, after])
     j_machine = machine.j_machine(phi) if machine.variable_inertia else np.full(phi.shape, float(machine.j_machine))
     return np.concatenate([j_machine, j_machine]), differences
 
@@ -359,8 +357,8 @@ def refuse_negative_work(scene: Scene, work: float, a_max: float) -> None:
 
 
 def calculation_of(scene: Scene) -> str | None:
-    """The section of a scene that is one calculation rather than a cycle (flyopt.io.scene.CALCULATIONS), or None."""
-    for name in ("operation", "position", "electric_drive"):
+    """The section of a scene that is one calculation rather than a cycle (:data:`flyopt.names.CALCULATIONS`), or None."""
+    for name in CALCULATIONS:
         if getattr(scene, name) is not None:
             return name
     return None

@@ -192,3 +192,9 @@ def unknown(value: object, allowed: Iterable[object]) -> str:
     """
     names = [str(a) for a in allowed]
     return f"{shorten(value)} is not known{hint(value, names)} (allowed: {', '.join(names)})"
+
+
+#: The sections of a scene that are one calculation rather than a cycle ([operation], [position],
+#: [electric_drive]): each stands alone in its scene (flyopt.io.scene), flyopt.pipeline.solve_calculation
+#: answers it, and its JSON document is of that kind.
+CALCULATIONS = ("operation", "position", "electric_drive")

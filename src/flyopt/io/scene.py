@@ -29,6 +29,7 @@ from flyopt.io.shaft_section import read_efficiency, read_shafts, reference_effi
 from flyopt.io.toml_file import read_toml
 from flyopt.io.torque_section import NetAreas, read_torques
 from flyopt.machine.transmission import Shaft, inertia_at_reference
+from flyopt.names import CALCULATIONS
 from flyopt.units import inertia_from_gd2
 
 if TYPE_CHECKING:
@@ -376,9 +377,6 @@ def _electric_drive(top: Table, omega: float) -> ElectricDrive:
     return read_electric_drive(top.get("electric_drive"), omega)
 
 
-#: Sections that are one calculation rather than a cycle: each stands alone in its scene
-#: (an [operation] with its [flywheel]); flyopt.pipeline.solve_calculation answers them.
-CALCULATIONS = ("operation", "position", "electric_drive")
 #: The sections that describe a cycle, a design or a wheel, which a calculation's scene does not have.
 _CYCLE_SECTIONS = ("torque", "press", "engine", "member", "mechanism", "design", "drive", "motor_option", "sweep")
 

@@ -28,8 +28,6 @@ from typing import Any
 
 from flyopt.units import G_STANDARD
 
-#: Standard gravity [m/s²] (the weight of a vertical engine's reciprocating parts): flyopt's one g.
-GRAVITY = G_STANDARD
 ORIENTATIONS = ("horizontal", "vertical")
 
 
@@ -116,7 +114,7 @@ def crank_forces(position: CrankPosition, omega: float) -> CrankForces:
         bore = position.bore or 0.0
         gas = position.pressure * math.pi * bore * bore / 4.0
     inertia = position.reciprocating_mass * acceleration
-    weight = position.reciprocating_mass * GRAVITY if position.orientation == "vertical" else 0.0
+    weight = position.reciprocating_mass * G_STANDARD if position.orientation == "vertical" else 0.0
     effort = gas - inertia + weight
     rod = effort / math.cos(beta)
     return CrankForces(

@@ -24,6 +24,9 @@ from flyopt.machine.motor import DCMotor, InductionMotor, TableMotor
 
 T = TypeVar("T")
 
+#: Angles of the grid on which the net torque's peaks are looked for (every knot is added).
+NET_TORQUE_GRID = 4097
+
 
 @dataclass(frozen=True)
 class Machine:
@@ -102,6 +105,16 @@ class Machine:
                 balanced=self.speed_dependent and (_unknown(self.driving) or _unknown(self.resisting)),
             )
         return self._cache["net_torque"]
+
+    def net_torque_grid(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """(φ, M_d − M_r just before φ, just after φ) at the reference shaft [rad, N*m, N*m]: on
+        :data:`NET_TORQUE_GRID` angles and every knot, both sides of a step, with every speed dependence
+        frozen at the mean speed (:meth:`angle_only`). Where the net torque's peaks are looked for: the
+        flywheel's peak torque, the largest acceleration of a wheel that exists."""
+        balanced = self.angle_only()
+        phi = np.union1d(np.linspace(0.0, self.cycle_angle, NET_TORQUE_GRID), np.asarray(balanced.knots, dtype=float))
+        driving, resisting = balanced.driving.limits(phi), balanced.resisting.limits(phi)
+        return phi, driving[0] - resisting[0], driving[1] - resisting[1]
 
     def knots(self) -> NDArray[np.float64]:
         """Angles where a torque steps or kinks [rad] (the simulation cuts there).

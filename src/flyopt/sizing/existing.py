@@ -22,8 +22,6 @@ if TYPE_CHECKING:
     from flyopt.machine.reduce import Machine
     from flyopt.sizing.periodic import PeriodicSolution
 
-#: Angles of the grid the net torque's extremes are bracketed on (every knot is added, both sides of a step).
-GRID = 4097
 #: Golden-section steps that refine an extreme of a smooth net torque inside its bracket (to ~1e-13 of the bracket).
 REFINE_STEPS = 64
 
@@ -74,7 +72,7 @@ def energy_delta(a_max: float, omega_mean: float, j_total: float) -> float:
 def net_torque_extremes(machine: Machine) -> tuple[float, float, float, float]:
     """(largest M_d − M_r, its angle, smallest, its angle) over the cycle at the reference shaft [N*m, rad].
 
-    On a grid of :data:`GRID` angles and every knot (both sides of a step, so
+    On :meth:`flyopt.machine.reduce.Machine.net_torque_grid` (every knot, both sides of a step, so
     a step's value is reached exactly, as in a table's corners); an extreme
     strictly between grid points of a smooth stretch is refined by golden
     section within its two neighbours. Speed-dependent torques are taken at
@@ -82,13 +80,12 @@ def net_torque_extremes(machine: Machine) -> tuple[float, float, float, float]:
     """
     balanced = machine.angle_only()
     knots = np.asarray(balanced.knots, dtype=float)
-    phi = np.union1d(np.linspace(0.0, machine.cycle_angle, GRID), knots)
+    phi, left, right = machine.net_torque_grid()
 
     def net(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         d, r = balanced.driving.limits(x), balanced.resisting.limits(x)
         return d[0] - r[0], d[1] - r[1]
 
-    left, right = net(phi)
     found: list[float] = []
     for sign in (1.0, -1.0):
         values = np.maximum(sign * left, sign * right)
