@@ -19,7 +19,6 @@ Usage::
 """
 
 import argparse
-import csv
 import os
 import platform
 import resource
@@ -31,7 +30,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from common import pin_one_core
+from common import pin_one_core, write_results
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENE = ROOT / "problems" / "press-drive.toml"
@@ -186,12 +185,7 @@ def main(argv=None):
     ]
     text = "\n".join(lines)
     if not args.quick:
-        RESULTS.mkdir(exist_ok=True)
-        (RESULTS / "drive.md").write_text(text, encoding="utf-8")
-        with open(RESULTS / "drive.csv", "w", newline="", encoding="utf-8") as f:
-            writer = csv.writer(f)
-            writer.writerow(["case", "median_s", "min_s", "max_s"])
-            writer.writerows(rows)
+        write_results(RESULTS, "drive", text, rows, ["case", "median_s", "min_s", "max_s"])
     print(text)
     return 0
 

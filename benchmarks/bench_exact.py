@@ -24,7 +24,6 @@ Usage::
 """
 
 import argparse
-import csv
 import os
 import platform
 import statistics
@@ -35,6 +34,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from common import TABLE_SCENE, write_results
 
 import flyopt
 from flyopt.analysis import analyse
@@ -187,20 +187,6 @@ def bench_startup(repeat, rows):
         )
 
 
-TABLE_SCENE = """title = "10,000-point torque table"
-[machine]
-speed = "300 rpm"
-delta = 0.05
-inertia = "5 kg*m^2"
-[torque.driving]
-constant = "unknown"
-[torque.resisting]
-unit = "N*m"
-angle_unit = "deg"
-{points}
-"""
-
-
 def bench_table(repeat, rows, folder):
     rng = np.random.default_rng(1)
     angles = np.linspace(0.0, 360.0, 10_000)
@@ -209,7 +195,8 @@ def bench_table(repeat, rows, folder):
     inline = folder / "inline.toml"
     inline.write_text(
         TABLE_SCENE.format(
-            points="points = [" + ", ".join(f"[{a!r}, {t!r}]" for a, t in zip(angles.tolist(), torques.tolist())) + "]"
+            title="10,000-point torque table",
+            points="points = [" + ", ".join(f"[{a!r}, {t!r}]" for a, t in zip(angles.tolist(), torques.tolist())) + "]",
         )
     )
     med, _, _ = median_time(lambda: flyopt.load(inline), repeat)
@@ -219,7 +206,7 @@ def bench_table(repeat, rows, folder):
     table = folder / "torque.csv"
     table.write_text("angle,torque\n" + "".join(f"{a!r},{t!r}\n" for a, t in zip(angles.tolist(), torques.tolist())))
     from_file = folder / "from_csv.toml"
-    from_file.write_text(TABLE_SCENE.format(points='points_file = "torque.csv"'))
+    from_file.write_text(TABLE_SCENE.format(title="10,000-point torque table", points='points_file = "torque.csv"'))
     try:
         med, _, _ = median_time(lambda: flyopt.load(from_file), repeat)
         same = analyse(flyopt.load(from_file)).a_max == analyse(flyopt.load(inline)).a_max
@@ -410,12 +397,7 @@ def main(argv=None):
             run()
     text = summary(rows, header)
     if not args.quick:
-        RESULTS.mkdir(exist_ok=True)
-        (RESULTS / "exact.md").write_text(text, encoding="utf-8")
-        with open(RESULTS / "exact.csv", "w", newline="", encoding="utf-8") as f:
-            writer = csv.DictWriter(f, fieldnames=["section", "case", "setting", "median_s", "note"])
-            writer.writeheader()
-            writer.writerows(rows)
+        write_results(RESULTS, "exact", text, rows, ["section", "case", "setting", "median_s", "note"])
     print(text)
     return 0
 

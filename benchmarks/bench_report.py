@@ -27,7 +27,6 @@ Usage::
 """
 
 import argparse
-import csv
 import os
 import platform
 import resource
@@ -39,7 +38,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from common import load_average, pin_one_core
+from common import load_average, pin_one_core, write_results
 
 import flyopt
 
@@ -255,12 +254,7 @@ def main(argv=None):
     )
     text = summary(rows, header, repeat, args.baseline)
     if not args.quick:
-        RESULTS.mkdir(exist_ok=True)
-        (RESULTS / "report.md").write_text(text, encoding="utf-8")
-        with open(RESULTS / "report.csv", "w", newline="", encoding="utf-8") as f:
-            writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-            writer.writeheader()
-            writer.writerows(rows)
+        write_results(RESULTS, "report", text, rows)
     print(text)
     return 0
 

@@ -28,7 +28,6 @@ Usage::
 
 import argparse
 import contextlib
-import csv
 import os
 import platform
 import statistics
@@ -40,7 +39,7 @@ from pathlib import Path
 from unittest import mock
 
 import numpy as np
-from common import load_average, pin_one_core
+from common import TABLE_SCENE, load_average, pin_one_core, write_results
 
 import flyopt
 from flyopt.io import compiled_reader, csv_table, toml_file
@@ -54,19 +53,6 @@ TARGETS = {
     ("10k rows", "points_file (CSV)"): 10e-3,
     ("10k rows", "inline points"): 10e-3,
 }
-
-SCENE = """title = "torque table"
-[machine]
-speed = "300 rpm"
-delta = 0.05
-inertia = "5 kg*m^2"
-[torque.driving]
-constant = "unknown"
-[torque.resisting]
-unit = "N*m"
-angle_unit = "deg"
-{points}
-"""
 
 
 def timed(call, repeat, warm=1):
@@ -110,11 +96,15 @@ def write_tables(folder, rows):
     torques[-1] = torques[0]
     pairs = list(zip(angles.tolist(), torques.tolist()))
     inline = folder / f"inline-{rows}.toml"
-    inline.write_text(SCENE.format(points="points = [" + ", ".join(f"[{a!r}, {t!r}]" for a, t in pairs) + "]"))
+    inline.write_text(
+        TABLE_SCENE.format(
+            title="torque table", points="points = [" + ", ".join(f"[{a!r}, {t!r}]" for a, t in pairs) + "]"
+        )
+    )
     table = folder / f"torque-{rows}.csv"
     table.write_text("angle,torque\n" + "".join(f"{a!r},{t!r}\n" for a, t in pairs))
     from_csv = folder / f"csv-{rows}.toml"
-    from_csv.write_text(SCENE.format(points=f'points_file = "{table.name}"'))
+    from_csv.write_text(TABLE_SCENE.format(title="torque table", points=f'points_file = "{table.name}"'))
     return {"points_file (CSV)": (from_csv, table.stat().st_size), "inline points": (inline, inline.stat().st_size)}
 
 
@@ -255,12 +245,7 @@ def main(argv=None):
     )
     text = summary(results, header)
     if not args.quick:
-        RESULTS.mkdir(exist_ok=True)
-        (RESULTS / "tables.md").write_text(text, encoding="utf-8")
-        with open(RESULTS / "tables.csv", "w", newline="", encoding="utf-8") as f:
-            writer = csv.DictWriter(f, fieldnames=list(results[0]))
-            writer.writeheader()
-            writer.writerows(results)
+        write_results(RESULTS, "tables", text, results)
     print(text)
     return 0
 

@@ -4,6 +4,7 @@ The scripts run as ``python benchmarks/bench_X.py``, so this folder is on their 
 it as ``common``.
 """
 
+import csv
 import os
 
 
@@ -19,3 +20,34 @@ def pin_one_core():
 def load_average(separator=" "):
     """The host's load averages over 1, 5 and 15 minutes, as text ("unknown" where the OS has none)."""
     return separator.join(f"{x:.2f}" for x in os.getloadavg()) if hasattr(os, "getloadavg") else "unknown"
+
+
+#: A scene whose resisting torque is a table (``{title}``, ``{points}``: the table's TOML lines), the one the
+#: table benchmarks (bench_tables, bench_exact) time.
+TABLE_SCENE = """title = "{title}"
+[machine]
+speed = "300 rpm"
+delta = 0.05
+inertia = "5 kg*m^2"
+[torque.driving]
+constant = "unknown"
+[torque.resisting]
+unit = "N*m"
+angle_unit = "deg"
+{points}
+"""
+
+
+def write_results(folder, name, text, rows, fields=None):
+    """Write a benchmark's ``NAME.md`` (``text``) and ``NAME.csv`` (``rows``: dicts, or sequences with ``fields``)."""
+    folder.mkdir(exist_ok=True)
+    (folder / f"{name}.md").write_text(text, encoding="utf-8")
+    with open(folder / f"{name}.csv", "w", newline="", encoding="utf-8") as f:
+        if fields is not None and rows and not isinstance(rows[0], dict):
+            writer = csv.writer(f)
+            writer.writerow(fields)
+            writer.writerows(rows)
+            return
+        dict_writer = csv.DictWriter(f, fieldnames=list(fields or rows[0]))
+        dict_writer.writeheader()
+        dict_writer.writerows(rows)
