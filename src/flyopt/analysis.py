@@ -27,7 +27,7 @@ if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
     from flyopt.sizing.periodic import PeriodicSolution
     from flyopt.sizing.textbook import TextbookRequirement
 from flyopt.machine.transmission import inertia_on_shaft
-from flyopt.names import CALCULATIONS, Model
+from flyopt.names import Model
 from flyopt.units import gd2_from_inertia
 
 #: What an analysis carries beyond the sizing, each computed only when asked for (:func:`complete`): the
@@ -356,14 +356,6 @@ def refuse_negative_work(scene: Scene, work: float, a_max: float) -> None:
     )
 
 
-def calculation_of(scene: Scene) -> str | None:
-    """The section of a scene that is one calculation rather than a cycle (:data:`flyopt.names.CALCULATIONS`), or None."""
-    for name in CALCULATIONS:
-        if getattr(scene, name) is not None:
-            return name
-    return None
-
-
 def _powers(driving: float, omega_mean: float, efficiency: float) -> tuple[float, float]:
     """(the mean driving power M_d ω_m, the motor's power M_d ω_m / η) [W] (docs/flywheel-design.md, section 11)."""
     power = driving * omega_mean
@@ -374,10 +366,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
     from flyopt.machine.reduce import reduce
     from flyopt.sizing import choose as models
 
-    if scene.operation is not None:
-        raise SceneError(
-            "operation", "is one operation, not a cycle: it has no cycle to analyse (flyopt solve answers it)"
-        )
+    delta = scene.allowed_delta  # refuses a calculation's scene, and a cycle without machine.delta, in words
     if forced is not None and forced not in models.MODELS:
         raise SceneError("--model", f"{forced!r} is not known (allowed: {', '.join(models.ORDER)})")
     machine = requirement = None
@@ -392,13 +381,13 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
             power, motor_power = _powers(driving, scene.omega_mean, scene.efficiency)
         chain = tuple(ChainPoint(index=k, angle=None, delta_e=float(e)) for k, e in enumerate(ind.chain_delta_e))
         model, reason = models.ENERGY, "net areas of a constant-inertia machine: the energy method is exact"
-        j_margin = required_inertia(ind.a_max, scene.omega_mean, scene.allowed_delta, scene.j_constant)
+        j_margin = required_inertia(ind.a_max, scene.omega_mean, delta, scene.j_constant)
         omega_mean = scene.omega_mean
-        omega_max, omega_min = speed_extremes(omega_mean, scene.allowed_delta)
+        omega_max, omega_min = speed_extremes(omega_mean, delta)
         angles = (ind.angle_omega_max, ind.angle_omega_min)
     else:
         if like is not None and like.machine is not None:
-            machine = like.machine.with_delta(scene.allowed_delta)
+            machine = like.machine.with_delta(delta)
             if like.indicator is None:
                 raise BrokenInvariant("a machine's analysis has its diagram")
             ind = like.indicator  # the torques at the frozen speed do not depend on δ
@@ -441,7 +430,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         model=model,
         model_reason=reason,
         omega_mean=omega_mean,
-        delta=scene.allowed_delta,
+        delta=delta,
         cycle_angle=scene.cycle_angle,
         j_constant=scene.j_constant,
         a_max=ind.a_max,

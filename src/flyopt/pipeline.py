@@ -13,7 +13,7 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal
 
 from flyopt.analysis import EXTRAS as ANALYSIS_EXTRAS
-from flyopt.analysis import Analysis, NotComputed, analyse, calculation_of, complete
+from flyopt.analysis import Analysis, NotComputed, analyse, complete
 from flyopt.cycle.indicator import speed_extremes
 from flyopt.errors import BrokenInvariant
 
@@ -391,14 +391,12 @@ def solve(
     unknown = [name for name in extras if name not in COMPLETE]
     if unknown:
         raise ValueError(f"unknown extras {unknown} (known: {', '.join(COMPLETE)})")
-    if scene.operation is not None or scene.position is not None:
+    if scene.calculation is not None:
         from flyopt.errors import SceneError
 
-        what, answer = (
-            ("operation", "solve_operation") if scene.operation is not None else ("position", "solve_position")
-        )
         raise SceneError(
-            what, f"is one {what}, not a cycle: {answer}(scene) answers it (as flyopt solve does)"
+            scene.calculation,
+            "is one calculation, not a cycle: solve_calculation(scene) answers it (as flyopt solve does)",
         ).with_source(scene.source)
     if scene.flywheel is not None:
         analysis, checked_wheel = check_flywheel(scene, model)
@@ -417,7 +415,7 @@ def solve(
 def solve_calculation(scene: Scene) -> OperationResult | CrankForces | ReducedDrive:
     """The answer of a scene that is one calculation rather than a cycle: an [operation] (:func:`solve_operation`),
     a [position] (:func:`solve_position`) or an [electric_drive] (flyopt.machine.electric_drive.reduce_drive)."""
-    what = calculation_of(scene)
+    what = scene.calculation
     if what == "operation":
         return solve_operation(scene)
     if what == "position":

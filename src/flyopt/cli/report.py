@@ -157,9 +157,7 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
 
     data = read_toml(path)
     scene = load(path, data)
-    from flyopt.analysis import calculation_of
-
-    what = calculation_of(scene)
+    what = scene.calculation
     if what is not None:
         from flyopt.errors import SceneError
 

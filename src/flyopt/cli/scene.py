@@ -66,12 +66,11 @@ def add_solve_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run_solve(args: argparse.Namespace) -> int:
     """``flyopt solve``: 0 a design or none needed, 3 infeasible, 4 verification flagged."""
-    from flyopt.analysis import calculation_of
     from flyopt.io.scene import load
     from flyopt.pipeline import solve
 
     scene = load(args.scene)
-    what = calculation_of(scene)
+    what = scene.calculation
     if what is not None:
         return _run_calculation(what, scene, args)
     solution = solve(
@@ -130,16 +129,16 @@ def add_check_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run_check(args: argparse.Namespace) -> int:
     """``flyopt check``: 0 when the scene reads, its cycle closes and its ``[sweep]`` table would run."""
-    from flyopt.analysis import analyse, calculation_of
+    from flyopt.analysis import analyse
     from flyopt.io.scene import load
     from flyopt.io.toml_file import read_toml
 
     data = read_toml(args.scene)
     scene = load(args.scene, data)
-    if calculation_of(scene) is not None or scene.flywheel is not None:
+    if scene.calculation is not None or scene.flywheel is not None:
         from flyopt.pipeline import check_flywheel, solve_calculation  # no cycle, or no design
 
-        if calculation_of(scene) is not None:
+        if scene.calculation is not None:
             solve_calculation(scene)
         else:
             check_flywheel(scene)

@@ -132,8 +132,18 @@ class Scene:
     source: str | None = field(default=None, compare=False)
 
     @property
+    def calculation(self) -> str | None:
+        """The section that makes this scene one calculation rather than a cycle (:data:`flyopt.names.CALCULATIONS`:
+        "operation", "position" or "electric_drive"), or None for a cycle."""
+        return next((name for name in CALCULATIONS if getattr(self, name) is not None), None)
+
+    @property
     def allowed_delta(self) -> float:
         """machine.delta, where a computation needs it (a scene with a [flywheel] may leave it out)."""
+        if self.calculation is not None:
+            raise SceneError(
+                self.calculation, "is one calculation, not a cycle: flyopt solve (and check) answer it, nothing else"
+            ).with_source(self.source)
         if self.delta is None:
             raise SceneError(
                 "machine.delta", "is needed here (only the analysis of a [flywheel] that exists can do without it)"

@@ -1,0 +1,48 @@
+"""A scene that is one calculation ([operation], [position], [electric_drive]) has no cycle: every command but
+``solve`` and ``check`` refuses it in one line naming its section, exit 2 (a plot of an [electric_drive] once
+failed with a traceback)."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+TEXTBOOK = Path(__file__).resolve().parents[1] / "problems" / "textbook"
+SCENES = {
+    "operation": "khurmi-16-21.toml",
+    "position": "khurmi-15-crank-forces.toml",
+    "electric_drive": "seed-004-lathe-drive.toml",
+}
+
+
+@pytest.mark.parametrize("section", sorted(SCENES))
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["plot", "--what", "speed", "-o", "{out}.png"],
+        ["sweep", "--vary", "speed=100:200:2", "-o", "{out}.csv"],
+        ["report", "-o", "{out}.html"],
+    ],
+)
+def test_every_other_command_refuses_a_calculation_in_one_line(section, command, tmp_path):
+    out = tmp_path / "out"
+    args = [a.format(out=out) for a in command]
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", args[0], str(TEXTBOOK / SCENES[section]), *args[1:]],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 2, run.stderr
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and f"{section}: is one calculation" in lines[0] and "Traceback" not in run.stderr
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("section", sorted(SCENES))
+def test_solve_and_check_answer_it(section):
+    for verb in ("solve", "check"):
+        run = subprocess.run(
+            [sys.executable, "-m", "flyopt", verb, str(TEXTBOOK / SCENES[section])], capture_output=True, text=True
+        )
+        assert run.returncode == 0, run.stderr
