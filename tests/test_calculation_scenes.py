@@ -46,3 +46,18 @@ def test_solve_and_check_answer_it(section):
             [sys.executable, "-m", "flyopt", verb, str(TEXTBOOK / SCENES[section])], capture_output=True, text=True
         )
         assert run.returncode == 0, run.stderr
+
+
+@pytest.mark.parametrize("section", sorted(SCENES))
+def test_a_calculation_that_needs_the_speed_refuses_a_scene_without_it(section, tmp_path):
+    """machine.speed may be left out of a calculation's scene only where the calculation needs no speed."""
+    text = (TEXTBOOK / SCENES[section]).read_text(encoding="utf-8")
+    lines = [line for line in text.splitlines() if not line.startswith("speed =")]
+    assert len(lines) == len(text.splitlines()) - 1  # the scene gave exactly one machine.speed
+    scene = tmp_path / "no-speed.toml"
+    scene.write_text("\n".join(lines), encoding="utf-8")
+    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    assert run.returncode == 2, run.stderr
+    assert run.stderr.strip().splitlines() == [
+        f"flyopt: error: {scene}: machine.speed: is missing (the [{section}] calculation needs it)"
+    ]

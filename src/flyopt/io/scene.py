@@ -62,7 +62,8 @@ class Scene:
     ----------
     title : str
     omega_mean : float
-        Mean speed ω_m of the reference shaft [rad/s].
+        Mean speed ω_m of the reference shaft [rad/s]; NaN only in a
+        calculation that needs no speed (machine.speed left out).
     delta : float
         Allowed coefficient of speed fluctuation δ [-].
     j_constant : float
@@ -246,15 +247,14 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             "electric_drive",
         },
     )  # [sweep] is read by flyopt.studies.sweep.load_sweep
-    machine = Table(
-        top.require("machine"), "machine", {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"}
-    )
-    omega = machine.quantity("speed", "angular_speed", required=True)
-    if omega <= 0:
-        raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
-    check_magnitude(omega, "machine.speed", machine.raw("speed"), *SPEED_RANGE, "rad/s", SPEED_WHY)
-    existing = top.has("flywheel")
     once = any(top.has(k) for k in CALCULATIONS)  # one calculation, not a cycle: no δ to hold
+    machine = Table(
+        top.get("machine", {}) if once else top.require("machine"),
+        "machine",
+        {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"},
+    )
+    omega = _mean_speed(machine, required=not once)
+    existing = top.has("flywheel")
     delta = machine.quantity("delta", "dimensionless", required=not (existing or once))
     if delta is not None:
         _check_delta(delta, machine)
@@ -292,6 +292,9 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     if engine is not None:
         members = with_engine(engine, mechanism, members)
     member_loads = any(m.force is not None or m.torque is not None for m in members)
+    for needs_speed in ("operation", "position", "electric_drive"):
+        if top.has(needs_speed) and math.isnan(omega):
+            raise SceneError("machine.speed", f"is missing (the [{needs_speed}] calculation needs it)")
     operation = _operation(top) if top.has("operation") else None
     position = _position(top) if top.has("position") else None
     electric = _electric_drive(top, omega) if top.has("electric_drive") else None
@@ -377,6 +380,22 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         electric_drive=electric,
         source=source,
     )
+
+
+def _mean_speed(machine: Table, required: bool) -> float:
+    """machine.speed [rad/s]: positive and within :data:`SPEED_RANGE`.
+
+    Only a calculation that needs no speed (``required`` False) may leave it
+    out; its scene's ``omega_mean`` is then NaN, which no calculation reads
+    and every cycle computation refuses first (:attr:`Scene.calculation`).
+    """
+    omega = machine.quantity("speed", "angular_speed", required=required)
+    if omega is None:
+        return math.nan
+    if omega <= 0:
+        raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
+    check_magnitude(omega, "machine.speed", machine.raw("speed"), *SPEED_RANGE, "rad/s", SPEED_WHY)
+    return omega
 
 
 def _electric_drive(top: Table, omega: float) -> ElectricDrive:
