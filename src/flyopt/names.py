@@ -99,6 +99,7 @@ class Criterion(Name):
 
     RIM_SPEED = "rim_speed"
     STRESS = "stress"
+    MEAN_RIM_SPEED = "mean_rim_speed"
 
 
 class Method(Name):

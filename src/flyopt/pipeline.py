@@ -221,6 +221,7 @@ def design_scene(
         solver_options=solver_options,
         method=method,
         torque=torque,
+        omega_mean=analysis.omega_mean,
     )
     return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
 
@@ -270,6 +271,7 @@ def _with_delta_sensitivity(
                 solver_options=solver_options,
                 method=method,
                 torque=torque,
+                omega_mean=moved.omega_mean,
             )
         except (ValueError, RuntimeError):
             return result

@@ -36,6 +36,8 @@ class Combination:
     torque: float = 0.0  # peak torque on this shaft [N*m], 0: unknown
     n_arms: int = 0  # a rim_arms wheel's arm count
     v_max: float = math.nan  # the material's safe rim speed [m/s] (nan: none, under the stress criterion)
+    d_mean: float | None = None  # pinned mean diameter [m]: the spec's, or the courses' rim convention's
+    cap_mean: float = math.inf  # the courses' cap on D_m: 2 v_max / omega'_mean [m] (criterion mean_rim_speed)
 
     @property
     def label(self) -> str:

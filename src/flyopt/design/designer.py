@@ -79,7 +79,13 @@ def _explain_infeasible(combo, spec):
             text += f" on this shaft ({_g(combo.j_reference)} kg·m² at the reference shaft)"
         return text
 
-    pinned = spec.d_mean
+    pinned = combo.d_mean
+    if pinned is not None and pinned > combo.cap_mean:
+        cap, pin = _g_apart(combo.cap_mean, pinned)
+        return (
+            f"{combo.label}: the pinned mean diameter {pin} m turns faster at the mean speed than the "
+            f"{_g(combo.v_max)} m/s rim limit allows (mean_rim_speed: D_m <= {cap} m)"
+        ), None
     if pinned is not None and geo != Geometry.DISC and pinned >= combo.cap:
         cap, pin = _g_apart(combo.cap, pinned)
         return (
@@ -134,7 +140,7 @@ def _solve_closed_form(pending, spec):
         start = time.perf_counter()
         rho = combo.material.density
         d_mean, h, b = closed_form.lightest_one(
-            geometry_name, combo.j_shaft, rho, combo.cap, hb_min, hb_max, b_max, spec.d_mean
+            geometry_name, combo.j_shaft, rho, combo.cap, hb_min, hb_max, b_max, combo.d_mean
         )
         if disc:
             mass = geometry.disc_mass(2 * d_mean, b, rho)
@@ -186,6 +192,8 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
             hb_max,
         )
     )
+    if combo.d_mean is not None and combo.d_mean == combo.cap_mean:
+        binding = (*binding, "mean_rim_speed")  # the courses' convention put D_m where v_max is reached
     cost = mass * m.cost if m.cost is not None else None
     shaft = combo.shaft
     dims = wheel.Dims(d_outer=d_outer, h=d_outer / 2.0 if geometry_name == Geometry.DISC else h, b=b)
@@ -231,7 +239,7 @@ def rim_speed_limit(material: Material, spec: DesignSpec) -> float:
     Under the stress criterion, which needs no rim speed limit, a material given by strengths with no
     factor from either gives NaN instead of refusing.
     """
-    if spec.criterion != Criterion.RIM_SPEED:
+    if spec.criterion == Criterion.STRESS:
         try:
             return material.rim_speed_limit(safety_factor=spec.safety_factor)
         except ValueError:
@@ -481,6 +489,7 @@ def design_flywheel(
     solver_options: Mapping | None = None,
     method: str = "auto",
     torque: float | None = None,
+    omega_mean: float | None = None,
 ) -> DesignResult:
     """Design the flywheel: the best material, shaft and dimensions.
 
@@ -511,6 +520,10 @@ def design_flywheel(
         on a shaft of speed ratio r it is torque / r. It bends the arms and
         loads the key; None when unknown (net areas): then the arms are
         checked for their centrifugal load only and the key is not checked.
+    omega_mean : float or None
+        The mean speed of the reference shaft [rad/s], at most ``omega``: the
+        speed at which the courses' rim convention (criterion
+        ``mean_rim_speed``) sizes the rim, which needs it; unused otherwise.
     method : {"auto", "ipopt", "closed_form"}
         How a feasible combination is optimized: the exact closed form of
         :mod:`flyopt.design.closed_form` where it covers the structure (mass and cost
@@ -550,7 +563,7 @@ def design_flywheel(
         return _not_needed(j_required, omega, spec)
     model = _textbook_model(spec, solver_options) if not closed and any(textbook) else None
     decided = _Decided()
-    for order, combo, plain in _combinations(j_required, omega, torque, shafts, textbook, materials, spec):
+    for order, combo, plain in _combinations(j_required, omega, omega_mean, torque, shafts, textbook, materials, spec):
         if plain:
             _decide_textbook(order, combo, spec, closed, model, decided)
         else:
@@ -564,7 +577,7 @@ def design_flywheel(
         )
     ranked, infeasible, best = _rank(decided)
     description = _describe_model(spec, wheel_model if wheel_model is not None else model)
-    return _result(j_required, omega, spec, ranked, best, infeasible, decided, description)
+    return _result(j_required, omega, spec, ranked, best, infeasible, decided, description, omega_mean)
 
 
 def _check_arguments(
@@ -603,7 +616,7 @@ def _closed_form_covers(spec: DesignSpec, method: str, textbook: Sequence[bool])
     """
     closed = False
     if method != Method.IPOPT and all(textbook):
-        closed = closed_form.covers(spec.geometry, spec.objective, spec.d_mean is not None)
+        closed = closed_form.covers(spec.geometry, spec.objective, spec.pins_d_mean)
         if method == Method.CLOSED_FORM and not closed:
             raise ValueError(
                 f"the closed form does not cover geometry {spec.geometry!r} with objective "
@@ -633,7 +646,7 @@ def _textbook_model(spec: DesignSpec, solver_options: Mapping | None) -> Any:
 
     structure = nlp.ModelStructure(
         geometry=spec.geometry,
-        pinned=spec.d_mean is not None,
+        pinned=spec.pins_d_mean,
         collapsed=spec.geometry != Geometry.DISC and spec.hb_ratio[0] == spec.hb_ratio[1],
         objective="outer_diameter" if spec.objective == Objective.OUTER_DIAMETER else "mass",
     )
@@ -643,6 +656,7 @@ def _textbook_model(spec: DesignSpec, solver_options: Mapping | None) -> Any:
 def _combinations(
     j_required: float,
     omega: float,
+    omega_mean: float | None,
     torque: float | None,
     shafts: Sequence[MountShaft],
     textbook: Sequence[bool],
@@ -654,9 +668,20 @@ def _combinations(
     Each carries its shaft's speed, the inertia required on that shaft (J_F / r^2), the material's safe
     rim speed and the outer-diameter cap it sets (with the envelope), the bore and the peak torque on
     that shaft (torque / r). A generator, so that each combination is decided before the next is built.
+
+    Under the courses' rim convention (criterion mean_rim_speed) the rim supplies ``spec.rim_share`` of
+    J_F, nothing caps its outer diameter but the envelope, and its mean diameter is pinned where the rim
+    reaches v_max at the shaft's mean speed, D_m = 2 v_max / omega'_mean (or at a given d_mean that is
+    no larger).
     """
     envelope = spec.max_outer_diameter
     by_speed = spec.criterion == Criterion.RIM_SPEED
+    book = spec.by_mean_rim_speed
+    if book and (omega_mean is None or not 0.0 < omega_mean <= omega):
+        raise ValueError(
+            f"criterion 'mean_rim_speed' needs the mean speed omega_mean in (0, omega], got {omega_mean!r}"
+        )
+    j_required *= spec.rim_share
     # what depends on the shaft alone, once per shaft (not once per material and shaft)
     per_shaft = [
         (
@@ -674,6 +699,11 @@ def _combinations(
         v_max = rim_speed_limit(material, spec)
         for shaft, plain, shaft_omega, j_shaft, bore, shaft_torque in per_shaft:
             cap_speed = geometry.outer_diameter_for_rim_speed(v_max, shaft_omega) if by_speed else math.inf
+            cap_mean = (
+                geometry.outer_diameter_for_rim_speed(v_max, cast(float, omega_mean) * shaft.speed_ratio)
+                if book
+                else math.inf
+            )
             combo = Combination(
                 material=material,
                 shaft=shaft,
@@ -685,6 +715,8 @@ def _combinations(
                 bore=bore,
                 torque=shaft_torque,
                 v_max=v_max,
+                d_mean=(cap_mean if spec.d_mean is None else spec.d_mean) if book else spec.d_mean,
+                cap_mean=cap_mean,
             )
             yield order, combo, plain
             order += 1
@@ -712,11 +744,12 @@ def _decide_textbook(
     for the closed form. Otherwise it is infeasible, with the reason in numbers.
     """
     material = combo.material
+    pin = combo.d_mean
     combo.j_max = closed_form.max_inertia_one(
-        spec.geometry, material.density, combo.cap, spec.hb_ratio, spec.max_width, spec.d_mean
+        spec.geometry, material.density, combo.cap, spec.hb_ratio, spec.max_width, pin
     )[0]
-    pinned_fits = spec.d_mean is None or (
-        spec.d_mean <= combo.cap if spec.geometry == Geometry.DISC else spec.d_mean < combo.cap
+    pinned_fits = pin is None or (
+        (pin <= combo.cap if spec.geometry == Geometry.DISC else pin < combo.cap) and pin <= combo.cap_mean
     )
     if pinned_fits and combo.j_shaft <= combo.j_max:
         if closed:
@@ -780,7 +813,7 @@ def _describe_model(spec: DesignSpec, model: Any) -> dict[str, Any]:
             "inertia_model": geometry.GEOMETRIES[spec.geometry],
             "variables": [],
             "constraints": [],
-            "pinned": ["d_mean"] if spec.d_mean is not None else [],
+            "pinned": ["d_mean"] if spec.pins_d_mean else [],
             "formulation": (
                 "exact closed form (flyopt.design.closed_form): outer diameter at its cap, "
                 "a 1-D monotone root for the rim; verified against every constraint"
@@ -792,8 +825,10 @@ def _describe_model(spec: DesignSpec, model: Any) -> dict[str, Any]:
         bounds.append("max_width: B <= max_width")
     if spec.geometry == Geometry.DISC and spec.d_mean is None:
         bounds.append("outer_diameter: D <= min(2 v_max/omega', max_outer_diameter)")
-    if spec.geometry != Geometry.DISC and spec.d_mean is not None:
+    if spec.geometry != Geometry.DISC and spec.pins_d_mean:
         bounds.append("outer_diameter and inner_diameter: H <= min(cap - D_m, D_m)")
+    if spec.by_mean_rim_speed:
+        bounds.append("mean_rim_speed: D_m = 2 v_max / omega'_mean (or a given D_m at most that)")
     description["bounds"] = bounds
     limits = spec.to_dict()
     description["limits"] = {name: limits[name] for name in ("max_outer_diameter", "max_width", "hb_ratio", "d_mean")}
@@ -809,6 +844,7 @@ def _result(
     infeasible: Sequence[Candidate],
     decided: _Decided,
     description: dict[str, Any],
+    omega_mean: float | None = None,
 ) -> DesignResult:
     """The DesignResult: "designed" with the best candidate, or "infeasible" with every reason."""
     if best is None:
@@ -833,4 +869,5 @@ def _result(
         best=best,
         candidates=ranked,
         model=description,
+        omega_mean=omega_mean,
     )

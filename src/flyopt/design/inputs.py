@@ -83,3 +83,31 @@ def _check_own_materials(scene: Scene, materials: tuple[Material, ...], spec: De
                 "(e.g. 0.26 for grey cast iron, 0.3 for steel)",
                 scene.source,
             )
+
+
+def one_rim_at_a_time(spec: DesignSpec, what: str, source: str | None = None) -> None:
+    """Refuse the courses' rim convention where ``what`` designs by flyopt's own criteria only.
+
+    Criterion ``mean_rim_speed`` and a ``rim_share`` below 1 size one bare
+    rim through :func:`flyopt.design.design_flywheel` (``flyopt solve``,
+    ``report``, ``tradeoff``); sweeps, Pareto fronts and the drive's
+    co-design size their wheels by other paths, which know only
+    ``rim_speed`` and ``stress`` and the whole J_F.
+
+    Raises
+    ------
+    SceneError
+        Naming the field and what ``what`` allows (and ``source``, the scene's file, when given).
+    """
+    from flyopt.errors import SceneError
+
+    if spec.by_mean_rim_speed:
+        raise SceneError(
+            "design.criterion",
+            f"'mean_rim_speed' (the courses' convention) sizes one rim at a time; {what} uses 'rim_speed' or 'stress'",
+        ).with_source(source)
+    if spec.rim_share < 1.0:
+        raise SceneError(
+            "design.rim_share",
+            f"is the courses' share of one rim (solve, report, tradeoff); {what} designs the whole flywheel: leave it out",
+        ).with_source(source)

@@ -290,7 +290,7 @@ def _scales(combo, spec):
     diameter L that gives J'.
     """
     rho, j = combo.material.density, combo.j_shaft
-    length = combo.cap if spec.d_mean is None else spec.d_mean
+    length = combo.cap if combo.d_mean is None else combo.d_mean
     if spec.geometry == Geometry.DISC:
         b_s = 32.0 * j / (math.pi * rho * length**4)
         return length, None, b_s
@@ -336,9 +336,9 @@ def solve_combination(
         if spec.max_width < math.inf:
             ubx[col[width_col]] = math.log(spec.max_width / b_s)
         if s.pinned:
-            if spec.d_mean is None:
-                raise BrokenInvariant("a pinned structure is one with spec.d_mean")
-            room = min(combo.cap - spec.d_mean, spec.d_mean)
+            if combo.d_mean is None:
+                raise BrokenInvariant("a pinned structure is one whose combinations pin d_mean")
+            room = min(combo.cap - combo.d_mean, combo.d_mean)
             ubx[col["h"]] = min(ubx[col["h"]], math.log(room / h_s))
         lbg, ubg = [0.0], [inf]
         if not s.pinned:

@@ -28,6 +28,7 @@ __all__ = [
     "Stresses",
     "Limits",
     "Provenance",
+    "BookRim",
     "DesignResult",
     "CANDIDATE_FIELDS",
     "DESIGN_FIELDS",
@@ -415,6 +416,47 @@ DESIGN_FIELDS = tuple(name for name in CANDIDATE_FIELDS if name not in SEARCH_FI
 
 
 @dataclass(frozen=True)
+class BookRim:
+    """A rim sized by the courses' convention (criterion mean_rim_speed), and what it really sees.
+
+    The book puts the rim's safe speed at the MEAN diameter and the MEAN
+    speed; the rim's largest stress comes at the top speed ω_max, at its
+    outer diameter by the thin-ring estimate and at its bore by Lamé
+    (docs/flywheel-design.md, section 13).
+
+    Attributes
+    ----------
+    rim_share : float
+        Share of J_F the rim gives (the arms and hub, not designed, the rest) [-].
+    mean_rim_speed : float
+        ω_m' D_m / 2, the speed the book checks [m/s].
+    book_stress : float
+        ρ v_m², the stress the book checks [Pa].
+    outer_rim_speed, outer_hoop_stress : float
+        ω_max' D_o / 2 [m/s] and the thin ring's ρ v_o² [Pa].
+    largest_stress, largest_at : float or None
+        The rim's governing stress at ω_max (Lamé; the stress check's) [Pa] and its radius [m].
+    allowable : float or None
+        The allowable stress [Pa].
+    """
+
+    rim_share: float
+    mean_rim_speed: float
+    book_stress: float
+    outer_rim_speed: float
+    outer_hoop_stress: float
+    largest_stress: float | None
+    largest_at: float | None
+    allowable: float | None
+
+    def excess(self, stress: float | None) -> float | None:
+        """How far ``stress`` exceeds the allowable, as a fraction (0.2: 20 % over; negative: within)."""
+        if stress is None or not self.allowable:
+            return None
+        return stress / self.allowable - 1.0
+
+
+@dataclass(frozen=True)
 class DesignResult:
     """Outcome of :func:`flyopt.design.designer.design_flywheel`.
 
@@ -433,6 +475,9 @@ class DesignResult:
         objective (best first), then the infeasible ones in input order.
     model : dict or None
         Which geometry, variables and constraints the NLP holds.
+    omega_mean : float or None
+        Mean speed of the reference shaft [rad/s], where the design was
+        given it (the courses' rim convention sizes the rim there).
     """
 
     status: str
@@ -443,6 +488,27 @@ class DesignResult:
     best: Design | None = None
     candidates: tuple[Candidate, ...] = ()
     model: dict[str, Any] | None = None
+    omega_mean: float | None = None
+
+    def book_rim(self) -> BookRim | None:
+        """What the courses' rim (criterion mean_rim_speed) really sees, beside what the book checks; None for
+        any other criterion or without a design."""
+        best = self.best
+        if not self.spec.by_mean_rim_speed or best is None or self.omega_mean is None:
+            return None
+        v_mean = self.omega_mean * best.speed_ratio * best.dims.d_mean / 2.0
+        v_outer, hoop_outer = best.stresses.rim_speed, best.stresses.hoop_stress
+        governing = best.stresses.stress or {}
+        return BookRim(
+            rim_share=self.spec.rim_share,
+            mean_rim_speed=v_mean,
+            book_stress=hoop_outer * (v_mean / v_outer) ** 2,  # ρ v_m²: the same ρ as ρ v_o²
+            outer_rim_speed=v_outer,
+            outer_hoop_stress=hoop_outer,
+            largest_stress=max((part["stress"] for part in governing.get("parts", ())), default=None),
+            largest_at=(governing.get("where") or {}).get("radius"),
+            allowable=best.stresses.allowable_stress,
+        )
 
     def to_dict(self, timings: bool = False) -> dict[str, Any]:
         """JSON-ready plain Python (wall-clock times only with ``timings``).

@@ -36,7 +36,13 @@ CRITERIA = {
     Criterion.STRESS: "the governing stress of every part at omega_max stays below the allowable stress (von Mises "
     "against yield for ductile materials, largest principal stress against tensile strength for "
     "brittle ones)",
+    Criterion.MEAN_RIM_SPEED: "the courses' convention, for a bare rim only: the peripheral speed at the MEAN "
+    "diameter and the MEAN speed is the material's safe rim speed (sigma = rho v^2), which sets D_m; less safe "
+    "than rim_speed (the report shows the real stress at the outer diameter and omega_max)",
 }
+
+#: The geometries the courses' rim convention (criterion mean_rim_speed) sizes: a rim without web or arms.
+BOOK_RIM_GEOMETRIES = (Geometry.RIM, Geometry.THIN_RIM)
 
 #: Arm counts a rim_arms wheel considers unless the scene says (the machine-design texts' range).
 DEFAULT_ARMS = (4, 6, 8)
@@ -107,6 +113,10 @@ class DesignSpec:
         default. Bounds every section of a whole wheel and of any wheel under
         the stress criterion (the textbook rim-speed design of a bare wheel
         is left as the textbook makes it).
+    rim_share : float
+        Share of the required inertia the rim supplies, in (0, 1]: the
+        courses often let the rim give 90-95 % and leave the rest to the arms
+        and hub, which are then not designed (default 1: the whole of it).
     prune : bool
         Whether a whole-wheel combination whose objective bound
         (:func:`flyopt.design.wheel_design.objective_bound`) already exceeds
@@ -133,6 +143,7 @@ class DesignSpec:
     bore: float | None = None
     arms: tuple[int, ...] = DEFAULT_ARMS
     min_wall: float | None = None
+    rim_share: float = 1.0
     prune: bool = True
 
     def textbook(self, bore: float | None = None) -> bool:
@@ -141,9 +152,20 @@ class DesignSpec:
         (:mod:`flyopt.design.wheel`). ``bore`` [m] is the combination's (a disc with a bore is an annulus)."""
         return (
             self.geometry in geometry.BARE
-            and self.criterion == Criterion.RIM_SPEED
+            and self.criterion in (Criterion.RIM_SPEED, Criterion.MEAN_RIM_SPEED)
             and not (self.geometry == Geometry.DISC and bore)
         )
+
+    @property
+    def by_mean_rim_speed(self) -> bool:
+        """Whether the courses' convention sizes the rim: D_m where the rim reaches v_max at the mean speed."""
+        return self.criterion == Criterion.MEAN_RIM_SPEED
+
+    @property
+    def pins_d_mean(self) -> bool:
+        """Whether every combination's mean diameter is pinned: given (d_mean), or set by the courses' rim
+        convention (each combination's own, :attr:`flyopt.design.combination.Combination.d_mean`)."""
+        return self.d_mean is not None or self.by_mean_rim_speed
 
     @property
     def has_envelope(self) -> bool:
@@ -164,6 +186,7 @@ class DesignSpec:
             "bore": self.bore,
             "arms": list(self.arms),
             "min_wall": self.min_wall,
+            "rim_share": self.rim_share,
             "prune": self.prune,
         }
 
@@ -214,6 +237,22 @@ class DesignSpec:
             raise ValueError(f"prune must be true or false, got {self.prune!r}")
         if self.min_wall is not None:
             object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
+        share = finite(self.rim_share, "rim_share [-]")
+        if not 0.0 < share <= 1.0:
+            raise ValueError(
+                f"rim_share [-] must lie in (0, 1] (the share of the inertia the rim gives), got {share!r}"
+            )
+        object.__setattr__(self, "rim_share", share)
+        if self.by_mean_rim_speed and self.geometry not in BOOK_RIM_GEOMETRIES:
+            raise ValueError(
+                f"criterion 'mean_rim_speed' sizes a bare rim (geometry {' or '.join(map(repr, BOOK_RIM_GEOMETRIES))}), "
+                f"not a {self.geometry!r}: use 'rim_speed' or 'stress'"
+            )
+        if share < 1.0 and self.geometry not in BOOK_RIM_GEOMETRIES:
+            raise ValueError(
+                f"rim_share is the share of a bare rim (geometry 'rim' or 'thin_rim'), not of a {self.geometry!r}, "
+                "whose own web or arms and hub flyopt designs"
+            )
         if self.objective == Objective.OUTER_DIAMETER and self.geometry == Geometry.DISC and self.max_width == math.inf:
             raise ValueError(
                 "objective 'outer_diameter' with geometry 'disc' needs "

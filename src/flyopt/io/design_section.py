@@ -47,6 +47,7 @@ def read_design(
             "bore",
             "arms",
             "min_wall",
+            "rim_share",
             "prune",
         },
     )
@@ -99,6 +100,15 @@ def read_design(
                 f"over it), got {shorten(table.raw('safety_factor'))}",
             )
         options["safety_factor"] = value
+    if table.has("rim_share"):
+        share = table.quantity("rim_share", "dimensionless", required=True)
+        if not 0 < share <= 1:
+            raise SceneError(
+                "design.rim_share",
+                f'must lie in (0, 1] (the share of the inertia the rim gives, e.g. 0.9 or "95 %"), '
+                f"got {shorten(table.raw('rim_share'))}",
+            )
+        options["rim_share"] = share
     if table.has("arms"):
         arms = table.get("arms")
         arms = arms if isinstance(arms, list) else [arms]

@@ -22,7 +22,7 @@ from flyopt.report.display import DEFAULT, dimension_of, field_number, field_tex
 
 if TYPE_CHECKING:
     from flyopt.analysis import Analysis
-    from flyopt.design.result import Candidate, DesignResult
+    from flyopt.design.result import BookRim, Candidate, DesignResult
     from flyopt.design.spec import DesignSpec
     from flyopt.machine.crank_forces import CrankForces
     from flyopt.machine.electric_drive import ReducedDrive
@@ -274,6 +274,36 @@ def solver_words(candidate: Candidate) -> str:
     return f"IPOPT ({candidate.provenance.solver_status}, {candidate.provenance.iterations} iterations), checked against every constraint"
 
 
+def book_rim_report(book: BookRim, units: str = DEFAULT) -> list[str]:
+    """The lines that put the courses' rim (criterion mean_rim_speed) beside what it really sees at ω_max."""
+    q, _ = formatters(units)
+
+    def over(stress: float | None) -> str:
+        excess = book.excess(stress)
+        if excess is None:
+            return ""
+        return f": {abs(excess):.1%} {'OVER' if excess > 1e-9 else 'within'} the allowable"
+
+    lines = [
+        "  criterion mean_rim_speed (the courses' convention): the rim's speed at the MEAN diameter and the "
+        f"MEAN speed, {q(book.mean_rim_speed, 'rim_speed')}, gives ρv² {q(book.book_stress, 'hoop_stress')}"
+        + (f" = the allowable {q(book.allowable, 'hoop_stress')}" if book.allowable else ""),
+        f"  what the rim really sees at ω_max: {q(book.outer_rim_speed, 'rim_speed')} at the OUTER diameter, "
+        f"ρv² {q(book.outer_hoop_stress, 'hoop_stress')}{over(book.outer_hoop_stress)}",
+    ]
+    if book.largest_stress is not None and book.largest_at is not None:
+        lines.append(
+            f"  and by Lamé {q(book.largest_stress, 'hoop_stress')} at r = {q(book.largest_at, 'radius')}"
+            f"{over(book.largest_stress)} (flyopt's rim_speed or stress criterion keeps within it)"
+        )
+    if book.rim_share < 1.0:
+        lines.append(
+            f"  the rim gives {book.rim_share:.4g} of the required inertia (design.rim_share); the arms and hub, "
+            "not designed here, must give the rest"
+        )
+    return lines
+
+
 def design_report(result: DesignResult, spec: DesignSpec | None = None, units: str = DEFAULT) -> list[str]:
     """The design part of the ``flyopt solve`` report: the winner and the ranking of every combination.
 
@@ -309,7 +339,10 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
         ]
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {visible(v)}" for k, v in facts]
-        if not result.spec.has_envelope:
+        book = result.book_rim()
+        if book is not None:
+            lines += book_rim_report(book, units)
+        elif not result.spec.has_envelope:
             lines.append(
                 "  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
                 "bounds the diameter"

@@ -108,6 +108,7 @@ def material_tradeoff(
             spec,
             solver_options=solver_options,
             method=method,
+            omega_mean=analysis.omega_mean,
         )
         row["status"] = result.status
         best = result.best
