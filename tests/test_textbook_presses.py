@@ -124,8 +124,10 @@ def test_khurmi_16_20_punching_time_from_the_punch_stroke():
     assert round(solution.analysis.power / 1e3, 3) == 2.674
     a_max = energy * (1 - 0.032 / (2 * 0.100))  # punching t/(2 s) of the period
     assert solution.analysis.a_max == pytest.approx(a_max, rel=1e-12)
-    speed = 25.0 * (1.615421 / (2 * 25.0 / (10 * math.pi / 1.015)))  # the rim's mean speed, as the scene's D_m gives it
-    assert solution.design.best.mass == pytest.approx(a_max / (speed**2 * 0.03), rel=1e-9)
+    # design.rim_speed = 25 m/s pins D_m = 2 v / ω_m, so the thin rim's m = J ω_m² / v² = A_max / (v² δ): the book's
+    best = solution.design.best
+    assert best.mass == pytest.approx(a_max / (25.0**2 * 0.03), rel=1e-9)
+    assert best.dims.d_mean * solution.analysis.omega_mean * best.speed_ratio / 2 == pytest.approx(25.0, rel=1e-12)
     assert round(a_max / (25.0**2 * 0.03)) == 1198
 
 
@@ -150,3 +152,47 @@ def test_a_punch_too_small_or_too_large_is_refused_in_words(punching, field):
     with pytest.raises(SceneError) as err:
         from_dict({"press": {**PRESS, "punching": punching}})
     assert err.value.field == field and "out of range" in str(err.value)
+
+
+_SCENE = {"machine": {"speed": "120 rpm", "delta": 0.05}, "torque": {"net": {"areas": ["10 kJ", "-10 kJ"]}}}
+
+
+@pytest.mark.parametrize(
+    ("design", "field", "words"),
+    [
+        ({"geometry": "rim", "radius_of_gyration": "0.5 m"}, "design.radius_of_gyration", 'geometry = "thin_rim"'),
+        ({"radius_of_gyration": "0.5 m"}, "design.radius_of_gyration", 'geometry = "thin_rim"'),
+        (
+            {"geometry": "thin_rim", "radius_of_gyration": "0.5 m", "d_mean": "1 m"},
+            "design.radius_of_gyration",
+            "give one of them",
+        ),
+        ({"geometry": "thin_rim", "radius_of_gyration": "-1 m"}, "design.radius_of_gyration", "positive"),
+        ({"geometry": "thin_rim", "rim_speed": "0 m/s"}, "design.rim_speed", "positive"),
+        ({"geometry": "thin_rim", "rim_speed": "1e9 m/s"}, "design.rim_speed", "out of range"),
+        ({"geometry": "thin_rim", "rim_speed": "25 m/s", "d_mean": "1 m"}, "design", "give one of them"),
+        ({"geometry": "disc", "rim_speed": "25 m/s"}, "design", "bare rim"),
+    ],
+)
+def test_a_flywheel_by_its_radius_of_gyration_or_rim_speed_is_refused_in_words(design, field, words):
+    with pytest.raises(SceneError) as err:
+        from_dict({**_SCENE, "design": design})
+    assert err.value.field == field and words in str(err.value)
+
+
+def test_a_rim_speed_pins_each_shafts_mean_diameter_and_a_radius_of_gyration_the_mass():
+    """v = 25 m/s at the mean speed of each shaft: D_m = 2 v / (ω_m i), so every shaft needs the same thin-rim mass,
+    m = A_max / (v² δ); k = 0.5 m gives m = J_F / k²."""
+    shafts = [{"name": "main", "speed_ratio": 1.0}, {"name": "fast", "speed_ratio": 3.0}]
+    scene = from_dict(
+        {**_SCENE, "shaft": shafts, "design": {"geometry": "thin_rim", "rim_speed": "25 m/s", "hb_ratio": 0.5}}
+    )
+    solution = flyopt.solve(scene)
+    a_max, omega = 10e3, 120 * RPM
+    designs = [c for c in solution.design.candidates if c.feasible]
+    assert {c.shaft for c in designs} == {"main", "fast"}
+    for c in designs:
+        assert c.dims.d_mean == pytest.approx(2 * 25.0 / (omega * c.speed_ratio), rel=1e-12)
+        assert c.mass == pytest.approx(a_max / (25.0**2 * 0.05), rel=1e-9)
+    by_k = flyopt.solve(from_dict({**_SCENE, "design": {"geometry": "thin_rim", "radius_of_gyration": "0.5 m"}}))
+    assert by_k.design.best.mass == pytest.approx(a_max / (omega**2 * 0.05) / 0.5**2, rel=1e-9)

@@ -677,10 +677,9 @@ def _combinations(
     envelope = spec.max_outer_diameter
     by_speed = spec.criterion == Criterion.RIM_SPEED
     book = spec.by_mean_rim_speed
-    if book and (omega_mean is None or not 0.0 < omega_mean <= omega):
-        raise ValueError(
-            f"criterion 'mean_rim_speed' needs the mean speed omega_mean in (0, omega], got {omega_mean!r}"
-        )
+    if (book or spec.rim_speed is not None) and (omega_mean is None or not 0.0 < omega_mean <= omega):
+        what = "criterion 'mean_rim_speed'" if book else "a given rim_speed"
+        raise ValueError(f"{what} needs the mean speed omega_mean in (0, omega], got {omega_mean!r}")
     j_required *= spec.rim_share
     # what depends on the shaft alone, once per shaft (not once per material and shaft)
     per_shaft = [
@@ -715,11 +714,23 @@ def _combinations(
                 bore=bore,
                 torque=shaft_torque,
                 v_max=v_max,
-                d_mean=(cap_mean if spec.d_mean is None else spec.d_mean) if book else spec.d_mean,
+                d_mean=_pinned_mean_diameter(spec, cap_mean, omega_mean, shaft.speed_ratio),
                 cap_mean=cap_mean,
             )
             yield order, combo, plain
             order += 1
+
+
+def _pinned_mean_diameter(spec: DesignSpec, cap_mean: float, omega_mean: float | None, ratio: float) -> float | None:
+    """A combination's pinned D_m [m]: a given d_mean, the courses' D_m (``cap_mean``) under criterion mean_rim_speed,
+    or where a given rim_speed is reached at the shaft's mean speed, 2 v / (ω_m i); None when free."""
+    if spec.d_mean is not None:
+        return spec.d_mean
+    if spec.by_mean_rim_speed:
+        return cap_mean
+    if spec.rim_speed is not None:
+        return geometry.outer_diameter_for_rim_speed(spec.rim_speed, cast(float, omega_mean) * ratio)
+    return None
 
 
 @dataclass

@@ -113,6 +113,10 @@ class DesignSpec:
         default. Bounds every section of a whole wheel and of any wheel under
         the stress criterion (the textbook rim-speed design of a bare wheel
         is left as the textbook makes it).
+    rim_speed : float or None
+        The rim's speed at its mean diameter and the mean speed [m/s] (the
+        books' "mean speed of the flywheel is 25 m/s"): pins each shaft's
+        D_m = 2 v / omega'_m. A bare rim only; not with ``d_mean``.
     rim_share : float
         Share of the required inertia the rim supplies, in (0, 1]: the
         courses often let the rim give 90-95 % and leave the rest to the arms
@@ -143,6 +147,7 @@ class DesignSpec:
     bore: float | None = None
     arms: tuple[int, ...] = DEFAULT_ARMS
     min_wall: float | None = None
+    rim_speed: float | None = None
     rim_share: float = 1.0
     prune: bool = True
 
@@ -165,7 +170,7 @@ class DesignSpec:
     def pins_d_mean(self) -> bool:
         """Whether every combination's mean diameter is pinned: given (d_mean), or set by the courses' rim
         convention (each combination's own, :attr:`flyopt.design.combination.Combination.d_mean`)."""
-        return self.d_mean is not None or self.by_mean_rim_speed
+        return self.d_mean is not None or self.by_mean_rim_speed or self.rim_speed is not None
 
     @property
     def has_envelope(self) -> bool:
@@ -186,6 +191,7 @@ class DesignSpec:
             "bore": self.bore,
             "arms": list(self.arms),
             "min_wall": self.min_wall,
+            "rim_speed": self.rim_speed,
             "rim_share": self.rim_share,
             "prune": self.prune,
         }
@@ -248,6 +254,19 @@ class DesignSpec:
                 f"criterion 'mean_rim_speed' sizes a bare rim (geometry {' or '.join(map(repr, BOOK_RIM_GEOMETRIES))}), "
                 f"not a {self.geometry!r}: use 'rim_speed' or 'stress'"
             )
+        if self.rim_speed is not None:
+            object.__setattr__(self, "rim_speed", _positive(self.rim_speed, "rim_speed", "[m/s]"))
+            if self.geometry not in BOOK_RIM_GEOMETRIES:
+                raise ValueError(f"rim_speed is a bare rim's (geometry 'rim' or 'thin_rim'), not a {self.geometry!r}'s")
+            if self.d_mean is not None or self.by_mean_rim_speed:
+                raise ValueError(
+                    "rim_speed pins the mean diameter, as "
+                    + (
+                        "d_mean does: give one of them"
+                        if self.d_mean is not None
+                        else "criterion 'mean_rim_speed' does"
+                    )
+                )
         if share < 1.0 and self.geometry not in BOOK_RIM_GEOMETRIES:
             raise ValueError(
                 f"rim_share is the share of a bare rim (geometry 'rim' or 'thin_rim'), not of a {self.geometry!r}, "

@@ -48,6 +48,8 @@ def read_design(
             "arms",
             "min_wall",
             "rim_share",
+            "rim_speed",
+            "radius_of_gyration",
             "prune",
         },
     )
@@ -100,6 +102,14 @@ def read_design(
                 f"over it), got {shorten(table.raw('safety_factor'))}",
             )
         options["safety_factor"] = value
+    if table.has("rim_speed"):
+        value = table.quantity("rim_speed", "speed", required=True)
+        if value <= 0:
+            raise SceneError("design.rim_speed", f"must be positive, got {shorten(table.raw('rim_speed'))}")
+        check_magnitude(value, "design.rim_speed", table.raw("rim_speed"), *RIM_SPEED_RANGE, "m/s", RIM_SPEED_WHY)
+        options["rim_speed"] = value
+    if table.has("radius_of_gyration"):
+        options["d_mean"] = 2.0 * _radius_of_gyration(table, options)
     if table.has("rim_share"):
         share = table.quantity("rim_share", "dimensionless", required=True)
         if not 0 < share <= 1:
@@ -144,6 +154,32 @@ def read_design(
     if spec.min_wall is not None:
         _check_min_wall(spec, table)
     return spec, names, shaft_names
+
+
+#: Allowed design.rim_speed [m/s]: a walking pace to beyond any rotor's burst speed.
+RIM_SPEED_RANGE = (1e-3, 1e4)
+RIM_SPEED_WHY = "a millimetre a second to 10 km/s, beyond any flywheel's burst speed"
+
+
+def _radius_of_gyration(table: Table, options: dict[str, Any]) -> float:
+    """design.radius_of_gyration k [m], for a thin rim only (J = m k², so D_m = 2k): the books' "k = 0.5 m"."""
+    k = table.quantity("radius_of_gyration", "length", required=True)
+    raw = table.raw("radius_of_gyration")
+    if k <= 0:
+        raise SceneError("design.radius_of_gyration", f"must be positive, got {shorten(raw)}")
+    check_magnitude(k, "design.radius_of_gyration", raw, LENGTH_RANGE[0] / 2, LENGTH_RANGE[1] / 2, "m", "up to 500 m")
+    if options.get("geometry") != "thin_rim":
+        raise SceneError(
+            "design.radius_of_gyration",
+            'is a thin rim\'s (J = m k², D_m = 2k): give geometry = "thin_rim" with it '
+            "(another wheel's k follows from its shape)",
+        )
+    for other in ("d_mean", "rim_speed"):
+        if table.has(other):
+            raise SceneError(
+                "design.radius_of_gyration", f"and design.{other} both set the mean diameter: give one of them"
+            )
+    return k
 
 
 def _check_min_wall(spec, table):
