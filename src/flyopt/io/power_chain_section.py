@@ -102,6 +102,11 @@ def _delivered(table: Table, where: str) -> float | None:
                 other = "force" if key == "velocity" else "torque"
                 raise SceneError(f"{where}.{other}", f"is missing ({key} is given: the power is {other} × {key})")
         return None
+    for stray in ("velocity", "speed"):
+        if table.has(stray) and stray not in (k for k, _ in LOADS[given[0]]):
+            raise SceneError(
+                f"{where}.{stray}", f"goes with {'force' if stray == 'velocity' else 'torque'}, not with {given[0]}"
+            )
     power = 1.0
     for key, dimension in LOADS[given[0]]:
         if not table.has(key):
@@ -111,10 +116,5 @@ def _delivered(table: Table, where: str) -> float | None:
             raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
         check_magnitude(value, f"{where}.{key}", table.raw(key), *_RANGES[key])
         power *= value
-    for stray in ("velocity", "speed"):
-        if table.has(stray) and stray not in (k for k, _ in LOADS[given[0]]):
-            raise SceneError(
-                f"{where}.{stray}", f"goes with {'force' if stray == 'velocity' else 'torque'}, not with {given[0]}"
-            )
     check_magnitude(power, f"{where}.{given[0]}", table.raw(given[0]), *_RANGES["power"])
     return power
