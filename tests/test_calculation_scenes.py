@@ -1,4 +1,4 @@
-"""A scene that is one calculation ([operation], [position], [electric_drive]) has no cycle: every command but
+"""A scene that is one calculation ([operation], [position], [electric_drive], [power_chain]) has no cycle: every command but
 ``solve`` and ``check`` refuses it in one line naming its section, exit 2 (a plot of an [electric_drive] once
 failed with a traceback)."""
 
@@ -13,7 +13,10 @@ SCENES = {
     "operation": "khurmi-16-21.toml",
     "position": "khurmi-15-crank-forces.toml",
     "electric_drive": "seed-004-lathe-drive.toml",
+    "power_chain": "seed-001-5-8-parallel-machines.toml",
 }
+#: The calculations that need machine.speed (a power chain is given by its machines' powers).
+NEEDS_SPEED = ("electric_drive", "operation", "position")
 
 
 @pytest.mark.parametrize("section", sorted(SCENES))
@@ -48,7 +51,7 @@ def test_solve_and_check_answer_it(section):
         assert run.returncode == 0, run.stderr
 
 
-@pytest.mark.parametrize("section", sorted(SCENES))
+@pytest.mark.parametrize("section", NEEDS_SPEED)
 def test_a_calculation_that_needs_the_speed_refuses_a_scene_without_it(section, tmp_path):
     """machine.speed may be left out of a calculation's scene only where the calculation needs no speed."""
     text = (TEXTBOOK / SCENES[section]).read_text(encoding="utf-8")
@@ -61,3 +64,16 @@ def test_a_calculation_that_needs_the_speed_refuses_a_scene_without_it(section, 
     assert run.stderr.strip().splitlines() == [
         f"flyopt: error: {scene}: machine.speed: is missing (the [{section}] calculation needs it)"
     ]
+
+
+def test_a_power_chain_needs_no_machine_and_takes_one_given():
+    """[power_chain] stands without [machine]; a machine.speed given beside it changes nothing."""
+    import flyopt
+    from flyopt.io.scene import from_dict
+    from flyopt.pipeline import solve_calculation
+
+    chain = {"stages": [0.9], "power": "1 kW"}
+    alone = solve_calculation(from_dict({"power_chain": chain}))
+    given = solve_calculation(from_dict({"machine": {"speed": "100 rpm"}, "power_chain": chain}))
+    assert alone.motor_power == given.motor_power == 1000 / 0.9
+    assert set(SCENES) == set(flyopt.names.CALCULATIONS)

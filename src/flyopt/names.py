@@ -196,6 +196,6 @@ def unknown(value: object, allowed: Iterable[object]) -> str:
 
 
 #: The sections of a scene that are one calculation rather than a cycle ([operation], [position],
-#: [electric_drive]): each stands alone in its scene (flyopt.io.scene), flyopt.pipeline.solve_calculation
+#: [electric_drive], [power_chain]): each stands alone in its scene (flyopt.io.scene), flyopt.pipeline.solve_calculation
 #: answers it, and its JSON document is of that kind.
-CALCULATIONS = ("operation", "position", "electric_drive")
+CALCULATIONS = ("operation", "position", "electric_drive", "power_chain")

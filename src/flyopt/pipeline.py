@@ -26,6 +26,7 @@ if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     from flyopt.io.scene import Scene
     from flyopt.machine.crank_forces import CrankForces
     from flyopt.machine.electric_drive import ReducedDrive
+    from flyopt.machine.transmission import PowerFlow
     from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.operation import OperationResult
     from flyopt.sizing.periodic import PeriodicSolution, Verification
@@ -414,9 +415,10 @@ def solve(
     return with_extras(solution, extras)
 
 
-def solve_calculation(scene: Scene) -> OperationResult | CrankForces | ReducedDrive:
+def solve_calculation(scene: Scene) -> OperationResult | CrankForces | ReducedDrive | PowerFlow:
     """The answer of a scene that is one calculation rather than a cycle: an [operation] (:func:`solve_operation`),
-    a [position] (:func:`solve_position`) or an [electric_drive] (flyopt.machine.electric_drive.reduce_drive)."""
+    a [position] (:func:`solve_position`), an [electric_drive] (flyopt.machine.electric_drive.reduce_drive) or a
+    [power_chain] (flyopt.machine.transmission.power_flow)."""
     what = scene.calculation
     if what == "operation":
         return solve_operation(scene)
@@ -426,7 +428,13 @@ def solve_calculation(scene: Scene) -> OperationResult | CrankForces | ReducedDr
         from flyopt.machine.electric_drive import reduce_drive
 
         return reduce_drive(scene.electric_drive)
-    raise ValueError("solve_calculation needs a scene with an [operation], a [position] or an [electric_drive]")
+    if what == "power_chain" and scene.power_chain is not None:
+        from flyopt.machine.transmission import power_flow
+
+        return power_flow(scene.power_chain)
+    raise ValueError(
+        "solve_calculation needs a scene with an [operation], a [position], an [electric_drive] or a [power_chain]"
+    )
 
 
 def solve_operation(scene: Scene) -> OperationResult:

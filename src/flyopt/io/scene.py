@@ -28,7 +28,7 @@ from flyopt.io.member_section import read_mechanism, read_members, with_engine
 from flyopt.io.shaft_section import read_efficiency, read_shafts, reference_efficiency
 from flyopt.io.toml_file import read_toml
 from flyopt.io.torque_section import NetAreas, read_torques
-from flyopt.machine.transmission import Shaft, inertia_at_reference
+from flyopt.machine.transmission import PowerBranch, Shaft, inertia_at_reference
 from flyopt.names import CALCULATIONS
 from flyopt.units import inertia_from_gd2
 
@@ -104,6 +104,9 @@ class Scene:
     electric_drive : flyopt.machine.electric_drive.ElectricDrive or None
         The [electric_drive]: a motor, its reduction stages and its load, reduced to the
         motor shaft (machine.speed is the motor's); no torques either.
+    power_chain : flyopt.machine.transmission.PowerBranch or None
+        The [power_chain]: a motor driving machines through stages in series and
+        branches in parallel (the trunk); no speed needed, no torques either.
     source : str or None
         File the scene came from.
     """
@@ -130,12 +133,13 @@ class Scene:
     operation: Operation | None = None  # [operation]: one load, not a cycle (with a [flywheel]; no torques)
     position: CrankPosition | None = None  # [position]: a slider-crank engine at one crank angle (no torques)
     electric_drive: ElectricDrive | None = None  # [electric_drive]: a drive reduced to its motor shaft (no torques)
+    power_chain: PowerBranch | None = None  # [power_chain]: the trunk of a motor's stages and branches (no torques)
     source: str | None = field(default=None, compare=False)
 
     @property
     def calculation(self) -> str | None:
         """The section that makes this scene one calculation rather than a cycle (:data:`flyopt.names.CALCULATIONS`:
-        "operation", "position" or "electric_drive"), or None for a cycle."""
+        "operation", "position", "electric_drive" or "power_chain"), or None for a cycle."""
         return next((name for name in CALCULATIONS if getattr(self, name) is not None), None)
 
     @property
@@ -245,6 +249,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             "operation",
             "position",
             "electric_drive",
+            "power_chain",
         },
     )  # [sweep] is read by flyopt.studies.sweep.load_sweep
     once = any(top.has(k) for k in CALCULATIONS)  # one calculation, not a cycle: no δ to hold
@@ -298,7 +303,8 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     operation = _operation(top) if top.has("operation") else None
     position = _position(top) if top.has("position") else None
     electric = _electric_drive(top, omega) if top.has("electric_drive") else None
-    if operation is not None or position is not None or electric is not None:  # one calculation: no torques
+    chain = _power_chain(top) if top.has("power_chain") else None
+    if once:  # one calculation: no torques
         driving = resisting = net = None
     else:
         driving, resisting, net = read_torques(
@@ -381,6 +387,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         operation=operation,
         position=position,
         electric_drive=electric,
+        power_chain=chain,
         source=source,
     )
 
@@ -407,6 +414,14 @@ def _electric_drive(top: Table, omega: float) -> ElectricDrive:
 
     _alone(top, "electric_drive", "an electric drive reduced to its motor shaft")
     return read_electric_drive(top.get("electric_drive"), omega)
+
+
+def _power_chain(top: Table) -> PowerBranch:
+    """[power_chain], with none of the sections that describe something else (it needs no machine.speed)."""
+    from flyopt.io.power_chain_section import read_power_chain
+
+    _alone(top, "power_chain", "a power chain from one motor")
+    return read_power_chain(top.get("power_chain"))
 
 
 #: The sections that describe a cycle, a design or a wheel, which a calculation's scene does not have.

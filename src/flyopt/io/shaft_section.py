@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, check_magnitude
-from flyopt.machine.transmission import Shaft
+from flyopt.machine.transmission import Shaft, series_efficiency
 from flyopt.units import inertia_from_gd2, quantity
 
 if TYPE_CHECKING:
@@ -84,14 +84,19 @@ def reference_efficiency(shafts: Iterable[Shaft]) -> float:
 
 def read_efficiency(raw: object, where: str) -> float:
     """An efficiency in (0, 1], or a list of stage efficiencies in series (their product)."""
+    return series_efficiency(read_stages(raw, where))
+
+
+def read_stages(raw: object, where: str) -> tuple[float, ...]:
+    """Stage efficiencies in series: one number in (0, 1], or a non-empty list of them, each named in an error."""
     stages = raw if isinstance(raw, list) else [raw]
     if not stages:
         raise SceneError(where, "must be a number in (0, 1] or a non-empty list of stage efficiencies")
-    product = 1.0
+    etas = []
     for k, s in enumerate(stages):
         label = f"{where}[{k}]" if isinstance(raw, list) else where
         eta = quantity(s, "dimensionless", label)
         if not 0 < eta <= 1:
             raise SceneError(label, f"must lie in (0, 1], got {shorten(s)}")
-        product *= eta
-    return product
+        etas.append(eta)
+    return tuple(etas)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -155,3 +156,177 @@ def inertia_on_shaft(j_reference: float, speed_ratio: float) -> float:
 def inertia_at_reference(j_shaft: float, speed_ratio: float) -> float:
     """Inertia of a flywheel on a shaft, moved to the reference shaft: J = J' (ω'/ω)² [kg*m^2]."""
     return j_shaft * speed_ratio * speed_ratio
+
+
+@dataclass(frozen=True)
+class PowerBranch:
+    """A branch of a power chain ([power_chain], docs/flywheel-design.md, section 21).
+
+    Its stages in series, then either the branches it splits into (parallel, each
+    with its own stages) or, at a leaf, the machine it drives, delivering ``power``.
+    A tree of them is a series chain (one leaf), a parallel set-up (a trunk splitting
+    into leaves) or a mixed one (branches splitting again).
+
+    Attributes
+    ----------
+    name : str
+    stages : tuple of float
+        Efficiencies of its stages in series from its start [-], each in (0, 1]; a
+        leaf's last is, as the books write it, its machine's own efficiency.
+    branches : tuple of PowerBranch
+        The branches it splits into at its end; empty at a leaf.
+    power : float or None
+        At a leaf, the power its machine delivers [W]; None at a split.
+    """
+
+    name: str
+    stages: tuple[float, ...] = ()
+    branches: tuple[PowerBranch, ...] = ()
+    power: float | None = None
+
+    def leaves(self) -> tuple[tuple[float, tuple[float, ...]], ...]:
+        """Each leaf below (or at) this branch: its power [W] and the stages from this branch's start to it."""
+        if self.power is not None:
+            return ((self.power, self.stages),)
+        return tuple((p, self.stages + path) for child in self.branches for p, path in child.leaves())
+
+
+@dataclass(frozen=True)
+class BranchFlow:
+    """The powers of one branch of a power chain, driven from the motor (SI, W).
+
+    Attributes
+    ----------
+    branch : PowerBranch
+    stage_powers : tuple of float
+        Power entering each of its stages [W] (the first: what the branch draws at its start).
+    power : float
+        Power at its end [W]: a leaf's delivered power; at a split, what its branches draw.
+    efficiency : float
+        Its own stages in series [-].
+    path_efficiency : float
+        From the motor to its end [-].
+    motor_power : float
+        What it draws at the motor [W]: Σ P_k / η_path,k over the leaves below it (the books' P_d).
+    delivered : float
+        Σ P_k delivered by the leaves below it [W].
+    branches : tuple of BranchFlow
+    """
+
+    branch: PowerBranch
+    stage_powers: tuple[float, ...]
+    power: float
+    efficiency: float
+    path_efficiency: float
+    motor_power: float
+    delivered: float
+    branches: tuple[BranchFlow, ...] = ()
+
+    @property
+    def losses(self) -> float:
+        """What the power it delivers loses on its way from the motor, the shared stages' share included [W]."""
+        return self.motor_power - self.delivered
+
+    def to_dict(self) -> dict[str, Any]:
+        """The branch in ``flyopt solve --json`` of a [power_chain] (SI)."""
+        out: dict[str, Any] = {
+            "name": self.branch.name,
+            "stages": [
+                {"efficiency": eta, "power": p} for eta, p in zip(self.branch.stages, self.stage_powers, strict=True)
+            ],
+            "efficiency": self.efficiency,
+            "path_efficiency": self.path_efficiency,
+            "power": self.power,
+            "motor_power": self.motor_power,
+            "load_power": self.delivered,
+            "losses": self.losses,
+        }
+        if self.branches:
+            out["branches"] = [b.to_dict() for b in self.branches]
+        return out
+
+
+@dataclass(frozen=True)
+class PowerFlow:
+    """A power chain's answer: the motor's power, the power delivered, the overall efficiency (SI, W)."""
+
+    trunk: BranchFlow
+
+    @property
+    def motor_power(self) -> float:
+        """P_in, what the motor gives [W]."""
+        return self.trunk.motor_power
+
+    @property
+    def delivered(self) -> float:
+        """Σ P_out, what the machines at the leaves deliver [W]."""
+        return self.trunk.delivered
+
+    @property
+    def efficiency(self) -> float:
+        """The chain's overall efficiency Σ P_out / P_in [-]."""
+        return self.delivered / self.motor_power
+
+    @property
+    def losses(self) -> float:
+        """P_in − Σ P_out [W]."""
+        return self.trunk.losses
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields of ``flyopt solve --json`` for a [power_chain] (SI)."""
+        return {
+            "motor_power": self.motor_power,
+            "load_power": self.delivered,
+            "efficiency": self.efficiency,
+            "losses": self.losses,
+            "trunk": self.trunk.to_dict(),
+        }
+
+
+def power_flow(trunk: PowerBranch) -> PowerFlow:
+    """The powers of a power chain driven by one motor at the start of ``trunk``.
+
+    Parameters
+    ----------
+    trunk : PowerBranch
+        The stages from the motor and what they drive.
+
+    Returns
+    -------
+    PowerFlow
+        The motor's power, Σ P_out, the overall efficiency Σ P_out / P_in, and the
+        powers of every branch.
+
+    Raises
+    ------
+    ValueError
+        An efficiency outside (0, 1], a leaf's power not positive, a branch with
+        both or neither of a power and branches.
+
+    Notes
+    -----
+    Every power is :func:`motor_power` of the leaves below the point it is taken at:
+    the power entering a stage is Σ P_k / η_k over the leaves k it feeds, η_k the
+    product of the stages between (the books' P_d = P_r / (η_1 η_2 ⋯), added over
+    the branches).
+    """
+    return PowerFlow(_flow(trunk, ()))
+
+
+def _flow(branch: PowerBranch, upstream: tuple[float, ...]) -> BranchFlow:
+    if (branch.power is None) == (not branch.branches):
+        raise ValueError(f"branch {branch.name!r} must have either a power or branches, not both or neither")
+    if branch.power is not None and not (math.isfinite(branch.power) and branch.power > 0):
+        raise ValueError(f"branch {branch.name!r}: the power delivered must be positive, got {branch.power!r}")
+    leaves = branch.leaves()
+    own = len(branch.stages)
+    return BranchFlow(
+        branch=branch,
+        stage_powers=tuple(motor_power((p, path[k:]) for p, path in leaves) for k in range(own)),
+        power=motor_power((p, path[own:]) for p, path in leaves),
+        efficiency=series_efficiency(branch.stages),
+        path_efficiency=series_efficiency(upstream + branch.stages),
+        motor_power=motor_power((p, upstream + path) for p, path in leaves),
+        delivered=math.fsum(p for p, _ in leaves),
+        branches=tuple(_flow(child, upstream + branch.stages) for child in branch.branches),
+    )

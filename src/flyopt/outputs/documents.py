@@ -124,7 +124,7 @@ def calculation_document(
     kind: str, title: str, scene: str | os.PathLike[str], fields: Mapping[str, Any]
 ) -> dict[str, Any]:
     """The JSON of ``flyopt solve`` for a scene that is one calculation (kinds "operation", "position",
-    "electric_drive"): its result's fields (``to_dict``), every number in SI, with the document's header."""
+    "electric_drive", "power_chain"): its result's fields (``to_dict``), every number in SI, with the document's header."""
     data = json_safe({"title": title, **fields})
     return {
         "schema_version": schema_version(),

@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from flyopt.design.spec import DesignSpec
     from flyopt.machine.crank_forces import CrankForces
     from flyopt.machine.electric_drive import ReducedDrive
+    from flyopt.machine.transmission import BranchFlow, PowerFlow
     from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.operation import OperationResult
     from flyopt.sizing.periodic import Verification
@@ -766,9 +767,68 @@ def electric_drive_report(drive: ReducedDrive, title: str, source: str | None = 
     return "\n".join([*lines, *(f"  {a:<{width}}  {b}" for a, b in facts)])
 
 
+def power_chain_report(flow: PowerFlow, title: str, source: str | None = None, units: str = DEFAULT) -> str:
+    """``flyopt solve`` of a [power_chain]: the motor's power, the overall efficiency, each branch's powers."""
+    q, n = formatters(units)
+    unit = _label("power", units)
+    rows: list[list[str]] = []
+    through: list[str] = []
+
+    def visit(branch: BranchFlow, depth: int) -> None:
+        name = "  " * depth + branch.branch.name
+        stages = " × ".join(number(eta) for eta in branch.branch.stages) or "-"
+        rows.append(
+            [
+                name,
+                stages,
+                number(branch.path_efficiency),
+                n(branch.power, "power"),
+                n(branch.motor_power, "motor_power"),
+                n(branch.losses, "power"),
+            ]
+        )
+        steps = [n(p, "power") + f" →({number(eta)})→ " for p, eta in zip(branch.stage_powers, branch.branch.stages)]
+        through.append(f"  {name}: " + "".join(steps) + f"{n(branch.power, 'power')} {unit}")
+        for child in branch.branches:
+            visit(child, depth + 1)
+
+    visit(flow.trunk, 0)
+    facts = [
+        ("motor power P_in", f"{q(flow.motor_power, 'motor_power')} (Σ P_k / η_k over the machines)"),
+        ("delivered Σ P_out", q(flow.delivered, "load_power")),
+        ("overall efficiency", f"{number(flow.efficiency)} (Σ P_out / P_in)"),
+        ("losses", q(flow.losses, "power")),
+    ]
+    width = max(len(a) for a, _ in facts)
+    return "\n".join(
+        [
+            visible(title) + (f"  ({visible(source)})" if source else ""),
+            "model: a power chain from one motor: stages in series, branches in parallel (P = P_out / η per stage)",
+            "",
+            *table(
+                [
+                    "branch",
+                    "stages η",
+                    "η from the motor",
+                    f"at its end [{unit}]",
+                    f"drawn at the motor [{unit}]",
+                    f"losses on its way [{unit}]",
+                ],
+                rows,
+            ),
+            "",
+            f"power through the stages [{unit}] (entering each stage, its η, and so on to the branch's end):",
+            *through,
+            "",
+            *(f"  {a:<{width}}  {b}" for a, b in facts),
+        ]
+    )
+
+
 #: The text of ``flyopt solve`` for each kind of scene that is one calculation (flyopt.io.scene.CALCULATIONS).
 CALCULATION_REPORTS: dict[str, Callable[..., str]] = {
     "operation": operation_report,
     "position": position_report,
     "electric_drive": electric_drive_report,
+    "power_chain": power_chain_report,
 }
