@@ -107,6 +107,9 @@ RELATIONS = {
     "motor_acceleration": "omega_mean / time",
     "accelerating_torque": "inertia_total * motor_acceleration",
     "motor_torque": "accelerating_torque",
+    # a power chain: P_in - P_out, and the stages' product from the motor
+    "losses": "motor_power - load_power",
+    "path_efficiency": "efficiency",
     # angles of the cycle
     "cycle_angle": "angle",
     "angle_omega_max": "angle",

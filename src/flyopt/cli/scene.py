@@ -105,7 +105,7 @@ def run_solve(args: argparse.Namespace) -> int:
 
 
 def _run_calculation(what: str, scene: Scene, args: argparse.Namespace) -> int:
-    """``flyopt solve`` of a scene that is one calculation (an [operation], a [position], an [electric_drive]):
+    """``flyopt solve`` of a scene that is one calculation (:data:`flyopt.names.CALCULATIONS`):
     0, or 4 when an operation's speed falls beyond machine.delta."""
     from flyopt.pipeline import solve_calculation
 

@@ -6,7 +6,7 @@ import math
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, check_magnitude
-from flyopt.io.shaft_section import RATIO_RANGE
+from flyopt.io.shaft_section import RATIO_RANGE, read_efficiency
 from flyopt.machine.electric_drive import ElectricDrive, Stage
 from flyopt.units import inertia_from_gd2
 
@@ -54,9 +54,7 @@ def read_electric_drive(raw: object, motor_speed: float) -> ElectricDrive:
                 raise SceneError(f"{where}.speed", f"must be positive, got {shorten(stage.raw('speed'))}")
             ratio = speed / after
             check_magnitude(ratio, f"{where}.speed", stage.raw("speed"), *RATIO_RANGE, "", "a gear train's ratio")
-        eta = stage.quantity("efficiency", "dimensionless", default=1.0)
-        if not 0 < eta <= 1:
-            raise SceneError(f"{where}.efficiency", f"must lie in (0, 1], got {shorten(stage.raw('efficiency'))}")
+        eta = read_efficiency(stage.get("efficiency"), f"{where}.efficiency") if stage.has("efficiency") else 1.0
         stages.append(Stage(ratio, eta, _gd2(stage, where, "gd2", "inertia")))
         speed /= ratio
     if table.has("load_torque") and (table.has("load_force") or table.has("load_radius")):

@@ -154,6 +154,9 @@ QUANTITIES = {
     "accelerating_torque": "torque",
     "motor_torque": "torque",
     "motor_acceleration": "angular_acceleration",
+    # a power chain ([power_chain]): what each branch loses, and its stages' product from the motor
+    "losses": "power",
+    "path_efficiency": "dimensionless",
     "delta_allowed": "dimensionless",
     "j_error": "dimensionless",
     "tolerance": "dimensionless",
