@@ -110,6 +110,7 @@ RELATIONS = {
     # a power chain: P_in - P_out, and the stages' product from the motor
     "losses": "motor_power - load_power",
     "path_efficiency": "efficiency",
+    "rim_share": "efficiency",  # a share of J_F, as an efficiency is one of power
     # angles of the cycle
     "cycle_angle": "angle",
     "angle_omega_max": "angle",

@@ -831,6 +831,7 @@ def _describe_model(spec: DesignSpec, model: Any) -> dict[str, Any]:
             ),
         }
     description["objective"] = spec.objective
+    description["criterion"] = spec.criterion
     bounds = []
     if spec.max_width < math.inf:
         bounds.append("max_width: B <= max_width")
@@ -842,7 +843,9 @@ def _describe_model(spec: DesignSpec, model: Any) -> dict[str, Any]:
         bounds.append("mean_rim_speed: D_m = 2 v_max / omega'_mean (or a given D_m at most that)")
     description["bounds"] = bounds
     limits = spec.to_dict()
-    description["limits"] = {name: limits[name] for name in ("max_outer_diameter", "max_width", "hb_ratio", "d_mean")}
+    description["limits"] = {
+        name: limits[name] for name in ("max_outer_diameter", "max_width", "hb_ratio", "d_mean", "rim_speed", "rim_share")
+    }
     return description
 
 

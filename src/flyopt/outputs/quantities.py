@@ -201,6 +201,7 @@ QUANTITIES = {
     "j_required_on_shaft": "inertia",
     "rim_speed": "speed",
     "rim_speed_limit": "speed",
+    "rim_share": "dimensionless",
     "hoop_stress": "stress",
     "allowable_stress": "stress",
     "allowable": "stress",
