@@ -13,10 +13,10 @@ evaluated at the reference shaft's angle φ:
 The books also reduce to another member k (the "equivalent member"), by the
 same kinetic energy and the same power:
 
-- a member that turns at that position (ω_k ≠ 0): J_k = J_e (ω/ω_k)² and
+- a member that turns at that position (|ω_k/ω| > :data:`STILL`): J_k = J_e (ω/ω_k)² and
   M_k = M_e |ω/ω_k|, positive driving (M_k ω_k has the sign of M_e ω); at
   a point at r from its axis the equivalent force P = M_k / r and mass J_k / r²;
-- a member that only translates there (ω_k = 0, v_k ≠ 0, a slider): the
+- a member that only translates there (ω_k = 0, v_k ≠ 0: a slider; a lever at its dead point): the
   equivalent mass m_k = J_e (ω/v_k)² and force F_k = M_e |ω/v_k| at its centre.
 """
 
@@ -35,6 +35,10 @@ from flyopt.machine.linkages import Linkage
 from flyopt.machine.mechanism import Member, equivalent_inertia, equivalent_torque
 
 TWO_PI = 2.0 * math.pi
+
+#: |ω_k/ω| (and v_k/ω against the members' largest) at or below which a member stands still at the
+#: position: a dead point's ratio is round-off (cos 120° is not −1/2 in floating point).
+STILL = 1e-12
 
 #: The sense of the equivalent moment: it drives the shaft (acts in its sense of rotation) or resists it.
 SENSES = ("driving", "resisting", "none")
@@ -248,7 +252,9 @@ def _reduce(position: MechanismPosition, rows: Sequence[MemberAt], j_e: float, m
         names = ", ".join(repr(r.name) for r in rows)
         raise SceneError("position.reduce_to", f"{shorten(name)} is not a [[member]] (the members: {names})")
     w, v = row.angular_ratio, row.velocity_ratio
-    if w != 0.0:
+    turns = abs(w) > STILL  # a lever at its limit position: ω_k/ω is round-off there, not a ratio
+    moves = v > STILL * max(r.velocity_ratio for r in rows)
+    if turns:
         j_k, m_k = j_e / (w * w), m_e / abs(w)
         r = position.force_at
         force = None if r is None else m_k / r
@@ -260,7 +266,7 @@ def _reduce(position: MechanismPosition, rows: Sequence[MemberAt], j_e: float, m
             f"member {shorten(name)} does not turn at this position (ω/ω_1 = 0): its equivalent force is at its "
             "centre already (leave force_at out)",
         )
-    if v == 0.0:
+    if not moves:
         raise SceneError(
             "position.reduce_to",
             f"member {shorten(name)} stands still at this position (ω/ω_1 = 0 and v/ω_1 = 0): nothing can be reduced to it",
