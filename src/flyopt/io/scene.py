@@ -141,13 +141,17 @@ class Scene:
         "operation", "position" or "electric_drive"), or None for a cycle."""
         return next((name for name in CALCULATIONS if getattr(self, name) is not None), None)
 
-    @property
-    def allowed_delta(self) -> float:
-        """machine.delta, where a computation needs it (a scene with a [flywheel] may leave it out)."""
+    def require_cycle(self) -> None:
+        """Refuse, in words naming its section, a scene that is one calculation where a cycle is needed."""
         if self.calculation is not None:
             raise SceneError(
                 self.calculation, "is one calculation, not a cycle: flyopt solve (and check) answer it, nothing else"
             ).with_source(self.source)
+
+    @property
+    def allowed_delta(self) -> float:
+        """machine.delta, where a computation needs it (a scene with a [flywheel] may leave it out)."""
+        self.require_cycle()
         if self.delta is None:
             raise SceneError(
                 "machine.delta", "is needed here (only the analysis of a [flywheel] that exists can do without it)"
