@@ -510,3 +510,45 @@ def test_every_other_command_refuses_the_equivalents_in_one_line(main_cli, tmp_p
     with pytest.raises(SceneError) as raised:
         flyopt.solve(flyopt.load(CALC6))
     assert raised.value.field == "position"
+
+
+def test_the_two_forms_of_position_agree_on_a_slider_crank():
+    """Khurmi ch. 15's gas force on the piston at 60°: the crank's forces give the turning moment F_T r, the
+    equivalents the moment of the same force on the slider member, F v/ω (no inertia force: no speed)."""
+    from flyopt.machine.crank_forces import CrankPosition, crank_forces
+    from flyopt.machine.kinematics import SliderCrank
+
+    theta, r, l, gas = math.radians(60), 0.3, 1.2, 0.35e6 * math.pi * 0.5**2 / 4
+    forces = crank_forces(CrankPosition(theta, r, l, 0.0, gas_force=gas), 26.0)
+    slider = SliderCrank(r, l).kinematics("slider")  # φ = 0: the slider farthest from the crank, θ = 0
+    piston = Member("piston", 0.0, 0.0, slider.velocity_ratio, slider.angular_ratio, force=-gas, force_sense="axial")
+    result = equivalents_at(MechanismPosition(theta), [piston])  # the gas force acts towards the crank: −x
+    assert result.equivalent_moment == pytest.approx(forces.turning_moment, rel=1e-12)
+    assert result.sense == "driving"
+
+
+def test_the_position_is_the_cycles_reduction_at_that_angle(write_scene):
+    """One path: J_e at the position is the cycle's J_e(φ) of the same mechanism and members (reduce)."""
+    from flyopt.machine.reduce import reduce
+
+    for path, speed, load in ((CALC6, "60 rpm", "[torque.resisting]"), (CALC7, "300 rpm", "[torque.driving]")):
+        at_position = solve_position(flyopt.load(path))
+        machine = reduce(flyopt.load(write_scene(_cycle_scene(path, speed, f'{load}\nconstant = "unknown"\n'))))
+        cycle_j = float(machine.j_machine(np.array([at_position.angle]))[0])
+        assert at_position.equivalent_inertia == cycle_j
+
+
+@pytest.mark.parametrize("speed_ratio, phase", [(1.0, 0.0), (0.5, 0.0), (-2.0, 0.3), (3.0, -1.0)])
+def test_the_input_angle_is_the_mechanisms_own_angle(speed_ratio, phase):
+    from flyopt.machine.equivalents import input_angle, reference_angle
+    from flyopt.machine.linkages import GuideBar
+
+    bar = GuideBar(0.15, 0.3, speed_ratio=speed_ratio, phase=phase)
+    for psi in np.linspace(-2 * math.pi, 2 * math.pi, 17):
+        phi = reference_angle(bar, float(psi))
+        assert 0 <= phi < bar.period
+        turns = (float(bar.own_angle(phi)) - psi) / (2 * math.pi)
+        assert turns == pytest.approx(round(turns), abs=1e-12)
+        back = input_angle(bar, phi)
+        assert 0 <= back < 2 * math.pi
+        assert abs((back - psi + math.pi) % (2 * math.pi) - math.pi) < 1e-12  # the same angle on the circle
