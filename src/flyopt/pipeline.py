@@ -26,6 +26,7 @@ if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     from flyopt.io.scene import Scene
     from flyopt.machine.crank_forces import CrankForces
     from flyopt.machine.electric_drive import ReducedDrive
+    from flyopt.machine.equivalents import PositionEquivalents
     from flyopt.machine.transmission import PowerFlow
     from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.operation import OperationResult
@@ -415,7 +416,7 @@ def solve(
     return with_extras(solution, extras)
 
 
-def solve_calculation(scene: Scene) -> OperationResult | CrankForces | ReducedDrive | PowerFlow:
+def solve_calculation(scene: Scene) -> OperationResult | CrankForces | PositionEquivalents | ReducedDrive | PowerFlow:
     """The answer of a scene that is one calculation rather than a cycle: an [operation] (:func:`solve_operation`),
     a [position] (:func:`solve_position`), an [electric_drive] (flyopt.machine.electric_drive.reduce_drive) or a
     [power_chain] (flyopt.machine.transmission.power_flow)."""
@@ -453,13 +454,23 @@ def solve_operation(scene: Scene) -> OperationResult:
         raise err.with_source(scene.source) from None
 
 
-def solve_position(scene: Scene) -> CrankForces:
-    """The forces of a scene's [position] (flyopt.machine.crank_forces) at its machine.speed."""
-    from flyopt.machine.crank_forces import crank_forces
+def solve_position(scene: Scene) -> CrankForces | PositionEquivalents:
+    """The answer of a scene's [position]: beside [[member]]s, their equivalents at that position
+    (flyopt.machine.equivalents, no speed needed); alone, a slider-crank engine's forces
+    (flyopt.machine.crank_forces) at its machine.speed."""
+    from flyopt.errors import SceneError
+    from flyopt.machine.crank_forces import CrankPosition, crank_forces
 
     if scene.position is None:
         raise ValueError("solve_position needs a scene with a [position]")
-    return crank_forces(scene.position, scene.omega_mean)
+    if isinstance(scene.position, CrankPosition):
+        return crank_forces(scene.position, scene.omega_mean)
+    from flyopt.machine.equivalents import equivalents_at
+
+    try:
+        return equivalents_at(scene.position, scene.members, scene.j_constant, scene.mechanism)
+    except SceneError as err:
+        raise err.with_source(scene.source) from None
 
 
 #: δ of the first, energy-method look at a scene whose [flywheel] is given without machine.delta: only its

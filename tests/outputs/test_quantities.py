@@ -89,6 +89,16 @@ RELATIONS = {
     "tangential_force": "gas_force",
     "radial_force": "gas_force",
     "turning_moment": "tangential_force * crank",
+    # a mechanism's equivalents at one position: J_e = Σ J (ω_k/ω)² + m (v_S/ω)², M_e = Σ F v/ω, P = M/r, m = J/r²
+    "input_angle": "angle",
+    "velocity_ratio": "crank / angle",
+    "angular_ratio": "omega / omega_mean",
+    "inertia_share": "mass * velocity_ratio**2",
+    "torque_share": "gas_force * velocity_ratio",
+    "equivalent_inertia": "inertia_share",
+    "equivalent_moment": "torque_share",
+    "equivalent_force": "equivalent_moment / crank",
+    "equivalent_mass": "equivalent_inertia / crank**2",
     # an electric drive: T_L' = T_L/(j η), P = T ω, GD² = 4 g J, T_a = J dω/dt
     "shaft_speeds": "omega_mean",
     "load_speed": "omega_mean",

@@ -844,7 +844,8 @@ def _describe_model(spec: DesignSpec, model: Any) -> dict[str, Any]:
     description["bounds"] = bounds
     limits = spec.to_dict()
     description["limits"] = {
-        name: limits[name] for name in ("max_outer_diameter", "max_width", "hb_ratio", "d_mean", "rim_speed", "rim_share")
+        name: limits[name]
+        for name in ("max_outer_diameter", "max_width", "hb_ratio", "d_mean", "rim_speed", "rim_share")
     }
     return description
 

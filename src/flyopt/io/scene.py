@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     from flyopt.machine.crank_forces import CrankPosition
     from flyopt.machine.electric_drive import ElectricDrive
     from flyopt.machine.engine import Engine
+    from flyopt.machine.equivalents import MechanismPosition
     from flyopt.machine.flywheel import ExistingFlywheel
     from flyopt.machine.kinematics import GearTrain, SliderCrank
     from flyopt.machine.linkages import Linkage
@@ -98,9 +99,9 @@ class Scene:
     operation : flyopt.sizing.operation.Operation or None
         The [operation]: one load that comes once, acting on the [flywheel];
         the scene then has no torques (``driving``, ``resisting``, ``net`` None).
-    position : flyopt.machine.crank_forces.CrankPosition or None
-        The [position]: a slider-crank engine at one crank angle, for its forces there;
-        no torques either.
+    position : flyopt.machine.crank_forces.CrankPosition, flyopt.machine.equivalents.MechanismPosition or None
+        The [position]: a slider-crank engine at one crank angle, for its forces there; or, beside
+        [[member]]s, a mechanism at one position, for its equivalents there; no torques either.
     electric_drive : flyopt.machine.electric_drive.ElectricDrive or None
         The [electric_drive]: a motor, its reduction stages and its load, reduced to the
         motor shaft (machine.speed is the motor's); no torques either.
@@ -131,7 +132,9 @@ class Scene:
     engine: Engine | None = None  # [engine]; its members lead ``members``
     flywheel: ExistingFlywheel | None = None  # [flywheel]: a wheel that exists, analysed instead of designed
     operation: Operation | None = None  # [operation]: one load, not a cycle (with a [flywheel]; no torques)
-    position: CrankPosition | None = None  # [position]: a slider-crank engine at one crank angle (no torques)
+    position: CrankPosition | MechanismPosition | None = (
+        None  # [position]: a crank's forces or a mechanism's equivalents
+    )
     electric_drive: ElectricDrive | None = None  # [electric_drive]: a drive reduced to its motor shaft (no torques)
     power_chain: PowerBranch | None = None  # [power_chain]: the trunk of a motor's stages and branches (no torques)
     source: str | None = field(default=None, compare=False)
@@ -142,13 +145,17 @@ class Scene:
         "operation", "position", "electric_drive" or "power_chain"), or None for a cycle."""
         return next((name for name in CALCULATIONS if getattr(self, name) is not None), None)
 
-    @property
-    def allowed_delta(self) -> float:
-        """machine.delta, where a computation needs it (a scene with a [flywheel] may leave it out)."""
+    def require_cycle(self) -> None:
+        """Refuse, in words naming its section, a scene that is one calculation where a cycle is needed."""
         if self.calculation is not None:
             raise SceneError(
                 self.calculation, "is one calculation, not a cycle: flyopt solve (and check) answer it, nothing else"
             ).with_source(self.source)
+
+    @property
+    def allowed_delta(self) -> float:
+        """machine.delta, where a computation needs it (a scene with a [flywheel] may leave it out)."""
+        self.require_cycle()
         if self.delta is None:
             raise SceneError(
                 "machine.delta", "is needed here (only the analysis of a [flywheel] that exists can do without it)"
@@ -297,11 +304,11 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     if engine is not None:
         members = with_engine(engine, mechanism, members)
     member_loads = any(m.force is not None or m.torque is not None for m in members)
-    for needs_speed in ("operation", "position", "electric_drive"):
+    for needs_speed in ("operation", "electric_drive"):  # a [position] needs it only for a crank's forces
         if top.has(needs_speed) and math.isnan(omega):
             raise SceneError("machine.speed", f"is missing (the [{needs_speed}] calculation needs it)")
     operation = _operation(top) if top.has("operation") else None
-    position = _position(top) if top.has("position") else None
+    position = _position(top, omega, cycle, mechanism, members) if top.has("position") else None
     electric = _electric_drive(top, omega) if top.has("electric_drive") else None
     chain = _power_chain(top) if top.has("power_chain") else None
     if once:  # one calculation: no torques
@@ -435,29 +442,28 @@ def _alone(top: Table, key: str, what: str, allowed: tuple[str, ...] = ()) -> No
             raise SceneError(key, f"is {what}, and [{other}] describes something else: give one of them")
 
 
-def _position(top: Table) -> CrankPosition:
-    """[position], with none of the sections that describe a cycle, a design or a flywheel."""
-    from flyopt.io.position_section import read_position
+def _position(
+    top: Table,
+    omega: float,
+    cycle: float,
+    mechanism: SliderCrank | GearTrain | Linkage | None,
+    members: tuple[Member, ...],
+) -> CrankPosition | MechanismPosition:
+    """[position]: beside [[member]]s (and their [mechanism]) the equivalents of a mechanism at one position;
+    alone, a slider-crank engine's forces at one crank angle (which need machine.speed). Neither has the
+    sections that describe a cycle, a design or a flywheel."""
+    from flyopt.io.position_section import read_mechanism_position, read_position
 
-    for other in (
-        "torque",
-        "press",
-        "engine",
-        "member",
-        "mechanism",
-        "design",
-        "drive",
-        "motor_option",
-        "sweep",
-        "flywheel",
-        "operation",
-    ):
-        if top.has(other):
+    if top.has("member") or top.has("mechanism"):
+        _alone(top, "position", "one position of a mechanism", allowed=("member", "mechanism"))
+        if not members:
             raise SceneError(
-                "position",
-                f"is one crank position of a slider-crank engine, and [{other}] describes something else: "
-                "give one of them",
+                "position", "reduces the [[member]]s of a mechanism: give them (a [mechanism] alone has none)"
             )
+        return read_mechanism_position(top.get("position"), cycle, mechanism, members)
+    _alone(top, "position", "one crank position of a slider-crank engine")
+    if math.isnan(omega):
+        raise SceneError("machine.speed", "is missing (the [position] calculation needs it)")
     return read_position(top.get("position"))
 
 

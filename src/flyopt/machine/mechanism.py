@@ -216,6 +216,13 @@ class Member:
             "t": _Curve(self.torque, where + "torque", steps_allowed=True),
         }
 
+    def ratios(self, phi: ArrayLike) -> tuple[Any, Any]:
+        """v_S/ω and ω_i/ω at ``phi`` (numpy), as the reduction evaluates them: v_S/ω a scalar (signed along a
+        fixed axis) or a pair (v_x/ω, v_y/ω) [m/rad], ω_i/ω [-] (what flyopt.machine.equivalents reports)."""
+        c = self._curves
+        phi = np.asarray(phi, dtype=float)
+        return c["v"].numpy(phi), c["w"].numpy(phi)
+
     def inertia_contribution(self, phi: Any, cache: StateCache | None = None) -> Any:
         """J_S (ω_i/ω)² + m (v_S/ω)² at ``phi`` [kg*m^2] (numpy or CasADi).
 

@@ -219,6 +219,7 @@ def reduce(scene: Any) -> Machine:
     ``scene`` is a :class:`flyopt.io.scene.Scene`, typed ``Any`` because naming it would
     make machine and io import each other (tests/test_package.py forbids the cycle).
     """
+    scene.require_cycle()  # a calculation's scene has no torques (its members' loads are reduced at one position)
     driving, resisting = scene.driving, scene.resisting
     j_machine: Any = scene.j_constant  # a float, or an EquivalentInertia below
     if scene.members:

@@ -136,6 +136,16 @@ QUANTITIES = {
     "tangential_force": "force",
     "radial_force": "force",
     "turning_moment": "torque",
+    # a mechanism's equivalents at one position ([position] beside [[member]]s): ratios in m/rad (rad is 1)
+    "input_angle": "angle",
+    "velocity_ratio": "length",
+    "angular_ratio": "dimensionless",
+    "inertia_share": "inertia",
+    "torque_share": "torque",
+    "equivalent_inertia": "inertia",
+    "equivalent_moment": "torque",
+    "equivalent_force": "force",
+    "equivalent_mass": "mass",
     # an electric drive reduced to its motor shaft ([electric_drive]): the texts' GD² in N·m²
     "shaft_speeds": "angular_speed",
     "load_speed": "angular_speed",

@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from flyopt.design.spec import DesignSpec
     from flyopt.machine.crank_forces import CrankForces
     from flyopt.machine.electric_drive import ReducedDrive
+    from flyopt.machine.equivalents import PositionEquivalents
     from flyopt.machine.transmission import BranchFlow, PowerFlow
     from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.operation import OperationResult
@@ -673,8 +674,15 @@ def operation_report(result: OperationResult, title: str, source: str | None = N
     )
 
 
-def position_report(forces: CrankForces, title: str, source: str | None = None, units: str = DEFAULT) -> str:
-    """``flyopt solve`` of a [position]: a slider-crank engine's kinematics and forces at one crank angle."""
+def position_report(
+    forces: CrankForces | PositionEquivalents, title: str, source: str | None = None, units: str = DEFAULT
+) -> str:
+    """``flyopt solve`` of a [position]: a slider-crank engine's kinematics and forces at one crank angle, or
+    (beside [[member]]s) a mechanism's equivalents at one position (:func:`equivalents_report`)."""
+    from flyopt.machine.crank_forces import CrankForces
+
+    if not isinstance(forces, CrankForces):
+        return equivalents_report(forces, title, source, units)
     q, _ = formatters(units)
     p = forces.position
     load = f"{q(p.pressure, 'pressure')} on a {q(p.bore, 'bore')} bore" if p.gas_force is None else "given directly"
@@ -706,6 +714,88 @@ def position_report(forces: CrankForces, title: str, source: str | None = None, 
     head = visible(title) + (f"  ({visible(source)})" if source else "")
     model = "one crank position of a slider-crank engine: exact kinematics, forces along the line of stroke"
     return "\n".join([head, f"model: {model}", "", *(f"  {a:<{width}}  {b}" for a, b in facts)])
+
+
+#: The sense of an equivalent moment or force, in words (flyopt.machine.equivalents.SENSES).
+_SENSE_WORDS = {
+    "driving": "driving: it acts along the motion",
+    "resisting": "resisting: it acts against the motion",
+    "none": "none at this position",
+}
+
+
+def equivalents_report(result: PositionEquivalents, title: str, source: str | None = None, units: str = DEFAULT) -> str:
+    """``flyopt solve`` of a [position] beside [[member]]s: each member's velocity ratios, the equivalent
+    inertia and moment at the reference shaft, and (``reduce_to``) at another member and a point of it."""
+    q, n = formatters(units)
+    p = result.position
+    where = "any angle (nothing varies with it)" if p.angle is None else q(result.angle, "angle")
+    if result.input_angle is not None and p.angle is not None:
+        where += f" (the mechanism's input at {q(result.input_angle, 'input_angle')})"
+    rows = [
+        [
+            m.name,
+            n(m.angular_ratio, "angular_ratio"),
+            n(m.velocity_ratio, "velocity_ratio"),
+            n(m.inertia_share, "inertia_share"),
+            n(m.torque_share, "torque_share"),
+        ]
+        for m in result.members
+    ]
+    length = _label("velocity_ratio", units)
+    lines = [
+        visible(title) + (f"  ({visible(source)})" if source else ""),
+        "model: a mechanism at one position reduced to the reference shaft (equal kinetic energy and power)",
+        "",
+        f"  angle of the reference shaft  {where}",
+        "",
+        *table(
+            [
+                "member",
+                "ω_k/ω",
+                f"v_S/ω [{length}/rad]",
+                f"J share [{_label('inertia_share', units)}]",
+                f"M share [{_label('torque_share', units)}]",
+            ],
+            rows,
+        ),
+        "",
+    ]
+    sense = _SENSE_WORDS[result.sense]
+    facts = [
+        (
+            "equivalent inertia J_e",
+            q(result.equivalent_inertia, "equivalent_inertia")
+            + (f" (J_c = {q(result.j_constant, 'j_constant')} of it)" if result.j_constant else ""),
+        ),
+        ("equivalent moment M_e", f"{q(result.equivalent_moment, 'equivalent_moment')} ({sense})"),
+    ]
+    r = result.reduced
+    if r is not None and r.turns and r.equivalent_inertia is not None and r.equivalent_moment is not None:
+        facts += [
+            (f"reduced to {visible(r.member)}", f"ω_1/ω_k = {number(1.0 / r.angular_ratio, 6)}"),
+            ("  equivalent inertia", f"{q(r.equivalent_inertia, 'equivalent_inertia')} (J_e (ω_1/ω_k)²)"),
+            ("  equivalent moment", f"{q(r.equivalent_moment, 'equivalent_moment')} ({sense}; M_e |ω_1/ω_k|)"),
+        ]
+        if r.radius is not None and r.equivalent_force is not None and r.equivalent_mass is not None:
+            facts += [
+                (
+                    f"  at {q(r.radius, 'radius')} from its axis",
+                    f"force {q(r.equivalent_force, 'equivalent_force')} ({sense}), "
+                    f"mass {q(r.equivalent_mass, 'equivalent_mass')}",
+                )
+            ]
+    elif r is not None and r.equivalent_force is not None and r.equivalent_mass is not None:
+        facts += [
+            (
+                f"reduced to {visible(r.member)}",
+                f"it translates here: v/ω_1 = {q(r.velocity_ratio, 'velocity_ratio')}/rad",
+            ),
+            ("  equivalent mass", f"{q(r.equivalent_mass, 'equivalent_mass')} (J_e (ω_1/v)²)"),
+            ("  equivalent force", f"{q(r.equivalent_force, 'equivalent_force')} ({sense}; M_e |ω_1/v|)"),
+        ]
+    width = max(len(visible(a)) for a, _ in facts)
+    return "\n".join([*lines, *(f"  {a:<{width}}  {b}" for a, b in facts)])
 
 
 def electric_drive_report(drive: ReducedDrive, title: str, source: str | None = None, units: str = DEFAULT) -> str:
