@@ -211,3 +211,30 @@ def test_a_drive_co_design_refuses_a_rim_share(tmp_path):
     with pytest.raises(SceneError) as err:
         from_dict(scene)
     assert err.value.field == "design.rim_share" and "the drive's co-design" in str(err.value)
+
+
+@pytest.mark.parametrize(
+    ("design", "field"),
+    [({"geometry": "thin_rim", "rim_speed": "25 m/s"}, "design.rim_speed"), ({"rim_share": 0.9}, "design.rim_share")],
+)
+def test_sweeps_fronts_and_drives_refuse_what_only_one_design_knows(design, field, tmp_path):
+    """A given rim_speed or a rim_share acts in design_flywheel only: every other path must refuse it, not drop it."""
+    from flyopt.errors import SceneError
+    from flyopt.io.scene import from_dict
+
+    base = {"machine": {"speed": "800 rpm", "delta": 0.04}, "torque": {"net": {"areas": ["23562 J", "-23562 J"]}}}
+    with pytest.raises(SceneError) as err:
+        from_dict({**base, "design": design, "drive": {"motor": "any"}})
+    assert err.value.field == field
+    scene = tmp_path / "scene.toml"
+    lines = ['[machine]\nspeed = "800 rpm"\ndelta = 0.04\n[torque.net]\nareas = ["23562 J", "-23562 J"]\n[design]']
+    lines += [f"{k} = {v!r}".replace("'", '"') for k, v in design.items()]
+    scene.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    for command in (
+        ["sweep", str(scene), "--vary", "speed=700:900:3", "-o", str(tmp_path / "s.csv")],
+        ["pareto", str(scene), "-o", str(tmp_path / "p.csv")],
+    ):
+        run = subprocess.run([sys.executable, "-m", "flyopt", *command], capture_output=True, text=True)
+        assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1, run.stderr
+        assert f"{scene}: {field}:" in run.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.toml"]
