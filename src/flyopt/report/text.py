@@ -344,7 +344,7 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
         book = result.book_rim()
         if book is not None:
             lines += book_rim_report(book, units)
-        elif not result.spec.has_envelope:
+        elif not result.spec.has_envelope and not result.spec.pins_d_mean:
             lines.append(
                 "  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
                 "bounds the diameter"

@@ -80,7 +80,7 @@ class DesignSection(BuilderBase):
         if best.bore:
             rows.insert(3, ("bore", self.q(best.bore, "length", "bore")))
         blocks.append(Facts(tuple(rows), "design"))
-        if not d.spec.has_envelope and not d.spec.by_mean_rim_speed:  # the courses' D_m is no envelope's
+        if not d.spec.has_envelope and not d.spec.pins_d_mean:  # a pinned D_m (given, or by a speed) bounds it
             blocks.append(
                 Paragraph(
                     "No envelope (design.max_outer_diameter) is set, so only the rim speed limit bounds the diameter.",
