@@ -239,3 +239,18 @@ def test_sweeps_fronts_and_drives_refuse_what_only_one_design_knows(design, fiel
         assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1, run.stderr
         assert f"{scene}: {field}:" in run.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.toml"]
+
+
+def test_the_report_says_in_its_summary_how_far_the_book_rim_is_over(tmp_path):
+    out = tmp_path / "book.html"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(SCENE), "-o", str(out)], capture_output=True, text=True
+    )
+    assert run.returncode == 0, run.stderr
+    html = out.read_text(encoding="utf-8")
+    # the contents list names the sections first; the summary section runs from its heading to the next one
+    start = html.index("Summary", html.index("The scene as given"))
+    summary = html[start : html.index("The scene as given", start)]
+    assert "Criterion mean_rim_speed, the courses" in summary
+    assert "19.8% over the allowable" in summary
+    assert "v<sub>m</sub> = i ω" in html  # the book's speed, substituted
