@@ -254,3 +254,18 @@ def test_the_report_says_in_its_summary_how_far_the_book_rim_is_over(tmp_path):
     assert "Criterion mean_rim_speed, the courses" in summary
     assert "19.8% over the allowable" in summary
     assert "v<sub>m</sub> = i ω" in html  # the book's speed, substituted
+
+
+def test_the_verification_of_a_rim_share_counts_the_arms_and_hub_it_leaves_to_others(tmp_path):
+    """The rim gives 0.9 J_F; the flywheel verified is the rim and the 0.1 J_F the arms and hub are to give."""
+    import flyopt
+
+    text = SCENE.read_text(encoding="utf-8").replace("hb_ratio = 0.2 ", 'rim_share = "90 %"\nhb_ratio = 0.2 ', 1)
+    assert "rim_share" in text
+    scene = tmp_path / "share.toml"
+    scene.write_text(text, encoding="utf-8")
+    solution = flyopt.solve(flyopt.load(scene), verify_design=True)
+    assert solution.design.best.j_at_reference == pytest.approx(0.9 * J, rel=1e-9)
+    assert solution.verification.j_flywheel == pytest.approx(J, rel=1e-9)
+    assert solution.verification.achieved_delta == pytest.approx(DELTA, rel=1e-9)
+    assert not solution.verification.flagged
