@@ -258,6 +258,11 @@ class DesignSpec:
             object.__setattr__(self, "rim_speed", _positive(self.rim_speed, "rim_speed", "[m/s]"))
             if self.geometry not in BOOK_RIM_GEOMETRIES:
                 raise ValueError(f"rim_speed is a bare rim's (geometry 'rim' or 'thin_rim'), not a {self.geometry!r}'s")
+            if self.criterion == Criterion.STRESS:
+                raise ValueError(
+                    "rim_speed pins a rim sized by its rim speed; under the stress criterion the wheel is designed "
+                    "whole: give d_mean (2 v / omega'_m) instead"
+                )
             if self.d_mean is not None or self.by_mean_rim_speed:
                 raise ValueError(
                     "rim_speed pins the mean diameter, as "
