@@ -478,6 +478,10 @@ class DesignResult:
     omega_mean : float or None
         Mean speed of the reference shaft [rad/s], where the design was
         given it (the courses' rim convention sizes the rim there).
+    continuous : Design or None
+        With ``spec.round_to``: the continuous optimum the rounded ``best`` comes from.
+    rounding : str or None
+        With ``spec.round_to``: what rounding did, in words.
     """
 
     status: str
@@ -489,6 +493,8 @@ class DesignResult:
     candidates: tuple[Candidate, ...] = ()
     model: dict[str, Any] | None = None
     omega_mean: float | None = None
+    continuous: Design | None = None
+    rounding: str | None = None
 
     def book_rim(self) -> BookRim | None:
         """What the courses' rim (criterion mean_rim_speed) really sees, beside what the book checks; None for
@@ -529,6 +535,9 @@ class DesignResult:
             for name in ("binding", "parts", "sensitivities", "notes"):
                 design[name] = design[name] or []
             design["candidates"] = [c.to_dict(timings) for c in self.candidates]
+            if self.spec.round_to is not None:  # the rounded winner above, the continuous optimum here
+                design["rounding"] = self.rounding
+                design["continuous"] = self.continuous.to_dict(timings) if self.continuous is not None else None
         spec = self.spec.to_dict()
         return {
             "status": self.status,
