@@ -152,3 +152,20 @@ def test_sweeps_and_fronts_refuse_rounding_in_one_line(tmp_path):
         assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1, run.stderr
         assert f"{scene}: design.round_to: rounds one winning wheel" in run.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["rounded.toml"]
+
+
+def test_solve_and_the_report_show_the_continuous_optimum_beside_the_rounded_wheel(tmp_path):
+    scene = tmp_path / "rounded.toml"
+    text = (
+        (PROBLEMS / "rim-sizing.toml").read_text(encoding="utf-8").replace("[design]", '[design]\nround_to = "1 mm"', 1)
+    )
+    scene.write_text(text, encoding="utf-8")
+    words = "rounded to 1 mm (design.round_to): +8.07 kg (+1.70%) over the continuous optimum: 475 kg"
+    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    assert run.returncode == 0 and words in run.stdout, run.stderr
+    out = tmp_path / "rounded.html"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out)], capture_output=True, text=True
+    )
+    assert run.returncode == 0, run.stderr
+    assert words in out.read_text(encoding="utf-8")

@@ -80,6 +80,10 @@ class DesignSection(BuilderBase):
         if best.bore:
             rows.insert(3, ("bore", self.q(best.bore, "length", "bore")))
         blocks.append(Facts(tuple(rows), "design"))
+        if d.continuous is not None:  # rounded to design.round_to: the same words as the text's
+            from flyopt.report.text import rounding_report
+
+            blocks.append(Paragraph(" ".join(line.strip() for line in rounding_report(d, self.units)), "note"))
         if not d.spec.has_envelope and not d.spec.pins_d_mean:  # a pinned D_m (given, or by a speed) bounds it
             blocks.append(
                 Paragraph(
