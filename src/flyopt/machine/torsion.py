@@ -40,6 +40,7 @@ Press, 2010, chapter 9 (torsional models, geared systems).
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -102,7 +103,7 @@ def _positive(name: str, values: Sequence[float] | np.ndarray) -> np.ndarray:
     bad = ~(np.isfinite(array) & (array > 0.0))
     if bad.any():
         index = int(np.flatnonzero(bad)[0])
-        raise ValueError(f"{name}[{index}] = {array[index]!r} must be a finite number > 0")
+        raise ValueError(f"{name}[{index}] = {float(array[index])!r} must be a finite number > 0")
     return array
 
 
@@ -232,6 +233,8 @@ def chain(
         Non-positive values or lengths that do not match.
     """
     j = _positive("inertias", inertias)
+    if j.size == 0:
+        raise ValueError("a torsional model needs at least one inertia")
     k = _positive("stiffnesses", stiffnesses)
     if len(k) != len(j) - 1:
         raise ValueError(f"a chain of {len(j)} inertias needs {len(j) - 1} stiffnesses, got {len(k)}")
@@ -495,10 +498,10 @@ def harmonic_response(
     if t.shape != (model.size,):
         raise ValueError(f"torques needs one amplitude per node ({model.size}), got shape {t.shape}")
     dynamic = k - omega**2 * m + 1j * omega * c
-    try:
-        lu = scipy.linalg.lu_factor(dynamic, check_finite=True)
-    except (np.linalg.LinAlgError, ValueError) as err:
-        raise ValueError(f"the dynamic stiffness at Omega = {omega:g} rad/s cannot be factorised") from err
+    with warnings.catch_warnings():
+        # an exactly singular pivot is reported below, in a ValueError that says why
+        warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+        lu = scipy.linalg.lu_factor(dynamic)
     diagonal = np.abs(np.diag(lu[0]))
     if diagonal.min() <= 1e-13 * diagonal.max():
         raise ValueError(f"Omega = {omega:g} rad/s is a natural frequency of the undamped system: add damping")
@@ -617,14 +620,14 @@ def _check_number(name: str, value: float, *, positive: bool) -> None:
     if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
         raise ValueError(f"{name} must be a number, got {value!r}")
     if not math.isfinite(value) or (value <= 0.0 if positive else value < 0.0):
-        raise ValueError(f"{name} = {value!r} must be a finite number {'> 0' if positive else '>= 0'}")
+        raise ValueError(f"{name} = {float(value)!r} must be a finite number {'> 0' if positive else '>= 0'}")
 
 
 def _check_ratio(name: str, value: float) -> None:
     if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
         raise ValueError(f"{name} must be a number, got {value!r}")
     if not math.isfinite(value) or value == 0.0:
-        raise ValueError(f"{name} = {value!r} must be a finite, non-zero speed ratio")
+        raise ValueError(f"{name} = {float(value)!r} must be a finite, non-zero speed ratio")
 
 
 def _square(matrix: np.ndarray, size: int) -> np.ndarray:
