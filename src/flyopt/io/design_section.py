@@ -74,6 +74,15 @@ def read_design(
         low, high = (quantity(v, "dimensionless", "design.hb_ratio") for v in pair)
         if not 0 < low <= high:
             raise SceneError("design.hb_ratio", f"must be a range 0 < min <= max, got {shorten(hb)}")
+        for value in (low, high):
+            check_magnitude(
+                value,
+                "design.hb_ratio",
+                hb,
+                *HB_RANGE,
+                "",
+                "from a plate 1000 times wider than thick to a ring 1000 times thicker",
+            )
         options["hb_ratio"] = (low, high)
     for key in ("max_outer_diameter", "max_width", "d_mean", "min_wall", "round_to"):
         if table.has(key):
@@ -162,6 +171,9 @@ def read_design(
         _check_min_wall(spec, table)
     return spec, names, shaft_names
 
+
+#: Allowed H/B [-]: beyond it a rim's other section runs to kilometres or to nothing.
+HB_RANGE = (1e-3, 1e3)
 
 #: Largest design.round_to [m]: a coarser step is no manufacturing step for a flywheel.
 MAX_ROUND_TO = 0.1
