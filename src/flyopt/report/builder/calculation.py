@@ -17,6 +17,7 @@ report has no diagram, and says so.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -201,11 +202,10 @@ class CalculationReport(BuilderBase):
         )
         return blocks
 
-    def speed_step(self, blocks: list[Any], omega: float, symbol: str, what: str, section: int) -> None:
+    def speed_step(self, blocks: list[Any], omega: float, symbol: str, section: int) -> None:
         """ω from the speed given in rpm (machine.speed)."""
         from flyopt.units import rad_s_to_rpm
 
-        blocks.append(Paragraph(what))
         blocks.append(
             self.eq(
                 "omega",
@@ -280,7 +280,7 @@ class CalculationReport(BuilderBase):
                 "constant, as the book does (a motor of constant torque gives a little less as the speed falls)."
             )
         )
-        self.speed_step(blocks, r.omega_before, "ω_{1}", "The speed before the operation:", 16)
+        self.speed_step(blocks, r.omega_before, "ω_{1}", 16)
         if wheel is not None and wheel.mass is not None and wheel.radius_of_gyration is not None:
             blocks.append(
                 self.eq(
@@ -301,11 +301,12 @@ class CalculationReport(BuilderBase):
                     8,
                 )
             )
-        if wheel is not None and self.scene.j_constant:
+        if wheel is not None:  # J at the reference shaft: the machine's own and the wheel's
+            prime = "'" if wheel.speed_ratio != 1.0 else ""
             blocks.append(
                 self.eq(
                     "inertia",
-                    "J = J_{c} + J_{F}'",
+                    f"J = J_{{c}} + J_{{F}}{prime}",
                     f"{si(self.scene.j_constant, 'inertia')} + {si(wheel.j_at_reference, 'inertia')}",
                     res(r.inertia, "inertia"),
                     16,
@@ -396,6 +397,8 @@ class CalculationReport(BuilderBase):
         p, si, res = r.position, self.si, self.result
         self.answer(
             [
+                ("gas force on the piston F_{L}", self.f(r.gas_force, "gas_force")),
+                ("inertia force of the reciprocating parts F_{I}", self.f(r.inertia_force, "inertia_force")),
                 ("piston effort F_{P}", self.f(r.piston_effort, "piston_effort")),
                 ("force in the rod F_{Q}", self.f(r.rod_force, "rod_force")),
                 ("thrust on the cylinder walls F_{N}", self.f(r.thrust, "thrust")),
@@ -432,7 +435,7 @@ class CalculationReport(BuilderBase):
         blocks = self.method()
         theta = f"{number(math.degrees(p.angle))}°"
         ratio = number(p.rod / p.crank, 6)
-        self.speed_step(blocks, r.omega, "ω", "The crank's speed:", 17)
+        self.speed_step(blocks, r.omega, "ω", 17)
         blocks.append(Paragraph("The rod's obliquity β, with n = l/r:"))
         blocks.append(
             self.eq(
@@ -472,7 +475,7 @@ class CalculationReport(BuilderBase):
             self.eq(
                 "acceleration",
                 "a = ω² r (cos θ + (n² cos 2θ + sin⁴ θ) / (n² − sin² θ)^{3/2})",
-                f"{self.squared(w)} × {rw} × (cos {theta} + ({ratio}² cos 2×{theta} + sin⁴ {theta}) / ({ratio}² − sin² {theta})^{{3/2}})",
+                f"{self.squared(w)} × {rw} × (cos {theta} + ({ratio}² cos 2×{theta} + sin⁴ {theta}) / (√({ratio}² − sin² {theta}))³)",
                 res(r.acceleration, "acceleration"),
                 17,
             )
@@ -554,6 +557,7 @@ class CalculationReport(BuilderBase):
         red = r.reduced
         if red is not None and red.turns and red.equivalent_inertia is not None and red.equivalent_moment is not None:
             rows += [
+                (f"speed ratio ω/ω_{{k}} to {red.member}", number(1.0 / red.angular_ratio, 6)),
                 (f"J_{{e}} reduced to {red.member}", self.f(red.equivalent_inertia, "equivalent_inertia")),
                 (
                     f"M_{{e}} reduced to {red.member}",
@@ -587,7 +591,7 @@ class CalculationReport(BuilderBase):
         given: list[tuple[Any, Any]] = []
         mechanism = self.scene.mechanism
         if mechanism is not None:
-            given.append(("mechanism", type(mechanism).__name__))
+            given.append(("mechanism", re.sub(r"(?<!^)(?=[A-Z])", " ", type(mechanism).__name__).lower()))
         if p.input_angle is not None:
             given.append(("the mechanism's input at (position.input_angle)", self.f(p.input_angle, "input_angle")))
             given.append(("the reference shaft's angle φ there", where))
@@ -774,28 +778,33 @@ class CalculationReport(BuilderBase):
         d, si, res = r.drive, self.si, self.result
         shafts = drive_shafts(r)
         answer: list[tuple[Any, Any]] = [
-            ("load power P_{L}", (self.f(r.load_power, "power"), " at ", self.f(r.load_speed, "omega"))),
-            ("motor output power P_{L}/η", self.f(r.motor_power, "power")),
-            ("load torque at the motor T_{L}'", self.f(r.load_torque_at_motor, "torque")),
+            ("load power P_{L}", (self.f(r.load_power, "load_power"), " at ", self.f(r.load_speed, "load_speed"))),
+            ("motor output power P_{L}/η", self.f(r.motor_power, "motor_power")),
+            ("load torque at the motor T_{L}'", self.f(r.load_torque_at_motor, "load_torque_at_motor")),
             (
                 "GD² at the motor (equal kinetic energy)",
-                (self.f(r.gd2_total, "gd2_total"), " (J = ", self.f(r.inertia_total, "inertia"), ")"),
+                (self.f(r.gd2_total, "gd2_total"), " (J = ", self.f(r.inertia_total, "inertia_total"), ")"),
             ),
             (
                 "GD²_{η} with the losses (the texts' convention for accelerating)",
-                (self.f(r.gd2_with_losses, "gd2_with_losses"), " (J = ", self.f(r.inertia_with_losses, "inertia"), ")"),
+                (
+                    self.f(r.gd2_with_losses, "gd2_with_losses"),
+                    " (J = ",
+                    self.f(r.inertia_with_losses, "inertia_with_losses"),
+                    ")",
+                ),
             ),
         ]
         if r.accelerating_torque is not None and r.motor_torque is not None:
             answer += [
-                ("accelerating torque T_{a}", self.f(r.accelerating_torque, "torque")),
-                ("motor torque, loaded and accelerating", (self.f(r.motor_torque, "torque"), " (T_L' + T_a)")),
+                ("accelerating torque T_{a}", self.f(r.accelerating_torque, "accelerating_torque")),
+                ("motor torque, loaded and accelerating", (self.f(r.motor_torque, "motor_torque"), " (T_L' + T_a)")),
             ]
         self.answer(answer)
         given: list[tuple[Any, Any]] = [
-            ("motor speed n_{M} (machine.speed)", self.f(d.motor_speed, "omega")),
+            ("motor speed n_{M} (machine.speed)", self.f(d.motor_speed, "motor_speed")),
             ("GD²_{M} of the motor's shaft", self.f(d.motor_gd2, "motor_gd2")),
-            ("load torque T_{L}", self.f(d.load_torque, "torque")),
+            ("load torque T_{L}", self.f(d.load_torque, "load_torque")),
         ]
         if d.acceleration is not None:
             given.append(
@@ -825,7 +834,7 @@ class CalculationReport(BuilderBase):
         self.given(given, stages)
 
         blocks = self.method()
-        self.speed_step(blocks, d.motor_speed, "ω_{M}", "The motor's speed, the reference:", 18)
+        self.speed_step(blocks, d.motor_speed, "ω_{M}", 18)
         ratios = " × ".join(number(s.ratio) for s in d.stages) or "1"
         effs = " × ".join(number(s.efficiency) for s in d.stages) or "1"
         blocks.append(self.eq("total_ratio", "j = Π j_{k}", ratios, number(r.total_ratio), 18))
@@ -970,14 +979,6 @@ class CalculationReport(BuilderBase):
     def power_chain(self) -> None:
         r: PowerFlow = self.calc.result
         si, res = self.si, self.result
-        self.answer(
-            [
-                ("motor power P_{in}", self.f(r.motor_power, "motor_power")),
-                ("delivered Σ P_{out}", self.f(r.delivered, "load_power")),
-                ("overall efficiency Σ P_{out} / P_{in}", number(r.efficiency)),
-                ("losses P_{in} − Σ P_{out}", self.f(r.losses, "power")),
-            ]
-        )
         given_rows: list[list[Any]] = []
         flows: list[tuple[int, BranchFlow, tuple[float, ...]]] = []
 
@@ -987,7 +988,11 @@ class CalculationReport(BuilderBase):
                 [
                     "  " * depth + b.name,
                     " × ".join(number(eta) for eta in b.stages) or "-",
-                    "-" if b.power is None else self.fn(b.power, "load_power"),
+                    (
+                        "splits into " + ", ".join(c.name for c in b.branches)
+                        if b.power is None
+                        else self.fn(b.power, "load_power")
+                    ),
                 ]
             )
             flows.append((depth, flow, upstream + b.stages))
@@ -995,6 +1000,27 @@ class CalculationReport(BuilderBase):
                 visit(child, depth + 1, upstream + b.stages)
 
         visit(r.trunk, 0, ())
+        leaves = [(flow, path) for _, flow, path in flows if flow.branch.power is not None]
+        answer: list[tuple[Any, Any]] = [("motor power P_{in}", self.f(r.motor_power, "motor_power"))]
+        if len(leaves) > 1:
+            answer += [
+                (
+                    f"drawn at the motor by {flow.branch.name} P_{{d,{flow.branch.name}}}",
+                    (
+                        self.f(flow.motor_power, "motor_power"),
+                        " (it delivers ",
+                        self.f(flow.delivered, "load_power"),
+                        f" at η = {number(flow.path_efficiency)} from the motor)",
+                    ),
+                )
+                for flow, _ in leaves
+            ]
+        answer += [
+            ("delivered Σ P_{out}", self.f(r.delivered, "load_power")),
+            ("overall efficiency Σ P_{out} / P_{in}", number(r.efficiency)),
+            ("losses P_{in} − Σ P_{out}", self.f(r.losses, "losses")),
+        ]
+        self.answer(answer)
         self.given(
             [
                 (
@@ -1019,7 +1045,6 @@ class CalculationReport(BuilderBase):
                 "P_d = P_r / (η_1 η_2 ⋯), added over the branches)."
             )
         )
-        leaves = [(flow, path) for _, flow, path in flows if flow.branch.power is not None]
         for flow, path in leaves:
             name = flow.branch.name
             blocks.append(
