@@ -821,14 +821,15 @@ class CalculationReport(BuilderBase):
                 "stage",
                 "ratio j_{k} (speed in / out)",
                 "efficiency η_{k}",
+                self.fhead("speed after it", "omega"),
                 self.fhead("GD²_{k} on the shaft after it", "gd2"),
             ),
             tuple(
-                [str(k), number(s.ratio), number(s.efficiency), self.fn(s.gd2, "gd2")]
-                for k, s in enumerate(d.stages, start=1)
+                [str(k), number(s.ratio), number(s.efficiency), self.fn(speed, "omega"), self.fn(s.gd2, "gd2")]
+                for k, (s, speed) in enumerate(zip(d.stages, r.shaft_speeds, strict=True), start=1)
             ),
-            ("<", ">", ">", ">"),
-            "The stages as given, from the motor",
+            ("<", ">", ">", ">", ">"),
+            "The stages as given, from the motor (a stage given by its speed has the ratio of the speeds)",
             "stages",
         )
         self.given(given, stages)
