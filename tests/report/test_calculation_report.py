@@ -191,3 +191,40 @@ def test_an_operation_beyond_the_allowed_delta_is_reported_and_exits_4(tmp_path)
     page = Page(out.read_text(encoding="utf-8"))
     assert "FLAGGED" in page.title_block["status"]
     assert "does NOT hold" in "".join(page.text)
+
+
+def test_hostile_names_reach_both_formats_escaped(tmp_path):
+    """Branch names with markup, HTML and braces: the report is written in both formats, the names escaped
+    (no element of theirs in the page) and the subscripts of the formulas whole."""
+    scene = tmp_path / "hostile.toml"
+    scene.write_text(
+        "\n".join(
+            [
+                'title = "<script>x</script> & _{a}"',
+                "[power_chain]",
+                "stages = [0.9]",
+                "[[power_chain.branch]]",
+                'name = "A}_{<b>"',
+                "stages = [0.8]",
+                'power = "1 kW"',
+                "[[power_chain.branch]]",
+                'name = "B&^{x"',
+                "stages = [0.5]",
+                'power = "2 kW"',
+            ]
+        ),
+        encoding="utf-8",
+    )
+    for suffix in ("html", "pdf"):
+        out = tmp_path / f"hostile.{suffix}"
+        run = subprocess.run(
+            [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out)], capture_output=True, text=True
+        )
+        assert run.returncode == 0 and run.stderr == "", run.stderr
+    html = (tmp_path / "hostile.html").read_text(encoding="utf-8")
+    page = Page(html)
+    assert page.errors == []
+    assert "<script>" not in html and "<b>" not in html
+    assert "<script>x</script>" in "".join(page.text)
+    symbols = [e["sym"] for e in page.equations]
+    assert "ηA<b> = η1 × η2" in symbols and "ηB&x = η1 × η2" in symbols, symbols

@@ -54,6 +54,12 @@ SENSES = {
 }
 
 
+def subscript(name: str) -> str:
+    """A scene's name as a subscript of the report's markup: without the braces and marks that would end or
+    open one ("_{name}" must stay one subscript whatever the name holds)."""
+    return re.sub(r"[{}_^]", "", name) or "?"
+
+
 @dataclass
 class CalculationInputs:
     """What the report of a calculation is built from (``flyopt.cli.report.collect``).
@@ -675,7 +681,7 @@ class CalculationReport(BuilderBase):
             blocks.append(
                 self.eq(
                     f"inertia_share_{at.name}",
-                    f"J_{{{at.name}}} = J_{{S}} (ω_{{k}}/ω)² + m (v_{{S}}/ω)²",
+                    f"J_{{{subscript(at.name)}}} = J_{{S}} (ω_{{k}}/ω)² + m (v_{{S}}/ω)²",
                     f"{si(g.inertia, 'inertia')} × {self.squared(number(at.angular_ratio))} + {si(g.mass, 'mass')} × "
                     f"{self.squared(si(at.velocity_ratio, 'length') + '/rad')}",
                     res(at.inertia_share, "inertia"),
@@ -1006,7 +1012,7 @@ class CalculationReport(BuilderBase):
         if len(leaves) > 1:
             answer += [
                 (
-                    f"drawn at the motor by {flow.branch.name} P_{{d,{flow.branch.name}}}",
+                    f"drawn at the motor by {flow.branch.name} P_{{d,{subscript(flow.branch.name)}}}",
                     (
                         self.f(flow.motor_power, "motor_power"),
                         " (it delivers ",
@@ -1047,7 +1053,7 @@ class CalculationReport(BuilderBase):
             )
         )
         for flow, path in leaves:
-            name = flow.branch.name
+            name = subscript(flow.branch.name)
             blocks.append(
                 self.eq(
                     f"path_efficiency_{name}",
