@@ -318,6 +318,8 @@ class CalculationReport(BuilderBase):
                     16,
                 )
             )
+        motor_alone = r.energy_from_flywheel <= 0  # the result's ΔE: 0 where P τ covers E
+        difference = f"{si(op.energy, 'energy')} − {si(r.energy_from_motor, 'energy')}"
         blocks.append(
             self.eq(
                 "energy_from_motor",
@@ -330,13 +332,13 @@ class CalculationReport(BuilderBase):
         blocks.append(
             self.eq(
                 "energy_from_flywheel",
-                "ΔE = E − P τ",
-                f"{si(op.energy, 'energy')} − {si(r.energy_from_motor, 'energy')}",
+                "ΔE = max(0, E − P τ)" if motor_alone else "ΔE = E − P τ",
+                f"max(0, {difference})" if motor_alone else difference,
                 res(r.energy_from_flywheel, "energy"),
                 16,
             )
         )
-        if r.energy_from_flywheel <= 0:
+        if motor_alone:
             blocks.append(Paragraph("The motor alone gives the operation's energy: the flywheel gives none (ΔE = 0)."))
         blocks.append(
             self.eq(
