@@ -1,6 +1,6 @@
-"""A scene that is one calculation ([operation], [position], [electric_drive], [power_chain]) has no cycle: every command but
-``solve`` and ``check`` refuses it in one line naming its section, exit 2 (a plot of an [electric_drive] once
-failed with a traceback)."""
+"""A scene that is one calculation ([operation], [position], [electric_drive], [power_chain]) has no cycle: ``solve``,
+``check`` and ``report`` answer it; every other command refuses it in one line naming its section, exit 2 (a plot of
+an [electric_drive] once failed with a traceback)."""
 
 import subprocess
 import sys
@@ -25,7 +25,6 @@ NEEDS_SPEED = ("electric_drive", "operation", "position")
     [
         ["plot", "--what", "speed", "-o", "{out}.png"],
         ["sweep", "--vary", "speed=100:200:2", "-o", "{out}.csv"],
-        ["report", "-o", "{out}.html"],
     ],
 )
 def test_every_other_command_refuses_a_calculation_in_one_line(section, command, tmp_path):
@@ -40,6 +39,38 @@ def test_every_other_command_refuses_a_calculation_in_one_line(section, command,
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 1 and f"{section}: is one calculation" in lines[0] and "Traceback" not in run.stderr
     assert not list(tmp_path.iterdir())
+
+
+#: Each calculation's key answers as the report shows them in engineering units (6 digits), each the book's
+#: published answer to its rounding (the comments of the scene): {section: [answers]}.
+ANSWERS = {
+    "operation": ["257.601 rpm", "18 at most"],  # Khurmi 16.21: ω₂ ≈ 257.6 rpm, 18 rivets a minute
+    "position": ["68.7223 kN", "19.2823 kN", "14.4895 kN·m"],  # Khurmi ch. 15: F_L 68.72 kN, F_I 19.28, T 14.49 kN·m
+    "electric_drive": ["3.79609 kW", "5.20726 kW", "4.76886 N·m²"],  # seed 004 ex. 2: 3.796 kW, 5.207 kW, 4.769 N·m²
+    "power_chain": ["7.22019 kW", "2.31046 kW", "9.53065 kW"],  # seed 001 ex. 5-8: P_dA 7220.2, P_dB 2310.5, 9530.7 W
+}
+
+
+@pytest.mark.parametrize("suffix", [".html", ".pdf"])
+@pytest.mark.parametrize("section", sorted(SCENES))
+def test_report_writes_a_calculation_with_its_answers(section, suffix, tmp_path):
+    """``flyopt report`` of a calculation writes the report (exit 0) and its text holds the book's answers."""
+    out = tmp_path / f"out{suffix}"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(TEXTBOOK / SCENES[section]), "-o", str(out)],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    assert out.is_file() and run.stderr == ""
+    if suffix == ".pdf":
+        from pypdf import PdfReader
+
+        text = " ".join(" ".join(page.extract_text() or "" for page in PdfReader(str(out)).pages).split())
+    else:
+        text = out.read_text(encoding="utf-8")
+    for answer in ANSWERS[section]:
+        assert answer in text, (section, answer)
 
 
 @pytest.mark.parametrize("section", sorted(SCENES))

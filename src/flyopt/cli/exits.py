@@ -49,6 +49,12 @@ EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141
 
 
+def calculation_exit(result: object) -> int:
+    """The exit status of a scene that is one calculation (``flyopt solve``, ``flyopt report``): 4 when an
+    operation's speed falls beyond machine.delta (its ``holds`` is False), else 0."""
+    return EXIT_FLAGGED if getattr(result, "holds", None) is False else EXIT_OK
+
+
 def solution_exit(solution: Solution) -> int:
     """The exit status of a solved scene (``flyopt solve``, ``flyopt report``): 3 infeasible,
     4 a verification (of the flywheel or of the drive) flagged or a [flywheel] that exists short

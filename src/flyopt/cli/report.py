@@ -19,9 +19,16 @@ model. The suffix of ``-o`` picks the format; the file is
 written atomically (nothing half-written on an error or Ctrl-C) and its
 folder is checked before anything is computed.
 
+A scene that is one calculation rather than a cycle ([operation], [position],
+[electric_drive], [power_chain]) is answered once, as ``flyopt solve`` answers
+it (:func:`flyopt.pipeline.solve_calculation`), and reported by
+:mod:`flyopt.report.builder.calculation`: the given data, the method with the
+numbers substituted and the answers, with no diagram (it has no cycle).
+
 Exit status as ``flyopt solve``: 0 written, 2 bad input (one line naming the
 file and the field), 3 infeasible (the report is still written and says
-so), 4 the verification flagged the design (written, and says so).
+so), 4 the verification flagged the design, or an operation's speed falls
+beyond machine.delta (written, and says so).
 """
 
 from __future__ import annotations
@@ -30,7 +37,7 @@ import argparse
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, cast
 
-from flyopt.cli.exits import solution_exit
+from flyopt.cli.exits import calculation_exit, solution_exit
 from flyopt.names import Model
 
 if TYPE_CHECKING:
@@ -38,7 +45,7 @@ if TYPE_CHECKING:
 
     from flyopt.io.scene import Scene
     from flyopt.pipeline import Solution
-    from flyopt.report.builder import ReportInputs
+    from flyopt.report.builder import CalculationInputs, ReportInputs
     from flyopt.report.document import Document
 
 #: The report's formats, by the suffix of the output file.
@@ -93,7 +100,7 @@ def run_report(args: argparse.Namespace) -> int:
         raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: name another file for the report")
     command = f"flyopt report {args.scene} -o {args.output} --units {args.units}"
     inputs = collect(args.scene, command, pdf=kind == "pdf")
-    from flyopt.report.builder import build
+    from flyopt.report.builder import CalculationInputs, build
 
     document = build(inputs, args.units, title_block=_title_lines(inputs))
     try:
@@ -103,6 +110,8 @@ def run_report(args: argparse.Namespace) -> int:
     for failure in document.failures:
         print(f"flyopt: warning: {args.scene}: diagram {failure}", file=sys.stderr)
     print(f"wrote {args.output}")
+    if isinstance(inputs, CalculationInputs):
+        return calculation_exit(inputs.result)
     return solution_exit(cast("Solution", inputs.solution))  # collect solved it
 
 
@@ -129,8 +138,10 @@ def write(document: Document, path: str | os.PathLike[str], kind: str) -> None:
     write_atomically(path, lambda handle: handle.write(data))  # the handle of the file it made, not a name
 
 
-def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) -> ReportInputs:
-    """Solve a scene and gather what its report shows (:class:`flyopt.report.builder.ReportInputs`).
+def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) -> ReportInputs | CalculationInputs:
+    """Solve a scene and gather what its report shows (:class:`flyopt.report.builder.ReportInputs`), or,
+    for a scene that is one calculation (:data:`flyopt.names.CALCULATIONS`), answer it as ``flyopt solve``
+    does (:func:`flyopt.pipeline.solve_calculation`) into a :class:`flyopt.report.builder.CalculationInputs`.
 
     Parameters
     ----------
@@ -159,11 +170,13 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
     scene = load(path, data)
     what = scene.calculation
     if what is not None:
-        from flyopt.errors import SceneError
+        from flyopt.pipeline import solve_calculation
+        from flyopt.report.builder import CalculationInputs
 
-        raise SceneError(
-            what, "is one calculation, not a cycle: the report is of a cycle; flyopt solve (and --json) gives it"
-        ).with_source(str(path))
+        result = solve_calculation(scene)  # the one answer, as flyopt solve gives it: the report only reads it
+        calculation = CalculationInputs(str(path), Path(path).read_text(encoding="utf-8"), scene, what, result)
+        calculation.provenance = provenance(scene, command, pdf, data_files(data))
+        return calculation
     solution = solve(scene, verify_design=True, extras=report_extras())  # the one solve: what follows only reads
     inputs = ReportInputs(
         scene_file=str(path),

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
-from flyopt.cli.exits import EXIT_FLAGGED, EXIT_OK, solution_exit
+from flyopt.cli.exits import EXIT_OK, calculation_exit, solution_exit
 from flyopt.names import Model
 from flyopt.report import display
 
@@ -118,7 +118,7 @@ def _run_calculation(what: str, scene: Scene, args: argparse.Namespace) -> int:
         from flyopt.report.text import CALCULATION_REPORTS
 
         print(CALCULATION_REPORTS[what](result, scene.title, args.scene, units=args.units))
-    return EXIT_FLAGGED if getattr(result, "holds", None) is False else EXIT_OK
+    return calculation_exit(result)
 
 
 def add_check_arguments(parser: argparse.ArgumentParser) -> None:

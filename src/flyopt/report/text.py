@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from flyopt.design.result import Design
 from flyopt.errors import BrokenInvariant
@@ -824,28 +824,62 @@ def equivalents_report(result: PositionEquivalents, title: str, source: str | No
     return "\n".join([*lines, *(f"  {a:<{width}}  {b}" for a, b in facts)])
 
 
+class DriveShaft(NamedTuple):
+    """One shaft of an [electric_drive] reduced to the motor (:func:`drive_shafts`); SI, GD² in N·m²."""
+
+    name: str
+    ratio: float | None  # j_k of the stage before it (None: the motor's own shaft)
+    efficiency: float | None  # η_k of that stage
+    ratio_to_motor: float  # j_1 ⋯ j_k
+    efficiency_to_motor: float  # η_1 ⋯ η_k
+    speed: float  # ω [rad/s]
+    gd2: float  # GD²_k on it
+    gd2_reduced: float  # GD²_k / (j_1 ⋯ j_k)²
+    gd2_with_losses: float  # GD²_k / ((j_1 ⋯ j_k)² η_1 ⋯ η_k)
+
+
+def drive_shafts(drive: ReducedDrive) -> list[DriveShaft]:
+    """The motor's shaft and the shaft after each stage, with their GD² at the motor plain and with the
+    losses: the terms whose sums are ``gd2_total`` and ``gd2_with_losses`` (flyopt.machine.electric_drive),
+    for the text report and the engineering report alike."""
+    d = drive.drive
+    shafts = [DriveShaft("motor", None, None, 1.0, 1.0, d.motor_speed, d.motor_gd2, d.motor_gd2, d.motor_gd2)]
+    ratio = eta = 1.0
+    for k, (stage, speed) in enumerate(zip(d.stages, drive.shaft_speeds, strict=True)):
+        ratio *= stage.ratio
+        eta *= stage.efficiency
+        shafts.append(
+            DriveShaft(
+                f"after stage {k + 1}",
+                stage.ratio,
+                stage.efficiency,
+                ratio,
+                eta,
+                speed,
+                stage.gd2,
+                stage.gd2 / ratio**2,
+                stage.gd2 / (ratio**2 * eta),
+            )
+        )
+    return shafts
+
+
 def electric_drive_report(drive: ReducedDrive, title: str, source: str | None = None, units: str = DEFAULT) -> str:
     """``flyopt solve`` of an [electric_drive]: the drive reduced to the motor shaft, in the texts' terms."""
     q, n = formatters(units)
     d = drive.drive
     rows = [
-        ["motor", "-", "-", n(d.motor_speed, "omega"), number(d.motor_gd2), number(d.motor_gd2), number(d.motor_gd2)]
+        [
+            s.name,
+            "-" if s.ratio is None else number(s.ratio),
+            "-" if s.efficiency is None else number(s.efficiency),
+            n(s.speed, "omega"),
+            number(s.gd2),
+            number(s.gd2_reduced),
+            number(s.gd2_with_losses),
+        ]
+        for s in drive_shafts(drive)
     ]
-    ratio = eta = 1.0
-    for k, (stage, speed) in enumerate(zip(d.stages, drive.shaft_speeds)):
-        ratio *= stage.ratio
-        eta *= stage.efficiency
-        rows.append(
-            [
-                f"after stage {k + 1}",
-                number(stage.ratio),
-                number(stage.efficiency),
-                n(speed, "omega"),
-                number(stage.gd2),
-                number(stage.gd2 / ratio**2),
-                number(stage.gd2 / (ratio**2 * eta)),
-            ]
-        )
     speed_unit = _label("omega", units)
     lines = [
         visible(title) + (f"  ({visible(source)})" if source else ""),

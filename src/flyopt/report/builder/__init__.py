@@ -1,5 +1,9 @@
 """The engineering report of one scene: what ``flyopt report`` writes as HTML or PDF, built section by section.
 
+A scene that is one calculation rather than a cycle has its own, shorter
+report (:mod:`~flyopt.report.builder.calculation`): :func:`build` takes its
+:class:`CalculationInputs` as well.
+
 The report is built once as a neutral :class:`~flyopt.report.document.Document`
 by :func:`build`, one module per section (:mod:`~flyopt.report.builder.summary`,
 :mod:`~flyopt.report.builder.scene`, :mod:`~flyopt.report.builder.steps` and
@@ -33,7 +37,8 @@ the result repeated in the chosen units where those differ.
 
 from __future__ import annotations
 
+from flyopt.report.builder.calculation import CalculationInputs
 from flyopt.report.builder.inputs import ReportInputs
 from flyopt.report.builder.report import build
 
-__all__ = ["ReportInputs", "build"]
+__all__ = ["CalculationInputs", "ReportInputs", "build"]

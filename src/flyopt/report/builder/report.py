@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from flyopt.report import display
+from flyopt.report.builder.calculation import CalculationInputs, build_calculation
 from flyopt.report.builder.design import DesignSection
 from flyopt.report.builder.drive import DriveSection
 from flyopt.report.builder.existing import ExistingFlywheelSection
@@ -18,13 +19,17 @@ from flyopt.report.document import Document
 
 
 def build(
-    inputs: ReportInputs, units: str = display.DEFAULT, title_block: tuple[tuple[str, Any], ...] = ()
+    inputs: ReportInputs | CalculationInputs,
+    units: str = display.DEFAULT,
+    title_block: tuple[tuple[str, Any], ...] = (),
 ) -> Document:
-    """The report of a solved scene, in a unit system.
+    """The report of a solved scene, or of a scene that is one calculation, in a unit system.
 
     Parameters
     ----------
-    inputs : ReportInputs
+    inputs : ReportInputs or CalculationInputs
+        A cycle's solution, or one calculation's answer (its report:
+        :func:`flyopt.report.builder.calculation.build_calculation`).
     units : {"engineering", "si", "imperial"}
         The units of the summary, facts and tables (equations stay SI).
     title_block : tuple of (str, str)
@@ -36,6 +41,8 @@ def build(
         Its figures are open matplotlib Figures: render it, then :meth:`Document.close`.
     """
     display.check_system(units)
+    if isinstance(inputs, CalculationInputs):
+        return build_calculation(inputs, units, title_block)
     return Builder(inputs, units).document(title_block)
 
 
