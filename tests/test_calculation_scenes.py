@@ -19,7 +19,12 @@ SCENES = {
 NEEDS_SPEED = ("electric_drive", "operation", "position")
 
 
-@pytest.mark.parametrize("section", sorted(SCENES))
+#: Every form of calculation: the [position] of a mechanism's equivalents beside that of a crank's forces (the
+#: members' loads of a position scene are no cycle's torques: a sweep once reduced them as one, with a traceback).
+FORMS = [*SCENES.items(), ("position", "seed000-calc6-guide-bar-position.toml")]
+
+
+@pytest.mark.parametrize(("section", "scene"), FORMS)
 @pytest.mark.parametrize(
     "command",
     [
@@ -27,11 +32,11 @@ NEEDS_SPEED = ("electric_drive", "operation", "position")
         ["sweep", "--vary", "speed=100:200:2", "-o", "{out}.csv"],
     ],
 )
-def test_every_other_command_refuses_a_calculation_in_one_line(section, command, tmp_path):
+def test_every_other_command_refuses_a_calculation_in_one_line(section, scene, command, tmp_path):
     out = tmp_path / "out"
     args = [a.format(out=out) for a in command]
     run = subprocess.run(
-        [sys.executable, "-m", "flyopt", args[0], str(TEXTBOOK / SCENES[section]), *args[1:]],
+        [sys.executable, "-m", "flyopt", args[0], str(TEXTBOOK / scene), *args[1:]],
         capture_output=True,
         text=True,
     )

@@ -490,23 +490,8 @@ def test_an_input_angle_beyond_the_cycle_is_refused():
     assert "puts the reference shaft at 600 deg, outside the cycle, 0 to 360 deg" in str(err.value)
 
 
-@pytest.mark.parametrize(
-    "command",
-    [
-        ["plot", "--what", "speed", "-o", "{out}.png"],
-        ["sweep", "--vary", "speed=100:200:2", "-o", "{out}.csv"],
-        ["report", "-o", "{out}.html"],
-    ],
-)
-def test_every_other_command_refuses_the_equivalents_in_one_line(main_cli, tmp_path, command):
-    """The members' loads of a position scene are no cycle's torques: a sweep once reduced them as one and
-    failed with a traceback."""
-    args = [a.format(out=tmp_path / "out") for a in command]
-    status, out, err = main_cli(args[0], CALC6, *args[1:])
-    assert status == 2
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and "position: is one calculation" in lines[0]
-    assert not list(tmp_path.iterdir())
+def test_a_cycle_is_not_solved_from_a_position_scene():
+    """The refusals of plot and sweep are tests/test_calculation_scenes.py's; the API refuses it the same way."""
     with pytest.raises(SceneError) as raised:
         flyopt.solve(flyopt.load(CALC6))
     assert raised.value.field == "position"
