@@ -190,3 +190,55 @@ def test_missing_extra_is_refused_in_one_line(web_wheel, monkeypatch):
     monkeypatch.setitem(sys.modules, "skfem", None)
     with pytest.raises(ImportError, match=r"pip install 'flyopt\[fem\]'"):
         fem.fem_check(design, material, omega)
+
+
+# --------------------------------------------------------------------- [design] fem_check = true
+
+
+@pytest.fixture(scope="module")
+def checked_solution(tmp_path_factory):
+    """punch-press-wheel with ``fem_check = true``, solved once."""
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    assert "\n[design]\n" in text
+    path = tmp_path_factory.mktemp("fem") / "checked.toml"
+    path.write_text(text.replace("\n[design]\n", "\n[design]\nfem_check = true\n"), encoding="utf-8")
+    return path, flyopt.solve(flyopt.load(path))
+
+
+def test_solve_runs_the_check_on_the_best_design(checked_solution, web_wheel):
+    """The scene key makes the solve check its best design, as fem_check itself does; without it, no check."""
+    _, solution = checked_solution
+    design, material, omega = web_wheel
+    check = solution.design.fem
+    assert check is not None and solution.design.spec.fem_check
+    assert check.to_dict() == fem.fem_check(design, material, omega).to_dict()
+    assert flyopt.solve(flyopt.load(PROBLEMS / "punch-press-wheel.toml")).design.fem is None
+
+
+def test_solve_json_and_text_carry_the_check(checked_solution):
+    import jsonschema
+
+    from flyopt.outputs.documents import json_text, schema, solution_document
+    from flyopt.outputs.quantities import has_unit
+    from flyopt.report.text import design_report
+
+    path, solution = checked_solution
+    document = json.loads(json_text(solution_document(solution, str(path))))
+    jsonschema.Draft202012Validator(schema()).validate(document)
+    fem_json = document["design"]["fem"]
+    assert fem_json["junctions"][0]["name"] == "hub-web"
+    for name in ("peak", "fem_peak", "lame", "factor", "fem_at", "fillet", "utilisation", "difference"):
+        assert has_unit(name) and name in document["units"], name
+    text = "\n".join(design_report(solution.design))
+    assert "FEM check" in text and "junction factors" in text and "hub-web 1.3" in text
+    assert "the two models: FE peak" in text and "% above" in text
+    assert "fillets not given by the design" in text
+
+
+def test_fem_check_key_must_be_a_boolean(write_scene):
+    from flyopt.errors import SceneError
+
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    path = write_scene(text.replace("\n[design]\n", '\n[design]\nfem_check = "yes"\n'))
+    with pytest.raises(SceneError, match="design.fem_check.*must be true or false"):
+        flyopt.load(path)

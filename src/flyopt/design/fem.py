@@ -62,7 +62,9 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -74,7 +76,7 @@ from flyopt.names import Geometry
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
-    from flyopt.design.result import Design
+    from flyopt.design.result import Design, DesignResult
 
 __all__ = [
     "DEFAULT_FILLET_RATIO",
@@ -88,6 +90,7 @@ __all__ = [
     "section_mesh",
     "solve_section",
     "fem_check",
+    "check_result",
 ]
 
 #: Default fillet radius at a re-entrant junction, over the thinner section's (full) thickness.
@@ -511,6 +514,8 @@ class PartPeak:
     model_stress: float | None  # the design's (Lamé/arm) governing stress of the part
     model_radius: float | None
     ratio: float | None  # FE governing peak / model_stress
+    allowable: float | None = None  # the part's allowable stress (the design's) [Pa]
+    utilisation: float | None = None  # FE governing peak / allowable
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready plain Python."""
@@ -523,6 +528,8 @@ class PartPeak:
             "model_stress": self.model_stress,
             "model_radius": self.model_radius,
             "ratio": self.ratio,
+            "allowable": self.allowable,
+            "utilisation": self.utilisation,
         }
 
 
@@ -585,6 +592,12 @@ class FemCheck:
     notes: tuple[str, ...] = field(default=())
 
     @property
+    def within_allowable(self) -> bool | None:
+        """Whether every part's FE peak is within its allowable stress (None: no allowable known)."""
+        known = [p.utilisation for p in self.parts if p.utilisation is not None]
+        return None if not known else max(known) <= 1.0
+
+    @property
     def difference(self) -> float | None:
         """How far the FE peak lies from the model's, as a fraction (0.3: the FE peak is 30 % higher)."""
         return None if not self.model_peak else self.peak / self.model_peak - 1.0
@@ -597,6 +610,7 @@ class FemCheck:
             "peak": self.peak,
             "model_peak": self.model_peak,
             "difference": self.difference,
+            "within_allowable": self.within_allowable,
             "mean_hoop": self.mean_hoop,
             "parts": [p.to_dict() for p in self.parts],
             "junctions": [j.to_dict() for j in self.junctions],
@@ -667,6 +681,7 @@ def fem_check(
         mp, mp_at = _argmax(result.max_principal, mask, result.r, result.z)
         theirs = model.get(name)
         model_stress = None if theirs is None else float(theirs["stress"])
+        allowable = None if theirs is None or not theirs.get("allowable") else float(theirs["allowable"])
         mine = vm if material.ductile else mp
         parts.append(
             PartPeak(
@@ -678,6 +693,8 @@ def fem_check(
                 model_stress,
                 None if theirs is None else float(theirs["radius"]),
                 mine / model_stress if model_stress else None,
+                allowable,
+                None if allowable is None else mine / allowable,
             )
         )
     # the Lamé step model of the same section, at each junction (flyopt.design.stress: one path for it)
@@ -715,3 +732,33 @@ def fem_check(
         nodes=result.nodes,
         notes=sec.notes,
     )
+
+
+def check_result(result: DesignResult, materials: Sequence[Material], *, mesh: str | float = "normal") -> DesignResult:
+    """The design result with its best design's FE check (``result.fem``), when its spec asks for one.
+
+    Parameters
+    ----------
+    result : flyopt.design.result.DesignResult
+    materials : sequence of Material
+        The materials the design chose among (the best design's is looked up by name).
+    mesh : str or float
+        As :func:`fem_check`.
+
+    Returns
+    -------
+    DesignResult
+        ``result`` itself unless ``result.spec.fem_check`` and a design exist.
+
+    Notes
+    -----
+    The check reports; it does not re-design. A design whose FE peak exceeds an allowable stress is
+    still the design, and the check says so (:attr:`FemCheck.within_allowable`): the FE peaks sit in
+    fillets the design does not choose, so the NLP cannot act on them.
+    """
+    best = result.best
+    if not result.spec.fem_check or best is None:
+        return result
+    material = next(m for m in materials if m.name == best.material)
+    check = fem_check(best, material, result.omega * best.speed_ratio, mesh=mesh)
+    return dataclasses.replace(result, fem=check)
