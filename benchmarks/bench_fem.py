@@ -6,6 +6,7 @@ twice as fine, for:
 
 * punch-press-wheel's design (hub, web, rim; the shipped whole wheel);
 * the same scene with arms (rim_arms: no shipped scene has arms);
+* a bare rim (punch-press) and a disc (four-cylinder-engine), where the FE meets Lamé (no junction);
 * the issue's closed-form discs (solid and with a 0.05 m bore, 2 mm thick), with their errors;
 
 and the first check in a fresh process (the import of scikit-fem included), by subprocess.
@@ -79,12 +80,16 @@ def main():
         wheels = {
             "punch-press-wheel (rim_web)": designed(SCENE),
             "punch-press-wheel with arms (rim_arms)": designed(arms),
+            "punch-press (rim)": designed(ROOT / "problems" / "punch-press.toml"),
+            "four-cylinder-engine (disc)": designed(ROOT / "problems" / "four-cylinder-engine.toml"),
         }
     fem.fem_check(*wheels["punch-press-wheel (rim_web)"])  # the first check pays the imports
     for name, (design, material, omega) in wheels.items():
         for mesh in ("normal", "fine"):
             check, times = timed(lambda: fem.fem_check(design, material, omega, mesh=mesh), args.repeat)
-            factors = ", ".join(f"{j.name} {j.factor:.3f}" for j in check.junctions)
+            factors = ", ".join(f"{j.name} {j.factor:.3f}" for j in check.junctions) or (
+                f"none; FE / Lamé {check.parts[0].ratio:.5f}"
+            )
             rows.append((name, mesh, check.elements, fmt(times), statistics.median(times), factors))
 
     rho, nu, radius, bore = 7850.0, 0.3, 0.5, 0.05

@@ -313,8 +313,11 @@ def section_mesh(sec: Section, size: float = 1.0) -> tuple[NDArray[np.float64], 
     length = radii[-1] - radii[0]
     thin = min(half)
     fillets = _fillet_centres(sec)
-    h_far_r = size * length / 40.0
-    h_far_z = size * min(max(half) / 4.0, length / 40.0)
+    # far from every focus: a 40th of the radial extent, but no finer than a 160th of the outer radius (a
+    # compact section, a bare rim, needs no finer mesh than a disc of its size)
+    base = max(length, radii[-1] / 4.0) / 40.0
+    h_far_r = size * base
+    h_far_z = size * min(max(half) / 4.0, base)
     r_fixed, z_fixed = list(radii), [0.0, *half]
     r_foci = [(radii[0], size * max(min(length, radii[0] or length) / 100.0, thin / 4.0))]
     r_foci.append((radii[-1], size * max(length / 100.0, thin / 4.0)))
