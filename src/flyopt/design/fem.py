@@ -212,15 +212,11 @@ def section(design: Design, fillet: float | None = None) -> Section:
             fillets.append(0.0)
             continue
         radius = DEFAULT_FILLET_RATIO * thin if fillet is None else fillet
-        # the fillet must fit on both sides: the thin part's length and the thick part's step height and width
-        k_thick = k - 1 if thicknesses[k - 1] > thicknesses[k] else k
-        k_thin = k if k_thick == k - 1 else k - 1
-        room = min(
-            radii[k_thin + 1] - radii[k_thin],
-            (thicknesses[k_thick] - thin) / 2.0,
-            radii[k_thick + 1] - radii[k_thick] - thin / 2.0,
-        )
-        fillets.append(min(radius, 0.5 * room))
+        # the fillet runs a radius along the thin part's face and up the thick part's: it must fit in the thin
+        # part's length (shared with a fillet at its other end) and in the step's height: at most half of either
+        k_thin = k if thicknesses[k - 1] > thicknesses[k] else k - 1
+        room = min(0.5 * (radii[k_thin + 1] - radii[k_thin]), 0.5 * abs(thicknesses[k - 1] - thicknesses[k]) / 2.0)
+        fillets.append(min(radius, room))
     if fillet is None and any(fillets):
         notes.append(
             f"fillets not given by the design: r_f = {DEFAULT_FILLET_RATIO:g} x the thinner section at each junction "
