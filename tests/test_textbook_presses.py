@@ -172,6 +172,7 @@ _SCENE = {"machine": {"speed": "120 rpm", "delta": 0.05}, "torque": {"net": {"ar
         ({"geometry": "thin_rim", "rim_speed": "1e9 m/s"}, "design.rim_speed", "out of range"),
         ({"geometry": "thin_rim", "rim_speed": "25 m/s", "d_mean": "1 m"}, "design", "give one of them"),
         ({"geometry": "disc", "rim_speed": "25 m/s"}, "design", "bare rim"),
+        ({"geometry": "rim", "rim_speed": "25 m/s", "criterion": "stress"}, "design", "give d_mean"),
     ],
 )
 def test_a_flywheel_by_its_radius_of_gyration_or_rim_speed_is_refused_in_words(design, field, words):

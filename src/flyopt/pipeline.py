@@ -325,7 +325,8 @@ def verify(
         j_chosen = design_result.best.j_at_reference
         if j_chosen is None:
             raise BrokenInvariant("a designed wheel has its inertia")
-        j_flywheel = j_chosen
+        # a rim that gives rim_share of J_F: the arms and hub the design leaves to others give the rest
+        j_flywheel = j_chosen / design_result.spec.rim_share
     elif j_flywheel is None:
         j_flywheel = max(analysis.j_margin, 0.0)
     machine = analysis.machine

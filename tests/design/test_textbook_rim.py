@@ -177,6 +177,7 @@ def test_the_gallery_scene_reproduces_the_published_rim_and_says_how_far_it_is_o
     assert run.returncode == 0, run.stderr
     assert "criterion mean_rim_speed (the courses' convention)" in run.stdout
     assert "29.1% OVER the allowable" in run.stdout and "19.8% OVER the allowable" in run.stdout
+    assert "only the rim speed limit bounds the diameter" not in run.stdout  # D_m is pinned by the mean speed
 
 
 @pytest.mark.parametrize(
@@ -211,3 +212,60 @@ def test_a_drive_co_design_refuses_a_rim_share(tmp_path):
     with pytest.raises(SceneError) as err:
         from_dict(scene)
     assert err.value.field == "design.rim_share" and "the drive's co-design" in str(err.value)
+
+
+@pytest.mark.parametrize(
+    ("design", "field"),
+    [({"geometry": "thin_rim", "rim_speed": "25 m/s"}, "design.rim_speed"), ({"rim_share": 0.9}, "design.rim_share")],
+)
+def test_sweeps_fronts_and_drives_refuse_what_only_one_design_knows(design, field, tmp_path):
+    """A given rim_speed or a rim_share acts in design_flywheel only: every other path must refuse it, not drop it."""
+    from flyopt.errors import SceneError
+    from flyopt.io.scene import from_dict
+
+    base = {"machine": {"speed": "800 rpm", "delta": 0.04}, "torque": {"net": {"areas": ["23562 J", "-23562 J"]}}}
+    with pytest.raises(SceneError) as err:
+        from_dict({**base, "design": design, "drive": {"motor": "any"}})
+    assert err.value.field == field
+    scene = tmp_path / "scene.toml"
+    lines = ['[machine]\nspeed = "800 rpm"\ndelta = 0.04\n[torque.net]\nareas = ["23562 J", "-23562 J"]\n[design]']
+    lines += [f"{k} = {v!r}".replace("'", '"') for k, v in design.items()]
+    scene.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    for command in (
+        ["sweep", str(scene), "--vary", "speed=700:900:3", "-o", str(tmp_path / "s.csv")],
+        ["pareto", str(scene), "-o", str(tmp_path / "p.csv")],
+    ):
+        run = subprocess.run([sys.executable, "-m", "flyopt", *command], capture_output=True, text=True)
+        assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1, run.stderr
+        assert f"{scene}: {field}:" in run.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.toml"]
+
+
+def test_the_report_says_in_its_summary_how_far_the_book_rim_is_over(tmp_path):
+    out = tmp_path / "book.html"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(SCENE), "-o", str(out)], capture_output=True, text=True
+    )
+    assert run.returncode == 0, run.stderr
+    html = out.read_text(encoding="utf-8")
+    # the contents list names the sections first; the summary section runs from its heading to the next one
+    start = html.index("Summary", html.index("The scene as given"))
+    summary = html[start : html.index("The scene as given", start)]
+    assert "Criterion mean_rim_speed, the courses" in summary
+    assert "19.8% over the allowable" in summary
+    assert "v<sub>m</sub> = i ω" in html  # the book's speed, substituted
+
+
+def test_the_verification_of_a_rim_share_counts_the_arms_and_hub_it_leaves_to_others(tmp_path):
+    """The rim gives 0.9 J_F; the flywheel verified is the rim and the 0.1 J_F the arms and hub are to give."""
+    import flyopt
+
+    text = SCENE.read_text(encoding="utf-8").replace("hb_ratio = 0.2 ", 'rim_share = "90 %"\nhb_ratio = 0.2 ', 1)
+    assert "rim_share" in text
+    scene = tmp_path / "share.toml"
+    scene.write_text(text, encoding="utf-8")
+    solution = flyopt.solve(flyopt.load(scene), verify_design=True)
+    assert solution.design.best.j_at_reference == pytest.approx(0.9 * J, rel=1e-9)
+    assert solution.verification.j_flywheel == pytest.approx(J, rel=1e-9)
+    assert solution.verification.achieved_delta == pytest.approx(DELTA, rel=1e-9)
+    assert not solution.verification.flagged

@@ -23,6 +23,7 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Iterator, Mapping, Sequence
@@ -563,7 +564,9 @@ def design_flywheel(
         return _not_needed(j_required, omega, spec)
     model = _textbook_model(spec, solver_options) if not closed and any(textbook) else None
     decided = _Decided()
+    combos: dict[int, Combination] = {}
     for order, combo, plain in _combinations(j_required, omega, omega_mean, torque, shafts, textbook, materials, spec):
+        combos[order] = combo
         if plain:
             _decide_textbook(order, combo, spec, closed, model, decided)
         else:
@@ -577,7 +580,31 @@ def design_flywheel(
         )
     ranked, infeasible, best = _rank(decided)
     description = _describe_model(spec, wheel_model if wheel_model is not None else model)
-    return _result(j_required, omega, spec, ranked, best, infeasible, decided, description, omega_mean)
+    result = _result(j_required, omega, spec, ranked, best, infeasible, decided, description, omega_mean)
+    if spec.round_to is not None and best is not None:
+        order = next(o for o, c in decided.feasible if c is best)
+        result = _rounded(result, Combination(**{**combos[order].__dict__, "n_arms": best.n_arms or 0}), spec)
+    return result
+
+
+def _rounded(result: DesignResult, combo: Combination, spec: DesignSpec) -> DesignResult:
+    """The result with its winner rounded to ``spec.round_to`` (:func:`flyopt.design.rounding.round_design`) and
+    the continuous optimum kept beside it; "infeasible" when no wheel of the grid cell meets every limit."""
+    from flyopt.design import rounding
+
+    best = cast(Design, result.best)
+    rounded, words = rounding.round_design(best, combo, spec, cast(float, spec.round_to))
+    if rounded is None:
+        return dataclasses.replace(
+            result,
+            status="infeasible",
+            message=f"{result.message}; but {words}",
+            best=None,
+            continuous=best,
+            rounding=words,
+        )
+    candidates = tuple(rounded if c is best else c for c in result.candidates)
+    return dataclasses.replace(result, best=rounded, candidates=candidates, continuous=best, rounding=words)
 
 
 def _check_arguments(

@@ -85,10 +85,11 @@ def _check_own_materials(scene: Scene, materials: tuple[Material, ...], spec: De
             )
 
 
-def one_rim_at_a_time(spec: DesignSpec, what: str, source: str | None = None) -> None:
+def single_design_only(spec: DesignSpec, what: str, source: str | None = None) -> None:
     """Refuse the courses' rim convention where ``what`` designs by flyopt's own criteria only.
 
-    Criterion ``mean_rim_speed`` and a ``rim_share`` below 1 size one bare
+    Criterion ``mean_rim_speed``, a given ``rim_speed``, a ``rim_share`` below 1 and rounding
+    (``round_to``) act in :func:`flyopt.design.design_flywheel` only, on one bare
     rim through :func:`flyopt.design.design_flywheel` (``flyopt solve``,
     ``report``, ``tradeoff``); sweeps, Pareto fronts and the drive's
     co-design size their wheels by other paths, which know only
@@ -105,6 +106,17 @@ def one_rim_at_a_time(spec: DesignSpec, what: str, source: str | None = None) ->
         raise SceneError(
             "design.criterion",
             f"'mean_rim_speed' (the courses' convention) sizes one rim at a time; {what} uses 'rim_speed' or 'stress'",
+        ).with_source(source)
+    if spec.rim_speed is not None:
+        raise SceneError(
+            "design.rim_speed",
+            f"pins one rim's mean diameter at the mean speed (solve, report, tradeoff); {what} does not know it: "
+            "give d_mean (2 v / omega'_m) instead",
+        ).with_source(source)
+    if spec.round_to is not None:
+        raise SceneError(
+            "design.round_to",
+            f"rounds one winning wheel (solve, report); {what} reports continuous designs: leave it out",
         ).with_source(source)
     if spec.rim_share < 1.0:
         raise SceneError(

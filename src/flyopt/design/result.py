@@ -485,6 +485,10 @@ class DesignResult:
         The best design's axisymmetric finite-element check
         (:func:`flyopt.design.fem.fem_check`), where the spec asks for it
         (``fem_check``); None otherwise.
+    continuous : Design or None
+        With ``spec.round_to``: the continuous optimum the rounded ``best`` comes from.
+    rounding : str or None
+        With ``spec.round_to``: what rounding did, in words.
     """
 
     status: str
@@ -497,6 +501,8 @@ class DesignResult:
     model: dict[str, Any] | None = None
     omega_mean: float | None = None
     fem: FemCheck | None = None
+    continuous: Design | None = None
+    rounding: str | None = None
 
     def book_rim(self) -> BookRim | None:
         """What the courses' rim (criterion mean_rim_speed) really sees, beside what the book checks; None for
@@ -538,6 +544,9 @@ class DesignResult:
                 design[name] = design[name] or []
             design["fem"] = self.fem.to_dict() if self.fem is not None else None
             design["candidates"] = [c.to_dict(timings) for c in self.candidates]
+            if self.spec.round_to is not None:  # the rounded winner above, the continuous optimum here
+                design["rounding"] = self.rounding
+                design["continuous"] = self.continuous.to_dict(timings) if self.continuous is not None else None
         spec = self.spec.to_dict()
         return {
             "status": self.status,

@@ -117,6 +117,10 @@ class DesignSpec:
         The rim's speed at its mean diameter and the mean speed [m/s] (the
         books' "mean speed of the flywheel is 25 m/s"): pins each shaft's
         D_m = 2 v / omega'_m. A bare rim only; not with ``d_mean``.
+    round_to : float or None
+        The manufacturing step [m] (0.001: whole millimetres): the winning
+        wheel is rounded to it and checked again against every limit
+        (:mod:`flyopt.design.rounding`); None: the continuous optimum.
     rim_share : float
         Share of the required inertia the rim supplies, in (0, 1]: the
         courses often let the rim give 90-95 % and leave the rest to the arms
@@ -152,6 +156,7 @@ class DesignSpec:
     arms: tuple[int, ...] = DEFAULT_ARMS
     min_wall: float | None = None
     rim_speed: float | None = None
+    round_to: float | None = None
     rim_share: float = 1.0
     prune: bool = True
     fem_check: bool = False
@@ -198,6 +203,7 @@ class DesignSpec:
             "min_wall": self.min_wall,
             "rim_speed": self.rim_speed,
             "rim_share": self.rim_share,
+            "round_to": self.round_to,
             "prune": self.prune,
             "fem_check": self.fem_check,
         }
@@ -251,6 +257,8 @@ class DesignSpec:
             raise ValueError(f"fem_check must be true or false, got {self.fem_check!r}")
         if self.min_wall is not None:
             object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
+        if self.round_to is not None:
+            object.__setattr__(self, "round_to", _positive(self.round_to, "round_to", "[m]"))
         share = finite(self.rim_share, "rim_share [-]")
         if not 0.0 < share <= 1.0:
             raise ValueError(
@@ -266,6 +274,11 @@ class DesignSpec:
             object.__setattr__(self, "rim_speed", _positive(self.rim_speed, "rim_speed", "[m/s]"))
             if self.geometry not in BOOK_RIM_GEOMETRIES:
                 raise ValueError(f"rim_speed is a bare rim's (geometry 'rim' or 'thin_rim'), not a {self.geometry!r}'s")
+            if self.criterion == Criterion.STRESS:
+                raise ValueError(
+                    "rim_speed pins a rim sized by its rim speed; under the stress criterion the wheel is designed "
+                    "whole: give d_mean (2 v / omega'_m) instead"
+                )
             if self.d_mean is not None or self.by_mean_rim_speed:
                 raise ValueError(
                     "rim_speed pins the mean diameter, as "

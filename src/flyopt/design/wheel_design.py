@@ -318,6 +318,7 @@ def design_combination(
     n_arms: int = 0,
     solver_options: Mapping[str, Any] | None = None,
     method: str = "auto",
+    fixed: Mapping[str, float] | None = None,
 ) -> tuple[Dims, WheelSolution, StrengthCheck | None]:
     """Design one combination as a whole wheel.
 
@@ -335,6 +336,9 @@ def design_combination(
     solver_options : mapping or None
     method : {"auto", "ipopt", "closed_form"}
         "ipopt" solves the NLP even where the disc's closed form covers the combination.
+    fixed : mapping or None
+        Dimensions held at given values [m] (by name, as the NLP's variables):
+        the rest are optimized around them (:mod:`flyopt.design.rounding`).
 
     Returns
     -------
@@ -355,11 +359,13 @@ def design_combination(
     screen(combo, spec, bore)
     material, geo = combo.material, spec.geometry
     stressed = spec.criterion == Criterion.STRESS
-    exact = _disc_closed_form(combo, spec, bore, material) if method != Method.IPOPT else None
+    exact = _disc_closed_form(combo, spec, bore, material) if method != Method.IPOPT and not fixed else None
     if exact is not None:
         dims, solution = exact
         return dims, solution, strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
     structure, problem = wheel_problem(material, spec, bore, torque, n_arms, combo.j_shaft, combo.omega, combo.v_max)
+    if fixed:
+        problem = _with(problem, fixed=dict(fixed))
     model = wheel_nlp.get_model(structure, solver_options)
     parts = model.stress_parts
     # the allowable of each part, first at the walls of a starting wheel, then at the solved one's

@@ -340,6 +340,7 @@ class WheelProblem:
     l_hub_range: tuple[float, float] = (0.0, math.inf)
     start: dict[str, float] | None = None
     caps: dict[str, float] | None = None  # variable name -> upper bound [m] (a section kept within a strength table)
+    fixed: dict[str, float] | None = None  # variable name -> its value [m] (a dimension rounded and held)
 
 
 @dataclass(frozen=True)
@@ -427,6 +428,9 @@ def variable_bounds(
         if n in col and math.log(cap) < ubx[col[n]]:
             ubx[col[n]] = math.log(cap)
             capped[n] = cap
+    for n, value in (problem.fixed or {}).items():  # held where rounding put it, whatever its other bounds
+        if n in col:
+            lbx[col[n]] = ubx[col[n]] = math.log(value)
     return lbx, ubx, capped
 
 

@@ -50,6 +50,7 @@ def read_design(
             "rim_share",
             "rim_speed",
             "radius_of_gyration",
+            "round_to",
             "prune",
             "fem_check",
         },
@@ -74,14 +75,29 @@ def read_design(
         low, high = (quantity(v, "dimensionless", "design.hb_ratio") for v in pair)
         if not 0 < low <= high:
             raise SceneError("design.hb_ratio", f"must be a range 0 < min <= max, got {shorten(hb)}")
+        for value in (low, high):
+            check_magnitude(
+                value,
+                "design.hb_ratio",
+                hb,
+                *HB_RANGE,
+                "",
+                "from a plate 1000 times wider than thick to a ring 1000 times thicker",
+            )
         options["hb_ratio"] = (low, high)
-    for key in ("max_outer_diameter", "max_width", "d_mean", "min_wall"):
+    for key in ("max_outer_diameter", "max_width", "d_mean", "min_wall", "round_to"):
         if table.has(key):
             value = table.quantity(key, "length", required=True)
             if value <= 0:
                 raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
             check_magnitude(value, f"design.{key}", table.raw(key), *LENGTH_RANGE, "m", "a micron to a kilometre")
             options[key] = value
+    if options.get("round_to", 0.0) > MAX_ROUND_TO:
+        raise SceneError(
+            "design.round_to",
+            f"{shorten(table.raw('round_to'))} is no manufacturing step (allowed: up to {MAX_ROUND_TO * 1e3:g} mm; "
+            'e.g. "1 mm" for whole millimetres)',
+        )
     if table.has("bore"):
         value = table.quantity("bore", "length", required=True)
         if value < 0:
@@ -161,6 +177,12 @@ def read_design(
         _check_min_wall(spec, table)
     return spec, names, shaft_names
 
+
+#: Allowed H/B [-]: beyond it a rim's other section runs to kilometres or to nothing.
+HB_RANGE = (1e-3, 1e3)
+
+#: Largest design.round_to [m]: a coarser step is no manufacturing step for a flywheel.
+MAX_ROUND_TO = 0.1
 
 #: Allowed design.rim_speed [m/s]: a walking pace to beyond any rotor's burst speed.
 RIM_SPEED_RANGE = (1e-3, 1e4)

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import angle_curve, angle_curve_file
 from flyopt.io.fields import Table, scaled, unit_factor
+from flyopt.io.shaft_section import RATIO_RANGE
 from flyopt.io.toml_file import InlineRows
 from flyopt.units import DIMENSIONS, quantity
 
@@ -25,6 +26,10 @@ MECHANISM_KINDS = ("slider_crank", "gear_train", "guide_bar", "four_bar", "cam")
 
 _LINKAGE_KEYS = {"kind", "speed_ratio", "phase", "description"}
 """Keys every guide_bar, four_bar and cam takes: its input's speed against the reference shaft and its phase."""
+
+
+#: Farthest a member's centre of mass may sit from its part's pivot [m]: beyond it J_e overflows.
+MAX_CENTRE = 1e3
 
 
 def read_mechanism(raw: object) -> SliderCrank | GearTrain | Linkage | None:
@@ -68,6 +73,12 @@ def _read_linkage(raw: object, kind: str) -> Linkage:
     else:
         table = Table(raw, "mechanism", _LINKAGE_KEYS | {"lift", "segments"})
     speed_ratio = table.quantity("speed_ratio", "dimensionless", default=1.0)
+    if not RATIO_RANGE[0] <= abs(speed_ratio) <= RATIO_RANGE[1]:
+        raise SceneError(
+            "mechanism.speed_ratio",
+            f"{shorten(table.raw('speed_ratio'))} is out of range (allowed: {RATIO_RANGE[0]:g} to {RATIO_RANGE[1]:g} "
+            "in size; the inertias scale as its square)",
+        )
     phase = table.quantity("phase", "angle", default=0.0)
     if kind == "guide_bar":
         return GuideBar(
@@ -189,6 +200,12 @@ def read_members(
                     kin = mechanism.kinematics(part)
                 else:
                     centre = table.quantity("centre", "length") if table.has("centre") else None
+                    if centre is not None and not abs(centre) <= MAX_CENTRE:
+                        raise SceneError(
+                            f"{where}.centre",
+                            f"{shorten(table.raw('centre'))} is out of range (allowed: within {MAX_CENTRE:g} m of "
+                            "the part's pivot)",
+                        )
                     kin = mechanism.kinematics(part, centre)
             except ValueError as err:
                 if isinstance(err, SceneError):

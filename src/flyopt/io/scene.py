@@ -342,9 +342,9 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         from flyopt.io.drive import drive_spec
 
         library = material_library(materials)
-        from flyopt.design.inputs import one_rim_at_a_time
+        from flyopt.design.inputs import single_design_only
 
-        one_rim_at_a_time(design, "the drive's co-design ([drive])")
+        single_design_only(design, "the drive's co-design ([drive])")
         drive = drive_spec(
             top.get("drive"),
             top.get("motor_option"),

@@ -274,6 +274,8 @@ def solver_words(candidate: Candidate) -> str:
     """How a design was found, in words: the exact closed form or IPOPT with its status."""
     if candidate.provenance.solver_status == "closed_form":
         return "the exact closed form of the lightest wheel, checked against every constraint"
+    if candidate.provenance.solver_status == "rounded":
+        return "the continuous optimum rounded to the manufacturing step (design.round_to), checked against every limit"
     return f"IPOPT ({candidate.provenance.solver_status}, {candidate.provenance.iterations} iterations), checked against every constraint"
 
 
@@ -305,6 +307,25 @@ def book_rim_report(book: BookRim, units: str = DEFAULT) -> list[str]:
             "not designed here, must give the rest"
         )
     return lines
+
+
+def rounding_report(result: DesignResult, units: str = DEFAULT) -> list[str]:
+    """The lines that put the rounded winner beside the continuous optimum it comes from (design.round_to)."""
+    q, n = formatters(units)
+    c, best = result.continuous, result.best
+    if c is None:
+        return []
+    optimum = (
+        f"the continuous optimum: {q(c.mass, 'mass')}, D_outer {n(c.dims.d_outer, 'd_outer')} / H x B "
+        f"{n(c.dims.h, 'h')} x {q(c.dims.b, 'b')}"
+    )
+    if best is None:
+        return [f"  {optimum}"]
+    extra = best.mass - c.mass
+    return [
+        f"  rounded to {q(result.spec.round_to, 'd_outer')} (design.round_to): {extra:+.4g} kg "
+        f"({extra / c.mass:+.2%}) over {optimum}; every limit checked again on the rounded wheel ({result.rounding})"
+    ]
 
 
 def design_report(result: DesignResult, spec: DesignSpec | None = None, units: str = DEFAULT) -> list[str]:
@@ -342,10 +363,12 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
         ]
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {visible(v)}" for k, v in facts]
+        if result.continuous is not None:
+            lines += rounding_report(result, units)
         book = result.book_rim()
         if book is not None:
             lines += book_rim_report(book, units)
-        elif not result.spec.has_envelope:
+        elif not result.spec.has_envelope and not result.spec.pins_d_mean:
             lines.append(
                 "  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
                 "bounds the diameter"
@@ -353,6 +376,9 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
         lines += wheel_report(best, result.omega * best.speed_ratio, units)
         if result.fem is not None:
             lines += fem_report(result.fem, units)
+    elif result.continuous is not None:
+        lines.append(f"  no rounded design: {result.rounding}")
+        lines += rounding_report(result, units)
     else:
         lines.append("  no feasible design: no material and shaft can give the required inertia")
     rows = []

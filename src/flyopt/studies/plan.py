@@ -96,9 +96,9 @@ def plan_sweep(
     logarithm for a log range) with one sample in each; a list is sampled
     as categories, each equally often.
     """
-    from flyopt.design.inputs import design_inputs, one_rim_at_a_time
+    from flyopt.design.inputs import design_inputs, single_design_only
 
-    one_rim_at_a_time(design_inputs(scene).spec, "a sweep", scene.source)
+    single_design_only(design_inputs(scene).spec, "a sweep", scene.source)
     if seed is not None:
         seed = whole_number(seed, option_label(where, "seed"), 0)
     if samples is not None:

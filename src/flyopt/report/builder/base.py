@@ -10,10 +10,10 @@ from typing import TYPE_CHECKING, Any, cast
 from flyopt.names import Geometry, Model
 from flyopt.report import display
 from flyopt.report.display import number
-from flyopt.report.document import Equation, Figure, Quantity, Section
+from flyopt.report.document import Equation, Figure, Paragraph, Quantity, Section
 
 if TYPE_CHECKING:
-    from flyopt.design.result import Design
+    from flyopt.design.result import BookRim, Design
     from flyopt.pipeline import Solution
     from flyopt.report.builder.inputs import ReportInputs
 
@@ -212,3 +212,38 @@ class BuilderBase:
         from flyopt.report.text import solver_words
 
         return solver_words(candidate)
+
+    def book_rim_verdict(self, book: BookRim) -> Paragraph:
+        """The courses' rim (criterion mean_rim_speed) beside what it really sees at ω_max, in a warning."""
+
+        def over(stress: float | None) -> str:
+            excess = book.excess(stress)
+            if excess is None:
+                return ""
+            return f", {abs(excess):.1%} {'over' if excess > 1e-9 else 'within'} the allowable"
+
+        text: list[Any] = [
+            "Criterion mean_rim_speed, the courses' convention, sized this rim: at the mean diameter and the mean "
+            "speed it runs at v_m = ",
+            self.q(book.mean_rim_speed, "speed", "rim_speed"),
+            ", where ρ v_m² = ",
+            self.q(book.book_stress, "stress", "hoop_stress"),
+            " is the allowable. But the stress peaks at the top speed ω_max: at the outer diameter the thin ring's "
+            "ρv² is ",
+            self.q(book.outer_hoop_stress, "stress", "hoop_stress"),
+            over(book.outer_hoop_stress),
+        ]
+        if book.largest_stress is not None:
+            text += [
+                ", and Lamé's stress at the bore ",
+                self.q(book.largest_stress, "stress", "hoop_stress"),
+                over(book.largest_stress),
+            ]
+        text.append(f" ({NOTES}, section 20). flyopt's default criterion (rim_speed) keeps the rim within it.")
+        if book.rim_share < 1.0:
+            text.append(
+                f" The rim gives {book.rim_share:.4g} of the required inertia (design.rim_share); the arms and hub, "
+                "not designed here, must give the rest."
+            )
+        excess = book.excess(book.largest_stress if book.largest_stress is not None else book.outer_hoop_stress)
+        return Paragraph(tuple(text), "warning" if excess is not None and excess > 1e-9 else "note")

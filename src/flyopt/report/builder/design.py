@@ -14,7 +14,7 @@ from flyopt.report.document import Facts, Figure, Paragraph, Table
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
-    from flyopt.design.result import BookRim, Design
+    from flyopt.design.result import Design
 
 
 class DesignSection(BuilderBase):
@@ -80,7 +80,11 @@ class DesignSection(BuilderBase):
         if best.bore:
             rows.insert(3, ("bore", self.q(best.bore, "length", "bore")))
         blocks.append(Facts(tuple(rows), "design"))
-        if not d.spec.has_envelope and not d.spec.by_mean_rim_speed:  # the courses' D_m is no envelope's
+        if d.continuous is not None:  # rounded to design.round_to: the same words as the text's
+            from flyopt.report.text import rounding_report
+
+            blocks.append(Paragraph(" ".join(line.strip() for line in rounding_report(d, self.units)), "note"))
+        if not d.spec.has_envelope and not d.spec.pins_d_mean:  # a pinned D_m (given, or by a speed) bounds it
             blocks.append(
                 Paragraph(
                     "No envelope (design.max_outer_diameter) is set, so only the rim speed limit bounds the diameter.",
@@ -249,41 +253,6 @@ class DesignSection(BuilderBase):
                         "section 13)."
                     )
                 )
-
-    def book_rim_verdict(self, book: BookRim) -> Paragraph:
-        """The courses' rim (criterion mean_rim_speed) beside what it really sees at ω_max, in a warning."""
-
-        def over(stress: float | None) -> str:
-            excess = book.excess(stress)
-            if excess is None:
-                return ""
-            return f", {abs(excess):.1%} {'over' if excess > 1e-9 else 'within'} the allowable"
-
-        text: list[Any] = [
-            "Criterion mean_rim_speed, the courses' convention, sized this rim: at the mean diameter and the mean "
-            "speed it runs at v_m = ",
-            self.q(book.mean_rim_speed, "speed", "rim_speed"),
-            ", where ρ v_m² = ",
-            self.q(book.book_stress, "stress", "hoop_stress"),
-            " is the allowable. But the stress peaks at the top speed ω_max: at the outer diameter the thin ring's "
-            "ρv² is ",
-            self.q(book.outer_hoop_stress, "stress", "hoop_stress"),
-            over(book.outer_hoop_stress),
-        ]
-        if book.largest_stress is not None:
-            text += [
-                ", and Lamé's stress at the bore ",
-                self.q(book.largest_stress, "stress", "hoop_stress"),
-                over(book.largest_stress),
-            ]
-        text.append(f" ({NOTES}, section 20). flyopt's default criterion (rim_speed) keeps the rim within it.")
-        if book.rim_share < 1.0:
-            text.append(
-                f" The rim gives {book.rim_share:.4g} of the required inertia (design.rim_share); the arms and hub, "
-                "not designed here, must give the rest."
-            )
-        excess = book.excess(book.largest_stress if book.largest_stress is not None else book.outer_hoop_stress)
-        return Paragraph(tuple(text), "warning" if excess is not None and excess > 1e-9 else "note")
 
     def parts(self, blocks: list[Any], c: Design) -> None:
         if not c.parts.items:

@@ -17,6 +17,9 @@ class Summary(BuilderBase):
         blocks = self.section("Summary", "summary")
         bad = self.solution.status in ("infeasible", "insufficient") or self.flagged()
         blocks.append(Paragraph(self.answer(), "warning" if bad else "ok"))
+        book = d.book_rim() if d is not None else None
+        if book is not None:  # the courses' rim: its verdict is the design section's, said here too
+            blocks.append(self.book_rim_verdict(book))
         rows = [
             ("model", f"{a.model} ({self.model_description(a.model)})"),
             ("mean speed ω_{m}", self.q(a.omega_mean, "angular_speed", "omega_mean")),

@@ -1,0 +1,171 @@
+"""The winner rounded to a manufacturing step (design.round_to, issue 28 item 2): on the grid, every limit held.
+
+References are independent of flyopt's rounding: the grid written out by hand, the rounded wheel's
+inertia by the annulus formula J = ρ π t (r_o⁴ − r_i⁴) / 2 summed over its parts, a brute-force
+search of a wider grid window for a bare rim, and the periodic simulation (--verify) of the rounded
+wheel for δ.
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import flyopt
+from flyopt.design.rounding import grid_values
+from flyopt.errors import SceneError
+from flyopt.io.scene import from_dict
+
+PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
+MM = 1e-3
+
+
+@pytest.mark.parametrize(
+    ("value", "reach", "expected"),
+    [
+        (0.0098, 1, (0.009, 0.010)),
+        (0.008 * (1 + 1e-13), 1, (0.008,)),  # on the grid to round-off: not moved
+        (0.0098, 2, (0.008, 0.009, 0.010, 0.011)),
+        (0.0005, 1, (0.001,)),  # no zero or negative size
+    ],
+)
+def test_the_grid_next_to_a_value(value, reach, expected):
+    assert grid_values(value, MM, reach) == pytest.approx(expected, abs=1e-15)
+
+
+def _scene(path: Path, **design: str) -> flyopt.Scene:
+    """The shipped scene with ``design`` keys added to its [design] (no files of its own: none read)."""
+    import tomllib
+
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data["design"] = {**data.get("design", {}), **design}
+    return from_dict(data, source=str(path))
+
+
+def _on_grid(value: float, step: float) -> bool:
+    return abs(value / step - round(value / step)) < 1e-9
+
+
+@pytest.mark.parametrize("geometry", ["rim_web", "rim_arms"])
+def test_the_punch_press_wheel_rounded_to_whole_millimetres_meets_every_limit(geometry):
+    """rim_arms needs the re-optimization: its arms must fit the hub (n a / (π D_hub) <= 1) and carry their
+    stress, which no corner of the grid cell does (the arms and the hub must both grow)."""
+    scene = _scene(PROBLEMS / "punch-press-wheel.toml", round_to="1 mm", geometry=geometry)
+    solution = flyopt.solve(scene, verify_design=True)
+    design = solution.design
+    best, continuous = design.best, design.continuous
+    assert design.status == "designed" and best.provenance.solver_status == "rounded"
+    for name in ("d_outer", "h", "b", "t_web", "d_hub", "l_hub", "arm_major"):
+        value = getattr(best.dims, name)
+        assert value is None or _on_grid(value, MM), name
+    # the rounded wheel's inertia by the annulus formula, part by part (rim, web, hub), against the required
+    rho = solution.scene.material_library()[best.material].density
+    if geometry == "rim_web":
+        inertia = sum(
+            rho * math.pi * p["thickness"] * (p["r_outer"] ** 4 - p["r_inner"] ** 4) / 2.0 for p in best.parts.items
+        )
+        assert inertia == pytest.approx(best.j_flywheel, rel=1e-12)
+    assert best.j_flywheel >= best.limits.j_required_on_shaft * (1 - 1e-12)
+    # a restriction of the continuous problem: never lighter than its optimum
+    assert best.mass >= continuous.mass * (1 - 1e-9)
+    # the stresses of the rounded wheel are its own, within the allowable of each part (the stress criterion)
+    for part in best.stresses.stress["parts"]:
+        assert part["stress"] <= part["allowable"] * (1 + 1e-9)
+    # δ by the periodic simulation of the machine with the rounded wheel
+    assert not solution.verification.flagged
+    assert solution.verification.achieved_delta <= solution.scene.delta * (1 + 1e-9)
+
+
+def test_a_bare_rim_rounded_is_the_lightest_wheel_of_a_wider_window_by_brute_force():
+    """rim-sizing: a thin rim, D_m = 0.8 m pinned, H/B = 2, cast steel; J = 76 kg·m² at the continuous optimum.
+
+    Brute force over ±5 mm of H and B: the thin rim's J = m D_m²/4 with m = π D_m H B ρ
+    (docs/flywheel-design.md, section 9), H/B within [2, 2] and J >= J_F."""
+    scene = _scene(PROBLEMS / "rim-sizing.toml", round_to="1 mm")
+    design = flyopt.solve(scene).design
+    best = design.best
+    assert best.geometry == "thin_rim"
+    rho = scene.material_library()[best.material].density
+    j_required = best.limits.j_required_on_shaft
+    d_m = 0.8
+    h0, b0 = design.continuous.dims.h, design.continuous.dims.b
+    lightest = None
+    for i in range(-5, 7):
+        for k in range(-5, 7):
+            h = (math.floor(h0 / MM) + i) * MM
+            b = (math.floor(b0 / MM) + k) * MM
+            if abs(h / b - 2.0) > 1e-9:
+                continue
+            m = math.pi * d_m * h * b * rho
+            if m * d_m**2 / 4.0 < j_required * (1 - 1e-12):
+                continue
+            if lightest is None or m < lightest[0]:
+                lightest = (m, h, b)
+    assert lightest is not None
+    assert best.mass == pytest.approx(lightest[0], rel=1e-12)
+    assert (best.dims.h, best.dims.b) == pytest.approx(lightest[1:], abs=1e-12)
+    assert best.dims.d_mean == pytest.approx(d_m, rel=1e-12)  # the pinned mean diameter stays
+
+
+def test_no_wheel_near_the_optimum_is_reported_in_words_and_exit_3(tmp_path):
+    """H/B fixed at 1.37 cannot be kept on a 1 mm grid near the optimum: no design, and the reason says so."""
+    text = (PROBLEMS / "rim-sizing.toml").read_text(encoding="utf-8")
+    assert "hb_ratio" in text
+    lines = [line for line in text.splitlines() if not line.startswith("hb_ratio")]
+    text = "\n".join(lines).replace("[design]", '[design]\nround_to = "1 mm"\nhb_ratio = 1.37', 1)
+    scene = tmp_path / "fixed-ratio.toml"
+    scene.write_text(text, encoding="utf-8")
+    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    assert run.returncode == 3, run.stderr
+    assert "no rounded design: no wheel near the optimum on the 1 mm grid meets every limit" in run.stdout
+    assert "H/B is fixed at 1.37 (hb_ratio)" in run.stdout
+
+
+@pytest.mark.parametrize(("value", "words"), [("0 mm", "positive"), ("0.5 m", "no manufacturing step")])
+def test_a_bad_step_is_refused_in_one_line(value, words):
+    with pytest.raises(SceneError) as err:
+        from_dict(
+            {
+                "machine": {"speed": "120 rpm", "delta": 0.05},
+                "torque": {"net": {"areas": ["10 kJ", "-10 kJ"]}},
+                "design": {"round_to": value},
+            }
+        )
+    assert err.value.field == "design.round_to" and words in str(err.value)
+
+
+def test_sweeps_and_fronts_refuse_rounding_in_one_line(tmp_path):
+    scene = tmp_path / "rounded.toml"
+    text = (
+        (PROBLEMS / "rim-sizing.toml").read_text(encoding="utf-8").replace("[design]", '[design]\nround_to = "1 mm"', 1)
+    )
+    scene.write_text(text, encoding="utf-8")
+    for command in (
+        ["sweep", str(scene), "--vary", "delta=0.01,0.02", "-o", str(tmp_path / "s.csv")],
+        ["pareto", str(scene), "-o", str(tmp_path / "p.csv")],
+    ):
+        run = subprocess.run([sys.executable, "-m", "flyopt", *command], capture_output=True, text=True)
+        assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1, run.stderr
+        assert f"{scene}: design.round_to: rounds one winning wheel" in run.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rounded.toml"]
+
+
+def test_solve_and_the_report_show_the_continuous_optimum_beside_the_rounded_wheel(tmp_path):
+    scene = tmp_path / "rounded.toml"
+    text = (
+        (PROBLEMS / "rim-sizing.toml").read_text(encoding="utf-8").replace("[design]", '[design]\nround_to = "1 mm"', 1)
+    )
+    scene.write_text(text, encoding="utf-8")
+    words = "rounded to 1 mm (design.round_to): +8.07 kg (+1.70%) over the continuous optimum: 475 kg"
+    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    assert run.returncode == 0 and words in run.stdout, run.stderr
+    out = tmp_path / "rounded.html"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out)], capture_output=True, text=True
+    )
+    assert run.returncode == 0, run.stderr
+    assert words in out.read_text(encoding="utf-8")

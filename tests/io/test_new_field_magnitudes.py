@@ -1,0 +1,45 @@
+"""Magnitudes the hostile corpus found unbounded in this round's sections: each refused in one line naming
+its field (design.hb_ratio of a book rim gave a zero mass and exit 1; a huge member centre or mechanism
+speed ratio overflowed with warnings on stderr)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import tomllib
+
+from flyopt.errors import SceneError
+from flyopt.io.scene import from_dict
+
+TEXTBOOK = Path(__file__).resolve().parents[2] / "problems" / "textbook"
+
+
+def _with(name: str, table: str, key: str, value: object, index: int | None = None) -> dict:
+    data = tomllib.loads((TEXTBOOK / name).read_text(encoding="utf-8"))
+    target = data[table][index] if index is not None else data[table]
+    target[key] = value
+    return data
+
+
+@pytest.mark.parametrize(
+    ("data", "field", "words"),
+    [
+        (_with("khurmi-16-14-book-rim.toml", "design", "hb_ratio", 1e-300), "design.hb_ratio", "out of range"),
+        (_with("khurmi-16-14-book-rim.toml", "design", "hb_ratio", [0.2, 1e300]), "design.hb_ratio", "out of range"),
+        (
+            _with("seed000-calc7-gear-sine-mechanism-position.toml", "mechanism", "speed_ratio", -1e300),
+            "mechanism.speed_ratio",
+            "out of range",
+        ),
+        (
+            _with("seed000-calc6-guide-bar-position.toml", "member", "centre", -1e300, index=2),
+            "member[2].centre",
+            "out of range",
+        ),
+    ],
+)
+def test_a_magnitude_beyond_any_wheel_is_refused_in_one_line(data, field, words):
+    with pytest.raises(SceneError) as err:
+        from_dict(data)
+    assert err.value.field == field and words in str(err.value)
