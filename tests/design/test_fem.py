@@ -242,3 +242,16 @@ def test_fem_check_key_must_be_a_boolean(write_scene):
     path = write_scene(text.replace("\n[design]\n", '\n[design]\nfem_check = "yes"\n'))
     with pytest.raises(SceneError, match="design.fem_check.*must be true or false"):
         flyopt.load(path)
+
+
+def test_the_rounded_wheel_is_the_one_checked(tmp_path):
+    """With round_to, the check is of the wheel reported (rounded), not of the continuous optimum."""
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    path = tmp_path / "rounded.toml"
+    path.write_text(text.replace("\n[design]\n", '\n[design]\nfem_check = true\nround_to = "1 mm"\n'), encoding="utf-8")
+    scene = flyopt.load(path)
+    result = flyopt.solve(scene).design
+    best = result.best
+    assert result.continuous is not None and best.dims.d_outer != result.continuous.dims.d_outer
+    material = scene.material_library()[best.material]
+    assert result.fem.to_dict() == fem.fem_check(best, material, result.omega * best.speed_ratio).to_dict()
