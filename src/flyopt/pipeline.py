@@ -225,7 +225,12 @@ def design_scene(
         torque=torque,
         omega_mean=analysis.omega_mean,
     )
-    return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
+    result = _with_delta_sensitivity(scene, analysis, result, solver_options, method)
+    if not result.spec.fem_check:
+        return result
+    from flyopt.design.fem import check_result  # numpy, and scikit-fem when it runs
+
+    return check_result(result, inputs.materials)
 
 
 #: Relative step of the central difference of the design's mass in delta.

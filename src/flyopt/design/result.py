@@ -15,10 +15,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from flyopt.design.spec import DesignSpec
 from flyopt.design.wheel import ARM_MINOR_RATIO, Dims
+
+if TYPE_CHECKING:
+    from flyopt.design.fem import FemCheck
 
 __all__ = [
     "Candidate",
@@ -478,6 +481,10 @@ class DesignResult:
     omega_mean : float or None
         Mean speed of the reference shaft [rad/s], where the design was
         given it (the courses' rim convention sizes the rim there).
+    fem : FemCheck or None
+        The best design's axisymmetric finite-element check
+        (:func:`flyopt.design.fem.fem_check`), where the spec asks for it
+        (``fem_check``); None otherwise.
     continuous : Design or None
         With ``spec.round_to``: the continuous optimum the rounded ``best`` comes from.
     rounding : str or None
@@ -493,6 +500,7 @@ class DesignResult:
     candidates: tuple[Candidate, ...] = ()
     model: dict[str, Any] | None = None
     omega_mean: float | None = None
+    fem: FemCheck | None = None
     continuous: Design | None = None
     rounding: str | None = None
 
@@ -525,8 +533,8 @@ class DesignResult:
             ``status``, ``message``, ``j_required``, ``omega``, ``spec``,
             ``model`` and ``design``. ``design`` is None when no flywheel is
             needed; otherwise it holds the best candidate's fields (all None
-            when every combination is infeasible) and ``candidates``, one
-            entry per combination.
+            when every combination is infeasible), ``fem`` (the FE check, or
+            None) and ``candidates``, one entry per combination.
         """
         design = None
         if self.status != "not_needed":
@@ -534,6 +542,7 @@ class DesignResult:
             design = {name: best.get(name) for name in DESIGN_FIELDS}
             for name in ("binding", "parts", "sensitivities", "notes"):
                 design[name] = design[name] or []
+            design["fem"] = self.fem.to_dict() if self.fem is not None else None
             design["candidates"] = [c.to_dict(timings) for c in self.candidates]
             if self.spec.round_to is not None:  # the rounded winner above, the continuous optimum here
                 design["rounding"] = self.rounding

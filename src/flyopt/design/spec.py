@@ -131,6 +131,10 @@ class DesignSpec:
         a design found is left undesigned (True, the default: it cannot win,
         and IPOPT is spared); False designs every combination, for a full
         trade-off table.
+    fem_check : bool
+        Whether ``flyopt solve`` checks the best design by the axisymmetric
+        finite-element model (:func:`flyopt.design.fem.fem_check`; needs the
+        ``fem`` extra) and reports it beside the Lamé/arm model (default False).
 
     Raises
     ------
@@ -155,6 +159,7 @@ class DesignSpec:
     round_to: float | None = None
     rim_share: float = 1.0
     prune: bool = True
+    fem_check: bool = False
 
     def textbook(self, bore: float | None = None) -> bool:
         """Whether this is the textbook design: a bare wheel without a bore sized by the rim speed limit
@@ -200,6 +205,7 @@ class DesignSpec:
             "rim_share": self.rim_share,
             "round_to": self.round_to,
             "prune": self.prune,
+            "fem_check": self.fem_check,
         }
 
     def __post_init__(self) -> None:
@@ -247,6 +253,8 @@ class DesignSpec:
         object.__setattr__(self, "arms", arms)
         if not isinstance(self.prune, bool):
             raise ValueError(f"prune must be true or false, got {self.prune!r}")
+        if not isinstance(self.fem_check, bool):
+            raise ValueError(f"fem_check must be true or false, got {self.fem_check!r}")
         if self.min_wall is not None:
             object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
         if self.round_to is not None:

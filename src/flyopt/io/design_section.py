@@ -52,6 +52,7 @@ def read_design(
             "radius_of_gyration",
             "round_to",
             "prune",
+            "fem_check",
         },
     )
     library = material_library(materials)
@@ -153,6 +154,11 @@ def read_design(
         if not isinstance(value, bool):
             raise SceneError("design.prune", f"must be true or false, got {shorten(table.raw('prune'))}")
         options["prune"] = value
+    if table.has("fem_check"):
+        value = table.get("fem_check")
+        if not isinstance(value, bool):
+            raise SceneError("design.fem_check", f"must be true or false, got {shorten(table.raw('fem_check'))}")
+        options["fem_check"] = value
     if options.get("objective") == "cost":
         from flyopt.design.materials import design_material_names
 

@@ -227,6 +227,21 @@ QUANTITIES = {
     "burst_speed": "angular_speed",
     "speed_margin": "dimensionless",
     "unbalance_permissible": "unbalance",
+    # the FE check of the best design (design.fem, flyopt.design.fem), section 13
+    "peak": "stress",
+    "model_peak": "stress",
+    "model_stress": "stress",
+    "fem_peak": "stress",
+    "lame": "stress",
+    "model_radius": "length",
+    "fillet": "length",
+    "von_mises_at": "length",
+    "max_principal_at": "length",
+    "fem_at": "length",
+    "difference": "dimensionless",
+    "utilisation": "dimensionless",
+    "factor": "dimensionless",
+    "size": "dimensionless",
     # the hub's key (DIN 6885-1), section 13
     "length": "length",
     "effective_length": "length",
@@ -280,6 +295,8 @@ COUNTS = frozenset(
         "seed",
         "n_combinations",
         "n_feasible",
+        "elements",
+        "nodes",
     }
 )
 

@@ -22,6 +22,7 @@ from flyopt.report.display import DEFAULT, dimension_of, field_number, field_tex
 
 if TYPE_CHECKING:
     from flyopt.analysis import Analysis
+    from flyopt.design.fem import FemCheck
     from flyopt.design.result import BookRim, Candidate, DesignResult
     from flyopt.design.spec import DesignSpec
     from flyopt.machine.crank_forces import CrankForces
@@ -373,6 +374,8 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
                 "bounds the diameter"
             )
         lines += wheel_report(best, result.omega * best.speed_ratio, units)
+        if result.fem is not None:
+            lines += fem_report(result.fem, units)
     elif result.continuous is not None:
         lines.append(f"  no rounded design: {result.rounding}")
         lines += rounding_report(result, units)
@@ -430,6 +433,48 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
 def _finite(value):
     """Whether a reported value exists: not None and a finite number."""
     return value is not None and math.isfinite(value)
+
+
+def fem_report(check: FemCheck, units: str = DEFAULT) -> list[str]:
+    """The FE check of the best design (``[design] fem_check = true``): each part's peak beside the Lamé/arm
+    model's, the junction factors, and how far the two models differ."""
+    q, n = formatters(units)
+    measure = "von Mises" if check.measure == "von_mises" else "largest principal"
+    lines = [
+        "",
+        f"FEM check (axisymmetric, {check.elements} quadratic triangles; {measure} stress, as the design is judged):",
+    ]
+    for p in check.parts:
+        peak, at = (
+            (p.von_mises, p.von_mises_at) if check.measure == "von_mises" else (p.max_principal, p.max_principal_at)
+        )
+        text = f"  {p.part} peak {q(peak, 'stress', 4)} at r = {n(at[0], 'radius', 4)}, z = {q(at[1], 'radius', 4)}"
+        if p.model_stress is not None:
+            text += f"; Lamé/arm {q(p.model_stress, 'stress', 4)}"
+        if p.utilisation is not None:
+            text += f"; {100 * p.utilisation:.1f} % of its allowable"
+        lines.append(text)
+    if check.junctions:
+        factors = ", ".join(
+            f"{j.name} {j.factor:.3f}" + (f" (fillet {q(j.fillet, 'radius', 3)})" if j.fillet else " (no step)")
+            for j in check.junctions
+        )
+        lines.append(f"  junction factors (FE peak near the junction / Lamé there): {factors}")
+    if check.difference is not None and check.model_peak is not None:
+        word = "above" if check.difference >= 0 else "below"
+        lines.append(
+            f"  the two models: FE peak {q(check.peak, 'stress', 4)}, Lamé/arm {q(check.model_peak, 'stress', 4)}: "
+            f"the FE is {100 * abs(check.difference):.1f} % {word}"
+        )
+    if check.within_allowable is not None:
+        lines.append(
+            "  every part's FE peak is within its allowable stress"
+            if check.within_allowable
+            else "  WARNING: an FE peak exceeds its part's allowable stress (the design was sized by the Lamé/arm "
+            "model; the check reports, it does not re-design)"
+        )
+    lines += [f"  note: {note}" for note in check.notes]
+    return lines
 
 
 def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[str]:

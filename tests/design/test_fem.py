@@ -1,0 +1,257 @@
+"""The axisymmetric FE check (flyopt.design.fem): the closed forms first, then the whole wheels' junctions.
+
+References are independent of the FE model: the plane-stress closed forms of a rotating disc
+(Timoshenko & Goodier, art. 32; flyopt.design.stress holds them) and the figures the issue prints,
+the hoop-force balance of a ring (the mean hoop stress of a thin rim is rho v^2), and, for the
+junction factors of the shipped wheels, the same model on a finer mesh (convergence shown).
+"""
+
+import json
+import math
+import sys
+
+import pytest
+from conftest import PROBLEMS, assert_published
+
+import flyopt
+from flyopt.design import fem, stress
+
+#: The issue's disc: steel, R = 0.5 m, 3000 rpm.
+RHO, NU, R, BORE_RADIUS = 7850.0, 0.3, 0.5, 0.05
+OMEGA = 3000.0 * 2.0 * math.pi / 60.0
+
+#: The disc's thickness: thin, so that the plane-stress closed forms hold (the axisymmetric body's
+#: departure from plane stress goes as (t/R)^2, 1.6e-5 here).
+THICKNESS = 0.002
+
+#: The closed forms to 1e-3 relative (the issue's requirement).
+CLOSED_FORM_RTOL = 1e-3
+
+#: A finer mesh (size factor halved) changes each junction factor of a shipped wheel by less than this,
+#: relatively. Measured from "normal" (0.5) to "fine" (0.25): 0.39 % (punch-press-wheel, hub-web),
+#: 0.9 % (the arms variant, arms-rim).
+JUNCTION_RTOL = 0.015
+
+
+def _disc(bore_radius, size):
+    return fem.solve_section(fem.Section((bore_radius, R), (THICKNESS,), ("disc",)), RHO, NU, OMEGA, size=size)
+
+
+def _closed_forms():
+    return {
+        "centre": stress.solid_disc_centre_stress(R, RHO, NU, OMEGA),
+        "bore_hoop": stress.annulus_bore_hoop_stress(BORE_RADIUS, R, RHO, NU, OMEGA),
+        "radial_max": stress.annulus_max_radial_stress(BORE_RADIUS, R, RHO, NU, OMEGA),
+    }
+
+
+def _fe_values(size):
+    solid, bored = _disc(0.0, size), _disc(BORE_RADIUS, size)
+    return {
+        "centre": float(solid.radial.max()),
+        "bore_hoop": float(bored.hoop.max()),
+        "radial_max": float(bored.radial.max()),
+    }
+
+
+def test_closed_forms_as_the_issue_prints_them():
+    """79.90 MPa at the centre of the solid disc; 160.13 MPa hoop at the 0.05 m bore, 64.72 MPa radial maximum
+    (the closed forms round to the issue's figures): the FE on the default mesh to 1e-3 of them (measured
+    7e-6, 7e-6 and 1.1e-4; the bore's 160.13506 MPa prints as 160.14, 6.5e-6 above the closed form's 160.13402)."""
+    exact, mine = _closed_forms(), _fe_values(fem.MESH_SIZES["normal"])
+    assert_published(exact["centre"] / 1e6, "79.90")
+    assert_published(exact["bore_hoop"] / 1e6, "160.13")
+    assert_published(exact["radial_max"] / 1e6, "64.72")
+    for name in exact:
+        assert abs(mine[name] / exact[name] - 1.0) <= CLOSED_FORM_RTOL, (name, mine[name], exact[name])
+    # the solid disc's centre is equibiaxial
+    solid = _disc(0.0, fem.MESH_SIZES["normal"])
+    assert abs(solid.hoop.max() / exact["centre"] - 1.0) <= CLOSED_FORM_RTOL
+
+
+def test_closed_forms_converge_as_the_mesh_is_refined():
+    """Halving the element size twice: every error falls each time, and the finest is within 1e-3
+    (measured 2e-4, 3e-4 and 1e-3 at size 0.25)."""
+    exact = _closed_forms()
+    errors = {name: [] for name in exact}
+    for size in (1.0, 0.5, 0.25):
+        mine = _fe_values(size)
+        for name in exact:
+            errors[name].append(abs(mine[name] / exact[name] - 1.0))
+    for name, e in errors.items():
+        assert e[0] > e[1] > e[2], (name, e)
+        assert e[2] <= CLOSED_FORM_RTOL / 3.0, (name, e)
+
+
+def test_mean_hoop_of_a_thin_rim_is_rho_v_squared():
+    """A thin free rim (H/D_m = 1 %): the FE's mean hoop stress over the section is rho v_m^2 to the
+    thin-ring error (H/D_m)^2/3 (the exact balance gives rho omega^2 (a^2 + a b + b^2)/3), plus 1e-6."""
+    a, b = 0.495, 0.505
+    ring = fem.solve_section(fem.Section((a, b), (0.05,), ("rim",)), RHO, NU, OMEGA, size=fem.MESH_SIZES["normal"])
+    v_mean = OMEGA * (a + b) / 2.0
+    thin_ring = stress.thin_ring_hoop_stress(RHO, v_mean)
+    assert abs(ring.mean_hoop() / thin_ring - 1.0) <= ((b - a) / (a + b)) ** 2 / 3.0 + 1e-6
+    exact = RHO * OMEGA**2 * (a * a + a * b + b * b) / 3.0
+    assert abs(ring.mean_hoop() / exact - 1.0) <= 1e-6
+
+
+# ------------------------------------------------------------------------------------- whole wheels
+
+
+def _designed(text=None):
+    scene = flyopt.load(PROBLEMS / "punch-press-wheel.toml") if text is None else text
+    design = flyopt.solve(scene).design
+    assert design.status == "designed"
+    best = design.best
+    return best, scene.material_library()[best.material], design.omega * best.speed_ratio
+
+
+@pytest.fixture(scope="module")
+def web_wheel():
+    """punch-press-wheel's design: hub, web, rim (the shipped whole wheel)."""
+    return _designed()
+
+
+@pytest.fixture(scope="module")
+def arms_wheel(tmp_path_factory):
+    """The same scene with arms (no shipped scene has rim_arms: this one stands in)."""
+    path = tmp_path_factory.mktemp("arms") / "arms.toml"
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    path.write_text(text.replace('geometry = "rim_web"', 'geometry = "rim_arms"'), encoding="utf-8")
+    return _designed(flyopt.load(path))
+
+
+@pytest.mark.parametrize("wheel", ["web_wheel", "arms_wheel"])
+def test_junction_factors_converge(wheel, request):
+    """Each junction's factor on the default mesh and on one twice as fine differ by less than JUNCTION_RTOL."""
+    design, material, omega = request.getfixturevalue(wheel)
+    normal = fem.fem_check(design, material, omega, mesh="normal")
+    fine = fem.fem_check(design, material, omega, mesh="fine")
+    assert fine.elements > 1.8 * normal.elements
+    assert [j.name for j in normal.junctions] == [j.name for j in fine.junctions]
+    for mine, finer in zip(normal.junctions, fine.junctions):
+        assert abs(mine.factor / finer.factor - 1.0) <= JUNCTION_RTOL, (mine.name, mine.factor, finer.factor)
+        assert mine.factor > 0.9, mine  # a junction never relieves the Lamé stress by much
+
+
+def test_web_wheel_check_reads_the_design(web_wheel):
+    """punch-press-wheel: hub, web and rim with their peaks; the 8 mm web meets the 66 mm hub in a
+    default 4 mm fillet (said so); web and rim are one 8 mm plate (no corner, factor near 1)."""
+    design, material, omega = web_wheel
+    check = fem.fem_check(design, material, omega)
+    assert [p.part for p in check.parts] == ["hub", "web", "rim"]
+    assert [j.name for j in check.junctions] == ["hub-web", "web-rim"]
+    hub_web, web_rim = check.junctions
+    assert hub_web.fillet == pytest.approx(design.dims.t_web * fem.DEFAULT_FILLET_RATIO)
+    assert web_rim.fillet == 0.0
+    assert 1.0 < hub_web.factor < 3.0
+    assert abs(web_rim.factor - 1.0) < 0.1
+    assert any("fillets not given" in note for note in check.notes)
+    assert check.measure == "von_mises"  # a ductile iron
+    # the junction peak sits in the fillet: within one fillet radius of it
+    r_k, z_thin = hub_web.radius, design.dims.t_web / 2.0
+    assert math.hypot(hub_web.fem_at[0] - r_k, hub_web.fem_at[1] - z_thin) <= 2.0 * hub_web.fillet
+    # the FE's mean hoop stress of the section against the Lamé step model's (same load, same section)
+    assert check.mean_hoop == pytest.approx(design.stresses.stress["mean_hoop"], rel=0.01)
+    data = json.loads(json.dumps(check.to_dict()))
+    assert data["junctions"][0]["name"] == "hub-web" and data["mesh"]["elements"] == check.elements
+    assert data["difference"] == pytest.approx(check.peak / check.model_peak - 1.0)
+
+
+def test_arms_wheel_is_said_to_be_an_equivalent_web(arms_wheel):
+    design, material, omega = arms_wheel
+    check = fem.fem_check(design, material, omega)
+    assert [p.part for p in check.parts] == ["hub", "arms", "rim"]
+    assert any("equivalent axisymmetric web" in note for note in check.notes)
+    sec = fem.section(design)
+    area = stress.arm_section_area(design.dims.arm_major, design.dims.arm_minor)
+    web_mass = math.pi * sec.thicknesses[1] * (sec.radii[2] ** 2 - sec.radii[1] ** 2)
+    arms_mass = design.n_arms * area * (sec.radii[2] - sec.radii[1])
+    assert web_mass == pytest.approx(arms_mass, rel=1e-12)
+
+
+def test_a_given_fillet_is_used(web_wheel):
+    design, material, omega = web_wheel
+    check = fem.fem_check(design, material, omega, fillet=0.002)
+    assert check.junctions[0].fillet == 0.002
+    assert not any("fillets not given" in note for note in check.notes)
+
+
+def test_bad_mesh_is_refused(web_wheel):
+    design, material, omega = web_wheel
+    with pytest.raises(ValueError, match="mesh 'medium' not known: one of coarse, normal"):
+        fem.fem_check(design, material, omega, mesh="medium")
+    with pytest.raises(ValueError, match="must be > 0"):
+        fem.fem_check(design, material, omega, mesh=0.0)
+
+
+def test_missing_extra_is_refused_in_one_line(web_wheel, monkeypatch):
+    design, material, omega = web_wheel
+    monkeypatch.setitem(sys.modules, "skfem", None)
+    with pytest.raises(ImportError, match=r"pip install 'flyopt\[fem\]'"):
+        fem.fem_check(design, material, omega)
+
+
+# --------------------------------------------------------------------- [design] fem_check = true
+
+
+@pytest.fixture(scope="module")
+def checked_solution(tmp_path_factory):
+    """punch-press-wheel with ``fem_check = true``, solved once."""
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    assert "\n[design]\n" in text
+    path = tmp_path_factory.mktemp("fem") / "checked.toml"
+    path.write_text(text.replace("\n[design]\n", "\n[design]\nfem_check = true\n"), encoding="utf-8")
+    return path, flyopt.solve(flyopt.load(path))
+
+
+def test_solve_runs_the_check_on_the_best_design(checked_solution, web_wheel):
+    """The scene key makes the solve check its best design, as fem_check itself does; without it, no check."""
+    _, solution = checked_solution
+    design, material, omega = web_wheel
+    check = solution.design.fem
+    assert check is not None and solution.design.spec.fem_check
+    assert check.to_dict() == fem.fem_check(design, material, omega).to_dict()
+    assert flyopt.solve(flyopt.load(PROBLEMS / "punch-press-wheel.toml")).design.fem is None
+
+
+def test_solve_json_and_text_carry_the_check(checked_solution):
+    import jsonschema
+
+    from flyopt.outputs.documents import json_text, schema, solution_document
+    from flyopt.outputs.quantities import has_unit
+    from flyopt.report.text import design_report
+
+    path, solution = checked_solution
+    document = json.loads(json_text(solution_document(solution, str(path))))
+    jsonschema.Draft202012Validator(schema()).validate(document)
+    fem_json = document["design"]["fem"]
+    assert fem_json["junctions"][0]["name"] == "hub-web"
+    for name in ("peak", "fem_peak", "lame", "factor", "fem_at", "fillet", "utilisation", "difference"):
+        assert has_unit(name) and name in document["units"], name
+    text = "\n".join(design_report(solution.design))
+    assert "FEM check" in text and "junction factors" in text and "hub-web 1.3" in text
+    assert "the two models: FE peak" in text and "% above" in text
+    assert "fillets not given by the design" in text
+
+
+def test_fem_check_key_must_be_a_boolean(write_scene):
+    from flyopt.errors import SceneError
+
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    path = write_scene(text.replace("\n[design]\n", '\n[design]\nfem_check = "yes"\n'))
+    with pytest.raises(SceneError, match="design.fem_check.*must be true or false"):
+        flyopt.load(path)
+
+
+def test_the_rounded_wheel_is_the_one_checked(tmp_path):
+    """With round_to, the check is of the wheel reported (rounded), not of the continuous optimum."""
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    path = tmp_path / "rounded.toml"
+    path.write_text(text.replace("\n[design]\n", '\n[design]\nfem_check = true\nround_to = "1 mm"\n'), encoding="utf-8")
+    scene = flyopt.load(path)
+    result = flyopt.solve(scene).design
+    best = result.best
+    assert result.continuous is not None and best.dims.d_outer != result.continuous.dims.d_outer
+    material = scene.material_library()[best.material]
+    assert result.fem.to_dict() == fem.fem_check(best, material, result.omega * best.speed_ratio).to_dict()
