@@ -173,7 +173,9 @@ class Dimension:
     def text(self) -> str:
         """The dimension's text as drawn: prefix, size to 0.1 mm, class and limits."""
         out = f"{self.prefix}{size_text(self.value)}"
-        if self.fit:
+        if self.fit and self.upper == -self.lower:
+            out += f" {self.fit} (±{_deviation(self.upper)[1:]})"
+        elif self.fit:
             out += f" {self.fit} ({_deviation(self.upper)}/{_deviation(self.lower)})"
         return out
 
@@ -221,10 +223,11 @@ def size_text(mm: float) -> str:
 
 
 def _deviation(mm):
-    """A limit deviation [mm]: "+0.03", "-0.0215", "0"."""
+    """A limit deviation [mm] to three decimals at least, as ISO 286 tables give them: "+0.030", "-0.0215", "0"."""
     if mm == 0:
         return "0"
-    return f"{mm:+.4f}".rstrip("0")
+    text = f"{mm:+.4f}"
+    return text[:-1] if text.endswith("0") else text
 
 
 class _Builder:
@@ -445,11 +448,13 @@ def drawing_of(
     if blocks[0][0] == "hub":
         hub = blocks[0]
         line = -(hub[2] + p(_FIRST))
-        fits = k.width(size_text(hub[3])) + p(2 * _ARROW) < hub[3] - _thin_width(blocks, arms)
-        k.linear(
-            "l_hub", "hub length", (-hub[3] / 2, -hub[2]), (hub[3] / 2, -hub[2]), line, False, 0.0 if fits else -1.0
-        )
-        if not fits:
+        k.linear("l_hub", "hub length", (-hub[3] / 2, -hub[2]), (hub[3] / 2, -hub[2]), line, False, -1.0)
+        clear = (hub[3] - _thin_width(blocks, arms)) / 2.0  # the line's free length left of the web or arm
+        if k.width(size_text(hub[3])) + p(2.0 + _ARROW) < clear:  # the text above the line, left of the web
+            dim = k.dimensions[-1]
+            x = -hub[3] / 2.0 + clear / 2.0
+            k.dimensions[-1] = Dimension(**{**dim.__dict__, "text_at": (x, line + p(1.0 + _TEXT / 2.0))})
+        else:
             _move_text_left(k, left_text)
     webs = [blk for blk in blocks if blk[0] == "web"]
     if webs:
@@ -462,12 +467,12 @@ def drawing_of(
         middle = -0.5 * (r0 + r1)
         k.linear("arm_minor", "arm section, minor axis", (-minor / 2, middle), (minor / 2, middle), middle, False, -1.0)
         _move_text_left(k, left_text)
-        k.linear(
+        k.linear(  # left of the section, past the minor axis' text
             "arm_major",
             "arm section, major axis",
             (0.0, middle - major / 2),
             (0.0, middle + major / 2),
-            w_max / 2.0 + p(_FIRST + _STEP * len(stack)),
+            left_text - k.width(k.dimensions[-1].text) - p(_FIRST),
             True,
         )
 
@@ -497,7 +502,7 @@ def drawing_of(
     k.text("DIMENSIONS", (0.0, r_o + p(_FIRST + 9.0)), "SECTION A–A", height=3.5, align="center")
 
     # --- front view, right of the section
-    cx = w_max / 2.0 + p(_FIRST + _STEP * (len(stack) + (1 if arms else 0)) + _GAP) + r_o
+    cx = w_max / 2.0 + p(_FIRST + _STEP * len(stack) + _GAP) + r_o
     _front_view(k, design, blocks, arms, cx, r_o, r_bore, t2, b_key, key)
 
     # --- the sheet: border, title block, notes (paper mm from the sheet's lower left corner)
@@ -592,8 +597,7 @@ def _front_view(k, design, blocks, arms, cx, r_o, r_bore, t2, b_key, key):
     else:
         k.arcs.append(Arc("OUTLINE", (cx, 0.0), r_bore))
     # the bore: a diameter dimension at an angle clear of the keyway and the arms, its text outside
-    n = design.n_arms or 4
-    angle = math.radians(-90.0 + 180.0 / n) if arms else math.radians(-35.0)
+    angle = math.radians(_bore_angle(design.n_arms if arms else None))
     bore_fit = hole_tolerance(design.bore, "H7")
     r_text = max(blocks[0][2] if blocks[0][0] == "hub" else r_bore, r_bore) + p(14.0)
     k.dimensions.append(
@@ -637,6 +641,19 @@ def _front_view(k, design, blocks, arms, cx, r_o, r_bore, t2, b_key, key):
             cx - r_side - p(_FIRST),
             True,
         )
+
+
+def _bore_angle(n_arms):
+    """The direction [deg] of the bore's diameter dimension in the front view: down and right, in the gap
+    between two arms nearest -45 degrees (the arms stand half a pitch off the vertical), off the centre lines."""
+    if not n_arms:
+        return -35.0
+    pitch = 360.0 / n_arms
+    gaps = [90.0 + k * pitch - 360.0 for k in range(n_arms + 1)]
+    angle = min(gaps, key=lambda a: (abs(a + 45.0), -a))
+    if math.isclose(angle % 90.0, 0.0, abs_tol=1e-9) or math.isclose(angle % 90.0, 90.0, abs_tol=1e-9):
+        angle -= pitch / 4.0
+    return angle
 
 
 def _title_fields(design, scene, sha256, version, date, k):
@@ -707,7 +724,7 @@ def _title_block(k, at, title):
 
 def _notes(design, arms, t2):
     """What the drawing says in words beside the views."""
-    notes = ["Dimensions in mm. Section A–A is cut through the keyway."]
+    notes = ["Dimensions in mm." + (" Section A–A is cut through the keyway." if t2 else "")]
     if arms:
         notes.append("Arms are not hatched in section (drafting rule for spokes); one arm's section is revolved.")
     if not design.bore:
@@ -787,6 +804,7 @@ def write_dxf(drawing: Drawing, path: str | os.PathLike[str]) -> None:
         "dimclrd": 3,
         "dimclre": 3,
         "dimclrt": 3,
+        "dimtfill": 1,  # the text on the drawing's background: lines break behind it
     }.items():
         style.dxf.set(attribute, value)
     msp = doc.modelspace()

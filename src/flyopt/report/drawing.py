@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from flyopt.design.result import Design
     from flyopt.io.scene import Scene
 
-__all__ = ["EXPORT_FORMATS", "STEP_REFUSAL", "drawing_of_scene", "export", "export_format", "figure", "write_drawing"]
+__all__ = ["EXPORT_FORMATS", "STEP_REFUSAL", "NoWheel", "drawing_of_scene", "export", "export_format", "figure", "write_drawing"]
 
 #: The formats of ``flyopt export``, by the suffix of the file.
 EXPORT_FORMATS = {".dxf": "dxf", ".svg": "svg", ".pdf": "pdf"}
@@ -34,6 +34,8 @@ STEP_REFUSAL = "STEP needs a solid modeller (build123d or CadQuery), which flyop
 #: Line widths on paper [mm] (ISO 128-20: wide 0.5, narrow 0.25).
 _WIDE, _NARROW = 0.5, 0.25
 _PT = 72.0 / 25.4  # points per paper mm
+#: Behind a dimension's text: the sheet, so that lines break there (DXF: DIMTFILL 1).
+_CLEAR = {"facecolor": "white", "edgecolor": "none", "pad": 0.6}
 
 
 def export_format(path: str | os.PathLike[str]) -> str:
@@ -138,7 +140,7 @@ def _dimension(ax, dim, paper):
         ax.plot([far[0], dim.text_at[0]], [far[1], dim.text_at[1]], **thin)
         _arrow(ax, near, (ux, uy), paper)
         _arrow(ax, far, (-ux, -uy), paper)
-        ax.text(*dim.text_at, " " + dim.text, fontsize=size, ha="left", va="bottom", color="black")
+        ax.text(*dim.text_at, " " + dim.text, fontsize=size, ha="left", va="bottom", color="black", bbox=_CLEAR)
         return
     vertical = dim.vertical
     axis = 1 if vertical else 0
@@ -180,7 +182,16 @@ def _dimension(ax, dim, paper):
         rotation=90 if vertical else 0,
         rotation_mode="anchor",
         color="black",
+        bbox=_CLEAR,
     )
+
+
+class NoWheel(ValueError):
+    """A scene whose solution has no wheel to draw: none is needed, or (``infeasible``) none meets the limits."""
+
+    def __init__(self, message: str, infeasible: bool) -> None:
+        super().__init__(message)
+        self.infeasible = infeasible
 
 
 def drawing_of_scene(scene: Scene, date: datetime.date | None = None) -> tuple[Drawing, Design]:
@@ -188,24 +199,22 @@ def drawing_of_scene(scene: Scene, date: datetime.date | None = None) -> tuple[D
 
     Raises
     ------
-    SceneError
-        No flywheel is needed, or none is feasible: nothing to draw (exit 2).
+    NoWheel
+        No flywheel is needed, or none is feasible: nothing to draw.
     SolverFailed
         The design did not converge (exit 1).
     """
-    from flyopt.errors import SceneError
     from flyopt.outputs.documents import scene_record
     from flyopt.outputs.drawing import drawing_of
     from flyopt.pipeline import solve
 
     solution = solve(scene)
-    where = str(getattr(scene, "source", None) or "scene")
     if solution.status == "not_needed":
-        raise SceneError("design", "no flywheel is needed: nothing to draw").with_source(where)
+        raise NoWheel("no flywheel is needed: nothing to draw", infeasible=False)
     design = solution.design
     if design is None or design.best is None:
         said = design.message if design is not None else "no drive and wheel meet the limits"
-        raise SceneError("design", f"no flywheel to draw ({said})").with_source(where)
+        raise NoWheel(f"no flywheel to draw ({said})", infeasible=True)
     record = scene_record(scene)
     drawn = drawing_of(design.best, scene=record["scene"], sha256=record["scene_file_sha256"], date=date)
     return drawn, design.best
@@ -233,8 +242,10 @@ def export(
     Raises
     ------
     SceneError
-        A suffix other than .dxf, .svg, .pdf (STEP refused in words), a
-        folder that does not exist, or no wheel to draw; nothing is written.
+        A suffix other than .dxf, .svg, .pdf (STEP refused in words) or a
+        folder that does not exist; nothing is written.
+    NoWheel
+        No wheel to draw; nothing is written.
     ImportError
         A DXF without ezdxf (the ``cad`` extra), said in one line.
     """
