@@ -727,7 +727,7 @@ def _notes(design, arms, t2):
     notes = ["Dimensions in mm." + (" Section A–A is cut through the keyway." if t2 else "")]
     if arms:
         notes.append("Arms are not hatched in section (drafting rule for spokes); one arm's section is revolved.")
-    if not design.bore:
+    if not design.bore and design.geometry not in (Geometry.RIM, Geometry.THIN_RIM):
         notes.append("No bore: the design gives no shaft seat; the seat and its key are to be added.")
     elif not t2:
         notes.append("No key: the design gives none for this seat.")
@@ -763,9 +763,9 @@ def write_dxf(drawing: Drawing, path: str | os.PathLike[str]) -> None:
     a real DIMENSION entity (linear or diameter) whose measurement is the
     design's size, with its ISO 286 limits as the dimension's tolerance and,
     as XDATA of application ``FLYOPT``, the name of what it measures; texts
-    as TEXT. Model space is true size; the dimension style's DIMSCALE is the
-    inverse of the drawing's scale, so text and arrows plot at their paper
-    size when model space is plotted at the drawing's scale.
+    as TEXT. Model space is true size; text heights and arrows are in model
+    units, the inverse of the drawing's scale times their paper size, so they
+    plot at their paper size when model space is plotted at the drawing's scale.
 
     Raises
     ------
@@ -782,15 +782,17 @@ def write_dxf(drawing: Drawing, path: str | os.PathLike[str]) -> None:
         doc.layers.add(name, color=colours[name], linetype="CENTER" if name == "CENTER" else "Continuous")
     inverse = 1.0 / drawing.scale
     doc.header["$LTSCALE"] = inverse
-    doc.header["$DIMSCALE"] = inverse
     style = doc.dimstyles.new("FLYOPT")
+    # sizes in model units (DIMSCALE 1): ezdxf 1.4 scales a tolerance's text by DIMSCALE twice
     for attribute, value in {
-        "dimtxt": _TEXT,
-        "dimasz": _ARROW,
-        "dimexe": 1.5,
-        "dimexo": 1.0,
-        "dimgap": 1.0,
-        "dimscale": inverse,
+        "dimtxt": _TEXT * inverse,
+        "dimasz": _ARROW * inverse,
+        "dimexe": 1.5 * inverse,
+        "dimexo": 1.0 * inverse,
+        "dimgap": 1.0 * inverse,
+        "dimscale": 1.0,
+        "dimdsep": ord("."),
+        "dimtfac": 0.7,
         "dimdec": 1,
         "dimtdec": 4,
         "dimzin": 8,  # no trailing zeros
@@ -831,8 +833,9 @@ def write_dxf(drawing: Drawing, path: str | os.PathLike[str]) -> None:
     for dim in drawing.dimensions:
         override: dict[str, Any] = {}
         if dim.fit:
-            override.update({"dimtol": 1, "dimtp": dim.upper, "dimtm": -dim.lower, "dimtfac": 0.7})
-        label = ("%%c" if dim.prefix == "Ø" else "") + "<>" + (f" {dim.fit}" if dim.fit else "")
+            override.update({"dimtol": 1, "dimtp": dim.upper, "dimtm": -dim.lower})
+        # a diameter dimension writes its Ø itself; a linear one of a diameter is told to
+        label = ("%%c" if dim.prefix == "Ø" and dim.kind == "linear" else "") + "<>" + (f" {dim.fit}" if dim.fit else "")
         if dim.kind == "diameter":
             radius = dim.value / 2.0
             entity = msp.add_diameter_dim(
