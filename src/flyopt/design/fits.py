@@ -57,16 +57,14 @@ def _load():
     table = tomllib.loads(text)["it_grades"]
     if table.get("size_unit") != "mm" or table.get("tolerance_unit") != "um" or table.get("columns") != _COLUMNS:
         raise ValueError(f"{_ORIGIN}: it_grades must give size_unit 'mm', tolerance_unit 'um', columns {_COLUMNS}")
-    rows = []
+    rows: list[tuple[float, float, dict[str, float]]] = []
     for index, row in enumerate(table["rows"]):
         values = dict(zip(_COLUMNS, (float(v) for v in row)))
         if len(row) != len(_COLUMNS) or not 0 <= values["d_over"] < values["d_up_to"]:
             raise ValueError(f"{_ORIGIN}: it_grades.rows[{index}] = {row!r} is not (d_over < d_up_to, IT7, IT9)")
         if rows and values["d_over"] * 1e-3 != rows[-1][1]:
             raise ValueError(f"{_ORIGIN}: it_grades.rows[{index}] does not start where the row before ends")
-        rows.append(
-            (values["d_over"] * 1e-3, values["d_up_to"] * 1e-3, {g: values[g] * 1e-6 for g in ("IT7", "IT9")})
-        )
+        rows.append((values["d_over"] * 1e-3, values["d_up_to"] * 1e-3, {g: values[g] * 1e-6 for g in ("IT7", "IT9")}))
     return tuple(rows)
 
 

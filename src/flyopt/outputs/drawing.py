@@ -213,7 +213,7 @@ class Drawing:
 
     @property
     def scale_text(self) -> str:
-        """"1:5" (or "2:1")."""
+        """ "1:5" (or "2:1")."""
         return f"1:{1 / self.scale:g}" if self.scale <= 1 else f"{self.scale:g}:1"
 
 
@@ -443,7 +443,9 @@ def drawing_of(
         k.linear(name, words, (x_edge, -r), (x_edge, r), line, vertical=True, prefix="Ø")
     # widths: the rim's above it
     b = blocks[-1][3]
-    k.linear("b", "rim width" if blocks[-1][0] == "rim" else "width", (-b / 2, r_o), (b / 2, r_o), r_o + p(_FIRST), False)
+    k.linear(
+        "b", "rim width" if blocks[-1][0] == "rim" else "width", (-b / 2, r_o), (b / 2, r_o), r_o + p(_FIRST), False
+    )
     left_text = -w_max / 2.0 - p(4.0)  # texts beside a short dimension go left, clear of the diameters
     if blocks[0][0] == "hub":
         hub = blocks[0]
@@ -483,10 +485,8 @@ def drawing_of(
         names.append((0.5 * (r0 + r1 + (t2 if name == "hub" else 0.0)), -w / 4.0 if w > p(3) else 0.0, words))
     if arms:
         r0, r1, major, minor = arms
-        names.append(
-            (0.5 * (r0 + r1), -minor / 4.0, f"Arm, {design.n_arms} off, elliptical section (revolved below)")
-        )
-    if t2:
+        names.append((0.5 * (r0 + r1), -minor / 4.0, f"Arm, {design.n_arms} off, elliptical section (revolved below)"))
+    if t2 and key:
         names.append((r_bore + t2 / 2.0, 0.0, f"Keyway DIN 6885-1, key {key['size']}"))
     if r_bore:
         names.append((r_bore * 0.5, 0.0, "Bore (shaft seat)"))
@@ -518,7 +518,12 @@ def drawing_of(
     k.line("TITLE", [at(0, 0), at(sheet_w, 0), at(sheet_w, sheet_h), at(0, sheet_h)], closed=True, style="thin")
     k.line(
         "TITLE",
-        [at(border, border), at(sheet_w - border, border), at(sheet_w - border, sheet_h - border), at(border, sheet_h - border)],
+        [
+            at(border, border),
+            at(sheet_w - border, border),
+            at(sheet_w - border, sheet_h - border),
+            at(border, sheet_h - border),
+        ],
         closed=True,
     )
     title = _title_fields(design, scene, sha256, version, date, k)
@@ -709,7 +714,7 @@ def _title_block(k, at, title):
         (4, x0 + 125, x1, "", "units"),
         (5, x0, x1, "Scene", "scene"),
     ]
-    for row, xs, xe, label, name in cells:
+    for row, xs, _xe, label, name in cells:
         y = y0 + (rows - 1 - row) * _ROW + 2.0
         if xs > x0:
             k.line("TITLE", [at(xs, y0 + (rows - 1 - row) * _ROW), at(xs, y0 + (rows - row) * _ROW)], style="thin")
@@ -811,7 +816,7 @@ def write_dxf(drawing: Drawing, path: str | os.PathLike[str]) -> None:
         style.dxf.set(attribute, value)
     msp = doc.modelspace()
     for line in drawing.lines:
-        attribs = {"layer": line.layer}
+        attribs: dict[str, Any] = {"layer": line.layer}
         if line.style == "thin":
             attribs["lineweight"] = 25
         msp.add_lwpolyline(line.points, close=line.closed, dxfattribs=attribs)
@@ -835,7 +840,9 @@ def write_dxf(drawing: Drawing, path: str | os.PathLike[str]) -> None:
         if dim.fit:
             override.update({"dimtol": 1, "dimtp": dim.upper, "dimtm": -dim.lower})
         # a diameter dimension writes its Ø itself; a linear one of a diameter is told to
-        label = ("%%c" if dim.prefix == "Ø" and dim.kind == "linear" else "") + "<>" + (f" {dim.fit}" if dim.fit else "")
+        label = (
+            ("%%c" if dim.prefix == "Ø" and dim.kind == "linear" else "") + "<>" + (f" {dim.fit}" if dim.fit else "")
+        )
         if dim.kind == "diameter":
             radius = dim.value / 2.0
             entity = msp.add_diameter_dim(

@@ -24,12 +24,23 @@ if TYPE_CHECKING:
     from flyopt.design.result import Design
     from flyopt.io.scene import Scene
 
-__all__ = ["EXPORT_FORMATS", "STEP_REFUSAL", "NoWheel", "drawing_of_scene", "export", "export_format", "figure", "write_drawing"]
+__all__ = [
+    "EXPORT_FORMATS",
+    "STEP_REFUSAL",
+    "NoWheel",
+    "drawing_of_scene",
+    "export",
+    "export_format",
+    "figure",
+    "write_drawing",
+]
 
 #: The formats of ``flyopt export``, by the suffix of the file.
 EXPORT_FORMATS = {".dxf": "dxf", ".svg": "svg", ".pdf": "pdf"}
 #: What ``flyopt export`` says of a STEP file, which it cannot write yet.
-STEP_REFUSAL = "STEP needs a solid modeller (build123d or CadQuery), which flyopt does not have yet: write .dxf, .svg or .pdf"
+STEP_REFUSAL = (
+    "STEP needs a solid modeller (build123d or CadQuery), which flyopt does not have yet: write .dxf, .svg or .pdf"
+)
 
 #: Line widths on paper [mm] (ISO 128-20: wide 0.5, narrow 0.25).
 _WIDE, _NARROW = 0.5, 0.25
@@ -84,9 +95,7 @@ def figure(drawing: Drawing) -> Figure:
         ax.plot(xs, ys, color="black", lw=lw(line.style), ls=dashes(line.style), solid_capstyle="butt")
     for arc in drawing.arcs:
         ax.add_patch(
-            ArcPatch(
-                arc.center, 2 * arc.radius, 2 * arc.radius, theta1=arc.start, theta2=arc.end, lw=lw(arc.style)
-            )
+            ArcPatch(arc.center, 2 * arc.radius, 2 * arc.radius, theta1=arc.start, theta2=arc.end, lw=lw(arc.style))
         )
     for text in drawing.texts:
         ax.text(
@@ -274,6 +283,8 @@ def write_drawing(drawing: Drawing, output: str | os.PathLike[str], kind: str) -
         return
     import io
 
+    import matplotlib
+
     from flyopt.outputs.files import write_atomically
 
     fig = figure(drawing)
@@ -281,6 +292,8 @@ def write_drawing(drawing: Drawing, output: str | os.PathLike[str], kind: str) -
     metadata = {"Title": drawing.title.get("title", "")}
     if kind == "pdf":
         metadata["Creator"] = drawing.title.get("version", "flyopt")
-    fig.savefig(buffer, format=kind, metadata=metadata)
+    # texts stay texts (SVG <text>, PDF TrueType): a reader can search and copy the dimensions and the title block
+    with matplotlib.rc_context({"svg.fonttype": "none", "pdf.fonttype": 42}):
+        fig.savefig(buffer, format=kind, metadata=metadata)
     data = buffer.getvalue()
     write_atomically(output, lambda handle: handle.write(data))
