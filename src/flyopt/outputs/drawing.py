@@ -79,6 +79,8 @@ _FIRST, _STEP, _ARROW = 8.0, 8.0, 2.5
 _CHAR = 0.75
 #: Title block [paper mm]: width, row height, rows.
 _BLOCK_W, _ROW = 180.0, 7.0
+#: The smallest step between two faces the front view shows as a line [mm] (the drawing's 0.1 mm).
+_SEEN = 0.05
 #: Paper left of the section for the part names, right of the front view, between the views.
 _LEFT, _RIGHT, _GAP = 62.0, 14.0, 40.0
 
@@ -563,9 +565,10 @@ def _front_view(k, design, blocks, arms, cx, r_o, r_bore, t2, b_key, key):
     k.arcs.append(Arc("OUTLINE", (cx, 0.0), r_o))
     names = [blk[0] for blk in blocks]
     widths = {blk[0]: blk[3] for blk in blocks}
-    if "rim" in names and (arms or "web" not in names or not math.isclose(widths["rim"], widths["web"])):
+    # a step between two faces is seen where their widths differ by what the drawing shows (0.1 mm)
+    if "rim" in names and (arms or "web" not in names or abs(widths["rim"] - widths["web"]) >= _SEEN):
         k.arcs.append(Arc("OUTLINE", (cx, 0.0), blocks[-1][1]))
-    if "hub" in names and (arms or not math.isclose(widths["hub"], widths.get("web", -1.0))):
+    if "hub" in names and (arms or abs(widths["hub"] - widths.get("web", -1.0)) >= _SEEN):
         k.arcs.append(Arc("OUTLINE", (cx, 0.0), blocks[0][2]))
     if arms:
         r0, r1, major, _minor = arms
