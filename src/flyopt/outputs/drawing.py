@@ -37,7 +37,7 @@ from flyopt.names import Geometry
 if TYPE_CHECKING:
     import os
 
-    from flyopt.design.result import Design
+    from flyopt.design.result import Candidate, Design
 
 __all__ = [
     "CAD_EXTRA",
@@ -51,7 +51,9 @@ __all__ = [
     "Line",
     "Text",
     "drawing_of",
+    "keyway",
     "require_ezdxf",
+    "section_blocks",
     "size_text",
     "write_dxf",
 ]
@@ -292,25 +294,52 @@ class _Builder:
         )
 
 
-def _blocks(design):
-    """The section's centred blocks, inner first: (part, r_inner, r_outer, axial width) [mm], and the arms
-    (r_inner, r_outer, major, minor) [mm] or None."""
+def section_blocks(design: Candidate) -> tuple[list[tuple[str, float, float, float]], tuple[float, ...] | None]:
+    """The axial section of a designed wheel, as every drawing of it takes it [m].
+
+    Returns
+    -------
+    blocks : list of (part, r_inner, r_outer, axial width)
+        The centred blocks of the half-section, inner first: "hub", "web",
+        "rim" or "disc" (a bare rim is one "rim"; a web wheel without a bore
+        is solid to the axis).
+    arms : (r_inner, r_outer, major, minor) or None
+        The arms of a ``rim_arms`` wheel: from the hub to the rim, of
+        elliptical section (major along the circumference).
+    """
     dims = design.dims
-    r_o = dims.d_outer * 500.0
-    r_bore = (design.bore or 0.0) * 500.0
+    if dims is None:
+        raise ValueError(f"{design.material} on {design.shaft} is not a design: nothing to draw")
+    r_o = dims.d_outer / 2.0
+    r_bore = (design.bore or 0.0) / 2.0
     if design.geometry == Geometry.DISC:
-        return [("disc", r_bore, r_o, dims.b * 1e3)], None
-    r_i = dims.d_inner * 500.0
-    rim = ("rim", r_i, r_o, dims.b * 1e3)
-    if design.geometry == Geometry.RIM_WEB:
+        return [("disc", r_bore, r_o, dims.b)], None
+    r_i = dims.d_inner / 2.0
+    rim = ("rim", r_i, r_o, dims.b)
+    if design.geometry == Geometry.RIM_WEB and dims.t_web and dims.d_hub and dims.l_hub:
         if not design.bore:
-            return [("web", 0.0, r_i, dims.t_web * 1e3), rim], None
-        hub = ("hub", r_bore, dims.d_hub * 500.0, dims.l_hub * 1e3)
-        return [hub, ("web", dims.d_hub * 500.0, r_i, dims.t_web * 1e3), rim], None
-    if design.geometry == Geometry.RIM_ARMS:
-        hub = ("hub", r_bore, dims.d_hub * 500.0, dims.l_hub * 1e3)
-        return [hub, rim], (dims.d_hub * 500.0, r_i, dims.arm_major * 1e3, dims.arm_minor * 1e3)
+            return [("web", 0.0, r_i, dims.t_web), rim], None
+        return [("hub", r_bore, dims.d_hub / 2.0, dims.l_hub), ("web", dims.d_hub / 2.0, r_i, dims.t_web), rim], None
+    if design.geometry == Geometry.RIM_ARMS and dims.d_hub and dims.l_hub and dims.arm_major and dims.arm_minor:
+        hub = ("hub", r_bore, dims.d_hub / 2.0, dims.l_hub)
+        return [hub, rim], (dims.d_hub / 2.0, r_i, dims.arm_major, dims.arm_minor)
     return [rim], None
+
+
+def keyway(design: Candidate) -> tuple[float, float]:
+    """The hub's keyway of a designed wheel, (width b, depth t2) [m] of its DIN 6885-1 key; (0, 0): none."""
+    key = design.parts.key if design.parts else None
+    if not key or not design.bore:
+        return 0.0, 0.0
+    return float(key["b"]), float(key["t2"])
+
+
+def _blocks(design):
+    """:func:`section_blocks` in mm."""
+    blocks, arms = section_blocks(design)
+    return [(name, *(v * 1e3 for v in rest)) for name, *rest in blocks], (
+        tuple(v * 1e3 for v in arms) if arms else None
+    )
 
 
 def _groups(blocks):
@@ -399,8 +428,7 @@ def drawing_of(
     p = k.p
     key = design.parts.key if design.parts else None
     r_bore = (design.bore or 0.0) * 500.0
-    t2 = key["t2"] * 1e3 if key and r_bore else 0.0
-    b_key = key["b"] * 1e3 if key and r_bore else 0.0
+    b_key, t2 = (v * 1e3 for v in keyway(design))
 
     # --- section A-A: the upper half cut through the keyway, the lower half through solid hub
     for group in _groups(blocks):
