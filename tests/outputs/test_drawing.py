@@ -161,16 +161,21 @@ def test_the_part_names_are_words(drawn):
     assert any(t.text.startswith("Arm, 8 off") for t in drawn["rim_arms"][0].texts)
 
 
-def test_the_keyway_is_cut_in_the_section(drawn):
-    # the upper half's cut face starts at the keyway's bottom, bore/2 + t2; the lower half's at the bore
-    drawing, design = drawn["rim_web"]
+@pytest.mark.parametrize("case", ["rim_web", "rim_arms"])
+def test_the_keyway_is_cut_in_the_section(drawn, case):
+    # the upper half's cut face starts at the keyway's bottom, bore/2 + t2; the lower half's at the bore;
+    # an arms wheel's rim (a face of its own) is not cut
+    drawing, design = drawn[case]
     r_bore, t2 = design.bore * 500, design.parts.key["t2"] * 1e3
-    lows = sorted(
-        {min(y for _x, y in h.boundary if y > 0) for h in drawing.hatches if min(y for _x, y in h.boundary) > 0}
-    )
-    assert lows == [pytest.approx(r_bore + t2, rel=1e-12)]
+    lows = sorted({min(y for _x, y in h.boundary) for h in drawing.hatches if min(y for _x, y in h.boundary) > 0})
     highs = sorted({max(y for _x, y in h.boundary) for h in drawing.hatches if max(y for _x, y in h.boundary) < 0})
-    assert highs == [pytest.approx(-r_bore, rel=1e-12)]
+    if case == "rim_web":
+        assert lows == [pytest.approx(r_bore + t2, rel=1e-12)]
+        assert highs == [pytest.approx(-r_bore, rel=1e-12)]
+    else:  # the hub, the rim (and the revolved arm section, below the axis, ending at its ellipse's top)
+        r_i = design.dims.d_inner * 500
+        assert lows == [pytest.approx(r_bore + t2, rel=1e-12), pytest.approx(r_i, rel=1e-12)]
+        assert highs[0] == pytest.approx(-r_i, rel=1e-12) and highs[-1] == pytest.approx(-r_bore, rel=1e-12)
 
 
 def test_dimension_texts_do_not_overlap(drawn):

@@ -432,7 +432,7 @@ def drawing_of(
 
     # --- section A-A: the upper half cut through the keyway, the lower half through solid hub
     for group in _groups(blocks):
-        r_start = group[0][1] + (t2 if group[0][1] > 0 else 0.0)
+        r_start = group[0][1] + (t2 if group[0] is blocks[0] else 0.0)  # the keyway is in the bore's block
         upper = _upper_outline(group, r_start)
         lower = [(x, -y) for x, y in _upper_outline(group, group[0][1])]
         if group[0][1] > 0:

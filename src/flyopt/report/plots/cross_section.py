@@ -320,7 +320,7 @@ def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str 
     d = sheet.d
     for group in _groups(blocks):
         # the upper half is cut through the hub's keyway (section A-A of the drawing): its face starts at t2 over the bore
-        cut = t2 if group[0][1] > 0 else 0.0
+        cut = t2 if group[0] is blocks[0] else 0.0  # the keyway is in the bore's block (t2 is 0 without a bore)
         for sign in (1, -1):
             for index, (name, r0, r1, w) in enumerate(group):
                 start = r0 + (cut if sign > 0 and index == 0 else 0.0)
