@@ -474,12 +474,22 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
         expected["rim"] = (-b / 2, b / 2, r_o - c.dims.h, r_o)
     if geometry in ("rim_web", "rim_arms"):
         expected["hub"] = (-c.dims.l_hub / 2, c.dims.l_hub / 2, c.bore / 2, c.dims.d_hub / 2)
+        # the upper half is cut through the keyway (section A-A of the drawing): its hub starts t2 over the bore
+        t2 = c.parts.key["t2"]
+        hub = _blocks(ax)["hub+"]
+        np.testing.assert_allclose(
+            tuple(v / 1e3 for v in hub),
+            (-c.dims.l_hub / 2, c.dims.l_hub / 2, c.bore / 2 + t2, c.dims.d_hub / 2),
+            rtol=0,
+            atol=1e-12,
+        )
     if geometry == "rim_web":
         expected["web"] = (-c.dims.t_web / 2, c.dims.t_web / 2, c.dims.d_hub / 2, r_o - c.dims.h)
     if geometry == "rim_arms":
         expected["arms"] = (-c.dims.arm_minor / 2, c.dims.arm_minor / 2, c.dims.d_hub / 2, r_o - c.dims.h)
     for name, (x0, x1, y0, y1) in expected.items():
-        np.testing.assert_allclose(blocks[f"{name}+"], (x0, x1, y0, y1), rtol=0, atol=1e-12)
+        if name != "hub":  # checked above, with its keyway
+            np.testing.assert_allclose(blocks[f"{name}+"], (x0, x1, y0, y1), rtol=0, atol=1e-12)
         np.testing.assert_allclose(blocks[f"{name}-"], (x0, x1, -y1, -y0), rtol=0, atol=1e-12)  # mirrored
     assert c.dims.d_outer * 1e3 / 2 < ax.get_ylim()[1] < c.dims.d_outer * 1e3  # the axes hold millimetres
     assert {g[:-1] for g in blocks} == set(expected)
@@ -495,12 +505,12 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
         wanted |= {
             f"Ø{c.dims.d_hub * 1e3:.1f}".rstrip("0").rstrip("."),
             "Ø60",
-            f"l_hub {c.dims.l_hub * 1e3:.1f}".rstrip("0").rstrip("."),
+            f"hub length {c.dims.l_hub * 1e3:.1f}".rstrip("0").rstrip("."),
         }
     if geometry == "disc":
         wanted.add("Ø60")
     if geometry == "rim_web":
-        wanted.add(f"t_web {c.dims.t_web * 1e3:.1f}".rstrip("0").rstrip("."))
+        wanted.add(f"web {c.dims.t_web * 1e3:.1f}".rstrip("0").rstrip("."))
     assert wanted <= texts, wanted - texts
     if geometry == "rim_arms":
         from matplotlib.patches import Ellipse, Polygon

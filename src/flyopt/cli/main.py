@@ -6,6 +6,7 @@
     flyopt check SCENE.toml                                     check a scene file
     flyopt plot SCENE.toml|RESULTS --what DIAGRAM -o FILE
     flyopt report SCENE.toml -o FILE [--units SYSTEM]           the engineering report (.html, .pdf)
+    flyopt export SCENE.toml -o FILE                            the wheel's drawing (.dxf, .svg, .pdf)
     flyopt sweep | pareto | tradeoff SCENE.toml [-o FILE] ...   design studies
     flyopt bench ...                                            speed against error
     flyopt --version
@@ -76,7 +77,7 @@ def entry() -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
-    from flyopt.cli import plot, report, scene, studies
+    from flyopt.cli import export, plot, report, scene, studies
 
     parser = _Parser(
         prog="flyopt",
@@ -106,6 +107,11 @@ def _parser() -> argparse.ArgumentParser:
             "report",
             report.add_report_arguments,
             "the engineering report of a scene: one self-contained HTML or PDF file",
+        ),
+        (
+            "export",
+            export.add_export_arguments,
+            "the manufacturing drawing of a scene's wheel: DXF (the cad extra), SVG or PDF",
         ),
     ):
         command = commands.add_parser(name, help=text)

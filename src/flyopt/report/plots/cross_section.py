@@ -10,6 +10,7 @@ import numpy as np
 
 from flyopt.design.result import Design
 from flyopt.names import Geometry
+from flyopt.outputs.drawing import keyway, section_blocks
 from flyopt.report import display
 from flyopt.report.plots import standard
 
@@ -184,29 +185,21 @@ def _diameter_lines(diameters, texts, scale):
     return lines, lines[-1] + outside + 0.3
 
 
-def _section_parts(c):
-    """The hatched blocks of the axial half-section: (name, r_inner, r_outer, axial width), inner first,
+def _section_parts(candidate, factor):
+    """The hatched blocks of the axial half-section in the drawing's unit (:func:`flyopt.outputs.drawing.section_blocks`,
+    the one description every drawing of the wheel takes): (name, r_inner, r_outer, axial width), inner first,
     and the arms (r_inner, r_outer, major, minor) or None."""
-    r_o = c.d_outer / 2.0
-    r_bore = (c.bore or 0.0) / 2.0
-    if c.geometry == Geometry.DISC:
-        return [("disc", r_bore, r_o, c.b)], None
-    r_i = c.d_inner / 2.0
-    rim = ("rim", r_i, r_o, c.b)
-    if c.geometry == Geometry.RIM_WEB:
-        if not c.bore:
-            return [("web", 0.0, r_i, c.t_web), rim], None
-        return [("hub", r_bore, c.d_hub / 2.0, c.l_hub), ("web", c.d_hub / 2.0, r_i, c.t_web), rim], None
-    if c.geometry == Geometry.RIM_ARMS:
-        return [("hub", r_bore, c.d_hub / 2.0, c.l_hub), rim], (c.d_hub / 2.0, r_i, c.arm_major, c.arm_minor)
-    return [rim], None
+    blocks, arms = section_blocks(candidate)
+    scaled = [(name, *(v / factor for v in rest)) for name, *rest in blocks]
+    return scaled, (tuple(v / factor for v in arms) if arms else None)
 
 
-def _outline(blocks):
-    """The outline of contiguous centred blocks (the upper half), as polygon vertices."""
+def _outline(blocks, cut=0.0):
+    """The outline of contiguous centred blocks (the upper half), as polygon vertices; ``cut``: the first
+    block's inner edge that much further out (the keyway's depth in the hub)."""
     right = []
-    for _name, r0, r1, w in blocks:
-        right += [(w / 2.0, r0), (w / 2.0, r1)]
+    for index, (_name, r0, r1, w) in enumerate(blocks):
+        right += [(w / 2.0, r0 + (cut if index == 0 else 0.0)), (w / 2.0, r1)]
     return right + [(-x, y) for x, y in reversed(right)]
 
 
@@ -266,7 +259,8 @@ def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str 
 
     c = _InUnits(candidate, factor)
     notes = _section_notes(c, length, _mm_text)
-    blocks, arms = _section_parts(c)
+    blocks, arms = _section_parts(candidate, factor)
+    b_key, t2 = (v / factor for v in keyway(candidate))
     r_o = c.d_outer / 2.0
     w_max = max([w for *_x, w in blocks] + ([arms[3]] if arms else []))
     has_hub = blocks[0][0] == "hub"
@@ -325,15 +319,21 @@ def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str 
     sheet = _Sheet(ax, scale)
     d = sheet.d
     for group in _groups(blocks):
+        # the upper half is cut through the hub's keyway (section A-A of the drawing): its face starts at t2 over the bore
+        cut = t2 if group[0] is blocks[0] else 0.0  # the keyway is in the bore's block (t2 is 0 without a bore)
         for sign in (1, -1):
-            for name, r0, r1, w in group:
-                y = r0 if sign > 0 else -r1
+            for index, (name, r0, r1, w) in enumerate(group):
+                start = r0 + (cut if sign > 0 and index == 0 else 0.0)
+                y = start if sign > 0 else -r1
                 ax.add_patch(
-                    Rectangle((-w / 2.0, y), w, r1 - r0, gid=f"{name}{'+' if sign > 0 else '-'}", **_SECTION_HATCH)
+                    Rectangle((-w / 2.0, y), w, r1 - start, gid=f"{name}{'+' if sign > 0 else '-'}", **_SECTION_HATCH)
                 )
-        upper = _outline(group)
+        upper = _outline(group, cut)
         if group[0][1] > 0:  # a bore: the halves are two sections
-            outlines = [upper, [(x, -y) for x, y in upper]]
+            outlines = [upper, [(x, -y) for x, y in _outline(group)]]
+            if cut:  # the bore's edge seen through the keyway
+                seen = math.sqrt(max(group[0][1] ** 2 - (b_key / 2.0) ** 2, 0.0))
+                ax.plot([-group[0][3] / 2.0, group[0][3] / 2.0], [seen, seen], color="black", lw=0.6, gid="keyway")
         else:  # solid to the centre: one section, no line on the axis
             right = upper[: len(upper) // 2]
             side = [(x, -y) for x, y in reversed(right)] + right[1:]
@@ -382,7 +382,7 @@ def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str 
             -hub[3] / 2.0,
             hub[3] / 2.0,
             side * (hub[2] + d(0.22)),
-            f"l_hub {_mm_text(hub[3])}",
+            f"hub length {_mm_text(hub[3])}",
             vertical=False,
             feature=(side * hub[2], side * hub[2]),
             beside=-1,
@@ -397,16 +397,16 @@ def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str 
     thin = [b for b in blocks if b[0] == "web"]
     if thin:
         _name, r0, r1, w = thin[0]
-        sheet.linear(-w / 2.0, w / 2.0, -0.5 * (r0 + r1), f"t_web {_mm_text(w)}", vertical=False)
+        sheet.linear(-w / 2.0, w / 2.0, -0.5 * (r0 + r1), f"web {_mm_text(w)}", vertical=False)
     if arms:
         r0, r1, major, minor = arms
         middle = 0.5 * (r0 + r1)
-        sheet.linear(-minor / 2.0, minor / 2.0, -middle, f"a/2 {_mm_text(minor)}", vertical=False)
+        sheet.linear(-minor / 2.0, minor / 2.0, -middle, f"arm a/2 {_mm_text(minor)}", vertical=False)
         sheet.linear(
             middle - major / 2.0,
             middle + major / 2.0,
             -w_max / 2.0 - d(_DIM_FIRST),
-            f"a {_mm_text(major)}",
+            f"arm a {_mm_text(major)}",
             vertical=True,
             feature=(0.0, 0.0),
         )

@@ -1,0 +1,67 @@
+"""``flyopt export``: the manufacturing drawing of a scene's wheel, as DXF, SVG or PDF.
+
+::
+
+    flyopt export SCENE.toml -o drawing.dxf|drawing.svg|drawing.pdf
+
+The scene is solved (:func:`flyopt.pipeline.solve`) and its chosen wheel
+drawn (:mod:`flyopt.outputs.drawing`: section A–A through the keyway, a front
+view, every dimension a pattern maker and a machinist need, the title
+block). The suffix of ``-o`` picks the format; a STEP file is refused in one
+line (flyopt has no solid modeller yet). The output's folder and suffix are
+checked, and ezdxf's presence for a DXF, before anything is computed; the
+file is written atomically.
+
+Exit status: 0 written; 2 bad input (a suffix, a folder, a DXF without the
+``cad`` extra, a scene that needs no flywheel); 3 infeasible (no wheel meets
+the limits); 1 the design did not converge. Nothing is written unless 0.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_INPUT, EXIT_OK, fail
+
+
+def add_export_arguments(parser: argparse.ArgumentParser) -> None:
+    """The options of ``flyopt export``; the handler is :func:`run_export`."""
+    parser.add_argument("scene", help="scene file (TOML)")
+    parser.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        metavar="FILE",
+        help="the drawing to write: .dxf (needs the cad extra: pip install 'flyopt[cad]'), .svg or .pdf; "
+        "written atomically, its folder must exist",
+    )
+    parser.set_defaults(run=run_export)
+
+
+def run_export(args: argparse.Namespace) -> int:
+    """``flyopt export``: 0 written, 2 a bad request or no flywheel needed, 3 infeasible."""
+    from pathlib import Path
+
+    from flyopt.errors import SceneError
+    from flyopt.io.scene import load
+    from flyopt.outputs.files import check_folder
+    from flyopt.report.drawing import NoWheel, drawing_of_scene, export_format, write_drawing
+
+    kind = export_format(args.output)
+    check_folder(args.output, "-o/--output")
+    if Path(args.output).resolve() == Path(args.scene).resolve():
+        raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: name another file for the drawing")
+    if kind == "dxf":
+        from flyopt.outputs.drawing import require_ezdxf
+
+        try:
+            require_ezdxf()
+        except ImportError as err:
+            return fail(f"-o/--output: {err}", EXIT_INPUT)
+    try:
+        drawing, _design = drawing_of_scene(load(args.scene))
+    except NoWheel as said:
+        return fail(f"{args.scene}: {said}", EXIT_INFEASIBLE if said.infeasible else EXIT_INPUT)
+    write_drawing(drawing, args.output, kind)
+    print(f"wrote {args.output}")
+    return EXIT_OK

@@ -1,0 +1,908 @@
+"""The manufacturing drawing of a designed wheel: one geometric description, and its DXF.
+
+:func:`drawing_of` describes the drawing of a :class:`flyopt.design.result.Design`
+once: the axial section A–A (cut through the keyway) and a front view, each
+line, circle, hatched region, dimension, part name and the title block, in
+model millimetres at true size (the wheel's axis on y = 0, the section
+centred on x = 0). :func:`write_dxf` writes it with ezdxf (the ``cad``
+extra) and :mod:`flyopt.report.drawing` draws the same description with
+matplotlib for SVG and PDF, so the files agree.
+
+The sheet is ISO A3 landscape; the scale is the largest of ISO 5455's
+reduction scales (1:1, 1:2, 1:5, 1:10, 1:20, 1:50) at which both views fit.
+Text heights, gaps and arrow sizes are given on paper [mm] and converted
+with the scale, as a drawing office would plot model space.
+
+What the drawing dimensions is what the pattern maker and the machinist
+need and nothing twice: the outer, rim-inner and hub diameters, the rim's
+and the hub's width, the web's thickness or the arm's section, the bore with
+its ISO 286 H7 limits (:func:`flyopt.design.fits.hole_tolerance`) and the
+hub's keyway (DIN 6885-1: width b JS9 and depth d + t2, the standard's way
+of giving the hub's keyway depth). The rim's radial thickness H follows from
+two diameters and is not dimensioned again.
+"""
+
+from __future__ import annotations
+
+import datetime
+import io
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from flyopt.design.balance import BALANCE_GRADE
+from flyopt.design.fits import hole_tolerance
+from flyopt.names import Geometry
+
+if TYPE_CHECKING:
+    import os
+
+    from flyopt.design.result import Candidate, Design
+
+__all__ = [
+    "CAD_EXTRA",
+    "LAYERS",
+    "SCALES",
+    "SHEET",
+    "Arc",
+    "Dimension",
+    "Drawing",
+    "Hatch",
+    "Line",
+    "Text",
+    "drawing_of",
+    "keyway",
+    "require_ezdxf",
+    "section_blocks",
+    "size_text",
+    "write_dxf",
+]
+
+#: The layers of the DXF, and what each holds.
+LAYERS = {
+    "OUTLINE": "visible outlines of the wheel",
+    "CENTER": "the axis and centre lines",
+    "HATCH": "hatching of the cut faces",
+    "DIMENSIONS": "dimensions and part names",
+    "TITLE": "the sheet's border, the title block and notes",
+}
+#: The sheet, ISO A3 landscape [paper mm]: width, height, border.
+SHEET = (420.0, 297.0, 10.0)
+#: ISO 5455 reduction scales tried, largest first (paper mm per model mm).
+SCALES = (1.0, 0.5, 0.2, 0.1, 0.05, 0.02)
+#: The pip extra that brings ezdxf.
+CAD_EXTRA = "flyopt[cad]"
+
+#: Paper sizes [mm]: text height of dimensions and names, of the title, of small print; a dimension
+#: line's distance from the part and from the next; the arrow's length.
+_TEXT, _TITLE_TEXT, _SMALL = 2.5, 5.0, 1.8
+_FIRST, _STEP, _ARROW = 8.0, 8.0, 2.5
+#: Width of a character in text heights (a rough mean of ISO 3098 type B's letters).
+_CHAR = 0.75
+#: Title block [paper mm]: width, row height, rows.
+_BLOCK_W, _ROW = 180.0, 7.0
+#: The smallest step between two faces the front view shows as a line [mm] (the drawing's 0.1 mm).
+_SEEN = 0.05
+#: Paper left of the section for the part names, right of the front view, between the views.
+_LEFT, _RIGHT, _GAP = 62.0, 14.0, 40.0
+
+
+@dataclass(frozen=True)
+class Line:
+    """A polyline [model mm] on a layer; ``style`` "solid", "thin" or "chain" (a centre line)."""
+
+    layer: str
+    points: tuple[tuple[float, float], ...]
+    closed: bool = False
+    style: str = "solid"
+
+
+@dataclass(frozen=True)
+class Arc:
+    """A circular arc [model mm], angles in degrees counter-clockwise from +x (0, 360: a circle)."""
+
+    layer: str
+    center: tuple[float, float]
+    radius: float
+    start: float = 0.0
+    end: float = 360.0
+    style: str = "solid"
+
+
+@dataclass(frozen=True)
+class Hatch:
+    """A cut face [model mm]: a closed boundary, hatched at 45 degrees."""
+
+    boundary: tuple[tuple[float, float], ...]
+    layer: str = "HATCH"
+
+
+@dataclass(frozen=True)
+class Text:
+    """A text [model mm]: its anchor, height, alignment ("left", "center", "right") and rotation [deg]."""
+
+    layer: str
+    at: tuple[float, float]
+    text: str
+    height: float
+    align: str = "left"
+    rotation: float = 0.0
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """A dimension of the drawing [model mm].
+
+    Attributes
+    ----------
+    name : str
+        What it measures, by the Design's name: ``d_outer``, ``d_inner``,
+        ``d_hub``, ``bore``, ``b``, ``t_web``, ``l_hub``, ``arm_major``,
+        ``arm_minor``, ``key_width``, ``key_depth`` (bore + t2).
+    words : str
+        The same in words ("outer diameter").
+    kind : {"linear", "diameter"}
+        A linear dimension measures ``p1`` to ``p2`` along x (``angle`` 0) or y
+        (90); a diameter dimension measures a circle about ``p1`` through
+        ``p2`` (both ends of the line are on the circle).
+    p1, p2 : (float, float)
+    base : (float, float)
+        A point the dimension line runs through (linear).
+    angle : float
+    value : float
+        The measurement [mm].
+    text_at : (float, float)
+        The middle of the text.
+    prefix : str
+        "Ø" for a diameter.
+    fit : str or None
+        ISO 286 class; ``upper``, ``lower`` its limit deviations [mm].
+    """
+
+    name: str
+    words: str
+    kind: str
+    p1: tuple[float, float]
+    p2: tuple[float, float]
+    base: tuple[float, float]
+    angle: float
+    value: float
+    text_at: tuple[float, float]
+    prefix: str = ""
+    fit: str | None = None
+    upper: float = 0.0
+    lower: float = 0.0
+
+    @property
+    def text(self) -> str:
+        """The dimension's text as drawn: prefix, size to 0.1 mm, class and limits."""
+        out = f"{self.prefix}{size_text(self.value)}"
+        if self.fit and self.upper == -self.lower:
+            out += f" {self.fit} (±{_deviation(self.upper)[1:]})"
+        elif self.fit:
+            out += f" {self.fit} ({_deviation(self.upper)}/{_deviation(self.lower)})"
+        return out
+
+    @property
+    def vertical(self) -> bool:
+        """Measured along y."""
+        return self.kind == "linear" and self.angle == 90.0
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """The drawing of one wheel: every item in model mm, the scale, the sheet and the title block's fields.
+
+    Attributes
+    ----------
+    scale : float
+        Paper mm per model mm (0.2: 1:5).
+    sheet : (float, float, float, float)
+        The sheet's border in model mm: x_min, y_min, x_max, y_max (the paper's edge).
+    lines, arcs, hatches, texts, dimensions : tuple
+    title : dict of str
+        The title block's fields by name (``title``, ``material``, ``mass``,
+        ``inertia``, ``balance``, ``scale``, ``date``, ``version``, ``scene``,
+        ``sha256``, ``units``).
+    """
+
+    scale: float
+    sheet: tuple[float, float, float, float]
+    lines: tuple[Line, ...] = ()
+    arcs: tuple[Arc, ...] = ()
+    hatches: tuple[Hatch, ...] = ()
+    texts: tuple[Text, ...] = ()
+    dimensions: tuple[Dimension, ...] = ()
+    title: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def scale_text(self) -> str:
+        """ "1:5" (or "2:1")."""
+        return f"1:{1 / self.scale:g}" if self.scale <= 1 else f"{self.scale:g}:1"
+
+
+def size_text(mm: float) -> str:
+    """A size [mm] as the drawing writes it: to 0.1 mm, no trailing zero ("719.8", "55")."""
+    return f"{mm:.1f}".rstrip("0").rstrip(".")
+
+
+def _deviation(mm):
+    """A limit deviation [mm] to three decimals at least, as ISO 286 tables give them: "+0.030", "-0.0215", "0"."""
+    if mm == 0:
+        return "0"
+    text = f"{mm:+.4f}"
+    return text[:-1] if text.endswith("0") else text
+
+
+class _Builder:
+    """Collects the items of a drawing; ``p(paper mm)`` is the length in model mm."""
+
+    def __init__(self, scale):
+        self.scale = scale
+        self.lines, self.arcs, self.hatches, self.texts, self.dimensions = [], [], [], [], []
+
+    def p(self, paper):
+        return paper / self.scale
+
+    def line(self, layer, points, closed=False, style="solid"):
+        self.lines.append(Line(layer, tuple((float(x), float(y)) for x, y in points), closed, style))
+
+    def text(self, layer, at, text, height=_TEXT, align="left", rotation=0.0):
+        self.texts.append(Text(layer, (float(at[0]), float(at[1])), text, self.p(height), align, rotation))
+
+    def width(self, text, height=_TEXT):
+        """The width of a text on the sheet, in model mm (an estimate, generous)."""
+        return self.p(height * _CHAR * len(text))
+
+    def linear(self, name, words, p1, p2, line, vertical, text_side=0.0, **fit):
+        """A linear dimension from ``p1`` to ``p2`` whose line runs at ``line`` across the measured axis.
+
+        ``text_side`` 0: the text in the middle of the line, on its outer side
+        (a vertical one reads from the right, left of its line); -1 or +1: the
+        text beyond the lower or upper end of the line (where it does not fit
+        between the extension lines).
+        """
+        axis = 1 if vertical else 0
+        lo, hi = sorted((p1[axis], p2[axis]))
+        value = hi - lo
+        dim = Dimension(name, words, "linear", p1, p2, (0, 0), 90.0 if vertical else 0.0, value, (0, 0), **fit)
+        half = self.width(dim.text) / 2.0
+        gap = self.p(1.0 + _TEXT / 2.0)
+        if text_side == 0.0:
+            along, across = 0.5 * (lo + hi), line - gap if vertical else line + gap
+        elif text_side > 0:
+            along, across = hi + self.p(_ARROW + 2.0) + half, line
+        else:
+            along, across = lo - self.p(_ARROW + 2.0) - half, line
+        if vertical:
+            base, text_at = (line, lo), (across, along)
+        else:
+            base, text_at = (lo, line), (along, across)
+        self.dimensions.append(
+            Dimension(
+                name,
+                words,
+                "linear",
+                p1,
+                p2,
+                base,
+                dim.angle,
+                value,
+                (float(text_at[0]), float(text_at[1])),
+                **fit,
+            )
+        )
+
+
+def section_blocks(design: Candidate) -> tuple[list[tuple[str, float, float, float]], tuple[float, ...] | None]:
+    """The axial section of a designed wheel, as every drawing of it takes it [m].
+
+    Returns
+    -------
+    blocks : list of (part, r_inner, r_outer, axial width)
+        The centred blocks of the half-section, inner first: "hub", "web",
+        "rim" or "disc" (a bare rim is one "rim"; a web wheel without a bore
+        is solid to the axis).
+    arms : (r_inner, r_outer, major, minor) or None
+        The arms of a ``rim_arms`` wheel: from the hub to the rim, of
+        elliptical section (major along the circumference).
+    """
+    dims = design.dims
+    if dims is None:
+        raise ValueError(f"{design.material} on {design.shaft} is not a design: nothing to draw")
+    r_o = dims.d_outer / 2.0
+    r_bore = (design.bore or 0.0) / 2.0
+    if design.geometry == Geometry.DISC:
+        return [("disc", r_bore, r_o, dims.b)], None
+    r_i = dims.d_inner / 2.0
+    rim = ("rim", r_i, r_o, dims.b)
+    if design.geometry == Geometry.RIM_WEB and dims.t_web and dims.d_hub and dims.l_hub:
+        if not design.bore:
+            return [("web", 0.0, r_i, dims.t_web), rim], None
+        return [("hub", r_bore, dims.d_hub / 2.0, dims.l_hub), ("web", dims.d_hub / 2.0, r_i, dims.t_web), rim], None
+    if design.geometry == Geometry.RIM_ARMS and dims.d_hub and dims.l_hub and dims.arm_major and dims.arm_minor:
+        hub = ("hub", r_bore, dims.d_hub / 2.0, dims.l_hub)
+        return [hub, rim], (dims.d_hub / 2.0, r_i, dims.arm_major, dims.arm_minor)
+    return [rim], None
+
+
+def keyway(design: Candidate) -> tuple[float, float]:
+    """The hub's keyway of a designed wheel, (width b, depth t2) [m] of its DIN 6885-1 key; (0, 0): none."""
+    key = design.parts.key if design.parts else None
+    if not key or not design.bore:
+        return 0.0, 0.0
+    return float(key["b"]), float(key["t2"])
+
+
+def _blocks(design):
+    """:func:`section_blocks` in mm."""
+    blocks, arms = section_blocks(design)
+    return [(name, *(v * 1e3 for v in rest)) for name, *rest in blocks], (
+        tuple(v * 1e3 for v in arms) if arms else None
+    )
+
+
+def _groups(blocks):
+    """Blocks that touch, one outline each."""
+    out = [[blocks[0]]]
+    for block in blocks[1:]:
+        if math.isclose(block[1], out[-1][-1][2], rel_tol=1e-9, abs_tol=1e-9):
+            out[-1].append(block)
+        else:
+            out.append([block])
+    return out
+
+
+def _upper_outline(group, r_start):
+    """The closed outline of touching centred blocks in the upper half, its inner edge at ``r_start``."""
+    right = []
+    for index, (_name, r0, r1, w) in enumerate(group):
+        right += [(w / 2.0, r_start if index == 0 else r0), (w / 2.0, r1)]
+    return right + [(-x, y) for x, y in reversed(right)]
+
+
+def _ellipse(center, major, minor, n=72):
+    """An ellipse as a closed polygon: ``major`` along y, ``minor`` along x."""
+    return tuple(
+        (center[0] + minor / 2.0 * math.cos(t), center[1] + major / 2.0 * math.sin(t))
+        for t in (2 * math.pi * k / n for k in range(n))
+    )
+
+
+def _scale_for(width, height):
+    """The largest ISO 5455 scale at which a content ``width`` x ``height`` [model mm] and its margins fit."""
+    sheet_w, sheet_h, border = SHEET
+    for scale in SCALES:
+        room_w = sheet_w - 2 * border - _LEFT - _RIGHT - _GAP - 40.0  # the right-hand diameters
+        room_h = sheet_h - 2 * border - 6 * _ROW - 2 * (_FIRST + 14.0)  # the block, the dimensions
+        if width * scale <= room_w and height * scale <= room_h:
+            return scale
+    return SCALES[-1]
+
+
+def drawing_of(
+    design: Design,
+    *,
+    scene: str | None = None,
+    sha256: str | None = None,
+    version: str | None = None,
+    date: datetime.date | None = None,
+) -> Drawing:
+    """The manufacturing drawing of a designed wheel (model mm, true size).
+
+    Parameters
+    ----------
+    design : flyopt.design.result.Design
+    scene : str, optional
+        The scene file the design came from, named in the title block.
+    sha256 : str, optional
+        The scene file's SHA-256 (:func:`flyopt.outputs.documents.scene_record`).
+    version : str, optional
+        flyopt's version (default: :data:`flyopt.__version__`).
+    date : datetime.date, optional
+        The drawing's date (default: today).
+
+    Returns
+    -------
+    Drawing
+
+    Raises
+    ------
+    ValueError
+        ``design`` is not a feasible design, or its bore is beyond ISO 286's table.
+    """
+    from flyopt.design.result import Design
+
+    if not isinstance(design, Design):
+        raise ValueError(f"{design.material} on {design.shaft} is not a design: nothing to draw")
+    if version is None:
+        import flyopt
+
+        version = flyopt.__version__
+    date = date or datetime.date.today()
+    blocks, arms = _blocks(design)
+    r_o = design.dims.d_outer * 500.0
+    w_max = max([w for *_x, w in blocks] + ([arms[3]] if arms else []))
+    scale = _scale_for(w_max + 2 * r_o, 2 * r_o)
+    k = _Builder(scale)
+    p = k.p
+    key = design.parts.key if design.parts else None
+    r_bore = (design.bore or 0.0) * 500.0
+    b_key, t2 = (v * 1e3 for v in keyway(design))
+
+    # --- section A-A: the upper half cut through the keyway, the lower half through solid hub
+    for group in _groups(blocks):
+        r_start = group[0][1] + (t2 if group[0] is blocks[0] else 0.0)  # the keyway is in the bore's block
+        upper = _upper_outline(group, r_start)
+        lower = [(x, -y) for x, y in _upper_outline(group, group[0][1])]
+        if group[0][1] > 0:
+            halves = [upper, lower]
+        else:  # solid to the centre: one face, no line on the axis
+            right_u = upper[: len(upper) // 2]
+            side = [(x, -y) for x, y in reversed(right_u)] + right_u[1:]
+            halves = [side + [(-x, y) for x, y in reversed(side)]]
+        for outline in halves:
+            k.line("OUTLINE", outline, closed=True)
+            k.hatches.append(Hatch(tuple(outline)))
+    if t2:  # the bore's edge behind the keyway, seen through it
+        hub = blocks[0]
+        seen = math.sqrt(max(r_bore**2 - (b_key / 2.0) ** 2, 0.0))
+        k.line("OUTLINE", [(-hub[3] / 2.0, seen), (hub[3] / 2.0, seen)], style="thin")
+    if arms:  # arms are not cut (drafting rule for spokes); one arm's section revolved into the lower half
+        r0, r1, major, minor = arms
+        for sign in (1, -1):
+            k.line("OUTLINE", [(-minor / 2, sign * r0), (-minor / 2, sign * r1)])
+            k.line("OUTLINE", [(minor / 2, sign * r0), (minor / 2, sign * r1)])
+        middle = -0.5 * (r0 + r1)
+        ring = _ellipse((0.0, middle), major, minor)
+        k.line("OUTLINE", ring, closed=True)
+        k.hatches.append(Hatch(ring))
+    reach = w_max / 2.0 + p(4.0)
+    k.line("CENTER", [(-reach, 0.0), (reach, 0.0)], style="chain")
+
+    # diameters right of the section, inner to outer
+    stack = []
+    if blocks[0][0] == "hub":
+        stack.append(("d_hub", "hub diameter", blocks[0][2], blocks[0][3] / 2.0))
+    if blocks[-1][0] == "rim":
+        stack.append(("d_inner", "rim inner diameter", blocks[-1][1], blocks[-1][3] / 2.0))
+    stack.append(("d_outer", "outer diameter", r_o, blocks[-1][3] / 2.0))
+    for index, (name, words, r, x_edge) in enumerate(stack):
+        line = w_max / 2.0 + p(_FIRST + _STEP * index)
+        # the hub's diameter at the solid side (the cut keyway is above)
+        k.linear(name, words, (x_edge, -r), (x_edge, r), line, vertical=True, prefix="Ø")
+    # widths: the rim's above it
+    b = blocks[-1][3]
+    k.linear(
+        "b", "rim width" if blocks[-1][0] == "rim" else "width", (-b / 2, r_o), (b / 2, r_o), r_o + p(_FIRST), False
+    )
+    left_text = -w_max / 2.0 - p(4.0)  # texts beside a short dimension go left, clear of the diameters
+    if blocks[0][0] == "hub":
+        hub = blocks[0]
+        line = -(hub[2] + p(_FIRST))
+        k.linear("l_hub", "hub length", (-hub[3] / 2, -hub[2]), (hub[3] / 2, -hub[2]), line, False, -1.0)
+        clear = (hub[3] - _thin_width(blocks, arms)) / 2.0  # the line's free length left of the web or arm
+        if k.width(size_text(hub[3])) + p(2.0 + _ARROW) < clear:  # the text above the line, left of the web
+            dim = k.dimensions[-1]
+            x = -hub[3] / 2.0 + clear / 2.0
+            k.dimensions[-1] = Dimension(**{**dim.__dict__, "text_at": (x, line + p(1.0 + _TEXT / 2.0))})
+        else:
+            _move_text_left(k, left_text)
+    webs = [blk for blk in blocks if blk[0] == "web"]
+    if webs:
+        _name, r0, r1, w = webs[0]
+        y = -0.5 * (r0 + r1)
+        k.linear("t_web", "web thickness", (-w / 2, y), (w / 2, y), y, False, -1.0)
+        _move_text_left(k, left_text)
+    if arms:
+        r0, r1, major, minor = arms
+        middle = -0.5 * (r0 + r1)
+        k.linear("arm_minor", "arm section, minor axis", (-minor / 2, middle), (minor / 2, middle), middle, False, -1.0)
+        _move_text_left(k, left_text)
+        k.linear(  # left of the section, past the minor axis' text
+            "arm_major",
+            "arm section, major axis",
+            (0.0, middle - major / 2),
+            (0.0, middle + major / 2),
+            left_text - k.width(k.dimensions[-1].text) - p(_FIRST),
+            True,
+        )
+
+    # the part names, left of the section, each with a leader to its part (upper half)
+    names = []
+    for name, r0, r1, w in blocks:
+        words = {"rim": "Rim", "web": "Web", "hub": "Hub", "disc": "Disc"}[name]
+        names.append((0.5 * (r0 + r1 + (t2 if name == "hub" else 0.0)), -w / 4.0 if w > p(3) else 0.0, words))
+    if arms:
+        r0, r1, major, minor = arms
+        names.append((0.5 * (r0 + r1), -minor / 4.0, f"Arm, {design.n_arms} off, elliptical section (revolved below)"))
+    if t2 and key:
+        names.append((r_bore + t2 / 2.0, 0.0, f"Keyway DIN 6885-1, key {key['size']}"))
+    if r_bore:
+        names.append((r_bore * 0.5, 0.0, "Bore (shaft seat)"))
+    names.sort()
+    x_text = -w_max / 2.0 - p(14.0)
+    last = -math.inf
+    for y, x_part, words in names:
+        y_text = max(y, last + p(_TEXT * 2.0))
+        last = y_text
+        k.line("DIMENSIONS", [(x_text + p(1.0), y_text), (x_part, y)], style="thin")
+        k.text("DIMENSIONS", (x_text, y_text), words, align="right")
+    # the view's name
+    k.text("DIMENSIONS", (0.0, r_o + p(_FIRST + 9.0)), "SECTION A–A", height=3.5, align="center")
+
+    # --- front view, right of the section
+    cx = w_max / 2.0 + p(_FIRST + _STEP * len(stack) + _GAP) + r_o
+    _front_view(k, design, blocks, arms, cx, r_o, r_bore, t2, b_key, key)
+
+    # --- the sheet: border, title block, notes (paper mm from the sheet's lower left corner)
+    sheet_w, sheet_h, border = SHEET
+    views_w = cx + r_o + p(_RIGHT) - (-w_max / 2.0 - p(_LEFT))
+    x0 = -w_max / 2.0 - p(_LEFT) - (p(sheet_w - 2 * border) - views_w) / 2.0 - p(border)
+    y_mid_paper = border + 6 * _ROW + (sheet_h - 2 * border - 6 * _ROW) / 2.0
+    y0 = -p(y_mid_paper)
+
+    def at(xp, yp):
+        return (x0 + p(xp), y0 + p(yp))
+
+    k.line("TITLE", [at(0, 0), at(sheet_w, 0), at(sheet_w, sheet_h), at(0, sheet_h)], closed=True, style="thin")
+    k.line(
+        "TITLE",
+        [
+            at(border, border),
+            at(sheet_w - border, border),
+            at(sheet_w - border, sheet_h - border),
+            at(border, sheet_h - border),
+        ],
+        closed=True,
+    )
+    title = _title_fields(design, scene, sha256, version, date, k)
+    _title_block(k, at, title)
+    notes = _notes(design, arms, t2)
+    for index, note in enumerate(notes):
+        k.text("TITLE", at(border + 4.0, border + 4.0 + (len(notes) - 1 - index) * 4.5), note, height=_SMALL)
+    return Drawing(
+        scale=scale,
+        sheet=(*at(0, 0), *at(sheet_w, sheet_h)),
+        lines=tuple(k.lines),
+        arcs=tuple(k.arcs),
+        hatches=tuple(k.hatches),
+        texts=tuple(k.texts),
+        dimensions=tuple(k.dimensions),
+        title=title,
+    )
+
+
+def _thin_width(blocks, arms):
+    """The widest thin part the hub's dimension line crosses (web or arm) [mm]."""
+    widths = [w for name, _r0, _r1, w in blocks if name == "web"] + ([arms[3]] if arms else [])
+    return max(widths, default=0.0)
+
+
+def _move_text_left(k, x_right):
+    """Put the last dimension's text left of the section, its right end at ``x_right`` (clear of the
+    diameters on the right, and of the part it measures)."""
+    dim = k.dimensions[-1]
+    x = x_right - k.width(dim.text) / 2.0
+    k.dimensions[-1] = Dimension(**{**dim.__dict__, "text_at": (x, dim.text_at[1])})
+
+
+def _front_view(k, design, blocks, arms, cx, r_o, r_bore, t2, b_key, key):
+    """The front view about (cx, 0): the circles seen, the arms, the bore and keyway, their dimensions."""
+    p = k.p
+    k.arcs.append(Arc("OUTLINE", (cx, 0.0), r_o))
+    names = [blk[0] for blk in blocks]
+    widths = {blk[0]: blk[3] for blk in blocks}
+    # a step between two faces is seen where their widths differ by what the drawing shows (0.1 mm)
+    if "rim" in names and (arms or "web" not in names or abs(widths["rim"] - widths["web"]) >= _SEEN):
+        k.arcs.append(Arc("OUTLINE", (cx, 0.0), blocks[-1][1]))
+    if "hub" in names and (arms or abs(widths["hub"] - widths.get("web", -1.0)) >= _SEEN):
+        k.arcs.append(Arc("OUTLINE", (cx, 0.0), blocks[0][2]))
+    if arms:
+        r0, r1, major, _minor = arms
+        half = major / 2.0
+        for index in range(design.n_arms):
+            angle = math.pi / 2 + 2 * math.pi * (index + 0.5) / design.n_arms  # clear of the keyway and its text
+            u, v = (math.cos(angle), math.sin(angle)), (-math.sin(angle), math.cos(angle))
+            for side in (-half, half):
+                a0, a1 = math.sqrt(max(r0 * r0 - side * side, 0.0)), math.sqrt(max(r1 * r1 - side * side, 0.0))
+                k.line(
+                    "OUTLINE",
+                    [
+                        (cx + a0 * u[0] + side * v[0], a0 * u[1] + side * v[1]),
+                        (cx + a1 * u[0] + side * v[0], a1 * u[1] + side * v[1]),
+                    ],
+                )
+    reach = r_o + p(5.0)
+    k.line("CENTER", [(cx - reach, 0.0), (cx + reach, 0.0)], style="chain")
+    k.line("CENTER", [(cx, -reach), (cx, reach)], style="chain")
+    # the cutting plane A-A: the vertical centre line, named at its ends
+    for sign in (1, -1):
+        k.text("DIMENSIONS", (cx + p(2.0), sign * (reach + p(1.0)) - (p(3.5) if sign < 0 else 0.0)), "A", height=3.5)
+    k.text("DIMENSIONS", (cx, r_o + p(_FIRST + 9.0)), "FRONT VIEW", height=3.5, align="center")
+    if not r_bore:
+        return
+    if t2:
+        side = math.degrees(math.asin(min(b_key / 2.0 / r_bore, 1.0)))
+        k.arcs.append(Arc("OUTLINE", (cx, 0.0), r_bore, 90.0 + side, 360.0 + 90.0 - side))
+        seen = math.sqrt(max(r_bore**2 - (b_key / 2.0) ** 2, 0.0))
+        top = r_bore + t2
+        k.line(
+            "OUTLINE", [(cx - b_key / 2, seen), (cx - b_key / 2, top), (cx + b_key / 2, top), (cx + b_key / 2, seen)]
+        )
+    else:
+        k.arcs.append(Arc("OUTLINE", (cx, 0.0), r_bore))
+    # the bore: a diameter dimension at an angle clear of the keyway and the arms, its text outside
+    angle = math.radians(_bore_angle(design.n_arms if arms else None))
+    bore_fit = hole_tolerance(design.bore, "H7")
+    r_text = max(blocks[0][2] if blocks[0][0] == "hub" else r_bore, r_bore) + p(14.0)
+    k.dimensions.append(
+        Dimension(
+            "bore",
+            "bore (shaft seat)",
+            "diameter",
+            (cx, 0.0),
+            (cx + r_bore * math.cos(angle), r_bore * math.sin(angle)),
+            (cx, 0.0),
+            math.degrees(angle),
+            2.0 * r_bore,
+            (cx + r_text * math.cos(angle), r_text * math.sin(angle)),
+            prefix="Ø",
+            fit="H7",
+            upper=bore_fit.upper * 1e3,
+            lower=bore_fit.lower * 1e3,
+        )
+    )
+    # the keyway: width JS9 over it, depth d + t2 to its left (DIN 6885-1)
+    if t2:
+        width_fit = hole_tolerance(key["b"], "JS9")
+        k.linear(
+            "key_width",
+            "keyway width",
+            (cx - b_key / 2, r_bore + t2),
+            (cx + b_key / 2, r_bore + t2),
+            r_bore + t2 + p(_FIRST),
+            False,
+            1.0,
+            fit="JS9",
+            upper=width_fit.upper * 1e3,
+            lower=width_fit.lower * 1e3,
+        )
+        r_side = blocks[0][2] if blocks[0][0] == "hub" else r_bore
+        k.linear(
+            "key_depth",
+            "keyway depth over the bore, d + t2",
+            (cx, -r_bore),
+            (cx - b_key / 2, r_bore + t2),
+            cx - r_side - p(_FIRST),
+            True,
+        )
+
+
+def _bore_angle(n_arms):
+    """The direction [deg] of the bore's diameter dimension in the front view: down and right, in the gap
+    between two arms nearest -45 degrees (the arms stand half a pitch off the vertical), off the centre lines."""
+    if not n_arms:
+        return -35.0
+    pitch = 360.0 / n_arms
+    gaps = [90.0 + k * pitch - 360.0 for k in range(n_arms + 1)]
+    angle = min(gaps, key=lambda a: (abs(a + 45.0), -a))
+    if math.isclose(angle % 90.0, 0.0, abs_tol=1e-9) or math.isclose(angle % 90.0, 90.0, abs_tol=1e-9):
+        angle -= pitch / 4.0
+    return angle
+
+
+def _title_fields(design, scene, sha256, version, date, k):
+    """The title block's fields: name to text."""
+    from pathlib import Path
+
+    what = {
+        Geometry.RIM_WEB: "rim, web and hub",
+        Geometry.RIM_ARMS: f"rim, {design.n_arms} arms and hub",
+        Geometry.DISC: "solid disc",
+    }.get(design.geometry, "rim")
+    unbalance = design.stresses.unbalance_permissible if design.stresses else None
+    balance = f"G {BALANCE_GRADE:g} (ISO 21940-11)"
+    if unbalance is not None:
+        balance += f", U_per = {unbalance * 1e6:.0f} g·mm"
+    return {
+        "title": f"Flywheel, {what}",
+        "material": design.material,
+        "mass": f"{design.mass:.2f} kg",
+        "inertia": f"{design.j_flywheel:.4g} kg·m²",
+        "balance": balance,
+        "scale": f"1:{1 / k.scale:g}",
+        "date": date.isoformat(),
+        "version": f"flyopt {version}",
+        "scene": Path(scene).name if scene else "(a scene made in Python)",
+        "sha256": sha256 or "-",
+        "units": "dimensions in mm",
+        "shaft": design.shaft,
+    }
+
+
+def _title_block(k, at, title):
+    """The title block in the sheet's lower right corner (ISO 7200 width): six rows of fields."""
+    sheet_w, _sheet_h, border = SHEET
+    x1 = sheet_w - border
+    x0 = x1 - _BLOCK_W
+    y0 = border
+    rows = 6
+    k.line("TITLE", [at(x0, y0), at(x1, y0), at(x1, y0 + rows * _ROW), at(x0, y0 + rows * _ROW)], closed=True)
+    for row in range(1, rows):
+        k.line("TITLE", [at(x0, y0 + row * _ROW), at(x1, y0 + row * _ROW)], style="thin")
+    half = x0 + _BLOCK_W / 2.0
+    cells = [  # (row from the top, x start, x end, label, field)
+        (0, x0, x1, "", "title"),
+        (1, x0, half, "Material", "material"),
+        (1, half, x1, "Shaft", "shaft"),
+        (2, x0, half, "Mass", "mass"),
+        (2, half, x1, "J about the axis", "inertia"),
+        (3, x0, x1, "Balance", "balance"),
+        (4, x0, x0 + 40, "Scale", "scale"),
+        (4, x0 + 40, x0 + 80, "Date", "date"),
+        (4, x0 + 80, x0 + 125, "", "version"),
+        (4, x0 + 125, x1, "", "units"),
+        (5, x0, x1, "Scene", "scene"),
+    ]
+    for row, xs, _xe, label, name in cells:
+        y = y0 + (rows - 1 - row) * _ROW + 2.0
+        if xs > x0:
+            k.line("TITLE", [at(xs, y0 + (rows - 1 - row) * _ROW), at(xs, y0 + (rows - row) * _ROW)], style="thin")
+        text = f"{label}: {title[name]}" if label else title[name]
+        if name == "title":
+            k.text("TITLE", at(xs + 2.0, y - 0.5), text, height=4.0)
+        elif name == "scene":
+            k.text("TITLE", at(xs + 2.0, y), f"{text}   SHA-256 {title['sha256']}", height=_SMALL)
+        else:
+            k.text("TITLE", at(xs + 2.0, y), text, height=_TEXT)
+
+
+def _notes(design, arms, t2):
+    """What the drawing says in words beside the views."""
+    notes = ["Dimensions in mm." + (" Section A–A is cut through the keyway." if t2 else "")]
+    if arms:
+        notes.append("Arms are not hatched in section (drafting rule for spokes); one arm's section is revolved.")
+    if not design.bore and design.geometry not in (Geometry.RIM, Geometry.THIN_RIM):
+        notes.append("No bore: the design gives no shaft seat; the seat and its key are to be added.")
+    elif not t2:
+        notes.append("No key: the design gives none for this seat.")
+    if design.geometry in (Geometry.RIM, Geometry.THIN_RIM):
+        notes.append("The rim alone, as designed: its hub and arms or web are not part of this design.")
+    notes.append("Fillets, chamfers and draft are not given by this design.")
+    return notes
+
+
+# ---------------------------------------------------------------------------
+# DXF
+# ---------------------------------------------------------------------------
+
+
+def require_ezdxf() -> Any:
+    """ezdxf, or a one-line refusal naming the extra that brings it."""
+    try:
+        import ezdxf
+    except ImportError:
+        raise ImportError(f"a DXF drawing needs ezdxf: pip install '{CAD_EXTRA}'") from None
+    return ezdxf
+
+
+#: The XDATA application that names what a DXF dimension measures (the Dimension's ``name``).
+XDATA_APP = "FLYOPT"
+
+
+def write_dxf(drawing: Drawing, path: str | os.PathLike[str]) -> None:
+    """Write ``drawing`` as a DXF (R2013, mm) to ``path``, atomically.
+
+    Layers :data:`LAYERS`; outlines as LWPOLYLINEs, ARCs and CIRCLEs; cut
+    faces as HATCH entities (ANSI31, 3 mm apart on paper); every dimension
+    a real DIMENSION entity (linear or diameter) whose measurement is the
+    design's size, with its ISO 286 limits as the dimension's tolerance and,
+    as XDATA of application ``FLYOPT``, the name of what it measures; texts
+    as TEXT. Model space is true size; text heights and arrows are in model
+    units, the inverse of the drawing's scale times their paper size, so they
+    plot at their paper size when model space is plotted at the drawing's scale.
+
+    Raises
+    ------
+    ImportError
+        ezdxf is not installed (one line naming the ``cad`` extra).
+    """
+    from flyopt.outputs.files import write_atomically
+
+    ezdxf = require_ezdxf()
+    doc = ezdxf.new("R2013", setup=True, units=4)  # 4: millimetres
+    doc.appids.add(XDATA_APP)
+    colours = {"OUTLINE": 7, "CENTER": 1, "HATCH": 8, "DIMENSIONS": 3, "TITLE": 5}
+    for name in LAYERS:
+        doc.layers.add(name, color=colours[name], linetype="CENTER" if name == "CENTER" else "Continuous")
+    inverse = 1.0 / drawing.scale
+    doc.header["$LTSCALE"] = inverse
+    style = doc.dimstyles.new("FLYOPT")
+    # sizes in model units (DIMSCALE 1): ezdxf 1.4 scales a tolerance's text by DIMSCALE twice
+    for attribute, value in {
+        "dimtxt": _TEXT * inverse,
+        "dimasz": _ARROW * inverse,
+        "dimexe": 1.5 * inverse,
+        "dimexo": 1.0 * inverse,
+        "dimgap": 1.0 * inverse,
+        "dimscale": 1.0,
+        "dimdsep": ord("."),
+        "dimtfac": 0.7,
+        "dimdec": 1,
+        "dimtdec": 4,
+        "dimzin": 8,  # no trailing zeros
+        "dimtzin": 8,
+        "dimlfac": 1.0,
+        "dimtad": 1,  # text above the line
+        "dimtih": 0,
+        "dimtoh": 0,
+        "dimblk": "",  # closed filled arrows
+        "dimtxsty": "Standard",
+        "dimclrd": 3,
+        "dimclre": 3,
+        "dimclrt": 3,
+        "dimtfill": 1,  # the text on the drawing's background: lines break behind it
+    }.items():
+        style.dxf.set(attribute, value)
+    msp = doc.modelspace()
+    for line in drawing.lines:
+        attribs: dict[str, Any] = {"layer": line.layer}
+        if line.style == "thin":
+            attribs["lineweight"] = 25
+        msp.add_lwpolyline(line.points, close=line.closed, dxfattribs=attribs)
+    for arc in drawing.arcs:
+        if arc.end - arc.start >= 360.0:
+            msp.add_circle(arc.center, arc.radius, dxfattribs={"layer": arc.layer})
+        else:
+            msp.add_arc(arc.center, arc.radius, arc.start, arc.end, dxfattribs={"layer": arc.layer})
+    for region in drawing.hatches:
+        hatch = msp.add_hatch(color=8, dxfattribs={"layer": region.layer})
+        hatch.set_pattern_fill("ANSI31", scale=inverse)
+        hatch.paths.add_polyline_path(region.boundary, is_closed=True)
+    align = {"left": "LEFT", "center": "CENTER", "right": "RIGHT"}
+    for text in drawing.texts:
+        entity = msp.add_text(
+            text.text, height=text.height, rotation=text.rotation, dxfattribs={"layer": text.layer, "style": "Standard"}
+        )
+        entity.set_placement(text.at, align=ezdxf.enums.TextEntityAlignment[f"BOTTOM_{align[text.align]}"])
+    for dim in drawing.dimensions:
+        override: dict[str, Any] = {}
+        if dim.fit:
+            override.update({"dimtol": 1, "dimtp": dim.upper, "dimtm": -dim.lower})
+        # a diameter dimension writes its Ø itself; a linear one of a diameter is told to
+        label = (
+            ("%%c" if dim.prefix == "Ø" and dim.kind == "linear" else "") + "<>" + (f" {dim.fit}" if dim.fit else "")
+        )
+        if dim.kind == "diameter":
+            radius = dim.value / 2.0
+            entity = msp.add_diameter_dim(
+                center=dim.p1,
+                radius=radius,
+                angle=dim.angle,
+                location=dim.text_at,
+                text=label,
+                dimstyle="FLYOPT",
+                override=override,
+                dxfattribs={"layer": "DIMENSIONS"},
+            )
+        else:
+            entity = msp.add_linear_dim(
+                base=dim.base,
+                p1=dim.p1,
+                p2=dim.p2,
+                angle=dim.angle,
+                location=dim.text_at,
+                text=label,
+                dimstyle="FLYOPT",
+                override=override,
+                dxfattribs={"layer": "DIMENSIONS"},
+            )
+        entity.render()
+        entity.dimension.set_xdata(XDATA_APP, [(1000, dim.name)])
+    for name, value in drawing.title.items():  # the title block's fields, for a reader that wants them
+        doc.header.custom_vars.append(f"FLYOPT_{name.upper()}", value)
+    stream = io.StringIO()
+    doc.write(stream)
+    data = stream.getvalue().encode("utf-8")
+    write_atomically(path, lambda handle: handle.write(data))

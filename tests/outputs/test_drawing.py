@@ -1,0 +1,296 @@
+"""The manufacturing drawing (flyopt.outputs.drawing, flyopt.report.drawing) and ``flyopt export``.
+
+The DXF is read back with ezdxf: every DIMENSION entity's measurement is the
+Design's own dimension (read from the Design, not from the drawing), the
+layers and the title block are there. SVG and PDF are written, non-empty,
+and carry the same texts. Refusals: one line, exit status, nothing written.
+"""
+
+from __future__ import annotations
+
+import datetime
+import hashlib
+import math
+
+import pytest
+
+from flyopt._toml import tomllib
+from tests.conftest import PROBLEMS
+
+ezdxf = pytest.importorskip("ezdxf")  # the cad extra: the test extra installs it, so CI runs these
+
+DATE = datetime.date(2026, 11, 28)
+
+
+def _scene(name, geometry=None):
+    import flyopt
+
+    path = PROBLEMS / f"{name}.toml"
+    if geometry is None:
+        return flyopt.load(path)
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data["design"]["geometry"] = geometry
+    return flyopt.from_dict(data)
+
+
+#: A rim-and-web wheel, an arms wheel (the same press with arms), an engine's disc, a bare rim.
+CASES = {
+    "rim_web": ("punch-press-wheel", None),
+    "rim_arms": ("punch-press-wheel", "rim_arms"),
+    "disc": ("four-cylinder-engine", None),
+    "rim": ("punch-press", None),
+}
+
+
+@pytest.fixture(scope="module")
+def drawn():
+    """{case: (Drawing, Design)}, each scene solved once."""
+    from flyopt.report.drawing import drawing_of_scene
+
+    return {case: drawing_of_scene(_scene(*args), DATE) for case, args in CASES.items()}
+
+
+def expected(design):
+    """What each dimension must measure [mm], from the Design's own fields."""
+    d, key = design.dims, design.parts.key
+    out = {"d_outer": d.d_outer, "b": d.b}
+    if design.geometry in ("rim_web", "rim_arms", "rim", "thin_rim"):
+        out["d_inner"] = d.d_inner
+    if design.geometry == "rim_web":
+        out["t_web"] = d.t_web
+    if design.geometry in ("rim_web", "rim_arms") and design.bore:
+        out |= {"d_hub": d.d_hub, "l_hub": d.l_hub}
+    if design.geometry == "rim_arms":
+        out |= {"arm_major": d.arm_major, "arm_minor": d.arm_minor}
+    if design.bore:
+        out["bore"] = design.bore
+    if design.bore and key:
+        out |= {"key_width": key["b"], "key_depth": design.bore + key["t2"]}
+    return {name: value * 1e3 for name, value in out.items()}
+
+
+def test_the_cases_are_the_geometries_they_claim(drawn):
+    for case, (_drawing, design) in drawn.items():
+        assert design.geometry == case
+    assert drawn["rim_web"][1].bore and drawn["rim_web"][1].parts.key  # a keyed bore to draw
+    assert drawn["rim_arms"][1].n_arms
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_dxf_dimensions_are_the_designs(drawn, case, tmp_path):
+    from flyopt.outputs.drawing import XDATA_APP, write_dxf
+
+    drawing, design = drawn[case]
+    path = tmp_path / "wheel.dxf"
+    write_dxf(drawing, path)
+    doc = ezdxf.readfile(path)
+    assert doc.audit().has_errors is False
+    assert doc.header["$INSUNITS"] == 4  # millimetres
+    measured = {}
+    for dim in doc.modelspace().query("DIMENSION"):
+        assert dim.dxf.layer == "DIMENSIONS"
+        name = dim.get_xdata(XDATA_APP)[0].value
+        assert name not in measured, name
+        measured[name] = dim.get_measurement()
+        assert dim.dxf.dimtype & 0x0F in (0, 3)  # real linear and diameter dimensions
+    want = expected(design)
+    assert measured.keys() == want.keys()
+    for name, value in want.items():
+        assert measured[name] == pytest.approx(value, rel=1e-9), name
+
+
+def test_dxf_layers_hatches_and_the_bores_tolerance(drawn, tmp_path):
+    from flyopt.design.fits import hole_tolerance
+    from flyopt.outputs.drawing import LAYERS, write_dxf
+
+    drawing, design = drawn["rim_web"]
+    path = tmp_path / "wheel.dxf"
+    write_dxf(drawing, path)
+    doc = ezdxf.readfile(path)
+    assert set(LAYERS) <= {layer.dxf.name for layer in doc.layers}
+    msp = doc.modelspace()
+    used = {e.dxf.layer for e in msp}
+    assert set(LAYERS) <= used  # every layer holds something
+    hatches = msp.query("HATCH")
+    assert len(hatches) == 2 and all(h.dxf.layer == "HATCH" for h in hatches)  # the two halves of the section
+    bore = next(d for d in msp.query("DIMENSION") if d.get_xdata("FLYOPT")[0].value == "bore")
+    style = bore.override()
+    h7 = hole_tolerance(design.bore, "H7")
+    # ISO 286: 55 H7 is 55.000 ... 55.030
+    assert style.get("dimtol") == 1 and style.get("dimtp") == pytest.approx(h7.upper * 1e3, rel=1e-12)
+    assert style.get("dimtm") == 0 and h7.upper == pytest.approx(30e-6, rel=1e-12)
+
+
+def test_dxf_title_block_says_what_and_whence(drawn, tmp_path):
+    from flyopt.outputs.drawing import write_dxf
+
+    drawing, design = drawn["rim_web"]
+    path = tmp_path / "wheel.dxf"
+    write_dxf(drawing, path)
+    texts = " ".join(t.dxf.text for t in ezdxf.readfile(path).modelspace().query("TEXT[layer=='TITLE']"))
+    sha = hashlib.sha256((PROBLEMS / "punch-press-wheel.toml").read_bytes()).hexdigest()
+    import flyopt
+
+    for words in (
+        "Flywheel, rim, web and hub",
+        f"Material: {design.material}",
+        f"Mass: {design.mass:.2f} kg",
+        f"J about the axis: {design.j_flywheel:.4g} kg·m²",
+        "G 6.3",
+        f"U_per = {design.stresses.unbalance_permissible * 1e6:.0f} g·mm",
+        "Scale: 1:5",
+        "Date: 2026-11-28",
+        f"flyopt {flyopt.__version__}",
+        "dimensions in mm",
+        "punch-press-wheel.toml",
+        sha,
+    ):
+        assert words in texts, words
+
+
+def test_the_part_names_are_words(drawn):
+    for case, words in (
+        ("rim_web", {"Rim", "Web", "Hub", "Bore (shaft seat)"}),
+        ("rim_arms", {"Rim", "Hub"}),
+        ("disc", {"Disc"}),
+    ):
+        texts = {t.text for t in drawn[case][0].texts}
+        assert words <= texts, case
+        assert not any(code in " ".join(texts) for code in ("l_hub", "t_web", "d_hub", "arm_major"))
+    assert any(t.text.startswith("Keyway DIN 6885-1, key 16 x 10") for t in drawn["rim_web"][0].texts)
+    assert any(t.text.startswith("Arm, 8 off") for t in drawn["rim_arms"][0].texts)
+
+
+@pytest.mark.parametrize("case", ["rim_web", "rim_arms"])
+def test_the_keyway_is_cut_in_the_section(drawn, case):
+    # the upper half's cut face starts at the keyway's bottom, bore/2 + t2; the lower half's at the bore;
+    # an arms wheel's rim (a face of its own) is not cut
+    drawing, design = drawn[case]
+    r_bore, t2 = design.bore * 500, design.parts.key["t2"] * 1e3
+    lows = sorted({min(y for _x, y in h.boundary) for h in drawing.hatches if min(y for _x, y in h.boundary) > 0})
+    highs = sorted({max(y for _x, y in h.boundary) for h in drawing.hatches if max(y for _x, y in h.boundary) < 0})
+    if case == "rim_web":
+        assert lows == [pytest.approx(r_bore + t2, rel=1e-12)]
+        assert highs == [pytest.approx(-r_bore, rel=1e-12)]
+    else:  # the hub, the rim (and the revolved arm section, below the axis, ending at its ellipse's top)
+        r_i = design.dims.d_inner * 500
+        assert lows == [pytest.approx(r_bore + t2, rel=1e-12), pytest.approx(r_i, rel=1e-12)]
+        assert highs[0] == pytest.approx(-r_i, rel=1e-12) and highs[-1] == pytest.approx(-r_bore, rel=1e-12)
+
+
+def test_dimension_texts_do_not_overlap(drawn):
+    """No two dimension texts share ground on the sheet (boxes from the description's estimate)."""
+    for case, (drawing, _design) in drawn.items():
+        boxes = []
+        for dim in drawing.dimensions:
+            w = 0.75 * 2.5 * len(dim.text) / drawing.scale
+            h = 2.5 / drawing.scale
+            if dim.vertical:
+                w, h = h, w
+            x, y = dim.text_at
+            if dim.kind == "diameter":  # left-aligned from its point
+                x += w / 2
+            boxes.append((dim.name, x - w / 2, x + w / 2, y - h / 2, y + h / 2))
+        for i, a in enumerate(boxes):
+            for b in boxes[i + 1 :]:
+                apart = a[2] <= b[1] or b[2] <= a[1] or a[4] <= b[3] or b[4] <= a[3]
+                assert apart, (case, a[0], b[0])
+
+
+@pytest.mark.parametrize("kind", ["svg", "pdf"])
+def test_svg_and_pdf_are_written_with_the_same_texts(drawn, tmp_path, kind):
+    from flyopt.report.drawing import write_drawing
+
+    drawing, design = drawn["rim_web"]
+    path = tmp_path / f"wheel.{kind}"
+    write_drawing(drawing, path, kind)
+    data = path.read_bytes()
+    assert len(data) > 10_000
+    if kind == "svg":
+        text = data.decode("utf-8")
+    else:
+        import pypdf
+
+        assert data.startswith(b"%PDF")
+        text = pypdf.PdfReader(path).pages[0].extract_text()
+    for dim in drawing.dimensions:
+        assert dim.text.split(" ")[0].lstrip("Ø") in text, dim.name
+    assert "Flywheel, rim, web and hub" in text and drawing.title["sha256"] in text.replace("\n", "")
+
+
+def test_export_from_python_writes_each_format(tmp_path):
+    from flyopt.report.drawing import export
+
+    for suffix in ("dxf", "svg", "pdf"):
+        out = tmp_path / f"wheel.{suffix}"
+        drawing = export(PROBLEMS / "four-cylinder-engine.toml", out, date=DATE)
+        assert out.stat().st_size > 1000 and drawing.scale == 0.5
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["wheel.dxf", "wheel.pdf", "wheel.svg"]
+
+
+# --------------------------------------------------------------------------
+# flyopt export: refusals
+# --------------------------------------------------------------------------
+
+
+def test_export_command_writes_a_dxf(main_cli, tmp_path):
+    out = tmp_path / "wheel.dxf"
+    status, stdout, stderr = main_cli("export", PROBLEMS / "punch-press-wheel.toml", "-o", out)
+    assert (status, stderr) == (0, "") and f"wrote {out}" in stdout
+    assert len(ezdxf.readfile(out).modelspace().query("DIMENSION")) == 9
+
+
+@pytest.mark.parametrize(
+    ("name", "words"),
+    [
+        ("wheel.step", "STEP needs a solid modeller"),
+        ("wheel.stp", "STEP needs a solid modeller"),
+        ("wheel.png", "must end in .dxf, .svg or .pdf"),
+        ("no-such-folder/wheel.dxf", "does not exist"),
+    ],
+)
+def test_export_refuses_in_one_line_and_writes_nothing(main_cli, tmp_path, name, words):
+    status, stdout, stderr = main_cli("export", PROBLEMS / "punch-press-wheel.toml", "-o", tmp_path / name)
+    assert status == 2 and stderr.count("\n") == 1 and words in stderr and stdout == ""
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_export_without_ezdxf_names_the_extra(main_cli, tmp_path, monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "ezdxf", None)  # import ezdxf raises ImportError
+    status, _out, stderr = main_cli("export", PROBLEMS / "punch-press-wheel.toml", "-o", tmp_path / "w.dxf")
+    assert status == 2 and stderr.count("\n") == 1 and "pip install 'flyopt[cad]'" in stderr
+    assert list(tmp_path.iterdir()) == []
+    # the other formats need no extra
+    assert main_cli("export", PROBLEMS / "four-cylinder-engine.toml", "-o", tmp_path / "w.svg")[0] == 0
+
+
+def test_export_of_a_machine_that_needs_no_flywheel_is_refused(main_cli, tmp_path):
+    status, _out, stderr = main_cli("export", PROBLEMS / "conveyor.toml", "-o", tmp_path / "w.pdf")
+    assert status == 2 and "no flywheel is needed" in stderr and stderr.count("\n") == 1
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_export_of_an_infeasible_wheel_is_refused(main_cli, write_scene, tmp_path):
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    text = text.replace('max_outer_diameter = "1.2 m"', 'max_outer_diameter = "0.1 m"')
+    scene = write_scene(text)
+    out = tmp_path / "out"
+    out.mkdir()
+    status, _out, stderr = main_cli("export", scene, "-o", out / "w.pdf")
+    assert status == 3 and "no flywheel to draw" in stderr and stderr.count("\n") == 1
+    assert list(out.iterdir()) == []
+
+
+def test_a_drawing_of_what_is_not_a_design_is_refused(drawn):
+    import dataclasses
+
+    from flyopt.design.result import Candidate
+    from flyopt.outputs.drawing import drawing_of
+
+    design = drawn["disc"][1]
+    fields = {f.name: getattr(design, f.name) for f in dataclasses.fields(Candidate)}
+    with pytest.raises(ValueError, match="not a design"):
+        drawing_of(Candidate(**{**fields, "feasible": False}))
+    assert math.isfinite(design.mass)
