@@ -149,7 +149,8 @@ class Scene:
         """Refuse, in words naming its section, a scene that is one calculation where a cycle is needed."""
         if self.calculation is not None:
             raise SceneError(
-                self.calculation, "is one calculation, not a cycle: flyopt solve (and check) answer it, nothing else"
+                self.calculation,
+                "is one calculation, not a cycle: flyopt solve, check and report answer it, nothing else",
             ).with_source(self.source)
 
     @property
