@@ -76,6 +76,7 @@ def test_report_writes_a_calculation_with_its_answers(section, suffix, tmp_path)
         text = out.read_text(encoding="utf-8")
     for answer in ANSWERS[section]:
         assert answer in text, (section, answer)
+    assert ("CALCULATION REPORT" if suffix == ".pdf" else "Calculation report") in text  # not a design report
 
 
 @pytest.mark.parametrize("section", sorted(SCENES))

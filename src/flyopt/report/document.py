@@ -144,6 +144,8 @@ class Document:
     failures : list of str
         Diagrams that could not be drawn because drawing raised (not a refusal
         for this scene): each ``"key: error"``.
+    kind : str
+        What the document is, in the words of its heading ("flywheel design report", or a calculation's).
     """
 
     title: str
@@ -152,6 +154,7 @@ class Document:
     units: str
     status: str
     failures: list = field(default_factory=list)
+    kind: str = "flywheel design report"
 
     def close(self) -> None:
         """Close the figures' matplotlib windows (memory) once rendered."""

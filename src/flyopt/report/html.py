@@ -93,13 +93,13 @@ def render(document: Document) -> str:
         "<head>",
         '<meta charset="utf-8">',
         '<meta name="viewport" content="width=device-width, initial-scale=1">',
-        f"<title>{_escape(document.title)}: flywheel design report</title>",
+        f"<title>{_escape(document.title)}: {_escape(document.kind)}</title>",
         f"<style>{CSS}</style>",
         "</head>",
         "<body>",
     ]
     out.append(f'<header class="title" data-status="{_escape(document.status)}">')
-    out.append('<div class="kind">Flywheel design report</div>')
+    out.append(f'<div class="kind">{_escape(document.kind[:1].upper() + document.kind[1:])}</div>')
     out.append(f"<h1>{_escape(document.title)}</h1>")
     out.append("<table>")
     for label, value in document.title_block:

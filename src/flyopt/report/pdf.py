@@ -47,7 +47,7 @@ def render(document: Document) -> bytes:
         rightMargin=margin,
         topMargin=15 * mm,
         bottomMargin=17 * mm,
-        title=f"{_shown(document.title)}: flywheel design report",
+        title=f"{_shown(document.title)}: {document.kind}",
         author="flyopt",
         subject="Flywheel design report",
         creator="flyopt",
@@ -65,7 +65,7 @@ def render(document: Document) -> bytes:
         canvas.saveState()
         canvas.setFont(_FONT, 7.5)
         canvas.setFillGray(0.35)
-        canvas.drawString(margin, 9 * mm, f"{_shown(document.title)}: flywheel design report (flyopt)")
+        canvas.drawString(margin, 9 * mm, f"{_shown(document.title)}: {document.kind} (flyopt)")
         canvas.drawRightString(A4[0] - margin, 9 * mm, f"page {doc.page}")
         canvas.restoreState()
 
@@ -161,7 +161,7 @@ def _title(document, styles, width):
     from reportlab.platypus import Table as RLTable
 
     rows = [
-        [_paragraph("FLYWHEEL DESIGN REPORT", styles["kind"]), ""],
+        [_paragraph(document.kind.upper(), styles["kind"]), ""],
         [_paragraph(document.title, styles["title"]), ""],
     ]
     rows += [

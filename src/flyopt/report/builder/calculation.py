@@ -174,7 +174,9 @@ class CalculationReport(BuilderBase):
                 ("status", words),
             )
         )
-        return Document(self.scene.title, head, self.sections, self.units, status, self.failures)
+        return Document(
+            self.scene.title, head, self.sections, self.units, status, self.failures, kind="calculation report"
+        )
 
     # ------------------------------------------------------------------
     # What every calculation's report has
