@@ -235,6 +235,23 @@ def test_solve_json_and_text_carry_the_check(checked_solution):
     assert "fillets not given by the design" in text
 
 
+def test_the_report_shows_the_check_beside_the_lame_model(checked_solution, tmp_path):
+    """The HTML report carries the check as the text does: the parts' peaks, the junctions and the difference."""
+    import subprocess
+
+    path, solution = checked_solution
+    out = tmp_path / "checked.html"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "report", str(path), "-o", str(out)], capture_output=True, text=True
+    )
+    assert run.returncode == 0, run.stderr
+    html = out.read_text(encoding="utf-8")
+    assert "The second opinion: an axisymmetric FE model" in html and "Stress concentration at the junctions" in html
+    check = solution.design.fem
+    assert f"the FE is {100 * abs(check.difference):.1f} % above" in html
+    assert f"{check.junctions[0].factor:.3f}" in html
+
+
 def test_fem_check_key_must_be_a_boolean(write_scene):
     from flyopt.errors import SceneError
 

@@ -13,6 +13,7 @@ from flyopt.report.display import number
 from flyopt.report.document import Facts, Figure, Paragraph, Table
 
 if TYPE_CHECKING:
+    from flyopt.design.fem import FemCheck
     from flyopt.design.materials import Material
     from flyopt.design.result import Design
 
@@ -94,6 +95,8 @@ class DesignSection(BuilderBase):
         self.geometry_steps(blocks, best, material)
         self.parts(blocks, best)
         self.stress(blocks, best)
+        if d.fem is not None:
+            self.fem(blocks, d.fem)
         self.hub_key_balance(blocks, best)
         from flyopt.report import plots
 
@@ -313,6 +316,75 @@ class DesignSection(BuilderBase):
                     )
                 )
             )
+
+    def fem(self, blocks: list[Any], check: FemCheck) -> None:
+        """The axisymmetric FE check of the best design ([design] fem_check): each part's peak beside the Lamé/arm
+        model's, the junction factors and how far the two models differ (section 13)."""
+        n = self.n
+        von_mises = check.measure == "von_mises"
+        rows = []
+        for p in check.parts:
+            peak, at = (p.von_mises, p.von_mises_at) if von_mises else (p.max_principal, p.max_principal_at)
+            rows.append(
+                [
+                    p.part,
+                    n(peak, "stress", "stress", 4),
+                    n(at[0], "length"),
+                    n(at[1], "length"),
+                    n(p.model_stress, "stress", "stress", 4),
+                    "-" if p.utilisation is None else f"{100 * p.utilisation:.1f} %",
+                ]
+            )
+        blocks.append(
+            Table(
+                (
+                    "part",
+                    self.head("FE peak", "stress"),
+                    self.head("at r", "length"),
+                    self.head("at z", "length"),
+                    self.head("Lamé/arm", "stress"),
+                    "of its allowable",
+                ),
+                tuple(rows),
+                ("<", ">", ">", ">", ">", ">"),
+                f"The second opinion: an axisymmetric FE model ({check.elements} quadratic triangles, "
+                f"{'von Mises' if von_mises else 'largest principal'} stress as the design is judged; "
+                f"{NOTES}, section 13)",
+                "fem",
+            )
+        )
+        if check.junctions:
+            blocks.append(
+                Table(
+                    ("junction", "factor (FE peak / Lamé there)", self.head("fillet", "length")),
+                    tuple(
+                        [j.name, f"{j.factor:.3f}", n(j.fillet, "length") if j.fillet else "no step"]
+                        for j in check.junctions
+                    ),
+                    ("<", ">", ">"),
+                    "Stress concentration at the junctions",
+                    "fem_junctions",
+                )
+            )
+        text: list[Any] = []
+        if check.difference is not None and check.model_peak is not None:
+            text += [
+                "The two models: FE peak ",
+                self.q(check.peak, "stress", digits=4),
+                ", Lamé/arm ",
+                self.q(check.model_peak, "stress", digits=4),
+                f": the FE is {100 * abs(check.difference):.1f} % {'above' if check.difference >= 0 else 'below'}. ",
+            ]
+        if check.within_allowable is not None:
+            text.append(
+                "Every part's FE peak is within its allowable stress."
+                if check.within_allowable
+                else "An FE peak EXCEEDS its part's allowable stress: the design was sized by the Lamé/arm model, "
+                "and the check reports; it does not re-design."
+            )
+        text += [f" Note: {note}." for note in check.notes]
+        if text:
+            blocks.append(Paragraph(tuple(text), "warning" if check.within_allowable is False else "note"))
 
     def stress(self, blocks: list[Any], c: Design) -> None:
         """The stress check of each part and the diagram of the stresses over the radius (section 10)."""
