@@ -9,7 +9,9 @@ unrounded one, so the test shows where the difference comes from:
 - 16.10: the excess triangle's base rounded to 2.9 rad (1381 kg against 1386.07 kg);
 - 16.11: ω² δ rounded to 3.55 (3121 kg·m² against 3118.1);
 - 16.15: ω rounded to 8.4 rad/s (3787 kg against 3806.97);
-- 16.17: the mean torque, the peak and the base rounded (2316 kg·m² against 2321.2).
+- 16.17: the mean torque, the peak and the base rounded (2316 kg·m² against 2321.2);
+- 16.13, second part: the companion's crossing angle is wrong (0.020 % against 0.168 %), shown by
+  mpmath quadrature between the right crossings and the closed form of the excess work.
 
 The other examples of 16.1-16.23 are tested in tests/test_existing_flywheel.py (16.1, 16.12, 16.13),
 tests/test_energy_form.py (16.3), tests/design/test_textbook_rim.py (16.14),
@@ -23,6 +25,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import mpmath
 import pytest
 
 import flyopt
@@ -30,7 +33,9 @@ import flyopt
 TEXTBOOK = Path(__file__).resolve().parent.parent / "problems" / "textbook"
 RPM = math.pi / 30
 DEG = math.pi / 180
-NEW_SCENES = [f"khurmi-16-{n}.toml" for n in (4, 5, 6, 7, 8, 9, 10, 11, 15, 16, 17, 18, 23)]
+NEW_SCENES = [f"khurmi-16-{n}.toml" for n in (4, 5, 6, 7, 8, 9, 10, 11, 15, 16, 17, 18, 23)] + [
+    "khurmi-16-13-varying-load.toml"
+]
 
 
 def _solve(name):
@@ -176,6 +181,33 @@ def test_khurmi_16_11_power_inertia_and_the_acceleration_at_45_degrees():
     # at 45° the excess torque is 9500 sin 90° − 5700 cos 90° = 9500 N·m (flyopt reports J, the book divides)
     assert round(9500 / book, 3) == 3.044  # the book: 3.044 rad/s²
     assert round(9500 / j, 3) == 3.047  # with the unrounded inertia
+
+
+def test_khurmi_16_13_second_part_the_companion_integrates_between_the_wrong_angles():
+    check = _solve("khurmi-16-13-varying-load.toml").flywheel
+    j, omega = 1000.0, 300 * RPM
+    # 1500 sin 3θ = 600 sin θ: 3 − 4 sin²θ = 0.4, sin²θ = 0.65; crossings θ_B, π − θ_B, π + θ_B, 2π − θ_B
+    theta_b = math.asin(math.sqrt(0.65))
+
+    def excess(t):  # ∫_0^t (1500 sin 3θ − 600 sin θ) dθ by hand
+        return 500 * (1 - math.cos(3 * t)) - 600 * (1 - math.cos(t))
+
+    a_max = excess(theta_b) - excess(math.pi - theta_b)
+    assert excess(2 * math.pi - theta_b) == pytest.approx(excess(theta_b), rel=1e-12)  # the other maximum
+    assert excess(math.pi + theta_b) == pytest.approx(excess(math.pi - theta_b), rel=1e-12)  # the other minimum
+    with mpmath.workdps(30):
+        net = lambda t: 1500 * mpmath.sin(3 * t) - 600 * mpmath.sin(t)  # noqa: E731
+        quadrature = -mpmath.quad(net, [theta_b, math.pi - theta_b])
+    assert float(quadrature) == pytest.approx(a_max, rel=1e-12)
+    assert check.a_max == pytest.approx(a_max, rel=1e-12)
+    assert round(check.a_max, 1) == 1656.5
+    assert check.achieved_delta == pytest.approx(a_max / (j * omega**2), rel=1e-12)
+    assert round(100 * check.achieved_delta, 3) == 0.168
+    # the companion's θ_B = sin(radians(√0.65)) (0.0141°, not 53.73°) integrates over nearly 0 to π:
+    companion_b = math.sin(math.radians(math.sqrt(0.25 * (3 - 600 / 1500))))
+    companion = excess(math.radians(180 - companion_b)) - excess(math.radians(companion_b))
+    assert companion == pytest.approx(1500 * 2 / 3 - 600 * 2, abs=0.01)  # −200 N·m
+    assert round(100 * abs(round(companion)) / (j * omega**2), 3) == 0.020  # its printed 0.020 %
 
 
 def test_khurmi_16_15_the_book_rounds_omega_to_8_4():
