@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table
+from flyopt.io.fields import Table, check_magnitude
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -21,6 +21,31 @@ _MATERIAL_STRENGTH = {
     "min_wall": "length",
     "bearing_pressure": "stress",
 }
+
+
+#: Fastest safe rim speed a material may have [m/s]: beyond any rotor's burst speed.
+MAX_RIM_SPEED = 1e4
+
+#: Bounds of a [[material]]'s numbers (SI): beyond them no flywheel material lies and the sizing overflows.
+MAGNITUDES = {
+    "density": (1.0, 1e5, "kg/m^3", "from a foam to beyond osmium's 22,600"),
+    "max_rim_speed": (1e-3, MAX_RIM_SPEED, "m/s", "a millimetre a second to 10 km/s, beyond any rotor's burst"),
+    "allowable_stress": (1.0, 1e11, "Pa", "1 Pa to 100 GPa, beyond any material's strength"),
+}
+
+
+def _check_rim_speed(material: Material, where: str) -> None:
+    """Refuse a material whose safe rim speed, given or from σ = ρ v², is beyond any rotor's (it overflows)."""
+    try:
+        speed = material.rim_speed_limit()
+    except ValueError:
+        return  # strengths without a safety factor: no rim speed until a design's factor gives one
+    if not speed <= MAX_RIM_SPEED:
+        raise SceneError(
+            where,
+            f"its safe rim speed sqrt(allowable_stress / density) = {speed:.3g} m/s is beyond any rotor's "
+            f"(allowed: up to {MAX_RIM_SPEED:g} m/s): check its density and allowable stress",
+        )
 
 
 def read_materials(raw: object) -> tuple[Material, ...]:
@@ -71,6 +96,8 @@ def read_materials(raw: object) -> tuple[Material, ...]:
         for key, value in values.items():
             if value is not None and (value < 0 or (value == 0 and key != "cost")):
                 raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
+            if value is not None and key in MAGNITUDES:
+                check_magnitude(value, f"{where}.{key}", table.raw(key), *MAGNITUDES[key])
         for key, dimension in _MATERIAL_STRENGTH.items():
             if not table.has(key):
                 continue
@@ -102,7 +129,9 @@ def read_materials(raw: object) -> tuple[Material, ...]:
         if not isinstance(source, str):
             raise SceneError(f"{where}.source", f"must be text (where the values come from), got {shorten(source)}")
         try:
-            materials.append(make_material(name, source=source, **values))
+            material = make_material(name, source=source, **values)
         except ValueError as err:
             raise SceneError(where, str(err)) from None
+        _check_rim_speed(material, where)
+        materials.append(material)
     return tuple(materials)
