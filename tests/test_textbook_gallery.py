@@ -34,7 +34,8 @@ TEXTBOOK = Path(__file__).resolve().parent.parent / "problems" / "textbook"
 RPM = math.pi / 30
 DEG = math.pi / 180
 NEW_SCENES = [f"khurmi-16-{n}.toml" for n in (4, 5, 6, 7, 8, 9, 10, 11, 15, 16, 17, 18, 23)] + [
-    "khurmi-16-13-varying-load.toml"
+    "khurmi-16-13-varying-load.toml",
+    "khurmi-16-11-acceleration.toml",
 ]
 
 
@@ -181,6 +182,53 @@ def test_khurmi_16_11_power_inertia_and_the_acceleration_at_45_degrees():
     # at 45° the excess torque is 9500 sin 90° − 5700 cos 90° = 9500 N·m (flyopt reports J, the book divides)
     assert round(9500 / book, 3) == 3.044  # the book: 3.044 rad/s²
     assert round(9500 / j, 3) == 3.047  # with the unrounded inertia
+
+
+def test_khurmi_16_11_part_3_the_flywheel_at_45_degrees():
+    """[flywheel] angles = ["45 deg"] with the book's 3121 kg·m²: dω/dt = (T − T_mean)/J, the excess torque
+    9500 sin 90° − 5700 cos 90° = 9500 N·m written out; the periodic simulation (--model dynamic) agrees."""
+    check = _solve("khurmi-16-11-acceleration.toml").flywheel
+    ((angle, value),) = check.accelerations_at
+    assert angle == pytest.approx(math.radians(45), rel=1e-15)
+    assert value == pytest.approx(9500 / 3121, rel=1e-12)
+    assert round(value, 3) == 3.044  # the book: 3.044 rad/s²
+    dynamic = flyopt.solve(flyopt.load(TEXTBOOK / "khurmi-16-11-acceleration.toml"), model="dynamic").flywheel
+    assert dynamic.accelerations_at[0][1] == pytest.approx(value, rel=1e-4)
+
+
+@pytest.mark.parametrize(
+    ("angles", "field", "words"),
+    [
+        (["400 deg"], "flywheel.angles[0]", "outside the cycle"),
+        (["-1 deg"], "flywheel.angles[0]", "outside the cycle"),
+        ([], "flywheel.angles", "1 to 100 angles"),
+        (["45 mm"], "flywheel.angles[0]", ""),
+    ],
+)
+def test_bad_flywheel_angles_are_refused_in_one_line(angles, field, words):
+    import tomllib
+
+    from flyopt.errors import SceneError
+    from flyopt.io.scene import from_dict
+
+    data = tomllib.loads((TEXTBOOK / "khurmi-16-11-acceleration.toml").read_text(encoding="utf-8"))
+    data["flywheel"]["angles"] = angles
+    with pytest.raises(SceneError) as err:
+        from_dict(data)
+    assert err.value.field == field and words in str(err.value)
+
+
+def test_net_areas_cannot_give_the_acceleration_at_an_angle():
+    import tomllib
+
+    from flyopt.errors import SceneError
+    from flyopt.io.scene import from_dict
+
+    data = tomllib.loads((TEXTBOOK / "khurmi-16-1.toml").read_text(encoding="utf-8"))
+    data["flywheel"]["angles"] = ["45 deg"]
+    with pytest.raises(SceneError) as err:
+        from_dict(data)
+    assert err.value.field == "flywheel.angles" and "net areas give no torque over the angle" in str(err.value)
 
 
 def test_khurmi_16_13_second_part_the_companion_integrates_between_the_wrong_angles():

@@ -509,6 +509,7 @@ def check_flywheel(
     analysis = analyse(scene.replace(delta=min(guess, 1.9)), model, like=first)
     machine = analysis.machine
     accelerations: tuple[float | None, ...] = (None, None, None, None)  # net areas: no torques over the angle
+    accelerations_at: tuple[tuple[float, float], ...] = ()  # at flywheel.angles (none for net areas)
     if analysis.model == "energy" or machine is None:  # net areas: the energy method alone
         achieved = existing.energy_delta(analysis.a_max, analysis.omega_mean, analysis.j_constant + j_wheel)
         omega_max, omega_min = speed_extremes(analysis.omega_mean, achieved)
@@ -519,6 +520,9 @@ def check_flywheel(
             high, at_high, low, at_low = existing.net_torque_extremes(machine)
             j_total = analysis.j_constant + j_wheel
             accelerations = (high / j_total, at_high, low / j_total, at_low)
+            if wheel.angles:
+                at = existing.net_torque_at(machine, wheel.angles) / j_total
+                accelerations_at = tuple((a, float(e)) for a, e in zip(wheel.angles, at, strict=True))
     else:
         simulation = verify(scene.replace(delta=analysis.delta), analysis, j_flywheel=j_wheel)
         sol = simulation.solution if simulation is not None else None
@@ -530,6 +534,9 @@ def check_flywheel(
         tolerance = simulation.tolerance
         method = f"{simulation.method} with the flywheel given"
         accelerations = existing.solution_accelerations(sol)
+        if wheel.angles:
+            at = existing.solution_acceleration_at(sol, wheel.angles)
+            accelerations_at = tuple((a, float(e)) for a, e in zip(wheel.angles, at, strict=True))
         analysis = analyse(scene.replace(delta=achieved), model, like=analysis)  # at the δ the wheel reaches
     required = suffices = margin = None
     if scene.delta is not None and allowed is not None:
@@ -557,6 +564,7 @@ def check_flywheel(
         j_required=required,
         suffices=suffices,
         margin=margin,
+        accelerations_at=accelerations_at,
     )
     return analysis, check
 

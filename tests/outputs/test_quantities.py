@@ -115,6 +115,8 @@ RELATIONS = {
     "inertia_total": "gd2 / (meter / second**2)",
     "inertia_with_losses": "inertia_total",
     "motor_acceleration": "omega_mean / time",
+    "angular_acceleration": "omega_mean / time",  # dω/dt of a [flywheel] at one of its angles
+    "angles": "angle",
     "accelerating_torque": "inertia_total * motor_acceleration",
     "motor_torque": "accelerating_torque",
     # a power chain: P_in - P_out, and the stages' product from the motor

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, check_magnitude
 from flyopt.machine.flywheel import ExistingFlywheel
+from flyopt.units import quantity
 
 if TYPE_CHECKING:
     from flyopt.machine.transmission import Shaft
@@ -21,7 +22,7 @@ RADIUS_RANGE = (1e-6, 1e3)
 
 def read_flywheel(raw: object, shafts: tuple[Shaft, ...]) -> ExistingFlywheel:
     """The [flywheel] table: ``inertia``, or ``mass`` with ``radius_of_gyration``; ``shaft`` (default the reference)."""
-    table = Table(raw, "flywheel", {"inertia", "mass", "radius_of_gyration", "shaft", "description"})
+    table = Table(raw, "flywheel", {"inertia", "mass", "radius_of_gyration", "shaft", "angles", "description"})
     by_mass = table.has("mass") or table.has("radius_of_gyration")
     if table.has("inertia") and by_mass:
         given = "mass" if table.has("mass") else "radius_of_gyration"
@@ -67,7 +68,29 @@ def read_flywheel(raw: object, shafts: tuple[Shaft, ...]) -> ExistingFlywheel:
         )
     else:
         shaft = names[name]
-    return ExistingFlywheel(inertia, shaft.name, shaft.speed_ratio, mass, radius)
+    return ExistingFlywheel(inertia, shaft.name, shaft.speed_ratio, mass, radius, _angles(table))
+
+
+#: Most angles a [flywheel] may ask the acceleration at.
+MAX_ANGLES = 100
+
+
+def _angles(table: Table) -> tuple[float, ...]:
+    """flywheel.angles: where the check reports the angular acceleration [rad] (the cycle's bounds: at read)."""
+    if not table.has("angles"):
+        return ()
+    raw = table.get("angles")
+    items = raw if isinstance(raw, list) else [raw]
+    if not 1 <= len(items) <= MAX_ANGLES:
+        raise SceneError("flywheel.angles", f'must list 1 to {MAX_ANGLES} angles, e.g. ["45 deg"]')
+    out = []
+    for k, item in enumerate(items):
+        where = f"flywheel.angles[{k}]" if isinstance(raw, list) else "flywheel.angles"
+        value = quantity(item, "angle", where)
+        if not math.isfinite(value):
+            raise SceneError(where, f"must be a finite angle, got {shorten(item)}")
+        out.append(value)
+    return tuple(out)
 
 
 def _positive(table: Table, key: str, dimension: str, bounds: tuple[float, float], unit: str, why: str) -> float:

@@ -364,6 +364,17 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
                     "(a [flywheel] that exists is analysed, not designed)",
                 )
         flywheel = read_flywheel(top.get("flywheel"), shafts)
+        if flywheel.angles and net is not None:
+            raise SceneError(
+                "flywheel.angles",
+                "asks the acceleration at angles, and net areas give no torque over the angle: give the torque curves",
+            )
+        for k, angle in enumerate(flywheel.angles):
+            if not 0.0 <= angle <= cycle * (1.0 + ANGLE_TOLERANCE):
+                raise SceneError(
+                    f"flywheel.angles[{k}]",
+                    f"{math.degrees(angle):.6g} deg is outside the cycle, 0 to {math.degrees(cycle):.6g} deg",
+                )
     title = top.get("title", "")
     if not isinstance(title, str):
         raise SceneError("title", f"must be a string, got {shorten(title)}")

@@ -22,6 +22,9 @@ class ExistingFlywheel:
         ω_shaft / ω_reference of that shaft [-].
     mass, radius_of_gyration : float or None
         [kg], [m], when the wheel was given by them.
+    angles : tuple of float
+        Angles of the reference shaft [rad] at which the check reports the
+        angular acceleration (the book's "when the crank has turned 45°").
     """
 
     inertia: float
@@ -29,13 +32,14 @@ class ExistingFlywheel:
     speed_ratio: float
     mass: float | None = None
     radius_of_gyration: float | None = None
+    angles: tuple[float, ...] = ()
 
     @property
     def j_at_reference(self) -> float:
         """Its inertia moved to the reference shaft, J (ω_shaft/ω)² [kg*m^2]."""
         return inertia_at_reference(self.inertia, self.speed_ratio)
 
-    def to_dict(self) -> dict[str, float | str | None]:
+    def to_dict(self) -> dict[str, float | str | list[float] | None]:
         """The given wheel, SI."""
         return {
             "inertia": self.inertia,
@@ -44,4 +48,5 @@ class ExistingFlywheel:
             "mass": self.mass,
             "radius_of_gyration": self.radius_of_gyration,
             "j_at_reference": self.j_at_reference,
+            "angles": list(self.angles),
         }

@@ -101,6 +101,8 @@ QUANTITIES = {
     # a flywheel that exists ([flywheel]): what it leaves of the speed, and what it is
     "energy_swing": "energy",
     "acceleration_max": "angular_acceleration",
+    "angular_acceleration": "angular_acceleration",  # a [flywheel]'s dω/dt at one of its angles
+    "angles": "angle",
     "acceleration_min": "angular_acceleration",
     "angle_acceleration_max": "angle",
     "angle_acceleration_min": "angle",

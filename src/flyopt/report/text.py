@@ -686,6 +686,8 @@ def flywheel_report(check: FlywheelCheck, units: str = DEFAULT) -> list[str]:
                 f"{q(-check.acceleration_min, 'acceleration_min')} at {q(check.angle_acceleration_min, 'angle')}",
             )
         )
+    for angle, value in check.accelerations_at:  # flywheel.angles: dω/dt where the scene asks it
+        facts.append((f"acceleration at {q(angle, 'angle')}", q(value, "angular_acceleration")))
     if check.delta_allowed is not None:
         if check.suffices:
             verdict = "suffices"

@@ -56,11 +56,13 @@ class FlywheelCheck:
     j_required: float | None = None
     suffices: bool | None = None
     margin: float | None = None
+    accelerations_at: tuple[tuple[float, float], ...] = ()  # (angle [rad], dω/dt [rad/s²]) at flywheel.angles
 
     def to_dict(self) -> dict[str, Any]:
         """The "flywheel" object of ``flyopt solve --json`` (SI)."""
         out = {k: v for k, v in self.__dict__.items() if k != "flywheel"}
         out["given"] = self.flywheel.to_dict()
+        out["accelerations_at"] = [{"angle": a, "angular_acceleration": e} for a, e in self.accelerations_at]
         return out
 
 
@@ -115,6 +117,32 @@ def _golden(f: Any, low: float, high: float) -> tuple[float, float]:
             d = a + ratio * (b - a)
             fd = f(d)
     return (c, fc) if fc >= fd else (d, fd)
+
+
+def net_torque_at(machine: Machine, angles: Any) -> np.ndarray:
+    """M_d − M_r at the reference shaft at ``angles`` [N*m] (the value just after a step, where a torque steps),
+    speed-dependent torques at the mean speed as in :func:`net_torque_extremes`."""
+    balanced = machine.angle_only()
+    x = np.asarray(angles, dtype=float)
+    return np.asarray(balanced.driving.limits(x)[1] - balanced.resisting.limits(x)[1], dtype=float)
+
+
+def solution_acceleration_at(solution: PeriodicSolution, angles: Any) -> np.ndarray:
+    """dω/dt = d(ω²/2)/dφ along a simulated cycle at ``angles`` [rad/s²], interpolated on the differences of
+    :func:`solution_accelerations` (within each piece of the grid, none across a step)."""
+    phi, omega = np.asarray(solution.phi, dtype=float), np.asarray(solution.omega, dtype=float)
+    cuts = np.flatnonzero(np.diff(phi) <= 0.0) + 1
+    pieces = [
+        (p, np.gradient(0.5 * w**2, p, edge_order=2))
+        for p, w in zip(np.split(phi, cuts), np.split(omega, cuts))
+        if len(p) >= 3
+    ]
+    out = []
+    for x in np.atleast_1d(np.asarray(angles, dtype=float)):
+        # the piece that holds x (the later one at a shared knot: the value just after a step)
+        piece = next((p for p in reversed(pieces) if p[0][0] <= x <= p[0][-1]), pieces[-1])
+        out.append(float(np.interp(x, piece[0], piece[1])))
+    return np.asarray(out)
 
 
 def solution_accelerations(solution: PeriodicSolution) -> tuple[float, float, float, float]:

@@ -80,6 +80,13 @@ class ExistingFlywheelSection(BuilderBase):
                 rows.append(
                     (label, (self.q(value, "angular_acceleration", "acceleration_max"), " at ", self.q(angle, "angle")))
                 )
+        for angle, value in check.accelerations_at:  # flywheel.angles: dω/dt where the scene asks it
+            rows.append(
+                (
+                    ("acceleration at ", self.q(angle, "angle")),
+                    self.q(value, "angular_acceleration", "angular_acceleration"),
+                )
+            )
         blocks.append(Facts(tuple(rows), "flywheel"))
         if check.delta_allowed is None:
             return
