@@ -466,15 +466,23 @@ def fem_report(check: FemCheck, units: str = DEFAULT) -> list[str]:
             f"  the two models: FE peak {q(check.peak, 'stress', 4)}, Lamé/arm {q(check.model_peak, 'stress', 4)}: "
             f"the FE is {100 * abs(check.difference):.1f} % {word}"
         )
-    if check.within_allowable is not None:
-        lines.append(
-            "  every part's FE peak is within its allowable stress"
-            if check.within_allowable
-            else "  WARNING: an FE peak exceeds its part's allowable stress (the design was sized by the Lamé/arm "
-            "model; the check reports, it does not re-design)"
-        )
+    verdict = fem_verdict(check)
+    if verdict is not None:
+        lines.append(f"  {verdict}")
     lines += [f"  note: {note}" for note in check.notes]
     return lines
+
+
+def fem_verdict(check: FemCheck) -> str | None:
+    """Whether every FE peak is within its part's allowable, in the words the text and the report both say."""
+    if check.within_allowable is None:
+        return None
+    if check.within_allowable:
+        return "every part's FE peak is within its allowable stress"
+    return (
+        "WARNING: an FE peak exceeds its part's allowable stress (the design was sized by the Lamé/arm model; "
+        "the check reports, it does not re-design)"
+    )
 
 
 def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[str]:

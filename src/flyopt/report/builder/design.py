@@ -375,13 +375,11 @@ class DesignSection(BuilderBase):
                 self.q(check.model_peak, "stress", digits=4),
                 f": the FE is {100 * abs(check.difference):.1f} % {'above' if check.difference >= 0 else 'below'}. ",
             ]
-        if check.within_allowable is not None:
-            text.append(
-                "Every part's FE peak is within its allowable stress."
-                if check.within_allowable
-                else "An FE peak EXCEEDS its part's allowable stress: the design was sized by the Lamé/arm model, "
-                "and the check reports; it does not re-design."
-            )
+        from flyopt.report.text import fem_verdict
+
+        verdict = fem_verdict(check)
+        if verdict is not None:
+            text.append(verdict[:1].upper() + verdict[1:] + ".")
         text += [f" Note: {note}." for note in check.notes]
         if text:
             blocks.append(Paragraph(tuple(text), "warning" if check.within_allowable is False else "note"))
