@@ -75,3 +75,36 @@ def test_a_magnitude_beyond_any_wheel_is_refused_in_one_line(data, field, words)
     with pytest.raises(SceneError) as err:
         from_dict(data)
     assert err.value.field == field and words in str(err.value)
+
+
+@pytest.mark.parametrize(
+    ("data", "field", "words"),
+    [
+        (_with("khurmi-16-14-book-rim.toml", "design", "rim_share", 1e-300), "design.rim_share", "[0.01, 1]"),
+        (
+            {
+                "machine": {"speed": "120 rpm", "delta": 0.05},
+                "torque": {
+                    "net": {
+                        "areas": [1.0, -1.0],
+                        "area_unit": "1e300 mm^2",
+                        "torque_scale": "1 N*m/mm",
+                        "angle_scale": "1 deg/mm",
+                    }
+                },
+            },
+            "torque.net.areas[0]",
+            "beyond any machine's cycle",
+        ),
+        (
+            {"machine": {"speed": "120 rpm", "delta": 0.05}, "torque": {"net": {"areas": ["1e300 J", "-1e300 J"]}}},
+            "torque.net.areas[0]",
+            "beyond any machine's cycle",
+        ),
+    ],
+)
+def test_found_by_the_gallerys_hostile_run(data, field, words):
+    """A rim giving 1e-300 of J_F designed a massless rim (exit 1); areas to a huge scale overflowed the sums."""
+    with pytest.raises(SceneError) as err:
+        from_dict(data)
+    assert err.value.field == field and words in str(err.value)

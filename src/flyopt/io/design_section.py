@@ -129,10 +129,10 @@ def read_design(
         options["d_mean"] = 2.0 * _radius_of_gyration(table, options)
     if table.has("rim_share"):
         share = table.quantity("rim_share", "dimensionless", required=True)
-        if not 0 < share <= 1:
+        if not MIN_RIM_SHARE <= share <= 1:
             raise SceneError(
                 "design.rim_share",
-                f'must lie in (0, 1] (the share of the inertia the rim gives, e.g. 0.9 or "95 %"), '
+                f'must lie in [{MIN_RIM_SHARE:g}, 1] (the share of the inertia the rim gives, e.g. 0.9 or "95 %"), '
                 f"got {shorten(table.raw('rim_share'))}",
             )
         options["rim_share"] = share
@@ -180,6 +180,9 @@ def read_design(
 
 #: Allowed H/B [-]: beyond it a rim's other section runs to kilometres or to nothing.
 HB_RANGE = (1e-3, 1e3)
+
+#: Smallest design.rim_share [-]: a rim that gives less is no flywheel's rim (the books' shares are 85-95 %).
+MIN_RIM_SHARE = 0.01
 
 #: Largest design.round_to [m]: a coarser step is no manufacturing step for a flywheel.
 MAX_ROUND_TO = 0.1

@@ -122,6 +122,10 @@ def read_curve(
     return angle_curve(table.get("points"), f"{where}.points", cycle, unit, angle_unit)
 
 
+#: Largest energy one net area may make [J] (a machine's cycle is far below: beyond it the sums overflow).
+MAX_AREA_ENERGY = 1e15
+
+
 def read_net_areas(section: object) -> NetAreas:
     """[torque.net]: the signed areas between the curves, as energies [J] (or a drawing's areas and scales)."""
     table = Table(
@@ -155,6 +159,13 @@ def read_net_areas(section: object) -> NetAreas:
             energies.append(factor * quantity(a, "dimensionless", f"torque.net.areas[{k}]"))
     else:
         energies = [quantity(a, "energy", f"torque.net.areas[{k}]") for k, a in enumerate(areas)]
+    for k, energy in enumerate(energies):
+        if not abs(energy) <= MAX_AREA_ENERGY:  # NaN too
+            raise SceneError(
+                f"torque.net.areas[{k}]",
+                f"{shorten(areas[k])} makes {energy:.3g} J (allowed: at most {MAX_AREA_ENERGY:g} J in size, "
+                "beyond any machine's cycle; check the drawing scales)",
+            )
     work = table.quantity("work_per_cycle", "energy")
     if work is not None and not (math.isfinite(work) and work > 0):
         raise SceneError("torque.net.work_per_cycle", f"must be positive, got {shorten(table.raw('work_per_cycle'))}")
