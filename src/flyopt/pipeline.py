@@ -267,7 +267,11 @@ def _with_delta_sensitivity(
         try:
             moved = analyse(dataclasses.replace(scene, delta=delta), Model(analysis.model), like=analysis)
             inputs = design_inputs(dataclasses.replace(scene, delta=delta))
-            spec = inputs.spec if best.n_arms is None else dataclasses.replace(inputs.spec, arms=(best.n_arms,))
+            # the continuous design's slope: a rounded wheel's mass steps with the grid, and rounding it
+            # twice more would only cost solves
+            spec = dataclasses.replace(inputs.spec, round_to=None)
+            if best.n_arms is not None:
+                spec = dataclasses.replace(spec, arms=(best.n_arms,))
             torque = moved.flywheel_torque() if needs_torque(inputs) else None
             again = design_flywheel(
                 moved.j_margin,
@@ -291,7 +295,8 @@ def _with_delta_sensitivity(
         "unit": "-",
         "dmass_dlimit": slope,
         "text": f"delta: +0.01 (e.g. {scene.delta:.3g} to {scene.delta + 0.01:.3g}) changes the mass "
-        f"by {slope * 0.01:+.3g} kg (central difference of the whole design)",
+        f"by {slope * 0.01:+.3g} kg (central difference of the whole "
+        f"{'continuous ' if result.spec.round_to is not None else ''}design)",
     }
     limits = dataclasses.replace(best.limits, sensitivities=best.limits.sensitivities + (entry,))
     winner = dataclasses.replace(best, limits=limits)
