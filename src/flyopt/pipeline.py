@@ -22,6 +22,7 @@ if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
 
     from flyopt.design.materials import Material
     from flyopt.design.result import DesignResult
+    from flyopt.design.spec import StressFactor
     from flyopt.drive.codesign import DriveCheck, DriveDesign
     from flyopt.io.scene import Scene
     from flyopt.machine.crank_forces import CrankForces
@@ -225,12 +226,24 @@ def design_scene(
         torque=torque,
         omega_mean=analysis.omega_mean,
     )
-    result = _with_delta_sensitivity(scene, analysis, result, solver_options, method)
-    if not result.spec.fem_check:
-        return result
-    from flyopt.design.fem import check_result  # numpy, and scikit-fem when it runs
+    if result.spec.fem_check:
+        from flyopt.design.fem import accept  # numpy, and scikit-fem when it runs
 
-    return check_result(result, inputs.materials)
+        def redesign(factors: tuple[StressFactor, ...]) -> DesignResult:
+            return design_flywheel(
+                analysis.j_margin,
+                analysis.omega_max,
+                inputs.shafts,
+                inputs.materials,
+                replace(inputs.spec, stress_factors=factors),
+                solver_options=solver_options,
+                method=method,
+                torque=torque,
+                omega_mean=analysis.omega_mean,
+            )
+
+        result = accept(result, inputs.materials, redesign)
+    return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
 
 
 #: Relative step of the central difference of the design's mass in delta.
@@ -269,7 +282,7 @@ def _with_delta_sensitivity(
             inputs = design_inputs(dataclasses.replace(scene, delta=delta))
             # the continuous design's slope: a rounded wheel's mass steps with the grid, and rounding it
             # twice more would only cost solves
-            spec = dataclasses.replace(inputs.spec, round_to=None)
+            spec = dataclasses.replace(inputs.spec, round_to=None, stress_factors=result.spec.stress_factors)
             if best.n_arms is not None:
                 spec = dataclasses.replace(spec, arms=(best.n_arms,))
             torque = moved.flywheel_torque() if needs_torque(inputs) else None

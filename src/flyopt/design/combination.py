@@ -15,7 +15,7 @@ import math
 from dataclasses import dataclass
 
 from flyopt.design.materials import Material
-from flyopt.design.spec import MountShaft
+from flyopt.design.spec import DesignSpec, MountShaft
 
 __all__ = ["Combination", "shaft_label"]
 
@@ -38,6 +38,10 @@ class Combination:
     v_max: float = math.nan  # the material's safe rim speed [m/s] (nan: none, under the stress criterion)
     d_mean: float | None = None  # pinned mean diameter [m]: the spec's, or the courses' rim convention's
     cap_mean: float = math.inf  # the courses' cap on D_m: 2 v_max / omega'_mean [m] (criterion mean_rim_speed)
+
+    def stress_factors(self, spec: DesignSpec) -> dict[str, float]:
+        """This combination's factors on its parts' modelled stresses (the FE acceptance's): part -> factor."""
+        return spec.stress_factors_for(self.material.name, self.shaft.name, self.n_arms)
 
     @property
     def label(self) -> str:

@@ -300,7 +300,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     cost = mass * m.cost if m.cost is not None else None
     objective = _objective(spec.objective, mass, d_outer, cost)
     structure = wheel_design.structure_fields(
-        m, spec.geometry, dims, combo.omega, combo.torque, spec, combo.bore, checked
+        m, spec.geometry, dims, combo.omega, combo.torque, spec, combo.bore, checked, combo.stress_factors(spec)
     )
     limits = {
         "envelope": spec.max_outer_diameter,

@@ -64,7 +64,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -77,6 +77,7 @@ from flyopt.names import Geometry
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
     from flyopt.design.result import Design, DesignResult
+    from flyopt.design.spec import StressFactor
 
 __all__ = [
     "DEFAULT_FILLET_RATIO",
@@ -91,6 +92,9 @@ __all__ = [
     "solve_section",
     "fem_check",
     "check_result",
+    "accept",
+    "judged_parts",
+    "MAX_ACCEPT_ROUNDS",
 ]
 
 #: Default fillet radius at a re-entrant junction, over the thinner section's (full) thickness.
@@ -589,6 +593,9 @@ class FemCheck:
     elements: int
     nodes: int
     notes: tuple[str, ...] = field(default=())
+    accepted_by: str | None = None  # "fem" where the design was accepted against the larger of FE and model
+    stress_factors: tuple[tuple[str, float], ...] = ()  # the factors the accepted design's allowables carry
+    rounds: int = 1  # designs the acceptance made (1: the first was within its allowables)
 
     @property
     def within_allowable(self) -> bool | None:
@@ -615,6 +622,9 @@ class FemCheck:
             "junctions": [j.to_dict() for j in self.junctions],
             "mesh": {"size": self.size, "elements": self.elements, "nodes": self.nodes},
             "notes": list(self.notes),
+            "accepted_by": self.accepted_by,
+            "stress_factors": [{"part": part, "factor": value} for part, value in self.stress_factors],
+            "rounds": self.rounds,
         }
 
 
@@ -636,7 +646,13 @@ def _mesh_size(mesh: str | float) -> float:
 
 
 def fem_check(
-    design: Design, material: Material, omega: float, *, mesh: str | float = "normal", fillet: float | None = None
+    design: Design,
+    material: Material,
+    omega: float,
+    *,
+    mesh: str | float = "normal",
+    fillet: float | None = None,
+    stress_factors: Mapping[str, float] | None = None,
 ) -> FemCheck:
     """The axisymmetric FE check of a designed wheel under its own centrifugal load.
 
@@ -651,6 +667,9 @@ def fem_check(
         "coarse", "normal", "fine", "finer" or a factor on every element size.
     fillet : float or None
         Fillet radius at the junctions [m]; None: :data:`DEFAULT_FILLET_RATIO` x the thinner section.
+    stress_factors : mapping or None
+        The factors the design's allowables were divided by (:attr:`flyopt.design.spec.DesignSpec.stress_factors`):
+        the FE peaks are judged against the material's own allowable, the design's times its factor.
 
     Returns
     -------
@@ -672,6 +691,7 @@ def fem_check(
     measure = "von_mises" if material.ductile else "max_principal"
     governing = result.von_mises if material.ductile else result.max_principal
     model = {p["part"]: p for p in (design.stresses.stress or {}).get("parts", ())}
+    factors = dict(stress_factors or {})
     element_part = np.broadcast_to(result.part[:, None], result.r.shape)
     parts = []
     for k, name in enumerate(sec.names):
@@ -680,7 +700,11 @@ def fem_check(
         mp, mp_at = _argmax(result.max_principal, mask, result.r, result.z)
         theirs = model.get(name)
         model_stress = None if theirs is None else float(theirs["stress"])
-        allowable = None if theirs is None or not theirs.get("allowable") else float(theirs["allowable"])
+        allowable = (
+            None
+            if theirs is None or not theirs.get("allowable")
+            else float(theirs["allowable"]) * factors.get(name, 1.0)
+        )
         mine = vm if material.ductile else mp
         parts.append(
             PartPeak(
@@ -761,3 +785,97 @@ def check_result(result: DesignResult, materials: Sequence[Material], *, mesh: s
     material = next(m for m in materials if m.name == best.material)
     check = fem_check(best, material, result.omega * best.speed_ratio, mesh=mesh)
     return dataclasses.replace(result, fem=check)
+
+
+#: Designs the FE acceptance makes at most before it gives up (the first included).
+MAX_ACCEPT_ROUNDS = 6
+
+#: A part's FE peak is within its allowable up to this relative excess (the FE's own accuracy on the
+#: "normal" mesh: tests/design/test_fem.py reproduces the closed forms to 1e-3).
+ACCEPT_RTOL = 1e-3
+
+#: Margin a new factor carries above the concentration found, so that the next design lands inside.
+ACCEPT_MARGIN = 2e-3
+
+
+def judged_parts(design: Design) -> tuple[str, ...]:
+    """The parts the FE acceptance judges: every part of a body of revolution; of an arms wheel only its hub
+    (its arms and rim are judged by the texts' beams, which the FE's equivalent web cannot represent)."""
+    names = tuple(p["part"] for p in (design.stresses.stress or {}).get("parts", ()))
+    return ("hub",) if design.geometry == Geometry.RIM_ARMS and "hub" in names else names
+
+
+def accept(
+    result: DesignResult,
+    materials: Sequence[Material],
+    redesign: Callable[[tuple[StressFactor, ...]], DesignResult],
+    *,
+    mesh: str | float = "normal",
+) -> DesignResult:
+    """The design accepted against the larger of the FE peak and the Lamé/arm model (``[design] fem_check``).
+
+    The best design is checked by FE (:func:`fem_check`). Where a judged part's FE peak exceeds the
+    material's allowable (by more than :data:`ACCEPT_RTOL`), the concentration the FE found in that part
+    (FE peak / the model's stress, and at least a step above the factor it had) becomes that part's factor
+    for that combination (material, shaft, arm count), and every combination is designed again
+    (``redesign``) with the part's allowable divided by its factor: the model's stress times the
+    concentration, the larger of the two opinions, stays within the allowable. The new best is checked in turn: a combination the FE has not
+    checked carries no factor and is checked when it wins. So the design reported is within its allowables
+    by both models, and no combination the FE accepted is lighter. At most :data:`MAX_ACCEPT_ROUNDS` designs.
+
+    Parameters
+    ----------
+    result : flyopt.design.result.DesignResult
+        The first design (its spec's ``stress_factors`` none).
+    materials : sequence of Material
+    redesign : callable
+        The same design with the given stress factors.
+    mesh : str or float
+        As :func:`fem_check`.
+
+    Returns
+    -------
+    DesignResult
+        The accepted design with its FE check (``fem.accepted_by == "fem"``, ``fem.stress_factors`` its own
+        combination's); a result without a design (no wheel meets the limits with the factors) as the
+        designer gives it.
+
+    Raises
+    ------
+    flyopt.errors.SolverFailed
+        The FE peaks did not come within the allowables in :data:`MAX_ACCEPT_ROUNDS` designs.
+    """
+    from flyopt.design.spec import StressFactor
+    from flyopt.errors import SolverFailed
+
+    factors = {(f.material, f.shaft, f.n_arms, f.part): f.factor for f in result.spec.stress_factors}
+    over: dict[str, tuple[float, float | None]] = {}
+    for rounds in range(1, MAX_ACCEPT_ROUNDS + 1):
+        best = result.best
+        if best is None:
+            return result
+        material = next(m for m in materials if m.name == best.material)
+        combo = (best.material, best.shaft, best.n_arms or 0)
+        own = result.spec.stress_factors_for(*combo)
+        check = fem_check(best, material, result.omega * best.speed_ratio, mesh=mesh, stress_factors=own)
+        judged = judged_parts(best)
+        over = {
+            p.part: (p.utilisation, p.ratio)
+            for p in check.parts
+            if p.part in judged and p.utilisation is not None and p.utilisation > 1.0 + ACCEPT_RTOL
+        }
+        if not over:
+            accepted = dataclasses.replace(
+                check, accepted_by="fem", stress_factors=tuple(sorted(own.items())), rounds=rounds
+            )
+            return dataclasses.replace(result, fem=accepted)
+        for part, (_excess, ratio) in over.items():
+            key = (*combo, part)
+            # the concentration FE / model on this wheel, and at least a step above the factor that let it over
+            factors[key] = max(factors.get(key, 1.0), ratio or 1.0) * (1.0 + ACCEPT_MARGIN)
+        result = redesign(tuple(StressFactor(*key, value) for key, value in sorted(factors.items())))
+    worst = ", ".join(f"{part} {excess:.4g} x its allowable" for part, (excess, _ratio) in sorted(over.items()))
+    raise SolverFailed(
+        f"the FE check did not accept the wheel in {MAX_ACCEPT_ROUNDS} designs: its FE peaks still exceed the "
+        f"allowables ({worst}); no design is reported"
+    )

@@ -121,7 +121,13 @@ def _whole_violations(
             found.append(f"{name} ({value:.9g} outside [{lo:.9g}, {hi:.9g}])")
     if spec.criterion == Criterion.STRESS:
         checked = strength.check_wheel(
-            combo.material, spec.geometry, dims, combo.omega, combo.torque, spec.safety_factor
+            combo.material,
+            spec.geometry,
+            dims,
+            combo.omega,
+            combo.torque,
+            spec.safety_factor,
+            combo.stress_factors(spec),
         )
         found += [
             f"{part.part} stress {part.stress / 1e6:.9g} MPa > allowable {part.allowable / 1e6:.9g} MPa"
@@ -299,7 +305,15 @@ def _rounded_design(
     """The continuous design's record at the rounded dimensions: its mass, inertia, parts and stresses anew."""
     material = combo.material
     structure = wheel_design.structure_fields(
-        material, spec.geometry, dims, combo.omega, combo.torque, spec, dims.bore or 0.0
+        material,
+        spec.geometry,
+        dims,
+        combo.omega,
+        combo.torque,
+        spec,
+        dims.bore or 0.0,
+        None,
+        combo.stress_factors(spec),
     )
     bare_disc = spec.geometry == Geometry.DISC and spec.textbook(float(dims.bore or 0.0))
     h = float(dims.h)

@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 from flyopt.design import geometry
 from flyopt.names import Criterion, Geometry, Objective
 from flyopt.validate import choice, finite, positive
 
-__all__ = ["OBJECTIVES", "CRITERIA", "MountShaft", "DesignSpec"]
+__all__ = ["OBJECTIVES", "CRITERIA", "MountShaft", "DesignSpec", "StressFactor"]
 
 #: Objectives understood by :func:`design_flywheel`.
 OBJECTIVES = {
@@ -79,6 +79,16 @@ class MountShaft:
             object.__setattr__(self, "diameter", _positive(self.diameter, f"shaft {self.name!r}: diameter", "[m]"))
 
 
+class StressFactor(NamedTuple):
+    """A factor on the modelled stress of one part of one combination's wheel (the FE check's concentration)."""
+
+    material: str
+    shaft: str
+    n_arms: int
+    part: str
+    factor: float
+
+
 @dataclass(frozen=True)
 class DesignSpec:
     """What the design must satisfy and optimize, shared by every combination.
@@ -135,6 +145,16 @@ class DesignSpec:
         Whether ``flyopt solve`` checks the best design by the axisymmetric
         finite-element model (:func:`flyopt.design.fem.fem_check`; needs the
         ``fem`` extra) and reports it beside the Lamé/arm model (default False).
+        The design is then accepted against the larger of the two: where a
+        part's FE peak exceeds its allowable, the wheel is designed again with
+        that part's allowable divided by the concentration the FE found
+        (``stress_factors``), until the FE peaks are within the allowables
+        (:func:`flyopt.design.fem.accept`).
+    stress_factors : tuple of StressFactor
+        A factor >= 1 on the modelled stress of one part of one combination
+        (the concentration the FE check found on that combination's wheel):
+        the part's allowable is divided by it. Set by the FE acceptance, not
+        by a scene (default: none).
 
     Raises
     ------
@@ -160,6 +180,15 @@ class DesignSpec:
     rim_share: float = 1.0
     prune: bool = True
     fem_check: bool = False
+    stress_factors: tuple[StressFactor, ...] = ()
+
+    def stress_factors_for(self, material: str, shaft: str, n_arms: int = 0) -> dict[str, float]:
+        """The :attr:`stress_factors` of one combination (material and shaft names, arm count): part -> factor."""
+        return {
+            f.part: f.factor
+            for f in self.stress_factors
+            if (f.material, f.shaft, f.n_arms) == (material, shaft, n_arms)
+        }
 
     def textbook(self, bore: float | None = None) -> bool:
         """Whether this is the textbook design: a bare wheel without a bore sized by the rim speed limit
@@ -255,6 +284,10 @@ class DesignSpec:
             raise ValueError(f"prune must be true or false, got {self.prune!r}")
         if not isinstance(self.fem_check, bool):
             raise ValueError(f"fem_check must be true or false, got {self.fem_check!r}")
+        factors = tuple(StressFactor(*f) for f in self.stress_factors)
+        if any(not finite(f.factor, "a stress factor [-]") >= 1.0 for f in factors):
+            raise ValueError(f"stress_factors must be >= 1 (a concentration on the modelled stress), got {factors!r}")
+        object.__setattr__(self, "stress_factors", tuple(sorted(factors)))
         if self.min_wall is not None:
             object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
         if self.round_to is not None:

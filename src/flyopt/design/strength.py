@@ -27,6 +27,7 @@ References
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -112,7 +113,11 @@ def _strength_thickness(material, part_wall, all_walls):
 
 
 def allowables(
-    material: Material, geometry_name: str, dims: wheel.Dims, safety_factor: float | None = None
+    material: Material,
+    geometry_name: str,
+    dims: wheel.Dims,
+    safety_factor: float | None = None,
+    stress_factors: Mapping[str, float] | None = None,
 ) -> dict[str, tuple[float, float, float]]:
     """Allowable stress and strength of every stressed part of a wheel.
 
@@ -124,16 +129,21 @@ def allowables(
         Floats.
     safety_factor : float or None
         The design's factor on strength (None: the material's default).
+    stress_factors : mapping or None
+        Part -> factor >= 1 on the modelled stress (the FE check's concentration,
+        :attr:`flyopt.design.spec.DesignSpec.stress_factors`): that part's allowable is divided by it,
+        so that the model's stress times the factor stays within the material's allowable.
 
     Returns
     -------
     dict of str to (allowable [Pa], strength [Pa], wall [m])
     """
     walls = wheel.walls(geometry_name, dims)
+    factors = stress_factors or {}
     out = {}
     for part, wall in walls.items():
         thickness = _strength_thickness(material, wall, walls)
-        allowable = material.allowable(thickness=thickness, safety_factor=safety_factor)
+        allowable = material.allowable(thickness=thickness, safety_factor=safety_factor) / factors.get(part, 1.0)
         tensile, yield_ = material.strength(thickness)
         strength = yield_ if material.ductile and yield_ is not None else tensile
         out[part] = (allowable, strength if strength is not None else math.nan, wall)
@@ -147,6 +157,7 @@ def check_wheel(
     omega: float,
     torque: float,
     safety_factor: float | None = None,
+    stress_factors: Mapping[str, float] | None = None,
 ) -> StrengthCheck:
     """Every part's governing stress at omega, the burst speed and the margins.
 
@@ -162,6 +173,8 @@ def check_wheel(
     torque : float
         The peak torque the wheel exchanges with its shaft [N*m].
     safety_factor : float or None
+    stress_factors : mapping or None
+        As :func:`allowables`: each part's allowable divided by its factor.
 
     Returns
     -------
@@ -171,7 +184,7 @@ def check_wheel(
     ductile = bool(material.ductile)
     measure = "von_mises" if ductile else "largest_principal"
     state = wheel.stress_state(geometry_name, dims, rho, nu, omega, torque)
-    limits = allowables(material, geometry_name, dims, safety_factor)
+    limits = allowables(material, geometry_name, dims, safety_factor, stress_factors)
     worst: dict[str, tuple[float, float]] = {}
     hoop, radial, vm, principal = -math.inf, -math.inf, -math.inf, -math.inf
 

@@ -359,7 +359,8 @@ def design_combination(
     screen(combo, spec, bore)
     material, geo = combo.material, spec.geometry
     stressed = spec.criterion == Criterion.STRESS
-    exact = _disc_closed_form(combo, spec, bore, material) if method != Method.IPOPT and not fixed else None
+    closed = method != Method.IPOPT and not fixed and not combo.stress_factors(spec)
+    exact = _disc_closed_form(combo, spec, bore, material) if closed else None
     if exact is not None:
         dims, solution = exact
         return dims, solution, strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
@@ -375,10 +376,14 @@ def design_combination(
     if stressed:
         try:
             targets = {
-                p: a for p, (a, _s, _w) in strength.allowables(material, geo, start_dims, spec.safety_factor).items()
+                p: a
+                for p, (a, _s, _w) in strength.allowables(
+                    material, geo, start_dims, spec.safety_factor, combo.stress_factors(spec)
+                ).items()
             }
         except ThicknessOutOfRange:  # the starting wheel is thicker than the table: its weakest row
-            targets = {p: material.allowable(safety_factor=spec.safety_factor) for p in parts}
+            factors = combo.stress_factors(spec)
+            targets = {p: material.allowable(safety_factor=spec.safety_factor) / factors.get(p, 1.0) for p in parts}
     table_end = _table_end(material) if stressed else None
     best, tried, queue = None, set(), [()]
     while queue:  # the unconstrained wheel first, then sections capped at the table's end
@@ -492,7 +497,9 @@ def _settle(model, problem, combo, material, geo, spec, torque, parts, used, tab
         dims = solution.dims
         try:
             checked = (
-                strength.check_wheel(material, geo, dims, combo.omega, torque, spec.safety_factor)
+                strength.check_wheel(
+                    material, geo, dims, combo.omega, torque, spec.safety_factor, combo.stress_factors(spec)
+                )
                 if getattr(material, "poisson_ratio", None) is not None
                 else None
             )
@@ -617,6 +624,7 @@ def structure_fields(
     spec: DesignSpec,
     bore: float,
     checked: StrengthCheck | None = None,
+    stress_factors: Mapping[str, float] | None = None,
 ) -> Structure:
     """The structure of a design (any geometry, any criterion): its parts, key, speed and stresses.
 
@@ -627,7 +635,8 @@ def structure_fields(
         hoop stress at ``omega`` and the wheel's stresses, None where the
         material lacks what they need) and ``notes`` (why). ``checked``: the
         :func:`flyopt.design.strength.check_wheel` of these dims, when the
-        designer has made it already (it is not made twice).
+        designer has made it already (it is not made twice). ``stress_factors``: the combination's factors on
+        its parts' modelled stresses (:meth:`flyopt.design.combination.Combination.stress_factors`).
     """
     notes: list[str] = []
     parts = wheel.parts(geometry_name, dims, material.density)
@@ -657,7 +666,9 @@ def structure_fields(
     else:
         try:
             if checked is None:
-                checked = strength.check_wheel(material, geometry_name, dims, omega, torque, spec.safety_factor)
+                checked = strength.check_wheel(
+                    material, geometry_name, dims, omega, torque, spec.safety_factor, stress_factors
+                )
         except ValueError as err:
             notes.append(f"stresses not computed: {err}")
         else:

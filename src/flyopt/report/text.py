@@ -474,15 +474,31 @@ def fem_report(check: FemCheck, units: str = DEFAULT) -> list[str]:
 
 
 def fem_verdict(check: FemCheck) -> str | None:
-    """Whether every FE peak is within its part's allowable, in the words the text and the report both say."""
+    """Whether every FE peak is within its part's allowable, and how the design was accepted, in the words the
+    text and the report both say."""
     if check.within_allowable is None:
         return None
+    accepted = check.accepted_by == "fem"
     if check.within_allowable:
-        return "every part's FE peak is within its allowable stress"
-    return (
-        "WARNING: an FE peak exceeds its part's allowable stress (the design was sized by the Lamé/arm model; "
-        "the check reports, it does not re-design)"
-    )
+        text = "every part's FE peak is within its allowable stress"
+    elif accepted:  # an arms wheel: its arms and rim are the equivalent web's in the FE, judged by the beams
+        text = (
+            "the hub's FE peak is within its allowable stress (the arms and the rim are judged by the texts' "
+            "beams: the FE's equivalent web cannot represent them)"
+        )
+    else:
+        return (
+            "WARNING: an FE peak exceeds its part's allowable stress (the design was sized by the Lamé/arm model; "
+            "the check reports, it does not re-design: [design] fem_check = true accepts against the larger)"
+        )
+    if not accepted:
+        return text
+    text += "; the design is accepted against the larger of the FE peak and the Lamé/arm model"
+    if check.stress_factors:
+        factors = ", ".join(f"the {part}'s divided by {factor:.3f}" for part, factor in check.stress_factors)
+        designs = "design" if check.rounds == 1 else "designs"
+        text += f" (allowable of {factors}, the concentration the FE found; {check.rounds} {designs})"
+    return text
 
 
 def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[str]:
