@@ -208,9 +208,10 @@ def design_scene(
         design failed its verification against the constraints.
     """
     from flyopt.design import design_flywheel, design_inputs
+    from flyopt.design.inputs import builds_whole, one_design
     from flyopt.design.wheel_design import needs_torque
 
-    inputs = design_inputs(scene)
+    inputs = one_design(design_inputs(scene))
     # the rim is checked at the highest speed of the cycle, from the model that ran (for a motor
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
@@ -243,6 +244,10 @@ def design_scene(
             )
 
         result = accept(result, inputs.materials, redesign)
+    elif result.spec.fem_check is None and builds_whole(inputs):
+        from flyopt.design.fem import check_result  # numpy and scikit-fem
+
+        result = check_result(result, inputs.materials)
     return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
 
 
@@ -309,7 +314,7 @@ def _with_delta_sensitivity(
         "dmass_dlimit": slope,
         "text": f"delta: +0.01 (e.g. {scene.delta:.3g} to {scene.delta + 0.01:.3g}) changes the mass "
         f"by {slope * 0.01:+.3g} kg (central difference of the whole "
-        f"{'continuous ' if result.spec.round_to is not None else ''}design)",
+        f"{'continuous ' if result.spec.round_to else ''}design)",
     }
     limits = dataclasses.replace(best.limits, sensitivities=best.limits.sensitivities + (entry,))
     winner = dataclasses.replace(best, limits=limits)

@@ -160,7 +160,7 @@ def test_solve_and_the_report_show_the_continuous_optimum_beside_the_rounded_whe
         (PROBLEMS / "rim-sizing.toml").read_text(encoding="utf-8").replace("[design]", '[design]\nround_to = "1 mm"', 1)
     )
     scene.write_text(text, encoding="utf-8")
-    words = "rounded to 1 mm (design.round_to): +8.07 kg (+1.70%) over the continuous optimum: 475 kg"
+    words = "rounded to 1 mm (design.round_to): +8.07 kg (+1.70 %) over the continuous optimum: 475 kg"
     run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
     assert run.returncode == 0 and words in run.stdout, run.stderr
     out = tmp_path / "rounded.html"

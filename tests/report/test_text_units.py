@@ -458,6 +458,17 @@ PLAIN_NUMBERS = [
     rf"ratio [-+−]?{NUM}",
     rf"δ \+{NUM}",
     rf"arms: {NUM}",
+    rf"{NUM} dimensions rounded",
+    rf"the {NUM} corners",
+    rf"\({NUM} solves\)",
+    rf"r_f = {NUM} x",
+    rf"\({NUM} wheels on the grid",
+    rf"{NUM} quadratic triangles",
+    rf"hub-web {NUM}",
+    rf"web-rim {NUM}",
+    rf"hub-arms {NUM}",
+    rf"arms-rim {NUM}",
+    rf"hub-disc {NUM}",
 ]
 
 

@@ -581,7 +581,7 @@ def design_flywheel(
     ranked, infeasible, best = _rank(decided)
     description = _describe_model(spec, wheel_model if wheel_model is not None else model)
     result = _result(j_required, omega, spec, ranked, best, infeasible, decided, description, omega_mean)
-    if spec.round_to is not None and best is not None:
+    if spec.round_to and best is not None:
         order = next(o for o, c in decided.feasible if c is best)
         result = _rounded(result, Combination(**{**combos[order].__dict__, "n_arms": best.n_arms or 0}), spec)
     return result
@@ -594,6 +594,12 @@ def _rounded(result: DesignResult, combo: Combination, spec: DesignSpec) -> Desi
 
     best = cast(Design, result.best)
     rounded, words = rounding.round_design(best, combo, spec, cast(float, spec.round_to))
+    if rounded is None and not spec.round_strict:  # the default step: the continuous optimum stands, said so
+        return dataclasses.replace(
+            result,
+            rounding=f"NOT rounded ({words}): the continuous optimum is the design; give design.round_to "
+            "a coarser step, or round_to = false to ask for the continuous optimum",
+        )
     if rounded is None:
         return dataclasses.replace(
             result,

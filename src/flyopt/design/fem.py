@@ -47,7 +47,7 @@ The closed forms first (tests/design/test_fem.py): a thin steel disc
 at the centre solid, 160.13 MPa hoop at a 0.05 m bore and 64.72 MPa radial
 maximum, to 1e-3, converging as the mesh is refined.
 
-scikit-fem is an optional dependency (``pip install flyopt[fem]``), imported
+scikit-fem is a dependency of flyopt (pure Python on numpy and scipy), imported
 here only when a check runs.
 
 References
@@ -119,7 +119,7 @@ def _skfem():
     try:
         import skfem  # type: ignore[import-untyped]  # scikit-fem ships no stubs
     except ImportError as err:
-        raise ImportError("the FEM check needs scikit-fem: pip install 'flyopt[fem]'") from err
+        raise ImportError("the FEM check needs scikit-fem, a dependency of flyopt: pip install scikit-fem") from err
     return skfem
 
 
@@ -224,7 +224,7 @@ def section(design: Design, fillet: float | None = None) -> Section:
     if fillet is None and any(fillets):
         notes.append(
             f"fillets not given by the design: r_f = {DEFAULT_FILLET_RATIO:g} x the thinner section at each junction "
-            f"({', '.join(f'{f * 1e3:.3g} mm' for f in fillets if f)})"
+            "(each junction's radius is given with its factor)"
         )
     return Section(tuple(radii), tuple(thicknesses), tuple(names), tuple(fillets), tuple(notes))
 
@@ -678,7 +678,7 @@ def fem_check(
     Raises
     ------
     ImportError
-        Without scikit-fem (``pip install 'flyopt[fem]'``).
+        Without scikit-fem (a dependency of flyopt, missing from this environment).
     ValueError
         A material without Poisson's ratio; an unknown mesh.
     """
@@ -758,7 +758,7 @@ def fem_check(
 
 
 def check_result(result: DesignResult, materials: Sequence[Material], *, mesh: str | float = "normal") -> DesignResult:
-    """The design result with its best design's FE check (``result.fem``), when its spec asks for one.
+    """The design result with its best design's FE check (``result.fem``), reported beside the Lamé/arm model.
 
     Parameters
     ----------
@@ -771,18 +771,21 @@ def check_result(result: DesignResult, materials: Sequence[Material], *, mesh: s
     Returns
     -------
     DesignResult
-        ``result`` itself unless ``result.spec.fem_check`` and a design exist.
+        ``result`` itself where there is no design, ``fem_check`` is false, or the best design's material
+        gives no Poisson's ratio (no stress model, so nothing to compare: a whole wheel's design needs one).
 
     Notes
     -----
-    The check reports; it does not re-design. A design whose FE peak exceeds an allowable stress is
-    still the design, and the check says so (:attr:`FemCheck.within_allowable`): the FE peaks sit in
-    fillets the design does not choose, so the NLP cannot act on them.
+    The check reports; it does not re-design (that is :func:`accept`, ``fem_check = true``). A design
+    whose FE peak exceeds an allowable stress is still the design, and the check says so
+    (:attr:`FemCheck.within_allowable`).
     """
     best = result.best
-    if not result.spec.fem_check or best is None:
+    if result.spec.fem_check is False or best is None:
         return result
     material = next(m for m in materials if m.name == best.material)
+    if material.poisson_ratio is None:
+        return result
     check = fem_check(best, material, result.omega * best.speed_ratio, mesh=mesh)
     return dataclasses.replace(result, fem=check)
 

@@ -19,7 +19,7 @@ if TYPE_CHECKING:  # annotations only
     from flyopt.design.materials import Material
     from flyopt.io.scene import Scene
 
-__all__ = ["DesignInputs", "design_inputs"]
+__all__ = ["DesignInputs", "design_inputs", "builds_whole", "one_design"]
 
 
 @dataclass(frozen=True)
@@ -64,6 +64,33 @@ def design_inputs(scene: Scene) -> DesignInputs:
     spec = scene.design if scene.design is not None else DesignSpec()
     _check_own_materials(scene, materials, spec)
     return DesignInputs(materials=materials, shafts=shafts, spec=spec)
+
+
+def builds_whole(inputs: DesignInputs) -> bool:
+    """Whether a design problem has a combination flyopt designs as a whole wheel (a web or arms and a hub, a
+    bore, or any wheel under the stress criterion), not as the textbook's bare rim or disc
+    (:meth:`flyopt.design.spec.DesignSpec.textbook`)."""
+    from flyopt.design.wheel_design import bore_of
+
+    return any(not inputs.spec.textbook(bore_of(inputs.spec, s)) for s in inputs.shafts)
+
+
+def one_design(inputs: DesignInputs) -> DesignInputs:
+    """The design problem of one design (``flyopt solve``, ``report``, ``export``): a wheel flyopt designs whole
+    (:func:`builds_whole`) is rounded to whole millimetres (:data:`flyopt.design.spec.DEFAULT_ROUND_TO`)
+    unless the scene gives its own step or ``round_to = false``; where no wheel near the optimum on that
+    grid meets every limit, the continuous optimum stays the design and the reason is given
+    (``round_strict`` False), where a step the scene gave makes the design infeasible. Sweeps, Pareto fronts, the trade-off and the
+    drive's co-design compare continuous designs and do not come here. A textbook design stays as the books
+    make it."""
+    import dataclasses
+
+    from flyopt.design.spec import DEFAULT_ROUND_TO
+
+    if inputs.spec.round_to is not None or not builds_whole(inputs):
+        return inputs
+    spec = dataclasses.replace(inputs.spec, round_to=DEFAULT_ROUND_TO, round_strict=False)
+    return dataclasses.replace(inputs, spec=spec)
 
 
 def _check_own_materials(scene: Scene, materials: tuple[Material, ...], spec: DesignSpec) -> None:
@@ -113,7 +140,7 @@ def single_design_only(spec: DesignSpec, what: str, source: str | None = None) -
             f"pins one rim's mean diameter at the mean speed (solve, report, tradeoff); {what} does not know it: "
             "give d_mean (2 v / omega'_m) instead",
         ).with_source(source)
-    if spec.round_to is not None:
+    if spec.round_to:
         raise SceneError(
             "design.round_to",
             f"rounds one winning wheel (solve, report); {what} reports continuous designs: leave it out",

@@ -486,9 +486,9 @@ class DesignResult:
         (:func:`flyopt.design.fem.fem_check`), where the spec asks for it
         (``fem_check``); None otherwise.
     continuous : Design or None
-        With ``spec.round_to``: the continuous optimum the rounded ``best`` comes from.
+        With a ``spec.round_to``: the continuous optimum the rounded ``best`` comes from.
     rounding : str or None
-        With ``spec.round_to``: what rounding did, in words.
+        With a ``spec.round_to``: what rounding did, in words.
     """
 
     status: str
@@ -544,7 +544,7 @@ class DesignResult:
                 design[name] = design[name] or []
             design["fem"] = self.fem.to_dict() if self.fem is not None else None
             design["candidates"] = [c.to_dict(timings) for c in self.candidates]
-            if self.spec.round_to is not None:  # the rounded winner above, the continuous optimum here
+            if self.spec.round_to:  # the rounded winner above, the continuous optimum here
                 design["rounding"] = self.rounding
                 design["continuous"] = self.continuous.to_dict(timings) if self.continuous is not None else None
         spec = self.spec.to_dict()

@@ -62,6 +62,10 @@ def grid_values(value: float, step: float, reach: int = 1) -> tuple[float, ...]:
     return tuple(j * step for j in range(low, high + 1) if j > 0)
 
 
+#: Most NLP solves one order of a whole wheel's rounding makes (each dimension rounded with the rest optimized
+#: again, backing up where a dimension leaves no wheel on either side): about 0.5 s of solves on this machine.
+MAX_SOLVES = 24
+
 #: Most wheels one rounding checks: the grid cell's corners, then (when none meets every limit) two steps out.
 MAX_WHEELS = 4096
 
@@ -225,7 +229,7 @@ def _round_bare(design: Design, combo: Combination, spec: DesignSpec, step: floa
             found = _measure(_bare_dims(design, dict(zip(free, corner, strict=True)), disc), combo, spec)
             if not _bare_violations(found[1], found[3], combo, spec) and (best is None or found[0] < best[0]):
                 best = found
-    return best, f"{len(free)} dimensions rounded to {step * 1e3:g} mm ({tried} wheels on the grid checked)"
+    return best, f"{len(free)} dimensions rounded ({tried} wheels on the grid checked)"
 
 
 def _round_whole(
@@ -257,33 +261,61 @@ def _round_whole(
             dims, combo, spec, rows, structure, problem
         ):
             corner_best = found
-    fixed: dict[str, float] = {}
-    solves = 0
-    for name in sorted(current, key=current.__getitem__):  # the thinnest first: a step moves it most
-        options: list[tuple[float, float, dict[str, float]]] = []
-        for value in grid_values(current[name], step):
+    # two orders: the thinnest first (a step moves it most), and the outer diameter first (where the stress
+    # and the inertia both bind, only the diameter trades one for the other: fixed last, neither side of it
+    # may meet both, while fixed first the thinner sections round up around it)
+    thinnest = sorted(current, key=current.__getitem__)
+    orders = [thinnest] + ([["d_outer"] + [n for n in thinnest if n != "d_outer"]] if "d_outer" in current else [])
+    solves, budget = 0, MAX_SOLVES
+
+    def options(fixed: dict[str, float], name: str, values: tuple[float, ...]) -> list[tuple[float, float, dict]]:
+        """The wheels with ``name`` at each of ``values`` and the rest optimized again, lightest first."""
+        nonlocal solves
+        found = []
+        for value in values:
+            if solves >= budget:
+                break
             solves += 1
             try:
                 dims, _solution, _checked = wheel_design.design_combination(
                     combo, spec, bore, combo.torque, combo.n_arms, method="ipopt", fixed={**fixed, name: value}
                 )
             except (wheel_design.NoWheel, SolverFailed):
-                continue  # no wheel with this dimension here: the other way may have one
-            options.append((_measure(dims, combo, spec)[0], value, {n: float(getattr(dims, n)) for n in current}))
-        if not options:
-            break  # rounded either way, this dimension leaves no wheel: the corners' best, if any, stands
-        _objective_value, fixed[name], solved = min(options, key=lambda o: o[0])
-        current = {**solved, **fixed}
+                continue  # no wheel with this dimension here: another value may have one
+            found.append((_measure(dims, combo, spec)[0], value, {n: float(getattr(dims, n)) for n in current}))
+        return sorted(found, key=lambda o: o[0])
+
+    def descend(order: list[str], fixed: dict[str, float], level: int, around: dict[str, float]) -> Found | None:
+        """Round ``order[level:]`` in turn, the lightest choice first; where a dimension leaves no wheel on
+        either side, back up and take the level above's next choice (then two steps out)."""
+        if level == len(order):
+            dims = on_grid(dict(fixed))
+            return (
+                None if _whole_violations(dims, combo, spec, rows, structure, problem) else _measure(dims, combo, spec)
+            )
+        name = order[level]
+        near = grid_values(around[name], step)
+        far = tuple(v for v in grid_values(around[name], step, reach=2) if v not in near)
+        for values in (near, far):
+            for _objective_value, value, solved in options(fixed, name, values):
+                found = descend(order, {**fixed, name: value}, level + 1, {**solved, **fixed, name: value})
+                if found is not None:
+                    return found
+        return None
+
+    sequential: Found | None = None
+    for k, order in enumerate(orders):
+        budget = MAX_SOLVES * (k + 1)  # each order its own share of the solves
+        this = descend(order, {}, 0, current)
+        if this is not None and (sequential is None or this[0] < sequential[0]):
+            sequential = this
     words = (
-        f"{len(current)} dimensions rounded to {step * 1e3:g} mm: the {len(corners)} corners of the optimum's grid "
+        f"{len(current)} dimensions rounded: the {len(corners)} corners of the optimum's grid "
         f"cell, and each dimension rounded in turn with the rest optimized again ({solves} solves)"
     )
     best = corner_best
-    if len(fixed) == len(current):
-        dims = on_grid(dict(fixed))
-        found = _measure(dims, combo, spec)
-        if (best is None or found[0] < best[0]) and not _whole_violations(dims, combo, spec, rows, structure, problem):
-            best = found
+    if sequential is not None and (best is None or sequential[0] < best[0]):
+        best = sequential
     return best, words
 
 

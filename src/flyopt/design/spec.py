@@ -22,6 +22,10 @@ from flyopt.validate import choice, finite, positive
 
 __all__ = ["OBJECTIVES", "CRITERIA", "MountShaft", "DesignSpec", "StressFactor"]
 
+#: The manufacturing step one design of a wheel flyopt designs whole is rounded to when the scene gives none
+#: (:func:`flyopt.design.inputs.one_design`): whole millimetres [m].
+DEFAULT_ROUND_TO = 1e-3
+
 #: Objectives understood by :func:`design_flywheel`.
 OBJECTIVES = {
     Objective.MASS: "minimize the flywheel mass [kg]",
@@ -130,7 +134,16 @@ class DesignSpec:
     round_to : float or None
         The manufacturing step [m] (0.001: whole millimetres): the winning
         wheel is rounded to it and checked again against every limit
-        (:mod:`flyopt.design.rounding`); None: the continuous optimum.
+        (:mod:`flyopt.design.rounding`); 0: the continuous optimum, said
+        so; None: not given, so the continuous optimum, except that one
+        design of a wheel flyopt designs whole (``flyopt solve``, ``report``,
+        ``export``: :func:`flyopt.design.inputs.one_design`) is rounded to
+        :data:`DEFAULT_ROUND_TO`.
+    round_strict : bool
+        Whether a winner no wheel near it on the grid can replace makes the
+        design infeasible (True: the step the scene asked for) or leaves the
+        continuous optimum as the design, with the reason (False: the
+        default step :func:`flyopt.design.inputs.one_design` gives).
     rim_share : float
         Share of the required inertia the rim supplies, in (0, 1]: the
         courses often let the rim give 90-95 % and leave the rest to the arms
@@ -141,11 +154,12 @@ class DesignSpec:
         a design found is left undesigned (True, the default: it cannot win,
         and IPOPT is spared); False designs every combination, for a full
         trade-off table.
-    fem_check : bool
-        Whether ``flyopt solve`` checks the best design by the axisymmetric
-        finite-element model (:func:`flyopt.design.fem.fem_check`; needs the
-        ``fem`` extra) and reports it beside the Lamé/arm model (default False).
-        The design is then accepted against the larger of the two: where a
+    fem_check : bool or None
+        True: ``flyopt solve`` checks the best design by the axisymmetric
+        finite-element model (:func:`flyopt.design.fem.fem_check`) and
+        reports it beside the Lamé/arm model; False: no FE check; None (not
+        given): the FE check of one design of a wheel flyopt designs whole is
+        reported, and nothing else. With True the design is accepted against the larger of the two: where a
         part's FE peak exceeds its allowable, the wheel is designed again with
         that part's allowable divided by the concentration the FE found
         (``stress_factors``), until the FE peaks are within the allowables
@@ -176,10 +190,11 @@ class DesignSpec:
     arms: tuple[int, ...] = DEFAULT_ARMS
     min_wall: float | None = None
     rim_speed: float | None = None
-    round_to: float | None = None
+    round_to: float | None = None  # 0: not rounded, said so
+    round_strict: bool = True
     rim_share: float = 1.0
     prune: bool = True
-    fem_check: bool = False
+    fem_check: bool | None = None
     stress_factors: tuple[StressFactor, ...] = ()
 
     def stress_factors_for(self, material: str, shaft: str, n_arms: int = 0) -> dict[str, float]:
@@ -282,7 +297,7 @@ class DesignSpec:
         object.__setattr__(self, "arms", arms)
         if not isinstance(self.prune, bool):
             raise ValueError(f"prune must be true or false, got {self.prune!r}")
-        if not isinstance(self.fem_check, bool):
+        if self.fem_check is not None and not isinstance(self.fem_check, bool):
             raise ValueError(f"fem_check must be true or false, got {self.fem_check!r}")
         factors = tuple(StressFactor(*f) for f in self.stress_factors)
         if any(not finite(f.factor, "a stress factor [-]") >= 1.0 for f in factors):
@@ -290,7 +305,7 @@ class DesignSpec:
         object.__setattr__(self, "stress_factors", tuple(sorted(factors)))
         if self.min_wall is not None:
             object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
-        if self.round_to is not None:
+        if self.round_to:  # 0: the continuous optimum, asked for
             object.__setattr__(self, "round_to", _positive(self.round_to, "round_to", "[m]"))
         share = finite(self.rim_share, "rim_share [-]")
         if not 0.0 < share <= 1.0:

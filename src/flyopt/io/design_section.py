@@ -85,8 +85,14 @@ def read_design(
                 "from a plate 1000 times wider than thick to a ring 1000 times thicker",
             )
         options["hb_ratio"] = (low, high)
+    if table.has("round_to") and isinstance(table.get("round_to"), bool):
+        if table.get("round_to"):
+            raise SceneError(
+                "design.round_to", 'is a manufacturing step (e.g. "1 mm") or false (not rounded), not true'
+            )
+        options["round_to"] = 0.0  # the continuous optimum, asked for
     for key in ("max_outer_diameter", "max_width", "d_mean", "min_wall", "round_to"):
-        if table.has(key):
+        if table.has(key) and key not in options:
             value = table.quantity(key, "length", required=True)
             if value <= 0:
                 raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")

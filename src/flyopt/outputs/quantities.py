@@ -299,6 +299,7 @@ COUNTS = frozenset(
         "n_feasible",
         "elements",
         "nodes",
+        "rounds",
     }
 )
 

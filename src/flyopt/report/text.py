@@ -316,15 +316,18 @@ def rounding_report(result: DesignResult, units: str = DEFAULT) -> list[str]:
     if c is None:
         return []
     optimum = (
-        f"the continuous optimum: {q(c.mass, 'mass')}, D_outer {n(c.dims.d_outer, 'd_outer')} / H x B "
+        f"the continuous optimum: {q(c.mass, 'mass')}, D_outer {q(c.dims.d_outer, 'd_outer')}, H x B "
         f"{n(c.dims.h, 'h')} x {q(c.dims.b, 'b')}"
     )
     if best is None:
         return [f"  {optimum}"]
+    if best is c:  # the default step found no wheel: the continuous optimum is the design
+        return [f"  {result.rounding}"]
     extra = best.mass - c.mass
     return [
-        f"  rounded to {q(result.spec.round_to, 'd_outer')} (design.round_to): {extra:+.4g} kg "
-        f"({extra / c.mass:+.2%}) over {optimum}; every limit checked again on the rounded wheel ({result.rounding})"
+        f"  rounded to {q(result.spec.round_to, 'd_outer')} (design.round_to): {'+' if extra >= 0 else ''}"
+        f"{q(extra, 'mass', 3)} "
+        f"({100 * extra / c.mass:+.2f} %) over {optimum}; every limit checked again on the rounded wheel ({result.rounding})"
     ]
 
 
@@ -448,7 +451,7 @@ def fem_report(check: FemCheck, units: str = DEFAULT) -> list[str]:
         peak, at = (
             (p.von_mises, p.von_mises_at) if check.measure == "von_mises" else (p.max_principal, p.max_principal_at)
         )
-        text = f"  {p.part} peak {q(peak, 'stress', 4)} at r = {n(at[0], 'radius', 4)}, z = {q(at[1], 'radius', 4)}"
+        text = f"  {p.part} peak {q(peak, 'stress', 4)} at r, z = {n(at[0], 'radius', 4)}, {q(at[1], 'radius', 4)}"
         if p.model_stress is not None:
             text += f"; Lamé/arm {q(p.model_stress, 'stress', 4)}"
         if p.utilisation is not None:
