@@ -40,7 +40,7 @@ from typing import Any
 
 from flyopt.design import check, wheel, wheel_design
 from flyopt.design.combination import Combination
-from flyopt.design.result import Design, Dimensions, Limits, Provenance
+from flyopt.design.result import Design, Dimensions, Provenance
 from flyopt.design.spec import DesignSpec
 from flyopt.names import Criterion, Geometry, Objective
 
@@ -375,12 +375,10 @@ def _rounded_design(
         ),
         parts=structure.parts,
         stresses=structure.stresses,
-        limits=Limits(
-            j_required_on_shaft=combo.j_shaft,
-            d_outer_limit=combo.cap,
-            rim_speed_limit=combo.v_max,
-            j_max=design.limits.j_max,
-            binding=(),
+        # what drives the design is the continuous optimum's: its binding limits and their sensitivities
+        # (a wheel on the grid sits on none of them exactly)
+        limits=dataclasses.replace(
+            design.limits, j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max
         ),
         provenance=Provenance(solver_status="rounded", iterations=0, solve_time=0.0, notes=structure.notes),
     )

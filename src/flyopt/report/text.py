@@ -361,7 +361,11 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
                 f"hoop stress ρv² {q(best.stresses.hoop_stress, 'hoop_stress')}"
                 + (f", safety factor {number(best.stresses.safety_factor, 3)}" if best.stresses.safety_factor else ""),
             ),
-            ("binding", ", ".join(best.limits.binding) or "none"),
+            (
+                "binding",
+                (", ".join(best.limits.binding) or "none")
+                + (" (of the continuous optimum)" if best.provenance.solver_status == "rounded" else ""),
+            ),
             ("solved by", solver_words(best)),
         ]
         width = max(len(k) for k, _ in facts)
