@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 from conftest import PROBLEMS
 
+import flyopt
 from flyopt.cli.main import main
 
 WHEELS = Path(__file__).parents[1] / "data" / "wheels"
@@ -216,3 +217,25 @@ def test_the_existing_design_lines_are_unchanged(capsys):
         "solved by",
     ]
     assert lines.index("Parts of the wheel (thickness: axial):") < lines.index("Every combination (ranked):")
+
+
+def test_a_key_without_a_bearing_pressure_is_sized_by_the_seat_and_said_unchecked(capsys):
+    """press-arms-wheel's grey iron gives no bearing pressure: its hub still gets the DIN 6885-1 key of its
+    70 mm seat (over 65 up to 75 mm: 20 x 12, t1 7.5, t2 4.9 mm in the standard's table), as long as the
+    105 mm hub allows among the standard lengths (100 mm), so that the keyway is cut and drawn; its pressure
+    and shear are not checked, and the text, the JSON and the drawing say so."""
+    from flyopt.outputs.drawing import keyway
+
+    solution = flyopt.solve(flyopt.load(PROBLEMS / "press-arms-wheel.toml"))
+    best = solution.design.best
+    key = best.parts.key
+    assert best.bore == pytest.approx(0.070) and best.dims.l_hub == pytest.approx(0.105)
+    assert key["size"] == "20 x 12" and (key["b"], key["h"], key["t1"], key["t2"]) == pytest.approx(
+        (0.020, 0.012, 0.0075, 0.0049)
+    )
+    assert key["length"] == pytest.approx(0.100) and key["effective_length"] == pytest.approx(0.080)
+    assert key["ok"] is None and key["bearing_pressure"] is None and key["shear"] is None
+    assert keyway(best) == pytest.approx((0.020, 0.0049))
+    text = _solve_text(PROBLEMS / "press-arms-wheel.toml", capsys)
+    assert "Key (DIN 6885-1 form A) on a 70 mm bore: 20 x 12, length 100 mm (effective 80 mm): not checked" in text
+    assert any("gives no bearing_pressure: the key is sized by the seat" in n for n in _block(text, "Notes:"))

@@ -682,33 +682,56 @@ def structure_fields(
             )
     key_check = None
     hub_length = {"rim_web": dims.l_hub, "rim_arms": dims.l_hub, "disc": dims.b}.get(geometry_name)
-    if bore and hub_length and torque:
-        pressure = getattr(material, "bearing_pressure", None)
-        if pressure is None:
-            notes.append(f"material {material.name} gives no bearing_pressure: key not checked")
+    pressure = getattr(material, "bearing_pressure", None)
+    if bore and hub_length and not (torque and pressure):
+        # the key's section is the shaft's (DIN 6885-1 by the seat diameter) and its length the hub's: a keyway
+        # to cut, whose pressure and shear cannot be checked without a torque or an allowable pressure
+        why = (
+            "the cycle gives no torque curves" if not torque else f"material {material.name} gives no bearing_pressure"
+        )
+        try:
+            sized = key.key_for_shaft(bore)
+            length = key.key_length_for_hub(sized, float(hub_length))
+        except ValueError as err:
+            notes.append(f"no key: {err}")
         else:
-            try:
-                k = key.check_key(torque, bore, float(hub_length), pressure)
-            except ValueError as err:
-                notes.append(f"key not checked: {err}")
-            else:
-                key_check = {
-                    "size": k.key.size,
-                    "b": k.key.b,
-                    "h": k.key.h,
-                    "t1": k.key.t1,
-                    "t2": k.key.t2,
-                    "length": k.length,
-                    "effective_length": k.effective_length,
-                    "torque": k.torque,
-                    "bearing_pressure": k.pressure,
-                    "allowable_pressure": k.allowable_pressure,
-                    "shear": k.shear,
-                    "allowable_shear": k.allowable_shear,
-                    "ok": k.ok,
-                }
-    elif bore and not torque:
-        notes.append("the cycle gives no torque curves: key not checked")
+            notes.append(f"{why}: the key is sized by the seat (DIN 6885-1) and the hub, and not checked")
+            key_check = {
+                "size": sized.size,
+                "b": sized.b,
+                "h": sized.h,
+                "t1": sized.t1,
+                "t2": sized.t2,
+                "length": length,
+                "effective_length": length - sized.b,
+                "torque": torque or None,
+                "bearing_pressure": None,
+                "allowable_pressure": None,
+                "shear": None,
+                "allowable_shear": None,
+                "ok": None,
+            }
+    elif bore and hub_length and pressure is not None:
+        try:
+            k = key.check_key(torque, bore, float(hub_length), pressure)
+        except ValueError as err:
+            notes.append(f"key not checked: {err}")
+        else:
+            key_check = {
+                "size": k.key.size,
+                "b": k.key.b,
+                "h": k.key.h,
+                "t1": k.key.t1,
+                "t2": k.key.t2,
+                "length": k.length,
+                "effective_length": k.effective_length,
+                "torque": k.torque,
+                "bearing_pressure": k.pressure,
+                "allowable_pressure": k.allowable_pressure,
+                "shear": k.shear,
+                "allowable_shear": k.allowable_shear,
+                "ok": k.ok,
+            }
     return Structure(Parts(items, key_check), stresses, tuple(notes))
 
 

@@ -640,17 +640,20 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[
         ]
     if c.parts.key:
         k = c.parts.key
-        verdict = "OK" if k["ok"] else "NOT OK"
+        verdict = "not checked (see the notes)" if k["ok"] is None else "OK" if k["ok"] else "NOT OK"
         lines += [
             "",
             f"Key (DIN 6885-1 form A) on a {q(c.bore, 'bore', 4)} bore: {k['size']}, length "
             f"{q(k['length'], 'length', 4)} (effective {q(k['effective_length'], 'effective_length', 4)}): "
             f"{verdict}",
-            f"  at the peak torque {q(k['torque'], 'torque')}: bearing pressure "
-            f"{q(k['bearing_pressure'], 'bearing_pressure', 4)} (allowable "
-            f"{q(k['allowable_pressure'], 'allowable_pressure', 4)}), shear {q(k['shear'], 'shear', 4)} "
-            f"(allowable {q(k['allowable_shear'], 'allowable_shear', 4)})",
         ]
+        if k["ok"] is not None:
+            lines.append(
+                f"  at the peak torque {q(k['torque'], 'torque')}: bearing pressure "
+                f"{q(k['bearing_pressure'], 'bearing_pressure', 4)} (allowable "
+                f"{q(k['allowable_pressure'], 'allowable_pressure', 4)}), shear {q(k['shear'], 'shear', 4)} "
+                f"(allowable {q(k['allowable_shear'], 'allowable_shear', 4)})"
+            )
     if c.limits.sensitivities:
         lines += ["", "Sensitivities of the mass:"]
         lines += [f"  - {s['text']}" for s in c.limits.sensitivities]

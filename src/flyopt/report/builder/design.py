@@ -518,6 +518,23 @@ class DesignSection(BuilderBase):
         if not c.parts.key:
             return
         k = c.parts.key
+        if k["ok"] is None:  # sized by the seat and the hub; nothing to check it against
+            blocks.append(
+                Paragraph(
+                    (
+                        f"Key (DIN 6885-1 form A) {k['size']} on the ",
+                        self.q(c.bore, "length"),
+                        " bore, length ",
+                        self.q(k["length"], "length"),
+                        " (effective ",
+                        self.q(k["effective_length"], "length"),
+                        f"): sized by the seat and the hub, not checked (the design's notes say why; {NOTES}, "
+                        "section 13).",
+                    ),
+                    "warning",
+                )
+            )
+            return
         blocks.append(
             Paragraph(
                 (
