@@ -84,3 +84,16 @@ def test_the_public_api_is_typed():
         assert signature.return_annotation is not inspect.Signature.empty, function.__qualname__
     for name in ("Scene", "Shaft", "Solution", "Analysis"):
         assert dataclasses.is_dataclass(getattr(flyopt, name))
+
+
+def test_the_readmes_notebook_instruction_installs_jupyterlab():
+    """The README's way to open the notebooks names an extra that brings JupyterLab and a kernel (issue 29:
+    `jupyter lab notebooks/` failed from a fresh clone, no extra installed jupyterlab)."""
+    import re
+
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    found = re.search(r'pip install -e "\.\[(\w+)\]" && \.venv/bin/jupyter lab notebooks/', readme)
+    assert found, "the README no longer says how to open the notebooks"
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]
+    names = {re.split(r"[<>=!~\[; ]", dep, maxsplit=1)[0].lower() for dep in extras[found.group(1)]}
+    assert {"jupyterlab", "ipykernel"} <= names
