@@ -475,17 +475,26 @@ def yield_safety_factor(
 
 
 def shaft_strengths(material: Material, diameter: float) -> tuple[float, float]:
-    """(S_ut, S_y) [Pa] of a shaft of ``material`` at its ruling section ``diameter`` [m].
+    """(S_ut, S_y) [Pa] of a round shaft of ``material`` and ``diameter`` [m].
 
     Through :meth:`Material.strength` (the one place a material's strength at a
-    section is decided), the shaft's diameter as its section.
+    section is decided), read at the thickness t = d. The strength tables are
+    by flat thickness; EN 10083-1/-3 print each ruling-section row for a round
+    and a flat side by side (d <= 16 mm with t <= 8, d <= 40 with t <= 20,
+    d <= 100 with t <= 60, d <= 160 with t <= 100, d <= 250 with t <= 160:
+    materials.toml's 42CrMo4+QT source), a round always at least as thick as
+    its flat, so a round read at t = d falls in its own row or a thicker,
+    weaker one: on the safe side (up to one row low), since the data keeps no
+    column for rounds.
 
     Raises
     ------
     ValueError
         If the material gives no tensile or no yield strength (the fatigue
-        method needs both), or the diameter is beyond its strength table.
+        method needs both), or the section is beyond its strength table.
     """
+    if not (math.isfinite(diameter) and diameter > 0.0):
+        raise ValueError(f"diameter [m] must be a finite number > 0, got {diameter!r}")
     sut, sy = material.strength(diameter)
     if sut is None or sy is None:
         raise ValueError(
