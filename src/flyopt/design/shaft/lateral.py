@@ -5,9 +5,9 @@ Design*, 9th ed., section 7-6:
 
 - Jeffcott's rotor: one mass m on a massless shaft of stiffness k at the mass,
   omega = sqrt(k/m), k = 1/delta_ii from :mod:`~flyopt.design.shaft.beam`;
-- Rayleigh's energy method, Eq. (7-23): omega_1^2 = g sum(m_i |y_i|) / sum(m_i y_i^2),
-  y_i the static deflections under the weights (an upper bound of the first
-  critical speed);
+- Rayleigh's energy method, Eq. (7-23): omega_1^2 = g sum(m_i y_i) / sum(m_i y_i^2),
+  y_i the static deflections along gravity under all the weights (an upper
+  bound of the first critical speed);
 - Dunkerley's sum, Eq. (7-32): 1/omega_1^2 ~ sum 1/omega_ii^2, omega_ii^2 = 1/(m_i delta_ii)
   (a lower bound).
 
@@ -25,7 +25,9 @@ speed Omega
 
 (M. I. Friswell et al., *Dynamics of Rotating Machines*, Cambridge University
 Press, 2010, sections 3.5 and 5.3, in complex coordinates). It is solved as
-the linear pencil [[0, I], [K, Omega G]] z = omega [[I, 0], [0, M]] z. The
+the standard eigenproblem [[0, I], [M^-1 K, Omega M^-1 G]] z = omega z, after
+the degrees of freedom without inertia (a massless shaft's) are condensed out
+exactly. The
 critical speed where forward whirl meets the 1x excitation (omega = Omega)
 solves K W = Omega^2 (M - G) W, the backward one K W = Omega^2 (M + G) W.
 """
@@ -77,6 +79,11 @@ class Disc:
                     f"disc {name} must be a finite number {'> 0' if name == 'mass' else '>= 0'}, got {value!r}"
                 )
             object.__setattr__(self, name, value)
+        if self.polar_inertia > 2.0 * self.diametral_inertia * (1.0 + 1e-12):
+            raise ValueError(
+                f"disc polar_inertia {self.polar_inertia:g} must not exceed twice its diametral_inertia "
+                f"{self.diametral_inertia:g} (I_x + I_y >= I_z for any body)"
+            )
 
 
 @dataclass(frozen=True)
@@ -91,8 +98,14 @@ class RotorModel:
     gyroscopic: np.ndarray
 
 
-def _mesh(shaft: SteppedShaft, discs: Sequence[Disc], elements: int | None, max_element: float | None) -> np.ndarray:
-    points = np.unique(np.concatenate(([0.0], shaft.steps, shaft.bearings, [d.position for d in discs])))
+def _mesh(
+    shaft: SteppedShaft,
+    discs: Sequence[Disc],
+    elements: int | None,
+    max_element: float | None,
+    extra: Sequence[float],
+) -> np.ndarray:
+    points = np.unique(np.concatenate(([0.0], shaft.steps, shaft.bearings, [d.position for d in discs], extra)))
     if elements is not None:
         if elements < 1:
             raise ValueError(f"elements must be >= 1, got {elements}")
@@ -113,6 +126,7 @@ def rotor_model(
     elements: int | None = None,
     max_element: float | None = None,
     shaft_mass: bool = True,
+    extra_nodes: Sequence[float] = (),
 ) -> RotorModel:
     """Assemble the beam finite-element model of the shaft, its bearings and its discs.
 
@@ -128,6 +142,8 @@ def rotor_model(
         Otherwise the longest element [m] (default L/20).
     shaft_mass : bool
         False for a massless shaft (Jeffcott's and the closed forms' model).
+    extra_nodes : sequence of float
+        More breakpoints [m] (where a load acts, or a result is wanted).
 
     Notes
     -----
@@ -135,10 +151,10 @@ def rotor_model(
     consistent mass (rho A l/420) [[156, 22l, 54, -13l], ...] (Friswell et al. 2010, Eq. (5.57),
     the Euler-Bernoulli limit of their Timoshenko element).
     """
-    for disc in discs:
-        if not 0.0 <= disc.position <= shaft.length:
-            raise ValueError(f"disc position [m] must lie on the shaft, 0 to {shaft.length:g}, got {disc.position:g}")
-    nodes = _mesh(shaft, discs, elements, max_element)
+    for where in [d.position for d in discs] + [float(x) for x in extra_nodes]:
+        if not 0.0 <= where <= shaft.length:
+            raise ValueError(f"disc and node positions [m] must lie on the shaft, 0 to {shaft.length:g}, got {where:g}")
+    nodes = _mesh(shaft, discs, elements, max_element, extra_nodes)
     size = 2 * nodes.size
     k = np.zeros((size, size))
     m = np.zeros((size, size))
@@ -228,21 +244,38 @@ def dunkerley_speed(
     return 1.0 / math.sqrt(total)
 
 
-def _finite_real(values: np.ndarray) -> np.ndarray:
-    values = values[np.isfinite(values)]
+def _condensed(model: RotorModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """K, M, G on the degrees of freedom that carry inertia; the others condensed out exactly.
+
+    A massless degree of freedom (a massless shaft's, a disc's slope without I_d) has no inertia
+    nor gyroscopic term, so K_red = K_mm - K_ms K_ss^-1 K_sm is exact, not Guyan's approximation;
+    it keeps M positive definite for the eigensolvers.
+    """
+    inertial = np.diag(model.mass) > 0.0
+    if np.all(inertial):
+        return model.stiffness, model.mass, model.gyroscopic
+    if not np.any(inertial):
+        raise ValueError("the rotor has no mass: give the shaft a density or a disc")
+    keep, drop = np.flatnonzero(inertial), np.flatnonzero(~inertial)
+    k = model.stiffness
+    k_mm, k_ms, k_ss = k[np.ix_(keep, keep)], k[np.ix_(keep, drop)], k[np.ix_(drop, drop)]
+    reduced = k_mm - k_ms @ np.linalg.solve(k_ss, k_ms.T)
+    return 0.5 * (reduced + reduced.T), model.mass[np.ix_(keep, keep)], model.gyroscopic[np.ix_(keep, keep)]
+
+
+def _real(values: np.ndarray) -> np.ndarray:
     scale = max(1.0, float(np.max(np.abs(values)))) if values.size else 1.0
-    if values.size and np.max(np.abs(values.imag)) > 1e-6 * scale:
+    if values.size and np.max(np.abs(np.imag(values))) > 1e-8 * scale:
         raise ValueError("the rotor's eigenvalues are not real: check the model (negative stiffness or mass?)")
-    return np.sort(values.real)
+    return np.sort(np.real(values))
 
 
 def natural_frequencies(model: RotorModel) -> np.ndarray:
-    """Whirl frequencies at rest [rad/s], ascending (K W = omega^2 M W; a massless DOF gives none)."""
+    """Whirl frequencies at rest [rad/s], ascending: K W = omega^2 M W (on the inertial DOFs)."""
     import scipy.linalg
 
-    values = scipy.linalg.eigvals(model.stiffness, model.mass)
-    squares = _finite_real(values)
-    return np.sqrt(squares[squares > 0.0])
+    k, m, _ = _condensed(model)
+    return np.sqrt(np.clip(scipy.linalg.eigh(k, m, eigvals_only=True), 0.0, None))
 
 
 @dataclass(frozen=True)
@@ -263,25 +296,31 @@ def whirl_frequencies(model: RotorModel, speeds: Sequence[float] | np.ndarray, m
     speeds : sequence of float
         Shaft speeds Omega [rad/s].
     modes : int
-        How many of the lowest modes to return (fewer if the model has fewer).
+        How many of the lowest modes to return (NaN where the model has fewer).
 
     Returns
     -------
     Whirl
         ``forward[i, j]`` the j-th forward whirl frequency (omega > 0, ascending) at
         ``speeds[i]``; ``backward[i, j]`` the j-th backward one, as a positive number.
+
+    Notes
+    -----
+    With M^-1 from a Cholesky factor, the pencil becomes the standard eigenproblem
+    [[0, I], [M^-1 K, Omega M^-1 G]] z = omega z, whose 2n eigenvalues are real.
     """
     import scipy.linalg
 
+    k, m, g = _condensed(model)
+    factor = scipy.linalg.cho_factor(m)
+    mk, mg = scipy.linalg.cho_solve(factor, k), scipy.linalg.cho_solve(factor, g)
+    n = k.shape[0]
+    top = np.hstack((np.zeros((n, n)), np.eye(n)))
     speeds_ = np.atleast_1d(np.asarray(speeds, dtype=float))
-    n = model.stiffness.shape[0]
-    identity, zero = np.eye(n), np.zeros((n, n))
-    b = np.block([[identity, zero], [zero, model.mass]])
     forward = np.full((speeds_.size, modes), np.nan)
     backward = np.full((speeds_.size, modes), np.nan)
     for i, omega in enumerate(speeds_):
-        a = np.block([[zero, identity], [model.stiffness, omega * model.gyroscopic]])
-        values = _finite_real(scipy.linalg.eigvals(a, b))
+        values = _real(np.linalg.eigvals(np.vstack((top, np.hstack((mk, omega * mg))))))
         positive = values[values > 0.0][:modes]
         negative = -values[values < 0.0][::-1][:modes]
         forward[i, : positive.size] = positive
@@ -292,17 +331,17 @@ def whirl_frequencies(model: RotorModel, speeds: Sequence[float] | np.ndarray, m
 def critical_speeds(model: RotorModel, *, whirl: str = "forward", modes: int = 3) -> np.ndarray:
     """Shaft speeds [rad/s] at which a whirl frequency equals the speed (the 1x line), ascending.
 
-    forward: K W = Omega^2 (M - G) W; backward: K W = Omega^2 (M + G) W. A disc whose
-    I_p exceeds what M can balance (a thin disc alone, I_p = 2 I_d) has no forward
-    critical speed of its tilting mode: it is left out (Omega^2 < 0 or infinite).
+    forward: K W = Omega^2 (M - G) W; backward: K W = Omega^2 (M + G) W, solved as
+    K^-1 (M -+ G) W = (1/Omega^2) W. A disc whose I_p outweighs I_d (a thin disc,
+    I_p = 2 I_d) has no forward critical speed of its tilting mode (1/Omega^2 <= 0): left out.
     """
-    import scipy.linalg
-
     if whirl not in ("forward", "backward"):
         raise ValueError(f"whirl must be 'forward' or 'backward', got {whirl!r}")
+    k, m, g = _condensed(model)
     sign = -1.0 if whirl == "forward" else 1.0
-    values = _finite_real(scipy.linalg.eigvals(model.stiffness, model.mass + sign * model.gyroscopic))
-    return np.sqrt(values[values > 0.0])[:modes]
+    inverse_squares = _real(np.linalg.eigvals(np.linalg.solve(k, m + sign * g)))
+    positive = inverse_squares[inverse_squares > 0.0]
+    return np.sort(1.0 / np.sqrt(positive))[:modes]
 
 
 def running_margin(critical_speed: float, speed_range_rpm: tuple[float, float]) -> float:
