@@ -29,14 +29,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from flyopt.validate import positive
+
 __all__ = ["SteppedShaft", "ElasticLine", "elastic_line", "reactions", "influence_coefficient"]
-
-
-def _positive(value: float, field: str) -> float:
-    number = float(value)
-    if not math.isfinite(number) or number <= 0.0:
-        raise ValueError(f"{field} must be a finite number > 0, got {value!r}")
-    return number
 
 
 @dataclass(frozen=True)
@@ -68,8 +63,8 @@ class SteppedShaft:
     _edges: np.ndarray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        steps = tuple(_positive(x, "steps [m]") for x in self.steps)
-        diameters = tuple(_positive(d, "diameters [m]") for d in self.diameters)
+        steps = tuple(positive(x, "steps [m]") for x in self.steps)
+        diameters = tuple(positive(d, "diameters [m]") for d in self.diameters)
         if not steps or len(steps) != len(diameters):
             raise ValueError(
                 f"steps and diameters must be as many and not empty, got {len(steps)} and {len(diameters)}"
@@ -80,14 +75,14 @@ class SteppedShaft:
         if not (0.0 <= a < b <= steps[-1]):
             raise ValueError(f"bearings [m] must be 0 <= x_A < x_B <= L = {steps[-1]:g}, got {self.bearings!r}")
         stiffness = tuple(
-            None if k is None else _positive(k, "bearing_stiffness [N/m]") for k in self.bearing_stiffness
+            None if k is None else positive(k, "bearing_stiffness [N/m]") for k in self.bearing_stiffness
         )
         if len(stiffness) != 2:
             raise ValueError(f"bearing_stiffness must be two values, got {self.bearing_stiffness!r}")
         object.__setattr__(self, "steps", steps)
         object.__setattr__(self, "diameters", diameters)
-        object.__setattr__(self, "elastic_modulus", _positive(self.elastic_modulus, "elastic_modulus [Pa]"))
-        object.__setattr__(self, "density", _positive(self.density, "density [kg/m^3]"))
+        object.__setattr__(self, "elastic_modulus", positive(self.elastic_modulus, "elastic_modulus [Pa]"))
+        object.__setattr__(self, "density", positive(self.density, "density [kg/m^3]"))
         object.__setattr__(self, "bearings", (a, b))
         object.__setattr__(self, "bearing_stiffness", stiffness)
         object.__setattr__(self, "_edges", np.concatenate(([0.0], steps)))

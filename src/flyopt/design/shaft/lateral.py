@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flyopt.design.shaft.beam import SteppedShaft, elastic_line, influence_coefficient
+from flyopt.validate import number
 
 __all__ = [
     "GRAVITY",
@@ -72,12 +73,9 @@ class Disc:
     polar_inertia: float = 0.0
 
     def __post_init__(self) -> None:
-        for name in ("position", "mass", "diametral_inertia", "polar_inertia"):
-            value = float(getattr(self, name))
-            if not math.isfinite(value) or value < 0.0 or (name == "mass" and value <= 0.0):
-                raise ValueError(
-                    f"disc {name} must be a finite number {'> 0' if name == 'mass' else '>= 0'}, got {value!r}"
-                )
+        units = {"position": "m", "mass": "kg", "diametral_inertia": "kg*m^2", "polar_inertia": "kg*m^2"}
+        for name, unit in units.items():
+            value = number(getattr(self, name), f"disc {name} [{unit}]", minimum=0.0, strict=name == "mass")
             object.__setattr__(self, name, value)
         if self.polar_inertia > 2.0 * self.diametral_inertia * (1.0 + 1e-12):
             raise ValueError(
@@ -204,9 +202,7 @@ def rotor_model(
 
 def jeffcott_speed(shaft: SteppedShaft, position: float, mass: float) -> float:
     """Jeffcott's critical speed omega = sqrt(k/m) [rad/s] of a mass on the massless shaft, k = 1/delta_ii."""
-    if not mass > 0.0:
-        raise ValueError(f"mass [kg] must be > 0, got {mass!r}")
-    return math.sqrt(1.0 / (mass * influence_coefficient(shaft, position)))
+    return math.sqrt(1.0 / (number(mass, "mass [kg]", minimum=0.0) * influence_coefficient(shaft, position)))
 
 
 def _masses(
@@ -353,6 +349,5 @@ def running_margin(critical_speed: float, speed_range_rpm: tuple[float, float]) 
     """
     from flyopt.machine.torsion import critical_speeds as torsional_critical_speeds
 
-    if not critical_speed > 0.0 or not math.isfinite(critical_speed):
-        raise ValueError(f"critical_speed [rad/s] must be a finite number > 0, got {critical_speed!r}")
-    return torsional_critical_speeds([critical_speed / (2.0 * math.pi)], [1.0], speed_range_rpm)[0].margin
+    speed = number(critical_speed, "critical_speed [rad/s]", minimum=0.0)
+    return torsional_critical_speeds([speed / (2.0 * math.pi)], [1.0], speed_range_rpm)[0].margin

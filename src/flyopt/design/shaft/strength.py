@@ -39,7 +39,9 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from flyopt._toml import tomllib
+from flyopt.errors import shorten
 from flyopt.names import choice
+from flyopt.validate import finite_array, positive
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -96,12 +98,9 @@ def _data() -> dict[str, Any]:
 
 
 def _array(value: Real, field: str, *, positive: bool = True) -> np.ndarray:
-    try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as err:
-        raise ValueError(f"{field} must be a number or an array of numbers, got {value!r}") from err
-    if not np.all(np.isfinite(array)) or (positive and np.any(array <= 0.0)):
-        raise ValueError(f"{field} must be finite{' and > 0' if positive else ''}, got {value!r}")
+    array: np.ndarray = finite_array(value, field)
+    if positive and np.any(array <= 0.0):
+        raise ValueError(f"{field} must be > 0, got {shorten(value)}")
     return array
 
 
@@ -179,7 +178,7 @@ def size_factor(diameter: Real, *, loading: str = "bending", fit: str = "si") ->
     low, high = rows[0][0], rows[-1][1]
     if np.any(d < low) or np.any(d > high):
         raise ValueError(
-            f"diameter [m] must lie within Shigley's Eq. (6-20), {low * unit:g} to {high * unit:g} m, got {diameter!r}"
+            f"diameter [m] must lie within Shigley's Eq. (6-20), {low * unit:g} to {high * unit:g} m, got {shorten(diameter)}"
         )
     first, second = rows
     # The first row's printed coefficient is (d/0.3)^-0.107 or (d/7.62)^-0.107 written out;
@@ -208,7 +207,7 @@ def temperature_factor(temperature: Real) -> Real:
     row = _data()["temperature"]
     if np.any(fahrenheit < row["min_fahrenheit"] - 1e-9) or np.any(fahrenheit > row["max_fahrenheit"] + 1e-9):
         raise ValueError(
-            f"temperature [degC] must lie within Shigley's Eq. (6-27), 70 to 1000 degF, got {temperature!r}"
+            f"temperature [degC] must lie within Shigley's Eq. (6-27), 70 to 1000 degF, got {shorten(temperature)}"
         )
     return _out(np.polynomial.polynomial.polyval(fahrenheit, row["coefficients"]))
 
@@ -229,7 +228,7 @@ def reliability_factor(reliability: Real) -> Real:
 
     value = _array(reliability, "reliability")
     if np.any(value < 0.5) or np.any(value >= 1.0):
-        raise ValueError(f"reliability must lie in [0.5, 1), got {reliability!r}")
+        raise ValueError(f"reliability must lie in [0.5, 1), got {shorten(reliability)}")
     return _out(1.0 - _data()["reliability"]["standard_deviation"] * ndtri(value))
 
 
@@ -297,7 +296,7 @@ def neuber_root_a(sut: Real, loading: str = "bending") -> Real:
     kind = "torsion" if choice(loading, LOADINGS, "loading") == "torsion" else "bending"
     s = sut / KPSI
     if np.any(s < row["min_kpsi"] - 1e-9) or np.any(s > row["max_kpsi"] + 1e-9):
-        raise ValueError(f"sut [Pa] must lie within Shigley's Eq. (6-35), 50 to 250 kpsi, got {sut!r}")
+        raise ValueError(f"sut [Pa] must lie within Shigley's Eq. (6-35), 50 to 250 kpsi, got {shorten(sut)}")
     return _out(np.polynomial.polynomial.polyval(s, row[kind]) * math.sqrt(INCH))
 
 
@@ -321,7 +320,7 @@ def fatigue_concentration(kt: Real, q: Real) -> Real:
     kt = _array(kt, "kt")
     q = _array(q, "q", positive=False)
     if np.any(kt < 1.0) or np.any(q < 0.0) or np.any(q > 1.0):
-        raise ValueError(f"kt must be >= 1 and q within [0, 1], got kt={kt!r}, q={q!r}")
+        raise ValueError(f"kt must be >= 1 and q within [0, 1], got kt={shorten(kt)}, q={shorten(q)}")
     return _out(1.0 + q * (kt - 1.0))
 
 
@@ -493,9 +492,7 @@ def shaft_strengths(material: Material, diameter: float) -> tuple[float, float]:
         If the material gives no tensile or no yield strength (the fatigue
         method needs both), or the section is beyond its strength table.
     """
-    if not (math.isfinite(diameter) and diameter > 0.0):
-        raise ValueError(f"diameter [m] must be a finite number > 0, got {diameter!r}")
-    sut, sy = material.strength(diameter)
+    sut, sy = material.strength(positive(diameter, "diameter [m]"))
     if sut is None or sy is None:
         raise ValueError(
             f"material {material.name!r}: a shaft's fatigue check needs its tensile and yield strengths "
