@@ -1,0 +1,217 @@
+"""Benchmark of the mounting shaft's checks (flyopt.design.shaft): cost per design, and the FE's error.
+
+Times, in process after a first call (the data file read, scipy imported), for a stepped flywheel
+shaft (four steps, 0.06-0.09 m, two rigid bearings 0.8 m apart) with a 250 kg wheel between the
+bearings and the same wheel overhung 0.25 m beyond the second bearing:
+
+* strength: the endurance limit (Marin factors), q and K_f, K_fs at three sections (keyseat and two
+  shoulders) and the four DE criteria with the first-cycle yield check, as one vectorised call;
+  and the same for 1000 designs at once (cost per design);
+* deflection: the elastic line under the wheel's weight and unbalance force (slopes at the bearings,
+  deflection at the wheel);
+* the closed forms: Jeffcott, Rayleigh, Dunkerley;
+* the beam FE: assembly and the first forward critical speed, at the default mesh (L/20) and a finer
+  one (L/80), with the error of each against a 320-element reference; a Campbell diagram (whirl at
+  25 speeds);
+* the whole check of one design: strength, deflection and the FE forward critical speed with its
+  margin against the running range.
+
+Runs pinned to one core, with one BLAS thread. Writes ``benchmarks/results/shaft.md`` and ``shaft.csv``.
+
+Usage::
+
+    python benchmarks/bench_shaft.py [--repeat 21] [--out benchmarks/results]
+
+Target (issue 30: "the shaft checks add at most a few milliseconds per design"): the whole check of
+one design under 5 ms (median).
+"""
+
+import os
+
+# Pinned to one core, BLAS must run one thread too: OpenBLAS's threads otherwise spin on that core
+# waiting for each other (a 166 x 166 solve took ~1 s so). Set before numpy is imported.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import argparse  # noqa: E402
+import math  # noqa: E402
+import platform  # noqa: E402
+import statistics  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+import scipy  # noqa: E402
+from common import load_average, pin_one_core, write_results  # noqa: E402
+
+from flyopt.design.shaft import beam, lateral, strength  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+TARGET_MS = 5.0
+E, RHO = 207e9, 7850.0
+MASS, RADIUS = 250.0, 0.45
+I_P = MASS * RADIUS**2 / 2.0 * 0.8  # a rimmed wheel: most of the mass at the rim
+I_D = I_P / 2.0 + MASS * 0.12**2 / 12.0  # its width 0.12 m
+SUT, SY = 650e6, 400e6
+SPEED_RANGE_RPM = (450.0, 550.0)
+OMEGA = 2 * math.pi * 550.0 / 60.0
+
+
+def shafts():
+    between = beam.SteppedShaft((0.15, 0.35, 0.75, 0.9), (0.06, 0.075, 0.09, 0.06), E, (0.1, 0.9), density=RHO)
+    overhung = beam.SteppedShaft((0.15, 0.7, 0.95, 1.15), (0.06, 0.09, 0.075, 0.07), E, (0.1, 0.9), density=RHO)
+    return {"between bearings (x = 0.5 m)": (between, 0.5), "overhung (x = 1.15 m)": (overhung, 1.15)}
+
+
+def strength_check(diameters, moments, torques, kt, kts, radii):
+    """One design's sections (arrays): S_e, K_f, K_fs, the four criteria and n_y."""
+    limit = strength.endurance_limit(SUT, diameters, "machined", reliability=0.99)
+    kf = strength.fatigue_concentration(kt, strength.notch_sensitivity(radii, SUT))
+    kfs = strength.fatigue_concentration(kts, strength.notch_sensitivity(radii, SUT, "torsion"))
+    out = [
+        strength.fatigue_safety_factor(
+            diameters, moments, torques[1], 0.0, torques[0], kf=kf, kfs=kfs, se=limit.se, sut=SUT, sy=SY, criterion=c
+        )
+        for c in strength.CRITERIA
+    ]
+    out.append(strength.yield_safety_factor(diameters, moments, torques[1], 0.0, torques[0], sy=SY, kf=kf, kfs=kfs))
+    return out
+
+
+SECTIONS = (
+    np.array([0.075, 0.06, 0.06]),  # keyseat at the wheel, two shoulders at the bearings
+    np.array([900.0, 350.0, 300.0]),  # alternating bending [N*m] (a rotating shaft)
+    (np.array([1200.0, 1200.0, 0.0]), np.array([800.0, 800.0, 0.0])),  # mean and alternating torque
+    np.array([2.14, 1.7, 1.7]),
+    np.array([3.0, 1.5, 1.5]),
+    np.array([0.0015, 0.002, 0.002]),
+)
+
+
+def deflection_check(shaft, x_wheel):
+    weight = MASS * lateral.GRAVITY
+    unbalance = MASS * 6.3e-3 / OMEGA * OMEGA**2  # ISO 21940 G 6.3: e omega = 6.3 mm/s
+    line = beam.elastic_line(shaft, [x_wheel], [-(weight + unbalance)], at=[*shaft.bearings, x_wheel])
+    return line.slope[:2], line.deflection[2]
+
+
+def fe_critical(shaft, x_wheel, max_element):
+    model = lateral.rotor_model(shaft, [lateral.Disc(x_wheel, MASS, I_D, I_P)], max_element=max_element)
+    return float(lateral.critical_speeds(model, modes=1)[0])
+
+
+def whole_check(shaft, x_wheel):
+    strength_check(*SECTIONS)
+    deflection_check(shaft, x_wheel)
+    critical = fe_critical(shaft, x_wheel, shaft.length / 20)
+    return lateral.running_margin(critical, SPEED_RANGE_RPM)
+
+
+def timed(call, repeat):
+    call()
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        call()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), min(times), max(times)
+
+
+def ms(t):
+    return f"{t[0] * 1e3:.3f} ms ({t[1] * 1e3:.3f}-{t[2] * 1e3:.3f})"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=21)
+    parser.add_argument("--out", type=Path, default=ROOT / "benchmarks" / "results")
+    args = parser.parse_args()
+    pinned = pin_one_core()
+    load = load_average()
+    rows, lines = [], []
+
+    def record(case, what, t, note=""):
+        rows.append({"case": case, "what": what, "median_ms": t[0] * 1e3, "min_ms": t[1] * 1e3, "max_ms": t[2] * 1e3})
+        lines.append(f"| {case} | {what} | {ms(t)} | {note} |")
+
+    t = timed(lambda: strength_check(*SECTIONS), args.repeat)
+    record("any", "strength, 3 sections, 4 criteria + yield", t)
+    many = tuple(
+        np.tile(a, 1000) if isinstance(a, np.ndarray) else tuple(np.tile(b, 1000) for b in a) for a in SECTIONS
+    )
+    t_many = timed(lambda: strength_check(*many), max(5, args.repeat // 3))
+    record("any", "strength, 1000 designs x 3 sections in one call", t_many, f"{t_many[0]:.3e} s per 1000")
+    whole = {}
+    for case, (shaft, x_wheel) in shafts().items():
+        record(
+            case,
+            "deflection and bearing slopes (elastic line)",
+            timed(lambda: deflection_check(shaft, x_wheel), args.repeat),
+        )
+        record(
+            case,
+            "Jeffcott + Rayleigh + Dunkerley",
+            timed(
+                lambda: (
+                    lateral.jeffcott_speed(shaft, x_wheel, MASS),
+                    lateral.rayleigh_speed(shaft, [x_wheel], [MASS]),
+                    lateral.dunkerley_speed(shaft, [x_wheel], [MASS]),
+                ),
+                args.repeat,
+            ),
+        )
+        reference = fe_critical(shaft, x_wheel, shaft.length / 320)
+        for label, size in (("default L/20", shaft.length / 20), ("fine L/80", shaft.length / 80)):
+            value = fe_critical(shaft, x_wheel, size)
+            t = timed(lambda size=size: fe_critical(shaft, x_wheel, size), args.repeat)
+            error = abs(value - reference) / reference
+            record(case, f"FE forward critical speed, {label}", t, f"{value * 30 / math.pi:.2f} rpm, error {error:.1e}")
+        model = lateral.rotor_model(shaft, [lateral.Disc(x_wheel, MASS, I_D, I_P)])
+        record(
+            case,
+            "Campbell diagram, 25 speeds",
+            timed(lambda: lateral.whirl_frequencies(model, np.linspace(0, 2 * OMEGA, 25)), args.repeat),
+        )
+        closed = lateral.jeffcott_speed(shaft, x_wheel, MASS)
+        lines.append(
+            f"| {case} | Jeffcott's speed, for scale (massless shaft, no gyroscopics) | - | {closed * 30 / math.pi:.2f} rpm |"
+        )
+        whole[case] = timed(lambda: whole_check(shaft, x_wheel), args.repeat)
+        record(case, "the whole check of one design", whole[case], f"margin {whole_check(shaft, x_wheel):.2f}")
+    slowest = max(v[0] for v in whole.values())
+    verdict = "met" if slowest * 1e3 < TARGET_MS else "**NOT met**"
+    text = (
+        f"""# Shaft checks benchmark (issue 30, items 2 and 3)
+
+Command: `python benchmarks/bench_shaft.py --repeat {args.repeat}`
+
+Machine: {platform.platform()}, {platform.machine()}, {pinned}; Python {sys.version.split()[0]}, numpy {np.__version__}, scipy {scipy.__version__}. Load average at the start: {load} (a shared host, loaded by other engineers' runs: figures are medians, with the range over {args.repeat} repeats).
+
+The shaft: four steps (0.06-0.09 m), bearings at 0.1 and 0.9 m (rigid), steel (E 207 GPa, 7850 kg/m^3); the wheel 250 kg, I_p {I_P:.2f} kg*m^2, I_d {I_D:.2f} kg*m^2, running 450-550 rpm.
+
+| case | what | time, median (range) | result |
+|---|---|---|---|
+"""
+        + "\n".join(lines)
+        + f"""
+
+## Target
+
+| figure | value | target | verdict |
+|---|---|---|---|
+| the whole check of one design (strength at 3 sections, deflection, FE forward critical speed and margin), slowest case, median | {slowest * 1e3:.3f} ms | < {TARGET_MS:g} ms | {verdict} |
+
+## Notes
+
+- The FE's error is against the same model on a 320-element mesh; the default mesh (L/20 plus the breakpoints) is what the whole check uses.
+- The strength check is numpy-vectorised: many designs in one call cost far less each than one call per design.
+- Library modules only: nothing in `solve` calls them yet (docs/flywheel-design.md, section 24).
+"""
+    )
+    write_results(args.out, "shaft", text, rows)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()
