@@ -74,9 +74,7 @@ class SteppedShaft:
         a, b = (float(x) for x in self.bearings)
         if not (0.0 <= a < b <= steps[-1]):
             raise ValueError(f"bearings [m] must be 0 <= x_A < x_B <= L = {steps[-1]:g}, got {self.bearings!r}")
-        stiffness = tuple(
-            None if k is None else positive(k, "bearing_stiffness [N/m]") for k in self.bearing_stiffness
-        )
+        stiffness = tuple(None if k is None else positive(k, "bearing_stiffness [N/m]") for k in self.bearing_stiffness)
         if len(stiffness) != 2:
             raise ValueError(f"bearing_stiffness must be two values, got {self.bearing_stiffness!r}")
         object.__setattr__(self, "steps", steps)

@@ -518,32 +518,22 @@ class DesignSection(BuilderBase):
         if not c.parts.key:
             return
         k = c.parts.key
+        head = (
+            f"Key (DIN 6885-1 form A) {k['size']} on the ",
+            self.q(c.bore, "length"),
+            " bore, length ",
+            self.q(k["length"], "length"),
+            " (effective ",
+            self.q(k["effective_length"], "length"),
+        )
         if k["ok"] is None:  # sized by the seat and the hub; nothing to check it against
-            blocks.append(
-                Paragraph(
-                    (
-                        f"Key (DIN 6885-1 form A) {k['size']} on the ",
-                        self.q(c.bore, "length"),
-                        " bore, length ",
-                        self.q(k["length"], "length"),
-                        " (effective ",
-                        self.q(k["effective_length"], "length"),
-                        f"): sized by the seat and the hub, not checked (the design's notes say why; {NOTES}, "
-                        "section 13).",
-                    ),
-                    "warning",
-                )
-            )
+            said = f"): sized by the seat and the hub, not checked (the design's notes say why; {NOTES}, section 13)."
+            blocks.append(Paragraph((*head, said), "warning"))
             return
         blocks.append(
             Paragraph(
                 (
-                    f"Key (DIN 6885-1 form A) {k['size']} on the ",
-                    self.q(c.bore, "length"),
-                    " bore, length ",
-                    self.q(k["length"], "length"),
-                    " (effective ",
-                    self.q(k["effective_length"], "length"),
+                    *head,
                     f"): {'OK' if k['ok'] else 'NOT OK'}, at the flywheel's peak torque ",
                     self.q(k["torque"], "torque", "torque"),
                     f" ({NOTES}, section 13).",
