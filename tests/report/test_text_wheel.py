@@ -239,3 +239,21 @@ def test_a_key_without_a_bearing_pressure_is_sized_by_the_seat_and_said_unchecke
     text = _solve_text(PROBLEMS / "press-arms-wheel.toml", capsys)
     assert "Key (DIN 6885-1 form A) on a 70 mm bore: 20 x 12, length 100 mm (effective 80 mm): not checked" in text
     assert any("gives no bearing_pressure: the key is sized by the seat" in n for n in _block(text, "Notes:"))
+
+
+def test_a_disc_is_reported_as_a_disc_not_a_rim(capsys, tmp_path):
+    """four-cylinder-engine's wheel is a disc: its text and report gave it rim dimensions (a mean diameter of
+    D/2, an inner diameter of 0 and "rim H x B 140 x 9.77 mm", issue 29); they give its outer diameter and its
+    width, and for a disc on a seat its bore."""
+    import re
+
+    text = _solve_text(PROBLEMS / "four-cylinder-engine.toml", capsys)
+    block = text[text.index("Flywheel design") : text.index("Parts of the wheel")]
+    assert "rim H x B" not in block and "mean / inner" not in block
+    assert re.search(r"  outer diameter\s+280 mm", block) and re.search(r"  disc width B\s+9\.\d+ mm", block)
+    bored = _solve_text(WHEELS / "engine-disc.toml", capsys)
+    assert re.search(r"  outer diameter / bore\s+[\d.]+ / 60 mm", bored)
+    out = tmp_path / "disc.html"
+    assert main(["report", str(PROBLEMS / "four-cylinder-engine.toml"), "-o", str(out)]) == 0
+    page = re.sub(r"<[^>]+>", " ", re.sub(r"<svg.*?</svg>", "", out.read_text(encoding="utf-8"), flags=re.S))
+    assert "outer / mean / inner diameter" not in page and "outer diameter" in page

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 from flyopt.design.result import Design
 from flyopt.errors import BrokenInvariant
+from flyopt.names import Geometry
 from flyopt.report.characters import visible
 from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, quantity_text
 
@@ -331,6 +332,27 @@ def rounding_report(result: DesignResult, units: str = DEFAULT) -> list[str]:
     ]
 
 
+def _size_facts(best: Design, units: str) -> list[tuple[str, str]]:
+    """A design's size in words: a rim's outer, mean and inner diameters and its section H x B; a disc's outer
+    diameter, its bore where it has one, and its width (a disc has no rim)."""
+    q, n = formatters(units)
+    d = best.dims
+    if best.geometry == Geometry.DISC:
+        outer = (
+            ("outer diameter / bore", f"{n(d.d_outer, 'd_outer')} / {q(best.bore, 'bore')}")
+            if best.bore
+            else ("outer diameter", q(d.d_outer, "d_outer"))
+        )
+        return [outer, ("disc width B", q(d.b, "b"))]
+    return [
+        (
+            "outer / mean / inner diameter",
+            f"{n(d.d_outer, 'd_outer')} / {n(d.d_mean, 'd_mean')} / {q(d.d_inner, 'd_inner')}",
+        ),
+        ("rim H x B", f"{n(d.h, 'h')} x {q(d.b, 'b')} (H/B {number(d.hb_ratio, 4)})"),
+    ]
+
+
 def design_report(result: DesignResult, spec: DesignSpec | None = None, units: str = DEFAULT) -> list[str]:
     """The design part of the ``flyopt solve`` report: the winner and the ranking of every combination.
 
@@ -345,11 +367,7 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
         facts = [
             ("material / shaft", f"{best.material} on {best.shaft} (speed ratio {number(best.speed_ratio)})"),
             ("mass", q(best.mass, "mass") + (f" (cost {number(best.cost)})" if best.cost is not None else "")),
-            (
-                "outer / mean / inner diameter",
-                f"{n(best.dims.d_outer, 'd_outer')} / {n(best.dims.d_mean, 'd_mean')} / {q(best.dims.d_inner, 'd_inner')}",
-            ),
-            ("rim H x B", f"{n(best.dims.h, 'h')} x {q(best.dims.b, 'b')} (H/B {number(best.dims.hb_ratio, 4)})"),
+            *_size_facts(best, units),
             (
                 "inertia",
                 f"{q(best.j_flywheel, 'j_flywheel')} on its shaft = "

@@ -166,6 +166,26 @@ class BuilderBase:
 
         return MODELS.get(Model(model), model) if model in MODELS else model
 
+    def diameter_row(self, c: Design) -> tuple[str, tuple[Any, ...]]:
+        """The wheel's diameters: a rim's outer, mean and inner; a disc's outer and its bore (it has no rim)."""
+        if c.geometry == Geometry.DISC:
+            if c.bore:
+                return (
+                    "outer diameter / bore",
+                    (self.q(c.dims.d_outer, "length", "d_outer"), " / ", self.q(c.bore, "length", "bore")),
+                )
+            return ("outer diameter", (self.q(c.dims.d_outer, "length", "d_outer"),))
+        return (
+            "outer / mean / inner diameter",
+            (
+                self.q(c.dims.d_outer, "length", "d_outer"),
+                " / ",
+                self.q(c.dims.d_mean, "length", "d_mean"),
+                " / ",
+                self.q(c.dims.d_inner, "length", "d_inner"),
+            ),
+        )
+
     def width_row(self, c: Design) -> tuple[str, tuple[Any, ...]]:
         """The wheel's width and, for a rim, its radial thickness (a disc is the annulus with no hole, section 9)."""
         if c.geometry == Geometry.DISC:
@@ -173,7 +193,7 @@ class BuilderBase:
                 "axial width B",
                 (
                     self.q(c.dims.b, "length", "b"),
-                    " (a disc: D_m = H = D/2, no hole)" if not c.dims.d_inner else " (an annulus on its bore)",
+                    " (a solid disc)" if not c.dims.d_inner else " (an annulus on its bore)",
                 ),
             )
         return (

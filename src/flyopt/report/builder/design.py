@@ -46,16 +46,7 @@ class DesignSection(BuilderBase):
         rows: list[tuple[str, Any]] = [
             ("material / shaft", f"{best.material} on {best.shaft} (speed ratio {number(best.speed_ratio)})"),
             ("mass", (self.q(best.mass, "mass", "mass"), "" if best.cost is None else f" (cost {number(best.cost)})")),
-            (
-                "outer / mean / inner diameter",
-                (
-                    self.q(best.dims.d_outer, "length", "d_outer"),
-                    " / ",
-                    self.q(best.dims.d_mean, "length", "d_mean"),
-                    " / ",
-                    self.q(best.dims.d_inner, "length", "d_inner"),
-                ),
-            ),
+            self.diameter_row(best),
             self.width_row(best),
             (
                 "inertia",
