@@ -740,3 +740,25 @@ def test_press_drive_end_to_end(system, main_cli):
     assert close(quantity(relaxed, "power", system), document["drive"]["relaxation"]["rated_power"], "power", system)
     names = [run["motor"]["name"] for run in document["drive"]["runs"]]
     assert unlabelled_numbers(text, system, names=names) == []
+
+
+def test_round_off_prints_as_zero():
+    """The energy chain closes at the cycle's end: four-cylinder-engine's text printed its round-off
+    (-3.69482e-16 kJ at 720 deg, issue 29); a value within 1e-12 of its column's scale prints as 0, and a
+    real small value does not."""
+    import subprocess
+    import sys
+
+    from conftest import PROBLEMS
+
+    from flyopt.report.display import denoised
+
+    assert denoised([0.0, 9000.0, -3.7e-13, -9000.0]) == [0.0, 9000.0, 0.0, -9000.0]
+    assert denoised([1e-3, 1.0]) == [1e-3, 1.0] and denoised([1e-20]) == [1e-20] and denoised([]) == []
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "solve", str(PROBLEMS / "four-cylinder-engine.toml")],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0 and not re.search(r"\de-1\d", run.stdout), run.stdout
+    assert re.search(r"\n  720\s+0\s*\n", run.stdout)

@@ -19,7 +19,17 @@ from flyopt.design.result import Design
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
 from flyopt.report.characters import visible
-from flyopt.report.display import DEFAULT, dimension_of, field_number, field_text, heading, label, number, quantity_text
+from flyopt.report.display import (
+    DEFAULT,
+    denoised,
+    dimension_of,
+    field_number,
+    field_text,
+    heading,
+    label,
+    number,
+    quantity_text,
+)
 
 if TYPE_CHECKING:
     from flyopt.analysis import Analysis
@@ -187,7 +197,8 @@ def analysis_report(
     lines += engine_report(r, units)
     lines += ["", "Energy indicator diagram (excess work from the cycle start):"]
     rows = []
-    for e in r.energy_chain:
+    shown = denoised([e["delta_e"] for e in r.energy_chain])
+    for e, delta_e in zip(r.energy_chain, shown, strict=True):
         same = (r.angle_delta_e_max, r.angle_delta_e_min) == (r.angle_omega_max, r.angle_omega_min)
         top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")
         mark = top if e["index"] == r.index_omega_max else bottom if e["index"] == r.index_omega_min else ""
@@ -196,7 +207,7 @@ def analysis_report(
             if e["angle"] is not None
             else ("start" if e["index"] == 0 else f"after area {e['index']}")
         )
-        rows.append([where, n(e["delta_e"], "delta_e"), mark])
+        rows.append([where, n(delta_e, "delta_e"), mark])
     head = [
         heading("angle", "angle", units) if r.angle_omega_max is not None else "point",
         heading("ΔE", "delta_e", units),

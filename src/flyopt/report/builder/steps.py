@@ -8,7 +8,7 @@ from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report.builder.base import NOTES
 from flyopt.report.builder.requirement import Requirement
-from flyopt.report.display import number
+from flyopt.report.display import denoised, number
 from flyopt.report.document import Facts, Paragraph, Table
 
 
@@ -253,14 +253,15 @@ class Steps(Requirement):
         same = (a.angle_delta_e_max, a.angle_delta_e_min) == (a.angle_omega_max, a.angle_omega_min)
         top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")
         rows = []
-        for e in a.energy_chain:
+        shown = denoised([e["delta_e"] for e in a.energy_chain])
+        for e, delta_e in zip(a.energy_chain, shown, strict=True):
             mark = top if e["index"] == a.index_omega_max else bottom if e["index"] == a.index_omega_min else ""
             where = (
                 self.n(e["angle"], "angle")
                 if e["angle"] is not None
                 else ("start" if e["index"] == 0 else f"after area {e['index']}")
             )
-            rows.append([str(e["index"]), where, self.n(e["delta_e"], "energy", "delta_e"), mark])
+            rows.append([str(e["index"]), where, self.n(delta_e, "energy", "delta_e"), mark])
         blocks.append(
             Table(
                 ("point", self.head("angle φ", "angle"), self.head("ΔE", "energy"), ""),
