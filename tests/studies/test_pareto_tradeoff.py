@@ -303,3 +303,34 @@ def test_a_front_of_too_many_or_too_few_points_is_refused_at_once(points):
     scene = flyopt.load(PROBLEMS / "punch-press.toml")
     with pytest.raises(SceneError, match=f"from 2 to {MAX_FRONT_POINTS}"):
         pareto(scene, ("mass", "outer_diameter"), points=points)
+
+
+def test_printed_tables_follow_units_as_solve_does():
+    """pareto and tradeoff printed metres where solve prints millimetres (issue 29): their tables now take
+    --units (engineering by default), the numbers converted by the display's factors, and the JSON stays SI."""
+    import json
+    import subprocess
+    import sys
+
+    from conftest import PROBLEMS
+
+    def run(*args):
+        done = subprocess.run(
+            [sys.executable, "-m", "flyopt", "tradeoff", str(PROBLEMS / "punch-press.toml"), *args],
+            capture_output=True,
+            text=True,
+        )
+        assert done.returncode == 0, done.stderr
+        return done.stdout
+
+    si = json.loads(run("--json"))
+    rows = {r["material"]: r for r in si["rows"]}
+
+    engineering, imperial = run(), run("--units", "imperial")
+    assert "d_outer [mm]" in engineering and "mass [kg]" in engineering
+    assert "d_outer [in]" in imperial and "mass [lb]" in imperial and "rim_speed [ft/s]" in imperial
+    for material, row in rows.items():
+        line = next(l for l in engineering.splitlines() if l.split()[:1] == [material])
+        assert f"{row['d_outer'] * 1e3:.5g}" in line.split()
+        line = next(l for l in imperial.splitlines() if l.split()[:1] == [material])
+        assert f"{row['d_outer'] / 0.0254:.5g}" in line.split() and f"{row['mass'] / 0.45359237:.5g}" in line.split()

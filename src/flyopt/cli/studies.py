@@ -249,6 +249,15 @@ def _method_and_output(parser: argparse.ArgumentParser, what: str) -> None:
     parser.add_argument(
         "--json", action="store_true", help=f"print the {what} as one JSON document: its units, provenance and rows"
     )
+    from flyopt.cli.scene import units_help
+    from flyopt.report import display
+
+    parser.add_argument(
+        "--units",
+        choices=display.SYSTEMS,
+        default=display.DEFAULT,
+        help=units_help(f"the printed {what} (files and --json stay in SI, with their units)"),
+    )
     add_quiet_argument(parser)
 
 
@@ -400,7 +409,10 @@ def _emit(
     file is written atomically like the others. With ``--quiet`` and a file,
     nothing is printed.
     """
+    from pandas.api.types import is_numeric_dtype
+
     from flyopt.outputs import documents, files, quantities, results
+    from flyopt.report import display
     from flyopt.studies.payload import digest
 
     frame = results.normalize(frame.copy())
@@ -424,7 +436,15 @@ def _emit(
         return
     front = objectives[1] if objectives else None
     shown = frame[[c for c in columns if c in frame]].copy()
-    shown.columns = [_label(c, quantities.unit_of(c, documents.objective_of(frame), front)) for c in shown.columns]
+    labels = []
+    for c in shown.columns:
+        dimension = quantities.dimension_of(c)
+        if dimension is not None and is_numeric_dtype(shown[c]):  # in the user's units, as solve
+            shown[c] = display.show(shown[c], dimension, args.units)
+            labels.append(_label(c, display.label(dimension, args.units)))
+        else:
+            labels.append(_label(c, quantities.unit_of(c, documents.objective_of(frame), front)))
+    shown.columns = labels
     print(title)
     print(shown.to_string(index=False, float_format=lambda x: f"{x:.5g}", na_rep="-"))
     if output is not None:
