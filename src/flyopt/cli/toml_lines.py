@@ -96,6 +96,7 @@ class _Scanner:
         path = ""
         for part in parts:
             path = f"{path}.{part}" if path else part
+            self.lines.setdefault(path, self.line)  # [a.b] makes a here, unless it was made before
             if path in self.array_tables:
                 path = f"{path}[{self.array_tables[path]}]"
         return path
