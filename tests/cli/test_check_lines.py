@@ -50,3 +50,15 @@ def test_a_sound_structure_shows_the_loaders_error_on_its_line(main_cli, write_s
 def test_a_good_scene_is_still_ok(main_cli):
     status, out, err = main_cli("check", PROBLEMS / "shear-press.toml")
     assert status == 0 and out.startswith(f"{PROBLEMS / 'shear-press.toml'}: ok") and err == ""
+
+
+def test_a_flood_of_errors_is_cut_to_the_first_hundred_and_counted(main_cli, write_scene):
+    from flyopt.cli.scene import MAX_LISTED
+
+    keys = "".join(f"bad_{k} = 1\n" for k in range(MAX_LISTED + 20))
+    path = write_scene("[machine]\n" + keys)
+    status, out, err = main_cli("check", path)
+    lines = err.splitlines()
+    assert status == 2 and len(lines) == MAX_LISTED + 1
+    assert lines[0].startswith(f"{path}:2: machine.bad_0: unknown key")
+    assert lines[-1] == f"{path}:{MAX_LISTED + 2}: 20 more errors after these"

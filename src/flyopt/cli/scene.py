@@ -149,6 +149,10 @@ def run_check(args: argparse.Namespace) -> int:
         return _say_errors(args.scene, data, err)
 
 
+MAX_LISTED = 100
+"""The most errors ``flyopt check`` lists; the rest are counted."""
+
+
 def _say_errors(path: str, data: dict[str, Any], err: SceneError) -> int:
     """Print every structural error of ``data`` (else the loader's ``err``) as ``FILE:LINE: field: message``; return 2."""
     import sys
@@ -167,9 +171,12 @@ def _say_errors(path: str, data: dict[str, Any], err: SceneError) -> int:
     lines = key_lines(Path(path).read_text(encoding="utf-8", errors="replace"))
     placed = [(line_of(lines, field), field, message) for field, message in errors]
     placed.sort(key=lambda item: item[0] or 0)  # in the order of the file (stable: the schema's order within a line)
-    for line, field, message in placed:
+    for line, field, message in placed[:MAX_LISTED]:
         where = f"{path}:{line}" if line is not None else path
         print(one_line(SceneError(field, message, where)), file=sys.stderr)  # the field clipped as every refusal
+    if len(placed) > MAX_LISTED:  # a hostile file of a million bad keys is not a million lines
+        line = placed[MAX_LISTED][0]
+        print(f"{path}:{line or 1}: {len(placed) - MAX_LISTED} more errors after these", file=sys.stderr)
     return EXIT_INPUT
 
 
