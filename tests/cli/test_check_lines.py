@@ -62,3 +62,12 @@ def test_a_flood_of_errors_is_cut_to_the_first_hundred_and_counted(main_cli, wri
     assert status == 2 and len(lines) == MAX_LISTED + 1
     assert lines[0].startswith(f"{path}:2: machine.bad_0: unknown key")
     assert lines[-1] == f"{path}:{MAX_LISTED + 2}: 20 more errors after these"
+
+
+def test_a_field_the_file_does_not_write_is_said_without_a_line(main_cli, write_scene):
+    """A [press] derives machine.delta from its slowdown: no line of the file writes it."""
+    text = (PROBLEMS / "press-from-process.toml").read_text(encoding="utf-8")
+    path = write_scene(text.replace('flywheel_speed_min = "200 rpm"', "slowdown = 1e-300"))
+    status, out, err = main_cli("check", path)
+    assert status == 2 and len(err.splitlines()) == 1
+    assert err.startswith(f"flyopt: error: {path}: machine.delta: 1e-300 is out of range"), err

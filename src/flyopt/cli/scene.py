@@ -135,8 +135,9 @@ def run_check(args: argparse.Namespace) -> int:
     at once (:func:`flyopt.cli.scene_schema.structural_errors`: unknown keys,
     wrong types, missing keys; the loader's words for the one it met first),
     or, when the structure is sound, the loader's error; each on its own
-    line ``FILE:LINE: field: message`` on stderr, in the order of the file;
-    exit status 2. A file that is not TOML, and the other commands,
+    line ``FILE:LINE: field: message`` on stderr, in the order of the file
+    (a field the file does not write, derived from another section, as
+    ``flyopt: error: FILE: field: message``); exit status 2. A file that is not TOML, and the other commands,
     keep the one-line refusal.
     """
     from flyopt.errors import SceneError
@@ -172,7 +173,8 @@ def _say_errors(path: str, data: dict[str, Any], err: SceneError) -> int:
     placed = [(line_of(lines, field), field, message) for field, message in errors]
     placed.sort(key=lambda item: item[0] or 0)  # in the order of the file (stable: the schema's order within a line)
     for line, field, message in placed[:MAX_LISTED]:
-        where = f"{path}:{line}" if line is not None else path
+        # a field the file does not write (machine.delta that a [press] derives) is said as every command says it
+        where = f"{path}:{line}" if line is not None else f"flyopt: error: {path}"
         print(one_line(SceneError(field, message, where)), file=sys.stderr)  # the field clipped as every refusal
     if len(placed) > MAX_LISTED:  # a hostile file of a million bad keys is not a million lines
         line = placed[MAX_LISTED][0]
