@@ -46,3 +46,13 @@ def assert_published(actual, published):
     assert abs(Decimal(repr(float(actual))) - figure) <= half_unit, (
         f"{actual!r} does not round to the published {published} (±{half_unit})"
     )
+
+
+def names_field(line, path, field):
+    """Whether a refusal's line names the scene file and the field: ``flyopt: error: FILE: field: ...``
+    as every command says it, or ``FILE:LINE: field: ...`` as ``flyopt check`` places it on its line."""
+    import re
+
+    if line.startswith(f"flyopt: error: {path}: {field}: "):
+        return True
+    return re.match(rf"{re.escape(str(path))}:\d+: {re.escape(field)}: ", line) is not None

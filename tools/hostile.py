@@ -11,7 +11,7 @@ timeout, and must end:
 - with exit status 0, 2 or 3 (1 means the input got past the checks and broke
   something inside; 130 or a kill means it hung),
 - within ``--timeout`` seconds (default 10),
-- with no traceback, and one line on stderr on error, nothing on success,
+- with no traceback, and one line on stderr on error (``check``: one ``FILE:LINE:`` line per error), nothing on success,
 - without quoting a canary file,
 - without creating, changing or removing anything outside its folder,
 - with nothing half-written: on an error, no new file in its folder.
@@ -34,6 +34,7 @@ import json
 import math
 import os
 import random
+import re
 import shutil
 import signal
 import stat
@@ -621,12 +622,14 @@ def run_case(case: Case, work: Path, timeout: float) -> Outcome:
     if "Traceback" in stderr or "Traceback" in stdout:
         problems.append("traceback")
     lines = stderr.strip("\n").splitlines()
+    # flyopt check lists every error of a scene, each as FILE:LINE: field: message (issue 29)
+    placed = bool(args) and args[0] == "check" and all(re.match(r"[^:\n]+:\d+: ", line) for line in lines)
     if status == 0 and lines:
         problems.append(f"stderr on success ({len(lines)} lines)")
-    elif status not in (0, None) and len(lines) > 1:
+    elif status not in (0, None) and len(lines) > 1 and not placed:
         problems.append(f"{len(lines)} lines on stderr")
-    if status == 2 and lines and not lines[0].startswith("flyopt"):
-        problems.append("error line does not start with 'flyopt'")
+    if status == 2 and lines and not lines[0].startswith("flyopt") and not placed:
+        problems.append("error line does not start with 'flyopt' (nor, from check, FILE:LINE:)")
     if CANARY in stdout or CANARY in stderr:
         problems.append("printed a canary from outside the scene's folder")
     if status is not None and seconds > timeout:

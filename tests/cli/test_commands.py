@@ -3,6 +3,7 @@
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -96,7 +97,12 @@ def test_bad_input_is_one_line_exit_2_no_traceback(tmp_path, text, words, comman
     assert out.stdout == ""  # nothing half-written
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and "Traceback" not in out.stderr
-    assert lines[0].startswith(f"flyopt: error: {path}: ")
+    placed = {"machine.speed": 2, "machine.delta": 3}  # flyopt check names a field's line: FILE:LINE: field: ...
+    field = words.split(":")[0]
+    if command == "check" and field in placed:
+        assert lines[0].startswith(f"{path}:{placed[field]}: ")
+    else:
+        assert lines[0].startswith(f"flyopt: error: {path}: ")
     assert words in lines[0]
 
 
@@ -307,8 +313,10 @@ def test_check_refuses_the_sweep_table_that_sweep_refuses(tmp_path, capsys, tabl
     from_sweep = capsys.readouterr().err
     assert main(["check", str(path)]) == 2
     from_check = capsys.readouterr()
-    assert from_check.out == "" and from_check.err == from_sweep
-    assert from_check.err.count("\n") == 1 and from_check.err.startswith(f"flyopt: error: {path}: ")
+    # the same error, placed on its line by check (FILE:LINE: field: message), said in one line by sweep
+    assert from_check.out == "" and from_sweep.startswith(f"flyopt: error: {path}: ")
+    assert from_check.err.count("\n") == 1 and re.match(rf"{re.escape(str(path))}:\d+: ", from_check.err)
+    assert from_check.err.split(": ", 1)[1] == from_sweep.split(f"{path}: ", 1)[1]
     assert words in from_check.err
 
 

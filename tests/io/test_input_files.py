@@ -14,7 +14,7 @@ import subprocess
 import sys
 
 import pytest
-from conftest import PROBLEMS, ROOT
+from conftest import PROBLEMS, ROOT, names_field
 
 import flyopt
 from flyopt.errors import SceneError
@@ -72,7 +72,7 @@ def refused(path, field, match, env=None, commands=("check", "solve"), timeout=6
         assert run.returncode == 2, (command, run.returncode, run.stderr)
         lines = run.stderr.splitlines()
         assert len(lines) == 1, run.stderr
-        assert lines[0].startswith(f"flyopt: error: {path}: {field}: "), lines[0]
+        assert names_field(lines[0], path, field), lines[0]
         assert match in lines[0], lines[0]
         assert "CANARY" not in run.stderr + run.stdout
 

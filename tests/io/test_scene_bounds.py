@@ -9,7 +9,7 @@ import subprocess
 import sys
 
 import pytest
-from conftest import PROBLEMS, ROOT
+from conftest import PROBLEMS, ROOT, names_field
 
 import flyopt
 from flyopt.errors import SceneError
@@ -26,7 +26,7 @@ def refused_by_check_and_solve(path, field, match):
         run = cli(command, path)
         lines = run.stderr.splitlines()
         assert run.returncode == 2 and len(lines) == 1, (command, run.returncode, run.stderr[-2000:])
-        assert lines[0].startswith(f"flyopt: error: {path}: {field}: "), lines[0]
+        assert names_field(lines[0], path, field), lines[0]
         assert match in lines[0], lines[0]
 
 

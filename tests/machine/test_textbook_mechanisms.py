@@ -15,7 +15,7 @@ import math
 import jsonschema
 import numpy as np
 import pytest
-from conftest import PROBLEMS, assert_published
+from conftest import PROBLEMS, assert_published, names_field
 from scipy import optimize
 
 import flyopt
@@ -440,7 +440,7 @@ def test_bad_positions_are_refused_in_one_line(main_cli, write_scene, position, 
         status, out, err = main_cli(verb, path)
         assert status == 2, (verb, out, err)
         lines = err.strip().splitlines()
-        assert len(lines) == 1 and f"{path}: {field}: " in lines[0] and words in lines[0], lines
+        assert len(lines) == 1 and names_field(lines[0], path, field) and words in lines[0], lines
 
 
 def test_the_mechanism_alone_has_nothing_to_reduce(main_cli, write_scene):

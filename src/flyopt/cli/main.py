@@ -8,6 +8,8 @@
     flyopt report SCENE.toml -o FILE [--units SYSTEM]           the engineering report (.html, .pdf)
     flyopt export SCENE.toml -o FILE                            the wheel's drawing (.dxf, .svg, .pdf)
     flyopt sweep | pareto | tradeoff SCENE.toml [-o FILE] ...   design studies
+    flyopt new KIND [-o FILE] [--force]                         a commented template scene
+    flyopt materials [--units SYSTEM] [--json]                  the built-in material library
     flyopt bench ...                                            speed against error
     flyopt --version
 
@@ -77,7 +79,7 @@ def entry() -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
-    from flyopt.cli import export, plot, report, scene, studies
+    from flyopt.cli import export, materials, new, plot, report, scene, studies
 
     parser = _Parser(
         prog="flyopt",
@@ -124,6 +126,10 @@ def _parser() -> argparse.ArgumentParser:
         ("tradeoff", studies.add_tradeoff_arguments, studies.TRADEOFF_HELP),
     ):
         add(commands.add_parser(name, **texts))
+    new.add_new_arguments(commands.add_parser("new", help="write a commented template scene to start from"))
+    materials.add_materials_arguments(
+        commands.add_parser("materials", help="list the built-in materials: density, strengths, rim speed, source")
+    )
     bench = commands.add_parser(
         "bench",
         add_help=False,  # --help is bench's own

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import argparse
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from flyopt.cli.exits import EXIT_OK, calculation_exit, solution_exit
 from flyopt.names import Model
 from flyopt.report import display
 
 if TYPE_CHECKING:
+    from flyopt.errors import SceneError
     from flyopt.io.scene import Scene
 
 
@@ -128,12 +129,63 @@ def add_check_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run_check(args: argparse.Namespace) -> int:
-    """``flyopt check``: 0 when the scene reads, its cycle closes and its ``[sweep]`` table would run."""
-    from flyopt.analysis import analyse
-    from flyopt.io.scene import load
+    """``flyopt check``: 0 when the scene reads, its cycle closes and its ``[sweep]`` table would run.
+
+    A scene the loader refuses is said as every structural error of the file
+    at once (:func:`flyopt.cli.scene_schema.structural_errors`: unknown keys,
+    wrong types, missing keys; the loader's words for the one it met first),
+    or, when the structure is sound, the loader's error; each on its own
+    line ``FILE:LINE: field: message`` on stderr, in the order of the file
+    (a field the file does not write, derived from another section, as
+    ``flyopt: error: FILE: field: message``); exit status 2. A file that is not TOML, and the other commands,
+    keep the one-line refusal.
+    """
+    from flyopt.errors import SceneError
     from flyopt.io.toml_file import read_toml
 
     data = read_toml(args.scene)
+    try:
+        return _check(args, data)
+    except SceneError as err:
+        return _say_errors(args.scene, data, err)
+
+
+MAX_LISTED = 100
+"""The most errors ``flyopt check`` lists; the rest are counted."""
+
+
+def _say_errors(path: str, data: dict[str, Any], err: SceneError) -> int:
+    """Print every structural error of ``data`` (else the loader's ``err``) as ``FILE:LINE: field: message``; return 2."""
+    import sys
+    from pathlib import Path
+
+    from flyopt.cli.exits import EXIT_INPUT, one_line
+    from flyopt.cli.scene_schema import structural_errors
+    from flyopt.cli.toml_lines import key_lines, line_of
+    from flyopt.errors import SceneError
+
+    errors = structural_errors(data)
+    fields = [field for field, _ in errors]
+    if err.field in fields:  # the loader's own words for the error it met first: they say what is allowed
+        errors[fields.index(err.field)] = (err.field, err.message)
+    errors = errors or [(err.field, err.message)]  # a sound structure: the loader's error
+    lines = key_lines(Path(path).read_text(encoding="utf-8", errors="replace"))
+    placed = [(line_of(lines, field), field, message) for field, message in errors]
+    placed.sort(key=lambda item: item[0] or 0)  # in the order of the file (stable: the schema's order within a line)
+    for line, field, message in placed[:MAX_LISTED]:
+        # a field the file does not write (machine.delta that a [press] derives) is said as every command says it
+        where = f"{path}:{line}" if line is not None else f"flyopt: error: {path}"
+        print(one_line(SceneError(field, message, where)), file=sys.stderr)  # the field clipped as every refusal
+    if len(placed) > MAX_LISTED:  # a hostile file of a million bad keys is not a million lines
+        line = placed[MAX_LISTED][0]
+        print(f"{path}:{line or 1}: {len(placed) - MAX_LISTED} more errors after these", file=sys.stderr)
+    return EXIT_INPUT
+
+
+def _check(args: argparse.Namespace, data: dict[str, Any]) -> int:
+    from flyopt.analysis import analyse
+    from flyopt.io.scene import load
+
     scene = load(args.scene, data)
     if scene.calculation is not None or scene.flywheel is not None:
         from flyopt.pipeline import check_flywheel, solve_calculation  # no cycle, or no design
