@@ -169,3 +169,34 @@ def test_solve_and_the_report_show_the_continuous_optimum_beside_the_rounded_whe
     )
     assert run.returncode == 0, run.stderr
     assert words in out.read_text(encoding="utf-8")
+
+
+def test_a_whole_wheel_is_rounded_by_default_and_round_to_false_asks_for_the_continuous_optimum(tmp_path):
+    """solve rounds a wheel designed whole to whole millimetres without being asked (issue 28: the rounded
+    wheel is the design reported); round_to = false gives the continuous optimum, and the scene schema takes
+    it; a textbook rim is not rounded."""
+    import json
+
+    import jsonschema
+
+    try:  # Python >= 3.11
+        import tomllib
+    except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+        import tomli as tomllib
+
+    text = (PROBLEMS / "press-arms-wheel.toml").read_text(encoding="utf-8")
+    rounded = flyopt.solve(flyopt.load(PROBLEMS / "press-arms-wheel.toml")).design
+    assert rounded.spec.round_to == 0.001 and rounded.continuous is not None
+    for name in ("d_outer", "h", "b", "d_hub", "l_hub", "arm_major"):
+        value = getattr(rounded.best.dims, name) * 1e3
+        assert abs(value - round(value)) < 1e-9, (name, value)
+    path = tmp_path / "continuous.toml"
+    path.write_text(text.replace("[design]\n", "[design]\nround_to = false\n", 1), encoding="utf-8")
+    continuous = flyopt.solve(flyopt.load(path)).design
+    assert continuous.continuous is None and continuous.best.mass == pytest.approx(rounded.continuous.mass, rel=1e-9)
+    assert continuous.best.mass < rounded.best.mass
+    schema = json.loads((Path(flyopt.__file__).parent / "data" / "scene.schema.json").read_text(encoding="utf-8"))
+    with open(path, "rb") as handle:
+        jsonschema.Draft202012Validator(schema).validate(tomllib.load(handle))
+    book = flyopt.solve(flyopt.load(PROBLEMS / "rim-sizing.toml")).design
+    assert book.continuous is None and book.spec.round_to is None
