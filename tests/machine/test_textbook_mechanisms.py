@@ -348,7 +348,9 @@ max_outer_diameter = "0.6 m"
 
 def test_a_four_bar_driven_by_a_motor_goes_through_the_dynamic_model(main_cli, write_scene):
     """A speed-dependent motor torque: the periodic solution (CasADi) of a machine with a four-bar's J_e(φ)."""
-    status, out, err = main_cli("solve", write_scene(FOUR_BAR_MOTOR))
+    # --no-design: the wheel's design and its δ-sensitivity would solve the periodic model twice more (20 s of
+    # a test that is about the model; the design of a dynamic scene is tested on motor-press)
+    status, out, err = main_cli("solve", write_scene(FOUR_BAR_MOTOR), "--no-design")
     assert status == 0, err
     assert "model: dynamic" in out and "dynamic (exact)" in out
 
