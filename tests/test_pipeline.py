@@ -130,7 +130,7 @@ def test_report_shows_winner_and_ranking(capsys):
     for words in (
         "Flywheel design (rim, objective: mass)",
         "Every combination (ranked)",
-        "ductile_iron",
+        "ductile iron",  # the scene's material by its name for people
         "binding",
         "solved by",
         "the exact closed form of the lightest wheel",

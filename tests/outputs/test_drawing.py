@@ -133,7 +133,7 @@ def test_dxf_title_block_says_what_and_whence(drawn, tmp_path):
 
     for words in (
         "Flywheel, rim, web and hub",
-        f"Material: {design.material}",
+        f"Material: {flyopt.load(PROBLEMS / 'punch-press-wheel.toml').material_library()[design.material].display_name}",
         f"Mass: {design.mass:.2f} kg",
         f"J about the axis: {design.j_flywheel:.4g} kg·m²",
         "G 6.3",
@@ -294,3 +294,25 @@ def test_a_drawing_of_what_is_not_a_design_is_refused(drawn):
     with pytest.raises(ValueError, match="not a design"):
         drawing_of(Candidate(**{**fields, "feasible": False}))
     assert math.isfinite(design.mass)
+
+
+def test_a_grade_is_named_by_its_designation_everywhere(tmp_path):
+    """One name per material (issue 29): press-arms-wheel's en_gjl_250 is EN-GJL-250 (EN 1561's designation)
+    in the text, the report, the messages and the drawing's title block; the JSON keeps the scene's key."""
+    import json
+    import subprocess
+    import sys
+
+    from flyopt.report.drawing import export
+
+    scene = PROBLEMS / "press-arms-wheel.toml"
+    text = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    assert text.returncode == 0 and "EN-GJL-250 on intermediate" in text.stdout and "en_gjl_250" not in text.stdout
+    data = json.loads(
+        subprocess.run(
+            [sys.executable, "-m", "flyopt", "solve", str(scene), "--json"], capture_output=True, text=True
+        ).stdout
+    )
+    assert data["design"]["material"] == "en_gjl_250" and data["design"]["message"].startswith("EN-GJL-250 on the")
+    drawing = export(scene, tmp_path / "arms.svg")
+    assert drawing.title["material"] == "EN-GJL-250"

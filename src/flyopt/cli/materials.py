@@ -18,10 +18,8 @@ from flyopt.report import display
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
 
-__all__ = ["display_name", "library_rows", "add_materials_arguments", "run_materials"]
+__all__ = ["library_rows", "add_materials_arguments", "run_materials"]
 
-_EN_GRADE = re.compile(r"en_gj[lsm]_[0-9_]+")
-_DESIGNATIONS = {"42crmo4_qt": "42CrMo4+QT"}  # a steel's designation mixes cases: EN 10027-1 (its source's first words)
 
 #: The columns of the table: (key, heading, dimension or None for text).
 COLUMNS = (
@@ -35,16 +33,6 @@ COLUMNS = (
     ("default", "default", None),
     ("source", "source", None),
 )
-
-
-def display_name(name: str) -> str:
-    """A material's name for people: a European grade in its designation (``en_gjs_400_18`` is
-    ``EN-GJS-400-18``, ``42crmo4_qt`` is ``42CrMo4+QT``), another name with spaces for underscores (``cast_iron`` is ``cast iron``)."""
-    if name in _DESIGNATIONS:
-        return _DESIGNATIONS[name]
-    if _EN_GRADE.fullmatch(name):
-        return name.upper().replace("_", "-")
-    return name.replace("_", " ")
 
 
 def library_rows() -> list[dict[str, Any]]:
@@ -66,7 +54,7 @@ def library_rows() -> list[dict[str, Any]]:
 def _row(material: Material, default: bool) -> dict[str, Any]:
     return {
         "name": material.name,
-        "display_name": display_name(material.name),
+        "display_name": material.display_name,
         "density": material.density,
         "tensile_strength": material.tensile_strength,
         "yield_strength": material.yield_strength,

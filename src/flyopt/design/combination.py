@@ -47,7 +47,7 @@ class Combination:
     def label(self) -> str:
         """The combination in words, e.g. ``"grey cast iron on the crank shaft with 6 arms"``."""
         arms = f" with {self.n_arms} arms" if self.n_arms else ""
-        return f"{self.material.name.replace('_', ' ')} on the {shaft_label(self.shaft.name)}{arms}"
+        return f"{self.material.display_name} on the {shaft_label(self.shaft.name)}{arms}"
 
 
 def shaft_label(name: str) -> str:

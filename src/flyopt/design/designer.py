@@ -580,7 +580,8 @@ def design_flywheel(
         )
     ranked, infeasible, best = _rank(decided)
     description = _describe_model(spec, wheel_model if wheel_model is not None else model)
-    result = _result(j_required, omega, spec, ranked, best, infeasible, decided, description, omega_mean)
+    names = {m.name: m.display_name for m in materials}
+    result = _result(j_required, omega, spec, ranked, best, infeasible, decided, description, omega_mean, names)
     if spec.round_to and best is not None:
         order = next(o for o, c in decided.feasible if c is best)
         result = _rounded(result, Combination(**{**combos[order].__dict__, "n_arms": best.n_arms or 0}), spec)
@@ -893,15 +894,17 @@ def _result(
     decided: _Decided,
     description: dict[str, Any],
     omega_mean: float | None = None,
+    material_names: Mapping[str, str] | None = None,
 ) -> DesignResult:
     """The DesignResult: "designed" with the best candidate, or "infeasible" with every reason."""
+    names = dict(material_names or {})
     if best is None:
         status = "infeasible"
         message = "no material and shaft can give the required inertia: " + "; ".join(c.reason for c in infeasible)
     else:
         status = "designed"
         message = (
-            f"{best.material} on the {shaft_label(best.shaft)}: {spec.geometry} "
+            f"{names.get(best.material, best.material)} on the {shaft_label(best.shaft)}: {spec.geometry} "
             f"D_outer {_g(best.dims.d_outer)} m, B {_g(best.dims.b)} m, mass "
             f"{_g(best.mass)} kg ({len(decided.feasible)} of {len(ranked)} combinations "
             f"feasible"
@@ -918,4 +921,5 @@ def _result(
         candidates=ranked,
         model=description,
         omega_mean=omega_mean,
+        material_names=names,
     )

@@ -238,6 +238,9 @@ class Material:
         Which hub proportions of ``flyopt/data/keys.toml`` a keyed hub of
         this material follows (``"cast_iron"``, ``"steel"``, ...); None: by
         ductility (:attr:`hub_kind`).
+    display : str or None
+        The name for people (a grade's designation, ``"EN-GJS-400-18"``); None: the name with spaces
+        (:attr:`display_name`).
 
     Raises
     ------
@@ -272,6 +275,13 @@ class Material:
     min_wall: float | None = None
     bearing_pressure: float | None = None
     hub_rule: str | None = None
+    display: str | None = None
+
+    @property
+    def display_name(self) -> str:
+        """The material's name for people, the one the text, the report and the drawing use: a grade's
+        designation from the data (``EN-GJS-400-18``), else the name with spaces (``gjs keyed``)."""
+        return self.display or self.name.replace("_", " ")
 
     def __post_init__(self) -> None:
         name = self.name
@@ -292,6 +302,8 @@ class Material:
         set_("min_wall", _number(self.min_wall, "min_wall [m]", name, allow_none=True))
         set_("bearing_pressure", _number(self.bearing_pressure, "bearing_pressure [Pa]", name, allow_none=True))
         set_("safety_factor", _number(self.safety_factor, "safety_factor [-]", name, minimum=1.0, allow_none=True))
+        if self.display is not None and (not isinstance(self.display, str) or not self.display.strip()):
+            raise ValueError(f"material {shorten(name)}: display must be a non-empty name, got {shorten(self.display)}")
         if self.hub_rule is not None and (not isinstance(self.hub_rule, str) or not self.hub_rule.strip()):
             raise ValueError(
                 f"material {shorten(name)}: hub_rule must be the name of a hub rule, got {shorten(self.hub_rule)}"
@@ -592,6 +604,7 @@ def make_material(
     min_wall: float | None = None,
     bearing_pressure: float | None = None,
     hub_rule: str | None = None,
+    display: str | None = None,
     **unknown: Any,
 ) -> Material:
     """Build a user material, checking every field; the rim speed may be derived.
@@ -616,7 +629,7 @@ def make_material(
         Where the numbers come from.
     elastic_modulus, poisson_ratio, tensile_strength, yield_strength, ductile,
     safety_factor, strength_by_thickness, thickness_rule, min_wall,
-    bearing_pressure, hub_rule
+    bearing_pressure, hub_rule, display
         As :class:`Material`, in SI units ([Pa], [-], [m]); keyword only.
 
     Returns
@@ -657,6 +670,7 @@ def make_material(
         min_wall=min_wall,
         bearing_pressure=bearing_pressure,
         hub_rule=hub_rule,
+        display=display,
     )
 
 

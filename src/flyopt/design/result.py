@@ -14,6 +14,7 @@ stress [Pa]. Wall-clock times are kept out of the JSON unless asked for
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -489,6 +490,8 @@ class DesignResult:
         With a ``spec.round_to``: the continuous optimum the rounded ``best`` comes from.
     rounding : str or None
         With a ``spec.round_to``: what rounding did, in words.
+    material_names : mapping
+        Each material's key to its name for people (not in the JSON, which names materials by key).
     """
 
     status: str
@@ -503,6 +506,11 @@ class DesignResult:
     fem: FemCheck | None = None
     continuous: Design | None = None
     rounding: str | None = None
+    material_names: Mapping[str, str] = field(default_factory=dict)
+
+    def material_name(self, key: str) -> str:
+        """A material's name for people (:attr:`flyopt.design.materials.Material.display_name`) from its key."""
+        return self.material_names.get(key) or key.replace("_", " ")
 
     def book_rim(self) -> BookRim | None:
         """What the courses' rim (criterion mean_rim_speed) really sees, beside what the book checks; None for

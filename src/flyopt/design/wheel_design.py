@@ -662,7 +662,7 @@ def structure_fields(
         unbalance_permissible=float(unbalance.u_per),
     )
     if getattr(material, "poisson_ratio", None) is None:
-        notes.append(f"material {material.name} gives no poisson_ratio: stresses not computed")
+        notes.append(f"{material.display_name} gives no poisson_ratio: stresses not computed")
     else:
         try:
             if checked is None:
@@ -687,7 +687,7 @@ def structure_fields(
         # the key's section is the shaft's (DIN 6885-1 by the seat diameter) and its length the hub's: a keyway
         # to cut, whose pressure and shear cannot be checked without a torque or an allowable pressure
         why = (
-            "the cycle gives no torque curves" if not torque else f"material {material.name} gives no bearing_pressure"
+            "the cycle gives no torque curves" if not torque else f"{material.display_name} gives no bearing_pressure"
         )
         try:
             sized = key.key_for_shaft(bore)

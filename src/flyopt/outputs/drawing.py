@@ -387,6 +387,7 @@ def drawing_of(
     sha256: str | None = None,
     version: str | None = None,
     date: datetime.date | None = None,
+    material: str | None = None,
 ) -> Drawing:
     """The manufacturing drawing of a designed wheel (model mm, true size).
 
@@ -401,6 +402,9 @@ def drawing_of(
         flyopt's version (default: :data:`flyopt.__version__`).
     date : datetime.date, optional
         The drawing's date (default: today).
+    material : str, optional
+        The material's name for people (:attr:`flyopt.design.materials.Material.display_name`); default: the
+        design's material key with spaces.
 
     Returns
     -------
@@ -556,7 +560,7 @@ def drawing_of(
         ],
         closed=True,
     )
-    title = _title_fields(design, scene, sha256, version, date, k)
+    title = _title_fields(design, scene, sha256, version, date, k, material)
     _title_block(k, at, title)
     notes = _notes(design, arms, t2)
     for index, note in enumerate(notes):
@@ -692,14 +696,14 @@ def _bore_angle(n_arms):
     return angle
 
 
-def _title_fields(design, scene, sha256, version, date, k):
+def _title_fields(design, scene, sha256, version, date, k, material=None):
     """The title block's fields: name to text."""
     from pathlib import Path
 
     what = {
         Geometry.RIM_WEB: "rim, web and hub",
         Geometry.RIM_ARMS: f"rim, {design.n_arms} arms and hub",
-        Geometry.DISC: "solid disc",
+        Geometry.DISC: "disc" if design.bore else "solid disc",
     }.get(design.geometry, "rim")
     unbalance = design.stresses.unbalance_permissible if design.stresses else None
     balance = f"G {BALANCE_GRADE:g} (ISO 21940-11)"
@@ -707,7 +711,7 @@ def _title_fields(design, scene, sha256, version, date, k):
         balance += f", U_per = {unbalance * 1e6:.0f} g·mm"
     return {
         "title": f"Flywheel, {what}",
-        "material": design.material,
+        "material": material or design.material.replace("_", " "),
         "mass": f"{design.mass:.2f} kg",
         "inertia": f"{design.j_flywheel:.4g} kg·m²",
         "balance": balance,

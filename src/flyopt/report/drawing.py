@@ -225,7 +225,13 @@ def drawing_of_scene(scene: Scene, date: datetime.date | None = None) -> tuple[D
         said = design.message if design is not None else "no drive and wheel meet the limits"
         raise NoWheel(f"no flywheel to draw ({said})", infeasible=True)
     record = scene_record(scene)
-    drawn = drawing_of(design.best, scene=record["scene"], sha256=record["scene_file_sha256"], date=date)
+    drawn = drawing_of(
+        design.best,
+        scene=record["scene"],
+        sha256=record["scene_file_sha256"],
+        date=date,
+        material=design.material_name(design.best.material),
+    )
     return drawn, design.best
 
 

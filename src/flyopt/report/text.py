@@ -376,7 +376,10 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
     best = result.best
     if best is not None:
         facts = [
-            ("material / shaft", f"{best.material} on {best.shaft} (speed ratio {number(best.speed_ratio)})"),
+            (
+                "material / shaft",
+                f"{result.material_name(best.material)} on {best.shaft} (speed ratio {number(best.speed_ratio)})",
+            ),
             ("mass", q(best.mass, "mass") + (f" (cost {number(best.cost)})" if best.cost is not None else "")),
             *_size_facts(best, units),
             (
@@ -423,7 +426,7 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
             rows.append(
                 [
                     str(k),
-                    c.material,
+                    result.material_name(c.material),
                     c.shaft,
                     n(c.mass, "mass"),
                     n(c.dims.d_outer, "d_outer"),
@@ -435,7 +438,17 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
             )
         else:
             rows.append(
-                ["-", c.material, c.shaft, "cannot win" if c.provenance.pruned else "infeasible", "", "", "", "", ""]
+                [
+                    "-",
+                    result.material_name(c.material),
+                    c.shaft,
+                    "cannot win" if c.provenance.pruned else "infeasible",
+                    "",
+                    "",
+                    "",
+                    "",
+                    "",
+                ]
             )
     head = [
         "rank",

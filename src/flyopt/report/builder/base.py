@@ -166,6 +166,10 @@ class BuilderBase:
 
         return MODELS.get(Model(model), model) if model in MODELS else model
 
+    def material_name(self, key: str) -> str:
+        """A material's name for people (the design's; the key with spaces where there is no design)."""
+        return self.design.material_name(key) if self.design is not None else key.replace("_", " ")
+
     def diameter_row(self, c: Design) -> tuple[str, tuple[Any, ...]]:
         """The wheel's diameters: a rim's outer, mean and inner; a disc's outer and its bore (it has no rim)."""
         if c.geometry == Geometry.DISC:

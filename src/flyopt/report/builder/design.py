@@ -44,7 +44,10 @@ class DesignSection(BuilderBase):
             return
         material = self.scene.material_library().get(best.material)
         rows: list[tuple[str, Any]] = [
-            ("material / shaft", f"{best.material} on {best.shaft} (speed ratio {number(best.speed_ratio)})"),
+            (
+                "material / shaft",
+                f"{self.material_name(best.material)} on {best.shaft} (speed ratio {number(best.speed_ratio)})",
+            ),
             ("mass", (self.q(best.mass, "mass", "mass"), "" if best.cost is None else f" (cost {number(best.cost)})")),
             self.diameter_row(best),
             self.width_row(best),
@@ -224,7 +227,7 @@ class DesignSection(BuilderBase):
                     "within" if within else "BEYOND",
                     " the limit v_max = ",
                     self.q(c.limits.rim_speed_limit, "speed", "rim_speed_limit"),
-                    f" of {c.material} ({NOTES}, section 10).",
+                    f" of {self.material_name(c.material)} ({NOTES}, section 10).",
                 ),
                 "ok" if within else "warning",
             )

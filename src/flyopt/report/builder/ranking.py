@@ -28,7 +28,7 @@ class Ranking(BuilderBase):
                 rank += 1
                 row = [
                     str(rank),
-                    c.material,
+                    self.material_name(c.material),
                     c.shaft,
                     self.n(c.mass, "mass"),
                     self.n(c.dims.d_outer, "length"),
@@ -40,7 +40,7 @@ class Ranking(BuilderBase):
             else:
                 row = [
                     "-",
-                    c.material,
+                    self.material_name(c.material),
                     c.shaft,
                     "cannot win" if c.provenance.pruned else "infeasible",
                     "",

@@ -72,7 +72,7 @@ class SceneAndModel(BuilderBase):
                 brief.append(("safety factor", number(spec.safety_factor, 4)))
             if spec.min_wall is not None:
                 brief.append(("thinnest section", self.q(spec.min_wall, "length")))
-            materials = sorted({c.material for c in self.design.candidates})
+            materials = sorted({self.material_name(c.material) for c in self.design.candidates})
             if materials:
                 brief.append(("materials considered", ", ".join(materials)))
             blocks.append(Facts(tuple(brief), "brief"))

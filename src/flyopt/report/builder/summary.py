@@ -59,7 +59,7 @@ class Summary(BuilderBase):
             rows += [
                 (
                     "chosen wheel",
-                    f"{best.geometry} of {best.material} on the {best.shaft} shaft "
+                    f"{best.geometry} of {self.material_name(best.material)} on the {best.shaft} shaft "
                     f"(speed ratio {number(best.speed_ratio)})",
                 ),
                 ("mass", self.q(best.mass, "mass", "mass")),
@@ -159,7 +159,7 @@ class Summary(BuilderBase):
             else (f"; simulated, it gives δ = {number(v.achieved_delta, 4)}" + (" (FLAGGED)" if self.flagged() else ""))
         )
         return (
-            f"A {best.geometry} flywheel of {best.material} on the {best.shaft} shaft, "
+            f"A {best.geometry} flywheel of {self.material_name(best.material)} on the {best.shaft} shaft, "
             f"{display.quantity_text(best.mass, 'mass', self.units, 4)}, outer diameter "
             f"{display.quantity_text(best.dims.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
             f"within δ = {number(a.delta, 4)}{checked}."
