@@ -165,12 +165,20 @@ def _draw(solution, what, plots, units, verify=False):
         if design is None or design.best is None:
             raise _Infeasible(design.message if design is not None else "no drive and wheel meet the limits")
         if what == "cross_section":
-            return plots.plot_cross_section(design.best, units=units)
+            return plots.plot_cross_section(
+                design.best, units=units, material=design.material_name(design.best.material)
+            )
         if solution.stress is None:
             raise ValueError(solution.stress_note)
         profile, beams, omega, material = solution.stress
         return plots.plot_stress(
-            design.best, profile, beams, omega, ductile=bool(getattr(material, "ductile", False)), units=units
+            design.best,
+            profile,
+            beams,
+            omega,
+            ductile=bool(getattr(material, "ductile", False)),
+            units=units,
+            material=design.material_name(design.best.material),
         )
     if what == "speed":
         if scene.net is not None:  # said by the plot

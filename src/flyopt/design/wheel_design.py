@@ -686,9 +686,7 @@ def structure_fields(
     if bore and hub_length and not (torque and pressure):
         # the key's section is the shaft's (DIN 6885-1 by the seat diameter) and its length the hub's: a keyway
         # to cut, whose pressure and shear cannot be checked without a torque or an allowable pressure
-        why = (
-            "the cycle gives no torque curves" if not torque else f"{material.display_name} gives no bearing_pressure"
-        )
+        why = "the cycle gives no torque curves" if not torque else f"{material.display_name} gives no bearing_pressure"
         try:
             sized = key.key_for_shaft(bore)
             length = key.key_length_for_hub(sized, float(hub_length))

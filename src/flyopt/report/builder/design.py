@@ -95,7 +95,12 @@ class DesignSection(BuilderBase):
         from flyopt.report import plots
 
         self.figure(
-            blocks, "cross_section", "Axial section of the chosen wheel, dimensioned", plots.plot_cross_section, best
+            blocks,
+            "cross_section",
+            "Axial section of the chosen wheel, dimensioned",
+            plots.plot_cross_section,
+            best,
+            material=self.material_name(best.material),
         )
         if best.limits.sensitivities:
             blocks.append(
@@ -470,6 +475,7 @@ class DesignSection(BuilderBase):
                 beams,
                 omega_w,
                 ductile=bool(getattr(material, "ductile", False)),
+                material=self.material_name(c.material),
             )
         elif self.inputs.stress_note:
             blocks.append(Figure("stress", "Stresses over the radius", note=f"Not drawn: {self.inputs.stress_note}."))

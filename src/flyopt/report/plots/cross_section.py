@@ -214,7 +214,9 @@ def _groups(blocks):
     return out
 
 
-def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
+def plot_cross_section(
+    candidate: Candidate, ax: Axes | None = None, units: str = display.DEFAULT, material: str | None = None
+) -> Axes:
     """Dimensioned axial section of a designed wheel, mirrored about the axis, in the system's length unit.
 
     The hub (bore to D_hub, length l_hub), the web (t_web) and the rim (H x B)
@@ -237,6 +239,8 @@ def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str 
     units : {"engineering", "si", "imperial"}
         The drawing's length unit (mm, m, in), its data coordinates and its
         dimensions (to 0.1 mm).
+    material : str, optional
+        The material's name for people in the title (default: its key with spaces).
 
     Returns
     -------
@@ -418,7 +422,7 @@ def plot_cross_section(candidate: Candidate, ax: Axes | None = None, units: str 
         c.geometry, c.geometry
     )
     title = (
-        f"Flywheel, {what}: {c.material}, {standard.q(c.mass, 'mass', units)}, "
+        f"Flywheel, {what}: {material or c.material.replace('_', ' ')}, {standard.q(c.mass, 'mass', units)}, "
         f"J = {standard.q(c.j_flywheel, 'inertia', units)} on {c.shaft}\n"
         f"axial section{', arm section revolved' if arms else ''}, dimensions in {length}"
     )

@@ -32,6 +32,7 @@ def plot_stress(
     ductile: bool = True,
     ax: Axes | None = None,
     units: str = display.DEFAULT,
+    material: str | None = None,
 ) -> Axes:
     """sigma_r, sigma_t and von Mises over the radius at omega_max, each part's span and allowable.
 
@@ -55,6 +56,8 @@ def plot_stress(
     ax : matplotlib Axes, optional
     units : {"engineering", "si", "imperial"}
         Stress and radius in the system's units (MPa over mm by default).
+    material : str, optional
+        The material's name for people in the title (default: its key with spaces).
 
     Returns
     -------
@@ -192,7 +195,8 @@ def plot_stress(
     ax.set_ylim(low - 0.05 * top, 1.25 * top if top > 0 else 1.0)
     speed = f" = {standard.q(omega, 'angular_speed', units, 5)}" if omega else ""
     ax.set(xlabel=f"radius r [{r_unit}]", ylabel=f"stress [{s_unit}]")
-    standard.title(ax, own, f"{c.material} {c.geometry} on {c.shaft}", f"stresses over the radius at ω_max{speed}")
+    name = material or c.material.replace("_", " ")
+    standard.title(ax, own, f"{name} {c.geometry} on {c.shaft}", f"stresses over the radius at ω_max{speed}")
     ax.grid(True, alpha=0.3)
     standard.legend(ax, own)
     return ax
