@@ -101,6 +101,26 @@ def test_a_magnitude_beyond_any_wheel_is_refused_in_one_line(data, field, words)
             "torque.net.areas[0]",
             "beyond any machine's cycle",
         ),
+        (  # the corpus's khurmi-16-5 with area_unit 1e-300: J_F and the rim's mass underflowed to 0 (exit 1)
+            {
+                "machine": {"speed": "600 rpm", "delta": 0.03},
+                "torque": {
+                    "net": {
+                        "areas": [52, -124, 92, -140, 85, -72, 107],
+                        "area_unit": 1e-300,
+                        "torque_scale": "600 N*m/mm",
+                        "angle_scale": "3 deg/mm",
+                    }
+                },
+            },
+            "torque.net.areas[0]",
+            "below which no machine's cycle lies",
+        ),
+        (
+            {"machine": {"speed": "120 rpm", "delta": 0.05}, "torque": {"net": {"areas": ["1e-300 J", "-1e-300 J"]}}},
+            "torque.net.areas[0]",
+            "at least 1e-09 J",
+        ),
     ],
 )
 def test_found_by_the_gallerys_hostile_run(data, field, words):

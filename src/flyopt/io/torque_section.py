@@ -125,6 +125,10 @@ def read_curve(
 #: Largest energy one net area may make [J] (a machine's cycle is far below: beyond it the sums overflow).
 MAX_AREA_ENERGY = 1e15
 
+#: Smallest energy a net area that is not zero may make [J] (a nanojoule, below any machine's cycle: beneath
+#: it the required inertia and the rim's mass underflow to zero).
+MIN_AREA_ENERGY = 1e-9
+
 
 def read_net_areas(section: object) -> NetAreas:
     """[torque.net]: the signed areas between the curves, as energies [J] (or a drawing's areas and scales)."""
@@ -165,6 +169,12 @@ def read_net_areas(section: object) -> NetAreas:
                 f"torque.net.areas[{k}]",
                 f"{shorten(areas[k])} makes {energy:.3g} J (allowed: at most {MAX_AREA_ENERGY:g} J in size, "
                 "beyond any machine's cycle; check the drawing scales)",
+            )
+        if energy != 0.0 and abs(energy) < MIN_AREA_ENERGY:
+            raise SceneError(
+                f"torque.net.areas[{k}]",
+                f"{shorten(areas[k])} makes {energy:.3g} J (allowed: 0, or at least {MIN_AREA_ENERGY:g} J in size, "
+                "below which no machine's cycle lies; check the drawing scales)",
             )
     work = table.quantity("work_per_cycle", "energy")
     if work is not None and not (math.isfinite(work) and work > 0):
