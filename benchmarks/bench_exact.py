@@ -34,7 +34,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from common import TABLE_SCENE, write_results
+from common import TABLE_SCENE, median_time, write_results
 
 import flyopt
 from flyopt.analysis import analyse
@@ -52,17 +52,6 @@ STARTUP_RATIO = 3.0
 TABLE_TARGET = 10e-3
 VERIFY_TARGET = 2.0
 MEMORY_TARGET = 400.0  # MB
-
-
-def median_time(call, repeat, warm=1):
-    for _ in range(warm):
-        call()
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        call()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times), min(times), max(times)
 
 
 def process_time(command, repeat, env=None):

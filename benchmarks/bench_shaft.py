@@ -36,14 +36,12 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 import argparse  # noqa: E402
 import math  # noqa: E402
 import platform  # noqa: E402
-import statistics  # noqa: E402
 import sys  # noqa: E402
-import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 import scipy  # noqa: E402
-from common import load_average, pin_one_core, write_results  # noqa: E402
+from common import load_average, median_time, pin_one_core, write_results  # noqa: E402
 
 from flyopt.design.shaft import beam, lateral, strength  # noqa: E402
 
@@ -108,16 +106,6 @@ def whole_check(shaft, x_wheel):
     return lateral.running_margin(critical, SPEED_RANGE_RPM)
 
 
-def timed(call, repeat):
-    call()
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        call()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times), min(times), max(times)
-
-
 def ms(t):
     return f"{t[0] * 1e3:.3f} ms ({t[1] * 1e3:.3f}-{t[2] * 1e3:.3f})"
 
@@ -135,24 +123,24 @@ def main():
         rows.append({"case": case, "what": what, "median_ms": t[0] * 1e3, "min_ms": t[1] * 1e3, "max_ms": t[2] * 1e3})
         lines.append(f"| {case} | {what} | {ms(t)} | {note} |")
 
-    t = timed(lambda: strength_check(*SECTIONS), args.repeat)
+    t = median_time(lambda: strength_check(*SECTIONS), args.repeat)
     record("any", "strength, 3 sections, 4 criteria + yield", t)
     many = tuple(
         np.tile(a, 1000) if isinstance(a, np.ndarray) else tuple(np.tile(b, 1000) for b in a) for a in SECTIONS
     )
-    t_many = timed(lambda: strength_check(*many), max(5, args.repeat // 3))
+    t_many = median_time(lambda: strength_check(*many), max(5, args.repeat // 3))
     record("any", "strength, 1000 designs x 3 sections in one call", t_many, f"{t_many[0]:.3e} s per 1000")
     whole = {}
     for case, (shaft, x_wheel) in shafts().items():
         record(
             case,
             "deflection and bearing slopes (elastic line)",
-            timed(lambda: deflection_check(shaft, x_wheel), args.repeat),
+            median_time(lambda: deflection_check(shaft, x_wheel), args.repeat),
         )
         record(
             case,
             "Jeffcott + Rayleigh + Dunkerley",
-            timed(
+            median_time(
                 lambda: (
                     lateral.jeffcott_speed(shaft, x_wheel, MASS),
                     lateral.rayleigh_speed(shaft, [x_wheel], [MASS]),
@@ -164,20 +152,20 @@ def main():
         reference = fe_critical(shaft, x_wheel, shaft.length / 320)
         for label, size in (("default L/20", shaft.length / 20), ("fine L/80", shaft.length / 80)):
             value = fe_critical(shaft, x_wheel, size)
-            t = timed(lambda size=size: fe_critical(shaft, x_wheel, size), args.repeat)
+            t = median_time(lambda size=size: fe_critical(shaft, x_wheel, size), args.repeat)
             error = abs(value - reference) / reference
             record(case, f"FE forward critical speed, {label}", t, f"{value * 30 / math.pi:.2f} rpm, error {error:.1e}")
         model = lateral.rotor_model(shaft, [lateral.Disc(x_wheel, MASS, I_D, I_P)])
         record(
             case,
             "Campbell diagram, 25 speeds",
-            timed(lambda: lateral.whirl_frequencies(model, np.linspace(0, 2 * OMEGA, 25)), args.repeat),
+            median_time(lambda: lateral.whirl_frequencies(model, np.linspace(0, 2 * OMEGA, 25)), args.repeat),
         )
         closed = lateral.jeffcott_speed(shaft, x_wheel, MASS)
         lines.append(
             f"| {case} | Jeffcott's speed, for scale (massless shaft, no gyroscopics) | - | {closed * 30 / math.pi:.2f} rpm |"
         )
-        whole[case] = timed(lambda: whole_check(shaft, x_wheel), args.repeat)
+        whole[case] = median_time(lambda: whole_check(shaft, x_wheel), args.repeat)
         record(case, "the whole check of one design", whole[case], f"margin {whole_check(shaft, x_wheel):.2f}")
     slowest = max(v[0] for v in whole.values())
     verdict = "met" if slowest * 1e3 < TARGET_MS else "**NOT met**"

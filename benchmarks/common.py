@@ -6,6 +6,8 @@ it as ``common``.
 
 import csv
 import os
+import statistics
+import time
 
 
 def pin_one_core():
@@ -15,6 +17,18 @@ def pin_one_core():
         os.sched_setaffinity(0, {cpu})
         return f"pinned to CPU {cpu} (os.sched_setaffinity)"
     return "not pinned (os.sched_setaffinity unavailable)"
+
+
+def median_time(call, repeat, warm=1):
+    """(median, min, max) wall seconds of ``call()`` over ``repeat`` runs, after ``warm`` untimed ones."""
+    for _ in range(warm):
+        call()
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        call()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), min(times), max(times)
 
 
 def load_average(separator=" "):

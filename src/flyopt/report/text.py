@@ -437,19 +437,8 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
                 ]
             )
         else:
-            rows.append(
-                [
-                    "-",
-                    result.material_name(c.material),
-                    c.shaft,
-                    "cannot win" if c.provenance.pruned else "infeasible",
-                    "",
-                    "",
-                    "",
-                    "",
-                    "",
-                ]
-            )
+            verdict = "cannot win" if c.provenance.pruned else "infeasible"
+            rows.append(["-", result.material_name(c.material), c.shaft, verdict, *[""] * 5])
     head = [
         "rank",
         "material",
