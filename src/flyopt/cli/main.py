@@ -9,6 +9,7 @@
     flyopt export SCENE.toml -o FILE                            the wheel's drawing (.dxf, .svg, .pdf)
     flyopt sweep | pareto | tradeoff SCENE.toml [-o FILE] ...   design studies
     flyopt bench ...                                            speed against error
+    flyopt app [--port N] [--host H] [--no-browser]             the local web app (app extra)
     flyopt --version
 
 Each subcommand's handler (``args.run``) returns an exit status from the
@@ -77,7 +78,7 @@ def entry() -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
-    from flyopt.cli import export, plot, report, scene, studies
+    from flyopt.cli import app, export, plot, report, scene, studies
 
     parser = _Parser(
         prog="flyopt",
@@ -124,6 +125,7 @@ def _parser() -> argparse.ArgumentParser:
         ("tradeoff", studies.add_tradeoff_arguments, studies.TRADEOFF_HELP),
     ):
         add(commands.add_parser(name, **texts))
+    app.add_app_arguments(commands.add_parser("app", help="the local web app: edit a scene, see its answer (app extra)"))
     bench = commands.add_parser(
         "bench",
         add_help=False,  # --help is bench's own
