@@ -56,6 +56,7 @@ def server():
     finally:
         process.terminate()
         process.wait(10)
+        process.stderr.close()
 
 
 @pytest.fixture(scope="module")

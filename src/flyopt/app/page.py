@@ -26,6 +26,12 @@ DEBOUNCE = 0.3
 #: The template shown first.
 FIRST = "shear-press"
 
+#: Said above the diagrams and downloads while the editor's text is not valid.
+STALE = (
+    '<div style="color:#c33;font-weight:bold">The diagrams and downloads below are those of the last valid scene, '
+    "not of the text in the editor.</div>"
+)
+
 CSS = """
 .card {font-family: sans-serif; font-size: 14px; padding: 6px 10px; border-left: 4px solid #2a7;}
 .card.bad {border-left-color: #c33;}
@@ -70,6 +76,7 @@ class Session:
         self.mode = pn.pane.HTML("", css_classes=["mode"])
         self.card = pn.pane.HTML(model.card_html(None, []), stylesheets=[CSS], sizing_mode="stretch_width")
         self.figures = pn.Column(sizing_mode="stretch_width")
+        self.stale = pn.pane.HTML("", sizing_mode="stretch_width")
         self.footer = pn.pane.HTML(
             f'<div class="footer">{model.provenance_html(None)}</div>', stylesheets=[CSS], sizing_mode="stretch_width"
         )
@@ -95,6 +102,7 @@ class Session:
             pn.Row(self.solve_button, self.cancel_button, self.busy, self.mode),
             self.card,
             pn.Row(*downloads),
+            self.stale,
             self.figures,
             sizing_mode="stretch_both",
             min_width=520,
@@ -152,7 +160,9 @@ class Session:
         self.checked = checked
         if checked.problems or checked.scene is None:
             self.card.object = model.card_html(None, checked.problems)
+            self.stale.object = STALE if self.answer is not None else ""
             return
+        self.stale.object = ""
         fast = model.live(checked.scene)
         self.mode.object = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
         if solve is None and not fast:
