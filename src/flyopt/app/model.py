@@ -19,10 +19,11 @@ import shutil
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 if TYPE_CHECKING:
     from flyopt.io.scene import Scene
+    from flyopt.pipeline import Solution
     from flyopt.report.document import Document
 
 #: The largest editor text or upload the app reads, in bytes (1 MB).
@@ -183,6 +184,7 @@ class Row:
     value: str
     name: str | None = None
     si: float | None = None
+    markup: str = ""  # the label with the report's ``_{sub}`` and ``^{sup}`` markup, for the HTML
 
 
 @dataclass
@@ -219,7 +221,9 @@ def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer
     if isinstance(inputs, CalculationInputs):
         json = json_text(calculation_document(inputs.what, inputs.scene.title, path, inputs.result.to_dict()))
     else:
-        json = solution_json(inputs.solution, path)  # the one solve: the same JSON as flyopt solve --json
+        json = solution_json(
+            cast("Solution", inputs.solution), path
+        )  # the one solve: the same JSON as flyopt solve --json
     card, verdict = _card(document)
     return Answer(
         status=document.status,
@@ -289,7 +293,7 @@ def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") ->
     if answer is None:
         return f'<div class="card">{escape(busy) or "No answer yet."}</div>'
     rows = "".join(
-        f'<tr><th>{escape(r.label)}</th><td data-name="{escape(r.name or "")}">{escape(r.value)}</td></tr>'
+        f'<tr><th>{_marked(r.markup or r.label)}</th><td data-name="{escape(r.name or "")}">{escape(r.value)}</td></tr>'
         for r in answer.card
     )
     good = answer.status in ("designed", "not_needed", "analysed")
@@ -297,6 +301,15 @@ def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") ->
         f'<div class="card {"ok" if good else "bad"}"><div class="status">status: <b>{escape(answer.status)}</b>'
         f"{' — ' + escape(busy) if busy else ''}</div><p>{escape(answer.verdict)}</p><table>{rows}</table></div>"
     )
+
+
+def _marked(text: str) -> str:
+    """The report's ``_{sub}`` and ``^{sup}`` markup as HTML, the rest escaped."""
+    from html import escape
+
+    shown = escape(text)
+    shown = re.sub(r"_\{([^}]*)\}", r"<sub>\1</sub>", shown)
+    return re.sub(r"\^\{([^}]*)\}", r"<sup>\1</sup>", shown)
 
 
 def provenance_html(answer: Answer | None) -> str:
