@@ -125,7 +125,9 @@ def _parser() -> argparse.ArgumentParser:
         ("tradeoff", studies.add_tradeoff_arguments, studies.TRADEOFF_HELP),
     ):
         add(commands.add_parser(name, **texts))
-    app.add_app_arguments(commands.add_parser("app", help="the local web app: edit a scene, see its answer (app extra)"))
+    app.add_app_arguments(
+        commands.add_parser("app", help="the local web app: edit a scene, see its answer (app extra)")
+    )
     bench = commands.add_parser(
         "bench",
         add_help=False,  # --help is bench's own
