@@ -298,7 +298,8 @@ def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") ->
     )
     good = answer.status in ("designed", "not_needed", "analysed")
     return (
-        f'<div class="card {"ok" if good else "bad"}"><div class="status">status: <b>{escape(answer.status)}</b>'
+        f'<div class="card {"ok" if good else "bad"}"><div class="status"><b>{escape(answer.document.title)}</b>: '
+        f"status <b>{escape(answer.status)}</b>"
         f"{' — ' + escape(busy) if busy else ''}</div><p>{escape(answer.verdict)}</p><table>{rows}</table></div>"
     )
 

@@ -28,7 +28,7 @@ FIRST = "shear-press"
 
 #: Said above the diagrams and downloads while the editor's text is not valid.
 STALE = (
-    '<div style="color:#c33;font-weight:bold">The diagrams and downloads below are those of the last valid scene, '
+    '<div style="color:#c33;font-weight:bold">The diagrams and downloads below are those of the last scene solved, '
     "not of the text in the editor.</div>"
 )
 
@@ -165,11 +165,16 @@ class Session:
         self.stale.object = ""
         fast = model.live(checked.scene)
         self.mode.object = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
-        if solve is None and not fast:
-            self.card.object = model.card_html(self.answer, [], busy="the scene is valid; press Solve for its answer")
+        if solve is None and not fast:  # the last answer is not this scene's: not shown on the card
+            self.card.object = model.card_html(None, [], busy="The scene is valid; press Solve for its answer.")
+            self.stale.object = STALE if self.answer is not None else ""
             return
         self._busy(True)
-        self.card.object = model.card_html(self.answer, [], busy="solving…")
+        self.stale.object = STALE if self.answer is not None else ""
+        if fast:  # the same scene being tuned: its last answer stays in view while the new one comes
+            self.card.object = model.card_html(self.answer, [], busy="solving…")
+        else:
+            self.card.object = model.card_html(None, [], busy="Solving (a slow model)…")
         try:
             answer = await loop.run_in_executor(self.executor, model.solve, text, self.workspace, units)
         except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
@@ -183,6 +188,7 @@ class Session:
         if mine != self.generation:
             return
         self._busy(False)
+        self.stale.object = ""
         old, self.answer = self.answer, answer
         if old is not None:
             old.document.close()
