@@ -38,7 +38,7 @@ FLOORS = (
     ("studies", ("flyopt.studies",)),
     ("report", ("flyopt.report",)),
     ("bench", ("flyopt.bench",)),
-    ("cli", ("flyopt.cli", "flyopt.__main__")),
+    ("cli", ("flyopt.cli", "flyopt.__main__", "flyopt.app")),
 )
 
 

@@ -11,6 +11,7 @@
     flyopt new KIND [-o FILE] [--force]                         a commented template scene
     flyopt materials [--units SYSTEM] [--json]                  the built-in material library
     flyopt bench ...                                            speed against error
+    flyopt app [--port N] [--host H] [--no-browser]             the local web app (app extra)
     flyopt --version
 
 Each subcommand's handler (``args.run``) returns an exit status from the
@@ -79,7 +80,7 @@ def entry() -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
-    from flyopt.cli import export, materials, new, plot, report, scene, studies
+    from flyopt.cli import app, export, materials, new, plot, report, scene, studies
 
     parser = _Parser(
         prog="flyopt",
@@ -129,6 +130,9 @@ def _parser() -> argparse.ArgumentParser:
     new.add_new_arguments(commands.add_parser("new", help="write a commented template scene to start from"))
     materials.add_materials_arguments(
         commands.add_parser("materials", help="list the built-in materials: density, strengths, rim speed, source")
+    )
+    app.add_app_arguments(
+        commands.add_parser("app", help="the local web app: edit a scene, see its answer (app extra)")
     )
     bench = commands.add_parser(
         "bench",

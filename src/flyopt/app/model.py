@@ -1,0 +1,334 @@
+"""The app without a browser: templates, checking the editor's text, and the answer of one solve.
+
+Everything the page shows comes from flyopt's own paths, so that it cannot
+disagree with the command line: a scene is read by :func:`flyopt.io.scene.load`
+(its text written into a private temporary folder, so a file the scene names
+resolves inside that folder only), solved and gathered as ``flyopt report``
+gathers it (:func:`flyopt.cli.report.collect`), and built into the report's
+Document (:func:`flyopt.report.builder.build`). The answer card is the
+report's summary facts, the diagrams its figures (drawn by
+:mod:`flyopt.report.plots`), the JSON that of ``flyopt solve --json``
+(:func:`flyopt.outputs.documents.solution_json`), the provenance the report's.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import re
+import shutil
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, cast
+
+if TYPE_CHECKING:
+    from flyopt.io.scene import Scene
+    from flyopt.pipeline import Solution
+    from flyopt.report.document import Document
+
+#: The largest editor text or upload the app reads, in bytes (1 MB).
+MAX_BYTES = 1_000_000
+
+#: The name the editor's text is written under, in its private folder.
+SCENE_NAME = "scene.toml"
+
+
+def templates() -> dict[str, Path]:
+    """The scenes shipped with flyopt, by name ("shear-press", "textbook/NAME"), to start from.
+
+    Read from the repository's ``problems/`` beside the installed package
+    (an editable or source install), else from the package's own
+    ``flyopt/data/templates/`` where it ships one; read-only, and only these
+    files: the page never opens a path it is given.
+    """
+    import flyopt
+
+    package = Path(flyopt.__file__).resolve().parent
+    found: dict[str, Path] = {}
+    for root in (package.parents[1] / "problems", package / "data" / "templates"):
+        if not root.is_dir():
+            continue
+        for path in sorted(root.rglob("*.toml")):
+            name = path.relative_to(root).with_suffix("").as_posix()
+            found.setdefault(name, path)
+        if found:
+            break
+    return found
+
+
+def template_text(name: str) -> str:
+    """The text of the template ``name`` (a key of :func:`templates`); KeyError for any other name."""
+    return templates()[name].read_text(encoding="utf-8")
+
+
+def field_line(text: str, field_path: str) -> int | None:
+    """The 1-based line of ``text`` where the field ``field_path`` ("machine.delta") is written, or None.
+
+    A small locator kept in this one place, to be swapped for the CLI's own
+    when it has one: the last key of the path, in the table named by the
+    rest (``[machine]`` then ``delta = ...``), else the first line that
+    assigns that key, else the table's header.
+    """
+    parts = [p for p in re.split(r"\.|\[\d+\]", field_path) if p]
+    if not parts:
+        return None
+    key, tables = parts[-1], parts[:-1]
+    lines = text.splitlines()
+    current = ""
+    header = None
+    first = None
+    for number, line in enumerate(lines, 1):
+        stripped = line.strip()
+        table = re.match(r"^\[\[?\s*([^\]]+?)\s*\]\]?", stripped)
+        if table:
+            current = table.group(1)
+            if tables and current == ".".join(tables) and header is None:
+                header = number
+            continue
+        if re.match(rf"^{re.escape(key)}\s*=", stripped) or re.match(rf'^"{re.escape(key)}"\s*=', stripped):
+            if current == ".".join(tables):
+                return number
+            if first is None:
+                first = number
+    if header is not None:
+        return header
+    if key == parts[0] and first is None:  # a whole table: its header
+        for number, line in enumerate(lines, 1):
+            if re.match(rf"^\[\[?\s*{re.escape(key)}\s*\]\]?", line.strip()):
+                return number
+    return first
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One thing wrong with the editor's text: the field path, the message, the line (or None)."""
+
+    field: str
+    message: str
+    line: int | None
+
+
+@dataclass
+class Checked:
+    """The editor's text read by flyopt: the scene, or what is wrong with it."""
+
+    text: str
+    scene: Scene | None = None
+    problems: list[Problem] = field(default_factory=list)
+
+
+class Workspace:
+    """A private temporary folder (mode 0700) holding the editor's text as ``scene.toml``, and nothing else.
+
+    A scene's ``points_file`` and the like resolve relative to the scene's
+    folder and must stay inside it (:mod:`flyopt.io.input_files`), so here
+    they find nothing: no path the user typed is opened outside this folder.
+    """
+
+    def __init__(self) -> None:
+        self.folder = Path(tempfile.mkdtemp(prefix="flyopt-app-"))
+        self.path = self.folder / SCENE_NAME
+
+    def write(self, text: str) -> Path:
+        """Write ``text`` as the scene (refused over :data:`MAX_BYTES`); the scene's path."""
+        from flyopt.errors import SceneError
+
+        if len(text.encode("utf-8")) > MAX_BYTES:
+            raise SceneError("", f"the scene text is over {MAX_BYTES // 1_000_000} MB: the app reads no more")
+        self.path.write_text(text, encoding="utf-8")
+        return self.path
+
+    def close(self) -> None:
+        """Remove the folder."""
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def check(text: str, workspace: Workspace) -> Checked:
+    """Read ``text`` as a scene by flyopt's loader; the scene, or the problem with its field and line."""
+    from flyopt.errors import FlyoptError, SceneError
+    from flyopt.io.scene import load
+
+    checked = Checked(text)
+    try:
+        checked.scene = load(workspace.write(text))
+    except SceneError as err:
+        checked.problems.append(Problem(err.field, err.message, field_line(text, err.field)))
+    except (FlyoptError, ValueError) as err:  # a cycle that does not close, a number out of range
+        checked.problems.append(Problem("", str(err).replace(str(workspace.path), SCENE_NAME), None))
+    return checked
+
+
+def live(scene: Scene) -> bool:
+    """Whether the scene is solved on every edit: no drive to design and no motor in the cycle.
+
+    The energy and energy–mass models are closed forms and their designs the
+    exact closed forms (mass, cost) or a few small NLPs; a drive or a motor's
+    characteristic (the dynamic model: a periodic simulation) takes seconds
+    and waits for the Solve button.
+    """
+    from flyopt.cycle.torque import MotorTorque
+
+    if scene.drive is not None or scene.calculation is not None:
+        return False
+    return not any(isinstance(curve, MotorTorque) for curve in (scene.driving, scene.resisting))
+
+
+@dataclass(frozen=True)
+class Row:
+    """One line of the answer card: a label and its value as the report shows it.
+
+    ``name``/``si`` are those of the first number in the value (its JSON field and SI value), for checks.
+    """
+
+    label: str
+    value: str
+    name: str | None = None
+    si: float | None = None
+    markup: str = ""  # the label with the report's ``_{sub}`` and ``^{sup}`` markup, for the HTML
+
+
+@dataclass
+class Answer:
+    """What one solve shows: the status, the card, the diagrams (SVG), the JSON, the provenance."""
+
+    status: str
+    verdict: str
+    card: list[Row]
+    figures: list[tuple[str, str, str]]  # (key, caption, SVG or "" with the note in the caption)
+    json: str
+    provenance: tuple[tuple[str, str], ...]
+    document: Document
+    sha256: str
+
+
+def scene_digest(text: str) -> str:
+    """The SHA-256 of the scene's text as written (UTF-8), as the report's provenance gives it."""
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer:
+    """Solve the editor's text once, as ``flyopt report`` does, and read the answer out of its report.
+
+    Raises what ``flyopt report`` raises: SceneError (bad input), SolverFailed (no converged answer).
+    """
+    from flyopt.cli.report import collect
+    from flyopt.outputs.documents import calculation_document, json_text, solution_json
+    from flyopt.report.builder import CalculationInputs, build
+
+    path = workspace.write(text)
+    inputs = collect(path, f"flyopt app ({SCENE_NAME})", pdf=False)
+    document = build(inputs, units)
+    if isinstance(inputs, CalculationInputs):
+        json = json_text(calculation_document(inputs.what, inputs.scene.title, path, inputs.result.to_dict()))
+    else:
+        json = solution_json(
+            cast("Solution", inputs.solution), path
+        )  # the one solve: the same JSON as flyopt solve --json
+    card, verdict = _card(document)
+    return Answer(
+        status=document.status,
+        verdict=verdict,
+        card=card,
+        figures=_figures(document),
+        json=json,
+        provenance=tuple(inputs.provenance),
+        document=document,
+        sha256=scene_digest(text),
+    )
+
+
+def _card(document: Document) -> tuple[list[Row], str]:
+    from flyopt.report.document import Facts, Paragraph, Quantity, plain
+
+    rows: list[Row] = []
+    verdict = ""
+    section = document.sections[0] if document.sections else None
+    for block in section.blocks if section is not None else ():
+        if isinstance(block, Paragraph) and not verdict:
+            verdict = plain(block.text)
+        if isinstance(block, Facts):
+            for label, value in block.rows:
+                parts = value if isinstance(value, tuple) else (value,)
+                first = next((p for p in parts if isinstance(p, Quantity)), None)
+                rows.append(Row(plain(label), plain(value), first.name if first else None, first.si if first else None))
+    return rows, verdict
+
+
+def _figures(document: Document) -> list[tuple[str, str, str]]:
+    from flyopt.report.document import Figure, plain
+    from flyopt.report.html import svg_of
+
+    found = []
+    for section in document.sections:
+        for block in section.blocks:
+            if isinstance(block, Figure):
+                svg = svg_of(block.figure, block.key) if block.figure is not None else ""
+                found.append((block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg))
+    return found
+
+
+def report_bytes(answer: Answer, kind: str) -> bytes:
+    """The report of ``answer`` as ``kind`` ("html" or "pdf"), by the report's own renderers."""
+    if kind == "html":
+        from flyopt.report.html import render
+
+        return render(answer.document).encode("utf-8")
+    from flyopt.report.pdf import render as render_pdf
+
+    return render_pdf(answer.document)
+
+
+def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") -> str:
+    """The answer card as HTML, every string escaped."""
+    from html import escape
+
+    if problems:
+        items = "".join(
+            f'<li class="problem"><code>{escape(p.field or "scene")}</code>'
+            + (f" (line {p.line})" if p.line else "")
+            + f": {escape(p.message)}</li>"
+            for p in problems
+        )
+        return f'<div class="card bad"><b>The scene is not valid</b><ul>{items}</ul></div>'
+    if answer is None:
+        return f'<div class="card">{escape(busy) or "No answer yet."}</div>'
+    rows = "".join(
+        f'<tr><th>{_marked(r.markup or r.label)}</th><td data-name="{escape(r.name or "")}">{escape(r.value)}</td></tr>'
+        for r in answer.card
+    )
+    good = answer.status in ("designed", "not_needed", "analysed")
+    return (
+        f'<div class="card {"ok" if good else "bad"}"><div class="status"><b>{escape(answer.document.title)}</b>: '
+        f"status <b>{escape(answer.status)}</b>"
+        f"{' — ' + escape(busy) if busy else ''}</div><p>{escape(answer.verdict)}</p><table>{rows}</table></div>"
+    )
+
+
+def _marked(text: str) -> str:
+    """The report's ``_{sub}`` and ``^{sup}`` markup as HTML, the rest escaped."""
+    from html import escape
+
+    shown = escape(text)
+    shown = re.sub(r"_\{([^}]*)\}", r"<sub>\1</sub>", shown)
+    return re.sub(r"\^\{([^}]*)\}", r"<sup>\1</sup>", shown)
+
+
+def provenance_html(answer: Answer | None) -> str:
+    """The footer: flyopt's version, the scene's SHA-256, the solvers' versions (the report's provenance)."""
+    from html import escape
+
+    if answer is None:
+        import flyopt
+
+        return f"flyopt {escape(flyopt.__version__)}"
+    keep = ("flyopt", "numpy", "scipy", "casadi", "matplotlib", "IPOPT")
+    parts = [f"{escape(k)} {escape(v)}" for k, v in answer.provenance if k in keep]
+    parts.insert(1, f"scene SHA-256 {answer.sha256}")
+    return " · ".join(parts)
+
+
+def escape_text(value: Any) -> str:
+    """Any user string as HTML text."""
+    from html import escape
+
+    return escape(str(value))

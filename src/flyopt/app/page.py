@@ -1,0 +1,260 @@
+"""The page of ``flyopt app``, laid out with Panel (imported here only: the ``app`` extra).
+
+Left, the scene: a template picker and the TOML in a code editor; every edit
+is checked after a 300 ms pause (:func:`flyopt.app.model.check`) and its
+problem shown inline with its field and line. Right, always in view, the
+answer card; below it the report's diagrams. A scene of the fast models is
+solved on every valid edit; a drive or a motor's dynamics waits for the Solve
+button. Every solve runs in a worker thread, off the server's event loop,
+with a busy line and a Cancel (which drops the answer of the running solve:
+a thread cannot be stopped, it finishes in the background and is ignored).
+Downloads: the report (HTML or PDF, in the units picked), the scene, the JSON.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import io
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+from flyopt.app import model
+
+#: The pause after the last keystroke before the text is checked, in seconds.
+DEBOUNCE = 0.3
+
+#: The template shown first.
+FIRST = "shear-press"
+
+#: Said above the diagrams and downloads while the editor's text is not valid.
+STALE = (
+    '<div style="color:#c33;font-weight:bold">The diagrams and downloads below are those of the last scene solved, '
+    "not of the text in the editor.</div>"
+)
+
+CSS = """
+.card {font-family: sans-serif; font-size: 14px; padding: 6px 10px; border-left: 4px solid #2a7;}
+.card.bad {border-left-color: #c33;}
+.card table {border-collapse: collapse;} .card th {text-align: left; font-weight: normal; color: #555;
+ padding: 1px 12px 1px 0; vertical-align: top;} .card td {padding: 1px 0;}
+.card .status {font-size: 15px;} .card ul {margin: 4px 0; padding-left: 18px;}
+.footer {font-family: monospace; font-size: 11px; color: #555;}
+.figure svg {max-width: 100%; height: auto;}
+"""
+
+
+def session() -> Any:
+    """One browser session's page (Panel calls this once per visitor)."""
+    import panel as pn
+
+    return Session(pn).layout
+
+
+class Session:
+    """The widgets of one visitor and what they do; the scene's private folder lives as long as the session."""
+
+    def __init__(self, pn: Any) -> None:
+        self.pn = pn
+        self.workspace = model.Workspace()
+        self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="flyopt-solve")
+        self.answer: model.Answer | None = None
+        self.checked: model.Checked | None = None
+        self.generation = 0
+        names = list(model.templates())
+        first = FIRST if FIRST in names else (names[0] if names else "")
+        self.template = pn.widgets.Select(name="Template (problems/)", options=names, value=first or None, width=320)
+        self.units = pn.widgets.Select(name="Units", options=["engineering", "si", "imperial"], value="engineering")
+        self.editor = pn.widgets.CodeEditor(
+            value=model.template_text(first) if first else "",
+            language="toml",
+            sizing_mode="stretch_both",
+            min_height=560,
+        )
+        self.solve_button = pn.widgets.Button(name="Solve", button_type="primary", width=90)
+        self.cancel_button = pn.widgets.Button(name="Cancel", button_type="warning", width=90, disabled=True)
+        self.busy = pn.indicators.LoadingSpinner(value=False, width=24, height=24)
+        self.mode = pn.pane.HTML("", css_classes=["mode"])
+        self.card = pn.pane.HTML(model.card_html(None, []), stylesheets=[CSS], sizing_mode="stretch_width")
+        self.figures = pn.Column(sizing_mode="stretch_width")
+        self.stale = pn.pane.HTML("", sizing_mode="stretch_width")
+        self.footer = pn.pane.HTML(
+            f'<div class="footer">{model.provenance_html(None)}</div>', stylesheets=[CSS], sizing_mode="stretch_width"
+        )
+        downloads = [
+            pn.widgets.FileDownload(callback=self._report("html"), filename="report.html", label="Report (HTML)"),
+            pn.widgets.FileDownload(callback=self._report("pdf"), filename="report.pdf", label="Report (PDF)"),
+            pn.widgets.FileDownload(callback=self._scene, filename="scene.toml", label="Scene (TOML)"),
+            pn.widgets.FileDownload(callback=self._json, filename="solution.json", label="JSON"),
+        ]
+        self.template.param.watch(self._load_template, "value")
+        text_parameter = "value_input" if "value_input" in self.editor.param else "value"
+        self.editor.param.watch(self._edited, text_parameter)
+        self.units.param.watch(self._edited, "value")
+        self.solve_button.on_click(self._solve_clicked)
+        self.cancel_button.on_click(self._cancel)
+        left = pn.Column(
+            pn.Row(self.template, self.units),
+            self.editor,
+            sizing_mode="stretch_both",
+            min_width=480,
+        )
+        right = pn.Column(
+            pn.Row(self.solve_button, self.cancel_button, self.busy, self.mode),
+            self.card,
+            pn.Row(*downloads),
+            self.stale,
+            self.figures,
+            sizing_mode="stretch_both",
+            min_width=520,
+        )
+        right.append(self.footer)
+        self.layout = pn.template.BootstrapTemplate(
+            title="flyopt — flywheel design", main=[pn.Row(left, right, sizing_mode="stretch_width")]
+        )
+        pn.state.on_session_destroyed(lambda _context: self.close())
+        pn.state.onload(lambda: asyncio.ensure_future(self._refresh(self.editor.value, solve=None)))
+
+    def close(self) -> None:
+        """Drop the session's folder and worker."""
+        self.executor.shutdown(wait=False, cancel_futures=True)
+        self.workspace.close()
+
+    # -- events --------------------------------------------------------------------------------
+
+    def _load_template(self, event: Any) -> None:
+        if event.new:
+            self.editor.value = model.template_text(event.new)
+            asyncio.ensure_future(self._refresh(self.editor.value, solve=None))
+
+    def _edited(self, event: Any) -> None:
+        text = self.editor.value_input if "value_input" in self.editor.param else self.editor.value
+        asyncio.ensure_future(self._debounced(text))
+
+    async def _debounced(self, text: str) -> None:
+        self.generation += 1
+        mine = self.generation
+        await asyncio.sleep(DEBOUNCE)
+        if mine == self.generation:
+            await self._refresh(text, solve=None)
+
+    def _solve_clicked(self, _event: Any) -> None:
+        text = self.editor.value_input if "value_input" in self.editor.param else self.editor.value
+        asyncio.ensure_future(self._refresh(text, solve=True))
+
+    def _cancel(self, _event: Any) -> None:
+        self.generation += 1  # the running solve's answer is dropped when it arrives
+        self._busy(False)
+        self.card.object = model.card_html(self.answer, [], busy="cancelled: showing the last answer")
+
+    # -- work ----------------------------------------------------------------------------------
+
+    async def _refresh(self, text: str, solve: bool | None) -> None:
+        """Check ``text``; solve it when it is valid and (``solve`` None) fast, or when asked."""
+        self.generation += 1
+        mine = self.generation
+        loop = asyncio.get_running_loop()
+        units = self.units.value
+        checked = await loop.run_in_executor(self.executor, model.check, text, self.workspace)
+        if mine != self.generation:
+            return
+        self.checked = checked
+        if checked.problems or checked.scene is None:
+            self.card.object = model.card_html(None, checked.problems)
+            self.stale.object = STALE if self.answer is not None else ""
+            return
+        self.stale.object = ""
+        fast = model.live(checked.scene)
+        self.mode.object = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
+        if solve is None and not fast:  # the last answer is not this scene's: not shown on the card
+            self.card.object = model.card_html(None, [], busy="The scene is valid; press Solve for its answer.")
+            self.stale.object = STALE if self.answer is not None else ""
+            return
+        self._busy(True)
+        self.stale.object = STALE if self.answer is not None else ""
+        if fast:  # the same scene being tuned: its last answer stays in view while the new one comes
+            self.card.object = model.card_html(self.answer, [], busy="solving…")
+        else:
+            self.card.object = model.card_html(None, [], busy="Solving (a slow model)…")
+        try:
+            answer = await loop.run_in_executor(self.executor, model.solve, text, self.workspace, units)
+        except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
+            if mine == self.generation:
+                self._busy(False)
+                field = getattr(err, "field", "")
+                message = getattr(err, "message", None) or f"{type(err).__name__}: {err}"
+                line = model.field_line(text, field) if field else None
+                self.card.object = model.card_html(None, [model.Problem(field, message, line)])
+            return
+        if mine != self.generation:
+            return
+        self._busy(False)
+        self.stale.object = ""
+        old, self.answer = self.answer, answer
+        if old is not None:
+            old.document.close()
+        self.card.object = model.card_html(answer, [])
+        self.figures.objects = [self._figure(key, caption, svg) for key, caption, svg in answer.figures]
+        self.footer.object = f'<div class="footer">{model.provenance_html(answer)}</div>'
+
+    def _figure(self, key: str, caption: str, svg: str) -> Any:
+        pn = self.pn
+        title = pn.pane.HTML(f"<b>{model.escape_text(caption)}</b>", sizing_mode="stretch_width")
+        if not svg:
+            return title
+        return pn.Column(
+            title,
+            pn.pane.HTML(
+                _fluid(svg), css_classes=["figure", f"figure-{key}"], stylesheets=[CSS], sizing_mode="stretch_width"
+            ),
+            sizing_mode="stretch_width",
+        )
+
+    def _busy(self, on: bool) -> None:
+        self.busy.value = on
+        self.cancel_button.disabled = not on
+        self.solve_button.disabled = on
+
+    # -- downloads -----------------------------------------------------------------------------
+
+    def _report(self, kind: str) -> Any:
+        def callback() -> io.BytesIO | None:
+            if self.answer is None:
+                return None
+            return io.BytesIO(model.report_bytes(self.answer, kind))
+
+        return callback
+
+    def _scene(self) -> io.BytesIO:
+        return io.BytesIO(self.editor.value.encode("utf-8"))
+
+    def _json(self) -> io.BytesIO | None:
+        return io.BytesIO(self.answer.json.encode("utf-8")) if self.answer is not None else None
+
+
+def _fluid(svg: str) -> str:
+    """The SVG scaled to the pane's width: its fixed width and height dropped (the viewBox keeps the shape)."""
+    import re
+
+    return re.sub(
+        r'(<svg\b[^>]*?)\s(?:width|height)="[^"]*"([^>]*?)\s(?:width|height)="[^"]*"',
+        r'\1\2 width="100%"',
+        svg,
+        count=1,
+    )
+
+
+def serve(port: int, host: str, browser: bool) -> None:
+    """Serve the app on ``host``:``port`` until interrupted; open the browser when asked."""
+    import panel as pn
+
+    pn.extension("codeeditor", raw_css=[CSS])
+    pn.serve(
+        {"/": session},
+        port=port,
+        address=host,
+        websocket_origin=[f"{host}:{port}", f"localhost:{port}", f"127.0.0.1:{port}"],
+        show=browser,
+        title="flyopt",
+        websocket_max_message_size=4 * model.MAX_BYTES,
+        threaded=False,
+    )

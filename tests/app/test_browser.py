@@ -1,0 +1,152 @@
+"""The app in a real browser (headless Debian chromium through Playwright): edit, see the error, fix, download."""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+pytestmark = pytest.mark.browser
+
+CHROMIUM = "/usr/bin/chromium"
+ARGS = [
+    "--headless=new",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+]
+SRC = Path(__file__).resolve().parents[2] / "src"
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def server():
+    pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    port = free_port()
+    env = {**os.environ, "PYTHONPATH": f"{SRC}{os.pathsep}{os.environ.get('PYTHONPATH', '')}"}
+    process = subprocess.Popen(
+        [sys.executable, "-m", "flyopt", "app", "--port", str(port), "--no-browser"],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
+    url = f"http://127.0.0.1:{port}/"
+    try:
+        for _ in range(600):
+            try:
+                urllib.request.urlopen(url, timeout=1).close()
+                break
+            except OSError:
+                if process.poll() is not None:
+                    raise RuntimeError(process.stderr.read().decode()) from None
+                time.sleep(0.1)
+        yield url
+    finally:
+        process.terminate()
+        process.wait(10)
+        process.stderr.close()
+
+
+@pytest.fixture(scope="module")
+def browser():
+    if not os.path.exists(CHROMIUM):
+        pytest.skip(f"{CHROMIUM} is absent (apt-get install -y chromium; .ci/run installs it)")
+    sync_api = pytest.importorskip("playwright.sync_api", reason="the app-test extra (playwright) is not installed")
+    with sync_api.sync_playwright() as p:
+        launched = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        yield launched
+        launched.close()
+
+
+ROOT = Path(__file__).resolve().parents[2]
+SHOTS = os.environ.get("FLYOPT_APP_SHOTS")  # a folder for screenshots of each stage, when set
+
+
+def shot(page, name):
+    if SHOTS:
+        page.screenshot(path=str(Path(SHOTS) / f"app-{name}.png"), full_page=True)
+
+
+def replace_line(page, old, new):
+    """Select ``old`` in the editor (Ace's own find) and type ``new`` over it with the keyboard, as a user would."""
+    page.locator(".ace_editor").first.evaluate(
+        "(el, old) => { const ed = el.env.editor; ed.focus(); ed.find(old, {wrap: true}); }", old
+    )
+    page.keyboard.type(new)
+
+
+def model_text():
+    return (ROOT / "problems" / "shear-press.toml").read_text(encoding="utf-8")
+
+
+def solve_json(path):
+    """``flyopt solve PATH --json``, the command line's answer the page must equal."""
+    solved = subprocess.run(
+        [sys.executable, "-m", "flyopt", "solve", str(path), "--json"],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
+        check=True,
+    )
+    return json.loads(solved.stdout)
+
+
+def card(page):
+    return page.locator(".card").first
+
+
+def test_edit_break_fix_and_download(server, browser, tmp_path):
+    from pypdf import PdfReader
+
+    page = browser.new_page(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
+    page.goto(server)
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+    page.wait_for_selector(".figure-turning_moment svg", timeout=60_000)
+    shot(page, "1-loaded")
+    json_doc = solve_json(ROOT / "problems" / "shear-press.toml")
+    from flyopt.report import display
+
+    mass = display.quantity_text(json_doc["design"]["mass"], "mass", "engineering")
+    assert mass in card(page).inner_text()
+
+    replace_line(page, "delta = 0.05", "delta = -1")
+    page.wait_for_selector(".card >> text=machine.delta", timeout=30_000)
+    text = card(page).inner_text()
+    assert "line 11" in text and "between 0 and 2" in text
+    shot(page, "2-error")
+
+    replace_line(page, "delta = -1", "delta = 0.025")
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+    page.wait_for_selector(".card >> text=0.025 (1/40)", timeout=120_000)
+    shot(page, "3-fixed")
+    fixed = tmp_path / "fixed.toml"
+    fixed.write_text(model_text().replace("delta = 0.05", "delta = 0.025"), encoding="utf-8")
+    mass = display.quantity_text(solve_json(fixed)["design"]["mass"], "mass", "engineering")
+    assert mass in card(page).inner_text()
+    assert page.locator(".figure-energy svg").count() == 1
+
+    with page.expect_download() as download:
+        page.get_by_text("Report (HTML)").click()
+    html = Path(download.value.path()).read_text(encoding="utf-8")
+    assert "<title>" in html and "Shear press" in html
+    with page.expect_download() as download:
+        page.get_by_text("Report (PDF)").click()
+    reader = PdfReader(io.BytesIO(Path(download.value.path()).read_bytes()))
+    assert "Shear press" in reader.pages[0].extract_text()
+    page.close()

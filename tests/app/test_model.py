@@ -1,0 +1,161 @@
+"""The app's model layer without a browser: templates, checking, the answer card against ``flyopt solve --json``."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from flyopt.app import model
+from flyopt.report import display
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture()
+def workspace():
+    space = model.Workspace()
+    yield space
+    space.close()
+
+
+def test_templates_are_the_shipped_problems_and_the_textbook_gallery():
+    found = model.templates()
+    shipped = {p.stem for p in (ROOT / "problems").glob("*.toml")}
+    textbook = {f"textbook/{p.stem}" for p in (ROOT / "problems" / "textbook").glob("*.toml")}
+    assert shipped | textbook == set(found)
+    assert model.template_text("shear-press") == (ROOT / "problems" / "shear-press.toml").read_text(encoding="utf-8")
+
+
+def test_a_name_that_is_not_a_template_opens_nothing():
+    for name in ("../pyproject", "/etc/passwd", "shear-press.toml"):
+        with pytest.raises(KeyError):
+            model.template_text(name)
+
+
+def test_a_broken_delta_is_named_with_its_line(workspace):
+    text = model.template_text("shear-press").replace("delta = 0.05", "delta = -1")
+    checked = model.check(text, workspace)
+    assert checked.scene is None
+    [problem] = checked.problems
+    assert problem.field == "machine.delta"
+    assert "between 0 and 2" in problem.message
+    assert text.splitlines()[problem.line - 1].startswith("delta = -1")
+
+
+def test_bad_toml_is_said_not_raised(workspace):
+    checked = model.check("[machine\nspeed = 1", workspace)
+    assert checked.scene is None and checked.problems
+
+
+def test_field_line_finds_the_key_in_its_table():
+    text = "title = 'x'\n[design]\ndelta = 3\n[machine]\nspeed = 1\ndelta = 2\n"
+    assert model.field_line(text, "machine.delta") == 6
+    assert model.field_line(text, "machine.speed") == 5
+    assert model.field_line(text, "machine") == 4
+    assert model.field_line(text, "nowhere.at_all") is None
+
+
+def test_a_file_named_by_the_scene_is_not_read_outside_the_private_folder(workspace, tmp_path):
+    outside = tmp_path / "torque.csv"
+    outside.write_text("angle,torque\n0,1\n6.283185307179586,1\n", encoding="utf-8")
+    text = model.template_text("four-stroke-engine-csv")
+    for name in (str(outside), os.path.relpath(outside, workspace.folder)):
+        broken = text.replace("four-stroke-engine-torque.csv", name.replace("\\", "/"))
+        assert broken != text
+        checked = model.check(broken, workspace)
+        assert checked.scene is None and checked.problems, name
+
+
+def test_the_text_is_refused_over_the_size_limit(workspace):
+    checked = model.check("#" * (model.MAX_BYTES + 1), workspace)
+    assert checked.scene is None and "over 1 MB" in checked.problems[0].message
+
+
+def test_live_only_for_the_fast_models(workspace):
+    assert model.live(model.check(model.template_text("shear-press"), workspace).scene)
+    assert not model.live(model.check(model.template_text("press-drive"), workspace).scene)
+    assert not model.live(model.check(model.template_text("motor-press"), workspace).scene)
+
+
+def test_the_card_equals_flyopt_solve_json_to_the_digits_shown(workspace):
+    text = model.template_text("shear-press")
+    answer = model.solve(text, workspace)
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+    solved = subprocess.run(
+        [sys.executable, "-m", "flyopt", "solve", str(ROOT / "problems" / "shear-press.toml"), "--json"],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=True,
+    )
+    document = json.loads(solved.stdout)
+    best = document["design"]
+    expected = {
+        "a_max": ("energy", document["a_max"]),
+        "j_required": ("inertia", document["j_required"]),
+        "omega_mean": ("angular_speed", document["omega_mean"]),
+        "mass": ("mass", best["mass"]),
+        "d_outer": ("length", best["d_outer"]),
+        "h": ("length", best["h"]),
+        "rim_speed": ("speed", best["rim_speed"]),
+    }
+    rows = {row.name: row for row in answer.card if row.name}
+    for name, (dimension, value) in expected.items():
+        shown = display.quantity_text(value, dimension, "engineering")
+        assert rows[name].value.startswith(shown), (name, rows[name].value, shown)
+    width = display.quantity_text(best["b"], "length", "engineering")
+    assert width in rows["h"].value
+    assert answer.status == "designed"
+    assert json.loads(answer.json)["design"]["mass"] == best["mass"]
+    assert best["material"] in next(r.value for r in answer.card if r.label == "chosen wheel")
+
+
+def test_the_figures_are_the_reports_and_the_downloads_open(workspace):
+    from pypdf import PdfReader
+
+    answer = model.solve(model.template_text("shear-press"), workspace)
+    keys = [key for key, _, svg in answer.figures if svg]
+    assert {"turning_moment", "energy", "stress", "cross_section", "speed"} <= set(keys)
+    assert all(svg.lstrip().startswith("<svg") for _, _, svg in answer.figures if svg)
+    html = model.report_bytes(answer, "html").decode("utf-8")
+    assert "Shear press (worked example 2)" in html
+    import io
+
+    reader = PdfReader(io.BytesIO(model.report_bytes(answer, "pdf")))
+    assert "Shear press" in reader.pages[0].extract_text()
+
+
+def test_user_strings_are_escaped(workspace):
+    problem = model.Problem("machine.<b>", "<script>alert(1)</script>", 3)
+    html = model.card_html(None, [problem])
+    assert "<script>" not in html and "&lt;script&gt;" in html and "<b>" not in html.split("</b>", 1)[1]
+    answer = model.solve(model.template_text("shear-press").replace("Shear press", "<img src=x onerror=1>"), workspace)
+    assert "<img" not in model.card_html(answer, [])
+
+
+def test_the_footer_names_the_versions_and_the_scenes_hash(workspace):
+    import hashlib
+
+    import flyopt
+
+    text = model.template_text("shear-press")
+    footer = model.provenance_html(model.solve(text, workspace))
+    assert hashlib.sha256(text.encode()).hexdigest() in footer
+    assert f"flyopt {flyopt.__version__}" in footer and "IPOPT" in footer and "casadi" in footer
+
+
+def test_flyopt_app_without_panel_refuses_in_one_line(monkeypatch, capsys):
+    import importlib.util
+
+    from flyopt.cli.main import main
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "panel" else real(name, *a))
+    assert main(["app", "--no-browser"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and 'pip install "flyopt[app]"' in err
