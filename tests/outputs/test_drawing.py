@@ -243,9 +243,7 @@ def test_export_command_writes_a_dxf(main_cli, tmp_path):
 @pytest.mark.parametrize(
     ("name", "words"),
     [
-        ("wheel.step", "STEP needs a solid modeller"),
-        ("wheel.stp", "STEP needs a solid modeller"),
-        ("wheel.png", "must end in .dxf, .svg or .pdf"),
+        ("wheel.png", "must end in .dxf, .svg, .pdf or .step/.stp"),
         ("no-such-folder/wheel.dxf", "does not exist"),
     ],
 )

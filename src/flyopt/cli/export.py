@@ -1,20 +1,22 @@
-"""``flyopt export``: the manufacturing drawing of a scene's wheel, as DXF, SVG or PDF.
+"""``flyopt export``: the manufacturing drawing of a scene's wheel, as DXF, SVG or PDF, or its solid as STEP.
 
 ::
 
-    flyopt export SCENE.toml -o drawing.dxf|drawing.svg|drawing.pdf
+    flyopt export SCENE.toml -o drawing.dxf|drawing.svg|drawing.pdf|wheel.step
 
 The scene is solved (:func:`flyopt.pipeline.solve`) and its chosen wheel
 drawn (:mod:`flyopt.outputs.drawing`: section A–A through the keyway, a front
 view, every dimension a pattern maker and a machinist need, the title
-block). The suffix of ``-o`` picks the format; a STEP file is refused in one
-line (flyopt has no solid modeller yet). The output's folder and suffix are
-checked, and ezdxf's presence for a DXF, before anything is computed; the
-file is written atomically.
+block). The suffix of ``-o`` picks the format; .step or .stp writes the
+wheel's solid in mm (:mod:`flyopt.outputs.solid`), read back and checked
+before it takes its name. The output's folder and suffix are checked, and
+the ``cad`` extra's presence for a DXF (ezdxf) or a STEP (OCP), before
+anything is computed; the file is written atomically.
 
-Exit status: 0 written; 2 bad input (a suffix, a folder, a DXF without the
-``cad`` extra, a scene that needs no flywheel); 3 infeasible (no wheel meets
-the limits); 1 the design did not converge. Nothing is written unless 0.
+Exit status: 0 written; 2 bad input (a suffix, a folder, a DXF or STEP
+without the ``cad`` extra, a scene that needs no flywheel); 3 infeasible (no
+wheel meets the limits); 1 the design did not converge. Nothing is written
+unless 0.
 """
 
 from __future__ import annotations
@@ -33,7 +35,7 @@ def add_export_arguments(parser: argparse.ArgumentParser) -> None:
         required=True,
         metavar="FILE",
         help="the drawing to write: .dxf (needs the cad extra: pip install 'flyopt[cad]'), .svg or .pdf; "
-        "written atomically, its folder must exist",
+        "or the wheel's solid: .step/.stp (mm, needs the cad extra); written atomically, its folder must exist",
     )
     parser.set_defaults(run=run_export)
 
@@ -45,23 +47,38 @@ def run_export(args: argparse.Namespace) -> int:
     from flyopt.errors import SceneError
     from flyopt.io.scene import load
     from flyopt.outputs.files import check_folder
-    from flyopt.report.drawing import NoWheel, drawing_of_scene, export_format, write_drawing
+    from flyopt.report.drawing import (
+        NoWheel,
+        design_of_scene,
+        drawing_of_scene,
+        export_format,
+        write_drawing,
+        write_solid,
+    )
 
     kind = export_format(args.output)
     check_folder(args.output, "-o/--output")
     if Path(args.output).resolve() == Path(args.scene).resolve():
         raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: name another file for the drawing")
-    if kind == "dxf":
+    if kind in ("dxf", "step"):
         from flyopt.outputs.drawing import require_ezdxf
+        from flyopt.outputs.solid import require_ocp
 
         try:
-            require_ezdxf()
+            require_ezdxf() if kind == "dxf" else require_ocp()
         except ImportError as err:
             return fail(f"-o/--output: {err}", EXIT_INPUT)
+    scene = load(args.scene)
     try:
-        drawing, _design = drawing_of_scene(load(args.scene))
+        if kind == "step":
+            design = design_of_scene(scene)
+        else:
+            drawing, _design = drawing_of_scene(scene)
     except NoWheel as said:
         return fail(f"{args.scene}: {said}", EXIT_INFEASIBLE if said.infeasible else EXIT_INPUT)
-    write_drawing(drawing, args.output, kind)
+    if kind == "step":
+        write_solid(design, scene, args.output)
+    else:
+        write_drawing(drawing, args.output, kind)
     print(f"wrote {args.output}")
     return EXIT_OK

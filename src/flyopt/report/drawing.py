@@ -5,7 +5,8 @@ at the drawing's scale (1 paper mm is 1 mm of the printed sheet): the same
 lines, hatched faces, dimensions, names and title block that
 :func:`flyopt.outputs.drawing.write_dxf` writes to DXF. :func:`export` solves
 a scene, draws its chosen wheel and writes it as DXF, SVG or PDF by the
-suffix of the file.
+suffix of the file, or (.step, .stp) writes its solid
+(:func:`export_solid`, :mod:`flyopt.outputs.solid`).
 """
 
 from __future__ import annotations
@@ -23,24 +24,23 @@ if TYPE_CHECKING:
 
     from flyopt.design.result import Design
     from flyopt.io.scene import Scene
+    from flyopt.outputs.solid import Solid
 
 __all__ = [
     "EXPORT_FORMATS",
-    "STEP_REFUSAL",
     "NoWheel",
+    "design_of_scene",
     "drawing_of_scene",
     "export",
+    "export_solid",
     "export_format",
     "figure",
     "write_drawing",
+    "write_solid",
 ]
 
 #: The formats of ``flyopt export``, by the suffix of the file.
-EXPORT_FORMATS = {".dxf": "dxf", ".svg": "svg", ".pdf": "pdf"}
-#: What ``flyopt export`` says of a STEP file, which it cannot write yet.
-STEP_REFUSAL = (
-    "STEP needs a solid modeller (build123d or CadQuery), which flyopt does not have yet: write .dxf, .svg or .pdf"
-)
+EXPORT_FORMATS = {".dxf": "dxf", ".svg": "svg", ".pdf": "pdf", ".step": "step", ".stp": "step"}
 
 #: Line widths on paper [mm] (ISO 128-20: wide 0.5, narrow 0.25).
 _WIDE, _NARROW = 0.5, 0.25
@@ -50,17 +50,16 @@ _CLEAR = {"facecolor": "white", "edgecolor": "none", "pad": 0.6}
 
 
 def export_format(path: str | os.PathLike[str]) -> str:
-    """ "dxf", "svg" or "pdf" from the suffix of ``path``; SceneError at ``-o/--output`` otherwise."""
+    """ "dxf", "svg", "pdf" or "step" from the suffix of ``path``; SceneError at ``-o/--output`` otherwise."""
     from pathlib import Path
 
     from flyopt.errors import SceneError
 
-    suffix = Path(path).suffix.lower()
-    if suffix in (".step", ".stp"):
-        raise SceneError("-o/--output", STEP_REFUSAL)
-    kind = EXPORT_FORMATS.get(suffix)
+    kind = EXPORT_FORMATS.get(Path(path).suffix.lower())
     if kind is None:
-        raise SceneError("-o/--output", f"{str(path)!r} must end in .dxf, .svg or .pdf (the suffix picks the format)")
+        raise SceneError(
+            "-o/--output", f"{str(path)!r} must end in .dxf, .svg, .pdf or .step/.stp (the suffix picks the format)"
+        )
     return kind
 
 
@@ -203,6 +202,28 @@ class NoWheel(ValueError):
         self.infeasible = infeasible
 
 
+def design_of_scene(scene: Scene) -> Design:
+    """Solve ``scene`` and return its chosen wheel.
+
+    Raises
+    ------
+    NoWheel
+        No flywheel is needed, or none is feasible.
+    SolverFailed
+        The design did not converge (exit 1).
+    """
+    from flyopt.pipeline import solve
+
+    solution = solve(scene)
+    if solution.status == "not_needed":
+        raise NoWheel("no flywheel is needed: nothing to draw", infeasible=False)
+    design = solution.design
+    if design is None or design.best is None:
+        said = design.message if design is not None else "no drive and wheel meet the limits"
+        raise NoWheel(f"no flywheel to draw ({said})", infeasible=True)
+    return design.best
+
+
 def drawing_of_scene(scene: Scene, date: datetime.date | None = None) -> tuple[Drawing, Design]:
     """Solve ``scene`` and describe the drawing of its chosen wheel.
 
@@ -215,30 +236,24 @@ def drawing_of_scene(scene: Scene, date: datetime.date | None = None) -> tuple[D
     """
     from flyopt.outputs.documents import scene_record
     from flyopt.outputs.drawing import drawing_of
-    from flyopt.pipeline import solve
 
-    solution = solve(scene)
-    if solution.status == "not_needed":
-        raise NoWheel("no flywheel is needed: nothing to draw", infeasible=False)
-    design = solution.design
-    if design is None or design.best is None:
-        said = design.message if design is not None else "no drive and wheel meet the limits"
-        raise NoWheel(f"no flywheel to draw ({said})", infeasible=True)
+    best = design_of_scene(scene)
     record = scene_record(scene)
     drawn = drawing_of(
-        design.best,
+        best,
         scene=record["scene"],
         sha256=record["scene_file_sha256"],
         date=date,
-        material=design.material_name(design.best.material),
+        material=scene.material_library()[best.material].display_name,
     )
-    return drawn, design.best
+    return drawn, best
 
 
 def export(
     scene: Scene | str | os.PathLike[str], output: str | os.PathLike[str], date: datetime.date | None = None
-) -> Drawing:
-    """Write the manufacturing drawing of a scene's wheel to ``output``: .dxf, .svg or .pdf by its suffix.
+) -> Drawing | Solid:
+    """Write the manufacturing drawing of a scene's wheel to ``output``: .dxf, .svg or .pdf by its suffix;
+    .step or .stp: its solid (:func:`export_solid`).
 
     Parameters
     ----------
@@ -247,26 +262,28 @@ def export(
     output : path
         The file to write, atomically; its folder must exist.
     date : datetime.date, optional
-        The date in the title block (default: today).
+        The date in the title block (default: today; not used for STEP).
 
     Returns
     -------
-    Drawing
-        What was drawn.
+    Drawing or Solid
+        What was drawn; for STEP, the solid as its file reads back.
 
     Raises
     ------
     SceneError
-        A suffix other than .dxf, .svg, .pdf (STEP refused in words) or a
-        folder that does not exist; nothing is written.
+        A suffix other than .dxf, .svg, .pdf, .step, .stp or a folder that
+        does not exist; nothing is written.
     NoWheel
         No wheel to draw; nothing is written.
     ImportError
-        A DXF without ezdxf (the ``cad`` extra), said in one line.
+        A DXF without ezdxf or a STEP without OCP (the ``cad`` extra), said in one line.
     """
     from flyopt.outputs.files import check_folder
 
     kind = export_format(output)
+    if kind == "step":
+        return export_solid(scene, output)
     check_folder(output, "-o/--output")
     if kind == "dxf":
         from flyopt.outputs.drawing import require_ezdxf
@@ -278,6 +295,50 @@ def export(
     drawn, _design = drawing_of_scene(loaded, date)
     write_drawing(drawn, output, kind)
     return drawn
+
+
+def export_solid(scene: Scene | str | os.PathLike[str], output: str | os.PathLike[str]) -> Solid:
+    """Write the solid of a scene's wheel to ``output`` as STEP (mm), atomically, checked by reading it back.
+
+    :func:`flyopt.outputs.solid.write_step`: the wheel as designed (rim, web
+    or arms, hub or disc, the bore and the hub's keyway), sharp-edged.
+
+    Returns
+    -------
+    Solid
+        Volume, mass and J about the axis of the file as read back.
+
+    Raises
+    ------
+    SceneError
+        A suffix other than .step or .stp, or a folder that does not exist; nothing is written.
+    ImportError
+        OCP missing (the ``cad`` extra), said in one line, before the solve.
+    NoWheel
+        No wheel; nothing is written.
+    BrokenInvariant
+        The file did not read back as the wheel; nothing is written.
+    """
+    from flyopt.errors import SceneError
+    from flyopt.io.scene import Scene, load
+    from flyopt.outputs.files import check_folder
+    from flyopt.outputs.solid import require_ocp
+
+    if export_format(output) != "step":
+        raise SceneError("-o/--output", f"{str(output)!r} must end in .step or .stp for a solid")
+    check_folder(output, "-o/--output")
+    require_ocp()  # refused before the solve
+    loaded = scene if isinstance(scene, Scene) else load(scene)
+    return write_solid(design_of_scene(loaded), loaded, output)
+
+
+def write_solid(design: Design, scene: Scene, output: str | os.PathLike[str]) -> Solid:
+    """Write the solid of ``design``, a wheel of ``scene``, to ``output`` as STEP (its material's density from the scene)."""
+    from flyopt.design.materials import get_material
+    from flyopt.outputs.solid import write_step
+
+    density = get_material(design.material, scene.material_library()).density
+    return write_step(design, output, density, name=f"flywheel ({design.material})")
 
 
 def write_drawing(drawing: Drawing, output: str | os.PathLike[str], kind: str) -> None:
