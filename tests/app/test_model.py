@@ -14,6 +14,17 @@ import flyopt
 from flyopt.app import model
 from flyopt.report import display
 
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    """The app keeps its last answer's figures open for its downloads; a test's must not outlive it, or the
+    worker's next tests see matplotlib's "more than 20 figures" warning (an error under the test settings)."""
+    yield
+    import matplotlib.pyplot as plt
+
+    plt.close("all")
+
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
