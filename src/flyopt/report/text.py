@@ -141,7 +141,7 @@ def analysis_report(
     ]
     if delta_label == "allowed δ":
         low, high = allowed_speed_range(r)
-        facts.append((ALLOWED_RANGE, f"{n(low, 'omega_min')} to {q(high, 'omega_max')} (ω_m (1 ± δ/2))"))
+        facts.append((ALLOWED_RANGE, f"{n(low, 'omega_min')} to {q(high, 'omega_max')}"))  # ω_m (1 ∓ δ/2)
         if reached_below_allowed(r):
             facts.append(
                 (
