@@ -630,10 +630,22 @@ def _speed_curve(analysis: Analysis) -> SpeedFluctuation | PeriodicSolution | No
     if analysis.requirement is None:
         raise BrokenInvariant("a machine's analysis has its requirement")
     if analysis.requirement.model == Model.DYNAMIC:
-        # the machine as it will run (flyopt.sizing.periodic.dynamic_requirement): with the flywheel it needs,
-        # with none when none is needed, or, with no inertia of its own, the limit its vanishing inertia tends to
         solution: PeriodicSolution = analysis.requirement.detail.solution
-        return solution
+        if solution.j_flywheel == analysis.j_required or not analysis.j_margin < 0:
+            return solution
+        # no flywheel needed and δ reached at a J_F < 0 (limit "delta"): the requirement's solution is the one at
+        # that margin; the machine runs with none. (Where δ is reached at none, limit "none", the requirement's
+        # solution is already the machine with none, or, with no inertia of its own, the limit it tends to.)
+        from flyopt.sizing.periodic import periodic_solution
+
+        return periodic_solution(
+            machine.net_torque(),
+            machine.j_machine,
+            machine.cycle_angle,
+            analysis.omega_mean,
+            analysis.j_required,
+            machine.knots(),
+        )
     if machine.j_mean() + analysis.j_required <= 0:
         if analysis.a_max <= 0:
             return None

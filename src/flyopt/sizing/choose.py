@@ -220,11 +220,11 @@ def compare(
     reference = results.get(exact) or results.get(chosen)
     for model, res in results.items():
         j = res.j_required
-        # the exact model's δ: the allowed one where the flywheel it fits reaches it; the dynamic model's own
-        # periodic solution where it does not (a stall limit, or none needed: the machine with no flywheel,
-        # max(J_F, 0) as for the other rows, whose δ stays below the allowed one)
+        # the exact model's δ: the allowed one where its flywheel reaches it; the dynamic model's own periodic
+        # solution where no flywheel does (a stall limit, or "none": the machine with no flywheel, J_F = 0 as
+        # for the other rows' max(J_F, 0), whose δ stays below the allowed one)
         delta = machine.delta if model == exact else None
-        if model == exact and model == DYNAMIC and (res.detail.limit != "delta" or j <= 0):
+        if model == exact and model == DYNAMIC and res.detail.limit != "delta":
             delta = res.detail.solution.delta
         note = res.note
         if model != exact:

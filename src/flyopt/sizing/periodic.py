@@ -720,9 +720,10 @@ class DynamicRequirement:
         J_F [kg*m^2] (<= 0: the machine's own inertia suffices; with ``limit`` "none" it is the bound
         −min J_e, where the machine would have no inertia left, not a flywheel at which δ is reached).
     solution : PeriodicSolution
-        The periodic solution of the machine as it will run: with that flywheel when one is needed
-        (``j_required`` > 0), with none (J_F = 0) when none is; a machine with no inertia of its own
-        and none needed has the limit its vanishing inertia tends to.
+        The periodic solution with that flywheel where it is needed, or where δ reaches the allowed
+        value at it (``limit`` "delta"); with none (J_F = 0), the machine as it will run, where δ stays
+        below the allowed value at any flywheel ("none", a "stall" below 0); a machine with no inertia
+        of its own and none needed has the limit its vanishing inertia tends to.
     iterations : int
         Periodic solutions computed.
     held : str
@@ -918,15 +919,18 @@ def dynamic_requirement(
 
 
 def _as_fitted(model: PeriodicModel, found: DynamicRequirement, j_low: float) -> DynamicRequirement:
-    """``found`` with the periodic solution of the machine as it will run.
+    """``found`` with the periodic solution of the machine as it will run, where δ reaches the allowed value
+    at no flywheel the search settled on (limit "none" or "stall").
 
-    A flywheel that is needed is fitted: its solution is the one found. One that is not (J_F <= 0) is not
-    fitted: the search's solution sits at J_F < 0 (where δ reaches the allowed value, or a vanishing
-    inertia), a machine with less inertia than it has, so the machine is solved again with none (J_F = 0),
-    and its speed extremes, their angles and its δ are what the analysis reports. A machine with no inertia
-    of its own (min J_e = 0) keeps the limit its vanishing inertia tends to.
+    A flywheel that is needed is fitted: its solution is the one found. Where δ stays below the allowed value
+    down to a vanishing inertia ("none") or to a stall below J_F = 0, the search's solution is a machine with
+    less inertia than it has, so it is solved again with none (J_F = 0): its speed extremes, their angles and
+    its δ are what the analysis reports. A machine with no inertia of its own (min J_e = 0) keeps the limit
+    its vanishing inertia tends to. Where δ reaches the allowed value at a J_F < 0 (limit "delta") the solution
+    stays the one at that J_F, which the solvers are checked against (tests/sizing/test_shooting.py);
+    :meth:`flyopt.analysis.Analysis.speed_curve` draws that machine with J_F = 0.
     """
-    if found.j_required > 0 or found.solution.j_flywheel == 0.0 or not j_low > 0:
+    if found.limit == "delta" or found.j_required > 0 or found.solution.j_flywheel == 0.0 or not j_low > 0:
         return found
     return replace(found, solution=_periodic(model, 0.0, found.solution.omega_mean))
 
