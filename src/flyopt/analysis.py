@@ -97,10 +97,16 @@ class Analysis:
     machine's own inertia suffices (``flywheel_needed`` False; ``j_margin``
     then tells by how much it suffices, as a negative number).
 
+    ``omega_max``/``omega_min`` are the speed extremes by the model that ran,
+    with the flywheel it sizes: the allowed range ω_m(1 ± δ/2) for the energy
+    models; for the dynamic model those of its periodic solution, which is
+    the machine as it will run (with no flywheel, J_F = 0, when none is
+    needed: then its δ, :attr:`delta_reached`, is below the allowed one).
+
     Two pairs of angles, which differ where the inertia varies or a torque
     depends on speed: ``angle_omega_max``/``angle_omega_min`` are where the
     *speed* is highest and lowest for the model that ran (with the flywheel
-    it sizes); ``angle_delta_e_max``/``angle_delta_e_min`` are where the
+    it sizes, none when none is needed); ``angle_delta_e_max``/``angle_delta_e_min`` are where the
     excess work ΔE of the energy indicator diagram is largest and smallest
     (the ends of A_max; ``index_omega_max``/``_min`` index them in
     ``energy_chain``). For the energy model the pairs are the same angles.
@@ -152,10 +158,18 @@ class Analysis:
         """Whether δ stays below the allowed value however small the inertia (the dynamic model, a motor
         stiff enough that its slip alone holds the speed): ``j_margin`` is then not a flywheel at which δ
         reaches its limit but the bound −min J_e, where the machine would have no inertia left."""
-        if self.requirement is None or self.requirement.model != Model.DYNAMIC or self.flywheel_needed:
+        if self.requirement is None or self.requirement.model != Model.DYNAMIC:
             return False
-        detail = self.requirement.detail
-        return detail.limit == "delta" and detail.solution.delta < self.delta * (1 - 1e-6)
+        return bool(self.requirement.detail.limit == "none")  # decided once, by the search (sizing.periodic)
+
+    @property
+    def delta_reached(self) -> float:
+        """δ of the speed extremes ``omega_max``/``omega_min`` [-]: the allowed δ where the flywheel the model
+        sizes reaches it, the machine's own below it where no flywheel is needed and the dynamic model ran
+        (its periodic solution with none, J_F = 0), or where a stall limits the flywheel."""
+        if self.requirement is not None and self.requirement.model == Model.DYNAMIC:
+            return float(self.requirement.detail.solution.delta)
+        return self.delta
 
     @property
     def models(self) -> tuple[dict[str, Any], ...]:
@@ -616,14 +630,12 @@ def _speed_curve(analysis: Analysis) -> SpeedFluctuation | PeriodicSolution | No
     if analysis.requirement is None:
         raise BrokenInvariant("a machine's analysis has its requirement")
     if analysis.requirement.model == Model.DYNAMIC:
-        solution = analysis.requirement.detail.solution
-        if solution.j_flywheel == analysis.j_required:
+        solution: PeriodicSolution = analysis.requirement.detail.solution
+        if solution.j_flywheel == analysis.j_required or not analysis.j_margin < 0:
             return solution
-        # no flywheel needed: the requirement's solution is the one at its margin J_F = j_margin <= 0 (where δ
-        # reaches the allowed value, or -min J_e, a vanishing inertia); the machine runs with none, unless it has
-        # no inertia of its own (j_margin 0), where the vanishing inertia's solution is the limit it tends to
-        if not analysis.j_margin < 0:
-            return solution
+        # no flywheel needed and δ reached at a J_F < 0 (limit "delta"): the requirement's solution is the one at
+        # that margin; the machine runs with none. (Where δ is reached at none, limit "none", the requirement's
+        # solution is already the machine with none, or, with no inertia of its own, the limit it tends to.)
         from flyopt.sizing.periodic import periodic_solution
 
         return periodic_solution(

@@ -392,7 +392,9 @@ def test_stiff_motor_never_swings_to_delta_03():
     overshoot between grid nodes (the curve itself and scipy Radau give 2/7 at that flywheel)."""
     net, load, motor, omega_n = press(1500, 0.005)
     result = dynamic_requirement(net, 0.0, TWO_PI, omega_n, 0.3, load.breakpoints())
-    assert result.limit == "delta" and result.j_required <= 0
+    # "none": δ = 0.3 is reached at no inertia (it said "delta", which the report read as "δ reaches the
+    # allowed value" beside a δ of 2/7); with no inertia of its own the solution is the vanishing inertia's limit
+    assert result.limit == "none" and result.j_required <= 0
     assert_allclose(result.solution.delta, 2 / 7, rtol=1e-6)
     omega = np.asarray(result.solution.omega)
     assert_allclose([result.solution.omega_max, result.solution.omega_min], [omega.max(), omega.min()], rtol=1e-9)

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 from flyopt.report.characters import visible
 from flyopt.report.display import DEFAULT, field_text, heading, label, number, unit
-from flyopt.report.text import formatters, table
+from flyopt.report.text import ACHIEVED_RANGE, formatters, table
 
 if TYPE_CHECKING:
     from flyopt.drive.codesign import DriveCheck, DriveDesign
@@ -99,7 +99,8 @@ def drive_report(drive: DriveDesign, check: DriveCheck | None = None, units: str
         lines += [
             "",
             f"Drive verification (the machine simulated with the wheel as built): {verdict}",
-            f"  achieved δ {number(v.achieved_delta)} against {number(v.delta_allowed)}; mean speed "
+            f"  achieved δ {number(v.achieved_delta)} against {number(v.delta_allowed)}; {ACHIEVED_RANGE} "
+            f"{n(v.omega_min, 'omega_min', 6)} to {q(v.omega_max, 'omega_max', 6)}, mean "
             f"{q(v.omega_mean, 'omega_mean', 6)}; RMS torque {n(check.rms_torque, 'rms_torque', 5)} of "
             f"{q(check.rated_torque, 'rated_torque', 5)}; start-up {q(check.startup_time, 'startup_time', 4)}",
         ]

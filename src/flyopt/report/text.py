@@ -94,13 +94,36 @@ def table(header: Sequence[str], rows: Sequence[Sequence[Any]], align: Sequence[
     return lines
 
 
+#: The two speed ranges, named once (the text, the HTML/PDF report): the range the allowed δ permits,
+#: ω_m (1 ± δ/2), and the range the machine as designed reaches (its simulation, a flywheel that exists).
+ALLOWED_RANGE = "allowed speed range"
+ACHIEVED_RANGE = "achieved speed range"
+
+
+def allowed_speed_range(analysis: Analysis) -> tuple[float, float]:
+    """(ω_min, ω_max) the allowed δ permits about the mean speed, ω_m (1 ∓ δ/2) [rad/s] (docs/flywheel-design.md,
+    section 2)."""
+    from flyopt.cycle.indicator import speed_extremes
+
+    high, low = speed_extremes(analysis.omega_mean, analysis.delta)
+    return float(low), float(high)
+
+
+def reached_below_allowed(analysis: Analysis) -> bool:
+    """Whether the analysis' own speed extremes are a range the machine achieves below the allowed one: the
+    dynamic model's periodic solution where the flywheel it fits does not reach the allowed δ (none needed, or
+    a stall limit). The energy models' extremes are the allowed range."""
+    return abs(analysis.delta_reached - analysis.delta) > 1e-9 * analysis.delta
+
+
 def no_flywheel_words(analysis: Analysis) -> tuple[str, str]:
     """(before, after) ``j_margin``: why no flywheel is needed (the text and the document say the same)."""
     if analysis.delta_holds_at_any_inertia:
         return (
-            "δ stays within the allowed value however small the inertia (the motor's slip holds the speed; "
-            "J_F could go down to",
-            ", the machine's whole inertia)",
+            f"with no flywheel the machine gives δ = {number(analysis.delta_reached)}, within the allowed "
+            f"{number(analysis.delta)}, and stays within it however small the inertia (the motor's slip holds the "
+            "speed): δ would reach the allowed value only at a J_F below",
+            ", less inertia than none",
         )
     return "the machine's own inertia suffices (J_F would be", ")"
 
@@ -126,9 +149,21 @@ def analysis_report(
     facts = [
         ("mean speed", q(r.omega_mean, "omega_mean")),
         (delta_label, f"{number(r.delta)} (1/{number(1 / r.delta, 4)})"),
-        ("speed range", f"{n(r.omega_min, 'omega_min')} to {q(r.omega_max, 'omega_max')}"),
-        ("cycle", q(r.cycle_angle, "cycle_angle")),
     ]
+    if delta_label == "allowed δ":
+        low, high = allowed_speed_range(r)
+        facts.append((ALLOWED_RANGE, f"{n(low, 'omega_min')} to {q(high, 'omega_max')}"))  # ω_m (1 ∓ δ/2)
+        if reached_below_allowed(r):
+            facts.append(
+                (
+                    ACHIEVED_RANGE,
+                    f"{n(r.omega_min, 'omega_min')} to {q(r.omega_max, 'omega_max')} (δ = {number(r.delta_reached)}, "
+                    f"the periodic solution with J_F = {q(max(r.j_required, 0.0), 'j_required')})",
+                )
+            )
+    else:  # the δ a flywheel that exists reaches: the range is the one it achieves
+        facts.append((ACHIEVED_RANGE, f"{n(r.omega_min, 'omega_min')} to {q(r.omega_max, 'omega_max')}"))
+    facts.append(("cycle", q(r.cycle_angle, "cycle_angle")))
     if r.work_per_cycle is not None:
         facts += [
             ("driving torque (mean)", q(r.driving_torque, "driving_torque")),
@@ -186,7 +221,7 @@ def analysis_report(
             rows.append(
                 [
                     m["model"] + (" (exact)" if m["exact"] else ""),
-                    n(m["j_required"], "j_required"),
+                    "none" if m["exact"] and r.delta_holds_at_any_inertia else n(m["j_required"], "j_required"),
                     "-" if m["j_error"] is None else f"{100 * m['j_error']:+.3g} %",
                     number(m["achieved_delta"]),
                     m["note"],
@@ -701,7 +736,7 @@ def verification_report(v: Verification, units: str = DEFAULT) -> list[str]:
         "",
         f"Verification ({v.method}): {verdict}",
         f"  achieved δ {number(v.achieved_delta)} against the allowed {number(v.delta_allowed)} "
-        f"(tolerance {number(v.tolerance, 3)}); ω {field_number(v.omega_min, 'omega_min', units)} to "
+        f"(tolerance {number(v.tolerance, 3)}); {ACHIEVED_RANGE} {field_number(v.omega_min, 'omega_min', units)} to "
         f"{q(v.omega_max, 'omega_max')}, mean {q(v.omega_mean, 'omega_mean')}; flywheel "
         f"{q(v.j_flywheel, 'j_flywheel')} at the reference shaft",
     ]
@@ -727,7 +762,7 @@ def flywheel_report(check: FlywheelCheck, units: str = DEFAULT) -> list[str]:
             if check.achieved_delta > 0
             else "0",
         ),
-        ("speed range", f"{n(check.omega_min, 'omega_min')} to {q(check.omega_max, 'omega_max')}"),
+        (ACHIEVED_RANGE, f"{n(check.omega_min, 'omega_min')} to {q(check.omega_max, 'omega_max')}"),
     ]
     if check.angle_omega_max is not None and check.angle_omega_min is not None:
         facts.append(

@@ -144,6 +144,8 @@ def requirement(machine: Machine, model: str, indicator: EnergyIndicator | None 
         note = dyn.held
         if dyn.limit == "stall":
             note += "; δ stays within the limit down to the smallest flywheel that still runs steadily (stall)"
+        elif dyn.limit == "none":
+            note += "; no flywheel needed: δ stays within the allowed value however small the inertia"
         return Requirement(
             DYNAMIC,
             dyn.j_required,
@@ -218,7 +220,12 @@ def compare(
     reference = results.get(exact) or results.get(chosen)
     for model, res in results.items():
         j = res.j_required
+        # the exact model's δ: the allowed one where its flywheel reaches it; the dynamic model's own periodic
+        # solution where no flywheel does (a stall limit, or "none": the machine with no flywheel, J_F = 0 as
+        # for the other rows' max(J_F, 0), whose δ stays below the allowed one)
         delta = machine.delta if model == exact else None
+        if model == exact and model == DYNAMIC and res.detail.limit != "delta":
+            delta = res.detail.solution.delta
         note = res.note
         if model != exact:
             try:

@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, cast
 
 import numpy as np
@@ -717,9 +717,13 @@ class DynamicRequirement:
     Attributes
     ----------
     j_required : float
-        J_F [kg*m^2] (<= 0: the machine's own inertia suffices).
+        J_F [kg*m^2] (<= 0: the machine's own inertia suffices; with ``limit`` "none" it is the bound
+        −min J_e, where the machine would have no inertia left, not a flywheel at which δ is reached).
     solution : PeriodicSolution
-        The periodic solution with that flywheel.
+        The periodic solution with that flywheel where it is needed, or where δ reaches the allowed
+        value at it (``limit`` "delta"); with none (J_F = 0), the machine as it will run, where δ stays
+        below the allowed value at any flywheel ("none", a "stall" below 0); a machine with no inertia
+        of its own and none needed has the limit its vanishing inertia tends to.
     iterations : int
         Periodic solutions computed.
     held : str
@@ -727,12 +731,15 @@ class DynamicRequirement:
         nothing but the torque laws (speed-dependent: ω_m is an outcome).
     j_initial : float
         The constant-inertia estimate the iteration started from [kg*m^2].
-    limit : {"delta", "stall"}
+    limit : {"delta", "stall", "none"}
         "delta": the flywheel reaches the allowed δ. "stall": δ stays below
         the allowed value down to the smallest flywheel that still has a
         periodic steady state (below it the machine stalls, e.g. the motor
         breaks down in the working stroke); ``j_required`` is that limit
-        (to :data:`STALL_RTOL`) and ``solution.delta`` is below δ.
+        (to :data:`STALL_RTOL`) and ``solution.delta`` is below δ. "none":
+        δ stays below the allowed value however small the inertia (nothing
+        fluctuates, or a motor's slip alone holds the speed): no flywheel is
+        needed and δ reaches the allowed value at none.
     """
 
     j_required: float
@@ -804,14 +811,14 @@ def dynamic_requirement(
             iterations=1,
             held=_held(model),
             j_initial=0.0 - j_low,
-            limit="delta",
+            limit="none",
         )
     j_mean = float(np.mean(j_grid[:, :-1]))  # an estimate only, for the start
     # constant-inertia estimate at the guessed speed
     j_tot0 = shooting.energy_swing(model, omega_mean) / (omega_mean**2 * delta)
     j_initial = j_tot0 - j_mean
     try:  # the one Newton solve; the search below settles what it cannot
-        return _one_solve(model, delta, omega_mean, j_tot0, j_initial)
+        return _as_fitted(model, _one_solve(model, delta, omega_mean, j_tot0, j_initial), j_low)
     except NotSettled:
         BUILDS["fallback to the CVODES search"] += 1
     if model.speed_dependent and not model.balanced and j_low > 0:
@@ -828,7 +835,7 @@ def dynamic_requirement(
                     iterations=1,
                     held=_held(model),
                     j_initial=j_initial,
-                    limit="delta",
+                    limit="none",
                 )
     # unknown u = log(J_F + j_low)
     u = math.log(max(j_tot0 - (j_mean - j_low), 0.25 * j_tot0, 1e-300) if j_tot0 > 0 else max(j_mean, 1e-300))
@@ -849,9 +856,10 @@ def dynamic_requirement(
         except SolverFailed as err:
             sol, failure = None, str(err)
         if sol is not None and sol.delta <= 0:  # no fluctuation at all: any flywheel will do
-            return DynamicRequirement(
-                j_required=-j_low, solution=sol, iterations=it, held=_held(model), j_initial=j_initial, limit="delta"
+            found = DynamicRequirement(
+                j_required=-j_low, solution=sol, iterations=it, held=_held(model), j_initial=j_initial, limit="none"
             )
+            return _as_fitted(model, found, j_low)
         if sol is None:
             if u > lo:
                 lo, lo_failed = u, True
@@ -860,9 +868,10 @@ def dynamic_requirement(
             guess = sol.omega_mean
             f = math.log(sol.delta) - target
             if abs(f) <= rtol:
-                return DynamicRequirement(
+                found = DynamicRequirement(
                     j_required=j_f, solution=sol, iterations=it, held=_held(model), j_initial=j_initial, limit="delta"
                 )
+                return _as_fitted(model, found, j_low)
             if f > 0 and u > lo:
                 lo, lo_failed = u, False
             elif f < 0 and u < hi:
@@ -880,7 +889,7 @@ def dynamic_requirement(
                     u_next = u + (2.0 if f > 0 else -2.0)
         if math.isfinite(lo) and math.isfinite(hi) and lo_failed and hi - lo <= STALL_RTOL:
             # δ stays below the allowed value down to where the steady state ceases to exist
-            return DynamicRequirement(
+            found = DynamicRequirement(
                 j_required=math.exp(hi) - j_low,
                 solution=_found(hi_solution),
                 iterations=it,
@@ -888,16 +897,18 @@ def dynamic_requirement(
                 j_initial=j_initial,
                 limit="stall",
             )
+            return _as_fitted(model, found, j_low)
         if u_next < u_floor:
             if hi <= u_floor:  # δ is below the allowed value even at a vanishing inertia
-                return DynamicRequirement(
+                found = DynamicRequirement(
                     j_required=0.0 - j_low,
                     solution=_found(hi_solution),
                     iterations=it,
                     held=_held(model),
                     j_initial=j_initial,
-                    limit="delta",
+                    limit="none",
                 )
+                return _as_fitted(model, found, j_low)
             u_next = max(u_floor, 0.5 * (lo + u_floor)) if math.isfinite(lo) else u_floor
         u = u_next
     raise SolverFailed(
@@ -905,6 +916,23 @@ def dynamic_requirement(
         f"(bracket J_F in [{math.exp(lo) - j_low:.6g}, {math.exp(hi) - j_low:.6g}] kg*m^2; "
         f"last failure: {failure})"
     )
+
+
+def _as_fitted(model: PeriodicModel, found: DynamicRequirement, j_low: float) -> DynamicRequirement:
+    """``found`` with the periodic solution of the machine as it will run, where δ reaches the allowed value
+    at no flywheel the search settled on (limit "none" or "stall").
+
+    A flywheel that is needed is fitted: its solution is the one found. Where δ stays below the allowed value
+    down to a vanishing inertia ("none") or to a stall below J_F = 0, the search's solution is a machine with
+    less inertia than it has, so it is solved again with none (J_F = 0): its speed extremes, their angles and
+    its δ are what the analysis reports. A machine with no inertia of its own (min J_e = 0) keeps the limit
+    its vanishing inertia tends to. Where δ reaches the allowed value at a J_F < 0 (limit "delta") the solution
+    stays the one at that J_F, which the solvers are checked against (tests/sizing/test_shooting.py);
+    :meth:`flyopt.analysis.Analysis.speed_curve` draws that machine with J_F = 0.
+    """
+    if found.limit == "delta" or found.j_required > 0 or found.solution.j_flywheel == 0.0 or not j_low > 0:
+        return found
+    return replace(found, solution=_periodic(model, 0.0, found.solution.omega_mean))
 
 
 def quasi_static_delta(model: PeriodicModel, omega_guess: float, max_iterations: int = 60) -> float | None:

@@ -27,6 +27,8 @@ class ExistingFlywheelSection(BuilderBase):
                 ")",
             )
         given += (f" on the shaft {wheel.shaft} (speed ratio {number(wheel.speed_ratio)})",)
+        from flyopt.report.text import ACHIEVED_RANGE
+
         rows: list[tuple] = [
             ("flywheel given", given),
             (
@@ -45,7 +47,7 @@ class ExistingFlywheelSection(BuilderBase):
                 ),
             ),
             (
-                "speed range",
+                ACHIEVED_RANGE,
                 (
                     self.q(check.omega_min, "angular_speed", "omega_min"),
                     " to ",

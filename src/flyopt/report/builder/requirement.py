@@ -64,8 +64,9 @@ class Requirement(BuilderBase):
             blocks.append(
                 Paragraph(
                     (
-                        "No flywheel is needed: the speed stays within δ however small the inertia, "
-                        "the motor's slip alone holding it (the periodic solution down to a vanishing "
+                        f"No flywheel is needed: with none the machine gives δ = {number(a.delta_reached)}, "
+                        f"within the allowed {number(a.delta)}, and the speed stays within δ however small the "
+                        "inertia, the motor's slip alone holding it (the periodic solution down to a vanishing "
                         "inertia; ",
                         NOTES,
                         ", section 7).",
@@ -178,27 +179,31 @@ class Requirement(BuilderBase):
                 "an equation."
             )
         )
+        from flyopt.report.text import ACHIEVED_RANGE, ALLOWED_RANGE
+
+        # the solution is the machine as it will run: with the flywheel it needs, with none when none is
+        # needed (flyopt.sizing.periodic.dynamic_requirement), so its J_F is the flywheel fitted, not j_margin
+        fitted = detail.solution.j_flywheel if detail is not None else max(a.j_margin, 0.0)
         rows = [
-            ("J_{F} of the periodic solution", self.q(a.j_margin, "inertia", "j_margin")),
+            ("J_{F} of the periodic solution", self.q(fitted, "inertia", "j_flywheel")),
             (
-                "ω_{max}, ω_{min}",
+                ACHIEVED_RANGE if detail is not None and detail.limit != "delta" else ALLOWED_RANGE + ", reached",
                 (
-                    self.q(a.omega_max, "angular_speed", "omega_max"),
-                    ", ",
                     self.q(a.omega_min, "angular_speed", "omega_min"),
+                    " to ",
+                    self.q(a.omega_max, "angular_speed", "omega_max"),
                 ),
             ),
         ]
         if detail is not None:
             rows.append(("what was held", detail.held))
-            rows.append(
-                (
-                    "limit",
-                    "δ reaches the allowed value"
-                    if detail.limit == "delta"
-                    else "stall: the smallest flywheel that still runs steadily",
-                )
-            )
+            limit = {
+                "delta": "δ reaches the allowed value",
+                "stall": "stall: the smallest flywheel that still runs steadily",
+                "none": "none: δ ≤ the allowed value however small the inertia; it would reach it only at a "
+                "J_F below the machine's own inertia taken away",
+            }[detail.limit]
+            rows.append(("limit", limit))
             rows.append(("δ of the solution", number(detail.solution.delta)))
         blocks.append(Facts(tuple(rows), "dynamic"))
         if textbook is not None and textbook["j_required"] is not None and a.j_margin > 0:

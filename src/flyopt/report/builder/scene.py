@@ -89,7 +89,9 @@ class SceneAndModel(BuilderBase):
                 rows.append(
                     [
                         m["model"] + (" (exact)" if m["exact"] else ""),
-                        self.n(m["j_required"], "inertia"),
+                        # δ holds at any inertia: the exact model asks for no flywheel (its j_required is the
+                        # bound −min J_e, not a flywheel), as the text's table says
+                        "none" if m["exact"] and a.delta_holds_at_any_inertia else self.n(m["j_required"], "inertia"),
                         "-" if m["j_error"] is None else f"{100 * m['j_error']:+.3g} %",
                         "-" if m["achieved_delta"] is None else number(m["achieved_delta"]),
                         m["note"] or "",

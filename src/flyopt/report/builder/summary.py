@@ -27,8 +27,34 @@ class Summary(BuilderBase):
                 "δ reached with the flywheel given" if self.solution.flywheel is not None else "allowed δ",
                 (self.q(a.delta, "dimensionless", "delta"), f" (1/{number(1 / a.delta, 4)})"),
             ),
-            ("A_{max}", self.q(a.a_max, "energy", "a_max")),
         ]
+        from flyopt.report.text import ACHIEVED_RANGE, ALLOWED_RANGE, allowed_speed_range, reached_below_allowed
+
+        v = self.solution.verification or (
+            self.solution.drive_check.verification if self.solution.drive_check is not None else None
+        )
+        if self.solution.flywheel is None:
+            low, high = allowed_speed_range(a)
+            rows.append(
+                (
+                    ALLOWED_RANGE,
+                    (self.q(low, "angular_speed"), " to ", self.q(high, "angular_speed"), " (ω_{m} (1 ± δ/2))"),
+                )
+            )
+            # achieved: the machine as designed, simulated; or, unverified, the dynamic model's own solution
+            # where it stays below the allowed δ (no flywheel needed)
+            # (the simulation's speeds are not the analysis' omega_max/omega_min: named only where they are)
+            if v is not None:
+                reached = (self.q(v.omega_min, "angular_speed"), self.q(v.omega_max, "angular_speed"), "verified")
+            elif reached_below_allowed(a):
+                reached = (
+                    self.q(a.omega_min, "angular_speed", "omega_min"),
+                    self.q(a.omega_max, "angular_speed", "omega_max"),
+                    "the periodic solution",
+                )
+            if v is not None or reached_below_allowed(a):
+                rows.append((ACHIEVED_RANGE, (reached[0], " to ", reached[1], f" ({reached[2]})")))
+        rows.append(("A_{max}", self.q(a.a_max, "energy", "a_max")))
         if a.flywheel_needed:
             rows.append(
                 (
@@ -102,9 +128,6 @@ class Summary(BuilderBase):
                 ("motor ratio", number(drive.best.motor_ratio)),
                 ("motor + wheel mass", self.q(drive.best.total_mass, "mass", "total_mass")),
             ]
-        v = self.solution.verification or (
-            self.solution.drive_check.verification if self.solution.drive_check is not None else None
-        )
         if v is not None:
             verdict = "FLAGGED" if self.flagged() else "ok"
             rows.append(
@@ -140,9 +163,12 @@ class Summary(BuilderBase):
             return "No feasible design: " + said.message
         if best is None:
             if self.solution.drive is not None and self.solution.drive.best is not None:
+                drive_check = self.solution.drive_check
+                held = drive_check.verification.achieved_delta if drive_check is not None else a.delta_reached
                 return (
                     f"The drive needs no flywheel: the motor {self.solution.drive.best.motor.name} at ratio "
-                    f"{number(self.solution.drive.best.motor_ratio)} holds δ = {number(a.delta)} by itself."
+                    f"{number(self.solution.drive.best.motor_ratio)} holds δ = {number(held)} by itself, "
+                    f"within the allowed {number(a.delta)}."
                 )
             if not a.flywheel_needed:
                 return (

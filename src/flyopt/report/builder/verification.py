@@ -13,6 +13,8 @@ class VerificationAndProvenance(BuilderBase):
     """Sections 8 and 9 of the report."""
 
     def verification_section(self) -> None:
+        from flyopt.report.text import ACHIEVED_RANGE
+
         v = self.solution.verification
         a = self.analysis
         blocks = self.section("Verification", "verification")
@@ -42,7 +44,7 @@ class VerificationAndProvenance(BuilderBase):
                             ),
                         ),
                         (
-                            "speed range",
+                            ACHIEVED_RANGE,
                             (
                                 self.q(v.omega_min, "angular_speed"),
                                 " to ",
