@@ -263,26 +263,28 @@ def junctions(geometry: str, bored: bool) -> tuple[tuple[str, str], ...]:
 def record(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[str, Any] | None:
     """What castability asks of a designed wheel and what it has, for the report and the JSON.
 
-    ``floor``: the scene's (or the material's) min_wall [m]. Returns ``process``, ``size`` (D [m]),
-    ``process_min_wall`` (the table at D), ``min_wall`` (the larger of it and ``floor``: the wall used),
-    ``thinnest`` (the thinnest wall, its part), ``section_ratio`` (None: no rule) and ``ratios`` (each
-    junction's thicker over thinner equivalent thickness); None without rules.
+    ``floor``: the scene's (or the material's) min_wall [m]. Returns ``process``, ``casting_size`` (D [m]),
+    ``process_min_wall`` (the table at D [m], 0 where the rules give none), ``min_wall`` (the larger of it
+    and ``floor``: the wall used [m]), ``thinnest_wall`` [m] and ``thinnest_part``, ``section_ratio``
+    (None: no rule) and ``junctions``: each junction's ``junction`` ("rim-web") and ``ratio``, the
+    thicker over the thinner equivalent thickness [-]; None without rules.
     """
     if rules is None:
         return None
     size = float(dims.d_outer)
-    process_wall = float(min_wall_at(rules, size))  # 0 where the rules give no minimum
+    process_wall = float(min_wall_at(rules, size))
     part, thinnest = min(((p, float(w)) for p, w in walls(geometry, dims)), key=lambda pw: pw[1])
     t_eq = {p: float(v) for p, v in sections(geometry, dims).items()}
-    bored = "hub" in t_eq
-    ratios = {f"{a}_{b}": max(t_eq[a], t_eq[b]) / min(t_eq[a], t_eq[b]) for a, b in junctions(geometry, bored)}
     return {
         "process": rules.process,
-        "size": size,
+        "casting_size": size,
         "process_min_wall": process_wall,
         "min_wall": max(process_wall, floor),
-        "thinnest": thinnest,
+        "thinnest_wall": thinnest,
         "thinnest_part": part,
         "section_ratio": rules.section_ratio if math.isfinite(rules.section_ratio) else None,
-        "ratios": ratios,
+        "junctions": [
+            {"junction": f"{a}-{b}", "ratio": max(t_eq[a], t_eq[b]) / min(t_eq[a], t_eq[b])}
+            for a, b in junctions(geometry, "hub" in t_eq)
+        ],
     }
