@@ -34,6 +34,8 @@ REACH = [
     '[machine]\nspeed = "100 rpm"\ndelta = 0.1\n[mechanism]\nkind = "four_bar"\n',
     '[machine]\nspeed = "100 rpm"\ndelta = 0.1\n[torque.net]\nareas = [1, -1]\n[drive]\nratio = [2, 8]\n'
     '[[motor_option]]\nname = "m"\n',
+    '[machine]\nspeed = "100 rpm"\ndelta = 0.1\n[torque.net]\nareas = [1, -1]\n[design]\ngeometry = "rim_web"\n'
+    "[design.castability]\nsection_ratio = 1.2\n",
 ]
 
 

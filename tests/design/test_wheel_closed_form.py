@@ -13,6 +13,7 @@ import itertools
 import pytest
 
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
+from flyopt.design.castability import Overrides
 from flyopt.design.materials import make_material
 
 DUCTILE = make_material(
@@ -24,7 +25,15 @@ CASES = list(itertools.product([DUCTILE, BRITTLE], [0.0, 0.06, 0.15], [10.0, 1.0
 
 @pytest.mark.parametrize("material, bore, envelope, j", CASES)
 def test_disc_closed_form_agrees_with_ipopt(material, bore, envelope, j):
-    spec = DesignSpec(geometry="disc", criterion="stress", bore=bore, max_outer_diameter=envelope)
+    # without castability (the materials' keys name iron processes, whose minimum wall the closed form does
+    # not cover; a disc at that wall is IPOPT's: tests/design/test_castability.py)
+    spec = DesignSpec(
+        geometry="disc",
+        criterion="stress",
+        bore=bore,
+        max_outer_diameter=envelope,
+        castability=Overrides("none"),
+    )
     shafts = [MountShaft("s", 1.0)]
     exact = design_flywheel(j, 160.0, shafts, [material], spec)
     solved = design_flywheel(j, 160.0, shafts, [material], spec, method="ipopt")

@@ -163,6 +163,12 @@ RELATIONS = {
     "r_outer": "d_outer",
     "r_inner": "d_inner",
     "thickness": "b",
+    # section 23: castability, walls and the size they are read at
+    "casting_size": "d_outer",
+    "process_min_wall": "b",
+    "min_wall": "b",
+    "thinnest_wall": "b",
+    "section_ratio": "hb_ratio",
     "bore": "d_inner",
     "t_web": "b",
     "d_hub": "d_outer",

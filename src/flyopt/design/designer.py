@@ -311,6 +311,8 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
         "allow_power": 2 if getattr(m, "ductile", False) else 1,
         "allow_param": solution.allow_params,
         "min_wall": wheel_design.min_wall_of(spec, m),
+        "castability": solution.structure.castability,
+        "size": d_outer,
     }
     sensitivities = (
         wheel_design.sensitivities(solution, mass, limits) if spec.objective != Objective.OUTER_DIAMETER else ()
@@ -335,7 +337,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
         ),
         parts=structure.parts,
         stresses=structure.stresses,
-        limits=Limits(**given, binding=tuple(binding), sensitivities=sensitivities),
+        limits=Limits(**given, binding=tuple(binding), sensitivities=sensitivities, castability=structure.castability),
         provenance=Provenance(
             solver_status=solution.status,
             iterations=solution.iterations,

@@ -165,6 +165,9 @@ class Limits:
         Active constraints (see :data:`flyopt.design.check.BINDING_NAMES`).
     sensitivities : tuple of dict
         For a design by the wheel NLP: d(mass)/d(limit) of every binding limit.
+    castability : dict or None
+        The castability rules the wheel was designed to and what it has
+        (:func:`flyopt.design.castability.record`); None where none apply.
     """
 
     j_required_on_shaft: float = math.nan
@@ -174,6 +177,7 @@ class Limits:
     d_outer_needed: float | None = None
     binding: tuple[str, ...] = ()
     sensitivities: tuple[dict[str, Any], ...] = ()
+    castability: dict[str, Any] | None = None
 
 
 @dataclass(frozen=True)
@@ -315,6 +319,7 @@ class Candidate:
             "unbalance_permissible": s and s.unbalance_permissible,
             "key": p and p.key,
             "sensitivities": [dict(v) for v in lim.sensitivities],
+            "castability": lim.castability,
             "notes": list(prov.notes),
             "pruned": prov.pruned,
             "objective_bound": prov.objective_bound,
@@ -391,6 +396,7 @@ CANDIDATE_FIELDS = (
     "unbalance_permissible",
     "key",
     "sensitivities",
+    "castability",
     "notes",
     "pruned",
     "objective_bound",

@@ -378,7 +378,11 @@ def _rounded_design(
         # what drives the design is the continuous optimum's: its binding limits and their sensitivities
         # (a wheel on the grid sits on none of them exactly)
         limits=dataclasses.replace(
-            design.limits, j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max
+            design.limits,
+            j_required_on_shaft=combo.j_shaft,
+            d_outer_limit=combo.cap,
+            rim_speed_limit=combo.v_max,
+            castability=structure.castability,  # the rules, and what the rounded wheel has
         ),
         provenance=Provenance(solver_status="rounded", iterations=0, solve_time=0.0, notes=structure.notes),
     )

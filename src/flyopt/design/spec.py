@@ -16,6 +16,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
+from flyopt.design import castability as casting
 from flyopt.design import geometry
 from flyopt.names import Criterion, Geometry, Objective
 from flyopt.validate import choice, finite, positive
@@ -169,6 +170,14 @@ class DesignSpec:
         (the concentration the FE check found on that combination's wheel):
         the part's allowable is divided by it. Set by the FE acceptance, not
         by a scene (default: none).
+    castability : flyopt.design.castability.Overrides
+        The scene's castability (docs/flywheel-design.md, section 23):
+        ``process``, the process of every material (a name of
+        ``flyopt/data/castability.toml``, or ``"none"`` for no rules; None:
+        each material's own), and ``min_wall`` rows (size, wall) [m] and
+        ``section_ratio`` [-] replacing the process's numbers. The rules
+        bound every whole wheel the NLP designs (rim_web, rim_arms and a disc
+        designed whole), not the textbook's bare rims and discs.
 
     Raises
     ------
@@ -196,6 +205,7 @@ class DesignSpec:
     prune: bool = True
     fem_check: bool | None = None
     stress_factors: tuple[StressFactor, ...] = ()
+    castability: casting.Overrides = casting.Overrides()
 
     def stress_factors_for(self, material: str, shaft: str, n_arms: int = 0) -> dict[str, float]:
         """The :attr:`stress_factors` of one combination (material and shaft names, arm count): part -> factor."""
@@ -250,6 +260,13 @@ class DesignSpec:
             "round_to": self.round_to,
             "prune": self.prune,
             "fem_check": self.fem_check,
+            "process": self.castability.process,
+            "castability": {
+                "min_wall": [list(row) for row in self.castability.min_wall]
+                if self.castability.min_wall is not None
+                else None,
+                "section_ratio": self.castability.section_ratio,
+            },
         }
 
     def __post_init__(self) -> None:
@@ -303,6 +320,7 @@ class DesignSpec:
         if any(not finite(f.factor, "a stress factor [-]") >= 1.0 for f in factors):
             raise ValueError(f"stress_factors must be >= 1 (a concentration on the modelled stress), got {factors!r}")
         object.__setattr__(self, "stress_factors", tuple(sorted(factors)))
+        object.__setattr__(self, "castability", _castability(self.castability))
         if self.min_wall is not None:
             object.__setattr__(self, "min_wall", _positive(self.min_wall, "min_wall", "[m]"))
         if self.round_to:  # 0: the continuous optimum, asked for
@@ -347,6 +365,37 @@ class DesignSpec:
                 "max_width: without it an ever thinner, wider disc makes "
                 "the diameter as small as one likes"
             )
+
+
+def _castability(over: Any) -> casting.Overrides:
+    """A spec's castability overrides checked: a known process, walls and a ratio within their ranges."""
+    over = casting.Overrides(*over) if not isinstance(over, casting.Overrides) else over
+    known = (*casting.processes(), casting.NONE)
+    if over.process is not None and over.process not in known:
+        raise ValueError(f"castability process must be one of {', '.join(known)}, got {over.process!r}")
+    rows = over.min_wall
+    if rows is not None:
+        try:
+            rows = tuple((float(s), float(w)) for s, w in rows)
+        except (TypeError, ValueError) as err:
+            raise ValueError(f"castability min_wall must be rows (size, wall) [m], got {rows!r}") from err
+        low, high = casting.WALL_RANGE
+        if (
+            not rows
+            or any(not (math.isfinite(s) and s >= 0.0 and low <= w <= high) for s, w in rows)
+            or any(s1 <= s0 or w1 < w0 for (s0, w0), (s1, w1) in zip(rows, rows[1:]))
+        ):
+            raise ValueError(
+                f"castability min_wall rows must have sizes >= 0 increasing and walls in [{low:g}, {high:g}] m "
+                f"not decreasing, got {rows!r}"
+            )
+    ratio = over.section_ratio
+    if ratio is not None:
+        low, high = casting.RATIO_RANGE
+        if not low <= finite(ratio, "castability section_ratio [-]") <= high:
+            raise ValueError(f"castability section_ratio [-] must lie in [{low:g}, {high:g}], got {ratio!r}")
+        ratio = float(ratio)
+    return casting.Overrides(over.process, rows, ratio)
 
 
 def _none_if_inf(value):

@@ -26,7 +26,7 @@ import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any, NamedTuple
 
-from flyopt.design import balance, check, geometry, hub, key, strength, wheel
+from flyopt.design import balance, castability, check, geometry, hub, key, strength, wheel
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.design.result import Parts, Stresses
 from flyopt.errors import BrokenInvariant, SolverFailed
@@ -45,6 +45,8 @@ __all__ = [
     "needs_torque",
     "bore_of",
     "min_wall_of",
+    "castability_of",
+    "min_wall_at",
     "objective_bound",
     "stress_cap",
     "screen",
@@ -96,6 +98,27 @@ def min_wall_of(spec: DesignSpec, material: Material) -> float:
     if own:
         return own
     return DEFAULT_MIN_WALL if spec.geometry in geometry.WHEELS else 0.0
+
+
+#: The geometries the castability rules bound: the wheels the NLP designs whole (a disc: its width alone).
+CAST_GEOMETRIES = (Geometry.RIM_WEB, Geometry.RIM_ARMS, Geometry.DISC)
+
+
+def castability_of(spec: DesignSpec, material: Material, bore: float = 0.0) -> castability.Rules | None:
+    """The castability rules a wheel of a material is designed to, or None: the process of the scene or of the
+    material (flyopt/data/castability.toml) with the scene's numbers over it, for a wheel designed whole
+    (rim_web, rim_arms, a disc not designed by the textbook); bare rims and textbook discs have none."""
+    if spec.geometry not in CAST_GEOMETRIES or spec.textbook(bore):
+        return None
+    return castability.rules_for(material.name, spec.castability)
+
+
+def min_wall_at(spec: DesignSpec, material: Material, d_outer: float, bore: float = 0.0) -> float:
+    """The thinnest wall a wheel of outer diameter ``d_outer`` [m] may have [m]: the larger of
+    :func:`min_wall_of` and the process's minimum at that size (the NLP writes the two as a bound and a row)."""
+    floor = min_wall_of(spec, material)
+    rules = castability_of(spec, material, bore)
+    return max(floor, float(castability.min_wall_at(rules, d_outer))) if rules is not None else floor
 
 
 def _hub_bounds(material, bore, torque):
@@ -280,6 +303,7 @@ def wheel_problem(
         width=spec.max_width < math.inf,
         pinned=spec.d_mean is not None,
         objective="outer_diameter" if spec.objective == Objective.OUTER_DIAMETER else "mass",
+        castability=castability_of(spec, material, bore),
     )
     problem = wheel_nlp.WheelProblem(
         j_shaft=j_shaft,
@@ -580,7 +604,8 @@ def _disc_closed_form(combo, spec, bore, material):
     by_stress = b_stress <= half_envelope
     b = b_stress if by_stress else half_envelope
     width = 2.0 * j / (math.pi * rho * (b**4 - a**4))
-    if width > spec.max_width or width < min_wall_of(spec, material) or b - a < min_wall_of(spec, material):
+    wall = min_wall_at(spec, material, 2.0 * b, bore)
+    if width > spec.max_width or width < wall or b - a < min_wall_of(spec, material):
         return None
     mass = 2.0 * j / (a * a + b * b)
     dims = wheel.Dims(d_outer=2.0 * b, h=b - a, b=width, bore=bore)
@@ -613,6 +638,7 @@ class Structure(NamedTuple):
     parts: Parts
     stresses: Stresses
     notes: tuple[str, ...]
+    castability: dict[str, Any] | None = None  # castability.record of the wheel, None where no rules apply
 
 
 def structure_fields(
@@ -633,7 +659,8 @@ def structure_fields(
     Structure
         ``parts`` (the parts and the key), ``stresses`` (the rim speed and
         hoop stress at ``omega`` and the wheel's stresses, None where the
-        material lacks what they need) and ``notes`` (why). ``checked``: the
+        material lacks what they need), ``notes`` (why) and ``castability``
+        (:func:`flyopt.design.castability.record`, None where no rules apply). ``checked``: the
         :func:`flyopt.design.strength.check_wheel` of these dims, when the
         designer has made it already (it is not made twice). ``stress_factors``: the combination's factors on
         its parts' modelled stresses (:meth:`flyopt.design.combination.Combination.stress_factors`).
@@ -730,7 +757,13 @@ def structure_fields(
                 "allowable_shear": k.allowable_shear,
                 "ok": k.ok,
             }
-    return Structure(Parts(items, key_check), stresses, tuple(notes))
+    rules = castability_of(spec, material, bore)
+    if rules is None and spec.geometry in CAST_GEOMETRIES and not spec.textbook(bore):
+        notes.append(
+            f"no casting process is known for {material.display_name}: castability not checked (give design.process)"
+        )
+    cast = castability.record(rules, min_wall_of(spec, material), geometry_name, dims)
+    return Structure(Parts(items, key_check), stresses, tuple(notes), cast)
 
 
 def _finite_or_none(x):
@@ -758,7 +791,8 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
     mass : float
         The design's mass [kg].
     problem_limits : dict
-        ``envelope``, ``max_rim_speed``, ``max_width``, ``j_shaft``, ``allowable`` (part to Pa).
+        ``envelope``, ``max_rim_speed``, ``max_width``, ``j_shaft``, ``allowable`` (part to Pa); and
+        ``castability`` (the rules, or None) with ``size`` (the design's outer diameter [m]).
 
     Returns
     -------
@@ -803,6 +837,37 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
             f"min_wall binds: -1 mm of the thinnest section changes the mass by {-dm * 1e-3:+.3g} kg",
             wall,
         )
+    rules = problem_limits.get("castability")
+    for row, value in sorted(lam.items()):
+        if rules is None or not row.startswith("castability_") or value == 0.0:
+            continue
+        if row.startswith("castability_min_wall_"):
+            # log(wall) - log(min_wall(D)) >= 0: the process's wall at this size scaled by (1 + e) moves the
+            # row's bound by e, so d m / d min_wall = -m lam / min_wall
+            wall = float(castability.min_wall_at(rules, problem_limits["size"]))
+            dm = -mass * value / wall
+            part = row[len("castability_min_wall_") :]
+            add(
+                row,
+                "m",
+                dm,
+                f"the {rules.process.replace('_', ' ')} minimum wall binds ({part}): +1 mm of it changes the mass "
+                f"by {dm * 1e-3:+.3g} kg",
+                wall,
+            )
+        else:
+            # -log r <= log(t_a / t_b) <= log r: a larger ratio r loosens whichever side binds
+            ratio = rules.section_ratio
+            dm = -mass * abs(value) / ratio
+            pair = row[len("castability_") : -len("_ratio")].replace("_", "-")
+            add(
+                row,
+                "-",
+                dm,
+                f"the section ratio binds ({pair}): +0.1 on the allowed {ratio:g} changes the mass by "
+                f"{dm * 0.1:+.3g} kg",
+                ratio,
+            )
     if abs(lam.get("inertia", 0.0)) > 0:
         dm = -mass * lam["inertia"] / problem_limits["j_shaft"]
         add(

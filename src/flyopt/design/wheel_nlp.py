@@ -16,6 +16,8 @@ allowable stress of each part) enter as parameters and bounds::
                            sigma_t for brittle ones); the rim and arms of rim_arms by the texts' beams
                 B, l_hub <= B_max;  hb_min <= H/B <= hb_max;  D_m = pinned
                 H, B, t_web, arm minor axis, hub wall >= min_wall
+                every wall >= the process's min_wall(D)              castability (section 23)
+                1/r <= t_eq(a) / t_eq(b) <= r at each junction (a, b)  castability (section 23)
                 hub diameter and length within the textbook proportions and long enough for the key
                 t_web <= B, t_web <= l_hub;  the rim clears the hub;  n arms fit round the hub
 
@@ -39,13 +41,14 @@ from __future__ import annotations
 
 import math
 import time
+import zlib
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 import casadi as ca
 
-from flyopt.design import wheel
+from flyopt.design import castability, wheel
 from flyopt.design.nlp import CONVERGED, WHEEL_SOLVER, cached_model
 from flyopt.errors import SolverFailed
 from flyopt.names import Criterion, Geometry, Objective
@@ -86,6 +89,7 @@ class WheelStructure(NamedTuple):
     width: bool  # an axial width limit is set
     pinned: bool  # D_m pinned
     objective: str  # "mass" | "outer_diameter"
+    castability: castability.Rules | None = None  # the process's rules (whole wheels only), None: none
 
 
 def variables_of(structure: WheelStructure) -> tuple[str, ...]:
@@ -276,6 +280,8 @@ def formulate(structure: WheelStructure, x: Any, par: Mapping[str, Any], allow: 
         row("arm_within_hub", ca.log(minor) - col["l_hub"])
     if "d_hub" in col:
         row("hub_wall", (dims.d_hub - par["bore"]) / 2.0)  # >= min_wall
+    if structure.castability is not None:
+        _castability_rows(structure, dims, row)
     if structure.criterion == Criterion.STRESS:
         scale = par["stress_scale"]
         samples = wheel.stress_samples(
@@ -292,6 +298,21 @@ def formulate(structure: WheelStructure, x: Any, par: Mapping[str, Any], allow: 
     return Formulation(dims, mass, inertia, objective, tuple(rows), tuple(row_names))
 
 
+def _castability_rows(structure, dims, row):
+    """The castability rows of a whole wheel (:mod:`flyopt.design.castability`), each of order one and named
+    by its part: ``castability_min_wall_<part>`` log(wall / min_wall(D)) >= 0, and
+    ``castability_<a>_<b>_ratio`` log(t_eq(a) / t_eq(b)) within +-log r (:func:`row_bounds`)."""
+    rules, geo = structure.castability, structure.geometry
+    if rules.min_wall:
+        log_wall = ca.log(castability.min_wall_at(rules, dims.d_outer, ca.fmin, ca.fmax))
+        for part, wall in castability.walls(geo, dims):
+            row(f"castability_min_wall_{part}", ca.log(wall) - log_wall)
+    if math.isfinite(rules.section_ratio):
+        t_eq = castability.sections(geo, dims)
+        for a, b in castability.junctions(geo, structure.bored):
+            row(f"castability_{a}_{b}_ratio", ca.log(t_eq[a]) - ca.log(t_eq[b]))
+
+
 def _build(structure, options):
     start = time.perf_counter()
     options = dict(options)
@@ -305,7 +326,9 @@ def _build(structure, options):
     allow = ca.SX.sym("allow", len(stress_parts))  # (sigma_allow / S) per part, squared if ductile
     form = formulate(structure, x, {name: p[k] for k, name in enumerate(PARAMETERS)}, allow)
     nlp = {"x": x, "p": ca.vertcat(p, allow), "f": form.objective, "g": ca.vertcat(*form.rows)}
-    name = "wheel_" + "_".join(str(v) for v in structure)
+    name = "wheel_" + "_".join(str(v) for v in structure[:-1])
+    if structure.castability is not None:  # a function's name takes letters, digits and _ only
+        name += f"_{structure.castability.process}_{zlib.crc32(repr(structure.castability).encode())}"
     solver = ca.nlpsol(name, "ipopt", nlp, options)
     fast = ca.nlpsol(name + "_sqp", "sqpmethod", nlp, SQP_OPTIONS) if choice == "sqpmethod" else None
     return WheelModel(structure, solver, names, form.row_names, stress_parts, time.perf_counter() - start, fast)
@@ -457,6 +480,13 @@ def row_bounds(
         "arm_within_hub": (-inf, 0.0),
         "hub_wall": (problem.min_wall, inf),
     }
+    if s.castability is not None:
+        ratio = math.log(s.castability.section_ratio)
+        for name in constraints:
+            if name.startswith("castability_min_wall_"):
+                bounds[name] = (0.0, inf)
+            elif name.startswith("castability_"):
+                bounds[name] = (-ratio, ratio)
     stress_row = (-inf, 1.0)  # stress rows: sigma / allowable <= 1
     lbg, ubg = [], []
     for name in constraints:

@@ -53,6 +53,8 @@ def read_design(
             "round_to",
             "prune",
             "fem_check",
+            "process",
+            "castability",
         },
     )
     library = material_library(materials)
@@ -165,6 +167,8 @@ def read_design(
         if not isinstance(value, bool):
             raise SceneError("design.fem_check", f"must be true or false, got {shorten(table.raw('fem_check'))}")
         options["fem_check"] = value
+    if table.has("process") or table.has("castability"):
+        options["castability"] = _castability(table)
     if options.get("objective") == "cost":
         from flyopt.design.materials import design_material_names
 
@@ -196,6 +200,70 @@ MAX_ROUND_TO = 0.1
 #: Allowed design.rim_speed [m/s]: a walking pace to beyond any rotor's burst speed.
 RIM_SPEED_RANGE = (1e-3, 1e4)
 RIM_SPEED_WHY = "a millimetre a second to 10 km/s, beyond any flywheel's burst speed"
+
+
+def _castability(table: Table) -> Any:
+    """design.process and [design.castability] (min_wall, section_ratio): the scene's castability, every number
+    bounded (docs/flywheel-design.md, section 23)."""
+    from flyopt.design import castability
+
+    process = None
+    if table.has("process"):
+        process = table.get("process")
+        allowed = (*castability.processes(), castability.NONE)
+        if not isinstance(process, str) or process not in allowed:
+            raise SceneError("design.process", unknown(process, allowed))
+    raw = table.get("castability")
+    if raw is None:
+        return castability.Overrides(process)
+    cast = Table(raw, "design.castability", {"min_wall", "section_ratio"})
+    rows = None
+    low, high = castability.WALL_RANGE
+    why = f"a wall from {low * 1e3:g} mm to {high * 1e3:g} mm"
+    if cast.has("min_wall"):
+        given = cast.get("min_wall")
+        if isinstance(given, list):
+            if not given or len(given) > MAX_WALL_ROWS:
+                raise SceneError(
+                    "design.castability.min_wall",
+                    f'must be 1 to {MAX_WALL_ROWS} rows [size, wall] (e.g. [["0.25 m", "5 mm"], '
+                    f'["1 m", "7 mm"]]) or one wall, got {shorten(given)}',
+                )
+            rows = []
+            for k, row in enumerate(given):
+                where = f"design.castability.min_wall[{k}]"
+                if not isinstance(row, list) or len(row) != 2:
+                    raise SceneError(where, f"must be a row [size, wall] of two lengths, got {shorten(row)}")
+                size, wall = (quantity(v, "length", where) for v in row)
+                if not 0 <= size <= LENGTH_RANGE[1]:
+                    raise SceneError(where, f"size {shorten(row[0])} is out of range (allowed: 0 to 1000 m)")
+                check_magnitude(wall, where, row[1], low, high, "m", why)
+                rows.append((size, wall))
+            if any(s1 <= s0 or w1 < w0 for (s0, w0), (s1, w1) in zip(rows, rows[1:])):
+                raise SceneError(
+                    "design.castability.min_wall",
+                    "rows must go up in size, and their walls must not go down (a larger casting's thinnest wall is "
+                    f"no thinner), got {shorten(given)}",
+                )
+        else:
+            wall = cast.quantity("min_wall", "length", required=True)
+            check_magnitude(wall, "design.castability.min_wall", given, low, high, "m", why)
+            rows = [(0.0, wall)]
+    ratio = None
+    if cast.has("section_ratio"):
+        ratio = cast.quantity("section_ratio", "dimensionless", required=True)
+        r_low, r_high = castability.RATIO_RANGE
+        if not r_low <= ratio <= r_high:
+            raise SceneError(
+                "design.castability.section_ratio",
+                f"{shorten(cast.raw('section_ratio'))} is out of range (allowed: {r_low:g} to {r_high:g}: the thicker "
+                "of two adjoining sections over the thinner)",
+            )
+    return castability.Overrides(process, tuple(rows) if rows is not None else None, ratio)
+
+
+#: Most rows of a scene's design.castability.min_wall table.
+MAX_WALL_ROWS = 20
 
 
 def _radius_of_gyration(table: Table, options: dict[str, Any]) -> float:

@@ -201,6 +201,11 @@ QUANTITIES = {
     "r_inner": "length",
     "r_outer": "length",
     "thickness": "length",
+    "casting_size": "length",  # castability: the outer diameter the process's minimum wall is read at
+    "process_min_wall": "length",
+    "min_wall": "length",
+    "thinnest_wall": "length",
+    "section_ratio": "dimensionless",
     "radius": "length",
     "wall": "length",
     "hb_ratio": "dimensionless",

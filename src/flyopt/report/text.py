@@ -46,6 +46,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "analysis_report",
+    "castability_words",
     "design_report",
     "engine_report",
     "formatters",
@@ -356,6 +357,21 @@ def book_rim_report(book: BookRim, units: str = DEFAULT) -> list[str]:
     return lines
 
 
+def castability_words(cast: dict[str, Any], units: str = DEFAULT) -> str:
+    """A whole wheel's castability in one line: the process, the wall used and the thinnest wall, and each
+    junction's section ratio against the allowed one (docs/flywheel-design.md, section 23)."""
+    q, _n = formatters(units)
+    words = (
+        f"{cast['process'].replace('_', ' ')}: min wall {q(cast['min_wall'], 'min_wall', 3)} at D "
+        f"{q(cast['casting_size'], 'd_outer', 4)} (process {q(cast['process_min_wall'], 'min_wall', 3)}), "
+        f"thinnest {cast['thinnest_part']} {q(cast['thinnest_wall'], 'min_wall', 3)}"
+    )
+    if cast["section_ratio"] is not None and cast["junctions"]:
+        ratios = ", ".join(f"{j['junction']} {number(j['ratio'], 3)}" for j in cast["junctions"])
+        words += f"; section ratios (2V/A) {ratios} (at most {number(cast['section_ratio'], 3)})"
+    return words
+
+
 def rounding_report(result: DesignResult, units: str = DEFAULT) -> list[str]:
     """The lines that put the rounded winner beside the continuous optimum it comes from (design.round_to)."""
     q, n = formatters(units)
@@ -435,6 +451,8 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
             ),
             ("solved by", solver_words(best)),
         ]
+        if best.limits.castability is not None:
+            facts.append(("castability", castability_words(best.limits.castability, units)))
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {visible(v)}" for k, v in facts]
         if result.continuous is not None:

@@ -72,6 +72,10 @@ class DesignSection(BuilderBase):
             ("binding", ", ".join(best.limits.binding) or "none"),
             ("solved by", self.solved_by(best)),
         ]
+        if best.limits.castability is not None:  # the text's words (one function)
+            from flyopt.report.text import castability_words
+
+            rows.append(("castability", castability_words(best.limits.castability, self.units)))
         if best.bore:
             rows.insert(3, ("bore", self.q(best.bore, "length", "bore")))
         blocks.append(Facts(tuple(rows), "design"))

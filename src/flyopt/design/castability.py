@@ -1,0 +1,290 @@
+"""Castability: the sections a foundry can pour (or a shop can machine), per process.
+
+The rules are data (``flyopt/data/castability.toml``, each number with its
+source): per process the thinnest wall by the size of the piece, and the
+largest ratio of two adjoining sections. This module reads them, says which
+process makes a material (the scene may name another, or override the
+numbers), and writes each rule as arithmetic on a wheel's dimensions that
+works on floats and on CasADi symbols alike, so that the whole-wheel NLP
+(:func:`flyopt.design.wheel_nlp.formulate`), the check of a rounded wheel
+(:mod:`flyopt.design.rounding`, through the same rows) and the report's record
+(:func:`record`) use one arithmetic::
+
+    every wall w of a part >= min_wall(D)          (piecewise linear in the outer diameter D)
+    1/r <= t_eq(a) / t_eq(b) <= r                  at each junction (a, b) of the wheel
+
+with t_eq = 2 V/A the equivalent thickness (twice the casting modulus):
+t for a plate (the web), H B / (H + B) for a rectangular section (the rim,
+the hub's wall by its length), 2 A / P for the arms' ellipse.
+
+References
+----------
+.. [1] flyopt domain notes, docs/flywheel-design.md, section 23.
+.. [2] N. Chvorinov, Giesserei 27 (1940) 177-186 (freezing time ~ (V/A)^2).
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import functools
+import math
+from collections.abc import Callable
+from importlib import resources
+from typing import Any, NamedTuple
+
+from flyopt._toml import tomllib
+from flyopt.names import Geometry
+
+__all__ = [
+    "NONE",
+    "Rules",
+    "Overrides",
+    "Process",
+    "processes",
+    "process_of",
+    "rules_for",
+    "min_wall_at",
+    "walls",
+    "sections",
+    "junctions",
+    "record",
+    "ARM_THICKNESS",
+]
+
+_DATA_FILE = "castability.toml"
+
+#: The scene's word for "no castability rules" ([design] process = "none").
+NONE = "none"
+
+#: Bounds on a scene's overrides: a wall [m] and a section ratio [-].
+WALL_RANGE = (1e-5, 0.5)
+RATIO_RANGE = (1.0, 10.0)
+
+
+class Rules(NamedTuple):
+    """The castability rules one wheel is designed to (hashable: part of the NLP's structure).
+
+    ``min_wall``: rows (size D [m], wall [m]) in increasing size (empty: no minimum); ``section_ratio``: the thicker of
+    two adjoining sections at most this times the thinner [-], ``math.inf`` for no such rule.
+    """
+
+    process: str
+    min_wall: tuple[tuple[float, float], ...]
+    section_ratio: float = math.inf
+
+
+class Overrides(NamedTuple):
+    """A scene's castability: the process for every material, and numbers replacing the process's."""
+
+    process: str | None = None
+    min_wall: tuple[tuple[float, float], ...] | None = None
+    section_ratio: float | None = None
+
+
+class Process(NamedTuple):
+    """A process of the data file: its rules, what it is, and where its numbers come from."""
+
+    rules: Rules
+    description: str
+    source: str
+
+
+def _table(rows: Any, where: str) -> tuple[tuple[float, float], ...]:
+    """A min_wall table checked: [[size, wall], ...], sizes increasing, walls positive and not decreasing."""
+    if not isinstance(rows, list) or not rows:
+        raise ValueError(f"{where}: min_wall must be a list of [size, wall] rows")
+    out = []
+    for row in rows:
+        if (
+            not isinstance(row, list)
+            or len(row) != 2
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in row)
+        ):
+            raise ValueError(f"{where}: a min_wall row must be [size, wall] in metres, got {row!r}")
+        out.append((float(row[0]), float(row[1])))
+    for (s0, w0), (s1, w1) in zip(out, out[1:]):
+        if s1 <= s0 or w1 < w0:
+            raise ValueError(f"{where}: min_wall rows must have increasing sizes and walls that do not decrease")
+    if any(s < 0 or w <= 0 for s, w in out):
+        raise ValueError(f"{where}: min_wall sizes must be >= 0 and walls > 0")
+    return tuple(out)
+
+
+@functools.lru_cache(maxsize=1)
+def _load() -> tuple[dict[str, Process], dict[str, str], tuple[tuple[str, str], ...]]:
+    text = resources.files("flyopt").joinpath("data", _DATA_FILE).read_text(encoding="utf-8")
+    data = tomllib.loads(text)
+    origin = f"flyopt/data/{_DATA_FILE}"
+    found = {}
+    for name, table in data.get("process", {}).items():
+        where = f"{origin}: process {name!r}"
+        source = table.get("source", "")
+        if not isinstance(source, str) or not source.strip():
+            raise ValueError(f"{where} cites no source")
+        ratio = table.get("section_ratio", math.inf)
+        if not isinstance(ratio, (int, float)) or not ratio >= 1.0:
+            raise ValueError(f"{where}: section_ratio must be a number >= 1")
+        rules = Rules(name, _table(table.get("min_wall"), where), float(ratio))
+        found[name] = Process(rules, str(table.get("description", "")), source)
+    materials = dict(data.get("materials", {}))
+    patterns = tuple((p["match"], p["process"]) for p in data.get("pattern", []))
+    for process in (*materials.values(), *(p for _, p in patterns)):
+        if process not in found:
+            raise ValueError(f"{origin}: unknown process {process!r}")
+    return found, materials, patterns
+
+
+def processes() -> dict[str, Process]:
+    """The processes of the data file, by name."""
+    return dict(_load()[0])
+
+
+def process_of(material: str) -> str | None:
+    """The process that makes a material by default (by its key), or None where the data file names none."""
+    _, materials, patterns = _load()
+    if material in materials:
+        return materials[material]
+    for pattern, process in patterns:
+        if fnmatch.fnmatch(material.lower(), pattern.lower()):
+            return process
+    return None
+
+
+def rules_for(material: str, overrides: Overrides | None = None) -> Rules | None:
+    """The rules a wheel of a material is designed to: its process's (or the scene's), the scene's numbers
+    over them; None where no process applies (none named, or ``process = "none"``)."""
+    over = overrides or Overrides()
+    name = over.process or process_of(material)
+    if name == NONE:
+        return None
+    if name is None:
+        if over.min_wall is None and over.section_ratio is None:
+            return None
+        base = Rules("scene", over.min_wall or (), math.inf)  # the scene's numbers alone
+    else:
+        base = processes()[name].rules
+    return Rules(
+        base.process if name is not None else "scene",
+        over.min_wall if over.min_wall is not None else base.min_wall,
+        over.section_ratio if over.section_ratio is not None else base.section_ratio,
+    )
+
+
+def _fmin(a: Any, b: Any) -> Any:
+    return min(a, b)
+
+
+def _fmax(a: Any, b: Any) -> Any:
+    return max(a, b)
+
+
+def min_wall_at(
+    rules: Rules, size: Any, fmin: Callable[[Any, Any], Any] = _fmin, fmax: Callable[[Any, Any], Any] = _fmax
+) -> Any:
+    """The process's thinnest wall at a size [m]: linear between the table's rows, the end row's beyond them.
+
+    ``size`` a float, or a CasADi symbol with ``fmin``/``fmax`` = ``casadi.fmin``/``casadi.fmax``.
+    """
+    rows = rules.min_wall
+    if not rows:
+        return 0.0
+    wall = rows[0][1]
+    for (s0, w0), (s1, w1) in zip(rows, rows[1:]):
+        wall = wall + (w1 - w0) / (s1 - s0) * (fmin(fmax(size, s0), s1) - s0)
+    return wall
+
+
+def _rect(a: Any, b: Any) -> Any:
+    """2 V/A of a long bar of section a x b cooled all round [m]: a b / (a + b)."""
+    return a * b / (a + b)
+
+
+def _arm_thickness() -> float:
+    """2 A / P of the arms' elliptical section per unit major axis [-] (axes 1 and wheel.ARM_MINOR_RATIO;
+    Ramanujan's perimeter)."""
+    from flyopt.design.wheel import ARM_MINOR_RATIO
+
+    a, b = 0.5, 0.5 * ARM_MINOR_RATIO  # semi-axes
+    area = math.pi * a * b
+    perimeter = math.pi * (3.0 * (a + b) - math.sqrt((3.0 * a + b) * (a + 3.0 * b)))
+    return 2.0 * area / perimeter
+
+
+#: The arms' equivalent thickness per metre of major axis [-].
+ARM_THICKNESS = _arm_thickness()
+
+
+def walls(geometry: str, dims: Any) -> tuple[tuple[str, Any], ...]:
+    """(part, wall) of every section the minimum wall bounds [m]: the rim's H and B, the web, the arms'
+    minor axis, the hub's radial wall, a disc's width (floats or symbols)."""
+    from flyopt.design.wheel import ARM_MINOR_RATIO
+
+    if geometry == Geometry.DISC:
+        return (("disc", dims.b),)
+    out: list[tuple[str, Any]] = [("rim", dims.h), ("rim", dims.b)]
+    if geometry == Geometry.RIM_WEB:
+        out.append(("web", dims.t_web))
+    elif geometry == Geometry.RIM_ARMS:
+        out.append(("arms", ARM_MINOR_RATIO * dims.arm_major))
+    if _has_hub(geometry, dims):
+        out.append(("hub", (dims.d_hub - dims.bore) / 2.0))
+    return tuple(out)
+
+
+def _has_hub(geometry: str, dims: Any) -> bool:
+    d_hub = dims.d_hub
+    return geometry in (Geometry.RIM_WEB, Geometry.RIM_ARMS) and not (isinstance(d_hub, (int, float)) and not d_hub)
+
+
+def sections(geometry: str, dims: Any) -> dict[str, Any]:
+    """Each part's equivalent thickness 2 V/A [m] (twice its casting modulus): the web's t, the rim's
+    H B/(H + B), the hub's wall by its length, the arms' 2 A/P (floats or symbols)."""
+    out = {"rim": _rect(dims.h, dims.b)}
+    if geometry == Geometry.RIM_WEB:
+        out["web"] = dims.t_web
+    elif geometry == Geometry.RIM_ARMS:
+        out["arms"] = ARM_THICKNESS * dims.arm_major
+    if _has_hub(geometry, dims):
+        out["hub"] = _rect((dims.d_hub - dims.bore) / 2.0, dims.l_hub)
+    return out
+
+
+def junctions(geometry: str, bored: bool) -> tuple[tuple[str, str], ...]:
+    """The adjoining parts of a wheel, rim side first: rim-web and web-hub, or rim-arms and arms-hub."""
+    if geometry == Geometry.RIM_WEB:
+        middle = "web"
+    elif geometry == Geometry.RIM_ARMS:
+        middle = "arms"
+    else:
+        return ()
+    return (("rim", middle), (middle, "hub")) if bored else (("rim", middle),)
+
+
+def record(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[str, Any] | None:
+    """What castability asks of a designed wheel and what it has, for the report and the JSON.
+
+    ``floor``: the scene's (or the material's) min_wall [m]. Returns ``process``, ``casting_size`` (D [m]),
+    ``process_min_wall`` (the table at D [m], 0 where the rules give none), ``min_wall`` (the larger of it
+    and ``floor``: the wall used [m]), ``thinnest_wall`` [m] and ``thinnest_part``, ``section_ratio``
+    (None: no rule) and ``junctions``: each junction's ``junction`` ("rim-web") and ``ratio``, the
+    thicker over the thinner equivalent thickness [-]; None without rules.
+    """
+    if rules is None:
+        return None
+    size = float(dims.d_outer)
+    process_wall = float(min_wall_at(rules, size))
+    part, thinnest = min(((p, float(w)) for p, w in walls(geometry, dims)), key=lambda pw: pw[1])
+    t_eq = {p: float(v) for p, v in sections(geometry, dims).items()}
+    return {
+        "process": rules.process,
+        "casting_size": size,
+        "process_min_wall": process_wall,
+        "min_wall": max(process_wall, floor),
+        "thinnest_wall": thinnest,
+        "thinnest_part": part,
+        "section_ratio": rules.section_ratio if math.isfinite(rules.section_ratio) else None,
+        "junctions": [
+            {"junction": f"{a}-{b}", "ratio": max(t_eq[a], t_eq[b]) / min(t_eq[a], t_eq[b])}
+            for a, b in junctions(geometry, "hub" in t_eq)
+        ],
+    }
