@@ -479,11 +479,9 @@ PLAIN_NUMBERS = [
     rf"r_f = {NUM} x",
     rf"\({NUM} wheels on the grid",
     rf"{NUM} quadratic triangles",
-    rf"hub-web {NUM}",
-    rf"web-rim {NUM}",
-    rf"hub-arms {NUM}",
-    rf"arms-rim {NUM}",
-    rf"hub-disc {NUM}",
+    rf"(hub|web|arms|rim|disc)-(hub|web|arms|rim|disc) {NUM}",  # a junction's factor or section ratio
+    rf"\(at most {NUM}\)",  # the section ratio castability allows
+    r"\(2V/A\)",  # the equivalent thickness the ratios compare
 ]
 
 

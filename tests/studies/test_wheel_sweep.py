@@ -28,7 +28,10 @@ def test_sweep_of_whole_wheels_equals_solve_point_by_point(name):
         # a sweep compares continuous optima: solve's own (design.continuous) where solve rounds its wheel
         design = solve(dataclasses.replace(scene, delta=delta)).design
         best = design.continuous if design.continuous is not None else design.best
-        assert design.spec.round_to and design.best is not best  # solve rounded it (whole millimetres)
+        # solve rounded it (whole millimetres), or said that no wheel on the grid meets every limit: the arms wheel
+        # at delta 0.005, where the arms-hub section ratio, the hub's largest diameter and the stresses all bind
+        assert design.spec.round_to
+        assert design.best is not best or design.rounding.startswith("NOT rounded")
         assert table["status"][k] == "designed"
         assert table["best_material"][k] == best.material
         assert table["mass"][k] == pytest.approx(best.mass, rel=1e-9)
