@@ -141,9 +141,9 @@ CASES = [
         "ratio",
     ),
     (
-        "disc with a bore, a 30 mm wall",
-        "castability_min_wall_disc",
-        {"min_wall": ((0.0, 0.03),), "geometry": "disc"},
+        "disc with a bore, a 20 mm wall",  # the disc's width and its hub's wall both on it
+        "castability_min_wall_",
+        {"min_wall": ((0.0, 0.02),), "geometry": "disc"},
         "wall",
     ),
 ]

@@ -33,7 +33,7 @@ def _scene(name, geometry=None):
     return flyopt.from_dict(data)
 
 
-#: A rim-and-web wheel, an arms wheel (the same press with arms), an engine's disc, a bare rim.
+#: A rim-and-web wheel, an arms wheel (the same press with arms), an engine's disc on its keyed hub, a bare rim.
 CASES = {
     "rim_web": ("punch-press-wheel", None),
     "rim_arms": ("punch-press-wheel", "rim_arms"),
@@ -58,7 +58,7 @@ def expected(design):
         out["d_inner"] = d.d_inner
     if design.geometry == "rim_web":
         out["t_web"] = d.t_web
-    if design.geometry in ("rim_web", "rim_arms") and design.bore:
+    if design.geometry in ("rim_web", "rim_arms", "disc") and design.bore and d.d_hub:  # a disc on its hub too
         out |= {"d_hub": d.d_hub, "l_hub": d.l_hub}
     if design.geometry == "rim_arms":
         out |= {"arm_major": d.arm_major, "arm_minor": d.arm_minor}

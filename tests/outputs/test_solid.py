@@ -21,7 +21,8 @@ from tests.conftest import PROBLEMS
 pytest.importorskip("OCP")  # the cad extra: the test extra installs it, so CI runs these
 
 WHEELS = PROBLEMS.parent / "tests" / "data" / "wheels"
-#: A rim-and-web wheel with a keyed hub, an engine's wheel with six arms and a keyed hub, an engine's disc.
+#: A rim-and-web wheel with a keyed hub, an engine's wheel with six arms and a keyed hub, an engine's disc on its
+#: keyed hub (design.disc_hub).
 CASES = {
     "rim_web": PROBLEMS / "punch-press-wheel.toml",
     "rim_arms": WHEELS / "engine-rim_arms.toml",
@@ -126,7 +127,10 @@ def independent(design):
     d = design.dims
     r_o, r_b = d.d_outer / 2.0, (design.bore or 0.0) / 2.0
     pieces = []
-    if design.geometry == "disc":
+    if design.geometry == "disc" and d.d_hub:
+        pieces += [annulus(r_b, d.d_hub / 2.0, d.l_hub), annulus(d.d_hub / 2.0, r_o, d.b)]
+        keyed = d.l_hub
+    elif design.geometry == "disc":
         pieces.append(annulus(r_b, r_o, d.b))
         keyed = d.b
     else:
@@ -148,7 +152,8 @@ def independent(design):
 
 def test_the_cases_are_what_they_claim(exported):
     kinds = {case: (e[0].geometry, bool(e[0].bore and e[0].parts.key)) for case, e in exported.items()}
-    assert kinds == {"rim_web": ("rim_web", True), "rim_arms": ("rim_arms", True), "disc": ("disc", False)}
+    assert kinds == {"rim_web": ("rim_web", True), "rim_arms": ("rim_arms", True), "disc": ("disc", True)}
+    assert exported["disc"][0].dims.l_hub > exported["disc"][0].dims.b  # the hub stands out of the disc
     assert exported["rim_arms"][0].n_arms == 6
 
 
@@ -182,7 +187,7 @@ def test_the_step_is_in_millimetres_and_one_solid(exported):
     low, high = box.CornerMin(), box.CornerMax()
     x0, z0, x1, z1 = low.X(), low.Z(), high.X(), high.Z()
     assert x1 - x0 == pytest.approx(design.dims.d_outer * 1e3, rel=1e-6, abs=1e-6)
-    assert z1 - z0 == pytest.approx(design.dims.b * 1e3, rel=1e-6, abs=1e-6)
+    assert z1 - z0 == pytest.approx(design.dims.l_hub * 1e3, rel=1e-6, abs=1e-6)  # the hub, longer than the disc
     explorer, solids = TopExp_Explorer(shape, TopAbs_SOLID), 0
     while explorer.More():
         solids, _ = solids + 1, explorer.Next()
@@ -194,16 +199,15 @@ def test_the_step_is_in_millimetres_and_one_solid(exported):
 # --------------------------------------------------------------------------
 
 
-def test_the_disc_and_the_annular_parts_are_the_designs(exported):
-    design, density, _w, read, _f = exported["disc"]
-    assert read.mass == pytest.approx(design.mass, rel=1e-6)
-    assert read.inertia == pytest.approx(design.j_flywheel, rel=1e-6)
-    # the rim_web wheel's parts are annuli: its parts' sums are the solid's with the keyway put back
-    design, density, _w, read, _f = exported["rim_web"]
+@pytest.mark.parametrize("case, parts", [("disc", {"hub", "disc"}), ("rim_web", {"hub", "web", "rim"})])
+def test_the_disc_and_the_annular_parts_are_the_designs(exported, case, parts):
+    """The disc on its hub and the rim_web wheel are annuli: their parts' sums are the solid's with the
+    keyway put back."""
+    design, density, _w, read, _f = exported[case]
     key, d = design.parts.key, design.dims
     cut = keyway_cut(design.bore / 2.0, key["b"], key["t2"], d.l_hub)
     items = {p["name"]: p for p in design.parts.items}
-    assert set(items) == {"hub", "web", "rim"}
+    assert set(items) == parts
     assert read.mass + density * cut[0] == pytest.approx(design.mass, rel=1e-6)
     assert read.inertia + density * cut[1] == pytest.approx(design.j_flywheel, rel=1e-6)
     assert sum(p["mass"] for p in items.values()) == pytest.approx(design.mass, rel=1e-12)

@@ -244,13 +244,14 @@ def test_a_key_without_a_bearing_pressure_is_sized_by_the_seat_and_said_unchecke
 def test_a_disc_is_reported_as_a_disc_not_a_rim(capsys, tmp_path):
     """four-cylinder-engine's wheel is a disc: its text and report gave it rim dimensions (a mean diameter of
     D/2, an inner diameter of 0 and "rim H x B 140 x 9.77 mm", issue 29); they give its outer diameter and its
-    width, and for a disc on a seat its bore."""
+    width, and for a disc on a seat its bore (and its hub, design.disc_hub)."""
     import re
 
     text = _solve_text(PROBLEMS / "four-cylinder-engine.toml", capsys)
     block = text[text.index("Flywheel design") : text.index("Parts of the wheel")]
     assert "rim H x B" not in block and "mean / inner" not in block
-    assert re.search(r"  outer diameter\s+280 mm", block) and re.search(r"  disc width B\s+9\.\d+ mm", block)
+    assert re.search(r"  outer diameter / bore\s+278 / 45 mm", block) and re.search(r"  disc width B\s+10 mm", block)
+    assert re.search(r"  hub diameter x length\s+72 x 54 mm", block)
     bored = _solve_text(WHEELS / "engine-disc.toml", capsys)
     assert re.search(r"  outer diameter / bore\s+[\d.]+ / 60 mm", bored)
     out = tmp_path / "disc.html"

@@ -33,6 +33,7 @@ from importlib import resources
 from typing import Any, NamedTuple
 
 from flyopt._toml import tomllib
+from flyopt.design.wheel import has_hub
 from flyopt.names import Geometry
 
 __all__ = [
@@ -220,44 +221,43 @@ def walls(geometry: str, dims: Any) -> tuple[tuple[str, Any], ...]:
     from flyopt.design.wheel import ARM_MINOR_RATIO
 
     if geometry == Geometry.DISC:
-        return (("disc", dims.b),)
+        disc: tuple[tuple[str, Any], ...] = (("disc", dims.b),)
+        return disc + ((("hub", (dims.d_hub - dims.bore) / 2.0),) if has_hub(dims) else ())
     out: list[tuple[str, Any]] = [("rim", dims.h), ("rim", dims.b)]
     if geometry == Geometry.RIM_WEB:
         out.append(("web", dims.t_web))
     elif geometry == Geometry.RIM_ARMS:
         out.append(("arms", ARM_MINOR_RATIO * dims.arm_major))
-    if _has_hub(geometry, dims):
+    if has_hub(dims):
         out.append(("hub", (dims.d_hub - dims.bore) / 2.0))
     return tuple(out)
-
-
-def _has_hub(geometry: str, dims: Any) -> bool:
-    d_hub = dims.d_hub
-    return geometry in (Geometry.RIM_WEB, Geometry.RIM_ARMS) and not (isinstance(d_hub, (int, float)) and not d_hub)
 
 
 def sections(geometry: str, dims: Any) -> dict[str, Any]:
     """Each part's equivalent thickness 2 V/A [m] (twice its casting modulus): the web's t, the rim's
     H B/(H + B), the hub's wall by its length, the arms' 2 A/P (floats or symbols)."""
-    out = {"rim": _rect(dims.h, dims.b)}
+    out = {"disc": dims.b} if geometry == Geometry.DISC else {"rim": _rect(dims.h, dims.b)}
     if geometry == Geometry.RIM_WEB:
         out["web"] = dims.t_web
     elif geometry == Geometry.RIM_ARMS:
         out["arms"] = ARM_THICKNESS * dims.arm_major
-    if _has_hub(geometry, dims):
+    if has_hub(dims):
         out["hub"] = _rect((dims.d_hub - dims.bore) / 2.0, dims.l_hub)
     return out
 
 
-def junctions(geometry: str, bored: bool) -> tuple[tuple[str, str], ...]:
-    """The adjoining parts of a wheel, rim side first: rim-web and web-hub, or rim-arms and arms-hub."""
+def junctions(geometry: str, hub: bool) -> tuple[tuple[str, str], ...]:
+    """The adjoining parts of a wheel, rim side first: rim-web and web-hub, rim-arms and arms-hub, or a
+    bored disc's disc-hub."""
+    if geometry == Geometry.DISC:
+        return (("disc", "hub"),) if hub else ()
     if geometry == Geometry.RIM_WEB:
         middle = "web"
     elif geometry == Geometry.RIM_ARMS:
         middle = "arms"
     else:
         return ()
-    return (("rim", middle), (middle, "hub")) if bored else (("rim", middle),)
+    return (("rim", middle), (middle, "hub")) if hub else (("rim", middle),)
 
 
 def record(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[str, Any] | None:

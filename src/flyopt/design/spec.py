@@ -178,6 +178,12 @@ class DesignSpec:
         ``section_ratio`` [-] replacing the process's numbers. The rules
         bound every whole wheel the NLP designs (rim_web, rim_arms and a disc
         designed whole), not the textbook's bare rims and discs.
+    disc_hub : bool
+        A bored disc stands on a hub of the seat's proportions (the hub's
+        diameter and length are NLP variables, the hub at least as long as
+        the disc is wide, its key's length within it): the disc an engine
+        carries on a keyed crankshaft seat. False (default): an annulus on
+        its bore, as the texts size it.
 
     Raises
     ------
@@ -206,6 +212,7 @@ class DesignSpec:
     fem_check: bool | None = None
     stress_factors: tuple[StressFactor, ...] = ()
     castability: casting.Overrides = casting.Overrides()
+    disc_hub: bool = False
 
     def stress_factors_for(self, material: str, shaft: str, n_arms: int = 0) -> dict[str, float]:
         """The :attr:`stress_factors` of one combination (material and shaft names, arm count): part -> factor."""
@@ -260,6 +267,7 @@ class DesignSpec:
             "round_to": self.round_to,
             "prune": self.prune,
             "fem_check": self.fem_check,
+            "disc_hub": self.disc_hub,
             "process": self.castability.process,
             "castability": {
                 "min_wall": [list(row) for row in self.castability.min_wall]
@@ -316,6 +324,12 @@ class DesignSpec:
             raise ValueError(f"prune must be true or false, got {self.prune!r}")
         if self.fem_check is not None and not isinstance(self.fem_check, bool):
             raise ValueError(f"fem_check must be true or false, got {self.fem_check!r}")
+        if not isinstance(self.disc_hub, bool):
+            raise ValueError(f"disc_hub must be true or false, got {self.disc_hub!r}")
+        if self.disc_hub and self.geometry != Geometry.DISC:
+            raise ValueError(
+                f"disc_hub is a disc's (geometry disc), not {self.geometry}'s: web and arms wheels have a hub"
+            )
         factors = tuple(StressFactor(*f) for f in self.stress_factors)
         if any(not finite(f.factor, "a stress factor [-]") >= 1.0 for f in factors):
             raise ValueError(f"stress_factors must be >= 1 (a concentration on the modelled stress), got {factors!r}")

@@ -21,7 +21,8 @@ Dimensions of a wheel (:class:`Dims`, SI): outer diameter ``d_outer``,
 radial rim thickness ``h``, rim width ``b``, web thickness ``t_web``, hub
 diameter ``d_hub`` and length ``l_hub``, arm major axis ``arm_major``, arm
 count ``n_arms`` and the bore ``bore`` (0: none). For a disc ``h`` is the
-radial extent (D - bore)/2.
+radial extent (D - bore)/2; a bored disc designed whole stands on a hub
+(``d_hub``, ``l_hub``): the seat's key needs a hub's length, not a plate's.
 
 Every function is arithmetic only, so the same code gives floats, numpy
 arrays and CasADi expressions (the design NLP, :mod:`flyopt.design.wheel_nlp`,
@@ -44,7 +45,7 @@ from typing import Any, NamedTuple
 
 from flyopt.names import Geometry
 
-__all__ = ["Dims", "Part", "ARM_MINOR_RATIO", "parts", "wheel_mass", "wheel_inertia", "steps"]
+__all__ = ["Dims", "Part", "ARM_MINOR_RATIO", "parts", "has_hub", "wheel_mass", "wheel_inertia", "steps"]
 
 #: Minor over major axis of an arm's elliptical section (the texts' proportion, [2]).
 ARM_MINOR_RATIO = 0.5
@@ -144,6 +145,9 @@ def parts(geometry_name: str, dims: Dims, density: Any) -> list[Part]:
     r_i = dims.d_inner / 2.0
     r_bore = dims.bore / 2.0
     if geometry_name == Geometry.DISC:
+        if has_hub(dims):
+            r_h = dims.d_hub / 2.0
+            return [_annulus("hub", density, r_bore, r_h, dims.l_hub), _annulus("disc", density, r_h, r_o, dims.b)]
         return [_annulus("disc", density, r_bore, r_o, dims.b)]
     rim = _annulus("rim", density, r_i, r_o, dims.b, thin=geometry_name == Geometry.THIN_RIM)
     if geometry_name in (Geometry.RIM, Geometry.THIN_RIM):
@@ -166,6 +170,11 @@ def parts(geometry_name: str, dims: Dims, density: Any) -> list[Part]:
         )
         return [_annulus("hub", density, r_bore, r_h, dims.l_hub), arms, rim]
     raise ValueError(f"geometry {geometry_name!r} not known")
+
+
+def has_hub(dims: Dims) -> bool:
+    """Whether a wheel has a hub: a bore and a hub diameter (a web, arms, or a disc the NLP designs whole)."""
+    return not _zero(dims.bore) and dims.d_hub is not None and not _zero(dims.d_hub)
 
 
 def _zero(value):
@@ -211,6 +220,8 @@ def steps(geometry_name: str, dims: Dims) -> tuple[list[Any], list[Any], bool, l
     r_bore = dims.bore / 2.0
     solid = _zero(dims.bore)
     if geometry_name == Geometry.DISC:
+        if has_hub(dims):
+            return [r_bore, dims.d_hub / 2.0, r_o], [dims.l_hub, dims.b], False, ["hub", "disc"]
         return [r_bore, r_o], [dims.b], solid, ["disc"]
     if geometry_name in (Geometry.RIM, Geometry.THIN_RIM):
         return [r_i, r_o], [dims.b], False, ["rim"]

@@ -291,8 +291,11 @@ def wheel_problem(
 
     geo = spec.geometry
     d_hub_range = l_hub_range = (0.0, math.inf)
-    if geo in (Geometry.RIM_WEB, Geometry.RIM_ARMS) and bore:
+    disc_hub = geo == Geometry.DISC and spec.disc_hub and bool(bore)
+    if (geo in (Geometry.RIM_WEB, Geometry.RIM_ARMS) and bore) or disc_hub:
         d_hub_range, l_hub_range, _ = _hub_bounds(material, bore, torque)
+        if disc_hub:  # a disc's hub may be as long as the disc is wide: the hub is then the disc
+            l_hub_range = (l_hub_range[0], math.inf)
     structure = wheel_nlp.WheelStructure(
         geometry=geo,
         criterion=spec.criterion,
@@ -304,6 +307,7 @@ def wheel_problem(
         pinned=spec.d_mean is not None,
         objective="outer_diameter" if spec.objective == Objective.OUTER_DIAMETER else "mass",
         castability=castability_of(spec, material, bore),
+        disc_hub=disc_hub,
     )
     problem = wheel_nlp.WheelProblem(
         j_shaft=j_shaft,
@@ -578,6 +582,7 @@ def _disc_closed_form(combo, spec, bore, material):
 
     if (
         spec.geometry != Geometry.DISC
+        or (bore and spec.disc_hub)  # a disc on its hub is a stepped disc: the NLP's
         or spec.criterion != Criterion.STRESS
         or spec.objective == Objective.OUTER_DIAMETER
         or spec.d_mean is not None
@@ -708,7 +713,7 @@ def structure_fields(
                 speed_margin=_finite_or_none(checked.speed_margin),
             )
     key_check = None
-    hub_length = {"rim_web": dims.l_hub, "rim_arms": dims.l_hub, "disc": dims.b}.get(geometry_name)
+    hub_length = {"rim_web": dims.l_hub, "rim_arms": dims.l_hub, "disc": dims.l_hub or dims.b}.get(geometry_name)
     pressure = getattr(material, "bearing_pressure", None)
     if bore and hub_length and not (torque and pressure):
         # the key's section is the shaft's (DIN 6885-1 by the seat diameter) and its length the hub's: a keyway

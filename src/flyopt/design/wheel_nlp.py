@@ -90,13 +90,21 @@ class WheelStructure(NamedTuple):
     pinned: bool  # D_m pinned
     objective: str  # "mass" | "outer_diameter"
     castability: castability.Rules | None = None  # the process's rules (whole wheels only), None: none
+    disc_hub: bool = False  # a bored disc stands on a hub (design.disc_hub); else an annulus on its bore
+
+    @property
+    def has_hub(self) -> bool:
+        """Whether the wheel has a hub: web and arms wheels on a bore, a disc on a bore asked to have one."""
+        if self.geometry == Geometry.DISC:
+            return self.bored and self.disc_hub
+        return self.bored and self.geometry in (Geometry.RIM_WEB, Geometry.RIM_ARMS)
 
 
 def variables_of(structure: WheelStructure) -> tuple[str, ...]:
     """The dimensions IPOPT chooses for a structure, in order."""
     geo = structure.geometry
     if geo == Geometry.DISC:
-        return ("d_outer", "b")
+        return ("d_outer", "b", "d_hub", "l_hub") if structure.has_hub else ("d_outer", "b")
     names = ["d_outer", "h", "b"]
     if geo == Geometry.RIM_WEB:
         names.append("t_web")
@@ -113,7 +121,14 @@ def dims_of(structure: WheelStructure, values: Mapping[str, Any], bore: float) -
     geo = structure.geometry
     if geo == Geometry.DISC:
         bore = bore if structure.bored else 0.0
-        return wheel.Dims(d_outer=v["d_outer"], h=(v["d_outer"] - bore) / 2.0, b=v["b"], bore=bore)
+        return wheel.Dims(
+            d_outer=v["d_outer"],
+            h=(v["d_outer"] - bore) / 2.0,
+            b=v["b"],
+            bore=bore,
+            d_hub=v.get("d_hub", 0.0),
+            l_hub=v.get("l_hub", 0.0),
+        )
     return wheel.Dims(
         d_outer=v["d_outer"],
         h=v["h"],
@@ -131,7 +146,7 @@ def stressed_parts(structure: WheelStructure) -> tuple[str, ...]:
     """The parts whose stress the NLP limits, in the order of the allowable-stress parameters."""
     geo = structure.geometry
     if geo == Geometry.DISC:
-        return ("disc",)
+        return ("hub", "disc") if structure.has_hub else ("disc",)
     if geo in (Geometry.RIM, Geometry.THIN_RIM):
         return ("rim",)
     if geo == Geometry.RIM_WEB:
@@ -265,6 +280,9 @@ def formulate(structure: WheelStructure, x: Any, par: Mapping[str, Any], allow: 
         row("inner_diameter", inner / dims.d_outer)
         if "d_hub" in col:
             row("rim_clears_hub", (inner - dims.d_hub) / dims.d_outer)
+    elif "d_hub" in col:
+        row("disc_clears_hub", (dims.d_outer - dims.d_hub) / dims.d_outer)
+        row("disc_below_hub", col["b"] - col["l_hub"])  # the hub at least as long as the disc is wide
     else:
         row("bore_clear", (dims.d_outer - par["bore"]) / dims.d_outer)
     if structure.pinned:
@@ -309,7 +327,7 @@ def _castability_rows(structure, dims, row):
             row(f"castability_min_wall_{part}", ca.log(wall) - log_wall)
     if math.isfinite(rules.section_ratio):
         t_eq = castability.sections(geo, dims)
-        for a, b in castability.junctions(geo, structure.bored):
+        for a, b in castability.junctions(geo, structure.has_hub):
             row(f"castability_{a}_{b}_ratio", ca.log(t_eq[a]) - ca.log(t_eq[b]))
 
 
@@ -326,7 +344,7 @@ def _build(structure, options):
     allow = ca.SX.sym("allow", len(stress_parts))  # (sigma_allow / S) per part, squared if ductile
     form = formulate(structure, x, {name: p[k] for k, name in enumerate(PARAMETERS)}, allow)
     nlp = {"x": x, "p": ca.vertcat(p, allow), "f": form.objective, "g": ca.vertcat(*form.rows)}
-    name = "wheel_" + "_".join(str(v) for v in structure[:-1])
+    name = "wheel_" + "_".join(str(v) for f, v in zip(structure._fields, structure, strict=True) if f != "castability")
     if structure.castability is not None:  # a function's name takes letters, digits and _ only
         name += f"_{structure.castability.process}_{zlib.crc32(repr(structure.castability).encode())}"
     solver = ca.nlpsol(name, "ipopt", nlp, options)
@@ -402,8 +420,15 @@ def starting_wheel(structure: WheelStructure, problem: WheelProblem, names: Iter
         d = (64.0 * j / (math.pi * rho)) ** 0.2
     hb = problem.hb_ratio[0]
     if structure.geometry == Geometry.DISC:
-        b = 32.0 * j / (math.pi * rho * max(d**4 - problem.bore**4, 1e-30 * d**4))
-        return {"d_outer": d, "b": max(b, problem.min_wall)}
+        b = max(32.0 * j / (math.pi * rho * max(d**4 - problem.bore**4, 1e-30 * d**4)), problem.min_wall)
+        start = {"d_outer": d, "b": b}
+        if "d_hub" in names:
+            lo, hi = problem.d_hub_range
+            start["d_hub"] = (
+                min(max(lo, 1.9 * problem.bore), hi, 0.5 * d) if math.isfinite(hi) else max(lo, 2 * problem.bore)
+            )
+            start["l_hub"] = max(problem.l_hub_range[0], 1.2 * b)
+        return start
     h = min(math.sqrt(4.0 * j * hb / (math.pi * rho * d**3)), 0.2 * d)
     h = max(h, problem.min_wall * 1.01)
     b = max(h / hb, problem.min_wall * 1.01)
@@ -472,6 +497,8 @@ def row_bounds(
         "inner_diameter": (0.0, inf),
         "rim_clears_hub": (0.0, inf),
         "bore_clear": (0.0, inf),
+        "disc_clears_hub": (0.0, inf),
+        "disc_below_hub": (-inf, 0.0),
         "d_mean": ((math.log(problem.d_mean),) * 2 if problem.d_mean is not None else (-inf, inf)),
         "web_below_rim": (-inf, 0.0),
         "web_below_hub": (-inf, 0.0),

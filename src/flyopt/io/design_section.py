@@ -53,6 +53,7 @@ def read_design(
             "round_to",
             "prune",
             "fem_check",
+            "disc_hub",
             "process",
             "castability",
         },
@@ -167,6 +168,13 @@ def read_design(
         if not isinstance(value, bool):
             raise SceneError("design.fem_check", f"must be true or false, got {shorten(table.raw('fem_check'))}")
         options["fem_check"] = value
+    if table.has("disc_hub"):
+        value = table.get("disc_hub")
+        if not isinstance(value, bool):
+            raise SceneError("design.disc_hub", f"must be true or false, got {shorten(table.raw('disc_hub'))}")
+        if value and options.get("geometry") != Geometry.DISC:
+            raise SceneError("design.disc_hub", 'is for geometry = "disc" (web and arms wheels have a hub)')
+        options["disc_hub"] = value
     if table.has("process") or table.has("castability"):
         options["castability"] = _castability(table)
     if options.get("objective") == "cost":

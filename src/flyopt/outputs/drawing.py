@@ -30,6 +30,7 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from flyopt.design import wheel
 from flyopt.design.balance import BALANCE_GRADE
 from flyopt.design.fits import hole_tolerance
 from flyopt.names import Geometry
@@ -310,20 +311,12 @@ def section_blocks(design: Candidate) -> tuple[list[tuple[str, float, float, flo
     dims = design.dims
     if dims is None:
         raise ValueError(f"{design.material} on {design.shaft} is not a design: nothing to draw")
-    r_o = dims.d_outer / 2.0
-    r_bore = (design.bore or 0.0) / 2.0
-    if design.geometry == Geometry.DISC:
-        return [("disc", r_bore, r_o, dims.b)], None
-    r_i = dims.d_inner / 2.0
-    rim = ("rim", r_i, r_o, dims.b)
-    if design.geometry == Geometry.RIM_WEB and dims.t_web and dims.d_hub and dims.l_hub:
-        if not design.bore:
-            return [("web", 0.0, r_i, dims.t_web), rim], None
-        return [("hub", r_bore, dims.d_hub / 2.0, dims.l_hub), ("web", dims.d_hub / 2.0, r_i, dims.t_web), rim], None
-    if design.geometry == Geometry.RIM_ARMS and dims.d_hub and dims.l_hub and dims.arm_major and dims.arm_minor:
-        hub = ("hub", r_bore, dims.d_hub / 2.0, dims.l_hub)
-        return [hub, rim], (dims.d_hub / 2.0, r_i, dims.arm_major, dims.arm_minor)
-    return [rim], None
+    # the parts as the design counts them (one decision: flyopt.design.wheel.parts), the arms apart
+    parts = wheel.parts(design.geometry, dims.wheel(design.n_arms, design.bore), 1.0)
+    blocks = [(p.name, float(p.r_inner), float(p.r_outer), float(p.thickness)) for p in parts if p.name != "arms"]
+    if design.geometry == Geometry.RIM_ARMS and dims.d_hub and dims.arm_major and dims.arm_minor:
+        return blocks, (dims.d_hub / 2.0, dims.d_inner / 2.0, dims.arm_major, dims.arm_minor)
+    return blocks, None
 
 
 def keyway(design: Candidate) -> tuple[float, float]:

@@ -378,10 +378,10 @@ def rounding_report(result: DesignResult, units: str = DEFAULT) -> list[str]:
     c, best = result.continuous, result.best
     if c is None:
         return []
-    optimum = (
-        f"the continuous optimum: {q(c.mass, 'mass')}, D_outer {q(c.dims.d_outer, 'd_outer')}, H x B "
-        f"{n(c.dims.h, 'h')} x {q(c.dims.b, 'b')}"
+    section = (
+        f"B {q(c.dims.b, 'b')}" if c.geometry == Geometry.DISC else f"H x B {n(c.dims.h, 'h')} x {q(c.dims.b, 'b')}"
     )
+    optimum = f"the continuous optimum: {q(c.mass, 'mass')}, D_outer {q(c.dims.d_outer, 'd_outer')}, {section}"
     if best is None:
         return [f"  {optimum}"]
     if best is c:  # the default step found no wheel: the continuous optimum is the design
@@ -405,7 +405,8 @@ def _size_facts(best: Design, units: str) -> list[tuple[str, str]]:
             if best.bore
             else ("outer diameter", q(d.d_outer, "d_outer"))
         )
-        return [outer, ("disc width B", q(d.b, "b"))]
+        hub = [("hub diameter x length", f"{n(d.d_hub, 'd_hub')} x {q(d.l_hub, 'l_hub')}")] if d.d_hub else []
+        return [outer, ("disc width B", q(d.b, "b")), *hub]
     return [
         (
             "outer / mean / inner diameter",

@@ -197,7 +197,11 @@ class BuilderBase:
                 "axial width B",
                 (
                     self.q(c.dims.b, "length", "b"),
-                    " (a solid disc)" if not c.dims.d_inner else " (an annulus on its bore)",
+                    " (a solid disc)"
+                    if not c.dims.d_inner
+                    else " (on its hub, see the parts)"
+                    if c.dims.d_hub
+                    else " (an annulus on its bore)",
                 ),
             )
         return (
