@@ -349,3 +349,20 @@ def test_a_combination_the_fe_rejects_gives_way_to_one_it_accepts(tmp_path):
     assert result.fem.within_allowable
     motor = [f for f in result.spec.stress_factors if f.shaft == "motor"]
     assert motor and all(f.factor > 1.0 for f in motor)
+
+
+@pytest.mark.parametrize(
+    "line, words",
+    [
+        ('disc_hub = "yes"', "design.disc_hub: must be true or false"),
+        ("disc_hub = true", 'design.disc_hub: is for geometry = "disc"'),
+    ],
+)
+def test_disc_hub_is_a_boolean_of_discs_refused_in_one_line(main_cli, tmp_path, line, words):
+    """A disc_hub that is not a boolean, or on a web wheel (which has its hub anyway): exit 2, one line."""
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    assert "\n[design]\n" in text
+    path = tmp_path / "scene.toml"
+    path.write_text(text.replace("\n[design]\n", f"\n[design]\n{line}\n"), encoding="utf-8")
+    status, stdout, stderr = main_cli("solve", path)
+    assert status == 2 and stdout == "" and words in stderr and len(stderr.strip().splitlines()) == 1, stderr
