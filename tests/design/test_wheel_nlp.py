@@ -90,6 +90,8 @@ class Statement:
         self.s, self.p = structure, problem
         geometry = structure.geometry
         names = ["d_outer", "b"] if geometry == "disc" else ["d_outer", "h", "b"]
+        if geometry == "disc" and structure.bored and structure.disc_hub:
+            names += ["d_hub", "l_hub"]
         if geometry == "rim_web":
             names += ["t_web"] + (["d_hub", "l_hub"] if structure.bored else [])
         if geometry == "rim_arms":
@@ -106,7 +108,7 @@ class Statement:
         high = {n: math.log(100.0) for n in names}
         if "d_hub" in names:
             low["d_hub"], high["d_hub"] = (math.log(v) for v in problem.d_hub_range)
-            low["l_hub"], high["l_hub"] = (math.log(v) for v in problem.l_hub_range)
+            low["l_hub"], high["l_hub"] = (math.log(min(v, 100.0)) for v in problem.l_hub_range)
         self.bounds = [(low[n], high[n]) for n in names]
         self._size = len(self.rows(self.starts(np.random.default_rng(0), 1)[0]))
 
@@ -114,7 +116,8 @@ class Statement:
         v = {n: math.exp(float(xi)) for n, xi in zip(self.names, x)}
         bore = self.p.bore if self.s.bored else 0.0
         if self.s.geometry == "disc":
-            return wheel.Dims(d_outer=v["d_outer"], h=(v["d_outer"] - bore) / 2.0, b=v["b"], bore=bore)
+            hub = {"d_hub": v["d_hub"], "l_hub": v["l_hub"]} if "d_hub" in v else {}
+            return wheel.Dims(d_outer=v["d_outer"], h=(v["d_outer"] - bore) / 2.0, b=v["b"], bore=bore, **hub)
         return wheel.Dims(
             d_outer=v["d_outer"],
             h=v["h"],
@@ -158,7 +161,9 @@ class Statement:
             out.append(1.0 - d.b / p.max_width)
             if "l_hub" in self.names:
                 out.append(1.0 - d.l_hub / p.max_width)
-        if s.geometry == "disc":
+        if s.geometry == "disc" and "d_hub" in self.names:  # the hub inside the disc, at least as long as it
+            out += [1.0 - d.d_hub / d.d_outer, 1.0 - d.b / d.l_hub]
+        elif s.geometry == "disc":
             out.append(1.0 - d.bore / d.d_outer)
         else:
             hb = d.h / d.b
@@ -217,8 +222,9 @@ class Statement:
             }
             if self.s.geometry == "disc":
                 v["b"] = math.exp(rng.uniform(math.log(p.min_wall), math.log(max(0.3 * d, p.min_wall))))
-            if self.s.bored:
-                v["d_hub"], v["l_hub"] = rng.uniform(*p.d_hub_range), rng.uniform(*p.l_hub_range)
+            if "d_hub" in self.names:
+                l_high = p.l_hub_range[1] if math.isfinite(p.l_hub_range[1]) else 3.0 * p.l_hub_range[0]
+                v["d_hub"], v["l_hub"] = rng.uniform(*p.d_hub_range), rng.uniform(p.l_hub_range[0], l_high)
             x = np.log([v[n] for n in self.names])
             out.append(np.clip(x, [b[0] for b in self.bounds], [b[1] for b in self.bounds]))
         return out
@@ -265,9 +271,15 @@ def scipy_least_violation(statement, starts):
 # ------------------------------------------------- 1. IPOPT against SLSQP
 
 
-def compare_with_scipy(seed, starts=8):
-    """IPOPT and SLSQP on one random wheel: same verdict, same mass; returns a line for the record."""
+def compare_with_scipy(seed, starts=8, disc_hub=False):
+    """IPOPT and SLSQP on one random wheel: same verdict, same mass; returns a line for the record.
+    ``disc_hub``: a bored disc's case put on its hub (design.disc_hub: the hub as long as the disc at most)."""
     structure, problem = random_case(seed)
+    if disc_hub:
+        assert structure.geometry == "disc" and structure.bored
+        structure = structure._replace(disc_hub=True)
+        allowable = {**problem.allowable, "hub": problem.allowable["disc"]} if problem.allowable else {}
+        problem = dataclasses.replace(problem, l_hub_range=(problem.l_hub_range[0], math.inf), allowable=allowable)
     statement = Statement(structure, problem)
     solution = _ipopt(structure, problem)
     rng = np.random.default_rng(10_000 + seed)
@@ -308,6 +320,17 @@ def compare_with_scipy(seed, starts=8):
 def test_ipopt_matches_scipy_on_random_wheels(seed):
     """Every structure, both criteria, ductile and brittle: IPOPT's verdict and mass match SLSQP's."""
     compare_with_scipy(seed)
+
+
+#: The random bored discs of the fast set, each put on its hub.
+DISC_SEEDS = [seed for seed in FAST_SEEDS if STRUCTURES[seed % len(STRUCTURES)][:2] == ("disc", True)]
+
+
+@pytest.mark.parametrize("seed", DISC_SEEDS)
+def test_ipopt_matches_scipy_on_random_discs_on_hubs(seed):
+    """A disc on its hub (design.disc_hub), both criteria, ductile and brittle: IPOPT's verdict and mass match
+    SLSQP's on the statement written here (two annuli, the hub inside the disc and at least as long as it)."""
+    assert DISC_SEEDS and compare_with_scipy(seed, disc_hub=True)
 
 
 @pytest.mark.slow
