@@ -30,9 +30,15 @@ THICKNESS = 0.002
 CLOSED_FORM_RTOL = 1e-3
 
 #: A finer mesh (size factor halved) changes each junction factor of a shipped wheel by less than this,
-#: relatively. Measured from "normal" (0.5) to "fine" (0.25): 0.39 % (punch-press-wheel, hub-web),
-#: 0.9 % (the arms variant, arms-rim).
-JUNCTION_RTOL = 0.015
+#: relatively. Measured from "normal" (0.5) to "fine" (0.25): 1.8 % (four-cylinder-engine's 5 mm hub-disc
+#: fillet on a 280 mm wheel, the default high), 0.9 % (the arms variant), 0.4 % (punch-press-wheel).
+JUNCTION_RTOL = 0.02
+#: The last of three halvings ("fine" to "finer", 0.125) moves each factor by less than this (slow test).
+#: Measured: 1.1 % (punch-press-wheel on arms: a 1.5 mm hub-arms fillet), 0.85 % (press-arms-wheel), 0.21 %
+#: (the engine disc).
+SETTLED_RTOL = 0.015
+#: The default mesh's factor against the finest's. Measured: 2.0 % (the engine disc: 1.388 against 1.361).
+DEFAULT_RTOL = 0.025
 
 
 def _disc(bore_radius, size):
@@ -123,17 +129,47 @@ def arms_wheel(tmp_path_factory):
     return _designed(flyopt.load(path))
 
 
-@pytest.mark.parametrize("wheel", ["web_wheel", "arms_wheel"])
-def test_junction_factors_converge(wheel, request):
+@pytest.fixture(scope="module")
+def shipped_arms_wheel():
+    """problems/press-arms-wheel.toml's design: the shipped wheel on arms."""
+    return _designed(flyopt.load(PROBLEMS / "press-arms-wheel.toml"))
+
+
+@pytest.fixture(scope="module")
+def disc_on_hub():
+    """problems/four-cylinder-engine.toml's design: the engine's disc on its keyed hub (design.disc_hub)."""
+    return _designed(flyopt.load(PROBLEMS / "four-cylinder-engine.toml"))
+
+
+SHIPPED = ["web_wheel", "arms_wheel", "shipped_arms_wheel", "disc_on_hub"]
+
+
+@pytest.mark.parametrize("wheel", SHIPPED)
+def test_junction_factors_on_a_finer_mesh(wheel, request):
     """Each junction's factor on the default mesh and on one twice as fine differ by less than JUNCTION_RTOL."""
     design, material, omega = request.getfixturevalue(wheel)
     normal = fem.fem_check(design, material, omega, mesh="normal")
     fine = fem.fem_check(design, material, omega, mesh="fine")
-    assert fine.elements > 1.8 * normal.elements
-    assert [j.name for j in normal.junctions] == [j.name for j in fine.junctions]
+    assert fine.elements > 1.5 * normal.elements
+    assert normal.junctions and [j.name for j in normal.junctions] == [j.name for j in fine.junctions]
     for mine, finer in zip(normal.junctions, fine.junctions):
         assert abs(mine.factor / finer.factor - 1.0) <= JUNCTION_RTOL, (mine.name, mine.factor, finer.factor)
         assert mine.factor > 0.9, mine  # a junction never relieves the Lamé stress by much
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("wheel", SHIPPED)
+def test_junction_factors_converge(wheel, request):
+    """Three meshes, each twice as fine: the last halving moves each factor by less than SETTLED_RTOL, and
+    the default mesh's factor is within DEFAULT_RTOL of the finest's. The factors do not settle
+    monotonically (the peak is sampled in the fillet: 1.366, 1.363, 1.356 on punch-press-wheel's hub-web):
+    they are known to about 1 %, which the report's three significant figures of a factor overstate by one."""
+    design, material, omega = request.getfixturevalue(wheel)
+    checks = [fem.fem_check(design, material, omega, mesh=mesh) for mesh in ("normal", "fine", "finer")]
+    assert all(b.elements > 1.5 * a.elements for a, b in zip(checks, checks[1:])), [c.elements for c in checks]
+    for default, fine, finest in zip(*(c.junctions for c in checks)):
+        assert abs(fine.factor / finest.factor - 1.0) <= SETTLED_RTOL, (default.name, fine.factor, finest.factor)
+        assert abs(default.factor / finest.factor - 1.0) <= DEFAULT_RTOL, (default.name, default.factor, finest)
 
 
 def test_web_wheel_check_reads_the_design(web_wheel):
