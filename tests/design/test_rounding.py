@@ -200,3 +200,83 @@ def test_a_whole_wheel_is_rounded_by_default_and_round_to_false_asks_for_the_con
         jsonschema.Draft202012Validator(schema).validate(tomllib.load(handle))
     book = flyopt.solve(flyopt.load(PROBLEMS / "rim-sizing.toml")).design
     assert book.continuous is None and book.spec.round_to is None
+
+
+# ------------------------------------------------------------------ preferred numbers (design.diameter_series)
+
+#: ISO 3:1973's basic series R20 and R40, rounded values, written out here from the standard's table (DIN 323-1
+#: table 1 gives the same), independently of flyopt/data/preferred_numbers.toml.
+ISO3_R20 = "1.00 1.12 1.25 1.40 1.60 1.80 2.00 2.24 2.50 2.80 3.15 3.55 4.00 4.50 5.00 5.60 6.30 7.10 8.00 9.00"
+ISO3_R40 = (
+    "1.00 1.06 1.12 1.18 1.25 1.32 1.40 1.50 1.60 1.70 1.80 1.90 2.00 2.12 2.24 2.36 2.50 2.65 2.80 3.00 "
+    "3.15 3.35 3.55 3.75 4.00 4.25 4.50 4.75 5.00 5.30 5.60 6.00 6.30 6.70 7.10 7.50 8.00 8.50 9.00 9.50"
+)
+
+
+def _r40_mm():
+    """R40 from 10 mm to 10 m, in whole millimetres (every value there is one)."""
+    return {round(float(m) * 10**k) for k in (1, 2, 3) for m in ISO3_R40.split()}
+
+
+def test_the_series_are_iso_3s():
+    """The data file's series are the standard's; each rounded value within 1.3 % of its theoretical 10^(k/n)
+    (ISO 3's bound for R40's rounded values), and R20 is every other R40 value."""
+    from flyopt.design import preferred
+
+    assert preferred.mantissas("R40") == tuple(float(v) for v in ISO3_R40.split())
+    assert preferred.mantissas("R20") == tuple(float(v) for v in ISO3_R20.split())
+    assert preferred.mantissas("R20") == preferred.mantissas("R40")[::2]
+    assert preferred.mantissas("R10") == preferred.mantissas("R20")[::2]
+    assert preferred.mantissas("R5") == preferred.mantissas("R10")[::2]
+    for n in (5, 10, 20, 40):
+        for k, m in enumerate(preferred.mantissas(f"R{n}")):
+            assert abs(m / 10 ** (k / n) - 1.0) <= 0.013, (n, k, m)
+
+
+@pytest.mark.parametrize(
+    ("value", "series", "reach", "expected"),
+    [
+        (0.657, "R40", 1, (0.63, 0.67)),
+        (0.67 * (1 + 1e-13), "R40", 1, (0.67,)),  # in the series to round-off: not moved
+        (0.657, "R40", 2, (0.6, 0.63, 0.67, 0.71)),
+        (0.0987, "R20", 1, (0.09, 0.1)),
+        (1.0, "R10", 2, (0.8, 1.0, 1.25)),  # across a decade
+        (0.0091, "R40", 1, (0.009, 0.0095)),
+    ],
+)
+def test_the_series_values_next_to_a_length(value, series, reach, expected):
+    from flyopt.design.preferred import series_values
+
+    assert series_values(value, series, reach) == pytest.approx(expected, rel=1e-15)
+
+
+@pytest.mark.parametrize("name", ["punch-press-wheel", "press-arms-wheel"])
+def test_diameters_on_r40_the_rest_on_whole_millimetres_every_limit_held(name):
+    """The outer and hub diameters from R40, the other dimensions on the 1 mm grid; the rounded wheel's inertia
+    by the annulus formula (the web wheel) meets the requirement; never lighter than the continuous optimum."""
+    design = flyopt.solve(_scene(PROBLEMS / f"{name}.toml", diameter_series="R40")).design
+    best, continuous = design.best, design.continuous
+    assert design.status == "designed" and best.provenance.solver_status == "rounded"
+    series = _r40_mm()
+    for dimension in ("d_outer", "d_hub"):
+        assert round(getattr(best.dims, dimension) * 1e3, 6) in series, dimension
+    for dimension in ("h", "b", "t_web", "l_hub", "arm_major"):
+        value = getattr(best.dims, dimension)
+        assert value is None or _on_grid(value, MM), dimension
+    if best.geometry == "rim_web":
+        rho = flyopt.load(PROBLEMS / f"{name}.toml").material_library()[best.material].density
+        inertia = sum(
+            rho * math.pi * p["thickness"] * (p["r_outer"] ** 4 - p["r_inner"] ** 4) / 2.0 for p in best.parts.items
+        )
+        assert inertia == pytest.approx(best.j_flywheel, rel=1e-12)
+    assert best.j_flywheel >= best.limits.j_required_on_shaft * (1 - 1e-12)
+    for part in best.stresses.stress["parts"]:
+        assert part["stress"] <= part["allowable"] * (1 + 1e-9)
+    assert best.mass >= continuous.mass * (1 - 1e-9)
+    assert "R40" in design.rounding
+
+
+def test_an_unknown_series_is_refused_in_one_line():
+    with pytest.raises(SceneError) as err:
+        _scene(PROBLEMS / "punch-press-wheel.toml", diameter_series="R30")
+    assert err.value.field == "design.diameter_series" and "R40" in str(err.value)

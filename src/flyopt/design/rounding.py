@@ -38,7 +38,7 @@ import itertools
 import math
 from typing import Any
 
-from flyopt.design import check, wheel, wheel_design
+from flyopt.design import check, preferred, wheel, wheel_design
 from flyopt.design.combination import Combination
 from flyopt.design.result import Design, Dimensions, Provenance
 from flyopt.design.spec import DesignSpec
@@ -60,6 +60,22 @@ def grid_values(value: float, step: float, reach: int = 1) -> tuple[float, ...]:
     else:
         low, high = math.floor(k) - (reach - 1), math.floor(k) + reach
     return tuple(j * step for j in range(low, high + 1) if j > 0)
+
+
+#: The dimensions a preferred-number series rounds (design.diameter_series): the outer and hub diameters.
+SERIES_DIMENSIONS = ("d_outer", "d_hub")
+
+
+def _grid(spec: DesignSpec, step: float) -> Any:
+    """The values a dimension may round to, ``grid(name, value, reach=1)``: the step's multiples
+    (:func:`grid_values`), or for a diameter the scene's preferred-number series (:data:`SERIES_DIMENSIONS`)."""
+
+    def grid(name: str, value: float, reach: int = 1) -> tuple[float, ...]:
+        if spec.diameter_series and name in SERIES_DIMENSIONS:
+            return preferred.series_values(value, spec.diameter_series, reach)
+        return grid_values(value, step, reach)
+
+    return grid
 
 
 #: Most NLP solves one order of a whole wheel's rounding makes (each dimension rounded with the rest optimized
@@ -190,14 +206,17 @@ def round_design(design: Design, combo: Combination, spec: DesignSpec, step: flo
         found, words = _round_bare(design, combo, spec, step)
     else:
         found, words = _round_whole(design, combo, spec, step, bore)
+    on = f"the {step * 1e3:g} mm grid" + (f" (diameters on {spec.diameter_series})" if spec.diameter_series else "")
     if found is None:
         hint = (
             f"; H/B is fixed at {spec.hb_ratio[0]:g} (hb_ratio): a range lets the rounded rim keep it nearly"
             if spec.hb_ratio[0] == spec.hb_ratio[1] and spec.geometry != Geometry.DISC
             else ""
         )
-        return None, f"no wheel near the optimum on the {step * 1e3:g} mm grid meets every limit: {words}{hint}"
+        return None, f"no wheel near the optimum on {on} meets every limit: {words}{hint}"
     objective, dims, mass, j_wheel = found
+    if spec.diameter_series:
+        words += f"; the diameters on ISO 3's {spec.diameter_series} series"
     return _rounded_design(design, combo, spec, dims, mass, j_wheel, objective), words
 
 
@@ -218,10 +237,11 @@ def _round_bare(design: Design, combo: Combination, spec: DesignSpec, step: floa
     disc = spec.geometry == Geometry.DISC
     names = ("d_outer", "b") if disc else ("d_outer", "h", "b")
     free = _free_values(design, names, spec.pins_d_mean and not disc)
+    grid = _grid(spec, step)
     best: Found | None = None
     tried = 0
     for reach in (1, 2):
-        grids = [grid_values(v, step, reach) for v in free.values()]
+        grids = [grid(n, v, reach) for n, v in free.items()]
         if best is not None or (reach > 1 and math.prod(len(g) for g in grids) > MAX_WHEELS):
             break
         for corner in itertools.product(*grids):
@@ -245,6 +265,7 @@ def _round_whole(
     )
     names = wheel_nlp.variables_of(structure)
     rows = _row_function(structure)
+    grid = _grid(spec, step)
     current = _free_values(design, names, spec.pins_d_mean)
 
     def on_grid(values: dict[str, float]) -> wheel.Dims:
@@ -253,7 +274,7 @@ def _round_whole(
         return wheel_nlp.dims_of(structure, values, bore)
 
     corner_best: Found | None = None
-    corners = list(itertools.product(*(grid_values(v, step) for v in current.values())))
+    corners = list(itertools.product(*(grid(n, v) for n, v in current.items())))
     for corner in corners:
         dims = on_grid(dict(zip(current, corner, strict=True)))
         found = _measure(dims, combo, spec)
@@ -294,8 +315,8 @@ def _round_whole(
                 None if _whole_violations(dims, combo, spec, rows, structure, problem) else _measure(dims, combo, spec)
             )
         name = order[level]
-        near = grid_values(around[name], step)
-        far = tuple(v for v in grid_values(around[name], step, reach=2) if v not in near)
+        near = grid(name, around[name])
+        far = tuple(v for v in grid(name, around[name], reach=2) if v not in near)
         for values in (near, far):
             for _objective_value, value, solved in options(fixed, name, values):
                 found = descend(order, {**fixed, name: value}, level + 1, {**solved, **fixed, name: value})

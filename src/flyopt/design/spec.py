@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 from flyopt.design import castability as casting
-from flyopt.design import geometry
+from flyopt.design import geometry, preferred
 from flyopt.names import Criterion, Geometry, Objective
 from flyopt.validate import choice, finite, positive
 
@@ -140,6 +140,11 @@ class DesignSpec:
         design of a wheel flyopt designs whole (``flyopt solve``, ``report``,
         ``export``: :func:`flyopt.design.inputs.one_design`) is rounded to
         :data:`DEFAULT_ROUND_TO`.
+    diameter_series : str or None
+        A preferred-number series (ISO 3: "R5", "R10", "R20", "R40";
+        :mod:`flyopt.design.preferred`) the rounded wheel's outer and hub
+        diameters are taken from; its other dimensions go to ``round_to``'s
+        step. None (default): every dimension to the step.
     round_strict : bool
         Whether a winner no wheel near it on the grid can replace makes the
         design infeasible (True: the step the scene asked for) or leaves the
@@ -207,6 +212,7 @@ class DesignSpec:
     rim_speed: float | None = None
     round_to: float | None = None  # 0: not rounded, said so
     round_strict: bool = True
+    diameter_series: str | None = None
     rim_share: float = 1.0
     prune: bool = True
     fem_check: bool | None = None
@@ -265,6 +271,7 @@ class DesignSpec:
             "rim_speed": self.rim_speed,
             "rim_share": self.rim_share,
             "round_to": self.round_to,
+            "diameter_series": self.diameter_series,
             "prune": self.prune,
             "fem_check": self.fem_check,
             "disc_hub": self.disc_hub,
@@ -324,6 +331,8 @@ class DesignSpec:
             raise ValueError(f"prune must be true or false, got {self.prune!r}")
         if self.fem_check is not None and not isinstance(self.fem_check, bool):
             raise ValueError(f"fem_check must be true or false, got {self.fem_check!r}")
+        if self.diameter_series is not None:
+            choice(self.diameter_series, preferred.SERIES, "diameter_series")
         if not isinstance(self.disc_hub, bool):
             raise ValueError(f"disc_hub must be true or false, got {self.disc_hub!r}")
         if self.disc_hub and self.geometry != Geometry.DISC:

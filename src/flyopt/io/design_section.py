@@ -51,6 +51,7 @@ def read_design(
             "rim_speed",
             "radius_of_gyration",
             "round_to",
+            "diameter_series",
             "prune",
             "fem_check",
             "disc_hub",
@@ -107,6 +108,13 @@ def read_design(
             f"{shorten(table.raw('round_to'))} is no manufacturing step (allowed: up to {MAX_ROUND_TO * 1e3:g} mm; "
             'e.g. "1 mm" for whole millimetres)',
         )
+    if table.has("diameter_series"):
+        from flyopt.design.preferred import SERIES
+
+        value = table.get("diameter_series")
+        if value not in SERIES:
+            raise SceneError("design.diameter_series", unknown(value, SERIES))
+        options["diameter_series"] = value
     if table.has("bore"):
         value = table.quantity("bore", "length", required=True)
         if value < 0:
