@@ -29,7 +29,9 @@ def test_sweep_of_whole_wheels_equals_solve_point_by_point(name):
         design = solve(dataclasses.replace(scene, delta=delta)).design
         best = design.continuous if design.continuous is not None else design.best
         # solve rounded it (whole millimetres), or said that no wheel on the grid meets every limit: the arms wheel
-        # at delta 0.005, where the arms-hub section ratio, the hub's largest diameter and the stresses all bind
+        # at delta 0.005 has none. Its hub is 110 mm long (the key's length, over the steel rule's 1.8 d = 108 mm)
+        # and at most 108 mm across, so the arms-hub ratio 1.3 allows arms of at most 78.98 mm (2V/A 0.324 a),
+        # and their stress needs 78.5 mm: no whole millimetre between
         assert design.spec.round_to
         assert design.best is not best or design.rounding.startswith("NOT rounded")
         assert table["status"][k] == "designed"

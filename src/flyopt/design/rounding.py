@@ -289,8 +289,11 @@ def _round_whole(
     orders = [thinnest] + ([["d_outer"] + [n for n in thinnest if n != "d_outer"]] if "d_outer" in current else [])
     solves, budget = 0, MAX_SOLVES
 
-    def options(fixed: dict[str, float], name: str, values: tuple[float, ...]) -> list[tuple[float, float, dict]]:
-        """The wheels with ``name`` at each of ``values`` and the rest optimized again, lightest first."""
+    def options(
+        fixed: dict[str, float], name: str, values: tuple[float, ...], around: dict[str, float]
+    ) -> list[tuple[float, float, dict]]:
+        """The wheels with ``name`` at each of ``values`` and the rest optimized again from ``around`` (the wheel
+        the level above solved: a warm start, where a cold one may stop locally infeasible), lightest first."""
         nonlocal solves
         found = []
         for value in values:
@@ -299,7 +302,14 @@ def _round_whole(
             solves += 1
             try:
                 dims, _solution, _checked = wheel_design.design_combination(
-                    combo, spec, bore, combo.torque, combo.n_arms, method="ipopt", fixed={**fixed, name: value}
+                    combo,
+                    spec,
+                    bore,
+                    combo.torque,
+                    combo.n_arms,
+                    method="ipopt",
+                    fixed={**fixed, name: value},
+                    start=around,
                 )
             except (wheel_design.NoWheel, SolverFailed):
                 continue  # no wheel with this dimension here: another value may have one
@@ -318,7 +328,7 @@ def _round_whole(
         near = grid(name, around[name])
         far = tuple(v for v in grid(name, around[name], reach=2) if v not in near)
         for values in (near, far):
-            for _objective_value, value, solved in options(fixed, name, values):
+            for _objective_value, value, solved in options(fixed, name, values, around):
                 found = descend(order, {**fixed, name: value}, level + 1, {**solved, **fixed, name: value})
                 if found is not None:
                     return found

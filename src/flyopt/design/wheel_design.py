@@ -347,6 +347,7 @@ def design_combination(
     solver_options: Mapping[str, Any] | None = None,
     method: str = "auto",
     fixed: Mapping[str, float] | None = None,
+    start: Mapping[str, float] | None = None,
 ) -> tuple[Dims, WheelSolution, StrengthCheck | None]:
     """Design one combination as a whole wheel.
 
@@ -367,6 +368,9 @@ def design_combination(
     fixed : mapping or None
         Dimensions held at given values [m] (by name, as the NLP's variables):
         the rest are optimized around them (:mod:`flyopt.design.rounding`).
+    start : mapping or None
+        IPOPT's starting wheel by variable name [m] (a neighbouring design's, warm), with ``fixed`` over it;
+        None: the thin ring of :func:`flyopt.design.wheel_nlp.starting_wheel`.
 
     Returns
     -------
@@ -396,6 +400,8 @@ def design_combination(
     if fixed:
         problem = _with(problem, fixed=dict(fixed))
     model = wheel_nlp.get_model(structure, solver_options)
+    if start:
+        problem = _with(problem, start={n: {**start, **(fixed or {})}[n] for n in model.variables})
     parts = model.stress_parts
     # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
     start = wheel_nlp.starting_wheel(structure, problem, model.variables)
