@@ -3,6 +3,8 @@
 For each shipped whole wheel, the design of the scene (``flyopt.design_scene`` on one analysis, so the
 cycle is not timed) is timed in process, after a first design (NLPs built, scikit-fem imported), as:
 
+* ``no castability``: ``round_to = false``, ``fem_check = false``, ``process = "none"`` (the NLP without the
+  castability rows: what castability costs is ``continuous`` against it);
 * ``continuous``: ``round_to = false``, ``fem_check = false`` (the design as sweeps compare it);
 * ``rounded``: the default whole-millimetre rounding, ``fem_check = false``;
 * ``rounded + FE``: what ``flyopt solve`` does by default (the FE check reported);
@@ -30,17 +32,22 @@ from common import load_average, pin_one_core, write_results
 
 import flyopt
 from flyopt.analysis import analyse
+from flyopt.design.castability import Overrides
 
 ROOT = Path(__file__).resolve().parents[1]
 
-#: The shipped whole wheels (problems/) and the arms wheel of the tests (no shipped scene had arms before).
+#: The shipped whole wheels (problems/: a web wheel, a wheel on arms, an engine's disc on its hub) and two wheels
+#: of the tests (an engine's arms wheel, a disc under the stress criterion).
 SCENES = [
     ROOT / "problems" / "punch-press-wheel.toml",
+    ROOT / "problems" / "press-arms-wheel.toml",
+    ROOT / "problems" / "four-cylinder-engine.toml",
     ROOT / "tests" / "data" / "wheels" / "engine-rim_arms.toml",
     ROOT / "tests" / "data" / "wheels" / "engine-disc.toml",
 ]
 
 MODES = {
+    "no castability": {"round_to": 0.0, "fem_check": False, "castability": Overrides(process="none")},
     "continuous": {"round_to": 0.0, "fem_check": False},
     "rounded": {"fem_check": False},
     "rounded + FE": {},
@@ -96,7 +103,7 @@ def main():
             )
     load_after = load_average()
     lines = [
-        "# What making a wheel costs: rounding, the FE check, the FE acceptance",
+        "# What making a wheel costs: castability, rounding, the FE check, the FE acceptance",
         "",
         "`python benchmarks/bench_made.py` (benchmarks/bench_made.py: what each mode is). The design of the "
         "scene on one analysis (`flyopt.design_scene`), after a first one; medians of "

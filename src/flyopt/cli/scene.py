@@ -86,10 +86,17 @@ def run_solve(args: argparse.Namespace) -> int:
 
         text = solution_json(solution, args.scene, timings=args.timings)
     else:
-        from flyopt.report.text import analysis_report, design_report, flywheel_report, verification_report
+        from flyopt.report.text import (
+            analysis_report,
+            answer_report,
+            design_report,
+            flywheel_report,
+            verification_report,
+        )
 
         label = "δ reached by the flywheel" if solution.flywheel is not None else "allowed δ"
-        lines = [analysis_report(solution.analysis, args.scene, units=args.units, delta_label=label)]
+        answer = answer_report(solution, units=args.units)
+        lines = [analysis_report(solution.analysis, args.scene, units=args.units, delta_label=label, answer=answer)]
         if solution.flywheel is not None:
             lines += flywheel_report(solution.flywheel, units=args.units)
         if solution.design is not None:

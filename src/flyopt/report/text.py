@@ -40,12 +40,14 @@ if TYPE_CHECKING:
     from flyopt.machine.electric_drive import ReducedDrive
     from flyopt.machine.equivalents import PositionEquivalents
     from flyopt.machine.transmission import BranchFlow, PowerFlow
+    from flyopt.pipeline import Solution
     from flyopt.sizing.existing import FlywheelCheck
     from flyopt.sizing.operation import OperationResult
     from flyopt.sizing.periodic import Verification
 
 __all__ = [
     "analysis_report",
+    "answer_report",
     "castability_words",
     "design_report",
     "engine_report",
@@ -129,8 +131,107 @@ def no_flywheel_words(analysis: Analysis) -> tuple[str, str]:
     return "the machine's own inertia suffices (J_F would be", ")"
 
 
+def answer_report(solution: Solution, units: str = DEFAULT) -> list[str]:
+    """The answer first (issue 29): what to make, or what the machine needs, and whether it holds, in at most
+    six lines under the scene's title; the steps that give it follow (``units``: the unit system)."""
+    q, _n = formatters(units)
+    r, design = solution.analysis, solution.design
+    if solution.flywheel is not None:
+        check = solution.flywheel
+        verdict = ""
+        if check.delta_allowed is not None:
+            verdict = (
+                f": within the allowed {number(check.delta_allowed, 4)}"
+                if check.suffices
+                else f": the allowed {number(check.delta_allowed, 4)} is NOT held"
+            )
+        return [
+            f"Answer: the flywheel given ({q(check.flywheel.j_at_reference, 'j_at_reference')} at the reference "
+            f"shaft) leaves δ = {number(check.achieved_delta, 4)}{verdict}",
+            "",
+        ]
+    need = (
+        f"J_F {q(r.j_required, 'j_required', 4)} at the reference shaft"
+        if r.flywheel_needed
+        else "no flywheel: the machine's own inertia holds δ"
+    )
+    drive = solution.drive
+    if drive is not None:  # the drive designed with the flywheel: the motor, its ratio and the wheel
+        run = drive.best
+        if run is None:
+            return [f"Answer: no drive: {visible(drive.message)}", ""]
+        wheel = (
+            f"a flywheel of {q(run.j_flywheel, 'j_flywheel', 4)} ({q(run.wheel_mass, 'mass', 4)})"
+            if run.j_flywheel
+            else "no flywheel (the motor's slip holds δ)"
+        )
+        return [
+            f"Answer: motor {visible(run.motor.name)} at a ratio of {number(run.motor_ratio, 4)}, {wheel}; "
+            f"δ {number(run.delta, 4)} against the allowed {number(r.delta, 4)}",
+            "",
+        ]
+    best = design.best if design is not None else None
+    if design is None:
+        return [f"Answer: {need} (no [design]: the wheel is not sized)", ""]
+    if best is None:
+        return [
+            f"Answer: {need}" + ("" if design.status == "not_needed" else f"; no wheel: {visible(design.message)}"),
+            "",
+        ]
+    shape = {
+        Geometry.DISC: "disc",
+        Geometry.RIM_WEB: "wheel with a web",
+        Geometry.RIM_ARMS: f"wheel on {best.n_arms} arms",
+    }.get(Geometry(best.geometry), "rim")
+    shaft = visible(best.shaft)
+    lines = [
+        f"Answer: {design.material_name(best.material)} {shape}, {q(best.mass, 'mass', 4)}, on the {shaft}"
+        + ("" if shaft.lower().endswith("shaft") else " shaft")
+    ]
+    d = best.dims
+    if best.geometry == Geometry.DISC:
+        size = f"D {q(d.d_outer, 'd_outer', 4)}, B {q(d.b, 'b', 4)}"
+        if best.bore:
+            size += f", bore {q(best.bore, 'bore', 4)}"
+        if d.d_hub:
+            size += f", hub {q(d.d_hub, 'd_hub', 4)} x {q(d.l_hub, 'l_hub', 4)}"
+    else:
+        size = f"D {q(d.d_outer, 'd_outer', 4)}, rim H {q(d.h, 'h', 4)} x B {q(d.b, 'b', 4)}"
+        if d.t_web:
+            size += f", web {q(d.t_web, 't_web', 4)}"
+        if d.d_hub:
+            size += f", hub {q(d.d_hub, 'd_hub', 4)} x {q(d.l_hub, 'l_hub', 4)}"
+        if best.bore:
+            size += f", bore {q(best.bore, 'bore', 4)}"
+    lines.append(f"    size    {size}")
+    lines.append(
+        f"    J       {q(best.j_flywheel, 'j_flywheel', 4)} on its shaft, {q(best.j_at_reference, 'j_at_reference', 4)}"
+        f" at the reference shaft (needed {q(r.j_required, 'j_required', 4)})"
+    )
+    limits = f"rim speed {q(best.stresses.rim_speed, 'rim_speed', 4)} of {q(best.limits.rim_speed_limit, 'rim_speed_limit', 4)}"
+    parts = [p for p in (best.stresses.stress or {}).get("parts", []) if p.get("allowable")]
+    if parts:
+        worst = max(parts, key=lambda p: p["stress"] / p["allowable"])
+        limits += (
+            f"; {worst['part']} stress {q(worst['stress'], 'stress', 4)} of {q(worst['allowable'], 'allowable', 4)}"
+        )
+    lines.append(f"    limits  {limits}")
+    v = solution.verification
+    held = (
+        f"δ {number(v.achieved_delta, 4)} by the periodic simulation ({'FLAGGED' if v.flagged else 'holds'})"
+        if v is not None
+        else "held by the inertia"
+    )
+    lines.append(f"    δ       allowed {number(r.delta, 4)}; {held}")
+    return [*lines, ""]
+
+
 def analysis_report(
-    result: Analysis, source: str | None = None, units: str = DEFAULT, delta_label: str = "allowed δ"
+    result: Analysis,
+    source: str | None = None,
+    units: str = DEFAULT,
+    delta_label: str = "allowed δ",
+    answer: Sequence[str] = (),
 ) -> str:
     """The report of ``flyopt solve`` for the cycle analysis, as text.
 
@@ -143,10 +244,17 @@ def analysis_report(
         The unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
     delta_label : str
         What the analysis' δ is: the allowed one, or the δ a [flywheel] that exists reaches.
+    answer : sequence of str
+        The answer's lines (:func:`answer_report`), put under the title, before the steps.
     """
     r = result
     q, n = formatters(units)
-    lines = [visible(r.title) + (f"  ({visible(source)})" if source else ""), f"model: {r.model}: {r.model_reason}", ""]
+    lines = [
+        visible(r.title) + (f"  ({visible(source)})" if source else ""),
+        *answer,
+        f"model: {r.model}: {r.model_reason}",
+        "",
+    ]
     facts = [
         ("mean speed", q(r.omega_mean, "omega_mean")),
         (delta_label, f"{number(r.delta)} (1/{number(1 / r.delta, 4)})"),
