@@ -391,19 +391,22 @@ def process_of_design(design: Any) -> str | None:
     return process_of(design.material)
 
 
-def fillet_radius(finish: Finishing, thin: float, length: float, step: float, cast_wall: bool = True) -> float:
-    """The fillet [m] where a part of thickness ``thin`` meets a thicker one, the one rule of the FE check
-    (:func:`flyopt.design.fem.section`) and the drawing (:func:`flyopt.outputs.drawing.drawing_of`).
+#: Two parts whose thicknesses differ by less than this, relatively, are one section: no corner, no fillet
+#: (an NLP's equal-thickness web and rim differ in the eighth digit).
+SAME_THICKNESS = 1e-6
+
+
+def fillet_radius(finish: Finishing, t_a: float, t_b: float, length: float, cast_wall: bool = True) -> float:
+    """The fillet [m] where parts of thicknesses ``t_a`` and ``t_b`` meet, the one rule of the FE check
+    (:func:`flyopt.design.fem.section`) and the drawing (:func:`flyopt.outputs.drawing.finish_of`).
 
     Parameters
     ----------
     finish : Finishing
-    thin : float
-        The thinner part's (full) thickness at the junction [m].
+    t_a, t_b : float
+        The two parts' (full) thicknesses at the junction [m].
     length : float
         The thinner part's free length from this junction to its other end [m] (its fillet there shares it).
-    step : float
-        The difference of the two parts' thicknesses [m] (the step is half of it on each side).
     cast_wall : bool
         False for a model's section that is no wall of the casting (the FE's equivalent web of the arms):
         the ratio applies, the process's minimum does not.
@@ -411,20 +414,20 @@ def fillet_radius(finish: Finishing, thin: float, length: float, step: float, ca
     Returns
     -------
     float
-        r = max(ratio x thin, min_fillet), at most half of ``length`` and half the step on one side
-        (``step`` / 4); 0 where the parts are as thick.
+        r = max(ratio x thinner, min_fillet), at most half of ``length`` and half the step on one side
+        (|t_a - t_b| / 4); 0 where the parts are as thick (to :data:`SAME_THICKNESS`).
 
     Notes
     -----
     The ratio and the minimum are data (castability.toml, ``[fillet]`` and each process's ``min_fillet``),
     with their sources.
     """
-    if step <= 0.0:
+    if math.isclose(t_a, t_b, rel_tol=SAME_THICKNESS):
         return 0.0
-    radius = finish.fillet_ratio * thin
+    radius = finish.fillet_ratio * min(t_a, t_b)
     if cast_wall:
         radius = max(radius, finish.min_fillet)
-    return min(radius, 0.5 * length, 0.5 * step / 2.0)
+    return min(radius, 0.5 * length, 0.5 * abs(t_a - t_b) / 2.0)
 
 
 def chamfer_size(diameter: float, face: float) -> float:

@@ -111,7 +111,7 @@ GROWTH = 0.25
 
 #: Two steps whose thicknesses differ by less than this, relatively, are one section (no corner, no fillet):
 #: the NLP's solution of an equal-thickness web and rim differs in the eighth digit.
-SAME_THICKNESS = 1e-6
+SAME_THICKNESS = castability.SAME_THICKNESS
 
 #: The junction zone: points within this many (fillet radius + thinner thickness) of the corner.
 ZONE = 1.5
@@ -228,9 +228,9 @@ def section(design: Design, fillet: float | None = None) -> Section:
         fillets.append(
             castability.fillet_radius(
                 finish,
-                min(thicknesses[k - 1], thicknesses[k]),
+                thicknesses[k - 1],
+                thicknesses[k],
                 radii[k_thin + 1] - radii[k_thin],
-                abs(thicknesses[k - 1] - thicknesses[k]),
                 # the arms' equivalent web is no wall of the casting: no foundry minimum on it (a given radius holds)
                 cast_wall=fillet is not None or names[k_thin] != "arms",
             )
