@@ -446,7 +446,7 @@ def finish_of(design: Candidate) -> Finish:
         wall = min(r_h - r_b, l_hub)
         chamfers["hub"] = 1e3 * castability.chamfer_size(2e-3 * r_h, 1e-3 * wall)
         chamfers["bore"] = 1e3 * castability.chamfer_size(2e-3 * r_b, 1e-3 * wall)
-    elif blocks[0][1] > 0:  # a bored disc
+    elif blocks[0][0] == "disc" and blocks[0][1] > 0:  # a bored disc
         chamfers["bore"] = 1e3 * castability.chamfer_size(
             2e-3 * blocks[0][1], 1e-3 * min(blocks[0][3], r_o - blocks[0][1])
         )
@@ -457,8 +457,8 @@ def finish_of(design: Candidate) -> Finish:
         rules.fillet_ratio,
         rules.min_fillet * 1e3,
         rules.draft,
-        rules.machined_ra * 1e6,
-        rules.bore_ra * 1e6,
+        round(rules.machined_ra * 1e6, 6),
+        round(rules.bore_ra * 1e6, 6),
     )
 
 
@@ -600,7 +600,7 @@ def _section_shapes(blocks, arms, t2, finish):
     """The section's outlines [model mm]: (path, closed, hatched) of each cut face's upper and lower half
     (fillets at the re-entrant junctions, chamfers on the machined edges) and the uncut arms' edges."""
     r_o = blocks[-1][2]
-    r_bore = blocks[0][1]
+    r_bore = blocks[0][1] if blocks[0][0] in ("hub", "disc") else 0.0  # a bare rim's inside is no bore
     hub = blocks[0] if blocks[0][0] == "hub" else None
     b_out = blocks[-1][3]
     fillet_at = {}  # the radius of a junction by the radius it is at
@@ -880,7 +880,7 @@ def _detail_items(blocks, arms, finish):
     if hub:
         _n, r_b, r_h, l_hub = hub
         f_hub = finish.fillets.get("hub-arms" if arms else "hub-web", 0.0)
-        stub = max(f_hub, 0.0) + 0.5 * (r_h - r_b)
+        stub = 1.6 * f_hub + 0.2 * (r_h - r_b)  # the web or arm below the hub: its fillet and a little more
         fillets = [("fillet_hub", "fillet, hub to " + ("arm" if arms else "web"), (thin / 2.0, -r_h), (1, -1), f_hub)]
         chamfers = [
             ("chamfer_hub", "chamfer, hub's ends", (l_hub / 2.0, -r_h), (1, -1), finish.chamfers.get("hub", 0.0)),
@@ -897,7 +897,7 @@ def _detail_items(blocks, arms, finish):
             ((l_hub / 4.0, -r_b), (0, 1), finish.bore_ra),
         ]
         out.append(("B", (-l_hub / 2.0, -(r_h + stub), l_hub / 2.0, -r_b), fillets, chamfers, textures))
-    elif blocks[0][0] == "disc" and blocks[0][1] > 0:
+    elif blocks[0][0] == "disc" and blocks[0][1] > 0:  # a bored disc
         _n, r_b, _r1, w = blocks[0]
         depth = min(3.0 * w, r_o - r_b)
         chamfers = [
@@ -908,7 +908,7 @@ def _detail_items(blocks, arms, finish):
     f_rim = finish.fillets.get("arms-rim" if arms else "web-rim", 0.0)
     r_in = rim[1]
     depth = (rim[2] - rim[1]) if rim[0] == "rim" else min(3.0 * rim[3], r_o - r_in)
-    low = r_o - depth - ((max(f_rim, 0.0) + 0.5 * depth) if thin and rim[0] == "rim" else 0.0)
+    low = r_o - depth - ((1.6 * f_rim + 0.3 * depth) if thin and rim[0] == "rim" else 0.0)
     fillets = (
         [("fillet_rim", "fillet, rim to " + ("arm" if arms else "web"), (thin / 2.0, r_in), (1, -1), f_rim)]
         if thin
@@ -930,19 +930,19 @@ def _details(k, shapes, blocks, arms, finish, region):
     items = _detail_items(blocks, arms, finish)
     x0, y0, x1, y1 = region
     share = (x1 - x0) / len(items)
-    pad = k.p(11.0)
+    pad, pad_v = k.p(10.0), k.p(8.0)  # room for the leaders' texts beside and the symbols above and below
     drawn = []
     for index, (letter, core, fillets, chamfers, textures) in enumerate(items):
         width, height = core[2] - core[0], core[3] - core[1]
-        room_w, room_h = share - 2 * pad, (y1 - y0) - 2 * pad - k.p(6.0)
+        room_w, room_h = share - 2 * pad, (y1 - y0) - 2 * pad_v - k.p(6.0)
         factor = next(
             (m / k.scale for m in DETAIL_SCALES if width * m / k.scale <= room_w and height * m / k.scale <= room_h),
             None,
         )
         if factor is None or factor < 1.5:
             continue  # no room, or the section shows it as large already
-        margin = pad / factor
-        window = (core[0] - margin, core[1] - margin, core[2] + margin, core[3] + margin)
+        mx, my = pad / factor, pad_v / factor
+        window = (core[0] - mx, core[1] - my, core[2] + mx, core[3] + my)
         centre = (x0 + share * (index + 0.5), y0 + 0.5 * (y1 - y0 - k.p(6.0)))
         detail = _Detail(letter, window, centre, factor, core)
         _draw_detail(k, detail, shapes)
@@ -1381,22 +1381,21 @@ def _notes(design, arms, t2, finish, details):
     fillets = sorted({f for f in finish.fillets.values() if f > 0})
     if fillets:
         notes.append(
-            f"Fillets {', '.join('R' + size_text(f) for f in fillets)} at the junctions{where}: "
-            f"{finish_rule(finish)}; the FE check rounds its junctions by the same rule."
+            f"Fillets {', '.join('R' + size_text(f) for f in fillets)}{where}: {finish_rule(finish)} "
+            "(the FE check's rule)."
         )
     chamfers = sorted({c for c in finish.chamfers.values() if c > 0})
     if chamfers:
-        notes.append(f"Chamfers {', '.join(size_text(c) + ' × 45°' for c in chamfers)} on the machined edges{where}.")
+        notes.append(f"Chamfers {', '.join(size_text(c) + ' × 45°' for c in chamfers)}{where}.")
     drafted, machined = _faces(design)
     bore = f"; the bore Ra {finish.bore_ra:g} µm" if design.bore else ""
     if finish.draft is not None and drafted:
         notes.append(
-            f"Cast faces: draft {finish.draft:g}° on the faces parallel to the axis ({', '.join(drafted)}), added to "
-            "the material, not in the mass and J above; no draft on the machined faces."
+            f"Draft {finish.draft:g}° on the cast faces parallel to the axis ({', '.join(drafted)}), added to the "
+            "material (not in the mass and J); none on machined faces."
         )
         notes.append(
-            f"Machined ▽ (ISO 1302, material removed): {', '.join(machined)} Ra {finish.machined_ra:g} µm{bore}; "
-            "other faces as cast."
+            f"Machined ▽ (ISO 1302): {', '.join(machined)} Ra {finish.machined_ra:g} µm{bore}; other faces as cast."
         )
     else:
         why = {
@@ -1404,7 +1403,7 @@ def _notes(design, arms, t2, finish, details):
             "machined": "no draft (not cast)",
         }.get(finish.process, f"the casting's draft ({finish.draft:g}°) is turned off")
         notes.append(f"Machined all over ▽ (ISO 1302, material removed) Ra {finish.machined_ra:g} µm{bore}; {why}.")
-    notes.append("The STEP solid of this wheel has sharp edges: no fillets, chamfers or draft.")
+    notes.append("The STEP solid has sharp edges: no fillets, chamfers or draft.")
     return notes
 
 
@@ -1413,17 +1412,17 @@ def _faces(design):
     hub = design.geometry in (Geometry.RIM_WEB, Geometry.RIM_ARMS) and bool(design.bore)
     if design.geometry == Geometry.DISC:
         return [], ["all"]
-    drafted = ["the rim's inner face"] + (["the hub's outer face"] if hub else [])
-    machined = ["the rim's outside and faces"] + (["the hub's ends"] if hub else [])
+    drafted = ["rim inside"] + (["hub outside"] if hub else [])
+    machined = ["rim outside and faces"] + (["hub ends"] if hub else [])
     return drafted, machined
 
 
 def finish_rule(finish: Finish) -> str:
     """The fillet rule in words, as the drawing's note gives it: "r = 0.5 × the thinner part, at least R3"."""
-    out = f"r = {finish.ratio:g} × the thinner part"
+    out = f"{finish.ratio:g} × the thinner part"
     if finish.min_fillet:
         out += f", at least R{size_text(finish.min_fillet)}"
-    return out + ", at most half the step and half the thinner part's length"
+    return out + ", at most half the step"
 
 
 # ---------------------------------------------------------------------------
