@@ -385,7 +385,7 @@ def finishing(process: str | None) -> Finishing:
 def process_of_design(design: Any) -> str | None:
     """The process a designed wheel is made by: the one its castability record names (the rules it was
     designed to), else its material's (:func:`process_of`); None where neither is known."""
-    record = getattr(design, "castability", None)
+    record = getattr(getattr(design, "limits", None), "castability", None)
     if record and record.get("process") in processes():
         return str(record["process"])
     return process_of(design.material)
