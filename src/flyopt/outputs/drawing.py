@@ -467,7 +467,7 @@ _EPS = 1e-9
 
 def _clean(points):
     """A closed polygon without repeated points and without vertices on a straight run."""
-    pts = []
+    pts: list[tuple[float, float]] = []
     for p in points:
         if not pts or math.dist(p, pts[-1]) > _EPS:
             pts.append(p)
@@ -550,7 +550,7 @@ def _arc_points(item, n=8):
 
 def _polygon(path):
     """The outline as a polygon (arcs as chords) for its hatch, in path order."""
-    out = []
+    out: list[tuple[float, float]] = []
     for item in path:
         if item[0] == "line":
             pts = [item[1], item[2]]
@@ -876,12 +876,13 @@ def _detail_items(blocks, arms, finish):
     rim = blocks[-1]
     b_half = rim[3] / 2.0
     hub = blocks[0] if blocks[0][0] == "hub" else None
-    thin = arms[3] if arms else next((w for name, _r0, _r1, w in blocks if name == "web"), None)
+    thin = arms[3] if arms else next((w for name, _r0, _r1, w in blocks if name == "web"), 0.0)  # 0: none
     if hub:
         _n, r_b, r_h, l_hub = hub
         f_hub = finish.fillets.get("hub-arms" if arms else "hub-web", 0.0)
         stub = 1.6 * f_hub + 0.2 * (r_h - r_b)  # the web or arm below the hub: its fillet and a little more
         fillets = [("fillet_hub", "fillet, hub to " + ("arm" if arms else "web"), (thin / 2.0, -r_h), (1, -1), f_hub)]
+        fillets = fillets if thin else []
         chamfers = [
             ("chamfer_hub", "chamfer, hub's ends", (l_hub / 2.0, -r_h), (1, -1), finish.chamfers.get("hub", 0.0)),
             (
