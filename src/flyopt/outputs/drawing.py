@@ -900,7 +900,7 @@ def _detail_items(blocks, arms, finish):
         out.append(("B", (-l_hub / 2.0, -(r_h + stub), l_hub / 2.0, -r_b), fillets, chamfers, textures))
     elif blocks[0][0] == "disc" and blocks[0][1] > 0:  # a bored disc
         _n, r_b, _r1, w = blocks[0]
-        depth = min(3.0 * w, r_o - r_b)
+        depth = min(2.0 * w, r_o - r_b)
         chamfers = [
             ("chamfer_bore", "chamfer, the bore's entry", (-w / 2.0, -r_b), (-1, 1), finish.chamfers.get("bore", 0.0))
         ]
@@ -908,7 +908,7 @@ def _detail_items(blocks, arms, finish):
         out.append(("B", (-w / 2.0, -(r_b + depth), w / 2.0, -r_b), [], chamfers, textures))
     f_rim = finish.fillets.get("arms-rim" if arms else "web-rim", 0.0)
     r_in = rim[1]
-    depth = (rim[2] - rim[1]) if rim[0] == "rim" else min(3.0 * rim[3], r_o - r_in)
+    depth = (rim[2] - rim[1]) if rim[0] == "rim" else min(2.0 * rim[3], r_o - r_in)
     low = r_o - depth - ((1.6 * f_rim + 0.3 * depth) if thin and rim[0] == "rim" else 0.0)
     fillets = (
         [("fillet_rim", "fillet, rim to " + ("arm" if arms else "web"), (thin / 2.0, r_in), (1, -1), f_rim)]
