@@ -20,6 +20,15 @@ its ISO 286 H7 limits (:func:`flyopt.design.fits.hole_tolerance`) and the
 hub's keyway (DIN 6885-1: width b JS9 and depth d + t2, the standard's way
 of giving the hub's keyway depth). The rim's radial thickness H follows from
 two diameters and is not dimensioned again.
+
+The finish (:func:`finish_of`, every number by the one rule of
+:mod:`flyopt.design.castability`): a fillet at each re-entrant junction of the
+section (the FE check's rule and radii), a 45 degree chamfer on each machined
+edge, the draft of the cast faces and the machined faces' texture. Section
+A-A draws them at its scale; details B (the hub) and C (the rim), enlarged
+below the views where the sheet has room, carry their dimensions (radius
+dimensions, chamfer leaders) and ISO 1302 texture symbols; the notes say the
+rule, the draft and that the STEP solid stays sharp-edged.
 """
 
 from __future__ import annotations
@@ -1447,12 +1456,14 @@ XDATA_APP = "FLYOPT"
 def write_dxf(drawing: Drawing, path: str | os.PathLike[str]) -> None:
     """Write ``drawing`` as a DXF (R2013, mm) to ``path``, atomically.
 
-    Layers :data:`LAYERS`; outlines as LWPOLYLINEs, ARCs and CIRCLEs; cut
-    faces as HATCH entities (ANSI31, 3 mm apart on paper); every dimension
-    a real DIMENSION entity (linear or diameter) whose measurement is the
-    design's size, with its ISO 286 limits as the dimension's tolerance and,
-    as XDATA of application ``FLYOPT``, the name of what it measures; texts
-    as TEXT. Model space is true size; text heights and arrows are in model
+    Layers :data:`LAYERS`; outlines as LWPOLYLINEs, ARCs (the fillets) and
+    CIRCLEs; cut faces as HATCH entities (ANSI31, 3 mm apart on paper); every
+    dimension a real DIMENSION entity (linear, diameter, or radius for a
+    fillet) whose measurement is the design's size (in a detail, times its
+    enlargement, with DIMLFAC its inverse so that the text is true), with its
+    ISO 286 limits as the dimension's tolerance and, as XDATA of application
+    ``FLYOPT``, the name of what it measures; a chamfer as a LEADER (XDATA: its
+    name and size [mm]) with its "1.6 × 45°" as TEXT; texts as TEXT. Model space is true size; text heights and arrows are in model
     units, the inverse of the drawing's scale times their paper size, so they
     plot at their paper size when model space is plotted at the drawing's scale.
 
