@@ -445,7 +445,12 @@ def finish_of(design: Candidate) -> Finish:
     if arms:  # the arm's section as the section shows it: its minor axis across the wheel
         r0, r1, _major, minor = arms
         for name, part in (("hub-arms", blocks[0]), ("arms-rim", blocks[-1])):
-            fillets[name] = 1e3 * castability.fillet_radius(rules, minor * 1e-3, part[3] * 1e-3, (r1 - r0) * 1e-3)
+            # an arm as wide as the part or wider makes no re-entrant corner with it
+            fillets[name] = (
+                1e3 * castability.fillet_radius(rules, minor * 1e-3, part[3] * 1e-3, (r1 - r0) * 1e-3)
+                if minor < part[3]
+                else 0.0
+            )
     chamfers: dict[str, float] = {}
     outer = blocks[-1]
     r_o = outer[2]
