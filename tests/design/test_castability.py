@@ -264,3 +264,45 @@ def test_punch_press_wheel_is_castable_by_the_rules():
     omega = 2.0 * best.stresses.rim_speed / d.d_outer  # the wheel's top speed on its shaft
     checked = strength.check_wheel(material, "rim_web", d.wheel(bore=bore), omega, best.parts.key["torque"], 5.0)
     assert all(p.stress <= p.allowable * (1 + 1e-9) for p in checked.parts)
+
+
+# ------------------------------------------------------------------ finishing: fillets, draft, chamfers
+
+
+def test_every_finishing_number_cites_its_source():
+    for table in ("fillet", "chamfer", "finish"):
+        assert len(DATA[table]["source"].strip()) > 80, table
+    for name, table in DATA["process"].items():
+        assert len(table["finishing_source"].strip()) > 80, name
+        if name == "machined":
+            assert "draft" not in table  # not cast: no pattern drawn from a mould
+        else:
+            assert 1.0 <= table["draft"] <= 2.0, name  # the foundry guides' 1-2 degrees
+            assert table["min_fillet"] == 0.003, name  # the low end of sand-cast fillets, 3-25 mm
+    rows = DATA["chamfer"]["table"]
+    assert all(d1 > d0 and c1 >= c0 for (d0, c0), (d1, c1) in zip(rows, rows[1:]))
+
+
+@pytest.mark.parametrize(
+    "t_a, t_b, length, cast_wall, want",
+    [
+        (0.011, 0.066, 0.26, True, 0.0055),  # punch-press-wheel's web into its hub: 0.5 x 11 mm
+        (0.011, 0.013, 0.26, True, 0.0005),  # its web into its rim: a 1 mm step each side, half of it
+        (0.004, 0.030, 0.26, True, 0.003),  # a 4 mm web: 2 mm by the ratio, the sand-cast minimum 3 mm
+        (0.004, 0.030, 0.26, False, 0.002),  # the FE's equivalent web of arms: the ratio alone
+        (0.020, 0.100, 0.012, True, 0.006),  # a short thin part: half its length
+        (0.011, 0.011 * (1 + 1e-9), 0.26, True, 0.0),  # as thick: no corner
+    ],
+)
+def test_fillet_radius_by_hand(t_a, t_b, length, cast_wall, want):
+    """The rule of castability.toml worked by hand for a grey-iron wheel: r = 0.5 x the thinner part, at
+    least 3 mm on a wall of the casting, at most half the thinner part's length and a quarter of the step."""
+    finish = castability.finishing("green_sand_grey_iron")
+    assert castability.fillet_radius(finish, t_a, t_b, length, cast_wall) == pytest.approx(want, rel=1e-12, abs=1e-15)
+
+
+def test_finishing_of_an_unknown_process_is_the_common_rule_alone():
+    finish = castability.finishing(None)
+    assert (finish.process, finish.min_fillet, finish.draft) == (None, 0.0, None)
+    assert finish.fillet_ratio == DATA["fillet"]["ratio"] == 0.5
+    assert castability.finishing("machined").min_fillet == 0.0008 and castability.finishing("machined").draft is None

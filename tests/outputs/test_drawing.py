@@ -50,6 +50,58 @@ def drawn():
     return {case: drawing_of_scene(_scene(*args), DATE) for case, args in CASES.items()}
 
 
+#: castability.toml read by the test itself: the fillet ratio, each process's smallest fillet, the chamfer table.
+FINISH = tomllib.loads(
+    __import__("importlib.resources").resources.files("flyopt").joinpath("data", "castability.toml").read_text("utf-8")
+)
+
+
+def fillets_expected(design):
+    """The fillet radius at each junction [mm], from the Design's dimensions and the data file's rule:
+    r = ratio x the thinner part (ratio 0.5, the cited range's), at least the process's smallest,
+    at most half the thinner part's length and a quarter of the thickness step."""
+    d = design.dims
+    process = design.limits.castability["process"] if design.limits.castability else None
+    ratio = FINISH["fillet"]["ratio"]
+    smallest = FINISH["process"].get(process, {}).get("min_fillet", 0.0)
+
+    def rule(t_a, t_b, length):
+        if math.isclose(t_a, t_b, rel_tol=1e-6):
+            return 0.0
+        return 1e3 * min(max(ratio * min(t_a, t_b), smallest), length / 2.0, abs(t_a - t_b) / 4.0)
+
+    if design.geometry == "rim_web":
+        out = {"fillet_rim": rule(d.t_web, d.b, d.d_inner / 2 - d.d_hub / 2)}
+        out["fillet_hub"] = rule(d.t_web, d.l_hub, d.d_inner / 2 - d.d_hub / 2)
+    elif design.geometry == "rim_arms":
+        out = {"fillet_rim": rule(d.arm_minor, d.b, d.d_inner / 2 - d.d_hub / 2)}
+        out["fillet_hub"] = rule(d.arm_minor, d.l_hub, d.d_inner / 2 - d.d_hub / 2)
+    else:
+        out = {}
+    return {name: r for name, r in out.items() if r > 0}
+
+
+def chamfers_expected(design):
+    """The 45-degree chamfer of each machined edge [mm]: the table's C for the edge's diameter, at most a
+    tenth of the shorter face, rounded down to a row (castability.toml [chamfer], read here)."""
+    d = design.dims
+    rows = FINISH["chamfer"]["table"]
+    cap = FINISH["chamfer"]["face_fraction"]
+
+    def size(diameter, face):
+        by_size = next((c for top, c in rows if diameter <= top), rows[-1][1])
+        return 1e3 * max([c for _, c in rows if c <= min(by_size, cap * face) + 1e-12] or [rows[0][1]])
+
+    if design.geometry == "disc":
+        out = {"chamfer_rim": size(d.d_outer, min(d.b, d.d_outer / 2 - (design.bore or 0) / 2))}
+    else:
+        out = {"chamfer_rim": size(d.d_outer, min(d.b, d.d_outer / 2 - d.d_inner / 2))}
+    if design.geometry in ("rim_web", "rim_arms") and design.bore:
+        wall = min(d.d_hub / 2 - design.bore / 2, d.l_hub)
+        out |= {"chamfer_hub": size(d.d_hub, wall), "chamfer_bore": size(design.bore, wall)}
+    return out
+
+
 def expected(design):
     """What each dimension must measure [mm], from the Design's own fields."""
     d, key = design.dims, design.parts.key
@@ -66,7 +118,7 @@ def expected(design):
         out["bore"] = design.bore
     if design.bore and key:
         out |= {"key_width": key["b"], "key_depth": design.bore + key["t2"]}
-    return {name: value * 1e3 for name, value in out.items()}
+    return {name: value * 1e3 for name, value in out.items()} | fillets_expected(design)
 
 
 def test_the_cases_are_the_geometries_they_claim(drawn):
@@ -91,12 +143,157 @@ def test_dxf_dimensions_are_the_designs(drawn, case, tmp_path):
         assert dim.dxf.layer == "DIMENSIONS"
         name = dim.get_xdata(XDATA_APP)[0].value
         assert name not in measured, name
-        measured[name] = dim.get_measurement()
-        assert dim.dxf.dimtype & 0x0F in (0, 3)  # real linear and diameter dimensions
+        # a detail's dimension measures its enlarged drawing; DIMLFAC gives the true size
+        measured[name] = dim.get_measurement() * dim.override().get("dimlfac", 1.0)
+        assert dim.dxf.dimtype & 0x0F in ((4,) if name.startswith("fillet") else (0, 3))  # linear, diameter, radius
     want = expected(design)
     assert measured.keys() == want.keys()
     for name, value in want.items():
         assert measured[name] == pytest.approx(value, rel=1e-9), name
+
+
+def _outline(doc, design):
+    """The section's outline in a DXF read back: its polylines' points and its arcs, each on layer OUTLINE
+    (the seen bore edge behind the keyway, a thin line, left out)."""
+    msp = doc.modelspace()
+    polylines = [
+        ([tuple(p) for p in e.get_points("xy")], e.closed)
+        for e in msp.query("LWPOLYLINE[layer=='OUTLINE']")
+        if e.dxf.get("lineweight", -1) != 25 and _in_section([tuple(p) for p in e.get_points("xy")], design)
+    ]
+    arcs = [a for a in msp.query("ARC[layer=='OUTLINE']") if _in_section([(a.dxf.center.x, a.dxf.center.y)], design)]
+    return polylines, arcs
+
+
+@pytest.mark.parametrize("case", ["rim_web", "rim_arms"])
+def test_dxf_fillets_are_arcs_of_the_rules_radius_at_each_junction(drawn, case, tmp_path):
+    """Section A-A: at each junction, on both sides and in both halves, an ARC on layer OUTLINE of the
+    radius the rule gives (computed here from the design's dimensions and the data file), centred one
+    radius off both faces it joins; its radius dimension in the detail says the same."""
+    from flyopt.outputs.drawing import write_dxf
+
+    drawing, design = drawn[case]
+    path = tmp_path / "wheel.dxf"
+    write_dxf(drawing, path)
+    doc = ezdxf.readfile(path)
+    _polylines, arcs = _outline(doc, design)
+    d = design.dims
+    thin = 1e3 * (d.t_web if case == "rim_web" else d.arm_minor)
+    want = fillets_expected(design)
+    assert want["fillet_hub"] == pytest.approx(5.5 if case == "rim_web" else 8.75, rel=1e-9)  # 0.5 x 11; 0.5 x 17.5
+    corners = {"fillet_hub": (1e3 * d.d_hub / 2, 1), "fillet_rim": (1e3 * d.d_inner / 2, -1)}
+    for name, radius in want.items():
+        r_corner, away = corners[name]
+        for sx in (1, -1):
+            for sy in (1, -1):
+                centre = (sx * (thin / 2 + radius), sy * (r_corner + away * radius))
+                found = [a for a in arcs if math.dist((a.dxf.center.x, a.dxf.center.y), centre) < 1e-6]
+                assert len(found) == 1, (name, sx, sy)
+                assert found[0].dxf.radius == pytest.approx(radius, rel=1e-9)
+                assert (found[0].dxf.end_angle - found[0].dxf.start_angle) % 360 == pytest.approx(90.0)
+    radii = {
+        dim.get_xdata("FLYOPT")[0].value: dim.get_measurement() * dim.override().get("dimlfac", 1.0)
+        for dim in doc.modelspace().query("DIMENSION")
+        if dim.dxf.dimtype & 0x0F == 4
+    }
+    assert radii == pytest.approx(want, rel=1e-9)
+
+
+def test_the_fe_check_rounds_its_junctions_as_the_drawing_does(drawn):
+    """One rule: the FE's section of the web wheel has the drawing's fillets at the same junctions."""
+    from flyopt.design import fem
+
+    _drawing, design = drawn["rim_web"]
+    sec = fem.section(design)
+    by_radius = {round(r * 1e3, 6): f * 1e3 for _k, r, _z, f, _side in sec.junctions()}
+    want = fillets_expected(design)
+    assert by_radius == pytest.approx(
+        {
+            round(design.dims.d_hub * 500, 6): want["fillet_hub"],
+            round(design.dims.d_inner * 500, 6): want["fillet_rim"],
+        },
+        rel=1e-9,
+    )
+
+
+@pytest.mark.parametrize("case", ["rim_web", "disc", "rim"])
+def test_dxf_section_outline_is_closed_and_chamfered(drawn, case, tmp_path):
+    """The cut faces' outlines read back from the DXF close (every end of a polyline or arc meets another's,
+    or the polyline is closed), and each machined edge carries a 45-degree chamfer of the table's size: a
+    segment from (x_face, r -+ c) to (x_face - c, r) (or its mirror) in the outline, and a leader saying it."""
+    from flyopt.outputs.drawing import write_dxf
+
+    drawing, design = drawn[case]
+    path = tmp_path / "wheel.dxf"
+    write_dxf(drawing, path)
+    doc = ezdxf.readfile(path)
+    polylines, arcs = _outline(doc, design)
+    ends = []
+    for points, closed in polylines:
+        if not closed:
+            ends += [points[0], points[-1]]
+    for arc in arcs:
+        ends += [(arc.start_point.x, arc.start_point.y), (arc.end_point.x, arc.end_point.y)]
+    for end in ends:
+        assert sum(math.dist(end, other) < 1e-6 for other in ends) == 2, end  # itself and one other
+    segments = [(a, b) for points, closed in polylines for a, b in zip(points, points[1:] + points[:1] * closed)]
+    want = chamfers_expected(design)
+    d = design.dims
+    r_o, half = d.d_outer * 500, d.b * 500
+    edges = {"chamfer_rim": [(sx * half, sy * r_o) for sx in (1, -1) for sy in (1, -1)]}
+    if "chamfer_hub" in want:
+        edges["chamfer_hub"] = [(sx * d.l_hub * 500, sy * d.d_hub * 500) for sx in (1, -1) for sy in (1, -1)]
+        edges["chamfer_bore"] = [(sx * d.l_hub * 500, -design.bore * 500) for sx in (1, -1)]  # the keyway's half: none
+    for name, corners in edges.items():
+        c = want[name]
+        inward = 1.0 if name == "chamfer_bore" else -1.0  # the end face runs from the bore away from the axis
+        for x, y in corners:
+            ends_at = {((x - math.copysign(c, x)), y), (x, y + inward * math.copysign(c, y))}
+            assert any(
+                {(round(a[0], 6), round(a[1], 6)), (round(b[0], 6), round(b[1], 6))}
+                == {(round(p[0], 6), round(p[1], 6)) for p in ends_at}
+                for a, b in segments
+            ), (name, x, y, c)
+    said = {
+        leader.get_xdata("FLYOPT")[0].value: leader.get_xdata("FLYOPT")[1].value
+        for leader in doc.modelspace().query("LEADER")
+    }
+    assert said == pytest.approx(want, rel=1e-12)
+    assert all(leader.dxf.layer == "DIMENSIONS" for leader in doc.modelspace().query("LEADER"))
+
+
+def test_chamfers_follow_the_table_by_hand():
+    """castability.chamfer_size against the table read by hand: the punch-press wheel's 657 mm rim (13 mm
+    wide, 25 mm deep) gets GB/T 6403.4's C10 for 630-800 mm, cut to a tenth of 13 mm: 1.3, down to the row
+    1.0; its 55 mm bore in a hub of 16.5 mm wall: C2 for 50-80 mm, cut to 1.65, down to 1.6."""
+    from flyopt.design import castability
+
+    assert castability.chamfer_size(0.657, 0.013) == pytest.approx(0.001, rel=1e-12)
+    assert castability.chamfer_size(0.055, 0.0165) == pytest.approx(0.0016, rel=1e-12)
+    assert castability.chamfer_size(0.055, 1.0) == pytest.approx(0.002, rel=1e-12)  # the table alone
+    assert castability.chamfer_size(5.0, 1.0) == pytest.approx(0.025, rel=1e-12)  # beyond the table: its last row
+
+
+def test_the_notes_give_the_finish(drawn):
+    """The notes name the fillet radii, the chamfers, the cast faces' draft of the process, the machined
+    faces' texture and the sharp STEP solid; the old 'not given' note is gone."""
+    drawing, design = drawn["rim_web"]
+    notes = " ".join(t.text for t in drawing.texts if t.layer == "TITLE")
+    draft = FINISH["process"][design.limits.castability["process"]]["draft"]
+    assert 1.0 <= draft <= 2.0  # the foundry guides' range
+    for words in (
+        "Fillets R0.5, R5.5",
+        "at least R3",
+        "Chamfers 1 × 45°, 1.6 × 45°",
+        f"Draft {draft:g}°",
+        "Ra 3.2 µm",
+        "bore Ra 1.6 µm",
+        "sharp edges",
+    ):
+        assert words in notes, words
+    assert "not given by this design" not in notes
+    texts = {t.text for t in drawing.texts}
+    assert {"DETAIL B  1:1", "DETAIL C  1:1"} <= texts
 
 
 def test_dxf_layers_hatches_and_the_bores_tolerance(drawn, tmp_path):
@@ -111,8 +308,8 @@ def test_dxf_layers_hatches_and_the_bores_tolerance(drawn, tmp_path):
     msp = doc.modelspace()
     used = {e.dxf.layer for e in msp}
     assert set(LAYERS) <= used  # every layer holds something
-    hatches = msp.query("HATCH")
-    assert len(hatches) == 2 and all(h.dxf.layer == "HATCH" for h in hatches)  # the two halves of the section
+    hatches = [h for h in msp.query("HATCH") if _in_section(h.paths[0].vertices, design)]
+    assert len(hatches) == 2 and all(h.dxf.layer == "HATCH" for h in msp.query("HATCH"))  # the section's two halves
     bore = next(d for d in msp.query("DIMENSION") if d.get_xdata("FLYOPT")[0].value == "bore")
     style = bore.override()
     h7 = hole_tolerance(design.bore, "H7")
@@ -148,6 +345,13 @@ def test_dxf_title_block_says_what_and_whence(drawn, tmp_path):
         assert words in texts, words
 
 
+def _in_section(points, design):
+    """Whether points [mm] lie in section A-A (centred on x = 0, the axis on y = 0), not in a detail."""
+    d = design.dims
+    half = 0.5e3 * max(d.b, d.l_hub or 0.0, d.t_web or 0.0) + 1e-6
+    return all(abs(p[0]) <= half and abs(p[1]) <= d.d_outer * 500 + 1e-6 for p in points)
+
+
 def test_the_part_names_are_words(drawn):
     for case, words in (
         ("rim_web", {"Rim", "Web", "Hub", "Bore (shaft seat)"}),
@@ -167,8 +371,9 @@ def test_the_keyway_is_cut_in_the_section(drawn, case):
     # an arms wheel's rim (a face of its own) is not cut
     drawing, design = drawn[case]
     r_bore, t2 = design.bore * 500, design.parts.key["t2"] * 1e3
-    lows = sorted({min(y for _x, y in h.boundary) for h in drawing.hatches if min(y for _x, y in h.boundary) > 0})
-    highs = sorted({max(y for _x, y in h.boundary) for h in drawing.hatches if max(y for _x, y in h.boundary) < 0})
+    cut = [h for h in drawing.hatches if _in_section(h.boundary, design)]  # not the details' enlarged copies
+    lows = sorted({min(y for _x, y in h.boundary) for h in cut if min(y for _x, y in h.boundary) > 0})
+    highs = sorted({max(y for _x, y in h.boundary) for h in cut if max(y for _x, y in h.boundary) < 0})
     if case == "rim_web":
         assert lows == [pytest.approx(r_bore + t2, rel=1e-12)]
         assert highs == [pytest.approx(-r_bore, rel=1e-12)]
@@ -188,7 +393,7 @@ def test_dimension_texts_do_not_overlap(drawn):
             if dim.vertical:
                 w, h = h, w
             x, y = dim.text_at
-            if dim.kind == "diameter":  # left-aligned from its point
+            if dim.kind in ("diameter", "radius", "chamfer"):  # left-aligned from its point
                 x += w / 2
             boxes.append((dim.name, x - w / 2, x + w / 2, y - h / 2, y + h / 2))
         for i, a in enumerate(boxes):
@@ -237,7 +442,9 @@ def test_export_command_writes_a_dxf(main_cli, tmp_path):
     out = tmp_path / "wheel.dxf"
     status, stdout, stderr = main_cli("export", PROBLEMS / "punch-press-wheel.toml", "-o", out)
     assert (status, stderr) == (0, "") and f"wrote {out}" in stdout
-    assert len(ezdxf.readfile(out).modelspace().query("DIMENSION")) == 9
+    # the nine of the views, the two fillets' radii in the details; the three chamfers by leader
+    msp = ezdxf.readfile(out).modelspace()
+    assert len(msp.query("DIMENSION")) == 11 and len(msp.query("LEADER")) == 3
 
 
 @pytest.mark.parametrize(

@@ -17,6 +17,12 @@ with t_eq = 2 V/A the equivalent thickness (twice the casting modulus):
 t for a plate (the web), H B / (H + B) for a rectangular section (the rim,
 the hub's wall by its length), 2 A / P for the arms' ellipse.
 
+The same file holds what the drawing and the FE check need of the process
+(:func:`finishing`): the fillet at a re-entrant junction (:func:`fillet_radius`,
+one rule for the FE's section and the drawing's), the draft of the cast
+faces, the chamfers of the machined edges (:func:`chamfer_size`) and the
+machined faces' surface texture.
+
 References
 ----------
 .. [1] flyopt domain notes, docs/flywheel-design.md, section 23.
@@ -50,6 +56,11 @@ __all__ = [
     "junctions",
     "record",
     "ARM_THICKNESS",
+    "Finishing",
+    "finishing",
+    "process_of_design",
+    "fillet_radius",
+    "chamfer_size",
 ]
 
 _DATA_FILE = "castability.toml"
@@ -288,3 +299,144 @@ def record(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[
             for a, b in junctions(geometry, "hub" in t_eq)
         ],
     }
+
+
+# ------------------------------------------------------------------ finishing: fillets, draft, chamfers, texture
+
+
+class Finishing(NamedTuple):
+    """What the drawing and the FE check take of a process (flyopt/data/castability.toml).
+
+    ``process``: the process's name, None where none is known; ``fillet_ratio``: the fillet at a
+    re-entrant junction over the thinner part's thickness [-]; ``min_fillet``: the process's smallest
+    fillet [m] (0: none known); ``draft``: the draft of the unmachined faces parallel to the axis [deg],
+    None where the piece is not cast (or the process is not known); ``machined_ra``, ``bore_ra``: the
+    surface texture Ra of the machined faces and of the bore [m]; ``source``: where the numbers come from.
+    """
+
+    process: str | None
+    fillet_ratio: float
+    min_fillet: float
+    draft: float | None
+    machined_ra: float
+    bore_ra: float
+    source: str
+
+
+@functools.lru_cache(maxsize=1)
+def _finishing_data() -> dict[str, Any]:
+    text = resources.files("flyopt").joinpath("data", _DATA_FILE).read_text(encoding="utf-8")
+    data = tomllib.loads(text)
+    origin = f"flyopt/data/{_DATA_FILE}"
+    out: dict[str, Any] = {}
+    for table, keys in (
+        ("fillet", ("ratio",)),
+        ("chamfer", ("table", "face_fraction")),
+        ("finish", ("machined_ra", "bore_ra")),
+    ):
+        if (
+            table not in data
+            or any(k not in data[table] for k in keys)
+            or not str(data[table].get("source", "")).strip()
+        ):
+            raise ValueError(f"{origin}: [{table}] needs {', '.join(keys)} and a source")
+        out[table] = data[table]
+    ratio = out["fillet"]["ratio"]
+    if not isinstance(ratio, (int, float)) or not 0.0 < ratio <= 2.0:
+        raise ValueError(f"{origin}: [fillet] ratio must be a number in (0, 2]")
+    rows = out["chamfer"]["table"]
+    if any(d1 <= d0 or c1 < c0 for (d0, c0), (d1, c1) in zip(rows, rows[1:])) or any(c <= 0 for _, c in rows):
+        raise ValueError(f"{origin}: [chamfer] table rows must be [diameter, chamfer] with both increasing")
+    out["process"] = {}
+    for name, table in data.get("process", {}).items():
+        where = f"{origin}: process {name!r}"
+        if ("min_fillet" in table or "draft" in table) and not str(table.get("finishing_source", "")).strip():
+            raise ValueError(f"{where}: min_fillet and draft need a finishing_source")
+        draft = table.get("draft")
+        if draft is not None and not (isinstance(draft, (int, float)) and 0.0 < draft < 10.0):
+            raise ValueError(f"{where}: draft must be an angle in degrees in (0, 10)")
+        out["process"][name] = table
+    return out
+
+
+#: The fillet at a re-entrant junction over the thinner part's thickness [-] (castability.toml, [fillet]).
+FILLET_RATIO = float(_finishing_data()["fillet"]["ratio"])
+
+
+def finishing(process: str | None) -> Finishing:
+    """The finishing rules of a process (None or a name the file does not know: the common rules alone,
+    no minimum fillet and no draft)."""
+    data = _finishing_data()
+    table = data["process"].get(process or "", {})
+    sources = [data["fillet"]["source"], data["finish"]["source"]]
+    if table.get("finishing_source"):
+        sources.insert(0, table["finishing_source"])
+    return Finishing(
+        process if table else None,
+        FILLET_RATIO,
+        float(table.get("min_fillet", 0.0)),
+        float(table["draft"]) if "draft" in table else None,
+        float(data["finish"]["machined_ra"]),
+        float(data["finish"]["bore_ra"]),
+        " ".join(sources),
+    )
+
+
+def process_of_design(design: Any) -> str | None:
+    """The process a designed wheel is made by: the one its castability record names (the rules it was
+    designed to), else its material's (:func:`process_of`); None where neither is known."""
+    record = getattr(getattr(design, "limits", None), "castability", None)
+    if record and record.get("process") in processes():
+        return str(record["process"])
+    return process_of(design.material)
+
+
+#: Two parts whose thicknesses differ by less than this, relatively, are one section: no corner, no fillet
+#: (an NLP's equal-thickness web and rim differ in the eighth digit).
+SAME_THICKNESS = 1e-6
+
+
+def fillet_radius(finish: Finishing, t_a: float, t_b: float, length: float, cast_wall: bool = True) -> float:
+    """The fillet [m] where parts of thicknesses ``t_a`` and ``t_b`` meet, the one rule of the FE check
+    (:func:`flyopt.design.fem.section`) and the drawing (:func:`flyopt.outputs.drawing.finish_of`).
+
+    Parameters
+    ----------
+    finish : Finishing
+    t_a, t_b : float
+        The two parts' (full) thicknesses at the junction [m].
+    length : float
+        The thinner part's free length from this junction to its other end [m] (its fillet there shares it).
+    cast_wall : bool
+        False for a model's section that is no wall of the casting (the FE's equivalent web of the arms):
+        the ratio applies, the process's minimum does not.
+
+    Returns
+    -------
+    float
+        r = max(ratio x thinner, min_fillet), at most half of ``length`` and half the step on one side
+        (|t_a - t_b| / 4); 0 where the parts are as thick (to :data:`SAME_THICKNESS`).
+
+    Notes
+    -----
+    The ratio and the minimum are data (castability.toml, ``[fillet]`` and each process's ``min_fillet``),
+    with their sources.
+    """
+    if math.isclose(t_a, t_b, rel_tol=SAME_THICKNESS):
+        return 0.0
+    radius = finish.fillet_ratio * min(t_a, t_b)
+    if cast_wall:
+        radius = max(radius, finish.min_fillet)
+    return min(radius, 0.5 * length, 0.5 * abs(t_a - t_b) / 2.0)
+
+
+def chamfer_size(diameter: float, face: float) -> float:
+    """The chamfer C [m] (45 deg) of a machined edge on a circle of ``diameter`` [m] joining faces the
+    shorter of which is ``face`` [m] long: castability.toml's [chamfer] table by the diameter, at most
+    ``face_fraction`` x ``face``, rounded down to a row of the table (the table's smallest at least)."""
+    data = _finishing_data()["chamfer"]
+    rows = [(float(d), float(c)) for d, c in data["table"]]
+    by_size = next((c for d, c in rows if diameter <= d), rows[-1][1])
+    cap = float(data["face_fraction"]) * face
+    allowed = [c for _, c in rows if c <= min(by_size, cap) * (1.0 + 1e-9)]
+    return allowed[-1] if allowed else rows[0][1]

@@ -30,11 +30,13 @@ The model
 
 Fillets. A design carries no fillet radius; at a re-entrant corner (a thick
 part meeting a thinner one) the elastic stress is singular, and a FE "peak"
-there would only measure the mesh. Every such corner is rounded with a fillet
-of radius :data:`DEFAULT_FILLET_RATIO` x the thinner section's thickness
-(foundry practice asks for at least this), unless the caller gives one; the
-check says which it used. The factor depends on it (roughly
-1 + c sqrt(t / r_f)).
+there would only measure the mesh. Every such corner is rounded with the
+fillet the manufacturing drawing gives it
+(:func:`flyopt.design.castability.fillet_radius`: :data:`DEFAULT_FILLET_RATIO`
+x the thinner section's thickness, at least the process's smallest fillet,
+limited by the room; the numbers and their sources in
+``flyopt/data/castability.toml``), unless the caller gives one; the check says
+which it used. The factor depends on it (roughly 1 + c sqrt(t / r_f)).
 
 Arms. A ``rim_arms`` wheel is not a body of revolution: its arms are treated
 as an equivalent axisymmetric web of the same mass, t = n A / (pi (r_h + r_i)),
@@ -71,7 +73,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from flyopt.design import stress, wheel
+from flyopt.design import castability, stress, wheel
 from flyopt.names import Geometry
 
 if TYPE_CHECKING:
@@ -97,8 +99,9 @@ __all__ = [
     "MAX_ACCEPT_ROUNDS",
 ]
 
-#: Default fillet radius at a re-entrant junction, over the thinner section's (full) thickness.
-DEFAULT_FILLET_RATIO = 0.5
+#: Default fillet radius at a re-entrant junction, over the thinner section's (full) thickness: the drawing's
+#: (castability.toml, [fillet]; :func:`flyopt.design.castability.fillet_radius` is the rule).
+DEFAULT_FILLET_RATIO = castability.FILLET_RATIO
 
 #: Named mesh sizes: the factor on every element size (smaller: finer).
 MESH_SIZES = {"coarse": 1.0, "normal": 0.5, "fine": 0.25, "finer": 0.125}
@@ -108,7 +111,7 @@ GROWTH = 0.25
 
 #: Two steps whose thicknesses differ by less than this, relatively, are one section (no corner, no fillet):
 #: the NLP's solution of an equal-thickness web and rim differs in the eighth digit.
-SAME_THICKNESS = 1e-6
+SAME_THICKNESS = castability.SAME_THICKNESS
 
 #: The junction zone: points within this many (fillet radius + thinner thickness) of the corner.
 ZONE = 1.5
@@ -183,7 +186,9 @@ def section(design: Design, fillet: float | None = None) -> Section:
     design : flyopt.design.result.Design
     fillet : float or None
         Fillet radius at every junction where the thickness steps [m]; None:
-        :data:`DEFAULT_FILLET_RATIO` x the thinner section's thickness (the
+        the drawing's fillet (:func:`flyopt.design.castability.fillet_radius`
+        for the wheel's process: :data:`DEFAULT_FILLET_RATIO` x the thinner
+        section's thickness, at least the process's smallest fillet; the
         design gives none).
 
     Returns
@@ -209,18 +214,27 @@ def section(design: Design, fillet: float | None = None) -> Section:
         radii, thicknesses, _, names = wheel.steps(design.geometry, dims)
     radii = [float(r) for r in radii]
     thicknesses = [float(t) for t in thicknesses]
+    finish = castability.finishing(castability.process_of_design(design))
+    if fillet is not None:  # the caller's radius, at every junction, within the same room
+        finish = finish._replace(fillet_ratio=0.0, min_fillet=fillet)
     fillets = []
     for k in range(1, len(radii) - 1):
-        thin = min(thicknesses[k - 1], thicknesses[k])
         if math.isclose(thicknesses[k - 1], thicknesses[k], rel_tol=SAME_THICKNESS):
             fillets.append(0.0)
             continue
-        radius = DEFAULT_FILLET_RATIO * thin if fillet is None else fillet
         # the fillet runs a radius along the thin part's face and up the thick part's: it must fit in the thin
-        # part's length (shared with a fillet at its other end) and in the step's height: at most half of either
+        # part's length (shared with a fillet at its other end) and in the step's height
         k_thin = k if thicknesses[k - 1] > thicknesses[k] else k - 1
-        room = min(0.5 * (radii[k_thin + 1] - radii[k_thin]), 0.5 * abs(thicknesses[k - 1] - thicknesses[k]) / 2.0)
-        fillets.append(min(radius, room))
+        fillets.append(
+            castability.fillet_radius(
+                finish,
+                thicknesses[k - 1],
+                thicknesses[k],
+                radii[k_thin + 1] - radii[k_thin],
+                # the arms' equivalent web is no wall of the casting: no foundry minimum on it (a given radius holds)
+                cast_wall=fillet is not None or names[k_thin] != "arms",
+            )
+        )
     if fillet is None and any(fillets):
         notes.append(
             f"fillets not given by the design: r_f = {DEFAULT_FILLET_RATIO:g} x the thinner section at each junction "

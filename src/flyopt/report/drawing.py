@@ -138,6 +138,21 @@ def _dimension(ax, dim, paper):
     """Draw one dimension: extension lines, the line with its arrows, the text where the description puts it."""
     thin = {"color": "black", "lw": _NARROW * _PT * 0.7, "solid_capstyle": "butt"}
     size = _font(2.5)
+    if dim.kind in ("radius", "chamfer"):
+        # a leader: from the text to the arc (a radius: arrow on the arc, its line from the centre's side) or to
+        # the chamfer's middle, with a shoulder under the text
+        tip = dim.p2
+        start = dim.text_at if dim.kind == "radius" else dim.p1
+        width = 0.75 * 2.5 * len(dim.text) / paper
+        left = dim.text_at[0]
+        shoulder_x = left if abs(start[0] - left) < abs(start[0] - (left + width)) else left + width
+        ax.plot([tip[0], start[0], shoulder_x], [tip[1], start[1], dim.text_at[1]], **thin)
+        ax.plot([left, left + width], [dim.text_at[1], dim.text_at[1]], **thin)
+        ux, uy = tip[0] - start[0], tip[1] - start[1]
+        norm = math.hypot(ux, uy)
+        _arrow(ax, tip, (ux / norm, uy / norm), paper)
+        ax.text(left, dim.text_at[1] + 0.4 / paper, dim.text, fontsize=size, ha="left", va="bottom", color="black")
+        return
     if dim.kind == "diameter":
         cx, cy = dim.p1
         ux, uy = dim.p2[0] - cx, dim.p2[1] - cy
