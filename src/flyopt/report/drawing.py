@@ -12,7 +12,7 @@ suffix of the file, or (.step, .stp) writes its solid
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from flyopt.outputs.drawing import SHEET, Drawing
 
@@ -249,19 +249,30 @@ def drawing_of_scene(scene: Scene, date: datetime.date | None = None) -> tuple[D
     SolverFailed
         The design did not converge (exit 1).
     """
+    best = design_of_scene(scene)
+    return drawing_of_design(best, scene, date), best
+
+
+def drawing_of_design(best: Design, scene: Scene, date: datetime.date | None = None) -> Drawing:
+    """The manufacturing drawing of a scene's designed wheel (title block from the scene's file): what
+    ``flyopt export`` writes and the report shows."""
     from flyopt.outputs.documents import scene_record
     from flyopt.outputs.drawing import drawing_of
 
-    best = design_of_scene(scene)
     record = scene_record(scene)
-    drawn = drawing_of(
+    return drawing_of(
         best,
         scene=record["scene"],
         sha256=record["scene_file_sha256"],
         date=date,
         material=scene.material_library()[best.material].display_name,
     )
-    return drawn, best
+
+
+def drawing_axes(best: Design, scene: Scene) -> Any:
+    """The drawing of :func:`drawing_of_design` on its sheet, as the axes of a matplotlib figure (the report's
+    diagram: the same drawing as the exported one)."""
+    return figure(drawing_of_design(best, scene)).axes[0]
 
 
 def export(

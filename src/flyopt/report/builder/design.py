@@ -106,6 +106,16 @@ class DesignSection(BuilderBase):
             best,
             material=self.material_name(best.material),
         )
+        from flyopt.report.drawing import drawing_axes
+
+        self.figure(
+            blocks,
+            "drawing",
+            "The manufacturing drawing, as flyopt export writes it (DXF, SVG, PDF)",
+            drawing_axes,
+            best,
+            self.scene,
+        )
         if best.limits.sensitivities:
             blocks.append(
                 Table(
