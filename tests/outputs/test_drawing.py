@@ -92,11 +92,12 @@ def chamfers_expected(design):
         by_size = next((c for top, c in rows if diameter <= top), rows[-1][1])
         return 1e3 * max([c for _, c in rows if c <= min(by_size, cap * face) + 1e-12] or [rows[0][1]])
 
-    if design.geometry == "disc":
-        out = {"chamfer_rim": size(d.d_outer, min(d.b, d.d_outer / 2 - (design.bore or 0) / 2))}
+    if design.geometry == "disc":  # the disc's radial extent: from its hub (design.disc_hub) or its bore
+        inner = d.d_hub / 2 if d.d_hub else (design.bore or 0) / 2
+        out = {"chamfer_rim": size(d.d_outer, min(d.b, d.d_outer / 2 - inner))}
     else:
         out = {"chamfer_rim": size(d.d_outer, min(d.b, d.d_outer / 2 - d.d_inner / 2))}
-    if design.geometry in ("rim_web", "rim_arms") and design.bore:
+    if design.bore and d.d_hub:  # a hub: web and arms wheels, and the engine's disc on its hub
         wall = min(d.d_hub / 2 - design.bore / 2, d.l_hub)
         out |= {"chamfer_hub": size(d.d_hub, wall), "chamfer_bore": size(design.bore, wall)}
     return out
