@@ -56,3 +56,34 @@ def names_field(line, path, field):
     if line.startswith(f"flyopt: error: {path}: {field}: "):
         return True
     return re.match(rf"{re.escape(str(path))}:\d+: {re.escape(field)}: ", line) is not None
+
+
+#: Tests repeated over every problem scene (each a report, a page or a subprocess): the default run keeps them on
+#: these scenes, which between them hold every kind of model and wheel (the energy, energy–mass and dynamic models;
+#: a textbook rim, a web wheel, an arms wheel, a disc on its hub; a drive); the slow run takes every scene.
+REPRESENTATIVE_SCENES = (
+    "slider-crank-press",
+    "punch-press-wheel",
+    "press-arms-wheel",
+    "four-cylinder-engine",
+    "press-drive",
+    "motor-press",
+)
+EVERY_SCENE_TESTS = frozenset(
+    {
+        "test_the_report_solves_once",
+        "test_every_diagram_from_one_solve",
+        "test_every_problem_scene_renders_a_whole_self_contained_page",
+        "test_every_problem_scene_validates",
+        "test_every_problem_scene_solves_with_a_checked_status",
+    }
+)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items):
+    """Mark the every-scene tests slow on scenes outside :data:`REPRESENTATIVE_SCENES` (before ``-m`` selects)."""
+    for item in items:
+        if getattr(item, "originalname", None) in EVERY_SCENE_TESTS and hasattr(item, "callspec"):
+            if not any(name in item.callspec.id for name in REPRESENTATIVE_SCENES):
+                item.add_marker(pytest.mark.slow)

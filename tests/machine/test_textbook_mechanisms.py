@@ -346,6 +346,7 @@ max_outer_diameter = "0.6 m"
 """
 
 
+@pytest.mark.slow  # 5-8 s; the dynamic model with a motor runs in the default run on motor-press and slider-crank
 def test_a_four_bar_driven_by_a_motor_goes_through_the_dynamic_model(main_cli, write_scene):
     """A speed-dependent motor torque: the periodic solution (CasADi) of a machine with a four-bar's J_e(φ)."""
     # --no-design: the wheel's design and its δ-sensitivity would solve the periodic model twice more (20 s of

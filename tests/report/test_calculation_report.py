@@ -211,7 +211,11 @@ VARIANTS = {
 }
 
 
-@pytest.mark.parametrize("variant", sorted(VARIANTS))
+@pytest.mark.parametrize(
+    # two branches in the default run (4 s each), every branch in the slow run
+    "variant",
+    [v if v in ("operation", "crank") else pytest.param(v, marks=pytest.mark.slow) for v in sorted(VARIANTS)],
+)
 def test_every_branch_of_a_report_is_written_and_its_steps_hold(variant, tmp_path):
     base, edits = VARIANTS[variant]
     text = (TEXTBOOK / f"{base}.toml").read_text(encoding="utf-8")

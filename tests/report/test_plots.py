@@ -631,6 +631,7 @@ def test_a_hostile_title_is_drawn_without_a_warning(tmp_path, what, capsys, writ
     assert "\x00" not in svg and "\u202e" not in svg
 
 
+@pytest.mark.slow  # 9 s; a hostile title's quiet report is in the default run (tests/cli/test_commands.py, html)
 def test_a_report_of_a_scene_with_an_undrawable_title_writes_nothing_on_stderr(tmp_path):
     import subprocess
     import sys

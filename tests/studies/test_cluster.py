@@ -69,6 +69,7 @@ def test_a_malformed_scheduler_on_the_command_line_is_one_line_at_once(tmp_path)
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow  # 4-10 s of a local cluster; the unreachable scheduler's refusal stays in the default run
 def test_losing_every_dask_worker_stops_the_sweep(tmp_path, monkeypatch):
     """Regression (issue 11): a sweep whose Dask workers all went away waited forever.
     Without a worker for NO_WORKERS_SECONDS it stops with Interrupted, the finished
