@@ -67,7 +67,6 @@ REPRESENTATIVE_SCENES = (
     "press-arms-wheel",
     "four-cylinder-engine",
     "press-drive",
-    "motor-press",
 )
 EVERY_SCENE_TESTS = frozenset(
     {
@@ -80,10 +79,17 @@ EVERY_SCENE_TESTS = frozenset(
 )
 
 
+#: The notebooks nbmake runs in the default run (the others, longer, in the slow run).
+DEFAULT_NOTEBOOKS = ("02-material-trade-off.ipynb",)
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
-    """Mark the every-scene tests slow on scenes outside :data:`REPRESENTATIVE_SCENES` (before ``-m`` selects)."""
+    """Mark the every-scene tests slow on scenes outside :data:`REPRESENTATIVE_SCENES`, and the notebooks but
+    :data:`DEFAULT_NOTEBOOKS` (before ``-m`` selects)."""
     for item in items:
+        if item.name.endswith(".ipynb") and item.name not in DEFAULT_NOTEBOOKS:
+            item.add_marker(pytest.mark.slow)
         if getattr(item, "originalname", None) in EVERY_SCENE_TESTS and hasattr(item, "callspec"):
             if not any(name in item.callspec.id for name in REPRESENTATIVE_SCENES):
                 item.add_marker(pytest.mark.slow)

@@ -230,6 +230,7 @@ def _scipy_delta(j_total, omega_mean):
     return (w.max() - w.min()) / omega_mean
 
 
+@pytest.mark.slow  # 6 s; the periodic model of a speed-dependent load runs by default on motor-press and press-drive
 def test_members_with_a_load_of_speed_are_sized_by_the_periodic_model(write_scene):
     """It used to fail with "bracket J_F in [2.8e+49, inf]": the energy scale of the shooting was
     Φ max|M|, the round-off of a balanced net torque, while the varying inertia trades

@@ -165,6 +165,7 @@ def test_ctrl_c_stops_workers_keeps_chunks_and_resume_completes(tmp_path, uninte
     resume_and_compare(tmp_path, out, uninterrupted)
 
 
+@pytest.mark.slow  # 5 s; by default: Ctrl-C and resume (below), a killed slider-crank sweep resumed (test_evaluate.py)
 def test_killed_sweep_leaves_no_worker_and_resume_cleans_up(tmp_path, uninterrupted):
     """Regression (issue 11): a killed sweep (SIGKILL to it alone) left its worker
     processes running. They die with their parent; what is left is the parts folder,
