@@ -1303,7 +1303,7 @@ def _title_fields(design, scene, sha256, version, date, k, material=None):
     what = {
         Geometry.RIM_WEB: "rim, web and hub",
         Geometry.RIM_ARMS: f"rim, {design.n_arms} arms and hub",
-        Geometry.DISC: "disc" if design.bore else "solid disc",
+        Geometry.DISC: ("disc on its hub" if design.dims.d_hub else "disc") if design.bore else "solid disc",
     }.get(design.geometry, "rim")
     unbalance = design.stresses.unbalance_permissible if design.stresses else None
     balance = f"G {BALANCE_GRADE:g} (ISO 21940-11)"
