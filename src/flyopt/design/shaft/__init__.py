@@ -3,7 +3,7 @@
 :mod:`~flyopt.design.shaft.strength` (Shigley's fatigue method: Marin factors,
 notch sensitivity, the DE shaft equations and the first-cycle yield check),
 :mod:`~flyopt.design.shaft.beam` (a stepped shaft on two bearings: deflection
-and slope by integration of M/EI) and :mod:`~flyopt.design.shaft.lateral`
+and slope by integration of M/EI), :mod:`~flyopt.design.shaft.lateral`
 (Jeffcott, Rayleigh, Dunkerley and a beam finite-element model with the
 wheel's gyroscopic effect) and :mod:`~flyopt.design.shaft.torsional` (the
 drive train's torsional model, :mod:`flyopt.machine.torsion`, driven by the
