@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from flyopt.cycle.balance import solve_unknown_constant
 from flyopt.cycle.difference import sample
 from flyopt.cycle.indicator import speed_extremes
 from flyopt.machine.torsion import (
@@ -120,7 +121,8 @@ def net_torque_orders(
     ----------
     driving, resisting : TorqueCurve
         The reduced driving and resisting torques of the cycle (:mod:`flyopt.cycle.torque`,
-        the machine's reduced curves), as the energy method takes them.
+        the machine's reduced curves), as the energy method takes them; an unknown constant is
+        solved from the work balance first (:func:`flyopt.cycle.balance.solve_unknown_constant`).
     cycle_angle : float
         Phi [rad]: 2 pi per revolution of the reference shaft, 4 pi for a four-stroke cycle.
     samples, max_order
@@ -132,6 +134,7 @@ def net_torque_orders(
     trapezoidal rule of the Fourier integral; a step off the grid adds an error of order
     |jump| / N to each c_q.
     """
+    driving, resisting = solve_unknown_constant(driving, resisting, cycle_angle)
 
     def net(phi: np.ndarray) -> np.ndarray:
         d_left, d_right = sample(driving, phi)
