@@ -14,7 +14,11 @@ bearings and the same wheel overhung 0.25 m beyond the second bearing:
   one (L/80), with the error of each against a 320-element reference; a Campbell diagram (whirl at
   25 speeds);
 * the whole check of one design: strength, deflection and the FE forward critical speed with its
-  margin against the running range.
+  margin against the running range;
+* torsion (flyopt.design.shaft.torsional on openTorsion's nine-inertia engine example): the orders of a
+  four-stroke net torque (an expression, 4096 samples over 4 pi), the modes with the critical speeds of
+  the orders present and their margins, the Campbell data, and the forced response at 25 speeds to the
+  first 24 orders.
 
 Runs pinned to one core, with one BLAS thread. Writes ``benchmarks/results/shaft.md`` and ``shaft.csv``.
 
@@ -43,7 +47,10 @@ import numpy as np  # noqa: E402
 import scipy  # noqa: E402
 from common import load_average, median_time, pin_one_core, write_results  # noqa: E402
 
-from flyopt.design.shaft import beam, lateral, strength  # noqa: E402
+from flyopt.cycle.expression import Expression  # noqa: E402
+from flyopt.cycle.torque import Constant, ExpressionTorque  # noqa: E402
+from flyopt.design.shaft import beam, lateral, strength, torsional  # noqa: E402
+from flyopt.machine.torsion import chain  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TARGET_MS = 5.0
@@ -104,6 +111,38 @@ def whole_check(shaft, x_wheel):
     deflection_check(shaft, x_wheel)
     critical = fe_critical(shaft, x_wheel, shaft.length / 20)
     return lateral.running_margin(critical, SPEED_RANGE_RPM)
+
+
+# openTorsion's engine example (tests/data/opentorsion_ice_example.json), with its dampers
+ICE_J = (0.0170, 0.0090, 0.0467, 0.0327, 0.0467, 0.0467, 0.0327, 0.0487, 2.0750)
+ICE_K = (1.106e6, 1.631e6, 1.253e6, 1.253e6, 1.678e6, 1.253e6, 1.253e6, 1.976e6)
+ICE_C = (0.0, 0.0, 2.0, 2.0, 2.0, 2.0, 2.0, 2.0, 0.0)
+ICE_RANGE_RPM = (1800.0, 2100.0)
+ICE_TORQUE = "300 + 900*cos(3*phi) + 400*cos(4.5*phi + 0.3) + 250*sin(6*phi) + 60*cos(1.5*phi) + 40*sin(9*phi)"
+
+
+def torsion_cases():
+    """The torsional steps, each a callable, and the result line of the check."""
+    model = chain(ICE_J, ICE_K, absolute_damping=ICE_C)
+    driving, resisting = ExpressionTorque(Expression(ICE_TORQUE), 1.0, "bench"), Constant(300.0)
+    excitation = torsional.net_torque_orders(driving, resisting, 4 * math.pi, max_order=12)
+    check = torsional.torsional_check(model, excitation, ICE_RANGE_RPM)
+    nearest = check.nearest
+    note = f"nearest: mode {nearest.mode}, order {nearest.order:g} at {nearest.speed_rpm:.1f} rpm, margin {nearest.margin:.3f}"
+    speeds = np.linspace(500.0, 3000.0, 25)
+    steps = {
+        "orders of the net torque (4096 samples over 4 pi)": lambda: torsional.net_torque_orders(
+            driving, resisting, 4 * math.pi, max_order=12
+        ),
+        "modes + critical speeds of the orders present, margins": lambda: torsional.torsional_check(
+            model, excitation, ICE_RANGE_RPM
+        ),
+        "Campbell data, 0-3000 rpm": lambda: torsional.campbell(
+            model, check.orders, np.linspace(0.0, 3000.0, 61), ICE_RANGE_RPM
+        ),
+        "forced response, 25 speeds x 24 orders": lambda: torsional.response_over_speed(model, excitation, 4, speeds),
+    }
+    return steps, note
 
 
 def ms(t):
@@ -167,16 +206,22 @@ def main():
         )
         whole[case] = median_time(lambda: whole_check(shaft, x_wheel), args.repeat)
         record(case, "the whole check of one design", whole[case], f"margin {whole_check(shaft, x_wheel):.2f}")
+    steps, note = torsion_cases()
+    for what, step in steps.items():
+        record("torsion, openTorsion's engine (9 inertias)", what, median_time(step, args.repeat))
+    lines.append(
+        f"| torsion, openTorsion's engine (9 inertias) | the orders present against {ICE_RANGE_RPM[0]:g}-{ICE_RANGE_RPM[1]:g} rpm | - | {note} |"
+    )
     slowest = max(v[0] for v in whole.values())
     verdict = "met" if slowest * 1e3 < TARGET_MS else "**NOT met**"
     text = (
-        f"""# Shaft checks benchmark (issue 30, items 2 and 3)
+        f"""# Shaft checks benchmark (issue 30, items 2 to 4)
 
 Command: `python benchmarks/bench_shaft.py --repeat {args.repeat}`
 
 Machine: {platform.platform()}, {platform.machine()}, {pinned}; Python {sys.version.split()[0]}, numpy {np.__version__}, scipy {scipy.__version__}. Load average at the start: {load} (a shared host, loaded by other engineers' runs: figures are medians, with the range over {args.repeat} repeats).
 
-The shaft: four steps (0.06-0.09 m), bearings at 0.1 and 0.9 m (rigid), steel (E 207 GPa, 7850 kg/m^3); the wheel 250 kg, I_p {I_P:.2f} kg*m^2, I_d {I_D:.2f} kg*m^2, running 450-550 rpm.
+The shaft: four steps (0.06-0.09 m), bearings at 0.1 and 0.9 m (rigid), steel (E 207 GPa, 7850 kg/m^3); the wheel 250 kg, I_p {I_P:.2f} kg*m^2, I_d {I_D:.2f} kg*m^2, running 450-550 rpm. The torsional train: openTorsion's engine example (nine inertias, eight shafts, 2 N*m*s/rad at each cylinder), a four-stroke net torque `{ICE_TORQUE}` N*m against 300 N*m, running {ICE_RANGE_RPM[0]:g}-{ICE_RANGE_RPM[1]:g} rpm.
 
 | case | what | time, median (range) | result |
 |---|---|---|---|
@@ -194,7 +239,8 @@ The shaft: four steps (0.06-0.09 m), bearings at 0.1 and 0.9 m (rigid), steel (E
 
 - The FE's error is against the same model on a 320-element mesh; the default mesh (L/20 plus the breakpoints) is what the whole check uses.
 - The strength check is numpy-vectorised: many designs in one call cost far less each than one call per design.
-- Library modules only: nothing in `solve` calls them yet (docs/flywheel-design.md, section 24).
+- The orders' time is after a first call: an expression curve keeps its values at the last grids it was sampled on (flyopt.cycle.difference), as it does for the energy method; the forced response is 600 complex 9 x 9 solves.
+- Library modules only: nothing in `solve` calls them yet (docs/flywheel-design.md, sections 24 and 25).
 """
     )
     write_results(args.out, "shaft", text, rows)
