@@ -47,6 +47,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
+from flyopt.machine.transmission import reflected
+
 TWO_PI = 2.0 * math.pi
 
 
@@ -178,20 +180,20 @@ class TorsionalModel:
         """M: the reflected inertias J r^2 on the diagonal [kg*m^2]."""
         m = np.zeros((self.size, self.size))
         for item in self.inertias:
-            m[item.node, item.node] += item.inertia * item.ratio**2
+            m[item.node, item.node] += reflected(item.inertia, item.ratio)
         return m
 
     @property
     def stiffness_matrix(self) -> np.ndarray:
         """K: the reflected stiffnesses k r^2 assembled over the springs [N*m/rad]."""
-        return self._assemble([s.stiffness * s.ratio**2 for s in self.springs])
+        return self._assemble([reflected(s.stiffness, s.ratio) for s in self.springs])
 
     @property
     def damping_matrix(self) -> np.ndarray:
         """C of the dampers: absolute ones c r^2 on the diagonal, spring ones c r^2 assembled [N*m*s/rad]."""
-        c = self._assemble([s.damping * s.ratio**2 for s in self.springs])
+        c = self._assemble([reflected(s.damping, s.ratio) for s in self.springs])
         for item in self.inertias:
-            c[item.node, item.node] += item.damping * item.ratio**2
+            c[item.node, item.node] += reflected(item.damping, item.ratio)
         return c
 
     def _assemble(self, values: Sequence[float]) -> np.ndarray:

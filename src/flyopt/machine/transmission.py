@@ -155,7 +155,15 @@ def inertia_on_shaft(j_reference: float, speed_ratio: float) -> float:
 
 def inertia_at_reference(j_shaft: float, speed_ratio: float) -> float:
     """Inertia of a flywheel on a shaft, moved to the reference shaft: J = J' (ω'/ω)² [kg*m^2]."""
-    return j_shaft * speed_ratio * speed_ratio
+    return reflected(j_shaft, speed_ratio)
+
+
+def reflected(value: float, speed_ratio: float) -> float:
+    """An inertia, torsional stiffness or damping on a shaft turning ``speed_ratio`` times the reference shaft,
+    reflected to the reference shaft: value (ω'/ω)² (the same kinetic or strain energy, or power dissipated,
+    at the reference shaft's angle). The one ratio-squared transfer: :func:`inertia_at_reference` and the
+    torsional chain's matrices (:mod:`flyopt.machine.torsion`) use it."""
+    return value * speed_ratio * speed_ratio
 
 
 @dataclass(frozen=True)
