@@ -48,9 +48,6 @@ COMPLETE = (*ANALYSIS_EXTRAS, *SOLUTION_EXTRAS)
 class Solution:
     """A scene analysed and (unless asked not to) its flywheel designed.
 
-    In a notebook a Solution shows its answer card (:meth:`_repr_html_`, the text report's answer as a small
-    table); ``solution.design.to_frame()`` is the ranking as a DataFrame.
-
     Everything a report or a diagram shows is computed here, by :func:`solve`,
     when asked for (its ``extras``), and only read afterwards: the analysis'
     extras (:data:`flyopt.analysis.EXTRAS`) and those of :data:`SOLUTION_EXTRAS`,
@@ -98,25 +95,6 @@ class Solution:
     drive_check: DriveCheck | None = None  # of the chosen drive
     flywheel: FlywheelCheck | None = None  # of a scene's [flywheel] that exists (no design then)
     _extras: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
-
-    def _repr_html_(self) -> str:
-        """The answer card: the text report's answer (:func:`flyopt.report.text.answer_report`) as a small HTML
-        table under the scene's title, every string escaped."""
-        import html
-
-        from flyopt.report.text import answer_report
-
-        lines = [line for line in answer_report(self) if line.strip()]
-        head, rows = lines[0], [line.strip().split(maxsplit=1) for line in lines[1:]]
-        cells = "".join(
-            f"<tr><th style='text-align:left'>{html.escape(k)}</th><td style='text-align:left'>"
-            f"{html.escape(v[0] if v else '')}</td></tr>"
-            for k, *v in rows
-        )
-        return (
-            f"<table class='flyopt-answer'><caption style='text-align:left'><b>{html.escape(self.scene.title)}</b>"
-            f"<br>{html.escape(head)}</caption>{cells}</table>"
-        )
 
     def _extra(self, name: str) -> Any:
         try:

@@ -518,50 +518,6 @@ class DesignResult:
         """A material's name for people (:attr:`flyopt.design.materials.Material.display_name`) from its key."""
         return self.material_names.get(key) or key.replace("_", " ")
 
-    #: The columns of :meth:`to_frame`, the candidates' fields of the JSON (``design.candidates``).
-    FRAME_COLUMNS = (
-        "material",
-        "shaft",
-        "speed_ratio",
-        "feasible",
-        "mass",
-        "d_outer",
-        "h",
-        "b",
-        "rim_speed",
-        "j_flywheel",
-        "j_at_reference",
-        "cost",
-        "binding",
-        "reason",
-    )
-
-    def to_frame(self) -> Any:
-        """Every combination ranked, one row each, in SI (a pandas DataFrame).
-
-        The columns are :data:`FRAME_COLUMNS`, the candidates' JSON fields; ``material`` is the display name and
-        ``binding`` the binding limits joined by commas. ``attrs["flyopt"]["units"]`` gives each column's SI unit
-        (:func:`flyopt.outputs.quantities.unit_of`), as :func:`flyopt.read_results` does for a sweep's file.
-        """
-        import pandas as pd
-
-        from flyopt.outputs.quantities import unit_of
-
-        rows = []
-        for c in self.candidates:
-            row = c.to_dict()
-            rows.append(
-                {
-                    **{name: row.get(name) for name in self.FRAME_COLUMNS},
-                    "material": self.material_name(c.material),
-                    "binding": ", ".join(row.get("binding") or ()),
-                }
-            )
-        frame = pd.DataFrame(rows, columns=list(self.FRAME_COLUMNS))
-        units = {name: unit_of(name) for name in self.FRAME_COLUMNS}
-        frame.attrs["flyopt"] = {"units": {name: unit for name, unit in units.items() if unit}}
-        return frame
-
     def book_rim(self) -> BookRim | None:
         """What the courses' rim (criterion mean_rim_speed) really sees, beside what the book checks; None for
         any other criterion or without a design."""
