@@ -56,7 +56,9 @@ ANSWERS = {
 }
 
 
-@pytest.mark.parametrize("suffix", [".html", ".pdf"])
+# the PDF of each in the slow run; a calculation report's PDF is in the default run in
+# tests/report/test_calculation_report.py (hostile names in both formats)
+@pytest.mark.parametrize("suffix", [".html", pytest.param(".pdf", marks=pytest.mark.slow)])
 @pytest.mark.parametrize("section", sorted(SCENES))
 def test_report_writes_a_calculation_with_its_answers(section, suffix, tmp_path):
     """``flyopt report`` of a calculation writes the report (exit 0) and its text holds the book's answers."""

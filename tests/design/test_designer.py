@@ -229,15 +229,15 @@ def check_against_reference(j, omega, shafts, materials, spec, counts):
     return result
 
 
-@pytest.mark.parametrize("seed, scenes", [(20240601, 300)])
+@pytest.mark.parametrize("seed, scenes", [(20240601, 100), pytest.param(20240601, 300, marks=pytest.mark.slow)])
 def test_random_scenes_match_1d_root_reference(seed, scenes):
-    """A few hundred random scenes (thin_rim and rim, no width limit, with and
-    without envelopes), mass within 1e-6 and same feasibility verdicts."""
+    """A hundred random scenes by default, three hundred in the slow run (thin_rim and rim, no width limit,
+    with and without envelopes), mass within 1e-6 and same feasibility verdicts."""
     rng = np.random.default_rng(seed)
     counts = {"feasible": 0, "infeasible": 0}
     for _ in range(scenes):
         check_against_reference(*random_scene(rng), counts)
-    assert counts["feasible"] > 300 and counts["infeasible"] > 100, counts
+    assert counts["feasible"] > scenes and counts["infeasible"] > scenes // 3, counts  # both verdicts, many times
 
 
 @pytest.mark.slow

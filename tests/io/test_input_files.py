@@ -166,7 +166,14 @@ def test_a_motor_table_file_outside_the_folder_is_refused(tmp_path):
     assert error.value.field.endswith("points_file"), error.value.field
 
 
-@pytest.mark.parametrize("output", ["../study.csv", "{tmp_path}/study.csv", "sub/../../study.csv"])
+@pytest.mark.parametrize(  # the parent folder by default; an absolute path and a climbing one in the slow run
+    "output",
+    [
+        "../study.csv",
+        pytest.param("{tmp_path}/study.csv", marks=pytest.mark.slow),
+        pytest.param("sub/../../study.csv", marks=pytest.mark.slow),
+    ],
+)
 def test_a_sweep_output_outside_the_scene_folder_is_refused_by_check_and_sweep(tmp_path, output):
     folder = tmp_path / "scene"
     folder.mkdir()

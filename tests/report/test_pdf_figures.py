@@ -21,7 +21,7 @@ def _pdf(path):
     return PdfReader(str(path))
 
 
-@pytest.mark.parametrize("scene", ["slider-crank-press", "punch-press-wheel"])
+@pytest.mark.parametrize("scene", ["slider-crank-press", pytest.param("punch-press-wheel", marks=pytest.mark.slow)])
 def test_the_diagrams_are_vectors_with_their_words_as_text(scene, tmp_path):
     out = tmp_path / "r.pdf"
     assert main(["report", str(PROBLEMS / f"{scene}.toml"), "-o", str(out), "-q"]) == 0

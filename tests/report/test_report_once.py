@@ -13,8 +13,16 @@ from conftest import PROBLEMS
 from test_computed_once import _run, solved_once  # noqa: F401 -- solved_once is the fixture used below
 
 
-@pytest.mark.parametrize("kind", ["html", "pdf"])
-@pytest.mark.parametrize("scene", ["slider-crank-press", "motor-press"])
+@pytest.mark.parametrize(
+    # each format and each scene in the default run; the other two pairs in the slow run
+    "scene, kind",
+    [
+        ("slider-crank-press", "pdf"),
+        ("motor-press", "html"),
+        pytest.param("slider-crank-press", "html", marks=pytest.mark.slow),
+        pytest.param("motor-press", "pdf", marks=pytest.mark.slow),
+    ],
+)
 def test_a_report_solves_once_in_either_format(scene, kind, solved_once, tmp_path, capsys):  # noqa: F811
     out = tmp_path / f"r.{kind}"
     status, _ = _run(solved_once, capsys, "report", str(PROBLEMS / f"{scene}.toml"), "-o", str(out))
