@@ -280,3 +280,21 @@ def test_an_unknown_series_is_refused_in_one_line():
     with pytest.raises(SceneError) as err:
         _scene(PROBLEMS / "punch-press-wheel.toml", diameter_series="R30")
     assert err.value.field == "design.diameter_series" and "R40" in str(err.value)
+
+
+def test_a_whole_wheel_with_a_pinned_mean_diameter_is_rounded_around_it():
+    """Regression: the rounding's warm re-solves took their start from the dimensions it rounds, which leave
+    D_outer out where D_m is pinned (D_outer = D_m + H follows H): KeyError 'd_outer'. D_m stays at 0.6 m,
+    every other dimension on the 1 mm grid, the inertia by the annulus formula meets the requirement."""
+    design = flyopt.solve(_scene(PROBLEMS / "punch-press-wheel.toml", d_mean="0.6 m")).design
+    best = design.best
+    assert design.status == "designed" and best.provenance.solver_status == "rounded"
+    assert best.dims.d_mean == pytest.approx(0.6, rel=1e-12)
+    for name in ("h", "b", "t_web", "d_hub", "l_hub"):
+        assert _on_grid(getattr(best.dims, name), MM), name
+    rho = flyopt.load(PROBLEMS / "punch-press-wheel.toml").material_library()[best.material].density
+    inertia = sum(
+        rho * math.pi * p["thickness"] * (p["r_outer"] ** 4 - p["r_inner"] ** 4) / 2.0 for p in best.parts.items
+    )
+    assert inertia == pytest.approx(best.j_flywheel, rel=1e-12)
+    assert best.j_flywheel >= best.limits.j_required_on_shaft * (1 - 1e-12)

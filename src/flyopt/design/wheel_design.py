@@ -400,8 +400,9 @@ def design_combination(
     if fixed:
         problem = _with(problem, fixed=dict(fixed))
     model = wheel_nlp.get_model(structure, solver_options)
-    if start:
-        problem = _with(problem, start={n: {**start, **(fixed or {})}[n] for n in model.variables})
+    if start:  # a neighbour's dimensions over the thin ring (a pinned D_m leaves D_outer out of a rounding's)
+        ring = wheel_nlp.starting_wheel(structure, problem, model.variables)
+        problem = _with(problem, start={n: {**ring, **start, **(fixed or {})}[n] for n in model.variables})
     parts = model.stress_parts
     # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
     start = wheel_nlp.starting_wheel(structure, problem, model.variables)
