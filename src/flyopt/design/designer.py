@@ -456,7 +456,7 @@ def _whole_violations(combo, spec, dims, j_wheel, checked):
         hb = dims.h / dims.b
         if not spec.hb_ratio[0] * (1.0 - tol) <= hb <= spec.hb_ratio[1] * (1.0 + tol):
             found.append(f"H/B {hb:.9g} outside [{spec.hb_ratio[0]}, {spec.hb_ratio[1]}]")
-        if dims.d_inner < max(dims.d_hub, 0.0) * (1.0 - tol):
+        if dims.d_inner < max(dims.d_hub, 0.0) - tol * dims.d_outer:  # to the wheel's size: the hub may be 0
             found.append(f"the rim's inner diameter {dims.d_inner:.9g} m is inside the hub ({dims.d_hub:.9g} m)")
     if spec.criterion == Criterion.STRESS and checked is not None:
         for part in checked.parts:
@@ -586,17 +586,20 @@ def design_flywheel(
     result = _result(j_required, omega, spec, ranked, best, infeasible, decided, description, omega_mean, names)
     if spec.round_to and best is not None:
         order = next(o for o, c in decided.feasible if c is best)
-        result = _rounded(result, Combination(**{**combos[order].__dict__, "n_arms": best.n_arms or 0}), spec)
+        combo = Combination(**{**combos[order].__dict__, "n_arms": best.n_arms or 0})
+        result = _rounded(result, combo, spec, solver_options)
     return result
 
 
-def _rounded(result: DesignResult, combo: Combination, spec: DesignSpec) -> DesignResult:
+def _rounded(
+    result: DesignResult, combo: Combination, spec: DesignSpec, solver_options: Mapping[str, Any] | None
+) -> DesignResult:
     """The result with its winner rounded to ``spec.round_to`` (:func:`flyopt.design.rounding.round_design`) and
     the continuous optimum kept beside it; "infeasible" when no wheel of the grid cell meets every limit."""
     from flyopt.design import rounding
 
     best = cast(Design, result.best)
-    rounded, words = rounding.round_design(best, combo, spec, cast(float, spec.round_to))
+    rounded, words = rounding.round_design(best, combo, spec, cast(float, spec.round_to), solver_options)
     if rounded is None and not spec.round_strict:  # the default step: the continuous optimum stands, said so
         return dataclasses.replace(
             result,

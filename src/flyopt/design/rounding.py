@@ -36,6 +36,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+from collections.abc import Mapping
 from typing import Any
 
 from flyopt.design import check, preferred, wheel, wheel_design
@@ -177,7 +178,13 @@ def _row_function(structure: Any) -> dict[str, Any]:
     return _ROWS[structure]
 
 
-def round_design(design: Design, combo: Combination, spec: DesignSpec, step: float) -> tuple[Design | None, str]:
+def round_design(
+    design: Design,
+    combo: Combination,
+    spec: DesignSpec,
+    step: float,
+    solver_options: Mapping[str, Any] | None = None,
+) -> tuple[Design | None, str]:
     """The best wheel on the ``step`` grid near ``design`` that meets every limit, and what was done, in words.
 
     A bare wheel: the best of the wheels on the grid around the optimum (:func:`_round_bare`). A whole wheel:
@@ -194,6 +201,8 @@ def round_design(design: Design, combo: Combination, spec: DesignSpec, step: flo
     spec : DesignSpec
     step : float
         The manufacturing step [m], e.g. 0.001.
+    solver_options : mapping or None
+        The solver options the continuous optimum was designed with: its re-solves use the same.
 
     Returns
     -------
@@ -205,7 +214,7 @@ def round_design(design: Design, combo: Combination, spec: DesignSpec, step: flo
     if spec.textbook(bore):
         found, words = _round_bare(design, combo, spec, step)
     else:
-        found, words = _round_whole(design, combo, spec, step, bore)
+        found, words = _round_whole(design, combo, spec, step, bore, solver_options)
     on = f"the {step * 1e3:g} mm grid" + (f" (diameters on {spec.diameter_series})" if spec.diameter_series else "")
     if found is None:
         hint = (
@@ -253,7 +262,12 @@ def _round_bare(design: Design, combo: Combination, spec: DesignSpec, step: floa
 
 
 def _round_whole(
-    design: Design, combo: Combination, spec: DesignSpec, step: float, bore: float
+    design: Design,
+    combo: Combination,
+    spec: DesignSpec,
+    step: float,
+    bore: float,
+    solver_options: Mapping[str, Any] | None = None,
 ) -> tuple[Found | None, str]:
     """The better of two searches: the corners of the optimum's grid cell (2^n wheels, each checked against every
     limit), and each free dimension in turn rounded down and up with the others optimized again around it."""
@@ -307,6 +321,7 @@ def _round_whole(
                     bore,
                     combo.torque,
                     combo.n_arms,
+                    solver_options,
                     method="ipopt",
                     fixed={**fixed, name: value},
                     start=around,

@@ -244,6 +244,11 @@ def walls(geometry_name: str, dims: Dims) -> dict[str, Any]:
     length; arms: the minor axis; disc: the smaller of B and its radial
     extent. Floats only (used between solves, never inside the NLP).
 
+    A part of no radial extent (within :data:`NO_EXTENT` of its outer radius:
+    the rim sitting on the hub, an optimum where no web or arm length pays)
+    is no section across its radius: its wall is its thickness, so that the
+    strength table is read at a size the casting has, not at round-off.
+
     Returns
     -------
     dict of str to float
@@ -253,8 +258,16 @@ def walls(geometry_name: str, dims: Dims) -> dict[str, Any]:
         if part.name == "arms":
             out["arms"] = float(part.thickness)
         else:
-            out[part.name] = float(min(part.thickness, part.r_outer - part.r_inner))
+            extent = float(part.r_outer - part.r_inner)
+            no_extent = extent <= NO_EXTENT * float(part.r_outer)
+            out[part.name] = float(part.thickness) if no_extent else float(min(part.thickness, extent))
     return out
+
+
+#: A part's radial extent at or below this share of its outer radius is none (:func:`walls`): an optimum
+#: that closes a gap meets it to the solver's round-off (1e-16 m from an active-set solve, 1e-12 m from
+#: an interior point one), never to a machinable size.
+NO_EXTENT = 1e-9
 
 
 class StressState(NamedTuple):

@@ -1,4 +1,4 @@
-"""The design NLP of a whole wheel: every dimension chosen by IPOPT, every part counted and checked.
+"""The design NLP of a whole wheel: every dimension chosen by one NLP, every part counted and checked.
 
 One NLP per structure (:class:`WheelStructure`: the geometry, the criterion,
 ductile or brittle, a bore or not, the arm count, which limits are set, the
@@ -21,6 +21,10 @@ allowable stress of each part) enter as parameters and bounds::
                 hub diameter and length within the textbook proportions and long enough for the key
                 t_web <= B, t_web <= l_hub;  the rim clears the hub;  n arms fit round the hub
 
+Solved by CasADi's sqpmethod (qrqp) with IPOPT behind it wherever the SQP
+does not converge, or by IPOPT alone (:data:`SOLVER_OPTION`); either way the
+return status is checked before a wheel is used.
+
 The variables are the logarithms of the dimensions in metres, so every
 dimension stays positive and mm and m sit side by side at order one. A
 stress row is divided by S = rho omega'^2 r_s^2 (r_s a length of the
@@ -35,6 +39,7 @@ References
 ----------
 .. [1] flyopt domain notes, docs/flywheel-design.md, sections 9, 10 and 13.
 .. [2] A. Waechter and L. T. Biegler, Math. Program. 106 (2006) 25-57 (IPOPT).
+.. [3] J. Nocedal and S. J. Wright, Numerical Optimization, 2nd ed., Springer 2006, ch. 18 (SQP).
 """
 
 from __future__ import annotations
@@ -164,7 +169,7 @@ class WheelModel:
     constraints: tuple[str, ...]  # names of the rows of g
     stress_parts: tuple[str, ...]  # which part each allowable parameter belongs to
     build_time: float
-    fast: ca.Function | None = None  # sqpmethod, tried before IPOPT (SOLVER_OPTION "sqpmethod")
+    fast: ca.Function | None = None  # sqpmethod, tried before IPOPT (SOLVER_OPTION "sqpmethod", the default)
 
     def describe(self) -> dict[str, Any]:
         """What the model is, for the report: geometry, objective, variables, constraint rows."""
@@ -177,7 +182,8 @@ class WheelModel:
             "constraints": sorted(set(self.constraints)),
             "pinned": ["d_mean"] if s.pinned else [],
             "formulation": (
-                "IPOPT (CasADi nlpsol) on the logarithms of the dimensions; every part "
+                f"{'sqpmethod (qrqp), IPOPT where it fails' if self.fast is not None else 'IPOPT'} "
+                "(CasADi nlpsol) on the logarithms of the dimensions; every part "
                 "counted in J and mass; stresses by the stepped-disc solution at "
                 f"{len(SAMPLES)} radii per part, verified by the exact maxima"
             ),
@@ -190,14 +196,20 @@ class WheelModel:
 #: tests/design/test_prune.py's random problems, which IPOPT then proves infeasible within 1000).
 WHEEL_SOLVER_OPTIONS = {"ipopt.max_iter": 1000}
 
-#: The solver option that chooses the whole wheel's solver: "ipopt" (the default and the reference)
-#: or "sqpmethod", CasADi's SQP with its dense active-set QP solver qrqp, tried first and checked by its
-#: status; where it does not converge the same wheel is solved by IPOPT, so it answers every wheel
-#: IPOPT answers. It agrees with IPOPT to IPOPT's tolerance (tests/design/test_wheel_nlp.py), not to
-#: the last digit, which is why the default stays IPOPT (benchmarks/results/wheel.md: ~5x faster
-#: per solve, median over 48 random and shipped wheels, IPOPT behind it included). Not an nlpsol option: it is
-#: taken out before IPOPT is built (here and in flyopt.design.nlp).
+#: The solver option that chooses the whole wheel's solver: "sqpmethod" (the default), CasADi's SQP
+#: with its dense active-set QP solver qrqp, its status checked, and IPOPT on the same NLP wherever it
+#: does not converge (IPOPT also proves a wheel infeasible, which an SQP cannot), so it answers every
+#: wheel IPOPT answers; or "ipopt", IPOPT alone: the reference the tests hold sqpmethod to
+#: (tests/design/test_wheel_nlp.py: the objective to 1e-9 on random wheels of every structure, the
+#: shipped scenes' designs to 1e-8). sqpmethod is the default since castability (issue 28) gave each
+#: whole wheel one optimum: before it, a rim whose H traded against its web at the same mass let the
+#: two solvers stop at different wheels; now they stop at the same one (benchmarks/results/wheel.md:
+#: several times faster per solve). Not an nlpsol option: it is taken out before IPOPT is built (here
+#: and in flyopt.design.nlp).
 SOLVER_OPTION = WHEEL_SOLVER
+
+#: The whole wheel's solver where the options do not choose one (:data:`SOLVER_OPTION`).
+DEFAULT_SOLVER = "sqpmethod"
 
 #: sqpmethod's options for the wheel NLP: exact Hessian clipped to positive definite (qrqp needs a
 #: convex QP; without it 6 of the 48 wheels failed, with it 3), the rows met to 1e-10 as IPOPT's tol.
@@ -334,7 +346,7 @@ def _castability_rows(structure, dims, row):
 def _build(structure, options):
     start = time.perf_counter()
     options = dict(options)
-    choice = options.pop(SOLVER_OPTION, "ipopt")
+    choice = options.pop(SOLVER_OPTION, DEFAULT_SOLVER)
     if choice not in ("ipopt", "sqpmethod"):
         raise ValueError(f"{SOLVER_OPTION} is 'ipopt' or 'sqpmethod', not {choice!r}")
     names = variables_of(structure)
@@ -591,7 +603,7 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     begin = time.perf_counter()
     sol, stats = _solve_fast(model.fast, args) if model.fast is not None else (None, {})
     solver = "sqpmethod" if sol is not None else "ipopt"
-    if sol is None:  # IPOPT: the default, and where sqpmethod did not converge
+    if sol is None:  # IPOPT: where sqpmethod did not converge, or chosen alone
         try:
             sol = model.solver(**args)
         except RuntimeError as err:
@@ -611,9 +623,15 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     xs = [float(v) for v in sol["x"].full().ravel()]
     dims = dims_of(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
     lam_g: dict = {}
-    for name, lam in zip(model.constraints, sol["lam_g"].full().ravel()):
-        lam_g[name] = lam_g.get(name, 0.0) + float(lam)
-    lam_x = {n: float(v) for n, v in zip(names, sol["lam_x"].full().ravel())}
+    rows = sol["g"].full().ravel()
+    for name, lam, g, lo, hi in zip(model.constraints, sol["lam_g"].full().ravel(), rows, args["lbg"], args["ubg"]):
+        # a row off both its bounds has no multiplier: an interior point method leaves mu/slack there
+        # (1e-9 on a 16.5 mm hub wall whose minimum is 8 mm), which would read as a binding limit
+        lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if _active(g, lo, hi) else 0.0)
+    lam_x = {
+        n: float(v) if _active(x, lo, hi) else 0.0
+        for n, v, x, lo, hi in zip(names, sol["lam_x"].full().ravel(), xs, args["lbx"], args["ubx"])
+    }
     lam_p = {n: float(v) for n, v in zip(PARAMETERS, sol["lam_p"].full().ravel())}
     for part, v in zip(model.stress_parts, sol["lam_p"].full().ravel()[len(PARAMETERS) :]):
         lam_p[f"allow_{part}"] = float(v)
@@ -632,6 +650,17 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         capped or None,
         solver,
     )
+
+
+#: A row within this of its bound (relative to the bound, absolute below 1) is active: its multiplier
+#: counts. The rows are logarithms or lengths in metres; a converged row meets its bound to the solvers'
+#: 1e-10, and a limit clear of its bound by a micrometre or a millionth is not binding.
+ACTIVE_ROW = 1e-6
+
+
+def _active(value: float, lower: float, upper: float) -> bool:
+    """Whether a row or variable at ``value`` meets one of its bounds to :data:`ACTIVE_ROW`."""
+    return any(abs(value - bound) <= ACTIVE_ROW * max(1.0, abs(bound)) for bound in (lower, upper) if math.isfinite(bound))
 
 
 def _solve_fast(fast, args):
