@@ -660,7 +660,9 @@ ACTIVE_ROW = 1e-6
 
 def _active(value: float, lower: float, upper: float) -> bool:
     """Whether a row or variable at ``value`` meets one of its bounds to :data:`ACTIVE_ROW`."""
-    return any(abs(value - bound) <= ACTIVE_ROW * max(1.0, abs(bound)) for bound in (lower, upper) if math.isfinite(bound))
+    return any(
+        abs(value - bound) <= ACTIVE_ROW * max(1.0, abs(bound)) for bound in (lower, upper) if math.isfinite(bound)
+    )
 
 
 def _solve_fast(fast, args):
