@@ -13,12 +13,14 @@ and caps of the scene's design where the stress check settled them. Methods:
 ``flyopt-ipopt``
     flyopt's own path, the call a user's solve makes: for the scene's
     combinations the whole design (``design_combination`` with method
-    "ipopt": the NLP by IPOPT, its status checked, the exact stress check and
+    "ipopt", the NLP path: the NLP by the wheel's default solver, sqpmethod
+    with IPOPT behind it, its status checked, the exact stress check and
     any re-solve); for a random wheel :func:`flyopt.design.wheel_nlp.solve`.
-    A non-converged solve raises and gives no design.
+    A non-converged solve raises and gives no design. (The label is the
+    method's name, "ipopt" as against the closed form.)
 ``flyopt-nlp``
     For the scene's combinations, the same NLP alone by
-    :func:`flyopt.design.wheel_nlp.solve` (IPOPT, status checked): what SLSQP
+    :func:`flyopt.design.wheel_nlp.solve` (status checked): what SLSQP
     and the grid do, without the design's stress check.
 ``slsqp``
     ``scipy.optimize.minimize(method="SLSQP")`` on the same NLP: the
@@ -412,14 +414,14 @@ def scene_cases(path: Path = SCENE) -> list[WheelCase]:
 
 
 def _designed(combo: Any, spec: Any, bore: float, torque: float, n_arms: int) -> Dims:
-    """flyopt's whole-wheel design of a combination by IPOPT (what the designer calls), its Dims."""
+    """flyopt's whole-wheel design of a combination by its NLP path (what the designer calls), its Dims."""
     from flyopt.design import wheel_design
 
     return wheel_design.design_combination(combo, spec, bore, torque, n_arms, None, "ipopt")[0]
 
 
 def _solved(structure: Any, problem: Any, label: str) -> Dims:
-    """flyopt's IPOPT solve of a wheel NLP (status checked: SolverFailed otherwise), its Dims."""
+    """flyopt's solve of a wheel NLP as shipped (status checked: SolverFailed otherwise), its Dims."""
     from flyopt.design import wheel_nlp
 
     return wheel_nlp.solve(wheel_nlp.get_model(structure), problem, label).dims
