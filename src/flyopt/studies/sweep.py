@@ -375,7 +375,14 @@ def _describe(scene: Scene, plan: SweepPlan, method: str) -> Callable[[Sequence[
     objective = None if "design.objective" in varied else design_inputs(scene).spec.objective
     spec = {
         "vary": {
-            a.field: {"kind": a.kind, "values": list(a.values), "low": a.low, "high": a.high, "log": bool(a.log)}
+            a.field: {
+                "kind": a.kind,
+                "values": list(a.values),
+                "low": a.low,
+                "high": a.high,
+                "log": bool(a.log),
+                "unit": a.unit,  # as written (rpm): flyopt.read_results(path, units="input") gives it back
+            }
             for a in plan.axes
         },
         "samples": plan.samples,
