@@ -199,3 +199,15 @@ def test_units_refused_in_one_line(swept):
         flyopt.read_results(swept["parquet"], units="metric")
     with pytest.raises(ValueError, match=r"'input' needs a sweep's table"):
         flyopt.to_units(pd.DataFrame({"mass": [1.0]}), "input")
+
+
+def test_a_trade_off_in_the_engineers_units():
+    """The studies' tables are DataFrames already: to_units shows them in a unit system, their units in attrs."""
+    table = flyopt.material_tradeoff(flyopt.load(PROBLEMS / "punch-press.toml"))
+    shown = flyopt.to_units(table, "engineering", labels=True)
+    assert shown["d_outer [mm]"].tolist() == pytest.approx((table["d_outer"] * 1e3).tolist(), rel=1e-15)
+    assert (
+        shown["mass [kg]"].tolist() == table["mass"].tolist()
+        and shown["material"].tolist() == table["material"].tolist()
+    )
+    assert shown.attrs["flyopt"]["units"]["rim_speed"] == "m/s" and "flyopt" not in table.attrs  # the table untouched

@@ -188,7 +188,7 @@ def sweep(
         :func:`flyopt.studies.evaluate.evaluate_points`), in point order; a
         Latin hypercube's table has a ``seed`` column after ``point``.
         With ``output``: the rows are in the file (read it with
-        :func:`flyopt.outputs.results.read_results`) and the frame holds only
+        :func:`flyopt.read_results`, in SI or in the units the fields were given in) and the frame holds only
         :data:`SUMMARY_COLUMNS` of each finished point, in point order
         (``status`` and ``method`` as categoricals).
         ``frame.attrs["sweep"]`` tells how it ran: chunks run and reused,
