@@ -26,7 +26,10 @@ ARCHITECTURE = Path(__file__).resolve().parents[1] / "docs" / "architecture.md"
 #: Bottom to top: (floor, the modules and packages on it). A module belongs to the
 #: floor of the longest prefix that names it.
 FLOORS = (
-    ("base", ("flyopt", "flyopt.errors", "flyopt.units", "flyopt.names", "flyopt.validate", "flyopt._toml")),
+    (
+        "base",
+        ("flyopt", "flyopt.errors", "flyopt.units", "flyopt.names", "flyopt.validate", "flyopt._toml", "flyopt.views"),
+    ),
     ("cycle", ("flyopt.cycle",)),
     ("machine", ("flyopt.machine",)),
     ("sizing", ("flyopt.sizing",)),

@@ -8,8 +8,9 @@ Each notebook states its question, tells the engineering story cell by cell
 and ends with conclusions built from the computed values (a final cell that
 writes them as Markdown), so that they cannot go stale; a number typed in the
 text is checked by an assert in the notebook. Only the public API is used:
-what ``flyopt`` exports, the plots of ``flyopt.report.plots``, the display
-units of ``flyopt.report.display`` and the unit table of ``flyopt.outputs.results``.
+what ``flyopt`` exports (``to_units``, ``read_results``, a design's
+``to_frame``), the plots of ``flyopt.report.plots`` and the display units of
+``flyopt.report.display``.
 """
 
 import sys
@@ -27,37 +28,19 @@ def notebook(cells):
     return nb
 
 
-#: Every notebook's table helper: flyopt's own unit table (flyopt.outputs.results) and the
-#: engineer's units (flyopt.report.display), so that no printed number goes without its unit.
+#: Every notebook's table helpers: flyopt.to_units (the engineer's units of flyopt.report.display, each
+#: quantity's dimension from flyopt's one table of output fields), so that no printed number goes without its unit.
 UNITS_HELPER = '''
 import pandas as pd
-from flyopt.outputs.quantities import COUNTS
 from flyopt.report import display
 
 SYSTEM = "engineering"     # what people read: mm, rpm, kN·m, kJ, MPa (flyopt.report.display)
 pd.set_option("display.float_format", "{:.4g}".format)     # four significant digits in every table
 
 
-def in_units(frame, system=SYSTEM, dimensions=None):
-    """The table in the system's units, each quantity's unit in its column name.
-
-    A column's dimension is flyopt's own (display.dimension_of: the one table behind
-    the JSON's units), or given in ``dimensions`` for a column that is no flyopt output
-    field; a cost is in the currency of the prices. Text, flags and counts keep their
-    name; any other number without a known dimension is refused (ValueError), so that
-    no number is shown without its unit.
-    """
-    shown = {}
-    for name in frame.columns:
-        column = frame[name]
-        if name == "cost":
-            shown["cost [currency]"] = column
-        elif name in COUNTS or pd.api.types.is_bool_dtype(column) or not pd.api.types.is_numeric_dtype(column):
-            shown[name] = column
-        else:
-            dimension = (dimensions or {}).get(name) or display.dimension_of(name)
-            shown[f"{name} [{display.label(dimension, system)}]"] = display.show(column, dimension, system)
-    return pd.DataFrame(shown, index=frame.index)
+def in_units(frame):
+    """The table in the engineer's units, each quantity's unit in its column's name (flyopt.to_units)."""
+    return flyopt.to_units(frame, SYSTEM, labels=True)
 
 
 def text(value, dimension, digits=4, system=SYSTEM):
@@ -200,8 +183,12 @@ only J_F/i² (section 8).""",
     (
         "code",
         """solution = flyopt.solve(scene, verify_design=True)
-best = solution.design.best
-candidates = pd.DataFrame([c.to_dict() for c in solution.design.candidates])
+solution      # its answer card: the answer of the text report (flyopt solve), as a table""",
+    ),
+    (
+        "code",
+        """best = solution.design.best
+candidates = solution.design.to_frame()      # the ranking: every material × shaft, SI, units in attrs
 in_units(candidates[["material", "shaft", "speed_ratio", "feasible", "mass", "d_outer", "d_inner",
                      "b", "h", "rim_speed", "binding"]])""",
     ),
@@ -345,7 +332,7 @@ ductile = library["ductile_iron"]
 assert library["cast_iron"].max_rim_speed == 36 and library["cast_steel"].max_rim_speed == 50      # section 10
 assert materials["density"].idxmax() == materials["rim_speed_limit"].idxmax() == "cast_steel"   # densest and fastest
 assert math.isclose(ductile.max_rim_speed, math.sqrt(ductile.allowable_stress / ductile.density), rel_tol=1e-12)
-in_units(materials, dimensions={"density": "density"})""",
+in_units(materials)""",
     ),
     (
         "md",
@@ -392,10 +379,15 @@ steps of 5 rpm for each material; at each point the design chooses the material'
     ),
     (
         "code",
-        """study = flyopt.sweep(scene, {"speed": "20:120:21rpm", "material": names}, workers=1)
-assert (study["status"] == "designed").all()
-rpm = display.label("angular_speed")
-study["rpm"] = display.show(study["speed"], "angular_speed").round(9)
+        """import tempfile
+folder = tempfile.TemporaryDirectory()                # removed when the kernel stops
+STUDY = Path(folder.name) / "speeds.parquet"          # the sweep's file, as `flyopt sweep -o` writes it
+flyopt.sweep(scene, {"speed": "20:120:21rpm", "material": names}, workers=1, output=STUDY)
+study = flyopt.read_results(STUDY)                     # in SI, as computed; the crank speed back in rpm, as given:
+given = flyopt.read_results(STUDY, columns=["speed"], units="input")
+assert given.attrs["flyopt"]["units"]["speed"] == "rpm" and (study["status"] == "designed").all()
+rpm = given.attrs["flyopt"]["units"]["speed"]
+study["rpm"] = given["speed"].round(9)
 assert np.allclose(np.sort(study["rpm"].unique()), np.arange(20, 121, 5))
 
 fig, ax = plt.subplots(figsize=(9, 4.8), layout="constrained")
@@ -463,7 +455,7 @@ price every design: the scene's materials, each with its cost, through `Scene.re
         """prices = {"cast_iron": 1.0, "cast_steel": 1.6, "ductile_iron": 1.3}
 priced = scene.replace(materials=tuple(replace(library[name], cost=price) for name, price in prices.items()))
 costed = flyopt.sweep(priced, {"speed": "20:120:21rpm", "material": names}, workers=1)
-costed["rpm"] = display.show(costed["speed"], "angular_speed").round(9)
+costed["rpm"] = flyopt.to_units(costed, "input")["speed"].round(9)      # the speed as the sweep was given it
 assert np.allclose(costed["mass"], study["mass"], rtol=1e-12)                          # prices change no design
 assert np.allclose(costed["cost"], costed["mass"] * costed["material"].map(prices), rtol=1e-12)   # a rim's cost
 mass = costed.pivot(index="rpm", columns="material", values="mass")

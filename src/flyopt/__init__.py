@@ -31,6 +31,8 @@ if TYPE_CHECKING:  # the real types, for type checkers and editors (``X as X``: 
     from flyopt.pipeline import Solution as Solution
     from flyopt.pipeline import design_scene as design_scene
     from flyopt.pipeline import solve as solve
+    from flyopt.report.notebook import read_results as read_results
+    from flyopt.report.notebook import to_units as to_units
     from flyopt.studies.pareto import pareto as pareto
     from flyopt.studies.sweep import sweep as sweep
     from flyopt.studies.tradeoff import material_tradeoff as material_tradeoff
@@ -59,7 +61,13 @@ _API: dict[str, str] = {
     "material_tradeoff": "flyopt.studies.tradeoff",
     "pareto": "flyopt.studies.pareto",
     "sweep": "flyopt.studies.sweep",  # the function; the module is flyopt.studies.sweep
+    "read_results": "flyopt.report.notebook",  # a table file back, in SI or the user's units
+    "to_units": "flyopt.report.notebook",
 }
+
+#: The modules that register how results are shown (:mod:`flyopt.views`: a notebook's HTML,
+#: ``to_frame``), imported by :func:`_load_views` when a result is first shown.
+_VIEW_MODULES = ("flyopt.report.notebook",)
 
 __all__ = sorted(_API) + ["__version__"]
 
@@ -74,6 +82,12 @@ def __getattr__(name: str) -> Any:
         value = getattr(importlib.import_module(module), name)
     globals()[name] = value
     return value
+
+
+def _load_views() -> None:
+    """Import the modules of :data:`_VIEW_MODULES`, which register their views in :mod:`flyopt.views`."""
+    for module in _VIEW_MODULES:
+        importlib.import_module(module)
 
 
 def _version() -> str:

@@ -16,6 +16,7 @@ from flyopt.analysis import EXTRAS as ANALYSIS_EXTRAS
 from flyopt.analysis import Analysis, NotComputed, analyse, complete
 from flyopt.cycle.indicator import speed_extremes
 from flyopt.errors import BrokenInvariant
+from flyopt.views import view
 
 if TYPE_CHECKING:  # the annotations only: importing Verification loads CasADi
     import numpy as np
@@ -95,6 +96,11 @@ class Solution:
     drive_check: DriveCheck | None = None  # of the chosen drive
     flywheel: FlywheelCheck | None = None  # of a scene's [flywheel] that exists (no design then)
     _extras: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
+
+    def _repr_html_(self) -> str:
+        """The answer card in a notebook: the text report's answer as a small table (drawn on the report's
+        floor, :func:`flyopt.report.notebook.answer_card`, through :mod:`flyopt.views`)."""
+        return str(view("solution", "html", self))
 
     def _extra(self, name: str) -> Any:
         try:

@@ -20,8 +20,11 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.design.spec import DesignSpec
 from flyopt.design.wheel import ARM_MINOR_RATIO, Dims
+from flyopt.views import view
 
 if TYPE_CHECKING:
+    import pandas as pd
+
     from flyopt.design.fem import FemCheck
 
 __all__ = [
@@ -517,6 +520,19 @@ class DesignResult:
     def material_name(self, key: str) -> str:
         """A material's name for people (:attr:`flyopt.design.materials.Material.display_name`) from its key."""
         return self.material_names.get(key) or key.replace("_", " ")
+
+    def to_frame(self, units: str | None = None) -> pd.DataFrame:
+        """The ranking as a DataFrame: every combination, best first, the JSON's candidate fields as columns.
+
+        In SI (``units=None``) or a unit system of :mod:`flyopt.report.display`; ``attrs["flyopt"]["units"]``
+        gives each column's unit. Built on the report's floor (:func:`flyopt.report.notebook.ranking_frame`),
+        through :mod:`flyopt.views`.
+        """
+        return view("design", "frame", self, units)
+
+    def _repr_html_(self) -> str:
+        """The ranking as a table in a notebook, in the engineer's units (:func:`flyopt.report.notebook.ranking_html`)."""
+        return str(view("design", "html", self))
 
     def book_rim(self) -> BookRim | None:
         """What the courses' rim (criterion mean_rim_speed) really sees, beside what the book checks; None for

@@ -312,6 +312,10 @@ class Axis:
         Ends of a range (for Latin hypercube sampling).
     log : bool
         Log spacing / log-uniform sampling.
+    unit : str or None
+        The unit the values were written in (``"rpm"`` of ``300,600,1200rpm``), where they share one;
+        None for plain (SI) numbers, names, or values written in different units. Recorded in a
+        sweep file's metadata, so that :func:`flyopt.read_results` gives the column back in it.
     """
 
     field: str
@@ -320,6 +324,7 @@ class Axis:
     low: float | None = None
     high: float | None = None
     log: bool = False
+    unit: str | None = None
 
     def ends(self) -> tuple[float, float]:
         """(low, high) of a range axis; ValueError for a list."""
@@ -336,6 +341,12 @@ def split_unit(item: str) -> tuple[str, str]:
         if rest and (rest[0].isalpha() or rest[0] in "°%"):
             return m.group().strip(), rest
     return item.strip(), ""
+
+
+def _given_unit(units: Iterable[str]) -> str | None:
+    """The one unit a field's values were written in ('' for a plain number); None if none or several."""
+    distinct = set(units)
+    return distinct.pop() if len(distinct) == 1 and "" not in distinct else None
 
 
 def _number(text, unit, spec, label):
@@ -370,7 +381,7 @@ def _parse_text(scene, name, spec, text, label, sampled, cap=None):
     if any(not t for t in items):
         raise SceneError(label, f"{text!r}: an empty value in the list")
     trailing = split_unit(items[-1])[1]
-    values = []
+    values, units = [], []
     for item in items:
         if spec.optional and item.lower() == "none":
             values.append(math.nan)
@@ -379,7 +390,8 @@ def _parse_text(scene, name, spec, text, label, sampled, cap=None):
         value = _number(number, unit or trailing, spec, label)
         _check_value(value, spec, label, item)
         values.append(value)
-    return Axis(name, tuple(values))
+        units.append(unit or trailing)
+    return Axis(name, tuple(values), unit=_given_unit(units))
 
 
 def _parse_range(name, spec, text, label, sampled, cap=None):
@@ -408,7 +420,7 @@ def _parse_range(name, spec, text, label, sampled, cap=None):
         trailing = split_unit(parts[1])[1]
     if count is None and not sampled:
         raise SceneError(label, f"{text!r}: a grid range needs a count: a:b:n or a:b:logn")
-    ends = []
+    ends, units = [], []
     for part in parts[:2]:
         number, unit = split_unit(part)
         if not number:
@@ -416,6 +428,7 @@ def _parse_range(name, spec, text, label, sampled, cap=None):
         value = _number(number, unit or trailing, spec, label)
         _check_value(value, spec, label, part.strip())
         ends.append(value)
+        units.append(unit or trailing)
     low, high = ends
     if log and (low <= 0 or high <= 0):
         raise SceneError(label, f"{text!r}: a log range needs positive ends")
@@ -435,7 +448,7 @@ def _parse_range(name, spec, text, label, sampled, cap=None):
         values = np.linspace(low, high, n) if n > 1 else np.array([low])
     if n > 1:
         values[0], values[-1] = low, high
-    return Axis(name, tuple(float(v) for v in values), "range", low, high, log)
+    return Axis(name, tuple(float(v) for v in values), "range", low, high, log, _given_unit(units))
 
 
 def _check_name(scene, name, item, label):
@@ -466,9 +479,12 @@ def _parse_value(scene, name, spec, value, label, sampled, cap=None):
     if len(items) == 0:
         raise SceneError(label, "no values given")
     values = []
+    units: list[str] = []
     for item in items:
         if isinstance(item, str):
-            values.extend(_parse_text(scene, name, spec, item, label, False).values)
+            axis = _parse_text(scene, name, spec, item, label, False)
+            values.extend(axis.values)
+            units.append(axis.unit or "")
         elif spec.kind == "name":
             raise SceneError(label, f"{item!r}: expected a name ({spec.what})")
         elif item is None and spec.optional:
@@ -477,7 +493,8 @@ def _parse_value(scene, name, spec, value, label, sampled, cap=None):
             number = _number(item, "", spec, label) if not isinstance(item, str) else None
             _check_value(number, spec, label, str(item))
             values.append(number)
-    return Axis(name, tuple(values))
+            units.append("")
+    return Axis(name, tuple(values), unit=None if spec.kind == "name" else _given_unit(units))
 
 
 def _text_items(texts, where):

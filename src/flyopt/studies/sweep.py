@@ -188,7 +188,7 @@ def sweep(
         :func:`flyopt.studies.evaluate.evaluate_points`), in point order; a
         Latin hypercube's table has a ``seed`` column after ``point``.
         With ``output``: the rows are in the file (read it with
-        :func:`flyopt.outputs.results.read_results`) and the frame holds only
+        :func:`flyopt.read_results`, in SI or in the units the fields were given in) and the frame holds only
         :data:`SUMMARY_COLUMNS` of each finished point, in point order
         (``status`` and ``method`` as categoricals).
         ``frame.attrs["sweep"]`` tells how it ran: chunks run and reused,
@@ -375,7 +375,14 @@ def _describe(scene: Scene, plan: SweepPlan, method: str) -> Callable[[Sequence[
     objective = None if "design.objective" in varied else design_inputs(scene).spec.objective
     spec = {
         "vary": {
-            a.field: {"kind": a.kind, "values": list(a.values), "low": a.low, "high": a.high, "log": bool(a.log)}
+            a.field: {
+                "kind": a.kind,
+                "values": list(a.values),
+                "low": a.low,
+                "high": a.high,
+                "log": bool(a.log),
+                "unit": a.unit,  # as written (rpm): flyopt.read_results(path, units="input") gives it back
+            }
             for a in plan.axes
         },
         "samples": plan.samples,

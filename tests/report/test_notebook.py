@@ -1,0 +1,213 @@
+"""Results in a notebook (issue 29): the answer card, the ranking as a DataFrame, sweep files back in their units.
+
+Every number is checked against ``flyopt solve --json``'s (the JSON document of the same solve) or against
+the values the sweep was given in, not against the functions that show them.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import math
+import re
+import subprocess
+import sys
+
+import pandas as pd
+import pytest
+
+import flyopt
+from flyopt.outputs.documents import solution_json
+from flyopt.report.text import answer_report
+from tests.conftest import PROBLEMS, ROOT
+
+NUM = r"[0-9][0-9,]*(?:\.[0-9]+)?"
+
+
+def _shown_equal(shown: str, value: float) -> bool:
+    """A number printed to four significant figures is the JSON's value so rounded."""
+    digits = 4 - 1 - math.floor(math.log10(abs(value))) if value else 0
+    return math.isclose(float(shown.replace(",", "")), round(value, digits), rel_tol=1e-12, abs_tol=1e-12)
+
+
+@pytest.fixture(scope="module")
+def punch_press():
+    path = PROBLEMS / "punch-press.toml"
+    solution = flyopt.solve(flyopt.load(path))
+    return solution, json.loads(solution_json(solution, str(path)))
+
+
+def _cells(card: str) -> dict[str, str]:
+    return {
+        html.unescape(k): html.unescape(v) for k, v in re.findall(r"<th[^>]*>([^<]*)</th><td[^>]*>([^<]*)</td>", card)
+    }
+
+
+def test_the_answer_card_shows_the_jsons_numbers(punch_press):
+    solution, data = punch_press
+    design = data["design"]
+    card = solution._repr_html_()
+    assert card.startswith('<table class="flyopt-answer">') and card.endswith("</table>")
+    caption = html.unescape(re.search(r"<caption[^>]*>(.*)</caption>", card).group(1))
+    assert caption.startswith(f"<b>{data['title']}</b><br>Answer: ")
+    assert _shown_equal(re.search(rf", ({NUM}) kg, on the motor shaft", caption).group(1), design["mass"])
+    cells = _cells(card)
+    assert list(cells) == ["size", "J", "limits", "δ"]
+    size = cells["size"]
+    for label, field in (("D", "d_outer"), ("H", "h"), ("B", "b")):
+        assert _shown_equal(re.search(rf"\b{label} ({NUM}) mm", size).group(1), design[field] * 1e3), field
+    assert _shown_equal(re.search(rf"^({NUM}) kg·m² on its shaft", cells["J"]).group(1), design["j_flywheel"])
+    assert _shown_equal(re.search(rf"rim speed ({NUM}) m/s", cells["limits"]).group(1), design["rim_speed"])
+    assert cells["δ"].startswith(f"allowed {data['delta']:g}")
+
+
+def test_the_card_is_the_text_reports_answer_line_by_line(punch_press):
+    """One formatter: the card's rows are the answer of the text report, in the units asked for."""
+    solution, _ = punch_press
+    from flyopt.report.notebook import answer_card
+
+    for units in ("engineering", "imperial"):
+        lines = [line.strip() for line in answer_report(solution, units) if line.strip()]
+        cells = _cells(answer_card(solution, units))
+        assert [f"{k}  {v}" for k, v in cells.items()] == [re.sub(r"^(\S+)\s{2,}", r"\1  ", x) for x in lines[1:]]
+    assert " in, " in _cells(answer_card(solution, "imperial"))["size"] + ", "
+
+
+def test_the_card_escapes_what_the_scene_says(tmp_path):
+    text = (PROBLEMS / "shear-press.toml").read_text(encoding="utf-8")
+    title = re.search(r'^title = "(.*)"$', text, re.M).group(0)
+    path = tmp_path / "hostile.toml"
+    path.write_text(text.replace(title, 'title = "<script>alert(1)</script> & co"'), encoding="utf-8")
+    card = flyopt.solve(flyopt.load(path))._repr_html_()
+    assert "<script>" not in card and "&lt;script&gt;alert(1)&lt;/script&gt; &amp; co" in card
+
+
+def test_a_machine_that_needs_no_flywheel_has_a_card_that_says_so():
+    card = flyopt.solve(flyopt.load(PROBLEMS / "conveyor.toml"))._repr_html_()
+    assert "Answer: no flywheel: the machine&#x27;s own inertia holds δ" in card and "<td" not in card
+
+
+def test_the_ranking_as_a_frame_is_the_jsons_candidates_with_their_units(punch_press):
+    solution, data = punch_press
+    candidates = data["design"]["candidates"]
+    frame = solution.design.to_frame()
+    assert len(frame) == len(candidates) == 9
+    for column in ("mass", "d_outer", "h", "b", "rim_speed", "j_flywheel", "speed_ratio"):
+        assert [None if math.isnan(v) else v for v in frame[column]] == [c[column] for c in candidates], column
+    assert list(frame["material"]) == [c["material"] for c in candidates]
+    assert list(frame["binding"]) == [",".join(c["binding"]) for c in candidates]
+    assert frame["feasible"].dtype == bool and "parts" not in frame and "stress" not in frame
+    units = frame.attrs["flyopt"]["units"]
+    assert (units["mass"], units["d_outer"], units["j_flywheel"], units["rim_speed"]) == ("kg", "m", "kg*m**2", "m/s")
+    shown = solution.design.to_frame("engineering")
+    mm = [math.nan if c["d_outer"] is None else c["d_outer"] * 1e3 for c in candidates]
+    assert any(math.isnan(v) for v in mm)  # an infeasible combination has no size: NaN, not 0
+    assert shown["d_outer"].tolist() == pytest.approx(mm, rel=1e-15, nan_ok=True)
+    assert shown.attrs["flyopt"]["units"]["d_outer"] == "mm" and shown.attrs["flyopt"]["si_units"]["d_outer"] == "m"
+
+
+def test_the_ranking_shows_in_a_notebook_with_the_jsons_numbers(punch_press):
+    solution, data = punch_press
+    table = solution.design._repr_html_()
+    header = re.findall(r"<th>([^<]*)</th>", table)
+    body = table[table.index("<tbody>") :]
+    rows = [re.findall(r"<td>([^<]*)</td>", row) for row in re.findall(r"<tr>(.*?)</tr>", body, re.S)]
+    assert header[:5] == ["material", "shaft", "feasible", "mass [kg]", "d_outer [mm]"]
+    candidates = data["design"]["candidates"]
+    assert len(rows) == len(candidates)
+    for row, candidate in zip(rows, candidates):
+        cell = dict(zip(header, row))
+        assert cell["shaft"] == candidate["shaft"]
+        if candidate["mass"] is None:
+            assert cell["mass [kg]"] == cell["d_outer [mm]"] == "-"
+        else:
+            assert _shown_equal(cell["mass [kg]"], candidate["mass"])
+            assert _shown_equal(cell["d_outer [mm]"], candidate["d_outer"] * 1e3)
+    assert rows[0][0] == "cast steel"  # the material's name for people, as the text writes it
+
+
+def test_a_result_shows_itself_without_the_public_names():
+    """The views are found when the result came from flyopt.pipeline directly; import flyopt stays light."""
+    code = (
+        "import sys\n"
+        "import flyopt\n"
+        "assert 'flyopt.report.notebook' not in sys.modules\n"
+        "from flyopt.io.scene import load\n"
+        "from flyopt.pipeline import solve\n"
+        f"print(solve(load({str(PROBLEMS / 'shear-press.toml')!r}))._repr_html_()[:30])\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True, timeout=120
+    ).stdout
+    assert out.startswith('<table class="flyopt-answer">')
+
+
+# --------------------------------------------------------------------------
+# A sweep's file in the units it was given in
+# --------------------------------------------------------------------------
+
+RPM = [50.0, 60.0, 70.0]
+
+
+@pytest.fixture(scope="module")
+def swept(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("sweep")
+    scene = flyopt.load(PROBLEMS / "punch-press.toml")
+    paths = {kind: folder / f"study.{kind}" for kind in ("parquet", "csv")}
+    for path in paths.values():
+        flyopt.sweep(scene, {"speed": "50,60,70rpm", "design.max_width": "150mm"}, workers=1, output=path)
+    return paths
+
+
+def test_pandas_alone_reads_the_speed_in_si(swept):
+    """What the file holds: SI (the reason read_results offers the user's units)."""
+    frame = pd.read_parquet(swept["parquet"])
+    assert frame["speed"].tolist() == pytest.approx([n * 2 * math.pi / 60 for n in RPM], rel=1e-15)
+
+
+@pytest.mark.parametrize("kind", ["parquet", "csv"])
+def test_read_results_gives_a_sweep_back_in_the_units_it_was_given_in(swept, kind):
+    si = flyopt.read_results(swept[kind])
+    frame = flyopt.read_results(swept[kind], units="input")
+    assert frame["speed"].tolist() == pytest.approx(RPM, rel=1e-14)
+    assert frame["design.max_width"].tolist() == pytest.approx([150.0] * 3, rel=1e-14)
+    meta = frame.attrs["flyopt"]
+    assert meta["sweep"]["vary"]["speed"]["unit"] == "rpm" and meta["sweep"]["vary"]["design.max_width"]["unit"] == "mm"
+    assert (meta["units"]["speed"], meta["si_units"]["speed"], meta["shown_in"]) == ("rpm", "rad/s", "input")
+    assert (meta["units"]["design.max_width"], meta["units"]["mass"], meta["units"]["d_outer"]) == ("mm", "kg", "m")
+    assert frame["mass"].tolist() == si["mass"].tolist() and frame["d_outer"].tolist() == si["d_outer"].tolist()
+    assert meta["scene_digest"] == si.attrs["flyopt"]["scene_digest"]  # the rest of the metadata kept
+
+
+def test_read_results_in_a_unit_system(swept):
+    si = flyopt.read_results(swept["parquet"])
+    frame = flyopt.read_results(swept["parquet"], columns=["speed", "d_outer", "status"], units="engineering")
+    assert frame["speed"].tolist() == pytest.approx(RPM, rel=1e-14)
+    assert frame["d_outer"].tolist() == pytest.approx((si["d_outer"] * 1e3).tolist(), rel=1e-15)
+    assert frame["status"].tolist() == si["status"].tolist()
+    assert (frame.attrs["flyopt"]["units"]["d_outer"], frame.attrs["flyopt"]["units"]["speed"]) == ("mm", "rpm")
+    labelled = flyopt.to_units(si[["speed", "mass", "status"]], "imperial", labels=True)
+    assert list(labelled.columns) == ["speed [rpm]", "mass [lb]", "status"]
+    assert labelled["mass [lb]"].tolist() == pytest.approx((si["mass"] / 0.45359237).tolist(), rel=1e-15)
+
+
+def test_units_refused_in_one_line(swept):
+    frame = flyopt.read_results(swept["parquet"], units="engineering")
+    with pytest.raises(ValueError, match=r"already in 'engineering' units"):
+        flyopt.to_units(frame, "si")
+    with pytest.raises(ValueError, match=r"units 'metric' is not known \(allowed: input, engineering, si, imperial\)"):
+        flyopt.read_results(swept["parquet"], units="metric")
+    with pytest.raises(ValueError, match=r"'input' needs a sweep's table"):
+        flyopt.to_units(pd.DataFrame({"mass": [1.0]}), "input")
+
+
+def test_a_trade_off_in_the_engineers_units():
+    """The studies' tables are DataFrames already: to_units shows them in a unit system, their units in attrs."""
+    table = flyopt.material_tradeoff(flyopt.load(PROBLEMS / "punch-press.toml"))
+    shown = flyopt.to_units(table, "engineering", labels=True)
+    assert shown["d_outer [mm]"].tolist() == pytest.approx((table["d_outer"] * 1e3).tolist(), rel=1e-15)
+    assert (
+        shown["mass [kg]"].tolist() == table["mass"].tolist()
+        and shown["material"].tolist() == table["material"].tolist()
+    )
+    assert shown.attrs["flyopt"]["units"]["rim_speed"] == "m/s" and "flyopt" not in table.attrs  # the table untouched
