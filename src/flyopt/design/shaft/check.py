@@ -95,14 +95,29 @@ class ShaftLimit:
         return f"{name} {self.where}: {_fmt(self.value)} {relation} {_fmt(self.allowed)} {self.unit}".rstrip()
 
     def to_dict(self) -> dict[str, Any]:
-        """The limit for ``--json`` (SI)."""
+        """The limit for ``--json`` (SI): its value and the allowed one under the names of its quantity
+        (:data:`JSON_NAMES`; a critical speed in rad/s)."""
+        name = JSON_NAMES[self.kind]
+        scale = math.pi / 30.0 if self.unit == "rpm" else 1.0
         return {
             "kind": self.kind,
             "where": self.where,
-            "value": self.value,
-            "allowed": self.allowed,
+            name: self.value * scale,
+            f"{name}_allowed": self.allowed * scale,
             "utilisation": self.utilisation,
         }
+
+
+#: The field of each kind of limit in ``--json`` (its allowed value is ``<name>_allowed``); units in
+#: :data:`flyopt.outputs.quantities.QUANTITIES`.
+JSON_NAMES = {
+    "fatigue": "fatigue_factor",
+    "yield": "yield_factor",
+    "slope": "slope",
+    "deflection": "deflection",
+    "lateral": "critical_speed",
+    "torsional": "critical_speed",
+}
 
 
 def _fmt(x: float) -> str:
@@ -176,7 +191,6 @@ class ShaftCheck:
 
     def to_dict(self) -> dict[str, Any]:
         """The check for ``--json`` (SI)."""
-        nearest = None if self.torsional is None else self.torsional.nearest
         return {
             "holds": self.holds,
             "binding": self.binding.to_dict(),
@@ -190,7 +204,6 @@ class ShaftCheck:
             "torsional_modes": (
                 [] if self.torsional is None else [f * 2.0 * math.pi for f in self.torsional.modes.frequencies_hz]
             ),
-            "torsional_nearest_order": None if nearest is None else nearest.order,
         }
 
 

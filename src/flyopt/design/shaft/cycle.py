@@ -67,7 +67,7 @@ class ShaftReport:
             "shaft": self.shaft,
             "material": self.material,
             **self.check.to_dict(),
-            "binding_sensitivity_mass": self.sensitivity,
+            "dutilisation_dmass": self.sensitivity,
         }
 
 
