@@ -34,7 +34,7 @@ def test_a_described_shaft_is_read_in_si(write_scene):
     assert layout.loads[0].force == 2000.0 and layout.loads[0].angle == pytest.approx(math.pi / 2)
     # the seat follows from the step under the wheel; the defaults are the documented ones
     assert shaft.diameter == pytest.approx(0.08)
-    assert layout.balance_grade == pytest.approx(6.3e-3) and layout.safety_factor == 1.5
+    assert layout.balance_grade is None and layout.safety_factor == 1.5  # None: the flywheel's G 6.3
     assert layout.max_slope == 1e-3 and layout.critical_margin == 0.2 and layout.finish == "machined"
     assert not layout.overhung
 

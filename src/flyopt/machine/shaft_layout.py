@@ -58,8 +58,9 @@ class ShaftLayout:
         Fillet radius of the shoulders [m]; None: sharp (Shigley's Table 7-1, r/d = 0.02).
     loads : tuple of SideLoad
         Other transverse loads (belt or gear pulls).
-    balance_grade : float
-        ISO 21940-11 balance quality grade G = e omega [m/s] (default G 6.3: 6.3 mm/s).
+    balance_grade : float or None
+        ISO 21940-11 balance quality grade G = e omega [m/s]; None: the flywheel's grade
+        (:data:`flyopt.design.balance.BALANCE_GRADE`, G 6.3), the one the wheel's own balance uses.
     safety_factor : float
         The factor of safety the fatigue and first-cycle yield checks require [-].
     max_slope : float
@@ -80,7 +81,7 @@ class ShaftLayout:
     finish: str = "machined"
     fillet: float | None = None
     loads: tuple[SideLoad, ...] = ()
-    balance_grade: float = 6.3e-3
+    balance_grade: float | None = None
     safety_factor: float = 1.5
     max_slope: float = 1.0e-3
     max_deflection: float | None = None

@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from flyopt.design.balance import BALANCE_GRADE, permissible_unbalance
 from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_line
 from flyopt.design.shaft.lateral import GRAVITY, Disc, critical_speeds, rotor_model
@@ -310,7 +311,8 @@ def check_shaft(
     """
     weight = wheel_mass * GRAVITY
     omega_max = omega_mean * (1.0 + 0.5 * delta)
-    unbalance = wheel_mass * layout.balance_grade * omega_max  # m e omega^2, e = G / omega (ISO 21940-11)
+    grade = BALANCE_GRADE if layout.balance_grade is None else layout.balance_grade * 1e3  # [mm/s]
+    unbalance = permissible_unbalance(wheel_mass, omega_max, grade).u_per * omega_max**2  # U_per Omega^2
     torque = np.asarray(torque_curve, dtype=float)
     t_max, t_min = (float(torque.max()), float(torque.min())) if torque.size else (0.0, 0.0)
     t_mean, t_alt = 0.5 * (t_max + t_min), 0.5 * (t_max - t_min)
