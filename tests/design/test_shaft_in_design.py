@@ -81,3 +81,19 @@ def test_a_wider_margin_makes_the_engine_infeasible_with_the_reason_in_numbers(w
     for candidate in result.candidates:
         assert "the shaft cannot carry this" in candidate.reason
         assert "torsional critical speed (mode 1 at order 10)" in candidate.reason and "rpm" in candidate.reason
+
+
+@pytest.mark.slow  # the whole report of a scene (every diagram drawn); the default run keeps the JSON and text
+def test_the_report_has_the_shaft_section_with_both_diagrams_drawn():
+    from flyopt.cli.report import collect
+    from flyopt.report.builder import build
+
+    document = build(collect(ENGINE, "flyopt report"))
+    try:
+        (section,) = [s for s in document.sections if s.key == "shaft"]
+        figures = {b.key: b for b in section.blocks if type(b).__name__ == "Figure"}
+        assert set(figures) == {"shaft", "campbell"}
+        assert all(f.figure is not None and not f.failed for f in figures.values())
+        assert any(type(b).__name__ == "Table" and b.name == "shaft_limits" for b in section.blocks)
+    finally:
+        document.close()
