@@ -58,6 +58,8 @@ __all__ = ["ShaftLimit", "ShaftCheck", "Section", "check_shaft", "separation_uti
 CRITERION = "goodman"
 #: Orders of the net torque at least this share of the largest are checked against the torsional modes.
 SIGNIFICANT_ORDER = 0.05
+#: Equal steps of the diagram along the shaft (the checked sections and breakpoints added to them).
+DIAGRAM_POINTS = 121
 #: Poisson's ratio of a steel when the material gives none (G = E / (2 (1 + nu))).
 STEEL_POISSON = 0.3
 
@@ -321,7 +323,7 @@ def check_shaft(
 
     sections = _sections(layout)
     xs = np.array([s[0] for s in sections])
-    grid = np.unique(np.concatenate((np.linspace(0.0, layout.length, 201), xs)))
+    grid = np.unique(np.concatenate((np.linspace(0.0, layout.length, DIAGRAM_POINTS), xs)))
     px, fy, fz = _plane_loads(layout, weight)
     line_y = elastic_line(beam, px, fy, at=grid)
     line_z = elastic_line(beam, px, fz, at=grid)
@@ -330,17 +332,7 @@ def check_shaft(
     mm_grid = np.abs(line_u.moment)
     torque_on = _carries_torque(layout, grid)
 
-    checked: list[Section] = []
-    for x, name, kind, d in sections:
-        i = int(np.argmin(np.abs(grid - x)))
-        sut, sy = strength.shaft_strengths(material, d)
-        kf, kfs = (1.0, 1.0) if kind is None else notch_factors(kind, d, layout.fillet, sut)
-        se = strength.endurance_limit(sut, d, layout.finish).se
-        ta, tm = (t_alt, abs(t_mean)) if torque_on[i] else (0.0, 0.0)
-        ma, mm = float(ma_grid[i]), float(mm_grid[i])
-        n_f = strength.fatigue_safety_factor(d, ma, ta, mm, tm, kf=kf, kfs=kfs, se=se, sut=sut, criterion=CRITERION)
-        n_y = strength.yield_safety_factor(d, ma, ta, mm, tm, sy=sy, kf=kf, kfs=kfs)
-        checked.append(Section(x, name, d, kf, kfs, ma, mm, ta, tm, float(n_f), float(n_y)))
+    checked = _checked_sections(layout, material, sections, grid, ma_grid, mm_grid, torque_on, t_alt, abs(t_mean))
 
     n_req = layout.safety_factor
     worst_f = min(checked, key=lambda s: s.fatigue)
@@ -408,7 +400,9 @@ def check_shaft(
                 )
             )
 
-    plain = _plain_utilisation(layout, material, grid, ma_grid, mm_grid, torque_on, t_alt, abs(t_mean))
+    plain = _plain_utilisation(
+        layout, material, beam.diameter_at(grid), ma_grid, mm_grid, torque_on, t_alt, abs(t_mean)
+    )
     diagram = {
         "x": grid,
         "moment_alternating": ma_grid,
@@ -443,15 +437,55 @@ def _torsional_stiffness(layout: ShaftLayout, material: Material) -> float:
     return 1.0 / compliance
 
 
-def _plain_utilisation(layout, material, grid, ma, mm, torque_on, ta, tm) -> np.ndarray:
-    """Fatigue utilisation n_required / n_f of the plain (un-notched) section along the shaft, for the diagram."""
-    d = np.array([layout.diameter_at(float(x)) for x in grid])
-    sut, se = np.empty(grid.size), np.empty(grid.size)
+def _strengths_along(layout: ShaftLayout, material: Material, d: np.ndarray) -> tuple[np.ndarray, ...]:
+    """S_ut, S_y and S_e [Pa] at each diameter (each distinct diameter's strengths read once)."""
+    sut, sy, se = np.empty(d.size), np.empty(d.size), np.empty(d.size)
     for di in np.unique(d):
         at = d == di
-        sut[at] = strength.shaft_strengths(material, float(di))[0]
+        sut[at], sy[at] = strength.shaft_strengths(material, float(di))
         se[at] = strength.endurance_limit(sut[at][0], float(di), layout.finish).se
+    return sut, sy, se
+
+
+def _checked_sections(layout, material, sections, grid, ma_grid, mm_grid, torque_on, ta, tm) -> list[Section]:
+    """Fatigue and yield factors of every checked section, the equations evaluated on arrays (one call each)."""
+    index = np.array([int(np.argmin(np.abs(grid - s[0]))) for s in sections])
+    d = np.array([s[3] for s in sections])
+    sut, sy, se = _strengths_along(layout, material, d)
+    factors = [
+        (1.0, 1.0) if kind is None else notch_factors(kind, di, layout.fillet, u)
+        for (_, _, kind, di), u in zip(sections, sut)
+    ]
+    kf, kfs = np.array([f[0] for f in factors]), np.array([f[1] for f in factors])
+    on = torque_on[index]
+    t_a, t_m = np.where(on, ta, 0.0), np.where(on, tm, 0.0)
+    ma, mm = ma_grid[index], mm_grid[index]
+    n_f = np.atleast_1d(
+        strength.fatigue_safety_factor(d, ma, t_a, mm, t_m, kf=kf, kfs=kfs, se=se, sut=sut, criterion=CRITERION)
+    )
+    n_y = np.atleast_1d(strength.yield_safety_factor(d, ma, t_a, mm, t_m, sy=sy, kf=kf, kfs=kfs))
+    return [
+        Section(
+            x,
+            name,
+            float(d[k]),
+            float(kf[k]),
+            float(kfs[k]),
+            float(ma[k]),
+            float(mm[k]),
+            float(t_a[k]),
+            float(t_m[k]),
+            float(n_f[k]),
+            float(n_y[k]),
+        )
+        for k, (x, name, _, _) in enumerate(sections)
+    ]
+
+
+def _plain_utilisation(layout, material, d, ma, mm, torque_on, ta, tm) -> np.ndarray:
+    """Fatigue utilisation n_required / n_f of the plain (un-notched) section of diameter d along the shaft."""
+    sut, _, se = _strengths_along(layout, material, d)
     t_a, t_m = np.where(torque_on, ta, 0.0), np.where(torque_on, tm, 0.0)
-    n = strength.fatigue_safety_factor(d, ma, t_a, mm, t_m, kf=1.0, kfs=1.0, se=se, sut=sut)
+    n = strength.fatigue_safety_factor(d, ma, t_a, mm, t_m, kf=1.0, kfs=1.0, se=se, sut=sut, criterion=CRITERION)
     out: np.ndarray = layout.safety_factor / np.asarray(n)
     return out
