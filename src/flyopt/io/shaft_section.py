@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, check_magnitude
@@ -107,6 +107,12 @@ def read_layout(table: Table, where: str) -> ShaftLayout | None:
         raise SceneError(f"{where}.bearings", f"must be two different positions, got {shorten(table.raw('bearings'))}")
     wheel_at = _position(table.require("wheel_at"), f"{where}.wheel_at", length)
     torque_at = _position(table.require("torque_at"), f"{where}.torque_at", length)
+    if torque_at == wheel_at:
+        raise SceneError(
+            f"{where}.torque_at",
+            "must differ from wheel_at: the torque enters the shaft away from the wheel seat (crank, pinion, "
+            "coupling) and the shaft between them twists",
+        )
     material = table.require("material")
     if not isinstance(material, str) or not material.strip():
         raise SceneError(f"{where}.material", f"must be a material's name, got {shorten(material)}")
@@ -237,6 +243,24 @@ def check_shaft_materials(shafts: Iterable[Shaft], library: dict) -> None:
             raise SceneError(
                 where, f"{material.name!r} gives no tensile and yield strength, which the shaft's fatigue check needs"
             )
+        _check_fatigue_ranges(shaft.layout, material, f"shaft[{k}]")
+
+
+def _check_fatigue_ranges(layout: ShaftLayout, material: Any, where: str) -> None:
+    """Each step's diameter and strength within the ranges of Shigley's fits (k_b: 2.79-254 mm; Neuber's
+    constant: S_ut 50-250 kpsi), refused here rather than when the design checks its first wheel."""
+    from flyopt.design.shaft import strength
+
+    for j, d in enumerate(layout.diameters):
+        try:
+            sut = material.strength(d)[0]
+            strength.endurance_limit(sut, d, layout.finish)
+        except ValueError as err:
+            raise SceneError(f"{where}.segments[{j}].diameter", str(err)) from None
+        try:
+            strength.notch_sensitivity(0.02 * d, sut)
+        except ValueError as err:
+            raise SceneError(f"{where}.material", f"{material.name!r}: {err}") from None
 
 
 def _shaft_inertia(table, where):
