@@ -208,6 +208,8 @@ def _side_loads(raw: object, where: str, length: float) -> tuple[SideLoad, ...]:
         force = load.quantity("force", "force", required=True)
         if not (math.isfinite(force) and force >= 0.0):
             raise SceneError(f"{where}[{k}].force", f"must be a finite force >= 0, got {shorten(load.raw('force'))}")
+        if not isinstance(load.get("description", ""), str):
+            raise SceneError(f"{where}[{k}].description", f"must be a text, got {shorten(load.raw('description'))}")
         angle = load.quantity("angle", "angle", default=0.0)
         if not math.isfinite(angle):
             raise SceneError(f"{where}[{k}].angle", f"must be a finite angle, got {shorten(load.raw('angle'))}")
