@@ -86,6 +86,9 @@ class Solution:
     speed_simulation : PeriodicSolution or None
         The periodic simulation with the required flywheel (:func:`verify`
         without a design), for a scene with curves.
+    shaft_checks : tuple of ShaftReport
+        The chosen wheel's shaft, where the scene describes it as a part: strength, fatigue,
+        slope, lateral and torsional critical speeds (:func:`shaft_reports`); () otherwise.
     """
 
     scene: Scene
@@ -95,6 +98,7 @@ class Solution:
     drive: DriveDesign | None = None  # of a scene with a [drive]
     drive_check: DriveCheck | None = None  # of the chosen drive
     flywheel: FlywheelCheck | None = None  # of a scene's [flywheel] that exists (no design then)
+    shaft_checks: tuple[Any, ...] = ()  # the chosen wheel's described shaft (flyopt.design.shaft.cycle.ShaftReport)
     _extras: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
 
     def _repr_html_(self) -> str:
@@ -166,6 +170,8 @@ class Solution:
             out["verification"] = self.verification.to_dict()
         if self.flywheel is not None:
             out["flywheel"] = self.flywheel.to_dict()
+        if self.shaft_checks:
+            out["shaft_checks"] = [r.to_dict() for r in self.shaft_checks]
         if self.drive is not None:
             out["drive"] = self.drive.to_dict()
             if self.drive_check is not None:
@@ -222,6 +228,7 @@ def design_scene(
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
     torque = analysis.flywheel_torque() if needs_torque(inputs) else None
+    accept = _shaft_acceptor(scene, analysis)
     result = design_flywheel(
         analysis.j_margin,
         analysis.omega_max,
@@ -232,9 +239,10 @@ def design_scene(
         method=method,
         torque=torque,
         omega_mean=analysis.omega_mean,
+        accept=accept,
     )
     if result.spec.fem_check:
-        from flyopt.design.fem import accept  # numpy, and scikit-fem when it runs
+        from flyopt.design.fem import accept as accept_fem  # numpy, and scikit-fem when it runs
 
         def redesign(factors: tuple[StressFactor, ...]) -> DesignResult:
             return design_flywheel(
@@ -247,14 +255,47 @@ def design_scene(
                 method=method,
                 torque=torque,
                 omega_mean=analysis.omega_mean,
+                accept=accept,
             )
 
-        result = accept(result, inputs.materials, redesign)
+        result = accept_fem(result, inputs.materials, redesign)
     elif result.spec.fem_check is None and builds_whole(inputs):
         from flyopt.design.fem import check_result  # numpy and scikit-fem
 
         result = check_result(result, inputs.materials)
     return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
+
+
+def _shaft_acceptor(scene: Scene, analysis: Analysis) -> Any:
+    """The designer's post-check of the scene's described shafts (:mod:`flyopt.design.shaft.cycle`), or None."""
+    context = shaft_context_of(scene, analysis)
+    if context is None:
+        return None
+    from flyopt.design.shaft.cycle import acceptor
+
+    return acceptor(context)
+
+
+def shaft_context_of(scene: Scene, analysis: Analysis) -> Any:
+    """The shaft checks' context of a scene (None when it describes no shaft)."""
+    if not any(s.layout is not None for s in scene.shafts):
+        return None
+    from flyopt.design.shaft.cycle import shaft_context
+
+    return shaft_context(analysis, scene.shafts, scene.material_library())
+
+
+def shaft_reports(scene: Scene, analysis: Analysis, design: DesignResult | None) -> tuple[Any, ...]:
+    """The chosen wheel's described shaft checked with it (:class:`flyopt.design.shaft.cycle.ShaftReport`), or ()."""
+    if design is None or design.best is None:
+        return ()
+    context = shaft_context_of(scene, analysis)
+    if context is None:
+        return ()
+    from flyopt.design.shaft.cycle import report
+
+    found = report(context, design.best)
+    return () if found is None else (found,)
 
 
 #: Relative step of the central difference of the design's mass in delta.
@@ -447,7 +488,13 @@ def solve(
     else:
         result = design_scene(scene, analysis, solver_options, design_method) if design_flywheel else None
         checked = verify(scene, analysis, result) if verify_design else None
-        solution = Solution(scene=scene, analysis=analysis, design=result, verification=checked)
+        solution = Solution(
+            scene=scene,
+            analysis=analysis,
+            design=result,
+            verification=checked,
+            shaft_checks=shaft_reports(scene, analysis, result),
+        )
     return with_extras(solution, extras)
 
 

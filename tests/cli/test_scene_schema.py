@@ -36,6 +36,9 @@ REACH = [
     '[[motor_option]]\nname = "m"\n',
     '[machine]\nspeed = "100 rpm"\ndelta = 0.1\n[torque.net]\nareas = [1, -1]\n[design]\ngeometry = "rim_web"\n'
     "[design.castability]\nsection_ratio = 1.2\n",
+    '[machine]\nspeed = "100 rpm"\ndelta = 0.1\n[torque.net]\nareas = [1, -1]\n[[shaft]]\nname = "s"\n'
+    "speed_ratio = 1\nsegments = [{ to = 1, diameter = 0.1 }]\nbearings = [0, 1]\nwheel_at = 0.5\ntorque_at = 1\n"
+    'material = "m"\nloads = [{ at = 0.5, force = 1 }]\n',
 ]
 
 

@@ -244,6 +244,26 @@ RELATIONS = {
     "wheel_mass": "mass",
     "total_mass": "motor_mass + wheel_mass",
     "price": "cost",
+    # section 26, the mounting shaft: factors of safety are stress ratios; slope = deflection / length;
+    # an unbalance force is U_per omega^2; a critical speed and the running range are speeds; a torsional
+    # mode is sqrt(k / J); the sensitivity of a utilisation to a mass is 1 / kg
+    "fatigue_factor": "allowable_stress / stress",
+    "fatigue_factor_allowed": "fatigue_factor",
+    "yield_factor": "allowable_stress / stress",
+    "yield_factor_allowed": "yield_factor",
+    "slope": "deflection / length",
+    "slope_allowed": "slope",
+    "deflection": "d_outer - d_inner",
+    "deflection_allowed": "deflection",
+    "unbalance_force": "unbalance_permissible * omega_max**2",
+    "torque_mean": "driving_torque",
+    "torque_alternating": "driving_torque",
+    "critical_speed": "omega_max",
+    "critical_speed_allowed": "critical_speed",
+    "lateral_critical_speed": "critical_speed",
+    "speed_range": "omega_mean",
+    "torsional_modes": "(torque / j_flywheel)**0.5",
+    "dutilisation_dmass": "utilisation / mass",
 }
 
 

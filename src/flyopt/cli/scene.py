@@ -101,6 +101,10 @@ def run_solve(args: argparse.Namespace) -> int:
             lines += flywheel_report(solution.flywheel, units=args.units)
         if solution.design is not None:
             lines += design_report(solution.design, units=args.units)
+        if solution.shaft_checks:
+            from flyopt.report.shaft import shaft_report
+
+            lines += shaft_report(solution.shaft_checks, units=args.units)
         if solution.drive is not None:
             from flyopt.report.drive import drive_report
 

@@ -26,7 +26,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, cast
 
@@ -348,7 +348,25 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     ), model
 
 
-def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pruned):
+def _rejected(design: Candidate, reason: str) -> Candidate:
+    """A designed combination a post-check refuses: infeasible, its dimensions kept, ``reason`` saying why."""
+    fields = {f.name: getattr(design, f.name) for f in dataclasses.fields(Candidate)}
+    return Candidate(**{**fields, "feasible": False, "reason": reason})
+
+
+def _accepted(feasible, accept, infeasible):
+    """The feasible (order, design)s ``accept`` passes; the others go to ``infeasible`` with its reason."""
+    kept = []
+    for order, design in feasible:
+        reason = accept(design)
+        if reason is None:
+            kept.append((order, design))
+        else:
+            infeasible.append(((order, 0), _rejected(design, reason)))
+    return kept
+
+
+def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pruned, accept=None):
     """Design the whole-wheel combinations, the most promising first, leaving out those that cannot win.
 
     Each combination (and arm count) is taken in the order of its objective
@@ -382,6 +400,9 @@ def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pr
                 continue
         result, built = _design_whole(combo, spec, n_arms, solver_options, method)
         model = built or model
+        reason = accept(result) if accept is not None and result.feasible else None
+        if reason is not None:
+            result = _rejected(result, reason)
         if result.feasible:
             feasible.append((order, result))
         else:
@@ -493,6 +514,7 @@ def design_flywheel(
     method: str = "auto",
     torque: float | None = None,
     omega_mean: float | None = None,
+    accept: Callable[[Candidate], str | None] | None = None,
 ) -> DesignResult:
     """Design the flywheel: the best material, shaft and dimensions.
 
@@ -527,6 +549,11 @@ def design_flywheel(
         The mean speed of the reference shaft [rad/s], at most ``omega``: the
         speed at which the courses' rim convention (criterion
         ``mean_rim_speed``) sizes the rim, which needs it; unused otherwise.
+    accept : callable, optional
+        A post-check of each feasible design, before it is ranked or bounds a pruning: None
+        accepts it, a sentence makes that combination infeasible with the sentence as its
+        reason (the mounting shaft's checks, :mod:`flyopt.design.shaft.check`, which are not
+        rows of the NLP).
     method : {"auto", "ipopt", "closed_form"}
         How a feasible combination is optimized: the exact closed form of
         :mod:`flyopt.design.closed_form` where it covers the structure (mass and cost
@@ -575,10 +602,12 @@ def design_flywheel(
             decided.whole.append((order, combo))
     if decided.pending:
         decided.feasible += _solve_closed_form(decided.pending, spec)
+    if accept is not None:
+        decided.feasible = _accepted(decided.feasible, accept, decided.infeasible)
     wheel_model = None
     if decided.whole:
         wheel_model = _design_wholes(
-            decided.whole, spec, solver_options, method, decided.feasible, decided.infeasible, decided.pruned
+            decided.whole, spec, solver_options, method, decided.feasible, decided.infeasible, decided.pruned, accept
         )
     ranked, infeasible, best = _rank(decided)
     description = _describe_model(spec, wheel_model if wheel_model is not None else model)

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, check_magnitude
+from flyopt.machine.shaft_layout import ShaftLayout, SideLoad
 from flyopt.machine.transmission import Shaft, series_efficiency
 from flyopt.units import inertia_from_gd2, quantity
 
@@ -26,7 +27,11 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
     shafts, seen = [], set()
     for k, item in enumerate(raw):
         where = f"shaft[{k}]"
-        table = Table(item, where, {"name", "speed_ratio", "efficiency", "diameter", "inertia", "gd2", "description"})
+        table = Table(
+            item,
+            where,
+            {"name", "speed_ratio", "efficiency", "diameter", "inertia", "gd2", "description"} | LAYOUT_KEYS,
+        )
         name = table.require("name")
         if not isinstance(name, str) or not name.strip():
             raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
@@ -50,8 +55,214 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
             raise SceneError(
                 f"{where}.diameter", f"must be positive (the shaft seat), got {shorten(table.raw('diameter'))}"
             )
-        shafts.append(Shaft(name, ratio, eff, diameter, _shaft_inertia(table, where)))
+        layout = read_layout(table, where)
+        if layout is not None:
+            seat = layout.diameter_at(layout.wheel_at)
+            if diameter is not None and not math.isclose(diameter, seat, rel_tol=1e-9):
+                raise SceneError(
+                    f"{where}.diameter",
+                    f"the seat {shorten(table.raw('diameter'))} differs from the step under the wheel "
+                    f"({seat * 1e3:g} mm): give one of them",
+                )
+            diameter = seat
+        shafts.append(Shaft(name, ratio, eff, diameter, _shaft_inertia(table, where), layout))
     return tuple(shafts)
+
+
+#: The keys of a [[shaft]] described as a part (docs/scene-schema.md); ``segments`` says it is described.
+LAYOUT_KEYS = frozenset(
+    {
+        "segments",
+        "bearings",
+        "wheel_at",
+        "torque_at",
+        "material",
+        "finish",
+        "fillet",
+        "loads",
+        "balance_grade",
+        "safety_factor",
+        "max_slope",
+        "max_deflection",
+        "critical_margin",
+    }
+)
+
+
+def read_layout(table: Table, where: str) -> ShaftLayout | None:
+    """The shaft as a part, from a [[shaft]] that gives ``segments``; None when it gives none of its keys."""
+    given = sorted(k for k in LAYOUT_KEYS if table.has(k))
+    if not given:
+        return None
+    if not table.has("segments"):
+        raise SceneError(
+            f"{where}.segments",
+            f"is missing: {given[0]} describes the shaft as a part, which needs its steps "
+            '(segments = [{ to = "200 mm", diameter = "60 mm" }, ...])',
+        )
+    steps, diameters = _segments(table.raw("segments"), f"{where}.segments")
+    length = steps[-1]
+    bearings = _positions(table, "bearings", where, length, count=2)
+    if not bearings[0] < bearings[1]:
+        raise SceneError(f"{where}.bearings", f"must be two different positions, got {shorten(table.raw('bearings'))}")
+    wheel_at = _position(table.require("wheel_at"), f"{where}.wheel_at", length)
+    torque_at = _position(table.require("torque_at"), f"{where}.torque_at", length)
+    if torque_at == wheel_at:
+        raise SceneError(
+            f"{where}.torque_at",
+            "must differ from wheel_at: the torque enters the shaft away from the wheel seat (crank, pinion, "
+            "coupling) and the shaft between them twists",
+        )
+    material = table.require("material")
+    if not isinstance(material, str) or not material.strip():
+        raise SceneError(f"{where}.material", f"must be a material's name, got {shorten(material)}")
+    finish = table.get("finish", "machined")
+    from flyopt.design.shaft.strength import FINISHES
+
+    if finish not in FINISHES:
+        raise SceneError(
+            f"{where}.finish", f"{shorten(finish)} is not a surface finish (allowed: {', '.join(FINISHES)})"
+        )
+    fillet = _positive(table, "fillet", where, "length", "the shoulders' fillet radius")
+    grade = _positive(table, "balance_grade", where, "speed", "ISO 21940-11's G, e.g. '6.3 mm/s'")
+    safety = _positive(table, "safety_factor", where, "dimensionless", "the factor of safety required")
+    if safety is not None and safety < 1.0:
+        raise SceneError(f"{where}.safety_factor", f"must be >= 1, got {shorten(table.raw('safety_factor'))}")
+    slope = _positive(table, "max_slope", where, "angle", "the slope allowed at a bearing")
+    deflection = _positive(table, "max_deflection", where, "length", "the deflection allowed at the wheel")
+    margin = table.quantity("critical_margin", "dimensionless")
+    if margin is not None and not (math.isfinite(margin) and 0.0 <= margin < 1.0):
+        raise SceneError(
+            f"{where}.critical_margin",
+            f"must be a share in [0, 1) of the running range's end, got {shorten(table.raw('critical_margin'))}",
+        )
+    options = {"balance_grade": grade, "safety_factor": safety, "max_slope": slope, "critical_margin": margin}
+    return ShaftLayout(
+        steps,
+        diameters,
+        (bearings[0], bearings[1]),
+        wheel_at,
+        torque_at,
+        material.strip(),
+        finish=finish,
+        fillet=fillet,
+        loads=_side_loads(table.get("loads", []), f"{where}.loads", length),
+        max_deflection=deflection,
+        **{k: v for k, v in options.items() if v is not None},
+    )
+
+
+def _positive(table: Table, key: str, where: str, dimension: str, what: str) -> float | None:
+    value = table.quantity(key, dimension)
+    if value is not None and not (math.isfinite(value) and value > 0.0):
+        raise SceneError(f"{where}.{key}", f"must be positive ({what}), got {shorten(table.raw(key))}")
+    return value
+
+
+def _position(raw: object, where: str, length: float) -> float:
+    x = quantity(raw, "length", where)
+    if not (math.isfinite(x) and 0.0 <= x <= length):
+        raise SceneError(
+            where, f"must lie on the shaft, 0 to {length * 1e3:g} mm (the last segment's end), got {shorten(raw)}"
+        )
+    return x
+
+
+def _positions(table: Table, key: str, where: str, length: float, count: int) -> list[float]:
+    raw = table.require(key)
+    if not isinstance(raw, list) or len(raw) != count:
+        raise SceneError(f"{where}.{key}", f"must be a list of {count} positions along the shaft, got {shorten(raw)}")
+    return sorted(_position(r, f"{where}.{key}[{k}]", length) for k, r in enumerate(raw))
+
+
+def _segments(raw: object, where: str) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """The steps' ends and diameters [m] from ``[{ to = ..., diameter = ... }, ...]``, in order along the shaft."""
+    if not isinstance(raw, list) or not raw:
+        raise SceneError(where, 'must be a non-empty list of steps, e.g. [{ to = "200 mm", diameter = "60 mm" }, ...]')
+    steps: list[float] = []
+    diameters: list[float] = []
+    for k, item in enumerate(raw):
+        seg = Table(item, f"{where}[{k}]", {"to", "diameter"})
+        end = seg.quantity("to", "length", required=True)
+        d = seg.quantity("diameter", "length", required=True)
+        if not (math.isfinite(end) and end > (steps[-1] if steps else 0.0)):
+            raise SceneError(
+                f"{where}[{k}].to",
+                f"must be beyond the previous step's end ({(steps[-1] if steps else 0.0) * 1e3:g} mm), "
+                f"got {shorten(seg.raw('to'))}",
+            )
+        if not (math.isfinite(d) and d > 0.0):
+            raise SceneError(f"{where}[{k}].diameter", f"must be positive, got {shorten(seg.raw('diameter'))}")
+        steps.append(end)
+        diameters.append(d)
+    return tuple(steps), tuple(diameters)
+
+
+def _side_loads(raw: object, where: str, length: float) -> tuple[SideLoad, ...]:
+    if not isinstance(raw, list):
+        raise SceneError(where, 'must be a list of loads, e.g. [{ at = "700 mm", force = "3 kN", angle = "90 deg" }]')
+    loads = []
+    for k, item in enumerate(raw):
+        load = Table(item, f"{where}[{k}]", {"at", "force", "angle", "description"})
+        at = _position(load.require("at"), f"{where}[{k}].at", length)
+        force = load.quantity("force", "force", required=True)
+        if not (math.isfinite(force) and force >= 0.0):
+            raise SceneError(f"{where}[{k}].force", f"must be a finite force >= 0, got {shorten(load.raw('force'))}")
+        if not isinstance(load.get("description", ""), str):
+            raise SceneError(f"{where}[{k}].description", f"must be a text, got {shorten(load.raw('description'))}")
+        angle = load.quantity("angle", "angle", default=0.0)
+        if not math.isfinite(angle):
+            raise SceneError(f"{where}[{k}].angle", f"must be a finite angle, got {shorten(load.raw('angle'))}")
+        loads.append(SideLoad(at, force, angle))
+    return tuple(loads)
+
+
+def check_shaft_materials(shafts: Iterable[Shaft], library: dict) -> None:
+    """Each described shaft's material is known and gives what the shaft's checks need (E, S_ut, S_y).
+
+    Raises
+    ------
+    SceneError
+        Naming ``shaft[k].material``: an unknown name (with the closest), or a material without them.
+    """
+    from flyopt.design.materials import get_material
+
+    for k, shaft in enumerate(shafts):
+        if shaft.layout is None:
+            continue
+        where = f"shaft[{k}].material"
+        try:
+            material = get_material(shaft.layout.material, library)
+        except ValueError as err:
+            raise SceneError(where, str(err)) from None
+        if material.elastic_modulus is None:
+            raise SceneError(where, f"{material.name!r} gives no elastic_modulus, which the shaft's deflection needs")
+        try:
+            sut, sy = material.strength(min(shaft.layout.diameters))
+        except ValueError as err:
+            raise SceneError(where, str(err)) from None
+        if sut is None or sy is None:
+            raise SceneError(
+                where, f"{material.name!r} gives no tensile and yield strength, which the shaft's fatigue check needs"
+            )
+        _check_fatigue_ranges(shaft.layout, material, f"shaft[{k}]")
+
+
+def _check_fatigue_ranges(layout: ShaftLayout, material: Any, where: str) -> None:
+    """Each step's diameter and strength within the ranges of Shigley's fits (k_b: 2.79-254 mm; Neuber's
+    constant: S_ut 50-250 kpsi), refused here rather than when the design checks its first wheel."""
+    from flyopt.design.shaft import strength
+
+    for j, d in enumerate(layout.diameters):
+        try:
+            sut = material.strength(d)[0]
+            strength.endurance_limit(sut, d, layout.finish)
+        except ValueError as err:
+            raise SceneError(f"{where}.segments[{j}].diameter", str(err)) from None
+        try:
+            strength.notch_sensitivity(0.02 * d, sut)
+        except ValueError as err:
+            raise SceneError(f"{where}.material", f"{material.name!r}: {err}") from None
 
 
 def _shaft_inertia(table, where):

@@ -12,6 +12,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
+from flyopt.machine.shaft_layout import ShaftLayout
+
 
 @dataclass(frozen=True)
 class Shaft:
@@ -30,6 +32,8 @@ class Shaft:
         Inertia already turning with this shaft (a motor rotor, pulleys,
         gears), about its axis [kg*m^2]; it counts towards the machine's J_c
         as inertia * speed_ratio² at the reference shaft.
+    layout : ShaftLayout or None
+        The shaft described as a part (steps, bearings, wheel seat, material, loads), when given.
     """
 
     name: str
@@ -37,6 +41,7 @@ class Shaft:
     efficiency: float = 1.0
     diameter: float | None = None
     inertia: float = 0.0
+    layout: ShaftLayout | None = None
 
 
 def series_efficiency(stages: Iterable[float]) -> float:

@@ -45,6 +45,7 @@ OUTPUT_DIMENSIONS = {
     "angular_acceleration": "rad/s**2",
     "frequency": "1/s",
     "acceleration": "m/s**2",
+    "per_mass": "1/kg",
 }
 
 #: The columns of a sweep's inputs: the fields of :data:`flyopt.io.sweep_spec.FIELDS` (which
@@ -276,6 +277,24 @@ QUANTITIES = {
     "wheel_mass": "mass",
     "total_mass": "mass",
     "price": "dimensionless",
+    # the mounting shaft checked with its wheel, section 26
+    "fatigue_factor": "dimensionless",
+    "fatigue_factor_allowed": "dimensionless",
+    "yield_factor": "dimensionless",
+    "yield_factor_allowed": "dimensionless",
+    "slope": "angle",
+    "slope_allowed": "angle",
+    "deflection": "length",
+    "deflection_allowed": "length",
+    "critical_speed": "angular_speed",
+    "critical_speed_allowed": "angular_speed",
+    "unbalance_force": "force",
+    "torque_mean": "torque",
+    "torque_alternating": "torque",
+    "lateral_critical_speed": "angular_speed",
+    "speed_range": "angular_speed",
+    "torsional_modes": "angular_speed",
+    "dutilisation_dmass": "per_mass",
 }
 
 #: Numbers whose unit is set by another field, so that a table or document has no single

@@ -216,6 +216,9 @@ def answer_report(solution: Solution, units: str = DEFAULT) -> list[str]:
             f"; {worst['part']} stress {q(worst['stress'], 'stress', 4)} of {q(worst['allowable'], 'allowable', 4)}"
         )
     lines.append(f"    limits  {limits}")
+    for shaft_check in solution.shaft_checks:  # the shaft described as a part (flyopt.report.shaft)
+        binding = shaft_check.check.binding
+        lines.append(f"    shaft   {binding.kind} {binding.where} binds, utilisation {number(binding.utilisation, 3)}")
     v = solution.verification
     held = (
         f"δ {number(v.achieved_delta, 4)} by the periodic simulation ({'FLAGGED' if v.flagged else 'holds'})"

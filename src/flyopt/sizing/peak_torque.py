@@ -74,3 +74,20 @@ def flywheel_peak_torque(
             f"number"
         ) from err
     return float(np.max(j_flywheel / j_total * np.abs(difference))) / speed_ratio
+
+
+def flywheel_torque_curve(
+    j_flywheel_ref: float, j_total_ref: ArrayLike, torque_difference_ref: ArrayLike, speed_ratio: float
+) -> np.ndarray:
+    """The torque the flywheel exchanges with its own shaft at each angle, with its sign [N*m].
+
+    (J_F / J(phi)) (M_d - M_r) / r, the curve whose largest magnitude is
+    :func:`flywheel_peak_torque` (the same arguments, the same Notes); its
+    extremes give the shaft's midrange and alternating torque (issue 30).
+    """
+    flywheel_peak_torque(j_flywheel_ref, j_total_ref, torque_difference_ref, speed_ratio)  # validates
+    j_total, difference = np.broadcast_arrays(
+        np.asarray(j_total_ref, dtype=float), np.asarray(torque_difference_ref, dtype=float)
+    )
+    curve: np.ndarray = float(j_flywheel_ref) / j_total * difference / float(speed_ratio)
+    return curve

@@ -21,8 +21,8 @@ place each of those is decided. This module joins it to the rest of flyopt:
 - the forced response over a range of speeds: each shaft's twisting torque per
   order and its bound sum_q |T_e,q|.
 
-A library module: no scene describes a drive train yet and nothing in `solve`,
-the report or the design calls it (docs/flywheel-design.md, section 25).
+A described shaft's check (:mod:`flyopt.design.shaft.check`) calls it with the wheel
+and the inertia already on the shaft (docs/flywheel-design.md, sections 25 and 26).
 """
 
 from __future__ import annotations

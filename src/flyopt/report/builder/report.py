@@ -12,6 +12,7 @@ from flyopt.report.builder.existing import ExistingFlywheelSection
 from flyopt.report.builder.inputs import ReportInputs
 from flyopt.report.builder.ranking import Ranking
 from flyopt.report.builder.scene import SceneAndModel
+from flyopt.report.builder.shaft import ShaftSection
 from flyopt.report.builder.steps import Steps
 from flyopt.report.builder.summary import Summary
 from flyopt.report.builder.verification import VerificationAndProvenance
@@ -52,6 +53,7 @@ class Builder(
     Steps,
     ExistingFlywheelSection,
     DesignSection,
+    ShaftSection,
     Ranking,
     DriveSection,
     VerificationAndProvenance,
@@ -66,6 +68,7 @@ class Builder(
         self.steps()
         self.existing_flywheel_section()
         self.design_section()
+        self.shaft_section()
         self.ranking_section()
         self.drive_section()
         self.verification_section()

@@ -1,0 +1,491 @@
+"""The mounting shaft checked with the wheel it carries and the cycle that sized it (issue 30, items 1 and 5).
+
+One function, :func:`check_shaft`, joins the library modules of this package to a
+shaft described as a part (:class:`flyopt.machine.shaft_layout.ShaftLayout`):
+
+- **loads**: the wheel's weight m g and the pulls of the scene (stationary: a
+  rotating shaft sees them as fully reversed bending, M_a); the wheel's permissible
+  residual unbalance at the top speed, ISO 21940-11 (balance grade G = e_per omega,
+  e.g. G 6.3 = 6.3 mm/s), F_u = m e_per omega_max^2 = m G omega_max (it turns with
+  the shaft: a steady bending in the shaft, M_m); the torque the wheel exchanges
+  with the shaft over the cycle, (J_F/J(phi)) (M_d - M_r)/r
+  (:func:`flyopt.sizing.peak_torque.flywheel_torque_curve`), as a midrange
+  T_m = (T_max + T_min)/2 and an alternating T_a = (T_max - T_min)/2, carried between
+  the seat and ``torque_at``;
+- **strength**: DE-Goodman fatigue and first-cycle yield (Shigley 9th ed. Eqs. (7-7),
+  (7-15), (7-16); :mod:`~flyopt.design.shaft.strength`) at the keyseat of the wheel
+  seat, each shoulder (Table 7-1's K_t, K_ts) and the plain sections at the bearings
+  and loads;
+- **deflection and slope** (:mod:`~flyopt.design.shaft.beam`): the slope at each
+  bearing against ``max_slope`` and the wheel's deflection against ``max_deflection``
+  (the two planes added as vectors, the unbalance's added in magnitude);
+- **lateral critical speed** (:mod:`~flyopt.design.shaft.lateral`): the first
+  forward critical speed of the beam FE with the wheel as a rigid disc (its
+  gyroscopic effect included) against the running range omega_m r (1 -/+ delta/2);
+- **torsional modes** (:mod:`~flyopt.design.shaft.torsional`): the wheel and the
+  inertia already on the shaft joined by the shaft between the seat and
+  ``torque_at``, against the orders of the cycle's net torque.
+
+Each limit is a :class:`ShaftLimit` with its value, the allowed value and the
+utilisation (<= 1 holds). The check is a post-check of a designed wheel, not a
+row of the NLP (docs/flywheel-design.md, section 26).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from flyopt.design.balance import BALANCE_GRADE, permissible_unbalance
+from flyopt.design.shaft import strength
+from flyopt.design.shaft.beam import SteppedShaft, elastic_line
+from flyopt.design.shaft.lateral import GRAVITY, Disc, critical_speeds, rotor_model
+from flyopt.design.shaft.torsional import TorsionalCheck, running_range_rpm, torsional_check
+from flyopt.machine.torsion import TorqueOrders, chain
+from flyopt.units import rad_s_to_rpm
+
+if TYPE_CHECKING:
+    from flyopt.design.materials import Material
+    from flyopt.machine.shaft_layout import ShaftLayout
+
+__all__ = ["ShaftLimit", "ShaftCheck", "Section", "check_shaft", "separation_utilisation", "notch_factors"]
+
+#: The fatigue criterion of the check (Shigley 9th ed. Eq. (7-7)): DE-Goodman, the book's design choice.
+CRITERION = "goodman"
+#: Orders of the net torque at least this share of the largest are checked against the torsional modes.
+SIGNIFICANT_ORDER = 0.05
+#: Equal steps of the diagram along the shaft (the checked sections and breakpoints added to them).
+DIAGRAM_POINTS = 121
+#: Poisson's ratio of a steel when the material gives none (G = E / (2 (1 + nu))).
+STEEL_POISSON = 0.3
+
+
+@dataclass(frozen=True)
+class ShaftLimit:
+    """One limit of the shaft: its value, the allowed value and the utilisation (<= 1 holds).
+
+    ``kind`` is one of fatigue, yield, slope, deflection, lateral, torsional; ``where`` says where.
+    """
+
+    kind: str
+    where: str
+    value: float
+    allowed: float
+    utilisation: float
+    unit: str
+
+    @property
+    def holds(self) -> bool:
+        """Whether the limit holds (utilisation <= 1)."""
+        return self.utilisation <= 1.0
+
+    def describe(self) -> str:
+        """The limit in words and numbers, e.g. ``"fatigue at the keyseat (x = 300 mm): n 1.21 < 1.5"``."""
+        if self.kind in ("lateral", "torsional"):
+            state = "clear of" if self.holds else "inside"
+            return (
+                f"{self.kind} critical speed ({self.where}) {_fmt(self.value)} rpm {state} the running range "
+                f"widened to {_fmt(self.allowed)} rpm"
+            )
+        relation = "<=" if self.holds else ">"
+        name = {"fatigue": "fatigue factor of safety", "yield": "first-cycle yield factor"}.get(self.kind, self.kind)
+        if self.kind in ("fatigue", "yield"):
+            relation = ">=" if self.holds else "<"
+        return f"{name} {self.where}: {_fmt(self.value)} {relation} {_fmt(self.allowed)} {self.unit}".rstrip()
+
+    def to_dict(self) -> dict[str, Any]:
+        """The limit for ``--json`` (SI): its value and the allowed one under the names of its quantity
+        (:data:`JSON_NAMES`; a critical speed in rad/s)."""
+        name = JSON_NAMES[self.kind]
+        scale = math.pi / 30.0 if self.unit == "rpm" else 1.0
+        return {
+            "kind": self.kind,
+            "where": self.where,
+            name: self.value * scale,
+            f"{name}_allowed": self.allowed * scale,
+            "utilisation": self.utilisation,
+        }
+
+
+#: The field of each kind of limit in ``--json`` (its allowed value is ``<name>_allowed``); units in
+#: :data:`flyopt.outputs.quantities.QUANTITIES`.
+JSON_NAMES = {
+    "fatigue": "fatigue_factor",
+    "yield": "yield_factor",
+    "slope": "slope",
+    "deflection": "deflection",
+    "lateral": "critical_speed",
+    "torsional": "critical_speed",
+}
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.4g}" if math.isfinite(x) else str(x)
+
+
+@dataclass(frozen=True)
+class Section:
+    """A section the strength is checked at: x [m], d [m], K_f, K_fs, the moments and torques [N*m], n_f, n_y."""
+
+    x: float
+    name: str
+    diameter: float
+    kf: float
+    kfs: float
+    ma: float
+    mm: float
+    ta: float
+    tm: float
+    fatigue: float
+    yield_: float
+
+
+@dataclass(frozen=True)
+class ShaftCheck:
+    """The shaft's checks with one wheel over one cycle (SI).
+
+    Attributes
+    ----------
+    limits : tuple of ShaftLimit
+        Every limit, the worst section of each kind.
+    sections : tuple of Section
+    weight, unbalance : float
+        The wheel's weight and its permissible unbalance force at the top speed [N].
+    torque_mean, torque_alternating : float
+        T_m and T_a the wheel exchanges with the shaft [N*m].
+    lateral_speed : float
+        The first forward critical speed [rad/s] (nan: none found).
+    speed_range_rpm : (float, float)
+        The shaft's running range [rpm].
+    torsional : TorsionalCheck or None
+        None without an inertia on the shaft besides the wheel (no elastic mode).
+    diagram : dict
+        x [m] and along it M_a, M_m [N*m], T_max [N*m] and the utilisation of the plain section.
+    """
+
+    limits: tuple[ShaftLimit, ...]
+    sections: tuple[Section, ...]
+    weight: float
+    unbalance: float
+    torque_mean: float
+    torque_alternating: float
+    lateral_speed: float
+    speed_range_rpm: tuple[float, float]
+    torsional: TorsionalCheck | None
+    diagram: dict[str, np.ndarray] = field(repr=False)
+
+    @property
+    def binding(self) -> ShaftLimit:
+        """The limit of largest utilisation."""
+        return max(self.limits, key=lambda lim: lim.utilisation)
+
+    @property
+    def holds(self) -> bool:
+        """Whether every limit holds."""
+        return all(lim.holds for lim in self.limits)
+
+    def failed(self) -> list[ShaftLimit]:
+        """The limits that do not hold."""
+        return [lim for lim in self.limits if not lim.holds]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The check for ``--json`` (SI)."""
+        return {
+            "holds": self.holds,
+            "binding": self.binding.to_dict(),
+            "limits": [lim.to_dict() for lim in self.limits],
+            "weight": self.weight,
+            "unbalance_force": self.unbalance,
+            "torque_mean": self.torque_mean,
+            "torque_alternating": self.torque_alternating,
+            "lateral_critical_speed": self.lateral_speed,
+            "speed_range": [v * math.pi / 30.0 for v in self.speed_range_rpm],
+            "torsional_modes": (
+                [] if self.torsional is None else [f * 2.0 * math.pi for f in self.torsional.modes.frequencies_hz]
+            ),
+        }
+
+
+def separation_utilisation(critical_rpm: float, speed_range_rpm: tuple[float, float], margin: float) -> float:
+    """Utilisation of a critical speed's separation from the running range widened by ``margin``.
+
+    min(n_max (1 + m) / n_c, n_c / (n_min (1 - m))): below 1 when n_c lies above n_max (1 + m) or below
+    n_min (1 - m), above 1 inside that band (the running range itself is inside it at any m >= 0).
+    """
+    low, high = speed_range_rpm
+    if not critical_rpm > 0.0 or not math.isfinite(critical_rpm):
+        return 0.0
+    return min(high * (1.0 + margin) / critical_rpm, critical_rpm / (low * (1.0 - margin)))
+
+
+def notch_factors(kind: str, diameter: float, fillet: float | None, sut: float) -> tuple[float, float]:
+    """K_f and K_fs of a notch, Shigley 9th ed. Table 7-1 (K_t, K_ts) with Eqs. (6-32), (6-34), (6-35).
+
+    ``kind``: "keyseat" (r = 0.02 d) or "shoulder" (r = ``fillet``, or 0.02 d when sharp; Table 7-1's
+    well-rounded factors once r/d >= 0.1, its sharp ones below, on the safe side).
+    """
+    table = strength._data()["notch"]
+    if kind == "keyseat":
+        row = table["keyseat"]
+        radius = row["r_over_d"] * diameter
+    elif kind == "shoulder":
+        radius = table["shoulder_sharp"]["r_over_d"] * diameter if fillet is None else fillet
+        rounded = table["shoulder_rounded"]
+        row = rounded if radius / diameter >= rounded["r_over_d"] else table["shoulder_sharp"]
+    else:
+        raise ValueError(f"notch kind {kind!r} is not known (allowed: keyseat, shoulder)")
+    q = strength.notch_sensitivity(radius, sut, "bending")
+    qs = strength.notch_sensitivity(radius, sut, "torsion")
+    return float(strength.fatigue_concentration(row["kt"], q)), float(strength.fatigue_concentration(row["kts"], qs))
+
+
+def _plane_loads(layout: ShaftLayout, weight: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Positions and the forces in the vertical (y, up) and horizontal (z) planes of the stationary loads."""
+    x = [layout.wheel_at] + [load.position for load in layout.loads]
+    fy = [-weight] + [-load.force * math.cos(load.angle) for load in layout.loads]
+    fz = [0.0] + [load.force * math.sin(load.angle) for load in layout.loads]
+    return np.array(x), np.array(fy), np.array(fz)
+
+
+def _carries_torque(layout: ShaftLayout, x: np.ndarray) -> np.ndarray:
+    low, high = sorted((layout.wheel_at, layout.torque_at))
+    inside: np.ndarray = (x >= low - 1e-12) & (x <= high + 1e-12)
+    return inside
+
+
+def _sections(layout: ShaftLayout) -> list[tuple[float, str, str | None, float]]:
+    """(x, name, notch kind or None, d) of every section the strength is checked at."""
+    out: list[tuple[float, str, str | None, float]] = [
+        (layout.wheel_at, "keyseat at the wheel seat", "keyseat", layout.diameter_at(layout.wheel_at))
+    ]
+    for end, d0, d1 in zip(layout.steps[:-1], layout.diameters[:-1], layout.diameters[1:]):
+        if d0 != d1:
+            out.append((end, f"shoulder at {end * 1e3:.0f} mm", "shoulder", min(d0, d1)))
+    for x, name in [(b, "bearing") for b in layout.bearings] + [(load.position, "load") for load in layout.loads]:
+        out.append((x, f"{name} at {x * 1e3:.0f} mm", None, layout.diameter_at(x)))
+    return out
+
+
+def check_shaft(
+    layout: ShaftLayout,
+    material: Material,
+    *,
+    wheel_mass: float,
+    wheel_inertia: float,
+    wheel_width: float = 0.0,
+    omega_mean: float,
+    delta: float,
+    torque_curve: Sequence[float] | np.ndarray,
+    excitation: TorqueOrders | None = None,
+    other_inertia: float = 0.0,
+) -> ShaftCheck:
+    """Check a described shaft carrying a wheel over the cycle.
+
+    Parameters
+    ----------
+    layout : ShaftLayout
+        The shaft as a part (its own material's name is resolved to ``material`` by the caller).
+    material : Material
+        The shaft's material: E, density, Poisson's ratio and S_ut, S_y at the section (t = d).
+    wheel_mass, wheel_inertia : float
+        m [kg] and J [kg*m^2] of the wheel about its axis.
+    wheel_width : float
+        Its axial width b [m], for the diametral inertia I_d = J/2 + m b^2/12 (a ring or a disc).
+    omega_mean : float
+        The shaft's mean speed [rad/s].
+    delta : float
+        The cycle's coefficient of fluctuation; the running range is omega_mean (1 -/+ delta/2).
+    torque_curve : array
+        The torque the wheel exchanges with this shaft over the cycle [N*m], with its sign
+        (:func:`flyopt.sizing.peak_torque.flywheel_torque_curve`).
+    excitation : TorqueOrders, optional
+        The net torque's orders per revolution of this shaft; None: no torsional check.
+    other_inertia : float
+        The inertia already on the shaft at ``torque_at`` [kg*m^2]; 0: no elastic torsional mode.
+
+    Returns
+    -------
+    ShaftCheck
+    """
+    weight = wheel_mass * GRAVITY
+    omega_max = omega_mean * (1.0 + 0.5 * delta)
+    grade = BALANCE_GRADE if layout.balance_grade is None else layout.balance_grade * 1e3  # [mm/s]
+    unbalance = permissible_unbalance(wheel_mass, omega_max, grade).u_per * omega_max**2  # U_per Omega^2
+    torque = np.asarray(torque_curve, dtype=float)
+    t_max, t_min = (float(torque.max()), float(torque.min())) if torque.size else (0.0, 0.0)
+    t_mean, t_alt = 0.5 * (t_max + t_min), 0.5 * (t_max - t_min)
+    e = float(material.elastic_modulus or 0.0)
+    beam = SteppedShaft(layout.steps, layout.diameters, e, layout.bearings, density=material.density)
+
+    sections = _sections(layout)
+    xs = np.array([s[0] for s in sections])
+    grid = np.unique(np.concatenate((np.linspace(0.0, layout.length, DIAGRAM_POINTS), xs)))
+    px, fy, fz = _plane_loads(layout, weight)
+    line_y = elastic_line(beam, px, fy, at=grid)
+    line_z = elastic_line(beam, px, fz, at=grid)
+    line_u = elastic_line(beam, [layout.wheel_at], [unbalance], at=grid)
+    ma_grid = np.hypot(line_y.moment, line_z.moment)
+    mm_grid = np.abs(line_u.moment)
+    torque_on = _carries_torque(layout, grid)
+
+    checked = _checked_sections(layout, material, sections, grid, ma_grid, mm_grid, torque_on, t_alt, abs(t_mean))
+
+    n_req = layout.safety_factor
+    worst_f = min(checked, key=lambda s: s.fatigue)
+    worst_y = min(checked, key=lambda s: s.yield_)
+    limits = [
+        ShaftLimit("fatigue", f"at the {worst_f.name}", worst_f.fatigue, n_req, n_req / worst_f.fatigue, ""),
+        ShaftLimit("yield", f"at the {worst_y.name}", worst_y.yield_, n_req, n_req / worst_y.yield_, ""),
+    ]
+    for label, b in zip(("A", "B"), layout.bearings):
+        i = int(np.argmin(np.abs(grid - b)))
+        slope = math.hypot(line_y.slope[i], line_z.slope[i]) + abs(line_u.slope[i])
+        limits.append(
+            ShaftLimit(
+                "slope",
+                f"at bearing {label} ({b * 1e3:.0f} mm)",
+                slope,
+                layout.max_slope,
+                slope / layout.max_slope,
+                "rad",
+            )
+        )
+    w = int(np.argmin(np.abs(grid - layout.wheel_at)))
+    deflection = math.hypot(line_y.deflection[w], line_z.deflection[w]) + abs(line_u.deflection[w])
+    if layout.max_deflection is not None:
+        limits.append(
+            ShaftLimit(
+                "deflection", "at the wheel", deflection, layout.max_deflection, deflection / layout.max_deflection, "m"
+            )
+        )
+
+    speed_range = running_range_rpm(omega_mean, delta)
+    i_d = 0.5 * wheel_inertia + wheel_mass * wheel_width**2 / 12.0
+    disc = Disc(layout.wheel_at, wheel_mass, i_d, wheel_inertia)
+    found = critical_speeds(rotor_model(beam, [disc]), whirl="forward", modes=1)
+    lateral = float(found[0]) if found.size else math.nan
+    lateral_rpm = rad_s_to_rpm(lateral) if found.size else math.inf
+    limits.append(
+        ShaftLimit(
+            "lateral",
+            "first forward whirl",
+            lateral_rpm,
+            _band_edge(lateral_rpm, speed_range, layout.critical_margin),
+            separation_utilisation(lateral_rpm, speed_range, layout.critical_margin),
+            "rpm",
+        )
+    )
+
+    torsional = None
+    if excitation is not None and other_inertia > 0.0:
+        model = chain([wheel_inertia, other_inertia], [_torsional_stiffness(layout, material)])
+        torsional = torsional_check(model, excitation, speed_range, significant=SIGNIFICANT_ORDER)
+        if torsional.critical:
+            util = [
+                separation_utilisation(c.speed_rpm, speed_range, layout.critical_margin) for c in torsional.critical
+            ]
+            worst = torsional.critical[int(np.argmax(util))]
+            limits.append(
+                ShaftLimit(
+                    "torsional",
+                    f"mode {worst.mode} at order {worst.order:g}",
+                    worst.speed_rpm,
+                    _band_edge(worst.speed_rpm, speed_range, layout.critical_margin),
+                    max(util),
+                    "rpm",
+                )
+            )
+
+    plain = _plain_utilisation(
+        layout, material, beam.diameter_at(grid), ma_grid, mm_grid, torque_on, t_alt, abs(t_mean)
+    )
+    diagram = {
+        "x": grid,
+        "moment_alternating": ma_grid,
+        "moment_mean": mm_grid,
+        "torque": np.where(torque_on, abs(t_mean) + t_alt, 0.0),
+        "utilisation": plain,
+    }
+    return ShaftCheck(
+        tuple(limits), tuple(checked), weight, unbalance, t_mean, t_alt, lateral, speed_range, torsional, diagram
+    )
+
+
+def _band_edge(critical_rpm: float, speed_range_rpm: tuple[float, float], margin: float) -> float:
+    """The nearer edge of the band the critical speed must stay out of [rpm]: n_max (1 + m) or n_min (1 - m)."""
+    low, high = speed_range_rpm
+    return high * (1.0 + margin) if critical_rpm >= math.sqrt(low * high) else low * (1.0 - margin)
+
+
+def _torsional_stiffness(layout: ShaftLayout, material: Material) -> float:
+    """k = 1 / sum l_i / (G pi d_i^4 / 32) [N*m/rad] of the shaft between the seat and ``torque_at``."""
+    nu = material.poisson_ratio if material.poisson_ratio is not None else STEEL_POISSON
+    g = float(material.elastic_modulus or 0.0) / (2.0 * (1.0 + nu))
+    low, high = sorted((layout.wheel_at, layout.torque_at))
+    if high - low <= 0.0:
+        raise ValueError("the shaft's torque_at is at the wheel seat: no length of shaft twists between them")
+    compliance, start = 0.0, 0.0
+    for end, d in zip(layout.steps, layout.diameters):
+        overlap = min(end, high) - max(start, low)
+        if overlap > 0.0:
+            compliance += overlap / (g * math.pi * d**4 / 32.0)
+        start = end
+    return 1.0 / compliance
+
+
+def _strengths_along(layout: ShaftLayout, material: Material, d: np.ndarray) -> tuple[np.ndarray, ...]:
+    """S_ut, S_y and S_e [Pa] at each diameter (each distinct diameter's strengths read once)."""
+    sut, sy, se = np.empty(d.size), np.empty(d.size), np.empty(d.size)
+    for di in np.unique(d):
+        at = d == di
+        sut[at], sy[at] = strength.shaft_strengths(material, float(di))
+        se[at] = strength.endurance_limit(sut[at][0], float(di), layout.finish).se
+    return sut, sy, se
+
+
+def _checked_sections(layout, material, sections, grid, ma_grid, mm_grid, torque_on, ta, tm) -> list[Section]:
+    """Fatigue and yield factors of every checked section, the equations evaluated on arrays (one call each)."""
+    index = np.array([int(np.argmin(np.abs(grid - s[0]))) for s in sections])
+    d = np.array([s[3] for s in sections])
+    sut, sy, se = _strengths_along(layout, material, d)
+    factors = [
+        (1.0, 1.0) if kind is None else notch_factors(kind, di, layout.fillet, u)
+        for (_, _, kind, di), u in zip(sections, sut)
+    ]
+    kf, kfs = np.array([f[0] for f in factors]), np.array([f[1] for f in factors])
+    on = torque_on[index]
+    t_a, t_m = np.where(on, ta, 0.0), np.where(on, tm, 0.0)
+    ma, mm = ma_grid[index], mm_grid[index]
+    n_f = np.atleast_1d(
+        strength.fatigue_safety_factor(d, ma, t_a, mm, t_m, kf=kf, kfs=kfs, se=se, sut=sut, criterion=CRITERION)
+    )
+    n_y = np.atleast_1d(strength.yield_safety_factor(d, ma, t_a, mm, t_m, sy=sy, kf=kf, kfs=kfs))
+    return [
+        Section(
+            x,
+            name,
+            float(d[k]),
+            float(kf[k]),
+            float(kfs[k]),
+            float(ma[k]),
+            float(mm[k]),
+            float(t_a[k]),
+            float(t_m[k]),
+            float(n_f[k]),
+            float(n_y[k]),
+        )
+        for k, (x, name, _, _) in enumerate(sections)
+    ]
+
+
+def _plain_utilisation(layout, material, d, ma, mm, torque_on, ta, tm) -> np.ndarray:
+    """Fatigue utilisation n_required / n_f of the plain (un-notched) section of diameter d along the shaft."""
+    sut, _, se = _strengths_along(layout, material, d)
+    t_a, t_m = np.where(torque_on, ta, 0.0), np.where(torque_on, tm, 0.0)
+    n = strength.fatigue_safety_factor(d, ma, t_a, mm, t_m, kf=1.0, kfs=1.0, se=se, sut=sut, criterion=CRITERION)
+    out: np.ndarray = layout.safety_factor / np.asarray(n)
+    return out

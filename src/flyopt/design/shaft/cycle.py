@@ -1,0 +1,188 @@
+"""The described shafts of a scene checked with each designed wheel over the cycle that sized it (issue 30, item 5).
+
+:func:`shaft_context` gathers, once per scene, what every check needs from the
+analysis: the cycle's speeds, the net torque M_d - M_r and the machine's J_e at
+the reference shaft (:meth:`flyopt.machine.reduce.Machine.net_torque_grid`, the
+samples the flywheel's peak torque is found on), the net torque's orders
+(:func:`flyopt.design.shaft.torsional.net_torque_orders`) and each described
+shaft's material (:func:`flyopt.design.materials.get_material`).
+:func:`check_candidate` runs :func:`flyopt.design.shaft.check.check_shaft` on one
+designed wheel; :func:`acceptor` turns it into the designer's post-check
+(``design_flywheel(accept=...)``): a wheel its shaft cannot carry, or one that puts a
+critical speed in the running range, makes that combination infeasible with the
+limits in numbers; :func:`mass_sensitivity` is d(utilisation)/d(m) of the binding limit.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from flyopt.design.combination import shaft_label
+from flyopt.design.shaft.check import ShaftCheck, ShaftLimit, check_shaft
+from flyopt.machine.torsion import TorqueOrders
+
+if TYPE_CHECKING:
+    from flyopt.analysis import Analysis
+    from flyopt.design.materials import Material
+    from flyopt.design.result import Candidate
+    from flyopt.machine.transmission import Shaft
+
+__all__ = ["ShaftContext", "ShaftReport", "shaft_context", "check_candidate", "acceptor", "mass_sensitivity"]
+
+#: Relative step of the central difference of a limit's utilisation in the wheel's mass.
+MASS_STEP = 1e-3
+
+
+@dataclass
+class ShaftContext:
+    """What the shaft checks of one scene need from its analysis (SI, at the reference shaft)."""
+
+    omega_mean: float
+    delta: float
+    shafts: dict[str, Shaft]
+    materials: dict[str, Material]
+    j_machine: np.ndarray | None  # J_e at the samples [kg*m^2]; None: net areas (no curves)
+    net_torque: np.ndarray | None  # M_d - M_r at the same samples [N*m]
+    orders: TorqueOrders | None
+    _cache: dict[tuple[Any, ...], ShaftCheck] = field(default_factory=dict, repr=False)
+
+
+@dataclass(frozen=True)
+class ShaftReport:
+    """A described shaft's checks with the chosen wheel, and the binding limit's sensitivity to its mass."""
+
+    shaft: str
+    material: str
+    check: ShaftCheck
+    sensitivity: float  # d(utilisation of the binding limit)/d(wheel mass) [1/kg]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The report for ``--json`` (SI)."""
+        return {
+            "shaft": self.shaft,
+            "material": self.material,
+            **self.check.to_dict(),
+            "dutilisation_dmass": self.sensitivity,
+        }
+
+
+def shaft_context(analysis: Analysis, shafts: Iterable[Shaft], library: Mapping[str, Material]) -> ShaftContext | None:
+    """The context of the scene's described shafts; None when it describes none."""
+    from flyopt.design.materials import get_material
+
+    described = {s.name: s for s in shafts if s.layout is not None}
+    if not described:
+        return None
+    materials = {name: get_material(s.layout.material, library) for name, s in described.items() if s.layout}
+    machine = analysis.machine
+    j_machine = net = None
+    orders = None
+    if machine is not None:
+        from flyopt.design.shaft.torsional import net_torque_orders
+
+        phi, before, after = machine.net_torque_grid()
+        net = np.concatenate([before, after])
+        j = machine.j_machine(phi) if machine.variable_inertia else np.full(phi.shape, float(machine.j_machine))
+        j_machine = np.concatenate([j, j])
+        balanced = machine.angle_only()
+        orders = net_torque_orders(balanced.driving, balanced.resisting, machine.cycle_angle)
+    return ShaftContext(analysis.omega_mean, analysis.delta, described, materials, j_machine, net, orders)
+
+
+def _wheel(candidate: Candidate) -> tuple[float, float, float]:
+    dims = candidate.dims
+    width = 0.0 if dims is None else max(dims.b, dims.l_hub or 0.0)
+    return float(candidate.mass or 0.0), float(candidate.j_flywheel or 0.0), width
+
+
+def _check(ctx: ShaftContext, name: str, mass: float, inertia: float, width: float) -> ShaftCheck:
+    key = (name, mass, inertia, width)
+    if key in ctx._cache:
+        return ctx._cache[key]
+    from flyopt.sizing.peak_torque import flywheel_torque_curve
+
+    shaft = ctx.shafts[name]
+    layout = shaft.layout
+    if layout is None:
+        raise ValueError(f"shaft {name!r} is not described")
+    r = shaft.speed_ratio
+    torque: np.ndarray = np.zeros(1)
+    if ctx.net_torque is not None and ctx.j_machine is not None and inertia > 0.0:
+        j_ref = inertia * r * r
+        torque = flywheel_torque_curve(j_ref, ctx.j_machine + j_ref, ctx.net_torque, r)
+    excitation = None
+    if ctx.orders is not None:
+        # per revolution of this shaft: order q of the reference is q / r here, its torque c_q / r
+        o = ctx.orders
+        excitation = TorqueOrders(o.mean / r, o.orders / r, o.amplitudes / r)
+    check = check_shaft(
+        layout,
+        ctx.materials[name],
+        wheel_mass=mass,
+        wheel_inertia=inertia,
+        wheel_width=width,
+        omega_mean=ctx.omega_mean * r,
+        delta=ctx.delta,
+        torque_curve=torque,
+        excitation=excitation,
+        other_inertia=shaft.inertia,
+    )
+    ctx._cache[key] = check
+    return check
+
+
+def check_candidate(ctx: ShaftContext, candidate: Candidate) -> ShaftCheck | None:
+    """The checks of the candidate's shaft with its wheel; None when that shaft is not described."""
+    if candidate.shaft not in ctx.shafts or candidate.mass is None:
+        return None
+    return _check(ctx, candidate.shaft, *_wheel(candidate))
+
+
+def mass_sensitivity(ctx: ShaftContext, candidate: Candidate, limit: ShaftLimit) -> float:
+    """d(utilisation)/d(m) [1/kg] of ``limit``: the wheel scaled in mass and inertia together, central difference."""
+    mass, inertia, width = _wheel(candidate)
+    h = MASS_STEP * mass
+    values = []
+    for sign in (1.0, -1.0):
+        scale = 1.0 + sign * MASS_STEP
+        check = _check(ctx, candidate.shaft, mass * scale, inertia * scale, width)
+        same = [lim for lim in check.limits if lim.kind == limit.kind and lim.where == limit.where]
+        values.append(same[0].utilisation if same else math.nan)
+    return (values[0] - values[1]) / (2.0 * h)
+
+
+def reject_reason(candidate: Candidate, check: ShaftCheck) -> str | None:
+    """The sentence that makes a combination infeasible, or None when its shaft holds."""
+    failed = check.failed()
+    if not failed:
+        return None
+    arms = f" with {candidate.n_arms} arms" if candidate.n_arms else ""
+    what = "; ".join(lim.describe() for lim in failed)
+    return (
+        f"{candidate.material} on the {shaft_label(candidate.shaft)}{arms}: the shaft cannot carry this "
+        f"{candidate.mass:.4g} kg wheel: {what}"
+    )
+
+
+def acceptor(ctx: ShaftContext) -> Callable[[Candidate], str | None]:
+    """The designer's post-check (``design_flywheel(accept=...)``) of the scene's described shafts."""
+
+    def accept(candidate: Candidate) -> str | None:
+        check = check_candidate(ctx, candidate)
+        return None if check is None else reject_reason(candidate, check)
+
+    return accept
+
+
+def report(ctx: ShaftContext, candidate: Candidate) -> ShaftReport | None:
+    """The chosen wheel's shaft report (None when its shaft is not described)."""
+    check = check_candidate(ctx, candidate)
+    if check is None:
+        return None
+    material = ctx.materials[candidate.shaft]
+    return ShaftReport(candidate.shaft, material.name, check, mass_sensitivity(ctx, candidate, check.binding))

@@ -1,0 +1,99 @@
+"""The mounting shaft's section of the report: its limits with the chosen wheel, the moments and torque along
+it, and the Campbell diagram of its torsional modes (docs/flywheel-design.md, section 26)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from flyopt.design.combination import shaft_label
+from flyopt.report.builder.base import NOTES, BuilderBase
+from flyopt.report.display import number
+from flyopt.report.document import Facts, Paragraph, Table
+
+
+class ShaftSection(BuilderBase):
+    """The described shaft of the chosen wheel, where the scene describes it as a part."""
+
+    def shaft_section(self) -> None:
+        """A subsection of the design where the chosen wheel's shaft is described as a part."""
+        if self.solution.shaft_checks:
+            self.shaft_checks(self.section("The mounting shaft with the chosen wheel", "shaft", level=2))
+
+    def shaft_checks(self, blocks: list[Any]) -> None:
+        """Each described shaft's checks with the chosen wheel: a table of limits, the loads, two diagrams."""
+        from flyopt.report.plots.shaft import plot_campbell, plot_shaft
+        from flyopt.report.shaft import limit_value
+
+        for report in self.solution.shaft_checks:
+            c = report.check
+            layout = next(s.layout for s in self.scene.shafts if s.name == report.shaft)
+            blocks.append(
+                Paragraph(
+                    (
+                        f"The {shaft_label(report.shaft)} described as a part ({report.material}), checked with "
+                        f"the chosen wheel over the cycle ({NOTES}, section 26): DE-Goodman fatigue and "
+                        "first-cycle yield (Shigley 9th ed., Eqs. (7-7), (7-15)) at the keyseat, the shoulders "
+                        "and the plain sections, the slope at the bearings, the first forward whirl and the "
+                        "torsional modes against the running range widened by the margin. A post-check of each "
+                        "design (not a row of the NLP): a combination whose shaft fails is infeasible.",
+                    )
+                )
+            )
+            rows = [
+                [
+                    lim.kind,
+                    lim.where,
+                    limit_value(lim, lim.value, self.units),
+                    limit_value(lim, lim.allowed, self.units),
+                    number(lim.utilisation, 3),
+                    "holds" if lim.holds else "FAILS",
+                ]
+                for lim in c.limits
+            ]
+            blocks.append(
+                Table(
+                    ("limit", "where", "value", "allowed", "utilisation", ""),
+                    tuple(rows),
+                    ("<", "<", ">", ">", ">", "<"),
+                    "The shaft's limits with the chosen wheel",
+                    "shaft_limits",
+                )
+            )
+            facts: list[Any] = [
+                ("weight of the wheel", self.q(c.weight, "force", "weight", 4)),
+                (
+                    "permissible unbalance force (ISO 21940-11)",
+                    self.q(c.unbalance, "force", "unbalance_force", 4),
+                ),
+                (
+                    "torque the wheel exchanges",
+                    (
+                        "midrange ",
+                        self.q(c.torque_mean, "torque", "torque_mean", 4),
+                        ", alternating ",
+                        self.q(c.torque_alternating, "torque", "torque_alternating", 4),
+                    ),
+                ),
+                (
+                    "binding",
+                    f"{c.binding.kind} {c.binding.where}, utilisation {number(c.binding.utilisation, 3)}; "
+                    f"d(utilisation)/d(wheel mass) {number(report.sensitivity, 3)} per kg",
+                ),
+            ]
+            blocks.append(Facts(tuple(facts), "shaft_facts"))
+            self.figure(
+                blocks,
+                "shaft",
+                f"The {shaft_label(report.shaft)}: bending moments and torque along it, with the utilisation",
+                plot_shaft,
+                report,
+                layout,
+            )
+            self.figure(
+                blocks,
+                "campbell",
+                f"Campbell diagram of the {shaft_label(report.shaft)}: torsional modes against the cycle's orders",
+                plot_campbell,
+                report,
+                layout,
+            )
