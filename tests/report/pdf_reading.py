@@ -130,3 +130,16 @@ def collisions(path, tolerance: float = 0.1) -> list[tuple[Box, Box, float, floa
                 if across > tolerance and up > tolerance:
                     hits.append((a, b, across, up))
     return hits
+
+
+def assert_vector_diagrams(path, words=("crank angle", "stress [MPa]", "radius r [mm]", "von Mises")) -> None:
+    """The PDF's diagrams are vectors with their words as text (issue 26): no page holds an image, and words
+    only a diagram writes (the turning-moment and stress diagrams' axis labels, a legend entry) are text."""
+    from pypdf import PdfReader
+
+    reader = PdfReader(str(path))
+    assert all(not page.images for page in reader.pages), "a diagram was rasterised"
+    assert b"/Subtype /Image" not in path.read_bytes()
+    text = " ".join(" ".join(page.extract_text() or "" for page in reader.pages).split())
+    for word in words:
+        assert word in text, word

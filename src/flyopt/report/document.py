@@ -23,6 +23,7 @@ __all__ = [
     "Quantity",
     "Section",
     "Table",
+    "anchor",
     "plain",
 ]
 
@@ -175,3 +176,11 @@ def plain(text: object) -> str:
     if isinstance(text, tuple):
         return "".join(plain(t) for t in text)
     return re.sub(r"[_^]\{([^{}]*)\}", r"\1", str(text))
+
+
+def anchor(number: str) -> str:
+    """The name of a section's heading as a link target: the HTML's id and the PDF's destination, which the
+    contents list and the outline point to ("section-4.2", "section-A.5")."""
+    import re
+
+    return "section-" + re.sub(r"[^A-Za-z0-9.]", "-", number)
