@@ -160,15 +160,21 @@ def _check_outline_and_contents(path):
             lines[page] = _lines(reader.pages[page])
         assert _heading_below(lines[page], float(entry.top)) == entry.title, entry.title
         places[entry.title] = (page, round(float(entry.top), 2))
-    chapters = {places[t] for t in titles if re.match(r"\d+ ", t)}
+    chapters = {places[t] for t in titles if re.match(r"(?:\d+|[A-Z]) ", t)}
     links = [a.get_object() for a in reader.pages[0].get("/Annots", [])]
     links = [a for a in links if a["/Subtype"] == "/Link"]
     targets = {(reader.get_page_number(a["/Dest"][0].get_object()), round(float(a["/Dest"][3]), 2)) for a in links}
     assert targets == chapters  # every chapter linked from the contents, and nothing else
+    # self-contained: no path into the repository; each appendix section the text cites is a heading of the PDF
+    text = " ".join(" ".join(page.extract_text() for page in reader.pages).split())
+    assert "flywheel-design" not in text and "docs/" not in text
+    cited = set(re.findall(r"\bA\.(\d+)\b", text))
+    assert {"2", "5"} <= cited
+    assert all(any(t.startswith(f"A.{n} ") for t in titles) for n in cited), cited
     assert len(links) == 3 * len(chapters)  # its number, its title and its page
     contents = " ".join(reader.pages[0].extract_text().split())
     for title in titles:
-        if re.match(r"\d+ ", title):
+        if re.match(r"(?:\d+|[A-Z]) ", title):
             number, words = title.split(" ", 1)
             printed = re.search(rf"{number} {re.escape(words)} (\d+)", contents)
             assert printed and int(printed.group(1)) == places[title][0] + 1, title

@@ -54,7 +54,8 @@ Text = "str | Quantity | tuple"
 
 @dataclass(frozen=True)
 class Paragraph:
-    """A paragraph; ``kind`` "text", "note", "ok" or "warning" (a verdict the reader must not miss)."""
+    """A paragraph; ``kind`` "text", "display" (a formula on its own line), "note", "ok" or "warning" (a verdict
+    the reader must not miss)."""
 
     text: object
     kind: str = "text"

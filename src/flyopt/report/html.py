@@ -40,6 +40,7 @@ p { margin: 0.5rem 0; }
 p.ok, p.warning, p.note { padding: 0.45rem 0.7rem; border-left: 4px solid; background: var(--shade); }
 p.ok { border-color: var(--ok); } p.warning { border-color: var(--warn); font-weight: bold; }
 p.note { border-color: var(--note); }
+p.display { margin: 0.3rem 0 0.3rem 2rem; }
 table { border-collapse: collapse; margin: 0.2rem 0 1rem 0; font-size: 0.84rem; max-width: 100%; }
 th, td { border: 1px solid var(--rule); padding: 0.22rem 0.5rem; vertical-align: top; }
 th { background: var(--shade); text-align: left; font-weight: 600; }

@@ -178,6 +178,7 @@ def _styles():
     return {
         "body": base,
         "lead": ParagraphStyle("lead", base, keepWithNext=1),
+        "display": ParagraphStyle("display", base, leftIndent=22, spaceBefore=1, spaceAfter=5),
         "title": ParagraphStyle("title", base, fontName=_BOLD, fontSize=17, leading=21, spaceAfter=2),
         "kind": ParagraphStyle("kind", base, fontSize=7.5, textColor=colors.HexColor("#555555"), spaceAfter=2),
         "h1": ParagraphStyle(
@@ -273,6 +274,8 @@ def _block(block, styles, width, height, drawn=True):
             # a paragraph that introduces what follows ("...:") stays on its page
             lead = plain(block.text).rstrip().endswith(":")
             return [_paragraph(block.text, styles["lead"] if lead else styles["body"])]
+        if block.kind == "display":
+            return [_paragraph(block.text, styles["display"])]
         colour = {"ok": "#1e7a46", "warning": "#b3261e", "note": "#8a7300"}[block.kind]
         box = RLTable([[_paragraph(block.text, styles[block.kind])]], colWidths=[width])
         box.setStyle(
