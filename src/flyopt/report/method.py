@@ -12,8 +12,8 @@ The notes are read from the package (``flyopt/data/flywheel-design.md``, a
 link to docs/flywheel-design.md in the source tree that the build copies into
 the wheel), so the appendix is the notes themselves, never a copy kept by
 hand. What the notes say for flyopt's developers is left out of the report,
-by rule: the path of a file in the repository (a test, a benchmark, a module,
-a scene of problems/), the parenthesis that holds it, or the sentence that
+by rule: the path of a file in the repository (a test, a benchmark, a module
+or its dotted name, a scene of problems/), the parenthesis that holds it, or the sentence that
 needs it; a link's target (its words stay); markdown's emphasis marks. A
 reference from one section to another becomes the appendix's number where
 that section is in the appendix, and the notes' number where it is not
@@ -45,10 +45,13 @@ _CITATION = re.compile(
     re.escape(NOTES) + r"(?P<sep>,? )(?P<word>sections?) (?P<numbers>\d+(?:(?:–|-| and |, | to )\d+)*)"
 )
 
-#: The path of a file in the repository: a folder of it, or a file name with a source or data extension.
+#: The path of a file in the repository: a folder of it, a file name with a source or data extension, a
+#: module of the source by its dotted name; or an issue of the project's tracker.
 PATH = re.compile(
     r"(?:\b(?:src|docs|tests|benchmarks|problems|notebooks|flyopt|tools)/[\w./*{}-]*)"
     r"|(?:\b[\w*.-]+\.(?:toml|py|md|csv|json|ipynb|parquet)\b)"
+    r"|(?:\bflyopt\.[a-z_]+\.[\w.]+)"  # a module of the source (flyopt.pipeline.solve_calculation)
+    r"|(?:\bissues? \d+)"  # an issue of the project's tracker, which the reader does not have either
 )
 
 
@@ -174,7 +177,8 @@ def appendix(numbers: list[str]) -> list[Section]:
     for number in numbers:
         method = sections[number]
         parts = re.split(r"^### (.*)$", method.text, flags=re.M)
-        out.append(Section(f"{APPENDIX}.{number}", method.title, _blocks(parts[0], shown), 2, f"notes-{number}"))
+        title = readable(method.title, shown)
+        out.append(Section(f"{APPENDIX}.{number}", title, _blocks(parts[0], shown), 2, f"notes-{number}"))
         for k in range(1, len(parts) - 1, 2):
             title = readable(parts[k].strip(), shown)
             out.append(

@@ -328,7 +328,7 @@ def _block(block, styles, width, height, drawn=True):
     if isinstance(block, Code):
         chars = int(width / (0.6 * styles["code"].fontSize)) - 1
         out = [_paragraph(block.caption, styles["caption"])] if block.caption else []
-        return out + [_split_code(block.text, styles["code"], chars, width)]
+        return out + [_split_code(block.text, styles["code"], chars, width), Spacer(1, 5)]
     raise TypeError(f"no PDF layout for a {type(block).__name__}")
 
 
