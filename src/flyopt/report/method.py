@@ -143,12 +143,13 @@ def _block(block: object, cited: dict[str, None]) -> object:
 
 def with_appendix(document: Document) -> Document:
     """The document with every citation of the notes as its appendix number, and Appendix A appended: the
-    sections cited, in the notes' order (nothing appended where nothing is cited)."""
+    sections cited, in the notes' order (nothing appended where nothing is cited). The sections' text is
+    rewritten in place; the title block (the scene's own words, the date, the versions) cites nothing and is
+    left as it is."""
     cited: dict[str, None] = {}
     for section in document.sections:
         section.blocks = [_block(b, cited) for b in section.blocks]
         section.title = _cited_in(section.title, cited)
-    document.title_block = tuple((label, _rewrite(value, cited)) for label, value in document.title_block)
     if cited:
         document.sections += appendix(sorted(cited, key=int))
     return document
