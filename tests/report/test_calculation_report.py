@@ -69,7 +69,9 @@ def test_a_calculation_is_reported_whole(scene, folder):
     assert status == 0 and err == "", err
     page = Page(out.read_text(encoding="utf-8"))
     assert page.errors == []
-    assert page.sections == ["summary", "scene", "steps", "provenance"]
+    # the method's sections of the notes follow as Appendix A (tests/report/test_method.py)
+    assert page.sections[:5] == ["summary", "scene", "steps", "provenance", "appendix"]
+    assert all(key.startswith("notes-") for key in page.sections[5:]) and page.sections[5:]
     assert page.figures == {}
     block = page.title_block
     assert block["scene file"].endswith(f"{scene}.toml")
@@ -78,7 +80,8 @@ def test_a_calculation_is_reported_whole(scene, folder):
     assert block["calculation"].startswith("[")
     assert block["status"] == "calculated"
     assert page.equations, "the method shows its formulas"
-    assert all(e["ref"].startswith("docs/flywheel-design.md, section ") for e in page.equations)
+    assert all(re.fullmatch(r"Appendix A\.\d+", e["ref"]) for e in page.equations)
+    assert {f"notes-{e['ref'].rsplit('.', 1)[1]}" for e in page.equations} <= set(page.sections)
 
 
 def _json_values(scene):

@@ -23,6 +23,7 @@ __all__ = [
     "Quantity",
     "Section",
     "Table",
+    "anchor",
     "plain",
 ]
 
@@ -53,7 +54,8 @@ Text = "str | Quantity | tuple"
 
 @dataclass(frozen=True)
 class Paragraph:
-    """A paragraph; ``kind`` "text", "note", "ok" or "warning" (a verdict the reader must not miss)."""
+    """A paragraph; ``kind`` "text", "display" (a formula on its own line), "note", "ok" or "warning" (a verdict
+    the reader must not miss)."""
 
     text: object
     kind: str = "text"
@@ -175,3 +177,11 @@ def plain(text: object) -> str:
     if isinstance(text, tuple):
         return "".join(plain(t) for t in text)
     return re.sub(r"[_^]\{([^{}]*)\}", r"\1", str(text))
+
+
+def anchor(number: str) -> str:
+    """The name of a section's heading as a link target: the HTML's id and the PDF's destination, which the
+    contents list and the outline point to ("section-4.2", "section-A.5")."""
+    import re
+
+    return "section-" + re.sub(r"[^A-Za-z0-9.]", "-", number)

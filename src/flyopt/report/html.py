@@ -18,7 +18,7 @@ import re
 from typing import TYPE_CHECKING, Any
 
 from flyopt.report.characters import visible
-from flyopt.report.document import Code, Document, Equation, Facts, Figure, Paragraph, Quantity, Table
+from flyopt.report.document import Code, Document, Equation, Facts, Figure, Paragraph, Quantity, Table, anchor
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure as MplFigure
@@ -40,6 +40,7 @@ p { margin: 0.5rem 0; }
 p.ok, p.warning, p.note { padding: 0.45rem 0.7rem; border-left: 4px solid; background: var(--shade); }
 p.ok { border-color: var(--ok); } p.warning { border-color: var(--warn); font-weight: bold; }
 p.note { border-color: var(--note); }
+p.display { margin: 0.3rem 0 0.3rem 2rem; }
 table { border-collapse: collapse; margin: 0.2rem 0 1rem 0; font-size: 0.84rem; max-width: 100%; }
 th, td { border: 1px solid var(--rule); padding: 0.22rem 0.5rem; vertical-align: top; }
 th { background: var(--shade); text-align: left; font-weight: 600; }
@@ -64,6 +65,8 @@ figure.code { text-align: left; }
 pre { background: var(--shade); border: 1px solid var(--rule); padding: 0.6rem 0.8rem; font-size: 0.78rem;
       overflow-x: auto; white-space: pre-wrap; word-break: break-all;
       font-family: "DejaVu Sans Mono", Consolas, monospace; }
+ul.contents { list-style: none; padding-left: 0.4rem; }
+ul.contents a { color: #1d3f73; text-decoration: none; }
 footer { margin-top: 2.5rem; font-size: 0.78rem; color: #666; border-top: 1px solid var(--rule); padding-top: 0.4rem; }
 @media print {
   @page { size: A4; margin: 15mm 14mm 16mm 14mm; }
@@ -105,16 +108,18 @@ def render(document: Document) -> str:
     for label, value in document.title_block:
         out.append(f"<tr><td>{_escape(label)}</td><td>{_text(value)}</td></tr>")
     out.append("</table></header>")
-    out.append('<nav><h2 id="contents">Contents</h2><ol>')
+    out.append('<nav><h2 id="contents">Contents</h2><ul class="contents">')
     for section in document.sections:
         if section.level == 1:
-            out.append(f"<li>{_escape(section.title)}</li>")
-    out.append("</ol></nav>")
+            out.append(
+                f'<li><a href="#{anchor(section.number)}">{_escape(section.number)} {_escape(section.title)}</a></li>'
+            )
+    out.append("</ul></nav>")
     figures = 0
     for section in document.sections:
         tag = "h2" if section.level == 1 else "h3"
         out.append(f'<section data-section="{_escape(section.key)}">')
-        out.append(f"<{tag}>{_escape(section.number)} {_escape(section.title)}</{tag}>")
+        out.append(f'<{tag} id="{anchor(section.number)}">{_escape(section.number)} {_escape(section.title)}</{tag}>')
         for block in section.blocks:
             if isinstance(block, Figure) and block.figure is not None:
                 figures += 1

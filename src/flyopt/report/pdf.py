@@ -18,7 +18,18 @@ import re
 from xml.sax.saxutils import escape
 
 from flyopt.report.characters import visible
-from flyopt.report.document import Code, Document, Equation, Facts, Figure, Paragraph, Quantity, Table, plain
+from flyopt.report.document import (
+    Code,
+    Document,
+    Equation,
+    Facts,
+    Figure,
+    Paragraph,
+    Quantity,
+    Table,
+    anchor,
+    plain,
+)
 from flyopt.report.plots import standard
 
 _FONT, _BOLD, _ITALIC, _MONO = "FlyoptSans", "FlyoptSans-Bold", "FlyoptSans-Oblique", "FlyoptMono"
@@ -31,7 +42,21 @@ _FILES = {
 
 
 def render(document: Document) -> bytes:
-    """The PDF of a :class:`~flyopt.report.document.Document`, as bytes."""
+    """The PDF of a :class:`~flyopt.report.document.Document`, as bytes.
+
+    Laid out twice: first without drawing the diagrams, to learn the page each
+    section starts on (a diagram's size, not its drawing, decides the pages),
+    then for good, with those pages in the contents list. Every heading is a
+    destination: the contents list links to it and the outline (the viewer's
+    bookmarks) lists it.
+    """
+    pages: dict[str, int] = {}
+    _build(document, pages, draw=False)
+    return _build(document, pages, draw=True)
+
+
+def _build(document: Document, pages: dict[str, int], draw: bool) -> bytes:
+    """One layout of the document; records in ``pages`` the page of each section's heading."""
     from reportlab.lib.pagesizes import A4
     from reportlab.lib.units import mm
     from reportlab.platypus import SimpleDocTemplate
@@ -54,12 +79,14 @@ def render(document: Document) -> bytes:
     )
     width = A4[0] - 2 * margin
     height = A4[1] - 32 * mm
-    story = _title(document, styles, width)
+    story = _title(document, styles, width) + _contents(document, styles, width, pages)
     for section in document.sections:
         style = styles["h1"] if section.level == 1 else styles["h2"]
-        story.append(_paragraph(f"{section.number} {section.title}", style))
+        heading = _paragraph(f"{section.number} {section.title}", style, anchor=anchor(section.number))
+        heading.flyopt_section = section
+        story.append(heading)
         for block in section.blocks:
-            story += _block(block, styles, width, height)
+            story += _block(block, styles, width, height, draw)
 
     def footer(canvas, doc):
         canvas.saveState()
@@ -69,8 +96,52 @@ def render(document: Document) -> bytes:
         canvas.drawRightString(A4[0] - margin, 9 * mm, f"page {doc.page}")
         canvas.restoreState()
 
+    def after(flowable):
+        section = getattr(flowable, "flyopt_section", None)
+        if section is not None:
+            pages[section.number] = page.page
+            title = _shown(f"{section.number} {section.title}")
+            page.canv.addOutlineEntry(plain(title), anchor(section.number), level=section.level - 1)
+
+    page.afterFlowable = after
     page.build(story, onFirstPage=footer, onLaterPages=footer)
     return buffer.getvalue()
+
+
+def _contents(document, styles, width, pages):
+    """The contents list: each numbered section (level 1) and its page, both linked to its heading."""
+    from reportlab.lib import colors
+    from reportlab.platypus import Paragraph as RLParagraph
+    from reportlab.platypus import Spacer
+    from reportlab.platypus import Table as RLTable
+
+    rows = []
+    for section in document.sections:
+        if section.level != 1:
+            continue
+        link = f'<a href="#{anchor(section.number)}" color="#1d3f73">'
+        number = escape(section.number)
+        title = _markup(section.title)
+        at = str(pages.get(section.number, "00"))  # the first layout's placeholder is as wide as a page number
+        rows.append(
+            [
+                RLParagraph(f"{link}{number}</a>", styles["cell"]),
+                RLParagraph(f"{link}{title}</a>", styles["cell"]),
+                RLParagraph(f"{link}{at}</a>", styles["cell_r"]),
+            ]
+        )
+    if not rows:
+        return []
+    table = RLTable(rows, colWidths=[0.06 * width, 0.84 * width, 0.1 * width], hAlign="LEFT")
+    table.setStyle(
+        [
+            ("LINEBELOW", (0, 0), (-1, -1), 0.4, colors.HexColor("#c9ced6")),
+            ("TOPPADDING", (0, 0), (-1, -1), 1.5),
+            ("BOTTOMPADDING", (0, 0), (-1, -1), 1.5),
+            ("LEFTPADDING", (0, 0), (-1, -1), 2),
+        ]
+    )
+    return [_paragraph("Contents", styles["h1"]), table, Spacer(1, 4)]
 
 
 def _shown(text: str, font: str = _FONT) -> str:
@@ -107,6 +178,7 @@ def _styles():
     return {
         "body": base,
         "lead": ParagraphStyle("lead", base, keepWithNext=1),
+        "display": ParagraphStyle("display", base, leftIndent=22, spaceBefore=1, spaceAfter=5),
         "title": ParagraphStyle("title", base, fontName=_BOLD, fontSize=17, leading=21, spaceAfter=2),
         "kind": ParagraphStyle("kind", base, fontSize=7.5, textColor=colors.HexColor("#555555"), spaceAfter=2),
         "h1": ParagraphStyle(
@@ -115,10 +187,10 @@ def _styles():
         "h2": ParagraphStyle(
             "h2", base, fontName=_BOLD, fontSize=10.5, leading=13, spaceBefore=9, spaceAfter=4, keepWithNext=1
         ),
-        "cell": ParagraphStyle("cell", base, fontSize=7.6, leading=9.4, spaceAfter=0),
-        "head": ParagraphStyle("head", base, fontName=_BOLD, fontSize=7.6, leading=9.4, spaceAfter=0),
-        "cell_r": ParagraphStyle("cell_r", base, fontSize=7.6, leading=9.4, spaceAfter=0, alignment=2),
-        "head_r": ParagraphStyle("head_r", base, fontName=_BOLD, fontSize=7.6, leading=9.4, spaceAfter=0, alignment=2),
+        "cell": ParagraphStyle("cell", base, fontSize=7.6, leading=9.6, spaceAfter=0),
+        "head": ParagraphStyle("head", base, fontName=_BOLD, fontSize=7.6, leading=9.6, spaceAfter=0),
+        "cell_r": ParagraphStyle("cell_r", base, fontSize=7.6, leading=9.6, spaceAfter=0, alignment=2),
+        "head_r": ParagraphStyle("head_r", base, fontName=_BOLD, fontSize=7.6, leading=9.6, spaceAfter=0, alignment=2),
         "caption": ParagraphStyle(
             "caption",
             base,
@@ -138,6 +210,13 @@ def _styles():
     }
 
 
+#: Subscripts and superscripts where the font puts them (DejaVu Sans's OS/2 table: a subscript 0.14 em
+#: down, a superscript 0.48 em up, both 0.70 em high), not reportlab's default (0.5 em either way), whose
+#: subscript reached 1.4 pt into the next line of a table cell (7.6 pt type on 9.6 pt lines leaves a
+#: superscript 0.1 pt clear of the line above).
+_SUB, _SUPER = 'rise="14%" size="70%"', 'rise="48%" size="70%"'
+
+
 def _markup(text):
     """A Text as reportlab paragraph markup: escaped, ``_{}`` as subscript, ``^{}`` as superscript."""
     if isinstance(text, tuple):
@@ -145,14 +224,16 @@ def _markup(text):
     if isinstance(text, Quantity):
         return escape(_shown(text.text))
     escaped = escape(_shown(str(text)))
-    escaped = re.sub(r"_\{([^{}]*)\}", r"<sub>\1</sub>", escaped)
-    return re.sub(r"\^\{([^{}]*)\}", r"<super>\1</super>", escaped)
+    escaped = re.sub(r"_\{([^{}]*)\}", rf"<sub {_SUB}>\1</sub>", escaped)
+    return re.sub(r"\^\{([^{}]*)\}", rf"<super {_SUPER}>\1</super>", escaped)
 
 
-def _paragraph(text, style):
+def _paragraph(text, style, anchor: str | None = None):
+    """A paragraph of a Text; ``anchor`` names it as a destination (a heading the contents list links to)."""
     from reportlab.platypus import Paragraph as RLParagraph
 
-    return RLParagraph(_markup(text), style)
+    target = f'<a name="{anchor}"/>' if anchor else ""
+    return RLParagraph(target + _markup(text), style)
 
 
 def _title(document, styles, width):
@@ -183,7 +264,7 @@ def _title(document, styles, width):
     return [table, Spacer(1, 8)]
 
 
-def _block(block, styles, width, height):
+def _block(block, styles, width, height, drawn=True):
     from reportlab.lib import colors
     from reportlab.platypus import KeepTogether, Spacer
     from reportlab.platypus import Table as RLTable
@@ -193,6 +274,8 @@ def _block(block, styles, width, height):
             # a paragraph that introduces what follows ("...:") stays on its page
             lead = plain(block.text).rstrip().endswith(":")
             return [_paragraph(block.text, styles["lead"] if lead else styles["body"])]
+        if block.kind == "display":
+            return [_paragraph(block.text, styles["display"])]
         colour = {"ok": "#1e7a46", "warning": "#b3261e", "note": "#8a7300"}[block.kind]
         box = RLTable([[_paragraph(block.text, styles[block.kind])]], colWidths=[width])
         box.setStyle(
@@ -240,11 +323,12 @@ def _block(block, styles, width, height):
         caption = f"{block.caption}." if block.figure is not None else f"{block.caption}. {block.note}"
         if block.figure is None:
             return [_paragraph(caption, styles["caption"]), Spacer(1, 4)]
-        return [_figure(block.figure, _paragraph(caption, styles["caption"]), width, 0.62 * height), Spacer(1, 6)]
+        figure = _figure(block.figure, _paragraph(caption, styles["caption"]), width, 0.62 * height, drawn)
+        return [figure, Spacer(1, 6)]
     if isinstance(block, Code):
         chars = int(width / (0.6 * styles["code"].fontSize)) - 1
         out = [_paragraph(block.caption, styles["caption"])] if block.caption else []
-        return out + [_split_code(block.text, styles["code"], chars, width)]
+        return out + [_split_code(block.text, styles["code"], chars, width), Spacer(1, 5)]
     raise TypeError(f"no PDF layout for a {type(block).__name__}")
 
 
@@ -344,14 +428,15 @@ def _fit(natural, least, width):
 SHRINK = 0.72
 
 
-def _figure(figure, caption, width, height):
+def _figure(figure, caption, width, height, drawn=True):
     """A matplotlib figure as a vector flowable with its caption below, kept together.
 
     Scaled to fit ``width`` x ``height`` [pt] and never enlarged; where the rest
     of a page holds at least :data:`SHRINK` of that size the diagram shrinks to
     fit it, so that a page is not left half empty for want of a few points. The
     figure is drawn onto the page itself (:func:`flyopt.report.pdf_figure.draw`,
-    paths and text, no image), once, when reportlab places it.
+    paths and text, no image), once, when reportlab places it; with ``drawn``
+    False only its place is taken (the first layout, which finds the pages).
     """
     from reportlab.platypus import Flowable
 
@@ -373,6 +458,8 @@ def _figure(figure, caption, width, height):
             return []  # a diagram is never cut: it goes to the next page whole
 
         def draw(self):
+            if not drawn:
+                return
             shown_w = w * self.scale
             draw_figure(figure, self.canv, (self.width - shown_w) / 2, self.caption_height + 4, self.scale)
             caption.drawOn(self.canv, 0, 0)

@@ -11,14 +11,12 @@ from flyopt.names import Geometry, Model
 from flyopt.report import display
 from flyopt.report.display import number
 from flyopt.report.document import Equation, Figure, Paragraph, Quantity, Section
+from flyopt.report.method import NOTES
 
 if TYPE_CHECKING:
     from flyopt.design.result import BookRim, Design
     from flyopt.pipeline import Solution
     from flyopt.report.builder.inputs import ReportInputs
-
-#: The domain notes every step cites.
-NOTES = "docs/flywheel-design.md"
 
 
 class BuilderBase:

@@ -17,6 +17,7 @@ from flyopt.report.builder.steps import Steps
 from flyopt.report.builder.summary import Summary
 from flyopt.report.builder.verification import VerificationAndProvenance
 from flyopt.report.document import Document
+from flyopt.report.method import with_appendix
 
 
 def build(
@@ -43,8 +44,8 @@ def build(
     """
     display.check_system(units)
     if isinstance(inputs, CalculationInputs):
-        return build_calculation(inputs, units, title_block)
-    return Builder(inputs, units).document(title_block)
+        return with_appendix(build_calculation(inputs, units, title_block))
+    return with_appendix(Builder(inputs, units).document(title_block))
 
 
 class Builder(

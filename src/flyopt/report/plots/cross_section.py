@@ -472,8 +472,7 @@ def _section_notes(c, length, text):
     if c.geometry in ("rim", "thin_rim"):
         notes.append(
             f"The rim alone, as designed (geometry '{c.geometry}'): its hub and arms or web are not part "
-            "of this design, and their inertia is left out, on the safe side (docs/flywheel-design.md, "
-            "section 9)."
+            "of this design, and their inertia is left out, on the safe side."
         )
     disc = c.geometry == Geometry.DISC
     ratio = c.d_outer / (c.b if disc else min(c.b, c.h))

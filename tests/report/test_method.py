@@ -1,0 +1,132 @@
+"""The report is self-contained (issue 29): the sections of the notes it cites are its Appendix A, and no
+text sends the reader to docs/flywheel-design.md or any file of the repository.
+
+The appendix must be the notes themselves, not a copy that can drift: the file the package ships is
+byte for byte docs/flywheel-design.md, and every formula line of every section of the notes, found here
+with this test's own reading of the markdown, is in that section's appendix text.
+"""
+
+import re
+
+import pytest
+from conftest import ROOT
+
+from flyopt.report.document import Document, Equation, Paragraph, Section, plain
+from flyopt.report.method import appendix, notes_sections, with_appendix
+
+DOC = ROOT / "docs" / "flywheel-design.md"
+
+#: A file of the repository, as a reader would meet it: a folder of the repository, a source/data name, or a
+#: module of the source by its dotted name (its floors, tests/test_floors.py).
+_FILE = re.compile(
+    r"\b(?:docs|tests|benchmarks|problems|src|notebooks|tools)/|\b\w[\w-]*\.(?:py|md|toml|csv|json)\b"
+    r"|\bflyopt\.(?:pipeline|report|design|machine|cycle|sizing|analysis|drive|io|outputs|studies|cli)\."
+)
+
+
+def test_the_package_ships_the_notes_themselves():
+    from importlib import resources
+
+    shipped = resources.files("flyopt").joinpath("data", "flywheel-design.md").read_bytes()
+    assert shipped == DOC.read_bytes()
+
+
+def _doc_sections():
+    """The notes' numbered sections as this test reads them: number -> (title, lines)."""
+    sections, current = {}, None
+    for line in DOC.read_text(encoding="utf-8").split("\n"):
+        heading = re.match(r"## (\d+)\. (.+)", line)
+        if heading:
+            current = heading.group(1)
+            sections[current] = (heading.group(2).strip(), [])
+        elif current:
+            sections[current][1].append(line)
+    return sections
+
+
+def _text(sections):
+    out = []
+    for section in sections:
+        out.append(section.title)
+        for block in section.blocks:
+            if isinstance(block, Paragraph):
+                out.append(plain(block.text))
+            elif hasattr(block, "rows"):
+                out += [plain(c) for row in block.rows for c in row] + [plain(c) for c in block.head]
+            elif hasattr(block, "text"):
+                out.append(block.text)
+    return " ".join(" ".join(out).split())
+
+
+def test_every_section_of_the_notes_is_read_and_each_formula_reaches_its_appendix():
+    doc = _doc_sections()
+    assert list(notes_sections()) == list(doc) and len(doc) >= 25
+    checked = 0
+    for number, (title, lines) in doc.items():
+        made = appendix([number])
+        # the notes' title, less a parenthesis that names the project's tracker ("(issue 30, item 4: ...)") and code marks
+        shown = re.sub(r"\s*\([^()]*issue[^()]*\)", "", title).replace("`", "")
+        assert made[1].number == f"A.{number}" and made[1].title == shown
+        text = _text(made)
+        assert not _FILE.search(text), (number, _FILE.search(text).group(0))
+        fenced = False
+        for line in lines:
+            fenced ^= line.startswith("```")
+            words = line.lstrip("> ").strip()
+            # a formula line: an equation, not inside a code block, not naming a file or a section (rewritten)
+            if fenced or " = " not in words or _FILE.search(words) or re.search(r"sections? \d|\(|\)|\||`", words):
+                continue
+            words = re.sub(r"^(?:[-*]|\d+\.) ", "", words).replace("*", "")
+            assert " ".join(words.split()) in text, (number, words)
+            checked += 1
+    assert checked > 50
+
+
+def test_a_citation_becomes_the_appendix_number_and_the_sections_cited_are_appended():
+    document = Document(
+        "t",
+        (),
+        [
+            Section(
+                "1",
+                "Steps",
+                [
+                    Paragraph("Reduced to one shaft (docs/flywheel-design.md, sections 3 and 14)."),
+                    Equation("j", ("J_{F} = A / (ω² δ)", "= 1", "= 1"), "docs/flywheel-design.md, section 5"),
+                    Paragraph("The calculations (docs/flywheel-design.md, sections 16–18)."),
+                ],
+            )
+        ],
+        "engineering",
+        "designed",
+    )
+    done = with_appendix(document)
+    blocks = done.sections[0].blocks
+    assert plain(blocks[0].text) == "Reduced to one shaft (Appendices A.3 and A.14)."
+    assert blocks[1].reference == "Appendix A.5"
+    assert plain(blocks[2].text) == "The calculations (Appendices A.16 to A.18)."
+    numbers = [s.number for s in done.sections if s.level == 2 and s.number.count(".") == 1]
+    assert numbers == ["A.3", "A.5", "A.14", "A.16", "A.17", "A.18"]
+    assert done.sections[1].number == "A" and done.sections[1].level == 1
+    parts = [s.title for s in done.sections if s.number.startswith("A.14.")]
+    assert parts[0] == "Engines from indicator data"  # a part of a section (### in the notes) is A.14.1
+    # a reference inside the appendix names the appendix where it holds that section, else the notes' number
+    said = _text([s for s in done.sections if s.number == "A.3"])
+    assert "section 14" not in said.replace("section 14 of flyopt's notes", "")
+
+
+@pytest.mark.parametrize(
+    "line, shown",
+    [
+        ("J_F = A / (ω² δ) (section 5).", "J_F = A / (ω² δ) (A.5)."),
+        ("as in section 7, the same.", "as in section 7 of flyopt's notes, the same."),
+        ("The scenes (`problems/a.toml`, `b.toml`) reproduce it.", "The scenes reproduce it."),
+        ("Checked. problems/x.toml is such a disc: 5 kg. It holds.", "Checked. It holds."),
+        ("Names as in [the nomenclature](nomenclature.md).", "Names as in the nomenclature."),
+        ("**Arms** (Khurmi & Gupta, *Machine Design*, ch. 22).", "Arms (Khurmi & Gupta, Machine Design, ch. 22)."),
+    ],
+)
+def test_a_line_of_the_notes_as_the_reader_gets_it(line, shown):
+    from flyopt.report.method import readable
+
+    assert readable(line, {"5"}) == shown
