@@ -407,6 +407,8 @@ SQP_DIMS_RTOL = 1e-8
         # each scene makes some 30-50 whole-wheel solves with each solver: one stays in the default run
         pytest.param("press-arms-wheel", marks=pytest.mark.slow),
         pytest.param("four-cylinder-engine", marks=pytest.mark.slow),
+        pytest.param("punch-press-shaft", marks=pytest.mark.slow),  # the wheels their shafts accept
+        pytest.param("four-cylinder-engine-shaft", marks=pytest.mark.slow),
     ],
 )
 def test_sqpmethod_designs_the_shipped_wheels_as_ipopt(name):
