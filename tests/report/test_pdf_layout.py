@@ -95,6 +95,25 @@ def test_subscripts_and_a_wrapped_heading_keep_off_the_next_line(tmp_path):
     assert not collisions(out), _described(collisions(out))
 
 
+def test_a_long_title_in_the_footer_stops_short_of_the_page_number(tmp_path):
+    """The footer holds the scene's title and the page number on one line: four-cylinder-engine-shaft's title
+    ran into 'page 12'. A title far too long for the line is cut with an ellipsis, clear of the number."""
+    from flyopt.report.document import Document, Paragraph, Section
+    from flyopt.report.pdf import render
+
+    title = "Four-cylinder engine from indicator data, generator set: the flywheel on a described crankshaft end " * 2
+    document = Document(
+        title=title,
+        title_block=(("scene file", "x.toml"),),
+        sections=[Section("1", "Text", [Paragraph("A paragraph.")])],
+        units="engineering",
+        status="designed",
+    )
+    out = tmp_path / "footer.pdf"
+    out.write_bytes(render(document))
+    assert not collisions(out), _described(collisions(out))
+
+
 def test_a_report_pdf_is_vectors_without_text_over_text_and_leads_to_every_section(tmp_path):
     """slider-crank-press's whole report in the default run, written once for three checks (each PDF costs a
     solve and a layout): its diagrams are vectors; no run of text overlaps another (tables, equations, the

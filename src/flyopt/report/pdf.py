@@ -15,6 +15,7 @@ from __future__ import annotations
 import io
 import os
 import re
+from collections.abc import Callable
 from xml.sax.saxutils import escape
 
 from flyopt.report.characters import visible
@@ -92,8 +93,11 @@ def _build(document: Document, pages: dict[str, int], draw: bool) -> bytes:
         canvas.saveState()
         canvas.setFont(_FONT, 7.5)
         canvas.setFillGray(0.35)
-        canvas.drawString(margin, 9 * mm, f"{_shown(document.title)}: {document.kind} (flyopt)")
-        canvas.drawRightString(A4[0] - margin, 9 * mm, f"page {doc.page}")
+        number = f"page {doc.page}"
+        room = A4[0] - 2 * margin - canvas.stringWidth(number, _FONT, 7.5) - 4 * mm
+        title = _fitted(f"{_shown(document.title)}: {document.kind} (flyopt)", room, canvas.stringWidth)
+        canvas.drawString(margin, 9 * mm, title)
+        canvas.drawRightString(A4[0] - margin, 9 * mm, number)
         canvas.restoreState()
 
     def after(flowable):
@@ -465,3 +469,13 @@ def _figure(figure, caption, width, height, drawn=True):
             caption.drawOn(self.canv, 0, 0)
 
     return FigureFlowable()
+
+
+def _fitted(text: str, room: float, width: Callable[[str, str, float], float]) -> str:
+    """``text`` shortened with an ellipsis so that ``width(text, font, size)`` stays within ``room`` [pt]
+    (the footer's title beside its page number: a long title ran into it)."""
+    if width(text, _FONT, 7.5) <= room:
+        return text
+    while text and width(text + "…", _FONT, 7.5) > room:
+        text = text[:-1]
+    return text.rstrip() + "…"
