@@ -616,19 +616,27 @@ def design_flywheel(
     if spec.round_to and best is not None:
         order = next(o for o, c in decided.feasible if c is best)
         combo = Combination(**{**combos[order].__dict__, "n_arms": best.n_arms or 0})
-        result = _rounded(result, combo, spec, solver_options)
+        result = _rounded(result, combo, spec, solver_options, accept)
     return result
 
 
 def _rounded(
-    result: DesignResult, combo: Combination, spec: DesignSpec, solver_options: Mapping[str, Any] | None
+    result: DesignResult,
+    combo: Combination,
+    spec: DesignSpec,
+    solver_options: Mapping[str, Any] | None,
+    accept: Callable[[Candidate], str | None] | None = None,
 ) -> DesignResult:
     """The result with its winner rounded to ``spec.round_to`` (:func:`flyopt.design.rounding.round_design`) and
-    the continuous optimum kept beside it; "infeasible" when no wheel of the grid cell meets every limit."""
+    the continuous optimum kept beside it; "infeasible" when no wheel of the grid cell meets every limit.
+    The rounded wheel passes ``accept`` (the post-check its continuous optimum passed) or is not the design."""
     from flyopt.design import rounding
 
     best = cast(Design, result.best)
     rounded, words = rounding.round_design(best, combo, spec, cast(float, spec.round_to), solver_options)
+    refused = accept(rounded) if accept is not None and rounded is not None else None
+    if refused:  # rounding moved a post-checked limit (the shaft's) past its bound: no rounded wheel
+        rounded, words = None, f"the rounded wheel fails its post-check: {refused}"
     if rounded is None and not spec.round_strict:  # the default step: the continuous optimum stands, said so
         return dataclasses.replace(
             result,
