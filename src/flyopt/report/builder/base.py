@@ -140,9 +140,15 @@ class BuilderBase:
         return Equation(key, (formula, f"= {numbers}", f"= {result}"), f"{NOTES}, section {section}")
 
     def units_words(self) -> str:
-        """The units of the report's system, in a line ("mm, rpm, kN·m, ...")."""
+        """The units of the report's system and its figures, in a line ("mm, rpm, N·m, J, ... (N·m, J, W with the
+        prefix each value needs); 4 significant figures")."""
         dims = ("length", "angular_speed", "torque", "energy", "stress", "power", "mass", "inertia")
-        return ", ".join(dict.fromkeys(display.label(d, self.units) for d in dims))
+        prefixed = display.PREFIXED.get(self.units, {})
+        words = ", ".join(dict.fromkeys(prefixed.get(d) or display.label(d, self.units) for d in dims))
+        chosen = [prefixed[d] for d in dims if d in prefixed]
+        if chosen:
+            words += f" ({', '.join(chosen)} with the prefix each value needs)"
+        return f"{words}; {self.digits} significant figures"
 
     def flagged(self) -> bool:
         """Whether a verification (of the design or of the drive) flagged the solution."""
