@@ -70,10 +70,11 @@ def test_digits_outside_one_to_fifteen_are_refused(digits):
         display.check_digits(digits)
 
 
-@pytest.mark.parametrize("command", ["solve", "report", "tradeoff", "pareto"])
+@pytest.mark.parametrize("command", ["solve", "report", "tradeoff", "pareto", "materials"])
 @pytest.mark.parametrize("bad", ["0", "16", "x", "3.5"])
 def test_a_bad_digits_option_is_one_line_and_exit_2(command, bad, capsys, tmp_path):
-    args = [command, str(PROBLEMS / "slider-crank-press.toml"), "--digits", bad]
+    scene = [] if command == "materials" else [str(PROBLEMS / "slider-crank-press.toml")]
+    args = [command, *scene, "--digits", bad]
     if command == "report":
         args += ["-o", str(tmp_path / "r.html")]
     with pytest.raises(SystemExit) as exit_:
