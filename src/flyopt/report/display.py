@@ -6,7 +6,9 @@ of three systems (``--units``):
 
 - ``si``: the SI base units (rad, rad/s, N·m, J, m, Pa, W, ...);
 - ``engineering`` (the default of reports and plots): the machine designer's
-  units, mm, rpm, kN·m, kJ, MPa, kW;
+  units, mm, rpm, MPa, kg, and N·m, J, W, N with the prefix each value needs
+  (the table below holds kN·m, kJ, kW, kN: the unit where no value chooses,
+  a diagram's axis);
 - ``imperial``: in, rpm, lbf·ft, psi, hp, lb.
 
 How a number is written (:func:`number`, the one way; :func:`quantity_text` and
@@ -18,9 +20,9 @@ the field helpers call it):
   global setting.
 - **Round-off is 0:** a value within :data:`NOISE_RTOL` (1e-12) of its scale
   is written "0", never "-0". The scale is the largest magnitude of the same
-  quantity beside it: the column of a table (:func:`column`), or the value the
-  caller names (an energy of the cycle against its A_max); a value alone is
-  its own scale, so nothing is hidden that was not compared with something.
+  quantity beside it (``among``: the column of a table, :func:`column`, or a
+  range's ends), or the scale a caller of :func:`number` names; a value alone
+  is its own scale, so nothing is hidden that was not compared with something.
 - **Prefixes per value (engineering system only):** torque, energy, power and
   force take the SI prefix that puts the shown number at 1 or more and below
   1000 (36.1 N·m, 1.256 kJ, 5.5 kW, 68.72 kN; below 1 the base unit, 0.5 J),
