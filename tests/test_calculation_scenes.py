@@ -46,13 +46,14 @@ def test_every_other_command_refuses_a_calculation_in_one_line(section, scene, c
     assert not list(tmp_path.iterdir())
 
 
-#: Each calculation's key answers as the report shows them in engineering units (6 digits), each the book's
-#: published answer to its rounding (the comments of the scene): {section: [answers]}.
+#: Each calculation's key answers as the report shows them in engineering units (4 digits, the default since
+#: issue 29; 6 before), each the book's published answer to its rounding (the comments of the scene):
+#: {section: [answers]}.
 ANSWERS = {
-    "operation": ["257.601 rpm", "18 at most"],  # Khurmi 16.21: ω₂ ≈ 257.6 rpm, 18 rivets a minute
-    "position": ["68.7223 kN", "19.2823 kN", "14.4895 kN·m"],  # Khurmi ch. 15: F_L 68.72 kN, F_I 19.28, T 14.49 kN·m
-    "electric_drive": ["3.79609 kW", "5.20726 kW", "4.76886 N·m²"],  # seed 004 ex. 2: 3.796 kW, 5.207 kW, 4.769 N·m²
-    "power_chain": ["7.22019 kW", "2.31046 kW", "9.53065 kW"],  # seed 001 ex. 5-8: P_dA 7220.2, P_dB 2310.5, 9530.7 W
+    "operation": ["257.6 rpm", "18 at most"],  # Khurmi 16.21: ω₂ ≈ 257.6 rpm, 18 rivets a minute
+    "position": ["68.72 kN", "19.28 kN", "14.49 kN·m"],  # Khurmi ch. 15: F_L 68.72 kN, F_I 19.28, T 14.49 kN·m
+    "electric_drive": ["3.796 kW", "5.207 kW", "4.769 N·m²"],  # seed 004 ex. 2: 3.796 kW, 5.207 kW, 4.769 N·m²
+    "power_chain": ["7.22 kW", "2.31 kW", "9.531 kW"],  # seed 001 ex. 5-8: P_dA 7220.2, P_dB 2310.5, 9530.7 W
 }
 
 

@@ -129,9 +129,10 @@ def test_solve_prints_the_motor_power_and_each_branch():
         text=True,
     )
     assert run.returncode == 0, run.stderr
-    assert "motor power P_in    9.53065 kW" in run.stdout
-    assert "overall efficiency  0.629548 (Σ P_out / P_in)" in run.stdout
-    assert "  A: 6.4433 →(0.97)→ 6.25 →(0.8)→ 5 kW" in run.stdout
+    # 9,530.65 W, η 0.629548, 6,443.3 W: to four figures (issue 29; six before)
+    assert "motor power P_in    9.531 kW" in run.stdout
+    assert "overall efficiency  0.6295 (Σ P_out / P_in)" in run.stdout
+    assert "  A: 6.443 →(0.97)→ 6.25 →(0.8)→ 5 kW" in run.stdout
 
 
 LEAF = {"stages": [0.97, 0.8], "power": "5 kW"}

@@ -112,8 +112,8 @@ def test_a_field_is_shown_in_the_dimension_the_json_gives_it():
         dimension = display.dimension_of(name)
         si = SI[dimension] or "dimensionless"
         assert UREG.Quantity(1.0, unit_of(name)).to(si).magnitude == pytest.approx(1.0, rel=1e-15), name
-    assert display.field_text(1256.33, "a_max") == "1.25633 kJ"
-    assert display.field_text(0.6, "d_outer", "imperial") == "23.622 in"
+    assert display.field_text(1256.33, "a_max") == "1.256 kJ"  # four figures by default (issue 29)
+    assert display.field_text(0.6, "d_outer", "imperial") == "23.62 in"
     assert display.field_number(0.6, "d_outer") == "600" and display.field_number(None, "d_outer") == "-"
     assert display.heading("D_outer", "d_outer", "si") == "D_outer [m]"
     assert display.heading("achieved δ", "achieved_delta") == "achieved δ"

@@ -1,4 +1,4 @@
-"""``flyopt materials [--units SYSTEM] [--json]``: the built-in material library, as a table or JSON.
+"""``flyopt materials [--units SYSTEM] [--digits N] [--json]``: the built-in material library, as a table or JSON.
 
 Every material of ``flyopt/data/materials.toml``
 (:func:`flyopt.design.materials.builtin_materials`), with its density,
@@ -67,9 +67,10 @@ def _row(material: Material, default: bool) -> dict[str, Any]:
 
 def add_materials_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``flyopt materials``; the handler is :func:`run_materials`."""
-    from flyopt.cli.scene import units_help
+    from flyopt.cli.scene import add_digits_argument, units_help
 
     parser.add_argument("--units", choices=display.SYSTEMS, default=display.DEFAULT, help=units_help("the table"))
+    add_digits_argument(parser, "the table")
     parser.add_argument(
         "--json", action="store_true", help="print one JSON object, all numbers in SI whatever --units says"
     )
@@ -85,21 +86,21 @@ def run_materials(args: argparse.Namespace) -> int:
         units = {key: display.unit(dimension, "si")[0] for key, _, dimension in COLUMNS if dimension}
         print(json_text({"materials": rows, "units": units}))
         return EXIT_OK
-    print(_table(rows, args.units))
+    print(_table(rows, args.units, args.digits))
     return EXIT_OK
 
 
-def _cell(value: Any, dimension: str | None, system: str) -> str:
+def _cell(value: Any, dimension: str | None, system: str, digits: int = display.DEFAULT_DIGITS) -> str:
     if value is None:
         return "-"
     if isinstance(value, bool):
         return "yes" if value else "no"
     if dimension is None:
         return str(value)
-    return display.number(display.show(float(value), dimension, system), 4)
+    return display.number(display.show(float(value), dimension, system), digits)
 
 
-def _table(rows: list[dict[str, Any]], system: str) -> str:
+def _table(rows: list[dict[str, Any]], system: str, digits: int = display.DEFAULT_DIGITS) -> str:
     """The rows as aligned columns, headings with units; a source cut to its first clause."""
     headings = [
         heading if dimension is None else f"{heading} [{display.label(dimension, system)}]"
@@ -107,7 +108,7 @@ def _table(rows: list[dict[str, Any]], system: str) -> str:
     ]
     cells = []
     for row in rows:
-        line = [_cell(row[key], dimension, system) for key, _, dimension in COLUMNS]
+        line = [_cell(row[key], dimension, system, digits) for key, _, dimension in COLUMNS]
         source = re.split(r"[;.](?:\s|$)", line[-1], maxsplit=1)[0]
         line[-1] = source if len(source) <= 60 else source[:59] + "…"
         cells.append(line)

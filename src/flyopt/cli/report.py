@@ -68,9 +68,13 @@ def add_report_arguments(parser: argparse.ArgumentParser) -> None:
         "--units",
         choices=SYSTEMS,
         default=DEFAULT,
-        help=f"units of the summary and tables (default {DEFAULT}: mm, rpm, kN·m, kJ, MPa; "
-        "si: SI base units; imperial: in, rpm, lbf·ft, psi); the equations stay in SI",
+        help=f"units of the summary and tables (default {DEFAULT}: mm, rpm, MPa, and N·m, J, W, N with the "
+        "prefix each value needs, 36.1 N·m or 1.256 kJ; si: SI base units; imperial: in, rpm, lbf·ft, psi); "
+        "the equations stay in SI",
     )
+    from flyopt.cli.scene import add_digits_argument
+
+    add_digits_argument(parser, "the report, its tables and equations")
     parser.set_defaults(run=run_report)
 
 
@@ -98,11 +102,11 @@ def run_report(args: argparse.Namespace) -> int:
     check_folder(args.output, "-o/--output")
     if Path(args.output).resolve() == Path(args.scene).resolve():
         raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: name another file for the report")
-    command = f"flyopt report {args.scene} -o {args.output} --units {args.units}"
+    command = f"flyopt report {args.scene} -o {args.output} --units {args.units} --digits {args.digits}"
     inputs = collect(args.scene, command, pdf=kind == "pdf")
     from flyopt.report.builder import CalculationInputs, build
 
-    document = build(inputs, args.units, title_block=_title_lines(inputs))
+    document = build(inputs, args.units, title_block=_title_lines(inputs), digits=args.digits)
     try:
         write(document, args.output, kind)
     finally:

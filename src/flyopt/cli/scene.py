@@ -17,10 +17,38 @@ if TYPE_CHECKING:
 def units_help(what: str = "the text report") -> str:
     """The help of ``--units``, its units read from the display table (``flyopt plot`` takes the same choices)."""
     shown = ("length", "angular_speed", "torque", "energy", "stress", "power", "mass")
+
+    def name(dimension: str, system: str) -> str:  # a prefixed one by its SI unit: "(k)J"
+        base = display.PREFIXED.get(system, {}).get(dimension)
+        return display.label(dimension, system) if base is None else f"(k){base}"
+
     systems = "; ".join(
-        f"{system}: {', '.join(dict.fromkeys(display.label(d, system) for d in shown))}" for system in display.SYSTEMS
+        f"{system}: {', '.join(dict.fromkeys(name(d, system) for d in shown))}" for system in display.SYSTEMS
     )
-    return f"unit system of {what} (default {display.DEFAULT}; {systems})"
+    return f"unit system of {what} (default {display.DEFAULT}; {systems}; (k): the prefix each value needs)"
+
+
+def digits_count(text: str) -> int:
+    """``--digits N``: the significant figures of the printed numbers, checked by
+    :func:`flyopt.report.display.check_digits` (the one rule); a bad one is argparse's one-line error, exit 2."""
+    try:
+        return display.check_digits(int(text))
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a count of significant figures (a whole number from 1 to {display.MAX_DIGITS})"
+        ) from None
+
+
+def add_digits_argument(parser: argparse.ArgumentParser, what: str = "the text report") -> None:
+    """``--digits N``, in the words of every command that prints numbers for people (never the JSON's)."""
+    parser.add_argument(
+        "--digits",
+        type=digits_count,
+        default=display.DEFAULT_DIGITS,
+        metavar="N",
+        help=f"significant figures of the numbers in {what} (default {display.DEFAULT_DIGITS}, "
+        f"1 to {display.MAX_DIGITS}); files and --json keep full precision",
+    )
 
 
 def add_solve_arguments(parser: argparse.ArgumentParser) -> None:
@@ -35,6 +63,7 @@ def add_solve_arguments(parser: argparse.ArgumentParser) -> None:
         default=display.DEFAULT,
         help=units_help() + "; --json ignores it: the JSON is always SI",
     )
+    add_digits_argument(parser)
     parser.add_argument(
         "--no-design", dest="design", action="store_false", help="stop after the cycle analysis (no optimization)"
     )
@@ -95,22 +124,23 @@ def run_solve(args: argparse.Namespace) -> int:
         )
 
         label = "δ reached by the flywheel" if solution.flywheel is not None else "allowed δ"
-        answer = answer_report(solution, units=args.units)
-        lines = [analysis_report(solution.analysis, args.scene, units=args.units, delta_label=label, answer=answer)]
+        shown = {"units": args.units, "digits": args.digits}
+        answer = answer_report(solution, **shown)
+        lines = [analysis_report(solution.analysis, args.scene, delta_label=label, answer=answer, **shown)]
         if solution.flywheel is not None:
-            lines += flywheel_report(solution.flywheel, units=args.units)
+            lines += flywheel_report(solution.flywheel, **shown)
         if solution.design is not None:
-            lines += design_report(solution.design, units=args.units)
+            lines += design_report(solution.design, **shown)
         if solution.shaft_checks:
             from flyopt.report.shaft import shaft_report
 
-            lines += shaft_report(solution.shaft_checks, units=args.units)
+            lines += shaft_report(solution.shaft_checks, **shown)
         if solution.drive is not None:
             from flyopt.report.drive import drive_report
 
-            lines += drive_report(solution.drive, solution.drive_check, units=args.units)
+            lines += drive_report(solution.drive, solution.drive_check, **shown)
         if solution.verification is not None:
-            lines += verification_report(solution.verification, units=args.units)
+            lines += verification_report(solution.verification, **shown)
         text = "\n".join(lines)
     print(text)
     return solution_exit(solution)
@@ -129,7 +159,7 @@ def _run_calculation(what: str, scene: Scene, args: argparse.Namespace) -> int:
     else:
         from flyopt.report.text import CALCULATION_REPORTS
 
-        print(CALCULATION_REPORTS[what](result, scene.title, args.scene, units=args.units))
+        print(CALCULATION_REPORTS[what](result, scene.title, args.scene, units=args.units, digits=args.digits))
     return calculation_exit(result)
 
 

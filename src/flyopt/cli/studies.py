@@ -258,6 +258,9 @@ def _method_and_output(parser: argparse.ArgumentParser, what: str) -> None:
         default=display.DEFAULT,
         help=units_help(f"the printed {what} (files and --json stay in SI, with their units)"),
     )
+    from flyopt.cli.scene import add_digits_argument
+
+    add_digits_argument(parser, f"the printed {what}")
     add_quiet_argument(parser)
 
 
@@ -409,7 +412,7 @@ def _emit(
     file is written atomically like the others. With ``--quiet`` and a file,
     nothing is printed.
     """
-    from pandas.api.types import is_numeric_dtype
+    from pandas.api.types import is_bool_dtype, is_numeric_dtype
 
     from flyopt.outputs import documents, files, quantities, results
     from flyopt.report import display
@@ -439,14 +442,22 @@ def _emit(
     labels = []
     for c in shown.columns:
         dimension = quantities.dimension_of(c)
-        if dimension is not None and is_numeric_dtype(shown[c]):  # in the user's units, as solve
-            shown[c] = display.show(shown[c], dimension, args.units)
-            labels.append(_label(c, display.label(dimension, args.units)))
+        if is_numeric_dtype(shown[c]) and not is_bool_dtype(shown[c]):  # written as solve writes its tables
+            values = [None if v != v else float(v) for v in shown[c]]  # NaN: missing, "-"
+            unit: str | None
+            if dimension is not None:  # in the user's units, one per column, chosen from its values
+                unit, texts = display.column(values, c, args.units, args.digits)
+            else:
+                unit = quantities.unit_of(c, documents.objective_of(frame), front)
+                scale = display.largest(values)
+                texts = [display.number(v, args.digits, scale) for v in values]
+            shown[c] = texts
+            labels.append(_label(c, unit))
         else:
             labels.append(_label(c, quantities.unit_of(c, documents.objective_of(frame), front)))
     shown.columns = labels
     print(title)
-    print(shown.to_string(index=False, float_format=lambda x: f"{x:.5g}", na_rep="-"))
+    print(shown.to_string(index=False, na_rep="-"))
     if output is not None:
         print(f"wrote {output}")
 

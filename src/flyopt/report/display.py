@@ -6,8 +6,36 @@ of three systems (``--units``):
 
 - ``si``: the SI base units (rad, rad/s, N·m, J, m, Pa, W, ...);
 - ``engineering`` (the default of reports and plots): the machine designer's
-  units, mm, rpm, kN·m, kJ, MPa, kW;
+  units, mm, rpm, MPa, kg, and N·m, J, W, N with the prefix each value needs
+  (the table below holds kN·m, kJ, kW, kN: the unit where no value chooses,
+  a diagram's axis);
 - ``imperial``: in, rpm, lbf·ft, psi, hp, lb.
+
+How a number is written (:func:`number`, the one way; :func:`quantity_text` and
+the field helpers call it):
+
+- **Significant figures:** :data:`DEFAULT_DIGITS` (4) unless the reader asks
+  for others (``--digits``, 1 to :data:`MAX_DIGITS`, checked by
+  :func:`check_digits`); every caller passes its ``digits`` down, there is no
+  global setting.
+- **Round-off is 0:** a value within :data:`NOISE_RTOL` (1e-12) of its scale
+  is written "0", never "-0". The scale is the largest magnitude of the same
+  quantity beside it (``among``: the column of a table, :func:`column`, or a
+  range's ends), or the scale a caller of :func:`number` names; a value alone
+  is its own scale, so nothing is hidden that was not compared with something.
+- **Prefixes per value (engineering system only):** torque, energy, power and
+  force take the SI prefix that puts the shown number at 1 or more and below
+  1000 (36.1 N·m, 1.256 kJ, 5.5 kW, 68.72 kN; below 1 the base unit, 0.5 J),
+  :data:`PREFIXED`. Every other dimension keeps its one unit of the system:
+  lengths in mm (drawings are dimensioned in mm), stresses in MPa (strengths
+  are tabled in MPa = N/mm²), speeds in rpm, masses in kg, inertias in kg·m²,
+  unbalance in g·mm and µm (ISO 21940-11). The ``si`` system keeps the SI base
+  units (its numbers are the JSON's) and ``imperial`` its customary units. A
+  table keeps one unit per column, chosen from the column's largest magnitude
+  (:func:`column`, :func:`heading`).
+- **Worked equations** of the engineering report carry :data:`GUARD_DIGITS`
+  more figures than the rest (:func:`worked_digits`), so that their arithmetic
+  checks to the figures of the answer.
 
 Every factor is pint's own (``Quantity(1, unit).to(SI).magnitude``), written
 out so that showing a number loads no unit library; tests/report/test_display.py
@@ -80,6 +108,38 @@ UNITS = {
 }
 
 
+#: Significant figures of a number written for people, unless the reader asks otherwise (``--digits``).
+DEFAULT_DIGITS = 4
+
+#: The most significant figures a reader may ask for: a double carries 15 to 17.
+MAX_DIGITS = 15
+
+#: The engineering prefixes, by factor: the largest that leaves the shown number at 1 or more is taken.
+PREFIXES = (("G", 1e9), ("M", 1e6), ("k", 1e3))
+
+#: system -> dimension -> its SI unit's label, for the dimensions whose unit is chosen per value with
+#: an SI prefix of :data:`PREFIXES` (36.1 N·m, 1.256 kJ). The one place this is decided (module docstring).
+PREFIXED = {"engineering": {"torque": "N·m", "energy": "J", "power": "W", "force": "N"}}
+
+
+#: Figures a worked equation carries beyond the report's own, as a hand calculation carries guard figures:
+#: its substituted numbers then give its result to the figures the report shows (4 by default, 6 in a step).
+GUARD_DIGITS = 2
+
+
+def worked_digits(digits: int) -> int:
+    """The significant figures of a worked equation's numbers in a report of ``digits`` figures."""
+    return min(digits + GUARD_DIGITS, MAX_DIGITS)
+
+
+def check_digits(digits: int) -> int:
+    """``digits`` if it is a count of significant figures flyopt writes (1 to :data:`MAX_DIGITS`); ValueError naming
+    the allowed range otherwise."""
+    if isinstance(digits, bool) or not isinstance(digits, int) or not 1 <= digits <= MAX_DIGITS:
+        raise ValueError(f"digits must be a whole number from 1 to {MAX_DIGITS}, not {digits!r}")
+    return digits
+
+
 def check_system(system: str) -> str:
     """``system`` if it is known; ValueError naming the allowed ones otherwise."""
     if system not in SYSTEMS:
@@ -87,13 +147,29 @@ def check_system(system: str) -> str:
     return system
 
 
-def unit(dimension: str, system: str = DEFAULT) -> tuple[str, float]:
-    """(label, factor) of a dimension in a system: shown value = SI value / factor."""
+def unit(
+    dimension: str, system: str = DEFAULT, magnitude: float | None = None, digits: int = DEFAULT_DIGITS
+) -> tuple[str, float]:
+    """(label, factor) of a dimension in a system: shown value = SI value / factor.
+
+    ``magnitude`` is the largest SI magnitude the unit is to show (a value, or a column's largest): a
+    dimension of :data:`PREFIXED` then takes the largest prefix that leaves it, written to ``digits``
+    figures, at 1 or more (1,256 J is 1.256 kJ; 999.96 J to 4 figures is 1 kJ, not "1,000 J"); below 1, or
+    0, the SI unit. Without a magnitude (an axis drawn before its data is known) the table's one unit.
+    """
     check_system(system)
     try:
-        return UNITS[dimension][system]
+        fixed = UNITS[dimension][system]
     except KeyError:
         raise ValueError(f"no display unit for dimension {dimension!r} (known: {', '.join(UNITS)})") from None
+    base = PREFIXED.get(system, {}).get(dimension)
+    if base is None or magnitude is None or not math.isfinite(magnitude):
+        return fixed
+    rounded = abs(float(f"{magnitude:.{digits - 1}e}"))  # as it will be written: 999.96 is 1,000 at 4 figures
+    for prefix, factor in PREFIXES:
+        if rounded >= factor:
+            return f"{prefix}{base}", factor
+    return base, 1.0
 
 
 def label(dimension: str, system: str = DEFAULT) -> str:
@@ -108,29 +184,57 @@ def show(value: Shown | None, dimension: str, system: str = DEFAULT) -> Shown | 
     return value / unit(dimension, system)[1]
 
 
-def quantity_text(value: float | None, dimension: str, system: str = DEFAULT, digits: int = 6) -> str:
-    """ "<number> <label>" with ``digits`` significant digits ("-" for None, "inf"/"nan" as such)."""
+def quantity_text(
+    value: float | None,
+    dimension: str,
+    system: str = DEFAULT,
+    digits: int = DEFAULT_DIGITS,
+    among: Sequence[float | None] | None = None,
+    prefixed: bool = True,
+) -> str:
+    """ "<number> <label>" with ``digits`` significant figures ("-" for None, "inf"/"nan" as such).
+
+    A dimension of :data:`PREFIXED` takes the prefix the value needs (36.1 N·m, 1.256 kJ). ``among``: the
+    SI values the value is read beside (a range's two ends, a column), whose largest magnitude chooses their
+    one unit and is the scale under which a value is round-off, written 0 (:func:`number`). ``prefixed``
+    False: the system's one unit of the dimension (a diagram's label, read against its axis).
+    """
     if value is None:
         return "-"
-    shown = float(value) / unit(dimension, system)[1]
-    text = number(shown, digits) if math.isfinite(shown) else str(shown)
-    name = label(dimension, system)
+    value = float(value)
+    magnitude: float | None = largest(among) if among is not None else abs(value) if prefixed else None
+    name, factor = unit(dimension, system, magnitude, digits)
+    shown = value / factor
+    scale = magnitude / factor if among is not None and magnitude is not None else None
+    text = number(shown, digits, scale) if math.isfinite(shown) else str(shown)
     return text if name == "-" else f"{text} {name}"
 
 
-def number(value: float | None, digits: int = 6) -> str:
-    """A number with ``digits`` significant digits, no exponent for everyday sizes ("-" for None).
+#: A value within this fraction of its scale (its column's largest magnitude, or the scale its caller
+#: names) is round-off, and is written 0.
+NOISE_RTOL = 1e-12
+
+
+def _is_noise(value: float, scale: float) -> bool:
+    """Whether a finite ``value`` is within :data:`NOISE_RTOL` of ``scale`` (0 itself is not noise, it is 0)."""
+    return math.isfinite(value) and math.isfinite(scale) and abs(value) <= NOISE_RTOL * abs(scale)
+
+
+def number(value: float | None, digits: int = DEFAULT_DIGITS, scale: float | None = None) -> str:
+    """A number with ``digits`` significant figures, no exponent for everyday sizes ("-" for None).
 
     The one way flyopt writes a number for people (the text report, plots'
     labels); thousands are grouped ("1,256.33"), trailing zeros dropped. A
     whole number longer than ``digits`` is rounded to them (23,053,542 Pa to
     6 digits is "23,053,500"), so that no digit is printed that was not asked for.
+    A value within :data:`NOISE_RTOL` of ``scale`` (the largest magnitude of the
+    same quantity beside it) is round-off and written "0"; "-0" is never written.
     """
     if value is None:
         return "-"
     if not math.isfinite(value):
         return str(value)  # inf, -inf, nan: say so rather than fail
-    if value == 0:
+    if value == 0 or (scale is not None and _is_noise(value, scale)):
         return "0"
     magnitude = math.floor(math.log10(abs(value)))
     if -4 <= magnitude < 9:
@@ -156,28 +260,78 @@ def dimension_of(name: str) -> str:
     return dimension
 
 
-def field_text(value: float | None, name: str, system: str = DEFAULT, digits: int = 6) -> str:
+def field_text(
+    value: float | None,
+    name: str,
+    system: str = DEFAULT,
+    digits: int = DEFAULT_DIGITS,
+    among: Sequence[float | None] | None = None,
+) -> str:
     """An output field's SI value as "<number> <label>" in ``system`` (:func:`quantity_text` by its name)."""
-    return quantity_text(value, dimension_of(name), system, digits)
-
-
-#: A value within this fraction of its column's largest magnitude is round-off, and is shown as 0.
-NOISE_RTOL = 1e-12
+    return quantity_text(value, dimension_of(name), system, digits, among)
 
 
 def denoised(values: Sequence[float]) -> list[float]:
     """A column of numbers with its round-off shown as 0: every value within :data:`NOISE_RTOL` of the column's
     largest magnitude (an energy chain that closes at -3.7e-16 kJ of a 9 kJ cycle closes at 0)."""
-    scale = max((abs(v) for v in values if math.isfinite(v)), default=0.0)
-    return [0.0 if math.isfinite(v) and abs(v) <= NOISE_RTOL * scale else v for v in values]
+    scale = largest(values)
+    return [0.0 if _is_noise(v, scale) else v for v in values]
 
 
-def field_number(value: float | None, name: str, system: str = DEFAULT, digits: int = 6) -> str:
-    """The number alone of :func:`field_text`: for a table whose heading carries the unit ("-" for None)."""
-    return number(show(None if value is None else float(value), dimension_of(name), system), digits)
+def largest(values: Sequence[float | None]) -> float:
+    """The largest finite magnitude of a column (0 for none): its scale, and what chooses its unit."""
+    return max((abs(float(v)) for v in values if v is not None and math.isfinite(v)), default=0.0)
 
 
-def heading(title: str, name: str, system: str = DEFAULT) -> str:
-    """A table heading with the unit of the field ``name``: "mass [kg]" (the title alone if dimensionless)."""
-    text = label(dimension_of(name), system)
+def field_number(
+    value: float | None,
+    name: str,
+    system: str = DEFAULT,
+    digits: int = DEFAULT_DIGITS,
+    among: Sequence[float | None] | None = None,
+) -> str:
+    """The number alone of :func:`field_text`: for a table whose heading carries the unit ("-" for None).
+
+    ``among`` is the column the value stands in (SI values, the value among them): its largest magnitude
+    chooses the column's one unit (the same as :func:`heading` given the column) and is the scale under
+    which a value is round-off. Without it, the system's one unit of the dimension (as :func:`heading`
+    and :func:`label` without values): a number alone never chooses a prefix its heading does not say.
+    """
+    if value is None:
+        return "-"
+    value = float(value)
+    magnitude = largest(among) if among is not None else None
+    factor = unit(dimension_of(name), system, magnitude, digits)[1]
+    return number(value / factor, digits, None if magnitude is None else magnitude / factor)
+
+
+def column(
+    values: Sequence[float | None], name: str, system: str = DEFAULT, digits: int = DEFAULT_DIGITS
+) -> tuple[str, list[str]]:
+    """A table's column of an output field: (its unit's label, its numbers in that unit).
+
+    One unit for the column, chosen from its largest magnitude (:func:`unit`); each value written with
+    ``digits`` figures, round-off against that magnitude written 0, None as "-".
+    """
+    magnitude = largest(values)
+    return (
+        unit(dimension_of(name), system, magnitude, digits)[0],
+        [field_number(v, name, system, digits, values) for v in values],
+    )
+
+
+def heading(
+    title: str,
+    name: str,
+    system: str = DEFAULT,
+    among: Sequence[float | None] | None = None,
+    digits: int = DEFAULT_DIGITS,
+) -> str:
+    """A table heading with the unit of the field ``name``: "mass [kg]" (the title alone if dimensionless).
+
+    ``among``: the column's SI values, whose largest magnitude chooses a prefixed unit (:func:`column`);
+    without them the system's one unit of the dimension.
+    """
+    magnitude = largest(among) if among is not None else None
+    text = unit(dimension_of(name), system, magnitude, digits)[0]
     return title if text == "-" else f"{title} [{text}]"

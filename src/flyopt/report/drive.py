@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from flyopt.report.characters import visible
-from flyopt.report.display import DEFAULT, field_text, heading, label, number, unit
+from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, field_text, heading, label, number, unit
 from flyopt.report.text import ACHIEVED_RANGE, formatters, table
 
 if TYPE_CHECKING:
@@ -29,12 +29,15 @@ RELAXED_STEPS = (
 )
 
 
-def drive_report(drive: DriveDesign, check: DriveCheck | None = None, units: str = DEFAULT) -> list[str]:
+def drive_report(
+    drive: DriveDesign, check: DriveCheck | None = None, units: str = DEFAULT, digits: int = DEFAULT_DIGITS
+) -> list[str]:
     """Lines of the report for a :class:`flyopt.drive.codesign.DriveDesign` (and its :class:`DriveCheck`).
 
-    ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
+    ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`); ``digits``: the
+    significant figures of every number.
     """
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     lines = ["", f"Drive designed with the flywheel (objective: {drive.objective}; {drive.note}):"]
     best = drive.best
     if best is None:
@@ -43,28 +46,31 @@ def drive_report(drive: DriveDesign, check: DriveCheck | None = None, units: str
         m = best.motor
         lines += [
             f"  motor                {visible(m.name)}: {q(m.rated_power, 'rated_power')} at "
-            f"{q(m.rated_speed, 'rated_speed', 5)} (rated torque {q(m.rated_torque, 'rated_torque', 4)}, "
-            f"rotor {q(m.rotor_inertia, 'rotor_inertia', 4)})",
-            f"  motor ratio          {number(best.motor_ratio, 6)} (motor speed over crank speed)",
-            f"  flywheel             {q(best.j_flywheel, 'j_flywheel', 6)} at the crank, set by "
+            f"{q(m.rated_speed, 'rated_speed')} (rated torque {q(m.rated_torque, 'rated_torque')}, "
+            f"rotor {q(m.rotor_inertia, 'rotor_inertia')})",
+            f"  motor ratio          {number(best.motor_ratio, digits)} (motor speed over crank speed)",
+            f"  flywheel             {q(best.j_flywheel, 'j_flywheel')} at the crank, set by "
             f"{limit_words(best.limit)}"
-            + (f" (δ alone needs {q(best.j_delta, 'j_delta', 6)})" if best.limit == "thermal" else ""),
+            + (f" (δ alone needs {q(best.j_delta, 'j_delta')})" if best.limit == "thermal" else ""),
         ]
         if best.flywheel_ratio is not None:
-            lines.append(f"  flywheel shaft       ratio {number(best.flywheel_ratio, 6)} to the crank; the wheel below")
+            lines.append(
+                f"  flywheel shaft       ratio {number(best.flywheel_ratio, digits)} to the crank; the wheel below"
+            )
         lines += [
-            f"  RMS torque           {q(best.rms_torque, 'rms_torque', 5)} of the rated "
-            f"{q(best.rated_torque, 'rated_torque', 5)} (mean {q(best.mean_torque, 'mean_torque', 5)})",
-            f"  start-up             {q(best.startup_time, 'startup_time', 4)} from rest (Kloss curve, declutched)",
-            f"  masses               motor {q(best.motor_mass, 'motor_mass', 4)} + wheel "
-            f"{q(best.wheel_mass, 'wheel_mass', 4)} = {q(best.total_mass, 'total_mass', 5)}"
-            + (f"; cost {number(best.cost, 5)}" if best.cost is not None else ""),
+            f"  RMS torque           {q(best.rms_torque, 'rms_torque')} of the rated "
+            f"{q(best.rated_torque, 'rated_torque')} (mean {q(best.mean_torque, 'mean_torque')})",
+            f"  start-up             {q(best.startup_time, 'startup_time')} from rest (Kloss curve, declutched)",
+            f"  masses               motor {q(best.motor_mass, 'motor_mass')} + wheel "
+            f"{q(best.wheel_mass, 'wheel_mass')} = {q(best.total_mass, 'total_mass')}"
+            + (f"; cost {number(best.cost, digits)}" if best.cost is not None else ""),
         ]
         if drive.relaxation is not None:
-            lines += _relaxation_lines(drive, units)
+            lines += _relaxation_lines(drive, units, digits)
+    rated = [run.motor.rated_power for run in drive.runs]  # one unit for the column, chosen from its largest
     head = [
         "motor",
-        heading("P", "rated_power", units),
+        heading("P", "rated_power", units, rated, digits),
         "ratio",
         heading("J_F", "j_flywheel", units),
         "limit",
@@ -80,15 +86,15 @@ def drive_report(drive: DriveDesign, check: DriveCheck | None = None, units: str
         rows.append(
             [
                 run.motor.name,
-                n(run.motor.rated_power, "rated_power", 4),
-                number(run.motor_ratio, 5),
-                n(run.j_flywheel, "j_flywheel", 5),
+                n(run.motor.rated_power, "rated_power", rated),
+                number(run.motor_ratio, digits),
+                n(run.j_flywheel, "j_flywheel"),
                 run.limit or "-",
-                number(run.rms_torque / run.rated_torque, 4) if run.rms_torque and run.rated_torque else "-",
-                n(run.startup_time, "startup_time", 4),
-                number(run.flywheel_ratio, 4),
-                n(run.wheel_mass, "wheel_mass", 5),
-                n(run.total_mass, "total_mass", 5),
+                number(run.rms_torque / run.rated_torque, digits) if run.rms_torque and run.rated_torque else "-",
+                n(run.startup_time, "startup_time"),
+                number(run.flywheel_ratio, digits),
+                n(run.wheel_mass, "wheel_mass"),
+                n(run.total_mass, "total_mass"),
                 ("best" if run is best else "ok") if run.feasible else run.reason,
             ]
         )
@@ -96,28 +102,29 @@ def drive_report(drive: DriveDesign, check: DriveCheck | None = None, units: str
     if check is not None:
         v = check.verification
         verdict = "FLAGGED: " + "; ".join(check.notes) if check.flagged else "ok"
+        pair = [check.rms_torque, check.rated_torque]  # "31.22 of 36.1 N·m": one unit for the two
         lines += [
             "",
             f"Drive verification (the machine simulated with the wheel as built): {verdict}",
-            f"  achieved δ {number(v.achieved_delta)} against {number(v.delta_allowed)}; {ACHIEVED_RANGE} "
-            f"{n(v.omega_min, 'omega_min', 6)} to {q(v.omega_max, 'omega_max', 6)}, mean "
-            f"{q(v.omega_mean, 'omega_mean', 6)}; RMS torque {n(check.rms_torque, 'rms_torque', 5)} of "
-            f"{q(check.rated_torque, 'rated_torque', 5)}; start-up {q(check.startup_time, 'startup_time', 4)}",
+            f"  achieved δ {number(v.achieved_delta, digits)} against {number(v.delta_allowed, digits)}; {ACHIEVED_RANGE} "
+            f"{n(v.omega_min, 'omega_min')} to {q(v.omega_max, 'omega_max')}, mean "
+            f"{q(v.omega_mean, 'omega_mean')}; RMS torque {n(check.rms_torque, 'rms_torque', pair)} of "
+            f"{q(check.rated_torque, 'rated_torque', pair)}; start-up {q(check.startup_time, 'startup_time')}",
         ]
     return lines
 
 
-def relaxation_summary(drive: DriveDesign, units: str) -> tuple[str, list[str]]:
+def relaxation_summary(drive: DriveDesign, units: str, digits: int = DEFAULT_DIGITS) -> tuple[str, list[str]]:
     """(the relaxed optimum in words, what relaxing each binding limit by a round step saves, first order),
     in ``units``: the text report and the HTML/PDF document say the same."""
     r = drive.relaxation
     if r is None:
         raise ValueError("the drive has no relaxation to summarise")
     summary = (
-        f"{field_text(r.rated_power, 'rated_power', units)}, motor ratio {number(r.motor_ratio, 5)}, "
-        f"flywheel ratio {number(r.flywheel_ratio, 4)}, {field_text(r.j_flywheel, 'j_flywheel', units, 5)}, "
-        f"wheel {r.wheel} {field_text(r.wheel_mass, 'wheel_mass', units, 5)}, D "
-        f"{field_text(r.d_outer, 'd_outer', units, 4)} ({r.status}; the whole-wheel NLP at the strongest "
+        f"{field_text(r.rated_power, 'rated_power', units, digits)}, motor ratio {number(r.motor_ratio, digits)}, "
+        f"flywheel ratio {number(r.flywheel_ratio, digits)}, {field_text(r.j_flywheel, 'j_flywheel', units, digits)}, "
+        f"wheel {r.wheel} {field_text(r.wheel_mass, 'wheel_mass', units, digits)}, D "
+        f"{field_text(r.d_outer, 'd_outer', units, digits)} ({r.status}; the whole-wheel NLP at the strongest "
         f"allowable, no torque on the hub)"
     )
     moved = []
@@ -129,20 +136,20 @@ def relaxation_summary(drive: DriveDesign, units: str) -> tuple[str, list[str]]:
         step = shown * unit(dimension, units)[1]  # the step in SI
         change = sensitivity * step
         amount = (
-            field_text(change, "total_mass", units, 4)
+            field_text(change, "total_mass", units, digits)
             if drive.objective == "mass"
-            else f"{number(change, 4)} (currency)"
+            else f"{number(change, digits)} (currency)"
         )
         sign = "+" if shown > 0 else "−"
         name = label(dimension, units)
-        step_text = number(abs(shown), 4) + ("" if name == "-" else f" {name}")
+        step_text = number(abs(shown), digits) + ("" if name == "-" else f" {name}")
         moved.append(f"{words} {sign}{step_text}: {amount}")
     return summary, moved
 
 
-def _relaxation_lines(drive, units):
+def _relaxation_lines(drive, units, digits):
     """The relaxed optimum and what relaxing each binding limit by a round step would save (first order)."""
-    summary, moved = relaxation_summary(drive, units)
+    summary, moved = relaxation_summary(drive, units, digits)
     lines = [f"  relaxation           {summary}"]
     if moved:
         lines.append("  binding limits       " + "; ".join(moved) + " (relaxed optimum, first order)")

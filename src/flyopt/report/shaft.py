@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from flyopt.design.combination import shaft_label
-from flyopt.report.display import DEFAULT
+from flyopt.report.display import DEFAULT, DEFAULT_DIGITS
 from flyopt.report.text import formatters, number, table
 
 if TYPE_CHECKING:
@@ -27,17 +27,17 @@ _FIELDS = {
 }
 
 
-def limit_value(limit: ShaftLimit, value: float, units: str = DEFAULT) -> str:
-    """A limit's value (or allowed value) in the unit system, by its quantity's field."""
-    q, _ = formatters(units)
+def limit_value(limit: ShaftLimit, value: float, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
+    """A limit's value (or allowed value) in the unit system, by its quantity's field, to ``digits`` figures."""
+    q, _ = formatters(units, digits)
     scale = math.pi / 30.0 if limit.unit == "rpm" else 1.0
-    return q(value * scale, _FIELDS[limit.kind], 4)
+    return q(value * scale, _FIELDS[limit.kind])
 
 
-def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT) -> list[str]:
+def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """Each described shaft's limits with the chosen wheel: value, allowed, utilisation; the loads; the binding
-    limit's sensitivity to the wheel's mass."""
-    q, _ = formatters(units)
+    limit's sensitivity to the wheel's mass; numbers to ``digits`` significant figures."""
+    q, _ = formatters(units, digits)
     lines: list[str] = []
     for rep in reports:
         c = rep.check
@@ -45,18 +45,18 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT) -> list[s
             "",
             f"Shaft check: the {shaft_label(rep.shaft)} ({rep.material}) with the chosen wheel "
             "(a post-check of each design: a combination whose shaft fails is infeasible)",
-            f"  loads: weight {q(c.weight, 'weight', 4)}, permissible unbalance force "
-            f"{q(c.unbalance, 'unbalance_force', 4)} (ISO 21940-11), torque midrange "
-            f"{q(c.torque_mean, 'torque_mean', 4)} and alternating {q(c.torque_alternating, 'torque_alternating', 4)}",
-            f"  running range {q(c.speed_range_rpm[0] * math.pi / 30.0, 'speed_range', 4)} to "
-            f"{q(c.speed_range_rpm[1] * math.pi / 30.0, 'speed_range', 4)}",
+            f"  loads: weight {q(c.weight, 'weight')}, permissible unbalance force "
+            f"{q(c.unbalance, 'unbalance_force')} (ISO 21940-11), torque midrange "
+            f"{q(c.torque_mean, 'torque_mean')} and alternating {q(c.torque_alternating, 'torque_alternating')}",
+            f"  running range {q(c.speed_range_rpm[0] * math.pi / 30.0, 'speed_range')} to "
+            f"{q(c.speed_range_rpm[1] * math.pi / 30.0, 'speed_range')}",
         ]
         rows = [
             [
                 lim.kind,
                 lim.where,
-                limit_value(lim, lim.value, units),
-                limit_value(lim, lim.allowed, units),
+                limit_value(lim, lim.value, units, digits),
+                limit_value(lim, lim.allowed, units, digits),
                 number(lim.utilisation, 3),
                 "holds" if lim.holds else "FAILS",
             ]

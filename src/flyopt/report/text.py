@@ -21,14 +21,15 @@ from flyopt.names import Geometry
 from flyopt.report.characters import visible
 from flyopt.report.display import (
     DEFAULT,
-    denoised,
+    DEFAULT_DIGITS,
     dimension_of,
     field_number,
     field_text,
     heading,
-    label,
+    largest,
     number,
     quantity_text,
+    unit,
 )
 
 if TYPE_CHECKING:
@@ -60,31 +61,34 @@ __all__ = [
 ]
 
 
-def power(watts: float | None, units: str = DEFAULT) -> str:
+def power(watts: float | None, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
     """A power [W] in the unit system's unit ("72.6493 kW"; "-" for None)."""
-    return field_text(watts, "power", units)
+    return field_text(watts, "power", units, digits)
 
 
-def formatters(units: str) -> tuple[Callable[..., str], Callable[..., str]]:
-    """The two ways a report line shows a field in a unit system, by the field's name.
+def formatters(units: str, digits: int = DEFAULT_DIGITS) -> tuple[Callable[..., str], Callable[..., str]]:
+    """The two ways a report line shows a field in a unit system, by the field's name, to ``digits`` figures.
 
-    Returns ``(q, n)``: ``q(value, name, digits=6)`` gives "<number> <label>"
-    ("1.25633 kJ" for ``a_max``), ``n(value, name, digits=6)`` the number alone,
-    for a table under a heading that carries the unit or a list that ends in it.
+    Returns ``(q, n)``: ``q(value, name, among=None)`` gives "<number> <label>" ("1.256 kJ" for ``a_max``),
+    ``n(value, name, among=None)`` the number alone, for a table under a heading that carries the unit or a
+    list that ends in it. ``among``: the SI values read together (a range's ends, a column, a list), whose
+    largest chooses their one unit and is the scale of their round-off
+    (:func:`flyopt.report.display.field_number`).
     """
 
-    def q(value: Any, name: str, digits: int = 6) -> str:
-        return field_text(value, name, units, digits)
+    def q(value: Any, name: str, among: Sequence[float | None] | None = None) -> str:
+        return field_text(value, name, units, digits, among)
 
-    def n(value: Any, name: str, digits: int = 6) -> str:
-        return field_number(value, name, units, digits)
+    def n(value: Any, name: str, among: Sequence[float | None] | None = None) -> str:
+        return field_number(value, name, units, digits, among)
 
     return q, n
 
 
-def _label(name: str, units: str) -> str:
-    """The label of a field's unit in the system ("mm"), for a list of numbers that ends in one."""
-    return label(dimension_of(name), units)
+def _label(name: str, units: str, among: Sequence[float | None] | None = None, digits: int = DEFAULT_DIGITS) -> str:
+    """The label of a field's unit in the system ("mm"), for a list of numbers that ends in one: ``among``, the
+    SI values of that list, chooses a prefixed unit (as :func:`flyopt.report.display.heading` does a column's)."""
+    return unit(dimension_of(name), units, None if among is None else largest(among), digits)[0]
 
 
 def table(header: Sequence[str], rows: Sequence[Sequence[Any]], align: Sequence[str] | None = None) -> list[str]:
@@ -119,39 +123,39 @@ def reached_below_allowed(analysis: Analysis) -> bool:
     return abs(analysis.delta_reached - analysis.delta) > 1e-9 * analysis.delta
 
 
-def no_flywheel_words(analysis: Analysis) -> tuple[str, str]:
+def no_flywheel_words(analysis: Analysis, digits: int = DEFAULT_DIGITS) -> tuple[str, str]:
     """(before, after) ``j_margin``: why no flywheel is needed (the text and the document say the same)."""
     if analysis.delta_holds_at_any_inertia:
         return (
-            f"with no flywheel the machine gives δ = {number(analysis.delta_reached)}, within the allowed "
-            f"{number(analysis.delta)}, and stays within it however small the inertia (the motor's slip holds the "
+            f"with no flywheel the machine gives δ = {number(analysis.delta_reached, digits)}, within the allowed "
+            f"{number(analysis.delta, digits)}, and stays within it however small the inertia (the motor's slip holds the "
             "speed): δ would reach the allowed value only at a J_F below",
             ", less inertia than none",
         )
     return "the machine's own inertia suffices (J_F would be", ")"
 
 
-def answer_report(solution: Solution, units: str = DEFAULT) -> list[str]:
+def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """The answer first (issue 29): what to make, or what the machine needs, and whether it holds, in at most
     six lines under the scene's title; the steps that give it follow (``units``: the unit system)."""
-    q, _n = formatters(units)
+    q, _n = formatters(units, digits)
     r, design = solution.analysis, solution.design
     if solution.flywheel is not None:
         check = solution.flywheel
         verdict = ""
         if check.delta_allowed is not None:
             verdict = (
-                f": within the allowed {number(check.delta_allowed, 4)}"
+                f": within the allowed {number(check.delta_allowed, digits)}"
                 if check.suffices
-                else f": the allowed {number(check.delta_allowed, 4)} is NOT held"
+                else f": the allowed {number(check.delta_allowed, digits)} is NOT held"
             )
         return [
             f"Answer: the flywheel given ({q(check.flywheel.j_at_reference, 'j_at_reference')} at the reference "
-            f"shaft) leaves δ = {number(check.achieved_delta, 4)}{verdict}",
+            f"shaft) leaves δ = {number(check.achieved_delta, digits)}{verdict}",
             "",
         ]
     need = (
-        f"J_F {q(r.j_required, 'j_required', 4)} at the reference shaft"
+        f"J_F {q(r.j_required, 'j_required')} at the reference shaft"
         if r.flywheel_needed
         else "no flywheel: the machine's own inertia holds δ"
     )
@@ -161,13 +165,13 @@ def answer_report(solution: Solution, units: str = DEFAULT) -> list[str]:
         if run is None:
             return [f"Answer: no drive: {visible(drive.message)}", ""]
         wheel = (
-            f"a flywheel of {q(run.j_flywheel, 'j_flywheel', 4)} ({q(run.wheel_mass, 'mass', 4)})"
+            f"a flywheel of {q(run.j_flywheel, 'j_flywheel')} ({q(run.wheel_mass, 'mass')})"
             if run.j_flywheel
             else "no flywheel (the motor's slip holds δ)"
         )
         return [
-            f"Answer: motor {visible(run.motor.name)} at a ratio of {number(run.motor_ratio, 4)}, {wheel}; "
-            f"δ {number(run.delta, 4)} against the allowed {number(r.delta, 4)}",
+            f"Answer: motor {visible(run.motor.name)} at a ratio of {number(run.motor_ratio, digits)}, {wheel}; "
+            f"δ {number(run.delta, digits)} against the allowed {number(r.delta, digits)}",
             "",
         ]
     best = design.best if design is not None else None
@@ -185,47 +189,47 @@ def answer_report(solution: Solution, units: str = DEFAULT) -> list[str]:
     }.get(Geometry(best.geometry), "rim")
     shaft = visible(best.shaft)
     lines = [
-        f"Answer: {design.material_name(best.material)} {shape}, {q(best.mass, 'mass', 4)}, on the {shaft}"
+        f"Answer: {design.material_name(best.material)} {shape}, {q(best.mass, 'mass')}, on the {shaft}"
         + ("" if shaft.lower().endswith("shaft") else " shaft")
     ]
     d = best.dims
     if best.geometry == Geometry.DISC:
-        size = f"D {q(d.d_outer, 'd_outer', 4)}, B {q(d.b, 'b', 4)}"
+        size = f"D {q(d.d_outer, 'd_outer')}, B {q(d.b, 'b')}"
         if best.bore:
-            size += f", bore {q(best.bore, 'bore', 4)}"
+            size += f", bore {q(best.bore, 'bore')}"
         if d.d_hub:
-            size += f", hub {q(d.d_hub, 'd_hub', 4)} x {q(d.l_hub, 'l_hub', 4)}"
+            size += f", hub {q(d.d_hub, 'd_hub')} x {q(d.l_hub, 'l_hub')}"
     else:
-        size = f"D {q(d.d_outer, 'd_outer', 4)}, rim H {q(d.h, 'h', 4)} x B {q(d.b, 'b', 4)}"
+        size = f"D {q(d.d_outer, 'd_outer')}, rim H {q(d.h, 'h')} x B {q(d.b, 'b')}"
         if d.t_web:
-            size += f", web {q(d.t_web, 't_web', 4)}"
+            size += f", web {q(d.t_web, 't_web')}"
         if d.d_hub:
-            size += f", hub {q(d.d_hub, 'd_hub', 4)} x {q(d.l_hub, 'l_hub', 4)}"
+            size += f", hub {q(d.d_hub, 'd_hub')} x {q(d.l_hub, 'l_hub')}"
         if best.bore:
-            size += f", bore {q(best.bore, 'bore', 4)}"
+            size += f", bore {q(best.bore, 'bore')}"
     lines.append(f"    size    {size}")
     lines.append(
-        f"    J       {q(best.j_flywheel, 'j_flywheel', 4)} on its shaft, {q(best.j_at_reference, 'j_at_reference', 4)}"
-        f" at the reference shaft (needed {q(r.j_required, 'j_required', 4)})"
+        f"    J       {q(best.j_flywheel, 'j_flywheel')} on its shaft, {q(best.j_at_reference, 'j_at_reference')}"
+        f" at the reference shaft (needed {q(r.j_required, 'j_required')})"
     )
-    limits = f"rim speed {q(best.stresses.rim_speed, 'rim_speed', 4)} of {q(best.limits.rim_speed_limit, 'rim_speed_limit', 4)}"
+    limits = (
+        f"rim speed {q(best.stresses.rim_speed, 'rim_speed')} of {q(best.limits.rim_speed_limit, 'rim_speed_limit')}"
+    )
     parts = [p for p in (best.stresses.stress or {}).get("parts", []) if p.get("allowable")]
     if parts:
         worst = max(parts, key=lambda p: p["stress"] / p["allowable"])
-        limits += (
-            f"; {worst['part']} stress {q(worst['stress'], 'stress', 4)} of {q(worst['allowable'], 'allowable', 4)}"
-        )
+        limits += f"; {worst['part']} stress {q(worst['stress'], 'stress')} of {q(worst['allowable'], 'allowable')}"
     lines.append(f"    limits  {limits}")
     for shaft_check in solution.shaft_checks:  # the shaft described as a part (flyopt.report.shaft)
         binding = shaft_check.check.binding
         lines.append(f"    shaft   {binding.kind} {binding.where} binds, utilisation {number(binding.utilisation, 3)}")
     v = solution.verification
     held = (
-        f"δ {number(v.achieved_delta, 4)} by the periodic simulation ({'FLAGGED' if v.flagged else 'holds'})"
+        f"δ {number(v.achieved_delta, digits)} by the periodic simulation ({'FLAGGED' if v.flagged else 'holds'})"
         if v is not None
         else "held by the inertia"
     )
-    lines.append(f"    δ       allowed {number(r.delta, 4)}; {held}")
+    lines.append(f"    δ       allowed {number(r.delta, digits)}; {held}")
     return [*lines, ""]
 
 
@@ -235,6 +239,7 @@ def analysis_report(
     units: str = DEFAULT,
     delta_label: str = "allowed δ",
     answer: Sequence[str] = (),
+    digits: int = DEFAULT_DIGITS,
 ) -> str:
     """The report of ``flyopt solve`` for the cycle analysis, as text.
 
@@ -251,7 +256,7 @@ def analysis_report(
         The answer's lines (:func:`answer_report`), put under the title, before the steps.
     """
     r = result
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     lines = [
         visible(r.title) + (f"  ({visible(source)})" if source else ""),
         *answer,
@@ -260,7 +265,7 @@ def analysis_report(
     ]
     facts = [
         ("mean speed", q(r.omega_mean, "omega_mean")),
-        (delta_label, f"{number(r.delta)} (1/{number(1 / r.delta, 4)})"),
+        (delta_label, f"{number(r.delta, digits)} (1/{number(1 / r.delta, digits)})"),
     ]
     if delta_label == "allowed δ":
         low, high = allowed_speed_range(r)
@@ -269,7 +274,7 @@ def analysis_report(
             facts.append(
                 (
                     ACHIEVED_RANGE,
-                    f"{n(r.omega_min, 'omega_min')} to {q(r.omega_max, 'omega_max')} (δ = {number(r.delta_reached)}, "
+                    f"{n(r.omega_min, 'omega_min')} to {q(r.omega_max, 'omega_max')} (δ = {number(r.delta_reached, digits)}, "
                     f"the periodic solution with J_F = {q(max(r.j_required, 0.0), 'j_required')})",
                 )
             )
@@ -282,7 +287,7 @@ def analysis_report(
             ("resisting torque (mean)", q(r.resisting_torque, "resisting_torque")),
             ("work per cycle", q(r.work_per_cycle, "work_per_cycle")),
             ("mean driving power", q(r.power, "power")),
-            ("motor power", f"{q(r.motor_power, 'motor_power')} (efficiency {number(r.efficiency, 4)})"),
+            ("motor power", f"{q(r.motor_power, 'motor_power')} (efficiency {number(r.efficiency, digits)})"),
         ]
     facts.append(("A_max", q(r.a_max, "a_max")))
     if r.angle_omega_max is not None:
@@ -313,7 +318,7 @@ def analysis_report(
             )
         )
     else:
-        before, after = no_flywheel_words(r)
+        before, after = no_flywheel_words(r, digits)
         facts.append(("required flywheel", f"none: {before} {q(r.j_margin, 'j_margin')}{after}"))
     width = max(len(k) for k, _ in facts)
     lines += [f"  {k:<{width}}  {v}" for k, v in facts]
@@ -321,7 +326,7 @@ def analysis_report(
     if r.startup is not None:
         st = r.startup
         facts_text = (
-            f"{q(st.time, 'time')} ({number(st.cycles, 4)} cycles) to {q(st.omega_target, 'omega_target')}"
+            f"{q(st.time, 'time')} ({number(st.cycles, digits)} cycles) to {q(st.omega_target, 'omega_target')}"
             if st.time is not None
             else f"not reached: {st.note}"
         )
@@ -335,29 +340,30 @@ def analysis_report(
                     m["model"] + (" (exact)" if m["exact"] else ""),
                     "none" if m["exact"] and r.delta_holds_at_any_inertia else n(m["j_required"], "j_required"),
                     "-" if m["j_error"] is None else f"{100 * m['j_error']:+.3g} %",
-                    number(m["achieved_delta"]),
+                    number(m["achieved_delta"], digits),
                     m["note"],
                 ]
             )
         head = ["model", heading("J_F", "j_required", units), "vs exact", "achieved δ", "note"]
         lines += ["  " + line for line in table(head, rows, ["<", ">", ">", ">", "<"])]
-    lines += engine_report(r, units)
+    lines += engine_report(r, units, digits)
     lines += ["", "Energy indicator diagram (excess work from the cycle start):"]
     rows = []
-    shown = denoised([e["delta_e"] for e in r.energy_chain])
-    for e, delta_e in zip(r.energy_chain, shown, strict=True):
+    chain = [e["delta_e"] for e in r.energy_chain]  # one column: its unit and its round-off by its largest
+    angles = [e["angle"] for e in r.energy_chain]
+    for e in r.energy_chain:
         same = (r.angle_delta_e_max, r.angle_delta_e_min) == (r.angle_omega_max, r.angle_omega_min)
         top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")
         mark = top if e["index"] == r.index_omega_max else bottom if e["index"] == r.index_omega_min else ""
         where = (
-            n(e["angle"], "angle")
+            n(e["angle"], "angle", angles)
             if e["angle"] is not None
             else ("start" if e["index"] == 0 else f"after area {e['index']}")
         )
-        rows.append([where, n(delta_e, "delta_e"), mark])
+        rows.append([where, n(e["delta_e"], "delta_e", chain), mark])
     head = [
         heading("angle", "angle", units) if r.angle_omega_max is not None else "point",
-        heading("ΔE", "delta_e", units),
+        heading("ΔE", "delta_e", units, chain, digits),
         "",
     ]
     lines += ["  " + line for line in table(head, rows, ["<", ">", "<"])]
@@ -366,7 +372,7 @@ def analysis_report(
     rows = [
         [
             s.name,
-            number(s.speed_ratio),
+            number(s.speed_ratio, digits),
             n(s.omega, "omega"),
             n(s.j_required, "j_required"),
             n(s.gd2_required, "gd2_required"),
@@ -384,7 +390,7 @@ def analysis_report(
     return "\n".join(lines)
 
 
-def engine_report(result: Analysis, units: str = DEFAULT) -> list[str]:
+def engine_report(result: Analysis, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """For an [engine]: the textbook's flywheel beside the exact one, and by how much it is off.
 
     The textbook's method (flyopt.sizing.textbook.textbook_requirement, ``result.textbook``) takes
@@ -405,9 +411,9 @@ def engine_report(result: Analysis, units: str = DEFAULT) -> list[str]:
     engine = engine_of(result.machine)
     if engine is None:  # a variable inertia of members, not of an [engine]
         return []
-    q, _ = formatters(units)
+    q, _ = formatters(units, digits)
     exact = next((m for m in result.models if m["exact"]), None)
-    angles = ", ".join(field_number(a, "angle", units, 4) for a in engine.firing_angles)
+    angles = ", ".join(field_number(a, "angle", units, digits) for a in engine.firing_angles)
     found = f"A_max {q(textbook.a_max, 'a_max')}, J_F {q(textbook.j_required, 'j_required')}"
     if exact is None or exact["j_required"] is None:
         found += "; the exact model gave no J_F to compare with"
@@ -438,9 +444,9 @@ def solver_words(candidate: Candidate) -> str:
     return f"IPOPT ({candidate.provenance.solver_status}, {candidate.provenance.iterations} iterations), checked against every constraint"
 
 
-def book_rim_report(book: BookRim, units: str = DEFAULT) -> list[str]:
+def book_rim_report(book: BookRim, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """The lines that put the courses' rim (criterion mean_rim_speed) beside what it really sees at ω_max."""
-    q, _ = formatters(units)
+    q, _ = formatters(units, digits)
 
     def over(stress: float | None) -> str:
         excess = book.excess(stress)
@@ -468,24 +474,24 @@ def book_rim_report(book: BookRim, units: str = DEFAULT) -> list[str]:
     return lines
 
 
-def castability_words(cast: dict[str, Any], units: str = DEFAULT) -> str:
+def castability_words(cast: dict[str, Any], units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
     """A whole wheel's castability in one line: the process, the wall used and the thinnest wall, and each
     junction's section ratio against the allowed one (docs/flywheel-design.md, section 23)."""
-    q, _n = formatters(units)
+    q, _n = formatters(units, digits)
     words = (
-        f"{cast['process'].replace('_', ' ')}: min wall {q(cast['min_wall'], 'min_wall', 3)} at D "
-        f"{q(cast['casting_size'], 'd_outer', 4)} (process {q(cast['process_min_wall'], 'min_wall', 3)}), "
-        f"thinnest {cast['thinnest_part']} {q(cast['thinnest_wall'], 'min_wall', 3)}"
+        f"{cast['process'].replace('_', ' ')}: min wall {q(cast['min_wall'], 'min_wall')} at D "
+        f"{q(cast['casting_size'], 'd_outer')} (process {q(cast['process_min_wall'], 'min_wall')}), "
+        f"thinnest {cast['thinnest_part']} {q(cast['thinnest_wall'], 'min_wall')}"
     )
     if cast["section_ratio"] is not None and cast["junctions"]:
-        ratios = ", ".join(f"{j['junction']} {number(j['ratio'], 3)}" for j in cast["junctions"])
-        words += f"; section ratios (2V/A) {ratios} (at most {number(cast['section_ratio'], 3)})"
+        ratios = ", ".join(f"{j['junction']} {number(j['ratio'], min(3, digits))}" for j in cast["junctions"])
+        words += f"; section ratios (2V/A) {ratios} (at most {number(cast['section_ratio'], min(3, digits))})"
     return words
 
 
-def rounding_report(result: DesignResult, units: str = DEFAULT) -> list[str]:
+def rounding_report(result: DesignResult, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """The lines that put the rounded winner beside the continuous optimum it comes from (design.round_to)."""
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     c, best = result.continuous, result.best
     if c is None:
         return []
@@ -500,15 +506,15 @@ def rounding_report(result: DesignResult, units: str = DEFAULT) -> list[str]:
     extra = best.mass - c.mass
     return [
         f"  rounded to {q(result.spec.round_to, 'd_outer')} (design.round_to): {'+' if extra >= 0 else ''}"
-        f"{q(extra, 'mass', 3)} "
+        f"{q(extra, 'mass')} "
         f"({100 * extra / c.mass:+.2f} %) over {optimum}; every limit checked again on the rounded wheel ({result.rounding})"
     ]
 
 
-def _size_facts(best: Design, units: str) -> list[tuple[str, str]]:
+def _size_facts(best: Design, units: str, digits: int = DEFAULT_DIGITS) -> list[tuple[str, str]]:
     """A design's size in words: a rim's outer, mean and inner diameters and its section H x B; a disc's outer
     diameter, its bore where it has one, and its width (a disc has no rim)."""
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     d = best.dims
     if best.geometry == Geometry.DISC:
         outer = (
@@ -523,16 +529,18 @@ def _size_facts(best: Design, units: str) -> list[tuple[str, str]]:
             "outer / mean / inner diameter",
             f"{n(d.d_outer, 'd_outer')} / {n(d.d_mean, 'd_mean')} / {q(d.d_inner, 'd_inner')}",
         ),
-        ("rim H x B", f"{n(d.h, 'h')} x {q(d.b, 'b')} (H/B {number(d.hb_ratio, 4)})"),
+        ("rim H x B", f"{n(d.h, 'h')} x {q(d.b, 'b')} (H/B {number(d.hb_ratio, digits)})"),
     ]
 
 
-def design_report(result: DesignResult, spec: DesignSpec | None = None, units: str = DEFAULT) -> list[str]:
+def design_report(
+    result: DesignResult, spec: DesignSpec | None = None, units: str = DEFAULT, digits: int = DEFAULT_DIGITS
+) -> list[str]:
     """The design part of the ``flyopt solve`` report: the winner and the ranking of every combination.
 
     ``units``: the unit system of every quantity (:data:`flyopt.report.display.SYSTEMS`).
     """
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     lines = ["", f"Flywheel design ({result.spec.geometry}, objective: {result.spec.objective}):"]
     if result.status == "not_needed":
         return lines + [f"  {result.message}"]
@@ -541,10 +549,10 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
         facts = [
             (
                 "material / shaft",
-                f"{result.material_name(best.material)} on {best.shaft} (speed ratio {number(best.speed_ratio)})",
+                f"{result.material_name(best.material)} on {best.shaft} (speed ratio {number(best.speed_ratio, digits)})",
             ),
-            ("mass", q(best.mass, "mass") + (f" (cost {number(best.cost)})" if best.cost is not None else "")),
-            *_size_facts(best, units),
+            ("mass", q(best.mass, "mass") + (f" (cost {number(best.cost, digits)})" if best.cost is not None else "")),
+            *_size_facts(best, units, digits),
             (
                 "inertia",
                 f"{q(best.j_flywheel, 'j_flywheel')} on its shaft = "
@@ -554,7 +562,11 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
                 "rim speed",
                 f"{q(best.stresses.rim_speed, 'rim_speed')} (limit {q(best.limits.rim_speed_limit, 'rim_speed_limit')}), "
                 f"hoop stress ρv² {q(best.stresses.hoop_stress, 'hoop_stress')}"
-                + (f", safety factor {number(best.stresses.safety_factor, 3)}" if best.stresses.safety_factor else ""),
+                + (
+                    f", safety factor {number(best.stresses.safety_factor, min(3, digits))}"
+                    if best.stresses.safety_factor
+                    else ""
+                ),
             ),
             (
                 "binding",
@@ -564,25 +576,25 @@ def design_report(result: DesignResult, spec: DesignSpec | None = None, units: s
             ("solved by", solver_words(best)),
         ]
         if best.limits.castability is not None:
-            facts.append(("castability", castability_words(best.limits.castability, units)))
+            facts.append(("castability", castability_words(best.limits.castability, units, digits)))
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {visible(v)}" for k, v in facts]
         if result.continuous is not None:
-            lines += rounding_report(result, units)
+            lines += rounding_report(result, units, digits)
         book = result.book_rim()
         if book is not None:
-            lines += book_rim_report(book, units)
+            lines += book_rim_report(book, units, digits)
         elif not result.spec.has_envelope and not result.spec.pins_d_mean:
             lines.append(
                 "  note: no envelope (design.max_outer_diameter) is set, so only the rim speed limit "
                 "bounds the diameter"
             )
-        lines += wheel_report(best, result.omega * best.speed_ratio, units)
+        lines += wheel_report(best, result.omega * best.speed_ratio, units, digits)
         if result.fem is not None:
-            lines += fem_report(result.fem, units)
+            lines += fem_report(result.fem, units, digits)
     elif result.continuous is not None:
         lines.append(f"  no rounded design: {result.rounding}")
-        lines += rounding_report(result, units)
+        lines += rounding_report(result, units, digits)
     else:
         lines.append("  no feasible design: no material and shaft can give the required inertia")
     rows = []
@@ -638,10 +650,10 @@ def _finite(value):
     return value is not None and math.isfinite(value)
 
 
-def fem_report(check: FemCheck, units: str = DEFAULT) -> list[str]:
+def fem_report(check: FemCheck, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """The FE check of the best design (``[design] fem_check = true``): each part's peak beside the Lamé/arm
     model's, the junction factors, and how far the two models differ."""
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     measure = "von Mises" if check.measure == "von_mises" else "largest principal"
     lines = [
         "",
@@ -651,22 +663,22 @@ def fem_report(check: FemCheck, units: str = DEFAULT) -> list[str]:
         peak, at = (
             (p.von_mises, p.von_mises_at) if check.measure == "von_mises" else (p.max_principal, p.max_principal_at)
         )
-        text = f"  {p.part} peak {q(peak, 'stress', 4)} at r, z = {n(at[0], 'radius', 4)}, {q(at[1], 'radius', 4)}"
+        text = f"  {p.part} peak {q(peak, 'stress')} at r, z = {n(at[0], 'radius')}, {q(at[1], 'radius')}"
         if p.model_stress is not None:
-            text += f"; Lamé/arm {q(p.model_stress, 'stress', 4)}"
+            text += f"; Lamé/arm {q(p.model_stress, 'stress')}"
         if p.utilisation is not None:
             text += f"; {100 * p.utilisation:.1f} % of its allowable"
         lines.append(text)
     if check.junctions:
         factors = ", ".join(
-            f"{j.name} {j.factor:.3f}" + (f" (fillet {q(j.fillet, 'radius', 3)})" if j.fillet else " (no step)")
+            f"{j.name} {j.factor:.3f}" + (f" (fillet {q(j.fillet, 'radius')})" if j.fillet else " (no step)")
             for j in check.junctions
         )
         lines.append(f"  junction factors (FE peak near the junction / Lamé there): {factors}")
     if check.difference is not None and check.model_peak is not None:
         word = "above" if check.difference >= 0 else "below"
         lines.append(
-            f"  the two models: FE peak {q(check.peak, 'stress', 4)}, Lamé/arm {q(check.model_peak, 'stress', 4)}: "
+            f"  the two models: FE peak {q(check.peak, 'stress')}, Lamé/arm {q(check.model_peak, 'stress')}: "
             f"the FE is {100 * abs(check.difference):.1f} % {word}"
         )
     verdict = fem_verdict(check)
@@ -704,7 +716,7 @@ def fem_verdict(check: FemCheck) -> str | None:
     return text
 
 
-def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[str]:
+def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """The whole wheel of a design: its parts, stress check, burst speed, balance, key, sensitivities, notes.
 
     Parameters
@@ -724,10 +736,10 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[
     """
     c = candidate
 
-    def n(value, name, digits=6):  # a number of a table or list whose unit is written once; "-" if none
+    def n(value, name):  # a number of a table or list whose unit is written once; "-" if none
         return field_number(value, name, units, digits) if _finite(value) else "-"
 
-    def q(value, name, digits=6):  # a number with its unit; "-" if none
+    def q(value, name):  # a number with its unit; "-" if none
         return field_text(value, name, units, digits) if _finite(value) else "-"
 
     lines = []
@@ -736,8 +748,8 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[
         rows = [
             [
                 p["name"],
-                f"{n(p['r_inner'], 'r_inner', 4)} – {n(p['r_outer'], 'r_outer', 4)}",
-                n(p["thickness"], "thickness", 4),
+                f"{n(p['r_inner'], 'r_inner')} – {n(p['r_outer'], 'r_outer')}",
+                n(p["thickness"], "thickness"),
                 n(p["mass"], "mass"),
                 n(p["inertia"], "inertia"),
                 f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-",
@@ -747,8 +759,8 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[
         rows.append(
             [
                 "total",
-                f"{n(min(p['r_inner'] for p in c.parts.items), 'r_inner', 4)} – "
-                f"{n(max(p['r_outer'] for p in c.parts.items), 'r_outer', 4)}",
+                f"{n(min(p['r_inner'] for p in c.parts.items), 'r_inner')} – "
+                f"{n(max(p['r_outer'] for p in c.parts.items), 'r_outer')}",
                 "",
                 n(sum(p["mass"] for p in c.parts.items), "mass"),
                 n(total_j, "inertia"),
@@ -769,8 +781,8 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[
         lines += ["  " + line for line in body]
         if c.n_arms and c.dims.arm_major:
             lines.append(
-                f"  arms: {c.n_arms} of elliptical section {n(c.dims.arm_major, 'arm_major', 4)} x "
-                f"{q(c.dims.arm_minor, 'arm_minor', 4)} (major axis in the plane of rotation, minor axial)"
+                f"  arms: {c.n_arms} of elliptical section {n(c.dims.arm_major, 'arm_major')} x "
+                f"{q(c.dims.arm_minor, 'arm_minor')} (major axis in the plane of rotation, minor axial)"
             )
     if c.stresses.stress:
         s = c.stresses.stress
@@ -781,12 +793,12 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[
             rows.append(
                 [
                     p["part"],
-                    n(p["stress"], "stress", 4),
-                    n(p["radius"], "radius", 4),
-                    n(p["allowable"], "allowable", 4),
+                    n(p["stress"], "stress"),
+                    n(p["radius"], "radius"),
+                    n(p["allowable"], "allowable"),
                     "-" if utilisation is None else f"{100 * utilisation:.1f} %",
-                    n(p.get("strength"), "strength", 4),
-                    n(p.get("wall"), "wall", 4),
+                    n(p.get("strength"), "strength"),
+                    n(p.get("wall"), "wall"),
                 ]
             )
         head = [
@@ -806,27 +818,31 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[
         where = s.get("where") or {}
         facts = []
         if where:
-            facts.append(("governing", f"{where['part']} at r = {q(where['radius'], 'radius', 4)}"))
+            facts.append(("governing", f"{where['part']} at r = {q(where['radius'], 'radius')}"))
         facts.append(
             (
                 "largest σ_t / σ_r",
-                f"{n(s.get('hoop_max'), 'hoop_max', 4)} / "
-                f"{q(s.get('radial_max'), 'radial_max', 4)} "
-                f"(von Mises {q(s.get('von_mises'), 'von_mises', 4)})",
+                f"{n(s.get('hoop_max'), 'hoop_max')} / "
+                f"{q(s.get('radial_max'), 'radial_max')} "
+                f"(von Mises {q(s.get('von_mises'), 'von_mises')})",
             )
         )
         if _finite(s.get("mean_hoop")):
-            facts.append(("mean hoop stress", f"{q(s['mean_hoop'], 'mean_hoop', 4)} over the radial section"))
+            facts.append(("mean hoop stress", f"{q(s['mean_hoop'], 'mean_hoop')} over the radial section"))
         if _finite(c.stresses.strength_safety):
-            facts.append(("safety on strength", number(c.stresses.strength_safety, 3)))
+            facts.append(("safety on strength", number(c.stresses.strength_safety, min(3, digits))))
         if _finite(c.stresses.burst_speed):
-            margin = f" ({number(c.stresses.speed_margin, 3)} x ω_max)" if _finite(c.stresses.speed_margin) else ""
+            margin = (
+                f" ({number(c.stresses.speed_margin, min(3, digits))} x ω_max)"
+                if _finite(c.stresses.speed_margin)
+                else ""
+            )
             facts.append(("burst speed", f"{q(c.stresses.burst_speed, 'burst_speed')} on its shaft{margin}"))
         width = max(len(k) for k, _ in facts)
         lines += [f"  {k:<{width}}  {v}" for k, v in facts]
     if c.stresses.unbalance_permissible is not None and _finite(c.stresses.unbalance_permissible):
         eccentricity = (
-            quantity_text(c.stresses.unbalance_permissible / c.mass, "eccentricity", units, 4) if c.mass else None
+            quantity_text(c.stresses.unbalance_permissible / c.mass, "eccentricity", units, digits) if c.mass else None
         )
         lines += [
             "",
@@ -839,16 +855,16 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[
         verdict = "not checked (see the notes)" if k["ok"] is None else "OK" if k["ok"] else "NOT OK"
         lines += [
             "",
-            f"Key (DIN 6885-1 form A) on a {q(c.bore, 'bore', 4)} bore: {k['size']}, length "
-            f"{q(k['length'], 'length', 4)} (effective {q(k['effective_length'], 'effective_length', 4)}): "
+            f"Key (DIN 6885-1 form A) on a {q(c.bore, 'bore')} bore: {k['size']}, length "
+            f"{q(k['length'], 'length')} (effective {q(k['effective_length'], 'effective_length')}): "
             f"{verdict}",
         ]
         if k["ok"] is not None:
             lines.append(
                 f"  at the peak torque {q(k['torque'], 'torque')}: bearing pressure "
-                f"{q(k['bearing_pressure'], 'bearing_pressure', 4)} (allowable "
-                f"{q(k['allowable_pressure'], 'allowable_pressure', 4)}), shear {q(k['shear'], 'shear', 4)} "
-                f"(allowable {q(k['allowable_shear'], 'allowable_shear', 4)})"
+                f"{q(k['bearing_pressure'], 'bearing_pressure')} (allowable "
+                f"{q(k['allowable_pressure'], 'allowable_pressure')}), shear {q(k['shear'], 'shear')} "
+                f"(allowable {q(k['allowable_shear'], 'allowable_shear')})"
             )
     if c.limits.sensitivities:
         lines += ["", "Sensitivities of the mass:"]
@@ -858,37 +874,40 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT) -> list[
     return lines
 
 
-def verification_report(v: Verification, units: str = DEFAULT) -> list[str]:
+def verification_report(v: Verification, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """The verification part of the ``flyopt solve --verify`` report (``units``: the unit system)."""
-    q, _ = formatters(units)
+    q, _ = formatters(units, digits)
     verdict = "FLAGGED: the design misses the allowed δ" if v.flagged else "ok"
     return [
         "",
         f"Verification ({v.method}): {verdict}",
-        f"  achieved δ {number(v.achieved_delta)} against the allowed {number(v.delta_allowed)} "
-        f"(tolerance {number(v.tolerance, 3)}); {ACHIEVED_RANGE} {field_number(v.omega_min, 'omega_min', units)} to "
+        f"  achieved δ {number(v.achieved_delta, digits)} against the allowed {number(v.delta_allowed, digits)} "
+        f"(tolerance {number(v.tolerance, min(3, digits))}); {ACHIEVED_RANGE} {field_number(v.omega_min, 'omega_min', units, digits)} to "
         f"{q(v.omega_max, 'omega_max')}, mean {q(v.omega_mean, 'omega_mean')}; flywheel "
         f"{q(v.j_flywheel, 'j_flywheel')} at the reference shaft",
     ]
 
 
-def flywheel_report(check: FlywheelCheck, units: str = DEFAULT) -> list[str]:
+def flywheel_report(check: FlywheelCheck, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """The part of ``flyopt solve`` for a [flywheel] that exists: the δ it leaves and what it does."""
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     wheel = check.flywheel
     given = q(wheel.inertia, "j_flywheel")
     if wheel.mass is not None and wheel.radius_of_gyration is not None:
         given += f" (m = {q(wheel.mass, 'mass')}, k = {q(wheel.radius_of_gyration, 'radius_of_gyration')})"
     facts = [
-        ("flywheel given", f"{given} on shaft {visible(wheel.shaft)} (speed ratio {number(wheel.speed_ratio)})"),
+        (
+            "flywheel given",
+            f"{given} on shaft {visible(wheel.shaft)} (speed ratio {number(wheel.speed_ratio, digits)})",
+        ),
         (
             "at the reference shaft",
             f"{q(wheel.j_at_reference, 'j_at_reference')}, with the machine's {q(check.j_machine, 'j_machine')}",
         ),
         (
             "δ reached",
-            f"{number(check.achieved_delta)} (1/{number(1 / check.achieved_delta, 4)}, "
-            f"±{number(50 * check.achieved_delta, 4)} % of the mean speed)"
+            f"{number(check.achieved_delta, digits)} (1/{number(1 / check.achieved_delta, digits)}, "
+            f"±{number(50 * check.achieved_delta, digits)} % of the mean speed)"
             if check.achieved_delta > 0
             else "0",
         ),
@@ -924,14 +943,14 @@ def flywheel_report(check: FlywheelCheck, units: str = DEFAULT) -> list[str]:
         else:
             verdict = "does NOT suffice"
         if check.j_required is not None and check.j_required > 0:
-            share = f"{number(abs(100 * (check.margin or 0.0)), 4)} %"
+            share = f"{number(abs(100 * (check.margin or 0.0)), digits)} %"
             verdict += f": it gives {q(wheel.j_at_reference, 'j_at_reference')} at the reference shaft where "
             verdict += (
                 f"{q(check.j_required, 'j_required')} is needed ({share} {'over' if check.suffices else 'short'})"
             )
         else:
             verdict += ": the machine holds δ without any flywheel"
-        facts.append((f"against the allowed δ {number(check.delta_allowed)}", verdict))
+        facts.append((f"against the allowed δ {number(check.delta_allowed, digits)}", verdict))
     width = max(len(label) for label, _ in facts)
     return [
         "",
@@ -940,9 +959,11 @@ def flywheel_report(check: FlywheelCheck, units: str = DEFAULT) -> list[str]:
     ]
 
 
-def operation_report(result: OperationResult, title: str, source: str | None = None, units: str = DEFAULT) -> str:
+def operation_report(
+    result: OperationResult, title: str, source: str | None = None, units: str = DEFAULT, digits: int = DEFAULT_DIGITS
+) -> str:
     """``flyopt solve`` of an [operation]: one load on the flywheel, the speed after it, the rate the motor sustains."""
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     op = result.operation
     facts = [
         (
@@ -955,15 +976,18 @@ def operation_report(result: OperationResult, title: str, source: str | None = N
         ("speed before / after", f"{n(result.omega_before, 'omega_before')} / {q(result.omega_after, 'omega_after')}"),
         (
             "speed drop",
-            f"{number(100 * result.speed_drop, 4)} % (δ = {number(result.delta)} about the mean of the two)",
+            f"{number(100 * result.speed_drop, digits)} % (δ = {number(result.delta, digits)} about the mean of the two)",
         ),
         ("recovery time", f"{q(result.recovery_time, 'recovery_time')} (the motor refills the flywheel, unloaded)"),
         ("shortest interval", q(result.shortest_interval, "shortest_interval")),
-        ("operations a minute", f"{number(60.0 * result.operation_rate, 6)} at most (60 P / E)"),
+        ("operations a minute", f"{number(60.0 * result.operation_rate, digits)} at most (60 P / E)"),
     ]
     if result.delta_allowed is not None:
         facts.append(
-            (f"against the allowed δ {number(result.delta_allowed)}", "holds" if result.holds else "does NOT hold")
+            (
+                f"against the allowed δ {number(result.delta_allowed, digits)}",
+                "holds" if result.holds else "does NOT hold",
+            )
         )
     width = max(len(label) for label, _ in facts)
     head = visible(title) + (f"  ({visible(source)})" if source else "")
@@ -978,20 +1002,24 @@ def operation_report(result: OperationResult, title: str, source: str | None = N
 
 
 def position_report(
-    forces: CrankForces | PositionEquivalents, title: str, source: str | None = None, units: str = DEFAULT
+    forces: CrankForces | PositionEquivalents,
+    title: str,
+    source: str | None = None,
+    units: str = DEFAULT,
+    digits: int = DEFAULT_DIGITS,
 ) -> str:
     """``flyopt solve`` of a [position]: a slider-crank engine's kinematics and forces at one crank angle, or
     (beside [[member]]s) a mechanism's equivalents at one position (:func:`equivalents_report`)."""
     from flyopt.machine.crank_forces import CrankForces
 
     if not isinstance(forces, CrankForces):
-        return equivalents_report(forces, title, source, units)
-    q, _ = formatters(units)
+        return equivalents_report(forces, title, source, units, digits)
+    q, _ = formatters(units, digits)
     p = forces.position
     load = f"{q(p.pressure, 'pressure')} on a {q(p.bore, 'bore')} bore" if p.gas_force is None else "given directly"
     facts = [
         ("crank angle", f"{q(p.angle, 'angle')} from the inner dead centre"),
-        ("crank / rod", f"{q(p.crank, 'crank')} / {q(p.rod, 'rod')} (n = l/r = {number(p.rod / p.crank, 6)})"),
+        ("crank / rod", f"{q(p.crank, 'crank')} / {q(p.rod, 'rod')} (n = l/r = {number(p.rod / p.crank, digits)})"),
         ("speed", q(forces.omega, "omega")),
         ("obliquity of the rod β", q(forces.obliquity, "obliquity")),
         ("piston from the i.d.c.", q(forces.displacement, "displacement")),
@@ -1027,21 +1055,28 @@ _SENSE_WORDS = {
 }
 
 
-def equivalents_report(result: PositionEquivalents, title: str, source: str | None = None, units: str = DEFAULT) -> str:
+def equivalents_report(
+    result: PositionEquivalents,
+    title: str,
+    source: str | None = None,
+    units: str = DEFAULT,
+    digits: int = DEFAULT_DIGITS,
+) -> str:
     """``flyopt solve`` of a [position] beside [[member]]s: each member's velocity ratios, the equivalent
     inertia and moment at the reference shaft, and (``reduce_to``) at another member and a point of it."""
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     p = result.position
     where = "any angle (nothing varies with it)" if p.angle is None else q(result.angle, "angle")
     if result.input_angle is not None and p.angle is not None:
         where += f" (the mechanism's input at {q(result.input_angle, 'input_angle')})"
+    shares = [m.torque_share for m in result.members]  # one column, one unit
     rows = [
         [
             m.name,
             n(m.angular_ratio, "angular_ratio"),
             n(m.velocity_ratio, "velocity_ratio"),
             n(m.inertia_share, "inertia_share"),
-            n(m.torque_share, "torque_share"),
+            n(m.torque_share, "torque_share", shares),
         ]
         for m in result.members
     ]
@@ -1058,7 +1093,7 @@ def equivalents_report(result: PositionEquivalents, title: str, source: str | No
                 "ω_k/ω",
                 f"v_S/ω [{length}/rad]",
                 f"J share [{_label('inertia_share', units)}]",
-                f"M share [{_label('torque_share', units)}]",
+                f"M share [{_label('torque_share', units, shares, digits)}]",
             ],
             rows,
         ),
@@ -1076,7 +1111,7 @@ def equivalents_report(result: PositionEquivalents, title: str, source: str | No
     r = result.reduced
     if r is not None and r.turns and r.equivalent_inertia is not None and r.equivalent_moment is not None:
         facts += [
-            (f"reduced to {visible(r.member)}", f"ω_1/ω_k = {number(1.0 / r.angular_ratio, 6)}"),
+            (f"reduced to {visible(r.member)}", f"ω_1/ω_k = {number(1.0 / r.angular_ratio, digits)}"),
             ("  equivalent inertia", f"{q(r.equivalent_inertia, 'equivalent_inertia')} (J_e (ω_1/ω_k)²)"),
             ("  equivalent moment", f"{q(r.equivalent_moment, 'equivalent_moment')} ({sense}; M_e |ω_1/ω_k|)"),
         ]
@@ -1141,19 +1176,21 @@ def drive_shafts(drive: ReducedDrive) -> list[DriveShaft]:
     return shafts
 
 
-def electric_drive_report(drive: ReducedDrive, title: str, source: str | None = None, units: str = DEFAULT) -> str:
+def electric_drive_report(
+    drive: ReducedDrive, title: str, source: str | None = None, units: str = DEFAULT, digits: int = DEFAULT_DIGITS
+) -> str:
     """``flyopt solve`` of an [electric_drive]: the drive reduced to the motor shaft, in the texts' terms."""
-    q, n = formatters(units)
+    q, n = formatters(units, digits)
     d = drive.drive
     rows = [
         [
             s.name,
-            "-" if s.ratio is None else number(s.ratio),
-            "-" if s.efficiency is None else number(s.efficiency),
+            "-" if s.ratio is None else number(s.ratio, digits),
+            "-" if s.efficiency is None else number(s.efficiency, digits),
             n(s.speed, "omega"),
-            number(s.gd2),
-            number(s.gd2_reduced),
-            number(s.gd2_with_losses),
+            number(s.gd2, digits),
+            number(s.gd2_reduced, digits),
+            number(s.gd2_with_losses, digits),
         ]
         for s in drive_shafts(drive)
     ]
@@ -1169,17 +1206,17 @@ def electric_drive_report(drive: ReducedDrive, title: str, source: str | None = 
         "",
     ]
     facts = [
-        ("total ratio / efficiency", f"{number(drive.total_ratio)} / {number(drive.efficiency)}"),
+        ("total ratio / efficiency", f"{number(drive.total_ratio, digits)} / {number(drive.efficiency, digits)}"),
         ("load", f"{q(d.load_torque, 'torque')} at {q(drive.load_speed, 'omega')}: {q(drive.load_power, 'power')}"),
         ("motor output power", f"{q(drive.motor_power, 'power')} (the load's over the efficiency)"),
         ("load torque at the motor", f"{q(drive.load_torque_at_motor, 'torque')} (T_L / (j η))"),
         (
             "GD² at the motor",
-            f"{number(drive.gd2_total)} N·m² (J = {q(drive.inertia_total, 'inertia')}, equal kinetic energy)",
+            f"{number(drive.gd2_total, digits)} N·m² (J = {q(drive.inertia_total, 'inertia')}, equal kinetic energy)",
         ),
         (
             "GD² with the losses",
-            f"{number(drive.gd2_with_losses)} N·m² (J = {q(drive.inertia_with_losses, 'inertia')}, the texts' convention for accelerating)",
+            f"{number(drive.gd2_with_losses, digits)} N·m² (J = {q(drive.inertia_with_losses, 'inertia')}, the texts' convention for accelerating)",
         ),
     ]
     if drive.accelerating_torque is not None and drive.motor_torque is not None and d.acceleration is not None:
@@ -1194,28 +1231,39 @@ def electric_drive_report(drive: ReducedDrive, title: str, source: str | None = 
     return "\n".join([*lines, *(f"  {a:<{width}}  {b}" for a, b in facts)])
 
 
-def power_chain_report(flow: PowerFlow, title: str, source: str | None = None, units: str = DEFAULT) -> str:
+def power_chain_report(
+    flow: PowerFlow, title: str, source: str | None = None, units: str = DEFAULT, digits: int = DEFAULT_DIGITS
+) -> str:
     """``flyopt solve`` of a [power_chain]: the motor's power, the overall efficiency, each branch's powers."""
-    q, n = formatters(units)
-    unit = _label("power", units)
+    q, n = formatters(units, digits)
+
+    def powers(branch: BranchFlow) -> list[float]:  # every power the table and the list show [W]
+        own = [branch.power, branch.motor_power, branch.losses, *branch.stage_powers]
+        return own + [p for child in branch.branches for p in powers(child)]
+
+    every = powers(flow.trunk)  # one unit for the table and the list, chosen from their largest
+    unit = _label("power", units, every, digits)
     rows: list[list[str]] = []
     through: list[str] = []
 
     def visit(branch: BranchFlow, depth: int) -> None:
         name = "  " * depth + branch.branch.name
-        stages = " × ".join(number(eta) for eta in branch.branch.stages) or "-"
+        stages = " × ".join(number(eta, digits) for eta in branch.branch.stages) or "-"
         rows.append(
             [
                 name,
                 stages,
-                number(branch.path_efficiency),
-                n(branch.power, "power"),
-                n(branch.motor_power, "motor_power"),
-                n(branch.losses, "power"),
+                number(branch.path_efficiency, digits),
+                n(branch.power, "power", every),
+                n(branch.motor_power, "motor_power", every),
+                n(branch.losses, "power", every),
             ]
         )
-        steps = [n(p, "power") + f" →({number(eta)})→ " for p, eta in zip(branch.stage_powers, branch.branch.stages)]
-        through.append(f"  {name}: " + "".join(steps) + f"{n(branch.power, 'power')} {unit}")
+        steps = [
+            n(p, "power", every) + f" →({number(eta, digits)})→ "
+            for p, eta in zip(branch.stage_powers, branch.branch.stages)
+        ]
+        through.append(f"  {name}: " + "".join(steps) + f"{n(branch.power, 'power', every)} {unit}")
         for child in branch.branches:
             visit(child, depth + 1)
 
@@ -1223,7 +1271,7 @@ def power_chain_report(flow: PowerFlow, title: str, source: str | None = None, u
     facts = [
         ("motor power P_in", f"{q(flow.motor_power, 'motor_power')} (Σ P_k / η_k over the machines)"),
         ("delivered Σ P_out", q(flow.delivered, "load_power")),
-        ("overall efficiency", f"{number(flow.efficiency)} (Σ P_out / P_in)"),
+        ("overall efficiency", f"{number(flow.efficiency, digits)} (Σ P_out / P_in)"),
         ("losses", q(flow.losses, "power")),
     ]
     width = max(len(a) for a, _ in facts)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import inspect
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, cast
 
 from flyopt.names import Geometry, Model
@@ -22,9 +22,10 @@ if TYPE_CHECKING:
 class BuilderBase:
     """The state of a report being built and the tools every section is written with."""
 
-    def __init__(self, inputs: ReportInputs, units: str) -> None:
+    def __init__(self, inputs: ReportInputs, units: str, digits: int = display.DEFAULT_DIGITS) -> None:
         self.inputs = inputs
         self.units = units
+        self.digits = digits  # significant figures of every number shown (--digits)
         self.solution = cast("Solution", inputs.solution)
         self.scene = self.solution.scene
         self.analysis = self.solution.analysis
@@ -33,23 +34,40 @@ class BuilderBase:
         self.failures: list[str] = []
         self._numbers = [0, 0]
 
-    def q(self, value: float | None, dimension: str, name: str | None = None, digits: int = 6) -> Quantity:
-        """A Quantity in the report's units, its unit after it ("-" where the value does not exist)."""
+    @property
+    def worked(self) -> int:
+        """The significant figures of a worked equation's numbers (:func:`flyopt.report.display.worked_digits`)."""
+        return display.worked_digits(self.digits)
+
+    def q(self, value: float | None, dimension: str, name: str | None = None, digits: int | None = None) -> Quantity:
+        """A Quantity in the report's units, its unit after it ("-" where the value does not exist); ``digits``
+        the report's unless given."""
         if value is None or math.isnan(value):
             return Quantity("-", name, None, dimension)
-        return Quantity(display.quantity_text(value, dimension, self.units, digits), name, float(value), dimension)
+        text = display.quantity_text(value, dimension, self.units, digits or self.digits)
+        return Quantity(text, name, float(value), dimension)
 
-    def n(self, value: float | None, dimension: str, name: str | None = None, digits: int = 6) -> Quantity:
-        """A Quantity in the report's units without its unit (a table cell: the unit is in the column's head)."""
+    def n(
+        self,
+        value: float | None,
+        dimension: str,
+        name: str | None = None,
+        digits: int | None = None,
+        among: Sequence[float | None] | None = None,
+    ) -> Quantity:
+        """A Quantity in the report's units without its unit (a table cell: the unit is in the column's head,
+        :meth:`head` given the same ``among``, the column's SI values, which choose its one unit)."""
         if value is None or math.isnan(value):
             return Quantity("-", name, None, dimension)
-        return Quantity(
-            number(display.show(float(value), dimension, self.units), digits), name, float(value), dimension
-        )
+        magnitude = None if among is None else display.largest(among)  # none: the head's unit without values
+        factor = display.unit(dimension, self.units, magnitude, digits or self.digits)[1]
+        scale = None if magnitude is None else magnitude / factor
+        return Quantity(number(float(value) / factor, digits or self.digits, scale), name, float(value), dimension)
 
-    def head(self, title: str, dimension: str) -> str:
-        """A column's head with the unit of its numbers, "mass [kg]"."""
-        unit = display.label(dimension, self.units)
+    def head(self, title: str, dimension: str, among: Sequence[float | None] | None = None) -> str:
+        """A column's head with the unit of its numbers, "mass [kg]" (``among``: the column, as :meth:`n`)."""
+        magnitude = None if among is None else display.largest(among)
+        unit = display.unit(dimension, self.units, magnitude, self.digits)[0]
         return title if unit == "-" else f"{title} [{unit}]"
 
     @staticmethod
@@ -57,18 +75,20 @@ class BuilderBase:
         """A number with its unit, squared: "(157.08 rad/s)²" (a bare number needs no brackets)."""
         return f"({text})²" if " " in text and not text.startswith("(") else f"{text}²"
 
-    @staticmethod
-    def si(value: float | None, dimension: str, digits: int = 6, bracket: bool = True) -> str:
-        """A number with its SI unit, as an equation shows it; a negative one in brackets."""
-        text = number(value, digits)
+    def si(self, value: float | None, dimension: str, digits: int | None = None, bracket: bool = True) -> str:
+        """A number with its SI unit, as an equation shows it (the report's figures and its guard figures,
+        :func:`flyopt.report.display.worked_digits`, unless ``digits``); a negative one in brackets."""
+        text = number(value, digits or display.worked_digits(self.digits))
         unit = display.label(dimension, "si")
         text = text if unit == "-" else f"{text} {unit}"
         return f"({text})" if bracket and value is not None and value < 0 else text
 
-    def result(self, value: float | None, dimension: str, digits: int = 6) -> str:
-        """An equation's result in SI, and in the report's units where those differ."""
+    def result(self, value: float | None, dimension: str, digits: int | None = None) -> str:
+        """An equation's result in SI (to the equation's figures), and in the report's units where those differ."""
         shown = self.si(value, dimension, digits, bracket=False)
-        if display.label(dimension, self.units) != display.label(dimension, "si"):
+        digits = digits or self.digits
+        magnitude = None if value is None else abs(value)
+        if display.unit(dimension, self.units, magnitude, digits)[0] != display.label(dimension, "si"):
             shown += f"   ({display.quantity_text(value, dimension, self.units, digits)})"
         return shown
 
@@ -118,9 +138,15 @@ class BuilderBase:
         return Equation(key, (formula, f"= {numbers}", f"= {result}"), f"{NOTES}, section {section}")
 
     def units_words(self) -> str:
-        """The units of the report's system, in a line ("mm, rpm, kN·m, ...")."""
+        """The units of the report's system and its figures, in a line ("mm, rpm, N·m, J, ... (N·m, J, W with the
+        prefix each value needs); 4 significant figures")."""
         dims = ("length", "angular_speed", "torque", "energy", "stress", "power", "mass", "inertia")
-        return ", ".join(dict.fromkeys(display.label(d, self.units) for d in dims))
+        prefixed = display.PREFIXED.get(self.units, {})
+        words = ", ".join(dict.fromkeys(prefixed.get(d) or display.label(d, self.units) for d in dims))
+        chosen = [prefixed[d] for d in dims if d in prefixed]
+        if chosen:
+            words += f" ({', '.join(chosen)} with the prefix each value needs)"
+        return f"{words}; {self.digits} significant figures"
 
     def flagged(self) -> bool:
         """Whether a verification (of the design or of the drive) flagged the solution."""
@@ -208,7 +234,7 @@ class BuilderBase:
                 self.q(c.dims.h, "length", "h"),
                 " × ",
                 self.q(c.dims.b, "length", "b"),
-                f" (H/B {number(c.dims.hb_ratio, 4)})",
+                f" (H/B {number(c.dims.hb_ratio, self.digits)})",
             ),
         )
 
@@ -228,9 +254,13 @@ class BuilderBase:
         gives = (
             ""
             if textbook["achieved_delta"] is None
-            else f"; that flywheel would really give δ = {number(textbook['achieved_delta'])}"
+            else f"; that flywheel would really give δ = {number(textbook['achieved_delta'], self.digits)}"
         )
-        return (f"The textbook step is {100 * off:+.3g} % off the exact J_F", gives, f" (allowed {number(a.delta)}).")
+        return (
+            f"The textbook step is {100 * off:+.3g} % off the exact J_F",
+            gives,
+            f" (allowed {number(a.delta, self.digits)}).",
+        )
 
     @staticmethod
     def solved_by(candidate: Design) -> str:

@@ -101,7 +101,10 @@ class CalculationInputs:
 
 
 def build_calculation(
-    inputs: CalculationInputs, units: str = display.DEFAULT, title_block: tuple[tuple[str, Any], ...] = ()
+    inputs: CalculationInputs,
+    units: str = display.DEFAULT,
+    title_block: tuple[tuple[str, Any], ...] = (),
+    digits: int = display.DEFAULT_DIGITS,
 ) -> Document:
     """The report of a scene that is one calculation, in a unit system.
 
@@ -112,13 +115,15 @@ def build_calculation(
         The units of the answer, facts and tables (equations stay SI).
     title_block : tuple of (str, str)
         Lines added to the title block (the date, the flyopt version, the file's hash).
+    digits : int
+        Significant figures of every number shown (:func:`flyopt.report.display.check_digits`).
 
     Returns
     -------
     Document
     """
     display.check_system(units)
-    return CalculationReport(inputs, units).document(title_block)
+    return CalculationReport(inputs, units, display.check_digits(digits)).document(title_block)
 
 
 class CalculationReport(BuilderBase):
@@ -128,19 +133,22 @@ class CalculationReport(BuilderBase):
     sections, worked equations) but has no cycle solution: only the calculation's result.
     """
 
-    def __init__(self, inputs: CalculationInputs, units: str) -> None:  # noqa: D107 -- no Solution to read
+    def __init__(  # noqa: D107 -- no Solution to read
+        self, inputs: CalculationInputs, units: str, digits: int = display.DEFAULT_DIGITS
+    ) -> None:
         self.calc = inputs
         self.units = units
+        self.digits = digits
         self.scene = inputs.scene
         self.sections = []
         self.failures = []
         self._numbers = [0, 0]
 
-    def f(self, value: float | None, name: str, digits: int = 6) -> Quantity:
+    def f(self, value: float | None, name: str, digits: int | None = None) -> Quantity:
         """An output field's value with its unit, its dimension by its name (as the text report and the JSON)."""
         return self.q(value, display.dimension_of(name), name, digits)
 
-    def fn(self, value: float | None, name: str, digits: int = 6) -> Quantity:
+    def fn(self, value: float | None, name: str, digits: int | None = None) -> Quantity:
         """An output field's value without its unit (a table cell under :meth:`fhead`)."""
         return self.n(value, display.dimension_of(name), name, digits)
 
@@ -218,7 +226,7 @@ class CalculationReport(BuilderBase):
             self.eq(
                 "omega",
                 f"{symbol} = 2π n / 60",
-                f"2π × {number(rad_s_to_rpm(omega))} / 60",
+                f"2π × {number(rad_s_to_rpm(omega), self.worked)} / 60",
                 self.result(omega, "angular_speed"),
                 section,
             )
@@ -235,8 +243,8 @@ class CalculationReport(BuilderBase):
         if r.delta_allowed is not None:
             holds = "holds" if r.holds else "does NOT hold"
             verdict = Paragraph(
-                f"Against the allowed δ = {number(r.delta_allowed)} (machine.delta): the speed drop {holds} "
-                f"(δ = {number(r.delta)} about the mean of ω₁ and ω₂).",
+                f"Against the allowed δ = {number(r.delta_allowed, self.digits)} (machine.delta): the speed drop {holds} "
+                f"(δ = {number(r.delta, self.digits)} about the mean of ω₁ and ω₂).",
                 "ok" if r.holds else "warning",
             )
         self.answer(
@@ -244,7 +252,7 @@ class CalculationReport(BuilderBase):
                 ("speed after the operation ω₂", self.f(r.omega_after, "omega_after")),
                 (
                     "speed drop",
-                    f"{number(100 * r.speed_drop, 4)} % of ω₁ (δ = {number(r.delta)} about the mean of ω₁ and ω₂)",
+                    f"{number(100 * r.speed_drop, self.digits)} % of ω₁ (δ = {number(r.delta, self.digits)} about the mean of ω₁ and ω₂)",
                 ),
                 ("energy from the flywheel ΔE", self.f(r.energy_from_flywheel, "energy_from_flywheel")),
                 (
@@ -252,7 +260,7 @@ class CalculationReport(BuilderBase):
                     (self.f(r.recovery_time, "recovery_time"), " (the motor refills the flywheel, unloaded)"),
                 ),
                 ("shortest interval τ + t_{r}", self.f(r.shortest_interval, "shortest_interval")),
-                ("operations a minute", f"{number(60.0 * r.operation_rate, 6)} at most (60 P / E)"),
+                ("operations a minute", f"{number(60.0 * r.operation_rate, self.digits)} at most (60 P / E)"),
             ],
             verdict,
         )
@@ -272,12 +280,15 @@ class CalculationReport(BuilderBase):
                     self.f(wheel.radius_of_gyration, "radius_of_gyration"),
                 )
             rows.append(
-                ("flywheel", (*shown, f" on the shaft {wheel.shaft} (speed ratio {number(wheel.speed_ratio)})"))
+                (
+                    "flywheel",
+                    (*shown, f" on the shaft {wheel.shaft} (speed ratio {number(wheel.speed_ratio, self.digits)})"),
+                )
             )
         if self.scene.j_constant:
             rows.append(("the machine's own inertia J_{c}", self.f(self.scene.j_constant, "j_constant")))
         if r.delta_allowed is not None:
-            rows.append(("allowed δ (machine.delta)", number(r.delta_allowed)))
+            rows.append(("allowed δ (machine.delta)", number(r.delta_allowed, self.digits)))
         self.given(rows)
 
         blocks = self.method()
@@ -304,7 +315,7 @@ class CalculationReport(BuilderBase):
                 self.eq(
                     "j_at_reference",
                     "J_{F}' = J_{F} (ω_{shaft}/ω)²",
-                    f"{si(wheel.inertia, 'inertia')} × {number(wheel.speed_ratio)}²",
+                    f"{si(wheel.inertia, 'inertia')} × {number(wheel.speed_ratio, self.worked)}²",
                     res(wheel.j_at_reference, "inertia"),
                     8,
                 )
@@ -354,14 +365,16 @@ class CalculationReport(BuilderBase):
         )
         w1, w2 = si(r.omega_before, "angular_speed"), si(r.omega_after, "angular_speed")
         blocks.append(
-            self.eq("speed_drop", "(ω_{1} − ω_{2}) / ω_{1}", f"({w1} − {w2}) / {w1}", number(r.speed_drop), 16)
+            self.eq(
+                "speed_drop", "(ω_{1} − ω_{2}) / ω_{1}", f"({w1} − {w2}) / {w1}", number(r.speed_drop, self.worked), 16
+            )
         )
         blocks.append(
             self.eq(
                 "delta",
                 "δ = (ω_{1} − ω_{2}) / ((ω_{1} + ω_{2})/2)",
                 f"({w1} − {w2}) / (({w1} + {w2})/2)",
-                number(r.delta),
+                number(r.delta, self.worked),
                 2,
             )
         )
@@ -393,7 +406,7 @@ class CalculationReport(BuilderBase):
                 "operation_rate",
                 "z = 60 P / E   [a minute]",
                 f"60 × {si(op.motor_power, 'power')} / {si(op.energy, 'energy')}",
-                number(60.0 * r.operation_rate),
+                number(60.0 * r.operation_rate, self.worked),
                 16,
             )
         )
@@ -425,7 +438,7 @@ class CalculationReport(BuilderBase):
         rows: list[tuple[Any, Any]] = [
             ("crank angle θ (from the inner dead centre)", self.f(p.angle, "angle")),
             ("crank radius r", self.f(p.crank, "crank")),
-            ("connecting rod l", (self.f(p.rod, "rod"), f" (n = l/r = {number(p.rod / p.crank, 6)})")),
+            ("connecting rod l", (self.f(p.rod, "rod"), f" (n = l/r = {number(p.rod / p.crank, self.digits)})")),
             ("speed n (machine.speed)", self.f(r.omega, "omega")),
         ]
         if p.gas_force is None:
@@ -443,8 +456,8 @@ class CalculationReport(BuilderBase):
         self.given(rows)
 
         blocks = self.method()
-        theta = f"{number(math.degrees(p.angle))}°"
-        ratio = number(p.rod / p.crank, 6)
+        theta = f"{number(math.degrees(p.angle), self.worked)}°"
+        ratio = number(p.rod / p.crank, self.worked)
         self.speed_step(blocks, r.omega, "ω", 17)
         blocks.append(Paragraph("The rod's obliquity β, with n = l/r:"))
         blocks.append(
@@ -452,7 +465,7 @@ class CalculationReport(BuilderBase):
                 "obliquity",
                 "β = asin(sin θ / n)",
                 f"asin(sin {theta} / {ratio})",
-                f"{number(math.degrees(r.obliquity))}°",
+                f"{number(math.degrees(r.obliquity), self.worked)}°",
                 17,
             )
         )
@@ -530,7 +543,7 @@ class CalculationReport(BuilderBase):
                     17,
                 )
             )
-        beta = f"{number(math.degrees(r.obliquity))}°"
+        beta = f"{number(math.degrees(r.obliquity), self.worked)}°"
         fp, fq = si(r.piston_effort, "force"), si(r.rod_force, "force")
         for key, formula, numbers, value in (
             ("rod_force", "F_{Q} = F_{P} / cos β", f"{fp} / cos {beta}", r.rod_force),
@@ -567,7 +580,7 @@ class CalculationReport(BuilderBase):
         red = r.reduced
         if red is not None and red.turns and red.equivalent_inertia is not None and red.equivalent_moment is not None:
             rows += [
-                (f"speed ratio ω/ω_{{k}} to {red.member}", number(1.0 / red.angular_ratio, 6)),
+                (f"speed ratio ω/ω_{{k}} to {red.member}", number(1.0 / red.angular_ratio, self.digits)),
                 (f"J_{{e}} reduced to {red.member}", self.f(red.equivalent_inertia, "equivalent_inertia")),
                 (
                     f"M_{{e}} reduced to {red.member}",
@@ -686,7 +699,7 @@ class CalculationReport(BuilderBase):
                 self.eq(
                     f"inertia_share_{at.name}",
                     f"J_{{{subscript(at.name)}}} = J_{{S}} (ω_{{k}}/ω)² + m (v_{{S}}/ω)²",
-                    f"{si(g.inertia, 'inertia')} × {self.squared(number(at.angular_ratio))} + {si(g.mass, 'mass')} × "
+                    f"{si(g.inertia, 'inertia')} × {self.squared(number(at.angular_ratio, self.worked))} + {si(g.mass, 'mass')} × "
                     f"{self.squared(si(at.velocity_ratio, 'length') + '/rad')}",
                     res(at.inertia_share, "inertia"),
                     3,
@@ -722,7 +735,7 @@ class CalculationReport(BuilderBase):
         )
         je, me = si(r.equivalent_inertia, "inertia"), si(r.equivalent_moment, "torque")
         if red.turns and red.equivalent_inertia is not None and red.equivalent_moment is not None:
-            wk = number(red.angular_ratio)
+            wk = number(red.angular_ratio, self.worked)
             blocks.append(
                 self.eq(
                     "reduced_inertia",
@@ -736,7 +749,7 @@ class CalculationReport(BuilderBase):
                 self.eq(
                     "reduced_moment",
                     "M_{k} = M_{e} |ω/ω_{k}| = M_{e} / |ω_{k}/ω|",
-                    f"{me} / {number(abs(red.angular_ratio))}",
+                    f"{me} / {number(abs(red.angular_ratio), self.worked)}",
                     res(red.equivalent_moment, "torque"),
                     17,
                 )
@@ -822,7 +835,7 @@ class CalculationReport(BuilderBase):
                     "acceleration of the motor dω/dt",
                     (
                         self.f(d.acceleration, "motor_acceleration"),
-                        f" (dn/dt = {number(rad_s_to_rpm(d.acceleration))} rpm/s)",
+                        f" (dn/dt = {number(rad_s_to_rpm(d.acceleration), self.digits)} rpm/s)",
                     ),
                 )
             )
@@ -835,7 +848,13 @@ class CalculationReport(BuilderBase):
                 self.fhead("GD²_{k} on the shaft after it", "gd2"),
             ),
             tuple(
-                [str(k), number(s.ratio), number(s.efficiency), self.fn(speed, "omega"), self.fn(s.gd2, "gd2")]
+                [
+                    str(k),
+                    number(s.ratio, self.digits),
+                    number(s.efficiency, self.digits),
+                    self.fn(speed, "omega"),
+                    self.fn(s.gd2, "gd2"),
+                ]
                 for k, (s, speed) in enumerate(zip(d.stages, r.shaft_speeds, strict=True), start=1)
             ),
             ("<", ">", ">", ">", ">"),
@@ -846,15 +865,15 @@ class CalculationReport(BuilderBase):
 
         blocks = self.method()
         self.speed_step(blocks, d.motor_speed, "ω_{M}", 18)
-        ratios = " × ".join(number(s.ratio) for s in d.stages) or "1"
-        effs = " × ".join(number(s.efficiency) for s in d.stages) or "1"
-        blocks.append(self.eq("total_ratio", "j = Π j_{k}", ratios, number(r.total_ratio), 18))
-        blocks.append(self.eq("efficiency", "η = Π η_{k}", effs, number(r.efficiency), 18))
+        ratios = " × ".join(number(s.ratio, self.worked) for s in d.stages) or "1"
+        effs = " × ".join(number(s.efficiency, self.worked) for s in d.stages) or "1"
+        blocks.append(self.eq("total_ratio", "j = Π j_{k}", ratios, number(r.total_ratio, self.worked), 18))
+        blocks.append(self.eq("efficiency", "η = Π η_{k}", effs, number(r.efficiency, self.worked), 18))
         blocks.append(
             self.eq(
                 "load_speed",
                 "ω_{L} = ω_{M} / j",
-                f"{si(d.motor_speed, 'angular_speed')} / {number(r.total_ratio)}",
+                f"{si(d.motor_speed, 'angular_speed')} / {number(r.total_ratio, self.worked)}",
                 res(r.load_speed, "angular_speed"),
                 18,
             )
@@ -872,7 +891,7 @@ class CalculationReport(BuilderBase):
             self.eq(
                 "motor_power",
                 "P_{M} = P_{L} / η",
-                f"{si(r.load_power, 'power')} / {number(r.efficiency)}",
+                f"{si(r.load_power, 'power')} / {number(r.efficiency, self.worked)}",
                 res(r.motor_power, "power"),
                 18,
             )
@@ -881,7 +900,7 @@ class CalculationReport(BuilderBase):
             self.eq(
                 "load_torque_at_motor",
                 "T_{L}' = T_{L} / (j η)",
-                f"{si(d.load_torque, 'torque')} / ({number(r.total_ratio)} × {number(r.efficiency)})",
+                f"{si(d.load_torque, 'torque')} / ({number(r.total_ratio, self.worked)} × {number(r.efficiency, self.worked)})",
                 res(r.load_torque_at_motor, "torque"),
                 18,
             )
@@ -900,8 +919,8 @@ class CalculationReport(BuilderBase):
                 tuple(
                     [
                         s.name,
-                        number(s.ratio_to_motor),
-                        number(s.efficiency_to_motor),
+                        number(s.ratio_to_motor, self.digits),
+                        number(s.efficiency_to_motor, self.digits),
                         self.fn(s.speed, "omega"),
                         self.fn(s.gd2, "gd2"),
                         self.fn(s.gd2_reduced, "gd2"),
@@ -919,10 +938,12 @@ class CalculationReport(BuilderBase):
             self.eq(
                 "gd2_total",
                 "GD² = GD²_{M} + Σ GD²_{k} / (j_{1}⋯j_{k})²",
-                f"{number(d.motor_gd2)} + "
-                + " + ".join(f"{number(s.gd2)}/{number(s.ratio_to_motor)}²" for s in shafts[1:])
+                f"{number(d.motor_gd2, self.worked)} + "
+                + " + ".join(
+                    f"{number(s.gd2, self.worked)}/{number(s.ratio_to_motor, self.worked)}²" for s in shafts[1:]
+                )
                 + f"  [{gd2}]",
-                f"{number(r.gd2_total)} {gd2}",
+                f"{number(r.gd2_total, self.worked)} {gd2}",
                 18,
             )
         )
@@ -930,13 +951,13 @@ class CalculationReport(BuilderBase):
             self.eq(
                 "gd2_with_losses",
                 "GD²_{η} = GD²_{M} + Σ GD²_{k} / ((j_{1}⋯j_{k})² η_{1}⋯η_{k})",
-                f"{number(d.motor_gd2)} + "
+                f"{number(d.motor_gd2, self.worked)} + "
                 + " + ".join(
-                    f"{number(s.gd2)}/({number(s.ratio_to_motor)}² × {number(s.efficiency_to_motor)})"
+                    f"{number(s.gd2, self.worked)}/({number(s.ratio_to_motor, self.worked)}² × {number(s.efficiency_to_motor, self.worked)})"
                     for s in shafts[1:]
                 )
                 + f"  [{gd2}]",
-                f"{number(r.gd2_with_losses)} {gd2}",
+                f"{number(r.gd2_with_losses, self.worked)} {gd2}",
                 18,
             )
         )
@@ -951,7 +972,7 @@ class CalculationReport(BuilderBase):
                 self.eq(
                     key,
                     f"J = {symbol} / (4 g)",
-                    f"{number(value)} N·m² / (4 × {number(G_STANDARD)} m/s²)",
+                    f"{number(value, self.worked)} N·m² / (4 × {number(G_STANDARD, self.worked)} m/s²)",
                     res(j, "inertia"),
                     18,
                 )
@@ -998,7 +1019,7 @@ class CalculationReport(BuilderBase):
             given_rows.append(
                 [
                     "  " * depth + b.name,
-                    " × ".join(number(eta) for eta in b.stages) or "-",
+                    " × ".join(number(eta, self.worked) for eta in b.stages) or "-",
                     (
                         "splits into " + ", ".join(c.name for c in b.branches)
                         if b.power is None
@@ -1021,14 +1042,14 @@ class CalculationReport(BuilderBase):
                         self.f(flow.motor_power, "motor_power"),
                         " (it delivers ",
                         self.f(flow.delivered, "load_power"),
-                        f" at η = {number(flow.path_efficiency)} from the motor)",
+                        f" at η = {number(flow.path_efficiency, self.digits)} from the motor)",
                     ),
                 )
                 for flow, _ in leaves
             ]
         answer += [
             ("delivered Σ P_{out}", self.f(r.delivered, "load_power")),
-            ("overall efficiency Σ P_{out} / P_{in}", number(r.efficiency)),
+            ("overall efficiency Σ P_{out} / P_{in}", number(r.efficiency, self.digits)),
             ("losses P_{in} − Σ P_{out}", self.f(r.losses, "losses")),
         ]
         self.answer(answer)
@@ -1062,8 +1083,8 @@ class CalculationReport(BuilderBase):
                 self.eq(
                     f"path_efficiency_{name}",
                     f"η_{{{name}}} = " + " × ".join(f"η_{{{k + 1}}}" for k in range(len(path))),
-                    " × ".join(number(eta) for eta in path),
-                    number(flow.path_efficiency),
+                    " × ".join(number(eta, self.worked) for eta in path),
+                    number(flow.path_efficiency, self.worked),
                     21,
                 )
             )
@@ -1071,7 +1092,7 @@ class CalculationReport(BuilderBase):
                 self.eq(
                     f"motor_power_{name}",
                     f"P_{{d,{name}}} = P_{{{name}}} / η_{{{name}}}",
-                    f"{si(flow.delivered, 'power')} / {number(flow.path_efficiency)}",
+                    f"{si(flow.delivered, 'power')} / {number(flow.path_efficiency, self.worked)}",
                     res(flow.motor_power, "power"),
                     21,
                 )
@@ -1090,7 +1111,7 @@ class CalculationReport(BuilderBase):
                 "efficiency",
                 "η = Σ P_{out} / P_{in}",
                 f"{si(r.delivered, 'power')} / {si(r.motor_power, 'power')}",
-                number(r.efficiency),
+                number(r.efficiency, self.worked),
                 21,
             )
         )
@@ -1117,12 +1138,12 @@ class CalculationReport(BuilderBase):
                 tuple(
                     [
                         "  " * depth + flow.branch.name,
-                        number(flow.path_efficiency),
+                        number(flow.path_efficiency, self.digits),
                         self.fn(flow.power, "power"),
                         self.fn(flow.motor_power, "motor_power"),
                         self.fn(flow.losses, "power"),
                         ", ".join(
-                            f"{display.field_number(p, 'power', self.units)} ({number(eta)})"
+                            f"{display.field_number(p, 'power', self.units, self.digits)} ({number(eta, self.digits)})"
                             for p, eta in zip(flow.stage_powers, flow.branch.stages, strict=True)
                         )
                         or "-",

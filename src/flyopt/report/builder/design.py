@@ -46,9 +46,15 @@ class DesignSection(BuilderBase):
         rows: list[tuple[str, Any]] = [
             (
                 "material / shaft",
-                f"{self.material_name(best.material)} on {best.shaft} (speed ratio {number(best.speed_ratio)})",
+                f"{self.material_name(best.material)} on {best.shaft} (speed ratio {number(best.speed_ratio, self.digits)})",
             ),
-            ("mass", (self.q(best.mass, "mass", "mass"), "" if best.cost is None else f" (cost {number(best.cost)})")),
+            (
+                "mass",
+                (
+                    self.q(best.mass, "mass", "mass"),
+                    "" if best.cost is None else f" (cost {number(best.cost, self.digits)})",
+                ),
+            ),
             self.diameter_row(best),
             self.width_row(best),
             (
@@ -211,7 +217,7 @@ class DesignSection(BuilderBase):
             self.eq(
                 "j_at_reference",
                 "J_{F} = J' i²",
-                f"{si(c.j_flywheel, 'inertia')} × {number(c.speed_ratio)}²",
+                f"{si(c.j_flywheel, 'inertia')} × {number(c.speed_ratio, self.worked)}²",
                 res(c.j_at_reference, "inertia"),
                 8,
             )
@@ -222,7 +228,7 @@ class DesignSection(BuilderBase):
                 self.eq(
                     "mean_rim_speed",
                     "v_{m} = i ω_{m} D_{m} / 2",
-                    f"{number(c.speed_ratio)} × {si(cast(float, self.design.omega_mean), 'angular_speed')} × "
+                    f"{number(c.speed_ratio, self.worked)} × {si(cast(float, self.design.omega_mean), 'angular_speed')} × "
                     f"{si(c.dims.d_mean, 'length')} / 2",
                     res(book.mean_rim_speed, "speed"),
                     20,
@@ -233,7 +239,7 @@ class DesignSection(BuilderBase):
             self.eq(
                 "rim_speed",
                 "v = i ω_{max} D_{1} / 2",
-                f"{number(c.speed_ratio)} × {si(self.design.omega, 'angular_speed')} × {si(c.dims.d_outer, 'length')} / 2",
+                f"{number(c.speed_ratio, self.worked)} × {si(self.design.omega, 'angular_speed')} × {si(c.dims.d_outer, 'length')} / 2",
                 res(c.stresses.rim_speed, "speed"),
                 10,
             )
@@ -383,9 +389,9 @@ class DesignSection(BuilderBase):
         if check.difference is not None and check.model_peak is not None:
             text += [
                 "The two models: FE peak ",
-                self.q(check.peak, "stress", digits=4),
+                self.q(check.peak, "stress"),
                 ", Lamé/arm ",
-                self.q(check.model_peak, "stress", digits=4),
+                self.q(check.model_peak, "stress"),
                 f": the FE is {100 * abs(check.difference):.1f} % {'above' if check.difference >= 0 else 'below'}. ",
             ]
         from flyopt.report.text import fem_verdict
@@ -429,7 +435,7 @@ class DesignSection(BuilderBase):
                     n(p["radius"], "length"),
                     n(allowable, "stress", "allowable", 4),
                     "-" if use is None else f"{100 * use:.1f} %",
-                    n(p.get("strength"), "stress", digits=4),
+                    n(p.get("strength"), "stress"),
                     n(p.get("wall"), "length"),
                 ]
             )
@@ -458,17 +464,17 @@ class DesignSection(BuilderBase):
             (
                 "largest σ_{t} / σ_{r}",
                 (
-                    self.q(s.get("hoop_max"), "stress", digits=4),
+                    self.q(s.get("hoop_max"), "stress"),
                     " / ",
-                    self.q(s.get("radial_max"), "stress", digits=4),
+                    self.q(s.get("radial_max"), "stress"),
                     " (von Mises ",
-                    self.q(s.get("von_mises"), "stress", digits=4),
+                    self.q(s.get("von_mises"), "stress"),
                     ")",
                 ),
             )
         )
         if s.get("mean_hoop") is not None and math.isfinite(s["mean_hoop"]):
-            facts.append(("mean hoop stress over the radial section", self.q(s["mean_hoop"], "stress", digits=4)))
+            facts.append(("mean hoop stress over the radial section", self.q(s["mean_hoop"], "stress")))
         if c.stresses.strength_safety is not None and math.isfinite(c.stresses.strength_safety):
             facts.append(("safety on strength", number(c.stresses.strength_safety, 3)))
         if c.stresses.burst_speed is not None and math.isfinite(c.stresses.burst_speed):
@@ -507,7 +513,7 @@ class DesignSection(BuilderBase):
             e_per = c.stresses.unbalance_permissible / c.mass
             blocks.append(
                 Paragraph(
-                    f"Permissible residual unbalance, ISO 21940-11 grade G{number(grade)} at the "
+                    f"Permissible residual unbalance, ISO 21940-11 grade G{number(grade, self.digits)} at the "
                     f"highest speed of the wheel's shaft ({NOTES}, section 13):"
                 )
             )
@@ -515,7 +521,7 @@ class DesignSection(BuilderBase):
                 self.eq(
                     "e_per",
                     "e_{per} = G / Ω",
-                    f"{number(grade * 1e-3)} m/s / {si(omega, 'angular_speed')}",
+                    f"{number(grade * 1e-3, self.worked)} m/s / {si(omega, 'angular_speed')}",
                     res(e_per, "length"),
                     13,
                 )
@@ -582,18 +588,18 @@ class DesignSection(BuilderBase):
                     (
                         "bearing pressure",
                         (
-                            q(k["bearing_pressure"], "stress", digits=4),
+                            q(k["bearing_pressure"], "stress"),
                             " (allowable ",
-                            q(k["allowable_pressure"], "stress", digits=4),
+                            q(k["allowable_pressure"], "stress"),
                             ")",
                         ),
                     ),
                     (
                         "shear",
                         (
-                            q(k["shear"], "stress", digits=4),
+                            q(k["shear"], "stress"),
                             " (allowable ",
-                            q(k["allowable_shear"], "stress", digits=4),
+                            q(k["allowable_shear"], "stress"),
                             ")",
                         ),
                     ),

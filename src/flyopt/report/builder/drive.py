@@ -45,7 +45,7 @@ class DriveSection(BuilderBase):
                         ")",
                     ),
                 ),
-                ("motor ratio", f"{number(best.motor_ratio)} (motor speed over crank speed)"),
+                ("motor ratio", f"{number(best.motor_ratio, self.digits)} (motor speed over crank speed)"),
                 (
                     "flywheel",
                     (
@@ -82,29 +82,32 @@ class DriveSection(BuilderBase):
                 ),
             ]
             if best.flywheel_ratio is not None:
-                rows.insert(3, ("flywheel shaft ratio", number(best.flywheel_ratio)))
+                rows.insert(3, ("flywheel shaft ratio", number(best.flywheel_ratio, self.digits)))
             if best.cost is not None:
-                rows.append(("cost", number(best.cost)))
+                rows.append(("cost", number(best.cost, self.digits)))
             if drive.relaxation is not None:
                 from flyopt.report.drive import relaxation_summary
 
-                summary, moved = relaxation_summary(drive, self.units)
+                summary, moved = relaxation_summary(drive, self.units, self.digits)
                 rows.append(("relaxed optimum", summary))
                 if moved:
                     rows.append(("binding limits", "; ".join(moved) + " (relaxed optimum, first order)"))
             blocks.append(Facts(tuple(rows), "drive"))
         rows = []
+        rated = [run.motor.rated_power for run in drive.runs]  # one unit for the column, chosen from its largest
         for run in drive.runs:
             rows.append(
                 [
                     run.motor.name,
-                    self.n(run.motor.rated_power, "power"),
-                    number(run.motor_ratio, 5),
+                    self.n(run.motor.rated_power, "power", among=rated),
+                    number(run.motor_ratio, self.digits),
                     self.n(run.j_flywheel, "inertia"),
                     run.limit or "-",
-                    number(run.rms_torque / run.rated_torque, 4) if run.rms_torque and run.rated_torque else "-",
+                    number(run.rms_torque / run.rated_torque, self.digits)
+                    if run.rms_torque and run.rated_torque
+                    else "-",
                     self.n(run.startup_time, "time"),
-                    number(run.flywheel_ratio, 4),
+                    number(run.flywheel_ratio, self.digits),
                     self.n(run.wheel_mass, "mass"),
                     self.n(run.total_mass, "mass"),
                     ("best" if run is best else "ok") if run.feasible else run.reason,
@@ -114,7 +117,7 @@ class DriveSection(BuilderBase):
             Table(
                 (
                     "motor",
-                    self.head("rated power", "power"),
+                    self.head("rated power", "power", rated),
                     "motor ratio",
                     self.head("J_{F}", "inertia"),
                     "limit",
@@ -138,7 +141,7 @@ class DriveSection(BuilderBase):
                 Paragraph(
                     (
                         f"Drive verification (the machine simulated with the wheel as built): {verdict}. "
-                        f"Achieved δ {number(v.achieved_delta)} against {number(v.delta_allowed)}; mean "
+                        f"Achieved δ {number(v.achieved_delta, self.digits)} against {number(v.delta_allowed, self.digits)}; mean "
                         "speed ",
                         self.q(v.omega_mean, "angular_speed"),
                         "; RMS torque ",

@@ -26,7 +26,7 @@ class ExistingFlywheelSection(BuilderBase):
                 self.q(wheel.radius_of_gyration, "length", "radius_of_gyration"),
                 ")",
             )
-        given += (f" on the shaft {wheel.shaft} (speed ratio {number(wheel.speed_ratio)})",)
+        given += (f" on the shaft {wheel.shaft} (speed ratio {number(wheel.speed_ratio, self.digits)})",)
         from flyopt.report.text import ACHIEVED_RANGE
 
         rows: list[tuple] = [
@@ -43,7 +43,7 @@ class ExistingFlywheelSection(BuilderBase):
                 "δ reached",
                 (
                     self.q(check.achieved_delta, "dimensionless", "achieved_delta"),
-                    f" (1/{number(1 / check.achieved_delta, 4)})" if check.achieved_delta > 0 else "",
+                    f" (1/{number(1 / check.achieved_delta, self.digits)})" if check.achieved_delta > 0 else "",
                 ),
             ),
             (
@@ -93,13 +93,13 @@ class ExistingFlywheelSection(BuilderBase):
         if check.delta_allowed is None:
             return
         if check.suffices:
-            verdict = f"It suffices for the allowed δ = {number(check.delta_allowed)}"
+            verdict = f"It suffices for the allowed δ = {number(check.delta_allowed, self.digits)}"
         else:
-            verdict = f"It does NOT suffice for the allowed δ = {number(check.delta_allowed)}"
+            verdict = f"It does NOT suffice for the allowed δ = {number(check.delta_allowed, self.digits)}"
         if check.j_required is not None and check.j_required > 0 and check.margin is not None:
             verdict += (
-                f": it gives {number(wheel.j_at_reference)} kg·m² at the reference shaft where "
-                f"{number(check.j_required)} kg·m² are needed ({number(abs(100 * check.margin), 4)} % "
+                f": it gives {number(wheel.j_at_reference, self.worked)} kg·m² at the reference shaft where "
+                f"{number(check.j_required, self.worked)} kg·m² are needed ({number(abs(100 * check.margin), self.worked)} % "
                 f"{'over' if check.suffices else 'short'})."
             )
         else:

@@ -24,6 +24,7 @@ def build(
     inputs: ReportInputs | CalculationInputs,
     units: str = display.DEFAULT,
     title_block: tuple[tuple[str, Any], ...] = (),
+    digits: int = display.DEFAULT_DIGITS,
 ) -> Document:
     """The report of a solved scene, or of a scene that is one calculation, in a unit system.
 
@@ -36,6 +37,9 @@ def build(
         The units of the summary, facts and tables (equations stay SI).
     title_block : tuple of (str, str)
         Lines added to the title block (the date, the file's hash).
+    digits : int
+        Significant figures of every number shown, tables and equations alike
+        (:func:`flyopt.report.display.check_digits`).
 
     Returns
     -------
@@ -43,9 +47,10 @@ def build(
         Its figures are open matplotlib Figures: render it, then :meth:`Document.close`.
     """
     display.check_system(units)
+    display.check_digits(digits)
     if isinstance(inputs, CalculationInputs):
-        return with_appendix(build_calculation(inputs, units, title_block))
-    return with_appendix(Builder(inputs, units).document(title_block))
+        return with_appendix(build_calculation(inputs, units, title_block, digits))
+    return with_appendix(Builder(inputs, units, digits).document(title_block))
 
 
 class Builder(

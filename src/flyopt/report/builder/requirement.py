@@ -26,7 +26,7 @@ class Requirement(BuilderBase):
                     "j_energy",
                     "J_{F} = A_{max} / (ω_{m}² δ) − J_{c}",
                     f"{si(a.a_max, 'energy')} / ({sq(si(a.omega_mean, 'angular_speed'))} × "
-                    f"{number(a.delta)}) − {si(a.j_constant, 'inertia')}",
+                    f"{number(a.delta, self.worked)}) − {si(a.j_constant, 'inertia')}",
                     res(a.j_margin, "inertia"),
                     5,
                 )
@@ -45,7 +45,7 @@ class Requirement(BuilderBase):
                         "j_energy_textbook",
                         "J_{F} = A_{max} / (ω_{m}² δ) − J̄_{e}",
                         f"{si(a.a_max, 'energy')} / ({sq(si(self.omega_given(), 'angular_speed'))} × "
-                        f"{number(a.delta)}) − {si(j_mean, 'inertia')}",
+                        f"{number(a.delta, self.worked)}) − {si(j_mean, 'inertia')}",
                         res(textbook["j_required"], "inertia"),
                         5,
                     )
@@ -64,8 +64,8 @@ class Requirement(BuilderBase):
             blocks.append(
                 Paragraph(
                     (
-                        f"No flywheel is needed: with none the machine gives δ = {number(a.delta_reached)}, "
-                        f"within the allowed {number(a.delta)}, and the speed stays within δ however small the "
+                        f"No flywheel is needed: with none the machine gives δ = {number(a.delta_reached, self.digits)}, "
+                        f"within the allowed {number(a.delta, self.digits)}, and the speed stays within δ however small the "
                         "inertia, the motor's slip alone holding it (the periodic solution down to a vanishing "
                         "inertia; ",
                         NOTES,
@@ -91,7 +91,7 @@ class Requirement(BuilderBase):
             self.eq(
                 "gd2",
                 "GD² = 4 g J_{F}",
-                f"4 × {number(G_STANDARD)} m/s² × {si(a.j_required, 'inertia')}",
+                f"4 × {number(G_STANDARD, self.worked)} m/s² × {si(a.j_required, 'inertia')}",
                 res(a.gd2_required, "flywheel_moment"),
                 3,
             )
@@ -141,7 +141,7 @@ class Requirement(BuilderBase):
         blocks.append(
             self.eq(
                 "em_upper",
-                f"max_{{φ}}[½ ω_{{min}}² J(φ) − ΔE(φ)], {at(number(math.degrees(phi_min)))}",
+                f"max_{{φ}}[½ ω_{{min}}² J(φ) − ΔE(φ)], {at(number(math.degrees(phi_min), self.worked))}",
                 f"½ × {sq(w_min)} × {si(j_min, 'inertia')} − {si(e_min, 'energy')}",
                 self.si(upper, "energy", 10, bracket=False),
                 6,
@@ -150,7 +150,7 @@ class Requirement(BuilderBase):
         blocks.append(
             self.eq(
                 "em_lower",
-                f"min_{{φ}}[½ ω_{{max}}² J(φ) − ΔE(φ)], {at(number(math.degrees(phi_max)))}",
+                f"min_{{φ}}[½ ω_{{max}}² J(φ) − ΔE(φ)], {at(number(math.degrees(phi_max), self.worked))}",
                 f"½ × {sq(w_max)} × {si(j_max, 'inertia')} − {si(e_max, 'energy')}",
                 self.si(lower, "energy", 10, bracket=False),
                 6,
@@ -204,7 +204,7 @@ class Requirement(BuilderBase):
                 "J_F below the machine's own inertia taken away",
             }[detail.limit]
             rows.append(("limit", limit))
-            rows.append(("δ of the solution", number(detail.solution.delta)))
+            rows.append(("δ of the solution", number(detail.solution.delta, self.digits)))
         blocks.append(Facts(tuple(rows), "dynamic"))
         if textbook is not None and textbook["j_required"] is not None and a.j_margin > 0:
             blocks.append(Paragraph(self.off_words(textbook), "note"))
@@ -228,7 +228,7 @@ class Requirement(BuilderBase):
                 "j_engine_textbook",
                 "J_{F} = A_{max} / (ω_{m}² δ) − J̄_{e}",
                 f"{si(tb.a_max, 'energy')} / ({self.squared(si(a.omega_mean, 'angular_speed'))} × "
-                f"{number(a.delta)}) − {si(tb.j_machine_mean, 'inertia')}",
+                f"{number(a.delta, self.worked)}) − {si(tb.j_machine_mean, 'inertia')}",
                 self.result(tb.j_required, "inertia"),
                 14,
             )

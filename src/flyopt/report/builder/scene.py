@@ -21,11 +21,11 @@ class SceneAndModel(BuilderBase):
             ("mean speed (as given)", self.q(self.inputs.scene.omega_mean, "angular_speed")),
             (
                 "allowed δ",
-                number(self.inputs.scene.delta)
+                number(self.inputs.scene.delta, self.digits)
                 if self.inputs.scene.delta is not None
                 else "not given: the δ the flywheel given reaches is found",
             ),
-            ("efficiency motor → reference shaft", number(scene.efficiency, 4)),
+            ("efficiency motor → reference shaft", number(scene.efficiency, self.digits)),
             ("J_{c} (machine and shafts)", self.q(scene.j_constant, "inertia", "j_constant")),
         ]
         if scene.net is not None:
@@ -36,8 +36,8 @@ class SceneAndModel(BuilderBase):
         shafts = [
             [
                 s.name,
-                number(s.speed_ratio),
-                number(s.efficiency, 4),
+                number(s.speed_ratio, self.digits),
+                number(s.efficiency, self.digits),
                 self.n(s.diameter, "length") if s.diameter else "-",
                 self.n(s.inertia, "inertia") if s.inertia else "-",
             ]
@@ -64,12 +64,12 @@ class SceneAndModel(BuilderBase):
                 ("geometry", spec.geometry),
                 ("criterion", spec.criterion),
                 ("objective", spec.objective),
-                ("H/B range", f"{number(spec.hb_ratio[0], 4)} to {number(spec.hb_ratio[1], 4)}"),
+                ("H/B range", f"{number(spec.hb_ratio[0], self.digits)} to {number(spec.hb_ratio[1], self.digits)}"),
                 ("envelope: outer diameter", self.limit(spec.max_outer_diameter)),
                 ("envelope: width", self.limit(spec.max_width)),
             ]
             if spec.safety_factor is not None:
-                brief.append(("safety factor", number(spec.safety_factor, 4)))
+                brief.append(("safety factor", number(spec.safety_factor, self.digits)))
             if spec.min_wall is not None:
                 brief.append(("thinnest section", self.q(spec.min_wall, "length")))
             materials = sorted({self.material_name(c.material) for c in self.design.candidates})
@@ -93,7 +93,7 @@ class SceneAndModel(BuilderBase):
                         # bound −min J_e, not a flywheel), as the text's table says
                         "none" if m["exact"] and a.delta_holds_at_any_inertia else self.n(m["j_required"], "inertia"),
                         "-" if m["j_error"] is None else f"{100 * m['j_error']:+.3g} %",
-                        "-" if m["achieved_delta"] is None else number(m["achieved_delta"]),
+                        "-" if m["achieved_delta"] is None else number(m["achieved_delta"], self.digits),
                         m["note"] or "",
                     ]
                 )
@@ -119,7 +119,7 @@ class SceneAndModel(BuilderBase):
                 gives = (
                     ""
                     if textbook["achieved_delta"] is None
-                    else f", which really gives δ = {number(textbook['achieved_delta'])} instead of {number(a.delta)}"
+                    else f", which really gives δ = {number(textbook['achieved_delta'], self.digits)} instead of {number(a.delta, self.digits)}"
                 )
                 blocks.append(
                     Paragraph(

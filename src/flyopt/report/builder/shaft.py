@@ -43,8 +43,8 @@ class ShaftSection(BuilderBase):
                 [
                     lim.kind,
                     lim.where,
-                    limit_value(lim, lim.value, self.units),
-                    limit_value(lim, lim.allowed, self.units),
+                    limit_value(lim, lim.value, self.units, self.digits),
+                    limit_value(lim, lim.allowed, self.units, self.digits),
                     number(lim.utilisation, 3),
                     "holds" if lim.holds else "FAILS",
                 ]
@@ -60,18 +60,18 @@ class ShaftSection(BuilderBase):
                 )
             )
             facts: list[Any] = [
-                ("weight of the wheel", self.q(c.weight, "force", "weight", 4)),
+                ("weight of the wheel", self.q(c.weight, "force", "weight")),
                 (
                     "permissible unbalance force (ISO 21940-11)",
-                    self.q(c.unbalance, "force", "unbalance_force", 4),
+                    self.q(c.unbalance, "force", "unbalance_force"),
                 ),
                 (
                     "torque the wheel exchanges",
                     (
                         "midrange ",
-                        self.q(c.torque_mean, "torque", "torque_mean", 4),
+                        self.q(c.torque_mean, "torque", "torque_mean"),
                         ", alternating ",
-                        self.q(c.torque_alternating, "torque", "torque_alternating", 4),
+                        self.q(c.torque_alternating, "torque", "torque_alternating"),
                     ),
                 ),
                 (

@@ -8,7 +8,7 @@ from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report.builder.base import NOTES
 from flyopt.report.builder.requirement import Requirement
-from flyopt.report.display import denoised, number
+from flyopt.report.display import number
 from flyopt.report.document import Facts, Paragraph, Table
 
 
@@ -41,7 +41,11 @@ class Steps(Requirement):
 
         blocks.append(
             self.eq(
-                "omega_mean", "ω_{m} = 2π n / 60", f"2π × {number(rad_s_to_rpm(w))} / 60", res(w, "angular_speed"), 2
+                "omega_mean",
+                "ω_{m} = 2π n / 60",
+                f"2π × {number(rad_s_to_rpm(w), self.worked)} / 60",
+                res(w, "angular_speed"),
+                2,
             )
         )
         if a.model == Model.DYNAMIC:
@@ -79,7 +83,7 @@ class Steps(Requirement):
             self.eq(
                 "omega_max",
                 "ω_{max} = ω_{m} (1 + δ/2)",
-                f"{w_si} × (1 + {number(a.delta)}/2)",
+                f"{w_si} × (1 + {number(a.delta, self.worked)}/2)",
                 res(a.omega_max, "angular_speed"),
                 2,
             )
@@ -88,7 +92,7 @@ class Steps(Requirement):
             self.eq(
                 "omega_min",
                 "ω_{min} = ω_{m} (1 − δ/2)",
-                f"{w_si} × (1 − {number(a.delta)}/2)",
+                f"{w_si} × (1 − {number(a.delta, self.worked)}/2)",
                 res(a.omega_min, "angular_speed"),
                 2,
             )
@@ -123,7 +127,7 @@ class Steps(Requirement):
                 [
                     s.name,
                     self.n(s.inertia, "inertia"),
-                    number(s.speed_ratio),
+                    number(s.speed_ratio, self.digits),
                     self.n(s.inertia * s.speed_ratio**2, "inertia"),
                 ]
                 for s in inertia
@@ -149,7 +153,7 @@ class Steps(Requirement):
                 ("J_{e}(φ) = J_{c} + J_{v}(φ), from", (self.q(low, "inertia"), " to ", self.q(high, "inertia"))),
                 ("cycle mean J̄_{e}", self.q(mean, "inertia")),
             ]
-        rows.append(("efficiency motor → reference shaft η", number(scene.efficiency, 4)))
+        rows.append(("efficiency motor → reference shaft η", number(scene.efficiency, self.digits)))
         blocks.append(Facts(tuple(rows), "reduction"))
 
     def step_work(self) -> None:
@@ -231,7 +235,7 @@ class Steps(Requirement):
             self.eq(
                 "motor_power",
                 "P_{motor} = P / η",
-                f"{si(a.power, 'power')} / {number(a.efficiency)}",
+                f"{si(a.power, 'power')} / {number(a.efficiency, self.worked)}",
                 res(a.motor_power, "power"),
                 11,
             )
@@ -253,18 +257,18 @@ class Steps(Requirement):
         same = (a.angle_delta_e_max, a.angle_delta_e_min) == (a.angle_omega_max, a.angle_omega_min)
         top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")
         rows = []
-        shown = denoised([e["delta_e"] for e in a.energy_chain])
-        for e, delta_e in zip(a.energy_chain, shown, strict=True):
+        chain = [e["delta_e"] for e in a.energy_chain]  # one column: its unit and round-off by its largest
+        for e in a.energy_chain:
             mark = top if e["index"] == a.index_omega_max else bottom if e["index"] == a.index_omega_min else ""
             where = (
                 self.n(e["angle"], "angle")
                 if e["angle"] is not None
                 else ("start" if e["index"] == 0 else f"after area {e['index']}")
             )
-            rows.append([str(e["index"]), where, self.n(delta_e, "energy", "delta_e"), mark])
+            rows.append([str(e["index"]), where, self.n(e["delta_e"], "energy", "delta_e", among=chain), mark])
         blocks.append(
             Table(
-                ("point", self.head("angle φ", "angle"), self.head("ΔE", "energy"), ""),
+                ("point", self.head("angle φ", "angle"), self.head("ΔE", "energy", chain), ""),
                 tuple(rows),
                 ("<", ">", ">", "<"),
                 "The chain of the energy indicator diagram: ΔE at the cycle start, at every crossing of "
@@ -323,7 +327,7 @@ class Steps(Requirement):
                 self.eq(
                     f"j_shaft:{s.name}",
                     f"J'_{{{s.name}}} = J_{{F}} / i²",
-                    f"{self.si(a.j_required, 'inertia')} / {number(s.speed_ratio)}²",
+                    f"{self.si(a.j_required, 'inertia')} / {number(s.speed_ratio, self.worked)}²",
                     self.result(s.j_required, "inertia"),
                     8,
                 )
@@ -331,7 +335,7 @@ class Steps(Requirement):
         rows = [
             [
                 s.name,
-                number(s.speed_ratio),
+                number(s.speed_ratio, self.digits),
                 self.n(s.omega, "angular_speed"),
                 self.n(s.j_required, "inertia"),
                 self.n(s.gd2_required, "flywheel_moment"),

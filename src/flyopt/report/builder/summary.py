@@ -25,7 +25,7 @@ class Summary(BuilderBase):
             ("mean speed ω_{m}", self.q(a.omega_mean, "angular_speed", "omega_mean")),
             (
                 "δ reached with the flywheel given" if self.solution.flywheel is not None else "allowed δ",
-                (self.q(a.delta, "dimensionless", "delta"), f" (1/{number(1 / a.delta, 4)})"),
+                (self.q(a.delta, "dimensionless", "delta"), f" (1/{number(1 / a.delta, self.digits)})"),
             ),
         ]
         from flyopt.report.text import ACHIEVED_RANGE, ALLOWED_RANGE, allowed_speed_range, reached_below_allowed
@@ -78,7 +78,10 @@ class Summary(BuilderBase):
             rows.append(
                 (
                     "motor power",
-                    (self.q(a.motor_power, "power", "motor_power"), f" (efficiency {number(a.efficiency, 4)})"),
+                    (
+                        self.q(a.motor_power, "power", "motor_power"),
+                        f" (efficiency {number(a.efficiency, self.digits)})",
+                    ),
                 )
             )
         if best is not None:
@@ -86,7 +89,7 @@ class Summary(BuilderBase):
                 (
                     "chosen wheel",
                     f"{best.geometry} of {self.material_name(best.material)} on the {best.shaft} shaft "
-                    f"(speed ratio {number(best.speed_ratio)})",
+                    f"(speed ratio {number(best.speed_ratio, self.digits)})",
                 ),
                 ("mass", self.q(best.mass, "mass", "mass")),
                 ("outer diameter", self.q(best.dims.d_outer, "length", "d_outer")),
@@ -125,7 +128,7 @@ class Summary(BuilderBase):
             m = drive.best.motor
             rows += [
                 ("motor", (f"{m.name}: ", self.q(m.rated_power, "power", "rated_power"))),
-                ("motor ratio", number(drive.best.motor_ratio)),
+                ("motor ratio", number(drive.best.motor_ratio, self.digits)),
                 ("motor + wheel mass", self.q(drive.best.total_mass, "mass", "total_mass")),
             ]
         if v is not None:
@@ -135,7 +138,7 @@ class Summary(BuilderBase):
                     "verified δ",
                     (
                         self.q(v.achieved_delta, "dimensionless", "achieved_delta"),
-                        f" against the allowed {number(v.delta_allowed)}: {verdict}",
+                        f" against the allowed {number(v.delta_allowed, self.digits)}: {verdict}",
                     ),
                 )
             )
@@ -148,14 +151,14 @@ class Summary(BuilderBase):
         if check is not None:  # a wheel that exists: the analysis is at the δ it reaches
             given = (
                 f"The flywheel given ({display.quantity_text(check.flywheel.j_at_reference, 'inertia', self.units)} "
-                f"at the reference shaft) leaves δ = {number(check.achieved_delta, 4)}, the speed between "
+                f"at the reference shaft) leaves δ = {number(check.achieved_delta, self.digits)}, the speed between "
                 f"{display.quantity_text(check.omega_min, 'angular_speed', self.units)} and "
                 f"{display.quantity_text(check.omega_max, 'angular_speed', self.units)}"
             )
             if check.delta_allowed is None:
                 return given + "."
             holds = "within" if check.suffices else "NOT within"
-            return given + f": {holds} the allowed δ = {number(check.delta_allowed, 4)}."
+            return given + f": {holds} the allowed δ = {number(check.delta_allowed, self.digits)}."
         if status == "infeasible":
             said = self.design if self.design is not None else self.solution.drive
             if said is None:
@@ -167,12 +170,12 @@ class Summary(BuilderBase):
                 held = drive_check.verification.achieved_delta if drive_check is not None else a.delta_reached
                 return (
                     f"The drive needs no flywheel: the motor {self.solution.drive.best.motor.name} at ratio "
-                    f"{number(self.solution.drive.best.motor_ratio)} holds δ = {number(held)} by itself, "
-                    f"within the allowed {number(a.delta)}."
+                    f"{number(self.solution.drive.best.motor_ratio, self.digits)} holds δ = {number(held, self.digits)} by itself, "
+                    f"within the allowed {number(a.delta, self.digits)}."
                 )
             if not a.flywheel_needed:
                 return (
-                    f"No flywheel is needed: the machine's own inertia keeps δ within {number(a.delta)} "
+                    f"No flywheel is needed: the machine's own inertia keeps δ within {number(a.delta, self.digits)} "
                     f"(J_F would be {display.quantity_text(a.j_margin, 'inertia', self.units)})."
                 )
             return f"The machine needs a flywheel of {display.quantity_text(a.j_required, 'inertia', self.units)}."
@@ -182,11 +185,14 @@ class Summary(BuilderBase):
         checked = (
             ""
             if v is None
-            else (f"; simulated, it gives δ = {number(v.achieved_delta, 4)}" + (" (FLAGGED)" if self.flagged() else ""))
+            else (
+                f"; simulated, it gives δ = {number(v.achieved_delta, self.digits)}"
+                + (" (FLAGGED)" if self.flagged() else "")
+            )
         )
         return (
             f"A {best.geometry} flywheel of {self.material_name(best.material)} on the {best.shaft} shaft, "
             f"{display.quantity_text(best.mass, 'mass', self.units, 4)}, outer diameter "
             f"{display.quantity_text(best.dims.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
-            f"within δ = {number(a.delta, 4)}{checked}."
+            f"within δ = {number(a.delta, self.digits)}{checked}."
         )

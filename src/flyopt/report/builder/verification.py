@@ -40,7 +40,7 @@ class VerificationAndProvenance(BuilderBase):
                             "achieved δ",
                             (
                                 self.q(v.achieved_delta, "dimensionless", "achieved_delta"),
-                                f" against the allowed {number(v.delta_allowed)} (tolerance {number(v.tolerance, 3)})",
+                                f" against the allowed {number(v.delta_allowed, self.digits)} (tolerance {number(v.tolerance, 3)})",
                             ),
                         ),
                         (
@@ -70,7 +70,7 @@ class VerificationAndProvenance(BuilderBase):
                             f"= ({self.si(v.omega_max, 'angular_speed', 10)} − "
                             f"{self.si(v.omega_min, 'angular_speed', 10)}) / "
                             f"{self.si(v.omega_mean, 'angular_speed', 10)}",
-                            f"= {number(v.achieved_delta)}",
+                            f"= {number(v.achieved_delta, self.digits)}",
                         ),
                         f"{NOTES}, section 2",
                     )
@@ -81,7 +81,7 @@ class VerificationAndProvenance(BuilderBase):
                 text: str | tuple[Any, ...] = (
                     "Start-up from rest: ",
                     self.q(st.time, "time"),
-                    f" ({number(st.cycles, 4)} cycles) to ",
+                    f" ({number(st.cycles, self.digits)} cycles) to ",
                     self.q(st.omega_target, "angular_speed"),
                     f"; {st.method}.",
                 )

@@ -194,8 +194,9 @@ def show(value: npt.ArrayLike, dimension: str, units: str) -> npt.NDArray[np.flo
 
 
 def q(value: float | None, dimension: str, units: str, digits: int = DIGITS) -> str:
-    """A quantity as people read it, "0.4625 kN·m"."""
-    return display.quantity_text(value, dimension, units, digits)
+    """A quantity as people read it, "0.4625 kN·m": in the unit of the diagram's axes, the system's one unit of
+    the dimension (:func:`unit`), so that a label reads against its axis (no per-value prefix)."""
+    return display.quantity_text(value, dimension, units, digits, prefixed=False)
 
 
 def axis_label(words: str, dimension: str, units: str) -> str:
