@@ -97,3 +97,16 @@ def test_the_report_has_the_shaft_section_with_both_diagrams_drawn():
         assert any(type(b).__name__ == "Table" and b.name == "shaft_limits" for b in section.blocks)
     finally:
         document.close()
+
+
+def test_the_engine_scenes_text_names_the_shaft_material_as_the_library_does(engine):
+    """One name per material (issue 29): the shaft's grade in the text by its designation ('42CrMo4+QT', from
+    the materials' data), as every other text names a material; the JSON keeps its key."""
+    from flyopt.report.shaft import shaft_report
+
+    scene, solution = engine
+    (report,) = solution.shaft_checks
+    grade = builtin_materials()[report.material]
+    text = "\n".join(shaft_report(solution.shaft_checks))
+    assert f"({grade.display_name})" in text and grade.display_name != report.material
+    assert solution_document(solution, ENGINE)["shaft_checks"][0]["material"] == report.material

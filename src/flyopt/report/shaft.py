@@ -7,6 +7,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from flyopt.design.combination import shaft_label
+from flyopt.design.shaft.check import JSON_NAMES
 from flyopt.report.display import DEFAULT, DEFAULT_DIGITS
 from flyopt.report.text import formatters, number, table
 
@@ -16,22 +17,12 @@ if TYPE_CHECKING:
 
 __all__ = ["shaft_report", "limit_value"]
 
-#: The output field (flyopt.outputs.quantities) each kind of limit is shown as.
-_FIELDS = {
-    "fatigue": "fatigue_factor",
-    "yield": "yield_factor",
-    "slope": "slope",
-    "deflection": "deflection",
-    "lateral": "critical_speed",
-    "torsional": "critical_speed",
-}
-
 
 def limit_value(limit: ShaftLimit, value: float, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
     """A limit's value (or allowed value) in the unit system, by its quantity's field, to ``digits`` figures."""
     q, _ = formatters(units, digits)
     scale = math.pi / 30.0 if limit.unit == "rpm" else 1.0
-    return q(value * scale, _FIELDS[limit.kind])
+    return q(value * scale, JSON_NAMES[limit.kind])  # the output field it is shown as, as --json names it
 
 
 def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
@@ -43,7 +34,7 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
         c = rep.check
         lines += [
             "",
-            f"Shaft check: the {shaft_label(rep.shaft)} ({rep.material}) with the chosen wheel "
+            f"Shaft check: the {shaft_label(rep.shaft)} ({rep.material_name or rep.material}) with the chosen wheel "
             "(a post-check of each design: a combination whose shaft fails is infeasible)",
             f"  loads: weight {q(c.weight, 'weight')}, permissible unbalance force "
             f"{q(c.unbalance, 'unbalance_force')} (ISO 21940-11), torque midrange "

@@ -60,6 +60,7 @@ class ShaftReport:
     material: str
     check: ShaftCheck
     sensitivity: float  # d(utilisation of the binding limit)/d(wheel mass) [1/kg]
+    material_name: str = ""  # the material's name for people (Material.display_name); the JSON keeps its key
 
     def to_dict(self) -> dict[str, Any]:
         """The report for ``--json`` (SI)."""
@@ -185,4 +186,5 @@ def report(ctx: ShaftContext, candidate: Candidate) -> ShaftReport | None:
     if check is None:
         return None
     material = ctx.materials[candidate.shaft]
-    return ShaftReport(candidate.shaft, material.name, check, mass_sensitivity(ctx, candidate, check.binding))
+    sensitivity = mass_sensitivity(ctx, candidate, check.binding)
+    return ShaftReport(candidate.shaft, material.name, check, sensitivity, material.display_name)

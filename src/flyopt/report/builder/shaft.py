@@ -30,7 +30,7 @@ class ShaftSection(BuilderBase):
             blocks.append(
                 Paragraph(
                     (
-                        f"The {shaft_label(report.shaft)} described as a part ({report.material}), checked with "
+                        f"The {shaft_label(report.shaft)} described as a part ({report.material_name or report.material}), checked with "
                         f"the chosen wheel over the cycle ({NOTES}, section 26): DE-Goodman fatigue and "
                         "first-cycle yield (Shigley 9th ed., Eqs. (7-7), (7-15)) at the keyseat, the shoulders "
                         "and the plain sections, the slope at the bearings, the first forward whirl and the "
