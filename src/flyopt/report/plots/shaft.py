@@ -118,11 +118,15 @@ def plot_campbell(
     worst = next((lim for lim in report.check.limits if lim.kind == "torsional"), None)
     worst_order = None if worst is None else float(worst.where.split()[-1])
     labelled = set(np.sort(check.orders)[:4].tolist()) | ({worst_order} if worst_order is not None else set())
-    for q in check.orders:
+    placed: list[tuple[int, float]] = []  # (index along the speed axis, frequency) of each label drawn
+    gap = 0.05 * 1.15 * modes.max()  # labels at the same speed (the right edge) at least this far apart
+    for q in sorted(check.orders, key=lambda o: (float(o) != worst_order, -float(o))):
         f = q * rpm / 60.0
         ax.plot(shown, f, color="0.6", lw=0.7)
-        if float(q) in labelled:  # the lowest orders and the nearest one; the others unlabelled (legible)
-            k = min(int(np.searchsorted(f, 1.15 * modes.max())), len(f) - 1)
+        k = min(int(np.searchsorted(f, 1.15 * modes.max())), len(f) - 1)
+        crowded = any(j == k and abs(f[k] - g) < gap for j, g in placed)
+        if float(q) in labelled and not crowded:  # the lowest orders and the nearest; none over another
+            placed.append((k, float(f[k])))
             ax.annotate(
                 f"{q:.3g}",
                 (shown[k], f[k]),
