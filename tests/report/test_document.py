@@ -167,14 +167,15 @@ def _page(path):
 _RENDERED = {}
 
 
-def render(scene, suffix="html", units=None, folder=None):
-    """``flyopt report problems/SCENE.toml -o FILE`` in this process: (status, path, stderr)."""
-    key = (scene, suffix, units)
+def render(scene, suffix="html", units=None, folder=None, digits=None):
+    """``flyopt report problems/SCENE.toml -o FILE [--digits N]`` in this process: (status, path, stderr)."""
+    key = (scene, suffix, units, digits)
     if key not in _RENDERED:
         from flyopt.cli.main import main
 
-        out = folder / f"{scene}-{units or 'default'}.{suffix}"
+        out = folder / f"{scene}-{units or 'default'}-{digits or 'default'}.{suffix}"
         args = ["report", str(PROBLEMS / f"{scene}.toml"), "-o", str(out)] + (["--units", units] if units else [])
+        args += ["--digits", str(digits)] if digits else []
         import contextlib
         import io
 

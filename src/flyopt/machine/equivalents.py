@@ -220,12 +220,15 @@ def equivalents_at(
     phi = 0.0 if position.angle is None else float(position.angle)
     at = np.array(phi)
     inertia, torque = equivalent_inertia(members, j_constant), equivalent_torque(members)
-    j_e, m_e = float(inertia(at)), float(torque(at))
-    j_parts, m_parts = inertia.contributions(at), torque.contributions(at)
     rows = []
-    for member in members:
-        v, w = member.ratios(at)
-        rows.append(MemberAt(member.name, _size(v), float(w), float(j_parts[member.name]), float(m_parts[member.name])))
+    with np.errstate(over="ignore", invalid="ignore"):  # a ratio that overflows is refused just below, in one line
+        j_e, m_e = float(inertia(at)), float(torque(at))
+        j_parts, m_parts = inertia.contributions(at), torque.contributions(at)
+        for member in members:
+            v, w = member.ratios(at)
+            rows.append(
+                MemberAt(member.name, _size(v), float(w), float(j_parts[member.name]), float(m_parts[member.name]))
+            )
     numbers = [j_e, m_e, *(x for r in rows for x in (r.velocity_ratio, r.angular_ratio))]
     if not all(math.isfinite(x) for x in numbers):
         raise SceneError(
