@@ -285,12 +285,14 @@ NOT_TOML = ["01", "1.", ".5", "1e", "1_000", "nan", "-inf", '"1"']
 BLANK = st.sampled_from(["", " ", "\t", "\n", " \n  ", "\r\n"])
 
 
-@settings(max_examples=80, deadline=None)
-@given(
+#: Hypothesis' strategies of test_inline_tables_by_the_compiled_reader_are_tomllibs: the default run tries 30 examples, the slow run 200.
+_INLINE_TABLES = dict(
     rows=st.lists(st.tuples(TOML_NUMBER, TOML_NUMBER, BLANK), min_size=60, max_size=150),
     bad=st.one_of(st.none(), st.tuples(st.integers(0, 299), st.sampled_from(NOT_TOML))),
 )
-def test_inline_tables_by_the_compiled_reader_are_tomllibs(rows, bad):
+
+
+def _inline_table_case(rows, bad):
     tokens = [t for a, v, _ in rows for t in (a, v)]
     if bad is not None:
         tokens[bad[0] % len(tokens)] = bad[1]
@@ -308,6 +310,14 @@ def test_inline_tables_by_the_compiled_reader_are_tomllibs(rows, bad):
     points = data["points"]
     got = points.array if isinstance(points, toml_file.InlineRows) else np.array(points, dtype=float)
     assert np.array_equal(bits(got), bits(np.array(reference["points"], dtype=float)))
+
+
+test_inline_tables_by_the_compiled_reader_are_tomllibs = settings(max_examples=30, deadline=None)(
+    given(**_INLINE_TABLES)(_inline_table_case)
+)
+test_inline_tables_by_the_compiled_reader_are_tomllibs_many = pytest.mark.slow(
+    settings(max_examples=200, deadline=None)(given(**_INLINE_TABLES)(_inline_table_case))
+)
 
 
 def test_a_large_inline_table_by_the_compiled_reader_names_the_point(tmp_path):

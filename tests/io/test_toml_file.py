@@ -218,13 +218,15 @@ NOT_TOML = ["01", "1.", ".5", "1e", "--1", "1.2.3", "+.5", "1.e5", "1e400", *TOM
 BLANK = st.sampled_from(["", " ", "  ", "\t", "\n", " \n  ", "\r\n"])
 
 
-@settings(max_examples=80, deadline=None)
-@given(
+#: Hypothesis' strategies of test_random_tables_read_as_tomllib_reads_them: the default run tries 30 examples, the slow run 200.
+_RANDOM_TABLES = dict(
     rows=st.lists(st.tuples(NUMBER, NUMBER, BLANK, BLANK, st.booleans()), min_size=60, max_size=200),
     trailing=st.booleans(),
     bad=st.one_of(st.none(), st.tuples(st.integers(0, 599), st.sampled_from(NOT_TOML))),
 )
-def test_random_tables_read_as_tomllib_reads_them(rows, trailing, bad):
+
+
+def _random_table_case(rows, trailing, bad):
     tokens = [t for a, v, *_ in rows for t in (a, v)]
     if bad is not None:  # one number TOML does not allow
         tokens[bad[0] % len(tokens)] = bad[1]
@@ -255,6 +257,14 @@ def test_random_tables_read_as_tomllib_reads_them(rows, trailing, bad):
         got = np.array(points, dtype=float)
     assert np.array_equal(bits(got), bits(expected))
     assert data["x"] == 1
+
+
+test_random_tables_read_as_tomllib_reads_them = settings(max_examples=30, deadline=None)(
+    given(**_RANDOM_TABLES)(_random_table_case)
+)
+test_random_tables_read_as_tomllib_reads_them_many = pytest.mark.slow(
+    settings(max_examples=200, deadline=None)(given(**_RANDOM_TABLES)(_random_table_case))
+)
 
 
 def test_toml_syntax_and_duplicate_tables(write_scene):
