@@ -307,21 +307,11 @@ def test_a_rounded_wheel_its_post_check_refuses_is_not_the_design():
     infeasible. Before, the rounded wheel was reported without being checked."""
     import dataclasses
 
-    from flyopt.design import DesignSpec, MountShaft, design_flywheel
-    from flyopt.design.materials import make_material
+    from test_wheel_nlp import ENGINE, _engine_material
 
-    steel = make_material(
-        "engine",
-        7100.0,
-        allowable_stress=60e6,
-        elastic_modulus=169e9,
-        poisson_ratio=0.275,
-        tensile_strength=400e6,
-        yield_strength=250e6,
-        ductile=True,
-        bearing_pressure=90e6,
-        min_wall=0.008,
-    )
+    from flyopt.design import DesignSpec, MountShaft, design_flywheel
+
+    steel = _engine_material()  # the engine scenes' cast steel, 60 MPa allowable
 
     def on_grid(design):
         return all(_on_grid(getattr(design.dims, n), 1e-3) for n in ("d_outer", "b", "t_web"))
@@ -330,12 +320,14 @@ def test_a_rounded_wheel_its_post_check_refuses_is_not_the_design():
         return "a wheel on the 1 mm grid (this test's rule)" if on_grid(design) else None
 
     spec = DesignSpec(geometry="rim_web", criterion="stress", hb_ratio=(0.5, 2.0), round_to=1e-3, round_strict=False)
-    args = (3.8, 157.9, [MountShaft("crankshaft", 1.0, 0.06)], [steel])
-    plain = design_flywheel(*args, spec, torque=897.0)
+    args = (ENGINE["j"], ENGINE["omega"], [MountShaft("crankshaft", 1.0, 0.06)], [steel])
+    plain = design_flywheel(*args, spec, torque=ENGINE["torque"])
     assert plain.continuous is not None and on_grid(plain.best)  # rounded without the post-check
-    loose = design_flywheel(*args, spec, torque=897.0, accept=accept)
+    loose = design_flywheel(*args, spec, torque=ENGINE["torque"], accept=accept)
     assert loose.status == "designed" and not on_grid(loose.best)
     assert loose.best.mass == plain.continuous.mass and loose.best.dims == plain.continuous.dims
     assert "NOT rounded" in loose.rounding and "this test's rule" in loose.rounding
-    strict = design_flywheel(*args, dataclasses.replace(spec, round_strict=True), torque=897.0, accept=accept)
+    strict = design_flywheel(
+        *args, dataclasses.replace(spec, round_strict=True), torque=ENGINE["torque"], accept=accept
+    )
     assert strict.status == "infeasible" and strict.best is None and "this test's rule" in strict.message
