@@ -40,6 +40,7 @@ def quick_run(tmp_path_factory):
     return status, out, _read_csv(out / "speed_error.csv")
 
 
+@pytest.mark.slow  # the quick bench run (some 8 s); the default run keeps the harness's refusals and rules
 def test_quick_run_writes_the_results(quick_run):
     status, out, rows = quick_run
     assert status == 0
@@ -53,6 +54,7 @@ def test_quick_run_writes_the_results(quick_run):
     assert {r["section"] for r in rows} == set(SECTIONS)
 
 
+@pytest.mark.slow  # the quick bench run (some 8 s); the default run keeps the harness's refusals and rules
 def test_every_method_has_a_time_and_an_error(quick_run):
     _, _, rows = quick_run
     measured = [r for r in rows if r["setting"] != "not built"]  # the hub-and-arms placeholder
@@ -79,6 +81,7 @@ def test_every_method_has_a_time_and_an_error(quick_run):
         assert expected in methods
 
 
+@pytest.mark.slow  # the quick bench run (some 8 s); the default run keeps the harness's refusals and rules
 def test_exact_cycle_analysis_is_exact(quick_run):
     _, _, rows = quick_run
     exact = [r for r in rows if r["method"] == "flyopt-exact"]
@@ -87,6 +90,7 @@ def test_exact_cycle_analysis_is_exact(quick_run):
         assert float(r["error"]) <= 1e-12, r
 
 
+@pytest.mark.slow  # the quick bench run (some 8 s); the default run keeps the harness's refusals and rules
 @pytest.mark.parametrize("method", ["flyopt-ipopt", "flyopt-auto"])
 def test_design_rows_decide_every_combination(quick_run, method):
     """flyopt's two design paths decide every combination of the quick scenes and land within
@@ -97,6 +101,7 @@ def test_design_rows_decide_every_combination(quick_run, method):
     assert float(row["error"]) <= 1e-6
 
 
+@pytest.mark.slow  # the quick bench run (some 8 s); the default run keeps the harness's refusals and rules
 def test_required_inertia_section_compares_the_models(quick_run):
     """Constant J: the periodic solution reproduces the closed form; variable J and a motor: the
     constant-inertia method is measurably off and the exact model is the reference."""
