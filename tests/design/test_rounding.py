@@ -331,3 +331,30 @@ def test_a_rounded_wheel_its_post_check_refuses_is_not_the_design():
         *args, dataclasses.replace(spec, round_strict=True), torque=ENGINE["torque"], accept=accept
     )
     assert strict.status == "infeasible" and strict.best is None and "this test's rule" in strict.message
+
+
+def test_rounding_re_solves_with_the_solver_options_the_design_was_given(monkeypatch):
+    """Rounding's re-designs use the caller's solver options: asked for IPOPT alone, every whole-wheel solve
+    of punch-press-wheel, rounding's included, is IPOPT's (they ran with the default solver before)."""
+    from flyopt.design import rounding, wheel_nlp
+
+    solved, rounded = [], []
+    original, round_original = wheel_nlp.solve, rounding.round_design
+
+    def spy(model, problem, label):
+        solved.append(model.fast is None)  # no sqpmethod in front: the model IPOPT alone solves
+        return original(model, problem, label)
+
+    def round_spy(*args, **kwargs):
+        before = len(solved)
+        found = round_original(*args, **kwargs)
+        rounded.append(len(solved) - before)
+        return found
+
+    monkeypatch.setattr(wheel_nlp, "solve", spy)
+    monkeypatch.setattr(rounding, "round_design", round_spy)
+    design = flyopt.solve(
+        flyopt.load(PROBLEMS / "punch-press-wheel.toml"), solver_options={wheel_nlp.SOLVER_OPTION: "ipopt"}
+    ).design
+    assert design.continuous is not None and rounded and rounded[0] > 0  # rounding re-solved
+    assert all(solved), f"{solved.count(False)} of {len(solved)} solves ignored the options"
