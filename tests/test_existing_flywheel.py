@@ -166,14 +166,10 @@ def test_the_json_holds_the_check_and_meets_the_schema(name):
     assert document["flywheel"]["achieved_delta"] == pytest.approx(document["delta"], rel=1e-12)
 
 
-def test_the_report_shows_the_wheel_given_and_exits_4_when_it_falls_short(tmp_path):
+def test_the_report_shows_the_wheel_given_and_exits_4_when_it_falls_short(tmp_path, main_cli):
     out = tmp_path / "k.html"
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "report", str(TEXTBOOK / "khurmi-16-12.toml"), "-o", str(out)],
-        capture_output=True,
-        text=True,
-    )
-    assert run.returncode == 0, run.stderr
+    status, _, err = main_cli("report", TEXTBOOK / "khurmi-16-12.toml", "-o", out)  # in this process
+    assert status == 0, err
     html = out.read_text()
     assert "The flywheel that exists" in html and "not given: the δ the flywheel given reaches is found" in html
     # δ reached 0.0610038, the largest acceleration 12.203 rad/s², to four figures (issue 29; six before)
@@ -183,10 +179,8 @@ def test_the_report_shows_the_wheel_given_and_exits_4_when_it_falls_short(tmp_pa
         (TEXTBOOK / "khurmi-16-12.toml").read_text().replace('speed = "150 rpm"', 'speed = "150 rpm"\ndelta = 0.05')
     )
     pdf = tmp_path / "short.pdf"
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "report", str(short), "-o", str(pdf)], capture_output=True, text=True
-    )
-    assert run.returncode == 4 and pdf.exists(), run.stderr
+    status, _, err = main_cli("report", short, "-o", pdf)
+    assert status == 4 and pdf.exists(), err
 
 
 def test_the_report_of_an_operation_on_a_given_flywheel_is_written(tmp_path):

@@ -502,23 +502,17 @@ def test_a_drawing_of_what_is_not_a_design_is_refused(drawn):
     assert math.isfinite(design.mass)
 
 
-def test_a_grade_is_named_by_its_designation_everywhere(tmp_path):
+def test_a_grade_is_named_by_its_designation_everywhere(tmp_path, main_cli):
     """One name per material (issue 29): press-arms-wheel's en_gjl_250 is EN-GJL-250 (EN 1561's designation)
     in the text, the report, the messages and the drawing's title block; the JSON keeps the scene's key."""
     import json
-    import subprocess
-    import sys
 
     from flyopt.report.drawing import export
 
     scene = PROBLEMS / "press-arms-wheel.toml"
-    text = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
-    assert text.returncode == 0 and "EN-GJL-250 on intermediate" in text.stdout and "en_gjl_250" not in text.stdout
-    data = json.loads(
-        subprocess.run(
-            [sys.executable, "-m", "flyopt", "solve", str(scene), "--json"], capture_output=True, text=True
-        ).stdout
-    )
+    status, text, _ = main_cli("solve", scene)  # the command line in this process: no interpreter to start
+    assert status == 0 and "EN-GJL-250 on intermediate" in text and "en_gjl_250" not in text
+    data = json.loads(main_cli("solve", scene, "--json")[1])
     assert data["design"]["material"] == "en_gjl_250" and data["design"]["message"].startswith("EN-GJL-250 on the")
     drawing = export(scene, tmp_path / "arms.svg")
     assert drawing.title["material"] == "EN-GJL-250"
