@@ -144,6 +144,34 @@ def test_the_figures_are_the_reports_and_the_downloads_open(workspace):
     assert "Shear press" in reader.pages[0].extract_text()
 
 
+def test_the_card_comes_first_from_the_same_solve_and_the_diagrams_draw_without_solving_again(workspace, monkeypatch):
+    """The card is the report's numbers without its diagrams (drawing is most of a report's time); the
+    diagrams, drawn after, come from the same solve: with the solve made impossible they still draw, and they
+    and the card are those of the whole answer at once."""
+    import flyopt.cli.report as cli_report
+
+    text = model.template_text("shear-press")
+    whole = model.solve(text, workspace)
+    first = model.numbers(text, workspace)
+    assert not first.drawn and first.figures == []
+    assert [(r.label, r.value) for r in first.card] == [(r.label, r.value) for r in whole.card]
+    assert first.json == whole.json and first.status == whole.status == "designed"
+    assert all(b.figure is None for b in model.figure_blocks(first.document))
+
+    def no_second_solve(*_args, **_kwargs):
+        raise AssertionError("the diagrams solved the scene again")
+
+    monkeypatch.setattr(cli_report, "collect", no_second_solve)
+    document = model.draw(first)
+    figures = [model.figure_svg(block) for block in model.figure_blocks(document)]
+    done = model.drawn(first, document, figures)
+    assert done.drawn and [k for k, _, _ in done.figures] == [k for k, _, _ in whole.figures]
+    assert [k for k, _, svg in done.figures if svg] == [k for k, _, svg in whole.figures if svg]
+    # a download of an answer whose diagrams are not drawn yet draws them (the report is whole)
+    html = model.report_bytes(first, "html").decode("utf-8")
+    assert html.count("<svg") == sum(1 for _, _, svg in whole.figures if svg)
+
+
 def test_user_strings_are_escaped(workspace):
     problem = model.Problem("machine.<b>", "<script>alert(1)</script>", 3)
     html = model.card_html(None, [problem])

@@ -189,7 +189,11 @@ class Row:
 
 @dataclass
 class Answer:
-    """What one solve shows: the status, the card, the diagrams (SVG), the JSON, the provenance."""
+    """What one solve shows: the status, the card, the diagrams (SVG), the JSON, the provenance.
+
+    An answer of the numbers only (:func:`numbers`) has ``drawn`` False: its document holds no diagram
+    and ``figures`` is empty until :func:`draw` builds the report's document again with its figures.
+    """
 
     status: str
     verdict: str
@@ -199,6 +203,9 @@ class Answer:
     provenance: tuple[tuple[str, str], ...]
     document: Document
     sha256: str
+    inputs: Any = None  # the report's inputs (ReportInputs or CalculationInputs): the one solve, kept
+    units: str = "engineering"
+    drawn: bool = True
 
 
 def scene_digest(text: str) -> str:
@@ -206,9 +213,11 @@ def scene_digest(text: str) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer:
-    """Solve the editor's text once, as ``flyopt report`` does, and read the answer out of its report.
+def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answer:
+    """Solve the editor's text once, as ``flyopt report`` does, and read the card out of its report's numbers.
 
+    The report's document is built without its diagrams (drawing them takes most of a report's time:
+    :func:`draw` does it after the card is shown); a calculation's report draws its few either way.
     Raises what ``flyopt report`` raises: SceneError (bad input), SolverFailed (no converged answer).
     """
     from flyopt.cli.report import collect
@@ -217,8 +226,9 @@ def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer
 
     path = workspace.write(text)
     inputs = collect(path, f"flyopt app ({SCENE_NAME})", pdf=False)
-    document = build(inputs, units)
-    if isinstance(inputs, CalculationInputs):
+    calculation = isinstance(inputs, CalculationInputs)
+    document = build(inputs, units, figures=calculation)
+    if calculation:
         json = json_text(calculation_document(inputs.what, inputs.scene.title, path, inputs.result.to_dict()))
     else:
         json = solution_json(
@@ -229,12 +239,63 @@ def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer
         status=document.status,
         verdict=verdict,
         card=card,
-        figures=_figures(document),
+        figures=_figures(document) if calculation else [],
         json=json,
         provenance=tuple(inputs.provenance),
         document=document,
         sha256=scene_digest(text),
+        inputs=inputs,
+        units=units,
+        drawn=calculation,
     )
+
+
+def draw(answer: Answer) -> Document:
+    """The report's document of ``answer``'s solve with its diagrams (the same inputs: nothing is solved again).
+
+    Its figures are open matplotlib Figures: :func:`drawn` takes the document into the answer (and the answer
+    closes it with the next), else the caller closes it.
+    """
+    from flyopt.report.builder import build
+
+    if answer.drawn:
+        return answer.document
+    return build(answer.inputs, answer.units)
+
+
+def figure_blocks(document: Document) -> list[Any]:
+    """The document's Figure blocks, in its order."""
+    from flyopt.report.document import Figure
+
+    return [block for section in document.sections for block in section.blocks if isinstance(block, Figure)]
+
+
+def figure_svg(block: Any) -> tuple[str, str, str]:
+    """(key, caption, SVG) of one Figure block: the SVG "" and the note in the caption where it is not drawn."""
+    from flyopt.report.document import plain
+    from flyopt.report.html import svg_of
+
+    svg = svg_of(block.figure, block.key) if block.figure is not None else ""
+    return block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg
+
+
+def drawn(answer: Answer, document: Document, figures: list[tuple[str, str, str]]) -> Answer:
+    """``answer`` with the document :func:`draw` built and its figures' SVG (what downloads render)."""
+    from dataclasses import replace
+
+    return replace(answer, document=document, figures=figures, drawn=True)
+
+
+def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer:
+    """:func:`numbers`, then the diagrams (:func:`draw`): the whole answer at once, as the downloads need it.
+
+    Raises what ``flyopt report`` raises: SceneError (bad input), SolverFailed (no converged answer).
+    """
+    answer = numbers(text, workspace, units)
+    if answer.drawn:
+        return answer
+    document = draw(answer)
+    return drawn(answer, document, [figure_svg(block) for block in figure_blocks(document)])
 
 
 def _card(document: Document) -> tuple[list[Row], str]:
@@ -255,27 +316,24 @@ def _card(document: Document) -> tuple[list[Row], str]:
 
 
 def _figures(document: Document) -> list[tuple[str, str, str]]:
-    from flyopt.report.document import Figure, plain
-    from flyopt.report.html import svg_of
-
-    found = []
-    for section in document.sections:
-        for block in section.blocks:
-            if isinstance(block, Figure):
-                svg = svg_of(block.figure, block.key) if block.figure is not None else ""
-                found.append((block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg))
-    return found
+    return [figure_svg(block) for block in figure_blocks(document)]
 
 
 def report_bytes(answer: Answer, kind: str) -> bytes:
-    """The report of ``answer`` as ``kind`` ("html" or "pdf"), by the report's own renderers."""
-    if kind == "html":
-        from flyopt.report.html import render
+    """The report of ``answer`` as ``kind`` ("html" or "pdf"), by the report's own renderers, with its
+    diagrams (drawn here for an answer whose diagrams are not yet: nothing is solved again)."""
+    document = draw(answer)
+    try:
+        if kind == "html":
+            from flyopt.report.html import render
 
-        return render(answer.document).encode("utf-8")
-    from flyopt.report.pdf import render as render_pdf
+            return render(document).encode("utf-8")
+        from flyopt.report.pdf import render as render_pdf
 
-    return render_pdf(answer.document)
+        return render_pdf(document)
+    finally:
+        if document is not answer.document:
+            document.close()
 
 
 def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") -> str:

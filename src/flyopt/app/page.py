@@ -1,11 +1,14 @@
 """The page of ``flyopt app``, laid out with Panel (imported here only: the ``app`` extra).
 
 Left, the scene: a template picker and the TOML in a code editor; every edit
-is checked after a 300 ms pause (:func:`flyopt.app.model.check`) and its
+is checked after a 50 ms pause (:func:`flyopt.app.model.check`) and its
 problem shown inline with its field and line. Right, always in view, the
 answer card; below it the report's diagrams. A scene of the fast models is
 solved on every valid edit; a drive or a motor's dynamics waits for the Solve
-button. Every solve runs in a worker thread, off the server's event loop,
+button. The card is shown from the report's numbers first
+(:func:`flyopt.app.model.numbers`), then the diagrams of the same solve are
+drawn and shown one by one (:func:`flyopt.app.model.draw`); an edit meanwhile
+drops the rest. Every solve runs in a worker thread, off the server's event loop,
 with a busy line and a Cancel (which drops the answer of the running solve:
 a thread cannot be stopped, it finishes in the background and is ignored).
 Downloads: the report (HTML or PDF, in the units picked), the scene, the JSON.
@@ -20,8 +23,9 @@ from typing import Any
 
 from flyopt.app import model
 
-#: The pause after the last keystroke before the text is checked, in seconds.
-DEBOUNCE = 0.3
+#: The pause after the last keystroke before the text is checked and its numbers solved, in seconds: the
+#: check and the card's numbers of a fast scene take some 40 ms, so each pause in typing shows its answer.
+DEBOUNCE = 0.05
 
 #: The template shown first.
 FIRST = "shear-press"
@@ -76,6 +80,8 @@ class Session:
         self.mode = pn.pane.HTML("", css_classes=["mode"])
         self.card = pn.pane.HTML(model.card_html(None, []), stylesheets=[CSS], sizing_mode="stretch_width")
         self.figures = pn.Column(sizing_mode="stretch_width")
+        #: Each diagram's place: (its column, the caption's pane, the SVG's pane), kept from answer to answer.
+        self.figure_slots: list[tuple[Any, Any, Any]] = []
         self.stale = pn.pane.HTML("", sizing_mode="stretch_width")
         self.footer = pn.pane.HTML(
             f'<div class="footer">{model.provenance_html(None)}</div>', stylesheets=[CSS], sizing_mode="stretch_width"
@@ -176,7 +182,7 @@ class Session:
         else:
             self.card.object = model.card_html(None, [], busy="Solving (a slow model)…")
         try:
-            answer = await loop.run_in_executor(self.executor, model.solve, text, self.workspace, units)
+            answer = await loop.run_in_executor(self.executor, model.numbers, text, self.workspace, units)
         except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
             if mine == self.generation:
                 self._busy(False)
@@ -187,27 +193,73 @@ class Session:
             return
         if mine != self.generation:
             return
-        self._busy(False)
-        self.stale.object = ""
-        old, self.answer = self.answer, answer
-        if old is not None:
-            old.document.close()
-        self.card.object = model.card_html(answer, [])
-        self.figures.objects = [self._figure(key, caption, svg) for key, caption, svg in answer.figures]
+        self._take(answer)
+        self.card.object = model.card_html(answer, [], busy="" if answer.drawn else "drawing the diagrams…")
         self.footer.object = f'<div class="footer">{model.provenance_html(answer)}</div>'
+        if answer.drawn:  # a calculation's few figures come with its numbers
+            self._show_figures(answer.figures)
+        else:
+            await self._draw(answer, mine, loop)
+        if mine == self.generation:
+            self._busy(False)
+            self.card.object = model.card_html(self.answer, [])
 
-    def _figure(self, key: str, caption: str, svg: str) -> Any:
+    async def _draw(self, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop) -> None:
+        """Draw ``answer``'s diagrams, each shown as soon as it is drawn (over the last answer's, in order);
+        dropped as soon as a newer edit comes (checked between diagrams, so the card of the next waits for
+        one diagram at most)."""
+        document = await loop.run_in_executor(self.executor, model.draw, answer)
+        if mine != self.generation:
+            document.close()
+            return
+        shown: list[tuple[str, str, str]] = []
+        for block in model.figure_blocks(document):
+            figure = await loop.run_in_executor(self.executor, model.figure_svg, block)
+            if mine != self.generation:
+                document.close()
+                return
+            shown.append(figure)
+            self._show_figure(len(shown) - 1, *figure)
+        self._show_figures(shown)
+        self._take(model.drawn(answer, document, shown))
+
+    def _take(self, answer: model.Answer) -> None:
+        """Make ``answer`` the one shown and downloaded, closing the figures of the one it replaces."""
+        old, self.answer = self.answer, answer
+        self.stale.object = ""
+        if old is not None and old.document is not answer.document:
+            old.document.close()
+
+    def _show_figures(self, figures: list[tuple[str, str, str]]) -> None:
+        """Show exactly ``figures`` (key, caption, SVG), in order."""
+        for index, figure in enumerate(figures):
+            self._show_figure(index, *figure)
+        del self.figure_slots[len(figures) :]
+        if len(self.figures.objects) != len(figures):
+            self.figures.objects = [slot[0] for slot in self.figure_slots]
+
+    def _show_figure(self, index: int, key: str, caption: str, svg: str) -> None:
+        """Show one diagram in the ``index``-th place: its panes kept and only their contents changed (the
+        browser redraws that diagram alone), a place added where there was none."""
         pn = self.pn
-        title = pn.pane.HTML(f"<b>{model.escape_text(caption)}</b>", sizing_mode="stretch_width")
-        if not svg:
-            return title
-        return pn.Column(
-            title,
-            pn.pane.HTML(
-                _fluid(svg), css_classes=["figure", f"figure-{key}"], stylesheets=[CSS], sizing_mode="stretch_width"
-            ),
-            sizing_mode="stretch_width",
+        title = f"<b>{model.escape_text(caption)}</b>"
+        body = _fluid(svg) if svg else ""
+        classes = ["figure", f"figure-{key}"]
+        if index < len(self.figure_slots):
+            _column, title_pane, svg_pane = self.figure_slots[index]
+            title_pane.object = title
+            if svg_pane.css_classes != classes:
+                svg_pane.css_classes = classes
+            svg_pane.object = body
+            svg_pane.visible = bool(svg)
+            return
+        title_pane = pn.pane.HTML(title, sizing_mode="stretch_width")
+        svg_pane = pn.pane.HTML(
+            body, css_classes=classes, stylesheets=[CSS], sizing_mode="stretch_width", visible=bool(svg)
         )
+        column = pn.Column(title_pane, svg_pane, sizing_mode="stretch_width")
+        self.figure_slots.append((column, title_pane, svg_pane))
+        self.figures.append(column)
 
     def _busy(self, on: bool) -> None:
         self.busy.value = on

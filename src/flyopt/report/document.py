@@ -159,13 +159,19 @@ class Document:
     kind: str = "flywheel design report"
 
     def close(self) -> None:
-        """Close the figures' matplotlib windows (memory) once rendered."""
+        """Close the figures' matplotlib windows (memory) once rendered (a document without any imports nothing)."""
+        figures = [
+            block.figure
+            for section in self.sections
+            for block in section.blocks
+            if isinstance(block, Figure) and block.figure is not None
+        ]
+        if not figures:
+            return
         import matplotlib.pyplot as plt
 
-        for section in self.sections:
-            for block in section.blocks:
-                if isinstance(block, Figure) and block.figure is not None:
-                    plt.close(block.figure)
+        for figure in figures:
+            plt.close(figure)
 
 
 def plain(text: object) -> str:

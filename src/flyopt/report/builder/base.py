@@ -19,13 +19,20 @@ if TYPE_CHECKING:
     from flyopt.report.builder.inputs import ReportInputs
 
 
+#: The note of a figure a document of numbers only leaves undrawn (:class:`BuilderBase`, ``figures=False``).
+NOT_DRAWN = "Not drawn in this document: it holds the numbers only."
+
+
 class BuilderBase:
     """The state of a report being built and the tools every section is written with."""
 
-    def __init__(self, inputs: ReportInputs, units: str, digits: int = display.DEFAULT_DIGITS) -> None:
+    def __init__(
+        self, inputs: ReportInputs, units: str, digits: int = display.DEFAULT_DIGITS, figures: bool = True
+    ) -> None:
         self.inputs = inputs
         self.units = units
         self.digits = digits  # significant figures of every number shown (--digits)
+        self.figures = figures  # False: the figures' blocks hold their captions only (the app's card first)
         self.solution = cast("Solution", inputs.solution)
         self.scene = self.solution.scene
         self.analysis = self.solution.analysis
@@ -107,10 +114,17 @@ class BuilderBase:
     def figure(
         self, blocks: list[Any], key: str, caption: str, draw: Callable[..., Any], *args: Any, **kwargs: Any
     ) -> None:
-        """Draw a diagram with a function of :mod:`flyopt.report.plots` (``units=`` where it takes it)."""
+        """Draw a diagram with a function of :mod:`flyopt.report.plots` (``units=`` where it takes it).
+
+        A builder made with ``figures=False`` draws nothing: the block holds the key and caption only, the
+        note saying so (a document of numbers, for the app's answer card before its diagrams).
+        """
         from flyopt.report import plots
         from flyopt.report.plots.standard import figure_of
 
+        if not self.figures:
+            blocks.append(Figure(key, caption, note=NOT_DRAWN))
+            return
         try:
             parameters = inspect.signature(draw).parameters
             if "units" in parameters:

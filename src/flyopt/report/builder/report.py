@@ -25,6 +25,7 @@ def build(
     units: str = display.DEFAULT,
     title_block: tuple[tuple[str, Any], ...] = (),
     digits: int = display.DEFAULT_DIGITS,
+    figures: bool = True,
 ) -> Document:
     """The report of a solved scene, or of a scene that is one calculation, in a unit system.
 
@@ -40,6 +41,10 @@ def build(
     digits : int
         Significant figures of every number shown, tables and equations alike
         (:func:`flyopt.report.display.check_digits`).
+    figures : bool
+        False: no diagram is drawn, each figure's block holds its caption only (a document of the
+        numbers, built in a few milliseconds: the app's answer card before its diagrams). A
+        calculation's report draws its figures either way.
 
     Returns
     -------
@@ -50,7 +55,7 @@ def build(
     display.check_digits(digits)
     if isinstance(inputs, CalculationInputs):
         return with_appendix(build_calculation(inputs, units, title_block, digits))
-    return with_appendix(Builder(inputs, units, digits).document(title_block))
+    return with_appendix(Builder(inputs, units, digits, figures).document(title_block))
 
 
 class Builder(
