@@ -161,3 +161,31 @@ def test_edit_break_fix_and_download(server, browser, tmp_path):
     reader = PdfReader(io.BytesIO(Path(download.value.path()).read_bytes()))
     assert "Shear press" in reader.pages[0].extract_text()
     page.close()
+
+
+def test_the_form_writes_into_the_scene_and_a_pasted_table_solves(server, browser):
+    """δ set in the form reads in the editor as if typed and the card follows; the shear press's table pasted
+    from a spreadsheet in degrees and N*m gives the book's A_max (1.256 kJ, docs/flywheel-design.md example 2)."""
+    page = browser.new_page(viewport={"width": 1400, "height": 1100})
+    page.goto(server)
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+    page.get_by_text("Form", exact=True).click()
+    delta = page.get_by_label("allowed δ (e.g. 0.05 or 5 %)")
+    assert delta.input_value() == "0.05"
+    delta.fill("0.025")
+    delta.press("Enter")
+    page.wait_for_selector(".card >> text=0.025 (1/40)", timeout=60_000)
+    page.get_by_placeholder("0\t1600").fill("angle\ttorque\n0\t1600\n45\t1600\n90\t200\n360\t200")
+    page.get_by_role("button", name="Use the pasted rows").click()
+    editor = page.locator(".ace_editor").first
+    for _ in range(600):  # the editor's own text (in its shadow root: polled through the locator)
+        if "angle_unit" in editor.evaluate("el => el.env.editor.getValue()"):
+            break
+        page.wait_for_timeout(50)
+    page.wait_for_selector(".card >> text=designed", timeout=60_000)
+    page.wait_for_selector(".card >> text=1.256 kJ", timeout=60_000)
+    text = editor.evaluate("el => el.env.editor.getValue()")
+    assert "delta = 0.025" in text and 'angle_unit = "deg"' in text and "[45.0, 1600.0]" in text
+    assert text.count("# ") == model_text().count("# ")  # the comments kept
+    shot(page, "4-form")
+    page.close()

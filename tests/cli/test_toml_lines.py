@@ -119,3 +119,10 @@ def test_every_key_of_a_shipped_scene_is_found_on_a_line_that_writes_it(path):
     for field, key in _keys(tomllib.loads(text)):
         assert field in lines, field
         assert key in rows[lines[field] - 1], (field, lines[field], rows[lines[field] - 1])
+
+
+@pytest.mark.parametrize("text", ['a=[\\}2"2,}2.3}}b[{ \n\t. {#}\n=]\n', "a = [}", "a = {b = }}", "a = [1, }, 2]"])
+def test_text_that_is_not_toml_ends_the_scan_rather_than_looping(text):
+    """The app places errors on any text typed (flyopt.app.model.field_line): a stray brace once looped forever."""
+    lines = key_lines(text)
+    assert lines.get("a") == 1

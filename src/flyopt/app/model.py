@@ -64,39 +64,18 @@ def template_text(name: str) -> str:
 def field_line(text: str, field_path: str) -> int | None:
     """The 1-based line of ``text`` where the field ``field_path`` ("machine.delta") is written, or None.
 
-    A small locator kept in this one place, to be swapped for the CLI's own
-    when it has one: the last key of the path, in the table named by the
-    rest (``[machine]`` then ``delta = ...``), else the first line that
-    assigns that key, else the table's header.
+    ``flyopt check``'s locator (:mod:`flyopt.cli.toml_lines`): the key's line, else the nearest enclosing
+    field's (a missing key: its table's header); None where not even the first part is written or the text
+    is not TOML.
     """
-    parts = [p for p in re.split(r"\.|\[\d+\]", field_path) if p]
-    if not parts:
+    from flyopt.cli.toml_lines import key_lines, line_of
+
+    if not field_path:
         return None
-    key, tables = parts[-1], parts[:-1]
-    lines = text.splitlines()
-    current = ""
-    header = None
-    first = None
-    for number, line in enumerate(lines, 1):
-        stripped = line.strip()
-        table = re.match(r"^\[\[?\s*([^\]]+?)\s*\]\]?", stripped)
-        if table:
-            current = table.group(1)
-            if tables and current == ".".join(tables) and header is None:
-                header = number
-            continue
-        if re.match(rf"^{re.escape(key)}\s*=", stripped) or re.match(rf'^"{re.escape(key)}"\s*=', stripped):
-            if current == ".".join(tables):
-                return number
-            if first is None:
-                first = number
-    if header is not None:
-        return header
-    if key == parts[0] and first is None:  # a whole table: its header
-        for number, line in enumerate(lines, 1):
-            if re.match(rf"^\[\[?\s*{re.escape(key)}\s*\]\]?", line.strip()):
-                return number
-    return first
+    try:
+        return line_of(key_lines(text), field_path)
+    except (IndexError, ValueError):  # not TOML where the scanner stops: nothing to place
+        return None
 
 
 @dataclass(frozen=True)
@@ -228,7 +207,7 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
     inputs = collect(path, f"flyopt app ({SCENE_NAME})", pdf=False)
     calculation = isinstance(inputs, CalculationInputs)
     document = build(inputs, units, figures=calculation)
-    if calculation:
+    if isinstance(inputs, CalculationInputs):
         json = json_text(calculation_document(inputs.what, inputs.scene.title, path, inputs.result.to_dict()))
     else:
         json = solution_json(

@@ -74,6 +74,9 @@ class Session:
             sizing_mode="stretch_both",
             min_height=560,
         )
+        #: The editor's text as last typed, loaded or written by the form: what is checked, solved and downloaded
+        #: (the editor's own value and value_input each lag behind one of those).
+        self.text: str = str(self.editor.value)
         self.solve_button = pn.widgets.Button(name="Solve", button_type="primary", width=90)
         self.cancel_button = pn.widgets.Button(name="Cancel", button_type="warning", width=90, disabled=True)
         self.busy = pn.indicators.LoadingSpinner(value=False, width=24, height=24)
@@ -98,9 +101,12 @@ class Session:
         self.units.param.watch(self._edited, "value")
         self.solve_button.on_click(self._solve_clicked)
         self.cancel_button.on_click(self._cancel)
+        from flyopt.app.form_view import FormView
+
+        self.form = FormView(pn, self._text, self._set_text, self._materials)
         left = pn.Column(
             pn.Row(self.template, self.units),
-            self.editor,
+            pn.Tabs(("Scene (TOML)", self.editor), ("Form", self.form.layout), dynamic=False),
             sizing_mode="stretch_both",
             min_width=480,
         )
@@ -118,23 +124,41 @@ class Session:
             title="flyopt — flywheel design", main=[pn.Row(left, right, sizing_mode="stretch_width")]
         )
         pn.state.on_session_destroyed(lambda _context: self.close())
-        pn.state.onload(lambda: asyncio.ensure_future(self._refresh(self.editor.value, solve=None)))
+        pn.state.onload(lambda: asyncio.ensure_future(self._refresh(self.text, solve=None)))
 
     def close(self) -> None:
         """Drop the session's folder and worker."""
         self.executor.shutdown(wait=False, cancel_futures=True)
         self.workspace.close()
 
+    # -- the text ------------------------------------------------------------------------------
+
+    def _text(self) -> str:
+        return self.text
+
+    def _set_text(self, text: str) -> None:
+        """The form's change, put into the editor (and so checked and solved as a typed edit)."""
+        self.text = self.editor.value = text
+        asyncio.ensure_future(self._debounced(text))
+
+    def _materials(self) -> dict[str, str]:
+        """The scene's material library by key, with the names people read (the last valid text's)."""
+        scene = self.checked.scene if self.checked is not None else None
+        if scene is None:
+            return {}
+        return {key: material.display_name for key, material in scene.material_library().items()}
+
     # -- events --------------------------------------------------------------------------------
 
     def _load_template(self, event: Any) -> None:
         if event.new:
-            self.editor.value = model.template_text(event.new)
-            asyncio.ensure_future(self._refresh(self.editor.value, solve=None))
+            self.text = self.editor.value = model.template_text(event.new)
+            asyncio.ensure_future(self._refresh(self.text, solve=None))
 
     def _edited(self, event: Any) -> None:
-        text = self.editor.value_input if "value_input" in self.editor.param else self.editor.value
-        asyncio.ensure_future(self._debounced(text))
+        if event.obj is self.editor:  # else the units' Select: the text as it is
+            self.text = str(event.new)
+        asyncio.ensure_future(self._debounced(self.text))
 
     async def _debounced(self, text: str) -> None:
         self.generation += 1
@@ -144,8 +168,7 @@ class Session:
             await self._refresh(text, solve=None)
 
     def _solve_clicked(self, _event: Any) -> None:
-        text = self.editor.value_input if "value_input" in self.editor.param else self.editor.value
-        asyncio.ensure_future(self._refresh(text, solve=True))
+        asyncio.ensure_future(self._refresh(self.text, solve=True))
 
     def _cancel(self, _event: Any) -> None:
         self.generation += 1  # the running solve's answer is dropped when it arrives
@@ -169,6 +192,7 @@ class Session:
             self.stale.object = STALE if self.answer is not None else ""
             return
         self.stale.object = ""
+        self.form.show(text)
         fast = model.live(checked.scene)
         self.mode.object = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
         if solve is None and not fast:  # the last answer is not this scene's: not shown on the card
@@ -277,7 +301,7 @@ class Session:
         return callback
 
     def _scene(self) -> io.BytesIO:
-        return io.BytesIO(self.editor.value.encode("utf-8"))
+        return io.BytesIO(self.text.encode("utf-8"))
 
     def _json(self) -> io.BytesIO | None:
         return io.BytesIO(self.answer.json.encode("utf-8")) if self.answer is not None else None

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["key_lines", "line_of"]
+__all__ = ["key_lines", "line_of", "set_value"]
 
 _BARE = re.compile(r"[A-Za-z0-9_-]+")
 _INDEX = re.compile(r"\[\d+\]$")
@@ -28,6 +28,10 @@ class _Scanner:
         self.pos = 0
         self.line = 1
         self.lines: dict[str, int] = {}
+        #: Where each key's value is written, (start, end) offsets in the text (keys of tables, not of inline ones).
+        self.spans: dict[str, tuple[int, int]] = {}
+        #: Where each table's header line ends (an offset), for a key added to it.
+        self.headers: dict[str, int] = {}
         self.array_tables: dict[str, int] = {}  # path of an [[array]] -> index of its last entry
 
     # -- characters -------------------------------------------------------
@@ -114,11 +118,14 @@ class _Scanner:
                 if self.peek() in ("]", ""):
                     break
                 self.lines.setdefault(f"{path}[{index}]", self.line)
+                before = self.pos
                 self.value(f"{path}[{index}]")
                 self.skip_blank(newlines=True)
                 if self.peek() == ",":
                     self.advance()
                     index += 1
+                elif self.pos == before:  # not TOML (a stray "}"): stop here rather than loop
+                    return
             self.advance()
         elif c == "{":
             self.advance()
@@ -134,10 +141,13 @@ class _Scanner:
                 self.skip_blank(newlines=False)
                 inner = ".".join((path, *parts))
                 self.lines.setdefault(inner, line)
+                before = self.pos
                 self.value(inner)
                 self.skip_blank(newlines=False)
                 if self.peek() == ",":
                     self.advance()
+                elif self.pos == before:  # not TOML: stop here rather than loop
+                    return
             self.advance()
         else:  # a number, boolean or date: up to its end
             while self.pos < len(self.text) and self.text[self.pos] not in ",]}\n#":
@@ -160,11 +170,13 @@ class _Scanner:
                 self.lines.setdefault(name, line)
                 self.lines.setdefault(table, line)
                 self.skip_to_line_end()
+                self.headers.setdefault(table, self.pos)
             elif self.peek() == "[":
                 self.advance()
                 table = self.resolve(self.key())
                 self.lines.setdefault(table, line)
                 self.skip_to_line_end()
+                self.headers.setdefault(table, self.pos)
             else:
                 parts = self.key()
                 if not parts or self.peek() != "=":  # not TOML: nothing more to place
@@ -175,7 +187,12 @@ class _Scanner:
                 for k in range(1, len(parts)):  # a dotted key makes its tables here
                     self.lines.setdefault(".".join((table, *parts[:k])) if table else ".".join(parts[:k]), line)
                 self.lines.setdefault(path, line)
+                start = self.pos
                 self.value(path)
+                end = min(self.pos, len(self.text))
+                while end > start and self.text[end - 1] in " \t\r":  # a number's scan stops at the comment
+                    end -= 1
+                self.spans.setdefault(path, (start, end))
 
     def skip_to_line_end(self) -> None:
         end = self.text.find("\n", self.pos)
@@ -238,3 +255,45 @@ def line_of(lines: dict[str, int], field: str) -> int | None:
         else:
             return None
     return None
+
+
+def set_value(text: str, path: str, literal: str) -> str:
+    """``text`` with the key ``path`` ("machine.delta", "shaft[1].speed_ratio") given the TOML value ``literal``.
+
+    The value is replaced where it is written, the rest of the text (comments, order, layout) kept; a key
+    not written is added after its table's header (a table not written is added at the end, ``[table]``;
+    an entry of an array of tables must exist). Used by ``flyopt app``'s form, so that a field set there
+    reads in the editor as if typed.
+
+    Raises
+    ------
+    KeyError
+        ``path`` is in an entry of an array of tables the text does not have, or under an inline table.
+    """
+    scanner = _Scanner(text)
+    scanner.run()
+    if path in scanner.spans:
+        start, end = scanner.spans[path]
+        return text[:start] + literal + text[end:]
+    table, _, key = path.rpartition(".")
+    if any(span == table or table.startswith(span + ".") for span in scanner.spans):
+        raise KeyError(f"{path}: under a key written inline, not a table")
+    line = f"{_key(key)} = {literal}\n"
+    if not table:
+        first = min(scanner.headers.values(), default=len(text))
+        head = text[:first].rfind("\n", 0, max(first - 1, 0)) + 1 if scanner.headers else len(text)
+        return _joined(text[:head], line) + text[head:]
+    if table in scanner.headers:
+        at = scanner.headers[table]
+        return text[:at] + "\n" + line.rstrip("\n") + text[at:]
+    if _INDEX.search(table) or "[" in table:
+        raise KeyError(f"{path}: the text has no such entry of an array of tables")
+    return _joined(text, f"\n[{table}]\n{line}")
+
+
+def _key(key: str) -> str:
+    return key if _BARE.fullmatch(key) else '"' + key.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def _joined(text: str, more: str) -> str:
+    return text + ("" if not text or text.endswith("\n") else "\n") + more

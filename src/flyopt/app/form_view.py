@@ -1,0 +1,178 @@
+"""The form's widgets (Panel, the ``app`` extra): the common fields, a table's grid, its paste and its CSV upload.
+
+What the widgets do is :mod:`flyopt.app.form`'s: they show the text's values after each valid edit
+(:meth:`FormView.show`) and hand every change to ``write`` as the new text, which the page puts into
+the editor (checked and solved there like a typed edit).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from flyopt.app import form
+
+#: The units offered for a pasted or uploaded table's columns (the loader knows many more; type them in the editor).
+ANGLE_UNITS = ("deg", "rad")
+VALUE_UNITS = {
+    "torque": ("N*m", "kN*m", "lbf*ft"),
+    "force": ("N", "kN", "lbf"),
+    "pressure": ("Pa", "kPa", "MPa", "bar", "psi"),
+}
+
+
+class FormView:
+    """The form of one session; ``read()`` gives the editor's text, ``write(text)`` replaces it."""
+
+    def __init__(
+        self, pn: Any, read: Callable[[], str], write: Callable[[str], None], materials: Callable[[], dict[str, str]]
+    ) -> None:
+        self.pn = pn
+        self.read, self.write, self.materials = read, write, materials
+        self._showing = False  # True while the widgets are set from the text (their watchers write nothing)
+        self.widgets: dict[str, Any] = {}
+        for field in form.FIELDS:
+            if field.kind == "choice":
+                widget = pn.widgets.Select(name=field.label, options=["", *field.choices], value="")
+            elif field.kind == "materials":
+                widget = pn.widgets.MultiChoice(name=field.label, options={}, value=[])
+            else:
+                widget = pn.widgets.TextInput(name=field.label, value="")
+            widget.param.watch(self._field_changed(field), "value")
+            self.widgets[field.path] = widget
+        self.table = pn.widgets.Select(name="Table", options=[], value=None)
+        self.table.param.watch(lambda _event: self._show_table(), "value")
+        self.grid = pn.widgets.Tabulator(
+            value=None, show_index=False, sizing_mode="stretch_width", height=260, editors={}, layout="fit_columns"
+        )
+        self.grid.on_edit(self._cell_edited)
+        self.angle_unit = pn.widgets.Select(name="angle unit", options=list(ANGLE_UNITS), value="deg", width=110)
+        self.value_unit = pn.widgets.Select(name="value unit", options=list(VALUE_UNITS["torque"]), width=110)
+        self.paste = pn.widgets.TextAreaInput(
+            name="Rows pasted from a spreadsheet (two columns: angle, value; tabs, commas or semicolons)",
+            placeholder="0\t1600\n45\t1600\n90\t200\n360\t200",
+            height=110,
+            sizing_mode="stretch_width",
+        )
+        self.use_paste = pn.widgets.Button(name="Use the pasted rows", button_type="default")
+        self.use_paste.on_click(lambda _event: self._take_rows(self.paste.value or ""))
+        self.upload = pn.widgets.FileInput(accept=".csv,.txt", multiple=False)
+        self.upload.param.watch(self._uploaded, "value")
+        self.message = pn.pane.HTML("", sizing_mode="stretch_width")
+        self.layout = pn.Column(
+            pn.pane.HTML("<b>Common fields</b> (written into the TOML as if typed)"),
+            *self.widgets.values(),
+            pn.pane.HTML("<b>Tables</b>"),
+            self.table,
+            self.grid,
+            pn.Row(self.angle_unit, self.value_unit),
+            self.paste,
+            pn.Row(self.use_paste, pn.pane.HTML("or a CSV file:"), self.upload),
+            self.message,
+            sizing_mode="stretch_width",
+        )
+
+    # -- text -> form --------------------------------------------------------------------------
+
+    def show(self, text: str) -> None:
+        """Set the widgets from a valid text (nothing is written back)."""
+        data = form.parse(text)
+        if data is None:
+            return
+        self._showing = True
+        try:
+            library = self.materials()
+            shown = form.shown_values(data)
+            for field in form.FIELDS:
+                widget = self.widgets[field.path]
+                if field.kind == "materials":
+                    names = {label: key for key, label in library.items()}
+                    for key in shown[field.path]:
+                        names.setdefault(key, key)
+                    widget.options = names
+                    widget.value = [k for k in shown[field.path] if k in names.values()]
+                elif field.kind == "choice":
+                    value = shown[field.path]
+                    widget.value = value if value in widget.options else ""
+                elif widget.value != shown[field.path]:
+                    widget.value = shown[field.path]
+            found = form.tables(data)
+            keep = self.table.value if self.table.value in found else (found[0] if found else None)
+            self.table.options = found
+            self.table.value = keep
+            self._show_table(data)
+        finally:
+            self._showing = False
+
+    def _show_table(self, data: dict[str, Any] | None = None) -> None:
+        import pandas as pd
+
+        path = self.table.value
+        if data is None:
+            data = form.parse(self.read()) or {}
+        if not path:
+            self.grid.value = pd.DataFrame({"angle": [], "value": []})
+            return
+        columns = form.columns_of(path)
+        rows = form.rows_of(data, path)
+        self.grid.value = pd.DataFrame(rows, columns=list(columns))
+        self.grid.editors = {c: {"type": "input"} for c in columns}
+        units = VALUE_UNITS.get(columns[1], ("N*m",))
+        if list(self.value_unit.options) != list(units):
+            self.value_unit.options = list(units)
+            self.value_unit.value = units[0]
+
+    # -- form -> text --------------------------------------------------------------------------
+
+    def _field_changed(self, field: form.Field) -> Callable[[Any], None]:
+        def changed(event: Any) -> None:
+            if self._showing:
+                return
+            self._write(lambda text: form.set_field(text, field, event.new))
+
+        return changed
+
+    def _cell_edited(self, _event: Any) -> None:
+        path = self.table.value
+        if self._showing or not path:
+            return
+        rows = self.grid.value.astype(str).values.tolist()
+        self._write(lambda text: form.set_rows(text, path, rows))
+
+    def _uploaded(self, event: Any) -> None:
+        if event.new:
+            try:
+                pasted = bytes(event.new).decode("utf-8-sig")
+            except UnicodeDecodeError:
+                self._say("the file is not UTF-8 text: a CSV of two columns of numbers is expected")
+                return
+            self._take_rows(pasted)
+
+    def _take_rows(self, pasted: str) -> None:
+        from flyopt.errors import SceneError
+
+        path = self.table.value
+        if not path:
+            self._say("the scene writes no table inline to fill (a points = [...] of a torque, force or pressure)")
+            return
+        units = (self.angle_unit.value, self.value_unit.value)
+        try:
+            numbers = form.pasted_rows(pasted, path, units)
+        except SceneError as err:
+            self._say(f"{err.field}: {err.message}")
+            return
+        self._write(lambda text: form.set_table_numbers(text, path, numbers, units))
+
+    def _write(self, change: Callable[[str], str]) -> None:
+        try:
+            text = change(self.read())
+        except KeyError as err:
+            self._say(str(err.args[0]) if err.args else "that field cannot be set from the form")
+            return
+        self._say("")
+        self.write(text)
+
+    def _say(self, message: str) -> None:
+        from html import escape
+
+        self.message.object = f'<div style="color:#c33">{escape(message)}</div>' if message else ""

@@ -1,0 +1,111 @@
+"""The app's form: a field or a table set there reads in the text as if typed, and flyopt's loader judges it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import tomllib
+
+import flyopt
+from flyopt.app import form
+from flyopt.cli.toml_lines import set_value
+from flyopt.errors import SceneError
+
+ROOT = Path(__file__).resolve().parents[2]
+SHEAR = (ROOT / "problems" / "shear-press.toml").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize(
+    ("path", "typed", "expected"),
+    [
+        ("machine.delta", "0.02", 0.02),
+        ("machine.speed", "1450 rpm", "1450 rpm"),
+        ("machine.efficiency", "0.9", 0.9),  # not written before: added to its table
+        ("design.max_width", "250 mm", "250 mm"),
+        ("design.hb_ratio", "1.2, 1.8", [1.2, 1.8]),
+        ("design.geometry", "disc", "disc"),
+    ],
+)
+def test_a_field_set_in_the_form_reads_back_by_tomllib_and_only_its_line_changes(path, typed, expected):
+    field = next(f for f in form.FIELDS if f.path == path)
+    edited = form.set_field(SHEAR, field, typed)
+    data = tomllib.loads(edited)
+    table, key = path.split(".")
+    assert data[table][key] == expected
+    before = tomllib.loads(SHEAR)
+    data[table].pop(key)
+    before[table].pop(key, None)
+    assert data == before  # nothing else moved
+    kept = [line for line in SHEAR.splitlines() if line.startswith("#")]
+    assert kept == [line for line in edited.splitlines() if line.startswith("#")]  # comments kept
+    assert form.shown_values(tomllib.loads(edited))[path] == (", ".join(typed.split(", ")) if "," in typed else typed)
+
+
+def test_the_materials_are_written_as_a_list_of_names():
+    field = next(f for f in form.FIELDS if f.kind == "materials")
+    edited = form.set_field(SHEAR, field, ["cast_iron", "cast_steel"])
+    assert tomllib.loads(edited)["design"]["materials"] == ["cast_iron", "cast_steel"]
+
+
+def test_set_value_keeps_a_trailing_comment_and_refuses_an_entry_that_is_not_written():
+    text = '[machine]\nspeed = "1500 rpm"   # the motor\ndelta = 0.05\n\n[[shaft]]\nname = "motor"\n'
+    edited = set_value(text, "machine.speed", '"1450 rpm"')
+    assert '"1450 rpm"   # the motor' in edited
+    assert tomllib.loads(set_value(text, "shaft[0].speed_ratio", "2.5"))["shaft"][0] == {
+        "name": "motor",
+        "speed_ratio": 2.5,
+    }
+    with pytest.raises(KeyError):
+        set_value(text, "shaft[1].speed_ratio", "2.5")
+    assert tomllib.loads(set_value(text, "title", '"T"'))["title"] == "T"  # a top-level key before the tables
+
+
+def test_a_typed_delta_solves_as_the_same_scene_written_by_hand(tmp_path):
+    field = next(f for f in form.FIELDS if f.path == "machine.delta")
+    by_form = tmp_path / "form.toml"
+    by_form.write_text(form.set_field(SHEAR, field, "0.025"), encoding="utf-8")
+    by_hand = tmp_path / "hand.toml"
+    by_hand.write_text(SHEAR.replace("delta = 0.05", "delta = 0.025"), encoding="utf-8")
+    assert "delta = 0.05" in SHEAR
+    a, b = flyopt.solve(flyopt.load(by_form)), flyopt.solve(flyopt.load(by_hand))
+    assert a.analysis.delta == b.analysis.delta == 0.025
+    assert a.design.best.mass == b.design.best.mass
+
+
+def test_the_tables_are_found_and_shown_as_cells():
+    data = tomllib.loads(SHEAR)
+    assert form.tables(data) == ["torque.resisting.points"]
+    rows = form.rows_of(data, "torque.resisting.points")
+    assert rows[0] == ["0 deg", "1600 N*m"] and len(rows) == len(data["torque"]["resisting"]["points"])
+    press = tomllib.loads((ROOT / "problems" / "motor-press.toml").read_text(encoding="utf-8"))
+    assert form.rows_of(press, "torque.resisting.points")[2] == ["150", "2000"]
+
+
+def test_an_edited_cell_is_written_back_as_typed():
+    data = tomllib.loads(SHEAR)
+    rows = form.rows_of(data, "torque.resisting.points")
+    rows[1][1] = "1500 N*m"
+    edited = tomllib.loads(form.set_rows(SHEAR, "torque.resisting.points", rows))
+    assert edited["torque"]["resisting"]["points"][1] == ["45 deg", "1500 N*m"]
+
+
+def test_rows_pasted_from_a_spreadsheet_give_the_books_answer(tmp_path):
+    """The shear press's table pasted as tab-separated numbers in degrees and N*m: A_max is the book's 1256.33 J
+    (docs/flywheel-design.md, worked example 2), as with the table written with units."""
+    pasted = "angle\ttorque\n0\t1600\n45\t1600\n90\t200\n360\t200\n"
+    numbers = form.pasted_rows(pasted, "torque.resisting.points", ("deg", "N*m"))
+    assert numbers == [[0.0, 1600.0], [45.0, 1600.0], [90.0, 200.0], [360.0, 200.0]]
+    edited = form.set_table_numbers(SHEAR, "torque.resisting.points", numbers, ("deg", "N*m"))
+    table = tomllib.loads(edited)["torque"]["resisting"]
+    assert table["angle_unit"] == "deg" and table["unit"] == "N*m"
+    path = tmp_path / "pasted.toml"
+    path.write_text(edited, encoding="utf-8")
+    analysis = flyopt.analyse(flyopt.load(path))
+    assert analysis.a_max == pytest.approx(1256.33, abs=0.005)
+
+
+def test_pasted_rows_that_are_not_a_table_are_refused_with_the_line():
+    with pytest.raises(SceneError) as said:
+        form.pasted_rows("0;1600\n45;x\n", "torque.resisting.points", ("deg", "N*m"))
+    assert "line 2" in str(said.value)
