@@ -201,3 +201,32 @@ def test_flyopt_app_without_panel_refuses_in_one_line(monkeypatch, capsys):
     assert main(["app", "--no-browser"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and 'pip install "flyopt[app]"' in err
+
+
+def test_the_wheels_drawing_and_solid_are_those_flyopt_export_writes(workspace, tmp_path):
+    """The page's manufacturing downloads are the answer's own design as `flyopt export` draws it (the same
+    drawing of the same wheel: its sheet's text equal, but the date), and none where there is no wheel."""
+    from pypdf import PdfReader
+
+    from flyopt.report.drawing import export
+
+    answer = model.numbers(model.template_text("shear-press"), workspace)
+    made = model.made_bytes(answer, "pdf", workspace)
+    exported = tmp_path / "drawing.pdf"
+    export(ROOT / "problems" / "shear-press.toml", exported)
+    import io
+
+    def words(data):
+        return PdfReader(io.BytesIO(data)).pages[0].extract_text().split()
+
+    ours, theirs = words(made), words(exported.read_bytes())
+    assert ours == theirs or (len(ours) == len(theirs) and sum(a != b for a, b in zip(ours, theirs)) <= 1)
+    assert "600" in " ".join(ours)  # D = 600 mm, the design's outer diameter
+    if model.made_available("dxf"):
+        import ezdxf
+
+        dxf = ezdxf.read(io.StringIO(model.made_bytes(answer, "dxf", workspace).decode("utf-8")))
+        assert len(dxf.modelspace()) > 20  # the views, the dimensions, the title block
+    assert list(workspace.folder.iterdir()) == [workspace.path]  # nothing left beside the scene
+    conveyor = model.numbers((ROOT / "problems" / "conveyor.toml").read_text(encoding="utf-8"), workspace)
+    assert model.made_bytes(conveyor, "pdf", workspace) is None  # no flywheel needed: nothing to draw

@@ -315,6 +315,53 @@ def report_bytes(answer: Answer, kind: str) -> bytes:
             document.close()
 
 
+#: The wheel's manufacturing files the page offers, as ``flyopt export`` writes them: (kind, label, file name).
+MADE = (
+    ("pdf", "Drawing (PDF)", "drawing.pdf"),
+    ("dxf", "Drawing (DXF)", "drawing.dxf"),
+    ("step", "Solid (STEP)", "wheel.step"),
+)
+
+
+def made_available(kind: str) -> bool:
+    """Whether this installation can write ``kind`` (a DXF needs ezdxf, a STEP OpenCASCADE: the ``cad`` extra)."""
+    if kind == "dxf":
+        from flyopt.outputs.drawing import require_ezdxf as require
+    elif kind == "step":
+        from flyopt.outputs.solid import require_ocp as require
+    else:
+        return True
+    try:
+        require()
+    except ImportError:
+        return False
+    return True
+
+
+def made_bytes(answer: Answer, kind: str, workspace: Workspace) -> bytes | None:
+    """The answer's wheel as ``flyopt export`` writes it: its drawing ("pdf", "dxf", "svg") or its solid ("step").
+
+    Of the design the answer holds (nothing is solved again), written into the session's private folder and
+    read back (the file then removed); None where there is no wheel (none needed, none feasible, a
+    calculation).
+    """
+    from flyopt.report.drawing import drawing_of_design, write_drawing, write_solid
+
+    solution = getattr(answer.inputs, "solution", None)
+    design = getattr(solution, "design", None)
+    if solution is None or design is None or design.best is None:
+        return None
+    target = workspace.folder / f"made.{kind}"
+    try:
+        if kind == "step":
+            write_solid(design.best, solution.scene, target)
+        else:
+            write_drawing(drawing_of_design(design.best, solution.scene), target, kind)
+        return target.read_bytes()
+    finally:
+        target.unlink(missing_ok=True)
+
+
 def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") -> str:
     """The answer card as HTML, every string escaped."""
     from html import escape

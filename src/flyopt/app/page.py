@@ -94,6 +94,11 @@ class Session:
             pn.widgets.FileDownload(callback=self._report("pdf"), filename="report.pdf", label="Report (PDF)"),
             pn.widgets.FileDownload(callback=self._scene, filename="scene.toml", label="Scene (TOML)"),
             pn.widgets.FileDownload(callback=self._json, filename="solution.json", label="JSON"),
+            *(
+                pn.widgets.FileDownload(callback=self._made(kind), filename=name, label=label)
+                for kind, label, name in model.MADE
+                if model.made_available(kind)
+            ),
         ]
         self.template.param.watch(self._load_template, "value")
         text_parameter = "value_input" if "value_input" in self.editor.param else "value"
@@ -297,6 +302,15 @@ class Session:
             if self.answer is None:
                 return None
             return io.BytesIO(model.report_bytes(self.answer, kind))
+
+        return callback
+
+    def _made(self, kind: str) -> Any:
+        def callback() -> io.BytesIO | None:
+            if self.answer is None:
+                return None
+            made = model.made_bytes(self.answer, kind, self.workspace)
+            return None if made is None else io.BytesIO(made)
 
         return callback
 
