@@ -311,6 +311,9 @@ def _with_delta_sensitivity(
 ) -> DesignResult:
     """The winner's d(mass)/d(delta), by designing its combination again at delta (1 +- DELTA_STEP).
 
+    Each re-design passes the same post-checks as the design (a described shaft's): where a moved wheel
+    fails one, the slope is not given (the combination is not feasible on both sides).
+
     delta moves the required inertia and the highest speed together, through
     whichever model sized the flywheel, so the whole requirement is recomputed
     (the same model, forced) rather than differentiated; the truncation error
@@ -348,6 +351,7 @@ def _with_delta_sensitivity(
                 method=method,
                 torque=torque,
                 omega_mean=moved.omega_mean,
+                accept=_shaft_acceptor(scene, moved),  # the described shaft carries the moved wheel too
             )
         except (ValueError, RuntimeError):
             return result

@@ -433,3 +433,22 @@ def test_codesign_by_cost_matches_brute_force():
     # the reported cost is its own motor's price and its own wheel's cost (the brute force's best is another design,
     # on a grid of ratios: the co-design's continuous optimum is 1.5e-8 cheaper, within the 1e-6 above)
     assert result.best.cost == pytest.approx(result.best.motor.price + result.best.wheel.cost, rel=1e-12)
+
+
+def test_a_shaft_described_as_a_part_is_refused_beside_a_drive(main_cli, tmp_path):
+    """The drive puts its wheel on its own flywheel shaft at the ratio it designs; a [[shaft]] described as a part
+    would go unchecked there, so it is refused in one line (exit 2) rather than silently ignored."""
+    from conftest import PROBLEMS
+
+    text = (PROBLEMS / "press-drive.toml").read_text(encoding="utf-8")
+    path = tmp_path / "drive.toml"
+    path.write_text(
+        text
+        + '\n[[shaft]]\nname = "intermediate"\nspeed_ratio = 6.0\nmaterial = "42crmo4_qt"\n'
+        + 'segments = [{ to = "700 mm", diameter = "70 mm" }]\nbearings = ["60 mm", "620 mm"]\n'
+        + 'wheel_at = "300 mm"\ntorque_at = "660 mm"\n',
+        encoding="utf-8",
+    )
+    status, out, err = main_cli("solve", path)
+    assert status == 2 and out == ""
+    assert err.count("\n") == 1 and "shaft[0]" in err and "[drive]" in err and "Traceback" not in err

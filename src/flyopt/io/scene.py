@@ -356,6 +356,14 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             shafts,
             materials={n: library[n] for n in design_material_names(library, design_materials)},
         )
+        described = next((k for k, s in enumerate(shafts) if s.layout is not None), None)
+        if described is not None:  # its checks are the design's post-check, which the drive's search has not
+            raise SceneError(
+                f"shaft[{described}]",
+                "is described as a part (segments, bearings, wheel_at), but [drive] puts the flywheel on the "
+                "drive's own flywheel shaft at the ratio it designs, which is not checked as a part: give this "
+                "shaft's speed_ratio, diameter and inertia only, or design the wheel on it without [drive]",
+            )
     flywheel = None
     if existing:
         from flyopt.io.flywheel_section import read_flywheel
