@@ -60,11 +60,11 @@ def free_port():
         return s.getsockname()[1]
 
 
-def wait_until(condition, timeout=300.0, step=0.005):
+def wait_until(condition, timeout=300.0, step=0.005, what="the page"):
     start = time.perf_counter()
     while not condition():
         if time.perf_counter() - start > timeout:
-            raise TimeoutError("the page did not update")
+            raise TimeoutError(f"{what} did not update")
         time.sleep(step)
     return time.perf_counter()
 
@@ -92,8 +92,10 @@ def browser_latencies(url, edits):
             )
             page.keyboard.type(f"delta = {new}")
             start = time.perf_counter()
-            numbers = wait_until(lambda: shown in card.inner_text() and "designed" in card.inner_text())
-            diagrams = wait_until(lambda: speed.count() == 1 and speed.inner_html() != before)
+            numbers = wait_until(
+                lambda: shown in card.inner_text() and "designed" in card.inner_text(), what=f"the card ({shown})"
+            )
+            diagrams = wait_until(lambda: speed.count() == 1 and speed.inner_html() != before, what="the speed diagram")
             rows.append(
                 {
                     "edit": i,

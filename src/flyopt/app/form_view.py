@@ -89,17 +89,24 @@ class FormView:
                     names = {label: key for key, label in library.items()}
                     for key in shown[field.path]:
                         names.setdefault(key, key)
-                    widget.options = names
-                    widget.value = [k for k in shown[field.path] if k in names.values()]
+                    if widget.options != names:
+                        widget.options = names
+                    chosen = [k for k in shown[field.path] if k in names.values()]
+                    if widget.value != chosen:
+                        widget.value = chosen
                 elif field.kind == "choice":
                     value = shown[field.path]
-                    widget.value = value if value in widget.options else ""
+                    value = value if value in widget.options else ""
+                    if widget.value != value:
+                        widget.value = value
                 elif widget.value != shown[field.path]:
                     widget.value = shown[field.path]
             found = form.tables(data)
             keep = self.table.value if self.table.value in found else (found[0] if found else None)
-            self.table.options = found
-            self.table.value = keep
+            if list(self.table.options) != found:
+                self.table.options = found
+            if self.table.value != keep:
+                self.table.value = keep
             self._show_table(data)
         finally:
             self._showing = False
@@ -115,6 +122,9 @@ class FormView:
             return
         columns = form.columns_of(path)
         rows = form.rows_of(data, path)
+        shown = self.grid.value
+        if shown is not None and list(shown.columns) == list(columns) and shown.astype(str).values.tolist() == rows:
+            return  # the same table: nothing sent to the browser again
         self.grid.value = pd.DataFrame(rows, columns=list(columns))
         self.grid.editors = {c: {"type": "input"} for c in columns}
         units = VALUE_UNITS.get(columns[1], ("N*m",))

@@ -118,7 +118,7 @@ class Session:
         right = pn.Column(
             pn.Row(self.solve_button, self.cancel_button, self.busy, self.mode),
             self.card,
-            pn.Row(*downloads),
+            pn.FlexBox(*downloads, flex_wrap="wrap"),
             self.stale,
             self.figures,
             sizing_mode="stretch_both",
