@@ -38,6 +38,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -166,8 +167,9 @@ class ShaftCheck:
         None without an inertia on the shaft besides the wheel (no elastic mode).
     diagram : dict
         x [m] and along it M_a, M_m [N*m], T_max [N*m] and the utilisation of the plain section.
-    train : TrainResponse or None
-        The drive train's nodes, modes and shapes and its forced response at the mean speed (with ``torsional``).
+    response_inputs : tuple or None
+        What :attr:`train` works out the forced response from (the built train, the excitation, the mean
+        speed [rpm] and the damping ratio).
     """
 
     limits: tuple[ShaftLimit, ...]
@@ -180,7 +182,17 @@ class ShaftCheck:
     speed_range_rpm: tuple[float, float]
     torsional: TorsionalCheck | None
     diagram: dict[str, np.ndarray] = field(repr=False)
-    train: TrainResponse | None = None
+    response_inputs: tuple[Any, ...] | None = field(default=None, repr=False, compare=False)
+
+    @cached_property
+    def train(self) -> TrainResponse | None:
+        """The drive train's nodes, modes and shapes and its forced response at the mean speed (None without a
+        torsional check). Worked out when first asked (the report and ``--json`` of the chosen wheel), not for
+        every design the post-check screens: the limits do not depend on it."""
+        if self.response_inputs is None or self.torsional is None:
+            return None
+        built, excitation, speed_rpm, zeta = self.response_inputs
+        return train_response(built, self.torsional.modes, excitation, self.torsional.orders, speed_rpm, zeta)
 
     @property
     def binding(self) -> ShaftLimit:
@@ -417,14 +429,7 @@ def check_shaft(
             train, layout, material, wheel_inertia=wheel_inertia, speed_ratio=speed_ratio, materials=materials
         )
         torsional = torsional_check(built.model, excitation, speed_range, significant=SIGNIFICANT_ORDER)
-        response = train_response(
-            built,
-            torsional.modes,
-            excitation,
-            torsional.orders,
-            rad_s_to_rpm(omega_mean),
-            layout.damping_ratio,
-        )
+        response = (built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio)
         if torsional.critical:
             util = [
                 separation_utilisation(c.speed_rpm, speed_range, layout.critical_margin) for c in torsional.critical
