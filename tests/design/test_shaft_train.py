@@ -114,7 +114,7 @@ def test_the_two_inertia_train_is_exactly_the_shafts_default(write_scene):
     written = check(
         write_scene,
         'train = [{ flywheel = true }, { name = "shaft, seat to torque_at", span = ["wheel_at", "torque_at"] }, '
-        '{ name = "inertia on the shaft" }]',
+        '{ name = "inertia at torque_at" }]',
     )[1]
     assert written.to_dict() == default.to_dict()
     # and the default is the two-inertia closed form with the shaft's steps in series from 300 to 680 mm

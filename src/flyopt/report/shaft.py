@@ -76,10 +76,10 @@ def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_D
     train, torsional = check.train, check.torsional
     if train is None or torsional is None:
         return []
-    q, n = formatters(units, digits)
+    q, _ = formatters(units, digits)
     built = train.built
     lines = [
-        f"  drive train from the motor to the crank, seen from this shaft ({len(built.nodes)} inertias; the net "
+        f"  torsional train, seen from this shaft ({len(built.nodes)} inertias, motor end first; the net "
         f"torque enters at the {built.nodes[built.load_node]}): " + " | ".join(built.nodes),
     ]
     rows = []
@@ -115,22 +115,16 @@ def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_D
                 name,
                 kind,
                 f"{number(k, digits)} N·m/rad",
-                n(float(bound[e]), "torque_alternating", list(bound)),
+                q(float(bound[e]), "torque_alternating"),
                 "-" if top < 0 else f"{train.orders[top]:.4g}: {q(float(row[top]), 'torque_largest_order')}",
             ]
         )
     lines += [
         "  " + line
         for line in table(
-            ["element", "kind", "stiffness", f"sum |T_q| [{_unit(bound, units)}]", "largest order"],
+            ["element", "kind", "stiffness", "sum |T_q|", "largest order"],
             rows,
             ["<", "<", ">", ">", "<"],
         )
     ]
     return lines
-
-
-def _unit(values: Sequence[float] | np.ndarray, units: str) -> str:
-    from flyopt.report.text import _label
-
-    return _label("torque_alternating", units, [float(v) for v in values])

@@ -82,7 +82,7 @@ def default_train(layout: ShaftLayout, shaft: str, ratio: float, inertia: float)
     return (
         TrainInertia("flywheel", shaft, ratio, None),
         TrainSpring("shaft, seat to torque_at", "span", shaft, ratio, start=layout.wheel_at, end=layout.torque_at),
-        TrainInertia("inertia on the shaft", shaft, ratio, inertia),
+        TrainInertia("inertia at torque_at", shaft, ratio, inertia),
     )
 
 

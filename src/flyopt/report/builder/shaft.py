@@ -111,7 +111,7 @@ class ShaftSection(BuilderBase):
         blocks.append(
             Paragraph(
                 (
-                    f"The drive train from the motor to the crank as a lumped chain seen from this shaft ({NOTES}, "
+                    f"The drive train as a lumped chain seen from this shaft, motor end first ({NOTES}, "
                     f"section 26): {len(built.nodes)} inertias ({', '.join(built.nodes)}), each element reflected "
                     f"by its speed ratio squared; the cycle's net torque enters at the {built.nodes[built.load_node]}. "
                     "Each mode's shape is scaled to a largest entry of 1; the forced response is at the mean speed "
