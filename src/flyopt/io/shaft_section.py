@@ -73,7 +73,8 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
             trains.append((k, table.raw("train")))
     for k, train in trains:  # after every shaft is read: a train names the other shafts
         shaft, layout = shafts[k], shafts[k].layout
-        assert layout is not None
+        if layout is None:  # only a described shaft's train is kept (read_layout gave it)
+            continue
         elements = read_train(train, f"shaft[{k}].train", shaft, layout, tuple(shafts))
         shafts[k] = dataclasses.replace(shaft, layout=dataclasses.replace(layout, train=elements))
     return tuple(shafts)

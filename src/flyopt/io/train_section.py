@@ -111,7 +111,7 @@ def _only(table: Table, at: str, keys: set[str]) -> None:
 def _inertia(table: Table, at: str, name: str, own: Shaft, by_name: dict[str, Shaft]) -> TrainInertia:
     _only(table, at, {"name", "shaft", "inertia", "gd2"})
     shaft_name = table.get("shaft", own.name)
-    if shaft_name not in by_name:
+    if not isinstance(shaft_name, str) or shaft_name not in by_name:
         raise SceneError(f"{at}.shaft", f"no [[shaft]] is named {shorten(shaft_name)} (known: {', '.join(by_name)})")
     shaft = by_name[shaft_name]
     if table.has("inertia") and table.has("gd2"):
@@ -200,8 +200,7 @@ def _check_train(out: list[TrainInertia | TrainSpring], where: str, own: Shaft, 
         raise SceneError(where, "needs an elastic element between two inertias: a train of rigid inertias has no mode")
     for j, element in enumerate(out):
         if isinstance(element, TrainSpring):
-            after = out[j + 1]
-            assert isinstance(after, TrainInertia)  # two in a row are refused as they are read
+            after = out[j + 1]  # an inertia: two elastic elements in a row are refused as they are read
             if element.kind != "belt" and not math.isclose(after.ratio, element.ratio, rel_tol=1e-12):
                 raise SceneError(
                     f"{where}[{j}]",
@@ -244,8 +243,8 @@ def _resolve_rest(out: list[TrainInertia | TrainSpring], where: str, by_name: di
                     "(the energy method counts it) or here",
                 )
             element = out[k]
-            assert isinstance(element, TrainInertia)
-            out[k] = TrainInertia(element.name, element.shaft, element.ratio, remainder)
+            if isinstance(element, TrainInertia):  # it is: rest[] holds inertias only
+                out[k] = TrainInertia(element.name, element.shaft, element.ratio, remainder)
         elif not math.isclose(total, whole, rel_tol=INERTIA_RTOL):
             raise SceneError(
                 f"{where}[{j}].inertia",

@@ -228,7 +228,8 @@ class ShaftCheck:
 
     def _train_dict(self) -> dict[str, Any]:
         """The drive train's nodes, modes, critical speeds of the orders present and forced response (SI)."""
-        assert self.train is not None and self.torsional is not None
+        if self.train is None or self.torsional is None:
+            return {}
         out = self.train.to_dict()
         out["critical_speeds"] = [
             {
