@@ -208,3 +208,58 @@ def test_the_good_train_is_accepted(tmp_path, cli):
     path.write_text(GOOD)
     result = cli("check", path)
     assert result.returncode == 0, result.stderr
+
+
+def test_the_shipped_drive_train_is_the_hand_assembled_chain():
+    """problems/motor-press-drive-train.toml's modes, as its committed JSON gives them (tests/test_golden.py
+    holds the live output to that copy), against the chain assembled by hand from the scene's numbers: each
+    inertia and stiffness reflected to the intermediate shaft (x6) by (r / 6)^2, the motor's by 4^2, the
+    crankshaft's by (1/6)^2, and the eigenvalues of K phi = w^2 M phi by numpy's own symmetric solver."""
+    import json
+
+    from conftest import ROOT
+
+    document = json.loads((ROOT / "tests" / "data" / "golden" / "motor-press-drive-train.json").read_text())
+    train = document["shaft_checks"][0]["drive_train"]
+    j_wheel = document["design"]["j_flywheel"]
+    steel = get_material("42crmo4_qt")
+    g = steel.elastic_modulus / (2 * (1 + steel.poisson_ratio))
+
+    def piece(length, d):
+        return g * math.pi * d**4 / (32 * length)
+
+    motor, crank = 4.0**2, (1 / 6) ** 2
+    inertias = [
+        0.0214 * motor,  # rotor: the rest of the motor shaft's 0.0294
+        0.008 * motor,  # motor pulley
+        1.2,  # driven pulley
+        j_wheel,
+        0.3 + 18 * crank,  # pinion and crank gear, meshed: one node
+        6 * crank,  # crank: the rest of the crankshaft's 24
+    ]
+    springs = [
+        piece(0.15, 0.038) * motor,
+        2 * 1e6 * 0.07**2 * motor,  # the belt: 2 k_b r^2 on the motor shaft
+        1 / (1 / piece(0.1, 0.06) + 1 / piece(0.18, 0.07)),  # 20-120 mm at 60, 120-300 mm at 70
+        1 / (1 / piece(0.22, 0.07) + 1 / piece(0.14, 0.06)),  # 300-520 mm at 70, 520-660 mm at 60
+        piece(0.5, 0.14) * crank,
+    ]
+    n = len(inertias)
+    k = np.zeros((n, n))
+    for e, s in enumerate(springs):
+        k[e : e + 2, e : e + 2] += s * np.array([[1, -1], [-1, 1]])
+    m_half = np.diag(1 / np.sqrt(inertias))
+    omega2 = np.sort(np.linalg.eigvalsh(m_half @ k @ m_half))[1:]  # the rigid-body 0 left out
+    found = [mode["natural_frequency"] for mode in train["modes"]]
+    assert found == pytest.approx(np.sqrt(omega2), rel=1e-9)
+    assert train["node_names"] == [
+        "motor rotor",
+        "motor pulley",
+        "driven pulley",
+        "flywheel",
+        "pinion + crank gear",
+        "crank",
+    ]
+    assert [s["torsional_stiffness"] for s in train["springs"]] == pytest.approx(
+        [springs[0] / motor, springs[1] / motor, springs[2], springs[3], springs[4] / crank], rel=1e-12
+    )
