@@ -58,6 +58,12 @@ DIMENSIONS = {
     "cost_per_mass": ("1/[mass]", "1/kg", "a cost per kilogram (e.g. '2.1 1/kg')"),
     "time": ("[time]", "s", "a time (e.g. '2 s')"),
     "angular_acceleration": ("1/[time]**2", "rad/s**2", "an angular acceleration (e.g. '800 rpm/s' or rad/s^2)"),
+    "torsional_stiffness": (
+        "[mass]*[length]**2/[time]**2",
+        "N*m/rad",
+        "a torsional stiffness (e.g. '250 kN*m/rad')",
+    ),
+    "stiffness": ("[mass]/[time]**2", "N/m", "a stiffness (e.g. '2.4 MN/m' or '2400 N/mm')"),
 }
 
 #: Units read without pint, per dimension: the unit as written -> pint's factor to the SI unit of
@@ -167,6 +173,8 @@ FAST_UNITS = {
     "dimensionless": {"%": 0.01, "percent": 0.01, "permille": 0.001, "ppm": 1e-06},
     "cost_per_mass": {"1/kg": 1.0, "/kg": 1.0},
     "time": {"s": 1.0, "ms": 0.001, "min": 60.0},
+    "torsional_stiffness": {"N*m/rad": 1.0, "kN*m/rad": 1000.0, "MN*m/rad": 1000000.0},
+    "stiffness": {"N/m": 1.0, "kN/m": 1000.0, "MN/m": 1000000.0, "N/mm": 1000.0, "kN/mm": 1000000.0},
 }
 
 _PER_TURN = frozenset({"Hz", "1/s", "/s", "s^-1", "1/min", "/min", "min^-1"})

@@ -39,6 +39,9 @@ REACH = [
     '[machine]\nspeed = "100 rpm"\ndelta = 0.1\n[torque.net]\nareas = [1, -1]\n[[shaft]]\nname = "s"\n'
     "speed_ratio = 1\nsegments = [{ to = 1, diameter = 0.1 }]\nbearings = [0, 1]\nwheel_at = 0.5\ntorque_at = 1\n"
     'material = "m"\nloads = [{ at = 0.5, force = 1 }]\n',
+    '[machine]\nspeed = "100 rpm"\ndelta = 0.1\n[torque.net]\nareas = [1, -1]\n[[shaft]]\nname = "s"\n'
+    "speed_ratio = 1\nsegments = [{ to = 1, diameter = 0.1 }]\nbearings = [0, 1]\nwheel_at = 0.5\ntorque_at = 1\n"
+    'material = "m"\ntrain = [{ flywheel = true }, { stiffness = 1 }, { inertia = 1 }]\n',
 ]
 
 

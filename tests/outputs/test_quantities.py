@@ -260,6 +260,16 @@ RELATIONS = {
     "torque_alternating": "driving_torque",
     "critical_speed": "omega_max",
     "critical_speed_allowed": "critical_speed",
+    # the drive train: a natural frequency is sqrt(k / J); shapes, damping ratios and orders are ratios;
+    # a torsional stiffness is a torque per radian
+    "natural_frequency": "(torque / j_flywheel)**0.5",
+    "mode_shape": "j_required / j_required",
+    "damping_ratio": "j_required / j_required",
+    "orders": "omega_max / omega_mean",
+    "order": "omega_max / omega_mean",
+    "largest_order": "omega_max / omega_mean",
+    "torsional_stiffness": "driving_torque",
+    "torque_largest_order": "driving_torque",
     "lateral_critical_speed": "critical_speed",
     "speed_range": "omega_mean",
     "torsional_modes": "(torque / j_flywheel)**0.5",

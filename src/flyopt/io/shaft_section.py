@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, check_magnitude
+from flyopt.io.train_section import read_train
+from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.shaft_layout import ShaftLayout, SideLoad
 from flyopt.machine.transmission import Shaft, series_efficiency
 from flyopt.units import inertia_from_gd2, quantity
@@ -24,7 +27,7 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
         return (Shaft("reference", 1.0),)
     if not isinstance(raw, list) or not raw:
         raise SceneError("shaft", "must be an array of tables: [[shaft]] with name and speed_ratio")
-    shafts, seen = [], set()
+    shafts, seen, trains = [], set(), []
     for k, item in enumerate(raw):
         where = f"shaft[{k}]"
         table = Table(
@@ -66,6 +69,14 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
                 )
             diameter = seat
         shafts.append(Shaft(name, ratio, eff, diameter, _shaft_inertia(table, where), layout))
+        if layout is not None and table.has("train"):
+            trains.append((k, table.raw("train")))
+    for k, train in trains:  # after every shaft is read: a train names the other shafts
+        shaft, layout = shafts[k], shafts[k].layout
+        if layout is None:  # only a described shaft's train is kept (read_layout gave it)
+            continue
+        elements = read_train(train, f"shaft[{k}].train", shaft, layout, tuple(shafts))
+        shafts[k] = dataclasses.replace(shaft, layout=dataclasses.replace(layout, train=elements))
     return tuple(shafts)
 
 
@@ -85,6 +96,8 @@ LAYOUT_KEYS = frozenset(
         "max_slope",
         "max_deflection",
         "critical_margin",
+        "train",
+        "damping_ratio",
     }
 )
 
@@ -136,7 +149,19 @@ def read_layout(table: Table, where: str) -> ShaftLayout | None:
             f"{where}.critical_margin",
             f"must be a share in [0, 1) of the running range's end, got {shorten(table.raw('critical_margin'))}",
         )
-    options = {"balance_grade": grade, "safety_factor": safety, "max_slope": slope, "critical_margin": margin}
+    damping = table.quantity("damping_ratio", "dimensionless")
+    if damping is not None and not (math.isfinite(damping) and 0.0 < damping < 1.0):
+        raise SceneError(
+            f"{where}.damping_ratio",
+            f"must be a ratio in (0, 1) (each torsional mode's modal damping), got {shorten(table.raw('damping_ratio'))}",
+        )
+    options: dict[str, Any] = {
+        "balance_grade": grade,
+        "safety_factor": safety,
+        "max_slope": slope,
+        "critical_margin": margin,
+        "damping_ratio": damping,
+    }
     return ShaftLayout(
         steps,
         diameters,
@@ -246,6 +271,18 @@ def check_shaft_materials(shafts: Iterable[Shaft], library: dict) -> None:
                 where, f"{material.name!r} gives no tensile and yield strength, which the shaft's fatigue check needs"
             )
         _check_fatigue_ranges(shaft.layout, material, f"shaft[{k}]")
+        for j, element in enumerate(shaft.layout.train):
+            if not isinstance(element, TrainSpring) or element.kind != "piece":
+                continue
+            at = f"shaft[{k}].train[{j}].material"
+            try:
+                piece = get_material(element.material, library)
+            except ValueError as err:
+                raise SceneError(at, str(err)) from None
+            if piece.elastic_modulus is None:
+                raise SceneError(
+                    at, f"{piece.name!r} gives no elastic_modulus, which the piece's G = E/(2(1 + nu)) needs"
+                )
 
 
 def _check_fatigue_ranges(layout: ShaftLayout, material: Any, where: str) -> None:

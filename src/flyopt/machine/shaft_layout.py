@@ -9,6 +9,10 @@ round steps on two bearings; x is measured from one end.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from flyopt.machine.drive_train import TrainInertia, TrainSpring
 
 __all__ = ["SideLoad", "ShaftLayout"]
 
@@ -70,6 +74,12 @@ class ShaftLayout:
     critical_margin : float
         The separation a lateral critical speed must keep from the running range, as a share of
         its nearer end [-].
+    train : tuple of TrainInertia and TrainSpring
+        The drive train's torsional elements in order from the motor to the crank
+        (:mod:`flyopt.machine.drive_train`); empty: the wheel and the shaft's own inertia at
+        ``torque_at``, joined by the shaft between them (the two-inertia train).
+    damping_ratio : float
+        The modal damping ratio of every elastic torsional mode in the forced response [-].
     """
 
     steps: tuple[float, ...]
@@ -86,6 +96,8 @@ class ShaftLayout:
     max_slope: float = 1.0e-3
     max_deflection: float | None = None
     critical_margin: float = 0.2
+    train: tuple[TrainInertia | TrainSpring, ...] = ()
+    damping_ratio: float = 0.02
 
     @property
     def length(self) -> float:

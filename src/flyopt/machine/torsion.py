@@ -262,6 +262,38 @@ def chain(
     )
 
 
+def shaft_compliance(shear_modulus: float, length: float, diameter: float) -> float:
+    """1/k = l / (G J_p) = l / (G pi d^4 / 32) [rad/(N*m)] of a solid round shaft piece (Roark's Formulas for
+    Stress and Strain, 7th ed., Table 10.1, case 1: theta = T l / (K G) with K = pi d^4 / 32 for a solid
+    circle); pieces in series add their compliances."""
+    for name, value in (("shear_modulus", shear_modulus), ("length", length), ("diameter", diameter)):
+        _check_number(name, value, positive=True)
+    return length / (shear_modulus * math.pi * diameter**4 / 32.0)
+
+
+def shaft_stiffness(shear_modulus: float, length: float, diameter: float) -> float:
+    """k = G pi d^4 / (32 l) [N*m/rad] of a solid round shaft piece: 1 / :func:`shaft_compliance`."""
+    return 1.0 / shaft_compliance(shear_modulus, length, diameter)
+
+
+def belt_stiffness(span_stiffness: float, radius: float) -> float:
+    """k = 2 k_b r^2 [N*m/rad] of a belt drive on the shaft of the pulley of radius r [m].
+
+    Both spans are pretensioned and stay taut: turning that pulley by theta against the other
+    stretches one span by r theta and relieves the other by r theta, each span of stretch
+    stiffness k_b [N/m] (E A / l of its belts in parallel), so the strain energy is
+    2 (k_b (r theta)^2 / 2) and the torque 2 k_b r^2 theta. This is the discrete belt-drive model in
+    which each span is an axial spring between the pulleys' rims (R. S. Beikmann, N. C. Perkins and
+    A. G. Ulsoy, "Free vibration of serpentine belt drive systems", J. Vib. Acoust. 118 (1996)
+    406-413), for two pulleys, the second one held. On the other pulley's shaft it is
+    2 k_b r'^2 = k (r'/r)^2, the ratio-squared reflection of :func:`flyopt.machine.transmission.reflected`
+    (r omega = r' omega': the belt speed).
+    """
+    _check_number("span_stiffness", span_stiffness, positive=True)
+    _check_number("radius", radius, positive=True)
+    return 2.0 * span_stiffness * radius**2
+
+
 @dataclass(frozen=True)
 class Modes:
     """The undamped modes of a torsional model.

@@ -295,6 +295,15 @@ QUANTITIES = {
     "speed_range": "angular_speed",
     "torsional_modes": "angular_speed",
     "dutilisation_dmass": "per_mass",
+    # the drive train's torsional model (drive_train), section 26
+    "natural_frequency": "angular_speed",
+    "mode_shape": "dimensionless",
+    "damping_ratio": "dimensionless",
+    "orders": "dimensionless",
+    "order": "dimensionless",
+    "largest_order": "dimensionless",
+    "torsional_stiffness": "torsional_stiffness",
+    "torque_largest_order": "torque",
 }
 
 #: Numbers whose unit is set by another field, so that a table or document has no single
@@ -324,6 +333,9 @@ COUNTS = frozenset(
         "elements",
         "nodes",
         "rounds",
+        "mode",
+        "wheel_node",
+        "load_node",
     }
 )
 

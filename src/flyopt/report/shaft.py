@@ -6,16 +6,18 @@ import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from flyopt.design.combination import shaft_label
 from flyopt.design.shaft.check import JSON_NAMES
 from flyopt.report.display import DEFAULT, DEFAULT_DIGITS
 from flyopt.report.text import formatters, number, table
 
 if TYPE_CHECKING:
-    from flyopt.design.shaft.check import ShaftLimit
+    from flyopt.design.shaft.check import ShaftCheck, ShaftLimit
     from flyopt.design.shaft.cycle import ShaftReport
 
-__all__ = ["shaft_report", "limit_value"]
+__all__ = ["shaft_report", "limit_value", "train_lines"]
 
 
 def limit_value(limit: ShaftLimit, value: float, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
@@ -64,4 +66,65 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
             f"  binding: {binding.kind} {binding.where}, utilisation {number(binding.utilisation, 3)}; "
             f"d(utilisation)/d(wheel mass) {number(rep.sensitivity, 3)} per kg"
         )
+        lines += train_lines(c, units, digits)
+    return lines
+
+
+def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
+    """The drive train's nodes, every elastic mode with its shape and nearest critical speed, and the forced
+    response's alternating torque in each elastic element (nothing without a train)."""
+    train, torsional = check.train, check.torsional
+    if train is None or torsional is None:
+        return []
+    q, _ = formatters(units, digits)
+    built = train.built
+    lines = [
+        f"  torsional train, seen from this shaft ({len(built.nodes)} inertias, motor end first; the net "
+        f"torque enters at the {built.nodes[built.load_node]}): " + " | ".join(built.nodes),
+    ]
+    rows = []
+    for m, f in enumerate(train.modes.frequencies_hz, start=1):
+        own = [cs for cs in torsional.critical if cs.mode == m]
+        near = min(own, key=lambda cs: cs.margin, default=None)
+        where = (
+            "-"
+            if near is None
+            else (
+                f"order {near.order:.4g}: {q(near.speed_rpm * math.pi / 30.0, 'critical_speed')}"
+                + (" (in the range)" if near.in_range else f" ({number(100 * near.margin, 3)} % clear)")
+            )
+        )
+        shape = ", ".join(f"{v:+.2f}" for v in train.shapes[:, m - 1])
+        rows.append([str(m), f"{number(float(f), digits)} Hz", shape, where])
+    lines += [
+        "  " + line
+        for line in table(["mode", "frequency", "shape (each inertia, largest 1)", "nearest critical speed"], rows)
+    ]
+    lines.append(
+        f"  forced response at the mean speed {q(train.speed_rpm * math.pi / 30.0, 'speed_range')} to "
+        f"{train.orders.size} orders (modal damping {number(100 * train.damping_ratio, 3)} %), on each "
+        "element's own shaft:"
+    )
+    bound = train.torque_bound
+    rows = []
+    for e, (name, kind, k) in enumerate(built.springs):
+        row = train.shaft_torques[e]
+        top = int(np.argmax(row)) if row.size else -1
+        rows.append(
+            [
+                name,
+                kind,
+                f"{number(k, digits)} N·m/rad",
+                q(float(bound[e]), "torque_alternating"),
+                "-" if top < 0 else f"{train.orders[top]:.4g}: {q(float(row[top]), 'torque_largest_order')}",
+            ]
+        )
+    lines += [
+        "  " + line
+        for line in table(
+            ["element", "kind", "stiffness", "sum |T_q|", "largest order"],
+            rows,
+            ["<", "<", ">", ">", "<"],
+        )
+    ]
     return lines

@@ -22,9 +22,11 @@ shaft described as a part (:class:`flyopt.machine.shaft_layout.ShaftLayout`):
 - **lateral critical speed** (:mod:`~flyopt.design.shaft.lateral`): the first
   forward critical speed of the beam FE with the wheel as a rigid disc (its
   gyroscopic effect included) against the running range omega_m r (1 -/+ delta/2);
-- **torsional modes** (:mod:`~flyopt.design.shaft.torsional`): the wheel and the
-  inertia already on the shaft joined by the shaft between the seat and
-  ``torque_at``, against the orders of the cycle's net torque.
+- **torsional modes** (:mod:`~flyopt.design.shaft.torsional`, :mod:`~flyopt.design.shaft.train`):
+  the drive train from the motor to the crank with the wheel at its place (by default the
+  wheel and the inertia already on the shaft joined by the shaft between the seat and
+  ``torque_at``), its modes against the orders of the cycle's net torque, and its forced
+  response at the mean speed.
 
 Each limit is a :class:`ShaftLimit` with its value, the allowed value and the
 utilisation (<= 1 holds). The check is a post-check of a designed wheel, not a
@@ -34,8 +36,9 @@ row of the NLP (docs/flywheel-design.md, section 26).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -45,7 +48,8 @@ from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_line
 from flyopt.design.shaft.lateral import GRAVITY, Disc, critical_speeds, rotor_model
 from flyopt.design.shaft.torsional import TorsionalCheck, running_range_rpm, torsional_check
-from flyopt.machine.torsion import TorqueOrders, chain
+from flyopt.design.shaft.train import TrainResponse, default_train, train_model, train_response
+from flyopt.machine.torsion import TorqueOrders
 from flyopt.units import rad_s_to_rpm
 
 if TYPE_CHECKING:
@@ -60,8 +64,6 @@ CRITERION = "goodman"
 SIGNIFICANT_ORDER = 0.05
 #: Equal steps of the diagram along the shaft (the checked sections and breakpoints added to them).
 DIAGRAM_POINTS = 121
-#: Poisson's ratio of a steel when the material gives none (G = E / (2 (1 + nu))).
-STEEL_POISSON = 0.3
 
 
 @dataclass(frozen=True)
@@ -165,6 +167,9 @@ class ShaftCheck:
         None without an inertia on the shaft besides the wheel (no elastic mode).
     diagram : dict
         x [m] and along it M_a, M_m [N*m], T_max [N*m] and the utilisation of the plain section.
+    response_inputs : tuple or None
+        What :attr:`train` works out the forced response from (the built train, the excitation, the mean
+        speed [rpm] and the damping ratio).
     """
 
     limits: tuple[ShaftLimit, ...]
@@ -177,6 +182,17 @@ class ShaftCheck:
     speed_range_rpm: tuple[float, float]
     torsional: TorsionalCheck | None
     diagram: dict[str, np.ndarray] = field(repr=False)
+    response_inputs: tuple[Any, ...] | None = field(default=None, repr=False, compare=False)
+
+    @cached_property
+    def train(self) -> TrainResponse | None:
+        """The drive train's nodes, modes and shapes and its forced response at the mean speed (None without a
+        torsional check). Worked out when first asked (the report and ``--json`` of the chosen wheel), not for
+        every design the post-check screens: the limits do not depend on it."""
+        if self.response_inputs is None or self.torsional is None:
+            return None
+        built, excitation, speed_rpm, zeta = self.response_inputs
+        return train_response(built, self.torsional.modes, excitation, self.torsional.orders, speed_rpm, zeta)
 
     @property
     def binding(self) -> ShaftLimit:
@@ -207,7 +223,25 @@ class ShaftCheck:
             "torsional_modes": (
                 [] if self.torsional is None else [f * 2.0 * math.pi for f in self.torsional.modes.frequencies_hz]
             ),
+            **({} if self.train is None else {"drive_train": self._train_dict()}),
         }
+
+    def _train_dict(self) -> dict[str, Any]:
+        """The drive train's nodes, modes, critical speeds of the orders present and forced response (SI)."""
+        if self.train is None or self.torsional is None:
+            return {}
+        out = self.train.to_dict()
+        out["critical_speeds"] = [
+            {
+                "mode": c.mode,
+                "order": c.order,
+                "critical_speed": c.speed_rpm * math.pi / 30.0,
+                "margin": c.margin,
+                "in_range": c.in_range,
+            }
+            for c in self.torsional.critical
+        ]
+        return out
 
 
 def separation_utilisation(critical_rpm: float, speed_range_rpm: tuple[float, float], margin: float) -> float:
@@ -282,6 +316,8 @@ def check_shaft(
     torque_curve: Sequence[float] | np.ndarray,
     excitation: TorqueOrders | None = None,
     other_inertia: float = 0.0,
+    speed_ratio: float = 1.0,
+    materials: Mapping[str, Material] | None = None,
 ) -> ShaftCheck:
     """Check a described shaft carrying a wheel over the cycle.
 
@@ -305,7 +341,14 @@ def check_shaft(
     excitation : TorqueOrders, optional
         The net torque's orders per revolution of this shaft; None: no torsional check.
     other_inertia : float
-        The inertia already on the shaft at ``torque_at`` [kg*m^2]; 0: no elastic torsional mode.
+        The inertia already on the shaft [kg*m^2]: without a ``train`` in the layout, the second inertia of
+        the two-inertia train at ``torque_at`` (:func:`~flyopt.design.shaft.train.default_train`; 0: no elastic
+        torsional mode).
+    speed_ratio : float
+        The shaft's omega / omega_reference: the train's elements are reflected to this shaft by their
+        ratios relative to it.
+    materials : mapping of str to Material, optional
+        The materials a train's shaft pieces name, other than the shaft's own.
 
     Returns
     -------
@@ -380,10 +423,14 @@ def check_shaft(
         )
     )
 
-    torsional = None
-    if excitation is not None and other_inertia > 0.0:
-        model = chain([wheel_inertia, other_inertia], [_torsional_stiffness(layout, material)])
-        torsional = torsional_check(model, excitation, speed_range, significant=SIGNIFICANT_ORDER)
+    torsional = response = None
+    train = layout.train or default_train(layout, "", speed_ratio, other_inertia)
+    if excitation is not None and train:
+        built = train_model(
+            train, layout, material, wheel_inertia=wheel_inertia, speed_ratio=speed_ratio, materials=materials
+        )
+        torsional = torsional_check(built.model, excitation, speed_range, significant=SIGNIFICANT_ORDER)
+        response = (built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio)
         if torsional.critical:
             util = [
                 separation_utilisation(c.speed_rpm, speed_range, layout.critical_margin) for c in torsional.critical
@@ -411,7 +458,17 @@ def check_shaft(
         "utilisation": plain,
     }
     return ShaftCheck(
-        tuple(limits), tuple(checked), weight, unbalance, t_mean, t_alt, lateral, speed_range, torsional, diagram
+        tuple(limits),
+        tuple(checked),
+        weight,
+        unbalance,
+        t_mean,
+        t_alt,
+        lateral,
+        speed_range,
+        torsional,
+        diagram,
+        response,
     )
 
 
@@ -419,22 +476,6 @@ def _band_edge(critical_rpm: float, speed_range_rpm: tuple[float, float], margin
     """The nearer edge of the band the critical speed must stay out of [rpm]: n_max (1 + m) or n_min (1 - m)."""
     low, high = speed_range_rpm
     return high * (1.0 + margin) if critical_rpm >= math.sqrt(low * high) else low * (1.0 - margin)
-
-
-def _torsional_stiffness(layout: ShaftLayout, material: Material) -> float:
-    """k = 1 / sum l_i / (G pi d_i^4 / 32) [N*m/rad] of the shaft between the seat and ``torque_at``."""
-    nu = material.poisson_ratio if material.poisson_ratio is not None else STEEL_POISSON
-    g = float(material.elastic_modulus or 0.0) / (2.0 * (1.0 + nu))
-    low, high = sorted((layout.wheel_at, layout.torque_at))
-    if high - low <= 0.0:
-        raise ValueError("the shaft's torque_at is at the wheel seat: no length of shaft twists between them")
-    compliance, start = 0.0, 0.0
-    for end, d in zip(layout.steps, layout.diameters):
-        overlap = min(end, high) - max(start, low)
-        if overlap > 0.0:
-            compliance += overlap / (g * math.pi * d**4 / 32.0)
-        start = end
-    return 1.0 / compliance
 
 
 def _strengths_along(layout: ShaftLayout, material: Material, d: np.ndarray) -> tuple[np.ndarray, ...]:

@@ -24,6 +24,7 @@ import numpy as np
 
 from flyopt.design.combination import shaft_label
 from flyopt.design.shaft.check import ShaftCheck, ShaftLimit, check_shaft
+from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.torsion import TorqueOrders
 
 if TYPE_CHECKING:
@@ -49,6 +50,7 @@ class ShaftContext:
     j_machine: np.ndarray | None  # J_e at the samples [kg*m^2]; None: net areas (no curves)
     net_torque: np.ndarray | None  # M_d - M_r at the same samples [N*m]
     orders: TorqueOrders | None
+    train_materials: dict[str, Material] = field(default_factory=dict)  # the materials a train's pieces name
     _cache: dict[tuple[Any, ...], ShaftCheck] = field(default_factory=dict, repr=False)
 
 
@@ -92,7 +94,14 @@ def shaft_context(analysis: Analysis, shafts: Iterable[Shaft], library: Mapping[
         j_machine = np.concatenate([j, j])
         balanced = machine.angle_only()
         orders = net_torque_orders(balanced.driving, balanced.resisting, machine.cycle_angle)
-    return ShaftContext(analysis.omega_mean, analysis.delta, described, materials, j_machine, net, orders)
+    pieces = {
+        e.material: get_material(e.material, library)
+        for s in described.values()
+        if s.layout is not None
+        for e in s.layout.train
+        if isinstance(e, TrainSpring) and e.kind == "piece"
+    }
+    return ShaftContext(analysis.omega_mean, analysis.delta, described, materials, j_machine, net, orders, pieces)
 
 
 def _wheel(candidate: Candidate) -> tuple[float, float, float]:
@@ -132,6 +141,8 @@ def _check(ctx: ShaftContext, name: str, mass: float, inertia: float, width: flo
         torque_curve=torque,
         excitation=excitation,
         other_inertia=shaft.inertia,
+        speed_ratio=r,
+        materials=ctx.train_materials,
     )
     ctx._cache[key] = check
     return check

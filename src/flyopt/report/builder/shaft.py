@@ -81,6 +81,7 @@ class ShaftSection(BuilderBase):
                 ),
             ]
             blocks.append(Facts(tuple(facts), "shaft_facts"))
+            self.train_tables(blocks, c)
             self.figure(
                 blocks,
                 "shaft",
@@ -97,3 +98,67 @@ class ShaftSection(BuilderBase):
                 report,
                 layout,
             )
+
+    def train_tables(self, blocks: list[Any], check: Any) -> None:
+        """The drive train's modes with their shapes and nearest critical speeds, and the forced response's
+        alternating torque in each elastic element (nothing without a train)."""
+        import numpy as np
+
+        train, torsional = check.train, check.torsional
+        if train is None or torsional is None:
+            return
+        built = train.built
+        blocks.append(
+            Paragraph(
+                (
+                    f"The drive train as a lumped chain seen from this shaft, motor end first ({NOTES}, "
+                    f"section 26): {len(built.nodes)} inertias ({', '.join(built.nodes)}), each element reflected "
+                    f"by its speed ratio squared; the cycle's net torque enters at the {built.nodes[built.load_node]}. "
+                    "Each mode's shape is scaled to a largest entry of 1; the forced response is at the mean speed "
+                    f"to the orders present, each mode damped {number(100 * train.damping_ratio, 3)} %.",
+                )
+            )
+        )
+        rows: list[list[Any]] = []
+        for m, f in enumerate(train.modes.frequencies_hz, start=1):
+            near = min((cs for cs in torsional.critical if cs.mode == m), key=lambda cs: cs.margin, default=None)
+            rows.append(
+                [
+                    str(m),
+                    f"{number(float(f), self.digits)} Hz",
+                    ", ".join(f"{v:+.2f}" for v in train.shapes[:, m - 1]),
+                    "-" if near is None else f"order {near.order:.4g} at {number(near.speed_rpm, self.digits)} rpm",
+                    "-" if near is None else ("in the range" if near.in_range else f"{number(100 * near.margin, 3)} %"),
+                ]
+            )
+        blocks.append(
+            Table(
+                ("mode", "frequency", "shape", "nearest critical speed", "clear of the range by"),
+                tuple(rows),
+                ("<", ">", "<", "<", ">"),
+                "The drive train's torsional modes",
+                "train_modes",
+            )
+        )
+        rows = []
+        for e, (name, kind, k) in enumerate(built.springs):
+            row = train.shaft_torques[e]
+            top = int(np.argmax(row)) if row.size else -1
+            rows.append(
+                [
+                    name,
+                    kind,
+                    f"{number(k, self.digits)} N·m/rad",
+                    self.q(float(train.torque_bound[e]), "torque", "torque_alternating"),
+                    "-" if top < 0 else f"{train.orders[top]:.4g}",
+                ]
+            )
+        blocks.append(
+            Table(
+                ("element", "kind", "stiffness", "alternating torque (sum over orders)", "largest order"),
+                tuple(rows),
+                ("<", "<", ">", ">", ">"),
+                "Forced response at the mean speed: each element's alternating torque on its own shaft",
+                "train_response",
+            )
+        )

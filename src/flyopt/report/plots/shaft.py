@@ -21,6 +21,9 @@ if TYPE_CHECKING:
 
 __all__ = ["plot_shaft", "plot_campbell"]
 
+#: Above this many orders the Campbell diagram draws their lines thin and light and their crossings small.
+DENSE_ORDERS = 12
+
 
 def _outline(ax: Axes, layout: ShaftLayout, units: str, top: float) -> None:
     """The shaft's steps as a profile under the curves, the bearings as triangles, the wheel as a bar."""
@@ -120,9 +123,16 @@ def plot_campbell(
     labelled = set(np.sort(check.orders)[:4].tolist()) | ({worst_order} if worst_order is not None else set())
     placed: list[tuple[int, float]] = []  # (index along the speed axis, frequency) of each label drawn
     gap = 0.05 * 1.15 * modes.max()  # labels at the same speed (the right edge) at least this far apart
+    many = len(check.orders) > DENSE_ORDERS  # a pulse's many orders: thin lines and small dots, or a grey wash
     for q in sorted(check.orders, key=lambda o: (float(o) != worst_order, -float(o))):
         f = q * rpm / 60.0
-        ax.plot(shown, f, color="0.6", lw=0.7)
+        nearest = worst_order is not None and math.isclose(float(q), worst_order, rel_tol=1e-5)  # :g in its words
+        ax.plot(
+            shown,
+            f,
+            color="tab:red" if nearest else "0.75" if many else "0.6",
+            lw=0.9 if nearest else 0.35 if many else 0.7,
+        )
         k = min(int(np.searchsorted(f, 1.15 * modes.max())), len(f) - 1)
         crowded = any(j == k and abs(f[k] - g) < gap for j, g in placed)
         if float(q) in labelled and not crowded:  # the lowest orders and the nearest; none over another
@@ -156,7 +166,11 @@ def plot_campbell(
     for c in inside:
         colour = "tab:red" if report.check.binding.kind == "torsional" and c.in_range else "black"
         ax.plot(
-            standard.show(c.speed_rpm * math.pi / 30.0, "angular_speed", units), c.frequency_hz, "o", ms=4, color=colour
+            standard.show(c.speed_rpm * math.pi / 30.0, "angular_speed", units),
+            c.frequency_hz,
+            "o",
+            ms=2.2 if many else 4,
+            color=colour,
         )
     if worst is not None:
         ax.plot(
