@@ -21,9 +21,11 @@ References
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import dataclasses
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from flyopt.design import balance, castability, check, geometry, hub, key, strength, wheel
@@ -55,6 +57,7 @@ __all__ = [
     "structure_fields",
     "NoWheel",
     "sensitivities",
+    "neighbours",
 ]
 
 #: Re-solves allowed for the exact stress check and the strength of the walls to settle.
@@ -329,6 +332,29 @@ def wheel_problem(
     return structure, problem
 
 
+#: The wheels designed so far within :func:`neighbours` (None outside it): (structure, combination) -> dims [m].
+_NEIGHBOURS: contextvars.ContextVar[dict[Any, dict[str, float]] | None] = contextvars.ContextVar(
+    "wheel_neighbours", default=None
+)
+
+
+@contextlib.contextmanager
+def neighbours() -> Iterator[None]:
+    """Within it, each whole wheel :func:`design_combination` designs is warm-started from the last one
+    designed of the same combination and NLP structure (a sweep's previous point): sqpmethod is tried from
+    that wheel first and, where it does not converge, the solve goes on cold (:func:`flyopt.design.wheel_nlp.solve`).
+
+    A start, not an answer: the NLP, its bounds and the stress check are the point's own, so a warm design
+    is the cold one to the solvers' tolerance (tests/studies/test_wheel_warm.py holds them to 1e-8). The
+    memory lasts as long as the block (a sweep's chunk), so no design outside it depends on another.
+    """
+    token = _NEIGHBOURS.set({})
+    try:
+        yield
+    finally:
+        _NEIGHBOURS.reset(token)
+
+
 def strongest_allowables(material: Material, spec: DesignSpec, structure: WheelStructure) -> dict[str, float]:
     """Each stressed part of a structure to the largest allowable stress any section of the material has [Pa]
     (empty under the rim-speed criterion, or when the material gives none): no wheel's allowable is higher."""
@@ -400,9 +426,13 @@ def design_combination(
     if fixed:
         problem = _with(problem, fixed=dict(fixed))
     model = wheel_nlp.get_model(structure, solver_options)
+    memory = _NEIGHBOURS.get() if not (fixed or start) and model.fast is not None else None
+    remembered = (structure, combo.label)
     if start:  # a neighbour's dimensions over the thin ring (a pinned D_m leaves D_outer out of a rounding's)
         ring = wheel_nlp.starting_wheel(structure, problem, model.variables)
         problem = _with(problem, start={n: {**ring, **start, **(fixed or {})}[n] for n in model.variables})
+    elif memory is not None and remembered in memory:  # sqpmethod tried from the last wheel first (neighbours)
+        problem = _with(problem, warm=memory[remembered])
     parts = model.stress_parts
     # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
     start = wheel_nlp.starting_wheel(structure, problem, model.variables)
@@ -454,6 +484,8 @@ def design_combination(
             continue  # this choice of capped sections leaves no wheel; another may
         if best is None or found[1].objective < best[1].objective:
             best = found
+    if memory is not None and best is not None:
+        memory[remembered] = {n: float(getattr(best[0], n)) for n in model.variables}
     if best is None:
         # only sections beyond the strength table (raised only where a table exists) leave no design
         if table_end is None:
