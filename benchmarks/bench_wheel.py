@@ -58,6 +58,7 @@ import flyopt
 from flyopt.bench.wheel import random_wheel
 from flyopt.design import wheel_nlp
 from flyopt.design.nlp import CONVERGED
+from flyopt.errors import SolverFailed
 
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = Path(os.environ.get("BENCH_WHEEL_OUT", Path(__file__).resolve().parent / "results"))
@@ -232,6 +233,117 @@ def pareto_seconds(options, repeat):
     return statistics.median(times), min(times), max(times)
 
 
+#: The categories of :func:`breakdown`, in the order they are written.
+CATEGORIES = (
+    "sqpmethod, converged",
+    "sqpmethod, not converged (then cold SQP or IPOPT)",
+    "IPOPT, converged (after sqpmethod failed)",
+    "IPOPT, infeasible (proving no wheel)",
+    "exact stress check (strength.check_wheel)",
+    "rest of the whole-wheel designs (allowables, bounds, multipliers, fields)",
+    "rest of the point (cycle, screening, pruning, ranking, result table)",
+)
+
+
+def breakdown(kind, repeat):
+    """Where the CPU time of a serial, in-process run goes: the sweep over δ (40 points) or the Pareto front.
+
+    Every whole-wheel NLP solve (:func:`flyopt.design.wheel_nlp._solve_fast` for sqpmethod, the rest of
+    :func:`flyopt.design.wheel_nlp.solve` for IPOPT), the exact stress check and the designs are timed
+    by process CPU time (not wall time: the host is shared); the functions are restored afterwards.
+    Returns (points, [CPU s per run], {category: (CPU s per run, calls per run)}, warm-started solves per run).
+    """
+    from flyopt.design import strength, wheel_design
+
+    clock = time.process_time
+    scene = flyopt.load(SCENE)
+
+    def one():
+        if kind == "pareto":
+            return flyopt.pareto(scene)
+        return flyopt.sweep(scene, {"delta": "0.02:0.3:40"}, workers=1)
+
+    one()  # the models built, the caches warm
+    spent = dict.fromkeys(CATEGORIES, 0.0)
+    calls = dict.fromkeys(CATEGORIES, 0)
+    inner = {"sqp": 0.0, "check": 0.0, "solve": 0.0}
+    warm = {"n": 0}
+    originals = (wheel_nlp._solve_fast, wheel_nlp.solve, strength.check_wheel, wheel_design.design_combination)
+
+    def add(category, seconds):
+        spent[category] += seconds
+        calls[category] += 1
+
+    def fast(f, args):
+        begin = clock()
+        found = originals[0](f, args)
+        seconds = clock() - begin
+        inner["sqp"] += seconds
+        add(CATEGORIES[0] if found[0] is not None else CATEGORIES[1], seconds)
+        return found
+
+    def solve(model, problem, label):
+        warm["n"] += problem.warm is not None
+        begin, sqp = clock(), inner["sqp"]
+        category = None
+        try:
+            found = originals[1](model, problem, label)
+            category = CATEGORIES[2] if found.solver == "ipopt" else None
+            return found
+        except SolverFailed:
+            category = CATEGORIES[3]
+            raise
+        finally:
+            seconds = clock() - begin
+            inner["solve"] += seconds
+            if category is not None:
+                add(category, seconds - (inner["sqp"] - sqp))
+
+    def check(*a, **k):
+        begin = clock()
+        try:
+            return originals[2](*a, **k)
+        finally:
+            seconds = clock() - begin
+            inner["check"] += seconds
+            add(CATEGORIES[4], seconds)
+
+    design_seconds = {"s": 0.0, "depth": 0}
+
+    def design(*a, **k):
+        design_seconds["depth"] += 1
+        begin = clock()
+        try:
+            return originals[3](*a, **k)
+        finally:
+            design_seconds["depth"] -= 1
+            if not design_seconds["depth"]:
+                design_seconds["s"] += clock() - begin
+
+    wheel_nlp._solve_fast, wheel_nlp.solve, strength.check_wheel, wheel_design.design_combination = (
+        fast,
+        solve,
+        check,
+        design,
+    )
+    totals = []
+    try:
+        for _ in range(repeat):
+            begin = clock()
+            frame = one()
+            totals.append(clock() - begin)
+    finally:
+        wheel_nlp._solve_fast, wheel_nlp.solve, strength.check_wheel, wheel_design.design_combination = originals
+    spent[CATEGORIES[5]] = design_seconds["s"] - inner["solve"] - inner["check"]
+    spent[CATEGORIES[6]] = sum(totals) - design_seconds["s"]
+    return (
+        len(frame),
+        totals,
+        {c: (spent[c] / repeat, calls[c] / repeat) for c in CATEGORIES},
+        warm["n"] / repeat,
+    )
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--random", type=int, default=50)
@@ -241,6 +353,7 @@ def main(argv=None):
     # the sweep on 2 workers first, unpinned (worker processes inherit the affinity)
     sweeps = {"default": sweep_rate(args.sweep_points, None), "ipopt": sweep_rate(args.sweep_points, IPOPT)}
     pinning = pin_one_core()
+    profiles = {kind: breakdown(kind, args.repeat) for kind in ("sweep", "pareto")}
     paretos = {"default": pareto_seconds(None, args.repeat), "ipopt": pareto_seconds(IPOPT, args.repeat)}
     load = " ".join(f"{x:.2f}" for x in os.getloadavg())
     firsts = [first_design_seconds() for _ in range(3)]
@@ -285,7 +398,7 @@ def main(argv=None):
                     "objective_error": error,
                 }
             )
-    write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, args)
+    write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, args, profiles)
 
 
 def design_seconds(repeat, options=None):
@@ -313,7 +426,7 @@ def design_seconds(repeat, options=None):
     return [timed(lambda a=a, k=k: original(*a, **k), repeat) for a, k in calls]
 
 
-def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, args):
+def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, args, profiles):
     RESULTS.mkdir(exist_ok=True)
     with open(RESULTS / "wheel.csv", "w", newline="") as out:
         fields = ["case", "structure", "variant", "status", "iterations", "seconds", "objective_error"]
@@ -405,6 +518,32 @@ def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, 
         )
     lines += [
         "",
+        "## Where the time goes (serial, in process, CPU time per run)",
+        "",
+        "The δ sweep (40 points, one process) and `flyopt pareto` (its default 25 points), each run "
+        f"{args.repeat} times after a warm-up, every whole-wheel solve, stress check and design timed by "
+        "process CPU time (benchmarks/bench_wheel.py, `breakdown`).",
+        "",
+    ]
+    for kind, (points, totals, spent, warm) in profiles.items():
+        mid = statistics.median(totals)
+        lines += [
+            f"**{'sweep over δ' if kind == 'sweep' else 'Pareto front mass / outer diameter'}**: {points} points, "
+            f"{mid:.3f} s CPU per run ({min(totals):.3f}-{max(totals):.3f}), {mid / points * 1e3:.1f} ms a point; "
+            f"{warm:.0f} solves a run started from the previous point's wheel.",
+            "",
+            "| where | CPU per run [ms] | share | calls per run | per point [ms] |",
+            "|---|---|---|---|---|",
+        ]
+        total = sum(s for s, _ in spent.values())
+        for category, (seconds, count) in spent.items():
+            counted = f"{count:.0f}" if category not in CATEGORIES[5:] else "—"
+            lines.append(
+                f"| {category} | {seconds * 1e3:.1f} | {seconds / total:.0%} | {counted} | "
+                f"{seconds / points * 1e3:.2f} |"
+            )
+        lines.append("")
+    lines += [
         "## Notes",
         "",
         f"- A design is more than a solve: the three scenes' solves make {len(designs)} whole-wheel designs "

@@ -395,6 +395,7 @@ class WheelProblem:
     caps: dict[str, float] | None = None  # variable name -> upper bound [m] (a section kept within a strength table)
     fixed: dict[str, float] | None = None  # variable name -> its value [m] (a dimension rounded and held)
     warm: dict[str, float] | None = None  # a neighbouring wheel (variable name -> [m]): sqpmethod tried from it first
+    ipopt_first: bool = False  # a neighbour had no wheel: IPOPT at once (it proves infeasibility; an SQP cannot)
 
 
 @dataclass(frozen=True)
@@ -585,7 +586,8 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     With ``problem.warm`` (a neighbouring wheel: the last design of the same combination in a sweep),
     sqpmethod is tried from it first on the same NLP (the same bounds, parameters and stress scale, only
     the start differs); where that does not converge the solve goes on exactly as without it (sqpmethod
-    from the cold start, then IPOPT). Either way only a converged status gives a wheel.
+    from the cold start, then IPOPT). With ``problem.ipopt_first`` (the neighbour had no wheel) IPOPT
+    solves it at once. Either way only a converged status gives a wheel.
 
     Raises
     ------
@@ -610,7 +612,7 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     sol, stats = None, {}
     if model.fast is not None and problem.warm is not None:  # the same NLP from a neighbour's wheel
         sol, stats = _solve_fast(model.fast, {**args, "x0": _clipped(problem.warm, names, args)})
-    if sol is None and model.fast is not None:  # cold, as without a neighbour
+    if sol is None and model.fast is not None and not problem.ipopt_first:  # cold, as without a neighbour
         sol, stats = _solve_fast(model.fast, args)
     solver = "sqpmethod" if sol is not None else "ipopt"
     if sol is None:  # IPOPT: where sqpmethod did not converge, or chosen alone
