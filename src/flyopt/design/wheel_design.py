@@ -435,8 +435,10 @@ def design_combination(
         ring = wheel_nlp.starting_wheel(structure, problem, model.variables)
         problem = _with(problem, start={n: {**ring, **start, **(fixed or {})}[n] for n in model.variables})
     parts = model.stress_parts
-    # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
-    start = wheel_nlp.starting_wheel(structure, problem, model.variables)
+    # the allowable of each part, first at the walls of a starting wheel (the last point's, in a sweep), then at
+    # the solved one's
+    last = memory.get((remembered, ())) if memory is not None else None
+    start = last or wheel_nlp.starting_wheel(structure, problem, model.variables)
     start_dims = wheel_nlp.dims_of(structure, start, bore)
     targets = {}
     if stressed:
