@@ -457,7 +457,7 @@ def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, 
         "# Whole-wheel design NLP benchmark (issue 26)",
         "",
         f"Command: `python benchmarks/bench_wheel.py --random {args.random} --repeat {args.repeat} "
-        f"--sweep-points {args.sweep_points}`",
+        f"--sweep-points {args.sweep_points}" + (f" --baseline {args.baseline}" if args.baseline else "") + "`",
         "",
         f"Machine: {platform.platform()}, {platform.machine()}, {os.cpu_count()} CPUs, {pinning} (the 2-worker "
         "sweep runs before the pinning, on both CPUs); "
@@ -614,8 +614,9 @@ def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, 
         "wheels 155 in 0.27 s (qrqp 154 in 0.18 s: its failures are slow), and it prints its licence banner and "
         "'Premature homotopy termination' on the terminal; not taken. Each chunk's first point is cold: a "
         "2-worker sweep of 40 points runs in 8 chunks (guided scheduling, flyopt.studies.chunks).",
-        "- What is left in the Pareto front: IPOPT proving wheels infeasible (EN-GJS-400-18 with its sections "
-        "capped at its strength table's end, at the small envelopes): 23 proofs a run, about a third of its CPU. "
+        "- What is left in the Pareto front: IPOPT proving wheels infeasible, 23 proofs a run, about a third of "
+        "its CPU: 20 of EN-GJS-400-18's wheels with the rim's H or B capped at its strength table's end (the "
+        "branches that keep every section within the table), 3 of gjs_keyed's at the smallest envelopes. "
         "No bound shows them without solving (the envelope, the strength table and castability together make "
         "them infeasible, not the envelope alone), and a front's points run from the small envelope up, so an "
         "infeasible point does not follow from a neighbour's.",
