@@ -21,9 +21,11 @@ References
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import dataclasses
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from flyopt.design import balance, castability, check, geometry, hub, key, strength, wheel
@@ -55,6 +57,7 @@ __all__ = [
     "structure_fields",
     "NoWheel",
     "sensitivities",
+    "neighbours",
 ]
 
 #: Re-solves allowed for the exact stress check and the strength of the walls to settle.
@@ -329,6 +332,32 @@ def wheel_problem(
     return structure, problem
 
 
+#: The wheels designed so far within :func:`neighbours` (None outside it): ((structure, combination), caps) -> the
+#: last point's dims [m], or None where IPOPT found no wheel there.
+_NEIGHBOURS: contextvars.ContextVar[dict[Any, dict[str, float] | None] | None] = contextvars.ContextVar(
+    "wheel_neighbours", default=None
+)
+
+
+@contextlib.contextmanager
+def neighbours() -> Iterator[None]:
+    """Within it, each whole wheel :func:`design_combination` designs is warm-started from the last one
+    designed of the same combination and NLP structure (a sweep's previous point): sqpmethod is tried from
+    that wheel first and, where it does not converge, the solve goes on cold (:func:`flyopt.design.wheel_nlp.solve`).
+    Where IPOPT found no wheel for the combination at the last point, IPOPT solves it first (it proves a wheel
+    infeasible, which the SQP cannot: its failed attempt would only precede IPOPT's).
+
+    A start, not an answer: the NLP, its bounds and the stress check are the point's own, so a warm design
+    is the cold one to the solvers' tolerance (tests/studies/test_wheel_warm.py holds them to 1e-8). The
+    memory lasts as long as the block (a sweep's chunk), so no design outside it depends on another.
+    """
+    token = _NEIGHBOURS.set({})
+    try:
+        yield
+    finally:
+        _NEIGHBOURS.reset(token)
+
+
 def strongest_allowables(material: Material, spec: DesignSpec, structure: WheelStructure) -> dict[str, float]:
     """Each stressed part of a structure to the largest allowable stress any section of the material has [Pa]
     (empty under the rim-speed criterion, or when the material gives none): no wheel's allowable is higher."""
@@ -400,12 +429,16 @@ def design_combination(
     if fixed:
         problem = _with(problem, fixed=dict(fixed))
     model = wheel_nlp.get_model(structure, solver_options)
+    memory = _NEIGHBOURS.get() if not (fixed or start) and model.fast is not None else None
+    remembered = (structure, combo.label)
     if start:  # a neighbour's dimensions over the thin ring (a pinned D_m leaves D_outer out of a rounding's)
         ring = wheel_nlp.starting_wheel(structure, problem, model.variables)
         problem = _with(problem, start={n: {**ring, **start, **(fixed or {})}[n] for n in model.variables})
     parts = model.stress_parts
-    # the allowable of each part, first at the walls of a starting wheel, then at the solved one's
-    start = wheel_nlp.starting_wheel(structure, problem, model.variables)
+    # the allowable of each part, first at the walls of a starting wheel (the last point's, in a sweep), then at
+    # the solved one's
+    last = memory.get((remembered, ())) if memory is not None else None
+    start = last or wheel_nlp.starting_wheel(structure, problem, model.variables)
     start_dims = wheel_nlp.dims_of(structure, start, bore)
     targets = {}
     if stressed:
@@ -420,16 +453,47 @@ def design_combination(
             factors = combo.stress_factors(spec)
             targets = {p: material.allowable(safety_factor=spec.safety_factor) / factors.get(p, 1.0) for p in parts}
     table_end = _table_end(material) if stressed else None
+    best = _branch_and_settle(
+        model, problem, combo, material, geo, spec, bore, torque, parts, targets, table_end, memory, remembered
+    )
+    if best is None:
+        # only sections beyond the strength table (raised only where a table exists) leave no design
+        if table_end is None:
+            raise RuntimeError(f"{combo.label}: no wheel, and no strength table to blame")
+        raise NoWheel(
+            f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
+            f"material's strength table, which ends at {table_end * 1e3:g} mm, and no wheel whose "
+            f"sections stay within it meets every limit"
+        )
+    return best
+
+
+def _branch_and_settle(
+    model, problem, combo, material, geo, spec, bore, torque, parts, targets, table_end, memory=None, remembered=None
+):
+    """The best settled wheel over the unconstrained NLP and its sections capped at the strength table's end
+    (None: every capped choice left no wheel); NoWheel where the unconstrained NLP has none.
+
+    ``memory`` (:func:`neighbours`, None outside it): each NLP (``remembered`` and its caps) to the wheel the
+    last point designed with it (its warm start here) or None where IPOPT found none (IPOPT first here).
+    """
     best, tried, queue = None, set(), [()]
     while queue:  # the unconstrained wheel first, then sections capped at the table's end
         caps = queue.pop(0)
         if caps in tried:
             continue
         tried.add(caps)
+        branch = _with(problem, caps=dict(caps) or None)
+        if memory is not None:
+            last = memory.get((remembered, caps), memory.get((remembered, ())))
+            if last is not None:
+                branch = _with(branch, warm=last)
+            elif (remembered, caps) in memory:
+                branch = _with(branch, ipopt_first=True)
         try:
             found = _settle(
                 model,
-                _with(problem, caps=dict(caps) or None),
+                branch,
                 combo,
                 material,
                 geo,
@@ -449,20 +513,15 @@ def design_combination(
             queue += _branches(over.walls, dict(caps), geo, bore, table_end)
             continue
         except NoWheel:
+            if memory is not None:  # IPOPT found no wheel: the next point's solve of this NLP is IPOPT's at once
+                memory[remembered, caps] = None
             if not caps:
                 raise
             continue  # this choice of capped sections leaves no wheel; another may
+        if memory is not None:
+            memory[remembered, caps] = {n: float(getattr(found[0], n)) for n in model.variables}
         if best is None or found[1].objective < best[1].objective:
             best = found
-    if best is None:
-        # only sections beyond the strength table (raised only where a table exists) leave no design
-        if table_end is None:
-            raise RuntimeError(f"{combo.label}: no wheel, and no strength table to blame")
-        raise NoWheel(
-            f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
-            f"material's strength table, which ends at {table_end * 1e3:g} mm, and no wheel whose "
-            f"sections stay within it meets every limit"
-        )
     return best
 
 

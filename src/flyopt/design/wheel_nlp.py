@@ -394,6 +394,8 @@ class WheelProblem:
     start: dict[str, float] | None = None
     caps: dict[str, float] | None = None  # variable name -> upper bound [m] (a section kept within a strength table)
     fixed: dict[str, float] | None = None  # variable name -> its value [m] (a dimension rounded and held)
+    warm: dict[str, float] | None = None  # a neighbouring wheel (variable name -> [m]): sqpmethod tried from it first
+    ipopt_first: bool = False  # a neighbour had no wheel: IPOPT at once (it proves infeasibility; an SQP cannot)
 
 
 @dataclass(frozen=True)
@@ -557,7 +559,7 @@ def solve_arguments(
     names = variables_of(structure)
     lbx, ubx, _ = variable_bounds(structure, problem)
     start = problem.start or starting_wheel(structure, problem, names)
-    x0 = [min(max(math.log(start[n]), lo), hi) for n, lo, hi in zip(names, lbx, ubx)]
+    x0 = _clipped(start, names, {"lbx": lbx, "ubx": ubx})
     scale = problem.density * problem.omega**2 * (start["d_outer"] / 2.0) ** 2
     lbg, ubg = row_bounds(structure, constraints, problem)
     allow = allowable_parameters(structure, problem.allowable, scale)
@@ -581,6 +583,12 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     -------
     WheelSolution
 
+    With ``problem.warm`` (a neighbouring wheel: the last design of the same combination in a sweep),
+    sqpmethod is tried from it first on the same NLP (the same bounds, parameters and stress scale, only
+    the start differs); where that does not converge the solve goes on exactly as without it (sqpmethod
+    from the cold start, then IPOPT). With ``problem.ipopt_first`` (the neighbour had no wheel) IPOPT
+    solves it at once. Either way only a converged status gives a wheel.
+
     Raises
     ------
     SolverFailed
@@ -601,7 +609,11 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         raise failure
     args, scale, allow = solve_arguments(s, model.constraints, problem)
     begin = time.perf_counter()
-    sol, stats = _solve_fast(model.fast, args) if model.fast is not None else (None, {})
+    sol, stats = None, {}
+    if model.fast is not None and problem.warm is not None:  # the same NLP from a neighbour's wheel
+        sol, stats = _solve_fast(model.fast, {**args, "x0": _clipped(problem.warm, names, args)})
+    if sol is None and model.fast is not None and not problem.ipopt_first:  # cold, as without a neighbour
+        sol, stats = _solve_fast(model.fast, args)
     solver = "sqpmethod" if sol is not None else "ipopt"
     if sol is None:  # IPOPT: where sqpmethod did not converge, or chosen alone
         try:
@@ -663,6 +675,11 @@ def _active(value: float, lower: float, upper: float) -> bool:
     return any(
         abs(value - bound) <= ACTIVE_ROW * max(1.0, abs(bound)) for bound in (lower, upper) if math.isfinite(bound)
     )
+
+
+def _clipped(wheel_dims: Mapping[str, float], names: Sequence[str], args: Mapping[str, Any]) -> list[float]:
+    """The logarithms of a wheel's dimensions by variable name, clipped to the NLP's bounds in ``args``."""
+    return [min(max(math.log(wheel_dims[n]), lo), hi) for n, lo, hi in zip(names, args["lbx"], args["ubx"])]
 
 
 def _solve_fast(fast, args):

@@ -40,6 +40,7 @@ import pandas as pd
 
 from flyopt.cycle.indicator import required_inertia, speed_extremes
 from flyopt.design import design_inputs
+from flyopt.design.wheel_design import neighbours
 from flyopt.errors import BrokenInvariant, SceneError
 from flyopt.sizing.peak_torque import flywheel_peak_torque
 from flyopt.studies.chunk_arrays import ChunkInputs, empty_results, result_table
@@ -150,15 +151,16 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
         )
     use_batch = needed & covered if ctx.method != "ipopt" else np.zeros(n, dtype=bool)
     design_closed_form(inputs, j_margin, use_batch, res)
-    for k in np.flatnonzero(needed & ~use_batch).tolist():
-        torque = None
-        if needs_torque and ctx.reusable and ctx.torque_peak is not None:
-            torque = flywheel_peak_torque(
-                j_margin[k], j_margin[k] + inputs.inertia[k], inputs.scale[k] * ctx.torque_peak, 1.0
-            )
-        elif needs_torque and not ctx.reusable:
-            torque = torques[k]
-        design_ipopt(ctx, inputs, k, j_margin[k], res, torque)
+    with neighbours():  # each whole wheel warm-started from the chunk's previous point (the same answers)
+        for k in np.flatnonzero(needed & ~use_batch).tolist():
+            torque = None
+            if needs_torque and ctx.reusable and ctx.torque_peak is not None:
+                torque = flywheel_peak_torque(
+                    j_margin[k], j_margin[k] + inputs.inertia[k], inputs.scale[k] * ctx.torque_peak, 1.0
+                )
+            elif needs_torque and not ctx.reusable:
+                torque = torques[k]
+            design_ipopt(ctx, inputs, k, j_margin[k], res, torque)
     return result_table(inputs, points, ctx.axes, res)
 
 
