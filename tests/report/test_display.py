@@ -119,3 +119,14 @@ def test_a_field_is_shown_in_the_dimension_the_json_gives_it():
     assert display.heading("achieved δ", "achieved_delta") == "achieved δ"
     with pytest.raises(ValueError, match="'material' is not a quantity"):
         display.dimension_of("material")
+
+
+def test_a_drive_trains_stiffnesses_in_each_system():
+    """A spring of the torsional train in each system: 1 lbf·ft = 1.3558179483314004 N·m (exact: 0.3048 m ×
+    4.4482216152605 N), 1 lbf/in = 4.4482216152605 N / 0.0254 m; engineering takes the prefix the value needs."""
+    assert display.quantity_text(1.093e5, "torsional_stiffness", "engineering") == "109.3 kN·m/rad"
+    assert display.quantity_text(6.043e6, "torsional_stiffness", "engineering") == "6.043 MN·m/rad"
+    assert display.quantity_text(1e5, "torsional_stiffness", "imperial") == "73,760 lbf·ft/rad"
+    assert display.quantity_text(2.4e6, "stiffness", "engineering") == "2.4 MN/m"
+    assert display.quantity_text(4.4482216152605 / 0.0254 * 250.0, "stiffness", "imperial") == "250 lbf/in"
+    assert display.quantity_text(250.0, "stiffness", "si") == "250 N/m"

@@ -105,6 +105,13 @@ UNITS = {
     # the specific unbalance e = U/m of ISO 21940-11 (a length; g·mm/kg is µm), for the report's e_per
     "eccentricity": {"si": ("m", 1.0), "engineering": ("µm", 1e-6), "imperial": ("in", 0.0254)},
     "dimensionless": {"si": ("-", 1.0), "engineering": ("-", 1.0), "imperial": ("-", 1.0)},
+    # a drive train's springs (flyopt.machine.drive_train): a shaft's or a coupling's twist, a belt span's stretch
+    "torsional_stiffness": {
+        "si": ("N·m/rad", 1.0),
+        "engineering": ("N·m/rad", 1.0),
+        "imperial": ("lbf·ft/rad", 1.3558179483314004),
+    },
+    "stiffness": {"si": ("N/m", 1.0), "engineering": ("N/m", 1.0), "imperial": ("lbf/in", 175.12683524647636)},
 }
 
 
@@ -119,7 +126,16 @@ PREFIXES = (("G", 1e9), ("M", 1e6), ("k", 1e3))
 
 #: system -> dimension -> its SI unit's label, for the dimensions whose unit is chosen per value with
 #: an SI prefix of :data:`PREFIXES` (36.1 N·m, 1.256 kJ). The one place this is decided (module docstring).
-PREFIXED = {"engineering": {"torque": "N·m", "energy": "J", "power": "W", "force": "N"}}
+PREFIXED = {
+    "engineering": {
+        "torque": "N·m",
+        "energy": "J",
+        "power": "W",
+        "force": "N",
+        "torsional_stiffness": "N·m/rad",
+        "stiffness": "N/m",
+    }
+}
 
 
 #: Figures a worked equation carries beyond the report's own, as a hand calculation carries guard figures:

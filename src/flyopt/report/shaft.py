@@ -10,7 +10,7 @@ import numpy as np
 
 from flyopt.design.combination import shaft_label
 from flyopt.design.shaft.check import JSON_NAMES
-from flyopt.report.display import DEFAULT, DEFAULT_DIGITS
+from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, quantity_text
 from flyopt.report.text import formatters, number, table
 
 if TYPE_CHECKING:
@@ -114,7 +114,7 @@ def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_D
             [
                 name,
                 kind,
-                f"{number(k, digits)} N·m/rad",
+                quantity_text(k, "torsional_stiffness", units, digits),
                 q(float(bound[e]), "torque_alternating"),
                 "-" if top < 0 else f"{train.orders[top]:.4g}: {q(float(row[top]), 'torque_largest_order')}",
             ]

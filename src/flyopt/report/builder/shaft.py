@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from flyopt.design.combination import shaft_label
+from flyopt.report import display
 from flyopt.report.builder.base import NOTES, BuilderBase
 from flyopt.report.display import number
 from flyopt.report.document import Facts, Paragraph, Table
@@ -148,7 +149,7 @@ class ShaftSection(BuilderBase):
                 [
                     name,
                     kind,
-                    f"{number(k, self.digits)} N·m/rad",
+                    display.quantity_text(k, "torsional_stiffness", self.units, self.digits),
                     self.q(float(train.torque_bound[e]), "torque", "torque_alternating"),
                     "-" if top < 0 else f"{train.orders[top]:.4g}",
                 ]
