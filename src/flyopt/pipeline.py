@@ -228,7 +228,7 @@ def design_scene(
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
     torque = analysis.flywheel_torque() if needs_torque(inputs) else None
-    accept = _shaft_acceptor(scene, analysis)
+    accept = _shaft_acceptor(scene, analysis, {m.name: m.display_name for m in inputs.materials})
     result = design_flywheel(
         analysis.j_margin,
         analysis.omega_max,
@@ -266,14 +266,15 @@ def design_scene(
     return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
 
 
-def _shaft_acceptor(scene: Scene, analysis: Analysis) -> Any:
-    """The designer's post-check of the scene's described shafts (:mod:`flyopt.design.shaft.cycle`), or None."""
+def _shaft_acceptor(scene: Scene, analysis: Analysis, names: Mapping[str, str]) -> Any:
+    """The designer's post-check of the scene's described shafts (:mod:`flyopt.design.shaft.cycle`), or None;
+    its reasons name the materials by ``names`` (key -> name for people)."""
     context = shaft_context_of(scene, analysis)
     if context is None:
         return None
     from flyopt.design.shaft.cycle import acceptor
 
-    return acceptor(context)
+    return acceptor(context, names)
 
 
 def shaft_context_of(scene: Scene, analysis: Analysis) -> Any:
