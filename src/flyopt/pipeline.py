@@ -102,8 +102,8 @@ class Solution:
     _extras: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
 
     def _repr_html_(self) -> str:
-        """The answer card in a notebook: the text report's answer as a small table (drawn on the report's
-        floor, :func:`flyopt.report.notebook.answer_card`, through :mod:`flyopt.views`)."""
+        """The answer card in a notebook, the app's card (drawn on the report's floor,
+        :func:`flyopt.report.notebook.answer_card`, through :mod:`flyopt.views`)."""
         return str(view("solution", "html", self))
 
     def _extra(self, name: str) -> Any:

@@ -6,7 +6,7 @@ disagree with the command line: a scene is read by :func:`flyopt.io.scene.load`
 resolves inside that folder only), solved and gathered as ``flyopt report``
 gathers it (:func:`flyopt.cli.report.collect`), and built into the report's
 Document (:func:`flyopt.report.builder.build`). The answer card is the
-report's summary facts, the diagrams its figures (drawn by
+report's summary facts (:func:`flyopt.report.card.card_of`, the card a notebook shows too), the diagrams its figures (drawn by
 :mod:`flyopt.report.plots`), the JSON that of ``flyopt solve --json``
 (:func:`flyopt.outputs.documents.solution_json`), the provenance the report's.
 """
@@ -20,6 +20,9 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, cast
+
+from flyopt.report.card import Row, card_of
+from flyopt.report.card import card_html as answer_card_html
 
 if TYPE_CHECKING:
     from flyopt.io.scene import Scene
@@ -173,20 +176,6 @@ def live(scene: Scene) -> bool:
     return not any(isinstance(curve, MotorTorque) for curve in (scene.driving, scene.resisting))
 
 
-@dataclass(frozen=True)
-class Row:
-    """One line of the answer card: a label and its value as the report shows it.
-
-    ``name``/``si`` are those of the first number in the value (its JSON field and SI value), for checks.
-    """
-
-    label: str
-    value: str
-    name: str | None = None
-    si: float | None = None
-    markup: str = ""  # the label with the report's ``_{sub}`` and ``^{sup}`` markup, for the HTML
-
-
 @dataclass
 class Answer:
     """What one solve shows: the status, the card, the diagrams (SVG), the JSON, the provenance."""
@@ -199,6 +188,7 @@ class Answer:
     provenance: tuple[tuple[str, str], ...]
     document: Document
     sha256: str
+    solution: Solution | None = None  # the solve's Solution (None for a scene that is one calculation)
 
 
 def scene_digest(text: str) -> str:
@@ -224,34 +214,18 @@ def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer
         json = solution_json(
             cast("Solution", inputs.solution), path
         )  # the one solve: the same JSON as flyopt solve --json
-    card, verdict = _card(document)
+    card = card_of(document)
     return Answer(
         status=document.status,
-        verdict=verdict,
-        card=card,
+        verdict=card.verdict,
+        card=list(card.rows),
         figures=_figures(document),
         json=json,
         provenance=tuple(inputs.provenance),
         document=document,
         sha256=scene_digest(text),
+        solution=None if isinstance(inputs, CalculationInputs) else cast("Solution", inputs.solution),
     )
-
-
-def _card(document: Document) -> tuple[list[Row], str]:
-    from flyopt.report.document import Facts, Paragraph, Quantity, plain
-
-    rows: list[Row] = []
-    verdict = ""
-    section = document.sections[0] if document.sections else None
-    for block in section.blocks if section is not None else ():
-        if isinstance(block, Paragraph) and not verdict:
-            verdict = plain(block.text)
-        if isinstance(block, Facts):
-            for label, value in block.rows:
-                parts = value if isinstance(value, tuple) else (value,)
-                first = next((p for p in parts if isinstance(p, Quantity)), None)
-                rows.append(Row(plain(label), plain(value), first.name if first else None, first.si if first else None))
-    return rows, verdict
 
 
 def _figures(document: Document) -> list[tuple[str, str, str]]:
@@ -292,25 +266,7 @@ def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") ->
         return f'<div class="card bad"><b>The scene is not valid</b><ul>{items}</ul></div>'
     if answer is None:
         return f'<div class="card">{escape(busy) or "No answer yet."}</div>'
-    rows = "".join(
-        f'<tr><th>{_marked(r.markup or r.label)}</th><td data-name="{escape(r.name or "")}">{escape(r.value)}</td></tr>'
-        for r in answer.card
-    )
-    good = answer.status in ("designed", "not_needed", "analysed")
-    return (
-        f'<div class="card {"ok" if good else "bad"}"><div class="status"><b>{escape(answer.document.title)}</b>: '
-        f"status <b>{escape(answer.status)}</b>"
-        f"{' — ' + escape(busy) if busy else ''}</div><p>{escape(answer.verdict)}</p><table>{rows}</table></div>"
-    )
-
-
-def _marked(text: str) -> str:
-    """The report's ``_{sub}`` and ``^{sup}`` markup as HTML, the rest escaped."""
-    from html import escape
-
-    shown = escape(text)
-    shown = re.sub(r"_\{([^}]*)\}", r"<sub>\1</sub>", shown)
-    return re.sub(r"\^\{([^}]*)\}", r"<sup>\1</sup>", shown)
+    return answer_card_html(card_of(answer.document), busy)
 
 
 def provenance_html(answer: Answer | None) -> str:

@@ -153,6 +153,10 @@ class BuilderBase:
         v, check = self.solution.verification, self.solution.drive_check
         return bool((v is not None and v.flagged) or (check is not None and check.flagged))
 
+    def document_status(self) -> str:
+        """The solution's status as the document carries it: "flagged" after it where a verification flagged it."""
+        return self.solution.status + (" flagged" if self.flagged() else "")
+
     def status_words(self) -> str:
         """The solution's status as the title block says it."""
         status = self.solution.status
