@@ -107,7 +107,8 @@ class BuilderBase:
     def figure(
         self, blocks: list[Any], key: str, caption: str, draw: Callable[..., Any], *args: Any, **kwargs: Any
     ) -> None:
-        """Draw a diagram with a function of :mod:`flyopt.report.plots` (``units=`` where it takes it)."""
+        """Draw a diagram with a function of :mod:`flyopt.report.plots` (``units=`` and ``digits=`` where it takes
+        them: the report's)."""
         from flyopt.report import plots
         from flyopt.report.plots.standard import figure_of
 
@@ -115,6 +116,8 @@ class BuilderBase:
             parameters = inspect.signature(draw).parameters
             if "units" in parameters:
                 kwargs["units"] = self.units
+            if "digits" in parameters:
+                kwargs["digits"] = self.digits
             ax = draw(*args, **kwargs)
         except plots.NothingToDraw as said:
             blocks.append(Figure(key, caption, note=f"Not drawn: {said}."))
