@@ -83,8 +83,8 @@ def test_the_slopes_redesigns_pass_the_shafts_post_check(tmp_path, monkeypatch):
     chosen = plain.design.best.mass
     real = cycle.acceptor
 
-    def heavier_refused(ctx):
-        check = real(ctx)
+    def heavier_refused(ctx, *names):
+        check = real(ctx, *names)
 
         def accept(candidate):
             if candidate.mass > chosen * (1 + 1e-9):

@@ -192,6 +192,13 @@ class Analysis:
         machine that is not an engine or whose inertia is constant (:func:`complete`)."""
         return self._extra("textbook")
 
+    def _repr_html_(self) -> str:
+        """The answer card of the cycle in a notebook, the card a solution shows (drawn on the report's floor,
+        :func:`flyopt.report.notebook.analysis_card`, through :mod:`flyopt.views`)."""
+        from flyopt.views import view
+
+        return str(view("analysis", "html", self))
+
     def speed_curve(self) -> SpeedFluctuation | PeriodicSolution | None:
         """ω(φ) over the cycle with the required flywheel, by the model that sized it (:func:`complete`).
 

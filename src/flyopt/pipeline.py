@@ -102,8 +102,8 @@ class Solution:
     _extras: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}), compare=False, repr=False)
 
     def _repr_html_(self) -> str:
-        """The answer card in a notebook: the text report's answer as a small table (drawn on the report's
-        floor, :func:`flyopt.report.notebook.answer_card`, through :mod:`flyopt.views`)."""
+        """The answer card in a notebook, the app's card (drawn on the report's floor,
+        :func:`flyopt.report.notebook.answer_card`, through :mod:`flyopt.views`)."""
         return str(view("solution", "html", self))
 
     def _extra(self, name: str) -> Any:
@@ -228,7 +228,7 @@ def design_scene(
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
     torque = analysis.flywheel_torque() if needs_torque(inputs) else None
-    accept = _shaft_acceptor(scene, analysis)
+    accept = _shaft_acceptor(scene, analysis, {m.name: m.display_name for m in inputs.materials})
     result = design_flywheel(
         analysis.j_margin,
         analysis.omega_max,
@@ -266,14 +266,15 @@ def design_scene(
     return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
 
 
-def _shaft_acceptor(scene: Scene, analysis: Analysis) -> Any:
-    """The designer's post-check of the scene's described shafts (:mod:`flyopt.design.shaft.cycle`), or None."""
+def _shaft_acceptor(scene: Scene, analysis: Analysis, names: Mapping[str, str]) -> Any:
+    """The designer's post-check of the scene's described shafts (:mod:`flyopt.design.shaft.cycle`), or None;
+    its reasons name the materials by ``names`` (key -> name for people)."""
     context = shaft_context_of(scene, analysis)
     if context is None:
         return None
     from flyopt.design.shaft.cycle import acceptor
 
-    return acceptor(context)
+    return acceptor(context, names)
 
 
 def shaft_context_of(scene: Scene, analysis: Analysis) -> Any:
@@ -351,7 +352,8 @@ def _with_delta_sensitivity(
                 method=method,
                 torque=torque,
                 omega_mean=moved.omega_mean,
-                accept=_shaft_acceptor(scene, moved),  # the described shaft carries the moved wheel too
+                # the described shaft carries the moved wheel too
+                accept=_shaft_acceptor(scene, moved, {m.name: m.display_name for m in inputs.materials}),
             )
         except (ValueError, RuntimeError):
             return result

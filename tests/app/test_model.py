@@ -129,6 +129,26 @@ def test_the_card_equals_flyopt_solve_json_to_the_digits_shown(workspace):
     assert named in next(r.value for r in answer.card if r.label == "chosen wheel")
 
 
+def test_the_apps_card_is_the_notebooks(workspace):
+    """One answer card (issue 29): the app's and a notebook's ``Solution._repr_html_`` come from one builder
+    (flyopt.report.card) and show the same title, status, verdict and rows, label for label."""
+    import re
+    from html import unescape
+
+    def shown(card):
+        rows = re.findall(r"<th[^>]*>(.*?)</th><td[^>]*>(.*?)</td>", card)
+        head = re.search(r'<div class="status">(.*?)</div><p>(.*?)</p>', card).groups()
+        return head, [(unescape(label), unescape(value)) for label, value in rows]
+
+    answer = model.solve(model.template_text("shear-press"), workspace)  # solved and verified, as flyopt report
+    app, notebook = model.card_html(answer, []), answer.solution._repr_html_()
+    (status, verdict), rows = shown(app)
+    assert shown(notebook) == ((status, verdict), rows)
+    assert "status <b>designed</b>" in status and verdict.startswith("A rim") and "simulated, it gives δ" in verdict
+    labels = [label for label, _ in rows]
+    assert {"mass", "outer diameter", "rim speed", "chosen wheel"} <= set(labels) and len(labels) >= 10
+
+
 def test_the_figures_are_the_reports_and_the_downloads_open(workspace):
     from pypdf import PdfReader
 

@@ -27,6 +27,7 @@ infeasible design is still reported, with exit status 3.
 
 import datetime
 import hashlib
+import html
 import json
 import math
 import re
@@ -838,3 +839,41 @@ def tomllib_title(path):
     from flyopt._toml import tomllib
 
     return tomllib.loads(path.read_text(encoding="utf-8"))["title"]
+
+
+def _appendix_numbers(text):
+    """The appendix sections a report's body cites: "Appendix A.5", "Appendices A.3 and A.14", "A.15 to A.21"."""
+    cited = set()
+    for match in re.finditer(r"Appendi(?:x|ces) (A\.\d+(?:(?:, | and | to )A\.\d+)*)", text):
+        numbers = [int(n) for n in re.findall(r"A\.(\d+)", match.group(1))]
+        if " to " in match.group(1):
+            numbers = list(range(numbers[0], numbers[-1] + 1))
+        cited |= {f"A.{n}" for n in numbers}
+    return cited
+
+
+@pytest.mark.parametrize("scene", SCENES)
+def test_the_appendix_holds_every_cited_section_and_nothing_of_the_code(scene, folder):
+    """Appendix A is the engineering of the sections the report cites (issue 29), not where the code lives: no
+    module of the source, no test, no developer's note (docs/flywheel-design.md marks those), and every section
+    the body cites is there."""
+    _, out, _ = render(scene, folder=folder)
+    text = out.read_text(encoding="utf-8")
+    body, _, appendix = text.partition('id="section-A"')
+    appendix = appendix.partition("<footer>")[0]
+    cited = _appendix_numbers(re.sub(r"<[^>]+>", "", html.unescape(body)))
+    assert cited, "the report cites its method"
+    for number in cited:
+        assert f'id="section-{number}"' in appendix, number
+    words = html.unescape(re.sub(r"<[^>]+>", " ", appendix))
+    # a module of the source, a test, a developer's note, a constant of the code (BALANCE_TOLERANCE)
+    for code in (
+        r"\bflyopt\.[a-z_]+",
+        r"\btests/",
+        r"\btest_\w+",
+        r":mod:",
+        r"\bImplementation\b",
+        r"\b[A-Z]{2,}_[A-Z_]+\b",
+    ):
+        found = re.search(code, words)
+        assert found is None, (scene, words[max(0, found.start() - 80) : found.end() + 80])

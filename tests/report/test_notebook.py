@@ -18,7 +18,6 @@ import pytest
 
 import flyopt
 from flyopt.outputs.documents import solution_json
-from flyopt.report.text import answer_report
 from tests.conftest import PROBLEMS, ROOT
 
 NUM = r"[0-9][0-9,]*(?:\.[0-9]+)?"
@@ -38,39 +37,62 @@ def punch_press():
 
 
 def _cells(card: str) -> dict[str, str]:
+    """The card's rows: label -> value, as a reader sees them (sub- and superscripts as plain text)."""
     return {
-        html.unescape(k): html.unescape(v) for k, v in re.findall(r"<th[^>]*>([^<]*)</th><td[^>]*>([^<]*)</td>", card)
+        html.unescape(re.sub(r"<[^>]+>", "", re.sub(r"<sub>(.*?)</sub>", r"_\1", k))): html.unescape(v)
+        for k, v in re.findall(r"<th[^>]*>(.*?)</th><td[^>]*>([^<]*)</td>", card)
     }
+
+
+def _named(card: str) -> dict[str, str]:
+    """The card's values by the JSON field of their first number (``data-name``)."""
+    return {k: html.unescape(v) for k, v in re.findall(r'<td[^>]* data-name="(\w+)">([^<]*)</td>', card)}
 
 
 def test_the_answer_card_shows_the_jsons_numbers(punch_press):
     solution, data = punch_press
     design = data["design"]
     card = solution._repr_html_()
-    assert card.startswith('<table class="flyopt-answer">') and card.endswith("</table>")
-    caption = html.unescape(re.search(r"<caption[^>]*>(.*)</caption>", card).group(1))
-    assert caption.startswith(f"<b>{data['title']}</b><br>Answer: ")
-    assert _shown_equal(re.search(rf", ({NUM}) kg, on the motor shaft", caption).group(1), design["mass"])
+    assert card.startswith('<div class="card flyopt-answer ok">') and card.endswith("</div>")
+    assert f"<b>{html.escape(data['title'])}</b>: status <b>designed</b>" in card
+    verdict = html.unescape(re.search(r"<p>(.*?)</p>", card).group(1))
+    assert _shown_equal(re.search(rf", ({NUM}) kg, outer diameter", verdict).group(1), design["mass"])
+    named = _named(card)
+    for field, scale, unit in (("mass", 1, "kg"), ("d_outer", 1e3, "mm"), ("h", 1e3, "mm"), ("rim_speed", 1, "m/s")):
+        assert _shown_equal(re.match(rf"({NUM}) {unit}", named[field]).group(1), design[field] * scale), field
+    assert _shown_equal(re.search(rf"× ({NUM}) mm", named["h"]).group(1), design["b"] * 1e3)
+    assert _shown_equal(re.match(rf"({NUM}) kg·m²", named["j_flywheel"]).group(1), design["j_flywheel"])
+    assert _shown_equal(re.match(rf"({NUM}) kg·m²", named["j_required"]).group(1), data["j_required"])
+    assert named["delta"].startswith(f"{data['delta']:g} ")
     cells = _cells(card)
-    assert list(cells) == ["size", "J", "limits", "δ"]
-    size = cells["size"]
-    for label, field in (("D", "d_outer"), ("H", "h"), ("B", "b")):
-        assert _shown_equal(re.search(rf"\b{label} ({NUM}) mm", size).group(1), design[field] * 1e3), field
-    assert _shown_equal(re.search(rf"^({NUM}) kg·m² on its shaft", cells["J"]).group(1), design["j_flywheel"])
-    assert _shown_equal(re.search(rf"rim speed ({NUM}) m/s", cells["limits"]).group(1), design["rim_speed"])
-    assert cells["δ"].startswith(f"allowed {data['delta']:g}")
+    assert cells["chosen wheel"].startswith("rim of cast steel on the motor shaft")
 
 
-def test_the_card_is_the_text_reports_answer_line_by_line(punch_press):
-    """One formatter: the card's rows are the answer of the text report, in the units asked for."""
-    solution, _ = punch_press
+def test_the_card_is_in_the_units_asked_for(punch_press):
+    solution, data = punch_press
     from flyopt.report.notebook import answer_card
 
-    for units in ("engineering", "imperial"):
-        lines = [line.strip() for line in answer_report(solution, units) if line.strip()]
-        cells = _cells(answer_card(solution, units))
-        assert [f"{k}  {v}" for k, v in cells.items()] == [re.sub(r"^(\S+)\s{2,}", r"\1  ", x) for x in lines[1:]]
-    assert " in, " in _cells(answer_card(solution, "imperial"))["size"] + ", "
+    imperial = _named(answer_card(solution, "imperial"))
+    inches = float(re.match(rf"({NUM}) in", imperial["d_outer"]).group(1).replace(",", ""))
+    assert inches == pytest.approx(data["design"]["d_outer"] / 0.0254, rel=1e-3)
+    assert re.match(rf"{NUM} lb$", imperial["mass"])
+    six = _named(answer_card(solution, "engineering", digits=6))["mass"]
+    assert six == f"{data['design']['mass']:.6g} kg"
+
+
+def test_an_analysis_shows_the_card_of_the_cycle(punch_press):
+    """``flyopt.analyse`` (the cycle without a design) shows the card a solution shows, without the wheel: its rows
+    are the solution's of the same cycle, status "analysed"."""
+    solution, data = punch_press
+    card = flyopt.analyse(solution.scene)._repr_html_()
+    assert "status <b>analysed</b>" in card and html.escape(data["title"]) in card
+    cells, whole = _cells(card), _cells(solution._repr_html_())
+    assert cells == {k: v for k, v in whole.items() if k in cells}
+    assert {"model", "A_max", "required flywheel J_F"} <= set(cells) and "mass" not in cells
+    named = _named(card)
+    assert _shown_equal(re.match(rf"({NUM}) kJ", named["a_max"]).group(1), data["a_max"] / 1e3)
+    verdict = html.unescape(re.search(r"<p>(.*?)</p>", card).group(1))
+    assert _shown_equal(re.search(rf"a flywheel of ({NUM}) kg·m²", verdict).group(1), data["j_required"])
 
 
 def test_the_card_escapes_what_the_scene_says(tmp_path):
@@ -84,7 +106,9 @@ def test_the_card_escapes_what_the_scene_says(tmp_path):
 
 def test_a_machine_that_needs_no_flywheel_has_a_card_that_says_so():
     card = flyopt.solve(flyopt.load(PROBLEMS / "conveyor.toml"))._repr_html_()
-    assert "Answer: no flywheel: the machine&#x27;s own inertia holds δ" in card and "<td" not in card
+    verdict = html.unescape(re.search(r"<p>(.*?)</p>", card).group(1))
+    assert verdict.startswith("No flywheel is needed: the machine's own inertia keeps δ within")
+    assert "status <b>not_needed</b>" in card and "mass" not in _cells(card)
 
 
 def test_the_ranking_as_a_frame_is_the_jsons_candidates_with_their_units(punch_press):
@@ -139,7 +163,7 @@ def test_a_result_shows_itself_without_the_public_names():
     out = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True, timeout=120
     ).stdout
-    assert out.startswith('<table class="flyopt-answer">')
+    assert out.startswith('<div class="card flyopt-answer')
 
 
 # --------------------------------------------------------------------------

@@ -401,13 +401,20 @@ def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):
     seen = {}
     real = plots.plot_pareto
 
-    def spy(frame, x, y, ax=None, units="engineering"):
+    def spy(frame, x, y, ax=None, units="engineering", digits=4):
         seen.update(x=x, y=y)
-        return real(frame, x, y, ax, units)
+        return real(frame, x, y, ax, units, digits)
 
     monkeypatch.setattr(plots, "plot_pareto", spy)
     args = argparse.Namespace(
-        scene=str(path), what="pareto", x=None, y="mass", by=None, units="engineering", output=str(tmp_path / "f.png")
+        scene=str(path),
+        what="pareto",
+        x=None,
+        y="mass",
+        by=None,
+        units="engineering",
+        digits=4,
+        output=str(tmp_path / "f.png"),
     )
     assert run_plot(args) == 0
     assert seen == {"x": "delta", "y": "mass"}

@@ -6,7 +6,7 @@ disagree with the command line: a scene is read by :func:`flyopt.io.scene.load`
 resolves inside that folder only), solved and gathered as ``flyopt report``
 gathers it (:func:`flyopt.cli.report.collect`), and built into the report's
 Document (:func:`flyopt.report.builder.build`). The answer card is the
-report's summary facts, the diagrams its figures (drawn by
+report's summary facts (:func:`flyopt.report.card.card_of`, the card a notebook shows too), the diagrams its figures (drawn by
 :mod:`flyopt.report.plots`), the JSON that of ``flyopt solve --json``
 (:func:`flyopt.outputs.documents.solution_json`), the provenance the report's.
 """
@@ -14,12 +14,14 @@ report's summary facts, the diagrams its figures (drawn by
 from __future__ import annotations
 
 import hashlib
-import re
 import shutil
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, cast
+
+from flyopt.report.card import Row, card_of
+from flyopt.report.card import card_html as answer_card_html
 
 if TYPE_CHECKING:
     from flyopt.io.scene import Scene
@@ -152,20 +154,6 @@ def live(scene: Scene) -> bool:
     return not any(isinstance(curve, MotorTorque) for curve in (scene.driving, scene.resisting))
 
 
-@dataclass(frozen=True)
-class Row:
-    """One line of the answer card: a label and its value as the report shows it.
-
-    ``name``/``si`` are those of the first number in the value (its JSON field and SI value), for checks.
-    """
-
-    label: str
-    value: str
-    name: str | None = None
-    si: float | None = None
-    markup: str = ""  # the label with the report's ``_{sub}`` and ``^{sup}`` markup, for the HTML
-
-
 @dataclass
 class Answer:
     """What one solve shows: the status, the card, the diagrams (SVG), the JSON, the provenance.
@@ -185,6 +173,7 @@ class Answer:
     inputs: Any = None  # the report's inputs (ReportInputs or CalculationInputs): the one solve, kept
     units: str = "engineering"
     drawn: bool = True
+    solution: Solution | None = None  # the solve's Solution (None for a scene that is one calculation)
 
 
 def scene_digest(text: str) -> str:
@@ -213,11 +202,11 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
         json = solution_json(
             cast("Solution", inputs.solution), path
         )  # the one solve: the same JSON as flyopt solve --json
-    card, verdict = _card(document)
+    card = card_of(document)
     return Answer(
         status=document.status,
-        verdict=verdict,
-        card=card,
+        verdict=card.verdict,
+        card=list(card.rows),
         figures=_figures(document) if calculation else [],
         json=json,
         provenance=tuple(inputs.provenance),
@@ -226,6 +215,7 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
         inputs=inputs,
         units=units,
         drawn=calculation,
+        solution=None if isinstance(inputs, CalculationInputs) else cast("Solution", inputs.solution),
     )
 
 
@@ -275,23 +265,6 @@ def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer
         return answer
     document = draw(answer)
     return drawn(answer, document, [figure_svg(block) for block in figure_blocks(document)])
-
-
-def _card(document: Document) -> tuple[list[Row], str]:
-    from flyopt.report.document import Facts, Paragraph, Quantity, plain
-
-    rows: list[Row] = []
-    verdict = ""
-    section = document.sections[0] if document.sections else None
-    for block in section.blocks if section is not None else ():
-        if isinstance(block, Paragraph) and not verdict:
-            verdict = plain(block.text)
-        if isinstance(block, Facts):
-            for label, value in block.rows:
-                parts = value if isinstance(value, tuple) else (value,)
-                first = next((p for p in parts if isinstance(p, Quantity)), None)
-                rows.append(Row(plain(label), plain(value), first.name if first else None, first.si if first else None))
-    return rows, verdict
 
 
 def _figures(document: Document) -> list[tuple[str, str, str]]:
@@ -347,8 +320,8 @@ def made_bytes(answer: Answer, kind: str, workspace: Workspace) -> bytes | None:
     """
     from flyopt.report.drawing import drawing_of_design, write_drawing, write_solid
 
-    solution = getattr(answer.inputs, "solution", None)
-    design = getattr(solution, "design", None)
+    solution = answer.solution
+    design = solution.design if solution is not None else None
     if solution is None or design is None or design.best is None:
         return None
     target = workspace.folder / f"made.{kind}"
@@ -376,25 +349,7 @@ def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") ->
         return f'<div class="card bad"><b>The scene is not valid</b><ul>{items}</ul></div>'
     if answer is None:
         return f'<div class="card">{escape(busy) or "No answer yet."}</div>'
-    rows = "".join(
-        f'<tr><th>{_marked(r.markup or r.label)}</th><td data-name="{escape(r.name or "")}">{escape(r.value)}</td></tr>'
-        for r in answer.card
-    )
-    good = answer.status in ("designed", "not_needed", "analysed")
-    return (
-        f'<div class="card {"ok" if good else "bad"}"><div class="status"><b>{escape(answer.document.title)}</b>: '
-        f"status <b>{escape(answer.status)}</b>"
-        f"{' — ' + escape(busy) if busy else ''}</div><p>{escape(answer.verdict)}</p><table>{rows}</table></div>"
-    )
-
-
-def _marked(text: str) -> str:
-    """The report's ``_{sub}`` and ``^{sup}`` markup as HTML, the rest escaped."""
-    from html import escape
-
-    shown = escape(text)
-    shown = re.sub(r"_\{([^}]*)\}", r"<sub>\1</sub>", shown)
-    return re.sub(r"\^\{([^}]*)\}", r"<sup>\1</sup>", shown)
+    return answer_card_html(card_of(answer.document), busy)
 
 
 def provenance_html(answer: Answer | None) -> str:

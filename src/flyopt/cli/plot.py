@@ -12,7 +12,10 @@ answer (no flywheel) is the one ``flyopt solve`` gives with status 0. A
 diagram that does not apply to the scene (the energy–mass diagram of a
 constant inertia, ω(φ) of net areas) is refused in one line, exit status 2,
 nothing written. ``--units`` picks the unit system every axis and label is
-drawn in (flyopt.report.display); files of results stay SI.
+drawn in (flyopt.report.display), each axis of a torque, an energy, a power
+or a force with the prefix its largest value needs (as ``solve`` writes it);
+``--digits`` the significant figures of the numbers written on the diagram
+(its labels, legend and title), as ``solve``'s. Files of results stay SI.
 """
 
 from __future__ import annotations
@@ -47,9 +50,13 @@ def add_plot_arguments(parser: argparse.ArgumentParser) -> None:
         "--units",
         default="engineering",
         metavar="SYSTEM",
-        help="units of the axes and labels: engineering (mm, rpm, kN·m, kJ, MPa; the default), "
+        help="units of the axes and labels: engineering (mm, rpm, MPa; N·m, J, W, N with the prefix each "
+        "axis needs; the default), "
         "si (m, rad/s, N·m, J, Pa) or imperial (in, rpm, lbf·ft, ft·lbf, psi)",
     )
+    from flyopt.cli.scene import add_digits_argument
+
+    add_digits_argument(parser, "the diagram's labels, legend and title")
     parser.add_argument(
         "-o",
         "--output",
@@ -113,7 +120,7 @@ def _plot_one(args, plots, solution, what, output, every=False):
     said on stdout and left out (status 0) instead of refused (status 2).
     """
     try:
-        ax = _draw(solution, what, plots, args.units, args.verify)
+        ax = _draw(solution, what, plots, args.units, args.verify, args.digits)
     except plots.NothingToDraw as said:
         print(f"{args.scene}: {what}: {said} (no file written)")
         return EXIT_OK
@@ -155,8 +162,11 @@ class _Infeasible(Exception):
     """A flywheel is needed and no material and shaft can give it (exit 3)."""
 
 
-def _draw(solution, what, plots, units, verify=False):
+def _draw(solution, what, plots, units, verify=False, digits=None):
     """Draw ``what`` from the solved scene (read only: every model ran in the solve); returns the Axes."""
+    from flyopt.report import display
+
+    digits = display.DEFAULT_DIGITS if digits is None else digits
     scene, analysis = solution.scene, solution.analysis
     if what in ("cross_section", "stress"):
         design = solution.design
@@ -166,7 +176,7 @@ def _draw(solution, what, plots, units, verify=False):
             raise _Infeasible(design.message if design is not None else "no drive and wheel meet the limits")
         if what == "cross_section":
             return plots.plot_cross_section(
-                design.best, units=units, material=design.material_name(design.best.material)
+                design.best, units=units, material=design.material_name(design.best.material), digits=digits
             )
         if solution.stress is None:
             raise ValueError(solution.stress_note)
@@ -179,10 +189,11 @@ def _draw(solution, what, plots, units, verify=False):
             ductile=bool(getattr(material, "ductile", False)),
             units=units,
             material=design.material_name(design.best.material),
+            digits=digits,
         )
     if what == "speed":
         if scene.net is not None:  # said by the plot
-            return plots.plot_speed(scene, analysis, units=units)
+            return plots.plot_speed(scene, analysis, units=units, digits=digits)
         speed = analysis.speed_curve()
         if speed is None:
             raise plots.NothingToDraw(
@@ -190,7 +201,7 @@ def _draw(solution, what, plots, units, verify=False):
                 "no inertia at all): nothing to draw"
             )
         simulation = solution.speed_simulation if verify else None
-        return plots.plot_speed(scene, analysis, speed, simulation, units=units)
+        return plots.plot_speed(scene, analysis, speed, simulation, units=units, digits=digits)
     if what == "energy_mass":
         plots.check_energy_mass(analysis)
         analysis = solution.energy_mass  # the diagram draws that model's tangents
@@ -201,8 +212,8 @@ def _draw(solution, what, plots, units, verify=False):
             if solution.inertia_error is not None:
                 raise solution.inertia_error
             curve = solution.inertia_curve
-        return plots.plot_inertia_delta(scene, analysis, units=units, curve=curve)
-    return getattr(plots, f"plot_{what}")(scene, analysis, units=units)
+        return plots.plot_inertia_delta(scene, analysis, units=units, curve=curve, digits=digits)
+    return getattr(plots, f"plot_{what}")(scene, analysis, units=units, digits=digits)
 
 
 def _plot_results(args):
@@ -229,9 +240,9 @@ def _plot_results(args):
     units = args.units
     try:
         ax = (
-            plots.plot_sweep(frame, x, args.y, args.by, units=units)
+            plots.plot_sweep(frame, x, args.y, args.by, units=units, digits=args.digits)
             if args.what == "sweep"
-            else plots.plot_pareto(frame, x, args.y, units=units)
+            else plots.plot_pareto(frame, x, args.y, units=units, digits=args.digits)
         )
     except ValueError as err:
         return fail(f"{args.scene}: {err}", EXIT_INPUT)

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from flyopt.design.materials import Material
 from flyopt.design.spec import DesignSpec, MountShaft
 
-__all__ = ["Combination", "shaft_label"]
+__all__ = ["Combination", "combination_label", "shaft_label"]
 
 
 @dataclass
@@ -46,8 +46,15 @@ class Combination:
     @property
     def label(self) -> str:
         """The combination in words, e.g. ``"grey cast iron on the crank shaft with 6 arms"``."""
-        arms = f" with {self.n_arms} arms" if self.n_arms else ""
-        return f"{self.material.display_name} on the {shaft_label(self.shaft.name)}{arms}"
+        return combination_label(self.material.display_name, self.shaft.name, self.n_arms)
+
+
+def combination_label(material: str, shaft: str, n_arms: int | None = 0) -> str:
+    """A combination in words, the one way every message names one: ``material`` is the material's name for
+    people (:attr:`flyopt.design.materials.Material.display_name`, never its library key), ``shaft`` the
+    mounting shaft's name, ``n_arms`` a rim_arms wheel's arm count (0 or None: no arms)."""
+    arms = f" with {n_arms} arms" if n_arms else ""
+    return f"{material} on the {shaft_label(shaft)}{arms}"
 
 
 def shaft_label(name: str) -> str:

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 from typing import Any, cast
 
 from flyopt.design import check, closed_form, geometry, rank, wheel, wheel_design
-from flyopt.design.combination import Combination, shaft_label
+from flyopt.design.combination import Combination, combination_label, shaft_label
 from flyopt.design.materials import Material
 from flyopt.design.result import Candidate, Design, DesignResult, Dimensions, Limits, Provenance
 from flyopt.design.spec import DesignSpec, MountShaft
@@ -366,7 +366,7 @@ def _accepted(feasible, accept, infeasible):
     return kept
 
 
-def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pruned, accept=None):
+def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pruned, names, accept=None):
     """Design the whole-wheel combinations, the most promising first, leaving out those that cannot win.
 
     Each combination (and arm count) is taken in the order of its objective
@@ -379,7 +379,7 @@ def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pr
     same as with every combination designed.
 
     Appends (order, Candidate) to ``feasible``, ((order, arm index), Candidate) to ``infeasible`` and
-    Candidates to ``pruned``; returns
+    Candidates to ``pruned`` (whose reasons name the winner by ``names``, material key -> name for people); returns
     the last wheel model built (for the description), or None.
     """
     tasks = []
@@ -396,7 +396,7 @@ def _design_wholes(whole, spec, solver_options, method, feasible, infeasible, pr
             pass  # _design_whole reports it, without solving
         else:
             if spec.prune and feasible and _cannot_win(bound, feasible):
-                pruned.append(_pruned(combo, spec, n_arms, bound, why, feasible))
+                pruned.append(_pruned(combo, spec, n_arms, bound, why, feasible, names))
                 continue
         result, built = _design_whole(combo, spec, n_arms, solver_options, method)
         model = built or model
@@ -423,11 +423,11 @@ def _cannot_win(bound, feasible):
 _OBJECTIVE_UNIT = {"mass": " kg", "outer_diameter": " m", "cost": ""}
 
 
-def _pruned(combo, spec, n_arms, bound, why, feasible):
+def _pruned(combo, spec, n_arms, bound, why, feasible, names):
     """The Candidate of a combination left undesigned because its bound shows it cannot win."""
     best = _best_of(feasible)
     label = Combination(**{**combo.__dict__, "n_arms": n_arms}).label
-    winner = f"{best.material} on the {shaft_label(best.shaft)}" + (f" with {best.n_arms} arms" if best.n_arms else "")
+    winner = combination_label(names.get(best.material, best.material), best.shaft, best.n_arms)
     return Candidate(
         material=combo.material.name,
         shaft=combo.shaft.name,
@@ -605,13 +605,21 @@ def design_flywheel(
     if accept is not None:
         decided.feasible = _accepted(decided.feasible, accept, decided.infeasible)
     wheel_model = None
+    names = {m.name: m.display_name for m in materials}
     if decided.whole:
         wheel_model = _design_wholes(
-            decided.whole, spec, solver_options, method, decided.feasible, decided.infeasible, decided.pruned, accept
+            decided.whole,
+            spec,
+            solver_options,
+            method,
+            decided.feasible,
+            decided.infeasible,
+            decided.pruned,
+            names,
+            accept,
         )
     ranked, infeasible, best = _rank(decided)
     description = _describe_model(spec, wheel_model if wheel_model is not None else model)
-    names = {m.name: m.display_name for m in materials}
     result = _result(j_required, omega, spec, ranked, best, infeasible, decided, description, omega_mean, names)
     if spec.round_to and best is not None:
         order = next(o for o, c in decided.feasible if c is best)

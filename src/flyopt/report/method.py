@@ -12,9 +12,14 @@ The notes are read from the package (``flyopt/data/flywheel-design.md``, a
 link to docs/flywheel-design.md in the source tree that the build copies into
 the wheel), so the appendix is the notes themselves, never a copy kept by
 hand. What the notes say for flyopt's developers is left out of the report,
-by rule: the path of a file in the repository (a test, a benchmark, a module
-or its dotted name, a scene of problems/), the parenthesis that holds it, or the sentence that
-needs it; a link's target (its words stay); markdown's emphasis marks. A
+by two rules. First, the notes mark it: text between the HTML comments
+``<!-- implementation -->`` and ``<!-- /implementation -->`` (:data:`IMPLEMENTATION`; where the code
+lives, how it is solved, tested and timed, what it depends on) is not read
+at all, and a part of a section (``###``) left with nothing is left out.
+Second, as a net under what is not marked: the path of a file in the
+repository (a test, a benchmark, a module or its dotted name, a scene of
+problems/), the parenthesis that holds it, or the sentence that needs it;
+a link's target (its words stay); markdown's emphasis marks. A
 reference from one section to another becomes the appendix's number where
 that section is in the appendix, and the notes' number where it is not
 ("section 20 of flyopt's notes").
@@ -29,7 +34,17 @@ from importlib import resources
 
 from flyopt.report.document import Code, Document, Equation, Facts, Figure, Paragraph, Section, Table
 
-__all__ = ["APPENDIX", "NOTES", "PATH", "MethodSection", "appendix", "notes_sections", "readable", "with_appendix"]
+__all__ = [
+    "APPENDIX",
+    "IMPLEMENTATION",
+    "NOTES",
+    "PATH",
+    "MethodSection",
+    "appendix",
+    "notes_sections",
+    "readable",
+    "with_appendix",
+]
 
 #: How a builder names the notes in a citation: "(docs/flywheel-design.md, section 5)". Rewritten by
 #: :func:`with_appendix`; never shown to the reader.
@@ -64,9 +79,15 @@ class MethodSection:
     text: str
 
 
+#: The notes' text for flyopt's developers, between these HTML comments (invisible where the notes are rendered),
+#: which the report leaves out; a span ends where it is closed (or with the notes).
+IMPLEMENTATION = re.compile(r"<!-- implementation -->.*?(?:<!-- /implementation -->|\Z)", re.S)
+
+
 @cache
 def _notes_text() -> str:
-    return resources.files("flyopt").joinpath("data", _FILE).read_text(encoding="utf-8")
+    """The notes as the report reads them: without their text for developers (:data:`IMPLEMENTATION`)."""
+    return IMPLEMENTATION.sub("", resources.files("flyopt").joinpath("data", _FILE).read_text(encoding="utf-8"))
 
 
 @cache
@@ -181,10 +202,10 @@ def appendix(numbers: list[str]) -> list[Section]:
         title = readable(method.title, shown)
         out.append(Section(f"{APPENDIX}.{number}", title, _blocks(parts[0], shown), 2, f"notes-{number}"))
         for k in range(1, len(parts) - 1, 2):
-            title = readable(parts[k].strip(), shown)
-            out.append(
-                Section(f"{APPENDIX}.{number}.{k // 2 + 1}", title, _blocks(parts[k + 1], shown), 2, f"notes-{number}")
-            )
+            blocks = _blocks(parts[k + 1], shown)
+            if blocks:  # a part that is all for developers is left out (its number stays the notes' own)
+                title = readable(parts[k].strip(), shown)
+                out.append(Section(f"{APPENDIX}.{number}.{k // 2 + 1}", title, blocks, 2, f"notes-{number}"))
     return out
 
 
@@ -274,8 +295,7 @@ def readable(text: str, shown: set[str]) -> str:
             break
         text = shorter
     if PATH.search(text):  # a sentence that needs a file goes whole
-        sentences = re.split(r"(?<=[.;])\s+", text)
-        text = " ".join(s for s in sentences if not PATH.search(s))
+        text = " ".join(s for s in _sentences(text) if not PATH.search(s))
         if PATH.search(text):
             text = PATH.sub("", text)
     text = text.replace("`", "")
@@ -290,3 +310,15 @@ def readable(text: str, shown: set[str]) -> str:
         return f"{match.group(1)} {match.group(2)} of flyopt's notes"
 
     return re.sub(r"\b(sections?) (\d+(?:(?: and |, )\d+)*)(?! of flyopt)", section, text).strip()
+
+
+def _sentences(text: str) -> list[str]:
+    """``text`` cut after each "." or ";" that ends a sentence or a clause, never inside a parenthesis (a ";" in
+    "(327 kg; flyopt 326.59 kg)" does not cut it)."""
+    out: list[str] = []
+    for piece in re.split(r"(?<=[.;])\s+", text):
+        if out and out[-1].count("(") > out[-1].count(")"):
+            out[-1] += " " + piece
+        else:
+            out.append(piece)
+    return out

@@ -5,9 +5,10 @@ and registered in :mod:`flyopt.views`, which the result classes consult
 (they stand on lower floors and may not import this module):
 
 - a :class:`~flyopt.pipeline.Solution` shows its answer card
-  (``_repr_html_``): the text report's answer
-  (:func:`flyopt.report.text.answer_report`, the one formatter) as a small
-  table under the scene's title, every string escaped;
+  (``_repr_html_``), the card the app shows (:mod:`flyopt.report.card`: the
+  report's answer section as a small table under the scene's title, every
+  string escaped), and an :class:`~flyopt.analysis.Analysis` (``flyopt.analyse``)
+  the same card of the cycle alone;
 - a :class:`~flyopt.design.result.DesignResult` gives its ranking as a
   DataFrame (``to_frame``: every material × shaft combination, the JSON's
   ``design.candidates`` fields, SI, each column's unit in
@@ -21,7 +22,6 @@ reads a sweep, Pareto or trade-off file back (in SI, or in those units).
 
 from __future__ import annotations
 
-import html
 import math
 import os
 from collections.abc import Sequence
@@ -29,16 +29,25 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.outputs.quantities import dimension_of, table_units
 from flyopt.report import display
-from flyopt.report.characters import visible
 from flyopt.views import register
 
 if TYPE_CHECKING:
     import pandas as pd
 
+    from flyopt.analysis import Analysis
     from flyopt.design.result import DesignResult
     from flyopt.pipeline import Solution
 
-__all__ = ["INPUT", "RANKING_COLUMNS", "answer_card", "ranking_frame", "ranking_html", "read_results", "to_units"]
+__all__ = [
+    "INPUT",
+    "RANKING_COLUMNS",
+    "analysis_card",
+    "answer_card",
+    "ranking_frame",
+    "ranking_html",
+    "read_results",
+    "to_units",
+]
 
 #: ``units=INPUT``: a sweep's varied fields in the units they were given in (``300,600rpm``: rpm).
 INPUT = "input"
@@ -52,43 +61,36 @@ RANKING_COLUMNS = ("material", "shaft", "feasible", "mass", "d_outer", "b", "h",
 # --------------------------------------------------------------------------
 
 
-def answer_card(solution: Solution, units: str = display.DEFAULT) -> str:
-    """The answer of a solution as a small HTML table: the text report's answer, line by line.
-
-    The first line of :func:`flyopt.report.text.answer_report` is the caption
-    under the scene's title; each further line (``size``, ``J``, ``limits``,
-    ``δ``) a row, its label in the header cell. Every string is escaped.
+def answer_card(solution: Solution, units: str = display.DEFAULT, digits: int = display.DEFAULT_DIGITS) -> str:
+    """The answer card of a solution as HTML: the app's card (:func:`flyopt.report.card.solution_card`, the
+    report's answer section: the verdict, then the model, speeds, δ, A_max, J_F, the wheel with its limits and
+    the verified δ), every string escaped.
 
     Parameters
     ----------
     solution : flyopt.pipeline.Solution
     units : str
         The unit system (:data:`flyopt.report.display.SYSTEMS`).
+    digits : int
+        Significant figures (:func:`flyopt.report.display.check_digits`).
 
     Returns
     -------
     str
-        ``<table class="flyopt-answer">...</table>``.
+        ``<div class="card flyopt-answer ...">...</div>``.
     """
-    from flyopt.report.text import answer_report
+    from flyopt.report.card import card_html, solution_card
 
-    lines = [line for line in answer_report(solution, units) if line.strip()]
-    head, rows = (lines[0], lines[1:]) if lines else ("", [])
-    cells = "".join(
-        f'<tr><th style="text-align:left">{html.escape(label)}</th>'
-        f'<td style="text-align:left">{html.escape(value)}</td></tr>'
-        for label, value in map(_row, rows)
-    )
-    return (
-        f'<table class="flyopt-answer"><caption style="text-align:left"><b>{html.escape(visible(solution.scene.title))}'
-        f"</b><br>{html.escape(head)}</caption><tbody>{cells}</tbody></table>"
-    )
+    return card_html(solution_card(solution, units, digits))
 
 
-def _row(line: str) -> tuple[str, str]:
-    """A line of the answer (``"    size    D 616.9 mm, ..."``) as (label, value): they are two spaces apart."""
-    label, gap, value = line.strip().partition("  ")
-    return (label, value.strip()) if gap else ("", label)
+def analysis_card(analysis: Analysis, units: str = display.DEFAULT, digits: int = display.DEFAULT_DIGITS) -> str:
+    """The answer card of a cycle's analysis (``flyopt.analyse``) as HTML, by the same card
+    (:func:`flyopt.report.card.analysis_card`)."""
+    from flyopt.report.card import analysis_card as card_of_analysis
+    from flyopt.report.card import card_html
+
+    return card_html(card_of_analysis(analysis, units, digits))
 
 
 # --------------------------------------------------------------------------
@@ -287,5 +289,6 @@ def read_results(
 
 
 register("solution", "html", answer_card)
+register("analysis", "html", analysis_card)
 register("design", "frame", ranking_frame)
 register("design", "html", ranking_html)

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from flyopt.design.combination import shaft_label
+from flyopt.design.combination import combination_label
 from flyopt.design.shaft.check import ShaftCheck, ShaftLimit, check_shaft
 from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.torsion import TorqueOrders
@@ -168,25 +168,30 @@ def mass_sensitivity(ctx: ShaftContext, candidate: Candidate, limit: ShaftLimit)
     return (values[0] - values[1]) / (2.0 * h)
 
 
-def reject_reason(candidate: Candidate, check: ShaftCheck) -> str | None:
-    """The sentence that makes a combination infeasible, or None when its shaft holds."""
+def reject_reason(candidate: Candidate, check: ShaftCheck, names: Mapping[str, str] | None = None) -> str | None:
+    """The sentence that makes a combination infeasible, or None when its shaft holds.
+
+    ``names``: material key -> its name for people (:attr:`flyopt.design.materials.Material.display_name`),
+    the name the sentence gives the wheel's material (its key where the map has none).
+    """
     failed = check.failed()
     if not failed:
         return None
-    arms = f" with {candidate.n_arms} arms" if candidate.n_arms else ""
+    material = (names or {}).get(candidate.material, candidate.material)
     what = "; ".join(lim.describe() for lim in failed)
     return (
-        f"{candidate.material} on the {shaft_label(candidate.shaft)}{arms}: the shaft cannot carry this "
+        f"{combination_label(material, candidate.shaft, candidate.n_arms)}: the shaft cannot carry this "
         f"{candidate.mass:.4g} kg wheel: {what}"
     )
 
 
-def acceptor(ctx: ShaftContext) -> Callable[[Candidate], str | None]:
-    """The designer's post-check (``design_flywheel(accept=...)``) of the scene's described shafts."""
+def acceptor(ctx: ShaftContext, names: Mapping[str, str] | None = None) -> Callable[[Candidate], str | None]:
+    """The designer's post-check (``design_flywheel(accept=...)``) of the scene's described shafts; its reasons name
+    the wheel's material by ``names`` (material key -> name for people, :func:`reject_reason`)."""
 
     def accept(candidate: Candidate) -> str | None:
         check = check_candidate(ctx, candidate)
-        return None if check is None else reject_reason(candidate, check)
+        return None if check is None else reject_reason(candidate, check, names)
 
     return accept
 

@@ -114,7 +114,8 @@ class BuilderBase:
     def figure(
         self, blocks: list[Any], key: str, caption: str, draw: Callable[..., Any], *args: Any, **kwargs: Any
     ) -> None:
-        """Draw a diagram with a function of :mod:`flyopt.report.plots` (``units=`` where it takes it).
+        """Draw a diagram with a function of :mod:`flyopt.report.plots` (``units=`` and ``digits=`` where it takes
+        them: the report's).
 
         A builder made with ``figures=False`` draws nothing: the block holds the key and caption only, the
         note saying so (a document of numbers, for the app's answer card before its diagrams).
@@ -129,6 +130,8 @@ class BuilderBase:
             parameters = inspect.signature(draw).parameters
             if "units" in parameters:
                 kwargs["units"] = self.units
+            if "digits" in parameters:
+                kwargs["digits"] = self.digits
             ax = draw(*args, **kwargs)
         except plots.NothingToDraw as said:
             blocks.append(Figure(key, caption, note=f"Not drawn: {said}."))
@@ -166,6 +169,10 @@ class BuilderBase:
         """Whether a verification (of the design or of the drive) flagged the solution."""
         v, check = self.solution.verification, self.solution.drive_check
         return bool((v is not None and v.flagged) or (check is not None and check.flagged))
+
+    def document_status(self) -> str:
+        """The solution's status as the document carries it: "flagged" after it where a verification flagged it."""
+        return self.solution.status + (" flagged" if self.flagged() else "")
 
     def status_words(self) -> str:
         """The solution's status as the title block says it."""

@@ -84,9 +84,7 @@ class Builder(
         self.drive_section()
         self.verification_section()
         self.provenance_section()
-        status = self.solution.status
-        if self.flagged():
-            status += " flagged"
+        status = self.document_status()
         head = (
             (("scene file", self.inputs.scene_file),)
             + tuple(extra)

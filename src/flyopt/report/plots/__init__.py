@@ -14,7 +14,10 @@ one that would be empty because the machine needs no flywheel raises
 
 One visual standard for every diagram: each axis carries its unit in the
 system the caller chose (``units``: :data:`flyopt.report.display.SYSTEMS`,
-engineering by default: mm, rpm, kN·m, kJ, MPa), the legend sits outside
+engineering by default: mm, rpm, MPa, and a torque, energy, power or force
+in N·m, J, W, N with the prefix the axis' largest value needs,
+:func:`~flyopt.report.plots.standard.scale`), its labels ``digits``
+significant figures (``--digits``), the legend sits outside
 the data (below a figure the function made, right of an Axes it was
 given), labels are placed where no curve and no other label is, and
 titles are wrapped to the figure's width. The diagrams of one cycle share

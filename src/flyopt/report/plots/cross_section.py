@@ -215,7 +215,11 @@ def _groups(blocks):
 
 
 def plot_cross_section(
-    candidate: Candidate, ax: Axes | None = None, units: str = display.DEFAULT, material: str | None = None
+    candidate: Candidate,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    material: str | None = None,
+    digits: int = display.DEFAULT_DIGITS,
 ) -> Axes:
     """Dimensioned axial section of a designed wheel, mirrored about the axis, in the system's length unit.
 
@@ -422,8 +426,8 @@ def plot_cross_section(
         c.geometry, c.geometry
     )
     title = (
-        f"Flywheel, {what}: {material or c.material.replace('_', ' ')}, {standard.q(c.mass, 'mass', units)}, "
-        f"J = {standard.q(c.j_flywheel, 'inertia', units)} on {c.shaft}\n"
+        f"Flywheel, {what}: {material or c.material.replace('_', ' ')}, {standard.q(c.mass, 'mass', units, digits)}, "
+        f"J = {standard.q(c.j_flywheel, 'inertia', units, digits)} on {c.shaft}\n"
         f"axial section{', arm section revolved' if arms else ''}, dimensions in {length}"
     )
     if own:  # the figure is this drawing's: its title over both views, the notes under them

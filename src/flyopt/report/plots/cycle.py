@@ -275,7 +275,7 @@ def _is_motor(curve):
 # --------------------------------------------------------------------------
 
 
-def omega_marks(analysis: Analysis, units: str) -> tuple[list[Mark], str | None]:
+def omega_marks(analysis: Analysis, units: str, digits: int = standard.DIGITS) -> tuple[list[Mark], str | None]:
     """The vertical marks of the speed extremes and of the ends of A_max: (angle, label, colour, style, gid).
 
     With a constant inertia and torques of the angle only the speed is extreme
@@ -305,12 +305,14 @@ def omega_marks(analysis: Analysis, units: str) -> tuple[list[Mark], str | None]
         # apart, each has its own, and the dynamic model (whose ΔE is not drawn) marks only the speed's
         separate = analysis.model != Model.DYNAMIC and apart
         label = f"ω_{name} ({model})" if analysis.model == Model.DYNAMIC or separate else f"ω_{name} where ΔE is {word}"
-        marks.append((omega_at, f"{label}: φ = {standard.q(omega_at, 'angle', units)}", colour, "--", f"omega_{name}"))
+        marks.append(
+            (omega_at, f"{label}: φ = {standard.q(omega_at, 'angle', units, digits)}", colour, "--", f"omega_{name}")
+        )
         if separate and delta_e_at is not None:
             marks.append(
                 (
                     delta_e_at,
-                    f"ΔE {word} (an end of A_max): φ = {standard.q(delta_e_at, 'angle', units)}",
+                    f"ΔE {word} (an end of A_max): φ = {standard.q(delta_e_at, 'angle', units, digits)}",
                     colour,
                     ":",
                     f"delta_e_{name}",

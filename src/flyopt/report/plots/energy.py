@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
@@ -19,7 +20,13 @@ if TYPE_CHECKING:
     from flyopt.io.scene import Scene
 
 
-def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
+def plot_energy(
+    scene: Scene,
+    analysis: Analysis,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
+) -> Axes:
     """Energy indicator diagram: ΔE from the cycle start, the chain points, ΔE's extremes and A_max.
 
     The x axis is the turning-moment diagram's (0 to Φ). A_max is dimensioned
@@ -30,6 +37,9 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
     as well. With the dynamic model the diagram is that of the torques frozen
     at the mean speed, a motor at its mean (section 7, the A_max the analysis
     reports), and ΔE along the periodic solution is drawn over it.
+
+    The energy axis takes its unit from what it draws and A_max (:func:`~flyopt.report.plots.standard.scale`:
+    "536.7 J", as the text says it); ``digits`` are the significant figures of the numbers written on it.
 
     Returns
     -------
@@ -43,31 +53,37 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
         raise BrokenInvariant("every analysis carries its energy indicator diagram (flyopt.analysis)")
     chain = np.asarray(ind.chain_delta_e, dtype=float)
     constant = analysis.machine is None or not analysis.machine.variable_inertia
+    drawn: list[npt.ArrayLike] = [chain, ind.a_max]
+    if ind.chain_angle is not None:
+        ew = excess_work(scene, analysis)
+        phi = np.union1d(np.linspace(0, scene.cycle_angle, 1501), ind.chain_angle)
+        curve = ew(phi)
+        drawn.append(curve)
+        if analysis.model == Model.DYNAMIC:
+            torques = Torques(scene, analysis)
+            along = torques.excess_work()
+            drawn.append(along)
+    energy = standard.scale("energy", units, drawn, digits)
     if ind.chain_angle is None:
         x_chain = np.arange(len(chain), dtype=float)
-        ax.plot(
-            x_chain, standard.show(chain, "energy", units), "-", color="tab:blue", lw=1.5, label="ΔE, chained areas"
-        )
+        ax.plot(x_chain, energy.show(chain), "-", color="tab:blue", lw=1.5, label="ΔE, chained areas")
         ax.set_xlim(0, len(chain) - 1)
         ax.set_xticks(x_chain)
         ax.set_xlabel("end of area k (0: the cycle start)")
     else:
         x_chain = standard.show(ind.chain_angle, "angle", units)
-        ew = excess_work(scene, analysis)
-        phi = np.union1d(np.linspace(0, scene.cycle_angle, 1501), ind.chain_angle)
         frozen = " (torques frozen at ω_m, the motor at its mean)" if analysis.model == Model.DYNAMIC else ""
         ax.plot(
             standard.show(phi, "angle", units),
-            standard.show(ew(phi), "energy", units),
+            energy.show(curve),
             color="tab:blue",
             lw=1.5,
             label=f"ΔE(φ) = ∫(M_d − M_r) dφ{frozen}",
         )
         if analysis.model == Model.DYNAMIC:
-            torques = Torques(scene, analysis)
             ax.plot(
                 standard.show(torques.phi, "angle", units),
-                standard.show(torques.excess_work(), "energy", units),
+                energy.show(along),
                 color="tab:purple",
                 lw=1.2,
                 ls="--",
@@ -76,7 +92,7 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
             )
         angle_axis(ax, scene.cycle_angle, units)
         mark_dead_centres(ax, scene, units)
-    y_chain = standard.show(chain, "energy", units)
+    y_chain = energy.show(chain)
     ax.plot(
         x_chain,
         y_chain,
@@ -97,7 +113,7 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
     for k, name, colour, where in extremes:
         ax.axhline(y_chain[k], color=colour, ls=":", lw=1)
         at = (
-            f" at φ = {standard.q(ind.chain_angle[k], 'angle', units)}"
+            f" at φ = {standard.q(ind.chain_angle[k], 'angle', units, digits)}"
             if ind.chain_angle is not None
             else f" at the end of area {k}"
         )
@@ -110,7 +126,7 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
             mec=colour,
             mew=1.6,
             zorder=5,
-            label=f"{name}: ΔE = {standard.q(chain[k], 'energy', units)}{at}",
+            label=f"{name}: ΔE = {energy.q(chain[k])}{at}",
             gid="chain_max" if where > 0 else "chain_min",
         )
         ax.annotate(
@@ -125,7 +141,6 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
             gid="extreme_label",
         )
     if ind.chain_angle is not None and (not constant or analysis.model == Model.DYNAMIC) and not steady:
-        ew = excess_work(scene, analysis)
         for angle, name, colour, marker in (
             (analysis.angle_omega_max, "ω_max", standard.SURPLUS, "^"),
             (analysis.angle_omega_min, "ω_min", standard.DEFICIT, "v"),
@@ -134,13 +149,13 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
                 continue
             ax.plot(
                 [float(standard.show(angle, "angle", units))],
-                [float(standard.show(ew(np.array([angle]))[0], "energy", units))],
+                [float(energy.show(ew(np.array([angle]))[0]))],
                 marker,
                 color=colour,
                 ms=7,
                 zorder=6,
                 gid=f"omega_{name[-3:]}",
-                label=f"{name} ({analysis.model} model) at φ = {standard.q(angle, 'angle', units)}",
+                label=f"{name} ({analysis.model} model) at φ = {standard.q(angle, 'angle', units, digits)}",
             )
     top, bottom = hi, lo
     for line in ax.get_lines():  # every curve drawn (ΔE along the periodic solution too) within the plot
@@ -175,7 +190,7 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
         ax.text(
             1.04,
             0.5 * (hi + lo),
-            f"A_max = {standard.q(ind.a_max, 'energy', units)}",
+            f"A_max = {energy.q(ind.a_max)}",
             transform=dimension_at,
             rotation=90,
             ha="left",
@@ -183,9 +198,9 @@ def plot_energy(scene: Scene, analysis: Analysis, ax: Axes | None = None, units:
             fontsize=standard.FONT,
             clip_on=False,
         )
-    ax.set_ylabel(standard.axis_label("excess work ΔE", "energy", units))
+    ax.set_ylabel(energy.axis_label("excess work ΔE"))
     ax.grid(True, alpha=0.25)
-    standard.title(ax, own, scene.title, f"energy indicator diagram (A_max = {standard.q(ind.a_max, 'energy', units)})")
+    standard.title(ax, own, scene.title, f"energy indicator diagram (A_max = {energy.q(ind.a_max)})")
     standard.legend(
         ax, own, title="steady running: ΔE = 0 at every angle, the speed does not fluctuate" if steady else None
     )

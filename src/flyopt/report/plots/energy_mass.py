@@ -46,7 +46,13 @@ def check_energy_mass(analysis: Analysis) -> None:
 COLOURS = 360
 
 
-def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
+def plot_energy_mass(
+    scene: Scene,
+    analysis: Analysis,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
+) -> Axes:
     """Wittenbauer's energy–mass diagram: ΔE against J_e over the cycle, with the two tangents.
 
     From the true origin (−J_F, −E_0) the lines of slope ω_max²/2 and ω_min²/2
@@ -67,6 +73,10 @@ def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, u
     ax : matplotlib Axes, optional
         The diagram near the curve only (the origin then given in the legend).
     units : {"engineering", "si", "imperial"}
+        Each energy axis takes its unit from what it draws (:func:`~flyopt.report.plots.standard.scale`): the
+        diagram near the curve from ΔE, the overview from ΔE and the true origin's E_0, which its legend gives.
+    digits : int
+        Significant figures of the numbers written on the diagram (the speeds of the tangents one more).
 
     Returns
     -------
@@ -111,8 +121,14 @@ def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, u
             gridspec_kw={"width_ratios": [1, 1.5]},
             FigureClass=standard.figure_class(),
         )
-    inertia, energy = standard.unit("inertia", units)[0], standard.unit("energy", units)[0]
-    sj, se = (lambda v: standard.show(v, "inertia", units)), (lambda v: standard.show(v, "energy", units))
+    inertia = standard.unit("inertia", units)[0]
+    near = standard.scale("energy", units, [de], digits)
+    reach = np.array([x0, j.max() + 0.1 * (j.max() - x0)])  # the overview's span of J_e, from the true origin
+    whole = standard.scale(
+        "energy", units, [de, y0, y0 + 0.5 * max(em.omega_max, em.omega_min) ** 2 * (reach - x0)], digits
+    )
+    legend_energy = whole if overview is not None else near
+    sj, se = (lambda v: standard.show(v, "inertia", units)), near.show
     tangents = (
         (em.omega_max, em.phi_omega_max, standard.SURPLUS, "max"),
         (em.omega_min, em.phi_omega_min, standard.DEFICIT, "min"),
@@ -142,7 +158,7 @@ def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, u
             color=colour,
             lw=1,
             ls="--",
-            label=f"tangent of slope ω_{name}²/2, ω_{name} = {standard.q(w, 'angular_speed', units, 5)}",
+            label=f"tangent of slope ω_{name}²/2, ω_{name} = {standard.q(w, 'angular_speed', units, digits + 1)}",
         )
         touch = np.array([at])
         ax.plot(
@@ -155,25 +171,24 @@ def plot_energy_mass(scene: Scene, analysis: Analysis, ax: Axes | None = None, u
             mew=2,
             zorder=6,
             gid=f"tangent_{name}",
-            label=f"touches where the speed is ω_{name}: φ = {standard.q(at, 'angle', units)}",
+            label=f"touches where the speed is ω_{name}: φ = {standard.q(at, 'angle', units, digits)}",
         )
     ax.set_xlim(sj(j.min() - 0.15 * max(span_x, 1e-12)), sj(j.max() + 0.15 * max(span_x, 1e-12)))
     ax.set_ylim(se(de.min() - 0.15 * max(span_y, 1e-12)), se(de.max() + 0.15 * max(span_y, 1e-12)))
-    ax.set(xlabel=f"equivalent inertia of the machine J_e [{inertia}]", ylabel=f"excess work ΔE [{energy}]")
+    ax.set(xlabel=f"equivalent inertia of the machine J_e [{inertia}]", ylabel=near.axis_label("excess work ΔE"))
     ax.grid(True, alpha=0.25)
     origin = (
-        f"the tangents meet at the true origin (−J_F, −E_0) = ({standard.q(x0, 'inertia', units)}, "
-        f"{standard.q(y0, 'energy', units)}): J_F = {standard.q(j_f, 'inertia', units)}"
+        f"the tangents meet at the true origin (−J_F, −E_0) = ({standard.q(x0, 'inertia', units, digits)}, "
+        f"{legend_energy.q(y0)}): J_F = {standard.q(j_f, 'inertia', units, digits)}"
     )
     if overview is not None:
-        overview.plot(sj(j), se(de), color="tab:blue", lw=1.5)
-        ends = np.array([x0, j.max() + 0.1 * (j.max() - x0)])
+        overview.plot(sj(j), whole.show(de), color="tab:blue", lw=1.5)
         for w, _at, colour, _name in tangents:
-            overview.plot(sj(ends), se(y0 + 0.5 * w**2 * (ends - x0)), color=colour, lw=1, ls="--")
-        overview.plot([sj(x0)], [se(y0)], "ko", ms=6, gid="origin", label=origin)
+            overview.plot(sj(reach), whole.show(y0 + 0.5 * w**2 * (reach - x0)), color=colour, lw=1, ls="--")
+        overview.plot([sj(x0)], [whole.show(y0)], "ko", ms=6, gid="origin", label=origin)
         overview.axhline(0, color="gray", lw=0.5)
         overview.axvline(0, color="gray", lw=0.5)
-        overview.set(xlabel=f"J_e [{inertia}]", ylabel=f"ΔE [{energy}]")
+        overview.set(xlabel=f"J_e [{inertia}]", ylabel=whole.axis_label("ΔE"))
         overview.xaxis.set_major_locator(MaxNLocator(4))  # a narrow panel: few ticks, none overlapping
         overview.set_title("the whole: from the true origin", fontsize=standard.FONT + 1)
         overview.grid(True, alpha=0.25)

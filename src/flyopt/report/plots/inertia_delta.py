@@ -32,6 +32,7 @@ def plot_inertia_delta(
     analysis: Analysis,
     ax: Axes | None = None,
     units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
     curve: tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
 ) -> Axes:
     """J_F against δ by the model that ran, the scene's δ marked on the curve.
@@ -115,7 +116,7 @@ def plot_inertia_delta(
             ls=":",
             lw=1,
             gid="delta_free",
-            label=f"δ* {about}{display.number(free, standard.DIGITS if about == '= ' else 2)}: above it J_F = 0 "
+            label=f"δ* {about}{display.number(free, digits if about == '= ' else 2)}: above it J_F = 0 "
             f"(the machine's own inertia suffices)",
         )
     if analysis.flywheel_needed:
@@ -127,8 +128,8 @@ def plot_inertia_delta(
             ms=7,
             zorder=5,
             gid="design_point",
-            label=f"the scene: δ = {display.number(analysis.delta, standard.DIGITS)}, "
-            f"J_F = {standard.q(analysis.j_required, 'inertia', units)}",
+            label=f"the scene: δ = {display.number(analysis.delta, digits)}, "
+            f"J_F = {standard.q(analysis.j_required, 'inertia', units, digits)}",
         )
     else:
         ax.axvline(
@@ -136,7 +137,7 @@ def plot_inertia_delta(
             color=standard.DEFICIT,
             lw=1,
             gid="design_point",
-            label=f"the scene's δ = {display.number(analysis.delta, standard.DIGITS)}: no flywheel needed",
+            label=f"the scene's δ = {display.number(analysis.delta, digits)}: no flywheel needed",
         )
     ax.set(
         xscale="log",

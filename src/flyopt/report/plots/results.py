@@ -47,14 +47,23 @@ def _objective_of(frame):
     return str(names[0]) if len(names) == 1 else None
 
 
-def _label(column, units=display.DEFAULT, frame=None):
-    """A column's axis label with its unit in the system (flyopt.outputs.results: the one table of units)."""
+def _scale(frame, column, units=display.DEFAULT, digits=standard.DIGITS):
+    """The unit a column is drawn in (its dimension from flyopt.outputs.results, the one table of units): chosen
+    from the whole column's largest value (:func:`~flyopt.report.plots.standard.scale`, a power in kW or W as
+    the text writes it), one for the axis and the legend alike; None for a column without a dimension."""
     dimension = _dimension(column, frame)
+    if dimension is None:
+        return None
+    values = frame[column].to_numpy(dtype=float) if np.issubdtype(frame[column].dtype, np.number) else ()
+    return standard.scale(dimension, units, [values], digits)
+
+
+def _label(column, units=display.DEFAULT, frame=None, digits=standard.DIGITS):
+    """A column's axis label with its unit in the system."""
     if column == "cost":
         return "cost [currency of the prices]"
-    if dimension is None:
-        return column
-    return standard.axis_label(column, dimension, units)
+    scale = _scale(frame, column, units, digits)
+    return column if scale is None else scale.axis_label(column)
 
 
 def _column(frame, name):
@@ -65,20 +74,19 @@ def _column(frame, name):
     raise ValueError(f"the results have no column {name!r} (columns: {', '.join(frame.columns)})")
 
 
-def _values(frame, column, units):
-    """A column's numbers in the system's unit of its dimension."""
-    values = frame[column].to_numpy(dtype=float)
-    dimension = _dimension(column, frame)
-    return values if dimension is None else standard.show(values, dimension, units)
+def _values(part, column, scale):
+    """A column's numbers (of ``part``, rows of the frame) in its axis' unit (``scale`` of :func:`_scale`)."""
+    values = part[column].to_numpy(dtype=float)
+    return values if scale is None else scale.show(values)
 
 
-def _value_text(value, column, units, frame=None):
+def _value_text(value, column, units, frame=None, digits=standard.DIGITS):
     """A varied field's value as a legend writes it: "speed = 600 rpm", "material = cast_iron"."""
     if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(value, bool):
-        dimension = _dimension(column, frame)
-        if dimension is None:
-            return f"{column} = {display.number(float(value), standard.DIGITS)}"
-        return f"{column} = {standard.q(float(value), dimension, units)}"
+        scale = _scale(frame, column, units, digits) if frame is not None else None
+        if scale is None:
+            return f"{column} = {display.number(float(value), digits)}"
+        return f"{column} = {scale.q(float(value))}"
     return f"{column} = {value}"
 
 
@@ -125,6 +133,7 @@ def plot_sweep(
     by: str | None = None,
     ax: Axes | None = None,
     units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
 ) -> Axes:
     """A sweep's result ``y`` against a varied field ``x``: one line per value of ``by`` and of every
     other varied field, so that a line never joins points that differ in anything but ``x``.
@@ -132,7 +141,8 @@ def plot_sweep(
     Points that are not designed (infeasible, failed, not needed) have no
     ``y``: each is marked at its ``x`` along the bottom of the plot, by kind,
     and counted in the legend. Values are shown in the system's units, the
-    legends' too (``speed = 600 rpm``). A field spanning more than a decade is
+    legends' too (``speed = 600 rpm``), each axis in one unit chosen from its column's largest value (a
+    power in W or kW as the text writes it), ``digits`` significant figures. A field spanning more than a decade is
     drawn on a log axis. A name that is not a column may name a result:
     ``material`` and ``shaft`` are the winner's, ``best_material`` and
     ``best_shaft``, when the sweep did not vary them.
@@ -156,15 +166,16 @@ def plot_sweep(
             f"(at most {MAX_LINES}); sweep fewer fields at once, or plot one of them along x"
         )
     ax, own = standard.axes(ax)
+    x_scale, y_scale = _scale(frame, x, units, digits), _scale(frame, y, units, digits)
     status = frame["status"] if "status" in frame.columns else None
     bottom = blended_transform_factory(ax.transData, ax.transAxes)
     counts: dict[Any, int] = {}
     for key, part in groups:
         part = part.sort_values(x)
         key = key if isinstance(key, tuple) else (key,)
-        words = ", ".join(_value_text(v, k, units, frame) for k, v in zip(keys, key)) or y
+        words = ", ".join(_value_text(v, k, units, frame, digits) for k, v in zip(keys, key)) or y
         ok = (part["status"] == "designed").to_numpy() if status is not None else np.ones(len(part), bool)
-        xs, ys = _values(part, x, units), _values(part, y, units)
+        xs, ys = _values(part, x, x_scale), _values(part, y, y_scale)
         (line,) = ax.plot(xs[ok], ys[ok], "o-", ms=3.5, lw=1.3, label=words)
         for kind, (marker, _w) in _NOT_DESIGNED.items():
             miss = (part["status"] == kind).to_numpy() if status is not None else np.zeros(len(part), bool)
@@ -191,18 +202,25 @@ def plot_sweep(
             mfc="none" if marker == "o" else "gray",
             label=f"{words} ({n} point{'s' if n > 1 else ''}), marked at the bottom",
         )
-    values = _values(frame, x, units) if np.issubdtype(frame[x].dtype, np.number) else np.array([])
+    values = _values(frame, x, x_scale) if np.issubdtype(frame[x].dtype, np.number) else np.array([])
     positive = values[np.isfinite(values) & (values > 0)]
     if positive.size and positive.max() / positive.min() > 10:
         ax.set_xscale("log")
-    ax.set(xlabel=_label(x, units, frame), ylabel=_label(y, units, frame))
+    ax.set(xlabel=_label(x, units, frame, digits), ylabel=_label(y, units, frame, digits))
     ax.grid(True, alpha=0.3)
     standard.title(ax, own, f"sweep: {y} against {x}" + (f", one line per {', '.join(keys)}" if keys else ""))
     standard.legend(ax, own, ncol=3)
     return ax
 
 
-def plot_pareto(frame: pd.DataFrame, x: str, y: str, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
+def plot_pareto(
+    frame: pd.DataFrame,
+    x: str,
+    y: str,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
+) -> Axes:
     """The Pareto front of two objectives (both minimized), non-dominated points joined.
 
     A front compares designs of one machine: the points must share the
@@ -223,8 +241,8 @@ def plot_pareto(frame: pd.DataFrame, x: str, y: str, ax: Axes | None = None, uni
     mixed = [f for f in PHYSICS_FIELDS if f in frame.columns and f not in (x, y) and frame[f].nunique(dropna=True) > 1]
     if mixed:
         spans = "; ".join(
-            f"{f} from {_value_text(frame[f].min(), f, units, frame).split(' = ')[1]} to "
-            f"{_value_text(frame[f].max(), f, units, frame).split(' = ')[1]}"
+            f"{f} from {_value_text(frame[f].min(), f, units, frame, digits).split(' = ')[1]} to "
+            f"{_value_text(frame[f].max(), f, units, frame, digits).split(' = ')[1]}"
             for f in mixed
         )
         hint = ", or make δ an objective (flyopt pareto --objectives mass,delta)" if mixed == ["delta"] else ""
@@ -236,7 +254,9 @@ def plot_pareto(frame: pd.DataFrame, x: str, y: str, ax: Axes | None = None, uni
     usable = frame[[x, y]].notna().all(axis=1).to_numpy()
     if "status" in frame.columns:
         usable = usable & frame["status"].isin(["designed", "not_needed"]).to_numpy()
-    data = np.column_stack([_values(frame, x, units), _values(frame, y, units)])[usable]
+    data = np.column_stack(
+        [_values(frame, x, _scale(frame, x, units, digits)), _values(frame, y, _scale(frame, y, units, digits))]
+    )[usable]
     order = np.lexsort((data[:, 1], data[:, 0]))
     data = data[order]
     front = data[np.concatenate(([True], data[1:, 1] < np.minimum.accumulate(data[:, 1])[:-1]))]
@@ -259,7 +279,7 @@ def plot_pareto(frame: pd.DataFrame, x: str, y: str, ax: Axes | None = None, uni
         label=f"Pareto front ({len(front)} points)",
         gid="front",
     )
-    ax.set(xlabel=_label(x, units, frame), ylabel=_label(y, units, frame))
+    ax.set(xlabel=_label(x, units, frame, digits), ylabel=_label(y, units, frame, digits))
     ax.grid(True, alpha=0.3)
     standard.title(ax, own, f"Pareto front: {y} against {x}, both minimized")
     standard.legend(ax, own)

@@ -41,7 +41,13 @@ def _outline(ax: Axes, layout: ShaftLayout, units: str, top: float) -> None:
     ax.plot([wx, wx], [-0.36 * top, -0.04 * top], color="tab:brown", lw=5, solid_capstyle="butt")
 
 
-def plot_shaft(report: ShaftReport, layout: ShaftLayout, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
+def plot_shaft(
+    report: ShaftReport,
+    layout: ShaftLayout,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
+) -> Axes:
     """The bending moment amplitude M_a, the steady moment M_m and the torque along the shaft, with the plain
     section's fatigue utilisation on the right axis and the checked sections' utilisation marked.
 
@@ -51,13 +57,21 @@ def plot_shaft(report: ShaftReport, layout: ShaftLayout, ax: Axes | None = None,
         The chosen wheel's shaft check (:func:`flyopt.design.shaft.cycle.report`).
     layout : ShaftLayout
         The shaft as described (its steps, bearings and wheel seat, drawn under the curves).
+    units, digits
+        The unit system (the moment axis takes its prefix from the moments and torque it draws,
+        :func:`~flyopt.report.plots.standard.scale`) and the significant figures written.
     """
     ax, own = standard.axes(ax)
     c, diagram = report.check, report.check.diagram
     x = standard.show(diagram["x"], "length", units)
-    ma = standard.show(diagram["moment_alternating"], "torque", units)
-    mm = standard.show(diagram["moment_mean"], "torque", units)
-    t = standard.show(diagram["torque"], "torque", units)
+    moment = standard.scale(
+        "torque", units, [diagram["moment_alternating"], diagram["moment_mean"], diagram["torque"]], digits
+    )
+    ma, mm, t = (
+        moment.show(diagram["moment_alternating"]),
+        moment.show(diagram["moment_mean"]),
+        moment.show(diagram["torque"]),
+    )
     ax.plot(x, ma, color="tab:blue", label="bending moment amplitude M_a (weight and pulls: fully reversed)")
     ax.plot(x, mm, color="tab:green", ls="--", label="steady bending M_m (permissible unbalance)")
     ax.plot(x, t, color="tab:red", label="torque T_m + T_a the wheel exchanges")
@@ -65,7 +79,7 @@ def plot_shaft(report: ShaftReport, layout: ShaftLayout, ax: Axes | None = None,
     _outline(ax, layout, units, top)
     ax.set_ylim(-0.45 * top, 1.15 * top)
     ax.set_xlabel(standard.axis_label("position along the shaft", "length", units))
-    ax.set_ylabel(standard.axis_label("moment, torque", "torque", units))
+    ax.set_ylabel(moment.axis_label("moment, torque"))
     ax.grid(alpha=0.3)
     right = ax.twinx()
     right.plot(x, diagram["utilisation"], color="black", lw=0.8, alpha=0.6, label="fatigue utilisation, plain section")
@@ -75,7 +89,7 @@ def plot_shaft(report: ShaftReport, layout: ShaftLayout, ax: Axes | None = None,
         right.plot(standard.show(section.x, "length", units), use, "o" if notched else ".", color="black", ms=5)
         if notched:  # the keyseat and the shoulders, where K_f raises the utilisation above the plain line
             right.annotate(
-                f"{section.name.split(' at ')[0]} {use:.2f}",
+                f"{section.name.split(' at ')[0]} {display.number(use, min(digits, 3))}",
                 (standard.show(section.x, "length", units), use),
                 textcoords="offset points",
                 xytext=(4, 6),
@@ -90,7 +104,7 @@ def plot_shaft(report: ShaftReport, layout: ShaftLayout, ax: Axes | None = None,
         own,
         f"The {shaft_label(report.shaft)} with the chosen wheel: moments and torque along it "
         "(dots: the sections checked; labelled: the notched ones)",
-        f"binding: {binding.kind} {binding.where}, utilisation {binding.utilisation:.3g}",
+        f"binding: {binding.kind} {binding.where}, utilisation {display.number(binding.utilisation, digits)}",
     )
     handles = ax.get_legend_handles_labels()[0] + right.get_legend_handles_labels()[0]
     standard.legend(ax, own, handles=handles)
@@ -98,7 +112,11 @@ def plot_shaft(report: ShaftReport, layout: ShaftLayout, ax: Axes | None = None,
 
 
 def plot_campbell(
-    report: ShaftReport, layout: ShaftLayout, ax: Axes | None = None, units: str = display.DEFAULT
+    report: ShaftReport,
+    layout: ShaftLayout,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
 ) -> Axes:
     """Campbell diagram: the torsional modes [Hz] (horizontal: a torsional train has no gyroscopic term)
     against the order lines f = q n / 60 of the orders present, the running range shaded, the crossings marked.
@@ -146,7 +164,7 @@ def plot_campbell(
                 color="0.3",
             )
     for m, f_m in enumerate(modes, start=1):
-        ax.axhline(f_m, color="tab:blue", lw=1.4, label=f"torsional mode {m}: {f_m:.4g} Hz")
+        ax.axhline(f_m, color="tab:blue", lw=1.4, label=f"torsional mode {m}: {display.number(f_m, digits)} Hz")
     margin = layout.critical_margin
     ax.axvspan(
         standard.show(low * (1.0 - margin) * math.pi / 30.0, "angular_speed", units),
@@ -180,7 +198,8 @@ def plot_campbell(
             ms=9,
             mfc="none",
             color="tab:red",
-            label=f"nearest: {worst.where}, {worst.value:.4g} rpm (utilisation {worst.utilisation:.3g})",
+            label=f"nearest: {worst.where}, {standard.q(worst.value * math.pi / 30.0, 'angular_speed', units, digits)} "
+            f"(utilisation {display.number(worst.utilisation, digits)})",
         )
     ax.set_xlim(0.0, shown[-1])
     ax.set_ylim(0.0, 1.25 * modes.max())

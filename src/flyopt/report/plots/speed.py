@@ -27,6 +27,7 @@ def plot_speed(
     simulation: PeriodicSolution | None = None,
     ax: Axes | None = None,
     units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
 ) -> Axes:
     """ω(φ) over the cycle with the required flywheel, from the model that ran.
 
@@ -84,7 +85,7 @@ def plot_speed(
         color="tab:blue",
         lw=1.6,
         gid="model",
-        label=f"ω(φ), {analysis.model} model, J_F = {standard.q(analysis.j_required, 'inertia', units)}",
+        label=f"ω(φ), {analysis.model} model, J_F = {standard.q(analysis.j_required, 'inertia', units, digits)}",
     )
     if simulation is not None:
         ax.plot(
@@ -94,7 +95,7 @@ def plot_speed(
             ls="--",
             lw=1,
             gid="simulation",
-            label=f"periodic simulation (δ = {display.number(simulation.delta, 6)})",
+            label=f"periodic simulation (δ = {display.number(simulation.delta, digits + 2)})",
         )
     w_max, w_min = float(np.max(omega)), float(np.min(omega))
     w_max = float(getattr(speed, "omega_max", w_max))
@@ -107,7 +108,7 @@ def plot_speed(
         (w_min, "min", standard.DEFICIT, ":"),
     ):
         at = where.get(name)
-        angle = f" at φ = {standard.q(at, 'angle', units)}" if at is not None and w_max > w_min else ""
+        angle = f" at φ = {standard.q(at, 'angle', units, digits)}" if at is not None and w_max > w_min else ""
         symbol = "ω_m = (ω_max + ω_min)/2" if name == "mean" else f"ω_{name}"
         ax.axhline(
             float(standard.show(value, "angular_speed", units)),
@@ -115,7 +116,7 @@ def plot_speed(
             ls=style,
             lw=1,
             gid=f"omega_{name}",
-            label=f"{symbol} = {standard.q(value, 'angular_speed', units, 6)}{angle}",
+            label=f"{symbol} = {standard.q(value, 'angular_speed', units, digits + 2)}{angle}",
         )
         if at is not None and name != "mean" and w_max > w_min:
             ax.plot(
@@ -138,10 +139,10 @@ def plot_speed(
         ax,
         own,
         scene.title,
-        f"speed over the cycle with the flywheel given: δ = {display.number(achieved, 4)}"
+        f"speed over the cycle with the flywheel given: δ = {display.number(achieved, digits)}"
         if given
-        else f"speed over the cycle: δ = {display.number(achieved, 4)} achieved, "
-        f"{display.number(analysis.delta, 4)} allowed",
+        else f"speed over the cycle: δ = {display.number(achieved, digits)} achieved, "
+        f"{display.number(analysis.delta, digits)} allowed",
     )
     standard.legend(ax, own)
     return ax

@@ -7,6 +7,7 @@ import os
 import re
 import textwrap
 from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
 from types import ModuleType
 from typing import TYPE_CHECKING, Any, overload
 
@@ -29,8 +30,8 @@ SURPLUS, DEFICIT = "#2e8b57", "#c0392b"
 
 #: Font size of legends and labels on the data [pt].
 FONT = 8.5
-#: Significant digits of the numbers written on a diagram.
-DIGITS = 4
+#: Significant digits of the numbers written on a diagram, unless the caller asks for others (``--digits``).
+DIGITS = display.DEFAULT_DIGITS
 
 
 class NothingToDraw(Exception):
@@ -194,9 +195,68 @@ def show(value: npt.ArrayLike, dimension: str, units: str) -> npt.NDArray[np.flo
 
 
 def q(value: float | None, dimension: str, units: str, digits: int = DIGITS) -> str:
-    """A quantity as people read it, "0.4625 kN·m": in the unit of the diagram's axes, the system's one unit of
-    the dimension (:func:`unit`), so that a label reads against its axis (no per-value prefix)."""
+    """A quantity as people read it, "120 rpm", in the system's one unit of a dimension that has one (an angle, a
+    speed, a length, a stress, an inertia). A dimension whose unit is chosen per value (torque, energy, power,
+    force: :data:`flyopt.report.display.PREFIXED`) is written by the :class:`Scale` of the axis it is read
+    against, which chose its prefix from the data (:func:`scale`)."""
     return display.quantity_text(value, dimension, units, digits, prefixed=False)
+
+
+@dataclass(frozen=True)
+class Scale:
+    """The unit one axis shows a dimension in, and the labels read against that axis.
+
+    Chosen once from the SI values the axis draws (:func:`scale`), by the rule every number flyopt writes
+    follows (:func:`flyopt.report.display.unit`: in the engineering system torque, energy, power and force take
+    the prefix of the largest value, "536.7 J", "1.256 kJ"; every other dimension its system's one unit), so
+    that an axis, the labels on it and the text report name a value in the same unit: one prefix per axis, as
+    a table has one per column.
+    """
+
+    dimension: str
+    units: str
+    digits: int = DIGITS
+    magnitude: float | None = None  # the largest SI magnitude the axis draws; None: the system's one unit
+
+    @property
+    def label(self) -> str:
+        """The unit's label, "J"."""
+        return display.unit(self.dimension, self.units, self.magnitude, self.digits)[0]
+
+    @property
+    def factor(self) -> float:
+        """The SI value of one shown unit: shown = SI / factor."""
+        return display.unit(self.dimension, self.units, self.magnitude, self.digits)[1]
+
+    @overload
+    def show(self, value: float) -> float: ...
+    @overload
+    def show(self, value: npt.NDArray[np.floating] | Sequence[float]) -> npt.NDArray[np.float64]: ...
+    def show(self, value: npt.ArrayLike) -> npt.NDArray[np.float64] | float:
+        """An SI value or array in the axis' unit (a number for a number)."""
+        array = np.asarray(value, dtype=float)
+        return array / self.factor if array.ndim else float(array) / self.factor
+
+    def q(self, value: float | None) -> str:
+        """A value with the axis' unit, "536.7 J" (round-off against the axis' largest value written 0)."""
+        among = None if self.magnitude is None else (self.magnitude,)
+        return display.quantity_text(value, self.dimension, self.units, self.digits, among, prefixed=False)
+
+    def axis_label(self, words: str) -> str:
+        """ "words [unit]" ("[-]" for a ratio)."""
+        return f"{words} [{self.label}]"
+
+
+def scale(
+    dimension: str, units: str, values: Sequence[npt.ArrayLike | float | None] = (), digits: int = DIGITS
+) -> Scale:
+    """The :class:`Scale` of an axis that draws ``values`` (SI: numbers and arrays, None and nan left out): its
+    unit chosen from their largest magnitude; without values the system's one unit."""
+    found = [np.abs(np.asarray(v, dtype=float)).ravel() for v in values if v is not None]
+    finite = np.concatenate(found) if found else np.empty(0)
+    finite = finite[np.isfinite(finite)]
+    magnitude = float(finite.max()) if finite.size else None
+    return Scale(dimension, units, display.check_digits(digits), magnitude)
 
 
 def axis_label(words: str, dimension: str, units: str) -> str:

@@ -32,6 +32,7 @@ def plot_stress(
     ductile: bool = True,
     ax: Axes | None = None,
     units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
     material: str | None = None,
 ) -> Axes:
     """sigma_r, sigma_t and von Mises over the radius at omega_max, each part's span and allowable.
@@ -116,7 +117,7 @@ def plot_stress(
     same = len({a for _n, a in allowables}) == 1
     for k, (name, allowable) in enumerate(allowables):
         label = (
-            (f"allowable {standard.q(allowable, 'stress', units)}" if same else "allowable of each part")
+            (f"allowable {standard.q(allowable, 'stress', units, digits)}" if same else "allowable of each part")
             if k == 0
             else "_allowable"
         )
@@ -131,7 +132,7 @@ def plot_stress(
         )
         if not same:
             ax.annotate(
-                display.number(allowable * mpa, standard.DIGITS),
+                display.number(allowable * mpa, digits),
                 (0.5 * (spans[name][0] + spans[name][1]) * mm, allowable * mpa),
                 xytext=(0, 2),
                 textcoords="offset points",
@@ -152,12 +153,12 @@ def plot_stress(
             color="tab:purple",
             ms=8,
             zorder=4,
-            label=f"{words}: {standard.q(value, 'stress', units)}",
+            label=f"{words}: {standard.q(value, 'stress', units, digits)}",
         )
         at = r / (c.dims.d_outer / 2)  # near an end of the axis the label turns inwards
         ha, dx = ("left", -4) if at < 0.15 else ("right", 4) if at > 0.85 else ("center", 0)
         ax.annotate(
-            f"{words}\n{standard.q(value, 'stress', units)}",
+            f"{words}\n{standard.q(value, 'stress', units, digits)}",
             (r * mm, value * mpa),
             xytext=(dx, -12),
             textcoords="offset points",
@@ -182,8 +183,8 @@ def plot_stress(
             mec="black",
             mew=1.5,
             zorder=5,
-            label=f"governing: {governing['part']}, {measure} {standard.q(governing['stress'], 'stress', units)} at "
-            f"r = {standard.q(governing['radius'], 'length', units)} ({100 * utilisation:.0f} % of allowable)",
+            label=f"governing: {governing['part']}, {measure} {standard.q(governing['stress'], 'stress', units, digits)} at "
+            f"r = {standard.q(governing['radius'], 'length', units, digits)} ({100 * utilisation:.0f} % of allowable)",
         )
     ax.axhline(0, color="black", lw=0.6)
     top = max([a for _n, a in allowables] + [governing["stress"] if governing else 0.0]) * mpa
@@ -193,7 +194,7 @@ def plot_stress(
     ax.set_xlim(left, r_out + 0.03 * (r_out - left))
     low = min([0.0] + [float(np.min(np.minimum(sr, st))) * mpa for _p, _r, sr, st, _v in profile])
     ax.set_ylim(low - 0.05 * top, 1.25 * top if top > 0 else 1.0)
-    speed = f" = {standard.q(omega, 'angular_speed', units, 5)}" if omega else ""
+    speed = f" = {standard.q(omega, 'angular_speed', units, digits + 1)}" if omega else ""
     ax.set(xlabel=f"radius r [{r_unit}]", ylabel=f"stress [{s_unit}]")
     name = material or c.material.replace("_", " ")
     standard.title(ax, own, f"{name} {c.geometry} on {c.shaft}", f"stresses over the radius at ω_max{speed}")

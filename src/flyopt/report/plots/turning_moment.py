@@ -20,7 +20,13 @@ if TYPE_CHECKING:
     from flyopt.io.scene import Scene
 
 
-def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None, units: str = display.DEFAULT) -> Axes:
+def plot_turning_moment(
+    scene: Scene,
+    analysis: Analysis,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
+) -> Axes:
     """Turning-moment diagram: M_d and M_r over the cycle, surplus and deficit shaded.
 
     Each area between crossings is labelled with its energy where it has room
@@ -41,7 +47,11 @@ def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None
     analysis : Analysis
     ax : matplotlib Axes, optional
     units : {"engineering", "si", "imperial"}
-        The unit system of the axes and labels (:mod:`flyopt.report.display`).
+        The unit system of the axes and labels (:mod:`flyopt.report.display`); the torque axis takes its
+        prefix from the torques it draws, the areas' energies theirs from the areas and A_max
+        (:func:`~flyopt.report.plots.standard.scale`), as the text writes them.
+    digits : int
+        Significant figures of the numbers written on the diagram.
 
     Returns
     -------
@@ -52,24 +62,24 @@ def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None
     """
     display.check_system(units)
     ax, own = standard.axes(ax)
-    energy = standard.unit("energy", units)[0]
     ind = analysis.indicator
     if ind is None:
         raise BrokenInvariant("every analysis carries its energy indicator diagram (flyopt.analysis)")
+    energy = standard.scale("energy", units, [ind.areas, ind.a_max, analysis.a_max], digits)
     if scene.net is not None:
         areas = ind.areas
         k = np.arange(1, len(areas) + 1)
         ax.bar(
             k - 0.5,
-            standard.show(areas, "energy", units),
+            energy.show(areas),
             width=0.8,
             color=[standard.SURPLUS if a > 0 else standard.DEFICIT for a in areas],
         )
         ax.axhline(0, color="black", lw=0.8)
         for x, a in zip(k - 0.5, areas):
             ax.annotate(
-                standard.q(a, "energy", units),
-                (x, float(standard.show(a, "energy", units))),
+                energy.q(a),
+                (x, float(energy.show(a))),
                 xytext=(0, 3 if a > 0 else -3),
                 textcoords="offset points",
                 ha="center",
@@ -82,18 +92,30 @@ def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None
         ax.margins(y=0.15)
         ax.set(
             xlabel="area between the torque curves, in order over the cycle",
-            ylabel=standard.axis_label("energy of the area", "energy", units),
+            ylabel=energy.axis_label("energy of the area"),
         )
         standard.title(
             ax,
             own,
             scene.title,
-            f"net areas between the torque curves (A_max = {standard.q(ind.a_max, 'energy', units)})",
+            f"net areas between the torque curves (A_max = {energy.q(ind.a_max)})",
         )
         return ax
     torques = Torques(scene, analysis)
+    between: list[tuple[float, float, float]]  # (left, right, energy) of each area between the curves
+    if torques.along:
+        between = torques.areas()
+    else:
+        if ind.chain_angle is None:
+            raise BrokenInvariant("a scene of torque curves has the angles of its chain")
+        between = [
+            (float(l), float(r), float(a)) for l, r, a in zip(ind.chain_angle[:-1], ind.chain_angle[1:], ind.areas)
+        ]
+    energy = standard.scale("energy", units, [[a for *_lr, a in between], analysis.a_max], digits)
+    mean = analysis.driving_torque if torques.along and not torques.driving_solved else None
+    torque = standard.scale("torque", units, [torques.driving, torques.resisting, mean], digits)
     x = standard.show(torques.phi, "angle", units)
-    md, mr = standard.show(torques.driving, "torque", units), standard.show(torques.resisting, "torque", units)
+    md, mr = torque.show(torques.driving), torque.show(torques.resisting)
     ax.fill_between(x, md, mr, where=md >= mr, color=standard.SURPLUS, alpha=0.25, interpolate=True, lw=0)
     ax.fill_between(x, md, mr, where=md < mr, color=standard.DEFICIT, alpha=0.25, interpolate=True, lw=0)
     ax.plot(
@@ -101,46 +123,36 @@ def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None
         md,
         color="tab:blue",
         lw=1.8,
-        label=_torque_words("driving M_d", torques.driving_solved, torques.driving, torques, units),
+        label=_torque_words("driving M_d", torques.driving_solved, torques.driving, torques, torque),
     )
     ax.plot(
         x,
         mr,
         color="black",
         lw=1.8,
-        label=_torque_words("resisting M_r", torques.resisting_solved, torques.resisting, torques, units),
+        label=_torque_words("resisting M_r", torques.resisting_solved, torques.resisting, torques, torque),
     )
     levels = []
     if torques.along and not torques.driving_solved and np.ptp(torques.driving) > 0:
         mean = analysis.driving_torque
         if mean is None:
             raise BrokenInvariant("a scene of torque curves has its mean driving torque")
-        levels.append(float(standard.show(mean, "torque", units)))
+        levels.append(float(torque.show(mean)))
         ax.axhline(
-            float(standard.show(mean, "torque", units)),
+            float(torque.show(mean)),
             color="tab:blue",
             ls="--",
             lw=1.0,
-            label=f"mean M_d = W/Φ = {standard.q(mean, 'torque', units)}",
+            label=f"mean M_d = W/Φ = {torque.q(mean)}",
             gid="mean_driving",
         )
-    marks, note = omega_marks(analysis, units)
+    marks, note = omega_marks(analysis, units, digits)
     for angle, words, colour, style, gid in marks:
         ax.axvline(float(standard.show(angle, "angle", units)), color=colour, ls=style, lw=1.1, label=words, gid=gid)
     end = angle_axis(ax, scene.cycle_angle, units)
     top = mark_dead_centres(ax, scene, units)
-    ax.set_ylabel(standard.axis_label("torque at the reference shaft", "torque", units))
-    between: list[tuple[float, float, float]]  # (left, right, energy) of each area between the curves
-    if torques.along:
-        between = torques.areas()
-        what = "along the periodic solution"
-    else:
-        if ind.chain_angle is None:
-            raise BrokenInvariant("a scene of torque curves has the angles of its chain")
-        between = [
-            (float(l), float(r), float(a)) for l, r, a in zip(ind.chain_angle[:-1], ind.chain_angle[1:], ind.areas)
-        ]
-        what = f"A_max = {standard.q(analysis.a_max, 'energy', units)}"
+    ax.set_ylabel(torque.axis_label("torque at the reference shaft"))
+    what = "along the periodic solution" if torques.along else f"A_max = {energy.q(analysis.a_max)}"
     standard.title(ax, own, scene.title, f"turning-moment diagram, {what} ({analysis.model} model)")
     span = max(float(np.ptp(np.concatenate([md, mr]))), 1e-12 * max(1.0, float(np.max(np.abs(md)))))
     low, high = float(min(md.min(), mr.min())), float(max(md.max(), mr.max()))
@@ -154,7 +166,7 @@ def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None
         (
             float(standard.show(left, "angle", units)),
             float(standard.show(right, "angle", units)),
-            f"{'+' if area > 0 else '−'}{standard.q(abs(area), 'energy', units)}",
+            f"{'+' if area > 0 else '−'}{energy.q(abs(area))}",
             standard.SURPLUS if area > 0 else standard.DEFICIT,
         )
         for left, right, area in between
@@ -172,19 +184,21 @@ def plot_turning_moment(scene: Scene, analysis: Analysis, ax: Axes | None = None
         levels,
     )
     ax.set_xlim(0.0, end)
-    del top, energy
+    del top
     return ax
 
 
-def _torque_words(words: str, solved: bool, values: npt.NDArray[np.float64], torques: Torques, units: str) -> str:
+def _torque_words(
+    words: str, solved: bool, values: npt.NDArray[np.float64], torques: Torques, torque: standard.Scale
+) -> str:
     """A torque's legend entry: its value when it is a constant solved from the work balance."""
     if solved:
         how = "with the periodic solution" if torques.along else "from the work balance"
-        return f"{words} = {standard.q(float(values[0]), 'torque', units)} (constant, solved {how})"
+        return f"{words} = {torque.q(float(values[0]))} (constant, solved {how})"
     if torques.along and words.startswith("driving") and torques.motor:
         return f"{words}: the motor on its characteristic along ω(φ)"
     if torques.along and torques.resisting_speed and words.startswith("resisting"):
         return f"{words} along ω(φ)"
     if np.ptp(values) == 0:
-        return f"{words} = {standard.q(float(values[0]), 'torque', units)}"
+        return f"{words} = {torque.q(float(values[0]))}"
     return words
