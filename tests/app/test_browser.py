@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 import json
 import os
+import re
 import socket
 import subprocess
 import sys
@@ -160,4 +161,68 @@ def test_edit_break_fix_and_download(server, browser, tmp_path):
         page.get_by_text("Report (PDF)").click()
     reader = PdfReader(io.BytesIO(Path(download.value.path()).read_bytes()))
     assert "Shear press" in reader.pages[0].extract_text()
+    page.close()
+
+
+def tradeoff_json(path):
+    """``flyopt tradeoff PATH --json``'s rows, the command line's trade-off the materials tab must equal."""
+    done = subprocess.run(
+        [sys.executable, "-m", "flyopt", "tradeoff", str(path), "--json"],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
+        check=True,
+    )
+    return json.loads(done.stdout)["rows"]
+
+
+def test_tick_two_materials_and_run_a_sweep_to_the_end(server, browser, tmp_path):
+    from playwright.sync_api import expect
+
+    from flyopt import read_results
+    from flyopt.report import display
+
+    page = browser.new_page(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
+    page.goto(server)
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+
+    page.get_by_text("Compare materials", exact=True).click()
+    page.wait_for_selector(".tradeoff .tabulator-row", timeout=60_000)  # the scene's own two, ticked at first
+
+    def tick(name):
+        cell = page.locator('.tabulator-cell[tabulator-field="material"]', has_text=re.compile(f"^{name}$"))
+        page.locator(".library .tabulator-row").filter(has=cell).locator("input[type=checkbox]").click()
+
+    for name in ("cast iron", "cast steel"):  # untick both: nothing to compare
+        tick(name)
+    page.wait_for_selector("text=Tick at least one material", timeout=30_000)
+    for name in ("cast steel", "cast iron"):
+        tick(name)
+    rows = page.locator(".tradeoff .tabulator-row")
+    page.wait_for_selector(".tradeoff .tabulator-row >> text=cast iron", timeout=60_000)
+    page.wait_for_selector(".tradeoff .tabulator-row >> text=cast steel", timeout=60_000)
+    assert rows.count() == 2
+    texts = [rows.nth(i).inner_text() for i in range(rows.count())]
+    cli = {r["material"]: r for r in tradeoff_json(ROOT / "problems" / "shear-press.toml")}
+    for text, name in zip(texts, ("cast_steel", "cast_iron")):  # lightest first, as flyopt tradeoff ranks them
+        assert name.replace("_", " ") in text
+        assert display.number(cli[name]["mass"]) in text
+    page.wait_for_selector(".tradeoff-chart svg", timeout=60_000)
+    shot(page, "4-materials")
+
+    page.get_by_text("Sweeps", exact=True).click()
+    page.wait_for_selector(".sweep-spec >> text=5 points", timeout=30_000)
+    page.wait_for_selector(".sweep-spec >> text=the first point took", timeout=60_000)
+    page.get_by_text("Run the sweep").click()
+    page.wait_for_selector(".sweep-status >> text=done: 5 points", timeout=120_000)
+    assert page.locator(".sweep-bar progress").get_attribute("value") == "100"
+    expect(page.locator(".sweep-table .tabulator-row")).to_have_count(5, timeout=30_000)
+    page.wait_for_selector(".sweep-plot svg", timeout=30_000)
+    shot(page, "5-sweep")
+    with page.expect_download() as download:
+        page.get_by_text("Parquet", exact=True).click()
+    saved = tmp_path / "sweep.parquet"
+    download.value.save_as(saved)
+    frame = read_results(saved)
+    assert len(frame) == 5 and (frame["status"] == "designed").all()
     page.close()

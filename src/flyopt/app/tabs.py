@@ -115,7 +115,7 @@ class MaterialsTab:
         self.tradeoff = pn.widgets.Tabulator(
             None, disabled=True, show_index=False, layout="fit_data", css_classes=["tradeoff"]
         )
-        self.chart = pn.pane.HTML("", width=1000, css_classes=["figure", "tradeoff-chart"])
+        self.chart = pn.pane.HTML("", width=1000, stylesheets=[_card_css()], css_classes=["figure", "tradeoff-chart"])
         self.objectives = pn.widgets.Select(name="Pareto front", options=list(materials.OBJECTIVES), width=220)
         self.pareto_button = pn.widgets.Button(name="Draw the front", button_type="primary", width=140)
         self.pareto_button.on_click(lambda _e: asyncio.ensure_future(self._pareto()))
@@ -190,7 +190,7 @@ class MaterialsTab:
         self.table = table
         self.message.object = ""
         show_table(self.tradeoff, materials.shown(table, materials.TRADEOFF_SHOWN, units, self.names))
-        self.chart.object = chart
+        self.chart.object = _fluid(chart) if chart else ""
 
     async def _pareto(self) -> None:
         if self.scene is None:
@@ -235,6 +235,13 @@ def _card_css() -> str:
     from flyopt.app.page import CSS
 
     return CSS
+
+
+def _fluid(svg: str) -> str:
+    """The SVG scaled to its pane's width, as the Design tab's diagrams (:func:`flyopt.app.page._fluid`)."""
+    from flyopt.app.page import _fluid as fluid
+
+    return fluid(svg)
 
 
 class SweepsTab:
@@ -291,6 +298,7 @@ class SweepsTab:
             pagination="remote",
             page_size=PAGE_SIZE,
             layout="fit_data",
+            width=700,
             css_classes=["sweep-table"],
         )
         self.x = pn.widgets.Select(name="x", options=[], width=160)
@@ -298,7 +306,7 @@ class SweepsTab:
         self.by = pn.widgets.Select(name="one line per", options=[""], width=160)
         for widget in (self.x, self.y, self.by):
             widget.param.watch(lambda _e: self._draw(), "value")
-        self.plot = pn.pane.HTML("", width=900, css_classes=["figure", "sweep-plot"])
+        self.plot = pn.pane.HTML("", width=620, stylesheets=[_card_css()], css_classes=["figure", "sweep-plot"])
         downloads = pn.Row(
             pn.widgets.FileDownload(callback=self._file("parquet"), filename="sweep.parquet", label="Parquet"),
             pn.widgets.FileDownload(callback=self._file("csv"), filename="sweep.csv", label="CSV"),
@@ -318,8 +326,7 @@ class SweepsTab:
             ),
             form,
             pn.Row(self.x, self.y, self.by, downloads),
-            self.plot,
-            self.results,
+            pn.Row(self.results, self.plot),
             sizing_mode="stretch_width",
         )
 
@@ -476,9 +483,8 @@ class SweepsTab:
         if by == self.x.value:
             by = None
         try:
-            self.plot.object = sweeps.plot_svg(
-                self.result.frame, self.x.value, self.y.value, by, self.session.units.value
-            )
+            svg = sweeps.plot_svg(self.result.frame, self.x.value, self.y.value, by, self.session.units.value)
+            self.plot.object = _fluid(svg)
         except ValueError as err:
             self.plot.object = _message(str(err))
 
