@@ -95,6 +95,7 @@ class MaterialsTab:
         self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="flyopt-materials")
         self.generation = 0
         self.scene: Any = None
+        self.units = ""
         self.table = None
         self.front = None
         self.names: dict[str, str] = {}
@@ -115,7 +116,7 @@ class MaterialsTab:
         self.tradeoff = pn.widgets.Tabulator(
             None, disabled=True, show_index=False, layout="fit_data", css_classes=["tradeoff"]
         )
-        self.chart = pn.pane.HTML("", width=1000, stylesheets=[_card_css()], css_classes=["figure", "tradeoff-chart"])
+        self.chart = pn.pane.HTML("", width=820, stylesheets=[_card_css()], css_classes=["figure", "tradeoff-chart"])
         self.objectives = pn.widgets.Select(name="Pareto front", options=list(materials.OBJECTIVES), width=220)
         self.pareto_button = pn.widgets.Button(name="Draw the front", button_type="primary", width=140)
         self.pareto_button.on_click(lambda _e: asyncio.ensure_future(self._pareto()))
@@ -148,15 +149,20 @@ class MaterialsTab:
             self.message.object = _message(NO_SCENE)
             self.scene = None
             return
-        if scene is self.scene and self.table is not None:
+        units = self.session.units.value
+        if scene is self.scene and units == self.units:
             return
-        self.scene = scene
+        ticked = self.ticked_names() if scene is self.scene else materials.design_materials(scene)
+        self.scene, self.units = scene, units
         self.names = materials.display_names(scene)
         table = materials.library(scene)
         self.message.object = ""
-        show_table(self.library, materials.library_shown(table, self.session.units.value))
-        ticked = materials.design_materials(scene)
+        self.front = None
+        self.pareto_plot.svg = ""
+        self.point.object = ""
+        show_table(self.library, materials.library_shown(table, units))
         self.library.selection = [i for i, name in enumerate(table["name"]) if name in ticked]
+        asyncio.ensure_future(self._tradeoff())  # the same ticks as before may not fire the selection's watcher
 
     def ticked_names(self) -> list[str]:
         frame = self.library.value
@@ -182,8 +188,11 @@ class MaterialsTab:
             table = await loop.run_in_executor(self.executor, materials.tradeoff, self.scene, names)
             chart = await loop.run_in_executor(self.executor, materials.chart_svg, table, units, self.names)
         except Exception as err:  # noqa: BLE001 -- said in one line, as flyopt tradeoff says it
-            if mine == self.generation:
+            if mine == self.generation:  # no table of other materials left under the message
                 self.message.object = _message(_error_text(err))
+                self.table = None
+                show_table(self.tradeoff, None)
+                self.chart.object = ""
             return
         if mine != self.generation:
             return
