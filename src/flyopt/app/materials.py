@@ -68,7 +68,7 @@ def library(scene: Scene | None) -> pd.DataFrame:
     """
     import pandas as pd
 
-    from flyopt.cli.materials import _row
+    from flyopt.cli.materials import material_row
     from flyopt.design.materials import builtin_materials, material_library
 
     defaults = builtin_materials(default_only=True)
@@ -76,7 +76,7 @@ def library(scene: Scene | None) -> pd.DataFrame:
     materials = scene.material_library() if scene is not None else material_library(())
     rows = []
     for material in materials.values():
-        row = _row(material, material.name in defaults and material.name not in own)
+        row = material_row(material, material.name in defaults and material.name not in own)
         row["origin"] = "scene" if material.name in own else "built-in"
         rows.append(row)
     return pd.DataFrame(rows)

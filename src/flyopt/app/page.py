@@ -115,8 +115,9 @@ class Session:
             min_width=520,
         )
         right.append(self.footer)
-        from flyopt.app.tabs import MaterialsTab, SweepsTab
+        from flyopt.app.tabs import MaterialsTab, SweepsTab, style
 
+        style(CSS, _fluid)
         self.materials_tab = MaterialsTab(pn, self)
         self.sweeps_tab = SweepsTab(pn, self)
         self.tabs = pn.Tabs(

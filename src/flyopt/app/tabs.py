@@ -241,16 +241,22 @@ class MaterialsTab:
 
 
 def _card_css() -> str:
-    from flyopt.app.page import CSS
-
-    return CSS
+    """The page's style sheet (:data:`flyopt.app.page.CSS`), which the session hands the tabs."""
+    return _STYLE["css"]
 
 
 def _fluid(svg: str) -> str:
-    """The SVG scaled to its pane's width, as the Design tab's diagrams (:func:`flyopt.app.page._fluid`)."""
-    from flyopt.app.page import _fluid as fluid
+    """The SVG scaled to its pane's width, as the Design tab's diagrams (by the page's own function)."""
+    return _STYLE["fluid"](svg)
 
-    return fluid(svg)
+
+#: The page's style sheet and SVG scaler, given by the page (:func:`style`): the tabs do not import the page.
+_STYLE: dict[str, Any] = {"css": "", "fluid": lambda svg: svg}
+
+
+def style(css: str, fluid: Any) -> None:
+    """Take the page's style sheet and its function scaling an SVG to its pane (called by the page)."""
+    _STYLE.update(css=css, fluid=fluid)
 
 
 class SweepsTab:
