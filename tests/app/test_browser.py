@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 import json
 import os
+import re
 import socket
 import subprocess
 import sys
@@ -188,4 +189,89 @@ def test_the_form_writes_into_the_scene_and_a_pasted_table_solves(server, browse
     assert "delta = 0.025" in text and 'angle_unit = "deg"' in text and "[45.0, 1600.0]" in text
     assert text.count("# ") == model_text().count("# ")  # the comments kept
     shot(page, "4-form")
+    page.close()
+
+
+def tradeoff_json(path):
+    """``flyopt tradeoff PATH --json``'s rows, the command line's trade-off the materials tab must equal."""
+    done = subprocess.run(
+        [sys.executable, "-m", "flyopt", "tradeoff", str(path), "--json"],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
+        check=True,
+    )
+    return json.loads(done.stdout)["rows"]
+
+
+def test_tick_two_materials_and_run_a_sweep_to_the_end(server, browser, tmp_path):
+    from playwright.sync_api import expect
+
+    from flyopt import read_results
+    from flyopt.report import display
+
+    page = browser.new_page(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
+    page.goto(server)
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+
+    page.get_by_text("Compare materials", exact=True).click()
+    page.wait_for_selector(".tradeoff .tabulator-row", timeout=60_000)  # the scene's own two, ticked at first
+
+    def tick(name):
+        cell = page.locator('.tabulator-cell[tabulator-field="material"]', has_text=re.compile(f"^{name}$"))
+        page.locator(".library .tabulator-row").filter(has=cell).locator("input[type=checkbox]").click()
+
+    for name in ("cast iron", "cast steel"):  # untick both: nothing to compare
+        tick(name)
+    page.wait_for_selector("text=Tick at least one material", timeout=30_000)
+    for name in ("cast steel", "cast iron"):
+        tick(name)
+    rows = page.locator(".tradeoff .tabulator-row")
+    page.wait_for_selector(".tradeoff .tabulator-row >> text=cast iron", timeout=60_000)
+    page.wait_for_selector(".tradeoff .tabulator-row >> text=cast steel", timeout=60_000)
+    assert rows.count() == 2
+    texts = [rows.nth(i).inner_text() for i in range(rows.count())]
+    cli = {r["material"]: r for r in tradeoff_json(ROOT / "problems" / "shear-press.toml")}
+    for text, name in zip(texts, ("cast_steel", "cast_iron")):  # lightest first, as flyopt tradeoff ranks them
+        assert name.replace("_", " ") in text
+        assert display.number(cli[name]["mass"]) in text
+    page.wait_for_selector(".tradeoff-chart svg", timeout=60_000)
+    shot(page, "5-materials")
+
+    page.get_by_text("Sweeps", exact=True).click()
+    page.wait_for_selector(".sweep-spec >> text=5 points", timeout=30_000)
+    page.get_by_text("Run the sweep").click()
+    page.wait_for_selector(".sweep-status >> text=done: 5 points", timeout=120_000)
+    assert page.locator(".sweep-bar progress").get_attribute("value") == "100"
+    expect(page.locator(".sweep-table .tabulator-row")).to_have_count(5, timeout=30_000)
+    page.wait_for_selector(".sweep-plot svg", timeout=30_000)
+    shot(page, "6-sweep")
+    with page.expect_download() as download:
+        page.get_by_text("Parquet", exact=True).click()
+    saved = tmp_path / "sweep.parquet"
+    download.value.save_as(saved)
+    frame = read_results(saved)
+    assert len(frame) == 5 and (frame["status"] == "designed").all()
+    page.close()
+
+
+@pytest.mark.slow
+def test_a_scene_material_s_markup_is_shown_as_text_in_the_library(server, browser):
+    """A [[material]]'s name and source are the user's strings: the library table shows them, never runs them."""
+    evil = (
+        model_text() + '\n[[material]]\nname = "evil_<b>x</b>"\ndensity = "7000 kg/m^3"\nmax_rim_speed = "40 m/s"\n'
+        'source = "<img src=q onerror=\\"window.pwned=1\\"> <b>bold</b>"\n'
+    )
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    page.goto(server)
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+    page.locator(".ace_editor").first.evaluate("(el, text) => el.env.editor.setValue(text, -1)", evil)
+    page.wait_for_timeout(1000)
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+    page.get_by_text("Compare materials", exact=True).click()
+    row = page.locator(".library .tabulator-row").filter(has_text="evil")
+    row.first.wait_for(timeout=60_000)
+    assert "<img src=q" in row.first.inner_text() and "<b>x</b>" in row.first.inner_text()
+    assert page.locator(".library img").count() == 0 and page.locator(".library b").count() == 0
+    assert page.evaluate("window.pwned") is None
     page.close()

@@ -12,6 +12,7 @@ drops the rest. Every solve runs in a worker thread, off the server's event loop
 with a busy line and a Cancel (which drops the answer of the running solve:
 a thread cannot be stopped, it finishes in the background and is ignored).
 Downloads: the report (HTML or PDF, in the units picked), the scene, the JSON.
+Beside the Design tab, "Compare materials" and "Sweeps" (:mod:`flyopt.app.tabs`).
 """
 
 from __future__ import annotations
@@ -125,15 +126,27 @@ class Session:
             min_width=520,
         )
         right.append(self.footer)
-        self.layout = pn.template.BootstrapTemplate(
-            title="flyopt — flywheel design", main=[pn.Row(left, right, sizing_mode="stretch_width")]
+        from flyopt.app.tabs import MaterialsTab, SweepsTab, style
+
+        style(CSS, _fluid)
+        self.materials_tab = MaterialsTab(pn, self)
+        self.sweeps_tab = SweepsTab(pn, self)
+        self.tabs = pn.Tabs(
+            ("Design", pn.Row(left, right, sizing_mode="stretch_width")),
+            ("Compare materials", self.materials_tab.view),
+            ("Sweeps", self.sweeps_tab.view),
+            sizing_mode="stretch_width",
         )
+        self.tabs.param.watch(self._tab_opened, "active")
+        self.layout = pn.template.BootstrapTemplate(title="flyopt — flywheel design", main=[self.tabs])
         pn.state.on_session_destroyed(lambda _context: self.close())
         pn.state.onload(lambda: asyncio.ensure_future(self._refresh(self.text, solve=None)))
 
     def close(self) -> None:
         """Drop the session's folder and worker."""
         self.executor.shutdown(wait=False, cancel_futures=True)
+        self.materials_tab.close()
+        self.sweeps_tab.close()
         self.workspace.close()
 
     # -- the text ------------------------------------------------------------------------------
@@ -154,6 +167,13 @@ class Session:
         return {key: material.display_name for key, material in scene.material_library().items()}
 
     # -- events --------------------------------------------------------------------------------
+
+    def _tab_opened(self, event: Any) -> None:
+        """A tab is shown: the materials and sweeps tabs take the scene the Design tab last checked."""
+        if event.new == 1:
+            self.materials_tab.opened()
+        elif event.new == 2:
+            self.sweeps_tab.opened()
 
     def _load_template(self, event: Any) -> None:
         if event.new:

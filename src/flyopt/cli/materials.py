@@ -18,7 +18,7 @@ from flyopt.report import display
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
 
-__all__ = ["library_rows", "add_materials_arguments", "run_materials"]
+__all__ = ["library_rows", "material_row", "add_materials_arguments", "run_materials"]
 
 
 #: The columns of the table: (key, heading, dimension or None for text).
@@ -48,10 +48,12 @@ def library_rows() -> list[dict[str, Any]]:
     from flyopt.design.materials import builtin_materials
 
     defaults = builtin_materials(default_only=True)
-    return [_row(m, m.name in defaults) for m in builtin_materials(default_only=False).values()]
+    return [material_row(m, m.name in defaults) for m in builtin_materials(default_only=False).values()]
 
 
-def _row(material: Material, default: bool) -> dict[str, Any]:
+def material_row(material: Material, default: bool) -> dict[str, Any]:
+    """One material's row of :func:`library_rows` (SI), ``default`` whether a design uses it by default; the
+    app's library (:mod:`flyopt.app.materials`) writes a scene's own materials by it too."""
     return {
         "name": material.name,
         "display_name": material.display_name,

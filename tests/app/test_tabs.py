@@ -1,0 +1,169 @@
+"""The app's "Compare materials" and "Sweeps" tabs without a browser, against the command line's own outputs.
+
+The library against ``flyopt materials --json``, the trade-off of ticked materials against ``flyopt tradeoff
+--json`` of the scene with those materials written into it, the Pareto front against ``flyopt pareto --json``,
+the sweep form's ``--vary`` text against ``flyopt sweep``'s parser and output (and the grid's closed form).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from flyopt.app import materials, model, sweeps
+from flyopt.errors import SceneError
+from flyopt.io.scene import load
+
+ROOT = Path(__file__).resolve().parents[2]
+SHEAR = ROOT / "problems" / "shear-press.toml"
+BOOK = ROOT / "problems" / "textbook" / "khurmi-16-18.toml"
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    import matplotlib.pyplot as plt
+
+    plt.close("all")
+
+
+@pytest.fixture()
+def workspace():
+    space = model.Workspace()
+    yield space
+    space.close()
+
+
+def with_materials_text(path: Path, names: list[str]) -> str:
+    """The scene's text with ``[design] materials = NAMES`` written in (what ticking them means)."""
+    text = path.read_text(encoding="utf-8")
+    listed = ", ".join(f'"{n}"' for n in names)
+    return text.replace("[design]\n", f"[design]\nmaterials = [{listed}]\n", 1)
+
+
+def test_the_library_is_flyopt_materials_and_the_scene_s_own(main_cli):
+    status, out, _ = main_cli("materials", "--json")
+    assert status == 0
+    cli = json.loads(out)["materials"]
+    table = materials.library(None)
+    rows = table.drop(columns="origin").astype(object)
+    assert rows.where(rows.notna(), None).to_dict("records") == cli
+    assert set(table["origin"]) == {"built-in"}
+
+    scene = load(BOOK)  # a scene with its own [[material]] book_cast_iron
+    own = materials.library(scene)
+    assert own.loc[own["name"] == "book_cast_iron", "origin"].tolist() == ["scene"]
+    assert own.loc[own["name"] == "book_cast_iron", "density"].tolist() == [7200.0]
+    assert set(own["name"]) == {row["name"] for row in cli} | {"book_cast_iron"}
+    assert materials.design_materials(scene) == ["book_cast_iron"]
+
+    shown = materials.library_shown(table, "engineering")
+    row = shown[shown["name"] == "en_gjs_400_18"].iloc[0]
+    assert row["material"] == "EN-GJS-400-18"
+    assert row["R_m [MPa]"] == 400 and row["R_p0.2 [MPa]"] == 250  # EN 1563: 400 and 250 MPa
+
+
+def test_the_trade_off_of_ticked_materials_is_flyopt_tradeoff_of_the_scene_with_them(main_cli, write_scene):
+    ticked = ["cast_steel"]
+    status, out, _ = main_cli("tradeoff", write_scene(with_materials_text(SHEAR, ticked)), "--json")
+    assert status == 0
+    cli = pd.DataFrame(json.loads(out)["rows"])
+    table = materials.tradeoff(load(SHEAR), ticked)
+    assert table["material"].tolist() == cli["material"].tolist() == ticked
+    for column in ("d_outer", "b", "h", "mass", "rim_speed"):
+        np.testing.assert_allclose(table[column].to_numpy(float), cli[column].to_numpy(float), rtol=1e-12)
+    assert table["status"].tolist() == cli["status"].tolist()
+
+    shown = materials.shown(table, materials.TRADEOFF_SHOWN, "engineering", materials.display_names(load(SHEAR)))
+    assert shown["material"].tolist() == ["cast steel"]
+    assert shown["d_outer [mm]"].iloc[0] == pytest.approx(cli["d_outer"].iloc[0] * 1000, rel=5e-4)  # 4 figures
+
+    with pytest.raises(SceneError, match="unknown material 'unobtainium'"):
+        materials.tradeoff(load(SHEAR), ["unobtainium"])
+
+
+def test_the_pareto_front_is_flyopt_pareto_and_each_point_is_a_link(main_cli):
+    ticked = ["cast_iron", "cast_steel"]  # the scene's own default materials: the CLI runs the scene as is
+    status, out, _ = main_cli("pareto", SHEAR, "--json", "--points", "8")
+    assert status == 0
+    cli = pd.DataFrame(json.loads(out)["rows"])
+    front = materials.pareto_front(load(SHEAR), ticked, "mass,outer_diameter", points=8)
+    assert list(front.columns[:2]) == ["mass", "outer_diameter"] == list(cli.columns[:2])
+    np.testing.assert_allclose(front["mass"].to_numpy(float), cli["mass"].to_numpy(float), rtol=1e-12)
+    svg = materials.pareto_svg(front, "engineering")
+    links = re.findall(r'href="#pareto-?pick-(\d+)"', svg)
+    assert sorted(int(n) for n in links) == list(range(len(front)))
+    lines = dict(materials.point_rows(front, 2, "engineering", materials.display_names(load(SHEAR))))
+    d = cli["d_outer"].iloc[2] * 1000
+    assert lines["outer diameter D"] == f"{float(f'{d:.4g}'):g} mm"  # four figures, in mm
+    with pytest.raises(IndexError):
+        materials.point_rows(front, len(front) + 3, "engineering")
+
+
+def test_a_user_s_strings_are_escaped_on_the_point_card():
+    html = materials.rows_html("<b>t</b>", [("material", '<img src=x onerror="alert(1)">')])
+    assert "<img" not in html and "&lt;img" in html and "<b>t</b>" not in html
+
+
+def test_the_form_s_vary_text_is_read_by_flyopt_sweep_and_its_points_are_the_grid(main_cli, tmp_path, workspace):
+    axis = sweeps.Axis("speed", "1000", "2000", 5, unit="rpm")
+    assert sweeps.vary_text(axis) == "speed=1000:2000:5 rpm"
+    assert sweeps.vary_text(sweeps.Axis("delta", "0.01", "0.1", 3, log=True)) == "delta=0.01:0.1:log3"
+    assert sweeps.vary_text(sweeps.Axis("material", names="cast_iron, cast_steel")) == "material=cast_iron,cast_steel"
+
+    scene = sweeps.scene_copy(SHEAR.read_text(encoding="utf-8"), workspace)
+    names = sweeps.Axis("material", names="cast_iron,cast_steel")
+    plan = sweeps.plan(scene, [axis, names])
+    assert plan.points == 10
+    seen: list[tuple[int, int]] = []
+    result = sweeps.run(scene, plan.vary, workspace, progress=lambda done, total: seen.append((done, total)))
+    assert result.complete and seen[-1] == (10, 10)
+    rpm = np.linspace(1000, 2000, 5) * math.pi / 30  # the grid's closed form, rad/s
+    np.testing.assert_allclose(np.unique(result.frame["speed"].to_numpy(float)), rpm, rtol=1e-12)
+
+    output = tmp_path / "cli.parquet"
+    args = [a for t in plan.texts for a in ("--vary", t)]
+    status, _, _ = main_cli("sweep", SHEAR, *args, "-o", output, "--quiet")
+    assert status == 0
+    from flyopt import read_results
+
+    cli = read_results(output)
+    assert len(cli) == len(result.frame)
+    for column in ("material", "status"):
+        assert cli[column].tolist() == result.frame[column].tolist()
+    for column in ("speed", "mass", "d_outer"):
+        np.testing.assert_allclose(result.frame[column].to_numpy(float), cli[column].to_numpy(float), rtol=1e-12)
+
+    csv = sweeps.csv_file(result, workspace)
+    assert csv.parent == workspace.folder  # the session's folder, nothing elsewhere
+    assert {p.name for p in workspace.folder.iterdir()} <= {
+        model.SCENE_NAME,
+        sweeps.SCENE,
+        sweeps.PARQUET,
+        sweeps.CSV,
+        sweeps.CSV + ".json",
+    }
+    assert read_results(csv)["mass"].tolist() == pytest.approx(cli["mass"].tolist())
+    svg = sweeps.plot_svg(result.frame, "speed", "mass", "material")
+    assert svg.startswith("<svg")
+    table = sweeps.table(result.frame, "engineering", materials.display_names(scene))
+    assert table["speed [rpm]"].tolist() == [1000, 1000, 1250, 1250, 1500, 1500, 1750, 1750, 2000, 2000]
+
+
+def test_a_sweep_over_the_limit_or_of_an_unknown_field_is_refused_in_the_command_s_words(workspace):
+    scene = load(SHEAR)
+    big = [sweeps.Axis("speed", "1000", "2000", 200, unit="rpm"), sweeps.Axis("delta", "0.01", "0.1", 100)]
+    with pytest.raises(SceneError, match=r"20,000 points: the app runs at most 10,000"):
+        sweeps.plan(scene, big)
+    with pytest.raises(SceneError, match="did you mean 'speed'"):
+        sweeps.plan(scene, [sweeps.Axis("sped", "1", "2", 3)])
+    with pytest.raises(SceneError, match="from and to"):
+        sweeps.plan(scene, [sweeps.Axis("speed", "", "2", 3)])
+    first, total = sweeps.estimate(scene, [sweeps.Axis("speed", "1000", "2000", 5, unit="rpm")], 5)
+    assert 0 < first and total == pytest.approx(5 * first)
