@@ -23,8 +23,7 @@ from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import tomllib
-
+from flyopt._toml import tomllib
 from flyopt.cli.toml_lines import set_value
 from flyopt.names import Geometry
 
