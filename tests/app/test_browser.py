@@ -204,6 +204,7 @@ def tradeoff_json(path):
     return json.loads(done.stdout)["rows"]
 
 
+@pytest.mark.slow  # 11-17 s; the tabs' logic is checked against the command line in test_tabs.py by default
 def test_tick_two_materials_and_run_a_sweep_to_the_end(server, browser, tmp_path):
     from playwright.sync_api import expect
 
