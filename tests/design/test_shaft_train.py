@@ -263,3 +263,27 @@ def test_the_shipped_drive_train_is_the_hand_assembled_chain():
     assert [s["torsional_stiffness"] for s in train["springs"]] == pytest.approx(
         [springs[0] / motor, springs[1] / motor, springs[2], springs[3], springs[4] / crank], rel=1e-12
     )
+
+
+def test_the_report_and_the_text_show_the_trains_rows_in_the_units_asked():
+    """The report's table of modes and the text's are read from the same rows (report.shaft.train_rows): in SI
+    both give a mode's nearest critical speed in rad/s, the same number (the report wrote rpm whatever --units
+    said)."""
+    from conftest import PROBLEMS
+
+    from flyopt.cli.report import collect
+    from flyopt.report.builder import build
+    from flyopt.report.document import Table
+    from flyopt.report.shaft import train_lines
+
+    path = PROBLEMS / "motor-press-drive-train.toml"
+    inputs = collect(path, "test", pdf=False)
+    document = build(inputs, "si", figures=False)
+    table = next(b for s in document.sections for b in s.blocks if isinstance(b, Table) and b.name == "train_modes")
+    nearest = [row[3] for row in table.rows]
+    assert all(cell.endswith("rad/s") for cell in nearest if cell != "-")
+    check = inputs.solution.shaft_checks[0].check
+    text = "\n".join(train_lines(check, "si"))
+    for cell in nearest:
+        order, speed = cell.split(" at ")
+        assert f"{order}: {speed}" in text

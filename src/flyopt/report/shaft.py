@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -16,8 +17,63 @@ from flyopt.report.text import formatters, number, table
 if TYPE_CHECKING:
     from flyopt.design.shaft.check import ShaftCheck, ShaftLimit
     from flyopt.design.shaft.cycle import ShaftReport
+    from flyopt.machine.torsion import CriticalSpeed
 
-__all__ = ["shaft_report", "limit_value", "train_lines"]
+__all__ = ["ModeRow", "SpringRow", "shaft_report", "limit_value", "train_lines", "train_rows"]
+
+
+@dataclass(frozen=True)
+class ModeRow:
+    """One torsional mode of a drive train as the text and the report show it (SI)."""
+
+    mode: int
+    frequency_hz: float
+    shape: tuple[float, ...]  # each inertia's, scaled to a largest entry of 1
+    nearest: CriticalSpeed | None  # the critical speed of this mode nearest the running range
+
+
+@dataclass(frozen=True)
+class SpringRow:
+    """One elastic element of a drive train and its forced response at the mean speed (SI)."""
+
+    name: str
+    kind: str
+    stiffness: float  # [N*m/rad] on its own shaft
+    torque_bound: float  # sum over the orders of |T_q| [N*m]
+    top_order: float | None  # the order of the largest |T_q|
+    top_torque: float | None  # that |T_q| [N*m]
+
+
+def train_rows(check: ShaftCheck) -> tuple[list[ModeRow], list[SpringRow]] | None:
+    """The drive train's modes and springs with what each shows (None without a train): the one place the
+    text (:func:`train_lines`) and the report (``ShaftSection.train_tables``) read them from."""
+    train, torsional = check.train, check.torsional
+    if train is None or torsional is None:
+        return None
+    modes = [
+        ModeRow(
+            m,
+            float(f),
+            tuple(float(v) for v in train.shapes[:, m - 1]),
+            min((cs for cs in torsional.critical if cs.mode == m), key=lambda cs: cs.margin, default=None),
+        )
+        for m, f in enumerate(train.modes.frequencies_hz, start=1)
+    ]
+    springs = []
+    for e, (name, kind, k) in enumerate(train.built.springs):
+        row = train.shaft_torques[e]
+        top = int(np.argmax(row)) if row.size else -1
+        springs.append(
+            SpringRow(
+                name,
+                kind,
+                float(k),
+                float(train.torque_bound[e]),
+                None if top < 0 else float(train.orders[top]),
+                None if top < 0 else float(row[top]),
+            )
+        )
+    return modes, springs
 
 
 def limit_value(limit: ShaftLimit, value: float, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
@@ -73,9 +129,11 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
 def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """The drive train's nodes, every elastic mode with its shape and nearest critical speed, and the forced
     response's alternating torque in each elastic element (nothing without a train)."""
-    train, torsional = check.train, check.torsional
-    if train is None or torsional is None:
+    found = train_rows(check)
+    if found is None or check.train is None:
         return []
+    modes, springs = found
+    train = check.train
     q, _ = formatters(units, digits)
     built = train.built
     lines = [
@@ -83,9 +141,8 @@ def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_D
         f"torque enters at the {built.nodes[built.load_node]}): " + " | ".join(built.nodes),
     ]
     rows = []
-    for m, f in enumerate(train.modes.frequencies_hz, start=1):
-        own = [cs for cs in torsional.critical if cs.mode == m]
-        near = min(own, key=lambda cs: cs.margin, default=None)
+    for mode in modes:
+        near = mode.nearest
         where = (
             "-"
             if near is None
@@ -94,8 +151,8 @@ def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_D
                 + (" (in the range)" if near.in_range else f" ({number(100 * near.margin, 3)} % clear)")
             )
         )
-        shape = ", ".join(f"{v:+.2f}" for v in train.shapes[:, m - 1])
-        rows.append([str(m), f"{number(float(f), digits)} Hz", shape, where])
+        shape = ", ".join(f"{v:+.2f}" for v in mode.shape)
+        rows.append([str(mode.mode), f"{number(mode.frequency_hz, digits)} Hz", shape, where])
     lines += [
         "  " + line
         for line in table(["mode", "frequency", "shape (each inertia, largest 1)", "nearest critical speed"], rows)
@@ -105,20 +162,18 @@ def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_D
         f"{train.orders.size} orders (modal damping {number(100 * train.damping_ratio, 3)} %), on each "
         "element's own shaft:"
     )
-    bound = train.torque_bound
-    rows = []
-    for e, (name, kind, k) in enumerate(built.springs):
-        row = train.shaft_torques[e]
-        top = int(np.argmax(row)) if row.size else -1
-        rows.append(
-            [
-                name,
-                kind,
-                quantity_text(k, "torsional_stiffness", units, digits),
-                q(float(bound[e]), "torque_alternating"),
-                "-" if top < 0 else f"{train.orders[top]:.4g}: {q(float(row[top]), 'torque_largest_order')}",
-            ]
-        )
+    rows = [
+        [
+            spring.name,
+            spring.kind,
+            quantity_text(spring.stiffness, "torsional_stiffness", units, digits),
+            q(spring.torque_bound, "torque_alternating"),
+            "-"
+            if spring.top_order is None
+            else f"{spring.top_order:.4g}: {q(spring.top_torque, 'torque_largest_order')}",
+        ]
+        for spring in springs
+    ]
     lines += [
         "  " + line
         for line in table(

@@ -3,6 +3,7 @@ it, and the Campbell diagram of its torsional modes (docs/flywheel-design.md, se
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from flyopt.design.combination import shaft_label
@@ -103,8 +104,6 @@ class ShaftSection(BuilderBase):
     def train_tables(self, blocks: list[Any], check: Any) -> None:
         """The drive train's modes with their shapes and nearest critical speeds, and the forced response's
         alternating torque in each elastic element (nothing without a train)."""
-        import numpy as np
-
         train, torsional = check.train, check.torsional
         if train is None or torsional is None:
             return
@@ -120,15 +119,24 @@ class ShaftSection(BuilderBase):
                 )
             )
         )
+        from flyopt.report.shaft import train_rows
+
+        found = train_rows(check)
+        if found is None:
+            return
+        modes, springs = found
         rows: list[list[Any]] = []
-        for m, f in enumerate(train.modes.frequencies_hz, start=1):
-            near = min((cs for cs in torsional.critical if cs.mode == m), key=lambda cs: cs.margin, default=None)
+        for mode in modes:
+            near = mode.nearest
             rows.append(
                 [
-                    str(m),
-                    f"{number(float(f), self.digits)} Hz",
-                    ", ".join(f"{v:+.2f}" for v in train.shapes[:, m - 1]),
-                    "-" if near is None else f"order {near.order:.4g} at {number(near.speed_rpm, self.digits)} rpm",
+                    str(mode.mode),
+                    f"{number(mode.frequency_hz, self.digits)} Hz",
+                    ", ".join(f"{v:+.2f}" for v in mode.shape),
+                    "-"
+                    if near is None
+                    else f"order {near.order:.4g} at "
+                    + display.quantity_text(near.speed_rpm * math.pi / 30.0, "angular_speed", self.units, self.digits),
                     "-" if near is None else ("in the range" if near.in_range else f"{number(100 * near.margin, 3)} %"),
                 ]
             )
@@ -141,19 +149,16 @@ class ShaftSection(BuilderBase):
                 "train_modes",
             )
         )
-        rows = []
-        for e, (name, kind, k) in enumerate(built.springs):
-            row = train.shaft_torques[e]
-            top = int(np.argmax(row)) if row.size else -1
-            rows.append(
-                [
-                    name,
-                    kind,
-                    display.quantity_text(k, "torsional_stiffness", self.units, self.digits),
-                    self.q(float(train.torque_bound[e]), "torque", "torque_alternating"),
-                    "-" if top < 0 else f"{train.orders[top]:.4g}",
-                ]
-            )
+        rows = [
+            [
+                spring.name,
+                spring.kind,
+                display.quantity_text(spring.stiffness, "torsional_stiffness", self.units, self.digits),
+                self.q(spring.torque_bound, "torque", "torque_alternating"),
+                "-" if spring.top_order is None else f"{spring.top_order:.4g}",
+            ]
+            for spring in springs
+        ]
         blocks.append(
             Table(
                 ("element", "kind", "stiffness", "alternating torque (sum over orders)", "largest order"),
