@@ -109,3 +109,13 @@ def test_pasted_rows_that_are_not_a_table_are_refused_with_the_line():
     with pytest.raises(SceneError) as said:
         form.pasted_rows("0;1600\n45;x\n", "torque.resisting.points", ("deg", "N*m"))
     assert "line 2" in str(said.value)
+
+
+@pytest.mark.parametrize(
+    "typed", ["-.5", "+.5", "007", "1_", "1__0", "a\x7fb", "x\x85y", "inf", "0.05", "1_000", "1500 rpm"]
+)
+def test_whatever_is_typed_is_written_as_toml_tomllib_reads(typed):
+    """A value typed in the form is a TOML number only where TOML reads it as one; anything else is a string
+    holding exactly what was typed (DEL and the C1 controls escaped: TOML refuses them raw)."""
+    value = tomllib.loads(f"v = {form.literal(typed)}")["v"]
+    assert value == typed or (isinstance(value, (int, float)) and value == float(typed.replace("_", "")))

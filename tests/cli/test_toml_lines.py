@@ -2,9 +2,11 @@
 
 import pytest
 from conftest import PROBLEMS, ROOT
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from flyopt._toml import tomllib
-from flyopt.cli.toml_lines import key_lines, line_of
+from flyopt.cli.toml_lines import key_lines, line_of, set_value
 
 TRICKY = '''\
 title = "a # not a comment [x]"  # a comment = 1
@@ -126,3 +128,44 @@ def test_text_that_is_not_toml_ends_the_scan_rather_than_looping(text):
     """The app places errors on any text typed (flyopt.app.model.field_line): a stray brace once looped forever."""
     lines = key_lines(text)
     assert lines.get("a") == 1
+
+
+def _written(tables, dotted):
+    """A TOML text of ``tables`` ({table: {key: int}}): each table under its header, or as dotted keys."""
+    lines = []
+    for table, keys in tables.items():
+        if dotted:
+            lines += [f"{table}.{k} = {v}  # a comment" for k, v in keys.items()]
+        else:
+            lines.append(f"[{table}]")
+            lines += [f"{k} = {v}" for k, v in keys.items()]
+            lines.append("")
+    return "\n".join(lines) + "\n"
+
+
+_NAMES = st.sampled_from(["a", "b", "speed", "delta", "x_y"])
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    tables=st.dictionaries(
+        st.sampled_from(["machine", "design", "t"]),
+        st.dictionaries(_NAMES, st.integers(0, 9), min_size=1, max_size=3),
+        min_size=1,
+        max_size=3,
+    ),
+    dotted=st.booleans(),
+    table=st.sampled_from(["machine", "design", "t", "new"]),
+    key=_NAMES,
+    value=st.integers(10, 99),
+)
+def test_set_value_writes_a_text_tomllib_reads_with_the_value_and_nothing_else_moved(tables, dotted, table, key, value):
+    """The app's form writes through set_value: whatever the layout (headers or dotted keys, a key written or
+    not, a table written or not), the text stays TOML, holds the value, and every other value is as it was."""
+    text = _written(tables, dotted)
+    edited = set_value(text, f"{table}.{key}", str(value))
+    data = tomllib.loads(edited)
+    assert data[table][key] == value
+    expected = {t: dict(keys) for t, keys in tables.items()}
+    expected.setdefault(table, {})[key] = value
+    assert data == expected

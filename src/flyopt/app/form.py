@@ -120,15 +120,22 @@ def _cell(value: Any) -> str:
 
 
 def literal(shown: str) -> str:
-    """The TOML value of what is typed in a field or cell: a number where it reads as one, else a string."""
+    """The TOML value of what is typed in a field or cell: a number where TOML reads it as one (a finite
+    integer or float, as typed), else a string (its control characters escaped)."""
     text = shown.strip()
-    if re.fullmatch(r"[+-]?(\d[\d_]*)(\.\d+)?([eE][+-]?\d+)?", text) or re.fullmatch(
-        r"[+-]?\.\d+([eE][+-]?\d+)?", text
-    ):
-        number = float(text.replace("_", ""))
-        if math.isfinite(number):
-            return text if not text.startswith(".") else "0" + text
-    return json.dumps(text, ensure_ascii=False)  # a JSON string is a TOML basic string
+    try:
+        value = tomllib.loads(f"v = {text}")["v"] if text and "\n" not in text and "#" not in text else None
+    except tomllib.TOMLDecodeError:
+        value = None
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+        return text
+    return _string(text)
+
+
+def _string(text: str) -> str:
+    """``text`` as a TOML basic string: JSON's escapes, and DEL and the C1 controls (which TOML refuses raw)."""
+    quoted = json.dumps(text, ensure_ascii=False)  # a JSON string is a TOML basic string but for these
+    return re.sub(r"[\x7f-\x9f]", lambda m: f"\\u{ord(m.group()):04x}", quoted)
 
 
 def set_field(text: str, field: Field, shown: Any) -> str:
@@ -139,7 +146,7 @@ def set_field(text: str, field: Field, shown: Any) -> str:
     """
     if field.kind == "materials":
         names = [str(name) for name in shown]
-        return set_value(text, field.path, "[" + ", ".join(json.dumps(n, ensure_ascii=False) for n in names) + "]")
+        return set_value(text, field.path, "[" + ", ".join(_string(n) for n in names) + "]")
     typed = str(shown).strip()
     if not typed:
         return text

@@ -31,6 +31,21 @@ if TYPE_CHECKING:
 #: The largest editor text or upload the app reads, in bytes (1 MB).
 MAX_BYTES = 1_000_000
 
+#: The addresses that serve this machine alone.
+LOOPBACK = frozenset({"127.0.0.1", "localhost", "::1"})
+
+#: Whether the page is served on this machine's loopback only (``flyopt app`` without ``--host``): set by
+#: :func:`serving`. Served beyond it, a visitor is not offered what would make the server reach out (a Dask
+#: scheduler: its messages are pickles, code on the server).
+served_locally = True
+
+
+def serving(host: str) -> None:
+    """Note the address the page is served on (:data:`served_locally`)."""
+    global served_locally
+    served_locally = host in LOOPBACK
+
+
 #: The name the editor's text is written under, in its private folder.
 SCENE_NAME = "scene.toml"
 
@@ -98,8 +113,17 @@ class Checked:
     problems: list[Problem] = field(default_factory=list)
 
 
+def refuse_oversize(text: str) -> None:
+    """Refuse a scene text over :data:`MAX_BYTES` (SceneError), before it is written anywhere."""
+    from flyopt.errors import SceneError
+
+    if len(text.encode("utf-8")) > MAX_BYTES:
+        raise SceneError("", f"the scene text is over {MAX_BYTES // 1_000_000} MB: the app reads no more")
+
+
 class Workspace:
-    """A private temporary folder (mode 0700) holding the editor's text as ``scene.toml``, and nothing else.
+    """A private temporary folder (mode 0700) holding the editor's text as ``scene.toml`` and the session's own
+    files (a sweep's copy of the scene and its results, a drawing being downloaded), nothing from elsewhere.
 
     A scene's ``points_file`` and the like resolve relative to the scene's
     folder and must stay inside it (:mod:`flyopt.io.input_files`), so here
@@ -112,10 +136,7 @@ class Workspace:
 
     def write(self, text: str) -> Path:
         """Write ``text`` as the scene (refused over :data:`MAX_BYTES`); the scene's path."""
-        from flyopt.errors import SceneError
-
-        if len(text.encode("utf-8")) > MAX_BYTES:
-            raise SceneError("", f"the scene text is over {MAX_BYTES // 1_000_000} MB: the app reads no more")
+        refuse_oversize(text)
         self.path.write_text(text, encoding="utf-8")
         return self.path
 

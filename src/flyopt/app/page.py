@@ -357,6 +357,7 @@ def serve(port: int, host: str, browser: bool) -> None:
     """Serve the app on ``host``:``port`` until interrupted; open the browser when asked."""
     import panel as pn
 
+    model.serving(host)
     pn.extension("codeeditor", raw_css=[CSS])
     pn.serve(
         {"/": session},

@@ -129,8 +129,10 @@ def plan(scene: Scene, axes: Sequence[Axis]) -> Plan:
 def scene_copy(text: str, workspace: Workspace) -> Scene:
     """The scene of a sweep, read from its own copy of the editor's text in the session's folder (an edit
     while it runs does not change the scene the chunks and ``--resume`` see)."""
+    from flyopt.app.model import refuse_oversize
     from flyopt.io.scene import load
 
+    refuse_oversize(text)
     path = workspace.folder / SCENE
     path.write_text(text, encoding="utf-8")
     return load(path)

@@ -298,6 +298,9 @@ class SweepsTab:
             name="run on", options=["this machine (processes)", "a Dask cluster"], value="this machine (processes)"
         )
         self.address = pn.widgets.TextInput(name="Dask address", placeholder="tcp://host:8786", width=220)
+        if not model.served_locally:  # served beyond this machine: a visitor must not point the server at a scheduler
+            self.where.options = ["this machine (processes)"]
+            self.address.disabled = True
         self.spec = pn.pane.HTML("", sizing_mode="stretch_width", css_classes=["sweep-spec"])
         self.run_button = pn.widgets.Button(name="Run the sweep", button_type="primary", width=140)
         self.cancel_button = pn.widgets.Button(name="Cancel", button_type="warning", width=90, disabled=True)
@@ -435,6 +438,7 @@ class SweepsTab:
         self.cancel_asked = False
         self.run_button.disabled = True
         self.cancel_button.disabled = False
+        self.result = None  # its files are removed by the new run: no download of them meanwhile
         self.bar.value = 0
         self.status.object = _message(f"0 / {self.plan.points:,} points", bad=False)
         loop = asyncio.get_running_loop()

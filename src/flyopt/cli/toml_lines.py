@@ -279,6 +279,20 @@ def set_value(text: str, path: str, literal: str) -> str:
     if any(span == table or table.startswith(span + ".") for span in scanner.spans):
         raise KeyError(f"{path}: under a key written inline, not a table")
     line = f"{_key(key)} = {literal}\n"
+    dotted = [span for span in scanner.spans if table and span.startswith(table + ".")]
+    if table and table not in scanner.headers and dotted:  # a table made by dotted keys: one more beside them
+        end = max(scanner.spans[span][1] for span in dotted)
+        owner = max(
+            ((at, name) for name, at in scanner.headers.items() if at <= end and path.startswith(name + ".")),
+            default=(0, ""),
+        )[1]
+        relative = path[len(owner) + 1 :] if owner else path
+        if "[" in relative:
+            raise KeyError(f"{path}: the text has no such entry of an array of tables")
+        parts = relative.split(".")
+        eol = text.find("\n", end)
+        eol = len(text) if eol < 0 else eol
+        return text[:eol] + "\n" + ".".join(_key(p) for p in parts) + f" = {literal}" + text[eol:]
     if not table:
         first = min(scanner.headers.values(), default=len(text))
         head = text[:first].rfind("\n", 0, max(first - 1, 0)) + 1 if scanner.headers else len(text)
