@@ -311,3 +311,29 @@ def test_a_list_or_table_where_a_text_belongs_is_one_line_exit_2(cli, tmp_path, 
         run = cli("check", scene)
         assert run.returncode == 2, (path, run.stderr)
         assert len(run.stderr.splitlines()) == 1 and "Traceback" not in run.stderr, (path, run.stderr)
+
+
+def test_a_shaft_inertia_beyond_any_machine_is_refused(cli, tmp_path):
+    """A [[shaft]] inertia of 1e300 kg*m^2 (the hostile corpus's "huge") made the flywheel of a motor-driven
+    scene exactly 0 beside it in J_F + J_e and ended in exit 1; it is refused at load, naming the field."""
+    text = (PROBLEMS / "motor-press-drive-train.toml").read_text(encoding="utf-8")
+    assert 'inertia = "24 kg*m^2"' in text
+    path = tmp_path / "scene.toml"
+    path.write_text(text.replace('inertia = "24 kg*m^2"', "inertia = 1e300", 1), encoding="utf-8")
+    assert_refused(cli("solve", path), path, "shaft[0].inertia", r"at most 1e\+09 kg\*m\^2")
+    path.write_text(text.replace('inertia = "24 kg*m^2"', 'inertia = "1e6 kg*m^2"', 1), encoding="utf-8")
+    assert "shaft[0].inertia" not in cli("check", path).stderr  # a turbine-generator's train: not refused
+
+
+def test_an_induction_motor_mostly_slip_is_refused(cli, tmp_path):
+    """A synchronous speed of 1e300 (rated slip 1) sent the motor-press search through 80 periodic solutions for
+    15 s to exit 1; a rated slip above one half is no induction motor's, refused at load. A high-slip motor
+    (NEMA design D, 13 %) is taken."""
+    from flyopt.machine.motor import InductionMotor
+
+    text = (PROBLEMS / "motor-press.toml").read_text(encoding="utf-8")
+    assert 'synchronous_speed = "1500 rpm"' in text
+    path = tmp_path / "scene.toml"
+    path.write_text(text.replace('synchronous_speed = "1500 rpm"', "synchronous_speed = 1e300"), encoding="utf-8")
+    assert_refused(cli("solve", path), path, "torque.driving.motor", "slip")
+    assert InductionMotor(5500.0, 0.87 * 157.08, 157.08).rated_slip == pytest.approx(0.13)

@@ -302,6 +302,12 @@ def _check_fatigue_ranges(layout: ShaftLayout, material: Any, where: str) -> Non
             raise SceneError(f"{where}.material", f"{material.name!r}: {err}") from None
 
 
+#: The largest inertia a [[shaft]] may carry [kg*m^2]: a thousand times a large turbine-generator train's
+#: (about 1e5 to 1e6). Beyond it the flywheel, the machine's inertia minus round-off, is lost in the sum
+#: J_F + J_e of the periodic model (1e300 made it exactly 0).
+MAX_SHAFT_INERTIA = 1e9
+
+
 def _shaft_inertia(table, where):
     """The inertia already on a [[shaft]], about its axis [kg*m^2]: ``inertia``, or ``gd2`` (GD² = 4 g J), or 0."""
     if table.has("inertia") and table.has("gd2"):
@@ -315,7 +321,14 @@ def _shaft_inertia(table, where):
             f"{where}.{key}",
             f"must be a finite number >= 0 (the inertia already turning with the shaft), got {shorten(table.raw(key))}",
         )
-    return inertia_from_gd2(value) if key == "gd2" else value
+    inertia = inertia_from_gd2(value) if key == "gd2" else value
+    if inertia > MAX_SHAFT_INERTIA:
+        raise SceneError(
+            f"{where}.{key}",
+            f"{shorten(table.raw(key))} is beyond any machine's shaft (allowed: at most {MAX_SHAFT_INERTIA:g} kg*m^2; "
+            "a turbine-generator's whole train is about 1e5 to 1e6 kg*m^2)",
+        )
+    return inertia
 
 
 def reference_efficiency(shafts: Iterable[Shaft]) -> float:

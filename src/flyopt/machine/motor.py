@@ -83,6 +83,12 @@ class _Motor:
         return torque * (i * eta)
 
 
+#: The largest rated slip s_n = 1 - n_n/n_s an induction motor is taken with: general-purpose motors run at a
+#: few per cent, high-slip designs (NEMA design D) at up to about 13 %; beyond a half the "motor" would
+#: be mostly slip (and a typo of a unit, or a speed of 1e300, is refused rather than searched for).
+MAX_RATED_SLIP = 0.5
+
+
 class InductionMotor(_Motor):
     """Three-phase induction motor given by its nameplate.
 
@@ -146,6 +152,13 @@ class InductionMotor(_Motor):
             raise ValueError(
                 f"an induction motor's rated speed ({rated_speed!r} rad/s) must be below its "
                 f"synchronous speed ({synchronous_speed!r} rad/s)"
+            )
+        if not self.rated_speed > (1.0 - MAX_RATED_SLIP) * self.synchronous_speed:
+            raise ValueError(
+                f"an induction motor's rated speed ({rated_speed!r} rad/s) must be above "
+                f"{1.0 - MAX_RATED_SLIP:g} of its synchronous speed ({synchronous_speed!r} rad/s): a rated slip of "
+                f"{(self.synchronous_speed - self.rated_speed) / self.synchronous_speed:.3g} is no induction motor's "
+                f"(they run at a few per cent of slip, high-slip designs up to about 0.15)"
             )
         k = DEFAULT_BREAKDOWN_RATIO if breakdown_ratio is None else _positive(breakdown_ratio, "breakdown_ratio")
         if k <= 1:
