@@ -127,7 +127,7 @@ def test_edit_break_fix_and_download(server, browser, tmp_path):
     from pypdf import PdfReader
 
     page = browser.new_page(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
-    page.goto(server)
+    page.goto(server, timeout=120_000)  # a loaded host loads the page slowly
     page.wait_for_selector(".card >> text=designed", timeout=120_000)
     page.wait_for_selector(".figure-turning_moment svg", timeout=60_000)
     shot(page, "1-loaded")
@@ -168,7 +168,7 @@ def test_the_form_writes_into_the_scene_and_a_pasted_table_solves(server, browse
     """δ set in the form reads in the editor as if typed and the card follows; the shear press's table pasted
     from a spreadsheet in degrees and N*m gives the book's A_max (1.256 kJ, docs/flywheel-design.md example 2)."""
     page = browser.new_page(viewport={"width": 1400, "height": 1100})
-    page.goto(server)
+    page.goto(server, timeout=120_000)  # a loaded host loads the page slowly
     page.wait_for_selector(".card >> text=designed", timeout=120_000)
     page.get_by_text("Form", exact=True).click()
     delta = page.get_by_label("allowed δ (e.g. 0.05 or 5 %)")
@@ -212,7 +212,7 @@ def test_tick_two_materials_and_run_a_sweep_to_the_end(server, browser, tmp_path
     from flyopt.report import display
 
     page = browser.new_page(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
-    page.goto(server)
+    page.goto(server, timeout=120_000)  # a loaded host loads the page slowly
     page.wait_for_selector(".card >> text=designed", timeout=120_000)
 
     page.get_by_text("Compare materials", exact=True).click()
@@ -264,7 +264,7 @@ def test_a_scene_material_s_markup_is_shown_as_text_in_the_library(server, brows
         'source = "<img src=q onerror=\\"window.pwned=1\\"> <b>bold</b>"\n'
     )
     page = browser.new_page(viewport={"width": 1400, "height": 1000})
-    page.goto(server)
+    page.goto(server, timeout=120_000)  # a loaded host loads the page slowly
     page.wait_for_selector(".card >> text=designed", timeout=120_000)
     page.locator(".ace_editor").first.evaluate("(el, text) => el.env.editor.setValue(text, -1)", evil)
     page.wait_for_timeout(1000)
