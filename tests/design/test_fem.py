@@ -285,6 +285,7 @@ def test_solve_json_and_text_carry_the_check(checked_solution):
     assert "fillets not given by the design" in text
 
 
+@pytest.mark.slow  # 3-6 s; the default run is over its five minutes
 def test_the_report_shows_the_check_beside_the_lame_model(checked_solution, tmp_path):
     """The HTML report carries the check as the text does: the parts' peaks, the junctions and the difference."""
     import subprocess

@@ -129,6 +129,7 @@ def compare(seed):
 FAST_SEEDS = range(16)
 
 
+@pytest.mark.slow  # 3-6 s; the default run is over its five minutes
 def test_pruning_keeps_the_winner_and_prunes_only_losers():
     """16 random problems (4 geometries x 4 objective slots): same winner, sound bounds; some pruned."""
     pruned = [compare(seed) for seed in FAST_SEEDS]

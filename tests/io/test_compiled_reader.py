@@ -166,6 +166,7 @@ def million():
     return text
 
 
+@pytest.mark.slow  # 3-6 s; the default run is over its five minutes
 def test_a_million_row_csv_reads_to_the_exact_readers_floats(million):
     assert len(million) >= compiled_reader.COMPILED_READER_BYTES  # the compiled reader's size, not a patched one
     with mock.patch.object(csv_table, "compiled_numbers", wraps=compiled_reader.compiled_numbers) as spy:
@@ -176,6 +177,7 @@ def test_a_million_row_csv_reads_to_the_exact_readers_floats(million):
     assert list(lines) == reference_lines == list(range(2, 1_000_002))
 
 
+@pytest.mark.slow  # 3-6 s; the default run is over its five minutes
 def test_a_million_row_inline_table_reads_to_floats_of_its_numbers(million):
     """The inline table of the same numbers: each as float of its TOML text (tomllib's value, which
     tests/io/test_toml_file.py holds the float reading to); a scene loads with it."""

@@ -347,6 +347,7 @@ def test_press_periodic_solution_against_scipy_shooting():
     assert sol.periodicity_residual <= sol.periodicity_tolerance
 
 
+@pytest.mark.slow  # 3-6 s; the default run is over its five minutes
 def test_stiff_motor_periodic_solution_against_scipy_radau():
     """Slip 0.5 % and δ ≈ 0.3: stiff (the orbit forgets its start within the cycle); scipy Radau reference."""
     net, load, motor, omega_n = press(1500, 0.005)

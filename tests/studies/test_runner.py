@@ -146,6 +146,7 @@ def resume_and_compare(tmp_path, out, expected):
 # --------------------------------------------------------------------------
 
 
+@pytest.mark.slow  # 3-6 s; the default run is over its five minutes
 def test_ctrl_c_stops_workers_keeps_chunks_and_resume_completes(tmp_path, uninterrupted):
     """Regression (issue 11): Ctrl-C (SIGINT to the process group, as a terminal sends
     it) ends the workers, keeps the finished chunks, removes temporary files and raises
