@@ -18,6 +18,7 @@ import re
 from pathlib import Path
 
 import pytest
+from sources import parsed
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "flyopt"
@@ -100,7 +101,7 @@ def imported_modules(path):
         for child in ast.iter_child_nodes(node):
             visit(child)
 
-    visit(ast.parse(path.read_text(encoding="utf-8")))
+    visit(parsed(path))
     return [(line, module) for line, module in found if module == "flyopt" or module.startswith("flyopt.")]
 
 

@@ -4,13 +4,15 @@
 import ast
 from pathlib import Path
 
+from sources import parsed
+
 SRC = Path(__file__).resolve().parents[1] / "src" / "flyopt"
 
 
 def test_no_assert_exec_or_eval_in_src():
     found = []
     for path in sorted(SRC.rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(parsed(path)):
             if isinstance(node, ast.Assert):
                 found.append(f"{path.relative_to(SRC)}:{node.lineno}: assert")
             if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("exec", "eval"):

@@ -5,6 +5,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from sources import parsed
+
 import flyopt
 
 SRC = Path(flyopt.__file__).resolve().parent
@@ -36,7 +38,7 @@ def _imports(path, modules):
     other, so it counts. ``from package import module`` counts as an import of the module, not of the
     package's ``__init__`` (which Python runs first, but which only gathers names).
     """
-    tree = ast.parse(path.read_text())
+    tree = parsed(path)
     found = set()
     # an import under ``if TYPE_CHECKING:`` never runs (flyopt/__init__.py names the public types so)
     skipped = {
@@ -103,7 +105,7 @@ def test_no_module_imports_a_private_name_of_another():
     """
     reached = []
     for path in sorted(SRC.rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(parsed(path)):
             if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("flyopt"):
                 reached += [
                     f"{path.relative_to(SRC)}:{node.lineno} imports {node.module}.{alias.name}"
@@ -134,7 +136,7 @@ def test_every_public_function_is_annotated():
     missing = []
     for path in sorted(SRC.rglob("*.py")):
         module = str(path.relative_to(SRC))
-        for name, node, is_method in _public_functions(ast.parse(path.read_text(encoding="utf-8")), module):
+        for name, node, is_method in _public_functions(parsed(path), module):
             args = node.args.posonlyargs + node.args.args + node.args.kwonlyargs
             if is_method and args and args[0].arg in ("self", "cls"):
                 args = args[1:]

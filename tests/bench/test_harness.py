@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
+from sources import parsed
 
 from flyopt.bench import cycle, main, peers, references
 from flyopt.bench.sections import SECTIONS
@@ -216,7 +217,7 @@ def test_nothing_in_flyopt_imports_the_bench():
     for path in package.rglob("*.py"):
         if {"bench", "cli"} & set(path.relative_to(package).parts[:-1]):
             continue
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(parsed(path)):
             names = (
                 [a.name for a in node.names]
                 if isinstance(node, ast.Import)
