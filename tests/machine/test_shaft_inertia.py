@@ -167,24 +167,24 @@ def test_bad_shaft_inertia_exits_2_with_one_line(main_cli, write_scene, new, fie
         assert re.search(match, lines[0]), lines[0]
 
 
-def test_a_sweep_of_the_ratio_of_a_shaft_with_inertia_is_refused(tmp_path):
-    """Its ratio would move J_c (J i²) while the sweep holds J_c: refused in one line; a bare shaft's ratio is not."""
-    import subprocess
-    import sys
+def test_a_sweep_of_the_ratio_of_a_shaft_with_inertia_is_refused(tmp_path, main_cli):
+    """Its ratio would move J_c (J i²) while the sweep holds J_c: refused in one line; a bare shaft's ratio is not.
+    (``flyopt check`` run in this process, as tests/conftest.py's ``main_cli`` runs it: the command's exit status
+    and its stderr, without a new interpreter's start-up for each of the three.)"""
     from pathlib import Path
 
     base = Path("problems/four-cylinder-engine.toml").read_text()
     for shaft, refused in (("fan", True), ("crankshaft", True)):
         path = tmp_path / f"{shaft}.toml"
         path.write_text(base + f'\n[sweep.vary]\n"shaft.{shaft}.speed_ratio" = "1:2:3"\n')
-        result = subprocess.run([sys.executable, "-m", "flyopt", "check", str(path)], capture_output=True, text=True)
-        assert (result.returncode == 2) == refused, result.stderr
-        lines = result.stderr.strip().splitlines()
-        assert len(lines) == 1 and "Traceback" not in result.stderr
+        status, _, err = main_cli("check", path)
+        assert (status == 2) == refused, err
+        lines = err.strip().splitlines()
+        assert len(lines) == 1 and "Traceback" not in err
         assert f"shaft {shaft!r} carries inertia" in lines[0] and str(path) in lines[0]
     bare = tmp_path / "bare.toml"
     bare.write_text(
         Path("problems/punch-press.toml").read_text() + '\n[sweep.vary]\n"shaft.intermediate.speed_ratio" = "4:8:3"\n'
     )
-    result = subprocess.run([sys.executable, "-m", "flyopt", "check", str(bare)], capture_output=True, text=True)
-    assert result.returncode == 0, result.stderr
+    status, _, err = main_cli("check", bare)
+    assert status == 0, err

@@ -14,11 +14,12 @@ from test_computed_once import _run, solved_once  # noqa: F401 -- solved_once is
 
 
 @pytest.mark.parametrize(
-    # each format and each scene in the default run; the other two pairs in the slow run
+    # the PDF of the scene issue 26 measured in the default run (motor-press's HTML report solving once is
+    # test_computed_once's test_the_report_solves_once, in the default run too); the other pairs in the slow run
     "scene, kind",
     [
         ("slider-crank-press", "pdf"),
-        ("motor-press", "html"),
+        pytest.param("motor-press", "html", marks=pytest.mark.slow),
         pytest.param("slider-crank-press", "html", marks=pytest.mark.slow),
         pytest.param("motor-press", "pdf", marks=pytest.mark.slow),
     ],
