@@ -219,13 +219,20 @@ def library_shown(table: pd.DataFrame, units: str, digits: int | None = None) ->
 def chart_svg(table: pd.DataFrame, units: str, names: dict[str, str] | None = None) -> str:
     """A chart of mass, outer diameter D and cost per material of a trade-off table, as inline SVG ("" for no
     designed material): one bar chart each, in the unit system, the lightest material first."""
-    from flyopt.report import display
-    from flyopt.report.html import svg_of
     from flyopt.report.plots import standard
 
     designed = table[table["status"] == "designed"]
     if designed.empty:
         return ""
+    with standard.LOCK:  # drawn in the tab's worker thread: one draw at a time (matplotlib is not thread-safe)
+        return _chart_svg(designed, units, names)
+
+
+def _chart_svg(designed: pd.DataFrame, units: str, names: dict[str, str] | None) -> str:
+    from flyopt.report import display
+    from flyopt.report.html import svg_of
+    from flyopt.report.plots import standard
+
     labels = [(names or {}).get(m, m) for m in designed["material"]]
     figure = standard.figure_class()(figsize=(9, 2.8))
     axes = figure.subplots(1, len(CHART))
@@ -270,15 +277,23 @@ PICK = "#pick-{}"
 def pareto_svg(front: pd.DataFrame, units: str) -> str:
     """The front drawn by the report's :func:`~flyopt.report.plots.plot_pareto` (mass against the other
     objective), each designed point made a link ``#pick-N`` (an unseen dot over it) for the page to load."""
+    from flyopt.report import plots
+    from flyopt.report.plots import standard
+
+    other = str(front.columns[1])
+    with standard.LOCK:  # drawn in the tab's worker thread: one draw at a time (matplotlib is not thread-safe)
+        ax = plots.plot_pareto(front, other, "mass", units=units)
+        return _pareto_svg(front, ax, other, units)
+
+
+def _pareto_svg(front: pd.DataFrame, ax: Any, other: str, units: str) -> str:
     import numpy as np
 
-    from flyopt.report import display, plots
+    from flyopt.report import display
     from flyopt.report.html import svg_of
     from flyopt.report.plots import standard
     from flyopt.studies.pareto import PARETO_OBJECTIVES
 
-    other = str(front.columns[1])
-    ax = plots.plot_pareto(front, other, "mass", units=units)
     dimension = PARETO_OBJECTIVES.get(other)
     xs = front[other].to_numpy(dtype=float)
     xs = xs if dimension is None else np.asarray(display.show(xs, dimension, units))
@@ -291,7 +306,7 @@ def pareto_svg(front: pd.DataFrame, units: str) -> str:
     try:
         return svg_of(figure, "pareto")
     finally:
-        standard.pyplot().close(figure)
+        standard.close(figure)
 
 
 #: The point's design as the panel lists it: (label, column).

@@ -16,6 +16,7 @@ from __future__ import annotations
 import hashlib
 import shutil
 import tempfile
+from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, cast
@@ -216,7 +217,8 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
     path = workspace.write(text)
     inputs = collect(path, f"flyopt app ({SCENE_NAME})", pdf=False)
     calculation = isinstance(inputs, CalculationInputs)
-    document = build(inputs, units, figures=calculation)
+    with drawing():  # a calculation's report draws its figures
+        document = build(inputs, units, figures=calculation)
     if isinstance(inputs, CalculationInputs):
         json = json_text(calculation_document(inputs.what, inputs.scene.title, path, inputs.result.to_dict()))
     else:
@@ -250,7 +252,24 @@ def draw(answer: Answer) -> Document:
 
     if answer.drawn:
         return answer.document
-    return build(answer.inputs, answer.units)
+    with drawing():
+        return build(answer.inputs, answer.units)
+
+
+def drawing() -> AbstractContextManager[Any]:
+    """Held around every draw of the app (making figures, rendering them, closing them): the report's one
+    drawing lock (:data:`flyopt.report.plots.standard.LOCK`), since the app draws from worker threads and
+    matplotlib is not thread-safe."""
+    from flyopt.report.plots import standard
+
+    return standard.LOCK
+
+
+def close(document: Document) -> None:
+    """Close ``document``'s figures (:meth:`~flyopt.report.document.Document.close`) under the
+    drawing lock."""
+    with drawing():
+        document.close()
 
 
 def figure_blocks(document: Document) -> list[Any]:
@@ -265,7 +284,8 @@ def figure_svg(block: Any) -> tuple[str, str, str]:
     from flyopt.report.document import plain
     from flyopt.report.html import svg_of
 
-    svg = svg_of(block.figure, block.key) if block.figure is not None else ""
+    with drawing():
+        svg = svg_of(block.figure, block.key) if block.figure is not None else ""
     return block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg
 
 
@@ -295,18 +315,19 @@ def _figures(document: Document) -> list[tuple[str, str, str]]:
 def report_bytes(answer: Answer, kind: str) -> bytes:
     """The report of ``answer`` as ``kind`` ("html" or "pdf"), by the report's own renderers, with its
     diagrams (drawn here for an answer whose diagrams are not yet: nothing is solved again)."""
-    document = draw(answer)
-    try:
-        if kind == "html":
-            from flyopt.report.html import render
+    with drawing():  # called on the server's event loop while a worker may draw
+        document = draw(answer)
+        try:
+            if kind == "html":
+                from flyopt.report.html import render
 
-            return render(document).encode("utf-8")
-        from flyopt.report.pdf import render as render_pdf
+                return render(document).encode("utf-8")
+            from flyopt.report.pdf import render as render_pdf
 
-        return render_pdf(document)
-    finally:
-        if document is not answer.document:
-            document.close()
+            return render_pdf(document)
+        finally:
+            if document is not answer.document:
+                document.close()
 
 
 #: The wheel's manufacturing files the page offers, as ``flyopt export`` writes them: (kind, label, file name).

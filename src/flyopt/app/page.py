@@ -259,13 +259,13 @@ class Session:
         one diagram at most)."""
         document = await loop.run_in_executor(self.executor, model.draw, answer)
         if mine != self.generation:
-            document.close()
+            model.close(document)
             return
         shown: list[tuple[str, str, str]] = []
         for block in model.figure_blocks(document):
             figure = await loop.run_in_executor(self.executor, model.figure_svg, block)
             if mine != self.generation:
-                document.close()
+                model.close(document)
                 return
             shown.append(figure)
             self._show_figure(len(shown) - 1, *figure)
@@ -277,7 +277,7 @@ class Session:
         old, self.answer = self.answer, answer
         self.stale.object = ""
         if old is not None and old.document is not answer.document:
-            old.document.close()
+            model.close(old.document)
 
     def _show_figures(self, figures: list[tuple[str, str, str]]) -> None:
         """Show exactly ``figures`` (key, caption, SVG), in order."""

@@ -232,12 +232,13 @@ def plot_svg(frame: pd.DataFrame, x: str, y: str = "mass", by: str | None = None
     from flyopt.report.html import svg_of
     from flyopt.report.plots import plot_sweep, standard
 
-    ax = plot_sweep(frame, x, y, by, units=units)
-    figure = standard.figure_of(ax)
-    try:
-        return svg_of(figure, "sweep")
-    finally:
-        standard.pyplot().close(figure)
+    with standard.LOCK:  # drawn in the tab's worker thread: one draw at a time (matplotlib is not thread-safe)
+        ax = plot_sweep(frame, x, y, by, units=units)
+        figure = standard.figure_of(ax)
+        try:
+            return svg_of(figure, "sweep")
+        finally:
+            standard.close(figure)
 
 
 #: The table's columns after the varied fields: the answer of each point.
