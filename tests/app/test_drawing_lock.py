@@ -49,6 +49,7 @@ def test_pyplot_is_reached_through_the_standard_only():
 def test_the_apps_draws_hold_the_lock(monkeypatch, call):
     from flyopt.app import model
     from flyopt.report import builder, html
+    from flyopt.report.plots import readout
 
     seen: list[bool] = []
 
@@ -56,8 +57,13 @@ def test_the_apps_draws_hold_the_lock(monkeypatch, call):
         seen.append(held_elsewhere())
         return ""
 
+    def read(*_args, **_kwargs):
+        seen.append(held_elsewhere())
+        return {"axes": []}
+
     monkeypatch.setattr(html, "svg_of", record)
     monkeypatch.setattr(builder, "build", record)
+    monkeypatch.setattr(readout, "record", read)  # the read-outs are read off the figure as it was drawn
     assert not held_elsewhere()
     if call == "figure_svg":
         model.figure_svg(SimpleNamespace(figure=object(), key="k", caption="c", note=""))
@@ -65,7 +71,7 @@ def test_the_apps_draws_hold_the_lock(monkeypatch, call):
         model.draw(SimpleNamespace(drawn=False, inputs=None, units="si"))
     else:
         model.close(SimpleNamespace(close=lambda: record()))
-    assert seen == [True]
+    assert seen == ([True, True] if call == "figure_svg" else [True])
     assert not held_elsewhere()
 
 

@@ -14,12 +14,13 @@ report's summary facts (:func:`flyopt.report.card.card_of`, the card a notebook 
 from __future__ import annotations
 
 import hashlib
+import json
 import shutil
 import tempfile
 from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 from flyopt.report.card import Row, card_of
 from flyopt.report.card import card_html as answer_card_html
@@ -176,6 +177,16 @@ def live(scene: Scene) -> bool:
     return not any(isinstance(curve, MotorTorque) for curve in (scene.driving, scene.resisting))
 
 
+class Shown(NamedTuple):
+    """One diagram as the page shows it: its key, caption, SVG ("" where it is not drawn: the note is in the
+    caption) and its read-outs, the JSON of :func:`flyopt.report.plots.readout.record` ("" for none)."""
+
+    key: str
+    caption: str
+    svg: str
+    readout: str = ""
+
+
 @dataclass
 class Answer:
     """What one solve shows: the status, the card, the diagrams (SVG), the JSON, the provenance.
@@ -187,7 +198,7 @@ class Answer:
     status: str
     verdict: str
     card: list[Row]
-    figures: list[tuple[str, str, str]]  # (key, caption, SVG or "" with the note in the caption)
+    figures: list[Shown]
     json: str
     provenance: tuple[tuple[str, str], ...]
     document: Document
@@ -279,17 +290,23 @@ def figure_blocks(document: Document) -> list[Any]:
     return [block for section in document.sections for block in section.blocks if isinstance(block, Figure)]
 
 
-def figure_svg(block: Any) -> tuple[str, str, str]:
-    """(key, caption, SVG) of one Figure block: the SVG "" and the note in the caption where it is not drawn."""
+def figure_svg(block: Any) -> Shown:
+    """One Figure block as the page shows it: the SVG "" and the note in the caption where it is not drawn, the
+    read-outs of its curves (:mod:`flyopt.report.plots.readout`, read off the figure as that SVG drew it)."""
     from flyopt.report.document import plain
     from flyopt.report.html import svg_of
+    from flyopt.report.plots import readout
 
-    with drawing():
-        svg = svg_of(block.figure, block.key) if block.figure is not None else ""
-    return block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg
+    svg = found = ""
+    if block.figure is not None:
+        with drawing():
+            svg = svg_of(block.figure, block.key)
+            recorded = readout.record(block.figure)
+        found = json.dumps(recorded, ensure_ascii=False, separators=(",", ":")) if recorded["axes"] else ""
+    return Shown(block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg, found)
 
 
-def drawn(answer: Answer, document: Document, figures: list[tuple[str, str, str]]) -> Answer:
+def drawn(answer: Answer, document: Document, figures: list[Shown]) -> Answer:
     """``answer`` with the document :func:`draw` built and its figures' SVG (what downloads render)."""
     from dataclasses import replace
 
@@ -308,7 +325,7 @@ def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer
     return drawn(answer, document, [figure_svg(block) for block in figure_blocks(document)])
 
 
-def _figures(document: Document) -> list[tuple[str, str, str]]:
+def _figures(document: Document) -> list[Shown]:
     return [figure_svg(block) for block in figure_blocks(document)]
 
 

@@ -261,7 +261,7 @@ class Session:
         if mine != self.generation:
             model.close(document)
             return
-        shown: list[tuple[str, str, str]] = []
+        shown: list[model.Shown] = []
         for block in model.figure_blocks(document):
             figure = await loop.run_in_executor(self.executor, model.figure_svg, block)
             if mine != self.generation:
@@ -279,17 +279,20 @@ class Session:
         if old is not None and old.document is not answer.document:
             model.close(old.document)
 
-    def _show_figures(self, figures: list[tuple[str, str, str]]) -> None:
-        """Show exactly ``figures`` (key, caption, SVG), in order."""
+    def _show_figures(self, figures: list[model.Shown]) -> None:
+        """Show exactly ``figures``, in order."""
         for index, figure in enumerate(figures):
             self._show_figure(index, *figure)
         del self.figure_slots[len(figures) :]
         if len(self.figures.objects) != len(figures):
             self.figures.objects = [slot[0] for slot in self.figure_slots]
 
-    def _show_figure(self, index: int, key: str, caption: str, svg: str) -> None:
-        """Show one diagram in the ``index``-th place: its panes kept and only their contents changed (the
-        browser redraws that diagram alone), a place added where there was none."""
+    def _show_figure(self, index: int, key: str, caption: str, svg: str, readout: str = "") -> None:
+        """Show one diagram in the ``index``-th place, with its read-outs under the pointer
+        (:mod:`flyopt.app.hover`): its panes kept and only their contents changed (the browser redraws that
+        diagram alone), a place added where there was none."""
+        from flyopt.app.hover import hover_figure
+
         pn = self.pn
         title = f"<b>{model.escape_text(caption)}</b>"
         body = _fluid(svg) if svg else ""
@@ -299,12 +302,11 @@ class Session:
             title_pane.object = title
             if svg_pane.css_classes != classes:
                 svg_pane.css_classes = classes
-            svg_pane.object = body
-            svg_pane.visible = bool(svg)
+            svg_pane.param.update(svg=body, readout=readout, key=key, visible=bool(svg))
             return
         title_pane = pn.pane.HTML(title, sizing_mode="stretch_width")
-        svg_pane = pn.pane.HTML(
-            body, css_classes=classes, stylesheets=[CSS], sizing_mode="stretch_width", visible=bool(svg)
+        svg_pane = hover_figure(
+            body, readout, key, css_classes=classes, stylesheets=[CSS], sizing_mode="stretch_width", visible=bool(svg)
         )
         column = pn.Column(title_pane, svg_pane, sizing_mode="stretch_width")
         self.figure_slots.append((column, title_pane, svg_pane))
