@@ -159,6 +159,12 @@ class Session:
         self.text = self.editor.value = text
         asyncio.ensure_future(self._debounced(text))
 
+    def load(self, text: str) -> None:
+        """Put ``text`` in the editor as a design loaded from another tab (a point of the Pareto front), shown on
+        the Design tab: checked and solved as a typed edit."""
+        self._set_text(text)
+        self.tabs.active = 0
+
     def _materials(self) -> dict[str, str]:
         """The scene's material library by key, with the names people read (the last valid text's)."""
         scene = self.checked.scene if self.checked is not None else None

@@ -95,6 +95,8 @@ class MaterialsTab:
         self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="flyopt-materials")
         self.generation = 0
         self.scene: Any = None
+        self.text = ""  # the scene's text, as the Design tab checked it: what a point of the front is loaded into
+        self.loaded = ""  # the text a click on the front last put in the editor
         self.units = ""
         self.table = None
         self.front = None
@@ -150,10 +152,10 @@ class MaterialsTab:
             self.scene = None
             return
         units = self.session.units.value
-        if scene is self.scene and units == self.units:
-            return
+        if (scene is self.scene or (self.loaded and checked.text == self.loaded)) and units == self.units:
+            return  # the same scene, or a point of this front loaded from here: the front and its ticks stay
         ticked = self.ticked_names() if scene is self.scene else materials.design_materials(scene)
-        self.scene, self.units = scene, units
+        self.scene, self.units, self.text, self.loaded = scene, units, checked.text, ""
         self.names = materials.display_names(scene)
         table = materials.library(scene)
         self.message.object = ""
@@ -229,15 +231,23 @@ class MaterialsTab:
         self.pareto_plot.svg = svg
 
     def _picked(self, _event: Any) -> None:
-        """A point of the front was clicked: its design beside the plot."""
+        """A point of the front was clicked: its design beside the plot, and loaded into the editor (the scene
+        that yields it: :func:`flyopt.app.materials.point_text`), where the Design tab solves it as an edit."""
         if self.front is None:
             return
         index = self.pareto_plot.picked
         try:
             lines = materials.point_rows(self.front, index, self.session.units.value, self.names)
+            text = materials.point_text(self.text, self.scene, self.front, index)
         except IndexError:
             return
-        self.point.object = materials.rows_html(f"Design of point {index} of the front", lines)
+        except (ValueError, KeyError) as err:  # no design at that point, a key the text cannot take
+            self.point.object = materials.rows_html(f"Design of point {index} of the front", lines)
+            self.message.object = _message(_error_text(err))
+            return
+        self.point.object = materials.rows_html(f"Design of point {index} of the front, loaded into the editor", lines)
+        self.loaded = text
+        self.session.load(text)  # on the Design tab: the card and the diagrams of that design
 
 
 def _card_css() -> str:
