@@ -322,3 +322,34 @@ def test_hovering_the_speed_diagram_reads_the_curve_at_the_pointer(server, brows
     page.mouse.move(5, 5)  # off the diagram: the read-out goes
     tip.wait_for(state="hidden", timeout=10_000)
     page.close()
+
+
+@pytest.mark.slow  # the page's load and a front of 15 designs; the loaded text is checked without a browser too
+def test_clicking_a_pareto_point_loads_its_design_into_the_editor(server, browser):
+    from flyopt.app import materials
+    from flyopt.io.scene import load
+    from flyopt.report import display
+
+    scene = load(ROOT / "problems" / "shear-press.toml")
+    front = materials.pareto_front(scene, ["cast_iron", "cast_steel"], materials.OBJECTIVES[0])
+    index = len(front) // 2
+    row = front.iloc[index]
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    page.goto(server, timeout=120_000)  # a loaded host loads the page slowly
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+    page.get_by_text("Compare materials", exact=True).click()
+    page.wait_for_selector(".tradeoff .tabulator-row", timeout=60_000)
+    page.get_by_text("Draw the front", exact=True).click()
+    page.wait_for_selector(".pareto-plot svg", timeout=120_000)
+    links = page.locator(".pareto-plot a")  # one a point, in the front's order (every point here is drawn)
+    assert links.count() == len(front)
+    assert links.nth(index).get_attribute("xlink:href").endswith(materials.PICK.format(index).lstrip("#"))
+    links.nth(index).click(force=True)
+    mass = display.quantity_text(float(row["mass"]), "mass", "engineering")
+    page.wait_for_selector(f".card >> text={mass}", timeout=120_000)  # the Design tab, solving the point's scene
+    text = page.locator(".ace_editor").first.evaluate("el => el.env.editor.getValue()")
+    assert f'materials = ["{row["best_material"]}"]' in text
+    assert f'max_outer_diameter = "{row["design.max_outer_diameter"] * 1000:.10g} mm"' in text
+    assert display.quantity_text(float(row["d_outer"]), "length", "engineering") in card(page).inner_text()
+    shot(page, "8-pareto-loaded")
+    page.close()
