@@ -19,6 +19,7 @@ import pytest
 from flyopt.app import materials, model, sweeps
 from flyopt.errors import SceneError
 from flyopt.io.scene import load
+from flyopt.report import display
 
 ROOT = Path(__file__).resolve().parents[2]
 SHEAR = ROOT / "problems" / "shear-press.toml"
@@ -150,8 +151,15 @@ def test_the_form_s_vary_text_is_read_by_flyopt_sweep_and_its_points_are_the_gri
         sweeps.CSV + ".json",
     }
     assert read_results(csv)["mass"].tolist() == pytest.approx(cli["mass"].tolist())
-    svg = sweeps.plot_svg(result.frame, "speed", "mass", "material")
+    svg, found = sweeps.plot_shown(result.frame, "speed", "mass", "material")
     assert svg.startswith("<svg")
+    (entry,) = json.loads(found)["axes"]  # the read-outs at the first speed: the command line's masses there
+    first = cli[np.isclose(cli["speed"], cli["speed"].min())]
+    assert entry["rows"][0][0] == "speed = 1,000 rpm"
+    assert sorted(entry["rows"][0][1:]) == sorted(
+        f"mass (material = {m}) = {display.quantity_text(v, 'mass', 'engineering')}"
+        for m, v in zip(first["material"], first["mass"])
+    )
     table = sweeps.table(result.frame, "engineering", materials.display_names(scene))
     assert table["speed [rpm]"].tolist() == [1000, 1000, 1250, 1250, 1500, 1500, 1750, 1750, 2000, 2000]
 

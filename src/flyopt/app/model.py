@@ -295,15 +295,22 @@ def figure_svg(block: Any) -> Shown:
     read-outs of its curves (:mod:`flyopt.report.plots.readout`, read off the figure as that SVG drew it)."""
     from flyopt.report.document import plain
     from flyopt.report.html import svg_of
-    from flyopt.report.plots import readout
 
     svg = found = ""
     if block.figure is not None:
         with drawing():
             svg = svg_of(block.figure, block.key)
-            recorded = readout.record(block.figure)
-        found = json.dumps(recorded, ensure_ascii=False, separators=(",", ":")) if recorded["axes"] else ""
+            found = readout_json(block.figure)
     return Shown(block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg, found)
+
+
+def readout_json(figure: Any) -> str:
+    """The read-outs of a figure just drawn (:func:`flyopt.report.plots.readout.record`) as compact JSON, ""
+    where it has none; call it under :func:`drawing`, right after the figure's SVG was drawn."""
+    from flyopt.report.plots import readout
+
+    recorded = readout.record(figure)
+    return json.dumps(recorded, ensure_ascii=False, separators=(",", ":")) if recorded["axes"] else ""
 
 
 def drawn(answer: Answer, document: Document, figures: list[Shown]) -> Answer:

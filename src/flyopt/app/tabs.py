@@ -15,6 +15,7 @@ from functools import cache
 from typing import Any
 
 from flyopt.app import materials, model, sweeps
+from flyopt.app.hover import hover_figure
 
 #: Shown where a tab needs a valid scene and the editor's text is not one.
 NO_SCENE = "The scene in the editor is not valid: fix it on the Design tab first."
@@ -334,7 +335,9 @@ class SweepsTab:
         self.by = pn.widgets.Select(name="one line per", options=[""], width=160)
         for widget in (self.x, self.y, self.by):
             widget.param.watch(lambda _e: self._draw(), "value")
-        self.plot = pn.pane.HTML("", width=620, stylesheets=[_card_css()], css_classes=["figure", "sweep-plot"])
+        self.plot = hover_figure(
+            "", "", "sweep", width=620, stylesheets=[_card_css()], css_classes=["figure", "sweep-plot"]
+        )
         downloads = pn.Row(
             pn.widgets.FileDownload(callback=self._file("parquet"), filename="sweep.parquet", label="Parquet"),
             pn.widgets.FileDownload(callback=self._file("csv"), filename="sweep.csv", label="CSV"),
@@ -512,10 +515,10 @@ class SweepsTab:
         if by == self.x.value:
             by = None
         try:
-            svg = sweeps.plot_svg(self.result.frame, self.x.value, self.y.value, by, self.session.units.value)
-            self.plot.object = _fluid(svg)
+            svg, found = sweeps.plot_shown(self.result.frame, self.x.value, self.y.value, by, self.session.units.value)
+            self.plot.param.update(svg=_fluid(svg), readout=found)
         except ValueError as err:
-            self.plot.object = _message(str(err))
+            self.plot.param.update(svg=_message(str(err)), readout="")
 
     def _file(self, kind: str) -> Any:
         def callback() -> io.BytesIO | None:
