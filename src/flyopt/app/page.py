@@ -122,7 +122,7 @@ class Session:
             pn.FlexBox(*downloads, flex_wrap="wrap"),
             self.stale,
             self.figures,
-            sizing_mode="stretch_both",
+            sizing_mode="stretch_width",
             min_width=520,
         )
         right.append(self.footer)
