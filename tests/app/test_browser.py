@@ -62,7 +62,9 @@ def server():
     try:
         for _ in range(600):
             try:
-                urllib.request.urlopen(url, timeout=1).close()
+                # a loaded host answers the page's first request in seconds; each request that timed out would
+                # leave one more session to build on the server
+                urllib.request.urlopen(url, timeout=60).close()
                 break
             except OSError:
                 if process.poll() is not None:
@@ -275,4 +277,79 @@ def test_a_scene_material_s_markup_is_shown_as_text_in_the_library(server, brows
     assert "<img src=q" in row.first.inner_text() and "<b>x</b>" in row.first.inner_text()
     assert page.locator(".library img").count() == 0 and page.locator(".library b").count() == 0
     assert page.evaluate("window.pwned") is None
+    page.close()
+
+
+def speed_of(path):
+    """The speed over the cycle of the scene's solve, (φ [deg], ω [rpm]): the curve the speed diagram draws, from
+    the analysis, not from the figure or its read-outs."""
+    import numpy as np
+
+    import flyopt
+
+    curve = flyopt.solve(flyopt.load(path), extras=("speed",)).analysis.speed_curve()
+    return np.degrees(np.asarray(curve.phi, dtype=float)), np.asarray(curve.omega, dtype=float) * 30.0 / np.pi
+
+
+@pytest.mark.slow  # the page's load; the read-outs' numbers are checked without a browser in test_plots_readout.py
+def test_hovering_the_speed_diagram_reads_the_curve_at_the_pointer(server, browser):
+    import numpy as np
+
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    page.goto(server, timeout=120_000)  # a loaded host loads the page slowly
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+    figure = page.locator(".figure-speed svg").first
+    figure.wait_for(timeout=60_000)
+    figure.scroll_into_view_if_needed()
+    phi, omega = speed_of(ROOT / "problems" / "shear-press.toml")
+    tip = page.locator(".figure-speed .readout").first
+    box = figure.bounding_box()
+    for fraction in (0.3, 0.55, 0.8):  # across the axes, which span most of the figure's width
+        page.mouse.move(box["x"] + fraction * box["width"], box["y"] + 0.5 * box["height"])
+        tip.wait_for(state="visible", timeout=10_000)
+        lines = tip.inner_text().splitlines()
+        at = re.fullmatch(r"φ = ([0-9.,]+) deg", lines[0])
+        shown = re.fullmatch(r"ω = ([0-9.,]+) rpm", lines[1])
+        assert at and shown, lines
+        x, y = float(at.group(1).replace(",", "")), float(shown.group(1).replace(",", ""))
+        # four significant figures: ω within half its last digit of the curve at φ (φ itself within half of its
+        # last digit: the curve's change over that is allowed too)
+        true = np.interp(x, phi, omega)
+        spread = abs(np.interp(x + 0.05, phi, omega) - np.interp(x - 0.05, phi, omega))
+        assert abs(y - true) <= 0.5 + spread, (lines, true)
+        assert page.locator(".figure-speed .readout-guide line").count() == 1
+    shot(page, "7-hover")
+    page.mouse.move(5, 5)  # off the diagram: the read-out goes
+    tip.wait_for(state="hidden", timeout=10_000)
+    page.close()
+
+
+@pytest.mark.slow  # the page's load and a front of 15 designs; the loaded text is checked without a browser too
+def test_clicking_a_pareto_point_loads_its_design_into_the_editor(server, browser):
+    from flyopt.app import materials
+    from flyopt.io.scene import load
+    from flyopt.report import display
+
+    scene = load(ROOT / "problems" / "shear-press.toml")
+    front = materials.pareto_front(scene, ["cast_iron", "cast_steel"], materials.OBJECTIVES[0])
+    index = len(front) // 2
+    row = front.iloc[index]
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    page.goto(server, timeout=120_000)  # a loaded host loads the page slowly
+    page.wait_for_selector(".card >> text=designed", timeout=120_000)
+    page.get_by_text("Compare materials", exact=True).click()
+    page.wait_for_selector(".tradeoff .tabulator-row", timeout=60_000)
+    page.get_by_text("Draw the front", exact=True).click()
+    page.wait_for_selector(".pareto-plot svg", timeout=120_000)
+    links = page.locator(".pareto-plot a")  # one a point, in the front's order (every point here is drawn)
+    assert links.count() == len(front)
+    assert links.nth(index).get_attribute("xlink:href").endswith(materials.PICK.format(index).lstrip("#"))
+    links.nth(index).click(force=True)
+    mass = display.quantity_text(float(row["mass"]), "mass", "engineering")
+    page.wait_for_selector(f".card >> text={mass}", timeout=120_000)  # the Design tab, solving the point's scene
+    text = page.locator(".ace_editor").first.evaluate("el => el.env.editor.getValue()")
+    assert f'materials = ["{row["best_material"]}"]' in text
+    assert f'max_outer_diameter = "{row["design.max_outer_diameter"] * 1000:.10g} mm"' in text
+    assert display.quantity_text(float(row["d_outer"]), "length", "engineering") in card(page).inner_text()
+    shot(page, "8-pareto-loaded")
     page.close()

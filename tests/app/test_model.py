@@ -153,9 +153,12 @@ def test_the_figures_are_the_reports_and_the_downloads_open(workspace):
     from pypdf import PdfReader
 
     answer = model.solve(model.template_text("shear-press"), workspace)
-    keys = [key for key, _, svg in answer.figures if svg]
+    keys = [key for key, _, svg, _ in answer.figures if svg]
     assert {"turning_moment", "energy", "stress", "cross_section", "speed"} <= set(keys)
-    assert all(svg.lstrip().startswith("<svg") for _, _, svg in answer.figures if svg)
+    assert all(svg.lstrip().startswith("<svg") for _, _, svg, _ in answer.figures if svg)
+    readouts = {f.key: f.readout for f in answer.figures}  # the curves' read-outs, none on the drawing
+    assert json.loads(readouts["speed"])["axes"][0]["rows"][0][0].startswith("φ = ")
+    assert readouts["cross_section"] == ""
     html = model.report_bytes(answer, "html").decode("utf-8")
     assert "Shear press (worked example 2)" in html
     import io
@@ -185,11 +188,11 @@ def test_the_card_comes_first_from_the_same_solve_and_the_diagrams_draw_without_
     document = model.draw(first)
     figures = [model.figure_svg(block) for block in model.figure_blocks(document)]
     done = model.drawn(first, document, figures)
-    assert done.drawn and [k for k, _, _ in done.figures] == [k for k, _, _ in whole.figures]
-    assert [k for k, _, svg in done.figures if svg] == [k for k, _, svg in whole.figures if svg]
+    assert done.drawn and [f.key for f in done.figures] == [f.key for f in whole.figures]
+    assert [f.key for f in done.figures if f.svg] == [f.key for f in whole.figures if f.svg]
     # a download of an answer whose diagrams are not drawn yet draws them (the report is whole)
     html = model.report_bytes(first, "html").decode("utf-8")
-    assert html.count("<svg") == sum(1 for _, _, svg in whole.figures if svg)
+    assert html.count("<svg") == sum(1 for f in whole.figures if f.svg)
 
 
 def test_user_strings_are_escaped(workspace):

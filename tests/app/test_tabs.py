@@ -19,6 +19,7 @@ import pytest
 from flyopt.app import materials, model, sweeps
 from flyopt.errors import SceneError
 from flyopt.io.scene import load
+from flyopt.report import display
 
 ROOT = Path(__file__).resolve().parents[2]
 SHEAR = ROOT / "problems" / "shear-press.toml"
@@ -150,8 +151,15 @@ def test_the_form_s_vary_text_is_read_by_flyopt_sweep_and_its_points_are_the_gri
         sweeps.CSV + ".json",
     }
     assert read_results(csv)["mass"].tolist() == pytest.approx(cli["mass"].tolist())
-    svg = sweeps.plot_svg(result.frame, "speed", "mass", "material")
+    svg, found = sweeps.plot_shown(result.frame, "speed", "mass", "material")
     assert svg.startswith("<svg")
+    (entry,) = json.loads(found)["axes"]  # the read-outs at the first speed: the command line's masses there
+    first = cli[np.isclose(cli["speed"], cli["speed"].min())]
+    assert entry["rows"][0][0] == "speed = 1,000 rpm"
+    assert sorted(entry["rows"][0][1:]) == sorted(
+        f"mass (material = {m}) = {display.quantity_text(v, 'mass', 'engineering')}"
+        for m, v in zip(first["material"], first["mass"])
+    )
     table = sweeps.table(result.frame, "engineering", materials.display_names(scene))
     assert table["speed [rpm]"].tolist() == [1000, 1000, 1250, 1250, 1500, 1500, 1750, 1750, 2000, 2000]
 
@@ -167,3 +175,39 @@ def test_a_sweep_over_the_limit_or_of_an_unknown_field_is_refused_in_the_command
         sweeps.plan(scene, [sweeps.Axis("speed", "", "2", 3)])
     first, total = sweeps.estimate(scene, [sweeps.Axis("speed", "1000", "2000", 5, unit="rpm")], 5)
     assert 0 < first and total == pytest.approx(5 * first)
+
+
+@pytest.mark.parametrize("objectives", ["mass,outer_diameter", "mass,delta"])
+def test_a_point_of_the_front_loaded_into_the_text_solves_to_that_point(workspace, objectives):
+    """The text a click on the front loads is solved by flyopt's own solve (not the sweep that made the front) to
+    the point's design: its material, mass and D; the scene's comments and layout kept."""
+    import flyopt
+
+    text = SHEAR.read_text(encoding="utf-8")
+    scene = load(SHEAR)
+    front = materials.pareto_front(scene, ["cast_iron", "cast_steel"], objectives, points=4)
+    assert len(front) >= 3
+    for index in range(len(front)):
+        loaded = materials.point_text(text, scene, front, index)
+        assert all(line in loaded.splitlines() for line in text.splitlines() if line.startswith("#"))
+        design = flyopt.solve(flyopt.load(workspace.write(loaded))).design
+        assert design.status == "designed"
+        best, row = design.best, front.iloc[index]
+        assert best.material == row["best_material"]
+        assert best.mass == pytest.approx(row["mass"], rel=1e-6)
+        assert best.dims.d_outer == pytest.approx(row["d_outer"], rel=1e-6)
+    changed = dict(materials.point_changes(scene, front, 1))
+    if objectives == "mass,delta":
+        assert float(changed["machine.delta"]) == pytest.approx(front["delta"].iloc[1], rel=1e-9)
+    else:
+        assert changed["design.max_outer_diameter"].endswith(' mm"')
+    assert changed["design.materials"] == f'["{front["best_material"].iloc[1]}"]'
+
+
+def test_a_point_without_a_design_is_not_loaded():
+    scene = load(SHEAR)
+    front = pd.DataFrame({"status": ["infeasible"], "best_material": [None], "mass": [math.nan]})
+    with pytest.raises(ValueError, match="no design"):
+        materials.point_changes(scene, front, 0)
+    with pytest.raises(IndexError):
+        materials.point_changes(scene, front, 3)

@@ -129,10 +129,10 @@ def literal(shown: str) -> str:
         value = None
     if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
         return text
-    return _string(text)
+    return toml_string(text)
 
 
-def _string(text: str) -> str:
+def toml_string(text: str) -> str:
     """``text`` as a TOML basic string: JSON's escapes, and DEL and the C1 controls (which TOML refuses raw)."""
     quoted = json.dumps(text, ensure_ascii=False)  # a JSON string is a TOML basic string but for these
     return re.sub(r"[\x7f-\x9f]", lambda m: f"\\u{ord(m.group()):04x}", quoted)
@@ -146,7 +146,7 @@ def set_field(text: str, field: Field, shown: Any) -> str:
     """
     if field.kind == "materials":
         names = [str(name) for name in shown]
-        return set_value(text, field.path, "[" + ", ".join(_string(n) for n in names) + "]")
+        return set_value(text, field.path, "[" + ", ".join(toml_string(n) for n in names) + "]")
     typed = str(shown).strip()
     if not typed:
         return text

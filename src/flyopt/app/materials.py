@@ -53,7 +53,7 @@ TRADEOFF_SHOWN = (
 CHART = (("mass", "mass"), ("d_outer", "outer diameter D"), ("cost", "cost"))
 
 #: The Pareto fronts the tab offers (``flyopt pareto --objectives``) and its number of ε values.
-OBJECTIVES = ("mass,outer_diameter", "mass,cost")
+OBJECTIVES = ("mass,outer_diameter", "mass,cost", "mass,delta")
 PARETO_POINTS = 15
 
 
@@ -219,13 +219,20 @@ def library_shown(table: pd.DataFrame, units: str, digits: int | None = None) ->
 def chart_svg(table: pd.DataFrame, units: str, names: dict[str, str] | None = None) -> str:
     """A chart of mass, outer diameter D and cost per material of a trade-off table, as inline SVG ("" for no
     designed material): one bar chart each, in the unit system, the lightest material first."""
-    from flyopt.report import display
-    from flyopt.report.html import svg_of
     from flyopt.report.plots import standard
 
     designed = table[table["status"] == "designed"]
     if designed.empty:
         return ""
+    with standard.LOCK:  # drawn in the tab's worker thread: one draw at a time (matplotlib is not thread-safe)
+        return _chart_svg(designed, units, names)
+
+
+def _chart_svg(designed: pd.DataFrame, units: str, names: dict[str, str] | None) -> str:
+    from flyopt.report import display
+    from flyopt.report.html import svg_of
+    from flyopt.report.plots import standard
+
     labels = [(names or {}).get(m, m) for m in designed["material"]]
     figure = standard.figure_class()(figsize=(9, 2.8))
     axes = figure.subplots(1, len(CHART))
@@ -270,15 +277,23 @@ PICK = "#pick-{}"
 def pareto_svg(front: pd.DataFrame, units: str) -> str:
     """The front drawn by the report's :func:`~flyopt.report.plots.plot_pareto` (mass against the other
     objective), each designed point made a link ``#pick-N`` (an unseen dot over it) for the page to load."""
+    from flyopt.report import plots
+    from flyopt.report.plots import standard
+
+    other = str(front.columns[1])
+    with standard.LOCK:  # drawn in the tab's worker thread: one draw at a time (matplotlib is not thread-safe)
+        ax = plots.plot_pareto(front, other, "mass", units=units)
+        return _pareto_svg(front, ax, other, units)
+
+
+def _pareto_svg(front: pd.DataFrame, ax: Any, other: str, units: str) -> str:
     import numpy as np
 
-    from flyopt.report import display, plots
+    from flyopt.report import display
     from flyopt.report.html import svg_of
     from flyopt.report.plots import standard
     from flyopt.studies.pareto import PARETO_OBJECTIVES
 
-    other = str(front.columns[1])
-    ax = plots.plot_pareto(front, other, "mass", units=units)
     dimension = PARETO_OBJECTIVES.get(other)
     xs = front[other].to_numpy(dtype=float)
     xs = xs if dimension is None else np.asarray(display.show(xs, dimension, units))
@@ -291,7 +306,7 @@ def pareto_svg(front: pd.DataFrame, units: str) -> str:
     try:
         return svg_of(figure, "pareto")
     finally:
-        standard.pyplot().close(figure)
+        standard.close(figure)
 
 
 #: The point's design as the panel lists it: (label, column).
@@ -345,6 +360,65 @@ def point_rows(
             text = display.field_text(float(value), column, units)
         lines.append((label, text))
     return lines
+
+
+def point_changes(scene: Scene, front: pd.DataFrame, index: int) -> list[tuple[str, str]]:
+    """What the scene's TOML must say for its design to be the front's point ``index``: (key path, TOML value).
+
+    The point's material and shaft (``[design] materials`` and, where the scene has several, ``shafts``), and
+    the constraint that made the point where it is not the scene's own: the objective (the front's first point
+    is the smallest wheel: ``objective = "outer_diameter"``), the envelope ε (``max_outer_diameter``, in mm to
+    ten significant figures: the wheel's D is ε where it binds) or δ. The point's row is the sweep's
+    (:func:`flyopt.studies.points.point_scene` made its scene from the same fields). IndexError for a row the
+    front does not have (a stale click); ValueError for a point with no design (nothing to load).
+    """
+    from flyopt.app.form import literal
+
+    row = front.iloc[index]
+    material = row.get("best_material")
+    if not isinstance(material, str) or row.get("status") != "designed":
+        raise ValueError(f"point {index} of the front has no design to load")
+    changes = [("design.materials", f"[{_quoted(material)}]")]
+    shaft = row.get("best_shaft")
+    if isinstance(shaft, str) and len(scene.shafts) > 1:
+        changes.append(("design.shafts", f"[{_quoted(shaft)}]"))
+    spec = scene.design
+    objective = row.get("design.objective")
+    if isinstance(objective, str) and spec is not None and objective != spec.objective:
+        changes.append(("design.objective", _quoted(objective)))
+    envelope = _finite(row.get("design.max_outer_diameter"))
+    if envelope is not None and spec is not None and not math.isclose(envelope, spec.max_outer_diameter, rel_tol=1e-12):
+        changes.append(("design.max_outer_diameter", _quoted(f"{envelope * 1000:.10g} mm")))
+    delta = _finite(row.get("delta"))
+    if delta is not None and not math.isclose(delta, scene.allowed_delta, rel_tol=1e-12):
+        changes.append(("machine.delta", literal(f"{delta:.10g}")))
+    return changes
+
+
+def point_text(text: str, scene: Scene, front: pd.DataFrame, index: int) -> str:
+    """``text`` (the scene the front was drawn of) made the scene whose design is the front's point ``index``:
+    :func:`point_changes` written by the form's one editing path (:func:`flyopt.cli.toml_lines.set_value`:
+    comments and layout kept, a key not written added to its table)."""
+    from flyopt.cli.toml_lines import set_value
+
+    for path, value in point_changes(scene, front, index):
+        text = set_value(text, path, value)
+    return text
+
+
+def _quoted(text: str) -> str:
+    """A TOML basic string (the form's own quoting)."""
+    from flyopt.app.form import toml_string
+
+    return toml_string(text)
+
+
+def _finite(value: Any) -> float | None:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        return None
+    return number if math.isfinite(number) else None
 
 
 def rows_html(title: str, lines: Sequence[tuple[str, str]]) -> str:

@@ -14,11 +14,13 @@ report's summary facts (:func:`flyopt.report.card.card_of`, the card a notebook 
 from __future__ import annotations
 
 import hashlib
+import json
 import shutil
 import tempfile
+from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 from flyopt.report.card import Row, card_of
 from flyopt.report.card import card_html as answer_card_html
@@ -175,6 +177,16 @@ def live(scene: Scene) -> bool:
     return not any(isinstance(curve, MotorTorque) for curve in (scene.driving, scene.resisting))
 
 
+class Shown(NamedTuple):
+    """One diagram as the page shows it: its key, caption, SVG ("" where it is not drawn: the note is in the
+    caption) and its read-outs, the JSON of :func:`flyopt.report.plots.readout.record` ("" for none)."""
+
+    key: str
+    caption: str
+    svg: str
+    readout: str = ""
+
+
 @dataclass
 class Answer:
     """What one solve shows: the status, the card, the diagrams (SVG), the JSON, the provenance.
@@ -186,7 +198,7 @@ class Answer:
     status: str
     verdict: str
     card: list[Row]
-    figures: list[tuple[str, str, str]]  # (key, caption, SVG or "" with the note in the caption)
+    figures: list[Shown]
     json: str
     provenance: tuple[tuple[str, str], ...]
     document: Document
@@ -216,7 +228,8 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
     path = workspace.write(text)
     inputs = collect(path, f"flyopt app ({SCENE_NAME})", pdf=False)
     calculation = isinstance(inputs, CalculationInputs)
-    document = build(inputs, units, figures=calculation)
+    with drawing():  # a calculation's report draws its figures
+        document = build(inputs, units, figures=calculation)
     if isinstance(inputs, CalculationInputs):
         json = json_text(calculation_document(inputs.what, inputs.scene.title, path, inputs.result.to_dict()))
     else:
@@ -250,7 +263,24 @@ def draw(answer: Answer) -> Document:
 
     if answer.drawn:
         return answer.document
-    return build(answer.inputs, answer.units)
+    with drawing():
+        return build(answer.inputs, answer.units)
+
+
+def drawing() -> AbstractContextManager[Any]:
+    """Held around every draw of the app (making figures, rendering them, closing them): the report's one
+    drawing lock (:data:`flyopt.report.plots.standard.LOCK`), since the app draws from worker threads and
+    matplotlib is not thread-safe."""
+    from flyopt.report.plots import standard
+
+    return standard.LOCK
+
+
+def close(document: Document) -> None:
+    """Close ``document``'s figures (:meth:`~flyopt.report.document.Document.close`) under the
+    drawing lock."""
+    with drawing():
+        document.close()
 
 
 def figure_blocks(document: Document) -> list[Any]:
@@ -260,16 +290,30 @@ def figure_blocks(document: Document) -> list[Any]:
     return [block for section in document.sections for block in section.blocks if isinstance(block, Figure)]
 
 
-def figure_svg(block: Any) -> tuple[str, str, str]:
-    """(key, caption, SVG) of one Figure block: the SVG "" and the note in the caption where it is not drawn."""
+def figure_svg(block: Any) -> Shown:
+    """One Figure block as the page shows it: the SVG "" and the note in the caption where it is not drawn, the
+    read-outs of its curves (:mod:`flyopt.report.plots.readout`, read off the figure as that SVG drew it)."""
     from flyopt.report.document import plain
     from flyopt.report.html import svg_of
 
-    svg = svg_of(block.figure, block.key) if block.figure is not None else ""
-    return block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg
+    svg = found = ""
+    if block.figure is not None:
+        with drawing():
+            svg = svg_of(block.figure, block.key)
+            found = readout_json(block.figure)
+    return Shown(block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg, found)
 
 
-def drawn(answer: Answer, document: Document, figures: list[tuple[str, str, str]]) -> Answer:
+def readout_json(figure: Any) -> str:
+    """The read-outs of a figure just drawn (:func:`flyopt.report.plots.readout.record`) as compact JSON, ""
+    where it has none; call it under :func:`drawing`, right after the figure's SVG was drawn."""
+    from flyopt.report.plots import readout
+
+    recorded = readout.record(figure)
+    return json.dumps(recorded, ensure_ascii=False, separators=(",", ":")) if recorded["axes"] else ""
+
+
+def drawn(answer: Answer, document: Document, figures: list[Shown]) -> Answer:
     """``answer`` with the document :func:`draw` built and its figures' SVG (what downloads render)."""
     from dataclasses import replace
 
@@ -288,25 +332,26 @@ def solve(text: str, workspace: Workspace, units: str = "engineering") -> Answer
     return drawn(answer, document, [figure_svg(block) for block in figure_blocks(document)])
 
 
-def _figures(document: Document) -> list[tuple[str, str, str]]:
+def _figures(document: Document) -> list[Shown]:
     return [figure_svg(block) for block in figure_blocks(document)]
 
 
 def report_bytes(answer: Answer, kind: str) -> bytes:
     """The report of ``answer`` as ``kind`` ("html" or "pdf"), by the report's own renderers, with its
     diagrams (drawn here for an answer whose diagrams are not yet: nothing is solved again)."""
-    document = draw(answer)
-    try:
-        if kind == "html":
-            from flyopt.report.html import render
+    with drawing():  # called on the server's event loop while a worker may draw
+        document = draw(answer)
+        try:
+            if kind == "html":
+                from flyopt.report.html import render
 
-            return render(document).encode("utf-8")
-        from flyopt.report.pdf import render as render_pdf
+                return render(document).encode("utf-8")
+            from flyopt.report.pdf import render as render_pdf
 
-        return render_pdf(document)
-    finally:
-        if document is not answer.document:
-            document.close()
+            return render_pdf(document)
+        finally:
+            if document is not answer.document:
+                document.close()
 
 
 #: The wheel's manufacturing files the page offers, as ``flyopt export`` writes them: (kind, label, file name).

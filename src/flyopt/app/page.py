@@ -122,7 +122,7 @@ class Session:
             pn.FlexBox(*downloads, flex_wrap="wrap"),
             self.stale,
             self.figures,
-            sizing_mode="stretch_both",
+            sizing_mode="stretch_width",
             min_width=520,
         )
         right.append(self.footer)
@@ -158,6 +158,12 @@ class Session:
         """The form's change, put into the editor (and so checked and solved as a typed edit)."""
         self.text = self.editor.value = text
         asyncio.ensure_future(self._debounced(text))
+
+    def load(self, text: str) -> None:
+        """Put ``text`` in the editor as a design loaded from another tab (a point of the Pareto front), shown on
+        the Design tab: checked and solved as a typed edit."""
+        self._set_text(text)
+        self.tabs.active = 0
 
     def _materials(self) -> dict[str, str]:
         """The scene's material library by key, with the names people read (the last valid text's)."""
@@ -259,13 +265,13 @@ class Session:
         one diagram at most)."""
         document = await loop.run_in_executor(self.executor, model.draw, answer)
         if mine != self.generation:
-            document.close()
+            model.close(document)
             return
-        shown: list[tuple[str, str, str]] = []
+        shown: list[model.Shown] = []
         for block in model.figure_blocks(document):
             figure = await loop.run_in_executor(self.executor, model.figure_svg, block)
             if mine != self.generation:
-                document.close()
+                model.close(document)
                 return
             shown.append(figure)
             self._show_figure(len(shown) - 1, *figure)
@@ -277,19 +283,22 @@ class Session:
         old, self.answer = self.answer, answer
         self.stale.object = ""
         if old is not None and old.document is not answer.document:
-            old.document.close()
+            model.close(old.document)
 
-    def _show_figures(self, figures: list[tuple[str, str, str]]) -> None:
-        """Show exactly ``figures`` (key, caption, SVG), in order."""
+    def _show_figures(self, figures: list[model.Shown]) -> None:
+        """Show exactly ``figures``, in order."""
         for index, figure in enumerate(figures):
             self._show_figure(index, *figure)
         del self.figure_slots[len(figures) :]
         if len(self.figures.objects) != len(figures):
             self.figures.objects = [slot[0] for slot in self.figure_slots]
 
-    def _show_figure(self, index: int, key: str, caption: str, svg: str) -> None:
-        """Show one diagram in the ``index``-th place: its panes kept and only their contents changed (the
-        browser redraws that diagram alone), a place added where there was none."""
+    def _show_figure(self, index: int, key: str, caption: str, svg: str, readout: str = "") -> None:
+        """Show one diagram in the ``index``-th place, with its read-outs under the pointer
+        (:mod:`flyopt.app.hover`): its panes kept and only their contents changed (the browser redraws that
+        diagram alone), a place added where there was none."""
+        from flyopt.app.hover import hover_figure
+
         pn = self.pn
         title = f"<b>{model.escape_text(caption)}</b>"
         body = _fluid(svg) if svg else ""
@@ -299,12 +308,11 @@ class Session:
             title_pane.object = title
             if svg_pane.css_classes != classes:
                 svg_pane.css_classes = classes
-            svg_pane.object = body
-            svg_pane.visible = bool(svg)
+            svg_pane.param.update(svg=body, readout=readout, key=key, visible=bool(svg))
             return
         title_pane = pn.pane.HTML(title, sizing_mode="stretch_width")
-        svg_pane = pn.pane.HTML(
-            body, css_classes=classes, stylesheets=[CSS], sizing_mode="stretch_width", visible=bool(svg)
+        svg_pane = hover_figure(
+            body, readout, key, css_classes=classes, stylesheets=[CSS], sizing_mode="stretch_width", visible=bool(svg)
         )
         column = pn.Column(title_pane, svg_pane, sizing_mode="stretch_width")
         self.figure_slots.append((column, title_pane, svg_pane))

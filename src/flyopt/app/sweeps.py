@@ -229,15 +229,25 @@ def plot_svg(frame: pd.DataFrame, x: str, y: str = "mass", by: str | None = None
 
     ValueError as the plot says it (an unknown column, more lines than it draws).
     """
+    return plot_shown(frame, x, y, by, units)[0]
+
+
+def plot_shown(
+    frame: pd.DataFrame, x: str, y: str = "mass", by: str | None = None, units: str = "engineering"
+) -> tuple[str, str]:
+    """(SVG, read-outs) of the sweep plot (:func:`plot_svg`; the read-outs' JSON of
+    :func:`flyopt.app.model.readout_json`, "" where an axis has no unit to read it in)."""
+    from flyopt.app.model import readout_json
     from flyopt.report.html import svg_of
     from flyopt.report.plots import plot_sweep, standard
 
-    ax = plot_sweep(frame, x, y, by, units=units)
-    figure = standard.figure_of(ax)
-    try:
-        return svg_of(figure, "sweep")
-    finally:
-        standard.pyplot().close(figure)
+    with standard.LOCK:  # drawn in the tab's worker thread: one draw at a time (matplotlib is not thread-safe)
+        ax = plot_sweep(frame, x, y, by, units=units)
+        figure = standard.figure_of(ax)
+        try:
+            return svg_of(figure, "sweep"), readout_json(figure)
+        finally:
+            standard.close(figure)
 
 
 #: The table's columns after the varied fields: the answer of each point.

@@ -15,6 +15,7 @@ from functools import cache
 from typing import Any
 
 from flyopt.app import materials, model, sweeps
+from flyopt.app.hover import hover_figure
 
 #: Shown where a tab needs a valid scene and the editor's text is not one.
 NO_SCENE = "The scene in the editor is not valid: fix it on the Design tab first."
@@ -95,6 +96,8 @@ class MaterialsTab:
         self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="flyopt-materials")
         self.generation = 0
         self.scene: Any = None
+        self.text = ""  # the scene's text, as the Design tab checked it: what a point of the front is loaded into
+        self.loaded = ""  # the text a click on the front last put in the editor
         self.units = ""
         self.table = None
         self.front = None
@@ -150,10 +153,10 @@ class MaterialsTab:
             self.scene = None
             return
         units = self.session.units.value
-        if scene is self.scene and units == self.units:
-            return
+        if (scene is self.scene or (self.loaded and checked.text == self.loaded)) and units == self.units:
+            return  # the same scene, or a point of this front loaded from here: the front and its ticks stay
         ticked = self.ticked_names() if scene is self.scene else materials.design_materials(scene)
-        self.scene, self.units = scene, units
+        self.scene, self.units, self.text, self.loaded = scene, units, checked.text, ""
         self.names = materials.display_names(scene)
         table = materials.library(scene)
         self.message.object = ""
@@ -229,15 +232,23 @@ class MaterialsTab:
         self.pareto_plot.svg = svg
 
     def _picked(self, _event: Any) -> None:
-        """A point of the front was clicked: its design beside the plot."""
+        """A point of the front was clicked: its design beside the plot, and loaded into the editor (the scene
+        that yields it: :func:`flyopt.app.materials.point_text`), where the Design tab solves it as an edit."""
         if self.front is None:
             return
         index = self.pareto_plot.picked
         try:
             lines = materials.point_rows(self.front, index, self.session.units.value, self.names)
+            text = materials.point_text(self.text, self.scene, self.front, index)
         except IndexError:
             return
-        self.point.object = materials.rows_html(f"Design of point {index} of the front", lines)
+        except (ValueError, KeyError) as err:  # no design at that point, a key the text cannot take
+            self.point.object = materials.rows_html(f"Design of point {index} of the front", lines)
+            self.message.object = _message(_error_text(err))
+            return
+        self.point.object = materials.rows_html(f"Design of point {index} of the front, loaded into the editor", lines)
+        self.loaded = text
+        self.session.load(text)  # on the Design tab: the card and the diagrams of that design
 
 
 def _card_css() -> str:
@@ -324,7 +335,9 @@ class SweepsTab:
         self.by = pn.widgets.Select(name="one line per", options=[""], width=160)
         for widget in (self.x, self.y, self.by):
             widget.param.watch(lambda _e: self._draw(), "value")
-        self.plot = pn.pane.HTML("", width=620, stylesheets=[_card_css()], css_classes=["figure", "sweep-plot"])
+        self.plot = hover_figure(
+            "", "", "sweep", width=620, stylesheets=[_card_css()], css_classes=["figure", "sweep-plot"]
+        )
         downloads = pn.Row(
             pn.widgets.FileDownload(callback=self._file("parquet"), filename="sweep.parquet", label="Parquet"),
             pn.widgets.FileDownload(callback=self._file("csv"), filename="sweep.csv", label="CSV"),
@@ -502,10 +515,10 @@ class SweepsTab:
         if by == self.x.value:
             by = None
         try:
-            svg = sweeps.plot_svg(self.result.frame, self.x.value, self.y.value, by, self.session.units.value)
-            self.plot.object = _fluid(svg)
+            svg, found = sweeps.plot_shown(self.result.frame, self.x.value, self.y.value, by, self.session.units.value)
+            self.plot.param.update(svg=_fluid(svg), readout=found)
         except ValueError as err:
-            self.plot.object = _message(str(err))
+            self.plot.param.update(svg=_message(str(err)), readout="")
 
     def _file(self, kind: str) -> Any:
         def callback() -> io.BytesIO | None:

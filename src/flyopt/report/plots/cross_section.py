@@ -291,7 +291,6 @@ def plot_cross_section(
     bottom_in = 0.25
     own = ax is None
     if ax is None:
-        plt = standard.pyplot()
         scale = min(_SECTION_HEIGHT / (2 * r_o), 5.0 / w_max)  # [in per drawing unit]
         lines_in, right_in = _diameter_lines(diameters, texts, scale)
         width_in = w_max * scale + left_in + right_in
@@ -301,18 +300,18 @@ def plot_cross_section(
         notes_in = 0.17 * note_lines + (0.15 if notes else 0.0)
         fig_w = max(width_in + front_in + 2 * margin, 7.0)
         fig_h = height_in + title_in + notes_in + 2 * margin
-        fig = plt.figure(figsize=(fig_w, fig_h), FigureClass=standard.figure_class())
+        fig = standard.new_figure(figsize=(fig_w, fig_h))
         x0 = (fig_w - width_in - front_in) / 2.0
-        ax = fig.add_axes([x0 / fig_w, (margin + notes_in) / fig_h, width_in / fig_w, height_in / fig_h])
+        ax = fig.add_axes((x0 / fig_w, (margin + notes_in) / fig_h, width_in / fig_w, height_in / fig_h))
         if arms:
             size = 0.62 * 2 * r_o * scale + 0.3
             front = fig.add_axes(
-                [
+                (
                     (x0 + width_in + 0.3) / fig_w,
                     (margin + notes_in + (height_in - size) / 2) / fig_h,
                     size / fig_w,
                     size / fig_h,
-                ]
+                )
             )
             _front_view(front, c, arms, _mm_text)
     else:

@@ -13,7 +13,7 @@ from flyopt.cycle.torque import Constant
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report import display
-from flyopt.report.plots import standard
+from flyopt.report.plots import readout, standard
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -27,13 +27,15 @@ if TYPE_CHECKING:
 Mark = tuple[float, str, str, str, str]
 
 
-def angle_axis(ax: Axes, cycle_angle: float, units: str) -> float:
-    """The x axis of every diagram of the cycle: the crank angle from 0 to Φ, ticks at whole fractions."""
+def angle_axis(ax: Axes, cycle_angle: float, units: str, digits: int = display.DEFAULT_DIGITS) -> float:
+    """The x axis of every diagram of the cycle: the crank angle from 0 to Φ, ticks at whole fractions; read out
+    as φ (:mod:`~flyopt.report.plots.readout`)."""
     from matplotlib.ticker import MultipleLocator
 
     end = float(standard.show(cycle_angle, "angle", units))
     ax.set_xlim(0.0, end)
     ax.set_xlabel(standard.axis_label("crank angle φ", "angle", units))
+    readout.abscissa(ax, "φ", standard.scale("angle", units, digits=digits))
     if display.label("angle", units) == "deg":
         ax.xaxis.set_major_locator(MultipleLocator(90 if end > 400 else 45))
     return end

@@ -10,7 +10,7 @@ import numpy.typing as npt
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report import display
-from flyopt.report.plots import standard
+from flyopt.report.plots import readout, standard
 from flyopt.report.plots.cycle import Torques, angle_axis, excess_work, mark_dead_centres
 
 if TYPE_CHECKING:
@@ -73,15 +73,16 @@ def plot_energy(
     else:
         x_chain = standard.show(ind.chain_angle, "angle", units)
         frozen = " (torques frozen at ω_m, the motor at its mean)" if analysis.model == Model.DYNAMIC else ""
-        ax.plot(
+        (line,) = ax.plot(
             standard.show(phi, "angle", units),
             energy.show(curve),
             color="tab:blue",
             lw=1.5,
             label=f"ΔE(φ) = ∫(M_d − M_r) dφ{frozen}",
         )
+        readout.curve(line, "ΔE", energy)
         if analysis.model == Model.DYNAMIC:
-            ax.plot(
+            (line,) = ax.plot(
                 standard.show(torques.phi, "angle", units),
                 energy.show(along),
                 color="tab:purple",
@@ -90,7 +91,8 @@ def plot_energy(
                 label="ΔE along the periodic solution (the motor on its characteristic)",
                 gid="along",
             )
-        angle_axis(ax, scene.cycle_angle, units)
+            readout.curve(line, "ΔE along ω(φ)", energy)
+        angle_axis(ax, scene.cycle_angle, units, digits)
         mark_dead_centres(ax, scene, units)
     y_chain = energy.show(chain)
     ax.plot(

@@ -112,15 +112,8 @@ def plot_energy_mass(
     x0, y0 = -j_f, -em.e0
     overview: Axes | None = None
     if ax is None:
-        plt = standard.pyplot()
-        fig, (overview, ax) = plt.subplots(
-            1,
-            2,
-            figsize=(11, 5.6),
-            layout="constrained",
-            gridspec_kw={"width_ratios": [1, 1.5]},
-            FigureClass=standard.figure_class(),
-        )
+        fig = standard.new_figure(figsize=(11, 5.6), layout="constrained")
+        overview, ax = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1, 1.5]})
     inertia = standard.unit("inertia", units)[0]
     near = standard.scale("energy", units, [de], digits)
     reach = np.array([x0, j.max() + 0.1 * (j.max() - x0)])  # the overview's span of J_e, from the true origin

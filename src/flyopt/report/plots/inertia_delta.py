@@ -12,7 +12,7 @@ from flyopt.cycle.indicator import required_inertia
 from flyopt.delta_curve import delta_range, flywheel_at_some_delta
 from flyopt.names import Model
 from flyopt.report import display
-from flyopt.report.plots import standard
+from flyopt.report.plots import readout, standard
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -82,7 +82,8 @@ def plot_inertia_delta(
     inertia = standard.unit("inertia", units)[0]
     shown = standard.show(np.where(j > 0, j, np.nan), "inertia", units)
     exact = analysis.model != Model.ENERGY
-    ax.plot(
+    j_scale = standard.scale("inertia", units, digits=digits)
+    (line,) = ax.plot(
         delta,
         shown,
         "-" if not exact else ".-",
@@ -93,11 +94,13 @@ def plot_inertia_delta(
         label=f"J_F(δ), {analysis.model} model"
         + (" (the scene analysed at each δ)" if exact else " = A_max/(ω_m² δ) − J_c (section 5)"),
     )
+    readout.curve(line, "J_F", j_scale)
+    readout.abscissa(ax, "δ", standard.scale("dimensionless", units, digits=digits))
     if exact and analysis.a_max > 0:
         # the constant-inertia method of section 5, J_e replaced by its cycle mean, for comparison
         d = np.geomspace(delta[0], delta[-1], 200)
         approx = np.array([required_inertia(analysis.a_max, scene.omega_mean, v, j_mean) for v in d])
-        ax.plot(
+        (line,) = ax.plot(
             d,
             standard.show(np.where(approx > 0, approx, np.nan), "inertia", units),
             color="gray",
@@ -106,6 +109,7 @@ def plot_inertia_delta(
             label="constant-inertia method, A_max/(ω_m² δ) − mean J_e (section 5), for comparison",
             gid="constant_inertia",
         )
+        readout.curve(line, "J_F by the constant-inertia method", j_scale)
     free, about = _zero_crossing(delta, j), "≈ "
     if analysis.model == Model.ENERGY and analysis.j_constant > 0 and analysis.a_max > 0:
         free, about = analysis.a_max / (analysis.omega_mean**2 * analysis.j_constant), "= "  # section 5, exact

@@ -62,7 +62,7 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
         # into the handle of the file made for it (never reopened by its name); drawable: figure_class
         write_atomically(path, lambda handle: fig.savefig(handle, format=suffix, dpi=dpi))
     finally:
-        standard.pyplot().close(fig)
+        standard.close(fig)
     return path
 
 

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from flyopt.report import display
-from flyopt.report.plots import standard
+from flyopt.report.plots import readout, standard
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -177,6 +177,8 @@ def plot_sweep(
         ok = (part["status"] == "designed").to_numpy() if status is not None else np.ones(len(part), bool)
         xs, ys = _values(part, x, x_scale), _values(part, y, y_scale)
         (line,) = ax.plot(xs[ok], ys[ok], "o-", ms=3.5, lw=1.3, label=words)
+        if y_scale is not None:
+            readout.curve(line, f"{y} ({words})" if keys else y, y_scale)
         for kind, (marker, _w) in _NOT_DESIGNED.items():
             miss = (part["status"] == kind).to_numpy() if status is not None else np.zeros(len(part), bool)
             if miss.any():
@@ -207,6 +209,8 @@ def plot_sweep(
     if positive.size and positive.max() / positive.min() > 10:
         ax.set_xscale("log")
     ax.set(xlabel=_label(x, units, frame, digits), ylabel=_label(y, units, frame, digits))
+    if x_scale is not None:
+        readout.abscissa(ax, x, x_scale)
     ax.grid(True, alpha=0.3)
     standard.title(ax, own, f"sweep: {y} against {x}" + (f", one line per {', '.join(keys)}" if keys else ""))
     standard.legend(ax, own, ncol=3)

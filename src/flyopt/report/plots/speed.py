@@ -8,7 +8,7 @@ import numpy as np
 
 from flyopt.names import Model
 from flyopt.report import display
-from flyopt.report.plots import standard
+from flyopt.report.plots import readout, standard
 from flyopt.report.plots.cycle import angle_axis, mark_dead_centres
 
 if TYPE_CHECKING:
@@ -79,24 +79,27 @@ def plot_speed(
     ax, own = standard.axes(ax)
     omega = np.asarray(speed.omega, dtype=float)
     x = standard.show(speed.phi, "angle", units)
-    ax.plot(
+    speed_scale = standard.scale("angular_speed", units, digits=digits)
+    (line,) = ax.plot(
         x,
-        standard.show(omega, "angular_speed", units),
+        speed_scale.show(omega),
         color="tab:blue",
         lw=1.6,
         gid="model",
         label=f"ω(φ), {analysis.model} model, J_F = {standard.q(analysis.j_required, 'inertia', units, digits)}",
     )
+    readout.curve(line, "ω", speed_scale)
     if simulation is not None:
-        ax.plot(
+        (line,) = ax.plot(
             standard.show(simulation.phi, "angle", units),
-            standard.show(simulation.omega, "angular_speed", units),
+            speed_scale.show(simulation.omega),
             color=standard.DEFICIT,
             ls="--",
             lw=1,
             gid="simulation",
             label=f"periodic simulation (δ = {display.number(simulation.delta, digits + 2)})",
         )
+        readout.curve(line, "ω (simulation)", speed_scale)
     w_max, w_min = float(np.max(omega)), float(np.min(omega))
     w_max = float(getattr(speed, "omega_max", w_max))
     w_min = float(getattr(speed, "omega_min", w_min))
@@ -127,7 +130,7 @@ def plot_speed(
                 ms=5,
                 zorder=5,
             )
-    angle_axis(ax, scene.cycle_angle, units)
+    angle_axis(ax, scene.cycle_angle, units, digits)
     mark_dead_centres(ax, scene, units)
     span = max(w_max - w_min, 1e-9 * w_mean)
     ax.set_ylim(*(float(standard.show(v, "angular_speed", units)) for v in (w_min - 0.12 * span, w_max + 0.12 * span)))

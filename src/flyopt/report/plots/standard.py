@@ -6,10 +6,11 @@ import functools
 import os
 import re
 import textwrap
+import threading
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from types import ModuleType
-from typing import TYPE_CHECKING, Any, overload
+from typing import TYPE_CHECKING, Any, cast, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -38,8 +39,20 @@ class NothingToDraw(Exception):
     """The diagram would be empty for this machine (no flywheel is needed): not an error."""
 
 
+#: The one lock that serializes drawing. matplotlib is not thread-safe: pyplot's figure registry and current
+#: figure, and the rcParams a renderer is drawn under (:func:`flyopt.report.html.svg_of`'s ``rc_context``), are
+#: shared by every thread. Every figure made or closed through pyplot here holds it (:func:`axes`, :func:`new_figure`,
+#: :func:`close`); a caller drawing from worker threads (``flyopt app``) holds it around a whole draw (making
+#: the figures, rendering them, closing them). Re-entrant, so that a draw under it may make figures.
+LOCK = threading.RLock()
+
+
 def pyplot() -> ModuleType:
-    """matplotlib.pyplot, on the Agg backend unless the caller chose one (imported only when a diagram is drawn)."""
+    """matplotlib.pyplot, on the Agg backend unless the caller chose one (imported only when a diagram is drawn).
+
+    Its state is shared by every thread: a figure is made or closed under :data:`LOCK` (:func:`axes`,
+    :func:`new_figure`, :func:`close`).
+    """
     import matplotlib
 
     if "MPLBACKEND" not in os.environ and matplotlib.get_backend().lower() not in ("agg", "pdf", "svg"):
@@ -147,7 +160,22 @@ def axes(ax: Axes | None, figsize: tuple[float, float] = (9, 5.2)) -> tuple[Axes
     if ax is not None:
         return ax, False
     plt = pyplot()
-    return plt.figure(figsize=figsize, layout="constrained", FigureClass=figure_class()).add_subplot(), True
+    with LOCK:
+        return plt.figure(figsize=figsize, layout="constrained", FigureClass=figure_class()).add_subplot(), True
+
+
+def new_figure(**kwargs: Any) -> Figure:
+    """A new figure of :func:`figure_class` made by pyplot (so that a notebook shows it), under :data:`LOCK`."""
+    plt = pyplot()
+    with LOCK:
+        return cast("Figure", plt.figure(FigureClass=figure_class(), **kwargs))
+
+
+def close(figure: Figure) -> None:
+    """Close ``figure`` in pyplot (its memory is freed with the last reference), under :data:`LOCK`."""
+    plt = pyplot()
+    with LOCK:
+        plt.close(figure)
 
 
 def figure_class() -> type[Figure]:

@@ -11,7 +11,7 @@ import numpy.typing as npt
 
 from flyopt.design.result import Design
 from flyopt.report import display
-from flyopt.report.plots import standard
+from flyopt.report.plots import readout, standard
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -98,9 +98,11 @@ def plot_stress(
         )
     # the curves of the disc parts
     names = {"sr": "σ_r", "st": "σ_t", "vm": "von Mises"}
+    stress_scale = standard.scale("stress", units, digits=digits)
+    readout.abscissa(ax, "r", standard.scale("length", units, digits=digits))
     for k, (_part, r, sr, st, vm) in enumerate(profile):
         for key, values, style in (("sr", sr, "-"), ("st", st, "-"), ("vm", vm, "--")):
-            ax.plot(
+            (line,) = ax.plot(
                 np.asarray(r) * mm,
                 np.asarray(values) * mpa,
                 style,
@@ -108,6 +110,7 @@ def plot_stress(
                 lw=1.5,
                 label=names[key] if k == 0 else f"_{names[key]}",
             )
+            readout.curve(line, names[key], stress_scale)
     # each part's allowable over its span
     allowables = [
         (name, checked[name]["allowable"])

@@ -9,7 +9,7 @@ import numpy.typing as npt
 
 from flyopt.errors import BrokenInvariant
 from flyopt.report import display
-from flyopt.report.plots import standard
+from flyopt.report.plots import readout, standard
 from flyopt.report.plots.cycle import Torques, angle_axis, mark_dead_centres, omega_marks
 from flyopt.report.plots.labels import place_area_labels
 
@@ -118,20 +118,22 @@ def plot_turning_moment(
     md, mr = torque.show(torques.driving), torque.show(torques.resisting)
     ax.fill_between(x, md, mr, where=md >= mr, color=standard.SURPLUS, alpha=0.25, interpolate=True, lw=0)
     ax.fill_between(x, md, mr, where=md < mr, color=standard.DEFICIT, alpha=0.25, interpolate=True, lw=0)
-    ax.plot(
+    (driving,) = ax.plot(
         x,
         md,
         color="tab:blue",
         lw=1.8,
         label=_torque_words("driving M_d", torques.driving_solved, torques.driving, torques, torque),
     )
-    ax.plot(
+    (resisting,) = ax.plot(
         x,
         mr,
         color="black",
         lw=1.8,
         label=_torque_words("resisting M_r", torques.resisting_solved, torques.resisting, torques, torque),
     )
+    readout.curve(driving, "M_d", torque)
+    readout.curve(resisting, "M_r", torque)
     levels = []
     if torques.along and not torques.driving_solved and np.ptp(torques.driving) > 0:
         mean = analysis.driving_torque
@@ -149,7 +151,7 @@ def plot_turning_moment(
     marks, note = omega_marks(analysis, units, digits)
     for angle, words, colour, style, gid in marks:
         ax.axvline(float(standard.show(angle, "angle", units)), color=colour, ls=style, lw=1.1, label=words, gid=gid)
-    end = angle_axis(ax, scene.cycle_angle, units)
+    end = angle_axis(ax, scene.cycle_angle, units, digits)
     top = mark_dead_centres(ax, scene, units)
     ax.set_ylabel(torque.axis_label("torque at the reference shaft"))
     what = "along the periodic solution" if torques.along else f"A_max = {energy.q(analysis.a_max)}"

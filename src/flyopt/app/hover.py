@@ -1,0 +1,167 @@
+"""A diagram with read-outs under the pointer: the report's SVG and its curves' values at the pointer's abscissa.
+
+A Panel component (:class:`panel.custom.JSComponent`, Panel's documented way for a page to run its own script:
+an ``HTML`` pane would run whatever ``<script>`` its text holds, a Panel of user text must not rely on that) that
+shows a figure's SVG as drawn by the report (:func:`flyopt.app.model.figure_svg`) and, over the Axes that
+have read-outs (:mod:`flyopt.report.plots.readout`), follows the pointer: it maps the pointer into the SVG's user
+units (the browser's own ``getScreenCTM``, whatever the SVG's scale on the page), finds the Axes under it and the
+nearest abscissa of its grid (the recorded data-to-SVG transform, :func:`flyopt.report.plots.readout.to_svg`
+mirrored), and draws a vertical guide through it, a dot on each curve and a box with the recorded texts
+("φ = 131.8 deg", "M_d = 0.4625 kN·m"). The texts are put in as text (``textContent``), never as markup; the
+script formats no number: every value is written by the report's rule in Python.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from typing import Any
+
+#: The read-out's look (inside the component: its shadow root takes no page style).
+STYLE = """
+.hover {position: relative; width: 100%;}
+.readout {position: absolute; pointer-events: none; background: rgba(255, 255, 255, 0.94); border: 1px solid #999;
+ border-radius: 3px; padding: 3px 6px; font: 12px/1.35 sans-serif; white-space: nowrap; z-index: 10;
+ box-shadow: 0 1px 3px rgba(0, 0, 0, 0.2);}
+.readout .swatch {display: inline-block; width: 10px; height: 3px; margin: 0 5px 3px 0; vertical-align: middle;}
+.readout .first {color: #444;}
+"""
+
+ESM = """
+const NS = 'http://www.w3.org/2000/svg'
+
+function fraction(value, axis) {
+  const [first, last] = axis.lim
+  if (axis.log) return (Math.log10(value) - Math.log10(first)) / (Math.log10(last) - Math.log10(first))
+  return (value - first) / (last - first)
+}
+
+function toSvg(entry, x, y) {  // flyopt.report.plots.readout.to_svg
+  const [left, top, right, bottom] = entry.box
+  return [left + fraction(x, entry.x) * (right - left), bottom - fraction(y, entry.y) * (bottom - top)]
+}
+
+export function render({ model, el }) {
+  const box = document.createElement('div')
+  const holder = document.createElement('div')
+  const tip = document.createElement('div')
+  tip.className = 'readout'
+  tip.style.display = 'none'
+  box.append(holder, tip)
+  let data = null
+  let svg = null
+  let guide = null
+  const show = () => {
+    box.className = 'hover figure figure-' + String(model.key).replace(/[^A-Za-z0-9_-]/g, '')
+    holder.innerHTML = model.svg
+    svg = holder.querySelector('svg')
+    guide = null
+    tip.style.display = 'none'
+    try { data = model.readout ? JSON.parse(model.readout) : null } catch (error) { data = null }
+  }
+  const hide = () => {
+    tip.style.display = 'none'
+    if (guide) guide.style.display = 'none'
+  }
+  const mark = (entry, index) => {
+    if (!guide || !svg.contains(guide)) {
+      guide = document.createElementNS(NS, 'g')
+      guide.setAttribute('class', 'readout-guide')
+      guide.setAttribute('pointer-events', 'none')
+      svg.appendChild(guide)
+    }
+    guide.replaceChildren()
+    guide.style.display = ''
+    const [u] = toSvg(entry, entry.at[index], entry.y.lim[0])
+    const line = document.createElementNS(NS, 'line')
+    for (const [k, v] of [['x1', u], ['x2', u], ['y1', entry.box[1]], ['y2', entry.box[3]]]) line.setAttribute(k, v)
+    line.setAttribute('stroke', '#555')
+    line.setAttribute('stroke-width', '0.8')
+    line.setAttribute('stroke-dasharray', '3 2')
+    guide.appendChild(line)
+    entry.values.forEach((values, k) => {
+      const value = values[index]
+      if (value === null) return
+      const [, v] = toSvg(entry, entry.at[index], value)
+      if (v < entry.box[1] || v > entry.box[3]) return
+      const dot = document.createElementNS(NS, 'circle')
+      dot.setAttribute('cx', u)
+      dot.setAttribute('cy', v)
+      dot.setAttribute('r', '3')
+      dot.setAttribute('fill', entry.colours[k])
+      dot.setAttribute('stroke', 'white')
+      guide.appendChild(dot)
+    })
+  }
+  const write = (entry, index) => {
+    tip.replaceChildren()
+    entry.rows[index].forEach((text, k) => {
+      if (text === null) return
+      const row = document.createElement('div')
+      if (k === 0) row.className = 'first'
+      else {
+        const swatch = document.createElement('span')
+        swatch.className = 'swatch'
+        swatch.style.background = entry.colours[k - 1]
+        row.appendChild(swatch)
+      }
+      row.appendChild(document.createTextNode(text))
+      tip.appendChild(row)
+    })
+  }
+  box.addEventListener('pointermove', (event) => {
+    if (!data || !svg) return
+    const matrix = svg.getScreenCTM()
+    if (!matrix) return
+    const p = new DOMPoint(event.clientX, event.clientY).matrixTransform(matrix.inverse())
+    const entry = data.axes.find((e) => p.x >= e.box[0] && p.x <= e.box[2] && p.y >= e.box[1] && p.y <= e.box[3])
+    if (!entry) { hide(); return }
+    let index = 0
+    let nearest = Infinity
+    entry.at.forEach((x, i) => {
+      const distance = Math.abs(toSvg(entry, x, entry.y.lim[0])[0] - p.x)
+      if (distance < nearest) { nearest = distance; index = i }
+    })
+    mark(entry, index)
+    write(entry, index)
+    tip.style.display = 'block'
+    const frame = box.getBoundingClientRect()
+    const x = event.clientX - frame.left
+    const y = event.clientY - frame.top
+    const left = x + 14 + tip.offsetWidth > frame.width ? x - 14 - tip.offsetWidth : x + 14
+    tip.style.left = Math.max(0, left) + 'px'
+    tip.style.top = Math.max(0, y - tip.offsetHeight - 10) + 'px'
+  })
+  box.addEventListener('pointerleave', hide)
+  show()
+  model.on('svg', show)
+  model.on('readout', show)
+  model.on('key', show)
+  el.style.width = '100%'
+  el.appendChild(box)
+}
+"""
+
+
+@cache
+def hover_svg() -> type:
+    """The component class (made once: Panel is imported only by the app)."""
+    import param
+    from panel.custom import JSComponent
+
+    class HoverSVG(JSComponent):
+        """A figure's SVG (``svg``) with read-outs (``readout``: the JSON of
+        :func:`flyopt.report.plots.readout.record`, "" for none); ``key`` names it (class ``figure-KEY``)."""
+
+        svg = param.String(default="")
+        readout = param.String(default="")
+        key = param.String(default="")
+
+        _esm = ESM
+        _stylesheets = [STYLE]
+
+    return HoverSVG
+
+
+def hover_figure(svg: str, readout: str, key: str, **kwargs: Any) -> Any:
+    """A :func:`hover_svg` component showing ``svg`` with its read-outs."""
+    return hover_svg()(svg=svg, readout=readout, key=key, **kwargs)

@@ -1,0 +1,207 @@
+"""What a diagram's curves read at each abscissa: the read-outs ``flyopt app`` shows under the pointer.
+
+A diagram names its x axis (:func:`abscissa`: "φ" in the angle's :class:`~flyopt.report.plots.standard.Scale`)
+and the curves worth reading (:func:`curve`: "M_d" in the torque axis' Scale); nothing else changes in the figure,
+which stays the report's one drawing. Once the figure has been drawn as SVG (:func:`flyopt.report.html.svg_of`:
+one point a user unit, at :data:`~flyopt.report.plots.output.VECTOR_DPI`), :func:`record` reads, per Axes with a
+named abscissa and at least one named curve:
+
+- where the Axes sits in the SVG (its box in the SVG's user units, y downwards), its limits and whether each
+  axis is logarithmic: the data-to-SVG transform (:func:`to_svg`, which the page's script mirrors);
+- a grid of at most :data:`POINTS` abscissae over the curves' span, evenly spaced in the axis' scale, and at
+  each the value of every curve as its drawn polyline gives it (interpolated in the axes' scales between the
+  curve's own points, as matplotlib draws the segment; none beyond its ends or across a gap);
+- each value written as the report writes numbers (:meth:`~flyopt.report.plots.standard.Scale.q`: the axis'
+  own unit, ``digits`` significant figures, round-off against the axis' largest value written 0), as lines
+  "φ = 131.8 deg", "M_d = 3.41 kN·m": the page shows these texts, it formats no number itself.
+
+The page snaps the pointer to the nearest grid abscissa (a grid step is about two pixels of a diagram as wide
+as a screen's half), so that what it shows is exactly a point of the curves, written by one rule.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from flyopt.report.plots.standard import Scale
+
+if TYPE_CHECKING:
+    from matplotlib.artist import Artist
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+
+#: Most abscissae a read-out grid has, per Axes.
+POINTS = 240
+
+#: Significant figures of the positions a record carries (limits and box excepted: those are exact).
+PLACES = 7
+
+#: The attribute a named artist carries its :class:`Name` in (the artist's own: no registry shared by threads).
+ATTRIBUTE = "_flyopt_readout"
+
+
+@dataclass(frozen=True)
+class Name:
+    """What a read-out calls an axis or a curve, and the Scale its shown values are in."""
+
+    symbol: str
+    scale: Scale
+
+    def text(self, shown: float) -> str:
+        """ "symbol = value unit" of a value as drawn (in the scale's unit)."""
+        return f"{self.symbol} = {self.scale.q(shown * self.scale.factor)}"
+
+
+def abscissa(ax: Axes, symbol: str, scale: Scale) -> None:
+    """Name the x axis of ``ax`` for the read-outs: ``symbol`` ("φ"), its values drawn in ``scale``'s unit."""
+    setattr(ax, ATTRIBUTE, Name(symbol, scale))
+
+
+def curve(line: Line2D, symbol: str, scale: Scale) -> Line2D:
+    """Name a curve for the read-outs: ``symbol`` ("M_d"), its values drawn in ``scale``'s unit. Several lines
+    of one symbol are one curve in pieces (a stress over the hub, the web and the rim). Returns the line."""
+    setattr(line, ATTRIBUTE, Name(symbol, scale))
+    return line
+
+
+def named(artist: Artist) -> Name | None:
+    """The read-out name of an axis' Axes or a curve, or None."""
+    name = getattr(artist, ATTRIBUTE, None)
+    return name if isinstance(name, Name) else None
+
+
+def record(figure: Figure) -> dict[str, Any]:
+    """The read-outs of a drawn figure (JSON-ready): its size in SVG user units and one entry per Axes that has them.
+
+    Call it after the figure was drawn (its layout is then final). Each entry: ``box`` [left, top, right,
+    bottom] in the SVG's user units, ``x`` and ``y`` each ``{"lim": [first, last], "log": bool}``, ``at`` the
+    grid's abscissae as drawn, ``values`` per curve the values as drawn (None where the curve has none),
+    ``colours`` per curve, and ``rows`` per abscissa its lines of text: the abscissa's, then each curve's (None
+    where the curve has no value there).
+    """
+    width, height = (float(v) * 72.0 for v in figure.get_size_inches())  # VECTOR_DPI: one user unit a point
+    entries = [entry for ax in figure.axes if (entry := _axes_record(ax, width, height)) is not None]
+    return {"size": [width, height], "axes": entries}
+
+
+def to_svg(entry: dict[str, Any], x: float, y: float) -> tuple[float, float]:
+    """Where the data point (x, y), as drawn, is in the SVG's user units, by an entry of :func:`record`."""
+    left, top, right, bottom = entry["box"]
+    fx = _fraction(x, entry["x"])
+    fy = _fraction(y, entry["y"])
+    return left + fx * (right - left), bottom - fy * (bottom - top)
+
+
+def _fraction(value: float, axis: dict[str, Any]) -> float:
+    first, last = axis["lim"]
+    if axis["log"]:
+        return (math.log10(value) - math.log10(first)) / (math.log10(last) - math.log10(first))
+    return (value - first) / (last - first)
+
+
+def _axes_record(ax: Axes, width: float, height: float) -> dict[str, Any] | None:
+    x_name = named(ax)
+    if x_name is None or not ax.get_visible():
+        return None
+    x_log, y_log = ax.get_xscale() == "log", ax.get_yscale() == "log"
+    pieces: dict[str, list[tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]] = {}
+    names: dict[str, Name] = {}
+    colours: dict[str, str] = {}
+    for line in ax.get_lines():
+        name = named(line)
+        if name is None or not line.get_visible():
+            continue
+        xs = np.asarray(line.get_xdata(), dtype=float)
+        ys = np.asarray(line.get_ydata(), dtype=float)
+        if xs.size < 2 or np.any(np.diff(xs) < 0):  # a curve read along x only where x never goes back
+            continue
+        pieces.setdefault(name.symbol, []).append((_forward(xs, x_log), _forward(ys, y_log)))
+        names.setdefault(name.symbol, name)
+        colours.setdefault(name.symbol, _colour(line))
+    if not pieces:
+        return None
+    ends = [(np.nanmin(tx), np.nanmax(tx)) for found in pieces.values() for tx, _ty in found if np.isfinite(tx).any()]
+    if not ends:
+        return None
+    low, high = (_forward(np.asarray(ax.get_xlim(), dtype=float), x_log)).tolist()
+    low, high = min(low, high), max(low, high)
+    start, stop = max(low, min(e[0] for e in ends)), min(high, max(e[1] for e in ends))
+    if not stop > start:
+        return None
+    grid = np.linspace(start, stop, POINTS)
+    values = {symbol: _values(found, grid) for symbol, found in pieces.items()}
+    at = _backward(grid, x_log)
+    shown = {symbol: _backward(v, y_log) for symbol, v in values.items()}
+    rows: list[list[str | None]] = [
+        [
+            x_name.text(float(at[i])),
+            *(names[s].text(float(v[i])) if np.isfinite(v[i]) else None for s, v in shown.items()),
+        ]
+        for i in range(len(at))
+    ]
+    box = ax.get_position()  # in the figure's fractions, as the layout of the last draw placed it
+    return {
+        "box": [
+            float(box.x0 * width),
+            float((1.0 - box.y1) * height),
+            float(box.x1 * width),
+            float((1.0 - box.y0) * height),
+        ],
+        "x": {"lim": [float(v) for v in ax.get_xlim()], "log": x_log},
+        "y": {"lim": [float(v) for v in ax.get_ylim()], "log": y_log},
+        "at": [_short(v) for v in at],
+        "values": [[_short(v) if np.isfinite(v) else None for v in vs] for vs in shown.values()],
+        "colours": list(colours.values()),
+        "rows": rows,
+    }
+
+
+def _short(value: float) -> float:
+    """A position to :data:`PLACES` significant figures (a thousandth of a point on a page): the JSON's numbers
+    place the pointer's guide, the texts carry the values."""
+    return float(f"{float(value):.{PLACES}g}")
+
+
+def _forward(values: npt.NDArray[np.float64], log: bool) -> npt.NDArray[np.float64]:
+    """Values in the axis' scale (log10 on a log axis; a value a log axis cannot draw is nan)."""
+    if not log:
+        return values
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(values > 0, np.log10(np.where(values > 0, values, 1.0)), np.nan)
+
+
+def _backward(values: npt.NDArray[np.float64], log: bool) -> npt.NDArray[np.float64]:
+    return np.power(10.0, values) if log else values
+
+
+def _values(
+    found: list[tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]], grid: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
+    """A curve's values (in the axes' scales) on the grid: each piece's polyline within its span (a gap where a
+    point is nan, as matplotlib leaves one), the first piece that has a value there."""
+    out = np.full(grid.shape, np.nan)
+    for tx, ty in found:
+        keep = np.isfinite(tx)
+        tx, ty = tx[keep], ty[keep]
+        if tx.size < 2:
+            continue
+        inside = (grid >= tx[0]) & (grid <= tx[-1]) & np.isnan(out)
+        right = np.clip(np.searchsorted(tx, grid[inside], side="right"), 1, tx.size - 1)
+        left = right - 1
+        span = tx[right] - tx[left]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.where(span > 0, (grid[inside] - tx[left]) / span, 0.0)
+        out[inside] = ty[left] + t * (ty[right] - ty[left])  # nan beside a nan point: the drawn gap
+    return out
+
+
+def _colour(line: Line2D) -> str:
+    from matplotlib.colors import to_hex
+
+    return str(to_hex(line.get_color()))
