@@ -312,6 +312,7 @@ def analyse(
     *,
     like: Analysis | None = None,
     extras: Collection[str] = (),
+    slip_first: bool = False,
 ) -> Analysis:
     """Analyse a scene's cycle and size the flywheel it needs.
 
@@ -329,6 +330,10 @@ def analyse(
     extras : collection of str
         What else to compute (:data:`EXTRAS`, see :func:`complete`); nothing
         beyond the sizing by default.
+    slip_first : bool
+        The dynamic model: ask first whether the motor's slip alone keeps δ
+        (:func:`flyopt.sizing.periodic.dynamic_requirement`): the drive's chosen
+        motor where its search found it needs no flywheel.
 
     Returns
     -------
@@ -342,7 +347,7 @@ def analyse(
         The periodic solution did not converge.
     """
     try:
-        return complete(_analyse(scene, model, like), extras)
+        return complete(_analyse(scene, model, like, slip_first), extras)
     except (SceneError, NonPeriodicCycle) as err:
         raise err.with_source(scene.source) from None
 
@@ -383,7 +388,9 @@ def _powers(driving: float, omega_mean: float, efficiency: float) -> tuple[float
     return power, power / efficiency
 
 
-def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = None) -> Analysis:
+def _analyse(
+    scene: Scene, forced: str | None = None, like: Analysis | None = None, slip_first: bool = False
+) -> Analysis:
     from flyopt.machine.reduce import reduce
     from flyopt.sizing import choose as models
 
@@ -420,7 +427,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         if forced is not None and forced != model:
             reason = f"forced by --model; the exact model for this scene is {model}: {reason}"
             model = Model(forced)
-        requirement = models.requirement(machine, model, ind)
+        requirement = models.requirement(machine, model, ind, slip_first=slip_first)
         j_margin = requirement.j_required
         omega_mean, omega_max, omega_min = requirement.omega_mean, requirement.omega_max, requirement.omega_min
         angles = (requirement.angle_omega_max, requirement.angle_omega_min)

@@ -750,9 +750,11 @@ def solve_drive(scene: Scene, analysis: Analysis, solver_options: Mapping[str, A
     if drive.best is None:
         return Solution(scene=scene, analysis=analysis, drive=drive)
     built = chosen_scene(scene, drive.best)
+    # a motor the search found to need no flywheel: whether its slip alone keeps δ is asked first (one CVODES
+    # solution of the machine as it is, which the verification below reads again) before a search for a flywheel
     return Solution(
         scene=built,
-        analysis=analyse(built, "dynamic"),
+        analysis=analyse(built, "dynamic", slip_first=drive.best.limit == "none"),
         design=drive.best.design,
         drive=drive,
         drive_check=verify_drive(scene, drive.best),

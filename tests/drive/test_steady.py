@@ -115,3 +115,30 @@ def test_verifying_a_run_against_a_scene_without_a_drive_is_refused_in_words(pre
     run = codesign.MotorRun(motor=motors["132S-4 5.5 kW"], feasible=True, motor_ratio=122.0, j_flywheel=0.0)
     with pytest.raises(ValueError, match=r"no \[drive\]"):
         codesign.verify_drive(dataclasses.replace(scene, drive=None), run)
+
+
+def test_the_chosen_motor_without_a_flywheel_is_analysed_without_the_one_solve(press, monkeypatch):
+    # a motor whose slip alone holds δ: asked first (slip_first, as flyopt.pipeline.solve_drive does for a
+    # chosen motor the search found to need no flywheel), the requirement is the one the default path finds
+    # after its one Newton solve gives up (CVODES's periodic solution with none), and the one solve never runs
+    from flyopt.sizing import periodic
+
+    scene, analysis, motors, model = press
+    motor = motors["132S-4 5.5 kW"]
+    ratio = codesign.motor_ratio_estimate(motor, analysis.driving_torque, scene.omega_mean, scene.efficiency)
+    machine = codesign.reduce(codesign.motor_scene(scene, motor, ratio))
+    args = (machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean, scene.delta)
+    with monkeypatch.context() as patch:
+
+        def refused(*_):
+            raise AssertionError("the one solve ran")
+
+        patch.setattr(periodic, "_one_solve", refused)
+        first = periodic.dynamic_requirement(*args, machine.knots(), slip_first=True)
+    before = periodic.BUILDS["fallback to the CVODES search"]
+    default = periodic.dynamic_requirement(*args, machine.knots())
+    assert periodic.BUILDS["fallback to the CVODES search"] == before + 1  # the one solve gave up there
+    assert first.limit == default.limit == "none"
+    assert first.j_required == default.j_required == -float(machine.j_machine)
+    assert first.solution.delta == default.solution.delta < scene.delta
+    assert first.solution.omega_mean == default.solution.omega_mean

@@ -80,7 +80,9 @@ class Requirement:
     note: str = ""
 
 
-def requirement(machine: Machine, model: str, indicator: EnergyIndicator | None = None) -> Requirement:
+def requirement(
+    machine: Machine, model: str, indicator: EnergyIndicator | None = None, *, slip_first: bool = False
+) -> Requirement:
     """Size the flywheel with one model.
 
     Parameters
@@ -90,6 +92,9 @@ def requirement(machine: Machine, model: str, indicator: EnergyIndicator | None 
     indicator : EnergyIndicator, optional
         The energy indicator diagram of the angle-only torques (reused by the
         energy model).
+    slip_first : bool
+        The dynamic model: ask first whether the motor's slip alone keeps δ
+        (:func:`flyopt.sizing.periodic.dynamic_requirement`).
 
     Returns
     -------
@@ -138,7 +143,7 @@ def requirement(machine: Machine, model: str, indicator: EnergyIndicator | None 
         from flyopt.sizing import periodic  # CasADi: only for a machine whose torque depends on speed
 
         dyn = periodic.dynamic_requirement(
-            machine.net_torque(), machine.j_machine, machine.cycle_angle, w, d, machine.knots()
+            machine.net_torque(), machine.j_machine, machine.cycle_angle, w, d, machine.knots(), slip_first=slip_first
         )
         sol = dyn.solution
         note = dyn.held
