@@ -200,7 +200,7 @@ class DriveModel:
         self.j0 = float(model.inertia(0.0))
         # the energy scale: the swing of the net work at the mean speed (a motor's torque of the speed
         # alone is a constant along the cycle there, and drops out of it)
-        #: Steps per grid interval the last solve of each limit needed (the next starts near them).
+        #: Steps per grid interval the last solve of each limit needed for a stable step (the next starts at them).
         self.substeps: dict[str, int] = {}
         self.w_s = shooting.energy_swing(model, self.omega_m)
         if not self.w_s > 0:
@@ -286,8 +286,9 @@ class _Newton:
         # Newton with its Jacobian computed at the coarsest steps that settle the cycle and kept while
         # the steps are refined (a chord method): the sensitivities cost four cycles, and finer steps
         # move the solution, not the Jacobian, by a little; they are computed again where the residual
-        # stops falling fast
-        substeps = max(shooting.SUBSTEPS, self.drive.substeps.get(self.limit, 1) // 2)
+        # stops falling fast. It starts at the steps the last solve of this limit needed for stability
+        # (not for accuracy: a Jacobian there costs several times one at the coarsest stable steps)
+        substeps = max(shooting.SUBSTEPS, self.drive.substeps.get(self.limit, 1))
         point = self.state(full, substeps, True)
         if point is None:
             raise NotSettled(f"the cycle cannot be integrated at the start (ratio {math.exp(rho):.6g})")
@@ -311,7 +312,7 @@ class _Newton:
                 finer = self.state(point.full, 2 * substeps, False)
                 moved = self.moved(point, finer)
                 if moved <= STEP_RTOL:
-                    self.drive.substeps[self.limit] = substeps
+                    self.drive.substeps[self.limit] = needed
                     return self.result(point, iteration, substeps)
                 if 2 * substeps > shooting.MAX_SUBSTEPS:
                     raise NotSettled(f"the fixed steps do not resolve the cycle (it moves by {moved:.3g})")
