@@ -8,7 +8,7 @@ ratio-squared transfer.
 
 from __future__ import annotations
 
-from collections.abc import Collection, Iterable
+from collections.abc import Callable, Collection, Iterable
 from dataclasses import asdict, dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal, TypedDict
@@ -488,7 +488,9 @@ def _analyse(
     )
 
 
-def complete(analysis: Analysis, extras: Iterable[str] = EXTRAS) -> Analysis:
+def complete(
+    analysis: Analysis, extras: Iterable[str] = EXTRAS, *, simulate: Callable[[float], float] | None = None
+) -> Analysis:
     """The analysis with ``extras`` computed (:data:`EXTRAS`), those it already has kept.
 
     Parameters
@@ -500,6 +502,12 @@ def complete(analysis: Analysis, extras: Iterable[str] = EXTRAS) -> Analysis:
         required flywheel), "textbook" (an engine's textbook flywheel,
         flyopt.sizing.textbook.textbook_requirement), "speed" (ω(φ) with the
         required flywheel, or why it cannot be drawn).
+
+    simulate : callable, optional
+        J_F ↦ the δ the machine reaches with it by the exact model, for the
+        comparison of the models (flyopt.sizing.choose.compare): a drive's
+        chosen machine by the compiled model its search solved
+        (:func:`flyopt.drive.codesign.flywheel_delta`).
 
     Returns
     -------
@@ -515,11 +523,11 @@ def complete(analysis: Analysis, extras: Iterable[str] = EXTRAS) -> Analysis:
     have = dict(analysis._extras)
     for name in EXTRAS:  # in one order, whatever the caller's
         if name in missing:
-            have[name] = _COMPUTE[name](analysis)
+            have[name] = _models(analysis, simulate) if name == "models" else _COMPUTE[name](analysis)
     return replace(analysis, _extras=MappingProxyType(have))
 
 
-def _models(analysis: Analysis) -> tuple[dict[str, Any], ...]:
+def _models(analysis: Analysis, simulate: Callable[[float], float] | None = None) -> tuple[dict[str, Any], ...]:
     if analysis.machine is None:  # net areas: the energy method alone, exact
         return (
             {
@@ -533,7 +541,11 @@ def _models(analysis: Analysis) -> tuple[dict[str, Any], ...]:
         )
     from flyopt.sizing import choose as models
 
-    return tuple(models.compare(analysis.machine, analysis.model, analysis.indicator, known=analysis.requirement))
+    return tuple(
+        models.compare(
+            analysis.machine, analysis.model, analysis.indicator, known=analysis.requirement, simulate=simulate
+        )
+    )
 
 
 def _startup(analysis: Analysis) -> StartupRun | None:
@@ -562,7 +574,12 @@ def _speed(analysis: Analysis) -> tuple[SpeedFluctuation | PeriodicSolution | No
         return None, str(err)
 
 
-_COMPUTE = {"models": _models, "startup": _startup, "textbook": _textbook, "speed": _speed}
+_COMPUTE: dict[str, Callable[[Analysis], Any]] = {
+    "models": _models,
+    "startup": _startup,
+    "textbook": _textbook,
+    "speed": _speed,
+}
 
 
 def startup_run(machine: Machine, omega_target: float, j_flywheel: float) -> StartupRun | None:

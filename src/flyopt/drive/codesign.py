@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, cast
 
@@ -167,6 +167,9 @@ class DriveDesign:
         The continuous optimum that located the sizes solved (None: every size solved).
     note : str
         How the sizes were chosen.
+    model : flyopt.drive.steady.DriveModel or None
+        The compiled model the search solved (None: the CVODES search alone), for
+        :func:`flywheel_delta`.
     """
 
     status: str
@@ -176,6 +179,7 @@ class DriveDesign:
     message: str = ""
     relaxation: Relaxation | None = None
     note: str = ""
+    model: DriveModel | None = field(default=None, compare=False, repr=False)
 
     def to_dict(self) -> dict[str, Any]:
         relaxed = None if self.relaxation is None else self.relaxation.to_dict()
@@ -827,7 +831,32 @@ def design_drive(
             relaxation=relaxation,
             note=note,
         )
-    return DriveDesign("designed", spec.objective, ranked[0], runs, relaxation=relaxation, note=note)
+    return DriveDesign("designed", spec.objective, ranked[0], runs, relaxation=relaxation, note=note, model=compiled)
+
+
+def flywheel_delta(drive: DriveDesign, machine: Machine) -> Callable[[float], float] | None:
+    """J_F ↦ the δ the chosen drive reaches with that flywheel at the crank (None without a chosen drive).
+
+    By the compiled model the search solved (:meth:`flyopt.drive.steady.DriveModel.with_flywheel`,
+    RK4 with its steps checked to 1e-9), not a CVODES periodic solution built again for the
+    chosen machine (the analysis' comparison of the models asks it for the energy model's
+    flywheel); where it does not settle, by CVODES on ``machine``, the chosen machine reduced
+    (:func:`flyopt.sizing.choose.achieved_delta`).
+    """
+    best, model = drive.best, drive.model
+    if best is None or model is None:
+        return None
+    motor, ratio = best.motor, cast(float, best.motor_ratio)  # a chosen run has its ratio
+
+    def delta(j_flywheel: float) -> float:
+        try:
+            return model.with_flywheel(motor, ratio, j_flywheel).delta
+        except SolverFailed:  # NotSettled: the fixed steps cannot settle it
+            from flyopt.sizing.choose import achieved_delta
+
+            return achieved_delta(machine, j_flywheel)
+
+    return delta
 
 
 def _relaxation(scene, analysis, spec, motors, inputs, load):

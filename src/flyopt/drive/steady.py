@@ -218,8 +218,9 @@ class DriveModel:
 
         Parameters
         ----------
-        limit : {"none", "delta", "thermal"}
-            "none": no flywheel (unknowns v, ρ); "delta": the least J_F for δ;
+        limit : {"none", "delta", "thermal", "fixed"}
+            "none": no flywheel (unknowns v, ρ); "fixed": the flywheel of ``start``'s u,
+            held (unknowns v, ρ: see :meth:`with_flywheel`); "delta": the least J_F for δ;
             "thermal": the J_F whose RMS torque is the motor's rating.
         start : (v, u, ρ)
             Where Newton starts (u ignored for "none"; a nan u starts from the energy estimate).
@@ -228,6 +229,19 @@ class DriveModel:
             (unknowns v, u; equations y(Φ) and the limit).
         """
         return _Newton(self, motor, limit, ratio).solve(start)
+
+    def with_flywheel(self, motor: CatalogueMotor, ratio: float, j_flywheel: float, v: float | None = None) -> Steady:
+        """The steady running of ``motor`` at ``ratio`` with a given flywheel J_F at the crank [kg*m^2].
+
+        One unknown, v = ln ω_ref, and one equation, y(Φ) = 0, with the steps refined as for
+        :meth:`steady` (the δ a flywheel gives the chosen drive, for the analysis' comparison of
+        the models). ``v``: where Newton starts (default the scene's mean speed).
+        """
+        newton = _Newton(self, motor, "fixed", ratio)
+        if not j_flywheel + newton.j_s > 0:
+            raise NotSettled(f"a flywheel of {j_flywheel:.6g} kg*m^2 leaves the machine no inertia")
+        start = math.log(self.omega_m) if v is None else v
+        return newton.solve((start, math.log(j_flywheel + newton.j_s), math.log(ratio)))
 
 
 class _Newton:
@@ -240,8 +254,9 @@ class _Newton:
         self.j_rot = float(motor.rotor_inertia)
         self.log_delta = math.log(drive.delta)
         # the unknowns solved and the residuals kept, by name
-        unknowns = ["v"] + ([] if limit == "none" else ["u"]) + ([] if ratio is not None else ["rho"])
-        rows = ["periodic"] + ([] if limit == "none" else [limit]) + ([] if ratio is not None else ["mean"])
+        held = limit in ("none", "fixed")  # no flywheel, or one held: no unknown u, no limit's equation
+        unknowns = ["v"] + ([] if held else ["u"]) + ([] if ratio is not None else ["rho"])
+        rows = ["periodic"] + ([] if held else [limit]) + ([] if ratio is not None else ["mean"])
         self.columns = [("v", "u", "rho").index(k) for k in unknowns]
         self.rows = rows
         self.w_s = drive.w_s

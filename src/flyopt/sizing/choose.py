@@ -18,6 +18,7 @@ far a cheaper method would be off — in J_F and in the δ it would really give.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -184,13 +185,20 @@ def achieved_delta(machine: Machine, j_flywheel: float) -> float:
 
 
 def compare(
-    machine: Machine, chosen: str, indicator: EnergyIndicator | None = None, known: Requirement | None = None
+    machine: Machine,
+    chosen: str,
+    indicator: EnergyIndicator | None = None,
+    known: Requirement | None = None,
+    simulate: Callable[[float], float] | None = None,
 ) -> list[dict[str, Any]]:
     """Every applicable model's J_F and the δ it really gives (by the exact model).
 
     ``known`` is a :class:`Requirement` already computed (the chosen model's,
     by :func:`requirement`): it is reused, not solved again (a periodic
-    dynamic solution takes about a second).
+    dynamic solution takes about a second). ``simulate``: J_F ↦ the δ the
+    machine reaches with it by the exact model, where the caller has that
+    model compiled already (a drive's chosen machine, flyopt.drive.steady);
+    default :func:`achieved_delta`.
 
     Returns a list of dicts: model, exact (bool), j_required, achieved_delta,
     j_error (relative to the exact model's J_F), note.
@@ -234,7 +242,7 @@ def compare(
         note = res.note
         if model != exact:
             try:
-                delta = achieved_delta(machine, max(j, 0.0))
+                delta = achieved_delta(machine, max(j, 0.0)) if simulate is None else simulate(max(j, 0.0))
             except (SolverFailed, NonPeriodicCycle, ValueError) as err:
                 note = f"{note}; its δ could not be simulated: {err}".lstrip("; ")
         error = None
