@@ -331,10 +331,22 @@ class _Newton:
                     return self.result(point, iteration, substeps)
                 if 2 * substeps > shooting.MAX_SUBSTEPS:
                     raise NotSettled(f"the fixed steps do not resolve the cycle (it moves by {moved:.3g})")
-                substeps *= 2
                 if finer is None:
                     raise BrokenInvariant("a point that moved by a finite amount has its state on the finer steps")
-                point, fresh, norms = finer, False, []
+                # RK4's error falls 16-fold a doubling of the steps: as many doublings as should bring the move
+                # within STEP_RTOL, at most to the most steps allowed (then checked against twice as many, as always)
+                doublings = max(1, math.ceil(math.log(moved / STEP_RTOL) / math.log(16.0)))
+                while doublings > 1 and 2 * substeps * 2 ** (doublings - 1) > shooting.MAX_SUBSTEPS:
+                    doublings -= 1
+                substeps *= 2**doublings
+                if doublings == 1:
+                    point = finer
+                else:
+                    jumped = self.state(point.full, substeps, False)
+                    if jumped is None:
+                        raise NotSettled("the cycle cannot be integrated with finer steps")
+                    point = jumped
+                fresh, norms = False, []
                 continue
             if self.limit == "thermal" and point.mean_torque > self.rated * (1 + 1e-9):
                 # T_rms >= its mean, which a flywheel hardly moves (the work balance sets it)
