@@ -9,7 +9,11 @@ Measured in one run, pinned to one core where the OS allows it:
   :func:`flyopt.pipeline.solve` of press-drive, and its drive search alone
   (:func:`flyopt.drive.codesign.design_drive`) by the compiled Newton and by
   the CVODES search it falls back on (``drive_model`` withheld), with the
-  largest relative difference of the motor ratio and flywheel of every size.
+  largest relative difference of the motor ratio and flywheel of every size;
+* the chosen drive of ``flyopt solve --json`` by this checkout and, with
+  ``--baseline``, by the baseline: the same motor, and the largest relative
+  difference of its ratio, flywheel, shaft ratio, wheel mass and diameter
+  (the issue asks for 1e-8).
 
 Writes ``benchmarks/results/drive.md`` and ``drive.csv`` beside this script.
 
