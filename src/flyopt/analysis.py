@@ -8,7 +8,7 @@ ratio-squared transfer.
 
 from __future__ import annotations
 
-from collections.abc import Collection, Iterable
+from collections.abc import Callable, Collection, Iterable
 from dataclasses import asdict, dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal, TypedDict
@@ -312,6 +312,7 @@ def analyse(
     *,
     like: Analysis | None = None,
     extras: Collection[str] = (),
+    slip_first: bool = False,
 ) -> Analysis:
     """Analyse a scene's cycle and size the flywheel it needs.
 
@@ -329,6 +330,10 @@ def analyse(
     extras : collection of str
         What else to compute (:data:`EXTRAS`, see :func:`complete`); nothing
         beyond the sizing by default.
+    slip_first : bool
+        The dynamic model: ask first whether the motor's slip alone keeps δ
+        (:func:`flyopt.sizing.periodic.dynamic_requirement`): the drive's chosen
+        motor where its search found it needs no flywheel.
 
     Returns
     -------
@@ -342,7 +347,7 @@ def analyse(
         The periodic solution did not converge.
     """
     try:
-        return complete(_analyse(scene, model, like), extras)
+        return complete(_analyse(scene, model, like, slip_first), extras)
     except (SceneError, NonPeriodicCycle) as err:
         raise err.with_source(scene.source) from None
 
@@ -383,7 +388,9 @@ def _powers(driving: float, omega_mean: float, efficiency: float) -> tuple[float
     return power, power / efficiency
 
 
-def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = None) -> Analysis:
+def _analyse(
+    scene: Scene, forced: str | None = None, like: Analysis | None = None, slip_first: bool = False
+) -> Analysis:
     from flyopt.machine.reduce import reduce
     from flyopt.sizing import choose as models
 
@@ -420,7 +427,7 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
         if forced is not None and forced != model:
             reason = f"forced by --model; the exact model for this scene is {model}: {reason}"
             model = Model(forced)
-        requirement = models.requirement(machine, model, ind)
+        requirement = models.requirement(machine, model, ind, slip_first=slip_first)
         j_margin = requirement.j_required
         omega_mean, omega_max, omega_min = requirement.omega_mean, requirement.omega_max, requirement.omega_min
         angles = (requirement.angle_omega_max, requirement.angle_omega_min)
@@ -481,7 +488,9 @@ def _analyse(scene: Scene, forced: str | None = None, like: Analysis | None = No
     )
 
 
-def complete(analysis: Analysis, extras: Iterable[str] = EXTRAS) -> Analysis:
+def complete(
+    analysis: Analysis, extras: Iterable[str] = EXTRAS, *, simulate: Callable[[float], float] | None = None
+) -> Analysis:
     """The analysis with ``extras`` computed (:data:`EXTRAS`), those it already has kept.
 
     Parameters
@@ -493,6 +502,12 @@ def complete(analysis: Analysis, extras: Iterable[str] = EXTRAS) -> Analysis:
         required flywheel), "textbook" (an engine's textbook flywheel,
         flyopt.sizing.textbook.textbook_requirement), "speed" (ω(φ) with the
         required flywheel, or why it cannot be drawn).
+
+    simulate : callable, optional
+        J_F ↦ the δ the machine reaches with it by the exact model, for the
+        comparison of the models (flyopt.sizing.choose.compare): a drive's
+        chosen machine by the compiled model its search solved
+        (:func:`flyopt.drive.codesign.flywheel_delta`).
 
     Returns
     -------
@@ -508,11 +523,11 @@ def complete(analysis: Analysis, extras: Iterable[str] = EXTRAS) -> Analysis:
     have = dict(analysis._extras)
     for name in EXTRAS:  # in one order, whatever the caller's
         if name in missing:
-            have[name] = _COMPUTE[name](analysis)
+            have[name] = _models(analysis, simulate) if name == "models" else _COMPUTE[name](analysis)
     return replace(analysis, _extras=MappingProxyType(have))
 
 
-def _models(analysis: Analysis) -> tuple[dict[str, Any], ...]:
+def _models(analysis: Analysis, simulate: Callable[[float], float] | None = None) -> tuple[dict[str, Any], ...]:
     if analysis.machine is None:  # net areas: the energy method alone, exact
         return (
             {
@@ -526,7 +541,11 @@ def _models(analysis: Analysis) -> tuple[dict[str, Any], ...]:
         )
     from flyopt.sizing import choose as models
 
-    return tuple(models.compare(analysis.machine, analysis.model, analysis.indicator, known=analysis.requirement))
+    return tuple(
+        models.compare(
+            analysis.machine, analysis.model, analysis.indicator, known=analysis.requirement, simulate=simulate
+        )
+    )
 
 
 def _startup(analysis: Analysis) -> StartupRun | None:
@@ -555,7 +574,12 @@ def _speed(analysis: Analysis) -> tuple[SpeedFluctuation | PeriodicSolution | No
         return None, str(err)
 
 
-_COMPUTE = {"models": _models, "startup": _startup, "textbook": _textbook, "speed": _speed}
+_COMPUTE: dict[str, Callable[[Analysis], Any]] = {
+    "models": _models,
+    "startup": _startup,
+    "textbook": _textbook,
+    "speed": _speed,
+}
 
 
 def startup_run(machine: Machine, omega_target: float, j_flywheel: float) -> StartupRun | None:

@@ -490,7 +490,7 @@ def solve(
         return with_extras(solution, extras)
     analysis = analyse(scene, model)
     if scene.drive is not None and design_flywheel:
-        solution = solve_drive(scene, analysis, solver_options)
+        solution = solve_drive(scene, analysis, solver_options, extras)
     else:
         result = design_scene(scene, analysis, solver_options, design_method) if design_flywheel else None
         checked = verify(scene, analysis, result) if verify_design else None
@@ -735,24 +735,36 @@ def stress_profile(scene: Scene, analysis: Analysis, design: DesignResult) -> tu
     return profile, beams, omega, material
 
 
-def solve_drive(scene: Scene, analysis: Analysis, solver_options: Mapping[str, Any] | None = None) -> Solution:
+def solve_drive(
+    scene: Scene,
+    analysis: Analysis,
+    solver_options: Mapping[str, Any] | None = None,
+    extras: Collection[str] = (),
+) -> Solution:
     """Design the drive and the flywheel together (flyopt.drive.codesign), then analyse and check the machine as built.
 
     The Solution's scene and analysis are the machine with the chosen motor
     on its curve at its ratio (the periodic model), its design the wheel on
     the chosen shaft, and ``drive_check`` the simulation with the wheel as built
     (δ, the motor's RMS torque, the start-up); an infeasible drive gives the
-    scene's own analysis and no design.
+    scene's own analysis and no design. With "models" in ``extras`` the
+    analysis' comparison of the models takes the δ of a flywheel from the
+    compiled model the search solved (:func:`flyopt.drive.codesign.flywheel_delta`).
     """
-    from flyopt.drive.codesign import chosen_scene, design_drive, verify_drive
+    from flyopt.drive.codesign import chosen_scene, design_drive, flywheel_delta, verify_drive
 
     drive = design_drive(scene, analysis, solver_options=solver_options)
     if drive.best is None:
         return Solution(scene=scene, analysis=analysis, drive=drive)
     built = chosen_scene(scene, drive.best)
+    # a motor the search found to need no flywheel: whether its slip alone keeps δ is asked first (one CVODES
+    # solution of the machine as it is, which the verification below reads again) before a search for a flywheel
+    chosen = analyse(built, "dynamic", slip_first=drive.best.limit == "none")
+    if "models" in extras and chosen.machine is not None:
+        chosen = complete(chosen, ("models",), simulate=flywheel_delta(drive, chosen.machine))
     return Solution(
         scene=built,
-        analysis=analyse(built, "dynamic"),
+        analysis=chosen,
         design=drive.best.design,
         drive=drive,
         drive_check=verify_drive(scene, drive.best),

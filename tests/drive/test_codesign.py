@@ -452,3 +452,38 @@ def test_a_shaft_described_as_a_part_is_refused_beside_a_drive(main_cli, tmp_pat
     status, out, err = main_cli("solve", path)
     assert status == 2 and out == ""
     assert err.count("\n") == 1 and "shaft[0]" in err and "[drive]" in err and "Traceback" not in err
+
+
+def test_the_walk_leaves_a_size_unsolved_only_where_it_cannot_win():
+    # every run's objective is its motor's mass plus a wheel's (>= 0): a size whose motor alone is no lighter
+    # than the best is left unsolved, and the walk chooses what it chose solving every size it reached
+    # (and, where the objective falls then rises along the ladder, the brute-force best of every size)
+    rng = np.random.default_rng(26)
+    masses = [m.mass for m in OPTIONS.motors]
+    pruned_any = False
+    for trial in range(300):
+        wheels = rng.uniform(0.0, 80.0, len(masses)) * (rng.uniform(size=len(masses)) < 0.8)
+        if trial % 2:  # a valley: the wheel shrinks as the motor grows
+            wheels = np.sort(wheels)[::-1]
+        objectives = [m + w for m, w in zip(masses, wheels)]
+        power = float(rng.uniform(3.0e3, 15.0e3))
+
+        def walk(least):
+            done = {}
+
+            def evaluate(k):
+                done[k] = SimpleNamespace(feasible=True, objective=objectives[k])
+
+            skipped = drive._neighbours(OPTIONS, power, evaluate, done, least)
+            best = min(done, key=lambda k: (objectives[k], k))
+            return best, set(done), skipped
+
+        best, solved, skipped = walk(lambda k: masses[k])
+        every_best, every_solved, _ = walk(lambda k: None)
+        assert best == every_best and solved <= every_solved
+        assert all(k not in solved and masses[k] >= objectives[best] for k in skipped)
+        assert set(skipped) == every_solved - solved
+        pruned_any |= bool(skipped)
+        if trial % 2 and all(np.diff(objectives[: best + 1]) <= 0) and all(np.diff(objectives[best:]) >= 0):
+            assert best == int(np.argmin(objectives))
+    assert pruned_any

@@ -7,10 +7,12 @@ solution at the ratio and flywheel found, and central differences of the
 residuals for the Newton Jacobian.
 """
 
+import dataclasses
 import math
 
 import numpy as np
 import pytest
+from conftest import ROOT
 
 from flyopt.analysis import analyse
 from flyopt.design import design_inputs
@@ -109,9 +111,65 @@ def test_kloss_curve_is_one_formula():
 
 
 def test_verifying_a_run_against_a_scene_without_a_drive_is_refused_in_words(press):
-    import dataclasses
-
     scene, analysis, motors, model = press
     run = codesign.MotorRun(motor=motors["132S-4 5.5 kW"], feasible=True, motor_ratio=122.0, j_flywheel=0.0)
     with pytest.raises(ValueError, match=r"no \[drive\]"):
         codesign.verify_drive(dataclasses.replace(scene, drive=None), run)
+
+
+def test_the_chosen_motor_without_a_flywheel_is_analysed_without_the_one_solve(press, monkeypatch):
+    # a motor whose slip alone holds δ: asked first (slip_first, as flyopt.pipeline.solve_drive does for a
+    # chosen motor the search found to need no flywheel), the requirement is the one the default path finds
+    # after its one Newton solve gives up (CVODES's periodic solution with none), and the one solve never runs
+    from flyopt.sizing import periodic
+
+    scene, analysis, motors, model = press
+    motor = motors["132S-4 5.5 kW"]
+    ratio = codesign.motor_ratio_estimate(motor, analysis.driving_torque, scene.omega_mean, scene.efficiency)
+    machine = codesign.reduce(codesign.motor_scene(scene, motor, ratio))
+    args = (machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean, scene.delta)
+    with monkeypatch.context() as patch:
+
+        def refused(*_):
+            raise AssertionError("the one solve ran")
+
+        patch.setattr(periodic, "_one_solve", refused)
+        first = periodic.dynamic_requirement(*args, machine.knots(), slip_first=True)
+    before = periodic.BUILDS["fallback to the CVODES search"]
+    default = periodic.dynamic_requirement(*args, machine.knots())
+    assert periodic.BUILDS["fallback to the CVODES search"] == before + 1  # the one solve gave up there
+    assert first.limit == default.limit == "none"
+    assert first.j_required == default.j_required == -float(machine.j_machine)
+    assert first.solution.delta == default.solution.delta < scene.delta
+    assert first.solution.omega_mean == default.solution.omega_mean
+
+
+def test_the_delta_of_a_flywheel_on_the_chosen_drive_is_cvodes(press, monkeypatch):
+    # the analysis' comparison of the models asks the chosen drive for the δ of the energy model's flywheel:
+    # by the compiled model the search solved, it is CVODES's periodic solution of the chosen machine (rtol
+    # 1e-11) to the steps' check (1e-9); where the compiled model does not settle, it is CVODES's own
+    import json
+
+    from flyopt.sizing.shooting import NotSettled
+
+    scene, analysis, motors, model = press
+    golden = json.loads((ROOT / "tests" / "data" / "golden" / "press-drive.json").read_text(encoding="utf-8"))
+    motor, ratio = motors["132S-4 5.5 kW"], golden["drive"]["best"]["motor_ratio"]
+    run = codesign.MotorRun(motor=motor, feasible=True, motor_ratio=ratio, j_flywheel=0.0)
+    drive = codesign.DriveDesign("designed", "mass", run, (run,), model=model)
+    machine = codesign.reduce(codesign.chosen_scene(scene, run))
+    delta = codesign.flywheel_delta(drive, machine)
+    j = 48123.77499097989  # the energy model's flywheel for it
+    reference = periodic_solution(
+        machine.net_torque(), machine.j_machine, machine.cycle_angle, scene.omega_mean, j, machine.knots()
+    ).delta
+    assert delta(j) == pytest.approx(reference, rel=1e-9)
+    assert delta(j) != reference  # two methods, not one
+    with monkeypatch.context() as patch:
+
+        def unsettled(*_):
+            raise NotSettled("the steps do not settle")
+
+        patch.setattr(model, "with_flywheel", unsettled)
+        assert delta(j) == reference
+    assert codesign.flywheel_delta(dataclasses.replace(drive, model=None), machine) is None

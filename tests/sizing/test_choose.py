@@ -251,9 +251,9 @@ def test_the_chosen_model_is_solved_once(monkeypatch):
     calls = []
     solve = choose.requirement
 
-    def counted(machine, model, indicator=None):
+    def counted(machine, model, indicator=None, **options):
         calls.append(model)
-        return solve(machine, model, indicator)
+        return solve(machine, model, indicator, **options)
 
     monkeypatch.setattr(choose, "requirement", counted)
     analysis = flyopt.analyse(scene, extras=("models",))

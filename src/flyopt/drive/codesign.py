@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, cast
 
@@ -167,6 +167,9 @@ class DriveDesign:
         The continuous optimum that located the sizes solved (None: every size solved).
     note : str
         How the sizes were chosen.
+    model : flyopt.drive.steady.DriveModel or None
+        The compiled model the search solved (None: the CVODES search alone), for
+        :func:`flywheel_delta`.
     """
 
     status: str
@@ -176,6 +179,7 @@ class DriveDesign:
     message: str = ""
     relaxation: Relaxation | None = None
     note: str = ""
+    model: DriveModel | None = field(default=None, compare=False, repr=False)
 
     def to_dict(self) -> dict[str, Any]:
         relaxed = None if self.relaxation is None else self.relaxation.to_dict()
@@ -805,7 +809,13 @@ def design_drive(
         for k in range(len(motors)):
             evaluate(k)
     else:
-        _neighbours(spec.motors, relaxation.rated_power, evaluate, done)
+        skipped = _neighbours(
+            spec.motors, relaxation.rated_power, evaluate, done, lambda k: _least_objective(motors[k], spec)
+        )
+        for k in skipped:  # the note says what the table of sizes no longer shows
+            least = _least_objective(motors[k], spec)
+            alone = f"weighs {least:.6g} kg" if spec.objective == Objective.MASS else f"costs {least:.6g}"
+            note += f"; {_name(motors[k])} left unsolved: its motor alone {alone}, no less than the best drive"
     runs = tuple(done[k] for k in sorted(done))
     ranked = sorted(
         (r for r in runs if r.feasible and r.objective is not None), key=lambda r: (r.objective, r.motor.rated_power)
@@ -821,7 +831,32 @@ def design_drive(
             relaxation=relaxation,
             note=note,
         )
-    return DriveDesign("designed", spec.objective, ranked[0], runs, relaxation=relaxation, note=note)
+    return DriveDesign("designed", spec.objective, ranked[0], runs, relaxation=relaxation, note=note, model=compiled)
+
+
+def flywheel_delta(drive: DriveDesign, machine: Machine) -> Callable[[float], float] | None:
+    """J_F ↦ the δ the chosen drive reaches with that flywheel at the crank (None without a chosen drive).
+
+    By the compiled model the search solved (:meth:`flyopt.drive.steady.DriveModel.with_flywheel`,
+    RK4 with its steps checked to 1e-9), not a CVODES periodic solution built again for the
+    chosen machine (the analysis' comparison of the models asks it for the energy model's
+    flywheel); where it does not settle, by CVODES on ``machine``, the chosen machine reduced
+    (:func:`flyopt.sizing.choose.achieved_delta`).
+    """
+    best, model = drive.best, drive.model
+    if best is None or model is None:
+        return None
+    motor, ratio = best.motor, cast(float, best.motor_ratio)  # a chosen run has its ratio
+
+    def delta(j_flywheel: float) -> float:
+        try:
+            return model.with_flywheel(motor, ratio, j_flywheel).delta
+        except SolverFailed:  # NotSettled: the fixed steps cannot settle it
+            from flyopt.sizing.choose import achieved_delta
+
+            return achieved_delta(machine, j_flywheel)
+
+    return delta
 
 
 def _relaxation(scene, analysis, spec, motors, inputs, load):
@@ -866,33 +901,53 @@ def _relaxation(scene, analysis, spec, motors, inputs, load):
     return best, "the catalogue sizes around the relaxed optimum solved exactly"
 
 
-def _neighbours(catalogue, power, evaluate, done):
+def _least_objective(motor, spec):
+    """A lower bound of a motor size's objective before it is solved: its own mass, or price (the wheel adds
+    to it, never takes away); None where the catalogue gives none."""
+    return getattr(motor, "mass" if spec.objective == Objective.MASS else "price", None)
+
+
+def _neighbours(catalogue, power, evaluate, done, least=lambda k: None):
     """Solve the sizes either side of the relaxed rating, then walk on while the best is at an end.
 
     Below the relaxed rating the motor is smaller than the continuous optimum
     wants, above it larger; the discrete optimum is one of the two unless the
     fitted laws mislead, so the search moves on past an end of the solved
     block as long as the best (or, when none is feasible yet, any) lies there.
+    A size the walk reaches is not solved when it cannot win: ``least(k)``, a
+    lower bound of its objective (its motor's own mass or price), is above the
+    best's objective (or equal, of a larger rating: ties go to the smaller motor),
+    and the walk stops there as it would have after solving it.
+
+    Returns
+    -------
+    list of int
+        The sizes so left unsolved.
     """
     motors = catalogue.motors  # in increasing rated power
     below, above = catalogue.neighbours(power)
     for motor in (below, above):
         if motor is not None:
             evaluate(motors.index(motor))
+    skipped: list[int] = []
     while True:
         lo, hi = min(done), max(done)
         feasible = [k for k in done if done[k].feasible and done[k].objective is not None]
         if feasible:
             best = min(feasible, key=lambda k: (done[k].objective, motors[k].rated_power))
-            moves = [
+            key = (done[best].objective, motors[best].rated_power)
+            ends = [
                 k
                 for k in ((lo - 1) if best == lo else None, (hi + 1) if best == hi else None)
                 if k is not None and 0 <= k < len(motors)
             ]
+            bounds = {k: least(k) for k in ends}
+            moves = [k for k in ends if bounds[k] is None or (bounds[k], motors[k].rated_power) <= key]
+            skipped += [k for k in ends if k not in moves and k not in skipped]
         else:
             moves = [k for k in (lo - 1, hi + 1) if 0 <= k < len(motors)]
         if not moves:
-            return
+            return skipped
         for k in moves:
             evaluate(k)
 

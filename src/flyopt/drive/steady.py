@@ -200,7 +200,7 @@ class DriveModel:
         self.j0 = float(model.inertia(0.0))
         # the energy scale: the swing of the net work at the mean speed (a motor's torque of the speed
         # alone is a constant along the cycle there, and drops out of it)
-        #: Steps per grid interval the last solve of each limit needed (the next starts near them).
+        #: Steps per grid interval the last solve of each limit needed for a stable step (the next starts at them).
         self.substeps: dict[str, int] = {}
         self.w_s = shooting.energy_swing(model, self.omega_m)
         if not self.w_s > 0:
@@ -218,8 +218,9 @@ class DriveModel:
 
         Parameters
         ----------
-        limit : {"none", "delta", "thermal"}
-            "none": no flywheel (unknowns v, ρ); "delta": the least J_F for δ;
+        limit : {"none", "delta", "thermal", "fixed"}
+            "none": no flywheel (unknowns v, ρ); "fixed": the flywheel of ``start``'s u,
+            held (unknowns v, ρ: see :meth:`with_flywheel`); "delta": the least J_F for δ;
             "thermal": the J_F whose RMS torque is the motor's rating.
         start : (v, u, ρ)
             Where Newton starts (u ignored for "none"; a nan u starts from the energy estimate).
@@ -228,6 +229,19 @@ class DriveModel:
             (unknowns v, u; equations y(Φ) and the limit).
         """
         return _Newton(self, motor, limit, ratio).solve(start)
+
+    def with_flywheel(self, motor: CatalogueMotor, ratio: float, j_flywheel: float, v: float | None = None) -> Steady:
+        """The steady running of ``motor`` at ``ratio`` with a given flywheel J_F at the crank [kg*m^2].
+
+        One unknown, v = ln ω_ref, and one equation, y(Φ) = 0, with the steps refined as for
+        :meth:`steady` (the δ a flywheel gives the chosen drive, for the analysis' comparison of
+        the models). ``v``: where Newton starts (default the scene's mean speed).
+        """
+        newton = _Newton(self, motor, "fixed", ratio)
+        if not j_flywheel + newton.j_s > 0:
+            raise NotSettled(f"a flywheel of {j_flywheel:.6g} kg*m^2 leaves the machine no inertia")
+        start = math.log(self.omega_m) if v is None else v
+        return newton.solve((start, math.log(j_flywheel + newton.j_s), math.log(ratio)))
 
 
 class _Newton:
@@ -240,8 +254,9 @@ class _Newton:
         self.j_rot = float(motor.rotor_inertia)
         self.log_delta = math.log(drive.delta)
         # the unknowns solved and the residuals kept, by name
-        unknowns = ["v"] + ([] if limit == "none" else ["u"]) + ([] if ratio is not None else ["rho"])
-        rows = ["periodic"] + ([] if limit == "none" else [limit]) + ([] if ratio is not None else ["mean"])
+        held = limit in ("none", "fixed")  # no flywheel, or one held: no unknown u, no limit's equation
+        unknowns = ["v"] + ([] if held else ["u"]) + ([] if ratio is not None else ["rho"])
+        rows = ["periodic"] + ([] if held else [limit]) + ([] if ratio is not None else ["mean"])
         self.columns = [("v", "u", "rho").index(k) for k in unknowns]
         self.rows = rows
         self.w_s = drive.w_s
@@ -286,8 +301,9 @@ class _Newton:
         # Newton with its Jacobian computed at the coarsest steps that settle the cycle and kept while
         # the steps are refined (a chord method): the sensitivities cost four cycles, and finer steps
         # move the solution, not the Jacobian, by a little; they are computed again where the residual
-        # stops falling fast
-        substeps = max(shooting.SUBSTEPS, self.drive.substeps.get(self.limit, 1) // 2)
+        # stops falling fast. It starts at the steps the last solve of this limit needed for stability
+        # (not for accuracy: a Jacobian there costs several times one at the coarsest stable steps)
+        substeps = max(shooting.SUBSTEPS, self.drive.substeps.get(self.limit, 1))
         point = self.state(full, substeps, True)
         if point is None:
             raise NotSettled(f"the cycle cannot be integrated at the start (ratio {math.exp(rho):.6g})")
@@ -311,14 +327,26 @@ class _Newton:
                 finer = self.state(point.full, 2 * substeps, False)
                 moved = self.moved(point, finer)
                 if moved <= STEP_RTOL:
-                    self.drive.substeps[self.limit] = substeps
+                    self.drive.substeps[self.limit] = needed
                     return self.result(point, iteration, substeps)
                 if 2 * substeps > shooting.MAX_SUBSTEPS:
                     raise NotSettled(f"the fixed steps do not resolve the cycle (it moves by {moved:.3g})")
-                substeps *= 2
                 if finer is None:
                     raise BrokenInvariant("a point that moved by a finite amount has its state on the finer steps")
-                point, fresh, norms = finer, False, []
+                # RK4's error falls 16-fold a doubling of the steps: as many doublings as should bring the move
+                # within STEP_RTOL, at most to the most steps allowed (then checked against twice as many, as always)
+                doublings = max(1, math.ceil(math.log(moved / STEP_RTOL) / math.log(16.0)))
+                while doublings > 1 and 2 * substeps * 2 ** (doublings - 1) > shooting.MAX_SUBSTEPS:
+                    doublings -= 1
+                substeps *= 2**doublings
+                if doublings == 1:
+                    point = finer
+                else:
+                    jumped = self.state(point.full, substeps, False)
+                    if jumped is None:
+                        raise NotSettled("the cycle cannot be integrated with finer steps")
+                    point = jumped
+                fresh, norms = False, []
                 continue
             if self.limit == "thermal" and point.mean_torque > self.rated * (1 + 1e-9):
                 # T_rms >= its mean, which a flywheel hardly moves (the work balance sets it)

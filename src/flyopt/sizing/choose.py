@@ -18,6 +18,7 @@ far a cheaper method would be off — in J_F and in the δ it would really give.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -80,7 +81,9 @@ class Requirement:
     note: str = ""
 
 
-def requirement(machine: Machine, model: str, indicator: EnergyIndicator | None = None) -> Requirement:
+def requirement(
+    machine: Machine, model: str, indicator: EnergyIndicator | None = None, *, slip_first: bool = False
+) -> Requirement:
     """Size the flywheel with one model.
 
     Parameters
@@ -90,6 +93,9 @@ def requirement(machine: Machine, model: str, indicator: EnergyIndicator | None 
     indicator : EnergyIndicator, optional
         The energy indicator diagram of the angle-only torques (reused by the
         energy model).
+    slip_first : bool
+        The dynamic model: ask first whether the motor's slip alone keeps δ
+        (:func:`flyopt.sizing.periodic.dynamic_requirement`).
 
     Returns
     -------
@@ -138,7 +144,7 @@ def requirement(machine: Machine, model: str, indicator: EnergyIndicator | None 
         from flyopt.sizing import periodic  # CasADi: only for a machine whose torque depends on speed
 
         dyn = periodic.dynamic_requirement(
-            machine.net_torque(), machine.j_machine, machine.cycle_angle, w, d, machine.knots()
+            machine.net_torque(), machine.j_machine, machine.cycle_angle, w, d, machine.knots(), slip_first=slip_first
         )
         sol = dyn.solution
         note = dyn.held
@@ -179,13 +185,20 @@ def achieved_delta(machine: Machine, j_flywheel: float) -> float:
 
 
 def compare(
-    machine: Machine, chosen: str, indicator: EnergyIndicator | None = None, known: Requirement | None = None
+    machine: Machine,
+    chosen: str,
+    indicator: EnergyIndicator | None = None,
+    known: Requirement | None = None,
+    simulate: Callable[[float], float] | None = None,
 ) -> list[dict[str, Any]]:
     """Every applicable model's J_F and the δ it really gives (by the exact model).
 
     ``known`` is a :class:`Requirement` already computed (the chosen model's,
     by :func:`requirement`): it is reused, not solved again (a periodic
-    dynamic solution takes about a second).
+    dynamic solution takes about a second). ``simulate``: J_F ↦ the δ the
+    machine reaches with it by the exact model, where the caller has that
+    model compiled already (a drive's chosen machine, flyopt.drive.steady);
+    default :func:`achieved_delta`.
 
     Returns a list of dicts: model, exact (bool), j_required, achieved_delta,
     j_error (relative to the exact model's J_F), note.
@@ -229,7 +242,7 @@ def compare(
         note = res.note
         if model != exact:
             try:
-                delta = achieved_delta(machine, max(j, 0.0))
+                delta = achieved_delta(machine, max(j, 0.0)) if simulate is None else simulate(max(j, 0.0))
             except (SolverFailed, NonPeriodicCycle, ValueError) as err:
                 note = f"{note}; its δ could not be simulated: {err}".lstrip("; ")
         error = None

@@ -765,6 +765,8 @@ def dynamic_requirement(
     delta: float,
     knots: Iterable[float] = (),
     rtol: float = 1e-10,
+    *,
+    slip_first: bool = False,
 ) -> DynamicRequirement:
     """Smallest J_F whose periodic solution keeps (ω_max − ω_min)/ω_mean <= δ.
 
@@ -780,6 +782,12 @@ def dynamic_requirement(
         Allowed coefficient of speed fluctuation [-].
     rtol : float
         Relative tolerance on δ achieved.
+    slip_first : bool
+        Ask first whether a motor's slip alone keeps δ (:func:`_held_by_slip`), then
+        the one Newton solve: for a caller that knows the machine keeps δ with no
+        flywheel (the drive's chosen motor, :mod:`flyopt.drive.codesign`), for which the
+        one solve would search toward a vanishing inertia and give up. Default: the one
+        solve first.
 
     Returns
     -------
@@ -817,26 +825,20 @@ def dynamic_requirement(
     # constant-inertia estimate at the guessed speed
     j_tot0 = shooting.energy_swing(model, omega_mean) / (omega_mean**2 * delta)
     j_initial = j_tot0 - j_mean
+    if slip_first:
+        try:
+            first = _held_by_slip(model, omega_mean, delta, j_low, j_initial)
+        except SolverFailed:
+            first = None  # the machine as it is has no steady state: the search below says why
+        if first is not None:
+            return first
     try:  # the one Newton solve; the search below settles what it cannot
         return _as_fitted(model, _one_solve(model, delta, omega_mean, j_tot0, j_initial), j_low)
     except NotSettled:
         BUILDS["fallback to the CVODES search"] += 1
-    if model.speed_dependent and not model.balanced and j_low > 0:
-        # a motor whose torque–speed balance alone keeps δ (the speed at a vanishing inertia) needs no
-        # flywheel of any size: δ only falls as the inertia grows; the machine as it is is simulated once
-        # (the search below would walk down to a vanishing inertia to find the same)
-        held = quasi_static_delta(model, omega_mean)
-        if held is not None and held <= delta:
-            sol = _periodic(model, 0.0, omega_mean)
-            if sol.delta <= delta:
-                return DynamicRequirement(
-                    j_required=0.0 - j_low,
-                    solution=sol,
-                    iterations=1,
-                    held=_held(model),
-                    j_initial=j_initial,
-                    limit="none",
-                )
+    held_by_slip = None if slip_first else _held_by_slip(model, omega_mean, delta, j_low, j_initial)
+    if held_by_slip is not None:
+        return held_by_slip
     # unknown u = log(J_F + j_low)
     u = math.log(max(j_tot0 - (j_mean - j_low), 0.25 * j_tot0, 1e-300) if j_tot0 > 0 else max(j_mean, 1e-300))
     target = math.log(delta)
@@ -915,6 +917,28 @@ def dynamic_requirement(
         f"the flywheel for delta = {delta!r} was not found in {MAX_DYNAMIC} periodic solutions "
         f"(bracket J_F in [{math.exp(lo) - j_low:.6g}, {math.exp(hi) - j_low:.6g}] kg*m^2; "
         f"last failure: {failure})"
+    )
+
+
+def _held_by_slip(
+    model: PeriodicModel, omega_mean: float, delta: float, j_low: float, j_initial: float
+) -> DynamicRequirement | None:
+    """The requirement of a motor whose torque–speed balance alone keeps δ, or None.
+
+    Such a motor (the speed at a vanishing inertia, :func:`quasi_static_delta`, within δ) needs no
+    flywheel of any size: δ only falls as the inertia grows; the machine as it is is simulated once
+    (the search of :func:`dynamic_requirement` would walk down to a vanishing inertia to find the same).
+    """
+    if not (model.speed_dependent and not model.balanced and j_low > 0):
+        return None
+    held = quasi_static_delta(model, omega_mean)
+    if held is None or held > delta:
+        return None
+    sol = _periodic(model, 0.0, omega_mean)
+    if sol.delta > delta:
+        return None
+    return DynamicRequirement(
+        j_required=0.0 - j_low, solution=sol, iterations=1, held=_held(model), j_initial=j_initial, limit="none"
     )
 
 
