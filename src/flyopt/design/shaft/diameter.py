@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     from flyopt.design.materials import Material
     from flyopt.design.result import Candidate, DesignResult
     from flyopt.design.spec import DesignSpec, MountShaft
+    from flyopt.machine.shaft_layout import ShaftLayout
 
 __all__ = ["SeatFloor", "seat_series", "seat_floor", "designs_seats", "design_with_seats", "seated"]
 
@@ -91,8 +92,7 @@ def seat_floor(ctx: ShaftContext, name: str, j_shaft: float) -> SeatFloor:
     """The series values a designed seat of shaft ``name`` can take under a wheel of inertia at least ``j_shaft``
     [kg*m^2]: from the first whose keyseat passes the DE-Goodman factor with the torque alone (below it every
     wheel's fails) up to the last at which the shaft's material gives its strengths and the fits hold."""
-    layout = ctx.shafts[name].layout
-    assert layout is not None
+    layout = _layout(ctx, name)
     material = ctx.materials[name]
     curve = torque_curve(ctx, name, j_shaft)
     ta = 0.5 * (float(curve.max()) - float(curve.min()))
@@ -129,6 +129,13 @@ def seated(shafts: Sequence[MountShaft], designed: set[str]) -> tuple[MountShaft
         dataclasses.replace(s, diameter=seat_series()[0]) if s.name in designed and s.diameter is None else s
         for s in shafts
     )
+
+
+def _layout(ctx: ShaftContext, name: str) -> ShaftLayout:
+    layout = ctx.shafts[name].layout
+    if layout is None:
+        raise ValueError(f"shaft {name!r} is not described as a part")
+    return layout
 
 
 def designs_seats(ctx: ShaftContext | None, shafts: Sequence[MountShaft]) -> bool:
@@ -187,8 +194,7 @@ def design_with_seats(
         for c in last.candidates:
             (found if c.feasible else failed)[_key(c)] = c
     for shaft in (s for s in shafts if _designed(ctx, s.name)):
-        layout = ctx.shafts[shaft.name].layout
-        assert layout is not None
+        layout = _layout(ctx, shaft.name)
         j_shaft = inertia_on_shaft(j_required * spec.rim_share, shaft.speed_ratio)
         floor = seat_floor(ctx, shaft.name, j_shaft)
         pending = {(m.name, a) for m in materials for a in _arms(spec)}
