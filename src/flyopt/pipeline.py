@@ -7,7 +7,7 @@ PyBaMM Simulation pattern).
 
 from __future__ import annotations
 
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal
@@ -219,16 +219,18 @@ def design_scene(
         IPOPT did not converge on a combination that can be feasible, or a
         design failed its verification against the constraints.
     """
-    from flyopt.design import design_flywheel, design_inputs
+    from flyopt.design import design_inputs
     from flyopt.design.inputs import builds_whole, one_design
     from flyopt.design.wheel_design import needs_torque
 
-    inputs = one_design(design_inputs(scene))
+    inputs = one_design(_seated(design_inputs(scene), scene))
     # the rim is checked at the highest speed of the cycle, from the model that ran (for a motor
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
     torque = analysis.flywheel_torque() if needs_torque(inputs) else None
-    accept = _shaft_acceptor(scene, analysis, {m.name: m.display_name for m in inputs.materials})
+    names = {m.name: m.display_name for m in inputs.materials}
+    accept = _shaft_acceptor(scene, analysis, names)
+    design_flywheel = _seat_designer(scene, analysis, inputs.shafts, names)  # or the designed seat's search
     result = design_flywheel(
         analysis.j_margin,
         analysis.omega_max,
@@ -275,6 +277,34 @@ def _shaft_acceptor(scene: Scene, analysis: Analysis, names: Mapping[str, str]) 
     from flyopt.design.shaft.cycle import acceptor
 
     return acceptor(context, names)
+
+
+def _seated(inputs: Any, scene: Scene) -> Any:
+    """The design inputs with a designed seat standing for a bore (:func:`flyopt.design.shaft.diameter.seated`):
+    its wheel is designed whole, with its key, on the diameter the search gives it."""
+    designed = {s.name for s in scene.shafts if s.layout is not None and s.layout.designs_seat}
+    if not designed:
+        return inputs
+    from flyopt.design.shaft.diameter import seated
+
+    return replace(inputs, shafts=seated(inputs.shafts, designed))
+
+
+def _seat_designer(scene: Scene, analysis: Analysis, shafts: Sequence[Any], names: Mapping[str, str]) -> Any:
+    """``design_flywheel``, or where a described shaft designs its seat diameter the search over its series
+    (:func:`flyopt.design.shaft.diameter.design_with_seats`, which checks each wheel with its own shaft)."""
+    from flyopt.design import design_flywheel
+
+    context = shaft_context_of(scene, analysis)
+    from flyopt.design.shaft.diameter import design_with_seats, designs_seats
+
+    if not designs_seats(context, shafts):
+        return design_flywheel
+
+    def design(*args: Any, accept: Any = None, **options: Any) -> Any:
+        return design_with_seats(*args, ctx=context, names=names, **options)
+
+    return design
 
 
 def shaft_context_of(scene: Scene, analysis: Analysis) -> Any:
@@ -335,7 +365,7 @@ def _with_delta_sensitivity(
         delta = scene.delta * (1.0 + sign * DELTA_STEP)
         try:
             moved = analyse(dataclasses.replace(scene, delta=delta), Model(analysis.model), like=analysis)
-            inputs = design_inputs(dataclasses.replace(scene, delta=delta))
+            inputs = _seated(design_inputs(dataclasses.replace(scene, delta=delta)), scene)
             # the continuous design's slope: a rounded wheel's mass steps with the grid, and rounding it
             # twice more would only cost solves
             spec = dataclasses.replace(inputs.spec, round_to=None, stress_factors=result.spec.stress_factors)
@@ -345,7 +375,12 @@ def _with_delta_sensitivity(
             again = design_flywheel(
                 moved.j_margin,
                 moved.omega_max,
-                [s for s in inputs.shafts if s.name == best.shaft],
+                # on the winner's seat: a designed one (its bore) is held, a discrete variable has no slope
+                [
+                    dataclasses.replace(s, diameter=best.bore or s.diameter)
+                    for s in inputs.shafts
+                    if s.name == best.shaft
+                ],
                 [m for m in inputs.materials if m.name == best.material],
                 spec,
                 solver_options=solver_options,

@@ -255,6 +255,7 @@ RELATIONS = {
     "slope_allowed": "slope",
     "deflection": "d_outer - d_inner",
     "deflection_allowed": "deflection",
+    "seat_diameter": "bore",  # a designed seat is the wheel's bore
     "unbalance_force": "unbalance_permissible * omega_max**2",
     "torque_mean": "driving_torque",
     "torque_alternating": "driving_torque",

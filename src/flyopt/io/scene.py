@@ -25,7 +25,13 @@ from flyopt.io.engine_section import read_engine
 from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_magnitude
 from flyopt.io.material_section import read_materials
 from flyopt.io.member_section import read_mechanism, read_members, with_engine
-from flyopt.io.shaft_section import check_shaft_materials, read_efficiency, read_shafts, reference_efficiency
+from flyopt.io.shaft_section import (
+    check_designed_seats,
+    check_shaft_materials,
+    read_efficiency,
+    read_shafts,
+    reference_efficiency,
+)
 from flyopt.io.toml_file import read_toml
 from flyopt.io.torque_section import NetAreas, read_torques
 from flyopt.machine.transmission import PowerBranch, Shaft, inertia_at_reference
@@ -341,6 +347,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
 
         check_shaft_materials(shafts, material_library(materials))
     design, design_materials, design_shafts = read_design(top.get("design", {}), shafts, materials)
+    check_designed_seats(shafts, design.bore)
     drive = None
     if top.has("drive") or top.has("motor_option"):
         from flyopt.design.materials import design_material_names, material_library

@@ -53,13 +53,26 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
             "ω_shaft/ω_reference of a gear train",
         )
         eff = read_efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
+        if table.raw("diameter") == DESIGNED:
+            raise SceneError(
+                f"{where}.diameter",
+                'cannot be "design" here: the design chooses a seat only on a shaft described as a part, as a '
+                'step of its segments (segments = [..., { to = "520 mm", diameter = "design" }, ...])',
+            )
         diameter = table.quantity("diameter", "length")
         if diameter is not None and diameter <= 0:
             raise SceneError(
                 f"{where}.diameter", f"must be positive (the shaft seat), got {shorten(table.raw('diameter'))}"
             )
         layout = read_layout(table, where)
-        if layout is not None:
+        if layout is not None and layout.designs_seat:
+            if diameter is not None:
+                raise SceneError(
+                    f"{where}.diameter",
+                    f"the seat {shorten(table.raw('diameter'))} is given, and the step under the wheel says "
+                    '"design": give one of them',
+                )
+        elif layout is not None:
             seat = layout.diameter_at(layout.wheel_at)
             if diameter is not None and not math.isclose(diameter, seat, rel_tol=1e-9):
                 raise SceneError(
@@ -98,6 +111,7 @@ LAYOUT_KEYS = frozenset(
         "critical_margin",
         "train",
         "damping_ratio",
+        "diameter_series",
     }
 )
 
@@ -114,6 +128,7 @@ def read_layout(table: Table, where: str) -> ShaftLayout | None:
             '(segments = [{ to = "200 mm", diameter = "60 mm" }, ...])',
         )
     steps, diameters = _segments(table.raw("segments"), f"{where}.segments")
+    designed = tuple(j for j, d in enumerate(diameters) if math.isnan(d))
     length = steps[-1]
     bearings = _positions(table, "bearings", where, length, count=2)
     if not bearings[0] < bearings[1]:
@@ -155,6 +170,26 @@ def read_layout(table: Table, where: str) -> ShaftLayout | None:
             f"{where}.damping_ratio",
             f"must be a ratio in (0, 1) (each torsional mode's modal damping), got {shorten(table.raw('damping_ratio'))}",
         )
+    seat_step = next(j for j, end in enumerate(steps) if wheel_at <= end)
+    if designed and seat_step not in designed:
+        raise SceneError(
+            f"{where}.segments[{seat_step}].diameter",
+            f"must be \"design\" too: the designed diameter is the wheel seat's (the wheel's bore and key follow "
+            f"it), and segments[{designed[0]}] asks for it",
+        )
+    series = table.get("diameter_series", "R40")
+    from flyopt.design.preferred import SERIES
+
+    if series not in SERIES:
+        raise SceneError(
+            f"{where}.diameter_series",
+            f"{shorten(series)} is not a preferred-number series (allowed: {', '.join(SERIES)}, ISO 3)",
+        )
+    if table.has("diameter_series") and not designed:
+        raise SceneError(
+            f"{where}.diameter_series",
+            'chooses the designed seat diameter: give a step diameter = "design", or leave it out',
+        )
     options: dict[str, Any] = {
         "balance_grade": grade,
         "safety_factor": safety,
@@ -173,6 +208,8 @@ def read_layout(table: Table, where: str) -> ShaftLayout | None:
         fillet=fillet,
         loads=_side_loads(table.get("loads", []), f"{where}.loads", length),
         max_deflection=deflection,
+        designed=designed,
+        diameter_series=series,
         **{k: v for k, v in options.items() if v is not None},
     )
 
@@ -209,18 +246,26 @@ def _segments(raw: object, where: str) -> tuple[tuple[float, ...], tuple[float, 
     for k, item in enumerate(raw):
         seg = Table(item, f"{where}[{k}]", {"to", "diameter"})
         end = seg.quantity("to", "length", required=True)
-        d = seg.quantity("diameter", "length", required=True)
+        design = seg.raw("diameter") == DESIGNED
+        d = math.nan if design else seg.quantity("diameter", "length", required=True)
         if not (math.isfinite(end) and end > (steps[-1] if steps else 0.0)):
             raise SceneError(
                 f"{where}[{k}].to",
                 f"must be beyond the previous step's end ({(steps[-1] if steps else 0.0) * 1e3:g} mm), "
                 f"got {shorten(seg.raw('to'))}",
             )
-        if not (math.isfinite(d) and d > 0.0):
-            raise SceneError(f"{where}[{k}].diameter", f"must be positive, got {shorten(seg.raw('diameter'))}")
+        if not design and not (math.isfinite(d) and d > 0.0):
+            raise SceneError(
+                f"{where}[{k}].diameter",
+                f'must be positive, or "design" (the seat\'s, chosen by the design), got {shorten(seg.raw("diameter"))}',
+            )
         steps.append(end)
         diameters.append(d)
     return tuple(steps), tuple(diameters)
+
+
+#: A step's ``diameter`` the design chooses (docs/flywheel-design.md, section 26).
+DESIGNED = "design"
 
 
 def _side_loads(raw: object, where: str, length: float) -> tuple[SideLoad, ...]:
@@ -262,8 +307,9 @@ def check_shaft_materials(shafts: Iterable[Shaft], library: dict) -> None:
             raise SceneError(where, str(err)) from None
         if material.elastic_modulus is None:
             raise SceneError(where, f"{material.name!r} gives no elastic_modulus, which the shaft's deflection needs")
+        given = [d for d in shaft.layout.diameters if not math.isnan(d)]
         try:
-            sut, sy = material.strength(min(shaft.layout.diameters))
+            sut, sy = material.strength(min(given, default=_smallest_seat(shaft.layout)))
         except ValueError as err:
             raise SceneError(where, str(err)) from None
         if sut is None or sy is None:
@@ -291,6 +337,8 @@ def _check_fatigue_ranges(layout: ShaftLayout, material: Any, where: str) -> Non
     from flyopt.design.shaft import strength
 
     for j, d in enumerate(layout.diameters):
+        if math.isnan(d):  # designed: the search keeps to the fits' ranges (flyopt.design.shaft.diameter)
+            continue
         try:
             sut = material.strength(d)[0]
             strength.endurance_limit(sut, d, layout.finish)
@@ -300,6 +348,30 @@ def _check_fatigue_ranges(layout: ShaftLayout, material: Any, where: str) -> Non
             strength.notch_sensitivity(0.02 * d, sut)
         except ValueError as err:
             raise SceneError(f"{where}.material", f"{material.name!r}: {err}") from None
+
+
+def _smallest_seat(layout: ShaftLayout) -> float:
+    """The smallest diameter the design may give a designed seat [m]."""
+    from flyopt.design.shaft.diameter import seat_series
+
+    return seat_series(layout.diameter_series)[0]
+
+
+def check_designed_seats(shafts: Iterable[Shaft], bore: float | None) -> None:
+    """Refuse ``[design] bore`` beside a designed seat: the wheel's bore is the seat the design chooses.
+
+    Raises
+    ------
+    SceneError
+        Naming ``design.bore``.
+    """
+    designed = next((s.name for s in shafts if s.layout is not None and s.layout.designs_seat), None)
+    if designed is not None and bore is not None:
+        raise SceneError(
+            "design.bore",
+            f'is given, and [[shaft]] {designed!r} designs its seat (a step diameter = "design"), which is the '
+            "wheel's bore: leave design.bore out",
+        )
 
 
 #: The largest inertia a [[shaft]] may carry [kg*m^2]: a thousand times a large turbine-generator train's

@@ -8,7 +8,8 @@ round steps on two bearings; x is measured from one end.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -80,6 +81,12 @@ class ShaftLayout:
         ``torque_at``, joined by the shaft between them (the two-inertia train).
     damping_ratio : float
         The modal damping ratio of every elastic torsional mode in the forced response [-].
+    designed : tuple of int
+        The steps whose diameter the design chooses (``diameter = "design"``; the wheel seat's step among
+        them): each takes the one designed seat diameter d, their ``diameters`` entries are nan until
+        :meth:`with_seat` gives it. Empty: every diameter is given (docs/flywheel-design.md, section 26).
+    diameter_series : str
+        The ISO 3 preferred-number series d is chosen from (:data:`flyopt.design.preferred.SERIES`).
     """
 
     steps: tuple[float, ...]
@@ -98,6 +105,8 @@ class ShaftLayout:
     critical_margin: float = 0.2
     train: tuple[TrainInertia | TrainSpring, ...] = ()
     damping_ratio: float = 0.02
+    designed: tuple[int, ...] = ()
+    diameter_series: str = "R40"
 
     @property
     def length(self) -> float:
@@ -110,6 +119,20 @@ class ShaftLayout:
             if x <= end:
                 return d
         return self.diameters[-1]
+
+    @property
+    def designs_seat(self) -> bool:
+        """Whether the design chooses the seat diameter (some steps are ``"design"``)."""
+        return bool(self.designed)
+
+    def with_seat(self, d: float) -> ShaftLayout:
+        """This shaft with its designed steps at diameter ``d`` [m] (itself when none is designed)."""
+        if not self.designed:
+            return self
+        if not (math.isfinite(d) and d > 0.0):
+            raise ValueError(f"a designed seat diameter must be positive and finite, got {d!r} m")
+        diameters = tuple(d if j in self.designed else dj for j, dj in enumerate(self.diameters))
+        return replace(self, diameters=diameters, designed=())
 
     @property
     def overhung(self) -> bool:

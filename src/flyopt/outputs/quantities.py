@@ -278,6 +278,7 @@ QUANTITIES = {
     "total_mass": "mass",
     "price": "dimensionless",
     # the mounting shaft checked with its wheel, section 26
+    "seat_diameter": "length",  # a designed seat's diameter (step diameter = "design")
     "fatigue_factor": "dimensionless",
     "fatigue_factor_allowed": "dimensionless",
     "yield_factor": "dimensionless",

@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from flyopt.design.shaft.cycle import ShaftReport
     from flyopt.machine.torsion import CriticalSpeed
 
-__all__ = ["ModeRow", "SpringRow", "shaft_report", "limit_value", "train_lines", "train_rows"]
+__all__ = ["ModeRow", "SpringRow", "shaft_report", "limit_value", "seat_words", "train_lines", "train_rows"]
 
 
 @dataclass(frozen=True)
@@ -94,6 +94,7 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
             "",
             f"Shaft check: the {shaft_label(rep.shaft)} ({rep.material_name or rep.material}) with the chosen wheel "
             "(a post-check of each design: a combination whose shaft fails is infeasible)",
+            *seat_lines(rep, units, digits),
             f"  loads: weight {q(c.weight, 'weight')}, permissible unbalance force "
             f"{q(c.unbalance, 'unbalance_force')} (ISO 21940-11), torque midrange "
             f"{q(c.torque_mean, 'torque_mean')} and alternating {q(c.torque_alternating, 'torque_alternating')}",
@@ -124,6 +125,24 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
         )
         lines += train_lines(c, units, digits)
     return lines
+
+
+def seat_words(rep: ShaftReport, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str | None:
+    """What a designed seat diameter is, in words (None where the scene gives the seat)."""
+    if rep.seat_diameter is None:
+        return None
+    q, _ = formatters(units, digits)
+    return (
+        f"seat diameter {q(rep.seat_diameter, 'seat_diameter')}, designed: the smallest of ISO 3 "
+        f'{rep.seat_series} at which this shaft carries the wheel designed on it (the steps marked "design"; '
+        "a discrete design variable searched outside the NLP)"
+    )
+
+
+def seat_lines(rep: ShaftReport, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
+    """The designed seat's line of the text (none where the scene gives the seat)."""
+    words = seat_words(rep, units, digits)
+    return [] if words is None else [f"  {words}"]
 
 
 def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:

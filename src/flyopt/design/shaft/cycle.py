@@ -31,9 +31,20 @@ if TYPE_CHECKING:
     from flyopt.analysis import Analysis
     from flyopt.design.materials import Material
     from flyopt.design.result import Candidate
+    from flyopt.machine.shaft_layout import ShaftLayout
     from flyopt.machine.transmission import Shaft
 
-__all__ = ["ShaftContext", "ShaftReport", "shaft_context", "check_candidate", "acceptor", "mass_sensitivity"]
+__all__ = [
+    "ShaftContext",
+    "ShaftReport",
+    "shaft_context",
+    "check_candidate",
+    "acceptor",
+    "mass_sensitivity",
+    "seat_of",
+    "layout_of",
+    "torque_curve",
+]
 
 #: Relative step of the central difference of a limit's utilisation in the wheel's mass.
 MASS_STEP = 1e-3
@@ -63,12 +74,19 @@ class ShaftReport:
     check: ShaftCheck
     sensitivity: float  # d(utilisation of the binding limit)/d(wheel mass) [1/kg]
     material_name: str = ""  # the material's name for people (Material.display_name); the JSON keeps its key
+    layout: ShaftLayout | None = None  # the shaft checked (a designed seat at its diameter)
+    seat_diameter: float | None = None  # the designed seat diameter [m]; None: the scene gives it
+    seat_series: str | None = None  # the ISO 3 series it was chosen from
 
     def to_dict(self) -> dict[str, Any]:
-        """The report for ``--json`` (SI)."""
+        """The report for ``--json`` (SI); a designed seat adds ``seat_diameter`` [m] and ``seat_series``."""
+        seat = (
+            {} if self.seat_diameter is None else {"seat_diameter": self.seat_diameter, "seat_series": self.seat_series}
+        )
         return {
             "shaft": self.shaft,
             "material": self.material,
+            **seat,
             **self.check.to_dict(),
             "dutilisation_dmass": self.sensitivity,
         }
@@ -110,21 +128,53 @@ def _wheel(candidate: Candidate) -> tuple[float, float, float]:
     return float(candidate.mass or 0.0), float(candidate.j_flywheel or 0.0), width
 
 
-def _check(ctx: ShaftContext, name: str, mass: float, inertia: float, width: float) -> ShaftCheck:
-    key = (name, mass, inertia, width)
-    if key in ctx._cache:
-        return ctx._cache[key]
-    from flyopt.sizing.peak_torque import flywheel_torque_curve
+def seat_of(ctx: ShaftContext, candidate: Candidate) -> float | None:
+    """The designed seat diameter the candidate's wheel was designed on [m] (its bore), or None where the
+    candidate's shaft gives its seat (docs/flywheel-design.md, section 26)."""
+    shaft = ctx.shafts.get(candidate.shaft)
+    if shaft is None or shaft.layout is None or not shaft.layout.designs_seat:
+        return None
+    if not candidate.bore:
+        raise ValueError(
+            f"shaft {candidate.shaft!r} designs its seat, and the wheel was designed without a bore: design it "
+            "on a seat diameter (flyopt.design.shaft.diameter)"
+        )
+    return float(candidate.bore)
 
-    shaft = ctx.shafts[name]
-    layout = shaft.layout
+
+def layout_of(ctx: ShaftContext, name: str, seat: float | None = None) -> ShaftLayout:
+    """The described shaft ``name`` with its designed steps at ``seat`` [m] (as given where it designs none)."""
+    layout = ctx.shafts[name].layout
     if layout is None:
         raise ValueError(f"shaft {name!r} is not described")
-    r = shaft.speed_ratio
-    torque: np.ndarray = np.zeros(1)
+    if layout.designs_seat and seat is None:
+        raise ValueError(f"shaft {name!r} designs its seat: its checks need the seat diameter")
+    return layout.with_seat(seat) if seat is not None else layout
+
+
+def torque_curve(ctx: ShaftContext, name: str, inertia: float) -> np.ndarray:
+    """The torque a wheel of ``inertia`` [kg*m^2] on shaft ``name`` exchanges with it over the cycle [N*m]
+    (:func:`flyopt.sizing.peak_torque.flywheel_torque_curve`; a zero where the cycle gives net areas only)."""
+    from flyopt.sizing.peak_torque import flywheel_torque_curve
+
+    r = ctx.shafts[name].speed_ratio
     if ctx.net_torque is not None and ctx.j_machine is not None and inertia > 0.0:
         j_ref = inertia * r * r
-        torque = flywheel_torque_curve(j_ref, ctx.j_machine + j_ref, ctx.net_torque, r)
+        curve: np.ndarray = flywheel_torque_curve(j_ref, ctx.j_machine + j_ref, ctx.net_torque, r)
+        return curve
+    return np.zeros(1)
+
+
+def _check(
+    ctx: ShaftContext, name: str, mass: float, inertia: float, width: float, seat: float | None = None
+) -> ShaftCheck:
+    key = (name, mass, inertia, width, seat)
+    if key in ctx._cache:
+        return ctx._cache[key]
+    shaft = ctx.shafts[name]
+    layout = layout_of(ctx, name, seat)
+    r = shaft.speed_ratio
+    torque = torque_curve(ctx, name, inertia)
     excitation = None
     if ctx.orders is not None:
         # per revolution of this shaft: order q of the reference is q / r here, its torque c_q / r
@@ -152,7 +202,7 @@ def check_candidate(ctx: ShaftContext, candidate: Candidate) -> ShaftCheck | Non
     """The checks of the candidate's shaft with its wheel; None when that shaft is not described."""
     if candidate.shaft not in ctx.shafts or candidate.mass is None:
         return None
-    return _check(ctx, candidate.shaft, *_wheel(candidate))
+    return _check(ctx, candidate.shaft, *_wheel(candidate), seat_of(ctx, candidate))
 
 
 def mass_sensitivity(ctx: ShaftContext, candidate: Candidate, limit: ShaftLimit) -> float:
@@ -162,7 +212,7 @@ def mass_sensitivity(ctx: ShaftContext, candidate: Candidate, limit: ShaftLimit)
     values = []
     for sign in (1.0, -1.0):
         scale = 1.0 + sign * MASS_STEP
-        check = _check(ctx, candidate.shaft, mass * scale, inertia * scale, width)
+        check = _check(ctx, candidate.shaft, mass * scale, inertia * scale, width, seat_of(ctx, candidate))
         same = [lim for lim in check.limits if lim.kind == limit.kind and lim.where == limit.where]
         values.append(same[0].utilisation if same else math.nan)
     return (values[0] - values[1]) / (2.0 * h)
@@ -203,4 +253,7 @@ def report(ctx: ShaftContext, candidate: Candidate) -> ShaftReport | None:
         return None
     material = ctx.materials[candidate.shaft]
     sensitivity = mass_sensitivity(ctx, candidate, check.binding)
-    return ShaftReport(candidate.shaft, material.name, check, sensitivity, material.display_name)
+    seat = seat_of(ctx, candidate)
+    layout = layout_of(ctx, candidate.shaft, seat)
+    series = None if seat is None else ctx.shafts[candidate.shaft].layout.diameter_series  # type: ignore[union-attr]
+    return ShaftReport(candidate.shaft, material.name, check, sensitivity, material.display_name, layout, seat, series)

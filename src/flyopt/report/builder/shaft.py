@@ -28,7 +28,7 @@ class ShaftSection(BuilderBase):
 
         for report in self.solution.shaft_checks:
             c = report.check
-            layout = next(s.layout for s in self.scene.shafts if s.name == report.shaft)
+            layout = report.layout or next(s.layout for s in self.scene.shafts if s.name == report.shaft)
             blocks.append(
                 Paragraph(
                     (
@@ -62,6 +62,20 @@ class ShaftSection(BuilderBase):
                 )
             )
             facts: list[Any] = [
+                *(
+                    []
+                    if report.seat_diameter is None
+                    else [
+                        (
+                            "seat diameter (designed)",
+                            (
+                                self.q(report.seat_diameter, "length", "seat_diameter"),
+                                f": the smallest of ISO 3 {report.seat_series} at which this shaft carries the "
+                                "wheel designed on it (a discrete design variable, searched outside the NLP)",
+                            ),
+                        )
+                    ]
+                ),
                 ("weight of the wheel", self.q(c.weight, "force", "weight")),
                 (
                     "permissible unbalance force (ISO 21940-11)",

@@ -1,0 +1,309 @@
+"""The seat diameter of a described shaft as a discrete design variable (issue 30, item 5; docs section 26).
+
+A ``[[shaft]]`` whose seat step says ``diameter = "design"`` leaves its diameter d
+to the design. d is chosen, for each combination (material, shaft, arms), as the
+SMALLEST value of an ISO 3 preferred-number series (:mod:`flyopt.design.preferred`,
+R40 by default) at which the wheel designed on that bore (its hub and DIN 6885-1
+key follow d) passes every limit of its shaft (:func:`flyopt.design.shaft.check.check_shaft`
+with the wheel's mass, inertia and width): the wheel depends on d and the check on
+the wheel, so each d is a consistent pair by construction.
+
+The search is outside the NLP: the shaft's limits are beam-FE eigenvalues and notch
+tables, not smooth rows, and feasibility need not be monotone in d (a torsional mode
+can cross an order as the shaft stiffens), so the series is walked upwards and the
+first d that passes is taken. It starts at a lower bound: the DE-Goodman factor at
+the keyseat of the seat (Shigley 9th ed. Eq. (7-7)) with the torque alone,
+A = sqrt(3) K_fs T_a and B = 0, is an upper bound on the factor of any wheel on that
+seat (A and B only grow with the bending and the midrange torque, and T_a with the
+wheel's inertia, which is at least the required one); Eq. (7-8) gives the d where it
+equals the factor required, below which fatigue must fail. The series is capped at
+the range the checks support: the Marin size factor's 2.79-254 mm (Shigley
+Eq. (6-20)) and the DIN 6885-1 key table (over 6 up to 260 mm).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from flyopt.design import key, preferred, rank
+from flyopt.design.shaft import strength
+from flyopt.design.shaft.check import CRITERION, notch_factors
+from flyopt.design.shaft.cycle import ShaftContext, acceptor, torque_curve
+from flyopt.names import Geometry
+
+if TYPE_CHECKING:
+    from flyopt.design.materials import Material
+    from flyopt.design.result import Candidate, DesignResult
+    from flyopt.design.spec import DesignSpec, MountShaft
+    from flyopt.machine.shaft_layout import ShaftLayout
+
+__all__ = ["SeatFloor", "seat_series", "seat_floor", "designs_seats", "design_with_seats", "seated"]
+
+
+@functools.lru_cache(maxsize=8)
+def seat_series(series: str = "R40") -> tuple[float, ...]:
+    """The seat diameters [m] of an ISO 3 series the design may choose, ascending: those inside both the Marin
+    size factor's range (Shigley Eq. (6-20): 2.79-254 mm) and the DIN 6885-1 key table (d_over < d <= d_up_to)."""
+    sizes = strength._data()["size"]["mm"]
+    keys = key.key_table()
+    low, high = sizes[0][0] * strength.MM, sizes[-1][1] * strength.MM
+    values = []
+    for k in range(0, 4):  # 1 mm to 9.5 m in mm: the decades the range can touch
+        for m in preferred.mantissas(series):
+            d = round(m * 10.0**k, 9) / 1000.0  # mm to m: 63 mm is the double nearest 0.063
+            if keys[0].d_over < d <= keys[-1].d_up_to and low <= d <= high:
+                values.append(d)
+    return tuple(sorted(values))
+
+
+@dataclass(frozen=True)
+class SeatFloor:
+    """Where the search for a designed seat starts and ends.
+
+    Attributes
+    ----------
+    torque_alternating : float
+        T_a of the least wheel (the required inertia on the shaft) [N*m].
+    diameter : float
+        The first series value whose keyseat passes the torque-only DE-Goodman factor [m] (nan: none).
+    bound : float
+        Eq. (7-8)'s d at that value's S_e, S_ut and K_fs (or at the last value tried) [m] (0 without torque).
+    seats : tuple of float
+        The series values the search may try, ascending [m]: from ``diameter`` up to the last one the shaft's
+        material and the fits support.
+    cap : str or None
+        Why the series ends before the range of :func:`seat_series` (the material's strength table, Neuber's
+        range), or None.
+    """
+
+    torque_alternating: float
+    diameter: float
+    bound: float
+    seats: tuple[float, ...] = ()
+    cap: str | None = None
+
+
+def seat_floor(ctx: ShaftContext, name: str, j_shaft: float) -> SeatFloor:
+    """The series values a designed seat of shaft ``name`` can take under a wheel of inertia at least ``j_shaft``
+    [kg*m^2]: from the first whose keyseat passes the DE-Goodman factor with the torque alone (below it every
+    wheel's fails) up to the last at which the shaft's material gives its strengths and the fits hold."""
+    layout = _layout(ctx, name)
+    material = ctx.materials[name]
+    curve = torque_curve(ctx, name, j_shaft)
+    ta = 0.5 * (float(curve.max()) - float(curve.min()))
+    bound, first = 0.0, math.nan
+    seats: list[float] = []
+    supported = 0.0
+    for d in seat_series(layout.diameter_series):
+        try:
+            sut, _ = strength.shaft_strengths(material, d)
+            se = strength.endurance_limit(sut, d, layout.finish).se
+            kf, kfs = notch_factors("keyseat", d, None, sut)
+        except ValueError as err:  # beyond the material's table or Neuber's range: the series ends here
+            cap = f"above {supported * 1e3:g} mm: {err}" if supported else str(err)
+            return SeatFloor(ta, first, bound, tuple(seats), cap)
+        supported = d
+        if math.isnan(first):
+            bound = float(
+                strength.fatigue_diameter(
+                    layout.safety_factor, 0.0, ta, 0.0, 0.0, kf=kf, kfs=kfs, se=se, sut=sut, criterion=CRITERION
+                )
+            )
+            if d >= bound:
+                first = d
+        if not math.isnan(first):
+            seats.append(d)
+    return SeatFloor(ta, first, bound, tuple(seats))
+
+
+def seated(shafts: Sequence[MountShaft], designed: set[str]) -> tuple[MountShaft, ...]:
+    """``shafts`` with each one named in ``designed`` (a described shaft that designs its seat) on the smallest
+    seat of R40's range: a stand-in that says the wheel has a bore (so it is designed whole and its key checked);
+    :func:`design_with_seats` gives each design its own d."""
+    return tuple(
+        dataclasses.replace(s, diameter=seat_series()[0]) if s.name in designed and s.diameter is None else s
+        for s in shafts
+    )
+
+
+def _layout(ctx: ShaftContext, name: str) -> ShaftLayout:
+    layout = ctx.shafts[name].layout
+    if layout is None:
+        raise ValueError(f"shaft {name!r} is not described as a part")
+    return layout
+
+
+def designs_seats(ctx: ShaftContext | None, shafts: Sequence[MountShaft]) -> bool:
+    """Whether one of ``shafts`` designs its seat diameter."""
+    return ctx is not None and any(_designed(ctx, s.name) for s in shafts)
+
+
+def _designed(ctx: ShaftContext, name: str) -> bool:
+    shaft = ctx.shafts.get(name)
+    return shaft is not None and shaft.layout is not None and shaft.layout.designs_seat
+
+
+def _arms(spec: DesignSpec) -> tuple[int | None, ...]:
+    return tuple(spec.arms) if spec.geometry == Geometry.RIM_ARMS else (None,)
+
+
+def _key(c: Candidate) -> tuple[str, str, int | None]:
+    return (c.material, c.shaft, c.n_arms)
+
+
+def design_with_seats(
+    j_required: float,
+    omega: float,
+    shafts: Sequence[MountShaft],
+    materials: Sequence[Material],
+    spec: DesignSpec,
+    *,
+    ctx: ShaftContext,
+    names: Mapping[str, str] | None = None,
+    **options: Any,
+) -> DesignResult:
+    """:func:`flyopt.design.designer.design_flywheel` with each designed seat chosen from its series.
+
+    Every combination on a shaft that designs its seat is designed, continuous (no rounding, no pruning), on
+    each series value from :func:`seat_floor` upwards with the shaft's post-check (:func:`acceptor`) until it
+    passes; its candidate is the one at its first passing d (its ``bore``). Combinations on other shafts are
+    designed once. The best of them by the one ranking rule (:func:`flyopt.design.rank.ranking`) is designed
+    again as the scene asks (rounded, with the post-check), on its own d, and heads the candidates; a
+    combination no d passes is infeasible, its reason at the largest d tried and the floor in numbers.
+
+    ``options``: ``solver_options``, ``method``, ``torque``, ``omega_mean`` of ``design_flywheel``.
+    """
+    from flyopt.design.designer import design_flywheel
+    from flyopt.machine.transmission import inertia_on_shaft
+
+    accept = acceptor(ctx, names)
+    search = dataclasses.replace(spec, round_to=None, prune=False)
+    found: dict[tuple[str, str, int | None], Candidate] = {}
+    failed: dict[tuple[str, str, int | None], Candidate] = {}
+    order = [(m.name, s.name, a) for m in materials for s in shafts for a in _arms(spec)]
+    last: DesignResult | None = None
+
+    given = [s for s in shafts if not _designed(ctx, s.name)]
+    if given:
+        last = design_flywheel(j_required, omega, given, materials, search, accept=accept, **options)
+        for c in last.candidates:
+            (found if c.feasible else failed)[_key(c)] = c
+    for shaft in (s for s in shafts if _designed(ctx, s.name)):
+        layout = _layout(ctx, shaft.name)
+        j_shaft = inertia_on_shaft(j_required * spec.rim_share, shaft.speed_ratio)
+        floor = seat_floor(ctx, shaft.name, j_shaft)
+        pending = {(m.name, a) for m in materials for a in _arms(spec)}
+        tried: list[float] = []
+        for d in floor.seats:  # none when no seat passes the floor
+            mats = [m for m in materials if any((m.name, a) in pending for a in _arms(spec))]
+            at = search
+            if spec.geometry == Geometry.RIM_ARMS:
+                at = dataclasses.replace(search, arms=tuple(sorted({a for _, a in pending if a is not None})))
+            seated = dataclasses.replace(shaft, diameter=d)
+            try:
+                last = design_flywheel(j_required, omega, [seated], mats, at, accept=accept, **options)
+            except ValueError as err:  # beyond a table the checks read: the series ends here
+                floor = dataclasses.replace(floor, cap=f"at {d * 1e3:g} mm: {err}")
+                break
+            tried.append(d)
+            for c in last.candidates:
+                if (c.material, c.n_arms) not in pending:
+                    continue
+                if c.feasible:
+                    found[_key(c)] = c
+                    pending.discard((c.material, c.n_arms))
+                    failed.pop(_key(c), None)
+                elif c.mass is not None or _key(c) not in failed or failed[_key(c)].mass is None:
+                    failed[_key(c)] = c  # the largest d whose wheel its shaft refused says most
+            if not pending:
+                break
+        for m, a in pending:
+            failed[(m, shaft.name, a)] = _exhausted(
+                failed.get((m, shaft.name, a)), m, shaft, spec, a, floor, layout.diameter_series, tried
+            )
+    return _merged(j_required, omega, shafts, materials, spec, found, failed, order, last, accept, options, names)
+
+
+def _exhausted(last, material, shaft, spec, arms, floor, series, tried) -> Candidate:
+    """The combination no seat of the series carries: the floor, the series' end and the reason at the largest
+    d whose wheel its shaft refused (else the largest tried), in numbers."""
+    span = f"from {tried[0] * 1e3:g} to {tried[-1] * 1e3:g} mm" if tried else "that the checks support"
+    words = [f"no seat diameter on ISO 3 {series} {span} carries it"]
+    if floor.torque_alternating > 0.0 and math.isfinite(floor.diameter):
+        words.append(
+            f"below {floor.diameter * 1e3:g} mm the torque alone, T_a {floor.torque_alternating:.4g} N*m, fails "
+            f"DE-Goodman at the keyseat (Shigley Eq. (7-8): d >= {floor.bound * 1e3:.4g} mm)"
+        )
+    elif floor.torque_alternating > 0.0:
+        words.append(
+            f"the torque alone, T_a {floor.torque_alternating:.4g} N*m, fails DE-Goodman at the keyseat of every "
+            f"seat the checks support (Shigley Eq. (7-8): d >= {floor.bound * 1e3:.4g} mm at the last)"
+        )
+    if floor.cap is not None:
+        words.append(floor.cap)
+    return _infeasible(last, material, shaft, spec, arms, "; ".join(words))
+
+
+def _infeasible(last, material, shaft, spec, arms, head) -> Candidate:
+    from flyopt.design.result import Candidate
+
+    if last is not None:
+        return dataclasses.replace(
+            last,
+            feasible=False,
+            reason=f"{head}; at {last.bore * 1e3:g} mm: {last.reason}" if last.bore else f"{head}; {last.reason}",
+        )
+    return Candidate(
+        material=material,
+        shaft=shaft.name,
+        speed_ratio=shaft.speed_ratio,
+        geometry=spec.geometry,
+        feasible=False,
+        reason=head,
+        n_arms=arms,
+    )
+
+
+def _merged(
+    j_required, omega, shafts, materials, spec, found, failed, order, last, accept, options, names
+) -> DesignResult:
+    """One DesignResult: the winner designed again as the spec asks on its seat, then the other feasible
+    combinations by the ranking rule, then the infeasible ones in input order."""
+    from flyopt.design.designer import design_flywheel
+
+    designs = rank.ranking(list(found.values()))
+    infeasible = [failed[k] for k in order if k in failed] + [c for k, c in failed.items() if k not in order]
+    if not designs:
+        message = "no material and shaft can give the required inertia: " + "; ".join(c.reason for c in infeasible)
+        if last is None:  # no seat passed the floor: nothing was designed
+            from flyopt.design.result import DesignResult
+
+            return DesignResult(
+                status="infeasible",
+                message=message,
+                j_required=j_required,
+                omega=omega,
+                spec=spec,
+                candidates=tuple(infeasible),
+                omega_mean=options.get("omega_mean"),
+                material_names=dict(names or {}),
+            )
+        return dataclasses.replace(last, status="infeasible", message=message, best=None, candidates=tuple(infeasible))
+    winner = designs[0]
+    shaft = next(s for s in shafts if s.name == winner.shaft)
+    seated = dataclasses.replace(shaft, diameter=winner.bore if winner.bore else shaft.diameter)
+    material = next(m for m in materials if m.name == winner.material)
+    final_spec = spec if winner.n_arms is None else dataclasses.replace(spec, arms=(winner.n_arms,))
+    final = design_flywheel(j_required, omega, [seated], [material], final_spec, accept=accept, **options)
+    head = final.best if final.best is not None else (final.continuous or winner)
+    candidates = (head, *designs[1:], *infeasible)
+    total = len(candidates)
+    message = final.message.replace(
+        "(1 of 1 combinations feasible", f"({len(designs)} of {total} combinations feasible"
+    )
+    return dataclasses.replace(final, message=message, candidates=candidates)

@@ -1,0 +1,257 @@
+"""The seat diameter as a design variable (issue 30, item 5; docs/flywheel-design.md, section 26).
+
+problems/punch-press-shaft-designed.toml leaves its seat step to the design (``diameter = "design"``): the
+chosen d must be the smallest ISO 3 R40 value whose shaft carries the wheel designed on it. Checked here by
+checking the shaft ourselves at the chosen d (it holds) and at the next smaller R40 value with the wheel
+designed there (it fails, and the failing limit is the torsional mode, whose critical speed the two-inertia
+closed form omega^2 = k (J_1 + J_2)/(J_1 J_2) puts inside the widened band); the search's lower bound
+against Shigley's equations written out here with the book's constants; a combination no d carries is
+infeasible with the reason in numbers; bad input is one line naming the field.
+"""
+
+import dataclasses
+import math
+import sys
+from pathlib import Path
+
+import pytest
+from conftest import PROBLEMS
+
+import flyopt
+from flyopt.design import MountShaft, design_flywheel, design_inputs
+from flyopt.design.shaft import strength
+from flyopt.design.shaft.check import check_shaft
+from flyopt.design.shaft.cycle import check_candidate, torque_curve
+from flyopt.design.shaft.diameter import seat_floor, seat_series
+from flyopt.errors import SceneError
+from flyopt.outputs.documents import solution_document
+from flyopt.pipeline import shaft_context_of, solve
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "outputs"))
+from output_cases import assert_units_cover, schema_errors  # noqa: E402
+
+SCENE = PROBLEMS / "punch-press-shaft-designed.toml"
+RATIO = 6.0  # the intermediate shaft's speed ratio in the scene
+
+
+@pytest.fixture(scope="module")
+def designed():
+    scene = flyopt.load(SCENE)
+    solution = solve(scene)
+    return scene, solution, shaft_context_of(scene, solution.analysis)
+
+
+def test_the_series_is_iso_3_r40_inside_the_size_factor_and_the_key_table():
+    values = seat_series("R40")
+    # ISO 3's R40 from 6.3 mm (the key table starts over 6 mm) to 250 mm (k_b stops at 254 mm): 65 values,
+    # each within ISO 3's 1.3 % of 10^(k/40) mm
+    assert values[0] == pytest.approx(6.3e-3, rel=1e-12) and values[-1] == pytest.approx(0.25, rel=1e-12)
+    assert len(values) == 65
+    for d in values:
+        k = round(40 * math.log10(d * 1e3))
+        assert abs(d * 1e3 / 10 ** (k / 40) - 1) < 0.013
+    assert 0.06 in values and 0.056 in values and 0.058 not in values
+
+
+def test_the_chosen_seat_is_the_smallest_r40_value_whose_shaft_carries_its_wheel(designed):
+    scene, solution, ctx = designed
+    best = solution.design.best
+    (report,) = solution.shaft_checks
+    assert solution.status == "designed" and best.bore == pytest.approx(0.060, rel=1e-12)
+    assert report.seat_diameter == best.bore and report.seat_series == "R40"
+    # at the chosen d the shaft, with the seat step at 60 mm, carries the rounded wheel
+    assert report.layout.diameters == (0.06, 0.06, 0.06) and report.check.holds
+    below = seat_series("R40")[seat_series("R40").index(best.bore) - 1]
+    assert below == pytest.approx(0.056, rel=1e-12)
+
+    # the wheel designed on the next smaller seat (its bore and key follow d), checked with that shaft: it fails
+    inputs = design_inputs(scene)
+    spec = dataclasses.replace(inputs.spec, round_to=None)
+    an = solution.analysis
+    small = design_flywheel(
+        an.j_margin,
+        an.omega_max,
+        [MountShaft("intermediate", RATIO, below)],
+        list(inputs.materials),
+        spec,
+        torque=an.flywheel_torque(),
+        omega_mean=an.omega_mean,
+    ).best
+    assert small.bore == below
+    layout = ctx.shafts["intermediate"].layout.with_seat(below)
+    check = check_shaft(
+        layout,
+        ctx.materials["intermediate"],
+        wheel_mass=small.mass,
+        wheel_inertia=small.j_flywheel,
+        wheel_width=max(small.dims.b, small.dims.l_hub),
+        omega_mean=an.omega_mean * RATIO,
+        delta=an.delta,
+        torque_curve=torque_curve(ctx, "intermediate", small.j_flywheel),
+        excitation=_excitation(ctx),
+        other_inertia=1.5,
+    )
+    (failed,) = check.failed()
+    assert failed.kind == "torsional" and failed.where == "mode 1 at order 9.33333"
+    assert check_candidate(ctx, small).failed()[0].value == pytest.approx(failed.value, rel=1e-12)
+
+    # the two-inertia closed form: the wheel J_1 and the pinion and pulley J_2 = 1.5 kg m^2 joined by the shaft
+    # from the seat (300 mm) to the pinion (660 mm): 220 mm of the seat step, 140 mm of the 60 mm journal
+    steel = ctx.materials["intermediate"]
+    g = steel.elastic_modulus / (2 * (1 + steel.poisson_ratio))
+
+    def critical_rpm(d, j1):
+        k = 1 / (0.22 / (g * math.pi * d**4 / 32) + 0.14 / (g * math.pi * 0.06**4 / 32))
+        f = math.sqrt(k * (j1 + 1.5) / (j1 * 1.5)) / (2 * math.pi)
+        return 60 * f / (56 / RATIO)  # the 56th harmonic of the crank's cycle, order 9.333 of this shaft
+
+    n_m = an.omega_mean * RATIO * 30 / math.pi
+    band = (n_m * (1 - an.delta / 2) * 0.8, n_m * (1 + an.delta / 2) * 1.2)  # widened by the 20 % margin
+    at_small, at_chosen = critical_rpm(below, small.j_flywheel), critical_rpm(best.bore, best.j_flywheel)
+    assert failed.value == pytest.approx(at_small, rel=1e-9)
+    assert band[0] < at_small < band[1] < at_chosen
+    torsional = next(lim for lim in report.check.limits if lim.kind == "torsional")
+    assert torsional.value == pytest.approx(at_chosen, rel=1e-9) and torsional.holds
+
+
+def _excitation(ctx):
+    from flyopt.machine.torsion import TorqueOrders
+
+    o = ctx.orders
+    return TorqueOrders(o.mean / RATIO, o.orders / RATIO, o.amplitudes / RATIO)
+
+
+def test_the_search_starts_at_the_torque_only_goodman_bound(designed):
+    """Shigley 9th ed. Eq. (7-8) with M = 0 and B = 0 at the keyseat, from the book's constants written out
+    here: below the first R40 value it passes, the real wheel's keyseat fails fatigue."""
+    _, solution, ctx = designed
+    j_shaft = solution.analysis.j_margin / RATIO**2
+    floor = seat_floor(ctx, "intermediate", j_shaft)
+    curve = torque_curve(ctx, "intermediate", j_shaft)
+    ta = (curve.max() - curve.min()) / 2
+    assert floor.torque_alternating == pytest.approx(ta, rel=1e-12)
+
+    def bound(d):
+        sut = strength.shaft_strengths(ctx.materials["intermediate"], d)[0]  # EN 10083-3's row for t = d
+        s_mpa = sut / 1e6
+        ka = 4.51 * s_mpa**-0.265  # Table 6-2, machined
+        kb = (d * 1e3 / 7.62) ** -0.107 if d <= 0.051 else 1.51 * (d * 1e3) ** -0.157  # Eq. (6-20), d in mm
+        se = ka * kb * 0.5 * sut  # Eqs. (6-8), (6-18)
+        s_kpsi = sut / 6.894757293168361e6
+        root_a = 0.190 - 2.51e-3 * s_kpsi + 1.35e-5 * s_kpsi**2 - 2.67e-8 * s_kpsi**3  # Eq. (6-35b) [in^0.5]
+        q = 1 / (1 + root_a / math.sqrt(0.02 * d / 0.0254))  # Eq. (6-34), r = 0.02 d (Table 7-1)
+        kfs = 1 + q * (3.0 - 1)  # K_ts 3.0 of an end-mill keyseat
+        return (16 * 1.5 * math.sqrt(3) * kfs * ta / (math.pi * se)) ** (1 / 3)  # Eq. (7-8), n = 1.5
+
+    values = seat_series("R40")
+    first = next(d for d in values if d >= bound(d))
+    assert floor.diameter == first == pytest.approx(0.045, rel=1e-12)
+    assert floor.bound == pytest.approx(bound(first), rel=1e-9)
+    # the bound is a bound: the chosen wheel on the seat below it fails fatigue at its keyseat
+    below = values[values.index(first) - 1]
+    best = solution.design.best
+    layout = ctx.shafts["intermediate"].layout.with_seat(below)
+    check = check_shaft(
+        layout,
+        ctx.materials["intermediate"],
+        wheel_mass=best.mass,
+        wheel_inertia=best.j_flywheel,
+        omega_mean=solution.analysis.omega_mean * RATIO,
+        delta=solution.analysis.delta,
+        torque_curve=torque_curve(ctx, "intermediate", best.j_flywheel),
+    )
+    keyseat = next(s for s in check.sections if s.name == "keyseat at the wheel seat")
+    assert keyseat.fatigue < 1.5
+
+
+def test_the_designed_seat_is_in_the_json_the_text_and_its_units(designed):
+    scene, solution, _ = designed
+    document = solution_document(solution, SCENE)
+    (shaft,) = document["shaft_checks"]
+    assert shaft["seat_diameter"] == pytest.approx(0.06, rel=1e-12) and shaft["seat_series"] == "R40"
+    assert document["units"]["seat_diameter"] == "m"
+    # the wheel on the designed seat is keyed to it: DIN 6885-1's 18 x 11 over 58 up to 65 mm, checked at the
+    # peak torque, p = 2 T / (d (h - t1) l_eff)
+    key = document["design"]["key"]
+    assert key["size"] == "18 x 11" and key["ok"] and key["torque"] > 0
+    pressure = 2 * key["torque"] / (0.06 * (0.011 - 0.007) * key["effective_length"])
+    assert key["bearing_pressure"] == pytest.approx(pressure, rel=1e-12)
+    assert_units_cover(document)
+    assert schema_errors(document) == []
+    from flyopt.report.shaft import shaft_report
+
+    text = "\n".join(shaft_report(solution.shaft_checks))
+    assert "seat diameter 60 mm, designed: the smallest of ISO 3 R40" in text
+
+
+def _solve_with(tmp_path, extra):
+    path = tmp_path / "changed.toml"
+    path.write_text(SCENE.read_text().replace('fillet = "3 mm"', f'fillet = "3 mm"\n{extra}'))
+    return solve(flyopt.load(path))
+
+
+def test_a_torque_no_supported_seat_carries_is_infeasible_without_a_design(tmp_path):
+    """A factor of safety of 400: the torque-only bound refuses every seat up to the material's table's end
+    (160 mm), so nothing is designed, and the reason gives the bound and where the series ends."""
+    solution = _solve_with(tmp_path, "safety_factor = 400")
+    assert solution.status == "infeasible" and solution.design.best is None
+    (out,) = solution.design.candidates
+    assert not out.feasible and out.mass is None
+    assert out.reason.startswith(
+        "no seat diameter on ISO 3 R40 that the checks support carries it; the torque alone, T_a 691.4 N*m, "
+        "fails DE-Goodman at the keyseat of every seat the checks support (Shigley Eq. (7-8): d >= "
+    )
+    assert "above 160 mm: material '42crmo4_qt': section thickness 170 mm is above its strength table" in out.reason
+
+
+@pytest.mark.slow  # about 1 s: the search walks the series from 45 to 160 mm
+def test_a_shaft_no_seat_can_carry_is_infeasible_with_the_reason_in_numbers(tmp_path):
+    solution = _solve_with(tmp_path, 'max_slope = "1e-5 rad"')
+    assert solution.status == "infeasible"
+    (out,) = solution.design.candidates
+    assert not out.feasible
+    assert out.reason.startswith(
+        "no seat diameter on ISO 3 R40 from 45 to 160 mm carries it; below 45 mm the torque alone, T_a 691.4 N*m, "
+        "fails DE-Goodman at the keyseat (Shigley Eq. (7-8): d >= 44.7 mm); above 160 mm"
+    )
+    assert "at 160 mm: gjs keyed on the intermediate shaft: the shaft cannot carry this" in out.reason
+    assert "slope at bearing B (620 mm)" in out.reason and "> 1e-05 rad" in out.reason
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "field"),
+    [
+        ('diameter = "140 mm"', 'diameter = "design"', "shaft[0].diameter"),
+        (
+            '{ to = "120 mm", diameter = "60 mm" }, { to = "520 mm", diameter = "design" }',
+            '{ to = "120 mm", diameter = "design" }, { to = "520 mm", diameter = "70 mm" }',
+            "shaft[1].segments[1].diameter",
+        ),
+        ('fillet = "3 mm"', 'fillet = "3 mm"\ndiameter = "70 mm"', "shaft[1].diameter"),
+        ('fillet = "3 mm"', 'fillet = "3 mm"\ndiameter_series = "R80"', "shaft[1].diameter_series"),
+        ('min_wall = "8 mm"', 'min_wall = "8 mm"\nbore = "60 mm"', "design.bore"),
+        (
+            'fillet = "3 mm"',
+            'fillet = "3 mm"\ntrain = [{ flywheel = true }, { name = "s", length = "100 mm", diameter = "design" }, '
+            '{ name = "p", inertia = "1.5 kg*m^2" }]',
+            "shaft[1].train[1].diameter",
+        ),
+    ],
+)
+def test_a_misplaced_design_is_refused_naming_the_field(tmp_path, old, new, field):
+    text = SCENE.read_text()
+    assert old in text
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(SceneError) as err:
+        flyopt.load(path)
+    assert err.value.field == field
+
+
+def test_diameter_series_without_a_designed_step_is_refused(tmp_path):
+    path = tmp_path / "given.toml"
+    text = (PROBLEMS / "punch-press-shaft.toml").read_text()
+    path.write_text(text.replace('fillet = "3 mm"', 'fillet = "3 mm"\ndiameter_series = "R20"'))
+    with pytest.raises(SceneError) as err:
+        flyopt.load(path)
+    assert err.value.field == "shaft[1].diameter_series" and "design" in err.value.message
