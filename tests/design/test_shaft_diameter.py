@@ -255,3 +255,15 @@ def test_diameter_series_without_a_designed_step_is_refused(tmp_path):
     with pytest.raises(SceneError) as err:
         flyopt.load(path)
     assert err.value.field == "shaft[1].diameter_series" and "design" in err.value.message
+
+
+@pytest.mark.parametrize("command", ["sweep", "pareto", "tradeoff"])
+def test_a_study_of_a_designed_seat_is_refused_in_one_line(command, main_cli, tmp_path):
+    """A sweep, a front or a trade-off designs its wheels on the shafts as given, without the seat's search: a
+    designed seat gave them no bore to size the hub and key on. Refused naming the designed step, exit 2."""
+    args = [command, SCENE] + (["--vary", "delta=0.05:0.1:2", "-o", tmp_path / "s.csv"] if command == "sweep" else [])
+    status, out, err = main_cli(*args)
+    assert status == 2 and out == "" and not list(tmp_path.iterdir())
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"flyopt: error: {SCENE}: shaft[1].segments[1].diameter: ")
+    assert "flyopt solve and report" in lines[0]

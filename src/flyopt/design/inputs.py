@@ -112,6 +112,32 @@ def _check_own_materials(scene: Scene, materials: tuple[Material, ...], spec: De
             )
 
 
+def seat_given_only(scene: Scene, what: str) -> None:
+    """Refuse a described shaft whose seat diameter is left to the design (``diameter = "design"``,
+    docs/flywheel-design.md, section 26) where ``what`` designs wheels without the shaft's search.
+
+    Only :func:`flyopt.pipeline.solve` (``flyopt solve``, ``report``) walks the seat through its series
+    with the shaft's post-check; a sweep, a Pareto front or a material trade-off designs its wheels on the
+    shafts as given, and a designed seat gives no bore to design the hub and key on.
+
+    Raises
+    ------
+    SceneError
+        Naming the designed step's ``diameter`` and what to give instead.
+    """
+    from flyopt.errors import SceneError
+
+    for k, shaft in enumerate(scene.shafts):
+        layout = shaft.layout
+        if layout is not None and layout.designs_seat:
+            raise SceneError(
+                f"shaft[{k}].segments[{layout.designed[0]}].diameter",
+                f'"design" leaves the seat of shaft {shaft.name!r} to flyopt solve and report, which choose it with '
+                f"the shaft's checks; {what} designs its wheels on a given seat: give the diameter (the one solve "
+                "chooses, for one)",
+            ).with_source(scene.source)
+
+
 def single_design_only(spec: DesignSpec, what: str, source: str | None = None) -> None:
     """Refuse the courses' rim convention where ``what`` designs by flyopt's own criteria only.
 

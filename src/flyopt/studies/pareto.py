@@ -35,7 +35,7 @@ import numpy.typing as npt
 import pandas as pd
 
 from flyopt.design import DesignSpec, design_inputs
-from flyopt.design.inputs import single_design_only
+from flyopt.design.inputs import seat_given_only, single_design_only
 from flyopt.errors import SceneError, shorten
 from flyopt.outputs.results import normalize
 from flyopt.studies.evaluate import evaluate_points
@@ -154,6 +154,7 @@ def pareto(
     """
     objectives, other = objective_pair(objectives)
     single_design_only(design_inputs(scene).spec, "a Pareto front", scene.source)
+    seat_given_only(scene, "a Pareto front")
     if not isinstance(points, (int, np.integer)) or not 2 <= points <= MAX_FRONT_POINTS:
         raise SceneError("points", f"must be a whole number from 2 to {MAX_FRONT_POINTS}, got {shorten(points)}")
     analysis = physics_analysis(scene)

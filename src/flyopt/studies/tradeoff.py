@@ -82,7 +82,9 @@ def material_tradeoff(
     """
     from flyopt.design import design_flywheel
     from flyopt.design.designer import rim_speed_limit
+    from flyopt.design.inputs import seat_given_only
 
+    seat_given_only(scene, "a material trade-off")
     analysis = physics_analysis(scene)
     inputs = design_inputs(scene)
     spec = dataclasses.replace(inputs.spec, objective="mass")

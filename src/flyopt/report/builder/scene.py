@@ -38,7 +38,11 @@ class SceneAndModel(BuilderBase):
                 s.name,
                 number(s.speed_ratio, self.digits),
                 number(s.efficiency, self.digits),
-                self.n(s.diameter, "length") if s.diameter else "-",
+                self.n(s.diameter, "length")
+                if s.diameter
+                else f"designed ({s.layout.diameter_series})"
+                if s.layout is not None and s.layout.designs_seat
+                else "-",
                 self.n(s.inertia, "inertia") if s.inertia else "-",
             ]
             for s in scene.shafts
