@@ -36,6 +36,7 @@ import pandas as pd
 
 from flyopt.design import DesignSpec, design_inputs
 from flyopt.design.inputs import single_design_only
+from flyopt.design.wheel_design import neighbours
 from flyopt.errors import SceneError, shorten
 from flyopt.outputs.results import normalize
 from flyopt.studies.evaluate import evaluate_points
@@ -236,13 +237,20 @@ def _front_outer_diameter(
         smallest = None
     frames = [] if smallest is None else [smallest]
     if grid.size:
-        swept = sweep(
-            scene,
-            {"design.max_outer_diameter": list(grid), "design.objective": "mass"},
-            method=method,
-            solver_options=solver_options,
-            workers=WORKERS,
-        )
+        # From the largest envelope down, in one memory of neighbours when serial: each point's NLP only
+        # tightens D_outer <= ε, so an NLP IPOPT finds infeasible at one ε shows the same NLP infeasible at
+        # every smaller one without a solve (flyopt.design.wheel_design.neighbours); the rows are then put
+        # back in rising ε.
+        with neighbours():
+            swept = sweep(
+                scene,
+                {"design.max_outer_diameter": list(grid[::-1]), "design.objective": "mass"},
+                method=method,
+                solver_options=solver_options,
+                workers=WORKERS,
+            )
+        swept = swept.iloc[::-1].reset_index(drop=True)
+        swept["point"] = np.arange(len(swept))
         frames.append(swept.assign(epsilon=swept["design.max_outer_diameter"]))
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
 
