@@ -207,6 +207,21 @@ def _front_outer_diameter(
     method: Literal["auto", "closed_form", "ipopt"],
     solver_options: Mapping[str, Any] | None,
 ) -> pd.DataFrame:
+    """The front's designs in one memory of neighbours (in this process): the lightest wheel (the scene's
+    envelope, the largest of all), then the ε points from the largest down, each warm-started from the one
+    before and spared the NLPs an earlier one proved infeasible with limits as loose or looser
+    (flyopt.design.wheel_design.neighbours); the rows are in rising ε."""
+    with neighbours():
+        return _front_outer_diameter_points(scene, points, span, method, solver_options)
+
+
+def _front_outer_diameter_points(
+    scene: Scene,
+    points: int,
+    span: tuple[float, float] | None,
+    method: Literal["auto", "closed_form", "ipopt"],
+    solver_options: Mapping[str, Any] | None,
+) -> pd.DataFrame:
     spec = scene.design
     if not isinstance(spec, DesignSpec):  # the loader always gives one
         raise TypeError(f"a Pareto front needs the scene's design spec, got {spec!r}")
@@ -241,18 +256,15 @@ def _front_outer_diameter(
         smallest = None
     frames = [] if smallest is None else [smallest]
     if grid.size:
-        # From the largest envelope down, in one memory of neighbours when serial: each point's NLP only
-        # tightens D_outer <= ε, so an NLP IPOPT finds infeasible at one ε shows the same NLP infeasible at
-        # every smaller one without a solve (flyopt.design.wheel_design.neighbours); the rows are then put
-        # back in rising ε.
-        with neighbours():
-            swept = sweep(
-                scene,
-                {"design.max_outer_diameter": list(grid[::-1]), "design.objective": "mass"},
-                method=method,
-                solver_options=solver_options,
-                workers=WORKERS,
-            )
+        # from the largest envelope down: each point's NLP only tightens D_outer <= ε, so an NLP IPOPT finds
+        # infeasible at one ε shows the same NLP infeasible at every smaller one without a solve
+        swept = sweep(
+            scene,
+            {"design.max_outer_diameter": list(grid[::-1]), "design.objective": "mass"},
+            method=method,
+            solver_options=solver_options,
+            workers=WORKERS,
+        )
         swept = swept.iloc[::-1].reset_index(drop=True)
         swept["point"] = np.arange(len(swept))
         frames.append(swept.assign(epsilon=swept["design.max_outer_diameter"]))
