@@ -710,7 +710,7 @@ def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, 
         f"{args.sweep_points / sweeps['default'][0]:.2f} s. That sweep's CPU a point, workers and parent together, "
         f"is {sweeps['default'][3] * 1e3:.1f} ms against the serial sweep's "
         f"{sweeps['default, 1 worker (serial, same run)'][3] * 1e3:.1f} ms: the difference is each chunk's cold "
-        "first point (8 chunks for 40 points, 1 serially) and two processes sharing the host's cores, which "
+        "first point (chunks are smaller on 2 workers: flyopt.studies.chunks) and two processes sharing the host's cores, which "
         f"this run does not separate, not the pool. The {SWEEP_TARGET:g} points/s target needs at most "
         f"{2.0 / SWEEP_TARGET * 1e3:g} ms CPU a point on 2 fully used CPUs; a point costs "
         f"{sweeps['default'][3] * 1e3:.1f} ms CPU at {args.sweep_points} points and {large[3] * 1e3:.1f} ms at "
