@@ -10,6 +10,7 @@ compare cold with cold), and a wheel designed outside a sweep must not
 depend on one designed before it.
 """
 
+import math
 from pathlib import Path
 
 import pandas as pd
@@ -85,3 +86,72 @@ def test_the_neighbours_last_one_chunk(warm_solves):
     evaluate_points(scene, pd.DataFrame({"point": [0, 1], "delta": [0.08, 0.1]}))
     assert warm_solves["warm"] > 0
     assert wheel_design._NEIGHBOURS.get() is None
+
+
+def test_a_fronts_inferred_infeasibilities_are_ipopts_own_verdicts(monkeypatch):
+    """The front runs from the largest envelope down and does not solve an NLP whose limits are all as tight
+    or tighter than one IPOPT found infeasible (flyopt.design.wheel_design._proven_infeasible): each NLP left
+    unsolved so, solved cold here (no neighbour: the thin ring, SQP then IPOPT), is infeasible by IPOPT."""
+    import dataclasses
+
+    from flyopt.design import wheel_design
+    from flyopt.errors import SolverFailed
+
+    inferred, current = [], {}
+    settle, proven = wheel_design._settle, wheel_design._proven_infeasible
+
+    def settling(model, *args, **kwargs):
+        current["model"] = model
+        return settle(model, *args, **kwargs)
+
+    def proving(problem, proofs):
+        proof = proven(problem, proofs)
+        if proof is not None:
+            inferred.append((current["model"], problem, proof))
+        return proof
+
+    monkeypatch.setattr(wheel_design, "_settle", settling)
+    monkeypatch.setattr(wheel_design, "_proven_infeasible", proving)
+    pareto(load(SCENE), ("mass", "outer_diameter"), points=25)
+    assert len(inferred) >= 10  # (measured 20: the ductile iron's capped branches, the keyed iron's smallest wheels)
+    for model, problem, proof in inferred:
+        assert problem.envelope < proof.envelope
+        cold = dataclasses.replace(problem, warm=None, start=None, ipopt_first=False)
+        with pytest.raises(SolverFailed) as failed:
+            wheel_nlp.solve(model, cold, "inferred")
+        assert failed.value.status == "Infeasible_Problem_Detected"
+
+
+def test_an_nlp_is_within_an_infeasible_one_only_where_every_limit_is_as_tight():
+    """Nestedness (wheel_design._within): a larger envelope, a higher allowable, a looser cap or any other
+    changed number (the inertia) leaves the feasible set no longer inside the proof's."""
+    import dataclasses
+
+    from flyopt.design import wheel_design
+    from flyopt.design.wheel_nlp import WheelProblem
+
+    proof = WheelProblem(
+        j_shaft=2.0,
+        omega=150.0,
+        density=7100.0,
+        poisson=0.28,
+        torque=100.0,
+        bore=0.055,
+        allowable={"rim": 50e6, "web": 50e6},
+        envelope=0.5,
+        max_width=0.2,
+        max_rim_speed=math.inf,
+        hb_ratio=(0.5, 2.0),
+        d_mean=None,
+        min_wall=0.008,
+        caps={"h": 0.03},
+    )
+    same = dataclasses.replace(proof, warm={"d_outer": 0.4}, ipopt_first=True)  # a start is no limit
+    assert wheel_design._within(same, proof)
+    assert wheel_design._within(dataclasses.replace(proof, envelope=0.45, allowable={"rim": 40e6, "web": 50e6}), proof)
+    assert wheel_design._within(dataclasses.replace(proof, caps={"h": 0.02, "b": 0.03}), proof)
+    assert not wheel_design._within(dataclasses.replace(proof, envelope=0.55), proof)
+    assert not wheel_design._within(dataclasses.replace(proof, allowable={"rim": 60e6, "web": 50e6}), proof)
+    assert not wheel_design._within(dataclasses.replace(proof, allowable={"rim": 50e6}), proof)  # web unlimited
+    assert not wheel_design._within(dataclasses.replace(proof, caps=None), proof)
+    assert not wheel_design._within(dataclasses.replace(proof, j_shaft=1.9), proof)

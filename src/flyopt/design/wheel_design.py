@@ -349,13 +349,60 @@ def neighbours() -> Iterator[None]:
 
     A start, not an answer: the NLP, its bounds and the stress check are the point's own, so a warm design
     is the cold one to the solvers' tolerance (tests/studies/test_wheel_warm.py holds them to 1e-8). The
-    memory lasts as long as the block (a sweep's chunk), so no design outside it depends on another.
+    memory lasts as long as the outermost block (a sweep's chunk, or a whole Pareto front run serially: a
+    block within one joins it), so no design outside it depends on another.
+
+    It also keeps every NLP IPOPT found infeasible (:func:`_proven_infeasible`): a later NLP of the same
+    combination, structure and caps whose every limit is the same or tighter (a smaller envelope, lower
+    allowables) has no wheel either, and is not solved; its reason cites the proof's numbers.
     """
+    if _NEIGHBOURS.get() is not None:  # within an outer block: its memory serves this one too
+        yield
+        return
     token = _NEIGHBOURS.set({})
     try:
         yield
     finally:
         _NEIGHBOURS.reset(token)
+
+
+#: The fields of a :class:`~flyopt.design.wheel_nlp.WheelProblem` that only start a solve (not its feasible set).
+_STARTS = frozenset({"start", "warm", "ipopt_first"})
+#: Its fields that are upper bounds (a smaller value is a tighter limit): the envelope, the allowables, the caps.
+_UPPER = frozenset({"envelope", "allowable", "caps"})
+
+
+def _within(problem: WheelProblem, proof: WheelProblem) -> bool:
+    """Whether every wheel feasible in ``problem`` is feasible in ``proof`` (the same NLP structure assumed).
+
+    The wheel NLP (:mod:`flyopt.design.wheel_nlp`) writes the envelope as D_outer <= envelope, each allowable
+    as sigma / allowable <= 1 and each cap as an upper bound of its variable; everything else (inertia,
+    speed, density, widths, walls, hub ranges, held dimensions) must be equal. So the feasible set of
+    ``problem`` lies in that of ``proof`` where each of those three is no larger.
+    """
+    for f in dataclasses.fields(problem):
+        name = f.name
+        if name in _STARTS or name in _UPPER:
+            continue
+        if getattr(problem, name) != getattr(proof, name):
+            return False
+    if not problem.envelope <= proof.envelope:
+        return False
+    for mine, theirs in ((problem.allowable, proof.allowable), (problem.caps or {}, proof.caps or {})):
+        if any(not mine.get(k, math.inf) <= theirs.get(k, math.inf) for k in {*mine, *theirs}):
+            return False
+    return True
+
+
+def _proven_infeasible(problem: WheelProblem, proofs: list[WheelProblem] | None) -> WheelProblem | None:
+    """The NLP IPOPT found infeasible whose feasible set holds ``problem``'s (:func:`_within`), or None.
+
+    Feasible sets nest: an NLP with every limit the same or tighter than one that has no wheel has none.
+    """
+    for proof in proofs or ():
+        if _within(problem, proof):
+            return proof
+    return None
 
 
 def strongest_allowables(material: Material, spec: DesignSpec, structure: WheelStructure) -> dict[str, float]:
@@ -490,6 +537,7 @@ def _branch_and_settle(
                 branch = _with(branch, warm=last)
             elif (remembered, caps) in memory:
                 branch = _with(branch, ipopt_first=True)
+        proofs = memory.setdefault(("infeasible", remembered, caps), []) if memory is not None else None
         try:
             found = _settle(
                 model,
@@ -502,6 +550,7 @@ def _branch_and_settle(
                 parts,
                 dict(targets),
                 table_end,
+                proofs,
             )
         except _OverTable as over:
             if len(tried) >= _MAX_BRANCHES:
@@ -571,18 +620,27 @@ def _branches(walls, caps, geo, bore, end):
     return children
 
 
-def _settle(model, problem, combo, material, geo, spec, torque, parts, used, table_end):
+def _settle(model, problem, combo, material, geo, spec, torque, parts, used, table_end, proofs=None):
     """Solve, check the exact stresses and every part's strength at its wall, and solve again until
-    they agree with the NLP's rows. Raises _OverTable where a section leaves the strength table."""
+    they agree with the NLP's rows. Raises _OverTable where a section leaves the strength table.
+
+    ``proofs`` (within :func:`neighbours`): the NLPs of this combination and caps IPOPT found infeasible
+    so far; one whose limits are all as loose or looser than this NLP's shows it has no wheel without a
+    solve (:func:`_proven_infeasible`), and an NLP IPOPT finds infeasible here is added to them."""
     from flyopt.design import wheel_nlp
 
     stressed = spec.criterion == Criterion.STRESS
     for _round in range(_MAX_ROUNDS):
         problem = _with(problem, allowable={p: used.get(p, math.inf) for p in parts})
+        proof = _proven_infeasible(problem, proofs)
+        if proof is not None:
+            raise NoWheel(_inferred_reason(combo.label, geo, problem, proof))
         try:
             solution = wheel_nlp.solve(model, problem, combo.label)
         except SolverFailed as err:
             if getattr(err, "status", "") == "Infeasible_Problem_Detected":
+                if proofs is not None:
+                    proofs.append(problem)
                 raise NoWheel(
                     f"{combo.label}: IPOPT found no {geo.replace('_', ' ')} within every "
                     f"limit (it reports the problem locally infeasible; no bound proves it)"
@@ -623,6 +681,22 @@ def _settle(model, problem, combo, material, geo, spec, torque, parts, used, tab
         f"{combo.label}: the stress check of the whole wheel did not settle in "
         f"{_MAX_ROUNDS} solves (a part's stress peak or wall strength keeps moving); "
         f"no design is reported"
+    )
+
+
+def _inferred_reason(label: str, geo: str, problem: WheelProblem, proof: WheelProblem) -> str:
+    """Why an NLP has no wheel, shown by an infeasible one whose limits are all as loose or looser."""
+    looser = [f"D <= {proof.envelope:.4g} m (here {problem.envelope:.4g} m)"]
+    for part in sorted(problem.allowable):
+        theirs, mine = proof.allowable.get(part, math.inf), problem.allowable[part]
+        if math.isfinite(mine):
+            looser.append(f"{part} allowable {theirs / 1e6:.4g} MPa (here {mine / 1e6:.4g} MPa)")
+    for name, cap in sorted((problem.caps or {}).items()):
+        looser.append(f"{name} <= {(proof.caps or {}).get(name, math.inf) * 1e3:.4g} mm (here {cap * 1e3:.4g} mm)")
+    return (
+        f"{label}: IPOPT found no {geo.replace('_', ' ')} within every limit at {', '.join(looser)}, "
+        f"every other limit the same; these limits are as tight or tighter, so no wheel meets them either "
+        f"(not solved again)"
     )
 
 

@@ -8,7 +8,11 @@ swept through the design model, then the dominated points are removed:
   (objective ``outer_diameter``, solved by IPOPT) to the outer diameter of the
   lightest wheel (beyond it the constraint no longer binds). The constraint is
   the scene's envelope, so each ε is one sweep point
-  ``design.max_outer_diameter = ε``.
+  ``design.max_outer_diameter = ε``. The points are designed from the
+  largest ε down (warm-started from their neighbours, in one memory when
+  serial): each only tightens the envelope, so an NLP IPOPT found infeasible
+  at one ε is not solved again at a smaller one
+  (:func:`flyopt.design.wheel_design.neighbours`).
 - ``mass`` vs ``cost``: for one material and shaft the lightest wheel is also
   the cheapest (cost = mass × cost per kg), so the constraint cost <= ε only
   changes the answer at the cost of some combination's lightest design: the
@@ -36,6 +40,7 @@ import pandas as pd
 
 from flyopt.design import DesignSpec, design_inputs
 from flyopt.design.inputs import seat_given_only, single_design_only
+from flyopt.design.wheel_design import neighbours
 from flyopt.errors import SceneError, shorten
 from flyopt.outputs.results import normalize
 from flyopt.studies.evaluate import evaluate_points
@@ -203,6 +208,21 @@ def _front_outer_diameter(
     method: Literal["auto", "closed_form", "ipopt"],
     solver_options: Mapping[str, Any] | None,
 ) -> pd.DataFrame:
+    """The front's designs in one memory of neighbours (in this process): the lightest wheel (the scene's
+    envelope, the largest of all), then the ε points from the largest down, each warm-started from the one
+    before and spared the NLPs an earlier one proved infeasible with limits as loose or looser
+    (flyopt.design.wheel_design.neighbours); the rows are in rising ε."""
+    with neighbours():
+        return _front_outer_diameter_points(scene, points, span, method, solver_options)
+
+
+def _front_outer_diameter_points(
+    scene: Scene,
+    points: int,
+    span: tuple[float, float] | None,
+    method: Literal["auto", "closed_form", "ipopt"],
+    solver_options: Mapping[str, Any] | None,
+) -> pd.DataFrame:
     spec = scene.design
     if not isinstance(spec, DesignSpec):  # the loader always gives one
         raise TypeError(f"a Pareto front needs the scene's design spec, got {spec!r}")
@@ -237,13 +257,17 @@ def _front_outer_diameter(
         smallest = None
     frames = [] if smallest is None else [smallest]
     if grid.size:
+        # from the largest envelope down: each point's NLP only tightens D_outer <= ε, so an NLP IPOPT finds
+        # infeasible at one ε shows the same NLP infeasible at every smaller one without a solve
         swept = sweep(
             scene,
-            {"design.max_outer_diameter": list(grid), "design.objective": "mass"},
+            {"design.max_outer_diameter": list(grid[::-1]), "design.objective": "mass"},
             method=method,
             solver_options=solver_options,
             workers=WORKERS,
         )
+        swept = swept.iloc[::-1].reset_index(drop=True)
+        swept["point"] = np.arange(len(swept))
         frames.append(swept.assign(epsilon=swept["design.max_outer_diameter"]))
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
 
