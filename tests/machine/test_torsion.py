@@ -295,6 +295,26 @@ def test_critical_speeds_and_margins():
     assert inside.in_range and inside.margin == 0.0 and inside.speed_rpm == pytest.approx(960.0, rel=1e-15)
 
 
+def test_critical_speeds_of_many_pairs_are_each_pairs_own():
+    """All pairs at once (arrays) give, bit for bit, what n_c = 60 f / q of each pair and its margin give one at a
+    time, in Python floats; a bad entry is named as critical_speed names it."""
+    rng = np.random.default_rng(7)
+    f, q = rng.uniform(5.0, 900.0, 7), np.concatenate([rng.uniform(0.25, 30.0, 40), [60.0 * 16.0 / 1000.0]])
+    low, high = 900.0, 1100.0
+    found = iter(critical_speeds(f, q, (low, high)))
+    for mode, fi in enumerate(f, start=1):
+        for qk in q:
+            c = next(found)
+            speed = 60.0 * float(fi) / float(qk)
+            margin = (speed - high) / high if speed > high else (low - speed) / low if speed < low else 0.0
+            assert (c.mode, c.order, c.frequency_hz) == (mode, float(qk), float(fi))
+            assert c.speed_rpm == speed and c.margin == margin and c.in_range == (low <= speed <= high)
+    with pytest.raises(ValueError, match="order = 0.0"):
+        critical_speeds([10.0, 20.0], [1.0, 0.0], (low, high))
+    with pytest.raises(ValueError, match="frequency_hz = nan"):
+        critical_speeds([10.0, float("nan")], [1.0], (low, high))
+
+
 # --- (4) validation -------------------------------------------------------------------------------------------------
 
 

@@ -636,18 +636,24 @@ def critical_speeds(
     _check_number("speed_range_rpm[0]", low, positive=True)
     if not high >= low:
         raise ValueError(f"speed_range_rpm must be (n_min, n_max) with n_max >= n_min, got {speed_range_rpm}")
-    out = []
-    for mode, frequency in enumerate(np.asarray(frequencies_hz, dtype=float), start=1):
-        for order in np.asarray(orders, dtype=float):
-            speed = critical_speed(float(frequency), float(order))
-            if speed > high:
-                margin, inside = (speed - high) / high, False
-            elif speed < low:
-                margin, inside = (low - speed) / low, False
-            else:
-                margin, inside = 0.0, True
-            out.append(CriticalSpeed(mode, float(order), float(frequency), speed, margin, inside))
-    return out
+    f = np.asarray(frequencies_hz, dtype=float).ravel()
+    q = np.asarray(orders, dtype=float).ravel()
+    if not (np.isfinite(f).all() and (f > 0.0).all() and np.isfinite(q).all() and (q > 0.0).all()):
+        for frequency in f:  # the first bad entry, named as critical_speed names it
+            for order in q:
+                critical_speed(float(frequency), float(order))
+    # n_c = 60 f / q (critical_speed) for every pair at once: the same operations on the same doubles
+    speed = 60.0 * f[:, None] / q[None, :]
+    above, below = speed > high, speed < low
+    margin = np.where(above, (speed - high) / high, np.where(below, (low - speed) / low, 0.0))
+    inside = ~(above | below)
+    return [
+        CriticalSpeed(
+            mode + 1, float(q[k]), float(f[mode]), float(speed[mode, k]), float(margin[mode, k]), bool(inside[mode, k])
+        )
+        for mode in range(f.size)
+        for k in range(q.size)
+    ]
 
 
 def _check_number(name: str, value: float, *, positive: bool) -> None:

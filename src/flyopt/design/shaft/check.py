@@ -35,6 +35,7 @@ row of the NLP (docs/flywheel-design.md, section 26).
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -256,11 +257,13 @@ def separation_utilisation(critical_rpm: float, speed_range_rpm: tuple[float, fl
     return min(high * (1.0 + margin) / critical_rpm, critical_rpm / (low * (1.0 - margin)))
 
 
+@functools.lru_cache(maxsize=1024)
 def notch_factors(kind: str, diameter: float, fillet: float | None, sut: float) -> tuple[float, float]:
     """K_f and K_fs of a notch, Shigley 9th ed. Table 7-1 (K_t, K_ts) with Eqs. (6-32), (6-34), (6-35).
 
     ``kind``: "keyseat" (r = 0.02 d) or "shoulder" (r = ``fillet``, or 0.02 d when sharp; Table 7-1's
-    well-rounded factors once r/d >= 0.1, its sharp ones below, on the safe side).
+    well-rounded factors once r/d >= 0.1, its sharp ones below, on the safe side). A pure function of its
+    arguments, kept for the design's many wheels on one shaft (the same notches each time).
     """
     table = strength._data()["notch"]
     if kind == "keyseat":
@@ -483,9 +486,17 @@ def _strengths_along(layout: ShaftLayout, material: Material, d: np.ndarray) -> 
     sut, sy, se = np.empty(d.size), np.empty(d.size), np.empty(d.size)
     for di in np.unique(d):
         at = d == di
-        sut[at], sy[at] = strength.shaft_strengths(material, float(di))
-        se[at] = strength.endurance_limit(sut[at][0], float(di), layout.finish).se
+        sut[at], sy[at], se[at] = _strengths(material, float(di), layout.finish)
     return sut, sy, se
+
+
+@functools.lru_cache(maxsize=1024)
+def _strengths(material: Material, diameter: float, finish: str) -> tuple[float, float, float]:
+    """S_ut, S_y (:func:`~flyopt.design.shaft.strength.shaft_strengths`) and S_e
+    (:func:`~flyopt.design.shaft.strength.endurance_limit`) [Pa] of one round section: pure functions of the
+    material, the diameter and the finish, so a design's many wheels on one shaft read them once."""
+    sut, sy = strength.shaft_strengths(material, diameter)
+    return sut, sy, strength.endurance_limit(sut, diameter, finish).se
 
 
 def _checked_sections(layout, material, sections, grid, ma_grid, mm_grid, torque_on, ta, tm) -> list[Section]:
