@@ -812,10 +812,10 @@ def design_drive(
         skipped = _neighbours(
             spec.motors, relaxation.rated_power, evaluate, done, lambda k: _least_objective(motors[k], spec)
         )
-        for k in skipped:  # the note says what the table of sizes no longer shows
-            least = _least_objective(motors[k], spec)
-            alone = f"weighs {least:.6g} kg" if spec.objective == Objective.MASS else f"costs {least:.6g}"
-            note += f"; {_name(motors[k])} left unsolved: its motor alone {alone}, no less than the best drive"
+        for k in skipped:  # the note says what the table of sizes no longer shows (words only: the text, the
+            # report and the JSON each show the note as it is, whatever their units)
+            alone = "weighs" if spec.objective == Objective.MASS else "costs"
+            note += f"; {_name(motors[k])} left unsolved: its motor alone {alone} no less than the best drive"
     runs = tuple(done[k] for k in sorted(done))
     ranked = sorted(
         (r for r in runs if r.feasible and r.objective is not None), key=lambda r: (r.objective, r.motor.rated_power)
