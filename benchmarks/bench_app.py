@@ -203,8 +203,10 @@ diagram for the speed one.
 
 
 def _up(url):
+    # a request that times out still makes the server build its session (a solve and every diagram): with a 1 s
+    # timeout, a server pinned to one core built dozens before the browser's page, and the edits waited behind them
     try:
-        urllib.request.urlopen(url, timeout=1).close()
+        urllib.request.urlopen(url, timeout=60).close()
         return True
     except OSError:
         return False
