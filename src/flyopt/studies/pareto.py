@@ -175,7 +175,11 @@ def pareto(
         empty.attrs["message"] = f"no flywheel needed (J_F = {analysis.j_margin:.4g} kg·m²): nothing to trade"
         return empty
     if other == "outer_diameter":
-        rows = _front_outer_diameter(scene, points, span, method, solver_options)
+        # the front's designs in one memory of neighbours (in this process): the lightest wheel (the scene's
+        # envelope, the largest of all), then the ε points from the largest down, each warm-started from the one
+        # before and spared the NLPs an earlier one proved infeasible with limits as loose or looser
+        with neighbours():
+            rows = _front_outer_diameter(scene, points, span, method, solver_options)
     elif other == "cost":
         rows = _front_cost(scene, method, solver_options)
     elif other == "motor_power":
@@ -202,21 +206,6 @@ def pareto(
 
 
 def _front_outer_diameter(
-    scene: Scene,
-    points: int,
-    span: tuple[float, float] | None,
-    method: Literal["auto", "closed_form", "ipopt"],
-    solver_options: Mapping[str, Any] | None,
-) -> pd.DataFrame:
-    """The front's designs in one memory of neighbours (in this process): the lightest wheel (the scene's
-    envelope, the largest of all), then the ε points from the largest down, each warm-started from the one
-    before and spared the NLPs an earlier one proved infeasible with limits as loose or looser
-    (flyopt.design.wheel_design.neighbours); the rows are in rising ε."""
-    with neighbours():
-        return _front_outer_diameter_points(scene, points, span, method, solver_options)
-
-
-def _front_outer_diameter_points(
     scene: Scene,
     points: int,
     span: tuple[float, float] | None,
