@@ -21,6 +21,41 @@ def main_cli(capsys):
     return call
 
 
+def run_flyopt(*args, cwd=None):
+    """``flyopt ARGS`` in this process, as ``subprocess.run(..., capture_output=True, text=True)`` returns it.
+
+    The same entry point, exit statuses and streams as ``python -m flyopt`` without the second of
+    imports a new interpreter pays for each (about a third of the default run's CPU went to them).
+    A process stays where a test is about the process itself: the console script, pipes, signals,
+    start-up imports, a read that could hang or exhaust memory. An error the CLI does not turn into
+    an exit status propagates here with its traceback, which fails the test as the traceback on a
+    process's stderr did.
+    """
+    import contextlib
+    import io
+    import subprocess
+
+    from flyopt.cli.main import main
+
+    argv = [str(a) for a in args]
+    out = io.TextIOWrapper(io.BytesIO(), encoding="utf-8")
+    err = io.TextIOWrapper(io.BytesIO(), encoding="utf-8")
+    with contextlib.ExitStack() as stack:
+        if cwd is not None:
+            stack.enter_context(contextlib.chdir(cwd))
+        stack.enter_context(contextlib.redirect_stdout(out))
+        stack.enter_context(contextlib.redirect_stderr(err))
+        try:
+            status = main(argv)
+        except SystemExit as exit_:  # argparse: --help, --version, a bad option
+            status = exit_.code if isinstance(exit_.code, int) else (0 if exit_.code is None else 1)
+    text = []
+    for stream in (out, err):
+        stream.flush()
+        text.append(stream.buffer.getvalue().decode("utf-8"))
+    return subprocess.CompletedProcess(["flyopt", *argv], status, text[0], text[1])
+
+
 @pytest.fixture
 def write_scene(tmp_path):
     """Write a scene text to a file and return its path."""

@@ -2,11 +2,10 @@
 ``check`` and ``report`` answer it; every other command refuses it in one line naming its section, exit 2 (a plot of
 an [electric_drive] once failed with a traceback)."""
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from conftest import run_flyopt
 
 TEXTBOOK = Path(__file__).resolve().parents[1] / "problems" / "textbook"
 SCENES = {
@@ -35,11 +34,7 @@ FORMS = [*SCENES.items(), ("position", "seed000-calc6-guide-bar-position.toml")]
 def test_every_other_command_refuses_a_calculation_in_one_line(section, scene, command, tmp_path):
     out = tmp_path / "out"
     args = [a.format(out=out) for a in command]
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", args[0], str(TEXTBOOK / scene), *args[1:]],
-        capture_output=True,
-        text=True,
-    )
+    run = run_flyopt(args[0], TEXTBOOK / scene, *args[1:])
     assert run.returncode == 2, run.stderr
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 1 and f"{section}: is one calculation" in lines[0] and "Traceback" not in run.stderr
@@ -64,11 +59,7 @@ ANSWERS = {
 def test_report_writes_a_calculation_with_its_answers(section, suffix, tmp_path):
     """``flyopt report`` of a calculation writes the report (exit 0) and its text holds the book's answers."""
     out = tmp_path / f"out{suffix}"
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "report", str(TEXTBOOK / SCENES[section]), "-o", str(out)],
-        capture_output=True,
-        text=True,
-    )
+    run = run_flyopt("report", TEXTBOOK / SCENES[section], "-o", out)
     assert run.returncode == 0, run.stderr
     assert out.is_file() and run.stderr == ""
     if suffix == ".pdf":
@@ -85,9 +76,7 @@ def test_report_writes_a_calculation_with_its_answers(section, suffix, tmp_path)
 @pytest.mark.parametrize("section", sorted(SCENES))
 def test_solve_and_check_answer_it(section):
     for verb in ("solve", "check"):
-        run = subprocess.run(
-            [sys.executable, "-m", "flyopt", verb, str(TEXTBOOK / SCENES[section])], capture_output=True, text=True
-        )
+        run = run_flyopt(verb, TEXTBOOK / SCENES[section])
         assert run.returncode == 0, run.stderr
 
 
@@ -99,7 +88,7 @@ def test_a_calculation_that_needs_the_speed_refuses_a_scene_without_it(section, 
     assert len(lines) == len(text.splitlines()) - 1  # the scene gave exactly one machine.speed
     scene = tmp_path / "no-speed.toml"
     scene.write_text("\n".join(lines), encoding="utf-8")
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    run = run_flyopt("solve", str(scene))
     assert run.returncode == 2, run.stderr
     assert run.stderr.strip().splitlines() == [
         f"flyopt: error: {scene}: machine.speed: is missing (the [{section}] calculation needs it)"

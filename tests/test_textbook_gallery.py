@@ -21,12 +21,11 @@ tests/test_textbook_presses.py (16.19, 16.20, 16.22) and tests/test_operation.py
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import mpmath
 import pytest
+from conftest import run_flyopt
 
 import flyopt
 
@@ -50,9 +49,7 @@ def _excess_triangle(peak, mean):
 
 @pytest.mark.parametrize("name", NEW_SCENES)
 def test_every_new_scene_solves_from_the_command_line(name):
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "solve", str(TEXTBOOK / name)], capture_output=True, text=True, check=False
-    )
+    run = run_flyopt("solve", str(TEXTBOOK / name))
     assert run.returncode == 0, run.stderr
 
 

@@ -1,10 +1,7 @@
 """flyopt.design.inputs: the design problem of a scene, and its refusals of the scene's own materials."""
 
-import subprocess
-import sys
-
 import pytest
-from conftest import PROBLEMS
+from conftest import PROBLEMS, run_flyopt
 
 
 def _without_poisson(tmp_path, keep_others):
@@ -24,9 +21,7 @@ def test_a_scene_material_without_poisson_ratio_under_the_stress_criterion_is_ba
     """Issue 25, item 6: a [[material]] without poisson_ratio designed by stress ended 'infeasible' (exit 3)
     while check said ok; it is a field the scene left out: one line naming it, exit 2, from both."""
     path = _without_poisson(tmp_path, keep_others)
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", command, str(path)], capture_output=True, text=True, timeout=120
-    )
+    run = run_flyopt(command, str(path))
     assert run.returncode == 2, run.stderr
     assert run.stdout == "" and len(run.stderr.splitlines()) == 1
     assert "material.gjs_keyed.poisson_ratio: missing: the stress criterion" in run.stderr

@@ -9,11 +9,10 @@ wheel for δ.
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from conftest import run_flyopt
 
 import flyopt
 from flyopt.design.rounding import grid_values
@@ -119,7 +118,7 @@ def test_no_wheel_near_the_optimum_is_reported_in_words_and_exit_3(tmp_path):
     text = "\n".join(lines).replace("[design]", '[design]\nround_to = "1 mm"\nhb_ratio = 1.37', 1)
     scene = tmp_path / "fixed-ratio.toml"
     scene.write_text(text, encoding="utf-8")
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    run = run_flyopt("solve", str(scene))
     assert run.returncode == 3, run.stderr
     assert "no rounded design: no wheel near the optimum on the 1 mm grid meets every limit" in run.stdout
     assert "H/B is fixed at 1.37 (hb_ratio)" in run.stdout
@@ -148,7 +147,7 @@ def test_sweeps_and_fronts_refuse_rounding_in_one_line(tmp_path):
         ["sweep", str(scene), "--vary", "delta=0.01,0.02", "-o", str(tmp_path / "s.csv")],
         ["pareto", str(scene), "-o", str(tmp_path / "p.csv")],
     ):
-        run = subprocess.run([sys.executable, "-m", "flyopt", *command], capture_output=True, text=True)
+        run = run_flyopt(*command)
         assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1, run.stderr
         assert f"{scene}: design.round_to: rounds one winning wheel" in run.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["rounded.toml"]
@@ -161,12 +160,10 @@ def test_solve_and_the_report_show_the_continuous_optimum_beside_the_rounded_whe
     )
     scene.write_text(text, encoding="utf-8")
     words = "rounded to 1 mm (design.round_to): +8.07 kg (+1.70 %) over the continuous optimum: 475 kg"
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    run = run_flyopt("solve", str(scene))
     assert run.returncode == 0 and words in run.stdout, run.stderr
     out = tmp_path / "rounded.html"
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out)], capture_output=True, text=True
-    )
+    run = run_flyopt("report", str(scene), "-o", str(out))
     assert run.returncode == 0, run.stderr
     assert words in out.read_text(encoding="utf-8")
 

@@ -17,11 +17,10 @@ smaller wheel, hence a heavier one for the same inertia
 
 import math
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from conftest import run_flyopt
 
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.design.materials import make_material
@@ -173,7 +172,7 @@ def test_the_gallery_scene_reproduces_the_published_rim_and_says_how_far_it_is_o
     best = solution.design.best
     assert round(best.dims.d_mean, 3) == 0.744 and round(best.mass) == 606
     assert round(best.dims.b * 1e3) == 424 and math.floor(best.dims.h * 1e3) == 84
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(SCENE)], capture_output=True, text=True)
+    run = run_flyopt("solve", str(SCENE))
     assert run.returncode == 0, run.stderr
     assert "criterion mean_rim_speed (the courses' convention)" in run.stdout
     assert "29.1% OVER the allowable" in run.stdout and "19.8% OVER the allowable" in run.stdout
@@ -190,7 +189,7 @@ def test_the_gallery_scene_reproduces_the_published_rim_and_says_how_far_it_is_o
 def test_studies_refuse_the_book_convention_in_one_line(command, words, tmp_path):
     out = tmp_path / "out"
     args = [a.format(scene=SCENE, out=out) for a in command]
-    run = subprocess.run([sys.executable, "-m", "flyopt", *args], capture_output=True, text=True)
+    run = run_flyopt(*args)
     assert run.returncode == 2
     assert run.stderr.strip().splitlines() == [
         f"flyopt: error: {SCENE}: design.criterion: 'mean_rim_speed' (the courses' convention) sizes one rim at a "
@@ -235,7 +234,7 @@ def test_sweeps_fronts_and_drives_refuse_what_only_one_design_knows(design, fiel
         ["sweep", str(scene), "--vary", "speed=700:900:3", "-o", str(tmp_path / "s.csv")],
         ["pareto", str(scene), "-o", str(tmp_path / "p.csv")],
     ):
-        run = subprocess.run([sys.executable, "-m", "flyopt", *command], capture_output=True, text=True)
+        run = run_flyopt(*command)
         assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1, run.stderr
         assert f"{scene}: {field}:" in run.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.toml"]
@@ -243,9 +242,7 @@ def test_sweeps_fronts_and_drives_refuse_what_only_one_design_knows(design, fiel
 
 def test_the_report_says_in_its_summary_how_far_the_book_rim_is_over(tmp_path):
     out = tmp_path / "book.html"
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "report", str(SCENE), "-o", str(out)], capture_output=True, text=True
-    )
+    run = run_flyopt("report", str(SCENE), "-o", str(out))
     assert run.returncode == 0, run.stderr
     html = out.read_text(encoding="utf-8")
     # the contents list names the sections first; the summary section runs from its heading to the next one

@@ -7,13 +7,11 @@ naming the scene, the field, the CSV file, the line and what is allowed.
 
 import json
 import re
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 import tomllib
-from conftest import PROBLEMS, ROOT, names_field
+from conftest import PROBLEMS, ROOT, names_field, run_flyopt
 
 import flyopt
 from flyopt.io import csv_table
@@ -47,9 +45,7 @@ def write(tmp_path, csv_text, table='points_file = "torque.csv"', name="scene.to
 
 
 def cli(*args, cwd=ROOT):
-    return subprocess.run(
-        [sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=120
-    )
+    return run_flyopt(*args, cwd=cwd)
 
 
 def without_names(data):

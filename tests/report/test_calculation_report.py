@@ -17,11 +17,9 @@ not come from the report's code:
 import json
 import math
 import re
-import subprocess
-import sys
 
 import pytest
-from conftest import ROOT
+from conftest import ROOT, run_flyopt
 from test_document import Page
 
 TEXTBOOK = ROOT / "problems" / "textbook"
@@ -86,12 +84,8 @@ def test_a_calculation_is_reported_whole(scene, folder):
 
 def _json_values(scene):
     """name -> every value of that name anywhere in ``flyopt solve --json`` of the scene."""
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "solve", "--json", str(TEXTBOOK / f"{scene}.toml")],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
+    run = run_flyopt("solve", "--json", TEXTBOOK / f"{scene}.toml")
+    assert run.returncode == 0, run.stderr
     found = {}
 
     def walk(value, name=None):
@@ -228,11 +222,7 @@ def test_every_branch_of_a_report_is_written_and_its_steps_hold(variant, tmp_pat
     scene = tmp_path / f"{variant}.toml"
     scene.write_text(text, encoding="utf-8")
     for suffix in ("html", "pdf"):
-        run = subprocess.run(
-            [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(tmp_path / f"out.{suffix}")],
-            capture_output=True,
-            text=True,
-        )
+        run = run_flyopt("report", str(scene), "-o", str(tmp_path / f"out.{suffix}"))
         assert run.returncode == 0 and run.stderr == "", run.stderr
     page = Page((tmp_path / "out.html").read_text(encoding="utf-8"))
     assert page.errors == []
@@ -265,9 +255,7 @@ def test_an_operation_beyond_the_allowed_delta_is_reported_and_exits_4(tmp_path)
     scene = tmp_path / "tight.toml"
     scene.write_text(text.replace('speed = "300 rpm"', 'speed = "300 rpm"\ndelta = 0.05'), encoding="utf-8")
     out = tmp_path / "tight.html"
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out)], capture_output=True, text=True
-    )
+    run = run_flyopt("report", str(scene), "-o", str(out))
     assert run.returncode == 4, run.stderr
     page = Page(out.read_text(encoding="utf-8"))
     assert "FLAGGED" in page.title_block["status"]
@@ -298,9 +286,7 @@ def test_hostile_names_reach_both_formats_escaped(tmp_path):
     )
     for suffix in ("html", "pdf"):
         out = tmp_path / f"hostile.{suffix}"
-        run = subprocess.run(
-            [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out)], capture_output=True, text=True
-        )
+        run = run_flyopt("report", str(scene), "-o", str(out))
         assert run.returncode == 0 and run.stderr == "", run.stderr
     html = (tmp_path / "hostile.html").read_text(encoding="utf-8")
     page = Page(html)

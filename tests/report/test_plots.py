@@ -1,13 +1,11 @@
 """Every diagram renders to a non-empty file (Agg backend); bad requests are one-line errors."""
 
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import PROBLEMS
+from conftest import PROBLEMS, run_flyopt
 
 from flyopt.cli.main import main
 from flyopt.report.plots import PLOTS
@@ -169,12 +167,7 @@ def test_bad_output_is_one_line_exit_2_nothing_written(tmp_path, target, words, 
         pd.DataFrame({"delta": [0.1, 0.2], "mass": [2.0, 1.0], "status": ["designed"] * 2}).to_csv(given, index=False)
         what = ["--what", "sweep", "--x", "delta"]
     before = set(tmp_path.rglob("*"))
-    out = subprocess.run(
-        [sys.executable, "-m", "flyopt", "plot", str(given), *what, "-o", str(tmp_path / target)],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    out = run_flyopt("plot", str(given), *what, "-o", str(tmp_path / target))
     assert out.returncode == 2 and out.stdout == ""
     lines = out.stderr.splitlines()
     assert len(lines) == 1 and lines[0].startswith("flyopt: error: ") and words in lines[0]
@@ -322,9 +315,7 @@ def test_energy_mass_refuses_an_analysis_by_another_model():
 
 
 def _flyopt(*args, cwd):
-    return subprocess.run(
-        [sys.executable, "-m", "flyopt", *map(str, args)], capture_output=True, text=True, timeout=600, cwd=cwd
-    )
+    return run_flyopt(*map(str, args), cwd=cwd)
 
 
 def _readme_command(start):
@@ -640,8 +631,6 @@ def test_a_hostile_title_is_drawn_without_a_warning(tmp_path, what, capsys, writ
 
 @pytest.mark.slow  # 9 s; a hostile title's quiet report is in the default run (tests/cli/test_commands.py, html)
 def test_a_report_of_a_scene_with_an_undrawable_title_writes_nothing_on_stderr(tmp_path):
-    import subprocess
-    import sys
 
     text = (PROBLEMS / "slider-crank-press.toml").read_text()
     title = next(line for line in text.splitlines() if line.startswith("title"))
@@ -651,5 +640,5 @@ def test_a_report_of_a_scene_with_an_undrawable_title_writes_nothing_on_stderr(t
         ["report", str(scene), "-o", str(tmp_path / "r.html")],
         ["plot", str(scene), "--what", "all", "-o", f"{tmp_path}/"],
     ):
-        run = subprocess.run([sys.executable, "-m", "flyopt", *args, "-q"], capture_output=True, text=True, timeout=300)
+        run = run_flyopt(*args, "-q")
         assert run.returncode == 0 and run.stderr == "", run.stderr[:500]

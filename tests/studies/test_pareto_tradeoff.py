@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import PROBLEMS
+from conftest import PROBLEMS, run_flyopt
 from numpy.testing import assert_allclose
 
 import flyopt
@@ -309,17 +309,11 @@ def test_printed_tables_follow_units_as_solve_does():
     """pareto and tradeoff printed metres where solve prints millimetres (issue 29): their tables now take
     --units (engineering by default), the numbers converted by the display's factors, and the JSON stays SI."""
     import json
-    import subprocess
-    import sys
 
     from conftest import PROBLEMS
 
     def run(*args):
-        done = subprocess.run(
-            [sys.executable, "-m", "flyopt", "tradeoff", str(PROBLEMS / "punch-press.toml"), *args],
-            capture_output=True,
-            text=True,
-        )
+        done = run_flyopt("tradeoff", str(PROBLEMS / "punch-press.toml"), *args)
         assert done.returncode == 0, done.stderr
         return done.stdout
 
