@@ -11,12 +11,11 @@ wheel, a second method.
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import run_flyopt
 
 import flyopt
 from flyopt.errors import SceneError
@@ -120,7 +119,7 @@ def test_a_wheel_short_of_delta_is_said_and_exits_4(tmp_path):
     assert check.suffices is False and solution.status == "insufficient"
     assert check.j_required == pytest.approx(check.a_max / ((5 * math.pi) ** 2 * 0.05), rel=1e-12)
     assert check.margin == pytest.approx(80 / check.j_required - 1, rel=1e-12) and check.margin < 0
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    run = run_flyopt("solve", str(scene))
     assert run.returncode == 4 and "does NOT suffice" in run.stdout
 
 
@@ -188,8 +187,6 @@ def test_the_report_of_an_operation_on_a_given_flywheel_is_written(tmp_path):
     calculations had one; tests/report/test_calculation_report.py checks its contents)."""
     out = tmp_path / "r.html"
     scene = TEXTBOOK / "khurmi-16-21.toml"
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "report", str(scene), "-o", str(out)], capture_output=True, text=True
-    )
+    run = run_flyopt("report", str(scene), "-o", str(out))
     assert run.returncode == 0 and run.stderr == "", run.stderr
     assert "257.6 rpm" in out.read_text(encoding="utf-8")  # Khurmi 16.21: about 257.6 rpm after a rivet

@@ -7,12 +7,11 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import jsonschema
 import pytest
+from conftest import run_flyopt
 
 import flyopt
 from flyopt.errors import SceneError
@@ -48,7 +47,7 @@ def test_the_json_is_its_own_kind_and_meets_the_schema():
 def test_a_speed_beyond_delta_exits_4_and_a_cycle_solve_is_refused(tmp_path):
     scene = tmp_path / "tight.toml"
     scene.write_text(SCENE.read_text().replace('speed = "300 rpm"', 'speed = "300 rpm"\ndelta = 0.1'))
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    run = run_flyopt("solve", str(scene))
     assert run.returncode == 4 and "does NOT hold" in run.stdout
     with pytest.raises(SceneError) as err:
         solve(flyopt.load(SCENE))
@@ -80,5 +79,5 @@ def test_bad_operation_is_refused_in_one_line(changes, field, words):
 def test_a_flywheel_too_small_for_the_operation_is_refused(tmp_path):
     scene = tmp_path / "stall.toml"
     scene.write_text(SCENE.read_text().replace('mass = "150 kg"', 'mass = "1 kg"'))
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    run = run_flyopt("solve", str(scene))
     assert run.returncode == 2 and "would stop" in run.stderr and len(run.stderr.strip().splitlines()) == 1

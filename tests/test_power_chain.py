@@ -10,13 +10,11 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import jsonschema
 import pytest
-from conftest import assert_published
+from conftest import assert_published, run_flyopt
 
 import flyopt
 from flyopt.errors import SceneError
@@ -123,11 +121,7 @@ def test_the_json_is_its_own_kind_and_meets_the_schema():
 
 
 def test_solve_prints_the_motor_power_and_each_branch():
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "solve", str(TEXTBOOK / "seed-001-5-8-parallel-machines.toml")],
-        capture_output=True,
-        text=True,
-    )
+    run = run_flyopt("solve", str(TEXTBOOK / "seed-001-5-8-parallel-machines.toml"))
     assert run.returncode == 0, run.stderr
     # 9,530.65 W, η 0.629548, 6,443.3 W: to four figures (issue 29; six before)
     assert "motor power P_in    9.531 kW" in run.stdout
@@ -195,7 +189,7 @@ def test_a_chain_beside_a_cycle_or_a_flywheel_is_refused():
 def test_a_bad_scene_is_refused_in_one_line_exit_2(tmp_path):
     scene = tmp_path / "bad.toml"
     scene.write_text('[power_chain]\nstages = [0.9, 1.2]\npower = "1 kW"\n', encoding="utf-8")
-    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", str(scene)], capture_output=True, text=True)
+    run = run_flyopt("solve", str(scene))
     assert run.returncode == 2
     assert run.stderr.strip().splitlines() == [
         f"flyopt: error: {scene}: power_chain.stages[1]: must lie in (0, 1], got 1.2"

@@ -10,13 +10,11 @@ and the line.
 import json
 import math
 import re
-import subprocess
-import sys
 
 import casadi as ca
 import numpy as np
 import pytest
-from conftest import PROBLEMS
+from conftest import PROBLEMS, run_flyopt
 from numpy.testing import assert_allclose
 
 import flyopt
@@ -47,12 +45,7 @@ def inline_motor(rows):
 
 
 def solve_json(path, *options):
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "solve", str(path), "--json", *options],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    run = run_flyopt("solve", str(path), "--json", *options)
     assert run.returncode == 0, run.stderr
     return json.loads(run.stdout)
 
@@ -110,9 +103,7 @@ def test_the_table_is_one_expression_for_numpy_and_casadi():
 
 def test_a_motor_too_weak_for_the_load_is_refused(tmp_path):
     path = scene_with(tmp_path, inline_motor([(0.0, 20.0), (1500.0, 0.0)]))
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "check", str(path)], capture_output=True, text=True, timeout=120
-    )
+    run = run_flyopt("check", str(path))
     assert run.returncode == 2 and len(run.stderr.splitlines()) == 1, run.stderr
     assert "torque.driving: the motor's largest torque on the reference shaft" in run.stderr
     assert "(the largest of its table), is below the mean load" in run.stderr
@@ -157,9 +148,7 @@ FILE_MOTOR = 'motor = { kind = "table", speed_unit = "rpm", unit = "N*m", shaft 
 )
 def test_a_malformed_motor_table_is_refused_in_one_line(tmp_path, csv_text, match):
     path = scene_with(tmp_path, FILE_MOTOR, csv_text)
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "solve", str(path)], capture_output=True, text=True, timeout=120
-    )
+    run = run_flyopt("solve", str(path))
     assert "Traceback" not in run.stderr
     assert run.returncode == 2 and run.stdout == "" and len(run.stderr.splitlines()) == 1, run.stderr
     assert run.stderr.startswith(f"flyopt: error: {path}: torque.driving.motor.points_file: "), run.stderr
@@ -168,17 +157,10 @@ def test_a_malformed_motor_table_is_refused_in_one_line(tmp_path, csv_text, matc
 
 def test_a_missing_motor_file_and_both_forms_are_refused(tmp_path):
     path = scene_with(tmp_path, FILE_MOTOR)
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "check", str(path)], capture_output=True, text=True, timeout=120
-    )
+    run = run_flyopt("check", str(path))
     assert run.returncode == 2 and "motor.csv: No such file or directory" in run.stderr, run.stderr
     both = FILE_MOTOR.replace(" }", ", points = [[0, 900], [1500, 0]] }")
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "check", str(scene_with(tmp_path, both))],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    run = run_flyopt("check", str(scene_with(tmp_path, both)))
     assert run.returncode == 2 and "torque.driving.motor: a motor table needs exactly one of points" in run.stderr
 
 

@@ -37,7 +37,7 @@ import xml.etree.ElementTree as ElementTree
 from html.parser import HTMLParser
 
 import pytest
-from conftest import PROBLEMS, ROOT
+from conftest import PROBLEMS, ROOT, run_flyopt
 
 GOLDEN = ROOT / "tests" / "data" / "golden"
 
@@ -772,9 +772,7 @@ def test_an_html_report_loads_no_pdf_library():
 
 
 def test_the_report_command_is_in_the_one_tree():
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "report", "--help"], capture_output=True, text=True, timeout=60
-    )
+    run = run_flyopt("report", "--help")
     assert run.returncode == 0 and "flyopt report" in run.stdout and "--units" in run.stdout, run.stderr
 
 

@@ -31,7 +31,7 @@ import re
 
 import pint
 import pytest
-from conftest import PROBLEMS, ROOT
+from conftest import PROBLEMS, ROOT, run_flyopt
 
 import flyopt
 import flyopt.pipeline
@@ -821,8 +821,6 @@ def test_round_off_prints_as_zero():
     """The energy chain closes at the cycle's end: four-cylinder-engine's text printed its round-off
     (-3.69482e-16 kJ at 720 deg, issue 29); a value within 1e-12 of its column's scale prints as 0, and a
     real small value does not."""
-    import subprocess
-    import sys
 
     from conftest import PROBLEMS
 
@@ -830,10 +828,6 @@ def test_round_off_prints_as_zero():
 
     assert denoised([0.0, 9000.0, -3.7e-13, -9000.0]) == [0.0, 9000.0, 0.0, -9000.0]
     assert denoised([1e-3, 1.0]) == [1e-3, 1.0] and denoised([1e-20]) == [1e-20] and denoised([]) == []
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "solve", str(PROBLEMS / "four-cylinder-engine.toml")],
-        capture_output=True,
-        text=True,
-    )
+    run = run_flyopt("solve", str(PROBLEMS / "four-cylinder-engine.toml"))
     assert run.returncode == 0 and not re.search(r"\de-1\d", run.stdout), run.stdout
     assert re.search(r"\n  720\s+0\s*\n", run.stdout)
