@@ -46,6 +46,9 @@ ROOT = Path(__file__).resolve().parent.parent
 PROBLEMS = ROOT / "problems"
 RESULTS = Path(__file__).resolve().parent / "results"
 FLYOPT = [sys.executable, "-m", "flyopt"]
+#: The environment of every timed process: this one's, but bytecode is written (``PYTHONDONTWRITEBYTECODE``
+#: dropped), so that the warm-up leaves the .pyc files an installed package has and no run compiles the sources.
+CHILD_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 
 #: Issue 26's targets [s, wall] for slider-crank-press.
 TARGETS = {"html": 1.5, "pdf": 2.5}
@@ -55,10 +58,11 @@ OTHER_SCENE = "motor-press"
 
 
 def run_once(command, env=None):
-    """(wall, CPU of the child) [s] of one run of ``command`` (in ``env``, default this one's); it must succeed."""
+    """(wall, CPU of the child) [s] of one run of ``command`` (in ``env``, default :data:`CHILD_ENV`); it must
+    succeed."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    done = subprocess.run(command, capture_output=True, cwd=ROOT, env=env)
+    done = subprocess.run(command, capture_output=True, cwd=ROOT, env=CHILD_ENV if env is None else env)
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode not in (0, 3, 4):
@@ -71,7 +75,7 @@ def cases(folder, baseline=None):
     out = []
     before = None
     if baseline is not None:
-        before = dict(os.environ, PYTHONPATH=os.pathsep.join([str(baseline), os.environ.get("PYTHONPATH", "")]))
+        before = dict(CHILD_ENV, PYTHONPATH=os.pathsep.join([str(baseline), os.environ.get("PYTHONPATH", "")]))
     for scene in (TARGET_SCENE, OTHER_SCENE):
         path = str(PROBLEMS / f"{scene}.toml")
         for kind in ("html", "pdf"):
@@ -98,6 +102,7 @@ def bench_commands(repeat, folder, baseline=None):
     """Rows of the whole-process times: median, min and max of wall and CPU time over the repeats."""
     todo = cases(folder, baseline)
     for _name, _scene, _setting, command, env in todo:  # a warm-up of each: the OS's file cache, the .pyc files
+        # (written: see CHILD_ENV)
         run_once(command, env)
     times = {k: [] for k in range(len(todo))}
     for _ in range(repeat):
@@ -250,7 +255,8 @@ def main(argv=None):
     header = (
         f"Machine: {platform.platform()}, {os.cpu_count()} CPUs, {pinning}; Python {platform.python_version()}, "
         f"numpy {np.__version__}, flyopt {flyopt.__version__}. Load averages (1, 5, 15 min) at the start "
-        f"{start_load}, at the end {load_average()}."
+        f"{start_load}, at the end {load_average()}. Every timed process writes and reads its bytecode (.pyc, as "
+        f"an installed package has; PYTHONDONTWRITEBYTECODE was {'set here and dropped for them' if 'PYTHONDONTWRITEBYTECODE' in os.environ else 'not set'})."
     )
     text = summary(rows, header, repeat, args.baseline)
     if not args.quick:

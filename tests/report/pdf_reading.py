@@ -1,7 +1,9 @@
 """Reading a PDF back as a reader sees it, for the report's layout tests: where each run of text stands.
 
 pypdf (the test extra) walks each page's content stream and calls back on every operator
-(``visitor_operand_before``, with the current transformation matrix it tracks through ``q``/``Q``/``cm``);
+(``visitor_operand_before``, with the current transformation matrix it tracks through ``q``/``Q``/``cm``),
+into each form XObject a ``Do`` shows (a form's text is placed by the matrix in force at its ``Do``, which
+pypdf does not pass into the form: it is applied here);
 the text state (text and line matrices, font, size, leading, rise, character and word spacing, horizontal
 scaling) is followed here as PDF 32000-1, section 9.4 defines it, and each shown string's box is its
 advance (the file's own ``/Widths`` of the embedded font) by the font's ascent and descent (its
@@ -46,8 +48,10 @@ def _times(a, b):
 
 def text_boxes(page, number: int = 0) -> list[Box]:
     """Every shown run of text on a pypdf page that has a visible character, as a :class:`Box`."""
-    fonts = page["/Resources"].get("/Font", {})
+    resources = page["/Resources"]
     found: list[Box] = []
+    # the forms being read, innermost last: [operations of the form still to come, matrix at its Do, its fonts]
+    forms: list[list] = []
     state = {"font": None, "size": 0.0, "leading": 0.0, "tc": 0.0, "tw": 0.0, "rise": 0.0, "scale": 1.0}
     matrices = {"tm": _IDENTITY, "lm": _IDENTITY}
 
@@ -81,7 +85,23 @@ def text_boxes(page, number: int = 0) -> list[Box]:
         matrices["tm"] = _times((1.0, 0.0, 0.0, 1.0, advance, 0.0), matrices["tm"])
 
     def visit(op, args, cm, tm):
-        if op == b"BT":
+        fonts = (forms[-1][2] if forms else resources).get("/Font", {})
+        if forms:  # an operation of the form on top: placed by the matrix at its Do
+            cm = _times(cm, forms[-1][1])
+            forms[-1][0] -= 1
+            if forms[-1][0] == 0:
+                forms.pop()
+        if op == b"Do":
+            shown = (forms[-1][2] if forms else resources).get("/XObject", {})[args[0]].get_object()
+            if shown["/Subtype"] == "/Form":
+                from pypdf.generic import ContentStream
+
+                if tuple(float(v) for v in shown.get("/Matrix", _IDENTITY)) != _IDENTITY:
+                    raise NotImplementedError("a form with its own /Matrix")
+                operations = len(ContentStream(shown, page.pdf).operations)
+                if operations:
+                    forms.append([operations, cm, shown.get("/Resources", resources)])
+        elif op == b"BT":
             matrices["tm"] = matrices["lm"] = _IDENTITY
         elif op == b"Tm":
             matrices["tm"] = matrices["lm"] = tuple(float(a) for a in args)

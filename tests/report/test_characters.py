@@ -32,6 +32,17 @@ def test_what_shows_is_kept(text):
     assert visible(text) == text
 
 
+def test_characters_seen_to_show_let_no_acting_one_through():
+    """visible remembers the characters it found showing (a text of them only is returned at once): a text of
+    those same characters and one acting character still has that one escaped, wherever it stands."""
+    shown = "ΔE ω δ · ² é"
+    assert visible(shown) == shown
+    for where in range(len(shown) + 1):
+        text = shown[:where] + "\u202e" + shown[where:]
+        assert visible(text) == shown[:where] + "\\u202e" + shown[where:]
+    assert visible(shown + "\n\t") == shown + "\n\t"
+
+
 def test_an_escape_is_left_as_it_is():
     assert visible(visible(HOSTILE)) == visible(HOSTILE)
 

@@ -45,9 +45,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
 
 from flyopt.machine.transmission import reflected
+
+# scipy.linalg is imported where a mode or a response is solved: a scene without a torsional chain
+# (a report, a solve) never pays for its import (about 0.2 s)
 
 TWO_PI = 2.0 * math.pi
 
@@ -338,6 +340,8 @@ def modes(model: TorsionalModel) -> Modes:
         mean the matrices are too ill-conditioned to trust).
     """
     m, k = model.mass_matrix, model.stiffness_matrix
+    import scipy.linalg
+
     eigenvalues, vectors = scipy.linalg.eigh(k, m)
     rigid = 0 if model.grounded else 1
     elastic = eigenvalues[rigid:]
@@ -392,6 +396,8 @@ def damped_eigenvalues(model: TorsionalModel, damping: np.ndarray | None = None)
     n = model.size
     a = np.block([[np.zeros((n, n)), np.eye(n)], [-k, -c]])
     b = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), m]])
+    import scipy.linalg
+
     eigenvalues = scipy.linalg.eigvals(a, b)
     eigenvalues = eigenvalues[eigenvalues.imag > 0.0]
     return eigenvalues[np.argsort(np.abs(eigenvalues), kind="stable")]
@@ -531,6 +537,8 @@ def harmonic_response(
     t = np.asarray(torques, dtype=complex)
     if t.shape != (model.size,):
         raise ValueError(f"torques needs one amplitude per node ({model.size}), got shape {t.shape}")
+    import scipy.linalg
+
     dynamic = k - omega**2 * m + 1j * omega * c
     with warnings.catch_warnings():
         # an exactly singular pivot is reported below, in a ValueError that says why

@@ -33,6 +33,13 @@ def visible(text: str) -> str:
     >>> visible("a\\x00b\\u202eevil")
     'a\\\\x00b\\\\u202eevil'
     """
-    if _SAFE.fullmatch(text):  # plain ASCII, the common case: nothing to look at
+    if _SAFE.fullmatch(text) or _SHOWN.issuperset(text):  # nothing to look at: ASCII, or characters seen to show
         return text
-    return "".join(ascii(c)[1:-1] if c not in LAYOUT and unicodedata.category(c) in ACTING else c for c in text)
+    out = "".join(ascii(c)[1:-1] if c not in LAYOUT and unicodedata.category(c) in ACTING else c for c in text)
+    _SHOWN.update(c for c in text if c in LAYOUT or unicodedata.category(c) not in ACTING)
+    return out
+
+
+#: Characters :func:`visible` has found to show as they are (the report's ω, δ, ·, ² ...): a text made of them
+#: only is returned at once, without a look at each character (the PDF passes every paragraph through here).
+_SHOWN: set[str] = set()

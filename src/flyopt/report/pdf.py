@@ -12,6 +12,7 @@ for, so that ``import flyopt`` and the other commands do not pay for it.
 
 from __future__ import annotations
 
+import functools
 import io
 import os
 import re
@@ -45,19 +46,13 @@ _FILES = {
 def render(document: Document) -> bytes:
     """The PDF of a :class:`~flyopt.report.document.Document`, as bytes.
 
-    Laid out twice: first without drawing the diagrams, to learn the page each
-    section starts on (a diagram's size, not its drawing, decides the pages),
-    then for good, with those pages in the contents list. Every heading is a
-    destination: the contents list links to it and the outline (the viewer's
-    bookmarks) lists it.
+    Laid out once. The contents list on the first page names the page each
+    section starts on before that page is laid out: each of its page numbers
+    is a form (a PDF XObject, :func:`_page_number`) that the first page refers
+    to and that is written when the section's heading is placed
+    (:func:`_page_form`). Every heading is a destination: the contents list
+    links to it and the outline (the viewer's bookmarks) lists it.
     """
-    pages: dict[str, int] = {}
-    _build(document, pages, draw=False)
-    return _build(document, pages, draw=True)
-
-
-def _build(document: Document, pages: dict[str, int], draw: bool) -> bytes:
-    """One layout of the document; records in ``pages`` the page of each section's heading."""
     from reportlab.lib.pagesizes import A4
     from reportlab.lib.units import mm
     from reportlab.platypus import SimpleDocTemplate
@@ -80,14 +75,14 @@ def _build(document: Document, pages: dict[str, int], draw: bool) -> bytes:
     )
     width = A4[0] - 2 * margin
     height = A4[1] - 32 * mm
-    story = _title(document, styles, width) + _contents(document, styles, width, pages)
+    story = _title(document, styles, width) + _contents(document, styles, width)
     for section in document.sections:
         style = styles["h1"] if section.level == 1 else styles["h2"]
         heading = _paragraph(f"{section.number} {section.title}", style, anchor=anchor(section.number))
         heading.flyopt_section = section
         story.append(heading)
         for block in section.blocks:
-            story += _block(block, styles, width, height, draw)
+            story += _block(block, styles, width, height)
 
     def footer(canvas, doc):
         canvas.saveState()
@@ -100,20 +95,44 @@ def _build(document: Document, pages: dict[str, int], draw: bool) -> bytes:
         canvas.drawRightString(A4[0] - margin, 9 * mm, number)
         canvas.restoreState()
 
+    written: set[str] = set()
+
     def after(flowable):
         section = getattr(flowable, "flyopt_section", None)
         if section is not None:
-            pages[section.number] = page.page
             title = _shown(f"{section.number} {section.title}")
             page.canv.addOutlineEntry(plain(title), anchor(section.number), level=section.level - 1)
+            if section.level == 1 and section.number not in written:
+                _page_form(page.canv, section.number, page.page, styles["cell_r"])
+                written.add(section.number)
 
     page.afterFlowable = after
     page.build(story, onFirstPage=footer, onLaterPages=footer)
     return buffer.getvalue()
 
 
-def _contents(document, styles, width, pages):
-    """The contents list: each numbered section (level 1) and its page, both linked to its heading."""
+#: The colour of the contents list's links (its numbers, titles and pages).
+_LINK = "#1d3f73"
+
+
+def _page_form_name(number: str) -> str:
+    """The name of the form that prints the page section ``number`` starts on."""
+    return f"flyopt-page-{anchor(number)}"
+
+
+def _page_form(canvas, number: str, at: int, style) -> None:
+    """Write the form that prints page ``at``, where section ``number`` starts: right-aligned on its origin
+    (the right end of the contents list's baseline), in the contents' type and link colour."""
+    size = style.fontSize
+    canvas.beginForm(_page_form_name(number), lowerx=-8 * size, lowery=-size, upperx=size, uppery=2 * size)
+    canvas.setFont(style.fontName, size)
+    canvas.setFillColor(_LINK)
+    canvas.drawRightString(0, 0, str(at))
+    canvas.endForm()
+
+
+def _contents(document, styles, width):
+    """The contents list: each numbered section (level 1) and its page, all three linked to its heading."""
     from reportlab.lib import colors
     from reportlab.platypus import Paragraph as RLParagraph
     from reportlab.platypus import Spacer
@@ -123,15 +142,14 @@ def _contents(document, styles, width, pages):
     for section in document.sections:
         if section.level != 1:
             continue
-        link = f'<a href="#{anchor(section.number)}" color="#1d3f73">'
+        link = f'<a href="#{anchor(section.number)}" color="{_LINK}">'
         number = escape(section.number)
         title = _markup(section.title)
-        at = str(pages.get(section.number, "00"))  # the first layout's placeholder is as wide as a page number
         rows.append(
             [
                 RLParagraph(f"{link}{number}</a>", styles["cell"]),
                 RLParagraph(f"{link}{title}</a>", styles["cell"]),
-                RLParagraph(f"{link}{at}</a>", styles["cell_r"]),
+                _page_number()(section.number, styles["cell_r"]),
             ]
         )
     if not rows:
@@ -146,6 +164,49 @@ def _contents(document, styles, width, pages):
         ]
     )
     return [_paragraph("Contents", styles["h1"]), table, Spacer(1, 4)]
+
+
+@functools.cache
+def _page_number():
+    """The flowable class of a page number in the contents list (made once: reportlab is imported for a PDF only)."""
+    from reportlab.platypus import Flowable
+
+    class PageNumber(Flowable):
+        """The page a section starts on, in the contents list: a reference to the form written once that page
+        is known (:func:`_page_form`), on the baseline and with the link a one-line right-aligned paragraph of
+        ``style`` would have."""
+
+        def __init__(self, number: str, style) -> None:
+            super().__init__()
+            self.number, self.style = number, style
+
+        def wrap(self, available_width, available_height):
+            self.width, self.height = available_width, self.style.leading
+            return self.width, self.height
+
+        def draw(self):
+            canvas, size = self.canv, self.style.fontSize
+            baseline = self.height - _first_baseline(self.style)
+            canvas.saveState()
+            canvas.translate(self.width, baseline)
+            canvas.doForm(_page_form_name(self.number))
+            canvas.restoreState()
+            low = baseline - size / 8.0  # where reportlab puts a linked line's box (paragraph.py)
+            room = canvas.stringWidth("000", self.style.fontName, size)
+            canvas.linkRect(
+                "", anchor(self.number), (self.width - room, low, self.width, low + self.height), relative=1
+            )
+
+    return PageNumber
+
+
+def _first_baseline(style) -> float:
+    """How far below its top a one-line paragraph of ``style`` sets its baseline [pt], as reportlab does
+    (its font size, or the font's ascent where ``rl_config.paraFontSizeHeightOffset`` is off)."""
+    from reportlab import rl_config
+    from reportlab.pdfbase.pdfmetrics import getAscent
+
+    return style.fontSize if rl_config.paraFontSizeHeightOffset else getAscent(style.fontName, style.fontSize)
 
 
 def _shown(text: str, font: str = _FONT) -> str:
@@ -268,7 +329,7 @@ def _title(document, styles, width):
     return [table, Spacer(1, 8)]
 
 
-def _block(block, styles, width, height, drawn=True):
+def _block(block, styles, width, height):
     from reportlab.lib import colors
     from reportlab.platypus import KeepTogether, Spacer
     from reportlab.platypus import Table as RLTable
@@ -327,7 +388,7 @@ def _block(block, styles, width, height, drawn=True):
         caption = f"{block.caption}." if block.figure is not None else f"{block.caption}. {block.note}"
         if block.figure is None:
             return [_paragraph(caption, styles["caption"]), Spacer(1, 4)]
-        figure = _figure(block.figure, _paragraph(caption, styles["caption"]), width, 0.62 * height, drawn)
+        figure = _figure(block.figure, _paragraph(caption, styles["caption"]), width, 0.62 * height)
         return [figure, Spacer(1, 6)]
     if isinstance(block, Code):
         chars = int(width / (0.6 * styles["code"].fontSize)) - 1
@@ -432,15 +493,14 @@ def _fit(natural, least, width):
 SHRINK = 0.72
 
 
-def _figure(figure, caption, width, height, drawn=True):
+def _figure(figure, caption, width, height):
     """A matplotlib figure as a vector flowable with its caption below, kept together.
 
     Scaled to fit ``width`` x ``height`` [pt] and never enlarged; where the rest
     of a page holds at least :data:`SHRINK` of that size the diagram shrinks to
     fit it, so that a page is not left half empty for want of a few points. The
     figure is drawn onto the page itself (:func:`flyopt.report.pdf_figure.draw`,
-    paths and text, no image), once, when reportlab places it; with ``drawn``
-    False only its place is taken (the first layout, which finds the pages).
+    paths and text, no image), once, when reportlab places it.
     """
     from reportlab.platypus import Flowable
 
@@ -462,8 +522,6 @@ def _figure(figure, caption, width, height, drawn=True):
             return []  # a diagram is never cut: it goes to the next page whole
 
         def draw(self):
-            if not drawn:
-                return
             shown_w = w * self.scale
             draw_figure(figure, self.canv, (self.width - shown_w) / 2, self.caption_height + 4, self.scale)
             caption.drawOn(self.canv, 0, 0)

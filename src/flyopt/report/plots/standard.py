@@ -97,6 +97,8 @@ def in_font(text: str, font: str | None = None) -> str:
         The font file the text is drawn with (default: matplotlib's default font, DejaVu Sans).
     """
     covered = glyphs(font if font is not None else font_file())
+    if covered.issuperset(map(ord, text)):  # every character drawn: the common case, checked without a loop here
+        return text
     return "".join(c if c in "\n\t" or ord(c) in covered else PLACEHOLDER for c in text)
 
 
