@@ -600,6 +600,44 @@ def forced_response(
     return ForcedResponse(excitation.orders.copy(), omega, angles, torques)
 
 
+def spring_torque_orders(
+    model: TorsionalModel,
+    excitation: TorqueOrders,
+    node: int,
+    speed_rpm: float,
+    spring: int,
+    *,
+    damping: np.ndarray | None = None,
+) -> np.ndarray:
+    """The complex twisting torque amplitude of one spring on its own shaft for every order [N*m].
+
+    The same steady state as :func:`forced_response` ((K - Omega_q^2 M + i Omega_q C) x_q = T_q at
+    ``node``, the spring's torque (k + i Omega c) r (x_a - x_b)), every order in one batched solve:
+    a cycle's thousands of orders cost one call, where the shaft's fatigue check asks it for each
+    design. An undamped system driven exactly at a natural frequency raises ValueError.
+    """
+    if isinstance(node, bool) or not isinstance(node, (int, np.integer)) or not 0 <= node < model.size:
+        raise ValueError(f"node {node!r} is not one of 0..{model.size - 1}")
+    if not 0 <= spring < len(model.springs):
+        raise ValueError(f"spring {spring!r} is not one of 0..{len(model.springs) - 1}")
+    _check_number("speed_rpm", speed_rpm, positive=True)
+    m, k = model.mass_matrix, model.stiffness_matrix
+    c = model.damping_matrix if damping is None else _square(damping, model.size)
+    omega = np.asarray(excitation.orders, dtype=float) * TWO_PI * speed_rpm / 60.0
+    dynamic = k[None, :, :] - (omega**2)[:, None, None] * m[None, :, :] + 1j * omega[:, None, None] * c[None, :, :]
+    load = np.zeros((omega.size, model.size, 1), dtype=complex)
+    load[:, node, 0] = np.asarray(excitation.amplitudes, dtype=complex)
+    try:
+        x = np.linalg.solve(dynamic, load)[:, :, 0]
+    except np.linalg.LinAlgError:
+        raise ValueError("an order meets a natural frequency of the undamped system: add damping") from None
+    chosen = model.springs[spring]
+    twist = x[:, chosen.a] - (0.0 if chosen.b is None else x[:, chosen.b])
+    cs = chosen.damping if damping is None else 0.0
+    torques: np.ndarray = (chosen.stiffness + 1j * omega * cs) * chosen.ratio * twist
+    return torques
+
+
 @dataclass(frozen=True)
 class CriticalSpeed:
     """Where order ``order`` of a shaft meets mode ``mode`` (1 = the first elastic mode).
