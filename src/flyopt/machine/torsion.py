@@ -600,41 +600,43 @@ def forced_response(
     return ForcedResponse(excitation.orders.copy(), omega, angles, torques)
 
 
-def spring_torque_orders(
+def modal_spring_torque_orders(
     model: TorsionalModel,
     excitation: TorqueOrders,
     node: int,
     speed_rpm: float,
     spring: int,
+    zeta: float,
     *,
-    damping: np.ndarray | None = None,
+    found: Modes | None = None,
 ) -> np.ndarray:
-    """The complex twisting torque amplitude of one spring on its own shaft for every order [N*m].
+    """The complex twisting torque of one spring on its own shaft for every order, modal damping ζ [N*m].
 
-    The same steady state as :func:`forced_response` ((K - Omega_q^2 M + i Omega_q C) x_q = T_q at
-    ``node``, the spring's torque (k + i Omega c) r (x_a - x_b)), every order in one batched solve:
-    a cycle's thousands of orders cost one call, where the shaft's fatigue check asks it for each
-    design. An undamped system driven exactly at a natural frequency raises ValueError.
+    The steady state of :func:`forced_response` with C = :func:`modal_damping` (``model``, ζ), by modal
+    superposition: with mass-normalised shapes phi_m the modal damping is diagonal, so
+
+        T_q = c_q sum_m k r (phi_a,m - phi_b,m) phi_node,m / (omega_m^2 - Omega_q^2 + 2 i ζ omega_m Omega_q),
+
+    exact (the rigid-body mode twists no spring), and a cycle's thousands of orders cost a product of two
+    small arrays, where the shaft's fatigue check asks it for each design. ``found``: the model's modes,
+    when the caller has them. An undamped system driven exactly at a natural frequency raises ValueError.
     """
     if isinstance(node, bool) or not isinstance(node, (int, np.integer)) or not 0 <= node < model.size:
         raise ValueError(f"node {node!r} is not one of 0..{model.size - 1}")
     if not 0 <= spring < len(model.springs):
         raise ValueError(f"spring {spring!r} is not one of 0..{len(model.springs) - 1}")
     _check_number("speed_rpm", speed_rpm, positive=True)
-    m, k = model.mass_matrix, model.stiffness_matrix
-    c = model.damping_matrix if damping is None else _square(damping, model.size)
-    omega = np.asarray(excitation.orders, dtype=float) * TWO_PI * speed_rpm / 60.0
-    dynamic = k[None, :, :] - (omega**2)[:, None, None] * m[None, :, :] + 1j * omega[:, None, None] * c[None, :, :]
-    load = np.zeros((omega.size, model.size, 1), dtype=complex)
-    load[:, node, 0] = np.asarray(excitation.amplitudes, dtype=complex)
-    try:
-        x = np.linalg.solve(dynamic, load)[:, :, 0]
-    except np.linalg.LinAlgError:
-        raise ValueError("an order meets a natural frequency of the undamped system: add damping") from None
+    _check_number("zeta", zeta, positive=False)
+    found = modes(model) if found is None else found
     chosen = model.springs[spring]
-    twist = x[:, chosen.a] - (0.0 if chosen.b is None else x[:, chosen.b])
-    cs = chosen.damping if damping is None else 0.0
-    torques: np.ndarray = (chosen.stiffness + 1j * omega * cs) * chosen.ratio * twist
+    twist = found.shapes[chosen.a] - (0.0 if chosen.b is None else found.shapes[chosen.b])
+    gain = chosen.stiffness * chosen.ratio * twist * found.shapes[node]
+    omega = np.asarray(excitation.orders, dtype=float) * TWO_PI * speed_rpm / 60.0
+    w = found.omega
+    denominator = w[None, :] ** 2 - omega[:, None] ** 2 + 2j * zeta * w[None, :] * omega[:, None]
+    if np.any(denominator == 0.0):
+        raise ValueError("an order meets a natural frequency of the undamped system: add damping")
+    torques: np.ndarray = np.asarray(excitation.amplitudes, dtype=complex) * (gain[None, :] / denominator).sum(axis=1)
     return torques
 
 

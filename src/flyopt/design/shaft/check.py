@@ -388,7 +388,7 @@ def check_shaft(
         torsional = torsional_check(built.model, excitation, speed_range, significant=SIGNIFICANT_ORDER)
         response = (built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio)
         # the one rule of the alternating torque at the seat: the forced response's, where the train is modelled
-        seat = seat_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio)
+        seat = seat_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
     t_alt_rigid = t_alt
     if seat is not None:
         t_mean, t_alt = seat.mean, seat.alternating

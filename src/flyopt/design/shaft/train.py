@@ -31,9 +31,9 @@ from flyopt.machine.torsion import (
     belt_stiffness,
     forced_response,
     modal_damping,
+    modal_spring_torque_orders,
     shaft_compliance,
     shaft_stiffness,
-    spring_torque_orders,
 )
 
 if TYPE_CHECKING:
@@ -284,7 +284,11 @@ class SeatTorque:
 
 
 def seat_torque(
-    built: TrainModel, excitation: TorqueOrders, speed_rpm: float, damping_ratio: float
+    built: TrainModel,
+    excitation: TorqueOrders,
+    speed_rpm: float,
+    damping_ratio: float,
+    found: Modes | None = None,
 ) -> SeatTorque | None:
     """The torque at the wheel's seat by the forced response at ``speed_rpm``, every order synthesised in time.
 
@@ -293,12 +297,13 @@ def seat_torque(
     crank, where that torque enters): on a shaft with no ``train`` the span from the seat to ``torque_at``.
     Every order of the excitation is kept (the rigid-body T_a reads the whole curve, so dropping the small
     ones could only lower it), each damped by the modal ``damping_ratio``, and the orders are superposed
-    with their phases over one cycle (an inverse FFT); T_m and T_a are that curve's midrange and half range
+    with their phases over one cycle (an inverse FFT on 4096 or more points); T_m and T_a are that curve's midrange and half range
     (Shigley's definitions, docs/flywheel-design.md, section 26, for the reason over a sum of amplitudes).
     The mean torque enters quasi-statically: the share J_wheel side / J_total of the excitation's mean. As
     Omega -> 0 each order's torque tends to the rigid-body share J_F/J of the net torque, so a stiff train
     gives the rigid-body curve. None where no elastic element follows the wheel (the wheel at the crank
-    end) or the orders are not the harmonics of one cycle.
+    end) or the orders are not the harmonics of one cycle. ``found``: the train's modes, when the caller
+    has them (:func:`flyopt.machine.torsion.modal_spring_torque_orders` superposes them).
     """
     wheel = built.wheel_node
     model = built.model
@@ -312,17 +317,18 @@ def seat_torque(
         return None
     e = after[0]
     spring = model.springs[e]
-    c = modal_damping(model, damping_ratio)
     # the spring's torque on its own shaft, on the described shaft (x ratio), with the rigid body's sign
     # (the spring holds the wheel side back: k (x_a - x_b) = -J_side alpha)
-    amplitudes = -spring_torque_orders(model, excitation, built.load_node, speed_rpm, e, damping=c) * spring.ratio
+    torques = modal_spring_torque_orders(model, excitation, built.load_node, speed_rpm, e, damping_ratio, found=found)
+    amplitudes = -torques * spring.ratio
     inertia = np.diag(model.mass_matrix)
     share = float(inertia[: wheel + 1].sum() / inertia.sum())
-    n = max(4096, 8 * int(k[-1]))
+    n = max(4096, 1 << int(8 * k[-1]).bit_length())  # a power of two, 8+ points a period of the highest order
     spectrum = np.zeros(n // 2 + 1, dtype=complex)
     spectrum[k] = amplitudes * (n / 2.0)
     curve = share * excitation.mean + np.fft.irfft(spectrum, n)
-    t_max, t_min = float(curve.max()), float(curve.min())
+    t_max, t_min = _extreme(amplitudes, k, curve, 1.0), _extreme(amplitudes, k, curve, -1.0)
+    t_max, t_min = share * excitation.mean + t_max, share * excitation.mean + t_min
     return SeatTorque(
         curve,
         0.5 * (t_max + t_min),
@@ -331,3 +337,20 @@ def seat_torque(
         float(speed_rpm),
         float(damping_ratio),
     )
+
+
+def _extreme(amplitudes: np.ndarray, harmonics: np.ndarray, curve: np.ndarray, sign: float) -> float:
+    """The largest (``sign`` 1) or smallest (-1) value of sum_k Re(A_k e^{i k t}) over a period: the sampled
+    extreme of ``curve`` (its samples, the mean included) refined between its neighbours by a bounded search on
+    the series summed directly (the samples alone miss a ringing peak by up to 1 - cos(pi / points a period))."""
+    from flyopt.cycle.minimize import bounded_minimum
+
+    n = curve.size
+    j = int(np.argmax(sign * curve))
+    step = 2.0 * math.pi / n
+
+    def minus(t: float) -> float:
+        return -sign * float(np.real(np.exp(1j * harmonics * t) @ amplitudes))
+
+    found = bounded_minimum(minus, (j - 1) * step, (j + 1) * step, xatol=1e-9 * step)
+    return -sign * min(found.fun, minus(j * step))
