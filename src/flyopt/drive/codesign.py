@@ -767,7 +767,9 @@ def _same_wheel(a, b) -> bool:
 def _shaft_refusal(result: DesignResult) -> str:
     """Why no wheel is designed where the described flywheel shaft refused them: the candidates' reasons
     (the post-check's, :func:`flyopt.design.shaft.cycle.reject_reason`, in numbers); "" when none is the shaft's."""
-    reasons = [c.reason for c in result.candidates if not c.feasible and "the shaft cannot carry" in c.reason]
+    from flyopt.design.shaft.cycle import REFUSED
+
+    reasons = [c.reason for c in result.candidates if not c.feasible and REFUSED in c.reason]
     if not reasons:
         return ""
     return f"at ratio {result.candidates[0].speed_ratio:.6g}: " + "; ".join(reasons)

@@ -53,6 +53,9 @@ __all__ = [
 #: Relative step of the central difference of a limit's utilisation in the wheel's mass.
 MASS_STEP = 1e-3
 
+#: The words of a candidate's reason that say its shaft refused it (:func:`reject_reason`).
+REFUSED = "the shaft cannot carry this"
+
 
 @dataclass
 class ShaftContext:
@@ -253,7 +256,7 @@ def reject_reason(candidate: Candidate, check: ShaftCheck, names: Mapping[str, s
     material = (names or {}).get(candidate.material, candidate.material)
     what = "; ".join(lim.describe() for lim in failed)
     return (
-        f"{combination_label(material, candidate.shaft, candidate.n_arms)}: the shaft cannot carry this "
+        f"{combination_label(material, candidate.shaft, candidate.n_arms)}: {REFUSED} "
         f"{candidate.mass:.4g} kg wheel: {what}"
     )
 
