@@ -25,7 +25,10 @@ For one motor of the catalogue the chain is exact, on flyopt's one path:
 5. the wheel for J_F at the crank is designed on a shaft of speed ratio r by
    :func:`flyopt.design.designer.design_flywheel`, r over the drive's range (a
    bounded scalar minimization; of equal masses the slowest shaft) or each of
-   its fixed ratios.
+   its fixed ratios. Where the scene describes that shaft as a part
+   (``[[shaft]] name = "flywheel"``, :func:`flywheel_shaft`), the wheel the
+   search chooses must pass the design's own shaft post-check at its ratio
+   (:func:`_best_wheel`; docs/flywheel-design.md, sections 14 and 26).
 
 Every motor size is so evaluated and the sizes ranked by the objective (total
 mass of motor and wheel, or their cost); :func:`design_drive` returns the best
