@@ -290,7 +290,9 @@ def chosen_scene(scene: Scene, run: MotorRun) -> Scene:
             if described is None
             else dataclasses.replace(described, speed_ratio=run.flywheel_ratio),
         )
-    return dataclasses.replace(built, shafts=shafts, design_shafts=None)
+    # the wheel is the drive's, on its flywheel shaft: a design of the scene as built puts it there too
+    design_shafts = None if run.flywheel_ratio is None else (FLYWHEEL_SHAFT,)
+    return dataclasses.replace(built, shafts=shafts, design_shafts=design_shafts)
 
 
 def flywheel_shaft(scene: Scene) -> Shaft | None:
