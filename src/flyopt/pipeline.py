@@ -803,4 +803,5 @@ def solve_drive(
         design=drive.best.design,
         drive=drive,
         drive_check=verify_drive(scene, drive.best),
+        shaft_checks=drive.best.shaft_checks,  # the described flywheel shaft, as the drive's search checked it
     )

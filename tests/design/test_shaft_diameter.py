@@ -91,9 +91,13 @@ def test_the_chosen_seat_is_the_smallest_r40_value_whose_shaft_carries_its_wheel
         excitation=_excitation(ctx),
         other_inertia=1.5,
     )
-    (failed,) = check.failed()
+    # the torsional mode inside the band; and, its forced response so near resonance, the keyseat's fatigue too
+    assert sorted(lim.kind for lim in check.failed()) == ["fatigue", "torsional"]
+    (failed,) = [lim for lim in check.failed() if lim.kind == "torsional"]
     assert failed.kind == "torsional" and failed.where == "mode 1 at order 9.33333"
-    assert check_candidate(ctx, small).failed()[0].value == pytest.approx(failed.value, rel=1e-12)
+    assert [lim for lim in check_candidate(ctx, small).failed() if lim.kind == "torsional"][0].value == pytest.approx(
+        failed.value, rel=1e-12
+    )
 
     # the two-inertia closed form: the wheel J_1 and the pinion and pulley J_2 = 1.5 kg m^2 joined by the shaft
     # from the seat (300 mm) to the pinion (660 mm): 220 mm of the seat step, 140 mm of the 60 mm journal

@@ -435,23 +435,29 @@ def test_codesign_by_cost_matches_brute_force():
     assert result.best.cost == pytest.approx(result.best.motor.price + result.best.wheel.cost, rel=1e-12)
 
 
-def test_a_shaft_described_as_a_part_is_refused_beside_a_drive(main_cli, tmp_path):
-    """The drive puts its wheel on its own flywheel shaft at the ratio it designs; a [[shaft]] described as a part
-    would go unchecked there, so it is refused in one line (exit 2) rather than silently ignored."""
+def test_a_shaft_described_as_a_part_beside_a_drive_is_its_flywheel_shaft(main_cli, tmp_path):
+    """The drive puts its wheel on its own flywheel shaft, the [[shaft]] named "flywheel", at the ratio it
+    designs: described as a part (no speed_ratio), the scene once refused solves, its wheels checked with it
+    (tests/drive/test_drive_shaft.py); a described shaft of another name would carry no wheel, and is still
+    refused in one line (exit 2) rather than silently left unchecked."""
     from conftest import PROBLEMS
 
     text = (PROBLEMS / "press-drive.toml").read_text(encoding="utf-8")
-    path = tmp_path / "drive.toml"
-    path.write_text(
-        text
-        + '\n[[shaft]]\nname = "intermediate"\nspeed_ratio = 6.0\nmaterial = "42crmo4_qt"\n'
-        + 'segments = [{ to = "700 mm", diameter = "70 mm" }]\nbearings = ["60 mm", "620 mm"]\n'
-        + 'wheel_at = "300 mm"\ntorque_at = "660 mm"\n',
-        encoding="utf-8",
+    part = (
+        'material = "42crmo4_qt"\n'
+        'segments = [{ to = "700 mm", diameter = "70 mm" }]\nbearings = ["60 mm", "620 mm"]\n'
+        'wheel_at = "300 mm"\ntorque_at = "660 mm"\n'
     )
+    path = tmp_path / "drive.toml"
+    path.write_text(text + '\n[[shaft]]\nname = "intermediate"\nspeed_ratio = 6.0\n' + part, encoding="utf-8")
     status, out, err = main_cli("solve", path)
     assert status == 2 and out == ""
-    assert err.count("\n") == 1 and "shaft[0]" in err and "[drive]" in err and "Traceback" not in err
+    assert err.count("\n") == 1 and "shaft[0]" in err and "[drive]" in err and '"flywheel"' in err
+    assert "Traceback" not in err
+    path.write_text(text + '\n[[shaft]]\nname = "flywheel"\n' + part, encoding="utf-8")
+    status, out, err = main_cli("solve", path)
+    assert status == 0, err
+    assert "Drive designed with the flywheel" in out
 
 
 def test_the_walk_leaves_a_size_unsolved_only_where_it_cannot_win():

@@ -259,6 +259,7 @@ RELATIONS = {
     "unbalance_force": "unbalance_permissible * omega_max**2",
     "torque_mean": "driving_torque",
     "torque_alternating": "driving_torque",
+    "torque_alternating_rigid": "driving_torque",
     "critical_speed": "omega_max",
     "critical_speed_allowed": "critical_speed",
     # the drive train: a natural frequency is sqrt(k / J); shapes, damping ratios and orders are ratios;

@@ -25,7 +25,10 @@ For one motor of the catalogue the chain is exact, on flyopt's one path:
 5. the wheel for J_F at the crank is designed on a shaft of speed ratio r by
    :func:`flyopt.design.designer.design_flywheel`, r over the drive's range (a
    bounded scalar minimization; of equal masses the slowest shaft) or each of
-   its fixed ratios.
+   its fixed ratios. Where the scene describes that shaft as a part
+   (``[[shaft]] name = "flywheel"``, :func:`flywheel_shaft`), the wheel the
+   search chooses must pass the design's own shaft post-check at its ratio
+   (:func:`_best_wheel`; docs/flywheel-design.md, sections 14 and 26).
 
 Every motor size is so evaluated and the sizes ranked by the objective (total
 mass of motor and wheel, or their cost); :func:`design_drive` returns the best
@@ -61,6 +64,7 @@ if TYPE_CHECKING:
     from flyopt.io.scene import Scene
     from flyopt.machine.catalogue import CatalogueMotor
     from flyopt.machine.motor import InductionMotor
+    from flyopt.machine.transmission import Shaft
     from flyopt.sizing.periodic import PeriodicSolution, Verification
 #: Name of the shaft the drive puts the flywheel on, and of the motor's.
 FLYWHEEL_SHAFT, MOTOR_SHAFT = "flywheel", "motor"
@@ -114,6 +118,9 @@ class MotorRun:
     wheel : Design or None
     design : DesignResult or None
         The wheel's design on its shaft (every material ranked), for the report.
+    shaft_checks : tuple of flyopt.design.shaft.cycle.ShaftReport
+        The described flywheel shaft checked with the wheel at its ratio, as the search checked it (() when
+        the scene does not describe the shaft).
     motor_mass, wheel_mass, total_mass : float or None
         [kg]
     cost : float or None
@@ -143,9 +150,10 @@ class MotorRun:
     cost: float | None = None
     objective: float | None = None
     design: DesignResult | None = field(default=None, compare=False, repr=False)
+    shaft_checks: tuple[Any, ...] = field(default=(), compare=False, repr=False)
 
     def to_dict(self) -> dict[str, Any]:
-        out = {k: v for k, v in self.__dict__.items() if k not in ("motor", "wheel", "design")}
+        out = {k: v for k, v in self.__dict__.items() if k not in ("motor", "wheel", "design", "shaft_checks")}
         out["motor"] = _motor_dict(self.motor)
         out["wheel"] = None if self.wheel is None else self.wheel.to_dict()
         return out
@@ -276,8 +284,39 @@ def chosen_scene(scene: Scene, run: MotorRun) -> Scene:
     shafts = tuple(s for s in scene.shafts if s.name not in (FLYWHEEL_SHAFT, MOTOR_SHAFT))
     shafts += (Shaft(MOTOR_SHAFT, ratio),)
     if run.flywheel_ratio is not None:
-        shafts += (Shaft(FLYWHEEL_SHAFT, run.flywheel_ratio),)
-    return dataclasses.replace(built, shafts=shafts, design_shafts=None)
+        described = flywheel_shaft(scene)  # the scene's flywheel shaft as a part, at the ratio chosen
+        shafts += (
+            Shaft(FLYWHEEL_SHAFT, run.flywheel_ratio)
+            if described is None
+            else dataclasses.replace(described, speed_ratio=run.flywheel_ratio),
+        )
+    # the wheel is the drive's, on its flywheel shaft: a design of the scene as built puts it there too
+    design_shafts = None if run.flywheel_ratio is None else (FLYWHEEL_SHAFT,)
+    return dataclasses.replace(built, shafts=shafts, design_shafts=design_shafts)
+
+
+def flywheel_shaft(scene: Scene) -> Shaft | None:
+    """The scene's [[shaft]] named :data:`FLYWHEEL_SHAFT` described as a part (docs/flywheel-design.md,
+    section 26), the shaft the drive puts its wheel on; None when the scene does not describe it."""
+    return next((s for s in scene.shafts if s.name == FLYWHEEL_SHAFT and s.layout is not None), None)
+
+
+def _seat(scene: Scene) -> float | None:
+    """The seat diameter of the drive's flywheel shaft [m] (the wheel's bore), when the scene describes it."""
+    described = flywheel_shaft(scene)
+    return None if described is None else described.diameter
+
+
+def _shaft_context(scene: Scene, machine: Machine, omega_mean: float) -> Any:
+    """The shaft checks' context (:func:`flyopt.design.shaft.cycle.machine_context`) of the described flywheel
+    shaft on ``machine`` (the motor's, its rotor in J_e) at the crank's mean speed ``omega_mean`` [rad/s] and
+    the scene's δ; None when the scene does not describe the shaft. :func:`flyopt.design.shaft.cycle.at_ratio`
+    turns it at each ratio the drive designs."""
+    if flywheel_shaft(scene) is None:
+        return None
+    from flyopt.design.shaft.cycle import machine_context
+
+    return machine_context(machine, omega_mean, scene.allowed_delta, scene.shafts, scene.material_library())
 
 
 def evaluate_motor(
@@ -395,10 +434,40 @@ def evaluate_motor(
                 False, f"start-up: {startup.time:.4g} s from rest, over max_startup {spec.max_startup:.4g} s", **facts
             )
     torque = flywheel_torque(machine, j_need) if j_need > 0 else None
-    result, r = _best_wheel(j_need, omega_max, ratios, materials, design_spec, torque, spec.objective, solver_options)
+    shaft_ctx = _shaft_context(scene, machine, omega_mean)
+    accept = None
+    if shaft_ctx is not None:  # the design's post-check of the described flywheel shaft, turning at r
+        from flyopt.design.shaft.cycle import acceptor, at_ratio
+
+        names = {m.name: m.display_name for m in materials}
+
+        def accept(r):
+            return acceptor(at_ratio(shaft_ctx, FLYWHEEL_SHAFT, r), names)
+
+    result, r = _best_wheel(
+        j_need,
+        omega_max,
+        ratios,
+        materials,
+        design_spec,
+        torque,
+        spec.objective,
+        solver_options,
+        seat=_seat(scene),
+        accept_at=accept,
+    )
     wheel = None if result is None else result.best
     if j_need > 0 and wheel is None:
+        refused = "" if result is None else _shaft_refusal(result)
+        if refused:
+            return run(False, f"shaft: {refused}", **facts, flywheel_ratio=r)
         return run(False, "no wheel fits the design limits for the flywheel it needs", **facts)
+    shaft_checks: tuple[Any, ...] = ()
+    if shaft_ctx is not None and wheel is not None and r is not None:  # the report of the shaft the search checked
+        from flyopt.design.shaft.cycle import at_ratio, report
+
+        checked = report(at_ratio(shaft_ctx, FLYWHEEL_SHAFT, r), wheel)
+        shaft_checks = () if checked is None else (checked,)
     wheel_mass = wheel.mass if wheel is not None else 0.0
     total = motor.mass + wheel_mass if motor.mass is not None else None
     cost = None
@@ -419,6 +488,7 @@ def evaluate_motor(
         total_mass=total,
         cost=cost,
         objective=objective,
+        shaft_checks=shaft_checks,
     )
 
 
@@ -661,18 +731,62 @@ def _thermal_flywheel(machine, motor, ratio, omega, j_low, rated, guess=None):
     return j + 2.0 * (xtol + THERMAL_RTOL * j)
 
 
-def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, solver_options):
-    """(best Design, its shaft ratio) over the drive's flywheel ratios; (None, None) when no flywheel is needed.
+def _best_wheel(
+    j_need, omega_max, ratios, materials, spec, torque, objective, solver_options, seat=None, accept_at=None
+):
+    """(best DesignResult, its shaft ratio) over the drive's flywheel ratios; (None, None) when no flywheel is needed.
 
-    The wheel's share of the drive's objective (its mass, or its cost) is what is minimized over r.
+    The wheel's share of the drive's objective (its mass, or its cost) is what is minimized over r. ``seat``:
+    the described flywheel shaft's seat diameter [m] (the wheel's bore), None when not described.
+    ``accept_at``: r -> the design's post-check of the described flywheel shaft at r (:func:`_shaft_accept`).
+
+    The shaft is checked only where a wheel could win: the search runs without the post-check, and the
+    wheel it chooses is designed again at its ratio with it; where that wheel holds, it is the best of the
+    checked search too (the post-check only removes designs), else the search runs again, every design
+    checked. Where no ratio's wheel holds, the result is the unchecked winner's ratio designed with the
+    post-check: its candidates give every failed limit in numbers (:func:`_shaft_refusal`).
     """
+    result, r = _wheel_search(j_need, omega_max, ratios, materials, spec, torque, objective, solver_options, seat)
+    if accept_at is None or result is None or result.best is None:
+        return result, r
+    design = _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, accept_at)
+    checked = design(r)
+    best = checked.best
+    if best is not None and _same_wheel(best, result.best):
+        return checked, r
+    found, r_found = _wheel_search(
+        j_need, omega_max, ratios, materials, spec, torque, objective, solver_options, seat, design
+    )
+    if found is None or found.best is None:
+        return checked, r  # no ratio's wheel holds: the unchecked winner's reasons say why
+    return found, r_found
+
+
+def _same_wheel(a, b) -> bool:
+    """Two designs are the same wheel: one combination, one mass."""
+    return (a.material, a.n_arms) == (b.material, b.n_arms) and math.isclose(
+        cast(float, a.mass), cast(float, b.mass), rel_tol=1e-12
+    )
+
+
+def _shaft_refusal(result: DesignResult) -> str:
+    """Why no wheel is designed where the described flywheel shaft refused them: the candidates' reasons
+    (the post-check's, :func:`flyopt.design.shaft.cycle.reject_reason`, in numbers); "" when none is the shaft's."""
+    from flyopt.design.shaft.cycle import REFUSED
+
+    reasons = [c.reason for c in result.candidates if not c.feasible and REFUSED in c.reason]
+    if not reasons:
+        return ""
+    return f"at ratio {result.candidates[0].speed_ratio:.6g}: " + "; ".join(reasons)
+
+
+def _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, accept_at=None):
+    """r -> the wheel's DesignResult on the flywheel shaft at r (memoized: the scan, the minimization and the
+    tie-break revisit ratios), with the shaft's post-check at r where ``accept_at`` gives one."""
     from flyopt.design.designer import design_flywheel
     from flyopt.design.spec import MountShaft
 
-    if j_need <= 0:
-        return None, None
-
-    designs = {}  # r -> DesignResult: the scan, the minimization and the tie-break revisit ratios
+    designs = {}
 
     def design(r):
         r = float(r)
@@ -680,13 +794,25 @@ def _best_wheel(j_need, omega_max, ratios, materials, spec, torque, objective, s
             designs[r] = design_flywheel(
                 j_need,
                 omega_max,
-                [MountShaft(FLYWHEEL_SHAFT, r)],
+                [MountShaft(FLYWHEEL_SHAFT, r, seat)],
                 materials,
                 spec,
                 solver_options=solver_options,
                 torque=torque,
+                accept=None if accept_at is None else accept_at(r),
             )
         return designs[r]
+
+    return design
+
+
+def _wheel_search(j_need, omega_max, ratios, materials, spec, torque, objective, solver_options, seat, design=None):
+    """(best DesignResult, its ratio) over the drive's flywheel ratios by ``design`` (r -> DesignResult; default
+    the designer without a post-check); (None, None) when no flywheel is needed or none fits."""
+    if j_need <= 0:
+        return None, None
+    if design is None:
+        design = _designer(j_need, omega_max, materials, spec, torque, solver_options, seat)
 
     def mass(r):
         best = design(r).best
@@ -873,7 +999,7 @@ def _relaxation(scene, analysis, spec, motors, inputs, load):
     ):
         return None, "every catalogue size solved (too few sizes, or one lacks a value, for a continuous relaxation)"
     design = inputs.spec
-    bore = bore_of(design, MountShaft(FLYWHEEL_SHAFT, 1.0))
+    bore = bore_of(design, MountShaft(FLYWHEEL_SHAFT, 1.0, _seat(scene)))
     best, failures = None, []
     for material in inputs.materials:
         if spec.objective == Objective.COST and material.cost is None:

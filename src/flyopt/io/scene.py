@@ -298,12 +298,14 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             )
         cycle = engine.cycle_angle
 
-    shafts = read_shafts(top.get("shaft"))
-    j_c = constant_inertia(j_c, shafts)
+    raw_shafts, drive_shaft = _drive_flywheel_shaft(top)
+    shafts = read_shafts(raw_shafts)
+    others = [s for s in shafts if s.name != drive_shaft]  # the drive's flywheel shaft: no inertia, no efficiency
+    j_c = constant_inertia(j_c, others)
     efficiency = (
         read_efficiency(machine.get("efficiency"), "machine.efficiency")
         if machine.has("efficiency")
-        else reference_efficiency(shafts)
+        else reference_efficiency(others)
     )
 
     mechanism = read_mechanism(top.get("mechanism"))
@@ -363,13 +365,17 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
             shafts,
             materials={n: library[n] for n in design_material_names(library, design_materials)},
         )
-        described = next((k for k, s in enumerate(shafts) if s.layout is not None), None)
-        if described is not None:  # its checks are the design's post-check, which the drive's search has not
+        # a described shaft other than the drive's flywheel shaft would carry no wheel (_drive_flywheel_shaft
+        # has read that one, at the ratio the drive designs)
+        described = next((k for k, s in enumerate(shafts) if s.layout is not None and s.name != drive_shaft), None)
+        if described is not None:
+            from flyopt.drive.codesign import FLYWHEEL_SHAFT
+
             raise SceneError(
                 f"shaft[{described}]",
-                "is described as a part (segments, bearings, wheel_at), but [drive] puts the flywheel on the "
-                "drive's own flywheel shaft at the ratio it designs, which is not checked as a part: give this "
-                "shaft's speed_ratio, diameter and inertia only, or design the wheel on it without [drive]",
+                f"is described as a part (segments, bearings, wheel_at), but [drive] puts the flywheel on its own "
+                f"flywheel shaft at the ratio it designs: describe that shaft as [[shaft]] name = "
+                f'"{FLYWHEEL_SHAFT}" (no speed_ratio), or give this shaft\'s speed_ratio, diameter and inertia only',
             )
     flywheel = None
     if existing:
@@ -519,6 +525,49 @@ def _check_delta(delta: float, machine: Table) -> None:
             "typical values are 1/5 (crushers) to 1/300 (AC generators)",
         )
     check_magnitude(delta, "machine.delta", machine.raw("delta"), MIN_DELTA, 2, "", "a smaller one cannot be computed")
+
+
+#: Keys the drive's flywheel shaft may not give: the drive designs its ratio, and an inertia or an
+#: efficiency on it would take that ratio (its inertia at the crank J r², the efficiency at ratio 1).
+DRIVE_SHAFT_REFUSED = ("speed_ratio", "inertia", "gd2", "efficiency", "train")
+
+
+def _drive_flywheel_shaft(top: Table) -> tuple[object, str | None]:
+    """(the [[shaft]] tables to read, the name of the drive's flywheel shaft when the scene describes it).
+
+    With a [drive], a [[shaft]] named ``"flywheel"`` (:data:`flyopt.drive.codesign.FLYWHEEL_SHAFT`, the
+    name the drive gives the shaft it puts its wheel on, as ``press.flywheel_speed`` does) that gives
+    ``segments`` describes that shaft as a part (docs/flywheel-design.md, sections 14 and 26). Its speed
+    ratio is the drive's to design, so it gives none (nor the keys :data:`DRIVE_SHAFT_REFUSED` names); it
+    is read at ratio 1, a stand-in the drive replaces by each ratio it designs (and which neither the
+    machine's inertia nor its efficiency reads).
+    """
+    raw = top.get("shaft")
+    if not top.has("drive") or not isinstance(raw, list):
+        return raw, None
+    from flyopt.drive.codesign import FLYWHEEL_SHAFT
+    from flyopt.io.shaft_section import DESIGNED
+
+    for k, item in enumerate(raw):
+        if not (isinstance(item, dict) and item.get("name") == FLYWHEEL_SHAFT and "segments" in item):
+            continue
+        for key in DRIVE_SHAFT_REFUSED:
+            if key in item:
+                raise SceneError(
+                    f"shaft[{k}].{key}",
+                    f"is given on the drive's flywheel shaft ({FLYWHEEL_SHAFT!r}), whose speed ratio [drive] "
+                    "designs: leave it out (its inertia, efficiency and train would change with the ratio)",
+                )
+        segments = item["segments"]
+        if isinstance(segments, list) and any(isinstance(g, dict) and g.get("diameter") == DESIGNED for g in segments):
+            raise SceneError(
+                f"shaft[{k}].segments",
+                f'a "design" diameter on the drive\'s flywheel shaft ({FLYWHEEL_SHAFT!r}) is not supported: '
+                "[drive] designs the wheel on the seat the segments give; give the seat's diameter",
+            )
+        stand_in = {**item, "speed_ratio": 1.0}
+        return [stand_in if j == k else other for j, other in enumerate(raw)], FLYWHEEL_SHAFT
+    return raw, None
 
 
 def constant_inertia(j_machine: float, shafts: Iterable[Shaft]) -> float:

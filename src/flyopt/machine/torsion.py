@@ -608,6 +608,46 @@ def forced_response(
     return ForcedResponse(excitation.orders.copy(), omega, angles, torques)
 
 
+def modal_spring_torque_orders(
+    model: TorsionalModel,
+    excitation: TorqueOrders,
+    node: int,
+    speed_rpm: float,
+    spring: int,
+    zeta: float,
+    *,
+    found: Modes | None = None,
+) -> np.ndarray:
+    """The complex twisting torque of one spring on its own shaft for every order, modal damping ζ [N*m].
+
+    The steady state of :func:`forced_response` with C = :func:`modal_damping` (``model``, ζ), by modal
+    superposition: with mass-normalised shapes phi_m the modal damping is diagonal, so
+
+        T_q = c_q sum_m k r (phi_a,m - phi_b,m) phi_node,m / (omega_m^2 - Omega_q^2 + 2 i ζ omega_m Omega_q),
+
+    exact (the rigid-body mode twists no spring), and a cycle's thousands of orders cost a product of two
+    small arrays, where the shaft's fatigue check asks it for each design. ``found``: the model's modes,
+    when the caller has them. An undamped system driven exactly at a natural frequency raises ValueError.
+    """
+    if isinstance(node, bool) or not isinstance(node, (int, np.integer)) or not 0 <= node < model.size:
+        raise ValueError(f"node {node!r} is not one of 0..{model.size - 1}")
+    if not 0 <= spring < len(model.springs):
+        raise ValueError(f"spring {spring!r} is not one of 0..{len(model.springs) - 1}")
+    _check_number("speed_rpm", speed_rpm, positive=True)
+    _check_number("zeta", zeta, positive=False)
+    found = modes(model) if found is None else found
+    chosen = model.springs[spring]
+    twist = found.shapes[chosen.a] - (0.0 if chosen.b is None else found.shapes[chosen.b])
+    gain = chosen.stiffness * chosen.ratio * twist * found.shapes[node]
+    omega = np.asarray(excitation.orders, dtype=float) * TWO_PI * speed_rpm / 60.0
+    w = found.omega
+    denominator = w[None, :] ** 2 - omega[:, None] ** 2 + 2j * zeta * w[None, :] * omega[:, None]
+    if np.any(denominator == 0.0):
+        raise ValueError("an order meets a natural frequency of the undamped system: add damping")
+    torques: np.ndarray = np.asarray(excitation.amplitudes, dtype=complex) * (gain[None, :] / denominator).sum(axis=1)
+    return torques
+
+
 @dataclass(frozen=True)
 class CriticalSpeed:
     """Where order ``order`` of a shaft meets mode ``mode`` (1 = the first elastic mode).

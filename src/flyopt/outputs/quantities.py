@@ -292,6 +292,7 @@ QUANTITIES = {
     "unbalance_force": "force",
     "torque_mean": "torque",
     "torque_alternating": "torque",
+    "torque_alternating_rigid": "torque",
     "lateral_critical_speed": "angular_speed",
     "speed_range": "angular_speed",
     "torsional_modes": "angular_speed",

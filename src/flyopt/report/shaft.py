@@ -97,7 +97,13 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
             *seat_lines(rep, units, digits),
             f"  loads: weight {q(c.weight, 'weight')}, permissible unbalance force "
             f"{q(c.unbalance, 'unbalance_force')} (ISO 21940-11), torque midrange "
-            f"{q(c.torque_mean, 'torque_mean')} and alternating {q(c.torque_alternating, 'torque_alternating')}",
+            f"{q(c.torque_mean, 'torque_mean')} and alternating {q(c.torque_alternating, 'torque_alternating')}"
+            + (
+                f" (the train's forced response at the seat, its orders superposed; rigid body "
+                f"{q(c.torque_alternating_rigid, 'torque_alternating')})"
+                if c.torque_source == "forced response"
+                else ""
+            ),
             f"  running range {q(c.speed_range_rpm[0] * math.pi / 30.0, 'speed_range')} to "
             f"{q(c.speed_range_rpm[1] * math.pi / 30.0, 'speed_range')}",
         ]

@@ -49,7 +49,7 @@ from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_line
 from flyopt.design.shaft.lateral import GRAVITY, Disc, critical_speeds, rotor_model
 from flyopt.design.shaft.torsional import TorsionalCheck, running_range_rpm, torsional_check
-from flyopt.design.shaft.train import TrainResponse, default_train, train_model, train_response
+from flyopt.design.shaft.train import TrainResponse, default_train, seat_torque, train_model, train_response
 from flyopt.machine.torsion import TorqueOrders
 from flyopt.units import rad_s_to_rpm
 
@@ -159,7 +159,14 @@ class ShaftCheck:
     weight, unbalance : float
         The wheel's weight and its permissible unbalance force at the top speed [N].
     torque_mean, torque_alternating : float
-        T_m and T_a the wheel exchanges with the shaft [N*m].
+        T_m and T_a at the wheel's seat the fatigue and yield checks use [N*m]: where the drive train is
+        modelled, those of the forced response's torque there, every order synthesised in time
+        (:func:`~flyopt.design.shaft.train.seat_torque`); else those of the torque the wheel exchanges with
+        the shaft as a rigid body.
+    torque_alternating_rigid : float
+        T_a of the rigid-body torque the wheel exchanges [N*m] (what the forced response replaces).
+    torque_source : {"rigid body", "forced response"}
+        Which of the two T_m and T_a are.
     lateral_speed : float
         The first forward critical speed [rad/s] (nan: none found).
     speed_range_rpm : (float, float)
@@ -184,6 +191,8 @@ class ShaftCheck:
     torsional: TorsionalCheck | None
     diagram: dict[str, np.ndarray] = field(repr=False)
     response_inputs: tuple[Any, ...] | None = field(default=None, repr=False, compare=False)
+    torque_alternating_rigid: float = math.nan
+    torque_source: str = "rigid body"
 
     @cached_property
     def train(self) -> TrainResponse | None:
@@ -219,6 +228,8 @@ class ShaftCheck:
             "unbalance_force": self.unbalance,
             "torque_mean": self.torque_mean,
             "torque_alternating": self.torque_alternating,
+            "torque_alternating_rigid": self.torque_alternating_rigid,
+            "torque_source": self.torque_source,
             "lateral_critical_speed": self.lateral_speed,
             "speed_range": [v * math.pi / 30.0 for v in self.speed_range_rpm],
             "torsional_modes": (
@@ -342,7 +353,10 @@ def check_shaft(
         The torque the wheel exchanges with this shaft over the cycle [N*m], with its sign
         (:func:`flyopt.sizing.peak_torque.flywheel_torque_curve`).
     excitation : TorqueOrders, optional
-        The net torque's orders per revolution of this shaft; None: no torsional check.
+        The net torque's orders per revolution of this shaft; None: no torsional check. With a train (the
+        layout's, or the two-inertia one ``other_inertia`` makes) it also gives the torque at the seat the
+        fatigue check uses: the forced response's (:func:`~flyopt.design.shaft.train.seat_torque`), not the
+        rigid body's ``torque_curve``.
     other_inertia : float
         The inertia already on the shaft [kg*m^2]: without a ``train`` in the layout, the second inertia of
         the two-inertia train at ``torque_at`` (:func:`~flyopt.design.shaft.train.default_train`; 0: no elastic
@@ -364,6 +378,20 @@ def check_shaft(
     torque = np.asarray(torque_curve, dtype=float)
     t_max, t_min = (float(torque.max()), float(torque.min())) if torque.size else (0.0, 0.0)
     t_mean, t_alt = 0.5 * (t_max + t_min), 0.5 * (t_max - t_min)
+    speed_range = running_range_rpm(omega_mean, delta)
+    torsional = response = seat = None
+    train = layout.train or default_train(layout, "", speed_ratio, other_inertia)
+    if excitation is not None and train:
+        built = train_model(
+            train, layout, material, wheel_inertia=wheel_inertia, speed_ratio=speed_ratio, materials=materials
+        )
+        torsional = torsional_check(built.model, excitation, speed_range, significant=SIGNIFICANT_ORDER)
+        response = (built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio)
+        # the one rule of the alternating torque at the seat: the forced response's, where the train is modelled
+        seat = seat_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
+    t_alt_rigid = t_alt
+    if seat is not None:
+        t_mean, t_alt = seat.mean, seat.alternating
     e = float(material.elastic_modulus or 0.0)
     beam = SteppedShaft(layout.steps, layout.diameters, e, layout.bearings, density=material.density)
 
@@ -409,7 +437,6 @@ def check_shaft(
             )
         )
 
-    speed_range = running_range_rpm(omega_mean, delta)
     i_d = 0.5 * wheel_inertia + wheel_mass * wheel_width**2 / 12.0
     disc = Disc(layout.wheel_at, wheel_mass, i_d, wheel_inertia)
     found = critical_speeds(rotor_model(beam, [disc]), whirl="forward", modes=1)
@@ -426,29 +453,19 @@ def check_shaft(
         )
     )
 
-    torsional = response = None
-    train = layout.train or default_train(layout, "", speed_ratio, other_inertia)
-    if excitation is not None and train:
-        built = train_model(
-            train, layout, material, wheel_inertia=wheel_inertia, speed_ratio=speed_ratio, materials=materials
-        )
-        torsional = torsional_check(built.model, excitation, speed_range, significant=SIGNIFICANT_ORDER)
-        response = (built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio)
-        if torsional.critical:
-            util = [
-                separation_utilisation(c.speed_rpm, speed_range, layout.critical_margin) for c in torsional.critical
-            ]
-            worst = torsional.critical[int(np.argmax(util))]
-            limits.append(
-                ShaftLimit(
-                    "torsional",
-                    f"mode {worst.mode} at order {worst.order:g}",
-                    worst.speed_rpm,
-                    _band_edge(worst.speed_rpm, speed_range, layout.critical_margin),
-                    max(util),
-                    "rpm",
-                )
+    if torsional is not None and torsional.critical:
+        util = [separation_utilisation(c.speed_rpm, speed_range, layout.critical_margin) for c in torsional.critical]
+        worst = torsional.critical[int(np.argmax(util))]
+        limits.append(
+            ShaftLimit(
+                "torsional",
+                f"mode {worst.mode} at order {worst.order:g}",
+                worst.speed_rpm,
+                _band_edge(worst.speed_rpm, speed_range, layout.critical_margin),
+                max(util),
+                "rpm",
             )
+        )
 
     plain = _plain_utilisation(
         layout, material, beam.diameter_at(grid), ma_grid, mm_grid, torque_on, t_alt, abs(t_mean)
@@ -472,6 +489,8 @@ def check_shaft(
         torsional,
         diagram,
         response,
+        t_alt_rigid,
+        "rigid body" if seat is None else "forced response",
     )
 
 

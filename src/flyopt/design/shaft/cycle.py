@@ -15,6 +15,7 @@ limits in numbers; :func:`mass_sensitivity` is d(utilisation)/d(m) of the bindin
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
@@ -31,6 +32,7 @@ if TYPE_CHECKING:
     from flyopt.analysis import Analysis
     from flyopt.design.materials import Material
     from flyopt.design.result import Candidate
+    from flyopt.machine.reduce import Machine
     from flyopt.machine.shaft_layout import ShaftLayout
     from flyopt.machine.transmission import Shaft
 
@@ -38,6 +40,8 @@ __all__ = [
     "ShaftContext",
     "ShaftReport",
     "shaft_context",
+    "machine_context",
+    "at_ratio",
     "check_candidate",
     "acceptor",
     "mass_sensitivity",
@@ -48,6 +52,9 @@ __all__ = [
 
 #: Relative step of the central difference of a limit's utilisation in the wheel's mass.
 MASS_STEP = 1e-3
+
+#: The words of a candidate's reason that say its shaft refused it (:func:`reject_reason`).
+REFUSED = "the shaft cannot carry this"
 
 
 @dataclass
@@ -94,13 +101,25 @@ class ShaftReport:
 
 def shaft_context(analysis: Analysis, shafts: Iterable[Shaft], library: Mapping[str, Material]) -> ShaftContext | None:
     """The context of the scene's described shafts; None when it describes none."""
+    return machine_context(analysis.machine, analysis.omega_mean, analysis.delta, shafts, library)
+
+
+def machine_context(
+    machine: Machine | None,
+    omega_mean: float,
+    delta: float,
+    shafts: Iterable[Shaft],
+    library: Mapping[str, Material],
+) -> ShaftContext | None:
+    """The context of the described ``shafts`` on a reduced ``machine`` (None: net areas) running at
+    ``omega_mean`` [rad/s] with ``delta``; None when no shaft is described. :func:`shaft_context` of an
+    analysis, and the drive's co-design of each motor's machine (:mod:`flyopt.drive.codesign`), call it."""
     from flyopt.design.materials import get_material
 
     described = {s.name: s for s in shafts if s.layout is not None}
     if not described:
         return None
     materials = {name: get_material(s.layout.material, library) for name, s in described.items() if s.layout}
-    machine = analysis.machine
     j_machine = net = None
     orders = None
     if machine is not None:
@@ -119,7 +138,14 @@ def shaft_context(analysis: Analysis, shafts: Iterable[Shaft], library: Mapping[
         for e in s.layout.train
         if isinstance(e, TrainSpring) and e.kind == "piece"
     }
-    return ShaftContext(analysis.omega_mean, analysis.delta, described, materials, j_machine, net, orders, pieces)
+    return ShaftContext(omega_mean, delta, described, materials, j_machine, net, orders, pieces)
+
+
+def at_ratio(ctx: ShaftContext, name: str, ratio: float) -> ShaftContext:
+    """The context with shaft ``name`` turning at ``ratio`` [-] (the drive's flywheel shaft, whose ratio the
+    co-design chooses); the checks already made are shared (their key holds the ratio)."""
+    shafts = {**ctx.shafts, name: dataclasses.replace(ctx.shafts[name], speed_ratio=float(ratio))}
+    return dataclasses.replace(ctx, shafts=shafts, _cache=ctx._cache)
 
 
 def _wheel(candidate: Candidate) -> tuple[float, float, float]:
@@ -168,10 +194,10 @@ def torque_curve(ctx: ShaftContext, name: str, inertia: float) -> np.ndarray:
 def _check(
     ctx: ShaftContext, name: str, mass: float, inertia: float, width: float, seat: float | None = None
 ) -> ShaftCheck:
-    key = (name, mass, inertia, width, seat)
+    shaft = ctx.shafts[name]
+    key = (name, shaft.speed_ratio, ctx.omega_mean, mass, inertia, width, seat)
     if key in ctx._cache:
         return ctx._cache[key]
-    shaft = ctx.shafts[name]
     layout = layout_of(ctx, name, seat)
     r = shaft.speed_ratio
     torque = torque_curve(ctx, name, inertia)
@@ -230,7 +256,7 @@ def reject_reason(candidate: Candidate, check: ShaftCheck, names: Mapping[str, s
     material = (names or {}).get(candidate.material, candidate.material)
     what = "; ".join(lim.describe() for lim in failed)
     return (
-        f"{combination_label(material, candidate.shaft, candidate.n_arms)}: the shaft cannot carry this "
+        f"{combination_label(material, candidate.shaft, candidate.n_arms)}: {REFUSED} "
         f"{candidate.mass:.4g} kg wheel: {what}"
     )
 

@@ -8,7 +8,9 @@ has the two-inertia train of :func:`default_train`: the wheel, the shaft's own s
 to ``torque_at``, and the shaft's own ``inertia`` there - so the old two-inertia check is exactly a
 special case of the chain. :func:`train_response` is the forced response at the mean speed to the
 orders of the cycle's net torque, entering at the last inertia (the crank end), with modal damping
-(docs/flywheel-design.md, section 26).
+(docs/flywheel-design.md, section 26). :func:`seat_torque` is the one place the shaft's alternating
+torque at the wheel seat is decided where the train is modelled: the forced response's torque there, its
+orders synthesised in time (the fatigue check's T_m and T_a).
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ from flyopt.machine.torsion import (
     belt_stiffness,
     forced_response,
     modal_damping,
+    modal_spring_torque_orders,
     shaft_compliance,
     shaft_stiffness,
 )
@@ -42,6 +45,8 @@ __all__ = [
     "STEEL_POISSON",
     "TrainModel",
     "TrainResponse",
+    "SeatTorque",
+    "seat_torque",
     "default_train",
     "shear_modulus",
     "span_stiffness",
@@ -252,3 +257,100 @@ def train_response(
         found = forced_response(built.model, present, built.load_node, speed_rpm, damping=c)
         torques = np.abs(found.shaft_torques)
     return TrainResponse(built, modes, shapes, present.orders, speed_rpm, damping_ratio, torques)
+
+
+@dataclass(frozen=True)
+class SeatTorque:
+    """The torque the shaft carries from the wheel's seat toward the crank, by the forced response (SI).
+
+    Attributes
+    ----------
+    curve : ndarray
+        T(theta) over one cycle, equally spaced [N*m], the sign of the rigid-body torque the wheel exchanges.
+    mean, alternating : float
+        Its midrange (T_max + T_min)/2 and half range (T_max - T_min)/2 [N*m].
+    element : str
+        The train's elastic element it is the torque of (the first after the wheel, toward the crank).
+    speed_rpm, damping_ratio : float
+        The shaft's speed the orders are taken at [rpm] and the modal damping ratio.
+    """
+
+    curve: np.ndarray
+    mean: float
+    alternating: float
+    element: str
+    speed_rpm: float
+    damping_ratio: float
+
+
+def seat_torque(
+    built: TrainModel,
+    excitation: TorqueOrders,
+    speed_rpm: float,
+    damping_ratio: float,
+    found: Modes | None = None,
+) -> SeatTorque | None:
+    """The torque at the wheel's seat by the forced response at ``speed_rpm``, every order synthesised in time.
+
+    The cycle's net torque (``excitation``, per revolution of the described shaft) enters at the last node;
+    the seat's torque is the twisting torque of the first elastic element after the wheel (toward the
+    crank, where that torque enters): on a shaft with no ``train`` the span from the seat to ``torque_at``.
+    Every order of the excitation is kept (the rigid-body T_a reads the whole curve, so dropping the small
+    ones could only lower it), each damped by the modal ``damping_ratio``, and the orders are superposed
+    with their phases over one cycle (an inverse FFT on 4096 or more points); T_m and T_a are that curve's midrange and half range
+    (Shigley's definitions, docs/flywheel-design.md, section 26, for the reason over a sum of amplitudes).
+    The mean torque enters quasi-statically: the share J_wheel side / J_total of the excitation's mean. As
+    Omega -> 0 each order's torque tends to the rigid-body share J_F/J of the net torque, so a stiff train
+    gives the rigid-body curve. None where no elastic element follows the wheel (the wheel at the crank
+    end) or the orders are not the harmonics of one cycle. ``found``: the train's modes, when the caller
+    has them (:func:`flyopt.machine.torsion.modal_spring_torque_orders` superposes them).
+    """
+    wheel = built.wheel_node
+    model = built.model
+    after = [e for e, spring in enumerate(model.springs) if spring.a == wheel and spring.b == wheel + 1]
+    orders = np.asarray(excitation.orders, dtype=float)
+    if not after or orders.size == 0:
+        return None
+    harmonic = orders / orders[0]
+    k = np.rint(harmonic).astype(int)
+    if np.any(np.abs(harmonic - k) > 1e-9) or np.any(np.diff(k) <= 0):
+        return None
+    e = after[0]
+    spring = model.springs[e]
+    # the spring's torque on its own shaft, on the described shaft (x ratio), with the rigid body's sign
+    # (the spring holds the wheel side back: k (x_a - x_b) = -J_side alpha)
+    torques = modal_spring_torque_orders(model, excitation, built.load_node, speed_rpm, e, damping_ratio, found=found)
+    amplitudes = -torques * spring.ratio
+    inertia = np.diag(model.mass_matrix)
+    share = float(inertia[: wheel + 1].sum() / inertia.sum())
+    n = max(4096, 1 << int(8 * k[-1]).bit_length())  # a power of two, 8+ points a period of the highest order
+    spectrum = np.zeros(n // 2 + 1, dtype=complex)
+    spectrum[k] = amplitudes * (n / 2.0)
+    curve = share * excitation.mean + np.fft.irfft(spectrum, n)
+    t_max, t_min = _extreme(amplitudes, k, curve, 1.0), _extreme(amplitudes, k, curve, -1.0)
+    t_max, t_min = share * excitation.mean + t_max, share * excitation.mean + t_min
+    return SeatTorque(
+        curve,
+        0.5 * (t_max + t_min),
+        0.5 * (t_max - t_min),
+        built.springs[e][0],
+        float(speed_rpm),
+        float(damping_ratio),
+    )
+
+
+def _extreme(amplitudes: np.ndarray, harmonics: np.ndarray, curve: np.ndarray, sign: float) -> float:
+    """The largest (``sign`` 1) or smallest (-1) value of sum_k Re(A_k e^{i k t}) over a period: the sampled
+    extreme of ``curve`` (its samples, the mean included) refined between its neighbours by a bounded search on
+    the series summed directly (the samples alone miss a ringing peak by up to 1 - cos(pi / points a period))."""
+    from flyopt.cycle.minimize import bounded_minimum
+
+    n = curve.size
+    j = int(np.argmax(sign * curve))
+    step = 2.0 * math.pi / n
+
+    def minus(t: float) -> float:
+        return -sign * float(np.real(np.exp(1j * harmonics * t) @ amplitudes))
+
+    found = bounded_minimum(minus, (j - 1) * step, (j + 1) * step, xatol=1e-9 * step)
+    return -sign * min(found.fun, minus(j * step))
