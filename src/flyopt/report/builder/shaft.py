@@ -82,12 +82,25 @@ class ShaftSection(BuilderBase):
                     self.q(c.unbalance, "force", "unbalance_force"),
                 ),
                 (
-                    "torque the wheel exchanges",
+                    (
+                        "torque at the seat (the train's forced response)"
+                        if c.torque_source == "forced response"
+                        else "torque the wheel exchanges"
+                    ),
                     (
                         "midrange ",
                         self.q(c.torque_mean, "torque", "torque_mean"),
                         ", alternating ",
                         self.q(c.torque_alternating, "torque", "torque_alternating"),
+                        *(
+                            (
+                                ": the orders superposed in time, which the fatigue check takes; the rigid body's "
+                                "alternating ",
+                                self.q(c.torque_alternating_rigid, "torque", "torque_alternating"),
+                            )
+                            if c.torque_source == "forced response"
+                            else ()
+                        ),
                     ),
                 ),
                 (
@@ -175,10 +188,12 @@ class ShaftSection(BuilderBase):
         ]
         blocks.append(
             Table(
-                ("element", "kind", "stiffness", "alternating torque (sum over orders)", "largest order"),
+                ("element", "kind", "stiffness", "Σ|T_q| over the orders (a bound)", "largest order"),
                 tuple(rows),
                 ("<", "<", ">", ">", ">"),
-                "Forced response at the mean speed: each element's alternating torque on its own shaft",
+                "Forced response at the mean speed: each element's alternating torque on its own shaft, the sum of "
+                "its orders' amplitudes (a bound whatever their phases; the seat's torque in the shaft check is "
+                "the orders superposed with their phases)",
                 "train_response",
             )
         )

@@ -74,7 +74,10 @@ def plot_shaft(
     )
     ax.plot(x, ma, color="tab:blue", label="bending moment amplitude M_a (weight and pulls: fully reversed)")
     ax.plot(x, mm, color="tab:green", ls="--", label="steady bending M_m (permissible unbalance)")
-    ax.plot(x, t, color="tab:red", label="torque T_m + T_a the wheel exchanges")
+    source = (
+        "at the seat, the train's forced response" if c.torque_source == "forced response" else "the wheel exchanges"
+    )
+    ax.plot(x, t, color="tab:red", label=f"torque T_m + T_a {source}")
     top = float(max(np.max(ma), np.max(t), np.max(mm), 1e-12))
     _outline(ax, layout, units, top)
     ax.set_ylim(-0.45 * top, 1.15 * top)
