@@ -62,6 +62,8 @@ class Session:
         self.pn = pn
         self.workspace = model.Workspace()
         self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="flyopt-solve")
+        #: The diagrams' worker: a diagram being drawn does not hold up the next edit's check and numbers.
+        self.drawer = ThreadPoolExecutor(max_workers=1, thread_name_prefix="flyopt-draw")
         self.answer: model.Answer | None = None
         self.checked: model.Checked | None = None
         self.generation = 0
@@ -145,6 +147,7 @@ class Session:
     def close(self) -> None:
         """Drop the session's folder and worker."""
         self.executor.shutdown(wait=False, cancel_futures=True)
+        self.drawer.shutdown(wait=False, cancel_futures=True)
         self.materials_tab.close()
         self.sweeps_tab.close()
         self.workspace.close()
@@ -203,13 +206,21 @@ class Session:
 
     def _cancel(self, _event: Any) -> None:
         self.generation += 1  # the running solve's answer is dropped when it arrives
-        self._busy(False)
-        self.card.object = model.card_html(self.answer, [], busy="cancelled: showing the last answer")
+        with self._batch():
+            self._busy(False)
+            self.card.object = model.card_html(self.answer, [], busy="cancelled: showing the last answer")
 
     # -- work ----------------------------------------------------------------------------------
 
     async def _refresh(self, text: str, solve: bool | None) -> None:
-        """Check ``text``; solve it when it is valid and (``solve`` None) fast, or when asked."""
+        """Check ``text``; solve it when it is valid and (``solve`` None) fast, or when asked.
+
+        Each change the browser is sent costs it a layout of the whole page, so the changes of one step go in one
+        message (:meth:`_batch`), and a fast scene sends nothing between its edit and its card: the last answer
+        stays in view until the new card replaces it, with the form, the mode and the busy line in that same
+        message. The diagrams are drawn after that message has left (:meth:`_draw`, in their own worker), so a
+        newer edit's check and numbers never wait behind a diagram.
+        """
         self.generation += 1
         mine = self.generation
         loop = asyncio.get_running_loop()
@@ -219,71 +230,92 @@ class Session:
             return
         self.checked = checked
         if checked.problems or checked.scene is None:
-            self.card.object = model.card_html(None, checked.problems)
-            self.stale.object = STALE if self.answer is not None else ""
+            with self._batch():
+                self.card.object = model.card_html(None, checked.problems)
+                self.stale.object = STALE if self.answer is not None else ""
             return
-        self.stale.object = ""
-        self.form.show(text)
         fast = model.live(checked.scene)
-        self.mode.object = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
+        mode = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
         if solve is None and not fast:  # the last answer is not this scene's: not shown on the card
-            self.card.object = model.card_html(None, [], busy="The scene is valid; press Solve for its answer.")
-            self.stale.object = STALE if self.answer is not None else ""
+            with self._batch():
+                self.form.show(text)
+                self.mode.object = mode
+                self.card.object = model.card_html(None, [], busy="The scene is valid; press Solve for its answer.")
+                self.stale.object = STALE if self.answer is not None else ""
             return
-        self._busy(True)
-        self.stale.object = STALE if self.answer is not None else ""
-        if fast:  # the same scene being tuned: its last answer stays in view while the new one comes
-            self.card.object = model.card_html(self.answer, [], busy="solving…")
-        else:
-            self.card.object = model.card_html(None, [], busy="Solving (a slow model)…")
+        if not fast:
+            with self._batch():
+                self.form.show(text)
+                self.mode.object = mode
+                self._busy(True)
+                self.stale.object = STALE if self.answer is not None else ""
+                self.card.object = model.card_html(None, [], busy="Solving (a slow model)…")
         try:
             answer = await loop.run_in_executor(self.executor, model.numbers, text, self.workspace, units)
         except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
             if mine == self.generation:
-                self._busy(False)
                 field = getattr(err, "field", "")
                 message = getattr(err, "message", None) or f"{type(err).__name__}: {err}"
                 line = model.field_line(text, field) if field else None
-                self.card.object = model.card_html(None, [model.Problem(field, message, line)])
+                with self._batch():
+                    self._busy(False)
+                    self.form.show(text)
+                    self.mode.object = mode
+                    self.card.object = model.card_html(None, [model.Problem(field, message, line)])
             return
         if mine != self.generation:
             return
-        self._take(answer)
-        self.card.object = model.card_html(answer, [], busy="" if answer.drawn else "drawing the diagrams…")
-        self.footer.object = f'<div class="footer">{model.provenance_html(answer)}</div>'
-        if answer.drawn:  # a calculation's few figures come with its numbers
-            self._show_figures(answer.figures)
-        else:
+        with self._batch():
+            self._take(answer)
+            self.card.object = model.card_html(answer, [], busy="" if answer.drawn else "drawing the diagrams…")
+            self.footer.object = f'<div class="footer">{model.provenance_html(answer)}</div>'
+            self.form.show(text)
+            self.mode.object = mode
+            self._busy(not answer.drawn)
+            if answer.drawn:  # a calculation's few figures come with its numbers
+                self._show_figures(answer.figures)
+        if not answer.drawn:
+            await asyncio.sleep(0)  # the card's message leaves before a diagram takes the interpreter
             await self._draw(answer, mine, loop)
-        if mine == self.generation:
-            self._busy(False)
-            self.card.object = model.card_html(self.answer, [])
+        if mine == self.generation and not answer.drawn:
+            with self._batch():
+                self._busy(False)
+                self.card.object = model.card_html(self.answer, [])
+
+    def _batch(self) -> Any:
+        """Hold the changes made inside it and send them to the browser as one message (Panel's ``hold``)."""
+        return self.pn.io.hold()
 
     async def _draw(self, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop) -> None:
-        """Draw ``answer``'s diagrams, each shown as soon as it is drawn (over the last answer's, in order);
-        dropped as soon as a newer edit comes (checked between diagrams, so the card of the next waits for
-        one diagram at most)."""
-        document = await loop.run_in_executor(self.executor, model.draw, answer)
+        """Draw ``answer``'s diagrams in the drawing worker, each shown as soon as it is drawn (over the last
+        answer's, in order, the top one first); dropped as soon as a newer edit comes (checked between
+        diagrams: a diagram being drawn cannot be stopped, but the newer edit's check and numbers run beside it
+        in the solving worker, and nothing more of the stale answer is drawn)."""
+        document = await loop.run_in_executor(self.drawer, model.draw, answer)
         if mine != self.generation:
-            model.close(document)
+            await loop.run_in_executor(self.drawer, model.close, document)
             return
         shown: list[model.Shown] = []
         for block in model.figure_blocks(document):
-            figure = await loop.run_in_executor(self.executor, model.figure_svg, block)
+            figure = await loop.run_in_executor(self.drawer, model.figure_svg, block)
             if mine != self.generation:
-                model.close(document)
+                await loop.run_in_executor(self.drawer, model.close, document)
                 return
             shown.append(figure)
             self._show_figure(len(shown) - 1, *figure)
-        self._show_figures(shown)
-        self._take(model.drawn(answer, document, shown))
+        with self._batch():
+            self._show_figures(shown)
+            self._take(model.drawn(answer, document, shown))
 
     def _take(self, answer: model.Answer) -> None:
         """Make ``answer`` the one shown and downloaded, closing the figures of the one it replaces."""
         old, self.answer = self.answer, answer
         self.stale.object = ""
         if old is not None and old.document is not answer.document:
-            model.close(old.document)
+            try:  # in the drawing worker: closing waits for the drawing lock, which a diagram may be holding
+                self.drawer.submit(model.close, old.document)
+            except RuntimeError:  # the session is closing: its worker takes no more work
+                model.close(old.document)
 
     def _show_figures(self, figures: list[model.Shown]) -> None:
         """Show exactly ``figures``, in order."""
@@ -296,7 +328,7 @@ class Session:
     def _show_figure(self, index: int, key: str, caption: str, svg: str, readout: str = "") -> None:
         """Show one diagram in the ``index``-th place, with its read-outs under the pointer
         (:mod:`flyopt.app.hover`): its panes kept and only their contents changed (the browser redraws that
-        diagram alone), a place added where there was none."""
+        diagram alone, the caption and the figure in one message), a place added where there was none."""
         from flyopt.app.hover import hover_figure
 
         pn = self.pn
@@ -305,10 +337,11 @@ class Session:
         classes = ["figure", f"figure-{key}"]
         if index < len(self.figure_slots):
             _column, title_pane, svg_pane = self.figure_slots[index]
-            title_pane.object = title
-            if svg_pane.css_classes != classes:
-                svg_pane.css_classes = classes
-            svg_pane.param.update(svg=body, readout=readout, key=key, visible=bool(svg))
+            with self._batch():
+                title_pane.object = title
+                if svg_pane.css_classes != classes:
+                    svg_pane.css_classes = classes
+                svg_pane.param.update(svg=body, readout=readout, key=key, visible=bool(svg))
             return
         title_pane = pn.pane.HTML(title, sizing_mode="stretch_width")
         svg_pane = hover_figure(
