@@ -50,7 +50,7 @@ async def until(condition, what: str) -> None:
 
 def test_a_fast_edit_changes_nothing_on_the_page_before_its_card(session, monkeypatch):
     """Each change is a message the browser lays the page out for: none before the numbers (no "solving…"
-    card, no spinner), then the card, with the spinner, while the diagrams are drawn."""
+    card, no spinner), then the card first, and the spinner while the diagrams are drawn."""
     from flyopt.app import model
 
     seen: list[str] = []
@@ -63,7 +63,7 @@ def test_a_fast_edit_changes_nothing_on_the_page_before_its_card(session, monkey
 
     monkeypatch.setattr(model, "numbers", solved)
     monkeypatch.setattr(model, "figure_svg", lambda block: model.Shown(block.key, "caption", ""))
-    session.card.param.watch(lambda event: seen.append("card: " + event.new), "object")
+    session.card.param.watch(lambda event: seen.append("card: " + event.new), "html")
     session.busy.param.watch(lambda event: seen.append(f"busy: {event.new}"), "value")
     session.solve_button.param.watch(lambda event: seen.append(f"solve disabled: {event.new}"), "disabled")
     asyncio.run(session._refresh(edited("0.04"), solve=None))
@@ -71,7 +71,9 @@ def test_a_fast_edit_changes_nothing_on_the_page_before_its_card(session, monkey
     assert "0.04 (1/25)" in seen[1] and "drawing the diagrams" in seen[1]
     assert "solving" not in " ".join(seen)
     assert seen[2:4] == ["busy: True", "solve disabled: True"]  # while the diagrams are drawn
-    assert "0.04 (1/25)" in seen[-1] and "drawing" not in seen[-1]  # the card once they are drawn
+    assert seen[-2:] == ["busy: False", "solve disabled: False"]  # the spinner stops after
+    last = [change for change in seen if change.startswith("card: ")][-1]
+    assert "0.04 (1/25)" in last and "drawing" not in last  # the card once they are drawn
 
 
 def test_an_edit_s_card_does_not_wait_for_the_last_edit_s_diagrams_which_are_dropped(session, monkeypatch):
@@ -113,7 +115,7 @@ def test_an_edit_s_card_does_not_wait_for_the_last_edit_s_diagrams_which_are_dro
         one = asyncio.ensure_future(session._refresh(first, solve=None))
         await until(held.is_set, "the first edit's first diagram")
         two = asyncio.ensure_future(session._refresh(edited("0.02"), solve=None))
-        await until(lambda: "0.02 (1/50)" in session.card.object, "the second edit's card, beside a held diagram")
+        await until(lambda: "0.02 (1/50)" in session.card.html, "the second edit's card, beside a held diagram")
         release.set()
         await asyncio.gather(one, two)
 
@@ -123,4 +125,4 @@ def test_an_edit_s_card_does_not_wait_for_the_last_edit_s_diagrams_which_are_dro
     assert len(firsts) == 1  # the one being drawn when the second edit came; the rest dropped
     assert len(seconds) >= 5 and seconds[-1] == "speed"
     assert [slot[1].object for slot in session.figure_slots] == [f"<b>second {key}</b>" for key in seconds]
-    assert "0.02 (1/50)" in session.card.object and "drawing" not in session.card.object
+    assert "0.02 (1/50)" in session.card.html and "drawing" not in session.card.html

@@ -1,7 +1,7 @@
 """The page of ``flyopt app``, laid out with Panel (imported here only: the ``app`` extra).
 
 Left, the scene: a template picker and the TOML in a code editor; every edit
-is checked after a 50 ms pause (:func:`flyopt.app.model.check`) and its
+is checked as Panel hands it over (:func:`flyopt.app.model.check`) and its
 problem shown inline with its field and line. Right, always in view, the
 answer card; below it the report's diagrams. A scene of the fast models is
 solved on every valid edit; a drive or a motor's dynamics waits for the Solve
@@ -24,9 +24,12 @@ from typing import Any
 
 from flyopt.app import model
 
-#: The pause after the last keystroke before the text is checked and its numbers solved, in seconds: the
-#: check and the card's numbers of a fast scene take some 40 ms, so each pause in typing shows its answer.
-DEBOUNCE = 0.05
+#: The page's own pause after an edit before the text is checked and its numbers solved, in seconds. Panel
+#: already holds the editor's changes for 50 ms before the page sees them (its widgets' ``_debounce``): a pause
+#: of the page's on top of it added 50 ms to every answer, so the page waits only for the events of the same
+#: tick; the check and the card's numbers of a fast scene take some 35 ms, and an edit that comes while they
+#: run drops their answer.
+DEBOUNCE = 0.0
 
 #: The template shown first.
 FIRST = "shear-press"
@@ -84,12 +87,14 @@ class Session:
         self.cancel_button = pn.widgets.Button(name="Cancel", button_type="warning", width=90, disabled=True)
         self.busy = pn.indicators.LoadingSpinner(value=False, width=24, height=24)
         self.mode = pn.pane.HTML("", css_classes=["mode"])
-        self.card = pn.pane.HTML(model.card_html(None, []), stylesheets=[CSS], sizing_mode="stretch_width")
+        from flyopt.app.markup import markup
+
+        self.card = markup(model.card_html(None, []), stylesheets=[CSS], sizing_mode="stretch_width")
         self.figures = pn.Column(sizing_mode="stretch_width")
         #: Each diagram's place: (its column, the caption's pane, the SVG's pane), kept from answer to answer.
         self.figure_slots: list[tuple[Any, Any, Any]] = []
         self.stale = pn.pane.HTML("", sizing_mode="stretch_width")
-        self.footer = pn.pane.HTML(
+        self.footer = markup(
             f'<div class="footer">{model.provenance_html(None)}</div>', stylesheets=[CSS], sizing_mode="stretch_width"
         )
         downloads = [
@@ -140,7 +145,11 @@ class Session:
             sizing_mode="stretch_width",
         )
         self.tabs.param.watch(self._tab_opened, "active")
-        self.layout = pn.template.BootstrapTemplate(title="flyopt — flywheel design", main=[self.tabs])
+        # no busy indicator of the template's: it sent the browser two changes (two layouts of the page) around
+        # every edit; the page's own spinner says when it works
+        self.layout = pn.template.BootstrapTemplate(
+            title="flyopt — flywheel design", main=[self.tabs], busy_indicator=None
+        )
         pn.state.on_session_destroyed(lambda _context: self.close())
         pn.state.onload(lambda: asyncio.ensure_future(self._refresh(self.text, solve=None)))
 
@@ -206,20 +215,20 @@ class Session:
 
     def _cancel(self, _event: Any) -> None:
         self.generation += 1  # the running solve's answer is dropped when it arrives
-        with self._batch():
-            self._busy(False)
-            self.card.object = model.card_html(self.answer, [], busy="cancelled: showing the last answer")
+        self._busy(False)
+        self.card.html = model.card_html(self.answer, [], busy="cancelled: showing the last answer")
 
     # -- work ----------------------------------------------------------------------------------
 
     async def _refresh(self, text: str, solve: bool | None) -> None:
         """Check ``text``; solve it when it is valid and (``solve`` None) fast, or when asked.
 
-        Each change the browser is sent costs it a layout of the whole page, so the changes of one step go in one
-        message (:meth:`_batch`), and a fast scene sends nothing between its edit and its card: the last answer
-        stays in view until the new card replaces it, with the form, the mode and the busy line in that same
-        message. The diagrams are drawn after that message has left (:meth:`_draw`, in their own worker), so a
-        newer edit's check and numbers never wait behind a diagram.
+        Each change the browser is sent costs it some of a layout of the page, so a fast scene sends nothing
+        between its edit and its card: the last answer stays in view until the new card replaces it, the card
+        first, then the footer, the form, the mode and the busy line. (Not in one message by Panel's
+        ``pn.io.hold``: traced, a hold released while the editor's newer text was on its way sent the server's
+        older text back to the browser, over the keys typed since.) The diagrams are drawn after the card has
+        left (:meth:`_draw`, in their own worker), so a newer edit's check and numbers never wait behind one.
         """
         self.generation += 1
         mine = self.generation
@@ -230,26 +239,23 @@ class Session:
             return
         self.checked = checked
         if checked.problems or checked.scene is None:
-            with self._batch():
-                self.card.object = model.card_html(None, checked.problems)
-                self.stale.object = STALE if self.answer is not None else ""
+            self.card.html = model.card_html(None, checked.problems)
+            self.stale.object = STALE if self.answer is not None else ""
             return
         fast = model.live(checked.scene)
         mode = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
         if solve is None and not fast:  # the last answer is not this scene's: not shown on the card
-            with self._batch():
-                self.form.show(text)
-                self.mode.object = mode
-                self.card.object = model.card_html(None, [], busy="The scene is valid; press Solve for its answer.")
-                self.stale.object = STALE if self.answer is not None else ""
+            self.card.html = model.card_html(None, [], busy="The scene is valid; press Solve for its answer.")
+            self.form.show(text)
+            self.mode.object = mode
+            self.stale.object = STALE if self.answer is not None else ""
             return
         if not fast:
-            with self._batch():
-                self.form.show(text)
-                self.mode.object = mode
-                self._busy(True)
-                self.stale.object = STALE if self.answer is not None else ""
-                self.card.object = model.card_html(None, [], busy="Solving (a slow model)…")
+            self.card.html = model.card_html(None, [], busy="Solving (a slow model)…")
+            self.form.show(text)
+            self.mode.object = mode
+            self._busy(True)
+            self.stale.object = STALE if self.answer is not None else ""
         try:
             answer = await loop.run_in_executor(self.executor, model.numbers, text, self.workspace, units)
         except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
@@ -257,34 +263,27 @@ class Session:
                 field = getattr(err, "field", "")
                 message = getattr(err, "message", None) or f"{type(err).__name__}: {err}"
                 line = model.field_line(text, field) if field else None
-                with self._batch():
-                    self._busy(False)
-                    self.form.show(text)
-                    self.mode.object = mode
-                    self.card.object = model.card_html(None, [model.Problem(field, message, line)])
+                self.card.html = model.card_html(None, [model.Problem(field, message, line)])
+                self._busy(False)
+                self.form.show(text)
+                self.mode.object = mode
             return
         if mine != self.generation:
             return
-        with self._batch():
-            self._take(answer)
-            self.card.object = model.card_html(answer, [], busy="" if answer.drawn else "drawing the diagrams…")
-            self.footer.object = f'<div class="footer">{model.provenance_html(answer)}</div>'
-            self.form.show(text)
-            self.mode.object = mode
-            self._busy(not answer.drawn)
-            if answer.drawn:  # a calculation's few figures come with its numbers
-                self._show_figures(answer.figures)
+        self.card.html = model.card_html(answer, [], busy="" if answer.drawn else "drawing the diagrams…")
+        self._take(answer)
+        self.footer.html = f'<div class="footer">{model.provenance_html(answer)}</div>'
+        self.form.show(text)
+        self.mode.object = mode
+        self._busy(not answer.drawn)
+        if answer.drawn:  # a calculation's few figures come with its numbers
+            self._show_figures(answer.figures)
         if not answer.drawn:
             await asyncio.sleep(0)  # the card's message leaves before a diagram takes the interpreter
             await self._draw(answer, mine, loop)
         if mine == self.generation and not answer.drawn:
-            with self._batch():
-                self._busy(False)
-                self.card.object = model.card_html(self.answer, [])
-
-    def _batch(self) -> Any:
-        """Hold the changes made inside it and send them to the browser as one message (Panel's ``hold``)."""
-        return self.pn.io.hold()
+            self.card.html = model.card_html(self.answer, [])
+            self._busy(False)
 
     async def _draw(self, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop) -> None:
         """Draw ``answer``'s diagrams in the drawing worker, each shown as soon as it is drawn (over the last
@@ -303,9 +302,8 @@ class Session:
                 return
             shown.append(figure)
             self._show_figure(len(shown) - 1, *figure)
-        with self._batch():
-            self._show_figures(shown)
-            self._take(model.drawn(answer, document, shown))
+        self._show_figures(shown)
+        self._take(model.drawn(answer, document, shown))
 
     def _take(self, answer: model.Answer) -> None:
         """Make ``answer`` the one shown and downloaded, closing the figures of the one it replaces."""
@@ -328,7 +326,7 @@ class Session:
     def _show_figure(self, index: int, key: str, caption: str, svg: str, readout: str = "") -> None:
         """Show one diagram in the ``index``-th place, with its read-outs under the pointer
         (:mod:`flyopt.app.hover`): its panes kept and only their contents changed (the browser redraws that
-        diagram alone, the caption and the figure in one message), a place added where there was none."""
+        diagram alone), a place added where there was none."""
         from flyopt.app.hover import hover_figure
 
         pn = self.pn
@@ -337,11 +335,10 @@ class Session:
         classes = ["figure", f"figure-{key}"]
         if index < len(self.figure_slots):
             _column, title_pane, svg_pane = self.figure_slots[index]
-            with self._batch():
-                title_pane.object = title
-                if svg_pane.css_classes != classes:
-                    svg_pane.css_classes = classes
-                svg_pane.param.update(svg=body, readout=readout, key=key, visible=bool(svg))
+            title_pane.object = title
+            if svg_pane.css_classes != classes:
+                svg_pane.css_classes = classes
+            svg_pane.param.update(svg=body, readout=readout, key=key, visible=bool(svg))
             return
         title_pane = pn.pane.HTML(title, sizing_mode="stretch_width")
         svg_pane = hover_figure(
