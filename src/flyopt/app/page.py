@@ -8,8 +8,8 @@ solved on every valid edit; a drive or a motor's dynamics waits for the Solve
 button. The card is shown from the report's numbers first
 (:func:`flyopt.app.model.numbers`), then the diagrams of the same solve are
 drawn and shown one by one (:func:`flyopt.app.model.draw`); an edit meanwhile
-drops the rest. Every solve runs in a worker thread, off the server's event loop,
-with a busy line and a Cancel (which drops the answer of the running solve:
+drops the rest. Every solve runs in a worker thread, the diagrams in another, off the server's event
+loop (docs/app.md "Latency"), with a busy line and a Cancel (which drops the answer of the running solve:
 a thread cannot be stopped, it finishes in the background and is ignored).
 Downloads: the report (HTML or PDF, in the units picked), the scene, the JSON.
 Beside the Design tab, "Compare materials" and "Sweeps" (:mod:`flyopt.app.tabs`).
