@@ -18,7 +18,7 @@ from typing import Any
 
 #: The read-out's look (inside the component: its shadow root takes no page style).
 STYLE = """
-.hover {position: relative; width: 100%;}
+.hover {position: relative; width: 100%; content-visibility: auto; contain-intrinsic-size: auto 420px;}
 .readout {position: absolute; pointer-events: none; background: rgba(255, 255, 255, 0.94); border: 1px solid #999;
  border-radius: 3px; padding: 3px 6px; font: 12px/1.35 sans-serif; white-space: nowrap; z-index: 10;
  box-shadow: 0 1px 3px rgba(0, 0, 0, 0.2);}

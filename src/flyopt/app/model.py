@@ -17,7 +17,7 @@ import hashlib
 import json
 import shutil
 import tempfile
-from contextlib import AbstractContextManager
+from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple, cast
@@ -228,7 +228,9 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
     path = workspace.write(text)
     inputs = collect(path, f"flyopt app ({SCENE_NAME})", pdf=False)
     calculation = isinstance(inputs, CalculationInputs)
-    with drawing():  # a calculation's report draws its figures
+    # a calculation's report draws its figures; a document of numbers only draws nothing, and does not wait for
+    # a diagram being drawn in the page's drawing worker
+    with drawing() if calculation else nullcontext():
         document = build(inputs, units, figures=calculation)
     if isinstance(inputs, CalculationInputs):
         json = json_text(calculation_document(inputs.what, inputs.scene.title, path, inputs.result.to_dict()))

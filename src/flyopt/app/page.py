@@ -1,15 +1,15 @@
 """The page of ``flyopt app``, laid out with Panel (imported here only: the ``app`` extra).
 
 Left, the scene: a template picker and the TOML in a code editor; every edit
-is checked after a 50 ms pause (:func:`flyopt.app.model.check`) and its
+is checked as Panel hands it over (:func:`flyopt.app.model.check`) and its
 problem shown inline with its field and line. Right, always in view, the
 answer card; below it the report's diagrams. A scene of the fast models is
 solved on every valid edit; a drive or a motor's dynamics waits for the Solve
 button. The card is shown from the report's numbers first
 (:func:`flyopt.app.model.numbers`), then the diagrams of the same solve are
 drawn and shown one by one (:func:`flyopt.app.model.draw`); an edit meanwhile
-drops the rest. Every solve runs in a worker thread, off the server's event loop,
-with a busy line and a Cancel (which drops the answer of the running solve:
+drops the rest. Every solve runs in a worker thread, the diagrams in another, off the server's event
+loop (docs/app.md "Latency"), with a busy line and a Cancel (which drops the answer of the running solve:
 a thread cannot be stopped, it finishes in the background and is ignored).
 Downloads: the report (HTML or PDF, in the units picked), the scene, the JSON.
 Beside the Design tab, "Compare materials" and "Sweeps" (:mod:`flyopt.app.tabs`).
@@ -24,9 +24,12 @@ from typing import Any
 
 from flyopt.app import model
 
-#: The pause after the last keystroke before the text is checked and its numbers solved, in seconds: the
-#: check and the card's numbers of a fast scene take some 40 ms, so each pause in typing shows its answer.
-DEBOUNCE = 0.05
+#: The page's own pause after an edit before the text is checked and its numbers solved, in seconds. Panel
+#: already holds the editor's changes for 50 ms before the page sees them (its widgets' ``_debounce``): a pause
+#: of the page's on top of it added 50 ms to every answer, so the page waits only for the events of the same
+#: tick; the check and the card's numbers of a fast scene take some 35 ms, and an edit that comes while they
+#: run drops their answer.
+DEBOUNCE = 0.0
 
 #: The template shown first.
 FIRST = "shear-press"
@@ -62,6 +65,8 @@ class Session:
         self.pn = pn
         self.workspace = model.Workspace()
         self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="flyopt-solve")
+        #: The diagrams' worker: a diagram being drawn does not hold up the next edit's check and numbers.
+        self.drawer = ThreadPoolExecutor(max_workers=1, thread_name_prefix="flyopt-draw")
         self.answer: model.Answer | None = None
         self.checked: model.Checked | None = None
         self.generation = 0
@@ -82,12 +87,14 @@ class Session:
         self.cancel_button = pn.widgets.Button(name="Cancel", button_type="warning", width=90, disabled=True)
         self.busy = pn.indicators.LoadingSpinner(value=False, width=24, height=24)
         self.mode = pn.pane.HTML("", css_classes=["mode"])
-        self.card = pn.pane.HTML(model.card_html(None, []), stylesheets=[CSS], sizing_mode="stretch_width")
+        from flyopt.app.markup import markup
+
+        self.card = markup(model.card_html(None, []), stylesheets=[CSS], sizing_mode="stretch_width")
         self.figures = pn.Column(sizing_mode="stretch_width")
         #: Each diagram's place: (its column, the caption's pane, the SVG's pane), kept from answer to answer.
         self.figure_slots: list[tuple[Any, Any, Any]] = []
         self.stale = pn.pane.HTML("", sizing_mode="stretch_width")
-        self.footer = pn.pane.HTML(
+        self.footer = markup(
             f'<div class="footer">{model.provenance_html(None)}</div>', stylesheets=[CSS], sizing_mode="stretch_width"
         )
         downloads = [
@@ -138,13 +145,18 @@ class Session:
             sizing_mode="stretch_width",
         )
         self.tabs.param.watch(self._tab_opened, "active")
-        self.layout = pn.template.BootstrapTemplate(title="flyopt — flywheel design", main=[self.tabs])
+        # no busy indicator of the template's: it sent the browser two changes (two layouts of the page) around
+        # every edit; the page's own spinner says when it works
+        self.layout = pn.template.BootstrapTemplate(
+            title="flyopt — flywheel design", main=[self.tabs], busy_indicator=None
+        )
         pn.state.on_session_destroyed(lambda _context: self.close())
         pn.state.onload(lambda: asyncio.ensure_future(self._refresh(self.text, solve=None)))
 
     def close(self) -> None:
         """Drop the session's folder and worker."""
         self.executor.shutdown(wait=False, cancel_futures=True)
+        self.drawer.shutdown(wait=False, cancel_futures=True)
         self.materials_tab.close()
         self.sweeps_tab.close()
         self.workspace.close()
@@ -204,12 +216,20 @@ class Session:
     def _cancel(self, _event: Any) -> None:
         self.generation += 1  # the running solve's answer is dropped when it arrives
         self._busy(False)
-        self.card.object = model.card_html(self.answer, [], busy="cancelled: showing the last answer")
+        self.card.html = model.card_html(self.answer, [], busy="cancelled: showing the last answer")
 
     # -- work ----------------------------------------------------------------------------------
 
     async def _refresh(self, text: str, solve: bool | None) -> None:
-        """Check ``text``; solve it when it is valid and (``solve`` None) fast, or when asked."""
+        """Check ``text``; solve it when it is valid and (``solve`` None) fast, or when asked.
+
+        Each change the browser is sent costs it some of a layout of the page, so a fast scene sends nothing
+        between its edit and its card: the last answer stays in view until the new card replaces it, the card
+        first, then the footer, the form, the mode and the busy line. (Not in one message by Panel's
+        ``pn.io.hold``: traced, a hold released while the editor's newer text was on its way sent the server's
+        older text back to the browser, over the keys typed since.) The diagrams are drawn after the card has
+        left (:meth:`_draw`, in their own worker), so a newer edit's check and numbers never wait behind one.
+        """
         self.generation += 1
         mine = self.generation
         loop = asyncio.get_running_loop()
@@ -219,59 +239,66 @@ class Session:
             return
         self.checked = checked
         if checked.problems or checked.scene is None:
-            self.card.object = model.card_html(None, checked.problems)
+            self.card.html = model.card_html(None, checked.problems)
             self.stale.object = STALE if self.answer is not None else ""
             return
-        self.stale.object = ""
-        self.form.show(text)
         fast = model.live(checked.scene)
-        self.mode.object = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
+        mode = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
         if solve is None and not fast:  # the last answer is not this scene's: not shown on the card
-            self.card.object = model.card_html(None, [], busy="The scene is valid; press Solve for its answer.")
+            self.card.html = model.card_html(None, [], busy="The scene is valid; press Solve for its answer.")
+            self.form.show(text)
+            self.mode.object = mode
             self.stale.object = STALE if self.answer is not None else ""
             return
-        self._busy(True)
-        self.stale.object = STALE if self.answer is not None else ""
-        if fast:  # the same scene being tuned: its last answer stays in view while the new one comes
-            self.card.object = model.card_html(self.answer, [], busy="solving…")
-        else:
-            self.card.object = model.card_html(None, [], busy="Solving (a slow model)…")
+        if not fast:
+            self.card.html = model.card_html(None, [], busy="Solving (a slow model)…")
+            self.form.show(text)
+            self.mode.object = mode
+            self._busy(True)
+            self.stale.object = STALE if self.answer is not None else ""
         try:
             answer = await loop.run_in_executor(self.executor, model.numbers, text, self.workspace, units)
         except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
             if mine == self.generation:
-                self._busy(False)
                 field = getattr(err, "field", "")
                 message = getattr(err, "message", None) or f"{type(err).__name__}: {err}"
                 line = model.field_line(text, field) if field else None
-                self.card.object = model.card_html(None, [model.Problem(field, message, line)])
+                self.card.html = model.card_html(None, [model.Problem(field, message, line)])
+                self._busy(False)
+                self.form.show(text)
+                self.mode.object = mode
             return
         if mine != self.generation:
             return
+        self.card.html = model.card_html(answer, [], busy="" if answer.drawn else "drawing the diagrams…")
         self._take(answer)
-        self.card.object = model.card_html(answer, [], busy="" if answer.drawn else "drawing the diagrams…")
-        self.footer.object = f'<div class="footer">{model.provenance_html(answer)}</div>'
+        self.footer.html = f'<div class="footer">{model.provenance_html(answer)}</div>'
+        self.form.show(text)
+        self.mode.object = mode
+        self._busy(not answer.drawn)
         if answer.drawn:  # a calculation's few figures come with its numbers
             self._show_figures(answer.figures)
-        else:
+        if not answer.drawn:
+            await asyncio.sleep(0)  # the card's message leaves before a diagram takes the interpreter
             await self._draw(answer, mine, loop)
-        if mine == self.generation:
+        if mine == self.generation and not answer.drawn:
+            self.card.html = model.card_html(self.answer, [])
             self._busy(False)
-            self.card.object = model.card_html(self.answer, [])
 
     async def _draw(self, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop) -> None:
-        """Draw ``answer``'s diagrams, each shown as soon as it is drawn (over the last answer's, in order);
-        dropped as soon as a newer edit comes (checked between diagrams, so the card of the next waits for
-        one diagram at most)."""
-        document = await loop.run_in_executor(self.executor, model.draw, answer)
+        """Draw ``answer``'s diagrams in the drawing worker, each shown as soon as it is drawn (over the last
+        answer's, in order, the top one first); dropped as soon as a newer edit comes (checked between
+        diagrams: a diagram being drawn cannot be stopped, but the newer edit's check and numbers run beside it
+        in the solving worker, and nothing more of the stale answer is drawn)."""
+        document = await loop.run_in_executor(self.drawer, model.draw, answer)
         if mine != self.generation:
-            model.close(document)
+            await loop.run_in_executor(self.drawer, model.close, document)
             return
         shown: list[model.Shown] = []
         for block in model.figure_blocks(document):
-            figure = await loop.run_in_executor(self.executor, model.figure_svg, block)
+            figure = await loop.run_in_executor(self.drawer, model.figure_svg, block)
             if mine != self.generation:
-                model.close(document)
+                await loop.run_in_executor(self.drawer, model.close, document)
                 return
             shown.append(figure)
             self._show_figure(len(shown) - 1, *figure)
@@ -283,7 +310,10 @@ class Session:
         old, self.answer = self.answer, answer
         self.stale.object = ""
         if old is not None and old.document is not answer.document:
-            model.close(old.document)
+            try:  # in the drawing worker: closing waits for the drawing lock, which a diagram may be holding
+                self.drawer.submit(model.close, old.document)
+            except RuntimeError:  # the session is closing: its worker takes no more work
+                model.close(old.document)
 
     def _show_figures(self, figures: list[model.Shown]) -> None:
         """Show exactly ``figures``, in order."""

@@ -1,0 +1,128 @@
+"""The page's order of work, in this process (Panel without a browser): the card of an edit is the first thing
+the page changes, and it does not wait for the diagrams of an earlier edit, which are dropped."""
+
+from __future__ import annotations
+
+import asyncio
+import threading
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+TEXT = (ROOT / "problems" / "shear-press.toml").read_text(encoding="utf-8")
+#: Panel 1.9 deprecates parameters the page gives its widgets (``name``, ``button_type``), pandas 3.1 one Panel
+#: uses: their warnings are errors under the test settings.
+pytestmark = [
+    pytest.mark.filterwarnings("ignore::PendingDeprecationWarning"),
+    pytest.mark.filterwarnings("ignore:The inplace keyword:Warning"),  # pandas 3.1's, inside Panel's Tabulator
+]
+#: Long enough for a loaded host; the waits end as soon as the page answers (no time is asserted).
+PATIENCE = 120.0
+
+
+def edited(delta: str) -> str:
+    assert "delta = 0.05" in TEXT
+    return TEXT.replace("delta = 0.05", f"delta = {delta}")
+
+
+@pytest.fixture()
+def session(monkeypatch):
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    from flyopt.app.page import Session
+
+    monkeypatch.setattr(pn.state, "onload", lambda _callback: None)  # no browser loads it: each test refreshes
+    made = Session(pn)
+    yield made
+    made.close()
+    import matplotlib.pyplot as plt
+
+    plt.close("all")
+
+
+async def until(condition, what: str) -> None:
+    for _ in range(int(PATIENCE / 0.01)):
+        if condition():
+            return
+        await asyncio.sleep(0.01)
+    pytest.fail(f"{what} did not happen")
+
+
+def test_a_fast_edit_changes_nothing_on_the_page_before_its_card(session, monkeypatch):
+    """Each change is a message the browser lays the page out for: none before the numbers (no "solving…"
+    card, no spinner), then the card first, and the spinner while the diagrams are drawn."""
+    from flyopt.app import model
+
+    seen: list[str] = []
+    numbers = model.numbers
+
+    def solved(*args, **kwargs):
+        answer = numbers(*args, **kwargs)
+        seen.append("numbers")
+        return answer
+
+    monkeypatch.setattr(model, "numbers", solved)
+    monkeypatch.setattr(model, "figure_svg", lambda block: model.Shown(block.key, "caption", ""))
+    session.card.param.watch(lambda event: seen.append("card: " + event.new), "html")
+    session.busy.param.watch(lambda event: seen.append(f"busy: {event.new}"), "value")
+    session.solve_button.param.watch(lambda event: seen.append(f"solve disabled: {event.new}"), "disabled")
+    asyncio.run(session._refresh(edited("0.04"), solve=None))
+    assert seen[0] == "numbers"
+    assert "0.04 (1/25)" in seen[1] and "drawing the diagrams" in seen[1]
+    assert "solving" not in " ".join(seen)
+    assert seen[2:4] == ["busy: True", "solve disabled: True"]  # while the diagrams are drawn
+    assert seen[-2:] == ["busy: False", "solve disabled: False"]  # the spinner stops after
+    last = [change for change in seen if change.startswith("card: ")][-1]
+    assert "0.04 (1/25)" in last and "drawing" not in last  # the card once they are drawn
+
+
+def test_an_edit_s_card_does_not_wait_for_the_last_edit_s_diagrams_which_are_dropped(session, monkeypatch):
+    """The first edit's first diagram is held in the drawing worker; the second edit's card comes meanwhile,
+    and once released, nothing more of the first edit is drawn: the diagrams shown are the second's."""
+    from flyopt.app import model
+
+    held = threading.Event()
+    release = threading.Event()
+    drawn: list[tuple[str, str]] = []  # (the edit's δ, the diagram's key)
+    draw = model.draw
+
+    def drawing(answer):
+        document = draw(answer)
+        document.delta = answer.sha256  # which edit the document is of
+        return document
+
+    def svg(block):
+        edit = "first" if block.figure is not None and owner.get(id(block)) == "first" else "second"
+        if edit == "first":
+            held.set()
+            assert release.wait(PATIENCE), "the test did not release the first edit's diagram"
+        drawn.append((edit, block.key))
+        return model.Shown(block.key, f"{edit} {block.key}", "<svg></svg>")
+
+    owner: dict[int, str] = {}
+    first = edited("0.04")
+
+    def draw_marked(answer):
+        document = drawing(answer)
+        for block in model.figure_blocks(document):
+            owner[id(block)] = "first" if answer.sha256 == model.scene_digest(first) else "second"
+        return document
+
+    monkeypatch.setattr(model, "draw", draw_marked)
+    monkeypatch.setattr(model, "figure_svg", svg)
+
+    async def edits() -> None:
+        one = asyncio.ensure_future(session._refresh(first, solve=None))
+        await until(held.is_set, "the first edit's first diagram")
+        two = asyncio.ensure_future(session._refresh(edited("0.02"), solve=None))
+        await until(lambda: "0.02 (1/50)" in session.card.html, "the second edit's card, beside a held diagram")
+        release.set()
+        await asyncio.gather(one, two)
+
+    asyncio.run(edits())
+    firsts = [key for edit, key in drawn if edit == "first"]
+    seconds = [key for edit, key in drawn if edit == "second"]
+    assert len(firsts) == 1  # the one being drawn when the second edit came; the rest dropped
+    assert len(seconds) >= 5 and seconds[-1] == "speed"
+    assert [slot[1].object for slot in session.figure_slots] == [f"<b>second {key}</b>" for key in seconds]
+    assert "0.02 (1/50)" in session.card.html and "drawing" not in session.card.html
