@@ -14,7 +14,6 @@ TEXT = (ROOT / "problems" / "shear-press.toml").read_text(encoding="utf-8")
 #: Panel 1.9 deprecates parameters the page gives its widgets (``name``, ``button_type``), pandas 3.1 one Panel
 #: uses: their warnings are errors under the test settings.
 pytestmark = [
-    pytest.mark.filterwarnings("ignore::PendingDeprecationWarning"),
     pytest.mark.filterwarnings("ignore:The inplace keyword:Warning"),  # pandas 3.1's, inside Panel's Tabulator
 ]
 #: Long enough for a loaded host; the waits end as soon as the page answers (no time is asserted).

@@ -33,28 +33,28 @@ class FormView:
         self.widgets: dict[str, Any] = {}
         for field in form.FIELDS:
             if field.kind == "choice":
-                widget = pn.widgets.Select(name=field.label, options=["", *field.choices], value="")
+                widget = pn.widgets.Select(label=field.label, options=["", *field.choices], value="")
             elif field.kind == "materials":
-                widget = pn.widgets.MultiChoice(name=field.label, options={}, value=[])
+                widget = pn.widgets.MultiChoice(label=field.label, options={}, value=[])
             else:
-                widget = pn.widgets.TextInput(name=field.label, value="")
+                widget = pn.widgets.TextInput(label=field.label, value="")
             widget.param.watch(self._field_changed(field), "value")
             self.widgets[field.path] = widget
-        self.table = pn.widgets.Select(name="Table", options=[], value=None)
+        self.table = pn.widgets.Select(label="Table", options=[], value=None)
         self.table.param.watch(lambda _event: self._show_table(), "value")
         self.grid = pn.widgets.Tabulator(
             value=None, show_index=False, sizing_mode="stretch_width", height=260, editors={}, layout="fit_columns"
         )
         self.grid.on_edit(self._cell_edited)
-        self.angle_unit = pn.widgets.Select(name="angle unit", options=list(ANGLE_UNITS), value="deg", width=110)
-        self.value_unit = pn.widgets.Select(name="value unit", options=list(VALUE_UNITS["torque"]), width=110)
+        self.angle_unit = pn.widgets.Select(label="angle unit", options=list(ANGLE_UNITS), value="deg", width=110)
+        self.value_unit = pn.widgets.Select(label="value unit", options=list(VALUE_UNITS["torque"]), width=110)
         self.paste = pn.widgets.TextAreaInput(
-            name="Rows pasted from a spreadsheet (two columns: angle, value; tabs, commas or semicolons)",
+            label="Rows pasted from a spreadsheet (two columns: angle, value; tabs, commas or semicolons)",
             placeholder="0\t1600\n45\t1600\n90\t200\n360\t200",
             height=110,
             sizing_mode="stretch_width",
         )
-        self.use_paste = pn.widgets.Button(name="Use the pasted rows", button_type="default")
+        self.use_paste = pn.widgets.Button(label="Use the pasted rows", color="default")
         self.use_paste.on_click(lambda _event: self._take_rows(self.paste.value or ""))
         self.upload = pn.widgets.FileInput(accept=".csv,.txt", multiple=False)
         self.upload.param.watch(self._uploaded, "value")

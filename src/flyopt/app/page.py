@@ -72,8 +72,8 @@ class Session:
         self.generation = 0
         names = list(model.templates())
         first = FIRST if FIRST in names else (names[0] if names else "")
-        self.template = pn.widgets.Select(name="Template (problems/)", options=names, value=first or None, width=320)
-        self.units = pn.widgets.Select(name="Units", options=["engineering", "si", "imperial"], value="engineering")
+        self.template = pn.widgets.Select(label="Template (problems/)", options=names, value=first or None, width=320)
+        self.units = pn.widgets.Select(label="Units", options=["engineering", "si", "imperial"], value="engineering")
         self.editor = pn.widgets.CodeEditor(
             value=model.template_text(first) if first else "",
             language="toml",
@@ -83,8 +83,8 @@ class Session:
         #: The editor's text as last typed, loaded or written by the form: what is checked, solved and downloaded
         #: (the editor's own value and value_input each lag behind one of those).
         self.text: str = str(self.editor.value)
-        self.solve_button = pn.widgets.Button(name="Solve", button_type="primary", width=90)
-        self.cancel_button = pn.widgets.Button(name="Cancel", button_type="warning", width=90, disabled=True)
+        self.solve_button = pn.widgets.Button(label="Solve", color="primary", width=90)
+        self.cancel_button = pn.widgets.Button(label="Cancel", color="warning", width=90, disabled=True)
         self.busy = pn.indicators.LoadingSpinner(value=False, width=24, height=24)
         self.mode = pn.pane.HTML("", css_classes=["mode"])
         from flyopt.app.markup import markup

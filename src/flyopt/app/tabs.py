@@ -120,8 +120,8 @@ class MaterialsTab:
             None, disabled=True, show_index=False, layout="fit_data", css_classes=["tradeoff"]
         )
         self.chart = pn.pane.HTML("", width=820, stylesheets=[_card_css()], css_classes=["figure", "tradeoff-chart"])
-        self.objectives = pn.widgets.Select(name="Pareto front", options=list(materials.OBJECTIVES), width=220)
-        self.pareto_button = pn.widgets.Button(name="Draw the front", button_type="primary", width=140)
+        self.objectives = pn.widgets.Select(label="Pareto front", options=list(materials.OBJECTIVES), width=220)
+        self.pareto_button = pn.widgets.Button(label="Draw the front", color="primary", width=140)
         self.pareto_button.on_click(lambda _e: asyncio.ensure_future(self._pareto()))
         self.pareto_plot = clickable_svg()(sizing_mode="stretch_width", min_height=420)
         self.pareto_plot.param.watch(self._picked, "clicks")
@@ -294,30 +294,30 @@ class SweepsTab:
         self.rows = []
         for i in range(self.ROWS):
             row = {
-                "field": pn.widgets.Select(name="field", options=fields, value="speed" if i == 0 else "", width=200),
-                "start": pn.widgets.TextInput(name="from", value="1000" if i == 0 else "", width=90),
-                "stop": pn.widgets.TextInput(name="to", value="2000" if i == 0 else "", width=90),
-                "count": pn.widgets.IntInput(name="points", value=5, start=1, end=sweeps.MAX_POINTS, width=80),
-                "log": pn.widgets.Checkbox(name="log", value=False, width=50),
-                "unit": pn.widgets.TextInput(name="unit", value="rpm" if i == 0 else "", width=80),
-                "names": pn.widgets.TextInput(name="or names (a,b)", value="", width=200),
+                "field": pn.widgets.Select(label="field", options=fields, value="speed" if i == 0 else "", width=200),
+                "start": pn.widgets.TextInput(label="from", value="1000" if i == 0 else "", width=90),
+                "stop": pn.widgets.TextInput(label="to", value="2000" if i == 0 else "", width=90),
+                "count": pn.widgets.IntInput(label="points", value=5, start=1, end=sweeps.MAX_POINTS, width=80),
+                "log": pn.widgets.Checkbox(label="log", value=False, width=50),
+                "unit": pn.widgets.TextInput(label="unit", value="rpm" if i == 0 else "", width=80),
+                "names": pn.widgets.TextInput(label="or names (a,b)", value="", width=200),
             }
             for widget in row.values():
                 widget.param.watch(self._form_changed, "value")
             self.rows.append(row)
         self.where = pn.widgets.Select(
-            name="run on", options=["this machine (processes)", "a Dask cluster"], value="this machine (processes)"
+            label="run on", options=["this machine (processes)", "a Dask cluster"], value="this machine (processes)"
         )
-        self.address = pn.widgets.TextInput(name="Dask address", placeholder="tcp://host:8786", width=220)
+        self.address = pn.widgets.TextInput(label="Dask address", placeholder="tcp://host:8786", width=220)
         if not model.served_locally:  # served beyond this machine: a visitor must not point the server at a scheduler
             self.where.options = ["this machine (processes)"]
             self.address.disabled = True
         self.spec = pn.pane.HTML("", sizing_mode="stretch_width", css_classes=["sweep-spec"])
-        self.run_button = pn.widgets.Button(name="Run the sweep", button_type="primary", width=140)
-        self.cancel_button = pn.widgets.Button(name="Cancel", button_type="warning", width=90, disabled=True)
+        self.run_button = pn.widgets.Button(label="Run the sweep", color="primary", width=140)
+        self.cancel_button = pn.widgets.Button(label="Cancel", color="warning", width=90, disabled=True)
         self.run_button.on_click(lambda _e: asyncio.ensure_future(self._run()))
         self.cancel_button.on_click(self._cancel)
-        self.bar = pn.indicators.Progress(name="sweep", value=0, max=100, width=420, css_classes=["sweep-bar"])
+        self.bar = pn.indicators.Progress(value=0, max=100, width=420, css_classes=["sweep-bar"])
         self.status = pn.pane.HTML("", css_classes=["sweep-status"])
         self.results = pn.widgets.Tabulator(
             None,
@@ -330,9 +330,9 @@ class SweepsTab:
             width=700,
             css_classes=["sweep-table"],
         )
-        self.x = pn.widgets.Select(name="x", options=[], width=160)
-        self.y = pn.widgets.Select(name="y", options=list(self.Y_CHOICES), value="mass", width=140)
-        self.by = pn.widgets.Select(name="one line per", options=[""], width=160)
+        self.x = pn.widgets.Select(label="x", options=[], width=160)
+        self.y = pn.widgets.Select(label="y", options=list(self.Y_CHOICES), value="mass", width=140)
+        self.by = pn.widgets.Select(label="one line per", options=[""], width=160)
         for widget in (self.x, self.y, self.by):
             widget.param.watch(lambda _e: self._draw(), "value")
         self.plot = hover_figure(
