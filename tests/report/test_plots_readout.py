@@ -183,3 +183,27 @@ def test_the_energy_mass_read_out_of_a_tangent_point_is_a_point_of_the_tangent()
         assert float(rows[1].split()[2]) == pytest.approx(x, rel=6e-4)
         assert float(rows[2].split()[2]) == pytest.approx(y, rel=6e-4, abs=0.06)
         assert readout.to_svg(near, x, y) == pytest.approx(svg_point(figure, ax, x, y), abs=1e-4)
+
+
+def test_the_cross_section_reads_the_radius_under_the_pointer_in_both_halves():
+    """The axial section names its height r, its magnitude (the lower half is the same section mirrored): the
+    grid's height nearest the rim's outer edge, as matplotlib placed that edge in the SVG, reads D/2 of the
+    design (shear press, `flyopt solve`), to the grid's step, above the axis and below it."""
+    import flyopt
+    from flyopt.report.plots import plot_cross_section
+
+    design = flyopt.solve(flyopt.load(PROBLEMS / "shear-press.toml")).design.best
+    ax = plot_cross_section(design)
+    figure = standard.figure_of(ax)
+    svg_of(figure, "cs")
+    (entry,) = readout.record(figure)["axes"]  # the drawing only: the front view (if any) names nothing
+    assert entry["at"] == [] and entry["marks"]["xy"] == []
+    across = entry["across"]
+    r_o = design.dims.d_outer / 2.0 * 1000.0  # mm, the drawing's unit
+    step = across["at"][1] - across["at"][0]
+    for sign in (1.0, -1.0):
+        edge = svg_point(figure, ax, 0.0, sign * r_o)[1]  # where matplotlib drew the rim's edge
+        k = int(np.argmin([abs(readout.to_svg(entry, 0.0, y)[1] - edge) for y in across["at"]]))
+        r = float(re.fullmatch(r"r = ([\d.,]+) mm", across["rows"][k])[1].replace(",", ""))
+        last = 10.0 ** (np.floor(np.log10(r_o)) - 3)  # four figures' last digit
+        assert abs(r - r_o) <= 0.5 * step + 0.5 * last, (r, r_o, step)

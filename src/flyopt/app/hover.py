@@ -9,7 +9,9 @@ nearest abscissa of its grid (the recorded data-to-SVG transform, :func:`flyopt.
 mirrored), and draws a vertical guide through it, a dot on each curve and a box with the recorded texts
 ("φ = 131.8 deg", "M_d = 0.4625 kN·m"). Where the Axes has named points (:func:`flyopt.report.plots.readout.points`:
 a Pareto front's designs, the energy–mass curve) and one is within :data:`~flyopt.report.plots.readout.REACH`
-pixels of the pointer, it rings the nearest (a marker before a point of a line) and shows its texts instead. The texts are put in as text
+pixels of the pointer, it rings the nearest (a marker before a point of a line) and shows its texts instead. On a
+drawing with a named height (:func:`flyopt.report.plots.readout.ordinate`: r on the axial section) and no curves,
+a horizontal guide shows the height under the pointer. The texts are put in as text
 (``textContent``), never as markup; the script formats no number: every value is written by the report's rule in
 Python. A click on a link ``#pick-N`` of the SVG (a Pareto point) sets ``picked`` to N and counts ``clicks``.
 """
@@ -159,6 +161,24 @@ export function render({ model, el }) {
       })
       mark(entry, index)
       list(entry.rows[index], entry.colours)
+    } else if (entry.across) {  // a drawing's named height: a horizontal guide at the nearest of its grid
+      let index = 0
+      let closest = Infinity
+      entry.across.at.forEach((y, i) => {
+        const distance = Math.abs(toSvg(entry, entry.x.lim[0], y)[1] - p.y)
+        if (distance < closest) { closest = distance; index = i }
+      })
+      mark(entry, -1)
+      const [, v] = toSvg(entry, entry.x.lim[0], entry.across.at[index])
+      const line = document.createElementNS(NS, 'line')
+      for (const [k, value] of [['x1', entry.box[0]], ['x2', entry.box[2]], ['y1', v], ['y2', v]]) {
+        line.setAttribute(k, value)
+      }
+      line.setAttribute('stroke', '#555')
+      line.setAttribute('stroke-width', '0.8')
+      line.setAttribute('stroke-dasharray', '3 2')
+      guide.appendChild(line)
+      list([entry.across.rows[index]], [])
     } else { hide(); return }
     tip.style.display = 'block'
     const frame = box.getBoundingClientRect()

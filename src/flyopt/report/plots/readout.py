@@ -4,7 +4,7 @@ A diagram names its x axis (:func:`abscissa`: "φ" in the angle's :class:`~flyop
 and the curves worth reading (:func:`curve`: "M_d" in the torque axis' Scale); nothing else changes in the figure,
 which stays the report's one drawing. Once the figure has been drawn as SVG (:func:`flyopt.report.html.svg_of`:
 one point a user unit, at :data:`~flyopt.report.plots.output.VECTOR_DPI`), :func:`record` reads, per Axes with a
-named abscissa and at least one named curve:
+named abscissa and at least one named curve (or named points, or a named ordinate: below):
 
 - where the Axes sits in the SVG (its box in the SVG's user units, y downwards), its limits and whether each
   axis is logarithmic: the data-to-SVG transform (:func:`to_svg`, which the page's script mirrors);
@@ -22,7 +22,9 @@ Where a diagram's points are not a curve of its x (a Pareto front's designs, the
 back in J_e), :func:`points` names each drawn point by its own lines of text, written by the diagram; the record
 carries the points as drawn (at most :data:`MARKS` an artist, every k-th) and the page shows, within
 :data:`REACH` of the pointer, the nearest point drawn as a marker (a tangent point, a design), else the nearest
-point of a named line, in preference to a curve's value.
+point of a named line, in preference to a curve's value. A drawing with no curve may name its y axis
+(:func:`ordinate`: the radius r of an axial section): the page then shows the height under the pointer, on a
+horizontal guide, snapped to a grid of :data:`POINTS` over the axis.
 """
 
 from __future__ import annotations
@@ -59,22 +61,34 @@ PLACES = 7
 #: The attribute a named artist carries its :class:`Name` in (the artist's own: no registry shared by threads).
 ATTRIBUTE = "_flyopt_readout"
 
+#: The attribute an Axes carries the :class:`Name` of its y axis in (:func:`ordinate`).
+ORDINATE = "_flyopt_readout_y"
+
 
 @dataclass(frozen=True)
 class Name:
-    """What a read-out calls an axis or a curve, and the Scale its shown values are in."""
+    """What a read-out calls an axis or a curve, and the Scale its shown values are in; ``absolute``: the
+    magnitude is read (a radius on a section drawn about its axis, both halves)."""
 
     symbol: str
     scale: Scale
+    absolute: bool = False
 
     def text(self, shown: float) -> str:
         """ "symbol = value unit" of a value as drawn (in the scale's unit)."""
-        return f"{self.symbol} = {self.scale.q(shown * self.scale.factor)}"
+        value = abs(shown) if self.absolute else shown
+        return f"{self.symbol} = {self.scale.q(value * self.scale.factor)}"
 
 
 def abscissa(ax: Axes, symbol: str, scale: Scale) -> None:
     """Name the x axis of ``ax`` for the read-outs: ``symbol`` ("φ"), its values drawn in ``scale``'s unit."""
     setattr(ax, ATTRIBUTE, Name(symbol, scale))
+
+
+def ordinate(ax: Axes, symbol: str, scale: Scale, absolute: bool = False) -> None:
+    """Name the y axis of ``ax`` for a read-out of the height under the pointer, where no curve is to be read (a
+    drawing): ``symbol`` ("r"), drawn in ``scale``'s unit, its magnitude where ``absolute``."""
+    setattr(ax, ORDINATE, Name(symbol, scale, absolute))
 
 
 def curve(line: Line2D, symbol: str, scale: Scale) -> Line2D:
@@ -118,7 +132,8 @@ def record(figure: Figure) -> dict[str, Any]:
     where the curve has no value there); and ``marks``, the points named by :func:`points` inside the limits:
     ``xy`` each as drawn, ``rows`` its lines, ``colours`` its colour, ``ranks`` 0 for a marker, 1 for a point of
     a line (the page prefers the first within reach) (an Axes without curves has empty ``at``,
-    ``values``, ``colours`` and ``rows``).
+    ``values``, ``colours`` and ``rows``); and ``across`` where the y axis is named (:func:`ordinate`): ``at``
+    a grid of :data:`POINTS` heights over its limits as drawn, ``rows`` the text of each.
     """
     width, height = (float(v) * 72.0 for v in figure.get_size_inches())  # VECTOR_DPI: one user unit a point
     entries = [entry for ax in figure.axes if (entry := _axes_record(ax, width, height)) is not None]
@@ -145,7 +160,8 @@ def _axes_record(ax: Axes, width: float, height: float) -> dict[str, Any] | None
         return None
     marks = _marks(ax)
     curves = _curves(ax)
-    if curves is None and not marks["xy"]:
+    across = _across(ax)
+    if curves is None and not marks["xy"] and across is None:
         return None
     box = ax.get_position()  # in the figure's fractions, as the layout of the last draw placed it
     return {
@@ -159,7 +175,19 @@ def _axes_record(ax: Axes, width: float, height: float) -> dict[str, Any] | None
         "y": {"lim": [float(v) for v in ax.get_ylim()], "log": ax.get_yscale() == "log"},
         **(curves or {"at": [], "values": [], "colours": [], "rows": []}),
         "marks": marks,
+        **({"across": across} if across is not None else {}),
     }
+
+
+def _across(ax: Axes) -> dict[str, list[Any]] | None:
+    """The grid of a named ordinate (:func:`ordinate`) over the y limits and its texts, or None."""
+    name = getattr(ax, ORDINATE, None)
+    if not isinstance(name, Name):
+        return None
+    log = ax.get_yscale() == "log"
+    low, high = sorted(_forward(np.asarray(ax.get_ylim(), dtype=float), log).tolist())
+    at = _backward(np.linspace(low, high, POINTS), log)
+    return {"at": [_short(v) for v in at], "rows": [name.text(float(v)) for v in at]}
 
 
 def _curves(ax: Axes) -> dict[str, Any] | None:
