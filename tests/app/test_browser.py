@@ -340,12 +340,22 @@ def test_clicking_a_pareto_point_loads_its_design_into_the_editor(server, browse
     page.get_by_text("Compare materials", exact=True).click()
     page.wait_for_selector(".tradeoff .tabulator-row", timeout=60_000)
     page.get_by_text("Draw the front", exact=True).click()
-    page.wait_for_selector(".pareto-plot svg", timeout=120_000)
-    links = page.locator(".pareto-plot a")  # one a point, in the front's order (every point here is drawn)
+    page.wait_for_selector(".figure-pareto svg", timeout=120_000)
+    links = page.locator(".figure-pareto a")  # one a point, in the front's order (every point here is drawn)
     assert links.count() == len(front)
     assert links.nth(index).get_attribute("xlink:href").endswith(materials.PICK.format(index).lstrip("#"))
-    links.nth(index).click(force=True)
     mass = display.quantity_text(float(row["mass"]), "mass", "engineering")
+    # under the pointer, the point says what a click loads: its material and its objectives
+    links.nth(index).scroll_into_view_if_needed()
+    dot = links.nth(index).locator("use").bounding_box()
+    page.mouse.move(dot["x"] + dot["width"] / 2, dot["y"] + dot["height"] / 2)
+    tip = page.locator(".figure-pareto .readout").first
+    tip.wait_for(state="visible", timeout=10_000)
+    lines = tip.inner_text().splitlines()
+    assert lines[0] == f"material = {materials.display_names(scene)[row['best_material']]}", lines
+    assert lines[2] == f"mass = {mass}", lines
+    shot(page, "8-pareto-hover")
+    links.nth(index).click(force=True)
     # the Design tab's answer card (the Compare tab's card of the point, also a .card, shows this mass at once;
     # the answer card shows the last answer while the point's scene is solved, then the point's)
     answer = page.locator(".card.flyopt-answer").first
@@ -354,5 +364,5 @@ def test_clicking_a_pareto_point_loads_its_design_into_the_editor(server, browse
     assert f'materials = ["{row["best_material"]}"]' in text
     assert f'max_outer_diameter = "{row["design.max_outer_diameter"] * 1000:.10g} mm"' in text
     assert display.quantity_text(float(row["d_outer"]), "length", "engineering") in answer.inner_text()
-    shot(page, "8-pareto-loaded")
+    shot(page, "9-pareto-loaded")
     page.close()

@@ -156,9 +156,10 @@ def test_the_figures_are_the_reports_and_the_downloads_open(workspace):
     keys = [key for key, _, svg, _ in answer.figures if svg]
     assert {"turning_moment", "energy", "stress", "cross_section", "speed"} <= set(keys)
     assert all(svg.lstrip().startswith("<svg") for _, _, svg, _ in answer.figures if svg)
-    readouts = {f.key: f.readout for f in answer.figures}  # the curves' read-outs, none on the drawing
+    readouts = {f.key: f.readout for f in answer.figures}  # the curves' read-outs; the drawing's radius only
     assert json.loads(readouts["speed"])["axes"][0]["rows"][0][0].startswith("φ = ")
-    assert readouts["cross_section"] == ""
+    (section,) = json.loads(readouts["cross_section"])["axes"]
+    assert section["rows"] == [] and section["across"]["rows"][0].startswith("r = ")
     html = model.report_bytes(answer, "html").decode("utf-8")
     assert "Shear press (worked example 2)" in html
     import io

@@ -20,6 +20,7 @@ from flyopt.app import materials, model, sweeps
 from flyopt.errors import SceneError
 from flyopt.io.scene import load
 from flyopt.report import display
+from flyopt.report.plots import readout
 
 ROOT = Path(__file__).resolve().parents[2]
 SHEAR = ROOT / "problems" / "shear-press.toml"
@@ -97,9 +98,20 @@ def test_the_pareto_front_is_flyopt_pareto_and_each_point_is_a_link(main_cli):
     front = materials.pareto_front(load(SHEAR), ticked, "mass,outer_diameter", points=8)
     assert list(front.columns[:2]) == ["mass", "outer_diameter"] == list(cli.columns[:2])
     np.testing.assert_allclose(front["mass"].to_numpy(float), cli["mass"].to_numpy(float), rtol=1e-12)
-    svg = materials.pareto_svg(front, "engineering")
+    names = materials.display_names(load(SHEAR))
+    svg, found = materials.pareto_svg(front, "engineering", names)
     links = re.findall(r'href="#pareto-?pick-(\d+)"', svg)
     assert sorted(int(n) for n in links) == list(range(len(front)))
+    # under the pointer, each link's point reads what its click loads: the card's material, D and mass
+    (entry,) = json.loads(found)["axes"]
+    for n, x, y in re.findall(r'href="#pareto-?pick-(\d+)".*?<use [^>]*x="([-\d.]+)" y="([-\d.]+)"', svg, re.S):
+        drawn = [readout.to_svg(entry, *xy) for xy in entry["marks"]["xy"]]
+        k = int(np.argmin([math.hypot(u - float(x), v - float(y)) for u, v in drawn]))
+        assert math.hypot(drawn[k][0] - float(x), drawn[k][1] - float(y)) < 0.01  # the same place, to 1/1000 pt
+        card = dict(materials.point_rows(front, int(n), "engineering", names))
+        material, d, mass = entry["marks"]["rows"][k]
+        assert material == f"material = {card['material']}" and mass == f"mass = {card['mass']}"
+        assert d == f"outer_diameter = {card['outer diameter D']}"
     lines = dict(materials.point_rows(front, 2, "engineering", materials.display_names(load(SHEAR))))
     d = cli["d_outer"].iloc[2] * 1000
     assert lines["outer diameter D"] == f"{float(f'{d:.4g}'):g} mm"  # four figures, in mm

@@ -112,3 +112,98 @@ def test_a_curve_in_pieces_reads_where_a_piece_is_and_nothing_in_a_gap():
             assert y is None and row[1] is None
         else:
             assert y == pytest.approx(1.0 + 0.2 * (x - 20.0), rel=1e-6)
+
+
+def test_named_points_sit_where_matplotlib_drew_them_and_carry_their_own_texts():
+    """A scatter's offsets, a marker line's points and a LineCollection's pieces joined: each named point is
+    recorded at its drawn place (the SVG's own ``<use>`` and transData), with its texts; a point outside the
+    limits is left out, and more than MARKS points are thinned to every k-th."""
+    from matplotlib.collections import LineCollection
+
+    from flyopt.errors import BrokenInvariant
+
+    ax, _own = standard.axes(None)
+    figure = standard.figure_of(ax)
+    dots = ax.scatter([2.0, 5.0, 40.0], [3.0, 8.0, 1.0], color="tab:green", gid="dots")
+    readout.points(dots, [["a"], ["b", "b2"], ["c"]])
+    (ring,) = ax.plot([7.0], [6.0], "o", mfc="white", mec="red", gid="ring")
+    readout.points(ring, [["ring"]])
+    n = 2 * readout.MARKS + 1
+    t = np.linspace(0.0, 2.0 * np.pi, n)
+    xy = np.column_stack([5.0 + 2.0 * np.cos(t), 5.0 + 2.0 * np.sin(t)])  # turns back in x: no curve of x
+    pieces = [xy[a : b + 1] for a, b in zip(range(0, n - 1, 10), [*range(10, n - 1, 10), n - 1])]
+    loop = LineCollection(pieces, color="black")
+    ax.add_collection(loop)
+    readout.points(loop, [[f"k = {k}"] for k in range(n)])
+    with pytest.raises(BrokenInvariant, match="names 2 points of an artist that draws 3"):
+        readout.points(dots, [["a"], ["b"]])
+    ax.set(xlim=(0.0, 10.0), ylim=(0.0, 10.0))
+    svg = svg_of(figure, "m")
+    (entry,) = readout.record(figure)["axes"]
+    assert entry["at"] == [] and entry["rows"] == []  # no abscissa named: points only
+    marks = entry["marks"]
+    assert marks["rows"][:3] == [["ring"], ["a"], ["b", "b2"]]  # the point at x = 40 is off the limits
+    assert marks["colours"][:3] == ["#ff0000", "#2ca02c", "#2ca02c"]  # a ring by its edge
+    assert marks["ranks"] == [0, 0, 0] + [1] * (len(marks["xy"]) - 3)  # markers before a line's points
+    assert [r[0] for r in marks["rows"][3:]] == [f"k = {k}" for k in range(0, n, 3)]  # every third of 961
+    for (x, y), rows in zip(marks["xy"][3:], marks["rows"][3:]):
+        k = int(rows[0].split(" = ")[1])
+        assert (x, y) == pytest.approx(tuple(xy[k]), rel=1e-6)
+    use = re.search(r'id="mring".*?<use [^>]*x="([-\d.]+)" y="([-\d.]+)"', svg, re.S)
+    assert readout.to_svg(entry, *marks["xy"][0]) == pytest.approx((float(use[1]), float(use[2])), abs=0.01)
+    for x, y in marks["xy"][:3]:
+        assert readout.to_svg(entry, x, y) == pytest.approx(svg_point(figure, ax, x, y), abs=1e-4)
+
+
+def test_the_energy_mass_read_out_of_a_tangent_point_is_a_point_of_the_tangent():
+    """Each tangent is the line through the true origin (−J_F, −E_0) of slope ω²/2 (ω_max or ω_min,
+    docs/flywheel-design.md, section 6): the read-out's J_e and ΔE at its tangent point, read back from its texts
+    (four figures), lie on that line; its φ is the model's angle of that extreme speed."""
+    import flyopt
+    from flyopt.report.plots import plot_energy_mass
+
+    scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
+    analysis = flyopt.analyse(scene, model="energy_mass")
+    em = analysis.requirement.detail
+    ax = plot_energy_mass(scene, analysis)
+    figure = standard.figure_of(ax)
+    svg_of(figure, "em")
+    entries = readout.record(figure)["axes"]
+    near = next(e for e in entries if any(r[0].startswith("the tangent") for r in e["marks"]["rows"]))
+    angle = standard.scale("angle", "engineering")
+    for w, at, name in ((em.omega_max, em.phi_omega_max, "max"), (em.omega_min, em.phi_omega_min, "min")):
+        (rows,) = [r for r in near["marks"]["rows"] if r[0] == f"the tangent of ω_{name} touches"]
+        assert rows[1] == f"φ = {angle.q(at)}"
+        j = float(re.fullmatch(r"J_e = ([-\d.]+) kg·m²", rows[2])[1])
+        de = float(re.fullmatch(r"ΔE = ([-\d.]+) J", rows[3])[1])
+        slope = (de + em.e0) / (j + em.j_required)
+        assert slope == pytest.approx(0.5 * w**2, rel=2e-3)
+    # every point of the coloured curve is where the SVG drew it, and says so: its texts are its position
+    for (x, y), rows in list(zip(near["marks"]["xy"], near["marks"]["rows"]))[2::37]:
+        assert float(rows[1].split()[2]) == pytest.approx(x, rel=6e-4)
+        assert float(rows[2].split()[2]) == pytest.approx(y, rel=6e-4, abs=0.06)
+        assert readout.to_svg(near, x, y) == pytest.approx(svg_point(figure, ax, x, y), abs=1e-4)
+
+
+def test_the_cross_section_reads_the_radius_under_the_pointer_in_both_halves():
+    """The axial section names its height r, its magnitude (the lower half is the same section mirrored): the
+    grid's height nearest the rim's outer edge, as matplotlib placed that edge in the SVG, reads D/2 of the
+    design (shear press, `flyopt solve`), to the grid's step, above the axis and below it."""
+    import flyopt
+    from flyopt.report.plots import plot_cross_section
+
+    design = flyopt.solve(flyopt.load(PROBLEMS / "shear-press.toml")).design.best
+    ax = plot_cross_section(design)
+    figure = standard.figure_of(ax)
+    svg_of(figure, "cs")
+    (entry,) = readout.record(figure)["axes"]  # the drawing only: the front view (if any) names nothing
+    assert entry["at"] == [] and entry["marks"]["xy"] == []
+    across = entry["across"]
+    r_o = design.dims.d_outer / 2.0 * 1000.0  # mm, the drawing's unit
+    step = across["at"][1] - across["at"][0]
+    for sign in (1.0, -1.0):
+        edge = svg_point(figure, ax, 0.0, sign * r_o)[1]  # where matplotlib drew the rim's edge
+        k = int(np.argmin([abs(readout.to_svg(entry, 0.0, y)[1] - edge) for y in across["at"]]))
+        r = float(re.fullmatch(r"r = ([\d.,]+) mm", across["rows"][k])[1].replace(",", ""))
+        last = 10.0 ** (np.floor(np.log10(r_o)) - 3)  # four figures' last digit
+        assert abs(r - r_o) <= 0.5 * step + 0.5 * last, (r, r_o, step)

@@ -7,14 +7,21 @@ have read-outs (:mod:`flyopt.report.plots.readout`), follows the pointer: it map
 units (the browser's own ``getScreenCTM``, whatever the SVG's scale on the page), finds the Axes under it and the
 nearest abscissa of its grid (the recorded data-to-SVG transform, :func:`flyopt.report.plots.readout.to_svg`
 mirrored), and draws a vertical guide through it, a dot on each curve and a box with the recorded texts
-("φ = 131.8 deg", "M_d = 0.4625 kN·m"). The texts are put in as text (``textContent``), never as markup; the
-script formats no number: every value is written by the report's rule in Python.
+("φ = 131.8 deg", "M_d = 0.4625 kN·m"). Where the Axes has named points (:func:`flyopt.report.plots.readout.points`:
+a Pareto front's designs, the energy–mass curve) and one is within :data:`~flyopt.report.plots.readout.REACH`
+pixels of the pointer, it rings the nearest (a marker before a point of a line) and shows its texts instead. On a
+drawing with a named height (:func:`flyopt.report.plots.readout.ordinate`: r on the axial section) and no curves,
+a horizontal guide shows the height under the pointer. The texts are put in as text
+(``textContent``), never as markup; the script formats no number: every value is written by the report's rule in
+Python. A click on a link ``#pick-N`` of the SVG (a Pareto point) sets ``picked`` to N and counts ``clicks``.
 """
 
 from __future__ import annotations
 
 from functools import cache
 from typing import Any
+
+from flyopt.report.plots.readout import REACH
 
 #: The read-out's look (inside the component: its shadow root takes no page style).
 STYLE = """
@@ -28,6 +35,7 @@ STYLE = """
 
 ESM = """
 const NS = 'http://www.w3.org/2000/svg'
+const REACH = __REACH__  // flyopt.report.plots.readout.REACH
 
 function fraction(value, axis) {
   const [first, last] = axis.lim
@@ -71,6 +79,7 @@ export function render({ model, el }) {
     }
     guide.replaceChildren()
     guide.style.display = ''
+    if (index < 0) return
     const [u] = toSvg(entry, entry.at[index], entry.y.lim[0])
     const line = document.createElementNS(NS, 'line')
     for (const [k, v] of [['x1', u], ['x2', u], ['y1', entry.box[1]], ['y2', entry.box[3]]]) line.setAttribute(k, v)
@@ -92,16 +101,40 @@ export function render({ model, el }) {
       guide.appendChild(dot)
     })
   }
-  const write = (entry, index) => {
+  const ring = (entry, index) => {
+    mark(entry, -1)
+    const [u, v] = toSvg(entry, ...entry.marks.xy[index])
+    for (const [r, width, colour] of [['7', '1.2', '#222'], ['5', '2', entry.marks.colours[index]]]) {
+      const dot = document.createElementNS(NS, 'circle')  // a dark ring round one of the point's colour
+      for (const [k, value] of [['cx', u], ['cy', v], ['r', r], ['fill', 'none'], ['stroke-width', width]]) {
+        dot.setAttribute(k, value)
+      }
+      dot.setAttribute('stroke', colour)
+      guide.appendChild(dot)
+    }
+  }
+  const nearest = (entry, p, scale) => {  // within REACH pixels, the nearest marker, else line's point; or -1
+    let found = -1
+    let best = [2, 0]
+    entry.marks.xy.forEach(([x, y], i) => {
+      const [u, v] = toSvg(entry, x, y)
+      const distance = Math.hypot(u - p.x, v - p.y)
+      const rank = entry.marks.ranks[i]
+      if (distance * scale > REACH) return
+      if (rank < best[0] || (rank === best[0] && distance < best[1])) { best = [rank, distance]; found = i }
+    })
+    return found
+  }
+  const list = (rows, colours) => {  // the texts, each curve's after a swatch of its colour
     tip.replaceChildren()
-    entry.rows[index].forEach((text, k) => {
+    rows.forEach((text, k) => {
       if (text === null) return
       const row = document.createElement('div')
       if (k === 0) row.className = 'first'
-      else {
+      else if (colours[k - 1]) {
         const swatch = document.createElement('span')
         swatch.className = 'swatch'
-        swatch.style.background = entry.colours[k - 1]
+        swatch.style.background = colours[k - 1]
         row.appendChild(swatch)
       }
       row.appendChild(document.createTextNode(text))
@@ -115,14 +148,38 @@ export function render({ model, el }) {
     const p = new DOMPoint(event.clientX, event.clientY).matrixTransform(matrix.inverse())
     const entry = data.axes.find((e) => p.x >= e.box[0] && p.x <= e.box[2] && p.y >= e.box[1] && p.y <= e.box[3])
     if (!entry) { hide(); return }
-    let index = 0
-    let nearest = Infinity
-    entry.at.forEach((x, i) => {
-      const distance = Math.abs(toSvg(entry, x, entry.y.lim[0])[0] - p.x)
-      if (distance < nearest) { nearest = distance; index = i }
-    })
-    mark(entry, index)
-    write(entry, index)
+    const near = entry.marks ? nearest(entry, p, Math.hypot(matrix.a, matrix.b)) : -1
+    if (near >= 0) {
+      ring(entry, near)
+      list(entry.marks.rows[near], [])
+    } else if (entry.at.length) {
+      let index = 0
+      let closest = Infinity
+      entry.at.forEach((x, i) => {
+        const distance = Math.abs(toSvg(entry, x, entry.y.lim[0])[0] - p.x)
+        if (distance < closest) { closest = distance; index = i }
+      })
+      mark(entry, index)
+      list(entry.rows[index], entry.colours)
+    } else if (entry.across) {  // a drawing's named height: a horizontal guide at the nearest of its grid
+      let index = 0
+      let closest = Infinity
+      entry.across.at.forEach((y, i) => {
+        const distance = Math.abs(toSvg(entry, entry.x.lim[0], y)[1] - p.y)
+        if (distance < closest) { closest = distance; index = i }
+      })
+      mark(entry, -1)
+      const [, v] = toSvg(entry, entry.x.lim[0], entry.across.at[index])
+      const line = document.createElementNS(NS, 'line')
+      for (const [k, value] of [['x1', entry.box[0]], ['x2', entry.box[2]], ['y1', v], ['y2', v]]) {
+        line.setAttribute(k, value)
+      }
+      line.setAttribute('stroke', '#555')
+      line.setAttribute('stroke-width', '0.8')
+      line.setAttribute('stroke-dasharray', '3 2')
+      guide.appendChild(line)
+      list([entry.across.rows[index]], [])
+    } else { hide(); return }
     tip.style.display = 'block'
     const frame = box.getBoundingClientRect()
     const x = event.clientX - frame.left
@@ -132,6 +189,16 @@ export function render({ model, el }) {
     tip.style.top = Math.max(0, y - tip.offsetHeight - 10) + 'px'
   })
   box.addEventListener('pointerleave', hide)
+  box.addEventListener('click', (event) => {  // a link #pick-N of the SVG: picked = N
+    const link = event.target.closest('a')
+    if (!link) return
+    const href = link.getAttribute('href') || link.getAttribute('xlink:href') || ''
+    const found = href.match(/pick-(\\d+)$/)
+    if (!found) return
+    event.preventDefault()
+    model.picked = parseInt(found[1])
+    model.clicks = model.clicks + 1
+  })
   show()
   model.on('svg', show)
   model.on('readout', show)
@@ -142,6 +209,9 @@ export function render({ model, el }) {
 """
 
 
+ESM = ESM.replace("__REACH__", str(REACH))
+
+
 @cache
 def hover_svg() -> type:
     """The component class (made once: Panel is imported only by the app)."""
@@ -150,11 +220,14 @@ def hover_svg() -> type:
 
     class HoverSVG(JSComponent):
         """A figure's SVG (``svg``) with read-outs (``readout``: the JSON of
-        :func:`flyopt.report.plots.readout.record`, "" for none); ``key`` names it (class ``figure-KEY``)."""
+        :func:`flyopt.report.plots.readout.record`, "" for none); ``key`` names it (class ``figure-KEY``);
+        ``picked`` the N of the last link ``#pick-N`` clicked, ``clicks`` how many were."""
 
         svg = param.String(default="")
         readout = param.String(default="")
         key = param.String(default="")
+        picked = param.Integer(default=-1)
+        clicks = param.Integer(default=0)
 
         _esm = ESM
         _stylesheets = [STYLE]

@@ -274,21 +274,23 @@ def _chart_svg(designed: pd.DataFrame, units: str, names: dict[str, str] | None)
 PICK = "#pick-{}"
 
 
-def pareto_svg(front: pd.DataFrame, units: str) -> str:
+def pareto_svg(front: pd.DataFrame, units: str, names: dict[str, str] | None = None) -> tuple[str, str]:
     """The front drawn by the report's :func:`~flyopt.report.plots.plot_pareto` (mass against the other
-    objective), each designed point made a link ``#pick-N`` (an unseen dot over it) for the page to load."""
+    objective), each designed point made a link ``#pick-N`` (an unseen dot over it) for the page to load; and the
+    read-outs of its points (:func:`flyopt.app.model.readout_json`: material by ``names``, the two objectives)."""
     from flyopt.report import plots
     from flyopt.report.plots import standard
 
     other = str(front.columns[1])
     with standard.LOCK:  # drawn in the tab's worker thread: one draw at a time (matplotlib is not thread-safe)
-        ax = plots.plot_pareto(front, other, "mass", units=units)
+        ax = plots.plot_pareto(front, other, "mass", units=units, names=names)
         return _pareto_svg(front, ax, other, units)
 
 
-def _pareto_svg(front: pd.DataFrame, ax: Any, other: str, units: str) -> str:
+def _pareto_svg(front: pd.DataFrame, ax: Any, other: str, units: str) -> tuple[str, str]:
     import numpy as np
 
+    from flyopt.app.model import readout_json
     from flyopt.report import display
     from flyopt.report.html import svg_of
     from flyopt.report.plots import standard
@@ -304,7 +306,7 @@ def _pareto_svg(front: pd.DataFrame, ax: Any, other: str, units: str) -> str:
     ax.set_title(ax.get_title() + " (click a point for its design)")
     figure = standard.figure_of(ax)
     try:
-        return svg_of(figure, "pareto")
+        return svg_of(figure, "pareto"), readout_json(figure)
     finally:
         standard.close(figure)
 

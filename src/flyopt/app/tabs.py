@@ -11,7 +11,6 @@ from __future__ import annotations
 import asyncio
 import io
 from concurrent.futures import ThreadPoolExecutor
-from functools import cache
 from typing import Any
 
 from flyopt.app import materials, model, sweeps
@@ -52,41 +51,6 @@ def show_table(widget: Any, frame: Any) -> None:
     widget.value = frame
 
 
-@cache
-def clickable_svg() -> type:
-    """A Panel component showing an SVG whose links ``#pick-N`` set its ``picked`` parameter to N on a click."""
-    import param
-    from panel.custom import JSComponent
-
-    class ClickableSVG(JSComponent):
-        svg = param.String(default="")
-        picked = param.Integer(default=-1)
-        clicks = param.Integer(default=0)
-
-        _esm = """
-        export function render({ model, el }) {
-          const box = document.createElement('div')
-          box.className = 'figure pareto-plot'
-          const show = () => { box.innerHTML = model.svg }
-          show()
-          model.on('svg', show)
-          box.addEventListener('click', (event) => {
-            const link = event.target.closest('a')
-            if (!link) return
-            const href = link.getAttribute('href') || link.getAttribute('xlink:href') || ''
-            const found = href.match(/pick-(\\d+)$/)
-            if (!found) return
-            event.preventDefault()
-            model.picked = parseInt(found[1])
-            model.clicks = model.clicks + 1
-          })
-          el.appendChild(box)
-        }
-        """
-
-    return ClickableSVG
-
-
 class MaterialsTab:
     """The library with a tick per material; the trade-off of the ticked ones, its chart, their Pareto front."""
 
@@ -123,7 +87,7 @@ class MaterialsTab:
         self.objectives = pn.widgets.Select(label="Pareto front", options=list(materials.OBJECTIVES), width=220)
         self.pareto_button = pn.widgets.Button(label="Draw the front", color="primary", width=140)
         self.pareto_button.on_click(lambda _e: asyncio.ensure_future(self._pareto()))
-        self.pareto_plot = clickable_svg()(sizing_mode="stretch_width", min_height=420)
+        self.pareto_plot = hover_figure("", "", "pareto", sizing_mode="stretch_width", min_height=420)
         self.pareto_plot.param.watch(self._picked, "clicks")
         self.point = pn.pane.HTML("", stylesheets=[_card_css()], width=360, css_classes=["point"])
         self.view = pn.Column(
@@ -161,7 +125,7 @@ class MaterialsTab:
         table = materials.library(scene)
         self.message.object = ""
         self.front = None
-        self.pareto_plot.svg = ""
+        self.pareto_plot.param.update(svg="", readout="")
         self.point.object = ""
         show_table(self.library, materials.library_shown(table, units))
         self.library.selection = [i for i, name in enumerate(table["name"]) if name in ticked]
@@ -219,9 +183,9 @@ class MaterialsTab:
             )
             if front.empty:
                 self.message.object = _message(front.attrs.get("message", "empty front"))
-                self.pareto_plot.svg = ""
+                self.pareto_plot.param.update(svg="", readout="")
                 return
-            svg = await loop.run_in_executor(self.executor, materials.pareto_svg, front, units)
+            svg, found = await loop.run_in_executor(self.executor, materials.pareto_svg, front, units, self.names)
         except Exception as err:  # noqa: BLE001 -- said in one line, as flyopt pareto says it
             self.message.object = _message(_error_text(err))
             return
@@ -229,7 +193,7 @@ class MaterialsTab:
             self.pareto_button.disabled = False
         self.front = front
         self.message.object = ""
-        self.pareto_plot.svg = svg
+        self.pareto_plot.param.update(svg=svg, readout=found)
 
     def _picked(self, _event: Any) -> None:
         """A point of the front was clicked: its design beside the plot, and loaded into the editor (the scene

@@ -12,7 +12,7 @@ from flyopt.design.result import Design
 from flyopt.names import Geometry
 from flyopt.outputs.drawing import keyway, section_blocks
 from flyopt.report import display
-from flyopt.report.plots import standard
+from flyopt.report.plots import readout, standard
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -421,6 +421,7 @@ def plot_cross_section(
     ax.set_xlim(-w_max / 2.0 - d(left_in), w_max / 2.0 + d(right_in))
     ax.set_ylim(-r_o - d(bottom_in), r_o + d(top_in))
     ax.set_axis_off()
+    readout.ordinate(ax, "r", standard.scale("length", units, digits=digits), absolute=True)  # the app's read-out
     what = {"rim_arms": f"rim on {c.n_arms} arms", "rim_web": "rim and web", "thin_rim": "thin rim"}.get(
         c.geometry, c.geometry
     )

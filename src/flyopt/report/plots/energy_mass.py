@@ -9,7 +9,7 @@ import numpy as np
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report import display
-from flyopt.report.plots import standard
+from flyopt.report.plots import readout, standard
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -135,6 +135,18 @@ def plot_energy_mass(
     coloured = LineCollection(pieces, cmap="twilight", lw=2.2, gid="curve")  # cyclic: φ = Φ meets φ = 0
     coloured.set_array(standard.show(0.5 * (phi[ends[:-1]] + phi[ends[1:]]), "angle", units))
     ax.add_collection(coloured)
+    angle = standard.scale("angle", units, digits=digits)
+    j_scale = standard.scale("inertia", units, [j], digits)
+
+    def rows(at: np.ndarray, energy: standard.Scale, first: str | None = None) -> list[list[str]]:
+        """A point's read-out at the angles ``at``: φ, J_e and ΔE (ΔE in the panel's ``energy`` scale)."""
+        j_at, e_at = np.asarray(machine.j_machine(at), dtype=float), np.asarray(ew(at), dtype=float)
+        return [
+            [*([first] if first else []), f"φ = {angle.q(p)}", f"J_e = {j_scale.q(a)}", f"ΔE = {energy.q(b)}"]
+            for p, a, b in zip(at.tolist(), j_at.tolist(), e_at.tolist())
+        ]
+
+    readout.points(coloured, rows(phi, near))
     coloured.set_clim(0.0, float(standard.show(scene.cycle_angle, "angle", units)))
     bar = ax.figure.colorbar(coloured, ax=ax, pad=0.01)
     bar.set_label(standard.axis_label("crank angle φ", "angle", units))
@@ -154,7 +166,7 @@ def plot_energy_mass(
             label=f"tangent of slope ω_{name}²/2, ω_{name} = {standard.q(w, 'angular_speed', units, digits + 1)}",
         )
         touch = np.array([at])
-        ax.plot(
+        (point,) = ax.plot(
             [sj(machine.j_machine(touch)[0])],
             [se(ew(touch)[0])],
             "o",
@@ -166,6 +178,7 @@ def plot_energy_mass(
             gid=f"tangent_{name}",
             label=f"touches where the speed is ω_{name}: φ = {standard.q(at, 'angle', units, digits)}",
         )
+        readout.points(point, rows(touch, near, f"the tangent of ω_{name} touches"))
     ax.set_xlim(sj(j.min() - 0.15 * max(span_x, 1e-12)), sj(j.max() + 0.15 * max(span_x, 1e-12)))
     ax.set_ylim(se(de.min() - 0.15 * max(span_y, 1e-12)), se(de.max() + 0.15 * max(span_y, 1e-12)))
     ax.set(xlabel=f"equivalent inertia of the machine J_e [{inertia}]", ylabel=near.axis_label("excess work ΔE"))
@@ -175,7 +188,8 @@ def plot_energy_mass(
         f"{legend_energy.q(y0)}): J_F = {standard.q(j_f, 'inertia', units, digits)}"
     )
     if overview is not None:
-        overview.plot(sj(j), whole.show(de), color="tab:blue", lw=1.5)
+        (whole_curve,) = overview.plot(sj(j), whole.show(de), color="tab:blue", lw=1.5)
+        readout.points(whole_curve, rows(phi, whole))
         for w, _at, colour, _name in tangents:
             overview.plot(sj(reach), whole.show(y0 + 0.5 * w**2 * (reach - x0)), color=colour, lw=1, ls="--")
         overview.plot([sj(x0)], [whole.show(y0)], "ko", ms=6, gid="origin", label=origin)

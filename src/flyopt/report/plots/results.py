@@ -10,6 +10,8 @@ from flyopt.report import display
 from flyopt.report.plots import readout, standard
 
 if TYPE_CHECKING:
+    from collections.abc import Mapping
+
     import pandas as pd
     from matplotlib.axes import Axes
 
@@ -88,6 +90,19 @@ def _value_text(value, column, units, frame=None, digits=standard.DIGITS):
             return f"{column} = {display.number(float(value), digits)}"
         return f"{column} = {scale.q(float(value))}"
     return f"{column} = {value}"
+
+
+def _point_rows(frame, rows, columns, units, digits, names):
+    """The read-out of each of the frame's ``rows`` (positions): its material, then its ``columns``' values."""
+    material = next((c for c in ("best_material", "material") if c in frame.columns), None)
+    out = []
+    for k in rows:
+        texts = [_value_text(float(frame[c].iloc[k]), c, units, frame, digits) for c in columns]
+        if material is not None and isinstance(frame[material].iloc[k], str):
+            name = frame[material].iloc[k]
+            texts.insert(0, f"material = {(names or {}).get(name, name)}")
+        out.append(texts)
+    return out
 
 
 def pareto_objectives(frame: pd.DataFrame) -> tuple[str, str] | None:
@@ -224,6 +239,7 @@ def plot_pareto(
     ax: Axes | None = None,
     units: str = display.DEFAULT,
     digits: int = display.DEFAULT_DIGITS,
+    names: Mapping[str, str] | None = None,
 ) -> Axes:
     """The Pareto front of two objectives (both minimized), non-dominated points joined.
 
@@ -231,7 +247,9 @@ def plot_pareto(
     fields that set the machine's physics (``delta``, ``speed``, ``inertia``,
     ``torque.scale``: flyopt.studies.points.PHYSICS_FIELDS), unless the
     field is an objective itself (``flyopt pareto --objectives mass,delta``).
-    Points without a design are left out and counted in the legend.
+    Points without a design are left out and counted in the legend. Each design drawn is named for the app's
+    read-outs (:func:`~flyopt.report.plots.readout.points`): its material (by ``names``, a material's display
+    name, where given) and its two objectives, as the legends write values.
 
     Raises
     ------
@@ -265,7 +283,7 @@ def plot_pareto(
     data = data[order]
     front = data[np.concatenate(([True], data[1:, 1] < np.minimum.accumulate(data[:, 1])[:-1]))]
     dropped = int((~usable).sum())
-    ax.plot(
+    (designs,) = ax.plot(
         data[:, 0],
         data[:, 1],
         "o",
@@ -273,6 +291,7 @@ def plot_pareto(
         ms=4,
         label=f"designs ({len(data)})" + (f"; {dropped} without a design left out" if dropped else ""),
     )
+    readout.points(designs, _point_rows(frame, np.flatnonzero(usable)[order], (x, y), units, digits, names))
     ax.step(front[:, 0], front[:, 1], where="post", color=standard.DEFICIT, lw=1.2)
     ax.plot(
         front[:, 0],
