@@ -77,6 +77,12 @@ class Session:
         self.editor = pn.widgets.CodeEditor(
             value=model.template_text(first) if first else "",
             language="toml",
+            # the text is read from value_input alone, which the browser sends on every change. With on_keyup the
+            # browser sends value too, and Panel copies each value it receives into value_input: on a loaded host
+            # (four busy loops on 2 cores) a value of an earlier keystroke reached the server after value_input
+            # of the last, and the page solved 'delta = 0.02' under an editor showing 'delta = 0.025', with no
+            # change left to come (traced; test_browser's edit test failed 1 run in 2-4, then 0 in 10)
+            on_keyup=False,
             sizing_mode="stretch_both",
             min_height=560,
         )
