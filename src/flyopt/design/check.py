@@ -27,7 +27,16 @@ from flyopt.names import Geometry
 #: One design (a float) or many (an array), by the same operators.
 FloatOrArray = float | NDArray[np.float64]
 
-__all__ = ["BINDING_NAMES", "BINDING_BITS", "ACTIVE_RTOL", "VERIFY_RTOL", "binding_mask", "binding_names", "violations"]
+__all__ = [
+    "BINDING_NAMES",
+    "BINDING_BITS",
+    "ACTIVE_RTOL",
+    "VERIFY_RTOL",
+    "binding_label",
+    "binding_mask",
+    "binding_names",
+    "violations",
+]
 
 #: Names that ``Candidate.binding`` may contain, in the order reports list them.
 BINDING_NAMES = {
@@ -63,6 +72,39 @@ WHEEL_BINDING_NAMES = {
     "hub_diameter_max": "the hub diameter is at the largest the textbook proportions allow",
     "hub_length_min": "the hub length is at its minimum (the proportions, or the key's length at the peak torque)",
     "hub_length_max": "the hub length is at the largest the textbook proportions allow",
+    "disc_clears_hub": "the disc's outer diameter is down to its hub",
+    "disc_below_hub": "the hub is as long as the disc is wide",
+    "castability_min_wall_PART": "a part's wall is at the casting process's minimum for the wheel's size",
+    "castability_A_B_ratio": "the section ratio of two joined parts is at the process's limit",
+}
+#: Short words for each binding name, for the text's and the report's tables (``--json`` keeps the names).
+_LABELS = {
+    "inertia": "inertia",
+    "rim_speed": "rim speed",
+    "max_outer_diameter": "envelope",
+    "max_width": "width limit",
+    "hb_min": "H/B min",
+    "hb_max": "H/B max",
+    "inner_diameter": "no bore left",
+    "max_width_hub": "width limit (hub)",
+    "hb_ratio": "H/B range",
+    "rim_clears_hub": "rim on hub",
+    "bore_clear": "disc down to bore",
+    "d_mean": "D_m pinned",
+    "web_below_rim": "web = rim width",
+    "web_below_hub": "web = hub length",
+    "arms_fit_hub": "arms fill hub",
+    "arm_within_rim": "arm = rim width",
+    "arm_within_hub": "arm = hub length",
+    "hub_wall": "hub wall",
+    "min_wall": "min wall",
+    "strength_table": "strength table end",
+    "hub_diameter_min": "hub diameter min",
+    "hub_diameter_max": "hub diameter max",
+    "hub_length_min": "hub length min",
+    "hub_length_max": "hub length max",
+    "disc_clears_hub": "disc down to hub",
+    "disc_below_hub": "hub length = disc width",
 }
 #: Bits of a binding mask, in the order of :data:`BINDING_NAMES`.
 BINDING_BITS = {name: 1 << k for k, name in enumerate(BINDING_NAMES)}
@@ -133,6 +175,26 @@ def binding_mask(
 
 
 _NAMES_OF_MASK: dict[int, tuple[str, ...]] = {}
+
+
+def binding_label(name: str) -> str:
+    """The short words for a binding name of :data:`BINDING_NAMES` or :data:`WHEEL_BINDING_NAMES`.
+
+    A part's rows carry the part's name: ``stress_web`` is "web stress",
+    ``castability_min_wall_rim`` "rim cast wall", ``castability_rim_web_ratio``
+    "section ratio rim-web". A name without words (none, tests/design/test_check.py
+    holds every name the NLPs write) is given as it is.
+    """
+    label = _LABELS.get(name)
+    if label is not None:
+        return label
+    if name.startswith("stress_"):
+        return f"{name[len('stress_') :]} stress"
+    if name.startswith("castability_min_wall_"):
+        return f"{name[len('castability_min_wall_') :]} cast wall"
+    if name.startswith("castability_") and name.endswith("_ratio"):
+        return f"section ratio {name[len('castability_') : -len('_ratio')].replace('_', '-')}"
+    return name
 
 
 def binding_names(mask: SupportsInt) -> tuple[str, ...]:

@@ -15,6 +15,7 @@ import math
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, NamedTuple
 
+from flyopt.design.check import binding_label
 from flyopt.design.result import Design
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
@@ -570,7 +571,7 @@ def design_report(
             ),
             (
                 "binding",
-                (", ".join(best.limits.binding) or "none")
+                (", ".join(map(binding_label, best.limits.binding)) or "none")
                 + (" (of the continuous optimum)" if best.provenance.solver_status == "rounded" else ""),
             ),
             ("solved by", solver_words(best)),
@@ -610,7 +611,7 @@ def design_report(
                     n(c.dims.h, "h"),
                     n(c.dims.b, "b"),
                     n(c.stresses.rim_speed, "rim_speed"),
-                    ", ".join(c.limits.binding),
+                    ", ".join(map(binding_label, c.limits.binding)),
                 ]
             )
         else:

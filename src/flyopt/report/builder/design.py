@@ -6,6 +6,7 @@ import inspect
 import math
 from typing import TYPE_CHECKING, Any, cast
 
+from flyopt.design.check import binding_label
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
 from flyopt.report.builder.base import NOTES, BuilderBase
@@ -75,7 +76,7 @@ class DesignSection(BuilderBase):
                     ")",
                 ),
             ),
-            ("binding", ", ".join(best.limits.binding) or "none"),
+            ("binding", ", ".join(map(binding_label, best.limits.binding)) or "none"),
             ("solved by", self.solved_by(best)),
         ]
         if best.limits.castability is not None:  # the text's words (one function)

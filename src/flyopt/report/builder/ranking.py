@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from flyopt.design.check import binding_label
 from flyopt.design.result import Design
 from flyopt.report.builder.base import BuilderBase
 from flyopt.report.document import Paragraph, Table
@@ -35,7 +36,7 @@ class Ranking(BuilderBase):
                     self.n(c.dims.h, "length"),
                     self.n(c.dims.b, "length"),
                     self.n(c.stresses.rim_speed, "speed"),
-                    ", ".join(c.limits.binding),
+                    ", ".join(map(binding_label, c.limits.binding)),
                 ]
             else:
                 row = [
