@@ -115,6 +115,9 @@ def test_the_pareto_front_is_flyopt_pareto_and_each_point_is_a_link(main_cli):
     lines = dict(materials.point_rows(front, 2, "engineering", materials.display_names(load(SHEAR))))
     d = cli["d_outer"].iloc[2] * 1000
     assert lines["outer diameter D"] == f"{float(f'{d:.4g}'):g} mm"  # four figures, in mm
+    binding = cli["binding"].iloc[2]  # the front's names, in words on the card
+    assert binding and len(lines["limits that bind"].split(", ")) == len(binding.split(","))
+    assert "_" not in lines["limits that bind"]
     with pytest.raises(IndexError):
         materials.point_rows(front, len(front) + 3, "engineering")
 

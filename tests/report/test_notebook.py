@@ -147,6 +147,9 @@ def test_the_ranking_shows_in_a_notebook_with_the_jsons_numbers(punch_press):
         else:
             assert _shown_equal(cell["mass [kg]"], candidate["mass"])
             assert _shown_equal(cell["d_outer [mm]"], candidate["d_outer"] * 1e3)
+            # the JSON's names in words, one for one (rim_speed -> "rim speed"): no code name reaches the reader
+            words = cell["binding, or why not"].split(", ")
+            assert len(words) == len(candidate["binding"]) and all("_" not in w for w in words)
     assert rows[0][0] == "cast steel"  # the material's name for people, as the text writes it
 
 

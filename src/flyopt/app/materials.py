@@ -333,6 +333,7 @@ def point_rows(
 
     IndexError for a row the front does not have (a stale click).
     """
+    from flyopt.design.check import binding_label
     from flyopt.report import display
     from flyopt.studies.pareto import PARETO_OBJECTIVES
 
@@ -347,8 +348,10 @@ def point_rows(
             text = "-"
         elif column == "best_material":
             text = (names or {}).get(value, str(value))
+        elif column == "binding":
+            text = ", ".join(binding_label(b) for b in value.split(",") if b) or "-"
         elif isinstance(value, str):
-            text = value.replace(",", ", ") if value else "-"
+            text = value or "-"
         elif column == "epsilon":
             dimension = PARETO_OBJECTIVES.get(other)
             text = (

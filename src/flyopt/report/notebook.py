@@ -27,6 +27,7 @@ import os
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+from flyopt.design.check import binding_label
 from flyopt.outputs.quantities import dimension_of, table_units
 from flyopt.report import display
 from flyopt.views import register
@@ -152,13 +153,14 @@ def _column(name: str, values: list[Any]) -> bool:
 def ranking_html(design: DesignResult, units: str = display.DEFAULT) -> str:
     """The ranking of :func:`ranking_frame` as an HTML table in ``units``: :data:`RANKING_COLUMNS`, each
     number to four significant figures by the text's formatter (:func:`flyopt.report.display.number`), the
-    materials by their names for people, and for a combination without a design its reason."""
+    materials by their names for people, the binding limits in words
+    (:func:`flyopt.design.check.binding_label`), and for a combination without a design its reason."""
     frame = ranking_frame(design)
     shown = to_units(frame[[c for c in RANKING_COLUMNS if c in frame.columns]], units, labels=True)
     shown["material"] = [design.material_name(key) for key in frame["material"]]
     shown = shown.rename(columns={"binding": "binding, or why not"})
     shown["binding, or why not"] = [  # what binds a design, why a combination has none (its reason)
-        binding.replace(",", ", ") if feasible else reason
+        ", ".join(binding_label(b) for b in binding.split(",") if b) if feasible else reason
         for binding, feasible, reason in zip(frame["binding"], frame["feasible"], frame["reason"])
     ]
     formatters = {
