@@ -979,7 +979,7 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
             "min_wall",
             "m",
             dm,
-            f"min_wall binds: -1 mm of the thinnest section changes the mass by {-dm * 1e-3:+.3g} kg",
+            f"the minimum wall (min_wall) binds: -1 mm of the thinnest section changes the mass by {-dm * 1e-3:+.3g} kg",
             wall,
         )
     rules = problem_limits.get("castability")
