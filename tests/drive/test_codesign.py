@@ -117,6 +117,18 @@ def test_codesign_matches_brute_force(designed):
     assert result.relaxation is not None
 
 
+def test_the_relaxations_wheel_is_named_for_people():
+    """The text names the relaxed wheel's material as everywhere else ("cast steel"), not by its key."""
+    import flyopt
+    from flyopt.report.drive import relaxation_summary
+
+    result = flyopt.solve(load("problems/press-drive.toml")).drive
+    key = result.relaxation.wheel.partition(", ")[0]
+    summary, _ = relaxation_summary(result, "engineering")
+    assert key == "cast_steel" and key not in summary
+    assert "wheel cast steel " in summary  # the name flyopt materials lists for it
+
+
 def drive_load(scene):
     from flyopt.analysis import analyse
 

@@ -120,10 +120,13 @@ def relaxation_summary(drive: DriveDesign, units: str, digits: int = DEFAULT_DIG
     r = drive.relaxation
     if r is None:
         raise ValueError("the drive has no relaxation to summarise")
+    material, comma, arms = r.wheel.partition(", ")  # the relaxation's label: the material's key[, n arms]
+    named = next((run.design for run in drive.runs if run.design is not None), None)
+    wheel = (named.material_name(material) if named is not None else material.replace("_", " ")) + comma + arms
     summary = (
         f"{field_text(r.rated_power, 'rated_power', units, digits)}, motor ratio {number(r.motor_ratio, digits)}, "
         f"flywheel ratio {number(r.flywheel_ratio, digits)}, {field_text(r.j_flywheel, 'j_flywheel', units, digits)}, "
-        f"wheel {r.wheel} {field_text(r.wheel_mass, 'wheel_mass', units, digits)}, D "
+        f"wheel {wheel} {field_text(r.wheel_mass, 'wheel_mass', units, digits)}, D "
         f"{field_text(r.d_outer, 'd_outer', units, digits)} ({r.status}; the whole-wheel NLP at the strongest "
         f"allowable, no torque on the hub)"
     )
