@@ -8,6 +8,7 @@ piecewise-constant punching torque (its extremes at 150 and 9000 N*m) and the mo
 """
 
 import math
+import re
 
 import pytest
 from conftest import PROBLEMS
@@ -83,6 +84,7 @@ def test_a_shaft_too_thin_for_the_chosen_wheel_moves_the_choice(tmp_path, solved
     assert thin.best.objective > solved.drive.best.objective
 
 
+@pytest.mark.parametrize("described", [True, False])
 @pytest.mark.parametrize(
     ("extra", "field"),
     [
@@ -91,12 +93,24 @@ def test_a_shaft_too_thin_for_the_chosen_wheel_moves_the_choice(tmp_path, solved
         ("efficiency = 0.95\n", "shaft[1].efficiency"),
     ],
 )
-def test_the_drive_designs_its_flywheel_shafts_ratio(main_cli, tmp_path, extra, field):
+def test_the_drive_designs_its_flywheel_shafts_ratio(main_cli, tmp_path, extra, field, described):
     """The drive's flywheel shaft gives no ratio (the drive designs it), nor what would move with it: one line,
     exit 2."""
     text = SCENE.read_text(encoding="utf-8").replace('name = "flywheel"', 'name = "flywheel"\n' + extra.rstrip())
+    if not described:  # a plain [[shaft]] of that name is the drive's shaft all the same (not a second one)
+        text = re.sub(r"(?m)^segments = .*$", "", text)
     path = tmp_path / "given.toml"
     path.write_text(text, encoding="utf-8")
     status, out, err = main_cli("solve", path)
     assert status == 2 and out == ""
     assert err.count("\n") == 1 and field in err and "[drive] designs" in err and "Traceback" not in err
+
+
+def test_a_flywheel_shaft_beside_a_drive_is_described(main_cli, tmp_path):
+    """Without segments, the drive's flywheel shaft says what it lacks, not "speed_ratio is missing"."""
+    text = re.sub(r"(?m)^segments = .*$", "", SCENE.read_text(encoding="utf-8"))
+    path = tmp_path / "plain.toml"
+    path.write_text(text, encoding="utf-8")
+    status, out, err = main_cli("solve", path)
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert "shaft[1].segments: is missing" in err and "speed_ratio" not in err

@@ -536,8 +536,8 @@ def _drive_flywheel_shaft(top: Table) -> tuple[object, str | None]:
     """(the [[shaft]] tables to read, the name of the drive's flywheel shaft when the scene describes it).
 
     With a [drive], a [[shaft]] named ``"flywheel"`` (:data:`flyopt.drive.codesign.FLYWHEEL_SHAFT`, the
-    name the drive gives the shaft it puts its wheel on, as ``press.flywheel_speed`` does) that gives
-    ``segments`` describes that shaft as a part (docs/flywheel-design.md, sections 14 and 26). Its speed
+    name the drive gives the shaft it puts its wheel on, as ``press.flywheel_speed`` does) is that shaft,
+    and it must give ``segments``, which describe it as a part (docs/flywheel-design.md, sections 14 and 26). Its speed
     ratio is the drive's to design, so it gives none (nor the keys :data:`DRIVE_SHAFT_REFUSED` names); it
     is read at ratio 1, a stand-in the drive replaces by each ratio it designs (and which neither the
     machine's inertia nor its efficiency reads).
@@ -549,7 +549,7 @@ def _drive_flywheel_shaft(top: Table) -> tuple[object, str | None]:
     from flyopt.io.shaft_section import DESIGNED
 
     for k, item in enumerate(raw):
-        if not (isinstance(item, dict) and item.get("name") == FLYWHEEL_SHAFT and "segments" in item):
+        if not (isinstance(item, dict) and item.get("name") == FLYWHEEL_SHAFT):
             continue
         for key in DRIVE_SHAFT_REFUSED:
             if key in item:
@@ -558,6 +558,12 @@ def _drive_flywheel_shaft(top: Table) -> tuple[object, str | None]:
                     f"is given on the drive's flywheel shaft ({FLYWHEEL_SHAFT!r}), whose speed ratio [drive] "
                     "designs: leave it out (its inertia, efficiency and train would change with the ratio)",
                 )
+        if "segments" not in item:
+            raise SceneError(
+                f"shaft[{k}].segments",
+                f"is missing: beside a [drive], a [[shaft]] named {FLYWHEEL_SHAFT!r} is the drive's flywheel shaft, "
+                "described as a part by its segments (or give this shaft another name)",
+            )
         segments = item["segments"]
         if isinstance(segments, list) and any(isinstance(g, dict) and g.get("diameter") == DESIGNED for g in segments):
             raise SceneError(
