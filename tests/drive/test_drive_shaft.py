@@ -114,3 +114,51 @@ def test_a_flywheel_shaft_beside_a_drive_is_described(main_cli, tmp_path):
     status, out, err = main_cli("solve", path)
     assert status == 2 and out == "" and err.count("\n") == 1
     assert "shaft[1].segments: is missing" in err and "speed_ratio" not in err
+
+
+def _flywheel_problem():
+    """shear-press's flywheel problem (a bare rim by the closed form: quick) for the drive's wheel search."""
+    from flyopt.analysis import analyse
+    from flyopt.design import design_inputs
+
+    scene = load(PROBLEMS / "shear-press.toml")
+    analysis, inputs = analyse(scene), design_inputs(scene)
+    return analysis.j_required, analysis.omega_max, inputs.materials, inputs.spec
+
+
+@pytest.mark.parametrize("refused_from", [1.25, 1.5, 0.1])
+def test_a_refused_winner_sends_the_search_to_the_best_checked_ratio(refused_from):
+    """The wheel search checks only its winner; where the shaft refuses it, the search runs again with every
+    design checked. Against a brute force over the same ratios, each design checked: the same ratio and mass,
+    and where every ratio is refused, no wheel (the refusal's reasons in its candidates)."""
+    from flyopt.design.designer import design_flywheel
+    from flyopt.design.spec import MountShaft
+    from flyopt.names import Objective
+
+    j_need, omega_max, materials, spec = _flywheel_problem()
+    ratios = (0.5, 1.0, 1.25, 1.5, 2.0)  # unchecked, 1.25 wins (12.4 kg; 12.8 kg at 1.0, 13.2 kg at 1.5)
+
+    def accept_at(r):
+        return lambda candidate: f"refused by the test at ratio {r:g}" if r >= refused_from else None
+
+    found, r_found = codesign._best_wheel(
+        j_need, omega_max, ("fixed", *ratios), materials, spec, None, Objective.MASS, None, accept_at=accept_at
+    )
+    brute = []
+    for r in ratios:
+        best = design_flywheel(
+            j_need, omega_max, [MountShaft(codesign.FLYWHEEL_SHAFT, r, None)], materials, spec, accept=accept_at(r)
+        ).best
+        if best is not None:
+            brute.append((best.mass, r))
+    unchecked = [
+        design_flywheel(j_need, omega_max, [MountShaft(codesign.FLYWHEEL_SHAFT, r, None)], materials, spec).best
+        for r in ratios
+    ]
+    assert min(zip(ratios, unchecked), key=lambda pair: pair[1].mass)[0] == 1.25  # so 1.25 refuses the winner
+    if not brute:
+        assert found is not None and found.best is None
+        assert all("refused by the test" in c.reason for c in found.candidates if not c.feasible)
+        return
+    mass, r_best = min(brute)
+    assert r_found == r_best and found.best.mass == pytest.approx(mass, rel=1e-12)
