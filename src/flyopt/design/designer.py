@@ -263,14 +263,6 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     combo_n = Combination(**{**combo.__dict__, "n_arms": n_arms})
     label = combo_n.label
     m = combo.material
-    identity: dict[str, Any] = dict(
-        material=m.name,
-        shaft=combo.shaft.name,
-        speed_ratio=combo.shaft.speed_ratio,
-        geometry=spec.geometry,
-        n_arms=n_arms or None,
-        bore=combo.bore or None,
-    )
     given = dict(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max)
     start = time.perf_counter()
     try:
@@ -278,7 +270,15 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
             combo_n, spec, combo.bore, combo.torque, n_arms, solver_options, method
         )
     except wheel_design.NoWheel as err:
-        return Candidate(feasible=False, reason=err.reason, limits=Limits(**given, j_max=err.j_max), **identity), None
+        return Candidate.infeasible(
+            m.name,
+            combo.shaft,
+            spec.geometry,
+            err.reason,
+            n_arms=n_arms or None,
+            bore=combo.bore or None,
+            limits=Limits(**given, j_max=err.j_max),
+        ), None
     except SolverFailed as err:
         err.combination = label
         raise
@@ -352,7 +352,12 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
             solve_time=time.perf_counter() - start,
             notes=structure.notes,
         ),
-        **identity,
+        material=m.name,
+        shaft=combo.shaft.name,
+        speed_ratio=combo.shaft.speed_ratio,
+        geometry=spec.geometry,
+        n_arms=n_arms or None,
+        bore=combo.bore or None,
     ), model
 
 
@@ -436,16 +441,12 @@ def _pruned(combo, spec, n_arms, bound, why, feasible, names):
     best = _best_of(feasible)
     label = Combination(**{**combo.__dict__, "n_arms": n_arms}).label
     winner = combination_label(names.get(best.material, best.material), best.shaft, best.n_arms)
-    return Candidate(
-        material=combo.material.name,
-        shaft=combo.shaft.name,
-        speed_ratio=combo.shaft.speed_ratio,
-        geometry=spec.geometry,
-        feasible=False,
-        reason=(
-            f"{label}: not designed, it cannot win: {why}, more than the "
-            f"{best.objective:.4g}{_OBJECTIVE_UNIT[spec.objective]} of {winner}"
-        ),
+    return Candidate.infeasible(
+        combo.material.name,
+        combo.shaft,
+        spec.geometry,
+        f"{label}: not designed, it cannot win: {why}, more than the "
+        f"{best.objective:.4g}{_OBJECTIVE_UNIT[spec.objective]} of {winner}",
         n_arms=n_arms or None,
         bore=combo.bore or None,
         limits=Limits(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max),
@@ -868,13 +869,11 @@ def _decide_textbook(
     decided.infeasible.append(
         (
             (order, 0),
-            Candidate(
-                material=material.name,
-                shaft=combo.shaft.name,
-                speed_ratio=combo.shaft.speed_ratio,
-                geometry=spec.geometry,
-                feasible=False,
-                reason=reason,
+            Candidate.infeasible(
+                material.name,
+                combo.shaft,
+                spec.geometry,
+                reason,
                 limits=Limits(
                     j_required_on_shaft=combo.j_shaft,
                     d_outer_limit=combo.cap,

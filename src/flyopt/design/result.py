@@ -19,7 +19,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from flyopt.design.spec import DesignSpec
+from flyopt.design.spec import DesignSpec, MountShaft
 from flyopt.design.wheel import ARM_MINOR_RATIO, Dims
 from flyopt.views import view
 
@@ -271,6 +271,21 @@ class Candidate:
     stresses: Stresses | None = None
     limits: Limits = field(default_factory=Limits)
     provenance: Provenance = field(default_factory=Provenance)
+
+    @classmethod
+    def infeasible(cls, material: str, shaft: MountShaft, geometry: str, reason: str, **fields: Any) -> Candidate:
+        """A combination that gives no design (shown infeasible, or pruned): its identity from the material's key,
+        the mounting shaft (its name and speed ratio) and the geometry, ``reason`` saying why in numbers, and any
+        further field (``n_arms``, ``bore``, ``limits``, ``provenance``)."""
+        return cls(
+            material=material,
+            shaft=shaft.name,
+            speed_ratio=shaft.speed_ratio,
+            geometry=geometry,
+            feasible=False,
+            reason=reason,
+            **fields,
+        )
 
     def to_dict(self, timings: bool = False) -> dict[str, Any]:
         """Plain, JSON-ready dictionary, flat (inf becomes None; wall times only with ``timings``).
