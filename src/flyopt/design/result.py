@@ -409,7 +409,7 @@ class Design(Candidate):
         checked = {
             "parts": parts,
             "stresses": stresses,
-            "provenance": dataclasses.replace(provenance, notes=provenance.notes + notes),
+            "provenance": dataclasses.replace(provenance, notes=provenance.notes + notes) if notes else provenance,
         }
         object.__setattr__(
             self, "__dict__", {name: checked[name] if name in checked else values[name] for name in _DESIGN_ORDER}
