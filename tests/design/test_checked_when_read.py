@@ -108,3 +108,14 @@ def test_a_ranking_pickled_to_another_process_carries_every_check():
         assert repr(c) == repr(s) and list(vars(c)) == list(vars(s))
         assert "_check" not in vars(s)
         assert not isinstance(s, Design) or s.stresses.stress  # checked, with its stress fields
+
+
+def test_a_check_made_meanwhile_is_not_made_again():
+    """Two readers that both find a design unchecked (two threads of the app) make the check once each at
+    most, and the second finds it made: no error, the same fields."""
+    check = _Check()
+    deferred = Design.checked_when_read(check, PROVENANCE, **FIELDS)
+    make = deferred._make_check  # the method the first read calls, taken before it runs
+    assert deferred.parts == _eager().parts
+    make()  # the second reader, which saw the design unchecked, comes after the first
+    assert check.calls == 1 and vars(deferred) == vars(_eager())

@@ -401,6 +401,8 @@ class Design(Candidate):
     def _make_check(self) -> None:
         """Make the deferred structural check and hold its fields in the declared order (as ``__init__`` would)."""
         values = self.__dict__
+        if "_check" not in values:  # checked meanwhile (another thread read it first)
+            return
         check, provenance = values["_check"], values["_unchecked_provenance"]
         try:
             parts, stresses, notes = check()
@@ -445,6 +447,7 @@ class _CheckedWhenRead:
 _DESIGN_ORDER = tuple(f.name for f in dataclasses.fields(Design))
 for _name in CHECKED_FIELDS:  # set after the dataclass is made, so that it takes them for no defaults
     setattr(Design, _name, _CheckedWhenRead(_name))
+del _name
 
 
 #: The keys of :meth:`Candidate.to_dict`, in order (the JSON of every candidate; flat since before the records).
