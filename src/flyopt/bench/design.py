@@ -5,8 +5,9 @@ Design ranking, 2 materials × 3 shafts. flyopt's two paths through
 closed form where it covers the structure) and IPOPT on every NLP, each timed
 as the one call a user makes (the default's structural check of each candidate
 is made when first read, so ``flyopt-auto-read`` times it again with every
-reported candidate's check read, as ``flyopt solve`` prints them); scipy's SLSQP on the same model, once in scaled
-physical variables and once in flyopt's own log-variables; a brute-force grid
+reported candidate's check read, as ``flyopt solve`` prints them); scipy's
+SLSQP on the same model, once in scaled physical variables and once in
+flyopt's own log-variables; a brute-force grid
 over mean diameter × H/B at several resolutions, each grid point sized exactly
 to the required inertia (:mod:`flyopt.bench.peers`); and the bench's own 1-D
 root search (:func:`flyopt.bench.references.lightest_rim_1d`), written
