@@ -1,9 +1,10 @@
 """flyopt.bench.design: the structural check timed beside the default ranking is the one the ranking made.
 
-The design section reports how much of the default ranking's time is the
-structural check of its reported candidates, by making that check again on
-each reported design; the check it times must be the check the designer made
-(the same parts, stresses and notes), or the share it reports means nothing.
+The design section reports how much of the time of the default ranking read
+whole (``flyopt-auto-read``: every reported candidate's structural check, made
+when first read) is that check, by making it again on each reported design;
+the check it times must be the check each design carries (the same parts,
+stresses and notes), or the share it reports means nothing.
 """
 
 from flyopt.bench.design import random_design_scenes, structural_checks

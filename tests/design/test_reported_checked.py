@@ -2,8 +2,9 @@
 
 The ranking reports every feasible candidate (``DesignResult.candidates``,
 printed whole by ``flyopt solve --json`` and the report), so each must carry
-its parts, stresses, burst speed and unbalance: a check made lazily, or
-batched, or skipped for the losers, fails here. Reference: the one-at-a-time
+its parts, stresses, burst speed and unbalance: a check skipped for the
+losers, or made on other dimensions, fails here (one made when a candidate
+is first read, Design.checked_when_read, is made here). Reference: the one-at-a-time
 check, :func:`flyopt.design.wheel_design.structure_fields`, of the reported
 dimensions.
 """

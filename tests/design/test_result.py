@@ -111,3 +111,20 @@ def test_records_are_built_as_their_dataclass_declares_them(record):
         one.__setattr__(params[0].name, 2.0)
     with pytest.raises(TypeError):
         record(**required, not_a_field=1.0)
+
+
+def test_an_infeasible_candidate_takes_its_identity_from_the_shaft():
+    from flyopt.design.spec import MountShaft
+
+    c = Candidate.infeasible(
+        "cast_iron", MountShaft("motor", 3.5), "rim", "too heavy", n_arms=4, limits=Limits(j_max=2.0)
+    )
+    assert (c.material, c.shaft, c.speed_ratio, c.geometry, c.feasible, c.reason) == (
+        "cast_iron",
+        "motor",
+        3.5,
+        "rim",
+        False,
+        "too heavy",
+    )
+    assert (c.n_arms, c.limits.j_max, c.dims, c.bore) == (4, 2.0, None, None)

@@ -24,6 +24,7 @@ References
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
@@ -161,7 +162,8 @@ def _solve_closed_form(pending, spec):
 
 
 def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, iterations, elapsed):
-    """Verify a solved design against every constraint and describe it."""
+    """Verify a solved design against every constraint and describe it (its structural check made when first
+    read: :meth:`flyopt.design.result.Design.checked_when_read`)."""
     m = combo.material
     geometry_name = spec.geometry
     d_outer = geometry.outer_diameter(d_mean, h)
@@ -198,8 +200,8 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
     cost = mass * m.cost if m.cost is not None else None
     shaft = combo.shaft
     dims = wheel.Dims(d_outer=d_outer, h=d_outer / 2.0 if geometry_name == Geometry.DISC else h, b=b)
-    structure = wheel_design.structure_fields(m, geometry_name, dims, combo.omega, combo.torque, spec, 0.0)
-    return Design(
+    return Design.checked_when_read(
+        functools.partial(_structure, m, geometry_name, dims, combo.omega, combo.torque, spec),
         material=m.name,
         shaft=shaft.name,
         speed_ratio=shaft.speed_ratio,
@@ -211,8 +213,6 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
         j_at_reference=inertia_at_reference(j_wheel, shaft.speed_ratio),
         objective=_objective(spec.objective, mass, d_outer, cost),
         dims=Dimensions(d_mean=d_mean, d_outer=d_outer, d_inner=max(d_inner, 0.0), h=h, b=b),
-        parts=structure.parts,
-        stresses=structure.stresses,
         limits=Limits(
             j_required_on_shaft=combo.j_shaft,
             d_outer_limit=combo.cap,
@@ -220,8 +220,16 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
             j_max=combo.j_max,
             binding=binding,
         ),
-        provenance=Provenance(solver_status=status, iterations=iterations, solve_time=elapsed, notes=structure.notes),
+        provenance=Provenance(solver_status=status, iterations=iterations, solve_time=elapsed),
     )
+
+
+def _structure(material, geometry_name, dims, omega, torque, spec):
+    """The structural check of a textbook design (:func:`flyopt.design.wheel_design.structure_fields`, no bore):
+    its parts, stresses and notes, made when the design's structural fields are first read
+    (:meth:`flyopt.design.result.Design.checked_when_read`)."""
+    structure = wheel_design.structure_fields(material, geometry_name, dims, omega, torque, spec, 0.0)
+    return structure.parts, structure.stresses, structure.notes
 
 
 def _objective(objective: str, mass: float, d_outer: float, cost: float | None) -> float:
@@ -255,14 +263,6 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     combo_n = Combination(**{**combo.__dict__, "n_arms": n_arms})
     label = combo_n.label
     m = combo.material
-    identity: dict[str, Any] = dict(
-        material=m.name,
-        shaft=combo.shaft.name,
-        speed_ratio=combo.shaft.speed_ratio,
-        geometry=spec.geometry,
-        n_arms=n_arms or None,
-        bore=combo.bore or None,
-    )
     given = dict(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max)
     start = time.perf_counter()
     try:
@@ -270,7 +270,15 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
             combo_n, spec, combo.bore, combo.torque, n_arms, solver_options, method
         )
     except wheel_design.NoWheel as err:
-        return Candidate(feasible=False, reason=err.reason, limits=Limits(**given, j_max=err.j_max), **identity), None
+        return Candidate.infeasible(
+            m.name,
+            combo.shaft,
+            spec.geometry,
+            err.reason,
+            n_arms=n_arms or None,
+            bore=combo.bore or None,
+            limits=Limits(**given, j_max=err.j_max),
+        ), None
     except SolverFailed as err:
         err.combination = label
         raise
@@ -344,7 +352,12 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
             solve_time=time.perf_counter() - start,
             notes=structure.notes,
         ),
-        **identity,
+        material=m.name,
+        shaft=combo.shaft.name,
+        speed_ratio=combo.shaft.speed_ratio,
+        geometry=spec.geometry,
+        n_arms=n_arms or None,
+        bore=combo.bore or None,
     ), model
 
 
@@ -428,16 +441,12 @@ def _pruned(combo, spec, n_arms, bound, why, feasible, names):
     best = _best_of(feasible)
     label = Combination(**{**combo.__dict__, "n_arms": n_arms}).label
     winner = combination_label(names.get(best.material, best.material), best.shaft, best.n_arms)
-    return Candidate(
-        material=combo.material.name,
-        shaft=combo.shaft.name,
-        speed_ratio=combo.shaft.speed_ratio,
-        geometry=spec.geometry,
-        feasible=False,
-        reason=(
-            f"{label}: not designed, it cannot win: {why}, more than the "
-            f"{best.objective:.4g}{_OBJECTIVE_UNIT[spec.objective]} of {winner}"
-        ),
+    return Candidate.infeasible(
+        combo.material.name,
+        combo.shaft,
+        spec.geometry,
+        f"{label}: not designed, it cannot win: {why}, more than the "
+        f"{best.objective:.4g}{_OBJECTIVE_UNIT[spec.objective]} of {winner}",
         n_arms=n_arms or None,
         bore=combo.bore or None,
         limits=Limits(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max),
@@ -860,13 +869,11 @@ def _decide_textbook(
     decided.infeasible.append(
         (
             (order, 0),
-            Candidate(
-                material=material.name,
-                shaft=combo.shaft.name,
-                speed_ratio=combo.shaft.speed_ratio,
-                geometry=spec.geometry,
-                feasible=False,
-                reason=reason,
+            Candidate.infeasible(
+                material.name,
+                combo.shaft,
+                spec.geometry,
+                reason,
                 limits=Limits(
                     j_required_on_shaft=combo.j_shaft,
                     d_outer_limit=combo.cap,

@@ -13,12 +13,13 @@ stress [Pa]. Wall-clock times are kept out of the JSON unless asked for
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from flyopt.design.spec import DesignSpec
+from flyopt.design.spec import DesignSpec, MountShaft
 from flyopt.design.wheel import ARM_MINOR_RATIO, Dims
 from flyopt.views import view
 
@@ -40,6 +41,7 @@ __all__ = [
     "CANDIDATE_FIELDS",
     "DESIGN_FIELDS",
     "TIMING_FIELDS",
+    "CHECKED_FIELDS",
 ]
 
 #: Fields that hold wall-clock times, left out of ``to_dict`` unless ``timings=True``.
@@ -270,6 +272,21 @@ class Candidate:
     limits: Limits = field(default_factory=Limits)
     provenance: Provenance = field(default_factory=Provenance)
 
+    @classmethod
+    def infeasible(cls, material: str, shaft: MountShaft, geometry: str, reason: str, **fields: Any) -> Candidate:
+        """A combination that gives no design (shown infeasible, or pruned): its identity from the material's key,
+        the mounting shaft (its name and speed ratio) and the geometry, ``reason`` saying why in numbers, and any
+        further field (``n_arms``, ``bore``, ``limits``, ``provenance``)."""
+        return cls(
+            material=material,
+            shaft=shaft.name,
+            speed_ratio=shaft.speed_ratio,
+            geometry=geometry,
+            feasible=False,
+            reason=reason,
+            **fields,
+        )
+
     def to_dict(self, timings: bool = False) -> dict[str, Any]:
         """Plain, JSON-ready dictionary, flat (inf becomes None; wall times only with ``timings``).
 
@@ -335,11 +352,20 @@ class Candidate:
         return out
 
 
+#: The structural fields of a design the check gives (:func:`flyopt.design.wheel_design.structure_fields`): what
+#: :meth:`Design.checked_when_read` leaves to be computed when first read.
+CHECKED_FIELDS = ("parts", "stresses", "provenance")
+
+#: A structural check to be made: () -> (parts, stresses, notes), the notes joining the provenance's.
+StructureCheck = Callable[[], "tuple[Parts, Stresses, tuple[str, ...]]"]
+
+
 @dataclass(frozen=True, kw_only=True)
 class Design(Candidate):
     """A feasible Candidate: one with its dimensions, parts, stresses, mass, inertia and objective.
 
     Each of them is required (``field()``: without it the Candidate's default None would be inherited).
+    A design made by :meth:`checked_when_read` computes its structural check the first time it is read.
     """
 
     feasible: bool = True
@@ -350,6 +376,78 @@ class Design(Candidate):
     dims: Dimensions = field()
     parts: Parts = field()
     stresses: Stresses = field()
+
+    @classmethod
+    def checked_when_read(cls, check: StructureCheck, provenance: Provenance, **fields: Any) -> Design:
+        """A design whose structural check (its ``parts``, ``stresses`` and the ``notes`` of its ``provenance``)
+        is made by ``check`` the first time any of them is read (docs/flywheel-design.md, section 13).
+
+        The ranking needs a design's objective, cost, mass and dimensions, not its stresses; a design that is
+        reported (the text, the JSON, the report, a DataFrame) reads them, so each reported design is checked,
+        once, by the same ``check`` as when made at once. Equality, ``repr``, ``dataclasses.replace``, a copy
+        and a pickle (a sweep's worker sends its results pickled) read every field, so they see the checked
+        design: nothing can tell it from one built with its fields given. ``provenance``: the design's,
+        without the check's notes; ``fields``: every other field.
+        """
+        unread: Any = None
+        design = cls(parts=unread, stresses=unread, provenance=provenance, **fields)
+        values = design.__dict__
+        for name in CHECKED_FIELDS:
+            del values[name]  # read through _CheckedWhenRead until checked
+        values["_check"] = check
+        values["_unchecked_provenance"] = provenance
+        return design
+
+    def _make_check(self) -> None:
+        """Make the deferred structural check and hold its fields in the declared order (as ``__init__`` would)."""
+        values = self.__dict__
+        if "_check" not in values:  # checked meanwhile (another thread read it first)
+            return
+        check, provenance = values["_check"], values["_unchecked_provenance"]
+        try:
+            parts, stresses, notes = check()
+        except AttributeError as err:  # not to be taken for a missing attribute by the attribute's reader
+            raise RuntimeError(f"the structural check of {self.material} on {self.shaft} failed: {err}") from err
+        checked = {
+            "parts": parts,
+            "stresses": stresses,
+            "provenance": dataclasses.replace(provenance, notes=provenance.notes + notes) if notes else provenance,
+        }
+        object.__setattr__(
+            self, "__dict__", {name: checked[name] if name in checked else values[name] for name in _DESIGN_ORDER}
+        )
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The checked design's fields (a pickle or a copy carries the check, never the means to make it)."""
+        if "_check" in self.__dict__:
+            self._make_check()
+        return self.__dict__
+
+
+class _CheckedWhenRead:
+    """A structural field of a :class:`Design`, read before its check is made (see :meth:`Design.checked_when_read`).
+
+    A non-data descriptor on the class: a design that holds the field (every design once checked, and every
+    one built with its fields given) reads it from its own ``__dict__`` without coming here.
+    """
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def __get__(self, design: Design | None, owner: type | None = None) -> Any:
+        if design is None:
+            return self
+        if "_check" not in design.__dict__:
+            raise AttributeError(f"{type(design).__name__!r} object has no attribute {self.name!r}")
+        design._make_check()
+        return design.__dict__[self.name]
+
+
+#: Design's fields in their declared order.
+_DESIGN_ORDER = tuple(f.name for f in dataclasses.fields(Design))
+for _name in CHECKED_FIELDS:  # set after the dataclass is made, so that it takes them for no defaults
+    setattr(Design, _name, _CheckedWhenRead(_name))
+del _name
 
 
 #: The keys of :meth:`Candidate.to_dict`, in order (the JSON of every candidate; flat since before the records).

@@ -43,6 +43,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, fields
 from typing import Any, NamedTuple
 
+from flyopt.design import geometry
 from flyopt.names import Geometry
 
 __all__ = ["Dims", "Part", "ARM_MINOR_RATIO", "parts", "has_hub", "wheel_mass", "wheel_inertia", "steps"]
@@ -112,8 +113,6 @@ class Part:
 def _annulus(name, density, r_inner, r_outer, thickness, thin=False):
     """An annulus of constant thickness: m = pi rho t (r_o^2 - r_i^2), J = m (r_o^2 + r_i^2)/2
     (``thin``: J = m r_mean^2, the thin-rim model)."""
-    from flyopt.design import geometry
-
     d_mean, h = r_outer + r_inner, r_outer - r_inner  # an annulus is a rim of D_m and H
     mass = geometry.rim_mass(d_mean, h, thickness, density)
     inertia = geometry.thin_rim_inertia(mass, d_mean) if thin else geometry.rim_inertia(mass, d_mean, h)

@@ -827,14 +827,9 @@ def structure_fields(
     unbalance = balance.permissible_unbalance(mass, omega, balance.BALANCE_GRADE)
     speed = geometry.rim_speed(omega, float(dims.d_outer))
     hoop = geometry.hoop_stress(material.density, speed)
-    stresses = Stresses(
-        rim_speed=speed,
-        hoop_stress=hoop,
-        safety_factor=material.allowable_stress / hoop if material.allowable_stress else None,
-        unbalance_permissible=float(unbalance.u_per),
-    )
     if getattr(material, "poisson_ratio", None) is None:
         notes.append(f"{material.display_name} gives no poisson_ratio: stresses not computed")
+        checked = None
     else:
         try:
             if checked is None:
@@ -843,15 +838,22 @@ def structure_fields(
                 )
         except ValueError as err:
             notes.append(f"stresses not computed: {err}")
-        else:
-            stresses = dataclasses.replace(
-                stresses,
-                stress={**checked.to_dict(), "mean_hoop": checked.mean_hoop},
-                allowable_stress=checked.allowable_stress,
-                strength_safety=_finite_or_none(checked.strength_safety),
-                burst_speed=_finite_or_none(checked.burst_speed),
-                speed_margin=_finite_or_none(checked.speed_margin),
-            )
+    found: dict[str, Any] = {}
+    if checked is not None:
+        found = dict(
+            stress={**checked.to_dict(), "mean_hoop": checked.mean_hoop},
+            allowable_stress=checked.allowable_stress,
+            strength_safety=_finite_or_none(checked.strength_safety),
+            burst_speed=_finite_or_none(checked.burst_speed),
+            speed_margin=_finite_or_none(checked.speed_margin),
+        )
+    stresses = Stresses(
+        rim_speed=speed,
+        hoop_stress=hoop,
+        safety_factor=material.allowable_stress / hoop if material.allowable_stress else None,
+        unbalance_permissible=float(unbalance.u_per),
+        **found,
+    )
     key_check = None
     hub_length = {"rim_web": dims.l_hub, "rim_arms": dims.l_hub, "disc": dims.l_hub or dims.b}.get(geometry_name)
     pressure = getattr(material, "bearing_pressure", None)

@@ -258,15 +258,7 @@ def _infeasible(last, material, shaft, spec, arms, head) -> Candidate:
             feasible=False,
             reason=f"{head}; at {last.bore * 1e3:g} mm: {last.reason}" if last.bore else f"{head}; {last.reason}",
         )
-    return Candidate(
-        material=material,
-        shaft=shaft.name,
-        speed_ratio=shaft.speed_ratio,
-        geometry=spec.geometry,
-        feasible=False,
-        reason=head,
-        n_arms=arms,
-    )
+    return Candidate.infeasible(material, shaft, spec.geometry, head, n_arms=arms)
 
 
 def _merged(
