@@ -198,12 +198,24 @@ def design_with_seats(
         j_shaft = inertia_on_shaft(j_required * spec.rim_share, shaft.speed_ratio)
         floor = seat_floor(ctx, shaft.name, j_shaft)
         pending = {(m.name, a) for m in materials for a in _arms(spec)}
+        starts = _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, options)
+        for (m, a), start in starts.items():
+            if math.isnan(start):  # d* above the series' end: no seat carries it
+                pending.discard((m, a))
+                failed[(m, shaft.name, a)] = _exhausted(
+                    None, m, shaft, spec, a, floor, layout.diameter_series, [], _beyond(ctx, shaft.name, m, a)
+                )
         tried: list[float] = []
+        refused: dict[tuple[str, int | None], Candidate] = {}  # each combination's last wheel its shaft refused
         for d in floor.seats:  # none when no seat passes the floor
-            mats = [m for m in materials if any((m.name, a) in pending for a in _arms(spec))]
+            # each combination from the first series value at or above its NLP's d* (rounded up), else the floor
+            active = {(m, a) for m, a in pending if starts.get((m, a), 0.0) <= d}
+            if not active:
+                continue
+            mats = [m for m in materials if any((m.name, a) in active for a in _arms(spec))]
             at = search
             if spec.geometry == Geometry.RIM_ARMS:
-                at = dataclasses.replace(search, arms=tuple(sorted({a for _, a in pending if a is not None})))
+                at = dataclasses.replace(search, arms=tuple(sorted({a for _, a in active if a is not None})))
             seated = dataclasses.replace(shaft, diameter=d)
             try:
                 last = design_flywheel(j_required, omega, [seated], mats, at, accept=accept, **options)
@@ -212,14 +224,17 @@ def design_with_seats(
                 break
             tried.append(d)
             for c in last.candidates:
-                if (c.material, c.n_arms) not in pending:
+                if (c.material, c.n_arms) not in active:
                     continue
                 if c.feasible:
                     found[_key(c)] = c
                     pending.discard((c.material, c.n_arms))
                     failed.pop(_key(c), None)
+                    _settled(ctx, shaft.name, c, refused.get((c.material, c.n_arms)))
                 elif c.mass is not None or _key(c) not in failed or failed[_key(c)].mass is None:
                     failed[_key(c)] = c  # the largest d whose wheel its shaft refused says most
+                    if c.mass is not None and c.bore:
+                        refused[(c.material, c.n_arms)] = c
             if not pending:
                 break
         for m, a in pending:
@@ -229,11 +244,86 @@ def design_with_seats(
     return _merged(j_required, omega, shafts, materials, spec, found, failed, order, last, accept, options, names)
 
 
-def _exhausted(last, material, shaft, spec, arms, floor, series, tried) -> Candidate:
+def _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, options) -> dict:
+    """Each combination's first series value: the NLP's d* (:func:`flyopt.design.shaft.seat_nlp.seat_optimum`)
+    rounded up to the series, never below the floor; the floor itself where the NLP gives no d*; nan where d*
+    lies above the series' end. Records each :class:`~flyopt.design.shaft.seat_nlp.SeatChoice` in ``ctx.seats``."""
+    from flyopt.design.designer import _combinations
+    from flyopt.design.shaft.seat_nlp import SeatChoice, SeatOptimum, seat_optimum
+    from flyopt.errors import SolverFailed
+
+    if not floor.seats:
+        return {}
+    lower = floor.bound if floor.bound > 0.0 else floor.seats[0]
+    d_range = (min(lower, floor.seats[0]), floor.seats[-1])
+    seated = dataclasses.replace(shaft, diameter=floor.seats[0])
+    starts: dict[tuple[str, int | None], float] = {}
+    combos = _combinations(
+        j_required, omega, options.get("omega_mean"), options.get("torque"), [seated], [False], materials, search
+    )
+    for _, combo, _ in combos:
+        for arms in _arms(search):
+            optimum: SeatOptimum | None = None
+            try:
+                found = seat_optimum(
+                    ctx, shaft.name, combo, search, arms or 0, d_range, floor.seats[0], options.get("solver_options")
+                )
+            except (ValueError, RuntimeError, SolverFailed) as err:  # a table the rows read ends: the walk decides
+                note = str(err)
+            else:
+                optimum, note = found, found.reason or ""
+            start = floor.seats[0]
+            if optimum is not None and math.isfinite(optimum.diameter):
+                above = [d for d in floor.seats if d >= optimum.diameter * (1.0 - 1e-12)]
+                start = above[0] if above else math.nan
+            starts[(combo.material.name, arms)] = start
+            ctx.seats[(shaft.name, combo.material.name, arms)] = SeatChoice(optimum, start, note=note)
+    return starts
+
+
+def _beyond(ctx, name, material, arms) -> str:
+    """Why a combination's NLP put its seat above the series' end, in numbers."""
+    choice = ctx.seats.get((name, material, arms))
+    optimum = None if choice is None else choice.optimum
+    if optimum is None or optimum.binding is None:
+        return ""
+    return f"the NLP's continuous seat is {optimum.diameter * 1e3:.4g} mm, set by its {optimum.binding.name}"
+
+
+def _settled(ctx, name, candidate, refused) -> None:
+    """Record which limit set a combination's seat: the post-check that refused the series value below it (where
+    the walk went past the NLP's rounded d*), else the NLP's binding row, else the walk's floor."""
+    from flyopt.design.shaft.cycle import check_candidate
+
+    key = (name, candidate.material, candidate.n_arms)
+    choice = ctx.seats.get(key)
+    if choice is None:
+        return
+    optimum = choice.optimum
+    if refused is not None:
+        check = check_candidate(ctx, refused)
+        worst = max(check.failed(), key=lambda lim: lim.utilisation) if check is not None and check.failed() else None
+        words = worst.describe() if worst is not None else refused.reason
+        set_by = f"the post-check, which refused {refused.bore * 1e3:g} mm: {words}"
+        ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
+    elif optimum is not None and optimum.binding is not None:
+        set_by = f"{optimum.binding.name}, a row of the NLP (d* {optimum.diameter * 1e3:.4g} mm, rounded up)"
+        ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=True)
+    else:
+        set_by = "the torque-only DE-Goodman bound at the keyseat (Shigley Eq. (7-8)), where the walk starts"
+        if optimum is not None and math.isfinite(optimum.diameter):
+            set_by = f"the NLP's lower end of the series (d* {optimum.diameter * 1e3:.4g} mm, no shaft row binds)"
+        ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
+
+
+def _exhausted(last, material, shaft, spec, arms, floor, series, tried, beyond=None) -> Candidate:
     """The combination no seat of the series carries: the floor, the series' end and the reason at the largest
-    d whose wheel its shaft refused (else the largest tried), in numbers."""
+    d whose wheel its shaft refused (else the largest tried), in numbers; ``beyond``: the NLP's d* above the
+    series' end, in words."""
     span = f"from {tried[0] * 1e3:g} to {tried[-1] * 1e3:g} mm" if tried else "that the checks support"
     words = [f"no seat diameter on ISO 3 {series} {span} carries it"]
+    if beyond:
+        words.append(beyond)
     if floor.torque_alternating > 0.0 and math.isfinite(floor.diameter):
         words.append(
             f"below {floor.diameter * 1e3:g} mm the torque alone, T_a {floor.torque_alternating:.4g} N*m, fails "
