@@ -90,6 +90,7 @@ class ShaftReport:
     seat_continuous: float | None = None  # the NLP's continuous seat d* [m] (nan: the NLP gave none)
     seat_set_by: str | None = None  # which limit set the seat, in words
     seat_sensitivity: float | None = None  # d(wheel mass)/d(required factor) of the NLP's binding row [kg] (nan: none)
+    seat_choice: Any = field(default=None, repr=False, compare=False)  # its flyopt.design.shaft.seat_nlp.SeatChoice
 
     def to_dict(self) -> dict[str, Any]:
         """The report for ``--json`` (SI); a designed seat adds ``seat_diameter`` [m], ``seat_series``, the NLP's
@@ -338,6 +339,7 @@ def report(ctx: ShaftContext, candidate: Candidate) -> ShaftReport | None:
             "seat_continuous": math.nan if optimum is None else optimum.diameter,
             "seat_set_by": choice.set_by,
             "seat_sensitivity": choice.sensitivity(layout.safety_factor),
+            "seat_choice": choice,
         }
     return ShaftReport(
         candidate.shaft, material.name, check, sensitivity, material.display_name, layout, seat, series, **nlp

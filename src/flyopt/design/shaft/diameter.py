@@ -165,6 +165,7 @@ def design_with_seats(
     *,
     ctx: ShaftContext,
     names: Mapping[str, str] | None = None,
+    continuous: bool = True,
     **options: Any,
 ) -> DesignResult:
     """:func:`flyopt.design.designer.design_flywheel` with each designed seat chosen from its series.
@@ -176,11 +177,18 @@ def design_with_seats(
     again as the scene asks (rounded, with the post-check), on its own d, and heads the candidates; a
     combination no d passes is infeasible, its reason at the largest d tried and the floor in numbers.
 
+    Each combination's walk starts at its NLP's continuous seat d* rounded up to the series
+    (:mod:`flyopt.design.shaft.seat_nlp`: the wheel and d in one NLP with the shaft's smooth rows), never below
+    the floor; ``continuous=False`` starts every walk at the floor (the search before the NLP took d, kept as the
+    reference the tests and the benchmark compare with).
+
     ``options``: ``solver_options``, ``method``, ``torque``, ``omega_mean`` of ``design_flywheel``.
     """
     from flyopt.design.designer import design_flywheel
     from flyopt.machine.transmission import inertia_on_shaft
 
+    if not continuous:  # the reference walk records no seat choices in the scene's context
+        ctx = dataclasses.replace(ctx, seats={}, _cache=ctx._cache)
     accept = acceptor(ctx, names)
     search = dataclasses.replace(spec, round_to=None, prune=False)
     found: dict[tuple[str, str, int | None], Candidate] = {}
@@ -198,7 +206,9 @@ def design_with_seats(
         j_shaft = inertia_on_shaft(j_required * spec.rim_share, shaft.speed_ratio)
         floor = seat_floor(ctx, shaft.name, j_shaft)
         pending = {(m.name, a) for m in materials for a in _arms(spec)}
-        starts = _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, options)
+        starts = (
+            _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, options) if continuous else {}
+        )
         for (m, a), start in starts.items():
             if math.isnan(start):  # d* above the series' end: no seat carries it
                 pending.discard((m, a))

@@ -69,6 +69,9 @@ __all__ = ["SeatOptimum", "SeatRow", "SeatChoice", "seat_optimum", "TOLERANCE", 
 TOLERANCE = 1e-7
 #: Rounds of the fixed point before it is given up (its last two d then reported, the smaller used).
 MAX_ROUNDS = 12
+#: Weight of ln d in the objective: where the wheel's objective does not grow with d (no hub, or the outer
+#: diameter objective) the smallest d the rows allow is taken; elsewhere it moves ln m's multipliers by ~1e-6.
+TIE_BREAK = 1e-6
 #: Added to squares under a root [N^2 m^2 or rad^2]: keeps a row differentiable where a load vanishes.
 _TINY = 1e-18
 _IPOPT = {**DEFAULT_SOLVER_OPTIONS, "ipopt.max_iter": 1000}
@@ -99,7 +102,7 @@ class SeatOptimum:
     diameter : float
         d* [m] (nan: the NLP gave none; ``reason`` says why).
     mass : float
-        The NLP's wheel mass at d* [kg].
+        The NLP's wheel mass at d* [kg] (``inertia``: its J [kg*m^2]).
     status : str
         IPOPT's return status of the last round.
     rounds : int
@@ -125,6 +128,7 @@ class SeatOptimum:
     rows: tuple[SeatRow, ...] = ()
     lower_bound: bool = False
     reason: str | None = None
+    inertia: float = math.nan
 
     @property
     def binding(self) -> SeatRow | None:
@@ -133,7 +137,9 @@ class SeatOptimum:
         return max(active, key=lambda r: r.multiplier) if active else None
 
     def mass_sensitivity(self, safety_factor: float) -> float:
-        """d(m)/d(n) [kg] of the binding row's required factor n (its multiplier is d(ln m)/d(ln n)); nan: none."""
+        """d(m)/d(n) [kg] of the binding row's required factor n (its multiplier is d(ln m)/d(ln n)) with the
+        round's frozen values held (the seat torque, the strengths): where the torque moves with d the fixed
+        point's own slope differs (docs section 26); nan: no row binds."""
         row = self.binding
         return self.mass * row.multiplier / safety_factor if row is not None else math.nan
 
@@ -291,10 +297,15 @@ def seat_optimum(
     d_range: tuple[float, float],
     d_start: float,
     solver_options: Mapping[str, Any] | None = None,
+    *,
+    fixed_point: bool = True,
+    wheel: tuple[float, float] | None = None,
 ) -> SeatOptimum:
     """d* of a combination's wheel on the designed seat of shaft ``name``, by the fixed point above.
 
     ``d_range`` [m] bounds d (the series' range the checks support); ``d_start`` [m] is the first round's d.
+    ``fixed_point=False`` solves one round, its values frozen at ``d_start`` with the wheel ``wheel`` (m [kg],
+    J [kg*m^2]; default: the thin ring of the required inertia): the NLP whose multipliers the sensitivity reads.
     The fixed point d = F(d), F the NLP's d with the values frozen at d, is found by the secant method on
     F(d) - d, bracketed (Illinois) once two rounds fall on either side; a round IPOPT does not solve ends the
     search with its status (the walk then starts at its floor).
@@ -330,6 +341,8 @@ def seat_optimum(
         "inertia": combo.j_shaft,
         "wheel": start,
     }
+    if wheel is not None:
+        state.update(mass=wheel[0], inertia=wheel[1])
     evaluations: list[tuple[float, float, dict[str, Any]]] = []  # (d frozen at, F(d), the round's result)
 
     def round_at(d: float) -> dict[str, Any] | None:
@@ -358,11 +371,11 @@ def seat_optimum(
                 tuple(e[1] for e in evaluations),
                 reason=f"IPOPT did not solve the seat's NLP (return status {status!r})",
             )
-        if abs(result["d"] - d) <= TOLERANCE * d:
+        if abs(result["d"] - d) <= TOLERANCE * d or not fixed_point:
             break
         d = _next(evaluations, d_range)
     last_d, f_last, result = evaluations[-1]
-    converged = abs(f_last - last_d) <= TOLERANCE * last_d
+    converged = abs(f_last - last_d) <= TOLERANCE * last_d or not fixed_point
     history = tuple(e[1] for e in evaluations)
     d_star = f_last if converged else min(history[-2:])
     return SeatOptimum(
@@ -375,6 +388,7 @@ def seat_optimum(
         result["rows"],
         result["lower"],
         None if converged else "the fixed point did not settle: the smaller of its last two d is used",
+        result["inertia"],
     )
 
 
@@ -569,7 +583,8 @@ class _Model:
             add("shaft_deflection", ca.log(deflection / layout.max_deflection), -inf, 0.0)
             shaft_rows.append(("deflection", "at the wheel"))
         xall = ca.vertcat(x, xd)
-        nlp = {"x": xall, "p": ca.vertcat(*params), "f": form.objective, "g": ca.vertcat(*rows)}
+        objective = form.objective + TIE_BREAK * xd
+        nlp = {"x": xall, "p": ca.vertcat(*params), "f": objective, "g": ca.vertcat(*rows)}
         solver = ca.nlpsol("seat", "ipopt", nlp, self.options)
         evaluate = ca.Function("mass_inertia", [xall], [form.mass, form.inertia])
         return solver, evaluate, shaft_rows, lbg, ubg, first
