@@ -413,3 +413,40 @@ def test_the_binding_rows_multiplier_is_the_mass_sensitivity_at_the_frozen_torqu
     slope = (plus - minus) / (2 * 1.5e-3)
     assert found[1.5].mass_sensitivity(1.5) == pytest.approx(slope, rel=1e-3)
     assert _choice(solution).sensitivity(1.5) == pytest.approx(slope, rel=1e-3)
+
+
+def test_where_the_torsional_mode_refuses_the_rounded_seat_the_walk_goes_on(tmp_path):
+    """With 2 kg m^2 on the pinion end the NLP's d* (fatigue, 57.6 mm) rounds up to 60 mm, but the torsional mode
+    falls inside the widened running range on 60 and 63 mm: the walk goes on to 67 mm, the value the walk from the
+    floor (run here) also picks, and the report names the post-check's limit, with no NLP sensitivity."""
+    from flyopt.design.shaft.diameter import design_with_seats, seated
+
+    path = tmp_path / "heavier.toml"
+    path.write_text(SCENE.read_text().replace('inertia = "1.5 kg*m^2"', 'inertia = "2 kg*m^2"'))
+    scene = flyopt.load(path)
+    solution = solve(scene)
+    (report,) = solution.shaft_checks
+    choice = report.seat_choice
+    assert choice.optimum.status == "Solve_Succeeded" and choice.optimum.converged
+    assert 0.056 < report.seat_continuous < 0.060 and choice.start == pytest.approx(0.060, rel=1e-12)
+    assert report.seat_diameter == pytest.approx(0.067, rel=1e-12) and report.check.holds
+    assert report.seat_set_by.startswith(
+        "the post-check, which refused 63 mm: torsional critical speed (mode 1 at order 9.33333)"
+    )
+    assert math.isnan(report.seat_sensitivity) and report.to_dict()["seat_dmass_dfactor"] is None
+    an = solution.analysis
+    inputs = one_design(design_inputs(scene))
+    old = design_with_seats(
+        an.j_margin,
+        an.omega_max,
+        seated(inputs.shafts, {"intermediate"}),
+        list(inputs.materials),
+        inputs.spec,
+        ctx=shaft_context_of(scene, an),
+        continuous=False,
+        torque=an.flywheel_torque(),
+        omega_mean=an.omega_mean,
+    )
+    assert old.best.bore == solution.design.best.bore and old.best.mass == pytest.approx(
+        solution.design.best.mass, rel=1e-9
+    )

@@ -447,7 +447,7 @@ class _Model:
                 s.get("kt"),
                 s.get("kts"),
                 s.get("radius"),
-                s.get("r_over_d"),
+                s.get("r_over_d") if s.get("radius") is None else None,  # a fillet's r/d follows d: not the shape
                 None if s["designed"] else s["d"],
             )
             for s in frozen.sections
