@@ -74,7 +74,16 @@ MAX_ROUNDS = 12
 TIE_BREAK = 1e-6
 #: Added to squares under a root [N^2 m^2 or rad^2]: keeps a row differentiable where a load vanishes.
 _TINY = 1e-18
-_IPOPT = {**DEFAULT_SOLVER_OPTIONS, "ipopt.max_iter": 1000}
+_IPOPT: dict[str, Any] = {**DEFAULT_SOLVER_OPTIONS, "ipopt.max_iter": 1000}
+#: IPOPT from the last round's solution and multipliers (the rounds move d by a little): a small barrier
+#: parameter and pushes, so it starts where the last round ended; a round it does not solve is solved cold.
+_WARM: dict[str, Any] = {
+    "ipopt.warm_start_init_point": "yes",
+    "ipopt.mu_init": 1e-6,
+    "ipopt.warm_start_bound_push": 1e-9,
+    "ipopt.warm_start_slack_bound_push": 1e-9,
+    "ipopt.warm_start_mult_bound_push": 1e-9,
+}
 
 
 @dataclass(frozen=True)
@@ -346,7 +355,11 @@ def seat_optimum(
     evaluations: list[tuple[float, float, dict[str, Any]]] = []  # (d frozen at, F(d), the round's result)
 
     def round_at(d: float) -> dict[str, Any] | None:
-        key_length = _hub_bounds(wheel_material, d, combo.torque)[1][0] if structure.has_hub else 0.0
+        key_length = 0.0  # the key's shortest hub where it is longer than the proportions' shortest, else none
+        if structure.has_hub:
+            shortest = _hub_bounds(wheel_material, d, combo.torque)[1][0]
+            if shortest > hub.hub_proportions(d, wheel_material.hub_kind).l_hub_min * (1.0 + 1e-12):
+                key_length = shortest
         frozen = _freeze(ctx, name, layout, material, d, state["mass"], state["inertia"], key_length)
         result = model.solve(frozen, state["wheel"])
         if result["status"] not in CONVERGED:
@@ -426,24 +439,16 @@ class _Model:
         self.scale = problem.density * problem.omega**2 * (start["d_outer"] / 2.0) ** 2
         self.options = {**_IPOPT, **{k: v for k, v in (solver_options or {}).items() if k.startswith("ipopt.")}}
         self.built: dict[tuple[Any, ...], Any] = {}
+        self.iterations: list[int] = []  # IPOPT's iterations of each round
+        self.last: tuple[Any, ...] | None = None  # the last round's (shape, x, lam_x, lam_g), its warm start
         self.loads: dict[str, Any] | None = None
 
     def _shape(self, frozen: _Frozen) -> tuple[Any, ...]:
-        p = hub.hub_proportions(1.0, self.wheel_material.hub_kind) if self.structure.has_hub else None
-        key = (
-            None
-            if p is None
-            else (
-                frozen.key_length > p.l_hub_min * frozen.diameter * (1.0 + 1e-12),
-                frozen.key_length > p.l_hub_max * frozen.diameter,
-            )
-        )
         sections = tuple(
             (
                 s["x"],
                 s["designed"],
                 s["kind"],
-                s["e"],
                 s.get("kt"),
                 s.get("kts"),
                 s.get("radius"),
@@ -452,7 +457,7 @@ class _Model:
             )
             for s in frozen.sections
         )
-        return (key, sections)
+        return sections
 
     def solve(self, frozen: _Frozen, wheel_start: Mapping[str, float]) -> dict[str, Any]:
         """One round: IPOPT on the NLP with ``frozen`` as its parameters, from ``wheel_start`` and the round's d."""
@@ -461,16 +466,31 @@ class _Model:
         shape = self._shape(frozen)
         if shape not in self.built:
             self.built[shape] = self._build(frozen)
-        solver, evaluate, shaft_rows, lbg, ubg, first = self.built[shape]
+        (cold, warm), evaluate, shaft_rows, lbg, ubg, first = self.built[shape]
         lbx, ubx, _ = wheel_nlp.variable_bounds(self.structure, self.problem)
         lo_d, hi_d = math.log(self.d_range[0]), math.log(self.d_range[1])
         x0 = [min(max(math.log(wheel_start[n]), lo), hi) for n, lo, hi in zip(self.names, lbx, ubx)]
         x0.append(min(max(math.log(frozen.diameter), lo_d), hi_d))
-        p = [frozen.torque_alternating, frozen.torque_mean, math.log(frozen.key_length) if frozen.key_length else 0.0]
+        longer = 0.0
+        if self.structure.has_hub:
+            ratios = hub.hub_proportions(1.0, self.wheel_material.hub_kind)
+            longer = 1.0 if frozen.key_length > ratios.l_hub_max * frozen.diameter else 0.0
+        log_key = math.log(frozen.key_length) if frozen.key_length > 0.0 else math.log(1e-6)
+        p = [frozen.torque_alternating, frozen.torque_mean, log_key, longer]
         for s in frozen.sections:
-            p += [s["sut"], s["sy"], s["se"], s["d"], s.get("root_a", 0.0), s.get("root_as", 0.0)]
-        sol = solver(x0=x0, lbx=lbx + [lo_d], ubx=ubx + [hi_d], lbg=lbg, ubg=ubg, p=p)
-        status = solver.stats().get("return_status", "unknown")
+            p += [s["sut"], s["sy"], s["se"], s["d"], s.get("root_a", 0.0), s.get("root_as", 0.0), s["e"]]
+        bounds = {"lbx": lbx + [lo_d], "ubx": ubx + [hi_d], "lbg": lbg, "ubg": ubg, "p": p}
+        sol, stats = None, {}
+        if self.last is not None and self.last[0] == shape:  # from the last round's point and multipliers
+            sol = warm(x0=self.last[1], lam_x0=self.last[2], lam_g0=self.last[3], **bounds)
+            stats = warm.stats()
+        if sol is None or stats.get("return_status") not in CONVERGED:  # cold, as in the first round
+            sol = cold(x0=x0, **bounds)
+            stats = cold.stats()
+        status = stats.get("return_status", "unknown")
+        if status in CONVERGED:
+            self.last = (shape, sol["x"], sol["lam_x"], sol["lam_g"])
+        self.iterations.append(int(stats.get("iter_count", -1)))
         nw = len(self.names)
         xv = sol["x"].full().ravel()
         g = sol["g"].full().ravel()
@@ -500,8 +520,8 @@ class _Model:
         x = ca.SX.sym("x", nw)
         xd = ca.SX.sym("log_d")
         d = ca.exp(xd)
-        ta, tm, log_key = ca.SX.sym("ta"), ca.SX.sym("tm"), ca.SX.sym("log_key")
-        params = [ta, tm, log_key]
+        ta, tm, log_key, key_longer = ca.SX.sym("ta"), ca.SX.sym("tm"), ca.SX.sym("log_key"), ca.SX.sym("key_longer")
+        params = [ta, tm, log_key, key_longer]
         par = {
             "omega": problem.omega,
             "density": problem.density,
@@ -529,13 +549,12 @@ class _Model:
             p = hub.hub_proportions(1.0, self.wheel_material.hub_kind)
             add("hub_diameter", col["d_hub"] - xd, math.log(p.d_hub_min), math.log(p.d_hub_max))
             add("hub_length_min", col["l_hub"] - xd, math.log(p.l_hub_min), inf)
-            if frozen.key_length > p.l_hub_min * d0 * (1.0 + 1e-12):
-                add("hub_length_key", col["l_hub"] - log_key, 0.0, inf)
+            # the key's shortest hub, ln l_key frozen (a parameter: ln of a micrometre where no key is asked)
+            add("hub_length_key", col["l_hub"] - log_key, 0.0, inf)
             if structure.geometry != Geometry.DISC:
-                if frozen.key_length > p.l_hub_max * d0:  # the key longer than the proportions: the key's hub
-                    add("hub_length_max", col["l_hub"] - log_key, -inf, 0.0)
-                else:
-                    add("hub_length_max", col["l_hub"] - xd, -inf, math.log(p.l_hub_max))
+                # at most the proportions' longest, or the key's where it is longer (key_longer 1, frozen)
+                longest = key_longer * log_key + (1.0 - key_longer) * (xd + math.log(p.l_hub_max))
+                add("hub_length_max", col["l_hub"] - longest, -inf, 0.0)
 
         m = form.mass
         xs = np.array([s["x"] for s in frozen.sections])
@@ -549,10 +568,10 @@ class _Model:
         shaft_rows: list[tuple[str, str]] = []
         first = len(rows)
         for i, s in enumerate(frozen.sections):
-            sut, sy, se0, d_frozen, root_a, root_as = (
-                ca.SX.sym(f"{k}_{i}") for k in ("sut", "sy", "se", "d", "ra", "rs")
+            sut, sy, se0, d_frozen, root_a, root_as, e = (
+                ca.SX.sym(f"{k}_{i}") for k in ("sut", "sy", "se", "d", "ra", "rs", "e")
             )
-            params += [sut, sy, se0, d_frozen, root_a, root_as]
+            params += [sut, sy, se0, d_frozen, root_a, root_as, e]
             ds = d if s["designed"] else s["d"]
             my = m * float(loads["weight"]["moment"][i]) + float(loads["y"]["moment"][i])
             mz = float(loads["z"]["moment"][i])
@@ -566,7 +585,7 @@ class _Model:
                 q = strength.sensitivity_of(root_a, radius, ca.sqrt)
                 qs = strength.sensitivity_of(root_as, radius, ca.sqrt)
                 kf, kfs = 1.0 + q * (s["kt"] - 1.0), 1.0 + qs * (s["kts"] - 1.0)
-            se = se0 * (ds / d_frozen) ** s["e"] if s["designed"] else se0
+            se = se0 * (ds / d_frozen) ** e if s["designed"] else se0
             a, b = strength.de_terms(ma, t_a, mm, t_m, kf, kfs, lambda v: ca.sqrt(v + _TINY))
             bracket = strength._criterion_sum("goodman", a, b, se, sut, sy)
             add(f"shaft_fatigue {i}", ca.log(n_req * 16.0 * bracket / (math.pi * ds**3)), -inf, 0.0)
@@ -586,8 +605,9 @@ class _Model:
         objective = form.objective + TIE_BREAK * xd
         nlp = {"x": xall, "p": ca.vertcat(*params), "f": objective, "g": ca.vertcat(*rows)}
         solver = ca.nlpsol("seat", "ipopt", nlp, self.options)
+        warm = ca.nlpsol("seat_warm", "ipopt", nlp, {**self.options, **_WARM})
         evaluate = ca.Function("mass_inertia", [xall], [form.mass, form.inertia])
-        return solver, evaluate, shaft_rows, lbg, ubg, first
+        return (solver, warm), evaluate, shaft_rows, lbg, ubg, first
 
 
 def _slope_expr(loads, what, i, m, ratio4):
