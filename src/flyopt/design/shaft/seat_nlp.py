@@ -466,7 +466,8 @@ class _Model:
         shape = self._shape(frozen)
         if shape not in self.built:
             self.built[shape] = self._build(frozen)
-        (cold, warm), evaluate, shaft_rows, lbg, ubg, first = self.built[shape]
+        solvers, evaluate, shaft_rows, lbg, ubg, first = self.built[shape]
+        warm = solvers[1]
         lbx, ubx, _ = wheel_nlp.variable_bounds(self.structure, self.problem)
         lo_d, hi_d = math.log(self.d_range[0]), math.log(self.d_range[1])
         x0 = [min(max(math.log(wheel_start[n]), lo), hi) for n, lo, hi in zip(self.names, lbx, ubx)]
@@ -480,13 +481,16 @@ class _Model:
         for s in frozen.sections:
             p += [s["sut"], s["sy"], s["se"], s["d"], s.get("root_a", 0.0), s.get("root_as", 0.0), s["e"]]
         bounds = {"lbx": lbx + [lo_d], "ubx": ubx + [hi_d], "lbg": lbg, "ubg": ubg, "p": p}
-        sol, stats = None, {}
         if self.last is not None and self.last[0] == shape:  # from the last round's point and multipliers
             sol = warm(x0=self.last[1], lam_x0=self.last[2], lam_g0=self.last[3], **bounds)
-            stats = warm.stats()
-        if sol is None or stats.get("return_status") not in CONVERGED:  # cold, as in the first round
-            sol = cold(x0=x0, **bounds)
-            stats = cold.stats()
+        else:  # the first round: from the start, no multipliers
+            sol = warm(x0=x0, **bounds)
+        stats = warm.stats()
+        if stats.get("return_status") not in CONVERGED:  # IPOPT cold, its own start (built where first needed)
+            if not isinstance(solvers[0], ca.Function):
+                solvers[0] = ca.nlpsol("seat", "ipopt", solvers[0], self.options)
+            sol = solvers[0](x0=x0, **bounds)
+            stats = solvers[0].stats()
         status = stats.get("return_status", "unknown")
         if status in CONVERGED:
             self.last = (shape, sol["x"], sol["lam_x"], sol["lam_g"])
@@ -604,10 +608,9 @@ class _Model:
         xall = ca.vertcat(x, xd)
         objective = form.objective + TIE_BREAK * xd
         nlp = {"x": xall, "p": ca.vertcat(*params), "f": objective, "g": ca.vertcat(*rows)}
-        solver = ca.nlpsol("seat", "ipopt", nlp, self.options)
         warm = ca.nlpsol("seat_warm", "ipopt", nlp, {**self.options, **_WARM})
         evaluate = ca.Function("mass_inertia", [xall], [form.mass, form.inertia])
-        return (solver, warm), evaluate, shaft_rows, lbg, ubg, first
+        return [nlp, warm], evaluate, shaft_rows, lbg, ubg, first
 
 
 def _slope_expr(loads, what, i, m, ratio4):
