@@ -442,6 +442,7 @@ The shaft: four steps (0.06-0.09 m), bearings at 0.1 and 0.9 m (rigid), steel (E
 
 ## Notes
 
+- On this shared host the whole check's median moves from run to run with the load on the pinned core (3.48 ms in the run of commit db79fce, 7-9 ms in the runs of the seat's NLP, whose check_shaft is the same: an A/B of `joined_check` pinned to CPU 1, this tree against db79fce's, 200 checks each, gave minima of 2.3-3.4 ms against 2.2-2.7 ms and medians of 3.2-4.4 against 2.5-4.1 ms); a verdict "NOT met" there says the target is not met in this run, not that the check grew.
 - The FE's error is against the same model on a 320-element mesh; the default mesh (L/20 plus the breakpoints) is what the whole check uses.
 - The strength check is numpy-vectorised: many designs in one call cost far less each than one call per design.
 - A design checks every wheel it designs on the same shaft: check_shaft keeps each section's strengths (S_ut, S_y, S_e by material, diameter and finish) and notch factors, pure functions, so the target's figure is a wheel's check after the first on its shaft; the first is the row "the first check on this shaft".
