@@ -384,8 +384,9 @@ def test_the_seat_in_the_json_with_its_units(designed):
 
 
 def test_the_binding_rows_multiplier_is_the_mass_sensitivity_at_the_frozen_torque(designed):
-    """d(m)/d(n) from the fatigue row's multiplier against a central difference of the NLP's mass in the shaft's
-    required factor n: one round at d*, its values frozen there, solved again at n (1 +- 1e-3)."""
+    """d(m)/d(n) from the fatigue row's multiplier against a central difference of the NLP's mass (the wheel and the
+    designed step, 400 mm of steel at d) in the shaft's required factor n: one round at d*, its values frozen there,
+    solved again at n (1 +- 1e-3)."""
     from flyopt.design.designer import _combinations
     from flyopt.design.shaft.seat_nlp import seat_optimum
 
@@ -409,7 +410,9 @@ def test_the_binding_rows_multiplier_is_the_mass_sensitivity_at_the_frozen_torqu
         )
         assert found[n].status == "Solve_Succeeded" and found[n].binding.name == opt.binding.name
     assert found[1.5].diameter == pytest.approx(opt.diameter, rel=1e-6)  # d* is the round's own fixed point
-    plus, minus = found[1.5 * (1 + 1e-3)].mass, found[1.5 * (1 - 1e-3)].mass
+    steel = ctx.materials["intermediate"].density * math.pi / 4 * opt.diameter**2 * 0.4  # 120-520 mm at d*
+    assert opt.shaft_mass == pytest.approx(steel, rel=1e-12)
+    plus, minus = (found[n].mass + found[n].shaft_mass for n in (1.5 * (1 + 1e-3), 1.5 * (1 - 1e-3)))
     slope = (plus - minus) / (2 * 1.5e-3)
     assert found[1.5].mass_sensitivity(1.5) == pytest.approx(slope, rel=1e-3)
     assert _choice(solution).sensitivity(1.5) == pytest.approx(slope, rel=1e-3)
@@ -450,3 +453,33 @@ def test_where_the_torsional_mode_refuses_the_rounded_seat_the_walk_goes_on(tmp_
     assert old.best.bore == solution.design.best.bore and old.best.mass == pytest.approx(
         solution.design.best.mass, rel=1e-9
     )
+
+
+def test_a_disc_bored_on_the_seat_does_not_pull_the_seat_to_the_series_end(tmp_path):
+    """A disc that is an annulus on its bore gets lighter as the bore grows: with the wheel's mass alone as the
+    objective d* went to the range's top (160 mm). With the designed step's steel counted the fatigue row sets d*
+    again, and the seat is the one the walk from the floor picks (run here)."""
+    from flyopt.design.shaft.diameter import design_with_seats, seated
+
+    path = tmp_path / "disc.toml"
+    path.write_text(SCENE.read_text().replace('geometry = "rim_web"', 'geometry = "disc"'))
+    scene = flyopt.load(path)
+    solution = solve(scene)
+    (report,) = solution.shaft_checks
+    assert report.seat_choice.optimum.binding.name == "fatigue at the keyseat at the wheel seat"
+    assert 0.056 < report.seat_continuous < 0.060 and report.seat_diameter == pytest.approx(0.060, rel=1e-12)
+    an = solution.analysis
+    inputs = one_design(design_inputs(scene))
+    old = design_with_seats(
+        an.j_margin,
+        an.omega_max,
+        seated(inputs.shafts, {"intermediate"}),
+        list(inputs.materials),
+        inputs.spec,
+        ctx=shaft_context_of(scene, an),
+        continuous=False,
+        torque=an.flywheel_torque(),
+        omega_mean=an.omega_mean,
+    )
+    assert old.best.bore == solution.design.best.bore
+    assert old.best.mass == pytest.approx(solution.design.best.mass, rel=1e-9)

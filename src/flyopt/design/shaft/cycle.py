@@ -89,7 +89,7 @@ class ShaftReport:
     seat_series: str | None = None  # the ISO 3 series it was chosen from
     seat_continuous: float | None = None  # the NLP's continuous seat d* [m] (nan: the NLP gave none)
     seat_set_by: str | None = None  # which limit set the seat, in words
-    seat_sensitivity: float | None = None  # d(wheel mass)/d(required factor) of the NLP's binding row [kg] (nan: none)
+    seat_sensitivity: float | None = None  # d(mass)/d(required factor) of the NLP's binding row [kg] (nan: none)
     seat_choice: Any = field(default=None, repr=False, compare=False)  # its flyopt.design.shaft.seat_nlp.SeatChoice
 
     def to_dict(self) -> dict[str, Any]:

@@ -322,7 +322,8 @@ def _settled(ctx, name, candidate, refused) -> None:
     else:
         set_by = "the torque-only DE-Goodman bound at the keyseat (Shigley Eq. (7-8)), where the walk starts"
         if optimum is not None and math.isfinite(optimum.diameter):
-            set_by = f"the NLP's lower end of the series (d* {optimum.diameter * 1e3:.4g} mm, no shaft row binds)"
+            where = "at the lower end of the range" if optimum.lower_bound else "where the objective is least"
+            set_by = f"the NLP, no shaft row binding (d* {optimum.diameter * 1e3:.4g} mm, {where}, rounded up)"
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
 
 

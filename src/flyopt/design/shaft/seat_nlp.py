@@ -29,7 +29,9 @@ response, :func:`flyopt.design.shaft.train.seat_torque`, a resonance effect: not
 in d), S_ut and S_y (the material's table by thickness: steps), the notch table's row and
 which side of a shoulder is the smaller, the k_b branch and the key's hub length.
 
-The wheel's stress rows take the material's strongest allowable (a relaxation: the
+The objective is the wheel's mass and the steel of the designed steps (the wheel's alone can fall as the bore
+grows: an annulus on its bore), with ln d weighted :data:`TIE_BREAK`. The wheel's stress rows take the material's
+strongest allowable (a relaxation: the
 designer's own wheel, designed on the series value, settles them by the exact maxima).
 Not rows: the lateral critical speed (a beam-FE eigenvalue) and the torsional modes
 against the cycle's orders (which a mode crosses non-monotonically as d grows): the
@@ -54,7 +56,7 @@ from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_line
 from flyopt.design.shaft.check import _carries_torque, _strengths, notch_geometry
 from flyopt.design.shaft.lateral import GRAVITY
-from flyopt.names import Geometry
+from flyopt.names import Geometry, Objective
 
 if TYPE_CHECKING:
     from flyopt.design.combination import Combination
@@ -111,7 +113,7 @@ class SeatOptimum:
     diameter : float
         d* [m] (nan: the NLP gave none; ``reason`` says why).
     mass : float
-        The NLP's wheel mass at d* [kg] (``inertia``: its J [kg*m^2]).
+        The NLP's wheel mass at d* [kg] (``inertia``: its J [kg*m^2]; ``shaft_mass``: the designed steps' [kg]).
     status : str
         IPOPT's return status of the last round.
     rounds : int
@@ -138,6 +140,7 @@ class SeatOptimum:
     lower_bound: bool = False
     reason: str | None = None
     inertia: float = math.nan
+    shaft_mass: float = 0.0
 
     @property
     def binding(self) -> SeatRow | None:
@@ -146,11 +149,12 @@ class SeatOptimum:
         return max(active, key=lambda r: r.multiplier) if active else None
 
     def mass_sensitivity(self, safety_factor: float) -> float:
-        """d(m)/d(n) [kg] of the binding row's required factor n (its multiplier is d(ln m)/d(ln n)) with the
+        """d(m)/d(n) [kg] of the binding row's required factor n, m the objective's mass (the wheel and the
+        designed steps: its multiplier is d(ln m)/d(ln n)) with the
         round's frozen values held (the seat torque, the strengths): where the torque moves with d the fixed
         point's own slope differs (docs section 26); nan: no row binds."""
         row = self.binding
-        return self.mass * row.multiplier / safety_factor if row is not None else math.nan
+        return (self.mass + self.shaft_mass) * row.multiplier / safety_factor if row is not None else math.nan
 
 
 @dataclass(frozen=True)
@@ -181,6 +185,12 @@ class _Frozen:
     torque_alternating: float
     sections: tuple[dict[str, Any], ...]
     key_length: float
+
+
+def _designed_length(layout: ShaftLayout) -> float:
+    """The length of the shaft's designed steps [m] (their diameter is d)."""
+    starts = (0.0, *layout.steps[:-1])
+    return sum(end - start for j, (start, end) in enumerate(zip(starts, layout.steps)) if j in layout.designed)
 
 
 def _designed_at(layout: ShaftLayout, x: float) -> bool:
@@ -402,6 +412,7 @@ def seat_optimum(
         result["lower"],
         None if converged else "the fixed point did not settle: the smaller of its last two d is used",
         result["inertia"],
+        result["steel"],
     )
 
 
@@ -505,11 +516,12 @@ class _Model:
             active = abs(float(g[j])) <= wheel_nlp.ACTIVE_ROW
             rows.append(SeatRow(kind, where, math.exp(float(g[j])), float(lam[j]) if active and lam[j] > 0 else 0.0))
         rows.sort(key=lambda row: (-row.multiplier, -row.utilisation))
-        mass, inertia = (float(v) for v in evaluate(xv))
+        mass, inertia, steel = (float(v) for v in evaluate(xv))
         return {
             "status": status,
             "d": math.exp(float(xv[nw])),
             "mass": mass,
+            "steel": steel,
             "inertia": inertia,
             "wheel": {n: math.exp(float(v)) for n, v in zip(self.names, xv[:nw])},
             "rows": tuple(rows),
@@ -606,10 +618,13 @@ class _Model:
             add("shaft_deflection", ca.log(deflection / layout.max_deflection), -inf, 0.0)
             shaft_rows.append(("deflection", "at the wheel"))
         xall = ca.vertcat(x, xd)
+        steel = _designed_length(layout) * self.material.density * math.pi / 4.0 * d * d  # the designed steps
         objective = form.objective + TIE_BREAK * xd
+        if structure.objective == Objective.MASS:  # the wheel and the shaft's designed steps (their reason: above)
+            objective = ca.log(form.mass + steel) + TIE_BREAK * xd
         nlp = {"x": xall, "p": ca.vertcat(*params), "f": objective, "g": ca.vertcat(*rows)}
         warm = ca.nlpsol("seat_warm", "ipopt", nlp, {**self.options, **_WARM})
-        evaluate = ca.Function("mass_inertia", [xall], [form.mass, form.inertia])
+        evaluate = ca.Function("mass_inertia", [xall], [form.mass, form.inertia, steel])
         return [nlp, warm], evaluate, shaft_rows, lbg, ubg, first
 
 
