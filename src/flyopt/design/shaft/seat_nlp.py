@@ -364,7 +364,7 @@ def seat_optimum(
         state.update(mass=wheel[0], inertia=wheel[1])
     evaluations: list[tuple[float, float, dict[str, Any]]] = []  # (d frozen at, F(d), the round's result)
 
-    def round_at(d: float) -> dict[str, Any] | None:
+    def round_at(d: float) -> dict[str, Any]:
         key_length = 0.0  # the key's shortest hub where it is longer than the proportions' shortest, else none
         if structure.has_hub:
             shortest = _hub_bounds(wheel_material, d, combo.torque)[1][0]
@@ -382,7 +382,6 @@ def seat_optimum(
     status = "not run"
     for _ in range(MAX_ROUNDS):
         result = round_at(d)
-        assert result is not None
         status = result["status"]
         if status not in CONVERGED:
             return SeatOptimum(
