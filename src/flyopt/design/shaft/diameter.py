@@ -1,24 +1,29 @@
-"""The seat diameter of a described shaft as a discrete design variable (issue 30, item 5; docs section 26).
+"""The seat diameter of a described shaft: the NLP's d* rounded up, then the series walk (issue 30, item 5; docs
+section 26).
 
 A ``[[shaft]]`` whose seat step says ``diameter = "design"`` leaves its diameter d
-to the design. d is chosen, for each combination (material, shaft, arms), as the
+to the design. For each combination (material, shaft, arms) the seat's NLP
+(:mod:`flyopt.design.shaft.seat_nlp`: the wheel and d in one NLP with the shaft's
+smooth rows, fatigue, yield and slope) gives a continuous d*; d is then the
 SMALLEST value of an ISO 3 preferred-number series (:mod:`flyopt.design.preferred`,
-R40 by default) at which the wheel designed on that bore (its hub and DIN 6885-1
-key follow d) passes every limit of its shaft (:func:`flyopt.design.shaft.check.check_shaft`
-with the wheel's mass, inertia and width): the wheel depends on d and the check on
-the wheel, so each d is a consistent pair by construction.
+R40 by default), from the first at or above d*, at which the wheel designed on that
+bore (its hub and DIN 6885-1 key follow d) passes every limit of its shaft
+(:func:`flyopt.design.shaft.check.check_shaft` with the wheel's mass, inertia and
+width): the wheel depends on d and the check on the wheel, so each d is a consistent
+pair by construction.
 
-The search is outside the NLP: the shaft's limits are beam-FE eigenvalues and notch
-tables, not smooth rows, and feasibility need not be monotone in d (a torsional mode
-can cross an order as the shaft stiffens), so the series is walked upwards and the
-first d that passes is taken. It starts at a lower bound: the DE-Goodman factor at
-the keyseat of the seat (Shigley 9th ed. Eq. (7-7)) with the torque alone,
+The walk is outside the NLP: the post-check's lateral critical speed is a beam-FE
+eigenvalue and feasibility need not be monotone in d (a torsional mode can cross an
+order as the shaft stiffens), so the series is walked upwards and the first d that
+passes is taken. It never starts below a lower bound: the DE-Goodman factor at the
+keyseat of the seat (Shigley 9th ed. Eq. (7-7)) with the torque alone,
 A = sqrt(3) K_fs T_a and B = 0, is an upper bound on the factor of any wheel on that
 seat (A and B only grow with the bending and the midrange torque, and T_a with the
 wheel's inertia, which is at least the required one); Eq. (7-8) gives the d where it
-equals the factor required, below which fatigue must fail. The series is capped at
-the range the checks support: the Marin size factor's 2.79-254 mm (Shigley
-Eq. (6-20)) and the DIN 6885-1 key table (over 6 up to 260 mm).
+equals the factor required, below which fatigue must fail. Where the NLP gives no d*
+the walk starts there. The series is capped at the range the checks support: the
+Marin size factor's 2.79-254 mm (Shigley Eq. (6-20)) and the DIN 6885-1 key table
+(over 6 up to 260 mm).
 """
 
 from __future__ import annotations
