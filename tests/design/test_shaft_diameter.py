@@ -341,6 +341,13 @@ def test_the_nlp_seat_is_shigleys_diameter_where_fatigue_at_the_keyseat_binds(de
         low, high = (mid, high) if factor(mid) < 1.5 else (low, mid)
     assert d_star == pytest.approx(0.5 * (low + high), rel=1e-6)
     assert keyseat.fatigue == pytest.approx(1.5, rel=1e-6)
+    # the NLP's other rows at d* are the check's limits there: the slopes as a + b/d^4 against the elastic line
+    # integrated on the stepped shaft at d*, the yield factor against Eq. (7-15)
+    rows = {row.name: row for row in opt.rows}
+    for limit in check.limits:
+        if limit.kind == "slope":
+            assert rows[f"slope {limit.where}"].utilisation == pytest.approx(limit.utilisation, rel=1e-9)
+    assert rows["yield at the keyseat at the wheel seat"].utilisation == pytest.approx(1.5 / keyseat.yield_, rel=1e-6)
 
 
 def test_the_series_value_is_the_one_the_walk_from_the_floor_picks(designed):
