@@ -19,6 +19,7 @@ from conftest import PROBLEMS
 
 import flyopt
 from flyopt.design import MountShaft, design_flywheel, design_inputs
+from flyopt.design.inputs import one_design
 from flyopt.design.shaft import strength
 from flyopt.design.shaft.check import check_shaft
 from flyopt.design.shaft.cycle import check_candidate, torque_curve
@@ -271,3 +272,221 @@ def test_a_study_of_a_designed_seat_is_refused_in_one_line(command, main_cli, tm
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith(f"flyopt: error: {SCENE}: shaft[1].segments[1].diameter: ")
     assert "flyopt solve and report" in lines[0]
+
+
+# --- the seat in the NLP (its continuous d*) and the walk from d* rounded up -------------------------------------
+
+
+def _choice(solution):
+    """The designed seat's choice (:class:`flyopt.design.shaft.seat_nlp.SeatChoice`) the solve's report carries."""
+    (report,) = solution.shaft_checks
+    return report.seat_choice
+
+
+def test_the_nlp_seat_is_shigleys_diameter_where_fatigue_at_the_keyseat_binds(designed):
+    """With the wheel the NLP designed (m, J), Shigley's DE-Goodman (Eq. (7-7)) at the keyseat, every term written
+    out here from the book and statics, equals the required factor at the NLP's d*: its root by bisection is d*.
+    The torque at the seat is the check's own at d* (the forced response, the fixed point's frozen value)."""
+    _, solution, ctx = designed
+    choice = _choice(solution)
+    opt = choice.optimum
+    assert opt.status == "Solve_Succeeded" and opt.converged and opt.rounds <= 12
+    assert opt.binding.name == "fatigue at the keyseat at the wheel seat" and opt.binding.multiplier > 0
+    m, d_star = opt.mass, opt.diameter
+    assert 0.056 < d_star < 0.060  # between R40's 56 and 60 mm: rounded up, 60
+    assert choice.start == pytest.approx(0.060, rel=1e-12)
+
+    # bending at the seat (x = 300 mm) of a shaft on bearings at 60 and 620 mm (L = 560 mm, a = 240, b = 320 mm),
+    # the wheel's weight and the 12 kN mesh force 40 mm beyond bearing B, 20 deg from straight down
+    g, span, a, b, c = 9.80665, 0.56, 0.24, 0.32, 0.04
+    force, angle = 12e3, math.radians(20)
+    m_y = m * g * a * b / span - force * math.cos(angle) * c * a / span  # sagging under the wheel, hogging from B
+    m_z = force * math.sin(angle) * c * a / span
+    m_a = math.hypot(m_y, m_z)
+    omega_max = 2 * math.pi * RATIO * (1 + 0.05)  # 60 rpm at the crank, delta 0.1
+    m_m = m * 6.3e-3 * omega_max * a * b / span  # ISO 21940-11 G 6.3: F = m (G / Omega) Omega^2
+    layout = ctx.shafts["intermediate"].layout.with_seat(d_star)
+    steel = ctx.materials["intermediate"]
+    check = check_shaft(
+        layout,
+        steel,
+        wheel_mass=m,
+        wheel_inertia=opt.inertia,
+        omega_mean=solution.analysis.omega_mean * RATIO,
+        delta=solution.analysis.delta,
+        torque_curve=torque_curve(ctx, "intermediate", opt.inertia),
+        excitation=_excitation(ctx),
+        other_inertia=1.5,
+    )
+    keyseat = next(s for s in check.sections if s.name == "keyseat at the wheel seat")
+    assert keyseat.ma == pytest.approx(m_a, rel=1e-9) and keyseat.mm == pytest.approx(m_m, rel=1e-9)
+    t_a, t_m = check.torque_alternating, abs(check.torque_mean)
+    sut = strength.shaft_strengths(steel, d_star)[0]
+
+    def factor(d):
+        s_mpa, s_kpsi = sut / 1e6, sut / 6.894757293168361e6
+        se = 4.51 * s_mpa**-0.265 * 1.51 * (d * 1e3) ** -0.157 * 0.5 * sut  # Table 6-2 machined, (6-20), (6-8)
+        r = math.sqrt(0.02 * d / 0.0254)  # r = 0.02 d (Table 7-1's end-mill keyseat) [in^0.5]
+        q = 1 / (1 + (0.246 - 3.08e-3 * s_kpsi + 1.51e-5 * s_kpsi**2 - 2.67e-8 * s_kpsi**3) / r)  # (6-34, 6-35a)
+        qs = 1 / (1 + (0.190 - 2.51e-3 * s_kpsi + 1.35e-5 * s_kpsi**2 - 2.67e-8 * s_kpsi**3) / r)  # (6-35b)
+        kf, kfs = 1 + q * (2.14 - 1), 1 + qs * (3.0 - 1)
+        big_a = math.sqrt(4 * (kf * m_a) ** 2 + 3 * (kfs * t_a) ** 2)
+        big_b = math.sqrt(4 * (kf * m_m) ** 2 + 3 * (kfs * t_m) ** 2)
+        return math.pi * d**3 / (16 * (big_a / se + big_b / sut))  # (7-7)
+
+    low, high = 0.052, 0.064  # the 1.51 d^-0.157 branch of k_b (over 51 mm)
+    assert factor(low) < 1.5 < factor(high)
+    for _ in range(80):
+        mid = 0.5 * (low + high)
+        low, high = (mid, high) if factor(mid) < 1.5 else (low, mid)
+    assert d_star == pytest.approx(0.5 * (low + high), rel=1e-6)
+    assert keyseat.fatigue == pytest.approx(1.5, rel=1e-6)
+    # the NLP's other rows at d* are the check's limits there: the slopes as a + b/d^4 against the elastic line
+    # integrated on the stepped shaft at d*, the yield factor against Eq. (7-15)
+    rows = {row.name: row for row in opt.rows}
+    for limit in check.limits:
+        if limit.kind == "slope":
+            assert rows[f"slope {limit.where}"].utilisation == pytest.approx(limit.utilisation, rel=1e-9)
+    assert rows["yield at the keyseat at the wheel seat"].utilisation == pytest.approx(1.5 / keyseat.yield_, rel=1e-6)
+
+
+def test_the_series_value_is_the_one_the_walk_from_the_floor_picks(designed):
+    """The walk from the NLP's d* rounded up (60 mm) and the walk from the torque-only floor (45 mm, the search
+    before d entered the NLP, run here) choose the same seat and the same wheel; the new one designs one seat."""
+    from flyopt.design.shaft.diameter import design_with_seats, seated
+
+    scene, solution, ctx = designed
+    an = solution.analysis
+    inputs = one_design(design_inputs(scene))  # as flyopt solve designs it: rounded to whole millimetres
+    old = design_with_seats(
+        an.j_margin,
+        an.omega_max,
+        seated(inputs.shafts, {"intermediate"}),
+        list(inputs.materials),
+        inputs.spec,
+        ctx=ctx,
+        continuous=False,
+        torque=an.flywheel_torque(),
+        omega_mean=an.omega_mean,
+    )
+    best = solution.design.best
+    assert old.best.bore == best.bore == pytest.approx(0.060, rel=1e-12)
+    assert old.best.mass == pytest.approx(best.mass, rel=1e-9)
+    # the NLP's row set it: d* rounded up passed the post-check at once, and the report says so
+    (report,) = solution.shaft_checks
+    assert report.seat_continuous == _choice(solution).optimum.diameter
+    assert report.seat_set_by.startswith("fatigue at the keyseat at the wheel seat, a row of the NLP (d* 57.9 mm")
+    assert _choice(solution).diameter == best.bore
+
+
+def test_the_seat_in_the_json_with_its_units(designed):
+    _, solution, _ = designed
+    document = solution_document(solution, SCENE)
+    (shaft,) = document["shaft_checks"]
+    assert shaft["seat_diameter_continuous"] == pytest.approx(_choice(solution).optimum.diameter, rel=1e-12)
+    assert shaft["seat_set_by"].startswith("fatigue at the keyseat")
+    assert shaft["seat_dmass_dfactor"] > 0
+    assert document["units"]["seat_diameter_continuous"] == "m" and document["units"]["seat_dmass_dfactor"] == "kg"
+    assert schema_errors(document) == []
+
+
+def test_the_binding_rows_multiplier_is_the_mass_sensitivity_at_the_frozen_torque(designed):
+    """d(m)/d(n) from the fatigue row's multiplier against a central difference of the NLP's mass (the wheel and the
+    designed step, 400 mm of steel at d) in the shaft's required factor n: one round at d*, its values frozen there,
+    solved again at n (1 +- 1e-3)."""
+    from flyopt.design.designer import _combinations
+    from flyopt.design.shaft.seat_nlp import seat_optimum
+
+    scene, solution, ctx = designed
+    an = solution.analysis
+    inputs = design_inputs(scene)
+    spec = dataclasses.replace(inputs.spec, round_to=None, prune=False)
+    shaft = MountShaft("intermediate", RATIO, 0.045)
+    ((_, combo, _),) = _combinations(
+        an.j_margin, an.omega_max, an.omega_mean, an.flywheel_torque(), [shaft], [False], list(inputs.materials), spec
+    )
+    opt = _choice(solution).optimum
+    wheel = (opt.mass, opt.inertia)
+    found = {}
+    for n in (1.5, 1.5 * (1 + 1e-3), 1.5 * (1 - 1e-3)):
+        own = ctx.shafts["intermediate"]
+        moved = dataclasses.replace(own, layout=dataclasses.replace(own.layout, safety_factor=n))
+        other = dataclasses.replace(ctx, shafts={**ctx.shafts, "intermediate": moved}, _cache={}, seats={})
+        found[n] = seat_optimum(
+            other, "intermediate", combo, spec, 0, (0.045, 0.16), opt.diameter, fixed_point=False, wheel=wheel
+        )
+        assert found[n].status == "Solve_Succeeded" and found[n].binding.name == opt.binding.name
+    assert found[1.5].diameter == pytest.approx(opt.diameter, rel=1e-6)  # d* is the round's own fixed point
+    steel = ctx.materials["intermediate"].density * math.pi / 4 * opt.diameter**2 * 0.4  # 120-520 mm at d*
+    assert opt.shaft_mass == pytest.approx(steel, rel=1e-12)
+    plus, minus = (found[n].mass + found[n].shaft_mass for n in (1.5 * (1 + 1e-3), 1.5 * (1 - 1e-3)))
+    slope = (plus - minus) / (2 * 1.5e-3)
+    assert found[1.5].mass_sensitivity(1.5) == pytest.approx(slope, rel=1e-3)
+    assert _choice(solution).sensitivity(1.5) == pytest.approx(slope, rel=1e-3)
+
+
+def test_where_the_torsional_mode_refuses_the_rounded_seat_the_walk_goes_on(tmp_path):
+    """With 2 kg m^2 on the pinion end the NLP's d* (fatigue, 57.6 mm) rounds up to 60 mm, but the torsional mode
+    falls inside the widened running range on 60 and 63 mm: the walk goes on to 67 mm, the value the walk from the
+    floor (run here) also picks, and the report names the post-check's limit, with no NLP sensitivity."""
+    from flyopt.design.shaft.diameter import design_with_seats, seated
+
+    path = tmp_path / "heavier.toml"
+    path.write_text(SCENE.read_text().replace('inertia = "1.5 kg*m^2"', 'inertia = "2 kg*m^2"'))
+    scene = flyopt.load(path)
+    solution = solve(scene)
+    (report,) = solution.shaft_checks
+    choice = report.seat_choice
+    assert choice.optimum.status == "Solve_Succeeded" and choice.optimum.converged
+    assert 0.056 < report.seat_continuous < 0.060 and choice.start == pytest.approx(0.060, rel=1e-12)
+    assert report.seat_diameter == pytest.approx(0.067, rel=1e-12) and report.check.holds
+    assert report.seat_set_by.startswith(
+        "the post-check, which refused 63 mm: torsional critical speed (mode 1 at order 9.33333)"
+    )
+    assert math.isnan(report.seat_sensitivity) and report.to_dict()["seat_dmass_dfactor"] is None
+    an = solution.analysis
+    inputs = one_design(design_inputs(scene))
+    old = design_with_seats(
+        an.j_margin,
+        an.omega_max,
+        seated(inputs.shafts, {"intermediate"}),
+        list(inputs.materials),
+        inputs.spec,
+        ctx=shaft_context_of(scene, an),
+        continuous=False,
+        torque=an.flywheel_torque(),
+        omega_mean=an.omega_mean,
+    )
+    assert old.best.bore == solution.design.best.bore and old.best.mass == pytest.approx(
+        solution.design.best.mass, rel=1e-9
+    )
+
+
+def test_a_disc_bored_on_the_seat_does_not_pull_the_seat_to_the_series_end(tmp_path):
+    """A disc that is an annulus on its bore gets lighter as the bore grows: with the wheel's mass alone as the
+    objective d* went to the range's top (160 mm). With the designed step's steel counted the fatigue row sets d*
+    again, and the seat is the one the walk from the floor picks (run here)."""
+    from flyopt.design.shaft.diameter import design_with_seats, seated
+
+    path = tmp_path / "disc.toml"
+    path.write_text(SCENE.read_text().replace('geometry = "rim_web"', 'geometry = "disc"'))
+    scene = flyopt.load(path)
+    solution = solve(scene)
+    (report,) = solution.shaft_checks
+    assert report.seat_choice.optimum.binding.name == "fatigue at the keyseat at the wheel seat"
+    assert 0.056 < report.seat_continuous < 0.060 and report.seat_diameter == pytest.approx(0.060, rel=1e-12)
+    an = solution.analysis
+    inputs = one_design(design_inputs(scene))
+    old = design_with_seats(
+        an.j_margin,
+        an.omega_max,
+        seated(inputs.shafts, {"intermediate"}),
+        list(inputs.materials),
+        inputs.spec,
+        ctx=shaft_context_of(scene, an),
+        continuous=False,
+        torque=an.flywheel_torque(),
+        omega_mean=an.omega_mean,
+    )
+    assert old.best.bore == solution.design.best.bore
+    assert old.best.mass == pytest.approx(solution.design.best.mass, rel=1e-9)

@@ -256,6 +256,8 @@ RELATIONS = {
     "deflection": "d_outer - d_inner",
     "deflection_allowed": "deflection",
     "seat_diameter": "bore",  # a designed seat is the wheel's bore
+    "seat_diameter_continuous": "bore",  # the NLP's seat before it is rounded up to the series
+    "seat_dmass_dfactor": "mass / utilisation",  # d(m)/d(n), n a factor of safety (dimensionless)
     "unbalance_force": "unbalance_permissible * omega_max**2",
     "torque_mean": "driving_torque",
     "torque_alternating": "driving_torque",

@@ -279,6 +279,8 @@ QUANTITIES = {
     "price": "dimensionless",
     # the mounting shaft checked with its wheel, section 26
     "seat_diameter": "length",  # a designed seat's diameter (step diameter = "design")
+    "seat_diameter_continuous": "length",  # the NLP's continuous seat d* before rounding up to the series
+    "seat_dmass_dfactor": "mass",  # d(wheel and designed steps' mass)/d(required factor of the NLP's binding row)
     "fatigue_factor": "dimensionless",
     "fatigue_factor_allowed": "dimensionless",
     "yield_factor": "dimensionless",

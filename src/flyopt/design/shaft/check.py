@@ -57,7 +57,15 @@ if TYPE_CHECKING:
     from flyopt.design.materials import Material
     from flyopt.machine.shaft_layout import ShaftLayout
 
-__all__ = ["ShaftLimit", "ShaftCheck", "Section", "check_shaft", "separation_utilisation", "notch_factors"]
+__all__ = [
+    "ShaftLimit",
+    "ShaftCheck",
+    "Section",
+    "check_shaft",
+    "separation_utilisation",
+    "notch_factors",
+    "notch_geometry",
+]
 
 #: The fatigue criterion of the check (Shigley 9th ed. Eq. (7-7)): DE-Goodman, the book's design choice.
 CRITERION = "goodman"
@@ -276,19 +284,28 @@ def notch_factors(kind: str, diameter: float, fillet: float | None, sut: float) 
     well-rounded factors once r/d >= 0.1, its sharp ones below, on the safe side). A pure function of its
     arguments, kept for the design's many wheels on one shaft (the same notches each time).
     """
+    kt, kts, r_over_d = notch_geometry(kind, diameter, fillet)
+    radius = r_over_d * diameter if fillet is None or kind == "keyseat" else fillet
+    q = strength.notch_sensitivity(radius, sut, "bending")
+    qs = strength.notch_sensitivity(radius, sut, "torsion")
+    return float(strength.fatigue_concentration(kt, q)), float(strength.fatigue_concentration(kts, qs))
+
+
+def notch_geometry(kind: str, diameter: float, fillet: float | None) -> tuple[float, float, float]:
+    """(K_t, K_ts, r/d) of a notch of Shigley 9th ed. Table 7-1 at a section of ``diameter`` [m]: a keyseat's
+    r = 0.02 d; a shoulder's r = ``fillet`` (r/d then of this diameter) or 0.02 d when sharp, its well-rounded
+    factors once r/d >= 0.1, its sharp ones below. The one place the table's row and radius are chosen
+    (:func:`notch_factors`; the seat's NLP, which writes r = (r/d) d on its d where the radius follows d)."""
     table = strength._data()["notch"]
     if kind == "keyseat":
         row = table["keyseat"]
-        radius = row["r_over_d"] * diameter
-    elif kind == "shoulder":
-        radius = table["shoulder_sharp"]["r_over_d"] * diameter if fillet is None else fillet
-        rounded = table["shoulder_rounded"]
-        row = rounded if radius / diameter >= rounded["r_over_d"] else table["shoulder_sharp"]
-    else:
+        return float(row["kt"]), float(row["kts"]), float(row["r_over_d"])
+    if kind != "shoulder":
         raise ValueError(f"notch kind {kind!r} is not known (allowed: keyseat, shoulder)")
-    q = strength.notch_sensitivity(radius, sut, "bending")
-    qs = strength.notch_sensitivity(radius, sut, "torsion")
-    return float(strength.fatigue_concentration(row["kt"], q)), float(strength.fatigue_concentration(row["kts"], qs))
+    r_over_d = table["shoulder_sharp"]["r_over_d"] if fillet is None else fillet / diameter
+    rounded = table["shoulder_rounded"]
+    row = rounded if r_over_d >= rounded["r_over_d"] else table["shoulder_sharp"]
+    return float(row["kt"]), float(row["kts"]), float(r_over_d)
 
 
 def _plane_loads(layout: ShaftLayout, weight: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

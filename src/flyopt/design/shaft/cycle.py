@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import weakref
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -69,6 +70,8 @@ class ShaftContext:
     net_torque: np.ndarray | None  # M_d - M_r at the same samples [N*m]
     orders: TorqueOrders | None
     train_materials: dict[str, Material] = field(default_factory=dict)  # the materials a train's pieces name
+    # each designed seat's choice, (shaft, material, arms) -> flyopt.design.shaft.seat_nlp.SeatChoice
+    seats: dict[tuple[str, str, int | None], Any] = field(default_factory=dict, repr=False)
     _cache: dict[tuple[Any, ...], ShaftCheck] = field(default_factory=dict, repr=False)
 
 
@@ -84,11 +87,18 @@ class ShaftReport:
     layout: ShaftLayout | None = None  # the shaft checked (a designed seat at its diameter)
     seat_diameter: float | None = None  # the designed seat diameter [m]; None: the scene gives it
     seat_series: str | None = None  # the ISO 3 series it was chosen from
+    seat_continuous: float | None = None  # the NLP's continuous seat d* [m] (nan: the NLP gave none)
+    seat_set_by: str | None = None  # which limit set the seat, in words
+    seat_sensitivity: float | None = None  # d(mass)/d(required factor) of the NLP's binding row [kg] (nan: none)
+    seat_choice: Any = field(default=None, repr=False, compare=False)  # its flyopt.design.shaft.seat_nlp.SeatChoice
 
     def to_dict(self) -> dict[str, Any]:
-        """The report for ``--json`` (SI); a designed seat adds ``seat_diameter`` [m] and ``seat_series``."""
+        """The report for ``--json`` (SI); a designed seat adds ``seat_diameter`` [m], ``seat_series``, the NLP's
+        ``seat_diameter_continuous`` [m], ``seat_set_by`` and ``seat_dmass_dfactor`` [kg] (null where none)."""
         seat = (
-            {} if self.seat_diameter is None else {"seat_diameter": self.seat_diameter, "seat_series": self.seat_series}
+            {}
+            if self.seat_diameter is None
+            else {"seat_diameter": self.seat_diameter, "seat_series": self.seat_series, **self._seat_nlp()}
         )
         return {
             "shaft": self.shaft,
@@ -98,10 +108,49 @@ class ShaftReport:
             "dutilisation_dmass": self.sensitivity,
         }
 
+    def _seat_nlp(self) -> dict[str, Any]:
+        """The NLP's part of a designed seat (absent where the report has none)."""
+        if self.seat_set_by is None:
+            return {}
+
+        def finite(x: float | None) -> float | None:
+            return x if x is not None and math.isfinite(x) else None
+
+        return {
+            "seat_diameter_continuous": finite(self.seat_continuous),
+            "seat_set_by": self.seat_set_by,
+            "seat_dmass_dfactor": finite(self.seat_sensitivity),
+        }
+
+
+#: The context of each live analysis and its shafts (id(analysis) -> (weak reference, shafts, context)): the design
+#: and the report of one solve read one context, so the report finds the seat choices the design recorded.
+_CONTEXTS: dict[int, tuple[Any, tuple[Any, ...], ShaftContext | None]] = {}
+
+
+def _forget(key: int) -> Callable[[Any], None]:
+    """The callback that drops a dead analysis's context."""
+
+    def drop(_: Any) -> None:
+        _CONTEXTS.pop(key, None)
+
+    return drop
+
 
 def shaft_context(analysis: Analysis, shafts: Iterable[Shaft], library: Mapping[str, Material]) -> ShaftContext | None:
-    """The context of the scene's described shafts; None when it describes none."""
-    return machine_context(analysis.machine, analysis.omega_mean, analysis.delta, shafts, library)
+    """The context of the scene's described shafts; None when it describes none. One per analysis and shafts
+    while the analysis lives (its checks and designed seats shared by the design and its report)."""
+    shafts = tuple(shafts)
+    held = _CONTEXTS.get(id(analysis))
+    if held is not None and held[0]() is analysis and held[1] == shafts:
+        return held[2]
+    ctx = machine_context(analysis.machine, analysis.omega_mean, analysis.delta, shafts, library)
+    try:
+        ref = weakref.ref(analysis, _forget(id(analysis)))
+    except TypeError:  # not weakly referable: not kept
+        return ctx
+    _CONTEXTS[id(analysis)] = (ref, shafts, ctx)
+    return ctx
 
 
 def machine_context(
@@ -282,4 +331,16 @@ def report(ctx: ShaftContext, candidate: Candidate) -> ShaftReport | None:
     seat = seat_of(ctx, candidate)
     layout = layout_of(ctx, candidate.shaft, seat)
     series = None if seat is None else ctx.shafts[candidate.shaft].layout.diameter_series  # type: ignore[union-attr]
-    return ShaftReport(candidate.shaft, material.name, check, sensitivity, material.display_name, layout, seat, series)
+    choice = ctx.seats.get((candidate.shaft, candidate.material, candidate.n_arms)) if seat is not None else None
+    nlp: dict[str, Any] = {}
+    if choice is not None and choice.set_by:
+        optimum = choice.optimum
+        nlp = {
+            "seat_continuous": math.nan if optimum is None else optimum.diameter,
+            "seat_set_by": choice.set_by,
+            "seat_sensitivity": choice.sensitivity(layout.safety_factor),
+            "seat_choice": choice,
+        }
+    return ShaftReport(
+        candidate.shaft, material.name, check, sensitivity, material.display_name, layout, seat, series, **nlp
+    )

@@ -1,24 +1,29 @@
-"""The seat diameter of a described shaft as a discrete design variable (issue 30, item 5; docs section 26).
+"""The seat diameter of a described shaft: the NLP's d* rounded up, then the series walk (issue 30, item 5; docs
+section 26).
 
 A ``[[shaft]]`` whose seat step says ``diameter = "design"`` leaves its diameter d
-to the design. d is chosen, for each combination (material, shaft, arms), as the
+to the design. For each combination (material, shaft, arms) the seat's NLP
+(:mod:`flyopt.design.shaft.seat_nlp`: the wheel and d in one NLP with the shaft's
+smooth rows, fatigue, yield and slope) gives a continuous d*; d is then the
 SMALLEST value of an ISO 3 preferred-number series (:mod:`flyopt.design.preferred`,
-R40 by default) at which the wheel designed on that bore (its hub and DIN 6885-1
-key follow d) passes every limit of its shaft (:func:`flyopt.design.shaft.check.check_shaft`
-with the wheel's mass, inertia and width): the wheel depends on d and the check on
-the wheel, so each d is a consistent pair by construction.
+R40 by default), from the first at or above d*, at which the wheel designed on that
+bore (its hub and DIN 6885-1 key follow d) passes every limit of its shaft
+(:func:`flyopt.design.shaft.check.check_shaft` with the wheel's mass, inertia and
+width): the wheel depends on d and the check on the wheel, so each d is a consistent
+pair by construction.
 
-The search is outside the NLP: the shaft's limits are beam-FE eigenvalues and notch
-tables, not smooth rows, and feasibility need not be monotone in d (a torsional mode
-can cross an order as the shaft stiffens), so the series is walked upwards and the
-first d that passes is taken. It starts at a lower bound: the DE-Goodman factor at
-the keyseat of the seat (Shigley 9th ed. Eq. (7-7)) with the torque alone,
+The walk is outside the NLP: the post-check's lateral critical speed is a beam-FE
+eigenvalue and feasibility need not be monotone in d (a torsional mode can cross an
+order as the shaft stiffens), so the series is walked upwards and the first d that
+passes is taken. It never starts below a lower bound: the DE-Goodman factor at the
+keyseat of the seat (Shigley 9th ed. Eq. (7-7)) with the torque alone,
 A = sqrt(3) K_fs T_a and B = 0, is an upper bound on the factor of any wheel on that
 seat (A and B only grow with the bending and the midrange torque, and T_a with the
 wheel's inertia, which is at least the required one); Eq. (7-8) gives the d where it
-equals the factor required, below which fatigue must fail. The series is capped at
-the range the checks support: the Marin size factor's 2.79-254 mm (Shigley
-Eq. (6-20)) and the DIN 6885-1 key table (over 6 up to 260 mm).
+equals the factor required, below which fatigue must fail. Where the NLP gives no d*
+the walk starts there. The series is capped at the range the checks support: the
+Marin size factor's 2.79-254 mm (Shigley Eq. (6-20)) and the DIN 6885-1 key table
+(over 6 up to 260 mm).
 """
 
 from __future__ import annotations
@@ -165,6 +170,7 @@ def design_with_seats(
     *,
     ctx: ShaftContext,
     names: Mapping[str, str] | None = None,
+    continuous: bool = True,
     **options: Any,
 ) -> DesignResult:
     """:func:`flyopt.design.designer.design_flywheel` with each designed seat chosen from its series.
@@ -176,11 +182,18 @@ def design_with_seats(
     again as the scene asks (rounded, with the post-check), on its own d, and heads the candidates; a
     combination no d passes is infeasible, its reason at the largest d tried and the floor in numbers.
 
+    Each combination's walk starts at its NLP's continuous seat d* rounded up to the series
+    (:mod:`flyopt.design.shaft.seat_nlp`: the wheel and d in one NLP with the shaft's smooth rows), never below
+    the floor; ``continuous=False`` starts every walk at the floor (the search before the NLP took d, kept as the
+    reference the tests and the benchmark compare with).
+
     ``options``: ``solver_options``, ``method``, ``torque``, ``omega_mean`` of ``design_flywheel``.
     """
     from flyopt.design.designer import design_flywheel
     from flyopt.machine.transmission import inertia_on_shaft
 
+    if not continuous:  # the reference walk records no seat choices in the scene's context
+        ctx = dataclasses.replace(ctx, seats={}, _cache=ctx._cache)
     accept = acceptor(ctx, names)
     search = dataclasses.replace(spec, round_to=None, prune=False)
     found: dict[tuple[str, str, int | None], Candidate] = {}
@@ -198,12 +211,26 @@ def design_with_seats(
         j_shaft = inertia_on_shaft(j_required * spec.rim_share, shaft.speed_ratio)
         floor = seat_floor(ctx, shaft.name, j_shaft)
         pending = {(m.name, a) for m in materials for a in _arms(spec)}
+        starts = (
+            _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, options) if continuous else {}
+        )
+        for (m, a), start in starts.items():
+            if math.isnan(start):  # d* above the series' end: no seat carries it
+                pending.discard((m, a))
+                failed[(m, shaft.name, a)] = _exhausted(
+                    None, m, shaft, spec, a, floor, layout.diameter_series, [], _beyond(ctx, shaft.name, m, a)
+                )
         tried: list[float] = []
+        refused: dict[tuple[str, int | None], Candidate] = {}  # each combination's last wheel its shaft refused
         for d in floor.seats:  # none when no seat passes the floor
-            mats = [m for m in materials if any((m.name, a) in pending for a in _arms(spec))]
+            # each combination from the first series value at or above its NLP's d* (rounded up), else the floor
+            active = {(m, a) for m, a in pending if starts.get((m, a), 0.0) <= d}
+            if not active:
+                continue
+            mats = [m for m in materials if any((m.name, a) in active for a in _arms(spec))]
             at = search
             if spec.geometry == Geometry.RIM_ARMS:
-                at = dataclasses.replace(search, arms=tuple(sorted({a for _, a in pending if a is not None})))
+                at = dataclasses.replace(search, arms=tuple(sorted({a for _, a in active if a is not None})))
             seated = dataclasses.replace(shaft, diameter=d)
             try:
                 last = design_flywheel(j_required, omega, [seated], mats, at, accept=accept, **options)
@@ -212,14 +239,17 @@ def design_with_seats(
                 break
             tried.append(d)
             for c in last.candidates:
-                if (c.material, c.n_arms) not in pending:
+                if (c.material, c.n_arms) not in active:
                     continue
                 if c.feasible:
                     found[_key(c)] = c
                     pending.discard((c.material, c.n_arms))
                     failed.pop(_key(c), None)
+                    _settled(ctx, shaft.name, c, refused.get((c.material, c.n_arms)))
                 elif c.mass is not None or _key(c) not in failed or failed[_key(c)].mass is None:
                     failed[_key(c)] = c  # the largest d whose wheel its shaft refused says most
+                    if c.mass is not None and c.bore:
+                        refused[(c.material, c.n_arms)] = c
             if not pending:
                 break
         for m, a in pending:
@@ -229,11 +259,87 @@ def design_with_seats(
     return _merged(j_required, omega, shafts, materials, spec, found, failed, order, last, accept, options, names)
 
 
-def _exhausted(last, material, shaft, spec, arms, floor, series, tried) -> Candidate:
+def _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, options) -> dict:
+    """Each combination's first series value: the NLP's d* (:func:`flyopt.design.shaft.seat_nlp.seat_optimum`)
+    rounded up to the series, never below the floor; the floor itself where the NLP gives no d*; nan where d*
+    lies above the series' end. Records each :class:`~flyopt.design.shaft.seat_nlp.SeatChoice` in ``ctx.seats``."""
+    from flyopt.design.designer import _combinations
+    from flyopt.design.shaft.seat_nlp import SeatChoice, SeatOptimum, seat_optimum
+    from flyopt.errors import SolverFailed
+
+    if not floor.seats:
+        return {}
+    lower = floor.bound if floor.bound > 0.0 else floor.seats[0]
+    d_range = (min(lower, floor.seats[0]), floor.seats[-1])
+    seated = dataclasses.replace(shaft, diameter=floor.seats[0])
+    starts: dict[tuple[str, int | None], float] = {}
+    combos = _combinations(
+        j_required, omega, options.get("omega_mean"), options.get("torque"), [seated], [False], materials, search
+    )
+    for _, combo, _ in combos:
+        for arms in _arms(search):
+            optimum: SeatOptimum | None = None
+            try:
+                found = seat_optimum(
+                    ctx, shaft.name, combo, search, arms or 0, d_range, floor.seats[0], options.get("solver_options")
+                )
+            except (ValueError, RuntimeError, SolverFailed) as err:  # a table the rows read ends: the walk decides
+                note = str(err)
+            else:
+                optimum, note = found, found.reason or ""
+            start = floor.seats[0]
+            if optimum is not None and math.isfinite(optimum.diameter):
+                above = [d for d in floor.seats if d >= optimum.diameter * (1.0 - 1e-12)]
+                start = above[0] if above else math.nan
+            starts[(combo.material.name, arms)] = start
+            ctx.seats[(shaft.name, combo.material.name, arms)] = SeatChoice(optimum, start, note=note)
+    return starts
+
+
+def _beyond(ctx, name, material, arms) -> str:
+    """Why a combination's NLP put its seat above the series' end, in numbers."""
+    choice = ctx.seats.get((name, material, arms))
+    optimum = None if choice is None else choice.optimum
+    if optimum is None or optimum.binding is None:
+        return ""
+    return f"the NLP's continuous seat is {optimum.diameter * 1e3:.4g} mm, set by its {optimum.binding.name}"
+
+
+def _settled(ctx, name, candidate, refused) -> None:
+    """Record which limit set a combination's seat: the post-check that refused the series value below it (where
+    the walk went past the NLP's rounded d*), else the NLP's binding row, else the walk's floor."""
+    from flyopt.design.shaft.cycle import check_candidate
+
+    key = (name, candidate.material, candidate.n_arms)
+    choice = ctx.seats.get(key)
+    if choice is None:
+        return
+    optimum = choice.optimum
+    if refused is not None:
+        check = check_candidate(ctx, refused)
+        worst = max(check.failed(), key=lambda lim: lim.utilisation) if check is not None and check.failed() else None
+        words = worst.describe() if worst is not None else refused.reason
+        set_by = f"the post-check, which refused {refused.bore * 1e3:g} mm: {words}"
+        ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
+    elif optimum is not None and optimum.binding is not None:
+        set_by = f"{optimum.binding.name}, a row of the NLP (d* {optimum.diameter * 1e3:.4g} mm, rounded up)"
+        ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=True)
+    else:
+        set_by = "the torque-only DE-Goodman bound at the keyseat (Shigley Eq. (7-8)), where the walk starts"
+        if optimum is not None and math.isfinite(optimum.diameter):
+            where = "at the lower end of the range" if optimum.lower_bound else "where the objective is least"
+            set_by = f"the NLP, no shaft row binding (d* {optimum.diameter * 1e3:.4g} mm, {where}, rounded up)"
+        ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
+
+
+def _exhausted(last, material, shaft, spec, arms, floor, series, tried, beyond=None) -> Candidate:
     """The combination no seat of the series carries: the floor, the series' end and the reason at the largest
-    d whose wheel its shaft refused (else the largest tried), in numbers."""
+    d whose wheel its shaft refused (else the largest tried), in numbers; ``beyond``: the NLP's d* above the
+    series' end, in words."""
     span = f"from {tried[0] * 1e3:g} to {tried[-1] * 1e3:g} mm" if tried else "that the checks support"
     words = [f"no seat diameter on ISO 3 {series} {span} carries it"]
+    if beyond:
+        words.append(beyond)
     if floor.torque_alternating > 0.0 and math.isfinite(floor.diameter):
         words.append(
             f"below {floor.diameter * 1e3:g} mm the torque alone, T_a {floor.torque_alternating:.4g} N*m, fails "

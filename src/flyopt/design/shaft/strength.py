@@ -69,6 +69,10 @@ __all__ = [
     "max_von_mises",
     "yield_safety_factor",
     "shaft_strengths",
+    "sensitivity_of",
+    "de_terms",
+    "von_mises_peak",
+    "size_exponent",
 ]
 
 #: One kpsi in pascals (1000 lbf/in^2, lbf = 4.4482216152605 N, in = 0.0254 m).
@@ -185,6 +189,13 @@ def size_factor(diameter: Real, *, loading: str = "bending", fit: str = "si") ->
     # use the exact quotient form so that 0.3 in and 7.62 mm give the same k_b.
     base = 0.3 if unit == INCH else 7.62
     return _out(np.where(d <= first[1], (d / base) ** first[3], second[2] * d ** second[3]))
+
+
+def size_exponent(diameter: float) -> float:
+    """The exponent of Eq. (6-20)'s branch that holds ``diameter`` [m] (SI fit): k_b is c d^e on each branch, so
+    k_b(d) = k_b(d_0) (d/d_0)^e near d_0, which the seat's NLP writes with its d."""
+    first, second = _data()["size"]["mm"]
+    return float(first[3] if diameter / MM <= first[1] else second[3])
 
 
 def loading_factor(loading: str) -> float:
@@ -312,7 +323,14 @@ def notch_sensitivity(radius: Real, sut: Real, loading: str = "bending") -> Real
     loading : {"bending", "axial", "torsion"}
     """
     radius = _array(radius, "radius [m]")
-    return _out(1.0 / (1.0 + neuber_root_a(sut, loading) / np.sqrt(radius)))
+    return _out(sensitivity_of(neuber_root_a(sut, loading), radius))
+
+
+def sensitivity_of(root_a: Any, radius: Any, sqrt: Any = np.sqrt) -> Any:
+    """q = 1 / (1 + sqrt(a)/sqrt(r)), Eq. (6-34), of a Neuber constant [sqrt(m)] and a radius [m]: plain arithmetic,
+    so that the NLP of a designed seat (:mod:`flyopt.design.shaft.seat_nlp`) writes it on its symbols (``sqrt``:
+    theirs) by the same expression the check evaluates."""
+    return 1.0 / (1.0 + root_a / sqrt(radius))
 
 
 def fatigue_concentration(kt: Real, q: Real) -> Real:
@@ -329,8 +347,14 @@ def _ab(ma: Real, ta: Real, mm: Real, tm: Real, kf: Real, kfs: Real) -> tuple[np
     ma, ta, mm, tm = (
         _moment(v, f) for v, f in ((ma, "ma [N*m]"), (ta, "ta [N*m]"), (mm, "mm [N*m]"), (tm, "tm [N*m]"))
     )
-    a = np.sqrt(4.0 * (kf * ma) ** 2 + 3.0 * (kfs * ta) ** 2)
-    b = np.sqrt(4.0 * (kf * mm) ** 2 + 3.0 * (kfs * tm) ** 2)
+    return de_terms(ma, ta, mm, tm, kf, kfs)
+
+
+def de_terms(ma: Any, ta: Any, mm: Any, tm: Any, kf: Any, kfs: Any, sqrt: Any = np.sqrt) -> tuple[Any, Any]:
+    """A = [4(K_f M_a)^2 + 3(K_fs T_a)^2]^(1/2) and B likewise with M_m, T_m (Shigley 9th ed. section 7-4), on
+    magnitudes already checked: plain arithmetic, so the seat's NLP writes them on its symbols (``sqrt``: theirs)."""
+    a = sqrt(4.0 * (kf * ma) ** 2 + 3.0 * (kfs * ta) ** 2)
+    b = sqrt(4.0 * (kf * mm) ** 2 + 3.0 * (kfs * tm) ** 2)
     return a, b
 
 
@@ -348,8 +372,9 @@ def von_mises_amplitudes(
     return _out(z * a), _out(z * b)
 
 
-def _criterion_sum(criterion: str, a: np.ndarray, b: np.ndarray, se: np.ndarray, sut: np.ndarray, sy: np.ndarray):
-    """The bracket of the criterion: 1/n = 16 S / (pi d^3), d^3 = 16 n S / pi, with S [N*m/Pa = m^3]."""
+def _criterion_sum(criterion: str, a: Any, b: Any, se: Any, sut: Any, sy: Any) -> Any:
+    """The bracket of the criterion: 1/n = 16 S / (pi d^3), d^3 = 16 n S / pi, with S [N*m/Pa = m^3]. Plain
+    arithmetic for DE-Goodman and DE-Soderberg (the seat's NLP writes it on its symbols)."""
     if criterion == "goodman":
         return a / se + b / sut
     if criterion == "soderberg":
@@ -461,7 +486,13 @@ def max_von_mises(diameter: Real, ma: Real, ta: Real, mm: Real, tm: Real, kf: Re
     kf, kfs = _array(kf, "kf"), _array(kfs, "kfs")
     m = _moment(mm, "mm [N*m]") + _moment(ma, "ma [N*m]")
     t = _moment(tm, "tm [N*m]") + _moment(ta, "ta [N*m]")
-    return _out(np.sqrt((32.0 * kf * m / (math.pi * d**3)) ** 2 + 3.0 * (16.0 * kfs * t / (math.pi * d**3)) ** 2))
+    return _out(von_mises_peak(d, m, t, kf, kfs))
+
+
+def von_mises_peak(d: Any, m: Any, t: Any, kf: Any, kfs: Any, sqrt: Any = np.sqrt) -> Any:
+    """sigma'_max of Eq. (7-15) from M = M_m + M_a and T = T_m + T_a (magnitudes): plain arithmetic, so the seat's
+    NLP writes it on its symbols (``sqrt``: theirs)."""
+    return sqrt((32.0 * kf * m / (math.pi * d**3)) ** 2 + 3.0 * (16.0 * kfs * t / (math.pi * d**3)) ** 2)
 
 
 def yield_safety_factor(
