@@ -375,8 +375,24 @@ def test_the_series_value_is_the_one_the_walk_from_the_floor_picks(designed):
     # the NLP's row set it: d* rounded up passed the post-check at once, and the report says so
     (report,) = solution.shaft_checks
     assert report.seat_continuous == _choice(solution).optimum.diameter
-    assert report.seat_set_by.startswith("fatigue at the keyseat at the wheel seat, a row of the NLP (d* 57.9 mm")
+    assert report.seat_set_by == "fatigue at the keyseat at the wheel seat, a row of the NLP"
     assert _choice(solution).diameter == best.bore
+
+
+def test_the_text_and_the_report_say_how_the_seat_was_chosen(designed):
+    """Both say the NLP's d*, the series it was rounded up to and the row that set it, in the same words."""
+    from flyopt.report.builder import ReportInputs, build
+    from flyopt.report.shaft import seat_choice_words, seat_words
+
+    _, solution, _ = designed
+    (report,) = solution.shaft_checks
+    text = seat_words(report)
+    assert text.startswith("seat diameter 60 mm, designed")
+    assert "d* 57.9 mm rounded up to ISO 3 R40" in text and "set by fatigue at the keyseat" in text
+    assert "outside the NLP" not in text
+    document = build(ReportInputs("", "", (), solution.scene, solution), figures=False)
+    shown = repr(document).replace("\\'", "'")
+    assert seat_choice_words(report, "engineering") in shown or repr(seat_choice_words(report, "engineering")) in shown
 
 
 def test_the_seat_in_the_json_with_its_units(designed):

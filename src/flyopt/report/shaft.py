@@ -138,11 +138,34 @@ def seat_words(rep: ShaftReport, units: str = DEFAULT, digits: int = DEFAULT_DIG
     if rep.seat_diameter is None:
         return None
     q, _ = formatters(units, digits)
-    return (
-        f"seat diameter {q(rep.seat_diameter, 'seat_diameter')}, designed: the smallest of ISO 3 "
-        f'{rep.seat_series} at which this shaft carries the wheel designed on it (the steps marked "design"; '
-        "a discrete design variable searched outside the NLP)"
-    )
+    return f"seat diameter {q(rep.seat_diameter, 'seat_diameter')}, {seat_choice_words(rep, units, digits)}"
+
+
+def seat_choice_words(rep: ShaftReport, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
+    """How a designed seat was chosen (docs/flywheel-design.md, section 26), the text's and the report's words
+    after its diameter: the NLP's continuous d* rounded up to the series, the first value from there the
+    shaft's post-check passes, and what set it (with the NLP row's d(mass)/d(required factor) where one did)."""
+    q, _ = formatters(units, digits)
+    words = 'designed (the steps marked "design"): '
+
+    d_star = rep.seat_continuous
+    if d_star is not None and math.isfinite(d_star):
+        words += (
+            f"the NLP's continuous optimum d* {q(d_star, 'seat_diameter_continuous')} rounded up to ISO 3 "
+            f"{rep.seat_series}, then the first value from there at which this shaft carries the wheel designed on it"
+        )
+    else:
+        words += (
+            f"the smallest of ISO 3 {rep.seat_series} at which this shaft carries the wheel designed on it "
+            "(no continuous optimum from the NLP: walked from the torque-only bound)"
+        )
+    if rep.seat_set_by:
+        words += f"; set by {rep.seat_set_by}"
+    if rep.seat_sensitivity is not None and math.isfinite(rep.seat_sensitivity):
+        words += (
+            f"; +1 on its required safety factor adds {number(rep.seat_sensitivity, digits)} kg (the seat torque held)"
+        )
+    return words
 
 
 def seat_lines(rep: ShaftReport, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:

@@ -322,7 +322,7 @@ def _settled(ctx, name, candidate, refused) -> None:
         set_by = f"the post-check, which refused {refused.bore * 1e3:g} mm: {words}"
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
     elif optimum is not None and optimum.binding is not None:
-        set_by = f"{optimum.binding.name}, a row of the NLP (d* {optimum.diameter * 1e3:.4g} mm, rounded up)"
+        set_by = f"{optimum.binding.name}, a row of the NLP"
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=True)
     else:
         set_by = "the torque-only DE-Goodman bound at the keyseat (Shigley Eq. (7-8)), where the walk starts"

@@ -11,6 +11,7 @@ from flyopt.report import display
 from flyopt.report.builder.base import NOTES, BuilderBase
 from flyopt.report.display import number
 from flyopt.report.document import Facts, Paragraph, Table
+from flyopt.report.shaft import seat_choice_words
 
 
 class ShaftSection(BuilderBase):
@@ -70,8 +71,7 @@ class ShaftSection(BuilderBase):
                             "seat diameter (designed)",
                             (
                                 self.q(report.seat_diameter, "length", "seat_diameter"),
-                                f": the smallest of ISO 3 {report.seat_series} at which this shaft carries the "
-                                "wheel designed on it (a discrete design variable, searched outside the NLP)",
+                                ", " + seat_choice_words(report, self.units, self.digits),
                             ),
                         )
                     ]
