@@ -186,7 +186,7 @@ def test_the_designed_seat_is_in_the_json_the_text_and_its_units(designed):
     from flyopt.report.shaft import shaft_report
 
     text = "\n".join(shaft_report(solution.shaft_checks))
-    assert "seat diameter 60 mm, designed (the steps marked \"design\"): the NLP's continuous optimum d* 57.9 mm" in text
+    assert 'seat diameter 60 mm, designed (the steps marked "design"): the NLP\'s continuous optimum d* 57.9 mm' in text
 
 
 def _solve_with(tmp_path, extra):
