@@ -217,7 +217,7 @@ def _forget_sections():
     """Empty the shaft check's memory of section strengths and notch factors (pure functions it keeps)."""
     from flyopt.design.shaft import check
 
-    check._strengths.cache_clear()
+    check.section_strengths.cache_clear()
     check.notch_factors.cache_clear()
 
 

@@ -410,7 +410,7 @@ def test_the_binding_rows_multiplier_is_the_mass_sensitivity_at_the_frozen_torqu
     """d(m)/d(n) from the fatigue row's multiplier against a central difference of the NLP's mass (the wheel and the
     designed step, 400 mm of steel at d) in the shaft's required factor n: one round at d*, its values frozen there,
     solved again at n (1 +- 1e-3)."""
-    from flyopt.design.designer import _combinations
+    from flyopt.design.designer import combinations
     from flyopt.design.shaft.seat_nlp import seat_optimum
 
     scene, solution, ctx = designed
@@ -418,7 +418,7 @@ def test_the_binding_rows_multiplier_is_the_mass_sensitivity_at_the_frozen_torqu
     inputs = design_inputs(scene)
     spec = dataclasses.replace(inputs.spec, round_to=None, prune=False)
     shaft = MountShaft("intermediate", RATIO, 0.045)
-    ((_, combo, _),) = _combinations(
+    ((_, combo, _),) = combinations(
         an.j_margin, an.omega_max, an.omega_mean, an.flywheel_torque(), [shaft], [False], list(inputs.materials), spec
     )
     opt = _choice(solution).optimum

@@ -603,7 +603,7 @@ def design_flywheel(
     model = _textbook_model(spec, solver_options) if not closed and any(textbook) else None
     decided = _Decided()
     combos: dict[int, Combination] = {}
-    for order, combo, plain in _combinations(j_required, omega, omega_mean, torque, shafts, textbook, materials, spec):
+    for order, combo, plain in combinations(j_required, omega, omega_mean, torque, shafts, textbook, materials, spec):
         combos[order] = combo
         if plain:
             _decide_textbook(order, combo, spec, closed, model, decided)
@@ -746,7 +746,7 @@ def _textbook_model(spec: DesignSpec, solver_options: Mapping | None) -> Any:
     return nlp.get_model(structure, solver_options)
 
 
-def _combinations(
+def combinations(
     j_required: float,
     omega: float,
     omega_mean: float | None,

@@ -124,8 +124,11 @@ def min_wall_at(spec: DesignSpec, material: Material, d_outer: float, bore: floa
     return max(floor, float(castability.min_wall_at(rules, d_outer))) if rules is not None else floor
 
 
-def _hub_bounds(material, bore, torque):
-    """(d_hub range, l_hub range, key note) of a hub on a seat of diameter ``bore``."""
+def hub_bounds(
+    material: Material, bore: float, torque: float | None
+) -> tuple[tuple[float, float], tuple[float, float], str]:
+    """(d_hub range [m], l_hub range [m], the hub's kind) of a hub on a seat of diameter ``bore`` [m] carrying the
+    peak ``torque`` [N*m] (the key's shortest hub where the material gives a bearing pressure)."""
     kind = material.hub_kind
     p = hub.hub_proportions(bore, kind)
     l_low = p.l_hub_min
@@ -296,7 +299,7 @@ def wheel_problem(
     d_hub_range = l_hub_range = (0.0, math.inf)
     disc_hub = geo == Geometry.DISC and spec.disc_hub and bool(bore)
     if (geo in (Geometry.RIM_WEB, Geometry.RIM_ARMS) and bore) or disc_hub:
-        d_hub_range, l_hub_range, _ = _hub_bounds(material, bore, torque)
+        d_hub_range, l_hub_range, _ = hub_bounds(material, bore, torque)
         if disc_hub:  # a disc's hub may be as long as the disc is wide: the hub is then the disc
             l_hub_range = (l_hub_range[0], math.inf)
     structure = wheel_nlp.WheelStructure(

@@ -316,7 +316,7 @@ def _plane_loads(layout: ShaftLayout, weight: float) -> tuple[np.ndarray, np.nda
     return np.array(x), np.array(fy), np.array(fz)
 
 
-def _carries_torque(layout: ShaftLayout, x: np.ndarray) -> np.ndarray:
+def carries_torque(layout: ShaftLayout, x: np.ndarray) -> np.ndarray:
     low, high = sorted((layout.wheel_at, layout.torque_at))
     inside: np.ndarray = (x >= low - 1e-12) & (x <= high + 1e-12)
     return inside
@@ -421,7 +421,7 @@ def check_shaft(
     line_u = elastic_line(beam, [layout.wheel_at], [unbalance], at=grid)
     ma_grid = np.hypot(line_y.moment, line_z.moment)
     mm_grid = np.abs(line_u.moment)
-    torque_on = _carries_torque(layout, grid)
+    torque_on = carries_torque(layout, grid)
 
     checked = _checked_sections(layout, material, sections, grid, ma_grid, mm_grid, torque_on, t_alt, abs(t_mean))
 
@@ -522,12 +522,12 @@ def _strengths_along(layout: ShaftLayout, material: Material, d: np.ndarray) -> 
     sut, sy, se = np.empty(d.size), np.empty(d.size), np.empty(d.size)
     for di in np.unique(d):
         at = d == di
-        sut[at], sy[at], se[at] = _strengths(material, float(di), layout.finish)
+        sut[at], sy[at], se[at] = section_strengths(material, float(di), layout.finish)
     return sut, sy, se
 
 
 @functools.lru_cache(maxsize=1024)
-def _strengths(material: Material, diameter: float, finish: str) -> tuple[float, float, float]:
+def section_strengths(material: Material, diameter: float, finish: str) -> tuple[float, float, float]:
     """S_ut, S_y (:func:`~flyopt.design.shaft.strength.shaft_strengths`) and S_e
     (:func:`~flyopt.design.shaft.strength.endurance_limit`) [Pa] of one round section: pure functions of the
     material, the diameter and the finish, so a design's many wheels on one shaft read them once."""

@@ -240,7 +240,7 @@ def torque_curve(ctx: ShaftContext, name: str, inertia: float) -> np.ndarray:
     return np.zeros(1)
 
 
-def _check(
+def checked_at(
     ctx: ShaftContext, name: str, mass: float, inertia: float, width: float, seat: float | None = None
 ) -> ShaftCheck:
     shaft = ctx.shafts[name]
@@ -277,7 +277,7 @@ def check_candidate(ctx: ShaftContext, candidate: Candidate) -> ShaftCheck | Non
     """The checks of the candidate's shaft with its wheel; None when that shaft is not described."""
     if candidate.shaft not in ctx.shafts or candidate.mass is None:
         return None
-    return _check(ctx, candidate.shaft, *_wheel(candidate), seat_of(ctx, candidate))
+    return checked_at(ctx, candidate.shaft, *_wheel(candidate), seat_of(ctx, candidate))
 
 
 def mass_sensitivity(ctx: ShaftContext, candidate: Candidate, limit: ShaftLimit) -> float:
@@ -287,7 +287,7 @@ def mass_sensitivity(ctx: ShaftContext, candidate: Candidate, limit: ShaftLimit)
     values = []
     for sign in (1.0, -1.0):
         scale = 1.0 + sign * MASS_STEP
-        check = _check(ctx, candidate.shaft, mass * scale, inertia * scale, width, seat_of(ctx, candidate))
+        check = checked_at(ctx, candidate.shaft, mass * scale, inertia * scale, width, seat_of(ctx, candidate))
         same = [lim for lim in check.limits if lim.kind == limit.kind and lim.where == limit.where]
         values.append(same[0].utilisation if same else math.nan)
     return (values[0] - values[1]) / (2.0 * h)

@@ -263,7 +263,7 @@ def _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, 
     """Each combination's first series value: the NLP's d* (:func:`flyopt.design.shaft.seat_nlp.seat_optimum`)
     rounded up to the series, never below the floor; the floor itself where the NLP gives no d*; nan where d*
     lies above the series' end. Records each :class:`~flyopt.design.shaft.seat_nlp.SeatChoice` in ``ctx.seats``."""
-    from flyopt.design.designer import _combinations
+    from flyopt.design.designer import combinations
     from flyopt.design.shaft.seat_nlp import SeatChoice, SeatOptimum, seat_optimum
     from flyopt.errors import SolverFailed
 
@@ -273,7 +273,7 @@ def _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, 
     d_range = (min(lower, floor.seats[0]), floor.seats[-1])
     seated = dataclasses.replace(shaft, diameter=floor.seats[0])
     starts: dict[tuple[str, int | None], float] = {}
-    combos = _combinations(
+    combos = combinations(
         j_required, omega, options.get("omega_mean"), options.get("torque"), [seated], [False], materials, search
     )
     for _, combo, _ in combos:

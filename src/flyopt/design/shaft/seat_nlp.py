@@ -54,7 +54,7 @@ from flyopt.design.balance import BALANCE_GRADE, permissible_unbalance
 from flyopt.design.nlp import CONVERGED, DEFAULT_SOLVER_OPTIONS
 from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_line
-from flyopt.design.shaft.check import _carries_torque, _strengths, notch_geometry
+from flyopt.design.shaft.check import carries_torque, notch_geometry, section_strengths
 from flyopt.design.shaft.lateral import GRAVITY
 from flyopt.names import Geometry, Objective
 
@@ -246,12 +246,12 @@ def _sections(layout: ShaftLayout, d: float) -> list[dict[str, Any]]:
 
 def _freeze(ctx, name, layout, material, d, mass, inertia, key_length) -> _Frozen:
     """The round's frozen values at seat d [m] with the last round's wheel (m [kg], J [kg m^2])."""
-    from flyopt.design.shaft.cycle import _check
+    from flyopt.design.shaft.cycle import checked_at
 
-    check = _check(ctx, name, mass, inertia, 0.0, d)  # the post-check's own torque at the seat
+    check = checked_at(ctx, name, mass, inertia, 0.0, d)  # the post-check's own torque at the seat
     sections = []
     for s in _sections(layout, d):
-        sut, sy, se = _strengths(material, s["d"], layout.finish)
+        sut, sy, se = section_strengths(material, s["d"], layout.finish)
         s = {**s, "sut": sut, "sy": sy, "se": se, "e": strength.size_exponent(s["d"])}
         if s["kind"] is not None:
             kt, kts, r_over_d = notch_geometry(s["kind"], s["d"], layout.fillet)
@@ -331,7 +331,7 @@ def seat_optimum(
     """
     from flyopt.design import wheel as wheel_module
     from flyopt.design import wheel_nlp
-    from flyopt.design.wheel_design import _hub_bounds, strongest_allowables, wheel_problem
+    from flyopt.design.wheel_design import hub_bounds, strongest_allowables, wheel_problem
 
     layout = ctx.shafts[name].layout
     if layout is None or not layout.designs_seat:
@@ -367,7 +367,7 @@ def seat_optimum(
     def round_at(d: float) -> dict[str, Any]:
         key_length = 0.0  # the key's shortest hub where it is longer than the proportions' shortest, else none
         if structure.has_hub:
-            shortest = _hub_bounds(wheel_material, d, combo.torque)[1][0]
+            shortest = hub_bounds(wheel_material, d, combo.torque)[1][0]
             if shortest > hub.hub_proportions(d, wheel_material.hub_kind).l_hub_min * (1.0 + 1e-12):
                 key_length = shortest
         frozen = _freeze(ctx, name, layout, material, d, state["mass"], state["inertia"], key_length)
@@ -578,7 +578,7 @@ class _Model:
             self.loads["d0"] = d0
         loads = self.loads
         ratio4 = (loads["d0"] / d) ** 4
-        on = _carries_torque(layout, xs)
+        on = carries_torque(layout, xs)
         n_req = layout.safety_factor
         shaft_rows: list[tuple[str, str]] = []
         first = len(rows)
