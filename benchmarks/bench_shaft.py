@@ -373,24 +373,16 @@ def main():
     seat_lines = []
     for label, found in seats.items():
         cpu, wall = spread([t[0] for t in found["times"]]), spread([t[1] for t in found["times"]])
-        rows.append(
-            {
-                "case": f"seat-designed scene, {label}",
-                "what": "flyopt solve, CPU",
-                "median_ms": cpu[0] * 1e3,
-                "min_ms": cpu[1] * 1e3,
-                "max_ms": cpu[2] * 1e3,
-            }
-        )
-        rows.append(
-            {
-                "case": f"seat-designed scene, {label}",
-                "what": "flyopt solve, wall",
-                "median_ms": wall[0] * 1e3,
-                "min_ms": wall[1] * 1e3,
-                "max_ms": wall[2] * 1e3,
-            }
-        )
+        for what, (median, low, high) in (("CPU", cpu), ("wall", wall)):
+            rows.append(
+                {
+                    "case": f"seat-designed scene, {label}",
+                    "what": f"flyopt solve, {what}",
+                    "median_ms": median * 1e3,
+                    "min_ms": low * 1e3,
+                    "max_ms": high * 1e3,
+                }
+            )
         seat_lines.append(f"| {label} | {ms(cpu)} | {ms(wall)} | {found['bore'] * 1e3:g} mm, {found['mass']:.4f} kg |")
     seat_verdict = "no baseline was run."
     if "baseline" in seats:
