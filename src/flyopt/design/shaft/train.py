@@ -35,6 +35,7 @@ from flyopt.machine.torsion import (
     shaft_compliance,
     shaft_stiffness,
 )
+from flyopt.machine.torsion import modes as torsion_modes
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -47,6 +48,9 @@ __all__ = [
     "TrainResponse",
     "SeatTorque",
     "seat_torque",
+    "KeyTorque",
+    "key_torque",
+    "wheel_torque_orders",
     "default_train",
     "shear_modulus",
     "span_stiffness",
@@ -104,6 +108,9 @@ class TrainModel:
         Each elastic element's name, kind and stiffness on its own shaft [N*m/rad].
     wheel_node, load_node : int
         The wheel's node and the last one, where the cycle's net torque enters.
+    wheel : Inertia or None
+        The wheel's own inertia in the model (its J on its shaft and that shaft's ratio to the described one):
+        what its key carries, J_wheel theta''_wheel (:func:`key_torque`); None where the train has no wheel.
     """
 
     model: TorsionalModel
@@ -111,6 +118,7 @@ class TrainModel:
     springs: tuple[tuple[str, str, float], ...]
     wheel_node: int
     load_node: int
+    wheel: Inertia | None = None
 
 
 def train_model(
@@ -133,6 +141,7 @@ def train_model(
     names: list[list[str]] = []
     spring_rows: list[tuple[str, str, float]] = []
     node, joined, wheel = -1, False, -1
+    wheel_item: Inertia | None = None
     for element in train:
         if isinstance(element, TrainInertia):
             if not joined:
@@ -142,6 +151,8 @@ def train_model(
             if element.inertia is None:
                 wheel = node
             inertias.append(Inertia(node, float(j), element.ratio / speed_ratio))
+            if element.inertia is None:
+                wheel_item = inertias[-1]
             names[node].append(element.name)
             joined = True  # a next inertia without a spring between turns with this one
             continue
@@ -150,7 +161,12 @@ def train_model(
         springs.append(Spring(node, node + 1, k, element.ratio / speed_ratio))
         spring_rows.append((element.name, element.kind, k))
     return TrainModel(
-        TorsionalModel(inertias, springs), tuple(" + ".join(n) for n in names), tuple(spring_rows), wheel, node
+        TorsionalModel(inertias, springs),
+        tuple(" + ".join(n) for n in names),
+        tuple(spring_rows),
+        wheel,
+        node,
+        wheel_item,
     )
 
 
@@ -308,12 +324,8 @@ def seat_torque(
     wheel = built.wheel_node
     model = built.model
     after = [e for e, spring in enumerate(model.springs) if spring.a == wheel and spring.b == wheel + 1]
-    orders = np.asarray(excitation.orders, dtype=float)
-    if not after or orders.size == 0:
-        return None
-    harmonic = orders / orders[0]
-    k = np.rint(harmonic).astype(int)
-    if np.any(np.abs(harmonic - k) > 1e-9) or np.any(np.diff(k) <= 0):
+    k = _harmonics(excitation)
+    if not after or k is None:
         return None
     e = after[0]
     spring = model.springs[e]
@@ -323,12 +335,8 @@ def seat_torque(
     amplitudes = -torques * spring.ratio
     inertia = np.diag(model.mass_matrix)
     share = float(inertia[: wheel + 1].sum() / inertia.sum())
-    n = max(4096, 1 << int(8 * k[-1]).bit_length())  # a power of two, 8+ points a period of the highest order
-    spectrum = np.zeros(n // 2 + 1, dtype=complex)
-    spectrum[k] = amplitudes * (n / 2.0)
-    curve = share * excitation.mean + np.fft.irfft(spectrum, n)
-    t_max, t_min = _extreme(amplitudes, k, curve, 1.0), _extreme(amplitudes, k, curve, -1.0)
-    t_max, t_min = share * excitation.mean + t_max, share * excitation.mean + t_min
+    t_mean = share * excitation.mean
+    curve, t_max, t_min = _synthesised(amplitudes, k, t_mean)
     return SeatTorque(
         curve,
         0.5 * (t_max + t_min),
@@ -337,6 +345,111 @@ def seat_torque(
         float(speed_rpm),
         float(damping_ratio),
     )
+
+
+def wheel_torque_orders(
+    built: TrainModel,
+    excitation: TorqueOrders,
+    speed_rpm: float,
+    damping_ratio: float,
+    found: Modes | None = None,
+) -> np.ndarray:
+    """The complex torque J_wheel theta''_wheel the wheel's key carries, per order of ``excitation`` [N*m], on
+    the wheel's shaft (docs/flywheel-design.md, section 26).
+
+    The wheel node's own equation of motion: the key drives the wheel alone (not the other inertias turning
+    with it at its node), so it carries J_w theta''_w = -J_w (q Omega)^2 Theta_w,q of each order. Theta_w,q by
+    modal superposition with the modal ``damping_ratio`` (the steady state of
+    :func:`flyopt.machine.torsion.forced_response` with :func:`flyopt.machine.torsion.modal_damping`), the
+    rigid-body mode included:
+
+        -Omega^2 Theta_w,q = c_q [phi0_w phi0_L + sum_m -Omega^2 phi_w,m phi_L,m / (omega_m^2 - Omega^2 + 2 i zeta omega_m Omega)]
+
+    (L the load node where the net torque enters). As Omega -> 0 it tends to the rigid body's J_w / J c_q (the
+    torque the design sized the key for); near a mode it is amplified like the seat's torque.
+    """
+    wheel = built.wheel
+    if wheel is None:
+        raise ValueError("the train has no wheel: its key carries no torque")
+    found = torsion_modes(built.model) if found is None else found
+    node, load = built.wheel_node, built.load_node
+    omega = np.asarray(excitation.orders, dtype=float) * 2.0 * math.pi * speed_rpm / 60.0
+    w = found.omega
+    rigid = float((found.rigid_shapes[node] * found.rigid_shapes[load]).sum())
+    gain = found.shapes[node] * found.shapes[load]
+    denominator = w[None, :] ** 2 - omega[:, None] ** 2 + 2j * damping_ratio * w[None, :] * omega[:, None]
+    if np.any(denominator == 0.0):
+        raise ValueError("an order meets a natural frequency of the undamped system: add damping")
+    accel = rigid - omega**2 * (gain[None, :] / denominator).sum(axis=1)  # -Omega^2 Theta_w / c_q
+    # the torque on the wheel's own shaft: J theta''_own = J r theta''_node (r its ratio to the described shaft)
+    torques: np.ndarray = wheel.inertia * wheel.ratio * np.asarray(excitation.amplitudes, dtype=complex) * accel
+    return torques
+
+
+@dataclass(frozen=True)
+class KeyTorque:
+    """The torque the wheel's key carries by the forced response, J_wheel theta''_wheel (SI).
+
+    Attributes
+    ----------
+    curve : ndarray
+        Over one cycle, equally spaced [N*m].
+    peak : float
+        max |T| over the cycle [N*m] (the extremes refined between samples, :func:`_extreme`).
+    speed_rpm, damping_ratio : float
+    """
+
+    curve: np.ndarray
+    peak: float
+    speed_rpm: float
+    damping_ratio: float
+
+
+def key_torque(
+    built: TrainModel,
+    excitation: TorqueOrders,
+    speed_rpm: float,
+    damping_ratio: float,
+    found: Modes | None = None,
+) -> KeyTorque | None:
+    """The key's torque J_wheel theta''_wheel by the forced response at ``speed_rpm``, every order synthesised
+    in time as :func:`seat_torque` does (:func:`_synthesised`), and its peak |T|. The mean net torque enters
+    quasi-statically, the rigid body's share J_w / J of it (nil over a balanced cycle). None where the train has
+    no wheel or the orders are not the harmonics of one cycle."""
+    k = _harmonics(excitation)
+    if k is None or built.wheel is None:
+        return None
+    amplitudes = wheel_torque_orders(built, excitation, speed_rpm, damping_ratio, found)
+    inertia = np.diag(built.model.mass_matrix)
+    wheel = built.wheel
+    mean = wheel.inertia * wheel.ratio * float(excitation.mean) / float(inertia.sum())
+    curve, t_max, t_min = _synthesised(amplitudes, k, mean)
+    return KeyTorque(curve, max(abs(t_max), abs(t_min)), float(speed_rpm), float(damping_ratio))
+
+
+def _harmonics(excitation: TorqueOrders) -> np.ndarray | None:
+    """The excitation's orders as integer harmonics k of one cycle (orders / orders[0]), increasing; None where
+    they are not the harmonics of one cycle (or there are none)."""
+    orders = np.asarray(excitation.orders, dtype=float)
+    if orders.size == 0:
+        return None
+    harmonic = orders / orders[0]
+    k = np.rint(harmonic).astype(int)
+    if np.any(np.abs(harmonic - k) > 1e-9) or np.any(np.diff(k) <= 0):
+        return None
+    return k
+
+
+def _synthesised(amplitudes: np.ndarray, k: np.ndarray, mean: float) -> tuple[np.ndarray, float, float]:
+    """(curve, T_max, T_min) of mean + sum_k Re(A_k e^{i k t}) over one cycle: the orders superposed with their
+    phases by an inverse FFT on 4096 or more points, its extremes refined by :func:`_extreme`. The one synthesis
+    of the seat's torque (:func:`seat_torque`) and the key's (:func:`key_torque`)."""
+    n = max(4096, 1 << int(8 * k[-1]).bit_length())  # a power of two, 8+ points a period of the highest order
+    spectrum = np.zeros(n // 2 + 1, dtype=complex)
+    spectrum[k] = amplitudes * (n / 2.0)
+    curve = mean + np.fft.irfft(spectrum, n)
+    t_max, t_min = _extreme(amplitudes, k, curve, 1.0), _extreme(amplitudes, k, curve, -1.0)
+    return curve, mean + t_max, mean + t_min
 
 
 def _extreme(amplitudes: np.ndarray, harmonics: np.ndarray, curve: np.ndarray, sign: float) -> float:
