@@ -193,7 +193,9 @@ def machine_context(
 
 def at_ratio(ctx: ShaftContext, name: str, ratio: float) -> ShaftContext:
     """The context with shaft ``name`` turning at ``ratio`` [-] (the drive's flywheel shaft, whose ratio the
-    co-design chooses); the checks already made are shared (their key holds the ratio)."""
+    co-design chooses); the checks already made are shared (their key holds the ratio). The shaft's ``loads``
+    (a belt pull, a mesh force) stay as given at every ratio, though the torque through that pulley scales with
+    1/ratio: the scene states them for the drive as built (docs/flywheel-design.md, section 14)."""
     shafts = {**ctx.shafts, name: dataclasses.replace(ctx.shafts[name], speed_ratio=float(ratio))}
     return dataclasses.replace(ctx, shafts=shafts, _cache=ctx._cache)
 
