@@ -316,8 +316,14 @@ def seat_torque(
     with their phases over one cycle (an inverse FFT on 4096 or more points); T_m and T_a are that curve's midrange and half range
     (Shigley's definitions, docs/flywheel-design.md, section 26, for the reason over a sum of amplitudes).
     The mean torque enters quasi-statically: the share J_wheel side / J_total of the excitation's mean. As
-    Omega -> 0 each order's torque tends to the rigid-body share J_F/J of the net torque, so a stiff train
-    gives the rigid-body curve. None where no elastic element follows the wheel (the wheel at the crank
+    Omega -> 0 each order's torque tends to the rigid-body share of the SECTION, sum J[: wheel + 1] / J (every
+    inertia on the wheel's side, the motor and pulleys upstream included: the torque that accelerates them all),
+    not the wheel's J_F/J (its key's, :func:`key_torque`). So for a smooth load a stiff train gives that share of
+    the net torque. A discontinuous load (a punch's torque step) is resolved only up to the highest order: where
+    a mode lies below it, the orders above roll off and the step rings the mode (each extreme beyond its level by
+    up to the step's jump, dynamic load factor 2 undamped); where the response is quasi-static up to the
+    truncation (a stiff train), the truncated series overshoots each jump by Gibbs' 8.95 % of it, which flyopt
+    keeps (on the safe side; docs/flywheel-design.md, section 26). None where no elastic element follows the wheel (the wheel at the crank
     end) or the orders are not the harmonics of one cycle. ``found``: the train's modes, when the caller
     has them (:func:`flyopt.machine.torsion.modal_spring_torque_orders` superposes them).
     """
