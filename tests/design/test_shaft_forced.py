@@ -30,7 +30,8 @@ from flyopt.machine.torsion import (
 
 J2 = 1.5  # the shaft's other inertia in test_shaft_train's scene (the "crank" node takes it)
 SPEED = 50.0  # rad/s of the shaft in test_shaft_train.check
-#: The synthesised curve's extremes: sampled, then refined on the series summed directly (to 1e-9 of a sample step).
+#: The synthesised curve's extremes: sampled, then refined on the series summed directly (their value to some 3e-9
+#: of the highest order's amplitude, design.shaft.train._extreme).
 RTOL = 1e-9
 
 
@@ -248,3 +249,15 @@ def test_a_stiff_train_resolves_a_step_only_up_to_the_highest_order():
     gibbs = 0.5894898722360836 - 0.5  # Si(pi)/pi - 1/2 (Si(pi) = 1.851937051982466)
     rigid = j1 / (j1 + j2) * level / 2
     assert found.alternating == pytest.approx(rigid * (1 + 2 * gibbs), rel=1e-4)
+
+
+def test_an_extreme_whose_search_did_not_converge_keeps_its_sample(monkeypatch):
+    """_extreme checks BoundedMinimum.converged: a search that did not converge gives no value, the sample stands."""
+    from flyopt.cycle import minimize
+    from flyopt.design.shaft import train
+
+    amplitudes, harmonics = np.array([100.0 + 0j]), np.array([1])
+    curve = np.real(np.exp(1j * np.linspace(0.0, 2 * math.pi, 4096, endpoint=False)) * 100.0)
+    assert train._extreme(amplitudes, harmonics, curve, 1.0) == pytest.approx(100.0, rel=1e-15)
+    monkeypatch.setattr(minimize, "bounded_minimum", lambda *a, **k: minimize.BoundedMinimum(0.0, -1e9, 500, False))
+    assert train._extreme(amplitudes, harmonics, curve, 1.0) == 100.0  # the sample at t = 0, not -(-1e9)
