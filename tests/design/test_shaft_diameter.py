@@ -32,12 +32,27 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "outputs"))
 from output_cases import assert_units_cover, schema_errors  # noqa: E402
 
 SCENE = PROBLEMS / "punch-press-shaft-designed.toml"
+
+
+def walk_text():
+    """The scene's text with its material's bearing pressure left out: the design then checks no key, and no
+    post-check the key at the train's torque (tests/design/test_shaft_key.py), which refuses every seat from 60
+    to 80 mm of the shipped scene (the design sizes the hub's key at the rigid torque, the train's peak on the
+    wheel is 13 % above it) and sets its seat at 85 mm, pinned by its golden result. The walk's own rules are
+    tested here, where the fatigue row and the torsional mode set the seat."""
+    text = SCENE.read_text()
+    assert 'bearing_pressure = "90 MPa"\n' in text
+    return text.replace('bearing_pressure = "90 MPa"\n', "")
+
+
 RATIO = 6.0  # the intermediate shaft's speed ratio in the scene
 
 
 @pytest.fixture(scope="module")
-def designed():
-    scene = flyopt.load(SCENE)
+def designed(tmp_path_factory):
+    path = tmp_path_factory.mktemp("walk") / "designed.toml"
+    path.write_text(walk_text())
+    scene = flyopt.load(path)
     solution = solve(scene)
     return scene, solution, shaft_context_of(scene, solution.analysis)
 
@@ -175,23 +190,21 @@ def test_the_designed_seat_is_in_the_json_the_text_and_its_units(designed):
     (shaft,) = document["shaft_checks"]
     assert shaft["seat_diameter"] == pytest.approx(0.06, rel=1e-12) and shaft["seat_series"] == "R40"
     assert document["units"]["seat_diameter"] == "m"
-    # the wheel on the designed seat is keyed to it: DIN 6885-1's 18 x 11 over 58 up to 65 mm, checked at the
-    # peak torque, p = 2 T / (d (h - t1) l_eff)
+    # the wheel on the designed seat is keyed to it: DIN 6885-1's 18 x 11 over 58 up to 65 mm (not checked here:
+    # walk_text gives no bearing pressure)
     key = document["design"]["key"]
-    assert key["size"] == "18 x 11" and key["ok"] and key["torque"] > 0
-    pressure = 2 * key["torque"] / (0.06 * (0.011 - 0.007) * key["effective_length"])
-    assert key["bearing_pressure"] == pytest.approx(pressure, rel=1e-12)
+    assert key["size"] == "18 x 11" and key["ok"] is None and key["torque"] > 0
     assert_units_cover(document)
     assert schema_errors(document) == []
     from flyopt.report.shaft import shaft_report
 
     text = "\n".join(shaft_report(solution.shaft_checks))
-    assert 'seat diameter 60 mm, designed (the steps marked "design"): the NLP\'s continuous optimum d* 57.9 mm' in text
+    assert "seat diameter 60 mm, designed" in text and "d* 57.9 mm rounded up to ISO 3 R40" in text
 
 
 def _solve_with(tmp_path, extra):
     path = tmp_path / "changed.toml"
-    path.write_text(SCENE.read_text().replace('fillet = "3 mm"', f'fillet = "3 mm"\n{extra}'))
+    path.write_text(walk_text().replace('fillet = "3 mm"', f'fillet = "3 mm"\n{extra}'))
     return solve(flyopt.load(path))
 
 
@@ -448,7 +461,7 @@ def test_where_the_torsional_mode_refuses_the_rounded_seat_the_walk_goes_on(tmp_
     from flyopt.design.shaft.diameter import design_with_seats, seated
 
     path = tmp_path / "heavier.toml"
-    path.write_text(SCENE.read_text().replace('inertia = "1.5 kg*m^2"', 'inertia = "2 kg*m^2"'))
+    path.write_text(walk_text().replace('inertia = "1.5 kg*m^2"', 'inertia = "2 kg*m^2"'))
     scene = flyopt.load(path)
     solution = solve(scene)
     (report,) = solution.shaft_checks
@@ -485,7 +498,7 @@ def test_a_disc_bored_on_the_seat_does_not_pull_the_seat_to_the_series_end(tmp_p
     from flyopt.design.shaft.diameter import design_with_seats, seated
 
     path = tmp_path / "disc.toml"
-    path.write_text(SCENE.read_text().replace('geometry = "rim_web"', 'geometry = "disc"'))
+    path.write_text(walk_text().replace('geometry = "rim_web"', 'geometry = "disc"'))
     scene = flyopt.load(path)
     solution = solve(scene)
     (report,) = solution.shaft_checks

@@ -17,11 +17,21 @@ import pytest
 from test_shaft_train import GOOD, J_WHEEL, check
 
 import flyopt
-from flyopt.machine.torsion import TorqueOrders, forced_response, modal_damping, modal_spring_torque_orders
+from flyopt.design.shaft.train import TrainModel, seat_torque
+from flyopt.machine.torsion import (
+    Inertia,
+    Spring,
+    TorqueOrders,
+    TorsionalModel,
+    forced_response,
+    modal_damping,
+    modal_spring_torque_orders,
+)
 
 J2 = 1.5  # the shaft's other inertia in test_shaft_train's scene (the "crank" node takes it)
 SPEED = 50.0  # rad/s of the shaft in test_shaft_train.check
-#: The synthesised curve's extremes: sampled, then refined on the series summed directly (to 1e-9 of a sample step).
+#: The synthesised curve's extremes: sampled, then refined on the series summed directly (their value to some 3e-9
+#: of the highest order's amplitude, design.shaft.train._extreme).
 RTOL = 1e-9
 
 
@@ -180,3 +190,74 @@ def test_the_seat_torque_is_the_time_domain_steady_state(punch_press):
     torque = k * run.y[0]
     assert 0.5 * (torque.max() - torque.min()) == pytest.approx(check.torque_alternating, rel=1e-4)
     assert 0.5 * (torque.max() + torque.min()) == pytest.approx(check.torque_mean, abs=1e-4 * check.torque_alternating)
+
+
+def _chain(inertias, stiffnesses, wheel):
+    """A free chain of ``inertias`` joined by ``stiffnesses``, the wheel at node ``wheel``, the torque entering at the
+    last node."""
+    model = TorsionalModel(
+        [Inertia(i, j) for i, j in enumerate(inertias)], [Spring(i, i + 1, k) for i, k in enumerate(stiffnesses)]
+    )
+    springs = tuple((f"k{i}", "stiffness", k) for i, k in enumerate(stiffnesses))
+    names = tuple(f"n{i}" for i in range(len(inertias)))
+    return TrainModel(model, names, springs, wheel, len(inertias) - 1, Inertia(wheel, inertias[wheel]))
+
+
+def _pulse(level, width, orders):
+    """The orders of a rectangular pulse: ``level`` on 0 <= theta < ``width``, 0 elsewhere (mean level width/2pi)."""
+    k = np.arange(1, orders + 1)
+    c = level / (math.pi * k) * (np.sin(k * width) - 1j * (1.0 - np.cos(k * width)))
+    return TorqueOrders(0.0, k.astype(float), c)
+
+
+def test_a_stiff_train_with_a_smooth_load_gives_the_rigid_share_of_the_section_not_the_wheels():
+    """Upstream inertia (a motor J0) turns with the wheel J1 on the section's side: the section between the wheel and
+    the crank J2 carries (J0 + J1)/J of a smooth load as the train stiffens, not the wheel's J1/J."""
+    j0, j1, j2 = 0.5, 4.0, 1.5
+    excitation = TorqueOrders(0.0, np.array([1.0, 2.0]), np.array([300.0, 120.0 * np.exp(1.1j)]))
+    theta = np.linspace(0.0, 2 * math.pi, 2000001)
+    load = np.real(300.0 * np.exp(1j * theta) + 120.0 * np.exp(1.1j) * np.exp(2j * theta))
+    half_range = 0.5 * (load.max() - load.min())
+    found = seat_torque(_chain([j0, j1, j2], [1e14, 1e14], 1), excitation, 60.0, 0.02)
+    assert found is not None
+    assert found.alternating == pytest.approx((j0 + j1) / (j0 + j1 + j2) * half_range, rel=1e-9)
+    assert abs(found.alternating / (j1 / (j0 + j1 + j2) * half_range) - 1.0) > 0.1  # not the wheel's share
+
+
+def test_a_step_rings_the_resolved_mode_to_the_damped_steps_overshoot():
+    """A long pulse (half the cycle) through a two-inertia train whose mode (order 60) lies well below the highest
+    order (2047): each step rings the section to 1 + exp(-pi zeta / sqrt(1 - zeta^2)) of its jump (the damped
+    single-degree step response; 2 undamped, the step's dynamic load factor), the ringing gone before the next step."""
+    j1, j2, zeta, level = 4.0, 1.5, 0.1, 1000.0
+    mu = j1 * j2 / (j1 + j2)
+    k = (60.0 * 2 * math.pi) ** 2 * mu  # at 60 rpm order 1 is 2 pi rad/s
+    found = seat_torque(_chain([j1, j2], [k], 0), _pulse(level, math.pi, 2047), 60.0, zeta)
+    assert found is not None
+    share, overshoot = j1 / (j1 + j2), math.exp(-math.pi * zeta / math.sqrt(1 - zeta**2))
+    # levels 0 and F, mean F/2: each extreme beyond its level by the overshoot of the jump F
+    assert found.alternating == pytest.approx(share * level * (0.5 + overshoot), rel=1e-4)
+    assert share * level / 2 < found.alternating < 3 * share * level / 2  # above the rigid, below DLF 2 each side
+
+
+def test_a_stiff_train_resolves_a_step_only_up_to_the_highest_order():
+    """The same pulse through a stiff train: the response is quasi-static up to the truncation, and the truncated
+    series overshoots each jump by Gibbs' 8.95 % (Si(pi)/pi - 1/2): T_a is the rigid share's T_a x 1.179, on the
+    safe side; flyopt keeps it (docs/flywheel-design.md, section 26)."""
+    j1, j2, level = 4.0, 1.5, 1000.0
+    found = seat_torque(_chain([j1, j2], [1e14], 0), _pulse(level, math.pi, 2047), 60.0, 0.02)
+    assert found is not None
+    gibbs = 0.5894898722360836 - 0.5  # Si(pi)/pi - 1/2 (Si(pi) = 1.851937051982466)
+    rigid = j1 / (j1 + j2) * level / 2
+    assert found.alternating == pytest.approx(rigid * (1 + 2 * gibbs), rel=1e-4)
+
+
+def test_an_extreme_whose_search_did_not_converge_keeps_its_sample(monkeypatch):
+    """_extreme checks BoundedMinimum.converged: a search that did not converge gives no value, the sample stands."""
+    from flyopt.cycle import minimize
+    from flyopt.design.shaft import train
+
+    amplitudes, harmonics = np.array([100.0 + 0j]), np.array([1])
+    curve = np.real(np.exp(1j * np.linspace(0.0, 2 * math.pi, 4096, endpoint=False)) * 100.0)
+    assert train._extreme(amplitudes, harmonics, curve, 1.0) == pytest.approx(100.0, rel=1e-15)
+    monkeypatch.setattr(minimize, "bounded_minimum", lambda *a, **k: minimize.BoundedMinimum(0.0, -1e9, 500, False))
+    assert train._extreme(amplitudes, harmonics, curve, 1.0) == 100.0  # the sample at t = 0, not -(-1e9)

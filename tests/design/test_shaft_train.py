@@ -70,6 +70,28 @@ def check(write_scene, train, other="1.5 kg*m^2", excitation=EXCITATION, wheel=J
     )
 
 
+def check_with_key(write_scene, key, other_inertia=None):
+    """:func:`check` of the two-inertia train ("" train: the shaft's ``inertia`` at ``torque_at``) with a
+    designed ``key`` (:class:`flyopt.design.shaft.check.KeySeat`); ``other_inertia`` 0: no train at all."""
+    scene = flyopt.load(write_scene(scene_text("")))
+    shaft = scene.shafts[0]
+    library = material_library(scene.materials)
+    return shaft, check_shaft(
+        shaft.layout,
+        get_material(shaft.layout.material, library),
+        wheel_mass=80.0,
+        wheel_inertia=J_WHEEL,
+        omega_mean=50.0,
+        delta=0.05,
+        torque_curve=np.array([-100.0, 100.0]),
+        excitation=EXCITATION,
+        other_inertia=shaft.inertia if other_inertia is None else other_inertia,
+        speed_ratio=shaft.speed_ratio,
+        materials=library,
+        key=key,
+    )
+
+
 def three_inertias(j1, j2, j3, k1, k2):
     """The two elastic omega of a free-free chain, from the quadratic in omega^2."""
     a, b, c = j1 * j2 * j3, -(k1 * j3 * (j1 + j2) + k2 * j1 * (j2 + j3)), k1 * k2 * (j1 + j2 + j3)

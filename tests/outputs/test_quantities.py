@@ -262,6 +262,9 @@ RELATIONS = {
     "torque_mean": "driving_torque",
     "torque_alternating": "driving_torque",
     "torque_alternating_rigid": "driving_torque",
+    "key_torque": "driving_torque",
+    "key_stress": "bearing_pressure",
+    "key_stress_allowed": "bearing_pressure",
     "critical_speed": "omega_max",
     "critical_speed_allowed": "critical_speed",
     # the drive train: a natural frequency is sqrt(k / J); shapes, damping ratios and orders are ratios;

@@ -291,6 +291,9 @@ QUANTITIES = {
     "deflection_allowed": "length",
     "critical_speed": "angular_speed",
     "critical_speed_allowed": "angular_speed",
+    "key_stress": "stress",  # the designed key's governing stress at the train's peak torque on the wheel
+    "key_stress_allowed": "stress",
+    "key_torque": "torque",  # that peak torque, J_wheel theta''_wheel
     "unbalance_force": "force",
     "torque_mean": "torque",
     "torque_alternating": "torque",

@@ -26,7 +26,10 @@ shaft described as a part (:class:`flyopt.machine.shaft_layout.ShaftLayout`):
   the drive train from the motor to the crank with the wheel at its place (by default the
   wheel and the inertia already on the shaft joined by the shaft between the seat and
   ``torque_at``), its modes against the orders of the cycle's net torque, and its forced
-  response at the mean speed.
+  response at the mean speed;
+- **key**: where the train is modelled, the key the wheel was designed with, checked by the design's own rule
+  (:func:`flyopt.design.key.check_key`) at the peak of the torque the train's forced response gives the
+  wheel's own inertia, J_wheel theta''_wheel (the design sized it at the rigid body's peak).
 
 Each limit is a :class:`ShaftLimit` with its value, the allowed value and the
 utilisation (<= 1 holds). The check is a post-check of a designed wheel, not a
@@ -44,12 +47,20 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from flyopt.design import key as din_key
 from flyopt.design.balance import BALANCE_GRADE, permissible_unbalance
 from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_line
 from flyopt.design.shaft.lateral import GRAVITY, Disc, critical_speeds, rotor_model
 from flyopt.design.shaft.torsional import TorsionalCheck, running_range_rpm, torsional_check
-from flyopt.design.shaft.train import TrainResponse, default_train, seat_torque, train_model, train_response
+from flyopt.design.shaft.train import (
+    TrainResponse,
+    default_train,
+    key_torque,
+    seat_torque,
+    train_model,
+    train_response,
+)
 from flyopt.machine.torsion import TorqueOrders
 from flyopt.units import rad_s_to_rpm
 
@@ -60,6 +71,7 @@ if TYPE_CHECKING:
 __all__ = [
     "ShaftLimit",
     "ShaftCheck",
+    "KeySeat",
     "Section",
     "check_shaft",
     "separation_utilisation",
@@ -79,7 +91,9 @@ DIAGRAM_POINTS = 121
 class ShaftLimit:
     """One limit of the shaft: its value, the allowed value and the utilisation (<= 1 holds).
 
-    ``kind`` is one of fatigue, yield, slope, deflection, lateral, torsional; ``where`` says where.
+    ``kind`` is one of fatigue, yield, slope, deflection, lateral, torsional, key; ``where`` says where. A key's
+    limit is its governing stress (bearing pressure or shear, Pa) at ``torque``, the forced response's peak
+    J_wheel theta''_wheel [N*m] (nan for the other kinds).
     """
 
     kind: str
@@ -88,6 +102,7 @@ class ShaftLimit:
     allowed: float
     utilisation: float
     unit: str
+    torque: float = math.nan
 
     @property
     def holds(self) -> bool:
@@ -103,6 +118,11 @@ class ShaftLimit:
                 f"widened to {_fmt(self.allowed)} rpm"
             )
         relation = "<=" if self.holds else ">"
+        if self.kind == "key":
+            return (
+                f"key {self.where}: {_fmt(self.value / 1e6)} {relation} {_fmt(self.allowed / 1e6)} MPa at the "
+                f"train's peak torque on the wheel {_fmt(self.torque)} N*m"
+            )
         name = {"fatigue": "fatigue factor of safety", "yield": "first-cycle yield factor"}.get(self.kind, self.kind)
         if self.kind in ("fatigue", "yield"):
             relation = ">=" if self.holds else "<"
@@ -119,6 +139,7 @@ class ShaftLimit:
             name: self.value * scale,
             f"{name}_allowed": self.allowed * scale,
             "utilisation": self.utilisation,
+            **({"key_torque": self.torque} if self.kind == "key" else {}),
         }
 
 
@@ -131,7 +152,20 @@ JSON_NAMES = {
     "deflection": "deflection",
     "lateral": "critical_speed",
     "torsional": "critical_speed",
+    "key": "key_stress",
 }
+
+
+@dataclass(frozen=True)
+class KeySeat:
+    """The DIN 6885-1 key a wheel was designed with (:func:`flyopt.design.key.check_key`'s arguments, SI): the
+    seat ``d`` [m], the key's standard ``length`` [m] (the longest that fits the hub, so a "hub" of exactly this
+    length gives the same key back) and the allowables the design checked it against [Pa]."""
+
+    d: float
+    length: float
+    allowable_pressure: float
+    allowable_shear: float
 
 
 def _fmt(x: float) -> str:
@@ -175,6 +209,10 @@ class ShaftCheck:
         T_a of the rigid-body torque the wheel exchanges [N*m] (what the forced response replaces).
     torque_source : {"rigid body", "forced response"}
         Which of the two T_m and T_a are.
+    key_torque : float
+        Where the train is modelled, the peak of the torque the wheel's key carries by the forced response,
+        J_wheel theta''_wheel [N*m] (:func:`~flyopt.design.shaft.train.key_torque`; the design sized the key at
+        the rigid body's); nan where it is not.
     lateral_speed : float
         The first forward critical speed [rad/s] (nan: none found).
     speed_range_rpm : (float, float)
@@ -201,6 +239,7 @@ class ShaftCheck:
     response_inputs: tuple[Any, ...] | None = field(default=None, repr=False, compare=False)
     torque_alternating_rigid: float = math.nan
     torque_source: str = "rigid body"
+    key_torque: float = math.nan
 
     @cached_property
     def train(self) -> TrainResponse | None:
@@ -238,6 +277,7 @@ class ShaftCheck:
             "torque_alternating": self.torque_alternating,
             "torque_alternating_rigid": self.torque_alternating_rigid,
             "torque_source": self.torque_source,
+            **({"key_torque": self.key_torque} if math.isfinite(self.key_torque) else {}),
             "lateral_critical_speed": self.lateral_speed,
             "speed_range": [v * math.pi / 30.0 for v in self.speed_range_rpm],
             "torsional_modes": (
@@ -349,6 +389,7 @@ def check_shaft(
     other_inertia: float = 0.0,
     speed_ratio: float = 1.0,
     materials: Mapping[str, Material] | None = None,
+    key: KeySeat | None = None,
 ) -> ShaftCheck:
     """Check a described shaft carrying a wheel over the cycle.
 
@@ -383,6 +424,12 @@ def check_shaft(
         ratios relative to it.
     materials : mapping of str to Material, optional
         The materials a train's shaft pieces name, other than the shaft's own.
+    key : KeySeat, optional
+        The key the wheel was designed with. Where the train is modelled (the seat's torque is the forced
+        response's) it adds a limit "key": that key checked by :func:`flyopt.design.key.check_key` at the peak
+        of the torque the wheel's own inertia takes, J_wheel theta''_wheel
+        (:func:`~flyopt.design.shaft.train.key_torque`); without a train the design already checked it at the
+        rigid body's peak, and no limit is added.
 
     Returns
     -------
@@ -396,7 +443,7 @@ def check_shaft(
     t_max, t_min = (float(torque.max()), float(torque.min())) if torque.size else (0.0, 0.0)
     t_mean, t_alt = 0.5 * (t_max + t_min), 0.5 * (t_max - t_min)
     speed_range = running_range_rpm(omega_mean, delta)
-    torsional = response = seat = None
+    torsional = response = seat = key_limit = keyed = None
     train = layout.train or default_train(layout, "", speed_ratio, other_inertia)
     if excitation is not None and train:
         built = train_model(
@@ -406,6 +453,13 @@ def check_shaft(
         response = (built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio)
         # the one rule of the alternating torque at the seat: the forced response's, where the train is modelled
         seat = seat_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
+        keyed = (
+            None
+            if seat is None
+            else key_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
+        )
+        if keyed is not None and key is not None:
+            key_limit = _key_limit(key, keyed.peak)
     t_alt_rigid = t_alt
     if seat is not None:
         t_mean, t_alt = seat.mean, seat.alternating
@@ -484,6 +538,9 @@ def check_shaft(
             )
         )
 
+    if key_limit is not None:
+        limits.append(key_limit)
+
     plain = _plain_utilisation(
         layout, material, beam.diameter_at(grid), ma_grid, mm_grid, torque_on, t_alt, abs(t_mean)
     )
@@ -508,7 +565,21 @@ def check_shaft(
         response,
         t_alt_rigid,
         "rigid body" if seat is None else "forced response",
+        math.nan if keyed is None else keyed.peak,
     )
+
+
+def _key_limit(key: KeySeat, torque: float) -> ShaftLimit | None:
+    """The key's limit at ``torque`` [N*m] by the design's own rule (:func:`flyopt.design.key.check_key`, its
+    governing stress against its allowable); None at no torque."""
+    if not torque > 0.0:
+        return None
+    found = din_key.check_key(torque, key.d, key.length, key.allowable_pressure, key.allowable_shear)
+    pressure = found.governing == "pressure"
+    value, allowed = (found.pressure, found.allowable_pressure) if pressure else (found.shear, found.allowable_shear)
+    what = "bearing pressure" if pressure else "shear"
+    where = f"{found.key.size}, {found.length * 1e3:g} mm long, at the wheel seat ({what})"
+    return ShaftLimit("key", where, value, allowed, value / allowed, "Pa", torque)
 
 
 def _band_edge(critical_rpm: float, speed_range_rpm: tuple[float, float], margin: float) -> float:

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from flyopt.design.combination import combination_label
-from flyopt.design.shaft.check import ShaftCheck, ShaftLimit, check_shaft
+from flyopt.design.shaft.check import KeySeat, ShaftCheck, ShaftLimit, check_shaft
 from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.torsion import TorqueOrders
 
@@ -47,6 +47,7 @@ __all__ = [
     "acceptor",
     "mass_sensitivity",
     "seat_of",
+    "key_of",
     "layout_of",
     "torque_curve",
 ]
@@ -192,7 +193,9 @@ def machine_context(
 
 def at_ratio(ctx: ShaftContext, name: str, ratio: float) -> ShaftContext:
     """The context with shaft ``name`` turning at ``ratio`` [-] (the drive's flywheel shaft, whose ratio the
-    co-design chooses); the checks already made are shared (their key holds the ratio)."""
+    co-design chooses); the checks already made are shared (their key holds the ratio). The shaft's ``loads``
+    (a belt pull, a mesh force) stay as given at every ratio, though the torque through that pulley scales with
+    1/ratio: the scene states them for the drive as built (docs/flywheel-design.md, section 14)."""
     shafts = {**ctx.shafts, name: dataclasses.replace(ctx.shafts[name], speed_ratio=float(ratio))}
     return dataclasses.replace(ctx, shafts=shafts, _cache=ctx._cache)
 
@@ -240,13 +243,33 @@ def torque_curve(ctx: ShaftContext, name: str, inertia: float) -> np.ndarray:
     return np.zeros(1)
 
 
+def key_of(candidate: Candidate) -> KeySeat | None:
+    """The key the candidate's wheel was designed with (its seat, its standard length, the allowables the design
+    checked it against), or None where the design checked none (no bore, no hub, no bearing pressure)."""
+    found = None if candidate.parts is None else candidate.parts.key
+    if not found or not candidate.bore or found.get("allowable_pressure") is None:
+        return None
+    return KeySeat(
+        float(candidate.bore),
+        float(found["length"]),
+        float(found["allowable_pressure"]),
+        float(found["allowable_shear"]),
+    )
+
+
 def checked_at(
-    ctx: ShaftContext, name: str, mass: float, inertia: float, width: float, seat: float | None = None
+    ctx: ShaftContext,
+    name: str,
+    mass: float,
+    inertia: float,
+    width: float,
+    seat: float | None = None,
+    key: KeySeat | None = None,
 ) -> ShaftCheck:
     shaft = ctx.shafts[name]
-    key = (name, shaft.speed_ratio, ctx.omega_mean, mass, inertia, width, seat)
-    if key in ctx._cache:
-        return ctx._cache[key]
+    cached = (name, shaft.speed_ratio, ctx.omega_mean, mass, inertia, width, seat, key)
+    if cached in ctx._cache:
+        return ctx._cache[cached]
     layout = layout_of(ctx, name, seat)
     r = shaft.speed_ratio
     torque = torque_curve(ctx, name, inertia)
@@ -268,8 +291,9 @@ def checked_at(
         other_inertia=shaft.inertia,
         speed_ratio=r,
         materials=ctx.train_materials,
+        key=key,
     )
-    ctx._cache[key] = check
+    ctx._cache[cached] = check
     return check
 
 
@@ -277,7 +301,7 @@ def check_candidate(ctx: ShaftContext, candidate: Candidate) -> ShaftCheck | Non
     """The checks of the candidate's shaft with its wheel; None when that shaft is not described."""
     if candidate.shaft not in ctx.shafts or candidate.mass is None:
         return None
-    return checked_at(ctx, candidate.shaft, *_wheel(candidate), seat_of(ctx, candidate))
+    return checked_at(ctx, candidate.shaft, *_wheel(candidate), seat_of(ctx, candidate), key_of(candidate))
 
 
 def mass_sensitivity(ctx: ShaftContext, candidate: Candidate, limit: ShaftLimit) -> float:
@@ -287,7 +311,9 @@ def mass_sensitivity(ctx: ShaftContext, candidate: Candidate, limit: ShaftLimit)
     values = []
     for sign in (1.0, -1.0):
         scale = 1.0 + sign * MASS_STEP
-        check = checked_at(ctx, candidate.shaft, mass * scale, inertia * scale, width, seat_of(ctx, candidate))
+        check = checked_at(
+            ctx, candidate.shaft, mass * scale, inertia * scale, width, seat_of(ctx, candidate), key_of(candidate)
+        )
         same = [lim for lim in check.limits if lim.kind == limit.kind and lim.where == limit.where]
         values.append(same[0].utilisation if same else math.nan)
     return (values[0] - values[1]) / (2.0 * h)

@@ -35,6 +35,7 @@ from flyopt.machine.torsion import (
     shaft_compliance,
     shaft_stiffness,
 )
+from flyopt.machine.torsion import modes as torsion_modes
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -47,12 +48,18 @@ __all__ = [
     "TrainResponse",
     "SeatTorque",
     "seat_torque",
+    "KeyTorque",
+    "key_torque",
+    "wheel_torque_orders",
     "default_train",
     "shear_modulus",
     "span_stiffness",
     "train_model",
     "train_response",
 ]
+
+#: The tolerance of the extreme's bounded search, as a share of a sample step (:func:`_extreme`).
+EXTREME_XATOL = 1e-4
 
 #: Poisson's ratio of a steel when the material gives none (G = E / (2 (1 + nu))).
 STEEL_POISSON = 0.3
@@ -104,6 +111,9 @@ class TrainModel:
         Each elastic element's name, kind and stiffness on its own shaft [N*m/rad].
     wheel_node, load_node : int
         The wheel's node and the last one, where the cycle's net torque enters.
+    wheel : Inertia or None
+        The wheel's own inertia in the model (its J on its shaft and that shaft's ratio to the described one):
+        what its key carries, J_wheel theta''_wheel (:func:`key_torque`); None where the train has no wheel.
     """
 
     model: TorsionalModel
@@ -111,6 +121,7 @@ class TrainModel:
     springs: tuple[tuple[str, str, float], ...]
     wheel_node: int
     load_node: int
+    wheel: Inertia | None = None
 
 
 def train_model(
@@ -133,6 +144,7 @@ def train_model(
     names: list[list[str]] = []
     spring_rows: list[tuple[str, str, float]] = []
     node, joined, wheel = -1, False, -1
+    wheel_item: Inertia | None = None
     for element in train:
         if isinstance(element, TrainInertia):
             if not joined:
@@ -142,6 +154,8 @@ def train_model(
             if element.inertia is None:
                 wheel = node
             inertias.append(Inertia(node, float(j), element.ratio / speed_ratio))
+            if element.inertia is None:
+                wheel_item = inertias[-1]
             names[node].append(element.name)
             joined = True  # a next inertia without a spring between turns with this one
             continue
@@ -150,7 +164,12 @@ def train_model(
         springs.append(Spring(node, node + 1, k, element.ratio / speed_ratio))
         spring_rows.append((element.name, element.kind, k))
     return TrainModel(
-        TorsionalModel(inertias, springs), tuple(" + ".join(n) for n in names), tuple(spring_rows), wheel, node
+        TorsionalModel(inertias, springs),
+        tuple(" + ".join(n) for n in names),
+        tuple(spring_rows),
+        wheel,
+        node,
+        wheel_item,
     )
 
 
@@ -300,20 +319,22 @@ def seat_torque(
     with their phases over one cycle (an inverse FFT on 4096 or more points); T_m and T_a are that curve's midrange and half range
     (Shigley's definitions, docs/flywheel-design.md, section 26, for the reason over a sum of amplitudes).
     The mean torque enters quasi-statically: the share J_wheel side / J_total of the excitation's mean. As
-    Omega -> 0 each order's torque tends to the rigid-body share J_F/J of the net torque, so a stiff train
-    gives the rigid-body curve. None where no elastic element follows the wheel (the wheel at the crank
+    Omega -> 0 each order's torque tends to the rigid-body share of the SECTION, sum J[: wheel + 1] / J (every
+    inertia on the wheel's side, the motor and pulleys upstream included: the torque that accelerates them all),
+    not the wheel's J_F/J (its key's, :func:`key_torque`). So for a smooth load a stiff train gives that share of
+    the net torque. A discontinuous load (a punch's torque step) is resolved only up to the highest order: where
+    a mode lies below it, the orders above roll off and the step rings the mode (each extreme beyond its level by
+    up to the step's jump, dynamic load factor 2 undamped); where the response is quasi-static up to the
+    truncation (a stiff train), the truncated series overshoots each jump by Gibbs' 8.95 % of it, which flyopt
+    keeps (on the safe side; docs/flywheel-design.md, section 26). None where no elastic element follows the wheel (the wheel at the crank
     end) or the orders are not the harmonics of one cycle. ``found``: the train's modes, when the caller
     has them (:func:`flyopt.machine.torsion.modal_spring_torque_orders` superposes them).
     """
     wheel = built.wheel_node
     model = built.model
     after = [e for e, spring in enumerate(model.springs) if spring.a == wheel and spring.b == wheel + 1]
-    orders = np.asarray(excitation.orders, dtype=float)
-    if not after or orders.size == 0:
-        return None
-    harmonic = orders / orders[0]
-    k = np.rint(harmonic).astype(int)
-    if np.any(np.abs(harmonic - k) > 1e-9) or np.any(np.diff(k) <= 0):
+    k = _harmonics(excitation)
+    if not after or k is None:
         return None
     e = after[0]
     spring = model.springs[e]
@@ -323,12 +344,8 @@ def seat_torque(
     amplitudes = -torques * spring.ratio
     inertia = np.diag(model.mass_matrix)
     share = float(inertia[: wheel + 1].sum() / inertia.sum())
-    n = max(4096, 1 << int(8 * k[-1]).bit_length())  # a power of two, 8+ points a period of the highest order
-    spectrum = np.zeros(n // 2 + 1, dtype=complex)
-    spectrum[k] = amplitudes * (n / 2.0)
-    curve = share * excitation.mean + np.fft.irfft(spectrum, n)
-    t_max, t_min = _extreme(amplitudes, k, curve, 1.0), _extreme(amplitudes, k, curve, -1.0)
-    t_max, t_min = share * excitation.mean + t_max, share * excitation.mean + t_min
+    t_mean = share * excitation.mean
+    curve, t_max, t_min = _synthesised(amplitudes, k, t_mean)
     return SeatTorque(
         curve,
         0.5 * (t_max + t_min),
@@ -339,10 +356,120 @@ def seat_torque(
     )
 
 
+def wheel_torque_orders(
+    built: TrainModel,
+    excitation: TorqueOrders,
+    speed_rpm: float,
+    damping_ratio: float,
+    found: Modes | None = None,
+) -> np.ndarray:
+    """The complex torque J_wheel theta''_wheel the wheel's key carries, per order of ``excitation`` [N*m], on
+    the wheel's shaft (docs/flywheel-design.md, section 26).
+
+    The wheel node's own equation of motion: the key drives the wheel alone (not the other inertias turning
+    with it at its node), so it carries J_w theta''_w = -J_w (q Omega)^2 Theta_w,q of each order. Theta_w,q by
+    modal superposition with the modal ``damping_ratio`` (the steady state of
+    :func:`flyopt.machine.torsion.forced_response` with :func:`flyopt.machine.torsion.modal_damping`), the
+    rigid-body mode included:
+
+        -Omega^2 Theta_w,q = c_q [phi0_w phi0_L + sum_m -Omega^2 phi_w,m phi_L,m / (omega_m^2 - Omega^2 + 2 i zeta omega_m Omega)]
+
+    (L the load node where the net torque enters). As Omega -> 0 it tends to the rigid body's J_w / J c_q (the
+    torque the design sized the key for); near a mode it is amplified like the seat's torque.
+    """
+    wheel = built.wheel
+    if wheel is None:
+        raise ValueError("the train has no wheel: its key carries no torque")
+    found = torsion_modes(built.model) if found is None else found
+    node, load = built.wheel_node, built.load_node
+    omega = np.asarray(excitation.orders, dtype=float) * 2.0 * math.pi * speed_rpm / 60.0
+    w = found.omega
+    rigid = float((found.rigid_shapes[node] * found.rigid_shapes[load]).sum())
+    gain = found.shapes[node] * found.shapes[load]
+    denominator = w[None, :] ** 2 - omega[:, None] ** 2 + 2j * damping_ratio * w[None, :] * omega[:, None]
+    if np.any(denominator == 0.0):
+        raise ValueError("an order meets a natural frequency of the undamped system: add damping")
+    accel = rigid - omega**2 * (gain[None, :] / denominator).sum(axis=1)  # -Omega^2 Theta_w / c_q
+    # the torque on the wheel's own shaft: J theta''_own = J r theta''_node (r its ratio to the described shaft)
+    torques: np.ndarray = wheel.inertia * wheel.ratio * np.asarray(excitation.amplitudes, dtype=complex) * accel
+    return torques
+
+
+@dataclass(frozen=True)
+class KeyTorque:
+    """The torque the wheel's key carries by the forced response, J_wheel theta''_wheel (SI).
+
+    Attributes
+    ----------
+    curve : ndarray
+        Over one cycle, equally spaced [N*m].
+    peak : float
+        max |T| over the cycle [N*m] (the extremes refined between samples, :func:`_extreme`).
+    speed_rpm, damping_ratio : float
+    """
+
+    curve: np.ndarray
+    peak: float
+    speed_rpm: float
+    damping_ratio: float
+
+
+def key_torque(
+    built: TrainModel,
+    excitation: TorqueOrders,
+    speed_rpm: float,
+    damping_ratio: float,
+    found: Modes | None = None,
+) -> KeyTorque | None:
+    """The key's torque J_wheel theta''_wheel by the forced response at ``speed_rpm``, every order synthesised
+    in time as :func:`seat_torque` does (:func:`_synthesised`), and its peak |T|. The mean net torque enters
+    quasi-statically, the rigid body's share J_w / J of it (nil over a balanced cycle). None where the train has
+    no wheel or the orders are not the harmonics of one cycle."""
+    k = _harmonics(excitation)
+    if k is None or built.wheel is None:
+        return None
+    amplitudes = wheel_torque_orders(built, excitation, speed_rpm, damping_ratio, found)
+    inertia = np.diag(built.model.mass_matrix)
+    wheel = built.wheel
+    mean = wheel.inertia * wheel.ratio * float(excitation.mean) / float(inertia.sum())
+    curve, t_max, t_min = _synthesised(amplitudes, k, mean)
+    return KeyTorque(curve, max(abs(t_max), abs(t_min)), float(speed_rpm), float(damping_ratio))
+
+
+def _harmonics(excitation: TorqueOrders) -> np.ndarray | None:
+    """The excitation's orders as integer harmonics k of one cycle (orders / orders[0]), increasing; None where
+    they are not the harmonics of one cycle (or there are none)."""
+    orders = np.asarray(excitation.orders, dtype=float)
+    if orders.size == 0:
+        return None
+    harmonic = orders / orders[0]
+    k = np.rint(harmonic).astype(int)
+    if np.any(np.abs(harmonic - k) > 1e-9) or np.any(np.diff(k) <= 0):
+        return None
+    return k
+
+
+def _synthesised(amplitudes: np.ndarray, k: np.ndarray, mean: float) -> tuple[np.ndarray, float, float]:
+    """(curve, T_max, T_min) of mean + sum_k Re(A_k e^{i k t}) over one cycle: the orders superposed with their
+    phases by an inverse FFT on 4096 or more points, its extremes refined by :func:`_extreme`. The one synthesis
+    of the seat's torque (:func:`seat_torque`) and the key's (:func:`key_torque`)."""
+    n = max(4096, 1 << int(8 * k[-1]).bit_length())  # a power of two, 8+ points a period of the highest order
+    spectrum = np.zeros(n // 2 + 1, dtype=complex)
+    spectrum[k] = amplitudes * (n / 2.0)
+    curve = mean + np.fft.irfft(spectrum, n)
+    t_max, t_min = _extreme(amplitudes, k, curve, 1.0), _extreme(amplitudes, k, curve, -1.0)
+    return curve, mean + t_max, mean + t_min
+
+
 def _extreme(amplitudes: np.ndarray, harmonics: np.ndarray, curve: np.ndarray, sign: float) -> float:
     """The largest (``sign`` 1) or smallest (-1) value of sum_k Re(A_k e^{i k t}) over a period: the sampled
     extreme of ``curve`` (its samples, the mean included) refined between its neighbours by a bounded search on
-    the series summed directly (the samples alone miss a ringing peak by up to 1 - cos(pi / points a period))."""
+    the series summed directly (the samples alone miss a ringing peak by up to 1 - cos(pi / points a period)).
+
+    The search stops within :data:`EXTREME_XATOL` of a sample step in t (Brent's test adds sqrt(eps) |t|, up to
+    1e-7 rad, which it cannot go below): with 8 or more samples a period of the highest order, the phase of any
+    order is then off by at most 2 pi 1e-4 / 8, and the extreme's value by (8e-5)^2 / 2 = 3e-9 of its amplitude.
+    """
     from flyopt.cycle.minimize import bounded_minimum
 
     n = curve.size
@@ -352,5 +479,8 @@ def _extreme(amplitudes: np.ndarray, harmonics: np.ndarray, curve: np.ndarray, s
     def minus(t: float) -> float:
         return -sign * float(np.real(np.exp(1j * harmonics * t) @ amplitudes))
 
-    found = bounded_minimum(minus, (j - 1) * step, (j + 1) * step, xatol=1e-9 * step)
-    return -sign * min(found.fun, minus(j * step))
+    sampled = minus(j * step)
+    found = bounded_minimum(minus, (j - 1) * step, (j + 1) * step, xatol=EXTREME_XATOL * step)
+    if not found.converged or not math.isfinite(found.fun):
+        return -sign * sampled  # the search did not converge: the sample stands (it is a value of the series)
+    return -sign * min(found.fun, sampled)
