@@ -57,6 +57,26 @@ def designed(tmp_path_factory):
     return scene, solution, shaft_context_of(scene, solution.analysis)
 
 
+def walk_from_the_floor(scene, solution, ctx=None):
+    """The search before d entered the NLP, run here: the series walked from the torque-only floor
+    (``continuous=False``), every design as ``flyopt solve`` makes it (rounded to whole millimetres)."""
+    from flyopt.design.shaft.diameter import design_with_seats, seated
+
+    an = solution.analysis
+    inputs = one_design(design_inputs(scene))
+    return design_with_seats(
+        an.j_margin,
+        an.omega_max,
+        seated(inputs.shafts, {"intermediate"}),
+        list(inputs.materials),
+        inputs.spec,
+        ctx=shaft_context_of(scene, an) if ctx is None else ctx,
+        continuous=False,
+        torque=an.flywheel_torque(),
+        omega_mean=an.omega_mean,
+    )
+
+
 def test_the_series_is_iso_3_r40_inside_the_size_factor_and_the_key_table():
     values = seat_series("R40")
     # ISO 3's R40 from 6.3 mm (the key table starts over 6 mm) to 250 mm (k_b stops at 254 mm): 65 values,
@@ -366,22 +386,9 @@ def test_the_nlp_seat_is_shigleys_diameter_where_fatigue_at_the_keyseat_binds(de
 def test_the_series_value_is_the_one_the_walk_from_the_floor_picks(designed):
     """The walk from the NLP's d* rounded up (60 mm) and the walk from the torque-only floor (45 mm, the search
     before d entered the NLP, run here) choose the same seat and the same wheel; the new one designs one seat."""
-    from flyopt.design.shaft.diameter import design_with_seats, seated
 
     scene, solution, ctx = designed
-    an = solution.analysis
-    inputs = one_design(design_inputs(scene))  # as flyopt solve designs it: rounded to whole millimetres
-    old = design_with_seats(
-        an.j_margin,
-        an.omega_max,
-        seated(inputs.shafts, {"intermediate"}),
-        list(inputs.materials),
-        inputs.spec,
-        ctx=ctx,
-        continuous=False,
-        torque=an.flywheel_torque(),
-        omega_mean=an.omega_mean,
-    )
+    old = walk_from_the_floor(scene, solution, ctx)
     best = solution.design.best
     assert old.best.bore == best.bore == pytest.approx(0.060, rel=1e-12)
     assert old.best.mass == pytest.approx(best.mass, rel=1e-9)
@@ -458,7 +465,6 @@ def test_where_the_torsional_mode_refuses_the_rounded_seat_the_walk_goes_on(tmp_
     """With 2 kg m^2 on the pinion end the NLP's d* (fatigue, 57.6 mm) rounds up to 60 mm, but the torsional mode
     falls inside the widened running range on 60 and 63 mm: the walk goes on to 67 mm, the value the walk from the
     floor (run here) also picks, and the report names the post-check's limit, with no NLP sensitivity."""
-    from flyopt.design.shaft.diameter import design_with_seats, seated
 
     path = tmp_path / "heavier.toml"
     path.write_text(walk_text().replace('inertia = "1.5 kg*m^2"', 'inertia = "2 kg*m^2"'))
@@ -473,19 +479,7 @@ def test_where_the_torsional_mode_refuses_the_rounded_seat_the_walk_goes_on(tmp_
         "the post-check, which refused 63 mm: torsional critical speed (mode 1 at order 9.33333)"
     )
     assert math.isnan(report.seat_sensitivity) and report.to_dict()["seat_dmass_dfactor"] is None
-    an = solution.analysis
-    inputs = one_design(design_inputs(scene))
-    old = design_with_seats(
-        an.j_margin,
-        an.omega_max,
-        seated(inputs.shafts, {"intermediate"}),
-        list(inputs.materials),
-        inputs.spec,
-        ctx=shaft_context_of(scene, an),
-        continuous=False,
-        torque=an.flywheel_torque(),
-        omega_mean=an.omega_mean,
-    )
+    old = walk_from_the_floor(scene, solution)
     assert old.best.bore == solution.design.best.bore and old.best.mass == pytest.approx(
         solution.design.best.mass, rel=1e-9
     )
@@ -495,7 +489,6 @@ def test_a_disc_bored_on_the_seat_does_not_pull_the_seat_to_the_series_end(tmp_p
     """A disc that is an annulus on its bore gets lighter as the bore grows: with the wheel's mass alone as the
     objective d* went to the range's top (160 mm). With the designed step's steel counted the fatigue row sets d*
     again, and the seat is the one the walk from the floor picks (run here)."""
-    from flyopt.design.shaft.diameter import design_with_seats, seated
 
     path = tmp_path / "disc.toml"
     path.write_text(walk_text().replace('geometry = "rim_web"', 'geometry = "disc"'))
@@ -504,18 +497,6 @@ def test_a_disc_bored_on_the_seat_does_not_pull_the_seat_to_the_series_end(tmp_p
     (report,) = solution.shaft_checks
     assert report.seat_choice.optimum.binding.name == "fatigue at the keyseat at the wheel seat"
     assert 0.056 < report.seat_continuous < 0.060 and report.seat_diameter == pytest.approx(0.060, rel=1e-12)
-    an = solution.analysis
-    inputs = one_design(design_inputs(scene))
-    old = design_with_seats(
-        an.j_margin,
-        an.omega_max,
-        seated(inputs.shafts, {"intermediate"}),
-        list(inputs.materials),
-        inputs.spec,
-        ctx=shaft_context_of(scene, an),
-        continuous=False,
-        torque=an.flywheel_torque(),
-        omega_mean=an.omega_mean,
-    )
+    old = walk_from_the_floor(scene, solution)
     assert old.best.bore == solution.design.best.bore
     assert old.best.mass == pytest.approx(solution.design.best.mass, rel=1e-9)

@@ -51,7 +51,9 @@ def scene_text(train, other="1.5 kg*m^2"):
     return BASE + SHAFT.format(train=train, other=other)
 
 
-def check(write_scene, train, other="1.5 kg*m^2", excitation=EXCITATION, wheel=J_WHEEL):
+def check(write_scene, train, other="1.5 kg*m^2", excitation=EXCITATION, wheel=J_WHEEL, key=None, inertia=None):
+    """check_shaft of the scene's shaft with ``train`` and a wheel of ``wheel`` kg*m^2 (80 kg); ``key``: a designed
+    key (:class:`flyopt.design.shaft.check.KeySeat`); ``inertia``: the other inertia in place of the shaft's."""
     scene = flyopt.load(write_scene(scene_text(train, other)))
     shaft = scene.shafts[0]
     library = material_library(scene.materials)
@@ -64,32 +66,17 @@ def check(write_scene, train, other="1.5 kg*m^2", excitation=EXCITATION, wheel=J
         delta=0.05,
         torque_curve=np.array([-100.0, 100.0]),
         excitation=excitation,
-        other_inertia=shaft.inertia,
+        other_inertia=shaft.inertia if inertia is None else inertia,
         speed_ratio=shaft.speed_ratio,
         materials=library,
+        key=key,
     )
 
 
 def check_with_key(write_scene, key, other_inertia=None):
     """:func:`check` of the two-inertia train ("" train: the shaft's ``inertia`` at ``torque_at``) with a
     designed ``key`` (:class:`flyopt.design.shaft.check.KeySeat`); ``other_inertia`` 0: no train at all."""
-    scene = flyopt.load(write_scene(scene_text("")))
-    shaft = scene.shafts[0]
-    library = material_library(scene.materials)
-    return shaft, check_shaft(
-        shaft.layout,
-        get_material(shaft.layout.material, library),
-        wheel_mass=80.0,
-        wheel_inertia=J_WHEEL,
-        omega_mean=50.0,
-        delta=0.05,
-        torque_curve=np.array([-100.0, 100.0]),
-        excitation=EXCITATION,
-        other_inertia=shaft.inertia if other_inertia is None else other_inertia,
-        speed_ratio=shaft.speed_ratio,
-        materials=library,
-        key=key,
-    )
+    return check(write_scene, "", key=key, inertia=other_inertia)
 
 
 def three_inertias(j1, j2, j3, k1, k2):
