@@ -7,8 +7,11 @@ editor of problems/shear-press.toml (an energy-model scene, solved on every edit
 the clock starts when the last key is sent and stops when
 
 * numbers: the answer card shows the new "δ (1/n)" and the status "designed";
-* diagrams: the speed diagram's SVG (it draws ω_m(1 ± δ/2), so it changes with δ; the last drawn) differs from
-  before; the first that changes with δ, the J_F–δ diagram's (the third on the page, in view), also.
+* the diagram in view: before the edits the page is scrolled to the J_F–δ diagram (the third on the page; it
+  changes with δ), which the page then draws first (flyopt.app.diagrams: the diagrams in view first); its SVG
+  differs from before;
+* all diagrams: the speed diagram's SVG (it draws ω_m(1 ± δ/2), so it changes with δ; the last on the page, out
+  of view, so the last drawn) differs from before: every diagram of the edit has been drawn and sent by then.
 
 The times are the browser's (performance.now()): from the edit's event in the page (the line replaced in one
 input, as a paste or a single keystroke is) to the DOM changed (a MutationObserver) and to the frame after it.
@@ -141,6 +144,10 @@ def browser_latencies(url, edits, cpus):
         page.wait_for_selector(".card >> text=designed", timeout=300_000)
         page.wait_for_selector(".figure-speed svg", timeout=300_000)
         page.wait_for_function("() => !document.body.innerText.includes('drawing the diagrams')", timeout=300_000)
+        # the engineer looks at the J_F–δ diagram while editing δ: scrolled into view, the page told so
+        page.locator(".figure-inertia_delta").first.scroll_into_view_if_needed()
+        page.locator(".figure-inertia_delta").first.evaluate("(el) => el.scrollIntoView({block: 'start'})")
+        time.sleep(1.0)
         current = "0.05"
         for i in range(edits):
             new = DELTAS[i % len(DELTAS)]
@@ -149,14 +156,22 @@ def browser_latencies(url, edits, cpus):
                 "first": page.locator(".figure-inertia_delta svg").first.inner_html(),
                 "last": page.locator(".figure-speed svg").first.inner_html(),
             }
-            page.locator(".ace_editor").first.evaluate(
-                "(el, old) => { const ed = el.env.editor; ed.focus(); ed.find(old, {wrap: true}); }",
-                f"delta = {current}",
-            )
+            editor = page.locator(".ace_editor").first
+            editor.evaluate("(el, old) => { el.env.editor.find(old, {wrap: true}); }", f"delta = {current}")
             page.evaluate(WATCH, [shown, before])
-            page.keyboard.insert_text(f"delta = {new}")  # one edit, as a paste or a single keystroke is
+            # one edit, as a paste or a single keystroke is: the selected line replaced through the editor's own
+            # API (its change event is what Panel sends), the clock started there; typed keys would make the
+            # browser scroll the page back to the editor, away from the diagram in view
+            editor.evaluate(
+                "(el, text) => { window.__flyoptEdit = performance.now(); el.env.editor.insert(text); }",
+                f"delta = {new}",
+            )
             out = page.evaluate("() => window.__flyoptDone", [])
             row = {"edit": i, "delta": new}
+            # where the J_F–δ diagram is after the edit (CSS pixels from the viewport's top; in view: 0 to 1000)
+            row["in_view_top_px"] = page.locator(".figure-inertia_delta").first.evaluate(
+                "(el) => el.getBoundingClientRect().top"
+            )
             for name in ("card", "first", "last"):
                 row[f"{name}_ms"] = out[name] - out["edit"]
                 row[f"{name}_painted_ms"] = out[f"{name}_painted"] - out["edit"]
@@ -174,7 +189,9 @@ def server_share(edits):
     space = model.Workspace()
     text = SCENE.read_text(encoding="utf-8")
     model.solve(text, space).document.close()  # warm-up: imports, compiled models
-    steps = {"check": [], "numbers": [], "draw": [], "svg": [], "speed": []}
+    from flyopt.app.diagrams import Diagrams
+
+    steps = {"check": [], "numbers": [], "draw": [], "svg": [], "speed": [], "in_view": [], "all": []}
     for i in range(edits):
         edited = text.replace("delta = 0.05", f"delta = {DELTAS[i % len(DELTAS)]}")
         t0 = time.perf_counter()
@@ -191,7 +208,18 @@ def server_share(edits):
                 speed = time.perf_counter()
         t4 = time.perf_counter()
         document.close()
-        for name, value in zip(steps, (t1 - t0, t2 - t1, t3 - t2, t4 - t3, speed - t1)):
+        # as the page draws them: the diagram in view first (J_F–δ), then the rest from a second document
+        answer = model.numbers(edited, space)
+        t5 = time.perf_counter()
+        diagrams = Diagrams(answer, {"inertia_delta": 1.0})
+        diagrams.step()
+        t6 = time.perf_counter()
+        while diagrams.step() is not None:
+            pass
+        t7 = time.perf_counter()
+        diagrams.document().close()
+        values = (t1 - t0, t2 - t1, t3 - t2, t4 - t3, speed - t1, t2 - t1 + t6 - t5, t2 - t1 + t7 - t5)
+        for name, value in zip(steps, values):
             steps[name].append(1e3 * value)
     space.close()
     return steps
@@ -250,13 +278,16 @@ def main():
     steps = server_share(args.edits)
     numbers = [r["card_ms"] for r in rows]
     diagrams = [r["last_ms"] for r in rows]
+    in_view = [r["first_ms"] for r in rows]
     met_numbers = "met" if statistics.median(numbers) <= 150 else "NOT met"
     met_diagrams = "met" if statistics.median(diagrams) <= 500 else "NOT met"
+    met_in_view = "met" if statistics.median(in_view) <= 500 else "NOT met"
     text = f"""# flyopt app: edit to answer, in the browser
 
 `python benchmarks/bench_app.py --edits {args.edits} --pin {args.pin}`: problems/shear-press.toml (energy model,
 solved on every edit), machine.delta's line replaced {args.edits} times in headless chromium, each replacement one
-edit (inserted at once, as a paste or a single keystroke is); medians (min–max). The times are the browser's own
+edit (inserted at once through the editor's API, as a paste or a single keystroke is, the page scrolled to the J_F–δ
+diagram); medians (min–max). The times are the browser's own
 (`performance.now()`): from the edit's event in the page to the DOM showing the change (a MutationObserver; nothing
 polls the page) and to the next frame after it (painted). They include Panel's 50 ms debounce and the page's ({1e3 * DEBOUNCE:.0f} ms).
 {pinned}; Python {platform.python_version()}, {platform.platform()}, {os.cpu_count()} CPUs.
@@ -266,8 +297,11 @@ several engineers: absolute times are noisy, the ratios between the rows of the 
 | from an edit to | median (range) | painted: median (range) | target | |
 | --- | --- | --- | --- | --- |
 | updated numbers (card) | {summary(numbers)} | {summary([r["card_painted_ms"] for r in rows])} | <= 150 ms | {met_numbers} |
-| the first diagram that changes with δ (J_F–δ, the third) | {summary([r["first_ms"] for r in rows])} | {summary([r["first_painted_ms"] for r in rows])} | | |
-| updated diagrams (speed, the last) | {summary(diagrams)} | {summary([r["last_painted_ms"] for r in rows])} | <= 500 ms | {met_diagrams} |
+| the diagram in view (J_F–δ, scrolled to; drawn first) | {summary(in_view)} | {summary([r["first_painted_ms"] for r in rows])} | (<= 500 ms) | {met_in_view} |
+| updated diagrams, all of them (speed, the last drawn) | {summary(diagrams)} | {summary([r["last_painted_ms"] for r in rows])} | <= 500 ms | {met_diagrams} |
+
+The issue's target is the last row: every diagram of the edit updated. The row above it is the diagram the
+engineer is looking at, which the page draws first; it does not replace the target.
 
 The server's share, in this process after a warm-up ({"on the server's CPU" if server_cpus else "not pinned"}),
 the same texts:
@@ -276,15 +310,18 @@ the same texts:
 | --- | --- |
 | check (flyopt's loader on the text) | {summary(steps["check"])} |
 | numbers: the report's one solve and its document without diagrams (the card) | {summary(steps["numbers"])} |
-| the same solve's document with its diagrams (made, not yet drawn) | {summary(steps["draw"])} |
-| every diagram drawn to SVG | {summary(steps["svg"])} |
-| from the check's end to the speed diagram's SVG (the last of the page's diagrams) | {summary(steps["speed"])} |
+| the same solve's document with all its diagrams (made, not yet drawn) | {summary(steps["draw"])} |
+| every diagram of that document drawn to SVG | {summary(steps["svg"])} |
+| from the check's end to the speed diagram's SVG, all from one document | {summary(steps["speed"])} |
+| as the page draws: from the check's end to the SVG of the diagram in view (a document making it alone) | {summary(steps["in_view"])} |
+| as the page draws: from the check's end to the last SVG (the rest from a second document) | {summary(steps["all"])} |
 
 The card is the first change sent once the numbers are solved (the report's document built without its
-diagrams); the diagrams of the same solve are drawn after it, in their own worker, and shown one by one, the
-speed diagram last: an edit waits for the debounce, the check and the numbers for its card, and for every
-diagram for the speed one, so the last row of this table (less the check) is the server's floor under the
-diagrams' latency.
+diagrams); the diagrams of the same solve are drawn after it, in their own worker, and each sent as soon as
+it is drawn: those in view first (a document that makes their figures alone), then the others in the page's
+order (a second document, without solving again), the speed diagram last. An edit waits for the debounce, the
+check and the numbers for its card, and for every diagram for the speed one, so the last two rows of this
+table are the server's floor under the two rows of the browser's table.
 """
     write_results(Path(__file__).parent / "results", "app", text, rows)
     print(text)

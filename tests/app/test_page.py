@@ -85,8 +85,8 @@ def test_an_edit_s_card_does_not_wait_for_the_last_edit_s_diagrams_which_are_dro
     drawn: list[tuple[str, str]] = []  # (the edit's δ, the diagram's key)
     draw = model.draw
 
-    def drawing(answer):
-        document = draw(answer)
+    def drawing(answer, keys=None):
+        document = draw(answer, keys)
         document.delta = answer.sha256  # which edit the document is of
         return document
 
@@ -101,8 +101,8 @@ def test_an_edit_s_card_does_not_wait_for_the_last_edit_s_diagrams_which_are_dro
     owner: dict[int, str] = {}
     first = edited("0.04")
 
-    def draw_marked(answer):
-        document = drawing(answer)
+    def draw_marked(answer, keys=None):
+        document = drawing(answer, keys)
         for block in model.figure_blocks(document):
             owner[id(block)] = "first" if answer.sha256 == model.scene_digest(first) else "second"
         return document
@@ -125,3 +125,29 @@ def test_an_edit_s_card_does_not_wait_for_the_last_edit_s_diagrams_which_are_dro
     assert len(seconds) >= 5 and seconds[-1] == "speed"
     assert [slot[1].object for slot in session.figure_slots] == [f"<b>second {key}</b>" for key in seconds]
     assert "0.02 (1/50)" in session.card.html and "drawing" not in session.card.html
+
+
+def test_the_diagram_in_view_is_drawn_and_shown_first(session, monkeypatch):
+    """The browser says how much of each diagram is in view (the component's ``seen``); on the next edit the
+    page draws and shows the one most in view first, then the others in the page's order."""
+    from flyopt.app import model
+
+    asyncio.run(session._refresh(edited("0.04"), solve=None))
+    keys = [slot[2].key for slot in session.figure_slots]
+    assert keys[-1] == "speed" and len(keys) >= 5
+    for _column, _title, pane in session.figure_slots:
+        pane.seen = {"speed": 1.0, "stress": 0.25}.get(pane.key, 0.0)  # the page scrolled down to the speed
+    shown: list[str] = []
+    show = session._show_figure
+
+    def showing(index, key, *rest):
+        shown.append(key)
+        return show(index, key, *rest)
+
+    monkeypatch.setattr(session, "_show_figure", showing)
+    asyncio.run(session._refresh(edited("0.02"), solve=None))
+    rest = [key for key in keys if key not in ("speed", "stress")]
+    assert shown[: len(keys)] == ["speed", "stress", *rest]
+    assert [slot[2].key for slot in session.figure_slots] == keys  # each in its place on the page
+    assert "0.02 (1/50)" in session.card.html and "drawing" not in session.card.html
+    assert all(block.figure is not None for block in model.figure_blocks(session.answer.document) if block.key in keys)

@@ -57,6 +57,34 @@ def test_the_transform_puts_a_point_where_matplotlib_drew_it(log):
         assert readout.to_svg(entry, *point) == pytest.approx(svg_point(figure, ax, *point), abs=1e-6)
 
 
+@pytest.mark.parametrize("log", [False, True])
+def test_the_svg_writes_a_curve_to_two_decimals_where_the_read_out_puts_it(log):
+    """The SVG's paths carry flyopt.report.html.PATH_DECIMALS (2) decimals of a point (matplotlib writes 6): each
+    vertex of a curve's path is its data point through the recorded transform to within half the last digit
+    kept, so that the page's guide and dots sit on the drawn curve (one point is 1/72 in)."""
+    from flyopt.report.html import PATH_DECIMALS
+
+    ax, _own = standard.axes(None)
+    figure = standard.figure_of(ax)
+    x = np.linspace(1.0, 50.0, 37)
+    y = 3.0 + x**1.5 + np.sin(x)  # no point on a grid of round numbers
+    (line,) = ax.plot(x, y, color="tab:blue", gid="curve")
+    if log:
+        ax.set(xscale="log", yscale="log")
+    readout.abscissa(ax, "x", standard.scale("length", "engineering"))
+    readout.curve(line, "y", standard.scale("length", "engineering"))
+    svg = svg_of(figure, "r")
+    entry = readout.record(figure)["axes"][0]
+    data = re.search(r'<g id="rcurve">\s*<path d="([^"]+)"', svg).group(1)
+    numbers = re.findall(r"-?\d+(?:\.\d+)?", data)
+    assert max(len(n.partition(".")[2]) for n in numbers) == PATH_DECIMALS == 2
+    vertices = np.array([float(n) for n in numbers]).reshape(-1, 2)
+    assert len(vertices) == len(x)  # 37 points: too few to simplify
+    expected = np.array([readout.to_svg(entry, a, b) for a, b in zip(x, y)])
+    assert np.abs(vertices - expected).max() <= 0.5 * 10.0**-PATH_DECIMALS + 1e-9
+    assert np.abs(vertices - expected).max() > 1e-4  # rounded indeed (matplotlib's six decimals are within 5e-7)
+
+
 def test_the_turning_moment_reads_the_published_torques():
     import flyopt
     from flyopt.report.plots import plot_turning_moment

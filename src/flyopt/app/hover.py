@@ -14,6 +14,8 @@ drawing with a named height (:func:`flyopt.report.plots.readout.ordinate`: r on 
 a horizontal guide shows the height under the pointer. The texts are put in as text
 (``textContent``), never as markup; the script formats no number: every value is written by the report's rule in
 Python. A click on a link ``#pick-N`` of the SVG (a Pareto point) sets ``picked`` to N and counts ``clicks``.
+How much of the diagram is in view is sent back (``seen``, the browser's IntersectionObserver), so that the
+diagrams in view are drawn first (:mod:`flyopt.app.diagrams`).
 """
 
 from __future__ import annotations
@@ -199,6 +201,14 @@ export function render({ model, el }) {
     model.picked = parseInt(found[1])
     model.clicks = model.clicks + 1
   })
+  // how much of the diagram is in view (0 to 1): the server draws the diagrams in view first (flyopt.app.diagrams)
+  const watcher = new IntersectionObserver((entries) => {
+    for (const entry of entries) {
+      const fraction = entry.isIntersecting ? Math.round(entry.intersectionRatio * 100) / 100 : 0
+      if (model.seen !== fraction) model.seen = fraction
+    }
+  }, { threshold: [0, 0.1, 0.25, 0.5, 0.75, 0.9, 1] })
+  watcher.observe(box)
   show()
   model.on('svg', show)
   model.on('readout', show)
@@ -221,13 +231,15 @@ def hover_svg() -> type:
     class HoverSVG(JSComponent):
         """A figure's SVG (``svg``) with read-outs (``readout``: the JSON of
         :func:`flyopt.report.plots.readout.record`, "" for none); ``key`` names it (class ``figure-KEY``);
-        ``picked`` the N of the last link ``#pick-N`` clicked, ``clicks`` how many were."""
+        ``picked`` the N of the last link ``#pick-N`` clicked, ``clicks`` how many were; ``seen`` the fraction
+        of it in the browser's view (0 to 1: its IntersectionObserver's)."""
 
         svg = param.String(default="")
         readout = param.String(default="")
         key = param.String(default="")
         picked = param.Integer(default=-1)
         clicks = param.Integer(default=0)
+        seen = param.Number(default=0.0, bounds=(0.0, 1.0))
 
         _esm = ESM
         _stylesheets = [STYLE]

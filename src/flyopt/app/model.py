@@ -17,6 +17,7 @@ import hashlib
 import json
 import shutil
 import tempfile
+from collections.abc import Collection
 from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -255,8 +256,9 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
     )
 
 
-def draw(answer: Answer) -> Document:
-    """The report's document of ``answer``'s solve with its diagrams (the same inputs: nothing is solved again).
+def draw(answer: Answer, keys: Collection[str] | None = None) -> Document:
+    """The report's document of ``answer``'s solve with its diagrams (the same inputs: nothing is solved again);
+    with ``keys``, those diagrams alone (:class:`flyopt.app.diagrams.Diagrams`: the ones in view first).
 
     Its figures are open matplotlib Figures: :func:`drawn` takes the document into the answer (and the answer
     closes it with the next), else the caller closes it.
@@ -266,7 +268,7 @@ def draw(answer: Answer) -> Document:
     if answer.drawn:
         return answer.document
     with drawing():
-        return build(answer.inputs, answer.units)
+        return build(answer.inputs, answer.units, figures=True if keys is None else keys)
 
 
 def drawing() -> AbstractContextManager[Any]:

@@ -292,24 +292,30 @@ class Session:
             self._busy(False)
 
     async def _draw(self, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop) -> None:
-        """Draw ``answer``'s diagrams in the drawing worker, each shown as soon as it is drawn (over the last
-        answer's, in order, the top one first); dropped as soon as a newer edit comes (checked between
-        diagrams: a diagram being drawn cannot be stopped, but the newer edit's check and numbers run beside it
-        in the solving worker, and nothing more of the stale answer is drawn)."""
-        document = await loop.run_in_executor(self.drawer, model.draw, answer)
-        if mine != self.generation:
-            await loop.run_in_executor(self.drawer, model.close, document)
-            return
-        shown: list[model.Shown] = []
-        for block in model.figure_blocks(document):
-            figure = await loop.run_in_executor(self.drawer, model.figure_svg, block)
+        """Draw ``answer``'s diagrams in the drawing worker, those in view first (:class:`flyopt.app.diagrams.Diagrams`),
+        each shown as soon as it is drawn (over the last answer's, in its place); dropped as soon as a newer
+        edit comes (checked between diagrams: a diagram being drawn cannot be stopped, but the newer edit's check
+        and numbers run beside it in the solving worker, and nothing more of the stale answer is drawn)."""
+        from flyopt.app.diagrams import Diagrams
+
+        diagrams = Diagrams(answer, self._in_view())
+        while True:
+            step = await loop.run_in_executor(self.drawer, diagrams.step)
             if mine != self.generation:
-                await loop.run_in_executor(self.drawer, model.close, document)
+                await loop.run_in_executor(self.drawer, diagrams.close)
                 return
-            shown.append(figure)
-            self._show_figure(len(shown) - 1, *figure)
+            if step is None:
+                break
+            index, figure = step
+            if index <= len(self.figure_slots):  # a place further down is added in order, below
+                self._show_figure(index, *figure)
+        shown = diagrams.figures()
         self._show_figures(shown)
-        self._take(model.drawn(answer, document, shown))
+        self._take(model.drawn(answer, diagrams.document(), shown))
+
+    def _in_view(self) -> dict[str, float]:
+        """The diagrams on the page by key, each with the fraction of it the visitor has in view (the page's order)."""
+        return {svg_pane.key: float(svg_pane.seen) for _column, _title, svg_pane in self.figure_slots if svg_pane.key}
 
     def _take(self, answer: model.Answer) -> None:
         """Make ``answer`` the one shown and downloaded, closing the figures of the one it replaces."""

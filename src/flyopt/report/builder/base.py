@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import inspect
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 from typing import TYPE_CHECKING, Any, cast
 
 from flyopt.names import Geometry, Model
@@ -27,12 +27,18 @@ class BuilderBase:
     """The state of a report being built and the tools every section is written with."""
 
     def __init__(
-        self, inputs: ReportInputs, units: str, digits: int = display.DEFAULT_DIGITS, figures: bool = True
+        self,
+        inputs: ReportInputs,
+        units: str,
+        digits: int = display.DEFAULT_DIGITS,
+        figures: bool | Collection[str] = True,
     ) -> None:
         self.inputs = inputs
         self.units = units
         self.digits = digits  # significant figures of every number shown (--digits)
-        self.figures = figures  # False: the figures' blocks hold their captions only (the app's card first)
+        # False: the figures' blocks hold their captions only (the app's card first); keys: those figures alone
+        # (the app's diagram in view first)
+        self.figures = figures if isinstance(figures, bool) else frozenset(figures)
         self.solution = cast("Solution", inputs.solution)
         self.scene = self.solution.scene
         self.analysis = self.solution.analysis
@@ -118,12 +124,13 @@ class BuilderBase:
         them: the report's).
 
         A builder made with ``figures=False`` draws nothing: the block holds the key and caption only, the
-        note saying so (a document of numbers, for the app's answer card before its diagrams).
+        note saying so (a document of numbers, for the app's answer card before its diagrams); one made with
+        a collection of keys draws the figures of those keys alone (the app's diagram in view, first).
         """
         from flyopt.report import plots
         from flyopt.report.plots.standard import figure_of
 
-        if not self.figures:
+        if self.figures is False or (not isinstance(self.figures, bool) and key not in self.figures):
             blocks.append(Figure(key, caption, note=NOT_DRAWN))
             return
         try:

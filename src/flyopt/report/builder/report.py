@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
 from flyopt.report import display
@@ -25,7 +26,7 @@ def build(
     units: str = display.DEFAULT,
     title_block: tuple[tuple[str, Any], ...] = (),
     digits: int = display.DEFAULT_DIGITS,
-    figures: bool = True,
+    figures: bool | Collection[str] = True,
 ) -> Document:
     """The report of a solved scene, or of a scene that is one calculation, in a unit system.
 
@@ -41,10 +42,11 @@ def build(
     digits : int
         Significant figures of every number shown, tables and equations alike
         (:func:`flyopt.report.display.check_digits`).
-    figures : bool
+    figures : bool or collection of str
         False: no diagram is drawn, each figure's block holds its caption only (a document of the
-        numbers, built in a few milliseconds: the app's answer card before its diagrams). A
-        calculation's report draws its figures either way.
+        numbers, built in a few milliseconds: the app's answer card before its diagrams); figure keys
+        ("speed"): those diagrams alone are drawn, the others' blocks hold their captions only (the
+        app's diagram in view, drawn first). A calculation's report draws its figures either way.
 
     Returns
     -------
