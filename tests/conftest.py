@@ -9,6 +9,27 @@ PROBLEMS = ROOT / "problems"
 
 
 @pytest.fixture
+def close_figures():
+    """Closes every matplotlib figure after the test. The app keeps its last answer's figures open for its
+    downloads; a test's must not outlive it, or the worker's next tests see matplotlib's "more than 20 figures"
+    warning (an error under the test settings). The app's test modules use it for every test (``pytestmark``)."""
+    yield
+    import matplotlib.pyplot as plt
+
+    plt.close("all")
+
+
+@pytest.fixture
+def workspace():
+    """An app workspace (:class:`flyopt.app.model.Workspace`, the ``app`` extra), closed after the test."""
+    from flyopt.app import model
+
+    space = model.Workspace()
+    yield space
+    space.close()
+
+
+@pytest.fixture
 def main_cli(capsys):
     """flyopt's command line in this process: call(*args) -> (exit status, stdout, stderr)."""
     from flyopt.cli.main import main

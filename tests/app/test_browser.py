@@ -15,18 +15,7 @@ from pathlib import Path
 
 import pytest
 
-
-@pytest.fixture(autouse=True)
-def _close_figures():
-    """The app keeps its last answer's figures open for its downloads; a test's must not outlive it, or the
-    worker's next tests see matplotlib's "more than 20 figures" warning (an error under the test settings)."""
-    yield
-    import matplotlib.pyplot as plt
-
-    plt.close("all")
-
-
-pytestmark = pytest.mark.browser
+pytestmark = [pytest.mark.browser, pytest.mark.usefixtures("close_figures")]  # no figure outlives a test
 
 CHROMIUM = "/usr/bin/chromium"
 ARGS = [

@@ -8,20 +8,7 @@ import pytest
 from flyopt.app import model
 from flyopt.app.diagrams import Diagrams, drawing_order
 
-
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    import matplotlib.pyplot as plt
-
-    plt.close("all")
-
-
-@pytest.fixture()
-def workspace():
-    space = model.Workspace()
-    yield space
-    space.close()
+pytestmark = pytest.mark.usefixtures("close_figures")  # the app keeps figures open: none outlives a test
 
 
 def test_the_order_is_the_most_in_view_first_ties_in_the_pages_order():

@@ -14,25 +14,10 @@ import flyopt
 from flyopt.app import model
 from flyopt.report import display
 
-
-@pytest.fixture(autouse=True)
-def _close_figures():
-    """The app keeps its last answer's figures open for its downloads; a test's must not outlive it, or the
-    worker's next tests see matplotlib's "more than 20 figures" warning (an error under the test settings)."""
-    yield
-    import matplotlib.pyplot as plt
-
-    plt.close("all")
+pytestmark = pytest.mark.usefixtures("close_figures")  # the app keeps figures open: none outlives a test
 
 
 ROOT = Path(__file__).resolve().parents[2]
-
-
-@pytest.fixture()
-def workspace():
-    space = model.Workspace()
-    yield space
-    space.close()
 
 
 def test_templates_are_the_shipped_problems_and_the_textbook_gallery():

@@ -22,24 +22,11 @@ from flyopt.io.scene import load
 from flyopt.report import display
 from flyopt.report.plots import readout
 
+pytestmark = pytest.mark.usefixtures("close_figures")  # the app keeps figures open: none outlives a test
+
 ROOT = Path(__file__).resolve().parents[2]
 SHEAR = ROOT / "problems" / "shear-press.toml"
 BOOK = ROOT / "problems" / "textbook" / "khurmi-16-18.toml"
-
-
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    import matplotlib.pyplot as plt
-
-    plt.close("all")
-
-
-@pytest.fixture()
-def workspace():
-    space = model.Workspace()
-    yield space
-    space.close()
 
 
 def with_materials_text(path: Path, names: list[str]) -> str:
