@@ -49,6 +49,7 @@ import platform  # noqa: E402
 import statistics  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
+import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -69,6 +70,19 @@ I_D = I_P / 2.0 + MASS * 0.12**2 / 12.0  # its width 0.12 m
 SUT, SY = 650e6, 400e6
 SPEED_RANGE_RPM = (450.0, 550.0)
 OMEGA = 2 * math.pi * 550.0 / 60.0
+
+
+def median_cpu_time(call, repeat, warm=1):
+    """(median, min, max) CPU seconds of the process (``time.process_time``) over ``repeat`` runs of ``call()``:
+    the work a check adds, which the other processes on a shared core do not inflate as they do its wall time."""
+    for _ in range(warm):
+        call()
+    times = []
+    for _ in range(repeat):
+        start = time.process_time()
+        call()
+        times.append(time.process_time() - start)
+    return statistics.median(times), min(times), max(times)
 
 
 def shafts():
@@ -295,7 +309,7 @@ def main():
     )
     t_many = median_time(lambda: strength_check(*many), max(5, args.repeat // 3))
     record("any", "strength, 1000 designs x 3 sections in one call", t_many, f"{t_many[0]:.3e} s per 1000")
-    whole, first = {}, {}
+    whole, whole_cpu, first = {}, {}, {}
     for case, (shaft, x_wheel) in shafts().items():
         record(
             case,
@@ -331,24 +345,25 @@ def main():
             f"| {case} | Jeffcott's speed, for scale (massless shaft, no gyroscopics) | - | {closed * 30 / math.pi:.2f} rpm |"
         )
         whole[case] = median_time(lambda: whole_check(shaft, x_wheel), args.repeat)
-        record(case, "the whole check of one design", whole[case], f"margin {whole_check(shaft, x_wheel):.2f}")
-        run = joined_check(shaft, x_wheel)
-        run()
-        joined = median_time(run, args.repeat)
-        whole[case] = max(whole[case], joined)
+        cpu = median_cpu_time(lambda: whole_check(shaft, x_wheel), args.repeat)
+        whole_cpu[case] = cpu
         record(
             case,
-            "check_shaft: the joined check the design runs on each wheel (section 26)",
-            joined,
-            f"binding {run().binding.kind}",
+            "the whole check of one design",
+            whole[case],
+            f"margin {whole_check(shaft, x_wheel):.2f}; CPU {ms(cpu)}",
         )
-        run = joined_check(shaft, x_wheel, train=True)
-        run()
-        joined = median_time(run, args.repeat)
-        whole[case] = max(whole[case], joined)
-        record(
-            case, "check_shaft with a six-inertia drive train (belt, gears)", joined, f"binding {run().binding.kind}"
-        )
+        for what, train in (
+            ("check_shaft: the joined check the design runs on each wheel (section 26)", False),
+            ("check_shaft with a six-inertia drive train (belt, gears)", True),
+        ):
+            run = joined_check(shaft, x_wheel, train=train)
+            run()
+            joined = median_time(run, args.repeat)
+            cpu = median_cpu_time(run, args.repeat)
+            whole[case] = max(whole[case], joined)
+            whole_cpu[case] = max(whole_cpu[case], cpu)
+            record(case, what, joined, f"binding {run().binding.kind}; CPU {ms(cpu)}")
         first[case] = median_time(lambda: (_forget_sections(), run()), args.repeat)
         record(
             case,
@@ -397,7 +412,9 @@ def main():
             + ("faster." if faster else "the NLP costs more than the five designs of the walk it saves (NOT faster).")
         )
     slowest = max(v[0] for v in whole.values())
-    verdict = "met" if slowest * 1e3 < TARGET_MS else "**NOT met**"
+    slowest_cpu = max(v[0] for v in whole_cpu.values())
+    verdict = "met" if slowest_cpu * 1e3 < TARGET_MS else "**NOT met**"
+    wall_verdict = "met" if slowest * 1e3 < TARGET_MS else "**NOT met**"
     text = (
         f"""# Shaft checks benchmark (issue 30, items 2 to 4)
 
@@ -429,7 +446,8 @@ The shaft: four steps (0.06-0.09 m), bearings at 0.1 and 0.9 m (rigid), steel (E
 
 | figure | value | target | verdict |
 |---|---|---|---|
-| the whole check of one design (strength at 3 sections, deflection, FE forward critical speed and margin; and check_shaft, the joined check the design runs), the slowest, median | {slowest * 1e3:.3f} ms | < {TARGET_MS:g} ms | {verdict} |
+| the whole check of one design (strength at 3 sections, deflection, FE forward critical speed and margin; and check_shaft, the joined check the design runs), the slowest, median CPU time (what the check adds to a design) | {slowest_cpu * 1e3:.3f} ms | < {TARGET_MS:g} ms | {verdict} |
+| the same, wall time (with the host's other load on the pinned core) | {slowest * 1e3:.3f} ms | < {TARGET_MS:g} ms | {wall_verdict} |
 | the first design's check on a shaft in a process (the six-inertia train, its sections read afresh), the slowest, median | {max(v[0] for v in first.values()) * 1e3:.3f} ms | (once per shaft) | - |
 
 ## Notes

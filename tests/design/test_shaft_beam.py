@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from flyopt.design.shaft.beam import SteppedShaft, elastic_line, influence_coefficient, reactions
+from flyopt.design.shaft.beam import SteppedShaft, elastic_line, elastic_lines, influence_coefficient, reactions
 from flyopt.design.shaft.lateral import rotor_model
 
 E, D = 207e9, 0.06
@@ -45,6 +45,30 @@ def test_overhung_load_matches_the_closed_form():
     assert_allclose(line.deflection[-1], -force * overhang**2 * (span + overhang) / (3 * E * I_), rtol=1e-12)
     # tip slope, F a (2 l + 3 a) / (6 E I), from the same case
     assert_allclose(line.slope[-1], -force * overhang * (2 * span + 3 * overhang) / (6 * E * I_), rtol=1e-12)
+
+
+def test_several_load_cases_at_once_each_match_their_closed_form():
+    """elastic_lines: three cases on the same two points (a zero force where a case has none), each against
+    Shigley's case 6 (a load between the supports) or case 10 (an overhanging load), superposed by hand."""
+    span, overhang, a = 0.6, 0.25, 0.2
+    shaft = SteppedShaft((span + overhang,), (D,), E, (0.0, span))
+    positions = np.array([a, span + overhang])
+    forces = np.array([[-4000.0, 0.0], [0.0, -1500.0], [-4000.0, -1500.0]])
+    x = np.linspace(0.0, a, 5)  # left of the intermediate load, where case 6's first formula holds
+
+    def between(force):  # case 6 at x <= a
+        b = span - a
+        return -force * b * x * (span**2 - b**2 - x**2) / (6 * E * I_ * span)
+
+    def hanging(force):  # case 10 between the supports
+        return force * overhang * x * (span**2 - x**2) / (6 * E * I_ * span)
+
+    expected = (between(4000.0), hanging(1500.0), between(4000.0) + hanging(1500.0))
+    lines = elastic_lines(shaft, positions, forces, at=x)
+    assert len(lines) == 3
+    for line, want, row in zip(lines, expected, forces):
+        assert_allclose(line.deflection, want, rtol=1e-12, atol=1e-18)
+        assert_allclose(line.reactions, reactions(shaft, positions, row), rtol=1e-14, atol=1e-9)
 
 
 def _fe_static(shaft, positions, forces):

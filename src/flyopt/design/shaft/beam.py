@@ -31,7 +31,7 @@ import numpy as np
 
 from flyopt.validate import positive
 
-__all__ = ["SteppedShaft", "ElasticLine", "elastic_line", "reactions", "influence_coefficient"]
+__all__ = ["SteppedShaft", "ElasticLine", "elastic_line", "elastic_lines", "reactions", "influence_coefficient"]
 
 
 @dataclass(frozen=True)
@@ -159,8 +159,26 @@ def elastic_line(
         the slope and deflection are continuous everywhere.
     """
     x_load, f_load = _loads(shaft, positions, forces)
-    r_a, r_b = reactions(shaft, x_load, f_load)
+    return elastic_lines(shaft, x_load, f_load[None, :], at)[0]
+
+
+def elastic_lines(
+    shaft: SteppedShaft,
+    positions: Sequence[float] | np.ndarray,
+    forces: np.ndarray,
+    at: Sequence[float] | np.ndarray | None = None,
+) -> tuple[ElasticLine, ...]:
+    """:func:`elastic_line` of several load cases on the same points at once: ``forces[c]`` [N] at ``positions``
+    [m] is case c (a zero force where a case has none). One pass over one grid for every case, so a check that
+    needs the shaft's lines in two planes and under the unbalance pays for one."""
+    x_load = np.atleast_1d(np.asarray(positions, dtype=float))
+    cases = np.atleast_2d(np.asarray(forces, dtype=float))
+    for row in cases:
+        _loads(shaft, x_load, row)
     a, b = shaft.bearings
+    # the reactions by statics: the sums of forces and of moments about A vanish (:func:`reactions`)
+    r_b = -np.sum(cases * (x_load - a)[None, :], axis=1) / (b - a)
+    r_a = -np.sum(cases, axis=1) - r_b
     query = None if at is None else np.atleast_1d(np.asarray(at, dtype=float))
     if query is not None and (np.any(query < 0.0) or np.any(query > shaft.length) or not np.all(np.isfinite(query))):
         raise ValueError(f"at [m] must lie on the shaft, 0 to {shaft.length:g}")
@@ -168,30 +186,34 @@ def elastic_line(
     grid = np.unique(np.concatenate(([0.0], shaft.steps, [a, b], x_load, extra)))
     # all forces, reactions included
     fx = np.concatenate((x_load, [a, b]))
-    ff = np.concatenate((f_load, [r_a, r_b]))
+    ff = np.concatenate((cases, r_a[:, None], r_b[:, None]), axis=1)
     # M(x) = sum_{x_F < x} F (x - x_F): continuous, so evaluating at the breakpoints is unambiguous
-    moment = np.sum(ff[None, :] * np.clip(grid[:, None] - fx[None, :], 0.0, None), axis=1)
+    arm = np.clip(grid[:, None] - fx[None, :], 0.0, None)
+    moment = np.sum(ff[:, None, :] * arm[None, :, :], axis=2)
     h = np.diff(grid)
     ei = shaft.flexural_rigidity(0.5 * (grid[:-1] + grid[1:]))
-    m0, m1 = moment[:-1], moment[1:]
+    m0, m1 = moment[:, :-1], moment[:, 1:]
     dtheta = h * (m0 + m1) / (2.0 * ei)
     # theta_p and y_p: particular solution with theta(0) = y(0) = 0
-    theta_p = np.concatenate(([0.0], np.cumsum(dtheta)))
+    zero = np.zeros((cases.shape[0], 1))
+    theta_p = np.concatenate((zero, np.cumsum(dtheta, axis=1)), axis=1)
     dy_from_curvature = h**2 * (2.0 * m0 + m1) / (6.0 * ei)
-    y_p = np.concatenate(([0.0], np.cumsum(theta_p[:-1] * h + dy_from_curvature)))
-    # y = y_p + c0 + c1 x with the bearings' displacements
+    y_p = np.concatenate((zero, np.cumsum(theta_p[:, :-1] * h + dy_from_curvature, axis=1)), axis=1)
+    # y = y_p + c0 + c1 x with the bearings' displacements (a and b are nodes of the grid)
     k_a, k_b = shaft.bearing_stiffness
-    y_a = 0.0 if k_a is None else -r_a / k_a
-    y_b = 0.0 if k_b is None else -r_b / k_b
-    ya_p, yb_p = np.interp([a, b], grid, y_p)
+    y_a = np.zeros_like(r_a) if k_a is None else -r_a / k_a
+    y_b = np.zeros_like(r_b) if k_b is None else -r_b / k_b
+    ya_p, yb_p = y_p[:, np.searchsorted(grid, a)], y_p[:, np.searchsorted(grid, b)]
     c1 = ((y_b - yb_p) - (y_a - ya_p)) / (b - a)
     c0 = (y_a - ya_p) - c1 * a
-    slope = theta_p + c1
-    deflection = y_p + c0 + c1 * grid
-    if query is None:
-        return ElasticLine(grid, moment, slope, deflection, (r_a, r_b))
-    index = np.searchsorted(grid, query)
-    return ElasticLine(query, moment[index], slope[index], deflection[index], (r_a, r_b))
+    slope = theta_p + c1[:, None]
+    deflection = y_p + c0[:, None] + c1[:, None] * grid[None, :]
+    index = slice(None) if query is None else np.searchsorted(grid, query)
+    x_out = grid if query is None else query
+    return tuple(
+        ElasticLine(x_out, moment[c, index], slope[c, index], deflection[c, index], (float(r_a[c]), float(r_b[c])))
+        for c in range(cases.shape[0])
+    )
 
 
 def influence_coefficient(shaft: SteppedShaft, at: float, load: float | None = None) -> float:

@@ -50,7 +50,7 @@ import numpy as np
 from flyopt.design import key as din_key
 from flyopt.design.balance import BALANCE_GRADE, permissible_unbalance
 from flyopt.design.shaft import strength
-from flyopt.design.shaft.beam import SteppedShaft, elastic_line
+from flyopt.design.shaft.beam import SteppedShaft, elastic_lines
 from flyopt.design.shaft.lateral import GRAVITY, Disc, critical_speeds, rotor_model
 from flyopt.design.shaft.torsional import TorsionalCheck, running_range_rpm, torsional_check
 from flyopt.design.shaft.train import (
@@ -470,9 +470,10 @@ def check_shaft(
     xs = np.array([s[0] for s in sections])
     grid = np.unique(np.concatenate((np.linspace(0.0, layout.length, DIAGRAM_POINTS), xs)))
     px, fy, fz = _plane_loads(layout, weight)
-    line_y = elastic_line(beam, px, fy, at=grid)
-    line_z = elastic_line(beam, px, fz, at=grid)
-    line_u = elastic_line(beam, [layout.wheel_at], [unbalance], at=grid)
+    # the stationary loads in two planes and the unbalance at the wheel (px[0]), rotating: three cases, one grid
+    fu = np.zeros_like(fy)
+    fu[0] = unbalance
+    line_y, line_z, line_u = elastic_lines(beam, px, np.stack((fy, fz, fu)), at=grid)
     ma_grid = np.hypot(line_y.moment, line_z.moment)
     mm_grid = np.abs(line_u.moment)
     torque_on = carries_torque(layout, grid)

@@ -157,32 +157,36 @@ def rotor_model(
     k = np.zeros((size, size))
     m = np.zeros((size, size))
     g = np.zeros((size, size))
-    lengths = np.diff(nodes)
+    ll = np.diff(nodes)
     middles = 0.5 * (nodes[:-1] + nodes[1:])
     ei = shaft.flexural_rigidity(middles)
-    area = math.pi * shaft.diameter_at(middles) ** 2 / 4.0
-    for e, (length, rigidity, a) in enumerate(zip(lengths, ei, area)):
-        ll = length
-        ke = (rigidity / ll**3) * np.array(
+    # every element's 4 x 4 matrices at once (the elements' dofs overlap by two: the sums below add each
+    # element's share in element order, as a loop over the elements would)
+    one, l1, l2 = np.ones_like(ll), ll, ll**2
+    ke = (ei / ll**3)[:, None, None] * np.stack(
+        [
+            np.stack([12.0 * one, 6 * l1, -12.0 * one, 6 * l1], axis=-1),
+            np.stack([6 * l1, 4 * l2, -6 * l1, 2 * l2], axis=-1),
+            np.stack([-12.0 * one, -6 * l1, 12.0 * one, -6 * l1], axis=-1),
+            np.stack([6 * l1, 2 * l2, -6 * l1, 4 * l2], axis=-1),
+        ],
+        axis=1,
+    )
+    dofs = 2 * np.arange(ll.size)[:, None] + np.arange(4)[None, :]
+    rows, cols = np.broadcast_arrays(dofs[:, :, None], dofs[:, None, :])
+    np.add.at(k, (rows, cols), ke)
+    if shaft_mass:
+        area = math.pi * shaft.diameter_at(middles) ** 2 / 4.0
+        me = (shaft.density * area * ll / 420.0)[:, None, None] * np.stack(
             [
-                [12.0, 6 * ll, -12.0, 6 * ll],
-                [6 * ll, 4 * ll**2, -6 * ll, 2 * ll**2],
-                [-12.0, -6 * ll, 12.0, -6 * ll],
-                [6 * ll, 2 * ll**2, -6 * ll, 4 * ll**2],
-            ]
+                np.stack([156.0 * one, 22 * l1, 54.0 * one, -13 * l1], axis=-1),
+                np.stack([22 * l1, 4 * l2, 13 * l1, -3 * l2], axis=-1),
+                np.stack([54.0 * one, 13 * l1, 156.0 * one, -22 * l1], axis=-1),
+                np.stack([-13 * l1, -3 * l2, -22 * l1, 4 * l2], axis=-1),
+            ],
+            axis=1,
         )
-        index = slice(2 * e, 2 * e + 4)
-        k[index, index] += ke
-        if shaft_mass:
-            me = (shaft.density * a * ll / 420.0) * np.array(
-                [
-                    [156.0, 22 * ll, 54.0, -13 * ll],
-                    [22 * ll, 4 * ll**2, 13 * ll, -3 * ll**2],
-                    [54.0, 13 * ll, 156.0, -22 * ll],
-                    [-13 * ll, -3 * ll**2, -22 * ll, 4 * ll**2],
-                ]
-            )
-            m[index, index] += me
+        np.add.at(m, (rows, cols), me)
     for disc in discs:
         node = int(np.argmin(np.abs(nodes - disc.position)))
         m[2 * node, 2 * node] += disc.mass
