@@ -210,10 +210,13 @@ def test_the_designed_seat_is_in_the_json_the_text_and_its_units(designed):
     (shaft,) = document["shaft_checks"]
     assert shaft["seat_diameter"] == pytest.approx(0.06, rel=1e-12) and shaft["seat_series"] == "R40"
     assert document["units"]["seat_diameter"] == "m"
-    # the wheel on the designed seat is keyed to it: DIN 6885-1's 18 x 11 over 58 up to 65 mm (not checked here:
-    # walk_text gives no bearing pressure)
+    # the wheel on the designed seat is keyed to it: DIN 6885-1's 18 x 11 over 58 up to 65 mm; walk_text gives no
+    # bearing pressure, so its shear alone is checked, tau = 2 T / (d b (l - b)) against the key steel's S_sy
     key = document["design"]["key"]
-    assert key["size"] == "18 x 11" and key["ok"] is None and key["torque"] > 0
+    assert key["size"] == "18 x 11" and key["ok"] is True and key["torque"] > 0
+    assert key["allowable_pressure"] is None and key["allowable_shear"] == pytest.approx(0.577 * 530e6, rel=1e-12)
+    tau = 2 * key["torque"] / (0.06 * 0.018 * (key["length"] - 0.018))
+    assert key["shear"] == pytest.approx(tau, rel=1e-12)
     assert_units_cover(document)
     assert schema_errors(document) == []
     from flyopt.report.shaft import shaft_report
