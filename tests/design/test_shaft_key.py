@@ -93,6 +93,15 @@ def test_without_a_train_the_key_is_not_checked_again(write_scene):
     assert [lim.kind for lim in trained.limits if not lim.holds] == ["key"]
 
 
+@pytest.fixture(scope="module")
+def soft(tmp_path_factory):
+    """The soft-train punch press (:func:`_soft_punch_press`), loaded and solved: (scene, solution)."""
+    from flyopt.pipeline import solve
+
+    scene = flyopt.load(_soft_punch_press(tmp_path_factory.mktemp("soft")))
+    return scene, solve(scene)
+
+
 def _soft_punch_press(tmp_path):
     """The punch press of problems/punch-press-shaft.toml with one material (gjs keyed, 90 MPa) and a softer train."""
     text = (PROBLEMS / "punch-press-shaft.toml").read_text(encoding="utf-8")
@@ -114,7 +123,7 @@ def _by_hand_length(torque, d, flank, b, pressure):
     return next(mm for mm in LENGTHS_MM if mm / 1e3 >= needed) / 1e3
 
 
-def test_the_key_is_designed_at_the_trains_torque_the_post_check_checks_it_at(tmp_path):
+def test_the_key_is_designed_at_the_trains_torque_the_post_check_checks_it_at(soft):
     """Issue 30, item 5: one torque for the key. On a soft train (the forced response 16 % above the rigid peak)
     the design sizes the hub's key at the train's J_w theta''_w, from the same call the post-check makes: the
     design's torque is that call at the inertia the design must supply, the check's that call at the wheel's own
@@ -122,10 +131,9 @@ def test_the_key_is_designed_at_the_trains_torque_the_post_check_checks_it_at(tm
     where the key sized at the rigid peak (125 mm) would not."""
     from flyopt.design.shaft.cycle import check_candidate, key_torque_on
     from flyopt.machine.transmission import inertia_on_shaft
-    from flyopt.pipeline import shaft_context_of, solve
+    from flyopt.pipeline import shaft_context_of
 
-    scene = flyopt.load(_soft_punch_press(tmp_path))
-    solution = solve(scene)
+    scene, solution = soft
     design = solution.design
     best = design.best
     assert design.status == "designed" and best is not None and best.bore == 0.07
@@ -182,3 +190,39 @@ def test_a_two_inertia_train_sets_the_hub_by_din_6885(tmp_path):
     assert key["size"] == "18 x 11" and key["torque"] == found.peak
     assert key["length"] == _by_hand_length(found.peak, 0.06, 0.011 - 0.007, 0.018, 60e6)
     assert result.best.dims.l_hub >= key["length"] - 1e-9
+
+
+def test_a_wheel_refused_for_its_key_alone_is_designed_again_at_its_torque(soft):
+    """The short fixed point (:func:`flyopt.design.shaft.cycle.rekeyed`): the soft punch press's wheel with the
+    125 mm key the rigid torque gives, refused by its post-check for that key alone, sends its shaft back to the
+    design at the torque the post-check found on it (the train's, at the wheel's own inertia); a wheel refused for
+    another limit, or one whose shaft was designed at a torque that covers its check's, sends nothing back."""
+    import dataclasses
+
+    from flyopt.design.result import Parts
+    from flyopt.design.shaft.cycle import REFUSED, check_candidate, key_torque_on, reject_reason, rekeyed
+    from flyopt.design.spec import MountShaft
+    from flyopt.pipeline import shaft_context_of
+
+    scene, solution = soft
+    ctx = shaft_context_of(scene, solution.analysis)
+    best = solution.design.best
+    short = {**best.parts.key, "length": 0.125}  # 90.6 > 90 MPa at the train's torque (above)
+    wheel = dataclasses.replace(best, parts=Parts(best.parts.items, short))
+    check = check_candidate(ctx, wheel)
+    assert [lim.kind for lim in check.failed()] == ["key"]
+    refused = dataclasses.replace(wheel, feasible=False, reason=reject_reason(wheel, check))
+    assert REFUSED in refused.reason
+    result = dataclasses.replace(solution.design, best=None, candidates=(refused,))
+    designed_at = key_torque_on(ctx, "intermediate", best.j_flywheel * 0.999)  # a little below the wheel's
+    shaft = MountShaft("intermediate", 6.0, 0.07, torque=designed_at)
+    (again,) = rekeyed(ctx, result, [shaft])
+    assert again.torque == check.key_torque > designed_at and again.diameter == 0.07
+    covered = dataclasses.replace(shaft, torque=check.key_torque * 1.001)
+    assert rekeyed(ctx, result, [covered]) is None
+    # the same wheel refused by another limit as well (a stiffer requirement on the slope) is not the key's
+    strict = dataclasses.replace(ctx, shafts={**ctx.shafts}, _cache={}, _keyed={})
+    layout = dataclasses.replace(strict.shafts["intermediate"].layout, max_slope=1e-6)
+    strict.shafts["intermediate"] = dataclasses.replace(strict.shafts["intermediate"], layout=layout)
+    assert {lim.kind for lim in check_candidate(strict, wheel).failed()} >= {"key", "slope"}
+    assert rekeyed(strict, result, [shaft]) is None
