@@ -11,6 +11,9 @@ designed wheel; :func:`acceptor` turns it into the designer's post-check
 (``design_flywheel(accept=...)``): a wheel its shaft cannot carry, or one that puts a
 critical speed in the running range, makes that combination infeasible with the
 limits in numbers; :func:`mass_sensitivity` is d(utilisation)/d(m) of the binding limit.
+:func:`key_torque_on` is the torque the wheel's key carries where the shaft's train is modelled, the one the
+post-check checks the key at and the design sizes the hub at (:func:`keyed_shafts` puts it on the designer's
+shafts; :func:`rekeyed` is the short fixed point where a wheel's own inertia puts more on it).
 """
 
 from __future__ import annotations
