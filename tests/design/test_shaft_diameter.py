@@ -35,11 +35,11 @@ SCENE = PROBLEMS / "punch-press-shaft-designed.toml"
 
 
 def walk_text():
-    """The scene's text with its material's bearing pressure left out: the design then checks no key, and no
-    post-check the key at the train's torque (tests/design/test_shaft_key.py), which refuses every seat from 60
-    to 80 mm of the shipped scene (the design sizes the hub's key at the rigid torque, the train's peak on the
-    wheel is 13 % above it) and sets its seat at 85 mm, pinned by its golden result. The walk's own rules are
-    tested here, where the fatigue row and the torsional mode set the seat."""
+    """The scene's text with its material's bearing pressure left out: the design and the post-check then check
+    the key's shear alone (against the key steel's S_sy, far from binding), so the hub's length is the
+    proportions' and the walk's own rules are tested here, where the fatigue row and the torsional mode set the
+    seat. (The shipped scene, its key designed at the train's torque, also sits at 60 mm, pinned by its golden
+    result; tests/design/test_shaft_key.py tests the key at the train's torque.)"""
     text = SCENE.read_text()
     assert 'bearing_pressure = "90 MPa"\n' in text
     return text.replace('bearing_pressure = "90 MPa"\n', "")
