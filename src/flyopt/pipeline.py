@@ -223,7 +223,7 @@ def design_scene(
     from flyopt.design.inputs import builds_whole, one_design
     from flyopt.design.wheel_design import needs_torque
 
-    inputs = one_design(_seated(design_inputs(scene), scene))
+    inputs = one_design(_seated(_keyed(scene, analysis, design_inputs(scene)), scene))
     # the rim is checked at the highest speed of the cycle, from the model that ran (for a motor
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
@@ -231,18 +231,26 @@ def design_scene(
     names = {m.name: m.display_name for m in inputs.materials}
     accept = _shaft_acceptor(scene, analysis, names)
     design_flywheel = _seat_designer(scene, analysis, inputs.shafts, names)  # or the designed seat's search
-    result = design_flywheel(
-        analysis.j_margin,
-        analysis.omega_max,
-        inputs.shafts,
-        inputs.materials,
-        inputs.spec,
-        solver_options=solver_options,
-        method=method,
-        torque=torque,
-        omega_mean=analysis.omega_mean,
-        accept=accept,
-    )
+
+    def design(shafts: Sequence[Any]) -> DesignResult:
+        return design_flywheel(
+            analysis.j_margin,
+            analysis.omega_max,
+            shafts,
+            inputs.materials,
+            inputs.spec,
+            solver_options=solver_options,
+            method=method,
+            torque=torque,
+            omega_mean=analysis.omega_mean,
+            accept=accept,
+        )
+
+    result = design(inputs.shafts)
+    again = _rekeyed(scene, analysis, result, inputs.shafts)
+    if again is not None:  # a wheel refused for its key at its own inertia's torque: its shaft's hub designed at it
+        inputs = replace(inputs, shafts=again)
+        result = design(again)
     if result.spec.fem_check:
         from flyopt.design.fem import accept as accept_fem  # numpy, and scikit-fem when it runs
 
@@ -277,6 +285,30 @@ def _shaft_acceptor(scene: Scene, analysis: Analysis, names: Mapping[str, str]) 
     from flyopt.design.shaft.cycle import acceptor
 
     return acceptor(context, names)
+
+
+def _keyed(scene: Scene, analysis: Analysis, inputs: Any) -> Any:
+    """The design inputs with each described shaft carrying the torque its train's forced response puts on the
+    wheel's key (:func:`flyopt.design.shaft.cycle.keyed_shafts`): the torque the post-check checks the key at,
+    so the design sizes the hub and key at it (docs/flywheel-design.md, section 26)."""
+    context = shaft_context_of(scene, analysis)
+    if context is None:
+        return inputs
+    from flyopt.design.shaft.cycle import keyed_shafts
+
+    shafts = keyed_shafts(context, inputs.shafts, analysis.j_margin * inputs.spec.rim_share)
+    return replace(inputs, shafts=shafts)
+
+
+def _rekeyed(scene: Scene, analysis: Analysis, result: DesignResult, shafts: Sequence[Any]) -> Any:
+    """The given-seat shafts to design again on at a larger key torque (:func:`flyopt.design.shaft.cycle.rekeyed`),
+    or None."""
+    context = shaft_context_of(scene, analysis)
+    if context is None:
+        return None
+    from flyopt.design.shaft.cycle import rekeyed
+
+    return rekeyed(context, result, shafts)
 
 
 def _seated(inputs: Any, scene: Scene) -> Any:
@@ -365,7 +397,13 @@ def _with_delta_sensitivity(
         delta = scene.delta * (1.0 + sign * DELTA_STEP)
         try:
             moved = analyse(dataclasses.replace(scene, delta=delta), Model(analysis.model), like=analysis)
-            inputs = _seated(design_inputs(dataclasses.replace(scene, delta=delta)), scene)
+            inputs = design_inputs(dataclasses.replace(scene, delta=delta))
+            # on the winner's seat: a designed one (its bore) is held, a discrete variable has no slope; its key's
+            # torque that of the moved cycle
+            on = tuple(
+                dataclasses.replace(s, diameter=best.bore or s.diameter) for s in inputs.shafts if s.name == best.shaft
+            )
+            inputs = _seated(_keyed(scene, moved, dataclasses.replace(inputs, shafts=on)), scene)
             # the continuous design's slope: a rounded wheel's mass steps with the grid, and rounding it
             # twice more would only cost solves
             spec = dataclasses.replace(inputs.spec, round_to=None, stress_factors=result.spec.stress_factors)
@@ -375,12 +413,7 @@ def _with_delta_sensitivity(
             again = design_flywheel(
                 moved.j_margin,
                 moved.omega_max,
-                # on the winner's seat: a designed one (its bore) is held, a discrete variable has no slope
-                [
-                    dataclasses.replace(s, diameter=best.bore or s.diameter)
-                    for s in inputs.shafts
-                    if s.name == best.shaft
-                ],
+                inputs.shafts,
                 [m for m in inputs.materials if m.name == best.material],
                 spec,
                 solver_options=solver_options,

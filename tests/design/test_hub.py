@@ -259,6 +259,21 @@ def test_hub_length_for_key_when_shear_governs():
     assert not check_key(677.25, 0.050, 0.124, 90e6, allowable_shear=20e6).ok
 
 
+def test_without_a_bearing_pressure_the_keys_shear_alone_is_checked():
+    """A hub material that gives no allowable pressure (None): the key's shear is checked against C45+C's S_sy.
+    T = 6000 N*m on d = 50 mm (14 x 9): l_eff >= 2 T / (d b S_sy) = 12 000 / (0.05 * 0.014 * 305.81e6) =
+    0.056057 m, so l >= 0.070057 m and the shortest standard key is 80 mm; the 70 mm key's shear,
+    12 000 / (0.05 * 0.014 * 0.056) = 306.12 MPa, is over S_sy = 305.81 MPa. The pressure is computed, not a limit."""
+    length = hub_length_for_key(6000.0, 0.050, None)
+    assert_allclose(length, 0.080, rtol=1e-15)
+    at = check_key(6000.0, 0.050, length, None)
+    assert at.ok and at.governing == "shear" and at.allowable_pressure is None
+    assert_published(at.pressure / 1e6, "1038.96")  # 12 000 / (0.05 * 0.0035 * 0.066): far above any hub's
+    shorter = check_key(6000.0, 0.050, 0.079, None)
+    assert not shorter.ok
+    assert_published(shorter.shear / 1e6, "306.12")
+
+
 def test_hub_length_for_key_at_least_the_shortest_key():
     """A tiny torque still needs the section's shortest key, 36 mm for 14 x 9."""
     assert_allclose(hub_length_for_key(1.0, 0.050, 90e6), 0.036, rtol=1e-15)

@@ -35,11 +35,11 @@ SCENE = PROBLEMS / "punch-press-shaft-designed.toml"
 
 
 def walk_text():
-    """The scene's text with its material's bearing pressure left out: the design then checks no key, and no
-    post-check the key at the train's torque (tests/design/test_shaft_key.py), which refuses every seat from 60
-    to 80 mm of the shipped scene (the design sizes the hub's key at the rigid torque, the train's peak on the
-    wheel is 13 % above it) and sets its seat at 85 mm, pinned by its golden result. The walk's own rules are
-    tested here, where the fatigue row and the torsional mode set the seat."""
+    """The scene's text with its material's bearing pressure left out: the design and the post-check then check
+    the key's shear alone (against the key steel's S_sy, far from binding), so the hub's length is the
+    proportions' and the walk's own rules are tested here, where the fatigue row and the torsional mode set the
+    seat. (The shipped scene, its key designed at the train's torque, also sits at 60 mm, pinned by its golden
+    result; tests/design/test_shaft_key.py tests the key at the train's torque.)"""
     text = SCENE.read_text()
     assert 'bearing_pressure = "90 MPa"\n' in text
     return text.replace('bearing_pressure = "90 MPa"\n', "")
@@ -210,10 +210,13 @@ def test_the_designed_seat_is_in_the_json_the_text_and_its_units(designed):
     (shaft,) = document["shaft_checks"]
     assert shaft["seat_diameter"] == pytest.approx(0.06, rel=1e-12) and shaft["seat_series"] == "R40"
     assert document["units"]["seat_diameter"] == "m"
-    # the wheel on the designed seat is keyed to it: DIN 6885-1's 18 x 11 over 58 up to 65 mm (not checked here:
-    # walk_text gives no bearing pressure)
+    # the wheel on the designed seat is keyed to it: DIN 6885-1's 18 x 11 over 58 up to 65 mm; walk_text gives no
+    # bearing pressure, so its shear alone is checked, tau = 2 T / (d b (l - b)) against the key steel's S_sy
     key = document["design"]["key"]
-    assert key["size"] == "18 x 11" and key["ok"] is None and key["torque"] > 0
+    assert key["size"] == "18 x 11" and key["ok"] is True and key["torque"] > 0
+    assert key["allowable_pressure"] is None and key["allowable_shear"] == pytest.approx(0.577 * 530e6, rel=1e-12)
+    tau = 2 * key["torque"] / (0.06 * 0.018 * (key["length"] - 0.018))
+    assert key["shear"] == pytest.approx(tau, rel=1e-12)
     assert_units_cover(document)
     assert schema_errors(document) == []
     from flyopt.report.shaft import shaft_report

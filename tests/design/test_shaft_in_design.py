@@ -71,7 +71,10 @@ def test_the_engine_scenes_json_validates_and_gives_every_shaft_field_a_unit(eng
     assert_units_cover(document)
     check = document["shaft_checks"][0]
     assert document["units"]["critical_speed"] == "rad/s" and document["units"]["dutilisation_dmass"] == "1/kg"
-    assert {lim["kind"] for lim in check["limits"]} == {"fatigue", "yield", "slope", "lateral", "torsional"}
+    # the cast steel disc's key, designed at the train's torque, is checked at it too
+    kinds = {lim["kind"] for lim in check["limits"]}
+    assert kinds == {"fatigue", "yield", "slope", "lateral", "torsional", "key"}
+    assert document["units"]["key_torque"] == "N*m"
 
 
 def test_a_wider_margin_makes_the_engine_infeasible_with_the_reason_in_numbers(write_scene):

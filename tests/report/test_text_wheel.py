@@ -224,11 +224,12 @@ def test_the_existing_design_lines_are_unchanged(capsys):
     assert lines.index("Parts of the wheel (thickness: axial):") < lines.index("Every combination (ranked):")
 
 
-def test_a_key_without_a_bearing_pressure_is_sized_by_the_seat_and_said_unchecked(capsys):
+def test_a_key_without_a_bearing_pressure_has_its_shear_checked_and_its_pressure_said_unchecked(capsys):
     """press-arms-wheel's grey iron gives no bearing pressure: its hub still gets the DIN 6885-1 key of its
     70 mm seat (over 65 up to 75 mm: 20 x 12, t1 7.5, t2 4.9 mm in the standard's table), as long as the
-    105 mm hub allows among the standard lengths (100 mm), so that the keyway is cut and drawn; its pressure
-    and shear are not checked, and the text, the JSON and the drawing say so."""
+    105 mm hub allows among the standard lengths (100 mm), so that the keyway is cut and drawn; the key's shear,
+    tau = 2 T / (d b (l - b)), is checked against the key steel's S_sy (0.577 x 530 MPa), its pressure on the
+    hub is computed and not checked, and the text and the JSON say so."""
     from flyopt.outputs.drawing import keyway
 
     solution = flyopt.solve(flyopt.load(PROBLEMS / "press-arms-wheel.toml"))
@@ -239,11 +240,15 @@ def test_a_key_without_a_bearing_pressure_is_sized_by_the_seat_and_said_unchecke
         (0.020, 0.012, 0.0075, 0.0049)
     )
     assert key["length"] == pytest.approx(0.100) and key["effective_length"] == pytest.approx(0.080)
-    assert key["ok"] is None and key["bearing_pressure"] is None and key["shear"] is None
+    torque = key["torque"]
+    assert key["shear"] == pytest.approx(2 * torque / (0.070 * 0.020 * 0.080), rel=1e-12)
+    assert key["bearing_pressure"] == pytest.approx(2 * torque / (0.070 * 0.0045 * 0.080), rel=1e-12)
+    assert key["allowable_shear"] == pytest.approx(0.577 * 530e6, rel=1e-12) and key["allowable_pressure"] is None
+    assert key["ok"] is True
     assert keyway(best) == pytest.approx((0.020, 0.0049))
     text = _solve_text(PROBLEMS / "press-arms-wheel.toml", capsys)
-    assert "Key (DIN 6885-1 form A) on a 70 mm bore: 20 x 12, length 100 mm (effective 80 mm): not checked" in text
-    assert any("gives no bearing_pressure: the key is sized by the seat" in n for n in _block(text, "Notes:"))
+    assert "Key (DIN 6885-1 form A) on a 70 mm bore: 20 x 12, length 100 mm (effective 80 mm): OK" in text
+    assert any("gives no bearing_pressure: the key's shear is checked" in n for n in _block(text, "Notes:"))
 
 
 def test_a_disc_is_reported_as_a_disc_not_a_rim(capsys, tmp_path):

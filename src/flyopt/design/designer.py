@@ -551,7 +551,8 @@ def design_flywheel(
     torque : float or None
         The largest torque the flywheel exchanges with the reference shaft
         over the cycle [N*m] (:meth:`flyopt.analysis.Analysis.flywheel_torque`);
-        on a shaft of speed ratio r it is torque / r. It bends the arms and
+        on a shaft of speed ratio r it is torque / r, or the shaft's own where it gives one (the train's forced
+        response, :attr:`flyopt.design.spec.MountShaft.torque`). It bends the arms and
         loads the key; None when unknown (net areas): then the arms are
         checked for their centrifugal load only and the key is not checked.
     omega_mean : float or None
@@ -760,7 +761,7 @@ def combinations(
 
     Each carries its shaft's speed, the inertia required on that shaft (J_F / r^2), the material's safe
     rim speed and the outer-diameter cap it sets (with the envelope), the bore and the peak torque on
-    that shaft (torque / r). A generator, so that each combination is decided before the next is built.
+    that shaft (:func:`shaft_torque_of`). A generator, so that each combination is decided before the next is built.
 
     Under the courses' rim convention (criterion mean_rim_speed) the rim supplies ``spec.rim_share`` of
     J_F, nothing caps its outer diameter but the envelope, and its mean diameter is pinned where the rim
@@ -782,7 +783,7 @@ def combinations(
             omega * shaft.speed_ratio,
             inertia_on_shaft(j_required, shaft.speed_ratio),
             bore_of(spec, shaft),
-            torque / shaft.speed_ratio if torque else 0.0,
+            shaft_torque_of(torque, shaft),
         )
         for shaft, plain in zip(shafts, textbook)
     ]
@@ -812,6 +813,20 @@ def combinations(
             )
             yield order, combo, plain
             order += 1
+
+
+def shaft_torque_of(torque: float | None, shaft: MountShaft) -> float:
+    """The peak torque [N*m] a wheel on ``shaft`` is designed at (its arms, its hub's length, its key): the
+    shaft's own where its drive train is modelled (:attr:`flyopt.design.spec.MountShaft.torque`, the train's
+    forced response J_w theta''_w, the torque the shaft's post-check checks the key at), else the rigid body's
+    ``torque`` / r (``torque`` at the reference shaft); 0 where neither is known (net areas).
+
+    The arms take the same torque as the key: the wheel turns as one body (its rim and hub at the same theta''_w),
+    so the rim's share of J_w theta''_w that the arms carry is the share of the rigid body's torque they carried
+    (docs/flywheel-design.md, section 26)."""
+    if shaft.torque is not None:
+        return shaft.torque
+    return torque / shaft.speed_ratio if torque else 0.0
 
 
 def _pinned_mean_diameter(spec: DesignSpec, cap_mean: float, omega_mean: float | None, ratio: float) -> float | None:

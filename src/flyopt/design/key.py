@@ -345,8 +345,9 @@ class KeyCheck:
         Bearing pressure on the hub's keyway flank, 2 T / (d (h - t1) l_eff) [Pa].
     shear : float
         Shear stress in the key, 2 T / (d b l_eff) [Pa].
-    allowable_pressure : float
-        Allowable bearing pressure of the hub material [Pa].
+    allowable_pressure : float or None
+        Allowable bearing pressure of the hub material [Pa]; None where the hub's material gives none (the
+        pressure is computed, and only the key's shear is checked).
     allowable_shear : float
         Allowable shear stress of the key [Pa].
     """
@@ -359,13 +360,13 @@ class KeyCheck:
     effective_length: float
     pressure: float
     shear: float
-    allowable_pressure: float
+    allowable_pressure: float | None
     allowable_shear: float
 
     @property
     def pressure_ratio(self) -> float:
-        """pressure / allowable_pressure [-]."""
-        return self.pressure / self.allowable_pressure
+        """pressure / allowable_pressure [-]; nan where no allowable pressure is given (not checked)."""
+        return math.nan if self.allowable_pressure is None else self.pressure / self.allowable_pressure
 
     @property
     def shear_ratio(self) -> float:
@@ -374,17 +375,19 @@ class KeyCheck:
 
     @property
     def governing(self) -> str:
-        """``"pressure"`` or ``"shear"``: the check nearer its limit."""
+        """``"pressure"`` or ``"shear"``: the check nearer its limit (the shear where the pressure is not checked)."""
         return "pressure" if self.pressure_ratio >= self.shear_ratio else "shear"
 
     @property
     def ok(self) -> bool:
-        """Whether both stay within their allowables (up to :data:`LIMIT_RTOL`)."""
+        """Whether both stay within their allowables (up to :data:`LIMIT_RTOL`; the shear alone where no
+        allowable pressure is given)."""
         return _within(self.pressure, self.allowable_pressure) and _within(self.shear, self.allowable_shear)
 
 
 def _within(value, allowable):
-    return value <= allowable * (1.0 + LIMIT_RTOL)
+    """``value`` within ``allowable`` up to :data:`LIMIT_RTOL`; any value where no allowable is given (None)."""
+    return allowable is None or value <= allowable * (1.0 + LIMIT_RTOL)
 
 
 def _key_stresses(torque, d, key, length):
@@ -395,7 +398,8 @@ def _key_stresses(torque, d, key, length):
 
 
 def _allowables(allowable_pressure, allowable_shear):
-    allowable_pressure = _positive(allowable_pressure, "allowable_pressure", "Pa")
+    if allowable_pressure is not None:
+        allowable_pressure = _positive(allowable_pressure, "allowable_pressure", "Pa")
     if allowable_shear is None:
         allowable_shear = key_steel().shear_yield_strength
     else:
@@ -404,7 +408,7 @@ def _allowables(allowable_pressure, allowable_shear):
 
 
 def check_key(
-    torque: float, d: float, hub_length: float, allowable_pressure: float, allowable_shear: float | None = None
+    torque: float, d: float, hub_length: float, allowable_pressure: float | None, allowable_shear: float | None = None
 ) -> KeyCheck:
     """Check the DIN 6885-1 form A key of a hub at a torque.
 
@@ -417,9 +421,10 @@ def check_key(
         Shaft seat diameter [m].
     hub_length : float
         Hub length [m]; the key is the longest standard one that fits.
-    allowable_pressure : float
+    allowable_pressure : float or None
         Allowable bearing pressure of the hub material [Pa]; the hub, usually
-        the weaker part, gives it.
+        the weaker part, gives it. None where the hub's material gives none:
+        the pressure is computed but not checked, the key's shear is.
     allowable_shear : float, optional
         Allowable shear stress of the key [Pa]. By default the shear yield
         strength of the key steel C45+C, S_sy = 0.577 S_y (:func:`key_steel`):
@@ -473,7 +478,7 @@ def check_key(
 
 
 def hub_length_for_key(
-    torque: float, d: float, allowable_pressure: float, allowable_shear: float | None = None
+    torque: float, d: float, allowable_pressure: float | None, allowable_shear: float | None = None
 ) -> float:
     """The shortest hub whose DIN 6885-1 key passes :func:`check_key`.
 
@@ -483,8 +488,8 @@ def hub_length_for_key(
         Largest torque the joint transmits [N*m].
     d : float
         Shaft seat diameter [m].
-    allowable_pressure : float
-        Allowable bearing pressure of the hub material [Pa].
+    allowable_pressure : float or None
+        Allowable bearing pressure of the hub material [Pa]; None: the shear alone sets the length.
     allowable_shear : float, optional
         Allowable shear stress of the key [Pa]; default as in :func:`check_key`.
 
@@ -525,10 +530,11 @@ def hub_length_for_key(
         if _within(pressure, allowable_pressure) and _within(shear, allowable_shear):
             return length
     _, pressure, shear = _key_stresses(torque, d, key, key.l_max)
+    against = "not checked" if allowable_pressure is None else f"against {allowable_pressure / 1e6:.4g} MPa"
     raise ValueError(
         f"torque {torque:.6g} N*m: even the longest standard {key.size} key "
         f"({key.l_max * 1e3:g} mm) of the d = {d * 1e3:g} mm shaft is overloaded "
-        f"(pressure {pressure / 1e6:.4g} MPa against {allowable_pressure / 1e6:.4g} MPa, "
+        f"(pressure {pressure / 1e6:.4g} MPa {against}, "
         f"shear {shear / 1e6:.4g} MPa against {allowable_shear / 1e6:.4g} MPa); "
         f"use a larger shaft seat, a stronger hub material or another shaft-hub joint"
     )

@@ -70,11 +70,17 @@ class MountShaft:
     diameter : float or None
         The shaft seat [m]: the wheel's bore, hub and key follow from it
         unless the design gives its own bore.
+    torque : float or None
+        The peak torque [N*m] the wheel exchanges with this shaft where a model of the shaft's drive train gives
+        it (the train's forced response, J_w theta''_w, :func:`flyopt.design.shaft.cycle.key_torque_on`: the
+        torque its post-check checks the key at); it replaces the rigid body's torque / speed_ratio for this
+        shaft's hub, key and arms. None: the rigid body's (docs/flywheel-design.md, section 26).
     """
 
     name: str
     speed_ratio: float
     diameter: float | None = None
+    torque: float | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():
@@ -82,6 +88,8 @@ class MountShaft:
         object.__setattr__(self, "speed_ratio", _positive(self.speed_ratio, f"shaft {self.name!r}: speed_ratio", "[-]"))
         if self.diameter is not None:
             object.__setattr__(self, "diameter", _positive(self.diameter, f"shaft {self.name!r}: diameter", "[m]"))
+        if self.torque is not None:
+            object.__setattr__(self, "torque", _positive(self.torque, f"shaft {self.name!r}: torque", "[N*m]"))
 
 
 class StressFactor(NamedTuple):

@@ -128,12 +128,13 @@ def hub_bounds(
     material: Material, bore: float, torque: float | None
 ) -> tuple[tuple[float, float], tuple[float, float], str]:
     """(d_hub range [m], l_hub range [m], the hub's kind) of a hub on a seat of diameter ``bore`` [m] carrying the
-    peak ``torque`` [N*m] (the key's shortest hub where the material gives a bearing pressure)."""
+    peak ``torque`` [N*m] (the key's shortest hub: its bearing pressure on the hub where the material gives one,
+    and the key's shear against the key steel's S_sy always, :func:`flyopt.design.key.hub_length_for_key`)."""
     kind = material.hub_kind
     p = hub.hub_proportions(bore, kind)
     l_low = p.l_hub_min
     pressure = getattr(material, "bearing_pressure", None)
-    if torque and pressure:
+    if torque:
         try:
             l_low = max(l_low, key.hub_length_for_key(torque, bore, pressure))
         except ValueError:
@@ -860,10 +861,10 @@ def structure_fields(
     key_check = None
     hub_length = {"rim_web": dims.l_hub, "rim_arms": dims.l_hub, "disc": dims.l_hub or dims.b}.get(geometry_name)
     pressure = getattr(material, "bearing_pressure", None)
-    if bore and hub_length and not (torque and pressure):
+    if bore and hub_length and not torque:
         # the key's section is the shaft's (DIN 6885-1 by the seat diameter) and its length the hub's: a keyway
-        # to cut, whose pressure and shear cannot be checked without a torque or an allowable pressure
-        why = "the cycle gives no torque curves" if not torque else f"{material.display_name} gives no bearing_pressure"
+        # to cut, whose pressure and shear cannot be checked without a torque
+        why = "the cycle gives no torque curves"
         try:
             sized = key.key_for_shaft(bore)
             length = key.key_length_for_hub(sized, float(hub_length))
@@ -886,12 +887,17 @@ def structure_fields(
                 "allowable_shear": None,
                 "ok": None,
             }
-    elif bore and hub_length and pressure is not None:
+    elif bore and hub_length:
         try:
             k = key.check_key(torque, bore, float(hub_length), pressure)
         except ValueError as err:
             notes.append(f"key not checked: {err}")
         else:
+            if pressure is None:  # the key's shear by the key steel's S_sy; the hub's pressure has no allowable
+                notes.append(
+                    f"{material.display_name} gives no bearing_pressure: the key's shear is checked (against the "
+                    "key steel's S_sy), the hub's bearing pressure is not"
+                )
             key_check = {
                 "size": k.key.size,
                 "b": k.key.b,

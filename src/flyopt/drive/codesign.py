@@ -435,14 +435,18 @@ def evaluate_motor(
             )
     torque = flywheel_torque(machine, j_need) if j_need > 0 else None
     shaft_ctx = _shaft_context(scene, machine, omega_mean)
-    accept = None
+    accept = keyed = None
     if shaft_ctx is not None:  # the design's post-check of the described flywheel shaft, turning at r
-        from flyopt.design.shaft.cycle import acceptor, at_ratio
+        from flyopt.design.shaft.cycle import acceptor, at_ratio, keyed_shafts
 
         names = {m.name: m.display_name for m in materials}
 
         def accept(r):
             return acceptor(at_ratio(shaft_ctx, FLYWHEEL_SHAFT, r), names)
+
+        def keyed(shaft):  # the torque its train's forced response puts on the key at r: the post-check's
+            on = at_ratio(shaft_ctx, FLYWHEEL_SHAFT, shaft.speed_ratio)
+            return keyed_shafts(on, [shaft], j_need * design_spec.rim_share)[0]
 
     result, r = _best_wheel(
         j_need,
@@ -455,6 +459,7 @@ def evaluate_motor(
         solver_options,
         seat=_seat(scene),
         accept_at=accept,
+        keyed=keyed,
     )
     wheel = None if result is None else result.best
     if j_need > 0 and wheel is None:
@@ -732,13 +737,15 @@ def _thermal_flywheel(machine, motor, ratio, omega, j_low, rated, guess=None):
 
 
 def _best_wheel(
-    j_need, omega_max, ratios, materials, spec, torque, objective, solver_options, seat=None, accept_at=None
+    j_need, omega_max, ratios, materials, spec, torque, objective, solver_options, seat=None, accept_at=None, keyed=None
 ):
     """(best DesignResult, its shaft ratio) over the drive's flywheel ratios; (None, None) when no flywheel is needed.
 
     The wheel's share of the drive's objective (its mass, or its cost) is what is minimized over r. ``seat``:
     the described flywheel shaft's seat diameter [m] (the wheel's bore), None when not described.
     ``accept_at``: r -> the design's post-check of the described flywheel shaft at r (:func:`_shaft_accept`).
+    ``keyed``: the flywheel shaft at r -> that shaft with the torque its train puts on the wheel's key
+    (:func:`flyopt.design.shaft.cycle.keyed_shafts`), the torque the design and the post-check share.
 
     The shaft is checked only where a wheel could win: the search runs without the post-check, and the
     wheel it chooses is designed again at its ratio with it; where that wheel holds, it is the best of the
@@ -746,10 +753,13 @@ def _best_wheel(
     checked. Where no ratio's wheel holds, the result is the unchecked winner's ratio designed with the
     post-check: its candidates give every failed limit in numbers (:func:`_shaft_refusal`).
     """
-    result, r = _wheel_search(j_need, omega_max, ratios, materials, spec, torque, objective, solver_options, seat)
+    unchecked = _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, keyed=keyed)
+    result, r = _wheel_search(
+        j_need, omega_max, ratios, materials, spec, torque, objective, solver_options, seat, unchecked
+    )
     if accept_at is None or result is None or result.best is None:
         return result, r
-    design = _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, accept_at)
+    design = _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, accept_at, keyed)
     checked = design(r)
     best = checked.best
     if best is not None and _same_wheel(best, result.best):
@@ -780,9 +790,10 @@ def _shaft_refusal(result: DesignResult) -> str:
     return f"at ratio {result.candidates[0].speed_ratio:.6g}: " + "; ".join(reasons)
 
 
-def _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, accept_at=None):
+def _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, accept_at=None, keyed=None):
     """r -> the wheel's DesignResult on the flywheel shaft at r (memoized: the scan, the minimization and the
-    tie-break revisit ratios), with the shaft's post-check at r where ``accept_at`` gives one."""
+    tie-break revisit ratios), with the shaft's post-check at r where ``accept_at`` gives one, and the torque of
+    its train on the key where ``keyed`` gives one (:func:`_best_wheel`)."""
     from flyopt.design.designer import design_flywheel
     from flyopt.design.spec import MountShaft
 
@@ -794,7 +805,7 @@ def _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, 
             designs[r] = design_flywheel(
                 j_need,
                 omega_max,
-                [MountShaft(FLYWHEEL_SHAFT, r, seat)],
+                [MountShaft(FLYWHEEL_SHAFT, r, seat) if keyed is None else keyed(MountShaft(FLYWHEEL_SHAFT, r, seat))],
                 materials,
                 spec,
                 solver_options=solver_options,

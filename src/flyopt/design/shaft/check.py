@@ -53,14 +53,7 @@ from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_lines
 from flyopt.design.shaft.lateral import GRAVITY, Disc, critical_speeds, rotor_model
 from flyopt.design.shaft.torsional import TorsionalCheck, running_range_rpm, torsional_check
-from flyopt.design.shaft.train import (
-    TrainResponse,
-    default_train,
-    key_torque,
-    seat_torque,
-    train_model,
-    train_response,
-)
+from flyopt.design.shaft.train import TrainResponse, seat_torque, shaft_train, train_response, wheel_key_torque
 from flyopt.machine.torsion import TorqueOrders
 from flyopt.units import rad_s_to_rpm
 
@@ -160,11 +153,11 @@ JSON_NAMES = {
 class KeySeat:
     """The DIN 6885-1 key a wheel was designed with (:func:`flyopt.design.key.check_key`'s arguments, SI): the
     seat ``d`` [m], the key's standard ``length`` [m] (the longest that fits the hub, so a "hub" of exactly this
-    length gives the same key back) and the allowables the design checked it against [Pa]."""
+    length gives the same key back) and the allowables the design checked it against [Pa] (no pressure: None)."""
 
     d: float
     length: float
-    allowable_pressure: float
+    allowable_pressure: float | None
     allowable_shear: float
 
 
@@ -211,8 +204,8 @@ class ShaftCheck:
         Which of the two T_m and T_a are.
     key_torque : float
         Where the train is modelled, the peak of the torque the wheel's key carries by the forced response,
-        J_wheel theta''_wheel [N*m] (:func:`~flyopt.design.shaft.train.key_torque`; the design sized the key at
-        the rigid body's); nan where it is not.
+        J_wheel theta''_wheel [N*m] (:func:`~flyopt.design.shaft.train.wheel_key_torque`; the design sizes the key
+        at the same torque, :func:`flyopt.design.shaft.cycle.key_torque_on`); nan where it is not.
     lateral_speed : float
         The first forward critical speed [rad/s] (nan: none found).
     speed_range_rpm : (float, float)
@@ -428,8 +421,8 @@ def check_shaft(
         The key the wheel was designed with. Where the train is modelled (the seat's torque is the forced
         response's) it adds a limit "key": that key checked by :func:`flyopt.design.key.check_key` at the peak
         of the torque the wheel's own inertia takes, J_wheel theta''_wheel
-        (:func:`~flyopt.design.shaft.train.key_torque`); without a train the design already checked it at the
-        rigid body's peak, and no limit is added.
+        (:func:`~flyopt.design.shaft.train.wheel_key_torque`, which the design sized it at); without a train the
+        design already checked it at the rigid body's peak, and no limit is added.
 
     Returns
     -------
@@ -444,20 +437,21 @@ def check_shaft(
     t_mean, t_alt = 0.5 * (t_max + t_min), 0.5 * (t_max - t_min)
     speed_range = running_range_rpm(omega_mean, delta)
     torsional = response = seat = key_limit = keyed = None
-    train = layout.train or default_train(layout, "", speed_ratio, other_inertia)
-    if excitation is not None and train:
-        built = train_model(
-            train, layout, material, wheel_inertia=wheel_inertia, speed_ratio=speed_ratio, materials=materials
-        )
+    built = shaft_train(
+        layout,
+        material,
+        wheel_inertia=wheel_inertia,
+        speed_ratio=speed_ratio,
+        other_inertia=other_inertia,
+        materials=materials,
+    )
+    if excitation is not None and built is not None:
         torsional = torsional_check(built.model, excitation, speed_range, significant=SIGNIFICANT_ORDER)
         response = (built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio)
         # the one rule of the alternating torque at the seat: the forced response's, where the train is modelled
         seat = seat_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
-        keyed = (
-            None
-            if seat is None
-            else key_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
-        )
+        # the one torque of the key, the design's too (flyopt.design.shaft.cycle.key_torque_on)
+        keyed = wheel_key_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
         if keyed is not None and key is not None:
             key_limit = _key_limit(key, keyed.peak)
     t_alt_rigid = t_alt
@@ -577,7 +571,11 @@ def _key_limit(key: KeySeat, torque: float) -> ShaftLimit | None:
         return None
     found = din_key.check_key(torque, key.d, key.length, key.allowable_pressure, key.allowable_shear)
     pressure = found.governing == "pressure"
-    value, allowed = (found.pressure, found.allowable_pressure) if pressure else (found.shear, found.allowable_shear)
+    value, allowed = (
+        (found.pressure, float(found.allowable_pressure or math.nan))
+        if pressure
+        else (found.shear, found.allowable_shear)
+    )
     what = "bearing pressure" if pressure else "shear"
     where = f"{found.key.size}, {found.length * 1e3:g} mm long, at the wheel seat ({what})"
     return ShaftLimit("key", where, value, allowed, value / allowed, "Pa", torque)

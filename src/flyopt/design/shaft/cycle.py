@@ -11,6 +11,9 @@ designed wheel; :func:`acceptor` turns it into the designer's post-check
 (``design_flywheel(accept=...)``): a wheel its shaft cannot carry, or one that puts a
 critical speed in the running range, makes that combination infeasible with the
 limits in numbers; :func:`mass_sensitivity` is d(utilisation)/d(m) of the binding limit.
+:func:`key_torque_on` is the torque the wheel's key carries where the shaft's train is modelled, the one the
+post-check checks the key at and the design sizes the hub at (:func:`keyed_shafts` puts it on the designer's
+shafts; :func:`rekeyed` is the short fixed point where a wheel's own inertia puts more on it).
 """
 
 from __future__ import annotations
@@ -18,21 +21,25 @@ from __future__ import annotations
 import dataclasses
 import math
 import weakref
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from flyopt.design.combination import combination_label
 from flyopt.design.shaft.check import KeySeat, ShaftCheck, ShaftLimit, check_shaft
+from flyopt.design.shaft.train import shaft_train, wheel_key_torque
 from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.torsion import TorqueOrders
+from flyopt.machine.transmission import inertia_on_shaft
+from flyopt.units import rad_s_to_rpm
 
 if TYPE_CHECKING:
     from flyopt.analysis import Analysis
     from flyopt.design.materials import Material
-    from flyopt.design.result import Candidate
+    from flyopt.design.result import Candidate, DesignResult
+    from flyopt.design.spec import MountShaft
     from flyopt.machine.reduce import Machine
     from flyopt.machine.shaft_layout import ShaftLayout
     from flyopt.machine.transmission import Shaft
@@ -50,6 +57,10 @@ __all__ = [
     "key_of",
     "layout_of",
     "torque_curve",
+    "excitation_on",
+    "key_torque_on",
+    "keyed_shafts",
+    "rekeyed",
 ]
 
 #: Relative step of the central difference of a limit's utilisation in the wheel's mass.
@@ -74,6 +85,7 @@ class ShaftContext:
     # each designed seat's choice, (shaft, material, arms) -> flyopt.design.shaft.seat_nlp.SeatChoice
     seats: dict[tuple[str, str, int | None], Any] = field(default_factory=dict, repr=False)
     _cache: dict[tuple[Any, ...], ShaftCheck] = field(default_factory=dict, repr=False)
+    _keyed: dict[tuple[Any, ...], float | None] = field(default_factory=dict, repr=False)  # key_torque_on's
 
 
 @dataclass(frozen=True)
@@ -197,7 +209,7 @@ def at_ratio(ctx: ShaftContext, name: str, ratio: float) -> ShaftContext:
     (a belt pull, a mesh force) stay as given at every ratio, though the torque through that pulley scales with
     1/ratio: the scene states them for the drive as built (docs/flywheel-design.md, section 14)."""
     shafts = {**ctx.shafts, name: dataclasses.replace(ctx.shafts[name], speed_ratio=float(ratio))}
-    return dataclasses.replace(ctx, shafts=shafts, _cache=ctx._cache)
+    return dataclasses.replace(ctx, shafts=shafts, _cache=ctx._cache, _keyed=ctx._keyed)
 
 
 def _wheel(candidate: Candidate) -> tuple[float, float, float]:
@@ -245,14 +257,16 @@ def torque_curve(ctx: ShaftContext, name: str, inertia: float) -> np.ndarray:
 
 def key_of(candidate: Candidate) -> KeySeat | None:
     """The key the candidate's wheel was designed with (its seat, its standard length, the allowables the design
-    checked it against), or None where the design checked none (no bore, no hub, no bearing pressure)."""
+    checked it against: the key's shear always, the hub's bearing pressure where its material gives one), or None
+    where the design checked none (no bore, no hub, no torque)."""
     found = None if candidate.parts is None else candidate.parts.key
-    if not found or not candidate.bore or found.get("allowable_pressure") is None:
+    if not found or not candidate.bore or found.get("allowable_shear") is None:
         return None
+    pressure = found.get("allowable_pressure")
     return KeySeat(
         float(candidate.bore),
         float(found["length"]),
-        float(found["allowable_pressure"]),
+        None if pressure is None else float(pressure),
         float(found["allowable_shear"]),
     )
 
@@ -273,11 +287,7 @@ def checked_at(
     layout = layout_of(ctx, name, seat)
     r = shaft.speed_ratio
     torque = torque_curve(ctx, name, inertia)
-    excitation = None
-    if ctx.orders is not None:
-        # per revolution of this shaft: order q of the reference is q / r here, its torque c_q / r
-        o = ctx.orders
-        excitation = TorqueOrders(o.mean / r, o.orders / r, o.amplitudes / r)
+    excitation = excitation_on(ctx, name)
     check = check_shaft(
         layout,
         ctx.materials[name],
@@ -295,6 +305,99 @@ def checked_at(
     )
     ctx._cache[cached] = check
     return check
+
+
+def excitation_on(ctx: ShaftContext, name: str) -> TorqueOrders | None:
+    """The net torque's orders per revolution of shaft ``name`` (order q of the reference is q / r there, its torque
+    c_q / r); None where the cycle gives net areas only."""
+    if ctx.orders is None:
+        return None
+    r = ctx.shafts[name].speed_ratio
+    o = ctx.orders
+    return TorqueOrders(o.mean / r, o.orders / r, o.amplitudes / r)
+
+
+def key_torque_on(ctx: ShaftContext, name: str, inertia: float, seat: float | None = None) -> float | None:
+    """The peak torque [N*m] the key of a wheel of ``inertia`` [kg*m^2] on shaft ``name`` (its seat at ``seat`` [m]
+    where the shaft designs it) carries by its train's forced response, J_w theta''_w: the torque the post-check
+    checks the key at (:attr:`flyopt.design.shaft.check.ShaftCheck.key_torque`, the same train built by the same
+    :func:`flyopt.design.shaft.train.shaft_train` and the same :func:`flyopt.design.shaft.train.wheel_key_torque`),
+    and so the one the design sizes the hub's length and checks the key at (:func:`keyed_shafts`). None where the
+    post-check adds no key limit (net areas, no train, the wheel at the crank end): the design keeps the rigid
+    body's peak torque there (docs/flywheel-design.md, section 26)."""
+    shaft = ctx.shafts[name]
+    excitation = excitation_on(ctx, name)
+    if excitation is None or not inertia > 0.0:
+        return None
+    layout = layout_of(ctx, name, seat)
+    r = shaft.speed_ratio
+    cached = (name, r, ctx.omega_mean, inertia, seat)
+    if cached in ctx._keyed:
+        return ctx._keyed[cached]
+    built = shaft_train(
+        layout,
+        ctx.materials[name],
+        wheel_inertia=inertia,
+        speed_ratio=r,
+        other_inertia=shaft.inertia,
+        materials=ctx.train_materials,
+    )
+    found = (
+        None
+        if built is None
+        else wheel_key_torque(built, excitation, rad_s_to_rpm(ctx.omega_mean * r), layout.damping_ratio)
+    )
+    peak = None if found is None else found.peak
+    ctx._keyed[cached] = peak
+    return peak
+
+
+def keyed_shafts(ctx: ShaftContext | None, shafts: Sequence[MountShaft], j_required: float) -> tuple[MountShaft, ...]:
+    """``shafts`` with each described one carrying its key's torque (:func:`key_torque_on`) at the inertia the design
+    must supply there, J_F / r^2 (``j_required`` at the reference shaft, already times the rim's share), and at its
+    seat: the torque its wheel's arms, hub length and key are designed at in place of the rigid body's
+    (:attr:`flyopt.design.spec.MountShaft.torque`). A shaft that designs its seat is keyed at the seat it is given
+    (the walk of :mod:`flyopt.design.shaft.diameter` gives each seat it tries), and left as it is without one; so is
+    a shaft whose train gives no key torque, one not described and one that already carries its torque."""
+    if ctx is None:
+        return tuple(shafts)
+    out = []
+    for s in shafts:
+        described = ctx.shafts.get(s.name)
+        layout = None if described is None else described.layout
+        if layout is None or s.torque is not None or (layout.designs_seat and not s.diameter):
+            out.append(s)
+            continue
+        at = ctx if described.speed_ratio == s.speed_ratio else at_ratio(ctx, s.name, s.speed_ratio)  # type: ignore[union-attr]
+        seat = s.diameter if layout.designs_seat else None
+        torque = key_torque_on(at, s.name, inertia_on_shaft(j_required, s.speed_ratio), seat)
+        out.append(dataclasses.replace(s, torque=torque) if torque is not None and torque > 0.0 else s)
+    return tuple(out)
+
+
+def rekeyed(ctx: ShaftContext, result: DesignResult, shafts: Sequence[MountShaft]) -> tuple[MountShaft, ...] | None:
+    """The shafts to design again on, or None: the short fixed point of the key's torque.
+
+    The design sizes a keyed shaft's hub at its key's torque for the inertia it must supply (:func:`keyed_shafts`);
+    the post-check checks the key at the torque of the wheel designed, whose inertia can be larger (a rounded
+    wheel's), and the train's key torque grows with it (the wheel's share of the train's inertia). Where the
+    post-check refused a wheel for its key alone at a torque above the one its shaft was designed at, that shaft is
+    returned carrying the largest such torque (each refused wheel's own, :func:`key_torque_on` at its inertia), to
+    design again at: the wheels then designed have hubs long enough for the torque their post-check found.
+    """
+    torques: dict[str, float] = {}
+    for c in result.candidates:
+        if c.feasible or c.mass is None or REFUSED not in (c.reason or ""):
+            continue
+        shaft = next((s for s in shafts if s.name == c.shaft and s.torque is not None), None)
+        check = None if shaft is None else check_candidate(ctx, c)
+        if shaft is None or check is None or not check.failed():
+            continue
+        if all(lim.kind == "key" for lim in check.failed()) and check.key_torque > cast(float, shaft.torque):
+            torques[c.shaft] = max(torques.get(c.shaft, 0.0), check.key_torque)
+    if not torques:
+        return None
+    return tuple(dataclasses.replace(s, torque=torques[s.name]) if s.name in torques else s for s in shafts)
 
 
 def check_candidate(ctx: ShaftContext, candidate: Candidate) -> ShaftCheck | None:

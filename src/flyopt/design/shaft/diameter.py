@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, Any
 from flyopt.design import key, preferred, rank
 from flyopt.design.shaft import strength
 from flyopt.design.shaft.check import CRITERION, notch_factors
-from flyopt.design.shaft.cycle import ShaftContext, acceptor, torque_curve
+from flyopt.design.shaft.cycle import ShaftContext, acceptor, keyed_shafts, rekeyed, torque_curve
 from flyopt.names import Geometry
 
 if TYPE_CHECKING:
@@ -47,7 +47,7 @@ if TYPE_CHECKING:
     from flyopt.design.spec import DesignSpec, MountShaft
     from flyopt.machine.shaft_layout import ShaftLayout
 
-__all__ = ["SeatFloor", "seat_series", "seat_floor", "designs_seats", "design_with_seats", "seated"]
+__all__ = ["SeatFloor", "seat_series", "seat_floor", "designs_seats", "design_with_seats", "seated", "on_seat"]
 
 
 @functools.lru_cache(maxsize=8)
@@ -134,6 +134,13 @@ def seated(shafts: Sequence[MountShaft], designed: set[str]) -> tuple[MountShaft
         dataclasses.replace(s, diameter=seat_series()[0]) if s.name in designed and s.diameter is None else s
         for s in shafts
     )
+
+
+def on_seat(ctx: ShaftContext, shaft: MountShaft, d: float, j_required: float) -> MountShaft:
+    """``shaft`` on the seat ``d`` [m] with its key's torque there (:func:`flyopt.design.shaft.cycle.keyed_shafts`,
+    the train's stiffness depends on d) at the inertia the design must supply (``j_required`` at the reference,
+    times the rim's share): the shaft the wheel is designed on at that seat."""
+    return keyed_shafts(ctx, [dataclasses.replace(shaft, diameter=d, torque=None)], j_required)[0]
 
 
 def _layout(ctx: ShaftContext, name: str) -> ShaftLayout:
@@ -231,9 +238,12 @@ def design_with_seats(
             at = search
             if spec.geometry == Geometry.RIM_ARMS:
                 at = dataclasses.replace(search, arms=tuple(sorted({a for _, a in active if a is not None})))
-            seated = dataclasses.replace(shaft, diameter=d)
+            seated = on_seat(ctx, shaft, d, j_required * spec.rim_share)
             try:
                 last = design_flywheel(j_required, omega, [seated], mats, at, accept=accept, **options)
+                again = rekeyed(ctx, last, [seated])  # a wheel refused for its key at its own inertia's torque
+                if again is not None:
+                    last = design_flywheel(j_required, omega, again, mats, at, accept=accept, **options)
             except ValueError as err:  # beyond a table the checks read: the series ends here
                 floor = dataclasses.replace(floor, cap=f"at {d * 1e3:g} mm: {err}")
                 break
@@ -256,7 +266,7 @@ def design_with_seats(
             failed[(m, shaft.name, a)] = _exhausted(
                 failed.get((m, shaft.name, a)), m, shaft, spec, a, floor, layout.diameter_series, tried
             )
-    return _merged(j_required, omega, shafts, materials, spec, found, failed, order, last, accept, options, names)
+    return _merged(j_required, omega, shafts, materials, spec, found, failed, order, last, accept, options, names, ctx)
 
 
 def _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, options) -> dict:
@@ -271,7 +281,7 @@ def _continuous_starts(ctx, shaft, floor, j_required, omega, materials, search, 
         return {}
     lower = floor.bound if floor.bound > 0.0 else floor.seats[0]
     d_range = (min(lower, floor.seats[0]), floor.seats[-1])
-    seated = dataclasses.replace(shaft, diameter=floor.seats[0])
+    seated = on_seat(ctx, shaft, floor.seats[0], j_required * search.rim_share)
     starts: dict[tuple[str, int | None], float] = {}
     combos = combinations(
         j_required, omega, options.get("omega_mean"), options.get("torque"), [seated], [False], materials, search
@@ -368,7 +378,7 @@ def _infeasible(last, material, shaft, spec, arms, head) -> Candidate:
 
 
 def _merged(
-    j_required, omega, shafts, materials, spec, found, failed, order, last, accept, options, names
+    j_required, omega, shafts, materials, spec, found, failed, order, last, accept, options, names, ctx
 ) -> DesignResult:
     """One DesignResult: the winner designed again as the spec asks on its seat, then the other feasible
     combinations by the ranking rule, then the infeasible ones in input order."""
@@ -394,7 +404,11 @@ def _merged(
         return dataclasses.replace(last, status="infeasible", message=message, best=None, candidates=tuple(infeasible))
     winner = designs[0]
     shaft = next(s for s in shafts if s.name == winner.shaft)
-    seated = dataclasses.replace(shaft, diameter=winner.bore if winner.bore else shaft.diameter)
+    seated = (
+        on_seat(ctx, shaft, winner.bore, j_required * spec.rim_share)
+        if winner.bore and _designed(ctx, shaft.name)
+        else dataclasses.replace(shaft, diameter=winner.bore if winner.bore else shaft.diameter)
+    )
     material = next(m for m in materials if m.name == winner.material)
     final_spec = spec if winner.n_arms is None else dataclasses.replace(spec, arms=(winner.n_arms,))
     final = design_flywheel(j_required, omega, [seated], [material], final_spec, accept=accept, **options)

@@ -331,6 +331,7 @@ def seat_optimum(
     """
     from flyopt.design import wheel as wheel_module
     from flyopt.design import wheel_nlp
+    from flyopt.design.shaft.cycle import key_torque_on
     from flyopt.design.wheel_design import hub_bounds, strongest_allowables, wheel_problem
 
     layout = ctx.shafts[name].layout
@@ -367,7 +368,9 @@ def seat_optimum(
     def round_at(d: float) -> dict[str, Any]:
         key_length = 0.0  # the key's shortest hub where it is longer than the proportions' shortest, else none
         if structure.has_hub:
-            shortest = hub_bounds(wheel_material, d, combo.torque)[1][0]
+            # the key's torque at this round's d (the train stiffens with d), as the designer's on the series value
+            keyed = key_torque_on(ctx, name, combo.j_shaft, d)
+            shortest = hub_bounds(wheel_material, d, combo.torque if keyed is None else keyed)[1][0]
             if shortest > hub.hub_proportions(d, wheel_material.hub_kind).l_hub_min * (1.0 + 1e-12):
                 key_length = shortest
         frozen = _freeze(ctx, name, layout, material, d, state["mass"], state["inertia"], key_length)
