@@ -249,6 +249,9 @@ def test_a_key_without_a_bearing_pressure_has_its_shear_checked_and_its_pressure
     text = _solve_text(PROBLEMS / "press-arms-wheel.toml", capsys)
     assert "Key (DIN 6885-1 form A) on a 70 mm bore: 20 x 12, length 100 mm (effective 80 mm): OK" in text
     assert any("gives no bearing_pressure: the key's shear is checked" in n for n in _block(text, "Notes:"))
+    # the pressure line says it is not checked, not "(allowable -)" beside an OK
+    line = next(ln for ln in text.splitlines() if ln.startswith("  at the peak torque"))
+    assert "(not checked: the hub's material gives no allowable)" in line and "allowable -" not in line
 
 
 def test_a_disc_is_reported_as_a_disc_not_a_rim(capsys, tmp_path):

@@ -861,10 +861,14 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: 
             f"{verdict}",
         ]
         if k["ok"] is not None:
+            pressure = (
+                "not checked: the hub's material gives no allowable"
+                if k["allowable_pressure"] is None
+                else f"allowable {q(k['allowable_pressure'], 'allowable_pressure')}"
+            )
             lines.append(
                 f"  at the peak torque {q(k['torque'], 'torque')}: bearing pressure "
-                f"{q(k['bearing_pressure'], 'bearing_pressure')} (allowable "
-                f"{q(k['allowable_pressure'], 'allowable_pressure')}), shear {q(k['shear'], 'shear')} "
+                f"{q(k['bearing_pressure'], 'bearing_pressure')} ({pressure}), shear {q(k['shear'], 'shear')} "
                 f"(allowable {q(k['allowable_shear'], 'allowable_shear')})"
             )
     if c.limits.sensitivities:

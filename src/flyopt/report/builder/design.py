@@ -589,10 +589,17 @@ class DesignSection(BuilderBase):
                     (
                         "bearing pressure",
                         (
-                            q(k["bearing_pressure"], "stress"),
-                            " (allowable ",
-                            q(k["allowable_pressure"], "stress"),
-                            ")",
+                            (
+                                q(k["bearing_pressure"], "stress"),
+                                " (not checked: the hub's material gives no allowable)",
+                            )
+                            if k["allowable_pressure"] is None
+                            else (
+                                q(k["bearing_pressure"], "stress"),
+                                " (allowable ",
+                                q(k["allowable_pressure"], "stress"),
+                                ")",
+                            )
                         ),
                     ),
                     (
