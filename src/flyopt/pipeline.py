@@ -191,6 +191,8 @@ def design_scene(
     analysis: Analysis,
     solver_options: Mapping[str, Any] | None = None,
     method: Literal["auto", "ipopt", "closed_form"] = "auto",
+    *,
+    continuous: bool = False,
 ) -> DesignResult:
     """Design the flywheel a scene needs, from its analysis.
 
@@ -208,6 +210,12 @@ def design_scene(
         The exact closed form where it covers the structure and IPOPT
         elsewhere (default), IPOPT on every combination, or the closed form
         only (see flyopt.design.designer.design_flywheel).
+    continuous : bool
+        The continuous design a study compares (the material trade-off): not rounded to the manufacturing
+        grid (:func:`flyopt.design.inputs.one_design`), without the δ sensitivity and the finite-element
+        report of the winner; every limit, the peak torque on the arms and the key, and a described shaft's
+        post-check and key torque as ``flyopt solve`` designs with (one path). A scene's own ``fem_check =
+        true`` still re-designs against the FE.
 
     Returns
     -------
@@ -223,7 +231,9 @@ def design_scene(
     from flyopt.design.inputs import builds_whole, one_design
     from flyopt.design.wheel_design import needs_torque
 
-    inputs = one_design(_seated(_keyed(scene, analysis, design_inputs(scene)), scene))
+    inputs = _seated(_keyed(scene, analysis, design_inputs(scene)), scene)
+    if not continuous:
+        inputs = one_design(inputs)
     # the rim is checked at the highest speed of the cycle, from the model that ran (for a motor
     # scene the mean speed itself follows from the torque balance, not from the scene's nominal speed)
     # the peak torque loads the arms and the key: asked for only where the design has them
@@ -269,11 +279,13 @@ def design_scene(
             )
 
         result = accept_fem(result, inputs.materials, redesign)
+    elif continuous:
+        return result
     elif result.spec.fem_check is None and builds_whole(inputs):
         from flyopt.design.fem import check_result  # numpy and scikit-fem
 
         result = check_result(result, inputs.materials)
-    return _with_delta_sensitivity(scene, analysis, result, solver_options, method)
+    return result if continuous else _with_delta_sensitivity(scene, analysis, result, solver_options, method)
 
 
 def _shaft_acceptor(scene: Scene, analysis: Analysis, names: Mapping[str, str]) -> Any:

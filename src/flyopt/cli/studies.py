@@ -438,7 +438,7 @@ def _emit(
         print(documents.json_text(documents.table_document(frame, metadata)))
         return
     front = objectives[1] if objectives else None
-    shown = frame[[c for c in columns if c in frame]].copy()
+    shown = _for_people(frame[[c for c in columns if c in frame]].copy(), scene)
     labels = []
     for c in shown.columns:
         dimension = quantities.dimension_of(c)
@@ -460,6 +460,24 @@ def _emit(
     print(shown.to_string(index=False, na_rep="-"))
     if output is not None:
         print(f"wrote {output}")
+
+
+def _for_people(shown: pd.DataFrame, scene: Scene) -> pd.DataFrame:
+    """The printed table's materials by their names for people (:attr:`flyopt.design.materials.Material.display_name`)
+    and its binding limits in words (:func:`flyopt.design.check.binding_label`), as ``flyopt solve`` prints them;
+    the files and the JSON keep the keys and the row names."""
+    from flyopt.design.check import binding_label
+
+    library = scene.material_library()
+    for c in ("material", "best_material"):
+        if c in shown:
+            shown[c] = [library[m].display_name if isinstance(m, str) and m in library else m for m in shown[c]]
+    for c in ("binding", "limit"):
+        if c in shown:
+            shown[c] = [
+                ", ".join(binding_label(n) for n in v.split(",") if n) if isinstance(v, str) else v for v in shown[c]
+            ]
+    return shown
 
 
 def _label(column: str, unit: str | None) -> str:

@@ -74,20 +74,22 @@ def material_tradeoff(
 
     Notes
     -----
-    Each material is designed by :func:`flyopt.design.designer.design_flywheel`
-    (the exact closed form, or IPOPT, after the closed-form infeasibility
-    proof) on every allowed shaft; the materials are ordered by flyopt's one
+    Each material is designed as ``flyopt solve`` designs it
+    (:func:`flyopt.pipeline.design_scene`, continuous: the exact closed form, or IPOPT, after the closed-form
+    infeasibility proof, with the flywheel's peak torque on the arms and the key and a described shaft's
+    checks) on every allowed shaft; the materials are ordered by flyopt's one
     ranking rule (:mod:`flyopt.design.rank`), so the first row is the winner
     of ``flyopt solve`` with the objective mass.
     """
-    from flyopt.design import design_flywheel
     from flyopt.design.designer import rim_speed_limit
     from flyopt.design.inputs import seat_given_only
+    from flyopt.pipeline import design_scene
 
     seat_given_only(scene, "a material trade-off")
     analysis = physics_analysis(scene)
-    inputs = design_inputs(scene)
-    spec = dataclasses.replace(inputs.spec, objective="mass")
+    spec = dataclasses.replace(design_inputs(scene).spec, objective="mass")
+    by_mass = dataclasses.replace(scene, design=spec)
+    inputs = design_inputs(by_mass)
     rows, bests = [], {}
     for material in inputs.materials:
         name = material.name
@@ -102,16 +104,10 @@ def material_tradeoff(
             solver_status="",
             shaft="",
         )
-        result = design_flywheel(
-            analysis.j_margin,
-            analysis.omega_max,
-            inputs.shafts,
-            [material],
-            spec,
-            solver_options=solver_options,
-            method=method,
-            omega_mean=analysis.omega_mean,
-        )
+        # the design flyopt solve makes of this material alone (its peak torque on the arms and the key, a
+        # described shaft's post-check), continuous as every study compares it
+        alone = dataclasses.replace(by_mass, design_materials=(name,))
+        result = design_scene(alone, analysis, solver_options, method, continuous=True)
         row["status"] = result.status
         best = result.best
         if best is not None:
