@@ -48,7 +48,7 @@ import math
 import time
 import zlib
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import casadi as ca
@@ -170,6 +170,10 @@ class WheelModel:
     stress_parts: tuple[str, ...]  # which part each allowable parameter belongs to
     build_time: float
     fast: ca.Function | None = None  # sqpmethod, tried before IPOPT (SOLVER_OPTION "sqpmethod", the default)
+    rows: ca.Function | None = None  # g(x, p): the rows at a point (a warm start's multipliers are projected on them)
+    #: The multipliers of this NLP's last converged sqpmethod solves, by their wheel (:func:`_wheel_key`):
+    #: (lam_x, lam_g), a warm start's duals (:func:`solve`); at most :data:`DUALS_KEPT`.
+    duals: dict[tuple[float, ...], tuple[list[float], list[float]]] = field(default_factory=dict)
 
     def describe(self) -> dict[str, Any]:
         """What the model is, for the report: geometry, objective, variables, constraint rows."""
@@ -361,7 +365,8 @@ def _build(structure, options):
         name += f"_{structure.castability.process}_{zlib.crc32(repr(structure.castability).encode())}"
     solver = ca.nlpsol(name, "ipopt", nlp, options)
     fast = ca.nlpsol(name + "_sqp", "sqpmethod", nlp, SQP_OPTIONS) if choice == "sqpmethod" else None
-    return WheelModel(structure, solver, names, form.row_names, stress_parts, time.perf_counter() - start, fast)
+    rows = ca.Function(name + "_rows", [x, nlp["p"]], [nlp["g"]]) if fast is not None else None
+    return WheelModel(structure, solver, names, form.row_names, stress_parts, time.perf_counter() - start, fast, rows)
 
 
 @dataclass(frozen=True)
@@ -611,7 +616,14 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     begin = time.perf_counter()
     sol, stats = None, {}
     if model.fast is not None and problem.warm is not None:  # the same NLP from a neighbour's wheel
-        sol, stats = _solve_fast(model.fast, {**args, "x0": _clipped(problem.warm, names, args)})
+        warm = {**args, "x0": _clipped(problem.warm, names, args)}
+        duals = _warm_duals(model, warm)
+        if duals is not None:  # and its multipliers: the first QP starts from the neighbour's active set
+            sol, stats = _solve_fast(model.fast, {**warm, **duals})
+            if sol is not None and not _complementary(sol, warm):
+                sol, stats = None, {}  # sqpmethod does not test complementarity: a stale multiplier passed
+        if sol is None:
+            sol, stats = _solve_fast(model.fast, warm)
     if sol is None and model.fast is not None and not problem.ipopt_first:  # cold, as without a neighbour
         sol, stats = _solve_fast(model.fast, args)
     solver = "sqpmethod" if sol is not None else "ipopt"
@@ -633,6 +645,8 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         failure.combination = label
         raise failure
     xs = [float(v) for v in sol["x"].full().ravel()]
+    if solver == "sqpmethod":
+        _remember_duals(model, xs, sol)
     dims = dims_of(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
     lam_g: dict = {}
     rows = sol["g"].full().ravel()
@@ -692,3 +706,74 @@ def _solve_fast(fast, args):
     if stats.get("success") and stats.get("return_status") in CONVERGED:
         return sol, stats
     return None, stats
+
+
+#: Converged solves whose multipliers a model keeps for warm starts (the oldest is dropped first): a
+#: sweep's chunk asks for those of its previous point, one per combination and caps of the same NLP.
+DUALS_KEPT = 64
+
+
+def _wheel_key(xs: Sequence[float]) -> tuple[float, ...]:
+    """A wheel's variables (logarithms of metres) rounded to 1e-12: a warm start's ``x0`` is the log of
+    the exp of a solution's, which may differ from it in the last bit."""
+    return tuple(round(v, 12) for v in xs)
+
+
+def _remember_duals(model: WheelModel, xs: Sequence[float], sol: Mapping[str, Any]) -> None:
+    """Keep a converged sqpmethod solution's multipliers on its model, by its wheel (:data:`DUALS_KEPT`)."""
+    key = _wheel_key(xs)
+    model.duals.pop(key, None)
+    model.duals[key] = (
+        [float(v) for v in sol["lam_x"].full().ravel()],
+        [float(v) for v in sol["lam_g"].full().ravel()],
+    )
+    while len(model.duals) > DUALS_KEPT:
+        model.duals.pop(next(iter(model.duals)))
+
+
+def _warm_duals(model: WheelModel, args: Mapping[str, Any]) -> dict[str, list[float]] | None:
+    """``lam_x0`` and ``lam_g0`` for a warm start from a wheel this model solved (None: none kept).
+
+    The neighbour's multipliers, each kept only where its row (or variable) still meets the bound its sign
+    names at the start under this problem's bounds and parameters (:func:`_active_at`); the others are set
+    to 0. Passed as they were, the multiplier of a row the new problem leaves slack (the inertia row of a
+    point that needs less J) makes the start look stationary, and sqpmethod, which tests stationarity and
+    feasibility but not complementarity, reports Solve_Succeeded after 0 iterations at a wheel that is not
+    the new optimum.
+    """
+    kept = model.duals.get(_wheel_key(args["x0"]))
+    if kept is None or model.rows is None:
+        return None
+    rows = [float(v) for v in model.rows(args["x0"], args["p"]).full().ravel()]
+    lam_x, lam_g = kept
+    return {
+        "lam_x0": [_active_at(lam, v, lo, hi) for lam, v, lo, hi in zip(lam_x, args["x0"], args["lbx"], args["ubx"])],
+        "lam_g0": [_active_at(lam, v, lo, hi) for lam, v, lo, hi in zip(lam_g, rows, args["lbg"], args["ubg"])],
+    }
+
+
+def _active_at(lam: float, value: float, lower: float, upper: float, tol: float = ACTIVE_ROW) -> float:
+    """``lam`` where ``value`` meets the bound its sign names (> 0 the upper, < 0 the lower, CasADi's
+    convention) to ``tol`` (relative to the bound, absolute below 1), else 0."""
+    bound = upper if lam > 0 else lower
+    if lam != 0 and math.isfinite(bound) and abs(value - bound) <= tol * max(1.0, abs(bound)):
+        return lam
+    return 0.0
+
+
+#: A converged multiplier's row (or variable) meets its bound to this: ten times sqpmethod's tol_pr.
+COMPLEMENTARY = 1e-9
+
+
+def _complementary(sol: Mapping[str, Any], args: Mapping[str, Any]) -> bool:
+    """Whether every nonzero multiplier of a solution sits on the bound its sign names to
+    :data:`COMPLEMENTARY` (:func:`_active_at`): with sqpmethod's own tests (feasibility, stationarity) the
+    wheel is then a KKT point of this NLP."""
+    for values, lams, lower, upper in (
+        (sol["x"], sol["lam_x"], args["lbx"], args["ubx"]),
+        (sol["g"], sol["lam_g"], args["lbg"], args["ubg"]),
+    ):
+        for v, lam, lo, hi in zip(values.full().ravel(), lams.full().ravel(), lower, upper):
+            if lam != 0 and _active_at(float(lam), float(v), lo, hi, COMPLEMENTARY) == 0.0:
+                return False
+    return True
