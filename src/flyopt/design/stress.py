@@ -722,12 +722,18 @@ def max_stress_per_step(
         return float(max(sr, st))
 
     radii = [float(r) for r in _items(radii)]
+    steps = [(float(c[0]), 0.0 if _is_structural_zero(c[1]) else float(c[1])) for c in coefficients]
+    # von Mises: every step's stationarity quartic, their roots found together (one eigvals call per size)
+    if measure == "von_mises":
+        quartics = [_von_mises_quartic(c, alpha, beta, radii[i + 1] ** 2) for i, c in enumerate(steps)]
+        roots = _roots(quartics)
+    else:
+        quartics, roots = [None] * len(steps), [None] * len(steps)
     result = []
-    for i, c in enumerate(coefficients):
-        c = (float(c[0]), 0.0 if _is_structural_zero(c[1]) else float(c[1]))
+    for i, c in enumerate(steps):
         low, high = radii[i], radii[i + 1]
         best = StepMaximum(value(c, low), i, low)
-        for r in (*_stationary_radii(c, alpha, beta, low, high, measure), high):
+        for r in (*_stationary_radii(c, alpha, beta, low, high, measure, quartics[i], roots[i]), high):
             v = value(c, r)
             if v > best.value:
                 best = StepMaximum(v, i, r)
@@ -735,8 +741,58 @@ def max_stress_per_step(
     return result
 
 
-def _stationary_radii(c, alpha, beta, low, high, measure):
-    """The radii strictly inside (low, high) where a measure of a step is stationary (see max_stress_per_step)."""
+def _von_mises_quartic(c, alpha, beta, u_high):
+    """The stationarity polynomial of von Mises in a step (ascending powers of s = u / u_high, its
+    highest zero powers dropped; d_poly[2] == 0), see :func:`max_stress_per_step`."""
+    c1, c2 = c
+    if u_high <= 0.0:
+        return []
+    # in s = u / u_high (order one): P = u sigma_r / u_high = -a s^2 + c1 s - k and Q = u sigma_t / u_high
+    # = -b s^2 + c1 s + k; R = P^2 - P Q + Q^2 = sum r_j s^j and s R' - 2 R = sum (j - 2) r_j s^j, a quartic
+    a, b, k = alpha * u_high, beta * u_high, c2 / u_high
+    p, q = (-k, c1, -a), (k, c1, -b)
+    r = [
+        sum(p[i] * p[j - i] - p[i] * q[j - i] + q[i] * q[j - i] for i in range(max(0, j - 2), min(j, 2) + 1))
+        for j in range(5)
+    ]
+    d_poly = [(j - 2) * r[j] for j in range(5)]  # ascending powers of s; d_poly[2] == 0
+    while d_poly and d_poly[-1] == 0.0:
+        d_poly.pop()
+    return d_poly
+
+
+def _roots(polynomials):
+    """``numpy.roots`` of each polynomial (ascending powers), the companion matrices' eigenvalues found in
+    one ``numpy.linalg.eigvals`` call per size: each matrix is the one numpy.roots builds, and LAPACK
+    solves each of a stack alone, so the roots are numpy.roots' own (a step's stress check calls this for
+    three or four quartics; one call each cost most of the check)."""
+    out: list[Any] = [()] * len(polynomials)
+    by_size: dict[int, list[tuple[int, Any]]] = {}
+    trailing = [0] * len(polynomials)
+    for k, poly in enumerate(polynomials):
+        p = np.asarray(poly[::-1], dtype=float)  # descending, as numpy.roots takes it
+        nonzero = np.flatnonzero(p)
+        if len(nonzero) == 0:
+            continue
+        trailing[k] = len(p) - int(nonzero[-1]) - 1  # roots at zero
+        p = p[int(nonzero[0]) : int(nonzero[-1]) + 1]
+        if len(p) > 1:
+            companion = np.diag(np.ones(len(p) - 2), -1)
+            companion[0, :] = -p[1:] / p[0]
+            by_size.setdefault(len(p), []).append((k, companion))
+        else:
+            out[k] = np.zeros(trailing[k])
+    for group in by_size.values():
+        values = np.linalg.eigvals(np.stack([m for _, m in group]))
+        for (k, _), found in zip(group, values):
+            out[k] = np.concatenate([found, np.zeros(trailing[k], dtype=found.dtype)])
+    return out
+
+
+def _stationary_radii(c, alpha, beta, low, high, measure, d_poly=None, roots=None):
+    """The radii strictly inside (low, high) where a measure of a step is stationary (see max_stress_per_step);
+    for von Mises its quartic (:func:`_von_mises_quartic`) and that quartic's roots (:func:`_roots`) when
+    found already."""
     c1, c2 = c
     u_low, u_high = low * low, high * high
     if u_high <= u_low:
@@ -747,19 +803,12 @@ def _stationary_radii(c, alpha, beta, low, high, measure):
     if measure in ("hoop", "largest_principal") and c2 < 0 and beta > 0:
         found.append(math.sqrt(-c2 / beta))
     if measure == "von_mises":
-        # in s = u / u_high (order one): P = u sigma_r / u_high = -a s^2 + c1 s - k and Q = u sigma_t / u_high
-        # = -b s^2 + c1 s + k; R = P^2 - P Q + Q^2 = sum r_j s^j and s R' - 2 R = sum (j - 2) r_j s^j, a quartic
-        a, b, k = alpha * u_high, beta * u_high, c2 / u_high
-        p, q = (-k, c1, -a), (k, c1, -b)
-        r = [
-            sum(p[i] * p[j - i] - p[i] * q[j - i] + q[i] * q[j - i] for i in range(max(0, j - 2), min(j, 2) + 1))
-            for j in range(5)
-        ]
-        d_poly = [(j - 2) * r[j] for j in range(5)]  # ascending powers of s; d_poly[2] == 0
-        dd_poly = [j * d_poly[j] for j in range(1, 5)]
-        while d_poly and d_poly[-1] == 0.0:
-            d_poly.pop()
-        roots = np.roots(d_poly[::-1]) if len(d_poly) > 1 else ()
+        if d_poly is None:
+            d_poly = _von_mises_quartic(c, alpha, beta, u_high)
+        if roots is None:
+            roots = _roots([d_poly])[0] if len(d_poly) > 1 else ()
+        padded = d_poly + [0.0] * (5 - len(d_poly))
+        dd_poly = [j * padded[j] for j in range(1, 5)]
         for root in roots:
             if abs(root.imag) > 1e-6 * max(abs(root), 1e-300):
                 continue

@@ -620,7 +620,7 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         duals = _warm_duals(model, warm)
         if duals is not None:  # and its multipliers: the first QP starts from the neighbour's active set
             sol, stats = _solve_fast(model.fast, {**warm, **duals})
-            if sol is not None and not _complementary(sol, warm):
+            if sol is not None and not _complementary(_values(sol), warm):
                 sol, stats = None, {}  # sqpmethod does not test complementarity: a stale multiplier passed
         if sol is None:
             sol, stats = _solve_fast(model.fast, warm)
@@ -644,22 +644,22 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         failure.status = status
         failure.combination = label
         raise failure
-    xs = [float(v) for v in sol["x"].full().ravel()]
+    values = _values(sol)
+    xs = values["x"]
     if solver == "sqpmethod":
-        _remember_duals(model, xs, sol)
+        _remember_duals(model, values)
     dims = dims_of(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
     lam_g: dict = {}
-    rows = sol["g"].full().ravel()
-    for name, lam, g, lo, hi in zip(model.constraints, sol["lam_g"].full().ravel(), rows, args["lbg"], args["ubg"]):
+    for name, lam, g, lo, hi in zip(model.constraints, values["lam_g"], values["g"], args["lbg"], args["ubg"]):
         # a row off both its bounds has no multiplier: an interior point method leaves mu/slack there
         # (1e-9 on a 16.5 mm hub wall whose minimum is 8 mm), which would read as a binding limit
         lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if _active(g, lo, hi) else 0.0)
     lam_x = {
         n: float(v) if _active(x, lo, hi) else 0.0
-        for n, v, x, lo, hi in zip(names, sol["lam_x"].full().ravel(), xs, args["lbx"], args["ubx"])
+        for n, v, x, lo, hi in zip(names, values["lam_x"], xs, args["lbx"], args["ubx"])
     }
-    lam_p = {n: float(v) for n, v in zip(PARAMETERS, sol["lam_p"].full().ravel())}
-    for part, v in zip(model.stress_parts, sol["lam_p"].full().ravel()[len(PARAMETERS) :]):
+    lam_p = {n: float(v) for n, v in zip(PARAMETERS, values["lam_p"])}
+    for part, v in zip(model.stress_parts, values["lam_p"][len(PARAMETERS) :]):
         lam_p[f"allow_{part}"] = float(v)
     return WheelSolution(
         dims,
@@ -686,9 +686,10 @@ ACTIVE_ROW = 1e-6
 
 def _active(value: float, lower: float, upper: float) -> bool:
     """Whether a row or variable at ``value`` meets one of its bounds to :data:`ACTIVE_ROW`."""
-    return any(
-        abs(value - bound) <= ACTIVE_ROW * max(1.0, abs(bound)) for bound in (lower, upper) if math.isfinite(bound)
-    )
+    for bound in (lower, upper):  # a loop, not any() over a generator: it runs for every row of every solve
+        if math.isfinite(bound) and abs(value - bound) <= ACTIVE_ROW * max(1.0, abs(bound)):
+            return True
+    return False
 
 
 def _clipped(wheel_dims: Mapping[str, float], names: Sequence[str], args: Mapping[str, Any]) -> list[float]:
@@ -719,14 +720,17 @@ def _wheel_key(xs: Sequence[float]) -> tuple[float, ...]:
     return tuple(round(v, 12) for v in xs)
 
 
-def _remember_duals(model: WheelModel, xs: Sequence[float], sol: Mapping[str, Any]) -> None:
-    """Keep a converged sqpmethod solution's multipliers on its model, by its wheel (:data:`DUALS_KEPT`)."""
-    key = _wheel_key(xs)
+def _values(sol: Mapping[str, Any]) -> dict[str, list[float]]:
+    """An nlpsol's dense outputs (x, g, lam_x, lam_g, lam_p) as lists of floats."""
+    return {name: sol[name].nonzeros() for name in ("x", "g", "lam_x", "lam_g", "lam_p")}
+
+
+def _remember_duals(model: WheelModel, values: Mapping[str, list[float]]) -> None:
+    """Keep a converged sqpmethod solution's multipliers (:func:`_values`) on its model, by its wheel
+    (:data:`DUALS_KEPT`)."""
+    key = _wheel_key(values["x"])
     model.duals.pop(key, None)
-    model.duals[key] = (
-        [float(v) for v in sol["lam_x"].full().ravel()],
-        [float(v) for v in sol["lam_g"].full().ravel()],
-    )
+    model.duals[key] = (values["lam_x"], values["lam_g"])
     while len(model.duals) > DUALS_KEPT:
         model.duals.pop(next(iter(model.duals)))
 
@@ -744,7 +748,7 @@ def _warm_duals(model: WheelModel, args: Mapping[str, Any]) -> dict[str, list[fl
     kept = model.duals.get(_wheel_key(args["x0"]))
     if kept is None or model.rows is None:
         return None
-    rows = [float(v) for v in model.rows(args["x0"], args["p"]).full().ravel()]
+    rows = model.rows(args["x0"], args["p"]).nonzeros()
     lam_x, lam_g = kept
     return {
         "lam_x0": [_active_at(lam, v, lo, hi) for lam, v, lo, hi in zip(lam_x, args["x0"], args["lbx"], args["ubx"])],
@@ -765,15 +769,15 @@ def _active_at(lam: float, value: float, lower: float, upper: float, tol: float 
 COMPLEMENTARY = 1e-9
 
 
-def _complementary(sol: Mapping[str, Any], args: Mapping[str, Any]) -> bool:
+def _complementary(values: Mapping[str, list[float]], args: Mapping[str, Any]) -> bool:
     """Whether every nonzero multiplier of a solution sits on the bound its sign names to
     :data:`COMPLEMENTARY` (:func:`_active_at`): with sqpmethod's own tests (feasibility, stationarity) the
     wheel is then a KKT point of this NLP."""
-    for values, lams, lower, upper in (
-        (sol["x"], sol["lam_x"], args["lbx"], args["ubx"]),
-        (sol["g"], sol["lam_g"], args["lbg"], args["ubg"]),
+    for at, lams, lower, upper in (
+        (values["x"], values["lam_x"], args["lbx"], args["ubx"]),
+        (values["g"], values["lam_g"], args["lbg"], args["ubg"]),
     ):
-        for v, lam, lo, hi in zip(values.full().ravel(), lams.full().ravel(), lower, upper):
-            if lam != 0 and _active_at(float(lam), float(v), lo, hi, COMPLEMENTARY) == 0.0:
+        for v, lam, lo, hi in zip(at, lams, lower, upper):
+            if lam != 0 and _active_at(lam, v, lo, hi, COMPLEMENTARY) == 0.0:
                 return False
     return True
