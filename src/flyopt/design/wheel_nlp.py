@@ -52,6 +52,7 @@ from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import casadi as ca
+import numpy as np
 
 from flyopt.design import castability, wheel
 from flyopt.design.nlp import CONVERGED, WHEEL_SOLVER, cached_model
@@ -650,13 +651,14 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         _remember_duals(model, values)
     dims = dims_of(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
     lam_g: dict = {}
-    for name, lam, g, lo, hi in zip(model.constraints, values["lam_g"], values["g"], args["lbg"], args["ubg"]):
-        # a row off both its bounds has no multiplier: an interior point method leaves mu/slack there
-        # (1e-9 on a 16.5 mm hub wall whose minimum is 8 mm), which would read as a binding limit
-        lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if _active(g, lo, hi) else 0.0)
+    # a row off both its bounds has no multiplier: an interior point method leaves mu/slack there
+    # (1e-9 on a 16.5 mm hub wall whose minimum is 8 mm), which would read as a binding limit
+    active = _active(values["g"], args["lbg"], args["ubg"])
+    for name, lam, on in zip(model.constraints, values["lam_g"], active.tolist()):
+        lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if on else 0.0)
     lam_x = {
-        n: float(v) if _active(x, lo, hi) else 0.0
-        for n, v, x, lo, hi in zip(names, values["lam_x"], xs, args["lbx"], args["ubx"])
+        n: float(v) if on else 0.0
+        for n, v, on in zip(names, values["lam_x"], _active(xs, args["lbx"], args["ubx"]).tolist())
     }
     lam_p = {n: float(v) for n, v in zip(PARAMETERS, values["lam_p"])}
     for part, v in zip(model.stress_parts, values["lam_p"][len(PARAMETERS) :]):
@@ -684,12 +686,22 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
 ACTIVE_ROW = 1e-6
 
 
-def _active(value: float, lower: float, upper: float) -> bool:
-    """Whether a row or variable at ``value`` meets one of its bounds to :data:`ACTIVE_ROW`."""
-    for bound in (lower, upper):  # a loop, not any() over a generator: it runs for every row of every solve
-        if math.isfinite(bound) and abs(value - bound) <= ACTIVE_ROW * max(1.0, abs(bound)):
-            return True
-    return False
+def _active(values: Sequence[float], lower: Sequence[float], upper: Sequence[float]) -> np.ndarray:
+    """Which rows or variables at ``values`` meet one of their bounds to :data:`ACTIVE_ROW` (booleans)."""
+    near_lower, near_upper = _on_bounds(values, lower, upper, ACTIVE_ROW)
+    return near_lower | near_upper
+
+
+def _on_bounds(
+    values: Sequence[float], lower: Sequence[float], upper: Sequence[float], tol: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """(at its lower bound, at its upper bound) of each value to ``tol``, relative to the bound (absolute
+    below 1); an infinite bound is never met."""
+    v, lo, hi = (np.asarray(a, dtype=float) for a in (values, lower, upper))
+    with np.errstate(invalid="ignore"):  # inf - inf where a bound is infinite: masked out
+        near_lower = np.isfinite(lo) & (np.abs(v - lo) <= tol * np.maximum(1.0, np.abs(lo)))
+        near_upper = np.isfinite(hi) & (np.abs(v - hi) <= tol * np.maximum(1.0, np.abs(hi)))
+    return near_lower, near_upper
 
 
 def _clipped(wheel_dims: Mapping[str, float], names: Sequence[str], args: Mapping[str, Any]) -> list[float]:
@@ -751,18 +763,19 @@ def _warm_duals(model: WheelModel, args: Mapping[str, Any]) -> dict[str, list[fl
     rows = model.rows(args["x0"], args["p"]).nonzeros()
     lam_x, lam_g = kept
     return {
-        "lam_x0": [_active_at(lam, v, lo, hi) for lam, v, lo, hi in zip(lam_x, args["x0"], args["lbx"], args["ubx"])],
-        "lam_g0": [_active_at(lam, v, lo, hi) for lam, v, lo, hi in zip(lam_g, rows, args["lbg"], args["ubg"])],
+        "lam_x0": _active_at(lam_x, args["x0"], args["lbx"], args["ubx"], ACTIVE_ROW).tolist(),
+        "lam_g0": _active_at(lam_g, rows, args["lbg"], args["ubg"], ACTIVE_ROW).tolist(),
     }
 
 
-def _active_at(lam: float, value: float, lower: float, upper: float, tol: float = ACTIVE_ROW) -> float:
-    """``lam`` where ``value`` meets the bound its sign names (> 0 the upper, < 0 the lower, CasADi's
-    convention) to ``tol`` (relative to the bound, absolute below 1), else 0."""
-    bound = upper if lam > 0 else lower
-    if lam != 0 and math.isfinite(bound) and abs(value - bound) <= tol * max(1.0, abs(bound)):
-        return lam
-    return 0.0
+def _active_at(
+    lams: Sequence[float], values: Sequence[float], lower: Sequence[float], upper: Sequence[float], tol: float
+) -> np.ndarray:
+    """Each multiplier where its value meets the bound its sign names (> 0 the upper, < 0 the lower,
+    CasADi's convention) to ``tol`` (:func:`_on_bounds`), else 0."""
+    lam = np.asarray(lams, dtype=float)
+    near_lower, near_upper = _on_bounds(values, lower, upper, tol)
+    return np.where(((lam > 0) & near_upper) | ((lam < 0) & near_lower), lam, 0.0)
 
 
 #: A converged multiplier's row (or variable) meets its bound to this: ten times sqpmethod's tol_pr.
@@ -777,7 +790,6 @@ def _complementary(values: Mapping[str, list[float]], args: Mapping[str, Any]) -
         (values["x"], values["lam_x"], args["lbx"], args["ubx"]),
         (values["g"], values["lam_g"], args["lbg"], args["ubg"]),
     ):
-        for v, lam, lo, hi in zip(at, lams, lower, upper):
-            if lam != 0 and _active_at(lam, v, lo, hi, COMPLEMENTARY) == 0.0:
-                return False
+        if not np.array_equal(_active_at(lams, at, lower, upper, COMPLEMENTARY), np.asarray(lams, dtype=float)):
+            return False
     return True
