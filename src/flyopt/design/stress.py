@@ -763,29 +763,33 @@ def _von_mises_quartic(c, alpha, beta, u_high):
 
 def _roots(polynomials):
     """``numpy.roots`` of each polynomial (ascending powers), the companion matrices' eigenvalues found in
-    one ``numpy.linalg.eigvals`` call per size: each matrix is the one numpy.roots builds, and LAPACK
-    solves each of a stack alone, so the roots are numpy.roots' own (a step's stress check calls this for
-    three or four quartics; one call each cost most of the check)."""
+    one ``numpy.linalg.eigvals`` call per size: each matrix is the one numpy.roots builds (its first row
+    -p[1:] / p[0] of the coefficients trimmed of zeros at both ends, ones below the diagonal, a zero root
+    for each zero trimmed from the low end), and LAPACK solves each of a stack alone, so the roots are
+    numpy.roots' own (a stress check asks for three or four quartics; one numpy.roots call each cost most
+    of the check)."""
     out: list[Any] = [()] * len(polynomials)
-    by_size: dict[int, list[tuple[int, Any]]] = {}
-    trailing = [0] * len(polynomials)
+    by_size: dict[int, list[tuple[int, list[list[float]], int]]] = {}
     for k, poly in enumerate(polynomials):
-        p = np.asarray(poly[::-1], dtype=float)  # descending, as numpy.roots takes it
-        nonzero = np.flatnonzero(p)
-        if len(nonzero) == 0:
+        low, high = 0, len(poly)
+        while low < high and poly[low] == 0.0:
+            low += 1
+        while high > low and poly[high - 1] == 0.0:
+            high -= 1
+        if high == low:  # the zero polynomial: numpy.roots gives no roots
             continue
-        trailing[k] = len(p) - int(nonzero[-1]) - 1  # roots at zero
-        p = p[int(nonzero[0]) : int(nonzero[-1]) + 1]
-        if len(p) > 1:
-            companion = np.diag(np.ones(len(p) - 2), -1)
-            companion[0, :] = -p[1:] / p[0]
-            by_size.setdefault(len(p), []).append((k, companion))
-        else:
-            out[k] = np.zeros(trailing[k])
+        p = poly[low:high][::-1]  # descending, as numpy.roots takes it
+        n = len(p) - 1
+        if n == 0:
+            out[k] = np.zeros(low)
+            continue
+        first = [-c / p[0] for c in p[1:]]
+        companion = [first] + [[1.0 if j == i else 0.0 for j in range(n)] for i in range(n - 1)]
+        by_size.setdefault(n, []).append((k, companion, low))
     for group in by_size.values():
-        values = np.linalg.eigvals(np.stack([m for _, m in group]))
-        for (k, _), found in zip(group, values):
-            out[k] = np.concatenate([found, np.zeros(trailing[k], dtype=found.dtype)])
+        values = np.linalg.eigvals(np.array([m for _, m, _ in group]))
+        for (k, _, zeros), found in zip(group, values):
+            out[k] = np.concatenate([found, np.zeros(zeros, dtype=found.dtype)]) if zeros else found
     return out
 
 
