@@ -591,8 +591,10 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
 
     With ``problem.warm`` (a neighbouring wheel: the last design of the same combination in a sweep),
     sqpmethod is tried from it first on the same NLP (the same bounds, parameters and stress scale, only
-    the start differs); where that does not converge the solve goes on exactly as without it (sqpmethod
-    from the cold start, then IPOPT). With ``problem.ipopt_first`` (the neighbour had no wheel) IPOPT
+    the start differs): with that wheel's multipliers where this model solved it (:func:`_warm_duals`; the
+    result must then be complementary too, :func:`_complementary`), else, or where that fails, from the
+    wheel alone; where neither converges the solve goes on exactly as without it (sqpmethod from the cold
+    start, then IPOPT). With ``problem.ipopt_first`` (the neighbour had no wheel) IPOPT
     solves it at once. Either way only a converged status gives a wheel.
 
     Raises
