@@ -746,7 +746,7 @@ def _remember_duals(model: WheelModel, values: Mapping[str, list[float]]) -> Non
     model.duals.pop(key, None)
     model.duals[key] = (values["lam_x"], values["lam_g"])
     while len(model.duals) > DUALS_KEPT:
-        model.duals.pop(next(iter(model.duals)))
+        model.duals.pop(next(iter(model.duals)), None)
 
 
 def _warm_duals(model: WheelModel, args: Mapping[str, Any]) -> dict[str, list[float]] | None:
