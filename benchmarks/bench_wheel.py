@@ -240,6 +240,78 @@ def _nothing(x):
     return x
 
 
+_RUN_CHUNK = None  # flyopt.studies.processes._run_in_worker while worker_anatomy runs
+
+
+def _timed_chunk(index, points):
+    """A sweep worker's chunk, timed in the worker: its result carries (pid, CPU s, wall s, start) in attrs."""
+    begin, begin_cpu = time.perf_counter(), time.process_time()
+    i, frame = _RUN_CHUNK(index, points)
+    frame.attrs["bench"] = (os.getpid(), time.process_time() - begin_cpu, time.perf_counter() - begin, begin)
+    return i, frame
+
+
+def _busy(seconds):
+    """CPU and wall seconds of a pure-Python loop of about ``seconds`` CPU (what the host gives one process)."""
+    begin, begin_cpu = time.perf_counter(), time.process_time()
+    while time.process_time() - begin_cpu < seconds:
+        sum(range(10_000))
+    return time.process_time() - begin_cpu, time.perf_counter() - begin
+
+
+def worker_anatomy(points, repeat=3):
+    """Where a 2-worker sweep's wall time goes: ``repeat`` sweeps of ``points`` over δ on 2 forked workers, each
+    chunk timed in its worker (CPU, wall) and its result's pickled size taken in the parent, the parent's CPU,
+    and two busy loops in 2 forked processes after each (the share of a CPU the host gives each of two
+    processes at that time). Returns one dict per run."""
+    global _RUN_CHUNK
+    import multiprocessing
+    import pickle
+    from concurrent.futures import ProcessPoolExecutor
+
+    from flyopt.studies import processes, runner
+
+    scene = flyopt.load(SCENE)
+    flyopt.sweep(scene, {"delta": "0.05:0.1:2"}, workers=2)  # warm-up
+    chunks = []
+    run_processes = runner.run_processes
+
+    def recording(task, pending, n_workers, finished, stop):
+        def kept(i, frame):
+            chunks.append((*frame.attrs.pop("bench"), len(frame), len(pickle.dumps(frame))))
+            finished(i, frame)
+
+        return run_processes(task, pending, n_workers, kept, stop)
+
+    runs = []
+    _RUN_CHUNK, processes._run_in_worker, runner.run_processes = processes._run_in_worker, _timed_chunk, recording
+    try:
+        for _ in range(repeat):
+            chunks.clear()
+            begin, parent = time.perf_counter(), time.process_time()
+            flyopt.sweep(scene, {"delta": f"0.02:0.3:{points}"}, workers=2)
+            wall, parent = time.perf_counter() - begin, time.process_time() - parent
+            with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("fork")) as pool:
+                loops = list(pool.map(_busy, [1.0, 1.0]))
+            starts = [c[3] for c in chunks]
+            runs.append(
+                {
+                    "wall": wall,
+                    "parent_cpu": parent,
+                    "chunks": len(chunks),
+                    "chunk_points": (min(c[4] for c in chunks), max(c[4] for c in chunks)),
+                    "worker_cpu": sum(c[1] for c in chunks),
+                    "worker_wall": sum(c[2] for c in chunks),
+                    "first_start": min(starts) - begin,
+                    "result_bytes": sum(c[5] for c in chunks),
+                    "busy_share": statistics.median(c / w for c, w in loops),
+                }
+            )
+    finally:
+        processes._run_in_worker, runner.run_processes = _RUN_CHUNK, run_processes
+    return runs
+
+
 def pool_start_seconds(repeat=5):
     """Wall time of an empty pool of 2 forked worker processes, started, given a trivial task each and shut
     down: what a 2-worker sweep pays before and after its points (median, min, max) [s]."""
@@ -392,6 +464,26 @@ def breakdown(kind, repeat):
     )
 
 
+def alternating_sweep_rates(points, src, repeat=3):
+    """The 2-worker sweep of ``points`` by this flyopt and, when ``src`` is given, by the baseline's (a
+    subprocess), one run each in turn, ``repeat`` times: the host's load falls on both alike.
+    Returns ([(points/s, CPU s a point)] of this one, the same of the baseline or None)."""
+    ours, theirs = [], [] if src else None
+    code = (
+        "import json, sys; sys.argv = ['bench_wheel']; import bench_wheel as b; "
+        f"print(json.dumps(b.sweep_rate({points}, None, repeat=1)))"
+    )
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(src), str(Path(__file__).resolve().parent)])}
+    for _ in range(repeat):
+        rate, _, _, cpu = sweep_rate(points, None, repeat=1)
+        ours.append((rate, cpu))
+        if src:
+            out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
+            rate, _, _, cpu = json.loads(out.stdout.splitlines()[-1])
+            theirs.append((rate, cpu))
+    return ours, theirs
+
+
 def baseline_breakdowns(src, repeat):
     """:func:`breakdown` of the sweep and the front by another flyopt (its ``src`` folder), in a subprocess."""
     code = (
@@ -417,7 +509,10 @@ def main(argv=None):
         "ipopt": sweep_rate(args.sweep_points, IPOPT, repeat=args.repeat),
         "default, 1 worker (serial, same run)": sweep_rate(args.sweep_points, None, workers=1, repeat=args.repeat),
     }
-    large = sweep_rate(args.sweep_large, None, repeat=3)
+    large_runs, large_baseline = alternating_sweep_rates(args.sweep_large, args.baseline)
+    rates = [r for r, _ in large_runs]
+    large = (statistics.median(rates), min(rates), max(rates), statistics.median(c for _, c in large_runs))
+    anatomy = worker_anatomy(args.sweep_large)
     pool = pool_start_seconds()
     pinning = pin_one_core()
     profiles = {kind: breakdown(kind, args.repeat) for kind in ("sweep", "pareto")}
@@ -466,7 +561,23 @@ def main(argv=None):
                     "objective_error": error,
                 }
             )
-    write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, args, profiles, baselines, large, pool)
+    extra = {"large_baseline": large_baseline, "anatomy": anatomy}
+    write(
+        rows,
+        pinning,
+        load,
+        firsts,
+        designs,
+        ipopt_designs,
+        sweeps,
+        paretos,
+        args,
+        profiles,
+        baselines,
+        large,
+        pool,
+        extra,
+    )
 
 
 def design_seconds(repeat, options=None):
@@ -494,7 +605,9 @@ def design_seconds(repeat, options=None):
     return [timed(lambda a=a, k=k: original(*a, **k), repeat) for a, k in calls]
 
 
-def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, args, profiles, baselines, large, pool):
+def write(
+    rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, args, profiles, baselines, large, pool, extra
+):
     RESULTS.mkdir(exist_ok=True)
     with open(RESULTS / "wheel.csv", "w", newline="") as out:
         fields = ["case", "structure", "variant", "status", "iterations", "seconds", "objective_error"]
@@ -594,6 +707,16 @@ def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, 
         f"({low:.1f}-{high:.1f}); {cpu * 1e3:.1f} ms CPU a point | ≥ {SWEEP_TARGET:g} points/s on 2 workers | "
         f"{'met' if rate >= SWEEP_TARGET else 'NOT met'} |"
     )
+    if extra["large_baseline"]:
+        b_rates = [r for r, _ in extra["large_baseline"]]
+        b_cpu = statistics.median(c for _, c in extra["large_baseline"])
+        lines.append(
+            f"| the same sweep by the baseline `{args.baseline}`, run in turn with this one's (3 runs each) | "
+            f"{statistics.median(b_rates):.1f} points/s ({min(b_rates):.1f}-{max(b_rates):.1f}); "
+            f"{b_cpu * 1e3:.1f} ms CPU a point; this one {rate / statistics.median(b_rates):.2f}× its rate, "
+            f"{cpu / b_cpu:.2f}× its CPU a point | ≥ {SWEEP_TARGET:g} points/s on 2 workers | "
+            f"{'met' if statistics.median(b_rates) >= SWEEP_TARGET else 'NOT met'} |"
+        )
     lines.append(
         f"| an empty pool of 2 forked workers, started and shut (what a 2-worker sweep pays besides its points) | "
         f"{pool[0] * 1e3:.0f} ms ({pool[1] * 1e3:.0f}-{pool[2] * 1e3:.0f}) | — | — |"
@@ -603,6 +726,27 @@ def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, 
         lines.append(
             f"| `flyopt pareto problems/punch-press-wheel.toml` in process, {solver} | {mid:.3f} s ({low:.3f}-{high:.3f}) "
             f"wall, {cpu:.3f} s CPU | ≤ {PARETO_TARGET:g} s | {'met' if mid <= PARETO_TARGET else 'NOT met'} |"
+        )
+    anatomy = extra["anatomy"]
+    lines += [
+        "",
+        f"## Where a 2-worker sweep's wall time goes ({args.sweep_large} points over δ, 3 runs)",
+        "",
+        "Each chunk timed in its worker (CPU and wall), its result pickled in the parent for its size; the parent's "
+        "CPU; then two pure-Python busy loops of 1 s CPU in 2 forked processes, whose CPU / wall is the share of "
+        "a CPU the host gave each of two processes just then (benchmarks/bench_wheel.py, `worker_anatomy`).",
+        "",
+        "| run | wall [s] | points/s | workers' CPU [s] | workers' busy wall [s] | workers' CPU / (2 × wall) | "
+        "parent CPU [s] | chunks (points) | first chunk starts after [ms] | results pickled [kB] | "
+        "busy loop's CPU share |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for k, run in enumerate(anatomy, 1):
+        lines.append(
+            f"| {k} | {run['wall']:.2f} | {args.sweep_large / run['wall']:.0f} | {run['worker_cpu']:.2f} | "
+            f"{run['worker_wall']:.2f} | {run['worker_cpu'] / (2 * run['wall']):.0%} | {run['parent_cpu']:.2f} | "
+            f"{run['chunks']} ({run['chunk_points'][0]}-{run['chunk_points'][1]}) | {run['first_start'] * 1e3:.0f} | "
+            f"{run['result_bytes'] / 1e3:.0f} | {run['busy_share']:.0%} |"
         )
     lines += [
         "",
@@ -672,20 +816,32 @@ def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, 
         "multipliers too and warm_start_init_point (ipopt-warm-dual) it converges in a few iterations, but a "
         "warm IPOPT is a second build per structure; the active-set default needs no such options.",
         "- Sweeps and Pareto fronts warm-start: within a chunk (a front of outer diameter run serially: across "
-        "its chunks) each whole wheel's sqpmethod starts from the wheel the previous point designed with the same NLP (the same combination and strength-table "
-        "caps; x0 only: given the neighbour's multipliers too, sqpmethod reported Solve_Succeeded after 0 "
-        "iterations at points that were not the new optimum, so none are passed), its first allowables are read "
-        "at that wheel's walls, and an NLP IPOPT found infeasible at the previous point goes to IPOPT at once. A "
-        "warm SQP that does not converge leaves the solve to go on as a cold one. Against cold single designs the "
-        "40 sweep points and the 24 front points agree within 3.6e-9 (mass, D, d, H, B; "
-        "tests/studies/test_wheel_warm.py holds 1e-8); `flyopt solve`, rounding and the golden results never "
-        "warm-start.",
-        "- What is left in a sweep point: about three NLP solves of 3 ms, most of it qrqp's active-set QP on the "
-        "grey-iron wheel's 70 rows (σr and σt at 9 radii of 3 parts). qpOASES in place of qrqp was tried: on the "
-        "sweep's 149 wheels 138 converged in 0.18 s (qrqp 149, 0.6-2.6 s on this shared host), on 200 random "
-        "wheels 155 in 0.27 s (qrqp 154 in 0.18 s: its failures are slow), and it prints its licence banner and "
-        "'Premature homotopy termination' on the terminal; not taken. Each chunk's first point is cold: a "
-        "2-worker sweep of 40 points runs in 8 chunks (guided scheduling, flyopt.studies.chunks).",
+        "its chunks) each whole wheel's sqpmethod starts from the wheel the previous point designed with the same "
+        "NLP (the same combination and strength-table caps) and from that solve's multipliers, each kept only "
+        "where its row or variable still meets the bound its sign names at the start "
+        "(flyopt.design.wheel_nlp._warm_duals). Passed as they were, the multiplier of a row the new point leaves "
+        "slack (the inertia row of a point that needs less J) made the start look stationary, and sqpmethod, which "
+        "tests feasibility and stationarity but not complementarity, reported Solve_Succeeded after 0 iterations "
+        "at the neighbour's wheel; so a result started with multipliers must also have every nonzero multiplier "
+        "on its bound to 1e-9, else the solve goes on from the wheel alone, then cold, then by IPOPT. Its first "
+        "allowables are read at the neighbour's walls, and an NLP IPOPT found infeasible at the previous point "
+        "goes to IPOPT at once. tests/studies/test_wheel_duals.py holds two scenes' sweeps to IPOPT alone at tol "
+        "1e-12 (mass to 1e-9; dimensions to 1e-8, as a point IPOPT answers at its default tolerance stops up to "
+        "7e-9 inside an active H/B bound), and requires the complementarity check to refuse the 0-iteration "
+        "success when the multipliers are passed unprojected; tests/studies/test_wheel_warm.py holds sweeps and "
+        "fronts to cold single designs (1e-8). `flyopt solve`, rounding and the golden results never warm-start. "
+        "benchmarks/compare_sweep.py compares the 400-point sweeps of two flyopts column by column.",
+        "- What is left in a sweep point: three whole-wheel designs (the scene's three materials on its one "
+        "shaft), each one NLP solve (about 1.3 ms for the ductile irons' 43 rows and 2 ms for the grey iron's "
+        "70, most of it still qrqp's QP), the exact stress check and the design's Python (problem, allowables, "
+        "screening, structural fields, the result row). qpOASES in place of qrqp was tried: on the sweep's 149 "
+        "wheels 138 converged in 0.18 s (qrqp 149), on 200 random wheels 155 in 0.27 s (qrqp 154 in 0.18 s: "
+        "its failures are slow), and it prints its licence banner and 'Premature homotopy termination' on the "
+        "terminal; DAQP (CasADi's daqp plugin) was tried in the second round: each QP took about 0.01 ms "
+        "against qrqp's 0.4-0.7 ms, but sqpmethod reached its 100 iterations on 573 of the sweep's 580 solves "
+        "(with DAQP's primal and dual "
+        "tolerances of 1e-12 as well); not taken. Each chunk's first point is cold (20-30 ms against 9 ms "
+        "warm).",
         f"- The Pareto front of mass against outer diameter runs from the largest envelope down, its chunks in "
         "one memory of neighbours (serially, in one process). Each point only tightens D_outer <= ε and the wheel "
         "NLP's envelope, allowables and strength-table caps are upper bounds with every other number the same, so "
@@ -704,18 +860,21 @@ def write(rows, pinning, load, firsts, designs, ipopt_designs, sweeps, paretos, 
         "of each other (the scene's own design: 28.4, 32.3 and 32.6 kg), while the bound is under half of any "
         "wheel's mass (13.3 kg at D 0.672 m for the motor shaft's 1.50 kg·m²); the bound already prunes the "
         "intermediate shaft's three (66.6 kg).",
-        f"- A 2-worker sweep's start-up: an empty pool of 2 forked workers costs {pool[0] * 1e3:.0f} ms wall (the "
-        "workers inherit the parent's imports and wheel models by fork), "
-        f"{pool[0] * sweeps['default'][0] / args.sweep_points:.0%} of the {args.sweep_points}-point sweep's "
-        f"{args.sweep_points / sweeps['default'][0]:.2f} s. That sweep's CPU a point, workers and parent together, "
-        f"is {sweeps['default'][3] * 1e3:.1f} ms against the serial sweep's "
-        f"{sweeps['default, 1 worker (serial, same run)'][3] * 1e3:.1f} ms: the difference is each chunk's cold "
-        "first point (chunks are smaller on 2 workers: flyopt.studies.chunks) and two processes sharing the host's cores, which "
-        f"this run does not separate, not the pool. The {SWEEP_TARGET:g} points/s target needs at most "
-        f"{2.0 / SWEEP_TARGET * 1e3:g} ms CPU a point on 2 fully used CPUs; a point costs "
-        f"{sweeps['default'][3] * 1e3:.1f} ms CPU at {args.sweep_points} points and {large[3] * 1e3:.1f} ms at "
-        f"{args.sweep_large} (fewer chunks for the points, closer neighbours), so the target is out of reach for "
-        "the designs' own cost at either size, whatever the start-up.",
+        f"- A 2-worker sweep's overhead: an empty pool of 2 forked workers costs {pool[0] * 1e3:.0f} ms wall (the "
+        "workers inherit the parent's imports and wheel models by fork); in the table above the first chunk "
+        f"starts {statistics.median(r['first_start'] for r in anatomy) * 1e3:.0f} ms after the call, the parent "
+        f"spends {statistics.median(r['parent_cpu'] for r in anatomy):.2f} s CPU on the whole "
+        f"{args.sweep_large}-point sweep (planning, sending chunks, receiving "
+        f"{statistics.median(r['result_bytes'] for r in anatomy) / 1e3:.0f} kB of results, the table) and the "
+        "workers ran their chunks back to back (their busy wall over 2 is within "
+        f"{statistics.median(r['wall'] - r['worker_wall'] / 2 for r in anatomy) * 1e3:.0f} ms of the sweep's "
+        "wall): no serial section, no waiting on the parent. Within their chunks the workers' CPU was "
+        f"{statistics.median(r['worker_cpu'] / r['worker_wall'] for r in anatomy):.0%} of their busy wall "
+        "(median of the runs); the rest they were ready but not running, and the busy loops run just after "
+        "got a like share of a CPU: the host's other load (3 helpers share its 2 CPUs), not the sweep's. "
+        f"The {SWEEP_TARGET:g} points/s target needs at most {2.0 / SWEEP_TARGET * 1e3:g} ms CPU a point on 2 "
+        f"fully used CPUs; a point costs {large[3] * 1e3:.1f} ms CPU at {args.sweep_large} points and "
+        f"{sweeps['default'][3] * 1e3:.1f} ms at {args.sweep_points} (more chunks for the points: more cold ones).",
         "- Every result above is counted only after its return status.",
     ]
     (RESULTS / "wheel.md").write_text("\n".join(lines) + "\n")

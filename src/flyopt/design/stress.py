@@ -722,12 +722,18 @@ def max_stress_per_step(
         return float(max(sr, st))
 
     radii = [float(r) for r in _items(radii)]
+    steps = [(float(c[0]), 0.0 if _is_structural_zero(c[1]) else float(c[1])) for c in coefficients]
+    # von Mises: every step's stationarity quartic, their roots found together (one eigvals call per size)
+    if measure == "von_mises":
+        quartics = [_von_mises_quartic(c, alpha, beta, radii[i + 1] ** 2) for i, c in enumerate(steps)]
+        roots = _roots(quartics)
+    else:
+        quartics, roots = [None] * len(steps), [None] * len(steps)
     result = []
-    for i, c in enumerate(coefficients):
-        c = (float(c[0]), 0.0 if _is_structural_zero(c[1]) else float(c[1]))
+    for i, c in enumerate(steps):
         low, high = radii[i], radii[i + 1]
         best = StepMaximum(value(c, low), i, low)
-        for r in (*_stationary_radii(c, alpha, beta, low, high, measure), high):
+        for r in (*_stationary_radii(c, alpha, beta, low, high, measure, quartics[i], roots[i]), high):
             v = value(c, r)
             if v > best.value:
                 best = StepMaximum(v, i, r)
@@ -735,8 +741,62 @@ def max_stress_per_step(
     return result
 
 
-def _stationary_radii(c, alpha, beta, low, high, measure):
-    """The radii strictly inside (low, high) where a measure of a step is stationary (see max_stress_per_step)."""
+def _von_mises_quartic(c, alpha, beta, u_high):
+    """The stationarity polynomial of von Mises in a step (ascending powers of s = u / u_high, its
+    highest zero powers dropped; d_poly[2] == 0), see :func:`max_stress_per_step`."""
+    c1, c2 = c
+    if u_high <= 0.0:
+        return []
+    # in s = u / u_high (order one): P = u sigma_r / u_high = -a s^2 + c1 s - k and Q = u sigma_t / u_high
+    # = -b s^2 + c1 s + k; R = P^2 - P Q + Q^2 = sum r_j s^j and s R' - 2 R = sum (j - 2) r_j s^j, a quartic
+    a, b, k = alpha * u_high, beta * u_high, c2 / u_high
+    p, q = (-k, c1, -a), (k, c1, -b)
+    r = [
+        sum(p[i] * p[j - i] - p[i] * q[j - i] + q[i] * q[j - i] for i in range(max(0, j - 2), min(j, 2) + 1))
+        for j in range(5)
+    ]
+    d_poly = [(j - 2) * r[j] for j in range(5)]  # ascending powers of s; d_poly[2] == 0
+    while d_poly and d_poly[-1] == 0.0:
+        d_poly.pop()
+    return d_poly
+
+
+def _roots(polynomials):
+    """``numpy.roots`` of each polynomial (ascending powers), the companion matrices' eigenvalues found in
+    one ``numpy.linalg.eigvals`` call per size: each matrix is the one numpy.roots builds (its first row
+    -p[1:] / p[0] of the coefficients trimmed of zeros at both ends, ones below the diagonal, a zero root
+    for each zero trimmed from the low end), and LAPACK solves each of a stack alone, so the roots are
+    numpy.roots' own (a stress check asks for three or four quartics; one numpy.roots call each cost most
+    of the check)."""
+    out: list[Any] = [()] * len(polynomials)
+    by_size: dict[int, list[tuple[int, list[list[float]], int]]] = {}
+    for k, poly in enumerate(polynomials):
+        low, high = 0, len(poly)
+        while low < high and poly[low] == 0.0:
+            low += 1
+        while high > low and poly[high - 1] == 0.0:
+            high -= 1
+        if high == low:  # the zero polynomial: numpy.roots gives no roots
+            continue
+        p = poly[low:high][::-1]  # descending, as numpy.roots takes it
+        n = len(p) - 1
+        if n == 0:
+            out[k] = np.zeros(low)
+            continue
+        first = [-c / p[0] for c in p[1:]]
+        companion = [first] + [[1.0 if j == i else 0.0 for j in range(n)] for i in range(n - 1)]
+        by_size.setdefault(n, []).append((k, companion, low))
+    for group in by_size.values():
+        values = np.linalg.eigvals(np.array([m for _, m, _ in group]))
+        for (k, _, zeros), found in zip(group, values):
+            out[k] = np.concatenate([found, np.zeros(zeros, dtype=found.dtype)]) if zeros else found
+    return out
+
+
+def _stationary_radii(c, alpha, beta, low, high, measure, d_poly=None, roots=None):
+    """The radii strictly inside (low, high) where a measure of a step is stationary (see max_stress_per_step);
+    for von Mises its quartic (:func:`_von_mises_quartic`) and that quartic's roots (:func:`_roots`) when
+    found already."""
     c1, c2 = c
     u_low, u_high = low * low, high * high
     if u_high <= u_low:
@@ -747,19 +807,12 @@ def _stationary_radii(c, alpha, beta, low, high, measure):
     if measure in ("hoop", "largest_principal") and c2 < 0 and beta > 0:
         found.append(math.sqrt(-c2 / beta))
     if measure == "von_mises":
-        # in s = u / u_high (order one): P = u sigma_r / u_high = -a s^2 + c1 s - k and Q = u sigma_t / u_high
-        # = -b s^2 + c1 s + k; R = P^2 - P Q + Q^2 = sum r_j s^j and s R' - 2 R = sum (j - 2) r_j s^j, a quartic
-        a, b, k = alpha * u_high, beta * u_high, c2 / u_high
-        p, q = (-k, c1, -a), (k, c1, -b)
-        r = [
-            sum(p[i] * p[j - i] - p[i] * q[j - i] + q[i] * q[j - i] for i in range(max(0, j - 2), min(j, 2) + 1))
-            for j in range(5)
-        ]
-        d_poly = [(j - 2) * r[j] for j in range(5)]  # ascending powers of s; d_poly[2] == 0
-        dd_poly = [j * d_poly[j] for j in range(1, 5)]
-        while d_poly and d_poly[-1] == 0.0:
-            d_poly.pop()
-        roots = np.roots(d_poly[::-1]) if len(d_poly) > 1 else ()
+        if d_poly is None:
+            d_poly = _von_mises_quartic(c, alpha, beta, u_high)
+        if roots is None:
+            roots = _roots([d_poly])[0] if len(d_poly) > 1 else ()
+        padded = d_poly + [0.0] * (5 - len(d_poly))
+        dd_poly = [j * padded[j] for j in range(1, 5)]
         for root in roots:
             if abs(root.imag) > 1e-6 * max(abs(root), 1e-300):
                 continue

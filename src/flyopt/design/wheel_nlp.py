@@ -48,10 +48,11 @@ import math
 import time
 import zlib
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import casadi as ca
+import numpy as np
 
 from flyopt.design import castability, wheel
 from flyopt.design.nlp import CONVERGED, WHEEL_SOLVER, cached_model
@@ -170,6 +171,10 @@ class WheelModel:
     stress_parts: tuple[str, ...]  # which part each allowable parameter belongs to
     build_time: float
     fast: ca.Function | None = None  # sqpmethod, tried before IPOPT (SOLVER_OPTION "sqpmethod", the default)
+    rows: ca.Function | None = None  # g(x, p): the rows at a point (a warm start's multipliers are projected on them)
+    #: The multipliers of this NLP's last converged sqpmethod solves, by their wheel (:func:`_wheel_key`):
+    #: (lam_x, lam_g), a warm start's duals (:func:`solve`); at most :data:`DUALS_KEPT`.
+    duals: dict[tuple[float, ...], tuple[list[float], list[float]]] = field(default_factory=dict)
 
     def describe(self) -> dict[str, Any]:
         """What the model is, for the report: geometry, objective, variables, constraint rows."""
@@ -361,7 +366,8 @@ def _build(structure, options):
         name += f"_{structure.castability.process}_{zlib.crc32(repr(structure.castability).encode())}"
     solver = ca.nlpsol(name, "ipopt", nlp, options)
     fast = ca.nlpsol(name + "_sqp", "sqpmethod", nlp, SQP_OPTIONS) if choice == "sqpmethod" else None
-    return WheelModel(structure, solver, names, form.row_names, stress_parts, time.perf_counter() - start, fast)
+    rows = ca.Function(name + "_rows", [x, nlp["p"]], [nlp["g"]]) if fast is not None else None
+    return WheelModel(structure, solver, names, form.row_names, stress_parts, time.perf_counter() - start, fast, rows)
 
 
 @dataclass(frozen=True)
@@ -585,8 +591,10 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
 
     With ``problem.warm`` (a neighbouring wheel: the last design of the same combination in a sweep),
     sqpmethod is tried from it first on the same NLP (the same bounds, parameters and stress scale, only
-    the start differs); where that does not converge the solve goes on exactly as without it (sqpmethod
-    from the cold start, then IPOPT). With ``problem.ipopt_first`` (the neighbour had no wheel) IPOPT
+    the start differs): with that wheel's multipliers where this model solved it (:func:`_warm_duals`; the
+    result must then be complementary too, :func:`_complementary`), else, or where that fails, from the
+    wheel alone; where neither converges the solve goes on exactly as without it (sqpmethod from the cold
+    start, then IPOPT). With ``problem.ipopt_first`` (the neighbour had no wheel) IPOPT
     solves it at once. Either way only a converged status gives a wheel.
 
     Raises
@@ -611,7 +619,14 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     begin = time.perf_counter()
     sol, stats = None, {}
     if model.fast is not None and problem.warm is not None:  # the same NLP from a neighbour's wheel
-        sol, stats = _solve_fast(model.fast, {**args, "x0": _clipped(problem.warm, names, args)})
+        warm = {**args, "x0": _clipped(problem.warm, names, args)}
+        duals = _warm_duals(model, warm)
+        if duals is not None:  # and its multipliers: the first QP starts from the neighbour's active set
+            sol, stats = _solve_fast(model.fast, {**warm, **duals})
+            if sol is not None and not _complementary(_values(sol), warm):
+                sol, stats = None, {}  # sqpmethod does not test complementarity: a stale multiplier passed
+        if sol is None:
+            sol, stats = _solve_fast(model.fast, warm)
     if sol is None and model.fast is not None and not problem.ipopt_first:  # cold, as without a neighbour
         sol, stats = _solve_fast(model.fast, args)
     solver = "sqpmethod" if sol is not None else "ipopt"
@@ -632,20 +647,23 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         failure.status = status
         failure.combination = label
         raise failure
-    xs = [float(v) for v in sol["x"].full().ravel()]
+    values = _values(sol)
+    xs = values["x"]
+    if solver == "sqpmethod":
+        _remember_duals(model, values)
     dims = dims_of(s, {n: math.exp(v) for n, v in zip(names, xs)}, problem.bore)
     lam_g: dict = {}
-    rows = sol["g"].full().ravel()
-    for name, lam, g, lo, hi in zip(model.constraints, sol["lam_g"].full().ravel(), rows, args["lbg"], args["ubg"]):
-        # a row off both its bounds has no multiplier: an interior point method leaves mu/slack there
-        # (1e-9 on a 16.5 mm hub wall whose minimum is 8 mm), which would read as a binding limit
-        lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if _active(g, lo, hi) else 0.0)
+    # a row off both its bounds has no multiplier: an interior point method leaves mu/slack there
+    # (1e-9 on a 16.5 mm hub wall whose minimum is 8 mm), which would read as a binding limit
+    active = _active(values["g"], args["lbg"], args["ubg"])
+    for name, lam, on in zip(model.constraints, values["lam_g"], active.tolist()):
+        lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if on else 0.0)
     lam_x = {
-        n: float(v) if _active(x, lo, hi) else 0.0
-        for n, v, x, lo, hi in zip(names, sol["lam_x"].full().ravel(), xs, args["lbx"], args["ubx"])
+        n: float(v) if on else 0.0
+        for n, v, on in zip(names, values["lam_x"], _active(xs, args["lbx"], args["ubx"]).tolist())
     }
-    lam_p = {n: float(v) for n, v in zip(PARAMETERS, sol["lam_p"].full().ravel())}
-    for part, v in zip(model.stress_parts, sol["lam_p"].full().ravel()[len(PARAMETERS) :]):
+    lam_p = {n: float(v) for n, v in zip(PARAMETERS, values["lam_p"])}
+    for part, v in zip(model.stress_parts, values["lam_p"][len(PARAMETERS) :]):
         lam_p[f"allow_{part}"] = float(v)
     return WheelSolution(
         dims,
@@ -670,11 +688,22 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
 ACTIVE_ROW = 1e-6
 
 
-def _active(value: float, lower: float, upper: float) -> bool:
-    """Whether a row or variable at ``value`` meets one of its bounds to :data:`ACTIVE_ROW`."""
-    return any(
-        abs(value - bound) <= ACTIVE_ROW * max(1.0, abs(bound)) for bound in (lower, upper) if math.isfinite(bound)
-    )
+def _active(values: Sequence[float], lower: Sequence[float], upper: Sequence[float]) -> np.ndarray:
+    """Which rows or variables at ``values`` meet one of their bounds to :data:`ACTIVE_ROW` (booleans)."""
+    near_lower, near_upper = _on_bounds(values, lower, upper, ACTIVE_ROW)
+    return near_lower | near_upper
+
+
+def _on_bounds(
+    values: Sequence[float], lower: Sequence[float], upper: Sequence[float], tol: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """(at its lower bound, at its upper bound) of each value to ``tol``, relative to the bound (absolute
+    below 1); an infinite bound is never met."""
+    v, lo, hi = (np.asarray(a, dtype=float) for a in (values, lower, upper))
+    with np.errstate(invalid="ignore"):  # inf - inf where a bound is infinite: masked out
+        near_lower = np.isfinite(lo) & (np.abs(v - lo) <= tol * np.maximum(1.0, np.abs(lo)))
+        near_upper = np.isfinite(hi) & (np.abs(v - hi) <= tol * np.maximum(1.0, np.abs(hi)))
+    return near_lower, near_upper
 
 
 def _clipped(wheel_dims: Mapping[str, float], names: Sequence[str], args: Mapping[str, Any]) -> list[float]:
@@ -692,3 +721,77 @@ def _solve_fast(fast, args):
     if stats.get("success") and stats.get("return_status") in CONVERGED:
         return sol, stats
     return None, stats
+
+
+#: Converged solves whose multipliers a model keeps for warm starts (the oldest is dropped first): a
+#: sweep's chunk asks for those of its previous point, one per combination and caps of the same NLP.
+DUALS_KEPT = 64
+
+
+def _wheel_key(xs: Sequence[float]) -> tuple[float, ...]:
+    """A wheel's variables (logarithms of metres) rounded to 1e-12: a warm start's ``x0`` is the log of
+    the exp of a solution's, which may differ from it in the last bit."""
+    return tuple(round(v, 12) for v in xs)
+
+
+def _values(sol: Mapping[str, Any]) -> dict[str, list[float]]:
+    """An nlpsol's dense outputs (x, g, lam_x, lam_g, lam_p) as lists of floats."""
+    return {name: sol[name].nonzeros() for name in ("x", "g", "lam_x", "lam_g", "lam_p")}
+
+
+def _remember_duals(model: WheelModel, values: Mapping[str, list[float]]) -> None:
+    """Keep a converged sqpmethod solution's multipliers (:func:`_values`) on its model, by its wheel
+    (:data:`DUALS_KEPT`)."""
+    key = _wheel_key(values["x"])
+    model.duals.pop(key, None)
+    model.duals[key] = (values["lam_x"], values["lam_g"])
+    while len(model.duals) > DUALS_KEPT:
+        model.duals.pop(next(iter(model.duals)), None)
+
+
+def _warm_duals(model: WheelModel, args: Mapping[str, Any]) -> dict[str, list[float]] | None:
+    """``lam_x0`` and ``lam_g0`` for a warm start from a wheel this model solved (None: none kept).
+
+    The neighbour's multipliers, each kept only where its row (or variable) still meets the bound its sign
+    names at the start under this problem's bounds and parameters (:func:`_active_at`); the others are set
+    to 0. Passed as they were, the multiplier of a row the new problem leaves slack (the inertia row of a
+    point that needs less J) makes the start look stationary, and sqpmethod, which tests stationarity and
+    feasibility but not complementarity, reports Solve_Succeeded after 0 iterations at a wheel that is not
+    the new optimum.
+    """
+    kept = model.duals.get(_wheel_key(args["x0"]))
+    if kept is None or model.rows is None:
+        return None
+    rows = model.rows(args["x0"], args["p"]).nonzeros()
+    lam_x, lam_g = kept
+    return {
+        "lam_x0": _active_at(lam_x, args["x0"], args["lbx"], args["ubx"], ACTIVE_ROW).tolist(),
+        "lam_g0": _active_at(lam_g, rows, args["lbg"], args["ubg"], ACTIVE_ROW).tolist(),
+    }
+
+
+def _active_at(
+    lams: Sequence[float], values: Sequence[float], lower: Sequence[float], upper: Sequence[float], tol: float
+) -> np.ndarray:
+    """Each multiplier where its value meets the bound its sign names (> 0 the upper, < 0 the lower,
+    CasADi's convention) to ``tol`` (:func:`_on_bounds`), else 0."""
+    lam = np.asarray(lams, dtype=float)
+    near_lower, near_upper = _on_bounds(values, lower, upper, tol)
+    return np.where(((lam > 0) & near_upper) | ((lam < 0) & near_lower), lam, 0.0)
+
+
+#: A converged multiplier's row (or variable) meets its bound to this: ten times sqpmethod's tol_pr.
+COMPLEMENTARY = 1e-9
+
+
+def _complementary(values: Mapping[str, list[float]], args: Mapping[str, Any]) -> bool:
+    """Whether every nonzero multiplier of a solution sits on the bound its sign names to
+    :data:`COMPLEMENTARY` (:func:`_active_at`): with sqpmethod's own tests (feasibility, stationarity) the
+    wheel is then a KKT point of this NLP."""
+    for at, lams, lower, upper in (
+        (values["x"], values["lam_x"], args["lbx"], args["ubx"]),
+        (values["g"], values["lam_g"], args["lbg"], args["ubg"]),
+    ):
+        if not np.array_equal(_active_at(lams, at, lower, upper, COMPLEMENTARY), np.asarray(lams, dtype=float)):
+            return False
+    return True
