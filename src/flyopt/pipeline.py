@@ -211,8 +211,8 @@ def design_scene(
         elsewhere (default), IPOPT on every combination, or the closed form
         only (see flyopt.design.designer.design_flywheel).
     continuous : bool
-        The continuous design a study compares (the material trade-off): not rounded to the manufacturing
-        grid (:func:`flyopt.design.inputs.one_design`), without the δ sensitivity and the finite-element
+        The continuous design a study compares (the material trade-off): not rounded to flyopt's default
+        grid (:func:`flyopt.design.inputs.one_design`; a scene's own ``round_to`` still applies), without the δ sensitivity and the finite-element
         report of the winner; every limit, the peak torque on the arms and the key, and a described shaft's
         post-check and key torque as ``flyopt solve`` designs with (one path). A scene's own ``fem_check =
         true`` still re-designs against the FE.

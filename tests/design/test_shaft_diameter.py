@@ -213,7 +213,7 @@ def test_the_designed_seat_is_in_the_json_the_text_and_its_units(designed):
     # the wheel on the designed seat is keyed to it: DIN 6885-1's 18 x 11 over 58 up to 65 mm; walk_text gives no
     # bearing pressure, so its shear alone is checked, tau = 2 T / (d b (l - b)) against the key steel's S_sy
     key = document["design"]["key"]
-    assert key["size"] == "18 x 11" and key["ok"] is True and key["torque"] > 0
+    assert key["size"] == "18 x 11" and key["ok"] is None and key["torque"] > 0  # shear holds, pressure unchecked
     assert key["allowable_pressure"] is None and key["allowable_shear"] == pytest.approx(0.577 * 530e6, rel=1e-12)
     tau = 2 * key["torque"] / (0.06 * 0.018 * (key["length"] - 0.018))
     assert key["shear"] == pytest.approx(tau, rel=1e-12)

@@ -359,17 +359,18 @@ def test_the_trade_off_designs_each_material_as_solve_does():
             analysis.j_margin, analysis.omega_max, inputs.shafts, material, inputs.spec, omega_mean=analysis.omega_mean
         ).best
         assert_allclose(row["mass"], loaded.mass, rtol=1e-9)
-        assert loaded.parts.key["ok"] is True and loaded.parts.key["torque"] > 0.0
+        key = loaded.parts.key  # checked at the peak torque: its shear holds (grey iron gives no bearing pressure)
+        assert key["torque"] > 0.0 and key["shear"] <= key["allowable_shear"] and key["ok"] is not False
         assert loaded.mass > free.mass * 1.01  # the torque is what moved it: the test tells the two apart
 
     shaft_scene = flyopt.load(PROBLEMS / "punch-press-shaft.toml")
     continuous = shaft_scene.replace(design=dataclasses.replace(shaft_scene.design, round_to=0.0))
-    solved = {c.material: c for c in flyopt.solve(continuous).design.candidates if c.mass is not None}
     rows = material_tradeoff(shaft_scene).set_index("material")
-    for name, row in rows.iterrows():
-        if row["status"] == "designed":
-            best = min((c for c in solved.values() if c.material == name), key=lambda c: c.mass)
-            assert_allclose(row["mass"], best.mass, rtol=1e-9)
+    designed = rows[rows["status"] == "designed"]
+    assert len(designed) == 3  # gjs keyed, EN-GJS-400-18, EN-GJL-250 on the intermediate shaft
+    for name, row in designed.iterrows():
+        alone = flyopt.solve(continuous.replace(design_materials=(name,))).design.best
+        assert_allclose(row["mass"], alone.mass, rtol=1e-9)
 
 
 def test_the_printed_trade_off_names_materials_and_limits_for_people(capsys):

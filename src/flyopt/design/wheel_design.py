@@ -911,7 +911,9 @@ def structure_fields(
                 "allowable_pressure": k.allowable_pressure,
                 "shear": k.shear,
                 "allowable_shear": k.allowable_shear,
-                "ok": k.ok,
+                # True only where both are checked: a key whose shear holds on a hub whose pressure has no
+                # allowable is not called sound (null, as the schema says), one that fails either is False
+                "ok": False if not k.ok else (True if k.allowable_pressure is not None else None),
             }
     rules = castability_of(spec, material, bore)
     if rules is None and spec.geometry in CAST_GEOMETRIES and not spec.textbook(bore):

@@ -746,7 +746,11 @@ def _remember_duals(model: WheelModel, values: Mapping[str, list[float]]) -> Non
     model.duals.pop(key, None)
     model.duals[key] = (values["lam_x"], values["lam_g"])
     while len(model.duals) > DUALS_KEPT:
-        model.duals.pop(next(iter(model.duals)), None)
+        try:  # the oldest; a thread that changed the dict meanwhile leaves the trim to the next call
+            oldest = next(iter(model.duals))
+        except (StopIteration, RuntimeError):
+            break
+        model.duals.pop(oldest, None)
 
 
 def _warm_duals(model: WheelModel, args: Mapping[str, Any]) -> dict[str, list[float]] | None:

@@ -853,14 +853,24 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: 
         ]
     if c.parts.key:
         k = c.parts.key
-        verdict = "not checked (see the notes)" if k["ok"] is None else "OK" if k["ok"] else "NOT OK"
+        verdict = (
+            (
+                "shear OK, bearing pressure not checked (see the notes)"
+                if k["shear"] is not None
+                else "not checked (see the notes)"
+            )
+            if k["ok"] is None
+            else "OK"
+            if k["ok"]
+            else "NOT OK"
+        )
         lines += [
             "",
             f"Key (DIN 6885-1 form A) on a {q(c.bore, 'bore')} bore: {k['size']}, length "
             f"{q(k['length'], 'length')} (effective {q(k['effective_length'], 'effective_length')}): "
             f"{verdict}",
         ]
-        if k["ok"] is not None:
+        if k["shear"] is not None:
             pressure = (
                 "not checked: the hub's material gives no allowable"
                 if k["allowable_pressure"] is None

@@ -576,7 +576,13 @@ def _key_limit(key: KeySeat, torque: float) -> ShaftLimit | None:
         if pressure
         else (found.shear, found.allowable_shear)
     )
-    what = "bearing pressure" if pressure else "shear"
+    what = (
+        "bearing pressure"
+        if pressure
+        else "shear"
+        if found.allowable_pressure is not None
+        else "shear; bearing pressure not checked"
+    )
     where = f"{found.key.size}, {found.length * 1e3:g} mm long, at the wheel seat ({what})"
     return ShaftLimit("key", where, value, allowed, value / allowed, "Pa", torque)
 

@@ -547,7 +547,7 @@ class DesignSection(BuilderBase):
             " (effective ",
             self.q(k["effective_length"], "length"),
         )
-        if k["ok"] is None:  # sized by the seat and the hub; nothing to check it against
+        if k["shear"] is None:  # sized by the seat and the hub; nothing to check it against
             said = f"): sized by the seat and the hub, not checked (the design's notes say why; {NOTES}, section 13)."
             blocks.append(Paragraph((*head, said), "warning"))
             return
@@ -555,7 +555,15 @@ class DesignSection(BuilderBase):
             Paragraph(
                 (
                     *head,
-                    f"): {'OK' if k['ok'] else 'NOT OK'}, at the flywheel's peak torque ",
+                    "): "
+                    + (
+                        "shear OK, bearing pressure not checked (the hub's material gives no allowable)"
+                        if k["ok"] is None
+                        else "OK"
+                        if k["ok"]
+                        else "NOT OK"
+                    )
+                    + ", at the peak torque the wheel exchanges with its shaft ",
                     self.q(k["torque"], "torque", "torque"),
                     f" ({NOTES}, section 13).",
                 ),
