@@ -227,3 +227,25 @@ def test_json_is_the_same_on_every_run(scene, extra, capsys):
     assert "solve_time" not in outputs[0]
     assert main(["solve", str(PROBLEMS / scene), "--json", "--timings", *extra]) == 0
     assert "solve_time" in capsys.readouterr().out
+
+
+def test_the_stress_diagram_bends_the_arms_at_the_torque_the_design_took(write_scene):
+    """punch-press-shaft's wheel made with six arms: its shaft's drive train is modelled, so the design bends the
+    arms and loads the key at the train's J_w theta''_w (1486 N*m), not at the rigid body's 1290 N*m. The stress
+    diagram (flyopt.pipeline.stress_profile, the report's and `flyopt plot`'s) drew them at the rigid torque:
+    34.2 MPa at the arms' root beside the design's 38.0 MPa (an outside review). Both come from
+    flyopt.design.strength (check_wheel for the design, profile for the diagram), two routines."""
+    from flyopt.pipeline import solve
+
+    text = (PROBLEMS / "punch-press-shaft.toml").read_text(encoding="utf-8")
+    text = text.replace('geometry = "rim_web"', 'geometry = "rim_arms"\narms = [6]', 1)
+    text = text.replace('materials = ["en_gjl_250", "en_gjs_400_18", "gjs_keyed"]', 'materials = ["gjs_keyed"]', 1)
+    solution = solve(flyopt.load(write_scene(text)), extras=("stress",))
+    best = solution.design.best
+    rigid = solution.analysis.flywheel_torque() / best.speed_ratio
+    assert best.parts.key["torque"] > 1.1 * rigid  # the train's torque: the test tells the two apart
+    arms = next(p for p in best.stresses.stress["parts"] if p["part"] == "arms")
+    _profile, beams, _omega, _material = solution.stress
+    (root,) = [b for b in beams if b[0] == "arms"]
+    assert root[1] == pytest.approx(arms["radius"], rel=1e-12)
+    assert root[2] == pytest.approx(arms["stress"], rel=1e-12)

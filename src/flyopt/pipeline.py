@@ -809,8 +809,14 @@ def stress_profile(scene: Scene, analysis: Analysis, design: DesignResult) -> tu
     if getattr(material, "poisson_ratio", None) is None:
         raise ValueError(f"material {best.material!r} gives no poisson_ratio: its stresses cannot be computed")
     omega = design.omega * best.speed_ratio
-    torque = analysis.flywheel_torque()
-    torque = torque / best.speed_ratio if torque else 0.0
+    key = best.parts.key if best.parts is not None else None
+    if key and key.get("torque"):
+        # the torque the design took on this shaft (flyopt.design.designer.shaft_torque_of: a modelled train's
+        # J_w theta''_w, else the rigid body's): it bent the arms and loaded the key the design checked
+        torque = float(key["torque"])
+    else:
+        torque = analysis.flywheel_torque()
+        torque = torque / best.speed_ratio if torque else 0.0
     profile, beams = strength.profile(material, best.geometry, best.dims.wheel(best.n_arms, best.bore), omega, torque)
     return profile, beams, omega, material
 
