@@ -436,3 +436,33 @@ def test_limit_tolerance_is_round_off_only():
     assert LIMIT_RTOL <= 1e-12
     at_limit = 677.25  # hand value of the round-trip test
     assert not check_key(at_limit * (1 + 1e-9), 0.050, 0.100, 90e6).ok
+
+
+def test_a_torque_no_standard_key_carries_makes_the_combination_infeasible():
+    """A wheel whose key cannot carry the torque was reported as designed with its key "NOT OK" (an outside
+    review): the hub took its longest key and the design went on. On a 30 mm seat DIN 6885-1 gives the 8 x 7 key,
+    at most 90 mm long (l_eff = 90 - 8 = 82 mm); its shear tau = 2 T / (d b l_eff) against the key steel's
+    S_sy = 0.577 x 530 MPa sets the largest torque T_max = S_sy d b l_eff / 2 = 3,008 N*m (a hub material without
+    a bearing pressure: the shear alone). Above it the combination is infeasible, with the key named; below it
+    the wheel is designed and its key holds."""
+    from flyopt.design.designer import design_flywheel
+    from flyopt.design.materials import Material
+    from flyopt.design.spec import DesignSpec, MountShaft
+
+    s_sy = 0.577 * 530e6
+    t_max = s_sy * 0.030 * 0.008 * 0.082 / 2.0
+    iron = Material("keyed iron", density=7200.0, max_rim_speed=36.0, elastic_modulus=100e9, poisson_ratio=0.211)
+    spec = DesignSpec(geometry="rim_web", max_outer_diameter=1.0)
+
+    def design(torque):
+        return design_flywheel(4.0, 32.0, [MountShaft("s", 1.0, 0.030, torque=torque)], [iron], spec)
+
+    over = design(1.02 * t_max)
+    assert over.status == "infeasible" and over.best is None
+    (reason,) = [c.reason for c in over.candidates]
+    assert "no DIN 6885-1 key on the 30 mm seat carries it" in reason and "8 x 7" in reason
+    under = design(0.98 * t_max).best
+    key = under.parts.key
+    assert key["size"] == "8 x 7" and key["length"] == pytest.approx(0.090)
+    assert key["shear"] == pytest.approx(2 * 0.98 * t_max / (0.030 * 0.008 * 0.082), rel=1e-12)
+    assert key["shear"] <= s_sy and key["ok"] is None  # the shear holds; no bearing pressure to check

@@ -275,6 +275,16 @@ def screen(combo: Combination, spec: DesignSpec, bore: float) -> None:
     missing = missing_poisson(material, spec)
     if missing:
         raise NoWheel(f"{combo.label}: {missing}")
+    keyed = (geo in (Geometry.RIM_WEB, Geometry.RIM_ARMS) or (geo == Geometry.DISC and spec.disc_hub)) and bore
+    if keyed and combo.torque and not spec.textbook(bore):
+        # the hub's key (design/key.py's one rule): where even the section's longest standard key cannot carry
+        # the torque, no hub length helps (:func:`hub_bounds` would leave the hub at its longest key, failing)
+        try:
+            key.hub_length_for_key(combo.torque, bore, getattr(material, "bearing_pressure", None))
+        except ValueError as err:
+            raise NoWheel(
+                f"{combo.label}: no DIN 6885-1 key on the {bore * 1e3:.4g} mm seat carries it: {err}"
+            ) from err
 
 
 def wheel_problem(
