@@ -815,8 +815,8 @@ def stress_profile(scene: Scene, analysis: Analysis, design: DesignResult) -> tu
         # J_w theta''_w, else the rigid body's): it bent the arms and loaded the key the design checked
         torque = float(key["torque"])
     else:
-        torque = analysis.flywheel_torque()
-        torque = torque / best.speed_ratio if torque else 0.0
+        rigid = analysis.flywheel_torque()
+        torque = rigid / best.speed_ratio if rigid else 0.0
     profile, beams = strength.profile(material, best.geometry, best.dims.wheel(best.n_arms, best.bore), omega, torque)
     return profile, beams, omega, material
 
