@@ -131,3 +131,25 @@ def test_the_collector_is_paused_and_left_as_it_was():
         assert not gc.isenabled()  # paused by someone else: still
     finally:
         (gc.enable if was else gc.disable)()
+
+
+def test_the_pdf_figures_remembered_measures_draw_as_matplotlib_measures(monkeypatch, tmp_path):
+    from matplotlib.backend_bases import RendererBase
+    from reportlab.pdfgen.canvas import Canvas
+
+    from flyopt.report import pdf_figure
+
+    def page(name):
+        canvas = Canvas(str(tmp_path / name), invariant=1)  # no date, no random id: the same figure, the same bytes
+        figure, _prefix = figures()[1]  # two axes, texts out of ASCII
+        pdf_figure.draw(figure, canvas, 20, 300, 0.8)
+        canvas.save()
+        return (tmp_path / name).read_bytes()
+
+    page("warm.pdf")
+    assert pdf_figure._MEASURES
+    remembered = page("remembered.pdf")
+    monkeypatch.setattr(
+        pdf_figure.CanvasRenderer, "get_text_width_height_descent", RendererBase.get_text_width_height_descent
+    )
+    assert page("matplotlib.pdf") == remembered
