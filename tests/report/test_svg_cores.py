@@ -104,6 +104,20 @@ def test_no_worker_is_forked_beside_threads_or_for_one_figure():
         other.join()
 
 
+def test_the_cpus_counted_are_those_the_sweeps_count():
+    from flyopt.studies.processes import cpu_count
+
+    assert svg_cores.cpu_count() == cpu_count()
+    if hasattr(os, "sched_setaffinity"):
+        allowed = os.sched_getaffinity(0)
+        try:
+            os.sched_setaffinity(0, {min(allowed)})
+            assert svg_cores.cpu_count() == cpu_count() == 1
+            assert svg_cores.workers_for(8) == 0  # one CPU: no worker
+        finally:
+            os.sched_setaffinity(0, allowed)
+
+
 def test_texts_remembered_draw_as_matplotlib_draws_them(monkeypatch):
     remembered = html.remembered_text_to_path()
     svg_cores.svgs(figures(), workers=0)  # the texts remembered

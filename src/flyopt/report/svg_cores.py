@@ -1,7 +1,7 @@
 """A document's figures drawn to SVG on every core this process may run on: forked workers.
 
 Drawing a report's figures (:func:`flyopt.report.html.svg_of`, matplotlib's layout and SVG renderer) is
-most of the time ``flyopt report`` takes after its one solve (docs/flywheel-design.md "Report"), and the
+most of the time ``flyopt report`` takes after its one solve (README "Benchmarks", issue 26), and the
 figures are independent of each other. :func:`svgs` draws them in this process and in worker processes
 forked from it once the figures are made: a worker inherits them (and matplotlib, already imported) without
 a copy, takes the next figure still to draw from a shared queue (a pipe of figure numbers, the heaviest first
@@ -11,7 +11,7 @@ made from the prefix, its glyphs' from the font).
 
 Workers are forked only where fork is safe and can pay: a process running a single thread (as
 :mod:`flyopt.studies.processes` decides; the app's server, with its threads, draws in its own process) that
-may run on more than one CPU (:func:`flyopt.studies.processes.cpu_count`), with more than one figure. A
+may run on more than one CPU (:func:`cpu_count`), with more than one figure. A
 worker that fails or dies leaves its figures to this process, which draws them as it would have alone (an
 error is then raised here, as without workers).
 """
@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, NoReturn
 if TYPE_CHECKING:
     from matplotlib.figure import Figure as MplFigure
 
-__all__ = ["svgs", "workers_for"]
+__all__ = ["cpu_count", "svgs", "workers_for"]
 
 #: One figure's number in the queue: 2 bytes, so that a read of one is whole (a pipe's reads of at most
 #: PIPE_BUF bytes are atomic) and a document may have up to 65535 figures.
@@ -39,11 +39,18 @@ def workers_for(count: int) -> int:
     """How many worker processes to fork for ``count`` figures: one per further CPU this process may run on,
     at most one per figure beyond this process's own; none in a process running more than one thread or
     without fork."""
-    from flyopt.studies.processes import cpu_count
-
     if count < 2 or not hasattr(os, "fork") or threading.active_count() != 1:
         return 0
     return max(0, min(cpu_count(), count) - 1)
+
+
+def cpu_count() -> int:
+    """CPUs this process may run on: :func:`flyopt.studies.processes.cpu_count`'s rule (a test holds the two
+    together), not imported from there, as that module brings pandas (some 0.4 s of a report that needs none)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
 
 
 def svgs(figures: Sequence[tuple[MplFigure, str]], workers: int | None = None) -> list[str]:
