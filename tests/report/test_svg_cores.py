@@ -54,11 +54,11 @@ def figures():
 
 
 def test_the_figures_drawn_in_workers_are_those_drawn_here():
-    here = svg_cores.svgs(figures(), workers=0)
+    here = svg_cores.svgs(figures(), html.svg_of, workers=0)
     import matplotlib.pyplot as plt
 
     plt.close("all")
-    there = svg_cores.svgs(figures(), workers=2)
+    there = svg_cores.svgs(figures(), html.svg_of, workers=2)
     assert len(there) == 3
     assert [len(svg) for svg in there] == [len(svg) for svg in here]  # in their order
     assert there == here
@@ -88,8 +88,8 @@ def test_a_figure_a_worker_cannot_draw_is_drawn_here(how):
             out.append((figure, f"h{k}-"))
         return out
 
-    here = svg_cores.svgs(made(), workers=0)
-    assert svg_cores.svgs(made(), workers=1) == here
+    here = svg_cores.svgs(made(), html.svg_of, workers=0)
+    assert svg_cores.svgs(made(), html.svg_of, workers=1) == here
 
 
 def test_no_worker_is_forked_beside_threads_or_for_one_figure():
@@ -120,13 +120,13 @@ def test_the_cpus_counted_are_those_the_sweeps_count():
 
 def test_texts_remembered_draw_as_matplotlib_draws_them(monkeypatch):
     remembered = html.remembered_text_to_path()
-    svg_cores.svgs(figures(), workers=0)  # the texts remembered
+    svg_cores.svgs(figures(), html.svg_of, workers=0)  # the texts remembered
     assert remembered._glyphs and remembered._measures
-    again = svg_cores.svgs(figures(), workers=0)  # drawn from what was remembered
+    again = svg_cores.svgs(figures(), html.svg_of, workers=0)  # drawn from what was remembered
     kind = type(remembered)
     monkeypatch.setattr(kind, "get_glyphs_with_font", TextToPath.get_glyphs_with_font)
     monkeypatch.setattr(kind, "get_text_width_height_descent", TextToPath.get_text_width_height_descent)
-    assert svg_cores.svgs(figures(), workers=0) == again  # matplotlib's own, nothing remembered
+    assert svg_cores.svgs(figures(), html.svg_of, workers=0) == again  # matplotlib's own, nothing remembered
 
 
 def test_the_collector_is_paused_and_left_as_it_was():

@@ -117,22 +117,23 @@ def render(document: Document) -> str:
             )
     out.append("</ul></nav>")
     drawn = [block for section in document.sections for block in section.blocks if _drawn(block)]
-    svg = {}
+    made: list[str] = []
     if drawn:
         from flyopt.report.svg_cores import svgs
 
         # every figure drawn before the page is written, on each core this process may run on
-        made = svgs([(block.figure, f"f{number}-") for number, block in enumerate(drawn, start=1)])
-        svg = {id(block): text for block, text in zip(drawn, made)}
+        made = svgs([(block.figure, f"f{number}-") for number, block in enumerate(drawn, start=1)], svg_of)
     figures = 0
     for section in document.sections:
         tag = "h2" if section.level == 1 else "h3"
         out.append(f'<section data-section="{_escape(section.key)}">')
         out.append(f'<{tag} id="{anchor(section.number)}">{_escape(section.number)} {_escape(section.title)}</{tag}>')
         for block in section.blocks:
+            svg = None
             if _drawn(block):
+                svg = made[figures]  # the figures' SVGs in the page's order, numbered as drawn
                 figures += 1
-            out.append(_block(block, figures, svg.get(id(block))))
+            out.append(_block(block, figures, svg))
         out.append("</section>")
     out.append(
         f"<footer>{_escape(document.title)}: written by flyopt. Equations in SI; tables in "
@@ -148,7 +149,7 @@ def _drawn(block: object) -> bool:
 
 
 def _block(block, figure_number, svg=None):
-    """The HTML of ``block``; a drawn figure's SVG given (``svg``) or drawn here."""
+    """The HTML of ``block``; a drawn figure's SVG given (``svg``, :func:`render` draws them all first) or drawn here."""
     if isinstance(block, Paragraph):
         kind = "" if block.kind == "text" else f' class="{block.kind}"'
         return f"<p{kind}>{_text(block.text)}</p>"

@@ -22,13 +22,13 @@ import os
 import pickle
 import struct
 import threading
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import TYPE_CHECKING, NoReturn
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure as MplFigure
 
-__all__ = ["cpu_count", "svgs", "workers_for"]
+__all__ = ["Draw", "cpu_count", "svgs", "workers_for"]
 
 #: One figure's number in the queue: 2 bytes, so that a read of one is whole (a pipe's reads of at most
 #: PIPE_BUF bytes are atomic) and a document may have up to 65535 figures.
@@ -53,24 +53,29 @@ def cpu_count() -> int:
         return os.cpu_count() or 1
 
 
-def svgs(figures: Sequence[tuple[MplFigure, str]], workers: int | None = None) -> list[str]:
-    """The SVG of each ``(figure, prefix)`` (:func:`flyopt.report.html.svg_of`), in their order.
+#: How a figure becomes SVG text, given the prefix of its ids: :func:`flyopt.report.html.svg_of` (passed in by
+#: its module, which this one does not import: it imports this one).
+Draw = Callable[["MplFigure", str], str]
+
+
+def svgs(figures: Sequence[tuple[MplFigure, str]], svg_of: Draw, workers: int | None = None) -> list[str]:
+    """``svg_of(figure, prefix)`` of each ``(figure, prefix)``, in their order.
 
     Parameters
     ----------
     figures : sequence of (Figure, str)
         The figures and the prefix of each one's ids.
+    svg_of : callable
+        How one figure is drawn (:func:`flyopt.report.html.svg_of`).
     workers : int, optional
         Worker processes to fork (default :func:`workers_for`; 0 draws every figure in this process).
     """
-    from flyopt.report.html import svg_of
-
     count = len(figures)
     if workers is None:
         workers = workers_for(count)
     drawn: dict[int, str] = {}
     if workers > 0:
-        drawn = _in_workers(figures, workers)
+        drawn = _in_workers(figures, svg_of, workers)
     return [drawn[k] if k in drawn else svg_of(*figures[k]) for k in range(count)]
 
 
@@ -80,11 +85,9 @@ def _cost(figure: MplFigure) -> int:
     return sum(10 + len(ax.get_children()) for ax in figure.axes)
 
 
-def _in_workers(figures: Sequence[tuple[MplFigure, str]], workers: int) -> dict[int, str]:
+def _in_workers(figures: Sequence[tuple[MplFigure, str]], svg_of: Draw, workers: int) -> dict[int, str]:
     """{number: SVG} of the figures drawn by this process and ``workers`` forked ones, taking turns at a queue;
     a figure whose worker failed is missing."""
-    from flyopt.report.html import svg_of
-
     order = sorted(range(len(figures)), key=lambda k: -_cost(figures[k][0]))
     queue_read, queue_write = os.pipe()
     os.write(queue_write, b"".join(_ENTRY.pack(k) for k in order))  # a few bytes: within the pipe's buffer
@@ -102,7 +105,7 @@ def _in_workers(figures: Sequence[tuple[MplFigure, str]], workers: int) -> dict[
                 break
             if pid == 0:  # pragma: no cover - the worker (its coverage is not collected)
                 os.close(answer_read)
-                _work(figures, queue_read, answer_write)
+                _work(figures, svg_of, queue_read, answer_write)
             os.close(answer_write)
             children.append((pid, answer_read))
         for k in _taken(queue_read):
@@ -124,11 +127,11 @@ def _taken(queue_read: int) -> Iterator[int]:
         yield _ENTRY.unpack(entry)[0]
 
 
-def _work(figures: Sequence[tuple[MplFigure, str]], queue_read: int, answer_write: int) -> NoReturn:  # pragma: no cover
+def _work(
+    figures: Sequence[tuple[MplFigure, str]], svg_of: Draw, queue_read: int, answer_write: int
+) -> NoReturn:  # pragma: no cover
     """The worker: draw the figures it takes from the queue, send {number: SVG} of those drawn (pickled) and
     exit without running the parent's exit handlers. A figure that fails is not sent (the parent draws it)."""
-    from flyopt.report.html import svg_of
-
     status = 1
     try:
         drawn: dict[int, str] = {}
