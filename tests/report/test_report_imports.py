@@ -15,3 +15,4 @@ def test_the_report_of_a_machine_without_a_torsional_chain_imports_no_scipy(tmp_
     found = imported(command("report", PROBLEMS / "slider-crank-press.toml", "-o", tmp_path / "report.html"))
     assert "matplotlib" in found, found  # the watch sees the report's own heavy import: it could fail
     assert "scipy" not in found, found
+    assert "pandas" not in found, found  # drawing its figures on every CPU asks how many without the sweeps' module

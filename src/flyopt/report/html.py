@@ -116,15 +116,24 @@ def render(document: Document) -> str:
                 f'<li><a href="#{anchor(section.number)}">{_escape(section.number)} {_escape(section.title)}</a></li>'
             )
     out.append("</ul></nav>")
+    drawn = [block for section in document.sections for block in section.blocks if _drawn(block)]
+    made: list[str] = []
+    if drawn:
+        from flyopt.report.svg_cores import svgs
+
+        # every figure drawn before the page is written, on each core this process may run on
+        made = svgs([(block.figure, f"f{number}-") for number, block in enumerate(drawn, start=1)], svg_of)
     figures = 0
     for section in document.sections:
         tag = "h2" if section.level == 1 else "h3"
         out.append(f'<section data-section="{_escape(section.key)}">')
         out.append(f'<{tag} id="{anchor(section.number)}">{_escape(section.number)} {_escape(section.title)}</{tag}>')
         for block in section.blocks:
-            if isinstance(block, Figure) and block.figure is not None:
+            svg = None
+            if _drawn(block):
+                svg = made[figures]  # the figures' SVGs in the page's order, numbered as drawn
                 figures += 1
-            out.append(_block(block, figures))
+            out.append(_block(block, figures, svg))
         out.append("</section>")
     out.append(
         f"<footer>{_escape(document.title)}: written by flyopt. Equations in SI; tables in "
@@ -134,7 +143,13 @@ def render(document: Document) -> str:
     return "\n".join(out) + "\n"
 
 
-def _block(block, figure_number):
+def _drawn(block: object) -> bool:
+    """Whether ``block`` is a figure the page shows drawn (not one that failed or was refused)."""
+    return isinstance(block, Figure) and block.figure is not None
+
+
+def _block(block, figure_number, svg=None):
+    """The HTML of ``block``; a drawn figure's SVG given (``svg``, :func:`render` draws them all first) or drawn here."""
     if isinstance(block, Paragraph):
         kind = "" if block.kind == "text" else f' class="{block.kind}"'
         return f"<p{kind}>{_text(block.text)}</p>"
@@ -156,7 +171,8 @@ def _block(block, figure_number):
                 f'<figure class="missing" data-figure="{_escape(block.key)}" data-state="{state}">'
                 f"<figcaption>{_text(block.caption)}. {_text(block.note)}</figcaption></figure>"
             )
-        svg = svg_of(block.figure, f"f{figure_number}-")
+        if svg is None:
+            svg = svg_of(block.figure, f"f{figure_number}-")
         return (
             f'<figure data-figure="{_escape(block.key)}" data-state="drawn">{svg}'
             f"<figcaption>Figure {figure_number}: {_text(block.caption)}.</figcaption></figure>"
@@ -220,6 +236,7 @@ def svg_of(figure: MplFigure, prefix: str) -> str:
     import matplotlib
     from matplotlib.backends.backend_mixed import MixedModeRenderer
 
+    from flyopt.report.plots import standard
     from flyopt.report.plots.output import VECTOR_DPI, draw_vector
 
     RendererSVG = rounded_svg_renderer()
@@ -234,7 +251,7 @@ def svg_of(figure: MplFigure, prefix: str) -> str:
         made.append(MixedModeRenderer(figure, width, height, dpi, svg))
         return made[-1]
 
-    with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": prefix}):
+    with standard.collector_paused(), matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": prefix}):
         draw_vector(figure, renderer)
         made[0].finalize()
     text = buffer.getvalue()
@@ -277,7 +294,13 @@ def rounded_svg_renderer() -> type[Any]:
     from matplotlib import _path
     from matplotlib.backends.backend_svg import RendererSVG
 
+    text_to_path = remembered_text_to_path()
+
     class RoundedSVG(RendererSVG):
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            super().__init__(*args, **kwargs)
+            self._text2path = text_to_path  # what a text measures and its glyphs, kept from figure to figure
+
         def _convert_path(
             self, path: Any, transform: Any = None, clip: Any = None, simplify: Any = None, sketch: Any = None
         ) -> str:
@@ -289,3 +312,76 @@ def rounded_svg_renderer() -> type[Any]:
             return str(written.decode("ascii"))
 
     return RoundedSVG
+
+
+#: Texts :func:`remembered_text_to_path` keeps (measures and glyphs of each): a report's or an app page's
+#: diagrams show a few hundred different texts (tick labels, titles, legends), the same from edit to edit.
+REMEMBERED_TEXTS = 4096
+
+
+@functools.cache
+def remembered_text_to_path() -> Any:
+    """matplotlib's ``TextToPath`` (what the SVG renderer measures a text with and turns its glyphs into
+    paths with: text drawn as paths), remembering both per text, from one figure and one renderer to the next.
+
+    Both are functions of the text, its font and (measure) its font properties alone: matplotlib lays each
+    text out in its font at a fixed size (``FONT_SCALE``, scaled when drawn) and measures it with the
+    properties' size, whatever the figure. Its own cache of measures lasts one renderer (one figure), and it
+    lays a text out again to draw it; a diagram's texts (its ticks' numbers, its labels) come back in the next
+    figure and at the next edit. Text read as mathtext or TeX is not remembered (flyopt's texts escape ``$``:
+    :func:`~flyopt.report.plots.standard.drawable`). Made once, as matplotlib is imported only to draw.
+    """
+    from collections import OrderedDict
+
+    from matplotlib.textpath import TextToPath
+
+    class RememberingTextToPath(TextToPath):
+        def __init__(self) -> None:
+            super().__init__()
+            self._measures: dict[tuple[Any, ...], tuple[float, float, float]] = {}
+            self._glyphs: dict[tuple[Any, ...], tuple[list[Any], dict[str, Any]]] = {}
+
+        def get_text_width_height_descent(self, s: str, prop: Any, ismath: Any) -> Any:
+            if ismath:
+                return super().get_text_width_height_descent(s, prop, ismath)
+            key = (s, prop.copy())  # a copy: the properties' hash follows their (mutable) state
+            found = self._measures.get(key)
+            if found is None:
+                if len(self._measures) >= REMEMBERED_TEXTS:
+                    self._measures.clear()
+                found = self._measures[key] = super().get_text_width_height_descent(s, prop, ismath)
+            return found
+
+        def get_glyphs_with_font(
+            self,
+            font: Any,
+            s: str,
+            glyph_map: Any = None,
+            return_new_glyphs_only: bool = False,
+            *,
+            features: Any = None,
+            language: Any = None,
+        ) -> Any:
+            # the font object itself in the key (matplotlib keeps one per file list; the key holds it, so that
+            # its id is never another's), its size the fixed one _get_font sets before every call
+            key = (font, s, features, language)
+            found = self._glyphs.get(key)
+            if found is None:
+                info, paths, rects = super().get_glyphs_with_font(font, s, features=features, language=language)
+                if rects:  # pragma: no cover - matplotlib draws no rectangle for a plain text
+                    return super().get_glyphs_with_font(
+                        font, s, glyph_map, return_new_glyphs_only, features=features, language=language
+                    )
+                if len(self._glyphs) >= REMEMBERED_TEXTS:
+                    self._glyphs.clear()
+                found = self._glyphs[key] = (info, dict(paths))
+            info, paths = found
+            if glyph_map is None:
+                glyph_map = OrderedDict()
+            new = OrderedDict() if return_new_glyphs_only else glyph_map
+            for glyph, *_place in info:  # in the order matplotlib adds them
+                if glyph not in glyph_map:
+                    new[glyph] = paths[glyph]
+            return list(info), new, []
+
+    return RememberingTextToPath()

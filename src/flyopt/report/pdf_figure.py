@@ -23,6 +23,8 @@ import numpy as np
 from matplotlib.backend_bases import GraphicsContextBase, RendererBase
 from matplotlib.path import Path
 
+from flyopt.report.html import REMEMBERED_TEXTS
+from flyopt.report.plots import standard
 from flyopt.report.plots.output import VECTOR_DPI, draw_vector
 
 if TYPE_CHECKING:
@@ -48,7 +50,8 @@ def draw(figure: Figure, canvas: Canvas, x: float, y: float, scale: float) -> No
     canvas.translate(x, y)
     canvas.scale(scale, scale)
     try:
-        draw_vector(figure, lambda: CanvasRenderer(canvas, float(width), float(height)))
+        with standard.collector_paused():
+            draw_vector(figure, lambda: CanvasRenderer(canvas, float(width), float(height)))
     finally:
         canvas.restoreState()
 
@@ -125,6 +128,12 @@ def _rgba(colour: Any) -> tuple[float, float, float, float]:
     return values[0], values[1], values[2], values[3] if len(values) > 3 else 1.0
 
 
+#: The measures of the texts the PDF's figures drew: (text, font properties) -> (width, height, descent) [pt].
+#: A function of the two alone at this renderer's fixed 72 dpi; matplotlib's own cache lasts one renderer (one
+#: figure), and a report's figures share most of their texts (tick labels, units).
+_MEASURES: dict[tuple[str, Any], tuple[float, float, float]] = {}
+
+
 class CanvasRenderer(RendererBase):
     """A matplotlib renderer whose output is PDF operators on a reportlab canvas (y up, one pixel a point).
 
@@ -140,6 +149,19 @@ class CanvasRenderer(RendererBase):
         self.canvas = canvas
         self.width = width
         self.height = height
+
+    def get_text_width_height_descent(self, s: str, prop: FontProperties, ismath: Any) -> Any:
+        """matplotlib's measure of a text (RendererBase's: its font at its size, at 72 dpi here), remembered from
+        one figure and one renderer to the next (:data:`_MEASURES`); mathtext and TeX are measured each time."""
+        if ismath:
+            return super().get_text_width_height_descent(s, prop, ismath)
+        key = (s, prop.copy())  # a copy: the properties' hash follows their (mutable) state
+        found = _MEASURES.get(key)
+        if found is None:
+            if len(_MEASURES) >= REMEMBERED_TEXTS:
+                _MEASURES.clear()
+            found = _MEASURES[key] = super().get_text_width_height_descent(s, prop, ismath)
+        return found
 
     def flipy(self) -> bool:
         return False

@@ -19,6 +19,7 @@ from flyopt.report.builder.summary import Summary
 from flyopt.report.builder.verification import VerificationAndProvenance
 from flyopt.report.document import Document
 from flyopt.report.method import with_appendix
+from flyopt.report.plots import standard
 
 
 def build(
@@ -55,9 +56,10 @@ def build(
     """
     display.check_system(units)
     display.check_digits(digits)
-    if isinstance(inputs, CalculationInputs):
-        return with_appendix(build_calculation(inputs, units, title_block, digits))
-    return with_appendix(Builder(inputs, units, digits, figures).document(title_block))
+    with standard.collector_paused():  # its figures made without the collector's full scans (issue 26)
+        if isinstance(inputs, CalculationInputs):
+            return with_appendix(build_calculation(inputs, units, title_block, digits))
+        return with_appendix(Builder(inputs, units, digits, figures).document(title_block))
 
 
 class Builder(
