@@ -515,6 +515,8 @@ def test_cross_section_draws_in_the_chosen_units_and_comments_an_odd_design():
     words = " ".join(note.get_text().split())
     assert "The rim alone" in words and "A slender rim" in words
     assert f"{best.dims.d_outer / min(best.dims.b, best.dims.h):.0f} times its thinnest side" in words
+    # its binding limits in words, as the text and the report's tables name them (issue 29), not row names
+    assert "binding: inertia" in words and not any(name in words for name in best.limits.binding if "_" in name)
     ax.figure.canvas.draw()
     box = note.get_window_extent()
     assert ax.figure.bbox.contains(box.x0, box.y0) and ax.figure.bbox.contains(box.x1, box.y1)

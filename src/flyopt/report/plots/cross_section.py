@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from flyopt.design.check import binding_label
 from flyopt.design.result import Design
 from flyopt.names import Geometry
 from flyopt.outputs.drawing import keyway, section_blocks
@@ -481,7 +482,7 @@ def _section_notes(c, length, text):
     disc = c.geometry == Geometry.DISC
     ratio = c.d_outer / (c.b if disc else min(c.b, c.h))
     if ratio >= _SLENDER:
-        binding = ", ".join(c.binding) if c.binding else "none"
+        binding = ", ".join(binding_label(name) for name in c.binding) if c.binding else "none"
         sides = f"{text(c.b)} {length} thick" if disc else f"B {text(c.b)} × H {text(c.h)} {length}"
         notes.append(
             f"A slender {'disc' if disc else 'rim'}: {sides} at Ø{text(c.d_outer)} {length}, the diameter "
