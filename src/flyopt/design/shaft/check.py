@@ -53,7 +53,7 @@ from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_lines
 from flyopt.design.shaft.lateral import GRAVITY, Disc, critical_speeds, rotor_model
 from flyopt.design.shaft.torsional import TorsionalCheck, running_range_rpm, torsional_check
-from flyopt.design.shaft.train import TrainResponse, seat_torque, shaft_train, train_response, wheel_key_torque
+from flyopt.design.shaft.train import TrainResponse, key_torque, seat_torque, shaft_train, train_response
 from flyopt.machine.torsion import TorqueOrders
 from flyopt.units import rad_s_to_rpm
 
@@ -204,7 +204,7 @@ class ShaftCheck:
         Which of the two T_m and T_a are.
     key_torque : float
         Where the train is modelled, the peak of the torque the wheel's key carries by the forced response,
-        J_wheel theta''_wheel [N*m] (:func:`~flyopt.design.shaft.train.wheel_key_torque`; the design sizes the key
+        J_wheel theta''_wheel [N*m] (:func:`~flyopt.design.shaft.train.key_torque`; the design sizes the key
         at the same torque, :func:`flyopt.design.shaft.cycle.key_torque_on`); nan where it is not.
     lateral_speed : float
         The first forward critical speed [rad/s] (nan: none found).
@@ -421,7 +421,7 @@ def check_shaft(
         The key the wheel was designed with. Where the train is modelled (the seat's torque is the forced
         response's) it adds a limit "key": that key checked by :func:`flyopt.design.key.check_key` at the peak
         of the torque the wheel's own inertia takes, J_wheel theta''_wheel
-        (:func:`~flyopt.design.shaft.train.wheel_key_torque`, which the design sized it at); without a train the
+        (:func:`~flyopt.design.shaft.train.key_torque`, which the design sized it at); without a train the
         design already checked it at the rigid body's peak, and no limit is added.
 
     Returns
@@ -451,7 +451,7 @@ def check_shaft(
         # the one rule of the alternating torque at the seat: the forced response's, where the train is modelled
         seat = seat_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
         # the one torque of the key, the design's too (flyopt.design.shaft.cycle.key_torque_on)
-        keyed = wheel_key_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
+        keyed = key_torque(built, excitation, rad_s_to_rpm(omega_mean), layout.damping_ratio, torsional.modes)
         if keyed is not None and key is not None:
             key_limit = _key_limit(key, keyed.peak)
     t_alt_rigid = t_alt

@@ -29,7 +29,7 @@ import numpy as np
 
 from flyopt.design.combination import combination_label
 from flyopt.design.shaft.check import KeySeat, ShaftCheck, ShaftLimit, check_shaft
-from flyopt.design.shaft.train import shaft_train, wheel_key_torque
+from flyopt.design.shaft.train import key_torque, shaft_train
 from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.torsion import TorqueOrders
 from flyopt.machine.transmission import inertia_on_shaft
@@ -321,7 +321,7 @@ def key_torque_on(ctx: ShaftContext, name: str, inertia: float, seat: float | No
     """The peak torque [N*m] the key of a wheel of ``inertia`` [kg*m^2] on shaft ``name`` (its seat at ``seat`` [m]
     where the shaft designs it) carries by its train's forced response, J_w theta''_w: the torque the post-check
     checks the key at (:attr:`flyopt.design.shaft.check.ShaftCheck.key_torque`, the same train built by the same
-    :func:`flyopt.design.shaft.train.shaft_train` and the same :func:`flyopt.design.shaft.train.wheel_key_torque`),
+    :func:`flyopt.design.shaft.train.shaft_train` and the same :func:`flyopt.design.shaft.train.key_torque`),
     and so the one the design sizes the hub's length and checks the key at (:func:`keyed_shafts`). None where the
     post-check adds no key limit (net areas, no train, the wheel at the crank end): the design keeps the rigid
     body's peak torque there (docs/flywheel-design.md, section 26)."""
@@ -343,9 +343,7 @@ def key_torque_on(ctx: ShaftContext, name: str, inertia: float, seat: float | No
         materials=ctx.train_materials,
     )
     found = (
-        None
-        if built is None
-        else wheel_key_torque(built, excitation, rad_s_to_rpm(ctx.omega_mean * r), layout.damping_ratio)
+        None if built is None else key_torque(built, excitation, rad_s_to_rpm(ctx.omega_mean * r), layout.damping_ratio)
     )
     peak = None if found is None else found.peak
     ctx._keyed[cached] = peak

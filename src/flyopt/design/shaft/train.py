@@ -50,7 +50,6 @@ __all__ = [
     "seat_torque",
     "KeyTorque",
     "key_torque",
-    "wheel_key_torque",
     "shaft_train",
     "wheel_torque_orders",
     "default_train",
@@ -426,9 +425,18 @@ def key_torque(
     """The key's torque J_wheel theta''_wheel by the forced response at ``speed_rpm``, every order synthesised
     in time as :func:`seat_torque` does (:func:`_synthesised`), and its peak |T|. The mean net torque enters
     quasi-statically, the rigid body's share J_w / J of it (nil over a balanced cycle). None where the train has
-    no wheel or the orders are not the harmonics of one cycle."""
+    no wheel, no elastic element follows the wheel toward the crank (the wheel at the crank end: the seat's torque
+    is then the rigid body's, :func:`seat_torque` gives none), or the orders are not the harmonics of one cycle.
+
+    The one torque a wheel's key is designed at (:func:`flyopt.design.shaft.cycle.key_torque_on`, the design's hub
+    length and key check) and checked at (the post-check's limit "key"), docs/flywheel-design.md, section 26;
+    where it gives None both use the rigid body's peak torque.
+    """
     k = _harmonics(excitation)
     if k is None or built.wheel is None:
+        return None
+    wheel_node = built.wheel_node
+    if not any(spring.a == wheel_node and spring.b == wheel_node + 1 for spring in built.model.springs):
         return None
     amplitudes = wheel_torque_orders(built, excitation, speed_rpm, damping_ratio, found)
     inertia = np.diag(built.model.mass_matrix)
@@ -450,34 +458,13 @@ def shaft_train(
     """The train of a described shaft with a wheel of ``wheel_inertia`` [kg*m^2] at its place: the layout's own
     ``train``, else the two-inertia one ``other_inertia`` makes (:func:`default_train`); None where there is none
     (no train and no inertia on the shaft: no elastic mode). The one way the post-check
-    (:func:`flyopt.design.shaft.check.check_shaft`) and the design (:func:`wheel_key_torque`) build it."""
+    (:func:`flyopt.design.shaft.check.check_shaft`) and the design (:func:`key_torque`) build it."""
     train = layout.train or default_train(layout, "", speed_ratio, other_inertia)
     if not train:
         return None
     return train_model(
         train, layout, material, wheel_inertia=wheel_inertia, speed_ratio=speed_ratio, materials=materials
     )
-
-
-def wheel_key_torque(
-    built: TrainModel,
-    excitation: TorqueOrders,
-    speed_rpm: float,
-    damping_ratio: float,
-    found: Modes | None = None,
-) -> KeyTorque | None:
-    """The torque the wheel's key carries where the train sets the seat's torque: :func:`key_torque`, or None where
-    no elastic element follows the wheel toward the crank (the wheel at the crank end: the seat's torque is then the
-    rigid body's, :func:`seat_torque` gives none) or the orders are not the harmonics of one cycle.
-
-    The one torque a wheel's key is designed at (:func:`flyopt.design.shaft.cycle.key_torque_on`, the design's hub
-    length and key check) and checked at (the post-check's limit "key"), docs/flywheel-design.md, section 26;
-    where it gives None both use the rigid body's peak torque.
-    """
-    wheel = built.wheel_node
-    if not any(spring.a == wheel and spring.b == wheel + 1 for spring in built.model.springs):
-        return None
-    return key_torque(built, excitation, speed_rpm, damping_ratio, found)
 
 
 def _harmonics(excitation: TorqueOrders) -> np.ndarray | None:
