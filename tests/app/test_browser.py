@@ -69,6 +69,8 @@ def server():
 @pytest.fixture(scope="module")
 def browser():
     if not os.path.exists(CHROMIUM):
+        # only on a machine without Debian's chromium (Playwright cannot download its own here); .ci/run installs
+        # it, so in CI these tests always run
         pytest.skip(f"{CHROMIUM} is absent (apt-get install -y chromium; .ci/run installs it)")
     sync_api = pytest.importorskip("playwright.sync_api", reason="the app-test extra (playwright) is not installed")
     with sync_api.sync_playwright() as p:
