@@ -98,7 +98,7 @@ def _material():
     )
 
 
-def _design(geometry="rim_web", bore=0.06, **over):
+def _design(geometry="rim_web", bore=0.07, **over):
     spec = DesignSpec(
         geometry=geometry,
         criterion="stress",

@@ -317,7 +317,7 @@ def test_a_rounded_wheel_its_post_check_refuses_is_not_the_design():
         return "a wheel on the 1 mm grid (this test's rule)" if on_grid(design) else None
 
     spec = DesignSpec(geometry="rim_web", criterion="stress", hb_ratio=(0.5, 2.0), round_to=1e-3, round_strict=False)
-    args = (ENGINE["j"], ENGINE["omega"], [MountShaft("crankshaft", 1.0, 0.06)], [steel])
+    args = (ENGINE["j"], ENGINE["omega"], [MountShaft("crankshaft", 1.0, 0.07)], [steel])
     plain = design_flywheel(*args, spec, torque=ENGINE["torque"])
     assert plain.continuous is not None and on_grid(plain.best)  # rounded without the post-check
     loose = design_flywheel(*args, spec, torque=ENGINE["torque"], accept=accept)

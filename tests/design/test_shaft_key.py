@@ -103,9 +103,13 @@ def soft(tmp_path_factory):
 
 
 def _soft_punch_press(tmp_path):
-    """The punch press of problems/punch-press-shaft.toml with one material (gjs keyed, 90 MPa) and a softer train."""
+    """The punch press of problems/punch-press-shaft.toml with one material (gjs keyed, 90 MPa), a softer train and
+    an 85 mm seat (on the scene's 70 mm one no key of at most 1.5 d carries the soft train's torque at 90 MPa)."""
     text = (PROBLEMS / "punch-press-shaft.toml").read_text(encoding="utf-8")
     text = text.replace('materials = ["en_gjl_250", "en_gjs_400_18", "gjs_keyed"]', 'materials = ["gjs_keyed"]')
+    seat = '{ to = "520 mm", diameter = "70 mm" }'
+    assert seat in text
+    text = text.replace(seat, '{ to = "520 mm", diameter = "85 mm" }')
     soft = 'train = [{ flywheel = true }, { stiffness = "3e5 N*m/rad" }, { name = "pinion" }]\n'
     text = text.replace('fillet = "3 mm"\n', 'fillet = "3 mm"\n' + soft)
     path = tmp_path / "soft.toml"
@@ -113,8 +117,9 @@ def _soft_punch_press(tmp_path):
     return path
 
 
-#: DIN 6885-1's standard key lengths [mm] from 100 to 160 (flyopt/data/keys.toml, DIN 6885 Blatt 1).
-LENGTHS_MM = (100, 110, 125, 140, 160)
+#: DIN 6885-1's standard key lengths [mm] from 70 to 125 (flyopt/data/keys.toml, DIN 6885 Blatt 1), each at most
+#: 1.5 d on the seats below (85 and 70 mm: 127.5 and 105 mm).
+LENGTHS_MM = (70, 80, 90, 100, 110, 125)
 
 
 def _by_hand_length(torque, d, flank, b, pressure):
@@ -128,7 +133,7 @@ def test_the_key_is_designed_at_the_trains_torque_the_post_check_checks_it_at(so
     the design sizes the hub's key at the train's J_w theta''_w, from the same call the post-check makes: the
     design's torque is that call at the inertia the design must supply, the check's that call at the wheel's own
     inertia (to 1e-12 both); the key is the DIN 6885-1 length worked by hand at it, and it passes the post-check,
-    where the key sized at the rigid peak (125 mm) would not."""
+    where the key sized at the rigid peak (90 mm) would not."""
     from flyopt.design.shaft.cycle import check_candidate, key_torque_on
     from flyopt.machine.transmission import inertia_on_shaft
     from flyopt.pipeline import shaft_context_of
@@ -136,7 +141,7 @@ def test_the_key_is_designed_at_the_trains_torque_the_post_check_checks_it_at(so
     scene, solution = soft
     design = solution.design
     best = design.best
-    assert design.status == "designed" and best is not None and best.bore == 0.07
+    assert design.status == "designed" and best is not None and best.bore == 0.085
     ctx = shaft_context_of(scene, solution.analysis)
     j_shaft = inertia_on_shaft(solution.analysis.j_margin * design.spec.rim_share, 6.0)
     key = best.parts.key
@@ -147,16 +152,16 @@ def test_the_key_is_designed_at_the_trains_torque_the_post_check_checks_it_at(so
     assert check.key_torque == pytest.approx(key["torque"], rel=1e-3)
     (limit,) = [lim for lim in check.limits if lim.kind == "key"]
     assert limit.holds and limit.utilisation <= 1.0
-    # 20 x 12 on the 70 mm seat (65 < d <= 75): h - t1 = 12 - 7.5 mm, b = 20 mm; 90 MPa the material's
-    flank, b = 0.012 - 0.0075, 0.020
-    assert key["size"] == "20 x 12" and key["length"] == _by_hand_length(key["torque"], 0.07, flank, b, 90e6)
-    assert key["length"] == 0.14
-    pressure = 2 * check.key_torque / (0.07 * flank * (key["length"] - b))
+    # 22 x 14 on the 85 mm seat (75 < d <= 85): h - t1 = 14 - 9 mm, b = 22 mm; 90 MPa the material's
+    flank, b = 0.014 - 0.009, 0.022
+    assert key["size"] == "22 x 14" and key["length"] == _by_hand_length(key["torque"], 0.085, flank, b, 90e6)
+    assert key["length"] == 0.11
+    pressure = 2 * check.key_torque / (0.085 * flank * (key["length"] - b))
     assert limit.value == pytest.approx(pressure, rel=1e-12) and pressure <= 90e6
-    # the rigid peak's key is 125 mm, which the train's torque overloads
+    # the rigid peak's key is 90 mm, which the train's torque overloads
     rigid = solution.analysis.flywheel_torque() / 6.0
-    assert _by_hand_length(rigid, 0.07, flank, b, 90e6) == 0.125
-    assert 2 * check.key_torque / (0.07 * flank * (0.125 - b)) > 90e6
+    assert _by_hand_length(rigid, 0.085, flank, b, 90e6) == 0.09
+    assert 2 * check.key_torque / (0.085 * flank * (0.09 - b)) > 90e6
 
 
 def test_a_two_inertia_train_sets_the_hub_by_din_6885(tmp_path):
@@ -183,18 +188,22 @@ def test_a_two_inertia_train_sets_the_hub_by_din_6885(tmp_path):
         bearing_pressure=60e6,
     )
     spec = DesignSpec(geometry="rim_web", max_outer_diameter=1.0)
-    result = design_flywheel(j1, speed * 1.02, [MountShaft("s", 1.0, 0.06, torque=found.peak)], [iron], spec)
+    result = design_flywheel(j1, speed * 1.02, [MountShaft("s", 1.0, 0.07, torque=found.peak)], [iron], spec)
     assert result.best is not None
     key = result.best.parts.key
-    # 18 x 11 on the 60 mm seat (58 < d <= 65): h - t1 = 11 - 7 mm, b = 18 mm
-    assert key["size"] == "18 x 11" and key["torque"] == found.peak
-    assert key["length"] == _by_hand_length(found.peak, 0.06, 0.011 - 0.007, 0.018, 60e6)
+    # 20 x 12 on the 70 mm seat (65 < d <= 75): h - t1 = 12 - 7.5 mm, b = 20 mm
+    assert key["size"] == "20 x 12" and key["torque"] == found.peak
+    # the hub is at least as long as the shortest key that carries the torque (80 mm by hand), and its key is the
+    # longest standard one in the hub, at most 1.5 d = 105 mm
+    assert result.best.dims.l_hub >= _by_hand_length(found.peak, 0.07, 0.012 - 0.0075, 0.020, 60e6) - 1e-9
+    longest = min(result.best.dims.l_hub, 1.5 * 0.07) + 1e-9
+    assert key["length"] == max(mm for mm in LENGTHS_MM if mm / 1e3 <= longest) / 1e3
     assert result.best.dims.l_hub >= key["length"] - 1e-9
 
 
 def test_a_wheel_refused_for_its_key_alone_is_designed_again_at_its_torque(soft):
-    """The short fixed point (:func:`flyopt.design.shaft.cycle.rekeyed`): the soft punch press's wheel with the
-    125 mm key the rigid torque gives, refused by its post-check for that key alone, sends its shaft back to the
+    """The short fixed point (:func:`flyopt.design.shaft.cycle.rekeyed`): the soft punch press's wheel with a
+    100 mm key, one standard length short, refused by its post-check for that key alone, sends its shaft back to the
     design at the torque the post-check found on it (the train's, at the wheel's own inertia); a wheel refused for
     another limit, or one whose shaft was designed at a torque that covers its check's, sends nothing back."""
     import dataclasses
@@ -207,7 +216,7 @@ def test_a_wheel_refused_for_its_key_alone_is_designed_again_at_its_torque(soft)
     scene, solution = soft
     ctx = shaft_context_of(scene, solution.analysis)
     best = solution.design.best
-    short = {**best.parts.key, "length": 0.125}  # 90.6 > 90 MPa at the train's torque (above)
+    short = {**best.parts.key, "length": 0.100}  # 2 T / (d (h - t1) (l - b)) = 90.4 > 90 MPa at the train's torque
     wheel = dataclasses.replace(best, parts=Parts(best.parts.items, short))
     check = check_candidate(ctx, wheel)
     assert [lim.kind for lim in check.failed()] == ["key"]
@@ -215,9 +224,9 @@ def test_a_wheel_refused_for_its_key_alone_is_designed_again_at_its_torque(soft)
     assert REFUSED in refused.reason
     result = dataclasses.replace(solution.design, best=None, candidates=(refused,))
     designed_at = key_torque_on(ctx, "intermediate", best.j_flywheel * 0.999)  # a little below the wheel's
-    shaft = MountShaft("intermediate", 6.0, 0.07, torque=designed_at)
+    shaft = MountShaft("intermediate", 6.0, 0.085, torque=designed_at)
     (again,) = rekeyed(ctx, result, [shaft])
-    assert again.torque == check.key_torque > designed_at and again.diameter == 0.07
+    assert again.torque == check.key_torque > designed_at and again.diameter == 0.085
     covered = dataclasses.replace(shaft, torque=check.key_torque * 1.001)
     assert rekeyed(ctx, result, [covered]) is None
     # the same wheel refused by another limit as well (a stiffer requirement on the slope) is not the key's

@@ -502,11 +502,11 @@ def test_cross_section_draws_the_candidates_dimensions(geometry):
     if geometry in ("rim_web", "rim_arms"):
         wanted |= {
             f"Ø{c.dims.d_hub * 1e3:.1f}".rstrip("0").rstrip("."),
-            "Ø60",
+            "Ø70",
             f"hub length {c.dims.l_hub * 1e3:.1f}".rstrip("0").rstrip("."),
         }
     if geometry == "disc":
-        wanted.add("Ø60")
+        wanted.add("Ø70")
     if geometry == "rim_web":
         wanted.add(f"web {c.dims.t_web * 1e3:.1f}".rstrip("0").rstrip("."))
     assert wanted <= texts, wanted - texts
@@ -549,7 +549,7 @@ def _line(ax, label):
 def test_stress_plot_at_the_bore_is_the_annulus_closed_form(geometry):
     """A free rotating annulus a < r < b (Timoshenko & Goodier, Theory of Elasticity, section 32):
     at r = a, sigma_r = 0 and sigma_t = (3 + nu)/4 rho w^2 [b^2 + (1 - nu)/(3 + nu) a^2].
-    The disc on its 60 mm bore and the bare rim are both such annuli."""
+    The disc on its 70 mm bore and the bare rim are both such annuli."""
     ax, design, analysis = _stress_axes(geometry)
     c = design.best
     omega = analysis.omega_max  # the speed ratio of the crankshaft is 1

@@ -4,11 +4,12 @@ A flywheel sits on its shaft by a hub and, usually, a parallel key. This
 module sizes and checks that key:
 
 * :func:`key_for_shaft` -- the DIN 6885-1 key section for a shaft seat;
-* :func:`key_length_for_hub` -- the longest standard key that fits a hub;
+* :func:`key_length_for_hub` -- the longest standard key that fits a hub
+  and its seat (at most :func:`max_key_length` long);
 * :func:`check_key` and :func:`hub_length_for_key` -- the key's bearing
   pressure and shear at a torque, and the shortest hub that carries it.
 
-The DIN 6885-1 table and the key steel live in the package data file
+The DIN 6885-1 table, the longest key a seat takes and the key steel live in the package data file
 ``flyopt/data/keys.toml`` with their sources (the table in mm, as the
 standard prints it); this module converts them to SI on loading. Every
 argument and result here is SI: m, N*m, Pa.
@@ -21,6 +22,8 @@ References
 .. [2] ingenieurkurse.de, Maschinenelemente 1, "Festigkeitsberechnung einer
    Passfederverbindung": tau = F_u / (b l_t), p = F_u / ((h - t1) l_t),
    l_t = l - b for a round-ended key.
+.. [3] Budynas, Nisbett, Shigley's Mechanical Engineering Design, section
+   7-7: a key no longer than about 1.5 shaft diameters.
 """
 
 from __future__ import annotations
@@ -45,6 +48,7 @@ __all__ = [
     "key_length_for_hub",
     "key_steel",
     "key_table",
+    "max_key_length",
     "standard_key_lengths",
 ]
 
@@ -191,6 +195,16 @@ def _load():
         lengths_of_row = tuple(x for x in lengths if si["l_min"] <= x <= si["l_max"])
         keys.append(Key(lengths=lengths_of_row, **si))
 
+    ratio = float(data["key_length"]["max_to_shaft_ratio"])
+    if not (math.isfinite(ratio) and ratio > 0.0):
+        raise ValueError(f"{_ORIGIN}: key_length.max_to_shaft_ratio must be a positive number, got {ratio!r}")
+    for key in keys:
+        if key.l_min > ratio * key.d_over:
+            raise ValueError(
+                f"{_ORIGIN}: the {key.size} key's shortest length {key.l_min * 1e3:g} mm exceeds "
+                f"key_length.max_to_shaft_ratio = {ratio:g} times its smallest seat ({key.d_over * 1e3:g} mm)"
+            )
+
     steel_table = data["key_steel"]
     yield_strength = float(steel_table["yield_strength"])
     steel = KeySteel(
@@ -200,7 +214,7 @@ def _load():
         shear_yield_strength=float(steel_table["shear_yield_ratio"]) * yield_strength,
         source=steel_table["source"],
     )
-    return tuple(keys), lengths, steel
+    return tuple(keys), lengths, steel, ratio
 
 
 def key_table() -> tuple[Key, ...]:
@@ -240,6 +254,37 @@ def key_steel() -> KeySteel:
     data file gives the sources.
     """
     return _load()[2]
+
+
+def max_key_length(d: float) -> float:
+    """The longest key a shaft seat takes: ``key_length.max_to_shaft_ratio`` (1.5) times d [m].
+
+    Parameters
+    ----------
+    d : float
+        Shaft seat diameter [m].
+
+    Returns
+    -------
+    float
+        1.5 d [m]. A standard key is at most this long (:func:`key_length_for_hub`).
+
+    Notes
+    -----
+    The shaft twists under the torque, so a long key bears mostly at the end
+    where the torque enters; Shigley keeps a key below about 1.5 d and adds
+    keys beyond it [3]_. DIN 6885-1's l_max (up to 3.6 d) is the longest key
+    the standard lists, not the longest that carries load. The ratio and its
+    sources are in ``flyopt/data/keys.toml``.
+    """
+    return _load()[3] * _positive(d, "shaft diameter d", "m")
+
+
+def _seat_lengths(key: Key, d: float) -> tuple[float, ...]:
+    """The standard lengths of section ``key`` a seat of diameter ``d`` [m] takes: at most :func:`max_key_length`
+    (up to :data:`FIT_ATOL`)."""
+    longest = max_key_length(d) + FIT_ATOL
+    return tuple(length for length in key.lengths if length <= longest)
 
 
 # --------------------------------------------------------------------------
@@ -285,8 +330,8 @@ def key_for_shaft(d: float) -> Key:
     )
 
 
-def key_length_for_hub(key: Key, hub_length: float) -> float:
-    """The longest standard length of a key section that fits in a hub.
+def key_length_for_hub(key: Key, hub_length: float, d: float) -> float:
+    """The longest standard length of a key section that fits in a hub and its seat.
 
     Parameters
     ----------
@@ -294,12 +339,14 @@ def key_length_for_hub(key: Key, hub_length: float) -> float:
         The key section (:func:`key_for_shaft`).
     hub_length : float
         Length of the hub [m].
+    d : float
+        Shaft seat diameter [m]: the key is at most :func:`max_key_length` (1.5 d).
 
     Returns
     -------
     float
-        The longest standard length l <= hub_length of the section, at most
-        its l_max [m].
+        The longest standard length l <= min(hub_length, 1.5 d) of the
+        section, at most its l_max [m].
 
     Raises
     ------
@@ -310,11 +357,11 @@ def key_length_for_hub(key: Key, hub_length: float) -> float:
     -----
     A key fits a hub up to :data:`FIT_ATOL` (1 nm) shorter than itself, so
     that a hub length computed in metres keeps the key of its nominal
-    length. The key is taken as long as the hub allows; a keyway that stops
-    short of the hub's faces shortens it further.
+    length. The key is taken as long as the hub and the seat allow: in a hub
+    longer than 1.5 d the keyway stops short of the hub's length [3]_.
     """
     hub_length = _positive(hub_length, "hub_length", "m")
-    fitting = [length for length in key.lengths if length <= hub_length + FIT_ATOL]
+    fitting = [length for length in _seat_lengths(key, d) if length <= hub_length + FIT_ATOL]
     if not fitting:
         raise ValueError(
             f"hub length {hub_length!r} m ({hub_length * 1e3:g} mm) is shorter than the "
@@ -338,7 +385,7 @@ class KeyCheck:
     hub_length : float
         Hub length [m].
     length : float
-        Standard key length used, the longest that fits in the hub [m].
+        Standard key length used, the longest that fits in the hub and is at most 1.5 d [m].
     effective_length : float
         Bearing length of the form A key, l - b [m].
     pressure : float
@@ -420,7 +467,8 @@ def check_key(
     d : float
         Shaft seat diameter [m].
     hub_length : float
-        Hub length [m]; the key is the longest standard one that fits.
+        Hub length [m]; the key is the longest standard one that fits, at most 1.5 d
+        (:func:`key_length_for_hub`).
     allowable_pressure : float or None
         Allowable bearing pressure of the hub material [Pa]; the hub, usually
         the weaker part, gives it. None where the hub's material gives none:
@@ -461,7 +509,7 @@ def check_key(
     hub_length = _positive(hub_length, "hub_length", "m")
     allowable_pressure, allowable_shear = _allowables(allowable_pressure, allowable_shear)
     key = key_for_shaft(d)
-    length = key_length_for_hub(key, hub_length)
+    length = key_length_for_hub(key, hub_length, d)
     effective_length, pressure, shear = _key_stresses(torque, d, key, length)
     return KeyCheck(
         key=key,
@@ -505,7 +553,8 @@ def hub_length_for_key(
     ------
     ValueError
         If an argument is not a positive finite number, the shaft is outside
-        the table, or even the section's longest key cannot carry the torque.
+        the table, or even the longest key the seat takes (the section's
+        longest standard length up to 1.5 d) cannot carry the torque.
 
     Notes
     -----
@@ -517,23 +566,25 @@ def hub_length_for_key(
     shortest passing hub is therefore the shortest standard length l >= b +
     l_eff (and >= the section's l_min); there the pressure is at most the
     allowable, and equal to it only when b + l_eff falls on a standard length.
-    Any hub at least this long passes; any shorter one fails. The answer is
-    found by running the same check over the section's standard lengths, so
-    the two functions cannot disagree.
+    Any hub at least this long passes (a hub longer than 1.5 d holds the
+    same key of at most 1.5 d); any shorter one fails. The answer is found
+    by running the same check over the lengths the seat takes, so the two
+    functions cannot disagree.
     """
     torque = _positive(torque, "torque", "N*m")
     d = _positive(d, "shaft diameter d", "m")
     allowable_pressure, allowable_shear = _allowables(allowable_pressure, allowable_shear)
     key = key_for_shaft(d)
-    for length in key.lengths:
+    lengths = _seat_lengths(key, d)
+    for length in lengths:
         _, pressure, shear = _key_stresses(torque, d, key, length)
         if _within(pressure, allowable_pressure) and _within(shear, allowable_shear):
             return length
-    _, pressure, shear = _key_stresses(torque, d, key, key.l_max)
+    _, pressure, shear = _key_stresses(torque, d, key, lengths[-1])
     against = "not checked" if allowable_pressure is None else f"against {allowable_pressure / 1e6:.4g} MPa"
     raise ValueError(
-        f"torque {torque:.6g} N*m: even the longest standard {key.size} key "
-        f"({key.l_max * 1e3:g} mm) of the d = {d * 1e3:g} mm shaft is overloaded "
+        f"torque {torque:.6g} N*m: even the longest {key.size} key the d = {d * 1e3:g} mm seat takes "
+        f"({lengths[-1] * 1e3:g} mm, at most 1.5 d) is overloaded "
         f"(pressure {pressure / 1e6:.4g} MPa {against}, "
         f"shear {shear / 1e6:.4g} MPa against {allowable_shear / 1e6:.4g} MPa); "
         f"use a larger shaft seat, a stronger hub material or another shaft-hub joint"

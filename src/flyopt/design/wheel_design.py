@@ -877,7 +877,7 @@ def structure_fields(
         why = "the cycle gives no torque curves"
         try:
             sized = key.key_for_shaft(bore)
-            length = key.key_length_for_hub(sized, float(hub_length))
+            length = key.key_length_for_hub(sized, float(hub_length), bore)
         except ValueError as err:
             notes.append(f"no key: {err}")
         else:

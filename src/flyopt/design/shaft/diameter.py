@@ -228,7 +228,8 @@ def design_with_seats(
                     None, m, shaft, spec, a, floor, layout.diameter_series, [], _beyond(ctx, shaft.name, m, a)
                 )
         tried: list[float] = []
-        refused: dict[tuple[str, int | None], Candidate] = {}  # each combination's last wheel its shaft refused
+        # each combination's last seat refused: the wheel its shaft refused, or the design that found no wheel there
+        refused: dict[tuple[str, int | None], Candidate] = {}
         for d in floor.seats:  # none when no seat passes the floor
             # each combination from the first series value at or above its NLP's d* (rounded up), else the floor
             active = {(m, a) for m, a in pending if starts.get((m, a), 0.0) <= d}
@@ -258,8 +259,8 @@ def design_with_seats(
                     _settled(ctx, shaft.name, c, refused.get((c.material, c.n_arms)))
                 elif c.mass is not None or _key(c) not in failed or failed[_key(c)].mass is None:
                     failed[_key(c)] = c  # the largest d whose wheel its shaft refused says most
-                    if c.mass is not None and c.bore:
-                        refused[(c.material, c.n_arms)] = c
+                if not c.feasible and c.bore:
+                    refused[(c.material, c.n_arms)] = c
             if not pending:
                 break
         for m, a in pending:
@@ -316,8 +317,9 @@ def _beyond(ctx, name, material, arms) -> str:
 
 
 def _settled(ctx, name, candidate, refused) -> None:
-    """Record which limit set a combination's seat: the post-check that refused the series value below it (where
-    the walk went past the NLP's rounded d*), else the NLP's binding row, else the walk's floor."""
+    """Record which limit set a combination's seat: the post-check that refused the series value below it, or the
+    design that found no wheel there (a hub no key carries), where the walk went past the NLP's rounded d*; else
+    the NLP's binding row, else the walk's floor."""
     from flyopt.design.shaft.cycle import check_candidate
 
     key = (name, candidate.material, candidate.n_arms)
@@ -325,7 +327,10 @@ def _settled(ctx, name, candidate, refused) -> None:
     if choice is None:
         return
     optimum = choice.optimum
-    if refused is not None:
+    if refused is not None and refused.mass is None:  # no wheel was designed on the seat below
+        set_by = f"the design, which found no wheel on {refused.bore * 1e3:g} mm: {refused.reason}"
+        ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
+    elif refused is not None:
         check = check_candidate(ctx, refused)
         worst = max(check.failed(), key=lambda lim: lim.utilisation) if check is not None and check.failed() else None
         words = worst.describe() if worst is not None else refused.reason
