@@ -417,6 +417,9 @@ def _merged(
     material = next(m for m in materials if m.name == winner.material)
     final_spec = spec if winner.n_arms is None else dataclasses.replace(spec, arms=(winner.n_arms,))
     final = design_flywheel(j_required, omega, [seated], [material], final_spec, accept=accept, **options)
+    again = rekeyed(ctx, final, [seated])  # the rounded wheel's key, refused at its own inertia's torque: as the walk
+    if again is not None:
+        final = design_flywheel(j_required, omega, again, [material], final_spec, accept=accept, **options)
     head = final.best if final.best is not None else (final.continuous or winner)
     candidates = (head, *designs[1:], *infeasible)
     total = len(candidates)
