@@ -15,6 +15,7 @@ meets order 10 of the engine's torque in the running range when δ is small (a h
 import dataclasses
 import re
 
+import pandas as pd
 import pytest
 from conftest import PROBLEMS
 from numpy.testing import assert_allclose
@@ -27,7 +28,7 @@ from flyopt.studies import described
 from flyopt.studies.described import analysis_for, shaft_material_fields
 from flyopt.studies.pareto import pareto
 from flyopt.studies.physics import physics_analysis
-from flyopt.studies.points import point_scene
+from flyopt.studies.points import design_counts, point_scene
 from flyopt.studies.sweep import sweep
 
 ENGINE = flyopt.load(PROBLEMS / "four-cylinder-engine-shaft.toml")
@@ -157,3 +158,22 @@ def test_a_point_that_changes_the_shaft_s_steel_checks_it_with_that_steel():
     assert on is not analysis and analysis_for(analysis, dict(point), fields, kept) is on
     assert shaft_context_of(point_scene(ENGINE, point), on).materials["crankshaft"].density == 9000.0
     assert analysis_for(analysis, {"delta": 0.01}, (), kept) is analysis
+
+
+def test_a_closed_form_structure_beside_a_described_shaft_is_designed_and_estimated_one_point_at_a_time():
+    """punch-press-shaft with a bare rim on its motor shaft (no bore): the vectorized closed form covers the
+    structure, but the scene describes a shaft, so each point is design_scene's (here its closed form, the wheel
+    not on the described shaft), and the sweep's cost estimate counts it as a design one by one; the same scene
+    with no shaft described is the vectorized closed form's, as before."""
+    scene = flyopt.load(PROBLEMS / "punch-press-shaft.toml")
+    shafts = tuple(dataclasses.replace(s, diameter=None) if s.name == "motor" else s for s in scene.shafts)
+    spec = dataclasses.replace(scene.design, geometry="rim", criterion="rim_speed", min_wall=None)
+    rim = scene.replace(shafts=shafts, design_shafts=("motor",), design=spec)
+    bare_shafts = rim.replace(shafts=tuple(dataclasses.replace(s, layout=None) for s in rim.shafts))
+    points = pd.DataFrame({"point": [0], "delta": [0.1]})
+    assert design_counts(rim, points)[1].all() and not design_counts(bare_shafts, points)[1].any()
+    row = sweep(rim, {"delta": [0.1]}, workers=1).iloc[0]
+    expected = reference(rim).best
+    assert row["method"] == "closed_form" and row["best_shaft"] == "motor"
+    assert_allclose(row["mass"], expected.mass, rtol=1e-9)
+    assert sweep(bare_shafts, {"delta": [0.1]}, workers=1)["method"].iloc[0] == "closed_form"
