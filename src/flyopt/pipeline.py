@@ -351,9 +351,15 @@ def _seat_designer(scene: Scene, analysis: Analysis, shafts: Sequence[Any], name
     return design
 
 
+def describes_shafts(scene: Scene) -> bool:
+    """Whether the scene describes a shaft as a part (docs/flywheel-design.md, section 26): its designs are then
+    keyed at the train's torque and checked with the shaft (:func:`design_scene`), in a sweep's points too."""
+    return any(s.layout is not None for s in scene.shafts)
+
+
 def shaft_context_of(scene: Scene, analysis: Analysis) -> Any:
     """The shaft checks' context of a scene (None when it describes no shaft)."""
-    if not any(s.layout is not None for s in scene.shafts):
+    if not describes_shafts(scene):
         return None
     from flyopt.design.shaft.cycle import shaft_context
 

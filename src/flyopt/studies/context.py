@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from flyopt.design import design_inputs
+from flyopt.pipeline import describes_shafts
 from flyopt.studies.physics import physics_analysis, reusable_cycle
 
 if TYPE_CHECKING:
@@ -48,9 +49,12 @@ def chunk_context(
     ChunkContext
         Where :func:`~flyopt.studies.physics.reusable_cycle`, the scene without its
         torques and the cycle's A_max, driving torque and peak torque (the
-        latter only when the designs need it).
+        latter only when the designs need it). A scene that describes a shaft keeps its
+        torques and is analysed at each physics (:func:`~flyopt.studies.physics.physics_analysis`):
+        its points' keys and shaft checks read the cycle's net torque there, as
+        ``flyopt solve`` does (:mod:`flyopt.studies.described`).
     """
-    if reusable_cycle(scene):
+    if reusable_cycle(scene) and not describes_shafts(scene):
         analysis = physics_analysis(scene)
         stripped = scene.replace(driving=None, resisting=None, net=None)
         return ChunkContext(

@@ -20,6 +20,13 @@ design (envelope, material, shaft, H/B, geometry, objective) reuse it. The
 points themselves (their checks, counts and scenes) are
 :mod:`flyopt.studies.points`.
 
+A scene that describes a shaft (docs/flywheel-design.md, section 26) has every
+point designed as ``flyopt solve`` designs it, by
+:func:`flyopt.pipeline.design_scene` on the point's own analysis: its key at its
+train's torque and its shaft's post-check (:mod:`flyopt.studies.described`); its
+cycle is then analysed at each physics, never scaled (the shaft's checks read the
+net torque), and none of its points takes the vectorized closed form.
+
 Worker processes and Dask workers run the same evaluation as a
 :class:`~flyopt.studies.task.Task` (:mod:`flyopt.studies.task`).
 
@@ -42,15 +49,18 @@ from flyopt.cycle.indicator import required_inertia, speed_extremes
 from flyopt.design import design_inputs
 from flyopt.design.wheel_design import neighbours
 from flyopt.errors import BrokenInvariant, SceneError
+from flyopt.pipeline import describes_shafts
 from flyopt.sizing.peak_torque import flywheel_peak_torque
 from flyopt.studies.chunk_arrays import ChunkInputs, empty_results, result_table
 from flyopt.studies.closed_form_design import design_closed_form
 from flyopt.studies.context import ChunkContext, chunk_context, scene_needs_torque
+from flyopt.studies.described import analysis_for, design_described, shaft_material_fields
 from flyopt.studies.ipopt_design import design_ipopt
 from flyopt.studies.physics import analyses_of
 from flyopt.studies.points import vectorized
 
 if TYPE_CHECKING:
+    from flyopt.analysis import Analysis
     from flyopt.io.scene import Scene
 
 __all__ = ["evaluate_chunk", "evaluate_points"]
@@ -96,21 +106,29 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
     n = inputs.n
     res = empty_results(n)
     needs_torque = scene_needs_torque(scene)
+    # a scene whose shafts are described: every point designed as flyopt solve designs it, on its own analysis
+    # (flyopt.studies.described; chunk_context never reuses one A_max for it)
+    described = describes_shafts(scene)
+    analyses: list[Analysis] = []
     # -- the cycle: analysed once, A_max scaled (see the module notes) ------
     if ctx.reusable:
         if ctx.a_max is None:
             raise BrokenInvariant("a reusable context carries the cycle's A_max (chunk_context)")
+        if described:
+            raise BrokenInvariant("a scene whose shafts are described is analysed at each physics (chunk_context)")
         a_max = inputs.scale * ctx.a_max
         driving = inputs.scale * ctx.driving_torque if ctx.driving_torque is not None else np.full(n, np.nan)
         j_margin = required_inertia(a_max, inputs.speed, inputs.delta, inputs.inertia)
         inputs.omega_rim = speed_extremes(inputs.speed, inputs.delta)[0]  # ω_max: the rim is checked there
         power = driving * inputs.speed
         motor_power = power / scene.efficiency
-    else:  # varying inertia or speed-dependent torques: each distinct physics by its exact model
+    else:  # varying inertia or speed-dependent torques, or described shafts: each distinct physics analysed
         a_max, driving, j_margin, power, motor_power = (np.empty(n) for _ in range(5))
         inputs.omega_rim = np.empty(n)
         torques: list[float | None] = []
         for k, analysis in enumerate(analyses_of(scene, points)):
+            if described:
+                analyses.append(analysis)
             if needs_torque:
                 torques.append(analysis.flywheel_torque())
             a_max[k], j_margin[k] = analysis.a_max, analysis.j_margin
@@ -149,10 +167,15 @@ def evaluate_chunk(ctx: ChunkContext, points: pd.DataFrame) -> pd.DataFrame:
             f"{inputs.objective[k]!r} (point {int(points['point'].iloc[k])}); "
             f"use method 'auto' or 'ipopt'",
         )
-    use_batch = needed & covered if ctx.method != "ipopt" else np.zeros(n, dtype=bool)
+    use_batch = needed & covered if ctx.method != "ipopt" and not described else np.zeros(n, dtype=bool)
     design_closed_form(inputs, j_margin, use_batch, res)
+    materials = shaft_material_fields(scene, points.columns) if described else ()
+    kept: dict[Any, Any] = {}
     with neighbours():  # each whole wheel warm-started from the chunk's previous point (the same answers)
         for k in np.flatnonzero(needed & ~use_batch).tolist():
+            if described:
+                design_described(ctx, points, k, analysis_for(analyses[k], points.iloc[k], materials, kept), res)
+                continue
             torque = None
             if needs_torque and ctx.reusable and ctx.torque_peak is not None:
                 torque = flywheel_peak_torque(

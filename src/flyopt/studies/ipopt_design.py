@@ -14,11 +14,14 @@ from flyopt.errors import SolverFailed
 from flyopt.studies.chunk_arrays import ChunkInputs, point_material
 
 if TYPE_CHECKING:
+    from flyopt.design.result import DesignResult
     from flyopt.studies.context import ChunkContext
 
-__all__ = ["design_ipopt"]
+__all__ = ["IPOPT_LOCK", "design_ipopt", "fail_row", "fill_row"]
 
-_IPOPT_LOCK = threading.Lock()
+#: Held around every design of a point: a CasADi Function is not to be called from two threads at once (Dask
+#: workers in threads).
+IPOPT_LOCK = threading.Lock()
 
 
 def design_ipopt(
@@ -61,7 +64,7 @@ def design_ipopt(
     res["method"][k] = "ipopt"
     res["n_combinations"][k] = len(materials) * len(mounts)
     try:
-        with _IPOPT_LOCK:  # a CasADi Function is not to be called from two threads at once
+        with IPOPT_LOCK:  # a CasADi Function is not to be called from two threads at once
             result = design_flywheel(
                 float(j_required),
                 float(inputs.omega_rim[k]),
@@ -73,10 +76,21 @@ def design_ipopt(
                 torque=torque,
             )
     except SolverFailed as err:
-        res["status"][k] = "failed"
-        res["solver_status"][k] = str(getattr(err, "status", "") or "error")
-        res["message"][k] = str(err)
+        fail_row(res, k, err)
         return
+    fill_row(res, k, result)
+
+
+def fail_row(res: dict[str, np.ndarray], k: int, err: SolverFailed) -> None:
+    """Row ``k`` of ``res`` for a point whose solve failed: ``failed`` with IPOPT's status, never a mass."""
+    res["status"][k] = "failed"
+    res["solver_status"][k] = str(getattr(err, "status", "") or "error")
+    res["message"][k] = str(err)
+
+
+def fill_row(res: dict[str, np.ndarray], k: int, result: DesignResult) -> None:
+    """Row ``k`` of ``res`` from a point's design: its winner's values, or why there is none (the one reading of a
+    :class:`~flyopt.design.result.DesignResult` into a sweep row, for IPOPT's points and a described shaft's)."""
     res["n_feasible"][k] = sum(c.feasible for c in result.candidates)
     best = result.best
     if best is None:

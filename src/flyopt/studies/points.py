@@ -143,14 +143,17 @@ def design_counts(scene: Scene, points: pd.DataFrame, method: str = "auto") -> t
     per_point : int
         Material × shaft combinations of every point.
     ipopt : ndarray of bool
-        Per point: designed by IPOPT (the closed form does not cover its
-        geometry and objective, or ``method`` is ``ipopt``).
+        Per point: designed one by one, by IPOPT (the closed form does not cover its
+        geometry and objective, or ``method`` is ``ipopt``), or as ``flyopt solve``
+        designs it where the scene describes a shaft (:mod:`flyopt.studies.described`).
     """
+    from flyopt.pipeline import describes_shafts
+
     inputs = design_inputs(scene)
     n_materials = 1 if "material" in points else len(inputs.materials)
     n_shafts = 1 if "shaft" in points else len(inputs.shafts)
     n = len(points)
-    if method == "ipopt":
+    if method == "ipopt" or describes_shafts(scene):
         return n_materials * n_shafts, np.ones(n, dtype=bool)
     spec = inputs.spec
     geometry = points["design.geometry"] if "design.geometry" in points else None
