@@ -92,9 +92,10 @@ def test_a_sweep_point_is_flyopt_solve_s_design_with_its_key_at_the_train_s_torq
 
 
 def test_a_point_whose_shaft_refuses_every_wheel_is_infeasible_with_the_reason_in_numbers():
-    """At δ = 0.003 every wheel heavy enough puts the shaft's torsional mode in the running range: the row is
-    infeasible with design_scene's reason (the critical speed and the widened range in rpm, per combination),
-    where the bare design, which has no shaft check, designed a wheel."""
+    """At δ = 0.003 the cast iron disc heavy enough puts the shaft's torsional mode in the running range and the
+    cast steel disc's hub takes no key that carries the train's torque: the row is infeasible with design_scene's
+    reason (the critical speed and the widened range in rpm; the key in numbers), where the bare design, which
+    has no shaft check, designed a wheel."""
     frame = sweep(ENGINE, {"delta": [0.003, 0.005]}, workers=1)
     refused, held = frame.to_dict("records")
     scene = ENGINE.replace(delta=0.003)
@@ -104,7 +105,8 @@ def test_a_point_whose_shaft_refuses_every_wheel_is_infeasible_with_the_reason_i
     found = re.findall(
         r"torsional critical speed \(mode 1 at order 10\) (\d+) rpm inside the running range", refused["message"]
     )
-    assert len(found) == 2  # both materials refused for the same mode
+    assert len(found) == 1  # cast iron refused by the mode
+    assert "cast steel keyed on the crankshaft: no DIN 6885-1 key on the 45 mm seat carries it" in refused["message"]
     assert bare(scene).best is not None  # without the shaft's check the point was "designed"
     assert held["status"] == reference(ENGINE).status == "designed"
 
