@@ -240,10 +240,6 @@ def test_the_stress_diagram_bends_the_arms_at_the_torque_the_design_took(write_s
     text = (PROBLEMS / "punch-press-shaft.toml").read_text(encoding="utf-8")
     text = text.replace('geometry = "rim_web"', 'geometry = "rim_arms"\narms = [6]', 1)
     text = text.replace('materials = ["en_gjl_250", "en_gjs_400_18", "gjs_keyed"]', 'materials = ["gjs_keyed"]', 1)
-    # an 80 mm seat: on the scene's 70 mm one no key of at most 1.5 d carries the train's torque at 90 MPa
-    seat = '{ to = "520 mm", diameter = "70 mm" }'
-    assert seat in text
-    text = text.replace(seat, '{ to = "520 mm", diameter = "80 mm" }', 1)
     solution = solve(flyopt.load(write_scene(text)), extras=("stress",))
     best = solution.design.best
     rigid = solution.analysis.flywheel_torque() / best.speed_ratio

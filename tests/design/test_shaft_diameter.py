@@ -38,8 +38,9 @@ def walk_text():
     """The scene's text with its material's bearing pressure left out: the design and the post-check then check
     the key's shear alone (against the key steel's S_sy, far from binding), so the hub's length is the
     proportions' and the walk's own rules are tested here, where the fatigue row and the torsional mode set the
-    seat. (The shipped scene, its key designed at the train's torque, also sits at 60 mm, pinned by its golden
-    result; tests/design/test_shaft_key.py tests the key at the train's torque.)"""
+    seat. (The shipped scene sits at 80 mm: on 60 to 75 mm no key of at most 1.5 d carries the train's torque on
+    its 90 MPa hub, :func:`test_where_no_key_carries_the_torque_the_design_sets_the_seat`; tests/design/
+    test_shaft_key.py tests the key at the train's torque.)"""
     text = SCENE.read_text()
     assert 'bearing_pressure = "90 MPa"\n' in text
     return text.replace('bearing_pressure = "90 MPa"\n', "")
@@ -503,3 +504,25 @@ def test_a_disc_bored_on_the_seat_does_not_pull_the_seat_to_the_series_end(tmp_p
     old = walk_from_the_floor(scene, solution)
     assert old.best.bore == solution.design.best.bore
     assert old.best.mass == pytest.approx(solution.design.best.mass, rel=1e-9)
+
+
+def test_where_no_key_carries_the_torque_the_design_sets_the_seat():
+    """The shipped scene (a 90 MPa hub): the NLP's fatigue row puts d* at 57.9 mm, but on every R40 value from 60
+    to 75 mm no DIN 6885-1 key of at most 1.5 d carries the train's torque, so no wheel is designed there and the
+    walk goes on to 80 mm. The seat is said to be set by the design on 75 mm (not by the NLP's row, whose
+    sensitivity is then null), with the key's numbers; by hand on 75 mm (20 x 12, h - t1 = 4.5 mm, the longest
+    standard key within 1.5 d = 112.5 mm is 110 mm, l_eff = 90 mm) p = 2 T / (d (h - t1) l_eff) > 90 MPa."""
+    from flyopt.report.shaft import seat_words
+
+    solution = solve(flyopt.load(SCENE))
+    (report,) = solution.shaft_checks
+    assert solution.design.best.bore == pytest.approx(0.080, rel=1e-12)
+    assert report.seat_continuous == pytest.approx(0.0579, abs=5e-5)
+    prefix = "the design, which found no wheel on 75 mm: no DIN 6885-1 key on the 75 mm seat carries it: torque "
+    assert report.seat_set_by.startswith(prefix)
+    assert report.to_dict()["seat_dmass_dfactor"] is None
+    torque = float(report.seat_set_by[len(prefix) :].split(" N*m")[0])
+    pressure = 2 * torque / (0.075 * (0.012 - 0.0075) * (0.110 - 0.020))
+    assert pressure > 90e6
+    assert f"{pressure / 1e6:.4g} MPa against 90 MPa" in report.seat_set_by
+    assert "set by the design, which found no wheel on 75 mm" in seat_words(report)

@@ -273,7 +273,7 @@ def max_key_length(d: float) -> float:
     -----
     The shaft twists under the torque, so a long key bears mostly at the end
     where the torque enters; Shigley keeps a key below about 1.5 d and adds
-    keys beyond it [3]_. DIN 6885-1's l_max (up to 3.6 d) is the longest key
+    keys beyond it [3]_. DIN 6885-1's l_max (up to 4.7 d) is the longest key
     the standard lists, not the longest that carries load. The ratio and its
     sources are in ``flyopt/data/keys.toml``.
     """
@@ -358,7 +358,8 @@ def key_length_for_hub(key: Key, hub_length: float, d: float) -> float:
     A key fits a hub up to :data:`FIT_ATOL` (1 nm) shorter than itself, so
     that a hub length computed in metres keeps the key of its nominal
     length. The key is taken as long as the hub and the seat allow: in a hub
-    longer than 1.5 d the keyway stops short of the hub's length [3]_.
+    longer than 1.5 d the key (and the shaft's keyseat) is shorter than the
+    hub [3]_, whose keyway is cut through.
     """
     hub_length = _positive(hub_length, "hub_length", "m")
     fitting = [length for length in _seat_lengths(key, d) if length <= hub_length + FIT_ATOL]

@@ -328,7 +328,9 @@ def _settled(ctx, name, candidate, refused) -> None:
         return
     optimum = choice.optimum
     if refused is not None and refused.mass is None:  # no wheel was designed on the seat below
-        set_by = f"the design, which found no wheel on {refused.bore * 1e3:g} mm: {refused.reason}"
+        label, _, why = (refused.reason or "").partition(": ")  # the reason names its combination first
+        words = why if why and " on the " in label else refused.reason
+        set_by = f"the design, which found no wheel on {refused.bore * 1e3:g} mm: {words}"
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
     elif refused is not None:
         check = check_candidate(ctx, refused)
