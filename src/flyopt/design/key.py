@@ -30,8 +30,10 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from importlib import resources
+from typing import Any
 
 from flyopt._toml import tomllib
 from flyopt.validate import positive
@@ -48,6 +50,7 @@ __all__ = [
     "key_length_for_hub",
     "key_steel",
     "key_table",
+    "key_verdict",
     "max_key_length",
     "standard_key_lengths",
 ]
@@ -431,6 +434,27 @@ class KeyCheck:
         """Whether both stay within their allowables (up to :data:`LIMIT_RTOL`; the shear alone where no
         allowable pressure is given)."""
         return _within(self.pressure, self.allowable_pressure) and _within(self.shear, self.allowable_shear)
+
+
+def key_verdict(key: Mapping[str, Any]) -> str:
+    """A designed key's verdict in words, the one wording the text, the report and the answer use.
+
+    Parameters
+    ----------
+    key : mapping
+        The design's key (``Candidate.parts.key``: ``shear`` and ``ok`` as :func:`check_key` filled them).
+
+    Returns
+    -------
+    str
+        "OK", "NOT OK", "shear OK, bearing pressure not checked" (the hub's material gives no allowable
+        pressure: ``ok`` is None) or "not checked" (no torque to check it at: ``shear`` is None).
+    """
+    if key.get("shear") is None:
+        return "not checked"
+    if key.get("ok") is None:
+        return "shear OK, bearing pressure not checked"
+    return "OK" if key["ok"] else "NOT OK"
 
 
 def _within(value, allowable):

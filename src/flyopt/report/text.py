@@ -16,6 +16,7 @@ from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from flyopt.design.check import binding_label
+from flyopt.design.key import key_verdict
 from flyopt.design.result import Design
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
@@ -221,6 +222,16 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
         worst = max(parts, key=lambda p: p["stress"] / p["allowable"])
         limits += f"; {worst['part']} stress {q(worst['stress'], 'stress')} of {q(worst['allowable'], 'allowable')}"
     lines.append(f"    limits  {limits}")
+    k = best.parts.key
+    if k and k.get("shear") is not None:  # the hub's key, checked at the peak torque (section 13)
+        pressure = f"bearing pressure {q(k['bearing_pressure'], 'bearing_pressure')}"
+        said = (
+            f"{key_verdict(k)}, {pressure} of {q(k['allowable_pressure'], 'allowable_pressure')}"
+            if k["allowable_pressure"] is not None
+            else f"shear {q(k['shear'], 'shear')} of {q(k['allowable_shear'], 'allowable_shear')}; {pressure} "
+            f"not checked ({design.material_name(best.material)} gives no bearing_pressure)"
+        )
+        lines.append(f"    key     {k['size']} x {q(k['length'], 'length')}: {said}")
     for shaft_check in solution.shaft_checks:  # the shaft described as a part (flyopt.report.shaft)
         binding = shaft_check.check.binding
         lines.append(f"    shaft   {binding.kind} {binding.where} binds, utilisation {number(binding.utilisation, 3)}")
@@ -853,17 +864,7 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: 
         ]
     if c.parts.key:
         k = c.parts.key
-        verdict = (
-            (
-                "shear OK, bearing pressure not checked (see the notes)"
-                if k["shear"] is not None
-                else "not checked (see the notes)"
-            )
-            if k["ok"] is None
-            else "OK"
-            if k["ok"]
-            else "NOT OK"
-        )
+        verdict = key_verdict(k) + (" (see the notes)" if k["ok"] is None else "")
         lines += [
             "",
             f"Key (DIN 6885-1 form A) on a {q(c.bore, 'bore')} bore: {k['size']}, length "

@@ -7,6 +7,7 @@ import math
 from typing import TYPE_CHECKING, Any, cast
 
 from flyopt.design.check import binding_label
+from flyopt.design.key import key_verdict
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
 from flyopt.report.builder.base import NOTES, BuilderBase
@@ -556,13 +557,8 @@ class DesignSection(BuilderBase):
                 (
                     *head,
                     "): "
-                    + (
-                        "shear OK, bearing pressure not checked (the hub's material gives no allowable)"
-                        if k["ok"] is None
-                        else "OK"
-                        if k["ok"]
-                        else "NOT OK"
-                    )
+                    + key_verdict(k)
+                    + (" (the hub's material gives no allowable)" if k["ok"] is None else "")
                     + ", at the peak torque the wheel exchanges with its shaft ",
                     self.q(k["torque"], "torque", "torque"),
                     f" ({NOTES}, section 13).",

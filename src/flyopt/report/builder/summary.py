@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from flyopt.design.check import binding_label
+from flyopt.design.key import key_verdict
 from flyopt.errors import BrokenInvariant
 from flyopt.report import display
 from flyopt.report.builder.base import BuilderBase
@@ -88,7 +90,8 @@ class Summary(BuilderBase):
             rows += [
                 (
                     "chosen wheel",
-                    f"{best.geometry} of {self.material_name(best.material)} on the {best.shaft} shaft "
+                    f"{best.geometry} of {self.material_name(best.material)} on the {best.shaft}"
+                    f"{'' if best.shaft.lower().endswith('shaft') else ' shaft'} "
                     f"(speed ratio {number(best.speed_ratio, self.digits)})",
                 ),
                 ("mass", self.q(best.mass, "mass", "mass")),
@@ -104,8 +107,38 @@ class Summary(BuilderBase):
                         ")",
                     ),
                 ),
-                ("binding limits", ", ".join(best.limits.binding) or "none"),
+                ("binding limits", ", ".join(binding_label(b) for b in best.limits.binding) or "none"),
             ]
+            k = best.parts.key
+            if k and k.get("shear") is not None:  # the hub's key at the peak torque (section 13)
+                checked = k["allowable_pressure"] is not None
+                rows.append(
+                    (
+                        "hub key",
+                        (
+                            f"{k['size']} x ",
+                            self.q(k["length"], "length"),
+                            *(
+                                (
+                                    f": {key_verdict(k)}, bearing pressure ",
+                                    self.q(k["bearing_pressure"], "stress", "bearing_pressure"),
+                                    " of ",
+                                    self.q(k["allowable_pressure"], "stress", "allowable_pressure"),
+                                )
+                                if checked
+                                else (
+                                    ": shear ",
+                                    self.q(k["shear"], "stress", "shear"),
+                                    " of ",
+                                    self.q(k["allowable_shear"], "stress", "allowable_shear"),
+                                    "; bearing pressure ",
+                                    self.q(k["bearing_pressure"], "stress", "bearing_pressure"),
+                                    f" not checked ({self.material_name(best.material)} gives no bearing_pressure)",
+                                )
+                            ),
+                        ),
+                    )
+                )
             if best.stresses.stress and (best.stresses.stress.get("where") or {}).get("part"):
                 governing = self.governing(best)
                 if governing is not None:
