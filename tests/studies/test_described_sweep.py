@@ -179,3 +179,25 @@ def test_a_closed_form_structure_beside_a_described_shaft_is_designed_and_estima
     assert row["method"] == "closed_form" and row["best_shaft"] == "motor"
     assert_allclose(row["mass"], expected.mass, rtol=1e-9)
     assert sweep(bare_shafts, {"delta": [0.1]}, workers=1)["method"].iloc[0] == "closed_form"
+
+
+def test_the_cost_estimate_takes_each_way_a_point_is_designed():
+    """The estimate (``design_seconds``) per point: combinations (materials x shafts) times the cost of one by how
+    it is designed, each way routed to its own figure: the closed form (punch-press's textbook rims), IPOPT on a
+    bare wheel (the same points with method "ipopt"), a whole wheel (punch-press-wheel's rim_web), a rim_arms wheel
+    once per arm count it considers (press-arms-wheel: 4, 6 and 8), and a described shaft's design."""
+    from flyopt.studies import chunks
+    from flyopt.studies.points import design_seconds
+
+    points = pd.DataFrame({"point": [0, 1], "delta": [0.1, 0.2]})
+
+    def per_point(file, method="auto"):
+        values = design_seconds(flyopt.load(PROBLEMS / file), points, method)
+        assert values[0] == values[1]
+        return values[0]
+
+    assert per_point("punch-press.toml") == pytest.approx(9 * chunks.SECONDS_CLOSED_FORM)
+    assert per_point("punch-press.toml", "ipopt") == pytest.approx(9 * chunks.SECONDS_IPOPT)
+    assert per_point("punch-press-wheel.toml") == pytest.approx(9 * chunks.SECONDS_WHOLE_WHEEL)
+    assert per_point("press-arms-wheel.toml") == pytest.approx(2 * 3 * chunks.SECONDS_WHOLE_WHEEL)
+    assert per_point("punch-press-shaft.toml") == pytest.approx(3 * chunks.SECONDS_DESCRIBED)

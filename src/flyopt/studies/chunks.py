@@ -25,7 +25,9 @@ __all__ = [
     "MAX_CHUNK_POINTS",
     "MIN_CHUNK_SECONDS",
     "SECONDS_CLOSED_FORM",
+    "SECONDS_DESCRIBED",
     "SECONDS_IPOPT",
+    "SECONDS_WHOLE_WHEEL",
     "SERIAL_SECONDS",
     "chunk_bounds",
 ]
@@ -51,6 +53,13 @@ SERIAL_SECONDS = 1.0
 #: (measured ~2 ms per NLP, benchmarks/results/design.md).
 SECONDS_CLOSED_FORM = 2e-6
 SECONDS_IPOPT = 2.5e-3
+#: Estimated cost of one combination of a whole wheel (rim_web, rim_arms) [s]: its NLP, the stress settling
+#: and the rounding (benchmarks/results/sweep_estimate.md: 1.9 ms a combination on punch-press-wheel, whose
+#: bounds prune most, 14 ms on press-arms-wheel; 5 ms is within a factor of 3 of both).
+SECONDS_WHOLE_WHEEL = 5e-3
+#: Estimated cost of one combination of a scene whose shaft is described [s]: ``flyopt solve``'s design with
+#: the shaft's post-check and the key's forced response (benchmarks/results/sweep_estimate.md: 11-14 ms).
+SECONDS_DESCRIBED = 12e-3
 #: Chunks sent to each worker process at a time (one running, one waiting).
 IN_FLIGHT_PER_WORKER = 2
 

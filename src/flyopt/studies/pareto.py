@@ -53,8 +53,9 @@ if TYPE_CHECKING:  # the annotations only
 
 __all__ = ["MAX_FRONT_POINTS", "PARETO_OBJECTIVES", "non_dominated", "pareto"]
 
-#: Worker processes of a front's sweep: "auto" runs it serially unless its points are
-#: estimated to take over a second (a front of δ on a scene analysed at every δ).
+#: Worker processes of a front's sweep of cost or δ: "auto" runs it serially unless its points are
+#: estimated to take over a second (a front of δ on a scene analysed at every δ). The front of the outer
+#: diameter runs serially always: each point is warm-started from the larger envelope's design before it.
 WORKERS: Literal["auto"] = "auto"
 
 #: Most ε values of a front: a front of a thousand designs is drawn as finely as a plot shows,
@@ -248,12 +249,12 @@ def _front_outer_diameter(
     if grid.size:
         # from the largest envelope down: each point's NLP only tightens D_outer <= ε, so an NLP IPOPT finds
         # infeasible at one ε shows the same NLP infeasible at every smaller one without a solve
-        swept = sweep(
+        swept = sweep(  # serially: each point starts from its larger neighbour and its infeasibility proofs
             scene,
             {"design.max_outer_diameter": list(grid[::-1]), "design.objective": "mass"},
             method=method,
             solver_options=solver_options,
-            workers=WORKERS,
+            workers=1,
         )
         swept = swept.iloc[::-1].reset_index(drop=True)
         swept["point"] = np.arange(len(swept))

@@ -23,13 +23,23 @@ from flyopt.design import design_inputs
 from flyopt.errors import SceneError
 from flyopt.io.sweep_spec import field_path
 from flyopt.io.torque_section import NetAreas
+from flyopt.names import Geometry
 
 if TYPE_CHECKING:
     from flyopt.design.inputs import DesignInputs
     from flyopt.io.scene import Scene
 
 
-__all__ = ["PHYSICS_FIELDS", "check_points", "design_counts", "is_none", "physics_codes", "point_scene", "vectorized"]
+__all__ = [
+    "PHYSICS_FIELDS",
+    "check_points",
+    "design_counts",
+    "design_seconds",
+    "is_none",
+    "physics_codes",
+    "point_scene",
+    "vectorized",
+]
 
 #: The fields of a point that change its physics (its analysis); every other field changes
 #: only the design, and points that differ only in those share one analysis.
@@ -172,6 +182,34 @@ def design_counts(scene: Scene, points: pd.DataFrame, method: str = "auto") -> t
         covered = np.array([vectorized(inputs, g, o) for g, o in uniques], dtype=bool)
         ipopt = ~covered[codes]
     return n_materials * n_shafts, ipopt
+
+
+def design_seconds(scene: Scene, points: pd.DataFrame, method: str = "auto") -> np.ndarray:
+    """The estimated seconds of each point's designs in one process: its combinations (:func:`design_counts`)
+    times the cost of one, by how it is designed: the closed form, IPOPT on a bare wheel, IPOPT on a whole wheel
+    (rim_web; rim_arms once per arm count it considers), or ``flyopt solve``'s design where the scene describes a
+    shaft
+    (:data:`~flyopt.studies.chunks.SECONDS_CLOSED_FORM` ... :data:`~flyopt.studies.chunks.SECONDS_DESCRIBED`).
+
+    Returns
+    -------
+    ndarray of float
+        One estimate per point [s].
+    """
+    from flyopt.pipeline import describes_shafts
+    from flyopt.studies.chunks import SECONDS_CLOSED_FORM, SECONDS_DESCRIBED, SECONDS_IPOPT, SECONDS_WHOLE_WHEEL
+
+    per_point, ipopt = design_counts(scene, points, method)
+    if describes_shafts(scene):
+        return np.full(len(points), per_point * SECONDS_DESCRIBED)
+    spec = design_inputs(scene).spec
+    if "design.geometry" in points:
+        geometry = points["design.geometry"].astype(str).to_numpy()
+    else:
+        geometry = np.full(len(points), str(spec.geometry))
+    whole = np.where(geometry == str(Geometry.RIM_ARMS), len(spec.arms), 1.0) * SECONDS_WHOLE_WHEEL
+    whole = np.where(np.isin(geometry, [str(Geometry.RIM_WEB), str(Geometry.RIM_ARMS)]), whole, SECONDS_IPOPT)
+    return per_point * np.where(ipopt, whole, SECONDS_CLOSED_FORM)
 
 
 def vectorized(inputs: DesignInputs, geometry_name: str, objective: str) -> bool:

@@ -41,7 +41,7 @@ from flyopt.io.sweep_spec import check_options, option_label
 from flyopt.outputs.documents import scene_record, table_metadata
 from flyopt.outputs.files import check_folder
 from flyopt.outputs.results import ResultWriter, normalize
-from flyopt.studies.chunks import SECONDS_CLOSED_FORM, SECONDS_IPOPT, SERIAL_SECONDS, chunk_bounds
+from flyopt.studies.chunks import SERIAL_SECONDS, chunk_bounds
 from flyopt.studies.cluster import connect, threads
 from flyopt.studies.context import chunk_context
 from flyopt.studies.evaluate import evaluate_chunk, evaluate_points
@@ -49,7 +49,7 @@ from flyopt.studies.parts import Parts, fingerprint
 from flyopt.studies.payload import digest
 from flyopt.studies.physics import physics_analysis
 from flyopt.studies.plan import plan_sweep
-from flyopt.studies.points import PHYSICS_FIELDS, design_counts, physics_codes
+from flyopt.studies.points import PHYSICS_FIELDS, design_seconds, physics_codes
 from flyopt.studies.processes import cpu_count
 from flyopt.studies.runner import run_chunks, stopped
 from flyopt.studies.task import task_of
@@ -423,8 +423,7 @@ def _layout(
     n = len(points)
     if chunk_size is None and isinstance(recorded.get("chunk_size"), int):
         chunk_size = recorded["chunk_size"]  # resuming a sweep cut by the user's size
-    per_point, ipopt = design_counts(ctx.scene, points, method)
-    costs = per_point * np.where(ipopt, SECONDS_IPOPT, SECONDS_CLOSED_FORM)
+    costs = design_seconds(ctx.scene, points, method)
     if ctx.reusable:
         codes, n_physics, analysis_seconds = None, 1, 0.0
     else:
