@@ -351,3 +351,13 @@ def heading(
     magnitude = largest(among) if among is not None else None
     text = unit(dimension_of(name), system, magnitude, digits)[0]
     return title if text == "-" else f"{title} [{text}]"
+
+
+def rounded_rank_note(continuous_mass: str) -> str:
+    """The ranking table's note where its first row is the rounded wheel: the other rows are continuous optima, which
+    is what the ranking compares (the text and the report say it in these words); ``continuous_mass`` the winner's
+    continuous mass as shown."""
+    return (
+        "the first row is the chosen wheel as rounded to the manufacturing step (design.round_to); the other rows "
+        f"are their combinations' continuous optima, which the ranking compares (the chosen wheel's: {continuous_mass})"
+    )

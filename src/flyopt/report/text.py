@@ -31,6 +31,7 @@ from flyopt.report.display import (
     largest,
     number,
     quantity_text,
+    rounded_rank_note,
     unit,
 )
 
@@ -647,6 +648,8 @@ def design_report(
         align.insert(3, ">")
     lines += ["", "Every combination (ranked):"]
     lines += ["  " + line for line in table(head, rows, align)]
+    if result.best is not None and result.continuous is not None:
+        lines += ["", f"  note: {rounded_rank_note(q(result.continuous.mass, 'mass'))}"]
     reasons = [c.reason for c in result.candidates if not c.feasible and not c.provenance.pruned]
     if reasons:
         lines += ["", "Why the infeasible ones fail:"] + [f"  - {r}" for r in reasons]

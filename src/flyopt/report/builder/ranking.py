@@ -5,6 +5,7 @@ from __future__ import annotations
 from flyopt.design.check import binding_label
 from flyopt.design.result import Design
 from flyopt.report.builder.base import BuilderBase
+from flyopt.report.display import rounded_rank_note
 from flyopt.report.document import Paragraph, Table
 
 
@@ -69,6 +70,10 @@ class Ranking(BuilderBase):
             head.insert(3, "arms")
             align.insert(3, ">")
         blocks.append(Table(tuple(head), tuple(rows), tuple(align), "Every material × shaft combination", "ranking"))
+        if d.best is not None and d.continuous is not None:
+            mass = self.q(d.continuous.mass, "mass", "mass")
+            note = rounded_rank_note(mass.text)
+            blocks.append(Paragraph(note[:1].upper() + note[1:] + "."))
         reasons = [c.reason for c in d.candidates if not c.feasible and not c.provenance.pruned]
         if reasons:
             blocks.append(
