@@ -43,18 +43,16 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
-import json  # noqa: E402
 import math  # noqa: E402
 import platform  # noqa: E402
 import statistics  # noqa: E402
-import subprocess  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 import scipy  # noqa: E402
-from common import load_average, median_time, pin_one_core, write_results  # noqa: E402
+from common import load_average, median_time, pin_one_core, run_child, write_results  # noqa: E402
 
 from flyopt.cycle.expression import Expression  # noqa: E402
 from flyopt.cycle.torque import Constant, ExpressionTorque  # noqa: E402
@@ -253,15 +251,7 @@ def seat_timings(sources, repeat, rounds=7):
     per = max(1, repeat // rounds)
     for _ in range(rounds):
         for label, src in sources.items():
-            env = {**os.environ, "PYTHONPATH": str(src)}
-            done = subprocess.run(
-                [sys.executable, "-c", _CHILD, str(SEAT_SCENE), str(per)],
-                env=env,
-                capture_output=True,
-                text=True,
-                check=True,
-            )
-            found = json.loads(done.stdout.strip().splitlines()[-1])
+            found = run_child(_CHILD, src, SEAT_SCENE, per)
             out[label]["times"] += found["times"]
             out[label]["bore"], out[label]["mass"] = found["bore"], found["mass"]
     return out

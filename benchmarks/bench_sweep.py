@@ -48,7 +48,6 @@ import json
 import os
 import platform
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -401,21 +400,15 @@ print(json.dumps({"times": times, "points": len(frame), "statuses": statuses, "m
 def described_timings(sources, repeat, rounds=5):
     """Per sweep of :data:`DESCRIBED` and source tree (label -> src folder): CPU and wall seconds of each sweep,
     the children alternating in ``rounds`` rounds; and the points and statuses each gave."""
+    from common import run_child
+
     per = max(1, repeat // rounds)
     out = {}
     for name, file, vary in DESCRIBED:
         found = {label: {"times": []} for label in sources}
         for _ in range(rounds):
             for label, src in sources.items():
-                env = {**os.environ, "PYTHONPATH": str(src)}
-                done = subprocess.run(
-                    [sys.executable, "-c", _CHILD, str(ROOT / "problems" / file), json.dumps(vary), str(per)],
-                    env=env,
-                    capture_output=True,
-                    text=True,
-                    check=True,
-                )
-                got = json.loads(done.stdout.strip().splitlines()[-1])
+                got = run_child(_CHILD, src, ROOT / "problems" / file, json.dumps(vary), per)
                 found[label]["times"] += got["times"]
                 found[label].update(points=got["points"], statuses=got["statuses"], mass=got["mass"])
         out[name] = found

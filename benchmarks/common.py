@@ -5,8 +5,11 @@ it as ``common``.
 """
 
 import csv
+import json
 import os
 import statistics
+import subprocess
+import sys
 import time
 
 
@@ -67,3 +70,13 @@ def write_results(folder, name, text, rows, fields=None):
         dict_writer = csv.DictWriter(f, fieldnames=list(fields or rows[0]))
         dict_writer.writeheader()
         dict_writer.writerows(rows)
+
+
+def run_child(code, src, *args):
+    """Run ``python -c code args...`` in a child process with the source folder ``src`` first on its path (another
+    flyopt tree, for a baseline); return the last line of its output read as JSON."""
+    env = {**os.environ, "PYTHONPATH": str(src)}
+    done = subprocess.run(
+        [sys.executable, "-c", code, *(str(a) for a in args)], env=env, capture_output=True, text=True, check=True
+    )
+    return json.loads(done.stdout.strip().splitlines()[-1])
