@@ -129,7 +129,11 @@ def test_the_apps_card_is_the_notebooks(workspace):
     app, notebook = model.card_html(answer, []), answer.solution._repr_html_()
     (status, verdict), rows = shown(app)
     assert shown(notebook) == ((status, verdict), rows)
-    assert "status <b>designed</b>" in status and verdict.startswith("A rim") and "simulated, it gives δ" in verdict
+    assert (
+        "status <b>designed</b>" in status
+        and verdict.startswith("A cast steel rim on the motor shaft, ")
+        and "simulated, it gives δ" in verdict
+    )
     labels = [label for label, _ in rows]
     assert {"mass", "outer diameter", "rim speed", "chosen wheel"} <= set(labels) and len(labels) >= 10
 

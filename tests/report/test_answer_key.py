@@ -34,7 +34,8 @@ def test_an_unchecked_bearing_pressure_is_said_in_the_answer(capsys):
     p = 2 * torque / (0.045 * 0.0035 * 0.049) / 1e6
     tau = 2 * torque / (0.045 * 0.014 * 0.049) / 1e6
     shown = re.fullmatch(
-        r"    key     14 x 9 x 63 mm: shear ([\d.]+) MPa of 305\.8 MPa; bearing pressure ([\d.]+) MPa not checked "
+        r"    key     14 x 9 mm section, 63 mm long: shear ([\d.]+) MPa of 305\.8 MPa; bearing pressure ([\d.]+) MPa "
+        r"not checked "
         r"\(cast iron gives no bearing_pressure\)",
         line,
     )
@@ -50,8 +51,11 @@ def test_the_answer_card_shows_the_key_and_the_binding_limits_in_words():
     rows = {r.label: r for r in solution_card(solution).rows}
     key = solution.design.best.parts.key
     p = 2 * key["torque"] / (0.080 * 0.005 * 0.088) / 1e6
-    shown = re.fullmatch(r"22 x 14 x 110 mm: OK, bearing pressure ([\d.]+) MPa of 90 MPa", rows["hub key"].value)
+    shown = re.fullmatch(
+        r"22 x 14 mm section, 110 mm long: OK, bearing pressure ([\d.]+) MPa of 90 MPa", rows["hub key"].value
+    )
     assert shown, rows["hub key"].value
     assert abs(_number(shown.group(1)) - p) <= 0.005 and p <= 90.0
     assert "_" not in rows["binding limits"].value and "section ratio" in rows["binding limits"].value
-    assert rows["chosen wheel"].value.startswith("rim_web of gjs keyed on the intermediate shaft (")
+    assert rows["chosen wheel"].value.startswith("wheel with a web of gjs keyed on the intermediate shaft (")
+    assert solution_card(solution).verdict.startswith("A gjs keyed wheel with a web on the intermediate shaft, ")

@@ -19,7 +19,8 @@ def test_the_ranking_says_its_first_row_is_rounded_and_the_others_continuous(cap
     rows = [line.split() for line in table.splitlines() if re.match(r"  [0-9]+ ", line)]
     first, second = float(rows[0][4]), float(rows[1][3])  # "gjs keyed" (rank 1) is two words, EN-GJS-400-18 one
     note = re.search(
-        r"  note: the first row is the chosen wheel as rounded .* \(the chosen wheel's: ([\d.]+) kg\)", table
+        r"  note: the first row is the chosen wheel as rounded .*: the chosen wheel's continuous optimum is ([\d.]+) kg,",
+        table,
     )
     assert note, table
     solution = flyopt.solve(flyopt.load(path))
@@ -29,3 +30,6 @@ def test_the_ranking_says_its_first_row_is_rounded_and_the_others_continuous(cap
     assert float(note.group(1)) < second  # the continuous optima are what the ranking compares
     document = build(ReportInputs("", "", (), solution.scene, solution), figures=False)
     assert "The first row is the chosen wheel as rounded to the manufacturing step" in repr(document)
+    from flyopt.report.notebook import ranking_html
+
+    assert "the first row is the chosen wheel as rounded" in ranking_html(result)  # the notebook's and the app's

@@ -521,6 +521,7 @@ PLAIN_NUMBERS = [
     r"G6\.3",
     r"DIN 6885-1",
     r"bore: [0-9]+ x [0-9]+,",
+    r"[0-9]+ x [0-9]+ mm section",  # the key's DIN 6885-1 section, named in mm as the standard names it
     rf"{NUM} iterations",
     rf"ratio [-+−]?{NUM}",
     rf"δ \+{NUM}",

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from flyopt.design.materials import Material
 from flyopt.design.spec import DesignSpec, MountShaft
 
-__all__ = ["Combination", "combination_label", "shaft_label"]
+__all__ = ["Combination", "combination_label", "shaft_label", "wheel_words"]
 
 
 @dataclass
@@ -55,6 +55,18 @@ def combination_label(material: str, shaft: str, n_arms: int | None = 0) -> str:
     mounting shaft's name, ``n_arms`` a rim_arms wheel's arm count (0 or None: no arms)."""
     arms = f" with {n_arms} arms" if n_arms else ""
     return f"{material} on the {shaft_label(shaft)}{arms}"
+
+
+def wheel_words(geometry: str, n_arms: int | None = None) -> str:
+    """A wheel's geometry in words, the one way the answers name it: "disc", "wheel with a web", "wheel on 6
+    arms", "rim" (a rim or a thin rim)."""
+    if geometry == "disc":
+        return "disc"
+    if geometry == "rim_web":
+        return "wheel with a web"
+    if geometry == "rim_arms":
+        return f"wheel on {n_arms} arms" if n_arms else "wheel on arms"
+    return "rim"
 
 
 def shaft_label(name: str) -> str:

@@ -50,8 +50,8 @@ writes (:func:`dimension_of`), the table behind the JSON's ``units`` map.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, TypeVar
+from collections.abc import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, TypeVar
 
 if TYPE_CHECKING:  # the command-line parser reads this module's tables: numpy stays unloaded for it
     import numpy as np
@@ -59,6 +59,7 @@ if TYPE_CHECKING:  # the command-line parser reads this module's tables: numpy s
 
 #: A value shown in a unit: a number, or an array of them.
 Shown = TypeVar("Shown", float, "npt.NDArray[np.floating]")
+T = TypeVar("T")
 
 #: The unit systems, the default first for reports.
 SYSTEMS = ("engineering", "si", "imperial")
@@ -354,10 +355,39 @@ def heading(
 
 
 def rounded_rank_note(continuous_mass: str) -> str:
-    """The ranking table's note where its first row is the rounded wheel: the other rows are continuous optima, which
-    is what the ranking compares (the text and the report say it in these words); ``continuous_mass`` the winner's
-    continuous mass as shown."""
+    """The ranking table's note where its first row is the rounded wheel: the ranking compares continuous optima
+    (the text and the report say it in these words); ``continuous_mass`` the winner's continuous mass as shown."""
     return (
-        "the first row is the chosen wheel as rounded to the manufacturing step (design.round_to); the other rows "
-        f"are their combinations' continuous optima, which the ranking compares (the chosen wheel's: {continuous_mass})"
+        "the first row is the chosen wheel as rounded to the manufacturing step (design.round_to); the ranking "
+        f"compares continuous optima: the chosen wheel's continuous optimum is {continuous_mass}, any other row is "
+        "its combination's"
     )
+
+
+def key_answer(key: Mapping[str, Any], material: str, quantity: Callable[[float, str], T]) -> list[str | T]:
+    """The hub's key in the answer (the text's line, the card's row), as parts: its DIN 6885-1 section (in mm, as
+    the standard names it), its length, its verdict and the pressure against the allowable; or, where the hub's
+    material (``material``, its name for people) gives no allowable, the key's shear against the key steel's and
+    the pressure said to be unchecked. ``quantity(value, name)`` shows a value of the JSON field ``name``."""
+    from flyopt.design.key import key_verdict
+
+    parts: list[str | T] = [f"{key['size']} mm section, ", quantity(key["length"], "length"), " long: "]
+    pressure: list[str | T] = ["bearing pressure ", quantity(key["bearing_pressure"], "bearing_pressure")]
+    if key["allowable_pressure"] is not None:
+        return [
+            *parts,
+            f"{key_verdict(key)}, ",
+            *pressure,
+            " of ",
+            quantity(key["allowable_pressure"], "allowable_pressure"),
+        ]
+    return [
+        *parts,
+        "shear ",
+        quantity(key["shear"], "shear"),
+        " of ",
+        quantity(key["allowable_shear"], "allowable_shear"),
+        "; ",
+        *pressure,
+        f" not checked ({material} gives no bearing_pressure)",
+    ]

@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
+from html import escape
 from typing import TYPE_CHECKING, Any
 
 from flyopt.design.check import binding_label
@@ -154,7 +155,8 @@ def ranking_html(design: DesignResult, units: str = display.DEFAULT) -> str:
     """The ranking of :func:`ranking_frame` as an HTML table in ``units``: :data:`RANKING_COLUMNS`, each
     number to four significant figures by the text's formatter (:func:`flyopt.report.display.number`), the
     materials by their names for people, the binding limits in words
-    (:func:`flyopt.design.check.binding_label`), and for a combination without a design its reason."""
+    (:func:`flyopt.design.check.binding_label`), and for a combination without a design its reason; where the
+    first row is the rounded wheel, the text's note under it (:func:`flyopt.report.display.rounded_rank_note`)."""
     frame = ranking_frame(design)
     shown = to_units(frame[[c for c in RANKING_COLUMNS if c in frame.columns]], units, labels=True)
     shown["material"] = [design.material_name(key) for key in frame["material"]]
@@ -166,7 +168,11 @@ def ranking_html(design: DesignResult, units: str = display.DEFAULT) -> str:
     formatters = {
         name: _number_cell for name in shown.columns if shown[name].dtype.kind == "f"
     }  # floats only: a flag or a name as it is
-    return str(shown.to_html(index=False, na_rep="-", formatters=formatters, classes="flyopt-ranking"))
+    table = str(shown.to_html(index=False, na_rep="-", formatters=formatters, classes="flyopt-ranking"))
+    if design.best is not None and design.continuous is not None:
+        mass = display.quantity_text(design.continuous.mass, "mass", units)
+        table += f'<p class="flyopt-ranking-note">{escape(display.rounded_rank_note(mass))}</p>'
+    return table
 
 
 def _number_cell(value: float) -> str:

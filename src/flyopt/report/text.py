@@ -16,6 +16,7 @@ from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from flyopt.design.check import binding_label
+from flyopt.design.combination import shaft_label, wheel_words
 from flyopt.design.key import key_verdict
 from flyopt.design.result import Design
 from flyopt.errors import BrokenInvariant
@@ -28,6 +29,7 @@ from flyopt.report.display import (
     field_number,
     field_text,
     heading,
+    key_answer,
     largest,
     number,
     quantity_text,
@@ -185,15 +187,10 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
             f"Answer: {need}" + ("" if design.status == "not_needed" else f"; no wheel: {visible(design.message)}"),
             "",
         ]
-    shape = {
-        Geometry.DISC: "disc",
-        Geometry.RIM_WEB: "wheel with a web",
-        Geometry.RIM_ARMS: f"wheel on {best.n_arms} arms",
-    }.get(Geometry(best.geometry), "rim")
-    shaft = visible(best.shaft)
+    shape = wheel_words(best.geometry, best.n_arms)
     lines = [
-        f"Answer: {design.material_name(best.material)} {shape}, {q(best.mass, 'mass')}, on the {shaft}"
-        + ("" if shaft.lower().endswith("shaft") else " shaft")
+        f"Answer: {design.material_name(best.material)} {shape}, {q(best.mass, 'mass')}, "
+        f"on the {visible(shaft_label(best.shaft))}"
     ]
     d = best.dims
     if best.geometry == Geometry.DISC:
@@ -225,14 +222,8 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
     lines.append(f"    limits  {limits}")
     k = best.parts.key
     if k and k.get("shear") is not None:  # the hub's key, checked at the peak torque (section 13)
-        pressure = f"bearing pressure {q(k['bearing_pressure'], 'bearing_pressure')}"
-        said = (
-            f"{key_verdict(k)}, {pressure} of {q(k['allowable_pressure'], 'allowable_pressure')}"
-            if k["allowable_pressure"] is not None
-            else f"shear {q(k['shear'], 'shear')} of {q(k['allowable_shear'], 'allowable_shear')}; {pressure} "
-            f"not checked ({design.material_name(best.material)} gives no bearing_pressure)"
-        )
-        lines.append(f"    key     {k['size']} x {q(k['length'], 'length')}: {said}")
+        said = key_answer(k, design.material_name(best.material), lambda v, name: q(v, name))
+        lines.append(f"    key     {''.join(said)}")
     for shaft_check in solution.shaft_checks:  # the shaft described as a part (flyopt.report.shaft)
         binding = shaft_check.check.binding
         lines.append(f"    shaft   {binding.kind} {binding.where} binds, utilisation {number(binding.utilisation, 3)}")

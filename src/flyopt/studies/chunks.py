@@ -54,11 +54,11 @@ SERIAL_SECONDS = 1.0
 SECONDS_CLOSED_FORM = 2e-6
 SECONDS_IPOPT = 2.5e-3
 #: Estimated cost of one combination of a whole wheel (rim_web, rim_arms) [s]: its NLP, the stress settling
-#: and the rounding (benchmarks/results/sweep_estimate.md: 1.9 ms a combination on punch-press-wheel, whose
-#: bounds prune most, 14 ms on press-arms-wheel; 5 ms is within a factor of 3 of both).
+#: and the rounding (benchmarks/results/sweep_estimate.md: 1.6 ms a combination on punch-press-wheel, whose
+#: bounds prune most; 7.7 ms a combination and arm count on press-arms-wheel).
 SECONDS_WHOLE_WHEEL = 5e-3
 #: Estimated cost of one combination of a scene whose shaft is described [s]: ``flyopt solve``'s design with
-#: the shaft's post-check and the key's forced response (benchmarks/results/sweep_estimate.md: 11-14 ms).
+#: the shaft's post-check and the key's forced response (benchmarks/results/sweep_estimate.md: 15-19 ms).
 SECONDS_DESCRIBED = 12e-3
 #: Chunks sent to each worker process at a time (one running, one waiting).
 IN_FLIGHT_PER_WORKER = 2

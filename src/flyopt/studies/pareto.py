@@ -9,8 +9,8 @@ swept through the design model, then the dominated points are removed:
   lightest wheel (beyond it the constraint no longer binds). The constraint is
   the scene's envelope, so each ε is one sweep point
   ``design.max_outer_diameter = ε``. The points are designed from the
-  largest ε down (warm-started from their neighbours, in one memory when
-  serial): each only tightens the envelope, so an NLP IPOPT found infeasible
+  largest ε down (warm-started from their neighbours, in one process,
+  always serial): each only tightens the envelope, so an NLP IPOPT found infeasible
   at one ε is not solved again at a smaller one
   (:func:`flyopt.design.wheel_design.neighbours`).
 - ``mass`` vs ``cost``: for one material and shaft the lightest wheel is also

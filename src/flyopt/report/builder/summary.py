@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from flyopt.design.check import binding_label
-from flyopt.design.key import key_verdict
+from flyopt.design.combination import shaft_label, wheel_words
 from flyopt.errors import BrokenInvariant
 from flyopt.report import display
 from flyopt.report.builder.base import BuilderBase
@@ -90,8 +90,8 @@ class Summary(BuilderBase):
             rows += [
                 (
                     "chosen wheel",
-                    f"{best.geometry} of {self.material_name(best.material)} on the {best.shaft}"
-                    f"{'' if best.shaft.lower().endswith('shaft') else ' shaft'} "
+                    f"{wheel_words(best.geometry, best.n_arms)} of {self.material_name(best.material)} on the "
+                    f"{shaft_label(best.shaft)} "
                     f"(speed ratio {number(best.speed_ratio, self.digits)})",
                 ),
                 ("mass", self.q(best.mass, "mass", "mass")),
@@ -111,34 +111,10 @@ class Summary(BuilderBase):
             ]
             k = best.parts.key
             if k and k.get("shear") is not None:  # the hub's key at the peak torque (section 13)
-                checked = k["allowable_pressure"] is not None
-                rows.append(
-                    (
-                        "hub key",
-                        (
-                            f"{k['size']} x ",
-                            self.q(k["length"], "length"),
-                            *(
-                                (
-                                    f": {key_verdict(k)}, bearing pressure ",
-                                    self.q(k["bearing_pressure"], "stress", "bearing_pressure"),
-                                    " of ",
-                                    self.q(k["allowable_pressure"], "stress", "allowable_pressure"),
-                                )
-                                if checked
-                                else (
-                                    ": shear ",
-                                    self.q(k["shear"], "stress", "shear"),
-                                    " of ",
-                                    self.q(k["allowable_shear"], "stress", "allowable_shear"),
-                                    "; bearing pressure ",
-                                    self.q(k["bearing_pressure"], "stress", "bearing_pressure"),
-                                    f" not checked ({self.material_name(best.material)} gives no bearing_pressure)",
-                                )
-                            ),
-                        ),
-                    )
+                parts = display.key_answer(
+                    k, self.material_name(best.material), lambda v, name: self.q(v, display.dimension_of(name), name)
                 )
+                rows.append(("hub key", tuple(parts)))
             if best.stresses.stress and (best.stresses.stress.get("where") or {}).get("part"):
                 governing = self.governing(best)
                 if governing is not None:
@@ -224,7 +200,8 @@ class Summary(BuilderBase):
             )
         )
         return (
-            f"A {best.geometry} flywheel of {self.material_name(best.material)} on the {best.shaft} shaft, "
+            f"A {self.material_name(best.material)} {wheel_words(best.geometry, best.n_arms)} on the "
+            f"{shaft_label(best.shaft)}, "
             f"{display.quantity_text(best.mass, 'mass', self.units, 4)}, outer diameter "
             f"{display.quantity_text(best.dims.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
             f"within δ = {number(a.delta, self.digits)}{checked}."
