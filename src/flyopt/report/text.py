@@ -222,7 +222,7 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
     lines.append(f"    limits  {limits}")
     k = best.parts.key
     if k and k.get("shear") is not None:  # the hub's key, checked at the peak torque (section 13)
-        said = key_answer(k, design.material_name(best.material), lambda v, name: q(v, name))
+        said = key_answer(k, design.material_name(best.material), q)
         lines.append(f"    key     {''.join(said)}")
     for shaft_check in solution.shaft_checks:  # the shaft described as a part (flyopt.report.shaft)
         binding = shaft_check.check.binding
