@@ -187,6 +187,11 @@ def test_a_whole_wheel_is_rounded_by_default_and_round_to_false_asks_for_the_con
     for name in ("d_outer", "h", "b", "d_hub", "l_hub", "arm_major"):
         value = getattr(rounded.best.dims, name) * 1e3
         assert abs(value - round(value)) < 1e-9, (name, value)
+    # the result's message describes the rounded wheel, the design, not the continuous optimum beside it
+    best, optimum = rounded.best, rounded.continuous
+    for wheel, said in ((best, True), (optimum, False)):
+        words = f"D_outer {wheel.dims.d_outer:.3g} m, B {wheel.dims.b:.3g} m, mass {wheel.mass:.3g} kg"
+        assert (words in rounded.message) is said, (words, rounded.message)
     path = tmp_path / "continuous.toml"
     path.write_text(text.replace("[design]\n", "[design]\nround_to = false\n", 1), encoding="utf-8")
     continuous = flyopt.solve(flyopt.load(path)).design

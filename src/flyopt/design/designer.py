@@ -671,7 +671,11 @@ def _rounded(
             rounding=words,
         )
     candidates = tuple(rounded if c is best else c for c in result.candidates)
-    return dataclasses.replace(result, best=rounded, candidates=candidates, continuous=best, rounding=words)
+    names = result.material_names
+    message = result.message.replace(_design_words(best, spec, names), _design_words(rounded, spec, names), 1)
+    return dataclasses.replace(
+        result, message=message, best=rounded, candidates=candidates, continuous=best, rounding=words
+    )
 
 
 def _check_arguments(
@@ -956,6 +960,14 @@ def _describe_model(spec: DesignSpec, model: Any) -> dict[str, Any]:
     return description
 
 
+def _design_words(best: Design, spec: DesignSpec, names: Mapping[str, str]) -> str:
+    """The design in the result's message: its material on its shaft, its outer diameter, width and mass."""
+    return (
+        f"{names.get(best.material, best.material)} on the {shaft_label(best.shaft)}: {spec.geometry} "
+        f"D_outer {_g(best.dims.d_outer)} m, B {_g(best.dims.b)} m, mass {_g(best.mass)} kg"
+    )
+
+
 def _result(
     j_required: float,
     omega: float,
@@ -976,9 +988,7 @@ def _result(
     else:
         status = "designed"
         message = (
-            f"{names.get(best.material, best.material)} on the {shaft_label(best.shaft)}: {spec.geometry} "
-            f"D_outer {_g(best.dims.d_outer)} m, B {_g(best.dims.b)} m, mass "
-            f"{_g(best.mass)} kg ({len(decided.feasible)} of {len(ranked)} combinations "
+            f"{_design_words(best, spec, names)} ({len(decided.feasible)} of {len(ranked)} combinations "
             f"feasible"
             + (f", {len(decided.pruned)} not designed: a bound shows they cannot win" if decided.pruned else "")
             + ")"
