@@ -75,3 +75,23 @@ def test_the_cli_puts_the_answer_within_the_first_ten_lines(main_cli):
     head = out.splitlines()[:10]
     assert any(line.startswith("Answer: ") for line in head)
     assert any(line.startswith("    limits  ") for line in head) and any(line.startswith("    δ ") for line in head)
+
+
+def test_a_rim_sized_by_the_courses_criterion_is_compared_like_with_like_and_said_over():
+    """khurmi-16-14-book-rim: the book checks v at the mean diameter and the mean speed, sqrt(σ/ρ) = 31.18 m/s;
+    the answer's limits line gives that speed against the limit, the rim's own speed at the outer diameter at
+    ω_max beside it, and its stress over the allowable 7 MPa as OVER (the answer said 35.43 m/s of 31.18 m/s
+    with no verdict)."""
+    path = PROBLEMS / "textbook" / "khurmi-16-14-book-rim.toml"
+    solution = flyopt.solve(flyopt.load(path))
+    data = json.loads(solution_json(solution, str(path)))["design"]
+    limits = next(line for line in answer_report(solution) if line.startswith("    limits"))
+    book = math.sqrt(7e6 / 7200.0)  # the book's criterion, closed form
+    mean, of = re.search(rf"rim speed ({NUM}) m/s of ({NUM}) m/s at the mean diameter and speed", limits).groups()
+    assert _shown_equal(mean, book) and _shown_equal(of, book), limits
+    omega_max = 800 * 2 * math.pi / 60 * (1 + 0.04 / 2)
+    outer = re.search(rf"({NUM}) m/s at the outer diameter at ω_max", limits).group(1)
+    assert _shown_equal(outer, omega_max * data["d_outer"] / 2), limits
+    stress, allowed, over = re.search(rf"rim stress ({NUM}) MPa of ({NUM}) MPa: ({NUM})% OVER", limits).groups()
+    assert _value(allowed) == 7 and _value(stress) > 7
+    assert math.isclose(_value(over), round(100 * (_value(stress) / 7 - 1), 1), abs_tol=0.051), limits
