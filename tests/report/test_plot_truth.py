@@ -514,6 +514,7 @@ def test_cross_section_draws_in_the_chosen_units_and_comments_an_odd_design():
     (note,) = [t for t in ax.figure.texts if t.get_gid() == "note"]
     words = " ".join(note.get_text().split())
     assert "The rim alone" in words and "A slender rim" in words
+    assert best.limits.castability is None and "its stiffness and castability are not checked" in words
     assert f"{best.dims.d_outer / min(best.dims.b, best.dims.h):.0f} times its thinnest side" in words
     # its binding limits in words, as the text and the report's tables name them (issue 29), not row names
     assert "binding: inertia" in words and not any(name in words for name in best.limits.binding if "_" in name)
@@ -521,6 +522,20 @@ def test_cross_section_draws_in_the_chosen_units_and_comments_an_odd_design():
     box = note.get_window_extent()
     assert ax.figure.bbox.contains(box.x0, box.y0) and ax.figure.bbox.contains(box.x1, box.y1)
     assert not _overlap(box, ax.get_window_extent())
+
+
+def test_a_slender_whole_wheels_note_says_its_castability_is_checked():
+    """punch-press-wheel's slender rim (whole wheel, designed to the castability rules of issue 28): the note
+    under its section said its casting was not checked while the report listed its walls and section ratios."""
+    from flyopt.report import plots
+
+    best = _designed(PROBLEMS / "punch-press-wheel.toml")
+    assert best.limits.castability is not None
+    ax = plots.plot_cross_section(best)
+    (note,) = [t for t in ax.figure.texts if t.get_gid() == "note"]
+    words = " ".join(note.get_text().split())
+    assert "A slender rim" in words and "its castability (walls, section ratios) is checked" in words
+    assert "casting" not in words
 
 
 WHEELS = Path(__file__).parents[1] / "data" / "wheels"

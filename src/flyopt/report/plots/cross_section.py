@@ -52,6 +52,7 @@ class _InUnits:
         self.geometry, self.material, self.shaft = design.geometry, design.material, design.shaft
         self.mass, self.j_flywheel, self.n_arms = design.mass, design.j_flywheel, design.n_arms
         self.binding = design.limits.binding
+        self.cast_checked = design.limits.castability is not None  # its walls and section ratios (issue 28)
         self.d_outer, self.d_inner, self.h, self.b = (v / factor for v in (dims.d_outer, dims.d_inner, dims.h, dims.b))
         self.bore, self.t_web, self.d_hub = scaled(design.bore), scaled(dims.t_web), scaled(dims.d_hub)
         self.l_hub, self.arm_major, self.arm_minor = scaled(dims.l_hub), scaled(dims.arm_major), scaled(dims.arm_minor)
@@ -487,7 +488,12 @@ def _section_notes(c, length, text):
         notes.append(
             f"A slender {'disc' if disc else 'rim'}: {sides} at Ø{text(c.d_outer)} {length}, the diameter "
             f"{ratio:.0f} times its thinnest side. It is the lightest the design's limits allow (binding: "
-            f"{binding}); its stiffness, casting and mounting are not checked."
+            f"{binding}); "
+            + (
+                "its castability (walls, section ratios) is checked, its stiffness is not."
+                if c.cast_checked
+                else "its stiffness and castability are not checked."
+            )
         )
     return notes
 
