@@ -608,7 +608,7 @@ def hub_length_for_key(
     _, pressure, shear = _key_stresses(torque, d, key, lengths[-1])
     against = "not checked" if allowable_pressure is None else f"against {allowable_pressure / 1e6:.4g} MPa"
     raise ValueError(
-        f"torque {torque:.6g} N*m: even the longest {key.size} key the d = {d * 1e3:g} mm seat takes "
+        f"torque {torque:.4g} N·m: even the longest {key.size} key the d = {d * 1e3:g} mm seat takes "
         f"({lengths[-1] * 1e3:g} mm, at most 1.5 d) is overloaded "
         f"(pressure {pressure / 1e6:.4g} MPa {against}, "
         f"shear {shear / 1e6:.4g} MPa against {allowable_shear / 1e6:.4g} MPa); "

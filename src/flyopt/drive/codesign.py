@@ -364,14 +364,14 @@ def evaluate_motor(
     if ratio is None:
         return run(
             False,
-            f"too small: its torque on the crank cannot reach the mean load {load_torque:.6g} N*m "
+            f"too small: its torque on the crank cannot reach the mean load {load_torque:.4g} N·m "
             f"at {omega:.6g} rad/s on the stable branch",
         )
     if spec.thermal and load_torque / (ratio * scene.efficiency) > rated * (1 + 1e-12):
         return run(
             False,
-            f"thermal: its mean torque {load_torque / (ratio * scene.efficiency):.6g} N*m exceeds "
-            f"its rated torque {rated:.6g} N*m whatever the flywheel",
+            f"thermal: its mean torque {load_torque / (ratio * scene.efficiency):.4g} N·m exceeds "
+            f"its rated torque {rated:.4g} N·m whatever the flywheel",
             motor_ratio=ratio,
         )
     found = None
@@ -580,7 +580,7 @@ def _settle(scene, motor, ratio, thermal):
             j = _thermal_flywheel(machine, motor, ratio, scene.omega_mean, j, rated)
             if j is None:
                 raise _Unsettled(
-                    f"thermal: its RMS torque stays above its rated torque {rated:.6g} N*m for any flywheel",
+                    f"thermal: its RMS torque stays above its rated torque {rated:.4g} N·m for any flywheel",
                     ratio,
                     j_delta,
                 )
@@ -1189,7 +1189,7 @@ def verify_drive(scene: Scene, run: MotorRun, j_flywheel: float | None = None) -
         notes.append(f"delta {checked.achieved_delta:.6g} exceeds the allowed {scene.delta:.6g}")
     rated = run.motor.rated_torque
     if spec.thermal and rms > rated * (1 + 1e-6):
-        notes.append(f"RMS torque {rms:.6g} N*m exceeds the rated {rated:.6g} N*m (thermal)")
+        notes.append(f"RMS torque {rms:.4g} N·m exceeds the rated {rated:.4g} N·m (thermal)")
     if spec.max_startup is not None and (startup.time is None or startup.time > spec.max_startup):
         notes.append(f"start-up {startup.note or f'{startup.time:.4g} s'} over max_startup {spec.max_startup:.4g} s")
     return DriveCheck(

@@ -351,8 +351,8 @@ class _Newton:
             if self.limit == "thermal" and point.mean_torque > self.rated * (1 + 1e-9):
                 # T_rms >= its mean, which a flywheel hardly moves (the work balance sets it)
                 raise Unreachable(
-                    f"thermal: its mean torque {point.mean_torque:.6g} N*m exceeds its rated torque "
-                    f"{self.rated:.6g} N*m, and its RMS torque stays above that for any flywheel"
+                    f"thermal: its mean torque {point.mean_torque:.4g} N·m exceeds its rated torque "
+                    f"{self.rated:.4g} N·m, and its RMS torque stays above that for any flywheel"
                 )
             r = point.residuals()
             norm = float(np.linalg.norm(r))

@@ -114,7 +114,7 @@ class ShaftLimit:
         if self.kind == "key":
             return (
                 f"key {self.where}: {_fmt(self.value / 1e6)} {relation} {_fmt(self.allowed / 1e6)} MPa at the "
-                f"train's peak torque on the wheel {_fmt(self.torque)} N*m"
+                f"train's peak torque on the wheel {_fmt(self.torque)} N·m"
             )
         name = {"fatigue": "fatigue factor of safety", "yield": "first-cycle yield factor"}.get(self.kind, self.kind)
         if self.kind in ("fatigue", "yield"):
@@ -525,7 +525,7 @@ def check_shaft(
         limits.append(
             ShaftLimit(
                 "torsional",
-                f"mode {worst.mode} at order {worst.order:g}",
+                f"mode {worst.mode} at order {worst.order:.4g}",
                 worst.speed_rpm,
                 _band_edge(worst.speed_rpm, speed_range, layout.critical_margin),
                 max(util),

@@ -359,12 +359,12 @@ def _exhausted(last, material, shaft, spec, arms, floor, series, tried, beyond=N
         words.append(beyond)
     if floor.torque_alternating > 0.0 and math.isfinite(floor.diameter):
         words.append(
-            f"below {floor.diameter * 1e3:g} mm the torque alone, T_a {floor.torque_alternating:.4g} N*m, fails "
+            f"below {floor.diameter * 1e3:g} mm the torque alone, T_a {floor.torque_alternating:.4g} N·m, fails "
             f"DE-Goodman at the keyseat (Shigley Eq. (7-8): d >= {floor.bound * 1e3:.4g} mm)"
         )
     elif floor.torque_alternating > 0.0:
         words.append(
-            f"the torque alone, T_a {floor.torque_alternating:.4g} N*m, fails DE-Goodman at the keyseat of every "
+            f"the torque alone, T_a {floor.torque_alternating:.4g} N·m, fails DE-Goodman at the keyseat of every "
             f"seat the checks support (Shigley Eq. (7-8): d >= {floor.bound * 1e3:.4g} mm at the last)"
         )
     if floor.cap is not None:
