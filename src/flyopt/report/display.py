@@ -118,6 +118,9 @@ UNITS = {
 
 #: Significant figures of a number written for people, unless the reader asks otherwise (``--digits``).
 DEFAULT_DIGITS = 4
+#: Significant figures of a limit's utilisation (value over allowed), wherever one is shown: three, so that
+#: a binding 0.9949 reads 0.995 in the text, the tables and the diagrams alike.
+UTILISATION_DIGITS = 3
 
 #: The most significant figures a reader may ask for: a double carries 15 to 17.
 MAX_DIGITS = 15

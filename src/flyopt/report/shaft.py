@@ -11,7 +11,7 @@ import numpy as np
 
 from flyopt.design.combination import shaft_label
 from flyopt.design.shaft.check import JSON_NAMES
-from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, quantity_text
+from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, UTILISATION_DIGITS, quantity_text
 from flyopt.report.text import formatters, number, table
 
 if TYPE_CHECKING:
@@ -113,7 +113,7 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
                 lim.where,
                 limit_value(lim, lim.value, units, digits),
                 limit_value(lim, lim.allowed, units, digits),
-                number(lim.utilisation, 3),
+                number(lim.utilisation, UTILISATION_DIGITS),
                 "holds" if lim.holds else "FAILS",
             ]
             for lim in c.limits
@@ -126,7 +126,7 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
         ]
         binding = c.binding
         lines.append(
-            f"  binding: {binding.kind} {binding.where}, utilisation {number(binding.utilisation, 3)}; "
+            f"  binding: {binding.kind} {binding.where}, utilisation {number(binding.utilisation, UTILISATION_DIGITS)}; "
             f"d(utilisation)/d(wheel mass) {number(rep.sensitivity, 3)} per kg"
         )
         lines += train_lines(c, units, digits)

@@ -25,6 +25,7 @@ from flyopt.report.characters import visible
 from flyopt.report.display import (
     DEFAULT,
     DEFAULT_DIGITS,
+    UTILISATION_DIGITS,
     dimension_of,
     field_number,
     field_text,
@@ -238,7 +239,9 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
         lines.append(f"    key     {''.join(said)}")
     for shaft_check in solution.shaft_checks:  # the shaft described as a part (flyopt.report.shaft)
         binding = shaft_check.check.binding
-        lines.append(f"    shaft   {binding.kind} {binding.where} binds, utilisation {number(binding.utilisation, 3)}")
+        lines.append(
+            f"    shaft   {binding.kind} {binding.where} binds, utilisation {number(binding.utilisation, UTILISATION_DIGITS)}"
+        )
     v = solution.verification
     held = (
         f"δ {number(v.achieved_delta, digits)} by the periodic simulation ({'FLAGGED' if v.flagged else 'holds'})"

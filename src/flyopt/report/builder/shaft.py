@@ -9,7 +9,7 @@ from typing import Any
 from flyopt.design.combination import shaft_label
 from flyopt.report import display
 from flyopt.report.builder.base import NOTES, BuilderBase
-from flyopt.report.display import number
+from flyopt.report.display import UTILISATION_DIGITS, number
 from flyopt.report.document import Facts, Paragraph, Table
 from flyopt.report.shaft import seat_choice_words
 
@@ -48,7 +48,7 @@ class ShaftSection(BuilderBase):
                     lim.where,
                     limit_value(lim, lim.value, self.units, self.digits),
                     limit_value(lim, lim.allowed, self.units, self.digits),
-                    number(lim.utilisation, 3),
+                    number(lim.utilisation, UTILISATION_DIGITS),
                     "holds" if lim.holds else "FAILS",
                 ]
                 for lim in c.limits
@@ -105,7 +105,7 @@ class ShaftSection(BuilderBase):
                 ),
                 (
                     "binding",
-                    f"{c.binding.kind} {c.binding.where}, utilisation {number(c.binding.utilisation, 3)}; "
+                    f"{c.binding.kind} {c.binding.where}, utilisation {number(c.binding.utilisation, UTILISATION_DIGITS)}; "
                     f"d(utilisation)/d(wheel mass) {number(report.sensitivity, 3)} per kg",
                 ),
             ]

@@ -155,6 +155,7 @@ def plot_energy_mass(
     ax.plot([sj(j[0])], [se(de[0])], "s", color="black", ms=5, label="φ = 0, the cycle's start", zorder=5)
     span_x, span_y = float(np.ptp(j)), float(np.ptp(de))
     xs = np.array([j.min() - 0.3 * span_x, j.max() + 0.3 * span_x])
+    apart = standard.digits_apart([w for w, *_rest in tangents], "angular_speed", units, digits)
     for w, at, colour, name in tangents:
         slope = 0.5 * w**2
         ax.plot(
@@ -163,7 +164,7 @@ def plot_energy_mass(
             color=colour,
             lw=1,
             ls="--",
-            label=f"tangent of slope ω_{name}²/2, ω_{name} = {standard.q(w, 'angular_speed', units, digits + 1)}",
+            label=f"tangent of slope ω_{name}²/2, ω_{name} = {standard.q(w, 'angular_speed', units, apart)}",
         )
         touch = np.array([at])
         (point,) = ax.plot(

@@ -107,7 +107,7 @@ def plot_shaft(
         own,
         f"The {shaft_label(report.shaft)} with the chosen wheel: moments and torque along it "
         "(dots: the sections checked; labelled: the notched ones)",
-        f"binding: {binding.kind} {binding.where}, utilisation {display.number(binding.utilisation, digits)}",
+        f"binding: {binding.kind} {binding.where}, utilisation {display.number(binding.utilisation, display.UTILISATION_DIGITS)}",
     )
     handles = ax.get_legend_handles_labels()[0] + right.get_legend_handles_labels()[0]
     standard.legend(ax, own, handles=handles)
@@ -202,7 +202,7 @@ def plot_campbell(
             mfc="none",
             color="tab:red",
             label=f"nearest: {worst.where}, {standard.q(worst.value * math.pi / 30.0, 'angular_speed', units, digits)} "
-            f"(utilisation {display.number(worst.utilisation, digits)})",
+            f"(utilisation {display.number(worst.utilisation, display.UTILISATION_DIGITS)})",
         )
     ax.set_xlim(0.0, shown[-1])
     ax.set_ylim(0.0, 1.25 * modes.max())

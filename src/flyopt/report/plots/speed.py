@@ -97,7 +97,7 @@ def plot_speed(
             ls="--",
             lw=1,
             gid="simulation",
-            label=f"periodic simulation (δ = {display.number(simulation.delta, digits + 2)})",
+            label=f"periodic simulation (δ = {display.number(simulation.delta, digits)})",
         )
         readout.curve(line, "ω (simulation)", speed_scale)
     w_max, w_min = float(np.max(omega)), float(np.min(omega))
@@ -105,6 +105,7 @@ def plot_speed(
     w_min = float(getattr(speed, "omega_min", w_min))
     w_mean = 0.5 * (w_max + w_min)
     where = {"max": getattr(speed, "phi_omega_max", None), "min": getattr(speed, "phi_omega_min", None)}
+    apart = standard.digits_apart((w_max, w_mean, w_min), "angular_speed", units, digits)
     for value, name, colour, style in (
         (w_max, "max", standard.SURPLUS, ":"),
         (w_mean, "mean", "gray", "-."),
@@ -119,7 +120,7 @@ def plot_speed(
             ls=style,
             lw=1,
             gid=f"omega_{name}",
-            label=f"{symbol} = {standard.q(value, 'angular_speed', units, digits + 2)}{angle}",
+            label=f"{symbol} = {standard.q(value, 'angular_speed', units, apart)}{angle}",
         )
         if at is not None and name != "mean" and w_max > w_min:
             ax.plot(

@@ -254,6 +254,17 @@ def q(value: float | None, dimension: str, units: str, digits: int = DIGITS) -> 
     return display.quantity_text(value, dimension, units, digits, prefixed=False)
 
 
+def digits_apart(values: Sequence[float], dimension: str, units: str, digits: int = DIGITS) -> int:
+    """The fewest significant figures, ``digits`` or more (at most four more), that write ``values`` apart in
+    the system's unit of ``dimension``: a diagram's ω_max, ω_m and ω_min of a small δ read as three speeds,
+    and at the report's figures wherever those already tell them apart."""
+    distinct = len({round(float(v), 12) for v in values})
+    for figures in range(digits, digits + 5):
+        if len({q(v, dimension, units, figures) for v in values}) == distinct:
+            return figures
+    return digits + 4
+
+
 @dataclass(frozen=True)
 class Scale:
     """The unit one axis shows a dimension in, and the labels read against that axis.

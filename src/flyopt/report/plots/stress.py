@@ -197,7 +197,7 @@ def plot_stress(
     ax.set_xlim(left, r_out + 0.03 * (r_out - left))
     low = min([0.0] + [float(np.min(np.minimum(sr, st))) * mpa for _p, _r, sr, st, _v in profile])
     ax.set_ylim(low - 0.05 * top, 1.25 * top if top > 0 else 1.0)
-    speed = f" = {standard.q(omega, 'angular_speed', units, digits + 1)}" if omega else ""
+    speed = f" = {standard.q(omega, 'angular_speed', units, digits)}" if omega else ""
     ax.set(xlabel=f"radius r [{r_unit}]", ylabel=f"stress [{s_unit}]")
     name = material or c.material.replace("_", " ")
     standard.title(ax, own, f"{name} {c.geometry} on {c.shaft}", f"stresses over the radius at ω_max{speed}")
