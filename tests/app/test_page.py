@@ -151,3 +151,35 @@ def test_the_diagram_in_view_is_drawn_and_shown_first(session, monkeypatch):
     assert [slot[2].key for slot in session.figure_slots] == keys  # each in its place on the page
     assert "0.02 (1/50)" in session.card.html and "drawing" not in session.card.html
     assert all(block.figure is not None for block in model.figure_blocks(session.answer.document) if block.key in keys)
+
+
+@pytest.mark.parametrize("then", ["a slow scene", "a broken scene"])
+def test_an_edit_that_runs_nothing_while_diagrams_are_drawn_leaves_solve_offered(session, monkeypatch, then):
+    """A fast scene's diagrams are being drawn (Solve greyed, the spinner on) when a slow template is picked or
+    the text broken: the page then runs nothing for the new text, the old drawing is dropped, and Solve must be
+    offered again (it stayed greyed, the spinner turning, until Cancel was pressed)."""
+    from flyopt.app import model
+
+    held, release = threading.Event(), threading.Event()
+
+    def svg(block):
+        held.set()
+        assert release.wait(PATIENCE), "the test did not release the diagram"
+        return model.Shown(block.key, block.key, "<svg></svg>")
+
+    monkeypatch.setattr(model, "figure_svg", svg)
+    slow = (ROOT / "problems" / "press-drive.toml").read_text(encoding="utf-8")
+    text = slow if then == "a slow scene" else edited("-1")
+
+    async def edits() -> None:
+        one = asyncio.ensure_future(session._refresh(edited("0.04"), solve=None))
+        await until(held.is_set, "the first edit's first diagram")
+        assert session.solve_button.disabled and session.busy.value
+        await session._refresh(text, solve=None)
+        release.set()
+        await one
+
+    asyncio.run(edits())
+    said = "press Solve" if then == "a slow scene" else "machine.delta"
+    assert said in session.card.html
+    assert not session.solve_button.disabled and not session.busy.value and session.cancel_button.disabled

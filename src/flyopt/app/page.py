@@ -247,6 +247,7 @@ class Session:
         if checked.problems or checked.scene is None:
             self.card.html = model.card_html(None, checked.problems)
             self.stale.object = STALE if self.answer is not None else ""
+            self._busy(False)  # an older edit's work still running is dropped: nothing is being done for this one
             return
         fast = model.live(checked.scene)
         mode = "<small>solved on every edit</small>" if fast else "<small>a slow model: press Solve</small>"
@@ -255,6 +256,7 @@ class Session:
             self.form.show(text)
             self.mode.object = mode
             self.stale.object = STALE if self.answer is not None else ""
+            self._busy(False)  # as above: Solve is this scene's next step, so it is offered
             return
         if not fast:
             self.card.html = model.card_html(None, [], busy="Solving (a slow model)…")
