@@ -155,6 +155,11 @@ def test_the_figures_are_the_reports_and_the_downloads_open(workspace):
 
     reader = PdfReader(io.BytesIO(model.report_bytes(answer, "pdf")))
     assert "Shear press" in reader.pages[0].extract_text()
+    # the downloads name the page's scene, not the file in the server's private folder it was solved from
+    pdf = "".join(page.extract_text() for page in reader.pages)
+    for text in (html, pdf, answer.json):
+        assert str(workspace.folder) not in text and model.SCENE_NAME in text
+    assert json.loads(answer.json)["scene"] == model.SCENE_NAME
 
 
 def test_the_card_comes_first_from_the_same_solve_and_the_diagrams_draw_without_solving_again(workspace, monkeypatch):

@@ -183,3 +183,16 @@ def test_an_edit_that_runs_nothing_while_diagrams_are_drawn_leaves_solve_offered
     said = "press Solve" if then == "a slow scene" else "machine.delta"
     assert said in session.card.html
     assert not session.solve_button.disabled and not session.busy.value and session.cancel_button.disabled
+
+
+def test_downloads_are_offered_only_when_there_is_something_to_give(session):
+    """Before any answer no report or JSON is offered, and the drawing and solid only with a wheel: a click on a
+    download with nothing to give failed silently in the browser (press-drive's answer needs no wheel)."""
+    assert all(button.disabled for button in session.answer_downloads + session.wheel_downloads)
+    asyncio.run(session._refresh(edited("0.04"), solve=None))
+    assert not any(button.disabled for button in session.answer_downloads + session.wheel_downloads)
+    conveyor = (ROOT / "problems" / "conveyor.toml").read_text(encoding="utf-8")
+    asyncio.run(session._refresh(conveyor, solve=True))
+    assert "no flywheel" in session.card.html.lower() or "not needed" in session.card.html.lower()
+    assert not any(button.disabled for button in session.answer_downloads)
+    assert session.wheel_downloads and all(button.disabled for button in session.wheel_downloads)

@@ -143,6 +143,11 @@ def test_the_form_s_vary_text_is_read_by_flyopt_sweep_and_its_points_are_the_gri
     for column in ("speed", "mass", "d_outer"):
         np.testing.assert_allclose(result.frame[column].to_numpy(float), cli[column].to_numpy(float), rtol=1e-12)
 
+    # the file names the page's scene, not the server's private folder it was written to
+    import pyarrow.parquet as pq
+
+    metadata = json.loads(pq.read_schema(result.parquet).metadata[b"flyopt"])
+    assert metadata["scene"] == model.SCENE_NAME and str(workspace.folder) not in json.dumps(metadata)
     csv = sweeps.csv_file(result, workspace)
     assert csv.parent == workspace.folder  # the session's folder, nothing elsewhere
     assert {p.name for p in workspace.folder.iterdir()} <= {

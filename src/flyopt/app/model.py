@@ -227,18 +227,16 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
     from flyopt.report.builder import CalculationInputs, build
 
     path = workspace.write(text)
-    inputs = collect(path, f"flyopt app ({SCENE_NAME})", pdf=False)
+    inputs = collect(path, f"flyopt app ({SCENE_NAME})", pdf=False, shown_as=SCENE_NAME)
     calculation = isinstance(inputs, CalculationInputs)
     # a calculation's report draws its figures; a document of numbers only draws nothing, and does not wait for
     # a diagram being drawn in the page's drawing worker
     with drawing() if calculation else nullcontext():
         document = build(inputs, units, figures=calculation)
     if isinstance(inputs, CalculationInputs):
-        json = json_text(calculation_document(inputs.what, inputs.scene.title, path, inputs.result.to_dict()))
-    else:
-        json = solution_json(
-            cast("Solution", inputs.solution), path
-        )  # the one solve: the same JSON as flyopt solve --json
+        json = json_text(calculation_document(inputs.what, inputs.scene.title, SCENE_NAME, inputs.result.to_dict()))
+    else:  # the one solve: the same JSON as flyopt solve --json, its scene named as the page names it
+        json = solution_json(cast("Solution", inputs.solution), SCENE_NAME)
     card = card_of(document)
     return Answer(
         status=document.status,
@@ -381,6 +379,14 @@ def made_available(kind: str) -> bool:
     return True
 
 
+def wheel_of(answer: Answer | None) -> Any:
+    """The wheel ``answer`` designed (its :class:`flyopt.design.result.Design`), or None: none needed, none
+    feasible, a calculation, no answer. What the drawing and solid downloads are made of."""
+    solution = answer.solution if answer is not None else None
+    design = solution.design if solution is not None else None
+    return None if design is None else design.best
+
+
 def made_bytes(answer: Answer, kind: str, workspace: Workspace) -> bytes | None:
     """The answer's wheel as ``flyopt export`` writes it: its drawing ("pdf", "dxf", "svg") or its solid ("step").
 
@@ -390,16 +396,16 @@ def made_bytes(answer: Answer, kind: str, workspace: Workspace) -> bytes | None:
     """
     from flyopt.report.drawing import drawing_of_design, write_drawing, write_solid
 
-    solution = answer.solution
-    design = solution.design if solution is not None else None
-    if solution is None or design is None or design.best is None:
+    best = wheel_of(answer)
+    if best is None:
         return None
+    scene = cast("Solution", answer.solution).scene
     target = workspace.folder / f"made.{kind}"
     try:
         if kind == "step":
-            write_solid(design.best, solution.scene, target)
+            write_solid(best, scene, target)
         else:
-            write_drawing(drawing_of_design(design.best, solution.scene), target, kind)
+            write_drawing(drawing_of_design(best, scene), target, kind)
         return target.read_bytes()
     finally:
         target.unlink(missing_ok=True)

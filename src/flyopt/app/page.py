@@ -103,16 +103,27 @@ class Session:
         self.footer = markup(
             f'<div class="footer">{model.provenance_html(None)}</div>', stylesheets=[CSS], sizing_mode="stretch_width"
         )
-        downloads = [
-            pn.widgets.FileDownload(callback=self._report("html"), filename="report.html", label="Report (HTML)"),
-            pn.widgets.FileDownload(callback=self._report("pdf"), filename="report.pdf", label="Report (PDF)"),
-            pn.widgets.FileDownload(callback=self._scene, filename="scene.toml", label="Scene (TOML)"),
-            pn.widgets.FileDownload(callback=self._json, filename="solution.json", label="JSON"),
-            *(
-                pn.widgets.FileDownload(callback=self._made(kind), filename=name, label=label)
-                for kind, label, name in model.MADE
-                if model.made_available(kind)
+        #: The downloads of an answer, and those of its wheel: offered (enabled) only when there is one, so that
+        #: a click always gives a file (a download with nothing to give failed silently in the browser).
+        self.answer_downloads = [
+            pn.widgets.FileDownload(
+                callback=self._report("html"), filename="report.html", label="Report (HTML)", disabled=True
             ),
+            pn.widgets.FileDownload(
+                callback=self._report("pdf"), filename="report.pdf", label="Report (PDF)", disabled=True
+            ),
+            pn.widgets.FileDownload(callback=self._json, filename="solution.json", label="JSON", disabled=True),
+        ]
+        self.wheel_downloads = [
+            pn.widgets.FileDownload(callback=self._made(kind), filename=name, label=label, disabled=True)
+            for kind, label, name in model.MADE
+            if model.made_available(kind)
+        ]
+        downloads = [
+            *self.answer_downloads[:2],
+            pn.widgets.FileDownload(callback=self._scene, filename="scene.toml", label="Scene (TOML)"),
+            *self.answer_downloads[2:],
+            *self.wheel_downloads,
         ]
         self.template.param.watch(self._load_template, "value")
         text_parameter = "value_input" if "value_input" in self.editor.param else "value"
@@ -323,6 +334,11 @@ class Session:
         """Make ``answer`` the one shown and downloaded, closing the figures of the one it replaces."""
         old, self.answer = self.answer, answer
         self.stale.object = ""
+        for button in self.answer_downloads:
+            button.disabled = False
+        wheel = model.wheel_of(answer) is not None
+        for button in self.wheel_downloads:
+            button.disabled = not wheel
         if old is not None and old.document is not answer.document:
             try:  # in the drawing worker: closing waits for the drawing lock, which a diagram may be holding
                 self.drawer.submit(model.close, old.document)

@@ -23,6 +23,7 @@ the Parquet file and nowhere else. docs/flywheel-design.md §9 (studies).
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import shutil
 import time
@@ -129,13 +130,13 @@ def plan(scene: Scene, axes: Sequence[Axis]) -> Plan:
 def scene_copy(text: str, workspace: Workspace) -> Scene:
     """The scene of a sweep, read from its own copy of the editor's text in the session's folder (an edit
     while it runs does not change the scene the chunks and ``--resume`` see)."""
-    from flyopt.app.model import refuse_oversize
+    from flyopt.app.model import SCENE_NAME, refuse_oversize
     from flyopt.io.scene import load
 
     refuse_oversize(text)
     path = workspace.folder / SCENE
     path.write_text(text, encoding="utf-8")
-    return load(path)
+    return dataclasses.replace(load(path), shown_as=SCENE_NAME)  # the page's name, not its server's folder
 
 
 def estimate(scene: Scene, axes: Sequence[Axis], points: int) -> tuple[float, float]:

@@ -142,7 +142,9 @@ def write(document: Document, path: str | os.PathLike[str], kind: str) -> None:
     write_atomically(path, lambda handle: handle.write(data))  # the handle of the file it made, not a name
 
 
-def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) -> ReportInputs | CalculationInputs:
+def collect(
+    path: str | os.PathLike[str], command: str = "", pdf: bool = False, shown_as: str | None = None
+) -> ReportInputs | CalculationInputs:
     """Solve a scene and gather what its report shows (:class:`flyopt.report.builder.ReportInputs`), or,
     for a scene that is one calculation (:data:`flyopt.names.CALCULATIONS`), answer it as ``flyopt solve``
     does (:func:`flyopt.pipeline.solve_calculation`) into a :class:`flyopt.report.builder.CalculationInputs`.
@@ -155,6 +157,8 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
         The command line, for the provenance.
     pdf : bool
         Name reportlab's version in the provenance.
+    shown_as : str, optional
+        The scene file's name in the report (default ``path``): the app's, whose file is its server's own.
 
     Raises
     ------
@@ -163,6 +167,7 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
     SolverFailed
         A model or the design did not converge (exit 1).
     """
+    import dataclasses
     from pathlib import Path
 
     from flyopt.io.scene import load
@@ -172,18 +177,21 @@ def collect(path: str | os.PathLike[str], command: str = "", pdf: bool = False) 
 
     data = read_toml(path)
     scene = load(path, data)
+    if shown_as is not None:
+        scene = dataclasses.replace(scene, shown_as=shown_as)
     what = scene.calculation
     if what is not None:
         from flyopt.pipeline import solve_calculation
         from flyopt.report.builder import CalculationInputs
 
         result = solve_calculation(scene)  # the one answer, as flyopt solve gives it: the report only reads it
-        calculation = CalculationInputs(str(path), Path(path).read_text(encoding="utf-8"), scene, what, result)
+        name = shown_as or str(path)
+        calculation = CalculationInputs(name, Path(path).read_text(encoding="utf-8"), scene, what, result)
         calculation.provenance = provenance(scene, command, pdf, data_files(data))
         return calculation
     solution = solve(scene, verify_design=True, extras=report_extras())  # the one solve: what follows only reads
     inputs = ReportInputs(
-        scene_file=str(path),
+        scene_file=shown_as or str(path),
         scene_text=Path(path).read_text(encoding="utf-8"),
         scene_tables=tuple(k for k, v in data.items() if isinstance(v, (dict, list))),
         scene=scene,

@@ -116,6 +116,9 @@ class Scene:
         branches in parallel (the trunk); no speed needed, no torques either.
     source : str or None
         File the scene came from.
+    shown_as : str or None
+        The file's name in outputs (a report's provenance, a table's metadata, a drawing's title block) where
+        it is not ``source``: the app's scenes are files in its server's private folder. None: ``source``.
     """
 
     title: str
@@ -144,6 +147,7 @@ class Scene:
     electric_drive: ElectricDrive | None = None  # [electric_drive]: a drive reduced to its motor shaft (no torques)
     power_chain: PowerBranch | None = None  # [power_chain]: the trunk of a motor's stages and branches (no torques)
     source: str | None = field(default=None, compare=False)
+    shown_as: str | None = field(default=None, compare=False)
 
     @property
     def calculation(self) -> str | None:

@@ -155,7 +155,8 @@ def scene_record(scene: Scene, digest: str | None = None) -> dict[str, str | Non
     Returns
     -------
     dict
-        ``scene`` (the file, or None for a scene made in Python),
+        ``scene`` (the file, as :attr:`flyopt.io.scene.Scene.shown_as` names it, or None for a scene made
+        in Python),
         ``scene_file_sha256`` (of the file's bytes now, None without one)
         and ``scene_digest``.
     """
@@ -166,7 +167,8 @@ def scene_record(scene: Scene, digest: str | None = None) -> dict[str, str | Non
             sha = hashlib.sha256(Path(source).read_bytes()).hexdigest()
         except OSError:
             sha = None
-    return {"scene": None if source is None else str(source), "scene_file_sha256": sha, "scene_digest": digest}
+    shown = getattr(scene, "shown_as", None) or (None if source is None else str(source))
+    return {"scene": shown, "scene_file_sha256": sha, "scene_digest": digest}
 
 
 def table_metadata(
