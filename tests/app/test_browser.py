@@ -129,6 +129,14 @@ def test_edit_break_fix_and_download(server, browser, tmp_path):
 
     mass = display.quantity_text(json_doc["design"]["mass"], "mass", "engineering")
     assert mass in card(page).inner_text()
+    # the card stays in view while the diagrams are scrolled through, to the last of them (it scrolled away)
+    last = page.locator(".figure-speed svg").first
+    last.wait_for(timeout=60_000)
+    last.scroll_into_view_if_needed()
+    status, diagram = card(page).locator(".status").first.bounding_box(), last.bounding_box()
+    assert 0 <= status["y"] and status["y"] + status["height"] <= 1000, status
+    assert diagram["y"] < 1000 and diagram["y"] + diagram["height"] > 0, diagram
+    assert not (diagram["x"] < status["x"] + status["width"] and status["x"] < diagram["x"] + diagram["width"])
 
     replace_line(page, "delta = 0.05", "delta = -1")
     # the card of the last keystroke's text: typing over a selection sends the text without the line first (Ace

@@ -70,6 +70,8 @@ class FormView:
             pn.Row(self.use_paste, pn.pane.HTML("or a CSV file:"), self.upload),
             self.message,
             sizing_mode="stretch_width",
+            height=340,  # the editor's: the page's answer card, below the two, stays in view (it scrolls within)
+            styles={"overflow-y": "auto"},
         )
 
     # -- text -> form --------------------------------------------------------------------------

@@ -83,8 +83,8 @@ class Session:
             # of the last, and the page solved 'delta = 0.02' under an editor showing 'delta = 0.025', with no
             # change left to come (traced; test_browser's edit test failed 1 run in 2-4, then 0 in 10)
             on_keyup=False,
-            sizing_mode="stretch_both",
-            min_height=560,
+            sizing_mode="stretch_width",
+            height=340,  # the answer card below it stays in view beside the diagrams
         )
         #: The editor's text as last typed, loaded or written by the form: what is checked, solved and downloaded
         #: (the editor's own value and value_input each lag behind one of those).
@@ -134,20 +134,27 @@ class Session:
         from flyopt.app.form_view import FormView
 
         self.form = FormView(pn, self._text, self._set_text, self._materials)
+        # The two columns scroll apart, each within the page's height: the scene and its answer card on the left
+        # stay in view (the "always visible") while the diagrams on the right are scrolled through.
+        within_page = {"overflow-y": "auto", "max-height": "calc(100vh - 90px)"}
         left = pn.Column(
             pn.Row(self.template, self.units),
-            pn.Tabs(("Scene (TOML)", self.editor), ("Form", self.form.layout), dynamic=False),
-            sizing_mode="stretch_both",
-            min_width=480,
-        )
-        right = pn.Column(
+            pn.Tabs(
+                ("Scene (TOML)", self.editor), ("Form", self.form.layout), dynamic=False, sizing_mode="stretch_width"
+            ),
             pn.Row(self.solve_button, self.cancel_button, self.busy, self.mode),
             self.card,
+            sizing_mode="stretch_width",
+            min_width=480,
+            styles=within_page,
+        )
+        right = pn.Column(
             pn.FlexBox(*downloads, flex_wrap="wrap"),
             self.stale,
             self.figures,
             sizing_mode="stretch_width",
             min_width=520,
+            styles=within_page,
         )
         right.append(self.footer)
         from flyopt.app.tabs import MaterialsTab, SweepsTab, style
