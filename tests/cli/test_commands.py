@@ -433,3 +433,37 @@ def test_a_load_that_gives_work_only_in_part_of_the_cycle_is_not_refused(main_cl
     status, out, err = main_cli("solve", scene, "--json")
     assert status == 0, err
     assert json.loads(out)["motor_power"] > 0
+
+
+def test_sweep_prints_its_csv_in_the_units_asked_for_naming_them_and_files_stay_si(main_cli, tmp_path):
+    """flyopt sweep --units (issue 29: pareto, tradeoff, sweep and the plots follow --units): the CSV on stdout
+    in the system asked for, each quantity's unit in its column's name; 'input' gives the varied field in the
+    unit it was given in; a file written with -o stays SI (its metadata names the units)."""
+    import io
+
+    import pandas as pd
+
+    import flyopt
+
+    scene, vary = PROBLEMS / "shear-press.toml", "speed=1000:2000:3rpm"
+    status, out, _ = main_cli("sweep", scene, "--vary", vary, "--no-progress")
+    assert status == 0
+    si = pd.read_csv(io.StringIO(out))
+    np_speed = [1000 * math.pi / 30, 1500 * math.pi / 30, 2000 * math.pi / 30]  # the grid, rad/s by hand
+    assert si["speed"].tolist() == pytest.approx(np_speed, rel=1e-12)
+    for units, speed, length in (("engineering", "rpm", ("mm", 1e3)), ("imperial", "rpm", ("in", 1 / 0.0254))):
+        status, out, _ = main_cli("sweep", scene, "--vary", vary, "--units", units, "--no-progress")
+        assert status == 0
+        shown = pd.read_csv(io.StringIO(out))
+        assert shown[f"speed [{speed}]"].tolist() == pytest.approx([1000, 1500, 2000], rel=1e-12)
+        name = f"d_outer [{length[0]}]"
+        assert shown[name].tolist() == pytest.approx((si["d_outer"] * length[1]).tolist(), rel=1e-12)
+    status, out, _ = main_cli("sweep", scene, "--vary", vary, "--units", "input", "--no-progress")
+    shown = pd.read_csv(io.StringIO(out))
+    assert shown["speed [rpm]"].tolist() == pytest.approx([1000, 1500, 2000], rel=1e-12)
+    assert shown["d_outer"].tolist() == pytest.approx(si["d_outer"].tolist(), rel=1e-15)  # the rest SI
+    written = tmp_path / "s.csv"
+    status, _, _ = main_cli("sweep", scene, "--vary", vary, "--units", "imperial", "-o", written, "--quiet")
+    assert status == 0
+    back = flyopt.read_results(written)
+    assert back["speed"].tolist() == pytest.approx(np_speed, rel=1e-12) and "speed [rpm]" not in back

@@ -87,6 +87,16 @@ def add_sweep_arguments(parser: argparse.ArgumentParser) -> None:
         "--vary", action="append", default=[], metavar="FIELD=VALUES", help="a field and its values (repeat for a grid)"
     )
     parser.add_argument("-o", "--output", help="result file, .parquet or .csv (default: CSV on stdout)")
+    from flyopt.report import display
+    from flyopt.report.notebook import INPUT
+
+    parser.add_argument(
+        "--units",
+        choices=(*display.SYSTEMS, INPUT),
+        help="the CSV printed on stdout in this unit system, each quantity's unit in its column's name "
+        "('speed [rpm]'); 'input': the varied fields in the units they were given in. Default: SI, as the "
+        "files are written (flyopt.read_results gives a file back in any of these)",
+    )
     parser.add_argument(
         "--samples", type=_positive_int, metavar="N", help="N Latin hypercube samples instead of the full grid"
     )
@@ -185,7 +195,12 @@ def run_sweep(args: argparse.Namespace) -> int:
     if output is None:  # missing values as empty cells, as in a CSV file
         from flyopt.outputs.results import csv_rows
 
-        csv_rows(frame, sys.stdout, header=True)
+        if args.units is not None:  # the user's units, named in the header (the files stay SI, with metadata)
+            from flyopt.report.notebook import to_units
+
+            csv_rows(to_units(frame, args.units, labels=True), sys.stdout, header=True)
+        else:
+            csv_rows(frame, sys.stdout, header=True)
     if args.quiet:
         return EXIT_OK
     where = f"wrote {output}" if output is not None else "done"
