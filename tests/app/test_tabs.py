@@ -72,6 +72,10 @@ def test_the_trade_off_of_ticked_materials_is_flyopt_tradeoff_of_the_scene_with_
     shown = materials.shown(table, materials.TRADEOFF_SHOWN, "engineering", materials.display_names(load(SHEAR)))
     assert shown["material"].tolist() == ["cast steel"]
     assert shown["d_outer [mm]"].iloc[0] == pytest.approx(cli["d_outer"].iloc[0] * 1000, rel=5e-4)  # 4 figures
+    # the limits that bind in words, as the printed flyopt tradeoff names them (the tab showed 'rim_speed,hb_min')
+    status, printed, _ = main_cli("tradeoff", write_scene(with_materials_text(SHEAR, ticked)))
+    limit = shown["limit"].iloc[0]
+    assert "_" not in limit and "," in cli["limit"].iloc[0] and limit in printed, (limit, printed)
 
     with pytest.raises(SceneError, match="unknown material 'unobtainium'"):
         materials.tradeoff(load(SHEAR), ["unobtainium"])

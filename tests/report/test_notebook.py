@@ -108,7 +108,7 @@ def test_a_machine_that_needs_no_flywheel_has_a_card_that_says_so():
     card = flyopt.solve(flyopt.load(PROBLEMS / "conveyor.toml"))._repr_html_()
     verdict = html.unescape(re.search(r"<p>(.*?)</p>", card).group(1))
     assert verdict.startswith("No flywheel is needed: the machine's own inertia keeps δ within")
-    assert "status <b>not_needed</b>" in card and "mass" not in _cells(card)
+    assert "status <b>not needed</b>" in card and "mass" not in _cells(card)
 
 
 def test_the_ranking_as_a_frame_is_the_jsons_candidates_with_their_units(punch_press):

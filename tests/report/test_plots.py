@@ -569,6 +569,10 @@ def test_stress_plot_at_the_bore_is_the_annulus_closed_form(geometry):
     assert len(governing) == 1
     x, y = governing[0].get_data()
     assert math.isclose(x[0], a * 1e3, rel_tol=1e-9) and math.isclose(y[0], hoop / 1e6, rel_tol=1e-6)
+    # its share of the allowable, hoop / allowable from the closed form, to one decimal as the card writes it
+    stress = c.stresses.stress
+    allowable = next(p["allowable"] for p in stress["parts"] if p["part"] == stress["where"]["part"])
+    assert f"({100 * hoop / allowable:.1f} % of its allowable)" in governing[0].get_label()
     ax.figure.clf()
 
 

@@ -157,13 +157,14 @@ def shown(
     from flyopt.report import display
 
     digits = display.DEFAULT_DIGITS if digits is None else digits
+    words = display.for_people(frame[[c for c in columns if c in frame.columns]].copy(), names or {})
     out: dict[str, Any] = {}
     for c in columns:
         if c not in frame.columns:
             continue
-        values = frame[c]
-        if c in ("material", "best_material") and names:
-            out[c] = [names.get(v, v) if isinstance(v, str) else v for v in values]
+        values = words[c]
+        if c in ("material", "best_material", "binding", "limit"):  # in words (display.for_people)
+            out[c] = list(values)
             continue
         dimension = quantities.dimension_of(c)
         if not is_numeric_dtype(values) or is_bool_dtype(values) or (dimension is None and is_integer_dtype(values)):
@@ -333,11 +334,11 @@ def point_rows(
 
     IndexError for a row the front does not have (a stale click).
     """
-    from flyopt.design.check import binding_label
     from flyopt.report import display
     from flyopt.studies.pareto import PARETO_OBJECTIVES
 
     row = front.iloc[index]
+    words = display.for_people(front.iloc[[index]].copy(), names or {}).iloc[0]  # materials, limits in words
     other = str(front.columns[1])
     lines = []
     for label, column in POINT_ROWS:
@@ -346,10 +347,8 @@ def point_rows(
         value = row[column]
         if value is None or (isinstance(value, float) and math.isnan(value)):
             text = "-"
-        elif column == "best_material":
-            text = (names or {}).get(value, str(value))
-        elif column == "binding":
-            text = ", ".join(binding_label(b) for b in value.split(",") if b) or "-"
+        elif column in ("best_material", "binding"):
+            text = str(words[column]) or "-"
         elif isinstance(value, str):
             text = value or "-"
         elif column == "epsilon":

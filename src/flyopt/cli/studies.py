@@ -20,7 +20,7 @@ import math
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, Literal, cast
 
 from flyopt.cli.exits import EXIT_INFEASIBLE, EXIT_OK, run
 from flyopt.errors import SceneError
@@ -478,21 +478,12 @@ def _emit(
 
 
 def _for_people(shown: pd.DataFrame, scene: Scene) -> pd.DataFrame:
-    """The printed table's materials by their names for people (:attr:`flyopt.design.materials.Material.display_name`)
-    and its binding limits in words (:func:`flyopt.design.check.binding_label`), as ``flyopt solve`` prints them;
-    the files and the JSON keep the keys and the row names."""
-    from flyopt.design.check import binding_label
+    """The printed table's materials by their names for people and its binding limits in words
+    (:func:`flyopt.report.display.for_people`, the app's too); the files and the JSON keep the keys."""
+    from flyopt.report import display
 
-    library = scene.material_library()
-    for c in ("material", "best_material"):
-        if c in shown:
-            shown[c] = [library[m].display_name if isinstance(m, str) and m in library else m for m in shown[c]]
-    for c in ("binding", "limit"):
-        if c in shown:
-            shown[c] = [
-                ", ".join(binding_label(n) for n in v.split(",") if n) if isinstance(v, str) else v for v in shown[c]
-            ]
-    return shown
+    names = {key: material.display_name for key, material in scene.material_library().items()}
+    return cast("pd.DataFrame", display.for_people(shown, names))
 
 
 def _label(column: str, unit: str | None) -> str:

@@ -124,7 +124,7 @@ def card_html(card: Card, busy: str = "") -> str:
     )
     return (
         f'<div class="card flyopt-answer {"ok" if card.good else "bad"}"><div class="status">'
-        f"<b>{escape(visible(card.title))}</b>: status <b>{escape(card.status)}</b>"
+        f"<b>{escape(visible(card.title))}</b>: status <b>{escape(card.status.replace('_', ' '))}</b>"
         f"{' — ' + escape(busy) if busy else ''}</div><p>{escape(visible(card.verdict))}</p><table>{rows}</table></div>"
     )
 

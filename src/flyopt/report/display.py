@@ -122,6 +122,31 @@ DEFAULT_DIGITS = 4
 #: a binding 0.9949 reads 0.995 in the text, the tables and the diagrams alike.
 UTILISATION_DIGITS = 3
 
+
+def for_people(table: Any, names: Mapping[str, str]) -> Any:
+    """A study's table (a pandas DataFrame, changed in place and returned) as people read it: its materials by
+    their names for people (``names``: key -> :attr:`flyopt.design.materials.Material.display_name`) and its
+    binding limits in words (:func:`flyopt.design.check.binding_label`), as ``flyopt solve`` writes them: the
+    printed tables of ``flyopt tradeoff``, ``pareto`` and ``sweep`` and the app's. Files and JSON keep the keys."""
+    from flyopt.design.check import binding_label
+
+    for c in ("material", "best_material"):
+        if c in table:
+            table[c] = [names.get(m, m) if isinstance(m, str) else m for m in table[c]]
+    for c in ("binding", "limit"):
+        if c in table:
+            table[c] = [
+                ", ".join(binding_label(n) for n in v.split(",") if n) if isinstance(v, str) else v for v in table[c]
+            ]
+    return table
+
+
+def share_of_allowable(utilisation: float) -> str:
+    """A stress as a share of its allowable, "89.5 % of its allowable": the card's, the text's and the stress
+    diagram's one wording (one decimal)."""
+    return f"{100 * utilisation:.1f} % of its allowable"
+
+
 #: The most significant figures a reader may ask for: a double carries 15 to 17.
 MAX_DIGITS = 15
 

@@ -35,6 +35,7 @@ from flyopt.report.display import (
     number,
     quantity_text,
     rounded_rank_note,
+    share_of_allowable,
     unit,
 )
 
@@ -688,7 +689,7 @@ def fem_report(check: FemCheck, units: str = DEFAULT, digits: int = DEFAULT_DIGI
         if p.model_stress is not None:
             text += f"; Lamé/arm {q(p.model_stress, 'stress')}"
         if p.utilisation is not None:
-            text += f"; {100 * p.utilisation:.1f} % of its allowable"
+            text += f"; {share_of_allowable(p.utilisation)}"
         lines.append(text)
     if check.junctions:
         factors = ", ".join(

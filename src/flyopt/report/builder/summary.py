@@ -124,7 +124,7 @@ class Summary(BuilderBase):
                             (
                                 self.q(governing["stress"], "stress", "stress"),
                                 f" in the {governing['part']}, ",
-                                f"{100 * governing['stress'] / governing['allowable']:.1f} % of its allowable"
+                                display.share_of_allowable(governing["stress"] / governing["allowable"])
                                 if governing.get("allowable")
                                 else "",
                             ),

@@ -187,7 +187,7 @@ def plot_stress(
             mew=1.5,
             zorder=5,
             label=f"governing: {governing['part']}, {measure} {standard.q(governing['stress'], 'stress', units, digits)} at "
-            f"r = {standard.q(governing['radius'], 'length', units, digits)} ({100 * utilisation:.0f} % of allowable)",
+            f"r = {standard.q(governing['radius'], 'length', units, digits)} ({display.share_of_allowable(utilisation)})",
         )
     ax.axhline(0, color="black", lw=0.6)
     top = max([a for _n, a in allowables] + [governing["stress"] if governing else 0.0]) * mpa
