@@ -238,3 +238,16 @@ def test_a_trade_off_in_the_engineers_units():
         and shown["material"].tolist() == table["material"].tolist()
     )
     assert shown.attrs["flyopt"]["units"]["rim_speed"] == "m/s" and "flyopt" not in table.attrs  # the table untouched
+
+
+def test_a_drive_s_card_names_its_motor_once_and_its_rating_on_its_own_row():
+    """press-drive: the card said 'motor 132S-4 5.5 kW: 5.5 kW'; the catalogue's name, then the rated power
+    from the JSON as the card writes a power."""
+    from flyopt.report import display
+
+    path = PROBLEMS / "press-drive.toml"
+    solution = flyopt.solve(flyopt.load(path))
+    motor = json.loads(solution_json(solution, str(path)))["drive"]["best"]["motor"]
+    cells = _cells(solution._repr_html_())
+    assert cells["motor"] == motor["name"]
+    assert cells["rated power"] == display.quantity_text(motor["rated_power"], "power", "engineering")

@@ -136,7 +136,8 @@ class Summary(BuilderBase):
         if drive is not None and drive.best is not None:
             m = drive.best.motor
             rows += [
-                ("motor", (f"{m.name}: ", self.q(m.rated_power, "power", "rated_power"))),
+                ("motor", m.name),  # the catalogue's name, which may carry its power: the rating on its own row
+                ("rated power", self.q(m.rated_power, "power", "rated_power")),
                 ("motor ratio", number(drive.best.motor_ratio, self.digits)),
                 ("motor + wheel mass", self.q(drive.best.total_mass, "mass", "total_mass")),
             ]
