@@ -1,10 +1,14 @@
 """The display units (flyopt.report.display) against pint's own conversions."""
 
+from pathlib import Path
+
 import pint
 import pytest
 
 from flyopt.report import display
 from flyopt.units import DIMENSIONS
+
+PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
 
 UREG = pint.UnitRegistry()
 
@@ -130,3 +134,29 @@ def test_a_drive_trains_stiffnesses_in_each_system():
     assert display.quantity_text(2.4e6, "stiffness", "engineering") == "2.4 MN/m"
     assert display.quantity_text(4.4482216152605 / 0.0254 * 250.0, "stiffness", "imperial") == "250 lbf/in"
     assert display.quantity_text(250.0, "stiffness", "si") == "250 N/m"
+
+
+def test_a_mode_shape_never_writes_minus_zero():
+    """motor-press-drive-train's mode 4 read '+0.00, +0.00, -0.00, ...': a node's tiny negative amplitude."""
+    from flyopt.report.display import mode_shape
+
+    assert mode_shape([1.0, -0.43, -0.001, 0.004, -0.005, 0.0]) == "+1.00, -0.43, +0.00, +0.00, -0.01, +0.00"
+
+
+def test_the_cycle_balance_is_zero_where_it_is_round_off_of_the_work():
+    """press-drive's report said 'W_d − W_r = -1.819e-12 J' where every other report said 0: the difference of
+    two works of a few kJ, round-off under 1e-12 of them (display.NOISE_RTOL)."""
+    from flyopt.cli.report import collect
+    from flyopt.report.builder import build
+    from flyopt.report.document import Paragraph
+
+    inputs = collect(PROBLEMS / "press-drive.toml")
+    document = build(inputs, "engineering", figures=False)
+    said = [
+        "".join(getattr(part, "text", part) for part in block.text)
+        for section in document.sections
+        for block in section.blocks
+        if isinstance(block, Paragraph) and "The cycle balances" in str(block.text)
+    ]
+    assert len(said) == 1 and "W_d − W_r = 0 " in said[0], said
+    document.close()

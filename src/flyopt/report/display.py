@@ -141,6 +141,12 @@ def for_people(table: Any, names: Mapping[str, str]) -> Any:
     return table
 
 
+def mode_shape(shape: Sequence[float]) -> str:
+    """A mode's shape, its amplitudes signed to two decimals ("+1.00, -0.43, +0.00"): a node's amplitude of
+    -0.001 is "+0.00", never "-0.00"."""
+    return ", ".join("+0.00" if f"{v:+.2f}" == "-0.00" else f"{v:+.2f}" for v in shape)
+
+
 def share_of_allowable(utilisation: float) -> str:
     """A stress as a share of its allowable, "89.5 % of its allowable": the card's, the text's and the stress
     diagram's one wording (one decimal)."""

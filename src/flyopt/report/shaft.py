@@ -11,7 +11,7 @@ import numpy as np
 
 from flyopt.design.combination import shaft_label
 from flyopt.design.shaft.check import JSON_NAMES
-from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, UTILISATION_DIGITS, quantity_text
+from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, UTILISATION_DIGITS, mode_shape, quantity_text
 from flyopt.report.text import formatters, number, table
 
 if TYPE_CHECKING:
@@ -199,7 +199,7 @@ def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_D
                 + (" (in the range)" if near.in_range else f" ({number(100 * near.margin, 3)} % clear)")
             )
         )
-        shape = ", ".join(f"{v:+.2f}" for v in mode.shape)
+        shape = mode_shape(mode.shape)
         rows.append([str(mode.mode), f"{number(mode.frequency_hz, digits)} Hz", shape, where])
     lines += [
         "  " + line

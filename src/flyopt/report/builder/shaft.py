@@ -159,7 +159,7 @@ class ShaftSection(BuilderBase):
                 [
                     str(mode.mode),
                     f"{number(mode.frequency_hz, self.digits)} Hz",
-                    ", ".join(f"{v:+.2f}" for v in mode.shape),
+                    display.mode_shape(mode.shape),
                     "-"
                     if near is None
                     else f"order {near.order:.4g} at "

@@ -215,7 +215,7 @@ class Steps(Requirement):
             Paragraph(
                 (
                     "The cycle balances: W_d − W_r = ",
-                    self.q(net, "energy"),
+                    self.q(net, "energy", among=(net, ind.work_driving)),  # its round-off against the work: 0
                     " (work per cycle ",
                     self.q(a.work_per_cycle, "energy", "work_per_cycle"),
                     f"; a cycle is refused beyond 1e-9 of its work, {NOTES}, section 1).",
