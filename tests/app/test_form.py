@@ -119,3 +119,47 @@ def test_whatever_is_typed_is_written_as_toml_tomllib_reads(typed):
     holding exactly what was typed (DEL and the C1 controls escaped: TOML refuses them raw)."""
     value = tomllib.loads(f"v = {form.literal(typed)}")["v"]
     assert value == typed or (isinstance(value, (int, float)) and value == float(typed.replace("_", "")))
+
+
+def test_the_shafts_are_shown_and_an_edited_ratio_or_name_is_written_as_typed(tmp_path):
+    """The form's shafts (issue 29 names them among the common fields): punch-press's three [[shaft]] entries
+    as cells; an edited speed ratio and name land on their own lines, the loader reads them, and a row for a
+    shaft the text does not write is refused in words."""
+    import difflib
+
+    text = (ROOT / "problems" / "punch-press.toml").read_text(encoding="utf-8")
+    data = tomllib.loads(text)
+    rows = form.shaft_rows(data)
+    assert [row[0] for row in rows] == [entry["name"] for entry in data["shaft"]]
+    rows[1][1] = "12"
+    rows[2][0] = "motor pulley"
+    changed = form.set_shafts(text, rows)
+    diff = [d for d in difflib.ndiff(text.splitlines(), changed.splitlines()) if d[:2] in ("- ", "+ ")]
+    assert len(diff) == 4, diff  # two lines, each replaced
+    back = tomllib.loads(changed)["shaft"]
+    assert back[1]["speed_ratio"] == 12 and back[2]["name"] == "motor pulley"
+    path = tmp_path / "edited.toml"
+    path.write_text(changed, encoding="utf-8")
+    scene = flyopt.load(path)
+    assert {s.name: s.speed_ratio for s in scene.shafts}[back[1]["name"]] == 12
+    with pytest.raises(KeyError, match=r"shaft\[3\]: add a \[\[shaft\]\] in the TOML"):
+        form.set_shafts(text, [*form.shaft_rows(data), ["extra", "2"]])
+
+
+@pytest.mark.filterwarnings("ignore:The inplace keyword:Warning")  # pandas 3.1's, inside Panel's Tabulator
+def test_the_forms_shafts_grid_shows_the_text_and_writes_an_edit_into_it():
+    """The widgets' side: FormView shows punch-press's shafts in its grid, and an edited cell becomes the text."""
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    from flyopt.app.form_view import FormView
+
+    text = (ROOT / "problems" / "punch-press.toml").read_text(encoding="utf-8")
+    written: list[str] = []
+    view = FormView(pn, lambda: text, written.append, dict)
+    view.show(text)
+    grid = view.shafts.value
+    assert grid.astype(str).values.tolist() == form.shaft_rows(tomllib.loads(text))
+    edited = grid.copy()
+    edited.loc[2, "speed_ratio"] = "25"
+    view.shafts.value = edited
+    view._shaft_edited(None)
+    assert len(written) == 1 and tomllib.loads(written[0])["shaft"][2]["speed_ratio"] == 25

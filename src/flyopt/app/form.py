@@ -29,12 +29,15 @@ from flyopt.names import Geometry
 
 __all__ = [
     "FIELDS",
+    "SHAFT_COLUMNS",
     "Field",
     "parse",
     "pasted_rows",
     "rows_of",
     "set_field",
     "set_rows",
+    "set_shafts",
+    "shaft_rows",
     "set_table_numbers",
     "shown_values",
     "tables",
@@ -232,3 +235,41 @@ def set_table_numbers(text: str, path: str, numbers: Sequence[Sequence[float]], 
     text = set_value(text, path, _rows_literal(rows))
     text = set_value(text, f"{table}.angle_unit", json.dumps(units[0]))
     return set_value(text, f"{table}.unit", json.dumps(units[1]))
+
+
+#: The columns of the form's shafts grid: each ``[[shaft]]`` the text writes, by its name and speed ratio (the
+#: issue's common fields; a shaft described as a part, its layout and its train, is edited in the TOML).
+SHAFT_COLUMNS = ("name", "speed_ratio")
+
+
+def shaft_rows(data: Mapping[str, Any]) -> list[list[str]]:
+    """The text's ``[[shaft]]`` entries as cells (name, speed ratio; "" where an entry does not write one)."""
+    shafts = data.get("shaft")
+    if not isinstance(shafts, list):
+        return []
+    return [
+        [_cell(entry.get(c, "")) if isinstance(entry, Mapping) else "" for c in SHAFT_COLUMNS] for entry in shafts
+    ]
+
+
+def set_shafts(text: str, rows: Sequence[Sequence[str]]) -> str:
+    """``text`` with its ``[[shaft]]`` entries' names and speed ratios as the grid shows them: each cell written
+    where it differs from the text (a name as a string, a ratio as typed), the rest of the text kept.
+
+    Raises
+    ------
+    KeyError
+        A row for an entry the text does not write (a shaft is added in the TOML).
+    """
+    data = parse(text) or {}
+    written = shaft_rows(data)
+    for index, row in enumerate(rows):
+        if index >= len(written):
+            raise KeyError(f"shaft[{index}]: add a [[shaft]] in the TOML; the form edits the shafts it writes")
+        for column, typed, was in zip(SHAFT_COLUMNS, row, written[index]):
+            typed = str(typed).strip()
+            if not typed or typed == was:
+                continue
+            value = toml_string(typed) if column == "name" else literal(typed)
+            text = set_value(text, f"shaft[{index}].{column}", value)
+    return text

@@ -40,6 +40,10 @@ class FormView:
                 widget = pn.widgets.TextInput(label=field.label, value="")
             widget.param.watch(self._field_changed(field), "value")
             self.widgets[field.path] = widget
+        self.shafts = pn.widgets.Tabulator(
+            value=None, show_index=False, sizing_mode="stretch_width", height=130, editors={}, layout="fit_columns"
+        )
+        self.shafts.on_edit(self._shaft_edited)
         self.table = pn.widgets.Select(label="Table", options=[], value=None)
         self.table.param.watch(lambda _event: self._show_table(), "value")
         self.grid = pn.widgets.Tabulator(
@@ -62,6 +66,8 @@ class FormView:
         self.layout = pn.Column(
             pn.pane.HTML("<b>Common fields</b> (written into the TOML as if typed)"),
             *self.widgets.values(),
+            pn.pane.HTML("<b>Shafts</b> (each [[shaft]] the scene writes: its name and speed ratio)"),
+            self.shafts,
             pn.pane.HTML("<b>Tables</b>"),
             self.table,
             self.grid,
@@ -103,6 +109,7 @@ class FormView:
                         widget.value = value
                 elif widget.value != shown[field.path]:
                     widget.value = shown[field.path]
+            self._show_shafts(data)
             found = form.tables(data)
             keep = self.table.value if self.table.value in found else (found[0] if found else None)
             if list(self.table.options) != found:
@@ -112,6 +119,16 @@ class FormView:
             self._show_table(data)
         finally:
             self._showing = False
+
+    def _show_shafts(self, data: dict[str, Any]) -> None:
+        import pandas as pd
+
+        rows = form.shaft_rows(data)
+        shown = self.shafts.value
+        if shown is not None and shown.astype(str).values.tolist() == rows:
+            return  # the same shafts: nothing sent to the browser again
+        self.shafts.value = pd.DataFrame(rows, columns=list(form.SHAFT_COLUMNS))
+        self.shafts.editors = {c: {"type": "input"} for c in form.SHAFT_COLUMNS}
 
     def _show_table(self, data: dict[str, Any] | None = None) -> None:
         import pandas as pd
@@ -150,6 +167,12 @@ class FormView:
             return
         rows = self.grid.value.astype(str).values.tolist()
         self._write(lambda text: form.set_rows(text, path, rows))
+
+    def _shaft_edited(self, _event: Any) -> None:
+        if self._showing:
+            return
+        rows = self.shafts.value.astype(str).values.tolist()
+        self._write(lambda text: form.set_shafts(text, rows))
 
     def _uploaded(self, event: Any) -> None:
         if event.new:
