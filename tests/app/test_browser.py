@@ -244,12 +244,15 @@ def test_tick_two_materials_and_run_a_sweep_to_the_end(server, browser, tmp_path
 
     page.get_by_text("Sweeps", exact=True).click()
     page.wait_for_selector(".sweep-spec >> text=5 points", timeout=30_000)
+    parquet = page.get_by_role("button", name="Parquet", exact=True)
+    expect(parquet).to_be_disabled()  # no sweep yet: nothing to give (a click failed silently)
     page.get_by_text("Run the sweep").click()
     page.wait_for_selector(".sweep-status >> text=done: 5 points", timeout=120_000)
     assert page.locator(".sweep-bar progress").get_attribute("value") == "100"
     expect(page.locator(".sweep-table .tabulator-row")).to_have_count(5, timeout=30_000)
     page.wait_for_selector(".sweep-plot svg", timeout=30_000)
     shot(page, "6-sweep")
+    expect(parquet).to_be_enabled()
     with page.expect_download() as download:
         page.get_by_text("Parquet", exact=True).click()
     saved = tmp_path / "sweep.parquet"

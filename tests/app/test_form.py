@@ -163,3 +163,27 @@ def test_the_forms_shafts_grid_shows_the_text_and_writes_an_edit_into_it():
     view.shafts.value = edited
     view._shaft_edited(None)
     assert len(written) == 1 and tomllib.loads(written[0])["shaft"][2]["speed_ratio"] == 25
+
+
+@pytest.mark.filterwarnings("ignore:The inplace keyword:Warning")  # pandas 3.1's, inside Panel's Tabulator
+def test_shafts_written_inline_are_refused_in_words_and_the_grid_shows_the_text_again():
+    """shaft = [{...}] is a valid scene the form cannot edit line by line: said so, and the grid goes back."""
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    from flyopt.app.form_view import FormView
+
+    title = next(line for line in SHEAR.splitlines() if line.startswith("title = "))
+    text = SHEAR.replace('[[shaft]]\nname = "motor"\nspeed_ratio = 1.0\n', "").replace(
+        title, title + '\nshaft = [{ name = "motor", speed_ratio = 1.0 }]'
+    )
+    assert text != SHEAR and tomllib.loads(text)["shaft"] == [{"name": "motor", "speed_ratio": 1.0}]
+    with pytest.raises(KeyError, match="written inline"):
+        form.set_shafts(text, [["motor", "2"]])
+    written: list[str] = []
+    view = FormView(pn, lambda: text, written.append, dict)
+    view.show(text)
+    edited = view.shafts.value.copy()
+    edited.loc[0, "speed_ratio"] = "2"
+    view.shafts.value = edited
+    view._shaft_edited(None)
+    assert written == [] and "written inline" in view.message.object
+    assert view.shafts.value.astype(str).values.tolist() == [["motor", "1.0"]]

@@ -152,6 +152,9 @@ def test_the_form_s_vary_text_is_read_by_flyopt_sweep_and_its_points_are_the_gri
 
     metadata = json.loads(pq.read_schema(result.parquet).metadata[b"flyopt"])
     assert metadata["scene"] == model.SCENE_NAME and str(workspace.folder) not in json.dumps(metadata)
+    from flyopt.studies.payload import digest
+
+    assert metadata["scene_digest"] == digest(load(SHEAR))  # the name changes nothing: the same scene as the CLI's
     csv = sweeps.csv_file(result, workspace)
     assert csv.parent == workspace.folder  # the session's folder, nothing elsewhere
     assert {p.name for p in workspace.folder.iterdir()} <= {

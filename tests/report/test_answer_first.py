@@ -3,6 +3,7 @@ JSON's to the digits shown."""
 
 from __future__ import annotations
 
+import html
 import json
 import math
 import re
@@ -92,6 +93,16 @@ def test_a_rim_sized_by_the_courses_criterion_is_compared_like_with_like_and_sai
     omega_max = 800 * 2 * math.pi / 60 * (1 + 0.04 / 2)
     outer = re.search(rf"({NUM}) m/s at the outer diameter at ω_max", limits).group(1)
     assert _shown_equal(outer, omega_max * data["d_outer"] / 2), limits
-    stress, allowed, over = re.search(rf"rim stress ({NUM}) MPa of ({NUM}) MPa: ({NUM})% OVER", limits).groups()
+    stress, allowed, share = re.search(
+        rf"rim stress ({NUM}) MPa of ({NUM}) MPa \(({NUM}) % of its allowable, OVER\)", limits
+    ).groups()
     assert _value(allowed) == 7 and _value(stress) > 7
-    assert math.isclose(_value(over), round(100 * (_value(stress) / 7 - 1), 1), abs_tol=0.051), limits
+    assert math.isclose(_value(share), round(100 * _value(stress) / 7, 1), abs_tol=0.051), limits
+    # the answer card (report section 1, the app, a notebook) says the same
+    card = {
+        html.unescape(re.sub(r"<[^>]+>", "", k)): html.unescape(v)
+        for k, v in re.findall(r"<th[^>]*>(.*?)</th><td[^>]*>([^<]*)</td>", solution._repr_html_())
+    }
+    assert card["rim speed"] == limits.split("rim speed ", 1)[1].split(";")[0], card["rim speed"]
+    assert card["governing stress"].endswith(f"{share} % of its allowable, OVER"), card["governing stress"]
+    assert "mean rim speed (the courses' criterion)" in card["binding limits"]

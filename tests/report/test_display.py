@@ -158,5 +158,5 @@ def test_the_cycle_balance_is_zero_where_it_is_round_off_of_the_work():
         for block in section.blocks
         if isinstance(block, Paragraph) and "The cycle balances" in str(block.text)
     ]
-    assert len(said) == 1 and "W_d − W_r = 0 " in said[0], said
+    assert len(said) == 1 and "W_d − W_r = 0 J " in said[0], said
     document.close()

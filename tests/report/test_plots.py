@@ -134,6 +134,12 @@ def test_speed_plot_with_the_simulation_overlaid(tmp_path):
     )
     # the closed form and the simulation reach the same extremes (to the simulation's tolerance)
     assert abs(model.max() / simulated.max() - 1) < 1e-6 and abs(model.min() / simulated.min() - 1) < 1e-6
+    # the legend writes them as the text does, to four figures (it wrote six: 11.7414 rpm, δ 0.043101)
+    labels = {line.get_gid(): line.get_label() for line in ax.lines}
+    rpm = analysis.omega_max * 30 / math.pi
+    assert f"ω_max = {float(f'{rpm:.4g}'):g} rpm" in labels["omega_max"].replace(",", ""), labels["omega_max"]
+    delta = verify(scene, analysis).solution.delta
+    assert f"(δ = {float(f'{delta:.4g}'):g})" in labels["simulation"], labels["simulation"]
     out = plots.save(ax, tmp_path / "speed.png")
     assert out.stat().st_size > 10_000
     assert (
@@ -646,3 +652,17 @@ def test_a_report_of_a_scene_with_an_undrawable_title_writes_nothing_on_stderr(t
     ):
         run = run_flyopt(*args, "-q")
         assert run.returncode == 0 and run.stderr == "", run.stderr[:500]
+
+
+def test_a_small_deltas_three_speeds_are_written_apart_and_no_further():
+    """ω_max, ω_m, ω_min of 1000.4, 1000.2 and 1000 rpm read alike to four figures (1,000 rpm): the legend takes
+    five, the fewest that tell them apart (by hand: 1,000.4, 1,000.2, 1,000); 1,500 and 1,450 rpm keep four."""
+    from flyopt.report import display
+    from flyopt.report.plots import standard
+
+    rad = [v * math.pi / 30 for v in (1000.4, 1000.2, 1000.0)]
+    assert standard.digits_apart(rad, "angular_speed", "engineering", 4) == 5
+    assert standard.digits_apart([v * math.pi / 30 for v in (1500, 1450)], "angular_speed", "engineering", 4) == 4
+    same = [1000 * math.pi / 30] * 3  # equal speeds (no fluctuation): nothing to tell apart
+    assert standard.digits_apart(same, "angular_speed", "engineering", 4) == 4
+    assert standard.digits_apart(rad, "angular_speed", "engineering", 14) <= display.MAX_DIGITS

@@ -127,7 +127,7 @@ def test_a_press_whose_cycle_one_a_max_serves_is_analysed_at_each_point_for_its_
     refused = reference(heavy)
     assert doubled["status"] == refused.status == "infeasible" and doubled["message"] == refused.message
     assert "fatigue factor of safety at the shoulder at 520 mm" in doubled["message"]
-    assert re.search(r"no DIN 6885-1 key on the 80 mm seat carries it: torque [\d.]+ N\*m", doubled["message"])
+    assert re.search(r"no DIN 6885-1 key on the 80 mm seat carries it: torque [\d.]+ N·m", doubled["message"])
     assert bare(heavy).best is not None
 
 

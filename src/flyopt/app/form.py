@@ -247,9 +247,7 @@ def shaft_rows(data: Mapping[str, Any]) -> list[list[str]]:
     shafts = data.get("shaft")
     if not isinstance(shafts, list):
         return []
-    return [
-        [_cell(entry.get(c, "")) if isinstance(entry, Mapping) else "" for c in SHAFT_COLUMNS] for entry in shafts
-    ]
+    return [[_cell(entry.get(c, "")) if isinstance(entry, Mapping) else "" for c in SHAFT_COLUMNS] for entry in shafts]
 
 
 def set_shafts(text: str, rows: Sequence[Sequence[str]]) -> str:
@@ -271,5 +269,10 @@ def set_shafts(text: str, rows: Sequence[Sequence[str]]) -> str:
             if not typed or typed == was:
                 continue
             value = toml_string(typed) if column == "name" else literal(typed)
-            text = set_value(text, f"shaft[{index}].{column}", value)
+            try:
+                text = set_value(text, f"shaft[{index}].{column}", value)
+            except KeyError:  # the entry is there, but not as a [[shaft]] table of its own lines
+                raise KeyError(
+                    "the shafts are written inline (shaft = [...]): edit them in the TOML, or write each as [[shaft]]"
+                ) from None
     return text

@@ -203,6 +203,7 @@ class FormView:
             text = change(self.read())
         except KeyError as err:
             self._say(str(err.args[0]) if err.args else "that field cannot be set from the form")
+            self.show(self.read())  # the widgets back to what the text says: the refused change is not shown
             return
         self._say("")
         self.write(text)

@@ -302,10 +302,14 @@ class SweepsTab:
         self.plot = hover_figure(
             "", "", "sweep", width=620, stylesheets=[_card_css()], css_classes=["figure", "sweep-plot"]
         )
-        downloads = pn.Row(
-            pn.widgets.FileDownload(callback=self._file("parquet"), filename="sweep.parquet", label="Parquet"),
-            pn.widgets.FileDownload(callback=self._file("csv"), filename="sweep.csv", label="CSV"),
-        )
+        #: Offered once a sweep is done (a click with no file to give failed silently in the browser).
+        self.downloads = [
+            pn.widgets.FileDownload(
+                callback=self._file("parquet"), filename="sweep.parquet", label="Parquet", disabled=True
+            ),
+            pn.widgets.FileDownload(callback=self._file("csv"), filename="sweep.csv", label="CSV", disabled=True),
+        ]
+        downloads = pn.Row(*self.downloads)
         form = pn.Column(
             *(pn.Row(*row.values()) for row in self.rows),
             pn.Row(self.where, self.address),
@@ -416,6 +420,7 @@ class SweepsTab:
         self.run_button.disabled = True
         self.cancel_button.disabled = False
         self.result = None  # its files are removed by the new run: no download of them meanwhile
+        self._offer(False)
         self.bar.value = 0
         self.status.object = _message(f"0 / {self.plan.points:,} points", bad=False)
         loop = asyncio.get_running_loop()
@@ -452,6 +457,7 @@ class SweepsTab:
             )
             return
         self.result = result
+        self._offer(result.parquet is not None)
         info = result.info
         self.status.object = _message(
             f"done: {len(result.frame):,} points in {info['seconds']:.2f} s ({info['mode']})", bad=False
@@ -483,6 +489,10 @@ class SweepsTab:
             self.plot.param.update(svg=_fluid(svg), readout=found)
         except ValueError as err:
             self.plot.param.update(svg=_message(str(err)), readout="")
+
+    def _offer(self, on: bool) -> None:
+        for button in self.downloads:
+            button.disabled = not on
 
     def _file(self, kind: str) -> Any:
         def callback() -> io.BytesIO | None:

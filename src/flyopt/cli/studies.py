@@ -93,9 +93,10 @@ def add_sweep_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--units",
         choices=(*display.SYSTEMS, INPUT),
-        help="the CSV printed on stdout in this unit system, each quantity's unit in its column's name "
-        "('speed [rpm]'); 'input': the varied fields in the units they were given in. Default: SI, as the "
-        "files are written (flyopt.read_results gives a file back in any of these)",
+        help="the CSV printed on stdout (without -o) in this unit system, each quantity's unit in its column's "
+        "name ('speed [rpm]'); 'input': the varied fields in the units they were given in. Default: SI. A file "
+        "written with -o is always SI with its units in its metadata (flyopt.read_results gives it back in any "
+        "of these)",
     )
     parser.add_argument(
         "--samples", type=_positive_int, metavar="N", help="N Latin hypercube samples instead of the full grid"

@@ -81,6 +81,7 @@ WHEEL_BINDING_NAMES = {
 _LABELS = {
     "inertia": "inertia",
     "rim_speed": "rim speed",
+    "mean_rim_speed": "mean rim speed (the courses' criterion)",
     "max_outer_diameter": "envelope",
     "max_width": "width limit",
     "hb_min": "H/B min",

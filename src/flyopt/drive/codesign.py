@@ -365,7 +365,7 @@ def evaluate_motor(
         return run(
             False,
             f"too small: its torque on the crank cannot reach the mean load {load_torque:.4g} N·m "
-            f"at {omega:.6g} rad/s on the stable branch",
+            f"at {omega:.4g} rad/s on the stable branch",
         )
     if spec.thermal and load_torque / (ratio * scene.efficiency) > rated * (1 + 1e-12):
         return run(
@@ -409,8 +409,8 @@ def evaluate_motor(
     if omega_min_motor < motor.motor().breakdown_speed:
         return run(
             False,
-            f"breakdown: the motor slows to {omega_min_motor:.6g} rad/s in the cycle, past its "
-            f"breakdown speed {motor.motor().breakdown_speed:.6g} rad/s",
+            f"breakdown: the motor slows to {omega_min_motor:.4g} rad/s in the cycle, past its "
+            f"breakdown speed {motor.motor().breakdown_speed:.4g} rad/s",
             motor_ratio=ratio,
             j_delta=j_delta,
         )
@@ -787,7 +787,7 @@ def _shaft_refusal(result: DesignResult) -> str:
     reasons = [c.reason for c in result.candidates if not c.feasible and REFUSED in c.reason]
     if not reasons:
         return ""
-    return f"at ratio {result.candidates[0].speed_ratio:.6g}: " + "; ".join(reasons)
+    return f"at ratio {result.candidates[0].speed_ratio:.4g}: " + "; ".join(reasons)
 
 
 def _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, accept_at=None, keyed=None):
@@ -1186,7 +1186,7 @@ def verify_drive(scene: Scene, run: MotorRun, j_flywheel: float | None = None) -
     startup = _runup(machine, checked.omega_mean, j_flywheel)
     notes = []
     if checked.flagged:
-        notes.append(f"delta {checked.achieved_delta:.6g} exceeds the allowed {scene.delta:.6g}")
+        notes.append(f"delta {checked.achieved_delta:.4g} exceeds the allowed {scene.delta:.4g}")
     rated = run.motor.rated_torque
     if spec.thermal and rms > rated * (1 + 1e-6):
         notes.append(f"RMS torque {rms:.4g} N·m exceeds the rated {rated:.4g} N·m (thermal)")

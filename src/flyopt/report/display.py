@@ -127,7 +127,8 @@ def for_people(table: Any, names: Mapping[str, str]) -> Any:
     """A study's table (a pandas DataFrame, changed in place and returned) as people read it: its materials by
     their names for people (``names``: key -> :attr:`flyopt.design.materials.Material.display_name`) and its
     binding limits in words (:func:`flyopt.design.check.binding_label`), as ``flyopt solve`` writes them: the
-    printed tables of ``flyopt tradeoff``, ``pareto`` and ``sweep`` and the app's. Files and JSON keep the keys."""
+    printed tables of ``flyopt tradeoff`` and ``pareto`` and the app's. Files, JSON and the CSV ``flyopt sweep``
+    prints keep the keys (they are data)."""
     from flyopt.design.check import binding_label
 
     for c in ("material", "best_material"):
@@ -147,10 +148,33 @@ def mode_shape(shape: Sequence[float]) -> str:
     return ", ".join("+0.00" if f"{v:+.2f}" == "-0.00" else f"{v:+.2f}" for v in shape)
 
 
+def share(utilisation: float) -> str:
+    """A utilisation as a percentage to one decimal, "89.5 %"."""
+    return f"{100 * utilisation:.1f} %"
+
+
 def share_of_allowable(utilisation: float) -> str:
-    """A stress as a share of its allowable, "89.5 % of its allowable": the card's, the text's and the stress
-    diagram's one wording (one decimal)."""
-    return f"{100 * utilisation:.1f} % of its allowable"
+    """A stress as a share of its allowable, "89.5 % of its allowable", and ", OVER" where it exceeds it: the
+    card's, the text's and the stress diagram's one wording (one decimal)."""
+    return f"{share(utilisation)} of its allowable" + (", OVER" if utilisation > 1.0 + 1e-9 else "")
+
+
+def rim_speed_answer(rim_speed: float, limit: float, book: Any, quantity: Callable[[float, str], T]) -> list[str | T]:
+    """The rim speed against its limit in the answer (the text's line, the card's row), as parts: "48.3 m/s of
+    50 m/s"; for a rim sized by the courses' criterion (``book``, :class:`flyopt.design.result.BookRim`, else None)
+    the speed that criterion checks, at the mean diameter and the mean speed, against it, and the rim's own at
+    the outer diameter at ω_max beside it (section 20). ``quantity(value, name)`` shows a value of the JSON
+    field ``name``."""
+    if book is None:
+        return [quantity(rim_speed, "rim_speed"), " of ", quantity(limit, "rim_speed_limit")]
+    return [
+        quantity(book.mean_rim_speed, "rim_speed"),
+        " of ",
+        quantity(limit, "rim_speed_limit"),
+        " at the mean diameter and speed (criterion mean_rim_speed), ",
+        quantity(rim_speed, "rim_speed"),
+        " at the outer diameter at ω_max",
+    ]
 
 
 #: The most significant figures a reader may ask for: a double carries 15 to 17.
@@ -269,6 +293,12 @@ NOISE_RTOL = 1e-12
 def _is_noise(value: float, scale: float) -> bool:
     """Whether a finite ``value`` is within :data:`NOISE_RTOL` of ``scale`` (0 itself is not noise, it is 0)."""
     return math.isfinite(value) and math.isfinite(scale) and abs(value) <= NOISE_RTOL * abs(scale)
+
+
+def without_noise(value: float, scale: float) -> float:
+    """``value``, or 0 where it is round-off of ``scale`` (within :data:`NOISE_RTOL` of it): a difference of two
+    large numbers (a cycle's works) shown as the 0 it is, in the unit 0 takes."""
+    return 0.0 if _is_noise(value, scale) else value
 
 
 def number(value: float | None, digits: int = DEFAULT_DIGITS, scale: float | None = None) -> str:

@@ -34,7 +34,9 @@ from flyopt.report.display import (
     largest,
     number,
     quantity_text,
+    rim_speed_answer,
     rounded_rank_note,
+    share,
     share_of_allowable,
     unit,
 )
@@ -214,25 +216,15 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
         f"    J       {q(best.j_flywheel, 'j_flywheel')} on its shaft, {q(best.j_at_reference, 'j_at_reference')}"
         f" at the reference shaft (needed {q(r.j_required, 'j_required')})"
     )
-    book = design.book_rim()
-    if book is None:
-        limits = (
-            f"rim speed {q(best.stresses.rim_speed, 'rim_speed')} of "
-            f"{q(best.limits.rim_speed_limit, 'rim_speed_limit')}"
-        )
-    else:  # the courses' criterion checks the mean diameter at the mean speed; the rim sees more (section 20)
-        limits = (
-            f"rim speed {q(book.mean_rim_speed, 'rim_speed')} of {q(best.limits.rim_speed_limit, 'rim_speed_limit')} "
-            f"at the mean diameter and speed (criterion mean_rim_speed), {q(best.stresses.rim_speed, 'rim_speed')} "
-            "at the outer diameter at ω_max"
-        )
+    speed = rim_speed_answer(best.stresses.rim_speed, best.limits.rim_speed_limit, design.book_rim(), q)
+    limits = "rim speed " + "".join(speed)
     parts = [p for p in (best.stresses.stress or {}).get("parts", []) if p.get("allowable")]
     if parts:
         worst = max(parts, key=lambda p: p["stress"] / p["allowable"])
-        limits += f"; {worst['part']} stress {q(worst['stress'], 'stress')} of {q(worst['allowable'], 'allowable')}"
-        excess = worst["stress"] / worst["allowable"] - 1.0
-        if excess > 1e-9:  # a stress over its allowable is said so (a rim sized by the courses' criterion)
-            limits += f": {excess:.1%} OVER"
+        limits += (
+            f"; {worst['part']} stress {q(worst['stress'], 'stress')} of {q(worst['allowable'], 'allowable')} "
+            f"({share_of_allowable(worst['stress'] / worst['allowable'])})"
+        )
     lines.append(f"    limits  {limits}")
     k = best.parts.key
     if k and k.get("shear") is not None:  # the hub's key, checked at the peak torque (section 13)
@@ -818,7 +810,7 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: 
                     n(p["stress"], "stress"),
                     n(p["radius"], "radius"),
                     n(p["allowable"], "allowable"),
-                    "-" if utilisation is None else f"{100 * utilisation:.1f} %",
+                    "-" if utilisation is None else share(utilisation),
                     n(p.get("strength"), "strength"),
                     n(p.get("wall"), "wall"),
                 ]

@@ -168,7 +168,7 @@ def startup_time(
     if not m0 > 0:
         raise SolverFailed(
             f"the machine cannot start from rest at phi = {phi_start!r} rad: the net torque at rest "
-            f"there is {m0:.6g} N*m (the motor's starting torque does not exceed the load)"
+            f"there is {m0:.4g} N·m (the motor's starting torque does not exceed the load)"
         )
     j_mean = float(np.mean(model.inertia(model.grid_angles()))) + j_flywheel
     e_target = 0.5 * j_mean * omega_target**2

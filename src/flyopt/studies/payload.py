@@ -41,7 +41,12 @@ if TYPE_CHECKING:  # the annotations only
 # --------------------------------------------------------------------------
 
 
-def digest(obj: object, skip: Iterable[str] = ("source",)) -> str:
+#: A scene's fields that name its file and change nothing it computes: left out of its digest and not sent as
+#: changes (:attr:`flyopt.io.scene.Scene.shown_as`: the app's name for its server's file).
+NAMES_ONLY = ("source", "shown_as")
+
+
+def digest(obj: object, skip: Iterable[str] = NAMES_ONLY) -> str:
     """A SHA-256 hex digest of ``obj`` by value.
 
     Floats count to the bit, arrays in full (their dtype, shape and bytes),
@@ -54,8 +59,8 @@ def digest(obj: object, skip: Iterable[str] = ("source",)) -> str:
     obj : object
         A scene, or any part of one.
     skip : tuple of str
-        Field names of dataclasses left out (by default the scene's
-        ``source``, a file name that changes nothing).
+        Field names of dataclasses left out (by default :data:`NAMES_ONLY`,
+        the scene's file names, which change nothing).
 
     Returns
     -------
@@ -205,7 +210,7 @@ def payload(scene: Scene) -> tuple[ScenePayload | None, str]:
             changed = {
                 n: getattr(scene, n)
                 for n in names
-                if n != "source" and digest(getattr(base, n)) != digest(getattr(scene, n))
+                if n not in NAMES_ONLY and digest(getattr(base, n)) != digest(getattr(scene, n))
             }
             if _plain(changed):
                 candidate = ScenePayload(text, scene.source, changed, key)

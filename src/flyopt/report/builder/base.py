@@ -52,20 +52,12 @@ class BuilderBase:
         """The significant figures of a worked equation's numbers (:func:`flyopt.report.display.worked_digits`)."""
         return display.worked_digits(self.digits)
 
-    def q(
-        self,
-        value: float | None,
-        dimension: str,
-        name: str | None = None,
-        digits: int | None = None,
-        among: Sequence[float | None] | None = None,
-    ) -> Quantity:
+    def q(self, value: float | None, dimension: str, name: str | None = None, digits: int | None = None) -> Quantity:
         """A Quantity in the report's units, its unit after it ("-" where the value does not exist); ``digits``
-        the report's unless given; ``among``: the values it is read beside, whose largest chooses the unit and is
-        the scale under which it is round-off, written 0 (:func:`flyopt.report.display.quantity_text`)."""
+        the report's unless given."""
         if value is None or math.isnan(value):
             return Quantity("-", name, None, dimension)
-        text = display.quantity_text(value, dimension, self.units, digits or self.digits, among)
+        text = display.quantity_text(value, dimension, self.units, digits or self.digits)
         return Quantity(text, name, float(value), dimension)
 
     def n(

@@ -10,6 +10,7 @@ from flyopt.design.check import binding_label
 from flyopt.design.key import key_verdict
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
+from flyopt.report import display
 from flyopt.report.builder.base import NOTES, BuilderBase
 from flyopt.report.display import number
 from flyopt.report.document import Facts, Figure, Paragraph, Table
@@ -353,7 +354,7 @@ class DesignSection(BuilderBase):
                     n(at[0], "length"),
                     n(at[1], "length"),
                     n(p.model_stress, "stress", "stress", 4),
-                    "-" if p.utilisation is None else f"{100 * p.utilisation:.1f} %",
+                    "-" if p.utilisation is None else display.share(p.utilisation),
                 ]
             )
         blocks.append(
@@ -436,7 +437,7 @@ class DesignSection(BuilderBase):
                     n(p["stress"], "stress", "stress", 4),
                     n(p["radius"], "length"),
                     n(allowable, "stress", "allowable", 4),
-                    "-" if use is None else f"{100 * use:.1f} %",
+                    "-" if use is None else display.share(use),
                     n(p.get("strength"), "stress"),
                     n(p.get("wall"), "length"),
                 ]

@@ -6,6 +6,7 @@ from typing import Any
 
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
+from flyopt.report import display
 from flyopt.report.builder.base import NOTES
 from flyopt.report.builder.requirement import Requirement
 from flyopt.report.display import number
@@ -215,7 +216,7 @@ class Steps(Requirement):
             Paragraph(
                 (
                     "The cycle balances: W_d − W_r = ",
-                    self.q(net, "energy", among=(net, ind.work_driving)),  # its round-off against the work: 0
+                    self.q(display.without_noise(net, ind.work_driving), "energy"),  # round-off of the work: 0
                     " (work per cycle ",
                     self.q(a.work_per_cycle, "energy", "work_per_cycle"),
                     f"; a cycle is refused beyond 1e-9 of its work, {NOTES}, section 1).",

@@ -100,11 +100,13 @@ class Summary(BuilderBase):
                 ("inertia on its shaft", self.q(best.j_flywheel, "inertia", "j_flywheel")),
                 (
                     "rim speed",
-                    (
-                        self.q(best.stresses.rim_speed, "speed", "rim_speed"),
-                        " (limit ",
-                        self.q(best.limits.rim_speed_limit, "speed", "rim_speed_limit"),
-                        ")",
+                    tuple(
+                        display.rim_speed_answer(
+                            best.stresses.rim_speed,
+                            best.limits.rim_speed_limit,
+                            book,
+                            lambda v, name: self.q(v, "speed", name),
+                        )
                     ),
                 ),
                 ("binding limits", ", ".join(binding_label(b) for b in best.limits.binding) or "none"),

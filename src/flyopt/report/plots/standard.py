@@ -259,10 +259,11 @@ def digits_apart(values: Sequence[float], dimension: str, units: str, digits: in
     the system's unit of ``dimension``: a diagram's ω_max, ω_m and ω_min of a small δ read as three speeds,
     and at the report's figures wherever those already tell them apart."""
     distinct = len({round(float(v), 12) for v in values})
-    for figures in range(digits, digits + 5):
+    most = max(digits, min(digits + 4, display.MAX_DIGITS))
+    for figures in range(digits, most):
         if len({q(v, dimension, units, figures) for v in values}) == distinct:
             return figures
-    return digits + 4
+    return most
 
 
 @dataclass(frozen=True)
