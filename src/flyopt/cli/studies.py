@@ -88,11 +88,10 @@ def add_sweep_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("-o", "--output", help="result file, .parquet or .csv (default: CSV on stdout)")
     from flyopt.report import display
-    from flyopt.report.notebook import INPUT
 
     parser.add_argument(
         "--units",
-        choices=(*display.SYSTEMS, INPUT),
+        choices=(*display.SYSTEMS, display.INPUT_UNITS),
         help="the CSV printed on stdout (without -o) in this unit system, each quantity's unit in its column's "
         "name ('speed [rpm]'); 'input': the varied fields in the units they were given in. Default: SI. A file "
         "written with -o is always SI with its units in its metadata (flyopt.read_results gives it back in any "

@@ -66,6 +66,9 @@ SYSTEMS = ("engineering", "si", "imperial")
 
 #: The default for what people read.
 DEFAULT = "engineering"
+#: Not a system: a sweep's table with its varied fields in the units they were given in (``300,600rpm``: rpm),
+#: as :func:`flyopt.report.notebook.to_units` and ``flyopt sweep --units`` take it.
+INPUT_UNITS = "input"
 
 #: dimension -> system -> (label, factor: SI value of one displayed unit).
 UNITS = {

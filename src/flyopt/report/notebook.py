@@ -52,7 +52,7 @@ __all__ = [
 ]
 
 #: ``units=INPUT``: a sweep's varied fields in the units they were given in (``300,600rpm``: rpm).
-INPUT = "input"
+INPUT = display.INPUT_UNITS
 
 #: The columns of a ranking shown in a notebook (:func:`ranking_html`); ``to_frame`` has them all.
 RANKING_COLUMNS = ("material", "shaft", "feasible", "mass", "d_outer", "b", "h", "rim_speed", "cost", "binding")
