@@ -44,6 +44,29 @@ def test_a_broken_delta_is_named_with_its_line(workspace):
     assert text.splitlines()[problem.line - 1].startswith("delta = -1")
 
 
+def test_errors_in_two_sections_are_both_named_with_their_lines_as_flyopt_check_names_them(workspace, main_cli):
+    """The card listed the first error alone; it lists what flyopt check lists (a δ and a design's geometry)."""
+    text = (
+        model.template_text("shear-press")
+        .replace("delta = 0.05", "delta = -1")
+        .replace('geometry = "rim"', 'geometry = "blob"')
+    )
+    checked = model.check(text, workspace)
+    assert checked.scene is None
+    assert [(p.field, text.splitlines()[p.line - 1].split(" =")[0]) for p in checked.problems] == [
+        ("machine.delta", "delta"),
+        ("design.geometry", "geometry"),
+    ]
+    path = workspace.folder / "cli.toml"
+    path.write_text(text, encoding="utf-8")
+    status, _, err = main_cli("check", path)
+    assert status == 2 and [line.split(": ", 2)[2] for line in err.splitlines()] == [
+        p.message for p in checked.problems
+    ]
+    html = model.card_html(None, checked.problems)
+    assert "machine.delta" in html and "design.geometry" in html
+
+
 def test_bad_toml_is_said_not_raised(workspace):
     checked = model.check("[machine\nspeed = 1", workspace)
     assert checked.scene is None and checked.problems

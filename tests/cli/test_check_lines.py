@@ -71,3 +71,44 @@ def test_a_field_the_file_does_not_write_is_said_without_a_line(main_cli, write_
     status, out, err = main_cli("check", path)
     assert status == 2 and len(err.splitlines()) == 1
     assert err.startswith(f"flyopt: error: {path}: machine.delta: 1e-300 is out of range"), err
+
+
+def test_value_errors_in_different_sections_are_listed_at_once_each_on_its_line(main_cli, write_scene):
+    """delta = -1, a material's negative density, a shaft's negative ratio and a title too long: four sections,
+    four lines, in the order of the file (check listed the first alone, one run per mistake). The design's
+    geometry 'blob' is not said while a shaft it would sit on is wrong (the design is read with its shafts);
+    with the shafts sound it is."""
+    text = (PROBLEMS / "shear-press.toml").read_text(encoding="utf-8")
+    lines = text.splitlines()
+    row = {key: next(k for k, r in enumerate(lines, 1) if r.startswith(key)) for key in ("delta", "speed_ratio")}
+    broken = (
+        text.replace("\ndelta = 0.05\n", "\ndelta = -1\n", 1)
+        .replace("speed_ratio = 1.0", "speed_ratio = -3", 1)
+        .replace('geometry = "rim"', 'geometry = "blob"', 1)
+        .replace('title = "Shear press (worked example 2)"', 'title = "' + "t" * 201 + '"', 1)
+    )
+    broken += '\n[[material]]\nname = "lead"\ndensity = "-11340 kg/m^3"\nmax_rim_speed = "20 m/s"\n'
+    path = write_scene(broken)
+    status, out, err = main_cli("check", path)
+    said = err.splitlines()
+    assert status == 2 and out == ""
+    assert [line.split(": ")[0] for line in said] == [
+        f"{path}:{next(k for k, r in enumerate(lines, 1) if r.startswith('title'))}",
+        f"{path}:{row['delta']}",
+        f"{path}:{row['speed_ratio']}",
+        f"{path}:{len(broken.splitlines()) - 1}",
+    ], said
+    assert (
+        ": machine.delta: must lie between 0 and 2" in said[1] and ": shaft[0].speed_ratio: must be positive" in said[2]
+    )
+    assert "material[0].density" in said[3] and "title: is 201 characters long" in said[0]
+    assert not any("geometry" in line for line in said)
+    # the shafts sound: the design is read, and its geometry said beside the delta
+    path = write_scene(
+        text.replace("\ndelta = 0.05\n", "\ndelta = -1\n", 1).replace('geometry = "rim"', 'geometry = "blob"')
+    )
+    status, _, err = main_cli("check", path)
+    assert status == 2 and [line.split(": ")[1] for line in err.splitlines()] == ["machine.delta", "design.geometry"]
+    # solve still stops at the first, in one line
+    status, _, err = main_cli("solve", path)
+    assert status == 2 and len(err.splitlines()) == 1 and "machine.delta" in err

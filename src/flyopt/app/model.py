@@ -154,10 +154,20 @@ def check(text: str, workspace: Workspace) -> Checked:
     from flyopt.io.scene import load
 
     checked = Checked(text)
+    path = None
     try:
-        checked.scene = load(workspace.write(text))
-    except SceneError as err:
-        checked.problems.append(Problem(err.field, err.message, field_line(text, err.field)))
+        path = workspace.write(text)
+        checked.scene = load(path)
+    except SceneError as err:  # every error flyopt check says, each with its line
+        from flyopt.cli.scene import every_error
+        from flyopt.io.toml_file import read_toml
+
+        try:
+            errors = [(err.field, err.message)] if path is None else every_error(read_toml(path), err)
+        except SceneError:  # not TOML: the loader's one error says where
+            errors = [(err.field, err.message)]
+        found = [Problem(field, message, field_line(text, field)) for field, message in errors]
+        checked.problems += sorted(found, key=lambda p: p.line or 0)
     except (FlyoptError, ValueError) as err:  # a cycle that does not close, a number out of range
         checked.problems.append(Problem("", str(err).replace(str(workspace.path), SCENE_NAME), None))
     return checked

@@ -175,7 +175,9 @@ def run_check(args: argparse.Namespace) -> int:
     A scene the loader refuses is said as every structural error of the file
     at once (:func:`flyopt.cli.scene_schema.structural_errors`: unknown keys,
     wrong types, missing keys; the loader's words for the one it met first),
-    or, when the structure is sound, the loader's error; each on its own
+    or, when the structure is sound, the loader's error and the first value
+    error of each other section read on its own (:func:`flyopt.io.scene.section_errors`:
+    the machine's scalars, the materials, the shafts, the title, the design); each on its own
     line ``FILE:LINE: field: message`` on stderr, in the order of the file
     (a field the file does not write, derived from another section, as
     ``flyopt: error: FILE: field: message``); exit status 2. A file that is not TOML, and the other commands,
@@ -196,20 +198,15 @@ MAX_LISTED = 100
 
 
 def _say_errors(path: str, data: dict[str, Any], err: SceneError) -> int:
-    """Print every structural error of ``data`` (else the loader's ``err``) as ``FILE:LINE: field: message``; return 2."""
+    """Print :func:`every_error` of ``data`` as ``FILE:LINE: field: message``, in the order of the file; return 2."""
     import sys
     from pathlib import Path
 
     from flyopt.cli.exits import EXIT_INPUT, one_line
-    from flyopt.cli.scene_schema import structural_errors
     from flyopt.cli.toml_lines import key_lines, line_of
     from flyopt.errors import SceneError
 
-    errors = structural_errors(data)
-    fields = [field for field, _ in errors]
-    if err.field in fields:  # the loader's own words for the error it met first: they say what is allowed
-        errors[fields.index(err.field)] = (err.field, err.message)
-    errors = errors or [(err.field, err.message)]  # a sound structure: the loader's error
+    errors = every_error(data, err)
     lines = key_lines(Path(path).read_text(encoding="utf-8", errors="replace"))
     placed = [(line_of(lines, field), field, message) for field, message in errors]
     placed.sort(key=lambda item: item[0] or 0)  # in the order of the file (stable: the schema's order within a line)
@@ -221,6 +218,35 @@ def _say_errors(path: str, data: dict[str, Any], err: SceneError) -> int:
         line = placed[MAX_LISTED][0]
         print(f"{path}:{line or 1}: {len(placed) - MAX_LISTED} more errors after these", file=sys.stderr)
     return EXIT_INPUT
+
+
+def every_error(data: dict[str, Any], err: SceneError) -> list[tuple[str, str]]:
+    """Every error ``flyopt check`` says of a scene the loader refused with ``err``, as (field, message), in no
+    particular order: every structural error of ``data`` (the loader's words for the one it met first), or, the
+    structure sound, the loader's error and the first value error of each other section read on its own
+    (:func:`flyopt.io.scene.section_errors`). The app's card says the same."""
+    from flyopt.cli.scene_schema import structural_errors
+
+    errors = structural_errors(data)
+    fields = [field for field, _ in errors]
+    if err.field in fields:  # the loader's own words for the error it met first: they say what is allowed
+        errors[fields.index(err.field)] = (err.field, err.message)
+    if errors:
+        return errors
+    from flyopt.io.scene import section_errors
+
+    errors = [(err.field, err.message)]
+    said = {_section(err.field)}
+    for other in section_errors(data):
+        if _section(other.field) not in said:
+            said.add(_section(other.field))
+            errors.append((other.field, other.message))
+    return errors
+
+
+def _section(field: str) -> str:
+    """The top-level section a field path is in ("shaft" for "shaft[1].speed_ratio", "machine" for "machine.delta")."""
+    return field.split(".", 1)[0].split("[", 1)[0]
 
 
 def _check(args: argparse.Namespace, data: dict[str, Any]) -> int:

@@ -271,26 +271,8 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         },
     )  # [sweep] is read by flyopt.studies.sweep.load_sweep
     once = any(top.has(k) for k in CALCULATIONS)  # one calculation, not a cycle: no δ to hold
-    machine = Table(
-        top.get("machine", {}) if once else top.require("machine"),
-        "machine",
-        {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"},
-    )
-    omega = _mean_speed(machine, required=not once)
     existing = top.has("flywheel")
-    delta = machine.quantity("delta", "dimensionless", required=not (existing or once))
-    if delta is not None:
-        _check_delta(delta, machine)
-    if machine.has("inertia") and machine.has("gd2"):
-        raise SceneError("machine.gd2", "give either machine.inertia or machine.gd2, not both")
-    j_c = machine.quantity("inertia", "inertia", default=0.0)
-    if machine.has("gd2"):
-        j_c = inertia_from_gd2(machine.quantity("gd2", "flywheel_moment", required=True))
-    if j_c < 0:
-        raise SceneError("machine.inertia" if machine.has("inertia") else "machine.gd2", "must not be negative")
-    cycle = machine.quantity("cycle", "angle", default=2 * math.pi)
-    if cycle <= 0:
-        raise SceneError("machine.cycle", f"must be positive, got {shorten(machine.raw('cycle'))}")
+    machine, omega, delta, j_c, cycle = _machine(top, once, existing)
     engine = read_engine(top.get("engine"), files) if top.has("engine") else None
     if engine is not None:
         if machine.has("cycle") and abs(cycle - engine.cycle_angle) > ANGLE_TOLERANCE * engine.cycle_angle:
@@ -404,14 +386,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
                     f"flywheel.angles[{k}]",
                     f"{math.degrees(angle):.6g} deg is outside the cycle, 0 to {math.degrees(cycle):.6g} deg",
                 )
-    title = top.get("title", "")
-    if not isinstance(title, str):
-        raise SceneError("title", f"must be a string, got {shorten(title)}")
-    if len(title) > MAX_TITLE_LENGTH:
-        raise SceneError(
-            "title",
-            f"is {len(title)} characters long (allowed: at most {MAX_TITLE_LENGTH}; a longer text belongs in description)",
-        )
+    title = _title(top)
     return Scene(
         title=title or (Path(source).stem if source else "scene"),
         omega_mean=omega,
@@ -438,6 +413,84 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         power_chain=chain,
         source=source,
     )
+
+
+def _machine(top: Table, once: bool, existing: bool) -> tuple[Table, float, float | None, float, float]:
+    """The [machine] table and its scalars: (the table, ω_m [rad/s], δ or None, J_c [kg*m^2], the cycle [rad]).
+    ``once``: the scene is one calculation (no machine needed); ``existing``: it gives a [flywheel] (no δ)."""
+    machine = Table(
+        top.get("machine", {}) if once else top.require("machine"),
+        "machine",
+        {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"},
+    )
+    omega = _mean_speed(machine, required=not once)
+    delta = machine.quantity("delta", "dimensionless", required=not (existing or once))
+    if delta is not None:
+        _check_delta(delta, machine)
+    if machine.has("inertia") and machine.has("gd2"):
+        raise SceneError("machine.gd2", "give either machine.inertia or machine.gd2, not both")
+    j_c = machine.quantity("inertia", "inertia", default=0.0)
+    if machine.has("gd2"):
+        j_c = inertia_from_gd2(machine.quantity("gd2", "flywheel_moment", required=True))
+    if j_c < 0:
+        raise SceneError("machine.inertia" if machine.has("inertia") else "machine.gd2", "must not be negative")
+    cycle = machine.quantity("cycle", "angle", default=2 * math.pi)
+    if cycle <= 0:
+        raise SceneError("machine.cycle", f"must be positive, got {shorten(machine.raw('cycle'))}")
+    return machine, omega, delta, j_c, cycle
+
+
+def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
+    """The value errors of a scene's sections that are read on their own, each section read alone: [machine]'s
+    scalars, the [[material]] tables, the [[shaft]] tables, the title, and [design] where the shafts and materials
+    it names read without error. At most one error a section (its first, as the loader meets it); what depends on
+    another section (the torques on the cycle and the shafts, a mechanism's members, a drive) is left to the
+    loader, which stops at the first error of the whole scene (:func:`from_dict`). ``flyopt check`` lists these
+    beside that one, so that errors in different sections are said at once; none is a consequence of another.
+
+    A scene in the courses' energy terms or a press's process data (rewritten into a scene by the loader) is not
+    probed: its sections are not the file's."""
+    if not isinstance(data, Mapping) or any(k in data for k in ("energy", "strokes", "press")):
+        return []
+    errors: list[SceneError] = []
+
+    def attempt(read: Any, *args: Any) -> Any:
+        try:
+            return read(*args)
+        except SceneError as err:
+            errors.append(err)
+            return None
+
+    try:
+        top = Table(data, "", set(data))
+    except SceneError:
+        return []
+    once = any(top.has(k) for k in CALCULATIONS)
+    machine = attempt(_machine, top, once, top.has("flywheel"))
+    if machine is not None and machine[0].has("efficiency"):
+        attempt(read_efficiency, machine[0].get("efficiency"), "machine.efficiency")
+    materials = attempt(read_materials, top.get("material"))
+    raw_shafts = data.get("shaft")
+    shafts = None
+    if not (isinstance(data.get("drive"), Mapping) or "motor_option" in data):  # a drive reads its own shaft
+        shafts = attempt(read_shafts, raw_shafts)
+    attempt(_title, top)
+    if shafts is not None and materials is not None and isinstance(data.get("design", {}), Mapping):
+        attempt(read_design, top.get("design", {}), shafts, materials)
+    return errors
+
+
+def _title(top: Table) -> str:
+    """The scene's title ("" where it gives none): a string of at most :data:`MAX_TITLE_LENGTH` characters."""
+    title = top.get("title", "")
+    if not isinstance(title, str):
+        raise SceneError("title", f"must be a string, got {shorten(title)}")
+    if len(title) > MAX_TITLE_LENGTH:
+        raise SceneError(
+            "title",
+            f"is {len(title)} characters long (allowed: at most {MAX_TITLE_LENGTH}; a longer text belongs in description)",
+        )
+    return title
 
 
 def _mean_speed(machine: Table, required: bool) -> float:
