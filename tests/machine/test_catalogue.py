@@ -487,6 +487,7 @@ def test_the_surviving_kw_cells_are_outputs_of_the_rows():
     assert {kw for kw in OUTPUT_KW if kw not in IEC_OUTPUTS_KW} == {0.13, 9.2}
 
 
+@pytest.mark.slow  # 5 s: every placement of the two lost cells; the catalogue's masses are pinned by default
 def test_the_mass_run_aligns_from_its_end():
     """The mass run lacks two cells. Every placement of them that keeps the masses in physical order
     (_in_physical_order) puts both at or before 112MB-4, so from 132S-4 up the run is read from its end by

@@ -262,6 +262,7 @@ def test_the_reference_kinematics_are_those_of_mpmath():
         assert_allclose(cylinder_ratios(r, l, 0.0, np.array([psi]))[0][0], float(exact), rtol=1e-13)
 
 
+@pytest.mark.slow  # 7 s; the engine scenes' goldens and test_engine's closed forms run by default
 def test_four_stroke_cycle_against_an_independent_integration(four):
     """The problem's four-cylinder engine over its 720° cycle, every figure against the test's own integration.
 

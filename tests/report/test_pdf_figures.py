@@ -68,6 +68,7 @@ def test_the_renderer_draws_every_kind_of_mark(tmp_path):
     assert "/GS" in stream or "gs" in stream, "no transparency state (alpha 0.5)"
 
 
+@pytest.mark.slow  # 10 s: every diagram drawn twice over; the PDF and HTML layouts are held by test_pdf_layout by default
 def test_an_html_figure_is_laid_out_and_placed_as_savefig_places_it():
     """The HTML's figures are drawn once (flyopt.report.plots.output.draw_vector) where savefig draws twice: every
     text, mark and image stands where matplotlib's own savefig puts it, to the digit it writes, on each diagram of
