@@ -112,3 +112,15 @@ def test_value_errors_in_different_sections_are_listed_at_once_each_on_its_line(
     # solve still stops at the first, in one line
     status, _, err = main_cli("solve", path)
     assert status == 2 and len(err.splitlines()) == 1 and "machine.delta" in err
+
+
+def test_a_calculation_s_design_values_are_not_said_beside_its_refusal_of_the_design(main_cli, write_scene):
+    """[operation] refuses a [design] table (give one of them): the design's own values are no error of such a
+    scene, and fixing them would not be the fix; only the machine's δ is said beside the loader's error."""
+    text = (
+        '[machine]\nspeed = "300 rpm"\ndelta = -1\n\n[operation]\nenergy = "10 kJ"\nduration = "1 s"\n'
+        'motor_power = "3 kW"\n\n[design]\nmax_outer_diameter = "-1 m"\n'
+    )
+    path = write_scene(text)
+    status, _, err = main_cli("check", path)
+    assert status == 2 and [line.split(": ")[1] for line in err.splitlines()] == ["machine.delta"], err

@@ -475,7 +475,8 @@ def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
     if not (isinstance(data.get("drive"), Mapping) or "motor_option" in data):  # a drive reads its own shaft
         shafts = attempt(read_shafts, raw_shafts)
     attempt(_title, top)
-    if shafts is not None and materials is not None and isinstance(data.get("design", {}), Mapping):
+    # one calculation refuses a [design] before reading it: its values are no error of such a scene
+    if shafts is not None and materials is not None and not once and isinstance(data.get("design", {}), Mapping):
         attempt(read_design, top.get("design", {}), shafts, materials)
     return errors
 
