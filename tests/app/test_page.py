@@ -196,3 +196,35 @@ def test_downloads_are_offered_only_when_there_is_something_to_give(session):
     assert "no flywheel" in session.card.html.lower() or "not needed" in session.card.html.lower()
     assert not any(button.disabled for button in session.answer_downloads)
     assert session.wheel_downloads and all(button.disabled for button in session.wheel_downloads)
+
+
+def test_the_stale_note_names_the_diagrams_only_where_some_are_shown(session, monkeypatch):
+    """A broken edit while the first answer's first diagram is drawn: no diagram of the last scene solved is on
+    the page, so the note names the downloads alone (it said 'the diagrams ... below' above none); once an
+    answer's diagrams are shown, a broken edit's note names them."""
+    from flyopt.app import model
+    from flyopt.app.page import STALE, STALE_DOWNLOADS
+
+    held, release = threading.Event(), threading.Event()
+    draw = model.figure_svg
+
+    def svg(block):
+        if not release.is_set():
+            held.set()
+            assert release.wait(PATIENCE), "the test did not release the diagram"
+        return draw(block)
+
+    monkeypatch.setattr(model, "figure_svg", svg)
+
+    async def edits() -> None:
+        one = asyncio.ensure_future(session._refresh(edited("0.04"), solve=None))
+        await until(held.is_set, "the first answer's first diagram")
+        await session._refresh(edited("-1"), solve=None)
+        assert session.stale.object == STALE_DOWNLOADS
+        release.set()
+        await one
+        await session._refresh(edited("0.04"), solve=None)  # drawn in full
+        await session._refresh(edited("-1"), solve=None)
+        assert session.stale.object == STALE
+
+    asyncio.run(edits())

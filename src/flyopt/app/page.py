@@ -34,9 +34,14 @@ DEBOUNCE = 0.0
 #: The template shown first.
 FIRST = "shear-press"
 
-#: Said above the diagrams and downloads while the editor's text is not valid.
+#: Said above the diagrams and downloads while the editor's text is not valid (or not yet solved).
 STALE = (
     '<div style="color:#c33;font-weight:bold">The diagrams and downloads below are those of the last scene solved, '
+    "not of the text in the editor.</div>"
+)
+#: The same where no diagram of the last scene solved is shown (an edit came while its first were drawn).
+STALE_DOWNLOADS = (
+    '<div style="color:#c33;font-weight:bold">The downloads below are those of the last scene solved, '
     "not of the text in the editor.</div>"
 )
 
@@ -264,7 +269,7 @@ class Session:
         self.checked = checked
         if checked.problems or checked.scene is None:
             self.card.html = model.card_html(None, checked.problems)
-            self.stale.object = STALE if self.answer is not None else ""
+            self.stale.object = self._stale()
             self._busy(False)  # an older edit's work still running is dropped: nothing is being done for this one
             return
         fast = model.live(checked.scene)
@@ -273,7 +278,7 @@ class Session:
             self.card.html = model.card_html(None, [], busy="The scene is valid; press Solve for its answer.")
             self.form.show(text)
             self.mode.object = mode
-            self.stale.object = STALE if self.answer is not None else ""
+            self.stale.object = self._stale()
             self._busy(False)  # as above: Solve is this scene's next step, so it is offered
             return
         if not fast:
@@ -281,7 +286,7 @@ class Session:
             self.form.show(text)
             self.mode.object = mode
             self._busy(True)
-            self.stale.object = STALE if self.answer is not None else ""
+            self.stale.object = self._stale()
         try:
             answer = await loop.run_in_executor(self.executor, model.numbers, text, self.workspace, units)
         except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
@@ -332,6 +337,13 @@ class Session:
         shown = diagrams.figures()
         self._show_figures(shown)
         self._take(model.drawn(answer, diagrams.document(), shown))
+
+    def _stale(self) -> str:
+        """The note above the downloads and diagrams while they are not the editor's text's: it names the
+        diagrams only where some are shown."""
+        if self.answer is None:
+            return ""
+        return STALE if any(svg_pane.visible for _column, _title, svg_pane in self.figure_slots) else STALE_DOWNLOADS
 
     def _in_view(self) -> dict[str, float]:
         """The diagrams on the page by key, each with the fraction of it the visitor has in view (the page's order)."""
