@@ -210,6 +210,7 @@ def test_bad_section_is_refused(capsys):
     assert "nonsense" in capsys.readouterr().err
 
 
+@pytest.mark.slow  # 6 s: imports every module in a fresh process; the floors test holds the import graph by default
 def test_nothing_in_flyopt_imports_the_bench():
     """The bench is a leaf: only the command line's dispatch (flyopt.cli) reaches it."""
     package = ROOT / "src" / "flyopt"

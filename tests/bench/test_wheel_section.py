@@ -60,6 +60,7 @@ def test_random_wheel_rows(config):
     _check_rows(rows, case)
 
 
+@pytest.mark.slow  # 4 s: the whole-wheel benchmark's scene rows
 def test_scene_rows_and_the_watch_is_undone(config):
     """The scene's first combination: flyopt's whole design (stress check included) and its NLP alone."""
     before = (wheel_design.design_combination, wheel_nlp.solve)

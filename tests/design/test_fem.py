@@ -350,6 +350,7 @@ def _derated_scene(tmp_path, safety_factor, materials='["gjs_keyed"]', fem_check
     return flyopt.load(path)
 
 
+@pytest.mark.slow  # 3 s: repeated FE solves; the FE check itself is tested by default
 def test_a_wheel_the_fe_rejects_is_designed_again_until_the_fe_accepts_it(tmp_path):
     """At a safety factor of 20 the web's Lamé stress is within its allowable but the FE peak at the hub-web
     junction is 12.7 % over it: the acceptance divides the web's allowable by the concentration the FE found

@@ -59,6 +59,7 @@ def _thin(d_body, d_journal):
     return text.replace('diameter = "50 mm"', f'diameter = "{d_journal} mm"')
 
 
+@pytest.mark.slow  # 5 s: a second drive search; the drive's shaft post-check is tested by default above
 def test_a_shaft_too_thin_for_the_chosen_wheel_moves_the_choice(tmp_path, solved):
     path = tmp_path / "thin.toml"
     path.write_text(_thin(34, 34), encoding="utf-8")

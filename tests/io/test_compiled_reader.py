@@ -236,6 +236,7 @@ def test_a_blank_or_comment_line_in_a_large_csv_keeps_the_line_numbers(replaceme
     assert got[1][19998:20000] == [20000, 20002]  # line 20001 skipped
 
 
+@pytest.mark.slow  # 3 s: a large CSV read twice; the reader's refusals are tested by default
 def test_underscores_and_unusual_blanks_in_a_large_csv_are_floats(tmp_path):
     """What only Python's float reads (refused by the compiled reader), or a lone carriage return
     (which pyarrow takes for the end of a line), is read as before."""

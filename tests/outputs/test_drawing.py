@@ -502,6 +502,7 @@ def test_a_drawing_of_what_is_not_a_design_is_refused(drawn):
     assert math.isfinite(design.mass)
 
 
+@pytest.mark.slow  # 5 s: every drawing format of two scenes; one name per material is tested by default in the text
 def test_a_grade_is_named_by_its_designation_everywhere(tmp_path, main_cli):
     """One name per material (issue 29): press-arms-wheel's en_gjl_250 is EN-GJL-250 (EN 1561's designation)
     in the text, the report, the messages and the drawing's title block; the JSON keeps the scene's key."""

@@ -259,6 +259,7 @@ def test_a_key_without_a_bearing_pressure_has_its_shear_checked_and_its_pressure
     assert "(not checked: the hub's material gives no allowable)" in line and "allowable -" not in line
 
 
+@pytest.mark.slow  # 3.5 s: two scenes solved; the answer's disc words are tested by default in test_answer_first
 def test_a_disc_is_reported_as_a_disc_not_a_rim(capsys, tmp_path):
     """four-cylinder-engine's wheel is a disc: its text and report gave it rim dimensions (a mean diameter of
     D/2, an inner diameter of 0 and "rim H x B 140 x 9.77 mm", issue 29); they give its outer diameter and its

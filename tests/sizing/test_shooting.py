@@ -84,6 +84,7 @@ def test_motor_press_agrees_with_cvodes(monkeypatch):
     assert_agree(fast, by_cvodes(monkeypatch, args))
 
 
+@pytest.mark.slow  # 3 s: a CVODES run; the shooting is held to CVODES by default on constant inertia
 def test_variable_inertia_with_a_motor_agrees_with_cvodes(monkeypatch, write_scene):
     """The slider-crank press (J_e(φ) from a 400 kg ram) driven by an induction motor: both
     exact models at once."""
