@@ -177,6 +177,7 @@ def collect(
 
     data = read_toml(path)
     scene = load(path, data)
+    name = shown_as or str(path)  # the file as the report names it
     if shown_as is not None:
         scene = dataclasses.replace(scene, shown_as=shown_as)
     what = scene.calculation
@@ -185,13 +186,12 @@ def collect(
         from flyopt.report.builder import CalculationInputs
 
         result = solve_calculation(scene)  # the one answer, as flyopt solve gives it: the report only reads it
-        name = shown_as or str(path)
         calculation = CalculationInputs(name, Path(path).read_text(encoding="utf-8"), scene, what, result)
         calculation.provenance = provenance(scene, command, pdf, data_files(data))
         return calculation
     solution = solve(scene, verify_design=True, extras=report_extras())  # the one solve: what follows only reads
     inputs = ReportInputs(
-        scene_file=shown_as or str(path),
+        scene_file=name,
         scene_text=Path(path).read_text(encoding="utf-8"),
         scene_tables=tuple(k for k, v in data.items() if isinstance(v, (dict, list))),
         scene=scene,

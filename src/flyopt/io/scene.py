@@ -470,10 +470,9 @@ def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
     if machine is not None and machine[0].has("efficiency"):
         attempt(read_efficiency, machine[0].get("efficiency"), "machine.efficiency")
     materials = attempt(read_materials, top.get("material"))
-    raw_shafts = data.get("shaft")
     shafts = None
     if not (isinstance(data.get("drive"), Mapping) or "motor_option" in data):  # a drive reads its own shaft
-        shafts = attempt(read_shafts, raw_shafts)
+        shafts = attempt(read_shafts, data.get("shaft"))
     attempt(_title, top)
     # one calculation refuses a [design] before reading it: its values are no error of such a scene
     if shafts is not None and materials is not None and not once and isinstance(data.get("design", {}), Mapping):

@@ -188,8 +188,7 @@ def design_seconds(scene: Scene, points: pd.DataFrame, method: str = "auto") -> 
     """The estimated seconds of each point's designs in one process: its combinations (:func:`design_counts`)
     times the cost of one, by how it is designed: the closed form, IPOPT on a bare wheel, IPOPT on a whole wheel
     (rim_web; rim_arms once per arm count it considers), or ``flyopt solve``'s design where the scene describes a
-    shaft
-    (:data:`~flyopt.studies.chunks.SECONDS_CLOSED_FORM` ... :data:`~flyopt.studies.chunks.SECONDS_DESCRIBED`).
+    shaft (:data:`~flyopt.studies.chunks.SECONDS_CLOSED_FORM` ... :data:`~flyopt.studies.chunks.SECONDS_DESCRIBED`).
 
     Returns
     -------
