@@ -611,6 +611,26 @@ def test_speed_plot_has_the_mean_speed_and_the_achieved_delta(drawn, scene):
     _assert_standard(ax)
 
 
+@pytest.mark.slow  # the drive's design and the chosen machine's periodic solution: 5-7 s
+def test_a_drive_scene_draws_the_machine_its_drive_chose(drawn):
+    """Was: ``flyopt plot problems/press-drive.toml --what speed`` drew the scene's energy model with a
+    48,440 kg·m² flywheel and δ = 0.1176, while ``flyopt solve`` answers a 5.5 kW motor at a ratio of 122.4
+    with no flywheel and δ = 0.0431. The drawn ω(φ) is now the chosen machine's: its δ is the one the
+    drive's CVODES verification found (the committed golden answer), and no flywheel is drawn."""
+    import json
+
+    golden = json.loads((Path(__file__).parents[1] / "data" / "golden" / "press-drive.json").read_text())
+    checked = golden["drive"]["verification"]
+    ax = drawn("press-drive", "speed")
+    omega = np.asarray(_gid(ax, "model")[0].get_ydata(), dtype=float)  # rpm
+    rpm = 30.0 / math.pi
+    # the drawn curve's own extremes against CVODES's: the two periodic solutions agree to their tolerances
+    assert math.isclose(omega.max(), checked["omega_max"] * rpm, rel_tol=1e-4)
+    assert math.isclose(omega.min(), checked["omega_min"] * rpm, rel_tol=1e-4)
+    assert "δ = 0.0431 achieved, 0.1176 allowed" in ax.get_title()
+    assert "J_F = 0 kg·m²" in _legend_text(ax) and "energy model" not in _legend_text(ax)
+
+
 # --------------------------------------------------------------------------
 # energy_mass
 # --------------------------------------------------------------------------

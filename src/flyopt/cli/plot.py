@@ -110,7 +110,10 @@ def _solve(args, whats):
     from flyopt.pipeline import solve
 
     design, extras = needs(whats, args.verify)
-    return solve(load(args.scene), design_flywheel=design, extras=extras)
+    scene = load(args.scene)
+    # a [drive] chooses the machine (its motor and ratio) that every diagram draws: without the drive's
+    # design the diagrams would draw the scene's energy model, a machine the answer does not have
+    return solve(scene, design_flywheel=design or scene.drive is not None, extras=extras)
 
 
 def _plot_one(args, plots, solution, what, output, every=False):
