@@ -728,7 +728,7 @@ def test_sweep_lines_never_join_points_of_another_field_and_show_display_units()
     assert list(miss.get_xdata()) == [0.02]
     ax.figure.canvas.draw()
     assert "infeasible: no material and shaft can give J_F (1 point)" in _legend_text(ax)
-    assert ax.get_xlabel() == "delta [-]" and ax.get_ylabel() == "mass [kg]"
+    assert ax.get_xlabel() == "δ [-]" and ax.get_ylabel() == "mass [kg]"
     _assert_standard(ax)
 
 
@@ -739,11 +739,11 @@ def test_sweep_axes_in_the_chosen_units():
     frame = _sweep_frame()
     frame = frame[(frame["material"] == "cast_steel") & (frame["delta"] == 0.05)]
     ax = plots.plot_sweep(frame, "speed", "d_outer")
-    assert ax.get_xlabel() == "speed [rpm]" and ax.get_ylabel() == "d_outer [mm]"
+    assert ax.get_xlabel() == "speed [rpm]" and ax.get_ylabel() == "outer diameter D [mm]"
     np.testing.assert_allclose(ax.lines[0].get_xdata(), [600.0, 900.0], rtol=1e-12)
     np.testing.assert_allclose(ax.lines[0].get_ydata(), [500.0, 500.0], rtol=1e-12)
     ax = plots.plot_sweep(frame, "speed", "d_outer", units="imperial")
-    assert ax.get_ylabel() == "d_outer [in]"
+    assert ax.get_ylabel() == "outer diameter D [in]"
     np.testing.assert_allclose(ax.lines[0].get_ydata(), [0.5 / 0.0254] * 2, rtol=1e-12)
 
 
@@ -762,6 +762,22 @@ def test_pareto_refuses_points_of_different_delta(tmp_path, capsys):
 
     ax = plots.plot_pareto(frame[frame["material"] == "cast_steel"], "delta", "mass")
     assert len(_gid(ax, "front")[0].get_xdata()) == 3
+
+
+@pytest.mark.parametrize("units, unit", [("engineering", "mm"), ("imperial", "in")])
+def test_a_fronts_axes_name_the_wheel_in_words(units, unit):
+    """Was: the axis of ``flyopt pareto``'s front read "outer_diameter [mm]", the file's column, where the
+    text and the app say "outer diameter D"; a sweep's ``d_outer`` is the same diameter, said the same way."""
+    import pandas as pd
+
+    from flyopt.report import plots
+
+    front = pd.DataFrame(
+        {"mass": [40.0, 30.0, 25.0], "outer_diameter": [0.5, 0.6, 0.8], "epsilon": [0.5, 0.6, 0.8]}
+    ).assign(status="designed", best_material="cast_iron")
+    ax = plots.plot_pareto(front, "outer_diameter", "mass", units=units)
+    assert ax.get_xlabel() == f"outer diameter D [{unit}]"
+    assert ax.get_ylabel() == ("mass [kg]" if units == "engineering" else "mass [lb]")
 
 
 def test_units_option_is_checked_in_one_line(tmp_path, capsys):

@@ -105,7 +105,7 @@ def test_a_results_axis_takes_its_columns_prefix():
     frame = pd.DataFrame({"delta": [0.05, 0.1, 0.2], "motor_power": [436.3, 512.0, 640.9], "status": ["designed"] * 3})
     ax = plots.plot_sweep(frame, "delta", "motor_power")
     try:
-        assert ax.get_ylabel() == "motor_power [W]"
+        assert ax.get_ylabel() == "motor power [W]"
         assert list(ax.get_lines()[0].get_ydata()) == pytest.approx([436.3, 512.0, 640.9])
     finally:
         plt.close(ax.figure)

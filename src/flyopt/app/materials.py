@@ -29,6 +29,8 @@ import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+from flyopt.report import display
+
 if TYPE_CHECKING:
     import pandas as pd
 
@@ -49,8 +51,9 @@ TRADEOFF_SHOWN = (
     "limit",
 )
 
-#: What the chart beside the trade-off draws per material: (column, title).
-CHART = (("mass", "mass"), ("d_outer", "outer diameter D"), ("cost", "cost"))
+#: What the chart beside the trade-off draws per material: its columns, each titled in its words
+#: (:func:`flyopt.report.display.column_words`).
+CHART = ("mass", "d_outer", "cost")
 
 #: The Pareto fronts the tab offers (``flyopt pareto --objectives``) and its number of ε values.
 OBJECTIVES = ("mass,outer_diameter", "mass,cost", "mass,delta")
@@ -154,7 +157,6 @@ def shown(
     from pandas.api.types import is_bool_dtype, is_integer_dtype, is_numeric_dtype
 
     from flyopt.outputs import quantities
-    from flyopt.report import display
 
     digits = display.DEFAULT_DIGITS if digits is None else digits
     words = display.for_people(frame[[c for c in columns if c in frame.columns]].copy(), names or {})
@@ -198,7 +200,6 @@ def library_shown(table: pd.DataFrame, units: str, digits: int | None = None) ->
     import pandas as pd
 
     from flyopt.cli.materials import COLUMNS
-    from flyopt.report import display
 
     digits = display.DEFAULT_DIGITS if digits is None else digits
     out: dict[str, Any] = {"material": list(table["display_name"]), "name": list(table["name"])}
@@ -230,14 +231,14 @@ def chart_svg(table: pd.DataFrame, units: str, names: dict[str, str] | None = No
 
 
 def _chart_svg(designed: pd.DataFrame, units: str, names: dict[str, str] | None) -> str:
-    from flyopt.report import display
     from flyopt.report.html import svg_of
     from flyopt.report.plots import standard
 
     labels = [(names or {}).get(m, m) for m in designed["material"]]
     figure = standard.figure_class()(figsize=(9, 2.8))
     axes = figure.subplots(1, len(CHART))
-    for ax, (column, title) in zip(axes, CHART):
+    for ax, column in zip(axes, CHART):
+        title = display.column_words(column)
         values = [float(v) for v in designed[column]]
         if all(v != v for v in values):  # no prices: the scene's materials carry no cost
             ax.set_title(f"{title}: no prices", fontsize=9)
@@ -292,7 +293,6 @@ def _pareto_svg(front: pd.DataFrame, ax: Any, other: str, units: str) -> tuple[s
     import numpy as np
 
     from flyopt.app.model import readout_json
-    from flyopt.report import display
     from flyopt.report.html import svg_of
     from flyopt.report.plots import standard
     from flyopt.studies.pareto import PARETO_OBJECTIVES
@@ -316,11 +316,11 @@ def _pareto_svg(front: pd.DataFrame, ax: Any, other: str, units: str) -> tuple[s
 POINT_ROWS = (
     ("material", "best_material"),
     ("shaft", "best_shaft"),
-    ("outer diameter D", "d_outer"),
-    ("width B", "b"),
-    ("rim height H", "h"),
-    ("mass", "mass"),
-    ("cost", "cost"),
+    (display.column_words("d_outer"), "d_outer"),
+    (display.column_words("b"), "b"),
+    (display.column_words("h"), "h"),
+    (display.column_words("mass"), "mass"),
+    (display.column_words("cost"), "cost"),
     ("ε (the constraint of this point)", "epsilon"),
     ("limits that bind", "binding"),
     ("method", "method"),
@@ -334,7 +334,6 @@ def point_rows(
 
     IndexError for a row the front does not have (a stale click).
     """
-    from flyopt.report import display
     from flyopt.studies.pareto import PARETO_OBJECTIVES
 
     row = front.iloc[index]

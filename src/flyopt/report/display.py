@@ -126,6 +126,31 @@ DEFAULT_DIGITS = 4
 UTILISATION_DIGITS = 3
 
 
+#: A results column in words, where an axis, a chart or a read-out names it for people (the files keep the
+#: column's own name): a Pareto front's ``outer_diameter`` and a sweep's ``d_outer`` are both the wheel's
+#: outer diameter D. Other columns are named as they are.
+COLUMN_WORDS = {
+    "mass": "mass",
+    "best_mass": "mass",
+    "d_outer": "outer diameter D",
+    "outer_diameter": "outer diameter D",
+    "d_mean": "mean diameter D_m",
+    "b": "width B",
+    "h": "rim height H",
+    "cost": "cost",
+    "delta": "δ",
+    "motor_power": "motor power",
+    "rim_speed": "rim speed",
+    "j_flywheel": "flywheel inertia J",
+    "j_required": "required inertia J_F",
+}
+
+
+def column_words(column: str) -> str:
+    """A results column as people read it (:data:`COLUMN_WORDS`), else the column's own name."""
+    return COLUMN_WORDS.get(column, column)
+
+
 def for_people(table: Any, names: Mapping[str, str]) -> Any:
     """A study's table (a pandas DataFrame, changed in place and returned) as people read it: its materials by
     their names for people (``names``: key -> :attr:`flyopt.design.materials.Material.display_name`) and its

@@ -61,11 +61,12 @@ def _scale(frame, column, units=display.DEFAULT, digits=standard.DIGITS):
 
 
 def _label(column, units=display.DEFAULT, frame=None, digits=standard.DIGITS):
-    """A column's axis label with its unit in the system."""
+    """A column's axis label in words (:func:`flyopt.report.display.column_words`) with its unit in the system."""
     if column == "cost":
         return "cost [currency of the prices]"
     scale = _scale(frame, column, units, digits)
-    return column if scale is None else scale.axis_label(column)
+    words = display.column_words(column)
+    return words if scale is None else scale.axis_label(words)
 
 
 def _column(frame, name):
@@ -227,7 +228,12 @@ def plot_sweep(
     if x_scale is not None:
         readout.abscissa(ax, x, x_scale)
     ax.grid(True, alpha=0.3)
-    standard.title(ax, own, f"sweep: {y} against {x}" + (f", one line per {', '.join(keys)}" if keys else ""))
+    standard.title(
+        ax,
+        own,
+        f"sweep: {display.column_words(y)} against {display.column_words(x)}"
+        + (f", one line per {', '.join(keys)}" if keys else ""),
+    )
     standard.legend(ax, own, ncol=3)
     return ax
 
@@ -304,6 +310,8 @@ def plot_pareto(
     )
     ax.set(xlabel=_label(x, units, frame, digits), ylabel=_label(y, units, frame, digits))
     ax.grid(True, alpha=0.3)
-    standard.title(ax, own, f"Pareto front: {y} against {x}, both minimized")
+    standard.title(
+        ax, own, f"Pareto front: {display.column_words(y)} against {display.column_words(x)}, both minimized"
+    )
     standard.legend(ax, own)
     return ax
