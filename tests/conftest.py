@@ -1,5 +1,6 @@
 """Shared test helpers."""
 
+import functools
 from pathlib import Path
 
 import pytest
@@ -40,6 +41,15 @@ def main_cli(capsys):
         return status, out, err
 
     return call
+
+
+@functools.cache
+def unit_registry():
+    """pint's unit registry, the tests' independent reference for unit factors: built when first asked for,
+    once per process (it takes a second, which every worker paid at collection when modules built their own)."""
+    import pint
+
+    return pint.UnitRegistry()
 
 
 def run_flyopt(*args, cwd=None):

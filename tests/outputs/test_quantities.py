@@ -8,9 +8,8 @@ docs/nomenclature.md.
 
 import re
 
-import pint
 import pytest
-from conftest import ROOT
+from conftest import ROOT, unit_registry
 
 from flyopt.outputs import quantities
 from flyopt.outputs.quantities import COUNTS, QUANTITIES, UNIT_SET_BY, unit_of
@@ -20,11 +19,8 @@ from flyopt.outputs.quantities import COUNTS, QUANTITIES, UNIT_SET_BY, unit_of
 # --------------------------------------------------------------------------
 
 
-UREG = pint.UnitRegistry()
-
-
 def _q(unit):
-    return UREG.Quantity(1.0, unit)
+    return unit_registry().Quantity(1.0, unit)
 
 
 #: Relations of docs/flywheel-design.md between quantities: the unit of the name on the left
@@ -286,7 +282,7 @@ RELATIONS = {
 
 def _value(expression):
     names = set(re.findall(r"[a-z_][a-z_0-9.]*", expression)) - {"meter", "second"}
-    scope = {"meter": UREG.meter, "second": UREG.second}
+    scope = {"meter": unit_registry().meter, "second": unit_registry().second}
     text = expression
     for k, name in enumerate(sorted(names, key=len, reverse=True)):
         text = re.sub(rf"(?<![a-z_0-9.]){re.escape(name)}(?![a-z_0-9.])", f"_v{k}", text)

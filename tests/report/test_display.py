@@ -2,15 +2,14 @@
 
 from pathlib import Path
 
-import pint
 import pytest
+from conftest import unit_registry
 
 from flyopt.report import display
 from flyopt.units import DIMENSIONS
 
 PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
 
-UREG = pint.UnitRegistry()
 
 #: The pint spelling of each label.
 PINT = {
@@ -52,7 +51,7 @@ def test_every_factor_is_pints(dimension, system):
         assert (name, factor) == ("-", 1.0)
         return
     si = SI[dimension] or "dimensionless"
-    assert factor == pytest.approx(UREG.Quantity(1.0, PINT.get(name, name)).to(si).magnitude, rel=1e-15)
+    assert factor == pytest.approx(unit_registry().Quantity(1.0, PINT.get(name, name)).to(si).magnitude, rel=1e-15)
 
 
 def test_si_is_the_base_units_and_engineering_the_designers():
@@ -115,7 +114,7 @@ def test_a_field_is_shown_in_the_dimension_the_json_gives_it():
     ):
         dimension = display.dimension_of(name)
         si = SI[dimension] or "dimensionless"
-        assert UREG.Quantity(1.0, unit_of(name)).to(si).magnitude == pytest.approx(1.0, rel=1e-15), name
+        assert unit_registry().Quantity(1.0, unit_of(name)).to(si).magnitude == pytest.approx(1.0, rel=1e-15), name
     assert display.field_text(1256.33, "a_max") == "1.256 kJ"  # four figures by default (issue 29)
     assert display.field_text(0.6, "d_outer", "imperial") == "23.62 in"
     assert display.field_number(0.6, "d_outer") == "600" and display.field_number(None, "d_outer") == "-"

@@ -29,15 +29,12 @@ import json
 import math
 import re
 
-import pint
 import pytest
-from conftest import PROBLEMS, ROOT, run_flyopt
+from conftest import PROBLEMS, ROOT, run_flyopt, unit_registry
 
 import flyopt
 import flyopt.pipeline
 from flyopt.cli.main import main
-
-UREG = pint.UnitRegistry()
 
 SYSTEMS = ("engineering", "si", "imperial")
 SCENES = ("shear-press", "punch-press-wheel", "four-cylinder-engine", "motor-press")
@@ -119,7 +116,7 @@ def in_nominal(number, label, dimension, system):
     nominal = UNITS[system][dimension]
     if label == nominal:
         return number
-    return UREG.Quantity(number, PINT.get(label, label)).to(PINT.get(nominal, nominal)).magnitude
+    return unit_registry().Quantity(number, PINT.get(label, label)).to(PINT.get(nominal, nominal)).magnitude
 
 
 def prefix_fits(number, label, dimension, system):
@@ -177,7 +174,7 @@ def value(text):
 def expected(si_value, dimension, system):
     """An SI value in the system's unit, converted by pint."""
     name = UNITS[system][dimension]
-    return UREG.Quantity(si_value, SI[dimension]).to(PINT.get(name, name)).magnitude
+    return unit_registry().Quantity(si_value, SI[dimension]).to(PINT.get(name, name)).magnitude
 
 
 def close(printed, si_value, dimension, system, digits=DIGITS):
