@@ -124,3 +124,39 @@ def test_a_calculation_s_design_values_are_not_said_beside_its_refusal_of_the_de
     path = write_scene(text)
     status, _, err = main_cli("check", path)
     assert status == 2 and [line.split(": ")[1] for line in err.splitlines()] == ["machine.delta"], err
+
+
+def test_errors_of_one_section_are_listed_each_on_its_line(main_cli, write_scene):
+    """Was: one error a section. machine's speed and delta, two [[material]] tables and two [[shaft]]s each wrong
+    on their own: six lines, each naming its field on its line; solve still says the first alone."""
+    text = (PROBLEMS / "shear-press.toml").read_text(encoding="utf-8")
+    broken = (
+        text.replace("\ndelta = 0.05\n", "\ndelta = -1\n", 1)
+        .replace('speed = "1500 rpm"', 'speed = "-1500 rpm"', 1)
+        .replace("speed_ratio = 1.0", "speed_ratio = -3", 1)
+    )
+    assert broken.count("-") >= text.count("-") + 3  # each replacement took
+    broken += (
+        '\n[[shaft]]\nname = "spindle"\nspeed_ratio = 0\n'
+        '\n[[material]]\nname = "lead"\ndensity = "-11340 kg/m^3"\nmax_rim_speed = "20 m/s"\n'
+        '\n[[material]]\nname = "tin"\ndensity = "7300 kg/m^3"\nmax_rim_speed = "-20 m/s"\n'
+    )
+    path = write_scene(broken)
+    status, out, err = main_cli("check", path)
+    lines = broken.splitlines()
+
+    def row(start):
+        return next(k for k, r in enumerate(lines, 1) if r.startswith(start))
+
+    said = {line.split(": ")[1]: int(line.split(": ")[0].rsplit(":", 1)[1]) for line in err.splitlines()}
+    assert status == 2 and out == ""
+    assert said == {
+        "machine.speed": row('speed = "-1500 rpm"'),
+        "machine.delta": row("delta = -1"),
+        "shaft[0].speed_ratio": row("speed_ratio = -3"),
+        "shaft[1].speed_ratio": row("speed_ratio = 0"),
+        "material[0].density": row('density = "-11340'),
+        "material[1].max_rim_speed": row('max_rim_speed = "-20'),
+    }, err
+    status, _, err = main_cli("solve", path)
+    assert status == 2 and len(err.splitlines()) == 1

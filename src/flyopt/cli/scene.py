@@ -223,8 +223,9 @@ def _say_errors(path: str, data: dict[str, Any], err: SceneError) -> int:
 def every_error(data: dict[str, Any], err: SceneError) -> list[tuple[str, str]]:
     """Every error ``flyopt check`` says of a scene the loader refused with ``err``, as (field, message), in no
     particular order: every structural error of ``data`` (the loader's words for the one it met first), or, the
-    structure sound, the loader's error and the first value error of each other section read on its own
-    (:func:`flyopt.io.scene.section_errors`). The app's card says the same."""
+    structure sound, the loader's error and the first value error of each other part read on its own (each of
+    [machine]'s scalars, each [[material]] and [[shaft]] table, the title, [design]:
+    :func:`flyopt.io.scene.section_errors`). The app's card says the same."""
     from flyopt.cli.scene_schema import structural_errors
 
     errors = structural_errors(data)
@@ -236,17 +237,10 @@ def every_error(data: dict[str, Any], err: SceneError) -> list[tuple[str, str]]:
     from flyopt.io.scene import section_errors
 
     errors = [(err.field, err.message)]
-    said = {_section(err.field)}
     for other in section_errors(data):
-        if _section(other.field) not in said:
-            said.add(_section(other.field))
+        if other.field not in {field for field, _ in errors}:  # the loader's first error, met again alone
             errors.append((other.field, other.message))
     return errors
-
-
-def _section(field: str) -> str:
-    """The top-level section a field path is in ("shaft" for "shaft[1].speed_ratio", "machine" for "machine.delta")."""
-    return field.split(".", 1)[0].split("[", 1)[0]
 
 
 def _check(args: argparse.Namespace, data: dict[str, Any]) -> int:

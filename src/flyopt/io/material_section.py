@@ -50,88 +50,92 @@ def _check_rim_speed(material: Material, where: str) -> None:
 
 def read_materials(raw: object) -> tuple[Material, ...]:
     """The [[material]] tables: the scene's own materials (none when it gives none)."""
-    from flyopt.design.materials import make_material
-
     if raw is None:
         return ()
     if not isinstance(raw, list):
         raise SceneError("material", "must be an array of tables: [[material]] with name and density")
-    materials, seen = [], set()
-    for k, item in enumerate(raw):
-        where = f"material[{k}]"
-        table = Table(
-            item,
-            where,
-            {
-                "name",
-                "density",
-                "max_rim_speed",
-                "allowable_stress",
-                "cost",
-                "source",
-                "description",
-                "hub_rule",
-                *_MATERIAL_STRENGTH,
-            },
-        )
-        name = table.require("name")
-        if not isinstance(name, str) or not name.strip():
-            raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
-        if name in seen:
-            raise SceneError(f"{where}.name", f"material {shorten(name)} is given twice")
-        seen.add(name)
-        strength = "tensile_strength" if table.get("ductile") is not True else "yield_strength"
-        if not (table.has("max_rim_speed") or table.has("allowable_stress") or table.has(strength)):
-            raise SceneError(
-                where,
-                f"give max_rim_speed, allowable_stress (v_max then follows from σ = ρ v²) "
-                f"or {strength} (the allowable stress is it over the safety factor)",
-            )
-        values: dict[str, Any] = {  # make_material's keywords: numbers, a flag, a hub rule
-            "density": table.quantity("density", "density", required=True),
-            "max_rim_speed": table.quantity("max_rim_speed", "speed"),
-            "allowable_stress": table.quantity("allowable_stress", "stress"),
-            "cost": table.quantity("cost", "cost_per_mass"),
-        }
-        for key, value in values.items():
-            if value is not None and (value < 0 or (value == 0 and key != "cost")):
-                raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
-            if value is not None and key in MAGNITUDES:
-                check_magnitude(value, f"{where}.{key}", table.raw(key), *MAGNITUDES[key])
-        for key, dimension in _MATERIAL_STRENGTH.items():
-            if not table.has(key):
-                continue
-            if dimension == "bool":
-                if not isinstance(table.get(key), bool):
-                    raise SceneError(f"{where}.{key}", f"must be true or false, got {shorten(table.raw(key))}")
-                values[key] = table.get(key)
-                continue
-            value = table.quantity(key, dimension, required=True)
-            if key == "poisson_ratio":
-                if not 0.0 <= value < 0.5:
-                    raise SceneError(f"{where}.{key}", f"must be in [0, 0.5), got {shorten(table.raw(key))}")
-            elif key == "safety_factor":
-                if value < 1.0:
-                    raise SceneError(f"{where}.{key}", f"must be >= 1, got {shorten(table.raw(key))}")
-            elif value <= 0:
-                raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
-            values[key] = value
-        if table.has("hub_rule"):
-            from flyopt.design.hub import hub_rules
+    seen: set[str] = set()
+    return tuple(read_material(item, k, seen) for k, item in enumerate(raw))
 
-            rule = table.get("hub_rule")
-            if not isinstance(rule, str) or rule not in hub_rules():
-                raise SceneError(
-                    f"{where}.hub_rule", f"{shorten(rule)} is not a hub rule (allowed: {', '.join(hub_rules())})"
-                )
-            values["hub_rule"] = rule
-        source = table.get("source", "scene file")
-        if not isinstance(source, str):
-            raise SceneError(f"{where}.source", f"must be text (where the values come from), got {shorten(source)}")
-        try:
-            material = make_material(name, source=source, **values)
-        except ValueError as err:
-            raise SceneError(where, str(err)) from None
-        _check_rim_speed(material, where)
-        materials.append(material)
-    return tuple(materials)
+
+def read_material(item: object, k: int, seen: set[str]) -> Material:
+    """The k-th [[material]] table (from 0) read alone; ``seen`` holds the names of those before it, and takes
+    this one's (a name given twice is refused). ``flyopt check`` reads each table so, to name every wrong one."""
+    from flyopt.design.materials import make_material
+
+    where = f"material[{k}]"
+    table = Table(
+        item,
+        where,
+        {
+            "name",
+            "density",
+            "max_rim_speed",
+            "allowable_stress",
+            "cost",
+            "source",
+            "description",
+            "hub_rule",
+            *_MATERIAL_STRENGTH,
+        },
+    )
+    name = table.require("name")
+    if not isinstance(name, str) or not name.strip():
+        raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
+    if name in seen:
+        raise SceneError(f"{where}.name", f"material {shorten(name)} is given twice")
+    seen.add(name)
+    strength = "tensile_strength" if table.get("ductile") is not True else "yield_strength"
+    if not (table.has("max_rim_speed") or table.has("allowable_stress") or table.has(strength)):
+        raise SceneError(
+            where,
+            f"give max_rim_speed, allowable_stress (v_max then follows from σ = ρ v²) "
+            f"or {strength} (the allowable stress is it over the safety factor)",
+        )
+    values: dict[str, Any] = {  # make_material's keywords: numbers, a flag, a hub rule
+        "density": table.quantity("density", "density", required=True),
+        "max_rim_speed": table.quantity("max_rim_speed", "speed"),
+        "allowable_stress": table.quantity("allowable_stress", "stress"),
+        "cost": table.quantity("cost", "cost_per_mass"),
+    }
+    for key, value in values.items():
+        if value is not None and (value < 0 or (value == 0 and key != "cost")):
+            raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
+        if value is not None and key in MAGNITUDES:
+            check_magnitude(value, f"{where}.{key}", table.raw(key), *MAGNITUDES[key])
+    for key, dimension in _MATERIAL_STRENGTH.items():
+        if not table.has(key):
+            continue
+        if dimension == "bool":
+            if not isinstance(table.get(key), bool):
+                raise SceneError(f"{where}.{key}", f"must be true or false, got {shorten(table.raw(key))}")
+            values[key] = table.get(key)
+            continue
+        value = table.quantity(key, dimension, required=True)
+        if key == "poisson_ratio":
+            if not 0.0 <= value < 0.5:
+                raise SceneError(f"{where}.{key}", f"must be in [0, 0.5), got {shorten(table.raw(key))}")
+        elif key == "safety_factor":
+            if value < 1.0:
+                raise SceneError(f"{where}.{key}", f"must be >= 1, got {shorten(table.raw(key))}")
+        elif value <= 0:
+            raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
+        values[key] = value
+    if table.has("hub_rule"):
+        from flyopt.design.hub import hub_rules
+
+        rule = table.get("hub_rule")
+        if not isinstance(rule, str) or rule not in hub_rules():
+            raise SceneError(
+                f"{where}.hub_rule", f"{shorten(rule)} is not a hub rule (allowed: {', '.join(hub_rules())})"
+            )
+        values["hub_rule"] = rule
+    source = table.get("source", "scene file")
+    if not isinstance(source, str):
+        raise SceneError(f"{where}.source", f"must be text (where the values come from), got {shorten(source)}")
+    try:
+        material = make_material(name, source=source, **values)
+    except ValueError as err:
+        raise SceneError(where, str(err)) from None
+    _check_rim_speed(material, where)
+    return material

@@ -23,12 +23,13 @@ from flyopt.io.angle_tables import ANGLE_TOLERANCE
 from flyopt.io.design_section import read_design
 from flyopt.io.engine_section import read_engine
 from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_magnitude
-from flyopt.io.material_section import read_materials
+from flyopt.io.material_section import read_material, read_materials
 from flyopt.io.member_section import read_mechanism, read_members, with_engine
 from flyopt.io.shaft_section import (
     check_designed_seats,
     check_shaft_materials,
     read_efficiency,
+    read_shaft,
     read_shafts,
     reference_efficiency,
 )
@@ -417,16 +418,33 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
 
 def _machine(top: Table, once: bool, existing: bool) -> tuple[Table, float, float | None, float, float]:
     """The [machine] table and its scalars: (the table, ω_m [rad/s], δ or None, J_c [kg*m^2], the cycle [rad]).
-    ``once``: the scene is one calculation (no machine needed); ``existing``: it gives a [flywheel] (no δ)."""
-    machine = Table(
+    ``once``: the scene is one calculation (no machine needed); ``existing``: it gives a [flywheel] (no δ).
+    Each scalar is read by a function of its own, which ``flyopt check`` calls alone (:func:`section_errors`)."""
+    machine = _machine_table(top, once)
+    omega = _mean_speed(machine, required=not once)
+    delta = _delta(machine, required=not (existing or once))
+    return machine, omega, delta, _constant_inertia(machine), _cycle(machine)
+
+
+def _machine_table(top: Table, once: bool) -> Table:
+    """[machine], with none but its own keys (one calculation may leave it out)."""
+    return Table(
         top.get("machine", {}) if once else top.require("machine"),
         "machine",
         {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"},
     )
-    omega = _mean_speed(machine, required=not once)
-    delta = machine.quantity("delta", "dimensionless", required=not (existing or once))
+
+
+def _delta(machine: Table, required: bool) -> float | None:
+    """machine.delta, the allowed coefficient of fluctuation (None where the scene needs none and gives none)."""
+    delta = machine.quantity("delta", "dimensionless", required=required)
     if delta is not None:
         _check_delta(delta, machine)
+    return delta
+
+
+def _constant_inertia(machine: Table) -> float:
+    """J_c [kg*m^2]: machine.inertia, or machine.gd2 as an inertia, not both; 0 where neither is given."""
     if machine.has("inertia") and machine.has("gd2"):
         raise SceneError("machine.gd2", "give either machine.inertia or machine.gd2, not both")
     j_c = machine.quantity("inertia", "inertia", default=0.0)
@@ -434,19 +452,25 @@ def _machine(top: Table, once: bool, existing: bool) -> tuple[Table, float, floa
         j_c = inertia_from_gd2(machine.quantity("gd2", "flywheel_moment", required=True))
     if j_c < 0:
         raise SceneError("machine.inertia" if machine.has("inertia") else "machine.gd2", "must not be negative")
+    return j_c
+
+
+def _cycle(machine: Table) -> float:
+    """machine.cycle [rad], positive (one turn where not given)."""
     cycle = machine.quantity("cycle", "angle", default=2 * math.pi)
     if cycle <= 0:
         raise SceneError("machine.cycle", f"must be positive, got {shorten(machine.raw('cycle'))}")
-    return machine, omega, delta, j_c, cycle
+    return cycle
 
 
 def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
-    """The value errors of a scene's sections that are read on their own, each section read alone: [machine]'s
-    scalars, the [[material]] tables, the [[shaft]] tables, the title, and [design] where the shafts and materials
-    it names read without error. At most one error a section (its first, as the loader meets it); what depends on
-    another section (the torques on the cycle and the shafts, a mechanism's members, a drive) is left to the
-    loader, which stops at the first error of the whole scene (:func:`from_dict`). ``flyopt check`` lists these
-    beside that one, so that errors in different sections are said at once; none is a consequence of another.
+    """The value errors of a scene's parts that are read on their own, each part read alone: each of [machine]'s
+    scalars (speed, delta, the constant inertia, the cycle, the efficiency), each [[material]] table, each
+    [[shaft]] table (their trains once every shaft reads), the title, and [design] where the shafts and
+    materials it names read without error. At most one error a part (its first, as the loader meets it); what
+    depends on another section (the torques on the cycle and the shafts, a mechanism's members, a drive) is left
+    to the loader, which stops at the first error of the whole scene (:func:`from_dict`). ``flyopt check`` lists
+    these beside that one, so that independent errors are said at once; none is a consequence of another.
 
     A scene in the courses' energy terms or a press's process data (rewritten into a scene by the loader) is not
     probed: its sections are not the file's."""
@@ -461,18 +485,34 @@ def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
             errors.append(err)
             return None
 
+    def each(raw: Any, read_one: Any, read_all: Any) -> Any:
+        """A list of tables read table by table, then (none wrong) as the loader reads it: its tuple, or None."""
+        if isinstance(raw, list):
+            seen: set[str] = set()
+            failed = len(errors)
+            for k, item in enumerate(raw):
+                attempt(read_one, item, k, seen)
+            if len(errors) > failed:
+                return None
+        return attempt(read_all, raw)
+
     try:
         top = Table(data, "", set(data))
     except SceneError:
         return []
     once = any(top.has(k) for k in CALCULATIONS)
-    machine = attempt(_machine, top, once, top.has("flywheel"))
-    if machine is not None and machine[0].has("efficiency"):
-        attempt(read_efficiency, machine[0].get("efficiency"), "machine.efficiency")
-    materials = attempt(read_materials, top.get("material"))
+    machine = attempt(_machine_table, top, once)
+    if machine is not None:
+        attempt(_mean_speed, machine, not once)
+        attempt(_delta, machine, not (top.has("flywheel") or once))
+        attempt(_constant_inertia, machine)
+        attempt(_cycle, machine)
+        if machine.has("efficiency"):
+            attempt(read_efficiency, machine.get("efficiency"), "machine.efficiency")
+    materials = each(top.get("material"), read_material, read_materials)
     shafts = None
     if not (isinstance(data.get("drive"), Mapping) or "motor_option" in data):  # a drive reads its own shaft
-        shafts = attempt(read_shafts, data.get("shaft"))
+        shafts = each(data.get("shaft"), read_shaft, read_shafts)
     attempt(_title, top)
     # one calculation refuses a [design] before reading it: its values are no error of such a scene
     if shafts is not None and materials is not None and not once and isinstance(data.get("design", {}), Mapping):

@@ -27,63 +27,13 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
         return (Shaft("reference", 1.0),)
     if not isinstance(raw, list) or not raw:
         raise SceneError("shaft", "must be an array of tables: [[shaft]] with name and speed_ratio")
-    shafts, seen, trains = [], set(), []
+    seen: set[str] = set()
+    shafts, trains = [], []
     for k, item in enumerate(raw):
-        where = f"shaft[{k}]"
-        table = Table(
-            item,
-            where,
-            {"name", "speed_ratio", "efficiency", "diameter", "inertia", "gd2", "description"} | LAYOUT_KEYS,
-        )
-        name = table.require("name")
-        if not isinstance(name, str) or not name.strip():
-            raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
-        if name in seen:
-            raise SceneError(f"{where}.name", f"shaft {shorten(name)} is given twice")
-        seen.add(name)
-        ratio = table.quantity("speed_ratio", "dimensionless", required=True)
-        if ratio <= 0:
-            raise SceneError(f"{where}.speed_ratio", f"must be positive (ω_shaft/ω_reference), got {shorten(ratio)}")
-        check_magnitude(
-            ratio,
-            f"{where}.speed_ratio",
-            table.raw("speed_ratio"),
-            *RATIO_RANGE,
-            "",
-            "ω_shaft/ω_reference of a gear train",
-        )
-        eff = read_efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
-        if table.raw("diameter") == DESIGNED:
-            raise SceneError(
-                f"{where}.diameter",
-                'cannot be "design" here: the design chooses a seat only on a shaft described as a part, as a '
-                'step of its segments (segments = [..., { to = "520 mm", diameter = "design" }, ...])',
-            )
-        diameter = table.quantity("diameter", "length")
-        if diameter is not None and diameter <= 0:
-            raise SceneError(
-                f"{where}.diameter", f"must be positive (the shaft seat), got {shorten(table.raw('diameter'))}"
-            )
-        layout = read_layout(table, where)
-        if layout is not None and layout.designs_seat:
-            if diameter is not None:
-                raise SceneError(
-                    f"{where}.diameter",
-                    f"the seat {shorten(table.raw('diameter'))} is given, and the step under the wheel says "
-                    '"design": give one of them',
-                )
-        elif layout is not None:
-            seat = layout.diameter_at(layout.wheel_at)
-            if diameter is not None and not math.isclose(diameter, seat, rel_tol=1e-9):
-                raise SceneError(
-                    f"{where}.diameter",
-                    f"the seat {shorten(table.raw('diameter'))} differs from the step under the wheel "
-                    f"({seat * 1e3:g} mm): give one of them",
-                )
-            diameter = seat
-        shafts.append(Shaft(name, ratio, eff, diameter, _shaft_inertia(table, where), layout))
-        if layout is not None and table.has("train"):
-            trains.append((k, table.raw("train")))
+        shaft, train = read_shaft(item, k, seen)
+        shafts.append(shaft)
+        if train is not None:
+            trains.append((k, train))
     for k, train in trains:  # after every shaft is read: a train names the other shafts
         shaft, layout = shafts[k], shafts[k].layout
         if layout is None:  # only a described shaft's train is kept (read_layout gave it)
@@ -91,6 +41,66 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
         elements = read_train(train, f"shaft[{k}].train", shaft, layout, tuple(shafts))
         shafts[k] = dataclasses.replace(shaft, layout=dataclasses.replace(layout, train=elements))
     return tuple(shafts)
+
+
+def read_shaft(item: object, k: int, seen: set[str]) -> tuple[Shaft, Any]:
+    """The k-th [[shaft]] table (from 0) read alone, and its ``train`` as written (None where it gives none or
+    is no part: its pieces name the other shafts, so :func:`read_shafts` reads it once all are read); ``seen``
+    holds the names before it and takes this one's. ``flyopt check`` reads each table so, to name every wrong one."""
+    where = f"shaft[{k}]"
+    table = Table(
+        item,
+        where,
+        {"name", "speed_ratio", "efficiency", "diameter", "inertia", "gd2", "description"} | LAYOUT_KEYS,
+    )
+    name = table.require("name")
+    if not isinstance(name, str) or not name.strip():
+        raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
+    if name in seen:
+        raise SceneError(f"{where}.name", f"shaft {shorten(name)} is given twice")
+    seen.add(name)
+    ratio = table.quantity("speed_ratio", "dimensionless", required=True)
+    if ratio <= 0:
+        raise SceneError(f"{where}.speed_ratio", f"must be positive (ω_shaft/ω_reference), got {shorten(ratio)}")
+    check_magnitude(
+        ratio,
+        f"{where}.speed_ratio",
+        table.raw("speed_ratio"),
+        *RATIO_RANGE,
+        "",
+        "ω_shaft/ω_reference of a gear train",
+    )
+    eff = read_efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
+    if table.raw("diameter") == DESIGNED:
+        raise SceneError(
+            f"{where}.diameter",
+            'cannot be "design" here: the design chooses a seat only on a shaft described as a part, as a '
+            'step of its segments (segments = [..., { to = "520 mm", diameter = "design" }, ...])',
+        )
+    diameter = table.quantity("diameter", "length")
+    if diameter is not None and diameter <= 0:
+        raise SceneError(
+            f"{where}.diameter", f"must be positive (the shaft seat), got {shorten(table.raw('diameter'))}"
+        )
+    layout = read_layout(table, where)
+    if layout is not None and layout.designs_seat:
+        if diameter is not None:
+            raise SceneError(
+                f"{where}.diameter",
+                f"the seat {shorten(table.raw('diameter'))} is given, and the step under the wheel says "
+                '"design": give one of them',
+            )
+    elif layout is not None:
+        seat = layout.diameter_at(layout.wheel_at)
+        if diameter is not None and not math.isclose(diameter, seat, rel_tol=1e-9):
+            raise SceneError(
+                f"{where}.diameter",
+                f"the seat {shorten(table.raw('diameter'))} differs from the step under the wheel "
+                f"({seat * 1e3:g} mm): give one of them",
+            )
+        diameter = seat
+    shaft = Shaft(name, ratio, eff, diameter, _shaft_inertia(table, where), layout)
+    return shaft, table.raw("train") if layout is not None and table.has("train") else None
 
 
 #: The keys of a [[shaft]] described as a part (docs/scene-schema.md); ``segments`` says it is described.
