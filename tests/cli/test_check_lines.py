@@ -160,3 +160,16 @@ def test_errors_of_one_section_are_listed_each_on_its_line(main_cli, write_scene
     }, err
     status, _, err = main_cli("solve", path)
     assert status == 2 and len(err.splitlines()) == 1
+
+
+def test_the_design_of_a_scene_with_its_flywheel_is_not_said(main_cli, write_scene):
+    """A [flywheel] that exists refuses a [design] before reading it (give one of them): the design's own values
+    are no error of such a scene, and fixing them would not be the fix; only the machine's δ is said."""
+    text = (
+        '[machine]\nspeed = "100 rpm"\ndelta = -1\n\n[torque.driving]\nconstant = "100 N*m"\n'
+        '[torque.resisting]\nconstant = "unknown"\n\n[flywheel]\ninertia = "10 kg*m^2"\n\n'
+        '[design]\nmaterials = ["nope"]\n'
+    )
+    path = write_scene(text)
+    status, _, err = main_cli("check", path)
+    assert status == 2 and [line.split(": ")[1] for line in err.splitlines()] == ["machine.delta"], err

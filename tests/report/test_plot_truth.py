@@ -631,6 +631,22 @@ def test_a_drive_scene_draws_the_machine_its_drive_chose(drawn):
     assert "J_F = 0 kg·m²" in _legend_text(ax) and "energy model" not in _legend_text(ax)
 
 
+@pytest.mark.slow  # the drive's search over the catalogue: 2-3 s
+def test_a_drive_that_finds_no_motor_draws_no_machine(tmp_path, capsys):
+    """Was: with no motor size meeting the limits (press-drive with a 1 ms start-up allowed), ``flyopt plot``
+    drew the scene's energy model and its flywheel, a machine without the motor the scene asks for, and exited
+    0. Now it says why in one line and exits 3, as ``solve`` answers "no drive"."""
+    text = (PROBLEMS / "press-drive.toml").read_text(encoding="utf-8")
+    assert 'max_startup = "15 s"' in text
+    scene = tmp_path / "press-drive.toml"
+    scene.write_text(text.replace('max_startup = "15 s"', 'max_startup = "0.001 s"'), encoding="utf-8")
+    out = tmp_path / "speed.png"
+    assert main(["plot", str(scene), "--what", "speed", "-o", str(out)]) == 3
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no drive meets the limits" in err and "over max_startup 0.001 s" in err
+    assert not out.exists()
+
+
 # --------------------------------------------------------------------------
 # energy_mass
 # --------------------------------------------------------------------------
@@ -728,7 +744,7 @@ def test_sweep_lines_never_join_points_of_another_field_and_show_display_units()
     assert list(miss.get_xdata()) == [0.02]
     ax.figure.canvas.draw()
     assert "infeasible: no material and shaft can give J_F (1 point)" in _legend_text(ax)
-    assert ax.get_xlabel() == "δ [-]" and ax.get_ylabel() == "mass [kg]"
+    assert ax.get_xlabel() == "allowed δ [-]" and ax.get_ylabel() == "mass [kg]"
     _assert_standard(ax)
 
 

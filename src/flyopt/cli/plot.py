@@ -127,6 +127,8 @@ def _plot_one(args, plots, solution, what, output, every=False):
     except plots.NothingToDraw as said:
         print(f"{args.scene}: {what}: {said} (no file written)")
         return EXIT_OK
+    except _NoDrive as said:
+        return fail(f"{args.scene}: {what}: no drive meets the limits, so no machine to draw ({said})", EXIT_INFEASIBLE)
     except _Infeasible as said:
         return fail(f"{args.scene}: {what}: no flywheel to draw ({said})", EXIT_INFEASIBLE)
     except ValueError as err:
@@ -165,12 +167,19 @@ class _Infeasible(Exception):
     """A flywheel is needed and no material and shaft can give it (exit 3)."""
 
 
+class _NoDrive(Exception):
+    """A [drive] found no motor size that drives the machine within its limits (exit 3): every diagram would draw
+    a machine without the motor the scene asks for."""
+
+
 def _draw(solution, what, plots, units, verify=False, digits=None):
     """Draw ``what`` from the solved scene (read only: every model ran in the solve); returns the Axes."""
     from flyopt.report import display
 
     digits = display.DEFAULT_DIGITS if digits is None else digits
     scene, analysis = solution.scene, solution.analysis
+    if solution.drive is not None and solution.drive.best is None:
+        raise _NoDrive(solution.drive.message)
     if what in ("cross_section", "stress"):
         design = solution.design
         if solution.status == "not_needed":

@@ -176,8 +176,8 @@ def run_check(args: argparse.Namespace) -> int:
     at once (:func:`flyopt.cli.scene_schema.structural_errors`: unknown keys,
     wrong types, missing keys; the loader's words for the one it met first),
     or, when the structure is sound, the loader's error and the first value
-    error of each other section read on its own (:func:`flyopt.io.scene.section_errors`:
-    the machine's scalars, the materials, the shafts, the title, the design); each on its own
+    error of each other part read on its own (:func:`flyopt.io.scene.section_errors`:
+    each of the machine's scalars, each material and shaft table, the title, the design); each on its own
     line ``FILE:LINE: field: message`` on stderr, in the order of the file
     (a field the file does not write, derived from another section, as
     ``flyopt: error: FILE: field: message``); exit status 2. A file that is not TOML, and the other commands,
@@ -236,9 +236,10 @@ def every_error(data: dict[str, Any], err: SceneError) -> list[tuple[str, str]]:
         return errors
     from flyopt.io.scene import section_errors
 
-    errors = [(err.field, err.message)]
+    errors, said = [(err.field, err.message)], {err.field}
     for other in section_errors(data):
-        if other.field not in {field for field, _ in errors}:  # the loader's first error, met again alone
+        if other.field not in said:  # the loader's first error, met again alone
+            said.add(other.field)
             errors.append((other.field, other.message))
     return errors
 

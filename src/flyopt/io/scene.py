@@ -514,8 +514,15 @@ def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
     if not (isinstance(data.get("drive"), Mapping) or "motor_option" in data):  # a drive reads its own shaft
         shafts = each(data.get("shaft"), read_shaft, read_shafts)
     attempt(_title, top)
-    # one calculation refuses a [design] before reading it: its values are no error of such a scene
-    if shafts is not None and materials is not None and not once and isinstance(data.get("design", {}), Mapping):
+    # one calculation, and a [flywheel] that exists, refuse a [design] before reading it: its values are no
+    # error of such a scene
+    existing = top.has("flywheel")
+    if (
+        shafts is not None
+        and materials is not None
+        and not (once or existing)
+        and isinstance(data.get("design", {}), Mapping)
+    ):
         attempt(read_design, top.get("design", {}), shafts, materials)
     return errors
 

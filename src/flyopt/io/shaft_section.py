@@ -32,7 +32,7 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
     for k, item in enumerate(raw):
         shaft, train = read_shaft(item, k, seen)
         shafts.append(shaft)
-        if train is not None:
+        if train is not NO_TRAIN:
             trains.append((k, train))
     for k, train in trains:  # after every shaft is read: a train names the other shafts
         shaft, layout = shafts[k], shafts[k].layout
@@ -43,9 +43,13 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
     return tuple(shafts)
 
 
+#: :func:`read_shaft`'s train of a shaft that gives none (or is no part): a train given as None is refused.
+NO_TRAIN = object()
+
+
 def read_shaft(item: object, k: int, seen: set[str]) -> tuple[Shaft, Any]:
-    """The k-th [[shaft]] table (from 0) read alone, and its ``train`` as written (None where it gives none or
-    is no part: its pieces name the other shafts, so :func:`read_shafts` reads it once all are read); ``seen``
+    """The k-th [[shaft]] table (from 0) read alone, and its ``train`` as written (:data:`NO_TRAIN` where it gives
+    none or is no part: its pieces name the other shafts, so :func:`read_shafts` reads it once all are read); ``seen``
     holds the names before it and takes this one's. ``flyopt check`` reads each table so, to name every wrong one."""
     where = f"shaft[{k}]"
     table = Table(
@@ -100,7 +104,7 @@ def read_shaft(item: object, k: int, seen: set[str]) -> tuple[Shaft, Any]:
             )
         diameter = seat
     shaft = Shaft(name, ratio, eff, diameter, _shaft_inertia(table, where), layout)
-    return shaft, table.raw("train") if layout is not None and table.has("train") else None
+    return shaft, table.raw("train") if layout is not None and table.has("train") else NO_TRAIN
 
 
 #: The keys of a [[shaft]] described as a part (docs/scene-schema.md); ``segments`` says it is described.

@@ -131,18 +131,20 @@ UTILISATION_DIGITS = 3
 #: outer diameter D. Other columns are named as they are.
 COLUMN_WORDS = {
     "mass": "mass",
-    "best_mass": "mass",
     "d_outer": "outer diameter D",
     "outer_diameter": "outer diameter D",
     "d_mean": "mean diameter D_m",
-    "b": "width B",
-    "h": "rim height H",
+    "b": "axial width B",
+    "h": "radial thickness H",
     "cost": "cost",
-    "delta": "δ",
+    "delta": "allowed δ",
     "motor_power": "motor power",
     "rim_speed": "rim speed",
-    "j_flywheel": "flywheel inertia J",
+    "j_flywheel": "flywheel inertia J′ (on its shaft)",
     "j_required": "required inertia J_F",
+    "material": "material",
+    "best_material": "material",
+    "best_shaft": "shaft",
 }
 
 

@@ -232,7 +232,7 @@ def plot_sweep(
         ax,
         own,
         f"sweep: {display.column_words(y)} against {display.column_words(x)}"
-        + (f", one line per {', '.join(keys)}" if keys else ""),
+        + (f", one line per {', '.join(display.column_words(k) for k in keys)}" if keys else ""),
     )
     standard.legend(ax, own, ncol=3)
     return ax
