@@ -404,7 +404,7 @@ def _with_delta_sensitivity(
     import dataclasses
 
     from flyopt.design import design_flywheel, design_inputs
-    from flyopt.design.wheel_design import needs_torque
+    from flyopt.design.wheel_design import needs_torque, sensitivity
     from flyopt.names import Model
 
     best = result.best
@@ -447,14 +447,14 @@ def _with_delta_sensitivity(
             return result
         masses.append(again.best.mass)
     slope = (masses[0] - masses[1]) / (2.0 * DELTA_STEP * scene.delta)
-    entry = {
-        "limit": "delta",
-        "unit": "-",
-        "dmass_dlimit": slope,
-        "text": f"delta: +0.01 (e.g. {scene.delta:.3g} to {scene.delta + 0.01:.3g}) changes the mass "
-        f"by {slope * 0.01:+.3g} kg (central difference of the whole "
-        f"{'continuous ' if result.spec.round_to else ''}design)",
-    }
+    entry = sensitivity(
+        "delta",
+        "-",
+        slope,
+        f"delta: {{step}} (e.g. {scene.delta:.3g} to {scene.delta + 0.01:.3g}) changes the mass by {{dmass}} "
+        f"(central difference of the whole {'continuous ' if result.spec.round_to else ''}design)",
+        0.01,
+    )
     limits = dataclasses.replace(best.limits, sensitivities=best.limits.sensitivities + (entry,))
     winner = dataclasses.replace(best, limits=limits)
     candidates = tuple(winner if c is best else c for c in result.candidates)

@@ -238,6 +238,7 @@ RELATIONS = {
     "startup_time": "time",
     "motor_mass": "mass",
     "wheel_mass": "mass",
+    "dmass": "mass",  # a sensitivity's change of mass over its step
     "total_mass": "motor_mass + wheel_mass",
     "price": "cost",
     # section 26, the mounting shaft: factors of safety are stress ratios; slope = deflection / length;
@@ -346,7 +347,8 @@ def test_units_set_by_another_field():
     assert unit_of("epsilon", front="outer_diameter") == "m" and unit_of("epsilon", front="delta") == "1"
     assert unit_of("objective_bound", objective="mass") == "kg" and unit_of("objective_bound") is None
     assert unit_of("dobjective_dlimit") is None
-    assert set(UNIT_SET_BY) == {"objective", "objective_bound", "epsilon", "dmass_dlimit", "dobjective_dlimit"}
+    assert unit_of("step") is None  # a sensitivity's step, in its entry's unit
+    assert set(UNIT_SET_BY) == {"objective", "objective_bound", "epsilon", "dmass_dlimit", "dobjective_dlimit", "step"}
     assert unit_of("status") is None and unit_of("iterations") is None and unit_of("design.geometry") is None
 
 

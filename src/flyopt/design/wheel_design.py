@@ -941,13 +941,40 @@ def _finite_or_none(x):
 #: Sensitivities whose elasticity |d m / d limit| limit / m is below this are round-off, not reported.
 ELASTICITY_FLOOR = 1e-7
 
-#: What each limit's sensitivity is called, its unit and the step a report quotes it for.
+#: What each limit's sensitivity is called, its unit, the step a report quotes it for [that unit] and what the
+#: step is of.
 _LIMITS = {
-    "max_outer_diameter": ("the envelope", "m", 0.010, "mm of outer diameter", 1e3),
-    "rim_speed": ("the rim speed limit", "m/s", 1.0, "m/s of rim speed", 1.0),
-    "max_width": ("the width limit", "m", 0.010, "mm of width", 1e3),
-    "max_width_hub": ("the width limit (hub)", "m", 0.010, "mm of width", 1e3),
+    "max_outer_diameter": ("the envelope", "m", 0.010, "of outer diameter"),
+    "rim_speed": ("the rim speed limit", "m/s", 1.0, "of rim speed"),
+    "max_width": ("the width limit", "m", 0.010, "of width"),
+    "max_width_hub": ("the width limit (hub)", "m", 0.010, "of width"),
 }
+
+
+def sensitivity(limit: str, unit: str, dmass_dlimit: float, sentence: str, step: float) -> dict[str, Any]:
+    """One binding limit's sensitivity as the results carry it (JSON ``design.sensitivities[]``).
+
+    ``sentence`` says it with ``{step}`` for the limit's change (``step`` [``unit``], signed) and ``{dmass}`` for
+    the mass's (``dmass_dlimit * step`` [kg]); ``text`` is the sentence in engineering units with three
+    significant figures of the mass, and a report fills the sentence in its reader's units instead
+    (:func:`flyopt.report.display.sensitivity_text`).
+    """
+    dmass = dmass_dlimit * step
+    return {
+        "limit": limit,
+        "unit": unit,
+        "dmass_dlimit": dmass_dlimit,
+        "step": step,
+        "dmass": dmass,
+        "sentence": sentence,
+        "text": sentence.format(step=_engineering_step(step, unit), dmass=f"{dmass:+.3g} kg"),
+    }
+
+
+def _engineering_step(step: float, unit: str) -> str:
+    """A sensitivity's step in engineering units, signed: "+10 mm", "-1 mm", "+1 MPa", "+1 m/s", "+0.01"."""
+    shown, label = {"m": (step * 1e3, " mm"), "Pa": (step * 1e-6, " MPa"), "m/s": (step, " m/s")}.get(unit, (step, ""))
+    return f"{shown:+g}{label}"
 
 
 def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str, Any]) -> tuple[dict[str, Any], ...]:
@@ -965,19 +992,19 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
     Returns
     -------
     tuple of dict
-        ``limit``, ``unit``, ``dmass_dlimit`` [kg per unit] and ``text``, for every limit whose
-        multiplier is not zero. The objective is log m, and IPOPT's multiplier lambda of a row
-        ``g <= u`` (or ``>= l``) is -d f*/du, so d m / d u = -m lambda d(row)/d(limit).
+        :func:`sensitivity`'s entries (``limit``, ``unit``, ``dmass_dlimit`` [kg per unit], the step quoted and
+        the sentence), for every limit whose multiplier is not zero. The objective is log m, and IPOPT's
+        multiplier lambda of a row ``g <= u`` (or ``>= l``) is -d f*/du, so d m / d u = -m lambda d(row)/d(limit).
     """
     out = []
     lam = solution.lam_g
 
-    def add(limit, unit, dm, text, value):
+    def add(limit, unit, dm, sentence, step, value):
         # a limit that does not bind has a multiplier of round-off size: keep elasticities above 1e-7
         if math.isfinite(dm) and abs(dm * value) > ELASTICITY_FLOOR * mass:
-            out.append({"limit": limit, "unit": unit, "dmass_dlimit": dm, "text": text})
+            out.append(sensitivity(limit, unit, dm, sentence, step))
 
-    for row, (what, unit, step, words, factor) in _LIMITS.items():
+    for row, (what, unit, step, words) in _LIMITS.items():
         if abs(lam.get(row, 0.0)) > 0:
             value = {
                 "max_outer_diameter": problem_limits["envelope"],
@@ -986,13 +1013,7 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
                 "max_width_hub": problem_limits["max_width"],
             }[row]
             dm = -mass * lam[row] / value  # rows are log(limit)
-            add(
-                row,
-                unit,
-                dm,
-                f"{what} binds: +{step * factor:g} {words} changes the mass by {dm * step:+.3g} kg",
-                value,
-            )
+            add(row, unit, dm, f"{what} binds: {{step}} {words} changes the mass by {{dmass}}", step, value)
     wall = problem_limits.get("min_wall") or 0.0
     at_wall = sum(v for n, v in solution.lam_x.items() if v < 0 and n in ("h", "b", "t_web", "arm_major"))
     if wall > 0 and (at_wall or lam.get("hub_wall", 0.0)):
@@ -1002,7 +1023,8 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
             "min_wall",
             "m",
             dm,
-            f"the minimum wall (min_wall) binds: -1 mm of the thinnest section changes the mass by {-dm * 1e-3:+.3g} kg",
+            "the minimum wall (min_wall) binds: {step} of the thinnest section changes the mass by {dmass}",
+            -1e-3,
             wall,
         )
     rules = problem_limits.get("castability")
@@ -1019,8 +1041,9 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
                 row,
                 "m",
                 dm,
-                f"the {rules.process.replace('_', ' ')} minimum wall binds ({part}): +1 mm of it changes the mass "
-                f"by {dm * 1e-3:+.3g} kg",
+                f"the {rules.process.replace('_', ' ')} minimum wall binds ({part}): {{step}} of it changes the "
+                "mass by {dmass}",
+                1e-3,
                 wall,
             )
         else:
@@ -1032,17 +1055,19 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
                 row,
                 "-",
                 dm,
-                f"the section ratio binds ({pair}): +0.1 on the allowed {ratio:g} changes the mass by "
-                f"{dm * 0.1:+.3g} kg",
+                f"the section ratio binds ({pair}): {{step}} on the allowed {ratio:g} changes the mass by {{dmass}}",
+                0.1,
                 ratio,
             )
     if abs(lam.get("inertia", 0.0)) > 0:
         dm = -mass * lam["inertia"] / problem_limits["j_shaft"]
+        # the step is 1 % of the inertia required: said in words, a share needs no unit
         add(
             "inertia",
             "kg*m^2",
             dm,
-            f"each +1 % of required inertia adds {dm * 0.01 * problem_limits['j_shaft']:+.3g} kg",
+            "each +1 % of required inertia adds {dmass}",
+            0.01 * problem_limits["j_shaft"],
             problem_limits["j_shaft"],
         )
     for param, value in solution.lam_p.items():
@@ -1060,7 +1085,8 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
             f"stress_{part}",
             "Pa",
             dm,
-            f"the stress limit of the {part} binds: +1 MPa allowable changes the mass by {dm * 1e6:+.3g} kg",
+            f"the stress limit of the {part} binds: {{step}} allowable changes the mass by {{dmass}}",
+            1e6,
             allowable,
         )
     return tuple(out)

@@ -211,6 +211,7 @@ QUANTITIES = {
     "wall": "length",
     "hb_ratio": "dimensionless",
     "mass": "mass",
+    "dmass": "mass",  # a sensitivity's change of mass over its step
     "cost": "dimensionless",
     "density": "density",
     "j_flywheel": "inertia",
@@ -321,6 +322,7 @@ UNIT_SET_BY = {
     "objective_bound": "the unit of the design's objective, as for objective",
     "epsilon": "the unit of the Pareto front's second objective",
     "dmass_dlimit": "kg per the unit given in the same entry's 'unit'",
+    "step": "the unit given in the same entry's 'unit' (a sensitivity's step)",
     "dobjective_dlimit": "the drive objective's unit (kg for mass, 1 for cost) per the unit given in the same "
     "entry's 'unit'",
 }

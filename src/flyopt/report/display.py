@@ -148,6 +148,27 @@ COLUMN_WORDS = {
 }
 
 
+#: A sensitivity's ``unit`` (its JSON entry's) and the dimension its step is shown in.
+SENSITIVITY_DIMENSIONS = {"m": "length", "m/s": "speed", "Pa": "stress", "kg*m^2": "inertia", "-": "dimensionless"}
+
+
+def sensitivity_text(entry: Mapping[str, Any], system: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
+    """A binding limit's sensitivity (an entry of a design's ``sensitivities``) in the system's units: its
+    sentence with the limit's step and the mass's change each in its unit and signed ("the envelope binds:
+    +0.3937 in of outer diameter changes the mass by -1.327 lb"); the text as written where the entry has no
+    sentence (a result of an older flyopt) or a unit not known here."""
+    sentence, step = entry.get("sentence"), entry.get("step")
+    dimension = SENSITIVITY_DIMENSIONS.get(str(entry.get("unit")))
+    if sentence is None or step is None or dimension is None:
+        return str(entry["text"])
+
+    def signed(value: float, dimension: str) -> str:
+        text = quantity_text(value, dimension, system, digits)
+        return text if text.startswith("-") else f"+{text}"
+
+    return str(sentence).format(step=signed(float(step), dimension), dmass=signed(float(entry["dmass"]), "mass"))
+
+
 def column_words(column: str) -> str:
     """A results column as people read it (:data:`COLUMN_WORDS`), else the column's own name."""
     return COLUMN_WORDS.get(column, column)

@@ -5,8 +5,9 @@ engineering, the default, si or imperial) through :mod:`flyopt.report.display`,
 the one table of display units; a field's dimension is the one flyopt.outputs.results
 gives it for the JSON, which stays SI. A table's heading carries its column's
 unit ("mass [kg]"), a line its numbers' ("1.25633 kJ"). Prose written by the
-design itself (why a combination fails, the sensitivities' sentences, notes)
-is shown as the design wrote it.
+design itself (why a combination fails, notes) is shown as the design wrote
+it; a sensitivity's sentence is filled in the reader's units
+(:func:`flyopt.report.display.sensitivity_text`).
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ from flyopt.report.display import (
     quantity_text,
     rim_speed_answer,
     rounded_rank_note,
+    sensitivity_text,
     share,
     share_of_allowable,
     unit,
@@ -886,7 +888,7 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: 
             )
     if c.limits.sensitivities:
         lines += ["", "Sensitivities of the mass:"]
-        lines += [f"  - {s['text']}" for s in c.limits.sensitivities]
+        lines += [f"  - {sensitivity_text(s, units, digits)}" for s in c.limits.sensitivities]
     if c.provenance.notes:
         lines += ["", "Notes:"] + [f"  - {n}" for n in c.provenance.notes]
     return lines

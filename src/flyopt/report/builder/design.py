@@ -129,7 +129,7 @@ class DesignSection(BuilderBase):
             blocks.append(
                 Table(
                     ("sensitivity of the mass",),
-                    tuple([s["text"]] for s in best.limits.sensitivities),
+                    tuple([display.sensitivity_text(s, self.units, self.digits)] for s in best.limits.sensitivities),
                     ("<",),
                     "How the mass moves with each limit (first order)",
                     "sensitivities",

@@ -1,0 +1,70 @@
+"""The sensitivities of the mass in the reader's units (issue 29: units that drift between and within outputs).
+
+Was: ``flyopt solve --units imperial`` wrote every quantity in lb, in and psi but the sensitivities as the
+design wrote them, "+10 mm of outer diameter changes the mass by -1.14 kg". The references are the design's
+own multipliers (``dmass_dlimit`` of the JSON) converted by the exact definitions of the units here: 1 in =
+0.0254 m, 1 lb = 0.45359237 kg, 1 psi = 1 lbf/in² with 1 lbf = 0.45359237 kg × 9.80665 m/s².
+"""
+
+import re
+
+import pytest
+from conftest import PROBLEMS
+
+LB = 0.45359237
+INCH = 0.0254
+PSI = LB * 9.80665 / INCH**2
+
+
+@pytest.fixture(scope="module")
+def press_arms_wheel():
+    """(the design's sensitivities, {units: the text's sensitivity lines}) of press-arms-wheel, solved once: its
+    envelope, its arms' stress, its inertia and δ bind."""
+    import flyopt
+    from flyopt.report.text import wheel_report
+
+    solution = flyopt.solve(flyopt.load(PROBLEMS / "press-arms-wheel.toml"))
+    best = solution.design.best
+    lines = {}
+    for units in ("engineering", "imperial"):
+        text = "\n".join(wheel_report(best, solution.analysis.omega_max, units))
+        block = text.split("Sensitivities of the mass:\n", 1)[1].split("\n\n", 1)[0]
+        lines[units] = [line[4:] for line in block.splitlines()]
+    return [dict(e) for e in best.limits.sensitivities], lines
+
+
+def _figures(value, digits=4):
+    return float(f"{value:.{digits - 1}e}")
+
+
+def test_imperial_sensitivities_are_in_inches_pounds_and_psi(press_arms_wheel):
+    entries, lines = press_arms_wheel
+    by_limit = {e["limit"]: e for e in entries}
+    assert {"max_outer_diameter", "stress_arms", "inertia", "delta"} <= set(by_limit)
+    said = dict(zip([e["limit"] for e in entries], lines["imperial"]))
+    assert not any(re.search(r"\d (kg|mm|MPa|m/s)\b", line) for line in lines["imperial"]), lines["imperial"]
+    envelope = by_limit["max_outer_diameter"]
+    # 10 mm of outer diameter is 0.3937 in; its mass change in lb from the multiplier
+    shown = re.search(
+        r": \+([\d.]+) in of outer diameter changes the mass by ([-+][\d.,]+) lb$", said["max_outer_diameter"]
+    )
+    assert shown, said["max_outer_diameter"]
+    assert float(shown.group(1)) == _figures(0.010 / INCH)
+    assert float(shown.group(2).replace(",", "")) == _figures(envelope["dmass_dlimit"] * 0.010 / LB)
+    stress = re.search(r": \+([\d.,]+) psi allowable changes the mass by ([-+][\d.,]+) lb$", said["stress_arms"])
+    assert stress, said["stress_arms"]
+    assert float(stress.group(1).replace(",", "")) == _figures(1e6 / PSI)
+    assert float(stress.group(2)) == _figures(by_limit["stress_arms"]["dmass_dlimit"] * 1e6 / LB)
+    delta = re.search(r"changes the mass by ([-+][\d.,]+) lb \(central", said["delta"])
+    assert delta and float(delta.group(1)) == _figures(by_limit["delta"]["dmass_dlimit"] * 0.01 / LB)
+
+
+def test_the_text_fills_the_sentence_with_four_figures(press_arms_wheel):
+    """The results' ``text`` keeps the sentence in engineering units with the mass to three figures (the golden
+    copies hold it); the text report fills the same sentence with four, as it writes every other number."""
+    entries, lines = press_arms_wheel
+    for entry, line in zip(entries, lines["engineering"]):
+        assert entry["dmass"] == pytest.approx(entry["dmass_dlimit"] * entry["step"], rel=1e-15)
+        assert f"{entry['dmass']:+.3g} kg" in entry["text"]
+        mass = re.search(r"(?:by|adds) ([-+][\d.,]+) kg", line)
+        assert mass and float(mass.group(1)) == _figures(entry["dmass"]), line
