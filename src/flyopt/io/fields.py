@@ -67,6 +67,17 @@ class Table:
             raise SceneError(self._path(key), "is missing")
         return self.data[key]
 
+    def unique_name(self, kind: str, seen: set[str]) -> str:
+        """The table's ``name``: a non-empty string, not among ``seen`` (the names of the tables of its ``kind``
+        before it: "material", "shaft", "member"), which then takes it."""
+        name = self.require("name")
+        if not isinstance(name, str) or not name.strip():
+            raise SceneError(self._path("name"), f"must be a non-empty string, got {shorten(name)}")
+        if name in seen:
+            raise SceneError(self._path("name"), f"{kind} {shorten(name)} is given twice")
+        seen.add(name)
+        return name
+
     @overload
     def quantity(self, key: str, dimension: str, required: Literal[True], default: float | None = None) -> float: ...
     @overload

@@ -79,12 +79,7 @@ def read_material(item: object, k: int, seen: set[str]) -> Material:
             *_MATERIAL_STRENGTH,
         },
     )
-    name = table.require("name")
-    if not isinstance(name, str) or not name.strip():
-        raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
-    if name in seen:
-        raise SceneError(f"{where}.name", f"material {shorten(name)} is given twice")
-    seen.add(name)
+    name = table.unique_name("material", seen)
     strength = "tensile_strength" if table.get("ductile") is not True else "yield_strength"
     if not (table.has("max_rim_speed") or table.has("allowable_stress") or table.has(strength)):
         raise SceneError(

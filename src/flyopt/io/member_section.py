@@ -134,7 +134,7 @@ def read_members(
 
     if not isinstance(raw, list):
         raise SceneError("member", "must be an array of tables: [[member]] with name, mass, ...")
-    members, seen = [], set()
+    members, seen = [], set[str]()
     for k, item in enumerate(raw):
         where = f"member[{k}]"
         table = Table(
@@ -157,12 +157,7 @@ def read_members(
                 *(f"{key}_file" for key in _MEMBER_TABLES),
             },
         )
-        name = table.require("name")
-        if not isinstance(name, str) or not name.strip():
-            raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
-        if name in seen:
-            raise SceneError(f"{where}.name", f"member {shorten(name)} is given twice")
-        seen.add(name)
+        name = table.unique_name("member", seen)
         angle_unit = (
             unit_factor(table.get("angle_unit"), "angle", f"{where}.angle_unit") if table.has("angle_unit") else 1.0
         )

@@ -57,12 +57,7 @@ def read_shaft(item: object, k: int, seen: set[str]) -> tuple[Shaft, Any]:
         where,
         {"name", "speed_ratio", "efficiency", "diameter", "inertia", "gd2", "description"} | LAYOUT_KEYS,
     )
-    name = table.require("name")
-    if not isinstance(name, str) or not name.strip():
-        raise SceneError(f"{where}.name", f"must be a non-empty string, got {shorten(name)}")
-    if name in seen:
-        raise SceneError(f"{where}.name", f"shaft {shorten(name)} is given twice")
-    seen.add(name)
+    name = table.unique_name("shaft", seen)
     ratio = table.quantity("speed_ratio", "dimensionless", required=True)
     if ratio <= 0:
         raise SceneError(f"{where}.speed_ratio", f"must be positive (ω_shaft/ω_reference), got {shorten(ratio)}")
