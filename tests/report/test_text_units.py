@@ -491,9 +491,9 @@ PLAIN_FACTS = (
     "motor ratio",
     "flywheel shaft",
 )
-#: Blocks of prose written by the design itself (flyopt.design), shown as it wrote them.
+#: Blocks of prose written by the design itself (flyopt.design), shown as it wrote them. (The sensitivities of
+#: the mass are filled in the reader's units, and checked here as every other line.)
 PROSE_BLOCKS = (
-    "Sensitivities of the mass:",
     "Notes:",
     "Why the infeasible ones fail:",
     "Not designed, since a bound shows they cannot win",
@@ -528,6 +528,9 @@ PLAIN_NUMBERS = [
     rf"\({NUM} solves\)",
     rf"r_f = {NUM} x",
     rf"\({NUM} wheels on the grid",
+    # a sensitivity's dimensionless step: δ's (and the e.g. of it), a castability section ratio's
+    rf"delta: \+{NUM} \(e\.g\. {NUM} to {NUM}\)",
+    rf"\+{NUM} on the allowed {NUM}",
     rf"{NUM} quadratic triangles",
     rf"(hub|web|arms|rim|disc)-(hub|web|arms|rim|disc) {NUM}",  # a junction's factor or section ratio
     rf"\(at most {NUM}\)",  # the section ratio castability allows

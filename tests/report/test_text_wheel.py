@@ -17,6 +17,7 @@ from conftest import PROBLEMS
 
 import flyopt
 from flyopt.cli.main import main
+from flyopt.report.display import sensitivity_text
 
 WHEELS = Path(__file__).parents[1] / "data" / "wheels"
 GEOMETRIES = ["rim_web", "rim_arms", "disc", "rim"]
@@ -180,7 +181,9 @@ def test_blocks_only_where_the_design_has_the_data(scene, capsys):
     design = _solve_json(scene, capsys)
     assert ("Key (DIN 6885-1" in text) == (design["key"] is not None)
     if design["sensitivities"]:
-        assert _block(text, "Sensitivities of the mass") == [f"  - {s['text']}" for s in design["sensitivities"]]
+        assert _block(text, "Sensitivities of the mass") == [
+            f"  - {sensitivity_text(s)}" for s in design["sensitivities"]
+        ]
     else:
         assert "Sensitivities" not in text
     if design["notes"]:

@@ -951,15 +951,17 @@ _LIMITS = {
 }
 
 
-def sensitivity(limit: str, unit: str, dmass_dlimit: float, sentence: str, step: float) -> dict[str, Any]:
+def sensitivity(
+    limit: str, unit: str, dmass_dlimit: float, sentence: str, step: float, dmass: float | None = None
+) -> dict[str, Any]:
     """One binding limit's sensitivity as the results carry it (JSON ``design.sensitivities[]``).
 
     ``sentence`` says it with ``{step}`` for the limit's change (``step`` [``unit``], signed) and ``{dmass}`` for
-    the mass's (``dmass_dlimit * step`` [kg]); ``text`` is the sentence in engineering units with three
-    significant figures of the mass, and a report fills the sentence in its reader's units instead
-    (:func:`flyopt.report.display.sensitivity_text`).
+    the mass's (``dmass``, by default ``dmass_dlimit * step`` [kg]); ``text`` is the sentence in engineering
+    units with three significant figures of the mass, and a report fills the sentence in its reader's units
+    instead (:func:`flyopt.report.display.sensitivity_text`).
     """
-    dmass = dmass_dlimit * step
+    dmass = dmass_dlimit * step if dmass is None else dmass
     return {
         "limit": limit,
         "unit": unit,
@@ -999,10 +1001,10 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
     out = []
     lam = solution.lam_g
 
-    def add(limit, unit, dm, sentence, step, value):
+    def add(limit, unit, dm, sentence, step, value, dmass=None):
         # a limit that does not bind has a multiplier of round-off size: keep elasticities above 1e-7
         if math.isfinite(dm) and abs(dm * value) > ELASTICITY_FLOOR * mass:
-            out.append(sensitivity(limit, unit, dm, sentence, step))
+            out.append(sensitivity(limit, unit, dm, sentence, step, dmass))
 
     for row, (what, unit, step, words) in _LIMITS.items():
         if abs(lam.get(row, 0.0)) > 0:
@@ -1069,6 +1071,7 @@ def sensitivities(solution: WheelSolution, mass: float, problem_limits: dict[str
             "each +1 % of required inertia adds {dmass}",
             0.01 * problem_limits["j_shaft"],
             problem_limits["j_shaft"],
+            dm * 0.01 * problem_limits["j_shaft"],  # as its text was always worked out
         )
     for param, value in solution.lam_p.items():
         if not param.startswith("allow_") or value == 0.0:

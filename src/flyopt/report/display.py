@@ -154,9 +154,12 @@ SENSITIVITY_DIMENSIONS = {"m": "length", "m/s": "speed", "Pa": "stress", "kg*m^2
 
 def sensitivity_text(entry: Mapping[str, Any], system: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
     """A binding limit's sensitivity (an entry of a design's ``sensitivities``) in the system's units: its
-    sentence with the limit's step and the mass's change each in its unit and signed ("the envelope binds:
-    +0.3937 in of outer diameter changes the mass by -1.327 lb"); the text as written where the entry has no
-    sentence (a result of an older flyopt) or a unit not known here."""
+    sentence with the limit's step and the mass's change each in its unit and signed. The step is the design's
+    in the system's unit rounded to one significant figure, so that it reads as a round amount and is exact
+    at any ``digits`` (10 mm is +0.4 in, 1 MPa +100 psi, 1 m/s +3 ft/s; in engineering units the design's own
+    10 mm, 1 MPa, 1 m/s), and the mass's change is the sensitivity times that step: "the envelope binds: +0.4 in
+    of outer diameter changes the mass by -2.546 lb". The text as written where the entry has no sentence (a
+    result of an older flyopt) or a unit not known here."""
     sentence, step = entry.get("sentence"), entry.get("step")
     dimension = SENSITIVITY_DIMENSIONS.get(str(entry.get("unit")))
     if sentence is None or step is None or dimension is None:
@@ -166,7 +169,12 @@ def sensitivity_text(entry: Mapping[str, Any], system: str = DEFAULT, digits: in
         text = quantity_text(value, dimension, system, digits)
         return text if text.startswith("-") else f"+{text}"
 
-    return str(sentence).format(step=signed(float(step), dimension), dmass=signed(float(entry["dmass"]), "mass"))
+    if "{step}" not in str(sentence):  # a step said in words (1 % of the inertia): the design's change of mass
+        return str(sentence).format(dmass=signed(float(entry["dmass"]), "mass"))
+    factor = unit(dimension, system, abs(float(step)), digits)[1]
+    shown = float(f"{float(step) / factor:.0e}") * factor  # one significant figure in the shown unit
+    dmass = float(entry["dmass_dlimit"]) * shown
+    return str(sentence).format(step=signed(shown, dimension), dmass=signed(dmass, "mass"))
 
 
 def column_words(column: str) -> str:
