@@ -73,3 +73,25 @@ def test_engineering_quotes_the_designs_own_step_with_four_figures(press_arms_wh
         if entry["limit"] in steps:
             words, step = steps[entry["limit"]]
             assert words in line and float(mass.group(1)) == _figures(entry["dmass_dlimit"] * step), line
+
+
+@pytest.fixture(scope="module")
+def shaft_check():
+    """punch-press-shaft's check of its described shaft, solved once."""
+    import flyopt
+
+    (report,) = flyopt.solve(flyopt.load(PROBLEMS / "punch-press-shaft.toml")).shaft_checks
+    return report
+
+
+@pytest.mark.parametrize("units, label, per", [("engineering", "kg", 1.0), ("imperial", "lb", LB)])
+def test_a_shafts_binding_limit_moves_per_the_readers_unit_of_mass(shaft_check, units, label, per):
+    """Was: "d(utilisation)/d(wheel mass) 0.000295 per kg" in the imperial text and report alike (two copies of
+    the sentence). Now per lb there: the shaft's d(utilisation)/d(m) [1/kg] times the kilograms of a pound."""
+    from flyopt.report.shaft import shaft_report
+
+    report = shaft_check
+    (line,) = [line for line in shaft_report([report], units) if "d(utilisation)/d(wheel mass)" in line]
+    shown = re.search(rf"d\(utilisation\)/d\(wheel mass\) ([\d.e+-]+) per {label}$", line)
+    assert shown, line
+    assert float(shown.group(1)) == float(f"{report.sensitivity * per:.2e}")

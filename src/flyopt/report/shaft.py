@@ -124,13 +124,22 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
                 ["limit", "where", "value", "allowed", "utilisation", ""], rows, ["<", "<", ">", ">", ">", "<"]
             )
         ]
-        binding = c.binding
-        lines.append(
-            f"  binding: {binding.kind} {binding.where}, utilisation {number(binding.utilisation, UTILISATION_DIGITS)}; "
-            f"d(utilisation)/d(wheel mass) {number(rep.sensitivity, 3)} per kg"
-        )
+        lines.append(f"  binding: {binding_words(c, rep.sensitivity, units)}")
         lines += train_lines(c, units, digits)
     return lines
+
+
+def binding_words(check: ShaftCheck, sensitivity: float, units: str = DEFAULT) -> str:
+    """The binding limit of a shaft's check, its utilisation and d(utilisation)/d(wheel mass) per the system's
+    unit of mass (``sensitivity`` [1/kg]), the text's and the report's words: "fatigue at the shoulder at
+    480 mm, utilisation 0.595; d(utilisation)/d(wheel mass) 4.24e-05 per lb"."""
+    from flyopt.report.display import unit
+
+    label, kilograms = unit("mass", units)  # a wheel mass unit is this many kg
+    return (
+        f"{check.binding.kind} {check.binding.where}, utilisation {number(check.binding.utilisation, UTILISATION_DIGITS)}; "
+        f"d(utilisation)/d(wheel mass) {number(sensitivity * kilograms, 3)} per {label}"
+    )
 
 
 def seat_words(rep: ShaftReport, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str | None:
@@ -163,7 +172,8 @@ def seat_choice_words(rep: ShaftReport, units: str = DEFAULT, digits: int = DEFA
         words += f"; set by {rep.seat_set_by}"
     if rep.seat_sensitivity is not None and math.isfinite(rep.seat_sensitivity):
         words += (
-            f"; +1 on its required safety factor adds {number(rep.seat_sensitivity, digits)} kg (the seat torque held)"
+            f"; +1 on its required safety factor adds {q(rep.seat_sensitivity, 'seat_dmass_dfactor')} (the seat torque "
+            "held)"
         )
     return words
 

@@ -11,7 +11,7 @@ from flyopt.report import display
 from flyopt.report.builder.base import NOTES, BuilderBase
 from flyopt.report.display import UTILISATION_DIGITS, number
 from flyopt.report.document import Facts, Paragraph, Table
-from flyopt.report.shaft import seat_choice_words
+from flyopt.report.shaft import binding_words, seat_choice_words
 
 
 class ShaftSection(BuilderBase):
@@ -103,11 +103,7 @@ class ShaftSection(BuilderBase):
                         ),
                     ),
                 ),
-                (
-                    "binding",
-                    f"{c.binding.kind} {c.binding.where}, utilisation {number(c.binding.utilisation, UTILISATION_DIGITS)}; "
-                    f"d(utilisation)/d(wheel mass) {number(report.sensitivity, 3)} per kg",
-                ),
+                ("binding", binding_words(c, report.sensitivity, self.units)),
             ]
             blocks.append(Facts(tuple(facts), "shaft_facts"))
             self.train_tables(blocks, c)
