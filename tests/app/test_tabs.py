@@ -102,7 +102,7 @@ def test_the_pareto_front_is_flyopt_pareto_and_each_point_is_a_link(main_cli):
         card = dict(materials.point_rows(front, int(n), "engineering", names))
         material, d, mass = entry["marks"]["rows"][k]
         assert material == f"material = {card['material']}" and mass == f"mass = {card['mass']}"
-        assert d == f"outer_diameter = {card['outer diameter D']}"
+        assert d == f"outer diameter D = {card['outer diameter D']}"  # the card's words, the axis' words
     lines = dict(materials.point_rows(front, 2, "engineering", materials.display_names(load(SHEAR))))
     d = cli["d_outer"].iloc[2] * 1000
     assert lines["outer diameter D"] == f"{float(f'{d:.4g}'):g} mm"  # four figures, in mm

@@ -794,6 +794,12 @@ def test_a_fronts_axes_name_the_wheel_in_words(units, unit):
     ax = plots.plot_pareto(front, "outer_diameter", "mass", units=units)
     assert ax.get_xlabel() == f"outer diameter D [{unit}]"
     assert ax.get_ylabel() == ("mass [kg]" if units == "engineering" else "mass [lb]")
+    # the read-out under the pointer (the app's) names the diameter as the axis does
+    from flyopt.report.plots import readout
+
+    (designs,) = [line for line in ax.lines if line.get_label().startswith("designs")]
+    rows = getattr(designs, readout.ATTRIBUTE).rows
+    assert [row[1].split(" = ")[0] for row in rows] == ["outer diameter D"] * 3
 
 
 def test_units_option_is_checked_in_one_line(tmp_path, capsys):

@@ -83,22 +83,26 @@ def _values(part, column, scale):
     return values if scale is None else scale.show(values)
 
 
-def _value_text(value, column, units, frame=None, digits=standard.DIGITS):
-    """A varied field's value as a legend writes it: "speed = 600 rpm", "material = cast_iron"."""
+def _value_text(value, column, units, frame=None, digits=standard.DIGITS, name=None):
+    """A varied field's value as a legend writes it: "speed = 600 rpm", "material = cast_iron" (``name`` for the
+    column's own name on the left)."""
+    name = column if name is None else name
     if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(value, bool):
         scale = _scale(frame, column, units, digits) if frame is not None else None
         if scale is None:
-            return f"{column} = {display.number(float(value), digits)}"
-        return f"{column} = {scale.q(float(value))}"
-    return f"{column} = {value}"
+            return f"{name} = {display.number(float(value), digits)}"
+        return f"{name} = {scale.q(float(value))}"
+    return f"{name} = {value}"
 
 
 def _point_rows(frame, rows, columns, units, digits, names):
     """The read-out of each of the frame's ``rows`` (positions): its material, then its ``columns``' values."""
     material = next((c for c in ("best_material", "material") if c in frame.columns), None)
     out = []
-    for k in rows:
-        texts = [_value_text(float(frame[c].iloc[k]), c, units, frame, digits) for c in columns]
+    for k in rows:  # each objective named as its axis names it
+        texts = [
+            _value_text(float(frame[c].iloc[k]), c, units, frame, digits, display.column_words(c)) for c in columns
+        ]
         if material is not None and isinstance(frame[material].iloc[k], str):
             name = frame[material].iloc[k]
             texts.insert(0, f"material = {(names or {}).get(name, name)}")
