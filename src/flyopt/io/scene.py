@@ -500,11 +500,11 @@ def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
         top = Table(data, "", set(data))
     except SceneError:
         return []
-    once = any(top.has(k) for k in CALCULATIONS)
+    once, existing = any(top.has(k) for k in CALCULATIONS), top.has("flywheel")
     machine = attempt(_machine_table, top, once)
     if machine is not None:
         attempt(_mean_speed, machine, not once)
-        attempt(_delta, machine, not (top.has("flywheel") or once))
+        attempt(_delta, machine, not (existing or once))
         attempt(_constant_inertia, machine)
         attempt(_cycle, machine)
         if machine.has("efficiency"):
@@ -516,7 +516,6 @@ def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
     attempt(_title, top)
     # one calculation, and a [flywheel] that exists, refuse a [design] before reading it: its values are no
     # error of such a scene
-    existing = top.has("flywheel")
     if (
         shafts is not None
         and materials is not None

@@ -11,7 +11,7 @@ import numpy as np
 
 from flyopt.design.combination import shaft_label
 from flyopt.design.shaft.check import JSON_NAMES
-from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, UTILISATION_DIGITS, mode_shape, quantity_text
+from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, UTILISATION_DIGITS, mode_shape, quantity_text, unit
 from flyopt.report.text import formatters, number, table
 
 if TYPE_CHECKING:
@@ -133,8 +133,6 @@ def binding_words(check: ShaftCheck, sensitivity: float, units: str = DEFAULT) -
     """The binding limit of a shaft's check, its utilisation and d(utilisation)/d(wheel mass) per the system's
     unit of mass (``sensitivity`` [1/kg]), the text's and the report's words: "fatigue at the shoulder at
     480 mm, utilisation 0.595; d(utilisation)/d(wheel mass) 4.24e-05 per lb"."""
-    from flyopt.report.display import unit
-
     label, kilograms = unit("mass", units)  # a wheel mass unit is this many kg
     return (
         f"{check.binding.kind} {check.binding.where}, utilisation {number(check.binding.utilisation, UTILISATION_DIGITS)}; "
