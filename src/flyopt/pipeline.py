@@ -146,10 +146,17 @@ class Solution:
         return self._extra("speed_simulation")
 
     @property
+    def drive_failed(self) -> bool:
+        """Whether the scene's [drive] found no motor size that drives the machine within its limits: its analysis
+        is then the scene without the drive (its torques as its other tables give them), a machine no motor was
+        chosen for, and no diagram draws it."""
+        return self.drive is not None and self.drive.best is None
+
+    @property
     def status(self) -> str:
         """ "designed", "not_needed", "infeasible", "analysed" (design skipped), or for a [flywheel] that
         exists "checked" (it holds machine.delta, or none was given) or "insufficient"."""
-        if self.drive is not None and self.drive.best is None:
+        if self.drive_failed:
             return "infeasible"
         if self.drive is not None and self.design is None:
             return "not_needed"  # the chosen motor holds δ without a flywheel

@@ -167,3 +167,38 @@ def test_the_report_describes_the_machine_as_chosen(tmp_path):
     degrees = [f"{math.degrees(golden[k]):.6g} deg" for k in ("angle_omega_max", "angle_omega_min")]
     assert f"the speed is extreme at {degrees[0]} (ω_max) and {degrees[1]} (ω_min)" in whole
     assert f"ΔE is extreme at 0 deg and {math.degrees(golden['angle_delta_e_min']):.6g} deg" in whole
+
+
+@pytest.mark.slow  # the drive's search over the catalogue and the report: about 10 s
+def test_a_drive_that_finds_no_motor_is_reported_without_a_machine(tmp_path, write_scene, main_cli):
+    """Was: with no motor size meeting the limits (a start-up of 1 ms allowed), the report drew all four
+    diagrams of the scene without its drive (a 48,440 kg·m² flywheel and a constant driving torque), its
+    title block said "no material and shaft can give the required flywheel", and the text's and the
+    report's steps gave J_F with nothing saying that no motor drives that machine. ``flyopt plot`` already
+    refused every diagram of it (tests/report/test_plot_truth.py)."""
+    from test_document import _page
+
+    from flyopt.report.text import NO_MACHINE, WITHOUT_DRIVE
+
+    text = (PROBLEMS / "press-drive.toml").read_text(encoding="utf-8")
+    assert 'max_startup = "15 s"' in text
+    scene = write_scene(text.replace('max_startup = "15 s"', 'max_startup = "0.001 s"'), "no-motor.toml")
+    out = tmp_path / "no-motor.html"
+    status, _, err = main_cli("report", scene, "-o", out)
+    assert status == 3, err
+    html = out.read_text(encoding="utf-8")
+    figures = re.findall(r'<figure[^>]*? data-figure="([^"]+)" data-state="([^"]+)">(.*?)</figure>', html, flags=re.S)
+    assert {key for key, _, _ in figures} == {"turning_moment", "energy", "inertia_delta", "speed"}
+    for key, state, body in figures:
+        assert state == "refused" and "<svg" not in body and NO_MACHINE in body, key
+    page = _page(out)
+    whole = " ".join("".join(page.text).split())
+    assert "no material and shaft" not in whole
+    assert "INFEASIBLE: no motor size drives the machine within the limits" in whole
+    assert "No feasible drive: no motor size of the catalogue drives the machine within the limits" in whole
+    assert whole.count(WITHOUT_DRIVE) == 2  # under the answer and at the head of the steps
+
+    status, said, err = main_cli("solve", scene)
+    assert status == 3, err
+    lines = said.splitlines()
+    assert lines[1].startswith("Answer: no drive: no motor size") and lines[2] == WITHOUT_DRIVE

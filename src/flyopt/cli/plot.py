@@ -128,7 +128,9 @@ def _plot_one(args, plots, solution, what, output, every=False):
         print(f"{args.scene}: {what}: {said} (no file written)")
         return EXIT_OK
     except _NoDrive as said:
-        return fail(f"{args.scene}: {what}: no drive meets the limits, so no machine to draw ({said})", EXIT_INFEASIBLE)
+        from flyopt.report.text import NO_MACHINE
+
+        return fail(f"{args.scene}: {what}: {NO_MACHINE} ({said})", EXIT_INFEASIBLE)
     except _Infeasible as said:
         return fail(f"{args.scene}: {what}: no flywheel to draw ({said})", EXIT_INFEASIBLE)
     except ValueError as err:
@@ -178,7 +180,7 @@ def _draw(solution, what, plots, units, verify=False, digits=None):
 
     digits = display.DEFAULT_DIGITS if digits is None else digits
     scene, analysis = solution.scene, solution.analysis
-    if solution.drive is not None and solution.drive.best is None:
+    if solution.drive_failed:
         raise _NoDrive(solution.drive.message)
     if what in ("cross_section", "stress"):
         design = solution.design

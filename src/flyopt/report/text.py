@@ -134,6 +134,17 @@ def reached_below_allowed(analysis: Analysis) -> bool:
     return abs(analysis.delta_reached - analysis.delta) > 1e-9 * analysis.delta
 
 
+#: What the steps of a scene whose [drive] found no motor are (:attr:`flyopt.pipeline.Solution.drive_failed`):
+#: said under the answer by the text and the report alike.
+WITHOUT_DRIVE = (
+    "No motor was chosen: the numbers that follow are the scene without its [drive] (its torques as its other "
+    "tables give them), not a machine flyopt designed."
+)
+
+#: Why a diagram of such a scene is not drawn (the report's figures; ``flyopt plot`` refuses in the same terms).
+NO_MACHINE = "no drive meets the limits, so no machine to draw"
+
+
 def no_flywheel_words(analysis: Analysis, digits: int = DEFAULT_DIGITS) -> tuple[str, str]:
     """(before, after) ``j_margin``: why no flywheel is needed (the text and the document say the same)."""
     if analysis.delta_holds_at_any_inertia:
@@ -174,7 +185,7 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
     if drive is not None:  # the drive designed with the flywheel: the motor, its ratio and the wheel
         run = drive.best
         if run is None:
-            return [f"Answer: no drive: {visible(drive.message)}", ""]
+            return [f"Answer: no drive: {visible(drive.message)}", WITHOUT_DRIVE, ""]
         wheel = (
             f"a flywheel of {q(run.j_flywheel, 'j_flywheel')} ({q(run.wheel_mass, 'mass')})"
             if run.j_flywheel

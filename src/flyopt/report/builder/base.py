@@ -133,6 +133,11 @@ class BuilderBase:
         if self.figures is False or (not isinstance(self.figures, bool) and key not in self.figures):
             blocks.append(Figure(key, caption, note=NOT_DRAWN))
             return
+        if self.solution.drive_failed:  # the analysis is the scene without its drive: no machine to draw
+            from flyopt.report.text import NO_MACHINE
+
+            blocks.append(Figure(key, caption, note=f"Not drawn: {NO_MACHINE} (the drive's section says why)."))
+            return
         try:
             parameters = inspect.signature(draw).parameters
             if "units" in parameters:
@@ -192,6 +197,8 @@ class BuilderBase:
             "checked": "the flywheel given, checked",
             "insufficient": "INSUFFICIENT: the flywheel given misses the allowed δ",
         }.get(status, status)
+        if self.solution.drive_failed:
+            words = "INFEASIBLE: no motor size drives the machine within the limits"
         if self.flagged():
             words += "; VERIFICATION FLAGGED: the simulated δ exceeds the allowed one"
         elif self.solution.verification is not None or self.solution.drive_check is not None:

@@ -26,6 +26,10 @@ class Steps(Requirement):
                 f"results are repeated in the report's units ({self.units})."
             )
         )
+        if self.solution.drive_failed:
+            from flyopt.report.text import WITHOUT_DRIVE
+
+            self.sections[-1].blocks.append(Paragraph(WITHOUT_DRIVE, "warning"))
         self.step_speeds()
         self.step_reduction()
         if a.work_per_cycle is not None:

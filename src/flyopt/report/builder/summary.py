@@ -171,6 +171,11 @@ class Summary(BuilderBase):
                 return given + "."
             holds = "within" if check.suffices else "NOT within"
             return given + f": {holds} the allowed δ = {number(check.delta_allowed, self.digits)}."
+        drive = self.solution.drive
+        if self.solution.drive_failed and drive is not None:
+            from flyopt.report.text import WITHOUT_DRIVE
+
+            return f"No feasible drive: {drive.message}. {WITHOUT_DRIVE}"
         if status == "infeasible":
             said = self.design if self.design is not None else self.solution.drive
             if said is None:
