@@ -492,12 +492,9 @@ PLAIN_FACTS = (
     "flywheel shaft",
 )
 #: Blocks of prose written by the design itself (flyopt.design), shown as it wrote them. (The sensitivities of
-#: the mass are filled in the reader's units, and checked here as every other line.)
-PROSE_BLOCKS = (
-    "Notes:",
-    "Why the infeasible ones fail:",
-    "Not designed, since a bound shows they cannot win",
-)
+#: the mass, the reasons of the infeasible and pruned combinations and the shaft check's places are filled in
+#: the reader's units, flyopt.said, and checked here as every other line.)
+PROSE_BLOCKS = ("Notes:",)
 #: Lines that carry the design's prose (none: the drive's note no longer prints a number).
 PROSE_LINES = ()
 #: Dimensionless numbers inside a line: ratios, counts, percentages, tolerances, standards' names.
@@ -517,6 +514,10 @@ PLAIN_NUMBERS = [
     r"ISO 21940-11",
     r"G6\.3",
     r"DIN 6885-1",
+    r"EN-GJ[LS]-[0-9]+(?:-[0-9]+)?",  # a material's standard name (EN 1561, EN 1563)
+    r"[0-9]+ x [0-9]+ key",  # a DIN 6885-1 key by its designation
+    rf"at most {NUM} d\b",  # a key's longest, in seat diameters
+    r"m >= 4 J/D²",  # the designer's lower bound, as a formula
     r"bore: [0-9]+ x [0-9]+,",
     r"[0-9]+ x [0-9]+ mm section",  # the key's DIN 6885-1 section, named in mm as the standard names it
     rf"{NUM} iterations",
@@ -832,3 +833,28 @@ def test_round_off_prints_as_zero():
     run = run_flyopt("solve", str(PROBLEMS / "four-cylinder-engine.toml"))
     assert run.returncode == 0 and not re.search(r"\de-1\d", run.stdout), run.stdout
     assert re.search(r"\n  720\s+0\s*\n", run.stdout)
+
+
+def test_the_shaft_check_says_its_places_in_the_readers_units(main_cli):
+    """Was: under --units imperial the shaft check's table and its binding line said "at bearing A (60 mm)", "at
+    the shoulder at 520 mm" and "22 x 14, 110 mm long" among inches and psi. The places are the scene's (bearings
+    at 60 and 620 mm, the 80 mm body ending at 520 mm) and the key's length the design's, each converted here."""
+    status, out, err = main_cli("solve", PROBLEMS / "punch-press-shaft.toml", "--units", "imperial")
+    assert status == 0, err
+    status, raw, err = main_cli("solve", PROBLEMS / "punch-press-shaft.toml", "--json")
+    key_length = json.loads(raw)["design"]["key"]["length"]
+    section = out[out.index("Shaft check:") :].split("\n\n")[0]
+    inches = unit_registry().Quantity
+
+    def inch(metres):
+        return f"{inches(metres, 'm').to('inch').magnitude:.4g} in"
+
+    for expected in (
+        f"at the shoulder at {inch(0.520)}",
+        f"at bearing A ({inch(0.060)})",
+        f"at bearing B ({inch(0.620)})",
+        f"22 x 14, {inch(key_length)} long, at the wheel seat",
+        f"binding: key 22 x 14, {inch(key_length)} long",
+    ):
+        assert expected in section, expected
+    assert not re.search(r"[0-9] ?(mm|m|kg|MPa|N·m)\b", section), section

@@ -40,6 +40,7 @@ from flyopt.design.wheel_design import bore_of
 from flyopt.errors import SolverFailed
 from flyopt.machine.transmission import inertia_at_reference, inertia_on_shaft
 from flyopt.names import Criterion, Geometry, Method, Objective
+from flyopt.said import join, said
 from flyopt.validate import choice, finite, positive
 
 __all__ = ["design_flywheel", "rim_speed_limit", "METHODS"]
@@ -70,56 +71,76 @@ def _explain_infeasible(combo, spec):
     m, geo = combo.material, spec.geometry
     word = {"rim": "rim", "thin_rim": "thin rim", "disc": "disc"}[geo]
     hb_min, hb_max = spec.hb_ratio
+    v_max = (combo.v_max, "speed", f"{_g(combo.v_max)} m/s")
     if combo.cap_speed <= combo.cap:
-        cap_text = f"the {_g(combo.v_max)} m/s rim limit caps the outer diameter"
+        cap_text: str = said("the {v_max} rim limit caps the outer diameter", v_max=v_max)
     else:
         cap_text = "the envelope (max_outer_diameter) caps the outer diameter"
 
     def need(j_text):
-        text = f"{j_text} kg·m²"
+        text = said("{j}", j=(combo.j_shaft, "inertia", f"{j_text} kg·m²"))
         if combo.shaft.speed_ratio != 1.0:
-            text += f" on this shaft ({_g(combo.j_reference)} kg·m² at the reference shaft)"
+            text += said(
+                " on this shaft ({j} at the reference shaft)",
+                j=(combo.j_reference, "inertia", f"{_g(combo.j_reference)} kg·m²"),
+            )
         return text
+
+    def length(value, text):
+        return (value, "length", f"{text} m")
 
     pinned = combo.d_mean
     if pinned is not None and pinned > combo.cap_mean:
         cap, pin = _g_apart(combo.cap_mean, pinned)
-        return (
-            f"{combo.label}: the pinned mean diameter {pin} m turns faster at the mean speed than the "
-            f"{_g(combo.v_max)} m/s rim limit allows (mean_rim_speed: D_m <= {cap} m)"
+        return combo.label + said(
+            ": the pinned mean diameter {pin} turns faster at the mean speed than the {v_max} rim limit allows "
+            "(mean_rim_speed: D_m <= {cap})",
+            pin=length(pinned, pin),
+            v_max=v_max,
+            cap=length(combo.cap_mean, cap),
         ), None
     if pinned is not None and geo != Geometry.DISC and pinned >= combo.cap:
         cap, pin = _g_apart(combo.cap, pinned)
-        return (
-            f"{combo.label}: {cap_text} at {cap} m, which leaves no room for a rim "
-            f"around the pinned mean diameter {pin} m"
+        return combo.label + ": " + cap_text + said(
+            " at {cap}, which leaves no room for a rim around the pinned mean diameter {pin}",
+            cap=length(combo.cap, cap),
+            pin=length(pinned, pin),
         ), None
     if pinned is not None and geo == Geometry.DISC and pinned > combo.cap:
         cap, pin = _g_apart(combo.cap, pinned)
-        return (f"{combo.label}: {cap_text} at {cap} m, below the pinned diameter {pin} m"), None
+        return combo.label + ": " + cap_text + said(
+            " at {cap}, below the pinned diameter {pin}", cap=length(combo.cap, cap), pin=length(pinned, pin)
+        ), None
     needed, j_sup = closed_form.cap_needed(
         geo, m.density, combo.j_shaft, combo.cap, spec.hb_ratio, spec.max_width, pinned, j_cap=combo.j_max
     )
     if needed is None:
-        limits = []
+        limits: list[str] = []
         if pinned is not None:
-            limits.append(f"{'D' if geo == 'disc' else 'D_m'} pinned at {_g(pinned)} m")
+            limits.append(said(("D" if geo == "disc" else "D_m") + " pinned at {pin}", pin=length(pinned, _g(pinned))))
         if spec.max_width < math.inf:
-            limits.append(f"B <= {_g(spec.max_width)} m")
+            limits.append(said("B <= {width}", width=length(spec.max_width, _g(spec.max_width))))
         if geo != Geometry.DISC:
             limits.append(f"{_g(hb_min)} <= H/B <= {_g(hb_max)}")
             limits.append("D_inner > 0")
-        text = ", ".join(limits[:-1]) + " and " + limits[-1] if len(limits) > 1 else limits[0]
+        text = join(", ", limits[:-1]) + " and " + limits[-1] if len(limits) > 1 else limits[0]
         j_sup_text, j_text = _g_apart(j_sup, combo.j_shaft)
         return (
-            f"{combo.label}: even with no limit on the outer diameter, the largest "
-            f"{word} with {text} gives {j_sup_text} kg·m², short of the "
-            f"{need(j_text)} required"
+            combo.label
+            + f": even with no limit on the outer diameter, the largest {word} with "
+            + text
+            + said(" gives {j_sup}, short of the ", j_sup=(j_sup, "inertia", f"{j_sup_text} kg·m²"))
+            + need(j_text)
+            + " required"
         ), None
     cap, needed_text = _g_apart(combo.cap, needed)
     return (
-        f"{combo.label}: {cap_text} at {cap} m, where the smallest {word} that gives "
-        f"{need(_g(combo.j_shaft))} still needs {needed_text} m"
+        combo.label
+        + ": "
+        + cap_text
+        + said(" at {cap}, where the smallest " + word + " that gives ", cap=length(combo.cap, cap))
+        + need(_g(combo.j_shaft))
+        + said(" still needs {needed}", needed=length(needed, needed_text))
     ), needed
 
 
@@ -432,8 +453,8 @@ def _cannot_win(bound, feasible):
     return bound > _best_of(feasible).objective * (1.0 + rank.TIE_RTOL)
 
 
-#: The unit of each objective, for the reasons of pruned combinations.
-_OBJECTIVE_UNIT = {"mass": " kg", "outer_diameter": " m", "cost": ""}
+#: The unit and the dimension of each objective, for the reasons of pruned combinations (a cost has neither).
+_OBJECTIVE_UNIT = {"mass": (" kg", "mass"), "outer_diameter": (" m", "length"), "cost": ("", None)}
 
 
 def _pruned(combo, spec, n_arms, bound, why, feasible, names):
@@ -441,12 +462,14 @@ def _pruned(combo, spec, n_arms, bound, why, feasible, names):
     best = _best_of(feasible)
     label = Combination(**{**combo.__dict__, "n_arms": n_arms}).label
     winner = combination_label(names.get(best.material, best.material), best.shaft, best.n_arms)
+    unit, dimension = _OBJECTIVE_UNIT[spec.objective]
+    written = f"{best.objective:.4g}{unit}"
+    objective = written if dimension is None else said("{best}", best=(best.objective, dimension, written))
     return Candidate.infeasible(
         combo.material.name,
         combo.shaft,
         spec.geometry,
-        f"{label}: not designed, it cannot win: {why}, more than the "
-        f"{best.objective:.4g}{_OBJECTIVE_UNIT[spec.objective]} of {winner}",
+        label + ": not designed, it cannot win: " + why + ", more than the " + objective + " of " + winner,
         n_arms=n_arms or None,
         bore=combo.bore or None,
         limits=Limits(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max),
@@ -727,10 +750,10 @@ def _not_needed(j_required: float, omega: float, spec: DesignSpec) -> DesignResu
     """The result when J_F <= 0: the machine's own inertia already keeps the fluctuation within delta."""
     return DesignResult(
         status="not_needed",
-        message=(
-            f"no flywheel needed: the required flywheel inertia J_F = "
-            f"{_g(j_required)} kg·m² is not positive, so the machine's own "
-            f"inertia already keeps the speed fluctuation within delta"
+        message=said(
+            "no flywheel needed: the required flywheel inertia J_F = {j} is not positive, so the machine's own "
+            "inertia already keeps the speed fluctuation within delta",
+            j=(j_required, "inertia", f"{_g(j_required)} kg·m²"),
         ),
         j_required=j_required,
         omega=omega,
@@ -984,7 +1007,7 @@ def _result(
     names = dict(material_names or {})
     if best is None:
         status = "infeasible"
-        message = "no material and shaft can give the required inertia: " + "; ".join(c.reason for c in infeasible)
+        message = "no material and shaft can give the required inertia: " + join("; ", (c.reason for c in infeasible))
     else:
         status = "designed"
         message = (

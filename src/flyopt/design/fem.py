@@ -75,6 +75,7 @@ from numpy.typing import NDArray
 
 from flyopt.design import castability, stress, wheel
 from flyopt.names import Geometry
+from flyopt.said import said
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -197,7 +198,7 @@ def section(design: Design, fillet: float | None = None) -> Section:
         rim_arms: hub, an equivalent axisymmetric web of the arms' mass, rim.
     """
     dims = design.dims.wheel(design.n_arms, design.bore)
-    notes = []
+    notes: list[str] = []
     if design.geometry == Geometry.RIM_ARMS:
         r_h, r_i, r_o = dims.d_hub / 2.0, dims.d_inner / 2.0, dims.d_outer / 2.0
         area = stress.arm_section_area(dims.arm_major, wheel.ARM_MINOR_RATIO * dims.arm_major)
@@ -206,9 +207,12 @@ def section(design: Design, fillet: float | None = None) -> Section:
         thicknesses = [dims.l_hub, t_eq, dims.b]
         names = ["hub", "arms", "rim"]
         notes.append(
-            f"the {dims.n_arms} arms as an equivalent axisymmetric web of their mass, t = n A / (pi (r_h + r_i)) = "
-            f"{t_eq * 1e3:.3g} mm: it carries hoop stress real arms cannot, so the arms' and rim's stresses are "
-            "those of the web wheel of equal mass"
+            said(
+                f"the {dims.n_arms} arms as an equivalent axisymmetric web of their mass, t = n A / (pi (r_h + r_i)) = "
+                "{t}: it carries hoop stress real arms cannot, so the arms' and rim's stresses are "
+                "those of the web wheel of equal mass",
+                t=(t_eq, "length", f"{t_eq * 1e3:.3g} mm"),
+            )
         )
     else:
         radii, thicknesses, _, names = wheel.steps(design.geometry, dims)

@@ -36,6 +36,7 @@ from importlib import resources
 from typing import Any
 
 from flyopt._toml import tomllib
+from flyopt.said import said
 from flyopt.validate import positive
 
 __all__ = [
@@ -327,9 +328,13 @@ def key_for_shaft(d: float) -> Key:
         if key.d_over < d <= key.d_up_to:
             return key
     raise ValueError(
-        f"shaft diameter d = {d!r} m ({d * 1e3:g} mm) is outside the DIN 6885-1 table "
-        f"of {_ORIGIN}, which covers shafts over {keys[0].d_over * 1e3:g} mm up to "
-        f"and including {keys[-1].d_up_to * 1e3:g} mm"
+        said(
+            "shaft diameter d = {d} is outside the DIN 6885-1 table of " + _ORIGIN + ", which covers shafts over "
+            "{low} up to and including {high}",
+            d=(d, "length", f"{d!r} m ({d * 1e3:g} mm)"),
+            low=(keys[0].d_over, "length", f"{keys[0].d_over * 1e3:g} mm"),
+            high=(keys[-1].d_up_to, "length", f"{keys[-1].d_up_to * 1e3:g} mm"),
+        )
     )
 
 
@@ -368,8 +373,11 @@ def key_length_for_hub(key: Key, hub_length: float, d: float) -> float:
     fitting = [length for length in _seat_lengths(key, d) if length <= hub_length + FIT_ATOL]
     if not fitting:
         raise ValueError(
-            f"hub length {hub_length!r} m ({hub_length * 1e3:g} mm) is shorter than the "
-            f"shortest standard {key.size} key, {key.l_min * 1e3:g} mm"
+            said(
+                "hub length {hub} is shorter than the shortest standard " + key.size + " key, {shortest}",
+                hub=(hub_length, "length", f"{hub_length!r} m ({hub_length * 1e3:g} mm)"),
+                shortest=(key.l_min, "length", f"{key.l_min * 1e3:g} mm"),
+            )
         )
     return fitting[-1]
 
@@ -606,11 +614,25 @@ def hub_length_for_key(
         if _within(pressure, allowable_pressure) and _within(shear, allowable_shear):
             return length
     _, pressure, shear = _key_stresses(torque, d, key, lengths[-1])
-    against = "not checked" if allowable_pressure is None else f"against {allowable_pressure / 1e6:.4g} MPa"
+    against = (
+        "not checked"
+        if allowable_pressure is None
+        else said("against {allowed}", allowed=(allowable_pressure, "stress", f"{allowable_pressure / 1e6:.4g} MPa"))
+    )
     raise ValueError(
-        f"torque {torque:.4g} N·m: even the longest {key.size} key the d = {d * 1e3:g} mm seat takes "
-        f"({lengths[-1] * 1e3:g} mm, at most 1.5 d) is overloaded "
-        f"(pressure {pressure / 1e6:.4g} MPa {against}, "
-        f"shear {shear / 1e6:.4g} MPa against {allowable_shear / 1e6:.4g} MPa); "
-        f"use a larger shaft seat, a stronger hub material or another shaft-hub joint"
+        said("torque {torque}: even the longest ", torque=(torque, "torque", f"{torque:.4g} N·m"))
+        + key.size
+        + said(
+            " key the d = {d} seat takes ({length}, at most 1.5 d) is overloaded (pressure {pressure} ",
+            d=(d, "length", f"{d * 1e3:g} mm"),
+            length=(lengths[-1], "length", f"{lengths[-1] * 1e3:g} mm"),
+            pressure=(pressure, "stress", f"{pressure / 1e6:.4g} MPa"),
+        )
+        + against
+        + said(
+            ", shear {shear} against {allowed}); use a larger shaft seat, a stronger hub material or another "
+            "shaft-hub joint",
+            shear=(shear, "stress", f"{shear / 1e6:.4g} MPa"),
+            allowed=(allowable_shear, "stress", f"{allowable_shear / 1e6:.4g} MPa"),
+        )
     )

@@ -33,6 +33,7 @@ from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.design.result import Parts, Stresses
 from flyopt.errors import BrokenInvariant, SolverFailed
 from flyopt.names import Criterion, Geometry, Method, Objective
+from flyopt.said import join, said
 
 if TYPE_CHECKING:  # annotations only: CasADi is imported where IPOPT is used
     from flyopt.design.combination import Combination
@@ -62,6 +63,14 @@ __all__ = [
 
 #: Re-solves allowed for the exact stress check and the strength of the walls to settle.
 _MAX_ROUNDS = 8
+
+
+def _words(err: BaseException) -> str:
+    """An exception's message, as the sentence it was raised with (a :class:`flyopt.said.Said` keeps its
+    quantities, which ``str(err)`` would drop)."""
+    words = str(err)
+    said_as = err.args[0] if len(err.args) == 1 else None
+    return said_as if isinstance(said_as, str) and said_as == words else words
 
 
 class NoWheel(Exception):
@@ -219,17 +228,21 @@ def objective_bound(combo: Combination, spec: DesignSpec) -> tuple[float, str]:
         if not math.isfinite(spec.max_width):
             return 0.0, "no width limit bounds the diameter"
         d = (32.0 * j / (math.pi * combo.material.density * spec.max_width)) ** 0.25
-        return d, (
-            f"no wheel within the {spec.max_width:.4g} m width limit gives {j:.4g} kg·m² below "
-            f"D {d:.4g} m (a solid cylinder of that width)"
+        return d, said(
+            "no wheel within the {width} width limit gives {j} below D {d} (a solid cylinder of that width)",
+            width=(spec.max_width, "length", f"{spec.max_width:.4g} m"),
+            j=(j, "inertia", f"{j:.4g} kg·m²"),
+            d=(d, "length", f"{d:.4g} m"),
         )
     cap = min(combo.cap, stress_cap(combo, spec, combo.bore))  # rim speed or stress cap, envelope
     if not math.isfinite(cap):
         return 0.0, "no cap on the outer diameter bounds the mass"
     mass = 4.0 * j / (cap * cap)
-    why = (
-        f"every wheel that gives {j:.4g} kg·m² within D {cap:.4g} m weighs at least "
-        f"{mass:.4g} kg (m >= 4 J/D²: all of it at the outer radius)"
+    why = said(
+        "every wheel that gives {j} within D {cap} weighs at least {mass} (m >= 4 J/D²: all of it at the outer radius)",
+        j=(j, "inertia", f"{j:.4g} kg·m²"),
+        cap=(cap, "length", f"{cap:.4g} m"),
+        mass=(mass, "mass", f"{mass:.4g} kg"),
     )
     if spec.objective == Objective.COST:
         price = combo.material.cost
@@ -256,16 +269,27 @@ def screen(combo: Combination, spec: DesignSpec, bore: float) -> None:
     j_sup, cap, width = _upper_bound(combo, spec, bore)
     if combo.j_shaft > j_sup:
         where = (
-            "the envelope" if cap >= combo.cap else f"the largest diameter its stress allows at {combo.omega:.4g} rad/s"
+            "the envelope"
+            if cap >= combo.cap
+            else said(
+                "the largest diameter its stress allows at {omega}",
+                omega=(combo.omega, "angular_speed", f"{combo.omega:.4g} rad/s"),
+            )
         )
-        wide = (
-            f"B {width:.4g} m"
-            if width >= spec.max_width
-            else f"B {width:.4g} m, the widest a rim of H/B >= {spec.hb_ratio[0]:g} can be"
-        )
+        wide = said("B {width}", width=(width, "length", f"{width:.4g} m"))
+        if width < spec.max_width:
+            wide += f", the widest a rim of H/B >= {spec.hb_ratio[0]:g} can be"
         raise NoWheel(
-            f"{combo.label}: even a solid disc filling {where} (D {cap:.4g} m, {wide}) "
-            f"gives only {j_sup:.4g} kg·m², short of the {combo.j_shaft:.4g} kg·m² required",
+            combo.label
+            + ": even a solid disc filling "
+            + where
+            + said(" (D {cap}, ", cap=(cap, "length", f"{cap:.4g} m"))
+            + wide
+            + said(
+                ") gives only {j_sup}, short of the {j} required",
+                j_sup=(j_sup, "inertia", f"{j_sup:.4g} kg·m²"),
+                j=(combo.j_shaft, "inertia", f"{combo.j_shaft:.4g} kg·m²"),
+            ),
             j_sup,
         )
     if geo == Geometry.RIM_ARMS and not bore:
@@ -283,7 +307,12 @@ def screen(combo: Combination, spec: DesignSpec, bore: float) -> None:
             key.hub_length_for_key(combo.torque, bore, getattr(material, "bearing_pressure", None))
         except ValueError as err:
             raise NoWheel(
-                f"{combo.label}: no DIN 6885-1 key on the {bore * 1e3:.4g} mm seat carries it: {err}"
+                combo.label
+                + said(
+                    ": no DIN 6885-1 key on the {bore} seat carries it: ",
+                    bore=(bore, "length", f"{bore * 1e3:.4g} mm"),
+                )
+                + _words(err)
             ) from err
 
 
@@ -522,9 +551,12 @@ def design_combination(
         if table_end is None:
             raise RuntimeError(f"{combo.label}: no wheel, and no strength table to blame")
         raise NoWheel(
-            f"{combo.label}: the lightest {geo.replace('_', ' ')} has a section beyond the "
-            f"material's strength table, which ends at {table_end * 1e3:g} mm, and no wheel whose "
-            f"sections stay within it meets every limit"
+            combo.label
+            + f": the lightest {geo.replace('_', ' ')} has a section beyond the material's strength table, "
+            + said(
+                "which ends at {end}, and no wheel whose sections stay within it meets every limit",
+                end=(table_end, "length", f"{table_end * 1e3:g} mm"),
+            )
         )
     return best
 
@@ -700,17 +732,40 @@ def _settle(model, problem, combo, material, geo, spec, torque, parts, used, tab
 
 def _inferred_reason(label: str, geo: str, problem: WheelProblem, proof: WheelProblem) -> str:
     """Why an NLP has no wheel, shown by an infeasible one whose limits are all as loose or looser."""
-    looser = [f"D <= {proof.envelope:.4g} m (here {problem.envelope:.4g} m)"]
+    looser = [
+        said(
+            "D <= {theirs} (here {mine})",
+            theirs=(proof.envelope, "length", f"{proof.envelope:.4g} m"),
+            mine=(problem.envelope, "length", f"{problem.envelope:.4g} m"),
+        )
+    ]
     for part in sorted(problem.allowable):
         theirs, mine = proof.allowable.get(part, math.inf), problem.allowable[part]
         if math.isfinite(mine):
-            looser.append(f"{part} allowable {theirs / 1e6:.4g} MPa (here {mine / 1e6:.4g} MPa)")
+            looser.append(
+                part
+                + said(
+                    " allowable {theirs} (here {mine})",
+                    theirs=(theirs, "stress", f"{theirs / 1e6:.4g} MPa"),
+                    mine=(mine, "stress", f"{mine / 1e6:.4g} MPa"),
+                )
+            )
     for name, cap in sorted((problem.caps or {}).items()):
-        looser.append(f"{name} <= {(proof.caps or {}).get(name, math.inf) * 1e3:.4g} mm (here {cap * 1e3:.4g} mm)")
+        bound = (proof.caps or {}).get(name, math.inf)
+        looser.append(
+            name
+            + said(
+                " <= {theirs} (here {mine})",
+                theirs=(bound, "length", f"{bound * 1e3:.4g} mm"),
+                mine=(cap, "length", f"{cap * 1e3:.4g} mm"),
+            )
+        )
     return (
-        f"{label}: IPOPT found no {geo.replace('_', ' ')} within every limit at {', '.join(looser)}, "
-        f"every other limit the same; these limits are as tight or tighter, so no wheel meets them either "
-        f"(not solved again)"
+        label
+        + f": IPOPT found no {geo.replace('_', ' ')} within every limit at "
+        + join(", ", looser)
+        + ", every other limit the same; these limits are as tight or tighter, so no wheel meets them either "
+        "(not solved again)"
     )
 
 
@@ -755,8 +810,13 @@ def _disc_closed_form(combo, spec, bore, material):
         b2_stress = slope * sigma
     if b2_stress <= a * a:
         raise NoWheel(
-            f"{combo.label}: at {combo.omega:.4g} rad/s the hoop stress at a {bore * 1e3:.4g} mm bore "
-            f"exceeds the allowable {sigma / 1e6:.4g} MPa for any disc"
+            combo.label
+            + said(
+                ": at {omega} the hoop stress at a {bore} bore exceeds the allowable {sigma} for any disc",
+                omega=(combo.omega, "angular_speed", f"{combo.omega:.4g} rad/s"),
+                bore=(bore, "length", f"{bore * 1e3:.4g} mm"),
+                sigma=(sigma, "stress", f"{sigma / 1e6:.4g} MPa"),
+            )
         )
     b_stress = math.sqrt(b2_stress)
     half_envelope = spec.max_outer_diameter / 2.0
@@ -851,7 +911,7 @@ def structure_fields(
                     material, geometry_name, dims, omega, torque, spec.safety_factor, stress_factors
                 )
         except ValueError as err:
-            notes.append(f"stresses not computed: {err}")
+            notes.append("stresses not computed: " + _words(err))
     found: dict[str, Any] = {}
     if checked is not None:
         found = dict(
@@ -879,7 +939,7 @@ def structure_fields(
             sized = key.key_for_shaft(bore)
             length = key.key_length_for_hub(sized, float(hub_length), bore)
         except ValueError as err:
-            notes.append(f"no key: {err}")
+            notes.append("no key: " + _words(err))
         else:
             notes.append(f"{why}: the key is sized by the seat (DIN 6885-1) and the hub, and not checked")
             key_check = {
@@ -901,7 +961,7 @@ def structure_fields(
         try:
             k = key.check_key(torque, bore, float(hub_length), pressure)
         except ValueError as err:
-            notes.append(f"key not checked: {err}")
+            notes.append("key not checked: " + _words(err))
         else:
             if pressure is None:  # the key's shear by the key steel's S_sy; the hub's pressure has no allowable
                 notes.append(

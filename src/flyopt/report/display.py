@@ -177,6 +177,20 @@ def sensitivity_text(entry: Mapping[str, Any], system: str = DEFAULT, digits: in
     return str(sentence).format(step=signed(shown, dimension), dmass=signed(dmass, "mass"))
 
 
+def said_text(text: str, system: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
+    """A sentence of the design layer (a reason, a limit's place: :class:`flyopt.said.Said`) in the system's
+    units, each of its quantities by :func:`quantity_text` at ``digits`` figures, as every other number of the
+    output (the string as written, which the JSON carries, mixes m, mm and kg·m² at three or four figures); a
+    plain string as it is."""
+    from flyopt.said import Said
+
+    if not isinstance(text, Said):
+        return str(text)
+    return text.template.format(
+        **{name: quantity_text(value, dimension, system, digits) for name, (value, dimension, _) in text.values.items()}
+    )
+
+
 def column_words(column: str) -> str:
     """A results column as people read it (:data:`COLUMN_WORDS`), else the column's own name."""
     return COLUMN_WORDS.get(column, column)

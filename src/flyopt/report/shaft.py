@@ -11,7 +11,15 @@ import numpy as np
 
 from flyopt.design.combination import shaft_label
 from flyopt.design.shaft.check import JSON_NAMES
-from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, UTILISATION_DIGITS, mode_shape, quantity_text, unit
+from flyopt.report.display import (
+    DEFAULT,
+    DEFAULT_DIGITS,
+    UTILISATION_DIGITS,
+    mode_shape,
+    quantity_text,
+    said_text,
+    unit,
+)
 from flyopt.report.text import formatters, number, table
 
 if TYPE_CHECKING:
@@ -110,7 +118,7 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
         rows = [
             [
                 lim.kind,
-                lim.where,
+                said_text(lim.where, units, digits),
                 limit_value(lim, lim.value, units, digits),
                 limit_value(lim, lim.allowed, units, digits),
                 number(lim.utilisation, UTILISATION_DIGITS),
@@ -124,18 +132,18 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
                 ["limit", "where", "value", "allowed", "utilisation", ""], rows, ["<", "<", ">", ">", ">", "<"]
             )
         ]
-        lines.append(f"  binding: {binding_words(c, rep.sensitivity, units)}")
+        lines.append(f"  binding: {binding_words(c, rep.sensitivity, units, digits)}")
         lines += train_lines(c, units, digits)
     return lines
 
 
-def binding_words(check: ShaftCheck, sensitivity: float, units: str = DEFAULT) -> str:
+def binding_words(check: ShaftCheck, sensitivity: float, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
     """The binding limit of a shaft's check, its utilisation and d(utilisation)/d(wheel mass) per the system's
     unit of mass (``sensitivity`` [1/kg]), the text's and the report's words: "fatigue at the shoulder at
     480 mm, utilisation 0.595; d(utilisation)/d(wheel mass) 4.24e-05 per lb"."""
     label, kilograms = unit("mass", units)  # a wheel mass unit is this many kg
     return (
-        f"{check.binding.kind} {check.binding.where}, utilisation {number(check.binding.utilisation, UTILISATION_DIGITS)}; "
+        f"{check.binding.kind} {said_text(check.binding.where, units, digits)}, utilisation {number(check.binding.utilisation, UTILISATION_DIGITS)}; "
         f"d(utilisation)/d(wheel mass) {number(sensitivity * kilograms, 3)} per {label}"
     )
 
@@ -167,7 +175,7 @@ def seat_choice_words(rep: ShaftReport, units: str = DEFAULT, digits: int = DEFA
             "(no continuous optimum from the NLP: walked from the torque-only bound)"
         )
     if rep.seat_set_by:
-        words += f"; set by {rep.seat_set_by}"
+        words += f"; set by {said_text(rep.seat_set_by, units, digits)}"
     if rep.seat_sensitivity is not None and math.isfinite(rep.seat_sensitivity):
         words += (
             f"; +1 on its required safety factor adds {q(rep.seat_sensitivity, 'seat_dmass_dfactor')} (the seat torque "

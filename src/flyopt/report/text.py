@@ -37,6 +37,7 @@ from flyopt.report.display import (
     quantity_text,
     rim_speed_answer,
     rounded_rank_note,
+    said_text,
     sensitivity_text,
     share,
     share_of_allowable,
@@ -201,7 +202,12 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
         return [f"Answer: {need} (no [design]: the wheel is not sized)", ""]
     if best is None:
         return [
-            f"Answer: {need}" + ("" if design.status == "not_needed" else f"; no wheel: {visible(design.message)}"),
+            f"Answer: {need}"
+            + (
+                ""
+                if design.status == "not_needed"
+                else f"; no wheel: {visible(said_text(design.message, units, digits))}"
+            ),
             "",
         ]
     shape = wheel_words(best.geometry, best.n_arms)
@@ -246,7 +252,7 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
     for shaft_check in solution.shaft_checks:  # the shaft described as a part (flyopt.report.shaft)
         binding = shaft_check.check.binding
         lines.append(
-            f"    shaft   {binding.kind} {binding.where} binds, utilisation {number(binding.utilisation, UTILISATION_DIGITS)}"
+            f"    shaft   {binding.kind} {said_text(binding.where, units, digits)} binds, utilisation {number(binding.utilisation, UTILISATION_DIGITS)}"
         )
     v = solution.verification
     held = (
@@ -568,7 +574,7 @@ def design_report(
     q, n = formatters(units, digits)
     lines = ["", f"Flywheel design ({result.spec.geometry}, objective: {result.spec.objective}):"]
     if result.status == "not_needed":
-        return lines + [f"  {result.message}"]
+        return lines + [f"  {said_text(result.message, units, digits)}"]
     best = result.best
     if best is not None:
         facts = [
@@ -662,10 +668,12 @@ def design_report(
     lines += ["  " + line for line in table(head, rows, align)]
     if result.best is not None and result.continuous is not None:
         lines += ["", f"  note: {rounded_rank_note(q(result.continuous.mass, 'mass'))}"]
-    reasons = [c.reason for c in result.candidates if not c.feasible and not c.provenance.pruned]
+    reasons = [
+        said_text(c.reason, units, digits) for c in result.candidates if not c.feasible and not c.provenance.pruned
+    ]
     if reasons:
         lines += ["", "Why the infeasible ones fail:"] + [f"  - {r}" for r in reasons]
-    reasons = [c.reason for c in result.candidates if c.provenance.pruned]
+    reasons = [said_text(c.reason, units, digits) for c in result.candidates if c.provenance.pruned]
     if reasons:
         lines += ["", "Not designed, since a bound shows they cannot win (design.prune = false designs them):"]
         lines += [f"  - {r}" for r in reasons]
@@ -711,7 +719,7 @@ def fem_report(check: FemCheck, units: str = DEFAULT, digits: int = DEFAULT_DIGI
     verdict = fem_verdict(check)
     if verdict is not None:
         lines.append(f"  {verdict}")
-    lines += [f"  note: {note}" for note in check.notes]
+    lines += [f"  note: {said_text(note, units, digits)}" for note in check.notes]
     return lines
 
 

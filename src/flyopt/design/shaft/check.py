@@ -55,6 +55,7 @@ from flyopt.design.shaft.lateral import GRAVITY, Disc, critical_speeds, rotor_mo
 from flyopt.design.shaft.torsional import TorsionalCheck, running_range_rpm, torsional_check
 from flyopt.design.shaft.train import TrainResponse, key_torque, seat_torque, shaft_train, train_response
 from flyopt.machine.torsion import TorqueOrders
+from flyopt.said import said
 from flyopt.units import rad_s_to_rpm
 
 if TYPE_CHECKING:
@@ -355,6 +356,17 @@ def carries_torque(layout: ShaftLayout, x: np.ndarray) -> np.ndarray:
     return inside
 
 
+def section_name(what: str, x: float) -> str:
+    """A checked section by what is there and where along the shaft ("shoulder at 520 mm"; ``x`` [m]), its
+    position kept for the reader's units (:mod:`flyopt.said`)."""
+    return said(f"{what} at {{x}}", x=(x, "length", f"{x * 1e3:.0f} mm"))
+
+
+def bearing_place(label: str, x: float) -> str:
+    """Where a bearing's slope is checked ("at bearing A (60 mm)"; ``x`` [m]), its position kept likewise."""
+    return said(f"at bearing {label} ({{x}})", x=(x, "length", f"{x * 1e3:.0f} mm"))
+
+
 def _sections(layout: ShaftLayout) -> list[tuple[float, str, str | None, float]]:
     """(x, name, notch kind or None, d) of every section the strength is checked at."""
     out: list[tuple[float, str, str | None, float]] = [
@@ -362,9 +374,9 @@ def _sections(layout: ShaftLayout) -> list[tuple[float, str, str | None, float]]
     ]
     for end, d0, d1 in zip(layout.steps[:-1], layout.diameters[:-1], layout.diameters[1:]):
         if d0 != d1:
-            out.append((end, f"shoulder at {end * 1e3:.0f} mm", "shoulder", min(d0, d1)))
+            out.append((end, section_name("shoulder", end), "shoulder", min(d0, d1)))
     for x, name in [(b, "bearing") for b in layout.bearings] + [(load.position, "load") for load in layout.loads]:
-        out.append((x, f"{name} at {x * 1e3:.0f} mm", None, layout.diameter_at(x)))
+        out.append((x, section_name(name, x), None, layout.diameter_at(x)))
     return out
 
 
@@ -478,8 +490,8 @@ def check_shaft(
     worst_f = min(checked, key=lambda s: s.fatigue)
     worst_y = min(checked, key=lambda s: s.yield_)
     limits = [
-        ShaftLimit("fatigue", f"at the {worst_f.name}", worst_f.fatigue, n_req, n_req / worst_f.fatigue, ""),
-        ShaftLimit("yield", f"at the {worst_y.name}", worst_y.yield_, n_req, n_req / worst_y.yield_, ""),
+        ShaftLimit("fatigue", "at the " + worst_f.name, worst_f.fatigue, n_req, n_req / worst_f.fatigue, ""),
+        ShaftLimit("yield", "at the " + worst_y.name, worst_y.yield_, n_req, n_req / worst_y.yield_, ""),
     ]
     for label, b in zip(("A", "B"), layout.bearings):
         i = int(np.argmin(np.abs(grid - b)))
@@ -487,7 +499,7 @@ def check_shaft(
         limits.append(
             ShaftLimit(
                 "slope",
-                f"at bearing {label} ({b * 1e3:.0f} mm)",
+                bearing_place(label, b),
                 slope,
                 layout.max_slope,
                 slope / layout.max_slope,
@@ -583,7 +595,10 @@ def _key_limit(key: KeySeat, torque: float) -> ShaftLimit | None:
         if found.allowable_pressure is not None
         else "shear; bearing pressure not checked"
     )
-    where = f"{found.key.size}, {found.length * 1e3:g} mm long, at the wheel seat ({what})"
+    where = said(
+        f"{found.key.size}, {{length}} long, at the wheel seat ({what})",
+        length=(found.length, "length", f"{found.length * 1e3:g} mm"),
+    )
     return ShaftLimit("key", where, value, allowed, value / allowed, "Pa", torque)
 
 

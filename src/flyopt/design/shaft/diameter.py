@@ -40,6 +40,7 @@ from flyopt.design.shaft import strength
 from flyopt.design.shaft.check import CRITERION, notch_factors
 from flyopt.design.shaft.cycle import ShaftContext, acceptor, keyed_shafts, rekeyed, torque_curve
 from flyopt.names import Geometry
+from flyopt.said import Said, join, quantities, said, template
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -48,6 +49,27 @@ if TYPE_CHECKING:
     from flyopt.machine.shaft_layout import ShaftLayout
 
 __all__ = ["SeatFloor", "seat_series", "seat_floor", "designs_seats", "design_with_seats", "seated", "on_seat"]
+
+
+def _mm(d: float, digits: str = "g") -> tuple[float, str, str]:
+    """A seat diameter [m] as a sentence's quantity, written in mm as the walk always wrote it."""
+    return (d, "length", f"{d * 1e3:{digits}} mm")
+
+
+def _words(err: BaseException) -> str:
+    """An exception's message, as the sentence it was raised with (a :class:`flyopt.said.Said` keeps its
+    quantities, which ``str(err)`` would drop)."""
+    words = str(err)
+    said_as = err.args[0] if len(err.args) == 1 else None
+    return said_as if isinstance(said_as, str) and said_as == words else words
+
+
+def _after(text: str, head: str) -> str:
+    """``text`` without its beginning ``head`` (which it starts with), its quantities kept: ``head`` holds none
+    (a combination's label and its colon)."""
+    if isinstance(text, Said) and text.template.startswith(template(head)):
+        return said(text.template[len(template(head)) :], **quantities(text))
+    return text[len(head) :]
 
 
 @functools.lru_cache(maxsize=8)
@@ -110,7 +132,7 @@ def seat_floor(ctx: ShaftContext, name: str, j_shaft: float) -> SeatFloor:
             se = strength.endurance_limit(sut, d, layout.finish).se
             kf, kfs = notch_factors("keyseat", d, None, sut)
         except ValueError as err:  # beyond the material's table or Neuber's range: the series ends here
-            cap = f"above {supported * 1e3:g} mm: {err}" if supported else str(err)
+            cap = said("above {d}: ", d=_mm(supported)) + _words(err) if supported else _words(err)
             return SeatFloor(ta, first, bound, tuple(seats), cap)
         supported = d
         if math.isnan(first):
@@ -246,7 +268,7 @@ def design_with_seats(
                 if again is not None:
                     last = design_flywheel(j_required, omega, again, mats, at, accept=accept, **options)
             except ValueError as err:  # beyond a table the checks read: the series ends here
-                floor = dataclasses.replace(floor, cap=f"at {d * 1e3:g} mm: {err}")
+                floor = dataclasses.replace(floor, cap=said("at {d}: ", d=_mm(d)) + _words(err))
                 break
             tried.append(d)
             for c in last.candidates:
@@ -313,7 +335,7 @@ def _beyond(ctx, name, material, arms) -> str:
     optimum = None if choice is None else choice.optimum
     if optimum is None or optimum.binding is None:
         return ""
-    return f"the NLP's continuous seat is {optimum.diameter * 1e3:.4g} mm, set by its {optimum.binding.name}"
+    return said("the NLP's continuous seat is {d}, set by its ", d=_mm(optimum.diameter, ".4g")) + optimum.binding.name
 
 
 def _settled(ctx, name, candidate, refused) -> None:
@@ -329,14 +351,14 @@ def _settled(ctx, name, candidate, refused) -> None:
     optimum = choice.optimum
     if refused is not None and refused.mass is None:  # no wheel was designed on the seat below
         label, _, why = (refused.reason or "").partition(": ")  # the reason names its combination first
-        words = why if why and " on the " in label else refused.reason
-        set_by = f"the design, which found no wheel on {refused.bore * 1e3:g} mm: {words}"
+        words = _after(refused.reason, label + ": ") if why and " on the " in label else refused.reason
+        set_by = said("the design, which found no wheel on {d}: ", d=_mm(refused.bore)) + words
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
     elif refused is not None:
         check = check_candidate(ctx, refused)
         worst = max(check.failed(), key=lambda lim: lim.utilisation) if check is not None and check.failed() else None
         words = worst.describe() if worst is not None else refused.reason
-        set_by = f"the post-check, which refused {refused.bore * 1e3:g} mm: {words}"
+        set_by = said("the post-check, which refused {d}: ", d=_mm(refused.bore)) + words
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
     elif optimum is not None and optimum.binding is not None:
         set_by = f"{optimum.binding.name}, a row of the NLP"
@@ -345,7 +367,9 @@ def _settled(ctx, name, candidate, refused) -> None:
         set_by = "the torque-only DE-Goodman bound at the keyseat (Shigley Eq. (7-8)), where the walk starts"
         if optimum is not None and math.isfinite(optimum.diameter):
             where = "at the lower end of the range" if optimum.lower_bound else "where the objective is least"
-            set_by = f"the NLP, no shaft row binding (d* {optimum.diameter * 1e3:.4g} mm, {where}, rounded up)"
+            set_by = said(
+                "the NLP, no shaft row binding (d* {d}, " + where + ", rounded up)", d=_mm(optimum.diameter, ".4g")
+            )
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
 
 
@@ -353,23 +377,38 @@ def _exhausted(last, material, shaft, spec, arms, floor, series, tried, beyond=N
     """The combination no seat of the series carries: the floor, the series' end and the reason at the largest
     d whose wheel its shaft refused (else the largest tried), in numbers; ``beyond``: the NLP's d* above the
     series' end, in words."""
-    span = f"from {tried[0] * 1e3:g} to {tried[-1] * 1e3:g} mm" if tried else "that the checks support"
-    words = [f"no seat diameter on ISO 3 {series} {span} carries it"]
+    # "from 45 to 60 mm": the first diameter's unit is the last's, written once (a report in other units gives both)
+    span: str = (
+        said("from {low} to {high}", low=(tried[0], "length", f"{tried[0] * 1e3:g}"), high=_mm(tried[-1]))
+        if tried
+        else "that the checks support"
+    )
+    words = ["no seat diameter on ISO 3 " + series + " " + span + " carries it"]
     if beyond:
         words.append(beyond)
+    torque = (floor.torque_alternating, "torque", f"{floor.torque_alternating:.4g} N·m")
     if floor.torque_alternating > 0.0 and math.isfinite(floor.diameter):
         words.append(
-            f"below {floor.diameter * 1e3:g} mm the torque alone, T_a {floor.torque_alternating:.4g} N·m, fails "
-            f"DE-Goodman at the keyseat (Shigley Eq. (7-8): d >= {floor.bound * 1e3:.4g} mm)"
+            said(
+                "below {d} the torque alone, T_a {torque}, fails DE-Goodman at the keyseat (Shigley Eq. (7-8): "
+                "d >= {bound})",
+                d=_mm(floor.diameter),
+                torque=torque,
+                bound=_mm(floor.bound, ".4g"),
+            )
         )
     elif floor.torque_alternating > 0.0:
         words.append(
-            f"the torque alone, T_a {floor.torque_alternating:.4g} N·m, fails DE-Goodman at the keyseat of every "
-            f"seat the checks support (Shigley Eq. (7-8): d >= {floor.bound * 1e3:.4g} mm at the last)"
+            said(
+                "the torque alone, T_a {torque}, fails DE-Goodman at the keyseat of every seat the checks support "
+                "(Shigley Eq. (7-8): d >= {bound} at the last)",
+                torque=torque,
+                bound=_mm(floor.bound, ".4g"),
+            )
         )
     if floor.cap is not None:
         words.append(floor.cap)
-    return _infeasible(last, material, shaft, spec, arms, "; ".join(words))
+    return _infeasible(last, material, shaft, spec, arms, join("; ", words))
 
 
 def _infeasible(last, material, shaft, spec, arms, head) -> Candidate:
@@ -379,7 +418,9 @@ def _infeasible(last, material, shaft, spec, arms, head) -> Candidate:
         return dataclasses.replace(
             last,
             feasible=False,
-            reason=f"{head}; at {last.bore * 1e3:g} mm: {last.reason}" if last.bore else f"{head}; {last.reason}",
+            reason=(
+                head + said("; at {d}: ", d=_mm(last.bore)) + last.reason if last.bore else head + "; " + last.reason
+            ),
         )
     return Candidate.infeasible(material, shaft, spec.geometry, head, n_arms=arms)
 
@@ -394,7 +435,7 @@ def _merged(
     designs = rank.ranking(list(found.values()))
     infeasible = [failed[k] for k in order if k in failed] + [c for k, c in failed.items() if k not in order]
     if not designs:
-        message = "no material and shaft can give the required inertia: " + "; ".join(c.reason for c in infeasible)
+        message = "no material and shaft can give the required inertia: " + join("; ", (c.reason for c in infeasible))
         if last is None:  # no seat passed the floor: nothing was designed
             from flyopt.design.result import DesignResult
 

@@ -54,7 +54,7 @@ from flyopt.design.balance import BALANCE_GRADE, permissible_unbalance
 from flyopt.design.nlp import CONVERGED, DEFAULT_SOLVER_OPTIONS
 from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_line
-from flyopt.design.shaft.check import carries_torque, notch_geometry, section_strengths
+from flyopt.design.shaft.check import bearing_place, carries_torque, notch_geometry, section_name, section_strengths
 from flyopt.design.shaft.lateral import GRAVITY
 from flyopt.names import Geometry, Objective
 
@@ -225,7 +225,7 @@ def _sections(layout: ShaftLayout, d: float) -> list[dict[str, Any]]:
             out.append(
                 {
                     "x": end,
-                    "name": f"shoulder at {end * 1e3:.0f} mm",
+                    "name": section_name("shoulder", end),
                     "kind": "shoulder",
                     "d": small,
                     "designed": designed,
@@ -235,7 +235,7 @@ def _sections(layout: ShaftLayout, d: float) -> list[dict[str, Any]]:
         out.append(
             {
                 "x": x,
-                "name": f"{what} at {x * 1e3:.0f} mm",
+                "name": section_name(what, x),
                 "kind": None,
                 "d": seated.diameter_at(x),
                 "designed": _designed_at(layout, x),
@@ -607,14 +607,14 @@ class _Model:
             a, b = strength.de_terms(ma, t_a, mm, t_m, kf, kfs, lambda v: ca.sqrt(v + _TINY))
             bracket = strength._criterion_sum("goodman", a, b, se, sut, sy)
             add(f"shaft_fatigue {i}", ca.log(n_req * 16.0 * bracket / (math.pi * ds**3)), -inf, 0.0)
-            shaft_rows.append(("fatigue", f"at the {s['name']}"))
+            shaft_rows.append(("fatigue", "at the " + s["name"]))
             peak = strength.von_mises_peak(ds, mm + ma, t_m + t_a, kf, kfs, lambda v: ca.sqrt(v + _TINY))
             add(f"shaft_yield {i}", ca.log(n_req * peak / sy), -inf, 0.0)
-            shaft_rows.append(("yield", f"at the {s['name']}"))
+            shaft_rows.append(("yield", "at the " + s["name"]))
         for label, bearing in zip(("A", "B"), layout.bearings):
             i = int(np.argmin(np.abs(xs - bearing)))
             add(f"shaft_slope {label}", ca.log(_slope_expr(loads, "slope", i, m, ratio4) / layout.max_slope), -inf, 0.0)
-            shaft_rows.append(("slope", f"at bearing {label} ({bearing * 1e3:.0f} mm)"))
+            shaft_rows.append(("slope", bearing_place(label, bearing)))
         if layout.max_deflection is not None:  # section 0, the keyseat, is at the wheel
             deflection = _slope_expr(loads, "deflection", 0, m, ratio4)
             add("shaft_deflection", ca.log(deflection / layout.max_deflection), -inf, 0.0)

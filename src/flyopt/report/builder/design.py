@@ -40,10 +40,12 @@ class DesignSection(BuilderBase):
             )
         )
         if d.status == "not_needed":
-            blocks.append(Paragraph(d.message, "ok"))
+            blocks.append(Paragraph(display.said_text(d.message, self.units, self.digits), "ok"))
             return
         if best is None:
-            blocks.append(Paragraph(f"No feasible design: {d.message}", "warning"))
+            blocks.append(
+                Paragraph(f"No feasible design: {display.said_text(d.message, self.units, self.digits)}", "warning")
+            )
             return
         material = self.scene.material_library().get(best.material)
         rows: list[tuple[str, Any]] = [
@@ -402,7 +404,7 @@ class DesignSection(BuilderBase):
         verdict = fem_verdict(check)
         if verdict is not None:
             text.append(verdict[:1].upper() + verdict[1:] + ".")
-        text += [f" Note: {note}." for note in check.notes]
+        text += [f" Note: {display.said_text(note, self.units, self.digits)}." for note in check.notes]
         if text:
             blocks.append(Paragraph(tuple(text), "warning" if check.within_allowable is False else "note"))
 

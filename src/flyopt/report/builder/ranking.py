@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from flyopt.design.check import binding_label
 from flyopt.design.result import Design
+from flyopt.report import display
 from flyopt.report.builder.base import BuilderBase
 from flyopt.report.display import rounded_rank_note
 from flyopt.report.document import Paragraph, Table
@@ -74,7 +75,11 @@ class Ranking(BuilderBase):
             mass = self.q(d.continuous.mass, "mass", "mass")
             note = rounded_rank_note(mass.text)
             blocks.append(Paragraph(note[:1].upper() + note[1:] + "."))
-        reasons = [c.reason for c in d.candidates if not c.feasible and not c.provenance.pruned]
+        reasons = [
+            display.said_text(c.reason, self.units, self.digits)
+            for c in d.candidates
+            if not c.feasible and not c.provenance.pruned
+        ]
         if reasons:
             blocks.append(
                 Table(
@@ -85,7 +90,7 @@ class Ranking(BuilderBase):
                     "infeasible",
                 )
             )
-        reasons = [c.reason for c in d.candidates if c.provenance.pruned]
+        reasons = [display.said_text(c.reason, self.units, self.digits) for c in d.candidates if c.provenance.pruned]
         if reasons:
             blocks.append(
                 Table(

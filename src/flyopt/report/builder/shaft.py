@@ -45,7 +45,7 @@ class ShaftSection(BuilderBase):
             rows = [
                 [
                     lim.kind,
-                    lim.where,
+                    display.said_text(lim.where, self.units, self.digits),
                     limit_value(lim, lim.value, self.units, self.digits),
                     limit_value(lim, lim.allowed, self.units, self.digits),
                     number(lim.utilisation, UTILISATION_DIGITS),
@@ -103,7 +103,7 @@ class ShaftSection(BuilderBase):
                         ),
                     ),
                 ),
-                ("binding", binding_words(c, report.sensitivity, self.units)),
+                ("binding", binding_words(c, report.sensitivity, self.units, self.digits)),
             ]
             blocks.append(Facts(tuple(facts), "shaft_facts"))
             self.train_tables(blocks, c)

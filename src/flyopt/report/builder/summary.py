@@ -133,7 +133,7 @@ class Summary(BuilderBase):
                         )
                     )
         elif d is not None and d.status == "infeasible":
-            rows.append(("design", "no feasible design: " + d.message))
+            rows.append(("design", "no feasible design: " + display.said_text(d.message, self.units, self.digits)))
         drive = self.solution.drive
         if drive is not None and drive.best is not None:
             m = drive.best.motor
@@ -180,7 +180,7 @@ class Summary(BuilderBase):
             said = self.design if self.design is not None else self.solution.drive
             if said is None:
                 raise BrokenInvariant("an infeasible solution is the design's or the drive design's")
-            return "No feasible design: " + said.message
+            return "No feasible design: " + display.said_text(said.message, self.units, self.digits)
         if best is None:
             if self.solution.drive is not None and self.solution.drive.best is not None:
                 drive_check = self.solution.drive_check

@@ -1,0 +1,88 @@
+"""flyopt.said: a sentence of the design layer that is the string it always was and keeps its quantities, so
+that a report fills it in the reader's units (issue 29: units that drift within one output).
+
+References: the conversion factors are the definitions (1 in = 0.0254 m exactly; 1 lb·ft² = 0.45359237 kg ×
+0.3048² m²), written here, not read from flyopt.report.display.
+"""
+
+import copy
+import json
+import pickle
+
+import pytest
+
+from flyopt.report.display import said_text
+from flyopt.said import Said, join, said
+
+INCH = 0.0254
+LB_FT2 = 0.45359237 * 0.3048**2
+
+
+def _envelope():
+    return said(
+        "caps the outer diameter at {d}, where the smallest rim that gives {j} still needs {need}",
+        d=(1.2, "length", "1.2 m"),
+        j=(863.2, "inertia", "863 kg·m²"),
+        need=(1.6, "length", "1.6 m"),
+    )
+
+
+def test_the_string_is_the_sentence_as_written():
+    text = _envelope()
+    assert text == "caps the outer diameter at 1.2 m, where the smallest rim that gives 863 kg·m² still needs 1.6 m"
+    assert isinstance(text, str) and json.dumps({"r": text}) == json.dumps({"r": str(text)})
+
+
+def test_the_reader_sees_each_quantity_in_his_units():
+    shown = said_text(_envelope(), "imperial", 4)
+    assert shown == (
+        f"caps the outer diameter at {1.2 / INCH:.2f} in, where the smallest rim that gives "
+        f"{float(f'{863.2 / LB_FT2:.4g}'):,.0f} lb·ft² still needs {1.6 / INCH:.2f} in"
+    )
+    assert said_text(_envelope(), "si", 4) == (
+        "caps the outer diameter at 1.2 m, where the smallest rim that gives 863.2 kg·m² still needs 1.6 m"
+    )
+    assert said_text(_envelope(), "engineering", 4) == (
+        "caps the outer diameter at 1,200 mm, where the smallest rim that gives 863.2 kg·m² still needs 1,600 mm"
+    )
+    assert said_text("a plain reason, 3 mm", "imperial", 4) == "a plain reason, 3 mm"
+
+
+def test_joining_keeps_every_quantity_and_renames_a_clash():
+    seat = said("at {d}: ", d=(0.06, "length", "60 mm"))
+    whole = "EN-GJL-250 on the crankshaft {braces}: " + seat + _envelope()
+    assert isinstance(whole, Said)
+    assert str(whole) == "EN-GJL-250 on the crankshaft {braces}: at 60 mm: " + str(_envelope())
+    shown = said_text(whole, "imperial", 4)
+    assert shown.startswith(f"EN-GJL-250 on the crankshaft {{braces}}: at {0.06 / INCH:.4g} in: caps the outer")
+    assert shown.endswith(f"still needs {1.6 / INCH:.2f} in")  # the second "d" renamed, its own value kept
+    assert f"{1.2 / INCH:.2f} in" in shown
+    joined = join("; ", ["plain", seat, seat])
+    assert isinstance(joined, Said) and joined == "plain; at 60 mm: ; at 60 mm: "
+    assert said_text(joined, "imperial", 4).count(f"{0.06 / INCH:.4g} in") == 2
+    assert type(join("; ", ["a", "b"])) is str
+
+
+@pytest.mark.parametrize("copied", [lambda s: pickle.loads(pickle.dumps(s)), copy.deepcopy, copy.copy])
+def test_a_copy_keeps_its_quantities(copied):
+    """A sweep's worker sends its results back pickled; the report reads them."""
+    text = copied("Rim: " + _envelope())
+    assert isinstance(text, Said) and said_text(text, "imperial", 4) == said_text("Rim: " + _envelope(), "imperial", 4)
+
+
+def test_an_fstring_gives_the_plain_sentence():
+    assert type(f"{_envelope()}") is str
+
+
+@pytest.mark.parametrize(
+    ("words", "given"),
+    [
+        ("at {d}", {}),
+        ("at {d}", {"d": (1.0, "length", "1 m"), "e": (1.0, "length", "1 m")}),
+        ("at {d:.3g}", {"d": (1.0, "length", "1 m")}),
+        ("at {0}", {}),
+    ],
+)
+def test_a_placeholder_without_its_quantity_is_refused(words, given):
+    with pytest.raises(ValueError, match="said"):
+        said(words, **given)
