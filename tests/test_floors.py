@@ -29,7 +29,16 @@ ARCHITECTURE = Path(__file__).resolve().parents[1] / "docs" / "architecture.md"
 FLOORS = (
     (
         "base",
-        ("flyopt", "flyopt.errors", "flyopt.units", "flyopt.names", "flyopt.validate", "flyopt._toml", "flyopt.views"),
+        (
+            "flyopt",
+            "flyopt.errors",
+            "flyopt.units",
+            "flyopt.names",
+            "flyopt.said",
+            "flyopt.validate",
+            "flyopt._toml",
+            "flyopt.views",
+        ),
     ),
     ("cycle", ("flyopt.cycle",)),
     ("machine", ("flyopt.machine",)),
