@@ -87,7 +87,8 @@ def test_infeasible_scene_exits_3_and_says_why(tmp_path, capsys):
     assert main(["solve", str(path)]) == 3
     out = capsys.readouterr().out
     assert "no feasible design" in out
-    assert "cast steel on the motor shaft: the envelope (max_outer_diameter) caps the outer diameter at 0.1 m" in out
+    # the envelope of 0.1 m in the text's engineering units (the JSON's reason says 0.1 m)
+    assert "cast steel on the motor shaft: the envelope (max_outer_diameter) caps the outer diameter at 100 mm" in out
 
 
 def test_non_converged_solve_is_never_a_design(monkeypatch, capsys):
