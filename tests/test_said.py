@@ -67,7 +67,11 @@ def test_joining_keeps_every_quantity_and_renames_a_clash():
 def test_a_copy_keeps_its_quantities(copied):
     """A sweep's worker sends its results back pickled; the report reads them."""
     text = copied("Rim: " + _envelope())
-    assert isinstance(text, Said) and said_text(text, "imperial", 4) == said_text("Rim: " + _envelope(), "imperial", 4)
+    assert isinstance(text, Said) and text == "Rim: " + str(_envelope())
+    assert said_text(text, "imperial", 4) == (
+        f"Rim: caps the outer diameter at {1.2 / INCH:.2f} in, where the smallest rim that gives "
+        f"{float(f'{863.2 / LB_FT2:.4g}'):,.0f} lb·ft² still needs {1.6 / INCH:.2f} in"
+    )
 
 
 def test_an_fstring_gives_the_plain_sentence():

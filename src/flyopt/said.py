@@ -19,7 +19,7 @@ import string
 from collections.abc import Iterable, Mapping
 from typing import Any
 
-__all__ = ["Said", "said", "join", "quantities", "template"]
+__all__ = ["Said", "said", "join", "quantities", "said_by", "template"]
 
 #: One quantity of a sentence: (value in SI, dimension as flyopt.report.display names it, the text as written).
 Quantity = tuple[float, str, str]
@@ -81,6 +81,14 @@ def join(separator: str, parts: Iterable[str]) -> str:
             spaced.append(separator)
         spaced.append(part)
     return _joined(spaced)
+
+
+def said_by(err: BaseException) -> str:
+    """An exception's message as the sentence it was raised with: a :class:`Said` given as its one argument
+    keeps its quantities, which ``str(err)`` would drop; else ``str(err)``."""
+    words = str(err)
+    given = err.args[0] if len(err.args) == 1 else None
+    return given if isinstance(given, Said) and given == words else words
 
 
 def template(text: str) -> str:

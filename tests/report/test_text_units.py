@@ -491,10 +491,10 @@ PLAIN_FACTS = (
     "motor ratio",
     "flywheel shaft",
 )
-#: Blocks of prose written by the design itself (flyopt.design), shown as it wrote them. (The sensitivities of
-#: the mass, the reasons of the infeasible and pruned combinations and the shaft check's places are filled in
-#: the reader's units, flyopt.said, and checked here as every other line.)
-PROSE_BLOCKS = ("Notes:",)
+#: Blocks of prose written by the design itself (flyopt.design), shown as it wrote them: none. (The sensitivities
+#: of the mass, the reasons of the infeasible and pruned combinations, the design's notes and the shaft check's
+#: places are filled in the reader's units, flyopt.said, and checked here as every other line.)
+PROSE_BLOCKS = ()
 #: Lines that carry the design's prose (none: the drive's note no longer prints a number).
 PROSE_LINES = ()
 #: Dimensionless numbers inside a line: ratios, counts, percentages, tolerances, standards' names.
@@ -858,3 +858,28 @@ def test_the_shaft_check_says_its_places_in_the_readers_units(main_cli):
     ):
         assert expected in section, expected
     assert not re.search(r"[0-9] ?(mm|m|kg|MPa|N·m)\b", section), section
+
+
+def test_a_shaft_that_refuses_a_wheel_says_why_in_the_readers_units(main_cli, write_scene):
+    """Was: with a pinion's mesh force of 40 kN (12 kN given) the shaft refuses every wheel, and under --units
+    imperial each reason said "the shaft cannot carry this 148.2 kg wheel: fatigue factor of safety at the shoulder
+    at 520 mm: 1.385 < 1.5; slope at bearing B (620 mm): 0.001339 > 0.001 rad". The masses are the JSON's, the
+    places the scene's, the slope's limit its 0.001 rad, each converted here."""
+    text = (PROBLEMS / "punch-press-shaft.toml").read_text(encoding="utf-8")
+    assert 'force = "12 kN"' in text
+    scene = write_scene(text.replace('force = "12 kN"', 'force = "40 kN"'), "weak-shaft.toml")
+    status, out, err = main_cli("solve", scene, "--units", "imperial")
+    assert status == 3, err
+    status, raw, err = main_cli("solve", scene, "--json")
+    candidates = json.loads(raw)["design"]["candidates"]
+    ureg = unit_registry()
+    reasons = [line for line in out.splitlines() if "the shaft cannot carry this" in line and line.startswith("  - ")]
+    assert len(reasons) == sum("cannot carry" in c["reason"] for c in candidates) >= 2
+    for line in reasons:
+        (candidate,) = [c for c in candidates if line[4:].startswith(c["reason"].split(": the shaft")[0] + ": ")]
+        pounds = ureg.Quantity(candidate["mass"], "kg").to("lb").magnitude
+        assert f"the shaft cannot carry this {float(f'{pounds:.4g}'):,.4g} lb wheel: " in line
+        assert f"at the shoulder at {ureg.Quantity(0.52, 'm').to('inch').magnitude:.4g} in" in line
+        assert f"slope at bearing B ({ureg.Quantity(0.62, 'm').to('inch').magnitude:.4g} in)" in line
+        assert f"> {ureg.Quantity(0.001, 'rad').to('deg').magnitude:.3g} deg" in line
+        assert not re.search(r"[0-9] ?(mm|m|kg|rad|N·m|MPa)\b", line), line

@@ -187,7 +187,11 @@ def _draw(solution, what, plots, units, verify=False, digits=None):
         if solution.status == "not_needed":
             raise plots.NothingToDraw("no flywheel is needed: nothing to draw")
         if design is None or design.best is None:
-            raise _Infeasible(design.message if design is not None else "no drive and wheel meet the limits")
+            raise _Infeasible(
+                display.said_text(design.message, units, digits)
+                if design is not None
+                else "no drive and wheel meet the limits"
+            )
         if what == "cross_section":
             return plots.plot_cross_section(
                 design.best, units=units, material=design.material_name(design.best.material), digits=digits

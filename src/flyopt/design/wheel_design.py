@@ -33,7 +33,7 @@ from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.design.result import Parts, Stresses
 from flyopt.errors import BrokenInvariant, SolverFailed
 from flyopt.names import Criterion, Geometry, Method, Objective
-from flyopt.said import join, said
+from flyopt.said import join, said, said_by
 
 if TYPE_CHECKING:  # annotations only: CasADi is imported where IPOPT is used
     from flyopt.design.combination import Combination
@@ -63,14 +63,6 @@ __all__ = [
 
 #: Re-solves allowed for the exact stress check and the strength of the walls to settle.
 _MAX_ROUNDS = 8
-
-
-def _words(err: BaseException) -> str:
-    """An exception's message, as the sentence it was raised with (a :class:`flyopt.said.Said` keeps its
-    quantities, which ``str(err)`` would drop)."""
-    words = str(err)
-    said_as = err.args[0] if len(err.args) == 1 else None
-    return said_as if isinstance(said_as, str) and said_as == words else words
 
 
 class NoWheel(Exception):
@@ -312,7 +304,7 @@ def screen(combo: Combination, spec: DesignSpec, bore: float) -> None:
                     ": no DIN 6885-1 key on the {bore} seat carries it: ",
                     bore=(bore, "length", f"{bore * 1e3:.4g} mm"),
                 )
-                + _words(err)
+                + said_by(err)
             ) from err
 
 
@@ -911,7 +903,7 @@ def structure_fields(
                     material, geometry_name, dims, omega, torque, spec.safety_factor, stress_factors
                 )
         except ValueError as err:
-            notes.append("stresses not computed: " + _words(err))
+            notes.append("stresses not computed: " + said_by(err))
     found: dict[str, Any] = {}
     if checked is not None:
         found = dict(
@@ -939,7 +931,7 @@ def structure_fields(
             sized = key.key_for_shaft(bore)
             length = key.key_length_for_hub(sized, float(hub_length), bore)
         except ValueError as err:
-            notes.append("no key: " + _words(err))
+            notes.append("no key: " + said_by(err))
         else:
             notes.append(f"{why}: the key is sized by the seat (DIN 6885-1) and the hub, and not checked")
             key_check = {
@@ -961,7 +953,7 @@ def structure_fields(
         try:
             k = key.check_key(torque, bore, float(hub_length), pressure)
         except ValueError as err:
-            notes.append("key not checked: " + _words(err))
+            notes.append("key not checked: " + said_by(err))
         else:
             if pressure is None:  # the key's shear by the key steel's S_sy; the hub's pressure has no allowable
                 notes.append(

@@ -184,7 +184,7 @@ def said_text(text: str, system: str = DEFAULT, digits: int = DEFAULT_DIGITS) ->
     plain string as it is."""
     from flyopt.said import Said
 
-    if not isinstance(text, Said):
+    if not isinstance(text, Said) or not hasattr(text, "template"):  # (a Said made without flyopt.said.said)
         return str(text)
     return text.template.format(
         **{name: quantity_text(value, dimension, system, digits) for name, (value, dimension, _) in text.values.items()}

@@ -909,7 +909,7 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: 
         lines += ["", "Sensitivities of the mass:"]
         lines += [f"  - {sensitivity_text(s, units, digits)}" for s in c.limits.sensitivities]
     if c.provenance.notes:
-        lines += ["", "Notes:"] + [f"  - {n}" for n in c.provenance.notes]
+        lines += ["", "Notes:"] + [f"  - {said_text(n, units, digits)}" for n in c.provenance.notes]
     return lines
 
 

@@ -104,23 +104,48 @@ class ShaftLimit:
         return self.utilisation <= 1.0
 
     def describe(self) -> str:
-        """The limit in words and numbers, e.g. ``"fatigue at the keyseat (x = 300 mm): n 1.21 < 1.5"``."""
+        """The limit in words and numbers, e.g. ``"fatigue at the keyseat (x = 300 mm): n 1.21 < 1.5"``, its
+        quantities kept for the reader's units (:mod:`flyopt.said`)."""
         if self.kind in ("lateral", "torsional"):
             state = "clear of" if self.holds else "inside"
             return (
-                f"{self.kind} critical speed ({self.where}) {_fmt(self.value)} rpm {state} the running range "
-                f"widened to {_fmt(self.allowed)} rpm"
+                f"{self.kind} critical speed ("
+                + self.where
+                + said(
+                    f") {{value}} {state} the running range widened to {{allowed}}",
+                    value=(self.value * math.pi / 30.0, "angular_speed", f"{_fmt(self.value)} rpm"),
+                    allowed=(self.allowed * math.pi / 30.0, "angular_speed", f"{_fmt(self.allowed)} rpm"),
+                )
             )
         relation = "<=" if self.holds else ">"
         if self.kind == "key":
             return (
-                f"key {self.where}: {_fmt(self.value / 1e6)} {relation} {_fmt(self.allowed / 1e6)} MPa at the "
-                f"train's peak torque on the wheel {_fmt(self.torque)} N·m"
+                "key "
+                + self.where
+                + said(
+                    f": {{value}} {relation} {{allowed}} at the train's peak torque on the wheel {{torque}}",
+                    value=(self.value, "stress", _fmt(self.value / 1e6)),
+                    allowed=(self.allowed, "stress", f"{_fmt(self.allowed / 1e6)} MPa"),
+                    torque=(float(self.torque), "torque", f"{_fmt(float(self.torque))} N·m"),
+                )
             )
         name = {"fatigue": "fatigue factor of safety", "yield": "first-cycle yield factor"}.get(self.kind, self.kind)
         if self.kind in ("fatigue", "yield"):
             relation = ">=" if self.holds else "<"
-        return f"{name} {self.where}: {_fmt(self.value)} {relation} {_fmt(self.allowed)} {self.unit}".rstrip()
+        dimension = {"rad": "angle", "m": "length"}.get(self.unit)
+        if dimension is None:  # a factor of safety: no unit
+            return (
+                f"{name} " + self.where + f": {_fmt(self.value)} {relation} {_fmt(self.allowed)} {self.unit}".rstrip()
+            )
+        return (
+            f"{name} "
+            + self.where
+            + said(
+                f": {{value}} {relation} {{allowed}}",
+                value=(self.value, dimension, _fmt(self.value)),
+                allowed=(self.allowed, dimension, f"{_fmt(self.allowed)} {self.unit}"),
+            )
+        )
 
     def to_dict(self) -> dict[str, Any]:
         """The limit for ``--json`` (SI): its value and the allowed one under the names of its quantity

@@ -33,6 +33,7 @@ from flyopt.design.shaft.train import key_torque, shaft_train
 from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.torsion import TorqueOrders
 from flyopt.machine.transmission import inertia_on_shaft
+from flyopt.said import join, said
 from flyopt.units import rad_s_to_rpm
 
 if TYPE_CHECKING:
@@ -430,10 +431,12 @@ def reject_reason(candidate: Candidate, check: ShaftCheck, names: Mapping[str, s
     if not failed:
         return None
     material = (names or {}).get(candidate.material, candidate.material)
-    what = "; ".join(lim.describe() for lim in failed)
+    what = join("; ", [lim.describe() for lim in failed])
+    mass = cast(float, candidate.mass)  # a designed candidate's: the check ran on its wheel
     return (
         f"{combination_label(material, candidate.shaft, candidate.n_arms)}: {REFUSED} "
-        f"{candidate.mass:.4g} kg wheel: {what}"
+        + said("{mass} wheel: ", mass=(mass, "mass", f"{mass:.4g} kg"))
+        + what
     )
 
 

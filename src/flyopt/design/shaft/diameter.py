@@ -40,7 +40,7 @@ from flyopt.design.shaft import strength
 from flyopt.design.shaft.check import CRITERION, notch_factors
 from flyopt.design.shaft.cycle import ShaftContext, acceptor, keyed_shafts, rekeyed, torque_curve
 from flyopt.names import Geometry
-from flyopt.said import Said, join, quantities, said, template
+from flyopt.said import Said, join, quantities, said, said_by, template
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -54,14 +54,6 @@ __all__ = ["SeatFloor", "seat_series", "seat_floor", "designs_seats", "design_wi
 def _mm(d: float, digits: str = "g") -> tuple[float, str, str]:
     """A seat diameter [m] as a sentence's quantity, written in mm as the walk always wrote it."""
     return (d, "length", f"{d * 1e3:{digits}} mm")
-
-
-def _words(err: BaseException) -> str:
-    """An exception's message, as the sentence it was raised with (a :class:`flyopt.said.Said` keeps its
-    quantities, which ``str(err)`` would drop)."""
-    words = str(err)
-    said_as = err.args[0] if len(err.args) == 1 else None
-    return said_as if isinstance(said_as, str) and said_as == words else words
 
 
 def _after(text: str, head: str) -> str:
@@ -132,7 +124,7 @@ def seat_floor(ctx: ShaftContext, name: str, j_shaft: float) -> SeatFloor:
             se = strength.endurance_limit(sut, d, layout.finish).se
             kf, kfs = notch_factors("keyseat", d, None, sut)
         except ValueError as err:  # beyond the material's table or Neuber's range: the series ends here
-            cap = said("above {d}: ", d=_mm(supported)) + _words(err) if supported else _words(err)
+            cap = said("above {d}: ", d=_mm(supported)) + said_by(err) if supported else said_by(err)
             return SeatFloor(ta, first, bound, tuple(seats), cap)
         supported = d
         if math.isnan(first):
@@ -268,7 +260,7 @@ def design_with_seats(
                 if again is not None:
                     last = design_flywheel(j_required, omega, again, mats, at, accept=accept, **options)
             except ValueError as err:  # beyond a table the checks read: the series ends here
-                floor = dataclasses.replace(floor, cap=said("at {d}: ", d=_mm(d)) + _words(err))
+                floor = dataclasses.replace(floor, cap=said("at {d}: ", d=_mm(d)) + said_by(err))
                 break
             tried.append(d)
             for c in last.candidates:

@@ -101,7 +101,7 @@ class SeatRow:
     @property
     def name(self) -> str:
         """The row in words, e.g. ``"fatigue at the keyseat at the wheel seat"``."""
-        return f"{self.kind} {self.where}"
+        return f"{self.kind} " + self.where
 
 
 @dataclass(frozen=True)

@@ -139,7 +139,13 @@ class DesignSection(BuilderBase):
             )
         if best.provenance.notes:
             blocks.append(
-                Table(("note",), tuple([n] for n in best.provenance.notes), ("<",), "Notes of the design", "notes")
+                Table(
+                    ("note",),
+                    tuple([display.said_text(n, self.units, self.digits)] for n in best.provenance.notes),
+                    ("<",),
+                    "Notes of the design",
+                    "notes",
+                )
             )
 
     def geometry_steps(self, blocks: list[Any], c: Design, material: Material | None) -> None:

@@ -107,7 +107,7 @@ def plot_shaft(
         own,
         f"The {shaft_label(report.shaft)} with the chosen wheel: moments and torque along it "
         "(dots: the sections checked; labelled: the notched ones)",
-        f"binding: {binding.kind} {binding.where}, utilisation {display.number(binding.utilisation, display.UTILISATION_DIGITS)}",
+        f"binding: {binding.kind} {display.said_text(binding.where, units, digits)}, utilisation {display.number(binding.utilisation, display.UTILISATION_DIGITS)}",
     )
     handles = ax.get_legend_handles_labels()[0] + right.get_legend_handles_labels()[0]
     standard.legend(ax, own, handles=handles)
