@@ -187,7 +187,14 @@ def test_blocks_only_where_the_design_has_the_data(scene, capsys):
     else:
         assert "Sensitivities" not in text
     if design["notes"]:
-        assert _block(text, "Notes:") == [f"  - {n}" for n in design["notes"]]
+        shown = _block(text, "Notes:")
+        assert len(shown) == len(design["notes"])
+        for line, note in zip(shown, design["notes"]):
+            # the note in the text's units (flyopt.said): the JSON's words up to its first number
+            assert line.startswith(f"  - {re.split(r'[0-9]', note, maxsplit=1)[0]}"), (line, note)
+            metres = re.search(r"hub length ([0-9.]+) m ", note)
+            if metres:  # a too short hub: the JSON's metres in the engineering text's mm
+                assert f"hub length {float(metres[1]) * 1e3:.4g} mm is shorter" in line, line
     else:
         assert "Notes:" not in text
     assert "Parts of the wheel" in text and "Stress check" in text
