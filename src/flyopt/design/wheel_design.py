@@ -25,7 +25,7 @@ import contextlib
 import contextvars
 import dataclasses
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from flyopt.design import balance, castability, check, geometry, hub, key, strength, wheel
@@ -724,34 +724,22 @@ def _settle(model, problem, combo, material, geo, spec, torque, parts, used, tab
 
 def _inferred_reason(label: str, geo: str, problem: WheelProblem, proof: WheelProblem) -> str:
     """Why an NLP has no wheel, shown by an infeasible one whose limits are all as loose or looser."""
-    looser = [
-        said(
-            "D <= {theirs} (here {mine})",
-            theirs=(proof.envelope, "length", f"{proof.envelope:.4g} m"),
-            mine=(problem.envelope, "length", f"{problem.envelope:.4g} m"),
+
+    def looser_than(words: str, theirs: float, mine: float, dimension: str, written: Callable[[float], str]) -> str:
+        return words + said(
+            " {theirs} (here {mine})",
+            theirs=(theirs, dimension, written(theirs)),
+            mine=(mine, dimension, written(mine)),
         )
-    ]
+
+    looser = [looser_than("D <=", proof.envelope, problem.envelope, "length", lambda v: f"{v:.4g} m")]
     for part in sorted(problem.allowable):
         theirs, mine = proof.allowable.get(part, math.inf), problem.allowable[part]
         if math.isfinite(mine):
-            looser.append(
-                part
-                + said(
-                    " allowable {theirs} (here {mine})",
-                    theirs=(theirs, "stress", f"{theirs / 1e6:.4g} MPa"),
-                    mine=(mine, "stress", f"{mine / 1e6:.4g} MPa"),
-                )
-            )
+            looser.append(looser_than(f"{part} allowable", theirs, mine, "stress", lambda v: f"{v / 1e6:.4g} MPa"))
     for name, cap in sorted((problem.caps or {}).items()):
         bound = (proof.caps or {}).get(name, math.inf)
-        looser.append(
-            name
-            + said(
-                " <= {theirs} (here {mine})",
-                theirs=(bound, "length", f"{bound * 1e3:.4g} mm"),
-                mine=(cap, "length", f"{cap * 1e3:.4g} mm"),
-            )
-        )
+        looser.append(looser_than(f"{name} <=", bound, cap, "length", lambda v: f"{v * 1e3:.4g} mm"))
     return (
         label
         + f": IPOPT found no {geo.replace('_', ' ')} within every limit at "
