@@ -34,7 +34,7 @@ from typing import Any, cast
 from flyopt.design import check, closed_form, geometry, rank, wheel, wheel_design
 from flyopt.design.combination import Combination, combination_label, shaft_label
 from flyopt.design.materials import Material
-from flyopt.design.result import Candidate, Design, DesignResult, Dimensions, Limits, Provenance
+from flyopt.design.result import Candidate, Design, DesignResult, Dimensions, Limits, Provenance, infeasible_message
 from flyopt.design.spec import DesignSpec, MountShaft
 from flyopt.design.wheel_design import bore_of
 from flyopt.errors import SolverFailed
@@ -1007,7 +1007,7 @@ def _result(
     names = dict(material_names or {})
     if best is None:
         status = "infeasible"
-        message = "no material and shaft can give the required inertia: " + join("; ", (c.reason for c in infeasible))
+        message = infeasible_message(infeasible)
     else:
         status = "designed"
         message = (

@@ -15,12 +15,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from flyopt.design.spec import DesignSpec, MountShaft
 from flyopt.design.wheel import ARM_MINOR_RATIO, Dims
+from flyopt.said import join
 from flyopt.views import view
 
 if TYPE_CHECKING:
@@ -42,7 +43,19 @@ __all__ = [
     "DESIGN_FIELDS",
     "TIMING_FIELDS",
     "CHECKED_FIELDS",
+    "NO_DESIGN",
+    "infeasible_message",
 ]
+
+#: What a design says when no combination gives the required flywheel (the message's head, the text's line).
+NO_DESIGN = "no material and shaft can give the required inertia"
+
+
+def infeasible_message(infeasible: Iterable[Candidate]) -> str:
+    """The message of a design no combination can give: :data:`NO_DESIGN`, then each combination's reason (their
+    quantities kept for the reader's units, :mod:`flyopt.said`)."""
+    return NO_DESIGN + ": " + join("; ", (c.reason for c in infeasible))
+
 
 #: Fields that hold wall-clock times, left out of ``to_dict`` unless ``timings=True``.
 TIMING_FIELDS = ("solve_time",)

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 from flyopt.design.check import binding_label
 from flyopt.design.combination import shaft_label, wheel_words
 from flyopt.design.key import key_verdict
-from flyopt.design.result import Design
+from flyopt.design.result import NO_DESIGN, Design
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
 from flyopt.report.characters import visible
@@ -627,7 +627,7 @@ def design_report(
         lines.append(f"  no rounded design: {result.rounding}")
         lines += rounding_report(result, units, digits)
     else:
-        lines.append("  no feasible design: no material and shaft can give the required inertia")
+        lines.append(f"  no feasible design: {NO_DESIGN}")
     rows = []
     for k, c in enumerate(result.candidates, 1):
         if isinstance(c, Design):

@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from flyopt.design import key, preferred, rank
+from flyopt.design.result import infeasible_message
 from flyopt.design.shaft import strength
 from flyopt.design.shaft.check import CRITERION, notch_factors
 from flyopt.design.shaft.cycle import ShaftContext, acceptor, keyed_shafts, rekeyed, torque_curve
@@ -427,7 +428,7 @@ def _merged(
     designs = rank.ranking(list(found.values()))
     infeasible = [failed[k] for k in order if k in failed] + [c for k, c in failed.items() if k not in order]
     if not designs:
-        message = "no material and shaft can give the required inertia: " + join("; ", (c.reason for c in infeasible))
+        message = infeasible_message(infeasible)
         if last is None:  # no seat passed the floor: nothing was designed
             from flyopt.design.result import DesignResult
 
