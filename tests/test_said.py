@@ -90,3 +90,13 @@ def test_an_fstring_gives_the_plain_sentence():
 def test_a_placeholder_without_its_quantity_is_refused(words, given):
     with pytest.raises(ValueError, match="said"):
         said(words, **given)
+
+
+def test_a_label_taken_off_keeps_the_quantities():
+    """The seat walk quotes a refused combination's reason without its label ("gjs keyed on the shaft: ...")."""
+    from flyopt.said import removeprefix
+
+    text = removeprefix("gjs {keyed}: " + _envelope(), "gjs {keyed}: ")
+    assert isinstance(text, Said) and text == str(_envelope())
+    assert said_text(text, "imperial", 4).startswith(f"caps the outer diameter at {1.2 / INCH:.2f} in")
+    assert removeprefix("plain: words", "plain: ") == "words"

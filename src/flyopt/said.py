@@ -19,7 +19,7 @@ import string
 from collections.abc import Iterable, Mapping
 from typing import Any
 
-__all__ = ["Said", "said", "join", "quantities", "said_by", "template"]
+__all__ = ["Said", "said", "join", "removeprefix", "said_by", "template", "quantities"]
 
 #: One quantity of a sentence: (value in SI, dimension as flyopt.report.display names it, the text as written).
 Quantity = tuple[float, str, str]
@@ -81,6 +81,14 @@ def join(separator: str, parts: Iterable[str]) -> str:
             spaced.append(separator)
         spaced.append(part)
     return _joined(spaced)
+
+
+def removeprefix(text: str, head: str) -> str:
+    """``text.removeprefix(head)``, a :class:`Said` kept with its quantities where ``head`` holds none (a
+    combination's label and its colon)."""
+    if isinstance(text, Said) and text.template.startswith(template(head)):
+        return said(text.template[len(template(head)) :], **text.values)
+    return text.removeprefix(head)
 
 
 def said_by(err: BaseException) -> str:

@@ -41,7 +41,7 @@ from flyopt.design.shaft import strength
 from flyopt.design.shaft.check import CRITERION, notch_factors
 from flyopt.design.shaft.cycle import ShaftContext, acceptor, keyed_shafts, rekeyed, torque_curve
 from flyopt.names import Geometry
-from flyopt.said import Said, join, quantities, said, said_by, template
+from flyopt.said import join, removeprefix, said, said_by
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -55,14 +55,6 @@ __all__ = ["SeatFloor", "seat_series", "seat_floor", "designs_seats", "design_wi
 def _mm(d: float, digits: str = "g") -> tuple[float, str, str]:
     """A seat diameter [m] as a sentence's quantity, written in mm as the walk always wrote it."""
     return (d, "length", f"{d * 1e3:{digits}} mm")
-
-
-def _after(text: str, head: str) -> str:
-    """``text`` without its beginning ``head`` (which it starts with), its quantities kept: ``head`` holds none
-    (a combination's label and its colon)."""
-    if isinstance(text, Said) and text.template.startswith(template(head)):
-        return said(text.template[len(template(head)) :], **quantities(text))
-    return text[len(head) :]
 
 
 @functools.lru_cache(maxsize=8)
@@ -344,7 +336,7 @@ def _settled(ctx, name, candidate, refused) -> None:
     optimum = choice.optimum
     if refused is not None and refused.mass is None:  # no wheel was designed on the seat below
         label, _, why = (refused.reason or "").partition(": ")  # the reason names its combination first
-        words = _after(refused.reason, label + ": ") if why and " on the " in label else refused.reason
+        words = removeprefix(refused.reason, label + ": ") if why and " on the " in label else refused.reason
         set_by = said("the design, which found no wheel on {d}: ", d=_mm(refused.bore)) + words
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
     elif refused is not None:
@@ -354,7 +346,7 @@ def _settled(ctx, name, candidate, refused) -> None:
         set_by = said("the post-check, which refused {d}: ", d=_mm(refused.bore)) + words
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=False)
     elif optimum is not None and optimum.binding is not None:
-        set_by = f"{optimum.binding.name}, a row of the NLP"
+        set_by = optimum.binding.name + ", a row of the NLP"
         ctx.seats[key] = dataclasses.replace(choice, diameter=candidate.bore, set_by=set_by, by_nlp=True)
     else:
         set_by = "the torque-only DE-Goodman bound at the keyseat (Shigley Eq. (7-8)), where the walk starts"
