@@ -15,6 +15,7 @@ This module imports nothing from flyopt, so every stage may use it.
 
 from __future__ import annotations
 
+import functools
 import string
 from collections.abc import Iterable, Mapping
 from typing import Any
@@ -62,11 +63,17 @@ def said(words: str, **quantities: Quantity) -> Said:
         ``str`` of it is ``words`` filled with the texts as written.
     """
     named = _names(words)
-    if named != set(quantities):
+    if named != quantities.keys():
         raise ValueError(f"said: the placeholders {sorted(named)} and the quantities {sorted(quantities)} differ")
-    out = Said(words.format(**{k: q[2] for k, q in quantities.items()}))
+    values = {k: (float(q[0]), str(q[1]), str(q[2])) for k, q in quantities.items()}
+    return _made(words.format(**{k: q[2] for k, q in values.items()}), words, values)
+
+
+def _made(text: str, words: str, values: Mapping[str, Quantity]) -> Said:
+    """The Said of ``text`` (``words`` filled with ``values``' texts as written: the caller's word for it)."""
+    out = Said(text)
     out.template = words
-    out.values = {k: (float(q[0]), str(q[1]), str(q[2])) for k, q in quantities.items()}
+    out.values = values
     return out
 
 
@@ -113,7 +120,8 @@ def _escaped(words: str) -> str:
     return words.replace("{", "{{").replace("}", "}}")
 
 
-def _names(words: str) -> set[str]:
+@functools.lru_cache(maxsize=1024)  # a template is most often a constant of its module: read once
+def _names(words: str) -> frozenset[str]:
     """The placeholders of a template (a format spec or conversion is refused: the reader's units format it)."""
     found = set()
     for _, name, spec, conversion in string.Formatter().parse(words):
@@ -122,16 +130,23 @@ def _names(words: str) -> set[str]:
         if not name.isidentifier() or spec or conversion:
             raise ValueError(f"said: the placeholder {{{name}}} must be a bare name, without a format")
         found.add(name)
-    return found
+    return frozenset(found)
 
 
 def _joined(parts: Iterable[str]) -> Said:
-    """The parts as one sentence, a placeholder renamed where an earlier part holds the same name."""
+    """The parts as one sentence, a placeholder renamed where an earlier part holds the same name (the string
+    is the parts' strings end to end: nothing is formatted again)."""
+    text: list[str] = []
     words: list[str] = []
     values: dict[str, Quantity] = {}
     for part in parts:
+        text.append(part)
         if not isinstance(part, Said):
             words.append(_escaped(part))
+            continue
+        if values.keys().isdisjoint(part.values):
+            words.append(part.template)
+            values.update(part.values)
             continue
         renamed: dict[str, str] = {}
         for name, quantity in part.values.items():
@@ -147,4 +162,4 @@ def _joined(parts: Iterable[str]) -> Said:
                 for literal, name, _, _ in string.Formatter().parse(part.template)
             )
         )
-    return said("".join(words), **values)
+    return _made("".join(text), "".join(words), values)
