@@ -154,6 +154,10 @@ def test_one_size_smaller_breaks_a_limit_in_the_simulation(designed):
     check = drive.verify_drive(scene, trial, j_flywheel=best.wheel.j_at_reference)
     assert check.flagged
     assert any("delta" in n or "thermal" in n for n in check.notes)
+    from flyopt.report.drive import check_verdict
+
+    verdict = check_verdict(check, "imperial", 4)  # its notes in the reader's units (the RMS torque in lbf·ft)
+    assert verdict.startswith("FLAGGED: ") and "N·m" not in verdict and "rad/s" not in verdict, verdict
     # and the chosen drive, simulated with its wheel as built, keeps every limit
     ok = drive.verify_drive(scene, best)
     assert not ok.flagged, ok.notes

@@ -796,6 +796,72 @@ def test_the_drive_torques_take_their_prefix(solutions):
     assert "rated torque 36.23 N·m" in text and "RMS torque 30.5 of 36.23 N·m" in text, text
 
 
+@pytest.fixture(scope="module")
+def refused_drive(tmp_path_factory):
+    """press-drive with a start-up of 1 ms allowed: every motor size refused, by each of the reasons a size
+    can have (too weak for the mean torque, a start-up too long), solved once (2 s)."""
+    text = (PROBLEMS / "press-drive.toml").read_text(encoding="utf-8")
+    changed = re.sub(r"(?m)^max_startup = .*$", "max_startup = 0.001", text)
+    assert changed != text
+    path = tmp_path_factory.mktemp("drive") / "press-drive-1ms.toml"
+    path.write_text(changed, encoding="utf-8")
+    scene = flyopt.load(path)
+    return scene, flyopt.solve(scene)
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+def test_a_refused_motors_reasons_are_in_the_readers_units(system, refused_drive):
+    """Was: under --units imperial each refused motor's verdict and the drive's INFEASIBLE line said "its mean
+    torque 28.2 N·m exceeds its rated torque 5.069 N·m" among lbf·ft and hp. Each torque and time of a reason,
+    read back in SI, is the motor's own (rated torque P/ω of the catalogue; the mean load torque of the analysis
+    over the motor ratio; the run-up time), in the text and in the report's table."""
+    from flyopt.analysis import analyse
+    from flyopt.report.builder import ReportInputs, build
+    from flyopt.report.document import Table
+    from flyopt.report.drive import drive_report
+
+    scene, solution = refused_drive
+    drive = solution.drive
+    assert drive.status == "infeasible" and not any(run.feasible for run in drive.runs)
+    load = analyse(scene).driving_torque
+    text = "\n".join(drive_report(drive, None, units=system))
+    names = [run.motor.name for run in drive.runs] + [m.name for m in scene.drive.motors if m.name]
+    assert unlabelled_numbers(text, system, names=names) == []
+    infeasible = next(line for line in text.splitlines() if line.startswith("  INFEASIBLE: "))
+    document = build(ReportInputs("", "", (), scene, solution), system, figures=False)
+    runs_table = next(
+        b for section in document.sections for b in section.blocks if isinstance(b, Table) and b.name == "drive_runs"
+    )
+    _, rows = table(text, "Every motor size solved")
+    said = {"text": {row[0]: row[-1] for row in rows}, "report": {row[0]: row[-1] for row in runs_table.rows}}
+    kinds = set()
+    for where, verdicts in said.items():
+        for run in drive.runs:
+            verdict = verdicts[run.motor.name]
+            mean = re.fullmatch(
+                r"thermal: its mean torque (.+?) exceeds its rated torque (.+?)"
+                r"( whatever the flywheel|, and its RMS torque stays above that for any flywheel)",
+                verdict,
+            )
+            late = re.fullmatch(r"start-up: (.+?) from rest, over max_startup (.+)", verdict)
+            assert mean or late, (where, verdict)
+            if mean:
+                kinds.add("thermal")
+                rated = run.motor.rated_power / run.motor.rated_speed
+                assert close(quantity(mean.group(2), "torque", system), rated, "torque", system), (where, verdict)
+                if mean.group(3) == " whatever the flywheel":  # refused before any cycle: the work balance's torque
+                    given = load / (run.motor_ratio * scene.efficiency)
+                    assert close(quantity(mean.group(1), "torque", system), given, "torque", system), (where, verdict)
+                else:  # refused by its periodic run: the motor torque's mean over time, above the rated one
+                    assert quantity(mean.group(1), "torque", system) > expected(rated, "torque", system)
+            else:
+                kinds.add("start-up")
+                assert close(quantity(late.group(1), "time", system), run.startup_time, "time", system)
+                assert close(quantity(late.group(2), "time", system), 0.001, "time", system)
+            assert f"{run.motor.name}: {verdict}" in infeasible  # the INFEASIBLE line, in the same words
+    assert kinds == {"thermal", "start-up"}
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("system", ["imperial"])
 def test_press_drive_end_to_end(system, main_cli):

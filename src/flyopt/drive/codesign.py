@@ -50,6 +50,7 @@ from flyopt.analysis import StartupRun, flywheel_torque, startup_run
 from flyopt.errors import SceneError, SolverFailed
 from flyopt.machine.reduce import Machine, reduce
 from flyopt.names import Criterion, Geometry, Objective
+from flyopt.said import join, said, said_by
 
 if TYPE_CHECKING:
     from typing import Unpack  # Python 3.11; the annotations are never evaluated
@@ -364,14 +365,20 @@ def evaluate_motor(
     if ratio is None:
         return run(
             False,
-            f"too small: its torque on the crank cannot reach the mean load {load_torque:.4g} N·m "
-            f"at {omega:.4g} rad/s on the stable branch",
+            said(
+                "too small: its torque on the crank cannot reach the mean load {load} at {omega} on the stable branch",
+                load=_torque(load_torque),
+                omega=_speed(omega),
+            ),
         )
     if spec.thermal and load_torque / (ratio * scene.efficiency) > rated * (1 + 1e-12):
         return run(
             False,
-            f"thermal: its mean torque {load_torque / (ratio * scene.efficiency):.4g} N·m exceeds "
-            f"its rated torque {rated:.4g} N·m whatever the flywheel",
+            said(
+                "thermal: its mean torque {mean} exceeds its rated torque {rated} whatever the flywheel",
+                mean=_torque(load_torque / (ratio * scene.efficiency)),
+                rated=_torque(rated),
+            ),
             motor_ratio=ratio,
         )
     found = None
@@ -382,11 +389,11 @@ def evaluate_motor(
         try:
             found = _settle_compiled(drive_model, motor, ratio, spec.thermal, {} if start is None else start)
         except Unreachable as err:
-            return run(False, str(err), motor_ratio=ratio)
+            return run(False, said_by(err), motor_ratio=ratio)
         except NotSettled:
             found = None  # the CVODES search below handles every case
         except _Unsettled as err:
-            return run(False, str(err), motor_ratio=err.ratio, j_delta=err.j_delta)
+            return run(False, said_by(err), motor_ratio=err.ratio, j_delta=err.j_delta)
     if found is not None:
         steady, j_delta = found
         ratio, j_need = steady.ratio, steady.j_flywheel
@@ -397,7 +404,7 @@ def evaluate_motor(
         try:
             ratio, machine, solution, j_delta = _settle(scene, motor, ratio, spec.thermal)
         except _Unsettled as err:
-            return run(False, str(err), motor_ratio=err.ratio, j_delta=err.j_delta)
+            return run(False, said_by(err), motor_ratio=err.ratio, j_delta=err.j_delta)
         except (SolverFailed, SceneError) as err:
             return run(False, f"no steady running: {err}", motor_ratio=ratio)
         j_need = solution.j_flywheel
@@ -409,8 +416,11 @@ def evaluate_motor(
     if omega_min_motor < motor.motor().breakdown_speed:
         return run(
             False,
-            f"breakdown: the motor slows to {omega_min_motor:.4g} rad/s in the cycle, past its "
-            f"breakdown speed {motor.motor().breakdown_speed:.4g} rad/s",
+            said(
+                "breakdown: the motor slows to {slowest} in the cycle, past its breakdown speed {breakdown}",
+                slowest=_speed(omega_min_motor),
+                breakdown=_speed(motor.motor().breakdown_speed),
+            ),
             motor_ratio=ratio,
             j_delta=j_delta,
         )
@@ -431,7 +441,13 @@ def evaluate_motor(
             return run(False, f"start-up: {startup.note}", **facts)
         if startup.time > spec.max_startup:
             return run(
-                False, f"start-up: {startup.time:.4g} s from rest, over max_startup {spec.max_startup:.4g} s", **facts
+                False,
+                said(
+                    "start-up: {time} from rest, over max_startup {allowed}",
+                    time=_time(startup.time),
+                    allowed=_time(spec.max_startup),
+                ),
+                **facts,
             )
     torque = flywheel_torque(machine, j_need) if j_need > 0 else None
     shaft_ctx = _shaft_context(scene, machine, omega_mean)
@@ -580,7 +596,10 @@ def _settle(scene, motor, ratio, thermal):
             j = _thermal_flywheel(machine, motor, ratio, scene.omega_mean, j, rated)
             if j is None:
                 raise _Unsettled(
-                    f"thermal: its RMS torque stays above its rated torque {rated:.4g} N·m for any flywheel",
+                    said(
+                        "thermal: its RMS torque stays above its rated torque {rated} for any flywheel",
+                        rated=_torque(rated),
+                    ),
                     ratio,
                     j_delta,
                 )
@@ -787,7 +806,7 @@ def _shaft_refusal(result: DesignResult) -> str:
     reasons = [c.reason for c in result.candidates if not c.feasible and REFUSED in c.reason]
     if not reasons:
         return ""
-    return f"at ratio {result.candidates[0].speed_ratio:.4g}: " + "; ".join(reasons)
+    return f"at ratio {result.candidates[0].speed_ratio:.4g}: " + join("; ", reasons)
 
 
 def _designer(j_need, omega_max, materials, spec, torque, solver_options, seat, accept_at=None, keyed=None):
@@ -964,7 +983,7 @@ def design_drive(
             None,
             runs,
             "no motor size of the catalogue drives the machine within the limits: "
-            + "; ".join(f"{_name(r.motor)}: {r.reason}" for r in runs if not r.feasible)[:2000],
+            + _at_most(join("; ", [f"{_name(r.motor)}: " + r.reason for r in runs if not r.feasible]), 2000),
             relaxation=relaxation,
             note=note,
         )
@@ -1105,6 +1124,31 @@ def _name(motor):
     return getattr(motor, "name", None) or f"{motor.rated_power / 1000:g} kW"
 
 
+# A motor's reasons keep their quantities (flyopt.said): written in SI at four figures, as the JSON has always
+# carried them, and shown in the reader's units by the text and the report.
+
+
+def _torque(value: float) -> tuple[float, str, str]:
+    return (value, "torque", f"{value:.4g} N·m")
+
+
+def _speed(value: float) -> tuple[float, str, str]:
+    return (value, "angular_speed", f"{value:.4g} rad/s")
+
+
+def _time(value: float) -> tuple[float, str, str]:
+    return (value, "time", f"{value:.4g} s")
+
+
+def _ratio(value: float) -> tuple[float, str, str]:
+    return (value, "dimensionless", f"{value:.4g}")
+
+
+def _at_most(text: str, size: int) -> str:
+    """``text`` cut to ``size`` characters (its quantities lost only where it is cut)."""
+    return text if len(text) <= size else str(text)[:size]
+
+
 # -- verification ----------------------------------------------------------------
 
 
@@ -1186,12 +1230,23 @@ def verify_drive(scene: Scene, run: MotorRun, j_flywheel: float | None = None) -
     startup = _runup(machine, checked.omega_mean, j_flywheel)
     notes = []
     if checked.flagged:
-        notes.append(f"delta {checked.achieved_delta:.4g} exceeds the allowed {scene.delta:.4g}")
+        notes.append(
+            said(
+                "delta {achieved} exceeds the allowed {allowed}",
+                achieved=_ratio(checked.achieved_delta),
+                allowed=_ratio(checked.delta_allowed),
+            )
+        )
     rated = run.motor.rated_torque
     if spec.thermal and rms > rated * (1 + 1e-6):
-        notes.append(f"RMS torque {rms:.4g} N·m exceeds the rated {rated:.4g} N·m (thermal)")
+        notes.append(
+            said("RMS torque {rms} exceeds the rated {rated} (thermal)", rms=_torque(rms), rated=_torque(rated))
+        )
     if spec.max_startup is not None and (startup.time is None or startup.time > spec.max_startup):
-        notes.append(f"start-up {startup.note or f'{startup.time:.4g} s'} over max_startup {spec.max_startup:.4g} s")
+        taken = (
+            said("{time}", time=_time(startup.time)) if startup.time is not None and not startup.note else startup.note
+        )
+        notes.append("start-up " + taken + said(" over max_startup {allowed}", allowed=_time(spec.max_startup)))
     return DriveCheck(
         verification=checked,
         rms_torque=rms,

@@ -44,6 +44,7 @@ import numpy as np
 from flyopt.cycle.numerics import hermite_extremes
 from flyopt.errors import BrokenInvariant
 from flyopt.machine.motor import kloss_torque
+from flyopt.said import said
 from flyopt.sizing import shooting
 from flyopt.sizing._numerics import EPS, FloatArray, evaluate
 from flyopt.sizing.shooting import NotSettled
@@ -351,8 +352,12 @@ class _Newton:
             if self.limit == "thermal" and point.mean_torque > self.rated * (1 + 1e-9):
                 # T_rms >= its mean, which a flywheel hardly moves (the work balance sets it)
                 raise Unreachable(
-                    f"thermal: its mean torque {point.mean_torque:.4g} N·m exceeds its rated torque "
-                    f"{self.rated:.4g} N·m, and its RMS torque stays above that for any flywheel"
+                    said(
+                        "thermal: its mean torque {mean} exceeds its rated torque {rated}, and its RMS torque "
+                        "stays above that for any flywheel",
+                        mean=(point.mean_torque, "torque", f"{point.mean_torque:.4g} N·m"),
+                        rated=(self.rated, "torque", f"{self.rated:.4g} N·m"),
+                    )
                 )
             r = point.residuals()
             norm = float(np.linalg.norm(r))

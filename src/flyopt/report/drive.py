@@ -9,11 +9,11 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from flyopt.report.characters import visible
-from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, field_text, heading, label, number, unit
+from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, field_text, heading, label, number, said_text, unit
 from flyopt.report.text import ACHIEVED_RANGE, formatters, table
 
 if TYPE_CHECKING:
-    from flyopt.drive.codesign import DriveCheck, DriveDesign
+    from flyopt.drive.codesign import DriveCheck, DriveDesign, MotorRun
 
 #: The step of a relaxed limit that the report gives the objective's change for, in the shown
 #: unit of the limit's dimension: a round amount in each system (the envelope +100 mm, +0.1 m
@@ -29,6 +29,17 @@ RELAXED_STEPS = (
 )
 
 
+def run_verdict(run: MotorRun, best: MotorRun | None, units: str, digits: int) -> str:
+    """A motor size's verdict in the table of sizes: "best", "ok", or why it is refused, in the reader's units
+    (its reason keeps its quantities: :mod:`flyopt.said`)."""
+    return ("best" if run is best else "ok") if run.feasible else said_text(run.reason, units, digits)
+
+
+def check_verdict(check: DriveCheck, units: str, digits: int) -> str:
+    """The verdict of the chosen drive's verification: "ok", or "FLAGGED: " and its notes in the reader's units."""
+    return "FLAGGED: " + "; ".join(said_text(n, units, digits) for n in check.notes) if check.flagged else "ok"
+
+
 def drive_report(
     drive: DriveDesign, check: DriveCheck | None = None, units: str = DEFAULT, digits: int = DEFAULT_DIGITS
 ) -> list[str]:
@@ -41,7 +52,7 @@ def drive_report(
     lines = ["", f"Drive designed with the flywheel (objective: {drive.objective}; {drive.note}):"]
     best = drive.best
     if best is None:
-        lines.append(f"  INFEASIBLE: {drive.message}")
+        lines.append(f"  INFEASIBLE: {said_text(drive.message, units, digits)}")
     else:
         m = best.motor
         lines += [
@@ -95,13 +106,13 @@ def drive_report(
                 number(run.flywheel_ratio, digits),
                 n(run.wheel_mass, "wheel_mass"),
                 n(run.total_mass, "total_mass"),
-                ("best" if run is best else "ok") if run.feasible else run.reason,
+                run_verdict(run, best, units, digits),
             ]
         )
     lines += ["", "Every motor size solved:"] + ["  " + line for line in table(head, rows, ["<"] + [">"] * 9 + ["<"])]
     if check is not None:
         v = check.verification
-        verdict = "FLAGGED: " + "; ".join(check.notes) if check.flagged else "ok"
+        verdict = check_verdict(check, units, digits)
         pair = [check.rms_torque, check.rated_torque]  # "31.22 of 36.1 N·m": one unit for the two
         lines += [
             "",

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from flyopt.report.builder.base import NOTES, BuilderBase
-from flyopt.report.display import number
+from flyopt.report.display import number, said_text
 from flyopt.report.document import Facts, Paragraph, Table
 
 
@@ -16,6 +16,8 @@ class DriveSection(BuilderBase):
         drive, check = self.solution.drive, self.solution.drive_check
         if drive is None:
             return
+        from flyopt.report.drive import check_verdict, limit_words, run_verdict
+
         blocks = self.section("The drive designed with the flywheel", "drive")
         blocks.append(
             Paragraph(
@@ -25,11 +27,9 @@ class DriveSection(BuilderBase):
         )
         best = drive.best
         if best is None:
-            blocks.append(Paragraph(f"INFEASIBLE: {drive.message}", "warning"))
+            blocks.append(Paragraph(f"INFEASIBLE: {said_text(drive.message, self.units, self.digits)}", "warning"))
         else:
             m = best.motor
-            from flyopt.report.drive import limit_words
-
             rows: list[Any] = [
                 (
                     "motor",
@@ -110,7 +110,7 @@ class DriveSection(BuilderBase):
                     number(run.flywheel_ratio, self.digits),
                     self.n(run.wheel_mass, "mass"),
                     self.n(run.total_mass, "mass"),
-                    ("best" if run is best else "ok") if run.feasible else run.reason,
+                    run_verdict(run, best, self.units, self.digits),
                 ]
             )
         blocks.append(
@@ -136,7 +136,7 @@ class DriveSection(BuilderBase):
         )
         if check is not None:
             v = check.verification
-            verdict = "FLAGGED: " + "; ".join(check.notes) if check.flagged else "ok"
+            verdict = check_verdict(check, self.units, self.digits)
             blocks.append(
                 Paragraph(
                     (
