@@ -216,6 +216,14 @@ SOLVER_OPTION = WHEEL_SOLVER
 #: The whole wheel's solver where the options do not choose one (:data:`SOLVER_OPTION`).
 DEFAULT_SOLVER = "sqpmethod"
 
+#: The most iterations qrqp spends on one QP of the SQP. Every QP of the shipped whole-wheel scenes'
+#: Pareto fronts and 40-point δ sweeps that converged took at most 29 (1158 QPs; 8-13 typically); the 48
+#: that did not were cycling on one degenerate bound ("Dropped lbz for regularity" / "Enforced lbz to reduce
+#: |du|" on the same row, turn about) until the cap, and a capped QP fails its SQP, which the solve answers
+#: from the next start or by IPOPT, as before. At CasADi's 100 such a QP cost 7-50 ms, some 9 ms of every
+#: 22 ms of a Pareto point; the cap only decides how soon a failure is admitted (benchmarks/results/wheel.md).
+QP_MAX_ITER = 40
+
 #: sqpmethod's options for the wheel NLP: exact Hessian clipped to positive definite (qrqp needs a
 #: convex QP; without it 6 of the 48 wheels failed, with it 3), the rows met to 1e-10 as IPOPT's tol.
 SQP_OPTIONS: dict[str, Any] = {
@@ -226,7 +234,7 @@ SQP_OPTIONS: dict[str, Any] = {
     "print_status": False,
     "show_eval_warnings": False,  # a NaN on a trial step is its failure, which IPOPT then answers
     "qpsol": "qrqp",
-    "qpsol_options": {"print_iter": False, "print_header": False, "error_on_fail": False, "max_iter": 100},
+    "qpsol_options": {"print_iter": False, "print_header": False, "error_on_fail": False, "max_iter": QP_MAX_ITER},
     "convexify_strategy": "eigen-clip",
     "max_iter": 100,
     "tol_pr": 1e-10,
