@@ -854,7 +854,10 @@ def write(
         "verdict, and holds the front's points to cold single designs (1e-8).",
         "- What is left in the Pareto front: the sqpmethod solves, most of their CPU the grey-iron wheel's "
         "(EN-GJL-250: 70 stress rows, 5-20 ms a solve; about one in five of its warm starts from the wider "
-        "neighbour ends in Search_Direction_Becomes_Too_Small and goes on cold). Pruning against the point's "
+        "neighbour ends in Search_Direction_Becomes_Too_Small and goes on cold: its QP cycles on one degenerate "
+        "bound, dropping and enforcing it in turn, until qrqp's cap, flyopt.design.wheel_nlp.QP_MAX_ITER, 40 "
+        "since 2026-11-30 (CasADi's default 100 made each such failure cost 7-50 ms; every converged QP of these "
+        "scenes' fronts and sweeps took at most 29 iterations). Pruning against the point's "
         "incumbent by objective_bound (m >= 4 J / D², all of the mass at the outer radius, the designer's one "
         "lower bound) cannot remove them: the three motor-shaft combinations that are designed come within 15 % "
         "of each other (the scene's own design: 28.4, 32.3 and 32.6 kg), while the bound is under half of any "
