@@ -100,3 +100,51 @@ def test_a_label_taken_off_keeps_the_quantities():
     assert isinstance(text, Said) and text == str(_envelope())
     assert said_text(text, "imperial", 4).startswith(f"caps the outer diameter at {1.2 / INCH:.2f} in")
     assert removeprefix("plain: words", "plain: ") == "words"
+
+
+def test_a_start_up_that_cannot_begin_says_its_torque_in_the_readers_units():
+    """The run-up's refusal (shown as the start-up's note by the text, the report and a drive's refused motor)
+    was "the net torque at rest there is -10 N·m" whatever the units; its torque is now read in the system's
+    (10 N·m is 7.376 lbf·ft: 10 / (0.3048 × 4.4482216152605), the international foot and pound-force)."""
+    import math
+
+    import pytest
+
+    from flyopt.errors import SolverFailed
+    from flyopt.report.display import said_text
+    from flyopt.said import said_by
+    from flyopt.sizing.startup import startup_time
+
+    with pytest.raises(SolverFailed) as caught:
+        startup_time(lambda phi, omega: -10.0 + 0 * phi, 2.0, 2 * math.pi, 150.0, 0.0)
+    note = said_by(caught.value)
+    assert str(note) == str(caught.value)  # the string as written: what the JSON carries
+    assert "-10 N·m" in note
+    assert "-7.376 lbf·ft" in said_text(note, "imperial")
+    assert f"{-10 / (0.3048 * 4.4482216152605):.4g}" == "-7.376"
+
+
+def test_an_infeasible_drive_lists_whole_reasons_with_their_quantities():
+    """The message of a drive no motor size carries lists the refused sizes' reasons up to 2000 characters:
+    it was cut there mid-word (and, cut, lost its quantities); now whole reasons, then how many more."""
+    from flyopt.drive import codesign
+    from flyopt.drive.codesign import MotorRun
+    from flyopt.machine.catalogue import CatalogueMotor
+    from flyopt.report.display import said_text
+    from flyopt.said import said
+
+    runs = []
+    for k in range(40):
+        motor = CatalogueMotor(
+            name=f"M{k}", rated_power=1000.0 + k, rated_speed=150.0, synchronous_speed=157.0, rotor_inertia=0.01,
+            breakdown_ratio=2.5, mass=20.0,
+        )  # fmt: skip
+        reason = said("thermal: its mean torque {t} exceeds its rated torque", t=(28.2, "torque", "28.2 N·m"))
+        runs.append(MotorRun(motor=motor, feasible=False, reason=reason))
+    text = codesign._refusals(runs, 2000)
+    listed = text.split("; and ")[0].split("; ")
+    assert len(text) <= 2000 + len("; and 99 more (the table of sizes gives each)")
+    assert all(part.startswith(f"M{k}: thermal") and part.endswith("rated torque") for k, part in enumerate(listed))
+    assert text.endswith(f"; and {40 - len(listed)} more (the table of sizes gives each)")
+    assert said_text(text, "imperial").count("20.8 lbf·ft") == len(listed)
+    assert codesign._refusals(runs[:3], 2000) == "; ".join(f"M{k}: " + runs[k].reason for k in range(3))

@@ -28,6 +28,7 @@ if TYPE_CHECKING:  # for the annotations only: importing them would load CasADi
     from flyopt.sizing.textbook import TextbookRequirement
 from flyopt.machine.transmission import inertia_on_shaft
 from flyopt.names import Model
+from flyopt.said import said_by
 from flyopt.units import gd2_from_inertia
 
 #: What an analysis carries beyond the sizing, each computed only when asked for (:func:`complete`): the
@@ -622,7 +623,7 @@ def startup_run(machine: Machine, omega_target: float, j_flywheel: float) -> Sta
             j_flywheel,
         )
     except (SolverFailed, ValueError) as err:
-        return StartupRun(method, None, None, omega_target, str(err))
+        return StartupRun(method, None, None, omega_target, said_by(err))  # its quantities kept (flyopt.said)
     return StartupRun(method, run.time, run.cycles, omega_target, "")
 
 

@@ -806,7 +806,7 @@ def refused_drive(tmp_path_factory):
     path = tmp_path_factory.mktemp("drive") / "press-drive-1ms.toml"
     path.write_text(changed, encoding="utf-8")
     scene = flyopt.load(path)
-    return scene, flyopt.solve(scene)
+    return scene, flyopt.solve(scene), path
 
 
 @pytest.mark.parametrize("system", SYSTEMS)
@@ -820,7 +820,7 @@ def test_a_refused_motors_reasons_are_in_the_readers_units(system, refused_drive
     from flyopt.report.document import Table
     from flyopt.report.drive import drive_report
 
-    scene, solution = refused_drive
+    scene, solution, _ = refused_drive
     drive = solution.drive
     assert drive.status == "infeasible" and not any(run.feasible for run in drive.runs)
     load = analyse(scene).driving_torque
@@ -860,6 +860,62 @@ def test_a_refused_motors_reasons_are_in_the_readers_units(system, refused_drive
                 assert close(quantity(late.group(2), "time", system), 0.001, "time", system)
             assert f"{run.motor.name}: {verdict}" in infeasible  # the INFEASIBLE line, in the same words
     assert kinds == {"thermal", "start-up"}
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+def test_an_infeasible_drives_answer_is_in_the_readers_units(system, refused_drive, main_cli, tmp_path):
+    """Was: the text's answer line ("Answer: no drive: ... its mean torque 28.2 N·m ..."), the report's summary
+    verdict (and with it the app's card) and `flyopt plot`'s refusal printed the drive's message as written, in
+    N·m under --units imperial. Each now says the INFEASIBLE line's reasons, in the same words."""
+    from flyopt.report.builder import ReportInputs, build
+    from flyopt.report.card import card_of
+    from flyopt.report.drive import drive_report
+    from flyopt.report.text import answer_report
+
+    scene, solution, path = refused_drive
+    infeasible = next(
+        line for line in drive_report(solution.drive, None, units=system) if line.startswith("  INFEASIBLE: ")
+    )
+    reasons = infeasible.removeprefix("  INFEASIBLE: ")
+    assert answer_report(solution, system)[0] == f"Answer: no drive: {reasons}"
+    verdict = card_of(build(ReportInputs("", "", (), scene, solution), system, figures=False)).verdict
+    assert verdict.startswith(f"No feasible drive: {reasons}. "), verdict
+    if system == "imperial":
+        assert "N·m" not in reasons and "lbf·ft" in reasons
+        status, _, err = main_cli("plot", path, "--what", "speed", "-o", tmp_path / "x.png", "--units", system)
+        # the one line of the refusal, cut where it is long: its start in the same words
+        assert status == 3 and reasons[:300] in err and not (tmp_path / "x.png").exists(), err
+
+
+@pytest.fixture(scope="module")
+def thin_drive_shaft(tmp_path_factory):
+    """punch-press-drive-shaft with its flywheel shaft 34 mm throughout: no motor size's wheel is carried (2 s)."""
+    text = (PROBLEMS / "punch-press-drive-shaft.toml").read_text(encoding="utf-8")
+    changed = re.sub(r'diameter = "5[05] mm"', 'diameter = "34 mm"', text)
+    assert changed.count('"34 mm"') == 3
+    path = tmp_path_factory.mktemp("drive") / "thin.toml"
+    path.write_text(changed, encoding="utf-8")
+    scene = flyopt.load(path)
+    return scene, flyopt.solve(scene)
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+def test_a_motor_refused_for_its_shaft_says_so_in_the_readers_units(system, thin_drive_shaft):
+    """Was: "shaft: at ratio 8: ... this 92.62 kg wheel ... slope at bearing A (50 mm)" among lb and in. The
+    bearing's place read back is the scene's 50 mm; the wheel's mass is written in the system's unit."""
+    from flyopt.report.drive import drive_report
+
+    scene, solution = thin_drive_shaft
+    text = "\n".join(drive_report(solution.drive, None, units=system))
+    _, rows = table(text, "Every motor size solved")
+    refused = [row[-1] for row in rows if row[-1].startswith("shaft: ")]
+    assert refused, text
+    for verdict in refused:
+        wheel = re.search(r"this (.+?) wheel", verdict).group(1)
+        quantity(wheel, "mass", system)  # a mass in the system's unit (the check fails on another unit)
+        place = re.search(r"at bearing A \((.+?)\)", verdict)
+        assert place, verdict
+        assert close(quantity(place.group(1), "length", system), 0.050, "length", system), verdict
 
 
 @pytest.mark.slow

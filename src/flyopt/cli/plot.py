@@ -181,7 +181,7 @@ def _draw(solution, what, plots, units, verify=False, digits=None):
     digits = display.DEFAULT_DIGITS if digits is None else digits
     scene, analysis = solution.scene, solution.analysis
     if solution.drive_failed:
-        raise _NoDrive(solution.drive.message)
+        raise _NoDrive(display.said_text(solution.drive.message, units, digits))
     if what in ("cross_section", "stress"):
         design = solution.design
         if solution.status == "not_needed":

@@ -219,9 +219,11 @@ DEFAULT_SOLVER = "sqpmethod"
 #: The most iterations qrqp spends on one QP of the SQP. Every QP of the shipped whole-wheel scenes'
 #: Pareto fronts and 40-point δ sweeps that converged took at most 29 (1158 QPs; 8-13 typically); the 48
 #: that did not were cycling on one degenerate bound ("Dropped lbz for regularity" / "Enforced lbz to reduce
-#: |du|" on the same row, turn about) until the cap, and a capped QP fails its SQP, which the solve answers
-#: from the next start or by IPOPT, as before. At CasADi's 100 such a QP cost 7-50 ms, some 9 ms of every
-#: 22 ms of a Pareto point; the cap only decides how soon a failure is admitted (benchmarks/results/wheel.md).
+#: |du|" on the same row, turn about) until the cap. sqpmethod takes a capped QP's step as it is and goes on
+#: (the SQP then ends in Search_Direction_Becomes_Too_Small, or converges): only its status and a KKT point
+#: (:func:`_solve_fast`) give a wheel, else the solve goes on from the next start or by IPOPT, as before. At
+#: CasADi's 100 such a QP cost 7-50 ms, some 9 ms of every 22 ms of a Pareto point
+#: (benchmarks/results/wheel.md).
 QP_MAX_ITER = 40
 
 #: sqpmethod's options for the wheel NLP: exact Hessian clipped to positive definite (qrqp needs a
@@ -599,11 +601,11 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
 
     With ``problem.warm`` (a neighbouring wheel: the last design of the same combination in a sweep),
     sqpmethod is tried from it first on the same NLP (the same bounds, parameters and stress scale, only
-    the start differs): with that wheel's multipliers where this model solved it (:func:`_warm_duals`; the
-    result must then be complementary too, :func:`_complementary`), else, or where that fails, from the
-    wheel alone; where neither converges the solve goes on exactly as without it (sqpmethod from the cold
-    start, then IPOPT). With ``problem.ipopt_first`` (the neighbour had no wheel) IPOPT
-    solves it at once. Either way only a converged status gives a wheel.
+    the start differs): with that wheel's multipliers where this model solved it (:func:`_warm_duals`), else,
+    or where that fails, from the wheel alone; where neither converges the solve goes on exactly as without
+    it (sqpmethod from the cold start, then IPOPT). With ``problem.ipopt_first`` (the neighbour had no wheel)
+    IPOPT solves it at once. Either way only a converged status gives a wheel (sqpmethod's at a KKT point:
+    :func:`_solve_fast`).
 
     Raises
     ------
@@ -631,8 +633,6 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         duals = _warm_duals(model, warm)
         if duals is not None:  # and its multipliers: the first QP starts from the neighbour's active set
             sol, stats = _solve_fast(model.fast, {**warm, **duals})
-            if sol is not None and not _complementary(_values(sol), warm):
-                sol, stats = None, {}  # sqpmethod does not test complementarity: a stale multiplier passed
         if sol is None:
             sol, stats = _solve_fast(model.fast, warm)
     if sol is None and model.fast is not None and not problem.ipopt_first:  # cold, as without a neighbour
@@ -720,13 +720,20 @@ def _clipped(wheel_dims: Mapping[str, float], names: Sequence[str], args: Mappin
 
 
 def _solve_fast(fast, args):
-    """(solution, stats) of sqpmethod where it converged (its status checked), else (None, its stats)."""
+    """(solution, stats) of sqpmethod where it converged (its status checked) to a KKT point of the NLP, else
+    (None, its stats).
+
+    sqpmethod tests feasibility and stationarity, not complementarity (:func:`_complementary`): a stale
+    multiplier passed in a warm start (a row the new problem leaves slack) makes the start look stationary,
+    and a QP stopped at qrqp's cap (:data:`QP_MAX_ITER`) is a step sqpmethod takes as it is, so a status of
+    convergence is kept only where every nonzero multiplier also sits on its bound.
+    """
     try:
         sol = fast(**args)
     except RuntimeError:
         return None, {}
     stats = fast.stats()
-    if stats.get("success") and stats.get("return_status") in CONVERGED:
+    if stats.get("success") and stats.get("return_status") in CONVERGED and _complementary(_values(sol), args):
         return sol, stats
     return None, stats
 

@@ -438,7 +438,7 @@ def evaluate_motor(
     )
     if spec.max_startup is not None:
         if startup.time is None:
-            return run(False, f"start-up: {startup.note}", **facts)
+            return run(False, "start-up: " + startup.note, **facts)
         if startup.time > spec.max_startup:
             return run(
                 False,
@@ -481,7 +481,7 @@ def evaluate_motor(
     if j_need > 0 and wheel is None:
         refused = "" if result is None else _shaft_refusal(result)
         if refused:
-            return run(False, f"shaft: {refused}", **facts, flywheel_ratio=r)
+            return run(False, "shaft: " + refused, **facts, flywheel_ratio=r)
         return run(False, "no wheel fits the design limits for the flywheel it needs", **facts)
     shaft_checks: tuple[Any, ...] = ()
     if shaft_ctx is not None and wheel is not None and r is not None:  # the report of the shaft the search checked
@@ -982,8 +982,7 @@ def design_drive(
             spec.objective,
             None,
             runs,
-            "no motor size of the catalogue drives the machine within the limits: "
-            + _at_most(join("; ", [f"{_name(r.motor)}: " + r.reason for r in runs if not r.feasible]), 2000),
+            "no motor size of the catalogue drives the machine within the limits: " + _refusals(runs, REFUSALS_SHOWN),
             relaxation=relaxation,
             note=note,
         )
@@ -1144,9 +1143,24 @@ def _ratio(value: float) -> tuple[float, str, str]:
     return (value, "dimensionless", f"{value:.4g}")
 
 
-def _at_most(text: str, size: int) -> str:
-    """``text`` cut to ``size`` characters (its quantities lost only where it is cut)."""
-    return text if len(text) <= size else str(text)[:size]
+#: The most characters of refused sizes' reasons an infeasible drive's message lists (whole reasons: the table
+#: of sizes gives every one).
+REFUSALS_SHOWN = 2000
+
+
+def _refusals(runs: Sequence[MotorRun], size: int) -> str:
+    """Each refused size's name and reason, "; "-joined, as many whole reasons as ``size`` characters hold (at
+    least one), then how many more there are; their quantities kept (:func:`flyopt.said.join`)."""
+    parts = [f"{_name(r.motor)}: " + r.reason for r in runs if not r.feasible]
+    kept = parts[:1]
+    length = sum(map(len, kept))
+    for part in parts[1:]:
+        length += 2 + len(part)
+        if length > size:
+            break
+        kept.append(part)
+    more = len(parts) - len(kept)
+    return join("; ", kept) + (f"; and {more} more (the table of sizes gives each)" if more else "")
 
 
 # -- verification ----------------------------------------------------------------

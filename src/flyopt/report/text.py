@@ -186,7 +186,7 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
     if drive is not None:  # the drive designed with the flywheel: the motor, its ratio and the wheel
         run = drive.best
         if run is None:
-            return [f"Answer: no drive: {visible(drive.message)}", WITHOUT_DRIVE, ""]
+            return [f"Answer: no drive: {visible(said_text(drive.message, units, digits))}", WITHOUT_DRIVE, ""]
         wheel = (
             f"a flywheel of {q(run.j_flywheel, 'j_flywheel')} ({q(run.wheel_mass, 'mass')})"
             if run.j_flywheel
@@ -359,7 +359,7 @@ def analysis_report(
         facts_text = (
             f"{q(st.time, 'time')} ({number(st.cycles, digits)} cycles) to {q(st.omega_target, 'omega_target')}"
             if st.time is not None
-            else f"not reached: {st.note}"
+            else f"not reached: {said_text(st.note, units, digits)}"
         )
         lines.append(f"  {'start-up':<{width}}  {facts_text}; {st.method}")
     if len(r.models) > 1 or (r.models and not r.models[0]["exact"]):

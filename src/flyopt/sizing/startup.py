@@ -18,6 +18,7 @@ import numpy as np
 
 from flyopt.cycle.numerics import hermite, hermite_extremes
 from flyopt.errors import SolverFailed
+from flyopt.said import said
 from flyopt.sizing._numerics import EDGE, EPS, InertiaLike, NetTorqueLike, check_speed_delta, quiet
 from flyopt.sizing.periodic_model import periodic_model
 
@@ -167,8 +168,12 @@ def startup_time(
         raise ValueError(f"the total inertia at phi_start must be positive, got {j0!r} kg*m^2")
     if not m0 > 0:
         raise SolverFailed(
-            f"the machine cannot start from rest at phi = {phi_start!r} rad: the net torque at rest "
-            f"there is {m0:.4g} N·m (the motor's starting torque does not exceed the load)"
+            said(
+                "the machine cannot start from rest at phi = {phi}: the net torque at rest there is {torque} (the "
+                "motor's starting torque does not exceed the load)",
+                phi=(phi_start, "angle", f"{phi_start!r} rad"),
+                torque=(m0, "torque", f"{m0:.4g} N·m"),
+            )
         )
     j_mean = float(np.mean(model.inertia(model.grid_angles()))) + j_flywheel
     e_target = 0.5 * j_mean * omega_target**2
@@ -241,10 +246,19 @@ def startup_time(
         limit = _settled_peak(peaks, omega_target)
         if limit is not None:
             raise SolverFailed(
-                f"the machine settles below the target speed {omega_target!r} rad/s during start-up: "
-                f"its peak speed converges to about {limit:.6g} rad/s"
+                said(
+                    "the machine settles below the target speed {target} during start-up: its peak speed "
+                    "converges to about {limit}",
+                    target=(omega_target, "angular_speed", f"{omega_target!r} rad/s"),
+                    limit=(limit, "angular_speed", f"{limit:.6g} rad/s"),
+                )
             )
-    raise SolverFailed(f"the target speed {omega_target!r} rad/s was not reached in {max_cycles} cycles")
+    raise SolverFailed(
+        said(
+            f"the target speed {{target}} was not reached in {max_cycles} cycles",
+            target=(omega_target, "angular_speed", f"{omega_target!r} rad/s"),
+        )
+    )
 
 
 def _piece_gap(model, a, b, energy, j_flywheel, target):

@@ -175,7 +175,7 @@ class Summary(BuilderBase):
         if self.solution.drive_failed and drive is not None:
             from flyopt.report.text import WITHOUT_DRIVE
 
-            return f"No feasible drive: {drive.message}. {WITHOUT_DRIVE}"
+            return f"No feasible drive: {display.said_text(drive.message, self.units, self.digits)}. {WITHOUT_DRIVE}"
         if status == "infeasible":
             said = self.design if self.design is not None else self.solution.drive
             if said is None:

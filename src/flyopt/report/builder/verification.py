@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from flyopt.report.builder.base import NOTES, BuilderBase
-from flyopt.report.display import number
+from flyopt.report.display import number, said_text
 from flyopt.report.document import Equation, Facts, Figure, Paragraph
 
 
@@ -86,7 +86,7 @@ class VerificationAndProvenance(BuilderBase):
                     f"; {st.method}.",
                 )
             else:
-                text = f"Start-up from rest: not reached: {st.note}; {st.method}."
+                text = f"Start-up from rest: not reached: {said_text(st.note, self.units, self.digits)}; {st.method}."
             blocks.append(Paragraph(text))
         from flyopt.report import plots
 
