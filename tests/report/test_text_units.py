@@ -863,28 +863,38 @@ def test_a_refused_motors_reasons_are_in_the_readers_units(system, refused_drive
 
 
 @pytest.mark.parametrize("system", SYSTEMS)
-def test_an_infeasible_drives_answer_is_in_the_readers_units(system, refused_drive, main_cli, tmp_path):
-    """Was: the text's answer line ("Answer: no drive: ... its mean torque 28.2 N·m ..."), the report's summary
-    verdict (and with it the app's card) and `flyopt plot`'s refusal printed the drive's message as written, in
-    N·m under --units imperial. Each now says the INFEASIBLE line's reasons, in the same words."""
+def test_an_infeasible_drives_answer_is_one_sentence(system, refused_drive, main_cli, tmp_path):
+    """Was: the text's answer line, the report's summary verdict (and the app's card) and `flyopt plot`'s refusal
+    each printed the drive's message whole, every one of the 18 refused sizes' reasons (some 1,500 characters,
+    its torques in N·m under --units imperial). Each now says how many sizes each kind of reason refused and
+    the first and last of them, in the catalogue's order; the drive's section and its table give each reason."""
     from flyopt.report.builder import ReportInputs, build
     from flyopt.report.card import card_of
-    from flyopt.report.drive import drive_report
+    from flyopt.report.drive import refused_in_short
     from flyopt.report.text import answer_report
 
     scene, solution, path = refused_drive
-    infeasible = next(
-        line for line in drive_report(solution.drive, None, units=system) if line.startswith("  INFEASIBLE: ")
-    )
-    reasons = infeasible.removeprefix("  INFEASIBLE: ")
-    assert answer_report(solution, system)[0] == f"Answer: no drive: {reasons}"
+    drive = solution.drive
+    short = refused_in_short(drive)
+    assert answer_report(solution, system)[0] == f"Answer: no drive: {short}"
     verdict = card_of(build(ReportInputs("", "", (), scene, solution), system, figures=False)).verdict
-    assert verdict.startswith(f"No feasible drive: {reasons}. "), verdict
+    assert verdict.startswith(f"No feasible drive: {short}. "), verdict
+    head, _, tail = short.partition(": ")
+    assert head == "no motor size of the catalogue drives the machine within the limits"
+    counts, _, rest = tail.partition("; ")
+    assert rest == "each size's reason in the drive's table of sizes"
+    said = re.findall(r"([\w -]+?) refuses (\d+) \((.+?)(?: to (.+?))?\)(?:, |$)", counts)
+    by_kind: dict = {}
+    for run in drive.runs:
+        by_kind.setdefault(run.reason.split(":")[0], []).append(run.motor.name)
+    assert {kind: (int(n), first, last or first) for kind, n, first, last in said} == {
+        kind: (len(names), names[0], names[-1]) for kind, names in by_kind.items()
+    }
+    assert set(by_kind) == {"thermal", "start-up"} and sum(int(n) for _, n, *_ in said) == len(drive.runs) == 18
+    assert len(short) < 300 and "N·m" not in short
     if system == "imperial":
-        assert "N·m" not in reasons and "lbf·ft" in reasons
         status, _, err = main_cli("plot", path, "--what", "speed", "-o", tmp_path / "x.png", "--units", system)
-        # the one line of the refusal, cut where it is long: its start in the same words
-        assert status == 3 and reasons[:300] in err and not (tmp_path / "x.png").exists(), err
+        assert status == 3 and short in err and not (tmp_path / "x.png").exists(), err
 
 
 @pytest.fixture(scope="module")

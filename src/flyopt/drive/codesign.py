@@ -971,7 +971,7 @@ def design_drive(
         for k in skipped:  # the note says what the table of sizes no longer shows (words only: the text, the
             # report and the JSON each show the note as it is, whatever their units)
             alone = "weighs" if spec.objective == Objective.MASS else "costs"
-            note += f"; {_name(motors[k])} left unsolved: its motor alone {alone} no less than the best drive"
+            note += f"; {motor_name(motors[k])} left unsolved: its motor alone {alone} no less than the best drive"
     runs = tuple(done[k] for k in sorted(done))
     ranked = sorted(
         (r for r in runs if r.feasible and r.objective is not None), key=lambda r: (r.objective, r.motor.rated_power)
@@ -982,7 +982,7 @@ def design_drive(
             spec.objective,
             None,
             runs,
-            "no motor size of the catalogue drives the machine within the limits: " + _refusals(runs, REFUSALS_SHOWN),
+            f"{NO_MOTOR}: " + _refusals(runs, REFUSALS_SHOWN),
             relaxation=relaxation,
             note=note,
         )
@@ -1119,7 +1119,8 @@ def motor_power_front(drive: DriveDesign) -> tuple[MotorRun, ...]:
     return tuple(front)
 
 
-def _name(motor):
+def motor_name(motor: CatalogueMotor) -> str:
+    """A catalogue size as the drive's words name it: its name, or its rated power ("5.5 kW")."""
     return getattr(motor, "name", None) or f"{motor.rated_power / 1000:g} kW"
 
 
@@ -1143,6 +1144,9 @@ def _ratio(value: float) -> tuple[float, str, str]:
     return (value, "dimensionless", f"{value:.4g}")
 
 
+#: What an infeasible drive's message begins with (its refused sizes' reasons follow).
+NO_MOTOR = "no motor size of the catalogue drives the machine within the limits"
+
 #: The most characters of refused sizes' reasons an infeasible drive's message lists (whole reasons: the table
 #: of sizes gives every one).
 REFUSALS_SHOWN = 2000
@@ -1151,7 +1155,7 @@ REFUSALS_SHOWN = 2000
 def _refusals(runs: Sequence[MotorRun], size: int) -> str:
     """Each refused size's name and reason, "; "-joined, as many whole reasons as ``size`` characters hold (at
     least one), then how many more there are; their quantities kept (:func:`flyopt.said.join`)."""
-    parts = [f"{_name(r.motor)}: " + r.reason for r in runs if not r.feasible]
+    parts = [f"{motor_name(r.motor)}: " + r.reason for r in runs if not r.feasible]
     kept = parts[:1]
     length = sum(map(len, kept))
     for part in parts[1:]:

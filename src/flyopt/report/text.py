@@ -186,7 +186,13 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
     if drive is not None:  # the drive designed with the flywheel: the motor, its ratio and the wheel
         run = drive.best
         if run is None:
-            return [f"Answer: no drive: {visible(said_text(drive.message, units, digits))}", WITHOUT_DRIVE, ""]
+            from flyopt.report.drive import refused_in_short  # (it reads this module's helpers)
+
+            return [
+                f"Answer: no drive: {visible(said_text(refused_in_short(drive), units, digits))}",
+                WITHOUT_DRIVE,
+                "",
+            ]
         wheel = (
             f"a flywheel of {q(run.j_flywheel, 'j_flywheel')} ({q(run.wheel_mass, 'mass')})"
             if run.j_flywheel
