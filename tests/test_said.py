@@ -10,6 +10,7 @@ import json
 import pickle
 
 import pytest
+from conftest import PROBLEMS
 
 from flyopt.report.display import said_text
 from flyopt.said import Said, join, said
@@ -148,3 +149,28 @@ def test_an_infeasible_drive_lists_whole_reasons_with_their_quantities():
     assert text.endswith(f"; and {40 - len(listed)} more (the table of sizes gives each)")
     assert said_text(text, "imperial").count("20.8 lbf·ft") == len(listed)
     assert codesign._refusals(runs[:3], 2000) == "; ".join(f"M{k}: " + runs[k].reason for k in range(3))
+
+
+def test_the_analysis_keeps_a_run_ups_refusal_as_a_sentence(monkeypatch):
+    """`flyopt.analysis.startup_run` kept a refused run-up's message by ``str(err)``, which drops its
+    quantities: its note is now the sentence itself (the same string), shown in the reader's units."""
+    import flyopt
+    from flyopt import analysis
+    from flyopt.errors import SolverFailed
+    from flyopt.machine.reduce import reduce
+    from flyopt.report.display import said_text
+    from flyopt.said import said
+    from flyopt.sizing import startup
+
+    refusal = said("the net torque at rest there is {torque}", torque=(-10.0, "torque", "-10 N·m"))
+
+    def refuse(*args, **kwargs):
+        raise SolverFailed(refusal)
+
+    monkeypatch.setattr(startup, "startup_time", refuse)
+    monkeypatch.setattr(analysis, "_kloss_runup", lambda *args: None)  # the integration, not the closed form
+    machine = reduce(flyopt.load(PROBLEMS / "motor-press.toml"))
+    run = analysis.startup_run(machine, 6.0, 0.0)
+    assert run is not None and run.time is None
+    assert run.note == "the net torque at rest there is -10 N·m"
+    assert said_text(run.note, "imperial") == "the net torque at rest there is -7.376 lbf·ft"

@@ -868,9 +868,10 @@ def test_an_infeasible_drives_answer_is_one_sentence(system, refused_drive, main
     each printed the drive's message whole, every one of the 18 refused sizes' reasons (some 1,500 characters,
     its torques in N·m under --units imperial). Each now says how many sizes each kind of reason refused and
     the first and last of them, in the catalogue's order; the drive's section and its table give each reason."""
+    from flyopt.drive.codesign import refused_in_short
     from flyopt.report.builder import ReportInputs, build
     from flyopt.report.card import card_of
-    from flyopt.report.drive import refused_in_short
+    from flyopt.report.drive import drive_report
     from flyopt.report.text import answer_report
 
     scene, solution, path = refused_drive
@@ -879,22 +880,66 @@ def test_an_infeasible_drives_answer_is_one_sentence(system, refused_drive, main
     assert answer_report(solution, system)[0] == f"Answer: no drive: {short}"
     verdict = card_of(build(ReportInputs("", "", (), scene, solution), system, figures=False)).verdict
     assert verdict.startswith(f"No feasible drive: {short}. "), verdict
-    head, _, tail = short.partition(": ")
-    assert head == "no motor size of the catalogue drives the machine within the limits"
-    counts, _, rest = tail.partition("; ")
-    assert rest == "each size's reason in the drive's table of sizes"
-    said = re.findall(r"([\w -]+?) refuses (\d+) \((.+?)(?: to (.+?))?\)(?:, |$)", counts)
+    # the sizes of each kind, read from the table of sizes (the catalogue's order) by its verdicts' first words
+    _, rows = table("\n".join(drive_report(drive, None, units=system)), "Every motor size solved")
     by_kind: dict = {}
-    for run in drive.runs:
-        by_kind.setdefault(run.reason.split(":")[0], []).append(run.motor.name)
-    assert {kind: (int(n), first, last or first) for kind, n, first, last in said} == {
-        kind: (len(names), names[0], names[-1]) for kind, names in by_kind.items()
-    }
-    assert set(by_kind) == {"thermal", "start-up"} and sum(int(n) for _, n, *_ in said) == len(drive.runs) == 18
-    assert len(short) < 300 and "N·m" not in short
+    for row in rows:
+        kind = (
+            "thermal" if row[-1].startswith("thermal: ") else "start-up" if row[-1].startswith("start-up: ") else None
+        )
+        by_kind.setdefault(kind, []).append(row[0])
+    assert set(by_kind) == {"thermal", "start-up"} and len(rows) == 18, by_kind
+    listed = "; ".join(f"{kind}: {len(names)} sizes, {names[0]} … {names[-1]}" for kind, names in by_kind.items())
+    assert short == (
+        f"no motor size of the catalogue drives the machine within the limits ({listed}); each size's reason is "
+        "in the drive's table of sizes"
+    )
     if system == "imperial":
         status, _, err = main_cli("plot", path, "--what", "speed", "-o", tmp_path / "x.png", "--units", system)
         assert status == 3 and short in err and not (tmp_path / "x.png").exists(), err
+
+
+def test_each_kind_of_refusal_is_named():
+    """Every reason a size can be refused for has its kind in the short verdict; a reason without one (the
+    ratio that does not settle, the wheel that does not fit) was "other"; one size and two sizes read as such."""
+    from flyopt.drive.codesign import NO_MOTOR, NO_WHEEL, DriveDesign, MotorRun, refusal_kind, refused_in_short
+    from flyopt.machine.catalogue import CatalogueMotor
+
+    reasons = {
+        "too small: its torque on the crank cannot reach the mean load 28.2 N·m at 6.283 rad/s": "too small",
+        "thermal: its mean torque 28.2 N·m exceeds its rated torque 5.069 N·m whatever the flywheel": "thermal",
+        "breakdown: the motor slows to 100 rad/s in the cycle, past its breakdown speed 120 rad/s": "breakdown",
+        "start-up: 14.44 s from rest, over max_startup 0.001 s": "start-up",
+        "shaft: at ratio 8: cast iron on the flywheel shaft: the shaft cannot carry this 92.62 kg wheel": "shaft",
+        "no steady running: the periodic solution did not converge": "no steady running",
+        NO_WHEEL: "no wheel",
+        "the motor ratio did not settle the mean speed (last error 0.01)": "not settled",
+        "the flywheel and the motor ratio did not settle together": "not settled",
+    }
+    assert {reason: refusal_kind(reason) for reason in reasons} == reasons
+
+    def size(name, power):
+        return CatalogueMotor(
+            name=name, rated_power=power, rated_speed=150.0, synchronous_speed=157.0, rotor_inertia=0.01,
+            breakdown_ratio=2.5, mass=20.0,
+        )  # fmt: skip
+
+    runs = (
+        MotorRun(motor=size("A", 1e3), feasible=False, reason=NO_WHEEL),
+        MotorRun(
+            motor=size("B", 2e3), feasible=False, reason="the flywheel and the motor ratio did not settle together"
+        ),
+        MotorRun(motor=size("C", 3e3), feasible=False, reason=NO_WHEEL),
+        MotorRun(motor=size("D", 4e3), feasible=False, reason="start-up: 1 s from rest, over max_startup 0.5 s"),
+        MotorRun(motor=size("E", 5e3), feasible=False, reason="start-up: 1 s from rest, over max_startup 0.5 s"),
+    )
+    drive = DriveDesign(status="infeasible", objective="mass", best=None, runs=runs, message=f"{NO_MOTOR}: ...")
+    assert refused_in_short(drive) == (
+        f"{NO_MOTOR} (no wheel: 2 sizes, A and C; not settled: 1 size, B; start-up: 2 sizes, D and E); each size's "
+        "reason is in the drive's table of sizes"
+    )
+    other = DriveDesign(status="infeasible", objective="mass", best=None, runs=runs, message="the drive needs a load")
+    assert refused_in_short(other) == "the drive needs a load"
 
 
 @pytest.fixture(scope="module")

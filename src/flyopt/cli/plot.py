@@ -181,7 +181,7 @@ def _draw(solution, what, plots, units, verify=False, digits=None):
     digits = display.DEFAULT_DIGITS if digits is None else digits
     scene, analysis = solution.scene, solution.analysis
     if solution.drive_failed:
-        from flyopt.report.drive import refused_in_short
+        from flyopt.drive.codesign import refused_in_short
 
         raise _NoDrive(display.said_text(refused_in_short(solution.drive), units, digits))
     if what in ("cross_section", "stress"):

@@ -482,7 +482,7 @@ def evaluate_motor(
         refused = "" if result is None else _shaft_refusal(result)
         if refused:
             return run(False, "shaft: " + refused, **facts, flywheel_ratio=r)
-        return run(False, "no wheel fits the design limits for the flywheel it needs", **facts)
+        return run(False, NO_WHEEL, **facts)
     shaft_checks: tuple[Any, ...] = ()
     if shaft_ctx is not None and wheel is not None and r is not None:  # the report of the shaft the search checked
         from flyopt.design.shaft.cycle import at_ratio, report
@@ -1124,6 +1124,26 @@ def motor_name(motor: CatalogueMotor) -> str:
     return getattr(motor, "name", None) or f"{motor.rated_power / 1000:g} kW"
 
 
+def refused_in_short(drive: DriveDesign) -> str:
+    """An infeasible drive's verdict in one sentence, for the answer and the summary: for each kind of reason
+    (:func:`refusal_kind`) how many sizes it refused, the first and the last of them in the
+    catalogue's order ("no motor size of the catalogue drives the machine within the limits (thermal: 5 sizes,
+    80B-4 0.75 kW … 100LB-4 3 kW; start-up: 13 sizes, 112M-4 4 kW … 280M-4 90 kW); each size's reason is in the
+    drive's table of sizes", :func:`flyopt.report.drive.run_verdict`). The drive's message as it is where it did not refuse sizes."""
+    refused = [run for run in drive.runs if not run.feasible]
+    if drive.best is not None or not refused or not drive.message.startswith(NO_MOTOR):
+        return drive.message
+    kinds: dict[str, list[str]] = {}
+    for run in refused:
+        kinds.setdefault(refusal_kind(run.reason), []).append(motor_name(run.motor))
+    parts = []
+    for kind, names in kinds.items():
+        sizes = f"{len(names)} size" if len(names) == 1 else f"{len(names)} sizes"
+        named = names[:1] if len(names) == 1 else [names[0], names[-1]]  # a catalogue's names are its own
+        parts.append(f"{kind}: {sizes}, " + (" and " if len(names) == 2 else " … ").join(named))
+    return f"{NO_MOTOR} ({'; '.join(parts)}); each size's reason is in the drive's table of sizes"
+
+
 # A motor's reasons keep their quantities (flyopt.said): written in SI at four figures, as the JSON has always
 # carried them, and shown in the reader's units by the text and the report.
 
@@ -1146,6 +1166,24 @@ def _ratio(value: float) -> tuple[float, str, str]:
 
 #: What an infeasible drive's message begins with (its refused sizes' reasons follow).
 NO_MOTOR = "no motor size of the catalogue drives the machine within the limits"
+
+#: The reason of a size for whose flywheel no wheel is designed (no shaft refused it).
+NO_WHEEL = "no wheel fits the design limits for the flywheel it needs"
+
+#: The kinds of reason a size is refused for, as its reason begins ("thermal: its mean torque ...").
+REFUSAL_KINDS = ("too small", "thermal", "breakdown", "start-up", "shaft", "no steady running")
+
+
+def refusal_kind(reason: str) -> str:
+    """The kind of a refused size's reason: the words before its colon (:data:`REFUSAL_KINDS`), "no wheel"
+    (:data:`NO_WHEEL`), "not settled" (the ratio and flywheel did not settle: ``_Unsettled``), else "other"."""
+    head = reason.partition(":")[0]
+    if head in REFUSAL_KINDS:
+        return head
+    if reason == NO_WHEEL:
+        return "no wheel"
+    return "not settled" if "did not settle" in reason else "other"
+
 
 #: The most characters of refused sizes' reasons an infeasible drive's message lists (whole reasons: the table
 #: of sizes gives every one).

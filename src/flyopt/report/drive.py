@@ -29,28 +29,6 @@ RELAXED_STEPS = (
 )
 
 
-def refused_in_short(drive: DriveDesign) -> str:
-    """An infeasible drive's verdict in one sentence, for the answer and the summary: how many sizes each kind of
-    reason refused (the words before a reason's colon: "thermal", "start-up", "shaft"), the smallest and largest
-    of them named ("no motor size of the catalogue drives the machine within the limits: thermal refuses 5
-    (80B-4 0.75 kW to 100LB-4 3 kW), start-up refuses 13 (112M-4 4 kW to 280M-4 90 kW); each size's reason in the
-    drive's table of sizes", :func:`run_verdict`). The drive's message as it is where it did not refuse sizes."""
-    from flyopt.drive.codesign import NO_MOTOR, motor_name
-
-    refused = [run for run in drive.runs if not run.feasible]
-    if drive.best is not None or not refused or not drive.message.startswith(NO_MOTOR):
-        return drive.message
-    kinds: dict[str, list[str]] = {}
-    for run in refused:
-        kind = run.reason.partition(":")[0] if ":" in run.reason else "other"
-        kinds.setdefault(kind, []).append(motor_name(run.motor))
-    parts = [
-        f"{kind} refuses {len(names)} ({names[0]}{f' to {names[-1]}' if len(names) > 1 else ''})"
-        for kind, names in kinds.items()
-    ]
-    return f"{NO_MOTOR}: " + ", ".join(parts) + "; each size's reason in the drive's table of sizes"
-
-
 def run_verdict(run: MotorRun, best: MotorRun | None, units: str, digits: int) -> str:
     """A motor size's verdict in the table of sizes: "best", "ok", or why it is refused, in the reader's units
     (its reason keeps its quantities: :mod:`flyopt.said`)."""

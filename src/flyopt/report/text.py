@@ -186,7 +186,7 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
     if drive is not None:  # the drive designed with the flywheel: the motor, its ratio and the wheel
         run = drive.best
         if run is None:
-            from flyopt.report.drive import refused_in_short  # (it reads this module's helpers)
+            from flyopt.drive.codesign import refused_in_short
 
             return [
                 f"Answer: no drive: {visible(said_text(refused_in_short(drive), units, digits))}",

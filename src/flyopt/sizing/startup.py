@@ -198,12 +198,20 @@ def startup_time(
                     )
             except RuntimeError as err:
                 raise SolverFailed(
-                    f"start-up integration failed near phi = {a:.6g} rad in cycle {n}: {str(err).splitlines()[-1]}"
+                    said(
+                        f"start-up integration failed near phi = {{phi}} in cycle {n}: "
+                        + str(err).splitlines()[-1].replace("{", "{{").replace("}", "}}"),
+                        phi=(a, "angle", f"{a:.6g} rad"),
+                    )
                 ) from err
             if xf[1, -1] > 0:
                 raise SolverFailed(
-                    f"the machine stalls during start-up between phi = {a:.6g} and {b:.6g} rad "
-                    f"(cycle {n}): the load there exceeds the motor torque and the stored energy"
+                    said(
+                        "the machine stalls during start-up between phi = {a} and {b} "
+                        f"(cycle {n}): the load there exceeds the motor torque and the stored energy",
+                        a=(a, "angle", f"{a:.6g}"),
+                        b=(b, "angle", f"{b:.6g} rad"),
+                    )
                 )
             phi, omega, gap, slope = _piece_gap(model, a, b, e_target * xf[0], j_flywheel, omega_target)
             reach = _first_reach(phi, gap, slope)

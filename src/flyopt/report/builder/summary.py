@@ -173,7 +173,7 @@ class Summary(BuilderBase):
             return given + f": {holds} the allowed δ = {number(check.delta_allowed, self.digits)}."
         drive = self.solution.drive
         if self.solution.drive_failed and drive is not None:
-            from flyopt.report.drive import refused_in_short
+            from flyopt.drive.codesign import refused_in_short
             from flyopt.report.text import WITHOUT_DRIVE
 
             return f"No feasible drive: {display.said_text(refused_in_short(drive), self.units, self.digits)}. {WITHOUT_DRIVE}"
