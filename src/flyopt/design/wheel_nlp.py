@@ -627,16 +627,16 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         raise failure
     args, scale, allow = solve_arguments(s, model.constraints, problem)
     begin = time.perf_counter()
-    sol, stats = None, {}
+    sol, stats, values = None, {}, None
     if model.fast is not None and problem.warm is not None:  # the same NLP from a neighbour's wheel
         warm = {**args, "x0": _clipped(problem.warm, names, args)}
         duals = _warm_duals(model, warm)
         if duals is not None:  # and its multipliers: the first QP starts from the neighbour's active set
-            sol, stats = _solve_fast(model.fast, {**warm, **duals})
+            sol, stats, values = _solve_fast(model.fast, {**warm, **duals})
         if sol is None:
-            sol, stats = _solve_fast(model.fast, warm)
+            sol, stats, values = _solve_fast(model.fast, warm)
     if sol is None and model.fast is not None and not problem.ipopt_first:  # cold, as without a neighbour
-        sol, stats = _solve_fast(model.fast, args)
+        sol, stats, values = _solve_fast(model.fast, args)
     solver = "sqpmethod" if sol is not None else "ipopt"
     if sol is None:  # IPOPT: where sqpmethod did not converge, or chosen alone
         try:
@@ -655,7 +655,8 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
         failure.status = status
         failure.combination = label
         raise failure
-    values = _values(sol)
+    if values is None:  # IPOPT's (sqpmethod's were read by _solve_fast)
+        values = _values(sol)
     xs = values["x"]
     if solver == "sqpmethod":
         _remember_duals(model, values)
@@ -720,8 +721,8 @@ def _clipped(wheel_dims: Mapping[str, float], names: Sequence[str], args: Mappin
 
 
 def _solve_fast(fast, args):
-    """(solution, stats) of sqpmethod where it converged (its status checked) to a KKT point of the NLP, else
-    (None, its stats).
+    """(solution, stats, its values: :func:`_values`) of sqpmethod where it converged (its status checked) to a
+    KKT point of the NLP, else (None, its stats, None).
 
     sqpmethod tests feasibility and stationarity, not complementarity (:func:`_complementary`): a stale
     multiplier passed in a warm start (a row the new problem leaves slack) makes the start look stationary,
@@ -731,11 +732,13 @@ def _solve_fast(fast, args):
     try:
         sol = fast(**args)
     except RuntimeError:
-        return None, {}
+        return None, {}, None
     stats = fast.stats()
-    if stats.get("success") and stats.get("return_status") in CONVERGED and _complementary(_values(sol), args):
-        return sol, stats
-    return None, stats
+    if stats.get("success") and stats.get("return_status") in CONVERGED:
+        values = _values(sol)
+        if _complementary(values, args):
+            return sol, stats, values
+    return None, stats, None
 
 
 #: Converged solves whose multipliers a model keeps for warm starts (the oldest is dropped first): a

@@ -406,7 +406,7 @@ def evaluate_motor(
         except _Unsettled as err:
             return run(False, said_by(err), motor_ratio=err.ratio, j_delta=err.j_delta)
         except (SolverFailed, SceneError) as err:
-            return run(False, f"no steady running: {err}", motor_ratio=ratio)
+            return run(False, "no steady running: " + said_by(err), motor_ratio=ratio)
         j_need = solution.j_flywheel
         rms, mean = rms_torque(solution, motor.motor(), ratio)
         omega_min, omega_mean = float(np.min(solution.omega)), solution.omega_mean
