@@ -29,13 +29,23 @@ RTOL = 1e-12
 #: their absolute value carries the relative accuracy of the two J_F, so they are compared
 #: absolutely at RTOL (relatively, a 0.8 % difference would have to hold 1e-11 per J_F).
 ABSOLUTE = {"j_error"}
+#: Results of a linear solve or an eigenproblem whose round-off is that of the BLAS kernel OpenBLAS picks for
+#: the CPU, not of flyopt: the same wheel gives floats that differ by up to 4.1e-11 (FE stresses) and 9.7e-11
+#: (the shaft's utilisation differenced in the wheel's mass) between its Sandybridge, Haswell and Zen kernels
+#: (OPENBLAS_CORETYPE; punch-press-shaft, measured 2026-11-30). The FE solve is a sparse LU of a stiffness
+#: matrix with kappa_1 ~ 7.6e7 (scipy's onenormest of it and of its inverse: the forward error is bounded by
+#: some 1.7e-8); the sensitivity is a central difference at a relative step of 1e-3
+#: (flyopt.design.shaft.cycle.MASS_STEP), which magnifies its utilisations' round-off. These subtrees (a key
+#: of the set and all below it) are compared at RTOL_KERNEL, the issue's 1e-9; every other float at RTOL.
+KERNEL = {"fem", "drive_train", "dutilisation_dmass"}
+RTOL_KERNEL = 1e-9
 #: Energies that may be zero in exact arithmetic (ΔE at the start of the cycle and at its
 #: balance points): their round-off is relative to the work of the cycle, not to themselves
 #: (3.4e-13 J on a work of 2,513 J), so they are compared absolutely at RTOL of that work.
 ENERGIES = {"delta_e"}
 
 
-def _compare(expected, actual, path, problems, absolute=False, work=0.0, energy=False):
+def _compare(expected, actual, path, problems, absolute=False, work=0.0, energy=False, rtol=RTOL):
     if isinstance(expected, dict):
         if not isinstance(actual, dict):
             problems.append(f"{path}: expected an object, got {actual!r}")
@@ -54,21 +64,22 @@ def _compare(expected, actual, path, problems, absolute=False, work=0.0, energy=
                 absolute=key in ABSOLUTE,
                 work=work,
                 energy=key in ENERGIES,
+                rtol=RTOL_KERNEL if key in KERNEL else rtol,
             )
     elif isinstance(expected, list):
         if not isinstance(actual, list) or len(actual) != len(expected):
             problems.append(f"{path}: expected a list of {len(expected)}, got {actual!r:.200}")
             return
         for k, (e, a) in enumerate(zip(expected, actual)):
-            _compare(e, a, f"{path}[{k}]", problems, work=work)
+            _compare(e, a, f"{path}[{k}]", problems, work=work, rtol=rtol)
     elif isinstance(expected, float) and not isinstance(expected, bool):
         if not isinstance(actual, (int, float)) or isinstance(actual, bool):
             problems.append(f"{path}: expected {expected!r}, got {actual!r}")
         elif not math.isclose(
             actual,
             expected,
-            rel_tol=0.0 if absolute else RTOL,
-            abs_tol=RTOL if absolute else RTOL * work if energy else 0.0,
+            rel_tol=0.0 if absolute else rtol,
+            abs_tol=rtol if absolute else rtol * work if energy else 0.0,
         ) and not (expected == 0 and abs(actual) < 1e-300):
             problems.append(f"{path}: {actual!r} != {expected!r}")
     elif expected != actual:

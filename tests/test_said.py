@@ -141,7 +141,7 @@ def test_an_infeasible_drive_lists_whole_reasons_with_their_quantities():
             breakdown_ratio=2.5, mass=20.0,
         )  # fmt: skip
         reason = said("thermal: its mean torque {t} exceeds its rated torque", t=(28.2, "torque", "28.2 N·m"))
-        runs.append(MotorRun(motor=motor, feasible=False, reason=reason))
+        runs.append(MotorRun(motor=motor, feasible=False, reason=reason, refusal="thermal"))
     text = codesign._refusals(runs, 2000)
     listed = text.split("; and ")[0].split("; ")
     assert len(text) <= 2000 + len("; and 99 more (the table of sizes gives each)")

@@ -141,7 +141,7 @@ def _drive_document():
         status="designed",
         objective="mass",
         best=run,
-        runs=(run, MotorRun(motor=motor, feasible=False, reason="too small")),
+        runs=(run, MotorRun(motor=motor, feasible=False, reason="too small: ...", refusal="too small")),
         relaxation=Relaxation(5000.0, 24.0, 24.0, 800.0, 57.0, "Solve_Succeeded"),
         note="relaxation",
     )

@@ -379,3 +379,21 @@ def test_units_agree_with_the_nomenclature():
                 assert _q(unit).to(mine).magnitude == pytest.approx(1.0, rel=1e-15), (path, unit, mine)
                 checked += 1
     assert checked >= 50
+
+
+def test_a_shaft_limit_is_shown_in_the_dimension_its_json_field_has():
+    """A shaft limit's words (:meth:`ShaftLimit.describe`) and its ``--json`` field are one quantity: its value in
+    SI (a critical speed's rpm as rad/s, by :meth:`ShaftLimit.si`, the one conversion the JSON, the text and the
+    report read) in the dimension QUANTITIES gives the field."""
+    import math
+
+    from flyopt.design.shaft.check import DIMENSIONS, JSON_NAMES, ShaftLimit
+
+    assert DIMENSIONS.keys() == JSON_NAMES.keys()
+    for kind, name in JSON_NAMES.items():
+        assert QUANTITIES[name] == QUANTITIES[f"{name}_allowed"] == DIMENSIONS[kind], kind
+    limit = ShaftLimit("lateral", "first forward whirl", 3000.0, 1650.0, 0.9, "rpm")
+    said = limit.describe()
+    assert said.values["value"][:2] == (3000.0 * math.pi / 30.0, "angular_speed")
+    assert limit.to_dict()["critical_speed"] == said.values["value"][0] == limit.si(3000.0)
+    assert ShaftLimit("slope", "at bearing A", 1e-3, 2e-3, 0.5, "rad").si(1e-3) == 1e-3

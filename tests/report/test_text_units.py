@@ -736,7 +736,7 @@ def _drive(solution):
         best=run,
         relaxation=relaxation,
         note="relaxation",
-        runs=(run, MotorRun(motor=motor, feasible=False, reason="too small")),
+        runs=(run, MotorRun(motor=motor, feasible=False, reason="too small: ...", refusal="too small")),
     )
     check = DriveCheck(
         verification=solution.verification, rms_torque=30.5, rated_torque=36.23, startup_time=5.125, flagged=False
@@ -889,6 +889,7 @@ def test_an_infeasible_drives_answer_is_one_sentence(system, refused_drive, main
         )
         by_kind.setdefault(kind, []).append(row[0])
     assert set(by_kind) == {"thermal", "start-up"} and len(rows) == 18, by_kind
+    assert [r.refusal for r in drive.runs] == [k for k, names in by_kind.items() for _ in names]
     listed = "; ".join(f"{kind}: {len(names)} sizes, {names[0]} … {names[-1]}" for kind, names in by_kind.items())
     assert short == (
         f"no motor size of the catalogue drives the machine within the limits ({listed}); each size's reason is "
@@ -900,23 +901,20 @@ def test_an_infeasible_drives_answer_is_one_sentence(system, refused_drive, main
 
 
 def test_each_kind_of_refusal_is_named():
-    """Every reason a size can be refused for has its kind in the short verdict; a reason without one (the
-    ratio that does not settle, the wheel that does not fit) was "other"; one size and two sizes read as such."""
-    from flyopt.drive.codesign import NO_MOTOR, NO_WHEEL, DriveDesign, MotorRun, refusal_kind, refused_in_short
+    """The short verdict counts the sizes by the kind each refusal was written with (:attr:`MotorRun.refusal`),
+    not by its words: a reason without a kind's prefix (the ratio that does not settle, the wheel that does not
+    fit) was "other" when the kind was read from them; one size and two sizes read as such. A run whose kind
+    and reason disagree is not made."""
+    from flyopt.drive.codesign import (
+        NO_MOTOR,
+        NO_WHEEL,
+        NO_WHEEL_KIND,
+        NOT_SETTLED,
+        DriveDesign,
+        MotorRun,
+        refused_in_short,
+    )
     from flyopt.machine.catalogue import CatalogueMotor
-
-    reasons = {
-        "too small: its torque on the crank cannot reach the mean load 28.2 N·m at 6.283 rad/s": "too small",
-        "thermal: its mean torque 28.2 N·m exceeds its rated torque 5.069 N·m whatever the flywheel": "thermal",
-        "breakdown: the motor slows to 100 rad/s in the cycle, past its breakdown speed 120 rad/s": "breakdown",
-        "start-up: 14.44 s from rest, over max_startup 0.001 s": "start-up",
-        "shaft: at ratio 8: cast iron on the flywheel shaft: the shaft cannot carry this 92.62 kg wheel": "shaft",
-        "no steady running: the periodic solution did not converge": "no steady running",
-        NO_WHEEL: "no wheel",
-        "the motor ratio did not settle the mean speed (last error 0.01)": "not settled",
-        "the flywheel and the motor ratio did not settle together": "not settled",
-    }
-    assert {reason: refusal_kind(reason) for reason in reasons} == reasons
 
     def size(name, power):
         return CatalogueMotor(
@@ -924,14 +922,18 @@ def test_each_kind_of_refusal_is_named():
             breakdown_ratio=2.5, mass=20.0,
         )  # fmt: skip
 
+    late = "start-up: 1 s from rest, over max_startup 0.5 s"
     runs = (
-        MotorRun(motor=size("A", 1e3), feasible=False, reason=NO_WHEEL),
+        MotorRun(motor=size("A", 1e3), feasible=False, reason=NO_WHEEL, refusal=NO_WHEEL_KIND),
         MotorRun(
-            motor=size("B", 2e3), feasible=False, reason="the flywheel and the motor ratio did not settle together"
+            motor=size("B", 2e3),
+            feasible=False,
+            reason="the flywheel and the motor ratio did not settle together",
+            refusal=NOT_SETTLED,
         ),
-        MotorRun(motor=size("C", 3e3), feasible=False, reason=NO_WHEEL),
-        MotorRun(motor=size("D", 4e3), feasible=False, reason="start-up: 1 s from rest, over max_startup 0.5 s"),
-        MotorRun(motor=size("E", 5e3), feasible=False, reason="start-up: 1 s from rest, over max_startup 0.5 s"),
+        MotorRun(motor=size("C", 3e3), feasible=False, reason=NO_WHEEL, refusal=NO_WHEEL_KIND),
+        MotorRun(motor=size("D", 4e3), feasible=False, reason=late, refusal="start-up"),
+        MotorRun(motor=size("E", 5e3), feasible=False, reason=late, refusal="start-up"),
     )
     drive = DriveDesign(status="infeasible", objective="mass", best=None, runs=runs, message=f"{NO_MOTOR}: ...")
     assert refused_in_short(drive) == (
@@ -940,6 +942,13 @@ def test_each_kind_of_refusal_is_named():
     )
     other = DriveDesign(status="infeasible", objective="mass", best=None, runs=runs, message="the drive needs a load")
     assert refused_in_short(other) == "the drive needs a load"
+    for wrong in (
+        dict(feasible=False, reason=late),  # refused without a kind
+        dict(feasible=False, reason=late, refusal="thermal"),  # a kind its reason does not begin with
+        dict(feasible=True, reason="", refusal="start-up"),  # feasible with a kind
+    ):
+        with pytest.raises(ValueError, match="a size is refused with a kind of reason"):
+            MotorRun(motor=size("F", 6e3), **wrong)
 
 
 @pytest.fixture(scope="module")

@@ -100,6 +100,9 @@ class MotorRun:
     feasible : bool
     reason : str
         Why not (empty when feasible).
+    refusal : str
+        The kind of that reason: one of :data:`REFUSAL_KINDS` (the reason begins with it and a colon),
+        :data:`NOT_SETTLED` or :data:`NO_WHEEL_KIND`; empty when feasible. Not in ``--json``: the reason is.
     motor_ratio : float or None
         i_m = ω_motor / ω_crank [-].
     j_flywheel : float or None
@@ -133,6 +136,7 @@ class MotorRun:
     motor: CatalogueMotor
     feasible: bool
     reason: str = ""
+    refusal: str = ""
     motor_ratio: float | None = None
     j_flywheel: float | None = None
     limit: str | None = None
@@ -153,8 +157,19 @@ class MotorRun:
     design: DesignResult | None = field(default=None, compare=False, repr=False)
     shaft_checks: tuple[Any, ...] = field(default=(), compare=False, repr=False)
 
+    def __post_init__(self) -> None:
+        if self.feasible == bool(self.refusal) or (self.refusal in REFUSAL_KINDS) != self.reason.startswith(
+            f"{self.refusal}: "
+        ):
+            raise ValueError(
+                f"MotorRun: a size is refused with a kind of reason, and feasible without one (feasible "
+                f"{self.feasible}, refusal {self.refusal!r}, reason {self.reason[:60]!r})"
+            )
+
     def to_dict(self) -> dict[str, Any]:
-        out = {k: v for k, v in self.__dict__.items() if k not in ("motor", "wheel", "design", "shaft_checks")}
+        out = {
+            k: v for k, v in self.__dict__.items() if k not in ("motor", "wheel", "design", "shaft_checks", "refusal")
+        }
         out["motor"] = _motor_dict(self.motor)
         out["wheel"] = None if self.wheel is None else self.wheel.to_dict()
         return out
@@ -358,24 +373,25 @@ def evaluate_motor(
     omega = scene.omega_mean
     rated = motor.rated_torque
 
-    def run(feasible, reason, **facts):
-        return MotorRun(motor=motor, feasible=feasible, reason=reason, rated_torque=rated, **facts)
+    def run(kind, words, **facts):  # kind "" for the size that drives the machine
+        reason = kind + ": " + words if kind in REFUSAL_KINDS else words
+        return MotorRun(motor=motor, feasible=not kind, reason=reason, refusal=kind, rated_torque=rated, **facts)
 
     ratio = motor_ratio_estimate(motor, load_torque, omega, scene.efficiency)
     if ratio is None:
         return run(
-            False,
+            "too small",
             said(
-                "too small: its torque on the crank cannot reach the mean load {load} at {omega} on the stable branch",
+                "its torque on the crank cannot reach the mean load {load} at {omega} on the stable branch",
                 load=_torque(load_torque),
                 omega=_speed(omega),
             ),
         )
     if spec.thermal and load_torque / (ratio * scene.efficiency) > rated * (1 + 1e-12):
         return run(
-            False,
+            "thermal",
             said(
-                "thermal: its mean torque {mean} exceeds its rated torque {rated} whatever the flywheel",
+                "its mean torque {mean} exceeds its rated torque {rated} whatever the flywheel",
                 mean=_torque(load_torque / (ratio * scene.efficiency)),
                 rated=_torque(rated),
             ),
@@ -389,11 +405,11 @@ def evaluate_motor(
         try:
             found = _settle_compiled(drive_model, motor, ratio, spec.thermal, {} if start is None else start)
         except Unreachable as err:
-            return run(False, said_by(err), motor_ratio=ratio)
+            return run(err.limit, said_by(err), motor_ratio=ratio)
         except NotSettled:
             found = None  # the CVODES search below handles every case
         except _Unsettled as err:
-            return run(False, said_by(err), motor_ratio=err.ratio, j_delta=err.j_delta)
+            return run(err.kind, said_by(err), motor_ratio=err.ratio, j_delta=err.j_delta)
     if found is not None:
         steady, j_delta = found
         ratio, j_need = steady.ratio, steady.j_flywheel
@@ -404,9 +420,9 @@ def evaluate_motor(
         try:
             ratio, machine, solution, j_delta = _settle(scene, motor, ratio, spec.thermal)
         except _Unsettled as err:
-            return run(False, said_by(err), motor_ratio=err.ratio, j_delta=err.j_delta)
+            return run(err.kind, said_by(err), motor_ratio=err.ratio, j_delta=err.j_delta)
         except (SolverFailed, SceneError) as err:
-            return run(False, "no steady running: " + said_by(err), motor_ratio=ratio)
+            return run("no steady running", said_by(err), motor_ratio=ratio)
         j_need = solution.j_flywheel
         rms, mean = rms_torque(solution, motor.motor(), ratio)
         omega_min, omega_mean = float(np.min(solution.omega)), solution.omega_mean
@@ -415,9 +431,9 @@ def evaluate_motor(
     omega_min_motor = omega_min * ratio
     if omega_min_motor < motor.motor().breakdown_speed:
         return run(
-            False,
+            "breakdown",
             said(
-                "breakdown: the motor slows to {slowest} in the cycle, past its breakdown speed {breakdown}",
+                "the motor slows to {slowest} in the cycle, past its breakdown speed {breakdown}",
                 slowest=_speed(omega_min_motor),
                 breakdown=_speed(motor.motor().breakdown_speed),
             ),
@@ -438,12 +454,12 @@ def evaluate_motor(
     )
     if spec.max_startup is not None:
         if startup.time is None:
-            return run(False, "start-up: " + startup.note, **facts)
+            return run("start-up", startup.note, **facts)
         if startup.time > spec.max_startup:
             return run(
-                False,
+                "start-up",
                 said(
-                    "start-up: {time} from rest, over max_startup {allowed}",
+                    "{time} from rest, over max_startup {allowed}",
                     time=_time(startup.time),
                     allowed=_time(spec.max_startup),
                 ),
@@ -481,8 +497,8 @@ def evaluate_motor(
     if j_need > 0 and wheel is None:
         refused = "" if result is None else _shaft_refusal(result)
         if refused:
-            return run(False, "shaft: " + refused, **facts, flywheel_ratio=r)
-        return run(False, NO_WHEEL, **facts)
+            return run("shaft", refused, **facts, flywheel_ratio=r)
+        return run(NO_WHEEL_KIND, NO_WHEEL, **facts)
     shaft_checks: tuple[Any, ...] = ()
     if shaft_ctx is not None and wheel is not None and r is not None:  # the report of the shaft the search checked
         from flyopt.design.shaft.cycle import at_ratio, report
@@ -498,7 +514,7 @@ def evaluate_motor(
         cost = price + wheel_cost
     objective = total if spec.objective == Objective.MASS else cost
     return run(
-        True,
+        "",
         "",
         **facts,
         flywheel_ratio=r,
@@ -522,11 +538,13 @@ def _runup(machine: Machine, omega: float, j_flywheel: float) -> StartupRun:
 
 
 class _Unsettled(SolverFailed):
-    """A motor for which no ratio and flywheel keep the limits (the message says which)."""
+    """A motor for which no ratio and flywheel keep the limits (the message says which; ``kind`` is the
+    refusal's, :attr:`MotorRun.refusal`)."""
 
-    def __init__(self, message, ratio, j_delta=None):
+    def __init__(self, message, ratio, j_delta=None, kind=None):
         super().__init__(message)
         self.ratio, self.j_delta = ratio, j_delta
+        self.kind = NOT_SETTLED if kind is None else kind
 
 
 def _steady(scene, motor, ratio, j_flywheel):
@@ -596,12 +614,10 @@ def _settle(scene, motor, ratio, thermal):
             j = _thermal_flywheel(machine, motor, ratio, scene.omega_mean, j, rated)
             if j is None:
                 raise _Unsettled(
-                    said(
-                        "thermal: its RMS torque stays above its rated torque {rated} for any flywheel",
-                        rated=_torque(rated),
-                    ),
+                    said("its RMS torque stays above its rated torque {rated} for any flywheel", rated=_torque(rated)),
                     ratio,
                     j_delta,
+                    "thermal",
                 )
             limit = "thermal"
     seq = [j]
@@ -1126,7 +1142,7 @@ def motor_name(motor: CatalogueMotor) -> str:
 
 def refused_in_short(drive: DriveDesign) -> str:
     """An infeasible drive's verdict in one sentence, for the answer and the summary: for each kind of reason
-    (:func:`refusal_kind`) how many sizes it refused, the first and the last of them in the
+    (:attr:`MotorRun.refusal`) how many sizes it refused, the first and the last of them in the
     catalogue's order ("no motor size of the catalogue drives the machine within the limits (thermal: 5 sizes,
     80B-4 0.75 kW … 100LB-4 3 kW; start-up: 13 sizes, 112M-4 4 kW … 280M-4 90 kW); each size's reason is in the
     drive's table of sizes", :func:`flyopt.report.drive.run_verdict`). The drive's message as it is where it did not refuse sizes."""
@@ -1135,7 +1151,7 @@ def refused_in_short(drive: DriveDesign) -> str:
         return drive.message
     kinds: dict[str, list[str]] = {}
     for run in refused:
-        kinds.setdefault(refusal_kind(run.reason), []).append(motor_name(run.motor))
+        kinds.setdefault(run.refusal, []).append(motor_name(run.motor))
     parts = []
     for kind, names in kinds.items():
         sizes = f"{len(names)} size" if len(names) == 1 else f"{len(names)} sizes"
@@ -1170,19 +1186,13 @@ NO_MOTOR = "no motor size of the catalogue drives the machine within the limits"
 #: The reason of a size for whose flywheel no wheel is designed (no shaft refused it).
 NO_WHEEL = "no wheel fits the design limits for the flywheel it needs"
 
-#: The kinds of reason a size is refused for, as its reason begins ("thermal: its mean torque ...").
+#: The kinds of reason a size is refused for whose reason begins with the kind and a colon ("thermal: its mean
+#: torque ..."): :func:`evaluate_motor` writes the two together (:attr:`MotorRun.refusal`).
 REFUSAL_KINDS = ("too small", "thermal", "breakdown", "start-up", "shaft", "no steady running")
-
-
-def refusal_kind(reason: str) -> str:
-    """The kind of a refused size's reason: the words before its colon (:data:`REFUSAL_KINDS`), "no wheel"
-    (:data:`NO_WHEEL`), "not settled" (the ratio and flywheel did not settle: ``_Unsettled``), else "other"."""
-    head = reason.partition(":")[0]
-    if head in REFUSAL_KINDS:
-        return head
-    if reason == NO_WHEEL:
-        return "no wheel"
-    return "not settled" if "did not settle" in reason else "other"
+#: The kind of :data:`NO_WHEEL`'s refusal.
+NO_WHEEL_KIND = "no wheel"
+#: The kind of a size whose ratio and flywheel did not settle together (its reason says how).
+NOT_SETTLED = "not settled"
 
 
 #: The most characters of refused sizes' reasons an infeasible drive's message lists (whole reasons: the table

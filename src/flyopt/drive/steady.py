@@ -129,7 +129,14 @@ def motor_parameters(motor: CatalogueMotor, ratio: float) -> tuple[float, float,
 
 
 class Unreachable(NotSettled):
-    """The limit cannot be met by any flywheel (the message says why): the motor is refused, not searched again."""
+    """The limit cannot be met by any flywheel (the message says why): the motor is refused, not searched again.
+
+    ``limit`` names the limit ("thermal"): the kind of the refusal (:func:`flyopt.drive.codesign.refused`).
+    """
+
+    def __init__(self, message: str, limit: str) -> None:
+        super().__init__(message)
+        self.limit = limit
 
 
 _W, _W0, _MB, _SB = (ca.SX.sym(name) for name in ("w", "w0", "m_b", "s_b"))
@@ -353,11 +360,12 @@ class _Newton:
                 # T_rms >= its mean, which a flywheel hardly moves (the work balance sets it)
                 raise Unreachable(
                     said(
-                        "thermal: its mean torque {mean} exceeds its rated torque {rated}, and its RMS torque "
+                        "its mean torque {mean} exceeds its rated torque {rated}, and its RMS torque "
                         "stays above that for any flywheel",
                         mean=(point.mean_torque, "torque", f"{point.mean_torque:.4g} N·m"),
                         rated=(self.rated, "torque", f"{self.rated:.4g} N·m"),
-                    )
+                    ),
+                    self.limit,
                 )
             r = point.residuals()
             norm = float(np.linalg.norm(r))

@@ -87,8 +87,7 @@ def train_rows(check: ShaftCheck) -> tuple[list[ModeRow], list[SpringRow]] | Non
 def limit_value(limit: ShaftLimit, value: float, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
     """A limit's value (or allowed value) in the unit system, by its quantity's field, to ``digits`` figures."""
     q, _ = formatters(units, digits)
-    scale = math.pi / 30.0 if limit.unit == "rpm" else 1.0
-    return q(value * scale, JSON_NAMES[limit.kind])  # the output field it is shown as, as --json names it
+    return q(limit.si(value), JSON_NAMES[limit.kind])  # the output field it is shown as, as --json names it
 
 
 def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:

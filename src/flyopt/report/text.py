@@ -907,7 +907,7 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: 
                 else f"allowable {q(k['allowable_pressure'], 'allowable_pressure')}"
             )
             lines.append(
-                f"  at the peak torque {q(k['torque'], 'torque')}: bearing pressure "
+                f"  at the peak torque {q(k['torque'], 'torque')} of the flywheel the cycle requires: bearing pressure "
                 f"{q(k['bearing_pressure'], 'bearing_pressure')} ({pressure}), shear {q(k['shear'], 'shear')} "
                 f"(allowable {q(k['allowable_shear'], 'allowable_shear')})"
             )

@@ -103,6 +103,11 @@ class ShaftLimit:
         """Whether the limit holds (utilisation <= 1)."""
         return self.utilisation <= 1.0
 
+    def si(self, x: float) -> float:
+        """``x``, a value of this limit in its :attr:`unit`, in SI (a critical speed's rpm in rad/s): as ``--json``
+        and every reader shows it."""
+        return x * math.pi / 30.0 if self.unit == "rpm" else x
+
     def describe(self) -> str:
         """The limit in words and numbers, e.g. ``"fatigue at the keyseat (x = 300 mm): n 1.21 < 1.5"``, its
         quantities kept for the reader's units (:mod:`flyopt.said`)."""
@@ -113,8 +118,8 @@ class ShaftLimit:
                 + self.where
                 + said(
                     f") {{value}} {state} the running range widened to {{allowed}}",
-                    value=(self.value * math.pi / 30.0, "angular_speed", f"{_fmt(self.value)} rpm"),
-                    allowed=(self.allowed * math.pi / 30.0, "angular_speed", f"{_fmt(self.allowed)} rpm"),
+                    value=(self.si(self.value), DIMENSIONS[self.kind], f"{_fmt(self.value)} rpm"),
+                    allowed=(self.si(self.allowed), DIMENSIONS[self.kind], f"{_fmt(self.allowed)} rpm"),
                 )
             )
         relation = "<=" if self.holds else ">"
@@ -124,16 +129,16 @@ class ShaftLimit:
                 + self.where
                 + said(
                     f": {{value}} {relation} {{allowed}} at the train's peak torque on the wheel {{torque}}",
-                    value=(self.value, "stress", _fmt(self.value / 1e6)),
-                    allowed=(self.allowed, "stress", f"{_fmt(self.allowed / 1e6)} MPa"),
+                    value=(self.value, DIMENSIONS["key"], _fmt(self.value / 1e6)),
+                    allowed=(self.allowed, DIMENSIONS["key"], f"{_fmt(self.allowed / 1e6)} MPa"),
                     torque=(float(self.torque), "torque", f"{_fmt(float(self.torque))} N·m"),
                 )
             )
         name = {"fatigue": "fatigue factor of safety", "yield": "first-cycle yield factor"}.get(self.kind, self.kind)
         if self.kind in ("fatigue", "yield"):
             relation = ">=" if self.holds else "<"
-        dimension = {"rad": "angle", "m": "length"}.get(self.unit)
-        if dimension is None:  # a factor of safety: no unit
+        dimension = DIMENSIONS[self.kind]
+        if dimension == "dimensionless":  # a factor of safety: no unit
             return (
                 f"{name} " + self.where + f": {_fmt(self.value)} {relation} {_fmt(self.allowed)} {self.unit}".rstrip()
             )
@@ -151,12 +156,11 @@ class ShaftLimit:
         """The limit for ``--json`` (SI): its value and the allowed one under the names of its quantity
         (:data:`JSON_NAMES`; a critical speed in rad/s)."""
         name = JSON_NAMES[self.kind]
-        scale = math.pi / 30.0 if self.unit == "rpm" else 1.0
         return {
             "kind": self.kind,
             "where": self.where,
-            name: self.value * scale,
-            f"{name}_allowed": self.allowed * scale,
+            name: self.si(self.value),
+            f"{name}_allowed": self.si(self.allowed),
             "utilisation": self.utilisation,
             **({"key_torque": self.torque} if self.kind == "key" else {}),
         }
@@ -172,6 +176,18 @@ JSON_NAMES = {
     "lateral": "critical_speed",
     "torsional": "critical_speed",
     "key": "key_stress",
+}
+
+#: The dimension of each kind of limit's value in SI (:meth:`ShaftLimit.si`), as the reader's units show it;
+#: :data:`flyopt.outputs.quantities.QUANTITIES` gives its JSON field (:data:`JSON_NAMES`) the same one.
+DIMENSIONS = {
+    "fatigue": "dimensionless",
+    "yield": "dimensionless",
+    "slope": "angle",
+    "deflection": "length",
+    "lateral": "angular_speed",
+    "torsional": "angular_speed",
+    "key": "stress",
 }
 
 

@@ -568,7 +568,7 @@ class DesignSection(BuilderBase):
                     "): "
                     + key_verdict(k)
                     + (" (the hub's material gives no allowable)" if k["ok"] is None else "")
-                    + ", at the peak torque the wheel exchanges with its shaft ",
+                    + ", at the peak torque the flywheel the cycle requires exchanges with its shaft ",
                     self.q(k["torque"], "torque", "torque"),
                     f" ({NOTES}, section 13).",
                 ),
