@@ -946,6 +946,12 @@ def test_each_kind_of_refusal_is_named():
         dict(feasible=False, reason=late),  # refused without a kind
         dict(feasible=False, reason=late, refusal="thermal"),  # a kind its reason does not begin with
         dict(feasible=True, reason="", refusal="start-up"),  # feasible with a kind
+        dict(feasible=True, reason=late),  # feasible with a reason
+        dict(feasible=False, reason=late, refusal="bogus"),  # a kind that is none
+        dict(feasible=False, reason=late, refusal=NO_WHEEL_KIND),  # no wheel, with another reason
+        dict(feasible=False, reason="", refusal=NOT_SETTLED),  # refused without a reason
+        dict(feasible=False, reason=late, refusal=NOT_SETTLED),  # not settled, with a kind's prefix
+        dict(feasible=False, reason="thermal: ", refusal="thermal"),  # a kind's prefix and no words
     ):
         with pytest.raises(ValueError, match="a size is refused with a kind of reason"):
             MotorRun(motor=size("F", 6e3), **wrong)

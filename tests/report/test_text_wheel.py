@@ -291,3 +291,21 @@ def test_a_disc_is_reported_as_a_disc_not_a_rim(capsys, tmp_path):
     assert main(["report", str(PROBLEMS / "four-cylinder-engine.toml"), "-o", str(out)]) == 0
     page = re.sub(r"<[^>]+>", " ", re.sub(r"<svg.*?</svg>", "", out.read_text(encoding="utf-8"), flags=re.S))
     assert "outer / mean / inner diameter" not in page and "outer diameter" in page
+
+
+def test_the_keys_two_torques_are_named_where_they_are_shown(capsys):
+    """four-cylinder-engine-shaft's text gave its key's shear as 25.02 MPa in the key's lines and 25.01 MPa in the
+    shaft check's table, with nothing to tell them apart: the design checks the key at the peak torque of the
+    flywheel the cycle requires, the shaft's post-check at the train's peak on the wheel as built (a little more
+    inertia, a slightly different torque). Each place now names its torque, read back here against the JSON's."""
+    solution = flyopt.solve(flyopt.load(PROBLEMS / "four-cylinder-engine-shaft.toml"))
+    designed = solution.design.best.parts.key["torque"]
+    built = solution.shaft_checks[0].check.key_torque
+    assert not math.isclose(designed, built, rel_tol=1e-4)  # two torques, as the two shears
+    text = _solve_text(PROBLEMS / "four-cylinder-engine-shaft.toml", capsys)
+    line = next(ln for ln in text.splitlines() if ln.startswith("  at the peak torque "))
+    shown = re.match(r"  at the peak torque ([\d.,]+) N·m of the flywheel the cycle requires: ", line)
+    assert shown and math.isclose(_value(shown.group(1)), designed, rel_tol=5e-4), line
+    row = next(ln for ln in text.splitlines() if ln.startswith("  key "))
+    shown = re.search(r", at the wheel's peak torque as built ([\d.,]+) N·m ", row)
+    assert shown and math.isclose(_value(shown.group(1)), built, rel_tol=5e-4), row

@@ -158,12 +158,10 @@ class MotorRun:
     shaft_checks: tuple[Any, ...] = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
-        if self.feasible == bool(self.refusal) or (self.refusal in REFUSAL_KINDS) != self.reason.startswith(
-            f"{self.refusal}: "
-        ):
+        if not _consistent(self.feasible, self.refusal, self.reason):
             raise ValueError(
-                f"MotorRun: a size is refused with a kind of reason, and feasible without one (feasible "
-                f"{self.feasible}, refusal {self.refusal!r}, reason {self.reason[:60]!r})"
+                f"MotorRun: a size is refused with a kind of reason and a reason of that kind, and feasible without "
+                f"either (feasible {self.feasible}, refusal {self.refusal!r}, reason {self.reason[:60]!r})"
             )
 
     def to_dict(self) -> dict[str, Any]:
@@ -1193,6 +1191,19 @@ REFUSAL_KINDS = ("too small", "thermal", "breakdown", "start-up", "shaft", "no s
 NO_WHEEL_KIND = "no wheel"
 #: The kind of a size whose ratio and flywheel did not settle together (its reason says how).
 NOT_SETTLED = "not settled"
+
+
+def _consistent(feasible: bool, kind: str, reason: str) -> bool:
+    """Whether a run's feasibility, kind of refusal and reason agree (:attr:`MotorRun.refusal`): a feasible run
+    has neither; a refused one a known kind and a reason, which begins with "kind: " for a kind of
+    :data:`REFUSAL_KINDS` and with no such prefix otherwise (:data:`NO_WHEEL` for :data:`NO_WHEEL_KIND`)."""
+    if feasible:
+        return not kind and not reason
+    if kind in REFUSAL_KINDS:
+        return reason.startswith(f"{kind}: ") and len(reason) > len(kind) + 2
+    if kind == NO_WHEEL_KIND:
+        return reason == NO_WHEEL
+    return kind == NOT_SETTLED and bool(reason) and not any(reason.startswith(f"{k}: ") for k in REFUSAL_KINDS)
 
 
 #: The most characters of refused sizes' reasons an infeasible drive's message lists (whole reasons: the table

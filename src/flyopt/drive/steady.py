@@ -131,10 +131,10 @@ def motor_parameters(motor: CatalogueMotor, ratio: float) -> tuple[float, float,
 class Unreachable(NotSettled):
     """The limit cannot be met by any flywheel (the message says why): the motor is refused, not searched again.
 
-    ``limit`` names the limit ("thermal"): the kind of the refusal (:func:`flyopt.drive.codesign.refused`).
+    ``limit`` names the limit ("thermal"): the kind of the size's refusal (:attr:`flyopt.drive.codesign.MotorRun.refusal`).
     """
 
-    def __init__(self, message: str, limit: str) -> None:
+    def __init__(self, message: str = "", limit: str = "thermal") -> None:  # defaults: an exception unpickles
         super().__init__(message)
         self.limit = limit
 

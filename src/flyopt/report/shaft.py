@@ -27,7 +27,16 @@ if TYPE_CHECKING:
     from flyopt.design.shaft.cycle import ShaftReport
     from flyopt.machine.torsion import CriticalSpeed
 
-__all__ = ["ModeRow", "SpringRow", "shaft_report", "limit_value", "seat_words", "train_lines", "train_rows"]
+__all__ = [
+    "ModeRow",
+    "SpringRow",
+    "shaft_report",
+    "limit_row",
+    "limit_value",
+    "seat_words",
+    "train_lines",
+    "train_rows",
+]
 
 
 @dataclass(frozen=True)
@@ -90,6 +99,25 @@ def limit_value(limit: ShaftLimit, value: float, units: str = DEFAULT, digits: i
     return q(limit.si(value), JSON_NAMES[limit.kind])  # the output field it is shown as, as --json names it
 
 
+def limit_row(limit: ShaftLimit, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
+    """A limit's row of the shaft check's table, the text's and the report's: kind, where, value, allowed,
+    utilisation, verdict. A key's place names the torque it is checked at, the train's peak on the wheel as
+    built: the design's key line gives the key at the flywheel the cycle requires, a slightly different torque
+    (four-cylinder-engine-shaft: 386.2 against 386 N·m, 25.02 against 25.01 MPa)."""
+    where = said_text(limit.where, units, digits)
+    if limit.kind == "key":
+        q, _ = formatters(units, digits)
+        where += f", at the wheel's peak torque as built {q(limit.torque, 'key_torque')}"
+    return [
+        limit.kind,
+        where,
+        limit_value(limit, limit.value, units, digits),
+        limit_value(limit, limit.allowed, units, digits),
+        number(limit.utilisation, UTILISATION_DIGITS),
+        "holds" if limit.holds else "FAILS",
+    ]
+
+
 def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """Each described shaft's limits with the chosen wheel: value, allowed, utilisation; the loads; the binding
     limit's sensitivity to the wheel's mass; numbers to ``digits`` significant figures."""
@@ -114,17 +142,7 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
             f"  running range {q(c.speed_range_rpm[0] * math.pi / 30.0, 'speed_range')} to "
             f"{q(c.speed_range_rpm[1] * math.pi / 30.0, 'speed_range')}",
         ]
-        rows = [
-            [
-                lim.kind,
-                said_text(lim.where, units, digits),
-                limit_value(lim, lim.value, units, digits),
-                limit_value(lim, lim.allowed, units, digits),
-                number(lim.utilisation, UTILISATION_DIGITS),
-                "holds" if lim.holds else "FAILS",
-            ]
-            for lim in c.limits
-        ]
+        rows = [limit_row(lim, units, digits) for lim in c.limits]
         lines += [
             "  " + line
             for line in table(

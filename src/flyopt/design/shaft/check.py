@@ -56,7 +56,7 @@ from flyopt.design.shaft.torsional import TorsionalCheck, running_range_rpm, tor
 from flyopt.design.shaft.train import TrainResponse, key_torque, seat_torque, shaft_train, train_response
 from flyopt.machine.torsion import TorqueOrders
 from flyopt.said import said
-from flyopt.units import rad_s_to_rpm
+from flyopt.units import rad_s_to_rpm, rpm_to_rad_s
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -106,7 +106,7 @@ class ShaftLimit:
     def si(self, x: float) -> float:
         """``x``, a value of this limit in its :attr:`unit`, in SI (a critical speed's rpm in rad/s): as ``--json``
         and every reader shows it."""
-        return x * math.pi / 30.0 if self.unit == "rpm" else x
+        return rpm_to_rad_s(x) if self.unit == "rpm" else x
 
     def describe(self) -> str:
         """The limit in words and numbers, e.g. ``"fatigue at the keyseat (x = 300 mm): n 1.21 < 1.5"``, its

@@ -9,7 +9,7 @@ from typing import Any
 from flyopt.design.combination import shaft_label
 from flyopt.report import display
 from flyopt.report.builder.base import NOTES, BuilderBase
-from flyopt.report.display import UTILISATION_DIGITS, number
+from flyopt.report.display import number
 from flyopt.report.document import Facts, Paragraph, Table
 from flyopt.report.shaft import binding_words, seat_choice_words
 
@@ -25,7 +25,7 @@ class ShaftSection(BuilderBase):
     def shaft_checks(self, blocks: list[Any]) -> None:
         """Each described shaft's checks with the chosen wheel: a table of limits, the loads, two diagrams."""
         from flyopt.report.plots.shaft import plot_campbell, plot_shaft
-        from flyopt.report.shaft import limit_value
+        from flyopt.report.shaft import limit_row
 
         for report in self.solution.shaft_checks:
             c = report.check
@@ -42,17 +42,7 @@ class ShaftSection(BuilderBase):
                     )
                 )
             )
-            rows = [
-                [
-                    lim.kind,
-                    display.said_text(lim.where, self.units, self.digits),
-                    limit_value(lim, lim.value, self.units, self.digits),
-                    limit_value(lim, lim.allowed, self.units, self.digits),
-                    number(lim.utilisation, UTILISATION_DIGITS),
-                    "holds" if lim.holds else "FAILS",
-                ]
-                for lim in c.limits
-            ]
+            rows = [limit_row(lim, self.units, self.digits) for lim in c.limits]
             blocks.append(
                 Table(
                     ("limit", "where", "value", "allowed", "utilisation", ""),
