@@ -173,3 +173,14 @@ def test_the_delta_of_a_flywheel_on_the_chosen_drive_is_cvodes(press, monkeypatc
         patch.setattr(model, "with_flywheel", unsettled)
         assert delta(j) == reference
     assert codesign.flywheel_delta(dataclasses.replace(drive, model=None), machine) is None
+
+
+def test_an_unreachable_limit_pickles_with_its_sentence_and_limit():
+    """A worker process may raise it: its sentence (with its quantities) and its limit come back whole."""
+    import pickle
+
+    from flyopt.said import said
+
+    sentence = said("its mean torque {t} exceeds its rated torque", t=(28.2, "torque", "28.2 N·m"))
+    back = pickle.loads(pickle.dumps(steady.Unreachable(sentence, "thermal")))
+    assert (str(back), back.limit, back.args[0].values) == (sentence, "thermal", sentence.values)

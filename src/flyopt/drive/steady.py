@@ -134,9 +134,12 @@ class Unreachable(NotSettled):
     ``limit`` names the limit ("thermal"): the kind of the size's refusal (:attr:`flyopt.drive.codesign.MotorRun.refusal`).
     """
 
-    def __init__(self, message: str = "", limit: str = "thermal") -> None:  # defaults: an exception unpickles
+    def __init__(self, message: str, limit: str) -> None:
         super().__init__(message)
         self.limit = limit
+
+    def __reduce__(self) -> tuple[Any, ...]:  # pickled whole (a worker process may raise it)
+        return (type(self), (self.args[0], self.limit))
 
 
 _W, _W0, _MB, _SB = (ca.SX.sym(name) for name in ("w", "w0", "m_b", "s_b"))
