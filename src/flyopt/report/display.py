@@ -503,12 +503,20 @@ def rounded_rank_note(continuous_mass: str) -> str:
 
 def key_answer(key: Mapping[str, Any], material: str, quantity: Callable[[float, str], T]) -> list[str | T]:
     """The hub's key in the answer (the text's line, the card's row), as parts: its DIN 6885-1 section (in mm, as
-    the standard names it), its length, its verdict and the pressure against the allowable; or, where the hub's
+    the standard names it), its length, the torque it is checked at (the peak of the flywheel the cycle requires:
+    a described shaft's check gives the wheel as built its own), its verdict and the pressure against the
+    allowable; or, where the hub's
     material (``material``, its name for people) gives no allowable, the key's shear against the key steel's and
     the pressure said to be unchecked. ``quantity(value, name)`` shows a value of the JSON field ``name``."""
     from flyopt.design.key import key_verdict
 
-    parts: list[str | T] = [f"{key['size']} mm section, ", quantity(key["length"], "length"), " long: "]
+    parts: list[str | T] = [
+        f"{key['size']} mm section, ",
+        quantity(key["length"], "length"),
+        " long, at ",
+        quantity(key["torque"], "torque"),
+        ": ",
+    ]
     pressure: list[str | T] = ["bearing pressure ", quantity(key["bearing_pressure"], "bearing_pressure")]
     if key["allowable_pressure"] is not None:
         return [
