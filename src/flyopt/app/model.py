@@ -13,6 +13,7 @@ report's summary facts (:func:`flyopt.report.card.card_of`, the card a notebook 
 
 from __future__ import annotations
 
+import atexit
 import hashlib
 import json
 import shutil
@@ -136,6 +137,7 @@ class Workspace:
     def __init__(self) -> None:
         self.folder = Path(tempfile.mkdtemp(prefix="flyopt-app-"))
         self.path = self.folder / SCENE_NAME
+        _LIVE.add(self.folder)
 
     def write(self, text: str) -> Path:
         """Write ``text`` as the scene (refused over :data:`MAX_BYTES`); the scene's path."""
@@ -146,6 +148,23 @@ class Workspace:
     def close(self) -> None:
         """Remove the folder."""
         shutil.rmtree(self.folder, ignore_errors=True)
+        _LIVE.discard(self.folder)
+
+
+#: The folders of the workspaces not closed yet: a session's is closed when the session ends, and those of the
+#: sessions still open when the server stops by :func:`close_workspaces` (``flyopt app`` stopped by Ctrl-C or
+#: SIGTERM left each open session's folder, its scene text and files, in the temporary directory).
+_LIVE: set[Path] = set()
+
+
+def close_workspaces() -> None:
+    """Remove the folder of every workspace not closed yet (the server's last act; at exit too)."""
+    for folder in list(_LIVE):
+        shutil.rmtree(folder, ignore_errors=True)
+        _LIVE.discard(folder)
+
+
+atexit.register(close_workspaces)
 
 
 def check(text: str, workspace: Workspace) -> Checked:

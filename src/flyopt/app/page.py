@@ -442,17 +442,24 @@ def _fluid(svg: str) -> str:
 
 def serve(port: int, host: str, browser: bool) -> None:
     """Serve the app on ``host``:``port`` until interrupted; open the browser when asked."""
+    import signal
+
     import panel as pn
 
     model.serving(host)
     pn.extension("codeeditor", raw_css=[CSS])
-    pn.serve(
-        {"/": session},
-        port=port,
-        address=host,
-        websocket_origin=[f"{host}:{port}", f"localhost:{port}", f"127.0.0.1:{port}"],
-        show=browser,
-        title="flyopt",
-        websocket_max_message_size=4 * model.MAX_BYTES,
-        threaded=False,
-    )
+    # SIGTERM stops the server as Ctrl-C does (Panel's own SIGINT handler), so that it returns here
+    signal.signal(signal.SIGTERM, lambda *_: signal.raise_signal(signal.SIGINT))
+    try:
+        pn.serve(
+            {"/": session},
+            port=port,
+            address=host,
+            websocket_origin=[f"{host}:{port}", f"localhost:{port}", f"127.0.0.1:{port}"],
+            show=browser,
+            title="flyopt",
+            websocket_max_message_size=4 * model.MAX_BYTES,
+            threaded=False,
+        )
+    finally:
+        model.close_workspaces()  # the sessions still open: nothing of theirs stays behind
