@@ -21,6 +21,7 @@ from flyopt.report.display import (
     unit,
 )
 from flyopt.report.text import formatters, number, table
+from flyopt.units import rpm_to_rad_s
 
 if TYPE_CHECKING:
     from flyopt.design.shaft.check import ShaftCheck, ShaftLimit
@@ -139,8 +140,8 @@ def shaft_report(reports: Sequence[ShaftReport], units: str = DEFAULT, digits: i
                 if c.torque_source == "forced response"
                 else ""
             ),
-            f"  running range {q(c.speed_range_rpm[0] * math.pi / 30.0, 'speed_range')} to "
-            f"{q(c.speed_range_rpm[1] * math.pi / 30.0, 'speed_range')}",
+            f"  running range {q(rpm_to_rad_s(c.speed_range_rpm[0]), 'speed_range')} to "
+            f"{q(rpm_to_rad_s(c.speed_range_rpm[1]), 'speed_range')}",
         ]
         rows = [limit_row(lim, units, digits) for lim in c.limits]
         lines += [
@@ -228,7 +229,7 @@ def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_D
             "-"
             if near is None
             else (
-                f"order {near.order:.4g}: {q(near.speed_rpm * math.pi / 30.0, 'critical_speed')}"
+                f"order {near.order:.4g}: {q(rpm_to_rad_s(near.speed_rpm), 'critical_speed')}"
                 + (" (in the range)" if near.in_range else f" ({number(100 * near.margin, 3)} % clear)")
             )
         )
@@ -239,7 +240,7 @@ def train_lines(check: ShaftCheck, units: str = DEFAULT, digits: int = DEFAULT_D
         for line in table(["mode", "frequency", "shape (each inertia, largest 1)", "nearest critical speed"], rows)
     ]
     lines.append(
-        f"  forced response at the mean speed {q(train.speed_rpm * math.pi / 30.0, 'speed_range')} to "
+        f"  forced response at the mean speed {q(rpm_to_rad_s(train.speed_rpm), 'speed_range')} to "
         f"{train.orders.size} orders (modal damping {number(100 * train.damping_ratio, 3)} %), on each "
         "element's own shaft:"
     )

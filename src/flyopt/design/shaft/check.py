@@ -314,7 +314,7 @@ class ShaftCheck:
             "torque_source": self.torque_source,
             **({"key_torque": self.key_torque} if math.isfinite(self.key_torque) else {}),
             "lateral_critical_speed": self.lateral_speed,
-            "speed_range": [v * math.pi / 30.0 for v in self.speed_range_rpm],
+            "speed_range": [rpm_to_rad_s(v) for v in self.speed_range_rpm],
             "torsional_modes": (
                 [] if self.torsional is None else [f * 2.0 * math.pi for f in self.torsional.modes.frequencies_hz]
             ),
@@ -330,7 +330,7 @@ class ShaftCheck:
             {
                 "mode": c.mode,
                 "order": c.order,
-                "critical_speed": c.speed_rpm * math.pi / 30.0,
+                "critical_speed": rpm_to_rad_s(c.speed_rpm),
                 "margin": c.margin,
                 "in_range": c.in_range,
             }

@@ -36,6 +36,7 @@ from flyopt.machine.torsion import (
     shaft_stiffness,
 )
 from flyopt.machine.torsion import modes as torsion_modes
+from flyopt.units import rpm_to_rad_s
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -250,7 +251,7 @@ class TrainResponse:
                 {"natural_frequency": float(w), "mode_shape": [float(v) for v in self.shapes[:, m]]}
                 for m, w in enumerate(self.modes.omega)
             ],
-            "speed": self.speed_rpm * math.pi / 30.0,
+            "speed": rpm_to_rad_s(self.speed_rpm),
             "damping_ratio": self.damping_ratio,
             "orders": [float(q) for q in self.orders],
             "springs": elements,

@@ -3,7 +3,6 @@ it, and the Campbell diagram of its torsional modes (docs/flywheel-design.md, se
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from flyopt.design.combination import shaft_label
@@ -12,6 +11,7 @@ from flyopt.report.builder.base import NOTES, BuilderBase
 from flyopt.report.display import number
 from flyopt.report.document import Facts, Paragraph, Table
 from flyopt.report.shaft import binding_words, seat_choice_words
+from flyopt.units import rpm_to_rad_s
 
 
 class ShaftSection(BuilderBase):
@@ -149,7 +149,7 @@ class ShaftSection(BuilderBase):
                     "-"
                     if near is None
                     else f"order {near.order:.4g} at "
-                    + display.quantity_text(near.speed_rpm * math.pi / 30.0, "angular_speed", self.units, self.digits),
+                    + display.quantity_text(rpm_to_rad_s(near.speed_rpm), "angular_speed", self.units, self.digits),
                     "-" if near is None else ("in the range" if near.in_range else f"{number(100 * near.margin, 3)} %"),
                 ]
             )

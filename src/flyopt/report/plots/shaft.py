@@ -12,6 +12,7 @@ import numpy as np
 from flyopt.design.combination import shaft_label
 from flyopt.report import display
 from flyopt.report.plots import standard
+from flyopt.units import rpm_to_rad_s
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -138,7 +139,7 @@ def plot_campbell(
     crossings = [c.speed_rpm for c in check.critical]
     n_top = 1.3 * max(high, min(max(crossings), 4.0 * high))
     rpm = np.linspace(0.0, n_top, 200)
-    shown = standard.show(rpm * math.pi / 30.0, "angular_speed", units)
+    shown = standard.show(rpm * (2.0 * math.pi / 60.0), "angular_speed", units)  # an array: units.rpm_to_rad_s on each
     worst = next((lim for lim in report.check.limits if lim.kind == "torsional"), None)
     worst_order = None if worst is None else float(worst.where.split()[-1])
     labelled = set(np.sort(check.orders)[:4].tolist()) | ({worst_order} if worst_order is not None else set())
@@ -170,15 +171,15 @@ def plot_campbell(
         ax.axhline(f_m, color="tab:blue", lw=1.4, label=f"torsional mode {m}: {display.number(f_m, digits)} Hz")
     margin = layout.critical_margin
     ax.axvspan(
-        standard.show(low * (1.0 - margin) * math.pi / 30.0, "angular_speed", units),
-        standard.show(high * (1.0 + margin) * math.pi / 30.0, "angular_speed", units),
+        standard.show(rpm_to_rad_s(low * (1.0 - margin)), "angular_speed", units),
+        standard.show(rpm_to_rad_s(high * (1.0 + margin)), "angular_speed", units),
         color="tab:orange",
         alpha=0.12,
         label=f"the range widened by the margin, {100 * margin:.3g} %",
     )
     ax.axvspan(
-        standard.show(low * math.pi / 30.0, "angular_speed", units),
-        standard.show(high * math.pi / 30.0, "angular_speed", units),
+        standard.show(rpm_to_rad_s(low), "angular_speed", units),
+        standard.show(rpm_to_rad_s(high), "angular_speed", units),
         color="tab:orange",
         alpha=0.35,
         label="running range ω_m (1 ∓ δ/2)",
@@ -187,7 +188,7 @@ def plot_campbell(
     for c in inside:
         colour = "tab:red" if report.check.binding.kind == "torsional" and c.in_range else "black"
         ax.plot(
-            standard.show(c.speed_rpm * math.pi / 30.0, "angular_speed", units),
+            standard.show(rpm_to_rad_s(c.speed_rpm), "angular_speed", units),
             c.frequency_hz,
             "o",
             ms=2.2 if many else 4,
@@ -195,13 +196,13 @@ def plot_campbell(
         )
     if worst is not None:
         ax.plot(
-            standard.show(worst.value * math.pi / 30.0, "angular_speed", units),
+            standard.show(rpm_to_rad_s(worst.value), "angular_speed", units),
             float(modes[int(worst.where.split()[1]) - 1]),
             "s",
             ms=9,
             mfc="none",
             color="tab:red",
-            label=f"nearest: {worst.where}, {standard.q(worst.value * math.pi / 30.0, 'angular_speed', units, digits)} "
+            label=f"nearest: {worst.where}, {standard.q(rpm_to_rad_s(worst.value), 'angular_speed', units, digits)} "
             f"(utilisation {display.number(worst.utilisation, display.UTILISATION_DIGITS)})",
         )
     ax.set_xlim(0.0, shown[-1])
