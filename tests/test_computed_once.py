@@ -149,7 +149,10 @@ def test_the_diagrams_are_every_diagram():
     assert sorted(DIAGRAMS) == sorted(PLOTS)
 
 
-@pytest.mark.parametrize("scene", ALONE)
+# engine-members (energy_mass, as slider-crank-press, from its members) in the slow set: the default run's five minutes
+@pytest.mark.parametrize(
+    "scene", [pytest.param(s, marks=pytest.mark.slow) if s == "engine-members" else s for s in ALONE]
+)
 @pytest.mark.parametrize("what", DIAGRAMS)
 def test_each_diagram_solves_once_and_renders(scene, what, solved_once, tmp_path, capsys):
     """One diagram alone: one solve that computes what it draws (``flyopt.cli.plot.needs``), a real PNG

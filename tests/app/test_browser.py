@@ -37,10 +37,17 @@ def free_port():
 
 
 @pytest.fixture(scope="module")
-def server():
+def server(tmp_path_factory):
+    """The app served as a user runs it, its temporary directory its own (TMPDIR): stopped by SIGTERM at the
+    end, it must leave no session's private folder there (tests/app/test_server.py says why)."""
     pytest.importorskip("panel", reason="the app extra (panel) is not installed")
     port = free_port()
-    env = {**os.environ, "PYTHONPATH": f"{SRC}{os.pathsep}{os.environ.get('PYTHONPATH', '')}"}
+    temporary = tmp_path_factory.mktemp("app-tmp")
+    env = {
+        **os.environ,
+        "TMPDIR": str(temporary),
+        "PYTHONPATH": f"{SRC}{os.pathsep}{os.environ.get('PYTHONPATH', '')}",
+    }
     process = subprocess.Popen(
         [sys.executable, "-m", "flyopt", "app", "--port", str(port), "--no-browser"],
         env=env,
@@ -64,6 +71,7 @@ def server():
         process.terminate()
         process.wait(10)
         process.stderr.close()
+    assert list(temporary.glob("flyopt-app-*")) == [], "the stopped server left its sessions' folders"
 
 
 @pytest.fixture(scope="module")

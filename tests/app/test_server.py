@@ -22,9 +22,8 @@ def _free_port():
         return s.getsockname()[1]
 
 
-@pytest.mark.parametrize(
-    "how", [signal.SIGTERM, pytest.param(signal.SIGINT, marks=pytest.mark.slow)], ids=["SIGTERM", "SIGINT"]
-)
+@pytest.mark.slow  # SIGTERM is checked by default where the browser tests' server stops (tests/app/test_browser.py)
+@pytest.mark.parametrize("how", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
 def test_a_stopped_server_leaves_no_sessions_folder(how, tmp_path):
     """Each session of the app keeps the editor's text (and its sweeps' and drawings' files) in a private
     temporary folder, removed when the session ends. A server stopped with sessions open (Ctrl-C, or SIGTERM
