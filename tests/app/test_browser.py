@@ -6,14 +6,13 @@ import io
 import json
 import os
 import re
-import socket
 import subprocess
 import sys
-import time
-import urllib.request
 from pathlib import Path
 
 import pytest
+
+from tests.app.app_server import served
 
 pytestmark = [pytest.mark.browser, pytest.mark.usefixtures("close_figures")]  # no figure outlives a test
 
@@ -27,13 +26,6 @@ ARGS = [
     "--disable-sync",
     "--no-first-run",
 ]
-SRC = Path(__file__).resolve().parents[2] / "src"
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 @pytest.fixture(scope="module")
@@ -41,36 +33,9 @@ def server(tmp_path_factory):
     """The app served as a user runs it, its temporary directory its own (TMPDIR): stopped by SIGTERM at the
     end, it must leave no session's private folder there (tests/app/test_server.py says why)."""
     pytest.importorskip("panel", reason="the app extra (panel) is not installed")
-    port = free_port()
     temporary = tmp_path_factory.mktemp("app-tmp")
-    env = {
-        **os.environ,
-        "TMPDIR": str(temporary),
-        "PYTHONPATH": f"{SRC}{os.pathsep}{os.environ.get('PYTHONPATH', '')}",
-    }
-    process = subprocess.Popen(
-        [sys.executable, "-m", "flyopt", "app", "--port", str(port), "--no-browser"],
-        env=env,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.PIPE,
-    )
-    url = f"http://127.0.0.1:{port}/"
-    try:
-        for _ in range(600):
-            try:
-                # a loaded host answers the page's first request in seconds; each request that timed out would
-                # leave one more session to build on the server
-                urllib.request.urlopen(url, timeout=60).close()
-                break
-            except OSError:
-                if process.poll() is not None:
-                    raise RuntimeError(process.stderr.read().decode()) from None
-                time.sleep(0.1)
+    with served(temporary) as (url, _):
         yield url
-    finally:
-        process.terminate()
-        process.wait(10)
-        process.stderr.close()
     assert list(temporary.glob("flyopt-app-*")) == [], "the stopped server left its sessions' folders"
 
 
