@@ -119,10 +119,10 @@ def render(document: Document) -> str:
     drawn = [block for section in document.sections for block in section.blocks if _drawn(block)]
     made: list[str] = []
     if drawn:
-        from flyopt.report.svg_cores import svgs
+        from flyopt.report.figure_cores import draw_each
 
         # every figure drawn before the page is written, on each core this process may run on
-        made = svgs([(block.figure, f"f{number}-") for number, block in enumerate(drawn, start=1)], svg_of)
+        made = draw_each([(block.figure, f"f{number}-") for number, block in enumerate(drawn, start=1)], svg_of)
     figures = 0
     for section in document.sections:
         tag = "h2" if section.level == 1 else "h3"

@@ -17,6 +17,7 @@ import io
 import os
 import re
 from collections.abc import Callable
+from typing import Any
 from xml.sax.saxutils import escape
 
 from flyopt.report.characters import visible
@@ -76,13 +77,14 @@ def render(document: Document) -> bytes:
     width = A4[0] - 2 * margin
     height = A4[1] - 32 * mm
     story = _title(document, styles, width) + _contents(document, styles, width)
+    drawings = _drawings(document)
     for section in document.sections:
         style = styles["h1"] if section.level == 1 else styles["h2"]
         heading = _paragraph(f"{section.number} {section.title}", style, anchor=anchor(section.number))
         heading.flyopt_section = section
         story.append(heading)
         for block in section.blocks:
-            story += _block(block, styles, width, height)
+            story += _block(block, styles, width, height, drawings)
 
     def footer(canvas, doc):
         canvas.saveState()
@@ -329,7 +331,25 @@ def _title(document, styles, width):
     return [table, Spacer(1, 8)]
 
 
-def _block(block, styles, width, height):
+def _drawings(document: Document) -> dict[int, Any]:
+    """{id of a figure: its drawing} of every figure ``document`` shows drawn, each drawn once before the pages
+    are laid out, on each core this process may run on (:func:`flyopt.report.figure_cores.draw_each`), and
+    played onto its page where reportlab places it."""
+    figures = [
+        block.figure
+        for section in document.sections
+        for block in section.blocks
+        if isinstance(block, Figure) and block.figure is not None
+    ]
+    if not figures:
+        return {}
+    from flyopt.report.figure_cores import draw_each
+    from flyopt.report.pdf_figure import record
+
+    return dict(zip(map(id, figures), draw_each([(figure, "") for figure in figures], record)))
+
+
+def _block(block, styles, width, height, drawings):
     from reportlab.lib import colors
     from reportlab.platypus import KeepTogether, Spacer
     from reportlab.platypus import Table as RLTable
@@ -388,7 +408,7 @@ def _block(block, styles, width, height):
         caption = f"{block.caption}." if block.figure is not None else f"{block.caption}. {block.note}"
         if block.figure is None:
             return [_paragraph(caption, styles["caption"]), Spacer(1, 4)]
-        figure = _figure(block.figure, _paragraph(caption, styles["caption"]), width, 0.62 * height)
+        figure = _figure(drawings[id(block.figure)], _paragraph(caption, styles["caption"]), width, 0.62 * height)
         return [figure, Spacer(1, 6)]
     if isinstance(block, Code):
         chars = int(width / (0.6 * styles["code"].fontSize)) - 1
@@ -493,20 +513,21 @@ def _fit(natural, least, width):
 SHRINK = 0.72
 
 
-def _figure(figure, caption, width, height):
-    """A matplotlib figure as a vector flowable with its caption below, kept together.
+def _figure(drawing, caption, width, height):
+    """A figure's drawing (:func:`flyopt.report.pdf_figure.record`) as a vector flowable with its caption below,
+    kept together.
 
     Scaled to fit ``width`` x ``height`` [pt] and never enlarged; where the rest
     of a page holds at least :data:`SHRINK` of that size the diagram shrinks to
     fit it, so that a page is not left half empty for want of a few points. The
-    figure is drawn onto the page itself (:func:`flyopt.report.pdf_figure.draw`,
+    drawing is played onto the page itself (:func:`flyopt.report.pdf_figure.draw`,
     paths and text, no image), once, when reportlab places it.
     """
     from reportlab.platypus import Flowable
 
     from flyopt.report.pdf_figure import draw as draw_figure
 
-    w, h = figure.get_size_inches() * 72.0
+    w, h = drawing.width, drawing.height  # [pt]
     scale = min(1.0, width / w, height / h)
 
     class FigureFlowable(Flowable):
@@ -523,7 +544,7 @@ def _figure(figure, caption, width, height):
 
         def draw(self):
             shown_w = w * self.scale
-            draw_figure(figure, self.canv, (self.width - shown_w) / 2, self.caption_height + 4, self.scale)
+            draw_figure(drawing, self.canv, (self.width - shown_w) / 2, self.caption_height + 4, self.scale)
             caption.drawOn(self.canv, 0, 0)
 
     return FigureFlowable()

@@ -1,14 +1,20 @@
 """A matplotlib figure drawn straight onto a reportlab canvas, as vectors: the PDF report's diagrams.
 
-:func:`draw` lays the figure out and draws it once, with a matplotlib renderer
-(:class:`CanvasRenderer`) that writes PDF path operators onto the page reportlab
-is building: lines, areas, hatching and markers stay paths, at any zoom and in
-print; text is PDF text in the font matplotlib chose (DejaVu Sans, embedded by
-reportlab as for the rest of the report), so that it can be searched and
-copied; mathtext, which the diagrams never write (their texts are escaped by
+:func:`record` lays the figure out and draws it once, with a matplotlib
+renderer (:class:`CanvasRenderer`) that writes PDF path operators and
+reportlab canvas calls into a :class:`Recording`: lines, areas, hatching and
+markers stay paths, at any zoom and in print; text is PDF text in the font
+matplotlib chose (DejaVu Sans, embedded by reportlab as for the rest of the
+report), so that it can be searched and copied; mathtext, which the diagrams
+never write (their texts are escaped by
 :func:`flyopt.report.plots.standard.drawable`), would be drawn as outlines.
-Nothing is rasterised, and nothing is written twice: no PNG, no PDF of the
-figure to read back.
+:func:`draw` plays a recording onto the page reportlab is building. A
+recording is plain data, so a figure may be drawn in a forked worker
+(:mod:`flyopt.report.figure_cores`, as :func:`flyopt.report.pdf.render`
+draws a report's figures) and placed on its page by the process that lays
+the pages out; its fonts are named by their files and registered with
+reportlab where it is played. Nothing is rasterised, and nothing is written
+twice: no PNG, no PDF of the figure to read back.
 
 The figure is drawn at 72 dpi (one pixel a point, as matplotlib's own PDF
 backend draws it), scaled on the page by the caller. Imported only for a PDF.
@@ -17,6 +23,7 @@ backend draws it), scaled on the page by the caller. Imported only for a PDF.
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Literal, cast
 
 import numpy as np
@@ -39,19 +46,87 @@ _JOINS = {"miter": 0, "round": 1, "bevel": 2}
 _HATCH_TILE = 72.0
 
 
-def draw(figure: Figure, canvas: Canvas, x: float, y: float, scale: float) -> None:
-    """Draw ``figure`` on ``canvas`` with its lower left corner at (x, y) [pt], scaled by ``scale``.
+#: The reportlab canvas methods a figure's drawing calls (:class:`Recording` records nothing else); a font is
+#: recorded as ("font", (file, size)) and an image as ("image", (pixels, width, height)).
+CANVAS_CALLS = frozenset(
+    {
+        "saveState",
+        "restoreState",
+        "translate",
+        "rotate",
+        "transform",
+        "addLiteral",
+        "setStrokeColorRGB",
+        "setStrokeAlpha",
+        "setLineWidth",
+        "setLineCap",
+        "setLineJoin",
+        "setDash",
+        "setFillColorRGB",
+        "setFillAlpha",
+        "drawString",
+    }
+)
 
-    The figure's layout engine (constrained layout) runs in this one draw; the
-    figure's dpi is 72 while it draws and its own again afterwards.
+
+class Recording:
+    """One figure's drawing: its size [pt] and the reportlab canvas calls that draw it, in order.
+
+    What :class:`CanvasRenderer` writes: a call to a method of :data:`CANVAS_CALLS` is recorded with its
+    arguments (plain numbers, strings and lists), a font by its file (:meth:`font`) and an image by its pixels
+    (:meth:`image`), so that a recording pickles whole and plays the same wherever it is played (:func:`draw`).
     """
-    width, height = figure.get_size_inches() * VECTOR_DPI
+
+    def __init__(self, width: float, height: float) -> None:
+        self.width = width
+        self.height = height
+        self.calls: list[tuple[str, tuple[Any, ...]]] = []
+
+    def __getattr__(self, name: str) -> Callable[..., None]:
+        if name not in CANVAS_CALLS:
+            raise AttributeError(name)
+        return lambda *args: self.calls.append((name, args))
+
+    def font(self, path: str, size: float) -> None:
+        """Set the TrueType font of the file ``path`` at ``size`` [pt]."""
+        self.calls.append(("font", (path, size)))
+
+    def image(self, pixels: np.ndarray, width: float, height: float) -> None:
+        """Draw the RGBA ``pixels`` (rows from the top) over ``width`` x ``height`` from the origin."""
+        self.calls.append(("image", (np.asarray(pixels), width, height)))
+
+
+def record(figure: Figure, prefix: str = "") -> Recording:
+    """The drawing of ``figure`` (its layout engine, constrained layout, runs in this one draw; the figure's dpi
+    is 72 while it draws and its own again afterwards). ``prefix`` is not used: a PDF has no ids to keep apart
+    (it is the argument :func:`flyopt.report.figure_cores.draw_each` passes)."""
+    width, height = (float(v) for v in figure.get_size_inches() * VECTOR_DPI)
+    recording = Recording(width, height)
+    with standard.collector_paused():
+        draw_vector(figure, lambda: CanvasRenderer(recording, width, height))
+    return recording
+
+
+def draw(figure: Figure | Recording, canvas: Canvas, x: float, y: float, scale: float) -> None:
+    """Draw ``figure`` (or its :func:`record`) on ``canvas`` with its lower left corner at (x, y) [pt],
+    scaled by ``scale``."""
+    recording = figure if isinstance(figure, Recording) else record(figure)
     canvas.saveState()
     canvas.translate(x, y)
     canvas.scale(scale, scale)
     try:
-        with standard.collector_paused():
-            draw_vector(figure, lambda: CanvasRenderer(canvas, float(width), float(height)))
+        for name, args in recording.calls:
+            if name == "font":
+                path, size = args
+                canvas.setFont(font_name(path), size)
+            elif name == "image":
+                from PIL import Image
+                from reportlab.lib.utils import ImageReader
+
+                pixels, width, height = args
+                canvas.drawImage(ImageReader(Image.fromarray(pixels)), 0, 0, width, height, mask="auto")
+            else:
+                getattr(canvas, name)(*args)
     finally:
         canvas.restoreState()
 
@@ -135,7 +210,8 @@ _MEASURES: dict[tuple[str, Any], tuple[float, float, float]] = {}
 
 
 class CanvasRenderer(RendererBase):
-    """A matplotlib renderer whose output is PDF operators on a reportlab canvas (y up, one pixel a point).
+    """A matplotlib renderer whose output is PDF operators and reportlab canvas calls, recorded (y up, one pixel
+    a point).
 
     Paths (and the default collections and markers, drawn path by path) are filled
     and stroked with their colours, alphas, dashes, caps and joins, clipped to the
@@ -144,7 +220,7 @@ class CanvasRenderer(RendererBase):
     properties; mathtext falls back to matplotlib's outlines.
     """
 
-    def __init__(self, canvas: Canvas, width: float, height: float) -> None:
+    def __init__(self, canvas: Recording, width: float, height: float) -> None:
         super().__init__()
         self.canvas = canvas
         self.width = width
@@ -305,14 +381,11 @@ class CanvasRenderer(RendererBase):
         canvas.translate(x, y)
         if angle:
             canvas.rotate(angle)
-        canvas.setFont(font_name(str(font_manager.findfont(prop))), prop.get_size_in_points())
+        canvas.font(str(font_manager.findfont(prop)), prop.get_size_in_points())
         canvas.drawString(0, 0, s)
         canvas.restoreState()
 
     def draw_image(self, gc: GraphicsContextBase, x: float, y: float, im: Any, transform: Any = None) -> None:
-        from PIL import Image
-        from reportlab.lib.utils import ImageReader
-
         h, w = im.shape[:2]
         if w == 0 or h == 0:
             return
@@ -323,5 +396,5 @@ class CanvasRenderer(RendererBase):
         if transform is not None:  # the image fills the unit square of the transform
             canvas.transform(*transform.frozen().to_values())
             w, h = 1, 1
-        canvas.drawImage(ImageReader(Image.fromarray(np.asarray(im))), 0, 0, w, h, mask="auto")
+        canvas.image(np.asarray(im), w, h)
         canvas.restoreState()

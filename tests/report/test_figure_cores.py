@@ -1,5 +1,5 @@
 """Drawing figures fast without changing them (issue 26, 29): the figures drawn in forked workers are the
-SVGs this process draws (flyopt.report.svg_cores), the texts remembered from figure to figure draw as
+SVGs this process draws (flyopt.report.figure_cores), the texts remembered from figure to figure draw as
 matplotlib's own TextToPath draws them (flyopt.report.html.remembered_text_to_path), and the collector's pause
 leaves it as it was (flyopt.report.plots.standard.collector_paused).
 
@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from matplotlib.textpath import TextToPath
 
-from flyopt.report import html, svg_cores
+from flyopt.report import figure_cores, html
 from flyopt.report.plots import standard
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="workers are forked (POSIX)")
@@ -54,15 +54,44 @@ def figures():
 
 
 def test_the_figures_drawn_in_workers_are_those_drawn_here():
-    here = svg_cores.svgs(figures(), html.svg_of, workers=0)
+    here = figure_cores.draw_each(figures(), html.svg_of, workers=0)
     import matplotlib.pyplot as plt
 
     plt.close("all")
-    there = svg_cores.svgs(figures(), html.svg_of, workers=2)
+    there = figure_cores.draw_each(figures(), html.svg_of, workers=2)
     assert len(there) == 3
     assert [len(svg) for svg in there] == [len(svg) for svg in here]  # in their order
     assert there == here
     assert all(svg.startswith("<svg") for svg in there)
+
+
+def test_a_pdfs_figures_drawn_in_workers_play_onto_the_page_as_those_drawn_here(tmp_path):
+    """The PDF's figures (flyopt.report.pdf_figure.record, as flyopt.report.pdf.render draws them) drawn in
+    forked workers and pickled back play onto a page as those drawn in this process do: the same page, byte for
+    byte (reportlab's invariant mode: no date, no random id), an image among them."""
+    import matplotlib.pyplot as plt
+    from reportlab.pdfgen.canvas import Canvas
+
+    from flyopt.report import pdf_figure
+
+    def page(name, workers):
+        made = figures()
+        image = standard.new_figure(figsize=(3, 3), layout="constrained")
+        image.add_subplot().imshow(np.arange(12.0).reshape(3, 4))
+        drawings = figure_cores.draw_each([*made, (image, "d-")], pdf_figure.record, workers=workers)
+        plt.close("all")
+        canvas = Canvas(str(tmp_path / name), invariant=1)
+        for k, drawing in enumerate(drawings):
+            pdf_figure.draw(drawing, canvas, 20, 20 + 190 * k, 0.4)
+        canvas.save()
+        return drawings, (tmp_path / name).read_bytes()
+
+    here, page_here = page("here.pdf", 0)
+    there, page_there = page("there.pdf", 2)
+    assert [len(d.calls) for d in there] == [len(d.calls) for d in here]  # in their order
+    assert [name for d in here for name, _args in d.calls].count("image") == 1
+    assert page_there == page_here
+    assert b"/Subtype /Image" in page_here
 
 
 PARENT = os.getpid()
@@ -88,17 +117,17 @@ def test_a_figure_a_worker_cannot_draw_is_drawn_here(how):
             out.append((figure, f"h{k}-"))
         return out
 
-    here = svg_cores.svgs(made(), html.svg_of, workers=0)
-    assert svg_cores.svgs(made(), html.svg_of, workers=1) == here
+    here = figure_cores.draw_each(made(), html.svg_of, workers=0)
+    assert figure_cores.draw_each(made(), html.svg_of, workers=1) == here
 
 
 def test_no_worker_is_forked_beside_threads_or_for_one_figure():
-    assert svg_cores.workers_for(1) == 0
+    assert figure_cores.workers_for(1) == 0
     stop = threading.Event()
     other = threading.Thread(target=stop.wait)
     other.start()
     try:
-        assert svg_cores.workers_for(8) == 0  # fork beside threads: not (flyopt.studies.processes' rule)
+        assert figure_cores.workers_for(8) == 0  # fork beside threads: not (flyopt.studies.processes' rule)
     finally:
         stop.set()
         other.join()
@@ -107,26 +136,28 @@ def test_no_worker_is_forked_beside_threads_or_for_one_figure():
 def test_the_cpus_counted_are_those_the_sweeps_count():
     from flyopt.studies.processes import cpu_count
 
-    assert svg_cores.cpu_count() == cpu_count()
+    assert figure_cores.cpu_count() == cpu_count()
     if hasattr(os, "sched_setaffinity"):
         allowed = os.sched_getaffinity(0)
         try:
             os.sched_setaffinity(0, {min(allowed)})
-            assert svg_cores.cpu_count() == cpu_count() == 1
-            assert svg_cores.workers_for(8) == 0  # one CPU: no worker
+            assert figure_cores.cpu_count() == cpu_count() == 1
+            assert figure_cores.workers_for(8) == 0  # one CPU: no worker
         finally:
             os.sched_setaffinity(0, allowed)
 
 
 def test_texts_remembered_draw_as_matplotlib_draws_them(monkeypatch):
     remembered = html.remembered_text_to_path()
-    svg_cores.svgs(figures()[1:], html.svg_of, workers=0)  # the texts remembered
+    figure_cores.draw_each(figures()[1:], html.svg_of, workers=0)  # the texts remembered
     assert remembered._glyphs and remembered._measures
-    again = svg_cores.svgs(figures()[1:], html.svg_of, workers=0)  # drawn from what was remembered
+    again = figure_cores.draw_each(figures()[1:], html.svg_of, workers=0)  # drawn from what was remembered
     kind = type(remembered)
     monkeypatch.setattr(kind, "get_glyphs_with_font", TextToPath.get_glyphs_with_font)
     monkeypatch.setattr(kind, "get_text_width_height_descent", TextToPath.get_text_width_height_descent)
-    assert svg_cores.svgs(figures()[1:], html.svg_of, workers=0) == again  # matplotlib's own, nothing remembered
+    assert (
+        figure_cores.draw_each(figures()[1:], html.svg_of, workers=0) == again
+    )  # matplotlib's own, nothing remembered
 
 
 def test_the_collector_is_paused_and_left_as_it_was():

@@ -1,13 +1,15 @@
-"""A document's figures drawn to SVG on every core this process may run on: forked workers.
+"""A document's figures drawn on every core this process may run on: forked workers.
 
-Drawing a report's figures (:func:`flyopt.report.html.svg_of`, matplotlib's layout and SVG renderer) is
-most of the time ``flyopt report`` takes after its one solve (README "Benchmarks", issue 26), and the
-figures are independent of each other. :func:`svgs` draws them in this process and in worker processes
-forked from it once the figures are made: a worker inherits them (and matplotlib, already imported) without
-a copy, takes the next figure still to draw from a shared queue (a pipe of figure numbers, the heaviest first
-by an estimate: :func:`_cost`), and sends each SVG back as text. The SVG of a figure is the same whichever
-process draws it: :func:`~flyopt.report.html.svg_of` writes nothing that depends on the process (its ids are
-made from the prefix, its glyphs' from the font).
+Drawing a report's figures (matplotlib's layout and a vector renderer: :func:`flyopt.report.html.svg_of` for
+the HTML page, :func:`flyopt.report.pdf_figure.record` for the PDF's pages) is most of the time
+``flyopt report`` takes after its one solve (README "Benchmarks", issue 26), and the figures are independent
+of each other. :func:`draw_each` draws them in this process and in worker processes forked from it once the
+figures are made: a worker inherits them (and matplotlib, already imported) without a copy, takes the next
+figure still to draw from a shared queue (a pipe of figure numbers, the heaviest first by an estimate:
+:func:`_cost`), and sends each drawing back pickled (an SVG's text, a PDF figure's canvas operations). A
+figure's drawing is the same whichever process draws it: neither way writes anything that depends on the
+process (an SVG's ids are made from the prefix, its glyphs' from the font; a PDF figure names its fonts by
+their files, registered with reportlab where the page is laid out).
 
 Workers are forked only where fork is safe and can pay: a process running a single thread (as
 :mod:`flyopt.studies.processes` decides; the app's server, with its threads, draws in its own process) that
@@ -23,12 +25,12 @@ import pickle
 import struct
 import threading
 from collections.abc import Callable, Iterator, Sequence
-from typing import TYPE_CHECKING, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn, TypeVar
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure as MplFigure
 
-__all__ = ["Draw", "cpu_count", "svgs", "workers_for"]
+__all__ = ["Draw", "cpu_count", "draw_each", "workers_for"]
 
 #: One figure's number in the queue: 2 bytes, so that a read of one is whole (a pipe's reads of at most
 #: PIPE_BUF bytes are atomic) and a document may have up to 65535 figures.
@@ -53,30 +55,34 @@ def cpu_count() -> int:
         return os.cpu_count() or 1
 
 
-#: How a figure becomes SVG text, given the prefix of its ids: :func:`flyopt.report.html.svg_of` (passed in by
-#: its module, which this one does not import: it imports this one).
-Draw = Callable[["MplFigure", str], str]
+#: What one figure's drawing is: an SVG's text, a PDF figure's recorded canvas operations (picklable).
+T = TypeVar("T")
+
+#: How a figure is drawn, given the prefix of its ids: :func:`flyopt.report.html.svg_of`,
+#: :func:`flyopt.report.pdf_figure.record` (passed in by their modules, which this one does not import).
+Draw = Callable[["MplFigure", str], T]
 
 
-def svgs(figures: Sequence[tuple[MplFigure, str]], svg_of: Draw, workers: int | None = None) -> list[str]:
-    """``svg_of(figure, prefix)`` of each ``(figure, prefix)``, in their order.
+def draw_each(figures: Sequence[tuple[MplFigure, str]], draw: Draw[T], workers: int | None = None) -> list[T]:
+    """``draw(figure, prefix)`` of each ``(figure, prefix)``, in their order.
 
     Parameters
     ----------
     figures : sequence of (Figure, str)
         The figures and the prefix of each one's ids.
-    svg_of : callable
-        How one figure is drawn (:func:`flyopt.report.html.svg_of`).
+    draw : callable
+        How one figure is drawn (:func:`flyopt.report.html.svg_of`, :func:`flyopt.report.pdf_figure.record`);
+        what it returns is pickled where a worker drew it.
     workers : int, optional
         Worker processes to fork (default :func:`workers_for`; 0 draws every figure in this process).
     """
     count = len(figures)
     if workers is None:
         workers = workers_for(count)
-    drawn: dict[int, str] = {}
+    drawn: dict[int, T] = {}
     if workers > 0:
-        drawn = _in_workers(figures, svg_of, workers)
-    return [drawn[k] if k in drawn else svg_of(*figures[k]) for k in range(count)]
+        drawn = _in_workers(figures, draw, workers)
+    return [drawn[k] if k in drawn else draw(*figures[k]) for k in range(count)]
 
 
 def _cost(figure: MplFigure) -> int:
@@ -85,15 +91,15 @@ def _cost(figure: MplFigure) -> int:
     return sum(10 + len(ax.get_children()) for ax in figure.axes)
 
 
-def _in_workers(figures: Sequence[tuple[MplFigure, str]], svg_of: Draw, workers: int) -> dict[int, str]:
-    """{number: SVG} of the figures drawn by this process and ``workers`` forked ones, taking turns at a queue;
+def _in_workers(figures: Sequence[tuple[MplFigure, str]], draw: Draw[T], workers: int) -> dict[int, T]:
+    """{number: drawing} of the figures drawn by this process and ``workers`` forked ones, taking turns at a queue;
     a figure whose worker failed is missing."""
     order = sorted(range(len(figures)), key=lambda k: -_cost(figures[k][0]))
     queue_read, queue_write = os.pipe()
     os.write(queue_write, b"".join(_ENTRY.pack(k) for k in order))  # a few bytes: within the pipe's buffer
     os.close(queue_write)  # the queue ends where its numbers do
     children: list[tuple[int, int]] = []  # (pid, the read end of its answers)
-    drawn: dict[int, str] = {}
+    drawn: dict[int, T] = {}
     try:
         for _ in range(workers):
             answer_read, answer_write = os.pipe()
@@ -105,11 +111,11 @@ def _in_workers(figures: Sequence[tuple[MplFigure, str]], svg_of: Draw, workers:
                 break
             if pid == 0:  # pragma: no cover - the worker (its coverage is not collected)
                 os.close(answer_read)
-                _work(figures, svg_of, queue_read, answer_write)
+                _work(figures, draw, queue_read, answer_write)
             os.close(answer_write)
             children.append((pid, answer_read))
         for k in _taken(queue_read):
-            drawn[k] = svg_of(*figures[k])
+            drawn[k] = draw(*figures[k])
     finally:
         os.close(queue_read)
         for pid, answer_read in children:
@@ -128,16 +134,16 @@ def _taken(queue_read: int) -> Iterator[int]:
 
 
 def _work(
-    figures: Sequence[tuple[MplFigure, str]], svg_of: Draw, queue_read: int, answer_write: int
+    figures: Sequence[tuple[MplFigure, str]], draw: Draw[T], queue_read: int, answer_write: int
 ) -> NoReturn:  # pragma: no cover
-    """The worker: draw the figures it takes from the queue, send {number: SVG} of those drawn (pickled) and
+    """The worker: draw the figures it takes from the queue, send {number: drawing} of those drawn (pickled) and
     exit without running the parent's exit handlers. A figure that fails is not sent (the parent draws it)."""
     status = 1
     try:
-        drawn: dict[int, str] = {}
+        drawn: dict[int, T] = {}
         try:
             for k in _taken(queue_read):
-                drawn[k] = svg_of(*figures[k])
+                drawn[k] = draw(*figures[k])
         except BaseException:  # the figures not drawn are the parent's to draw, and to raise about
             pass
         with os.fdopen(answer_write, "wb") as answers:
@@ -147,8 +153,8 @@ def _work(
         os._exit(status)
 
 
-def _answers(answer_read: int) -> dict[int, str]:
-    """What a worker sent: {number: SVG}; empty if it sent nothing whole (it died)."""
+def _answers(answer_read: int) -> dict[int, Any]:
+    """What a worker sent: {number: drawing}; empty if it sent nothing whole (it died)."""
     with os.fdopen(answer_read, "rb") as answers:
         data = answers.read()
     try:
