@@ -288,6 +288,39 @@ def test_area_labels_sit_clear_of_the_curves(drawn, scene):
     _assert_standard(ax)
 
 
+@pytest.mark.parametrize("scene", ["slider-crank-press", "compressor"])
+def test_the_area_labels_are_drawn_in_the_layout_they_were_placed_in(tmp_path, scene):
+    """Was: the areas' labels were placed by their pixels in the layout made for them (constrained layout,
+    measured by the figure's Agg canvas), and every draw laid the figure out again, measured by its own
+    renderer: the SVG's (and the PDF's, at 72 dpi) made the axes 6 pt taller under the labels placed for the
+    shorter ones, and the layout was paid at each draw. Now the axes and the labels stay where they were
+    placed, whatever draws the figure."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from flyopt.report import html, plots
+
+    kept = []
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(plots, "save", lambda ax, path, *a, **k: kept.append(ax) or Path(path))
+        status = main(
+            ["plot", str(PROBLEMS / f"{scene}.toml"), "--what", "turning_moment", "-o", str(tmp_path / "x.png")]
+        )
+    assert status == 0
+    ax = kept[-1]
+    figure = ax.figure
+    placed = ax.get_position().frozen()
+    labels = _gid(ax, "area")
+    assert labels
+    at = [label.get_position() for label in labels]
+    to_figure = ax.transData + figure.transFigure.inverted()
+    where = to_figure.transform(at)  # the labels' anchors as fractions of the figure
+    for draw in (lambda: html.svg_of(figure, "t-"), lambda: FigureCanvasAgg(figure).draw()):
+        draw()
+        assert ax.get_position().bounds == pytest.approx(placed.bounds, abs=1e-12)
+        to_figure = ax.transData + figure.transFigure.inverted()
+        np.testing.assert_allclose(to_figure.transform([label.get_position() for label in labels]), where, atol=1e-12)
+
+
 def test_steady_conveyor_has_no_speed_marks_and_nothing_overlaps(drawn):
     """Was: conveyor's ω_max and ω_min printed on top of each other at φ = 0 (A_max = 0: no extremes)."""
     ax = drawn("conveyor", "turning_moment")

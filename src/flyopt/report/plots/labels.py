@@ -29,14 +29,18 @@ def _boxes_overlap(a: BboxBase, b: BboxBase, pad: float = 0.0) -> bool:
 
 
 def lay_out(ax: Axes) -> None:
-    """Put ``ax`` where its figure will draw it, so that data map to the pixels they will be drawn at.
+    """Put ``ax`` where its figure will draw it, so that data map to the pixels they will be drawn at, and
+    keep it there.
 
     The figure's texts are made drawable (:func:`~flyopt.report.plots.standard.make_drawable`, as its
     class does before a draw) and its layout engine (constrained layout), if it has one, is run, as the
-    figure's own draw runs it before drawing anything; the view limits are settled. Nothing is drawn:
-    a whole draw without rendering (``Figure.draw_without_rendering``) lays the figure out just so and
-    then walks every artist and tick for nothing, which cost the turning-moment diagram as much again as
-    its layout.
+    figure's own draw runs it before drawing anything; the view limits are settled. The engine is then
+    set aside (``"none"``: the axes stay where it put them), so that no draw lays the figure out again:
+    what is placed by its pixels after this call (the areas' labels) is drawn where it was placed, and the
+    layout, two measuring passes over every tick label, is paid once rather than at every draw. Call it
+    once the figure's decorations (ticks, labels, title, legend) are all made. Nothing is drawn: a whole
+    draw without rendering (``Figure.draw_without_rendering``) lays the figure out just so and then walks
+    every artist and tick for nothing, which cost the turning-moment diagram as much again as its layout.
     """
     figure = standard.figure_of(ax)
     standard.make_drawable(figure)
@@ -46,6 +50,8 @@ def lay_out(ax: Axes) -> None:
             engine.execute(figure)
         except ValueError:  # as Figure.draw: the layout gives up on a figure too small, the draw goes on
             pass
+        else:
+            figure.set_layout_engine("none")
     ax.viewLim  # noqa: B018 -- reading it settles the autoscaled limits transData maps from
 
 
