@@ -19,8 +19,8 @@ package too, in the same repeats: "before" and "after" measured side by side.
 
 Targets (issue 26): the report of problems/slider-crank-press.toml in at most 1.5 s wall as HTML
 and 2.5 s as PDF. Pinned to one core when the OS allows it (the child processes inherit it); with
-``--cpus 2``, to two, as on an engineer's two-core machine (an HTML report draws its figures on both:
-:mod:`flyopt.report.svg_cores`), each report timed on one of them alone too. The CPU times count the
+``--cpus 2``, to two, as on an engineer's two-core machine (a report, HTML or PDF, draws its figures on both:
+:mod:`flyopt.report.figure_cores`), each report timed on one of them alone too. The CPU times count the
 report's workers. Writes ``benchmarks/results/report.md`` and ``report.csv`` beside this script.
 
 Usage::
