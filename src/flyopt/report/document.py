@@ -158,14 +158,19 @@ class Document:
     failures: list = field(default_factory=list)
     kind: str = "flywheel design report"
 
-    def close(self) -> None:
-        """Close the figures' matplotlib windows (memory) once rendered (a document without any imports nothing)."""
-        figures = [
-            block.figure
+    def drawn(self) -> list[Figure]:
+        """The figure blocks the document shows drawn (not those refused or failed, which hold a note), in its
+        order: what a renderer draws."""
+        return [
+            block
             for section in self.sections
             for block in section.blocks
             if isinstance(block, Figure) and block.figure is not None
         ]
+
+    def close(self) -> None:
+        """Close the figures' matplotlib windows (memory) once rendered (a document without any imports nothing)."""
+        figures = [block.figure for block in self.drawn()]
         if not figures:
             return
         import matplotlib.pyplot as plt

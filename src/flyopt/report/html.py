@@ -116,22 +116,22 @@ def render(document: Document) -> str:
                 f'<li><a href="#{anchor(section.number)}">{_escape(section.number)} {_escape(section.title)}</a></li>'
             )
     out.append("</ul></nav>")
-    drawn = [block for section in document.sections for block in section.blocks if _drawn(block)]
-    made: list[str] = []
+    drawn = document.drawn()
+    made: dict[int, str] = {}  # {id of a drawn block: its SVG}
     if drawn:
         from flyopt.report.figure_cores import draw_each
 
         # every figure drawn before the page is written, on each core this process may run on
-        made = draw_each([(block.figure, f"f{number}-") for number, block in enumerate(drawn, start=1)], svg_of)
+        svgs = draw_each([(block.figure, f"f{number}-") for number, block in enumerate(drawn, start=1)], svg_of)
+        made = dict(zip(map(id, drawn), svgs))
     figures = 0
     for section in document.sections:
         tag = "h2" if section.level == 1 else "h3"
         out.append(f'<section data-section="{_escape(section.key)}">')
         out.append(f'<{tag} id="{anchor(section.number)}">{_escape(section.number)} {_escape(section.title)}</{tag}>')
         for block in section.blocks:
-            svg = None
-            if _drawn(block):
-                svg = made[figures]  # the figures' SVGs in the page's order, numbered as drawn
+            svg = made.get(id(block))
+            if svg is not None:  # the figures numbered as drawn, in the page's order
                 figures += 1
             out.append(_block(block, figures, svg))
         out.append("</section>")
@@ -141,11 +141,6 @@ def render(document: Document) -> str:
     )
     out += ["</body>", "</html>"]
     return "\n".join(out) + "\n"
-
-
-def _drawn(block: object) -> bool:
-    """Whether ``block`` is a figure the page shows drawn (not one that failed or was refused)."""
-    return isinstance(block, Figure) and block.figure is not None
 
 
 def _block(block, figure_number, svg=None):

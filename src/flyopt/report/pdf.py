@@ -332,21 +332,16 @@ def _title(document, styles, width):
 
 
 def _drawings(document: Document) -> dict[int, Any]:
-    """{id of a figure: its drawing} of every figure ``document`` shows drawn, each drawn once before the pages
-    are laid out, on each core this process may run on (:func:`flyopt.report.figure_cores.draw_each`), and
-    played onto its page where reportlab places it."""
-    figures = [
-        block.figure
-        for section in document.sections
-        for block in section.blocks
-        if isinstance(block, Figure) and block.figure is not None
-    ]
-    if not figures:
+    """{id of a block: its figure's drawing} of every figure ``document`` shows drawn (:meth:`Document.drawn`),
+    each drawn once before the pages are laid out, on each core this process may run on
+    (:func:`flyopt.report.figure_cores.draw_each`), and played onto its page where reportlab places it."""
+    drawn = document.drawn()
+    if not drawn:
         return {}
     from flyopt.report.figure_cores import draw_each
     from flyopt.report.pdf_figure import record
 
-    return dict(zip(map(id, figures), draw_each([(figure, "") for figure in figures], record)))
+    return dict(zip(map(id, drawn), draw_each([(block.figure, "") for block in drawn], record)))
 
 
 def _block(block, styles, width, height, drawings):
@@ -408,7 +403,7 @@ def _block(block, styles, width, height, drawings):
         caption = f"{block.caption}." if block.figure is not None else f"{block.caption}. {block.note}"
         if block.figure is None:
             return [_paragraph(caption, styles["caption"]), Spacer(1, 4)]
-        figure = _figure(drawings[id(block.figure)], _paragraph(caption, styles["caption"]), width, 0.62 * height)
+        figure = _figure(drawings[id(block)], _paragraph(caption, styles["caption"]), width, 0.62 * height)
         return [figure, Spacer(1, 6)]
     if isinstance(block, Code):
         chars = int(width / (0.6 * styles["code"].fontSize)) - 1
