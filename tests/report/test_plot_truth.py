@@ -321,6 +321,33 @@ def test_the_area_labels_are_drawn_in_the_layout_they_were_placed_in(tmp_path, s
         np.testing.assert_allclose(to_figure.transform([label.get_position() for label in labels]), where, atol=1e-12)
 
 
+def test_a_callers_figure_keeps_its_layout_for_what_it_adds_after_the_turning_moment():
+    """A review's finding on the above: the layout kept for the labels was kept on a caller's own figure too
+    (``ax=``), so that the panel and title it added after the diagram were not laid out (the second panel's
+    legend ran out of the figure, to 1.22 of its width). A caller's figure keeps its engine."""
+    import matplotlib.pyplot as plt
+    from matplotlib.layout_engine import ConstrainedLayoutEngine
+
+    import flyopt
+    from flyopt.report import plots
+
+    scene = flyopt.load(PROBLEMS / "slider-crank-press.toml")
+    analysis = flyopt.analyse(scene)
+    figure, (left, right) = plt.subplots(1, 2, figsize=(14, 5), layout="constrained")
+    plots.plot_turning_moment(scene, analysis, ax=left)
+    assert isinstance(figure.get_layout_engine(), ConstrainedLayoutEngine)
+    plots.plot_energy(scene, analysis, ax=right)
+    figure.suptitle("A study")
+    figure.canvas.draw()
+    renderer, whole = figure.canvas.get_renderer(), figure.bbox
+    for ax in (left, right):
+        legend = ax.get_legend().get_window_extent(renderer)
+        assert whole.x0 <= legend.x0 and legend.x1 <= whole.x1, (legend, whole)
+    assert figure.get_suptitle() and not _overlap(
+        figure._suptitle.get_window_extent(renderer), left.title.get_window_extent(renderer)
+    )
+
+
 def test_steady_conveyor_has_no_speed_marks_and_nothing_overlaps(drawn):
     """Was: conveyor's ω_max and ω_min printed on top of each other at φ = 0 (A_max = 0: no extremes)."""
     ax = drawn("conveyor", "turning_moment")
@@ -483,7 +510,7 @@ def _largest(g, cycle, knots):
     coarse = np.union1d(np.linspace(0.0, cycle, 4001), knots)
     values = g(coarse)
     ahead, behind = np.r_[values[1:], -np.inf], np.r_[-np.inf, values[:-1]]
-    tops = np.flatnonzero((values >= ahead) & (values >= behind))
+    tops = np.flatnonzero((values >= ahead) & (values > behind))  # a flat top counted once, at its start
     tops = tops[values[tops] >= values.max() - 1e-4 * max(np.abs(values).max(), 1e-300)]
     assert 0 < len(tops) <= 50, len(tops)
     fine = [np.linspace(coarse[max(i - 1, 0)], coarse[min(i + 1, len(coarse) - 1)], 2001) for i in tops]
@@ -508,7 +535,7 @@ def test_inertia_delta_of_the_energy_mass_model_is_the_closed_form_of_section_6(
         top = _largest(lambda phi: 0.5 * w_min**2 * machine.j_machine(phi) - energy(phi), cycle, knots)
         bottom = -_largest(lambda phi: energy(phi) - 0.5 * w_max**2 * machine.j_machine(phi), cycle, knots)
         closed = (top - bottom) / (0.5 * (w_max**2 - w_min**2))
-        assert math.isclose(j[k], closed, rel_tol=1e-7), (delta[k], j[k], closed)
+        assert math.isclose(j[k], closed, rel_tol=1e-10), (delta[k], j[k], closed)  # agreed to 2e-12
 
 
 def test_inertia_delta_of_the_dynamic_model_gives_its_delta_when_simulated(drawn):

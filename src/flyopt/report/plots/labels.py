@@ -28,19 +28,21 @@ def _boxes_overlap(a: BboxBase, b: BboxBase, pad: float = 0.0) -> bool:
     return not (a.x1 + pad <= b.x0 or b.x1 + pad <= a.x0 or a.y1 + pad <= b.y0 or b.y1 + pad <= a.y0)
 
 
-def lay_out(ax: Axes) -> None:
-    """Put ``ax`` where its figure will draw it, so that data map to the pixels they will be drawn at, and
-    keep it there.
+def lay_out(ax: Axes, keep: bool) -> None:
+    """Put ``ax`` where its figure will draw it, so that data map to the pixels they will be drawn at, and,
+    with ``keep``, keep it there.
 
     The figure's texts are made drawable (:func:`~flyopt.report.plots.standard.make_drawable`, as its
     class does before a draw) and its layout engine (constrained layout), if it has one, is run, as the
-    figure's own draw runs it before drawing anything; the view limits are settled. The engine is then
-    set aside (``"none"``: the axes stay where it put them), so that no draw lays the figure out again:
-    what is placed by its pixels after this call (the areas' labels) is drawn where it was placed, and the
-    layout, two measuring passes over every tick label, is paid once rather than at every draw. Call it
-    once the figure's decorations (ticks, labels, title, legend) are all made. Nothing is drawn: a whole
-    draw without rendering (``Figure.draw_without_rendering``) lays the figure out just so and then walks
-    every artist and tick for nothing, which cost the turning-moment diagram as much again as its layout.
+    figure's own draw runs it before drawing anything; the view limits are settled. With ``keep`` (the
+    plot made the figure, and nothing is added to it after this call) the engine is then set aside
+    (``"none"``: the axes stay where it put them), so that no draw lays the figure out again: what is
+    placed by its pixels after this call (the areas' labels) is drawn where it was placed, and the layout,
+    two measuring passes over every tick label, is paid once rather than at every draw. A caller's own
+    figure keeps its engine: the caller may add panels, legends or a title the layout must make room for.
+    Nothing is drawn: a whole draw without rendering (``Figure.draw_without_rendering``) lays the figure
+    out just so and then walks every artist and tick for nothing, which cost the turning-moment diagram as
+    much again as its layout.
     """
     figure = standard.figure_of(ax)
     standard.make_drawable(figure)
@@ -51,7 +53,8 @@ def lay_out(ax: Axes) -> None:
         except ValueError:  # as Figure.draw: the layout gives up on a figure too small, the draw goes on
             pass
         else:
-            figure.set_layout_engine("none")
+            if keep:
+                figure.set_layout_engine("none")
     ax.viewLim  # noqa: B018 -- reading it settles the autoscaled limits transData maps from
 
 
@@ -63,6 +66,7 @@ def place_area_labels(
     spans: Sequence[tuple[float, float, str, str]],
     obstacles_x: Sequence[float] = (),
     obstacles_y: Sequence[float] = (),
+    keep_layout: bool = False,
 ) -> list[Text]:
     """Write each area's text inside its shading where it clears both curves, else just above (or below) them.
 
@@ -77,6 +81,9 @@ def place_area_labels(
     spans : list of (x_left, x_right, text, colour)
     obstacles_x, obstacles_y : sequence of float
         Vertical and horizontal lines (data x, data y) a label should not cover.
+    keep_layout : bool
+        Keep the figure's layout as the labels are placed in it (:func:`lay_out`'s ``keep``): the plot made
+        the figure and adds nothing to it afterwards.
 
     Returns
     -------
@@ -85,7 +92,7 @@ def place_area_labels(
     """
     from matplotlib.transforms import Bbox
 
-    lay_out(ax)
+    lay_out(ax, keep_layout)
     lo_px, hi_px = _to_pixels(ax, x, lower), _to_pixels(ax, x, upper)
     px = lo_px[:, 0]
     axes_box = ax.get_window_extent()

@@ -184,6 +184,7 @@ def plot_turning_moment(
         spans,
         [float(standard.show(a, "angle", units)) for a, *_r in marks],
         levels,
+        keep_layout=own,  # a caller's figure keeps its engine: it may add panels, legends, a title
     )
     ax.set_xlim(0.0, end)
     del top
