@@ -6,11 +6,10 @@ import io
 import json
 import os
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from conftest import run_flyopt
 
 from tests.app.app_server import served
 
@@ -74,14 +73,10 @@ def model_text():
 
 
 def solve_json(path):
-    """``flyopt solve PATH --json``, the command line's answer the page must equal."""
-    solved = subprocess.run(
-        [sys.executable, "-m", "flyopt", "solve", str(path), "--json"],
-        capture_output=True,
-        text=True,
-        env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
-        check=True,
-    )
+    """``flyopt solve PATH --json``, the command line's answer the page must equal (run in this process, as
+    tests/conftest.py's run_flyopt runs it: the app's server is the other process)."""
+    solved = run_flyopt("solve", path, "--json")
+    assert solved.returncode == 0, solved.stderr
     return json.loads(solved.stdout)
 
 
@@ -169,14 +164,10 @@ def test_the_form_writes_into_the_scene_and_a_pasted_table_solves(server, browse
 
 
 def tradeoff_json(path):
-    """``flyopt tradeoff PATH --json``'s rows, the command line's trade-off the materials tab must equal."""
-    done = subprocess.run(
-        [sys.executable, "-m", "flyopt", "tradeoff", str(path), "--json"],
-        capture_output=True,
-        text=True,
-        env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
-        check=True,
-    )
+    """``flyopt tradeoff PATH --json``'s rows, the command line's trade-off the materials tab must equal (run in
+    this process, as solve_json)."""
+    done = run_flyopt("tradeoff", path, "--json")
+    assert done.returncode == 0, done.stderr
     return json.loads(done.stdout)["rows"]
 
 

@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from conftest import run_flyopt
 
 import flyopt
 from flyopt.app import model
@@ -105,14 +104,8 @@ def test_live_only_for_the_fast_models(workspace):
 def test_the_card_equals_flyopt_solve_json_to_the_digits_shown(workspace):
     text = model.template_text("shear-press")
     answer = model.solve(text, workspace)
-    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
-    solved = subprocess.run(
-        [sys.executable, "-m", "flyopt", "solve", str(ROOT / "problems" / "shear-press.toml"), "--json"],
-        capture_output=True,
-        text=True,
-        env=env,
-        check=True,
-    )
+    solved = run_flyopt("solve", ROOT / "problems" / "shear-press.toml", "--json")  # the command line, in process
+    assert solved.returncode == 0, solved.stderr
     document = json.loads(solved.stdout)
     best = document["design"]
     expected = {

@@ -228,14 +228,9 @@ def test_motor_power_front_is_the_nondominated_set():
 
 def test_motor_power_front_needs_a_drive(tmp_path):
     """A front of flywheel mass against motor power on a scene without [drive]: one line, exit 2."""
-    import subprocess
-    import sys
+    from conftest import ROOT, run_flyopt
 
-    result = subprocess.run(
-        [sys.executable, "-m", "flyopt", "pareto", "problems/punch-press.toml", "--objectives", "mass,motor_power"],
-        capture_output=True,
-        text=True,
-    )
+    result = run_flyopt("pareto", ROOT / "problems" / "punch-press.toml", "--objectives", "mass,motor_power")
     assert result.returncode == 2 and "Traceback" not in result.stderr
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and "objectives" in lines[0] and "[drive]" in lines[0]

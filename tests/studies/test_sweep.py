@@ -10,13 +10,11 @@ agreement; the closed form and IPOPT both reach ~1e-10).
 import importlib
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import PROBLEMS
+from conftest import PROBLEMS, run_flyopt
 from numpy.testing import assert_allclose
 
 import flyopt
@@ -786,12 +784,8 @@ def test_max_chunks_zero_is_refused(tmp_path):
     with pytest.raises(SceneError, match="max-chunks: must be a whole number >= 1, got 0"):
         sweep(PUNCH, VARY, output=out, chunk_size=4, max_chunks=0)
     assert list(tmp_path.iterdir()) == []
-    run = subprocess.run(
-        [sys.executable, "-m", "flyopt", "sweep", str(PROBLEMS / "punch-press.toml"), "--vary", "delta=0.05:0.1:3"]
-        + ["-o", str(out), "--max-chunks", "0"],
-        capture_output=True,
-        text=True,
-        timeout=60,
+    run = run_flyopt(
+        "sweep", PROBLEMS / "punch-press.toml", "--vary", "delta=0.05:0.1:3", "-o", out, "--max-chunks", "0"
     )
     assert run.returncode == 2 and "--max-chunks" in run.stderr and len(run.stderr.splitlines()) == 1
     assert list(tmp_path.iterdir()) == []
