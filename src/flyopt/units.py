@@ -19,9 +19,16 @@ from __future__ import annotations
 import functools
 import math
 import re
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from flyopt.errors import SceneError, clip, shorten
+
+if TYPE_CHECKING:
+    import numpy as np
+    import numpy.typing as npt
+
+#: A speed or an array of speeds (numpy is not imported here: a conversion is the same arithmetic on either).
+_Speeds = TypeVar("_Speeds", float, "npt.NDArray[np.float64]")
 
 G_STANDARD = 9.81
 """Acceleration of gravity used for GD² [m/s^2] (the electric-drive convention, GD² = 4 g J)."""
@@ -348,8 +355,8 @@ def _pint_reason(err: Exception) -> str:
     return clip(text)
 
 
-def rpm_to_rad_s(n: float) -> float:
-    """Rotational speed n [rev/min] to angular speed [rad/s]: ω = 2πn/60."""
+def rpm_to_rad_s(n: _Speeds) -> _Speeds:
+    """Rotational speed n [rev/min] to angular speed [rad/s]: ω = 2πn/60 (of each, for an array)."""
     return 2.0 * math.pi * n / 60.0
 
 

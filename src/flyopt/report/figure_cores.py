@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any, NoReturn, TypeVar
 if TYPE_CHECKING:
     from matplotlib.figure import Figure as MplFigure
 
-__all__ = ["Draw", "cpu_count", "draw_each", "workers_for"]
+__all__ = ["Draw", "cpu_count", "draw_each", "drawings", "workers_for"]
 
 #: One figure's number in the queue: 2 bytes, so that a read of one is whole (a pipe's reads of at most
 #: PIPE_BUF bytes are atomic) and a document may have up to 65535 figures.
@@ -83,6 +83,14 @@ def draw_each(figures: Sequence[tuple[MplFigure, str]], draw: Draw[T], workers: 
     if workers > 0:
         drawn = _in_workers(figures, draw, workers)
     return [drawn[k] if k in drawn else draw(*figures[k]) for k in range(count)]
+
+
+def drawings(blocks: Sequence[Any], draw: Draw[T]) -> dict[int, T]:
+    """{id of a block: its figure's drawing} of a document's drawn figure blocks
+    (:meth:`flyopt.report.document.Document.drawn`), each drawn by :func:`draw_each` with the prefix of its
+    number in the document's order ("f1-", "f2-", ...): what a renderer places where it meets the block."""
+    made = draw_each([(block.figure, f"f{number}-") for number, block in enumerate(blocks, start=1)], draw)
+    return dict(zip(map(id, blocks), made))
 
 
 def _cost(figure: MplFigure) -> int:

@@ -116,14 +116,10 @@ def render(document: Document) -> str:
                 f'<li><a href="#{anchor(section.number)}">{_escape(section.number)} {_escape(section.title)}</a></li>'
             )
     out.append("</ul></nav>")
-    drawn = document.drawn()
-    made: dict[int, str] = {}  # {id of a drawn block: its SVG}
-    if drawn:
-        from flyopt.report.figure_cores import draw_each
+    from flyopt.report.figure_cores import drawings
 
-        # every figure drawn before the page is written, on each core this process may run on
-        svgs = draw_each([(block.figure, f"f{number}-") for number, block in enumerate(drawn, start=1)], svg_of)
-        made = dict(zip(map(id, drawn), svgs))
+    # every figure drawn before the page is written, on each core this process may run on
+    made = drawings(document.drawn(), svg_of)
     figures = 0
     for section in document.sections:
         tag = "h2" if section.level == 1 else "h3"

@@ -337,11 +337,11 @@ def _drawings(document: Document) -> dict[int, Any]:
     (:func:`flyopt.report.figure_cores.draw_each`), and played onto its page where reportlab places it."""
     drawn = document.drawn()
     if not drawn:
-        return {}
-    from flyopt.report.figure_cores import draw_each
+        return {}  # matplotlib is not imported
+    from flyopt.report.figure_cores import drawings
     from flyopt.report.pdf_figure import record
 
-    return dict(zip(map(id, drawn), draw_each([(block.figure, "") for block in drawn], record)))
+    return drawings(drawn, record)
 
 
 def _block(block, styles, width, height, drawings):

@@ -139,7 +139,7 @@ def plot_campbell(
     crossings = [c.speed_rpm for c in check.critical]
     n_top = 1.3 * max(high, min(max(crossings), 4.0 * high))
     rpm = np.linspace(0.0, n_top, 200)
-    shown = standard.show(rpm * (2.0 * math.pi / 60.0), "angular_speed", units)  # an array: units.rpm_to_rad_s on each
+    shown = standard.show(rpm_to_rad_s(rpm), "angular_speed", units)
     worst = next((lim for lim in report.check.limits if lim.kind == "torsional"), None)
     worst_order = None if worst is None else float(worst.where.split()[-1])
     labelled = set(np.sort(check.orders)[:4].tolist()) | ({worst_order} if worst_order is not None else set())
