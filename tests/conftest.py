@@ -1,12 +1,26 @@
 """Shared test helpers."""
 
 import functools
+import os
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 PROBLEMS = ROOT / "problems"
+
+
+@pytest.fixture(autouse=True)
+def figures_drawn_in_the_tests_process(monkeypatch):
+    """Under pytest-xdist every worker already keeps a CPU busy: a report's figures are drawn in the test's own
+    process (:func:`flyopt.report.figure_cores.workers_for` gives none), where forking figure workers beside
+    the busy ones cost the report tests some 15 % more CPU and no time. The figures are the same either way;
+    tests/report/test_figure_cores.py draws them by workers and here and compares, and overrides this
+    fixture to test the rule itself."""
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        from flyopt.report import figure_cores
+
+        monkeypatch.setattr(figure_cores, "workers_for", lambda count: 0)
 
 
 @pytest.fixture

@@ -24,6 +24,12 @@ pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="workers are for
 
 
 @pytest.fixture(autouse=True)
+def figures_drawn_in_the_tests_process():
+    """The rule of how many workers to fork is what this module tests: tests/conftest.py's fixture of this name,
+    which gives none under pytest-xdist, does not apply here."""
+
+
+@pytest.fixture(autouse=True)
 def _closed():
     yield
     import matplotlib.pyplot as plt
