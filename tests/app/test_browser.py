@@ -109,9 +109,9 @@ def test_edit_break_fix_and_download(server, browser, tmp_path):
     replace_line(page, "delta = 0.05", "delta = -1")
     # the card of the last keystroke's text: typing over a selection sends the text without the line first (Ace
     # removes, then inserts), whose card, "machine.delta (line 9): is missing", a loaded host can show for a moment
-    page.wait_for_selector(".card >> text=between 0 and 2", timeout=30_000)
+    page.wait_for_selector(".card >> text=between 1e-06 and 2", timeout=30_000)
     text = card(page).inner_text()
-    assert "line 11" in text and "between 0 and 2" in text
+    assert "line 11" in text and "between 1e-06 and 2" in text
     shot(page, "2-error")
 
     replace_line(page, "delta = -1", "delta = 0.025")

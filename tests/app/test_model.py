@@ -39,7 +39,7 @@ def test_a_broken_delta_is_named_with_its_line(workspace):
     assert checked.scene is None
     [problem] = checked.problems
     assert problem.field == "machine.delta"
-    assert "between 0 and 2" in problem.message
+    assert "between 1e-06 and 2" in problem.message
     assert text.splitlines()[problem.line - 1].startswith("delta = -1")
 
 

@@ -42,7 +42,7 @@ def test_a_sound_structure_shows_the_loaders_error_on_its_line(main_cli, write_s
     status, out, err = main_cli("check", path)
     assert status == 2
     assert (
-        err == f"{path}:{line}: machine.delta: must lie between 0 and 2 (exclusive), got 3; "
+        err == f"{path}:{line}: machine.delta: must lie between 1e-06 and 2 (2 excluded), got 3; "
         "typical values are 1/5 (crushers) to 1/300 (AC generators)\n"
     )
 
@@ -64,13 +64,20 @@ def test_a_flood_of_errors_is_cut_to_the_first_hundred_and_counted(main_cli, wri
     assert lines[-1] == f"{path}:{MAX_LISTED + 2}: 20 more errors after these"
 
 
-def test_a_field_the_file_does_not_write_is_said_without_a_line(main_cli, write_scene):
-    """A [press] derives machine.delta from its slowdown: no line of the file writes it."""
+def test_a_press_delta_too_small_names_the_field_the_file_writes_on_its_line(main_cli, write_scene):
+    """A [press] derives its δ from its slowdown. A slowdown that gives a δ too small to compute with is
+    said of press.slowdown, on its line, by the one rule of every δ (it was said of machine.delta, a field
+    the file does not write, without a line)."""
     text = (PROBLEMS / "press-from-process.toml").read_text(encoding="utf-8")
     path = write_scene(text.replace('flywheel_speed_min = "200 rpm"', "slowdown = 1e-300"))
+    line = next(
+        k for k, row in enumerate(path.read_text(encoding="utf-8").splitlines(), 1) if row.startswith("slowdown")
+    )
     status, out, err = main_cli("check", path)
     assert status == 2 and len(err.splitlines()) == 1
-    assert err.startswith(f"flyopt: error: {path}: machine.delta: 1e-300 is out of range"), err
+    assert err.startswith(
+        f"{path}:{line}: press.slowdown: 1e-300 gives δ = 2s/(2 − s) = 1e-300; δ must lie between 1e-06 and 2"
+    ), err
 
 
 def test_value_errors_in_different_sections_are_listed_at_once_each_on_its_line(main_cli, write_scene):
@@ -99,7 +106,8 @@ def test_value_errors_in_different_sections_are_listed_at_once_each_on_its_line(
         f"{path}:{len(broken.splitlines()) - 1}",
     ], said
     assert (
-        ": machine.delta: must lie between 0 and 2" in said[1] and ": shaft[0].speed_ratio: must be positive" in said[2]
+        ": machine.delta: must lie between 1e-06 and 2" in said[1]
+        and ": shaft[0].speed_ratio: must be positive" in said[2]
     )
     assert "material[0].density" in said[3] and "title: is 201 characters long" in said[0]
     assert not any("geometry" in line for line in said)

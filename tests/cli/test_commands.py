@@ -90,7 +90,7 @@ def test_check_ok(capsys):
         ),
         (
             '[machine]\nspeed = "1500 rpm"\ndelta = 3\n[torque.net]\nareas = [1, -1]\n',
-            "machine.delta: must lie between 0 and 2",
+            "machine.delta: must lie between 1e-06 and 2",
         ),
         ("[machine\n", "not valid TOML"),
     ],
@@ -145,7 +145,7 @@ def _raiser(err):
 @pytest.mark.parametrize(
     "err, status, words",
     [
-        (SceneError("machine.delta", "must lie between 0 and 2", "s.toml"), 2, "s.toml: machine.delta: must lie"),
+        (SceneError("machine.delta", "must lie between 1e-06 and 2", "s.toml"), 2, "s.toml: machine.delta: must lie"),
         (NonPeriodicCycle(-3.0, 100.0, "s.toml"), 2, "s.toml: torque: non-periodic"),
         (ExpressionError("unknown name 'x'"), 2, "SCENE: unknown name 'x'"),
         (SolverFailed("IPOPT: Maximum_Iterations_Exceeded after 3000 iterations"), 1, "SCENE: IPOPT: Maximum"),

@@ -100,6 +100,24 @@ either end ω² and the energies overflow."""
 SPEED_WHY = "about 1e-5 to 9.5 million rpm, beyond any machine a flywheel regulates"
 
 
+DELTA_RANGE = (1e-6, 2.0)
+"""Allowed coefficient of fluctuation of speed δ = (ω_max − ω_min)/ω_mean, 2 itself excluded (ω_min would be 0):
+the inertia grows as 1/δ, and below 1e-6 it cannot be computed (1/300 is a tight generator)."""
+
+
+def check_delta(delta: float, where: str, raw: object, note: str, derived: str = "") -> None:
+    """Refuse a δ outside :data:`DELTA_RANGE`: the machine's, a press's, or one ``derived`` from what ``where``
+    gives (a press's slowdown: ``derived`` names the relation). One rule and one message for every δ, naming
+    ``where`` and the range; ``note`` follows it (typical values)."""
+    low, high = DELTA_RANGE
+    if low <= delta < high:
+        return
+    allowed = f"between {low:g} and {high:g} ({high:g} excluded)"
+    if derived:
+        raise SceneError(where, f"{shorten(raw)} gives δ = {derived} = {delta:.4g}; δ must lie {allowed}; {note}")
+    raise SceneError(where, f"must lie {allowed}, got {shorten(raw)}; {note}")
+
+
 def check_magnitude(value: float, where: str, raw: object, low: float, high: float, unit: str, why: str) -> None:
     """Refuse a positive ``value`` outside ``[low, high]`` (SI, in ``unit``): beyond them the computation overflows.
 

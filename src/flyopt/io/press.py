@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.design_section import LENGTH_RANGE
-from flyopt.io.fields import SPEED_RANGE, Table, check_magnitude, scaled
+from flyopt.io.fields import SPEED_RANGE, Table, check_delta, check_magnitude, scaled
 from flyopt.io.input_files import check_rows
 from flyopt.io.operation_section import ENERGY_RANGE
 from flyopt.machine import press as physics
@@ -363,6 +363,9 @@ def _force_table(press):
 # -- the speed fluctuation and the flywheel shaft ------------------------------------------
 
 
+_PRESS_DELTAS = "presses 1/10 to 1/7"
+
+
 def _delta(press):
     """(the key given, flyopt's δ)."""
     key = _one_of(
@@ -381,15 +384,12 @@ def _delta(press):
                 f"the flywheel loses over the working stroke (1 would stop it), got "
                 f"{shorten(press[key])}; presses about 0.1 (δ 1/10 to 1/7)",
             )
-        return key, physics.delta_from_slowdown(slowdown)
+        delta = physics.delta_from_slowdown(slowdown)
+        check_delta(delta, "press.slowdown", press[key], _PRESS_DELTAS, derived="2s/(2 − s)")
+        return key, delta
     if key == "delta":
         delta = _number(press, key, "dimensionless")
-        if not 0 < delta < 2:
-            raise SceneError(
-                "press.delta",
-                f"must lie between 0 and 2 (exclusive; the slowdown 2δ/(2 + δ) between "
-                f"0 and 1), got {shorten(press[key])}; presses 1/10 to 1/7",
-            )
+        check_delta(delta, "press.delta", press[key], f"{_PRESS_DELTAS} (the slowdown 2δ/(2 + δ) between 0 and 1)")
         return key, delta
     if "flywheel_speed" not in press:
         raise SceneError(
@@ -403,7 +403,11 @@ def _delta(press):
             f"must be positive and below flywheel_speed "
             f"({shorten(press['flywheel_speed'])}), got {shorten(press[key])}",
         )
-    return key, physics.delta_from_slowdown(1.0 - bottom / top)
+    delta = physics.delta_from_slowdown(1.0 - bottom / top)
+    check_delta(
+        delta, "press.flywheel_speed_min", press[key], _PRESS_DELTAS, derived="2(1 − ω_min/ω_top)/(1 + ω_min/ω_top)"
+    )
+    return key, delta
 
 
 def _flywheel_top(press):

@@ -22,7 +22,7 @@ from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import ANGLE_TOLERANCE
 from flyopt.io.design_section import read_design
 from flyopt.io.engine_section import read_engine
-from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_magnitude
+from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_delta, check_magnitude
 from flyopt.io.material_section import read_material, read_materials
 from flyopt.io.member_section import read_mechanism, read_members, with_engine
 from flyopt.io.shaft_section import (
@@ -54,9 +54,6 @@ if TYPE_CHECKING:
     from flyopt.machine.mechanism import Member
     from flyopt.sizing.operation import Operation
 
-
-MIN_DELTA = 1e-6
-"""Smallest machine.delta: the inertia grows as 1/δ (1/300 is a tight generator)."""
 
 MAX_TITLE_LENGTH = 200
 """Longest scene title [characters]: it heads every report, plot and table."""
@@ -620,14 +617,10 @@ def _operation(top: Table) -> Operation:
 
 
 def _check_delta(delta: float, machine: Table) -> None:
-    """Refuse a machine.delta outside (0, 2) or too small to compute with."""
-    if not 0 < delta < 2:
-        raise SceneError(
-            "machine.delta",
-            f"must lie between 0 and 2 (exclusive), got {shorten(machine.raw('delta'))}; "
-            "typical values are 1/5 (crushers) to 1/300 (AC generators)",
-        )
-    check_magnitude(delta, "machine.delta", machine.raw("delta"), MIN_DELTA, 2, "", "a smaller one cannot be computed")
+    """Refuse a machine.delta outside :data:`~flyopt.io.fields.DELTA_RANGE`."""
+    check_delta(
+        delta, "machine.delta", machine.raw("delta"), "typical values are 1/5 (crushers) to 1/300 (AC generators)"
+    )
 
 
 #: Keys the drive's flywheel shaft may not give: the drive designs its ratio, and an inertia or an
