@@ -11,6 +11,7 @@ import dataclasses
 import itertools
 import json
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -330,6 +331,33 @@ def test_printed_tables_follow_units_as_solve_does():
         assert f"{row['d_outer'] * 1e3:.4g}" in line.split()  # four figures, as solve (issue 29)
         line = next(l for l in imperial.splitlines() if l.strip().startswith(shown + " "))
         assert f"{row['d_outer'] / 0.0254:.4g}" in line.split() and f"{row['mass'] / 0.45359237:.4g}" in line.split()
+
+
+def test_an_infeasible_trade_offs_reasons_follow_units_and_digits_and_its_json_is_one_document(tmp_path):
+    """The lines under an infeasible trade-off's table said each reason in SI at three figures whatever
+    --units and --digits asked (0.05 m, 1.02 kg·m² among inches); they are said as solve says them. With
+    --json they followed the JSON document on stdout, which no longer parsed; the document's rows carry them."""
+    import json
+
+    from conftest import PROBLEMS
+
+    text = (PROBLEMS / "shear-press.toml").read_text(encoding="utf-8")
+    assert '"0.6 m"' in text
+    scene = tmp_path / "small.toml"
+    scene.write_text(text.replace('"0.6 m"', '"0.05 m"'), encoding="utf-8")  # the envelope: no wheel fits
+    imperial = run_flyopt("tradeoff", str(scene), "--units", "imperial", "--digits", "6")
+    assert imperial.returncode == 3, imperial.stderr
+    reasons = [line.strip() for line in imperial.stdout.splitlines() if "caps the outer diameter" in line]
+    assert len(reasons) == 2
+    for reason in reasons:  # 0.05 m = 1.9685 in; the inertia in lb·ft² and the diameter needed in inches
+        assert re.search(r"at 1\.9685 in, where .* gives [0-9.]{7} lb·ft² still needs [0-9.]{7} in$", reason), reason
+    solved = run_flyopt("solve", str(scene), "--units", "imperial", "--digits", "6")
+    assert all(reason.split(": ", 1)[1] in solved.stdout for reason in reasons)  # the words solve says
+    document = run_flyopt("tradeoff", str(scene), "--json")
+    assert document.returncode == 3
+    rows = json.loads(document.stdout)["rows"]  # one document, nothing after it
+    assert [row["status"] for row in rows] == ["infeasible", "infeasible"]
+    assert all("caps the outer diameter at 0.05 m" in row["reason"] for row in rows)  # the JSON stays SI
 
 
 def test_the_trade_off_designs_each_material_as_solve_does():

@@ -386,9 +386,11 @@ def run_tradeoff(args: argparse.Namespace) -> int:
         f"{args.scene}: lightest design per material",
     )
     if (table["status"] == "infeasible").all():
-        if not args.quiet:
-            for reason in table["reason"]:
-                print(f"  {reason}")
+        if not (args.quiet or args.json):  # --json: one document, whose rows carry each reason
+            from flyopt.report import display
+
+            for reason in table["reason"]:  # in the units and figures of the table above, as solve says it
+                print(f"  {display.said_text(reason, args.units, args.digits)}")
         return EXIT_INFEASIBLE
     return EXIT_OK
 

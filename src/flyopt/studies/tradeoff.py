@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any, Literal
 
 import pandas as pd
 
+from flyopt import said
 from flyopt.design import design_inputs, rank
 from flyopt.studies.physics import physics_analysis
 
@@ -129,13 +130,16 @@ def material_tradeoff(
                 solver_status=best.provenance.solver_status,
             )
         elif result.status == "infeasible":
-            row["reason"] = "; ".join(c.reason for c in result.candidates)
+            row["reason"] = said.join("; ", [c.reason for c in result.candidates])  # its quantities kept
             row["method"] = "closed_form"
         else:
             row["reason"] = result.message
             row["method"] = "none"
         rows.append(row)
     table = pd.DataFrame(rows, columns=list(TRADEOFF_COLUMNS))
+    # the reasons as objects: a column of pandas' strings keeps the text and loses a reason's quantities, which
+    # the command line says in the reader's units (flyopt.said)
+    table["reason"] = pd.Series([row["reason"] for row in rows], dtype=object)
     for column in (
         "speed_ratio",
         "d_outer",
