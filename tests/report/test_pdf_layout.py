@@ -241,3 +241,47 @@ def test_the_html_contents_link_every_section_to_its_heading():
     assert [text for _, text in page.links] == ["1 Summary", "2 J_{F} and <b>", "A Method"]
     for href, text in page.links:
         assert href.startswith("#") and page.ids[href[1:]] == text
+
+
+#: Below this height [pt] a page holds only its footer (at 9 mm; the text stops at the 17 mm margin).
+_FOOTER = 40.0
+
+
+def _squeezed(text):
+    return "".join(text.split())
+
+
+def _last_line(page):
+    """The text of a page's last line above its footer, its runs in order across (None: no text)."""
+    runs: list[tuple[float, float, str]] = []
+
+    def visit(text, cm, tm, font, size):
+        if text.strip():
+            x = tm[4] * cm[0] + tm[5] * cm[2] + cm[4]
+            runs.append((tm[4] * cm[1] + tm[5] * cm[3] + cm[5], x, text.strip()))
+
+    page.extract_text(visitor_text=visit)
+    body = [run for run in runs if run[0] > _FOOTER]
+    if not body:
+        return None
+    low = min(y for y, _, _ in body)
+    return " ".join(text for _, text in sorted((x, text) for y, x, text in body if y < low + 1))
+
+
+@pytest.mark.parametrize("scene", ["punch-press-wheel", "motor-press"])
+def test_no_page_ends_with_a_heading(scene, tmp_path):
+    """A heading stays on the page of what follows it: punch-press-wheel's "2 The scene as given" was the last
+        line of page 1, its facts on page 2 (reportlab keeps a heading with the next flowable, but not with one
+        already kept together, as a short list of facts or a worked step is: motor-press's "4.1 Speeds and the allowed
+    fluctuation" ended page 2, its first step on page 3). A wrapped heading's last line counts."""
+    from pypdf import PdfReader
+
+    reader = PdfReader(str(_report_pdf(scene, tmp_path / "r.pdf")))
+    titles = [_squeezed(entry.title) for entry in _outline(reader)]
+    assert titles
+    ended = []
+    for number, page in enumerate(reader.pages, 1):
+        last = _last_line(page)
+        if last is not None and any(title.endswith(_squeezed(last)) for title in titles):
+            ended.append((number, last))
+    assert not ended, ended

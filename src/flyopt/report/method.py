@@ -23,11 +23,20 @@ a link's target (its words stay); markdown's emphasis marks. A
 reference from one section to another becomes the appendix's number where
 that section is in the appendix, and the notes' number where it is not
 ("section 20 of flyopt's notes").
+
+A figure cites the notes by the same rule, through :func:`cite`: drawn for a
+report (while :func:`citing`), by the appendix's number as the report's text
+does, the section joining the appendix; drawn alone (``flyopt plot``, the
+API), where no appendix is, by its number in the notes ("section 5 of flyopt's
+notes").
 """
 
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from functools import cache
 from importlib import resources
@@ -41,6 +50,8 @@ __all__ = [
     "PATH",
     "MethodSection",
     "appendix",
+    "cite",
+    "citing",
     "notes_sections",
     "readable",
     "with_appendix",
@@ -112,15 +123,23 @@ def _numbers(text: str) -> list[str]:
     return out
 
 
-def _cited_in(text: str, cited: dict[str, None]) -> str:
-    """``text`` with each citation of the notes as the appendix's number; the numbers met join ``cited``."""
+def _in_notes(word: str, numbers: str) -> str:
+    """A section the appendix does not carry, by its number in the notes: "section 20 of flyopt's notes"."""
+    return f"{word} {numbers} of flyopt's notes"
+
+
+def _cited_in(text: str, cited: dict[str, None] | None) -> str:
+    """``text`` with each citation of the notes as the appendix's number; the numbers met join ``cited``.
+    ``cited`` None: there is no appendix (a figure drawn alone), each citation names the notes' section."""
 
     def to_appendix(match: re.Match[str]) -> str:
         numbers = [n for n in _numbers(match.group("numbers")) if n in notes_sections()]
-        for n in numbers:
-            cited.setdefault(n)
         if not numbers:
             return match.group(0)
+        if cited is None:
+            return _in_notes(match.group("word"), match.group("numbers"))
+        for n in numbers:
+            cited.setdefault(n)
         named = [f"{APPENDIX}.{n}" for n in numbers]
         if len(named) == 1:
             return f"Appendix {named[0]}"
@@ -129,7 +148,37 @@ def _cited_in(text: str, cited: dict[str, None]) -> str:
         return f"Appendices {', '.join(named[:-1])} and {named[-1]}"
 
     text = _CITATION.sub(to_appendix, text)
-    return text.replace(NOTES, f"Appendix {APPENDIX}")
+    return text.replace(NOTES, "flyopt's notes" if cited is None else f"Appendix {APPENDIX}")
+
+
+#: The sections the figures drawn for the report being built cite (:func:`citing`); None: a figure is drawn
+#: alone, with no appendix to cite.
+_FIGURES_CITE: ContextVar[dict[str, None] | None] = ContextVar("figures_cite", default=None)
+
+
+@contextmanager
+def citing() -> Iterator[dict[str, None]]:
+    """While a report is built: each figure drawn cites the notes by the appendix's number (:func:`cite`), as the
+    report's text does; the sections the figures cite are collected in the dict yielded, for
+    :func:`with_appendix` to carry them."""
+    cited: dict[str, None] = {}
+    token = _FIGURES_CITE.set(cited)
+    try:
+        yield cited
+    finally:
+        _FIGURES_CITE.reset(token)
+
+
+def cite(text: str) -> str:
+    """A figure's ``text`` citing the notes as a builder writes it ("({NOTES}, section 5)"), as the figure says it.
+
+    A figure's texts are wrapped as it is drawn, so the citation is said when the text is made, by the rule
+    of the report's text (:func:`with_appendix`): in a report being built (:func:`citing`), the appendix's
+    number ("Appendix A.5"), the section joining the appendix; drawn alone, where there is no appendix, the
+    section by its number in the notes ("section 5 of flyopt's notes", as the appendix names a section it
+    does not carry).
+    """
+    return _cited_in(text, _FIGURES_CITE.get())
 
 
 def _rewrite(value: object, cited: dict[str, None]) -> object:
@@ -162,12 +211,12 @@ def _block(block: object, cited: dict[str, None]) -> object:
     return block
 
 
-def with_appendix(document: Document) -> Document:
+def with_appendix(document: Document, figures: dict[str, None] | None = None) -> Document:
     """The document with every citation of the notes as its appendix number, and Appendix A appended: the
     sections cited, in the notes' order (nothing appended where nothing is cited). The sections' text is
     rewritten in place; the title block (the scene's own words, the date, the versions) cites nothing and is
-    left as it is."""
-    cited: dict[str, None] = {}
+    left as it is. ``figures``: the sections its figures cite (:func:`citing`), carried too."""
+    cited: dict[str, None] = dict.fromkeys(figures or {})
     for section in document.sections:
         section.blocks = [_block(b, cited) for b in section.blocks]
         section.title = _cited_in(section.title, cited)
@@ -307,7 +356,7 @@ def readable(text: str, shown: set[str]) -> str:
         if all(n in shown for n in numbers):
             named = [f"{APPENDIX}.{n}" for n in numbers]
             return " and ".join(named) if len(named) <= 2 else ", ".join(named[:-1]) + f" and {named[-1]}"
-        return f"{match.group(1)} {match.group(2)} of flyopt's notes"
+        return _in_notes(match.group(1), match.group(2))
 
     return re.sub(r"\b(sections?) (\d+(?:(?: and |, )\d+)*)(?! of flyopt)", section, text).strip()
 

@@ -85,6 +85,7 @@ def render(document: Document) -> bytes:
         story.append(heading)
         for block in section.blocks:
             story += _block(block, styles, width, height, drawings)
+    story = _kept_with_next(story)
 
     def footer(canvas, doc):
         canvas.saveState()
@@ -111,6 +112,28 @@ def render(document: Document) -> bytes:
     page.afterFlowable = after
     page.build(story, onFirstPage=footer, onLaterPages=footer)
     return buffer.getvalue()
+
+
+def _kept_with_next(story: list[Any]) -> list[Any]:
+    """The story with what keeps with the next flowable (a heading; a paragraph that ends in ":") kept with it
+    where the next is itself kept together (a short list of facts, a worked step): its content follows
+    instead of the KeepTogether that held it.
+
+    reportlab keeps a flowable with the next by putting both in a KeepTogether, but not where the next is a
+    KeepTogether already: punch-press-wheel's "2 The scene as given" was the last line of page 1, its facts
+    on page 2. With the content following, the heading and the content are one KeepTogether, which keeps
+    the content whole as its own did. The heading stays a flowable of its own, so that the outline entry
+    and the contents' page are still written as it is placed.
+    """
+    from reportlab.platypus import KeepTogether
+
+    out: list[Any] = []
+    for flowable in story:
+        if type(flowable) is KeepTogether and out and out[-1].getKeepWithNext():
+            out += flowable._content
+        else:
+            out.append(flowable)
+    return out
 
 
 #: The colour of the contents list's links (its numbers, titles and pages).

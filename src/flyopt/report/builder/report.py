@@ -18,7 +18,7 @@ from flyopt.report.builder.steps import Steps
 from flyopt.report.builder.summary import Summary
 from flyopt.report.builder.verification import VerificationAndProvenance
 from flyopt.report.document import Document
-from flyopt.report.method import with_appendix
+from flyopt.report.method import citing, with_appendix
 from flyopt.report.plots import standard
 
 
@@ -56,10 +56,13 @@ def build(
     """
     display.check_system(units)
     display.check_digits(digits)
-    with standard.collector_paused():  # its figures made without the collector's full scans (issue 26)
+    # its figures made without the collector's full scans (issue 26), citing the notes as its text does
+    with standard.collector_paused(), citing() as cited:
         if isinstance(inputs, CalculationInputs):
-            return with_appendix(build_calculation(inputs, units, title_block, digits))
-        return with_appendix(Builder(inputs, units, digits, figures).document(title_block))
+            document = build_calculation(inputs, units, title_block, digits)
+        else:
+            document = Builder(inputs, units, digits, figures).document(title_block)
+    return with_appendix(document, cited)
 
 
 class Builder(

@@ -13,6 +13,7 @@ from flyopt.cycle.torque import Constant
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report import display
+from flyopt.report.method import NOTES, cite
 from flyopt.report.plots import readout, standard
 
 if TYPE_CHECKING:
@@ -321,10 +322,13 @@ def omega_marks(analysis: Analysis, units: str, digits: int = standard.DIGITS) -
                 )
             )
     if differ and analysis.model == Model.ENERGY_MASS:
-        note = (
-            "J_e varies with φ: the speed is extreme where the energy–mass tangents touch (section 6 of "
-            "the notes), not where ΔE is, at the ends of A_max"
+        note = cite(
+            f"J_e varies with φ: the speed is extreme where the energy–mass tangents touch ({NOTES}, section 6), "
+            "not where ΔE is, at the ends of A_max"
         )
     elif analysis.model == Model.DYNAMIC:
-        note = "a torque depends on speed: the torques and the speed extremes along the periodic solution (section 7)"
+        note = cite(
+            f"a torque depends on speed: the torques and the speed extremes along the periodic solution ({NOTES}, "
+            "section 7)"
+        )
     return marks, note

@@ -12,6 +12,7 @@ from flyopt.cycle.indicator import required_inertia
 from flyopt.delta_curve import delta_range, flywheel_at_some_delta
 from flyopt.names import Model
 from flyopt.report import display
+from flyopt.report.method import NOTES, cite
 from flyopt.report.plots import readout, standard
 
 if TYPE_CHECKING:
@@ -92,7 +93,7 @@ def plot_inertia_delta(
         lw=1.6,
         gid="j_delta",
         label=f"J_F(δ), {analysis.model} model"
-        + (" (the scene analysed at each δ)" if exact else " = A_max/(ω_m² δ) − J_c (section 5)"),
+        + (" (the scene analysed at each δ)" if exact else cite(f" = A_max/(ω_m² δ) − J_c ({NOTES}, section 5)")),
     )
     readout.curve(line, "J_F", j_scale)
     readout.abscissa(ax, "δ", standard.scale("dimensionless", units, digits=digits))
@@ -106,7 +107,7 @@ def plot_inertia_delta(
             color="gray",
             ls="--",
             lw=1,
-            label="constant-inertia method, A_max/(ω_m² δ) − mean J_e (section 5), for comparison",
+            label=cite(f"constant-inertia method, A_max/(ω_m² δ) − mean J_e ({NOTES}, section 5), for comparison"),
             gid="constant_inertia",
         )
         readout.curve(line, "J_F by the constant-inertia method", j_scale)
