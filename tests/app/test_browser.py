@@ -135,6 +135,8 @@ def test_edit_break_fix_and_download(server, browser, tmp_path):
     page.close()
 
 
+@pytest.mark.slow  # the default run's five minutes; the form's writes and the pasted rows' answer are checked
+# without a browser in test_form.py (a typed δ, the book's 1.256 kJ from pasted rows)
 def test_the_form_writes_into_the_scene_and_a_pasted_table_solves(server, browser):
     """δ set in the form reads in the editor as if typed and the card follows; the shear press's table pasted
     from a spreadsheet in degrees and N*m gives the book's A_max (1.256 kJ, docs/flywheel-design.md example 2)."""
