@@ -306,6 +306,38 @@ def test_pareto_of_delta_on_a_motor_press_ends_where_no_flywheel_is_needed():
 
 
 @pytest.mark.parametrize(
+    ("scene", "changes", "status", "why"),
+    [
+        ("conveyor", {}, 0, "no flywheel needed"),  # steady torques: J_F = 0, nothing to trade
+        ("punch-press", {'"1.2 m"': '"0.1 m"'}, 3, "no material and shaft"),  # no wheel fits a 0.1 m envelope
+    ],
+)
+def test_an_empty_pareto_front_under_json_is_one_json_document(main_cli, write_scene, scene, changes, status, why):
+    """flyopt pareto --json of a scene without a front: stdout is one JSON document (it was a line of text),
+    which the output schema accepts: the front's two objectives, no rows, and why there are none; the exit
+    status is the one the text gives (0 nothing to trade, 3 no design)."""
+    import jsonschema
+
+    from flyopt.outputs.documents import schema
+
+    text = (PROBLEMS / f"{scene}.toml").read_text(encoding="utf-8")
+    for old, new in changes.items():
+        assert old in text
+        text = text.replace(old, new)
+    path = write_scene(text)
+    said, words, _ = main_cli("pareto", path)
+    assert said == status and why in words
+    got, out, err = main_cli("pareto", path, "--json")
+    assert got == status and err == ""
+    document = json.loads(out)
+    assert list(jsonschema.Draft202012Validator(schema()).iter_errors(document)) == []
+    assert document["kind"] == "pareto" and document["objectives"] == ["mass", "outer_diameter"]
+    assert document["rows"] == [] and why in document["message"]
+    assert [c["name"] for c in document["columns"]] == ["mass", "outer_diameter"]
+    assert document["units"] == {"mass": "kg", "outer_diameter": "m"}
+
+
+@pytest.mark.parametrize(
     "table, words",
     [
         ('[sweep]\nseed = -1\n[sweep.vary]\ndelta = "0.01:0.1:3"\n', "sweep.seed: must be a whole number >= 0"),

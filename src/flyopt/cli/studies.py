@@ -331,9 +331,18 @@ def run_pareto(args: argparse.Namespace) -> int:
     objectives, other = objective_pair(args.objectives)
     _check_output(args.output)
     front = pareto(scene, objectives, points=args.points, span=_span(args.span, other), method=args.method)
-    if front.empty:
+    if front.empty:  # no file is written: the front has no row
         message = front.attrs.get("message", "empty front")
-        if not args.quiet:
+        if args.json and not (args.quiet and args.output is not None):
+            # one JSON document on stdout, as every --json: the front's two objectives without rows, and why
+            import pandas as pd
+
+            from flyopt.outputs import documents
+
+            empty = pd.DataFrame({name: pd.Series(dtype=float) for name in ("mass", other)})
+            metadata = _metadata(empty, "pareto", scene, objectives=("mass", other), message=message)
+            print(documents.json_text(documents.table_document(empty, metadata)))
+        elif not args.quiet:
             print(f"{args.scene}: {message}")
         return EXIT_OK if message.startswith("no flywheel needed") else EXIT_INFEASIBLE
     # the objectives first, mass then the other, in every format; the file's metadata names
@@ -413,6 +422,28 @@ def _check_output(output: str | None) -> None:
     check_folder(output, "-o/--output")
 
 
+def _metadata(
+    frame: pd.DataFrame,
+    kind: str,
+    scene: Scene,
+    objectives: Sequence[str] | None = None,
+    message: str | None = None,
+) -> dict[str, Any]:
+    """A study's table's metadata (:func:`flyopt.outputs.documents.table_metadata`): its columns' units, the
+    scene's provenance, a front's objectives, and why it has no rows (``message``)."""
+    from flyopt.outputs import documents
+    from flyopt.studies.payload import digest
+
+    return documents.table_metadata(
+        kind,
+        list(frame.columns),
+        scene=documents.scene_record(scene, digest(scene)),
+        objectives=objectives,
+        objective=documents.objective_of(frame),
+        message=message,
+    )
+
+
 def _emit(
     frame: pd.DataFrame,
     args: argparse.Namespace,
@@ -433,17 +464,10 @@ def _emit(
 
     from flyopt.outputs import documents, files, quantities, results
     from flyopt.report import display
-    from flyopt.studies.payload import digest
 
     frame = results.normalize(frame.copy())
     output = args.output
-    metadata = documents.table_metadata(
-        kind,
-        list(frame.columns),
-        scene=documents.scene_record(scene, digest(scene)),
-        objectives=objectives,
-        objective=documents.objective_of(frame),
-    )
+    metadata = _metadata(frame, kind, scene, objectives)
     if output is not None:
         if Path(output).suffix.lower() == ".json":
             files.write_text(output, documents.json_text(documents.table_document(frame, metadata)))

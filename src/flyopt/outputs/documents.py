@@ -180,6 +180,7 @@ def table_metadata(
     objectives: Sequence[str] | None = None,
     sweep: Mapping[str, Any] | None = None,
     objective: str | None = None,
+    message: str | None = None,
 ) -> dict[str, Any]:
     """What a table file says about itself: Parquet key-value metadata, the CSV sidecar.
 
@@ -199,6 +200,9 @@ def table_metadata(
         The sweep: its fields and values, samples, seed, method.
     objective : str, optional
         The objective every row's ``objective`` is of, when there is one.
+    message : str, optional
+        Why the table has no rows (an empty Pareto front: no flywheel needed,
+        or no design anywhere on the range).
 
     Returns
     -------
@@ -219,6 +223,8 @@ def table_metadata(
         meta["objectives"] = list(objectives)
     if sweep is not None:
         meta["sweep"] = sweep
+    if message is not None:
+        meta["message"] = message
     return json_safe(meta)
 
 
