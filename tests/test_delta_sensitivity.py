@@ -97,3 +97,48 @@ def test_the_slopes_redesigns_pass_the_shafts_post_check(tmp_path, monkeypatch):
     refused = solve(scene)
     assert refused.design.best.mass == chosen
     assert _delta_slope(refused.design.best) == []
+
+
+def test_the_text_and_the_report_say_the_step_of_delta_is_a_first_order_estimate(tmp_path, main_cli):
+    """The δ line ("delta: +0.01 ... changes the mass by ...") is the slope times the step, a first-order
+    estimate: for this disc the exact m(δ + 0.01) − m(δ) is 9 % smaller. The text's block said "Sensitivities
+    of the mass:" and nothing of first order (the report's table did); both now head it with the words that
+    say so, one wording."""
+    import re
+
+    from flyopt.cli.report import collect
+    from flyopt.report.builder import build
+    from flyopt.report.document import Table
+
+    delta, a_max, v_max = 0.1, 1600.0, 50.0
+    path = tmp_path / "scene.toml"
+    path.write_text(SCENE.format(delta=delta))
+
+    def mass(d):  # the disc at its rim speed limit, in closed form (the module's docstring)
+        return 2 * a_max * (1 + d / 2) ** 2 / (v_max**2 * d)
+
+    first_order = 2 * a_max / v_max**2 * ((1 + delta / 2) / delta - (1 + delta / 2) ** 2 / delta**2) * 0.01
+    again = mass(delta + 0.01) - mass(delta)
+    assert abs(again - first_order) > 0.05 * abs(again)  # the two differ where the text shows them
+    status, out, _ = main_cli("solve", path)
+    assert status == 0
+    lines = out.splitlines()
+    at = next(k for k, line in enumerate(lines) if line.startswith("  - delta: +0.01"))
+    shown = float(re.search(r"changes the mass by ([-+][\d.]+) kg", lines[at]).group(1))
+    assert shown == pytest.approx(first_order, rel=5e-4) and shown != pytest.approx(again, rel=0.05)
+    start = at
+    while lines[start - 1].startswith("  - "):
+        start -= 1
+    heading = lines[start - 1]
+    assert "first order" in heading, heading
+    document = build(collect(str(path)), figures=False)
+    try:
+        captions = [
+            block.caption
+            for section in document.sections
+            for block in section.blocks
+            if isinstance(block, Table) and block.name == "sensitivities"
+        ]
+    finally:
+        document.close()
+    assert captions == [heading.rstrip(":")]

@@ -29,7 +29,7 @@ def press_arms_wheel():
     lines = {}
     for units in ("engineering", "imperial"):
         text = "\n".join(wheel_report(best, solution.analysis.omega_max, units))
-        block = text.split("Sensitivities of the mass:\n", 1)[1].split("\n\n", 1)[0]
+        block = text.split("How the mass moves with each limit (first order):\n", 1)[1].split("\n\n", 1)[0]
         lines[units] = [line[4:] for line in block.splitlines()]
     return [dict(e) for e in best.limits.sensitivities], lines
 

@@ -181,11 +181,11 @@ def test_blocks_only_where_the_design_has_the_data(scene, capsys):
     design = _solve_json(scene, capsys)
     assert ("Key (DIN 6885-1" in text) == (design["key"] is not None)
     if design["sensitivities"]:
-        assert _block(text, "Sensitivities of the mass") == [
+        assert _block(text, "How the mass moves with each limit") == [
             f"  - {sensitivity_text(s)}" for s in design["sensitivities"]
         ]
     else:
-        assert "Sensitivities" not in text
+        assert "How the mass moves" not in text
     if design["notes"]:
         shown = _block(text, "Notes:")
         assert len(shown) == len(design["notes"])

@@ -148,6 +148,11 @@ COLUMN_WORDS = {
 }
 
 
+#: The heading of a design's sensitivities wherever they are shown (the text's block, the report's table): each is
+#: the slope at the design (a multiplier, or a central difference for δ) times a round step, a first-order
+#: estimate of what that step would change (a re-solve at δ + 0.01 may differ by a fifth), which it says.
+SENSITIVITY_HEADING = "How the mass moves with each limit (first order)"
+
 #: A sensitivity's ``unit`` (its JSON entry's) and the dimension its step is shown in.
 SENSITIVITY_DIMENSIONS = {"m": "length", "m/s": "speed", "Pa": "stress", "kg*m^2": "inertia", "-": "dimensionless"}
 

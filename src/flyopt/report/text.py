@@ -26,6 +26,7 @@ from flyopt.report.characters import visible
 from flyopt.report.display import (
     DEFAULT,
     DEFAULT_DIGITS,
+    SENSITIVITY_HEADING,
     UTILISATION_DIGITS,
     dimension_of,
     field_number,
@@ -912,7 +913,7 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: 
                 f"(allowable {q(k['allowable_shear'], 'allowable_shear')})"
             )
     if c.limits.sensitivities:
-        lines += ["", "Sensitivities of the mass:"]
+        lines += ["", f"{SENSITIVITY_HEADING}:"]
         lines += [f"  - {sensitivity_text(s, units, digits)}" for s in c.limits.sensitivities]
     if c.provenance.notes:
         lines += ["", "Notes:"] + [f"  - {said_text(n, units, digits)}" for n in c.provenance.notes]

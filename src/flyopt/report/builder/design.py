@@ -133,7 +133,7 @@ class DesignSection(BuilderBase):
                     ("sensitivity of the mass",),
                     tuple([display.sensitivity_text(s, self.units, self.digits)] for s in best.limits.sensitivities),
                     ("<",),
-                    "How the mass moves with each limit (first order)",
+                    display.SENSITIVITY_HEADING,
                     "sensitivities",
                 )
             )
