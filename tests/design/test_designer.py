@@ -321,7 +321,7 @@ def test_disc_matches_closed_form():
     assert narrow.status == "infeasible"
     # needs D^4 = 32 J / (pi rho B_max)
     needed = (32 * j / (math.pi * CAST_STEEL.density * 0.5 * best.dims.b)) ** 0.25
-    assert f"still needs {needed:.3g} m" in narrow.candidates[0].reason
+    assert f"still needs an outer diameter of {needed:.3g} m" in narrow.candidates[0].reason
 
 
 # --------------------------------------------------------------------------
@@ -454,7 +454,7 @@ def test_infeasible_reason_in_words_and_numbers():
     assert reason == (
         f"cast iron on the motor shaft: the 36 m/s rim limit caps the outer "
         f"diameter at {72 / omega:.3g} m, where the smallest rim that gives "
-        f"10 kg·m² still needs {needed:.3g} m"
+        f"10 kg·m² still needs an outer diameter of {needed:.3g} m"
     )
     assert_allclose(result.candidates[0].limits.d_outer_needed, needed, rtol=1e-9)
     assert reason in result.message

@@ -350,7 +350,9 @@ def test_an_infeasible_trade_offs_reasons_follow_units_and_digits_and_its_json_i
     reasons = [line.strip() for line in imperial.stdout.splitlines() if "caps the outer diameter" in line]
     assert len(reasons) == 2
     for reason in reasons:  # 0.05 m = 1.9685 in; the inertia in lb·ft² and the diameter needed in inches
-        assert re.search(r"at 1\.9685 in, where .* gives [0-9.]{7} lb·ft² still needs [0-9.]{7} in$", reason), reason
+        assert re.search(
+            r"at 1\.9685 in, where .* gives [0-9.]{7} lb·ft² still needs an outer diameter of [0-9.]{7} in$", reason
+        ), reason
     solved = run_flyopt("solve", str(scene), "--units", "imperial", "--digits", "6")
     assert all(reason.split(": ", 1)[1] in solved.stdout for reason in reasons)  # the words solve says
     document = run_flyopt("tradeoff", str(scene), "--json")

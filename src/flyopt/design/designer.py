@@ -140,7 +140,7 @@ def _explain_infeasible(combo, spec):
         + cap_text
         + said(" at {cap}, where the smallest " + word + " that gives ", cap=length(combo.cap, cap))
         + need(_g(combo.j_shaft))
-        + said(" still needs {needed}", needed=length(needed, needed_text))
+        + said(" still needs an outer diameter of {needed}", needed=length(needed, needed_text))
     ), needed
 
 
