@@ -220,6 +220,12 @@ def for_people(table: Any, names: Mapping[str, str]) -> Any:
     return table
 
 
+def chain_point(index: int) -> str:
+    """A point of the energy chain of net areas, which has no angle, by where it lies: "start" (index 0, the
+    cycle's start) or "after area k". The one naming of the text, the report's table and the energy diagram."""
+    return "start" if index == 0 else f"after area {index}"
+
+
 def mode_shape(shape: Sequence[float]) -> str:
     """A mode's shape, its amplitudes signed to two decimals ("+1.00, -0.43, +0.00"): a node's amplitude of
     -0.001 is "+0.00", never "-0.00"."""

@@ -28,6 +28,7 @@ from flyopt.report.display import (
     DEFAULT_DIGITS,
     SENSITIVITY_HEADING,
     UTILISATION_DIGITS,
+    chain_point,
     dimension_of,
     field_number,
     field_text,
@@ -345,7 +346,7 @@ def analysis_report(
                 )
             )
     else:
-        facts.append(("ω_max / ω_min at", f"the end of area {r.index_omega_max} / area {r.index_omega_min}"))
+        facts.append(("ω_max / ω_min at", f"{chain_point(r.index_omega_max)} / {chain_point(r.index_omega_min)}"))
     if r.j_constant:
         facts.append(("J_c (machine and shafts)", q(r.j_constant, "j_constant")))
     if r.flywheel_needed:
@@ -393,11 +394,7 @@ def analysis_report(
         same = (r.angle_delta_e_max, r.angle_delta_e_min) == (r.angle_omega_max, r.angle_omega_min)
         top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")
         mark = top if e["index"] == r.index_omega_max else bottom if e["index"] == r.index_omega_min else ""
-        where = (
-            n(e["angle"], "angle", angles)
-            if e["angle"] is not None
-            else ("start" if e["index"] == 0 else f"after area {e['index']}")
-        )
+        where = n(e["angle"], "angle", angles) if e["angle"] is not None else chain_point(e["index"])
         rows.append([where, n(e["delta_e"], "delta_e", chain), mark])
     head = [
         heading("angle", "angle", units) if r.angle_omega_max is not None else "point",

@@ -265,11 +265,7 @@ class Steps(Requirement):
         chain = [e["delta_e"] for e in a.energy_chain]  # one column: its unit and round-off by its largest
         for e in a.energy_chain:
             mark = top if e["index"] == a.index_omega_max else bottom if e["index"] == a.index_omega_min else ""
-            where = (
-                self.n(e["angle"], "angle")
-                if e["angle"] is not None
-                else ("start" if e["index"] == 0 else f"after area {e['index']}")
-            )
+            where = self.n(e["angle"], "angle") if e["angle"] is not None else display.chain_point(e["index"])
             rows.append([str(e["index"]), where, self.n(e["delta_e"], "energy", "delta_e", among=chain), mark])
         blocks.append(
             Table(

@@ -117,7 +117,7 @@ def plot_energy(
         at = (
             f" at φ = {standard.q(ind.chain_angle[k], 'angle', units, digits)}"
             if ind.chain_angle is not None
-            else f" at the end of area {k}"
+            else f" ({display.chain_point(k)})"
         )
         ax.plot(
             [x_chain[k]],
