@@ -120,6 +120,46 @@ def test_a_citation_becomes_the_appendix_number_and_the_sections_cited_are_appen
     assert "section 14" not in said.replace("section 14 of flyopt's notes", "")
 
 
+def test_a_citation_written_across_the_pieces_of_a_paragraph_is_one_citation():
+    """A paragraph built of pieces, its citation across three of them ("(", the notes, ", section 5)"), cites by
+    the one rule: "(Appendix A.5)", the section appended, its number as it is. It read "(Appendix A, section
+    5)", the pieces rewritten one by one."""
+    from flyopt.report.document import Quantity
+
+    j = Quantity("863.2 kg·m²", "j_required", 863.2, "inertia")
+    text = ("The textbook method (", "docs/flywheel-design.md", ", section 5) would ask for J_F = ", j, ".")
+    done = with_appendix(Document("t", (), [Section("1", "Model", [Paragraph(text)])], "engineering", "designed"))
+    said = done.sections[0].blocks[0].text
+    assert plain(said) == "The textbook method (Appendix A.5) would ask for J_F = 863.2 kg·m²."
+    assert j in said and [s.number for s in done.sections if s.number.count(".") == 1] == ["A.5"]
+
+
+@pytest.mark.parametrize("scene", ["motor-press", "slider-crank-press"])
+def test_a_reports_model_section_cites_the_constant_inertia_method_as_the_appendix(scene):
+    """The model section's "textbook constant-inertia method (...) would ask for J_F = ..." cites Appendix A.5 as
+    every other citation does; no text of the report says "Appendix A, section"."""
+    from conftest import PROBLEMS
+
+    from flyopt.cli.report import collect
+    from flyopt.report.builder import build
+
+    document = build(collect(str(PROBLEMS / f"{scene}.toml")), figures=False)
+    try:
+        texts = [
+            plain(block.text)
+            for section in document.sections
+            for block in section.blocks
+            if isinstance(block, Paragraph)
+        ]
+    finally:
+        document.close()
+    method = [t for t in texts if t.startswith("The textbook constant-inertia method")]
+    assert len(method) == 1 and method[0].startswith("The textbook constant-inertia method (Appendix A.5) would"), (
+        method
+    )
+    assert not [t for t in texts if re.search(r"Appendix A, ?sections?", t)]
+
+
 def test_the_notes_for_developers_reach_no_appendix():
     """What the notes mark for developers (where the code lives, how it is tested and timed) is in no appendix: each
     marked span's every clause of some length, as this test reads the markdown, is absent from its section's

@@ -195,9 +195,23 @@ def _all(values: tuple, cited: dict[str, None]) -> tuple:
     return tuple(_rewrite(v, cited) for v in values)
 
 
+def _joined(text: object) -> object:
+    """A paragraph's Text with its neighbouring strings joined, so that a citation written across them ("(",
+    NOTES, ", section 5)") is one citation to the rule; its numbers (Quantity) stay as they are."""
+    if not isinstance(text, tuple):
+        return text
+    pieces: list[object] = []
+    for piece in text:
+        if isinstance(piece, str) and pieces and isinstance(pieces[-1], str):
+            pieces[-1] = f"{pieces[-1]}{piece}"
+        else:
+            pieces.append(piece)
+    return tuple(pieces)
+
+
 def _block(block: object, cited: dict[str, None]) -> object:
     if isinstance(block, Paragraph):
-        return replace(block, text=_rewrite(block.text, cited))
+        return replace(block, text=_rewrite(_joined(block.text), cited))
     if isinstance(block, Equation):
         return replace(block, lines=_all(block.lines, cited), reference=_cited_in(block.reference, cited))
     if isinstance(block, Facts):

@@ -63,14 +63,10 @@ class Requirement(BuilderBase):
         elif a.delta_holds_at_any_inertia:
             blocks.append(
                 Paragraph(
-                    (
-                        f"No flywheel is needed: with none the machine gives δ = {number(a.delta_reached, self.digits)}, "
-                        f"within the allowed {number(a.delta, self.digits)}, and the speed stays within δ however small the "
-                        "inertia, the motor's slip alone holding it (the periodic solution down to a vanishing "
-                        "inertia; ",
-                        NOTES,
-                        ", section 7).",
-                    ),
+                    f"No flywheel is needed: with none the machine gives δ = {number(a.delta_reached, self.digits)}, "
+                    f"within the allowed {number(a.delta, self.digits)}, and the speed stays within δ however small the "
+                    "inertia, the motor's slip alone holding it (the periodic solution down to a vanishing "
+                    f"inertia; {NOTES}, section 7).",
                     "ok",
                 )
             )

@@ -128,9 +128,7 @@ class SceneAndModel(BuilderBase):
                 blocks.append(
                     Paragraph(
                         (
-                            "The textbook constant-inertia method (",
-                            NOTES,
-                            ", section 5) would ask for J_F = ",
+                            f"The textbook constant-inertia method ({NOTES}, section 5) would ask for J_F = ",
                             self.q(textbook["j_required"], "inertia"),
                             off,
                             gives,
