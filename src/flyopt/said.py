@@ -20,7 +20,7 @@ import string
 from collections.abc import Iterable, Mapping
 from typing import Any
 
-__all__ = ["Said", "said", "join", "removeprefix", "said_by", "template", "quantities"]
+__all__ = ["Said", "said", "join", "counted", "removeprefix", "said_by", "template", "quantities"]
 
 #: One quantity of a sentence: (value in SI, dimension as flyopt.report.display names it, the text as written).
 Quantity = tuple[float, str, str]
@@ -88,6 +88,12 @@ def join(separator: str, parts: Iterable[str]) -> str:
             spaced.append(separator)
         spaced.append(part)
     return _joined(spaced)
+
+
+def counted(count: int, noun: str) -> str:
+    """A count and its noun, singular for one: "1 point", "2 points", "0 points", "1,200 designs" (thousands
+    grouped, as :func:`flyopt.report.display.number` groups them). For nouns whose plural takes an s."""
+    return f"{count:,} {noun}{'' if count == 1 else 's'}"
 
 
 def removeprefix(text: str, head: str) -> str:

@@ -499,3 +499,26 @@ def test_sweep_prints_its_csv_in_the_units_asked_for_naming_them_and_files_stay_
     assert status == 0
     back = flyopt.read_results(written)
     assert back["speed"].tolist() == pytest.approx(np_speed, rel=1e-12) and "speed [rpm]" not in back
+
+
+def test_a_sweep_of_one_speed_in_rpm_prints_it_as_given_and_counts_one_point(main_cli):
+    """flyopt sweep --vary machine.speed=1500rpm --units engineering (issue: a reviewer's first run): the CSV's
+    speed cell is the 1500 written, not 1500.0000000000002 (the round trip rad/s to rpm); a designed length
+    keeps its figures (mm from m to 1e-15); the summary and the progress line count "1 point" ("1 points"),
+    and "4 designs"."""
+    import csv
+    import io
+
+    scene = PROBLEMS / "slider-crank-press.toml"
+    status, out, err = main_cli("sweep", scene, "--vary", "machine.speed=1500rpm", "--units", "engineering")
+    assert status == 0, err
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert len(rows) == 1 and rows[0]["speed [rpm]"] == "1500.0"
+    status, out_si, _ = main_cli("sweep", scene, "--vary", "machine.speed=1500rpm", "--no-progress")
+    si = next(csv.DictReader(io.StringIO(out_si)))
+    assert float(rows[0]["d_outer [mm]"]) == pytest.approx(float(si["d_outer"]) * 1e3, rel=1e-15, abs=0)
+    summary = [line for line in err.splitlines() if line.startswith("flyopt sweep: done:")]
+    assert len(summary) == 1 and summary[0].startswith("flyopt sweep: done: 1 point (1 designed,"), err
+    designs = int(si["n_combinations"])  # every combination of the point designed
+    assert f"; {designs} design{'s' if designs != 1 else ''} in " in summary[0], summary[0]
+    assert re.search(r"\b1 points\b", err) is None and " 1/1 point (" in err, err

@@ -251,3 +251,40 @@ def test_a_drive_s_card_names_its_motor_once_and_its_rating_on_its_own_row():
     cells = _cells(solution._repr_html_())
     assert cells["motor"] == motor["name"]
     assert cells["rated power"] == display.quantity_text(motor["rated_power"], "power", "engineering")
+
+
+#: Values as a user writes them, with their unit, each read into SI by flyopt's own reader: whole, decimal, of
+#: one figure and of fifteen (the most a double keeps), small and large.
+WRITTEN = {
+    "speed": ("rpm", ["1500", "750", "2999.5", "0.3", "1234.56789012345", "60"]),
+    "d_outer": ("mm", ["1200", "0.7", "592.2", "1000.00000000001", "3", "25.4"]),
+    "mass": ("kg", ["96.1", "1", "0.1", "1e3", "45", "2.5"]),
+    "hoop_stress": ("MPa", ["19.5", "7", "0.35", "210", "123456.789012345", "1"]),
+}
+
+
+def test_a_table_in_the_users_units_shows_what_was_written_and_keeps_every_other_figure():
+    """SI values read from what a user wrote ("1500rpm" is 157.07963267948966 rad/s) and shown again in those
+    units are the decimals written: 1500 rpm was 1500.0000000000002, the conversion's round-off. A value no
+    user wrote (a designed diameter) moves by no more than that round-off, a few units in the last place."""
+    import numpy as np
+
+    from flyopt.units import quantity
+
+    dimensions = {"speed": "angular_speed", "d_outer": "length", "mass": "mass", "hoop_stress": "stress"}
+    si = pd.DataFrame(
+        {
+            name: [quantity(f"{text} {unit}", dimensions[name], name) for text in texts]
+            for name, (unit, texts) in WRITTEN.items()
+        }
+    )
+    shown = flyopt.to_units(si, "engineering")
+    for name, (unit, texts) in WRITTEN.items():
+        assert shown.attrs["flyopt"]["units"][name] == unit
+        assert shown[name].tolist() == [float(text) for text in texts], name  # exactly: no figure lost, none added
+    designed = pd.DataFrame({"d_outer": [0.5922044394117037, 0.4816964485754085, 1 / 3, np.nan, np.inf]})
+    got = flyopt.to_units(designed, "engineering")["d_outer"].to_numpy()
+    exact = designed["d_outer"].to_numpy() * 1e3
+    assert np.isnan(got[3]) and got[4] == np.inf
+    finite = np.isfinite(exact)
+    assert (np.abs(got[finite] - exact[finite]) <= 4 * np.spacing(exact[finite])).all()

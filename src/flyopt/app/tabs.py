@@ -15,6 +15,7 @@ from typing import Any
 
 from flyopt.app import materials, model, sweeps
 from flyopt.app.hover import hover_figure
+from flyopt.said import counted
 
 #: Shown where a tab needs a valid scene and the editor's text is not one.
 NO_SCENE = "The scene in the editor is not valid: fix it on the Design tab first."
@@ -453,14 +454,15 @@ class SweepsTab:
             return
         if not result.complete:
             self.status.object = _message(
-                f"cancelled after {len(result.frame):,} of {result.info['points']:,} points", bad=False
+                f"cancelled after {len(result.frame):,} of {counted(result.info['points'], 'point')}", bad=False
             )
             return
         self.result = result
         self._offer(result.parquet is not None)
         info = result.info
         self.status.object = _message(
-            f"done: {len(result.frame):,} points in {info['seconds']:.2f} s ({info['mode']})", bad=False
+            f"done: {counted(len(result.frame), 'point')} in {info['seconds']:.2f} s ({info['mode']})",
+            bad=False,
         )
         units = self.session.units.value
         names = materials.display_names(self.scene)

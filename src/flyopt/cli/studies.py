@@ -137,6 +137,7 @@ def add_sweep_arguments(parser: argparse.ArgumentParser) -> None:
 def run_sweep(args: argparse.Namespace) -> int:
     """``flyopt sweep``: returns the exit status (0 done, or stopped by --max-chunks)."""
     from flyopt.io.sweep_spec import check_options, load_sweep, resolve_field, vary_from_texts
+    from flyopt.said import counted
     from flyopt.studies.sweep import check_sweep, sweep
 
     scene, options = load_sweep(args.scene)
@@ -187,7 +188,7 @@ def run_sweep(args: argparse.Namespace) -> int:
         left = info["chunks"] - len(info["chunks_run"]) - len(info["chunks_reused"])
         if not args.quiet:
             print(
-                f"flyopt sweep: stopped after {len(info['chunks_run'])} chunks, {left} left: "
+                f"flyopt sweep: stopped after {counted(len(info['chunks_run']), 'chunk')}, {left} left: "
                 f"continue with --resume ({_parts_name(output)})",
                 file=sys.stderr,
             )
@@ -205,8 +206,8 @@ def run_sweep(args: argparse.Namespace) -> int:
         return EXIT_OK
     where = f"wrote {output}" if output is not None else "done"
     print(
-        f"flyopt sweep: {where}: {len(frame)} points ({summary}); methods: {methods}; "
-        f"{info['designs']} designs in {info['seconds']:.2f} s ({rate:,.0f} designs/s, "
+        f"flyopt sweep: {where}: {counted(len(frame), 'point')} ({summary}); methods: {methods}; "
+        f"{counted(info['designs'], 'design')} in {info['seconds']:.2f} s ({rate:,.0f} designs/s, "
         f"{info['mode']})",
         file=sys.stderr,
     )
@@ -325,6 +326,7 @@ _SHOW = {
 def run_pareto(args: argparse.Namespace) -> int:
     """``flyopt pareto``: returns the exit status (0 a front or none needed, 3 no design)."""
     from flyopt.io.scene import load
+    from flyopt.said import counted
     from flyopt.studies.pareto import objective_pair, pareto
 
     scene = load(args.scene)
@@ -355,7 +357,7 @@ def run_pareto(args: argparse.Namespace) -> int:
         scene,
         _SHOW[other],
         f"{args.scene}: Pareto front, {' vs '.join(objectives)} "
-        f"({len(front)} non-dominated of {front.attrs['evaluated']} designs)",
+        f"({len(front)} non-dominated of {counted(front.attrs['evaluated'], 'design')})",
         objectives=("mass", other),
     )
     return EXIT_OK

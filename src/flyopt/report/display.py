@@ -385,6 +385,29 @@ def without_noise(value: float, scale: float) -> float:
     return 0.0 if _is_noise(value, scale) else value
 
 
+#: Significant figures a double holds exactly (C's DBL_DIG): every decimal of 15 figures a user writes reads
+#: back as itself.
+CONVERSION_DIGITS = 15
+#: The round-off a conversion of units leaves, in units in the last place: the SI value is the given one times
+#: a factor and the shown one that over a factor, each product and each factor rounded once (about 1 ulp where
+#: the two factors are the same double; "1500rpm", read in rad/s and shown in rpm, was 1500.0000000000002,
+#: 1 ulp above 1500). Four covers two factors that differ in their last bit.
+CONVERSION_ULPS = 4
+
+
+def without_conversion_noise(value: float) -> float:
+    """A value converted out of SI for a table of data (``flyopt sweep --units``,
+    :func:`flyopt.report.notebook.to_units`), without the conversion's round-off: the decimal of
+    :data:`CONVERSION_DIGITS` figures nearest to it where that lies within :data:`CONVERSION_ULPS` units in the
+    last place (1500.0000000000002 is 1500.0), else the value as it is. So every value a user wrote (15 figures
+    or fewer) reads back as written, and no other moves by more than the conversion's own round-off: the data
+    keeps every figure it has (a report's text is rounded by :func:`number`). inf and nan as they are."""
+    if not math.isfinite(value) or value == 0.0:
+        return value
+    shorter = float(f"{value:.{CONVERSION_DIGITS}g}")
+    return shorter if abs(shorter - value) <= CONVERSION_ULPS * math.ulp(value) else value
+
+
 def number(value: float | None, digits: int = DEFAULT_DIGITS, scale: float | None = None) -> str:
     """A number with ``digits`` significant figures, no exponent for everyday sizes ("-" for None).
 

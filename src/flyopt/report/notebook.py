@@ -238,7 +238,11 @@ def to_units(frame: pd.DataFrame, units: str, *, labels: bool = False) -> pd.Dat
         if target is None:
             continue
         label, factor = target
-        shown[name] = frame[name] / factor
+        # the data in the unit shown, without the conversion's round-off (a factor of 1 converts nothing)
+        converted = frame[name] / factor
+        shown[name] = (
+            converted if factor == 1.0 else converted.map(display.without_conversion_noise, na_action="ignore")
+        )
         shown_units[str(name)] = label
         if labels and label not in ("-", "1"):
             names[name] = f"{name} [{label}]"

@@ -45,6 +45,7 @@ from flyopt.report.display import (
     share_of_allowable,
     unit,
 )
+from flyopt.said import counted
 
 if TYPE_CHECKING:
     from flyopt.analysis import Analysis
@@ -462,7 +463,7 @@ def engine_report(result: Analysis, units: str = DEFAULT, digits: int = DEFAULT_
         )
     return [
         "",
-        f"Engine: {engine.cylinder_count} cylinder{'s' if engine.cylinder_count > 1 else ''}, "
+        f"Engine: {counted(engine.cylinder_count, 'cylinder')}, "
         f"{engine.cycle}, cycles starting at {angles} {_label('angle', units)}",
         f"  textbook method (the crank effort at the mean speed, gas torque − ½ J_e′(φ) ω_m², on the constant "
         f"mean J_e {q(textbook.j_machine_mean, 'inertia')}):",

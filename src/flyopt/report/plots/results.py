@@ -8,6 +8,7 @@ import numpy as np
 
 from flyopt.report import display
 from flyopt.report.plots import readout, standard
+from flyopt.said import counted
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -222,7 +223,7 @@ def plot_sweep(
             marker,
             color="gray",
             mfc="none" if marker == "o" else "gray",
-            label=f"{words} ({n} point{'s' if n > 1 else ''}), marked at the bottom",
+            label=f"{words} ({counted(n, 'point')}), marked at the bottom",
         )
     values = _values(frame, x, x_scale) if np.issubdtype(frame[x].dtype, np.number) else np.array([])
     positive = values[np.isfinite(values) & (values > 0)]
@@ -309,7 +310,7 @@ def plot_pareto(
         "o",
         color=standard.DEFICIT,
         ms=5,
-        label=f"Pareto front ({len(front)} points)",
+        label=f"Pareto front ({counted(len(front), 'point')})",
         gid="front",
     )
     ax.set(xlabel=_label(x, units, frame, digits), ylabel=_label(y, units, frame, digits))
