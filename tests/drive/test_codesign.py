@@ -236,6 +236,28 @@ def test_motor_power_front_needs_a_drive(tmp_path):
     assert len(lines) == 1 and "objectives" in lines[0] and "[drive]" in lines[0]
 
 
+def test_the_motor_power_fronts_inertias_mean_what_a_sweeps_and_solves_do():
+    """press-drive's front of wheel mass against motor power: ``j_flywheel`` is the wheel's inertia on its own
+    shaft, as ``solve --json``'s design and a sweep's column (it was the inertia at the crank, 45,930 kg·m² for a
+    248 kg wheel of 1.2 m, whose inertia on its shaft is below m (D/2)² = 89 kg·m²). Moved to the crank by the
+    flywheel ratio squared it is ``j_at_reference``, the same kinetic energy, and that is what the motor size
+    needs there, ``j_required``."""
+    from conftest import PROBLEMS
+
+    from flyopt.studies.pareto import pareto
+
+    front = pareto(load(PROBLEMS / "press-drive.toml"), "mass,motor_power")
+    designed = front[front["status"] == "designed"]
+    assert len(designed) >= 1
+    for row in designed.to_dict("records"):
+        radius = row["d_outer"] / 2
+        assert 0 < row["j_flywheel"] < row["mass"] * radius**2  # the wheel's own, about its own axis
+        assert row["j_at_reference"] == pytest.approx(row["j_flywheel"] * row["flywheel_ratio"] ** 2, rel=1e-12)
+        assert row["j_flywheel"] * row["flywheel_ratio"] ** 2 == pytest.approx(row["j_required"], rel=1e-6)
+    idle = front[front["status"] == "not_needed"]
+    assert (idle["j_required"] == 0).all() and idle["j_flywheel"].isna().all()
+
+
 @pytest.mark.slow  # every size of the ladder solved exactly: about half a minute
 def test_flyopt_pareto_motor_power_writes_the_front(tmp_path):
     """flyopt pareto --objectives mass,motor_power: the non-dominated (motor power, wheel mass) of every size,

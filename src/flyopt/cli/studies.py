@@ -315,6 +315,7 @@ _SHOW = {
         "motor_ratio",
         "flywheel_ratio",
         "j_flywheel",
+        "j_required",
         "limit",
         "total_mass",
         "best_material",

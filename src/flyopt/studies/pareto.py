@@ -291,6 +291,10 @@ def _front_motor_power(scene: Scene, analysis: Analysis, solver_options: Mapping
 
     ``mass`` is the flywheel's (0 where the motor needs none), ``rated_power``
     the motor's; the drive's own objective (motor plus wheel) is ``total_mass``.
+    The inertias are named as a sweep's and ``solve``'s: ``j_flywheel`` the
+    wheel's on its own shaft [kg*m^2], ``j_at_reference`` the same moved to the
+    crank (J' r²), ``j_required`` the least the motor size needs at the crank
+    for δ and its thermal limit (the drive's ``j_flywheel``, 0 where it needs none).
     """
     from flyopt.drive.codesign import design_drive
 
@@ -308,7 +312,9 @@ def _front_motor_power(scene: Scene, analysis: Analysis, solver_options: Mapping
                 "total_mass": run.total_mass if run.total_mass is not None else math.nan,
                 "motor_ratio": run.motor_ratio if run.motor_ratio is not None else math.nan,
                 "flywheel_ratio": run.flywheel_ratio if run.flywheel_ratio is not None else math.nan,
-                "j_flywheel": run.j_flywheel if run.j_flywheel is not None else math.nan,
+                "j_flywheel": wheel.j_flywheel if wheel is not None else math.nan,
+                "j_at_reference": wheel.j_at_reference if wheel is not None else math.nan,
+                "j_required": run.j_flywheel if run.j_flywheel is not None else math.nan,
                 "limit": run.limit,
                 "best_material": wheel.material if wheel is not None else None,
                 "d_outer": wheel.dims.d_outer if wheel is not None else math.nan,
