@@ -175,7 +175,9 @@ def test_the_gallery_scene_reproduces_the_published_rim_and_says_how_far_it_is_o
     run = run_flyopt("solve", str(SCENE))
     assert run.returncode == 0, run.stderr
     assert "criterion mean_rim_speed (the courses' convention)" in run.stdout
-    assert "29.1% OVER the allowable" in run.stdout and "19.8% OVER the allowable" in run.stdout
+    # SI's space between a number and %, as every other percentage of the output ("119.8 % of its allowable")
+    assert "29.1 % OVER the allowable" in run.stdout and "19.8 % OVER the allowable" in run.stdout
+    assert "119.8 % of its allowable" in run.stdout and not re.search(r"\d%", run.stdout)
     assert "only the rim speed limit bounds the diameter" not in run.stdout  # D_m is pinned by the mean speed
 
 
@@ -249,7 +251,8 @@ def test_the_report_says_in_its_summary_how_far_the_book_rim_is_over(tmp_path):
     start = html.index("Summary", html.index("The scene as given"))
     summary = html[start : html.index("The scene as given", start)]
     assert "Criterion mean_rim_speed, the courses" in summary
-    assert "19.8% over the allowable" in summary
+    assert "19.8 % over the allowable" in summary
+    assert not re.search(r"\d%", re.sub(r"<[^>]+>", "", summary))  # every percentage spaced, as the text's
     assert "v<sub>m</sub> = i ω" in html  # the book's speed, substituted
 
 

@@ -706,7 +706,7 @@ def test_cli_sweep_to_stdout_and_progress(capsys):
     captured = capsys.readouterr()
     lines = captured.out.strip().splitlines()
     assert lines[0].startswith("point,delta,speed,") and len(lines) == 5
-    assert "4/4 points (100%)" in captured.err and "designs/s" in captured.err
+    assert "4/4 points (100 %)" in captured.err and "designs/s" in captured.err
 
 
 def test_cli_sweep_stop_and_resume(tmp_path, capsys):

@@ -488,7 +488,7 @@ def book_rim_report(book: BookRim, units: str = DEFAULT, digits: int = DEFAULT_D
         excess = book.excess(stress)
         if excess is None:
             return ""
-        return f": {abs(excess):.1%} {'OVER' if excess > 1e-9 else 'within'} the allowable"
+        return f": {share(abs(excess))} {'OVER' if excess > 1e-9 else 'within'} the allowable"
 
     lines = [
         "  criterion mean_rim_speed (the courses' convention): the rim's speed at the MEAN diameter and the "
@@ -719,7 +719,7 @@ def fem_report(check: FemCheck, units: str = DEFAULT, digits: int = DEFAULT_DIGI
         word = "above" if check.difference >= 0 else "below"
         lines.append(
             f"  the two models: FE peak {q(check.peak, 'stress')}, Lamé/arm {q(check.model_peak, 'stress')}: "
-            f"the FE is {100 * abs(check.difference):.1f} % {word}"
+            f"the FE is {share(abs(check.difference))} {word}"
         )
     verdict = fem_verdict(check)
     if verdict is not None:
@@ -792,7 +792,7 @@ def wheel_report(candidate: Design, omega: float, units: str = DEFAULT, digits: 
                 n(p["thickness"], "thickness"),
                 n(p["mass"], "mass"),
                 n(p["inertia"], "inertia"),
-                f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-",
+                share(p["inertia"] / total_j) if total_j > 0 else "-",
             ]
             for p in c.parts.items
         ]

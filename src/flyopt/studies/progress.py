@@ -58,7 +58,7 @@ class Progress:
         fraction = done / self.total if self.total else 1.0
         bar = "#" * int(24 * fraction) + "-" * (24 - int(24 * fraction))
         text = (
-            f"sweep [{bar}] {done}/{counted(self.total, 'point')} ({100 * fraction:.0f}%), "
+            f"sweep [{bar}] {done}/{counted(self.total, 'point')} ({100 * fraction:.0f} %), "
             f"{self.designs / elapsed:,.0f} designs/s, "
             f"{'done in ' + _clock(elapsed) if final else 'ETA ' + _clock(eta)}"
         )

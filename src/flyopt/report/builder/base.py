@@ -311,7 +311,7 @@ class BuilderBase:
             excess = book.excess(stress)
             if excess is None:
                 return ""
-            return f", {abs(excess):.1%} {'over' if excess > 1e-9 else 'within'} the allowable"
+            return f", {display.share(abs(excess))} {'over' if excess > 1e-9 else 'within'} the allowable"
 
         text: list[Any] = [
             "Criterion mean_rim_speed, the courses' convention, sized this rim: at the mean diameter and the mean "

@@ -299,7 +299,7 @@ class DesignSection(BuilderBase):
                 n(p["thickness"], "length"),
                 n(p["mass"], "mass"),
                 n(p["inertia"], "inertia"),
-                f"{100 * p['inertia'] / total_j:.1f} %" if total_j > 0 else "-",
+                display.share(p["inertia"] / total_j) if total_j > 0 else "-",
             ]
             for p in c.parts.items
         ]
@@ -403,7 +403,7 @@ class DesignSection(BuilderBase):
                 self.q(check.peak, "stress"),
                 ", Lamé/arm ",
                 self.q(check.model_peak, "stress"),
-                f": the FE is {100 * abs(check.difference):.1f} % {'above' if check.difference >= 0 else 'below'}. ",
+                f": the FE is {display.share(abs(check.difference))} {'above' if check.difference >= 0 else 'below'}. ",
             ]
         from flyopt.report.text import fem_verdict
 
