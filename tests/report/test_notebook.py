@@ -254,37 +254,68 @@ def test_a_drive_s_card_names_its_motor_once_and_its_rating_on_its_own_row():
 
 
 #: Values as a user writes them, with their unit, each read into SI by flyopt's own reader: whole, decimal, of
-#: one figure and of fifteen (the most a double keeps), small and large.
+#: one figure and of fifteen (the most a double keeps), small and large; a study's fields (the columns that are
+#: not results).
 WRITTEN = {
     "speed": ("rpm", ["1500", "750", "2999.5", "0.3", "1234.56789012345", "60"]),
-    "d_outer": ("mm", ["1200", "0.7", "592.2", "1000.00000000001", "3", "25.4"]),
-    "mass": ("kg", ["96.1", "1", "0.1", "1e3", "45", "2.5"]),
-    "hoop_stress": ("MPa", ["19.5", "7", "0.35", "210", "123456.789012345", "1"]),
+    "design.max_outer_diameter": ("mm", ["1200", "0.7", "592.2", "1000.00000000001", "3", "25.4"]),
+    "design.max_width": ("mm", ["96.1", "1", "0.1", "1e3", "45", "2.5"]),
+    "design.d_mean": ("mm", ["19.5", "7", "0.35", "210", "123456.789012345", "1"]),
 }
 
 
 def test_a_table_in_the_users_units_shows_what_was_written_and_keeps_every_other_figure():
     """SI values read from what a user wrote ("1500rpm" is 157.07963267948966 rad/s) and shown again in those
-    units are the decimals written: 1500 rpm was 1500.0000000000002, the conversion's round-off. A value no
-    user wrote (a designed diameter) moves by no more than that round-off, a few units in the last place."""
+    units are the decimals written: 1500 rpm was 1500.0000000000002, the conversion's round-off. A result (a
+    designed diameter: nothing was written) is the SI value over the unit's factor, as it was."""
     import numpy as np
 
     from flyopt.units import quantity
 
-    dimensions = {"speed": "angular_speed", "d_outer": "length", "mass": "mass", "hoop_stress": "stress"}
+    dimensions = {"speed": "angular_speed"}
     si = pd.DataFrame(
         {
-            name: [quantity(f"{text} {unit}", dimensions[name], name) for text in texts]
+            name: [quantity(f"{text} {unit}", dimensions.get(name, "length"), name) for text in texts]
             for name, (unit, texts) in WRITTEN.items()
         }
     )
+    assert si["speed"][0] / (np.pi / 30) == 1500.0000000000002  # the round-off taken off
     shown = flyopt.to_units(si, "engineering")
     for name, (unit, texts) in WRITTEN.items():
         assert shown.attrs["flyopt"]["units"][name] == unit
         assert shown[name].tolist() == [float(text) for text in texts], name  # exactly: no figure lost, none added
-    designed = pd.DataFrame({"d_outer": [0.5922044394117037, 0.4816964485754085, 1 / 3, np.nan, np.inf]})
+    designed = pd.DataFrame({"d_outer": [0.5922044394117037, 0.4816964485754085, 1.2, np.nan, np.inf]})
     got = flyopt.to_units(designed, "engineering")["d_outer"].to_numpy()
-    exact = designed["d_outer"].to_numpy() * 1e3
-    assert np.isnan(got[3]) and got[4] == np.inf
-    finite = np.isfinite(exact)
-    assert (np.abs(got[finite] - exact[finite]) <= 4 * np.spacing(exact[finite])).all()
+    assert np.array_equal(got, designed["d_outer"].to_numpy() / 1e-3, equal_nan=True)
+
+
+def test_the_round_off_taken_off_is_that_of_pythons_own_fifteen_figures():
+    """display.without_conversion_noise, in numpy over a whole column, against Python's own decimal of 15
+    figures (``float(f"{x:.15g}")``, kept where within 4 ulp) one value at a time: random values over 44 decades,
+    decimals of 1 to 15 figures converted to and from rpm and mm, and values halfway between two decimals."""
+    import math
+
+    import numpy as np
+
+    from flyopt.report.display import without_conversion_noise
+
+    def reference(value):
+        if not math.isfinite(value) or value == 0.0 or not 1e-8 <= abs(value) < 1e36:
+            return value
+        shorter = float(f"{value:.15g}")
+        return shorter if abs(shorter - value) <= 4 * math.ulp(value) else value
+
+    rng = np.random.default_rng(7)
+    written = [float(f"{d:.{k}g}") for d, k in zip(rng.uniform(0, 1e4, 20000), rng.integers(1, 16, 20000))]
+    values = np.concatenate(
+        [
+            rng.normal(size=20000) * 10.0 ** rng.integers(-8, 36, 20000),
+            np.array(written) * (math.pi / 30) / (math.pi / 30),
+            np.array(written) * 1e-3 / 1e-3,
+            [82000270.57036075, -8.022875453678814e16, 0.0, -0.0, math.inf, -math.inf, math.nan, 1e-9, 1e40],
+        ]
+    )
+    got = without_conversion_noise(values)
+    expected = np.array([reference(float(v)) for v in values])
+    assert np.array_equal(got.view(np.int64), expected.view(np.int64))  # bit for bit, the sign of 0 and nan too
+    assert (got != values).sum() > 1000  # the noise was there to take off

@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.design.check import binding_label
 from flyopt.outputs.quantities import dimension_of, table_units
+from flyopt.outputs.results import RESULT_COLUMNS
 from flyopt.report import display
 from flyopt.views import register
 
@@ -218,6 +219,8 @@ def to_units(frame: pd.DataFrame, units: str, *, labels: bool = False) -> pd.Dat
         An unknown ``units``, a table that is already converted (convert the SI table), or
         ``"input"`` for a table that is no sweep's.
     """
+    import pandas as pd
+
     if units != INPUT and units not in display.SYSTEMS:
         raise ValueError(f"units {units!r} is not known (allowed: {', '.join((INPUT, *display.SYSTEMS))})")
     meta = dict(frame.attrs.get("flyopt") or {})
@@ -238,11 +241,15 @@ def to_units(frame: pd.DataFrame, units: str, *, labels: bool = False) -> pd.Dat
         if target is None:
             continue
         label, factor = target
-        # the data in the unit shown, without the conversion's round-off (a factor of 1 converts nothing)
+        # the data in the unit shown; what a user wrote (a study's fields, every column but the results) without
+        # the conversion's round-off, 1500 rpm not 1500.0000000000002 (a factor of 1 converts nothing; a result
+        # has no written value to return to, and its round-off is its own)
         converted = frame[name] / factor
-        shown[name] = (
-            converted if factor == 1.0 else converted.map(display.without_conversion_noise, na_action="ignore")
-        )
+        if factor != 1.0 and name not in RESULT_COLUMNS:
+            converted = pd.Series(
+                display.without_conversion_noise(converted.to_numpy(dtype=float)), index=frame.index, name=name
+            )
+        shown[name] = converted
         shown_units[str(name)] = label
         if labels and label not in ("-", "1"):
             names[name] = f"{name} [{label}]"
