@@ -420,16 +420,18 @@ def without_conversion_noise(values: npt.ArrayLike) -> npt.NDArray[np.float64]:
         power = powers[np.where(ok, np.abs(shift), 0).astype(np.intp)]
         up = shift >= 0
         mantissa = np.rint(np.where(up, x * power, x / power))
-        candidates = np.stack([mantissa - 1.0, mantissa, mantissa + 1.0])
-        decimals = np.where(up, candidates / power, candidates * power)
-        distances = np.sort(np.abs(decimals - x), axis=0)
-        best = np.take_along_axis(decimals, np.argmin(np.abs(decimals - x), axis=0)[None], axis=0)[0]
-        gap = distances[0]
+        best, gap, ties = x, np.full_like(x, np.inf), np.zeros(x.shape, dtype=bool)
+        for n in (mantissa, mantissa - 1.0, mantissa + 1.0):
+            decimal = np.where(up, n / power, n * power)
+            distance = np.abs(decimal - x)
+            ties = (distance == gap) | (ties & (distance > gap))
+            closer = distance < gap
+            best, gap = np.where(closer, decimal, best), np.minimum(distance, gap)
         keep = ok & (gap <= CONVERSION_ULPS * np.spacing(size))
     best = np.where(keep, best, x)
     # two decimals equally near in doubles: the value lies halfway between them, which its exact binary value
     # decides, as float(f"{value:.15g}") does (a few in a thousand random values; none of the decimals written)
-    for k in np.flatnonzero(keep & (distances[1] == gap)):
+    for k in np.flatnonzero(keep & ties):
         best[k] = float(f"{x[k]:.{CONVERSION_DIGITS}g}")
     return best
 
