@@ -181,3 +181,47 @@ def test_the_design_of_a_scene_with_its_flywheel_is_not_said(main_cli, write_sce
     path = write_scene(text)
     status, _, err = main_cli("check", path)
     assert status == 2 and [line.split(": ")[1] for line in err.splitlines()] == ["machine.delta"], err
+
+
+def test_a_scene_without_its_machine_speed_delta_or_torques_is_told_what_to_write_there(main_cli, write_scene):
+    """A new user's file, built up from nothing by what flyopt says is missing: each refusal names the field and
+    what to write there (they said "is missing" alone), and writing its example moves on to the next, until the
+    scene is sound."""
+    steps = [
+        (
+            "",
+            [
+                "flyopt: error: {path}: machine: is missing: give [machine] with the mean speed and the allowed δ "
+                '(speed = "1500 rpm", delta = 0.05), or a [press] from its process data'
+            ],
+        ),
+        (
+            "[machine]\n",
+            [
+                '{path}:1: machine.speed: is missing: the reference shaft\'s mean speed, e.g. speed = "1500 rpm"',
+                "{path}:1: machine.delta: is missing: the allowed coefficient of fluctuation of speed δ, "
+                'e.g. delta = 0.05 or "5 %"',
+            ],
+        ),
+        (
+            '[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n',
+            [
+                "flyopt: error: {path}: torque: is missing: give "
+                "[torque.driving] and [torque.resisting], or [torque.net] "
+                "with the net areas"
+            ],
+        ),
+    ]
+    for text, expected in steps:
+        path = write_scene(text)
+        for command in ("check", "solve"):
+            status, out, err = main_cli(command, path)
+            lines = err.splitlines()
+            assert status == 2 and out == "", (command, err)
+            wanted = [line.format(path=path) for line in expected]
+            if command == "solve":  # one line, the first error, as every command but check refuses
+                wanted = [wanted[0].replace(f"{path}:1:", f"flyopt: error: {path}:")]
+            assert len(lines) == len(wanted) and all(a.startswith(b) for a, b in zip(lines, wanted)), (command, err)
+    path = write_scene('[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n[torque.net]\nareas = [1, -1]\n')
+    status, out, err = main_cli("check", path)
+    assert status == 0 and err == "", err

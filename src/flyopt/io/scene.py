@@ -308,7 +308,7 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
         driving = resisting = net = None
     else:
         driving, resisting, net = read_torques(
-            top.get("torque", {}) if member_loads else top.require("torque"),
+            top.get("torque", {}) if member_loads else _table(top, "torque"),
             cycle,
             shafts,
             efficiency,
@@ -426,14 +426,44 @@ def _machine(top: Table, once: bool, existing: bool) -> tuple[Table, float, floa
 def _machine_table(top: Table, once: bool) -> Table:
     """[machine], with none but its own keys (one calculation may leave it out)."""
     return Table(
-        top.get("machine", {}) if once else top.require("machine"),
+        top.get("machine", {}) if once else _table(top, "machine"),
         "machine",
         {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"},
     )
 
 
+#: What a scene that leaves out [machine], [torque] or the machine's speed or δ is told: what to write there.
+MISSING = {
+    "machine": (
+        'is missing: give [machine] with the mean speed and the allowed δ (speed = "1500 rpm", delta = 0.05), or a '
+        "[press] from its process data (flyopt new KIND writes a template)"
+    ),
+    "torque": (
+        "is missing: give [torque.driving] and [torque.resisting], or [torque.net] with the net areas, or the cycle "
+        "by an [engine], a [press] or [[member]] loads"
+    ),
+    "machine.speed": 'is missing: the reference shaft\'s mean speed, e.g. speed = "1500 rpm"',
+    "machine.delta": 'is missing: the allowed coefficient of fluctuation of speed δ, e.g. delta = 0.05 or "5 %"',
+}
+
+
+def _table(top: Table, key: str) -> Any:
+    """The scene's table ``key``, which it must give (:data:`MISSING` says what to write)."""
+    _required(top, key)
+    return top.get(key)
+
+
+def _required(table: Table, key: str) -> None:
+    """Refuse a scene without ``key`` of ``table``, saying what to write (:data:`MISSING`)."""
+    if not table.has(key):
+        where = f"{table.where}.{key}" if table.where else key
+        raise SceneError(where, MISSING[where])
+
+
 def _delta(machine: Table, required: bool) -> float | None:
     """machine.delta, the allowed coefficient of fluctuation (None where the scene needs none and gives none)."""
+    if required:
+        _required(machine, "delta")
     delta = machine.quantity("delta", "dimensionless", required=required)
     if delta is not None:
         _check_delta(delta, machine)
@@ -543,6 +573,8 @@ def _mean_speed(machine: Table, required: bool) -> float:
     out; its scene's ``omega_mean`` is then NaN, which no calculation reads
     and every cycle computation refuses first (:attr:`Scene.calculation`).
     """
+    if required:
+        _required(machine, "speed")
     omega = machine.quantity("speed", "angular_speed", required=required)
     if omega is None:
         return math.nan
