@@ -207,3 +207,47 @@ def test_the_schema_ships_with_the_package():
 def test_the_command_line_json_validates(capsys):
     assert main(["solve", str(PROBLEMS / "punch-press-wheel.toml"), "--json"]) == 0
     assert schema_errors(json.loads(capsys.readouterr().out)) == []
+
+
+def _entries_with(document, key, path=""):
+    """(path, the dict) of every object of ``document`` that holds ``key``."""
+    if isinstance(document, dict):
+        if key in document:
+            yield path, document
+        for name, value in document.items():
+            yield from _entries_with(value, key, f"{path}.{name}")
+    elif isinstance(document, list):
+        for k, value in enumerate(document):
+            yield from _entries_with(value, key, f"{path}[{k}]")
+
+
+@pytest.mark.parametrize("scene, options", [("press-drive", ()), ("punch-press-wheel", ("--verify",))])
+def test_each_inertia_has_one_name_in_a_solve_document(main_cli, scene, options):
+    """One meaning per name in ``solve --json``: ``j_flywheel`` is a wheel's inertia about its own axis on its
+    own shaft wherever it appears, which cannot exceed its mass times its outer radius squared. A drive's motor
+    size said ``j_flywheel`` for the least inertia at the crank (press-drive's 4 kW size: 45,926 kg·m² for a wheel
+    of 1.2 m), and the verification for the wheel at the reference shaft: they are ``j_required`` and
+    ``j_at_reference``, as the design's and a sweep's columns name them, and the numbers agree across them."""
+    status, out, err = main_cli("solve", PROBLEMS / f"{scene}.toml", "--json", *options)
+    assert status == 0, err
+    document = json.loads(out)
+    assert document["units"]["j_flywheel"] == "kg*m**2"  # the document's one unit per name
+    wheels = [(path, entry) for path, entry in _entries_with(document, "j_flywheel") if path != ".units"]
+    assert wheels
+    for path, wheel in wheels:
+        if wheel["j_flywheel"] is not None:  # null: a combination with no wheel
+            assert wheel["j_flywheel"] <= wheel["mass"] * (wheel["d_outer"] / 2) ** 2, path
+    if scene == "press-drive":
+        drive = document["drive"]
+        for run in drive["runs"]:
+            assert run["j_required"] >= run["j_delta"]
+            if run["wheel"] is not None:  # the wheel built gives at least what the size needs, at the crank
+                assert run["wheel"]["j_at_reference"] >= run["j_required"] * (1 - 1e-9)
+                ratio = run["flywheel_ratio"]
+                assert run["wheel"]["j_flywheel"] * ratio**2 == pytest.approx(run["wheel"]["j_at_reference"], rel=1e-12)
+        assert drive["relaxation"]["j_required"] > 0
+        best_wheel = drive["best"]["wheel"]
+        built = 0.0 if best_wheel is None else best_wheel["j_at_reference"]
+        assert drive["verification"]["j_at_reference"] == pytest.approx(built, abs=1e-12)
+    else:
+        assert document["verification"]["j_at_reference"] == document["design"]["j_at_reference"]

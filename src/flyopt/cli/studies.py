@@ -314,7 +314,7 @@ _SHOW = {
         "motor",
         "motor_ratio",
         "flywheel_ratio",
-        "j_flywheel",
+        "j_at_reference",
         "j_required",
         "limit",
         "total_mass",

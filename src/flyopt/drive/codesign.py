@@ -166,7 +166,9 @@ class MotorRun:
 
     def to_dict(self) -> dict[str, Any]:
         out = {
-            k: v for k, v in self.__dict__.items() if k not in ("motor", "wheel", "design", "shaft_checks", "refusal")
+            ("j_required" if k == "j_flywheel" else k): v  # the least inertia at the crank: named as everywhere
+            for k, v in self.__dict__.items()
+            if k not in ("motor", "wheel", "design", "shaft_checks", "refusal")
         }
         out["motor"] = _motor_dict(self.motor)
         out["wheel"] = None if self.wheel is None else self.wheel.to_dict()

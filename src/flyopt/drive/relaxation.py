@@ -159,7 +159,7 @@ class Relaxation:
     def to_dict(self) -> dict[str, Any]:
         """The relaxation for JSON: its sensitivities a list of entries (limit, its unit, d objective / d limit),
         as a design's are (their names are quantities of their own elsewhere in a document)."""
-        out = {k: v for k, v in self.__dict__.items() if k != "sensitivities"}
+        out = {("j_required" if k == "j_flywheel" else k): v for k, v in self.__dict__.items() if k != "sensitivities"}
         out["sensitivities"] = [
             {"limit": name, "unit": self.LIMIT_UNITS[name], "dobjective_dlimit": value}
             for name, value in self.sensitivities.items()

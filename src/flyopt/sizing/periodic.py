@@ -1072,7 +1072,7 @@ class Verification:
             "omega_mean": self.omega_mean,
             "tolerance": self.tolerance,
             "flagged": self.flagged,
-            "j_flywheel": self.j_flywheel,
+            "j_at_reference": self.j_flywheel,  # the name of the flywheel's inertia at the reference shaft
         }
 
 
