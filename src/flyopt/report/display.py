@@ -399,25 +399,28 @@ def without_conversion_noise(values: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Values converted out of SI for a table of data (``flyopt sweep --units``,
     :func:`flyopt.report.notebook.to_units`), without the conversion's round-off: each the decimal of
     :data:`CONVERSION_DIGITS` figures nearest to it where that lies within :data:`CONVERSION_ULPS` units in the
-    last place (1500.0000000000002 is 1500.0), else the value as it is. So every value a user wrote (15 figures
-    or fewer) reads back as written, and no other moves by more than the conversion's own round-off: the data
-    keeps every figure it has (a report's text is rounded by :func:`number`). inf, nan and 0 as they are.
+    last place (1500.0000000000002 is 1500.0), else the value as it is: ``float(f"{value:.15g}")`` kept within
+    4 ulp. So every value a user wrote (15 figures or fewer) reads back as written, and no other moves by more
+    than the conversion's own round-off: the data keeps every figure it has (a report's text is rounded by
+    :func:`number`). inf, nan and 0 as they are, and sizes below 10⁻⁸ or from 10³⁷ up.
 
     Array in, array out, in numpy (a sweep's table has 10⁶ rows a column): the 15-figure mantissa n of each
     value, n × 10^-k by one rounding (a power of ten up to 10²² is exact, so the decimal's double is the
-    correctly rounded one, as ``float(f"{value:.15g}")`` reads it); n ± 1 are tried too, since the product that
-    finds n is rounded once itself. Values below 10⁻⁸ or above 10³⁶ in size are left as they are.
+    correctly rounded one, as ``float`` reads it); n ± 1 are tried too, since the product that finds n is
+    rounded once itself. Where the vector arithmetic cannot tell what Python's formatting would do (a value
+    within a millionth of a millionth of a power of ten, whose decade ``log10`` may round into the next, or
+    halfway between two decimals), that value is formatted by Python itself.
     """
     import numpy as np
 
     x = np.array(values, dtype=float, ndmin=1)
     size = np.abs(x)
     with np.errstate(all="ignore"):
-        ok = np.isfinite(x) & (size > 0)
-        shift = (CONVERSION_DIGITS - 1) - np.floor(np.log10(np.where(ok, size, 1.0)))  # decimals to the 15th figure
-        ok &= np.abs(shift) <= 22
+        ok = np.isfinite(x) & (size >= 1e-8) & (size < 1e37)
+        decade = np.log10(np.where(ok, size, 1.0))
+        shift = (CONVERSION_DIGITS - 1) - np.floor(decade)  # decimals to the 15th figure: -22 to 22
         powers = np.array([float(f"1e{k}") for k in range(23)])  # 10**0 .. 10**22, each exact (read, not pow)
-        power = powers[np.where(ok, np.abs(shift), 0).astype(np.intp)]
+        power = powers[np.clip(np.abs(np.where(ok, shift, 0)), 0, 22).astype(np.intp)]
         up = shift >= 0
         mantissa = np.rint(np.where(up, x * power, x / power))
         best, gap, ties = x, np.full_like(x, np.inf), np.zeros(x.shape, dtype=bool)
@@ -428,11 +431,17 @@ def without_conversion_noise(values: npt.ArrayLike) -> npt.NDArray[np.float64]:
             closer = distance < gap
             best, gap = np.where(closer, decimal, best), np.minimum(distance, gap)
         keep = ok & (gap <= CONVERSION_ULPS * np.spacing(size))
+        # a decade log10 may have put in the next: near a power of ten, but not that power itself
+        nearest = np.array([float(f"1e{k}") for k in range(-8, 38)])[
+            np.clip(np.rint(decade) + 8, 0, 45).astype(np.intp)
+        ]
+        unsure = ok & ((keep & ties) | ((np.abs(decade - np.rint(decade)) < 1e-12) & (size != nearest)))
     best = np.where(keep, best, x)
-    # two decimals equally near in doubles: the value lies halfway between them, which its exact binary value
-    # decides, as float(f"{value:.15g}") does (a few in a thousand random values; none of the decimals written)
-    for k in np.flatnonzero(keep & ties):
-        best[k] = float(f"{x[k]:.{CONVERSION_DIGITS}g}")
+    if unsure.any():  # Python's own decimal of 15 figures, kept within 4 ulp, once for each such value
+        found, where = np.unique(x[unsure], return_inverse=True)
+        own = [float(f"{value:.{CONVERSION_DIGITS}g}") for value in found.tolist()]
+        fixed = [a if abs(a - b) <= CONVERSION_ULPS * math.ulp(b) else b for a, b in zip(own, found.tolist())]
+        best[unsure] = np.array(fixed)[where]
     return best
 
 

@@ -30,7 +30,6 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.design.check import binding_label
 from flyopt.outputs.quantities import dimension_of, table_units
-from flyopt.outputs.results import RESULT_COLUMNS
 from flyopt.report import display
 from flyopt.views import register
 
@@ -219,6 +218,7 @@ def to_units(frame: pd.DataFrame, units: str, *, labels: bool = False) -> pd.Dat
         An unknown ``units``, a table that is already converted (convert the SI table), or
         ``"input"`` for a table that is no sweep's.
     """
+    import numpy as np
     import pandas as pd
 
     if units != INPUT and units not in display.SYSTEMS:
@@ -241,15 +241,14 @@ def to_units(frame: pd.DataFrame, units: str, *, labels: bool = False) -> pd.Dat
         if target is None:
             continue
         label, factor = target
-        # the data in the unit shown; what a user wrote (a study's fields, every column but the results) without
-        # the conversion's round-off, 1500 rpm not 1500.0000000000002 (a factor of 1 converts nothing; a result
-        # has no written value to return to, and its round-off is its own)
-        converted = frame[name] / factor
-        if factor != 1.0 and name not in RESULT_COLUMNS:
-            converted = pd.Series(
-                display.without_conversion_noise(converted.to_numpy(dtype=float)), index=frame.index, name=name
-            )
-        shown[name] = converted
+        # the data in the unit shown without the round-off of converting it: 1500 rpm, not 1500.0000000000002;
+        # a result equal to what was written (a diameter at its envelope) equal to it shown; the column's own
+        # dtype kept (a nullable Float64's missing values stay <NA>). A factor of 1 converts nothing: the column
+        # as it is, the SI table's own figures.
+        if factor != 1.0:
+            converted = frame[name] / factor
+            cleaned = display.without_conversion_noise(converted.to_numpy(dtype=float, na_value=np.nan))
+            shown[name] = pd.Series(cleaned, index=frame.index, name=name).astype(converted.dtype)
         shown_units[str(name)] = label
         if labels and label not in ("-", "1"):
             names[name] = f"{name} [{label}]"
