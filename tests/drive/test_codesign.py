@@ -256,6 +256,22 @@ def test_the_motor_power_fronts_inertias_mean_what_a_sweeps_and_solves_do():
         assert row["j_flywheel"] * row["flywheel_ratio"] ** 2 == pytest.approx(row["j_required"], rel=1e-6)
     idle = front[front["status"] == "not_needed"]
     assert (idle["j_required"] == 0).all() and idle["j_flywheel"].isna().all()
+    # the file's metadata types each column as the front holds it (it typed the motor's name a number)
+    from flyopt.outputs.documents import table_metadata
+
+    types = {c["name"]: c["type"] for c in table_metadata("pareto", list(front.columns))["columns"]}
+    from pandas.api.types import is_bool_dtype, is_numeric_dtype
+
+    for name in front.columns:
+        column = front[name]
+        if is_bool_dtype(column.dtype):
+            expected = "boolean"
+        elif is_numeric_dtype(column.dtype):
+            expected = "number"
+        else:  # text, or objects that are all text
+            assert all(isinstance(v, str) for v in column.dropna()), name
+            expected = "string"
+        assert types[name] == expected, (name, types[name], column.dtype)
 
 
 @pytest.mark.slow  # every size of the ladder solved exactly: about half a minute

@@ -517,3 +517,28 @@ def test_a_grade_is_named_by_its_designation_everywhere(tmp_path, main_cli):
     assert data["design"]["material"] == "en_gjl_250" and data["design"]["message"].startswith("EN-GJL-250 on the")
     drawing = export(scene, tmp_path / "arms.svg")
     assert drawing.title["material"] == "EN-GJL-250"
+
+
+def test_a_wheel_of_a_scenes_own_material_is_drawn_saying_its_process_is_not_known(main_cli, tmp_path):
+    """khurmi-16-14-book-rim designs its rim of a material the scene defines ("book_cast_iron"), whose casting
+    process flyopt does not know: `flyopt export` stopped with a traceback (exit 1) and the report's drawing
+    said "could not be drawn (TypeError ...)", the note's other wording formatted with the draft it has not.
+    The drawing is written and its note says why it has no draft."""
+    out = tmp_path / "rim.svg"
+    scene = PROBLEMS / "textbook" / "khurmi-16-14-book-rim.toml"
+    status, stdout, stderr = main_cli("export", scene, "-o", out)
+    assert (status, stderr) == (0, "") and f"wrote {out}" in stdout
+    svg = out.read_text(encoding="utf-8")
+    assert "the process is not known" in " ".join(svg.split())
+    status, _, stderr = main_cli("report", scene, "-o", tmp_path / "r.html")
+    assert status == 0 and stderr == "", stderr  # no diagram failed (it warned "diagram drawing: TypeError")
+    assert "could not be drawn" not in (tmp_path / "r.html").read_text(encoding="utf-8")
+
+
+def test_a_scene_that_gives_its_flywheel_has_no_design_to_draw(main_cli, tmp_path):
+    """khurmi-16-1 gives its flywheel ([flywheel], by its inertia) and asks what δ it leaves: export said "no
+    flywheel to draw (no drive and wheel meet the limits)", exit 3, as if a design had failed."""
+    status, stdout, stderr = main_cli("export", PROBLEMS / "textbook" / "khurmi-16-1.toml", "-o", tmp_path / "x.svg")
+    assert status == 2 and stdout == "" and stderr.count("\n") == 1
+    assert "gives its flywheel ([flywheel]) and designs none: nothing to draw" in stderr
+    assert list(tmp_path.iterdir()) == []

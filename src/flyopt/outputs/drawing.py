@@ -1406,10 +1406,12 @@ def _notes(design, arms, t2, finish, details):
             f"Machined ▽ (ISO 1302): {', '.join(machined)} Ra {finish.machined_ra:g} µm{bore}; other faces as cast."
         )
     else:
-        why = {
-            None: "no draft (the process is not known: the foundry's draft is to be added if it is cast)",
-            "machined": "no draft (not cast)",
-        }.get(finish.process, f"the casting's draft ({finish.draft:g}°) is turned off")
+        if finish.process is None:
+            why = "no draft (the process is not known: the foundry's draft is to be added if it is cast)"
+        elif finish.process == "machined" or finish.draft is None:
+            why = "no draft (not cast)"
+        else:  # a cast wheel machined all over: no face is left as cast
+            why = f"the casting's draft ({finish.draft:g}°) is turned off"
         notes.append(f"Machined all over ▽ (ISO 1302, material removed) Ra {finish.machined_ra:g} µm{bore}; {why}.")
     notes.append("The STEP solid has sharp edges: no fillets, chamfers or draft.")
     return notes

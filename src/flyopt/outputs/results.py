@@ -125,9 +125,9 @@ RESULT_COLUMNS = {
 #: pandas' nullable Int64. The sweep's evaluation marks them -1 (:func:`normalize` makes that null).
 NULLABLE_INTS = frozenset({"iterations"})
 
-#: Text columns of the trade-off table besides the names above (a material's binding limits
-#: other than the inertia, and why it is infeasible).
-_TEXT = frozenset({"limit", "reason"})
+#: Text columns of the trade-off table and the drive's Pareto front besides the names above (a
+#: material's binding limits other than the inertia, why it is infeasible; the motor's name).
+_TEXT = frozenset({"limit", "reason", "motor"})
 
 JSON_TYPES = {"str": "string", "bool": "boolean", "int": "integer", "float": "number"}
 

@@ -229,6 +229,11 @@ def design_of_scene(scene: Scene) -> Design:
     """
     from flyopt.pipeline import solve
 
+    if scene.flywheel is not None:  # a wheel that exists, checked by solve: nothing is designed
+        raise NoWheel(
+            "the scene gives its flywheel ([flywheel]) and designs none: nothing to draw (flyopt solve checks it)",
+            infeasible=False,
+        )
     solution = solve(scene)
     if solution.status == "not_needed":
         raise NoWheel("no flywheel is needed: nothing to draw", infeasible=False)
