@@ -337,6 +337,32 @@ def test_an_empty_pareto_front_under_json_is_one_json_document(main_cli, write_s
     assert document["units"] == {"mass": "kg", "outer_diameter": "m"}
 
 
+@pytest.mark.parametrize("suffix", [".csv", ".parquet", ".json"])
+def test_an_empty_pareto_front_is_written_to_the_file_asked_for_and_plot_says_it_has_no_rows(
+    main_cli, tmp_path, suffix
+):
+    """flyopt pareto -o FILE of a scene without a front wrote nothing and left an earlier run's front in FILE,
+    which flyopt plot then drew as this scene's. The file is written as a front with rows is, without rows and
+    with the reason in its metadata; flyopt plot of it says so in one line (exit 2)."""
+    import flyopt
+
+    out = tmp_path / f"front{suffix}"
+    out.write_text("an earlier run's front\n")
+    status, stdout, stderr = main_cli("pareto", PROBLEMS / "conveyor.toml", "-o", out)
+    assert status == 0 and stderr == "" and "no flywheel needed" in stdout and f"wrote {out}" in stdout
+    if suffix == ".json":
+        document = json.loads(out.read_text(encoding="utf-8"))
+        assert document["rows"] == [] and "no flywheel needed" in document["message"]
+        return
+    back = flyopt.read_results(out)
+    assert back.empty and list(back.columns) == ["mass", "outer_diameter"]
+    assert "no flywheel needed" in back.attrs["flyopt"]["message"]
+    status, stdout, stderr = main_cli("plot", out, "--what", "pareto", "-o", tmp_path / "front.png")
+    assert status == 2 and stdout == "" and stderr.count("\n") == 1
+    assert f"{out}: no rows to plot: no flywheel needed" in stderr
+    assert not (tmp_path / "front.png").exists()
+
+
 @pytest.mark.parametrize(
     "table, words",
     [

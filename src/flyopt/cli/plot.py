@@ -249,6 +249,9 @@ def _plot_results(args):
         frame = read_results(args.scene)
     except (OSError, ValueError) as err:
         return fail(f"{args.scene}: cannot read the results: {err}", EXIT_INPUT)
+    if frame.empty:  # an empty Pareto front's file says why it has no rows
+        why = frame.attrs.get("flyopt", {}).get("message")
+        return fail(f"{args.scene}: no rows to plot{f': {why}' if why else ''}", EXIT_INPUT)
     x = args.x
     if x is None and args.what == "pareto":
         # the objectives the front's file records (flyopt pareto writes them in its metadata);

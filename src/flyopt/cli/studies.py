@@ -334,19 +334,25 @@ def run_pareto(args: argparse.Namespace) -> int:
     objectives, other = objective_pair(args.objectives)
     _check_output(args.output)
     front = pareto(scene, objectives, points=args.points, span=_span(args.span, other), method=args.method)
-    if front.empty:  # no file is written: the front has no row
+    if front.empty:  # the front's table without rows, and why: on stdout under --json, in the file asked for
+        import pandas as pd
+
+        from flyopt.outputs import documents, files, results
+
         message = front.attrs.get("message", "empty front")
+        empty = pd.DataFrame({name: pd.Series(dtype=float) for name in ("mass", other)})
+        metadata = _metadata(empty, "pareto", scene, objectives=("mass", other), message=message)
+        if args.output is not None:  # written as a front with rows is: no earlier file left in its place
+            if Path(args.output).suffix.lower() == ".json":
+                files.write_text(args.output, documents.json_text(documents.table_document(empty, metadata)))
+            else:
+                results.write_results(empty, args.output, metadata=metadata)
         if args.json and not (args.quiet and args.output is not None):
-            # one JSON document on stdout, as every --json: the front's two objectives without rows, and why
-            import pandas as pd
-
-            from flyopt.outputs import documents
-
-            empty = pd.DataFrame({name: pd.Series(dtype=float) for name in ("mass", other)})
-            metadata = _metadata(empty, "pareto", scene, objectives=("mass", other), message=message)
             print(documents.json_text(documents.table_document(empty, metadata)))
         elif not args.quiet:
             print(f"{args.scene}: {message}")
+            if args.output is not None:
+                print(f"wrote {args.output} (no rows)")
         return EXIT_OK if message.startswith("no flywheel needed") else EXIT_INFEASIBLE
     # the objectives first, mass then the other, in every format; the file's metadata names
     # them too, which flyopt plot --what pareto reads
