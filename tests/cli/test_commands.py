@@ -548,3 +548,15 @@ def test_a_sweep_of_one_speed_in_rpm_prints_it_as_given_and_counts_one_point(mai
     designs = int(si["n_combinations"])  # every combination of the point designed
     assert f"; {designs} design{'s' if designs != 1 else ''} in " in summary[0], summary[0]
     assert re.search(r"\b1 points\b", err) is None and " 1/1 point (" in err, err
+
+
+@pytest.mark.parametrize(("name", "json_words"), [("front.json", True), ("scene.toml", False)])
+def test_a_results_diagram_of_a_file_that_is_not_results_says_what_it_reads(main_cli, tmp_path, name, json_words):
+    """flyopt plot front.json --what pareto (pareto -o writes a JSON table, plot does not read it) said
+    "--what: unknown diagram 'pareto'", a diagram it lists among its own."""
+    path = tmp_path / name
+    path.write_text("{}\n" if name.endswith(".json") else (PROBLEMS / "conveyor.toml").read_text(encoding="utf-8"))
+    status, stdout, stderr = main_cli("plot", path, "--what", "pareto", "-o", tmp_path / "p.png")
+    assert status == 2 and stdout == "" and stderr.count("\n") == 1
+    assert f"{path}: --what pareto draws the results of flyopt sweep or pareto, a .csv or .parquet file" in stderr
+    assert ("write them with -o FILE.csv" in stderr) == json_words and "unknown diagram" not in stderr

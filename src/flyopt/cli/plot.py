@@ -94,6 +94,13 @@ def run_plot(args: argparse.Namespace) -> int:
         return _plot_results(args)
     if args.what == ALL:
         return _plot_all(args, plots)
+    if args.what in plots.RESULT_PLOTS:  # a scene given where results are read
+        json_table = " (a JSON table is not read: write them with -o FILE.csv or FILE.parquet)"
+        return fail(
+            f"{args.scene}: --what {args.what} draws the results of flyopt sweep or pareto, a .csv or .parquet "
+            f"file{json_table if args.scene.lower().endswith('.json') else ''}",
+            EXIT_INPUT,
+        )
     if args.what not in plots.PLOTS:
         return fail(
             f"--what: unknown diagram {args.what!r}{hint(args.what, [*plots.PLOTS, ALL])} (known: {', '.join(plots.PLOTS)}, {ALL})",
