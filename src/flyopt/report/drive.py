@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 from flyopt.report.characters import visible
 from flyopt.report.display import DEFAULT, DEFAULT_DIGITS, field_text, heading, label, number, said_text, unit
-from flyopt.report.text import ACHIEVED_RANGE, formatters, table
+from flyopt.report.text import ACHIEVED_RANGE, achieved_speed_range, formatters, table
 
 if TYPE_CHECKING:
     from flyopt.drive.codesign import DriveCheck, DriveDesign, MotorRun
@@ -114,11 +114,12 @@ def drive_report(
         v = check.verification
         verdict = check_verdict(check, units, digits)
         pair = [check.rms_torque, check.rated_torque]  # "31.22 of 36.1 N·m": one unit for the two
+        shown = achieved_speed_range(v)
         lines += [
             "",
             f"Drive verification (the machine simulated with the wheel as built): {verdict}",
             f"  achieved δ {number(v.achieved_delta, digits)} against {number(v.delta_allowed, digits)}; {ACHIEVED_RANGE} "
-            f"{n(v.omega_min, 'omega_min')} to {q(v.omega_max, 'omega_max')}, mean "
+            f"{n(shown[0], 'omega_min')} to {q(shown[1], 'omega_max')}, mean "
             f"{q(v.omega_mean, 'omega_mean')}; RMS torque {n(check.rms_torque, 'rms_torque', pair)} of "
             f"{q(check.rated_torque, 'rated_torque', pair)}; start-up {q(check.startup_time, 'startup_time')}",
         ]

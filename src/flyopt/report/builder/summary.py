@@ -30,7 +30,13 @@ class Summary(BuilderBase):
                 (self.q(a.delta, "dimensionless", "delta"), f" (1/{number(1 / a.delta, self.digits)})"),
             ),
         ]
-        from flyopt.report.text import ACHIEVED_RANGE, ALLOWED_RANGE, allowed_speed_range, reached_below_allowed
+        from flyopt.report.text import (
+            ACHIEVED_RANGE,
+            ALLOWED_RANGE,
+            achieved_speed_range,
+            allowed_speed_range,
+            reached_below_allowed,
+        )
 
         v = self.solution.verification or (
             self.solution.drive_check.verification if self.solution.drive_check is not None else None
@@ -47,7 +53,8 @@ class Summary(BuilderBase):
             # where it stays below the allowed δ (no flywheel needed)
             # (the simulation's speeds are not the analysis' omega_max/omega_min: named only where they are)
             if v is not None:
-                reached = (self.q(v.omega_min, "angular_speed"), self.q(v.omega_max, "angular_speed"), "verified")
+                shown = achieved_speed_range(v, (low, high))
+                reached = (self.q(shown[0], "angular_speed"), self.q(shown[1], "angular_speed"), "verified")
             elif reached_below_allowed(a):
                 reached = (
                     self.q(a.omega_min, "angular_speed", "omega_min"),
