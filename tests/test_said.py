@@ -174,3 +174,12 @@ def test_the_analysis_keeps_a_run_ups_refusal_as_a_sentence(monkeypatch):
     assert run is not None and run.time is None
     assert run.note == "the net torque at rest there is -10 N·m"
     assert said_text(run.note, "imperial") == "the net torque at rest there is -7.376 lbf·ft"
+
+
+def test_a_material_name_takes_the_article_it_is_read_with():
+    """The report's summary said "A EN-GJS-400-18 wheel …"."""
+    from flyopt.said import indefinite
+
+    assert indefinite("EN-GJS-400-18 rim", capital=True) == "An EN-GJS-400-18 rim"
+    assert indefinite("cast iron rim", capital=True) == "A cast iron rim"
+    assert indefinite("ordinary steel") == "an ordinary steel" and indefinite("unit") == "a unit"

@@ -20,7 +20,7 @@ import string
 from collections.abc import Iterable, Mapping
 from typing import Any
 
-__all__ = ["Said", "said", "join", "counted", "removeprefix", "said_by", "template", "quantities"]
+__all__ = ["Said", "said", "join", "counted", "indefinite", "removeprefix", "said_by", "template", "quantities"]
 
 #: One quantity of a sentence: (value in SI, dimension as flyopt.report.display names it, the text as written).
 Quantity = tuple[float, str, str]
@@ -94,6 +94,13 @@ def counted(count: int, noun: str) -> str:
     """A count and its noun, singular for one: "1 point", "2 points", "0 points", "1,200 designs" (thousands
     grouped, as :func:`flyopt.report.display.number` groups them). For nouns whose plural takes an s."""
     return f"{count:,} {noun}{'' if count == 1 else 's'}"
+
+
+def indefinite(text: str, capital: bool = False) -> str:
+    """``text`` after its indefinite article, by its first letter: "an EN-GJS-400-18 …", "a cast iron …" ("an"
+    before a, e, i and o; a u is read "you", as in "a unit", and takes "a")."""
+    article = "an" if text[:1].lower() in ("a", "e", "i", "o") else "a"
+    return f"{article.capitalize() if capital else article} {text}"
 
 
 def removeprefix(text: str, head: str) -> str:

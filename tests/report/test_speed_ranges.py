@@ -41,3 +41,13 @@ def test_a_wheel_sized_to_delta_is_not_said_to_break_the_allowed_range(main_cli,
     page = html.unescape(re.sub(r"<[^>]+>", " ", (tmp_path / "r.html").read_text(encoding="utf-8")))
     ranges = _ranges(" ".join(page.split()))
     assert ranges["achieved"] == ranges["allowed"] == ("1,493", "1,508"), ranges
+
+
+def test_the_summary_of_a_wheel_of_an_en_grade_reads_an(main_cli, tmp_path):
+    """flyopt new wheel designs an EN-GJS-400-18 wheel: the report's summary said "A EN-GJS-400-18 …"."""
+    scene = tmp_path / "wheel.toml"
+    assert main_cli("new", "wheel", "-o", scene)[0] == 0
+    status, _, err = main_cli("report", scene, "-o", tmp_path / "r.html")
+    assert status == 0, err
+    page = " ".join(html.unescape(re.sub(r"<[^>]+>", " ", (tmp_path / "r.html").read_text(encoding="utf-8"))).split())
+    assert re.search(r"\bAn EN-GJ[SL]-", page) and not re.search(r"\bA EN-", page)

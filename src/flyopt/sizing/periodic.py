@@ -1022,7 +1022,7 @@ def _held(model):
     if model.balanced:
         return "mean speed prescribed: the unknown constant torque balances the cycle at it"
     if model.speed_dependent:
-        return "torque-speed balance: the mean speed is an outcome (omega_mean was a guess)"
+        return "torque-speed balance: the mean speed is an outcome (the scene's speed was the first guess)"
     return "mean speed prescribed (torques of the angle only)"
 
 

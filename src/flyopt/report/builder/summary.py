@@ -9,6 +9,7 @@ from flyopt.report import display
 from flyopt.report.builder.base import BuilderBase
 from flyopt.report.display import number
 from flyopt.report.document import Facts, Paragraph
+from flyopt.said import indefinite
 
 
 class Summary(BuilderBase):
@@ -216,7 +217,7 @@ class Summary(BuilderBase):
             )
         )
         return (
-            f"A {self.material_name(best.material)} {wheel_words(best.geometry, best.n_arms)} on the "
+            f"{indefinite(self.material_name(best.material), capital=True)} {wheel_words(best.geometry, best.n_arms)} on the "
             f"{shaft_label(best.shaft)}, "
             f"{display.quantity_text(best.mass, 'mass', self.units, 4)}, outer diameter "
             f"{display.quantity_text(best.dims.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
