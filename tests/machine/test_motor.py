@@ -117,3 +117,46 @@ def test_casadi_and_numpy_agree(motor, model):
 def test_bad_input_raises_value_error(build, match):
     with pytest.raises(ValueError, match=match):
         build()
+
+
+@pytest.mark.parametrize(
+    ("motor", "field", "words"),
+    [
+        # the plate's speeds, said in rpm as written (they were rad/s to sixteen figures: 167.5516081914556)
+        (
+            'kind = "induction", rated_power = "5.5 kW", rated_speed = "1600 rpm", synchronous_speed = "1500 rpm"',
+            "torque.driving.motor",
+            "rated speed (1600 rpm) must be below its synchronous speed (1500 rpm)",
+        ),
+        (
+            'kind = "dc", rated_power = "5.5 kW", rated_speed = "1600 rpm", no_load_speed = "1500 rpm"',
+            "torque.driving.motor",
+            "rated speed (1600 rpm) must be below the no-load speed (1500 rpm)",
+        ),
+        # a negative rating: its own field, as written (it said "rated_power [W] must be ... got -5500.0")
+        (
+            'kind = "induction", rated_power = "-5.5 kW", rated_speed = "1450 rpm", synchronous_speed = "1500 rpm"',
+            "torque.driving.motor.rated_power",
+            "must be positive, got '-5.5 kW'",
+        ),
+        (
+            'kind = "dc", no_load_speed = "1500 rpm", stall_torque = "-30 N*m"',
+            "torque.driving.motor.stall_torque",
+            "must be positive, got '-30 N*m'",
+        ),
+    ],
+)
+def test_a_motors_bad_plate_is_said_in_the_units_written(write_scene, motor, field, words):
+    import flyopt
+    from flyopt.errors import SceneError
+
+    text = (
+        '[machine]\nspeed = "1450 rpm"\ndelta = 0.05\n'
+        f"[torque.driving]\nmotor = {{ {motor} }}\n"
+        '[torque.resisting]\npoints = [["0 deg", "20 N*m"], ["360 deg", "20 N*m"]]\n'
+    )
+    with pytest.raises(SceneError) as info:
+        flyopt.load(write_scene(text))
+    message = str(info.value)
+    assert f": {field}: " in message and words in message, message
+    assert "rad/s" not in message

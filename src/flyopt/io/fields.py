@@ -93,6 +93,14 @@ class Table:
             return default
         return quantity(self.data[key], dimension, self._path(key))
 
+    def positive(self, key: str, dimension: str) -> float:
+        """The SI float of ``key``, which the table must give, finite and above 0: an error naming the field and
+        quoting it as written ("must be positive, got '-5.5 kW'") otherwise."""
+        value = self.quantity(key, dimension, required=True)
+        if not (value > 0 and value != float("inf")):
+            raise SceneError(self._path(key), f"must be positive, got {shorten(self.raw(key))}")
+        return value
+
 
 SPEED_RANGE = (1e-6, 1e6)
 """Allowed machine.speed (and a press's crank speed) [rad/s]: 1e6 rad/s is about 9.5 million rpm; beyond

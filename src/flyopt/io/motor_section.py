@@ -56,23 +56,22 @@ def read_motor(
             if model not in ("linear", "kloss"):
                 raise SceneError(f"{where}.model", f"{shorten(model)} is not known (allowed: linear, kloss)")
             motor = InductionMotor(
-                table.quantity("rated_power", "power", required=True),
-                table.quantity("rated_speed", "angular_speed", required=True),
-                table.quantity("synchronous_speed", "angular_speed", required=True),
+                table.positive("rated_power", "power"),
+                table.positive("rated_speed", "angular_speed"),
+                table.positive("synchronous_speed", "angular_speed"),
                 table.quantity("breakdown_ratio", "dimensionless"),
             )
         else:
             model = None
             if table.has("stall_torque"):
                 motor = DCMotor(
-                    table.quantity("no_load_speed", "angular_speed", required=True),
-                    table.quantity("stall_torque", "torque", required=True),
+                    table.positive("no_load_speed", "angular_speed"), table.positive("stall_torque", "torque")
                 )
             else:
                 motor = DCMotor.from_rated(
-                    table.quantity("rated_power", "power", required=True),
-                    table.quantity("rated_speed", "angular_speed", required=True),
-                    table.quantity("no_load_speed", "angular_speed", required=True),
+                    table.positive("rated_power", "power"),
+                    table.positive("rated_speed", "angular_speed"),
+                    table.positive("no_load_speed", "angular_speed"),
                 )
     except ValueError as err:
         if isinstance(err, SceneError):

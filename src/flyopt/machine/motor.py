@@ -38,6 +38,11 @@ for smaller motors). Give the catalogue value when it is known.
 """
 
 
+def _rpm(omega: float) -> str:
+    """A motor's speed [rad/s] as its rating plate gives it, in rpm to six figures ("1450 rpm")."""
+    return f"{omega * 30.0 / math.pi:.6g} rpm"
+
+
 def _positive(value: object, what: str) -> float:
     return positive(value, what)
 
@@ -148,15 +153,16 @@ class InductionMotor(_Motor):
         self.rated_power = _positive(rated_power, "rated_power [W]")
         self.rated_speed = _positive(rated_speed, "rated_speed [rad/s]")
         self.synchronous_speed = _positive(synchronous_speed, "synchronous_speed [rad/s]")
+        rated, synchronous = _rpm(self.rated_speed), _rpm(self.synchronous_speed)  # as a motor's plate says them
         if not self.rated_speed < self.synchronous_speed:
             raise ValueError(
-                f"an induction motor's rated speed ({rated_speed!r} rad/s) must be below its "
-                f"synchronous speed ({synchronous_speed!r} rad/s)"
+                f"an induction motor's rated speed ({rated}) must be below its synchronous speed ({synchronous}): "
+                "it runs below it by its slip"
             )
         if not self.rated_speed > (1.0 - MAX_RATED_SLIP) * self.synchronous_speed:
             raise ValueError(
-                f"an induction motor's rated speed ({rated_speed!r} rad/s) must be above "
-                f"{1.0 - MAX_RATED_SLIP:g} of its synchronous speed ({synchronous_speed!r} rad/s): a rated slip of "
+                f"an induction motor's rated speed ({rated}) must be above "
+                f"{1.0 - MAX_RATED_SLIP:g} of its synchronous speed ({synchronous}): a rated slip of "
                 f"{(self.synchronous_speed - self.rated_speed) / self.synchronous_speed:.3g} is no induction motor's "
                 f"(they run at a few per cent of slip, high-slip designs up to about 0.15)"
             )
@@ -250,7 +256,7 @@ class DCMotor(_Motor):
         w0 = _positive(no_load_speed, "no_load_speed [rad/s]")
         if not wn < w0:
             raise ValueError(
-                f"rated speed ({rated_speed!r} rad/s) must be below the no-load speed ({no_load_speed!r} rad/s)"
+                f"rated speed ({_rpm(rated_speed)}) must be below the no-load speed ({_rpm(no_load_speed)})"
             )
         return cls(w0, p / wn * w0 / (w0 - wn))
 
