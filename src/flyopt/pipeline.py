@@ -390,6 +390,14 @@ def shaft_reports(scene: Scene, analysis: Analysis, design: DesignResult | None)
 DELTA_STEP = 1e-4
 
 
+def delta_step(delta: float) -> float:
+    """The step of δ a design's sensitivity is said for: a tenth of δ to one significant figure (0.1 → +0.01,
+    0.05 → +0.005, 0.01 → +0.001). The mass's change is the slope times this step, a first-order estimate that
+    holds for a small step: a fixed +0.01 was all of a δ of 0.01, where the estimate (−99 kg for a 74 kg wheel)
+    meant nothing."""
+    return float(f"{delta / 10:.0e}")
+
+
 def _with_delta_sensitivity(
     scene: Scene,
     analysis: Analysis,
@@ -454,13 +462,14 @@ def _with_delta_sensitivity(
             return result
         masses.append(again.best.mass)
     slope = (masses[0] - masses[1]) / (2.0 * DELTA_STEP * scene.delta)
+    step = delta_step(scene.delta)
     entry = sensitivity(
         "delta",
         "-",
         slope,
-        f"delta: {{step}} (e.g. {scene.delta:.3g} to {scene.delta + 0.01:.3g}) changes the mass by {{dmass}} "
+        f"delta: {{step}} (e.g. {scene.delta:.3g} to {scene.delta + step:.3g}) changes the mass by {{dmass}} "
         f"(central difference of the whole {'continuous ' if result.spec.round_to else ''}design)",
-        0.01,
+        step,
     )
     limits = dataclasses.replace(best.limits, sensitivities=best.limits.sensitivities + (entry,))
     winner = dataclasses.replace(best, limits=limits)
