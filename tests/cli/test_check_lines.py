@@ -225,3 +225,18 @@ def test_a_scene_without_its_machine_speed_delta_or_torques_is_told_what_to_writ
     path = write_scene('[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n[torque.net]\nareas = [1, -1]\n')
     status, out, err = main_cli("check", path)
     assert status == 0 and err == "", err
+
+
+def test_a_missing_quantity_says_what_to_give(main_cli, write_scene):
+    """A required quantity left out said "engine.bore: is missing" and no more (a new user deleting a line of the
+    engine template): it says what kind of quantity goes there, with an example that reads."""
+    scene = write_scene("")
+    assert main_cli("new", "engine", "-o", scene, "--force")[0] == 0
+    text = scene.read_text(encoding="utf-8")
+    line = next(line for line in text.splitlines() if line.startswith("bore = "))
+    scene.write_text(text.replace(line + "\n", ""), encoding="utf-8")
+    status, _, err = main_cli("check", scene)
+    assert status == 2 and "engine.bore: is missing: give a length (e.g. '0.8 m')" in err, err
+    scene.write_text(text.replace(line, "bore = '0.8 m'"), encoding="utf-8")  # the example reads as a length
+    status, _, err = main_cli("check", scene)
+    assert "engine.bore" not in err, err

@@ -12,7 +12,7 @@ from typing import Any, Literal, overload
 
 from flyopt.errors import SceneError, shorten
 from flyopt.names import hint
-from flyopt.units import quantity
+from flyopt.units import DIMENSIONS, quantity
 
 
 def unit_factor(raw: object, dimension: str, where: str) -> float:
@@ -86,10 +86,11 @@ class Table:
     def quantity(self, key: str, dimension: str, required: bool = False, default: None = None) -> float | None: ...
 
     def quantity(self, key: str, dimension: str, required: bool = False, default: float | None = None) -> float | None:
-        """The SI float of ``key`` in ``dimension``; ``default`` when not given (an error when ``required``)."""
+        """The SI float of ``key`` in ``dimension``; ``default`` when not given (an error when ``required``, which
+        says what to give: "engine.bore: is missing: give a length (e.g. '0.8 m')")."""
         if key not in self.data:
             if required:
-                raise SceneError(self._path(key), "is missing")
+                raise SceneError(self._path(key), f"is missing: give {DIMENSIONS[dimension][2]}")
             return default
         return quantity(self.data[key], dimension, self._path(key))
 
