@@ -294,3 +294,32 @@ def test_no_page_ends_with_a_heading(scene, tmp_path):
     allowed fluctuation" ended page 2, its first step on page 3)."""
     ended = _ending_with_a_heading(_report_pdf(scene, tmp_path / "r.pdf"))
     assert not ended, ended
+
+
+def test_no_page_ends_with_a_tables_caption(main_cli, tmp_path):
+    """A table's caption, written above it, stays on the page of its table: the press template's "Shafts a
+    flywheel may sit on" was the last line of page 1, its table on page 2 (a new user's first report)."""
+    from pypdf import PdfReader
+
+    from flyopt.cli.report import collect
+    from flyopt.report.builder import build
+    from flyopt.report.document import Code, Table
+
+    scene = tmp_path / "press.toml"
+    assert main_cli("new", "press", "-o", scene)[0] == 0
+    status, _, err = main_cli("report", scene, "-o", tmp_path / "r.pdf")
+    assert status == 0, err
+    document = build(collect(str(scene)), figures=False)
+    try:
+        captions = {
+            _squeezed(block.caption)
+            for section in document.sections
+            for block in section.blocks
+            if isinstance(block, (Table, Code)) and block.caption
+        }
+    finally:
+        document.close()
+    assert _squeezed("Shafts a flywheel may sit on") in captions
+    last = [_last_line(page) for page in PdfReader(str(tmp_path / "r.pdf")).pages]
+    ended = [(k, line) for k, line in enumerate(last, 1) if line is not None and _squeezed(line) in captions]
+    assert not ended, ended

@@ -430,7 +430,7 @@ def _block(block, styles, width, height, drawings):
         return [figure, Spacer(1, 6)]
     if isinstance(block, Code):
         chars = int(width / (0.6 * styles["code"].fontSize)) - 1
-        out = [_paragraph(block.caption, styles["caption"])] if block.caption else []
+        out = [_caption_over(block.caption, styles)] if block.caption else []
         return out + [_split_code(block.text, styles["code"], chars, width), Spacer(1, 5)]
     raise TypeError(f"no PDF layout for a {type(block).__name__}")
 
@@ -502,8 +502,16 @@ def _table(block, styles, width):
     if block.total:
         style.append(("LINEABOVE", (0, -1), (-1, -1), 1.2, colors.black))
     table.setStyle(style)
-    out = [_paragraph(block.caption, styles["caption"])] if block.caption else []
+    out = [_caption_over(block.caption, styles)] if block.caption else []
     return out + [table, Spacer(1, 6)]
+
+
+def _caption_over(text, styles):
+    """A caption written above what it names (a table, the scene file), kept on the page of its first lines:
+    press-template's "Shafts a flywheel may sit on" ended page 1, its table on page 2."""
+    caption = _paragraph(text, styles["caption"])
+    caption.keepWithNext = 1
+    return caption
 
 
 def _fit(natural, least, width):
