@@ -999,7 +999,7 @@ def test_press_drive_end_to_end(system, main_cli):
     assert status == status_text
     best = document["drive"]["best"]
     assert close(quantity(fact(text, "RMS torque"), "torque", system), best["rms_torque"], "torque", system)
-    assert close(quantity(fact(text, "flywheel"), "inertia", system), best["j_flywheel"], "inertia", system)
+    assert close(quantity(fact(text, "flywheel"), "inertia", system), best["j_required"], "inertia", system)
     total = re.search(r"= (.+?)(;|$)", fact(text, "masses")).group(1)
     assert close(quantity(total, "mass", system), best["total_mass"], "mass", system)
     relaxed = re.match(r"(.+?), motor ratio", fact(text, "relaxation")).group(1)

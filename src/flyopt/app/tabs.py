@@ -460,6 +460,9 @@ class SweepsTab:
         self.result = result
         self._offer(result.parquet is not None)
         info = result.info
+        # every point done: the bar full before the status says so (the last progress call, from the sweep's
+        # thread, may not have reached the page yet: a loaded host showed "done: 5 points" beside a bar at 0)
+        self.bar.value = 100
         self.status.object = _message(
             f"done: {counted(len(result.frame), 'point')} in {info['seconds']:.2f} s ({info['mode']})",
             bad=False,
@@ -478,7 +481,7 @@ class SweepsTab:
         if mine != self.generation:
             return
         self.bar.value = int(round(100 * done / total)) if total else 100
-        self.status.object = _message(f"{done:,} / {total:,} points", bad=False)
+        self.status.object = _message(f"{done:,} / {counted(total, 'point')}", bad=False)
 
     def _draw(self) -> None:
         if self.result is None or not self.x.value:
