@@ -337,16 +337,13 @@ def run_pareto(args: argparse.Namespace) -> int:
     if front.empty:  # the front's table without rows, and why: on stdout under --json, in the file asked for
         import pandas as pd
 
-        from flyopt.outputs import documents, files, results
+        from flyopt.outputs import documents
 
         message = front.attrs.get("message", "empty front")
         empty = pd.DataFrame({name: pd.Series(dtype=float) for name in ("mass", other)})
         metadata = _metadata(empty, "pareto", scene, objectives=("mass", other), message=message)
         if args.output is not None:  # written as a front with rows is: no earlier file left in its place
-            if Path(args.output).suffix.lower() == ".json":
-                files.write_text(args.output, documents.json_text(documents.table_document(empty, metadata)))
-            else:
-                results.write_results(empty, args.output, metadata=metadata)
+            _write(empty, args.output, metadata)
         if args.json and not (args.quiet and args.output is not None):
             print(documents.json_text(documents.table_document(empty, metadata)))
         elif not args.quiet:
@@ -453,6 +450,17 @@ def _metadata(
     )
 
 
+def _write(frame: pd.DataFrame, output: str, metadata: dict[str, Any]) -> None:
+    """A study's table and its metadata written to ``output`` (atomically): a JSON document, else Parquet or
+    CSV by the suffix (:func:`flyopt.outputs.results.write_results`)."""
+    from flyopt.outputs import documents, files, results
+
+    if Path(output).suffix.lower() == ".json":
+        files.write_text(output, documents.json_text(documents.table_document(frame, metadata)))
+    else:
+        results.write_results(frame, output, metadata=metadata)
+
+
 def _emit(
     frame: pd.DataFrame,
     args: argparse.Namespace,
@@ -471,17 +479,14 @@ def _emit(
     """
     from pandas.api.types import is_bool_dtype, is_numeric_dtype
 
-    from flyopt.outputs import documents, files, quantities, results
+    from flyopt.outputs import documents, quantities, results
     from flyopt.report import display
 
     frame = results.normalize(frame.copy())
     output = args.output
     metadata = _metadata(frame, kind, scene, objectives)
     if output is not None:
-        if Path(output).suffix.lower() == ".json":
-            files.write_text(output, documents.json_text(documents.table_document(frame, metadata)))
-        else:
-            results.write_results(frame, output, metadata=metadata)
+        _write(frame, output, metadata)
     if args.quiet and output is not None:
         return
     if args.json:

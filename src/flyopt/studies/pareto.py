@@ -294,7 +294,8 @@ def _front_motor_power(scene: Scene, analysis: Analysis, solver_options: Mapping
     The inertias are named as a sweep's and ``solve``'s: ``j_flywheel`` the
     wheel's on its own shaft [kg*m^2], ``j_at_reference`` the same moved to the
     crank (J' r²), ``j_required`` the least the motor size needs at the crank
-    for δ and its thermal limit (the drive's ``j_flywheel``, 0 where it needs none).
+    for δ and its thermal limit (``MotorRun.j_flywheel``, the drive's ``j_required`` in ``--json``; 0 where it
+    needs none).
     """
     from flyopt.drive.codesign import design_drive
 
