@@ -249,7 +249,48 @@ def quantity(value: object, dimension: str, field: str = "value") -> float:
         number = math.inf
     if not math.isfinite(number):
         raise SceneError(field, f"must be finite, got {shorten(value)}")
+    if dimension in PLAIN_SLIPS and _is_plain(value):
+        _check_plain(number, value, dimension, field)
     return number
+
+
+#: Plain numbers (SI) that are, in all likelihood, values whose unit was left out: {dimension: (low, high,
+#: the SI unit, what to write)}, a positive plain number from low up to (not including) high refused. A shaft
+#: seat written ``diameter = 70`` (meaning mm) is a 70 m shaft, on which no key and no hub exists: the design
+#: went on without that shaft, saying so only among its infeasible combinations. No length of a machine a
+#: flywheel regulates reaches 10 m as a plain number (a larger one, a ship's line shafting, takes its unit:
+#: "12 m"), and every part of one in millimetres is below 10,000; no strength, modulus or pressure flyopt reads
+#: is below 1 kPa, and one in MPa or GPa is from 1 up. Each band refuses only a plain number: the same value
+#: with its unit is read as written. Beyond a band (1e300), the field's own magnitude check says what is allowed.
+PLAIN_SLIPS = {
+    "length": (10.0, 1e4, "m", '"{v} mm", or "{v} m" if metres are meant'),
+    "stress": (1.0, 1e3, "Pa", 'e.g. "{v} MPa" or "{v} GPa", or "{v} Pa" if pascals are meant'),
+}
+
+
+def _is_plain(value: object) -> bool:
+    """Whether a scene value is a plain number: a number, or a string of one without a unit ("70")."""
+    if not isinstance(value, str):
+        return True
+    try:
+        float(value)
+    except ValueError:
+        return False
+    return True
+
+
+def _check_plain(number: float, value: object, dimension: str, field: str) -> None:
+    """Refuse a plain number within its dimension's band of :data:`PLAIN_SLIPS` (its unit left out), saying
+    what to write."""
+    low, high, unit, write = PLAIN_SLIPS[dimension]
+    if not low <= number < high:
+        return
+    written = clip(str(value).strip())
+    raise SceneError(
+        field,
+        f"the plain number {written} is {number:g} {unit} (plain numbers are SI): give its unit: "
+        + write.format(v=written),
+    )
 
 
 def _si_number(text: str, dimension: str, field: str) -> float:

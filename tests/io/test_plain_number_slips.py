@@ -1,0 +1,106 @@
+"""A plain number whose unit was left out is refused, saying what to write (units.PLAIN_SLIPS).
+
+Plain numbers are SI. punch-press-wheel's intermediate seat written ``diameter = 70`` (meaning mm) was a
+70 m shaft: `flyopt check` said "ok" and `solve` designed the wheel on the motor shaft instead, saying why only
+among its infeasible combinations ("no DIN 6885-1 key on the 70,000 mm seat"). A plain material strength of
+400 (meaning MPa) was 400 Pa.
+"""
+
+import pytest
+from conftest import PROBLEMS
+
+from flyopt.errors import SceneError
+from flyopt.units import PLAIN_SLIPS, quantity
+
+WHEEL = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+
+
+@pytest.fixture
+def cli(capsys):
+    from flyopt.cli.main import main
+
+    def call(*args):
+        status = main([str(a) for a in args])
+        out, err = capsys.readouterr()
+        return status, out, err
+
+    return call
+
+
+def _written(tmp_path, old, new):
+    assert old in WHEEL, f"test bug: {old!r} is not in punch-press-wheel"
+    path = tmp_path / "scene.toml"
+    path.write_text(WHEEL.replace(old, new, 1), encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize("command", ["check", "solve"])
+def test_a_shaft_seat_in_mm_written_plain_is_refused_in_one_line(tmp_path, cli, command):
+    path = _written(tmp_path, 'diameter = "70 mm"', "diameter = 70")
+    status, out, err = cli(command, path)
+    assert status == 2
+    line = err.strip().splitlines()
+    assert len(line) == 1, err
+    assert str(path) in line[0] and "shaft[1].diameter" in line[0]
+    assert "the plain number 70 is 70 m" in line[0] and '"70 mm"' in line[0]
+    assert "Traceback" not in err and out.strip() == ""
+
+
+def test_the_same_value_with_its_unit_is_read_as_written(tmp_path, cli):
+    """The refusal is of the missing unit only: "70 m" is a 70 m shaft, whose combinations are infeasible
+    (the design then says why), and "70 mm" is the scene as shipped."""
+    status, out, _ = cli("solve", _written(tmp_path, 'diameter = "70 mm"', 'diameter = "70 m"'))
+    assert status == 0
+    assert "intermediate" in out and "70,000 mm seat" in out
+    status, out, _ = cli("solve", PROBLEMS / "punch-press-wheel.toml")
+    assert status == 0 and "70,000 mm" not in out
+
+
+def test_a_material_strength_in_mpa_written_plain_is_refused(tmp_path, cli):
+    status, _, err = cli("check", _written(tmp_path, 'tensile_strength = "400 MPa"', "tensile_strength = 400"))
+    assert status == 2
+    assert "material[0].tensile_strength" in err and "400 Pa" in err and '"400 MPa"' in err
+
+
+@pytest.mark.parametrize(
+    ("value", "dimension", "si"),
+    [
+        (9.99, "length", 9.99),  # a plain 9.99 m is a length of a large machine, read as SI
+        (0.07, "length", 0.07),
+        (10, "length", None),
+        ("70", "length", None),  # a string without a unit is a plain number too
+        (" 70 ", "length", None),
+        (9999.0, "length", None),
+        (1e4, "length", 1e4),  # beyond the band: the field's magnitude check answers (a kilometre at most)
+        (-70, "length", -70.0),  # a sign the field refuses or reads (an offset): not a missing unit
+        ("70 mm", "length", 0.07),
+        ("70 m", "length", 70.0),
+        (0.5, "stress", 0.5),  # below the band: the field's magnitude check answers
+        (1, "stress", None),
+        (999.9, "stress", None),
+        (1000, "stress", 1000.0),  # 1 kPa, a pressure plausible in pascals
+        (2.5e8, "stress", 2.5e8),
+        ("400 Pa", "stress", 400.0),
+        (400, "torque", 400.0),  # no band: torques, speeds, energies are read as written
+        (70, "mass", 70.0),
+    ],
+)
+def test_the_bands(value, dimension, si):
+    if si is None:
+        with pytest.raises(SceneError, match="plain numbers are SI"):
+            quantity(value, dimension, "f")
+    else:
+        assert quantity(value, dimension, "f") == pytest.approx(si, rel=1e-15)
+
+
+def test_each_band_lies_inside_what_its_dimension_means():
+    """The bands are of the two dimensions whose slips were met; each is a range of positive numbers."""
+    assert set(PLAIN_SLIPS) == {"length", "stress"}
+    for low, high, _, _ in PLAIN_SLIPS.values():
+        assert 0 < low < high
+
+
+def test_a_sweep_axis_written_plain_in_mm_is_refused(cli):
+    status, _, err = cli("sweep", PROBLEMS / "punch-press-wheel.toml", "--vary", "design.max_outer_diameter=800:1200:3")
+    assert status == 2
+    assert "--vary design.max_outer_diameter" in err and '"800 mm"' in err
