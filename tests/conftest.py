@@ -128,14 +128,21 @@ def assert_published(actual, published):
     )
 
 
-def names_field(line, path, field):
-    """Whether a refusal's line names the scene file and the field: ``flyopt: error: FILE: field: ...``
-    as every command says it, or ``FILE:LINE: field: ...`` as ``flyopt check`` places it on its line."""
+def unplaced(text, path):
+    """``text`` with the line a refusal places after the scene file's name taken out (``FILE:12: field`` becomes
+    ``FILE: field``): for a test of the field and the words, where the line is not what it tests."""
     import re
 
-    if line.startswith(f"flyopt: error: {path}: {field}: "):
-        return True
-    return re.match(rf"{re.escape(str(path))}:\d+: {re.escape(field)}: ", line) is not None
+    return re.sub(rf"({re.escape(str(path))}):\d+:", r"\1:", text)
+
+
+def names_field(line, path, field):
+    """Whether a refusal's line names the scene file and the field: ``flyopt: error: FILE:LINE: field: ...``
+    as every command says it (``FILE:`` alone for a field the file does not write), or ``FILE:LINE: field: ...``
+    as ``flyopt check`` lists it."""
+    import re
+
+    return re.match(rf"(flyopt: error: )?{re.escape(str(path))}(:\d+)?: {re.escape(field)}: ", line) is not None
 
 
 #: Tests repeated over every problem scene (each a report, a page or a subprocess): the default run keeps them on

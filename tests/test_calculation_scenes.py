@@ -5,7 +5,7 @@ an [electric_drive] once failed with a traceback)."""
 from pathlib import Path
 
 import pytest
-from conftest import run_flyopt
+from conftest import run_flyopt, unplaced
 
 TEXTBOOK = Path(__file__).resolve().parents[1] / "problems" / "textbook"
 SCENES = {
@@ -90,7 +90,7 @@ def test_a_calculation_that_needs_the_speed_refuses_a_scene_without_it(section, 
     scene.write_text("\n".join(lines), encoding="utf-8")
     run = run_flyopt("solve", str(scene))
     assert run.returncode == 2, run.stderr
-    assert run.stderr.strip().splitlines() == [
+    assert unplaced(run.stderr, scene).strip().splitlines() == [
         f"flyopt: error: {scene}: machine.speed: is missing (the [{section}] calculation needs it)"
     ]
 

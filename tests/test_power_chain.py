@@ -192,7 +192,7 @@ def test_a_bad_scene_is_refused_in_one_line_exit_2(tmp_path):
     run = run_flyopt("solve", str(scene))
     assert run.returncode == 2
     assert run.stderr.strip().splitlines() == [
-        f"flyopt: error: {scene}: power_chain.stages[1]: must lie in (0, 1], got 1.2"
+        f"flyopt: error: {scene}:2: power_chain.stages[1]: must lie in (0, 1], got 1.2"
     ]
 
 

@@ -28,11 +28,12 @@ def test_check_lists_every_structural_error_with_its_line(main_cli, write_scene)
     ]
 
 
-def test_solve_still_refuses_in_one_line(main_cli, write_scene):
+def test_solve_still_refuses_in_one_line_placed_on_its_line(main_cli, write_scene):
+    """solve (and every command) says the loader's first error alone, on the line check gives it."""
     path = write_scene(BROKEN)
     status, out, err = main_cli("solve", path)
     assert status == 2 and out == ""
-    assert len(err.splitlines()) == 1 and err.startswith(f"flyopt: error: {path}: machine.sped: unknown key")
+    assert len(err.splitlines()) == 1 and err.startswith(f"flyopt: error: {path}:3: machine.sped: unknown key")
 
 
 def test_a_sound_structure_shows_the_loaders_error_on_its_line(main_cli, write_scene):
@@ -219,8 +220,8 @@ def test_a_scene_without_its_machine_speed_delta_or_torques_is_told_what_to_writ
             lines = err.splitlines()
             assert status == 2 and out == "", (command, err)
             wanted = [line.format(path=path) for line in expected]
-            if command == "solve":  # one line, the first error, as every command but check refuses
-                wanted = [wanted[0].replace(f"{path}:1:", f"flyopt: error: {path}:")]
+            if command == "solve":  # one line, the first error on its line, as every command but check refuses
+                wanted = [wanted[0].replace(f"{path}:1:", f"flyopt: error: {path}:1:")]
             assert len(lines) == len(wanted) and all(a.startswith(b) for a, b in zip(lines, wanted)), (command, err)
     path = write_scene('[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n[torque.net]\nareas = [1, -1]\n')
     status, out, err = main_cli("check", path)

@@ -104,10 +104,11 @@ def test_bad_input_is_one_line_exit_2_no_traceback(tmp_path, text, words, comman
     assert out.stdout == ""  # nothing half-written
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and "Traceback" not in out.stderr
-    placed = {"machine.speed": 2, "machine.delta": 3}  # flyopt check names a field's line: FILE:LINE: field: ...
+    placed = {"machine.speed": 2, "machine.delta": 3}  # a field's line: check FILE:LINE: field: ..., solve the same
     field = words.split(":")[0]
-    if command == "check" and field in placed:
-        assert lines[0].startswith(f"{path}:{placed[field]}: ")
+    if field in placed:
+        prefix = "" if command == "check" else "flyopt: error: "
+        assert lines[0].startswith(f"{prefix}{path}:{placed[field]}: ")
     else:
         assert lines[0].startswith(f"flyopt: error: {path}: ")
     assert words in lines[0]
@@ -378,10 +379,10 @@ def test_check_refuses_the_sweep_table_that_sweep_refuses(tmp_path, capsys, tabl
     from_sweep = capsys.readouterr().err
     assert main(["check", str(path)]) == 2
     from_check = capsys.readouterr()
-    # the same error, placed on its line by check (FILE:LINE: field: message), said in one line by sweep
-    assert from_check.out == "" and from_sweep.startswith(f"flyopt: error: {path}: ")
-    assert from_check.err.count("\n") == 1 and re.match(rf"{re.escape(str(path))}:\d+: ", from_check.err)
-    assert from_check.err.split(": ", 1)[1] == from_sweep.split(f"{path}: ", 1)[1]
+    # the same error on the same line: check's FILE:LINE: field: message, sweep's one line of every command
+    assert from_check.out == "" and from_check.err.count("\n") == 1
+    assert re.match(rf"{re.escape(str(path))}:\d+: ", from_check.err)
+    assert from_sweep == f"flyopt: error: {from_check.err}"
     assert words in from_check.err
 
 

@@ -20,7 +20,7 @@ import re
 from pathlib import Path
 
 import pytest
-from conftest import run_flyopt
+from conftest import run_flyopt, unplaced
 
 from flyopt.design import DesignSpec, MountShaft, design_flywheel
 from flyopt.design.materials import make_material
@@ -193,7 +193,7 @@ def test_studies_refuse_the_book_convention_in_one_line(command, words, tmp_path
     args = [a.format(scene=SCENE, out=out) for a in command]
     run = run_flyopt(*args)
     assert run.returncode == 2
-    assert run.stderr.strip().splitlines() == [
+    assert unplaced(run.stderr, SCENE).strip().splitlines() == [
         f"flyopt: error: {SCENE}: design.criterion: 'mean_rim_speed' (the courses' convention) sizes one rim at a "
         f"time; {words} 'rim_speed' or 'stress'"
     ]
@@ -238,7 +238,7 @@ def test_sweeps_fronts_and_drives_refuse_what_only_one_design_knows(design, fiel
     ):
         run = run_flyopt(*command)
         assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1, run.stderr
-        assert f"{scene}: {field}:" in run.stderr
+        assert f"{scene}: {field}:" in unplaced(run.stderr, scene)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.toml"]
 
 

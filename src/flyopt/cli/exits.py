@@ -105,8 +105,11 @@ def status_of(err: BaseException, where: str | None) -> int:
         ``err`` itself when it is none of those (a bug: its traceback is wanted).
     """
     prefix = f"{where}: " if where else ""
-    if isinstance(err, (SceneError, NonPeriodicCycle)):
-        # they name their file themselves; an option (--vary, --output) has no file
+    if isinstance(err, SceneError):
+        # it names its file itself (an option, --vary or --output, has none); a field of the command's scene
+        # file is placed on its line, as flyopt check places it
+        return fail(_placed(err, where), EXIT_INPUT)
+    if isinstance(err, NonPeriodicCycle):
         return fail(str(err), EXIT_INPUT)
     if isinstance(err, ExpressionError):
         return fail(f"{prefix}{err}", EXIT_INPUT)
@@ -124,6 +127,22 @@ def status_of(err: BaseException, where: str | None) -> int:
         # error" is a ValueError): no result, said in one line
         return fail(f"{prefix}{err}", EXIT_FAILED)
     raise err
+
+
+def _placed(err: SceneError, scene: str | None) -> str:
+    """``err`` as ``FILE:LINE: field: message`` where its field is written in ``scene`` (the command's scene
+    file, which it names), as ``flyopt check`` says it (:func:`flyopt.cli.toml_lines.line_of`); else as it is."""
+    if not (err.field and err.source and scene and err.source == str(scene)):
+        return str(err)
+    from pathlib import Path
+
+    from flyopt.cli.toml_lines import key_lines, line_of
+
+    try:
+        line = line_of(key_lines(Path(scene).read_text(encoding="utf-8", errors="replace")), err.field)
+    except (OSError, ValueError):  # the file gone or changed meanwhile: the error as it is
+        return str(err)
+    return str(err) if line is None else str(err.with_source(f"{err.source}:{line}"))
 
 
 def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None = None) -> int:
