@@ -247,3 +247,14 @@ def test_a_member_csv_error_names_the_member_field_and_line(tmp_path):
         r"\(allowed: a plain number, the force in kN\)",
         run.stderr,
     ), run.stderr
+
+
+def test_the_header_test_finds_a_letter_as_str_isalpha_does():
+    """The header's letter test (upper and lower cases compared for ASCII) against Python's own ``isalpha`` of
+    each character: every ASCII character alone and among digits, and non-ASCII letters and digits."""
+    from flyopt.io.csv_table import _has_letter
+
+    samples = [chr(k) for k in range(128)] + [f"0,{chr(k)}1.5" for k in range(128)]
+    samples += ["angle,torque", "0,1.5", "", "1e5,2E-3", "φ,M", "٣,٤", "0,1\u00b5", "ß", "0,\u0301", "Ⅻ,1"]
+    for text in samples:
+        assert _has_letter(text) == any(c.isalpha() for c in text), repr(text)

@@ -169,9 +169,18 @@ def _compiled_rows(text, start):
     return numbers if numbers is not None and len(numbers) >= 2 else None  # fewer: said by the exact reader
 
 
+def _has_letter(line):
+    """Whether ``line`` holds a letter (``str.isalpha``). An ASCII line has one exactly where its upper and lower
+    cases differ: two passes in C, where a test of each character took 9 s of a hostile 50 MB first line (and
+    `flyopt check` near its 10 s limit in tools/hostile.py); other text is tested character by character."""
+    if line.isascii():
+        return line.upper() != line.lower()
+    return any(map(str.isalpha, line))
+
+
 def _is_header(line):
     """A first line naming the columns: it has a letter, and none of its comma-separated fields is a number."""
-    if line.lstrip().startswith("#") or not any(c.isalpha() for c in line):
+    if line.lstrip().startswith("#") or not _has_letter(line):
         return False
     for text in line.split(","):
         try:
