@@ -249,7 +249,7 @@ def quantity(value: object, dimension: str, field: str = "value") -> float:
         number = math.inf
     if not math.isfinite(number):
         raise SceneError(field, f"must be finite, got {shorten(value)}")
-    if dimension in PLAIN_SLIPS and _is_plain(value):
+    if dimension in PLAIN_SLIPS and is_plain(value):
         _check_plain(number, value, dimension, field)
     return number
 
@@ -263,12 +263,12 @@ def quantity(value: object, dimension: str, field: str = "value") -> float:
 #: is below 1 kPa, and one in MPa or GPa is from 1 up. Each band refuses only a plain number: the same value
 #: with its unit is read as written. Beyond a band (1e300), the field's own magnitude check says what is allowed.
 PLAIN_SLIPS = {
-    "length": (10.0, 1e4, "m", '"{v} mm", or "{v} m" if metres are meant'),
-    "stress": (1.0, 1e3, "Pa", 'e.g. "{v} MPa" or "{v} GPa", or "{v} Pa" if pascals are meant'),
+    "length": (10.0, 1e4, "m", 'e.g. "{v} mm", or "{v} m" if metres are meant'),
+    "stress": (1.0, 1e3, "Pa", 'e.g. "{v} MPa", "{v} bar" or "{v} GPa", or "{v} Pa" if pascals are meant'),
 }
 
 
-def _is_plain(value: object) -> bool:
+def is_plain(value: object) -> bool:
     """Whether a scene value is a plain number: a number, or a string of one without a unit ("70")."""
     if not isinstance(value, str):
         return True
@@ -288,7 +288,7 @@ def _check_plain(number: float, value: object, dimension: str, field: str) -> No
     written = clip(str(value).strip())
     raise SceneError(
         field,
-        f"the plain number {written} is {number:g} {unit} (plain numbers are SI): give its unit: "
+        f"the plain number {written} is {number:.15g} {unit} (plain numbers are SI): give its unit: "
         + write.format(v=written),
     )
 

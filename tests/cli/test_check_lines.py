@@ -241,3 +241,52 @@ def test_a_missing_quantity_says_what_to_give(main_cli, write_scene):
     scene.write_text(text.replace(line, "bore = '0.8 m'"), encoding="utf-8")  # the example reads as a length
     status, _, err = main_cli("check", scene)
     assert "engine.bore" not in err, err
+
+
+CELLS = """\
+title = "a bad cell"
+[machine]
+speed = "1500 rpm"
+delta = 0.05
+[torque.resisting]
+unit = "N*m"
+angle_unit = "deg"
+points = [
+  [0, 1600],
+  [45, 1600],
+  [90, 200],
+  [180, "9000 m"],
+  [360, 200],
+]
+[torque.driving]
+constant = "unknown"
+"""
+
+
+def test_a_bad_cell_of_a_table_is_placed_on_its_row_by_check_and_by_solve(main_cli, write_scene, monkeypatch):
+    """A cell's field names its column after the row ("points[3] torque"): it was placed on the table's first
+    line (7), not on the row that writes it (12), by check and then by every command."""
+    path = write_scene(CELLS)
+    row = 1 + next(k for k, line in enumerate(CELLS.splitlines()) if "9000 m" in line)
+    assert row == 12
+    status, _, err = main_cli("check", path)
+    assert status == 2 and err.startswith(f"{path}:{row}: torque.resisting.points[3] torque: "), err
+    status, _, err = main_cli("solve", path)
+    assert status == 2 and err.startswith(f"flyopt: error: {path}:{row}: torque.resisting.points[3] torque: "), err
+    # the scene named as the user wrote it, "./scene.toml" (the loader names it "scene.toml"): placed too
+    monkeypatch.chdir(path.parent)
+    status, _, err = main_cli("solve", f"./{path.name}")
+    assert status == 2 and err.startswith(f"flyopt: error: {path.name}:{row}: "), err
+
+
+def test_a_refusal_of_a_scene_over_the_placing_limit_is_said_without_its_line(main_cli, write_scene, monkeypatch):
+    """Placing scans the whole file in Python (about 1 s a MB): a scene over exits.PLACED_BYTES is refused at once,
+    named as before; check still places it."""
+    from flyopt.cli import exits
+
+    path = write_scene(CELLS)
+    monkeypatch.setattr(exits, "PLACED_BYTES", len(CELLS.encode()) - 1)
+    status, _, err = main_cli("solve", path)
+    assert status == 2 and err.startswith(f"flyopt: error: {path}: torque.resisting.points[3] torque: "), err
+    status, _, err = main_cli("check", path)
+    assert status == 2 and err.startswith(f"{path}:12: "), err

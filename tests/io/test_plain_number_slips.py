@@ -6,6 +6,8 @@ among its infeasible combinations ("no DIN 6885-1 key on the 70,000 mm seat"). A
 400 (meaning MPa) was 400 Pa.
 """
 
+import math
+
 import pytest
 from conftest import PROBLEMS
 
@@ -104,3 +106,36 @@ def test_a_sweep_axis_written_plain_in_mm_is_refused(cli):
     status, _, err = cli("sweep", PROBLEMS / "punch-press-wheel.toml", "--vary", "design.max_outer_diameter=800:1200:3")
     assert status == 2
     assert "--vary design.max_outer_diameter" in err and '"800 mm"' in err
+
+
+TABLE = """
+title = "t"
+[machine]
+speed = "1500 rpm"
+delta = 0.05
+[torque.resisting]
+unit = "kN*m"
+angle_unit = "deg"
+points = [[0, 1.6], [45, 1.6], [90, 0.2], [360, 0.2]]
+[torque.driving]
+constant = "unknown"
+"""
+
+
+def test_a_quoted_number_in_a_table_with_its_own_unit_is_in_that_unit(tmp_path):
+    """A table's cell written "90" (a string without a unit) was read as SI, 90 rad (and 1.6 N*m), where the
+    table's angle_unit is deg and its unit kN*m; it is the same number as unquoted. (A press's force table of
+    position_unit = "mm" read "20" as 20 m.)"""
+    import flyopt
+
+    quoted = TABLE.replace(
+        "[[0, 1.6], [45, 1.6], [90, 0.2], [360, 0.2]]", '[[0, "1.6"], ["45", 1.6], ["90", "0.2"], [360, 0.2]]'
+    )
+    assert quoted != TABLE
+    (tmp_path / "plain.toml").write_text(TABLE, encoding="utf-8")
+    (tmp_path / "quoted.toml").write_text(quoted, encoding="utf-8")
+    plain, again = flyopt.load(tmp_path / "plain.toml"), flyopt.load(tmp_path / "quoted.toml")
+    assert plain.resisting.angles[2] == pytest.approx(math.pi / 2, rel=1e-15)  # 90 deg
+    assert plain.resisting.values[0] == pytest.approx(1600.0, rel=1e-15)  # 1.6 kN*m
+    assert list(again.resisting.angles) == list(plain.resisting.angles)
+    assert list(again.resisting.values) == list(plain.resisting.values)

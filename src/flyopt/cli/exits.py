@@ -23,7 +23,8 @@ status      meaning
 ==========  ===========================================================
 
 Every error is one line on stderr: ``flyopt: error: FILE: FIELD: what is
-wrong``.
+wrong``, ``FILE:LINE: FIELD`` where the field is written in the command's
+scene file (as ``flyopt check`` places it).
 """
 
 from __future__ import annotations
@@ -129,16 +130,24 @@ def status_of(err: BaseException, where: str | None) -> int:
     raise err
 
 
+#: The largest scene file whose refusal :func:`status_of` places on its line [bytes]: the placing scans the
+#: whole text in Python (about 1 s a MB), which a refusal of a large inline table should not wait for;
+#: ``flyopt check`` places every error whatever the size.
+PLACED_BYTES = 1_000_000
+
+
 def _placed(err: SceneError, scene: str | None) -> str:
     """``err`` as ``FILE:LINE: field: message`` where its field is written in ``scene`` (the command's scene
     file, which it names), as ``flyopt check`` says it (:func:`flyopt.cli.toml_lines.line_of`); else as it is."""
-    if not (err.field and err.source and scene and err.source == str(scene)):
-        return str(err)
     from pathlib import Path
 
+    if not (err.field and err.source and scene and Path(err.source) == Path(scene)):
+        return str(err)
     from flyopt.cli.toml_lines import key_lines, line_of
 
     try:
+        if os.path.getsize(scene) > PLACED_BYTES:
+            return str(err)
         line = line_of(key_lines(Path(scene).read_text(encoding="utf-8", errors="replace")), err.field)
     except (OSError, ValueError):  # the file gone or changed meanwhile: the error as it is
         return str(err)

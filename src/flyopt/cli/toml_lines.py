@@ -18,6 +18,8 @@ __all__ = ["key_lines", "line_of", "set_value"]
 
 _BARE = re.compile(r"[A-Za-z0-9_-]+")
 _INDEX = re.compile(r"\[\d+\]$")
+#: A cell of a table's row, named by its column after the row's index ("points[3] torque").
+_CELL = re.compile(r"\] [A-Za-z_ ]+$")
 
 
 class _Scanner:
@@ -245,6 +247,7 @@ def line_of(lines: dict[str, int], field: str) -> int | None:
     int or None
         None when not even the first part of the path is in the file.
     """
+    field = _CELL.sub("]", field)  # "points[3] torque": a cell of row 3, on the row's line
     while field:
         if field in lines:
             return lines[field]

@@ -12,7 +12,7 @@ from typing import Any, Literal, overload
 
 from flyopt.errors import SceneError, shorten
 from flyopt.names import hint
-from flyopt.units import DIMENSIONS, quantity
+from flyopt.units import DIMENSIONS, is_plain, quantity
 
 
 def unit_factor(raw: object, dimension: str, where: str) -> float:
@@ -23,8 +23,9 @@ def unit_factor(raw: object, dimension: str, where: str) -> float:
 
 
 def scaled(raw: object, dimension: str, where: str, factor: float) -> float:
-    """A number times the section's unit, or a string with its own unit."""
-    if isinstance(raw, str):
+    """A number times the section's unit (a string of one too: "20" in a table of ``position_unit = "mm"`` is
+    20 mm), or a string with its own unit."""
+    if isinstance(raw, str) and not is_plain(raw):
         return quantity(raw, dimension, where)
     return quantity(raw, "dimensionless", where) * factor
 
