@@ -17,18 +17,6 @@ from flyopt.units import PLAIN_SLIPS, quantity
 WHEEL = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
 
 
-@pytest.fixture
-def cli(capsys):
-    from flyopt.cli.main import main
-
-    def call(*args):
-        status = main([str(a) for a in args])
-        out, err = capsys.readouterr()
-        return status, out, err
-
-    return call
-
-
 def _written(tmp_path, old, new):
     assert old in WHEEL, f"test bug: {old!r} is not in punch-press-wheel"
     path = tmp_path / "scene.toml"
@@ -37,9 +25,9 @@ def _written(tmp_path, old, new):
 
 
 @pytest.mark.parametrize("command", ["check", "solve"])
-def test_a_shaft_seat_in_mm_written_plain_is_refused_in_one_line(tmp_path, cli, command):
+def test_a_shaft_seat_in_mm_written_plain_is_refused_in_one_line(tmp_path, main_cli, command):
     path = _written(tmp_path, 'diameter = "70 mm"', "diameter = 70")
-    status, out, err = cli(command, path)
+    status, out, err = main_cli(command, path)
     assert status == 2
     line = err.strip().splitlines()
     assert len(line) == 1, err
@@ -48,18 +36,18 @@ def test_a_shaft_seat_in_mm_written_plain_is_refused_in_one_line(tmp_path, cli, 
     assert "Traceback" not in err and out.strip() == ""
 
 
-def test_the_same_value_with_its_unit_is_read_as_written(tmp_path, cli):
+def test_the_same_value_with_its_unit_is_read_as_written(tmp_path, main_cli):
     """The refusal is of the missing unit only: "70 m" is a 70 m shaft, whose combinations are infeasible
     (the design then says why), and "70 mm" is the scene as shipped."""
-    status, out, _ = cli("solve", _written(tmp_path, 'diameter = "70 mm"', 'diameter = "70 m"'))
+    status, out, _ = main_cli("solve", _written(tmp_path, 'diameter = "70 mm"', 'diameter = "70 m"'))
     assert status == 0
     assert "intermediate" in out and "70,000 mm seat" in out
-    status, out, _ = cli("solve", PROBLEMS / "punch-press-wheel.toml")
+    status, out, _ = main_cli("solve", PROBLEMS / "punch-press-wheel.toml")
     assert status == 0 and "70,000 mm" not in out
 
 
-def test_a_material_strength_in_mpa_written_plain_is_refused(tmp_path, cli):
-    status, _, err = cli("check", _written(tmp_path, 'tensile_strength = "400 MPa"', "tensile_strength = 400"))
+def test_a_material_strength_in_mpa_written_plain_is_refused(tmp_path, main_cli):
+    status, _, err = main_cli("check", _written(tmp_path, 'tensile_strength = "400 MPa"', "tensile_strength = 400"))
     assert status == 2
     assert "material[0].tensile_strength" in err and "400 Pa" in err and '"400 MPa"' in err
 
@@ -102,8 +90,10 @@ def test_each_band_lies_inside_what_its_dimension_means():
         assert 0 < low < high
 
 
-def test_a_sweep_axis_written_plain_in_mm_is_refused(cli):
-    status, _, err = cli("sweep", PROBLEMS / "punch-press-wheel.toml", "--vary", "design.max_outer_diameter=800:1200:3")
+def test_a_sweep_axis_written_plain_in_mm_is_refused(main_cli):
+    status, _, err = main_cli(
+        "sweep", PROBLEMS / "punch-press-wheel.toml", "--vary", "design.max_outer_diameter=800:1200:3"
+    )
     assert status == 2
     assert "--vary design.max_outer_diameter" in err and '"800 mm"' in err
 
