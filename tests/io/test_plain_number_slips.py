@@ -129,3 +129,32 @@ def test_a_quoted_number_in_a_table_with_its_own_unit_is_in_that_unit(tmp_path):
     assert plain.resisting.values[0] == pytest.approx(1600.0, rel=1e-15)  # 1.6 kN*m
     assert list(again.resisting.angles) == list(plain.resisting.angles)
     assert list(again.resisting.values) == list(plain.resisting.values)
+
+
+@pytest.mark.parametrize(
+    ("field", "written", "refused"),
+    [
+        ("elastic_modulus", "169000", True),  # N/mm^2 written plain: 169 kPa, no solid a wheel is made of
+        ("elastic_modulus", '"169000 MPa"', False),
+        ("elastic_modulus", '"0.05 GPa"', True),
+        ("elastic_modulus", '"2000 GPa"', True),  # beyond diamond's 1,050 GPa
+        ("tensile_strength", "40000", True),  # 40 kPa as a plain number: no strength of a solid
+        ("tensile_strength", '"400 MPa"', False),
+        ("yield_strength", '"250 kPa"', False),  # 0.25 MPa: within the bounds (a weak grade, not a slip)
+        ("yield_strength", '"50 kPa"', True),
+    ],
+)
+def test_a_materials_modulus_and_strengths_lie_within_what_solids_have(tmp_path, main_cli, field, written, refused):
+    """Outside PLAIN_SLIPS's bands, a [[material]]'s modulus and strengths are held to what a solid has
+    (material_section.MAGNITUDES): a plain modulus of 169000 meaning N/mm² was read as 169 kPa, and the wheel's
+    Lamé stresses were computed with it."""
+    old = {
+        "elastic_modulus": 'elastic_modulus = "169 GPa"',
+        "tensile_strength": 'tensile_strength = "400 MPa"',
+        "yield_strength": 'yield_strength = "250 MPa"',
+    }[field]
+    status, _, err = main_cli("check", _written(tmp_path, old, f"{field} = {written}"))
+    if refused:
+        assert status == 2 and f"material[0].{field}: " in err and "is out of range" in err, err
+    else:
+        assert status == 0, err

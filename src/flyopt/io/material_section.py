@@ -31,6 +31,11 @@ MAGNITUDES = {
     "density": (1.0, 1e5, "kg/m^3", "from a foam to beyond osmium's 22,600"),
     "max_rim_speed": (1e-3, MAX_RIM_SPEED, "m/s", "a millimetre a second to 10 km/s, beyond any rotor's burst"),
     "allowable_stress": (1.0, 1e11, "Pa", "1 Pa to 100 GPa, beyond any material's strength"),
+    # what a solid a wheel is made of has: beyond them a value is one written in other units (169000 meaning
+    # N/mm^2 is 169 kPa as a plain number), which the Lame stresses would take as given
+    "elastic_modulus": (1e8, 1.2e12, "Pa", "from a polymer's 0.1 GPa to beyond diamond's 1,050 GPa"),
+    "tensile_strength": (1e5, 1e11, "Pa", "0.1 MPa to 100 GPa, beyond any material's strength"),
+    "yield_strength": (1e5, 1e11, "Pa", "0.1 MPa to 100 GPa, beyond any material's strength"),
 }
 
 
@@ -115,6 +120,8 @@ def read_material(item: object, k: int, seen: set[str]) -> Material:
                 raise SceneError(f"{where}.{key}", f"must be >= 1, got {shorten(table.raw(key))}")
         elif value <= 0:
             raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
+        if key in MAGNITUDES:
+            check_magnitude(value, f"{where}.{key}", table.raw(key), *MAGNITUDES[key])
         values[key] = value
     if table.has("hub_rule"):
         from flyopt.design.hub import hub_rules
