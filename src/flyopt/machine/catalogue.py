@@ -33,7 +33,7 @@ from typing import Any, NamedTuple
 
 from flyopt._toml import tomllib
 from flyopt.errors import SceneError, shorten
-from flyopt.machine.motor import InductionMotor
+from flyopt.machine.motor import InductionMotor, plate_rpm
 from flyopt.names import hint
 from flyopt.units import quantity
 from flyopt.validate import number
@@ -203,8 +203,8 @@ class CatalogueMotor:
             raise MotorDataError(
                 "rated_speed",
                 f"motor {shorten(name)}: the rated speed "
-                f"({_rpm(self.rated_speed)} rpm) must be below the synchronous speed "
-                f"({_rpm(self.synchronous_speed)} rpm): an induction motor runs with slip",
+                f"({plate_rpm(self.rated_speed)}) must be below the synchronous speed "
+                f"({plate_rpm(self.synchronous_speed)}): an induction motor runs with slip",
             )
         if self.efficiency_class is not None and self.efficiency_class not in EFFICIENCY_CLASSES:
             raise MotorDataError(
@@ -240,10 +240,6 @@ class CatalogueMotor:
         through the rated point (ω_n, P_n/ω_n).
         """
         return InductionMotor(self.rated_power, self.rated_speed, self.synchronous_speed, self.breakdown_ratio)
-
-
-def _rpm(omega):
-    return f"{omega * 30.0 / math.pi:.6g}"
 
 
 class Neighbours(NamedTuple):

@@ -26,6 +26,7 @@ import math
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from flyopt.units import rad_s_to_rpm
 from flyopt.validate import positive
 
 DEFAULT_BREAKDOWN_RATIO = 2.5
@@ -38,9 +39,10 @@ for smaller motors). Give the catalogue value when it is known.
 """
 
 
-def _rpm(omega: float) -> str:
-    """A motor's speed [rad/s] as its rating plate gives it, in rpm to six figures ("1450 rpm")."""
-    return f"{omega * 30.0 / math.pi:.6g} rpm"
+def plate_rpm(omega: float) -> str:
+    """A motor's speed [rad/s] as its rating plate gives it, in rpm to six figures ("1450 rpm"), for the
+    refusals of a rating (here and in :mod:`flyopt.machine.catalogue`)."""
+    return f"{rad_s_to_rpm(omega):.6g} rpm"
 
 
 def _positive(value: object, what: str) -> float:
@@ -153,7 +155,10 @@ class InductionMotor(_Motor):
         self.rated_power = _positive(rated_power, "rated_power [W]")
         self.rated_speed = _positive(rated_speed, "rated_speed [rad/s]")
         self.synchronous_speed = _positive(synchronous_speed, "synchronous_speed [rad/s]")
-        rated, synchronous = _rpm(self.rated_speed), _rpm(self.synchronous_speed)  # as a motor's plate says them
+        rated, synchronous = (
+            plate_rpm(self.rated_speed),
+            plate_rpm(self.synchronous_speed),
+        )  # as a motor's plate says them
         if not self.rated_speed < self.synchronous_speed:
             raise ValueError(
                 f"an induction motor's rated speed ({rated}) must be below its synchronous speed ({synchronous}): "
@@ -256,7 +261,7 @@ class DCMotor(_Motor):
         w0 = _positive(no_load_speed, "no_load_speed [rad/s]")
         if not wn < w0:
             raise ValueError(
-                f"rated speed ({_rpm(rated_speed)}) must be below the no-load speed ({_rpm(no_load_speed)})"
+                f"rated speed ({plate_rpm(rated_speed)}) must be below the no-load speed ({plate_rpm(no_load_speed)})"
             )
         return cls(w0, p / wn * w0 / (w0 - wn))
 
