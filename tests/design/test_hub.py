@@ -13,7 +13,7 @@ from importlib import resources
 
 import numpy as np
 import pytest
-from conftest import assert_published
+from conftest import PROBLEMS, assert_published
 from numpy.testing import assert_allclose
 
 from flyopt.design.balance import permissible_unbalance
@@ -497,3 +497,59 @@ def test_a_torque_no_standard_key_carries_makes_the_combination_infeasible():
     assert key["size"] == "8 x 7" and key["length"] == pytest.approx(0.045)
     assert key["shear"] == pytest.approx(2 * 0.98 * t_max / (0.030 * 0.008 * 0.037), rel=1e-12)
     assert key["shear"] <= s_sy and key["ok"] is None  # the shear holds; no bearing pressure to check
+
+
+# ------------------------------------------------------- a disc on its hub: the hub's length
+
+
+def _disc_on_hub_bound(material, spec, candidate, omega_max):
+    """The most inertia [kg*m^2] any disc of ``material`` on its hub can have within the limits, by hand: the
+    disc at most D_max wide (the envelope, and the rim speed v_max = ω_max D/2), its width at most the hub's
+    longest proportion (the hub at least as long as the disc) and at most the castability's section ratio times
+    the thickest hub section 2V/A = w l/(w + l) (w the hub's widest wall, l its longest length), and the hub at
+    most its widest and longest: J <= π/32 ρ (b_max D_max⁴ + l_max d_h,max⁴)."""
+    from flyopt.design import wheel_design
+
+    bore = candidate.bore
+    p = hub_proportions(bore, material.hub_kind)
+    rules = wheel_design.castability_of(spec, material, bore)
+    d_max = min(spec.max_outer_diameter, 2.0 * material.max_rim_speed / omega_max)
+    wall = (p.d_hub_max - bore) / 2.0
+    b_max = min(p.l_hub_max, rules.section_ratio * wall * p.l_hub_max / (wall + p.l_hub_max))
+    return math.pi / 32.0 * material.density * (b_max * d_max**4 + p.l_hub_max * p.d_hub_max**4)
+
+
+@pytest.mark.parametrize("delta", [0.005, 0.004, 0.0035])
+def test_a_disc_on_its_hub_keeps_the_hub_within_its_proportions(tmp_path, delta):
+    """problems/four-cylinder-engine.toml's disc on its keyed hub, with δ tightened: the hub stays within its
+    seat's proportions (keys.toml's longest L/d, or the key's shortest hub where longer), the disc no wider
+    than it. A combination no such wheel serves is infeasible, and the bound by hand above proves it: the
+    design once lengthened the hub without limit, a 748 mm hub under a 28 mm disc of cast iron at δ 0.004 and a
+    6 m one at 0.002, putting the inertia the disc could not hold into a shaft-long cylinder."""
+    import flyopt
+    from flyopt.pipeline import solve
+
+    text = (PROBLEMS / "four-cylinder-engine.toml").read_text(encoding="utf-8")
+    path = tmp_path / "engine.toml"
+    path.write_text(re.sub(r"^delta = 0\.005.*$", f"delta = {delta}", text, flags=re.M), encoding="utf-8")
+    scene = flyopt.load(path)
+    design = solve(scene).design
+    library = scene.material_library()
+    verdicts = []
+    for candidate in design.candidates:
+        material = library[candidate.material]
+        needed = design.j_required / candidate.speed_ratio**2
+        bound = _disc_on_hub_bound(material, design.spec, candidate, design.omega * candidate.speed_ratio)
+        verdicts.append(candidate.feasible)
+        if not candidate.feasible:
+            assert bound < needed, (candidate.material, bound, needed, candidate.reason)
+            continue
+        dims, longest = candidate.dims, hub_proportions(candidate.bore, material.hub_kind).l_hub_max
+        assert dims.l_hub <= longest * (1 + 1e-9) or "hub_length_min" in candidate.limits.binding, (
+            candidate.material,
+            dims.l_hub,
+            longest,
+        )
+        assert dims.b <= dims.l_hub * (1 + 1e-9)
+        assert bound >= candidate.j_flywheel  # the bound holds for the wheels designed: it bounds them all
+    assert {0.005: [True, True], 0.004: [True, False], 0.0035: [False, False]}[delta] == verdicts

@@ -77,13 +77,22 @@ CONVERGED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 #: "sqpmethod"); not an nlpsol option, so it is taken out before a solver is built.
 WHEEL_SOLVER = "flyopt.wheel_solver"
 
+#: IPOPT silent: no banner, no iterations, no timings, and no CasADi warning of a NaN or Inf met on a trial
+#: point (IPOPT answers it by a shorter step, or ends in a status that the caller checks): a warning of
+#: CasADi's own printed to the terminal is not one of flyopt's lines (a disc whose hub ran to metres printed
+#: "nlp_g failed: Inf detected" above a design once).
+QUIET_IPOPT: dict[str, Any] = {
+    "print_time": False,
+    "show_eval_warnings": False,
+    "ipopt.print_level": 0,
+    "ipopt.sb": "yes",
+}
+
 #: Solver options, merged in this one place; explicit options passed to
 #: design_flywheel(..., solver_options=...) win.
 DEFAULT_SOLVER_OPTIONS = {
-    "print_time": False,
+    **QUIET_IPOPT,
     "error_on_fail": False,
-    "ipopt.print_level": 0,
-    "ipopt.sb": "yes",
     "ipopt.tol": 1e-10,
     "ipopt.bound_relax_factor": 0.0,
     "ipopt.max_iter": 200,

@@ -332,8 +332,6 @@ def wheel_problem(
     disc_hub = geo == Geometry.DISC and spec.disc_hub and bool(bore)
     if (geo in (Geometry.RIM_WEB, Geometry.RIM_ARMS) and bore) or disc_hub:
         d_hub_range, l_hub_range, _ = hub_bounds(material, bore, torque)
-        if disc_hub:  # a disc's hub may be as long as the disc is wide: the hub is then the disc
-            l_hub_range = (l_hub_range[0], math.inf)
     structure = wheel_nlp.WheelStructure(
         geometry=geo,
         criterion=spec.criterion,

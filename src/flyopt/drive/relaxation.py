@@ -263,6 +263,7 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
     import casadi as ca
 
     from flyopt.design import wheel_nlp
+    from flyopt.design.nlp import QUIET_IPOPT
 
     cycle = machine.cycle_angle
     resisting = machine.angle_only().resisting
@@ -360,9 +361,7 @@ def _build(machine, omega_mean, efficiency, fit, thermal, startup, objective_nam
         "ipopt",
         {"x": x, "p": par, "f": objective / scale, "g": g},
         {
-            "print_time": False,
-            "ipopt.print_level": 0,
-            "ipopt.sb": "yes",
+            **QUIET_IPOPT,
             "ipopt.max_iter": 3000,
             "ipopt.tol": 1e-10,
             "jac_g": jac_g,
