@@ -509,6 +509,37 @@ def test_pressure_from_a_csv_file_equals_the_inline_table(write_scene, tmp_path)
     assert_allclose(from_file.pressure.values, inline.pressure.values, rtol=0, atol=0)
 
 
+def test_plain_pascals_are_read_as_the_same_table_in_bar(write_scene, tmp_path):
+    """A table of plain numbers is pascals (no pressure_unit): the same indicator diagram written in Pa, inline
+    and from a CSV file, gives the engine the table in bar gives (the refusal of a unit left out does not touch
+    it); its largest, 6 MPa, is far above the crankcase's 1 bar."""
+    data = tomllib.loads(FOUR_CYLINDER.read_text())
+    rows = [(a, round(p * 1e5, 6)) for a, p in data["engine"]["pressure"]]
+    (tmp_path / "indicator.csv").write_text("angle,pressure\n" + "".join(f"{a},{p}\n" for a, p in rows))
+    text = FOUR_CYLINDER.read_text().replace('pressure_unit = "bar"\n', "")
+    start = text.index("pressure = [")
+    end = text.index("]\n", text.index("[720,")) + 2
+    inline = write_scene(text[:start] + f"pressure = {[list(r) for r in rows]}\n" + text[end:], "inline.toml")
+    from_file = write_scene(text[:start] + 'pressure_file = "indicator.csv"\n' + text[end:], "file.toml")
+    reference = flyopt.load(FOUR_CYLINDER).engine.pressure
+    for path in (inline, from_file):
+        pressure = flyopt.load(path).engine.pressure
+        assert_allclose(pressure.values, reference.values, rtol=1e-15, atol=0)
+
+
+def test_a_csv_indicator_diagram_in_bar_without_its_unit_is_refused(main_cli, write_scene, tmp_path):
+    """A CSV file's numbers are plain: in bar without pressure_unit they are pascals, refused on one line."""
+    data = tomllib.loads(FOUR_CYLINDER.read_text())
+    (tmp_path / "p.csv").write_text("angle,pressure\n" + "".join(f"{a},{p}\n" for a, p in data["engine"]["pressure"]))
+    text = FOUR_CYLINDER.read_text().replace('pressure_unit = "bar"\n', "")
+    start = text.index("pressure = [")
+    end = text.index("]\n", text.index("[720,")) + 2
+    path = write_scene(text[:start] + 'pressure_file = "p.csv"\n' + text[end:])
+    status, out, err = main_cli("solve", path)
+    assert status == 2 and out == "" and len(err.splitlines()) == 1, err
+    assert "engine.pressure_file: " in err and "the largest, 60 Pa, does not rise above" in err, err
+
+
 def test_default_firing_angles_are_evenly_spaced(write_scene):
     text = FOUR_CYLINDER.read_text().replace("firing_angles = [0, 180, 540, 360]\n", "")
     engine = flyopt.load(write_scene(text)).engine
@@ -545,6 +576,14 @@ def test_default_firing_angles_are_evenly_spaced(write_scene):
         ('pressure_unit = "bar"', 'pressure_unit = "m"', "engine.pressure_unit", "wrong dimension"),
         ("[690, 1.150], [720, 1.150],", "[690, 1.150],", "engine.pressure", "does not close"),
         ('pressure_unit = "bar"', 'pressure_unit = "bar"\npressure_file = "p.csv"', "engine.pressure", "given both"),
+        # the unit left out: bar read as pascals (below the crankcase's 1 bar), or with a crankcase of none
+        ('pressure_unit = "bar"\n', "", "engine.pressure", r"largest, 60 Pa, does not rise above the crankcase's"),
+        (
+            'crankcase_pressure = "1 bar"\nangle_unit = "deg"\npressure_unit = "bar"\n',
+            'crankcase_pressure = "0 bar"\nangle_unit = "deg"\n',
+            "engine.pressure",
+            r"largest, 60 Pa, is below 1000 Pa.*give pressure_unit",
+        ),
         ('cycle = "4-stroke"', 'cycle = "4-stroke"\nstrokes = 4', "engine.strokes", "unknown key"),
         ("delta = 0.005", 'delta = 0.005\ncycle = "360 deg"', "machine.cycle", "leave machine.cycle out"),
         (

@@ -159,6 +159,8 @@ def read_engine(raw: object, files: Path = Path()) -> Engine:
             "engine.crankcase_pressure",
             f"must be an absolute pressure >= 0, got {shorten(table.raw('crankcase_pressure'))}",
         )
+    if not table.has("pressure_unit") and _plain(table.get(forms[0]), forms[0]):
+        _check_plain_pressures(float(pressure.values.max()), crankcase, f"engine.{forms[0]}")
     try:
         return Engine(
             kind,
@@ -175,3 +177,38 @@ def read_engine(raw: object, files: Path = Path()) -> Engine:
         )
     except ValueError as err:
         raise SceneError("engine", str(err)) from None
+
+
+def _plain(raw: object, form: str) -> bool:
+    """Whether the indicator table's pressures are plain numbers (a CSV file's always are; an inline table's
+    where no cell carries its own unit, as "0.35 N/mm^2" does)."""
+    from flyopt.io.toml_file import InlineRows
+    from flyopt.units import is_plain
+
+    if form == "pressure_file" or isinstance(raw, InlineRows):
+        return True
+    return isinstance(raw, list) and all(
+        isinstance(pair, list) and len(pair) == 2 and is_plain(pair[1]) for pair in raw
+    )
+
+
+def _check_plain_pressures(largest: float, crankcase: float, field: str) -> None:
+    """Refuse an indicator table of plain numbers (read as pascals: no pressure_unit) that never rises above the
+    crankcase's pressure, or above the plain-stress slip band's top (:data:`flyopt.units.PLAIN_SLIPS`): its
+    unit was left out. A table in bar or MPa written without ``pressure_unit`` was read as pascals, an engine
+    whose cylinder never pushed, and a flywheel was designed for its pistons' inertia alone."""
+    from flyopt.units import PLAIN_SLIPS
+
+    floor = PLAIN_SLIPS["stress"][1]
+    if largest > max(crankcase, floor):
+        return
+    reason = (
+        f"does not rise above the crankcase's {crankcase:.6g} Pa, as an engine's cylinder pressure does"
+        if largest <= crankcase
+        else f"is below {floor:.6g} Pa, which no engine's cylinder pressure is"
+    )
+    raise SceneError(
+        field,
+        f"the pressures are plain numbers and no pressure_unit is given, so they are pascals: the largest, "
+        f'{largest:.6g} Pa, {reason}: give pressure_unit, e.g. "bar" or "MPa" (or "Pa" if pascals are meant)',
+    )
