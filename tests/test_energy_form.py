@@ -136,3 +136,30 @@ def test_a_cycle_that_disagrees_with_the_strokes_is_refused():
             {"machine": {"speed": "100 rpm", "delta": 0.05, "cycle": "360 deg"}, "strokes": {"work": ["1 kJ"] * 4}}
         )
     assert err.value.field == "machine.cycle" and "720" in str(err.value)
+
+
+@pytest.mark.parametrize(
+    "machine",
+    [
+        {"speed": "1e9 rpm"},
+        {"speed": "1e-9 rpm"},
+        {"speed": -5},
+        {"speed": "0 rpm"},
+        {"speed": "fast"},
+        {"speed": "1500 kg"},
+        {"cycle": "-1 deg"},
+        {"cycle": "0 deg"},
+        {"speed": "1e9 rpm", "cycle": "-1 deg"},  # both wrong: the loader names the speed first
+    ],
+)
+def test_the_machines_speed_and_cycle_are_refused_as_any_scene_refuses_them(machine):
+    """[energy] reads machine.speed and machine.cycle (W = P Φ / ω_m) by the loader's own reading: the same
+    field and the same words as a scene of torque curves with the same [machine] (its speed's range
+    included, which the energy terms once left to the loader after they had used the speed)."""
+    machine = {"speed": "100 rpm", "delta": 0.05, **machine}
+    refusals = []
+    for rest in ({"energy": {"power": "1 kW", "fluctuation": 0.1}}, {"torque": {"net": {"areas": ["1 kJ", "-1 kJ"]}}}):
+        with pytest.raises(SceneError) as err:
+            from_dict({"machine": machine, **rest})
+        refusals.append((err.value.field, str(err.value)))
+    assert refusals[0] == refusals[1]

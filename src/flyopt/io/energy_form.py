@@ -31,7 +31,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, check_magnitude
+from flyopt.io.fields import Table, check_magnitude, cycle_of, mean_speed
 from flyopt.io.operation_section import ENERGY_RANGE, POWER_RANGE
 from flyopt.units import quantity
 
@@ -65,19 +65,16 @@ def scene_data(data: Mapping[str, Any]) -> dict[str, Any]:
             raise SceneError(
                 key, f"gives the machine's energy over the cycle, and [{other}] gives it again: give one of them"
             )
-    machine = Table(
+    fields = Table(
         data.get("machine", {}), "machine", {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"}
-    ).data
+    )
+    machine = fields.data
     if "speed" not in machine:
         raise SceneError("machine.speed", "is needed: the work per cycle follows from the power at the mean speed")
-    omega = quantity(machine["speed"], "angular_speed", "machine.speed")
-    if not (math.isfinite(omega) and omega > 0):
-        raise SceneError("machine.speed", f"must be positive, got {shorten(machine['speed'])}")
+    omega = mean_speed(fields, required=True)
     out = {k: v for k, v in data.items() if k != key}
     if key == "energy":
-        cycle = quantity(machine["cycle"], "angle", "machine.cycle") if "cycle" in machine else 2 * math.pi
-        if not (math.isfinite(cycle) and cycle > 0):
-            raise SceneError("machine.cycle", f"must be positive, got {shorten(machine['cycle'])}")
+        cycle = cycle_of(fields)
         table = Table(data["energy"], "energy", ENERGY_KEYS)
         work = _work_per_cycle(table, "energy", omega, cycle, required=True)
         fluctuation = table.quantity("fluctuation", "dimensionless", required=True)
@@ -94,7 +91,7 @@ def scene_data(data: Mapping[str, Any]) -> dict[str, Any]:
     works = _stroke_works(table, omega)
     cycle = len(works) * math.pi
     if "cycle" in machine:
-        given_cycle = quantity(machine["cycle"], "angle", "machine.cycle")
+        given_cycle = cycle_of(fields)
         if abs(given_cycle - cycle) > 1e-9 * cycle:
             raise SceneError(
                 "machine.cycle",

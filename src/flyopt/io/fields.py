@@ -7,6 +7,7 @@ reads each value as a quantity of a dimension; :func:`unit_factor` and
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 from typing import Any, Literal, overload
 
@@ -136,3 +137,23 @@ def check_magnitude(value: float, where: str, raw: object, low: float, high: flo
     if not low <= value <= high:
         unit = f" {unit}" if unit else ""
         raise SceneError(where, f"{shorten(raw)} is out of range (allowed: {low:g} to {high:g}{unit}; {why})")
+
+
+def mean_speed(machine: Table, required: bool) -> float:
+    """machine.speed [rad/s]: positive and within :data:`SPEED_RANGE` (NaN where not given and not
+    ``required``); the one reading of it, by the loader and by the energy terms' W = P Φ / ω_m."""
+    omega = machine.quantity("speed", "angular_speed", required=required)
+    if omega is None:
+        return math.nan
+    if omega <= 0:
+        raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
+    check_magnitude(omega, "machine.speed", machine.raw("speed"), *SPEED_RANGE, "rad/s", SPEED_WHY)
+    return omega
+
+
+def cycle_of(machine: Table) -> float:
+    """machine.cycle [rad], positive (one turn where not given)."""
+    cycle = machine.quantity("cycle", "angle", default=2 * math.pi)
+    if cycle <= 0:
+        raise SceneError("machine.cycle", f"must be positive, got {shorten(machine.raw('cycle'))}")
+    return cycle

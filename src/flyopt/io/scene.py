@@ -22,7 +22,7 @@ from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import ANGLE_TOLERANCE
 from flyopt.io.design_section import read_design
 from flyopt.io.engine_section import read_engine
-from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_delta, check_magnitude
+from flyopt.io.fields import Table, check_delta, cycle_of, mean_speed
 from flyopt.io.material_section import read_material, read_materials
 from flyopt.io.member_section import read_mechanism, read_members, with_engine
 from flyopt.io.shaft_section import (
@@ -420,7 +420,7 @@ def _machine(top: Table, once: bool, existing: bool) -> tuple[Table, float, floa
     machine = _machine_table(top, once)
     omega = _mean_speed(machine, required=not once)
     delta = _delta(machine, required=not (existing or once))
-    return machine, omega, delta, _constant_inertia(machine), _cycle(machine)
+    return machine, omega, delta, _constant_inertia(machine), cycle_of(machine)
 
 
 def _machine_table(top: Table, once: bool) -> Table:
@@ -482,14 +482,6 @@ def _constant_inertia(machine: Table) -> float:
     return j_c
 
 
-def _cycle(machine: Table) -> float:
-    """machine.cycle [rad], positive (one turn where not given)."""
-    cycle = machine.quantity("cycle", "angle", default=2 * math.pi)
-    if cycle <= 0:
-        raise SceneError("machine.cycle", f"must be positive, got {shorten(machine.raw('cycle'))}")
-    return cycle
-
-
 def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
     """The value errors of a scene's parts that are read on their own, each part read alone: each of [machine]'s
     scalars (speed, delta, the constant inertia, the cycle, the efficiency), each [[material]] table, each
@@ -533,7 +525,7 @@ def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
         attempt(_mean_speed, machine, not once)
         attempt(_delta, machine, not (existing or once))
         attempt(_constant_inertia, machine)
-        attempt(_cycle, machine)
+        attempt(cycle_of, machine)
         if machine.has("efficiency"):
             attempt(read_efficiency, machine.get("efficiency"), "machine.efficiency")
     materials = each(top.get("material"), read_material, read_materials)
@@ -567,7 +559,8 @@ def _title(top: Table) -> str:
 
 
 def _mean_speed(machine: Table, required: bool) -> float:
-    """machine.speed [rad/s]: positive and within :data:`SPEED_RANGE`.
+    """machine.speed [rad/s] (:func:`flyopt.io.fields.mean_speed`), saying what to write where it is needed and
+    missing (:data:`MISSING`).
 
     Only a calculation that needs no speed (``required`` False) may leave it
     out; its scene's ``omega_mean`` is then NaN, which no calculation reads
@@ -575,13 +568,7 @@ def _mean_speed(machine: Table, required: bool) -> float:
     """
     if required:
         _required(machine, "speed")
-    omega = machine.quantity("speed", "angular_speed", required=required)
-    if omega is None:
-        return math.nan
-    if omega <= 0:
-        raise SceneError("machine.speed", f"must be positive, got {shorten(machine.raw('speed'))}")
-    check_magnitude(omega, "machine.speed", machine.raw("speed"), *SPEED_RANGE, "rad/s", SPEED_WHY)
-    return omega
+    return mean_speed(machine, required)
 
 
 def _electric_drive(top: Table, omega: float) -> ElectricDrive:
