@@ -543,6 +543,8 @@ def test_a_disc_on_its_hub_keeps_the_hub_within_its_proportions(tmp_path, delta)
         verdicts.append(candidate.feasible)
         if not candidate.feasible:
             assert bound < needed, (candidate.material, bound, needed, candidate.reason)
+            assert "gives only" in candidate.reason and "short of the" in candidate.reason, candidate.reason
+            assert "design.disc_hub = false" in candidate.reason  # the way out, a bored plate
             continue
         dims, longest = candidate.dims, hub_proportions(candidate.bore, material.hub_kind).l_hub_max
         assert dims.l_hub <= longest * (1 + 1e-9) or "hub_length_min" in candidate.limits.binding, (

@@ -528,3 +528,38 @@ def test_where_no_key_carries_the_torque_the_design_sets_the_seat():
     assert pressure > 90e6
     assert f"{pressure / 1e6:.4g} MPa against 90 MPa" in report.seat_set_by
     assert "set by the design, which found no wheel on 75 mm" in seat_words(report)
+
+
+@pytest.mark.parametrize(("delta", "converged_iron"), [(0.005, True), (0.0012, False)])
+def test_the_seat_nlp_keeps_a_discs_hub_within_its_proportions(monkeypatch, tmp_path, delta, converged_iron):
+    """problems/four-cylinder-engine-shaft.toml with its seat designed (the disc on its keyed hub, design.disc_hub):
+    every round of the seat's NLP that converges has the hub no longer than keys.toml's longest L/d for its
+    material (a DIN 6885-1 key is at most 1.5 d, within every rule's longest), as the designer's wheel NLP keeps it.
+    At δ 0.0012 the cast iron round once converged on a hub of L/d 2.48 (315 mm on a 127 mm seat; the grey-iron
+    rule's longest is 2.0), and the walk over the seat series started at 132 mm from it; now no cast iron disc on a
+    hub serves there."""
+    from flyopt.design.hub import hub_proportions
+    from flyopt.design.shaft import seat_nlp
+
+    text = (PROBLEMS / "four-cylinder-engine-shaft.toml").read_text(encoding="utf-8")
+    text = text.replace("delta = 0.005 ", f"delta = {delta} ", 1)
+    text = text.replace('{ to = "490 mm", diameter = "45 mm" }', '{ to = "490 mm", diameter = "design" }', 1)
+    assert f"delta = {delta} " in text and '"490 mm", diameter = "design"' in text
+    path = tmp_path / "engine.toml"
+    path.write_text(text, encoding="utf-8")
+    rounds = []
+    solve_round = seat_nlp._Model.solve
+
+    def recorded(self, frozen, start):
+        found = solve_round(self, frozen, start)
+        rounds.append((self.wheel_material, found))
+        return found
+
+    monkeypatch.setattr(seat_nlp._Model, "solve", recorded)
+    solve(flyopt.load(path))
+    converged = [(m, r) for m, r in rounds if r["status"] in seat_nlp.CONVERGED]
+    assert converged and any(m.name == "cast_iron" for m, _ in converged) == converged_iron
+    for material, found in converged:
+        longest = hub_proportions(found["d"], material.hub_kind).l_hub_max
+        assert found["wheel"]["l_hub"] <= longest * (1 + 1e-6), (material.name, found["d"], found["wheel"])
+        assert found["wheel"]["b"] <= found["wheel"]["l_hub"] * (1 + 1e-6)

@@ -284,6 +284,8 @@ def screen(combo: Combination, spec: DesignSpec, bore: float) -> None:
             ),
             j_sup,
         )
+    if geo == Geometry.DISC and spec.disc_hub and bore and not spec.textbook(bore):
+        _screen_disc_on_hub(combo, spec, bore, cap)
     if geo == Geometry.RIM_ARMS and not bore:
         raise NoWheel(
             f"{combo.label}: a wheel on arms needs a hub on a shaft: give design.bore or the shaft's diameter"
@@ -306,6 +308,47 @@ def screen(combo: Combination, spec: DesignSpec, bore: float) -> None:
                 )
                 + said_by(err)
             ) from err
+
+
+def _screen_disc_on_hub(combo: Combination, spec: DesignSpec, bore: float, cap: float) -> None:
+    """Raise :class:`NoWheel` where no disc on its hub can give the combination's inertia: the disc is at most as
+    wide as the hub is long (the hub at least as long as the disc), at most the hub's longest proportion, and,
+    under castability, at most the section ratio times the hub's thickest section 2V/A = w l/(w + l) (w its
+    widest wall, l its longest length); within D_cap, on the hub at its widest and longest, no such wheel holds
+    more than J = π ρ (B_max D_cap⁴ + l_max d_hub,max⁴)/32."""
+    if not math.isfinite(cap):
+        return
+    (_, d_hub), (_, l_max), _ = hub_bounds(combo.material, bore, combo.torque)
+    rules = castability_of(spec, combo.material, bore)
+    ratio = rules.section_ratio if rules is not None else math.inf
+    wall = (d_hub - bore) / 2.0
+    section = wall * l_max / (wall + l_max)
+    b_max = min(spec.max_width, l_max, ratio * section)
+    j_sup = math.pi * combo.material.density * (b_max * cap**4 + l_max * d_hub**4) / 32.0
+    if combo.j_shaft <= j_sup:
+        return
+    why = said("at most its hub's longest, {l_max}", l_max=(l_max, "length", f"{l_max * 1e3:.4g} mm"))
+    if ratio * section < l_max:
+        why = said(
+            "at most {ratio} times the hub's thickest section, {section}",
+            ratio=(ratio, "dimensionless", f"{ratio:g}"),
+            section=(section, "length", f"{section * 1e3:.4g} mm"),
+        )
+    raise NoWheel(
+        combo.label
+        + said(": even the widest disc on its hub (B {b_max}: ", b_max=(b_max, "length", f"{b_max * 1e3:.4g} mm"))
+        + why
+        + said(
+            ") within D {cap}, on the hub at its largest ({d_hub} by {l_max}), gives only {j_sup}, short of the {j} "
+            "required; a disc wider than its hub is its own hub: design.disc_hub = false designs it as the bored plate",
+            cap=(cap, "length", f"{cap:.4g} m"),
+            d_hub=(d_hub, "length", f"{d_hub * 1e3:.4g} mm"),
+            l_max=(l_max, "length", f"{l_max * 1e3:.4g} mm"),
+            j_sup=(j_sup, "inertia", f"{j_sup:.4g} kg·m²"),
+            j=(combo.j_shaft, "inertia", f"{combo.j_shaft:.4g} kg·m²"),
+        ),
+        j_sup,
+    )
 
 
 def wheel_problem(

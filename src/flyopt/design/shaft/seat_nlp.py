@@ -56,7 +56,7 @@ from flyopt.design.shaft import strength
 from flyopt.design.shaft.beam import SteppedShaft, elastic_line
 from flyopt.design.shaft.check import bearing_place, carries_torque, notch_geometry, section_name, section_strengths
 from flyopt.design.shaft.lateral import GRAVITY
-from flyopt.names import Geometry, Objective
+from flyopt.names import Objective
 
 if TYPE_CHECKING:
     from flyopt.design.combination import Combination
@@ -569,10 +569,10 @@ class _Model:
             add("hub_length_min", col["l_hub"] - xd, math.log(p.l_hub_min), inf)
             # the key's shortest hub, ln l_key frozen (a parameter: ln of a micrometre where no key is asked)
             add("hub_length_key", col["l_hub"] - log_key, 0.0, inf)
-            if structure.geometry != Geometry.DISC:
-                # at most the proportions' longest, or the key's where it is longer (key_longer 1, frozen)
-                longest = key_longer * log_key + (1.0 - key_longer) * (xd + math.log(p.l_hub_max))
-                add("hub_length_max", col["l_hub"] - longest, -inf, 0.0)
+            # at most the proportions' longest, or the key's where it is longer (key_longer 1, frozen); a disc's
+            # hub as a web wheel's (wheel_design.wheel_problem: the same hub_bounds)
+            longest = key_longer * log_key + (1.0 - key_longer) * (xd + math.log(p.l_hub_max))
+            add("hub_length_max", col["l_hub"] - longest, -inf, 0.0)
 
         m = form.mass
         xs = np.array([s["x"] for s in frozen.sections])
