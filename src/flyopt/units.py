@@ -268,14 +268,22 @@ PLAIN_SLIPS = {
 }
 
 
+#: A number written in a string: digits, a decimal point, an exponent.
+_NUMBER = re.compile(r"(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+#: What may stand between the numbers of a string that names no unit: arithmetic and blanks ("7*10", "(35 + 35)",
+#: "2**3", "2^3").
+_ARITHMETIC = re.compile(r"[\s+\-*/^()]*")
+
+
 def is_plain(value: object) -> bool:
-    """Whether a scene value is a plain number: a number, or a string of one without a unit ("70")."""
+    """Whether a scene value is a plain number: a number, or a string that names no unit: one number ("70"), or
+    arithmetic on numbers ("7*10", which the reader evaluates to the plain 70: it carries no unit either)."""
     if not isinstance(value, str):
         return True
     try:
         float(value)
     except ValueError:
-        return False
+        return _NUMBER.search(value) is not None and _ARITHMETIC.fullmatch(_NUMBER.sub(" ", value)) is not None
     return True
 
 

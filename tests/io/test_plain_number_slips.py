@@ -131,6 +131,32 @@ def test_a_quoted_number_in_a_table_with_its_own_unit_is_in_that_unit(tmp_path):
     assert list(again.resisting.values) == list(plain.resisting.values)
 
 
+@pytest.mark.parametrize("written", ['"7*10"', '"(35 + 35)"', '"0.07*1000"', '"1e1 * 7"'])
+def test_arithmetic_without_a_unit_is_a_plain_number(tmp_path, main_cli, written):
+    """A string of arithmetic names no unit either: the reader evaluates "7*10" to the plain 70, which was a
+    70 m shaft seat (the refusal looked at strings of one number only); it is refused as 70 is, and with its unit,
+    "7*10 mm", it is read as written."""
+    path = _written(tmp_path, 'diameter = "70 mm"', f"diameter = {written}")
+    status, out, err = main_cli("check", path)
+    assert status == 2 and len(err.strip().splitlines()) == 1, err
+    assert "shaft[1].diameter" in err and "(plain numbers are SI): give its unit" in err, err
+    assert quantity(written.strip('"') + " mm", "length", "x") == pytest.approx(0.07, rel=1e-15)
+
+
+def test_arithmetic_in_a_table_with_its_own_unit_is_in_that_unit(tmp_path):
+    """A quoted cell of arithmetic ("45*2") in a table of angle_unit = "deg" is degrees, as "90" and 90 are."""
+    import flyopt
+
+    sums = TABLE.replace(
+        "[[0, 1.6], [45, 1.6], [90, 0.2], [360, 0.2]]", '[[0, "0.8*2"], [45, 1.6], ["45*2", 0.2], [360, 0.2]]'
+    )
+    (tmp_path / "plain.toml").write_text(TABLE, encoding="utf-8")
+    (tmp_path / "sums.toml").write_text(sums, encoding="utf-8")
+    plain, again = flyopt.load(tmp_path / "plain.toml"), flyopt.load(tmp_path / "sums.toml")
+    assert list(again.resisting.angles) == list(plain.resisting.angles)
+    assert again.resisting.values == pytest.approx(plain.resisting.values, rel=1e-15)
+
+
 @pytest.mark.parametrize(
     ("field", "written", "refused"),
     [
