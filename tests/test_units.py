@@ -87,3 +87,19 @@ def test_rpm_and_gd2_round_trips():
     assert_allclose(rad_s_to_rpm(rpm_to_rad_s(1440.0)), 1440.0, rtol=1e-15)
     assert gd2_from_inertia(1.0) == 4 * 9.81
     assert_allclose(inertia_from_gd2(gd2_from_inertia(2.5)), 2.5, rtol=1e-15)
+
+
+@pytest.mark.parametrize("text", ["-", "*", "3 *", "(", "3 mm)", "((1"])
+def test_what_pints_parser_gives_no_reason_for_is_said_in_words(text):
+    """Where pint's parser stops without a reason of its own (an empty AssertionError, Python's tokenizer's
+    ('EOF in multi-line statement', (2, 0))), the message says what the text is not, not the exception's name."""
+    with pytest.raises(SceneError) as err:
+        quantity(text, "length", "shaft[0].diameter")
+    message = str(err.value)
+    assert message.endswith("it is not a number followed by a unit"), message
+    assert "Error" not in message and "EOF" not in message and "(2, 0)" not in message
+
+
+def test_pints_own_reason_is_kept():
+    with pytest.raises(SceneError, match="'furlongz' is not defined in the unit registry"):
+        quantity("3 furlongz", "length", "shaft[0].diameter")

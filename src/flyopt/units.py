@@ -400,8 +400,14 @@ def _is_angle(q: Any) -> bool:
 
 
 def _pint_reason(err: Exception) -> str:
-    text = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
-    return clip(text)
+    """pint's reason, its first line; where pint's parser gives none of its own (an empty AssertionError for
+    "-" or "*", Python's tokenizer's "EOF in multi-line statement" for "("), what the text is not, rather than
+    the name of pint's exception or the tokenizer's tuple."""
+    import tokenize
+
+    if isinstance(err, (AssertionError, tokenize.TokenError, SyntaxError)) or not str(err).strip():
+        return "it is not a number followed by a unit"
+    return clip(str(err).strip().splitlines()[0])
 
 
 def rpm_to_rad_s(n: _Speeds) -> _Speeds:
