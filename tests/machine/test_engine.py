@@ -577,7 +577,13 @@ def test_default_firing_angles_are_evenly_spaced(write_scene):
         ("[690, 1.150], [720, 1.150],", "[690, 1.150],", "engine.pressure", "does not close"),
         ('pressure_unit = "bar"', 'pressure_unit = "bar"\npressure_file = "p.csv"', "engine.pressure", "given both"),
         # the unit left out: bar read as pascals (below the crankcase's 1 bar), or with a crankcase of none
-        ('pressure_unit = "bar"\n', "", "engine.pressure", r"largest, 60 Pa, does not rise above the crankcase's"),
+        (
+            'pressure_unit = "bar"\n',
+            "",
+            "engine.pressure",
+            r"largest, 60 Pa, does not rise above the crankcase's 100000 Pa, .*: give pressure_unit, "
+            r'e\.g\. "bar" or "MPa"$',  # not "Pa if pascals are meant": a cylinder that never pushes is no engine
+        ),
         (
             'crankcase_pressure = "1 bar"\nangle_unit = "deg"\npressure_unit = "bar"\n',
             'crankcase_pressure = "0 bar"\nangle_unit = "deg"\n',
@@ -655,3 +661,16 @@ def test_phased_cylinders_are_the_same_in_casadi_and_numpy():
     expected = np.column_stack([inertia(angles), inertia.derivative(angles), torque(angles), inertia_torque(angles)])
     for k in range(4):
         assert_allclose(got[:, k], expected[:, k], rtol=0, atol=1e-12 * np.max(np.abs(expected[:, k])))
+
+
+def test_the_plain_pressure_floor_is_the_plain_stress_bands_top():
+    """With no crankcase pressure, a plain table is refused up to (not including) the top of units.PLAIN_SLIPS'
+    stress band, as a plain stress is: 1 kPa is read as written."""
+    from flyopt.errors import SceneError
+    from flyopt.io.engine_section import _check_plain_pressures
+    from flyopt.units import PLAIN_SLIPS
+
+    top = PLAIN_SLIPS["stress"][1]
+    _check_plain_pressures(top, 0.0, "engine.pressure")
+    with pytest.raises(SceneError, match="is below 1000 Pa"):
+        _check_plain_pressures(0.999 * top, 0.0, "engine.pressure")

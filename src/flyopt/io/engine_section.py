@@ -182,10 +182,9 @@ def read_engine(raw: object, files: Path = Path()) -> Engine:
 def _plain(raw: object, form: str) -> bool:
     """Whether the indicator table's pressures are plain numbers (a CSV file's always are; an inline table's
     where no cell carries its own unit, as "0.35 N/mm^2" does)."""
-    from flyopt.io.toml_file import InlineRows
     from flyopt.units import is_plain
 
-    if form == "pressure_file" or isinstance(raw, InlineRows):
+    if form == "pressure_file":
         return True
     return isinstance(raw, list) and all(
         isinstance(pair, list) and len(pair) == 2 and is_plain(pair[1]) for pair in raw
@@ -200,15 +199,16 @@ def _check_plain_pressures(largest: float, crankcase: float, field: str) -> None
     from flyopt.units import PLAIN_SLIPS
 
     floor = PLAIN_SLIPS["stress"][1]
-    if largest > max(crankcase, floor):
+    if largest > crankcase and largest >= floor:
         return
-    reason = (
-        f"does not rise above the crankcase's {crankcase:.6g} Pa, as an engine's cylinder pressure does"
-        if largest <= crankcase
-        else f"is below {floor:.6g} Pa, which no engine's cylinder pressure is"
-    )
+    if largest <= crankcase:  # a cylinder that never pushes: pascals are not what was meant
+        reason = f"does not rise above the crankcase's {crankcase:.6g} Pa, as an engine's cylinder pressure does"
+        way = 'give pressure_unit, e.g. "bar" or "MPa"'
+    else:
+        reason = f"is below {floor:.6g} Pa, which no engine's cylinder pressure is"
+        way = 'give pressure_unit, e.g. "bar" or "MPa" (or "Pa" if pascals are meant)'
     raise SceneError(
         field,
-        f"the pressures are plain numbers and no pressure_unit is given, so they are pascals: the largest, "
-        f'{largest:.6g} Pa, {reason}: give pressure_unit, e.g. "bar" or "MPa" (or "Pa" if pascals are meant)',
+        "the pressures are plain numbers and no pressure_unit is given, so they are pascals: the largest, "
+        f"{largest:.6g} Pa, {reason}: {way}",
     )
