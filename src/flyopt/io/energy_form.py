@@ -65,16 +65,16 @@ def scene_data(data: Mapping[str, Any]) -> dict[str, Any]:
             raise SceneError(
                 key, f"gives the machine's energy over the cycle, and [{other}] gives it again: give one of them"
             )
-    fields = Table(
+    machine_table = Table(
         data.get("machine", {}), "machine", {"speed", "delta", "inertia", "gd2", "cycle", "efficiency", "description"}
     )
-    machine = fields.data
+    machine = machine_table.data
     if "speed" not in machine:
         raise SceneError("machine.speed", "is needed: the work per cycle follows from the power at the mean speed")
-    omega = mean_speed(fields, required=True)
+    omega = mean_speed(machine_table, required=True)
     out = {k: v for k, v in data.items() if k != key}
     if key == "energy":
-        cycle = cycle_of(fields)
+        cycle = cycle_of(machine_table)
         table = Table(data["energy"], "energy", ENERGY_KEYS)
         work = _work_per_cycle(table, "energy", omega, cycle, required=True)
         fluctuation = table.quantity("fluctuation", "dimensionless", required=True)
@@ -91,7 +91,7 @@ def scene_data(data: Mapping[str, Any]) -> dict[str, Any]:
     works = _stroke_works(table, omega)
     cycle = len(works) * math.pi
     if "cycle" in machine:
-        given_cycle = cycle_of(fields)
+        given_cycle = cycle_of(machine_table)
         if abs(given_cycle - cycle) > 1e-9 * cycle:
             raise SceneError(
                 "machine.cycle",
