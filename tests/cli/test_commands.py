@@ -433,7 +433,11 @@ def test_json_is_the_same_on_every_run_and_timings_only_when_asked():
     assert "solve_time" in _keys(candidates) and solved and all(c["solve_time"] > 0 for c in solved)
 
 
-@pytest.mark.parametrize("suffix", ["html", pytest.param("pdf", marks=pytest.mark.slow)])  # the PDF: slow run
+# slow (the default run's five minutes): the default run reports the same title in process, where the tests'
+# filterwarnings = error makes any warning a failure and stderr must be empty
+# (tests/report/test_document.py::test_a_hostile_title_reaches_the_page_escaped_and_every_figure_is_drawn)
+@pytest.mark.slow
+@pytest.mark.parametrize("suffix", ["html", "pdf"])
 def test_a_quiet_report_of_a_hostile_title_writes_nothing_to_stderr(tmp_path, suffix):
     # -q leaves only errors: a title of emoji and control characters put 30 "Glyph missing" warnings of
     # matplotlib on stderr (and "$\frac$" in it stopped the report with exit 1). Run as a user runs it, in

@@ -285,8 +285,10 @@ def _ending_with_a_heading(path):
     return ended
 
 
-# punch-press-wheel's PDF in the default run (it ended page 1 with a heading); motor-press's with the slow set
-@pytest.mark.parametrize("scene", ["punch-press-wheel", pytest.param("motor-press", marks=pytest.mark.slow)])
+# both in the slow set (the default run's five minutes): the default run holds slider-crank-press's whole report
+# to the same rule (test_a_report_pdf_is_vectors_without_text_over_text_and_leads_to_every_section)
+@pytest.mark.slow
+@pytest.mark.parametrize("scene", ["punch-press-wheel", "motor-press"])
 def test_no_page_ends_with_a_heading(scene, tmp_path):
     """A heading stays on the page of what follows it: punch-press-wheel's "2 The scene as given" was the last
     line of page 1, its facts on page 2 (reportlab keeps a heading with the next flowable, but not with one
