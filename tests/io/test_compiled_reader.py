@@ -10,6 +10,7 @@ lowering its threshold, so that awkward numbers cost no large file.
 """
 
 import contextlib
+import sys
 from unittest import mock
 
 import numpy as np
@@ -53,8 +54,7 @@ def compiled_always():
         return result
 
     with (
-        mock.patch.object(csv_table, "COMPILED_READER_BYTES", 0),
-        mock.patch.object(toml_file, "COMPILED_READER_BYTES", 0),
+        mock.patch.object(compiled_reader, "COMPILED_READER_BYTES", 0),
         mock.patch.object(csv_table, "compiled_numbers", spy),
         mock.patch.object(toml_file, "compiled_numbers", spy),
     ):
@@ -348,3 +348,67 @@ def test_a_large_inline_table_by_the_compiled_reader_names_the_point(tmp_path):
 )
 def test_edges_of_a_large_csv_are_the_exact_readers(text):
     assert_same(fast_csv(text), exact_csv(text))
+
+
+# -- the size from which the compiled reader reads, with pyarrow imported or not -----------------
+
+
+def _without_pyarrow():
+    """sys.modules as a process that has not imported pyarrow sees it (restored on exit)."""
+    patched = mock.patch.dict(sys.modules)
+    patched.start()
+    for name in [m for m in sys.modules if m == "pyarrow" or m.startswith("pyarrow.")]:
+        del sys.modules[name]
+    return patched
+
+
+def _tables(rows):
+    """(csv text, inline scene text, the numbers) of a table of ``rows`` rows."""
+    angles, values = large_rows(rows)
+    pairs = list(zip(angles.tolist(), values.tolist()))
+    text = "angle,torque\n" + "".join(f"{a!r},{v!r}\n" for a, v in pairs)
+    inline = SCENE.format(table="points = [" + ", ".join(f"[{a!r}, {v!r}]" for a, v in pairs) + "]")
+    return text, inline, np.column_stack([angles, values])
+
+
+@pytest.mark.parametrize("imported", [True, False])
+def test_a_table_of_tens_of_kilobytes_is_read_by_pyarrow_where_it_is_imported_already(imported):
+    """From LOADED_READER_BYTES in a process that has imported pyarrow (pandas, a sweep, the app), where only
+    the reader's own start is left to pay; in one that has not, below COMPILED_READER_BYTES, by float, and
+    pyarrow is not imported for it. The same floats either way, bit for bit."""
+    import pyarrow  # noqa: F401 (as pandas imports it)
+
+    text, inline, numbers = _tables(1200)
+    assert compiled_reader.LOADED_READER_BYTES <= len(text) < compiled_reader.COMPILED_READER_BYTES
+    patched = None if imported else _without_pyarrow()
+    try:
+        with (
+            mock.patch.object(csv_table, "compiled_numbers", wraps=compiled_reader.compiled_numbers) as csv_spy,
+            mock.patch.object(toml_file, "compiled_numbers", wraps=compiled_reader.compiled_numbers) as toml_spy,
+        ):
+            read, lines = csv_table.read_csv(text, "f", "t.csv", COLUMNS, UNITS)
+            rows = toml_file.parse_toml(inline)["torque"]["resisting"]["points"]
+        left_unimported = "pyarrow" not in sys.modules
+    finally:
+        if patched is not None:
+            patched.stop()
+    assert (csv_spy.call_count, toml_spy.call_count) == ((1, 1) if imported else (0, 0))
+    if not imported:
+        assert left_unimported  # the decision never imports pyarrow
+    assert np.array_equal(bits(read), bits(numbers)) and list(lines) == list(range(2, 1202))
+    assert isinstance(rows, toml_file.InlineRows) and np.array_equal(bits(rows.array), bits(numbers))
+
+
+def test_a_table_below_the_loaded_size_is_read_by_float_with_pyarrow_imported():
+    import pyarrow  # noqa: F401
+
+    text, inline, numbers = _tables(300)
+    assert len(text) < compiled_reader.LOADED_READER_BYTES
+    with (
+        mock.patch.object(csv_table, "compiled_numbers") as csv_spy,
+        mock.patch.object(toml_file, "compiled_numbers") as toml_spy,
+    ):
+        read, _ = csv_table.read_csv(text, "f", "t.csv", COLUMNS, UNITS)
+        rows = toml_file.parse_toml(inline)["torque"]["resisting"]["points"]
+    assert (csv_spy.call_count, toml_spy.call_count) == (0, 0)
+    assert np.array_equal(bits(read), bits(numbers)) and np.array_equal(bits(rows.array), bits(numbers))

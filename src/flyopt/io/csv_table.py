@@ -12,7 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from flyopt.errors import SceneError, clip
-from flyopt.io.compiled_reader import COMPILED_READER_BYTES, compiled_numbers
+from flyopt.io.compiled_reader import compiled_numbers, compiled_reader_reads
 from flyopt.io.input_files import check_rows, inside_scene, quote_from_file, read_input
 
 if TYPE_CHECKING:
@@ -150,13 +150,13 @@ def read_csv_lines(
 def _compiled_rows(text, start):
     """The rows of ``text[start:]`` (blanks at its end left out) by the compiled reader, or None.
 
-    None for a table below :data:`~flyopt.io.compiled_reader.COMPILED_READER_BYTES`,
+    None for a table the compiled reader does not read (:func:`~flyopt.io.compiled_reader.compiled_reader_reads`),
     one not in ASCII, one with a carriage return not before a newline (pyarrow
     would end a line there, Python's ``split`` does not), one ending in 64
     blanks, and one whose lines are not each two fields the compiled reader
     takes for numbers: all these are read by ``float``.
     """
-    if len(text) < COMPILED_READER_BYTES or not text.isascii():
+    if not compiled_reader_reads(len(text)) or not text.isascii():
         return None
     if "\r" in text and text.count("\r") != text.count("\r\n"):
         return None

@@ -17,7 +17,7 @@ import numpy.typing as npt
 
 from flyopt._toml import tomllib
 from flyopt.errors import SceneError, clip
-from flyopt.io.compiled_reader import COMPILED_READER_BYTES, compiled_numbers
+from flyopt.io.compiled_reader import compiled_numbers, compiled_reader_reads
 from flyopt.io.input_files import read_input
 
 if TYPE_CHECKING:
@@ -157,15 +157,15 @@ def _fast_rows(table):
 
     None for a carriage return not followed by a newline (not TOML), and for
     a number beyond the floats (tomllib and the field's checks say what is wrong).
-    A large table is read by pyarrow's compiled reader (see
-    :mod:`flyopt.io.compiled_reader`): the pattern has already decided that
+    A table the compiled reader reads (a large one, or a smaller one where pyarrow is imported already:
+    :func:`flyopt.io.compiled_reader.compiled_reader_reads`) is read by pyarrow: the pattern has already decided that
     each number is a TOML number, which that reader and ``float`` read to
     the same double; a table holding a zero with a minus sign is read by
     ``float``, which keeps the written text to tell ``-0`` from ``-0.0``.
     """
     if "\r" in table and table.count("\r") != table.count("\r\n"):
         return None
-    if len(table) >= COMPILED_READER_BYTES:  # ASCII (the pattern), one number a line for the compiled reader
+    if compiled_reader_reads(len(table)):  # ASCII (the pattern), one number a line for the compiled reader
         numbers = compiled_numbers(
             table.encode("ascii").translate(_ONE_A_LINE, b" \t\r"), 2 * table.count("[") - 2, 1, skip_empty=True
         )
