@@ -674,3 +674,31 @@ def test_the_plain_pressure_floor_is_the_plain_stress_bands_top():
     _check_plain_pressures(top, 0.0, "engine.pressure")
     with pytest.raises(SceneError, match="is below 1000 Pa"):
         _check_plain_pressures(0.999 * top, 0.0, "engine.pressure")
+
+
+def test_a_table_in_bar_with_one_cell_given_its_unit_is_refused_on_that_line(main_cli, write_scene):
+    """Without pressure_unit, "60 bar" written on the peak alone left the other cells, written in bar, to be
+    read as pascals: a cylinder at vacuum but for one point, accepted. The largest plain cell is named."""
+    text = FOUR_CYLINDER.read_text().replace('pressure_unit = "bar"\n', "")
+    assert "[375, 60.000]" in text
+    path = write_scene(text.replace("[375, 60.000]", '[375, "60 bar"]'))
+    for command in ("check", "solve"):
+        status, out, err = main_cli(command, path)
+        assert status == 2 and out == "" and len(err.splitlines()) == 1, err
+        assert "engine.pressure[22]: the pressure 51.297 is a plain number beside cells that carry their unit" in err
+        assert "51.297 Pa" in err and 'give each cell its unit, or give pressure_unit (e.g. "bar")' in err, err
+
+
+def test_plain_pascals_beside_cells_with_their_unit_are_read_as_written(write_scene):
+    """The rule refuses only plain cells no cylinder pressure can be: the table in bar with its low cells
+    written as plain pascals and the rest with their unit is the table in bar."""
+    data = tomllib.loads(FOUR_CYLINDER.read_text())
+    rows = [[a, round(p * 1e5, 6) if p < 2 else f"{p} bar"] for a, p in data["engine"]["pressure"]]
+    assert any(isinstance(p, float) for _, p in rows) and any(isinstance(p, str) for _, p in rows)
+    text = FOUR_CYLINDER.read_text().replace('pressure_unit = "bar"\n', "")
+    start = text.index("pressure = [")
+    end = text.index("]\n", text.index("[720,")) + 2
+    body = ", ".join(f'[{a}, "{p}"]' if isinstance(p, str) else f"[{a}, {p}]" for a, p in rows)
+    path = write_scene(text[:start] + f"pressure = [{body}]\n" + text[end:])
+    reference = flyopt.load(FOUR_CYLINDER).engine.pressure
+    assert_allclose(flyopt.load(path).engine.pressure.values, reference.values, rtol=1e-15, atol=0)

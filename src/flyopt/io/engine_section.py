@@ -6,6 +6,9 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import numpy as np
+import numpy.typing as npt
+
 from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import angle_curve, angle_curve_file
 from flyopt.io.fields import Table, scaled, unit_factor
@@ -159,8 +162,12 @@ def read_engine(raw: object, files: Path = Path()) -> Engine:
             "engine.crankcase_pressure",
             f"must be an absolute pressure >= 0, got {shorten(table.raw('crankcase_pressure'))}",
         )
-    if not table.has("pressure_unit") and _plain(table.get(forms[0]), forms[0]):
-        _check_plain_pressures(float(pressure.values.max()), crankcase, f"engine.{forms[0]}")
+    if not table.has("pressure_unit"):
+        plain = _plain_rows(table.get(forms[0]), forms[0], len(pressure.values))
+        if plain.all():
+            _check_plain_pressures(float(pressure.values.max()), crankcase, f"engine.{forms[0]}")
+        elif plain.any():
+            _check_plain_cells(pressure.values, plain, table.get(forms[0]))
     try:
         return Engine(
             kind,
@@ -179,15 +186,33 @@ def read_engine(raw: object, files: Path = Path()) -> Engine:
         raise SceneError("engine", str(err)) from None
 
 
-def _plain(raw: object, form: str) -> bool:
-    """Whether the indicator table's pressures are plain numbers (a CSV file's always are; an inline table's
-    where no cell carries its own unit, as "0.35 N/mm^2" does)."""
+def _plain_rows(raw: object, form: str, rows: int) -> npt.NDArray[np.bool_]:
+    """Which of the indicator table's ``rows`` pressures are plain numbers: every one of a CSV file's and of a
+    large inline table's (read as plain numbers), an inline table's cells that carry no unit of their own (as
+    "0.35 N/mm^2" does)."""
     from flyopt.units import is_plain
 
-    if form == "pressure_file":
-        return True
-    return isinstance(raw, list) and all(
-        isinstance(pair, list) and len(pair) == 2 and is_plain(pair[1]) for pair in raw
+    if form == "pressure_file" or not isinstance(raw, list):
+        return np.ones(rows, dtype=bool)
+    return np.array([is_plain(pair[1]) for pair in raw], dtype=bool)  # pairs: the table has been read
+
+
+def _check_plain_cells(values: npt.NDArray[np.float64], plain: npt.NDArray[np.bool_], raw: list[list[object]]) -> None:
+    """Refuse an inline indicator table without ``pressure_unit`` whose cells with their own unit stand beside
+    plain ones (pascals) that all lie below the plain-stress slip band's top: "60 bar" written on one cell and
+    the rest in bar without a unit read the rest as pascals, a cylinder at vacuum but for one point."""
+    from flyopt.units import PLAIN_SLIPS
+
+    floor = PLAIN_SLIPS["stress"][1]
+    k = int(np.flatnonzero(plain)[np.argmax(values[plain])])
+    if values[k] >= floor:
+        return
+    raise SceneError(
+        f"engine.pressure[{k}]",
+        f"the pressure {shorten(raw[k][1])} is a plain number beside cells that carry their unit, and no "
+        f"pressure_unit is given, so it is {values[k]:.6g} Pa; it is the largest of the table's plain numbers, "
+        f"and below {floor:.6g} Pa, which no engine's cylinder pressure is: give each cell its unit, or give "
+        'pressure_unit (e.g. "bar")',
     )
 
 
