@@ -259,6 +259,10 @@ def test_scene_values_pass_through_make_material():
         (dict(tensile_strength=300e6, ductile=True), "ductile material.*yield_strength"),
         (dict(yield_strength=300e6, ductile=False), "brittle material.*tensile_strength"),
         (dict(min_wall=0.0), "min_wall"),
+        (
+            dict(min_wall=6.0),
+            r"min_wall 6 m is out of range \(allowed: 1e-05 to 0.5 m; a wall from 0.01 mm to 500 mm\)",
+        ),
         (dict(bearing_pressure=-1.0), "bearing_pressure"),
         (dict(thickness_rule="part"), "thickness_rule 'part' needs a strength_by_thickness"),
         (dict(ductile=True, strength_by_thickness=TABLE), r"thickness_rule must be one of \['part', 'wheel'\]"),

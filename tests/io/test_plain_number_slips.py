@@ -168,6 +168,11 @@ def test_arithmetic_in_a_table_with_its_own_unit_is_in_that_unit(tmp_path):
         ("tensile_strength", '"400 MPa"', False),
         ("yield_strength", '"250 kPa"', False),  # 0.25 MPa: within the bounds (a weak grade, not a slip)
         ("yield_strength", '"50 kPa"', True),
+        ("min_wall", "6", True),  # mm written plain: 6 m, beyond design.castability's walls (0.01-500 mm)
+        ("min_wall", '"6 mm"', False),
+        ("min_wall", "0.006", False),
+        ("bearing_pressure", '"50 kPa"', True),  # a hub's key pressure, bounded as the strengths are
+        ("bearing_pressure", "90e6", False),
     ],
 )
 def test_a_materials_modulus_and_strengths_lie_within_what_solids_have(tmp_path, main_cli, field, written, refused):
@@ -178,6 +183,8 @@ def test_a_materials_modulus_and_strengths_lie_within_what_solids_have(tmp_path,
         "elastic_modulus": 'elastic_modulus = "169 GPa"',
         "tensile_strength": 'tensile_strength = "400 MPa"',
         "yield_strength": 'yield_strength = "250 MPa"',
+        "min_wall": 'min_wall = "6 mm"',
+        "bearing_pressure": 'bearing_pressure = "90 MPa"',
     }[field]
     status, _, err = main_cli("check", _written(tmp_path, old, f"{field} = {written}"))
     if refused:

@@ -70,6 +70,7 @@ NONE = "none"
 
 #: Bounds on a scene's overrides: a wall [m] and a section ratio [-].
 WALL_RANGE = (1e-5, 0.5)
+WALL_WHY = f"a wall from {WALL_RANGE[0] * 1e3:g} mm to {WALL_RANGE[1] * 1e3:g} mm"
 RATIO_RANGE = (1.0, 10.0)
 
 

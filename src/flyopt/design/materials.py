@@ -44,6 +44,7 @@ from importlib import resources
 from typing import Any, NamedTuple, cast
 
 from flyopt._toml import tomllib
+from flyopt.design.castability import WALL_RANGE, WALL_WHY
 from flyopt.errors import BrokenInvariant, shorten
 from flyopt.names import closest
 from flyopt.validate import number
@@ -300,6 +301,11 @@ class Material:
             _number(self.poisson_ratio, "poisson_ratio [-]", name, strict=False, below=0.5, allow_none=True),
         )
         set_("min_wall", _number(self.min_wall, "min_wall [m]", name, allow_none=True))
+        if self.min_wall is not None and not WALL_RANGE[0] <= self.min_wall <= WALL_RANGE[1]:
+            raise ValueError(
+                f"material {shorten(name)}: min_wall {self.min_wall:g} m is out of range (allowed: "
+                f"{WALL_RANGE[0]:g} to {WALL_RANGE[1]:g} m; {WALL_WHY})"
+            )
         set_("bearing_pressure", _number(self.bearing_pressure, "bearing_pressure [Pa]", name, allow_none=True))
         set_("safety_factor", _number(self.safety_factor, "safety_factor [-]", name, minimum=1.0, allow_none=True))
         if self.display is not None and (not isinstance(self.display, str) or not self.display.strip()):

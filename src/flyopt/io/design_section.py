@@ -235,7 +235,7 @@ def _castability(table: Table) -> Any:
     cast = Table(raw, "design.castability", {"min_wall", "section_ratio"})
     rows = None
     low, high = castability.WALL_RANGE
-    why = f"a wall from {low * 1e3:g} mm to {high * 1e3:g} mm"
+    why = castability.WALL_WHY
     if cast.has("min_wall"):
         given = cast.get("min_wall")
         if isinstance(given, list):
