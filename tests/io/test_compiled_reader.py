@@ -353,15 +353,6 @@ def test_edges_of_a_large_csv_are_the_exact_readers(text):
 # -- the size from which the compiled reader reads, with pyarrow imported or not -----------------
 
 
-def _without_pyarrow():
-    """sys.modules as a process that has not imported pyarrow sees it (restored on exit)."""
-    patched = mock.patch.dict(sys.modules)
-    patched.start()
-    for name in [m for m in sys.modules if m == "pyarrow" or m.startswith("pyarrow.")]:
-        del sys.modules[name]
-    return patched
-
-
 def _tables(rows):
     """(csv text, inline scene text, the numbers) of a table of ``rows`` rows."""
     angles, values = large_rows(rows)
@@ -372,7 +363,7 @@ def _tables(rows):
 
 
 @pytest.mark.parametrize("imported", [True, False])
-def test_a_table_of_tens_of_kilobytes_is_read_by_pyarrow_where_it_is_imported_already(imported):
+def test_a_table_of_tens_of_kilobytes_is_read_by_pyarrow_where_it_is_imported_already(imported, monkeypatch):
     """From LOADED_READER_BYTES in a process that has imported pyarrow (pandas, a sweep, the app), where only
     the reader's own start is left to pay; in one that has not, below COMPILED_READER_BYTES, by float, and
     pyarrow is not imported for it. The same floats either way, bit for bit."""
@@ -380,18 +371,15 @@ def test_a_table_of_tens_of_kilobytes_is_read_by_pyarrow_where_it_is_imported_al
 
     text, inline, numbers = _tables(1200)
     assert compiled_reader.LOADED_READER_BYTES <= len(text) < compiled_reader.COMPILED_READER_BYTES
-    patched = None if imported else _without_pyarrow()
-    try:
-        with (
-            mock.patch.object(csv_table, "compiled_numbers", wraps=compiled_reader.compiled_numbers) as csv_spy,
-            mock.patch.object(toml_file, "compiled_numbers", wraps=compiled_reader.compiled_numbers) as toml_spy,
-        ):
-            read, lines = csv_table.read_csv(text, "f", "t.csv", COLUMNS, UNITS)
-            rows = toml_file.parse_toml(inline)["torque"]["resisting"]["points"]
-        left_unimported = "pyarrow" not in sys.modules
-    finally:
-        if patched is not None:
-            patched.stop()
+    if not imported:  # the one key the decision reads, as a process that has not imported it sees it
+        monkeypatch.delitem(sys.modules, "pyarrow")
+    with (
+        mock.patch.object(csv_table, "compiled_numbers", wraps=compiled_reader.compiled_numbers) as csv_spy,
+        mock.patch.object(toml_file, "compiled_numbers", wraps=compiled_reader.compiled_numbers) as toml_spy,
+    ):
+        read, lines = csv_table.read_csv(text, "f", "t.csv", COLUMNS, UNITS)
+        rows = toml_file.parse_toml(inline)["torque"]["resisting"]["points"]
+    left_unimported = "pyarrow" not in sys.modules
     assert (csv_spy.call_count, toml_spy.call_count) == ((1, 1) if imported else (0, 0))
     if not imported:
         assert left_unimported  # the decision never imports pyarrow
@@ -412,3 +400,16 @@ def test_a_table_below_the_loaded_size_is_read_by_float_with_pyarrow_imported():
         rows = toml_file.parse_toml(inline)["torque"]["resisting"]["points"]
     assert (csv_spy.call_count, toml_spy.call_count) == (0, 0)
     assert np.array_equal(bits(read), bits(numbers)) and np.array_equal(bits(rows.array), bits(numbers))
+
+
+@pytest.mark.parametrize("size", [40_000, 1_100_000])
+def test_a_process_that_blocks_pyarrow_reads_every_table_by_float(size, monkeypatch):
+    """sys.modules["pyarrow"] = None (how a missing library is simulated, or an import that failed) is not an
+    imported pyarrow: a table below 1 MB is read by float, and one above it, whose compiled reading cannot
+    import pyarrow, goes to the exact reader instead of raising ImportError."""
+    text, _, numbers = _tables(size // 30)
+    assert (len(text) >= compiled_reader.COMPILED_READER_BYTES) == (size > 10**6)
+    monkeypatch.setitem(sys.modules, "pyarrow", None)
+    assert compiled_reader.compiled_reader_reads(len(text)) == (size > 10**6)
+    read, lines = csv_table.read_csv(text, "f", "t.csv", COLUMNS, UNITS)
+    assert np.array_equal(bits(read), bits(numbers)) and list(lines) == list(range(2, len(numbers) + 2))

@@ -31,14 +31,15 @@ LOADED_READER_BYTES = 30_000
 and so do a sweep's Parquet files and the app): what is left is ``pyarrow.csv`` (about 1 ms, once) and the
 reader's own start, about 0.4 ms a table. Measured on 2026-11-30, ``float`` took 0.41 ms for a table of
 12 kB (300 rows of 17-digit numbers: the compiled reader 0.47 ms) and 0.68 ms for one of 16 kB (1,000 rows
-of one decimal: 0.55 ms); from 40 kB the compiled reader took half the time or less."""
+of one decimal: 0.55 ms); at 40-50 kB the compiled reader took 0.45-0.55 of float's time, at 120 kB 0.3."""
 
 
 def compiled_reader_reads(size: int) -> bool:
     """Whether a table of ``size`` bytes (or characters) is read by the compiled reader (the one rule of its
     callers): from :data:`COMPILED_READER_BYTES`, or from :data:`LOADED_READER_BYTES` in a process that has
-    imported pyarrow already. The answer never imports it."""
-    return size >= COMPILED_READER_BYTES or (size >= LOADED_READER_BYTES and "pyarrow" in sys.modules)
+    imported pyarrow already (not one that blocks it, ``sys.modules["pyarrow"] = None``). The answer never
+    imports it."""
+    return size >= COMPILED_READER_BYTES or (size >= LOADED_READER_BYTES and sys.modules.get("pyarrow") is not None)
 
 
 def compiled_numbers(
@@ -68,10 +69,13 @@ def compiled_numbers(
         refuses them), or None if a field is not a number to the compiled
         reader, or the shape differs: the caller's exact reader then reads the
         text and says what is wrong, or accepts what only it accepts
-        (``1_000``, a vertical tab around a number).
+        (``1_000``, a vertical tab around a number); None too where pyarrow cannot be imported.
     """
-    import pyarrow as pa
-    import pyarrow.csv as pa_csv
+    try:
+        import pyarrow as pa
+        import pyarrow.csv as pa_csv
+    except ImportError:  # blocked or broken: the exact reader reads every table
+        return None
 
     names = [f"c{k}" for k in range(columns)]
     try:
