@@ -702,3 +702,35 @@ def test_plain_pascals_beside_cells_with_their_unit_are_read_as_written(write_sc
     path = write_scene(text[:start] + f"pressure = [{body}]\n" + text[end:])
     reference = flyopt.load(FOUR_CYLINDER).engine.pressure
     assert_allclose(flyopt.load(path).engine.pressure.values, reference.values, rtol=1e-15, atol=0)
+
+
+def _mixed(write_scene, cells, name):
+    """four-cylinder-engine with its indicator table written as ``cells`` (one TOML cell per row) and no
+    pressure_unit."""
+    text = FOUR_CYLINDER.read_text().replace('pressure_unit = "bar"\n', "")
+    start = text.index("pressure = [")
+    end = text.index("]\n", text.index("[720,")) + 2
+    angles = [a for a, _ in tomllib.loads(FOUR_CYLINDER.read_text())["engine"]["pressure"]]
+    body = ", ".join(f"[{a}, {c}]" for a, c in zip(angles, cells))
+    return write_scene(text[:start] + f"pressure = [{body}]\n" + text[end:], name)
+
+
+def test_a_table_in_kpa_with_its_peak_alone_in_kpa_is_refused_at_the_jump(main_cli, write_scene):
+    """The same slip in kPa: the plain cells (kPa meant) are pascals of 90-5130 Pa, over 1 kPa, but the peak's
+    neighbours are a thousandth of it; no cylinder pressure changes 300-fold between two points (the table's own
+    largest step is 3.3-fold)."""
+    pressures = [p for _, p in tomllib.loads(FOUR_CYLINDER.read_text())["engine"]["pressure"]]
+    cells = [f'"{p * 100:g} kPa"' if p == 60 else f"{p * 100:g}" for p in pressures]
+    status, out, err = main_cli("check", _mixed(write_scene, cells, "kpa.toml"))
+    assert status == 2 and out == "" and len(err.splitlines()) == 1, err
+    assert "engine.pressure[20]: the pressure 4665.1 is a plain number" in err, err
+    assert "the point beside it, '6000 kPa', differs from it 1.29e+03-fold" in err, err
+
+
+def test_plain_zeros_beside_cells_with_their_unit_are_zeros_in_any_unit(write_scene):
+    """A plain 0 is 0 in every unit: beside cells in bar it is read (as "0 bar" is), not taken for a slip."""
+    pressures = [p for _, p in tomllib.loads(FOUR_CYLINDER.read_text())["engine"]["pressure"]]
+    cells = ["0" if k == 0 else f'"{p} bar"' for k, p in enumerate(pressures)]
+    values = flyopt.load(_mixed(write_scene, cells, "zero.toml")).engine.pressure.values
+    reference = flyopt.load(FOUR_CYLINDER).engine.pressure.values
+    assert values[0] == 0.0 and np.array_equal(values[1:], reference[1:])

@@ -187,9 +187,8 @@ def read_engine(raw: object, files: Path = Path()) -> Engine:
 
 
 def _plain_rows(raw: object, form: str, rows: int) -> npt.NDArray[np.bool_]:
-    """Which of the indicator table's ``rows`` pressures are plain numbers: every one of a CSV file's and of a
-    large inline table's (read as plain numbers), an inline table's cells that carry no unit of their own (as
-    "0.35 N/mm^2" does)."""
+    """Which of the indicator table's ``rows`` pressures are plain numbers: every one of a CSV file's, an inline
+    table's cells that carry no unit of their own (as "0.35 N/mm^2" does)."""
     from flyopt.units import is_plain
 
     if form == "pressure_file" or not isinstance(raw, list):
@@ -197,21 +196,47 @@ def _plain_rows(raw: object, form: str, rows: int) -> npt.NDArray[np.bool_]:
     return np.array([is_plain(pair[1]) for pair in raw], dtype=bool)  # pairs: the table has been read
 
 
+#: The factor between neighbouring pressures of an indicator table, one a plain number (pascals) and the other
+#: with its unit, from which the plain one's unit was left out. No engine's cylinder pressure rises 300-fold from
+#: one point to the next (1 bar to 300 bar, beyond any engine's peak; the shipped tables' largest step is 3.3-fold,
+#: the exhaust valve's opening), and every pressure unit but the pascal is 1000 pascals (kPa) or more.
+PLAIN_JUMP = 300.0
+
+
 def _check_plain_cells(values: npt.NDArray[np.float64], plain: npt.NDArray[np.bool_], raw: list[list[object]]) -> None:
-    """Refuse an inline indicator table without ``pressure_unit`` whose cells with their own unit stand beside
-    plain ones (pascals) that all lie below the plain-stress slip band's top: "60 bar" written on one cell and
-    the rest in bar without a unit read the rest as pascals, a cylinder at vacuum but for one point."""
+    """Refuse an inline indicator table without ``pressure_unit`` whose plain cells (pascals), beside cells with
+    their own unit, cannot be pascals: all of them below the plain-stress slip band's top, or one next to a cell
+    with its unit :data:`PLAIN_JUMP` times it or more. "60 bar" or "6000 kPa" written on the peak alone, the rest
+    in bar or kPa without a unit, read the rest as pascals: a cylinder near vacuum but for one point. A plain zero
+    is the same in every unit and is left out."""
     from flyopt.units import PLAIN_SLIPS
 
     floor = PLAIN_SLIPS["stress"][1]
-    k = int(np.flatnonzero(plain)[np.argmax(values[plain])])
-    if values[k] >= floor:
+    counted = plain & (values != 0.0)
+    if not counted.any():
         return
+    k = int(np.flatnonzero(counted)[np.argmax(values[counted])])
+    if values[k] < floor:
+        why = (
+            f"it is the largest of the table's plain numbers, and below {floor:.6g} Pa, which no engine's cylinder "
+            "pressure is"
+        )
+    else:
+        low, high = np.minimum(values[:-1], values[1:]), np.maximum(values[:-1], values[1:])
+        across = (counted[:-1] & ~plain[1:]) | (counted[1:] & ~plain[:-1])  # a plain cell and one with its unit
+        jumps = np.flatnonzero(across & (low > 0.0) & (high >= PLAIN_JUMP * low))
+        if not len(jumps):
+            return
+        j = int(jumps[0])
+        k, other = (j, j + 1) if plain[j] else (j + 1, j)
+        why = (
+            f"the point beside it, {shorten(raw[other][1])}, differs from it {high[j] / low[j]:.3g}-fold, and no "
+            f"cylinder pressure changes {PLAIN_JUMP:g}-fold from one point to the next"
+        )
     raise SceneError(
         f"engine.pressure[{k}]",
         f"the pressure {shorten(raw[k][1])} is a plain number beside cells that carry their unit, and no "
-        f"pressure_unit is given, so it is {values[k]:.6g} Pa; it is the largest of the table's plain numbers, "
-        f"and below {floor:.6g} Pa, which no engine's cylinder pressure is: give each cell its unit, or give "
+        f"pressure_unit is given, so it is {values[k]:.6g} Pa; {why}: give each cell its unit, or give "
         'pressure_unit (e.g. "bar")',
     )
 
