@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from flyopt.design.castability import WALL_RANGE, WALL_WHY
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, check_magnitude
 
@@ -37,6 +38,8 @@ MAGNITUDES = {
     "tensile_strength": (1e5, 1e11, "Pa", "0.1 MPa to 100 GPa, beyond any material's strength"),
     "yield_strength": (1e5, 1e11, "Pa", "0.1 MPa to 100 GPa, beyond any material's strength"),
     "bearing_pressure": (1e5, 1e11, "Pa", "0.1 MPa to 100 GPa, beyond any material's strength"),
+    # the bounds of design.castability.min_wall (a plain 6 meaning mm is 6 m)
+    "min_wall": (*WALL_RANGE, "m", WALL_WHY),
 }
 
 
@@ -123,10 +126,6 @@ def read_material(item: object, k: int, seen: set[str]) -> Material:
             raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
         if key in MAGNITUDES:
             check_magnitude(value, f"{where}.{key}", table.raw(key), *MAGNITUDES[key])
-        elif key == "min_wall":  # the bounds of design.castability.min_wall: 6 meaning mm is 6 m
-            from flyopt.design.castability import WALL_RANGE, WALL_WHY
-
-            check_magnitude(value, f"{where}.{key}", table.raw(key), *WALL_RANGE, "m", WALL_WHY)
         values[key] = value
     if table.has("hub_rule"):
         from flyopt.design.hub import hub_rules
