@@ -21,7 +21,7 @@ allowable stress of each part) enter as parameters and bounds::
                 hub diameter and length within the textbook proportions and long enough for the key
                 t_web <= B, t_web <= l_hub;  the rim clears the hub;  n arms fit round the hub
 
-Solved by CasADi's sqpmethod (qrqp) with IPOPT behind it wherever the SQP
+Solved by CasADi's sqpmethod (its QPs by DAQP) with IPOPT behind it wherever the SQP
 does not converge, or by IPOPT alone (:data:`SOLVER_OPTION`); either way the
 return status is checked before a wheel is used.
 
@@ -187,7 +187,7 @@ class WheelModel:
             "constraints": sorted(set(self.constraints)),
             "pinned": ["d_mean"] if s.pinned else [],
             "formulation": (
-                f"{'sqpmethod (qrqp), IPOPT where it fails' if self.fast is not None else 'IPOPT'} "
+                f"{'sqpmethod (DAQP), IPOPT where it fails' if self.fast is not None else 'IPOPT'} "
                 "(CasADi nlpsol) on the logarithms of the dimensions; every part "
                 "counted in J and mass; stresses by the stepped-disc solution at "
                 f"{len(SAMPLES)} radii per part, verified by the exact maxima"
@@ -202,7 +202,7 @@ class WheelModel:
 WHEEL_SOLVER_OPTIONS = {"ipopt.max_iter": 1000}
 
 #: The solver option that chooses the whole wheel's solver: "sqpmethod" (the default), CasADi's SQP
-#: with its dense active-set QP solver qrqp, its status checked, and IPOPT on the same NLP wherever it
+#: with the dense active-set QP solver DAQP (:data:`QP_SOLVER`), its status checked, and IPOPT on the same NLP wherever it
 #: does not converge (IPOPT also proves a wheel infeasible, which an SQP cannot), so it answers every
 #: wheel IPOPT answers; or "ipopt", IPOPT alone: the reference the tests hold sqpmethod to
 #: (tests/design/test_wheel_nlp.py: the objective to 1e-9 on random wheels of every structure, the
@@ -216,18 +216,35 @@ SOLVER_OPTION = WHEEL_SOLVER
 #: The whole wheel's solver where the options do not choose one (:data:`SOLVER_OPTION`).
 DEFAULT_SOLVER = "sqpmethod"
 
-#: The most iterations qrqp spends on one QP of the SQP. Every QP of the shipped whole-wheel scenes'
-#: Pareto fronts and 40-point δ sweeps that converged took at most 29 (1158 QPs; 8-13 typically); the 48
-#: that did not were cycling on one degenerate bound ("Dropped lbz for regularity" / "Enforced lbz to reduce
-#: |du|" on the same row, turn about) until the cap. sqpmethod takes a capped QP's step as it is and goes on
-#: (the SQP then ends in Search_Direction_Becomes_Too_Small, or converges): only its status and a KKT point
-#: (:func:`_solve_fast`) give a wheel, else the solve goes on from the next start or by IPOPT, as before. At
-#: CasADi's 100 such a QP cost 7-50 ms, some 9 ms of every 22 ms of a Pareto point
-#: (benchmarks/results/wheel.md).
-QP_MAX_ITER = 40
+#: sqpmethod's QP solver for the wheel NLP: DAQP, a dual active-set method for small dense QPs (CasADi's
+#: daqp plugin, in CasADi's wheels since 3.7). On the shipped scenes' sweeps it solves each QP in about 0.01 ms
+#: against qrqp's 0.3-0.7 ms, most of a warm-started solve before it (benchmarks/results/wheel.md).
+#: Its tolerances are set below sqpmethod's 1e-10, so a QP never takes as met a row the SQP does not; and
+#: its zero_tol (what it takes for zero in its factorisation and steps) to 1e-15: at DAQP's default the
+#: grey-iron arms wheel's SQP stalled with one row 4.8e-10 off its bound, step after step, until its 100
+#: iterations (12 of a 40-point sweep's 94 solves), where qrqp met it to 4e-16.
+QP_SOLVER = "daqp"
+QP_OPTIONS: dict[str, Any] = {
+    "error_on_fail": False,
+    "daqp": {"primal_tol": 1e-14, "dual_tol": 1e-14, "zero_tol": 1e-15},
+}
 
-#: sqpmethod's options for the wheel NLP: exact Hessian clipped to positive definite (qrqp needs a
-#: convex QP; without it 6 of the 48 wheels failed, with it 3), the rows met to 1e-10 as IPOPT's tol.
+#: The smallest eigenvalue sqpmethod leaves in its Hessian (eigen-clip; CasADi's default 1e-7). DAQP works
+#: on the Cholesky factor of the Hessian, whose condition then reached 1e7 and more: its multipliers carried
+#: errors of 1e-9, and the SQP, which asks 1e-10 of stationarity, ended in Search_Direction_Becomes_Too_Small
+#: or its 100 iterations on nearly every wheel (573 of a sweep's 580 solves). The Hessian of log mass in the
+#: logarithms of the dimensions is of order one, so 1e-4 raises only its near-null directions: the converged
+#: wheel is the same KKT point (the objectives to 1e-11 of qrqp's on the sweep), it only changes the path.
+CONVEXIFY_MARGIN = 1e-4
+
+#: sqpmethod stops with Search_Direction_Becomes_Too_Small below this step (CasADi's default 1e-10). A
+#: step of 1e-12 is what the last iterations take while the multipliers settle to the 1e-10 asked of them;
+#: stopping there (half the warm-started solves of a sweep) sent the wheel to a cold solve or IPOPT. Its
+#: own tests (rows and stationarity to 1e-10, :func:`_solve_fast`'s complementarity) still decide.
+MIN_STEP = 1e-16
+
+#: sqpmethod's options for the wheel NLP: exact Hessian clipped to positive definite (the QP must be
+#: convex), the rows met to 1e-10 as IPOPT's tol.
 SQP_OPTIONS: dict[str, Any] = {
     "print_time": False,
     "error_on_fail": False,
@@ -235,9 +252,11 @@ SQP_OPTIONS: dict[str, Any] = {
     "print_iteration": False,
     "print_status": False,
     "show_eval_warnings": False,  # a NaN on a trial step is its failure, which IPOPT then answers
-    "qpsol": "qrqp",
-    "qpsol_options": {"print_iter": False, "print_header": False, "error_on_fail": False, "max_iter": QP_MAX_ITER},
+    "qpsol": QP_SOLVER,
+    "qpsol_options": QP_OPTIONS,
     "convexify_strategy": "eigen-clip",
+    "convexify_margin": CONVEXIFY_MARGIN,
+    "min_step_size": MIN_STEP,
     "max_iter": 100,
     "tol_pr": 1e-10,
     "tol_du": 1e-10,
@@ -726,16 +745,21 @@ def _solve_fast(fast, args):
 
     sqpmethod tests feasibility and stationarity, not complementarity (:func:`_complementary`): a stale
     multiplier passed in a warm start (a row the new problem leaves slack) makes the start look stationary,
-    and a QP stopped at qrqp's cap (:data:`QP_MAX_ITER`) is a step sqpmethod takes as it is, so a status of
+    and a QP stopped short (at its iteration cap, or cycling) is a step sqpmethod takes as it is, so a status of
     convergence is kept only where every nonzero multiplier also sits on its bound.
     """
     try:
         sol = fast(**args)
+        # (CasADi 3.8's sqpmethod cannot name some of its stops, e.g. a QP step to an overflowing row: its
+        # stats then raise, and the solve is one that did not converge)
+        stats = fast.stats()
     except RuntimeError:
         return None, {}, None
-    stats = fast.stats()
     if stats.get("success") and stats.get("return_status") in CONVERGED:
         values = _values(sol)
+        # DAQP meets a bound to its primal_tol, so a wheel on a bound may sit 1e-12 beyond it: put it on it
+        # (sqpmethod's own test was 1e-10), as the same wheel is when it starts the next point's solve
+        values["x"] = [min(max(v, lo), hi) for v, lo, hi in zip(values["x"], args["lbx"], args["ubx"])]
         if _complementary(values, args):
             return sol, stats, values
     return None, stats, None
