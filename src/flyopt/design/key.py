@@ -607,19 +607,32 @@ def hub_length_for_key(
     torque = _positive(torque, "torque", "N*m")
     d = _positive(d, "shaft diameter d", "m")
     allowable_pressure, allowable_shear = _allowables(allowable_pressure, allowable_shear)
+    length, why = _hub_length_or_why(torque, d, allowable_pressure, allowable_shear)
+    if length is None:
+        raise ValueError(why)
+    return length
+
+
+@functools.lru_cache(maxsize=256)
+def _hub_length_or_why(
+    torque: float, d: float, allowable_pressure: float | None, allowable_shear: float
+) -> tuple[float | None, str | None]:
+    """(:func:`hub_length_for_key`'s answer, None), or (None, why no key carries the torque), of checked
+    arguments. Kept per arguments: a design screens every combination's hub at the same torque and seat,
+    a dozen calls a sweep point."""
     key = key_for_shaft(d)
     lengths = _seat_lengths(key, d)
     for length in lengths:
         _, pressure, shear = _key_stresses(torque, d, key, length)
         if _within(pressure, allowable_pressure) and _within(shear, allowable_shear):
-            return length
+            return length, None
     _, pressure, shear = _key_stresses(torque, d, key, lengths[-1])
     against = (
         "not checked"
         if allowable_pressure is None
         else said("against {allowed}", allowed=(allowable_pressure, "stress", f"{allowable_pressure / 1e6:.4g} MPa"))
     )
-    raise ValueError(
+    return None, (
         said("torque {torque}: even the longest ", torque=(torque, "torque", f"{torque:.4g} N·m"))
         + key.size
         + said(

@@ -52,7 +52,6 @@ from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import casadi as ca
-import numpy as np
 
 from flyopt.design import castability, wheel
 from flyopt.design.nlp import CONVERGED, WHEEL_SOLVER, cached_model
@@ -683,12 +682,14 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     lam_g: dict = {}
     # a row off both its bounds has no multiplier: an interior point method leaves mu/slack there
     # (1e-9 on a 16.5 mm hub wall whose minimum is 8 mm), which would read as a binding limit
-    active = _active(values["g"], args["lbg"], args["ubg"])
-    for name, lam, on in zip(model.constraints, values["lam_g"], active.tolist()):
-        lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if on else 0.0)
+    for name, lam, g, lo, hi in zip(model.constraints, values["lam_g"], values["g"], args["lbg"], args["ubg"]):
+        if lam != 0.0:  # (a zero adds nothing: the sums start at +0.0)
+            lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if _on_either(g, lo, hi, ACTIVE_ROW) else 0.0)
+        else:
+            lam_g.setdefault(name, 0.0)
     lam_x = {
-        n: float(v) if on else 0.0
-        for n, v, on in zip(names, values["lam_x"], _active(xs, args["lbx"], args["ubx"]).tolist())
+        n: float(v) if _on_either(x, lo, hi, ACTIVE_ROW) else 0.0
+        for n, v, x, lo, hi in zip(names, values["lam_x"], xs, args["lbx"], args["ubx"])
     }
     lam_p = {n: float(v) for n, v in zip(PARAMETERS, values["lam_p"])}
     for part, v in zip(model.stress_parts, values["lam_p"][len(PARAMETERS) :]):
@@ -716,22 +717,23 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
 ACTIVE_ROW = 1e-6
 
 
-def _active(values: Sequence[float], lower: Sequence[float], upper: Sequence[float]) -> np.ndarray:
-    """Which rows or variables at ``values`` meet one of their bounds to :data:`ACTIVE_ROW` (booleans)."""
-    near_lower, near_upper = _on_bounds(values, lower, upper, ACTIVE_ROW)
-    return near_lower | near_upper
+def _on_bound(value: float, bound: float, tol: float) -> bool:
+    """Whether ``value`` meets ``bound`` to ``tol``, relative to the bound (absolute below 1); an infinite
+    bound is never met. (Plain floats, element by element: the vectors are a few dozen long, and most
+    multipliers are zero and need no test, where numpy's per-call cost was most of a sweep point's
+    bookkeeping.)"""
+    return math.isfinite(bound) and abs(value - bound) <= tol * max(1.0, abs(bound))
 
 
-def _on_bounds(
-    values: Sequence[float], lower: Sequence[float], upper: Sequence[float], tol: float
-) -> tuple[np.ndarray, np.ndarray]:
-    """(at its lower bound, at its upper bound) of each value to ``tol``, relative to the bound (absolute
-    below 1); an infinite bound is never met."""
-    v, lo, hi = (np.asarray(a, dtype=float) for a in (values, lower, upper))
-    with np.errstate(invalid="ignore"):  # inf - inf where a bound is infinite: masked out
-        near_lower = np.isfinite(lo) & (np.abs(v - lo) <= tol * np.maximum(1.0, np.abs(lo)))
-        near_upper = np.isfinite(hi) & (np.abs(v - hi) <= tol * np.maximum(1.0, np.abs(hi)))
-    return near_lower, near_upper
+def _on_either(value: float, lower: float, upper: float, tol: float) -> bool:
+    """Whether a row or variable meets one of its bounds to ``tol`` (:func:`_on_bound`)."""
+    return _on_bound(value, lower, tol) or _on_bound(value, upper, tol)
+
+
+def _on_named(lam: float, value: float, lower: float, upper: float, tol: float) -> bool:
+    """Whether a row or variable meets the bound its multiplier's sign names (> 0 the upper, < 0 the lower,
+    CasADi's convention) to ``tol``; never for a zero (or NaN) multiplier."""
+    return (lam > 0 and _on_bound(value, upper, tol)) or (lam < 0 and _on_bound(value, lower, tol))
 
 
 def _clipped(wheel_dims: Mapping[str, float], names: Sequence[str], args: Mapping[str, Any]) -> list[float]:
@@ -811,19 +813,16 @@ def _warm_duals(model: WheelModel, args: Mapping[str, Any]) -> dict[str, list[fl
     rows = model.rows(args["x0"], args["p"]).nonzeros()
     lam_x, lam_g = kept
     return {
-        "lam_x0": _active_at(lam_x, args["x0"], args["lbx"], args["ubx"], ACTIVE_ROW).tolist(),
-        "lam_g0": _active_at(lam_g, rows, args["lbg"], args["ubg"], ACTIVE_ROW).tolist(),
+        "lam_x0": _active_at(lam_x, args["x0"], args["lbx"], args["ubx"], ACTIVE_ROW),
+        "lam_g0": _active_at(lam_g, rows, args["lbg"], args["ubg"], ACTIVE_ROW),
     }
 
 
 def _active_at(
     lams: Sequence[float], values: Sequence[float], lower: Sequence[float], upper: Sequence[float], tol: float
-) -> np.ndarray:
-    """Each multiplier where its value meets the bound its sign names (> 0 the upper, < 0 the lower,
-    CasADi's convention) to ``tol`` (:func:`_on_bounds`), else 0."""
-    lam = np.asarray(lams, dtype=float)
-    near_lower, near_upper = _on_bounds(values, lower, upper, tol)
-    return np.where(((lam > 0) & near_upper) | ((lam < 0) & near_lower), lam, 0.0)
+) -> list[float]:
+    """Each multiplier where its value meets the bound its sign names to ``tol`` (:func:`_on_named`), else 0."""
+    return [float(lam) if _on_named(lam, v, lo, hi, tol) else 0.0 for lam, v, lo, hi in zip(lams, values, lower, upper)]
 
 
 #: A converged multiplier's row (or variable) meets its bound to this: ten times sqpmethod's tol_pr.
@@ -832,12 +831,13 @@ COMPLEMENTARY = 1e-9
 
 def _complementary(values: Mapping[str, list[float]], args: Mapping[str, Any]) -> bool:
     """Whether every nonzero multiplier of a solution sits on the bound its sign names to
-    :data:`COMPLEMENTARY` (:func:`_active_at`): with sqpmethod's own tests (feasibility, stationarity) the
+    :data:`COMPLEMENTARY` (:func:`_on_named`): with sqpmethod's own tests (feasibility, stationarity) the
     wheel is then a KKT point of this NLP."""
     for at, lams, lower, upper in (
         (values["x"], values["lam_x"], args["lbx"], args["ubx"]),
         (values["g"], values["lam_g"], args["lbg"], args["ubg"]),
     ):
-        if not np.array_equal(_active_at(lams, at, lower, upper, COMPLEMENTARY), np.asarray(lams, dtype=float)):
-            return False
+        for lam, v, lo, hi in zip(lams, at, lower, upper):
+            if lam != 0.0 and not _on_named(lam, v, lo, hi, COMPLEMENTARY):  # (a NaN is neither)
+                return False
     return True
