@@ -2,7 +2,7 @@
 
 This is the independent check of a design (the NLP writes its stress rows at
 a few radii; here the maximum of each disc part is found in closed form,
-:func:`flyopt.design.stress.max_stress_per_step`), and the source of
+:func:`flyopt.design.stress.max_stresses_per_step`), and the source of
 the stress fields of every design flyopt reports, whichever criterion sized it.
 
 The allowable stress of a part is the material's
@@ -217,10 +217,9 @@ def check_wheel(
     elif coefficients:
         # a stepped disc: each measure's maximum over each step, in closed form (the governing
         # measure's per part, every measure's for the report)
-        found = {
-            m: stress.max_stress_per_step(coefficients, radii, rho, nu, omega, m)
-            for m in ("von_mises", "largest_principal", "hoop", "radial")
-        }
+        found = stress.max_stresses_per_step(
+            coefficients, radii, rho, nu, omega, ("von_mises", "largest_principal", "hoop", "radial")
+        )
         for step_max in found[measure]:
             note(state.names[step_max.step], step_max.value, step_max.radius)
         vm = max(vm, *(f.value for f in found["von_mises"]))

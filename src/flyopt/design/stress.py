@@ -706,39 +706,60 @@ def max_stress_per_step(
     ValueError
         For an unknown measure (naming the closest one).
     """
-    if measure not in MEASURES:
-        raise ValueError(f"stress measure {unknown(measure, MEASURES)}")
+    return max_stresses_per_step(coefficients, radii, density, poisson, omega, (measure,))[measure]
+
+
+def max_stresses_per_step(
+    coefficients: Any, radii: Any, density: Any, poisson: Any, omega: Any, measures: Sequence[str]
+) -> dict[str, list[StepMaximum]]:
+    """:func:`max_stress_per_step` of several measures at once, by measure: each step's stresses at its
+    edges are found once for all of them (a whole wheel's strength check asks for all four)."""
+    for measure in measures:
+        if measure not in MEASURES:
+            raise ValueError(f"stress measure {unknown(measure, MEASURES)}")
     density, poisson, omega = float(density), float(poisson), float(omega)
     alpha, beta = _spin_factors(density, poisson, omega)
 
-    def value(c, r):
+    def at(c, r):
         sr, st = disc_stresses(c, density, poisson, omega, r)
-        if measure == "von_mises":
-            return float(von_mises(sr, st))
-        if measure == "radial":
-            return float(sr)
-        if measure == "hoop":
-            return float(st)
-        return float(max(sr, st))
+        return float(sr), float(st)
 
     radii = [float(r) for r in _items(radii)]
     steps = [(float(c[0]), 0.0 if _is_structural_zero(c[1]) else float(c[1])) for c in coefficients]
-    # von Mises: every step's stationarity quartic, their roots found together (one eigvals call per size)
-    if measure == "von_mises":
-        quartics = [_von_mises_quartic(c, alpha, beta, radii[i + 1] ** 2) for i, c in enumerate(steps)]
-        roots = _roots(quartics)
-    else:
-        quartics, roots = [None] * len(steps), [None] * len(steps)
-    result = []
-    for i, c in enumerate(steps):
-        low, high = radii[i], radii[i + 1]
-        best = StepMaximum(value(c, low), i, low)
-        for r in (*_stationary_radii(c, alpha, beta, low, high, measure, quartics[i], roots[i]), high):
-            v = value(c, r)
+    edges = [(at(c, radii[i]), at(c, radii[i + 1])) for i, c in enumerate(steps)]
+    found: dict[str, list[StepMaximum]] = {}
+    for measure in measures:
+        # von Mises: every step's stationarity quartic, their roots found together (one eigvals call per size)
+        if measure == "von_mises":
+            quartics = [_von_mises_quartic(c, alpha, beta, radii[i + 1] ** 2) for i, c in enumerate(steps)]
+            roots = _roots(quartics)
+        else:
+            quartics, roots = [None] * len(steps), [None] * len(steps)
+        result = []
+        for i, c in enumerate(steps):
+            low, high = radii[i], radii[i + 1]
+            best = StepMaximum(_measured(measure, *edges[i][0]), i, low)
+            for r in _stationary_radii(c, alpha, beta, low, high, measure, quartics[i], roots[i]):
+                v = _measured(measure, *at(c, r))
+                if v > best.value:
+                    best = StepMaximum(v, i, r)
+            v = _measured(measure, *edges[i][1])
             if v > best.value:
-                best = StepMaximum(v, i, r)
-        result.append(best)
-    return result
+                best = StepMaximum(v, i, high)
+            result.append(best)
+        found[measure] = result
+    return found
+
+
+def _measured(measure: str, sr: float, st: float) -> float:
+    """A stress measure (:data:`MEASURES`) of a radial and a hoop stress [Pa]."""
+    if measure == "von_mises":
+        return float(von_mises(sr, st))
+    if measure == "radial":
+        return sr
+    if measure == "hoop":
+        return st
+    return max(sr, st)
 
 
 def _von_mises_quartic(c, alpha, beta, u_high):
