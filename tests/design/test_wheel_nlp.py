@@ -1158,3 +1158,16 @@ def test_a_trial_point_beyond_floating_point_leaves_the_terminal_silent(capfd):
     model.solver(**{**args, "x0": np.full(n, 5.0), "lbx": np.full(n, -np.inf), "ubx": np.full(n, np.inf)})
     assert model.solver.stats()["return_status"] == "Solve_Succeeded"
     assert capfd.readouterr() == ("", "")
+
+
+def test_a_problem_changed_in_place_of_replace_is_replaces():
+    """wheel_design._with (a copy with fields set, for speed) gives what dataclasses.replace gives, and
+    refuses a field the problem does not have as replace does."""
+    _, problem = random_wheel(7)
+    changes = {"warm": {"d_outer": 0.5}, "caps": {"h": 0.1}, "ipopt_first": True}
+    assert wheel_design._with(problem, **changes) == dataclasses.replace(problem, **changes)
+    assert problem.warm is None  # the original is untouched
+    with pytest.raises(TypeError):
+        wheel_design._with(problem, no_such_field=1)
+    with pytest.raises(TypeError):
+        dataclasses.replace(problem, no_such_field=1)

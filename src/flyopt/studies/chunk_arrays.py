@@ -95,7 +95,12 @@ class ChunkInputs:
 
 
 def point_material(base: Material, density: float, speed: float, cost: float = math.nan) -> Material:
-    """The scene's material with a point's density, rim speed and cost (NaN or negative: the scene's own)."""
+    """The scene's material with a point's density, rim speed and cost (NaN or negative: the scene's own);
+    the scene's material itself where the point changes none of them (a sweep that varies no material)."""
+    same_speed = math.isnan(speed) or speed < 0 or (type(base.max_rim_speed) is float and speed == base.max_rim_speed)
+    same_cost = math.isnan(cost) or (type(base.cost) is float and cost == base.cost)
+    if type(base.density) is float and float(density) == base.density and same_speed and same_cost:
+        return base
     return dataclasses.replace(
         base,
         density=float(density),
