@@ -802,7 +802,7 @@ def write(
         "re-solve it asks for and the structural fields. The target's 'median over the shipped scenes and 50 "
         "random ones' is met by designs for the scenes and by NLP solves for the random wheels, which are NLPs "
         "without a scene to design them from (the flyopt-default row holds both).",
-        "- flyopt's default (the flyopt-default row) is sqpmethod with qrqp, the Hessian clipped to positive "
+        "- flyopt's default (the flyopt-default row) is sqpmethod with DAQP (qrqp before 2026-12-01), the Hessian clipped to positive "
         "definite, its status checked, and IPOPT on the same NLP wherever it does not converge (and to prove a "
         "wheel infeasible, which an SQP cannot), so it answers every wheel IPOPT answers. Alone, sqpmethod "
         "without convexification (the sqp-qrqp rows) fails on some wheels and takes seconds on others. "

@@ -1160,9 +1160,13 @@ def test_a_trial_point_beyond_floating_point_leaves_the_terminal_silent(capfd):
     assert capfd.readouterr() == ("", "")
 
 
-def test_a_problem_changed_in_place_of_replace_is_replaces():
+def test_a_problem_copied_with_fields_set_is_replaces_copy():
     """wheel_design._with (a copy with fields set, for speed) gives what dataclasses.replace gives, and
-    refuses a field the problem does not have as replace does."""
+    refuses a field the problem does not have as replace does. It may, because WheelProblem has nothing that
+    replace would run and a copy would not: no __post_init__, no init=False field, no slots."""
+    assert not hasattr(wheel_nlp.WheelProblem, "__post_init__")
+    assert not hasattr(wheel_nlp.WheelProblem, "__slots__")
+    assert all(f.init for f in dataclasses.fields(wheel_nlp.WheelProblem))
     _, problem = random_wheel(7)
     changes = {"warm": {"d_outer": 0.5}, "caps": {"h": 0.1}, "ipopt_first": True}
     assert wheel_design._with(problem, **changes) == dataclasses.replace(problem, **changes)
