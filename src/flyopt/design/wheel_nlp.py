@@ -201,8 +201,8 @@ class WheelModel:
 WHEEL_SOLVER_OPTIONS = {"ipopt.max_iter": 1000}
 
 #: The solver option that chooses the whole wheel's solver: "sqpmethod" (the default), CasADi's SQP
-#: with the dense active-set QP solver DAQP (:data:`QP_SOLVER`), its status checked, and IPOPT on the same NLP wherever it
-#: does not converge (IPOPT also proves a wheel infeasible, which an SQP cannot), so it answers every
+#: with the dense active-set QP solver DAQP (:data:`QP_SOLVER`), its status checked, and IPOPT on the same
+#: NLP wherever it does not converge (IPOPT also proves a wheel infeasible, which an SQP cannot), so it answers every
 #: wheel IPOPT answers; or "ipopt", IPOPT alone: the reference the tests hold sqpmethod to
 #: (tests/design/test_wheel_nlp.py: the objective to 1e-9 on random wheels of every structure, the
 #: shipped scenes' designs to 1e-8). sqpmethod is the default since castability (issue 28) gave each
@@ -685,10 +685,8 @@ def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution
     # a row off both its bounds has no multiplier: an interior point method leaves mu/slack there
     # (1e-9 on a 16.5 mm hub wall whose minimum is 8 mm), which would read as a binding limit
     for name, lam, g, lo, hi in zip(model.constraints, values["lam_g"], values["g"], args["lbg"], args["ubg"]):
-        if lam != 0.0:  # (a zero adds nothing: the sums start at +0.0)
-            lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if _on_either(g, lo, hi, ACTIVE_ROW) else 0.0)
-        else:
-            lam_g.setdefault(name, 0.0)
+        on = lam != 0.0 and _on_either(g, lo, hi, ACTIVE_ROW)  # (a zero adds nothing: the sums start at +0.0)
+        lam_g[name] = lam_g.get(name, 0.0) + (float(lam) if on else 0.0)
     lam_x = {
         n: float(v) if _on_either(x, lo, hi, ACTIVE_ROW) else 0.0
         for n, v, x, lo, hi in zip(names, values["lam_x"], xs, args["lbx"], args["ubx"])
@@ -740,7 +738,12 @@ def _on_named(lam: float, value: float, lower: float, upper: float, tol: float) 
 
 def _clipped(wheel_dims: Mapping[str, float], names: Sequence[str], args: Mapping[str, Any]) -> list[float]:
     """The logarithms of a wheel's dimensions by variable name, clipped to the NLP's bounds in ``args``."""
-    return [min(max(math.log(wheel_dims[n]), lo), hi) for n, lo, hi in zip(names, args["lbx"], args["ubx"])]
+    return _clip([math.log(wheel_dims[n]) for n in names], args)
+
+
+def _clip(xs: Sequence[float], args: Mapping[str, Any]) -> list[float]:
+    """The NLP's variables ``xs`` clipped to its bounds in ``args``."""
+    return [min(max(x, lo), hi) for x, lo, hi in zip(xs, args["lbx"], args["ubx"])]
 
 
 def _solve_fast(fast, args):
@@ -765,7 +768,7 @@ def _solve_fast(fast, args):
         # 2.4e-12): put it on it, as the same wheel is when it starts the next point's solve. Only within the
         # SQP's own tolerance: a wheel further out is not its converged answer. (Its objective, sol["f"], is
         # that of the iterate, to the same 1e-12.)
-        clipped = [min(max(v, lo), hi) for v, lo, hi in zip(values["x"], args["lbx"], args["ubx"])]
+        clipped = _clip(values["x"], args)
         if any(abs(c - v) > SQP_OPTIONS["tol_pr"] for c, v in zip(clipped, values["x"])):
             return None, stats, None
         values["x"] = clipped
