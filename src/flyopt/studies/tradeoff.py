@@ -24,10 +24,8 @@ if TYPE_CHECKING:  # the annotations only
 
 __all__ = ["TRADEOFF_COLUMNS", "material_tradeoff"]
 
-TRADEOFF_COLUMNS = (
-    "material",
-    "status",
-    "shaft",
+#: The trade-off's columns that hold numbers (floats; NaN for a material with no design).
+_NUMBER_COLUMNS = (
     "speed_ratio",
     "d_outer",
     "d_mean",
@@ -38,6 +36,13 @@ TRADEOFF_COLUMNS = (
     "rim_speed_limit",
     "mass",
     "cost",
+)
+
+TRADEOFF_COLUMNS = (
+    "material",
+    "status",
+    "shaft",
+    *_NUMBER_COLUMNS,
     "binding",
     "limit",
     "reason",
@@ -140,18 +145,7 @@ def material_tradeoff(
     # the reasons as objects: a column of pandas' strings keeps the text and loses a reason's quantities, which
     # the command line says in the reader's units (flyopt.said)
     table["reason"] = pd.Series([row["reason"] for row in rows], dtype=object)
-    for column in (
-        "speed_ratio",
-        "d_outer",
-        "d_mean",
-        "h",
-        "b",
-        "hb_ratio",
-        "rim_speed",
-        "rim_speed_limit",
-        "mass",
-        "cost",
-    ):
+    for column in _NUMBER_COLUMNS:
         table[column] = pd.to_numeric(table[column]).astype(float)
     # the designed materials in the order of flyopt's one ranking rule, then the others
     ranked = [c.material for c in rank.ranking(list(bests.values()))]
