@@ -20,7 +20,26 @@ if TYPE_CHECKING:
     from flyopt.design.materials import Material
     from flyopt.io.scene import Scene
 
-__all__ = ["ChunkInputs", "PerName", "empty_results", "point_material", "result_table"]
+__all__ = ["WINNER_COLUMNS", "ChunkInputs", "PerName", "empty_results", "point_material", "result_table"]
+
+#: The result columns a point's winner fills under their own names: a design's
+#: (:class:`~flyopt.design.result.Design`, its dimensions' or its stresses') and the closed form's arrays
+#: (:class:`~flyopt.design.closed_form.Designs`) alike, so that IPOPT's rows
+#: (:func:`flyopt.studies.ipopt_design.fill_row`) and the closed form's
+#: (:func:`flyopt.studies.closed_form_design.design_closed_form`) fill the same columns.
+WINNER_COLUMNS = (
+    "d_mean",
+    "d_outer",
+    "d_inner",
+    "h",
+    "b",
+    "hb_ratio",
+    "mass",
+    "rim_speed",
+    "hoop_stress",
+    "j_flywheel",
+    "j_at_reference",
+)
 
 
 class ChunkInputs:

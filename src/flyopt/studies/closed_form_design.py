@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 from flyopt.design import closed_form as batch
 from flyopt.design import rank
 from flyopt.design.check import binding_names
-from flyopt.studies.chunk_arrays import ChunkInputs
+from flyopt.studies.chunk_arrays import WINNER_COLUMNS, ChunkInputs
 
 __all__ = ["design_closed_form"]
 
@@ -112,19 +112,7 @@ def _design_group(
         res["best_material"][q] = np.asarray(mats, dtype=object)[mi[w]]
         res["best_shaft"][q] = np.asarray(shafts, dtype=object)[si[w]]
         res["best_speed_ratio"][q] = ratio[w]
-        for name in (
-            "d_mean",
-            "d_outer",
-            "d_inner",
-            "h",
-            "b",
-            "hb_ratio",
-            "mass",
-            "rim_speed",
-            "hoop_stress",
-            "j_flywheel",
-            "j_at_reference",
-        ):
+        for name in WINNER_COLUMNS:
             res[name][q] = out[name][w]
         res["j_required_on_shaft"][q] = out.j_shaft[w]
         res["d_outer_limit"][q] = out.cap[w]

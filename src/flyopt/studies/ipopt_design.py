@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from flyopt.errors import SolverFailed
-from flyopt.studies.chunk_arrays import ChunkInputs, point_material
+from flyopt.studies.chunk_arrays import WINNER_COLUMNS, ChunkInputs, point_material
 
 if TYPE_CHECKING:
     from flyopt.design.result import DesignResult
@@ -103,18 +103,9 @@ def fill_row(res: dict[str, np.ndarray], k: int, result: DesignResult) -> None:
     res["best_shaft"][k] = best.shaft
     res["best_speed_ratio"][k] = best.speed_ratio
     dims, stresses, limits = best.dims, best.stresses, best.limits
+    for name in WINNER_COLUMNS:  # each the design's own, its dimensions' or its stresses'
+        res[name][k] = next(getattr(record, name) for record in (best, dims, stresses) if hasattr(record, name))
     values = {
-        "d_mean": dims.d_mean,
-        "d_outer": dims.d_outer,
-        "d_inner": dims.d_inner,
-        "h": dims.h,
-        "b": dims.b,
-        "hb_ratio": dims.hb_ratio,
-        "mass": best.mass,
-        "rim_speed": stresses.rim_speed,
-        "hoop_stress": stresses.hoop_stress,
-        "j_flywheel": best.j_flywheel,
-        "j_at_reference": best.j_at_reference,
         "j_required_on_shaft": limits.j_required_on_shaft,
         "d_outer_limit": limits.d_outer_limit,
         "rim_speed_limit": limits.rim_speed_limit,
