@@ -48,6 +48,23 @@ VERIFY_RTOL = 1e-6
 # ------------------------------------------------------------------------------
 
 
+def _add_piece(
+    e: Fraction, high: Fraction, low: Fraction, a: Fraction, b: Fraction, h: Fraction
+) -> tuple[Fraction, Fraction, Fraction]:
+    """ΔE and its running extremes after one piece of a linear excess torque, exactly.
+
+    ``e``, ``high``, ``low``: ΔE at the piece's start and its largest and smallest so far [J]; ``a``, ``b``: the
+    excess torque at the piece's ends [N*m]; ``h``: its width [rad]. Where the torque changes sign inside the
+    piece (at t = a/(a − b) of it), ΔE has an extreme there.
+    """
+    if a * b < 0:
+        t = a / (a - b)
+        c = e + a * t * h / 2
+        high, low = max(high, c), min(low, c)
+    e += (a + b) * h / 2
+    return e, max(high, e), min(low, e)
+
+
 def exact_a_max_against_mean(x: Iterable[float], y: Iterable[float]) -> Fraction:
     """A_max of a table against the constant that balances its work, exactly.
 
@@ -73,13 +90,7 @@ def exact_a_max_against_mean(x: Iterable[float], y: Iterable[float]) -> Fraction
     mean = work / (xs[-1] - xs[0])
     e, high, low = Fraction(0), Fraction(0), Fraction(0)
     for k in range(len(xs) - 1):
-        a, b, h = mean - ys[k], mean - ys[k + 1], xs[k + 1] - xs[k]
-        if a * b < 0:
-            t = a / (a - b)
-            c = e + a * t * h / 2
-            high, low = max(high, c), min(low, c)
-        e += (a + b) * h / 2
-        high, low = max(high, e), min(low, e)
+        e, high, low = _add_piece(e, high, low, mean - ys[k], mean - ys[k + 1], xs[k + 1] - xs[k])
     return high - low
 
 
@@ -110,13 +121,7 @@ def exact_a_max_tables(
     for p, q in zip(knots[:-1], knots[1:]):
         a = at(xs_d, ys_d, p, "right") - at(xs_r, ys_r, p, "right")
         b = at(xs_d, ys_d, q, "left") - at(xs_r, ys_r, q, "left")
-        h = q - p
-        if a * b < 0:
-            t = a / (a - b)
-            c = e + a * t * h / 2
-            high, low = max(high, c), min(low, c)
-        e += (a + b) * h / 2
-        high, low = max(high, e), min(low, e)
+        e, high, low = _add_piece(e, high, low, a, b, q - p)
     return high - low, e
 
 
