@@ -42,11 +42,8 @@ def add_export_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run_export(args: argparse.Namespace) -> int:
     """``flyopt export``: 0 written, 2 a bad request or no flywheel needed, 3 infeasible."""
-    from pathlib import Path
-
-    from flyopt.errors import SceneError
     from flyopt.io.scene import load
-    from flyopt.outputs.files import check_folder
+    from flyopt.outputs.files import check_folder, check_not_scene
     from flyopt.report.drawing import (
         NoWheel,
         design_of_scene,
@@ -58,8 +55,7 @@ def run_export(args: argparse.Namespace) -> int:
 
     kind = export_format(args.output)
     check_folder(args.output, "-o/--output")
-    if Path(args.output).resolve() == Path(args.scene).resolve():
-        raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: name another file for the drawing")
+    check_not_scene(args.output, args.scene, "the drawing")
     if kind in ("dxf", "step"):
         from flyopt.outputs.drawing import require_ezdxf
         from flyopt.outputs.solid import require_ocp

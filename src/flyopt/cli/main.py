@@ -195,17 +195,12 @@ def _printed_to_file(handler: Callable[[argparse.Namespace], int]) -> Callable[[
     def run_to_file(args: argparse.Namespace) -> int:
         if args.output is None:
             return handler(args)
-        from pathlib import Path
-
-        from flyopt.errors import SceneError
-        from flyopt.outputs.files import check_folder, write_text
+        from flyopt.outputs.files import check_folder, check_not_scene, write_text
 
         check_folder(args.output, "-o/--output")
         scene = getattr(args, "scene", None)
-        if scene is not None and Path(args.output).resolve() == Path(scene).resolve():
-            raise SceneError(
-                "-o/--output", f"{args.output!r} is the scene file itself: name another file for the result"
-            )
+        if scene is not None:
+            check_not_scene(args.output, scene, "the result")
         printed = io.StringIO()
         with contextlib.redirect_stdout(printed):
             status = handler(args)

@@ -93,15 +93,12 @@ def output_kind(path: str | os.PathLike[str]) -> str:
 def run_report(args: argparse.Namespace) -> int:
     """``flyopt report``: 0 written, 3 infeasible (written), 4 verification flagged (written)."""
     import sys
-    from pathlib import Path
 
-    from flyopt.errors import SceneError
-    from flyopt.outputs.files import check_folder
+    from flyopt.outputs.files import check_folder, check_not_scene
 
     kind = output_kind(args.output)
     check_folder(args.output, "-o/--output")
-    if Path(args.output).resolve() == Path(args.scene).resolve():
-        raise SceneError("-o/--output", f"{args.output!r} is the scene file itself: name another file for the report")
+    check_not_scene(args.output, args.scene, "the report")
     command = f"flyopt report {args.scene} -o {args.output} --units {args.units} --digits {args.digits}"
     inputs = collect(args.scene, command, pdf=kind == "pdf")
     from flyopt.report.builder import CalculationInputs, build

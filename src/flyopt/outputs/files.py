@@ -27,6 +27,7 @@ from flyopt.errors import FlyoptError, OutputError, SceneError
 __all__ = [
     "Temporary",
     "check_folder",
+    "check_not_scene",
     "move_into_place",
     "output_error",
     "output_target",
@@ -242,6 +243,15 @@ def check_folder(path: str | os.PathLike[str], label: str = "output") -> None:
     if not folder.is_dir():
         raise SceneError(label, f"the folder {str(folder)!r} of {str(path)!r} does not exist")
     _check_replaceable(target, path, label)
+
+
+def check_not_scene(
+    path: str | os.PathLike[str], scene: str | os.PathLike[str], what: str, label: str = "-o/--output"
+) -> None:
+    """Refuse an output at the scene file itself (writing it would lose the input): ``what`` the output
+    would be ("the report") goes in the message, which asks for another file."""
+    if Path(path).resolve() == Path(scene).resolve():
+        raise SceneError(label, f"{str(path)!r} is the scene file itself: name another file for {what}")
 
 
 def _check_replaceable(target: Path, path: str | os.PathLike[str], label: str) -> None:
