@@ -461,6 +461,16 @@ def test_export_refuses_in_one_line_and_writes_nothing(main_cli, tmp_path, name,
     assert list(tmp_path.iterdir()) == []
 
 
+def test_export_onto_its_own_scene_file_is_refused_and_the_scene_kept(main_cli, tmp_path):
+    scene = tmp_path / "wheel.dxf"  # a scene file may have any name: the drawing must not overwrite it
+    text = (PROBLEMS / "punch-press-wheel.toml").read_text(encoding="utf-8")
+    scene.write_text(text, encoding="utf-8")
+    status, stdout, stderr = main_cli("export", scene, "-o", scene)
+    assert status == 2 and stderr.count("\n") == 1 and stdout == "", stderr
+    assert "-o/--output" in stderr and "is the scene file itself" in stderr and "the drawing" in stderr, stderr
+    assert [p.name for p in tmp_path.iterdir()] == ["wheel.dxf"] and scene.read_text(encoding="utf-8") == text
+
+
 def test_export_without_ezdxf_names_the_extra(main_cli, tmp_path, monkeypatch):
     import sys
 
