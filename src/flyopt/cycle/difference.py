@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from flyopt.cycle.numerics import EPS, accurate_cumsum, brentq_many, dip_roots, poles, quad_many, roots
+from flyopt.cycle.numerics import EPS, accurate_cumsum, brentq_many, dip_roots, grid_steps, poles, quad_many, roots
 from flyopt.cycle.torque import Array, Constant, TorqueCurve
 from flyopt.errors import SceneError
 
@@ -234,24 +234,13 @@ class Segments:
         # a piece's last sample is its own end value, the left limit there: a torque that steps at the
         # knot would otherwise show a sign change that is no crossing (the next piece's value)
         y[last] = self.difference_many(x[last], piece[last], side="left")
-        # the grid steps worth a look: a zero on the grid, a sign change, a dip of |f| (as in roots)
+        # the grid steps worth a look: a zero on the grid, a sign change, a dip of |f| (numerics.grid_steps)
         step_at = np.flatnonzero(~last)  # grid step from x[i] to x[i + 1], inside a piece
         k = piece[step_at]
         y0, y1 = y[step_at], y[step_at + 1]
         interior = local[step_at] > 0
         y_prev = np.where(interior, y[np.maximum(step_at - 1, 0)], np.nan)
-        zero = interior & (y0 == 0.0)
-        s0, s1, s_prev = np.sign(y0), np.sign(y1), np.sign(y_prev)
-        cross = ~zero & (s0 * s1 < 0)
-        dip = (
-            ~zero
-            & ~cross
-            & interior
-            & (np.abs(y0) < np.abs(y_prev))
-            & (np.abs(y0) < np.abs(y1))
-            & (s0 * s_prev > 0)
-            & (s0 * s1 > 0)
-        )
+        zero, cross, dip = grid_steps(y_prev, y0, y1, interior)
         roots_of: list[list[float]] = [[] for _ in range(n)]
         for i in np.flatnonzero(zero):
             roots_of[k[i]].append(x[step_at[i]])

@@ -121,9 +121,33 @@ def roots(f: VectorFunction, a: float, b: float, samples: int, scale: float, zer
         return brentq(f, p, q, xtol=1e-15 * max(abs(p), abs(q), b - a), rtol=4 * EPS, maxiter=200)
 
     # the grid steps worth a look, found at once: a zero on the grid, a sign change, a dip of |f|
-    y0, y1 = y[:-1], y[1:]
-    y_prev = np.concatenate(([np.nan], y[:-2]))
-    interior = np.arange(samples) > 0
+    y0 = y[:-1]
+    zero, cross, dip = grid_steps(np.concatenate(([np.nan], y[:-2])), y0, y[1:], np.arange(samples) > 0, zero_runs)
+    for k in np.flatnonzero(zero | cross | dip):
+        if zero[k]:
+            roots.append(x[k])
+        elif cross[k]:
+            roots.append(brent(x[k], x[k + 1]))
+        else:
+            roots += dip_roots(f, x[k - 1], x[k], x[k + 1], np.sign(y0[k]), a, b, scale)
+    return sorted(r for r in set(roots) if a < r < b)
+
+
+def grid_steps(
+    y_prev: ndarray, y0: ndarray, y1: ndarray, interior: ndarray, zero_runs: str = "all"
+) -> tuple[ndarray, ndarray, ndarray]:
+    """Which steps of a sampled function are worth a look for its zeros: (zero, cross, dip), each a mask of
+    the steps.
+
+    A step runs from a sample of value ``y0`` to the next, ``y1``; ``y_prev`` is the sample before it, read
+    only where ``interior`` (a step that is not the first of its grid: the first has no dip and no zero of its
+    own, its start being an end of the interval searched). ``zero``: the
+    step starts on an exact zero (with ``zero_runs="ends"`` only at the first or last point of a run of
+    them); ``cross``: f changes sign over the step; ``dip``: |f| at the step's start is below both
+    neighbours without a change of sign, where a minimum between the samples may reach zero
+    (:func:`dip_roots`). :func:`roots` searches one grid this way, and
+    :meth:`flyopt.cycle.difference.Segments.events` every piece's grid at once.
+    """
     zero = interior & (y0 == 0.0)
     if zero_runs == "ends":
         zero &= (y_prev != 0.0) | (y1 != 0.0)
@@ -138,14 +162,7 @@ def roots(f: VectorFunction, a: float, b: float, samples: int, scale: float, zer
         & (s0 * s_prev > 0)
         & (s0 * s1 > 0)
     )
-    for k in np.flatnonzero(zero | cross | dip):
-        if zero[k]:
-            roots.append(x[k])
-        elif cross[k]:
-            roots.append(brent(x[k], x[k + 1]))
-        else:
-            roots += dip_roots(f, x[k - 1], x[k], x[k + 1], np.sign(y0[k]), a, b, scale)
-    return sorted(r for r in set(roots) if a < r < b)
+    return zero, cross, dip
 
 
 def dip_roots(
