@@ -413,3 +413,39 @@ def test_disc_hub_is_a_boolean_of_discs_refused_in_one_line(main_cli, tmp_path, 
     path.write_text(text.replace("\n[design]\n", f"\n[design]\n{line}\n"), encoding="utf-8")
     status, stdout, stderr = main_cli("solve", path)
     assert status == 2 and stdout == "" and words in stderr and len(stderr.strip().splitlines()) == 1, stderr
+
+
+@pytest.mark.parametrize(
+    "section",
+    [
+        fem.Section((0.0, R), (THICKNESS,), ("disc",)),  # solid: quadrature points come close to the axis
+        fem.Section((0.04, 0.07, 0.36, 0.42), (0.09, 0.025, 0.12), ("hub", "web", "rim")),  # steps and fillets
+    ],
+    ids=["solid-disc", "hub-web-rim"],
+)
+def test_the_stiffness_is_the_one_skfems_generic_assembly_gives(section):
+    """fem.stiffness_matrix (every element at once, by einsum) against scikit-fem's own assembly of the
+    axisymmetric elasticity integrand, written here from the textbook (eps_rr = du_r/dr, eps_tt = u_r/r,
+    eps_zz = du_z/dz, gamma_rz = du_r/dz + du_z/dr; sigma = lam tr(eps) I + 2 mu eps; dV ~ r dA; u[0] is u_r)."""
+    import skfem
+
+    points, triangles = fem.section_mesh(section, fem.MESH_SIZES["normal"])
+    basis = skfem.Basis(skfem.MeshTri(points, triangles), skfem.ElementVector(skfem.ElementTriP2()), intorder=4)
+    e_modulus, nu = 1.7e11, 0.27
+    lam, mu = e_modulus * nu / ((1 + nu) * (1 - 2 * nu)), e_modulus / (2 * (1 + nu))
+
+    @skfem.BilinearForm
+    def textbook(u, v, w):
+        r = w.x[0]
+        e_u = (u.grad[0, 0], u[0] / r, u.grad[1, 1], u.grad[0, 1] + u.grad[1, 0])
+        e_v = (v.grad[0, 0], v[0] / r, v.grad[1, 1], v.grad[0, 1] + v.grad[1, 0])
+        trace = e_u[0] + e_u[1] + e_u[2]
+        return (sum((lam * trace + 2 * mu * e_u[k]) * e_v[k] for k in range(3)) + mu * e_u[3] * e_v[3]) * r
+
+    expected = textbook.assemble(basis)
+    found = fem.stiffness_matrix(basis, lam, mu)
+    difference = abs(found - expected).max()
+    assert difference <= 1e-13 * abs(expected).max(), difference
+    assert found.shape == (basis.N, basis.N)
+    # and not a matrix that merely resembles it: symmetric, as the integrand is
+    assert abs(found - found.T).max() <= 1e-13 * abs(expected).max()
