@@ -15,7 +15,10 @@ Runs pinned to one core. Writes ``benchmarks/results/fem.md``.
 
 Usage::
 
-    python benchmarks/bench_fem.py [--repeat 7] [--out benchmarks/results]
+    python benchmarks/bench_fem.py [--repeat 7] [--out benchmarks/results] [--baseline OTHER/src]
+
+With ``--baseline``, each wheel's check on the default mesh is also timed in child processes of this tree
+and of the other, taking turns (four children each), so that the two are compared in the same run.
 
 Target (issue 28, item 5): under 2 s per wheel on this machine.
 """
@@ -30,7 +33,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from common import load_average, pin_one_core
+from common import load_average, pin_one_core, run_child
 
 import flyopt
 from flyopt.design import fem, stress
@@ -58,6 +61,40 @@ def timed(call, repeat):
     return value, times
 
 
+#: A child's timing of every wheel's check on the default mesh (this tree's or a baseline's: ``run_child``):
+#: the medians of ``repeat`` checks after a first, by wheel, as JSON on its last line.
+CHILD = """
+import json, sys, time, statistics
+import flyopt
+from flyopt.design import fem
+repeat = int(sys.argv[1])
+out = {}
+for path in sys.argv[2:]:
+    design = flyopt.solve(flyopt.load(path)).design
+    best = design.best
+    check = lambda: fem.fem_check(best, flyopt.load(path).material_library()[best.material],
+                                  design.omega * best.speed_ratio, mesh="normal")
+    check()
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        check()
+        times.append(time.perf_counter() - start)
+    out[path] = statistics.median(times)
+print(json.dumps(out))
+"""
+
+
+def against_baseline(baseline, paths, repeat):
+    """{path: (this tree's medians, the baseline's)}: four children of each, taking turns."""
+    ours, theirs = {p: [] for p in paths}, {p: [] for p in paths}
+    for _ in range(4):
+        for src, into in ((ROOT / "src", ours), (baseline, theirs)):
+            for path, median in run_child(CHILD, src, repeat, *paths).items():
+                into[path].append(median)
+    return {p: (ours[p], theirs[p]) for p in paths}
+
+
 def fmt(times):
     return f"{statistics.median(times):.3f} s ({min(times):.3f}-{max(times):.3f})"
 
@@ -66,6 +103,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=7)
     parser.add_argument("--out", type=Path, default=ROOT / "benchmarks" / "results")
+    parser.add_argument("--baseline", type=Path, help="another flyopt tree's src/ to compare with")
     args = parser.parse_args()
     pinning = pin_one_core()
     load = load_average()
@@ -117,18 +155,34 @@ def main():
         value = float(pick(solved))
         discs.append((label, exact / 1e6, value / 1e6, abs(value / exact - 1.0), solved.elements, fmt(times)))
 
+    # the design without its own FE check (which would import scikit-fem first): the timed check is the first
     code = (
-        f"import time, flyopt; from flyopt.design import fem; s = flyopt.load({str(SCENE)!r}); d = flyopt.solve(s).design; "
+        "import sys, time, tomllib, flyopt; from flyopt.design import fem; "
+        f"data = tomllib.loads(open({str(SCENE)!r}, encoding='utf-8').read()); data['design']['fem_check'] = False; "
+        "s = flyopt.from_dict(data); d = flyopt.solve(s).design; "
+        "assert 'skfem' not in sys.modules, 'scikit-fem imported before the first check'; "
         "b = d.best; m = s.material_library()[b.material]; t = time.perf_counter(); "
         "fem.fem_check(b, m, d.omega * b.speed_ratio); print(time.perf_counter() - t)"
     )
     firsts = [float(subprocess.check_output([sys.executable, "-c", code], text=True)) for _ in range(3)]
 
+    compared = []
+    if args.baseline is not None:
+        with tempfile.TemporaryDirectory() as folder:
+            arms = Path(folder) / "arms.toml"
+            arms.write_text(SCENE.read_text(encoding="utf-8").replace('"rim_web"', '"rim_arms"'), encoding="utf-8")
+            paths = [str(SCENE), str(arms), str(ROOT / "problems" / "punch-press.toml")]
+            paths.append(str(ROOT / "problems" / "four-cylinder-engine.toml"))
+            for (now, before), name in zip(against_baseline(args.baseline, paths, args.repeat).values(), wheels):
+                a, b = statistics.median(now), statistics.median(before)
+                compared.append((name, fmt(now), fmt(before), b / a))
+
     worst = max(r[4] for r in rows if r[1] == "normal")
     lines = [
         "# FE check benchmark (issue 28, item 5)",
         "",
-        f"Command: `python benchmarks/bench_fem.py --repeat {args.repeat}`",
+        f"Command: `python benchmarks/bench_fem.py --repeat {args.repeat}"
+        + (" --baseline OTHER/src`" if args.baseline else "`"),
         "",
         f"Machine: {platform.platform()}, {platform.machine()}, {pinning}; Python {platform.python_version()}, "
         f"scikit-fem {skfem.__version__ if hasattr(skfem, '__version__') else '12'}, numpy {numpy.__version__}, "
@@ -147,6 +201,19 @@ def main():
         "|---|---|---|---|---|---|",
         *(f"| {d[0]} | {d[1]:.4f} | {d[2]:.4f} | {d[3]:.1e} | {d[4]} | {d[5]} |" for d in discs),
         "",
+        *(
+            [
+                "## Against the baseline (default mesh; children of each tree taking turns, "
+                f"each the median of {args.repeat} checks; medians over 4 children, ranges)",
+                "",
+                "| wheel | this tree | baseline | baseline / this tree |",
+                "|---|---|---|---|",
+                *(f"| {c[0]} | {c[1]} | {c[2]} | {c[3]:.2f}x |" for c in compared),
+                "",
+            ]
+            if compared
+            else []
+        ),
         "## Targets",
         "",
         "| figure | value | target | verdict |",
