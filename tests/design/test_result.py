@@ -7,6 +7,7 @@ import pytest
 from flyopt.design.result import (
     CANDIDATE_FIELDS,
     DESIGN_FIELDS,
+    SEARCH_FIELDS,
     Candidate,
     Design,
     Dimensions,
@@ -45,6 +46,8 @@ def test_to_dict_is_flat_in_the_order_of_candidate_fields():
         assert tuple(c.to_dict(timings=True)) == CANDIDATE_FIELDS
         assert tuple(c.to_dict()) == tuple(name for name in CANDIDATE_FIELDS if name != "solve_time")
     assert set(DESIGN_FIELDS) <= set(CANDIDATE_FIELDS)
+    # the fields left out of the top-level "design" name keys of the JSON (a renamed one would stay in it)
+    assert SEARCH_FIELDS <= set(CANDIDATE_FIELDS) and SEARCH_FIELDS.isdisjoint(DESIGN_FIELDS)
 
 
 def test_to_dict_reads_each_record():
