@@ -187,3 +187,33 @@ def test_a_disk_that_fills_up_is_its_own_exit_status_naming_the_file(tmp_path, c
     assert err.splitlines() == [f"flyopt: error: {out}: cannot be written: No space left on device"]
     monkeypatch.setattr(os, "replace", real_replace)
     assert list(tmp_path.iterdir()) == []
+
+
+# --------------------------------------------------------------------------
+# No command writes its output over the scene it reads (a scene file may have any name)
+# --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("name", "command", "what"),
+    [
+        ("scene.json", ["solve", "{scene}", "--json", "-o", "{scene}"], "the result"),
+        ("scene.html", ["report", "{scene}", "-o", "{scene}"], "the report"),
+        ("scene.csv", ["pareto", "{scene}", "-o", "{scene}"], "the front"),
+        ("scene.csv", ["tradeoff", "{scene}", "-o", "{scene}"], "the table"),
+        ("scene.csv", ["sweep", "{scene}", "--vary", "delta=0.02,0.05", "-o", "{scene}"], "the sweep's table"),
+        ("scene.png", ["plot", "{scene}", "--what", "energy", "-o", "{scene}"], "the diagram"),
+        ("energy.png", ["plot", "{scene}", "--what", "all", "-o", "{folder}"], "the diagram"),
+    ],
+    ids=["solve", "report", "pareto", "tradeoff", "sweep", "plot", "plot-all"],
+)
+def test_no_output_replaces_the_scene_it_was_made_from(tmp_path, capsys, name, command, what):
+    scene = tmp_path / name
+    text = SHEAR.read_text(encoding="utf-8")
+    scene.write_text(text, encoding="utf-8")
+    args = [a.format(scene=scene, folder=tmp_path) for a in command]
+    assert main(args) == 2
+    said = capsys.readouterr()
+    assert said.err.count("\n") == 1 and "Traceback" not in said.err, said.err
+    assert "is the scene file itself" in said.err and f"name another file for {what}" in said.err, said.err
+    assert [p.name for p in tmp_path.iterdir()] == [name] and scene.read_text(encoding="utf-8") == text

@@ -106,7 +106,7 @@ def run_plot(args: argparse.Namespace) -> int:
             f"--what: unknown diagram {args.what!r}{hint(args.what, [*plots.PLOTS, ALL])} (known: {', '.join(plots.PLOTS)}, {ALL})",
             EXIT_INPUT,
         )
-    plots.check_output(args.output)
+    plots.check_output(args.output, args.scene)
     solution = _solve(args, [args.what])
     return _plot_one(args, plots, solution, args.what, args.output)
 
@@ -167,6 +167,8 @@ def _plot_all(args, plots):
     if not folder.is_dir():
         raise SceneError("-o/--output", f"{args.output!r}: with --what all, -o names an existing folder")
     whats = list(plots.PLOTS)
+    for what in whats:  # before the solve: no diagram's file may be the scene's
+        plots.check_output(folder / f"{what}.png", args.scene)
     solution = _solve(args, whats)
     statuses = [_plot_one(args, plots, solution, what, folder / f"{what}.png", every=True) for what in whats]
     return EXIT_INFEASIBLE if EXIT_INFEASIBLE in statuses else EXIT_OK
@@ -251,7 +253,7 @@ def _plot_results(args):
         return fail(
             f"--what: {args.what!r} is not a diagram of results (known: {', '.join(plots.RESULT_PLOTS)})", EXIT_INPUT
         )
-    plots.check_output(args.output)
+    plots.check_output(args.output)  # drawn from a table of results, whose suffix no diagram has
     try:
         frame = read_results(args.scene)
     except (OSError, ValueError) as err:

@@ -332,7 +332,7 @@ def run_pareto(args: argparse.Namespace) -> int:
 
     scene = load(args.scene)
     objectives, other = objective_pair(args.objectives)
-    _check_output(args.output)
+    _check_output(args.output, args.scene, "the front")
     front = pareto(scene, objectives, points=args.points, span=_span(args.span, other), method=args.method)
     if front.empty:  # the front's table without rows, and why: on stdout under --json, in the file asked for
         import pandas as pd
@@ -390,7 +390,7 @@ def run_tradeoff(args: argparse.Namespace) -> int:
     from flyopt.studies.tradeoff import material_tradeoff
 
     scene = load(args.scene)
-    _check_output(args.output)
+    _check_output(args.output, args.scene, "the table")
     table = material_tradeoff(scene, method=args.method)
     _emit(
         table,
@@ -417,15 +417,17 @@ def run_tradeoff(args: argparse.Namespace) -> int:
 _SUFFIXES = (".csv", ".parquet", ".pq", ".json")
 
 
-def _check_output(output: str | None) -> None:
-    """The output file of a front or table, checked before anything is computed."""
-    from flyopt.outputs.files import check_folder
+def _check_output(output: str | None, scene: str, what: str) -> None:
+    """The output file of a front or table (``what``: "the front"), checked before anything is computed: its
+    suffix, its folder, and that it is not the scene file itself."""
+    from flyopt.outputs.files import check_folder, check_not_scene
 
     if output is None:
         return
     if Path(output).suffix.lower() not in _SUFFIXES:
         raise SceneError("-o/--output", f"{output!r} must end in .csv, .parquet or .json (the suffix picks the format)")
     check_folder(output, "-o/--output")
+    check_not_scene(output, scene, what)
 
 
 def _metadata(

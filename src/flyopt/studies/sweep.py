@@ -39,7 +39,7 @@ from flyopt.design import design_inputs
 from flyopt.errors import BrokenInvariant, Interrupted, SceneError
 from flyopt.io.sweep_spec import check_options, option_label
 from flyopt.outputs.documents import scene_record, table_metadata
-from flyopt.outputs.files import check_folder
+from flyopt.outputs.files import check_folder, check_not_scene
 from flyopt.outputs.results import ResultWriter, normalize
 from flyopt.studies.chunks import SERIAL_SECONDS, chunk_bounds
 from flyopt.studies.cluster import connect, threads
@@ -235,6 +235,8 @@ def sweep(
     )
     if output is not None:  # before anything is computed or made: a FIFO or a folder at the output is refused
         check_folder(output, "--output")
+        if scene.source is not None:  # and the scene's own file, which the table would replace
+            check_not_scene(output, scene.source, "the sweep's table", "--output")
     parts = None if output is None else Parts(output)
     recorded = parts.manifest() if resume and parts is not None else {}
     if resume and samples is not None and seed is None:
