@@ -18,6 +18,60 @@ from flyopt.design.result import (
 )
 from flyopt.design.wheel import Dims
 
+#: The candidate JSON's keys in their order, written out here, not read from the code (CANDIDATE_FIELDS is read
+#: off to_dict itself): a key renamed, dropped or moved is a change of the JSON its readers see.
+JSON_KEYS = (
+    "material",
+    "shaft",
+    "speed_ratio",
+    "geometry",
+    "feasible",
+    "reason",
+    "d_mean",
+    "d_outer",
+    "d_inner",
+    "h",
+    "b",
+    "hb_ratio",
+    "mass",
+    "rim_speed",
+    "hoop_stress",
+    "safety_factor",
+    "cost",
+    "j_flywheel",
+    "j_at_reference",
+    "binding",
+    "objective",
+    "j_required_on_shaft",
+    "d_outer_limit",
+    "rim_speed_limit",
+    "j_max",
+    "d_outer_needed",
+    "solver_status",
+    "iterations",
+    "solve_time",
+    "n_arms",
+    "t_web",
+    "d_hub",
+    "l_hub",
+    "arm_major",
+    "arm_minor",
+    "bore",
+    "parts",
+    "stress",
+    "allowable_stress",
+    "strength_safety",
+    "burst_speed",
+    "speed_margin",
+    "unbalance_permissible",
+    "key",
+    "sensitivities",
+    "castability",
+    "notes",
+    "pruned",
+    "objective_bound",
+)
+
 IDENTITY = dict(material="cast_iron", shaft="crankshaft", speed_ratio=1.0, geometry="rim_arms")
 
 #: A whole wheel with arms, a bore and a key: every record holds something.
@@ -42,12 +96,13 @@ DESIGN = Design(
 def test_to_dict_is_flat_in_the_order_of_candidate_fields():
     """The JSON of a candidate keeps the flat keys, in their order, as before the records (timings aside)."""
     infeasible = Candidate(**IDENTITY, feasible=False, reason="too heavy", limits=Limits(j_max=3.0))
+    assert CANDIDATE_FIELDS == JSON_KEYS
     for c in (DESIGN, infeasible):
         assert tuple(c.to_dict(timings=True)) == CANDIDATE_FIELDS
         assert tuple(c.to_dict()) == tuple(name for name in CANDIDATE_FIELDS if name != "solve_time")
     assert set(DESIGN_FIELDS) <= set(CANDIDATE_FIELDS)
     # the fields left out of the top-level "design" name keys of the JSON (a renamed one would stay in it)
-    assert SEARCH_FIELDS <= set(CANDIDATE_FIELDS) and SEARCH_FIELDS.isdisjoint(DESIGN_FIELDS)
+    assert SEARCH_FIELDS <= set(CANDIDATE_FIELDS)
 
 
 def test_to_dict_reads_each_record():

@@ -22,24 +22,24 @@ if TYPE_CHECKING:
 
 __all__ = ["WINNER_COLUMNS", "ChunkInputs", "PerName", "empty_results", "point_material", "result_table"]
 
-#: The result columns a point's winner fills under their own names: a design's
-#: (:class:`~flyopt.design.result.Design`, its dimensions' or its stresses') and the closed form's arrays
-#: (:class:`~flyopt.design.closed_form.Designs`) alike, so that IPOPT's rows
-#: (:func:`flyopt.studies.ipopt_design.fill_row`) and the closed form's
-#: (:func:`flyopt.studies.closed_form_design.design_closed_form`) fill the same columns.
-WINNER_COLUMNS = (
-    "d_mean",
-    "d_outer",
-    "d_inner",
-    "h",
-    "b",
-    "hb_ratio",
-    "mass",
-    "rim_speed",
-    "hoop_stress",
-    "j_flywheel",
-    "j_at_reference",
-)
+#: The result columns a point's winner fills under their own names, each with the record of a
+#: :class:`~flyopt.design.result.Design` it is read from (the design itself, its ``dims`` or its ``stresses``):
+#: IPOPT's rows (:func:`flyopt.studies.ipopt_design.fill_row`) read them there, and the closed form's
+#: (:func:`flyopt.studies.closed_form_design.design_closed_form`) from its arrays
+#: (:class:`~flyopt.design.closed_form.Designs`) of the same names, so that both fill the same columns.
+WINNER_COLUMNS = {
+    "d_mean": "dims",
+    "d_outer": "dims",
+    "d_inner": "dims",
+    "h": "dims",
+    "b": "dims",
+    "hb_ratio": "dims",
+    "mass": "design",
+    "rim_speed": "stresses",
+    "hoop_stress": "stresses",
+    "j_flywheel": "design",
+    "j_at_reference": "design",
+}
 
 
 class ChunkInputs:

@@ -102,9 +102,10 @@ def fill_row(res: dict[str, np.ndarray], k: int, result: DesignResult) -> None:
     res["best_material"][k] = best.material
     res["best_shaft"][k] = best.shaft
     res["best_speed_ratio"][k] = best.speed_ratio
-    dims, stresses, limits = best.dims, best.stresses, best.limits
-    for name in WINNER_COLUMNS:  # each the design's own, its dimensions' or its stresses'
-        res[name][k] = next(getattr(record, name) for record in (best, dims, stresses) if hasattr(record, name))
+    limits = best.limits
+    records = {"design": best, "dims": best.dims, "stresses": best.stresses}
+    for name, record in WINNER_COLUMNS.items():
+        res[name][k] = getattr(records[record], name)
     values = {
         "j_required_on_shaft": limits.j_required_on_shaft,
         "d_outer_limit": limits.d_outer_limit,
@@ -114,7 +115,8 @@ def fill_row(res: dict[str, np.ndarray], k: int, result: DesignResult) -> None:
     for name, value in values.items():
         res[name][k] = value
     res["cost"][k] = math.nan if best.cost is None else best.cost
-    res["safety_factor"][k] = math.nan if stresses.safety_factor is None else stresses.safety_factor
+    safety = best.stresses.safety_factor
+    res["safety_factor"][k] = math.nan if safety is None else safety
     res["binding"][k] = ",".join(limits.binding)
     res["solver_status"][k] = best.provenance.solver_status
     res["iterations"][k] = best.provenance.iterations
