@@ -70,10 +70,11 @@ from flyopt.design import fem
 repeat = int(sys.argv[1])
 out = {}
 for path in sys.argv[2:]:
-    design = flyopt.solve(flyopt.load(path)).design
+    scene = flyopt.load(path)
+    design = flyopt.solve(scene).design
     best = design.best
-    check = lambda: fem.fem_check(best, flyopt.load(path).material_library()[best.material],
-                                  design.omega * best.speed_ratio, mesh="normal")
+    material = scene.material_library()[best.material]
+    check = lambda: fem.fem_check(best, material, design.omega * best.speed_ratio, mesh="normal")
     check()
     times = []
     for _ in range(repeat):
@@ -86,10 +87,12 @@ print(json.dumps(out))
 
 
 def against_baseline(baseline, paths, repeat):
-    """{path: (this tree's medians, the baseline's)}: four children of each, taking turns."""
+    """{path: (this tree's medians, the baseline's)}: four children of each, taking turns (each tree first in
+    two of the four rounds)."""
     ours, theirs = {p: [] for p in paths}, {p: [] for p in paths}
-    for _ in range(4):
-        for src, into in ((ROOT / "src", ours), (baseline, theirs)):
+    for round_ in range(4):
+        order = ((ROOT / "src", ours), (baseline, theirs))
+        for src, into in order if round_ % 2 == 0 else order[::-1]:
             for path, median in run_child(CHILD, src, repeat, *paths).items():
                 into[path].append(median)
     return {p: (ours[p], theirs[p]) for p in paths}
