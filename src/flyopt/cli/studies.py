@@ -34,20 +34,14 @@ if TYPE_CHECKING:
 def _workers(text: str) -> int | Literal["auto"]:
     if text == "auto":
         return "auto"
+    return _positive_int(text, "a whole number or 'auto'")
+
+
+def _positive_int(text: str, expected: str = "a whole number") -> int:
     try:
         value = int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: a whole number or 'auto'") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r}: at least 1")
-    return value
-
-
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: a whole number") from None
+        raise argparse.ArgumentTypeError(f"{text!r}: {expected}") from None
     if value < 1:
         raise argparse.ArgumentTypeError(f"{text!r}: at least 1")
     return value
