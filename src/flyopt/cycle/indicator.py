@@ -140,18 +140,7 @@ def energy_indicator(driving: TorqueCurve, resisting: TorqueCurve, cycle_angle: 
         chain_angle, chain_de = angle[chain], delta_e[chain]
     check_balance(imbalance, max(abs(w_d), abs(w_r)), pieces.scale())
     # Extremes of ΔE are at crossings (or the cycle ends): take them from the chain.
-    index_max, index_min = _extremes(chain_de, pieces.scale())
-    return EnergyIndicator(
-        cycle_angle=cycle_angle,
-        work_driving=w_d,
-        work_resisting=w_r,
-        chain_angle=chain_angle,
-        chain_delta_e=chain_de,
-        a_max=float(chain_de[index_max] - chain_de[index_min]),
-        index_max=index_max,
-        index_min=index_min,
-        imbalance=imbalance,
-    )
+    return _from_chain(cycle_angle, w_d, w_r, chain_angle, chain_de, imbalance, pieces.scale())
 
 
 def energy_indicator_from_areas(areas: Sequence[float] | Array, cycle_angle: float) -> EnergyIndicator:
@@ -176,18 +165,7 @@ def energy_indicator_from_areas(areas: Sequence[float] | Array, cycle_angle: flo
     deficit = -math.fsum(a for a in areas if a < 0)
     imbalance = math.fsum(areas)
     check_balance(imbalance, max(surplus, deficit), surplus + deficit)
-    index_max, index_min = _extremes(chain, surplus + deficit)
-    return EnergyIndicator(
-        cycle_angle=cycle_angle,
-        work_driving=surplus,
-        work_resisting=deficit,
-        chain_angle=None,
-        chain_delta_e=chain,
-        a_max=float(chain[index_max] - chain[index_min]),
-        index_max=index_max,
-        index_min=index_min,
-        imbalance=imbalance,
-    )
+    return _from_chain(cycle_angle, surplus, deficit, None, chain, imbalance, surplus + deficit)
 
 
 class ExcessWork:
@@ -289,6 +267,22 @@ def speed_extremes(omega_mean: Value, delta: Value | float) -> tuple[Value, Valu
         (ω_max, ω_min) [rad/s].
     """
     return omega_mean * (1 + delta / 2), omega_mean * (1 - delta / 2)
+
+
+def _from_chain(cycle_angle, work_driving, work_resisting, chain_angle, chain, imbalance, scale):
+    """The indicator of a ΔE chain: A_max is the span between its extremes (:func:`_extremes`)."""
+    index_max, index_min = _extremes(chain, scale)
+    return EnergyIndicator(
+        cycle_angle=cycle_angle,
+        work_driving=work_driving,
+        work_resisting=work_resisting,
+        chain_angle=chain_angle,
+        chain_delta_e=chain,
+        a_max=float(chain[index_max] - chain[index_min]),
+        index_max=index_max,
+        index_min=index_min,
+        imbalance=imbalance,
+    )
 
 
 def _extremes(chain, scale):
