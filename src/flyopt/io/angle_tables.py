@@ -55,8 +55,7 @@ def angle_curve(
                 raise SceneError(f"{where}[{k}]", f"must be an [angle, {label}] pair, got {shorten(pair)}")
             angles[k] = scaled(pair[0], "angle", f"{where}[{k}] angle", angle_unit)
             values[k] = scaled(pair[1], dimension, f"{where}[{k}] {label}", unit)
-    if minimum is not None and np.any(values < minimum[0]):
-        k = int(np.argmax(values < minimum[0]))
+    if minimum is not None and (k := _first_below(values, minimum[0])) is not None:
         written = raw.array[k, 1] if isinstance(raw, InlineRows) else raw[k][1]
         raise SceneError(
             f"{where}[{k}]",
@@ -84,6 +83,12 @@ def angle_curve(
         )
     angles[0], angles[-1] = 0.0, cycle
     return PiecewiseLinear(angles, values)
+
+
+def _first_below(values, least):
+    """Index of the first value below ``least`` (a row the table refuses), or None."""
+    below = values < least
+    return int(np.argmax(below)) if below.any() else None
 
 
 def _table_problem(angles, cycle):
@@ -155,8 +160,7 @@ def angle_curve_file(
     numbers, lines, name = csv_table(raw, where, files, ("angle", column), units)
     angles = numbers[:, 0] * angle_unit
     values = numbers[:, 1] * unit
-    if minimum is not None and np.any(values < minimum[0]):
-        k = int(np.argmax(values < minimum[0]))
+    if minimum is not None and (k := _first_below(values, minimum[0])) is not None:
         raise SceneError(
             where,
             f"{name} line {lines[k]}: the {column} {numbers[k, 1]:.6g} {units[1]} is below "
