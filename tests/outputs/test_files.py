@@ -217,3 +217,107 @@ def test_no_output_replaces_the_scene_it_was_made_from(tmp_path, capsys, name, c
     assert said.err.count("\n") == 1 and "Traceback" not in said.err, said.err
     assert "is the scene file itself" in said.err and f"name another file for {what}" in said.err, said.err
     assert [p.name for p in tmp_path.iterdir()] == [name] and scene.read_text(encoding="utf-8") == text
+
+
+# --------------------------------------------------------------------------
+# Nor over a data file the scene reads (its points_file): the loader records each file it reads
+# --------------------------------------------------------------------------
+
+_SHEAR_FROM_CSV = """title = "Shear press, its resisting torque from a CSV file"
+
+[machine]
+speed = "1500 rpm"
+delta = 0.05
+
+[torque.resisting]
+angle_unit = "deg"
+unit = "N*m"
+points_file = "{table}"
+
+[torque.driving]
+constant = "unknown"
+
+[design]
+geometry = "rim"
+max_outer_diameter = "0.6 m"
+"""
+
+_SHEAR_TABLE = "angle,torque\n0,1600\n45,1600\n90,200\n360,200\n"
+
+
+@pytest.mark.parametrize(
+    ("table", "command", "what"),
+    [
+        ("torque.csv", ["solve", "{scene}", "-o", "{table}"], "the result"),
+        ("torque.csv", ["solve", "{scene}", "--json", "-o", "{spelled}"], "the result"),
+        ("torque.html", ["report", "{scene}", "-o", "{table}"], "the report"),
+        ("torque.csv", ["pareto", "{scene}", "-o", "{table}"], "the front"),
+        ("torque.csv", ["tradeoff", "{scene}", "-o", "{table}"], "the table"),
+        ("torque.csv", ["sweep", "{scene}", "--vary", "delta=0.02,0.05", "-o", "{link}"], "the sweep's table"),
+        ("torque.png", ["plot", "{scene}", "--what", "energy", "-o", "{table}"], "the diagram"),
+        ("energy.png", ["plot", "{scene}", "--what", "all", "-o", "{folder}"], "the diagram"),
+        ("torque.svg", ["export", "{scene}", "-o", "{table}"], "the drawing"),
+    ],
+    ids=["solve", "solve-spelled", "report", "pareto", "tradeoff", "sweep-link", "plot", "plot-all", "export"],
+)
+def test_no_output_replaces_a_data_file_the_scene_reads(tmp_path, capsys, table, command, what):
+    """``flyopt solve scene.toml -o torque.csv`` replaced the scene's own points_file with the result; any
+    spelling of that file (another path to it, a symbolic link to it) is refused alike, and nothing is written."""
+    scene = tmp_path / "scene.toml"
+    scene.write_text(_SHEAR_FROM_CSV.format(table=table), encoding="utf-8")
+    data = tmp_path / table
+    data.write_text(_SHEAR_TABLE, encoding="utf-8")
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "link.csv").symlink_to(data)
+    before = sorted(p.name for p in tmp_path.iterdir())
+    places = {
+        "scene": scene,
+        "table": data,
+        "spelled": tmp_path / "sub" / ".." / table,
+        "link": tmp_path / "link.csv",
+        "folder": tmp_path,
+    }
+    assert main(["solve", str(scene), "-q"]) == 0  # the scene itself is sound
+    args = [a.format(**places) for a in command]
+    assert main(args) == 2
+    said = capsys.readouterr()
+    assert said.err.count("\n") == 1 and "Traceback" not in said.err, said.err
+    assert "-o/--output" in said.err or "--output" in said.err, said.err
+    assert "the scene's torque.resisting.points_file names, an input" in said.err, said.err
+    assert f"name another file for {what}" in said.err, said.err
+    assert data.read_text(encoding="utf-8") == _SHEAR_TABLE
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+def test_the_scene_records_the_files_it_read(tmp_path):
+    """Scene.inputs: each data file read, by its field; a copy of the scene keeps them; an inline table none."""
+    from flyopt.io.scene import load
+
+    (tmp_path / "torque.csv").write_text(_SHEAR_TABLE, encoding="utf-8")
+    scene = load(tmp_path / "scene.toml", tomllib_loads(_SHEAR_FROM_CSV.format(table="torque.csv")))
+    assert scene.inputs == (("torque.resisting.points_file", str(tmp_path / "torque.csv")),)
+    assert scene.replace(delta=0.02).inputs == scene.inputs
+    assert load(SHEAR).inputs == ()
+    engine = load(PROBLEMS / "four-stroke-engine-csv.toml")
+    assert engine.inputs == (("torque.driving.points_file", str(PROBLEMS / "four-stroke-engine-torque.csv")),)
+
+
+def test_a_report_lists_the_data_files_the_scene_read(tmp_path):
+    """The report's provenance names each file read, by its field, from the scene file's folder."""
+    from flyopt.cli.report import provenance
+    from flyopt.io.scene import load
+
+    (tmp_path / "tables").mkdir()
+    (tmp_path / "tables" / "torque.csv").write_text(_SHEAR_TABLE, encoding="utf-8")
+    scene = load(tmp_path / "scene.toml", tomllib_loads(_SHEAR_FROM_CSV.format(table="tables/./torque.csv")))
+    rows = dict(provenance(scene))
+    assert rows["data files the scene reads"] == (
+        "torque.resisting.points_file = tables/torque.csv (not in the hash above)"
+    )
+    assert "data files the scene reads" not in dict(provenance(load(SHEAR)))
+
+
+def tomllib_loads(text):
+    import tomllib
+
+    return tomllib.loads(text)

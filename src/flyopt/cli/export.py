@@ -55,7 +55,6 @@ def run_export(args: argparse.Namespace) -> int:
 
     kind = export_format(args.output)
     check_folder(args.output, "-o/--output")
-    check_not_scene(args.output, args.scene, "the drawing")
     if kind in ("dxf", "step"):
         from flyopt.outputs.drawing import require_ezdxf
         from flyopt.outputs.solid import require_ocp
@@ -65,6 +64,7 @@ def run_export(args: argparse.Namespace) -> int:
         except ImportError as err:
             return fail(f"-o/--output: {err}", EXIT_INPUT)
     scene = load(args.scene)
+    check_not_scene(args.output, scene, "the drawing")
     try:
         if kind == "step":
             design = design_of_scene(scene)

@@ -187,7 +187,8 @@ class _Version(argparse.Action):
 def _printed_to_file(handler: Callable[[argparse.Namespace], int]) -> Callable[[argparse.Namespace], int]:
     """A handler whose printed result goes to ``-o FILE`` instead of stdout, atomically.
 
-    The file's folder is checked before anything is computed; the file is
+    The file's folder is checked before anything is computed (and by the
+    handler, once it has read the scene, that it is no input); the file is
     written only when the handler returns (an error or Ctrl-C writes
     nothing), then "wrote FILE" is said unless ``--quiet``.
     """
@@ -195,12 +196,10 @@ def _printed_to_file(handler: Callable[[argparse.Namespace], int]) -> Callable[[
     def run_to_file(args: argparse.Namespace) -> int:
         if args.output is None:
             return handler(args)
-        from flyopt.outputs.files import check_folder, check_not_scene, write_text
+        from flyopt.outputs.files import check_folder, write_text
 
-        check_folder(args.output, "-o/--output")
-        scene = getattr(args, "scene", None)
-        if scene is not None:
-            check_not_scene(args.output, scene, "the result")
+        check_folder(args.output, "-o/--output")  # the handler, once it has read the scene, checks that
+        # the file is none the scene reads (flyopt.outputs.files.check_not_scene)
         printed = io.StringIO()
         with contextlib.redirect_stdout(printed):
             status = handler(args)

@@ -106,18 +106,22 @@ def run_plot(args: argparse.Namespace) -> int:
             f"--what: unknown diagram {args.what!r}{hint(args.what, [*plots.PLOTS, ALL])} (known: {', '.join(plots.PLOTS)}, {ALL})",
             EXIT_INPUT,
         )
-    plots.check_output(args.output, args.scene)
-    solution = _solve(args, [args.what])
+    plots.check_output(args.output)
+    solution = _solve(args, [args.what], [args.output])
     return _plot_one(args, plots, solution, args.what, args.output)
 
 
-def _solve(args, whats):
-    """The scene solved once, with what the diagrams ``whats`` draw (:func:`flyopt.pipeline.solve`)."""
+def _solve(args, whats, outputs):
+    """The scene solved once, with what the diagrams ``whats`` draw (:func:`flyopt.pipeline.solve`), once no
+    file of ``outputs`` is found to be one the scene read (before the solve)."""
     from flyopt.io.scene import load
+    from flyopt.outputs.files import check_not_scene
     from flyopt.pipeline import solve
 
     design, extras = needs(whats, args.verify)
     scene = load(args.scene)
+    for output in outputs:
+        check_not_scene(output, scene, "the diagram")
     # a [drive] chooses the machine (its motor and ratio) that every diagram draws: without the drive's
     # design the diagrams would draw the scene's energy model, a machine the answer does not have
     return solve(scene, design_flywheel=design or scene.drive is not None, extras=extras)
@@ -167,9 +171,10 @@ def _plot_all(args, plots):
     if not folder.is_dir():
         raise SceneError("-o/--output", f"{args.output!r}: with --what all, -o names an existing folder")
     whats = list(plots.PLOTS)
-    for what in whats:  # before the solve: no diagram's file may be the scene's
-        plots.check_output(folder / f"{what}.png", args.scene)
-    solution = _solve(args, whats)
+    files = [folder / f"{what}.png" for what in whats]
+    for file in files:  # before the solve (and, once the scene is read, none may be a file it reads)
+        plots.check_output(file)
+    solution = _solve(args, whats, files)
     statuses = [_plot_one(args, plots, solution, what, folder / f"{what}.png", every=True) for what in whats]
     return EXIT_INFEASIBLE if EXIT_INFEASIBLE in statuses else EXIT_OK
 

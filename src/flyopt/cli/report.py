@@ -34,15 +34,13 @@ beyond machine.delta (written, and says so).
 from __future__ import annotations
 
 import argparse
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any, cast
+import os
+from typing import TYPE_CHECKING, cast
 
 from flyopt.cli.exits import calculation_exit, solution_exit
 from flyopt.names import Model
 
 if TYPE_CHECKING:
-    import os
-
     from flyopt.io.scene import Scene
     from flyopt.pipeline import Solution
     from flyopt.report.builder import CalculationInputs, ReportInputs
@@ -94,13 +92,12 @@ def run_report(args: argparse.Namespace) -> int:
     """``flyopt report``: 0 written, 3 infeasible (written), 4 verification flagged (written)."""
     import sys
 
-    from flyopt.outputs.files import check_folder, check_not_scene
+    from flyopt.outputs.files import check_folder
 
     kind = output_kind(args.output)
     check_folder(args.output, "-o/--output")
-    check_not_scene(args.output, args.scene, "the report")
     command = f"flyopt report {args.scene} -o {args.output} --units {args.units} --digits {args.digits}"
-    inputs = collect(args.scene, command, pdf=kind == "pdf")
+    inputs = collect(args.scene, command, pdf=kind == "pdf", output=args.output)
     from flyopt.report.builder import CalculationInputs, build
 
     document = build(inputs, args.units, title_block=_title_lines(inputs), digits=args.digits)
@@ -140,7 +137,11 @@ def write(document: Document, path: str | os.PathLike[str], kind: str) -> None:
 
 
 def collect(
-    path: str | os.PathLike[str], command: str = "", pdf: bool = False, shown_as: str | None = None
+    path: str | os.PathLike[str],
+    command: str = "",
+    pdf: bool = False,
+    shown_as: str | None = None,
+    output: str | os.PathLike[str] | None = None,
 ) -> ReportInputs | CalculationInputs:
     """Solve a scene and gather what its report shows (:class:`flyopt.report.builder.ReportInputs`), or,
     for a scene that is one calculation (:data:`flyopt.names.CALCULATIONS`), answer it as ``flyopt solve``
@@ -156,6 +157,9 @@ def collect(
         Name reportlab's version in the provenance.
     shown_as : str, optional
         The scene file's name in the report (default ``path``): the app's, whose file is its server's own.
+    output : str or Path, optional
+        The report's file: refused once the scene is read, before it is solved, if it is the scene file or a
+        data file the scene reads (:func:`flyopt.outputs.files.check_not_scene`).
 
     Raises
     ------
@@ -174,6 +178,10 @@ def collect(
 
     data = read_toml(path)
     scene = load(path, data)
+    if output is not None:
+        from flyopt.outputs.files import check_not_scene
+
+        check_not_scene(output, scene, "the report")
     name = shown_as or str(path)  # the file as the report names it
     if shown_as is not None:
         scene = dataclasses.replace(scene, shown_as=shown_as)
@@ -184,7 +192,7 @@ def collect(
 
         result = solve_calculation(scene)  # the one answer, as flyopt solve gives it: the report only reads it
         calculation = CalculationInputs(name, Path(path).read_text(encoding="utf-8"), scene, what, result)
-        calculation.provenance = provenance(scene, command, pdf, data_files(data))
+        calculation.provenance = provenance(scene, command, pdf)
         return calculation
     solution = solve(scene, verify_design=True, extras=report_extras())  # the one solve: what follows only reads
     inputs = ReportInputs(
@@ -198,7 +206,7 @@ def collect(
     _machine(inputs)
     _inertia_delta(inputs)
     _stress(inputs)
-    inputs.provenance = provenance(scene, command, pdf, data_files(data))
+    inputs.provenance = provenance(scene, command, pdf)
     return inputs
 
 
@@ -213,19 +221,6 @@ def report_extras() -> tuple[str, ...]:
     from flyopt.report.plots import PLOTS
 
     return tuple(dict.fromkeys((*SHOWN, *needs(PLOTS)[1])))
-
-
-def data_files(data: Any, where: str = "") -> list[tuple[str, str]]:
-    """The files a scene names (``points_file``, a member's ``force_file``, ...): [(field, value)]."""
-    found = []
-    items = data.items() if isinstance(data, dict) else enumerate(data) if isinstance(data, list) else ()
-    for key, value in items:
-        field = f"{where}.{key}" if where and isinstance(key, str) else f"{where}[{key}]" if where else str(key)
-        if isinstance(key, str) and key.endswith("_file") and isinstance(value, str):
-            found.append((field, value))
-        elif isinstance(value, (dict, list)):
-            found += data_files(value, field)
-    return found
 
 
 def _speed(inputs):
@@ -293,9 +288,7 @@ def _stress(inputs):
     inputs.stress, inputs.stress_note = solution.stress, solution.stress_note
 
 
-def provenance(
-    scene: Scene, command: str = "", pdf: bool = False, files: Sequence[tuple[str, str]] = ()
-) -> tuple[tuple[str, str], ...]:
+def provenance(scene: Scene, command: str = "", pdf: bool = False) -> tuple[tuple[str, str], ...]:
     """Where the report came from: flyopt's version, the scene file and its SHA-256, the date, the solvers.
 
     Parameters
@@ -305,8 +298,9 @@ def provenance(
         The command line.
     pdf : bool
         Name reportlab's version too.
-    files : sequence of (str, str)
-        The data files the scene names (:func:`data_files`): listed, not hashed.
+
+    The data files the scene read (:attr:`~flyopt.io.scene.Scene.inputs`) are listed, each by its field and its
+    path from the scene file's folder, not hashed.
 
     Returns
     -------
@@ -324,11 +318,13 @@ def provenance(
         ("scene file", record["scene"] or "-"),
         ("scene file SHA-256", record["scene_file_sha256"] or "-"),
     ]
-    if files:
+    if scene.inputs:
+        folder = os.path.dirname(scene.source or "") or os.curdir
         rows.append(
             (
                 "data files the scene reads",
-                "; ".join(f"{field} = {value}" for field, value in files) + " (not in the hash above)",
+                "; ".join(f"{field} = {os.path.relpath(path, folder)}" for field, path in scene.inputs)
+                + " (not in the hash above)",
             )
         )
     rows += [

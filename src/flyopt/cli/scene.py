@@ -100,6 +100,10 @@ def run_solve(args: argparse.Namespace) -> int:
     from flyopt.pipeline import solve
 
     scene = load(args.scene)
+    if getattr(args, "output", None) is not None:  # -o (flyopt.cli.main._printed_to_file): no file the scene reads
+        from flyopt.outputs.files import check_not_scene
+
+        check_not_scene(args.output, scene, "the result")
     what = scene.calculation
     if what is not None:
         return _run_calculation(what, scene, args)

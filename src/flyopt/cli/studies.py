@@ -326,7 +326,7 @@ def run_pareto(args: argparse.Namespace) -> int:
 
     scene = load(args.scene)
     objectives, other = objective_pair(args.objectives)
-    _check_output(args.output, args.scene, "the front")
+    _check_output(args.output, scene, "the front")
     front = pareto(scene, objectives, points=args.points, span=_span(args.span, other), method=args.method)
     if front.empty:  # the front's table without rows, and why: on stdout under --json, in the file asked for
         import pandas as pd
@@ -384,7 +384,7 @@ def run_tradeoff(args: argparse.Namespace) -> int:
     from flyopt.studies.tradeoff import material_tradeoff
 
     scene = load(args.scene)
-    _check_output(args.output, args.scene, "the table")
+    _check_output(args.output, scene, "the table")
     table = material_tradeoff(scene, method=args.method)
     _emit(
         table,
@@ -411,9 +411,9 @@ def run_tradeoff(args: argparse.Namespace) -> int:
 _SUFFIXES = (".csv", ".parquet", ".pq", ".json")
 
 
-def _check_output(output: str | None, scene: str, what: str) -> None:
+def _check_output(output: str | None, scene: Scene, what: str) -> None:
     """The output file of a front or table (``what``: "the front"), checked before anything is computed: its
-    suffix, its folder, and that it is not the scene file itself."""
+    suffix, its folder, and that it is none of the files the scene read (the scene file, a ``points_file``)."""
     from flyopt.outputs.files import check_folder, check_not_scene
 
     if output is None:

@@ -17,9 +17,15 @@ from __future__ import annotations
 
 import os
 import stat
+from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, clip, shorten
+
+if TYPE_CHECKING:
+    from collections.abc import Iterator
 
 MAX_FILE_BYTES = 100_000_000
 """Default largest input file [bytes] (100 MB); ``FLYOPT_MAX_FILE_BYTES`` raises it."""
@@ -32,6 +38,25 @@ TABLE_ROWS_VARIABLE = "FLYOPT_MAX_TABLE_ROWS"
 
 QUOTE_FROM_FILE = 40
 """Longest quotation of a data file's text (a cell, a line) in a message [characters]."""
+
+
+_READ: ContextVar[list[tuple[str, str]] | None] = ContextVar("flyopt_inputs_read", default=None)
+"""The files :func:`read_input` has read inside :func:`recording_inputs`, or None outside it."""
+
+
+@contextmanager
+def recording_inputs() -> Iterator[list[tuple[str, str]]]:
+    """Record each file :func:`read_input` reads within the block, as (the field that names it, the path read).
+
+    The scene's loader records the data files a scene reads (:attr:`flyopt.io.scene.Scene.inputs`), so that
+    no output replaces one of them (:func:`flyopt.outputs.files.check_not_scene`).
+    """
+    read: list[tuple[str, str]] = []
+    token = _READ.set(read)
+    try:
+        yield read
+    finally:
+        _READ.reset(token)
 
 
 def max_file_bytes() -> int:
@@ -113,7 +138,7 @@ def read_input(path: Path, where: str, name: str, encoding: str = "utf-8", sourc
     The file is opened without blocking (a FIFO returns at once) and checked
     on its open descriptor: a regular file of at most :func:`max_file_bytes`
     bytes; then at most that many bytes are read (a file growing meanwhile is
-    refused too).
+    refused too). Inside :func:`recording_inputs` the file read is recorded.
 
     Parameters
     ----------
@@ -161,6 +186,9 @@ def read_input(path: Path, where: str, name: str, encoding: str = "utf-8", sourc
         os.close(descriptor)
     if len(data) > limit:
         raise refuse(f"over the limit of {limit} bytes ({_raise_it(FILE_BYTES_VARIABLE)})")
+    read = _READ.get()
+    if read is not None:
+        read.append((where, os.fspath(path)))
     try:
         return data.decode(encoding)
     except UnicodeDecodeError:

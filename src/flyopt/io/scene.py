@@ -23,6 +23,7 @@ from flyopt.io.angle_tables import ANGLE_TOLERANCE
 from flyopt.io.design_section import read_design
 from flyopt.io.engine_section import read_engine
 from flyopt.io.fields import Table, check_delta, cycle_of, mean_speed
+from flyopt.io.input_files import recording_inputs
 from flyopt.io.material_section import read_material, read_materials
 from flyopt.io.member_section import read_mechanism, read_members, with_engine
 from flyopt.io.shaft_section import (
@@ -117,6 +118,10 @@ class Scene:
     shown_as : str or None
         The file's name in outputs (a report's provenance, a table's metadata, a drawing's title block) where
         it is not ``source``: the app's scenes are files in its server's private folder. None: ``source``.
+    inputs : tuple of (str, str)
+        The data files the scene read (a ``points_file``, a member's ``force_file``, ...), each as (the field
+        that names it, the path read: the scene file's folder joined with the field's value): no output may
+        replace one (:func:`flyopt.outputs.files.check_not_scene`).
     """
 
     title: str
@@ -146,6 +151,7 @@ class Scene:
     power_chain: PowerBranch | None = None  # [power_chain]: the trunk of a motor's stages and branches (no torques)
     source: str | None = field(default=None, compare=False)
     shown_as: str | None = field(default=None, compare=False)
+    inputs: tuple[tuple[str, str], ...] = field(default=(), compare=False)
 
     @property
     def calculation(self) -> str | None:
@@ -233,6 +239,12 @@ def from_dict(data: Mapping[str, Any], source: str | None = None) -> Scene:
     SceneError
         A field is missing, unknown or wrong.
     """
+    with recording_inputs() as read:
+        scene = _from_dict(data, source)
+    return replace(scene, inputs=tuple(read)) if read else scene
+
+
+def _from_dict(data: Mapping[str, Any], source: str | None) -> Scene:
     files = Path(source).parent if source else Path()  # a points_file is relative to the scene file
     if isinstance(data, dict) and ("energy" in data or "strokes" in data):  # the courses' energy terms
         from flyopt.io.energy_form import scene_data as energy_scene_data

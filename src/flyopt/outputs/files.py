@@ -20,9 +20,12 @@ import secrets
 import stat
 from collections.abc import Callable
 from pathlib import Path
-from typing import BinaryIO
+from typing import TYPE_CHECKING, BinaryIO
 
 from flyopt.errors import FlyoptError, OutputError, SceneError
+
+if TYPE_CHECKING:
+    from flyopt.io.scene import Scene
 
 __all__ = [
     "Temporary",
@@ -246,12 +249,26 @@ def check_folder(path: str | os.PathLike[str], label: str = "output") -> None:
 
 
 def check_not_scene(
-    path: str | os.PathLike[str], scene: str | os.PathLike[str], what: str, label: str = "-o/--output"
+    path: str | os.PathLike[str], scene: str | os.PathLike[str] | Scene, what: str, label: str = "-o/--output"
 ) -> None:
-    """Refuse an output at the scene file itself (writing it would lose the input): ``what`` the output
-    would be ("the report") goes in the message, which asks for another file."""
-    if Path(path).resolve() == Path(scene).resolve():
+    """Refuse an output that would replace an input: the scene file, or, given the loaded :class:`Scene`, a data
+    file it read too (:attr:`~flyopt.io.scene.Scene.inputs`: a ``points_file``, a ``force_file``, ...), whose
+    field the message names. ``what`` the output would be ("the report") goes in the message, which asks for
+    another file. A symbolic link counts as the file it leads to."""
+    inputs: tuple[tuple[str, str], ...] = ()
+    source: str | os.PathLike[str] | None = None
+    if isinstance(scene, (str, os.PathLike)):
+        source = scene
+    else:
+        source, inputs = scene.source, scene.inputs
+    target = os.path.realpath(path)
+    if source is not None and target == os.path.realpath(source):
         raise SceneError(label, f"{str(path)!r} is the scene file itself: name another file for {what}")
+    for field, read in inputs:
+        if target == os.path.realpath(read):
+            raise SceneError(
+                label, f"{str(path)!r} is the file the scene's {field} names, an input: name another file for {what}"
+            )
 
 
 def _check_replaceable(target: Path, path: str | os.PathLike[str], label: str) -> None:

@@ -235,8 +235,7 @@ def sweep(
     )
     if output is not None:  # before anything is computed or made: a FIFO or a folder at the output is refused
         check_folder(output, "--output")
-        if scene.source is not None:  # and the scene's own file, which the table would replace
-            check_not_scene(output, scene.source, "the sweep's table", "--output")
+        check_not_scene(output, scene, "the sweep's table", "--output")  # nor a file the scene read
     parts = None if output is None else Parts(output)
     recorded = parts.manifest() if resume and parts is not None else {}
     if resume and samples is not None and seed is None:
