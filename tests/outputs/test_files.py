@@ -2,6 +2,8 @@
 ``--quiet`` leaves the result and nothing else (issue 15, part 5).
 """
 
+import os
+
 import pytest
 from conftest import PROBLEMS
 
@@ -282,7 +284,8 @@ def test_no_output_replaces_a_data_file_the_scene_reads(tmp_path, capsys, table,
     assert main(args) == 2
     said = capsys.readouterr()
     assert said.err.count("\n") == 1 and "Traceback" not in said.err, said.err
-    assert "-o/--output" in said.err or "--output" in said.err, said.err
+    label = "--output" if command[0] == "sweep" else "-o/--output"
+    assert said.err.startswith(f"flyopt: error: {label}: "), said.err
     assert "the scene's torque.resisting.points_file names, an input" in said.err, said.err
     assert f"name another file for {what}" in said.err, said.err
     assert data.read_text(encoding="utf-8") == _SHEAR_TABLE
@@ -321,3 +324,94 @@ def tomllib_loads(text):
     import tomllib
 
     return tomllib.loads(text)
+
+
+def test_a_data_file_is_refused_by_a_hard_link_too(tmp_path, capsys):
+    """The same file by another name: a hard link to the points_file (the file system's own identity)."""
+    scene = tmp_path / "scene.toml"
+    scene.write_text(_SHEAR_FROM_CSV.format(table="torque.csv"), encoding="utf-8")
+    (tmp_path / "torque.csv").write_text(_SHEAR_TABLE, encoding="utf-8")
+    os.link(tmp_path / "torque.csv", tmp_path / "hard.csv")
+    assert main(["solve", str(scene), "-o", str(tmp_path / "hard.csv")]) == 2
+    assert "the scene's torque.resisting.points_file names, an input" in capsys.readouterr().err
+    assert (tmp_path / "torque.csv").read_text(encoding="utf-8") == _SHEAR_TABLE
+
+
+@pytest.mark.parametrize("command", ["pareto", "tradeoff", "sweep"])
+def test_no_table_replaces_a_data_file_by_its_sidecar(tmp_path, capsys, command):
+    """A CSV table is written with its sidecar FILE.csv.json: that file may not be one the scene reads either."""
+    scene = tmp_path / "scene.toml"
+    scene.write_text(_SHEAR_FROM_CSV.format(table="res.csv.json"), encoding="utf-8")
+    data = tmp_path / "res.csv.json"
+    data.write_text(_SHEAR_TABLE, encoding="utf-8")
+    extra = ["--vary", "delta=0.02,0.05"] if command == "sweep" else []
+    assert main([command, str(scene), *extra, "-o", str(tmp_path / "res.csv")]) == 2
+    said = capsys.readouterr()
+    assert said.err.count("\n") == 1 and "res.csv.json' is the file the scene's torque.resisting.points_file" in (
+        said.err
+    ), said.err
+    assert data.read_text(encoding="utf-8") == _SHEAR_TABLE
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["res.csv.json", "scene.toml"]
+
+
+def test_a_sweep_table_in_the_scene_may_not_name_its_data_file(tmp_path, capsys):
+    """[sweep] output naming the scene's own points_file: refused by flyopt check and flyopt sweep alike,
+    the field named as written, with the file."""
+    scene = tmp_path / "scene.toml"
+    text = (
+        _SHEAR_FROM_CSV.format(table="torque.csv")
+        + '\n[sweep]\noutput = "torque.csv"\n[sweep.vary]\ndelta = "0.02,0.05"\n'
+    )
+    scene.write_text(text, encoding="utf-8")
+    (tmp_path / "torque.csv").write_text(_SHEAR_TABLE, encoding="utf-8")
+    for command in ("check", "sweep"):
+        assert main([command, str(scene)]) == 2
+        err = capsys.readouterr().err
+        assert f"{scene}" in err and "sweep.output: " in err and "torque.resisting.points_file" in err, err
+        assert (tmp_path / "torque.csv").read_text(encoding="utf-8") == _SHEAR_TABLE
+
+
+def test_the_inputs_name_their_files_after_the_working_folder_changes(tmp_path, monkeypatch):
+    """A scene loaded by a relative path keeps absolute paths of its data files: after os.chdir (a notebook)
+    flyopt.sweep still refuses to write over them."""
+    import flyopt
+
+    folder = tmp_path / "study"
+    folder.mkdir()
+    (folder / "scene.toml").write_text(_SHEAR_FROM_CSV.format(table="torque.csv"), encoding="utf-8")
+    (folder / "torque.csv").write_text(_SHEAR_TABLE, encoding="utf-8")
+    monkeypatch.chdir(folder)
+    scene = flyopt.load("scene.toml")
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(flyopt.SceneError, match="torque.resisting.points_file names, an input"):
+        flyopt.sweep(scene, {"delta": [0.02, 0.05]}, output="study/torque.csv")
+    assert (folder / "torque.csv").read_text(encoding="utf-8") == _SHEAR_TABLE
+
+
+def test_where_the_data_files_were_read_from_changes_no_digest(tmp_path, monkeypatch):
+    """The scene's digest (a sweep's parts, a table's metadata) is the same whatever folder it was loaded
+    from: a sweep started in one folder is resumed from another."""
+    from flyopt.io.scene import load
+    from flyopt.studies.payload import digest
+
+    absolute = load(PROBLEMS / "four-stroke-engine-csv.toml")
+    monkeypatch.chdir(PROBLEMS)
+    here = load("four-stroke-engine-csv.toml")
+    monkeypatch.chdir(PROBLEMS.parent)
+    above = load(f"{PROBLEMS.name}/four-stroke-engine-csv.toml")
+    assert absolute.inputs == here.inputs == above.inputs  # absolute paths, alike
+    assert digest(absolute) == digest(here) == digest(above)
+    changed = load(tomllib_loads_file(PROBLEMS / "four-stroke-engine-csv.toml", tmp_path))
+    assert digest(changed) != digest(absolute)  # the digest still sees the table's numbers
+
+
+def tomllib_loads_file(path, folder):
+    """A copy of the scene ``path`` and its CSV in ``folder``, one torque of the CSV changed: the copy's path."""
+    import shutil
+
+    shutil.copy(path, folder / path.name)
+    table = (path.parent / "four-stroke-engine-torque.csv").read_text(encoding="utf-8").splitlines()
+    last = table[-2].split(",")
+    table[-2] = f"{last[0]},{float(last[1]) + 1.0}"
+    (folder / "four-stroke-engine-torque.csv").write_text("\n".join(table) + "\n", encoding="utf-8")
+    return folder / path.name

@@ -677,7 +677,7 @@ def test_sweep_table_in_a_scene_file(tmp_path):
     scene, options = load_sweep(scene_with_sweep(tmp_path))
     assert (scene.title, scene.omega_mean, scene.shafts) == (PUNCH.title, PUNCH.omega_mean, PUNCH.shafts)
     assert options == {
-        "output": "study.csv",
+        "output": str(tmp_path / "study.csv"),  # relative to the scene file's folder
         "vary": {
             "delta": "0.02:0.2:log3",
             "speed": "30,60rpm",

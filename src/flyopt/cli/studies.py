@@ -157,9 +157,7 @@ def run_sweep(args: argparse.Namespace) -> int:
         vary[path] = values
     max_chunks = cli.pop("max_chunks", None)
     options.update(cli)
-    output = options.pop("output", None)
-    if output is not None and args.output is None:
-        output = Path(args.scene).parent / output  # [sweep] output is relative to the file
+    output = options.pop("output", None)  # [sweep] output came joined to the file's folder (load_sweep)
     frame = sweep(
         scene,
         vary,
@@ -414,14 +412,15 @@ _SUFFIXES = (".csv", ".parquet", ".pq", ".json")
 def _check_output(output: str | None, scene: Scene, what: str) -> None:
     """The output file of a front or table (``what``: "the front"), checked before anything is computed: its
     suffix, its folder, and that it is none of the files the scene read (the scene file, a ``points_file``)."""
-    from flyopt.outputs.files import check_folder, check_not_scene
+    from flyopt.outputs.files import check_folder
+    from flyopt.outputs.results import check_table_output
 
     if output is None:
         return
     if Path(output).suffix.lower() not in _SUFFIXES:
         raise SceneError("-o/--output", f"{output!r} must end in .csv, .parquet or .json (the suffix picks the format)")
     check_folder(output, "-o/--output")
-    check_not_scene(output, scene, what)
+    check_table_output(output, scene, what)
 
 
 def _metadata(

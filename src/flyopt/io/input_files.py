@@ -46,10 +46,11 @@ _READ: ContextVar[list[tuple[str, str]] | None] = ContextVar("flyopt_inputs_read
 
 @contextmanager
 def recording_inputs() -> Iterator[list[tuple[str, str]]]:
-    """Record each file :func:`read_input` reads within the block, as (the field that names it, the path read).
+    """Record each file :func:`read_input` reads within the block, as (the field that names it, its absolute path).
 
     The scene's loader records the data files a scene reads (:attr:`flyopt.io.scene.Scene.inputs`), so that
-    no output replaces one of them (:func:`flyopt.outputs.files.check_not_scene`).
+    no output replaces one of them (:func:`flyopt.outputs.files.check_not_scene`). The path is made absolute when
+    read, so that it names the same file after the working folder changes (a notebook's ``os.chdir``).
     """
     read: list[tuple[str, str]] = []
     token = _READ.set(read)
@@ -188,7 +189,7 @@ def read_input(path: Path, where: str, name: str, encoding: str = "utf-8", sourc
         raise refuse(f"over the limit of {limit} bytes ({_raise_it(FILE_BYTES_VARIABLE)})")
     read = _READ.get()
     if read is not None:
-        read.append((where, os.fspath(path)))
+        read.append((where, os.path.abspath(path)))
     try:
         return data.decode(encoding)
     except UnicodeDecodeError:

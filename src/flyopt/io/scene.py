@@ -120,8 +120,7 @@ class Scene:
         it is not ``source``: the app's scenes are files in its server's private folder. None: ``source``.
     inputs : tuple of (str, str)
         The data files the scene read (a ``points_file``, a member's ``force_file``, ...), each as (the field
-        that names it, the path read: the scene file's folder joined with the field's value): no output may
-        replace one (:func:`flyopt.outputs.files.check_not_scene`).
+        that names it, its absolute path, made so when read): no output may replace one (:func:`flyopt.outputs.files.check_not_scene`).
     """
 
     title: str

@@ -646,8 +646,8 @@ def load_sweep(path: str | os.PathLike[str]) -> tuple[Scene, dict[str, Any]]:
         material = ["cast_iron", "cast_steel"]
         "shaft.motor.speed_ratio" = "2:8:4"   # or [sweep.vary.shaft.motor]
 
-    A relative ``output`` is relative to the scene file's folder (``flyopt
-    sweep`` applies it; ``-o`` on the command line wins).
+    A relative ``output`` is relative to the scene file's folder: ``options["output"]``
+    is that path (the folder joined with it; ``-o`` on the command line wins).
 
     Parameters
     ----------
@@ -686,7 +686,7 @@ def load_sweep(path: str | os.PathLike[str]) -> tuple[Scene, dict[str, Any]]:
         options = {k: v for k, v in table.items() if k != "description"}
         check_options(options, "sweep")
         if options.get("output") is not None:  # written where the scene's author says: inside its folder
-            inside_scene(options["output"], "sweep.output", path.parent, "output file")
+            options["output"] = str(inside_scene(options["output"], "sweep.output", path.parent, "output file"))
         vary = options.pop("vary", {})
         if not isinstance(vary, dict):
             raise SceneError("sweep.vary", "must be a table of FIELD = VALUES")

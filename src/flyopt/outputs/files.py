@@ -254,21 +254,32 @@ def check_not_scene(
     """Refuse an output that would replace an input: the scene file, or, given the loaded :class:`Scene`, a data
     file it read too (:attr:`~flyopt.io.scene.Scene.inputs`: a ``points_file``, a ``force_file``, ...), whose
     field the message names. ``what`` the output would be ("the report") goes in the message, which asks for
-    another file. A symbolic link counts as the file it leads to."""
+    another file. The same file by another path counts as it: a symbolic link to it, a hard link, another case of
+    its name on a file system that ignores case."""
     inputs: tuple[tuple[str, str], ...] = ()
     source: str | os.PathLike[str] | None = None
     if isinstance(scene, (str, os.PathLike)):
         source = scene
     else:
         source, inputs = scene.source, scene.inputs
-    target = os.path.realpath(path)
-    if source is not None and target == os.path.realpath(source):
+    if source is not None and _same_file(path, source):
         raise SceneError(label, f"{str(path)!r} is the scene file itself: name another file for {what}")
     for field, read in inputs:
-        if target == os.path.realpath(read):
+        if _same_file(path, read):
             raise SceneError(
                 label, f"{str(path)!r} is the file the scene's {field} names, an input: name another file for {what}"
             )
+
+
+def _same_file(path: str | os.PathLike[str], other: str | os.PathLike[str]) -> bool:
+    """Whether ``path`` names the file ``other`` names: the same real path, or, both existing, the same file
+    (device and inode: a hard link, or a name in another case where the file system ignores case)."""
+    if os.path.realpath(path) == os.path.realpath(other):
+        return True
+    try:
+        return os.path.samefile(path, other)
+    except (OSError, ValueError):  # either is absent (an output yet to be made), or a NUL in a name
+        return False
 
 
 def _check_replaceable(target: Path, path: str | os.PathLike[str], label: str) -> None:

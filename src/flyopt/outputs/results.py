@@ -37,12 +37,14 @@ from typing import TYPE_CHECKING, Any, Literal, TextIO
 import numpy as np
 
 from flyopt.errors import SceneError
-from flyopt.outputs.files import Temporary, check_folder, output_error, output_target
+from flyopt.outputs.files import Temporary, check_folder, check_not_scene, output_error, output_target
 from flyopt.outputs.quantities import COUNTS, INPUTS, has_unit
 
 if TYPE_CHECKING:
     import pandas as pd
     import pyarrow as pa
+
+    from flyopt.io.scene import Scene
 
 __all__ = [
     "CORE_INPUTS",
@@ -52,6 +54,7 @@ __all__ = [
     "RESULT_COLUMNS",
     "ResultWriter",
     "arrow_table",
+    "check_table_output",
     "column_kind",
     "csv_rows",
     "normalize",
@@ -214,6 +217,16 @@ def sidecar_path(path: str | os.PathLike[str]) -> Path:
     """The sidecar of a CSV file, which holds its metadata: ``FILE.csv`` → ``FILE.csv.json``."""
     path = Path(path)
     return path.with_name(path.name + ".json")
+
+
+def check_table_output(path: str | os.PathLike[str], scene: Scene, what: str, label: str = "-o/--output") -> None:
+    """Refuse a table's output that would replace a file the scene read (the scene file or a data file:
+    :func:`flyopt.outputs.files.check_not_scene`): the table itself and, for CSV, its sidecar."""
+    files = [Path(path)]
+    if _SUFFIXES.get(files[0].suffix.lower()) == "csv":
+        files.append(sidecar_path(path))
+    for file in files:
+        check_not_scene(file, scene, what, label)
 
 
 def arrow_table(frame: pd.DataFrame, metadata: Mapping[str, Any] | None = None) -> pa.Table:

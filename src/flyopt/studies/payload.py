@@ -41,9 +41,10 @@ if TYPE_CHECKING:  # the annotations only
 # --------------------------------------------------------------------------
 
 
-#: A scene's fields that name its file and change nothing it computes: left out of its digest and not sent as
-#: changes (:attr:`flyopt.io.scene.Scene.shown_as`: the app's name for its server's file).
-NAMES_ONLY = ("source", "shown_as")
+#: A scene's fields that name its files and change nothing it computes: left out of its digest and not sent as
+#: changes (:attr:`flyopt.io.scene.Scene.shown_as`: the app's name for its server's file;
+#: :attr:`~flyopt.io.scene.Scene.inputs`: where its data files were read, whose numbers are in the scene).
+NAMES_ONLY = ("source", "shown_as", "inputs")
 
 
 def digest(obj: object, skip: Iterable[str] = NAMES_ONLY) -> str:

@@ -39,8 +39,8 @@ from flyopt.design import design_inputs
 from flyopt.errors import BrokenInvariant, Interrupted, SceneError
 from flyopt.io.sweep_spec import check_options, option_label
 from flyopt.outputs.documents import scene_record, table_metadata
-from flyopt.outputs.files import check_folder, check_not_scene
-from flyopt.outputs.results import ResultWriter, normalize
+from flyopt.outputs.files import check_folder
+from flyopt.outputs.results import ResultWriter, check_table_output, normalize
 from flyopt.studies.chunks import SERIAL_SECONDS, chunk_bounds
 from flyopt.studies.cluster import connect, threads
 from flyopt.studies.context import chunk_context
@@ -102,6 +102,8 @@ def check_sweep(scene: Scene, options: Mapping[str, Any], where: str = "sweep") 
     """
     try:
         check_options(options, where)
+        if options.get("output") is not None:  # nor over a file the scene reads
+            check_table_output(options["output"], scene, "the sweep's table", option_label(where, "output"))
         return plan_sweep(
             scene,
             options.get("vary") or {},
@@ -235,7 +237,7 @@ def sweep(
     )
     if output is not None:  # before anything is computed or made: a FIFO or a folder at the output is refused
         check_folder(output, "--output")
-        check_not_scene(output, scene, "the sweep's table", "--output")  # nor a file the scene read
+        check_table_output(output, scene, "the sweep's table", "--output")  # nor a file the scene read
     parts = None if output is None else Parts(output)
     recorded = parts.manifest() if resume and parts is not None else {}
     if resume and samples is not None and seed is None:

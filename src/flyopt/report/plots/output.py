@@ -20,31 +20,27 @@ if TYPE_CHECKING:
 FORMATS = ("png", "svg", "pdf")
 
 
-def check_output(path: str | os.PathLike[str], source: str | os.PathLike[str] | None = None) -> None:
-    """Check the file a diagram will go to, before anything is computed.
+def check_output(path: str | os.PathLike[str]) -> None:
+    """Check the file a diagram will go to, before anything is computed (that it is none the diagram is drawn
+    from is checked where that is read: :func:`flyopt.outputs.files.check_not_scene`).
 
     Parameters
     ----------
     path : str or Path
         The output file; its suffix picks the format (:data:`FORMATS`).
-    source : str or Path, optional
-        The file the diagram is drawn from (a scene, a table of results): the diagram may not replace it.
 
     Raises
     ------
     SceneError
-        Field ``-o/--output``: an unsupported suffix, a folder that does
-        not exist (flyopt does not create folders the user did not ask for),
-        or the ``source`` file itself.
+        Field ``-o/--output``: an unsupported suffix, or a folder that does
+        not exist (flyopt does not create folders the user did not ask for).
     """
-    from flyopt.outputs.files import check_folder, check_not_scene
+    from flyopt.outputs.files import check_folder
 
     path = Path(path)
     if path.suffix.lower().lstrip(".") not in FORMATS:
         raise SceneError("-o/--output", f"{str(path)!r} must end in .png, .svg or .pdf (the suffix picks the format)")
     check_folder(path, "-o/--output")
-    if source is not None:
-        check_not_scene(path, source, "the diagram")
 
 
 def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
