@@ -28,6 +28,7 @@ from flyopt.report.display import (
     DEFAULT_DIGITS,
     SENSITIVITY_HEADING,
     UTILISATION_DIGITS,
+    Column,
     chain_point,
     dimension_of,
     field_number,
@@ -408,8 +409,8 @@ def analysis_report(
     lines += engine_report(r, units, digits)
     lines += ["", "Energy indicator diagram (excess work from the cycle start):"]
     rows = []
-    chain = [e["delta_e"] for e in r.energy_chain]  # one column: its unit and its round-off by its largest
-    angles = [e["angle"] for e in r.energy_chain]
+    chain = Column(e["delta_e"] for e in r.energy_chain)  # one column: its unit and its round-off by its largest
+    angles = Column(e["angle"] for e in r.energy_chain)
     for e in r.energy_chain:
         same = (r.angle_delta_e_max, r.angle_delta_e_min) == (r.angle_omega_max, r.angle_omega_min)
         top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")

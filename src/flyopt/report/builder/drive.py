@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from flyopt.report.builder.base import NOTES, BuilderBase
-from flyopt.report.display import number, said_text
+from flyopt.report.display import Column, number, said_text
 from flyopt.report.document import Facts, Paragraph, Table
 
 
@@ -94,7 +94,7 @@ class DriveSection(BuilderBase):
                     rows.append(("binding limits", "; ".join(moved) + " (relaxed optimum, first order)"))
             blocks.append(Facts(tuple(rows), "drive"))
         rows = []
-        rated = [run.motor.rated_power for run in drive.runs]  # one unit for the column, chosen from its largest
+        rated = Column(run.motor.rated_power for run in drive.runs)  # one unit for the column, chosen from its largest
         for run in drive.runs:
             rows.append(
                 [

@@ -262,7 +262,9 @@ class Steps(Requirement):
         same = (a.angle_delta_e_max, a.angle_delta_e_min) == (a.angle_omega_max, a.angle_omega_min)
         top, bottom = ("ω_max", "ω_min") if same else ("ΔE max", "ΔE min")
         rows = []
-        chain = [e["delta_e"] for e in a.energy_chain]  # one column: its unit and round-off by its largest
+        chain = display.Column(
+            e["delta_e"] for e in a.energy_chain
+        )  # one column: its unit and round-off by its largest
         for e in a.energy_chain:
             mark = top if e["index"] == a.index_omega_max else bottom if e["index"] == a.index_omega_min else ""
             where = self.n(e["angle"], "angle") if e["angle"] is not None else display.chain_point(e["index"])
@@ -295,12 +297,12 @@ class Steps(Requirement):
                     "note",
                 )
             )
-        chain = [e["delta_e"] for e in a.energy_chain]
+        energies = [e["delta_e"] for e in a.energy_chain]
         blocks.append(
             self.eq(
                 "a_max",
                 "A_{max} = max ΔE − min ΔE",
-                f"{self.si(max(chain), 'energy')} − {self.si(min(chain), 'energy')}",
+                f"{self.si(max(energies), 'energy')} − {self.si(min(energies), 'energy')}",
                 self.result(a.a_max, "energy"),
                 4,
             )

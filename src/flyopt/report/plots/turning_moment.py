@@ -14,6 +14,8 @@ from flyopt.report.plots.cycle import Torques, angle_axis, mark_dead_centres, om
 from flyopt.report.plots.labels import place_area_labels
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from matplotlib.axes import Axes
 
     from flyopt.analysis import Analysis
@@ -30,7 +32,8 @@ def plot_turning_moment(
     """Turning-moment diagram: M_d and M_r over the cycle, surplus and deficit shaded.
 
     Each area between crossings is labelled with its energy where it has room
-    (areas under 1 % of A_max and 2 % of the cycle are left unlabelled); the
+    (areas under 1 % of A_max and 2 % of the cycle are left unlabelled, and of
+    more than :data:`MAX_AREA_LABELS` areas the largest alone); the
     angles of ω_max and ω_min by the model that ran are marked, and where they
     are not the ends of A_max (a variable inertia, a speed-dependent torque)
     those are marked too and the legend says why. A torque solved from the
@@ -171,10 +174,7 @@ def plot_turning_moment(
             f"{'+' if area > 0 else '−'}{energy.q(abs(area))}",
             standard.SURPLUS if area > 0 else standard.DEFICIT,
         )
-        for left, right, area in between
-        if largest > 0
-        and (abs(area) >= 0.01 * largest or right - left >= 0.02 * scene.cycle_angle)
-        and abs(area) > 1e-9 * largest
+        for left, right, area in _labelled(between, largest, scene.cycle_angle)
     ]
     place_area_labels(
         ax,
@@ -189,6 +189,29 @@ def plot_turning_moment(
     ax.set_xlim(0.0, end)
     del top
     return ax
+
+
+#: The most areas the diagram labels: the largest, where a table crosses its mean thousands of times (a label
+#: needs some 15 mm of a diagram about 180 mm wide; each costs a search over the drawn points).
+MAX_AREA_LABELS = 40
+
+
+def _labelled(
+    between: Sequence[tuple[float, float, float]], largest: float, cycle: float
+) -> list[tuple[float, float, float]]:
+    """The areas (left, right, energy) worth a label, in their order: not under 1 % of the largest and 2 % of the
+    cycle, nor round-off, and of more than :data:`MAX_AREA_LABELS` the largest."""
+    if largest <= 0:
+        return []
+    kept = [
+        (left, right, area)
+        for left, right, area in between
+        if (abs(area) >= 0.01 * largest or right - left >= 0.02 * cycle) and abs(area) > 1e-9 * largest
+    ]
+    if len(kept) > MAX_AREA_LABELS:
+        cut = sorted(abs(area) for *_lr, area in kept)[-MAX_AREA_LABELS]
+        kept = [k for k in kept if abs(k[2]) >= cut][:MAX_AREA_LABELS]
+    return kept
 
 
 def _torque_words(
