@@ -134,3 +134,52 @@ def test_a_link_planted_at_the_lock_is_never_followed(tmp_path):
     with pytest.raises(SceneError, match="lock"):
         parts.lock()
     assert victim.read_text() == "keep me"
+
+
+def test_a_parts_folder_that_is_a_link_is_refused_and_nothing_outside_is_touched(tmp_path):
+    """OUTPUT.parts as a symbolic link: the sweep wrote its lock where it led (emptying a file there) and, on a
+    resume, removed what it took for its temporaries there. Refused now, in one line, before anything is written."""
+    from flyopt.errors import SceneError
+
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "lock").write_text("a file of the user's")
+    (outside / "thesis.tmp-final").write_text("keep me")
+    (tmp_path / "study.parquet.parts").symlink_to(outside)
+    for resume in (False, True):
+        with pytest.raises(SceneError, match="is a symbolic link: the sweep keeps its finished chunks"):
+            sweep(PUNCH, VARY, chunk_size=4, output=tmp_path / "study.parquet", resume=resume)
+    assert (outside / "lock").read_text() == "a file of the user's"
+    assert sorted(p.name for p in outside.iterdir()) == ["lock", "thesis.tmp-final"]
+    assert not (tmp_path / "study.parquet").exists()
+
+
+def test_a_resume_removes_its_own_temporaries_alone_and_no_link_at_a_part(tmp_path, capsys):
+    """In a real parts folder: a file merely named like a temporary is kept; a link planted at a chunk's name is
+    removed (not followed: the chunk is written in the folder), and the file equals an uninterrupted run's."""
+    out = tmp_path / "study.parquet"
+    sweep(PUNCH, VARY, chunk_size=4, output=out, max_chunks=1)
+    parts = tmp_path / "study.parquet.parts"
+    (parts / "notes.tmp-final").write_text("the user's")
+    target = tmp_path / "elsewhere.parquet"
+    (parts / "chunk-00002.parquet").symlink_to(target)
+    sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True, keep_parts=True)
+    assert not target.exists()
+    assert (parts / "notes.tmp-final").read_text() == "the user's"
+    assert "chunk-00002.parquet: a symbolic link, not a part" in capsys.readouterr().err
+    pd.testing.assert_frame_equal(read_results(out), sweep(PUNCH, VARY, chunk_size=4))
+
+
+def test_a_manifest_that_is_no_file_is_refused_not_read(tmp_path):
+    """--resume reads the manifest as any input: a FIFO at its name is refused at once (it blocked forever)."""
+    import os
+
+    from flyopt.errors import SceneError
+
+    out = tmp_path / "study.parquet"
+    sweep(PUNCH, VARY, chunk_size=4, output=out, max_chunks=1)
+    manifest = tmp_path / "study.parquet.parts" / "sweep.json"
+    manifest.unlink()
+    os.mkfifo(manifest)
+    with pytest.raises(SceneError, match="manifest .* not a regular file but a FIFO"):
+        sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)

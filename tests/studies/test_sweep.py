@@ -791,3 +791,20 @@ def test_max_chunks_zero_is_refused(tmp_path):
     )
     assert run.returncode == 2 and "--max-chunks" in run.stderr and len(run.stderr.splitlines()) == 1
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("beside", ["study.csv.json", "study.csv.parts"])
+def test_a_sweep_table_in_the_scene_writes_nothing_beside_it_outside_the_folder(tmp_path, beside):
+    """[sweep] output stays in the scene's folder, and so do the files written beside it: a link at its CSV's
+    sidecar or at its parts folder that leads out of the folder is refused as the output itself would be."""
+    folder = tmp_path / "scene"
+    folder.mkdir()
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (folder / beside).symlink_to(outside / "victim")
+    path = folder / "press.toml"
+    path.write_text((PROBLEMS / "punch-press.toml").read_text() + SWEEP_TABLE, encoding="utf-8")
+    with pytest.raises(SceneError, match="leads outside the scene file's folder") as info:
+        load_sweep(path)
+    assert info.value.field == "sweep.output" and info.value.source == str(path)
+    assert list(outside.iterdir()) == []

@@ -686,7 +686,11 @@ def load_sweep(path: str | os.PathLike[str]) -> tuple[Scene, dict[str, Any]]:
         options = {k: v for k, v in table.items() if k != "description"}
         check_options(options, "sweep")
         if options.get("output") is not None:  # written where the scene's author says: inside its folder
-            options["output"] = str(inside_scene(options["output"], "sweep.output", path.parent, "output file"))
+            raw = options["output"]
+            options["output"] = str(inside_scene(raw, "sweep.output", path.parent, "output file"))
+            # and so are the files the sweep writes beside it: a CSV's sidecar, the folder of its finished chunks
+            for beside in ((f"{raw}.json",) if str(raw).lower().endswith(".csv") else ()) + (f"{raw}.parts",):
+                inside_scene(beside, "sweep.output", path.parent, "output file")
         vary = options.pop("vary", {})
         if not isinstance(vary, dict):
             raise SceneError("sweep.vary", "must be a table of FIELD = VALUES")

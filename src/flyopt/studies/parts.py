@@ -14,6 +14,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 import shutil
 import stat
 import sys
@@ -24,6 +25,7 @@ from typing import Any
 import pandas as pd
 
 from flyopt.errors import SceneError
+from flyopt.io.input_files import read_input
 from flyopt.outputs.files import check_folder
 from flyopt.outputs.results import read_results, write_results
 
@@ -124,16 +126,50 @@ class Parts:
             os.close(self._lock)  # closing the descriptor drops the flock
             self._lock = None
 
+    def _temporary(self, name: str) -> bool:
+        """Whether ``name`` is one of this sweep's temporary files, left in its folder by a killed run: a part's, the
+        manifest's or the output's (written in the folder, then moved), ``NAME.tmp-PID-RANDOM``, NAME maybe cut to
+        fit a file name's length. Nothing else in the folder is removed on a resume."""
+        head, sep, tail = name.rpartition(".tmp-")
+        if not sep or not head or not _TEMPORARY_TAIL.fullmatch(tail):
+            return False
+        output = self.folder.name[: -len(".parts")]
+        return bool(_PART_NAME.fullmatch(head)) or head == output or (len(name) >= 240 and output.startswith(head))
+
     def path(self, index: int) -> Path:
         """The file of chunk ``index``."""
         return self.folder / f"chunk-{index:05d}.parquet"
 
     def manifest(self) -> dict[str, Any]:
-        """What the folder's manifest records (``{}`` when there is none or it is unreadable)."""
-        try:
-            return json.loads((self.folder / self.MANIFEST).read_text(encoding="utf-8"))
-        except (OSError, ValueError):
+        """What the folder's manifest records (``{}`` when there is none, or it is not a JSON object).
+
+        Read as any input is (:func:`~flyopt.io.input_files.read_input`): a regular file within the size cap,
+        so a FIFO or a link to ``/dev/zero`` planted at its name is refused (SceneError), not read forever."""
+        self.check_folder()
+        path = self.folder / self.MANIFEST
+        if not os.path.lexists(path):
             return {}
+        text = read_input(path, "--resume", f"the sweep's manifest {str(path)!r}")
+        try:
+            record = json.loads(text)
+        except ValueError:
+            return {}
+        return record if isinstance(record, dict) else {}
+
+    def check_folder(self) -> None:
+        """Refuse a parts folder that is not a folder of its own: a symbolic link (the sweep would write its
+        lock, its chunks and its removals where the link leads) or another kind of file."""
+        try:
+            mode = os.lstat(self.folder).st_mode
+        except FileNotFoundError:
+            return
+        if stat.S_ISLNK(mode) or not stat.S_ISDIR(mode):
+            kind = "a symbolic link" if stat.S_ISLNK(mode) else "not a folder"
+            raise SceneError(
+                "--output",
+                f"{str(self.folder)!r} is {kind}: the sweep keeps its finished chunks in a folder of its own "
+                "there; remove it or name another output",
+            )
 
     def open(self, record: Mapping[str, Any], chunks: Sequence[tuple[int, pd.DataFrame]], resume: bool) -> list[int]:
         """Create the folder, or (``resume``) find the chunks already in it.
@@ -159,7 +195,8 @@ class Parts:
         SceneError
             The folder exists without ``resume``, or holds another sweep.
         """
-        if not self.folder.exists():
+        self.check_folder()
+        if not os.path.lexists(self.folder):
             check_folder(self.folder)
             try:
                 self.folder.mkdir()
@@ -191,11 +228,18 @@ class Parts:
                 f"different sweep (scene, fields, values or chunk size differ); "
                 f"delete the folder to start over",
             )
-        for stale in self.folder.glob("*.tmp-*"):  # left by a killed run
-            stale.unlink(missing_ok=True)
+        for stale in self.folder.iterdir():  # left by a killed run: this sweep's own temporaries alone
+            if self._temporary(stale.name) and stat.S_ISREG(os.lstat(stale).st_mode):
+                stale.unlink(missing_ok=True)
         done = []
         for i, chunk in chunks:
             path = self.path(i)
+            if path.is_symlink():  # no part of this sweep's: a chunk written there would go where it leads
+                print(
+                    f"flyopt sweep: {path}: a symbolic link, not a part; removed, chunk {i} computed", file=sys.stderr
+                )
+                path.unlink()
+                continue
             if not path.exists():
                 continue
             problem = _damage(path, chunk)
@@ -218,6 +262,13 @@ class Parts:
         """Remove the folder and everything in it."""
         shutil.rmtree(self.folder, ignore_errors=True)
         self.release()
+
+
+#: The tail of a temporary file's name (:class:`flyopt.outputs.files.Temporary`: ``NAME.tmp-PID-RANDOM``).
+_TEMPORARY_TAIL = re.compile(r"\d+(-[0-9a-f]+)?")
+
+#: The parts of a sweep, and its manifest: the names its temporary files in the folder take.
+_PART_NAME = re.compile(r"chunk-\d{5}\.parquet|sweep\.json")
 
 
 def _damage(path: Path, chunk: pd.DataFrame) -> str:
