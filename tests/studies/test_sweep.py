@@ -808,3 +808,26 @@ def test_a_sweep_table_in_the_scene_writes_nothing_beside_it_outside_the_folder(
         load_sweep(path)
     assert info.value.field == "sweep.output" and info.value.source == str(path)
     assert list(outside.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("vary", "allowed"),
+    [
+        ("delta=1e-9", "allowed: 1e-06 to 2; as machine.delta"),
+        ("speed=1e-10:1e10:log5 rpm", "allowed: 1e-06 to 1e+06 rad/s"),
+        ("material.cast_steel.density=1e9", "allowed: 1 to 100000 kg/m^3"),
+        ("material.cast_steel.max_rim_speed=1e9", "allowed: 0.001 to 10000 m/s"),
+        ("shaft.motor.speed_ratio=1e-9,2", "allowed: 1e-06 to 1e+06"),
+        ("design.max_outer_diameter=1e-9 m", "allowed: 1e-06 to 1000 m"),
+        ("design.hb_ratio=1e5", "allowed: 0.001 to 1000"),
+    ],
+)
+def test_a_varied_value_the_loader_refuses_is_refused(vary, allowed):
+    """A point of a sweep is a scene the loader would accept: each varied field keeps the loader's range (a δ of
+    1e-9 or a density of 1e9 kg/m³ made rows marked designed, of wheels no scene can state)."""
+    path = str(PROBLEMS / "shear-press.toml")
+    scene = flyopt.load(path)
+    field, _, values = vary.partition("=")
+    with pytest.raises(SceneError, match="is out of range") as info:
+        plan_sweep(scene, {field: values})
+    assert allowed in info.value.message, info.value.message

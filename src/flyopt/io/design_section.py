@@ -18,6 +18,7 @@ if TYPE_CHECKING:
     from flyopt.machine.transmission import Shaft
 
 LENGTH_RANGE = (1e-6, 1e3)
+LENGTH_WHY = "a micron to a kilometre"
 """Allowed lengths of the [design] envelope and walls [m]; beyond them the wheel's powers of length overflow."""
 
 
@@ -86,7 +87,7 @@ def read_design(
                 hb,
                 *HB_RANGE,
                 "",
-                "from a plate 1000 times wider than thick to a ring 1000 times thicker",
+                HB_WHY,
             )
         options["hb_ratio"] = (low, high)
     if table.has("round_to") and isinstance(table.get("round_to"), bool):
@@ -100,7 +101,7 @@ def read_design(
             value = table.quantity(key, "length", required=True)
             if value <= 0:
                 raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
-            check_magnitude(value, f"design.{key}", table.raw(key), *LENGTH_RANGE, "m", "a micron to a kilometre")
+            check_magnitude(value, f"design.{key}", table.raw(key), *LENGTH_RANGE, "m", LENGTH_WHY)
             options[key] = value
     if options.get("round_to", 0.0) > MAX_ROUND_TO:
         raise SceneError(
@@ -206,6 +207,7 @@ def read_design(
 
 #: Allowed H/B [-]: beyond it a rim's other section runs to kilometres or to nothing.
 HB_RANGE = (1e-3, 1e3)
+HB_WHY = "from a plate 1000 times wider than thick to a ring 1000 times thicker"
 
 #: Smallest design.rim_share [-]: a rim that gives less is no flywheel's rim (the books' shares are 85-95 %).
 MIN_RIM_SHARE = 0.01

@@ -18,6 +18,7 @@ if TYPE_CHECKING:
     from collections.abc import Iterable
 
 RATIO_RANGE = (1e-6, 1e6)
+RATIO_WHY = "ω_shaft/ω_reference of a gear train"
 """Allowed speed ratio ω_shaft/ω_reference of a [[shaft]]: inertias scale as its square, beyond it they overflow."""
 
 
@@ -67,7 +68,7 @@ def read_shaft(item: object, k: int, seen: set[str]) -> tuple[Shaft, Any]:
         table.raw("speed_ratio"),
         *RATIO_RANGE,
         "",
-        "ω_shaft/ω_reference of a gear train",
+        RATIO_WHY,
     )
     eff = read_efficiency(table.get("efficiency"), f"{where}.efficiency") if table.has("efficiency") else 1.0
     if table.raw("diameter") == DESIGNED:

@@ -68,7 +68,11 @@ __all__ = [
     "load_sweep",
 ]
 
+from flyopt.io.design_section import HB_RANGE, HB_WHY, LENGTH_RANGE, LENGTH_WHY
+from flyopt.io.fields import DELTA_RANGE, SPEED_RANGE, SPEED_WHY, check_magnitude
 from flyopt.io.input_files import inside_scene
+from flyopt.io.material_section import MAGNITUDES
+from flyopt.io.shaft_section import RATIO_RANGE, RATIO_WHY
 from flyopt.io.toml_file import read_toml
 from flyopt.names import closest
 
@@ -84,13 +88,28 @@ class SweepField:
     maximum: float | None = None
     optional: bool = False  # "none" allowed
     what: str = ""
+    bounds: tuple[float, float, str, str] | None = None  # the loader's (low, high, unit, why): one range for a field
 
+
+_LENGTHS = (*LENGTH_RANGE, "m", LENGTH_WHY)
+_HB = (*HB_RANGE, "", HB_WHY)
 
 #: The scene fields a sweep may vary (besides shaft.NAME.speed_ratio and
-#: material.NAME.density|max_rim_speed|cost).
+#: material.NAME.density|max_rim_speed|cost); a value is checked as the loader checks the field (``bounds``:
+#: its range), so that no point is a scene the loader refuses.
 FIELDS = {
-    "delta": SweepField("number", what="coefficient of speed fluctuation, 0 < δ < 2", maximum=2.0),
-    "speed": SweepField("number", "angular_speed", what="mean speed of the reference shaft (> 0)"),
+    "delta": SweepField(
+        "number",
+        what="coefficient of speed fluctuation, 0 < δ < 2",
+        maximum=2.0,
+        bounds=(DELTA_RANGE[0], math.nextafter(DELTA_RANGE[1], 0.0), "", "as machine.delta"),
+    ),
+    "speed": SweepField(
+        "number",
+        "angular_speed",
+        what="mean speed of the reference shaft (> 0)",
+        bounds=(*SPEED_RANGE, "rad/s", SPEED_WHY),
+    ),
     "inertia": SweepField(
         "number",
         "inertia",
@@ -99,23 +118,29 @@ FIELDS = {
     ),
     "torque.scale": SweepField("number", what="factor on both torques (> 0)"),
     "design.max_outer_diameter": SweepField(
-        "number", "length", optional=True, what="envelope on the outer diameter (> 0 or none)"
+        "number", "length", optional=True, what="envelope on the outer diameter (> 0 or none)", bounds=_LENGTHS
     ),
-    "design.max_width": SweepField("number", "length", optional=True, what="limit on the axial width (> 0 or none)"),
-    "design.d_mean": SweepField("number", "length", optional=True, what="pinned mean diameter (> 0 or none)"),
-    "design.hb_ratio": SweepField("number", what="H/B, one value (> 0)"),
-    "design.hb_min": SweepField("number", what="lower end of the H/B range (> 0)"),
-    "design.hb_max": SweepField("number", what="upper end of the H/B range (> 0)"),
+    "design.max_width": SweepField(
+        "number", "length", optional=True, what="limit on the axial width (> 0 or none)", bounds=_LENGTHS
+    ),
+    "design.d_mean": SweepField(
+        "number", "length", optional=True, what="pinned mean diameter (> 0 or none)", bounds=_LENGTHS
+    ),
+    "design.hb_ratio": SweepField("number", what="H/B, one value (> 0)", bounds=_HB),
+    "design.hb_min": SweepField("number", what="lower end of the H/B range (> 0)", bounds=_HB),
+    "design.hb_max": SweepField("number", what="upper end of the H/B range (> 0)", bounds=_HB),
     "design.geometry": SweepField("name", what="thin_rim, rim or disc"),
     "design.objective": SweepField("name", what="mass, cost or outer_diameter"),
     "material": SweepField("name", what="a material name"),
     "shaft": SweepField("name", what="a shaft name"),
 }
 
-_SHAFT_FIELDS = {"speed_ratio": SweepField("number", what="ω_shaft / ω_reference (> 0)")}
+_SHAFT_FIELDS = {
+    "speed_ratio": SweepField("number", what="ω_shaft / ω_reference (> 0)", bounds=(*RATIO_RANGE, "", RATIO_WHY))
+}
 _MATERIAL_FIELDS = {
-    "density": SweepField("number", "density", what="density (> 0)"),
-    "max_rim_speed": SweepField("number", "speed", what="safe rim speed (> 0)"),
+    "density": SweepField("number", "density", what="density (> 0)", bounds=MAGNITUDES["density"]),
+    "max_rim_speed": SweepField("number", "speed", what="safe rim speed (> 0)", bounds=MAGNITUDES["max_rim_speed"]),
     "cost": SweepField("number", "cost_per_mass", inclusive=True, what="cost per kg (>= 0)"),
 }
 
@@ -364,6 +389,8 @@ def _check_value(value, spec, label, text):
     high_ok = spec.maximum is None or value < spec.maximum
     if not (low_ok and high_ok):
         raise SceneError(label, f"{shorten(text)} is out of range: {spec.what}")
+    if spec.bounds is not None:
+        check_magnitude(value, label, text, *spec.bounds)
 
 
 def _parse_text(scene, name, spec, text, label, sampled, cap=None):
