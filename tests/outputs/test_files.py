@@ -415,3 +415,43 @@ def tomllib_loads_file(path, folder):
     table[-2] = f"{last[0]},{float(last[1]) + 1.0}"
     (folder / "four-stroke-engine-torque.csv").write_text("\n".join(table) + "\n", encoding="utf-8")
     return folder / path.name
+
+
+# --------------------------------------------------------------------------
+# A table of results is read as any input (flyopt plot RESULTS, a resume's parts)
+# --------------------------------------------------------------------------
+
+
+def test_a_results_table_that_is_no_file_is_refused_not_read(tmp_path, capsys):
+    """`flyopt plot fifo.csv` blocked forever, and a link to /dev/zero filled memory: one line now, exit 2."""
+    fifo = tmp_path / "fifo.csv"
+    os.mkfifo(fifo)
+    (tmp_path / "zero.csv").symlink_to("/dev/zero")
+    for table in (fifo, tmp_path / "zero.csv"):
+        assert main(["plot", str(table), "--what", "sweep", "--x", "delta", "-o", str(tmp_path / "p.png")]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "not a regular file" in err and str(table) in err, err
+    assert not (tmp_path / "p.png").exists()
+
+
+def test_a_results_table_over_the_row_limit_is_refused_before_it_is_read(tmp_path, capsys, monkeypatch):
+    """A Parquet file's rows are counted from its footer first: a small file may hold a billion rows."""
+    table = tmp_path / "s.parquet"
+    assert main(["sweep", str(SHEAR), "--vary", "delta=0.02:0.1:12", "-o", str(table), "-q"]) == 0
+    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "10")
+    assert main(["plot", str(table), "--what", "sweep", "--x", "delta", "-o", str(tmp_path / "p.png")]) == 2
+    err = capsys.readouterr().err
+    assert "has over 10 rows" in err and "FLYOPT_MAX_TABLE_ROWS raises it" in err, err
+    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "12")
+    assert main(["plot", str(table), "--what", "sweep", "--x", "delta", "-o", str(tmp_path / "p.png")]) == 0
+
+
+def test_a_sidecar_that_is_no_metadata_is_one_line(tmp_path, capsys):
+    """A CSV's sidecar holding a JSON list (or no JSON) ended in a traceback of the plot."""
+    table = tmp_path / "s.csv"
+    assert main(["sweep", str(SHEAR), "--vary", "delta=0.02,0.05", "-o", str(table), "-q"]) == 0
+    for text, words in (("[1, 2]", "not flyopt's metadata"), ("{oops", "not JSON")):
+        (tmp_path / "s.csv.json").write_text(text, encoding="utf-8")
+        assert main(["plot", str(table), "--what", "sweep", "--x", "delta", "-o", str(tmp_path / "p.png")]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and words in err and "Traceback" not in err, err

@@ -133,6 +133,31 @@ def inside_scene(raw: object, where: str, folder: Path, what: str = "file") -> P
     return path
 
 
+def check_input(path: str | os.PathLike[str], where: str, name: str) -> int:
+    """The size [bytes] of an input another reader will open (pandas, pyarrow), refused as :func:`read_input`
+    refuses one: not a regular file (a FIFO would block that reader, ``/dev/zero`` fill its memory), or over the
+    size cap. Checked on a descriptor opened without blocking."""
+    limit = max_file_bytes()
+    try:
+        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
+    except ValueError:  # a NUL in the path
+        raise SceneError(where, f"cannot read {name}: not a file name (it holds a NUL character)") from None
+    except OSError as err:
+        raise SceneError(where, f"cannot read {name}: {err.strerror or type(err).__name__}") from None
+    try:
+        info = os.fstat(descriptor)
+    finally:
+        os.close(descriptor)
+    if not stat.S_ISREG(info.st_mode):
+        raise SceneError(where, f"cannot read {name}: {_kind(info.st_mode)} (allowed: a regular file)")
+    if info.st_size > limit:
+        raise SceneError(
+            where,
+            f"cannot read {name}: {info.st_size} bytes, over the limit of {limit} ({_raise_it(FILE_BYTES_VARIABLE)})",
+        )
+    return info.st_size
+
+
 def read_input(path: Path, where: str, name: str, encoding: str = "utf-8", source: str | None = None) -> str:
     """The text of an input file, refused before reading unless it is a regular file within the size cap.
 

@@ -581,11 +581,17 @@ def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = N
     """
     import pandas as pd
 
+    from flyopt.io.input_files import check_input, check_rows, read_input
+
     path = Path(path)
     metadata = None
-    if output_format(path) == "parquet":
+    kind = output_format(path)
+    name = str(path)
+    check_input(path, "", name)  # a regular file within the size cap, as every input
+    if kind == "parquet":
         import pyarrow.parquet as pq
 
+        check_rows(pq.ParquetFile(path).metadata.num_rows, "", name)  # a small file may hold a billion rows
         frame = pd.read_parquet(path, columns=columns)
         stored = pq.read_schema(path).metadata or {}
         if PARQUET_KEY in stored:
@@ -604,8 +610,14 @@ def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = N
         if columns is not None:
             frame = frame[list(columns)]
         sidecar = sidecar_path(path)
-        if sidecar.is_file():
-            metadata = json.loads(sidecar.read_text(encoding="utf-8"))
+        if os.path.lexists(sidecar):
+            text = read_input(sidecar, "", str(sidecar))
+            try:
+                metadata = json.loads(text)
+            except ValueError as err:
+                raise SceneError("", f"cannot read {sidecar}: not JSON ({err})") from None
+            if not isinstance(metadata, dict):
+                raise SceneError("", f"cannot read {sidecar}: not flyopt's metadata (a JSON object)")
     frame = normalize(frame)
     if metadata is not None:
         frame.attrs["flyopt"] = metadata
