@@ -175,7 +175,7 @@ def _plot_all(args, plots):
     for file in files:  # before the solve (and, once the scene is read, none may be a file it reads)
         plots.check_output(file)
     solution = _solve(args, whats, files)
-    statuses = [_plot_one(args, plots, solution, what, folder / f"{what}.png", every=True) for what in whats]
+    statuses = [_plot_one(args, plots, solution, what, file, every=True) for what, file in zip(whats, files)]
     return EXIT_INFEASIBLE if EXIT_INFEASIBLE in statuses else EXIT_OK
 
 

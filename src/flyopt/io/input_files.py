@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 from flyopt.errors import SceneError, clip, shorten
 
 if TYPE_CHECKING:
-    from collections.abc import Iterator
+    from collections.abc import Callable, Iterator
 
 MAX_FILE_BYTES = 100_000_000
 """Default largest input file [bytes] (100 MB); ``FLYOPT_MAX_FILE_BYTES`` raises it."""
@@ -137,25 +137,35 @@ def check_input(path: str | os.PathLike[str], where: str, name: str) -> int:
     """The size [bytes] of an input another reader will open (pandas, pyarrow), refused as :func:`read_input`
     refuses one: not a regular file (a FIFO would block that reader, ``/dev/zero`` fill its memory), or over the
     size cap. Checked on a descriptor opened without blocking."""
+    descriptor, size = _open_input(path, lambda reason: SceneError(where, f"cannot read {name}: {reason}"))
+    os.close(descriptor)
+    return size
+
+
+def _open_input(path: str | os.PathLike[str], refuse: Callable[[str], SceneError]) -> tuple[int, int]:
+    """(an open descriptor, the size [bytes]) of an input: opened without blocking (a FIFO returns at once) and
+    checked on that descriptor to be a regular file within :func:`max_file_bytes`; else ``refuse(reason)`` is
+    raised, the descriptor closed. The caller closes the descriptor it gets."""
     limit = max_file_bytes()
     try:
         descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
     except ValueError:  # a NUL in the path
-        raise SceneError(where, f"cannot read {name}: not a file name (it holds a NUL character)") from None
+        raise refuse("not a file name (it holds a NUL character)") from None
     except OSError as err:
-        raise SceneError(where, f"cannot read {name}: {err.strerror or type(err).__name__}") from None
+        raise refuse(err.strerror or type(err).__name__) from None
     try:
         info = os.fstat(descriptor)
-    finally:
+        if not stat.S_ISREG(info.st_mode):
+            raise refuse(f"{_kind(info.st_mode)} (allowed: a regular file)")
+        if info.st_size > limit:
+            raise refuse(f"{info.st_size} bytes, over the limit of {limit} ({_raise_it(FILE_BYTES_VARIABLE)})")
+    except OSError as err:
         os.close(descriptor)
-    if not stat.S_ISREG(info.st_mode):
-        raise SceneError(where, f"cannot read {name}: {_kind(info.st_mode)} (allowed: a regular file)")
-    if info.st_size > limit:
-        raise SceneError(
-            where,
-            f"cannot read {name}: {info.st_size} bytes, over the limit of {limit} ({_raise_it(FILE_BYTES_VARIABLE)})",
-        )
-    return info.st_size
+        raise refuse(err.strerror or type(err).__name__) from None
+    except SceneError:
+        os.close(descriptor)
+        raise
+    return descriptor, info.st_size
 
 
 def read_input(path: Path, where: str, name: str, encoding: str = "utf-8", source: str | None = None) -> str:
@@ -192,18 +202,8 @@ def read_input(path: Path, where: str, name: str, encoding: str = "utf-8", sourc
         return SceneError(where, f"cannot read {name}: {reason}", source)
 
     limit = max_file_bytes()
+    descriptor, _size = _open_input(path, refuse)
     try:
-        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
-    except ValueError:  # a NUL in the path
-        raise refuse("not a file name (it holds a NUL character)") from None
-    except OSError as err:
-        raise refuse(err.strerror or type(err).__name__) from None
-    try:
-        info = os.fstat(descriptor)
-        if not stat.S_ISREG(info.st_mode):
-            raise refuse(f"{_kind(info.st_mode)} (allowed: a regular file)")
-        if info.st_size > limit:
-            raise refuse(f"{info.st_size} bytes, over the limit of {limit} ({_raise_it(FILE_BYTES_VARIABLE)})")
         with os.fdopen(descriptor, "rb", closefd=False) as handle:
             data = handle.read(limit + 1)
     except OSError as err:

@@ -716,8 +716,10 @@ def load_sweep(path: str | os.PathLike[str]) -> tuple[Scene, dict[str, Any]]:
             raw = options["output"]
             options["output"] = str(inside_scene(raw, "sweep.output", path.parent, "output file"))
             # and so are the files the sweep writes beside it: a CSV's sidecar, the folder of its finished chunks
-            for beside in ((f"{raw}.json",) if str(raw).lower().endswith(".csv") else ()) + (f"{raw}.parts",):
-                inside_scene(beside, "sweep.output", path.parent, "output file")
+            from flyopt.outputs.results import parts_folder, table_files
+
+            for beside in (*table_files(raw)[1:], parts_folder(raw)):
+                inside_scene(str(beside), "sweep.output", path.parent, "output file")
         vary = options.pop("vary", {})
         if not isinstance(vary, dict):
             raise SceneError("sweep.vary", "must be a table of FIELD = VALUES")

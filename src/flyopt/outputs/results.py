@@ -59,8 +59,10 @@ __all__ = [
     "csv_rows",
     "normalize",
     "output_format",
+    "parts_folder",
     "read_results",
     "sidecar_path",
+    "table_files",
     "write_results",
 ]
 
@@ -219,13 +221,23 @@ def sidecar_path(path: str | os.PathLike[str]) -> Path:
     return path.with_name(path.name + ".json")
 
 
+def parts_folder(path: str | os.PathLike[str]) -> Path:
+    """The folder of a sweep's finished chunks beside its table (:class:`flyopt.studies.parts.Parts`):
+    ``FILE`` → ``FILE.parts``."""
+    path = Path(path)
+    return path.with_name(path.name + ".parts")
+
+
+def table_files(path: str | os.PathLike[str]) -> tuple[Path, ...]:
+    """The files writing a table to ``path`` makes: the table and, for CSV, its sidecar (:func:`sidecar_path`)."""
+    path = Path(path)
+    return (path, sidecar_path(path)) if _SUFFIXES.get(path.suffix.lower()) == "csv" else (path,)
+
+
 def check_table_output(path: str | os.PathLike[str], scene: Scene, what: str, label: str = "-o/--output") -> None:
     """Refuse a table's output that would replace a file the scene read (the scene file or a data file:
-    :func:`flyopt.outputs.files.check_not_scene`): the table itself and, for CSV, its sidecar."""
-    files = [Path(path)]
-    if _SUFFIXES.get(files[0].suffix.lower()) == "csv":
-        files.append(sidecar_path(path))
-    for file in files:
+    :func:`flyopt.outputs.files.check_not_scene`): any of :func:`table_files`."""
+    for file in table_files(path):
         check_not_scene(file, scene, what, label)
 
 

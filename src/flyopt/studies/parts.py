@@ -27,7 +27,7 @@ import pandas as pd
 from flyopt.errors import SceneError
 from flyopt.io.input_files import read_input
 from flyopt.outputs.files import check_folder
-from flyopt.outputs.results import read_results, write_results
+from flyopt.outputs.results import parts_folder, read_results, write_results
 
 #: The descriptors of the parts folders this process holds. A worker process forked from it gets copies,
 #: and a flock lasts while any copy is open: each child closes them at once, so the lock is the sweep's alone
@@ -83,8 +83,7 @@ class Parts:
     output is refused while the first runs; the lock goes with its process (a kill -9 frees it)."""
 
     def __init__(self, output: str | os.PathLike[str]) -> None:
-        output = Path(output)
-        self.folder = output.with_name(output.name + ".parts")
+        self.folder = parts_folder(output)
         self._lock: int | None = None
 
     def lock(self) -> None:
