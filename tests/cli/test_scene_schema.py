@@ -230,6 +230,13 @@ BROKEN = [
         GOOD.replace("[torque.net]\nareas = [1, -1]", "[torque.driving]\nmotor = { kind = 'dc', rated = 1 }"),
         {"torque.driving.motor.rated"},
     ),
+    ("a name not in the schema's list", GOOD + "[design]\ndiameter_series = 'R7'\n", {"design.diameter_series"}),
+    (
+        "an array of the wrong length",
+        GOOD + '[[shaft]]\nname = "s"\nspeed_ratio = 1\nsegments = [{ to = 1, diameter = 0.1 }]\n'
+        'bearings = [0, 0.5, 1]\nwheel_at = 0.5\ntorque_at = 1\nmaterial = "m"\n',
+        {"shaft[0].bearings"},
+    ),
     (
         "three errors at once",
         GOOD.replace("delta", "deltaa") + "[design]\nmaterials = 'cast_iron'\nfem_check = 'yes'\n",

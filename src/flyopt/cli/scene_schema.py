@@ -9,10 +9,10 @@ unit); ``tests/cli/test_scene_schema.py`` holds the two to the same keys.
 What lies beyond structure (a unit's dimension, a range, a name that must
 exist) stays the loader's alone.
 
-:func:`structural_errors` walks a scene against the schema with the few
-keywords the schema uses (``type``, ``properties``, ``additionalProperties``,
-``required``, ``items``, ``anyOf``, ``$ref``): the core installs no JSON Schema
-library, and the test suite holds this walk to ``jsonschema``'s verdicts.
+:func:`structural_errors` walks a scene against the schema by
+:func:`flyopt.io.json_shape.shape_errors` (the core installs no JSON Schema
+library; the test suite holds the walk to ``jsonschema``'s verdicts), in TOML's
+words: "a table", "got float".
 """
 
 from __future__ import annotations
@@ -21,8 +21,6 @@ import functools
 import json
 from importlib import resources
 from typing import Any
-
-from flyopt.names import hint
 
 __all__ = ["SCHEMA_FILE", "schema", "structural_errors"]
 
@@ -37,6 +35,8 @@ _TOML_TYPES = {
     "integer": "an integer",
     "boolean": "a boolean (true or false)",
 }
+
+_TOML_NAMES = {"bool": "boolean", "int": "integer", "float": "float", "str": "string", "dict": "table", "list": "array"}
 
 
 @functools.cache
@@ -63,91 +63,6 @@ def structural_errors(data: object) -> list[tuple[str, str]]:
         closest allowed one, :func:`flyopt.names.hint`), a value of the wrong
         type, a missing required key. Empty when the structure is sound.
     """
-    errors: list[tuple[str, str]] = []
-    _walk(data, schema(), "", errors)
-    return errors
+    from flyopt.io.json_shape import shape_errors
 
-
-def _resolve(node: dict[str, Any]) -> dict[str, Any]:
-    while "$ref" in node:
-        name = node["$ref"].removeprefix("#/$defs/")
-        node = schema()["$defs"][name]
-    return node
-
-
-def _type_ok(value: object, kind: str) -> bool:
-    if kind == "object":
-        return isinstance(value, dict)
-    if kind == "array":
-        return isinstance(value, list) or hasattr(value, "array")  # io.toml_file.InlineRows stands for a list
-    if kind == "string":
-        return isinstance(value, str)
-    if kind == "boolean":
-        return isinstance(value, bool)
-    if kind == "integer":
-        return isinstance(value, int) and not isinstance(value, bool)
-    if kind == "number":
-        return isinstance(value, (int, float)) and not isinstance(value, bool)
-    return True
-
-
-def _expected(node: dict[str, Any]) -> list[str]:
-    """What a node accepts, in words."""
-    node = _resolve(node)
-    if "title" in node:  # a definition that names itself ("a number, or a string with its unit")
-        return [node["title"]]
-    if "anyOf" in node:
-        words: list[str] = []
-        for branch in node["anyOf"]:
-            words += [w for w in _expected(branch) if w not in words]
-        return words
-    kind = node.get("type")
-    return [_TOML_TYPES[kind]] if kind else []
-
-
-def _toml_type(value: object) -> str:
-    if isinstance(value, bool):
-        return "boolean"
-    if isinstance(value, int):
-        return "integer"
-    if isinstance(value, float):
-        return "float"
-    if isinstance(value, str):
-        return "string"
-    if isinstance(value, dict):
-        return "table"
-    if isinstance(value, list) or hasattr(value, "array"):
-        return "array"
-    return type(value).__name__
-
-
-def _walk(value: object, node: dict[str, Any], path: str, errors: list[tuple[str, str]]) -> None:
-    node = _resolve(node)
-    if "anyOf" in node:
-        for branch in node["anyOf"]:
-            trial: list[tuple[str, str]] = []
-            _walk(value, branch, path, trial)
-            if not trial:
-                return
-        words = _expected(node)
-        errors.append((path or "(top level)", f"must be {' or '.join(words)}, got {_toml_type(value)}"))
-        return
-    kind = node.get("type")
-    if kind is not None and not _type_ok(value, kind):
-        errors.append((path or "(top level)", f"must be {_TOML_TYPES[kind]}, got {_toml_type(value)}"))
-        return
-    if isinstance(value, dict):
-        properties: dict[str, Any] = node.get("properties", {})
-        allowed = sorted(properties)
-        for key, item in value.items():
-            where = f"{path}.{key}" if path else key
-            if key in properties:
-                _walk(item, properties[key], where, errors)
-            elif node.get("additionalProperties") is False:
-                errors.append((where, f"unknown key{hint(key, allowed)} (allowed here: {', '.join(allowed)})"))
-        for key in node.get("required", ()):
-            if key not in value:
-                errors.append((f"{path}.{key}" if path else key, "is missing"))
-    elif "items" in node and isinstance(value, list):
-        for k, item in enumerate(value):
-            _walk(item, node["items"], f"{path}[{k}]", errors)
+    return shape_errors(data, schema(), schema(), words=_TOML_TYPES, names=_TOML_NAMES)

@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING, Any, Literal, TextIO
 
 import numpy as np
 
-from flyopt.errors import SceneError
+from flyopt.errors import SceneError, shorten
 from flyopt.outputs.files import Temporary, check_folder, check_not_scene, output_error, output_target
 from flyopt.outputs.quantities import COUNTS, INPUTS, has_unit
 
@@ -57,6 +57,7 @@ __all__ = [
     "check_table_output",
     "column_kind",
     "csv_rows",
+    "metadata_errors",
     "normalize",
     "output_format",
     "parts_folder",
@@ -179,22 +180,66 @@ def normalize(frame: pd.DataFrame) -> pd.DataFrame:
     text (an empty string is no text), numbers float64 with NaN, whole
     numbers int64 (nullable Int64 for :data:`NULLABLE_INTS`, whose -1 is
     no value), booleans bool. Modifies and returns ``frame``.
+
+    Raises
+    ------
+    ValueError
+        A column whose values are not of its kind (text in a number's column,
+        a fraction or a null in a count's, anything but true and false in a flag's),
+        naming the column.
     """
     for name in frame.columns:
         column = frame[name]
         kind = column_kind(name, column)
-        if kind == "str":
-            values = column.astype(object)  # categorical in Parquet, str or object elsewhere
-            frame[name] = values.where(values.notna() & (values != ""), None).astype(_text_dtype())
-        elif kind == "bool":
-            frame[name] = column.astype(bool)
-        elif kind == "int" and name in NULLABLE_INTS:
-            frame[name] = no_minus_one(column)
-        elif kind == "int":
-            frame[name] = column.astype(np.int64)
-        else:
-            frame[name] = column.astype(float)
+        try:
+            frame[name] = _of_kind(column, kind, name)
+        except (TypeError, ValueError) as err:
+            raise ValueError(f"column {shorten(name)} must hold {_KIND_WORDS[kind]}: {err}") from None
     return frame
+
+
+_KIND_WORDS = {"str": "text", "bool": "true or false", "int": "whole numbers", "float": "numbers"}
+
+
+def _of_kind(column: pd.Series, kind: str, name: str) -> pd.Series:
+    if kind == "str":
+        values = column.astype(object)  # categorical in Parquet, str or object elsewhere
+        return values.where(values.notna() & (values != ""), None).astype(_text_dtype())
+    if kind == "bool":
+        from pandas.api import types
+
+        if not types.is_bool_dtype(column.dtype):  # astype(bool) would read "no", NaN and 2 as true
+            flags = column.map(_flag)
+            if flags.isna().any():
+                bad = column[flags.isna()].iloc[0]
+                raise ValueError(f"got {shorten(bad.item() if isinstance(bad, np.generic) else bad)}")
+            column = flags
+        return column.astype(bool)
+    if kind == "int" and name in NULLABLE_INTS:
+        return no_minus_one(column)
+    if kind == "int":
+        return column.astype(np.int64)
+    return column.astype(float)
+
+
+#: What a flag's column may hold: booleans (equal to 0 and 1), 0 and 1, and the words a CSV writes.
+_FLAGS: dict[object, bool] = {
+    0: False,
+    1: True,
+    "0": False,
+    "1": True,
+    "False": False,
+    "True": True,
+    "false": False,
+    "true": True,
+}
+
+
+def _flag(value: object) -> bool | None:
+    try:
+        return _FLAGS.get(value)
+    except TypeError:  # a list or a mapping in a cell
+        return None
 
 
 # --------------------------------------------------------------------------
@@ -553,6 +598,10 @@ def write_results(
     """
     path = Path(path)
     kind = output_format(path)
+    errors = metadata_errors(metadata) if metadata is not None else []
+    if errors:  # what read_results would refuse is not written
+        field, message = errors[0]
+        raise ValueError(f"metadata: {field} {message}")
     check_folder(path)
     table = Temporary(path, temporary_folder)
     try:
@@ -573,6 +622,44 @@ def write_results(
         table.discard()
         raise
     _finish(table, path, metadata if kind == "csv" else None, temporary_folder, "-o/--output")
+
+
+def metadata_errors(metadata: object) -> list[tuple[str, str]]:
+    """Every shape error of a table's metadata against the output schema's ``table``, keys present only.
+
+    The one rule for what a sweep, Pareto or trade-off file may say about
+    itself (:func:`flyopt.outputs.documents.table_metadata` writes it):
+    :func:`write_results` refuses metadata that breaks it and
+    :func:`read_results` a file whose metadata does. An open walk
+    (:func:`flyopt.io.json_shape.shape_errors`): a key it does not know, or
+    one it lacks, is a file of another minor version of the schema, not an error.
+
+    Returns
+    -------
+    list of (str, str)
+        (field, what is wrong); empty when sound.
+    """
+    from flyopt.io.json_shape import shape_errors
+    from flyopt.outputs.documents import schema
+
+    return shape_errors(metadata, schema()["$defs"]["table"], schema(), open_=True)
+
+
+def _metadata(text: str | bytes, where: str) -> dict[str, Any]:
+    """A table's metadata from its JSON text, its shape checked (:func:`metadata_errors`); SceneError else,
+    its message led by ``where``."""
+    try:
+        metadata = json.loads(text)
+    except ValueError as err:  # UnicodeDecodeError too
+        raise SceneError("", f"{where}: not JSON ({err})") from None
+    errors = metadata_errors(metadata)
+    if errors:
+        field, message = errors[0]
+        raise SceneError(
+            "",
+            f"{where}: not flyopt's metadata ({message})" if field == "(top level)" else f"{where}: {field} {message}",
+        )
+    return metadata
 
 
 def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = None) -> pd.DataFrame:
@@ -607,7 +694,7 @@ def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = N
         frame = pd.read_parquet(path, columns=columns)
         stored = pq.read_schema(path).metadata or {}
         if PARQUET_KEY in stored:
-            metadata = json.loads(stored[PARQUET_KEY])
+            metadata = _metadata(stored[PARQUET_KEY], f"its metadata {PARQUET_KEY.decode()!r}")
     else:
         header = pd.read_csv(path, nrows=0).columns
         strings = [c for c in header if column_kind(c) == "str"]
@@ -623,14 +710,11 @@ def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = N
             frame = frame[list(columns)]
         sidecar = sidecar_path(path)
         if os.path.lexists(sidecar):
-            text = read_input(sidecar, "", str(sidecar))
-            try:
-                metadata = json.loads(text)
-            except ValueError as err:
-                raise SceneError("", f"cannot read {sidecar}: not JSON ({err})") from None
-            if not isinstance(metadata, dict):
-                raise SceneError("", f"cannot read {sidecar}: not flyopt's metadata (a JSON object)")
-    frame = normalize(frame)
+            metadata = _metadata(read_input(sidecar, "", str(sidecar)), f"cannot read {sidecar}")
+    try:
+        frame = normalize(frame)
+    except ValueError as err:
+        raise SceneError("", str(err)) from None
     if metadata is not None:
         frame.attrs["flyopt"] = metadata
     return frame
