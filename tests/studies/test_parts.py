@@ -183,3 +183,47 @@ def test_a_manifest_that_is_no_file_is_refused_not_read(tmp_path):
     os.mkfifo(manifest)
     with pytest.raises(SceneError, match="manifest .* not a regular file but a FIFO"):
         sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)
+
+
+@pytest.mark.parametrize(
+    "key, value, words",
+    [
+        ("seed", "x", "its seed must be a whole number >= 0, got 'x'"),
+        ("seed", -5, "its seed must be a whole number >= 0, got -5"),
+        ("chunk_size", 0, "its chunk_size must be a whole number >= 1, got 0"),
+        ("chunk_size", [1], "its chunk_size must be a whole number >= 1, got [1]"),
+    ],
+)
+def test_a_damaged_manifest_is_refused_naming_it_not_read_as_the_users_options(tmp_path, key, value, words):
+    """The manifest's seed and chunk size are used to lay the sweep out before its fingerprint is compared: a
+    seed of "x" was refused as the user's own `--seed` (which they never gave), a chunk size of 0 ended in
+    "range() arg 3 must not be zero". Both are held to what the options allow, the manifest named."""
+    import json
+
+    from flyopt.errors import SceneError
+
+    out = tmp_path / "study.parquet"
+    sweep(PUNCH, {"delta": "0.02:0.2"}, samples=4, seed=3, chunk_size=2, output=out, max_chunks=1)
+    manifest = tmp_path / "study.parquet.parts" / "sweep.json"
+    record = json.loads(manifest.read_text(encoding="utf-8"))
+    record[key] = value
+    manifest.write_text(json.dumps(record), encoding="utf-8")
+    with pytest.raises(SceneError) as refusal:
+        sweep(PUNCH, {"delta": "0.02:0.2"}, samples=4, output=out, resume=True)
+    assert refusal.value.field == "--resume" and "manifest" in refusal.value.message, refusal.value
+    assert words in refusal.value.message and "delete the folder" in refusal.value.message
+
+
+def test_parts_another_flyopt_version_computed_are_not_reused(tmp_path, monkeypatch):
+    """A resume after an upgrade would have put the old version's designs beside the new one's in one table."""
+    import flyopt
+    from flyopt.errors import SceneError
+
+    out = tmp_path / "study.parquet"
+    sweep(PUNCH, VARY, chunk_size=4, output=out, max_chunks=1)
+    monkeypatch.setattr(flyopt, "__version__", flyopt.__version__ + ".post1", raising=False)
+    with pytest.raises(SceneError, match="come from a different sweep"):
+        sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)
+    monkeypatch.undo()
+    done = sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)  # the same version: resumed
+    assert len(done) == len(sweep(PUNCH, VARY))

@@ -37,7 +37,7 @@ import pandas as pd
 
 from flyopt.design import design_inputs
 from flyopt.errors import BrokenInvariant, Interrupted, SceneError
-from flyopt.io.sweep_spec import check_options, option_label
+from flyopt.io.sweep_spec import check_options, option_label, whole_number
 from flyopt.outputs.documents import scene_record, table_metadata
 from flyopt.outputs.files import check_folder
 from flyopt.outputs.results import ResultWriter, check_table_output, normalize
@@ -239,7 +239,7 @@ def sweep(
         check_folder(output, "--output")
         check_table_output(output, scene, "the sweep's table", "--output")  # nor a file the scene read
     parts = None if output is None else Parts(output)
-    recorded = parts.manifest() if resume and parts is not None else {}
+    recorded = _recorded(parts) if resume and parts is not None else {}
     if resume and samples is not None and seed is None:
         seed = recorded.get("seed")  # the samples of the sweep being continued
     plan = plan_sweep(scene, vary or {}, samples=samples, seed=seed)
@@ -261,7 +261,8 @@ def sweep(
         chunks = [(i, _chunk(points, order, bounds[i], bounds[i + 1])) for i in range(len(bounds) - 1)]
         done = []
         if parts is not None:
-            identity = (digest(scene), method, sorted((solver_options or {}).items()), axes)
+            # flyopt's version too: parts another version computed are not mixed with this one's results
+            identity = (_version(), digest(scene), method, sorted((solver_options or {}).items()), axes)
             record = {
                 "fingerprint": fingerprint(identity, points, (layout["grouped"], bounds.tolist())),
                 "points": len(points),
@@ -500,6 +501,33 @@ def _time_first_analysis(scene: Scene, points: pd.DataFrame, codes: npt.NDArray[
         if seconds >= RETIME_SECONDS:
             break
     return seconds
+
+
+def _version() -> str:
+    import flyopt
+
+    return str(flyopt.__version__)
+
+
+def _recorded(parts: Parts) -> dict[str, Any]:
+    """The manifest of the sweep ``--resume`` continues, its seed and chunk size held to what ``--seed`` and
+    ``--chunk-size`` allow before either is used: a damaged manifest is refused, naming it, not read as options
+    the user gave."""
+    recorded = parts.manifest()
+    for key, lowest in (("seed", 0), ("chunk_size", 1)):
+        value = recorded.get(key)
+        if value is None or (key == "chunk_size" and value == "auto"):
+            continue
+        try:
+            whole_number(value, key, lowest)
+        except SceneError as err:
+            manifest = str(parts.folder / parts.MANIFEST)
+            raise SceneError(
+                "--resume",
+                f"the sweep's manifest {manifest!r} is damaged: its {key} {err.message}; "
+                f"delete the folder {str(parts.folder)!r} to start over",
+            ) from None
+    return recorded
 
 
 def _recorded_bounds(values: object, n: int) -> npt.NDArray[np.int64] | None:
