@@ -335,6 +335,8 @@ def test_an_induction_motor_mostly_slip_is_refused(cli, tmp_path):
     text = (PROBLEMS / "motor-press.toml").read_text(encoding="utf-8")
     assert 'synchronous_speed = "1500 rpm"' in text
     path = tmp_path / "scene.toml"
+    path.write_text(text.replace('synchronous_speed = "1500 rpm"', 'synchronous_speed = "3000 rpm"'), encoding="utf-8")
+    assert_refused(cli("solve", path), path, "torque.driving.motor", "slip")  # 1440 rpm rated: slip 0.52
     path.write_text(text.replace('synchronous_speed = "1500 rpm"', "synchronous_speed = 1e300"), encoding="utf-8")
-    assert_refused(cli("solve", path), path, "torque.driving.motor", "slip")
+    assert_refused(cli("solve", path), path, "torque.driving.motor.synchronous_speed", "out of range")
     assert InductionMotor(5500.0, 0.87 * 157.08, 157.08).rated_slip == pytest.approx(0.13)

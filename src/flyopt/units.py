@@ -73,6 +73,37 @@ DIMENSIONS = {
     "stiffness": ("[mass]/[time]**2", "N/m", "a stiffness (e.g. '2.4 MN/m' or '2400 N/mm')"),
 }
 
+#: The magnitudes a scalar quantity of a scene may take, by dimension: (smallest, largest, in words), SI, of its
+#: absolute value; 0 is always allowed (a section says where it is not). Beyond them a value is a slip of unit or
+#: of exponent, and the computation under- or overflows: a crank of 1e-320 m divides by zero, a member of
+#: 1e300 kg overflows the energies. Each is wider than any machine a flywheel regulates; the sections hold some
+#: fields to narrower ranges of their own (machine.speed, delta, a material's strengths).
+MAGNITUDES: dict[str, tuple[float, float, str]] = {
+    "length": (1e-6, 1e3, "a micron to a kilometre"),
+    "mass": (1e-6, 1e9, "a milligram to a million tonnes"),
+    "inertia": (1e-9, 1e12, "1e-9 to 1e12 kg*m^2"),
+    "flywheel_moment": (4e-8, 4e13, "GD^2 = 4 g J of 1e-9 to 1e12 kg*m^2"),
+    "force": (1e-9, 1e15, "a nanonewton to 1e15 N"),
+    "torque": (1e-9, 1e15, "1e-9 to 1e15 N*m"),
+    "energy": (1e-9, 1e15, "a nanojoule to a petajoule"),
+    "power": (1e-9, 1e12, "a nanowatt to a terawatt"),
+    "stress": (1e-3, 1e12, "a millipascal to a terapascal"),
+    "energy_per_area": (1e-3, 1e12, "a millijoule to a terajoule a square metre"),
+    "area": (1e-12, 1e6, "a square micron to a square kilometre"),
+    "density": (1.0, 1e5, "from a foam to beyond osmium's 22,600 kg/m^3"),
+    "speed": (1e-9, 1e5, "a nanometre a second to 100 km/s"),
+    "angular_speed": (1e-9, 1e7, "1e-9 to 1e7 rad/s"),
+    "angular_acceleration": (1e-9, 1e12, "1e-9 to 1e12 rad/s^2"),
+    "angle": (1e-12, 1e6, "1e-12 rad to some 160,000 turns"),
+    "time": (1e-9, 1e9, "a nanosecond to some 30 years"),
+    "dimensionless": (1e-9, 1e9, "a billionth to a billion"),
+    "cost_per_mass": (1e-9, 1e9, "1e-9 to 1e9 a kilogram"),
+    "torque_scale": (1e-9, 1e15, "1e-9 to 1e15 N*m a metre of the drawing"),
+    "angle_scale": (1e-9, 1e9, "1e-9 to 1e9 rad a metre of the drawing"),
+    "torsional_stiffness": (1e-6, 1e15, "1e-6 to 1e15 N*m/rad"),
+    "stiffness": (1e-6, 1e15, "1e-6 to 1e15 N/m"),
+}
+
 #: Units read without pint, per dimension: the unit as written -> pint's factor to the SI unit of
 #: ``DIMENSIONS`` (``Quantity(1, unit).to(si).magnitude``, written out; the test checks each against pint).
 FAST_UNITS = {

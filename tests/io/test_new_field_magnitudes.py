@@ -87,14 +87,29 @@ def test_a_magnitude_beyond_any_wheel_is_refused_in_one_line(data, field, words)
                 "torque": {
                     "net": {
                         "areas": [1.0, -1.0],
+                        "area_unit": "1 m^2",
+                        "torque_scale": "1e12 N*m/m",
+                        "angle_scale": "1e6 rad/m",
+                    }
+                },
+            },
+            "torque.net.areas[0]",
+            "beyond any machine's cycle",
+        ),
+        (  # each scale beyond its dimension's magnitudes is refused at itself (flyopt.units.MAGNITUDES)
+            {
+                "machine": {"speed": "120 rpm", "delta": 0.05},
+                "torque": {
+                    "net": {
+                        "areas": [1.0, -1.0],
                         "area_unit": "1e300 mm^2",
                         "torque_scale": "1 N*m/mm",
                         "angle_scale": "1 deg/mm",
                     }
                 },
             },
-            "torque.net.areas[0]",
-            "beyond any machine's cycle",
+            "torque.net.area_unit",
+            "is out of range (allowed: 0, or a size of 1e-12 to 1e+06 m^2",
         ),
         (
             {"machine": {"speed": "120 rpm", "delta": 0.05}, "torque": {"net": {"areas": ["1e300 J", "-1e300 J"]}}},
@@ -110,6 +125,21 @@ def test_a_magnitude_beyond_any_wheel_is_refused_in_one_line(data, field, words)
                         "area_unit": 1e-300,
                         "torque_scale": "600 N*m/mm",
                         "angle_scale": "3 deg/mm",
+                    }
+                },
+            },
+            "torque.net.area_unit",
+            "1e-300 is out of range (allowed: 0, or a size of 1e-12 to 1e+06 m^2",
+        ),
+        (  # each scale within its magnitudes, their product below a nanojoule an area
+            {
+                "machine": {"speed": "600 rpm", "delta": 0.03},
+                "torque": {
+                    "net": {
+                        "areas": [52, -124, 92, -140, 85, -72, 107],
+                        "area_unit": "1e-12 m^2",
+                        "torque_scale": "1e-9 N*m/m",
+                        "angle_scale": "1e-9 rad/m",
                     }
                 },
             },

@@ -22,7 +22,8 @@ from output_cases import VALIDATOR, delete_at, set_at
 from flyopt.cli.main import main
 from flyopt.io.json_shape import shape_errors
 from flyopt.outputs.documents import schema
-from flyopt.outputs.results import PARQUET_KEY, metadata_errors, read_results, write_results
+from flyopt.outputs.results import PARQUET_KEY, read_results, write_results
+from flyopt.outputs.schema import metadata_errors
 
 SHEAR = PROBLEMS / "shear-press.toml"
 

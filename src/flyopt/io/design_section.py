@@ -6,9 +6,9 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, check_magnitude
+from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_magnitude
 from flyopt.names import Geometry, hint, unknown
-from flyopt.units import quantity
+from flyopt.units import MAGNITUDES, quantity
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -17,9 +17,10 @@ if TYPE_CHECKING:
     from flyopt.design.spec import DesignSpec
     from flyopt.machine.transmission import Shaft
 
-LENGTH_RANGE = (1e-6, 1e3)
-LENGTH_WHY = "a micron to a kilometre"
-"""Allowed lengths of the [design] envelope and walls [m]; beyond them the wheel's powers of length overflow."""
+LENGTH_RANGE = MAGNITUDES["length"][:2]
+LENGTH_WHY = MAGNITUDES["length"][2]
+"""Allowed lengths of the [design] envelope and walls [m], every length's (:data:`flyopt.units.MAGNITUDES`);
+beyond them the wheel's powers of length overflow."""
 
 
 def read_design(
@@ -98,7 +99,7 @@ def read_design(
         options["round_to"] = 0.0  # the continuous optimum, asked for
     for key in ("max_outer_diameter", "max_width", "d_mean", "min_wall", "round_to"):
         if table.has(key) and key not in options:
-            value = table.quantity(key, "length", required=True)
+            value = table.quantity(key, "length", required=True, own_range=True)
             if value <= 0:
                 raise SceneError(f"design.{key}", f"must be positive, got {shorten(table.raw(key))}")
             check_magnitude(value, f"design.{key}", table.raw(key), *LENGTH_RANGE, "m", LENGTH_WHY)
@@ -129,16 +130,17 @@ def read_design(
             )
         options["bore"] = value
     if table.has("safety_factor"):
-        value = table.quantity("safety_factor", "dimensionless", required=True)
+        value = table.quantity("safety_factor", "dimensionless", required=True, own_range=True)
         if value < 1:
             raise SceneError(
                 "design.safety_factor",
                 f"must be >= 1 (the allowable stress is the strength "
                 f"over it), got {shorten(table.raw('safety_factor'))}",
             )
+        check_magnitude(value, "design.safety_factor", table.raw("safety_factor"), *SAFETY_RANGE, "", SAFETY_WHY)
         options["safety_factor"] = value
     if table.has("rim_speed"):
-        value = table.quantity("rim_speed", "speed", required=True)
+        value = table.quantity("rim_speed", "speed", required=True, own_range=True)
         if value <= 0:
             raise SceneError("design.rim_speed", f"must be positive, got {shorten(table.raw('rim_speed'))}")
         check_magnitude(value, "design.rim_speed", table.raw("rim_speed"), *RIM_SPEED_RANGE, "m/s", RIM_SPEED_WHY)
@@ -146,7 +148,7 @@ def read_design(
     if table.has("radius_of_gyration"):
         options["d_mean"] = 2.0 * _radius_of_gyration(table, options)
     if table.has("rim_share"):
-        share = table.quantity("rim_share", "dimensionless", required=True)
+        share = table.quantity("rim_share", "dimensionless", required=True, own_range=True)
         if not MIN_RIM_SHARE <= share <= 1:
             raise SceneError(
                 "design.rim_share",
@@ -264,12 +266,12 @@ def _castability(table: Table) -> Any:
                     f"no thinner), got {shorten(given)}",
                 )
         else:
-            wall = cast.quantity("min_wall", "length", required=True)
+            wall = cast.quantity("min_wall", "length", required=True, own_range=True)
             check_magnitude(wall, "design.castability.min_wall", given, low, high, "m", why)
             rows = [(0.0, wall)]
     ratio = None
     if cast.has("section_ratio"):
-        ratio = cast.quantity("section_ratio", "dimensionless", required=True)
+        ratio = cast.quantity("section_ratio", "dimensionless", required=True, own_range=True)
         r_low, r_high = castability.RATIO_RANGE
         if not r_low <= ratio <= r_high:
             raise SceneError(
@@ -286,7 +288,7 @@ MAX_WALL_ROWS = 20
 
 def _radius_of_gyration(table: Table, options: dict[str, Any]) -> float:
     """design.radius_of_gyration k [m], for a thin rim only (J = m k², so D_m = 2k): the books' "k = 0.5 m"."""
-    k = table.quantity("radius_of_gyration", "length", required=True)
+    k = table.quantity("radius_of_gyration", "length", required=True, own_range=True)
     raw = table.raw("radius_of_gyration")
     if k <= 0:
         raise SceneError("design.radius_of_gyration", f"must be positive, got {shorten(raw)}")

@@ -44,12 +44,12 @@ def read_electric_drive(raw: object, motor_speed: float) -> ElectricDrive:
                 f"{where}.ratio", "give exactly one of ratio (speed in / speed out) and speed (of the shaft after it)"
             )
         if stage.has("ratio"):
-            ratio = stage.quantity("ratio", "dimensionless", required=True)
+            ratio = stage.quantity("ratio", "dimensionless", required=True, own_range=True)
             if not (math.isfinite(ratio) and ratio > 0):
                 raise SceneError(f"{where}.ratio", f"must be positive, got {shorten(stage.raw('ratio'))}")
             check_magnitude(ratio, f"{where}.ratio", stage.raw("ratio"), *RATIO_RANGE, "", "a gear train's ratio")
         else:
-            after = stage.quantity("speed", "angular_speed", required=True)
+            after = stage.quantity("speed", "angular_speed", required=True, own_range=True)
             if not (math.isfinite(after) and after > 0):
                 raise SceneError(f"{where}.speed", f"must be positive, got {shorten(stage.raw('speed'))}")
             ratio = speed / after

@@ -77,7 +77,7 @@ def scene_data(data: Mapping[str, Any]) -> dict[str, Any]:
         cycle = cycle_of(machine_table)
         table = Table(data["energy"], "energy", ENERGY_KEYS)
         work = _work_per_cycle(table, "energy", omega, cycle, required=True)
-        fluctuation = table.quantity("fluctuation", "dimensionless", required=True)
+        fluctuation = table.quantity("fluctuation", "dimensionless", required=True, own_range=True)
         if not (math.isfinite(fluctuation) and 0 < fluctuation <= 1e3):
             raise SceneError(
                 "energy.fluctuation",
@@ -119,7 +119,7 @@ def _work_per_cycle(table: Table, where: str, omega: float, cycle: float, requir
             raise SceneError(f"{where}.power", "is needed: give the mean power (e.g. '300 kW') or work_per_cycle")
         return math.nan
     form = forms[0]
-    value = table.quantity(form, "power" if form == "power" else "energy", required=True)
+    value = table.quantity(form, "power" if form == "power" else "energy", required=True, own_range=True)
     if not (math.isfinite(value) and value > 0):
         raise SceneError(f"{where}.{form}", f"must be positive, got {shorten(table.raw(form))}")
     bounds, unit = (POWER_RANGE, "W") if form == "power" else (ENERGY_RANGE, "J")

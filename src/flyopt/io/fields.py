@@ -13,7 +13,7 @@ from typing import Any, Literal, overload
 
 from flyopt.errors import SceneError, shorten
 from flyopt.names import hint
-from flyopt.units import DIMENSIONS, is_plain, quantity
+from flyopt.units import DIMENSIONS, MAGNITUDES, is_plain, quantity
 
 
 def unit_factor(raw: object, dimension: str, where: str) -> float:
@@ -81,20 +81,41 @@ class Table:
         return name
 
     @overload
-    def quantity(self, key: str, dimension: str, required: Literal[True], default: float | None = None) -> float: ...
+    def quantity(
+        self,
+        key: str,
+        dimension: str,
+        required: Literal[True],
+        default: float | None = None,
+        *,
+        own_range: bool = False,
+    ) -> float: ...
     @overload
-    def quantity(self, key: str, dimension: str, required: bool = False, *, default: float) -> float: ...
+    def quantity(
+        self, key: str, dimension: str, required: bool = False, *, default: float, own_range: bool = False
+    ) -> float: ...
     @overload
-    def quantity(self, key: str, dimension: str, required: bool = False, default: None = None) -> float | None: ...
+    def quantity(
+        self, key: str, dimension: str, required: bool = False, default: None = None, *, own_range: bool = False
+    ) -> float | None: ...
 
-    def quantity(self, key: str, dimension: str, required: bool = False, default: float | None = None) -> float | None:
+    def quantity(
+        self, key: str, dimension: str, required: bool = False, default: float | None = None, *, own_range: bool = False
+    ) -> float | None:
         """The SI float of ``key`` in ``dimension``; ``default`` when not given (an error when ``required``, which
-        says what to give: "engine.bore: is missing: give a length (e.g. '0.8 m')")."""
+        says what to give: "engine.bore: is missing: give a length (e.g. '0.8 m')").
+
+        A value given is held to its dimension's :data:`flyopt.units.MAGNITUDES` (:func:`check_scale`), unless
+        ``own_range``: the caller holds the field to a narrower range of its own at once, in its own words.
+        """
         if key not in self.data:
             if required:
                 raise SceneError(self._path(key), f"is missing: give {DIMENSIONS[dimension][2]}")
             return default
-        return quantity(self.data[key], dimension, self._path(key))
+        value = quantity(self.data[key], dimension, self._path(key))
+        if not own_range:
+            check_scale(value, dimension, self._path(key), self.data[key])
+        return value
 
     def positive(self, key: str, dimension: str) -> float:
         """The SI float of ``key``, which the table must give, finite and above 0: an error naming the field and
@@ -114,6 +135,12 @@ SPEED_WHY = "about 1e-5 to 9.5 million rpm, beyond any machine a flywheel regula
 DELTA_RANGE = (1e-6, 2.0)
 """Allowed coefficient of fluctuation of speed δ = (ω_max − ω_min)/ω_mean, 2 itself excluded (ω_min would be 0):
 the inertia grows as 1/δ, and below 1e-6 it cannot be computed (1/300 is a tight generator)."""
+
+
+SAFETY_RANGE = (1.0, 100.0)
+"""Allowed factor of safety, the design's and a material's [-]: 1 is none; beyond 100 no wheel is designed
+(the courses take 5 to 10 on cast iron) and the allowable stress falls towards zero."""
+SAFETY_WHY = "the strength over the allowable stress: 1 (none) to 100"
 
 
 def check_delta(delta: float, where: str, raw: object, note: str, derived: str = "") -> None:
@@ -139,10 +166,24 @@ def check_magnitude(value: float, where: str, raw: object, low: float, high: flo
         raise SceneError(where, f"{shorten(raw)} is out of range (allowed: {low:g} to {high:g}{unit}; {why})")
 
 
+def check_scale(value: float, dimension: str, where: str, raw: object) -> None:
+    """Refuse a scalar quantity whose size lies outside :data:`flyopt.units.MAGNITUDES` of its dimension (0 is
+    allowed): one rule for every field a section reads, in the words of :func:`check_magnitude`."""
+    if value == 0 or dimension not in MAGNITUDES:
+        return
+    low, high, why = MAGNITUDES[dimension]
+    if not low <= abs(value) <= high:
+        unit = DIMENSIONS[dimension][1].replace("**", "^")
+        unit = f" {unit}" if unit else ""
+        raise SceneError(
+            where, f"{shorten(raw)} is out of range (allowed: 0, or a size of {low:g} to {high:g}{unit}; {why})"
+        )
+
+
 def mean_speed(machine: Table, required: bool) -> float:
     """machine.speed [rad/s]: positive and within :data:`SPEED_RANGE` (NaN where not given and not
     ``required``); the one reading of it, by the loader and by the energy terms' W = P Φ / ω_m."""
-    omega = machine.quantity("speed", "angular_speed", required=required)
+    omega = machine.quantity("speed", "angular_speed", required=required, own_range=True)
     if omega is None:
         return math.nan
     if omega <= 0:

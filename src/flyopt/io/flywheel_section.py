@@ -94,7 +94,7 @@ def _angles(table: Table) -> tuple[float, ...]:
 
 
 def _positive(table: Table, key: str, dimension: str, bounds: tuple[float, float], unit: str, why: str) -> float:
-    value = table.quantity(key, dimension, required=True)
+    value = table.quantity(key, dimension, required=True, own_range=True)
     if not (math.isfinite(value) and value > 0):
         raise SceneError(f"flywheel.{key}", f"must be positive, got {shorten(table.raw(key))}")
     check_magnitude(value, f"flywheel.{key}", table.raw(key), *bounds, unit, why)

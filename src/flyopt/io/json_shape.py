@@ -142,8 +142,9 @@ class _Walk:
                     return
                 if self.typed(value, branch):
                     trials.append(trial)
-            if len(trials) == 1:  # one form of its type (an array where a number or an array is allowed): within it
-                errors.extend(trials[0])
+            if len(trials) == 1:  # one form of its type (an array where a number or an array is allowed): said
+                # within it, at this field (where jsonschema, and a loader's own words, put it)
+                errors.extend((where, f"{field.removeprefix(path)} {message}".lstrip()) for field, message in trials[0])
                 return
             errors.append((where, f"must be {' or '.join(self.expected(node))}, got {self.got(value)}"))
             return

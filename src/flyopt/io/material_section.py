@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.design.castability import WALL_RANGE, WALL_WHY
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, check_magnitude
+from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_magnitude
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -97,9 +97,9 @@ def read_material(item: object, k: int, seen: set[str]) -> Material:
             f"or {strength} (the allowable stress is it over the safety factor)",
         )
     values: dict[str, Any] = {  # make_material's keywords: numbers, a flag, a hub rule
-        "density": table.quantity("density", "density", required=True),
-        "max_rim_speed": table.quantity("max_rim_speed", "speed"),
-        "allowable_stress": table.quantity("allowable_stress", "stress"),
+        "density": table.quantity("density", "density", required=True, own_range=True),
+        "max_rim_speed": table.quantity("max_rim_speed", "speed", own_range=True),
+        "allowable_stress": table.quantity("allowable_stress", "stress", own_range=True),
         "cost": table.quantity("cost", "cost_per_mass"),
     }
     for key, value in values.items():
@@ -115,13 +115,14 @@ def read_material(item: object, k: int, seen: set[str]) -> Material:
                 raise SceneError(f"{where}.{key}", f"must be true or false, got {shorten(table.raw(key))}")
             values[key] = table.get(key)
             continue
-        value = table.quantity(key, dimension, required=True)
+        value = table.quantity(key, dimension, required=True, own_range=key in MAGNITUDES or key == "safety_factor")
         if key == "poisson_ratio":
             if not 0.0 <= value < 0.5:
                 raise SceneError(f"{where}.{key}", f"must be in [0, 0.5), got {shorten(table.raw(key))}")
         elif key == "safety_factor":
             if value < 1.0:
                 raise SceneError(f"{where}.{key}", f"must be >= 1, got {shorten(table.raw(key))}")
+            check_magnitude(value, f"{where}.{key}", table.raw(key), *SAFETY_RANGE, "", SAFETY_WHY)
         elif value <= 0:
             raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
         if key in MAGNITUDES:

@@ -72,7 +72,7 @@ def _read_linkage(raw: object, kind: str) -> Linkage:
         table = Table(raw, "mechanism", _LINKAGE_KEYS | {"crank", "coupler", "rocker", "frame", "branch"})
     else:
         table = Table(raw, "mechanism", _LINKAGE_KEYS | {"lift", "segments"})
-    speed_ratio = table.quantity("speed_ratio", "dimensionless", default=1.0)
+    speed_ratio = table.quantity("speed_ratio", "dimensionless", default=1.0, own_range=True)
     if not RATIO_RANGE[0] <= abs(speed_ratio) <= RATIO_RANGE[1]:
         raise SceneError(
             "mechanism.speed_ratio",

@@ -23,7 +23,7 @@ def read_operation(raw: object) -> Operation:
         ("duration", "time", DURATION_RANGE, "s", "the time one operation takes"),
         ("motor_power", "power", POWER_RANGE, "W", "the motor's power"),
     ):
-        value = table.quantity(key, dimension, required=True)
+        value = table.quantity(key, dimension, required=True, own_range=True)
         if not (math.isfinite(value) and value > 0):
             raise SceneError(f"operation.{key}", f"must be positive ({why}), got {shorten(table.raw(key))}")
         check_magnitude(value, f"operation.{key}", table.raw(key), *bounds, unit, why)

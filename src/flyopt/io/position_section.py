@@ -8,6 +8,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
+from flyopt.io.design_section import LENGTH_RANGE, LENGTH_WHY
 from flyopt.io.fields import Table, check_magnitude
 from flyopt.machine.crank_forces import ORIENTATIONS, CrankPosition
 
@@ -16,7 +17,6 @@ if TYPE_CHECKING:
     from flyopt.machine.mechanism import Member
 
 KEYS = {"angle", "crank", "rod", "bore", "pressure", "gas_force", "reciprocating_mass", "orientation", "description"}
-LENGTH_RANGE = (1e-6, 1e3)
 MASS_RANGE = (0.0, 1e9)
 #: Largest |crank angle| [rad] (a thousand turns), |pressure| [Pa] and |gas force| [N] a [position] takes.
 MAX_ANGLE = 2e3 * math.pi
@@ -28,17 +28,17 @@ def read_position(raw: object) -> CrankPosition:
     """[position]: the crank angle from the inner dead centre, r, l, the gas load (bore and net pressure, or the
     gas force) and the reciprocating mass; ``orientation`` "vertical" adds the reciprocating parts' weight."""
     table = Table(raw, "position", KEYS)
-    angle = table.quantity("angle", "angle", required=True)
+    angle = table.quantity("angle", "angle", required=True, own_range=True)
     if not (math.isfinite(angle) and abs(angle) <= MAX_ANGLE):
         raise SceneError(
             "position.angle", f"must be a finite angle within ±1000 turns, got {shorten(table.raw('angle'))}"
         )
     lengths = {}
     for key in ("crank", "rod"):
-        value = table.quantity(key, "length", required=True)
+        value = table.quantity(key, "length", required=True, own_range=True)
         if not (math.isfinite(value) and value > 0):
             raise SceneError(f"position.{key}", f"must be positive, got {shorten(table.raw(key))}")
-        check_magnitude(value, f"position.{key}", table.raw(key), *LENGTH_RANGE, "m", "a micron to a kilometre")
+        check_magnitude(value, f"position.{key}", table.raw(key), *LENGTH_RANGE, "m", LENGTH_WHY)
         lengths[key] = value
     if lengths["rod"] <= lengths["crank"]:
         raise SceneError(
@@ -46,7 +46,7 @@ def read_position(raw: object) -> CrankPosition:
             f"must be longer than the crank ({lengths['rod']:.6g} m against {lengths['crank']:.6g} m): "
             "the crank could not turn",
         )
-    mass = table.quantity("reciprocating_mass", "mass", required=True)
+    mass = table.quantity("reciprocating_mass", "mass", required=True, own_range=True)
     if not (math.isfinite(mass) and mass >= 0):
         raise SceneError("position.reciprocating_mass", f"must be >= 0, got {shorten(table.raw('reciprocating_mass'))}")
     check_magnitude(
@@ -62,7 +62,7 @@ def read_position(raw: object) -> CrankPosition:
     bore = gas = None
     pressure = 0.0
     if table.has("gas_force"):
-        gas = table.quantity("gas_force", "force", required=True)
+        gas = table.quantity("gas_force", "force", required=True, own_range=True)
         if not (math.isfinite(gas) and abs(gas) <= MAX_FORCE):
             raise SceneError(
                 "position.gas_force", f"must be finite, at most ±{MAX_FORCE:g} N, got {shorten(table.raw('gas_force'))}"
@@ -71,11 +71,11 @@ def read_position(raw: object) -> CrankPosition:
         for key in ("pressure", "bore"):
             if not table.has(key):
                 raise SceneError(f"position.{key}", "is needed with the other of bore and pressure (F = p π d²/4)")
-        bore = table.quantity("bore", "length", required=True)
+        bore = table.quantity("bore", "length", required=True, own_range=True)
         if not (math.isfinite(bore) and bore > 0):
             raise SceneError("position.bore", f"must be positive, got {shorten(table.raw('bore'))}")
-        check_magnitude(bore, "position.bore", table.raw("bore"), *LENGTH_RANGE, "m", "a micron to a kilometre")
-        pressure = table.quantity("pressure", "stress", required=True)
+        check_magnitude(bore, "position.bore", table.raw("bore"), *LENGTH_RANGE, "m", LENGTH_WHY)
+        pressure = table.quantity("pressure", "stress", required=True, own_range=True)
         if not (math.isfinite(pressure) and abs(pressure) <= MAX_PRESSURE):
             raise SceneError(
                 "position.pressure",
@@ -152,10 +152,8 @@ def read_mechanism_position(
     if table.has("force_at"):
         if reduce_to is None:
             raise SceneError("position.force_at", "needs reduce_to: the member from whose axis the radius is measured")
-        force_at = table.quantity("force_at", "length", required=True)
+        force_at = table.quantity("force_at", "length", required=True, own_range=True)
         if not (math.isfinite(force_at) and force_at > 0):
             raise SceneError("position.force_at", f"must be positive, got {shorten(table.raw('force_at'))}")
-        check_magnitude(
-            force_at, "position.force_at", table.raw("force_at"), *LENGTH_RANGE, "m", "a micron to a kilometre"
-        )
+        check_magnitude(force_at, "position.force_at", table.raw("force_at"), *LENGTH_RANGE, "m", LENGTH_WHY)
     return MechanismPosition(angle, given, reduce_to, force_at)

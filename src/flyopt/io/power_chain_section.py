@@ -111,7 +111,7 @@ def _delivered(table: Table, where: str) -> float | None:
     for key, dimension in LOADS[given[0]]:
         if not table.has(key):
             raise SceneError(f"{where}.{key}", f"is missing (the power is {' × '.join(k for k, _ in LOADS[given[0]])})")
-        value = table.quantity(key, dimension, required=True)
+        value = table.quantity(key, dimension, required=True, own_range=True)
         if not (math.isfinite(value) and value > 0):
             raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
         check_magnitude(value, f"{where}.{key}", table.raw(key), *_RANGES[key])

@@ -475,7 +475,7 @@ def _delta(machine: Table, required: bool) -> float | None:
     """machine.delta, the allowed coefficient of fluctuation (None where the scene needs none and gives none)."""
     if required:
         _required(machine, "delta")
-    delta = machine.quantity("delta", "dimensionless", required=required)
+    delta = machine.quantity("delta", "dimensionless", required=required, own_range=True)
     if delta is not None:
         _check_delta(delta, machine)
     return delta

@@ -59,7 +59,7 @@ def read_shaft(item: object, k: int, seen: set[str]) -> tuple[Shaft, Any]:
         {"name", "speed_ratio", "efficiency", "diameter", "inertia", "gd2", "description"} | LAYOUT_KEYS,
     )
     name = table.unique_name("shaft", seen)
-    ratio = table.quantity("speed_ratio", "dimensionless", required=True)
+    ratio = table.quantity("speed_ratio", "dimensionless", required=True, own_range=True)
     if ratio <= 0:
         raise SceneError(f"{where}.speed_ratio", f"must be positive (ω_shaft/ω_reference), got {shorten(ratio)}")
     check_magnitude(
@@ -397,7 +397,7 @@ def _shaft_inertia(table, where):
     key = "gd2" if table.has("gd2") else "inertia"
     if not table.has(key):
         return 0.0
-    value = table.quantity(key, "flywheel_moment" if key == "gd2" else "inertia")
+    value = table.quantity(key, "flywheel_moment" if key == "gd2" else "inertia", own_range=True)
     if not (math.isfinite(value) and value >= 0):
         raise SceneError(
             f"{where}.{key}",

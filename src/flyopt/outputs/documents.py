@@ -3,12 +3,11 @@
 Every JSON object flyopt writes carries ``schema_version`` and ``kind``
 (``solve``, ``sweep``, ``pareto``, ``tradeoff``) and is described by the
 JSON Schema shipped with the package, ``flyopt/data/output.schema.json``
-(:func:`schema`); the version is the schema's.
+(:func:`flyopt.outputs.schema.schema`, re-exported here); the version is the schema's.
 """
 
 from __future__ import annotations
 
-import functools
 import hashlib
 import json
 import math
@@ -20,6 +19,7 @@ import numpy as np
 
 from flyopt.outputs.quantities import MISSING, document_units, table_units
 from flyopt.outputs.results import JSON_TYPES, column_kind
+from flyopt.outputs.schema import SCHEMA_FILE, schema, schema_version
 
 if TYPE_CHECKING:
     import os
@@ -42,22 +42,6 @@ __all__ = [
     "table_document",
     "table_metadata",
 ]
-
-
-SCHEMA_FILE = "output.schema.json"
-
-
-@functools.lru_cache(maxsize=1)
-def schema() -> dict[str, Any]:
-    """The JSON Schema of every JSON document flyopt writes (``flyopt/data/output.schema.json``)."""
-    from importlib import resources
-
-    return json.loads(resources.files("flyopt").joinpath("data", SCHEMA_FILE).read_text(encoding="utf-8"))
-
-
-def schema_version() -> str:
-    """The version of flyopt's output schema, which every document and file metadata carries."""
-    return schema()["$defs"]["schema_version"]["const"]
 
 
 def _flyopt_version() -> str:

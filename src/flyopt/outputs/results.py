@@ -57,7 +57,6 @@ __all__ = [
     "check_table_output",
     "column_kind",
     "csv_rows",
-    "metadata_errors",
     "normalize",
     "output_format",
     "parts_folder",
@@ -598,6 +597,8 @@ def write_results(
     """
     path = Path(path)
     kind = output_format(path)
+    from flyopt.outputs.schema import metadata_errors
+
     errors = metadata_errors(metadata) if metadata is not None else []
     if errors:  # what read_results would refuse is not written
         field, message = errors[0]
@@ -624,27 +625,6 @@ def write_results(
     _finish(table, path, metadata if kind == "csv" else None, temporary_folder, "-o/--output")
 
 
-def metadata_errors(metadata: object) -> list[tuple[str, str]]:
-    """Every shape error of a table's metadata against the output schema's ``table``, keys present only.
-
-    The one rule for what a sweep, Pareto or trade-off file may say about
-    itself (:func:`flyopt.outputs.documents.table_metadata` writes it):
-    :func:`write_results` refuses metadata that breaks it and
-    :func:`read_results` a file whose metadata does. An open walk
-    (:func:`flyopt.io.json_shape.shape_errors`): a key it does not know, or
-    one it lacks, is a file of another minor version of the schema, not an error.
-
-    Returns
-    -------
-    list of (str, str)
-        (field, what is wrong); empty when sound.
-    """
-    from flyopt.io.json_shape import shape_errors
-    from flyopt.outputs.documents import schema
-
-    return shape_errors(metadata, schema()["$defs"]["table"], schema(), open_=True)
-
-
 def _metadata(text: str | bytes, where: str) -> dict[str, Any]:
     """A table's metadata from its JSON text, its shape checked (:func:`metadata_errors`); SceneError else,
     its message led by ``where``."""
@@ -652,6 +632,8 @@ def _metadata(text: str | bytes, where: str) -> dict[str, Any]:
         metadata = json.loads(text)
     except ValueError as err:  # UnicodeDecodeError too
         raise SceneError("", f"{where}: not JSON ({err})") from None
+    from flyopt.outputs.schema import metadata_errors
+
     errors = metadata_errors(metadata)
     if errors:
         field, message = errors[0]
