@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import os
 import stat
+import sys
 from contextlib import contextmanager
 from contextvars import ContextVar
 from pathlib import Path
@@ -82,7 +83,7 @@ def _limit(variable: str, default: int) -> int:
         raise SceneError(
             "", f"the environment variable {variable} must be a whole number of at least 1, got {shorten(text)}"
         )
-    return value
+    return min(value, sys.maxsize)  # beyond every file and table there is; a read cannot take a larger size
 
 
 def quote_from_file(text: str) -> str:
