@@ -268,3 +268,19 @@ def test_a_bad_limit_in_the_environment_is_one_line(tmp_path):
     run = cli("check", path, env={"FLYOPT_MAX_FILE_BYTES": "lots"})
     assert run.returncode == 2 and len(run.stderr.splitlines()) == 1, run.stderr
     assert "FLYOPT_MAX_FILE_BYTES must be a whole number of at least 1, got 'lots'" in run.stderr
+
+
+def test_a_cap_beyond_any_file_reads_every_file(tmp_path, monkeypatch):
+    """FLYOPT_MAX_FILE_BYTES=1e29 written out (or any cap past sys.maxsize) overflowed the read: "cannot fit 'int'
+    into an index-sized integer", exit 1 blaming the scene. A cap is at most sys.maxsize - 1, and the read takes
+    the file's own size, not the cap's (a read of the cap reserved it: 100 MB by default, for every file)."""
+    import sys
+
+    from flyopt.io import input_files
+
+    path = scene_naming(tmp_path, "torque.csv")
+    for variable in ("FLYOPT_MAX_FILE_BYTES", "FLYOPT_MAX_TABLE_ROWS"):
+        monkeypatch.setenv(variable, "1" + "0" * 29)
+    assert input_files.max_file_bytes() == input_files.max_table_rows() == sys.maxsize - 1
+    assert flyopt.load(path).resisting is not None
+    assert input_files.read_input(path, "", "the scene") == path.read_text(encoding="utf-8")

@@ -83,7 +83,7 @@ def _limit(variable: str, default: int) -> int:
         raise SceneError(
             "", f"the environment variable {variable} must be a whole number of at least 1, got {shorten(text)}"
         )
-    return min(value, sys.maxsize)  # beyond every file and table there is; a read cannot take a larger size
+    return min(value, sys.maxsize - 1)  # beyond every file and table there is; a larger one overflows a size
 
 
 def quote_from_file(text: str) -> str:
@@ -203,10 +203,16 @@ def read_input(path: Path, where: str, name: str, encoding: str = "utf-8", sourc
         return SceneError(where, f"cannot read {name}: {reason}", source)
 
     limit = max_file_bytes()
-    descriptor, _size = _open_input(path, refuse)
+    descriptor, size = _open_input(path, refuse)
     try:
         with os.fdopen(descriptor, "rb", closefd=False) as handle:
-            data = handle.read(limit + 1)
+            # the size it has, and a byte to see it grew: a read of the cap itself would reserve the cap
+            data = handle.read(min(size, limit) + 1)
+            while size < len(data) <= limit:  # it grew while read: on, a block at a time, to one byte over the cap
+                more = handle.read(min(1 << 20, limit + 1 - len(data)))
+                if not more:
+                    break
+                data += more
     except OSError as err:
         raise refuse(err.strerror or type(err).__name__) from None
     finally:
