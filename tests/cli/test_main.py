@@ -34,3 +34,25 @@ def test_a_bad_option_is_one_line_with_exit_status_2(args, says):
     assert len(lines) == 1, run.stderr
     assert lines[0].startswith("flyopt") and ": error: " in lines[0] and says in lines[0], lines[0]
     assert "usage:" not in run.stderr
+
+
+@pytest.mark.parametrize("encoding", ["ascii", "latin-1"])
+def test_a_console_that_cannot_show_the_symbols_gets_them_in_ascii(encoding):
+    """A console without UTF-8 (LC_ALL=C in a container, PYTHONIOENCODING=ascii) ended every report in
+    "'ascii' codec can't encode character '\\xb7'", exit 1. What it cannot show is spelled in ASCII."""
+    import os
+
+    env = {**os.environ, "PYTHONIOENCODING": encoding}
+    shear = str(PROBLEMS / "shear-press.toml")
+    run = subprocess.run([sys.executable, "-m", "flyopt", "solve", shear], capture_output=True, timeout=120, env=env)
+    assert run.returncode == 0, run.stderr[-2000:]
+    text = run.stdout.decode(encoding)  # all of it in the console's encoding
+    assert "Answer: cast steel rim, 12.81 kg, on the motor shaft" in text
+    if encoding == "ascii":
+        assert "1.018 kg*m^2 on its shaft" in text and "allowed delta" in text and "\\u" not in text, text
+    else:  # latin-1 has the middle dot and the square: only what it lacks is spelled
+        assert "1.018 kg·m² on its shaft" in text and "allowed delta" in text, text
+    bad = subprocess.run(
+        [sys.executable, "-m", "flyopt", "check", str(PROBLEMS / "no-such.toml")], capture_output=True, env=env
+    )
+    assert bad.returncode == 2 and len(bad.stderr.decode(encoding).splitlines()) == 1

@@ -70,10 +70,14 @@ def main(argv: Sequence[str] | None = None) -> int:
 def entry() -> int:
     """The ``flyopt`` console script and ``python -m flyopt``: :func:`main`, then exit quietly.
 
+    The console's streams write what their encoding lacks in ASCII (:func:`flyopt.cli.console.fit_streams`).
     Once the command has its status the work is over: a Ctrl-C that arrives
     while the interpreter shuts down would only replace that status by death
     by signal, so it is ignored from then on.
     """
+    from flyopt.cli.console import fit_streams
+
+    fit_streams()  # a console that cannot show ω or kg·m² gets them in ASCII, not an encoding error
     status = main()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     return status
