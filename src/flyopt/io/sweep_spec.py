@@ -69,7 +69,7 @@ __all__ = [
 ]
 
 from flyopt.io.design_section import HB_RANGE, HB_WHY, LENGTH_RANGE, LENGTH_WHY
-from flyopt.io.fields import DELTA_RANGE, SPEED_RANGE, SPEED_WHY, check_magnitude
+from flyopt.io.fields import DELTA_RANGE, SPEED_RANGE, SPEED_WHY, check_magnitude, check_scale
 from flyopt.io.input_files import inside_scene
 from flyopt.io.material_section import MAGNITUDES
 from flyopt.io.shaft_section import RATIO_RANGE, RATIO_WHY
@@ -88,7 +88,8 @@ class SweepField:
     maximum: float | None = None
     optional: bool = False  # "none" allowed
     what: str = ""
-    bounds: tuple[float, float, str, str] | None = None  # the loader's (low, high, unit, why): one range for a field
+    # the loader's (low, high, unit, why): one range for a field; None: its dimension's (flyopt.units.MAGNITUDES)
+    bounds: tuple[float, float, str, str] | None = None
 
 
 _LENGTHS = (*LENGTH_RANGE, "m", LENGTH_WHY)
@@ -391,6 +392,8 @@ def _check_value(value, spec, label, text):
         raise SceneError(label, f"{shorten(text)} is out of range: {spec.what}")
     if spec.bounds is not None:
         check_magnitude(value, label, text, *spec.bounds)
+    else:  # no range of its own: its dimension's sizes, as the loader holds every field (flyopt.units.MAGNITUDES)
+        check_scale(value, spec.dimension, label, text)
 
 
 def _parse_text(scene, name, spec, text, label, sampled, cap=None):
