@@ -82,6 +82,15 @@ def test_a_fraction_is_no_angle(text):
         quantity(text, "angle", "machine.cycle")
 
 
+@pytest.mark.parametrize("text", ["3 deg", "2 rad", "1 turn", "3 rpm*s"])
+def test_an_angle_is_no_plain_number(text):
+    """An angle has no dimension in SI, so "3 deg" was read as δ = 0.0524 and "2 rad" as a speed ratio of 2,
+    silently: the reverse of a fraction taken for an angle, refused as that is."""
+    with pytest.raises(SceneError, match="wrong dimension: expected a plain number"):
+        quantity(text, "dimensionless", "machine.delta")
+    assert quantity("5 %", "dimensionless", "machine.delta") == 0.05  # a fraction is one
+
+
 def test_rpm_and_gd2_round_trips():
     assert_allclose(rpm_to_rad_s(60 / (2 * math.pi)), 1.0, rtol=1e-15)
     assert_allclose(rad_s_to_rpm(rpm_to_rad_s(1440.0)), 1440.0, rtol=1e-15)

@@ -398,7 +398,10 @@ def _pint_number(text: str, dimension: str, field: str) -> float:
         return float(q.magnitude if hasattr(q, "magnitude") else q)  # no unit written (or "rad/rad"): SI
     # "%", "permille", "ppm", "m/mm" are units too: a fraction, converted like any other unit
     want = registry().get_dimensionality(dim) if dim else registry().Quantity(1).dimensionality
-    if q.dimensionality != want or (dimension == "angle" and not _is_angle(q)):
+    # an angle has no dimension in SI, yet "3 deg" is no δ and "2 rad" no speed ratio: neither is taken for a
+    # plain number, as "50 %" is no angle
+    mistaken = dimension in ("angle", "dimensionless") and _is_angle(q) != (dimension == "angle")
+    if q.dimensionality != want or mistaken:
         raise SceneError(field, f"{shorten(text)} has the wrong dimension: expected {words}")
     number = float(q.to(si_unit).magnitude) if si_unit else float(q.to("").magnitude)
     if dimension == "angular_speed" and not _is_angle(q):
