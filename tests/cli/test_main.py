@@ -56,3 +56,27 @@ def test_a_console_that_cannot_show_the_symbols_gets_them_in_ascii(encoding):
         [sys.executable, "-m", "flyopt", "check", str(PROBLEMS / "no-such.toml")], capture_output=True, env=env
     )
     assert bad.returncode == 2 and len(bad.stderr.decode(encoding).splitlines()) == 1
+
+
+def test_a_key_with_a_terminal_escape_is_said_with_the_escape_shown_not_sent(tmp_path):
+    """A key written "ge\\u001b[31mom" was echoed raw in the refusal: an ESC that starts a terminal sequence
+    on the user's screen. Every refusal line shows such a character as its escape."""
+    path = tmp_path / "scene.toml"
+    path.write_text(
+        '[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n[torque.net]\nareas = [1, -1]\n[design]\n"ge\\u001b[31mom" = 3\n',
+        encoding="utf-8",
+    )
+    for command in ("check", "solve"):
+        run = subprocess.run([sys.executable, "-m", "flyopt", command, str(path)], capture_output=True, timeout=60)
+        assert run.returncode == 2 and b"\x1b" not in run.stderr, run.stderr
+        assert b"design.ge\\x1b[31mom: unknown key" in run.stderr, run.stderr
+
+
+@pytest.mark.parametrize("command", [["new", "press"], ["solve", str(PROBLEMS / "shear-press.toml")]])
+def test_an_output_that_ends_in_a_separator_names_a_folder_and_nothing_is_written(tmp_path, command):
+    """`flyopt new press -o a/` wrote the template as the file `a`: a name ending in "/" is a folder's."""
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", *command, "-o", "a/"], capture_output=True, text=True, timeout=60, cwd=tmp_path
+    )
+    assert run.returncode == 2 and "'a/' names a folder" in run.stderr and len(run.stderr.splitlines()) == 1
+    assert list(tmp_path.iterdir()) == []

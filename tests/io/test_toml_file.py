@@ -13,6 +13,7 @@ import math
 import numpy as np
 import pytest
 import tomllib
+from conftest import PROBLEMS
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scene_cases import scene_text
@@ -278,3 +279,20 @@ def test_toml_syntax_and_duplicate_tables(write_scene):
 def test_missing_file():
     with pytest.raises(SceneError, match=r"no-such.toml: cannot read the file"):
         flyopt.load("no-such.toml")
+
+
+def test_a_scene_saved_with_a_byte_order_mark_reads_as_without(tmp_path, capsys):
+    """Windows Notepad's "UTF-8 with BOM" made every scene "not valid TOML: Invalid statement (at line 1)"."""
+    import flyopt
+    from flyopt.cli.main import main
+    from flyopt.cli.toml_lines import key_lines
+
+    text = (PROBLEMS / "shear-press.toml").read_text(encoding="utf-8")
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
+    with_mark, without = flyopt.load(path), flyopt.load(PROBLEMS / "shear-press.toml")
+    assert with_mark.title == without.title and with_mark.delta == without.delta
+    assert key_lines("\ufeff" + text) == key_lines(text)  # flyopt check's line numbers too
+    path.write_bytes(b"\xef\xbb\xbfsped = 3\n" + text.encode("utf-8"))
+    assert main(["check", str(path)]) == 2
+    assert f"{path}:1: sped: unknown key" in capsys.readouterr().err  # said at its line, the first

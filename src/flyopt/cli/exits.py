@@ -77,8 +77,12 @@ def fail(message: object, status: int) -> int:
 
 
 def one_line(message: object, limit: int = 1000) -> str:
-    """The message on one line, cut to ``limit`` characters (an echoed input may be huge)."""
-    text = " ".join(str(message).split())
+    """The message on one line, cut to ``limit`` characters (an echoed input may be huge), every character that
+    acts rather than shows written as its escape (:func:`flyopt.report.characters.visible`): a key the user wrote
+    with an ESC in it would otherwise start a terminal sequence on the user's screen."""
+    from flyopt.report.characters import visible
+
+    text = visible(" ".join(str(message).split()))
     return text if len(text) <= limit else text[: limit - 1] + "…"
 
 

@@ -226,8 +226,9 @@ def key_lines(text: str) -> dict[str, int]:
         element of that array begins), ``"torque.driving.motor.kind"`` (a key
         of an inline table), each to the line where it is written. A table
         made implicitly (``[a.b]`` makes ``a``) has the line that made it.
+        A byte-order mark before the first line is read past, as the loader reads past it.
     """
-    return _Scanner(text).run()
+    return _Scanner(text.removeprefix("\ufeff")).run()
 
 
 def line_of(lines: dict[str, int], field: str) -> int | None:

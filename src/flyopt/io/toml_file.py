@@ -49,7 +49,8 @@ def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
         message names the file).
     """
     path = Path(path)
-    text = read_input(path, "", "the file", source=str(path))
+    # a byte-order mark (Windows Notepad's "UTF-8 with BOM") is no TOML statement: "Invalid statement at line 1"
+    text = read_input(path, "", "the file", source=str(path)).removeprefix("\ufeff")
     try:
         return parse_toml(text)
     except tomllib.TOMLDecodeError as err:

@@ -239,8 +239,12 @@ def check_folder(path: str | os.PathLike[str], label: str = "output") -> None:
     Its folder must exist (flyopt does not create folders the user did not ask
     for), and whatever is at its path must be a regular file that it may
     replace: a folder, a device, a FIFO or a socket is refused. A symbolic
-    link is followed to its target.
+    link is followed to its target. A name that ends in a separator ("out/") names a folder, not a file:
+    refused, not written as the file ``out``.
     """
+    text = os.fspath(path)
+    if text.endswith(("/", os.sep)):
+        raise SceneError(label, f"{text!r} names a folder (it ends in {text[-1]!r}): give a file's name")
     target = output_target(path)
     folder = target.parent
     if not folder.is_dir():
