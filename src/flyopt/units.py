@@ -94,7 +94,7 @@ MAGNITUDES: dict[str, tuple[float, float, str]] = {
     "speed": (1e-9, 1e5, "a nanometre a second to 100 km/s"),
     "angular_speed": (1e-9, 1e7, "1e-9 to 1e7 rad/s"),
     "angular_acceleration": (1e-9, 1e12, "1e-9 to 1e12 rad/s^2"),
-    "angle": (1e-12, 1e6, "1e-12 rad to some 160,000 turns"),
+    "angle": (0.0, 1e6, "up to some 160,000 turns"),  # no divisor: however small, an angle is computed with
     "time": (1e-9, 1e9, "a nanosecond to some 30 years"),
     "dimensionless": (1e-9, 1e9, "a billionth to a billion"),
     "cost_per_mass": (1e-9, 1e9, "1e-9 to 1e9 a kilogram"),

@@ -80,3 +80,18 @@ def test_an_output_that_ends_in_a_separator_names_a_folder_and_nothing_is_writte
     )
     assert run.returncode == 2 and "'a/' names a folder" in run.stderr and len(run.stderr.splitlines()) == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_closed_stdout_is_no_traceback(tmp_path):
+    """`flyopt solve scene >&-` ended in AttributeError: 'NoneType' object has no attribute 'flush'."""
+    shear = str(PROBLEMS / "shear-press.toml")
+    run = subprocess.run(
+        ["bash", "-c", f'"{sys.executable}" -m flyopt solve "{shear}" >&-'], capture_output=True, text=True, timeout=60
+    )
+    assert run.returncode == 0 and "Traceback" not in run.stderr, run.stderr
+
+
+def test_a_character_beyond_16_bits_is_spelled_as_python_escapes_it():
+    from flyopt.cli.console import fit_streams  # noqa: F401 (registers the handler)
+
+    assert "φ ω \U0001f600 \u2202".encode("ascii", errors="flyopt.ascii") == b"phi omega \\U0001f600 \\u2202"

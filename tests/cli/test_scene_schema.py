@@ -261,3 +261,15 @@ def test_a_scene_refused_for_structure_is_refused_by_the_schema_at_the_same_fiel
 def test_an_unknown_key_is_said_with_the_loaders_hint():
     errors = dict(structural_errors({"machine": {"sped": 1}}))
     assert errors["machine.sped"].startswith("unknown key; did you mean 'speed'? (allowed here: ")
+
+
+def test_the_schemas_lists_of_names_are_the_loaders():
+    """The schema's enums, which `flyopt check` now walks, name what the loader allows, no more and no less."""
+    from flyopt.design.preferred import SERIES
+    from flyopt.design.shaft.strength import FINISHES
+
+    properties = schema()["properties"]
+    shaft = properties["shaft"]["items"]["properties"]
+    assert properties["design"]["properties"]["diameter_series"]["enum"] == list(SERIES)
+    assert shaft["diameter_series"]["enum"] == list(SERIES)
+    assert shaft["finish"]["enum"] == list(FINISHES)

@@ -177,7 +177,7 @@ def test_arithmetic_in_a_table_with_its_own_unit_is_in_that_unit(tmp_path):
 )
 def test_a_materials_modulus_and_strengths_lie_within_what_solids_have(tmp_path, main_cli, field, written, refused):
     """Outside PLAIN_SLIPS's bands, a [[material]]'s modulus and strengths are held to what a solid has
-    (material_section.MAGNITUDES): a plain modulus of 169000 meaning N/mm² was read as 169 kPa, and the wheel's
+    (material_section.MATERIAL_MAGNITUDES): a plain modulus of 169000 meaning N/mm² was read as 169 kPa, and the wheel's
     Lamé stresses were computed with it."""
     old = {
         "elastic_modulus": 'elastic_modulus = "169 GPa"',

@@ -72,7 +72,7 @@ def test_a_quantity_beyond_its_dimensions_magnitudes_is_refused_naming_the_field
     assert main(["solve", str(path), "-q"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "Traceback" not in err, err
-    assert f": {field}: " in err and "is out of range (allowed: 0, or a size of " in err, err
+    assert f": {field}: " in err and "is out of range (allowed: a size of " in err, err
 
 
 def test_the_shipped_value_of_each_field_still_loads(tmp_path):
@@ -93,7 +93,7 @@ def test_a_length_is_held_to_a_micron_to_a_kilometre_in_size_or_zero(value, refu
     from flyopt.io.fields import check_scale
 
     if refused:
-        with pytest.raises(SceneError, match=r"^mechanism.offset: .* is out of range \(allowed: 0, or a size of 1e-06"):
+        with pytest.raises(SceneError, match=r"^mechanism.offset: .* is out of range \(allowed: a size of 1e-06"):
             check_scale(value, "length", "mechanism.offset", f"{value} m")
     else:
         check_scale(value, "length", "mechanism.offset", f"{value} m")
@@ -129,8 +129,38 @@ def test_every_dimension_has_magnitudes_that_its_example_lies_within():
 
     assert set(MAGNITUDES) == set(DIMENSIONS)
     for dimension, (low, high, why) in MAGNITUDES.items():
-        assert 0 < low < high < math.inf and why, dimension
+        assert 0 <= low < high < math.inf and why, dimension
         example = re.search(r"e\.g\. '([^']+)'", DIMENSIONS[dimension][2])
         if example:
             value = quantity(example.group(1), dimension, "example")
             assert low <= abs(value) <= high, (dimension, example.group(1))
+
+
+@pytest.mark.parametrize(
+    "old, new, words",
+    [  # fields with a range of their own: their words for a value beyond it, and a small one they allow read
+        ("critical_margin = 0.1", "critical_margin = 2e9", "critical_margin: must be a share in [0, 1)"),
+        ("critical_margin = 0.1", "critical_margin = 1e-10", None),
+        ("critical_margin = 0.1", "critical_margin = 0.1\ndamping_ratio = 1e-10", None),
+        ("critical_margin = 0.1", "critical_margin = 0.1\nsafety_factor = 500", "safety_factor: 500 is out of range"),
+        ("critical_margin = 0.1", "critical_margin = 0.1\nsafety_factor = 100", None),
+    ],
+)
+def test_a_described_shafts_fields_keep_their_own_ranges(tmp_path, capsys, old, new, words):
+    """An outside review found these read through the general sizes first: a margin of 2e9 said "a size of
+    1e-09 to 1e+09" for a share, and a damping ratio of 1e-10, which the field allows, was refused. A shaft's
+    factor of safety is held to 1-100 as the design's and a material's are."""
+    path = _scene(tmp_path, "four-cylinder-engine-shaft.toml", old, new)
+    code = main(["check", str(path)])
+    err = capsys.readouterr().err
+    if words is None:
+        assert code == 0, err
+    else:
+        assert code == 2 and words in err and "a size of" not in err, err
+
+
+def test_a_tiny_angle_is_an_angle():
+    """An angle divides nothing: however small, it is read (1e-13 deg of a crank position was refused)."""
+    from flyopt.io.fields import check_scale
+
+    check_scale(1e-15, "angle", "position.angle", "1e-13 deg")

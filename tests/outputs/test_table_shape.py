@@ -195,3 +195,28 @@ def test_write_results_refuses_metadata_read_results_would_refuse_and_writes_not
     write_results(frame, tmp_path / "w.parquet", metadata=stored)  # sound metadata is written, and reads back
     back = read_results(tmp_path / "w.parquet")
     assert back.attrs["flyopt"] == stored and np.allclose(back["delta"], frame["delta"])
+
+
+def test_a_sidecar_of_another_minor_version_reads_and_one_too_deep_is_one_line(sweep_file, tmp_path, capsys):
+    """The open walk let a key of schema 3.1 pass but held schema_version to the const "3.0" (an outside review):
+    any 3.x reads, another major number does not. Metadata nested 200,000 deep was a RecursionError."""
+    _, frame, stored = sweep_file
+    path = tmp_path / "t.csv"
+    frame.to_csv(path, index=False)
+    major = stored["schema_version"].split(".")[0]
+    for version, readable in ((f"{major}.1", True), (f"{major}.17", True), (f"{int(major) + 1}.0", False)):
+        document = {**stored, "schema_version": version, "added_in_a_later_minor": [1, 2]}
+        (tmp_path / "t.csv.json").write_text(json.dumps(document), encoding="utf-8")
+        code, err, _ = _plot(path, tmp_path, capsys)
+        assert (code == 0) if readable else (code == 2 and "schema_version must match" in err), (version, err)
+    (tmp_path / "t.csv.json").write_text("[" * 200_000 + "]" * 200_000, encoding="utf-8")
+    code, err, _ = _plot(path, tmp_path, capsys)
+    assert code == 2 and err.count("\n") == 1 and "nested too deeply" in err, err
+
+
+def test_a_whole_number_written_as_a_float_is_an_integer_as_jsonschema_says(sweep_file):
+    _, _, stored = sweep_file
+    document = _changed(stored, set_at(["sweep", "points"], 2.0))
+    assert _reference_fields(document) == set() and metadata_errors(document) == []
+    document = _changed(stored, set_at(["sweep", "points"], 2.5))
+    assert _reference_fields(document) == {"sweep.points"} == {f for f, _ in metadata_errors(document)}

@@ -75,7 +75,13 @@ def _spell(error: UnicodeError) -> tuple[str, int]:
     if not isinstance(error, UnicodeEncodeError):
         raise error
     text = error.object[error.start : error.end]
-    return "".join(ASCII_SPELLING.get(c, f"\\u{ord(c):04x}") for c in text), error.end
+    return "".join(ASCII_SPELLING.get(c, _escape(c)) for c in text), error.end
+
+
+def _escape(character: str) -> str:
+    """Python's escape of a character: ``\\u2202``, ``\\U0001f600`` beyond the 16-bit plane."""
+    code = ord(character)
+    return f"\\u{code:04x}" if code <= 0xFFFF else f"\\U{code:08x}"
 
 
 codecs.register_error(_HANDLER, _spell)

@@ -184,7 +184,8 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None = None) -> i
         parser.error(f"unrecognized arguments: {' '.join(rest)}")
     try:
         status = args.run(args)
-        sys.stdout.flush()  # a closed pipe shows here, not at exit
+        if sys.stdout is not None:  # None: started with stdout closed (>&-), where print writes nothing
+            sys.stdout.flush()  # a closed pipe shows here, not at exit
         return status
     except BrokenPipeError:
         return _stdout_closed()

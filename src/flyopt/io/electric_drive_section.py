@@ -87,11 +87,11 @@ def _gd2(table: Table, where: str, gd2_key: str, inertia_key: str) -> float:
     if table.has(gd2_key) and table.has(inertia_key):
         raise SceneError(f"{where}.{inertia_key}", f"give either {gd2_key} or {inertia_key}, not both (GD² = 4 g J)")
     if table.has(inertia_key):
-        j = table.quantity(inertia_key, "inertia", required=True)
+        j = table.quantity(inertia_key, "inertia", required=True, own_range=True)
         value = j / inertia_from_gd2(1.0)
         key = inertia_key
     else:
-        value = table.quantity(gd2_key, "flywheel_moment", default=0.0)
+        value = table.quantity(gd2_key, "flywheel_moment", default=0.0, own_range=True)
         key = gd2_key
     if not (math.isfinite(value) and value >= 0):
         raise SceneError(f"{where}.{key}", f"must be >= 0, got {shorten(table.raw(key))}")

@@ -103,7 +103,7 @@ def read_engine(raw: object, files: Path = Path()) -> Engine:
                     "is missing: rod_mass, rod_centre (from the crank pin) and "
                     "rod_inertia (about the rod's centre of mass) come together",
                 )
-        rod["rod_centre"] = table.quantity("rod_centre", "length", required=True)
+        rod["rod_centre"] = table.quantity("rod_centre", "length", required=True, own_range=True)
         if not 0.0 <= rod["rod_centre"] <= sizes["rod"]:
             raise SceneError(
                 "engine.rod_centre",

@@ -175,9 +175,7 @@ def check_scale(value: float, dimension: str, where: str, raw: object) -> None:
     if not low <= abs(value) <= high:
         unit = DIMENSIONS[dimension][1].replace("**", "^")
         unit = f" {unit}" if unit else ""
-        raise SceneError(
-            where, f"{shorten(raw)} is out of range (allowed: 0, or a size of {low:g} to {high:g}{unit}; {why})"
-        )
+        raise SceneError(where, f"{shorten(raw)} is out of range (allowed: a size of {low:g} to {high:g}{unit}; {why})")
 
 
 def mean_speed(machine: Table, required: bool) -> float:

@@ -28,7 +28,7 @@ _MATERIAL_STRENGTH = {
 MAX_RIM_SPEED = 1e4
 
 #: Bounds of a [[material]]'s numbers (SI): beyond them no flywheel material lies and the sizing overflows.
-MAGNITUDES = {
+MATERIAL_MAGNITUDES = {
     "density": (1.0, 1e5, "kg/m^3", "from a foam to beyond osmium's 22,600"),
     "max_rim_speed": (1e-3, MAX_RIM_SPEED, "m/s", "a millimetre a second to 10 km/s, beyond any rotor's burst"),
     "allowable_stress": (1.0, 1e11, "Pa", "1 Pa to 100 GPa, beyond any material's strength"),
@@ -105,8 +105,8 @@ def read_material(item: object, k: int, seen: set[str]) -> Material:
     for key, value in values.items():
         if value is not None and (value < 0 or (value == 0 and key != "cost")):
             raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
-        if value is not None and key in MAGNITUDES:
-            check_magnitude(value, f"{where}.{key}", table.raw(key), *MAGNITUDES[key])
+        if value is not None and key in MATERIAL_MAGNITUDES:
+            check_magnitude(value, f"{where}.{key}", table.raw(key), *MATERIAL_MAGNITUDES[key])
     for key, dimension in _MATERIAL_STRENGTH.items():
         if not table.has(key):
             continue
@@ -115,7 +115,9 @@ def read_material(item: object, k: int, seen: set[str]) -> Material:
                 raise SceneError(f"{where}.{key}", f"must be true or false, got {shorten(table.raw(key))}")
             values[key] = table.get(key)
             continue
-        value = table.quantity(key, dimension, required=True, own_range=key in MAGNITUDES or key == "safety_factor")
+        value = table.quantity(
+            key, dimension, required=True, own_range=key in MATERIAL_MAGNITUDES or key == "safety_factor"
+        )
         if key == "poisson_ratio":
             if not 0.0 <= value < 0.5:
                 raise SceneError(f"{where}.{key}", f"must be in [0, 0.5), got {shorten(table.raw(key))}")
@@ -125,8 +127,8 @@ def read_material(item: object, k: int, seen: set[str]) -> Material:
             check_magnitude(value, f"{where}.{key}", table.raw(key), *SAFETY_RANGE, "", SAFETY_WHY)
         elif value <= 0:
             raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table.raw(key))}")
-        if key in MAGNITUDES:
-            check_magnitude(value, f"{where}.{key}", table.raw(key), *MAGNITUDES[key])
+        if key in MATERIAL_MAGNITUDES:
+            check_magnitude(value, f"{where}.{key}", table.raw(key), *MATERIAL_MAGNITUDES[key])
         values[key] = value
     if table.has("hub_rule"):
         from flyopt.design.hub import hub_rules

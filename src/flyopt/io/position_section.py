@@ -114,7 +114,7 @@ def read_mechanism_position(
         raise SceneError("position.input_angle", "give either angle (of the reference shaft) or input_angle, not both")
     given = None
     if table.has("input_angle"):
-        given = table.quantity("input_angle", "angle", required=True)
+        given = table.quantity("input_angle", "angle", required=True, own_range=True)
         if not (math.isfinite(given) and abs(given) <= 2 * math.pi):
             raise SceneError(
                 "position.input_angle",

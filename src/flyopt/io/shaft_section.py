@@ -7,7 +7,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, check_magnitude
+from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_magnitude
 from flyopt.io.train_section import read_train
 from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.shaft_layout import ShaftLayout, SideLoad
@@ -163,18 +163,20 @@ def read_layout(table: Table, where: str) -> ShaftLayout | None:
         )
     fillet = _positive(table, "fillet", where, "length", "the shoulders' fillet radius")
     grade = _positive(table, "balance_grade", where, "speed", "ISO 21940-11's G, e.g. '6.3 mm/s'")
-    safety = _positive(table, "safety_factor", where, "dimensionless", "the factor of safety required")
+    safety = _positive(table, "safety_factor", where, "dimensionless", "the factor of safety required", True)
     if safety is not None and safety < 1.0:
         raise SceneError(f"{where}.safety_factor", f"must be >= 1, got {shorten(table.raw('safety_factor'))}")
+    if safety is not None:
+        check_magnitude(safety, f"{where}.safety_factor", table.raw("safety_factor"), *SAFETY_RANGE, "", SAFETY_WHY)
     slope = _positive(table, "max_slope", where, "angle", "the slope allowed at a bearing")
     deflection = _positive(table, "max_deflection", where, "length", "the deflection allowed at the wheel")
-    margin = table.quantity("critical_margin", "dimensionless")
+    margin = table.quantity("critical_margin", "dimensionless", own_range=True)
     if margin is not None and not (math.isfinite(margin) and 0.0 <= margin < 1.0):
         raise SceneError(
             f"{where}.critical_margin",
             f"must be a share in [0, 1) of the running range's end, got {shorten(table.raw('critical_margin'))}",
         )
-    damping = table.quantity("damping_ratio", "dimensionless")
+    damping = table.quantity("damping_ratio", "dimensionless", own_range=True)
     if damping is not None and not (math.isfinite(damping) and 0.0 < damping < 1.0):
         raise SceneError(
             f"{where}.damping_ratio",
@@ -224,8 +226,8 @@ def read_layout(table: Table, where: str) -> ShaftLayout | None:
     )
 
 
-def _positive(table: Table, key: str, where: str, dimension: str, what: str) -> float | None:
-    value = table.quantity(key, dimension)
+def _positive(table: Table, key: str, where: str, dimension: str, what: str, own_range: bool = False) -> float | None:
+    value = table.quantity(key, dimension, own_range=own_range)
     if value is not None and not (math.isfinite(value) and value > 0.0):
         raise SceneError(f"{where}.{key}", f"must be positive ({what}), got {shorten(table.raw(key))}")
     return value

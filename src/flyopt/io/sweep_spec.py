@@ -71,7 +71,7 @@ __all__ = [
 from flyopt.io.design_section import HB_RANGE, HB_WHY, LENGTH_RANGE, LENGTH_WHY
 from flyopt.io.fields import DELTA_RANGE, SPEED_RANGE, SPEED_WHY, check_magnitude, check_scale
 from flyopt.io.input_files import inside_scene
-from flyopt.io.material_section import MAGNITUDES
+from flyopt.io.material_section import MATERIAL_MAGNITUDES
 from flyopt.io.shaft_section import RATIO_RANGE, RATIO_WHY
 from flyopt.io.toml_file import read_toml
 from flyopt.names import closest
@@ -140,8 +140,10 @@ _SHAFT_FIELDS = {
     "speed_ratio": SweepField("number", what="ω_shaft / ω_reference (> 0)", bounds=(*RATIO_RANGE, "", RATIO_WHY))
 }
 _MATERIAL_FIELDS = {
-    "density": SweepField("number", "density", what="density (> 0)", bounds=MAGNITUDES["density"]),
-    "max_rim_speed": SweepField("number", "speed", what="safe rim speed (> 0)", bounds=MAGNITUDES["max_rim_speed"]),
+    "density": SweepField("number", "density", what="density (> 0)", bounds=MATERIAL_MAGNITUDES["density"]),
+    "max_rim_speed": SweepField(
+        "number", "speed", what="safe rim speed (> 0)", bounds=MATERIAL_MAGNITUDES["max_rim_speed"]
+    ),
     "cost": SweepField("number", "cost_per_mass", inclusive=True, what="cost per kg (>= 0)"),
 }
 
@@ -274,6 +276,11 @@ def whole_number(value: object, label: str, minimum: int) -> int:
     raise SceneError(label, f"must be a whole number >= {minimum}, got {value!r}")
 
 
+#: The least value of each whole-number option of a sweep (0 chunks: a sweep that does nothing); a resumed
+#: sweep's manifest is held to them too (flyopt.studies.sweep).
+OPTION_MINIMUMS = {"samples": 1, "seed": 0, "chunk_size": 1, "max_chunks": 1}
+
+
 def check_options(options: Mapping[str, Any], where: str = "sweep") -> None:
     """Check the options of a sweep other than ``vary`` (their values, not the scene's).
 
@@ -293,8 +300,7 @@ def check_options(options: Mapping[str, Any], where: str = "sweep") -> None:
     """
     from flyopt.outputs.results import output_format
 
-    minimum = {"samples": 1, "seed": 0, "chunk_size": 1, "max_chunks": 1}  # 0 chunks: a sweep that does nothing
-    for key, lowest in minimum.items():
+    for key, lowest in OPTION_MINIMUMS.items():
         if options.get(key) is not None:
             whole_number(options[key], option_label(where, key), lowest)
     method = options.get("method")

@@ -632,6 +632,8 @@ def _metadata(text: str | bytes, where: str) -> dict[str, Any]:
         metadata = json.loads(text)
     except ValueError as err:  # UnicodeDecodeError too
         raise SceneError("", f"{where}: not JSON ({err})") from None
+    except RecursionError:  # arrays nested a hundred thousand deep
+        raise SceneError("", f"{where}: not flyopt's metadata (nested too deeply to read)") from None
     from flyopt.outputs.schema import metadata_errors
 
     errors = metadata_errors(metadata)

@@ -52,4 +52,14 @@ def metadata_errors(metadata: object) -> list[tuple[str, str]]:
     list of (str, str)
         (field, what is wrong); empty when sound.
     """
-    return shape_errors(metadata, schema()["$defs"]["table"], schema(), open_=True)
+    return shape_errors(metadata, _open_table(), schema(), open_=True)
+
+
+@functools.lru_cache(maxsize=1)
+def _open_table() -> dict[str, Any]:
+    """The schema's ``table`` with its ``schema_version`` of any minor number of this major one ("3.0" reads
+    "3.1"'s metadata: the minor number grows when fields are added, which the open walk lets pass)."""
+    table = schema()["$defs"]["table"]
+    major = schema_version().split(".")[0]
+    version = {"type": "string", "pattern": rf"^{major}\.[0-9]+$"}
+    return {**table, "properties": {**table["properties"], "schema_version": version}}

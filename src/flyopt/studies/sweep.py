@@ -37,7 +37,7 @@ import pandas as pd
 
 from flyopt.design import design_inputs
 from flyopt.errors import BrokenInvariant, Interrupted, SceneError
-from flyopt.io.sweep_spec import check_options, option_label, whole_number
+from flyopt.io.sweep_spec import OPTION_MINIMUMS, check_options, option_label, whole_number
 from flyopt.outputs.documents import scene_record, table_metadata
 from flyopt.outputs.files import check_folder
 from flyopt.outputs.results import ResultWriter, check_table_output, normalize
@@ -514,12 +514,12 @@ def _recorded(parts: Parts) -> dict[str, Any]:
     ``--chunk-size`` allow before either is used: a damaged manifest is refused, naming it, not read as options
     the user gave."""
     recorded = parts.manifest()
-    for key, lowest in (("seed", 0), ("chunk_size", 1)):
+    for key in ("seed", "chunk_size"):
         value = recorded.get(key)
         if value is None or (key == "chunk_size" and value == "auto"):
             continue
         try:
-            whole_number(value, key, lowest)
+            whole_number(value, key, OPTION_MINIMUMS[key])
         except SceneError as err:
             manifest = str(parts.folder / parts.MANIFEST)
             raise SceneError(
