@@ -51,6 +51,15 @@ FOUND = [
     ("punch-press-drive-shaft.toml", 'force = "4 kN"', 'force = "1e300 kN"', "shaft[1].loads[0].force"),
     ("punch-press-drive-shaft.toml", '{ to = "100 mm"', '{ to = "1e-300 mm"', "shaft[1].segments[0].to"),
     ("punch-press-drive-shaft.toml", '{ to = "640 mm"', '{ to = "1e300 mm"', "shaft[1].segments[2].to"),
+    # [drive] and [[motor_option]] are read by name, not through a section's table: held to the same sizes
+    ("press-drive.toml", 'max_startup = "15 s"', 'max_startup = "1e-320 s"', "drive.max_startup"),
+    (
+        "press-drive.toml",
+        '[drive]\nmotors = "iec_4pole"',
+        '[[motor_option]]\nname = "m"\nrated_power = "1e300 kW"\nrated_speed = "1440 rpm"\n'
+        'synchronous_speed = "1500 rpm"\nrotor_inertia = "0.05 kg*m^2"\n[drive]',
+        "motor_option[0].rated_power",
+    ),
 ]
 
 

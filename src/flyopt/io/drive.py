@@ -34,7 +34,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, check_magnitude
+from flyopt.io.fields import Table, check_magnitude, check_scale
 from flyopt.io.shaft_section import RATIO_RANGE
 from flyopt.machine.catalogue import QUANTITIES, REQUIRED, TEXTS, Catalogue, CatalogueMotor, MotorDataError, catalogue
 from flyopt.units import quantity
@@ -166,6 +166,7 @@ def drive_spec(
             raise SceneError(
                 "drive.max_startup", f"must be a positive time (e.g. '12 s'), got {shorten(table['max_startup'])}"
             )
+        check_scale(max_startup, "time", "drive.max_startup", table["max_startup"])
     thermal = table.get("thermal", True)
     if not isinstance(thermal, bool):
         raise SceneError("drive.thermal", f"must be true or false, got {shorten(thermal)}")
@@ -211,9 +212,11 @@ def _motor_option(raw, k):
     for key in REQUIRED:
         if key not in table:
             raise SceneError(f"{where}.{key}", f"is missing: a motor option gives at least {', '.join(REQUIRED)}")
-    values: dict[str, Any] = {
-        key: quantity(table[key], dimension, f"{where}.{key}") for key, dimension in QUANTITIES.items() if key in table
-    }
+    values: dict[str, Any] = {}
+    for key, dimension in QUANTITIES.items():
+        if key in table:  # each held to its dimension's sizes, as a section's Table holds its fields
+            values[key] = quantity(table[key], dimension, f"{where}.{key}")
+            check_scale(values[key], dimension, f"{where}.{key}", table[key])
     texts = {key: table[key] for key in TEXTS if key in table}
     texts.setdefault("name", where)
     try:
