@@ -233,9 +233,9 @@ def _solve_with(tmp_path, extra):
 
 
 def test_a_torque_no_supported_seat_carries_is_infeasible_without_a_design(tmp_path):
-    """A factor of safety of 400: the torque-only bound refuses every seat up to the material's table's end
+    """A factor of safety of 100, the most allowed: the torque-only bound refuses every seat up to the material's table's end
     (160 mm), so nothing is designed, and the reason gives the bound and where the series ends."""
-    solution = _solve_with(tmp_path, "safety_factor = 400")
+    solution = _solve_with(tmp_path, "safety_factor = 100")
     assert solution.status == "infeasible" and solution.design.best is None
     (out,) = solution.design.candidates
     assert not out.feasible and out.mass is None
