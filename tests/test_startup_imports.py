@@ -106,3 +106,20 @@ def test_no_solve_imports_scipy_optimize(args):
     verb, scene, *rest = args
     found = imported(command(verb, PROBLEMS / scene, *rest))
     assert "scipy.optimize" not in found, found
+
+
+SHAFT_CHECKS = ("flyopt.design.shaft.check", "flyopt.design.shaft.diameter", "flyopt.machine.torsion")
+
+
+@pytest.mark.parametrize("scene", ["punch-press.toml", "shear-press.toml"])
+def test_a_scene_without_a_described_shaft_imports_no_shaft_check(scene):
+    """Every design imported the seat search and with it the shaft checks (beam, lateral and torsional models,
+    the drive train: ten modules) to learn that no shaft is described."""
+    found = imported(command("solve", PROBLEMS / scene), watched=SHAFT_CHECKS)
+    assert found == {}, found
+
+
+def test_a_described_shaft_imports_its_checks():
+    """The watch sees them where they are used (a test that could not fail is none)."""
+    found = imported(command("solve", PROBLEMS / "punch-press-shaft.toml"), watched=SHAFT_CHECKS)
+    assert set(found) == set(SHAFT_CHECKS), found

@@ -347,6 +347,8 @@ def _seat_designer(scene: Scene, analysis: Analysis, shafts: Sequence[Any], name
     from flyopt.design import design_flywheel
 
     context = shaft_context_of(scene, analysis)
+    if context is None:  # no described shaft: nor the shaft checks' modules, some 30 ms to import
+        return design_flywheel
     from flyopt.design.shaft.diameter import design_with_seats, designs_seats
 
     if not designs_seats(context, shafts):
