@@ -123,3 +123,11 @@ def test_a_described_shaft_imports_its_checks():
     """The watch sees them where they are used (a test that could not fail is none)."""
     found = imported(command("solve", PROBLEMS / "punch-press-shaft.toml"), watched=SHAFT_CHECKS)
     assert set(found) == set(SHAFT_CHECKS), found
+
+
+def test_a_report_without_a_described_shaft_imports_no_shaft_check(tmp_path):
+    """The report's shaft section imported the checks for the name of a JSON field (ten modules, some 60 ms)."""
+    found = imported(
+        command("report", PROBLEMS / "slider-crank-press.toml", "-o", tmp_path / "r.html"), watched=SHAFT_CHECKS
+    )
+    assert found == {}, found

@@ -10,7 +10,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from flyopt.design.combination import shaft_label
-from flyopt.design.shaft.check import JSON_NAMES
 from flyopt.report.display import (
     DEFAULT,
     DEFAULT_DIGITS,
@@ -96,6 +95,8 @@ def train_rows(check: ShaftCheck) -> tuple[list[ModeRow], list[SpringRow]] | Non
 
 def limit_value(limit: ShaftLimit, value: float, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> str:
     """A limit's value (or allowed value) in the unit system, by its quantity's field, to ``digits`` figures."""
+    from flyopt.design.shaft.check import JSON_NAMES  # here: a report without a described shaft needs no checks
+
     q, _ = formatters(units, digits)
     return q(limit.si(value), JSON_NAMES[limit.kind])  # the output field it is shown as, as --json names it
 
