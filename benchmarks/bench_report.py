@@ -40,7 +40,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from common import load_average, pin_one_core, write_results
+from common import CHILD_ENV, load_average, pin_one_core, write_results
 
 import flyopt
 
@@ -48,9 +48,6 @@ ROOT = Path(__file__).resolve().parent.parent
 PROBLEMS = ROOT / "problems"
 RESULTS = Path(__file__).resolve().parent / "results"
 FLYOPT = [sys.executable, "-m", "flyopt"]
-#: The environment of every timed process: this one's, but bytecode is written (``PYTHONDONTWRITEBYTECODE``
-#: dropped), so that the warm-up leaves the .pyc files an installed package has and no run compiles the sources.
-CHILD_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 
 #: Issue 26's targets [s, wall] for slider-crank-press.
 TARGETS = {"html": 1.5, "pdf": 2.5}
@@ -61,7 +58,7 @@ OTHER_SCENE = "motor-press"
 
 def run_once(command, env=None, cpus=None):
     """(wall, CPU of the child and its workers) [s] of one run of ``command`` (in ``env``, default
-    :data:`CHILD_ENV`; on ``cpus``, default this process's); it must succeed."""
+    :data:`common.CHILD_ENV`; on ``cpus``, default this process's); it must succeed."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     done = subprocess.run(
