@@ -362,11 +362,33 @@ def quantity_text(
         return "-"
     value = float(value)
     magnitude: float | None = largest(among) if among is not None else abs(value) if prefixed else None
+    return _writer(dimension, system, digits, magnitude, among is not None)(value)
+
+
+def quantity_format(
+    dimension: str, system: str = DEFAULT, digits: int = DEFAULT_DIGITS, among: Sequence[float | None] | None = None
+) -> Callable[[float | None], str]:
+    """:func:`quantity_text` (``prefixed`` False) of many values read beside the same ``among``, its unit and
+    scale found once: a diagram's read-out of every point it draws (1441 angles of the energy–mass curve)."""
+    return _writer(dimension, system, digits, largest(among) if among is not None else None, among is not None)
+
+
+def _writer(
+    dimension: str, system: str, digits: int, magnitude: float | None, scaled: bool
+) -> Callable[[float | None], str]:
+    """How :func:`quantity_text` writes a value in the unit ``magnitude`` chooses (and, ``scaled``, as round-off
+    against it): the one formatter of a quantity, for one value or many."""
     name, factor = unit(dimension, system, magnitude, digits)
-    shown = value / factor
-    scale = magnitude / factor if among is not None and magnitude is not None else None
-    text = number(shown, digits, scale) if math.isfinite(shown) else str(shown)
-    return text if name == "-" else f"{text} {name}"
+    scale = magnitude / factor if scaled and magnitude is not None else None
+
+    def write(value: float | None) -> str:
+        if value is None:
+            return "-"
+        shown = float(value) / factor
+        text = number(shown, digits, scale) if math.isfinite(shown) else str(shown)
+        return text if name == "-" else f"{text} {name}"
+
+    return write
 
 
 #: A value within this fraction of its scale (its column's largest magnitude, or the scale its caller

@@ -9,7 +9,7 @@ import os
 import re
 import textwrap
 import threading
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from types import ModuleType
 from typing import TYPE_CHECKING, Any, cast, overload
@@ -303,8 +303,14 @@ class Scale:
 
     def q(self, value: float | None) -> str:
         """A value with the axis' unit, "536.7 J" (round-off against the axis' largest value written 0)."""
+        return self._write(value)
+
+    @functools.cached_property
+    def _write(self) -> Callable[[float | None], str]:
+        """:func:`flyopt.report.display.quantity_text` of this axis, its unit found once (a read-out writes a
+        value for every point drawn)."""
         among = None if self.magnitude is None else (self.magnitude,)
-        return display.quantity_text(value, self.dimension, self.units, self.digits, among, prefixed=False)
+        return display.quantity_format(self.dimension, self.units, self.digits, among)
 
     def axis_label(self, words: str) -> str:
         """ "words [unit]" ("[-]" for a ratio)."""
