@@ -14,6 +14,8 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
+from flyopt._lazy import first_use
+
 if TYPE_CHECKING:  # the real types, for type checkers and editors (``X as X``: re-exported);
     # at run time each name is imported on first use, by __getattr__
     from flyopt.analysis import Analysis as Analysis
@@ -72,16 +74,14 @@ _VIEW_MODULES = ("flyopt.report.notebook",)
 __all__ = sorted(_API) + ["__version__"]
 
 
+_first_use = first_use("flyopt", _API, globals())
+
+
 def __getattr__(name: str) -> Any:
     if name == "__version__":
-        value = _version()
-    else:
-        module = _API.get(name)
-        if module is None:
-            raise AttributeError(f"module 'flyopt' has no attribute {name!r}")
-        value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
+        globals()[name] = _version()
+        return globals()[name]
+    return _first_use(name)
 
 
 def _load_views() -> None:

@@ -17,8 +17,9 @@ library, castability rules and spec of this package, and ``flyopt check`` needs 
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from flyopt._lazy import first_use
 
 if TYPE_CHECKING:  # the real types, for type checkers and editors; at run time each is imported on first use
     from flyopt.design.designer import design_flywheel as design_flywheel
@@ -51,10 +52,4 @@ _API = {
 __all__ = sorted(_API)
 
 
-def __getattr__(name: str) -> Any:
-    module = _API.get(name)
-    if module is None:
-        raise AttributeError(f"module 'flyopt.design' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
+__getattr__ = first_use("flyopt.design", _API, globals())
