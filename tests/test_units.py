@@ -112,3 +112,37 @@ def test_what_pints_parser_gives_no_reason_for_is_said_in_words(text):
 def test_pints_own_reason_is_kept():
     with pytest.raises(SceneError, match="'furlongz' is not defined in the unit registry"):
         quantity("3 furlongz", "length", "shaft[0].diameter")
+
+
+@pytest.mark.parametrize(
+    "text, meant_by_pint",
+    [
+        ("600 rpm 2", "1200 rpm"),
+        ("300 2 rpm", "600 rpm"),
+        ("300 rpm 400", "120,000 rpm"),
+        ("300rpm=400", "120,000 rpm"),
+        ("600 rpm%", "6 rpm"),
+        ("300 rpm!", "300 rpm, the '!' dropped"),
+        ("1 500 rpm", "500 rpm"),
+    ],
+)
+def test_a_quantity_with_more_than_its_number_and_unit_is_refused(text, meant_by_pint):
+    """pint's tokenizer multiplies what stands side by side and drops what it cannot read: each of these was read
+    silently as ``meant_by_pint`` (an outside audit; "600 rpm 2" designed a wheel for 1200 rpm)."""
+    with pytest.raises(SceneError, match=r"^machine\.speed: cannot read .* write one number and its unit$"):
+        quantity(text, "angular_speed", "machine.speed")
+
+
+@pytest.mark.parametrize(
+    "text, dimension, si",
+    [
+        ("1500 1/min", "angular_speed", 157.07963267948966),
+        ("(35 + 35) mm", "length", 0.07),
+        ("10**-3 m", "length", 1e-3),
+        ("3.5 kg m^2", "inertia", 3.5),
+        ("-1 %", "dimensionless", -0.01),
+        ("5 m - 2 m", "length", 3.0),
+    ],
+)
+def test_the_arithmetic_of_a_quantity_is_still_read(text, dimension, si):
+    assert quantity(text, dimension, "f") == pytest.approx(si, rel=1e-15)

@@ -390,6 +390,7 @@ def _table_number(text: str, dimension: str) -> float | None:
 def _pint_number(text: str, dimension: str, field: str) -> float:
     """The SI float of a string with a unit, read by pint (see :func:`quantity`)."""
     dim, si_unit, words = DIMENSIONS[dimension]
+    _check_form(text, field, words)
     try:
         q = registry().Quantity(text.strip())
     except Exception as err:  # pint raises many types (UndefinedUnitError, DefinitionSyntaxError, ...)
@@ -408,6 +409,30 @@ def _pint_number(text: str, dimension: str, field: str) -> float:
         # a bare 1/time ("25 Hz", "1500 1/min") is a rotational frequency: revolutions per time
         number *= 2.0 * math.pi
     return number
+
+
+#: What a quantity string may hold: letters (µ, Ω too), digits, blanks, the arithmetic of units and numbers
+#: ("kg*m^2", "(35 + 35) mm", "10**-3 m", "1/min"), "%" and the degree sign. pint's tokenizer drops or reads
+#: the rest its own way: "300 rpm!" was read as 300 rpm, "300rpm=400" as 120,000 rpm.
+_QUANTITY_CHARACTERS = re.compile(r"[\w\s.*/^()+\-%°·²³]*")
+#: A number of a quantity string, and what stands before it: a number right after another number, a unit or a
+#: closing bracket, with blanks alone between, is multiplied by pint ("600 rpm 2" is 1200 rpm, "300 2 rpm" 600).
+_JUXTAPOSED = re.compile(r"(?:[\w)]|(?<![\w.])\d+\.?\d*(?:[eE][-+]?\d+)?)\s+(?=[\d.])(?!1\s*/)")  # "1/min" a unit
+
+
+def _check_form(text: str, field: str, words: str) -> None:
+    """Refuse a quantity string that is not one number and its unit, read the way pint reads it: a character
+    pint would drop or read as an operator ("!", "="), a number written after a number or a unit with only
+    blanks between (pint multiplies them), or "%" beside another unit ("600 rpm%" is 6 rpm)."""
+    bad = None
+    if not _QUANTITY_CHARACTERS.fullmatch(text):
+        bad = f"{_QUANTITY_CHARACTERS.sub('', text)[:1]!r} is no part of a number or a unit"
+    elif _JUXTAPOSED.search(text.strip()):
+        bad = "a number follows a number or a unit, and pint would multiply them"
+    elif "%" in text and not re.fullmatch(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)?(?:[eE][-+]?\d+)?\s*%\s*", text):
+        bad = "a percentage stands alone after its number ('5 %')"
+    if bad:
+        raise SceneError(field, f"cannot read {shorten(text)} as {words}: {bad}; write one number and its unit")
 
 
 def _check_size(text: str, field: str, words: str) -> None:
