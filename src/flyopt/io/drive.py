@@ -34,7 +34,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, check_magnitude, check_scale
+from flyopt.io.fields import Table, check_line, check_magnitude, check_scale
 from flyopt.io.shaft_section import RATIO_RANGE
 from flyopt.machine.catalogue import QUANTITIES, REQUIRED, TEXTS, Catalogue, CatalogueMotor, MotorDataError, catalogue
 from flyopt.units import quantity
@@ -218,6 +218,8 @@ def _motor_option(raw, k):
             values[key] = quantity(table[key], dimension, f"{where}.{key}")
             check_scale(values[key], dimension, f"{where}.{key}", table[key])
     texts = {key: table[key] for key in TEXTS if key in table}
+    if isinstance(texts.get("name"), str):
+        check_line(texts["name"], f"{where}.name")
     texts.setdefault("name", where)
     try:
         return CatalogueMotor(**texts, **values)

@@ -8,6 +8,7 @@ reads each value as a quantity of a dimension; :func:`unit_factor` and
 from __future__ import annotations
 
 import math
+import unicodedata
 from collections.abc import Iterable
 from typing import Any, Literal, overload
 
@@ -75,6 +76,7 @@ class Table:
         name = self.require("name")
         if not isinstance(name, str) or not name.strip():
             raise SceneError(self._path("name"), f"must be a non-empty string, got {shorten(name)}")
+        check_line(name, self._path("name"))
         if name in seen:
             raise SceneError(self._path("name"), f"{kind} {shorten(name)} is given twice")
         seen.add(name)
@@ -135,6 +137,14 @@ SPEED_WHY = "about 1e-5 to 9.5 million rpm, beyond any machine a flywheel regula
 DELTA_RANGE = (1e-6, 2.0)
 """Allowed coefficient of fluctuation of speed δ = (ω_max − ω_min)/ω_mean, 2 itself excluded (ω_min would be 0):
 the inertia grows as 1/δ, and below 1e-6 it cannot be computed (1/300 is a tight generator)."""
+
+
+def check_line(text: str, where: str) -> None:
+    """Refuse a name (or a title) that is not one line of text: a control character (a line break, a tab, ESC,
+    NUL) in it would split the text report's lines and, written raw into a DXF's properties, end its section
+    (a material named "iron\\n  0\\nEOF" made the exported drawing unreadable)."""
+    if any(unicodedata.category(c) == "Cc" for c in text):
+        raise SceneError(where, f"{shorten(text)} holds a control character: a name is one line of text")
 
 
 SAFETY_RANGE = (1.0, 100.0)

@@ -24,7 +24,7 @@ import math
 from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table
+from flyopt.io.fields import Table, check_line
 from flyopt.machine.drive_train import TrainInertia, TrainSpring
 from flyopt.units import inertia_from_gd2, quantity
 
@@ -75,6 +75,7 @@ def read_train(
         name = table.get("name", "")
         if not isinstance(name, str):
             raise SceneError(f"{at}.name", f"must be a text, got {shorten(name)}")
+        check_line(name, f"{at}.name")
         if not kinds:
             out.append(_inertia(table, at, name, own, by_name))
             continue
