@@ -242,3 +242,22 @@ def test_members_with_a_load_of_speed_are_sized_by_the_periodic_model(write_scen
     assert out["model"] == "dynamic" and out["flywheel_needed"] is True
     assert_allclose(out["omega_mean"], 120 * RPM, rtol=1e-12)
     assert_allclose(_scipy_delta(2.0 + out["j_required"], 120 * RPM), 0.15, rtol=1e-6)
+
+
+@pytest.mark.slow  # about 11 s: the requirement's search tries inertias until every one has failed
+def test_a_singular_balance_is_a_named_solver_failure(write_scene, monkeypatch):
+    """An outside audit's speed-stiff load (1000 + 500 sin φ + 1e3 (ω − 62.83)) ended in numpy's own words,
+    "Singular matrix", exit 1: the balance's Broyden step could not be solved. It is a SolverFailed that says
+    what was being solved. The Jacobian is made singular here for any load (the audit's case is not singular on
+    every host), so that the path is taken each time."""
+    import flyopt
+    from flyopt.errors import SolverFailed
+
+    scene = flyopt.load(write_scene(speed_load("1000 + 500*sin(phi) + 10*(omega - 157.08)")))
+
+    def singular(a, b):
+        raise np.linalg.LinAlgError("Singular matrix")
+
+    monkeypatch.setattr(periodic.np.linalg, "solve", singular)
+    with pytest.raises(SolverFailed, match=r"balance's Jacobian became singular after \d+ iterations"):
+        flyopt.analyse(scene)

@@ -549,7 +549,14 @@ def _periodic_balanced(model, j_flywheel, omega_mean, j_ref):
     for iterations in range(1, MAX_NEWTON + 1):  # noqa: B007 -- the count is reported after the loop
         if abs(values[0]) <= ftol and abs(values[1]) <= MEAN_TARGET:
             break
-        step = -np.linalg.solve(jac, values)
+        try:
+            step = -np.linalg.solve(jac, values)
+        except np.linalg.LinAlgError:  # the mean speed no longer moves with E_ref or c: no step is defined
+            raise SolverFailed(
+                f"periodic solution at the mean speed {omega_mean:.6g} rad/s not found: the balance's Jacobian "
+                f"became singular after {iterations - 1} iterations (the mean speed no longer answers the energy "
+                "or the balancing torque: a torque that depends steeply on the speed)"
+            ) from None
         x = x + step
         new, y = conditions(x)
         jac += np.outer(new - values - jac @ step, step) / (step @ step)
