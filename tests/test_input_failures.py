@@ -274,6 +274,20 @@ def test_a_torque_with_a_pole_is_refused_naming_the_field(cli, write_scene, comm
     )
 
 
+@pytest.mark.parametrize("command", ["solve", "check"])
+@pytest.mark.parametrize("expression", ["1000 + 1/(phi - 1)", "1000 + 1/(phi - 1)**2"])
+def test_a_pole_between_the_samples_is_refused_naming_the_field(cli, write_scene, command, expression):
+    """Beside a constant of 1000 N*m the pole check's samples miss the pole at φ = 1 rad; the quadrature then
+    failed with "reached only 9.98 J", exit 1 and no field (an outside audit). It is the expression's fault."""
+    path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
+    assert_refused(
+        cli(command, path),
+        path,
+        "torque.driving.expression",
+        r"(the torque cannot be integrated over the cycle .*|the expression has a pole near .*)finite",
+    )
+
+
 def _string_fields(document, path=()):
     """The paths of every string value of a TOML document (tables and lists of tables walked)."""
     if isinstance(document, dict):

@@ -12,8 +12,9 @@ balance, the energy indicator diagram and ΔE(φ) of one machine share them.
 
 from __future__ import annotations
 
+import contextlib
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -106,10 +107,28 @@ class Segments:
         if self.linear:
             return 0.5 * (self.start + self.end) * h
         if "integrals" not in self._cache:
-            self._cache["integrals"] = quad_many(
-                self.difference_many, self.knots[:-1], self.knots[1:], self.scale(), self.noise
-            )
+            with self._bounded():
+                self._cache["integrals"] = quad_many(
+                    self.difference_many, self.knots[:-1], self.knots[1:], self.scale(), self.noise
+                )
         return self._cache["integrals"]
+
+    @contextlib.contextmanager
+    def _bounded(self) -> Iterator[None]:
+        """A quadrature of the difference that cannot reach its tolerance where a torque is an expression: the
+        expression is unbounded between the samples the pole check sees (``1/(φ − 1)``) or swings faster than
+        any quadrature resolves; a SceneError naming it, as a pole on the samples is (:func:`_check_poles`)."""
+        try:
+            yield
+        except ArithmeticError as err:
+            where = next(iter(_expression_fields(self.driving) + _expression_fields(self.resisting)), None)
+            if where is None:
+                raise
+            raise SceneError(
+                where,
+                f"the torque cannot be integrated over the cycle ({err}): an expression must be finite and "
+                "bounded over the whole cycle (no pole, as 1/(phi - 1), and no swing too fast to resolve)",
+            ) from None
 
     def events(self) -> tuple[Array, Array, Array]:
         """Ordered points of the cycle with the sign of M_d − M_r and ΔE there.
@@ -282,9 +301,10 @@ class Segments:
         area[whole] = self.integrals()[owner[whole]]
         split = np.flatnonzero(~whole)
         if len(split):
-            area[split] = quad_many(
-                lambda t, j: self.difference_many(t, owner[split][j]), lo[split], hi[split], scale, self.noise
-            )
+            with self._bounded():
+                area[split] = quad_many(
+                    lambda t, j: self.difference_many(t, owner[split][j]), lo[split], hi[split], scale, self.noise
+                )
         e_after = np.cumsum(area)
         e_before = np.concatenate(([0.0], e_after[:-1]))
         inner = hi < b_all[owner]  # a part that ends at a zero inside its piece
@@ -501,6 +521,17 @@ def _sample_left(curve: Any, phi: Array) -> Array:
     left = np.asarray(curve.limits(phi)[0], dtype=float)
     sample(curve, phi)
     return left
+
+
+def _expression_fields(curve: Any) -> list[str]:
+    """The fields of the expressions a curve is made of (its parts', in order)."""
+    found = []
+    for part in getattr(curve, "parts", (curve,)):
+        if hasattr(part, "parts"):
+            found += _expression_fields(part)
+        elif hasattr(part, "expression"):
+            found.append(part.where)
+    return found
 
 
 def _check_poles(curve: Any, phi: Array) -> None:
