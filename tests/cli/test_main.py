@@ -95,3 +95,12 @@ def test_a_character_beyond_16_bits_is_spelled_as_python_escapes_it():
     from flyopt.cli.console import fit_streams  # noqa: F401 (registers the handler)
 
     assert "φ ω \U0001f600 \u2202".encode("ascii", errors="flyopt.ascii") == b"phi omega \\U0001f600 \\u2202"
+
+
+def test_an_output_named_dash_is_refused_not_written(tmp_path):
+    """`flyopt new press -o -` wrote a file named "-" (an outside audit): read by many tools as stdout, it is
+    refused here, saying how stdout is had."""
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "new", "press", "-o", "-"], capture_output=True, text=True, cwd=tmp_path
+    )
+    assert run.returncode == 2 and "'-' is no file's name" in run.stderr and list(tmp_path.iterdir()) == []

@@ -306,6 +306,14 @@ def test_a_front_of_too_many_or_too_few_points_is_refused_at_once(points):
         pareto(scene, ("mass", "outer_diameter"), points=points)
 
 
+@pytest.mark.parametrize("points", ["-5", "1", "1001"])
+def test_the_command_says_the_fronts_range_of_points(points):
+    """`pareto --points -5` said "at least 1" where 2 to 1000 are allowed (an outside audit): one rule."""
+    done = run_flyopt("pareto", str(PROBLEMS / "punch-press-wheel.toml"), f"--points={points}")
+    assert done.returncode == 2 and done.stderr.count("\n") == 1, done.stderr
+    assert f"--points: must be a whole number from 2 to 1000, got {points}" in done.stderr, done.stderr
+
+
 def test_printed_tables_follow_units_as_solve_does():
     """pareto and tradeoff printed metres where solve prints millimetres (issue 29): their tables now take
     --units (engineering by default), the numbers converted by the display's factors, and the JSON stays SI."""

@@ -780,6 +780,21 @@ def test_sweep_output_in_a_missing_folder_is_refused_not_created(tmp_path, capsy
     assert not (tmp_path / "no").exists()
 
 
+@pytest.mark.parametrize("verb", ["check", "sweep"])
+def test_a_sweep_tables_output_in_a_missing_folder_names_the_tables_field(tmp_path, capsys, verb):
+    """A `[sweep] output` whose folder is missing was refused as the user's `--output` (never given), and
+    `flyopt check` said ok (an outside audit)."""
+    from flyopt.cli.main import main
+
+    path = tmp_path / "s.toml"
+    text = (PROBLEMS / "shear-press.toml").read_text(encoding="utf-8")
+    path.write_text(text + '\n[sweep]\noutput = "sub/x.csv"\n[sweep.vary]\ndelta = "0.02,0.05"\n', encoding="utf-8")
+    assert main([verb, str(path)]) == 2
+    err = capsys.readouterr().err
+    assert f"{path}:" in err and "sweep.output: the folder" in err and "does not exist" in err, err
+    assert "--output" not in err and not (tmp_path / "sub").exists()
+
+
 def test_max_chunks_zero_is_refused(tmp_path):
     """Issue 25, item 10: --max-chunks 0 made a parts folder, ran nothing and exited 0."""
     out = tmp_path / "study.parquet"

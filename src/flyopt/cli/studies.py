@@ -230,9 +230,7 @@ def add_pareto_arguments(parser: argparse.ArgumentParser) -> None:
         help="mass,outer_diameter | mass,cost | mass,delta | mass,motor_power (a [drive]) "
         "(default mass,outer_diameter)",
     )
-    parser.add_argument(
-        "--points", type=_positive_int, default=25, help="number of epsilon values, 2 to 1000 (default 25)"
-    )
+    parser.add_argument("--points", type=int, default=25, help="number of epsilon values, 2 to 1000 (default 25)")
     parser.add_argument("--range", dest="span", metavar="LOW:HIGH", help="range of epsilon, e.g. 0.3:1.2 m or 0.01:0.1")
     _method_and_output(parser, "front")
     parser.set_defaults(run=run_pareto)
@@ -320,8 +318,9 @@ def run_pareto(args: argparse.Namespace) -> int:
     """``flyopt pareto``: returns the exit status (0 a front or none needed, 3 no design)."""
     from flyopt.io.scene import load
     from flyopt.said import counted
-    from flyopt.studies.pareto import objective_pair, pareto
+    from flyopt.studies.pareto import check_points, objective_pair, pareto
 
+    check_points(args.points, "--points")
     scene = load(args.scene)
     objectives, other = objective_pair(args.objectives)
     _check_output(args.output, scene, "the front")

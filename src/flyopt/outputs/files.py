@@ -243,6 +243,8 @@ def check_folder(path: str | os.PathLike[str], label: str = "output") -> None:
     refused, not written as the file ``out``.
     """
     text = os.fspath(path)
+    if text == "-":  # many tools read it as stdout; here it would be a file named "-"
+        raise SceneError(label, "'-' is no file's name: leave the option out to print to stdout, or name a file")
     if text.endswith(("/", os.sep)):
         raise SceneError(label, f"{text!r} names a folder (it ends in {text[-1]!r}): give a file's name")
     target = output_target(path)

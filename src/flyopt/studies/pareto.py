@@ -118,6 +118,13 @@ def objective_pair(objectives: str | Sequence[str]) -> tuple[tuple[str, ...], st
     return objectives, other[0]
 
 
+def check_points(points: object, label: str = "points") -> None:
+    """Refuse a front of other than 2 to :data:`MAX_FRONT_POINTS` points, naming ``label`` (``--points`` on the
+    command line): the one rule of both."""
+    if not isinstance(points, (int, np.integer)) or isinstance(points, bool) or not 2 <= points <= MAX_FRONT_POINTS:
+        raise SceneError(label, f"must be a whole number from 2 to {MAX_FRONT_POINTS}, got {shorten(points)}")
+
+
 def pareto(
     scene: Scene,
     objectives: str | Sequence[str] = ("mass", "outer_diameter"),
@@ -161,8 +168,7 @@ def pareto(
     objectives, other = objective_pair(objectives)
     single_design_only(design_inputs(scene).spec, "a Pareto front", scene.source)
     seat_given_only(scene, "a Pareto front")
-    if not isinstance(points, (int, np.integer)) or not 2 <= points <= MAX_FRONT_POINTS:
-        raise SceneError("points", f"must be a whole number from 2 to {MAX_FRONT_POINTS}, got {shorten(points)}")
+    check_points(points)
     analysis = physics_analysis(scene)
     empty = pd.DataFrame()
     if other == "motor_power":

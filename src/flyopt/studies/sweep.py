@@ -102,7 +102,8 @@ def check_sweep(scene: Scene, options: Mapping[str, Any], where: str = "sweep") 
     """
     try:
         check_options(options, where)
-        if options.get("output") is not None:  # nor over a file the scene reads
+        if options.get("output") is not None:  # where it can go (its folder), and not over a file the scene reads
+            check_folder(options["output"], option_label(where, "output"))
             check_table_output(options["output"], scene, "the sweep's table", option_label(where, "output"))
         return plan_sweep(
             scene,
