@@ -422,3 +422,17 @@ def test_the_printed_trade_off_names_materials_and_limits_for_people(capsys):
     out = capsys.readouterr().out
     assert "EN-GJL-250" in out and "gjs keyed" in out and "section ratio rim-web" in out
     assert "en_gjl_250" not in out and "castability_rim_web_ratio" not in out
+
+
+@pytest.mark.parametrize(
+    "scene, args, words",
+    [
+        ("punch-press-wheel.toml", ["--range=:1"], "--range: ':1': each end needs its number"),
+        ("punch-press-wheel.toml", ["--range=0.3:0.3 m"], "the outer diameter range 0.3..0.3 m is empty"),
+        ("punch-press.toml", ["--objectives", "mass,delta", "--range=0.05:0.05"], "must lie in (0, 2), its low end below its high one"),
+    ],
+)
+def test_a_range_of_one_point_or_no_number_is_refused(scene, args, words):
+    """`--range=:1` said pint's "cannot be an empty string"; a range of one point gave an "empty front", exit 3."""
+    done = run_flyopt("pareto", str(PROBLEMS / scene), *args, "--points", "3")
+    assert done.returncode == 2 and done.stderr.count("\n") == 1 and words in done.stderr, done.stderr

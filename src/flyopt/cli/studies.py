@@ -288,9 +288,11 @@ def _span(text: str | None, other: str) -> tuple[float, float] | None:
     ends = []
     for part in parts:
         number, unit = split_unit(part)
+        if not number.strip():  # pint's own words for "" were "cannot be an empty string"
+            raise SceneError("--range", f"{text!r}: each end needs its number, e.g. 0.3:1.2 m")
         raw = f"{number} {unit or trailing}".strip()
         ends.append(quantity(raw, dimension, "--range"))
-    low, high = ends  # two parts, checked above
+    low, high = ends  # two parts, checked above; their order is pareto's to check
     return low, high
 
 

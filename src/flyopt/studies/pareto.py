@@ -247,7 +247,7 @@ def _front_outer_diameter(
     else:
         low, high = span
         high = min(high, envelope)
-        if not 0 < low <= high:
+        if not 0 < low < high:  # one point (low = high) is no front: it gave an "empty front", exit 3
             raise SceneError("range", f"the outer diameter range {low:.6g}..{high:.6g} m is empty or not positive")
         grid = np.geomspace(low, high, points)
         smallest = None
@@ -342,8 +342,8 @@ def _front_delta(
     if span is None:
         span = (scene.allowed_delta / 10.0, min(scene.allowed_delta * 10.0, 1.0))
     low, high = span
-    if not 0 < low <= high < 2:
-        raise SceneError("range", f"the δ range {low:.6g}..{high:.6g} must lie in (0, 2)")
+    if not 0 < low < high < 2:
+        raise SceneError("range", f"the δ range {low:.6g}..{high:.6g} must lie in (0, 2), its low end below its high one")
     grid = np.geomspace(low, high, points)
     swept = sweep(
         scene,
