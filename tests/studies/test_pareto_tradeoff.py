@@ -429,7 +429,11 @@ def test_the_printed_trade_off_names_materials_and_limits_for_people(capsys):
     [
         ("punch-press-wheel.toml", ["--range=:1"], "--range: ':1': each end needs its number"),
         ("punch-press-wheel.toml", ["--range=0.3:0.3 m"], "the outer diameter range 0.3..0.3 m is empty"),
-        ("punch-press.toml", ["--objectives", "mass,delta", "--range=0.05:0.05"], "must lie in (0, 2), its low end below its high one"),
+        (
+            "punch-press.toml",
+            ["--objectives", "mass,delta", "--range=0.05:0.05"],
+            "must lie in (0, 2), its low end below its high one",
+        ),
     ],
 )
 def test_a_range_of_one_point_or_no_number_is_refused(scene, args, words):

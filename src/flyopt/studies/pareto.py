@@ -343,7 +343,9 @@ def _front_delta(
         span = (scene.allowed_delta / 10.0, min(scene.allowed_delta * 10.0, 1.0))
     low, high = span
     if not 0 < low < high < 2:
-        raise SceneError("range", f"the δ range {low:.6g}..{high:.6g} must lie in (0, 2), its low end below its high one")
+        raise SceneError(
+            "range", f"the δ range {low:.6g}..{high:.6g} must lie in (0, 2), its low end below its high one"
+        )
     grid = np.geomspace(low, high, points)
     swept = sweep(
         scene,
