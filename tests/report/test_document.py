@@ -790,9 +790,11 @@ def test_press_drive_reports_the_drive(folder):
 # A hostile title (issue 25, items 8 and 10)
 # --------------------------------------------------------------------------
 
-HOSTILE_TITLE = "a\x00b\x07c\x1bd\u202eevil \U0001f525 \u2603 $\\frac$ cost"
+HOSTILE_TITLE = (
+    "a\u200bb\u2066c\ue000d\u202eevil \U0001f525 \u2603 $\\frac$ cost"  # no control character: refused at load
+)
 HOSTILE_SCENE = (
-    'title = "a\\u0000b\\u0007c\\u001bd\\u202eevil \\U0001F525 \\u2603 $\\\\frac$ cost"\n'
+    'title = "a\\u200bb\\u2066c\\ue000d\\u202eevil \\U0001F525 \\u2603 $\\\\frac$ cost"\n'
     '[machine]\nspeed = "1500 rpm"\ndelta = 0.05\n'
     '[torque.resisting]\npoints = [["0 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]\n'
     '[torque.driving]\nconstant = "unknown"\n'
@@ -816,7 +818,7 @@ def test_a_hostile_title_reaches_the_page_escaped_and_every_figure_is_drawn(tmp_
     assert (status, err) == (0, "")
     text = out.read_text(encoding="utf-8")
     assert _acting(text) == []
-    assert "<h1>a\\x00b\\x07c\\x1bd\\u202eevil \U0001f525 \u2603 $\\frac$ cost</h1>" in text
+    assert "<h1>a\\u200bb\\u2066c\\ue000d\\u202eevil \U0001f525 \u2603 $\\frac$ cost</h1>" in text
     page = _page(out)
     assert page.errors == []
     drawn = {k: states for k, states in page.figures.items() if states}
@@ -830,7 +832,7 @@ def test_a_hostile_title_reaches_the_pdf_escaped(tmp_path, main_cli, write_scene
     assert (status, err) == (0, "")
     text = _pdf_text(out)
     assert _acting(text) == []
-    assert "a\\x00b\\x07c\\x1bd\\u202eevil" in text
+    assert "a\\u200bb\\u2066c\\ue000d\\u202eevil" in text
 
 
 def tomllib_title(path):
