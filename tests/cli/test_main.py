@@ -104,3 +104,19 @@ def test_an_output_named_dash_is_refused_not_written(tmp_path):
         [sys.executable, "-m", "flyopt", "new", "press", "-o", "-"], capture_output=True, text=True, cwd=tmp_path
     )
     assert run.returncode == 2 and "'-' is no file's name" in run.stderr and list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("option", [["--x", "speed"], ["--by", "material"]])
+def test_a_scene_diagram_refuses_the_options_of_a_results_table(tmp_path, option):
+    """`flyopt plot scene.toml --what energy --x speed` drew the energy diagram and ignored --x (an outside
+    audit): the option chooses a results table's column, and is refused for a scene's diagram."""
+    out = tmp_path / "e.png"
+    run = subprocess.run(
+        [sys.executable, "-m", "flyopt", "plot", str(PROBLEMS / "shear-press.toml"), "--what", "energy", *option]
+        + ["-o", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert run.returncode == 2 and len(run.stderr.splitlines()) == 1, run.stderr
+    assert f"{option[0]}: choose the columns of a results table" in run.stderr and not out.exists()

@@ -92,6 +92,13 @@ def run_plot(args: argparse.Namespace) -> int:
         return fail(f"--units: unknown unit system {args.units!r} (allowed: {', '.join(display.SYSTEMS)})", EXIT_INPUT)
     if args.scene.lower().endswith((".csv", ".parquet")):
         return _plot_results(args)
+    given = [f"--{name}" for name in ("x", "by") if getattr(args, name) is not None]
+    if given:  # a scene's diagram has its own axes: the options were ignored
+        return fail(
+            f"{' and '.join(given)}: choose the columns of a results table (flyopt sweep or pareto -o FILE.csv or "
+            f".parquet); a scene's diagram ({args.what}) has its own axes",
+            EXIT_INPUT,
+        )
     if args.what == ALL:
         return _plot_all(args, plots)
     if args.what in plots.RESULT_PLOTS:  # a scene given where results are read
