@@ -22,7 +22,7 @@ field flyopt uses held to its shape.
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 from flyopt.errors import shorten
@@ -114,15 +114,11 @@ class _Walk:
             return [_literal(node["const"])]
         if "enum" in node:
             return [f"one of {', '.join(_literal(v) for v in node['enum'])}"]
-        kinds = node.get("type")
-        kinds = [kinds] if isinstance(kinds, str) else kinds or []
-        return [self.words.get(kind, kind) for kind in kinds]
+        return [self.words.get(kind, kind) for kind in _kinds(node) or ()]
 
     def typed(self, value: object, node: Mapping[str, Any]) -> bool:
         """Whether ``node`` names a type and ``value`` is of it (the form of an ``anyOf`` the value takes)."""
-        kinds = self.resolve(node).get("type")
-        kinds = [kinds] if isinstance(kinds, str) else kinds or []
-        return any(_type_ok(value, kind) for kind in kinds)
+        return any(_type_ok(value, kind) for kind in _kinds(self.resolve(node)) or ())
 
     def got(self, value: object) -> str:
         if value is None:
@@ -137,13 +133,9 @@ class _Walk:
         node = self.resolve(node)
         if "anyOf" in node:
             return any(self.ok(value, branch) for branch in node["anyOf"])
-        kinds = node.get("type")
-        if kinds is not None:
-            if isinstance(kinds, str):
-                if not _type_ok(value, kinds):
-                    return False
-            elif not any(_type_ok(value, kind) for kind in kinds):
-                return False
+        kinds = _kinds(node)
+        if kinds is not None and not any(_type_ok(value, kind) for kind in kinds):
+            return False
         if "const" in node and not _same(value, node["const"]):
             return False
         if "enum" in node and not any(_same(value, choice) for choice in node["enum"]):
@@ -193,8 +185,7 @@ class _Walk:
                 return
             errors.append((where, f"must be {' or '.join(self.expected(node))}, got {self.got(value)}"))
             return
-        kinds = node.get("type")
-        kinds = [kinds] if isinstance(kinds, str) else kinds
+        kinds = _kinds(node)
         if kinds is not None and not any(_type_ok(value, kind) for kind in kinds):
             errors.append((where, f"must be {' or '.join(self.words.get(k, k) for k in kinds)}, got {self.got(value)}"))
             return
@@ -251,6 +242,12 @@ class _Walk:
             each = first[k] if k < len(first) else rest
             if each is not None and not self.ok(item, each):  # the path is made for an item in error only
                 self.walk(item, each, f"{path}[{k}]", errors)
+
+
+def _kinds(node: Mapping[str, Any]) -> Sequence[str] | None:
+    """A node's ``type`` as a list (one or several), or None where it names none."""
+    kinds = node.get("type")
+    return [kinds] if isinstance(kinds, str) else kinds
 
 
 def _type_ok(value: object, kind: str) -> bool:
