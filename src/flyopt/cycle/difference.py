@@ -523,15 +523,18 @@ def _sample_left(curve: Any, phi: Array) -> Array:
     return left
 
 
-def _expression_fields(curve: Any) -> list[str]:
-    """The fields of the expressions a curve is made of (its parts', in order)."""
-    found = []
+def _expressions(curve: Any) -> Iterator[Any]:
+    """The expression torques a curve is made of (its parts', nested sums walked), in order."""
     for part in getattr(curve, "parts", (curve,)):
         if hasattr(part, "parts"):
-            found += _expression_fields(part)
+            yield from _expressions(part)
         elif hasattr(part, "expression"):
-            found.append(part.where)
-    return found
+            yield part
+
+
+def _expression_fields(curve: Any) -> list[str]:
+    """The fields of the expressions a curve is made of."""
+    return [part.where for part in _expressions(curve)]
 
 
 def _check_poles(curve: Any, phi: Array) -> None:
@@ -541,16 +544,13 @@ def _check_poles(curve: Any, phi: Array) -> None:
     (``tan φ``, ``1/(φ − 1)``) the work and ΔE have no meaning, and the
     crossing search would take the pole for a crossing of the curves.
     """
-    for part in getattr(curve, "parts", (curve,)):
-        if hasattr(part, "parts"):
-            _check_poles(part, phi)
-        elif hasattr(part, "expression"):
-            found = poles(part, phi, sample(part, phi)[0])
-            if len(found):
-                at = float(found[0])
-                raise SceneError(
-                    part.where,
-                    f"the expression has a pole near φ = {at:.6g} rad "
-                    f"({math.degrees(at):.6g} deg; |M| grows without bound): a torque must be "
-                    "finite over the whole cycle",
-                )
+    for part in _expressions(curve):
+        found = poles(part, phi, sample(part, phi)[0])
+        if len(found):
+            at = float(found[0])
+            raise SceneError(
+                part.where,
+                f"the expression has a pole near φ = {at:.6g} rad "
+                f"({math.degrees(at):.6g} deg; |M| grows without bound): a torque must be "
+                "finite over the whole cycle",
+            )
