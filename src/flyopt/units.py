@@ -90,7 +90,7 @@ MAGNITUDES: dict[str, tuple[float, float, str]] = {
     "stress": (1e-3, 1e12, "a millipascal to a terapascal"),
     "energy_per_area": (1e-3, 1e12, "a millijoule to a terajoule a square metre"),
     "area": (1e-12, 1e6, "a square micron to a square kilometre"),
-    "density": (1.0, 1e5, "from a foam to beyond osmium's 22,600 kg/m^3"),
+    "density": (1.0, 1e5, "from a foam to beyond osmium's 22,600"),  # a [[material]]'s too
     "speed": (1e-9, 1e5, "a nanometre a second to 100 km/s"),
     "angular_speed": (1e-9, 1e7, "1e-9 to 1e7 rad/s"),
     "angular_acceleration": (1e-9, 1e12, "1e-9 to 1e12 rad/s^2"),

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 from flyopt.design.castability import WALL_RANGE, WALL_WHY
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_magnitude
+from flyopt.units import MAGNITUDES
 
 if TYPE_CHECKING:
     from flyopt.design.materials import Material
@@ -29,7 +30,7 @@ MAX_RIM_SPEED = 1e4
 
 #: Bounds of a [[material]]'s numbers (SI): beyond them no flywheel material lies and the sizing overflows.
 MATERIAL_MAGNITUDES = {
-    "density": (1.0, 1e5, "kg/m^3", "from a foam to beyond osmium's 22,600"),
+    "density": (*MAGNITUDES["density"][:2], "kg/m^3", MAGNITUDES["density"][2]),  # every density's
     "max_rim_speed": (1e-3, MAX_RIM_SPEED, "m/s", "a millimetre a second to 10 km/s, beyond any rotor's burst"),
     "allowable_stress": (1.0, 1e11, "Pa", "1 Pa to 100 GPa, beyond any material's strength"),
     # what a solid a wheel is made of has: beyond them a value is one written in other units (169000 meaning

@@ -35,6 +35,7 @@ import numpy as np
 import numpy.typing as npt
 import pandas as pd
 
+import flyopt
 from flyopt.design import design_inputs
 from flyopt.errors import BrokenInvariant, Interrupted, SceneError
 from flyopt.io.sweep_spec import OPTION_MINIMUMS, check_options, option_label, whole_number
@@ -263,7 +264,7 @@ def sweep(
         done = []
         if parts is not None:
             # flyopt's version too: parts another version computed are not mixed with this one's results
-            identity = (_version(), digest(scene), method, sorted((solver_options or {}).items()), axes)
+            identity = (flyopt.__version__, digest(scene), method, sorted((solver_options or {}).items()), axes)
             record = {
                 "fingerprint": fingerprint(identity, points, (layout["grouped"], bounds.tolist())),
                 "points": len(points),
@@ -502,12 +503,6 @@ def _time_first_analysis(scene: Scene, points: pd.DataFrame, codes: npt.NDArray[
         if seconds >= RETIME_SECONDS:
             break
     return seconds
-
-
-def _version() -> str:
-    import flyopt
-
-    return str(flyopt.__version__)
 
 
 def _recorded(parts: Parts) -> dict[str, Any]:
