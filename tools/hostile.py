@@ -457,6 +457,16 @@ def option_attacks() -> Iterator[Case]:
             torque__resisting={"points": [[f"{k * 360 / 100000} deg", "10 N*m"] for k in range(100000)]}
         ),
         "deep-nesting": None,
+        # a torque falling by 1e6 N*m per rad/s, with no inertia and with a little: CVODES ran for minutes
+        "speed-stiff": base(
+            machine__speed="600 rpm",
+            torque__resisting={"expression": "1000 + 500*sin(phi) + 1e6*(omega - 62.83)"},
+        ),
+        "speed-stiff-inertia": base(
+            machine__speed="600 rpm",
+            machine__inertia="1e-3 kg*m^2",
+            torque__resisting={"expression": "1000 + 500*sin(phi) + 1e6*(omega - 62.83)"},
+        ),
         "sweep-output-outside": base(
             sweep={"output": "../../outside/stolen.csv", "vary": {"machine.delta": "0.01:0.1:3"}}
         ),

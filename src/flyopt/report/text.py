@@ -174,8 +174,8 @@ def no_flywheel_words(analysis: Analysis, digits: int = DEFAULT_DIGITS) -> tuple
     if analysis.delta_holds_at_any_inertia:
         return (
             f"with no flywheel the machine gives δ = {number(analysis.delta_reached, digits)}, within the allowed "
-            f"{number(analysis.delta, digits)}, and stays within it however small the inertia (the motor's slip holds the "
-            "speed): δ would reach the allowed value only at a J_F below",
+            f"{number(analysis.delta, digits)}, and stays within it however small the inertia (the torques' fall with speed holds "
+            "it, as a motor's slip does): δ would reach the allowed value only at a J_F below",
             ", less inertia than none",
         )
     return "the machine's own inertia suffices (J_F would be", ")"
@@ -200,11 +200,12 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
             f"shaft) leaves δ = {number(check.achieved_delta, digits)}{verdict}",
             "",
         ]
-    need = (
-        f"J_F {q(r.j_required, 'j_required')} at the reference shaft"
-        if r.flywheel_needed
-        else "no flywheel: the machine's own inertia holds δ"
-    )
+    if r.flywheel_needed:
+        need = f"J_F {q(r.j_required, 'j_required')} at the reference shaft"
+    elif r.delta_holds_at_any_inertia:  # a motor's slip, or any torque falling steeply enough with speed
+        need = "no flywheel: the torques' fall with speed holds δ however small the inertia"
+    else:
+        need = "no flywheel: the machine's own inertia holds δ"
     drive = solution.drive
     if drive is not None:  # the drive designed with the flywheel: the motor, its ratio and the wheel
         run = drive.best

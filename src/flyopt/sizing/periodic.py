@@ -446,6 +446,31 @@ def _angle_only_tolerance(model, y, omega_mean, w_s):
     return max(PERIODIC_RTOL * max(swing, EPS), BALANCE_TOLERANCE * cycle_work / w_s, integration)
 
 
+def _swing_scale(w_s, swing, e_ref):
+    """(W_s, y's swing at it): the work scale [J] rescaled so that y = (E − E_ref)/W_s swings by about one
+    over the cycle (``swing``, its swing at ``w_s``), but no further than where the integrator's absolute
+    tolerance on y, ABSTOL·W_s joules, meets the rounding of the energy E_ref + W_s·y itself: below it CVODES
+    cannot meet its tolerance on a torque of the speed and shrinks its steps without end (an energy that
+    swings by less than about 1e-4 of its mean: a flywheel far larger than a speed-stiff torque needs, tried
+    on the way to the one that is). There y swings by less than one, and :func:`_y_tolerance` says how far
+    it can be held."""
+    if not swing > 0:
+        return w_s, 1.0
+    scaled = max(w_s * swing, EPS * e_ref / ABSTOL)
+    return scaled, w_s * swing / scaled
+
+
+ROUNDING = 16
+"""The energy's rounding, ε E_ref, in multiples of which a periodicity condition on y can be held."""
+
+
+def _y_tolerance(relative, swing, e_ref, w_s):
+    """The tolerance on y [W_s] of a condition held to ``relative`` of y's ``swing``, but not finer than
+    ROUNDING times the energy's rounding ε E_ref in units of W_s (which only a work scale held up by
+    :func:`_swing_scale` brings within reach)."""
+    return max(relative * swing, ROUNDING * EPS * e_ref / w_s)
+
+
 def _periodic_speed_dependent(model, j_flywheel, omega_guess, j_ref):
     w_s = model.work_scale(omega_guess)
     e_guess = 0.5 * j_ref * omega_guess**2
@@ -463,16 +488,14 @@ def _periodic_speed_dependent(model, j_flywheel, omega_guess, j_ref):
     # First pass: find the speed, then rescale W_s to the swing and polish.
     e_ref, iterations, status = _periodic_energy(shoot, e_guess, 1e-8, lambda: model.falls_with_speed(omega_guess))
     y, stall = model.trajectory(j_flywheel, e_ref, w_s)
-    swing = float(y.max() - y.min())
-    if swing > 0:
-        w_s *= swing
+    w_s, scaled_swing = _swing_scale(w_s, float(y.max() - y.min()), e_ref)
     tol = PERIODIC_RTOL
-    e_ref, more, status = _newton_energy(shoot, e_ref, 0.1 * tol)
+    e_ref, more, status = _newton_energy(shoot, e_ref, _y_tolerance(0.1 * tol, scaled_swing, e_ref, w_s))
     iterations += more
     y, stall = model.trajectory(j_flywheel, e_ref, w_s)
     residual = float(y[-1, -1] - y[0, 0])
     swing = float(y.max() - y.min())
-    tol_abs = tol * max(swing, EPS)
+    tol_abs = _y_tolerance(tol, max(swing, EPS), e_ref, w_s)
     if stall > 0 or abs(residual) > tol_abs:
         raise SolverFailed(
             f"periodic solution not found: after {iterations} Newton iterations E(Φ) − E(0) = "
@@ -535,16 +558,14 @@ def _periodic_balanced(model, j_flywheel, omega_mean, j_ref):
 
     x = np.array([math.sqrt(0.5 * j_ref * omega_mean**2), 0.0])
     _, y = conditions(x)
-    swing = float(y.max() - y.min())
-    if swing > 0:  # rescale so that y swings by about one
-        w_s *= swing
+    w_s, scaled_swing = _swing_scale(w_s, float(y.max() - y.min()), x[0] ** 2)
     _, _, d_e, d_c = shoot(x[0] ** 2, 0.0, True)
     if not d_c > 0:
         raise SolverFailed(
             f"the balancing constant cannot be solved: dE(Φ)/dc = {d_c * w_s:.6g} J/(N*m) is not positive"
         )
     jac = np.array([[2 * x[0] * d_e, d_c], [1 / x[0], 0.0]])
-    ftol = 0.1 * PERIODIC_RTOL
+    ftol = _y_tolerance(0.1 * PERIODIC_RTOL, scaled_swing, x[0] ** 2, w_s)
     values, y = conditions(x)
     for iterations in range(1, MAX_NEWTON + 1):  # noqa: B007 -- the count is reported after the loop
         if abs(values[0]) <= ftol and abs(values[1]) <= MEAN_TARGET:
@@ -564,7 +585,7 @@ def _periodic_balanced(model, j_flywheel, omega_mean, j_ref):
     y_end, f = values
     residual = float(y[-1, -1] - y[0, 0])
     swing = float(y.max() - y.min())
-    tol_abs = PERIODIC_RTOL * max(swing, EPS)
+    tol_abs = _y_tolerance(PERIODIC_RTOL, max(swing, EPS), x[0] ** 2, w_s)
     if abs(f) > MEAN_RTOL or abs(residual) > tol_abs:
         raise SolverFailed(
             f"periodic solution at the mean speed {omega_mean:.6g} rad/s not found in "
@@ -790,7 +811,7 @@ def dynamic_requirement(
     rtol : float
         Relative tolerance on δ achieved.
     slip_first : bool
-        Ask first whether a motor's slip alone keeps δ (:func:`_held_by_slip`), then
+        Ask first whether a motor's slip alone keeps δ (:func:`_held_by_balance`), then
         the one Newton solve: for a caller that knows the machine keeps δ with no
         flywheel (the drive's chosen motor, :mod:`flyopt.drive.codesign`), for which the
         one solve would search toward a vanishing inertia and give up. Default: the one
@@ -832,9 +853,11 @@ def dynamic_requirement(
     # constant-inertia estimate at the guessed speed
     j_tot0 = shooting.energy_swing(model, omega_mean) / (omega_mean**2 * delta)
     j_initial = j_tot0 - j_mean
-    if slip_first:
+    # with no inertia at all, the balance is asked first: the one solve below would integrate ever stiffer cycles
+    balance_first = slip_first or (model.speed_dependent and not float(j_grid.max()) > 0)
+    if balance_first:
         try:
-            first = _held_by_slip(model, omega_mean, delta, j_low, j_initial)
+            first = _held_by_balance(model, omega_mean, delta, j_low, j_initial)
         except SolverFailed:
             first = None  # the machine as it is has no steady state: the search below says why
         if first is not None:
@@ -843,9 +866,9 @@ def dynamic_requirement(
         return _as_fitted(model, _one_solve(model, delta, omega_mean, j_tot0, j_initial), j_low)
     except NotSettled:
         BUILDS["fallback to the CVODES search"] += 1
-    held_by_slip = None if slip_first else _held_by_slip(model, omega_mean, delta, j_low, j_initial)
-    if held_by_slip is not None:
-        return held_by_slip
+    held = None if balance_first else _held_by_balance(model, omega_mean, delta, j_low, j_initial)
+    if held is not None:
+        return held
     # unknown u = log(J_F + j_low)
     u = math.log(max(j_tot0 - (j_mean - j_low), 0.25 * j_tot0, 1e-300) if j_tot0 > 0 else max(j_mean, 1e-300))
     target = math.log(delta)
@@ -927,21 +950,27 @@ def dynamic_requirement(
     )
 
 
-def _held_by_slip(
+def _held_by_balance(
     model: PeriodicModel, omega_mean: float, delta: float, j_low: float, j_initial: float
 ) -> DynamicRequirement | None:
-    """The requirement of a motor whose torque–speed balance alone keeps δ, or None.
+    """The requirement of a machine whose torque–speed balance alone keeps δ, or None.
 
-    Such a motor (the speed at a vanishing inertia, :func:`quasi_static_delta`, within δ) needs no
-    flywheel of any size: δ only falls as the inertia grows; the machine as it is is simulated once
-    (the search of :func:`dynamic_requirement` would walk down to a vanishing inertia to find the same).
+    Such a machine (a motor's slip, a load falling steeply with speed: the speed at a vanishing inertia,
+    :func:`_quasi_static`, within δ) needs no flywheel of any size: δ only falls as the inertia grows. With
+    no inertia at all that balance is how it runs; with some, the machine as it is is simulated once. The
+    search of :func:`dynamic_requirement` would walk down to a vanishing inertia to find the same, through
+    ever stiffer cycles, and read CVODES giving up on them as a stall. None also where the machine's least
+    inertia is zero but not all of it (a slider with no crank): neither limit is its motion.
     """
-    if not (model.speed_dependent and not model.balanced and j_low > 0):
+    if not model.speed_dependent:
         return None
-    held = quasi_static_delta(model, omega_mean)
-    if held is None or held > delta:
+    no_inertia = not float(np.max(model.inertia(model.grid_angles()))) > 0
+    if not (no_inertia or j_low > 0):
         return None
-    sol = _periodic(model, 0.0, omega_mean)
+    still = _quasi_static(model, omega_mean)
+    if still is None or still.delta > delta:
+        return None
+    sol = still if no_inertia else _periodic(model, 0.0, omega_mean)
     if sol.delta > delta:
         return None
     return DynamicRequirement(
@@ -966,27 +995,115 @@ def _as_fitted(model: PeriodicModel, found: DynamicRequirement, j_low: float) ->
     return replace(found, solution=_periodic(model, 0.0, found.solution.omega_mean))
 
 
-def quasi_static_delta(model: PeriodicModel, omega_guess: float, max_iterations: int = 60) -> float | None:
-    """δ of the speed at which the net torque vanishes at every angle (the limit of a vanishing inertia) [-].
-
-    At each angle of the model's grid (inside each piece, so a step is taken
-    from its own side) Newton finds ω with M(φ, ω) = 0 on the branch where the
-    torque falls with speed (a motor's stable branch). None when that branch
-    is left (past a motor's breakdown: the machine would stall) or Newton does
-    not settle to 1e-13.
-    """
-    phi = model.inner_angles
-    omega = np.full(phi.shape, float(omega_guess))
+def _balance_speeds(model, phi, omega_guess, offset=0.0, max_iterations=60):
+    """ω at each angle of ``phi`` where the net torque (plus ``offset``) vanishes, on the branch where
+    it falls with speed (a motor's stable branch) [rad/s]; None when that branch is left (past a motor's
+    breakdown: the machine would stall) or Newton does not settle to 1e-13."""
+    phi = np.asarray(phi, dtype=float)
+    omega = np.broadcast_to(np.asarray(omega_guess, dtype=float), phi.shape).copy()
     for _ in range(max_iterations):
-        torque, slope = model.torque(phi, omega), model.torque_slope(phi, omega)
+        torque, slope = model.torque(phi, omega) + offset, model.torque_slope(phi, omega)
         if not np.all(slope < 0):
             return None
         step = np.clip(-torque / slope, -0.5 * omega, omega)
         omega = omega + step
         if np.max(np.abs(step) / omega) <= 1e-13:
-            high, low = float(omega.max()), float(omega.min())
-            return (high - low) / (0.5 * (high + low))
+            return omega
     return None
+
+
+def quasi_static_delta(model: PeriodicModel, omega_guess: float) -> float | None:
+    """δ of the speed at which the net torque vanishes at every angle (the limit of a vanishing inertia) [-]:
+    that of :func:`_quasi_static`, None where the speed leaves the branch where the torque falls with it."""
+    still = _quasi_static(model, omega_guess)
+    return None if still is None else still.delta
+
+
+ZOOMS = 6
+"""Rounds of the search for a quasi-static speed extreme, each over 33 angles around the best so far."""
+
+
+def _balance_extreme(model, omega, sign, offset):
+    """(φ, ω) of the quasi-static speed's maximum (``sign`` 1) or minimum (-1), from ``omega`` on the inner grid.
+
+    The grid's extreme is refined between its neighbours in its piece (a piece's ends are knots of the
+    torque, where an extreme may sit): each round takes the best of 33 angles across the bracket and
+    narrows it to that angle's neighbours, so six rounds place it to 1e-7 of a grid step and its speed to
+    the balance's own 1e-13. None when the balance is left inside the bracket.
+    """
+    inner = model.inner_angles
+    i, j = np.unravel_index(int(np.argmax(sign * omega)), omega.shape)
+    n = inner.shape[1]
+    best_phi, best = float(inner[i, j]), float(omega[i, j])
+    a, b = float(inner[i, max(j - 1, 0)]), float(inner[i, min(j + 1, n - 1)])
+    for _ in range(ZOOMS):
+        trial = np.linspace(a, b, 33)
+        speeds = _balance_speeds(model, trial, best, offset)
+        if speeds is None:
+            return None
+        k = int(np.argmax(sign * speeds))
+        if sign * speeds[k] > sign * best:
+            best_phi, best = float(trial[k]), float(speeds[k])
+        width = (b - a) / 32
+        a, b = max(a, best_phi - width), min(b, best_phi + width)
+    return best_phi, best
+
+
+def _quasi_static(model, omega_mean):
+    """The motion of a machine with no inertia at all: at each angle the speed at which its torques balance.
+
+    With no inertia the equation of motion, J ω dω/dφ = M(φ, ω), leaves M = 0: the limit a vanishing
+    inertia tends to, which a simulation can only approach through ever stiffer cycles. An unknown
+    constant torque is corrected by c so that (ω_max + ω_min)/2 is the prescribed mean speed
+    (Newton on c: dω/dc = −1/(∂M/∂ω) at each extreme). None when the speed leaves the branch where the
+    torque falls with it (the machine would stall) or the mean speed is not settled.
+    """
+    offset, status = 0.0, None
+    for iterations in range(1, MAX_NEWTON + 1):  # noqa: B007 -- the count is reported after the loop
+        omega = _balance_speeds(model, model.inner_angles, omega_mean, offset)
+        if omega is None:
+            return None
+        hi, lo = _balance_extreme(model, omega, 1, offset), _balance_extreme(model, omega, -1, offset)
+        if hi is None or lo is None:
+            return None
+        w_mean = 0.5 * (hi[1] + lo[1])
+        if not model.balanced:
+            status = "quasi-static: no inertia, so the speed is where the torque-speed balance holds at each angle"
+            break
+        miss = w_mean / omega_mean - 1
+        if abs(miss) <= MEAN_TARGET:
+            status = (
+                f"quasi-static: no inertia, so the speed is where the torques balance at each angle; the "
+                f"unknown constant torque corrected by {offset:.6g} N*m to hold the mean speed"
+            )
+            break
+        slopes = model.torque_slope(np.array([hi[0], lo[0]]), np.array([hi[1], lo[1]]))
+        offset -= miss * omega_mean / float(np.mean(-1.0 / slopes))
+    if status is None:
+        return None
+    phi = model.grid_angles()
+    return PeriodicSolution(
+        phi=phi.reshape(-1),
+        omega=omega.reshape(-1),
+        omega_max=hi[1],
+        omega_min=lo[1],
+        omega_mean=w_mean,
+        delta=(hi[1] - lo[1]) / w_mean,
+        phi_omega_max=hi[0],
+        phi_omega_min=lo[0],
+        converged=True,
+        status=f"{status} ({iterations} iteration(s))",
+        periodicity_residual=0.0,
+        periodicity_tolerance=0.0,
+        tolerance=DELTA_RTOL * (hi[1] - lo[1]) / w_mean,
+        multiplier=0.0,
+        speed_dependent=True,
+        iterations=iterations,
+        j_flywheel=0.0,
+        e0=0.0,
+        period=_simpson_time(phi, omega),
+        torque_offset=offset,
+    )
 
 
 def _one_solve(model, delta, omega_mean, j_tot0, j_initial):
