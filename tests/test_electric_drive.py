@@ -73,6 +73,15 @@ STAGE = {"ratio": 2, "efficiency": 0.9, "gd2": "2 N*m^2"}
         ({"stages": [STAGE], "load_force": "1 kN"}, "electric_drive.load_radius", "is needed"),
         ({"stages": [STAGE], "load_torque": "1 N*m", "load_force": "1 kN"}, "electric_drive.load_force", "not both"),
         ({"stages": [STAGE], "acceleration": "800 rpm"}, "electric_drive.acceleration", ""),
+        # a GD² or an inertia is held to the sizes of every other (flyopt.units.MAGNITUDES): the drive's own
+        # range had no lower end, so 1e-300 was read
+        ({"stages": [{**STAGE, "gd2": "1e-300 N*m^2"}]}, "electric_drive.stages[0].gd2", "4e-08 to 4e+13"),
+        (
+            {"stages": [{"ratio": 2, "efficiency": 0.9, "inertia": "1e-300 kg*m^2"}]},
+            "electric_drive.stages[0].inertia",
+            "1e-09 to 1e+12",
+        ),
+        ({"stages": [STAGE], "motor_inertia": "1e15 kg*m^2"}, "electric_drive.motor_inertia", "1e-09 to 1e+12"),
     ],
 )
 def test_bad_drive_is_refused_in_one_line(section, field, words):

@@ -22,7 +22,6 @@ KEYS = {
 }
 STAGE_KEYS = {"ratio", "speed", "efficiency", "gd2", "inertia", "description"}
 MAX_STAGES = 64
-GD2_RANGE = (0.0, 1e12)
 
 
 def read_electric_drive(raw: object, motor_speed: float) -> ElectricDrive:
@@ -86,15 +85,13 @@ def _gd2(table: Table, where: str, gd2_key: str, inertia_key: str) -> float:
     """A flywheel moment GD² [N*m²], given as GD² or as an inertia J (GD² = 4 g J); 0 when neither."""
     if table.has(gd2_key) and table.has(inertia_key):
         raise SceneError(f"{where}.{inertia_key}", f"give either {gd2_key} or {inertia_key}, not both (GD² = 4 g J)")
-    if table.has(inertia_key):
-        j = table.quantity(inertia_key, "inertia", required=True, own_range=True)
+    if table.has(inertia_key):  # each held to its dimension's sizes (flyopt.units.MAGNITUDES) as it is read
+        j = table.quantity(inertia_key, "inertia", required=True)
         value = j / inertia_from_gd2(1.0)
         key = inertia_key
     else:
-        value = table.quantity(gd2_key, "flywheel_moment", default=0.0, own_range=True)
+        value = table.quantity(gd2_key, "flywheel_moment", default=0.0)
         key = gd2_key
     if not (math.isfinite(value) and value >= 0):
         raise SceneError(f"{where}.{key}", f"must be >= 0, got {shorten(table.raw(key))}")
-    if value:
-        check_magnitude(value, f"{where}.{key}", table.raw(key), *GD2_RANGE, "N*m^2", "a flywheel moment")
     return value

@@ -30,12 +30,11 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.design_section import LENGTH_RANGE
 from flyopt.io.fields import SPEED_RANGE, Table, check_delta, check_magnitude, scaled
 from flyopt.io.input_files import check_rows
 from flyopt.io.operation_section import ENERGY_RANGE
 from flyopt.machine import press as physics
-from flyopt.units import quantity
+from flyopt.units import MAGNITUDES, quantity
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -508,11 +507,12 @@ def _number(table, key, dimension, where="press"):
 
 
 #: Magnitudes a press's positive inputs may take, by dimension (SI): beyond them the stroke's energy or the
-#: flywheel under- or overflows. Lengths as [design]'s; energies and powers as an [operation]'s.
-MAGNITUDES = {
-    "length": (*LENGTH_RANGE, "m", "a micron to a kilometre"),
-    "stress": (1.0, 1e12, "Pa", "a pascal to a terapascal"),
-    "energy_per_area": (1e-3, 1e12, "J/m^2", "a millijoule to a terajoule a square metre"),
+#: flywheel under- or overflows. Lengths and energies per area as any scene's (:data:`flyopt.units.MAGNITUDES`);
+#: a plate's shear strength from a pascal, not the millipascal any stress may be.
+PRESS_MAGNITUDES = {
+    "length": (*MAGNITUDES["length"][:2], "m", MAGNITUDES["length"][2]),
+    "stress": (1.0, MAGNITUDES["stress"][1], "Pa", "a pascal to a terapascal"),
+    "energy_per_area": (*MAGNITUDES["energy_per_area"][:2], "J/m^2", MAGNITUDES["energy_per_area"][2]),
 }
 
 
@@ -520,8 +520,8 @@ def _positive(table, key, dimension, where):
     value = _number(table, key, dimension, where)
     if value <= 0:
         raise SceneError(f"{where}.{key}", f"must be positive, got {shorten(table[key])}")
-    if dimension in MAGNITUDES:
-        low, high, unit, why = MAGNITUDES[dimension]
+    if dimension in PRESS_MAGNITUDES:
+        low, high, unit, why = PRESS_MAGNITUDES[dimension]
         check_magnitude(value, f"{where}.{key}", table[key], low, high, unit, why)
     return value
 
