@@ -437,6 +437,8 @@ def option_attacks() -> Iterator[Case]:
         ("no-such-scene", ["solve", "missing.toml"]),
         ("scene-is-folder", ["solve", "."]),
         ("scene-dev-zero", ["check", "/dev/zero"]),
+        ("output-newline", ["solve", "scene.toml", "-o", "a\nb.json"]),
+        ("output-name-300", ["new", "press", "-o", "x" * 300 + ".toml"]),
     ]
     for name, args in cases:
         files = dict(scene)
@@ -474,6 +476,7 @@ def option_attacks() -> Iterator[Case]:
             sweep={"output": "@OUTSIDE@/stolen.csv", "vary": {"machine.delta": "0.01:0.1:3"}}
         ),
         "sweep-output-missing-folder": base(sweep={"output": "nowhere/s.csv", "vary": {"machine.delta": "0.01:0.1:3"}}),
+        "sweep-output-newline": base(sweep={"output": "a\nb.csv", "vary": {"machine.delta": "0.01:0.1:3"}}),
     }
     for name, document in scenes.items():
         text = "a = " + "[" * 100_000 + "]" * 100_000 + "\n" if document is None else toml_text(document)

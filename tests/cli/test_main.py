@@ -120,3 +120,29 @@ def test_a_scene_diagram_refuses_the_options_of_a_results_table(tmp_path, option
     )
     assert run.returncode == 2 and len(run.stderr.splitlines()) == 1, run.stderr
     assert f"{option[0]}: choose the columns of a results table" in run.stderr and not out.exists()
+
+
+@pytest.mark.parametrize(
+    ("command", "name"),
+    [
+        (["new", "press"], "a\nb.toml"),
+        (["solve", str(PROBLEMS / "shear-press.toml")], "r\tx.json"),
+        (["sweep", str(PROBLEMS / "shear-press.toml"), "--vary", "machine.delta=0.01:0.1:3"], "s\x1b[31m.csv"),
+    ],
+)
+def test_an_output_with_a_control_character_is_refused(main_cli, tmp_path, monkeypatch, command, name):
+    """`[sweep] output = "a\\nb.csv"` (and `-o` alike) wrote a file whose name was two lines, and said so in two."""
+    monkeypatch.chdir(tmp_path)
+    status, _out, err = main_cli(*command, "-o", name)
+    assert status == 2 and "holds the control character" in err and len(err.splitlines()) == 1, err
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("folder", ["", "nowhere/"])
+def test_an_output_name_longer_than_the_file_system_takes_is_refused_in_its_words(main_cli, tmp_path, folder):
+    """`flyopt new press -o <300 characters>.toml` said the system's "File name too long", naming no option."""
+    name = tmp_path / f"{folder}{'x' * 300}.toml"
+    status, _out, err = main_cli("new", "press", "-o", name)
+    assert status == 2 and err.startswith("flyopt: error: -o/--output: the file name 'xxx"), err
+    assert "is 305 bytes long: at most 255" in err and len(err.splitlines()) == 1
+    assert list(tmp_path.iterdir()) == []

@@ -22,7 +22,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, BinaryIO
 
-from flyopt.errors import FlyoptError, OutputError, SceneError
+from flyopt.errors import FlyoptError, OutputError, SceneError, shorten
 
 if TYPE_CHECKING:
     from flyopt.io.scene import Scene
@@ -247,11 +247,26 @@ def check_folder(path: str | os.PathLike[str], label: str = "output") -> None:
         raise SceneError(label, "'-' is no file's name: leave the option out to print to stdout, or name a file")
     if text.endswith(("/", os.sep)):
         raise SceneError(label, f"{text!r} names a folder (it ends in {text[-1]!r}): give a file's name")
+    control = next((c for c in text if c < " " or "\x7f" <= c <= "\x9f"), None)
+    if control is not None:  # a line break in a name splits every line that quotes it; NUL ends it
+        raise SceneError(label, f"{shorten(text)} holds the control character {ascii(control)}: give a printable name")
+    name = os.path.basename(text)
+    size, limit = len(os.fsencode(name)), _name_max(os.path.dirname(text) or ".")
+    if size > limit:  # before the path is resolved, which the system refuses in its own words
+        raise SceneError(label, f"the file name {name[:40]!r}... is {size} bytes long: at most {limit} in that folder")
     target = output_target(path)
     folder = target.parent
     if not folder.is_dir():
         raise SceneError(label, f"the folder {str(folder)!r} of {str(path)!r} does not exist")
     _check_replaceable(target, path, label)
+
+
+def _name_max(folder: str) -> int:
+    """The longest file name [bytes] the file system of ``folder`` takes (POSIX's 255 where it does not say)."""
+    try:
+        return int(os.pathconf(folder, "PC_NAME_MAX"))
+    except (OSError, ValueError, AttributeError):
+        return 255
 
 
 def check_not_scene(
