@@ -119,3 +119,32 @@ def test_a_very_stiff_damper_ends_in_seconds(write_scene, inertia):
     # δ = 1000/(c ω_m), the quasi-static value, which a machine inertia of 1e-3 kg*m^2 changes by less
     # than its time constant J ω/c (6e-8 of a radian) makes of the load's period
     assert f"δ = {1000 / (1e6 * OMEGA):.4g}" in run.stdout
+
+
+def test_a_cubic_damper_centred_on_the_speed_needs_no_flywheel(write_scene):
+    # c (ω − ω_m)³ against 1000 + 500 sin φ: the torque is flat in speed at ω_m, where the balance's Newton
+    # started and took no step (it refused the balance), so the search ran 150 s and read failures of the
+    # balance's Broyden iteration as a stall: a 1.13 kg*m^2 flywheel for a machine that needs none. With no
+    # inertia, ω = ω_m + ∛((M_d − 1000 − 500 sin φ)/c) and M_d = 1000 holds the mean: δ = 2 ∛(500/c)/ω_m.
+    c = 1e6
+    solution = flyopt.solve(flyopt.load(_scene(write_scene, f"1000 + 500*sin(phi) + {c:g}*(omega - {OMEGA!r})**3")))
+    found = solution.analysis.requirement.detail
+    assert found.limit == "none" and solution.design.status == "not_needed"
+    assert found.solution.delta == pytest.approx(2 * (500 / c) ** (1 / 3) / OMEGA, rel=1e-9)
+
+
+def test_a_machine_whose_inertia_relaxes_at_once_runs_at_the_balance(write_scene):
+    # 1e7 N*m per rad/s on 1e-6 kg*m^2 at 3000 rpm: the speed relaxes to the balance within J ω/c = 3e-11 rad,
+    # far below what CVODES can integrate (its failure ended `flyopt solve` with exit 1). The balance is the
+    # motion: δ = 2B/(c ω_m), the machine's inertia changing it by a factor 1/√(1 + (J ω/c)²) = 1 − 5e-22.
+    omega, c, b = 100 * math.pi, 1e7, 900.0
+    text = (
+        SCENE.format(load=f"1000 + {b:g}*sin(phi) + {c:g}*(omega - {omega!r})", inertia='inertia = "1e-6 kg*m^2"')
+        .replace("600 rpm", "3000 rpm")
+        .replace("delta = 0.05", "delta = 0.0001")
+    )
+    solution = flyopt.solve(flyopt.load(write_scene(text)))
+    found = solution.analysis.requirement.detail
+    assert found.limit == "none" and solution.design.status == "not_needed"
+    assert found.solution.delta == pytest.approx(2 * b / (c * omega), rel=1e-9)
+    assert "relax to that balance within 3.1e-11 rad" in found.solution.status

@@ -967,15 +967,52 @@ def _held_by_balance(
     no_inertia = not float(np.max(model.inertia(model.grid_angles()))) > 0
     if not (no_inertia or j_low > 0):
         return None
-    still = _quasi_static(model, omega_mean)
+    # the grid's extremes first: the refined ones lie beyond them, so a δ over the allowed value on the grid
+    # is over it refined; with inertia the balance only tells whether δ can hold (the simulation says what it is)
+    still = _quasi_static(model, omega_mean, 0)
     if still is None or still.delta > delta:
         return None
-    sol = still if no_inertia else _periodic(model, 0.0, omega_mean)
-    if sol.delta > delta:
+    sol = _quasi_static(model, omega_mean) if no_inertia else _as_it_is(model, omega_mean, still)
+    if sol is None or sol.delta > delta:
         return None
     return DynamicRequirement(
         j_required=0.0 - j_low, solution=sol, iterations=1, held=_held(model), j_initial=j_initial, limit="none"
     )
+
+
+RELAXED = 1e-9
+"""The angle [rad] within which a machine's own inertia lets its speed relax to the torques' balance, below
+which that balance is taken as its motion (its δ then differs by about the square of that angle times the
+cycle's harmonics); CVODES gives up long before (1e7 N*m per rad/s on 1e-6 kg*m^2 at 3000 rpm: 3e-11 rad)."""
+
+
+def _as_it_is(model, omega_mean, still):
+    """The periodic solution of the machine with no flywheel, whose torque balance ``still`` keeps δ; None
+    where it cannot be integrated (the search then goes on).
+
+    Its inertia J lets a disturbance of the balance's speed decay within J ω/|∂M/∂ω| radians of the cycle;
+    where that is below :data:`RELAXED` at every angle, the balance (refined) is its motion, with its energy.
+    """
+    phi = model.inner_angles
+    omega = still.omega.reshape(phi.shape)
+    with np.errstate(divide="ignore"):
+        lag = float(np.max(model.inertia(phi) * omega / np.abs(model.torque_slope(phi, omega))))
+    if lag <= RELAXED:
+        refined = _quasi_static(model, omega_mean)
+        if refined is not None:
+            e0 = 0.5 * float(model.inertia(0.0)) * refined.omega[0] ** 2
+            return replace(
+                refined,
+                e0=e0,
+                status=(
+                    f"{refined.status}; the machine's inertia lets its speed relax to that balance within "
+                    f"{lag:.2g} rad of the cycle: the balance is its motion"
+                ),
+            )
+    try:
+        return _periodic(model, 0.0, omega_mean)
+    except SolverFailed:
+        return None
 
 
 def _as_fitted(model: PeriodicModel, found: DynamicRequirement, j_low: float) -> DynamicRequirement:
@@ -995,19 +1032,27 @@ def _as_fitted(model: PeriodicModel, found: DynamicRequirement, j_low: float) ->
     return replace(found, solution=_periodic(model, 0.0, found.solution.omega_mean))
 
 
-def _balance_speeds(model, phi, omega_guess, offset=0.0, max_iterations=60):
+NUDGE = 1e-6
+"""The relative step the balance's Newton takes, toward where the torque would vanish, from a speed at which
+the torque does not change with speed (a cubic damper centred on its speed: no Newton step is defined)."""
+
+
+def _balance_speeds(model, phi, omega_guess, offset=0.0, max_iterations=100):
     """ω at each angle of ``phi`` where the net torque (plus ``offset``) vanishes, on the branch where
     it falls with speed (a motor's stable branch) [rad/s]; None when that branch is left (past a motor's
-    breakdown: the machine would stall) or Newton does not settle to 1e-13."""
+    breakdown: the machine would stall) or Newton does not settle to 1e-13 (a triple root, where the torque
+    is flat in speed, settles linearly: up to some 50 steps)."""
     phi = np.asarray(phi, dtype=float)
     omega = np.broadcast_to(np.asarray(omega_guess, dtype=float), phi.shape).copy()
     for _ in range(max_iterations):
         torque, slope = model.torque(phi, omega) + offset, model.torque_slope(phi, omega)
-        if not np.all(slope < 0):
+        if not np.all(slope <= 0):
             return None
-        step = np.clip(-torque / slope, -0.5 * omega, omega)
+        flat = slope == 0
+        step = np.where(flat, np.sign(torque) * NUDGE * omega, -torque / np.where(flat, -1.0, slope))
+        step = np.clip(step, -0.5 * omega, omega)
         omega = omega + step
-        if np.max(np.abs(step) / omega) <= 1e-13:
+        if not np.any(flat & (torque != 0)) and np.max(np.abs(step) / omega) <= 1e-13:
             return omega
     return None
 
@@ -1023,20 +1068,21 @@ ZOOMS = 6
 """Rounds of the search for a quasi-static speed extreme, each over 33 angles around the best so far."""
 
 
-def _balance_extreme(model, omega, sign, offset):
+def _balance_extreme(model, omega, sign, offset, zooms):
     """(φ, ω) of the quasi-static speed's maximum (``sign`` 1) or minimum (-1), from ``omega`` on the inner grid.
 
     The grid's extreme is refined between its neighbours in its piece (a piece's ends are knots of the
     torque, where an extreme may sit): each round takes the best of 33 angles across the bracket and
     narrows it to that angle's neighbours, so six rounds place it to 1e-7 of a grid step and its speed to
-    the balance's own 1e-13. None when the balance is left inside the bracket.
+    the balance's own 1e-13 (``zooms`` rounds: 0 keeps the grid's). None when the balance is left inside the
+    bracket.
     """
     inner = model.inner_angles
     i, j = np.unravel_index(int(np.argmax(sign * omega)), omega.shape)
     n = inner.shape[1]
     best_phi, best = float(inner[i, j]), float(omega[i, j])
     a, b = float(inner[i, max(j - 1, 0)]), float(inner[i, min(j + 1, n - 1)])
-    for _ in range(ZOOMS):
+    for _ in range(zooms):
         trial = np.linspace(a, b, 33)
         speeds = _balance_speeds(model, trial, best, offset)
         if speeds is None:
@@ -1049,21 +1095,22 @@ def _balance_extreme(model, omega, sign, offset):
     return best_phi, best
 
 
-def _quasi_static(model, omega_mean):
+def _quasi_static(model, omega_mean, zooms=ZOOMS):
     """The motion of a machine with no inertia at all: at each angle the speed at which its torques balance.
 
     With no inertia the equation of motion, J ω dω/dφ = M(φ, ω), leaves M = 0: the limit a vanishing
     inertia tends to, which a simulation can only approach through ever stiffer cycles. An unknown
     constant torque is corrected by c so that (ω_max + ω_min)/2 is the prescribed mean speed
     (Newton on c: dω/dc = −1/(∂M/∂ω) at each extreme). None when the speed leaves the branch where the
-    torque falls with it (the machine would stall) or the mean speed is not settled.
+    torque falls with it (the machine would stall) or the mean speed is not settled. ``zooms``: the rounds
+    that refine each extreme between the grid's angles (:func:`_balance_extreme`).
     """
     offset, status = 0.0, None
     for iterations in range(1, MAX_NEWTON + 1):  # noqa: B007 -- the count is reported after the loop
         omega = _balance_speeds(model, model.inner_angles, omega_mean, offset)
         if omega is None:
             return None
-        hi, lo = _balance_extreme(model, omega, 1, offset), _balance_extreme(model, omega, -1, offset)
+        hi, lo = _balance_extreme(model, omega, 1, offset, zooms), _balance_extreme(model, omega, -1, offset, zooms)
         if hi is None or lo is None:
             return None
         w_mean = 0.5 * (hi[1] + lo[1])
