@@ -1096,6 +1096,16 @@ def _balance_extreme(model, omega, sign, offset, zooms):
 
 
 def _quasi_static(model, omega_mean, zooms=ZOOMS):
+    """:func:`_balanced_motion`, kept with the model: a solve asks it of each requirement (the analysis and
+    the δ-sensitivity's two), some 7 ms each on motor-press's 2,000 angles."""
+    key = ("balance", float(omega_mean), zooms, model.balanced)
+    known = model._known(key)
+    if known is None:
+        known = model._keep(key, (_balanced_motion(model, omega_mean, zooms),))
+    return known[0]
+
+
+def _balanced_motion(model, omega_mean, zooms):
     """The motion of a machine with no inertia at all: at each angle the speed at which its torques balance.
 
     With no inertia the equation of motion, J ω dω/dφ = M(φ, ω), leaves M = 0: the limit a vanishing
