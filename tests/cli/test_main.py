@@ -128,6 +128,8 @@ def test_a_scene_diagram_refuses_the_options_of_a_results_table(tmp_path, option
         (["new", "press"], "a\nb.toml"),
         (["solve", str(PROBLEMS / "shear-press.toml")], "r\tx.json"),
         (["sweep", str(PROBLEMS / "shear-press.toml"), "--vary", "machine.delta=0.01:0.1:3"], "s\x1b[31m.csv"),
+        (["new", "press"], "a\u2028b.toml"),  # a line separator: splitlines() splits there
+        (["new", "press"], "a\udc9bb.toml"),  # the byte 0x9b of a name that is no UTF-8: an 8-bit terminal's CSI
     ],
 )
 def test_an_output_with_a_control_character_is_refused(main_cli, tmp_path, monkeypatch, command, name):
@@ -144,5 +146,18 @@ def test_an_output_name_longer_than_the_file_system_takes_is_refused_in_its_word
     name = tmp_path / f"{folder}{'x' * 300}.toml"
     status, _out, err = main_cli("new", "press", "-o", name)
     assert status == 2 and err.startswith("flyopt: error: -o/--output: the file name 'xxx"), err
-    assert "is 305 bytes long: at most 255" in err and len(err.splitlines()) == 1
+    assert "is 305 bytes long: the file system takes at most 255" in err and len(err.splitlines()) == 1
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_sweep_output_whose_parts_folder_would_be_too_long_is_refused(main_cli, tmp_path, monkeypatch):
+    """A 251-byte table name fits, but its `.parts` folder (257 bytes) did not: the sweep ended in the system's
+    "File name too long" after the folder's name, not the option's."""
+    monkeypatch.chdir(tmp_path)
+    name = "x" * 247 + ".csv"
+    status, _out, err = main_cli(
+        "sweep", PROBLEMS / "shear-press.toml", "--vary", "machine.delta=0.01:0.1:3", "-o", name
+    )
+    assert status == 2 and err.startswith("flyopt: error: --output: the file name 'xxx"), err
+    assert "is 257 bytes long with the '.parts' flyopt writes beside it" in err
     assert list(tmp_path.iterdir()) == []

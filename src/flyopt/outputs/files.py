@@ -233,32 +233,46 @@ def output_target(path: str | os.PathLike[str]) -> Path:
     return Path(os.path.realpath(path)) if path.is_symlink() else path
 
 
-def check_folder(path: str | os.PathLike[str], label: str = "output") -> None:
+def check_folder(path: str | os.PathLike[str], label: str = "output", beside: tuple[str, ...] = ()) -> None:
     """Check where an output goes, before anything is computed.
 
     Its folder must exist (flyopt does not create folders the user did not ask
     for), and whatever is at its path must be a regular file that it may
     replace: a folder, a device, a FIFO or a socket is refused. A symbolic
     link is followed to its target. A name that ends in a separator ("out/") names a folder, not a file:
-    refused, not written as the file ``out``.
+    refused, not written as the file ``out``. A name is printable (no control character, line or paragraph
+    separator, nor a byte 0x80-0x9f of a name that is no UTF-8) and fits the file system's length, with the
+    longest of the suffixes ``beside`` it that flyopt writes next to it (a sweep's ``.parts`` folder).
     """
     text = os.fspath(path)
     if text == "-":  # many tools read it as stdout; here it would be a file named "-"
         raise SceneError(label, "'-' is no file's name: leave the option out to print to stdout, or name a file")
     if text.endswith(("/", os.sep)):
         raise SceneError(label, f"{text!r} names a folder (it ends in {text[-1]!r}): give a file's name")
-    control = next((c for c in text if c < " " or "\x7f" <= c <= "\x9f"), None)
+    control = next((c for c in text if _acting(c)), None)
     if control is not None:  # a line break in a name splits every line that quotes it; NUL ends it
         raise SceneError(label, f"{shorten(text)} holds the control character {ascii(control)}: give a printable name")
     name = os.path.basename(text)
-    size, limit = len(os.fsencode(name)), _name_max(os.path.dirname(text) or ".")
+    suffix = max(beside, key=len, default="")
+    size, limit = len(os.fsencode(name + suffix)), _name_max(os.path.dirname(text) or ".")
     if size > limit:  # before the path is resolved, which the system refuses in its own words
-        raise SceneError(label, f"the file name {name[:40]!r}... is {size} bytes long: at most {limit} in that folder")
+        with_suffix = f" with the {suffix!r} flyopt writes beside it" if suffix else ""
+        raise SceneError(
+            label,
+            f"the file name {name[:40]!r}... is {size} bytes long{with_suffix}: the file system takes at most {limit}",
+        )
     target = output_target(path)
     folder = target.parent
     if not folder.is_dir():
         raise SceneError(label, f"the folder {str(folder)!r} of {str(path)!r} does not exist")
     _check_replaceable(target, path, label)
+
+
+def _acting(c: str) -> bool:
+    """Whether a character of a file's name acts instead of showing: a C0 or C1 control, DEL, a line or paragraph
+    separator, or a byte 0x80-0x9f of a name that is no UTF-8 (Python's surrogate escape of it: a C1 control to
+    an 8-bit terminal)."""
+    return c < " " or "\x7f" <= c <= "\x9f" or c in "\u2028\u2029" or "\udc80" <= c <= "\udc9f"
 
 
 def _name_max(folder: str) -> int:

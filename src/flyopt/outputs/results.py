@@ -262,14 +262,19 @@ def output_format(path: str | os.PathLike[str], label: str = "output") -> str:
 def sidecar_path(path: str | os.PathLike[str]) -> Path:
     """The sidecar of a CSV file, which holds its metadata: ``FILE.csv`` → ``FILE.csv.json``."""
     path = Path(path)
-    return path.with_name(path.name + ".json")
+    return path.with_name(path.name + SIDECAR_SUFFIX)
+
+
+PARTS_SUFFIX, SIDECAR_SUFFIX = ".parts", ".json"
+SWEEP_BESIDE = (SIDECAR_SUFFIX, PARTS_SUFFIX)
+"""What a sweep writes beside its table ``FILE``: a CSV's sidecar ``FILE.json``, the folder ``FILE.parts``."""
 
 
 def parts_folder(path: str | os.PathLike[str]) -> Path:
     """The folder of a sweep's finished chunks beside its table (:class:`flyopt.studies.parts.Parts`):
     ``FILE`` → ``FILE.parts``."""
     path = Path(path)
-    return path.with_name(path.name + ".parts")
+    return path.with_name(path.name + PARTS_SUFFIX)
 
 
 def table_files(path: str | os.PathLike[str]) -> tuple[Path, ...]:

@@ -980,10 +980,12 @@ def _held_by_balance(
     )
 
 
-RELAXED = 1e-9
-"""The angle [rad] within which a machine's own inertia lets its speed relax to the torques' balance, below
-which that balance is taken as its motion (its δ then differs by about the square of that angle times the
-cycle's harmonics); CVODES gives up long before (1e7 N*m per rad/s on 1e-6 kg*m^2 at 3000 rpm: 3e-11 rad)."""
+RELAXED = 1e-8
+"""The angle within which a machine's own inertia lets its speed relax to the torques' balance, in parts of the
+cycle's shortest piece, below which that balance is taken as its motion: a feature of the torque as narrow as a
+piece is followed to about that part of its height (a smooth one far closer: the square of the angle times its
+harmonics). CVODES gives up long before (1e7 N*m per rad/s on 1e-6 kg*m^2 at 3000 rpm: 3e-11 rad, over pieces
+of 0.2 rad)."""
 
 
 def _as_it_is(model, omega_mean, still):
@@ -991,13 +993,14 @@ def _as_it_is(model, omega_mean, still):
     where it cannot be integrated (the search then goes on).
 
     Its inertia J lets a disturbance of the balance's speed decay within J ω/|∂M/∂ω| radians of the cycle;
-    where that is below :data:`RELAXED` at every angle, the balance (refined) is its motion, with its energy.
+    where that is below :data:`RELAXED` of the shortest piece at every angle, the balance (refined) is its
+    motion, with its energy.
     """
     phi = model.inner_angles
     omega = still.omega.reshape(phi.shape)
     with np.errstate(divide="ignore"):
         lag = float(np.max(model.inertia(phi) * omega / np.abs(model.torque_slope(phi, omega))))
-    if lag <= RELAXED:
+    if lag <= RELAXED * float(np.min(model.pieces[:, 1] - model.pieces[:, 0])):
         refined = _quasi_static(model, omega_mean)
         if refined is not None:
             e0 = 0.5 * float(model.inertia(0.0)) * refined.omega[0] ** 2

@@ -27,7 +27,7 @@ import pandas as pd
 from flyopt.errors import SceneError
 from flyopt.io.input_files import read_input
 from flyopt.outputs.files import check_folder
-from flyopt.outputs.results import parts_folder, read_results, write_results
+from flyopt.outputs.results import PARTS_SUFFIX, parts_folder, read_results, write_results
 
 #: The descriptors of the parts folders this process holds. A worker process forked from it gets copies,
 #: and a flock lasts while any copy is open: each child closes them at once, so the lock is the sweep's alone
@@ -132,7 +132,7 @@ class Parts:
         head, sep, tail = name.rpartition(".tmp-")
         if not sep or not head or not _TEMPORARY_TAIL.fullmatch(tail):
             return False
-        output = self.folder.name[: -len(".parts")]
+        output = self.folder.name[: -len(PARTS_SUFFIX)]
         return bool(_PART_NAME.fullmatch(head)) or head == output or (len(name) >= 240 and output.startswith(head))
 
     def path(self, index: int) -> Path:

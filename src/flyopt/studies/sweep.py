@@ -41,7 +41,7 @@ from flyopt.errors import BrokenInvariant, Interrupted, SceneError
 from flyopt.io.sweep_spec import OPTION_MINIMUMS, check_options, option_label, whole_number
 from flyopt.outputs.documents import scene_record, table_metadata
 from flyopt.outputs.files import check_folder
-from flyopt.outputs.results import ResultWriter, check_table_output, normalize
+from flyopt.outputs.results import SWEEP_BESIDE, ResultWriter, check_table_output, normalize
 from flyopt.studies.chunks import SERIAL_SECONDS, chunk_bounds
 from flyopt.studies.cluster import connect, threads
 from flyopt.studies.context import chunk_context
@@ -104,7 +104,7 @@ def check_sweep(scene: Scene, options: Mapping[str, Any], where: str = "sweep") 
     try:
         check_options(options, where)
         if options.get("output") is not None:  # where it can go (its folder), and not over a file the scene reads
-            check_folder(options["output"], option_label(where, "output"))
+            check_folder(options["output"], option_label(where, "output"), beside=SWEEP_BESIDE)
             check_table_output(options["output"], scene, "the sweep's table", option_label(where, "output"))
         return plan_sweep(
             scene,
@@ -238,7 +238,7 @@ def sweep(
         "--",
     )
     if output is not None:  # before anything is computed or made: a FIFO or a folder at the output is refused
-        check_folder(output, "--output")
+        check_folder(output, "--output", beside=SWEEP_BESIDE)
         check_table_output(output, scene, "the sweep's table", "--output")  # nor a file the scene read
     parts = None if output is None else Parts(output)
     recorded = _recorded(parts) if resume and parts is not None else {}
