@@ -747,12 +747,13 @@ def _closed_form_covers(spec: DesignSpec, method: str, textbook: Sequence[bool])
 
 
 def _not_needed(j_required: float, omega: float, spec: DesignSpec) -> DesignResult:
-    """The result when J_F <= 0: the machine's own inertia already keeps the fluctuation within delta."""
+    """The result when J_F <= 0: the machine keeps the fluctuation within delta without a flywheel (its own inertia,
+    nothing fluctuating, or torques that hold the speed by falling with it)."""
     return DesignResult(
         status="not_needed",
         message=said(
-            "no flywheel needed: the required flywheel inertia J_F = {j} is not positive, so the machine's own "
-            "inertia already keeps the speed fluctuation within delta",
+            "no flywheel needed: the required flywheel inertia J_F = {j} is not positive: the machine keeps the "
+            "speed fluctuation within delta without one",
             j=(j_required, "inertia", f"{_g(j_required)} kg·m²"),
         ),
         j_required=j_required,
