@@ -854,10 +854,11 @@ def dynamic_requirement(
     j_tot0 = shooting.energy_swing(model, omega_mean) / (omega_mean**2 * delta)
     j_initial = j_tot0 - j_mean
     # with no inertia at all, the balance is asked first: the one solve below would integrate ever stiffer cycles
-    balance_first = slip_first or (model.speed_dependent and not float(j_grid.max()) > 0)
+    no_inertia = not float(j_grid.max()) > 0
+    balance_first = slip_first or (model.speed_dependent and no_inertia)
     if balance_first:
         try:
-            first = _held_by_balance(model, omega_mean, delta, j_low, j_initial)
+            first = _held_by_balance(model, omega_mean, delta, j_low, j_initial, no_inertia)
         except SolverFailed:
             first = None  # the machine as it is has no steady state: the search below says why
         if first is not None:
@@ -866,7 +867,7 @@ def dynamic_requirement(
         return _as_fitted(model, _one_solve(model, delta, omega_mean, j_tot0, j_initial), j_low)
     except NotSettled:
         BUILDS["fallback to the CVODES search"] += 1
-    held = None if balance_first else _held_by_balance(model, omega_mean, delta, j_low, j_initial)
+    held = None if balance_first else _held_by_balance(model, omega_mean, delta, j_low, j_initial, no_inertia)
     if held is not None:
         return held
     # unknown u = log(J_F + j_low)
@@ -951,7 +952,7 @@ def dynamic_requirement(
 
 
 def _held_by_balance(
-    model: PeriodicModel, omega_mean: float, delta: float, j_low: float, j_initial: float
+    model: PeriodicModel, omega_mean: float, delta: float, j_low: float, j_initial: float, no_inertia: bool
 ) -> DynamicRequirement | None:
     """The requirement of a machine whose torque–speed balance alone keeps δ, or None.
 
@@ -960,11 +961,11 @@ def _held_by_balance(
     no inertia at all that balance is how it runs; with some, the machine as it is is simulated once. The
     search of :func:`dynamic_requirement` would walk down to a vanishing inertia to find the same, through
     ever stiffer cycles, and read CVODES giving up on them as a stall. None also where the machine's least
-    inertia is zero but not all of it (a slider with no crank): neither limit is its motion.
+    inertia is zero but not all of it (a slider with no crank): neither limit is its motion. ``no_inertia``:
+    whether the machine has none at any angle (as :func:`dynamic_requirement` found it on the grid).
     """
     if not model.speed_dependent:
         return None
-    no_inertia = not float(np.max(model.inertia(model.grid_angles()))) > 0
     if not (no_inertia or j_low > 0):
         return None
     # the grid's extremes first: the refined ones lie beyond them, so a δ over the allowed value on the grid
@@ -1118,9 +1119,9 @@ def _balanced_motion(model, omega_mean, zooms):
     torque falls with it (the machine would stall) or the mean speed is not settled. ``zooms``: the rounds
     that refine each extreme between the grid's angles (:func:`_balance_extreme`).
     """
-    offset, status = 0.0, None
+    offset, status, omega = 0.0, None, omega_mean
     for iterations in range(1, MAX_NEWTON + 1):  # noqa: B007 -- the count is reported after the loop
-        omega = _balance_speeds(model, model.inner_angles, omega_mean, offset)
+        omega = _balance_speeds(model, model.inner_angles, omega, offset)  # from the last offset's speeds
         if omega is None:
             return None
         hi, lo = _balance_extreme(model, omega, 1, offset, zooms), _balance_extreme(model, omega, -1, offset, zooms)
@@ -1128,12 +1129,12 @@ def _balanced_motion(model, omega_mean, zooms):
             return None
         w_mean = 0.5 * (hi[1] + lo[1])
         if not model.balanced:
-            status = "quasi-static: no inertia, so the speed is where the torque-speed balance holds at each angle"
+            status = "quasi-static: the speed where the torque-speed balance holds at each angle (no inertia's motion)"
             break
         miss = w_mean / omega_mean - 1
         if abs(miss) <= MEAN_TARGET:
             status = (
-                f"quasi-static: no inertia, so the speed is where the torques balance at each angle; the "
+                f"quasi-static: the speed where the torques balance at each angle (no inertia's motion); the "
                 f"unknown constant torque corrected by {offset:.6g} N*m to hold the mean speed"
             )
             break
