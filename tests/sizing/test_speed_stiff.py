@@ -148,3 +148,20 @@ def test_a_machine_whose_inertia_relaxes_at_once_runs_at_the_balance(write_scene
     assert found.limit == "none" and solution.design.status == "not_needed"
     assert found.solution.delta == pytest.approx(2 * b / (c * omega), rel=1e-9)
     assert "relax to that balance within 3.1e-11 rad" in found.solution.status
+
+
+def test_the_verification_and_the_report_of_a_machine_with_no_inertia(write_scene):
+    # `flyopt solve --verify` and `flyopt report` refused the fan load's scene ("the machine and its flywheel
+    # have no inertia ... the speed would jump") although `solve` answered it: with torques falling with speed
+    # the speed does not jump; the verification is the balance too, and the summary says why no flywheel
+    import html
+    import re
+
+    k = 5.0
+    path = _scene(write_scene, f"1000 + 500*sin(phi) + {k}*omega**2")
+    solution = flyopt.solve(flyopt.load(path), verify_design=True)
+    checked = solution.verification
+    assert checked is not None and checked.method.startswith("no inertia: the speed where the torques balance")
+    assert checked.achieved_delta == solution.analysis.requirement.detail.solution.delta
+    verdict = html.unescape(re.search(r"<p>(.*?)</p>", solution._repr_html_()).group(1))  # the summary's answer
+    assert verdict.startswith("No flywheel is needed: the torques' fall with speed keeps δ within 0.05 however small")

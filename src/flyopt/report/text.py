@@ -181,6 +181,15 @@ def no_flywheel_words(analysis: Analysis, digits: int = DEFAULT_DIGITS) -> tuple
     return "the machine's own inertia suffices (J_F would be", ")"
 
 
+def no_flywheel_holder(analysis: Analysis) -> tuple[str, str]:
+    """(what holds δ, "however small the inertia" or nothing) where no flywheel is needed: the text's answer and
+    the document's summary say the same. A motor's slip, or any torque falling steeply enough with speed, holds it
+    at any inertia; otherwise the machine's own inertia does."""
+    if analysis.delta_holds_at_any_inertia:
+        return "the torques' fall with speed", " however small the inertia"
+    return "the machine's own inertia", ""
+
+
 def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAULT_DIGITS) -> list[str]:
     """The answer first (issue 29): what to make, or what the machine needs, and whether it holds, in at most
     six lines under the scene's title; the steps that give it follow (``units``: the unit system)."""
@@ -202,10 +211,9 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
         ]
     if r.flywheel_needed:
         need = f"J_F {q(r.j_required, 'j_required')} at the reference shaft"
-    elif r.delta_holds_at_any_inertia:  # a motor's slip, or any torque falling steeply enough with speed
-        need = "no flywheel: the torques' fall with speed holds δ however small the inertia"
     else:
-        need = "no flywheel: the machine's own inertia holds δ"
+        holder, however = no_flywheel_holder(r)
+        need = f"no flywheel: {holder} holds δ{however}"
     drive = solution.drive
     if drive is not None:  # the drive designed with the flywheel: the motor, its ratio and the wheel
         run = drive.best

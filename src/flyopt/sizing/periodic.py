@@ -1293,23 +1293,31 @@ def verify(
     SceneError
         Field ``machine.inertia``: the machine and flywheel have no inertia
         while the torque or the inertia varies with the angle (the speed
-        would jump).
+        would jump), unless the torques fall with speed and balance at every
+        angle (their balance is then the motion: :func:`_quasi_static`).
     """
     check_speed_delta(omega_mean, delta_allowed)
     model = periodic_model(net_torque, j_machine, cycle_angle, knots)
-    j_low = float(np.min(model.inertia(model.grid_angles()))) + float(j_flywheel)
-    if not model.steady and j_low == 0:
+    j_grid = model.inertia(model.grid_angles())
+    j_low = float(np.min(j_grid)) + float(j_flywheel)
+    # with no inertia at all, torques that fall with speed hold it where they balance (the requirement's answer)
+    still = None
+    if not model.steady and j_low == 0 and not float(np.max(j_grid)) + float(j_flywheel) > 0:
+        still = _quasi_static(model, omega_mean) if model.speed_dependent else None
+    if not model.steady and j_low == 0 and still is None:
         raise SceneError(
             "machine.inertia",
             "the machine and its flywheel have no inertia (J = 0 kg*m^2) while "
             "its torque varies with the angle: the speed would jump, so δ is undefined; give the "
             "machine's inertia (> 0)",
         )
-    sol = _periodic(model, float(j_flywheel), omega_mean)
+    sol = still if still is not None else _periodic(model, float(j_flywheel), omega_mean)
     method = (
         "no fluctuation: neither the torques nor the inertia vary with the angle, so the speed is constant "
         "(δ = 0 whatever the inertia)"
         if model.steady
+        else "no inertia: the speed where the torques balance at each angle (they fall with speed)"
+        if still is not None
         else "periodic simulation (CVODES shooting, Newton on the periodicity condition)"
     )
     return Verification(

@@ -200,8 +200,11 @@ class Summary(BuilderBase):
                     f"within the allowed {number(a.delta, self.digits)}."
                 )
             if not a.flywheel_needed:
+                from flyopt.report.text import no_flywheel_holder
+
+                holder, however = no_flywheel_holder(a)
                 return (
-                    f"No flywheel is needed: the machine's own inertia keeps δ within {number(a.delta, self.digits)} "
+                    f"No flywheel is needed: {holder} keeps δ within {number(a.delta, self.digits)}{however} "
                     f"(J_F would be {display.quantity_text(a.j_margin, 'inertia', self.units)})."
                 )
             return f"The machine needs a flywheel of {display.quantity_text(a.j_required, 'inertia', self.units)}."
