@@ -57,7 +57,7 @@ def main(argv=None):
     for label, file, vary, method, kind in CASES:
         scene = flyopt.load(ROOT / "problems" / file)
         points = plan_sweep(scene, vary).points
-        estimate = float(design_seconds(scene, points, method).sum()) / len(points)
+        estimate = float(design_seconds(scene, points, method)[0].sum()) / len(points)
         median, low, high = median_time(  # each run on the scene loaded afresh: nothing of an earlier run reused
             lambda file=file, vary=vary, method=method: sweep(
                 flyopt.load(ROOT / "problems" / file), vary, workers=1, method=method

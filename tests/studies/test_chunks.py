@@ -48,3 +48,41 @@ def test_chunk_bounds_keep_groups_together():
     # held to MAX_CHUNK_POINTS)
     big = chunks.chunk_bounds(np.full(25_000, 1e-5), starts=np.r_[True, np.zeros(24_999, bool)])
     assert big.tolist() == [0, 10_000, 17_500, 25_000]
+
+
+def test_a_chunks_cold_start_holds_its_size_up_and_the_last_chunks_are_equal():
+    # whole wheels: 45 ms a point, a chunk's first point 90 ms more (its NLPs started cold), so a chunk is at
+    # least 0.6 s (its start at most START_SHARE of it)
+    for n, expected in (
+        (40, [20, 20]),  # 2 cold starts, not the 9 of the guided cut alone
+        (60, [15, 15, 15, 15]),
+        (100, [17, 17, 17, 17, 16, 16]),
+    ):
+        costs = np.full(n, 0.045)
+        bounds = chunks.chunk_bounds(costs, workers=2, start_costs=chunks.COLD_START_POINTS * costs)
+        assert np.diff(bounds).tolist() == expected, n
+    costs = np.full(400, 0.045)
+    sizes = np.diff(chunks.chunk_bounds(costs, workers=2, start_costs=2 * costs))
+    # the guided cut's 1 s chunks, then equal chunks for each worker, none smaller than the floor's 14 points
+    assert (sizes[:13] == 23).all() and len(sizes[13:]) % 2 == 0
+    assert sizes[13:].max() - sizes[13:].min() <= 1 and sizes.min() >= 14
+    assert (np.diff(sizes) <= 0).all()
+    # four workers: the 100 points in 8 equal chunks, each worker two
+    sizes = np.diff(chunks.chunk_bounds(np.full(100, 0.045), workers=4, start_costs=np.full(100, 0.09)))
+    assert len(sizes) == 8 and sizes.max() - sizes.min() <= 1
+    # fewer points than a chunk's floor on each worker: still one chunk each
+    assert np.diff(chunks.chunk_bounds(np.full(10, 0.045), workers=2, start_costs=np.full(10, 0.09))).tolist() == [
+        5,
+        5,
+    ]
+
+
+def test_no_start_cost_cuts_as_before():
+    # closed forms and bare-wheel NLPs start no warmer within a chunk: their cut is the guided one
+    for costs in (np.full(60, 0.1), np.full(24, 0.01), np.full(1000, 2e-6)):
+        alone = chunks.chunk_bounds(costs, workers=2)
+        assert (chunks.chunk_bounds(costs, workers=2, start_costs=np.zeros(len(costs))) == alone).all()
+    # a start cost below MIN_CHUNK_SECONDS * START_SHARE sets no floor above MIN_CHUNK_SECONDS
+    costs = np.full(60, 0.1)
+    small = np.full(60, 0.5 * chunks.MIN_CHUNK_SECONDS * chunks.START_SHARE)
+    assert (chunks.chunk_bounds(costs, workers=2, start_costs=small) == chunks.chunk_bounds(costs, workers=2)).all()

@@ -10,13 +10,18 @@ whose ram makes the inertia vary).
 import dataclasses
 from pathlib import Path
 
+import numpy as np
+import pandas as pd
 import pytest
 
 from flyopt.io.scene import load
 from flyopt.pipeline import solve
+from flyopt.studies.chunks import COLD_START_POINTS
+from flyopt.studies.points import design_seconds
 from flyopt.studies.sweep import sweep
 
 DATA = Path(__file__).parents[1] / "data" / "wheels"
+PROBLEMS = Path(__file__).parents[2] / "problems"
 
 
 @pytest.mark.parametrize("name", ["engine-arms-sweep.toml", "press-web-sweep.toml"])
@@ -37,3 +42,22 @@ def test_sweep_of_whole_wheels_equals_solve_point_by_point(name):
         assert table["status"][k] == "designed"
         assert table["best_material"][k] == best.material
         assert table["mass"][k] == pytest.approx(best.mass, rel=1e-9)
+
+
+def test_a_small_whole_wheel_sweep_runs_a_chunk_on_each_worker():
+    # each chunk starts its NLPs cold (no neighbour's wheel): 40 points of punch-press-wheel on 2 workers are
+    # 2 chunks (the guided cut alone made 9: 7 more cold starts), and give the designs of a sweep cut in 8,
+    # whose chunks start elsewhere (warm starts agree with cold designs to 1e-8: tests/studies/test_wheel_warm.py)
+    scene = load(PROBLEMS / "punch-press-wheel.toml")
+    vary = {"delta": "0.02:0.3:40"}
+    both = sweep(scene, vary, workers=2)
+    assert both.attrs["sweep"]["chunks"] == 2 and both.attrs["sweep"]["mode"] == "processes"
+    serial = sweep(scene, vary, workers=1, chunk_size=5)
+    assert serial.attrs["sweep"]["chunks"] == 8
+    assert (both["status"] == "designed").all() and (both["best_material"] == serial["best_material"]).all()
+    for column in ("mass", "d_outer", "b", "h", "j_flywheel"):
+        assert both[column].to_numpy() == pytest.approx(serial[column].to_numpy(), rel=1e-8), column
+    # the estimate behind the cut: a whole wheel's chunk start is COLD_START_POINTS of its point
+    points = pd.DataFrame({"delta": np.linspace(0.02, 0.3, 4)})
+    seconds, start = design_seconds(scene, points)
+    assert (seconds > 0).all() and (start == COLD_START_POINTS * seconds).all()

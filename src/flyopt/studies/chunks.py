@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike
 
 __all__ = [
     "CHUNK_SECONDS",
+    "COLD_START_POINTS",
     "GUIDED",
     "IN_FLIGHT_PER_WORKER",
     "MAX_CHUNK_POINTS",
@@ -29,6 +30,7 @@ __all__ = [
     "SECONDS_IPOPT",
     "SECONDS_WHOLE_WHEEL",
     "SERIAL_SECONDS",
+    "START_SHARE",
     "chunk_bounds",
 ]
 
@@ -62,6 +64,12 @@ SECONDS_WHOLE_WHEEL = 5e-3
 SECONDS_DESCRIBED = 12e-3
 #: Chunks sent to each worker process at a time (one running, one waiting).
 IN_FLIGHT_PER_WORKER = 2
+#: What a chunk's first whole-wheel point costs beyond the others, in points: it starts each NLP without a
+#: neighbour's wheel (20-30 ms against 9 ms warm on punch-press-wheel, benchmarks/results/wheel.md).
+COLD_START_POINTS = 2.0
+#: Most of a chunk its start may take (:func:`chunk_bounds`' ``start_costs``): a chunk is at least its start
+#: over this, so a 40-point sweep of whole wheels on 2 workers runs as 2 chunks, not 9 with 9 cold starts.
+START_SHARE = 0.15
 
 
 def chunk_bounds(
@@ -71,6 +79,7 @@ def chunk_bounds(
     starts: ArrayLike | None = None,
     breaks: Iterable[int] | None = None,
     chunk_size: int | None = None,
+    start_costs: ArrayLike | None = None,
 ) -> np.ndarray:
     """Where to cut a sweep's points (in the order they run) into chunks.
 
@@ -90,6 +99,9 @@ def chunk_bounds(
     chunk_size : int, optional
         Points per chunk, as given by the user: cuts every ``chunk_size``
         points (and at ``breaks``), whatever the costs.
+    start_costs : array_like of float, optional
+        What a chunk starting at each point costs beyond ``costs`` [s] (its
+        whole wheels solved cold); default none.
 
     Returns
     -------
@@ -101,7 +113,13 @@ def chunk_bounds(
     Guided self-scheduling: a chunk aims at ``R / (GUIDED * workers)`` of the
     estimated time ``R`` still to cut, within [:data:`MIN_CHUNK_SECONDS`,
     :data:`CHUNK_SECONDS`], and holds at most :data:`MAX_CHUNK_POINTS`
-    points. A cut that would split a group of ``starts`` moves to the group's
+    points. Where a chunk's start cost sets a higher floor than
+    :data:`MIN_CHUNK_SECONDS` (its start over :data:`START_SHARE`), the chunks
+    stop shrinking near it: what is left once the aim falls below twice that
+    floor is cut into equal chunks, as many as the workers or a multiple of
+    them, each at most the chunk before it (or :data:`CHUNK_SECONDS`) and at
+    least the floor where that leaves each worker one, so the workers finish
+    together without small chunks' cold starts. A cut that would split a group of ``starts`` moves to the group's
     end when the chunk then stays within twice its aim, else to the group's
     start; a chunk of one group is split only where the group's points after
     its first (its designs, without its analysis) exceed twice the aim.
@@ -119,14 +137,26 @@ def chunk_bounds(
             start = end
         return np.array(bounds, dtype=np.int64)
     cum = np.concatenate([[0.0], np.cumsum(costs)])
-    share = GUIDED * max(workers, 1)
+    first = np.zeros(n) if start_costs is None else np.asarray(start_costs, dtype=float)
+    n_workers = max(workers, 1)
+    share = GUIDED * n_workers
     group = None if starts is None else np.flatnonzero(np.asarray(starts, dtype=bool))
     bounds, start, block = [0], 0, 0
+    tail = 0  # equal chunks still to cut once a chunk's start cost holds the chunks up (see Notes)
     while start < n:
         while ends[block] <= start:
             block += 1
         limit = min(ends[block], start + MAX_CHUNK_POINTS)
-        aim = min(CHUNK_SECONDS, max(MIN_CHUNK_SECONDS, (cum[-1] - cum[start]) / share))
+        left = cum[-1] - cum[start]
+        floor = min(CHUNK_SECONDS, first[start] / START_SHARE)
+        if not tail and floor > MIN_CHUNK_SECONDS and left / share < 2 * floor:
+            before = cum[start] - cum[bounds[-2]] if len(bounds) > 1 else CHUNK_SECONDS
+            tail = n_workers * max(1, int(left // (n_workers * floor)), int(np.ceil(left / (n_workers * before))))
+        if tail:
+            aim = max(MIN_CHUNK_SECONDS, left / tail)
+            tail = max(tail - 1, 1)
+        else:
+            aim = min(CHUNK_SECONDS, max(MIN_CHUNK_SECONDS, floor, left / share))
         # the first end whose chunk reaches the aim (a relative 1e-9 spares round-off a point)
         end = int(np.searchsorted(cum, cum[start] + aim * (1 - 1e-9), side="left"))
         end = min(max(end, start + 1), limit)

@@ -184,31 +184,43 @@ def design_counts(scene: Scene, points: pd.DataFrame, method: str = "auto") -> t
     return n_materials * n_shafts, ipopt
 
 
-def design_seconds(scene: Scene, points: pd.DataFrame, method: str = "auto") -> np.ndarray:
-    """The estimated seconds of each point's designs in one process: its combinations (:func:`design_counts`)
-    times the cost of one, by how it is designed: the closed form, IPOPT on a bare wheel, IPOPT on a whole wheel
-    (rim_web; rim_arms once per arm count it considers), or ``flyopt solve``'s design where the scene describes a
-    shaft (:data:`~flyopt.studies.chunks.SECONDS_CLOSED_FORM` ... :data:`~flyopt.studies.chunks.SECONDS_DESCRIBED`).
+def design_seconds(scene: Scene, points: pd.DataFrame, method: str = "auto") -> tuple[np.ndarray, np.ndarray]:
+    """The estimated seconds of each point's designs in one process, and of a chunk's start at each point.
+
+    A point's designs: its combinations (:func:`design_counts`) times the cost of one, by how it is designed:
+    the closed form, IPOPT on a bare wheel, IPOPT on a whole wheel (rim_web; rim_arms once per arm count it
+    considers), or ``flyopt solve``'s design where the scene describes a shaft
+    (:data:`~flyopt.studies.chunks.SECONDS_CLOSED_FORM` ... :data:`~flyopt.studies.chunks.SECONDS_DESCRIBED`).
+    A chunk's start: what its first point costs beyond the others, its whole wheels solved without a
+    neighbour's wheel to start from (:data:`~flyopt.studies.chunks.COLD_START_POINTS` of its designs; none for
+    the other designs, which start no warmer within a chunk).
 
     Returns
     -------
-    ndarray of float
-        One estimate per point [s].
+    seconds, start : ndarray of float
+        One estimate per point [s] each.
     """
     from flyopt.pipeline import describes_shafts
-    from flyopt.studies.chunks import SECONDS_CLOSED_FORM, SECONDS_DESCRIBED, SECONDS_IPOPT, SECONDS_WHOLE_WHEEL
+    from flyopt.studies.chunks import (
+        COLD_START_POINTS,
+        SECONDS_CLOSED_FORM,
+        SECONDS_DESCRIBED,
+        SECONDS_IPOPT,
+        SECONDS_WHOLE_WHEEL,
+    )
 
     per_point, ipopt = design_counts(scene, points, method)
     if describes_shafts(scene):
-        return np.full(len(points), per_point * SECONDS_DESCRIBED)
+        return np.full(len(points), per_point * SECONDS_DESCRIBED), np.zeros(len(points))
     spec = design_inputs(scene).spec
     if "design.geometry" in points:
         geometry = points["design.geometry"].astype(str).to_numpy()
     else:
         geometry = np.full(len(points), str(spec.geometry))
+    wheels = ipopt & np.isin(geometry, [str(Geometry.RIM_WEB), str(Geometry.RIM_ARMS)])
     whole = np.where(geometry == str(Geometry.RIM_ARMS), len(spec.arms), 1.0) * SECONDS_WHOLE_WHEEL
-    whole = np.where(np.isin(geometry, [str(Geometry.RIM_WEB), str(Geometry.RIM_ARMS)]), whole, SECONDS_IPOPT)
-    return per_point * np.where(ipopt, whole, SECONDS_CLOSED_FORM)
+    seconds = per_point * np.where(wheels, whole, np.where(ipopt, SECONDS_IPOPT, SECONDS_CLOSED_FORM))
+    return seconds, np.where(wheels, COLD_START_POINTS * seconds, 0.0)
 
 
 def vectorized(inputs: DesignInputs, geometry_name: str, objective: str) -> bool:

@@ -429,7 +429,7 @@ def _layout(
     n = len(points)
     if chunk_size is None and isinstance(recorded.get("chunk_size"), int):
         chunk_size = recorded["chunk_size"]  # resuming a sweep cut by the user's size
-    costs = design_seconds(ctx.scene, points, method)
+    costs, start_costs = design_seconds(ctx.scene, points, method)
     if ctx.reusable:
         codes, n_physics, analysis_seconds = None, 1, 0.0
     else:
@@ -456,13 +456,16 @@ def _layout(
         run_codes = codes if order is None else codes[order]
         starts = np.concatenate([[True], run_codes[1:] != run_codes[:-1]])
         costs = (costs if order is None else costs[order]) + starts * analysis_seconds
+        start_costs = start_costs if order is None else start_costs[order]
     elif codes is not None:  # every point a physics of its own
         costs = costs + analysis_seconds
     bounds = None
     if chunk_size is None and recorded.get("bounds") is not None and recorded.get("grouped") == grouped:
         bounds = _recorded_bounds(recorded["bounds"], n)
     if bounds is None:
-        bounds = chunk_bounds(costs, workers=n_workers, starts=starts, breaks=breaks, chunk_size=chunk_size)
+        bounds = chunk_bounds(
+            costs, workers=n_workers, starts=starts, breaks=breaks, chunk_size=chunk_size, start_costs=start_costs
+        )
     if grouped:  # a block's chunks are written together, once all are done
         block_of = (bounds[:-1] // BLOCK_POINTS).tolist()
         units: list[list[int]] = [[] for _ in range(max(block_of) + 1)]
