@@ -866,9 +866,10 @@ def write(
         "arms wheel stalled 4.8e-10 off one row). qpOASES was tried too: on the sweep's 149 wheels 138 "
         "converged in 0.18 s (qrqp 149), and it prints its licence banner and 'Premature homotopy "
         "termination' on the terminal. Each chunk's first point is cold (20-30 ms against 9 ms warm): since "
-        "2026-12-01 (evening) a whole-wheel sweep's chunks are at least their cold start over START_SHARE "
-        "(flyopt.studies.chunks: 0.15, the start estimated as COLD_START_POINTS = 2 points) and its last ones "
-        "equal, one or more per worker: 40 points on 2 workers run as 2 chunks (9 before), 400 as 19 (25).",
+        "2026-12-01 (evening) a sweep's chunks are at least the dearest cold start still to come over "
+        "START_SHARE (flyopt.studies.chunks: 0.15, the start estimated as COLD_START_POINTS = 2 points) and its "
+        "last ones equal, all of them a multiple of the workers: 40 points on 2 workers run as 2 chunks (9 "
+        "before), 400 as 18 (25).",
         f"- The Pareto front of mass against outer diameter runs from the largest envelope down, its chunks in "
         "one memory of neighbours (serially, in one process). Each point only tightens D_outer <= ε and the wheel "
         "NLP's envelope, allowables and strength-table caps are upper bounds with every other number the same, so "

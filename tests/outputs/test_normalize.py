@@ -37,6 +37,9 @@ FRAMES = {
     "a count as floats": pd.DataFrame({"n_feasible": [1.0, 2.0, 0.0]}),
     "no rows": pd.DataFrame({"best_material": pd.Series([], dtype="str"), "mass": pd.Series([], dtype=float)}),
     "text of nulls only": pd.DataFrame({"binding": pd.Series([None, None], dtype="str")}),
+    "text in Python's storage": pd.DataFrame(
+        {"best_material": pd.Series(["cast_iron", None], dtype=pd.StringDtype("python", na_value=np.nan))}
+    ),
 }
 
 

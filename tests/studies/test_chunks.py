@@ -52,29 +52,48 @@ def test_chunk_bounds_keep_groups_together():
 
 def test_a_chunks_cold_start_holds_its_size_up_and_the_last_chunks_are_equal():
     # whole wheels: 45 ms a point, a chunk's first point 90 ms more (its NLPs started cold), so a chunk is at
-    # least 0.6 s (its start at most START_SHARE of it)
+    # least 0.6 s, some 13.3 points (its start at most START_SHARE of it)
     for n, expected in (
         (40, [20, 20]),  # 2 cold starts, not the 9 of the guided cut alone
         (60, [15, 15, 15, 15]),
-        (100, [17, 17, 17, 17, 16, 16]),
+        (80, [14, 13, 13, 14, 13, 13]),  # 80 / 13.3 = 6 to the last bit: as many as 81 points get
+        (81, [14, 13, 14, 13, 14, 13]),
+        (100, [17, 17, 16, 17, 17, 16]),
     ):
         costs = np.full(n, 0.045)
         bounds = chunks.chunk_bounds(costs, workers=2, start_costs=chunks.COLD_START_POINTS * costs)
         assert np.diff(bounds).tolist() == expected, n
-    costs = np.full(400, 0.045)
-    sizes = np.diff(chunks.chunk_bounds(costs, workers=2, start_costs=2 * costs))
-    # the guided cut's 1 s chunks, then equal chunks for each worker, none smaller than the floor's 14 points
-    assert (sizes[:13] == 23).all() and len(sizes[13:]) % 2 == 0
-    assert sizes[13:].max() - sizes[13:].min() <= 1 and sizes.min() >= 14
-    assert (np.diff(sizes) <= 0).all()
-    # four workers: the 100 points in 8 equal chunks, each worker two
-    sizes = np.diff(chunks.chunk_bounds(np.full(100, 0.045), workers=4, start_costs=np.full(100, 0.09)))
-    assert len(sizes) == 8 and sizes.max() - sizes.min() <= 1
+    for n, workers in ((400, 2), (230, 4), (438, 8), (230, 3)):
+        costs = np.full(n, 0.045)
+        sizes = np.diff(chunks.chunk_bounds(costs, workers=workers, start_costs=2 * costs))
+        guided = int(np.sum(sizes == 23))  # the guided cut's 1 s chunks first
+        assert (sizes[:guided] == 23).all() and sizes.sum() == n
+        # then equal chunks, none above the chunk before, none below the floor by more than a point's rounding,
+        # so many that every worker's last round has one (the least-loaded worker takes the next chunk)
+        last = sizes[guided:]
+        assert last.max() - last.min() <= 1 and last.max() <= 23 and last.min() >= 13, (n, workers)
+        assert len(sizes) % workers == 0, (n, workers)
     # fewer points than a chunk's floor on each worker: still one chunk each
-    assert np.diff(chunks.chunk_bounds(np.full(10, 0.045), workers=2, start_costs=np.full(10, 0.09))).tolist() == [
-        5,
-        5,
-    ]
+    costs = np.full(10, 0.045)
+    assert np.diff(chunks.chunk_bounds(costs, workers=2, start_costs=2 * costs)).tolist() == [5, 5]
+
+
+def test_a_chunk_is_held_up_by_the_dearest_start_still_to_come():
+    # points alternating between a bare wheel (no start cost) and a whole wheel: a chunk starting on either
+    # holds both structures and starts each cold once, so the floor is the whole wheel's wherever it starts
+    costs = np.full(40, 0.045)
+    start_costs = 2 * costs
+    start_costs[::2] = 0.0
+    assert np.diff(chunks.chunk_bounds(costs, workers=2, start_costs=start_costs)).tolist() == [20, 20]
+    # closed-form points first (no start cost), whole wheels after: the closed forms' chunk takes them all
+    costs = np.r_[np.full(1000, 2e-6), np.full(40, 0.045)]
+    start_costs = np.r_[np.zeros(1000), 2 * costs[1000:]]
+    sizes = np.diff(chunks.chunk_bounds(costs, workers=2, start_costs=start_costs))
+    assert len(sizes) == 2 and sizes[0] >= 1000
+    # a break inside the equal chunks ends one early; the others keep their ends
+    costs = np.full(60, 0.045)
+    bounds = chunks.chunk_bounds(costs, workers=2, start_costs=2 * costs, breaks=[20])
+    assert bounds.tolist() == [0, 15, 20, 30, 45, 60]
 
 
 def test_no_start_cost_cuts_as_before():

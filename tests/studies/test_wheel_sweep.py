@@ -47,7 +47,7 @@ def test_sweep_of_whole_wheels_equals_solve_point_by_point(name):
 def test_a_small_whole_wheel_sweep_runs_a_chunk_on_each_worker():
     # each chunk starts its NLPs cold (no neighbour's wheel): 40 points of punch-press-wheel on 2 workers are
     # 2 chunks (the guided cut alone made 9: 7 more cold starts), and give the designs of a sweep cut in 8,
-    # whose chunks start elsewhere (warm starts agree with cold designs to 1e-8: tests/studies/test_wheel_warm.py)
+    # 6 of whose chunks start elsewhere (warm starts agree with cold designs to 1e-8: tests/studies/test_wheel_warm.py)
     scene = load(PROBLEMS / "punch-press-wheel.toml")
     vary = {"delta": "0.02:0.3:40"}
     both = sweep(scene, vary, workers=2)

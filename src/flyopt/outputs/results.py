@@ -213,8 +213,8 @@ def _is_of_kind(frame: pd.DataFrame, position: int, dtype: Any, kind: str, name:
         return bool(dtype == np.bool_)
     if kind == "int":
         return name not in NULLABLE_INTS and bool(dtype == np.int64)
-    if _text_dtype() != "str" or dtype != "str":
-        return False
+    if _text_dtype() != "str" or dtype != "str" or getattr(dtype, "storage", None) != "pyarrow":
+        return False  # (the conversion gives pandas' default storage, Arrow's: a "python" one is converted)
     import pyarrow as pa
     import pyarrow.compute as pc
 

@@ -13,6 +13,7 @@ chunk where they can (their analysis is then made once).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 
 import numpy as np
@@ -114,12 +115,15 @@ def chunk_bounds(
     estimated time ``R`` still to cut, within [:data:`MIN_CHUNK_SECONDS`,
     :data:`CHUNK_SECONDS`], and holds at most :data:`MAX_CHUNK_POINTS`
     points. Where a chunk's start cost sets a higher floor than
-    :data:`MIN_CHUNK_SECONDS` (its start over :data:`START_SHARE`), the chunks
-    stop shrinking near it: what is left once the aim falls below twice that
-    floor is cut into equal chunks, as many as the workers or a multiple of
-    them, each at most the chunk before it (or :data:`CHUNK_SECONDS`) and at
-    least the floor where that leaves each worker one, so the workers finish
-    together without small chunks' cold starts. A cut that would split a group of ``starts`` moves to the group's
+    :data:`MIN_CHUNK_SECONDS` (the dearest start still to come over
+    :data:`START_SHARE`), the chunks stop shrinking near it: what is left once
+    the aim falls below twice that floor is cut into equal chunks (by cost:
+    fixed ends, which a break or a group may move), each at most the aim of the
+    chunk before it (or :data:`CHUNK_SECONDS`) and at least the floor where that
+    still gives each worker one, and as many as make all the chunks a multiple
+    of the workers (fewer where the chunk before allows larger ones, else
+    more): the last round gives each worker one, without small chunks' cold
+    starts. A cut that would split a group of ``starts`` moves to the group's
     end when the chunk then stays within twice its aim, else to the group's
     start; a chunk of one group is split only where the group's points after
     its first (its designs, without its analysis) exceed twice the aim.
@@ -137,26 +141,38 @@ def chunk_bounds(
             start = end
         return np.array(bounds, dtype=np.int64)
     cum = np.concatenate([[0.0], np.cumsum(costs)])
+    # a chunk may start on any of the structures still to come (each of its NLPs starts cold once in it): the
+    # dearest start at or after each point
     first = np.zeros(n) if start_costs is None else np.asarray(start_costs, dtype=float)
+    dearest = np.maximum.accumulate(first[::-1])[::-1]
     n_workers = max(workers, 1)
     share = GUIDED * n_workers
     group = None if starts is None else np.flatnonzero(np.asarray(starts, dtype=bool))
     bounds, start, block = [0], 0, 0
-    tail = 0  # equal chunks still to cut once a chunk's start cost holds the chunks up (see Notes)
+    last_aim = CHUNK_SECONDS
+    edges = None  # where the equal last chunks end, in cumulative cost, once the start costs hold the cut up
     while start < n:
         while ends[block] <= start:
             block += 1
         limit = min(ends[block], start + MAX_CHUNK_POINTS)
         left = cum[-1] - cum[start]
-        floor = min(CHUNK_SECONDS, first[start] / START_SHARE)
-        if not tail and floor > MIN_CHUNK_SECONDS and left / share < 2 * floor:
-            before = cum[start] - cum[bounds[-2]] if len(bounds) > 1 else CHUNK_SECONDS
-            tail = n_workers * max(1, int(left // (n_workers * floor)), int(np.ceil(left / (n_workers * before))))
-        if tail:
-            aim = max(MIN_CHUNK_SECONDS, left / tail)
-            tail = max(tail - 1, 1)
+        floor = min(CHUNK_SECONDS, dearest[start] / START_SHARE)
+        if edges is None and floor > MIN_CHUNK_SECONDS and left / share < 2 * floor:
+            # as many equal chunks as leave each at least the floor, none above the chunk before, a multiple of
+            # the workers counting the chunks cut so far (the last round of chunks gives each worker one)
+            count = n_workers * max(
+                1, int(left / (n_workers * floor) * (1 + 1e-9)), math.ceil(left / (n_workers * last_aim) * (1 - 1e-9))
+            )
+            over = (len(bounds) - 1 + count) % n_workers  # fewer and larger where the chunk before allows
+            count += -over if over and left / (count - over) <= last_aim * (1 + 1e-9) else -over % n_workers
+            edges = cum[start] + left * np.arange(1, count + 1) / count
+            edges[-1] = cum[-1]
+            step = left / count
+        if edges is not None:
+            aim = edges[int(np.searchsorted(edges, cum[start] + 1e-9 * step, side="right"))] - cum[start]
         else:
             aim = min(CHUNK_SECONDS, max(MIN_CHUNK_SECONDS, floor, left / share))
+            last_aim = aim
         # the first end whose chunk reaches the aim (a relative 1e-9 spares round-off a point)
         end = int(np.searchsorted(cum, cum[start] + aim * (1 - 1e-9), side="left"))
         end = min(max(end, start + 1), limit)

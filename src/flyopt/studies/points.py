@@ -191,9 +191,10 @@ def design_seconds(scene: Scene, points: pd.DataFrame, method: str = "auto") -> 
     the closed form, IPOPT on a bare wheel, IPOPT on a whole wheel (rim_web; rim_arms once per arm count it
     considers), or ``flyopt solve``'s design where the scene describes a shaft
     (:data:`~flyopt.studies.chunks.SECONDS_CLOSED_FORM` ... :data:`~flyopt.studies.chunks.SECONDS_DESCRIBED`).
-    A chunk's start: what its first point costs beyond the others, its whole wheels solved without a
-    neighbour's wheel to start from (:data:`~flyopt.studies.chunks.COLD_START_POINTS` of its designs; none for
-    the other designs, which start no warmer within a chunk).
+    A chunk's start: what its first point costs beyond the others, its NLPs solved without a neighbour's
+    wheel to start from (:data:`~flyopt.studies.chunks.COLD_START_POINTS` of its designs, as measured on whole
+    wheels: a bare wheel's NLP and a described shaft's designs warm-start within a chunk too); none for the
+    closed form, which has no start.
 
     Returns
     -------
@@ -211,7 +212,8 @@ def design_seconds(scene: Scene, points: pd.DataFrame, method: str = "auto") -> 
 
     per_point, ipopt = design_counts(scene, points, method)
     if describes_shafts(scene):
-        return np.full(len(points), per_point * SECONDS_DESCRIBED), np.zeros(len(points))
+        seconds = np.full(len(points), per_point * SECONDS_DESCRIBED)
+        return seconds, COLD_START_POINTS * seconds
     spec = design_inputs(scene).spec
     if "design.geometry" in points:
         geometry = points["design.geometry"].astype(str).to_numpy()
@@ -220,7 +222,7 @@ def design_seconds(scene: Scene, points: pd.DataFrame, method: str = "auto") -> 
     wheels = ipopt & np.isin(geometry, [str(Geometry.RIM_WEB), str(Geometry.RIM_ARMS)])
     whole = np.where(geometry == str(Geometry.RIM_ARMS), len(spec.arms), 1.0) * SECONDS_WHOLE_WHEEL
     seconds = per_point * np.where(wheels, whole, np.where(ipopt, SECONDS_IPOPT, SECONDS_CLOSED_FORM))
-    return seconds, np.where(wheels, COLD_START_POINTS * seconds, 0.0)
+    return seconds, np.where(ipopt, COLD_START_POINTS * seconds, 0.0)
 
 
 def vectorized(inputs: DesignInputs, geometry_name: str, objective: str) -> bool:
