@@ -164,6 +164,15 @@ class Analysis:
         return bool(self.requirement.detail.limit == "none")  # decided once, by the search (sizing.periodic)
 
     @property
+    def stall_limited(self) -> bool:
+        """Whether the flywheel is set by a stall, not by δ (the dynamic model): the smallest flywheel with a
+        periodic steady state keeps δ below the allowed value (``delta_reached``), so a change of the allowed δ
+        that keeps it above that does not move the flywheel."""
+        if self.requirement is None or self.requirement.model != Model.DYNAMIC:
+            return False
+        return bool(self.requirement.detail.limit == "stall")
+
+    @property
     def delta_reached(self) -> float:
         """δ of the speed extremes ``omega_max``/``omega_min`` [-]: the allowed δ where the flywheel the model
         sizes reaches it, the machine's own below it where no flywheel is needed and the dynamic model ran

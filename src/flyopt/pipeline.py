@@ -427,6 +427,15 @@ def _with_delta_sensitivity(
     best = result.best
     if best is None or scene.delta is None or analysis.machine is None and analysis.indicator is None:
         return result
+    step = delta_step(scene.delta)
+    if analysis.stall_limited:
+        # δ does not set the flywheel: re-solving at δ (1 +- DELTA_STEP) would locate the same stall limit twice
+        # more, each to its tolerance (STALL_RTOL), and difference that noise into a slope
+        sentence = (
+            f"delta: {{step}} (e.g. {scene.delta:.3g} to {scene.delta + step:.3g}) changes the mass by {{dmass}}: "
+            f"the flywheel is set by the stall limit, where δ reaches {analysis.delta_reached:.3g}"
+        )
+        return _with_sensitivity(result, sensitivity("delta", "-", 0.0, sentence, step))
     masses: list[float] = []
     for sign in (1.0, -1.0):
         delta = scene.delta * (1.0 + sign * DELTA_STEP)
@@ -464,7 +473,6 @@ def _with_delta_sensitivity(
             return result
         masses.append(again.best.mass)
     slope = (masses[0] - masses[1]) / (2.0 * DELTA_STEP * scene.delta)
-    step = delta_step(scene.delta)
     entry = sensitivity(
         "delta",
         "-",
@@ -473,10 +481,17 @@ def _with_delta_sensitivity(
         f"(central difference of the whole {'continuous ' if result.spec.round_to else ''}design)",
         step,
     )
-    limits = dataclasses.replace(best.limits, sensitivities=best.limits.sensitivities + (entry,))
-    winner = dataclasses.replace(best, limits=limits)
+    return _with_sensitivity(result, entry)
+
+
+def _with_sensitivity(result: DesignResult, entry: dict[str, Any]) -> DesignResult:
+    """The result with one more sensitivity on its winner (none: as it is)."""
+    best = result.best
+    if best is None:
+        return result
+    winner = replace(best, limits=replace(best.limits, sensitivities=best.limits.sensitivities + (entry,)))
     candidates = tuple(winner if c is best else c for c in result.candidates)
-    return dataclasses.replace(result, best=winner, candidates=candidates)
+    return replace(result, best=winner, candidates=candidates)
 
 
 def verify(

@@ -535,7 +535,7 @@ PLAIN_NUMBERS = [
     rf"{NUM} quadratic triangles",
     rf"(hub|web|arms|rim|disc)-(hub|web|arms|rim|disc) {NUM}",  # a junction's factor or section ratio
     rf"\(at most {NUM}\)",  # the section ratio castability allows
-    rf"δ +allowed {NUM}; (δ {NUM} by the periodic simulation|held by the inertia)",  # the answer's δ line
+    rf"δ +allowed {NUM}; (δ {NUM} by the periodic simulation|held by the inertia|δ {NUM} at the stall limit \(the smallest flywheel that runs steadily\))",  # the answer's δ line
     r"\(2V/A\)",  # the equivalent thickness the ratios compare
 ]
 

@@ -296,6 +296,8 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
     held = (
         f"δ {number(v.achieved_delta, digits)} by the periodic simulation ({'FLAGGED' if v.flagged else 'holds'})"
         if v is not None
+        else f"δ {number(r.delta_reached, digits)} at the stall limit (the smallest flywheel that runs steadily)"
+        if r.stall_limited
         else "held by the inertia"
     )
     lines.append(f"    δ       allowed {number(r.delta, digits)}; {held}")

@@ -485,8 +485,18 @@ def _periodic_speed_dependent(model, j_flywheel, omega_guess, j_ref):
             return None
         return float(y_end), float(dy)
 
+    def gain(e_ref):
+        """y(Φ) from E_ref without its sensitivity (a fifth of a shot's cost), or None where the cycle stalls."""
+        try:
+            y, stall = model.trajectory(j_flywheel, e_ref, w_s)
+        except SolverFailed:
+            return None
+        return None if stall > 0 else float(y[-1, -1])
+
     # First pass: find the speed, then rescale W_s to the swing and polish.
-    e_ref, iterations, status = _periodic_energy(shoot, e_guess, 1e-8, lambda: model.falls_with_speed(omega_guess))
+    e_ref, iterations, status = _periodic_energy(
+        shoot, e_guess, 1e-8, lambda: model.falls_with_speed(omega_guess), gain
+    )
     y, stall = model.trajectory(j_flywheel, e_ref, w_s)
     w_s, scaled_swing = _swing_scale(w_s, float(y.max() - y.min()), e_ref)
     tol = PERIODIC_RTOL
@@ -611,7 +621,7 @@ SCAN_STEPS = 49
 """Speeds tried on each side of the guess (2 % apart) when Newton finds no energy gain."""
 
 
-def _periodic_energy(shoot, e0, ftol, monotone=lambda: False):
+def _periodic_energy(shoot, e0, ftol, monotone=lambda: False, gain_at=None):
     """The energy at φ = 0 of a stable periodic solution, near the guess ``e0``.
 
     Newton (:func:`_newton_energy`) is global when the energy gained over a
@@ -623,10 +633,18 @@ def _periodic_energy(shoot, e0, ftol, monotone=lambda: False):
     energy and the torque is not ``monotone()`` (falling with speed), speeds
     2 %, 4 %, … above and below the guess are tried in turn;
     the first that gains, with the nearest speed above it that loses,
-    brackets the stable solution for Newton.
+    brackets the stable solution for Newton. The scan reads only the energy
+    gained, from ``gain_at(E_ref)`` (None where the cycle stalls; by default
+    the shot's first value), which need not integrate the sensitivities.
     """
+    if gain_at is None:
+
+        def gain_at(e):
+            r = shoot(e)
+            return None if r is None else r[0]
+
     try:
-        return _newton_energy(shoot, e0, ftol)
+        return _newton_energy(shoot, e0, ftol, gain_at=gain_at)
     except _NoGain as err:
         failure = SolverFailed(str(err))
     if monotone():
@@ -638,8 +656,8 @@ def _periodic_energy(shoot, e0, ftol, monotone=lambda: False):
         nonlocal count
         count += 1
         e = e0 * (1 + 0.02 * k) ** 2
-        r = shoot(e) if e > 0 else None
-        return -math.inf if r is None else r[0]
+        r = gain_at(e) if e > 0 else None
+        return -math.inf if r is None else r
 
     def bracket_from(k):
         """Newton in the bracket from a gaining speed k to the nearest losing speed above it."""
@@ -653,48 +671,85 @@ def _periodic_energy(shoot, e0, ftol, monotone=lambda: False):
 
     ks = np.arange(-SCAN_STEPS, SCAN_STEPS + 1)
     values = np.full(len(ks), -math.inf)
+    maximized: set[int] = set()
+
+    def peak_gains(j):
+        """Whether the gain peaks above zero within a step of speed k[j] (a band narrower than the step)."""
+        from flyopt.cycle.minimize import bounded_minimum  # scipy's, ported: scipy.optimize costs ~0.3 s to import
+
+        maximized.add(j)
+        res = bounded_minimum(lambda k: -max(gain(k), -1e100), ks[j] - 1, ks[j] + 1, xatol=1e-6, maxiter=60)
+        return float(res.x) if -res.fun > 0 else None
+
     for j in sorted(range(len(ks)), key=lambda i: abs(ks[i])):
-        if ks[j] == 0:
-            continue
         values[j] = gain(ks[j])
         if values[j] > 0:
             return bracket_from(float(ks[j]))
+        if ks[j] == 1:
+            # the guess (the speed of a flywheel near this one, in a search) is a peak: a band of gain
+            # around it, narrower than the step, is the likeliest (near a fold, where the orbit is lost)
+            middle = SCAN_STEPS
+            if values[middle] >= max(values[middle - 1], values[middle + 1]) and np.isfinite(values[middle]):
+                at = peak_gains(middle)
+                if at is not None:
+                    return bracket_from(at)
     # A band narrower than the scan step: maximize the gain around the best local maxima.
     finite = np.isfinite(values)
     peaks = [
-        j for j in range(1, len(ks) - 1) if finite[j] and values[j] >= values[j - 1] and values[j] >= values[j + 1]
+        j
+        for j in range(1, len(ks) - 1)
+        if finite[j] and values[j] >= values[j - 1] and values[j] >= values[j + 1] and j not in maximized
     ]
-    for j in sorted(peaks, key=lambda i: -values[i])[:3]:
-        from flyopt.cycle.minimize import bounded_minimum  # scipy's, ported: scipy.optimize costs ~0.3 s to import
-
-        res = bounded_minimum(lambda k: -max(gain(k), -1e100), ks[j] - 1, ks[j] + 1, xatol=1e-6, maxiter=60)
-        if -res.fun > 0:
-            return bracket_from(float(res.x))
+    for j in sorted(peaks, key=lambda i: -values[i])[: 3 - len(maximized)]:
+        at = peak_gains(j)
+        if at is not None:
+            return bracket_from(at)
     raise failure
 
 
-def _newton_energy(shoot, e0, ftol, bracket=(0.0, math.inf)):
+NARROW = 1e-3
+"""Relative width of a bracket between a stall and a loss of energy below which :func:`_newton_energy` bisects
+it on the energy gained alone (``gain_at``)."""
+
+
+def _newton_energy(shoot, e0, ftol, bracket=(0.0, math.inf), gain_at=None):
     """Safeguarded Newton on y(Φ; E_ref) = 0 for the energy E_ref at φ = 0.
 
     y(Φ) > 0 (or a stall, where the speed reaches zero) means the machine
     gains energy over the cycle: the periodic energy is higher. The iterate
     stays inside the bracket of the sign change once one is known, and
     expands by factors of 4 in energy (2 in speed) until then.
+
+    A bracket between a stall and a loss, with no gain seen, is bisected
+    toward the stall's edge, where a narrow band of gain may lie (a machine
+    that barely passes its load). Once it is narrower than :data:`NARROW`,
+    its trials read only the energy gained, from ``gain_at(E_ref)`` (None:
+    a stall), which needs no sensitivity (a fifth of a shot's cost); a trial
+    that does not clearly lose is shot in full.
     """
     lo, hi = bracket
     e = e0
     last = None
     gains = False  # whether any trial gained energy over the cycle
+    lo_stalls = False  # whether lo is a stall
     for it in range(1, MAX_NEWTON + 1):
+        if gain_at is not None and lo_stalls and not gains and math.isfinite(hi) and hi - lo <= NARROW * hi:
+            probe = gain_at(e)
+            if probe is None or probe < -ftol:
+                lo, lo_stalls, hi = (e, True, hi) if probe is None else (lo, lo_stalls, e)
+                if (hi - lo) <= 1e-12 * hi:
+                    break
+                e = math.sqrt(lo * hi)
+                continue
         r = shoot(e)
         if r is None:  # stalls: the energy is too low
-            lo = max(lo, e)
+            lo, lo_stalls = max(lo, e), lo_stalls or e >= lo
             e_next = 4 * e if math.isinf(hi) else math.sqrt(lo * hi) if lo > 0 else 0.5 * hi
         else:
             f, df = r
             last = f
             if f > 0:
-                lo = max(lo, e)
+                lo, lo_stalls = max(lo, e), False
                 gains = True
             elif f < 0:
                 hi = min(hi, e)
@@ -879,6 +934,8 @@ def dynamic_requirement(
     lo, hi = -math.inf, math.inf  # u where δ is too large (or no steady state) / small enough
     lo_failed = False  # whether lo is a flywheel without a periodic steady state
     hi_solution = None
+    stable: list[tuple[float, float]] = []  # (u, 1 − multiplier) of each new hi
+    guided, fold = 0, None  # trials in a row aimed at the fold by _toward_fold, its last estimate
     previous = None
     guess = omega_mean
     failure = None
@@ -898,7 +955,9 @@ def dynamic_requirement(
                 lo, lo_failed = u, True
             u_next = u + 1.0 if math.isinf(hi) else 0.5 * (lo + hi)
         else:
-            guess = sol.omega_mean
+            # a motor's next trial starts from this orbit's speed at φ = 0, where its energy is asked for (its
+            # mean speed lies off the orbit's energy there by up to δ); a prescribed mean speed stays as it is
+            guess = float(sol.omega[0]) if model.speed_dependent and not model.balanced else sol.omega_mean
             f = math.log(sol.delta) - target
             if abs(f) <= rtol:
                 found = DynamicRequirement(
@@ -909,6 +968,7 @@ def dynamic_requirement(
                 lo, lo_failed = u, False
             elif f < 0 and u < hi:
                 hi, hi_solution = u, sol
+                stable.append((u, 1.0 - sol.multiplier))
             if previous is not None and previous[0] != u and previous[1] != f:
                 slope = (f - previous[1]) / (u - previous[0])
             else:
@@ -920,6 +980,10 @@ def dynamic_requirement(
                     u_next = 0.5 * (lo + hi)
                 else:
                     u_next = u + (2.0 if f > 0 else -2.0)
+        if lo_failed and math.isfinite(hi) and hi - lo > STALL_RTOL:
+            aim, fold = _toward_fold(lo, hi, stable, guided, fold)
+            guided = guided + 1 if aim is not None else 0
+            u_next = u_next if aim is None else aim
         if math.isfinite(lo) and math.isfinite(hi) and lo_failed and hi - lo <= STALL_RTOL:
             # δ stays below the allowed value down to where the steady state ceases to exist
             found = DynamicRequirement(
@@ -949,6 +1013,59 @@ def dynamic_requirement(
         f"(bracket J_F in [{math.exp(lo) - j_low:.6g}, {math.exp(hi) - j_low:.6g}] kg*m^2; "
         f"last failure: {failure})"
     )
+
+
+FOLD_AIM = 0.3
+"""Where :func:`_toward_fold` aims beside the fold it estimates, in parts of :data:`STALL_RTOL`."""
+
+
+MAX_GUIDED = 6
+"""Trials in a row :func:`_toward_fold` may aim before the search bisects once."""
+
+
+def _toward_fold(lo, hi, stable, guided, previous):
+    """(The next trial u = log(J_F + min J_e) toward a stall limit or None (bisect), the fold estimated).
+
+    Between a flywheel that has no periodic steady state (``lo``) and the smallest that has one (``hi``),
+    the steady state is lost at a fold u*, where it meets the unstable one: its Floquet multiplier m tends
+    to 1 like the square root of the distance, 1 − m = a s + b s² with s = √(u − u*). The three smallest
+    flywheels that ran (``stable``: (u, 1 − m) of each new hi) give a, b and u* (u* where the curve through
+    two of them meets the third). Such an estimate from flywheels far from the fold falls short of it, and a
+    trial that stalls costs more than one that runs (the search for a gain at every speed): the trial aims
+    above u* (expected to run, and to sharpen u*) by twice the estimate's change from the ``previous`` one,
+    at most halfway to hi, and once hi is within 2 :data:`FOLD_AIM` of :data:`STALL_RTOL` above u*, FOLD_AIM
+    of it below u* (expected to stall: the bracket then closes), where bisection takes a trial for each
+    halving. After :data:`MAX_GUIDED` trials in a row it bisects once, so a limit that is not a fold (a
+    torque that steps) is still bracketed.
+    """
+    if len(stable) < 3 or guided >= MAX_GUIDED:
+        return None, previous
+    (u1, g1), (u2, g2), (u3, g3) = stable[-3:]  # u1 > u2 > u3 = hi
+
+    def mismatch(fold):
+        """The third point's 1 − m less that of the curve through the first two, with the fold at ``fold``."""
+        s1, s2, s3 = (math.sqrt(u - fold) for u in (u1, u2, u3))
+        det = s1 * s2 * s2 - s2 * s1 * s1
+        if det == 0:
+            return math.nan
+        a = (g1 * s2 * s2 - g2 * s1 * s1) / det
+        b = (s1 * g2 - s2 * g1) / det
+        return a * s3 + b * s3 * s3 - g3
+
+    low = lo if math.isfinite(lo) else u3 - 1.0
+    f_low, f_high = mismatch(low), mismatch(u3)
+    if not (math.isfinite(f_low) and math.isfinite(f_high) and f_low * f_high < 0):
+        return None, previous
+    from flyopt.cycle.numerics import brentq  # scipy's, ported: scipy.optimize costs ~0.3 s to import
+
+    fold = brentq(mismatch, low, u3, xtol=1e-3 * STALL_RTOL)
+    if hi - fold <= 2 * FOLD_AIM * STALL_RTOL:
+        aim = fold - FOLD_AIM * STALL_RTOL
+    else:
+        # above the fold by twice the estimate's last change (its error), at most halfway to hi
+        change = abs(fold - previous) if previous is not None else math.inf
+        aim = fold + min(0.5 * (hi - fold), max(2 * change, 2 * FOLD_AIM * STALL_RTOL))
+    return (aim if lo < aim < hi else None), fold
 
 
 def _held_by_balance(

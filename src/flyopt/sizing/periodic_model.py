@@ -59,6 +59,12 @@ RELTOL = 1e-11
 ABSTOL = 1e-12
 """CVODES tolerances on the scaled energy y = (E − E_ref)/W_s, of order one."""
 
+STILL = 1e-6
+"""The speed, in parts of the cycle's starting speed √(2 E_ref/J), below which the torques are read at it: a
+machine that slow has stalled (a periodic speed that low would have δ within 2e-6 of 2). Below it ω = √(2E/J)
+would make the torque's slope in E, ∂M/∂ω / (J ω), grow without bound where a cycle that stalls grazes zero
+energy, and CVODES's sensitivities of it shrink their steps to its limit (10 s a cycle) before they give up."""
+
 
 class PeriodicModel:
     """The equation of motion of one machine, built once for CasADi.
@@ -183,7 +189,7 @@ class PeriodicModel:
         phi_torque = a + tau_torque * h
         j = self.inertia.casadi(phi) + j_f
         energy = e_ref + w_s * x[0]
-        omega = ca.sqrt(ca.fmax(2 * energy / j, 1e-300))
+        omega = ca.sqrt(ca.fmax(2 * energy / j, STILL**2 * 2 * e_ref / j + 1e-300))  # a start-up's E_ref is 0
         torque = self.torque_function(phi_torque, omega, *theta) + (m_a + (m_b - m_a) * tau_torque) + c
         ode = [h * torque / w_s, h * ca.fmax(-energy / w_s, 0)]
         if with_time:

@@ -1,0 +1,192 @@
+"""A motor press whose flywheel is set by a stall: the search is bounded, and its answer checked independently.
+
+The scene (from an audit of 36 Kloss-motor presses): a 5 kW induction motor on its Kloss curve drives a crank
+24 times slower against a load pulse of 4300 N*m that its breakdown torque (1273 N*m at the crank) cannot
+carry; the flywheel must carry the pulse. Below about 217.5 kg*m^2 no periodic steady state exists (the motor
+breaks down and the machine stalls), and there δ is about 0.50, below the allowed 0.6: the flywheel is set by
+the stall. Before: the solve took 2,225 s. CVODES's sensitivities of a cycle that grazes zero energy (the
+speed falling to nothing at the cycle's end) shrank their steps to the limit, 10 s a shot, on the many shots
+that locate the edge of the stall; each flywheel the search tried computed sensitivities it never read; each
+trial started from the orbit's mean speed, not its speed where the energy is asked for, and missed the narrow
+band where it gains; the search bisected toward the stall limit; and the δ sensitivity solved it all twice
+more, to difference the stall limit's own tolerance into a slope.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import flyopt
+from flyopt.machine.reduce import reduce
+from flyopt.report.text import answer_report
+from flyopt.sizing import periodic
+from flyopt.sizing.periodic import FOLD_AIM, STALL_RTOL, _toward_fold
+from flyopt.sizing.periodic_model import periodic_model
+
+SCENE = """
+title = "a press whose flywheel is set by a stall"
+[machine]
+speed = "60 rpm"
+delta = 0.6
+inertia = "5.0 kg*m^2"
+[torque.driving]
+motor = { kind = "induction", rated_power = "5.0 kW", rated_speed = "1440 rpm", synchronous_speed = "1500 rpm", breakdown_ratio = 1.6, model = "kloss", shaft = "motor" }
+[torque.resisting]
+expression = "300 + 4000*max(0, sin(phi))**6"
+unit = "N*m"
+[[shaft]]
+name = "crank"
+speed_ratio = 1.0
+[[shaft]]
+name = "motor"
+speed_ratio = 24.0
+"""
+
+RATIO, J_MACHINE = 24.0, 5.0
+
+
+def crank_torque(omega, phi):
+    """M_d − M_r at the crank [N*m], written here from the textbook laws (not flyopt's): the Kloss curve
+    M = 2 M_b / (s/s_b + s_b/s), M_b = 1.6 P/ω_n, s_b = s_n (k + √(k² − 1)), times the ratio."""
+    w_s, w_n = 1500 * math.pi / 30, 1440 * math.pi / 30
+    s_n, k = 1 - w_n / w_s, 1.6
+    m_b, s_b = k * 5000.0 / w_n, s_n * (k + math.sqrt(k * k - 1))
+    s = 1 - RATIO * omega / w_s
+    motor = 2 * m_b / (s / s_b + s_b / s) if s != 0 else 0.0
+    return RATIO * motor - (300 + 4000 * max(0.0, math.sin(phi)) ** 6)
+
+
+def test_a_shot_that_grazes_zero_energy_returns_at_once(write_scene):
+    # The flywheel the energy method asks for (114 kg*m^2) stalls from every speed; the search for a
+    # steady state shoots ever closer to the energy below which the cycle ends at zero speed. Just below it
+    # the energy dips under zero by a few joules at the cycle's end: CVODES gave up there with
+    # CV_TOO_MUCH_WORK after 200,000 steps (10 s a shot). Now the torques are read at no less than 1e-6 of
+    # the cycle's starting speed, and the shot returns its stall.
+    machine = reduce(flyopt.load(write_scene(SCENE)))
+    model = periodic_model(machine.net_torque(), machine.j_machine, machine.cycle_angle, machine.knots())
+    j_f, w_s = 114.05316741246244, model.work_scale(2 * math.pi)
+
+    def stalls(e):
+        return model.trajectory(j_f, e, w_s)[1] > 0
+
+    low, high = 5000.0, 5014.04  # a stall, and a cycle that ends above zero energy
+    assert stalls(low) and not stalls(high)
+    for _ in range(60):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if stalls(middle) else (low, middle)
+    for below in (0.4, 0.1, 0.02, 0.005):  # the energies CVODES gave up on: 0.4-0.01 J below the edge
+        y_end, stall, slope = model.shoot(j_f, low - below, w_s)
+        assert stall > 0
+        assert math.isfinite(slope)
+        # it lost all its energy: it ends at zero speed, within the few joules it dipped below it
+        assert abs(low - below + w_s * y_end) < 50.0
+
+
+def _sqrt_law(fold, a, b):
+    return lambda u: a * math.sqrt(u - fold) + b * (u - fold)
+
+
+@pytest.mark.parametrize("a, b", [(2.0, 0.0), (1.5, -3.0), (0.8, 4.0)])
+def test_the_fold_is_estimated_from_three_flywheels_that_run(a, b):
+    # Near a fold the stable orbit's 1 − m goes like a √(u − u*) + b (u − u*): three points of that law give u*
+    # exactly, whatever a and b (the closed form is the test), to the root-finder's tolerance (1e-3 STALL_RTOL).
+    tol = 1e-3 * STALL_RTOL
+    fold = 5.4321
+    law = _sqrt_law(fold, a, b)
+    stable = [(u, law(u)) for u in (fold + 0.08, fold + 0.03, fold + 0.01)]
+    lo, hi = fold - 0.05, stable[-1][0]
+    aim, estimate = _toward_fold(lo, hi, stable, 0, None)
+    assert estimate == pytest.approx(fold, abs=tol)
+    # hi far above the fold: the trial aims above it (expected to run), at most halfway to hi
+    assert estimate < aim <= 0.5 * (estimate + hi)
+    # the estimate's change from the last one sets how far above: twice it, no closer than 2 FOLD_AIM
+    aim, _ = _toward_fold(lo, hi, stable, 0, fold + 1e-3)
+    assert aim == pytest.approx(fold + 2e-3, abs=3 * tol)
+    # hi within 2 FOLD_AIM of STALL_RTOL above the fold: the trial aims FOLD_AIM below it (expected to stall)
+    near = [*stable, (fold + 0.5 * FOLD_AIM * STALL_RTOL, law(fold + 0.5 * FOLD_AIM * STALL_RTOL))]
+    aim, estimate = _toward_fold(lo, near[-1][0], near, 0, None)
+    assert aim == pytest.approx(fold - FOLD_AIM * STALL_RTOL, abs=tol)
+    # fewer than three points, or too many guided trials in a row: bisect
+    assert _toward_fold(lo, hi, stable[:2], 0, None)[0] is None
+    assert _toward_fold(lo, hi, stable, periodic.MAX_GUIDED, None)[0] is None
+
+
+def test_a_fold_that_is_not_one_is_bisected():
+    # A multiplier that does not tend to 1 (a torque that steps): no fold lies between lo and hi, and the
+    # estimate leaves it to bisection
+    stable = [(3.0, 0.5), (2.0, 0.5), (1.0, 0.5)]
+    assert _toward_fold(0.5, 1.0, stable, 0, None)[0] is None
+
+
+@pytest.mark.slow
+def test_the_stall_limited_press_is_solved_once_and_checked_by_simulation(write_scene, monkeypatch):
+    """(~20 s) The whole solve: one search for the flywheel (the δ sensitivity is zero without solving it
+    again), far fewer flywheels tried than bisection needs, and the limit checked by scipy's integration of
+    the textbook laws: at 0.99 of the reported total inertia the speed collapses from the periodic state, at
+    the reported one it stays on an orbit whose δ is flyopt's."""
+    calls = []
+    search = periodic.dynamic_requirement
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        return search(*args, **kwargs)
+
+    monkeypatch.setattr(periodic, "dynamic_requirement", counted)
+    result = flyopt.solve(flyopt.load(write_scene(SCENE)))
+    need = result.analysis.requirement.detail
+    assert need.limit == "stall" and len(calls) == 1
+    assert need.iterations <= 14  # bisection toward the limit took 17 flywheels
+    assert need.solution.delta < 0.6
+    (entry,) = [s for s in result.design.best.limits.sensitivities if s["limit"] == "delta"]
+    assert entry["dmass_dlimit"] == 0.0 and "stall limit" in entry["sentence"]
+    answer = "\n".join(answer_report(result))
+    assert f"δ       allowed 0.6; δ {need.solution.delta:.4g} at the stall limit" in answer
+
+    j_total = need.j_required + J_MACHINE
+    omega0 = float(need.solution.omega[0])
+
+    def rhs(_, state, j):
+        phi, omega = state
+        return [omega, crank_torque(omega, phi) / j]
+
+    def run(j, omega, cycles):
+        """(ω at each cycle's start, δ of the last cycle or None where the speed fell to 1 % of the orbit's),
+        from φ = 0 at speed ``omega``; δ from the dense output at 20,001 instants of the last cycle."""
+        starts, speeds = [omega], None
+        state = [0.0, omega]
+
+        def through(t, s, j):
+            return s[0] - 2 * math.pi
+
+        through.terminal, through.direction = True, 1
+
+        def stopped(t, s, j):
+            return s[1] - 0.01 * omega0
+
+        stopped.terminal = True
+        for _ in range(cycles):
+            sol = solve_ivp(
+                rhs,
+                (0, 60),
+                state,
+                args=(j,),
+                events=(through, stopped),
+                rtol=1e-11,
+                atol=1e-12,
+                method="DOP853",
+                dense_output=True,
+            )
+            if sol.t_events[1].size:
+                return starts, None
+            state = [0.0, float(sol.y_events[0][0][1])]
+            starts.append(state[1])
+            speeds = sol.sol(np.linspace(0.0, float(sol.t_events[0][0]), 20001))[1]
+        return starts, (speeds.max() - speeds.min()) / (0.5 * (speeds.max() + speeds.min()))
+
+    starts, delta = run(j_total, omega0, 3)
+    assert delta is not None and abs(starts[-1] / omega0 - 1) < 1e-6
+    assert delta == pytest.approx(need.solution.delta, rel=1e-4)
+    collapsed, delta = run(0.99 * j_total, omega0, 200)
+    assert delta is None, f"at 0.99 J the speed did not collapse in 200 cycles: {collapsed[-3:]}"
