@@ -428,9 +428,10 @@ def _with_delta_sensitivity(
     if best is None or scene.delta is None or analysis.machine is None and analysis.indicator is None:
         return result
     step = delta_step(scene.delta)
-    if analysis.stall_limited:
-        # δ does not set the flywheel: re-solving at δ (1 +- DELTA_STEP) would locate the same stall limit twice
-        # more, each to its tolerance (STALL_RTOL), and difference that noise into a slope
+    if analysis.stall_limited and analysis.delta_reached < scene.delta * (1.0 - DELTA_STEP):
+        # δ does not set the flywheel, on either side of the step: re-solving at δ (1 +- DELTA_STEP) would locate
+        # the same stall limit twice more, each to its tolerance (STALL_RTOL), and difference that noise into a
+        # slope
         sentence = (
             f"delta: {{step}} (e.g. {scene.delta:.3g} to {scene.delta + step:.3g}) changes the mass by {{dmass}}: "
             f"the flywheel is set by the stall limit, where δ reaches {analysis.delta_reached:.3g}"

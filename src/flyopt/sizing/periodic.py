@@ -82,7 +82,8 @@ VANISHING_INERTIA = 1e-9
 first estimate): δ below the allowed value there means that no flywheel is needed."""
 
 STALL_RTOL = 1e-4
-"""Relative width in J_F to which a stall limit (see :class:`DynamicRequirement`) is located."""
+"""Relative width of the total inertia J_F + min J_e (the width in u, its logarithm) to which a stall limit (see
+:class:`DynamicRequirement`) is located."""
 
 MEAN_TARGET = 1e-13
 MEAN_RTOL = 1e-10
@@ -700,7 +701,7 @@ def _periodic_energy(shoot, e0, ftol, monotone=lambda: False, gain_at=None):
         for j in range(1, len(ks) - 1)
         if finite[j] and values[j] >= values[j - 1] and values[j] >= values[j + 1] and j not in maximized
     ]
-    for j in sorted(peaks, key=lambda i: -values[i])[: 3 - len(maximized)]:
+    for j in sorted(peaks, key=lambda i: -values[i])[:3]:
         at = peak_gains(j)
         if at is not None:
             return bracket_from(at)
@@ -936,6 +937,7 @@ def dynamic_requirement(
     hi_solution = None
     stable: list[tuple[float, float]] = []  # (u, 1 − multiplier) of each new hi
     guided, fold = 0, None  # trials in a row aimed at the fold by _toward_fold, its last estimate
+    secant = False  # whether the last trial's secant on δ stepped inside the bracket
     previous = None
     guess = omega_mean
     failure = None
@@ -975,12 +977,15 @@ def dynamic_requirement(
                 slope = -math.exp(u) / (math.exp(u) + max(j_mean - j_low, 0.0))
             previous = (u, f)
             u_next = u - f / slope if slope < 0 else math.nan
-            if not (math.isfinite(u_next) and lo < u_next < hi):
+            secant = math.isfinite(u_next) and lo < u_next < hi
+            if not secant:
                 if math.isfinite(lo) and math.isfinite(hi):
                     u_next = 0.5 * (lo + hi)
                 else:
                     u_next = u + (2.0 if f > 0 else -2.0)
-        if lo_failed and math.isfinite(hi) and hi - lo > STALL_RTOL:
+        if lo_failed and math.isfinite(hi) and hi - lo > STALL_RTOL and (sol is None or not secant):
+            # toward the fold where the secant on δ has no step inside the bracket (δ's crossing lies in the
+            # stall, or is not bracketed) or the last trial stalled
             aim, fold = _toward_fold(lo, hi, stable, guided, fold)
             guided = guided + 1 if aim is not None else 0
             u_next = u_next if aim is None else aim

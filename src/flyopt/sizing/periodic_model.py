@@ -189,7 +189,7 @@ class PeriodicModel:
         phi_torque = a + tau_torque * h
         j = self.inertia.casadi(phi) + j_f
         energy = e_ref + w_s * x[0]
-        omega = ca.sqrt(ca.fmax(2 * energy / j, STILL**2 * 2 * e_ref / j + 1e-300))  # a start-up's E_ref is 0
+        omega = ca.sqrt(ca.fmax(2 * energy / j, ca.fmax(STILL**2 * 2 * e_ref / j, 0) + 1e-300))  # a start-up's E_ref: 0
         torque = self.torque_function(phi_torque, omega, *theta) + (m_a + (m_b - m_a) * tau_torque) + c
         ode = [h * torque / w_s, h * ca.fmax(-energy / w_s, 0)]
         if with_time:
