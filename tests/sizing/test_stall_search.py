@@ -255,3 +255,54 @@ def test_a_delta_reached_just_above_a_stall_is_found_by_the_secant(write_scene, 
     monkeypatch.setattr(periodic, "MAX_GUIDED", 0)
     _, unguided = _searched(write_scene, monkeypatch, law, 222.5)
     assert len(trials) <= len(unguided), (len(trials), len(unguided))
+
+
+WEAK = """
+title = "a DC motor too weak for its load at any speed"
+[machine]
+speed = "60 rpm"
+delta = 0.6
+inertia = "5.0 kg*m^2"
+[torque.driving]
+motor = { kind = "dc", no_load_speed = "1600 rpm", stall_torque = "80.0 N*m", shaft = "motor" }
+[torque.resisting]
+expression = "300 + 1500*exp(-omega/3) + 2000*max(0, sin(phi))**4"
+unit = "N*m"
+[[shaft]]
+name = "crank"
+speed_ratio = 1.0
+[[shaft]]
+name = "motor"
+speed_ratio = 24.0
+"""
+
+
+def _weak_best_work():
+    """The closed form: at the crank M_d = 1920 (1 − ω/ω_0), ω_0 = 1600 rpm / 24; M_d − 1500 e^(−ω/3) is largest
+    at ω* = 3 ln(500 ω_0/1920), where its slope is zero; the pulse's ∫ sin⁴ over its half turn is 3π/8.
+    W = 2π (M_d(ω*) − 1500 e^(−ω*/3) − 300) − 2000 · 3π/8."""
+    w0 = 1600 * math.pi / 30 / 24
+    best = 3 * math.log(500 * w0 / 1920)  # d/dω (1920 (1 − ω/ω_0) − 1500 e^(−ω/3)) = 0
+    top = 1920 * (1 - best / w0) - 1500 * math.exp(-best / 3)
+    return 2 * math.pi * (top - 300) - 2000 * 3 * math.pi / 8
+
+
+def test_the_drives_best_work_over_the_cycle_bounds_its_closed_form(write_scene):
+    # No periodic state can exist where even each angle's most favourable torque does not balance the cycle:
+    # W = ∮ max_ω M dφ < 0 (−460 J here). flyopt's grid of speeds (step Δω) with its slope margin bounds the
+    # closed form from above (a bound must not miss the best speed), by no more than the margin, half a step
+    # times a slope within two steps of the best speed: 2π Δω² max|M''| over the turn (M'' = 1500/9 e^(−ω/3)).
+    machine = reduce(flyopt.load(write_scene(WEAK)))
+    model = periodic_model(machine.net_torque(), machine.j_machine, machine.cycle_angle, machine.knots())
+    work, (low, top) = periodic._best_work(model, 2 * math.pi)
+    exact = _weak_best_work()
+    assert exact < -450 and (low, top) == (0.0, 8 * math.pi)
+    step = top / (periodic.RUN_SPEEDS - 1)
+    assert exact <= work <= exact + 2 * math.pi * step**2 * 1500 / 9, (work, exact)
+
+
+@pytest.mark.slow
+def test_a_drive_too_weak_at_any_speed_is_refused_at_once(write_scene):
+    """(~4 s) It took 80 flywheels up to 1e36 kg*m^2 (1,620 s) and said only that none was found."""
+    with pytest.raises(periodic.SolverFailed, match=r"no flywheel gives a periodic steady state: .* J short"):
+        flyopt.analyse(flyopt.load(write_scene(WEAK)))

@@ -938,6 +938,7 @@ def dynamic_requirement(
     stable: list[tuple[float, float]] = []  # (u, 1 − multiplier) of each new hi
     guided, fold = 0, None  # trials in a row aimed at the fold by _toward_fold, its last estimate
     secant = False  # whether the last trial's secant on δ stepped inside the bracket
+    checked = False  # whether the drive's best work over the cycle was asked (_best_work)
     previous = None
     guess = omega_mean
     failure = None
@@ -953,6 +954,16 @@ def dynamic_requirement(
             )
             return _as_fitted(model, found, j_low)
         if sol is None:
+            if math.isinf(hi) and not checked:
+                # no flywheel has run yet: is there any speed at which the drive can make up the load's work?
+                checked = True
+                work, (_, top) = _best_work(model, omega_mean)
+                if work < 0:
+                    raise SolverFailed(
+                        f"no flywheel gives a periodic steady state: even at the most favourable speed at each "
+                        f"angle (0 to {top:.4g} rad/s) the drive falls {-work:.4g} J short of the load's work over "
+                        f"the cycle; a flywheel only evens the speed out: a stronger drive is needed"
+                    )
             if u > lo:
                 lo, lo_failed = u, True
             u_next = u + 1.0 if math.isinf(hi) else 0.5 * (lo + hi)
@@ -1018,6 +1029,30 @@ def dynamic_requirement(
         f"(bracket J_F in [{math.exp(lo) - j_low:.6g}, {math.exp(hi) - j_low:.6g}] kg*m^2; "
         f"last failure: {failure})"
     )
+
+
+RUN_SPEEDS = 257
+"""Speeds from 0 to 4 ω at which :func:`_best_work` reads each angle's most favourable torque."""
+
+
+def _best_work(model, omega):
+    """(W, speeds): the work over the cycle of the most favourable net torque at each angle, the largest of
+    M(φ, ω') over speeds ω' in [0, 4 ω] (:data:`RUN_SPEEDS` of them) [J], and the speeds' range.
+
+    A periodic steady state with any inertia returns to its energy, ∮ M(φ, ω(φ)) dφ = 0, so W >= 0 for every
+    one whose speed stays in that range: W < 0 means the drive cannot make up the load's work at any speed,
+    whatever the flywheel. Between two speeds of the grid the torque may rise by up to half the step times the
+    larger of its slopes at them, which is added (the maximum of a smooth torque between grid points).
+    """
+    speeds = np.linspace(0.0, 4.0 * omega, RUN_SPEEDS)
+    phi = model.inner_angles[..., None]
+    m = model.torque(phi, speeds)
+    slope = np.abs(model.torque_slope(phi, speeds)) if model.speed_dependent else np.zeros_like(m)
+    step = speeds[1] - speeds[0]
+    rise = 0.5 * step * np.maximum(slope[..., 1:], slope[..., :-1])
+    best = np.maximum(m.max(axis=-1), (np.maximum(m[..., 1:], m[..., :-1]) + rise).max(axis=-1))
+    h = np.diff(model.grid_angles(), axis=1)
+    return float(np.sum(0.5 * (best[:, 1:] + best[:, :-1]) * h)), (0.0, 4.0 * omega)
 
 
 FOLD_AIM = 0.3
