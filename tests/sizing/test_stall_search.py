@@ -287,7 +287,7 @@ def _weak_best_work():
     return 2 * math.pi * (top - 300) - 2000 * 3 * math.pi / 8
 
 
-def test_the_drives_best_work_over_the_cycle_bounds_its_closed_form(write_scene):
+def test_the_drives_best_work_over_the_cycle_bounds_its_closed_form(write_scene, monkeypatch):
     # No periodic state can exist where even each angle's most favourable torque does not balance the cycle:
     # W = ∮ max_ω M dφ < 0 (−460 J here). flyopt's grid of speeds (step Δω) with its slope margin bounds the
     # closed form from above (a bound must not miss the best speed), by no more than the margin, half a step
@@ -299,6 +299,9 @@ def test_the_drives_best_work_over_the_cycle_bounds_its_closed_form(write_scene)
     assert exact < -450 and (low, top) == (0.0, 8 * math.pi)
     step = top / (periodic.RUN_SPEEDS - 1)
     assert exact <= work <= exact + 2 * math.pi * step**2 * 1500 / 9, (work, exact)
+    # read a few pieces at a time (a long table's grid), the same work
+    monkeypatch.setattr(periodic, "BEST_WORK_VALUES", 3 * model.inner_angles.shape[1] * periodic.RUN_SPEEDS)
+    assert periodic._best_work(model, 2 * math.pi)[0] == pytest.approx(work, rel=1e-14)
 
 
 @pytest.mark.slow

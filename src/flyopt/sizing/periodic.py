@@ -1034,6 +1034,10 @@ def dynamic_requirement(
 RUN_SPEEDS = 257
 """Speeds from 0 to 4 ω at which :func:`_best_work` reads each angle's most favourable torque."""
 
+BEST_WORK_VALUES = 2**20
+"""Torques :func:`_best_work` evaluates at a time (angles × speeds), so that a table of many points (up to
+2**17 outputs a cycle) does not hold 33 million of them at once."""
+
 
 def _best_work(model, omega):
     """(W, speeds): the work over the cycle of the most favourable net torque at each angle, the largest of
@@ -1045,12 +1049,16 @@ def _best_work(model, omega):
     larger of its slopes at them, which is added (the maximum of a smooth torque between grid points).
     """
     speeds = np.linspace(0.0, 4.0 * omega, RUN_SPEEDS)
-    phi = model.inner_angles[..., None]
-    m = model.torque(phi, speeds)
-    slope = np.abs(model.torque_slope(phi, speeds)) if model.speed_dependent else np.zeros_like(m)
     step = speeds[1] - speeds[0]
-    rise = 0.5 * step * np.maximum(slope[..., 1:], slope[..., :-1])
-    best = np.maximum(m.max(axis=-1), (np.maximum(m[..., 1:], m[..., :-1]) + rise).max(axis=-1))
+    inner = model.inner_angles
+    rows = max(1, BEST_WORK_VALUES // (inner.shape[1] * RUN_SPEEDS))  # pieces at a time: memory stays bounded
+    best = np.empty(inner.shape)
+    for k in range(0, inner.shape[0], rows):
+        phi = inner[k : k + rows, :, None]
+        m = model.torque(phi, speeds)
+        slope = np.abs(model.torque_slope(phi, speeds)) if model.speed_dependent else np.zeros_like(m)
+        rise = 0.5 * step * np.maximum(slope[..., 1:], slope[..., :-1])
+        best[k : k + rows] = np.maximum(m.max(axis=-1), (np.maximum(m[..., 1:], m[..., :-1]) + rise).max(axis=-1))
     h = np.diff(model.grid_angles(), axis=1)
     return float(np.sum(0.5 * (best[:, 1:] + best[:, :-1]) * h)), (0.0, 4.0 * omega)
 
