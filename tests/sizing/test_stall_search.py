@@ -20,7 +20,9 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import flyopt
+from flyopt.delta_curve import inertia_curve
 from flyopt.machine.reduce import reduce
+from flyopt.report.plots.inertia_delta import plot_inertia_delta
 from flyopt.report.text import answer_report
 from flyopt.sizing import periodic
 from flyopt.sizing.periodic import FOLD_AIM, STALL_RTOL, _toward_fold
@@ -145,6 +147,30 @@ def test_the_stall_limited_press_is_solved_once_and_checked_by_simulation(write_
     assert entry["dmass_dlimit"] == 0.0 and "stall limit" in entry["sentence"]
     answer = "\n".join(answer_report(result))
     assert f"δ       allowed 0.6; δ {need.solution.delta:.4g} at the stall limit" in answer
+
+    # the J_F–δ curve: at δ at or above the stall's the flywheel is the stall limit, without a search; below
+    # it a search, which starts above the flywheels the first one found stalling (none of its trials stalls)
+    scene, analysis = result.scene, result.analysis
+    stalled = []
+    periodic_solution = periodic._periodic
+
+    def watched(model, j_f, guess):
+        try:
+            return periodic_solution(model, j_f, guess)
+        except periodic.SolverFailed:
+            stalled.append(j_f)
+            raise
+
+    monkeypatch.setattr(periodic, "_periodic", watched)
+    calls.clear()
+    deltas, j = inertia_curve(scene, analysis, [0.45, need.solution.delta, 0.55, 0.9])
+    assert len(calls) == 1 and not stalled
+    assert list(j[1:]) == [analysis.j_margin] * 3
+    assert analysis.j_margin < j[0] < 1.2 * analysis.j_margin  # δ 0.45 asks for more, from just above the stall
+    ax = plot_inertia_delta(scene, analysis, curve=(deltas, j))
+    (line,) = [a for a in ax.lines if a.get_gid() == "delta_stall"]
+    assert line.get_xdata()[0] == analysis.delta_reached
+    assert "stall limit" in line.get_label()
 
     j_total = need.j_required + J_MACHINE
     omega0 = float(need.solution.omega[0])

@@ -934,6 +934,12 @@ def dynamic_requirement(
     u_floor = max(u, math.log(max(j_mean, 1e-300))) + math.log(VANISHING_INERTIA)
     lo, hi = -math.inf, math.inf  # u where δ is too large (or no steady state) / small enough
     lo_failed = False  # whether lo is a flywheel without a periodic steady state
+    failure = None
+    stalled = model.stalls.get(model.theta)
+    if stalled is not None:  # a search at another δ found none there: this one starts above it
+        lo, lo_failed = math.log(stalled + j_low), True
+        failure = f"a search at another δ found no periodic steady state at J_F = {stalled:.6g} kg*m^2"
+        u = max(u, lo + 10 * STALL_RTOL)
     hi_solution = None
     stable: list[tuple[float, float]] = []  # (u, 1 − multiplier) of each new hi
     guided, fold = 0, None  # trials in a row aimed at the fold by _toward_fold, its last estimate
@@ -941,7 +947,6 @@ def dynamic_requirement(
     checked = False  # whether the drive's best work over the cycle was asked (_best_work)
     previous = None
     guess = omega_mean
-    failure = None
     for it in range(1, MAX_DYNAMIC + 1):
         j_f = math.exp(u) - j_low
         try:
@@ -954,6 +959,7 @@ def dynamic_requirement(
             )
             return _as_fitted(model, found, j_low)
         if sol is None:
+            model.stalls[model.theta] = max(j_f, model.stalls.get(model.theta, -math.inf))
             if math.isinf(hi) and not checked:
                 # no flywheel has run yet: is there any speed at which the drive can make up the load's work?
                 checked = True

@@ -149,6 +149,9 @@ class PeriodicModel:
         self.torque_slope_function = ca.Function("dM", [phi, omega, *theta], [ca.jacobian(m, omega)])
         #: CasADi maps of the torque functions over arrays, by size (for :func:`flyopt.sizing._numerics.evaluate`).
         self.maps: dict[Any, Any] = {}
+        #: The largest flywheel J_F [kg*m^2] at which a search found no periodic steady state, by θ: whether
+        #: one exists does not depend on δ, so a search at another δ (the J_F–δ curve) starts above it.
+        self.stalls: dict[tuple[float, ...], float] = {}
         self._table_values: dict[str, FloatArray] = {}
 
     def bind(self, theta: Iterable[float]) -> PeriodicModel:

@@ -124,6 +124,16 @@ def plot_inertia_delta(
             label=f"δ* {about}{display.number(free, digits if about == '= ' else 2)}: above it J_F = 0 "
             f"(the machine's own inertia suffices)",
         )
+    if analysis.stall_limited and delta[0] <= analysis.delta_reached <= delta[-1]:
+        ax.axvline(
+            analysis.delta_reached,
+            color="tab:orange",
+            ls=":",
+            lw=1.2,
+            gid="delta_stall",
+            label=f"δ = {display.number(analysis.delta_reached, digits)}: from it up J_F is the stall limit "
+            f"(no periodic steady state with a smaller flywheel)",
+        )
     if analysis.flywheel_needed:
         ax.plot(
             [analysis.delta],
