@@ -1,8 +1,9 @@
 """Benchmark of motor-driven presses whose flywheel is set by a stall: `flyopt solve`, against a baseline.
 
-Three presses from an audit of Kloss-motor machines (a load pulse the motor's breakdown torque cannot carry;
-below some flywheel no periodic steady state exists, and δ there is below the allowed value): a load given
-as an expression (the 2,225 s case), as a table of points, and as a slider-crank's ram force. Each is solved
+Three presses from an audit of Kloss-motor machines (tests/data/stall/; a load pulse the motor's breakdown
+torque cannot carry; below some flywheel no periodic steady state exists, and δ there is below the allowed
+value): a load given as an expression (the 2,225 s case), as a table of points, and as a slider-crank's ram
+force. Each is solved
 by whole ``flyopt solve`` processes, this checkout's and, with ``--baseline OTHER/src``, the baseline's in
 turn, pinned to one core; a baseline run longer than ``--timeout`` seconds is stopped and reported as such.
 Every finished run's flywheel is read from ``--json`` (the requirement J_F and its limit), and the two
@@ -23,7 +24,6 @@ import resource
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -31,77 +31,13 @@ from common import CHILD_ENV, load_average, pin_one_core, write_results
 
 RESULTS = Path(__file__).resolve().parent / "results"
 
-MOTOR = (
-    'motor = {{ kind = "induction", rated_power = "{kw} kW", rated_speed = "{nn} rpm", synchronous_speed = '
-    '"1500 rpm", breakdown_ratio = 1.6, model = "kloss", shaft = "motor" }}'
-)
-SCENES = {
-    "expression": f"""
-title = "a 4300 N*m pulse, 5 kW"
-[machine]
-speed = "60 rpm"
-delta = 0.6
-inertia = "5.0 kg*m^2"
-[torque.driving]
-{MOTOR.format(kw=5.0, nn=1440)}
-[torque.resisting]
-expression = "300 + 4000*max(0, sin(phi))**6"
-unit = "N*m"
-[[shaft]]
-name = "crank"
-speed_ratio = 1.0
-[[shaft]]
-name = "motor"
-speed_ratio = 24.0
-""",
-    "table": f"""
-title = "a 9000 N*m pulse as a table, 4 kW"
-[machine]
-speed = "60 rpm"
-delta = 0.6
-inertia = "5.0 kg*m^2"
-[torque.driving]
-{MOTOR.format(kw=4.0, nn=1470)}
-[torque.resisting]
-unit = "N*m"
-angle_unit = "deg"
-points = [[0, 150.0], [150, 150.0], [150, 2000.0], [165, 9000.0], [180, 9000.0], [180, 150.0], [360, 150.0]]
-[[shaft]]
-name = "crankshaft"
-speed_ratio = 1.0
-[[shaft]]
-name = "motor"
-speed_ratio = 24.0
-""",
-    "slider-crank": f"""
-title = "a ram force of 60 kN on a slider-crank, 2.5 kW"
-[machine]
-speed = "120 rpm"
-delta = 0.6
-inertia = "2.0 kg*m^2"
-[mechanism]
-kind = "slider_crank"
-crank = "0.08 m"
-rod = "0.45 m"
-[[member]]
-name = "ram"
-part = "slider"
-mass = "400.0 kg"
-angle_unit = "deg"
-unit = "kN"
-force = [[0, 0.0], [140, 0.0], [140, 25.0], [175, 60.0], [180, 0.0], [360, 0.0]]
-force_sense = "resisting"
-[torque.driving]
-{MOTOR.format(kw=2.5, nn=1440)}
-[torque.resisting]
-constant = "150.0 N*m"
-[[shaft]]
-name = "crankshaft"
-speed_ratio = 1.0
-[[shaft]]
-name = "motor"
-speed_ratio = 12.0
-""",
+SCENES = {  # the presses, shared with the tests
+    name: Path(__file__).resolve().parent.parent / "tests" / "data" / "stall" / f"{file}.toml"
+    for name, file in (
+        ("expression", "press-pulse-expression"),
+        ("table", "press-pulse-table"),
+        ("slider-crank", "press-slider-crank"),
+    )
 }
 
 
@@ -141,36 +77,33 @@ def main():
     args = parser.parse_args()
     pinned = pin_one_core()
     rows = []
-    with tempfile.TemporaryDirectory() as folder:
-        for name, text in SCENES.items():
-            path = Path(folder) / f"{name}.toml"
-            path.write_text(text, encoding="utf-8")
-            this = Path(__file__).resolve().parent.parent / "src"  # this checkout's, whatever is installed
-            variants = {"this": this} if args.baseline is None else {"this": this, "baseline": args.baseline}
-            runs = {v: [] for v in variants}
-            for k in range(args.repeat):
-                for variant, src in variants.items():
-                    if variant == "baseline" and k >= args.baseline_repeat:
-                        continue  # minutes a run: fewer runs
-                    runs[variant].append(run(path, src, args.timeout))
-                    print(name, variant, runs[variant][-1], flush=True)
-            for variant, got in runs.items():
-                finished = [r for r in got if r[1] is not None]
-                walls = [r[0] for r in finished]
-                rows.append(
-                    {
-                        "scene": name,
-                        "variant": variant,
-                        "runs": len(got),
-                        "stopped": len(got) - len(finished),
-                        "wall_median_s": statistics.median(walls) if walls else None,
-                        "wall_min_s": min(walls) if walls else None,
-                        "wall_max_s": max(walls) if walls else None,
-                        "cpu_median_s": statistics.median(r[1] for r in finished) if finished else None,
-                        "j_required": finished[0][2] if finished else None,
-                        "limit": finished[0][3] if finished else None,
-                    }
-                )
+    for name, path in SCENES.items():
+        this = Path(__file__).resolve().parent.parent / "src"  # this checkout's, whatever is installed
+        variants = {"this": this} if args.baseline is None else {"this": this, "baseline": args.baseline}
+        runs = {v: [] for v in variants}
+        for k in range(args.repeat):
+            for variant, src in variants.items():
+                if variant == "baseline" and k >= args.baseline_repeat:
+                    continue  # minutes a run: fewer runs
+                runs[variant].append(run(path, src, args.timeout))
+                print(name, variant, runs[variant][-1], flush=True)
+        for variant, got in runs.items():
+            finished = [r for r in got if r[1] is not None]
+            walls = [r[0] for r in finished]
+            rows.append(
+                {
+                    "scene": name,
+                    "variant": variant,
+                    "runs": len(got),
+                    "stopped": len(got) - len(finished),
+                    "wall_median_s": statistics.median(walls) if walls else None,
+                    "wall_min_s": min(walls) if walls else None,
+                    "wall_max_s": max(walls) if walls else None,
+                    "cpu_median_s": statistics.median(r[1] for r in finished) if finished else None,
+                    "j_required": finished[0][2] if finished else None,
+                    "limit": finished[0][3] if finished else None,
+                }
+            )
     lines = [
         "# Stall-limited presses: `flyopt solve`",
         "",

@@ -14,6 +14,7 @@ more, to difference the stall limit's own tolerance into a slope.
 
 import math
 import types
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -29,24 +30,9 @@ from flyopt.sizing.periodic import FOLD_AIM, STALL_RTOL, _toward_fold
 from flyopt.sizing.periodic_model import periodic_model
 from flyopt.sizing.shooting import NotSettled
 
-SCENE = """
-title = "a press whose flywheel is set by a stall"
-[machine]
-speed = "60 rpm"
-delta = 0.6
-inertia = "5.0 kg*m^2"
-[torque.driving]
-motor = { kind = "induction", rated_power = "5.0 kW", rated_speed = "1440 rpm", synchronous_speed = "1500 rpm", breakdown_ratio = 1.6, model = "kloss", shaft = "motor" }
-[torque.resisting]
-expression = "300 + 4000*max(0, sin(phi))**6"
-unit = "N*m"
-[[shaft]]
-name = "crank"
-speed_ratio = 1.0
-[[shaft]]
-name = "motor"
-speed_ratio = 24.0
-"""
+DATA = Path(__file__).resolve().parents[1] / "data" / "stall"
+SCENE = DATA / "press-pulse-expression.toml"
+WEAK = DATA / "weak-dc-motor.toml"
 
 RATIO, J_MACHINE = 24.0, 5.0
 
@@ -62,13 +48,13 @@ def crank_torque(omega, phi):
     return RATIO * motor - (300 + 4000 * max(0.0, math.sin(phi)) ** 6)
 
 
-def test_a_shot_that_grazes_zero_energy_returns_at_once(write_scene):
+def test_a_shot_that_grazes_zero_energy_returns_at_once():
     # The flywheel the energy method asks for (114 kg*m^2) stalls from every speed; the search for a
     # steady state shoots ever closer to the energy below which the cycle ends at zero speed. Just below it
     # the energy dips under zero by a few joules at the cycle's end: CVODES gave up there with
     # CV_TOO_MUCH_WORK after 200,000 steps (10 s a shot). Now the torques are read at no less than 1e-6 of
     # the cycle's starting speed, and the shot returns its stall.
-    machine = reduce(flyopt.load(write_scene(SCENE)))
+    machine = reduce(flyopt.load(SCENE))
     model = periodic_model(machine.net_torque(), machine.j_machine, machine.cycle_angle, machine.knots())
     j_f, w_s = 114.05316741246244, model.work_scale(2 * math.pi)
 
@@ -125,7 +111,7 @@ def test_a_fold_that_is_not_one_is_bisected():
 
 
 @pytest.mark.slow
-def test_the_stall_limited_press_is_solved_once_and_checked_by_simulation(write_scene, monkeypatch):
+def test_the_stall_limited_press_is_solved_once_and_checked_by_simulation(monkeypatch):
     """(~20 s) The whole solve: one search for the flywheel (the δ sensitivity is zero without solving it
     again), far fewer flywheels tried than bisection needs, and the limit checked by scipy's integration of
     the textbook laws: at 0.999 of the reported total inertia the speed collapses from the periodic state, at
@@ -138,7 +124,7 @@ def test_the_stall_limited_press_is_solved_once_and_checked_by_simulation(write_
         return search(*args, **kwargs)
 
     monkeypatch.setattr(periodic, "dynamic_requirement", counted)
-    result = flyopt.solve(flyopt.load(write_scene(SCENE)))
+    result = flyopt.solve(flyopt.load(SCENE))
     need = result.analysis.requirement.detail
     assert need.limit == "stall" and len(calls) == 1
     assert need.iterations <= 14  # bisection toward the limit took 17 flywheels
@@ -220,11 +206,11 @@ def test_the_stall_limited_press_is_solved_once_and_checked_by_simulation(write_
     assert delta is None, f"at 0.999 J the speed did not collapse in 400 cycles: {collapsed[-3:]}"
 
 
-def _searched(write_scene, monkeypatch, law, fold_at):
+def _searched(monkeypatch, law, fold_at):
     """(requirement, trials) of the search on a stand-in for the periodic solution: no steady state below the
     total inertia ``fold_at`` [kg*m^2], above it ``law(x)`` = (δ, 1 − m) at x = u − u* (u the log of the total
     inertia). The press's machine gives the search its start; the one solve and the balance are withheld."""
-    machine = reduce(flyopt.load(write_scene(SCENE)))
+    machine = reduce(flyopt.load(SCENE))
     j_low = float(machine.j_machine)
     trials = []
 
@@ -248,16 +234,16 @@ def _searched(write_scene, monkeypatch, law, fold_at):
 
 
 @pytest.mark.parametrize("fold_at", [60.0, 222.5, 2000.0])
-def test_the_search_closes_on_a_fold_in_fewer_trials_than_bisection(write_scene, monkeypatch, fold_at):
+def test_the_search_closes_on_a_fold_in_fewer_trials_than_bisection(monkeypatch, fold_at):
     # a fold: 1 − m = 1.5 √x − 0.5 x, δ 0.5 − 0.1 √x below the allowed 0.6 everywhere: the limit is the stall
     def law(x):
         return 0.5 - 0.1 * math.sqrt(x), 1.5 * math.sqrt(x) - 0.5 * x
 
-    found, trials = _searched(write_scene, monkeypatch, law, fold_at)
+    found, trials = _searched(monkeypatch, law, fold_at)
     assert found.limit == "stall"
     assert 0 <= math.log(found.j_required + J_MACHINE) - math.log(fold_at) <= STALL_RTOL
     monkeypatch.setattr(periodic, "MAX_GUIDED", 0)  # bisection alone, as before
-    bisected, by_halves = _searched(write_scene, monkeypatch, law, fold_at)
+    bisected, by_halves = _searched(monkeypatch, law, fold_at)
     assert bisected.limit == "stall"
     assert len(trials) <= len(by_halves) - 4, (len(trials), len(by_halves))
 
@@ -271,36 +257,16 @@ def test_the_search_closes_on_a_fold_in_fewer_trials_than_bisection(write_scene,
         (lambda x: (0.62 - 0.1 * math.sqrt(x), 1.5 * math.sqrt(x) - 0.5 * x), 0.04),
     ],
 )
-def test_a_delta_reached_just_above_a_stall_is_found_by_the_secant(write_scene, monkeypatch, law, above):
+def test_a_delta_reached_just_above_a_stall_is_found_by_the_secant(monkeypatch, law, above):
     # δ reaches the allowed 0.6 a little above the stall: the secant on δ, not the fold's aim, finds it, in no
     # more trials than without the aim (the aim overrode the secant's step inside the bracket: 12 trials for 7)
-    found, trials = _searched(write_scene, monkeypatch, law, 222.5)
+    found, trials = _searched(monkeypatch, law, 222.5)
     assert found.limit == "delta"
     # the search holds log δ to 1e-10 (its rtol), so x to 1e-10 over |d log δ/dx| >= 0.17 here
     assert math.log(found.j_required + J_MACHINE) - math.log(222.5) == pytest.approx(above, abs=1e-9)
     monkeypatch.setattr(periodic, "MAX_GUIDED", 0)
-    _, unguided = _searched(write_scene, monkeypatch, law, 222.5)
+    _, unguided = _searched(monkeypatch, law, 222.5)
     assert len(trials) <= len(unguided), (len(trials), len(unguided))
-
-
-WEAK = """
-title = "a DC motor too weak for its load at any speed"
-[machine]
-speed = "60 rpm"
-delta = 0.6
-inertia = "5.0 kg*m^2"
-[torque.driving]
-motor = { kind = "dc", no_load_speed = "1600 rpm", stall_torque = "80.0 N*m", shaft = "motor" }
-[torque.resisting]
-expression = "300 + 1500*exp(-omega/3) + 2000*max(0, sin(phi))**4"
-unit = "N*m"
-[[shaft]]
-name = "crank"
-speed_ratio = 1.0
-[[shaft]]
-name = "motor"
-speed_ratio = 24.0
-"""
 
 
 def _weak_best_work():
@@ -313,12 +279,12 @@ def _weak_best_work():
     return 2 * math.pi * (top - 300) - 2000 * 3 * math.pi / 8
 
 
-def test_the_drives_best_work_over_the_cycle_bounds_its_closed_form(write_scene, monkeypatch):
+def test_the_drives_best_work_over_the_cycle_bounds_its_closed_form(monkeypatch):
     # No periodic state can exist where even each angle's most favourable torque does not balance the cycle:
     # W = ∮ max_ω M dφ < 0 (−460 J here). flyopt's grid of speeds (step Δω) with its slope margin bounds the
     # closed form from above (a bound must not miss the best speed), by no more than the margin, half a step
     # times a slope within two steps of the best speed: 2π Δω² max|M''| over the turn (M'' = 1500/9 e^(−ω/3)).
-    machine = reduce(flyopt.load(write_scene(WEAK)))
+    machine = reduce(flyopt.load(WEAK))
     model = periodic_model(machine.net_torque(), machine.j_machine, machine.cycle_angle, machine.knots())
     work, (low, top) = periodic._best_work(model, 2 * math.pi)
     exact = _weak_best_work()
@@ -331,7 +297,7 @@ def test_the_drives_best_work_over_the_cycle_bounds_its_closed_form(write_scene,
 
 
 @pytest.mark.slow
-def test_a_drive_too_weak_at_any_speed_is_refused_at_once(write_scene):
+def test_a_drive_too_weak_at_any_speed_is_refused_at_once():
     """(~4 s) It took 80 flywheels up to 1e36 kg*m^2 (1,620 s) and said only that none was found."""
     with pytest.raises(periodic.SolverFailed, match=r"no flywheel gives a periodic steady state: .* J short"):
-        flyopt.analyse(flyopt.load(write_scene(WEAK)))
+        flyopt.analyse(flyopt.load(WEAK))
