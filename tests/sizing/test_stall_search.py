@@ -23,6 +23,7 @@ from scipy.integrate import solve_ivp
 import flyopt
 from flyopt.delta_curve import inertia_curve
 from flyopt.machine.reduce import reduce
+from flyopt.report.card import solution_card
 from flyopt.report.plots.inertia_delta import plot_inertia_delta
 from flyopt.report.text import answer_report
 from flyopt.sizing import periodic
@@ -133,6 +134,10 @@ def test_the_stall_limited_press_is_solved_once_and_checked_by_simulation(monkey
     assert entry["dmass_dlimit"] == 0.0 and "stall limit" in entry["sentence"]
     answer = "\n".join(answer_report(result))
     assert f"δ       allowed 0.6; δ {need.solution.delta:.4g} at the stall limit" in answer
+    # the report's answer, the app's and a notebook's card: the flywheel is set by the stall
+    verdict = solution_card(result).verdict
+    assert "its inertia is the least with which the machine runs steadily (with less the drive stalls)" in verdict
+    assert f"at δ = {need.solution.delta:.4g}" in verdict
 
     # the J_F–δ curve: at δ at or above the stall's the flywheel is the stall limit, without a search; below
     # it a search, which starts above the flywheels the first one found stalling (none of its trials stalls)

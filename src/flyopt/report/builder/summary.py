@@ -207,7 +207,10 @@ class Summary(BuilderBase):
                     f"No flywheel is needed: {holder} keeps δ within {number(a.delta, self.digits)}{however} "
                     f"(J_F would be {display.quantity_text(a.j_margin, 'inertia', self.units)})."
                 )
-            return f"The machine needs a flywheel of {display.quantity_text(a.j_required, 'inertia', self.units)}."
+            return (
+                f"The machine needs a flywheel of {display.quantity_text(a.j_required, 'inertia', self.units)}"
+                f"{self.stall_words()}."
+            )
         v = self.solution.verification or (
             self.solution.drive_check.verification if self.solution.drive_check is not None else None
         )
@@ -224,5 +227,14 @@ class Summary(BuilderBase):
             f"{shaft_label(best.shaft)}, "
             f"{display.quantity_text(best.mass, 'mass', self.units, 4)}, outer diameter "
             f"{display.quantity_text(best.dims.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
-            f"within δ = {number(a.delta, self.digits)}{checked}."
+            f"within δ = {number(a.delta, self.digits)}{checked}{self.stall_words(with_delta=v is None)}."
         )
+
+    def stall_words(self, with_delta: bool = True) -> str:
+        """Where a stall sets the flywheel, what the answer adds: the flywheel is the smallest that runs steadily,
+        and δ there (unless a simulation has said it, ``with_delta`` False); nothing otherwise."""
+        a = self.analysis
+        if not a.stall_limited:
+            return ""
+        there = f", at δ = {number(a.delta_reached, self.digits)}" if with_delta else ""
+        return f"; its inertia is the least with which the machine runs steadily (with less the drive stalls){there}"
