@@ -159,18 +159,28 @@ class Analysis:
         """Whether δ stays below the allowed value however small the inertia (the dynamic model, a motor
         stiff enough that its slip alone holds the speed): ``j_margin`` is then not a flywheel at which δ
         reaches its limit but the bound −min J_e, where the machine would have no inertia left."""
-        if self.requirement is None or self.requirement.model != Model.DYNAMIC:
-            return False
-        return bool(self.requirement.detail.limit == "none")  # decided once, by the search (sizing.periodic)
+        return self._dynamic_limit == "none"
 
     @property
     def stall_limited(self) -> bool:
         """Whether the flywheel is set by a stall, not by δ (the dynamic model): the smallest flywheel with a
         periodic steady state keeps δ below the allowed value (``delta_reached``), so a change of the allowed δ
-        that keeps it above that does not move the flywheel."""
+        that keeps it above that does not move the flywheel (:meth:`stall_sets_flywheel_at`)."""
+        return self._dynamic_limit == "stall"
+
+    def stall_sets_flywheel_at(self, delta: float) -> bool:
+        """Whether the flywheel this analysis found is also the one an allowed ``delta`` asks for, because a stall
+        sets it: δ at the stall limit (``delta_reached``) is within ``delta``, so the search at that δ ends at
+        the same limit (the J_F–δ curve and the δ sensitivity do not search again)."""
+        return self.stall_limited and delta >= self.delta_reached
+
+    @property
+    def _dynamic_limit(self) -> str | None:
+        """What limits the dynamic model's flywheel ("delta", "stall", "none"), decided once by the search
+        (:class:`flyopt.sizing.periodic.DynamicRequirement`); None for the other models."""
         if self.requirement is None or self.requirement.model != Model.DYNAMIC:
-            return False
-        return bool(self.requirement.detail.limit == "stall")
+            return None
+        return str(self.requirement.detail.limit)
 
     @property
     def delta_reached(self) -> float:

@@ -86,9 +86,8 @@ def inertia_curve(scene: Scene, analysis: Analysis, deltas: ArrayLike | None = N
     deltas = np.asarray(deltas, dtype=float)
     j = np.full(deltas.shape, np.nan)
     for k, delta in enumerate(deltas):
-        if analysis.stall_limited and delta >= analysis.delta_reached:
-            # the flywheel is set by the stall, where δ is delta_reached: any δ allowed at or above it asks for
-            # the same one (a search each would locate that limit again, some 10 s a δ)
+        if analysis.stall_sets_flywheel_at(float(delta)):
+            # a search at each would locate that limit again, some 10 s a δ
             j[k] = analysis.j_margin
             continue
         try:

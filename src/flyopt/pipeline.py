@@ -428,8 +428,8 @@ def _with_delta_sensitivity(
     if best is None or scene.delta is None or analysis.machine is None and analysis.indicator is None:
         return result
     step = delta_step(scene.delta)
-    if analysis.stall_limited and analysis.delta_reached < scene.delta * (1.0 - DELTA_STEP):
-        # δ does not set the flywheel, on either side of the step: re-solving at δ (1 +- DELTA_STEP) would locate
+    if analysis.stall_sets_flywheel_at(scene.delta * (1.0 - DELTA_STEP)):
+        # δ does not set the flywheel on either side of the step: re-solving at δ (1 +- DELTA_STEP) would locate
         # the same stall limit twice more, each to its tolerance (STALL_RTOL), and difference that noise into a
         # slope
         sentence = (

@@ -622,7 +622,7 @@ SCAN_STEPS = 49
 """Speeds tried on each side of the guess (2 % apart) when Newton finds no energy gain."""
 
 
-def _periodic_energy(shoot, e0, ftol, monotone=lambda: False, gain_at=None):
+def _periodic_energy(shoot, e0, ftol, monotone, gain_at):
     """The energy at φ = 0 of a stable periodic solution, near the guess ``e0``.
 
     Newton (:func:`_newton_energy`) is global when the energy gained over a
@@ -635,15 +635,9 @@ def _periodic_energy(shoot, e0, ftol, monotone=lambda: False, gain_at=None):
     2 %, 4 %, … above and below the guess are tried in turn;
     the first that gains, with the nearest speed above it that loses,
     brackets the stable solution for Newton. The scan reads only the energy
-    gained, from ``gain_at(E_ref)`` (None where the cycle stalls; by default
-    the shot's first value), which need not integrate the sensitivities.
+    gained, from ``gain_at(E_ref)`` (None where the cycle stalls), which need
+    not integrate the sensitivities.
     """
-    if gain_at is None:
-
-        def gain_at(e):
-            r = shoot(e)
-            return None if r is None else r[0]
-
     try:
         return _newton_energy(shoot, e0, ftol, gain_at=gain_at)
     except _NoGain as err:
@@ -736,8 +730,11 @@ def _newton_energy(shoot, e0, ftol, bracket=(0.0, math.inf), gain_at=None):
     for it in range(1, MAX_NEWTON + 1):
         if gain_at is not None and lo_stalls and not gains and math.isfinite(hi) and hi - lo <= NARROW * hi:
             probe = gain_at(e)
+            if probe is None:  # stalls
+                lo = e
+            elif probe < -ftol:  # clearly loses
+                hi = e
             if probe is None or probe < -ftol:
-                lo, lo_stalls, hi = (e, True, hi) if probe is None else (lo, lo_stalls, e)
                 if (hi - lo) <= 1e-12 * hi:
                     break
                 e = math.sqrt(lo * hi)
