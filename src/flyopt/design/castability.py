@@ -55,6 +55,8 @@ __all__ = [
     "sections",
     "junctions",
     "record",
+    "ThinWall",
+    "thinner_than_process",
     "ARM_THICKNESS",
     "Finishing",
     "finishing",
@@ -300,6 +302,36 @@ def record(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[
             for a, b in junctions(geometry, "hub" in t_eq)
         ],
     }
+
+
+class ThinWall(NamedTuple):
+    """A wheel's thinnest section, thinner than its process makes at the wheel's size
+    (:func:`thinner_than_process`): the ``process``'s name, the ``part`` and its ``wall`` [m], the process's
+    minimum wall ``process_min_wall`` [m] at ``casting_size``, the outer diameter [m]."""
+
+    process: str
+    part: str
+    wall: float
+    process_min_wall: float
+    casting_size: float
+
+
+def thinner_than_process(rules: Rules | None, geometry: str, dims: Any) -> ThinWall | None:
+    """The thinnest section of a wheel where it is thinner than the process's minimum wall at the wheel's
+    outer diameter; None where it is not, or where no rules apply (``rules`` None).
+
+    For a wheel not designed to the rules: the textbook's bare rims and discs, whose books size the section
+    by its inertia and the rim speed alone (a whole wheel keeps them as rows of its NLP). The walls and the
+    minimum are those of :func:`walls` and :func:`min_wall_at`, as the NLP's rows and :func:`record` read them.
+    """
+    if rules is None:
+        return None
+    size = float(dims.d_outer)
+    process_wall = float(min_wall_at(rules, size))
+    part, thinnest = min(((p, float(w)) for p, w in walls(geometry, dims)), key=lambda pw: pw[1])
+    if not thinnest < process_wall:
+        return None
+    return ThinWall(rules.process, part, thinnest, process_wall, size)
 
 
 # ------------------------------------------------------------------ finishing: fillets, draft, chamfers, texture

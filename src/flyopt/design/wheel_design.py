@@ -30,11 +30,12 @@ from collections.abc import Callable, Iterator, Mapping
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from flyopt.design import balance, castability, check, geometry, hub, key, strength, wheel
+from flyopt.design.combination import wheel_words
 from flyopt.design.materials import ThicknessOutOfRange
 from flyopt.design.result import Parts, Stresses
 from flyopt.errors import BrokenInvariant, SolverFailed
 from flyopt.names import Criterion, Geometry, Method, Objective
-from flyopt.said import join, said, said_by
+from flyopt.said import Said, join, said, said_by
 
 if TYPE_CHECKING:  # annotations only: CasADi is imported where IPOPT is used
     from flyopt.design.combination import Combination
@@ -50,6 +51,9 @@ __all__ = [
     "bore_of",
     "min_wall_of",
     "castability_of",
+    "designed_castable",
+    "thin_walled",
+    "thin_wall_note",
     "min_wall_at",
     "objective_bound",
     "stress_cap",
@@ -109,13 +113,33 @@ def min_wall_of(spec: DesignSpec, material: Material) -> float:
 CAST_GEOMETRIES = (Geometry.RIM_WEB, Geometry.RIM_ARMS, Geometry.DISC)
 
 
+def designed_castable(spec: DesignSpec, bore: float = 0.0) -> bool:
+    """Whether a wheel is designed to its process's castability rules: a wheel designed whole (rim_web,
+    rim_arms, a disc not designed by the textbook); bare rims and textbook discs are not (the books' problems
+    do not change), and are only checked against them (:func:`thin_walled`)."""
+    return spec.geometry in CAST_GEOMETRIES and not spec.textbook(bore)
+
+
 def castability_of(spec: DesignSpec, material: Material, bore: float = 0.0) -> castability.Rules | None:
     """The castability rules a wheel of a material is designed to, or None: the process of the scene or of the
     material (flyopt/data/castability.toml) with the scene's numbers over it, for a wheel designed whole
-    (rim_web, rim_arms, a disc not designed by the textbook); bare rims and textbook discs have none."""
-    if spec.geometry not in CAST_GEOMETRIES or spec.textbook(bore):
+    (:func:`designed_castable`); bare rims and textbook discs have none."""
+    if not designed_castable(spec, bore):
         return None
     return castability.rules_for(material.name, spec.castability)
+
+
+def thin_walled(spec: DesignSpec, material: str, geometry_name: str, dims: Dims) -> castability.ThinWall | None:
+    """A wheel not designed to castability rules (:func:`designed_castable`: a textbook bare rim or disc) whose
+    thinnest section is thinner than the process of its material (``material``: its key; the scene's process
+    and numbers over it) makes at the wheel's size; None otherwise, and for a wheel designed to the rules.
+
+    The one decision behind the structural check's note (:func:`structure_fields`) and the answer's line
+    (:func:`flyopt.report.text.answer_report`). ``dims``: the wheel's, its bore among them.
+    """
+    if designed_castable(spec, float(dims.bore)):
+        return None
+    return castability.thinner_than_process(castability.rules_for(material, spec.castability), geometry_name, dims)
 
 
 def min_wall_at(spec: DesignSpec, material: Material, d_outer: float, bore: float = 0.0) -> float:
@@ -1017,12 +1041,29 @@ def structure_fields(
                 "ok": False if not k.ok else (True if k.allowable_pressure is not None else None),
             }
     rules = castability_of(spec, material, bore)
-    if rules is None and spec.geometry in CAST_GEOMETRIES and not spec.textbook(bore):
+    if rules is None and designed_castable(spec, bore):
         notes.append(
             f"no casting process is known for {material.display_name}: castability not checked (give design.process)"
         )
+    thin = thin_walled(spec, material.name, geometry_name, dims)
+    if thin is not None:
+        notes.append(thin_wall_note(thin, geometry_name))
     cast = castability.record(rules, min_wall_of(spec, material), geometry_name, dims)
     return Structure(Parts(items, key_check), stresses, tuple(notes), cast)
+
+
+def thin_wall_note(thin: castability.ThinWall, geometry_name: str) -> Said:
+    """The structural check's note on a textbook wheel thinner than its process makes (:func:`thin_walled`)."""
+    process = thin.process.replace("_", " ")
+    return said(
+        f"the {thin.part}'s thinnest wall, {{wall}}, is thinner than the {process} process makes in a wheel "
+        f"{{size}} across ({{minimum}}): the textbook {wheel_words(geometry_name)} "
+        "is sized by its inertia and rim speed alone, so nothing held its section to what can be made; set an "
+        'envelope (design.max_outer_diameter) or design the wheel whole (design.geometry = "rim_web")',
+        wall=(thin.wall, "length", f"{thin.wall * 1e3:.4g} mm"),
+        size=(thin.casting_size, "length", f"{thin.casting_size:.4g} m"),
+        minimum=(thin.process_min_wall, "length", f"{thin.process_min_wall * 1e3:.4g} mm"),
+    )
 
 
 def _finite_or_none(x):

@@ -20,6 +20,7 @@ from flyopt.design.check import binding_label
 from flyopt.design.combination import shaft_label, wheel_words
 from flyopt.design.key import key_verdict
 from flyopt.design.result import NO_DESIGN, Design
+from flyopt.design.wheel_design import thin_walled
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
 from flyopt.report.characters import visible
@@ -283,6 +284,13 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
             f"({share_of_allowable(worst['stress'] / worst['allowable'])})"
         )
     lines.append(f"    limits  {limits}")
+    thin = thin_walled(design.spec, best.material, best.geometry, best.dims.wheel(best.n_arms, best.bore))
+    if thin is not None:  # a textbook wheel thinner than its process makes: the verdict, its note says more
+        lines.append(
+            f"    casting {thin.part} wall {q(thin.wall, 'thinnest_wall')}, thinner than the "
+            f"{thin.process.replace('_', ' ')} process's {q(thin.process_min_wall, 'process_min_wall')} at this "
+            "size: not castable as sized (see the notes)"
+        )
     k = best.parts.key
     if k and k.get("shear") is not None:  # the hub's key, checked at the peak torque (section 13)
         said = key_answer(k, design.material_name(best.material), q)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from flyopt.design.check import binding_label
 from flyopt.design.combination import shaft_label, wheel_words
 from flyopt.errors import BrokenInvariant
@@ -10,6 +12,9 @@ from flyopt.report.builder.base import BuilderBase
 from flyopt.report.display import number
 from flyopt.report.document import Facts, Paragraph
 from flyopt.said import indefinite
+
+if TYPE_CHECKING:
+    from flyopt.design.castability import ThinWall
 
 
 class Summary(BuilderBase):
@@ -140,6 +145,20 @@ class Summary(BuilderBase):
                             ),
                         )
                     )
+            thin = self.thin_wall()
+            if thin is not None:  # a textbook wheel thinner than its process makes (the design's notes say more)
+                rows.append(
+                    (
+                        "casting",
+                        (
+                            f"{thin.part} wall ",
+                            self.q(thin.wall, "length", "thinnest_wall"),
+                            f", thinner than the {thin.process.replace('_', ' ')} process's ",
+                            self.q(thin.process_min_wall, "length", "process_min_wall"),
+                            " at this size: not castable as sized (see the design's notes)",
+                        ),
+                    )
+                )
         elif d is not None and d.status == "infeasible":
             rows.append(("design", "no feasible design: " + display.said_text(d.message, self.units, self.digits)))
         drive = self.solution.drive
@@ -227,8 +246,26 @@ class Summary(BuilderBase):
             f"{shaft_label(best.shaft)}, "
             f"{display.quantity_text(best.mass, 'mass', self.units, 4)}, outer diameter "
             f"{display.quantity_text(best.dims.d_outer, 'length', self.units, 4)}, keeps the speed fluctuation "
-            f"within δ = {number(a.delta, self.digits)}{checked}{self.stall_words(with_delta=v is None)}."
+            f"within δ = {number(a.delta, self.digits)}{checked}{self.stall_words(with_delta=v is None)}"
+            f"{self.casting_words()}."
         )
+
+    def thin_wall(self) -> ThinWall | None:
+        """The chosen wheel's section where it is thinner than its process makes, a textbook wheel's
+        (:func:`flyopt.design.wheel_design.thin_walled`); None otherwise."""
+        from flyopt.design.wheel_design import thin_walled
+
+        best = self.best()
+        if self.design is None or best is None:
+            return None
+        return thin_walled(self.design.spec, best.material, best.geometry, best.dims.wheel(best.n_arms, best.bore))
+
+    def casting_words(self) -> str:
+        """Where the chosen wheel is too thin to cast, what the answer adds; nothing otherwise."""
+        thin = self.thin_wall()
+        if thin is None:
+            return ""
+        return f"; as sized, its {thin.part} is too thin to cast (see casting)"
 
     def stall_words(self, with_delta: bool = True) -> str:
         """Where a stall sets the flywheel, what the answer adds: the flywheel is the smallest that runs steadily,
