@@ -65,6 +65,7 @@ JSON_KEYS = (
     "speed_margin",
     "unbalance_permissible",
     "key",
+    "thin_wall",
     "sensitivities",
     "castability",
     "notes",

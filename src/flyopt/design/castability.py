@@ -51,12 +51,13 @@ __all__ = [
     "process_of",
     "rules_for",
     "min_wall_at",
+    "wall_asked",
     "walls",
     "sections",
     "junctions",
     "record",
-    "ThinWall",
-    "thinner_than_process",
+    "thinnest_wall",
+    "too_thin",
     "ARM_THICKNESS",
     "Finishing",
     "finishing",
@@ -165,9 +166,13 @@ def process_of(material: str) -> str | None:
     return None
 
 
+@functools.lru_cache(maxsize=256)
 def rules_for(material: str, overrides: Overrides | None = None) -> Rules | None:
     """The rules a wheel of a material is designed to: its process's (or the scene's), the scene's numbers
-    over them; None where no process applies (none named, or ``process = "none"``)."""
+    over them; None where no process applies (none named, or ``process = "none"``).
+
+    Remembered by its arguments (a material's key and the scene's hashable overrides; the rules are an
+    immutable tuple): a ranking asks it for every candidate, a sweep for every point."""
     over = overrides or Overrides()
     name = over.process or process_of(material)
     if name == NONE:
@@ -207,6 +212,14 @@ def min_wall_at(
     for (s0, w0), (s1, w1) in zip(rows, rows[1:]):
         wall = wall + (w1 - w0) / (s1 - s0) * (fmin(fmax(size, s0), s1) - s0)
     return wall
+
+
+def wall_asked(rules: Rules | None, floor: float, size: float) -> float:
+    """The thinnest wall a wheel of outer diameter ``size`` [m] may have [m]: the larger of ``floor`` (the
+    scene's or the material's ``min_wall``) and the process's table at that size (``rules`` None: ``floor``
+    alone). The one rule of the wall used: the designed wheel's bound (``wheel_design.min_wall_at``), its
+    record (:func:`record`) and a bare wheel's check (:func:`too_thin`)."""
+    return max(floor, float(min_wall_at(rules, size))) if rules is not None else floor
 
 
 def _rect(a: Any, b: Any) -> Any:
@@ -287,13 +300,13 @@ def record(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[
         return None
     size = float(dims.d_outer)
     process_wall = float(min_wall_at(rules, size))
-    part, thinnest = min(((p, float(w)) for p, w in walls(geometry, dims)), key=lambda pw: pw[1])
+    part, thinnest = thinnest_wall(geometry, dims)
     t_eq = {p: float(v) for p, v in sections(geometry, dims).items()}
     return {
         "process": rules.process,
         "casting_size": size,
         "process_min_wall": process_wall,
-        "min_wall": max(process_wall, floor),
+        "min_wall": wall_asked(rules, floor, size),
         "thinnest_wall": thinnest,
         "thinnest_part": part,
         "section_ratio": rules.section_ratio if math.isfinite(rules.section_ratio) else None,
@@ -304,34 +317,47 @@ def record(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[
     }
 
 
-class ThinWall(NamedTuple):
-    """A wheel's thinnest section, thinner than its process makes at the wheel's size
-    (:func:`thinner_than_process`): the ``process``'s name, the ``part`` and its ``wall`` [m], the process's
-    minimum wall ``process_min_wall`` [m] at ``casting_size``, the outer diameter [m]."""
-
-    process: str
-    part: str
-    wall: float
-    process_min_wall: float
-    casting_size: float
+def thinnest_wall(geometry: str, dims: Any) -> tuple[str, float]:
+    """(part, wall [m]) of a wheel's thinnest section among :func:`walls` (the rim's H or B, a disc's width,
+    the web, the arms' minor axis, the hub's wall)."""
+    return min(((p, float(w)) for p, w in walls(geometry, dims)), key=lambda pw: pw[1])
 
 
-def thinner_than_process(rules: Rules | None, geometry: str, dims: Any) -> ThinWall | None:
-    """The thinnest section of a wheel where it is thinner than the process's minimum wall at the wheel's
-    outer diameter; None where it is not, or where no rules apply (``rules`` None).
+def too_thin(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[str, Any] | None:
+    """A wheel's thinnest section where it is thinner than the wall asked of it; None where it is not.
 
-    For a wheel not designed to the rules: the textbook's bare rims and discs, whose books size the section
-    by its inertia and the rim speed alone (a whole wheel keeps them as rows of its NLP). The walls and the
-    minimum are those of :func:`walls` and :func:`min_wall_at`, as the NLP's rows and :func:`record` read them.
+    For a wheel not designed to the rules (a textbook bare rim or disc, whose books size the section by its
+    inertia and rim speed alone; a whole wheel keeps them as rows of its NLP). The wall asked is the one
+    :func:`record` names the wall used: the larger of the process's minimum at the wheel's outer diameter
+    (``rules``; None: no process) and ``floor``, the scene's (or the material's) ``min_wall`` [m].
+
+    Returns ``process`` (None: none), ``thinnest_part``, ``thinnest_wall`` [m], ``min_wall`` (the wall
+    asked [m]), ``process_min_wall`` (the process's at the size [m], 0: none), ``casting_size`` (the outer
+    diameter [m]), ``set_by`` ("process" or "min_wall": which one asks the most) and ``cast`` (whether the
+    process casts the piece: it has a draft, :func:`finishing`), the fields of the JSON's ``thin_wall``.
     """
-    if rules is None:
+    table = rules.min_wall if rules is not None else ()
+    if not table and floor <= 0.0:
+        return None
+    part, thinnest = thinnest_wall(geometry, dims)
+    if thinnest >= max([floor, *(wall for _, wall in table)]):  # at least the most asked at any size
         return None
     size = float(dims.d_outer)
-    process_wall = float(min_wall_at(rules, size))
-    part, thinnest = min(((p, float(w)) for p, w in walls(geometry, dims)), key=lambda pw: pw[1])
-    if not thinnest < process_wall:
+    process_wall = float(min_wall_at(rules, size)) if rules is not None else 0.0
+    asked = wall_asked(rules, floor, size)
+    if not thinnest < asked:
         return None
-    return ThinWall(rules.process, part, thinnest, process_wall, size)
+    process = rules.process if rules is not None else None
+    return {
+        "process": process,
+        "thinnest_part": part,
+        "thinnest_wall": thinnest,
+        "min_wall": asked,
+        "process_min_wall": process_wall,
+        "casting_size": size,
+        "set_by": "process" if process_wall >= floor else "min_wall",
+        "cast": process is not None and finishing(process).draft is not None,
+    }
 
 
 # ------------------------------------------------------------------ finishing: fillets, draft, chamfers, texture

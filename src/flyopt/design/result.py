@@ -120,10 +120,14 @@ class Parts:
         ``r_inner``, ``r_outer``, ``thickness`` [m].
     key : dict or None
         The DIN 6885-1 key of the hub and its check at the peak torque.
+    thin_wall : dict or None
+        A wheel not designed to the castability rules (a bare rim, a textbook disc) whose thinnest section is
+        thinner than the wall asked of it (:func:`flyopt.design.castability.too_thin`); None otherwise.
     """
 
     items: tuple[dict[str, Any], ...] = ()
     key: dict[str, Any] | None = None
+    thin_wall: dict[str, Any] | None = None
 
 
 @dataclass(frozen=True)
@@ -351,6 +355,7 @@ class Candidate:
             "speed_margin": s and s.speed_margin,
             "unbalance_permissible": s and s.unbalance_permissible,
             "key": p and p.key,
+            "thin_wall": p and p.thin_wall,
             "sensitivities": [dict(v) for v in lim.sensitivities],
             "castability": lim.castability,
             "notes": list(prov.notes),

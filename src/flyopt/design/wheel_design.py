@@ -129,25 +129,25 @@ def castability_of(spec: DesignSpec, material: Material, bore: float = 0.0) -> c
     return castability.rules_for(material.name, spec.castability)
 
 
-def thin_walled(spec: DesignSpec, material: str, geometry_name: str, dims: Dims) -> castability.ThinWall | None:
-    """A wheel not designed to castability rules (:func:`designed_castable`: a textbook bare rim or disc) whose
-    thinnest section is thinner than the process of its material (``material``: its key; the scene's process
-    and numbers over it) makes at the wheel's size; None otherwise, and for a wheel designed to the rules.
+def thin_walled(spec: DesignSpec, material: Material, geometry_name: str, dims: Dims) -> dict[str, Any] | None:
+    """A wheel not designed to castability rules (:func:`designed_castable`: a bare rim, a textbook disc) whose
+    thinnest section is thinner than the wall asked of it: its material's process's minimum at its size (the
+    scene's process and numbers over it) or the design's (or the material's) ``min_wall``, whichever is larger
+    (:func:`flyopt.design.castability.too_thin`); None otherwise, and for a wheel designed to the rules.
 
-    The one decision behind the structural check's note (:func:`structure_fields`) and the answer's line
-    (:func:`flyopt.report.text.answer_report`). ``dims``: the wheel's, its bore among them.
+    Made once, by the structural check (:func:`structure_fields`), into the design's ``parts.thin_wall``, which
+    its note, the answer's line and the report's summary read. ``dims``: the wheel's, its bore among them.
     """
     if designed_castable(spec, float(dims.bore)):
         return None
-    return castability.thinner_than_process(castability.rules_for(material, spec.castability), geometry_name, dims)
+    rules = castability.rules_for(material.name, spec.castability)
+    return castability.too_thin(rules, min_wall_of(spec, material), geometry_name, dims)
 
 
 def min_wall_at(spec: DesignSpec, material: Material, d_outer: float, bore: float = 0.0) -> float:
     """The thinnest wall a wheel of outer diameter ``d_outer`` [m] may have [m]: the larger of
     :func:`min_wall_of` and the process's minimum at that size (the NLP writes the two as a bound and a row)."""
-    floor = min_wall_of(spec, material)
-    rules = castability_of(spec, material, bore)
-    return max(floor, float(castability.min_wall_at(rules, d_outer))) if rules is not None else floor
+    return castability.wall_asked(castability_of(spec, material, bore), min_wall_of(spec, material), d_outer)
 
 
 def hub_bounds(
@@ -1045,24 +1045,36 @@ def structure_fields(
         notes.append(
             f"no casting process is known for {material.display_name}: castability not checked (give design.process)"
         )
-    thin = thin_walled(spec, material.name, geometry_name, dims)
+    thin = thin_walled(spec, material, geometry_name, dims)
     if thin is not None:
-        notes.append(thin_wall_note(thin, geometry_name))
+        notes.append(thin_wall_note(thin, geometry_name, spec.textbook(bore)))
     cast = castability.record(rules, min_wall_of(spec, material), geometry_name, dims)
-    return Structure(Parts(items, key_check), stresses, tuple(notes), cast)
+    return Structure(Parts(items, key_check, thin), stresses, tuple(notes), cast)
 
 
-def thin_wall_note(thin: castability.ThinWall, geometry_name: str) -> Said:
-    """The structural check's note on a textbook wheel thinner than its process makes (:func:`thin_walled`)."""
-    process = thin.process.replace("_", " ")
+def thin_wall_note(thin: Mapping[str, Any], geometry_name: str, textbook: bool) -> Said:
+    """The structural check's note on a wheel thinner than the wall asked of it (:func:`thin_walled`): both
+    walls, who asks (the process, or design.min_wall), why nothing held the section to it, and what to do."""
+    part, wall, asked = thin["thinnest_part"], thin["thinnest_wall"], thin["min_wall"]
+    shape = wheel_words(geometry_name)
+    if thin["set_by"] == "min_wall":
+        by = "asked of it (design.min_wall, or its material's min_wall) in a wheel {size} across"
+    elif thin["process"] == "scene":
+        by = "the scene's castability asks (design.castability.min_wall) in a wheel {size} across"
+    else:
+        by = f"the {thin['process'].replace('_', ' ')} process makes in a wheel {{size}} across"
+    sized = "its inertia and rim speed alone" if textbook else "its inertia and stresses alone"
+    other = 'design the wheel whole (design.geometry = "rim_web")'
+    if geometry_name == Geometry.DISC:
+        other = 'give it a bore (design.bore) so that it is designed whole, or design a wheel with a web (design.geometry = "rim_web")'
+    named = f"the {part}'s width" if part == "disc" else f"the {part}'s thinnest wall"
     return said(
-        f"the {thin.part}'s thinnest wall, {{wall}}, is thinner than the {process} process makes in a wheel "
-        f"{{size}} across ({{minimum}}): the textbook {wheel_words(geometry_name)} "
-        "is sized by its inertia and rim speed alone, so nothing held its section to what can be made; set an "
-        'envelope (design.max_outer_diameter) or design the wheel whole (design.geometry = "rim_web")',
-        wall=(thin.wall, "length", f"{thin.wall * 1e3:.4g} mm"),
-        size=(thin.casting_size, "length", f"{thin.casting_size:.4g} m"),
-        minimum=(thin.process_min_wall, "length", f"{thin.process_min_wall * 1e3:.4g} mm"),
+        f"{named}, {{wall}}, is thinner than the {{asked}} {by}: a bare {shape} is not designed to the "
+        f"castability rules (its section is sized by {sized}), so nothing held it to a wall that can be made; "
+        f"set an envelope (design.max_outer_diameter) or {other}",
+        wall=(wall, "length", f"{wall * 1e3:.4g} mm"),
+        asked=(asked, "length", f"{asked * 1e3:.4g} mm"),
+        size=(thin["casting_size"], "length", f"{thin['casting_size']:.4g} m"),
     )
 
 

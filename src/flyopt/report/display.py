@@ -618,6 +618,33 @@ def rounded_rank_note(continuous_mass: str) -> str:
     )
 
 
+def thin_wall_answer(thin: Mapping[str, Any], quantity: Callable[[float, str], T]) -> list[str | T]:
+    """A bare wheel thinner than the wall asked of it (the design's ``parts.thin_wall``,
+    :func:`flyopt.design.castability.too_thin`) in the answer (the text's line, the card's row), as parts: its
+    thinnest section, the wall asked and by whom, and that it cannot be made (cast) as sized.
+    ``quantity(value, name)`` shows a value of the JSON field ``name``."""
+    if thin["set_by"] == "min_wall":
+        who = " asked (design.min_wall, or the material's)"
+    elif thin["process"] == "scene":
+        who = " the scene's castability asks at this size"
+    else:
+        who = f" the {thin['process'].replace('_', ' ')} process makes at this size"
+    made = "not castable as sized" if thin["cast"] and thin["set_by"] == "process" else "too thin to make as sized"
+    return [
+        f"{thin['thinnest_part']} ",
+        quantity(thin["thinnest_wall"], "thinnest_wall"),
+        ", thinner than the ",
+        quantity(thin["min_wall"], "min_wall"),
+        f"{who}: {made} (see the notes)",
+    ]
+
+
+def thin_wall_words(thin: Mapping[str, Any]) -> str:
+    """What the one-sentence answer adds for a bare wheel thinner than the wall asked of it."""
+    made = "to cast" if thin["cast"] and thin["set_by"] == "process" else "to make"
+    return f"; as sized, its {thin['thinnest_part']} is too thin {made}"
+
+
 def key_answer(key: Mapping[str, Any], material: str, quantity: Callable[[float, str], T]) -> list[str | T]:
     """The hub's key in the answer (the text's line, the card's row), as parts: its DIN 6885-1 section (in mm, as
     the standard names it), its length, the torque it is checked at (the peak of the flywheel the cycle requires:

@@ -20,7 +20,6 @@ from flyopt.design.check import binding_label
 from flyopt.design.combination import shaft_label, wheel_words
 from flyopt.design.key import key_verdict
 from flyopt.design.result import NO_DESIGN, Design
-from flyopt.design.wheel_design import thin_walled
 from flyopt.errors import BrokenInvariant
 from flyopt.names import Geometry
 from flyopt.report.characters import visible
@@ -45,6 +44,7 @@ from flyopt.report.display import (
     sensitivity_text,
     share,
     share_of_allowable,
+    thin_wall_answer,
     unit,
 )
 from flyopt.said import counted
@@ -231,9 +231,11 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
             if run.j_flywheel
             else "no flywheel (the motor's slip holds δ)"
         )
+        thin = design.best.parts.thin_wall if design is not None and design.best is not None else None
         return [
             f"Answer: motor {visible(run.motor.name)} at a ratio of {number(run.motor_ratio, digits)}, {wheel}; "
             f"δ {number(run.delta, digits)} against the allowed {number(r.delta, digits)}",
+            *([f"    wall    {''.join(thin_wall_answer(thin, q))}"] if thin is not None else []),
             "",
         ]
     best = design.best if design is not None else None
@@ -284,13 +286,9 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
             f"({share_of_allowable(worst['stress'] / worst['allowable'])})"
         )
     lines.append(f"    limits  {limits}")
-    thin = thin_walled(design.spec, best.material, best.geometry, best.dims.wheel(best.n_arms, best.bore))
-    if thin is not None:  # a textbook wheel thinner than its process makes: the verdict, its note says more
-        lines.append(
-            f"    casting {thin.part} wall {q(thin.wall, 'thinnest_wall')}, thinner than the "
-            f"{thin.process.replace('_', ' ')} process's {q(thin.process_min_wall, 'process_min_wall')} at this "
-            "size: not castable as sized (see the notes)"
-        )
+    thin = best.parts.thin_wall
+    if thin is not None:  # a bare wheel thinner than can be made: the verdict; its note says more
+        lines.append(f"    wall    {''.join(thin_wall_answer(thin, q))}")
     k = best.parts.key
     if k and k.get("shear") is not None:  # the hub's key, checked at the peak torque (section 13)
         said = key_answer(k, design.material_name(best.material), q)

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from flyopt.design.check import binding_label
 from flyopt.design.combination import shaft_label, wheel_words
 from flyopt.errors import BrokenInvariant
@@ -13,9 +11,6 @@ from flyopt.report.display import number
 from flyopt.report.document import Facts, Paragraph
 from flyopt.said import indefinite
 
-if TYPE_CHECKING:
-    from flyopt.design.castability import ThinWall
-
 
 class Summary(BuilderBase):
     """Section 1 of the report."""
@@ -23,7 +18,8 @@ class Summary(BuilderBase):
     def summary(self) -> None:
         a, d, best = self.analysis, self.design, self.best()
         blocks = self.section("Summary", "summary")
-        bad = self.solution.status in ("infeasible", "insufficient") or self.flagged()
+        best_made = best is None or best.parts.thin_wall is None  # a wheel that cannot be made as sized: a warning
+        bad = self.solution.status in ("infeasible", "insufficient") or self.flagged() or not best_made
         blocks.append(Paragraph(self.answer(), "warning" if bad else "ok"))
         book = d.book_rim() if d is not None else None
         if book is not None:  # the courses' rim: its verdict is the design section's, said here too
@@ -145,20 +141,10 @@ class Summary(BuilderBase):
                             ),
                         )
                     )
-            thin = self.thin_wall()
-            if thin is not None:  # a textbook wheel thinner than its process makes (the design's notes say more)
-                rows.append(
-                    (
-                        "casting",
-                        (
-                            f"{thin.part} wall ",
-                            self.q(thin.wall, "length", "thinnest_wall"),
-                            f", thinner than the {thin.process.replace('_', ' ')} process's ",
-                            self.q(thin.process_min_wall, "length", "process_min_wall"),
-                            " at this size: not castable as sized (see the design's notes)",
-                        ),
-                    )
-                )
+            thin = best.parts.thin_wall
+            if thin is not None:  # a bare wheel thinner than can be made (the design's notes say more)
+                parts = display.thin_wall_answer(thin, lambda v, name: self.q(v, "length", name))
+                rows.append(("thinnest wall", tuple(parts)))
         elif d is not None and d.status == "infeasible":
             rows.append(("design", "no feasible design: " + display.said_text(d.message, self.units, self.digits)))
         drive = self.solution.drive
@@ -250,22 +236,11 @@ class Summary(BuilderBase):
             f"{self.casting_words()}."
         )
 
-    def thin_wall(self) -> ThinWall | None:
-        """The chosen wheel's section where it is thinner than its process makes, a textbook wheel's
-        (:func:`flyopt.design.wheel_design.thin_walled`); None otherwise."""
-        from flyopt.design.wheel_design import thin_walled
-
-        best = self.best()
-        if self.design is None or best is None:
-            return None
-        return thin_walled(self.design.spec, best.material, best.geometry, best.dims.wheel(best.n_arms, best.bore))
-
     def casting_words(self) -> str:
-        """Where the chosen wheel is too thin to cast, what the answer adds; nothing otherwise."""
-        thin = self.thin_wall()
-        if thin is None:
-            return ""
-        return f"; as sized, its {thin.part} is too thin to cast (see casting)"
+        """Where the chosen wheel is too thin to be made as sized, what the answer adds; nothing otherwise."""
+        best = self.best()
+        thin = best.parts.thin_wall if best is not None else None
+        return display.thin_wall_words(thin) if thin is not None else ""
 
     def stall_words(self, with_delta: bool = True) -> str:
         """Where a stall sets the flywheel, what the answer adds: the flywheel is the smallest that runs steadily,

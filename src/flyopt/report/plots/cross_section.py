@@ -53,6 +53,7 @@ class _InUnits:
         self.mass, self.j_flywheel, self.n_arms = design.mass, design.j_flywheel, design.n_arms
         self.binding = design.limits.binding
         self.cast_checked = design.limits.castability is not None  # its walls and section ratios (issue 28)
+        self.thin_wall = design.parts.thin_wall  # a bare wheel thinner than its process makes (its notes say)
         self.d_outer, self.d_inner, self.h, self.b = (v / factor for v in (dims.d_outer, dims.d_inner, dims.h, dims.b))
         self.bore, self.t_web, self.d_hub = scaled(design.bore), scaled(dims.t_web), scaled(dims.d_hub)
         self.l_hub, self.arm_major, self.arm_minor = scaled(dims.l_hub), scaled(dims.arm_major), scaled(dims.arm_minor)
@@ -492,7 +493,10 @@ def _section_notes(c, length, text):
             + (
                 "its castability (walls, section ratios) is checked, its stiffness is not."
                 if c.cast_checked
-                else "its stiffness and castability are not checked."
+                else "its walls are thinner than can be made (see the design's notes); its stiffness is not checked."
+                if c.thin_wall is not None
+                else "its thinnest wall is checked against its process where one is known; its section ratios "
+                "and stiffness are not."
             )
         )
     return notes
