@@ -30,7 +30,7 @@ from flyopt.design.materials import builtin_materials
 from flyopt.design.wheel import Dims
 from flyopt.design.wheel_design import thin_walled
 from flyopt.outputs.schema import schema
-from flyopt.report.card import solution_card
+from flyopt.report.card import card_html, solution_card
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "tests" / "data" / "castability" / "thin-textbook-rim.toml"
@@ -161,6 +161,9 @@ def test_the_thin_textbook_rim_says_so_in_the_answer_the_notes_the_json_and_the_
     assert rows["thinnest wall"].name == "thinnest_wall"
     assert_allclose(rows["thinnest wall"].si, wall, rtol=1e-12)
     assert "too thin to cast" in card.verdict
+    # the card warns as the report's verdict does (its status is still "designed": the book's problem is answered)
+    assert card.status == "designed" and card.warned and not card.good
+    assert card_html(card).startswith('<div class="card flyopt-answer bad">')
 
 
 @pytest.mark.parametrize(
@@ -207,6 +210,8 @@ def test_with_an_envelope_the_rim_is_thick_enough_and_nothing_is_said(tmp_path):
     text = run_flyopt("solve", scene).stdout
     assert not [x for x in text.split("\n\n")[0].splitlines() if x.strip().startswith("wall")]
     assert "not castable" not in text and "too thin" not in text
+    card = solution_card(flyopt.solve(flyopt.load(scene)))
+    assert card.good and not card.warned and "thinnest wall" not in {row.label for row in card.rows}
 
 
 def _shipped_textbook_wheels():

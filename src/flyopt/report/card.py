@@ -59,22 +59,24 @@ class Card:
     status: str
     verdict: str
     rows: tuple[Row, ...]
+    warned: bool = False  # the report's verdict is a warning (a wheel that cannot be made as sized, a flagged δ)
 
     @property
     def good(self) -> bool:
-        """Whether the answer holds (a design, no flywheel needed, an analysis, a flywheel given that holds)."""
-        return self.status in GOOD
+        """Whether the answer holds (a design, no flywheel needed, an analysis, a flywheel given that holds) and
+        the report's verdict does not warn (a wheel too thin to be made as sized)."""
+        return self.status in GOOD and not self.warned
 
 
 def card_of(document: Document) -> Card:
     """The card of a built report: its first section's first paragraph is the verdict, its facts the rows (the
     report's answer section, of a solution or of a calculation alike)."""
     rows: list[Row] = []
-    verdict = ""
+    verdict, warned = "", False
     section = document.sections[0] if document.sections else None
     for block in section.blocks if section is not None else ():
         if isinstance(block, Paragraph) and not verdict:
-            verdict = plain(block.text)
+            verdict, warned = plain(block.text), block.kind == "warning"
         if isinstance(block, Facts):
             for label, value in block.rows:
                 parts = value if isinstance(value, tuple) else (value,)
@@ -89,7 +91,7 @@ def card_of(document: Document) -> Card:
                         markup,
                     )
                 )
-    return Card(document.title, document.status, verdict, tuple(rows))
+    return Card(document.title, document.status, verdict, tuple(rows), warned)
 
 
 def solution_card(solution: Solution, units: str = display.DEFAULT, digits: int = display.DEFAULT_DIGITS) -> Card:
