@@ -320,7 +320,17 @@ def record(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[
 def thinnest_wall(geometry: str, dims: Any) -> tuple[str, float]:
     """(part, wall [m]) of a wheel's thinnest section among :func:`walls` (the rim's H or B, a disc's width,
     the web, the arms' minor axis, the hub's wall)."""
-    return min(((p, float(w)) for p, w in walls(geometry, dims)), key=lambda pw: pw[1])
+    part, thinnest = "", math.inf
+    for name, wall in walls(geometry, dims):  # the first of equal walls, as min() gives it
+        if float(wall) < thinnest:
+            part, thinnest = name, float(wall)
+    return part, thinnest
+
+
+@functools.lru_cache(maxsize=64)
+def _thickest(rules: Rules | None) -> float:
+    """The process's largest minimum wall at any size [m] (0: no rules, or no table)."""
+    return max((wall for _, wall in rules.min_wall), default=0.0) if rules is not None else 0.0
 
 
 def too_thin(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[str, Any] | None:
@@ -336,11 +346,11 @@ def too_thin(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dic
     diameter [m]), ``set_by`` ("process" or "min_wall": which one asks the most) and ``cast`` (whether the
     process casts the piece: it has a draft, :func:`finishing`), the fields of the JSON's ``thin_wall``.
     """
-    table = rules.min_wall if rules is not None else ()
-    if not table and floor <= 0.0:
+    most = max(floor, _thickest(rules))  # the most asked at any size
+    if most <= 0.0:
         return None
     part, thinnest = thinnest_wall(geometry, dims)
-    if thinnest >= max([floor, *(wall for _, wall in table)]):  # at least the most asked at any size
+    if thinnest >= most:
         return None
     size = float(dims.d_outer)
     process_wall = float(min_wall_at(rules, size)) if rules is not None else 0.0
@@ -422,6 +432,7 @@ def _finishing_data() -> dict[str, Any]:
 FILLET_RATIO = float(_finishing_data()["fillet"]["ratio"])
 
 
+@functools.lru_cache(maxsize=32)
 def finishing(process: str | None) -> Finishing:
     """The finishing rules of a process (None or a name the file does not know: the common rules alone,
     no minimum fillet and no draft)."""
