@@ -21,11 +21,21 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
+def stderr_log(temporary: Path) -> Path:
+    """The file a server :func:`served` with the temporary directory ``temporary`` writes its stderr to."""
+    return temporary.parent / f"{temporary.name}-stderr.log"
+
+
 @contextlib.contextmanager
-def served(temporary: Path) -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
+def served(temporary: Path, stderr: list[str] | None = None) -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
     """(url, process) of ``flyopt app`` on a free port, its temporary directory ``temporary`` (TMPDIR), once it
-    answers (its first request makes a session); stopped by SIGTERM on leaving, or killed if it is still up."""
+    answers (its first request makes a session); stopped by SIGTERM on leaving, or killed if it is still up.
+
+    What the server wrote on its stderr goes to a file beside ``temporary`` (a pipe nobody reads would stop the
+    server once full) and, once it has stopped, is appended to ``stderr`` where given."""
     port = free_port()
+    log_path = stderr_log(temporary)
+    log = open(log_path, "wb")  # noqa: SIM115 -- closed below, after the process that writes it
     env = {
         **os.environ,
         "TMPDIR": str(temporary),
@@ -35,7 +45,7 @@ def served(temporary: Path) -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
         [sys.executable, "-m", "flyopt", "app", "--port", str(port), "--no-browser"],
         env=env,
         stdout=subprocess.DEVNULL,
-        stderr=subprocess.PIPE,
+        stderr=log,
     )
     url = f"http://127.0.0.1:{port}/"
     try:
@@ -47,8 +57,7 @@ def served(temporary: Path) -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
                 break
             except OSError:
                 if process.poll() is not None:
-                    assert process.stderr is not None
-                    raise RuntimeError(process.stderr.read().decode()) from None
+                    raise RuntimeError(log_path.read_text(encoding="utf-8", errors="replace")) from None
                 time.sleep(0.1)
         yield url, process
     finally:
@@ -59,5 +68,6 @@ def served(temporary: Path) -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait(10)
-        assert process.stderr is not None
-        process.stderr.close()
+        log.close()
+        if stderr is not None:
+            stderr.append(log_path.read_text(encoding="utf-8", errors="replace"))

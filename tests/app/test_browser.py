@@ -30,12 +30,15 @@ ARGS = [
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
     """The app served as a user runs it, its temporary directory its own (TMPDIR): stopped by SIGTERM at the
-    end, it must leave no session's private folder there (tests/app/test_server.py says why)."""
+    end, it must leave no session's private folder there (tests/app/test_server.py says why), and nothing the
+    pages did (tabs closed while the server still sent them diagrams among it) a traceback in its terminal."""
     pytest.importorskip("panel", reason="the app extra (panel) is not installed")
     temporary = tmp_path_factory.mktemp("app-tmp")
-    with served(temporary) as (url, _):
+    stderr: list[str] = []
+    with served(temporary, stderr) as (url, _):
         yield url
     assert list(temporary.glob("flyopt-app-*")) == [], "the stopped server left its sessions' folders"
+    assert "Traceback" not in stderr[0], stderr[0][-3000:]
 
 
 @pytest.fixture(scope="module")

@@ -22,3 +22,51 @@ def test_a_stopped_server_leaves_no_sessions_folder(how, tmp_path):
         process.send_signal(how)
         process.wait(30)
     assert list(tmp_path.glob("flyopt-app-*")) == []
+
+
+def test_a_write_to_a_closed_connection_is_not_printed_and_anything_else_is():
+    """A browser tab closed while the server still sends it an edit's diagrams leaves Tornado's
+    WebSocketClosedError (or StreamClosedError) in a task nobody awaits; asyncio printed it with a traceback.
+    The server's handler drops those and hands every other exception to asyncio's own handler."""
+    pytest.importorskip("tornado", reason="the app extra (panel, tornado) is not installed")
+    from tornado.iostream import StreamClosedError
+    from tornado.websocket import WebSocketClosedError
+
+    from flyopt.app.page import closed_connection_handler
+
+    seen: list[dict] = []
+
+    class Loop:
+        def default_exception_handler(self, context):
+            seen.append(context)
+
+    for error in (WebSocketClosedError(), StreamClosedError()):
+        closed_connection_handler(Loop(), {"message": "Task exception was never retrieved", "exception": error})
+    assert seen == []
+    other = {"message": "Task exception was never retrieved", "exception": ValueError("a bug of the app")}
+    plain = {"message": "an error without an exception"}
+    closed_connection_handler(Loop(), other)
+    closed_connection_handler(Loop(), plain)
+    assert seen == [other, plain]
+
+
+def test_the_server_runs_on_a_loop_with_that_handler(monkeypatch):
+    """`flyopt app` serves on an asyncio loop whose exception handler is the one above (Panel's serve, stubbed
+    here, runs Tornado's IOLoop on this thread's asyncio loop)."""
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    import asyncio
+
+    from flyopt.app import model, page
+
+    seen = []
+    monkeypatch.setattr(pn, "serve", lambda *args, **kwargs: seen.append(asyncio.get_event_loop()))
+    monkeypatch.setattr(model, "serving", lambda host: None)
+    previous = signal.getsignal(signal.SIGTERM)
+    try:
+        page.serve(0, "127.0.0.1", browser=False)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        asyncio.set_event_loop(None)
+    (loop,) = seen
+    assert loop.get_exception_handler() is page.closed_connection_handler
+    loop.close()

@@ -440,6 +440,20 @@ def _fluid(svg: str) -> str:
     )
 
 
+def closed_connection_handler(loop: Any, context: dict[str, Any]) -> None:
+    """The server's asyncio exception handler: a message Bokeh was still sending when the browser's tab closed
+    (an edit's diagrams, drawn after the card) fails with Tornado's ``WebSocketClosedError`` (or
+    ``StreamClosedError``) in a task nobody awaits, which asyncio printed as "Task exception was never
+    retrieved" and a traceback in the terminal. The connection is gone and the session is closed as usual:
+    nothing is wrong, so nothing is printed. Every other exception goes to asyncio's own handler."""
+    from tornado.iostream import StreamClosedError
+    from tornado.websocket import WebSocketClosedError
+
+    if isinstance(context.get("exception"), (WebSocketClosedError, StreamClosedError)):
+        return
+    loop.default_exception_handler(context)
+
+
 def serve(port: int, host: str, browser: bool) -> None:
     """Serve the app on ``host``:``port`` until interrupted; open the browser when asked."""
     import signal
@@ -447,6 +461,10 @@ def serve(port: int, host: str, browser: bool) -> None:
     import panel as pn
 
     model.serving(host)
+    # the loop the server runs on (Tornado's IOLoop.current() wraps this thread's asyncio loop)
+    loop = asyncio.new_event_loop()
+    asyncio.set_event_loop(loop)
+    loop.set_exception_handler(closed_connection_handler)
     pn.extension("codeeditor", raw_css=[CSS])
     # SIGTERM stops the server as Ctrl-C does (Panel's own SIGINT handler), so that it returns here
     signal.signal(signal.SIGTERM, lambda *_: signal.raise_signal(signal.SIGINT))
