@@ -170,7 +170,7 @@ def test_the_thin_textbook_rim_says_so_in_the_answer_the_notes_the_json_and_the_
     ("extra", "words", "set_by"),
     [
         ('process = "machined"', "the 0.8 mm the machined process makes at this size: too thin to make", "process"),
-        ('process = "none"\nmin_wall = "10 mm"', "the 10 mm asked (design.min_wall", "min_wall"),
+        ('process = "none"\nmin_wall = "10 mm"', "the 10 mm asked of it (design.min_wall", "min_wall"),
         ('criterion = "stress"', "the 8 mm the cast steel process makes at this size: not castable", "process"),
     ],
     ids=["machined", "min-wall", "stress-criterion"],

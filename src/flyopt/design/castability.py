@@ -34,7 +34,7 @@ from __future__ import annotations
 import fnmatch
 import functools
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from importlib import resources
 from typing import Any, NamedTuple
 
@@ -58,6 +58,8 @@ __all__ = [
     "record",
     "thinnest_wall",
     "too_thin",
+    "too_thin_to_cast",
+    "who_asks",
     "ARM_THICKNESS",
     "Finishing",
     "finishing",
@@ -368,6 +370,22 @@ def too_thin(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dic
         "set_by": "process" if process_wall >= floor else "min_wall",
         "cast": process is not None and finishing(process).draft is not None,
     }
+
+
+def who_asks(thin: Mapping[str, Any]) -> str:
+    """Who asks the wall a :func:`too_thin` wheel falls short of, in words ("the cast steel process makes",
+    "asked of it (design.min_wall, ...)"): the one phrase of its note and its answer, which add the size."""
+    if thin["set_by"] == "min_wall":
+        return "asked of it (design.min_wall, or its material's min_wall)"
+    if thin["process"] == "scene":
+        return "the scene's castability asks (design.castability.min_wall)"
+    return f"the {thin['process'].replace('_', ' ')} process makes"
+
+
+def too_thin_to_cast(thin: Mapping[str, Any]) -> bool:
+    """Whether a :func:`too_thin` wheel is too thin to cast (its process casts the piece and asks the wall), not
+    only to make (a machined piece, a wall asked by design.min_wall)."""
+    return bool(thin["cast"]) and thin["set_by"] == "process"
 
 
 # ------------------------------------------------------------------ finishing: fillets, draft, chamfers, texture

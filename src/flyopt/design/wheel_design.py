@@ -1057,12 +1057,7 @@ def thin_wall_note(thin: Mapping[str, Any], geometry_name: str, textbook: bool) 
     walls, who asks (the process, or design.min_wall), why nothing held the section to it, and what to do."""
     part, wall, asked = thin["thinnest_part"], thin["thinnest_wall"], thin["min_wall"]
     shape = wheel_words(geometry_name)
-    if thin["set_by"] == "min_wall":
-        by = "asked of it (design.min_wall, or its material's min_wall) in a wheel {size} across"
-    elif thin["process"] == "scene":
-        by = "the scene's castability asks (design.castability.min_wall) in a wheel {size} across"
-    else:
-        by = f"the {thin['process'].replace('_', ' ')} process makes in a wheel {{size}} across"
+    by = castability.who_asks(thin).replace("{", "{{").replace("}", "}}") + " in a wheel {size} across"
     sized = "its inertia and rim speed alone" if textbook else "its inertia and stresses alone"
     other = 'design the wheel whole (design.geometry = "rim_web")'
     if geometry_name == Geometry.DISC:

@@ -623,26 +623,23 @@ def thin_wall_answer(thin: Mapping[str, Any], quantity: Callable[[float, str], T
     :func:`flyopt.design.castability.too_thin`) in the answer (the text's line, the card's row), as parts: its
     thinnest section, the wall asked and by whom, and that it cannot be made (cast) as sized.
     ``quantity(value, name)`` shows a value of the JSON field ``name``."""
-    if thin["set_by"] == "min_wall":
-        who = " asked (design.min_wall, or the material's)"
-    elif thin["process"] == "scene":
-        who = " the scene's castability asks at this size"
-    else:
-        who = f" the {thin['process'].replace('_', ' ')} process makes at this size"
-    made = "not castable as sized" if thin["cast"] and thin["set_by"] == "process" else "too thin to make as sized"
+    from flyopt.design.castability import too_thin_to_cast, who_asks
+
+    made = "not castable as sized" if too_thin_to_cast(thin) else "too thin to make as sized"
     return [
         f"{thin['thinnest_part']} ",
         quantity(thin["thinnest_wall"], "thinnest_wall"),
         ", thinner than the ",
         quantity(thin["min_wall"], "min_wall"),
-        f"{who}: {made} (see the notes)",
+        f" {who_asks(thin)} at this size: {made} (see the notes)",
     ]
 
 
 def thin_wall_words(thin: Mapping[str, Any]) -> str:
     """What the one-sentence answer adds for a bare wheel thinner than the wall asked of it."""
-    made = "to cast" if thin["cast"] and thin["set_by"] == "process" else "to make"
-    return f"; as sized, its {thin['thinnest_part']} is too thin {made}"
+    from flyopt.design.castability import too_thin_to_cast
+
+    return f"; as sized, its {thin['thinnest_part']} is too thin {'to cast' if too_thin_to_cast(thin) else 'to make'}"
 
 
 def key_answer(key: Mapping[str, Any], material: str, quantity: Callable[[float, str], T]) -> list[str | T]:
