@@ -35,18 +35,18 @@ def served(temporary: Path, stderr: list[str] | None = None) -> Iterator[tuple[s
     server once full) and, once it has stopped, is appended to ``stderr`` where given."""
     port = free_port()
     log_path = stderr_log(temporary)
-    log = open(log_path, "wb")  # noqa: SIM115 -- closed below, after the process that writes it
     env = {
         **os.environ,
         "TMPDIR": str(temporary),
         "PYTHONPATH": f"{SRC}{os.pathsep}{os.environ.get('PYTHONPATH', '')}",
     }
-    process = subprocess.Popen(
-        [sys.executable, "-m", "flyopt", "app", "--port", str(port), "--no-browser"],
-        env=env,
-        stdout=subprocess.DEVNULL,
-        stderr=log,
-    )
+    with open(log_path, "wb") as log:  # the server writes to its own copy of the handle; this one closes here
+        process = subprocess.Popen(
+            [sys.executable, "-m", "flyopt", "app", "--port", str(port), "--no-browser"],
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=log,
+        )
     url = f"http://127.0.0.1:{port}/"
     try:
         for _ in range(600):
@@ -68,6 +68,5 @@ def served(temporary: Path, stderr: list[str] | None = None) -> Iterator[tuple[s
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait(10)
-        log.close()
         if stderr is not None:
             stderr.append(log_path.read_text(encoding="utf-8", errors="replace"))

@@ -59,14 +59,20 @@ def test_the_server_runs_on_a_loop_with_that_handler(monkeypatch):
     from flyopt.app import model, page
 
     seen = []
-    monkeypatch.setattr(pn, "serve", lambda *args, **kwargs: seen.append(asyncio.get_event_loop()))
+
+    def serve(*args, **kwargs):
+        loop = asyncio.get_event_loop()
+        seen.append((loop, loop.get_exception_handler()))
+
+    monkeypatch.setattr(pn, "serve", serve)
+    monkeypatch.setattr(pn, "extension", lambda *args, **kwargs: None)  # Panel's global config left as it is
     monkeypatch.setattr(model, "serving", lambda host: None)
+    monkeypatch.setattr(model, "close_workspaces", lambda: None)  # this process's other workspaces left open
     previous = signal.getsignal(signal.SIGTERM)
     try:
         page.serve(0, "127.0.0.1", browser=False)
     finally:
         signal.signal(signal.SIGTERM, previous)
-        asyncio.set_event_loop(None)
-    (loop,) = seen
-    assert loop.get_exception_handler() is page.closed_connection_handler
-    loop.close()
+    ((loop, handler),) = seen
+    assert handler is page.closed_connection_handler
+    assert loop.is_closed()  # and closed once the server has stopped

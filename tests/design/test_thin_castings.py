@@ -246,3 +246,11 @@ def test_the_cross_section_of_a_thin_rim_says_it_cannot_be_made():
     words = " ".join(note.get_text().split())
     assert "its walls are thinner than can be made (see the design's notes)" in words
     assert "castability are not checked" not in words
+
+
+def test_the_rules_of_overrides_given_as_lists_are_those_of_tuples():
+    """rules_for is remembered by its arguments; a caller's rows given as lists (as TOML reads them) are made
+    tuples first, and read as the same numbers."""
+    listed = castability.rules_for("en_gjl_250", castability.Overrides(min_wall=[[0.0, 0.005], [1.0, 0.007]]))
+    tupled = castability.rules_for("en_gjl_250", castability.Overrides(min_wall=((0.0, 0.005), (1.0, 0.007))))
+    assert listed == tupled and listed is not None and listed.min_wall == ((0.0, 0.005), (1.0, 0.007))

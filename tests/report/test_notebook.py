@@ -340,3 +340,27 @@ def test_the_round_off_taken_off_is_that_of_pythons_own_fifteen_figures():
     expected = np.array([reference(float(v)) for v in values])
     assert np.array_equal(got.view(np.int64), expected.view(np.int64))  # bit for bit, the sign of 0 and nan too
     assert (got != values).sum() > 1000  # the noise was there to take off
+
+
+def test_a_cards_colour_is_the_answer_sections():
+    """The card is red where the report's answer section warns, in any of its paragraphs (the courses' rim over
+    its allowable at omega_max: a second paragraph, which the card ignored), and green for a calculation that
+    holds (its status, "calculated", was missing from the good ones: every calculation's card was red)."""
+    from conftest import PROBLEMS
+
+    from flyopt.report.card import card_html, solution_card
+
+    book = solution_card(flyopt.solve(flyopt.load(PROBLEMS / "textbook" / "khurmi-16-14-book-rim.toml")))
+    assert "OVER" in " ".join(row.value for row in book.rows)
+    assert book.warned and not book.good and card_html(book).startswith('<div class="card flyopt-answer bad">')
+    from flyopt.cli.report import collect
+    from flyopt.report.builder import build
+    from flyopt.report.card import card_of
+
+    document = build(collect(PROBLEMS / "textbook" / "khurmi-16-21.toml"), figures=False)
+    try:
+        calculation = card_of(document)
+    finally:
+        document.close()
+    assert calculation.status == "calculated" and calculation.good
+    assert card_html(calculation).startswith('<div class="card flyopt-answer ok">')

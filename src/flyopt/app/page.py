@@ -481,3 +481,5 @@ def serve(port: int, host: str, browser: bool) -> None:
         )
     finally:
         model.close_workspaces()  # the sessions still open: nothing of theirs stays behind
+        asyncio.set_event_loop(None)
+        loop.close()

@@ -168,13 +168,19 @@ def process_of(material: str) -> str | None:
     return None
 
 
-@functools.lru_cache(maxsize=256)
 def rules_for(material: str, overrides: Overrides | None = None) -> Rules | None:
     """The rules a wheel of a material is designed to: its process's (or the scene's), the scene's numbers
     over them; None where no process applies (none named, or ``process = "none"``).
 
-    Remembered by its arguments (a material's key and the scene's hashable overrides; the rules are an
-    immutable tuple): a ranking asks it for every candidate, a sweep for every point."""
+    Remembered by its arguments (a material's key and the scene's overrides, their rows made tuples; the rules
+    are an immutable tuple): a ranking asks it for every candidate, a sweep for every point."""
+    if overrides is not None and overrides.min_wall is not None:
+        overrides = overrides._replace(min_wall=tuple((float(s), float(w)) for s, w in overrides.min_wall))
+    return _rules_for(material, overrides)
+
+
+@functools.lru_cache(maxsize=256)
+def _rules_for(material: str, overrides: Overrides | None) -> Rules | None:
     over = overrides or Overrides()
     name = over.process or process_of(material)
     if name == NONE:
@@ -322,8 +328,9 @@ def record(rules: Rules | None, floor: float, geometry: str, dims: Any) -> dict[
 def thinnest_wall(geometry: str, dims: Any) -> tuple[str, float]:
     """(part, wall [m]) of a wheel's thinnest section among :func:`walls` (the rim's H or B, a disc's width,
     the web, the arms' minor axis, the hub's wall)."""
-    part, thinnest = "", math.inf
-    for name, wall in walls(geometry, dims):  # the first of equal walls, as min() gives it
+    (part, first), *others = walls(geometry, dims)
+    thinnest = float(first)
+    for name, wall in others:  # the first of equal walls, as min() gives it
         if float(wall) < thinnest:
             part, thinnest = name, float(wall)
     return part, thinnest

@@ -34,7 +34,7 @@ if TYPE_CHECKING:
 __all__ = ["GOOD", "Card", "Row", "analysis_card", "card_html", "card_of", "solution_card"]
 
 #: The statuses a card shows as an answer that holds (any other, or a flagged one, as one that does not).
-GOOD = ("designed", "not_needed", "analysed", "checked")
+GOOD = ("designed", "not_needed", "analysed", "checked", "calculated")
 
 
 @dataclass(frozen=True)
@@ -59,12 +59,13 @@ class Card:
     status: str
     verdict: str
     rows: tuple[Row, ...]
-    warned: bool = False  # the report's verdict is a warning (a wheel that cannot be made as sized, a flagged δ)
+    warned: bool = False  # the report's answer warns (a wheel too thin to make as sized, a book rim over its allowable)
 
     @property
     def good(self) -> bool:
-        """Whether the answer holds (a design, no flywheel needed, an analysis, a flywheel given that holds) and
-        the report's verdict does not warn (a wheel too thin to be made as sized)."""
+        """Whether the answer holds (a design, no flywheel needed, an analysis, a flywheel given that holds, a
+        calculation) and the report's answer section gives no warning (a wheel too thin to be made as sized, the
+        courses' rim over its allowable at ω_max)."""
         return self.status in GOOD and not self.warned
 
 
@@ -75,8 +76,9 @@ def card_of(document: Document) -> Card:
     verdict, warned = "", False
     section = document.sections[0] if document.sections else None
     for block in section.blocks if section is not None else ():
-        if isinstance(block, Paragraph) and not verdict:
-            verdict, warned = plain(block.text), block.kind == "warning"
+        if isinstance(block, Paragraph):
+            verdict = verdict or plain(block.text)
+            warned = warned or block.kind == "warning"  # any warning of the answer section, as the report shows it
         if isinstance(block, Facts):
             for label, value in block.rows:
                 parts = value if isinstance(value, tuple) else (value,)
