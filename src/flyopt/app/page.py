@@ -480,6 +480,6 @@ def serve(port: int, host: str, browser: bool) -> None:
             threaded=False,
         )
     finally:
+        # the loop is left open: closing it would destroy the sessions' pending tasks (an edit's debounce) with
+        # "Task was destroyed but it is pending!" in the terminal; the process ends here
         model.close_workspaces()  # the sessions still open: nothing of theirs stays behind
-        asyncio.set_event_loop(None)
-        loop.close()
