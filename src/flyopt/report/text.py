@@ -231,11 +231,10 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
             if run.j_flywheel
             else "no flywheel (the motor's slip holds δ)"
         )
-        thin = design.best.parts.thin_wall if design is not None and design.best is not None else None
         return [
             f"Answer: motor {visible(run.motor.name)} at a ratio of {number(run.motor_ratio, digits)}, {wheel}; "
             f"δ {number(run.delta, digits)} against the allowed {number(r.delta, digits)}",
-            *([f"    wall    {''.join(thin_wall_answer(thin, q))}"] if thin is not None else []),
+            *_wall_lines(design.best if design is not None else None, q),
             "",
         ]
     best = design.best if design is not None else None
@@ -286,9 +285,7 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
             f"({share_of_allowable(worst['stress'] / worst['allowable'])})"
         )
     lines.append(f"    limits  {limits}")
-    thin = best.parts.thin_wall
-    if thin is not None:  # a bare wheel thinner than can be made: the verdict; its note says more
-        lines.append(f"    wall    {''.join(thin_wall_answer(thin, q))}")
+    lines += _wall_lines(best, q)
     k = best.parts.key
     if k and k.get("shear") is not None:  # the hub's key, checked at the peak torque (section 13)
         said = key_answer(k, design.material_name(best.material), q)
@@ -308,6 +305,12 @@ def answer_report(solution: Solution, units: str = DEFAULT, digits: int = DEFAUL
     )
     lines.append(f"    δ       allowed {number(r.delta, digits)}; {held}")
     return [*lines, ""]
+
+
+def _wall_lines(best: Design | None, q: Callable[..., str]) -> list[str]:
+    """The answer's line for a bare wheel thinner than can be made (its note says more); none otherwise."""
+    thin = best.parts.thin_wall if best is not None else None
+    return [f"    wall    {''.join(thin_wall_answer(thin, q))}"] if thin is not None else []
 
 
 def analysis_report(
