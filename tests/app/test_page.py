@@ -228,3 +228,57 @@ def test_the_stale_note_names_the_diagrams_only_where_some_are_shown(session, mo
         assert session.stale.object == STALE
 
     asyncio.run(edits())
+
+
+def _open_figures() -> set[int]:
+    """The figures open in matplotlib's registry (pyplot's), by identity: a figure's number is reused once closed."""
+    from matplotlib._pylab_helpers import Gcf
+
+    return {id(manager.canvas.figure) for manager in Gcf.get_all_fig_managers()}
+
+
+def test_a_closed_session_leaves_no_figure_open(session):
+    """A server serves one visitor after another: each session's figures close with it. Its answer's diagrams
+    (open while shown: the downloads render them) stayed in matplotlib's registry for as long as the server
+    ran, some 7 figures a visit ("More than 20 figures have been opened" in the terminal after three)."""
+    before = _open_figures()
+    asyncio.run(session._refresh(edited("0.04"), solve=None))
+    assert len(_open_figures() - before) >= 5  # the answer's diagrams
+    session.close()
+    session.drawer.shutdown(wait=True)  # the closing runs in the drawing worker, after any diagram it draws
+    assert _open_figures() <= before
+
+
+def test_a_session_closed_while_a_diagram_is_drawn_drops_and_closes_that_drawing(session, monkeypatch):
+    """The visitor leaves while an edit's first diagram is being drawn: the drawing is not finished (nothing more
+    is drawn for a closed page) and every figure made for it is closed, as is the answer shown before."""
+    from flyopt.app import model
+
+    before = _open_figures()
+    asyncio.run(session._refresh(edited("0.04"), solve=None))
+    held, release = threading.Event(), threading.Event()
+    svg = model.figure_svg
+    drawn: list[str] = []
+
+    def holding(block):
+        held.set()
+        assert release.wait(PATIENCE), "the test did not release the diagram"
+        drawn.append(block.key)
+        return svg(block)
+
+    monkeypatch.setattr(model, "figure_svg", holding)
+    shown = _open_figures() - before  # 0.04's diagrams
+
+    async def edit_then_leave() -> None:
+        one = asyncio.ensure_future(session._refresh(edited("0.02"), solve=None))
+        await until(held.is_set, "the edit's first diagram")
+        assert _open_figures() - before - shown  # the edit's figures, made and being drawn
+        session.close()
+        release.set()
+        await one
+
+    asyncio.run(edit_then_leave())
+    session.drawer.shutdown(wait=True)
+    assert len(drawn) == 1  # the one being drawn when the visitor left
+    assert session.answer is None
+    assert _open_figures() <= before  # neither the edit's nor the answer's shown before (0.04's)

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import asyncio
 import io
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
@@ -183,9 +184,16 @@ class Session:
         pn.state.onload(lambda: asyncio.ensure_future(self._refresh(self.text, solve=None)))
 
     def close(self) -> None:
-        """Drop the session's folder and worker."""
+        """Drop the session's work, folder and figures: whatever is in flight is stale (its answer, arriving, is
+        closed, not shown), the answer shown is closed in the drawing worker after the diagram it may be drawing,
+        and that worker stops once its queue is done (a diagram at most, and closings, which must run: a server
+        serves one visitor after another, and a figure left open stays in matplotlib's registry for good)."""
+        self.generation += 1
+        answer, self.answer = self.answer, None
         self.executor.shutdown(wait=False, cancel_futures=True)
-        self.drawer.shutdown(wait=False, cancel_futures=True)
+        if answer is not None:
+            self._drop(model.close, answer.document)
+        self.drawer.shutdown(wait=False)
         self.materials_tab.close()
         self.sweeps_tab.close()
         self.workspace.close()
@@ -327,7 +335,7 @@ class Session:
         while True:
             step = await loop.run_in_executor(self.drawer, diagrams.step)
             if mine != self.generation:
-                await loop.run_in_executor(self.drawer, diagrams.close)
+                self._drop(diagrams.close)
                 return
             if step is None:
                 break
@@ -359,10 +367,16 @@ class Session:
         for button in self.wheel_downloads:
             button.disabled = not wheel
         if old is not None and old.document is not answer.document:
-            try:  # in the drawing worker: closing waits for the drawing lock, which a diagram may be holding
-                self.drawer.submit(model.close, old.document)
-            except RuntimeError:  # the session is closing: its worker takes no more work
-                model.close(old.document)
+            self._drop(model.close, old.document)
+
+    def _drop(self, close: Callable[..., None], *args: Any) -> None:
+        """``close(*args)``, which closes figures under the drawing lock (:func:`flyopt.app.model.close` of a
+        document, :meth:`flyopt.app.diagrams.Diagrams.close`), in the drawing worker: closing waits for the lock,
+        which a diagram may be holding. Here once the session has closed (its worker takes no more work)."""
+        try:
+            self.drawer.submit(close, *args)
+        except RuntimeError:
+            close(*args)
 
     def _show_figures(self, figures: list[model.Shown]) -> None:
         """Show exactly ``figures``, in order."""
