@@ -282,3 +282,30 @@ def test_a_session_closed_while_a_diagram_is_drawn_drops_and_closes_that_drawing
     assert len(drawn) == 1  # the one being drawn when the visitor left
     assert session.answer is None
     assert _open_figures() <= before  # neither the edit's nor the answer's shown before (0.04's)
+
+
+def test_a_diagram_that_fails_to_draw_is_said_on_the_card_and_its_figures_closed(session, monkeypatch):
+    """A diagram whose drawing raises (a plotting defect) left the card saying "drawing the diagrams…" and the
+    spinner turning for good, with the edit's figures open; the card now says so, the spinner stops, Solve is
+    offered, and the figures made for that drawing are closed. The next edit draws as usual."""
+    from flyopt.app import model
+
+    before = _open_figures()
+    svg = model.figure_svg
+
+    def failing(block):
+        if block.key == "energy":
+            raise ValueError("a plotting defect")
+        return svg(block)
+
+    monkeypatch.setattr(model, "figure_svg", failing)
+    asyncio.run(session._refresh(edited("0.04"), solve=None))
+    session.drawer.submit(lambda: None).result()  # the closing queued in the drawing worker is done
+    assert "The diagrams could not be drawn: ValueError: a plotting defect" in session.card.html
+    assert "0.04 (1/25)" in session.card.html and "drawing the diagrams" not in session.card.html
+    assert not session.busy.value and not session.solve_button.disabled
+    assert _open_figures() <= before
+    monkeypatch.setattr(model, "figure_svg", svg)
+    asyncio.run(session._refresh(edited("0.02"), solve=None))
+    assert "0.02 (1/50)" in session.card.html and "could not be drawn" not in session.card.html
+    assert len(_open_figures() - before) >= 5  # the answer's diagrams, drawn

@@ -319,24 +319,33 @@ class Session:
             self._show_figures(answer.figures)
         if not answer.drawn:
             await asyncio.sleep(0)  # the card's message leaves before a diagram takes the interpreter
-            await self._draw(answer, mine, loop)
-        if mine == self.generation and not answer.drawn:
-            self.card.html = model.card_html(self.answer, [])
-            self._busy(False)
+            if await self._draw(answer, mine, loop) and mine == self.generation:
+                self.card.html = model.card_html(self.answer, [])
+                self._busy(False)
 
-    async def _draw(self, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop) -> None:
+    async def _draw(self, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop) -> bool:
         """Draw ``answer``'s diagrams in the drawing worker, those in view first (:class:`flyopt.app.diagrams.Diagrams`),
         each shown as soon as it is drawn (over the last answer's, in its place); dropped as soon as a newer
         edit comes (checked between diagrams: a diagram being drawn cannot be stopped, but the newer edit's check
-        and numbers run beside it in the solving worker, and nothing more of the stale answer is drawn)."""
+        and numbers run beside it in the solving worker, and nothing more of the stale answer is drawn). Whether
+        every diagram was drawn: a diagram that fails is said on the card, and its drawing's figures closed."""
         from flyopt.app.diagrams import Diagrams
 
         diagrams = Diagrams(answer, self._in_view())
         while True:
-            step = await loop.run_in_executor(self.drawer, diagrams.step)
+            try:
+                step = await loop.run_in_executor(self.drawer, diagrams.step)
+            except Exception as err:  # noqa: BLE001 -- said on the card, as a failed solve is
+                self._drop(diagrams.close)
+                if mine == self.generation:
+                    self._busy(False)
+                    self.card.html = model.card_html(
+                        answer, [], busy=f"The diagrams could not be drawn: {type(err).__name__}: {err}"
+                    )
+                return False
             if mine != self.generation:
                 self._drop(diagrams.close)
-                return
+                return False
             if step is None:
                 break
             index, figure = step
@@ -345,6 +354,7 @@ class Session:
         shown = diagrams.figures()
         self._show_figures(shown)
         self._take(model.drawn(answer, diagrams.document(), shown))
+        return True
 
     def _stale(self) -> str:
         """The note above the downloads and diagrams while they are not the editor's text's: it names the
