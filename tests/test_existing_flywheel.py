@@ -190,3 +190,55 @@ def test_the_report_of_an_operation_on_a_given_flywheel_is_written(tmp_path):
     run = run_flyopt("report", str(scene), "-o", str(out))
     assert run.returncode == 0 and run.stderr == "", run.stderr
     assert "257.6 rpm" in out.read_text(encoding="utf-8")  # Khurmi 16.21: about 257.6 rpm after a rivet
+
+
+BALANCED = """
+title = "balanced"
+[machine]
+speed = "300 rpm"
+{delta}
+[torque.driving]
+constant = "5000 N*m"
+[torque.resisting]
+constant = "5000 N*m"
+[flywheel]
+inertia = "1000 kg*m^2"
+"""
+
+
+@pytest.mark.parametrize("delta", ["", "delta = 0.05"])
+def test_a_wheel_on_a_machine_whose_torques_balance_leaves_delta_0(tmp_path, delta):
+    """Driving and resisting torques equal at every angle (A_max = 0): any wheel keeps the speed, δ = 0
+    (δ = A_max/(ω_m² J), section 5). Every command failed with "float division by zero" (exit 1): the
+    δ guessed for the check, 0, was then divided by, and the text's 1/δ too."""
+    scene = tmp_path / "balanced.toml"
+    scene.write_text(BALANCED.format(delta=delta), encoding="utf-8")
+    check = solve(flyopt.load(scene)).flywheel
+    assert check.achieved_delta == 0.0
+    assert check.omega_max == check.omega_min == pytest.approx(300 * math.pi / 30, rel=1e-15)
+    done = run_flyopt("solve", str(scene))
+    assert done.returncode == 0, done.stderr
+    assert "leaves δ = 0" in done.stdout
+    assert [line.split() for line in done.stdout.splitlines() if "δ reached by the flywheel" in line] == [
+        ["δ", "reached", "by", "the", "flywheel", "0"]  # no 1/δ
+    ]
+    assert "achieved speed range       300 to 300 rpm" in done.stdout
+    for name in ("r.html", "r.pdf"):
+        done = run_flyopt("report", str(scene), "-o", str(tmp_path / name))
+        assert done.returncode == 0, done.stderr
+
+
+def test_plotting_every_diagram_of_a_given_wheel_says_the_wheel_s_own_need_no_drawing():
+    """A scene that gives its [flywheel] designs none: its cross-section and stresses are not drawn, said as
+    "nothing to draw" with exit 0 like the other diagrams that do not apply. `plot --what all` exited 3
+    (infeasible) saying "no flywheel to draw (no drive and wheel meet the limits)", which is not why."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        done = run_flyopt("plot", str(TEXTBOOK / "khurmi-16-11-acceleration.toml"), "--what", "all", "-o", folder)
+        written = sorted(path.name for path in Path(folder).iterdir())
+    assert done.returncode == 0, done.stderr
+    assert done.stderr == ""
+    for what in ("cross_section", "stress"):
+        assert f"{what}: the scene gives its flywheel ([flywheel]) and designs none: nothing to draw" in done.stdout
+    assert written == ["energy.png", "inertia_delta.png", "speed.png", "turning_moment.png"]

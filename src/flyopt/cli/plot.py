@@ -209,6 +209,10 @@ def _draw(solution, what, plots, units, verify=False, digits=None):
         design = solution.design
         if solution.status == "not_needed":
             raise plots.NothingToDraw("no flywheel is needed: nothing to draw")
+        if solution.flywheel is not None:
+            from flyopt.report.drawing import GIVEN_WHEEL
+
+            raise plots.NothingToDraw(GIVEN_WHEEL)
         if design is None or design.best is None:
             raise _Infeasible(
                 display.said_text(design.message, units, digits)

@@ -242,8 +242,11 @@ def required_inertia(
     Returns
     -------
     float
-        J_F [kg*m^2]; zero or negative means no flywheel is needed.
+        J_F [kg*m^2]; zero or negative means no flywheel is needed. A machine whose torques balance at every
+        angle (A_max = 0) needs none at any δ, 0 included (the δ a given wheel leaves it).
     """
+    if isinstance(a_max, (int, float)) and a_max == 0.0:
+        return 0.0 - j_constant
     return a_max / (omega_mean**2 * delta) - j_constant
 
 

@@ -492,6 +492,12 @@ def number(value: float | None, digits: int = DEFAULT_DIGITS, scale: float | Non
     return f"{value:.{digits - 1}e}"
 
 
+def one_in(delta: float, digits: int = DEFAULT_DIGITS) -> str:
+    """δ as "1/N" (the books' way: 0.05 is 1/20), "" for a δ of 0 (a machine whose torques balance at every angle
+    keeps its speed with any wheel) or less: the one place flyopt writes that reciprocal."""
+    return f"1/{number(1 / delta, digits)}" if delta > 0 else ""
+
+
 def dimension_of(name: str) -> str:
     """The dimension of an output field (``a_max``: "energy", ``d_outer``: "length", a part's ``inertia``).
 

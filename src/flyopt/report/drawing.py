@@ -49,6 +49,10 @@ _PT = 72.0 / 25.4  # points per paper mm
 _CLEAR = {"facecolor": "white", "edgecolor": "none", "pad": 0.6}
 
 
+#: Why a scene that gives its [flywheel] has no wheel to draw (its drawing, cross-section and stresses).
+GIVEN_WHEEL = "the scene gives its flywheel ([flywheel]) and designs none: nothing to draw (flyopt solve checks it)"
+
+
 def export_format(path: str | os.PathLike[str]) -> str:
     """ "dxf", "svg", "pdf" or "step" from the suffix of ``path``; SceneError at ``-o/--output`` otherwise."""
     from pathlib import Path
@@ -230,10 +234,7 @@ def design_of_scene(scene: Scene) -> Design:
     from flyopt.pipeline import solve
 
     if scene.flywheel is not None:  # a wheel that exists, checked by solve: nothing is designed
-        raise NoWheel(
-            "the scene gives its flywheel ([flywheel]) and designs none: nothing to draw (flyopt solve checks it)",
-            infeasible=False,
-        )
+        raise NoWheel(GIVEN_WHEEL, infeasible=False)
     solution = solve(scene)
     if solution.status == "not_needed":
         raise NoWheel("no flywheel is needed: nothing to draw", infeasible=False)

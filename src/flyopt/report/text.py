@@ -37,6 +37,7 @@ from flyopt.report.display import (
     key_answer,
     largest,
     number,
+    one_in,
     quantity_text,
     rim_speed_answer,
     rounded_rank_note,
@@ -345,7 +346,7 @@ def analysis_report(
     ]
     facts = [
         ("mean speed", q(r.omega_mean, "omega_mean")),
-        (delta_label, f"{number(r.delta, digits)} (1/{number(1 / r.delta, digits)})"),
+        (delta_label, number(r.delta, digits) + (f" ({one_in(r.delta, digits)})" if r.delta > 0 else "")),
     ]
     if delta_label == "allowed δ":
         low, high = allowed_speed_range(r)
@@ -991,7 +992,7 @@ def flywheel_report(check: FlywheelCheck, units: str = DEFAULT, digits: int = DE
         ),
         (
             "δ reached",
-            f"{number(check.achieved_delta, digits)} (1/{number(1 / check.achieved_delta, digits)}, "
+            f"{number(check.achieved_delta, digits)} ({one_in(check.achieved_delta, digits)}, "
             f"±{number(50 * check.achieved_delta, digits)} % of the mean speed)"
             if check.achieved_delta > 0
             else "0",

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from flyopt.report.builder.base import NOTES, BuilderBase
-from flyopt.report.display import number
+from flyopt.report.display import number, one_in
 from flyopt.report.document import Facts, Paragraph
 
 
@@ -43,7 +43,7 @@ class ExistingFlywheelSection(BuilderBase):
                 "δ reached",
                 (
                     self.q(check.achieved_delta, "dimensionless", "achieved_delta"),
-                    f" (1/{number(1 / check.achieved_delta, self.digits)})" if check.achieved_delta > 0 else "",
+                    f" ({one_in(check.achieved_delta, self.digits)})" if check.achieved_delta > 0 else "",
                 ),
             ),
             (

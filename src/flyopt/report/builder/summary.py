@@ -7,7 +7,7 @@ from flyopt.design.combination import shaft_label, wheel_words
 from flyopt.errors import BrokenInvariant
 from flyopt.report import display
 from flyopt.report.builder.base import BuilderBase
-from flyopt.report.display import number
+from flyopt.report.display import number, one_in
 from flyopt.report.document import Facts, Paragraph
 from flyopt.said import indefinite
 
@@ -29,7 +29,10 @@ class Summary(BuilderBase):
             ("mean speed ω_{m}", self.q(a.omega_mean, "angular_speed", "omega_mean")),
             (
                 "δ reached with the flywheel given" if self.solution.flywheel is not None else "allowed δ",
-                (self.q(a.delta, "dimensionless", "delta"), f" (1/{number(1 / a.delta, self.digits)})"),
+                (
+                    self.q(a.delta, "dimensionless", "delta"),
+                    f" ({one_in(a.delta, self.digits)})" if a.delta > 0 else "",
+                ),
             ),
         ]
         from flyopt.report.text import (
