@@ -239,6 +239,28 @@ def test_a_toml_file_python_cannot_read_is_refused_naming_the_file(cli, write_sc
         assert_refused(result, path, "not a scene", match)
 
 
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        # a dotted key: tomllib reads 1,000 parts at once, then every reader that walks the scene recursed
+        # (a RecursionError traceback, exit 1); 20,000 parts took tomllib 37 s and 2.4 GB
+        (BASE.replace('speed = "1500 rpm"', "speed" + ".a" * 1000 + ' = "1500 rpm"'), "the key speed.a.a.a…"),
+        (BASE + "description" + ".a" * 20_000 + " = 1", "the key description.a.a.a…"),
+        (BASE + "[sweep]\nvary" + ".a" * 1000 + ' = "1:2:3"', "the key vary.a.a.a…"),
+        (BASE + "x = {" + "a." * 40 + "b = 1}", "the key a.a.a.a…"),
+        # arrays and inline tables tomllib reads, nested deeper than any scene
+        (BASE + "x = " + "[" * 40 + "1" + "]" * 40, "torque.driving.x[0]…"),
+        (BASE + "x = " + "{a = " * 40 + "1" + "}" * 40, "torque.driving.x.a…"),
+    ],
+)
+def test_a_scene_nested_deeper_than_any_is_refused_at_once(cli, write_scene, text, match):
+    path = write_scene(text)
+    for command in ("solve", "check"):
+        result = cli(command, path)
+        assert_refused(result, path, "not a scene" if "the key" in match else match, "deep")
+        assert match in result.stderr
+
+
 def test_an_expression_of_the_deepest_allowed_nesting_evaluates():
     from flyopt.cycle.expression import MAX_DEPTH, Expression
 

@@ -52,7 +52,9 @@ def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
     # a byte-order mark (Windows Notepad's "UTF-8 with BOM") is no TOML statement: "Invalid statement at line 1"
     text = read_input(path, "", "the file", source=str(path)).removeprefix("\ufeff")
     try:
-        return parse_toml(text)
+        data = parse_toml(text)
+    except SceneError as err:
+        raise err.with_source(str(path)) from None
     except tomllib.TOMLDecodeError as err:
         raise SceneError("", f"not valid TOML: {err}", str(path)) from None
     except ValueError as err:  # an integer of over 4300 digits
@@ -63,6 +65,47 @@ def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
             f"not a scene: arrays or tables nested too deeply (or too large) to read ({len(text)} characters)",
             str(path),
         ) from None
+    too_deep = _too_deep(data)
+    if too_deep is not None:
+        raise SceneError(too_deep, f"nests tables or arrays more than {MAX_DEPTH} deep: not a scene", str(path))
+    return data
+
+
+MAX_DEPTH = 32
+"""The deepest a scene's tables and arrays nest (its deepest, a shaft's train or a mechanism's member, is
+under 8): deeper, every reader of the scene that walks it (its error messages, the sweep's keys) would recurse
+hundreds of levels, and ``tomllib`` takes seconds and gigabytes for a dotted key thousands of keys long."""
+
+#: A bare or quoted key of a dotted key or table header ("a", 'b', "c d").
+_KEY_PART = r"""(?:[A-Za-z0-9_-]++|"[^"\n]*+"|'[^'\n]*+')"""
+#: A dotted key of more than MAX_DEPTH parts, at a line's start (``a.b.c = ``, ``[a.b.c]``, ``[[a.b.c]]``) or
+#: in an inline table (``{a.b.c = ``): no scene's text has one elsewhere but in a string of such a form.
+_DEEP_KEY = re.compile(
+    rf"(?:^[ \t]*+\[?+\[?+|[{{,])[ \t]*+{_KEY_PART}(?:[ \t]*+\.[ \t]*+{_KEY_PART}){{{MAX_DEPTH},}}+",
+    re.MULTILINE,
+)
+
+
+def _key_of(dotted: str, parts: int = 4) -> str:
+    """The first ``parts`` keys of a dotted key as the field to name ("machine.speed.a.a…")."""
+    keys = [key.strip().strip("\"'") for key in dotted.lstrip(" \t[{,").split(".")]
+    return ".".join(keys[:parts]) + "…"
+
+
+def _too_deep(data: dict[str, Any]) -> str | None:
+    """The path of the first value nested more than :data:`MAX_DEPTH` tables or arrays deep (its first four
+    keys or indices), or None (a walk of its own stack: no recursion)."""
+    stack: list[tuple[Any, tuple[str, ...]]] = [(data, ())]
+    while stack:
+        value, where = stack.pop()
+        if len(where) > MAX_DEPTH:
+            shown = "".join(part if part.startswith("[") else f".{part}" for part in where[:4]).lstrip(".")
+            return shown + "…"
+        if isinstance(value, dict):
+            stack.extend((item, (*where, str(key))) for key, item in value.items())
+        elif isinstance(value, list):
+            stack.extend((item, (*where, f"[{k}]")) for k, item in enumerate(value))
+    return None
 
 
 FAST_TABLE_CHARACTERS = 2000
@@ -142,15 +185,26 @@ def parse_toml(text: str) -> dict[str, Any]:
             end = match.end()
         key = _TABLE_KEY.search(text, match.end() if match is not None and rows is not None else key.end())
     if not tables:
-        return tomllib.loads(text)
+        return _loads(text)
     try:
-        data = tomllib.loads("".join(pieces) + text[end:])
+        data = _loads("".join(pieces) + text[end:])
     except (tomllib.TOMLDecodeError, ValueError, RecursionError):
-        return tomllib.loads(text)
+        return _loads(text)
     expected = len(tables)
     if _put_rows(data, tables) != expected:
-        return tomllib.loads(text)
+        return _loads(text)
     return data
+
+
+def _loads(text: str) -> dict[str, Any]:
+    """``tomllib.loads(text)``, a dotted key of more than :data:`MAX_DEPTH` parts refused first (SceneError, no
+    file named): ``tomllib``'s time and memory grow with the square of its length (37 s and 2.4 GB for
+    20,000 parts). Run on what ``tomllib`` reads: the large tables :func:`parse_toml` cuts out are not
+    searched (a search of 40 MB takes some 2 s)."""
+    deep = _DEEP_KEY.search(text)
+    if deep is not None:
+        raise SceneError("", f"not a scene: the key {_key_of(deep.group())} nests tables more than {MAX_DEPTH} deep")
+    return tomllib.loads(text)
 
 
 def _fast_rows(table):
