@@ -188,8 +188,9 @@ def test_a_manifest_that_is_no_file_is_refused_not_read(tmp_path):
 @pytest.mark.parametrize(
     "key, value, words",
     [
-        ("seed", "x", "its seed must be a whole number >= 0, got 'x'"),
-        ("seed", -5, "its seed must be a whole number >= 0, got -5"),
+        ("seed", "x", "its seed must be a whole number from 0 to 9223372036854775807, got 'x'"),
+        ("seed", -5, "its seed must be a whole number from 0 to 9223372036854775807, got -5"),
+        ("seed", 2**63, "its seed must be a whole number from 0 to 9223372036854775807, got 9223372036854775808"),
         ("chunk_size", 0, "its chunk_size must be a whole number >= 1, got 0"),
         ("chunk_size", [1], "its chunk_size must be a whole number >= 1, got [1]"),
     ],

@@ -257,10 +257,12 @@ def test_samples_over_the_cap_in_a_sweep_table_name_the_file(tmp_path):
     assert info.value.field == "sweep.samples" and info.value.source == str(path)
 
 
-@pytest.mark.parametrize("seed", [-1, 1.5, True, "7"])
+@pytest.mark.parametrize("seed", [-1, 1.5, True, "7", 2**63])
 def test_bad_seed_is_refused_by_the_plan(seed):
-    """Regression (issue 11): ``--seed -1`` ended in numpy's traceback."""
-    with pytest.raises(SceneError, match="must be a whole number >= 0") as info:
+    """Regression (issue 11): ``--seed -1`` ended in numpy's traceback; 2**63, the first seed a 64-bit signed
+    integer cannot hold, in "Python int too large to convert to C long" (exit 1) with the sweep's parts left
+    behind, so that a rerun refused to start."""
+    with pytest.raises(SceneError, match="must be a whole number from 0 to 9223372036854775807") as info:
         plan_sweep(PUNCH, {"delta": "0.01:0.1"}, samples=5, seed=seed)
     assert info.value.field == "--seed"
 
@@ -325,7 +327,7 @@ def test_a_field_given_twice_is_refused(texts, field):
         ('workers = "many"', "sweep.workers", "must be 'auto' or a whole number >= 1"),
         ('output = "study.xlsx"', "sweep.output", "must end in .parquet or .csv"),
         ("chunk_size = 0", "sweep.chunk_size", "must be a whole number >= 1"),
-        ("seed = -1", "sweep.seed", "must be a whole number >= 0"),
+        ("seed = -1", "sweep.seed", "must be a whole number from 0 to 9223372036854775807"),
     ],
 )
 def test_sweep_table_options_are_checked_when_read(tmp_path, table, field, words):
@@ -850,3 +852,27 @@ def test_a_varied_value_the_loader_refuses_is_refused(vary, allowed):
     with pytest.raises(SceneError, match="is out of range") as info:
         plan_sweep(scene, {field: values})
     assert allowed in info.value.message, info.value.message
+
+
+def test_a_seed_too_large_for_the_file_is_refused_by_the_command_leaving_nothing(tmp_path):
+    """`flyopt sweep --seed 2**63` (or `[sweep] seed`): one line naming the option, exit 2, no parts folder."""
+    from conftest import run_flyopt
+
+    out = tmp_path / "out.csv"
+    done = run_flyopt(
+        "sweep",
+        str(PROBLEMS / "punch-press.toml"),
+        "--vary",
+        "delta=0.01:0.1:3",
+        "--samples",
+        "3",
+        "--seed",
+        str(2**63),
+        "-o",
+        str(out),
+    )
+    assert done.returncode == 2 and done.stdout == "", done.stderr
+    assert done.stderr.splitlines() == [
+        "flyopt: error: --seed: must be a whole number from 0 to 9223372036854775807, got 9223372036854775808"
+    ]
+    assert list(tmp_path.iterdir()) == []

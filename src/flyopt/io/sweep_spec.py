@@ -48,7 +48,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from flyopt.errors import SceneError, shorten
+from flyopt.errors import SceneError, clip, shorten
 from flyopt.units import quantity
 
 if TYPE_CHECKING:
@@ -269,16 +269,25 @@ def option_label(where: str, key: str) -> str:
     return f"{base}.{key}" if base else key
 
 
-def whole_number(value: object, label: str, minimum: int) -> int:
-    """``value`` as an int, or SceneError naming ``label`` and the lowest value allowed."""
-    if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value >= minimum:
+def whole_number(value: object, label: str, minimum: int, maximum: int | None = None) -> int:
+    """``value`` as an int, or SceneError naming ``label`` and the values allowed."""
+    if (
+        isinstance(value, (int, np.integer))
+        and not isinstance(value, bool)
+        and value >= minimum
+        and (maximum is None or value <= maximum)
+    ):
         return int(value)
-    raise SceneError(label, f"must be a whole number >= {minimum}, got {value!r}")
+    allowed = f">= {minimum}" if maximum is None else f"from {minimum} to {maximum}"
+    raise SceneError(label, f"must be a whole number {allowed}, got {clip(repr(value))}")
 
 
 #: The least value of each whole-number option of a sweep (0 chunks: a sweep that does nothing); a resumed
 #: sweep's manifest is held to them too (flyopt.studies.sweep).
 OPTION_MINIMUMS = {"samples": 1, "seed": 0, "chunk_size": 1, "max_chunks": 1}
+#: The largest value of a whole-number option where there is one: a seed is written in the sweep's file as a
+#: 64-bit signed integer (its ``seed`` column and manifest).
+OPTION_MAXIMUMS = {"seed": 2**63 - 1}
 
 
 def check_options(options: Mapping[str, Any], where: str = "sweep") -> None:
@@ -302,7 +311,7 @@ def check_options(options: Mapping[str, Any], where: str = "sweep") -> None:
 
     for key, lowest in OPTION_MINIMUMS.items():
         if options.get(key) is not None:
-            whole_number(options[key], option_label(where, key), lowest)
+            whole_number(options[key], option_label(where, key), lowest, OPTION_MAXIMUMS.get(key))
     method = options.get("method")
     if method is not None and method not in METHODS:
         raise SceneError(option_label(where, "method"), f"{method!r} is not known (allowed: {', '.join(METHODS)})")

@@ -16,7 +16,15 @@ import numpy as np
 import pandas as pd
 
 from flyopt.errors import SceneError
-from flyopt.io.sweep_spec import FIELDS, SweepField, option_label, parse_vary, whole_number
+from flyopt.io.sweep_spec import (
+    FIELDS,
+    OPTION_MAXIMUMS,
+    OPTION_MINIMUMS,
+    SweepField,
+    option_label,
+    parse_vary,
+    whole_number,
+)
 from flyopt.studies.points import check_points
 
 if TYPE_CHECKING:  # the annotations only
@@ -101,9 +109,9 @@ def plan_sweep(
     single_design_only(design_inputs(scene).spec, "a sweep", scene.source)
     seat_given_only(scene, "a sweep")
     if seed is not None:
-        seed = whole_number(seed, option_label(where, "seed"), 0)
+        seed = whole_number(seed, option_label(where, "seed"), OPTION_MINIMUMS["seed"], OPTION_MAXIMUMS["seed"])
     if samples is not None:
-        samples = whole_number(samples, option_label(where, "samples"), 1)
+        samples = whole_number(samples, option_label(where, "samples"), OPTION_MINIMUMS["samples"])
         if samples > MAX_POINTS:
             raise SceneError(
                 option_label(where, "samples"), f"{samples} samples, more than the {MAX_POINTS} points a sweep may have"

@@ -38,7 +38,7 @@ import pandas as pd
 import flyopt
 from flyopt.design import design_inputs
 from flyopt.errors import BrokenInvariant, Interrupted, SceneError
-from flyopt.io.sweep_spec import OPTION_MINIMUMS, check_options, option_label, whole_number
+from flyopt.io.sweep_spec import OPTION_MAXIMUMS, OPTION_MINIMUMS, check_options, option_label, whole_number
 from flyopt.outputs.documents import scene_record, table_metadata
 from flyopt.outputs.files import check_folder
 from flyopt.outputs.results import SWEEP_BESIDE, ResultWriter, check_table_output, normalize
@@ -518,7 +518,7 @@ def _recorded(parts: Parts) -> dict[str, Any]:
         if value is None or (key == "chunk_size" and value == "auto"):
             continue
         try:
-            whole_number(value, key, OPTION_MINIMUMS[key])
+            whole_number(value, key, OPTION_MINIMUMS[key], OPTION_MAXIMUMS.get(key))
         except SceneError as err:
             manifest = str(parts.folder / parts.MANIFEST)
             raise SceneError(
