@@ -376,3 +376,35 @@ def test_an_induction_motor_mostly_slip_is_refused(cli, tmp_path):
     path.write_text(text.replace('synchronous_speed = "1500 rpm"', "synchronous_speed = 1e300"), encoding="utf-8")
     assert_refused(cli("solve", path), path, "torque.driving.motor.synchronous_speed", "out of range")
     assert InductionMotor(5500.0, 0.87 * 157.08, 157.08).rated_slip == pytest.approx(0.13)
+
+
+@pytest.mark.parametrize(
+    "table, field, match",
+    [
+        ("constant = 1e308", "torque.driving.constant", r"1e\+308 is out of range"),
+        ('constant = "1e308 N*m"', "torque.driving.constant", r"'1e308 N\*m' is out of range"),
+        (
+            'points = [["0 deg", 5000], ["180 deg", 1e308], ["360 deg", 5000]]',
+            "torque.driving.points[1] torque",
+            r"1e\+308 is out of range",
+        ),
+        (
+            'points_file = "t.csv"\nangle_unit = "deg"',
+            "torque.driving.points_file",
+            r"t\.csv line 3: the torque.*out of range",
+        ),
+    ],
+)
+def test_a_torque_beyond_any_machine_s_is_refused_naming_the_field(cli, write_scene, table, field, match):
+    """A torque of 1e308 N·m overflowed the cycle's work: `solve` answered exit 0 with a mean driving torque
+    and a work of "inf" and "no flywheel needed" (an expression of 1e308 ended in "float division by zero",
+    exit 1). Every torque a scene gives, constant or in a table, inline or in a CSV file, is held to the
+    magnitudes of flyopt.units.MAGNITUDES (1e-9 to 1e15 N·m), the rule its other quantities follow."""
+    path = write_scene(BASE.replace('constant = "unknown"', table))
+    (path.parent / "t.csv").write_text("angle,torque\n0,5000\n180,1e308\n360,5000\n", encoding="utf-8")
+    for command in ("solve", "check"):
+        result = cli(command, path)
+        assert_refused(
+            result, path, field, match + ".*out of range" if match and "out of range" not in match else match
+        )
+        assert "1e-09 to 1e+15 N*m" in result.stderr

@@ -13,7 +13,7 @@ import numpy as np
 from flyopt.cycle.torque import PiecewiseLinear
 from flyopt.errors import SceneError, shorten
 from flyopt.io.csv_table import csv_table
-from flyopt.io.fields import scaled
+from flyopt.io.fields import check_scale, first_too_large, scaled
 from flyopt.io.input_files import check_rows
 from flyopt.io.toml_file import InlineRows
 
@@ -81,6 +81,9 @@ def angle_curve(
             f"but the cycle is 0 to {np.degrees(cycle):.6g} deg: the cycle does not close "
             "(the first point must be at 0 and the last at the cycle angle)",
         )
+    if (row := first_too_large(values, dimension)) is not None:
+        written = float(raw.array[row, 1]) if isinstance(raw, InlineRows) else raw[row][1]
+        check_scale(values[row], dimension, f"{where}[{row}] {label}", written)
     angles[0], angles[-1] = 0.0, cycle
     return PiecewiseLinear(angles, values)
 
@@ -125,8 +128,10 @@ def angle_curve_file(
     column: str,
     units: Sequence[str],
     minimum: tuple[float, str] | None = None,
+    dimension: str = "torque",
 ) -> PiecewiseLinear:
-    """A table [angle, value] read from a CSV file, with the checks of inline points.
+    """A table [angle, value] read from a CSV file, with the checks of inline points (its values of
+    ``dimension``).
 
     Parameters
     ----------
@@ -187,5 +192,10 @@ def angle_curve_file(
             f"{np.degrees(cycle):.6g} deg: the cycle does not close (the first row must be at 0 and "
             "the last at the cycle angle)",
         )
+    if (k := first_too_large(values, dimension)) is not None:
+        try:
+            check_scale(values[k], dimension, where, float(numbers[k, 1]))
+        except SceneError as err:
+            raise SceneError(where, f"{name} line {lines[k]}: the {column} {err.message}") from None
     angles[0], angles[-1] = 0.0, cycle
     return PiecewiseLinear(angles, values)

@@ -144,6 +144,7 @@ def read_engine(raw: object, files: Path = Path()) -> Engine:
             "pressure",
             units,
             minimum=absolute,
+            dimension="stress",
         )
     else:
         pressure = angle_curve(

@@ -12,6 +12,9 @@ import unicodedata
 from collections.abc import Iterable
 from typing import Any, Literal, overload
 
+import numpy as np
+import numpy.typing as npt
+
 from flyopt.errors import SceneError, shorten
 from flyopt.names import hint
 from flyopt.units import DIMENSIONS, MAGNITUDES, is_plain, quantity
@@ -30,6 +33,17 @@ def scaled(raw: object, dimension: str, where: str, factor: float) -> float:
     if isinstance(raw, str) and not is_plain(raw):
         return quantity(raw, dimension, where)
     return quantity(raw, "dimensionless", where) * factor
+
+
+def first_too_large(values: npt.NDArray[np.float64], dimension: str) -> int | None:
+    """Index of the first of a table's ``values`` (SI) above the largest size :data:`flyopt.units.MAGNITUDES`
+    allows its dimension, or None (:func:`check_scale` then says why). Only the largest: a table's value near 0
+    is a zero's round-off (a force of 1.6e-28 N where a sine crosses), which divides nothing; one beyond it
+    overflows the cycle's work (a torque of 1e308 N·m made it inf, and the answer "no flywheel needed")."""
+    if dimension not in MAGNITUDES:
+        return None
+    over = np.abs(values) > MAGNITUDES[dimension][1]
+    return int(np.argmax(over)) if over.any() else None
 
 
 class Table:

@@ -265,7 +265,15 @@ def _member_curve(table, key, dimension, where, angle_unit, cycle, default, file
             else DIMENSIONS[dimension][1] or "plain numbers",
         )
         curve = angle_curve_file(
-            table.get(file_key), f"{where}.{file_key}", files, cycle, unit, angle_unit, key.replace("_", " "), units
+            table.get(file_key),
+            f"{where}.{file_key}",
+            files,
+            cycle,
+            unit,
+            angle_unit,
+            key.replace("_", " "),
+            units,
+            dimension=dimension,
         )
         return (curve.angles, curve.values)
     raw = table.get(key)

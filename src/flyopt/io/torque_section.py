@@ -11,7 +11,7 @@ from flyopt.cycle.expression import Expression
 from flyopt.cycle.torque import Constant, ExpressionTorque
 from flyopt.errors import ExpressionError, SceneError, shorten
 from flyopt.io.angle_tables import angle_curve, angle_curve_file
-from flyopt.io.fields import Table, scaled, unit_factor
+from flyopt.io.fields import Table, check_scale, scaled, unit_factor
 from flyopt.io.motor_section import read_motor
 from flyopt.units import DIMENSIONS, quantity
 
@@ -102,6 +102,7 @@ def read_curve(
         if isinstance(raw, str) and raw.strip().lower() == "unknown":
             return Constant(None)
         value = scaled(raw, "torque", f"{where}.constant", unit)
+        check_scale(value, "torque", f"{where}.constant", raw)
         return Constant(value)
     if form == "motor":
         return read_motor(table.get("motor"), f"{where}.motor", shafts, efficiency, files)
