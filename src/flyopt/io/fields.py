@@ -153,12 +153,22 @@ DELTA_RANGE = (1e-6, 2.0)
 the inertia grows as 1/δ, and below 1e-6 it cannot be computed (1/300 is a tight generator)."""
 
 
-def check_line(text: str, where: str) -> None:
+MAX_LINE_LENGTH = 200
+"""The longest a name or the title may be [characters]: each is printed whole in the text's tables, the report's
+headings and the plots' legends, whose layout of a name of 100,000 characters took minutes and gigabytes."""
+
+
+def check_line(text: str, where: str, note: str = "") -> None:
     """Refuse a name (or a title) that is not one line of text: a control character (a line break, a tab, ESC,
     NUL) in it would split the text report's lines and, written raw into a DXF's properties, end its section
-    (a material named "iron\\n  0\\nEOF" made the exported drawing unreadable)."""
+    (a material named "iron\\n  0\\nEOF" made the exported drawing unreadable); or longer than
+    :data:`MAX_LINE_LENGTH` (``note`` says where a longer text belongs)."""
     if any(unicodedata.category(c) == "Cc" for c in text):
         raise SceneError(where, f"{shorten(text)} holds a control character: a name is one line of text")
+    if len(text) > MAX_LINE_LENGTH:
+        raise SceneError(
+            where, f"is {len(text)} characters long (allowed: at most {MAX_LINE_LENGTH}{f'; {note}' if note else ''})"
+        )
 
 
 SAFETY_RANGE = (1.0, 100.0)

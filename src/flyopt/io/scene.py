@@ -22,7 +22,7 @@ from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import ANGLE_TOLERANCE
 from flyopt.io.design_section import read_design
 from flyopt.io.engine_section import read_engine
-from flyopt.io.fields import Table, check_delta, check_line, cycle_of, mean_speed
+from flyopt.io.fields import MAX_LINE_LENGTH, Table, check_delta, check_line, cycle_of, mean_speed
 from flyopt.io.input_files import recording_inputs
 from flyopt.io.material_section import read_material, read_materials
 from flyopt.io.member_section import read_mechanism, read_members, with_engine
@@ -56,7 +56,7 @@ if TYPE_CHECKING:
     from flyopt.sizing.operation import Operation
 
 
-MAX_TITLE_LENGTH = 200
+MAX_TITLE_LENGTH = MAX_LINE_LENGTH
 """Longest scene title [characters]: it heads every report, plot and table."""
 
 
@@ -561,12 +561,7 @@ def _title(top: Table) -> str:
     title = top.get("title", "")
     if not isinstance(title, str):
         raise SceneError("title", f"must be a string, got {shorten(title)}")
-    check_line(title, "title")
-    if len(title) > MAX_TITLE_LENGTH:
-        raise SceneError(
-            "title",
-            f"is {len(title)} characters long (allowed: at most {MAX_TITLE_LENGTH}; a longer text belongs in description)",
-        )
+    check_line(title, "title", "a longer text belongs in description")
     return title
 
 
