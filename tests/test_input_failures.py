@@ -408,3 +408,19 @@ def test_a_torque_beyond_any_machine_s_is_refused_naming_the_field(cli, write_sc
             result, path, field, match + ".*out of range" if match and "out of range" not in match else match
         )
         assert "1e-09 to 1e+15 N*m" in result.stderr
+
+
+@pytest.mark.parametrize("command", ["solve", "check"])
+@pytest.mark.parametrize("expression, at", [("1e308", "0 deg"), ("5000 + 1e300*sin(phi)", "0.0878906 deg")])
+def test_a_torque_expression_beyond_any_machine_s_is_refused_naming_the_field(
+    cli, write_scene, command, expression, at
+):
+    """An expression of 1e308 N·m ended in "float division by zero" (exit 1, no field): its samples over the
+    cycle, taken for the pole check, are held to the largest torque as a table's values are."""
+    path = write_scene(scene('constant = "unknown"', f'expression = "{expression}"'))
+    assert_refused(
+        cli(command, path),
+        path,
+        "torque.driving.expression",
+        rf"the expression reaches .* N\*m at φ = .*\({at}\): beyond the largest torque a machine has, 1e\+15 N\*m",
+    )

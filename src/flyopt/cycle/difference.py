@@ -544,8 +544,12 @@ def _check_poles(curve: Any, phi: Array) -> None:
     (``tan φ``, ``1/(φ − 1)``) the work and ΔE have no meaning, and the
     crossing search would take the pole for a crossing of the curves.
     """
+    from flyopt.units import MAGNITUDES
+
+    largest = MAGNITUDES["torque"][1]
     for part in _expressions(curve):
-        found = poles(part, phi, sample(part, phi)[0])
+        values = sample(part, phi)[0]
+        found = poles(part, phi, values)
         if len(found):
             at = float(found[0])
             raise SceneError(
@@ -553,4 +557,12 @@ def _check_poles(curve: Any, phi: Array) -> None:
                 f"the expression has a pole near φ = {at:.6g} rad "
                 f"({math.degrees(at):.6g} deg; |M| grows without bound): a torque must be "
                 "finite over the whole cycle",
+            )
+        over = np.abs(values) > largest  # after the poles: |M| passes any bound near one
+        if over.any():  # a torque beyond any machine's (the tables' bound: io.fields.first_too_large)
+            k = int(np.argmax(over))
+            raise SceneError(
+                part.where,
+                f"the expression reaches {values[k]:.6g} N*m at φ = {phi[k]:.6g} rad ({math.degrees(phi[k]):.6g} deg): "
+                f"beyond the largest torque a machine has, {largest:g} N*m (flyopt.units.MAGNITUDES)",
             )
