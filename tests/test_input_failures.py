@@ -424,3 +424,23 @@ def test_a_torque_expression_beyond_any_machine_s_is_refused_naming_the_field(
         "torque.driving.expression",
         rf"the expression reaches .* N\*m at φ = .*\({at}\): beyond the largest torque a machine has, 1e\+15 N\*m",
     )
+
+
+@pytest.mark.parametrize(
+    "old, new, field",
+    [
+        ('wheel_at = "300 mm"', 'wheel_at = "1e-300 m"', "shaft[1].wheel_at"),
+        ('bearings = ["50 mm", "550 mm"]', 'bearings = ["1e-300 m", "550 mm"]', "shaft[1].bearings[0]"),
+    ],
+)
+def test_a_shaft_position_below_a_micron_is_refused_naming_the_field(cli, write_scene, old, new, field):
+    """A position of 1e-300 m lies on the shaft but made the beam's element matrices inf: "Array must not
+    contain infs or NaNs", exit 1, no field (a hostile-input audit). Positions follow the lengths' magnitudes
+    (flyopt.units.MAGNITUDES: 0, or a micron to a kilometre), as every other length of a scene."""
+    text = (PROBLEMS / "punch-press-drive-shaft.toml").read_text(encoding="utf-8")
+    assert old in text
+    path = write_scene(text.replace(old, new, 1))
+    for command in ("solve", "check"):
+        assert_refused(
+            cli(command, path), path, field, r"'1e-300 m' is out of range \(allowed: a size of 1e-06 to 1000 m"
+        )

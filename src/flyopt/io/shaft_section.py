@@ -7,7 +7,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_magnitude
+from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_magnitude, check_scale
 from flyopt.io.train_section import read_train
 from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.shaft_layout import ShaftLayout, SideLoad
@@ -235,6 +235,7 @@ def _positive(table: Table, key: str, where: str, dimension: str, what: str, own
 
 def _position(raw: object, where: str, length: float) -> float:
     x = quantity(raw, "length", where)
+    check_scale(x, "length", where, raw)  # a micron from the end at least: 1e-300 m made the beam's FE matrix inf
     if not (math.isfinite(x) and 0.0 <= x <= length):
         raise SceneError(
             where, f"must lie on the shaft, 0 to {length * 1e3:g} mm (the last segment's end), got {shorten(raw)}"
