@@ -538,11 +538,15 @@ def _expression_fields(curve: Any) -> list[str]:
 
 
 def _check_poles(curve: Any, phi: Array) -> None:
-    """Refuse a torque expression with a pole on the grid ``phi`` [rad] (see :func:`poles`).
+    """Refuse a torque expression with a pole on the grid ``phi`` [rad] (see :func:`poles`), or one whose
+    samples there pass the largest torque a machine has (:data:`flyopt.units.MAGNITUDES`).
 
     A torque must be finite and bounded over the whole cycle; across a pole
     (``tan φ``, ``1/(φ − 1)``) the work and ΔE have no meaning, and the
-    crossing search would take the pole for a crossing of the curves.
+    crossing search would take the pole for a crossing of the curves; beyond
+    the largest torque the cycle's work overflows (``1e308`` ended in a
+    division by zero). The poles are looked for first: near one |M| passes
+    any bound.
     """
     from flyopt.units import MAGNITUDES
 
@@ -558,8 +562,8 @@ def _check_poles(curve: Any, phi: Array) -> None:
                 f"({math.degrees(at):.6g} deg; |M| grows without bound): a torque must be "
                 "finite over the whole cycle",
             )
-        over = np.abs(values) > largest  # after the poles: |M| passes any bound near one
-        if over.any():  # a torque beyond any machine's (the tables' bound: io.fields.first_too_large)
+        over = np.abs(values) > largest  # the tables' bound (io.fields.first_too_large)
+        if over.any():
             k = int(np.argmax(over))
             raise SceneError(
                 part.where,
