@@ -170,7 +170,8 @@ def _block(block, figure_number, svg=None):
         )
     if isinstance(block, Code):
         caption = f"<figcaption>{_escape(block.caption)}</figcaption>" if block.caption else ""
-        return f'<figure class="code">{caption}<pre>{_escape(block.text)}</pre></figure>'
+        note = f'<p class="caption">{_escape(block.note)}</p>' if block.note else ""
+        return f'<figure class="code">{caption}<pre>{_escape(block.text)}</pre>{note}</figure>'
     raise TypeError(f"no HTML for a {type(block).__name__}")
 
 

@@ -429,38 +429,56 @@ def _block(block, styles, width, height, drawings):
         figure = _figure(drawings[id(block)], _paragraph(caption, styles["caption"]), width, 0.62 * height)
         return [figure, Spacer(1, 6)]
     if isinstance(block, Code):
-        chars = int(width / (0.6 * styles["code"].fontSize)) - 1
+        from reportlab.pdfbase.pdfmetrics import stringWidth
+
+        # the characters a row holds inside its padding (5 pt left, reportlab's 6 pt right)
+        chars = int((width - 11) / stringWidth("0", _MONO, styles["code"].fontSize))
         out = [_caption_over(block.caption, styles)] if block.caption else []
-        return out + [_split_code(block.text, styles["code"], chars, width), Spacer(1, 5)]
+        out += _split_code(block.text, styles["code"], chars, width)
+        return out + ([_paragraph(block.note, styles["caption"])] if block.note else []) + [Spacer(1, 5)]
     raise TypeError(f"no PDF layout for a {type(block).__name__}")
 
 
+_CODE_ROWS = 40
+"""Rows of the scene listing per reportlab table: a table is split over pages by measuring all its rows, so one
+table of 5,000 rows took 13 s to lay out; tables of a few dozen rows lay out in linear time."""
+
+
 def _split_code(text, style, chars, width):
-    """The scene file as a shaded block that may run over pages (one table row per line)."""
+    """The scene file as a shaded block that may run over pages: one table row per printed line, a line longer
+    than ``chars`` broken over rows that begin with "↪ " (one line of 13,000 characters, wrapped in its one row,
+    was taller than a page: reportlab's LayoutError), and the rows in tables of :data:`_CODE_ROWS`."""
     from reportlab.lib import colors
     from reportlab.platypus import Preformatted, Spacer
     from reportlab.platypus import Table as RLTable
 
     # a blank line is a space of one line (Preformatted drops a line of white space)
-    rows = [
-        [
-            Preformatted(line, style, maxLineLength=chars, newLineChars="↪ ")
-            if line.strip()
-            else Spacer(1, style.leading)
-        ]
-        for line in _shown(text, _MONO).rstrip("\n").split("\n")
-    ]
-    table = RLTable(rows, colWidths=[width], repeatRows=0)
-    table.setStyle(
-        [
-            ("BACKGROUND", (0, 0), (-1, -1), colors.HexColor("#f3f5f8")),
+    rows = []
+    for line in _shown(text, _MONO).rstrip("\n").split("\n"):
+        if not line.strip():
+            rows.append([Spacer(1, style.leading)])
+            continue
+        rows.append([Preformatted(line[:chars], style)])
+        rows += [[Preformatted("↪ " + line[k : k + chars - 2], style)] for k in range(chars, len(line), chars - 2)]
+    shade, rule = colors.HexColor("#f3f5f8"), colors.HexColor("#c9ced6")
+    tables = []
+    for start in range(0, len(rows), _CODE_ROWS):
+        table = RLTable(rows[start : start + _CODE_ROWS], colWidths=[width], repeatRows=0)
+        style_ = [
+            ("BACKGROUND", (0, 0), (-1, -1), shade),
             ("LEFTPADDING", (0, 0), (-1, -1), 5),
             ("TOPPADDING", (0, 0), (-1, -1), 0),
             ("BOTTOMPADDING", (0, 0), (-1, -1), 0.4),
-            ("BOX", (0, 0), (-1, -1), 0.5, colors.HexColor("#c9ced6")),
+            ("LINEBEFORE", (0, 0), (0, -1), 0.5, rule),
+            ("LINEAFTER", (-1, 0), (-1, -1), 0.5, rule),
         ]
-    )
-    return table
+        if start == 0:
+            style_.append(("LINEABOVE", (0, 0), (-1, 0), 0.5, rule))
+        if start + _CODE_ROWS >= len(rows):
+            style_.append(("LINEBELOW", (0, -1), (-1, -1), 0.5, rule))
+        table.setStyle(style_)
+        tables.append(table)
+    return tables
 
 
 def _table(block, styles, width):

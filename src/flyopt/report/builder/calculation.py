@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any
 from flyopt.report import display
 from flyopt.report.builder.base import NOTES, BuilderBase
 from flyopt.report.display import number
-from flyopt.report.document import Code, Document, Facts, Paragraph, Quantity, Table
+from flyopt.report.document import Document, Facts, Paragraph, Quantity, Table, listing
 
 if TYPE_CHECKING:
     from flyopt.io.scene import Scene
@@ -202,7 +202,7 @@ class CalculationReport(BuilderBase):
         blocks = self.section("The given data", "scene")
         blocks.append(Facts((("title", self.scene.title), ("file", self.calc.scene_file), *rows), "given"))
         blocks.extend(tables)
-        blocks.append(Code(self.calc.scene_text, f"{self.calc.scene_file}, as given"))
+        blocks.append(listing(self.calc.scene_text, f"{self.calc.scene_file}, as given"))
 
     def method(self) -> list[Any]:
         """Section 3, opened: what the calculation is and how its equations are written; its blocks to fill."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 from flyopt.names import Model
 from flyopt.report.builder.base import NOTES, BuilderBase
 from flyopt.report.display import number
-from flyopt.report.document import Code, Facts, Paragraph, Table
+from flyopt.report.document import Facts, Paragraph, Table, listing
 
 
 class SceneAndModel(BuilderBase):
@@ -80,7 +80,7 @@ class SceneAndModel(BuilderBase):
             if materials:
                 brief.append(("materials considered", ", ".join(materials)))
             blocks.append(Facts(tuple(brief), "brief"))
-        blocks.append(Code(self.inputs.scene_text, f"{self.inputs.scene_file}, as given"))
+        blocks.append(listing(self.inputs.scene_text, f"{self.inputs.scene_file}, as given"))
 
     def model_section(self) -> None:
         a = self.analysis
