@@ -455,3 +455,59 @@ def test_a_sidecar_that_is_no_metadata_is_one_line(tmp_path, capsys):
         assert main(["plot", str(table), "--what", "sweep", "--x", "delta", "-o", str(tmp_path / "p.png")]) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and words in err and "Traceback" not in err, err
+
+
+def _with_columns(frame, count):
+    """``frame`` widened to ``count`` columns by numbered copies of its ``mass``."""
+    import pandas as pd
+
+    extra = pd.DataFrame({f"extra_{k}": frame["mass"] for k in range(count - len(frame.columns))})
+    return pd.concat([frame, extra], axis=1)
+
+
+@pytest.mark.parametrize("suffix", ["csv", "parquet"])
+def test_a_results_table_over_the_column_limit_is_refused_before_its_rows(tmp_path, capsys, suffix):
+    """A CSV of 20,000 columns took 22 s to be refused for want of its `mass`; a Parquet file's columns are
+    counted from its footer. 1,000 columns are read; 1,001 are one line, exit 2."""
+    from flyopt.io.input_files import MAX_TABLE_COLUMNS
+    from flyopt.outputs.results import read_results
+
+    table = tmp_path / "s.csv"
+    assert main(["sweep", str(SHEAR), "--vary", "delta=0.02,0.05", "-o", str(table), "-q"]) == 0
+    frame = read_results(table)
+    for count in (MAX_TABLE_COLUMNS, MAX_TABLE_COLUMNS + 1):
+        wide = tmp_path / f"w{count}.{suffix}"
+        widened = _with_columns(frame, count)
+        widened.to_csv(wide, index=False) if suffix == "csv" else widened.to_parquet(wide, index=False)
+        status = main(["plot", str(wide), "--what", "sweep", "--x", "delta", "-o", str(tmp_path / f"p{count}.png")])
+        err = capsys.readouterr().err
+        if count == MAX_TABLE_COLUMNS:
+            assert (status, err) == (0, "") and len(read_results(wide).columns) == count
+        else:
+            assert status == 2 and err == (
+                f"flyopt: error: {wide}: cannot read the results: {wide} has {count} columns (allowed: at most "
+                f"{MAX_TABLE_COLUMNS})\n"
+            )
+            assert not (tmp_path / f"p{count}.png").exists()
+
+
+def test_a_sidecar_naming_more_columns_than_a_table_may_have_is_refused_before_it_is_walked(tmp_path, capsys):
+    """A sidecar listing a million columns took 108 s and 1.4 GB to draw the plot (walked, then copied with
+    the frame's attrs at each pandas step): refused at once."""
+    import json
+
+    from flyopt.io.input_files import MAX_TABLE_COLUMNS
+
+    table = tmp_path / "s.csv"
+    assert main(["sweep", str(SHEAR), "--vary", "delta=0.02,0.05", "-o", str(table), "-q"]) == 0
+    sidecar = tmp_path / "s.csv.json"
+    record = json.loads(sidecar.read_text(encoding="utf-8"))
+    count = MAX_TABLE_COLUMNS + 1
+    record["columns"] += [{"name": f"x{k}", "type": "number"} for k in range(count - len(record["columns"]))]
+    sidecar.write_text(json.dumps(record), encoding="utf-8")
+    assert main(["plot", str(table), "--what", "sweep", "--x", "delta", "-o", str(tmp_path / "p.png")]) == 2
+    err = capsys.readouterr().err
+    assert err == (
+        f"flyopt: error: {table}: cannot read the results: cannot read {sidecar}: columns has {count} entries "
+        f"(allowed: at most {MAX_TABLE_COLUMNS})\n"
+    )

@@ -228,3 +228,26 @@ def test_parts_another_flyopt_version_computed_are_not_reused(tmp_path, monkeypa
     monkeypatch.undo()
     done = sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)  # the same version: resumed
     assert len(done) == len(sweep(PUNCH, VARY))
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["[" * 200_000 + "]" * 200_000, '{"a":' * 200_000 + "1" + "}" * 200_000, "not json", "[1, 2]", ""],
+    ids=["arrays-deep", "objects-deep", "not-json", "an-array", "empty"],
+)
+def test_a_manifest_that_is_no_json_object_is_refused_naming_it(tmp_path, text):
+    """A manifest nested 200,000 deep ended `--resume` in a RecursionError traceback; one that was not JSON
+    was called another sweep's. Each is refused as damaged, the manifest and the folder named."""
+    from flyopt.errors import SceneError
+
+    out = tmp_path / "study.parquet"
+    sweep(PUNCH, VARY, chunk_size=4, output=out, max_chunks=1)
+    manifest = tmp_path / "study.parquet.parts" / "sweep.json"
+    manifest.write_text(text, encoding="utf-8")
+    with pytest.raises(SceneError) as refusal:
+        sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)
+    assert refusal.value.field == "--resume", refusal.value
+    assert refusal.value.message == (
+        f"the sweep's manifest {str(manifest)!r} is damaged: not a JSON object as flyopt writes it; "
+        f"delete the folder {str(manifest.parent)!r} to start over"
+    )

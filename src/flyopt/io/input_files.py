@@ -9,7 +9,7 @@ given on the command line is the user's own and may go anywhere.
 Every input (the scene file itself and each file it names) must be a regular
 file (not a folder, FIFO or device such as ``/dev/zero``) of at most
 :func:`max_file_bytes` bytes, checked before a byte is read; a table holds at
-most :func:`max_table_rows` rows. Both limits are raised by an environment
+most :func:`max_table_rows` rows and :data:`MAX_TABLE_COLUMNS` columns. The first two limits are raised by an environment
 variable (``FLYOPT_MAX_FILE_BYTES``, ``FLYOPT_MAX_TABLE_ROWS``), read here only.
 """
 
@@ -33,6 +33,10 @@ MAX_FILE_BYTES = 100_000_000
 
 MAX_TABLE_ROWS = 2_000_000
 """Default largest table [rows], inline or in a CSV file; ``FLYOPT_MAX_TABLE_ROWS`` raises it."""
+
+MAX_TABLE_COLUMNS = 1_000
+"""Largest table [columns]: a result file of flyopt's has about 50 (one more per field a sweep varies); a CSV
+of 20,000 columns took 22 s to refuse for want of its ``mass``, a sidecar naming a million columns 108 s."""
 
 FILE_BYTES_VARIABLE = "FLYOPT_MAX_FILE_BYTES"
 TABLE_ROWS_VARIABLE = "FLYOPT_MAX_TABLE_ROWS"
@@ -235,6 +239,12 @@ def check_rows(count: int, where: str, name: str = "the table") -> None:
         raise SceneError(
             where, f"{clip(name)} has over {limit} rows (allowed: at most {limit}; {_raise_it(TABLE_ROWS_VARIABLE)})"
         )
+
+
+def check_columns(count: int, where: str, name: str = "the table") -> None:
+    """Refuse a table of more than :data:`MAX_TABLE_COLUMNS` columns (``count`` counted before its rows are read)."""
+    if count > MAX_TABLE_COLUMNS:
+        raise SceneError(where, f"{clip(name)} has {count} columns (allowed: at most {MAX_TABLE_COLUMNS})")
 
 
 def _raise_it(variable: str) -> str:

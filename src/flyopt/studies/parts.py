@@ -140,7 +140,7 @@ class Parts:
         return self.folder / f"chunk-{index:05d}.parquet"
 
     def manifest(self) -> dict[str, Any]:
-        """What the folder's manifest records (``{}`` when there is none, or it is not a JSON object).
+        """What the folder's manifest records (``{}`` when there is none); SceneError if it is not a JSON object.
 
         Read as any input is (:func:`~flyopt.io.input_files.read_input`): a regular file within the size cap,
         so a FIFO or a link to ``/dev/zero`` planted at its name is refused (SceneError), not read forever."""
@@ -151,9 +151,15 @@ class Parts:
         text = read_input(path, "--resume", f"the sweep's manifest {str(path)!r}")
         try:
             record = json.loads(text)
-        except ValueError:
-            return {}
-        return record if isinstance(record, dict) else {}
+        except (ValueError, RecursionError):  # RecursionError: arrays nested a hundred thousand deep
+            record = None
+        if not isinstance(record, dict):
+            raise SceneError(
+                "--resume",
+                f"the sweep's manifest {str(path)!r} is damaged: not a JSON object as flyopt writes it; "
+                f"delete the folder {str(self.folder)!r} to start over",
+            )
+        return record
 
     def check_folder(self) -> None:
         """Refuse a parts folder that is not a folder of its own: a symbolic link (the sweep would write its
