@@ -6,7 +6,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_magnitude
+from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_count, check_magnitude
 from flyopt.names import Geometry, hint, unknown
 from flyopt.units import MAGNITUDES, quantity
 
@@ -159,6 +159,7 @@ def read_design(
     if table.has("arms"):
         arms = table.get("arms")
         arms = arms if isinstance(arms, list) else [arms]
+        check_count(arms, "design.arms", MAX_ARM_COUNTS, "arm counts", "(each is a design)")
         if (
             not arms
             or any(isinstance(n, bool) or not isinstance(n, int) or n < 3 for n in arms)
@@ -208,6 +209,9 @@ def read_design(
 
 
 #: Allowed H/B [-]: beyond it a rim's other section runs to kilometres or to nothing.
+MAX_ARM_COUNTS = 16
+"""Most arm counts ``design.arms`` may list: a wheel is designed with each."""
+
 HB_RANGE = (1e-3, 1e3)
 HB_WHY = "from a plate 1000 times wider than thick to a ring 1000 times thicker"
 

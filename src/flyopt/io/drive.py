@@ -34,7 +34,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, check_line, check_magnitude, check_scale
+from flyopt.io.fields import Table, check_count, check_line, check_magnitude, check_scale
 from flyopt.io.shaft_section import RATIO_RANGE
 from flyopt.machine.catalogue import QUANTITIES, REQUIRED, TEXTS, Catalogue, CatalogueMotor, MotorDataError, catalogue
 from flyopt.units import quantity
@@ -58,6 +58,9 @@ MOTOR_OPTION_KEYS = (*QUANTITIES, *TEXTS, "description")
 """Keys of a [[motor_option]] table: a catalogue size's fields (:mod:`flyopt.machine.catalogue`)."""
 
 _OPTIONS = "motor_option"
+MAX_OPTIONS = 64
+"""Most [[motor_option]] tables, and most fixed ``ratios``, a drive may try: each pair is a periodic solution
+(the IEC catalogue has 18 motors)."""
 
 
 @dataclass(frozen=True)
@@ -198,6 +201,7 @@ def _motors(table, raw_options):
             "must be an array of tables: [[motor_option]] with rated_power, rated_speed, "
             "synchronous_speed and rotor_inertia",
         )
+    check_count(raw_options, _OPTIONS, MAX_OPTIONS, "[[motor_option]] tables")
     motors = [_motor_option(item, k) for k, item in enumerate(raw_options)]
     try:
         return Catalogue(_OPTIONS, tuple(motors), "the scene's [[motor_option]] tables")
@@ -264,6 +268,7 @@ def _ratios(table):
             raise SceneError(
                 "drive.ratios", f"must be a non-empty list of fixed speed ratios (e.g. [2, 3.5, 5]), got {shorten(raw)}"
             )
+        check_count(raw, "drive.ratios", MAX_OPTIONS, "ratios")
         ratios = []
         for k, v in enumerate(raw):
             r = quantity(v, "dimensionless", f"drive.ratios[{k}]")

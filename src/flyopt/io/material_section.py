@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.design.castability import WALL_RANGE, WALL_WHY
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_magnitude
+from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_count, check_magnitude
 from flyopt.units import MAGNITUDES
 
 if TYPE_CHECKING:
@@ -58,12 +58,18 @@ def _check_rim_speed(material: Material, where: str) -> None:
         )
 
 
+MAX_MATERIALS = 256
+"""Most [[material]] tables a scene may give: each a design is made in (2,000 took 10 s; a scene file's 100 MB
+would hold 300,000)."""
+
+
 def read_materials(raw: object) -> tuple[Material, ...]:
     """The [[material]] tables: the scene's own materials (none when it gives none)."""
     if raw is None:
         return ()
     if not isinstance(raw, list):
         raise SceneError("material", "must be an array of tables: [[material]] with name and density")
+    check_count(raw, "material", MAX_MATERIALS, "[[material]] tables")
     seen: set[str] = set()
     return tuple(read_material(item, k, seen) for k, item in enumerate(raw))
 

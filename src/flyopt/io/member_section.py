@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.angle_tables import angle_curve, angle_curve_file
-from flyopt.io.fields import Table, scaled, unit_factor
+from flyopt.io.fields import Table, check_count, scaled, unit_factor
 from flyopt.io.shaft_section import RATIO_RANGE
 from flyopt.io.toml_file import InlineRows
 from flyopt.units import DIMENSIONS, quantity
@@ -29,6 +29,8 @@ _LINKAGE_KEYS = {"kind", "speed_ratio", "phase", "description"}
 
 
 #: Farthest a member's centre of mass may sit from its part's pivot [m]: beyond it J_e overflows.
+MAX_MEMBERS = 64
+"""Most [[member]] tables, and most segments of a cam's motion, a scene may give (each is summed at every angle)."""
 MAX_CENTRE = 1e3
 
 
@@ -98,6 +100,7 @@ def _read_linkage(raw: object, kind: str) -> Linkage:
     segments = table.require("segments")
     if not isinstance(segments, list) or not segments:
         raise SceneError("mechanism.segments", "must be a list of tables {motion, law, angle, lift}")
+    check_count(segments, "mechanism.segments", MAX_MEMBERS, "segments")
     rows = []
     for k, item in enumerate(segments):
         where = f"mechanism.segments[{k}]"
@@ -134,6 +137,7 @@ def read_members(
 
     if not isinstance(raw, list):
         raise SceneError("member", "must be an array of tables: [[member]] with name, mass, ...")
+    check_count(raw, "member", MAX_MEMBERS, "[[member]] tables")
     members, seen = [], set[str]()
     for k, item in enumerate(raw):
         where = f"member[{k}]"

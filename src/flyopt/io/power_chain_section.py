@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_magnitude
+from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_count, check_magnitude
 from flyopt.io.shaft_section import read_stages
 from flyopt.machine.transmission import PowerBranch
 
@@ -54,8 +54,7 @@ def read_power_chain(raw: object) -> PowerBranch:
 
 def _branch(table: Table, where: str, name: str, depth: int) -> PowerBranch:
     stages = read_stages(table.get("stages"), f"{where}.stages") if table.has("stages") else ()
-    if len(stages) > MAX_STAGES:
-        raise SceneError(f"{where}.stages", f"has {len(stages)} stages (allowed: at most {MAX_STAGES} in series)")
+    check_count(stages, f"{where}.stages", MAX_STAGES, "stages", "in series")
     power = _delivered(table, where)
     if not table.has("branch"):
         if power is None:

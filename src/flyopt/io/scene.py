@@ -24,9 +24,10 @@ from flyopt.io.design_section import read_design
 from flyopt.io.engine_section import read_engine
 from flyopt.io.fields import MAX_LINE_LENGTH, Table, check_delta, check_line, cycle_of, mean_speed
 from flyopt.io.input_files import recording_inputs
-from flyopt.io.material_section import read_material, read_materials
+from flyopt.io.material_section import MAX_MATERIALS, read_material, read_materials
 from flyopt.io.member_section import read_mechanism, read_members, with_engine
 from flyopt.io.shaft_section import (
+    MAX_SHAFTS,
     check_designed_seats,
     check_shaft_materials,
     read_efficiency,
@@ -515,9 +516,10 @@ def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
             errors.append(err)
             return None
 
-    def each(raw: Any, read_one: Any, read_all: Any) -> Any:
-        """A list of tables read table by table, then (none wrong) as the loader reads it: its tuple, or None."""
-        if isinstance(raw, list):
+    def each(raw: Any, read_one: Any, read_all: Any, limit: int) -> Any:
+        """A list of tables read table by table, then (none wrong) as the loader reads it: its tuple, or None.
+        A list of more than ``limit`` tables is the loader's one error (its count), not one per table."""
+        if isinstance(raw, list) and len(raw) <= limit:
             seen: set[str] = set()
             failed = len(errors)
             for k, item in enumerate(raw):
@@ -539,10 +541,10 @@ def section_errors(data: Mapping[str, Any]) -> list[SceneError]:
         attempt(cycle_of, machine)
         if machine.has("efficiency"):
             attempt(read_efficiency, machine.get("efficiency"), "machine.efficiency")
-    materials = each(top.get("material"), read_material, read_materials)
+    materials = each(top.get("material"), read_material, read_materials, MAX_MATERIALS)
     shafts = None
     if not (isinstance(data.get("drive"), Mapping) or "motor_option" in data):  # a drive reads its own shaft
-        shafts = each(data.get("shaft"), read_shaft, read_shafts)
+        shafts = each(data.get("shaft"), read_shaft, read_shafts, MAX_SHAFTS)
     attempt(_title, top)
     # one calculation, and a [flywheel] that exists, refuse a [design] before reading it: its values are no
     # error of such a scene

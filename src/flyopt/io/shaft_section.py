@@ -7,7 +7,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_magnitude, check_scale
+from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_count, check_magnitude, check_scale
 from flyopt.io.train_section import read_train
 from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.shaft_layout import ShaftLayout, SideLoad
@@ -16,6 +16,12 @@ from flyopt.units import inertia_from_gd2, quantity
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
+
+MAX_SHAFTS = 64
+"""Most [[shaft]] tables a scene may give: each is a place the wheel may sit, designed and ranked in turn."""
+MAX_STEPS = 64
+"""Most steps (``segments``) of a described shaft, and most side ``loads`` on it: the beam's finite elements
+grow with them (5,000 steps ran for over 5 minutes and 5.6 GB)."""
 
 RATIO_RANGE = (1e-6, 1e6)
 RATIO_WHY = "ω_shaft/ω_reference of a gear train"
@@ -28,6 +34,7 @@ def read_shafts(raw: object) -> tuple[Shaft, ...]:
         return (Shaft("reference", 1.0),)
     if not isinstance(raw, list) or not raw:
         raise SceneError("shaft", "must be an array of tables: [[shaft]] with name and speed_ratio")
+    check_count(raw, "shaft", MAX_SHAFTS, "[[shaft]] tables")
     seen: set[str] = set()
     shafts, trains = [], []
     for k, item in enumerate(raw):
@@ -254,6 +261,7 @@ def _segments(raw: object, where: str) -> tuple[tuple[float, ...], tuple[float, 
     """The steps' ends and diameters [m] from ``[{ to = ..., diameter = ... }, ...]``, in order along the shaft."""
     if not isinstance(raw, list) or not raw:
         raise SceneError(where, 'must be a non-empty list of steps, e.g. [{ to = "200 mm", diameter = "60 mm" }, ...]')
+    check_count(raw, where, MAX_STEPS, "steps")
     steps: list[float] = []
     diameters: list[float] = []
     for k, item in enumerate(raw):
@@ -284,6 +292,7 @@ DESIGNED = "design"
 def _side_loads(raw: object, where: str, length: float) -> tuple[SideLoad, ...]:
     if not isinstance(raw, list):
         raise SceneError(where, 'must be a list of loads, e.g. [{ at = "700 mm", force = "3 kN", angle = "90 deg" }]')
+    check_count(raw, where, MAX_STEPS, "loads")
     loads = []
     for k, item in enumerate(raw):
         load = Table(item, f"{where}[{k}]", {"at", "force", "angle", "description"})
