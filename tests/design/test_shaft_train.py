@@ -182,6 +182,12 @@ CASES = [
         "shaft[0].train[5].span[1]",
         "lie on the shaft",
     ),
+    (  # a round-off apart: one place (as torque_at from wheel_at, a micron at least)
+        'span = ["wheel_at", "torque_at"]',
+        'span = ["wheel_at", "300.0000000001 mm"]',
+        "shaft[0].train[5].span",
+        "at least 0.001 mm apart",
+    ),
     (
         'diameter = "50 mm" }',
         'diameter = "50 mm", material = "unobtainium" }',

@@ -46,7 +46,22 @@ def test_a_shaft_without_its_geometry_stays_a_speed_ratio(write_scene):
 CASES = [
     ('wheel_at = "300 mm"', 'wheel_at = "900 mm"', "shaft[0].wheel_at", "0 to 700 mm"),
     ('bearings = ["50 mm", "650 mm"]', 'bearings = ["50 mm"]', "shaft[0].bearings", "list of 2"),
-    ('bearings = ["50 mm", "650 mm"]', 'bearings = ["50 mm", "50 mm"]', "shaft[0].bearings", "two different"),
+    ('bearings = ["50 mm", "650 mm"]', 'bearings = ["50 mm", "50 mm"]', "shaft[0].bearings", "0.001 mm apart"),
+    # places a round-off apart are the same place (torque 1e-13 m from the wheel: "Omega = 6.28319 rad/s is a
+    # natural frequency of the undamped system", exit 1); a micron apart are two
+    (
+        'bearings = ["50 mm", "650 mm"]',
+        'bearings = ["650 mm", "650.0000000001 mm"]',
+        "shaft[0].bearings",
+        "at least 0.001 mm apart",
+    ),
+    (
+        '{ to = "500 mm", diameter',
+        '{ to = "100.0000000001 mm", diameter',
+        r"shaft[0].segments[1].to",
+        r"at least 0.001 mm beyond the previous step's end \(100 mm\)",
+    ),
+    ('torque_at = "680 mm"', 'torque_at = "300.0000000001 mm"', "shaft[0].torque_at", "0.001 mm from wheel_at"),
     ('{ to = "500 mm", diameter', '{ to = "50 mm", diameter', r"shaft[0].segments[1].to", "beyond the previous"),
     ('diameter = "80 mm" }', 'diameter = "-80 mm" }', r"shaft[0].segments[1].diameter", "positive"),
     ('material = "42crmo4_qt"', 'material = "42crmo"', "shaft[0].material", "42crmo4_qt"),
@@ -68,7 +83,7 @@ CASES = [
         "shaft[0].segments[0].diameter",
         "0.00279 to 0.254 m",
     ),
-    ('torque_at = "680 mm"', 'torque_at = "300 mm"', "shaft[0].torque_at", "differ from wheel_at"),
+    ('torque_at = "680 mm"', 'torque_at = "300 mm"', "shaft[0].torque_at", "at least 0.001 mm from wheel_at"),
     (
         '{ to = "700 mm", diameter = "60 mm" }',
         '{ to = "700 mm", diameter = "300 mm" }',
@@ -79,6 +94,18 @@ CASES = [
     ('segments = [{ to = "100', 'sections = [{ to = "100', "shaft[0].sections", "unknown key"),
     ('segments = [{ to = "100 mm", diameter = "60 mm" }, ', "#", "shaft[0].segments", "is missing"),
 ]
+
+
+def test_places_a_micron_apart_are_two(write_scene):
+    """The least gap (a micron, the least length a scene gives) holds to the round-off of the millimetres."""
+    text = GOOD.replace('torque_at = "680 mm"', 'torque_at = "300.001 mm"').replace(
+        'bearings = ["50 mm", "650 mm"]', 'bearings = ["50 mm", "50.001 mm"]'
+    )
+    text = text.replace('{ to = "500 mm", diameter', '{ to = "100.001 mm", diameter')
+    layout = flyopt.load(write_scene(text)).shafts[0].layout
+    assert layout.torque_at - layout.wheel_at == pytest.approx(1e-6, rel=1e-6)
+    assert layout.bearings[1] - layout.bearings[0] == pytest.approx(1e-6, rel=1e-6)
+    assert layout.steps[1] - layout.steps[0] == pytest.approx(1e-6, rel=1e-6)
 
 
 @pytest.mark.parametrize("old, new, field, match", CASES)

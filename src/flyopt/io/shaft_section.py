@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import SAFETY_RANGE, SAFETY_WHY, Table, check_count, check_magnitude, check_scale
-from flyopt.io.train_section import read_train
+from flyopt.io.train_section import MIN_GAP, apart, read_train
 from flyopt.machine.drive_train import TrainSpring
 from flyopt.machine.shaft_layout import ShaftLayout, SideLoad
 from flyopt.machine.transmission import Shaft, series_efficiency
@@ -148,15 +148,18 @@ def read_layout(table: Table, where: str) -> ShaftLayout | None:
     designed = tuple(j for j, d in enumerate(diameters) if math.isnan(d))
     length = steps[-1]
     bearings = _positions(table, "bearings", where, length, count=2)
-    if not bearings[0] < bearings[1]:
-        raise SceneError(f"{where}.bearings", f"must be two different positions, got {shorten(table.raw('bearings'))}")
+    if not apart(bearings[0], bearings[1]):
+        raise SceneError(
+            f"{where}.bearings",
+            f"must be two positions at least {MIN_GAP * 1e3:g} mm apart, got {shorten(table.raw('bearings'))}",
+        )
     wheel_at = _position(table.require("wheel_at"), f"{where}.wheel_at", length)
     torque_at = _position(table.require("torque_at"), f"{where}.torque_at", length)
-    if torque_at == wheel_at:
+    if not apart(torque_at, wheel_at):
         raise SceneError(
             f"{where}.torque_at",
-            "must differ from wheel_at: the torque enters the shaft away from the wheel seat (crank, pinion, "
-            "coupling) and the shaft between them twists",
+            f"must be at least {MIN_GAP * 1e3:g} mm from wheel_at: the torque enters the shaft away from the wheel "
+            "seat (crank, pinion, coupling) and the shaft between them twists",
         )
     material = table.require("material")
     if not isinstance(material, str) or not material.strip():
@@ -269,11 +272,11 @@ def _segments(raw: object, where: str) -> tuple[tuple[float, ...], tuple[float, 
         end = seg.quantity("to", "length", required=True)
         design = seg.raw("diameter") == DESIGNED
         d = math.nan if design else seg.quantity("diameter", "length", required=True)
-        if not (math.isfinite(end) and end > (steps[-1] if steps else 0.0)):
+        if not (math.isfinite(end) and end > (steps[-1] if steps else 0.0) and apart(steps[-1] if steps else 0.0, end)):
             raise SceneError(
                 f"{where}[{k}].to",
-                f"must be beyond the previous step's end ({(steps[-1] if steps else 0.0) * 1e3:g} mm), "
-                f"got {shorten(seg.raw('to'))}",
+                f"must be at least {MIN_GAP * 1e3:g} mm beyond the previous step's end "
+                f"({(steps[-1] if steps else 0.0) * 1e3:g} mm), got {shorten(seg.raw('to'))}",
             )
         if not design and not (math.isfinite(d) and d > 0.0):
             raise SceneError(

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 from flyopt.errors import SceneError, shorten
 from flyopt.io.fields import Table, check_line
 from flyopt.machine.drive_train import TrainInertia, TrainSpring
-from flyopt.units import inertia_from_gd2, quantity
+from flyopt.units import MAGNITUDES, inertia_from_gd2, quantity
 
 if TYPE_CHECKING:
     from flyopt.machine.shaft_layout import ShaftLayout
@@ -40,6 +40,19 @@ ALLOWED = {"name", "shaft", "inertia", "gd2", "flywheel", "stiffness", "length",
 ALLOWED |= {"radius", "span"}
 #: An inertia that takes the rest of its [[shaft]]'s (replaced before the train is returned).
 REST = -1.0
+MIN_GAP = MAGNITUDES["length"][0]
+"""The least distance between two places on a shaft that must differ (a step's ends, the bearings,
+the wheel and where the torque enters, a span's ends) [m]: the least length a scene gives, a micron. Torque
+entering 1e-13 m from the wheel made the torsional model's stiffness so large that its forced response
+failed ("a natural frequency of the undamped system")."""
+
+
+def apart(a: float, b: float) -> bool:
+    """Whether two places on a shaft are :data:`MIN_GAP` apart, to the round-off of their millimetres
+    (300.001 mm is a micron from 300 mm)."""
+    return abs(b - a) >= MIN_GAP * (1.0 - 1e-9)
+
+
 #: Relative agreement asked of a shaft's train inertias with its [[shaft]] inertia.
 INERTIA_RTOL = 1e-9
 
@@ -167,8 +180,10 @@ def _spring(
                 f"must lie on the shaft, 0 to {layout.length * 1e3:g} mm, or be wheel_at or torque_at, got {shorten(end)}",
             )
         xs.append(x)
-    if xs[0] == xs[1]:
-        raise SceneError(f"{at}.span", f"must be two different positions, got {shorten(ends)}")
+    if not apart(xs[0], xs[1]):
+        raise SceneError(
+            f"{at}.span", f"must be two positions at least {MIN_GAP * 1e3:g} mm apart, got {shorten(ends)}"
+        )
     if before.shaft != own.name:
         raise SceneError(
             at, f"a span of {own.name!r}'s own steps must follow an inertia on that shaft, not on {before.shaft!r}"
