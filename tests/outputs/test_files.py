@@ -511,3 +511,39 @@ def test_a_sidecar_naming_more_columns_than_a_table_may_have_is_refused_before_i
         f"flyopt: error: {table}: cannot read the results: cannot read {sidecar}: columns has {count} entries "
         f"(allowed: at most {MAX_TABLE_COLUMNS})\n"
     )
+
+
+@pytest.mark.parametrize("what", ["sweep", "pareto"])
+@pytest.mark.parametrize("value", ["1e308", "-inf"])
+def test_a_number_no_diagram_can_draw_is_refused_in_one_line(tmp_path, capsys, what, value):
+    """A mass of 1e308 edited into a sweep's CSV ended the plot in "arange: cannot compute length" after
+    matplotlib's overflow warnings; 1e150, at the limit, is drawn."""
+    import csv
+
+    from flyopt.report.plots.results import MAX_DRAWN
+
+    table = tmp_path / "s.csv"
+    assert main(["sweep", str(SHEAR), "--vary", "delta=0.02,0.05,0.08", "-o", str(table), "-q"]) == 0
+    with table.open(encoding="utf-8", newline="") as handle:
+        rows = list(csv.reader(handle))
+    mass = rows[0].index("mass")
+    args = ["--x", "delta"] if what == "sweep" else ["--x", "delta", "--y", "mass"]
+    for size, status in ((value, 2), (f"{MAX_DRAWN:g}", 0)):
+        rows[2][mass] = size
+        with table.open("w", encoding="utf-8", newline="") as handle:
+            csv.writer(handle).writerows(rows)
+        out = tmp_path / f"p{status}.png"
+        assert main(["plot", str(table), "--what", what, *args, "-o", str(out)]) == status
+        err = capsys.readouterr().err
+        if status:
+            shown = f"{float(value):g}"
+            assert (
+                err
+                == (
+                    f"flyopt: error: {table}: the column 'mass' holds {shown} (allowed: numbers of size at most "
+                    f"{MAX_DRAWN:g}, or none): it cannot be drawn\n"
+                )
+                and not out.exists()
+            )
+        else:
+            assert err == "" and out.stat().st_size > 0

@@ -78,6 +78,24 @@ def _column(frame, name):
     raise ValueError(f"the results have no column {name!r} (columns: {', '.join(frame.columns)})")
 
 
+MAX_DRAWN = 1e150
+"""Largest size of a value a results diagram draws: a mass of 1e308 in a hand-edited CSV overflowed
+matplotlib's transforms ("arange: cannot compute length"); no result of flyopt's comes near it."""
+
+
+def _drawable(frame, column):
+    """``column``, its numbers checked finite and at most :data:`MAX_DRAWN` in size (NaN is no value)."""
+    if np.issubdtype(frame[column].dtype, np.number):
+        values = frame[column].to_numpy(dtype=float)
+        wild = values[~np.isnan(values) & ~(np.abs(values) <= MAX_DRAWN)]
+        if wild.size:
+            raise ValueError(
+                f"the column {column!r} holds {wild[0]:g} (allowed: numbers of size at most {MAX_DRAWN:g}, or "
+                "none): it cannot be drawn"
+            )
+    return column
+
+
 def _values(part, column, scale):
     """A column's numbers (of ``part``, rows of the frame) in its axis' unit (``scale`` of :func:`_scale`)."""
     values = part[column].to_numpy(dtype=float)
@@ -171,12 +189,13 @@ def plot_sweep(
     Raises
     ------
     ValueError
-        A column that does not exist, or more than :data:`MAX_LINES` lines.
+        A column that does not exist or holds a number beyond :data:`MAX_DRAWN`, or more than
+        :data:`MAX_LINES` lines.
     """
     from matplotlib.transforms import blended_transform_factory
 
     display.check_system(units)
-    x, y = _column(frame, x), _column(frame, y)
+    x, y = _drawable(frame, _column(frame, x)), _drawable(frame, _column(frame, y))
     by = _column(frame, by) if by else None
     others = [f for f in varied_fields(frame) if f not in (x, by)]
     keys = ([by] if by else []) + others
@@ -265,12 +284,13 @@ def plot_pareto(
     Raises
     ------
     ValueError
-        A column that does not exist, or points of different physics.
+        A column that does not exist or holds a number beyond :data:`MAX_DRAWN`, or points of different
+        physics.
     """
     from flyopt.studies.points import PHYSICS_FIELDS
 
     display.check_system(units)
-    x, y = _column(frame, x), _column(frame, y)
+    x, y = _drawable(frame, _column(frame, x)), _drawable(frame, _column(frame, y))
     mixed = [f for f in PHYSICS_FIELDS if f in frame.columns and f not in (x, y) and frame[f].nunique(dropna=True) > 1]
     if mixed:
         spans = "; ".join(
