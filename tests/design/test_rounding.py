@@ -360,3 +360,21 @@ def test_rounding_re_solves_with_the_solver_options_the_design_was_given(monkeyp
     ).design
     assert design.continuous is not None and rounded and rounded[0] > 0  # rounding re-solved
     assert all(solved), f"{solved.count(False)} of {len(solved)} solves ignored the options"
+
+
+def test_a_fixed_ratio_rounded_wheel_leaves_the_terminal_silent(tmp_path, capfd):
+    """press-arms-wheel at ``hb_ratio = 1.5``: once the rounding has fixed H and B (and the rest), CasADi counted
+    the ratio's equality row with the fixed variables and printed "NLP is overconstrained: There are 7 equality
+    constraints but only 6 variables" at each of 10 solves above a valid design. The row, a constant there, is
+    freed where the fixed H and B meet the ratio; the wheel is the same, H/B 1.5 to round-off."""
+    text = (PROBLEMS / "press-arms-wheel.toml").read_text(encoding="utf-8")
+    assert "hb_ratio = [0.5, 2.0]" in text
+    path = tmp_path / "fixed.toml"
+    path.write_text(text.replace("hb_ratio = [0.5, 2.0]", "hb_ratio = 1.5"), encoding="utf-8")
+    capfd.readouterr()
+    design = flyopt.solve(flyopt.load(path)).design
+    assert capfd.readouterr() == ("", "")
+    dims = design.best.dims
+    assert design.best.feasible and dims.h / dims.b == pytest.approx(1.5, rel=1e-12)
+    for name in ("h", "b"):  # rounded to the millimetre, so both were fixed by the rounding
+        assert abs(getattr(dims, name) * 1e3 - round(getattr(dims, name) * 1e3)) < 1e-9

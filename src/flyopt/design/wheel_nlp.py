@@ -598,6 +598,7 @@ def solve_arguments(
     x0 = _clipped(start, names, {"lbx": lbx, "ubx": ubx})
     scale = problem.density * problem.omega**2 * (start["d_outer"] / 2.0) ** 2
     lbg, ubg = row_bounds(structure, constraints, problem)
+    _settle_ratio_row(names, list(constraints), lbx, ubx, lbg, ubg)
     allow = allowable_parameters(structure, problem.allowable, scale)
     values = {
         "omega": problem.omega,
@@ -610,6 +611,21 @@ def solve_arguments(
     }
     p = [values[n] for n in PARAMETERS] + allow
     return {"x0": x0, "lbx": lbx, "ubx": ubx, "lbg": lbg, "ubg": ubg, "p": p}, scale, allow
+
+
+def _settle_ratio_row(
+    names: Sequence[str], constraints: list[str], lbx: list[float], ubx: list[float], lbg: list[float], ubg: list[float]
+) -> None:
+    """Free a fixed H/B ratio's row (an equality) where the rounding has fixed both H and B at that ratio: the
+    row is then a constant, and CasADi, counting it with the fixed variables, printed "NLP is overconstrained:
+    There are 7 equality constraints but only 6 variables" at each of the rounding's solves (press-arms-wheel
+    at ``hb_ratio = 1.5``). Fixed H and B off the ratio keep the row, and the solve finds no wheel."""
+    if "hb_ratio" not in constraints or "h" not in names:
+        return
+    k, h, b = constraints.index("hb_ratio"), names.index("h"), names.index("b")
+    fixed = lbx[h] == ubx[h] and lbx[b] == ubx[b]
+    if lbg[k] == ubg[k] and fixed and abs(lbx[h] - lbx[b] - lbg[k]) <= 1e-12:
+        lbg[k], ubg[k] = -math.inf, math.inf
 
 
 def solve(model: WheelModel, problem: WheelProblem, label: str) -> WheelSolution:
