@@ -296,3 +296,23 @@ def test_a_scene_saved_with_a_byte_order_mark_reads_as_without(tmp_path, capsys)
     path.write_bytes(b"\xef\xbb\xbfsped = 3\n" + text.encode("utf-8"))
     assert main(["check", str(path)]) == 2
     assert f"{path}:1: sped: unknown key" in capsys.readouterr().err  # said at its line, the first
+
+
+@pytest.mark.parametrize("written", ["1" * 4301, "1_" * 4300 + "1", "-" + "9" * 5000])
+def test_a_whole_number_longer_than_python_converts_is_placed_by_its_line(tmp_path, written):
+    """tomllib's conversion of an integer of over 4,300 digits said so in Python's words ("use
+    sys.set_int_max_str_digits()"), naming no line; now the line and the count of digits."""
+    import sys
+
+    text = scene_text().replace("delta = 0.05", f"delta = {written}", 1)
+    assert f"delta = {written}" in text
+    path = tmp_path / "scene.toml"
+    path.write_text(text, encoding="utf-8")
+    line = text[: text.index(written)].count("\n") + 1
+    digits = sum(c.isdigit() for c in written)
+    limit = sys.get_int_max_str_digits()
+    with pytest.raises(SceneError) as refusal:
+        flyopt.load(path)
+    assert str(refusal.value) == (
+        f"{path}: not a scene: a whole number of {digits:,} digits at line {line} (allowed: at most {limit:,} digits)"
+    )

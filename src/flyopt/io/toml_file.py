@@ -9,6 +9,7 @@ floats), leaving everything else to ``tomllib``.
 from __future__ import annotations
 
 import re
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -58,7 +59,7 @@ def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
     except tomllib.TOMLDecodeError as err:
         raise SceneError("", f"not valid TOML: {err}", str(path)) from None
     except ValueError as err:  # an integer of over 4300 digits
-        raise SceneError("", f"not a scene: {clip(str(err))}", str(path)) from None
+        raise SceneError("", f"not a scene: {_too_long_integer(text) or clip(str(err))}", str(path)) from None
     except (RecursionError, MemoryError):
         raise SceneError(
             "",
@@ -69,6 +70,18 @@ def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
     if too_deep is not None:
         raise SceneError(too_deep, f"nests tables or arrays more than {MAX_DEPTH} deep: not a scene", str(path))
     return data
+
+
+def _too_long_integer(text: str) -> str:
+    """Where the text holds a whole number longer than Python converts (4,300 digits), in words; "" if nowhere:
+    the message of the conversion named neither the field nor the line."""
+    limit = sys.get_int_max_str_digits()
+    found = re.search(rf"[0-9](?:_?[0-9]){{{limit},}}", text)
+    if found is None:
+        return ""
+    digits = sum(c.isdigit() for c in found.group())
+    line = text.count("\n", 0, found.start()) + 1
+    return f"a whole number of {digits:,} digits at line {line} (allowed: at most {limit:,} digits)"
 
 
 MAX_DEPTH = 32
