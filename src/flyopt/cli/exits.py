@@ -15,8 +15,9 @@ status      meaning
 5           an output could not be written (disk full, no permission, a
             read-only file system): one line naming the file; nothing is
             left under its name
-130         interrupted (Ctrl-C, or a sweep that lost its workers); what
-            was finished is kept and ``--resume`` continues
+130         interrupted (Ctrl-C, SIGTERM, or a sweep that lost its
+            workers); what was finished is kept, no temporary file is
+            left, and ``--resume`` continues
 141         stdout was closed early (``flyopt solve ... | head``): the
             reader stopped reading; nothing more is written, nothing on
             stderr (128 + SIGPIPE, what the shell reports for a C tool)

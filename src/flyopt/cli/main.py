@@ -45,9 +45,12 @@ import io
 import signal
 import sys
 from collections.abc import Callable, Sequence
-from typing import Any, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from flyopt.cli.exits import run
+
+if TYPE_CHECKING:
+    from types import FrameType
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -73,14 +76,28 @@ def entry() -> int:
     The console's streams write what their encoding lacks in ASCII (:func:`flyopt.cli.console.fit_streams`).
     Once the command has its status the work is over: a Ctrl-C that arrives
     while the interpreter shuts down would only replace that status by death
-    by signal, so it is ignored from then on.
+    by signal, so it is ignored from then on. SIGTERM (``kill``, a scheduler's stop) is a Ctrl-C
+    (:func:`_terminated`): the command ends as interrupted (status 130), its temporary files removed.
     """
     from flyopt.cli.console import fit_streams
 
     fit_streams()  # a console that cannot show ω or kg·m² gets them in ASCII, not an encoding error
+    signal.signal(signal.SIGTERM, _terminated)
     status = main()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     return status
+
+
+def _terminated(signum: int, frame: FrameType | None) -> None:
+    """SIGTERM's handler: what Ctrl-C does at this point (a sweep's :class:`~flyopt.studies.interrupt.Stop`
+    notes it; elsewhere a :class:`KeyboardInterrupt`), so that the command cleans up as after Ctrl-C. It died
+    at once, leaving an output's ``NAME.tmp-PID-…`` beside it. Where Ctrl-C is ignored (a job a script starts
+    in the background), SIGTERM still interrupts."""
+    handler = signal.getsignal(signal.SIGINT)
+    if callable(handler):
+        handler(signal.SIGINT, frame)
+        return
+    raise KeyboardInterrupt
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -90,7 +107,7 @@ def _parser() -> argparse.ArgumentParser:
         prog="flyopt",
         description="Flywheel design for speed regulation.",
         epilog="exit status: 0 ok, 1 solver failed or design failed its check, 2 bad input, "
-        "3 infeasible, 4 verification flagged, 5 an output could not be written, 130 interrupted, "
+        "3 infeasible, 4 verification flagged, 5 an output could not be written, 130 interrupted (Ctrl-C, SIGTERM), "
         "141 stdout closed early "
         "(see flyopt.cli.exits)",
     )

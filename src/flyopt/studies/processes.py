@@ -43,6 +43,7 @@ def _init_worker(task: Callable[[pd.DataFrame], pd.DataFrame]) -> None:
     global _TASK
     _TASK = task
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # the parent ends a worker so (a fork inherits its handler)
     _die_with_parent()
 
 
