@@ -429,6 +429,18 @@ def test_the_printed_trade_off_names_materials_and_limits_for_people(capsys):
     [
         ("punch-press-wheel.toml", ["--range=:1"], "--range: ':1': each end needs its number"),
         ("punch-press-wheel.toml", ["--range=0.3:0.3 m"], "the outer diameter range 0.3..0.3 m is empty"),
+        # an end beyond its field's range was blamed on an internal --vary, its value derived from the range
+        (
+            "punch-press-wheel.toml",
+            ["--range=1e-300:1e300 m"],
+            "range: '1e-300 m' is out of range (allowed: 1e-06 to 1000 m; a micron to a kilometre, as "
+            "max_outer_diameter)",
+        ),
+        (
+            "punch-press.toml",
+            ["--objectives", "mass,delta", "--range=1e-300:0.1"],
+            "range: must lie between 1e-06 and 2 (2 excluded), got '1e-300'",
+        ),
         (
             "punch-press.toml",
             ["--objectives", "mass,delta", "--range=0.05:0.05"],
@@ -437,6 +449,7 @@ def test_the_printed_trade_off_names_materials_and_limits_for_people(capsys):
     ],
 )
 def test_a_range_of_one_point_or_no_number_is_refused(scene, args, words):
-    """`--range=:1` said pint's "cannot be an empty string"; a range of one point gave an "empty front", exit 3."""
+    """`--range=:1` said pint's "cannot be an empty string"; a range of one point gave an "empty front", exit 3;
+    an end no field takes ended in "--vary design.max_outer_diameter: '3.7660148438044355e-13' is out of range"."""
     done = run_flyopt("pareto", str(PROBLEMS / scene), *args, "--points", "3")
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and words in done.stderr, done.stderr

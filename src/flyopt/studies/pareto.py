@@ -42,6 +42,8 @@ from flyopt.design import DesignSpec, design_inputs
 from flyopt.design.inputs import seat_given_only, single_design_only
 from flyopt.design.wheel_design import neighbours
 from flyopt.errors import SceneError, shorten
+from flyopt.io.design_section import LENGTH_RANGE, LENGTH_WHY
+from flyopt.io.fields import check_delta, check_magnitude
 from flyopt.outputs.results import normalize
 from flyopt.studies.evaluate import evaluate_points
 from flyopt.studies.physics import physics_analysis
@@ -246,6 +248,9 @@ def _front_outer_diameter(
         grid = np.geomspace(low, high, points)[1:] if high > low else np.array([])
     else:
         low, high = span
+        for end in (low, high):  # the rule of the field the front sweeps, named as the range
+            if end > 0:
+                check_magnitude(end, "range", f"{end:g} m", *LENGTH_RANGE, "m", f"{LENGTH_WHY}, as max_outer_diameter")
         high = min(high, envelope)
         if not 0 < low < high:  # one point (low = high) is no front: it gave an "empty front", exit 3
             raise SceneError("range", f"the outer diameter range {low:.6g}..{high:.6g} m is empty or not positive")
@@ -342,6 +347,9 @@ def _front_delta(
     if span is None:
         span = (scene.allowed_delta / 10.0, min(scene.allowed_delta * 10.0, 1.0))
     low, high = span
+    for end in (low, high):  # the rule of machine.delta, named as the range
+        if 0 < end < 2:
+            check_delta(end, "range", f"{end:g}", "the δ range runs through the allowed values of machine.delta")
     if not 0 < low < high < 2:
         raise SceneError(
             "range", f"the δ range {low:.6g}..{high:.6g} must lie in (0, 2), its low end below its high one"
