@@ -547,3 +547,39 @@ def test_a_number_no_diagram_can_draw_is_refused_in_one_line(tmp_path, capsys, w
             )
         else:
             assert err == "" and out.stat().st_size > 0
+
+
+@pytest.mark.parametrize(
+    "where, unit, words",
+    [
+        ("units", "furlong", "units.mass 'furlong' does not measure mass"),
+        ("units", "no_such_unit", "units.mass 'no_such_unit' does not measure mass"),
+        ("vary", "furlong", "sweep.vary.delta.unit 'furlong' does not measure a plain number"),
+    ],
+)
+def test_a_sidecar_unit_that_does_not_measure_its_column_is_refused(tmp_path, capsys, where, unit, words):
+    """A sidecar saying the mass is in furlongs was read without a word; a varied δ "in furlong" failed only
+    when read back in the input's units (`read_results(path, units="input")`), naming no file."""
+    import json
+    import re
+
+    import flyopt
+    from flyopt.errors import SceneError
+
+    table = tmp_path / "s.csv"
+    assert main(["sweep", str(SHEAR), "--vary", "delta=0.02,0.05", "-o", str(table), "-q"]) == 0
+    sidecar = tmp_path / "s.csv.json"
+    record = json.loads(sidecar.read_text(encoding="utf-8"))
+    assert record["units"]["mass"] == "kg" and record["sweep"]["vary"]["delta"]["unit"] is None
+    flyopt.read_results(table, units="input")  # as written: read
+    if where == "units":
+        record["units"]["mass"] = unit
+    else:
+        record["sweep"]["vary"]["delta"]["unit"] = unit
+    sidecar.write_text(json.dumps(record), encoding="utf-8")
+    assert main(["plot", str(table), "--what", "sweep", "--x", "delta", "-o", str(tmp_path / "p.png")]) == 2
+    assert (
+        capsys.readouterr().err == f"flyopt: error: {table}: cannot read the results: cannot read {sidecar}: {words}\n"
+    )
+    with pytest.raises(SceneError, match=re.escape(f"cannot read {sidecar}: {words}")):
+        flyopt.read_results(table, units="input")

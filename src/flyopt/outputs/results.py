@@ -681,7 +681,33 @@ def _metadata(text: str | bytes, where: str) -> dict[str, Any]:
             "",
             f"{where}: not flyopt's metadata ({message})" if field == "(top level)" else f"{where}: {field} {message}",
         )
+    wrong = _wrong_unit(metadata)
+    if wrong:
+        raise SceneError("", f"{where}: {wrong}")
     return metadata
+
+
+def _wrong_unit(metadata: Mapping[str, Any]) -> str:
+    """What is wrong with the first unit the metadata gives a quantity ("" if none is): each of ``units`` and
+    each varied field's ``unit`` must be a unit of the field's dimension. A sidecar's mass in "furlong" was
+    read without a word, and a varied δ "in furlong" failed only when read back in the input's units, naming
+    no file."""
+    from flyopt.outputs.quantities import dimension_of
+    from flyopt.units import quantity
+
+    given = [(f"units.{name}", name, unit) for name, unit in (metadata.get("units") or {}).items()]
+    vary = (metadata.get("sweep") or {}).get("vary") or {}
+    given += [(f"sweep.vary.{name}.unit", name, entry.get("unit")) for name, entry in vary.items()]
+    for field, name, unit in given:
+        dimension = dimension_of(name)
+        if not isinstance(unit, str) or dimension is None:
+            continue
+        try:
+            quantity("1" if unit == "1" else f"1 {unit}", dimension, field)  # "1": a plain number
+        except SceneError:
+            words = "a plain number" if dimension == "dimensionless" else dimension.replace("_", " ")
+            return f"{field} {shorten(unit)} does not measure {words}"
+    return ""
 
 
 def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = None) -> pd.DataFrame:
