@@ -92,3 +92,27 @@ def test_sigterm_where_ctrl_c_is_ignored_cleans_up_as_well(tmp_path):
     _, err = process.communicate(timeout=60)
     assert process.returncode == 130, err
     assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def test_a_signal_after_the_status_leaves_it(tmp_path):
+    """Once the command has its status, Ctrl-C and SIGTERM that arrive while the interpreter shuts down are
+    ignored: SIGTERM there raised a KeyboardInterrupt's traceback and turned status 0 into 130."""
+    script = (
+        "import os, signal, sys\n"
+        "import flyopt.cli.main as m\n"
+        "m.main = lambda argv=None: 0\n"
+        "status = m.entry()\n"
+        "os.kill(os.getpid(), signal.SIGINT)\n"
+        "os.kill(os.getpid(), signal.SIGTERM)\n"
+        "print('still here', flush=True)\n"
+        "sys.exit(status)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script],
+        cwd=tmp_path,
+        env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert (done.returncode, done.stdout, done.stderr) == (0, "still here\n", "")

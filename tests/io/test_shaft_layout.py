@@ -114,3 +114,16 @@ def test_bad_shaft_field_is_refused_in_one_line(tmp_path, cli, old, new, field, 
     path = tmp_path / "scene.toml"
     path.write_text(GOOD.replace(old, new, 1))
     assert_refused(cli("check", path), path, field, match)
+
+
+def test_a_micron_is_a_micron_along_any_shaft():
+    """Positions written a micron apart in millimetres are apart at every length to a kilometre (the
+    tolerance was below the doubles' spacing beyond 16 m: 16004 and 16004.001 mm were one place), and
+    0.999 µm apart are not."""
+    from flyopt.io.train_section import apart
+    from flyopt.units import quantity
+
+    for n in (0, 300, 16_004, 123_457, 999_999):
+        here = quantity(f"{n} mm", "length")
+        assert apart(here, quantity(f"{n}.001 mm", "length")), n
+        assert not apart(here, quantity(f"{n}.000999 mm", "length")), n

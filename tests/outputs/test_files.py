@@ -583,3 +583,24 @@ def test_a_sidecar_unit_that_does_not_measure_its_column_is_refused(tmp_path, ca
     )
     with pytest.raises(SceneError, match=re.escape(f"cannot read {sidecar}: {words}")):
         flyopt.read_results(table, units="input")
+
+
+def test_every_quantity_flyopt_writes_is_read_back_with_its_unit(tmp_path):
+    """The metadata's unit check reads what flyopt writes: a column of each quantity flyopt knows (those of
+    dimensions only results have, an unbalance in kg*m or a rate in 1/s, included: they ended the read in
+    "KeyError: 'unbalance'"), each with the unit its metadata gives it."""
+    import pandas as pd
+
+    from flyopt.outputs.documents import table_metadata
+    from flyopt.outputs.quantities import INPUTS, OUTPUT_DIMENSIONS, QUANTITIES, dimension_of
+    from flyopt.outputs.results import write_results
+
+    names = [n for n in {**QUANTITIES, **INPUTS} if dimension_of(n) is not None]
+    assert {dimension_of(n) for n in names} >= set(OUTPUT_DIMENSIONS)
+    frame = pd.DataFrame({n: [1.0] for n in names})
+    for suffix in ("csv", "parquet"):
+        path = tmp_path / f"all.{suffix}"
+        write_results(frame, path, metadata=table_metadata("sweep", list(frame.columns)))
+        back = read_results(path)
+        assert list(back.columns) == names
+        assert all(back.attrs["flyopt"]["units"][n] for n in names if dimension_of(n) != "dimensionless")

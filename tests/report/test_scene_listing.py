@@ -30,8 +30,10 @@ def test_a_listing_stops_after_its_lines_and_counts_what_it_left():
     assert code.note.startswith(f"Not listed: lines 2,001 to 5,000 ({len(left):,} characters);")
     one_more = listing("\n".join(lines[: MAX_LISTED_LINES + 1]), "c")
     assert one_more.note.startswith(f"Not listed: line 2,001 ({len(lines[MAX_LISTED_LINES])} characters);")
-    exactly = "\n".join(lines[:MAX_LISTED_LINES]) + "\n\n\n"  # blank lines after the last are no more text
+    exactly = "\n".join(lines[:MAX_LISTED_LINES]) + "\n"
     assert listing(exactly, "c") == Code(exactly, "c")
+    # blank lines past the limit are no more text, however many: left out without a note
+    assert listing(exactly + "\n" * 20_000 + " \t\n", "c") == Code(exactly, "c")
 
 
 def test_a_listing_stops_inside_a_line_longer_than_its_characters():

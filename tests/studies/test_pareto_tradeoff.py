@@ -453,3 +453,10 @@ def test_a_range_of_one_point_or_no_number_is_refused(scene, args, words):
     an end no field takes ended in "--vary design.max_outer_diameter: '3.7660148438044355e-13' is out of range"."""
     done = run_flyopt("pareto", str(PROBLEMS / scene), *args, "--points", "3")
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and words in done.stderr, done.stderr
+
+
+def test_a_range_beyond_the_envelope_ends_at_it():
+    """A high end beyond the scene's envelope (1.2 m) is the envelope, whatever its size: `--range 0.5:2000 m`
+    gives the front up to 1.2 m, as before the ends were held to max_outer_diameter's range."""
+    done = run_flyopt("pareto", str(PROBLEMS / "punch-press-wheel.toml"), "--range=0.5:2000 m", "--points", "3")
+    assert done.returncode == 0 and done.stderr == "", done.stderr

@@ -484,6 +484,8 @@ def serve(port: int, host: str, browser: bool) -> None:
 
     import panel as pn
 
+    from flyopt.cli.exits import sigterm_as_ctrl_c
+
     model.serving(host)
     # the loop the server runs on (Tornado's IOLoop.current() wraps this thread's asyncio loop)
     loop = asyncio.new_event_loop()
@@ -491,7 +493,7 @@ def serve(port: int, host: str, browser: bool) -> None:
     loop.set_exception_handler(closed_connection_handler)
     pn.extension("codeeditor", raw_css=[CSS])
     # SIGTERM stops the server as Ctrl-C does (Panel's own SIGINT handler), so that it returns here
-    signal.signal(signal.SIGTERM, lambda *_: signal.raise_signal(signal.SIGINT))
+    signal.signal(signal.SIGTERM, sigterm_as_ctrl_c)
     try:
         pn.serve(
             {"/": session},

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
@@ -39,6 +40,8 @@ from typing import TYPE_CHECKING
 from flyopt.errors import ExpressionError, FlyoptError, Interrupted, NonPeriodicCycle, OutputError, SceneError
 
 if TYPE_CHECKING:
+    from types import FrameType
+
     from flyopt.pipeline import Solution
 
 EXIT_OK = 0
@@ -206,3 +209,16 @@ def _stdout_closed() -> int:
     except (OSError, ValueError):  # stdout without a file descriptor (captured in a test)
         pass
     return EXIT_BROKEN_PIPE
+
+
+def sigterm_as_ctrl_c(signum: int, frame: FrameType | None) -> None:
+    """SIGTERM's handler (``kill``, a scheduler's stop): what Ctrl-C does at this point, so that the command
+    cleans up as after Ctrl-C and ends as interrupted. It died at once, leaving an output's
+    ``NAME.tmp-PID-…`` beside it. Ctrl-C is raised as the signal itself, not by calling its handler, so that
+    every kind of handler hears it: Python's KeyboardInterrupt, a sweep's
+    :class:`~flyopt.studies.interrupt.Stop`, the app's server (an asyncio loop's, which only the signal
+    wakes). Where Ctrl-C is ignored (a job a script starts in the background), SIGTERM still interrupts."""
+    if callable(signal.getsignal(signal.SIGINT)):
+        signal.raise_signal(signal.SIGINT)
+        return
+    raise KeyboardInterrupt

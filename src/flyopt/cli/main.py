@@ -45,12 +45,9 @@ import io
 import signal
 import sys
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any, NoReturn
+from typing import Any, NoReturn
 
-from flyopt.cli.exits import run
-
-if TYPE_CHECKING:
-    from types import FrameType
+from flyopt.cli.exits import run, sigterm_as_ctrl_c
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -74,30 +71,19 @@ def entry() -> int:
     """The ``flyopt`` console script and ``python -m flyopt``: :func:`main`, then exit quietly.
 
     The console's streams write what their encoding lacks in ASCII (:func:`flyopt.cli.console.fit_streams`).
-    Once the command has its status the work is over: a Ctrl-C that arrives
-    while the interpreter shuts down would only replace that status by death
-    by signal, so it is ignored from then on. SIGTERM (``kill``, a scheduler's stop) is a Ctrl-C
-    (:func:`_terminated`): the command ends as interrupted (status 130), its temporary files removed.
+    SIGTERM (``kill``, a scheduler's stop) is a Ctrl-C (:func:`~flyopt.cli.exits.sigterm_as_ctrl_c`): the
+    command ends as interrupted (status 130), its temporary files removed. Once the command has its status
+    the work is over: a Ctrl-C or SIGTERM that arrives while the interpreter shuts down would only replace
+    that status by death by signal (or a KeyboardInterrupt's traceback), so both are ignored from then on.
     """
     from flyopt.cli.console import fit_streams
 
     fit_streams()  # a console that cannot show ω or kg·m² gets them in ASCII, not an encoding error
-    signal.signal(signal.SIGTERM, _terminated)
+    signal.signal(signal.SIGTERM, sigterm_as_ctrl_c)
     status = main()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
     return status
-
-
-def _terminated(signum: int, frame: FrameType | None) -> None:
-    """SIGTERM's handler: what Ctrl-C does at this point (a sweep's :class:`~flyopt.studies.interrupt.Stop`
-    notes it; elsewhere a :class:`KeyboardInterrupt`), so that the command cleans up as after Ctrl-C. It died
-    at once, leaving an output's ``NAME.tmp-PID-…`` beside it. Where Ctrl-C is ignored (a job a script starts
-    in the background), SIGTERM still interrupts."""
-    handler = signal.getsignal(signal.SIGINT)
-    if callable(handler):
-        handler(signal.SIGINT, frame)
-        return
-    raise KeyboardInterrupt
 
 
 def _parser() -> argparse.ArgumentParser:

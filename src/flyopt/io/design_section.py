@@ -208,10 +208,10 @@ def read_design(
     return spec, names, shaft_names
 
 
-#: Allowed H/B [-]: beyond it a rim's other section runs to kilometres or to nothing.
 MAX_ARM_COUNTS = 16
 """Most arm counts ``design.arms`` may list: a wheel is designed with each."""
 
+#: Allowed H/B [-]: beyond it a rim's other section runs to kilometres or to nothing.
 HB_RANGE = (1e-3, 1e3)
 HB_WHY = "from a plate 1000 times wider than thick to a ring 1000 times thicker"
 

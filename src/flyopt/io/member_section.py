@@ -28,9 +28,9 @@ _LINKAGE_KEYS = {"kind", "speed_ratio", "phase", "description"}
 """Keys every guide_bar, four_bar and cam takes: its input's speed against the reference shaft and its phase."""
 
 
-#: Farthest a member's centre of mass may sit from its part's pivot [m]: beyond it J_e overflows.
 MAX_MEMBERS = 64
 """Most [[member]] tables, and most segments of a cam's motion, a scene may give (each is summed at every angle)."""
+#: Farthest a member's centre of mass may sit from its part's pivot [m]: beyond it J_e overflows.
 MAX_CENTRE = 1e3
 
 

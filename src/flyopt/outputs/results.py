@@ -636,6 +636,9 @@ def write_results(
     if errors:  # what read_results would refuse is not written
         field, message = errors[0]
         raise ValueError(f"metadata: {field} {message}")
+    wrong = _wrong_unit(metadata) if metadata is not None else ""
+    if wrong:
+        raise ValueError(f"metadata: {wrong}")
     check_folder(path)
     table = Temporary(path, temporary_folder)
     try:
@@ -671,6 +674,7 @@ def _metadata(text: str | bytes, where: str) -> dict[str, Any]:
 
     columns = metadata.get("columns") if isinstance(metadata, dict) else None
     if isinstance(columns, list) and len(columns) > MAX_TABLE_COLUMNS:  # before the walk and pandas' copies
+        # check_columns' rule, in words that keep the whole path of the file named
         raise SceneError("", f"{where}: columns has {len(columns)} entries (allowed: at most {MAX_TABLE_COLUMNS})")
     from flyopt.outputs.schema import metadata_errors
 
@@ -692,8 +696,8 @@ def _wrong_unit(metadata: Mapping[str, Any]) -> str:
     each varied field's ``unit`` must be a unit of the field's dimension. A sidecar's mass in "furlong" was
     read without a word, and a varied δ "in furlong" failed only when read back in the input's units, naming
     no file."""
-    from flyopt.outputs.quantities import dimension_of
-    from flyopt.units import quantity
+    from flyopt.outputs.quantities import OUTPUT_DIMENSIONS, dimension_of
+    from flyopt.units import quantity, registry
 
     given = [(f"units.{name}", name, unit) for name, unit in (metadata.get("units") or {}).items()]
     vary = (metadata.get("sweep") or {}).get("vary") or {}
@@ -703,8 +707,18 @@ def _wrong_unit(metadata: Mapping[str, Any]) -> str:
         if not isinstance(unit, str) or dimension is None:
             continue
         try:
-            quantity("1" if unit == "1" else f"1 {unit}", dimension, field)  # "1": a plain number
-        except SceneError:
+            if dimension in OUTPUT_DIMENSIONS:  # a dimension only results have (an unbalance in kg*m): by pint
+                ureg = registry()
+                measures = (
+                    ureg.Quantity(1, unit).dimensionality
+                    == ureg.Quantity(1, OUTPUT_DIMENSIONS[dimension]).dimensionality
+                )
+            else:  # as the scene's fields read it (rpm, %)
+                quantity("1" if unit == "1" else f"1 {unit}", dimension, field)  # "1": a plain number
+                measures = True
+        except Exception:  # noqa: BLE001 - pint's errors of a unit it cannot read: not this quantity's
+            measures = False
+        if not measures:
             words = "a plain number" if dimension == "dimensionless" else dimension.replace("_", " ")
             return f"{field} {shorten(unit)} does not measure {words}"
     return ""

@@ -136,8 +136,10 @@ def listing(text: str, caption: str) -> Code:
             break
     end = min(end, MAX_LISTED_CHARACTERS)
     rest = text[end:]
-    if not rest.strip():
+    if not rest:
         return Code(text, caption)
+    if not rest.strip():  # blank lines past the limit: left out without a word (6 MB of them were listed)
+        return Code(text[:end].rstrip("\n") + "\n", caption)
     first = text.count("\n", 0, end) + 1  # the line the cut is in, or the first line left out
     last = text.rstrip("\n").count("\n") + 1
     if end > 0 and text[end - 1] != "\n" and rest[0] != "\n":

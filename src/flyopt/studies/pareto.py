@@ -225,6 +225,13 @@ def _front_outer_diameter(
     if not isinstance(spec, DesignSpec):  # the loader always gives one
         raise TypeError(f"a Pareto front needs the scene's design spec, got {spec!r}")
     envelope = spec.max_outer_diameter
+    if span is not None:  # checked before any solve
+        low, high = span[0], min(span[1], envelope)  # a high end beyond the envelope is the envelope
+        for end in (low, high):  # the rule of the field the front sweeps, named as the range
+            if end > 0:
+                check_magnitude(end, "range", f"{end:g} m", *LENGTH_RANGE, "m", f"{LENGTH_WHY}, as max_outer_diameter")
+        if not 0 < low < high:  # one point (low = high) is no front: it gave an "empty front", exit 3
+            raise SceneError("range", f"the outer diameter range {low:.6g}..{high:.6g} m is empty or not positive")
     lightest = evaluate_points(
         scene, pd.DataFrame({"point": [0], "design.objective": ["mass"]}), method=method, solver_options=solver_options
     )
@@ -247,13 +254,7 @@ def _front_outer_diameter(
         # where the lightest wheel under the cap exists without rounding doubts
         grid = np.geomspace(low, high, points)[1:] if high > low else np.array([])
     else:
-        low, high = span
-        for end in (low, high):  # the rule of the field the front sweeps, named as the range
-            if end > 0:
-                check_magnitude(end, "range", f"{end:g} m", *LENGTH_RANGE, "m", f"{LENGTH_WHY}, as max_outer_diameter")
-        high = min(high, envelope)
-        if not 0 < low < high:  # one point (low = high) is no front: it gave an "empty front", exit 3
-            raise SceneError("range", f"the outer diameter range {low:.6g}..{high:.6g} m is empty or not positive")
+        low, high = span[0], min(span[1], envelope)  # checked above
         grid = np.geomspace(low, high, points)
         smallest = None
     frames = [] if smallest is None else [smallest]
