@@ -24,7 +24,7 @@ import math
 from typing import TYPE_CHECKING
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, check_line
+from flyopt.io.fields import Table, check_count, check_line
 from flyopt.machine.drive_train import TrainInertia, TrainSpring
 from flyopt.units import MAGNITUDES, inertia_from_gd2, quantity
 
@@ -54,6 +54,10 @@ def apart(a: float, b: float) -> bool:
     return abs(b - a) >= MIN_GAP * (1.0 - 1e-6)
 
 
+MAX_ELEMENTS = 128
+"""Most elements of a drive train: its torsional model grows with their square (4,012 elements took 9.7 s and
+410 MB, 40,000 would take gigabytes); a sixteen-cylinder engine's crankshaft is some 35."""
+
 #: Relative agreement asked of a shaft's train inertias with its [[shaft]] inertia.
 INERTIA_RTOL = 1e-9
 
@@ -78,6 +82,7 @@ def read_train(
             'elastic element and an inertia, e.g. [{ flywheel = true }, { span = ["wheel_at", "torque_at"] }, '
             '{ name = "crank", shaft = "crankshaft" }]',
         )
+    check_count(raw, where, MAX_ELEMENTS, "elements")
     by_name = {s.name: s for s in shafts}
     out: list[TrainInertia | TrainSpring] = []
     for j, item in enumerate(raw):
