@@ -272,11 +272,12 @@ def _segments(raw: object, where: str) -> tuple[tuple[float, ...], tuple[float, 
         end = seg.quantity("to", "length", required=True)
         design = seg.raw("diameter") == DESIGNED
         d = math.nan if design else seg.quantity("diameter", "length", required=True)
-        if not (math.isfinite(end) and end > (steps[-1] if steps else 0.0) and apart(steps[-1] if steps else 0.0, end)):
+        previous = steps[-1] if steps else 0.0
+        if not (math.isfinite(end) and end > previous and apart(previous, end)):
             raise SceneError(
                 f"{where}[{k}].to",
-                f"must be at least {MIN_GAP * 1e3:g} mm beyond the previous step's end "
-                f"({(steps[-1] if steps else 0.0) * 1e3:g} mm), got {shorten(seg.raw('to'))}",
+                f"must be at least {MIN_GAP * 1e3:g} mm beyond the previous step's end ({previous * 1e3:g} mm), "
+                f"got {shorten(seg.raw('to'))}",
             )
         if not design and not (math.isfinite(d) and d > 0.0):
             raise SceneError(

@@ -74,29 +74,24 @@ def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
 
 def _too_long_integer(text: str) -> str:
     """Where the text holds a whole number longer than Python converts (4,300 digits), in words; "" if nowhere:
-    the message of the conversion named neither the field nor the line. Each line is searched once, its strings
-    and comment left out (a digit run there is no number), by a pattern that cannot backtrack: a search that could took 17 s
-    over 50 comment lines of 4,300 digits."""
+    the message of the conversion named neither the field nor the line. Each long line is searched once, its
+    strings and comment left out (a digit run there is no number), by patterns that cannot backtrack: one that
+    could took 17 s over 50 comment lines of 4,300 digits."""
     limit = sys.get_int_max_str_digits()
     for number, line in enumerate(text.split("\n"), 1):
         if len(line) <= limit:
             continue
-        for run in _DIGIT_RUN.finditer(_without_comment(line)):
+        for run in _DIGIT_RUN.finditer(_NOT_A_NUMBER.sub(" ", line)):
             digits = len(run.group()) - run.group().count("_")
             if digits > limit:
                 return f"a whole number of {digits:,} digits at line {number} (allowed: at most {limit:,} digits)"
     return ""
 
 
+#: A run of digits, underscores between them (TOML's 1_000).
 _DIGIT_RUN = re.compile(r"[0-9][0-9_]*")
-
-
+#: What on a TOML line holds no number: a quoted string, or the comment.
 _NOT_A_NUMBER = re.compile(r'"(?:[^"\\]|\\.)*"|\'[^\']*\'|#.*')
-
-
-def _without_comment(line: str) -> str:
-    """A TOML line without its quoted strings and its comment: a digit run in them is no number."""
-    return _NOT_A_NUMBER.sub(" ", line)
 
 
 MAX_DEPTH = 32

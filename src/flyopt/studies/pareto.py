@@ -253,8 +253,7 @@ def _front_outer_diameter(
         # the smallest wheel is the end of the front; the ε points start just above it,
         # where the lightest wheel under the cap exists without rounding doubts
         grid = np.geomspace(low, high, points)[1:] if high > low else np.array([])
-    else:
-        low, high = span[0], min(span[1], envelope)  # checked above
+    else:  # low and high as checked above
         grid = np.geomspace(low, high, points)
         smallest = None
     frames = [] if smallest is None else [smallest]
