@@ -262,8 +262,9 @@ def _draw(solution, what, plots, units, verify=False, digits=None):
 
 
 def _plot_results(args):
-    from flyopt.outputs.results import read_results
+    from flyopt.outputs.results import read_results, results_columns
     from flyopt.report import plots
+    from flyopt.report.plots.results import plotted_columns
 
     if args.what not in plots.RESULT_PLOTS:
         return fail(
@@ -271,18 +272,26 @@ def _plot_results(args):
         )
     plots.check_output(args.output)  # drawn from a table of results, whose suffix no diagram has
     try:
-        frame = read_results(args.scene)
+        columns, metadata = results_columns(args.scene)
+    except (OSError, ValueError) as err:
+        return fail(f"{args.scene}: cannot read the results: {err}", EXIT_INPUT)
+    x = args.x
+    if x is None and args.what == "pareto":
+        # the objectives the front's file records (flyopt pareto writes them in its metadata);
+        # a file written before they were recorded: its first two columns
+        objectives = (metadata or {}).get("objectives") or plots.pareto_objectives(columns)
+        x = objectives[1] if objectives else None
+    try:  # only the columns the diagram reads: a large table's others are not read
+        wanted = plotted_columns(columns, metadata, args.what, x, args.y, args.by) if x is not None else None
+    except ValueError:  # a column it does not have: read whole, the diagram names it (after an empty table's why)
+        wanted = None
+    try:
+        frame = read_results(args.scene, columns=wanted)
     except (OSError, ValueError) as err:
         return fail(f"{args.scene}: cannot read the results: {err}", EXIT_INPUT)
     if frame.empty:  # an empty Pareto front's file says why it has no rows
         why = frame.attrs.get("flyopt", {}).get("message")
         return fail(f"{args.scene}: no rows to plot{f': {why}' if why else ''}", EXIT_INPUT)
-    x = args.x
-    if x is None and args.what == "pareto":
-        # the objectives the front's file records (flyopt pareto writes them in its metadata);
-        # a file written before they were recorded: its first two columns
-        objectives = frame.attrs.get("flyopt", {}).get("objectives") or plots.pareto_objectives(frame)
-        x = objectives[1] if objectives else None
     if x is None:
         return fail(f"--x: the results diagram {args.what!r} needs the column for the x axis", EXIT_INPUT)
     units = args.units

@@ -724,6 +724,40 @@ def _wrong_unit(metadata: Mapping[str, Any]) -> str:
     return ""
 
 
+def results_columns(path: str | os.PathLike[str]) -> tuple[list[str], dict[str, Any] | None]:
+    """The columns of a result table written by flyopt (Parquet or CSV), in the file's order, and its metadata
+    (``attrs["flyopt"]`` of :func:`read_results`, or None), checked as :func:`read_results` checks the file,
+    without reading its rows: a reader that needs a few columns of a large table names them to
+    :func:`read_results`.
+    """
+    path, kind, name = Path(path), output_format(path), str(path)
+    from flyopt.io.input_files import check_columns, check_input, check_rows, read_input
+
+    check_input(path, "", name)  # a regular file within the size cap, as every input
+    if kind == "parquet":
+        import pyarrow.parquet as pq
+
+        stored_table = pq.ParquetFile(path).metadata
+        check_rows(stored_table.num_rows, "", name)  # a small file may hold a billion rows
+        check_columns(stored_table.num_columns, "", name)
+        schema = pq.read_schema(path)
+        columns = [str(c) for c in schema.empty_table().to_pandas().columns]  # as pandas names them (an index)
+        stored = schema.metadata or {}
+        if PARQUET_KEY not in stored:
+            return columns, None
+        return columns, _metadata(stored[PARQUET_KEY], f"its metadata {PARQUET_KEY.decode()!r}")
+    import pandas as pd
+
+    with open(path, encoding="utf-8", newline="") as handle:  # pandas took 2.5 s over 20,000 names
+        first = handle.readline(2**20)  # at least the first 1,000 names, unless over a kilobyte each
+    check_columns(len(next(csv.reader([first]), [])), "", name)
+    columns = [str(c) for c in pd.read_csv(path, nrows=0).columns]
+    sidecar = sidecar_path(path)
+    if not os.path.lexists(sidecar):
+        return columns, None
+    return columns, _metadata(read_input(sidecar, "", str(sidecar)), f"cannot read {sidecar}")
+
+
 def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = None) -> pd.DataFrame:
     """Read a result table written by flyopt (Parquet or CSV), dtypes and nulls restored.
 
@@ -731,7 +765,7 @@ def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = N
     ----------
     path : str or Path
     columns : list of str, optional
-        Read these columns only.
+        Read these columns only (in the file's order: :func:`results_columns` names them).
 
     Returns
     -------
@@ -742,28 +776,11 @@ def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = N
     """
     import pandas as pd
 
-    from flyopt.io.input_files import check_columns, check_input, check_rows, read_input
-
     path = Path(path)
-    metadata = None
-    kind = output_format(path)
-    name = str(path)
-    check_input(path, "", name)  # a regular file within the size cap, as every input
-    if kind == "parquet":
-        import pyarrow.parquet as pq
-
-        stored_table = pq.ParquetFile(path).metadata
-        check_rows(stored_table.num_rows, "", name)  # a small file may hold a billion rows
-        check_columns(stored_table.num_columns, "", name)
+    header, metadata = results_columns(path)
+    if output_format(path) == "parquet":
         frame = pd.read_parquet(path, columns=columns)
-        stored = pq.read_schema(path).metadata or {}
-        if PARQUET_KEY in stored:
-            metadata = _metadata(stored[PARQUET_KEY], f"its metadata {PARQUET_KEY.decode()!r}")
     else:
-        with open(path, encoding="utf-8", newline="") as handle:  # pandas took 2.5 s over 20,000 names
-            first = handle.readline(2**20)  # at least the first 1,000 names, unless over a kilobyte each
-        check_columns(len(next(csv.reader([first]), [])), "", name)
-        header = pd.read_csv(path, nrows=0).columns
         strings = [c for c in header if column_kind(c) == "str"]
         numbers = [c for c in header if c not in strings]
         frame = pd.read_csv(
@@ -775,9 +792,6 @@ def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = N
         )
         if columns is not None:
             frame = frame[list(columns)]
-        sidecar = sidecar_path(path)
-        if os.path.lexists(sidecar):
-            metadata = _metadata(read_input(sidecar, "", str(sidecar)), f"cannot read {sidecar}")
     try:
         frame = normalize(frame)
     except ValueError as err:
