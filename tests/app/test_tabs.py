@@ -165,6 +165,10 @@ def test_the_form_s_vary_text_is_read_by_flyopt_sweep_and_its_points_are_the_gri
         sweeps.CSV + ".json",
     }
     assert read_results(csv)["mass"].tolist() == pytest.approx(cli["mass"].tolist())
+    assert sweeps.plot_fields(result.frame) == ["speed", "material"]
+    assert sweeps.plot_axes(result.frame) == ["speed"]  # the material is a line per value: no axis of text
+    with pytest.raises(ValueError, match="column 'material' holds text, and an axis draws numbers"):
+        sweeps.plot_shown(result.frame, "material", "mass")
     svg, found = sweeps.plot_shown(result.frame, "speed", "mass", "material")
     assert svg.startswith("<svg")
     (entry,) = json.loads(found)["axes"]  # the read-outs at the first speed: the command line's masses there

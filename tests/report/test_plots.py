@@ -80,6 +80,10 @@ def test_sweep_and_pareto_plots_from_result_files(tmp_path):
         (["--what", "energy", "--x", "delta"], "is not a diagram of results"),
         (["--what", "sweep"], "--x: the results diagram 'sweep' needs"),
         (["--what", "sweep", "--x", "colour"], "no column 'colour'"),
+        # a text column on an axis was a TypeError traceback (numpy cannot read pandas' text dtype)
+        (["--what", "sweep", "--x", "status"], "column 'status' holds text, and an axis draws numbers (one line"),
+        (["--what", "sweep", "--x", "delta", "--y", "status"], "column 'status' holds text, and an axis draws numbers"),
+        (["--what", "pareto", "--x", "status"], "column 'status' holds text, and an axis draws numbers"),
     ],
 )
 def test_bad_result_plot_requests(tmp_path, capsys, args, words):

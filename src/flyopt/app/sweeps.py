@@ -225,6 +225,14 @@ def plot_fields(frame: pd.DataFrame) -> list[str]:
     return varied_fields(frame)
 
 
+def plot_axes(frame: pd.DataFrame) -> list[str]:
+    """The varied fields the plot may draw along x: those of numbers (a text field, the material, is drawn as
+    one line per value instead: ``by``)."""
+    from pandas.api.types import is_numeric_dtype
+
+    return [f for f in plot_fields(frame) if is_numeric_dtype(frame[f].dtype)]
+
+
 def plot_svg(frame: pd.DataFrame, x: str, y: str = "mass", by: str | None = None, units: str = "engineering") -> str:
     """The sweep plot of ``flyopt plot --what sweep --x X --y Y --by BY`` as inline SVG.
 

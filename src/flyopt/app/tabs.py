@@ -470,11 +470,11 @@ class SweepsTab:
         units = self.session.units.value
         names = materials.display_names(self.scene)
         show_table(self.results, sweeps.table(result.frame, units, names))
-        fields = sweeps.plot_fields(result.frame)
+        fields, axes = sweeps.plot_fields(result.frame), sweeps.plot_axes(result.frame)
         self.by.options = ["", *fields]
-        self.x.options = fields
-        self.x.value = fields[0] if fields else None
-        self.by.value = fields[1] if len(fields) > 1 else ""
+        self.x.options = axes  # a text field (the material) is a line per value, never an axis
+        self.x.value = axes[0] if axes else None
+        self.by.value = next((f for f in fields if f != self.x.value), "")
         self._draw()
 
     def _progress(self, mine: int, done: int, total: int) -> None:

@@ -57,7 +57,7 @@ def _scale(frame, column, units=display.DEFAULT, digits=standard.DIGITS):
     dimension = _dimension(column, frame)
     if dimension is None:
         return None
-    values = frame[column].to_numpy(dtype=float) if np.issubdtype(frame[column].dtype, np.number) else ()
+    values = frame[column].to_numpy(dtype=float) if _is_number(frame[column]) else ()
     return standard.scale(dimension, units, [values], digits)
 
 
@@ -125,16 +125,26 @@ MAX_DRAWN = 1e150
 matplotlib's transforms ("arange: cannot compute length"); no result of flyopt's comes near it."""
 
 
-def _drawable(frame, column):
-    """``column``, its numbers checked finite and at most :data:`MAX_DRAWN` in size (NaN is no value)."""
-    if np.issubdtype(frame[column].dtype, np.number):
-        values = frame[column].to_numpy(dtype=float)
-        wild = values[~np.isnan(values) & ~(np.abs(values) <= MAX_DRAWN)]
-        if wild.size:
-            raise ValueError(
-                f"the column {column!r} holds {wild[0]:g} (allowed: numbers of size at most {MAX_DRAWN:g}, or "
-                "none): it cannot be drawn"
-            )
+def _is_number(column):
+    """Whether a table's column holds numbers (flags among them), not text."""
+    from pandas.api.types import is_numeric_dtype
+
+    return bool(is_numeric_dtype(column.dtype))
+
+
+def _drawable(frame, column, by=None):
+    """``column``, checked to hold numbers (``by``: the option that draws a line per value of a text column
+    instead) finite and at most :data:`MAX_DRAWN` in size (NaN is no value)."""
+    if not _is_number(frame[column]):
+        instead = f" (one line per {column}: {by} {column})" if by else ""
+        raise ValueError(f"the column {column!r} holds text, and an axis draws numbers{instead}")
+    values = frame[column].to_numpy(dtype=float)
+    wild = values[~np.isnan(values) & ~(np.abs(values) <= MAX_DRAWN)]
+    if wild.size:
+        raise ValueError(
+            f"the column {column!r} holds {wild[0]:g} (allowed: numbers of size at most {MAX_DRAWN:g}, or "
+            "none): it cannot be drawn"
+        )
     return column
 
 
@@ -278,7 +288,7 @@ def plot_sweep(
     from matplotlib.transforms import blended_transform_factory
 
     display.check_system(units)
-    x, y = _drawable(frame, _column(frame, x)), _drawable(frame, _column(frame, y))
+    x, y = _drawable(frame, _column(frame, x), by="--by"), _drawable(frame, _column(frame, y))
     by = _column(frame, by) if by else None
     others = [f for f in varied_fields(frame) if f not in (x, by)]
     keys = ([by] if by else []) + others
@@ -292,7 +302,7 @@ def plot_sweep(
     x_scale, y_scale = _scale(frame, x, units, digits), _scale(frame, y, units, digits)
     status = frame["status"] if "status" in frame.columns else None
     bottom = blended_transform_factory(ax.transData, ax.transAxes)
-    values = _values(frame, x, x_scale) if np.issubdtype(frame[x].dtype, np.number) else np.array([])
+    values = _values(frame, x, x_scale)
     positive = values[np.isfinite(values) & (values > 0)]
     log_x = bool(positive.size and positive.max() / positive.min() > 10)  # a field spanning over a decade
     counts: dict[Any, int] = {}
