@@ -223,3 +223,44 @@ def test_a_whole_number_written_as_a_float_is_an_integer_as_jsonschema_says(swee
     assert _reference_fields(document) == set() and metadata_errors(document) == []
     document = _changed(stored, set_at(["sweep", "points"], 2.5))
     assert _reference_fields(document) == {"sweep.points"} == {f for f, _ in metadata_errors(document)}
+
+
+def _one_word_table(path, rows, size):
+    """A Parquet table of ``rows`` rows whose status is one word of ``size`` characters, stored once."""
+    status = pa.DictionaryArray.from_arrays(pa.array([0] * rows, pa.int32()), pa.array(["x" * size]))
+    table = pa.table(
+        {"delta": pa.array(np.linspace(0.01, 0.1, rows)), "mass": pa.array([1.0] * rows), "status": status}
+    )
+    pq.write_table(table, path)
+
+
+def test_a_small_parquet_file_that_reads_into_gigabytes_is_one_line(tmp_path, capsys, monkeypatch):
+    """A word stored once in a Parquet dictionary is read once for each row: 48 kB of file held 4 GB of text
+    (pyarrow's ArrowMemoryError, exit 1, after 3 GB); a table may take 1,000 bytes a row of the rows allowed."""
+    from flyopt.errors import SceneError
+    from flyopt.io.input_files import TABLE_ROW_BYTES
+
+    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "1000")  # at most 1,000,000 bytes read
+    limit = 1000 * TABLE_ROW_BYTES
+    path = tmp_path / "t.parquet"
+    _one_word_table(path, 200, 10_000)  # 2 MB of text read, from a file of some 11 kB
+    assert path.stat().st_size < 20_000
+    code, err, drawn = _plot(path, tmp_path, capsys)
+    assert code == 2 and err.count("\n") == 1 and not drawn, err
+    assert f"would take 2,003,200 bytes read (allowed: at most {limit:,}" in err  # 200 x (10,000 + 8 + 8)
+    assert "FLYOPT_MAX_TABLE_ROWS raises it" in err
+    with pytest.raises(SceneError, match="would take"):
+        read_results(path)
+    _one_word_table(path, 50, 10_000)  # half a megabyte: read
+    assert read_results(path)["status"].str.len().tolist() == [10_000] * 50
+    code, err, drawn = _plot(path, tmp_path, capsys)
+    assert code == 0 and drawn, err
+
+
+def test_a_parquet_column_of_a_type_no_table_has_is_one_line(tmp_path, capsys):
+    path = tmp_path / "t.parquet"
+    when = pa.array([0, 1], pa.timestamp("s"))
+    pq.write_table(pa.table({"delta": [0.02, 0.05], "mass": when}), path)
+    code, err, drawn = _plot(path, tmp_path, capsys)
+    assert code == 2 and err.count("\n") == 1 and not drawn, err
+    assert "column 'mass' must hold numbers: it is a timestamp[ms]" in err  # as Parquet stores seconds

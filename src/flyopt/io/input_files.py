@@ -38,6 +38,11 @@ MAX_TABLE_COLUMNS = 1_000
 """Largest table [columns]: a result file of flyopt's has about 50 (one more per field a sweep varies); a CSV
 of 20,000 columns took 22 s to refuse for want of its ``mass``, a sidecar naming a million columns 108 s."""
 
+TABLE_ROW_BYTES = 1_000
+"""Most bytes a table's rows take read, on average [bytes a row]: :func:`max_table_rows` of them is the most a
+table read may take (a number 8 bytes, a text its characters; a row of a flyopt sweep's table takes some 400). A
+Parquet file of 48 kB held 3,000 rows of one dictionary-encoded word of a megabyte: 4 GB read."""
+
 FILE_BYTES_VARIABLE = "FLYOPT_MAX_FILE_BYTES"
 TABLE_ROWS_VARIABLE = "FLYOPT_MAX_TABLE_ROWS"
 
@@ -245,6 +250,19 @@ def check_columns(count: int, where: str, name: str = "the table") -> None:
     """Refuse a table of more than :data:`MAX_TABLE_COLUMNS` columns (``count`` counted before its rows are read)."""
     if count > MAX_TABLE_COLUMNS:
         raise SceneError(where, f"{clip(name)} has {count} columns (allowed: at most {MAX_TABLE_COLUMNS})")
+
+
+def check_read_bytes(count: int, where: str, name: str = "the table") -> None:
+    """Refuse a table that would take more than :data:`TABLE_ROW_BYTES` a row of :func:`max_table_rows` read
+    (``count`` bytes, counted before it is read)."""
+    rows = max_table_rows()
+    limit = rows * TABLE_ROW_BYTES
+    if count > limit:
+        raise SceneError(
+            where,
+            f"{clip(name)} would take {count:,} bytes read (allowed: at most {limit:,}, {TABLE_ROW_BYTES:,} a "
+            f"row of the {rows:,} rows a table may have; {_raise_it(TABLE_ROWS_VARIABLE)})",
+        )
 
 
 def _raise_it(variable: str) -> str:

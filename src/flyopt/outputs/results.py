@@ -758,6 +758,43 @@ def results_columns(path: str | os.PathLike[str]) -> tuple[list[str], dict[str, 
     return columns, _metadata(read_input(sidecar, "", str(sidecar)), f"cannot read {sidecar}")
 
 
+def _parquet_bytes(path: Path, columns: Sequence[str]) -> int:
+    """The bytes a Parquet table's ``columns`` take read (numbers their width, text its characters), found from
+    the file's types and its text columns read dictionary-encoded: a word stored once in a dictionary is read
+    once for every row that names it.
+
+    Raises
+    ------
+    ValueError
+        A column of a type no results table has (a list, a date), named as :func:`normalize` names a column
+        not of its kind.
+    """
+    import pyarrow as pa
+    import pyarrow.compute as pc
+    import pyarrow.parquet as pq
+
+    stored = pq.ParquetFile(path)
+    rows, wanted, texts, total = stored.metadata.num_rows, set(columns), [], 0
+    for field in stored.schema_arrow:
+        if field.name not in wanted:
+            continue
+        kind = field.type.value_type if pa.types.is_dictionary(field.type) else field.type
+        if pa.types.is_string(kind) or pa.types.is_large_string(kind):
+            texts.append(field.name)
+        elif pa.types.is_integer(kind) or pa.types.is_floating(kind) or pa.types.is_boolean(kind):
+            total += rows * max(kind.bit_width // 8, 1)
+        elif not pa.types.is_null(kind):
+            name = str(field.name)
+            raise ValueError(f"column {shorten(name)} must hold {_KIND_WORDS[_kind(name, None)]}: it is a {kind}")
+    if texts:  # the text as a dictionary and indices (as stored): a word's length counted for each index to it
+        for column in pq.ParquetFile(path, read_dictionary=texts).read(columns=texts).columns:
+            for chunk in column.chunks:
+                lengths = pc.binary_length(chunk.dictionary).fill_null(0).to_numpy(zero_copy_only=False)
+                indices = chunk.indices.drop_null().to_numpy(zero_copy_only=False)
+                total += int(np.bincount(indices, minlength=len(lengths)).astype(np.int64) @ lengths)
+    return total
+
+
 def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = None) -> pd.DataFrame:
     """Read a result table written by flyopt (Parquet or CSV), dtypes and nulls restored.
 
@@ -779,6 +816,9 @@ def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = N
     path = Path(path)
     header, metadata = results_columns(path)
     if output_format(path) == "parquet":
+        from flyopt.io.input_files import check_read_bytes
+
+        check_read_bytes(_parquet_bytes(path, header if columns is None else columns), "", str(path))
         frame = pd.read_parquet(path, columns=columns)
     else:
         strings = [c for c in header if column_kind(c) == "str"]
