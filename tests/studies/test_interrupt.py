@@ -16,6 +16,7 @@ import pytest
 
 from flyopt.errors import Interrupted
 from flyopt.studies import runner
+from flyopt.studies.interrupt import Stop
 
 
 class _SavingParts:
@@ -79,3 +80,37 @@ def test_ctrl_c_stops_a_serial_chunk_at_once():
     with pytest.raises(Interrupted, match=r"^interrupted; 0 of 3 chunks saved"):
         runner.run_chunks(_interrupted_serial_chunk, chunks, chunks, parts=_SavingParts())
     assert time.monotonic() - start < 4
+
+
+def _masks(_points):
+    """In a worker: the signals it holds and its SIGTERM handler, after its initializer."""
+    return pd.DataFrame(
+        {
+            "held": [sorted(int(s) for s in signal.pthread_sigmask(signal.SIG_BLOCK, []))],
+            "sigterm": [signal.getsignal(signal.SIGTERM) == signal.SIG_DFL],
+        }
+    )
+
+
+def test_a_worker_is_forked_with_ctrl_c_and_sigterm_held_until_its_own_handlers(monkeypatch, tmp_path):
+    """A fork inherits the parent's handlers (SIGTERM and Ctrl-C as a KeyboardInterrupt): a signal in the moments
+    before a worker's initializer ran printed that worker's traceback. Forked with both held, the worker takes them
+    once its initializer has set its own handlers."""
+    from flyopt.studies import processes
+
+    seen = tmp_path / "at-start"
+    real = processes._init_worker
+
+    def init(task):  # what the worker holds as it starts, before the initializer
+        seen.write_text(" ".join(str(int(s)) for s in signal.pthread_sigmask(signal.SIG_BLOCK, [])))
+        real(task)
+
+    monkeypatch.setattr(processes, "_init_worker", init)
+    monkeypatch.setattr(processes.threading, "active_count", lambda: 1)  # forked, as a sweep of one thread is
+    out = []
+    processes.run_processes(_masks, _points(2), 2, lambda i, frame: out.append(frame), Stop())
+    assert {int(s) for s in seen.read_text().split()} >= {signal.SIGINT, signal.SIGTERM}
+    for frame in out:  # the task runs with both taken again, SIGTERM ending the worker
+        assert signal.SIGINT not in frame["held"][0] and signal.SIGTERM not in frame["held"][0]
+        assert bool(frame["sigterm"][0])
+    assert signal.pthread_sigmask(signal.SIG_BLOCK, []) == set()  # and this process holds nothing after

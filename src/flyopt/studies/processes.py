@@ -39,12 +39,30 @@ def cpu_count() -> int:
 _TASK: Callable[[pd.DataFrame], pd.DataFrame] | None = None
 
 
+#: The signals a worker is forked with held (:func:`_held`) until its initializer has its own handlers for them.
+HELD = frozenset({signal.SIGINT, signal.SIGTERM})
+
+
 def _init_worker(task: Callable[[pd.DataFrame], pd.DataFrame]) -> None:
     global _TASK
     _TASK = task
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # the parent ends a worker so (a fork inherits its handler)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, HELD)  # held since the fork (:func:`_held`): a pending one acts now
     _die_with_parent()
+
+
+class _held:
+    """Hold SIGINT and SIGTERM in this thread while workers are forked (a pool forks them in its first
+    ``submit``): a fork inherits the parent's handlers, which turn both into a KeyboardInterrupt, so a Ctrl-C or
+    a ``kill`` in the moments before a worker's initializer ran printed the worker's traceback. Held, they wait
+    in the worker for its own handlers (:func:`_init_worker`), and in this process for the end of the block."""
+
+    def __enter__(self) -> None:
+        self.before = signal.pthread_sigmask(signal.SIG_BLOCK, HELD)
+
+    def __exit__(self, *exc: object) -> None:
+        signal.pthread_sigmask(signal.SIG_SETMASK, self.before)
 
 
 def _die_with_parent() -> None:
@@ -104,7 +122,8 @@ def run_processes(
         running: set[Future[tuple[int, pd.DataFrame]]] = set()
         while True:
             for i, chunk in queue:
-                running.add(pool.submit(_run_in_worker, i, chunk))
+                with _held():
+                    running.add(pool.submit(_run_in_worker, i, chunk))
                 if len(running) >= IN_FLIGHT_PER_WORKER * n_workers:
                     break
             if not running:
