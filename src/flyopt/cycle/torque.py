@@ -302,6 +302,8 @@ class MotorTorque:
         or "kloss" (the whole curve); None for a DC motor or a motor's table.
     where : str
         Scene field, for messages.
+    shaft : str or None
+        The ``[[shaft]]`` the motor turns with (its speed ratio is ``speed_ratio``), or None: the reference shaft.
     """
 
     motor: InductionMotor | DCMotor | TableMotor
@@ -309,6 +311,7 @@ class MotorTorque:
     efficiency: float = 1.0
     model: str | None = None
     where: str = field(default="", compare=False)
+    shaft: str | None = field(default=None, compare=False)
     is_linear = False
     speed_dependent = True
 

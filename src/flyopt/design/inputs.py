@@ -138,6 +138,35 @@ def seat_given_only(scene: Scene, what: str) -> None:
             ).with_source(scene.source)
 
 
+def wheel_alone_only(scene: Scene, what: str) -> None:
+    """Refuse a scene whose answer is not a wheel designed alone where ``what`` designs wheels alone: a
+    ``[flywheel]`` that exists (analysed by ``flyopt solve``, not designed) and a ``[drive]`` (the motor, its ratio
+    and the wheel designed together by ``flyopt solve``). A sweep, a front and a trade-off of either designed a
+    wheel as if the scene gave neither: press-drive's sweep found every point infeasible at the crank, where solve
+    designs its motor, ratio and wheel.
+
+    Raises
+    ------
+    SceneError
+        Naming the section and what answers it.
+    """
+    from flyopt.errors import SceneError
+
+    if scene.flywheel is not None:
+        raise SceneError(
+            "flywheel",
+            f"gives a flywheel that exists, which flyopt solve, check and report analyse; {what} designs flywheels: "
+            "remove [flywheel] to design one",
+        ).with_source(scene.source)
+    if scene.drive is not None:
+        raise SceneError(
+            "drive",
+            f"designs the motor, its ratio and the wheel together (flyopt solve, report), where {what} designs the "
+            "wheel alone: compare the drives by flyopt pareto --objectives mass,motor_power, or design the wheel "
+            "alone without [drive]",
+        ).with_source(scene.source)
+
+
 def single_design_only(spec: DesignSpec, what: str, source: str | None = None) -> None:
     """Refuse the courses' rim convention where ``what`` designs by flyopt's own criteria only.
 

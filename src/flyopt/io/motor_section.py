@@ -38,7 +38,7 @@ def read_motor(
     if not isinstance(kind, str) or kind not in kinds:  # a list or table is unhashable: refuse it as unknown
         raise SceneError(f"{where}.kind", f"{shorten(kind)} is not known (allowed: induction, dc, table)")
     table = Table(raw, where, kinds[kind])
-    speed_ratio = 1.0
+    speed_ratio, name = 1.0, None
     if table.has("shaft"):
         name = table.get("shaft")
         match = [s for s in shafts if s.name == name]
@@ -48,7 +48,7 @@ def read_motor(
             )
         speed_ratio = match[0].speed_ratio
     if kind == "table":
-        return MotorTorque(_motor_table(table, where, files), speed_ratio, efficiency, None, where=where)
+        return MotorTorque(_motor_table(table, where, files), speed_ratio, efficiency, None, where=where, shaft=name)
     motor: InductionMotor | DCMotor
     try:
         if kind == "induction":
@@ -77,7 +77,7 @@ def read_motor(
         if isinstance(err, SceneError):
             raise
         raise SceneError(where, str(err)) from None
-    return MotorTorque(motor, speed_ratio, efficiency, model, where=where)
+    return MotorTorque(motor, speed_ratio, efficiency, model, where=where, shaft=name)
 
 
 def _motor_table(table, where, files):

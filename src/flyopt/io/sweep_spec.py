@@ -196,13 +196,14 @@ def resolve_field(scene: Scene, path: str, where: str) -> tuple[str, SweepField]
             raise SceneError(
                 field_path(where, path), f"a shaft's field is {', '.join(_SHAFT_FIELDS)}, not {parts[2]!r}"
             )
-        shaft = next(s for s in scene.shafts if s.name == parts[1])
-        if getattr(shaft, "inertia", 0.0):
+        carried = _carried(scene, parts[1])
+        if carried:
             raise SceneError(
                 field_path(where, path),
-                f"shaft {parts[1]!r} carries inertia, which its speed ratio "
-                "moves to the reference shaft (J i²): the machine's J_c would change with it; vary "
-                "the ratio of a shaft without inertia, or make a scene per ratio",
+                f"shaft {parts[1]!r} carries {carried}: the machine's physics would change with the "
+                "ratio, where a sweep's shaft ratio moves only the flywheel; vary the ratio of a shaft that carries "
+                "none of these, or make a scene per ratio"
+                + (" (or compare ratios by [drive] ratios)" if "motor" in carried else ""),
             )
         return key, _SHAFT_FIELDS[parts[2]]
     if len(parts) == 3 and parts[0] == "material":
@@ -222,6 +223,20 @@ def resolve_field(scene: Scene, path: str, where: str) -> tuple[str, SweepField]
         field_path(where, path),
         f"unknown sweep field{_hint(key, candidates)}; allowed: {'; '.join(_known_fields(scene))}",
     )
+
+
+def _carried(scene: Scene, name: str) -> str:
+    """What shaft ``name`` carries whose reduction to the reference shaft its speed ratio enters, in words ("" for
+    nothing): inertia (J i²), the motor (M(i ω) i η). The scene holds them reduced at the ratio it gives, so a
+    sweep that moved the ratio would analyse the old machine (a motor shaft's ratio swept on motor-press reported
+    designs its scene does not give). (A wheel that exists is no study's: :func:`flyopt.design.design_inputs`.)"""
+    from flyopt.cycle.torque import MotorTorque
+
+    shaft = next(s for s in scene.shafts if s.name == name)
+    found = ["inertia (J i²)"] if getattr(shaft, "inertia", 0.0) else []
+    if any(isinstance(c, MotorTorque) and c.shaft == name for c in (scene.driving, scene.resisting)):
+        found.append("the motor (its torque M(i ω) i η)")
+    return " and ".join(found)
 
 
 def _hint(name, known):

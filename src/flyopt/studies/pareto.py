@@ -39,7 +39,7 @@ import numpy.typing as npt
 import pandas as pd
 
 from flyopt.design import DesignSpec, design_inputs
-from flyopt.design.inputs import seat_given_only, single_design_only
+from flyopt.design.inputs import seat_given_only, single_design_only, wheel_alone_only
 from flyopt.design.wheel_design import neighbours
 from flyopt.errors import SceneError, shorten
 from flyopt.io.design_section import LENGTH_RANGE, LENGTH_WHY
@@ -170,6 +170,8 @@ def pareto(
     objectives, other = objective_pair(objectives)
     single_design_only(design_inputs(scene).spec, "a Pareto front", scene.source)
     seat_given_only(scene, "a Pareto front")
+    if other != "motor_power":  # the front of the drive's motor sizes is the drive's own
+        wheel_alone_only(scene, f"a Pareto front of mass and {other}")
     check_points(points)
     analysis = physics_analysis(scene)
     empty = pd.DataFrame()

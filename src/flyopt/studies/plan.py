@@ -104,10 +104,11 @@ def plan_sweep(
     logarithm for a log range) with one sample in each; a list is sampled
     as categories, each equally often.
     """
-    from flyopt.design.inputs import design_inputs, seat_given_only, single_design_only
+    from flyopt.design.inputs import design_inputs, seat_given_only, single_design_only, wheel_alone_only
 
     single_design_only(design_inputs(scene).spec, "a sweep", scene.source)
     seat_given_only(scene, "a sweep")
+    wheel_alone_only(scene, "a sweep")
     if seed is not None:
         seed = whole_number(seed, option_label(where, "seed"), OPTION_MINIMUMS["seed"], OPTION_MAXIMUMS["seed"])
     if samples is not None:

@@ -88,10 +88,11 @@ def material_tradeoff(
     of ``flyopt solve`` with the objective mass.
     """
     from flyopt.design.designer import rim_speed_limit
-    from flyopt.design.inputs import seat_given_only
+    from flyopt.design.inputs import seat_given_only, wheel_alone_only
     from flyopt.pipeline import design_scene
 
     seat_given_only(scene, "a material trade-off")
+    wheel_alone_only(scene, "a material trade-off")
     analysis = physics_analysis(scene)
     spec = dataclasses.replace(design_inputs(scene).spec, objective="mass")
     by_mass = dataclasses.replace(scene, design=spec)
