@@ -444,3 +444,51 @@ def test_a_shaft_position_below_a_micron_is_refused_naming_the_field(cli, write_
         assert_refused(
             cli(command, path), path, field, r"'1e-300 m' is out of range \(allowed: a size of 1e-06 to 1000 m"
         )
+
+
+# -- a unit field holds a unit alone ----------------------------------------------------
+
+PLAIN_TORQUES = scene(
+    'points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]',
+    'unit = "N*m"\nangle_unit = "deg"\npoints = [[0, 1600], [45, 1600], [90, 200], [360, 200]]',
+)
+
+
+@pytest.mark.parametrize(
+    "old, new, field",
+    [
+        ('unit = "N*m"', 'unit = "N*m*0"', "torque.resisting.unit"),  # was every torque 0: "no flywheel", exit 0
+        ('unit = "N*m"', 'unit = "-1"', "torque.resisting.unit"),
+        ('unit = "N*m"', 'unit = "- 1"', "torque.resisting.unit"),
+        ('unit = "N*m"', 'unit = "+1"', "torque.resisting.unit"),  # was every torque doubled: "1 +1" is 2
+        ('unit = "N*m"', 'unit = "*2"', "torque.resisting.unit"),
+        ('unit = "N*m"', 'unit = "/2"', "torque.resisting.unit"),  # was every torque halved
+        ('unit = "N*m"', 'unit = "-0.5"', "torque.resisting.unit"),
+        ('unit = "N*m"', 'unit = "N*m*1e-300"', "torque.resisting.unit"),  # was exit 1: "mass [kg] must be ..."
+        ('unit = "N*m"', 'unit = ""', "torque.resisting.unit"),
+        ('angle_unit = "deg"', 'angle_unit = "-deg"', "torque.resisting.angle_unit"),  # was 1 rad - 1 deg
+    ],
+)
+def test_a_unit_field_with_a_number_or_a_sign_in_it_is_refused(cli, write_scene, old, new, field):
+    """A unit field was read as the arithmetic "1 " + its text: a leading operator or a factor changed every
+    value of the table, and the answer was given with exit 0."""
+    path = write_scene(scene(old, new, PLAIN_TORQUES))
+    for command in ("check", "solve"):
+        assert_refused(
+            cli(command, path),
+            path,
+            field,
+            r"is not a unit of an? (torque|angle) .*: (a number, a sign or an operator on nothing is no part of a "
+            r"unit|it has no dimension); write the unit alone",
+        )
+
+
+@pytest.mark.parametrize("unit", ["N*m", "kN*m", "lbf*ft", "kgf*m"])
+def test_a_unit_field_scales_the_table_by_its_unit(write_scene, unit):
+    """The shear press's A_max, 1256.33 J in N·m (docs/flywheel-design.md, worked example 2), in pint's factor of
+    each unit."""
+    from conftest import unit_registry
+
+    path = write_scene(scene('unit = "N*m"', f'unit = "{unit}"', PLAIN_TORQUES))
+    factor = unit_registry().Quantity(1, unit).to("N*m").magnitude
+    assert flyopt.analyse(flyopt.load(path)).a_max == pytest.approx(1256.3302652783402 * factor, rel=1e-12)

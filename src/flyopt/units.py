@@ -387,14 +387,49 @@ def _table_number(text: str, dimension: str) -> float | None:
     return value
 
 
+def unit_value(text: str, dimension: str, field: str) -> float:
+    """The SI value of one unit written alone (a section's ``unit = "kN*m"``, ``angle_unit = "deg"``).
+
+    The text must be a unit and nothing else: a number or a sign in it is refused (``"N*m*0"``, ``"-1"`` and
+    ``"*2"`` were read as arithmetic on "1 " and the text, which made every torque 0 or twice its value), as is a
+    unit without a dimension where ``dimension`` has one. Errors quote the text as written.
+
+    Raises
+    ------
+    SceneError
+        Naming ``field``.
+    """
+    words = DIMENSIONS[dimension][2]
+    text = text.strip()
+    if text in FAST_UNITS[dimension] and text[0] != "/":  # a common unit: read without pint, as "1 mm" is
+        return quantity(f"1 {text}", dimension, field)
+    _check_size(text, field, words)
+    _check_form(text, field, words)
+    try:
+        unit = registry().Unit(text)
+    except Exception as err:  # pint: a scaling factor ("2 m", "-1"), a syntax error ("*2"), an unknown name
+        undefined = type(err).__name__ == "UndefinedUnitError"
+        reason = _pint_reason(err) if undefined else "a number, a sign or an operator on nothing is no part of a unit"
+        raise SceneError(field, f"{shorten(text)} is not a unit of {words}: {reason}; write the unit alone") from None
+    if unit.dimensionless and DIMENSIONS[dimension][0]:
+        raise SceneError(field, f"{shorten(text)} is not a unit of {words}: it has no dimension; write the unit alone")
+    return _si_of(registry().Quantity(1, unit), text, dimension, field)
+
+
 def _pint_number(text: str, dimension: str, field: str) -> float:
     """The SI float of a string with a unit, read by pint (see :func:`quantity`)."""
-    dim, si_unit, words = DIMENSIONS[dimension]
+    words = DIMENSIONS[dimension][2]
     _check_form(text, field, words)
     try:
         q = registry().Quantity(text.strip())
     except Exception as err:  # pint raises many types (UndefinedUnitError, DefinitionSyntaxError, ...)
         raise SceneError(field, f"cannot read {shorten(text)} as {words}: {_pint_reason(err)}") from None
+    return _si_of(q, text, dimension, field)
+
+
+def _si_of(q: Any, text: str, dimension: str, field: str) -> float:
+    """The SI float of pint's reading ``q`` of ``text`` (a quantity, or a plain number), its dimension checked."""
+    dim, si_unit, words = DIMENSIONS[dimension]
     if not hasattr(q, "units") or q.units == registry().dimensionless:
         return float(q.magnitude if hasattr(q, "magnitude") else q)  # no unit written (or "rad/rad"): SI
     # "%", "permille", "ppm", "m/mm" are units too: a fraction, converted like any other unit

@@ -555,6 +555,9 @@ BAD = [
         "wrong dimension",
     ),
     (FORCE, 'force_unit = "kN"', 'force_unit = "kJ"', "press.force_unit", "wrong dimension"),
+    # a unit alone: "1 " + "kN*2" was twice the force, "1 " + "-1 kN" a negative kilonewton
+    (FORCE, 'force_unit = "kN"', 'force_unit = "kN*2"', "press.force_unit", "no part of a unit"),
+    (FORCE, 'position_unit = "mm"', 'position_unit = "-1 mm"', "press.position_unit", "no part of a unit"),
     (FORCE, 'position_unit = "mm"', "position_unit = 0.001", "press.position_unit", "unit string"),
     (PUNCH, 'thickness = "20 mm"\n', "", "press.punching.thickness", "is missing"),
     (PUNCH, 'shear_strength = "350 MPa"', 'shear_strength = "-350 MPa"', "press.punching.shear_strength", "positive"),

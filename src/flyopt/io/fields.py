@@ -17,14 +17,14 @@ import numpy.typing as npt
 
 from flyopt.errors import SceneError, shorten
 from flyopt.names import hint
-from flyopt.units import DIMENSIONS, MAGNITUDES, is_plain, quantity
+from flyopt.units import DIMENSIONS, MAGNITUDES, is_plain, quantity, unit_value
 
 
 def unit_factor(raw: object, dimension: str, where: str) -> float:
     """The SI value of one ``raw`` unit (a section's ``unit = "mm"``)."""
     if not isinstance(raw, str):
         raise SceneError(where, f"must be a unit string, got {shorten(raw)}")
-    return quantity(f"1 {raw}", dimension, where)
+    return unit_value(raw, dimension, where)
 
 
 def scaled(raw: object, dimension: str, where: str, factor: float) -> float:

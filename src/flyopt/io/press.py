@@ -34,7 +34,7 @@ from flyopt.io.fields import SPEED_RANGE, Table, check_delta, check_magnitude, s
 from flyopt.io.input_files import check_rows
 from flyopt.io.operation_section import ENERGY_RANGE
 from flyopt.machine import press as physics
-from flyopt.units import MAGNITUDES, quantity
+from flyopt.units import MAGNITUDES, quantity, unit_value
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -533,7 +533,7 @@ def _unit(press, key, dimension):
     raw = press[key]
     if not isinstance(raw, str):
         raise SceneError(f"press.{key}", f"must be a unit string (e.g. 'mm', 'kN'), got {shorten(raw)}")
-    return quantity(f"1 {raw}", dimension, f"press.{key}")
+    return unit_value(raw, dimension, f"press.{key}")
 
 
 def _time(raw, where):

@@ -697,7 +697,7 @@ def _wrong_unit(metadata: Mapping[str, Any]) -> str:
     read without a word, and a varied δ "in furlong" failed only when read back in the input's units, naming
     no file."""
     from flyopt.outputs.quantities import OUTPUT_DIMENSIONS, dimension_of
-    from flyopt.units import quantity, registry
+    from flyopt.units import registry, unit_value
 
     given = [(f"units.{name}", name, unit) for name, unit in (metadata.get("units") or {}).items()]
     vary = (metadata.get("sweep") or {}).get("vary") or {}
@@ -714,7 +714,8 @@ def _wrong_unit(metadata: Mapping[str, Any]) -> str:
                     == ureg.Quantity(1, OUTPUT_DIMENSIONS[dimension]).dimensionality
                 )
             else:  # as the scene's fields read it (rpm, %)
-                quantity("1" if unit == "1" else f"1 {unit}", dimension, field)  # "1": a plain number
+                if unit != "1":  # "1": a plain number
+                    unit_value(unit, dimension, field)
                 measures = True
         except Exception:  # noqa: BLE001 - pint's errors of a unit it cannot read: not this quantity's
             measures = False

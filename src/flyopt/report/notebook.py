@@ -267,9 +267,9 @@ def _unit_of_column(name: str, column: pd.Series, units: str, given: dict[str, s
         written = given.get(name)
         if not written:
             return None
-        from flyopt.units import quantity
+        from flyopt.units import unit_value
 
-        return written, quantity(f"1 {written}", dimension, name)  # the factor the sweep read it with
+        return written, unit_value(written, dimension, name)  # the factor the sweep read it with
     if dimension not in display.UNITS:
         return None
     return display.unit(dimension, units)
