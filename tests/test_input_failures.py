@@ -492,3 +492,66 @@ def test_a_unit_field_scales_the_table_by_its_unit(write_scene, unit):
     path = write_scene(scene('unit = "N*m"', f'unit = "{unit}"', PLAIN_TORQUES))
     factor = unit_registry().Quantity(1, unit).to("N*m").magnitude
     assert flyopt.analyse(flyopt.load(path)).a_max == pytest.approx(1256.3302652783402 * factor, rel=1e-12)
+
+
+@pytest.mark.parametrize("size", ["1e-300", "1e-12"])
+@pytest.mark.parametrize("where", ["inline", "csv"])
+def test_a_table_of_torques_all_below_any_machines_is_refused(cli, write_scene, size, where):
+    """Torques of 1e-300 N·m made the wheel's mass underflow to 0 (exit 1, "mass [kg] must be a finite number
+    > 0", naming no field); of 1e-12 N·m they "designed" a wheel of 8e-15 kg. A single value near 0 is a zero's
+    round-off and stays allowed, as does a table of zeros."""
+    points = f'[["0 deg", {size}], ["45 deg", {size}], ["90 deg", 0], ["360 deg", 0]]'
+    old = 'points = [["0 deg", "1600 N*m"], ["45 deg", "1600 N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]'
+    if where == "inline":
+        path = write_scene(scene(old, f"points = {points}"))
+        field = "torque.resisting.points"
+    else:
+        path = write_scene(scene(old, 'points_file = "t.csv"\nangle_unit = "deg"\nunit = "N*m"'))
+        (path.parent / "t.csv").write_text(f"angle,torque\n0,{size}\n45,{size}\n90,0\n360,0\n", encoding="utf-8")
+        field = "torque.resisting.points_file"
+    for command in ("check", "solve"):
+        assert_refused(
+            cli(command, path), path, field, rf"the largest torque is {size} N\*m \(allowed: a table whose largest"
+        )
+    zeros = write_scene(scene(old, 'points = [["0 deg", 0], ["90 deg", 1e-30], ["360 deg", 1600]]'), "z.toml")
+    assert cli("check", zeros).returncode == 0  # a value near 0 among others is a zero's round-off
+
+
+HOIST = (PROBLEMS / "textbook" / "seed-004-hoist-drive.toml").read_text(encoding="utf-8")
+LATHE = (PROBLEMS / "textbook" / "seed-004-lathe-power.toml").read_text(encoding="utf-8")
+
+
+def _hoist_stages(stage, count):
+    start = HOIST.index("stages = [")
+    end = HOIST.index("]\n", start) + 2
+    return HOIST[:start] + "stages = [\n" + f"  {stage},\n" * count + "]\n" + HOIST[end:]
+
+
+@pytest.mark.parametrize(
+    "text, field, match",
+    [
+        # each value in range, their product not: "float division by zero" (exit 1, naming no field)
+        (LATHE.replace("[0.9, 0.9, 0.9]", "[1e-300, 1e-300, 1e-300]"), "power_chain.stages", "multiply to 0 "),
+        (LATHE.replace("[0.9, 0.9, 0.9]", "[" + ", ".join(["1e-6"] * 60) + "]"), "power_chain.stages", "multiply to"),
+        (LATHE.replace("[0.9, 0.9, 0.9]", "[1e-5, 1e-5]"), "power_chain.stages", r"multiply to 1e-10 \(allowed"),
+        (
+            _hoist_stages('{ speed = "2450 rpm", efficiency = 1e-6, gd2 = "1 N*m^2" }', 60),
+            "electric_drive.stages",
+            r"efficiencies in series multiply to 0 \(allowed: at least 1e-09",
+        ),
+        (
+            _hoist_stages('{ ratio = 1e-6, gd2 = "1 N*m^2" }', 60),
+            "electric_drive.stages[0].ratio",
+            r"the shaft after it would turn at 2.57e\+08 rad/s \(allowed: 1e-06 to 1e\+06 rad/s",
+        ),
+        (
+            _hoist_stages('{ ratio = 1e6, gd2 = "1 N*m^2" }', 60),
+            "electric_drive.stages[1].ratio",
+            r"the shaft after it would turn at 2.57e-10 rad/s",
+        ),
+    ],
+)
+def test_stages_in_series_whose_product_underflows_are_refused_naming_them(cli, write_scene, text, field, match):
+    path = write_scene(text)
+    for command in ("check", "solve"):
+        assert_refused(cli(command, path), path, field, match)

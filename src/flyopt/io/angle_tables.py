@@ -13,7 +13,7 @@ import numpy as np
 from flyopt.cycle.torque import PiecewiseLinear
 from flyopt.errors import SceneError, shorten
 from flyopt.io.csv_table import csv_table
-from flyopt.io.fields import check_scale, first_too_large, scaled
+from flyopt.io.fields import check_scale, check_table_size, first_too_large, scaled
 from flyopt.io.input_files import check_rows
 from flyopt.io.toml_file import InlineRows
 
@@ -84,6 +84,7 @@ def angle_curve(
     if (row := first_too_large(values, dimension)) is not None:
         written = float(raw.array[row, 1]) if isinstance(raw, InlineRows) else raw[row][1]
         check_scale(values[row], dimension, f"{where}[{row}] {label}", written)
+    check_table_size(values, dimension, where, label)
     angles[0], angles[-1] = 0.0, cycle
     return PiecewiseLinear(angles, values)
 
@@ -197,5 +198,9 @@ def angle_curve_file(
             check_scale(values[k], dimension, where, float(numbers[k, 1]))
         except SceneError as err:
             raise SceneError(where, f"{name} line {lines[k]}: the {column} {err.message}") from None
+    try:
+        check_table_size(values, dimension, where, column)
+    except SceneError as err:
+        raise SceneError(where, f"{name}: {err.message}") from None
     angles[0], angles[-1] = 0.0, cycle
     return PiecewiseLinear(angles, values)

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 
 from flyopt.errors import SceneError, shorten
-from flyopt.io.fields import Table, check_magnitude
-from flyopt.io.shaft_section import RATIO_RANGE, read_efficiency
+from flyopt.io.fields import SPEED_RANGE, SPEED_WHY, Table, check_magnitude
+from flyopt.io.shaft_section import RATIO_RANGE, check_series, read_efficiency
 from flyopt.machine.electric_drive import ElectricDrive, Stage
 from flyopt.units import inertia_from_gd2
 
@@ -56,6 +56,13 @@ def read_electric_drive(raw: object, motor_speed: float) -> ElectricDrive:
         eta = read_efficiency(stage.get("efficiency"), f"{where}.efficiency") if stage.has("efficiency") else 1.0
         stages.append(Stage(ratio, eta, _gd2(stage, where, "gd2", "inertia")))
         speed /= ratio
+        if not SPEED_RANGE[0] <= speed <= SPEED_RANGE[1]:  # the ratios in series (60 of 1e-6 overflowed)
+            raise SceneError(
+                f"{where}.{'ratio' if stage.has('ratio') else 'speed'}",
+                f"the shaft after it would turn at {speed:.3g} rad/s (allowed: {SPEED_RANGE[0]:g} to "
+                f"{SPEED_RANGE[1]:g} rad/s, {SPEED_WHY})",
+            )
+    check_series([s.efficiency for s in stages], "electric_drive.stages")
     if table.has("load_torque") and (table.has("load_force") or table.has("load_radius")):
         raise SceneError(
             "electric_drive.load_force", "give either load_torque or load_force with load_radius, not both"

@@ -46,6 +46,24 @@ def first_too_large(values: npt.NDArray[np.float64], dimension: str) -> int | No
     return int(np.argmax(over)) if over.any() else None
 
 
+def check_table_size(values: npt.NDArray[np.float64], dimension: str, where: str, label: str) -> None:
+    """Refuse a table whose values are not zero and all below the least size :data:`flyopt.units.MAGNITUDES`
+    allows its dimension: a single value near 0 is a zero's round-off (:func:`first_too_large` leaves it), but
+    a whole table of them is no machine: torques of 1e-300 N·m made a wheel's mass underflow to 0 (exit 1, naming
+    no field), and of 1e-12 N·m "designed" a wheel of 8e-15 kg."""
+    if dimension not in MAGNITUDES or not values.size:
+        return
+    largest = float(np.max(np.abs(values)))
+    low = MAGNITUDES[dimension][0]
+    if 0.0 < largest < low:
+        unit = DIMENSIONS[dimension][1].replace("**", "^")
+        raise SceneError(
+            where,
+            f"the largest {label} is {largest:.3g} {unit} (allowed: a table whose largest reaches {low:g} {unit}, or all "
+            "zeros; below, every value is a zero's round-off)",
+        )
+
+
 class Table:
     """A dictionary from TOML with checked keys and typed accessors."""
 

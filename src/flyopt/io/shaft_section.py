@@ -15,7 +15,7 @@ from flyopt.machine.transmission import Shaft, series_efficiency
 from flyopt.units import inertia_from_gd2, quantity
 
 if TYPE_CHECKING:
-    from collections.abc import Iterable
+    from collections.abc import Iterable, Sequence
 
 MAX_SHAFTS = 64
 """Most [[shaft]] tables a scene may give: each is a place the wheel may sit, designed and ranked in turn."""
@@ -446,8 +446,27 @@ def read_efficiency(raw: object, where: str) -> float:
     return series_efficiency(read_stages(raw, where))
 
 
+SERIES_LEAST = 1e-9
+"""Least efficiency of stages in series, their product: each stage's may be any in (0, 1], but a chain that passes
+on less than a billionth of its power is no transmission, and 60 stages of 1e-6 underflowed to 0 (a "float
+division by zero", exit 1, naming no field)."""
+
+
+def check_series(etas: Sequence[float], where: str) -> float:
+    """The product of efficiencies in series, refused below :data:`SERIES_LEAST` naming ``where``."""
+    product = math.prod(etas)
+    if product < SERIES_LEAST:
+        raise SceneError(
+            where,
+            f"the efficiencies in series multiply to {product:.3g} (allowed: at least {SERIES_LEAST:g}; less passes on "
+            "no power to speak of)",
+        )
+    return product
+
+
 def read_stages(raw: object, where: str) -> tuple[float, ...]:
-    """Stage efficiencies in series: one number in (0, 1], or a non-empty list of them, each named in an error."""
+    """Stage efficiencies in series: one number in (0, 1], or a non-empty list of them, each named in an error;
+    their product at least :data:`SERIES_LEAST`."""
     stages = raw if isinstance(raw, list) else [raw]
     if not stages:
         raise SceneError(where, "must be a number in (0, 1] or a non-empty list of stage efficiencies")
@@ -458,4 +477,5 @@ def read_stages(raw: object, where: str) -> tuple[float, ...]:
         if not 0 < eta <= 1:
             raise SceneError(label, f"must lie in (0, 1], got {shorten(s)}")
         etas.append(eta)
+    check_series(etas, where)
     return tuple(etas)
