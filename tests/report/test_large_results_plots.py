@@ -153,3 +153,37 @@ def test_a_few_points_are_each_marked():
     frame = pd.DataFrame({"delta": np.linspace(0.01, 0.3, MAX_MARKERS), "mass": 1.0, "status": "designed"})
     (line,) = plot_sweep(frame, "delta", "mass").get_lines()
     assert line.get_markevery() is None and not line.get_rasterized()
+
+
+def test_a_sweep_of_more_lines_than_drawn_is_refused_before_a_group_is_made(monkeypatch):
+    """Every line's group was made before they were counted: 50,000 values of --by took 43 s and 2 GB to
+    refuse, a million ended in a MemoryError."""
+    from pandas.core.groupby import DataFrameGroupBy
+
+    n = 20_000
+    frame = pd.DataFrame({"delta": np.linspace(0.01, 0.1, n), "mass": 1.0, "status": "designed"})
+    frame["material"] = [f"m{i}" for i in range(n)]
+
+    def made(self):
+        raise AssertionError("a group was made")
+
+    monkeypatch.setattr(DataFrameGroupBy, "__iter__", made)
+    with pytest.raises(ValueError, match=r"the sweep varies material besides delta: 20000 lines would be drawn"):
+        plot_sweep(frame, "delta", "mass", by="material")
+
+
+def test_a_front_without_a_design_of_both_values_is_refused_in_words():
+    """A front whose every outer diameter is empty ended in an IndexError (exit 1)."""
+    frame = pd.DataFrame({"mass": [1.0, 2.0], "outer_diameter": [np.nan, np.nan], "epsilon": [0.1, 0.2]})
+    frame["status"] = "designed"
+    with pytest.raises(ValueError, match="no design has both outer_diameter and mass: there is no front to draw"):
+        plot_pareto(frame, "outer_diameter", "mass")
+
+
+def test_a_long_text_in_a_legend_is_clipped():
+    """A material named by 100,000 characters took 36 s to lay out (and warned on stderr)."""
+    frame = pd.DataFrame({"delta": [0.01, 0.02, 0.01, 0.02], "mass": [1.0, 2.0, 3.0, 4.0], "status": "designed"})
+    frame["material"] = ["a" * 100_000] * 2 + ["b" * 100_000] * 2
+    ax = plot_sweep(frame, "delta", "mass", by="material")
+    labels = [line.get_label() for line in ax.get_lines() if not line.get_label().startswith("_")]
+    assert sorted(labels) == [f"material = {c * 119}… (100000 characters)" for c in "ab"]

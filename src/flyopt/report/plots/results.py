@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from flyopt.errors import clip
 from flyopt.report import display
 from flyopt.report.plots import readout, standard
 from flyopt.said import counted
@@ -195,7 +196,7 @@ def _value_text(value, column, units, frame=None, digits=standard.DIGITS, name=N
     if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(value, bool):
         scale = _scale(frame, column, units, digits) if frame is not None else None
         return _number_text(float(value), name, scale, digits)
-    return f"{name} = {value}"
+    return f"{name} = {clip(str(value))}"  # a text of 100,000 characters took 19 s to lay out in the legend
 
 
 def _number_text(value, name, scale, digits):
@@ -216,7 +217,7 @@ def _point_rows(frame, rows, columns, units, digits, names):
     for i in range(len(rows)):  # each objective named as its axis names it
         texts = [_number_text(float(values[i]), words, scale, digits) for words, scale, values in shown]
         if materials is not None and isinstance(materials[i], str):
-            texts.insert(0, f"material = {(names or {}).get(materials[i], materials[i])}")
+            texts.insert(0, f"material = {clip((names or {}).get(materials[i], materials[i]))}")
         out.append(texts)
     return out
 
@@ -292,12 +293,14 @@ def plot_sweep(
     by = _column(frame, by) if by else None
     others = [f for f in varied_fields(frame) if f not in (x, by)]
     keys = ([by] if by else []) + others
-    groups = list(frame.groupby(keys, sort=True, dropna=False)) if keys else [((), frame)]
-    if len(groups) > MAX_LINES:
+    grouped = frame.groupby(keys, sort=True, dropna=False) if keys else None
+    lines = grouped.ngroups if grouped is not None else 1  # counted before any group is made (50,000 took 43 s)
+    if lines > MAX_LINES:
         raise ValueError(
-            f"the sweep varies {', '.join(keys)} besides {x}: {len(groups)} lines would be drawn "
+            f"the sweep varies {', '.join(keys)} besides {x}: {lines} lines would be drawn "
             f"(at most {MAX_LINES}); sweep fewer fields at once, or plot one of them along x"
         )
+    groups = list(grouped) if grouped is not None else [((), frame)]
     ax, own = standard.axes(ax)
     x_scale, y_scale = _scale(frame, x, units, digits), _scale(frame, y, units, digits)
     status = frame["status"] if "status" in frame.columns else None
@@ -380,8 +383,8 @@ def plot_pareto(
     Raises
     ------
     ValueError
-        A column that does not exist or holds a number beyond :data:`MAX_DRAWN`, or points of different
-        physics.
+        A column that does not exist or holds a number beyond :data:`MAX_DRAWN`, points of different
+        physics, or no design with both values.
     """
     from flyopt.studies.points import PHYSICS_FIELDS
 
@@ -399,10 +402,12 @@ def plot_pareto(
             f"the points differ in {' and '.join(mixed)} ({spans}), and a Pareto front compares "
             f"designs of one machine: plot the points of one {' and '.join(mixed)} at a time{hint}"
         )
-    ax, own = standard.axes(ax)
     usable = frame[[x, y]].notna().all(axis=1).to_numpy()
     if "status" in frame.columns:
         usable = usable & frame["status"].isin(["designed", "not_needed"]).to_numpy()
+    if not usable.any():  # (an empty front ended in an IndexError)
+        raise ValueError(f"no design has both {x} and {y}: there is no front to draw")
+    ax, own = standard.axes(ax)
     data = np.column_stack(
         [_values(frame, x, _scale(frame, x, units, digits)), _values(frame, y, _scale(frame, y, units, digits))]
     )[usable]
