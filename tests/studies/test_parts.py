@@ -39,12 +39,36 @@ def empty(path):
     path.write_bytes(b"")
 
 
+def _edited(column, value, where=None):
+    """A damage: the part's ``column`` set to ``value`` (in the rows ``where`` selects), written back with its
+    metadata as flyopt writes a part."""
+
+    def edit(path):
+        from flyopt.outputs.results import write_results
+
+        frame = read_results(path)
+        rows = where(frame) if where is not None else slice(None)
+        frame.loc[rows, column] = value
+        write_results(frame, path, metadata=frame.attrs.get("flyopt"))
+
+    edit.__name__ = f"{column}={value}"
+    return edit
+
+
+def _designed(frame):
+    return frame["status"] == "designed"
+
+
 @pytest.mark.parametrize(
     "damage, words",
     [
         (truncate, "cannot be read"),
         (empty, "cannot be read"),
         (other_chunk, "holds other points than its chunk"),
+        # a part edited by hand was copied into the output as it was, exit 0
+        (_edited("delta", 99.0), "holds other values of 'delta' than its chunk's points"),
+        (_edited("mass", -5.0, _designed), "holds a designed point without a finite, positive mass"),
+        (_edited("mass", float("nan"), _designed), "holds a designed point without a finite, positive mass"),
     ],
 )
 def test_resume_recomputes_a_damaged_part(tmp_path, capsys, damage, words):
@@ -251,3 +275,20 @@ def test_a_manifest_that_is_no_json_object_is_refused_naming_it(tmp_path, text):
         f"the sweep's manifest {str(manifest)!r} is damaged: not a JSON object as flyopt writes it; "
         f"delete the folder {str(manifest.parent)!r} to start over"
     )
+
+
+def test_a_folder_where_a_part_belongs_is_refused_in_one_line_and_kept(tmp_path, capsys):
+    """It was said to be computed again, then every resume failed on it ("Is a directory")."""
+    from flyopt.errors import SceneError
+
+    out = tmp_path / "study.parquet"
+    sweep(PUNCH, VARY, chunk_size=4, output=out, max_chunks=2)
+    part = tmp_path / "study.parquet.parts" / "chunk-00001.parquet"
+    part.unlink()
+    part.mkdir()
+    (part / "mine.txt").write_text("the user's", encoding="utf-8")
+    capsys.readouterr()
+    with pytest.raises(SceneError, match=r"is a folder where chunk 1's part belongs: move it away, then resume"):
+        sweep(PUNCH, VARY, chunk_size=4, output=out, resume=True)
+    assert capsys.readouterr().err == ""  # nothing said about computing it again
+    assert (part / "mine.txt").read_text(encoding="utf-8") == "the user's" and not out.exists()

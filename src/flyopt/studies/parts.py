@@ -22,6 +22,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from flyopt.errors import SceneError
@@ -247,6 +248,12 @@ class Parts:
                 continue
             if not path.exists():
                 continue
+            if path.is_dir():  # (a folder is not unlinked: it said "computing again", then failed every resume)
+                raise SceneError(
+                    "--resume",
+                    f"{str(path)!r} is a folder where chunk {i}'s part belongs: move it away, then resume "
+                    "(flyopt removes only files of its own)",
+                )
             problem = _damage(path, chunk)
             if problem:
                 print(f"flyopt sweep: {path}: {problem}; computing chunk {i} again", file=sys.stderr)
@@ -290,4 +297,20 @@ def _damage(path: Path, chunk: pd.DataFrame) -> str:
         return f"lacks the column {missing[0]!r}"
     if not (frame["point"].to_numpy() == chunk["point"].to_numpy()).all():
         return "holds other points than its chunk"
+    for column in chunk.columns:  # each point's inputs as planned (a part edited to δ = 99 was copied as it was)
+        if not _same(frame[column], chunk[column]):
+            return f"holds other values of {column!r} than its chunk's points"
+    if "status" in frame.columns and "mass" in frame.columns:
+        mass = frame["mass"].to_numpy(dtype=float)[(frame["status"] == "designed").to_numpy(dtype=bool)]
+        if not (np.isfinite(mass) & (mass > 0)).all():
+            return "holds a designed point without a finite, positive mass"
     return ""
+
+
+def _same(stored: pd.Series, planned: pd.Series) -> bool:
+    """Whether a part's column holds the values its chunk planned (numbers to the bit, NaN as NaN; texts)."""
+    from pandas.api.types import is_numeric_dtype
+
+    if is_numeric_dtype(planned.dtype) and is_numeric_dtype(stored.dtype):
+        return bool(np.array_equal(stored.to_numpy(dtype=float), planned.to_numpy(dtype=float), equal_nan=True))
+    return [None if pd.isna(v) else str(v) for v in stored] == [None if pd.isna(v) else str(v) for v in planned]
