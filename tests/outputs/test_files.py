@@ -604,3 +604,25 @@ def test_every_quantity_flyopt_writes_is_read_back_with_its_unit(tmp_path):
         back = read_results(path)
         assert list(back.columns) == names
         assert all(back.attrs["flyopt"]["units"][n] for n in names if dimension_of(n) != "dimensionless")
+
+
+@pytest.mark.parametrize("command", ["plot-all", "sweep", "pareto", "tradeoff"])
+def test_a_link_at_a_name_flyopt_makes_beside_the_output_is_refused_and_not_followed(tmp_path, main_cli, command):
+    """A diagram of --what all was written through a link planted in the folder given, a CSV's sidecar through a
+    link beside the table: both out of where the user pointed, exit 0."""
+    outside = tmp_path / "victim"
+    outside.write_text("kept", encoding="utf-8")
+    folder = tmp_path / "out"
+    folder.mkdir()
+    shear = PROBLEMS / "shear-press.toml"
+    if command == "plot-all":
+        (folder / "energy.png").symlink_to(outside)
+        args = ["plot", shear, "--what", "all", "-o", f"{folder}/"]
+    else:
+        (folder / "t.csv.json").symlink_to(outside)
+        extra = ["--vary", "delta=0.01:0.02:2"] if command == "sweep" else []
+        args = [command, shear, *extra, "-o", folder / "t.csv"]
+    status, _, err = main_cli(*args)
+    assert status == 2 and err.count("\n") == 1 and "is a symbolic link: flyopt writes the files it names" in err, err
+    assert outside.read_text(encoding="utf-8") == "kept"
+    assert [p.name for p in folder.iterdir()] == ["energy.png" if command == "plot-all" else "t.csv.json"]

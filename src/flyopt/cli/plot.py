@@ -173,6 +173,7 @@ def _plot_all(args, plots):
     from pathlib import Path
 
     from flyopt.errors import SceneError
+    from flyopt.outputs.files import check_not_a_link
 
     folder = Path(args.output)
     if not folder.is_dir():
@@ -180,6 +181,7 @@ def _plot_all(args, plots):
     whats = list(plots.PLOTS)
     files = [folder / f"{what}.png" for what in whats]
     for file in files:  # before the solve (and, once the scene is read, none may be a file it reads)
+        check_not_a_link(file)  # names flyopt makes in the folder given: a link there leads elsewhere
         plots.check_output(file)
     solution = _solve(args, whats, files)
     statuses = [_plot_one(args, plots, solution, what, file, every=True) for what, file in zip(whats, files)]

@@ -233,6 +233,24 @@ def output_target(path: str | os.PathLike[str]) -> Path:
     return Path(os.path.realpath(path)) if path.is_symlink() else path
 
 
+def check_not_a_link(path: str | os.PathLike[str], label: str = "-o/--output") -> None:
+    """Refuse a symbolic link at a file flyopt names itself (a diagram of ``--what all`` in the folder given, a
+    CSV's sidecar ``FILE.csv.json``): the user named the folder or the table, not this file, so where a link there
+    leads is no place they pointed at (a diagram was written through a planted link out of the folder).
+
+    Raises
+    ------
+    SceneError
+        Field ``label``: the link, and what to do.
+    """
+    if os.path.islink(path):
+        raise SceneError(
+            label,
+            f"{str(path)!r} is a symbolic link: flyopt writes the files it names itself beside the output given, "
+            "never through a link; remove it",
+        )
+
+
 def check_folder(path: str | os.PathLike[str], label: str = "output", beside: tuple[str, ...] = ()) -> None:
     """Check where an output goes, before anything is computed.
 

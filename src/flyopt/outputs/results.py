@@ -38,7 +38,14 @@ from typing import TYPE_CHECKING, Any, Literal, TextIO
 import numpy as np
 
 from flyopt.errors import SceneError, shorten
-from flyopt.outputs.files import Temporary, check_folder, check_not_scene, output_error, output_target
+from flyopt.outputs.files import (
+    Temporary,
+    check_folder,
+    check_not_a_link,
+    check_not_scene,
+    output_error,
+    output_target,
+)
 from flyopt.outputs.quantities import COUNTS, INPUTS, has_unit
 
 if TYPE_CHECKING:
@@ -314,8 +321,11 @@ def table_files(path: str | os.PathLike[str]) -> tuple[Path, ...]:
 def check_table_output(path: str | os.PathLike[str], scene: Scene, what: str, label: str = "-o/--output") -> None:
     """Refuse a table's output that would replace a file the scene read (the scene file or a data file:
     :func:`flyopt.outputs.files.check_not_scene`): any of :func:`table_files`."""
-    for file in table_files(path):
+    files = table_files(path)
+    for file in files:
         check_not_scene(file, scene, what, label)
+    for file in files[1:]:  # the sidecar: a name flyopt makes, never written through a link
+        check_not_a_link(file, label)
 
 
 def arrow_table(frame: pd.DataFrame, metadata: Mapping[str, Any] | None = None) -> pa.Table:
@@ -429,6 +439,7 @@ def _finish(
     try:
         side.write(_sidecar_text(sidecar_of))
         check_folder(path, label)
+        check_not_a_link(sidecar, label)
         check_folder(sidecar, label)
         written = output_target(sidecar)
         side.finish(label)
