@@ -277,8 +277,14 @@ def test_the_row_cap_holds_before_the_compiled_reader(tmp_path, monkeypatch):
         with pytest.raises(SceneError, match=r"has over 39999 rows \(allowed: at most 39999"):
             flyopt.load(path)
     assert spy.call_count == 0  # refused before reading
-    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "40002")
+    # a table of exactly the cap, after its header (its lines counted with the header's: refused before)
+    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "40000")
     assert len(flyopt.load(path).resisting.values) == 40_000
+    headless = tmp_path / "torque.csv"  # without a header, the same rows are counted once read
+    headless.write_text(headless.read_text().split("\n", 1)[1])
+    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "39999")
+    with pytest.raises(SceneError, match=r"has over 39999 rows \(allowed: at most 39999"):
+        flyopt.load(path)
 
 
 # -- inline TOML tables by the compiled reader -------------------------------------------

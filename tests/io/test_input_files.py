@@ -249,9 +249,11 @@ def test_the_size_caps_are_checked_before_reading_and_raised_by_the_environment(
 
 def test_the_row_cap_holds_for_csv_and_inline_tables(tmp_path, monkeypatch):
     path = scene_naming(tmp_path, "torque.csv")
-    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "3")
-    with pytest.raises(SceneError, match=r"has over 3 rows \(allowed: at most 3; .*FLYOPT_MAX_TABLE_ROWS"):
+    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "2")  # GOOD: a header and 3 rows
+    with pytest.raises(SceneError, match=r"has over 2 rows \(allowed: at most 2; .*FLYOPT_MAX_TABLE_ROWS"):
         flyopt.load(path)
+    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "3")  # the header is no row (its line was counted as one)
+    assert len(flyopt.load(path).resisting.values) == 3
     inline = tmp_path / "inline.toml"
     rows = ", ".join(f"[{a}, 1]" for a in range(0, 361, 1))
     inline.write_text(SCENE.replace("points_file = {name}", f"points = [{rows}]"), encoding="utf-8")

@@ -27,6 +27,8 @@ BASE = {"machine": {"speed": "600 rpm", "delta": 0.05}, "torque": {"net": {"area
         ({"shaft": [{"name": "main\x1b[31m", "speed_ratio": 1.0}]}, "shaft[0].name"),
         ({"shaft": [{"name": "a\tb", "speed_ratio": 1.0}]}, "shaft[0].name"),
         ({"shaft": [{"name": "nul\x00", "speed_ratio": 1.0}]}, "shaft[0].name"),
+        ({"title": "Press\u2028line two"}, "title"),  # Unicode's line and paragraph separators end a line too
+        ({"shaft": [{"name": "a\u2029b", "speed_ratio": 1.0}]}, "shaft[0].name"),
     ],
 )
 def test_a_name_with_a_control_character_is_refused_naming_it(extra, field):

@@ -76,3 +76,22 @@ def test_a_study_of_a_wheel_that_exists_or_of_a_drive_is_refused(main_cli, write
     line = _refused(*main_cli(command[0], PROBLEMS / "press-drive.toml", *command[1:]))
     assert "drive: designs the motor, its ratio and the wheel together" in line
     assert "flyopt pareto --objectives mass,motor_power" in line
+
+
+def test_the_torque_scale_of_a_motor_driven_scene_is_refused_before_a_point(main_cli):
+    """It stopped at the first point with "torque.scale: cannot scale a torque of type MotorTorque" (no --vary,
+    and a class's name)."""
+    line = _refused(*main_cli("sweep", PROBLEMS / "motor-press.toml", "--vary", "torque.scale=1,2"))
+    assert line.startswith("flyopt: error: --vary torque.scale: scales the scene's torque tables and expressions")
+    assert "its driving torque is a motor's characteristic, which depends on speed" in line
+    assert "MotorTorque" not in line
+
+
+def test_a_shaft_diameter_outside_the_size_factors_fit_is_quoted_as_a_number(main_cli, write_scene):
+    """The message ended "got array(1.e-06)"."""
+    text = (PROBLEMS / "punch-press-shaft.toml").read_text(encoding="utf-8")
+    old = 'segments = [{ to = "120 mm", diameter = "60 mm" }'
+    assert old in text
+    path = write_scene(text.replace(old, 'segments = [{ to = "120 mm", diameter = "0.001 mm" }'))
+    line = _refused(*main_cli("check", path))
+    assert line.endswith("diameter [m] must lie within Shigley's Eq. (6-20), 0.00279 to 0.254 m, got 1e-06")

@@ -323,8 +323,9 @@ def test_a_field_given_twice_is_refused(texts, field):
     "table, field, words",
     [
         ('method = "fast"', "sweep.method", "'fast' is not known (allowed: auto, closed_form, ipopt)"),
-        ("workers = 0", "sweep.workers", "must be 'auto' or a whole number >= 1"),
-        ('workers = "many"', "sweep.workers", "must be 'auto' or a whole number >= 1"),
+        ("workers = 0", "sweep.workers", "must be 'auto' or a whole number from 1 to 256, got 0"),
+        ('workers = "many"', "sweep.workers", "must be 'auto' or a whole number from 1 to 256, got 'many'"),
+        ("workers = 100000", "sweep.workers", "from 1 to 256, got 100000"),  # a process a chunk, 150 MB each
         ('output = "study.xlsx"', "sweep.output", "must end in .parquet or .csv"),
         ("chunk_size = 0", "sweep.chunk_size", "must be a whole number >= 1"),
         ("seed = -1", "sweep.seed", "must be a whole number from 0 to 9223372036854775807"),

@@ -47,8 +47,11 @@ def csv_table(
     path = inside_scene(raw, where, files, "CSV file")
     name = clip(str(path))
     text = read_input(path, where, name, encoding="utf-8-sig")
-    check_rows(text.count("\n") + 1, where, name)
+    # the lines bound the rows before they are read (one may be the header; a last line break ends a line);
+    # the rows read are counted after ("\n" + 1 refused a header and 1,999,999 rows as over 2,000,000)
+    check_rows(text.count("\n") + (0 if text.endswith("\n") else 1) - 1, where, name)
     numbers, lines = read_csv(text, where, name, columns, units)
+    check_rows(len(numbers), where, name)
     return numbers, lines, name
 
 

@@ -181,7 +181,7 @@ def check_line(text: str, where: str, note: str = "") -> None:
     NUL) in it would split the text report's lines and, written raw into a DXF's properties, end its section
     (a material named "iron\\n  0\\nEOF" made the exported drawing unreadable); or longer than
     :data:`MAX_LINE_LENGTH` (``note`` says where a longer text belongs)."""
-    if any(unicodedata.category(c) == "Cc" for c in text):
+    if any(unicodedata.category(c) in ("Cc", "Zl", "Zp") for c in text):
         raise SceneError(where, f"{shorten(text)} holds a control character: a name is one line of text")
     if len(text) > MAX_LINE_LENGTH:
         raise SceneError(

@@ -303,6 +303,9 @@ OPTION_MINIMUMS = {"samples": 1, "seed": 0, "chunk_size": 1, "max_chunks": 1}
 #: The largest value of a whole-number option where there is one: a seed is written in the sweep's file as a
 #: 64-bit signed integer (its ``seed`` column and manifest).
 OPTION_MAXIMUMS = {"seed": 2**63 - 1}
+#: Most worker processes a sweep starts on this machine: each holds numpy, pandas and CasADi (some 150 MB), and
+#: ``--workers 100000 --chunk-size 1`` would have started one for each chunk.
+MAX_WORKERS = 256
 
 
 def check_options(options: Mapping[str, Any], where: str = "sweep") -> None:
@@ -333,9 +336,11 @@ def check_options(options: Mapping[str, Any], where: str = "sweep") -> None:
     workers = options.get("workers")
     if workers is not None and workers != "auto":
         try:
-            whole_number(workers, option_label(where, "workers"), 1)
+            whole_number(workers, option_label(where, "workers"), 1, MAX_WORKERS)
         except SceneError as err:
-            raise SceneError(err.field, f"must be 'auto' or a whole number >= 1, got {workers!r}") from None
+            raise SceneError(
+                err.field, f"must be 'auto' or a whole number from 1 to {MAX_WORKERS}, got {clip(repr(workers))}"
+            ) from None
     output = options.get("output")
     if output is not None:
         if not isinstance(output, (str, Path)):

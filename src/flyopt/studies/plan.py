@@ -122,6 +122,11 @@ def plan_sweep(
     else:
         seed = None  # a grid has no randomness
     axes = parse_vary(scene, vary, where=where, samples=samples, max_points=MAX_POINTS)
+    if any(axis.field == "torque.scale" for axis in axes):
+        from flyopt.io.sweep_spec import field_path
+        from flyopt.studies.points import check_scalable
+
+        check_scalable(scene, field_path(where, "torque.scale"))
     if samples is not None:
         if not axes:
             raise SceneError(option_label(where, "samples"), "Latin hypercube sampling needs at least one varied field")

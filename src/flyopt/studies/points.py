@@ -260,6 +260,24 @@ def physics_codes(points: pd.DataFrame) -> tuple[np.ndarray, int]:
     return np.asarray(codes, dtype=np.int64), len(uniques)
 
 
+def check_scalable(scene: Scene, label: str) -> None:
+    """Refuse a ``torque.scale`` axis (``label``) of a scene whose torques are not all tables, constants or
+    expressions: a motor's characteristic depends on speed, and scaling it would be another motor (the sweep
+    stopped at its first point with "cannot scale a torque of type MotorTorque", naming no option)."""
+    from flyopt.cycle.torque import MotorTorque
+
+    for which, curve in (("driving", scene.driving), ("resisting", scene.resisting)):
+        try:
+            _scale_curve(curve, 1.0)
+        except SceneError:
+            kind = "a motor's characteristic, which depends on speed" if isinstance(curve, MotorTorque) else "no table"
+            raise SceneError(
+                label,
+                f"scales the scene's torque tables and expressions, and its {which} torque is {kind}: give the torques "
+                "as tables or expressions to scale them (a motor is sized by [drive])",
+            ) from None
+
+
 def _scale_curve(curve, k):
     if curve is None:
         return None

@@ -101,6 +101,12 @@ def _data() -> dict[str, Any]:
     return data
 
 
+def _outside(values: Any, outside: Any) -> str:
+    """The first of ``values`` that ``outside`` marks, as a message quotes it (a number, not numpy's
+    ``array(1.e-06)``)."""
+    return f"{float(np.ravel(values)[np.flatnonzero(np.ravel(outside))[0]]):g}"
+
+
 def _array(value: Real, field: str, *, positive: bool = True) -> np.ndarray:
     array: np.ndarray = finite_array(value, field)
     if positive and np.any(array <= 0.0):
@@ -182,7 +188,8 @@ def size_factor(diameter: Real, *, loading: str = "bending", fit: str = "si") ->
     low, high = rows[0][0], rows[-1][1]
     if np.any(d < low) or np.any(d > high):
         raise ValueError(
-            f"diameter [m] must lie within Shigley's Eq. (6-20), {low * unit:g} to {high * unit:g} m, got {shorten(diameter)}"
+            f"diameter [m] must lie within Shigley's Eq. (6-20), {low * unit:g} to {high * unit:g} m, got "
+            f"{_outside(diameter, (d < low) | (d > high))}"
         )
     first, second = rows
     # The first row's printed coefficient is (d/0.3)^-0.107 or (d/7.62)^-0.107 written out;
@@ -218,7 +225,8 @@ def temperature_factor(temperature: Real) -> Real:
     row = _data()["temperature"]
     if np.any(fahrenheit < row["min_fahrenheit"] - 1e-9) or np.any(fahrenheit > row["max_fahrenheit"] + 1e-9):
         raise ValueError(
-            f"temperature [degC] must lie within Shigley's Eq. (6-27), 70 to 1000 degF, got {shorten(temperature)}"
+            f"temperature [degC] must lie within Shigley's Eq. (6-27), 70 to 1000 degF, got "
+            f"{_outside(np.asarray(temperature, dtype=float), (fahrenheit < row['min_fahrenheit'] - 1e-9) | (fahrenheit > row['max_fahrenheit'] + 1e-9))}"
         )
     return _out(np.polynomial.polynomial.polyval(fahrenheit, row["coefficients"]))
 
@@ -307,7 +315,10 @@ def neuber_root_a(sut: Real, loading: str = "bending") -> Real:
     kind = "torsion" if choice(loading, LOADINGS, "loading") == "torsion" else "bending"
     s = sut / KPSI
     if np.any(s < row["min_kpsi"] - 1e-9) or np.any(s > row["max_kpsi"] + 1e-9):
-        raise ValueError(f"sut [Pa] must lie within Shigley's Eq. (6-35), 50 to 250 kpsi, got {shorten(sut)}")
+        raise ValueError(
+            f"sut [Pa] must lie within Shigley's Eq. (6-35), 50 to 250 kpsi, got "
+            f"{_outside(sut, (s < row['min_kpsi'] - 1e-9) | (s > row['max_kpsi'] + 1e-9))}"
+        )
     return _out(np.polynomial.polynomial.polyval(s, row[kind]) * math.sqrt(INCH))
 
 
