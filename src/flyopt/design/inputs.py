@@ -152,6 +152,7 @@ def wheel_alone_only(scene: Scene, what: str) -> None:
     """
     from flyopt.errors import SceneError
 
+    scene.require_cycle()  # a calculation is refused as one first (it may give a [flywheel] too)
     if scene.flywheel is not None:
         raise SceneError(
             "flywheel",

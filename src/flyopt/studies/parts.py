@@ -308,9 +308,14 @@ def _damage(path: Path, chunk: pd.DataFrame) -> str:
 
 
 def _same(stored: pd.Series, planned: pd.Series) -> bool:
-    """Whether a part's column holds the values its chunk planned (numbers to the bit, NaN as NaN; texts)."""
+    """Whether a part's column holds the values its chunk planned, where the plan gives one (numbers to the bit,
+    texts as written); a value the plan leaves out ("none": NaN) is the table's to write (a limit not set is
+    written as the infinite one), and is not compared."""
     from pandas.api.types import is_numeric_dtype
 
-    if is_numeric_dtype(planned.dtype) and is_numeric_dtype(stored.dtype):
-        return bool(np.array_equal(stored.to_numpy(dtype=float), planned.to_numpy(dtype=float), equal_nan=True))
-    return [None if pd.isna(v) else str(v) for v in stored] == [None if pd.isna(v) else str(v) for v in planned]
+    given = planned.notna().to_numpy()
+    if is_numeric_dtype(planned.dtype):
+        if not is_numeric_dtype(stored.dtype):
+            return False
+        return bool(np.array_equal(stored.to_numpy(dtype=float)[given], planned.to_numpy(dtype=float)[given]))
+    return [str(v) for v in stored[given]] == [str(v) for v in planned[given]]
