@@ -7,6 +7,7 @@ both are tried. Input that could hang the parser runs in a fresh interpreter
 with a timeout; the rest runs ``flyopt.cli.main.main`` in this one (fast).
 """
 
+import math
 import re
 import subprocess
 import sys
@@ -555,3 +556,35 @@ def test_stages_in_series_whose_product_underflows_are_refused_naming_them(cli, 
     path = write_scene(text)
     for command in ("check", "solve"):
         assert_refused(cli(command, path), path, field, match)
+
+
+@pytest.mark.parametrize(
+    "unit, dimension, reference",
+    [
+        ("/min", "angular_speed", "1/min"),  # a unit field's spellings of FAST_UNITS, read before unit_value
+        ("/s", "angular_speed", "1/s"),
+        ("1/min", "angular_speed", "1/min"),
+        ("rev/min", "angular_speed", "1/min"),
+        ("/kg", "cost_per_mass", "1/kg"),
+    ],
+)
+def test_a_unit_alone_of_every_spelling_flyopt_reads_is_a_unit(unit, dimension, reference):
+    """pint's value of the unit (a rotational frequency in revolutions: 2π rad a turn)."""
+    from conftest import unit_registry
+
+    from flyopt.units import unit_value
+
+    expected = unit_registry().Quantity(1, reference).to_base_units().magnitude
+    if dimension == "angular_speed":
+        expected *= 2 * math.pi
+    assert unit_value(unit, dimension, "f") == pytest.approx(expected, rel=1e-15)
+
+
+def test_a_varied_fields_unit_is_a_unit_alone(cli, tmp_path):
+    """--vary "speed=50,60rpm*2" swept 100 and 120 rpm and wrote "rpm*2" as the file's unit, which flyopt then
+    refused to read back."""
+    out = tmp_path / "odd.parquet"
+    result = cli("sweep", PROBLEMS / "punch-press.toml", "--vary", "speed=50,60rpm*2", "-o", out)
+    assert result.returncode == 2 and result.stderr.count("\n") == 1, result.stderr
+    assert "--vary speed: 'rpm*2' is not a unit of a rotational speed" in result.stderr
+    assert not out.exists()

@@ -401,7 +401,7 @@ def unit_value(text: str, dimension: str, field: str) -> float:
     """
     words = DIMENSIONS[dimension][2]
     text = text.strip()
-    if text in FAST_UNITS[dimension] and text[0] != "/":  # a common unit: read without pint, as "1 mm" is
+    if text in FAST_UNITS[dimension]:  # a common unit ("mm", "/min"): read without pint, as "1 mm" is
         return quantity(f"1 {text}", dimension, field)
     _check_size(text, field, words)
     _check_form(text, field, words)

@@ -309,3 +309,20 @@ def test_a_diagram_that_fails_to_draw_is_said_on_the_card_and_its_figures_closed
     asyncio.run(session._refresh(edited("0.02"), solve=None))
     assert "0.02 (1/50)" in session.card.html and "could not be drawn" not in session.card.html
     assert len(_open_figures() - before) >= 5  # the answer's diagrams, drawn
+
+
+def test_a_sweep_of_names_alone_replaces_the_last_sweeps_plot_with_a_word(session):
+    """A sweep that varied δ and the material, then one that varied the material alone: the first one's diagram
+    stayed beside the second one's table (its x is no number, and the plot was not drawn)."""
+    import flyopt
+    from flyopt.app import sweeps
+
+    scene = flyopt.load(ROOT / "problems" / "shear-press.toml")
+    tab = session.sweeps_tab
+    tab.scene = scene
+    first = flyopt.sweep(scene, {"delta": "0.02,0.05", "material": "cast_iron,cast_steel"})
+    tab._show(sweeps.Run(first, None, True, {"seconds": 0.1, "mode": "serial"}))
+    assert tab.x.value == "delta" and tab.by.value == "material" and "<svg" in tab.plot.svg
+    second = flyopt.sweep(scene, {"material": "cast_iron,cast_steel"})
+    tab._show(sweeps.Run(second, None, True, {"seconds": 0.1, "mode": "serial"}))
+    assert tab.x.value is None and "<svg" not in tab.plot.svg and "varies no number to draw" in tab.plot.svg

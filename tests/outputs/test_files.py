@@ -626,3 +626,30 @@ def test_a_link_at_a_name_flyopt_makes_beside_the_output_is_refused_and_not_foll
     assert status == 2 and err.count("\n") == 1 and "is a symbolic link: flyopt writes the files it names" in err, err
     assert outside.read_text(encoding="utf-8") == "kept"
     assert [p.name for p in folder.iterdir()] == ["energy.png" if command == "plot-all" else "t.csv.json"]
+
+
+def test_a_link_planted_at_a_diagrams_name_while_it_is_drawn_is_never_followed(tmp_path, main_cli, monkeypatch):
+    """The check before the solve left a window: a link put at out/stress.png while the diagrams were drawn had
+    the diagram written where it led (exit 0). The move into place checks again and never follows a link."""
+    from matplotlib.figure import Figure
+
+    from flyopt.report.plots import PLOTS
+
+    outside = tmp_path / "victim"
+    outside.write_text("kept", encoding="utf-8")
+    folder = tmp_path / "out"
+    folder.mkdir()
+    real = Figure.savefig
+
+    def planting(self, *args, **kwargs):  # the first diagram drawn: a link at every name, after the checks
+        for name in PLOTS:
+            link = folder / f"{name}.png"
+            if not os.path.lexists(link):
+                link.symlink_to(outside)
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(Figure, "savefig", planting)
+    status, _, err = main_cli("plot", PROBLEMS / "shear-press.toml", "--what", "all", "-o", f"{folder}/")
+    assert status == 2 and err.count("\n") == 1 and "is a symbolic link" in err, err
+    assert outside.read_text(encoding="utf-8") == "kept"
+    assert all(p.is_symlink() for p in folder.iterdir())  # no temporary left, nothing written through a link

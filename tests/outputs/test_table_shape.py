@@ -264,3 +264,49 @@ def test_a_parquet_column_of_a_type_no_table_has_is_one_line(tmp_path, capsys):
     code, err, drawn = _plot(path, tmp_path, capsys)
     assert code == 2 and err.count("\n") == 1 and not drawn, err
     assert "column 'mass' must hold numbers: it is a timestamp[ms]" in err  # as Parquet stores seconds
+
+
+def test_a_pandas_index_is_counted_with_the_columns_it_is_read_with(tmp_path, monkeypatch):
+    """pandas reads a file's index with any columns: a 1 MB word as a dictionary-encoded index of 2,500 rows was
+    read (2.8 GB) where the same word as a column was refused."""
+    from flyopt.errors import SceneError
+
+    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "1000")  # at most 1,000,000 bytes read
+    frame = pd.DataFrame({"delta": np.linspace(0.01, 0.1, 200), "mass": 1.0})
+    frame.index = pd.Index(["x" * 10_000] * 200, name="tag")
+    path = tmp_path / "t.parquet"
+    pq.write_table(pa.Table.from_pandas(frame, preserve_index=True), path, use_dictionary=True)
+    with pytest.raises(SceneError, match=r"would take 2,003,200 bytes read \(allowed: at most 1,000,000"):
+        read_results(path, columns=["delta", "mass"])
+
+
+def test_plain_text_compressed_is_bounded_by_its_pages_before_it_is_read(tmp_path, monkeypatch):
+    """Counting the text read it, decompressed: 300 rows of a 1 MB word (a 15 kB file, no dictionary) took 408 MB
+    to count. The pages' uncompressed sizes bound it first, from the file's footer."""
+    from flyopt.errors import SceneError
+
+    monkeypatch.setenv("FLYOPT_MAX_TABLE_ROWS", "1000")
+    table = pa.table({"delta": np.linspace(0.01, 0.1, 200), "mass": [1.0] * 200, "status": ["x" * 10_000] * 200})
+    path = tmp_path / "t.parquet"
+    pq.write_table(table, path, use_dictionary=False, compression="zstd")
+    assert path.stat().st_size < 20_000
+    real = pq.ParquetFile.read
+
+    def never(self, *args, **kwargs):
+        raise AssertionError("the table was read")
+
+    monkeypatch.setattr(pq.ParquetFile, "read", never)
+    with pytest.raises(SceneError, match=r"would take 2,\d{3},\d{3} bytes read \(allowed: at most 1,000,000"):
+        read_results(path)
+    monkeypatch.setattr(pq.ParquetFile, "read", real)
+    small = tmp_path / "s.parquet"  # the same, well within: read
+    pq.write_table(table.slice(0, 50), small, use_dictionary=False, compression="zstd")
+    assert read_results(small)["status"].str.len().tolist() == [10_000] * 50
+
+
+def test_a_string_view_column_is_text(tmp_path):
+    """Arrow's string_view is text (its read was refused as "must hold text: it is a string_view")."""
+    path = tmp_path / "t.parquet"
+    status = pa.array(["designed", "infeasible"]).cast(pa.string_view())
+    pq.write_table(pa.table({"delta": [0.1, 0.2], "mass": [1.0, float("nan")], "status": status}), path)
+    assert read_results(path)["status"].tolist() == ["designed", "infeasible"]

@@ -114,3 +114,28 @@ def test_a_worker_is_forked_with_ctrl_c_and_sigterm_held_until_its_own_handlers(
         assert signal.SIGINT not in frame["held"][0] and signal.SIGTERM not in frame["held"][0]
         assert bool(frame["sigterm"][0])
     assert signal.pthread_sigmask(signal.SIG_BLOCK, []) == set()  # and this process holds nothing after
+
+
+def test_a_forkserver_started_for_a_sweep_holds_no_signal(monkeypatch):
+    """Where this process runs threads the workers come from a forkserver, which a held block around the pool's
+    start left holding Ctrl-C and SIGTERM for the rest of its life (a kill did not end it)."""
+    import multiprocessing.forkserver as forkserver
+    import threading
+
+    from flyopt.studies import processes
+
+    forkserver._forkserver._stop()  # one of this test's own
+    stop = threading.Event()
+    waiting = threading.Thread(target=stop.wait, daemon=True)
+    waiting.start()  # a second thread: a forkserver, as under a Dask client's threads
+    try:
+        out = []
+        processes.run_processes(_masks, _points(2), 2, lambda i, frame: out.append(frame), Stop())
+        pid = forkserver._forkserver._forkserver_pid
+        assert pid is not None and len(out) == 2
+        status = Path(f"/proc/{pid}/status").read_text()
+        blocked = int(next(line for line in status.splitlines() if line.startswith("SigBlk:")).split()[1], 16)
+        assert not blocked & (1 << (signal.SIGINT - 1)) and not blocked & (1 << (signal.SIGTERM - 1)), hex(blocked)
+    finally:
+        stop.set()
+        forkserver._forkserver._stop()

@@ -457,6 +457,10 @@ class SweepsTab:
                 f"cancelled after {len(result.frame):,} of {counted(result.info['points'], 'point')}", bad=False
             )
             return
+        self._show(result)
+
+    def _show(self, result: sweeps.Run) -> None:
+        """A finished sweep's status, table and plot (each of the last run replaced)."""
         self.result = result
         self._offer(result.parquet is not None)
         info = result.info
@@ -484,7 +488,17 @@ class SweepsTab:
         self.status.object = _message(f"{done:,} / {counted(total, 'point')}", bad=False)
 
     def _draw(self) -> None:
-        if self.result is None or not self.x.value:
+        if self.result is None:
+            return
+        if not self.x.value:  # the last sweep's plot is not left beside this one's table
+            self.plot.param.update(
+                svg=_message(
+                    "the sweep varies no number to draw along x: a field of names (the material) is drawn as one "
+                    "line per value along a varied number",
+                    bad=False,
+                ),
+                readout="",
+            )
             return
         by = self.by.value or None
         if by == self.x.value:

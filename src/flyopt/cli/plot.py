@@ -158,7 +158,7 @@ def _plot_one(args, plots, solution, what, output, every=False):
             print(f"{args.scene}: {what}: does not apply: {err} (no file written)")
             return EXIT_OK
         return fail(f"{args.scene}: {what}: {err}", EXIT_INPUT)
-    plots.save(ax, output)
+    plots.save(ax, output, own_name=every)  # --what all names its files in the folder: never through a link
     print(f"wrote {output}")
     return EXIT_OK
 

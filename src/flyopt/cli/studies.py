@@ -32,9 +32,14 @@ if TYPE_CHECKING:
 
 
 def _workers(text: str) -> int | Literal["auto"]:
+    """``--workers``: "auto" or a whole number, whose range the sweep's options check (``check_options``: one rule
+    for the command line and a scene's [sweep] table)."""
     if text == "auto":
         return "auto"
-    return _positive_int(text, "a whole number or 'auto'")
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be 'auto' or a whole number, got {text!r}") from None
 
 
 def _positive_int(text: str, expected: str = "a whole number") -> int:

@@ -49,7 +49,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from flyopt.errors import SceneError, clip, shorten
-from flyopt.units import quantity
+from flyopt.units import quantity, unit_value
 
 if TYPE_CHECKING:
     import os
@@ -413,7 +413,10 @@ def _given_unit(units: Iterable[str]) -> str | None:
 def _number(text, unit, spec, label):
     raw = f"{text} {unit}".strip() if unit else text
     try:
-        return quantity(raw, spec.dimension, label)
+        value = quantity(raw, spec.dimension, label)
+        if unit:  # a unit alone: "60rpm*2" was 120 rpm, and "rpm*2" the file's unit, which it then refused to read
+            unit_value(unit, spec.dimension, label)
+        return value
     except SceneError as err:
         raise SceneError(label, err.message) from None
 

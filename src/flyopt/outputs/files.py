@@ -64,8 +64,11 @@ class Temporary:
     #: Names tried before giving up (each a fresh random one).
     ATTEMPTS = 100
 
-    def __init__(self, path: str | os.PathLike[str], folder: str | os.PathLike[str] | None = None) -> None:
-        self.target = output_target(path)
+    def __init__(
+        self, path: str | os.PathLike[str], folder: str | os.PathLike[str] | None = None, own_name: bool = False
+    ) -> None:
+        self.own_name = own_name  # a name flyopt made (check_not_a_link): never through a link, at no time
+        self.target = Path(path) if own_name else output_target(path)
         self.named = Path(path)
         place = self.target.parent if folder is None else Path(folder)
         for _ in range(self.ATTEMPTS):
@@ -111,7 +114,7 @@ class Temporary:
                     f"cannot be written: its temporary file {self.path.name!r} was replaced by another while writing",
                     str(self.named),
                 )
-            move_into_place(self.path, self.named, label)
+            move_into_place(self.path, self.named, label, self.own_name)
         except BaseException:
             self.discard()
             raise
@@ -162,13 +165,15 @@ def write_atomically(
     write: Callable[[BinaryIO], object],
     temporary_folder: str | os.PathLike[str] | None = None,
     label: str = "-o/--output",
+    own_name: bool = False,
 ) -> None:
     """Call ``write(handle)`` on a new temporary file (:class:`Temporary`, binary), then move it to ``path``.
 
     The temporary file is removed on any failure; an ``OSError`` while writing is an
-    :class:`OutputError` naming ``path``.
+    :class:`OutputError` naming ``path``. ``own_name``: a name flyopt made, never written through a link
+    (:func:`check_not_a_link`).
     """
-    temporary = Temporary(path, temporary_folder)
+    temporary = Temporary(path, temporary_folder, own_name)
     try:
         try:
             write(temporary.handle)
@@ -207,11 +212,17 @@ def replace_atomically(
     temporary.finish(label)
 
 
-def move_into_place(tmp: Path, path: str | os.PathLike[str], label: str = "-o/--output") -> None:
+def move_into_place(
+    tmp: Path, path: str | os.PathLike[str], label: str = "-o/--output", own_name: bool = False
+) -> None:
     """The last step of every output: the finished temporary file ``tmp`` renamed to ``path`` (or to the
     target of a link there), which must be absent or a regular file (checked again now: a device or a
-    folder put there meanwhile is not renamed over). A failure is an :class:`OutputError` naming ``path``."""
-    target = output_target(path)
+    folder put there meanwhile is not renamed over). A failure is an :class:`OutputError` naming ``path``.
+    ``own_name``: a name flyopt made, where a link is refused (:func:`check_not_a_link`, again now) and the
+    rename never follows one (a link put there after the check is replaced, in its folder)."""
+    if own_name:
+        check_not_a_link(path, label)
+    target = Path(path) if own_name else output_target(path)
     _check_replaceable(target, path, label)
     try:
         os.replace(tmp, target)

@@ -44,7 +44,6 @@ from flyopt.outputs.files import (
     check_not_a_link,
     check_not_scene,
     output_error,
-    output_target,
 )
 from flyopt.outputs.quantities import COUNTS, INPUTS, has_unit
 
@@ -432,7 +431,7 @@ def _finish(
         return
     sidecar = sidecar_path(path)
     try:
-        side = Temporary(sidecar, folder)
+        side = Temporary(sidecar, folder, own_name=True)  # a name flyopt makes: never through a link
     except BaseException:
         table.discard()
         raise
@@ -441,7 +440,7 @@ def _finish(
         check_folder(path, label)
         check_not_a_link(sidecar, label)
         check_folder(sidecar, label)
-        written = output_target(sidecar)
+        written = sidecar
         side.finish(label)
     except BaseException:
         side.discard()
@@ -720,9 +719,8 @@ def _wrong_unit(metadata: Mapping[str, Any]) -> str:
         try:
             if dimension in OUTPUT_DIMENSIONS:  # a dimension only results have (an unbalance in kg*m): by pint
                 ureg = registry()
-                measures = (
-                    ureg.Quantity(1, unit).dimensionality
-                    == ureg.Quantity(1, OUTPUT_DIMENSIONS[dimension]).dimensionality
+                measures = (  # a unit alone (pint's Unit refuses a factor: "kg*m*0")
+                    ureg.Unit(unit).dimensionality == ureg.Unit(OUTPUT_DIMENSIONS[dimension]).dimensionality
                 )
             else:  # as the scene's fields read it (rpm, %)
                 if unit != "1":  # "1": a plain number
@@ -770,13 +768,16 @@ def results_columns(path: str | os.PathLike[str]) -> tuple[list[str], dict[str, 
     return columns, _metadata(read_input(sidecar, "", str(sidecar)), f"cannot read {sidecar}")
 
 
-def _parquet_bytes(path: Path, columns: Sequence[str]) -> int:
-    """The bytes a Parquet table's ``columns`` take read (numbers their width, text its characters), found from
-    the file's types and its text columns read dictionary-encoded: a word stored once in a dictionary is read
-    once for every row that names it.
+def _check_parquet_size(path: Path, columns: Sequence[str], name: str) -> None:
+    """Refuse a Parquet table whose ``columns`` (and its pandas index, which pandas reads with them) would take more
+    than :func:`flyopt.io.input_files.check_read_bytes` allows read: numbers their width; text its characters,
+    bounded first by the pages' uncompressed sizes (what reading them decompresses), then counted from the text
+    read dictionary-encoded (a word stored once in a dictionary is read once for every row that names it).
 
     Raises
     ------
+    SceneError
+        Naming the file: the bytes it would take and what is allowed.
     ValueError
         A column of a type no results table has (a list, a date), named as :func:`normalize` names a column
         not of its kind.
@@ -785,26 +786,38 @@ def _parquet_bytes(path: Path, columns: Sequence[str]) -> int:
     import pyarrow.compute as pc
     import pyarrow.parquet as pq
 
+    from flyopt.io.input_files import check_read_bytes
+
     stored = pq.ParquetFile(path)
-    rows, wanted, texts, total = stored.metadata.num_rows, set(columns), [], 0
-    for field in stored.schema_arrow:
+    schema, meta = stored.schema_arrow, stored.metadata
+    index = [c for c in (schema.pandas_metadata or {}).get("index_columns", []) if isinstance(c, str)]
+    wanted, rows, texts, fixed = {*columns, *index}, meta.num_rows, [], 0
+    is_view = getattr(pa.types, "is_string_view", lambda kind: False)
+    for field in schema:
         if field.name not in wanted:
             continue
         kind = field.type.value_type if pa.types.is_dictionary(field.type) else field.type
-        if pa.types.is_string(kind) or pa.types.is_large_string(kind):
+        if pa.types.is_string(kind) or pa.types.is_large_string(kind) or is_view(kind):
             texts.append(field.name)
         elif pa.types.is_integer(kind) or pa.types.is_floating(kind) or pa.types.is_boolean(kind):
-            total += rows * max(kind.bit_width // 8, 1)
+            fixed += rows * max(kind.bit_width // 8, 1)
         elif not pa.types.is_null(kind):
-            name = str(field.name)
-            raise ValueError(f"column {shorten(name)} must hold {_KIND_WORDS[_kind(name, None)]}: it is a {kind}")
-    if texts:  # the text as a dictionary and indices (as stored): a word's length counted for each index to it
+            column = str(field.name)
+            raise ValueError(f"column {shorten(column)} must hold {_KIND_WORDS[_kind(column, None)]}: it is a {kind}")
+    places = [j for j in range(meta.num_columns) if meta.schema.column(j).path in texts]
+    pages = sum(meta.row_group(g).column(j).total_uncompressed_size for g in range(meta.num_row_groups) for j in places)
+    check_read_bytes(fixed + pages, "", name)  # what reading the text decompresses, before any of it is read
+    total = fixed
+    if texts:  # the text as a dictionary and indices: a word's length counted for each index to it
         for column in pq.ParquetFile(path, read_dictionary=texts).read(columns=texts).columns:
             for chunk in column.chunks:
+                if not pa.types.is_dictionary(chunk.type):  # (a view type pyarrow reads as it is)
+                    total += int(pc.sum(pc.binary_length(chunk)).as_py() or 0)
+                    continue
                 lengths = pc.binary_length(chunk.dictionary).fill_null(0).to_numpy(zero_copy_only=False)
                 indices = chunk.indices.drop_null().to_numpy(zero_copy_only=False)
                 total += int(np.bincount(indices, minlength=len(lengths)).astype(np.int64) @ lengths)
-    return total
+    check_read_bytes(total, "", name)
 
 
 def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = None) -> pd.DataFrame:
@@ -828,9 +841,7 @@ def read_results(path: str | os.PathLike[str], columns: Sequence[str] | None = N
     path = Path(path)
     header, metadata = results_columns(path)
     if output_format(path) == "parquet":
-        from flyopt.io.input_files import check_read_bytes
-
-        check_read_bytes(_parquet_bytes(path, header if columns is None else columns), "", str(path))
+        _check_parquet_size(path, header if columns is None else columns, str(path))
         frame = pd.read_parquet(path, columns=columns)
     else:
         strings = [c for c in header if column_kind(c) == "str"]

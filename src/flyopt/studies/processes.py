@@ -6,6 +6,7 @@ with their parent even when it is killed.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import sys
@@ -112,9 +113,10 @@ def run_processes(
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
     module = getattr(task, "func", task).__module__
-    pool = ProcessPoolExecutor(
-        max_workers=n_workers, mp_context=_mp_context(module), initializer=_init_worker, initargs=(task,)
-    )
+    context = _mp_context(module)
+    # only a fork inherits this process's handlers; a forkserver started in a held block would hold them for good
+    hold = _held if context.get_start_method() == "fork" else contextlib.nullcontext
+    pool = ProcessPoolExecutor(max_workers=n_workers, mp_context=context, initializer=_init_worker, initargs=(task,))
     try:
         # a few chunks in flight per worker, not all: the results of chunks that finish
         # while this process saves others wait in memory, and a 10^6-point sweep's would pile up
@@ -122,7 +124,7 @@ def run_processes(
         running: set[Future[tuple[int, pd.DataFrame]]] = set()
         while True:
             for i, chunk in queue:
-                with _held():
+                with hold():
                     running.add(pool.submit(_run_in_worker, i, chunk))
                 if len(running) >= IN_FLIGHT_PER_WORKER * n_workers:
                     break

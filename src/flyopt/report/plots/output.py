@@ -43,8 +43,9 @@ def check_output(path: str | os.PathLike[str]) -> None:
     check_folder(path, "-o/--output")
 
 
-def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
-    """Write the Axes' figure to ``path`` (png, svg or pdf by suffix), atomically.
+def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150, own_name: bool = False) -> Path:
+    """Write the Axes' figure to ``path`` (png, svg or pdf by suffix), atomically (``own_name``: a name flyopt made
+    in the folder the user gave, never written through a link: :func:`flyopt.outputs.files.check_not_a_link`).
 
     Raises
     ------
@@ -61,7 +62,7 @@ def save(ax: Axes, path: str | os.PathLike[str], dpi: float = 150) -> Path:
     fig = standard.figure_of(ax)
     try:
         # into the handle of the file made for it (never reopened by its name); drawable: figure_class
-        write_atomically(path, lambda handle: fig.savefig(handle, format=suffix, dpi=dpi))
+        write_atomically(path, lambda handle: fig.savefig(handle, format=suffix, dpi=dpi), own_name=own_name)
     finally:
         standard.close(fig)
     return path
