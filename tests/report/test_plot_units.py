@@ -76,7 +76,7 @@ def test_plot_digits_reach_the_labels(monkeypatch, main_cli, tmp_path, capsys):
     """``flyopt plot --digits 6``: A_max 536.683 J written to six figures, as ``solve --digits 6`` writes it."""
     drawn = {}
 
-    def keep(ax, output):
+    def keep(ax, output, **options):
         drawn["ax"] = ax
 
     monkeypatch.setattr(plots, "save", keep)
