@@ -55,9 +55,10 @@ def _init_worker(task: Callable[[pd.DataFrame], pd.DataFrame]) -> None:
 
 class _held:
     """Hold SIGINT and SIGTERM in this thread while workers are forked (a pool forks them in its first
-    ``submit``): a fork inherits the parent's handlers, which turn both into a KeyboardInterrupt, so a Ctrl-C or
-    a ``kill`` in the moments before a worker's initializer ran printed the worker's traceback. Held, they wait
-    in the worker for its own handlers (:func:`_init_worker`), and in this process for the end of the block."""
+    ``submit``): a fork inherits the parent's handlers, which take both for a Ctrl-C, so a ``kill`` in the moments
+    before a worker's initializer ran was noted by the worker and forgotten (it went on with its chunk until the
+    command killed it 5 s later). Held, they wait in the worker for its own handlers (:func:`_init_worker`), and
+    in this process for the end of the block."""
 
     def __enter__(self) -> None:
         self.before = signal.pthread_sigmask(signal.SIG_BLOCK, HELD)
