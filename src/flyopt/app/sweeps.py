@@ -226,11 +226,10 @@ def plot_fields(frame: pd.DataFrame) -> list[str]:
 
 
 def plot_axes(frame: pd.DataFrame) -> list[str]:
-    """The varied fields the plot may draw along x: those of numbers (a text field, the material, is drawn as
-    one line per value instead: ``by``)."""
-    from pandas.api.types import is_numeric_dtype
+    """The varied fields the plot may draw along x (:func:`flyopt.report.plots.results.axis_fields`)."""
+    from flyopt.report.plots.results import axis_fields
 
-    return [f for f in plot_fields(frame) if is_numeric_dtype(frame[f].dtype)]
+    return axis_fields(frame)
 
 
 def plot_svg(frame: pd.DataFrame, x: str, y: str = "mass", by: str | None = None, units: str = "engineering") -> str:

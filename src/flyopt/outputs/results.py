@@ -747,10 +747,10 @@ def results_columns(path: str | os.PathLike[str]) -> tuple[list[str], dict[str, 
     if kind == "parquet":
         import pyarrow.parquet as pq
 
-        stored_table = pq.ParquetFile(path).metadata
-        check_rows(stored_table.num_rows, "", name)  # a small file may hold a billion rows
-        check_columns(stored_table.num_columns, "", name)
-        schema = pq.read_schema(path)
+        parquet = pq.ParquetFile(path)
+        check_rows(parquet.metadata.num_rows, "", name)  # a small file may hold a billion rows
+        check_columns(parquet.metadata.num_columns, "", name)
+        schema = parquet.schema_arrow
         columns = [str(c) for c in schema.empty_table().to_pandas().columns]  # as pandas names them (an index)
         stored = schema.metadata or {}
         if PARQUET_KEY not in stored:

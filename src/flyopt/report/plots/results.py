@@ -252,6 +252,12 @@ def varied_fields(frame: pd.DataFrame) -> list[str]:
     return [c for c in names if frame[c].nunique(dropna=True) > 1]
 
 
+def axis_fields(frame: pd.DataFrame) -> list[str]:
+    """The varied fields (:func:`varied_fields`) a sweep diagram may draw along x: those of numbers (a field of
+    names, the material, is drawn as one line per value instead)."""
+    return [f for f in varied_fields(frame) if _is_number(frame[f])]
+
+
 _NOT_DESIGNED = {
     "infeasible": ("x", "infeasible: no material and shaft can give J_F"),
     "failed": ("X", "failed: the solver did not converge"),
