@@ -360,7 +360,7 @@ def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):
 
     import pandas as pd
 
-    from flyopt.cli.plot import run_plot
+    from flyopt.cli.plot import add_plot_arguments, run_plot
     from flyopt.report import plots
 
     front = pd.DataFrame(
@@ -382,16 +382,9 @@ def test_pareto_plot_takes_the_second_objective_for_x(tmp_path, monkeypatch):
         return real(frame, x, y, ax, units, digits)
 
     monkeypatch.setattr(plots, "plot_pareto", spy)
-    args = argparse.Namespace(
-        scene=str(path),
-        what="pareto",
-        x=None,
-        y="mass",
-        by=None,
-        units="engineering",
-        digits=4,
-        output=str(tmp_path / "f.png"),
-    )
+    parser = argparse.ArgumentParser()
+    add_plot_arguments(parser)  # the command's own options and defaults
+    args = parser.parse_args([str(path), "--what", "pareto", "-o", str(tmp_path / "f.png")])
     assert run_plot(args) == 0
     assert seen == {"x": "delta", "y": "mass"}
 

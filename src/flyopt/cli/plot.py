@@ -43,7 +43,7 @@ def add_plot_arguments(parser: argparse.ArgumentParser) -> None:
         "--x",
         help="results: the column on the x axis (sweep: a varied field; pareto: default the front's second objective)",
     )
-    parser.add_argument("--y", default="mass", help="results: the column on the y axis (default mass)")
+    parser.add_argument("--y", help="results: the column on the y axis (default mass)")
     parser.add_argument("--by", help="sweep results: one line per value of this column (e.g. material)")
     parser.add_argument("--verify", action="store_true", help="speed: draw the periodic simulation over the model")
     parser.add_argument(
@@ -92,7 +92,12 @@ def run_plot(args: argparse.Namespace) -> int:
         return fail(f"--units: unknown unit system {args.units!r} (allowed: {', '.join(display.SYSTEMS)})", EXIT_INPUT)
     if args.scene.lower().endswith((".csv", ".parquet")):
         return _plot_results(args)
-    given = [f"--{name}" for name in ("x", "by") if getattr(args, name) is not None]
+    if args.verify and args.what not in ("speed", ALL):  # it would be ignored: only ω(φ) draws the simulation
+        return fail(
+            f"--verify: draws the periodic simulation on the speed diagram (--what speed or all), not on {args.what}",
+            EXIT_INPUT,
+        )
+    given = [f"--{name}" for name in ("x", "y", "by") if getattr(args, name) is not None]
     if given:  # a scene's diagram has its own axes: the options were ignored
         return fail(
             f"{' and '.join(given)}: choose the columns of a results table (flyopt sweep or pareto -o FILE.csv or "
@@ -272,19 +277,24 @@ def _plot_results(args):
         return fail(
             f"--what: {args.what!r} is not a diagram of results (known: {', '.join(plots.RESULT_PLOTS)})", EXIT_INPUT
         )
+    if args.verify:  # it would be ignored: a table of results has no simulation
+        return fail(
+            "--verify: draws the periodic simulation on a scene's speed diagram; a table of results has none",
+            EXIT_INPUT,
+        )
     plots.check_output(args.output)  # drawn from a table of results, whose suffix no diagram has
     try:
         columns, metadata = results_columns(args.scene)
     except (OSError, ValueError) as err:
         return fail(f"{args.scene}: cannot read the results: {err}", EXIT_INPUT)
-    x = args.x
+    x, y = args.x, args.y or "mass"
     if x is None and args.what == "pareto":
         # the objectives the front's file records (flyopt pareto writes them in its metadata);
         # a file written before they were recorded: its first two columns
         objectives = (metadata or {}).get("objectives") or plots.pareto_objectives(columns)
         x = objectives[1] if objectives else None
     try:  # only the columns the diagram reads: a large table's others are not read
-        wanted = plotted_columns(columns, metadata, args.what, x, args.y, args.by) if x is not None else None
+        wanted = plotted_columns(columns, metadata, args.what, x, y, args.by) if x is not None else None
     except ValueError:  # a column it does not have: read whole, the diagram names it (after an empty table's why)
         wanted = None
     try:
@@ -299,9 +309,9 @@ def _plot_results(args):
     units = args.units
     try:
         ax = (
-            plots.plot_sweep(frame, x, args.y, args.by, units=units, digits=args.digits)
+            plots.plot_sweep(frame, x, y, args.by, units=units, digits=args.digits)
             if args.what == "sweep"
-            else plots.plot_pareto(frame, x, args.y, units=units, digits=args.digits)
+            else plots.plot_pareto(frame, x, y, units=units, digits=args.digits)
         )
     except ValueError as err:
         return fail(f"{args.scene}: {err}", EXIT_INPUT)

@@ -152,7 +152,10 @@ def run_sweep(args: argparse.Namespace) -> int:
         "max_chunks": args.max_chunks,
     }
     cli = {key: value for key, value in cli.items() if value is not None}
-    check_options({**cli, "resume": args.resume, "output": cli.get("output", options.get("output"))}, "--")
+    output = cli.get("output", options.get("output"))
+    check_options({**cli, "resume": args.resume, "keep_parts": args.keep_parts, "output": output}, "--")
+    if args.max_chunks is not None and output is None:  # the chunks run would be printed nowhere, nor continued
+        raise SceneError("--max-chunks", "needs an output file (-o): the chunks it leaves are continued with --resume")
     vary = options.pop("vary")
     for path, values in vary_from_texts(scene, args.vary, "--vary").items():
         canonical = resolve_field(scene, path, "--vary")[0]

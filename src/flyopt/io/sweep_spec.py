@@ -316,7 +316,7 @@ def check_options(options: Mapping[str, Any], where: str = "sweep") -> None:
     options : mapping
         Keywords of :func:`flyopt.studies.sweep.sweep`: ``samples``, ``seed``,
         ``output``, ``chunk_size``, ``max_chunks``, ``method``, ``workers``,
-        ``resume``; absent or None means the default.
+        ``resume``, ``keep_parts``; absent or None means the default.
     where : str
         Where they come from, for messages (see :func:`option_label`).
 
@@ -348,6 +348,8 @@ def check_options(options: Mapping[str, Any], where: str = "sweep") -> None:
         output_format(output, option_label(where, "output"))
     if options.get("resume") and output is None:
         raise SceneError(option_label(where, "resume"), "needs an output file (its parts hold the finished chunks)")
+    if options.get("keep_parts") and output is None:  # there would be no parts to keep
+        raise SceneError(option_label(where, "keep_parts"), "needs an output file (its parts are OUTPUT.parts/)")
 
 
 # --------------------------------------------------------------------------

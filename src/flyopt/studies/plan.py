@@ -111,6 +111,12 @@ def plan_sweep(
     wheel_alone_only(scene, "a sweep")
     if seed is not None:
         seed = whole_number(seed, option_label(where, "seed"), OPTION_MINIMUMS["seed"], OPTION_MAXIMUMS["seed"])
+        if samples is None:  # it would be dropped: a grid has no randomness
+            raise SceneError(
+                option_label(where, "seed"),
+                f"seeds the Latin hypercube of {option_label(where, 'samples')}, which is not given: a grid has no "
+                "randomness (give the samples too, or leave the seed out)",
+            )
     if samples is not None:
         samples = whole_number(samples, option_label(where, "samples"), OPTION_MINIMUMS["samples"])
         if samples > MAX_POINTS:
@@ -119,8 +125,6 @@ def plan_sweep(
             )
         if seed is None:
             seed = _drawn_seed()
-    else:
-        seed = None  # a grid has no randomness
     axes = parse_vary(scene, vary, where=where, samples=samples, max_points=MAX_POINTS)
     if any(axis.field == "torque.scale" for axis in axes):
         from flyopt.io.sweep_spec import field_path

@@ -234,6 +234,7 @@ def sweep(
             method=method,
             workers=workers,
             resume=resume,
+            keep_parts=keep_parts,
         ),
         "--",
     )
