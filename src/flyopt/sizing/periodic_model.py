@@ -59,6 +59,18 @@ RELTOL = 1e-11
 ABSTOL = 1e-12
 """CVODES tolerances on the scaled energy y = (E − E_ref)/W_s, of order one."""
 
+MAX_STEPS = 20_000
+"""CVODES steps one piece of a periodic cycle may take. The problems, the hard cases and the golden results
+need under 1,000 (300 is too few for three of them); a trial that needs more is stiff beyond what a steady
+state needs (its speed near zero, or a motor geared so far down that its time constant is a millionth of the
+cycle) and counts as one that stalls, as a failed integration always has (:func:`flyopt.sizing.periodic`).
+With 200,000 such trials took seconds each, one after another: motor-press with its motor 1e5 times faster
+than the crank had not ended after ten minutes (tests/sizing/test_speed_stiff.py)."""
+
+MAX_STEPS_RUN_UP = 200_000
+"""CVODES steps one piece of a run-up (:mod:`flyopt.sizing.startup`) may take: from rest, where the speed
+starts at zero, the run-ups of the tests need over 1,000."""
+
 STILL = 1e-6
 """The speed, in parts of the cycle's starting speed √(2 E_ref/J), below which the torques are read at it: a
 machine that slow has stalled (a periodic speed that low would have δ within 2e-6 of 2). Below it ω = √(2E/J)
@@ -204,7 +216,7 @@ class PeriodicModel:
         opts = {
             "abstol": ABSTOL,
             "reltol": RELTOL,
-            "max_num_steps": 200000,
+            "max_num_steps": MAX_STEPS_RUN_UP if with_time else MAX_STEPS,
             "disable_internal_warnings": True,
             "print_stats": False,
             "verbose": False,
