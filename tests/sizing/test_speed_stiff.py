@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import PROBLEMS
+from conftest import PROBLEMS, run_flyopt
 from scipy.optimize import brentq
 
 import flyopt
@@ -194,3 +194,24 @@ def test_a_motor_geared_far_down_ends_in_seconds(tmp_path):
     # motor runs within 1e-5 of its synchronous 1500 rpm, so the crank at 1500 rpm / 1e5 = 0.015 rpm
     mean = next(line for line in run.stdout.splitlines() if line.strip().startswith("mean speed"))
     assert mean.split()[-2:] == ["0.015", "rpm"], mean
+
+
+def test_a_plateau_of_the_quasi_static_speed_is_placed_at_its_knot(tmp_path):
+    # motor-press with its motor 1e3 times the crank's speed: the crank turns once in some 40 s, the motor's
+    # slip follows the load, and no flywheel is needed, so the speed is the quasi-static one, M(φ, ω) = 0 at
+    # each angle. The load is 150 N*m on [0, 150) and (180, 360] deg and 9000 N*m on [165, 180], so the speed
+    # is highest on the first plateau and lowest on the second, each first reached at its knot: 0 and 165 deg.
+    # The maximum was read EDGE inside its piece, for the torque's side of the knot, and reported there:
+    # "ω_max / ω_min at 1.071e-09 / 165 deg".
+    text = (PROBLEMS / "motor-press.toml").read_text(encoding="utf-8")
+    path = tmp_path / "geared-down.toml"
+    path.write_text(text.replace("speed_ratio = 24.0", "speed_ratio = 1e3"), encoding="utf-8")
+    analysis = flyopt.solve(flyopt.load(path)).analysis
+    assert analysis.requirement.detail.limit == "none"
+    assert analysis.angle_omega_max == 0.0
+    assert analysis.angle_omega_min == pytest.approx(math.radians(165.0), rel=1e-15)
+    run = run_flyopt("solve", path)
+    assert run.returncode == 0, run.stderr
+    assert [line.split()[-4:] for line in run.stdout.splitlines() if "ω_max / ω_min at" in line] == [
+        ["0", "/", "165", "deg"]
+    ]

@@ -53,6 +53,7 @@ from flyopt.cycle.numerics import hermite_extremes
 from flyopt.errors import NonPeriodicCycle, SceneError, SolverFailed
 from flyopt.sizing import shooting
 from flyopt.sizing._numerics import (
+    EDGE,
     EPS,
     InertiaLike,
     NetTorqueLike,
@@ -1264,6 +1265,15 @@ def _balance_extreme(model, omega, sign, offset, zooms):
             best_phi, best = float(trial[k]), float(speeds[k])
         width = (b - a) / 32
         a, b = max(a, best_phi - width), min(b, best_phi + width)
+    # an extreme at a piece's end (a plateau of the speed begins or ends at a knot of the torque) is read
+    # EDGE inside the piece, for the torque's side of the knot; its angle is the knot's (it was printed as
+    # 1.071e-09 deg for a plateau that begins at 0)
+    start, end = (float(v) for v in model.pieces[i])
+    inside = 2 * EDGE * (end - start)
+    if best_phi - start <= inside:
+        best_phi = start
+    elif end - best_phi <= inside:
+        best_phi = end
     return best_phi, best
 
 
