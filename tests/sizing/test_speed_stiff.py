@@ -39,6 +39,19 @@ materials = ["cast_iron"]
 OMEGA = 20 * math.pi  # 600 rpm
 
 
+def _solve_in_a_process(path):
+    """``flyopt solve PATH`` in a process of its own, this checkout's flyopt: a CVODES call cannot be interrupted
+    from Python, so a hang is stopped from outside (120 s is a hang's timeout, not a speed target)."""
+    source = str(Path(flyopt.__file__).resolve().parents[1])
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [source, os.environ.get("PYTHONPATH")]))}
+    try:
+        return subprocess.run(
+            [sys.executable, "-m", "flyopt", "solve", str(path)], capture_output=True, text=True, env=env, timeout=120
+        )
+    except subprocess.TimeoutExpired:
+        pytest.fail("flyopt solve did not end within 120 s")
+
+
 def _scene(write_scene, load, inertia=""):
     return write_scene(SCENE.format(load=load, inertia=inertia))
 
@@ -107,14 +120,7 @@ def test_a_very_stiff_damper_ends_in_seconds(write_scene, inertia):
     # A separate process, since a CVODES call cannot be interrupted from Python; the timeout is a
     # hang's, not a speed target (the case takes 1-4 s).
     path = _scene(write_scene, f"1000 + 500*sin(phi) + 1e6*(omega - {OMEGA!r})", inertia)
-    source = str(Path(flyopt.__file__).resolve().parents[1])
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [source, os.environ.get("PYTHONPATH")]))}
-    try:
-        run = subprocess.run(
-            [sys.executable, "-m", "flyopt", "solve", str(path)], capture_output=True, text=True, env=env, timeout=120
-        )
-    except subprocess.TimeoutExpired:
-        pytest.fail("flyopt solve did not end within 120 s")
+    run = _solve_in_a_process(path)
     assert run.returncode == 0, run.stderr
     assert "Answer: no flywheel" in run.stdout
     # δ = 1000/(c ω_m), the quasi-static value, which a machine inertia of 1e-3 kg*m^2 changes by less
@@ -180,14 +186,7 @@ def test_a_motor_geared_far_down_ends_in_seconds(tmp_path):
     assert text.count("speed_ratio = 24.0") == 1
     path = tmp_path / "geared-down.toml"
     path.write_text(text.replace("speed_ratio = 24.0", "speed_ratio = 1e5"), encoding="utf-8")
-    source = str(Path(flyopt.__file__).resolve().parents[1])
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [source, os.environ.get("PYTHONPATH")]))}
-    try:
-        run = subprocess.run(
-            [sys.executable, "-m", "flyopt", "solve", str(path)], capture_output=True, text=True, env=env, timeout=120
-        )
-    except subprocess.TimeoutExpired:
-        pytest.fail("flyopt solve did not end within 120 s")
+    run = _solve_in_a_process(path)
     assert run.returncode == 0, run.stderr
     assert "Answer: no flywheel" in run.stdout
     # the crank's load, 742 N*m on average, is 0.008 N*m at the motor (1e5 times faster, 92 % efficient): the
