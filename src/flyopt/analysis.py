@@ -607,12 +607,16 @@ def startup_run(machine: Machine, omega_target: float, j_flywheel: float) -> Sta
 
     Induction motors use the Kloss curve here (the linear line is valid only
     near the rated point: at rest it would give 25 times the rated torque).
-    Returns None when no motor drives the machine.
+    Returns None when no motor drives the machine, and when there is nothing to run up: no flywheel (none
+    is needed) on a machine the scene gives no inertia (no J_c, no moving members, no rotor), whose run-up
+    takes no time (it was reported as "not reached: the total inertia at phi_start must be positive").
     """
     from flyopt.cycle.torque import MotorTorque
 
     motor = machine.driving if isinstance(machine.driving, MotorTorque) else None
     if motor is None:
+        return None
+    if j_flywheel <= 0 and not machine.variable_inertia and not float(machine.j_machine) > 0:
         return None
     from flyopt.errors import SolverFailed
     from flyopt.sizing.startup import startup_time  # CasADi, scipy.optimize: only with a motor

@@ -214,3 +214,21 @@ def test_a_plateau_of_the_quasi_static_speed_is_placed_at_its_knot(tmp_path):
     assert [line.split()[-4:] for line in run.stdout.splitlines() if "ω_max / ω_min at" in line] == [
         ["0", "/", "165", "deg"]
     ]
+
+
+def test_a_machine_with_no_inertia_to_run_up_reports_no_start_up(tmp_path):
+    # the same geared-down motor-press: no flywheel is needed, and the scene gives the machine and the motor no
+    # inertia, so there is nothing to run up (it takes no time). The text used to say "start-up  not reached:
+    # the total inertia at phi_start must be positive, got 0.0 kg*m^2", a message of the integrator's own.
+    text = (PROBLEMS / "motor-press.toml").read_text(encoding="utf-8")
+    assert "inertia" not in text.split("[design]")[0].replace("speed_ratio", "")
+    path = tmp_path / "geared-down.toml"
+    path.write_text(text.replace("speed_ratio = 24.0", "speed_ratio = 1e3"), encoding="utf-8")
+    solution = flyopt.solve(flyopt.load(path), extras=("startup",))
+    assert solution.design.status == "not_needed"
+    assert solution.analysis.startup is None
+    run = run_flyopt("solve", path)
+    assert run.returncode == 0, run.stderr
+    assert "start-up" not in run.stdout and "phi_start" not in run.stdout
+    shipped = flyopt.solve(flyopt.load(PROBLEMS / "motor-press.toml"), extras=("startup",)).analysis.startup
+    assert shipped is not None and shipped.time > 0  # with its flywheel, the run-up is still reported
