@@ -170,7 +170,7 @@ def test_the_analysis_keeps_a_run_ups_refusal_as_a_sentence(monkeypatch):
     monkeypatch.setattr(startup, "startup_time", refuse)
     monkeypatch.setattr(analysis, "_kloss_runup", lambda *args: None)  # the integration, not the closed form
     machine = reduce(flyopt.load(PROBLEMS / "motor-press.toml"))
-    run = analysis.startup_run(machine, 6.0, 0.0)
+    run = analysis.startup_run(machine, 6.0, 1.0)  # a flywheel to run up: the machine is given no inertia
     assert run is not None and run.time is None
     assert run.note == "the net torque at rest there is -10 N·m"
     assert said_text(run.note, "imperial") == "the net torque at rest there is -7.376 lbf·ft"

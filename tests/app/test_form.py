@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import html
 from pathlib import Path
 
 import pytest
@@ -187,3 +188,24 @@ def test_shafts_written_inline_are_refused_in_words_and_the_grid_shows_the_text_
     view._shaft_edited(None)
     assert written == [] and "written inline" in view.message.object
     assert view.shafts.value.astype(str).values.tolist() == [["motor", "1.0"]]
+
+
+@pytest.mark.filterwarnings("ignore:The inplace keyword:Warning")  # pandas 3.1's, inside Panel's Tabulator
+def test_the_materials_picker_shows_a_names_markup_as_text():
+    """An outside audit: a [[material]] named `<img src=x onerror=alert(document.domain)>` ran as script in the
+    page, because the form's materials picker (Choices.js) shows its labels as HTML. Its labels are escaped;
+    the values stay the names the scene writes."""
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    from flyopt.app.form_view import FormView
+
+    name = "<img src=x onerror=alert(document.domain)>"
+    text = (ROOT / "problems" / "shear-press.toml").read_text(encoding="utf-8")
+    assert "materials" not in text and text.count("[design]\n") == 1
+    text = text.replace("[design]\n", f'[design]\nmaterials = ["cast_iron", "{name}"]\n')
+    assert tomllib.loads(text)["design"]["materials"] == ["cast_iron", name]
+    view = FormView(pn, lambda: text, lambda _text: None, lambda: {"cast_iron": "cast iron", name: name})
+    view.show(text)
+    picker = view.widgets["design.materials"]
+    assert name in picker.options.values() and name in picker.value
+    assert all("<" not in label and ">" not in label for label in picker.options)
+    assert html.escape(name) in picker.options

@@ -229,3 +229,17 @@ def test_a_point_without_a_design_is_not_loaded():
         materials.point_changes(scene, front, 0)
     with pytest.raises(IndexError):
         materials.point_changes(scene, front, 3)
+
+
+def test_the_material_chart_draws_a_name_with_dollars_as_written():
+    """An outside audit: a material named `a$\\frac$b` ended the Compare-materials chart in mathtext's
+    ParseSyntaxException, since the chart's layout measured its labels before they were made drawable (the
+    design tab, the sweep and Pareto plots drew the name). The chart is drawn, and the name is in it."""
+    name = "a$\\frac$b"
+    table = pd.DataFrame(
+        {"material": ["cast_iron", name], "status": "designed", "mass": [1.0, 2.0], "d_outer": [0.3, 0.4]}
+        | {"cost": [1.0, 2.0]}
+    )
+    plain = materials.chart_svg(table.replace({name: "ab"}), "engineering")
+    svg = materials.chart_svg(table, "engineering")
+    assert svg.startswith("<svg") and svg != plain  # drawn, with the name's own glyphs (text is drawn as paths)

@@ -232,3 +232,19 @@ def test_a_machine_with_no_inertia_to_run_up_reports_no_start_up(tmp_path):
     assert "start-up" not in run.stdout and "phi_start" not in run.stdout
     shipped = flyopt.solve(flyopt.load(PROBLEMS / "motor-press.toml"), extras=("startup",)).analysis.startup
     assert shipped is not None and shipped.time > 0  # with its flywheel, the run-up is still reported
+
+
+def test_a_motors_mean_speed_does_not_depend_on_the_speed_the_scene_guesses(tmp_path):
+    # An outside audit: motor-press with `speed = "2000 rpm"` (the scene's speed is only the first guess of a
+    # motor's mean speed) ended in "math range error": the flywheel search's secant, on a δ nearly flat in
+    # J_F while its crossing was not bracketed, leaped to u = 1.3e11 and math.exp overflowed. The motor sets the
+    # mean speed, so the answer is the shipped scene's (60 rpm guessed), whatever the guess.
+    text = (PROBLEMS / "motor-press.toml").read_text(encoding="utf-8")
+    assert text.count('speed = "60 rpm"') == 1
+    path = tmp_path / "guessed-high.toml"
+    path.write_text(text.replace('speed = "60 rpm"', 'speed = "2000 rpm"'), encoding="utf-8")
+    guessed = flyopt.solve(flyopt.load(path))
+    shipped = flyopt.solve(flyopt.load(PROBLEMS / "motor-press.toml"))
+    assert guessed.design.status == "designed"
+    assert guessed.analysis.omega_mean == pytest.approx(shipped.analysis.omega_mean, rel=1e-9)
+    assert guessed.analysis.j_margin == pytest.approx(shipped.analysis.j_margin, rel=1e-8)

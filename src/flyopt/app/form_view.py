@@ -7,6 +7,7 @@ the editor (checked and solved there like a typed edit).
 
 from __future__ import annotations
 
+import html
 from collections.abc import Callable
 from typing import Any
 
@@ -97,6 +98,8 @@ class FormView:
                     names = {label: key for key, label in library.items()}
                     for key in shown[field.path]:
                         names.setdefault(key, key)
+                    # the picker (Choices.js) shows its labels as HTML: a material named with markup would run
+                    names = {html.escape(label): key for label, key in names.items()}
                     if widget.options != names:
                         widget.options = names
                     chosen = [k for k in shown[field.path] if k in names.values()]

@@ -234,7 +234,8 @@ def _chart_svg(designed: pd.DataFrame, units: str, names: dict[str, str] | None)
     from flyopt.report.html import svg_of
     from flyopt.report.plots import standard
 
-    labels = [(names or {}).get(m, m) for m in designed["material"]]
+    # drawable: tick labels are made from these at the layout, after make_drawable has seen the figure's texts
+    labels = [standard.drawable((names or {}).get(m, m)) for m in designed["material"]]
     figure = standard.figure_class()(figsize=(9, 2.8))
     axes = figure.subplots(1, len(CHART))
     for ax, column in zip(axes, CHART):

@@ -703,6 +703,11 @@ def _periodic_energy(shoot, e0, ftol, monotone, gain_at):
     raise failure
 
 
+OPEN_STEP = 4.0
+"""Largest step in u = log(J_F + min J_e) of the flywheel search's secant while δ's crossing is not yet bracketed
+(a factor of e^4, some 55, in the total inertia a trial)."""
+
+
 NARROW = 1e-3
 """Relative width of a bracket between a stall and a loss of energy below which :func:`_newton_energy` bisects
 it on the energy gained alone (``gain_at``)."""
@@ -992,6 +997,10 @@ def dynamic_requirement(
                 slope = -math.exp(u) / (math.exp(u) + max(j_mean - j_low, 0.0))
             previous = (u, f)
             u_next = u - f / slope if slope < 0 else math.nan
+            if math.isfinite(u_next) and not (math.isfinite(lo) and math.isfinite(hi)):
+                # a bracket still open: a secant on a δ nearly flat in J_F leaped to e^1.3e11 (an overflow); it
+                # moves at most OPEN_STEP in u a trial, as the expansion without it does
+                u_next = min(max(u_next, u - OPEN_STEP), u + OPEN_STEP)
             secant = math.isfinite(u_next) and lo < u_next < hi
             if not secant:
                 if math.isfinite(lo) and math.isfinite(hi):
