@@ -264,3 +264,24 @@ def test_the_wheels_drawing_and_solid_are_those_flyopt_export_writes(workspace, 
     assert list(workspace.folder.iterdir()) == [workspace.path]  # nothing left beside the scene
     conveyor = model.numbers((ROOT / "problems" / "conveyor.toml").read_text(encoding="utf-8"), workspace)
     assert model.made_bytes(conveyor, "pdf", workspace) is None  # no flywheel needed: nothing to draw
+
+
+def test_a_text_of_thousands_of_bad_keys_is_checked_at_once_and_listed_as_flyopt_check_lists_it():
+    """An outside audit: `check` placed each problem by scanning the text's keys again, so a text of 4,000
+    unknown keys took 61 s (quadratic) and the card listed all of them. The keys are scanned once and the
+    problems listed as `flyopt check` lists them: the first 100 in the file's order, then the rest counted."""
+    from flyopt.cli.scene import MAX_LISTED
+
+    text = (ROOT / "problems" / "shear-press.toml").read_text(encoding="utf-8")
+    text += "\n" + "\n".join(f"k{i} = {i}" for i in range(4000)) + "\n"
+    space = model.Workspace()
+    try:
+        checked = model.check(text, space)
+    finally:
+        space.close()
+    problems = checked.problems
+    assert len(problems) == MAX_LISTED + 1
+    assert problems[-1].message == f"{4000 - MAX_LISTED} more errors after these"
+    first = text.splitlines().index("k0 = 0") + 1
+    assert [p.line for p in problems[:MAX_LISTED]] == list(range(first, first + MAX_LISTED))
+    assert all(str(space.folder) not in p.message for p in problems)
