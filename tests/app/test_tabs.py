@@ -243,3 +243,19 @@ def test_the_material_chart_draws_a_name_with_dollars_as_written():
     plain = materials.chart_svg(table.replace({name: "ab"}), "engineering")
     svg = materials.chart_svg(table, "engineering")
     assert svg.startswith("<svg") and svg != plain  # drawn, with the name's own glyphs (text is drawn as paths)
+
+
+def test_a_grid_over_the_apps_limit_is_refused_before_it_is_made(monkeypatch, workspace):
+    """An outside audit: the form's plan made the whole grid (4000 x 4000 points: 3.4 s and 1 GB at each
+    keystroke) and only then refused its count. The axes' counts are now refused before any grid is made."""
+    from flyopt.studies import plan as plan_module
+
+    scene = sweeps.scene_copy(SHEAR.read_text(encoding="utf-8"), workspace)
+    big = [sweeps.Axis("speed", "1000", "2000", 4000, unit="rpm"), sweeps.Axis("delta", "0.01", "0.1", 4000)]
+
+    def no_grid(*args, **kwargs):
+        raise AssertionError("the grid was made")
+
+    monkeypatch.setattr(plan_module, "plan_sweep", no_grid)
+    with pytest.raises(SceneError, match=f"16,000,000 points: the app runs at most {sweeps.MAX_POINTS:,}"):
+        sweeps.plan(scene, big)

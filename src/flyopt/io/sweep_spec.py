@@ -260,6 +260,14 @@ def field_path(where: str, path: str) -> str:
 METHODS = ("auto", "closed_form", "ipopt")
 
 
+class TooManyPoints(SceneError):
+    """A range whose values would make a grid of more points than allowed (``points``), refused before they are made."""
+
+    def __init__(self, points: int, field: str, message: str, source: str | None = None) -> None:
+        self.points = points
+        super().__init__(field, message, source)
+
+
 def option_label(where: str, key: str) -> str:
     """The name of option ``key`` as the user wrote it.
 
@@ -506,7 +514,8 @@ def _parse_range(name, spec, text, label, sampled, cap=None):
     if n < 1:
         raise SceneError(label, f"{text!r}: the count must be at least 1")
     if cap is not None and n * cap[0] > cap[1]:  # (points of the fields before, most points)
-        raise SceneError(
+        raise TooManyPoints(
+            n * cap[0],
             label,
             f"{text!r}: {n} values make a grid of {n * cap[0]} points, "
             f"more than the {cap[1]} a sweep may have; use fewer values or "
