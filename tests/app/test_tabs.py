@@ -256,6 +256,6 @@ def test_a_grid_over_the_apps_limit_is_refused_before_it_is_made(monkeypatch, wo
     def no_grid(*args, **kwargs):
         raise AssertionError("the grid was made")
 
-    monkeypatch.setattr(plan_module, "plan_sweep", no_grid)
+    monkeypatch.setattr(plan_module.np, "meshgrid", no_grid)  # the grid's indices: made only under the cap
     with pytest.raises(SceneError, match=f"16,000,000 points: the app runs at most {sweeps.MAX_POINTS:,}"):
         sweeps.plan(scene, big)

@@ -24,7 +24,6 @@ the Parquet file and nowhere else. docs/flywheel-design.md §9 (studies).
 from __future__ import annotations
 
 import dataclasses
-import math
 import os
 import shutil
 import time
@@ -112,29 +111,20 @@ def plan(scene: Scene, axes: Sequence[Axis]) -> Plan:
         What ``flyopt sweep --vary`` says of the same texts, or more than :data:`MAX_POINTS` points.
     """
     from flyopt.errors import SceneError
-    from flyopt.io.sweep_spec import TooManyPoints, parse_vary, vary_from_texts
+    from flyopt.io.sweep_spec import TooManyPoints, vary_from_texts
     from flyopt.studies.plan import plan_sweep
 
     texts = tuple(vary_text(a) for a in axes if a.field.strip())
     if not texts:
         raise SceneError("--vary", "choose a field to vary")
     vary = vary_from_texts(scene, texts, "--vary")
-
-    def too_many(points: int) -> SceneError:
-        return SceneError(
+    try:  # refused from the axes' counts before any grid is made (a 4000 x 4000 grid was, at each keystroke)
+        points = len(plan_sweep(scene, vary, max_points=MAX_POINTS).points)
+    except TooManyPoints as err:  # in the app's words, pointing to the command line
+        raise SceneError(
             "--vary",
-            f"{points:,} points: the app runs at most {MAX_POINTS:,} (use flyopt sweep on the command line for more)",
-        )
-
-    # the axes alone first, their count refused before any grid is made: a 4000 x 4000 grid was made (3.4 s,
-    # 1 GB) at each keystroke of the form before its count was refused
-    try:
-        axes_read = parse_vary(scene, vary, where="--vary", max_points=MAX_POINTS)
-    except TooManyPoints as err:
-        raise too_many(err.points) from None
-    if math.prod(len(axis.values) for axis in axes_read) > MAX_POINTS:  # lists of values are not capped there
-        raise too_many(math.prod(len(axis.values) for axis in axes_read))
-    points = len(plan_sweep(scene, vary).points)  # its refusals, as flyopt sweep's, on at most MAX_POINTS points
+            f"{err.points:,} points: the app runs at most {MAX_POINTS:,} (use flyopt sweep on the command line for more)",
+        ) from None
     return Plan(texts, vary, points)
 
 

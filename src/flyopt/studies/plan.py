@@ -21,6 +21,7 @@ from flyopt.io.sweep_spec import (
     OPTION_MAXIMUMS,
     OPTION_MINIMUMS,
     SweepField,
+    TooManyPoints,
     option_label,
     parse_vary,
     whole_number,
@@ -67,6 +68,7 @@ def plan_sweep(
     samples: int | None = None,
     seed: int | None = None,
     where: str = "--vary",
+    max_points: int = MAX_POINTS,
 ) -> SweepPlan:
     """The points of a sweep: a full-factorial grid, or Latin hypercube samples.
 
@@ -84,6 +86,9 @@ def plan_sweep(
         Where ``vary`` comes from, for messages (``--vary``, ``sweep.vary``);
         ``samples`` and ``seed`` are named after it (``--samples``,
         ``sweep.samples``).
+    max_points : int
+        Most points a grid may have (:data:`MAX_POINTS`; the app's are fewer): more are refused by
+        :class:`~flyopt.io.sweep_spec.TooManyPoints`, which says how many, before the grid is made.
 
     Returns
     -------
@@ -93,7 +98,7 @@ def plan_sweep(
     ------
     SceneError
         Bad fields or values, a bad sample count or seed, more than
-        :data:`MAX_POINTS` points (refused before anything is allocated), or
+        ``max_points`` points (refused before anything is allocated), or
         points whose design settings are invalid (e.g. an H/B range with
         min > max).
 
@@ -125,7 +130,7 @@ def plan_sweep(
             )
         if seed is None:
             seed = _drawn_seed()
-    axes = parse_vary(scene, vary, where=where, samples=samples, max_points=MAX_POINTS)
+    axes = parse_vary(scene, vary, where=where, samples=samples, max_points=max_points)
     if any(axis.field == "torque.scale" for axis in axes):
         from flyopt.io.sweep_spec import field_path
         from flyopt.studies.points import check_scalable
@@ -153,10 +158,11 @@ def plan_sweep(
         n = samples
     else:
         n = math.prod(len(a.values) for a in axes)
-        if n > MAX_POINTS:
-            raise SceneError(
+        if n > max_points:  # before the grid is made
+            raise TooManyPoints(
+                n,
                 where,
-                f"the grid has {n} points, more than the {MAX_POINTS} a "
+                f"the grid has {n} points, more than the {max_points} a "
                 f"sweep may have; use fewer values or Latin hypercube samples",
             )
         columns = {}
