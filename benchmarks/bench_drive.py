@@ -92,7 +92,7 @@ def answers(variants):
         found[name] = {
             "motor": best["motor"]["name"],
             "motor_ratio": best["motor_ratio"],
-            "j_flywheel": best["j_flywheel"],
+            "j_flywheel": best["j_required"],  # the JSON names the drive's flywheel by what it is required to be
             "flywheel_ratio": best["flywheel_ratio"],
             "wheel_mass": best["wheel_mass"],
             "d_outer": wheel.get("d_outer"),
