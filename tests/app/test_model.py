@@ -90,6 +90,41 @@ def test_a_file_named_by_the_scene_is_not_read_outside_the_private_folder(worksp
         assert checked.scene is None and checked.problems, name
 
 
+def test_a_template_that_keeps_its_table_beside_it_solves_in_the_private_folder(workspace):
+    """four-stroke-engine-csv reads four-stroke-engine-torque.csv beside it: loaded in the app, its table comes
+    with it into the session's folder and the page's answer is flyopt solve's (it failed with "cannot read")."""
+    text = model.load_template("four-stroke-engine-csv", workspace)
+    assert text == (ROOT / "problems" / "four-stroke-engine-csv.toml").read_text(encoding="utf-8")
+    table = ROOT / "problems" / "four-stroke-engine-torque.csv"
+    assert (workspace.folder / table.name).read_bytes() == table.read_bytes()
+    checked = model.check(text, workspace)
+    assert checked.scene is not None, checked.problems
+    solved = run_flyopt("solve", ROOT / "problems" / "four-stroke-engine-csv.toml", "--json")
+    assert solved.returncode == 0, solved.stderr
+    answer = model.solve(text, workspace)
+    assert json.loads(answer.json)["design"]["mass"] == json.loads(solved.stdout)["design"]["mass"]
+    # a template that reads no file copies none
+    before = sorted(workspace.folder.iterdir())
+    model.load_template("shear-press", workspace)
+    assert sorted(workspace.folder.iterdir()) == before
+
+
+def test_a_missing_table_is_named_without_the_server_s_folder(workspace):
+    checked = model.check(model.template_text("four-stroke-engine-csv"), workspace)  # the table not copied
+    assert checked.scene is None
+    (problem,) = checked.problems
+    assert problem.field == "torque.driving.points_file" and problem.line == 22
+    assert "cannot read four-stroke-engine-torque.csv" in problem.message, problem.message
+    assert str(workspace.folder) not in problem.message and "flyopt-app-" not in problem.message
+
+
+def test_the_private_folder_takes_no_file_from_outside_it(workspace, tmp_path):
+    for name in ("../x.csv", str(tmp_path / "x.csv"), model.SCENE_NAME):
+        with pytest.raises(ValueError, match="not a name inside"):
+            workspace.add(name, b"0")
+    assert not (workspace.folder.parent / "x.csv").exists() and not (tmp_path / "x.csv").exists()
+
+
 def test_the_text_is_refused_over_the_size_limit(workspace):
     checked = model.check("#" * (model.MAX_BYTES + 1), workspace)
     assert checked.scene is None and "over 1 MB" in checked.problems[0].message

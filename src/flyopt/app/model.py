@@ -14,8 +14,10 @@ report's summary facts (:func:`flyopt.report.card.card_of`, the card a notebook 
 from __future__ import annotations
 
 import atexit
+import functools
 import hashlib
 import json
+import os
 import shutil
 import tempfile
 from collections.abc import Callable, Collection
@@ -24,6 +26,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
+from flyopt.app import address
 from flyopt.report.card import Row, card_of
 from flyopt.report.card import card_html as answer_card_html
 
@@ -35,9 +38,6 @@ if TYPE_CHECKING:
 #: The largest editor text or upload the app reads, in bytes (1 MB).
 MAX_BYTES = 1_000_000
 
-#: The addresses that serve this machine alone.
-LOOPBACK = frozenset({"127.0.0.1", "localhost", "::1"})
-
 #: Whether the page is served on this machine's loopback only (``flyopt app`` without ``--host``): set by
 #: :func:`serving`. Served beyond it, a visitor is not offered what would make the server reach out (a Dask
 #: scheduler: its messages are pickles, code on the server).
@@ -47,7 +47,7 @@ served_locally = True
 def serving(host: str) -> None:
     """Note the address the page is served on (:data:`served_locally`)."""
     global served_locally
-    served_locally = host in LOOPBACK
+    served_locally = address.local(host)
 
 
 #: The name the editor's text is written under, in its private folder.
@@ -80,6 +80,33 @@ def templates() -> dict[str, Path]:
 def template_text(name: str) -> str:
     """The text of the template ``name`` (a key of :func:`templates`); KeyError for any other name."""
     return templates()[name].read_text(encoding="utf-8")
+
+
+@functools.cache
+def template_files(name: str) -> tuple[tuple[str, Path], ...]:
+    """The data files the template ``name`` reads (a ``points_file``, a member's ``force_file``, ...), each as
+    (its name relative to the template's folder, its path): what flyopt's loader records reading it, so that
+    the shipped scenes that keep a table beside them (four-stroke-engine-csv) solve in a session's folder too.
+    Empty for a template that reads none, or that does not load (its text then says what is wrong)."""
+    from flyopt.errors import FlyoptError
+    from flyopt.io.scene import load
+
+    path = templates()[name]
+    try:
+        read = load(path).inputs
+    except FlyoptError:
+        return ()
+    folder = path.parent.resolve()
+    return tuple((Path(file).resolve().relative_to(folder).as_posix(), Path(file)) for _field, file in read)
+
+
+def load_template(name: str, workspace: Workspace) -> str:
+    """The text of the template ``name``, its data files copied into ``workspace`` under the names it gives
+    them; KeyError for a name not a template."""
+    text = template_text(name)
+    for relative, source in template_files(name):
+        workspace.add(relative, source.read_bytes())
+    return text
 
 
 def field_line(text: str, field_path: str) -> int | None:
@@ -159,6 +186,24 @@ class Workspace:
         self.path.write_text(text, encoding="utf-8")
         return self.path
 
+    def hide(self, message: str) -> str:
+        """``message`` without the server's folder, no business of the page's: the scene is :data:`SCENE_NAME`
+        and a file beside it its own name."""
+        message = message.replace(str(self.path), SCENE_NAME)
+        for folder in {str(self.folder), str(self.folder.resolve())}:
+            message = message.replace(folder + os.sep, "")
+        return message
+
+    def add(self, relative: str, data: bytes) -> Path:
+        """Write ``data`` as the file ``relative`` inside the folder (a template's table); ValueError for a name
+        that would leave it."""
+        path = (self.folder / relative).resolve()
+        if not path.is_relative_to(self.folder.resolve()) or path == self.path.resolve():
+            raise ValueError(f"{relative!r} is not a name inside the session's folder")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(data)
+        return path
+
     def close(self) -> None:
         """Remove the folder."""
         shutil.rmtree(self.folder, ignore_errors=True)
@@ -202,15 +247,14 @@ def check(text: str, workspace: Workspace) -> Checked:
         from flyopt.cli.scene import MAX_LISTED
 
         place = lines_of_fields(text)
-        hidden = str(workspace.path)  # the server's folder is no business of the page: the scene is SCENE_NAME
-        found = [Problem(field, message.replace(hidden, SCENE_NAME), place(field)) for field, message in errors]
+        found = [Problem(field, workspace.hide(message), place(field)) for field, message in errors]
         found.sort(key=lambda p: p.line or 0)
         if len(found) > MAX_LISTED:  # as flyopt check: the rest counted, not listed
             rest = len(found) - MAX_LISTED
             found = [*found[:MAX_LISTED], Problem("", f"{rest} more errors after these", found[MAX_LISTED].line)]
         checked.problems += found
     except (FlyoptError, ValueError) as err:  # a cycle that does not close, a number out of range
-        checked.problems.append(Problem("", str(err).replace(str(workspace.path), SCENE_NAME), None))
+        checked.problems.append(Problem("", workspace.hide(str(err)), None))
     return checked
 
 

@@ -23,7 +23,7 @@ from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from flyopt.app import model
+from flyopt.app import address, model
 
 #: The page's own pause after an edit before the text is checked and its numbers solved, in seconds. Panel
 #: already holds the editor's changes for 50 ms before the page sees them (its widgets' ``_debounce``): a pause
@@ -81,7 +81,7 @@ class Session:
         self.template = pn.widgets.Select(label="Template (problems/)", options=names, value=first or None, width=320)
         self.units = pn.widgets.Select(label="Units", options=["engineering", "si", "imperial"], value="engineering")
         self.editor = pn.widgets.CodeEditor(
-            value=model.template_text(first) if first else "",
+            value=model.load_template(first, self.workspace) if first else "",
             language="toml",
             # the text is read from value_input alone, which the browser sends on every change. With on_keyup the
             # browser sends value too, and Panel copies each value it receives into value_input: on a loaded host
@@ -232,7 +232,7 @@ class Session:
 
     def _load_template(self, event: Any) -> None:
         if event.new:
-            self.text = self.editor.value = model.template_text(event.new)
+            self.text = self.editor.value = model.load_template(event.new, self.workspace)
             asyncio.ensure_future(self._refresh(self.text, solve=None))
 
     def _edited(self, event: Any) -> None:
@@ -499,7 +499,7 @@ def serve(port: int, host: str, browser: bool) -> None:
             {"/": session},
             port=port,
             address=host,
-            websocket_origin=[f"{host}:{port}", f"localhost:{port}", f"127.0.0.1:{port}"],
+            websocket_origin=address.origins(host, port),
             show=browser,
             title="flyopt",
             websocket_max_message_size=4 * model.MAX_BYTES,

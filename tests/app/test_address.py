@@ -1,0 +1,91 @@
+"""``flyopt app --host``: which addresses are taken, which are this machine's alone, and the origins the
+server's websocket takes, each a value Bokeh's own list accepts (``::1`` and ``''`` used to stop the server
+with Bokeh's "Invalid host value" and "Empty host value", exit 1, after it said where it was serving)."""
+
+from __future__ import annotations
+
+import socket
+
+import pytest
+
+from flyopt.app import address
+
+
+@pytest.mark.parametrize("host", ["127.0.0.1", "0.0.0.0", "localhost", "127.0.0.2"])
+def test_an_ipv4_address_or_a_name_that_resolves_is_taken_as_written(host):
+    assert address.checked_host(host) == host
+
+
+@pytest.mark.parametrize(
+    ("text", "said"),
+    [
+        ("::1", "is an IPv6 address"),
+        ("[::1]", "is an IPv6 address"),
+        ("::", "is an IPv6 address"),
+        ("", "is not an address"),
+        ("no such host!", "is not an address"),
+        ("a..b", "is not an address"),
+        ("-x", "is not an address"),
+        ("x" * 64, "is not an address"),
+        ("http://localhost", "is not an address"),
+        ("nowhere.invalid", "names no address"),  # RFC 6761: .invalid never resolves
+    ],
+)
+def test_anything_else_is_refused_saying_what_is_allowed(text, said):
+    with pytest.raises(ValueError, match="^--host: ") as caught:
+        address.checked_host(text)
+    message = str(caught.value)
+    assert said in message and repr(text) in message and "127.0.0.1" in message and "\n" not in message
+
+
+@pytest.mark.parametrize(
+    ("host", "local"),
+    [("127.0.0.1", True), ("127.0.0.2", True), ("localhost", True), ("0.0.0.0", False), ("192.0.2.7", False)],
+)
+def test_only_the_loopback_serves_this_machine_alone(host, local):
+    assert address.local(host) is local
+
+
+def test_the_origins_are_the_served_address_and_the_loopback_names():
+    assert address.origins("127.0.0.1", 5006) == ["127.0.0.1:5006", "localhost:5006"]
+    assert address.origins("192.0.2.7", 80) == ["192.0.2.7:80", "localhost:80", "127.0.0.1:80"]
+
+
+def test_served_on_every_interface_the_machine_s_own_name_may_open_the_page():
+    found = address.origins("0.0.0.0", 5006)
+    assert found[:3] == ["0.0.0.0:5006", "localhost:5006", "127.0.0.1:5006"]
+    assert f"{socket.gethostname()}:5006" in found
+    assert all(item.count(":") == 1 for item in found)
+
+
+@pytest.mark.parametrize("host", ["127.0.0.1", "localhost", "0.0.0.0", "192.0.2.7"])
+def test_bokeh_takes_every_origin_given(host):
+    util = pytest.importorskip("bokeh.server.util", reason="the app extra (panel, bokeh) is not installed")
+    origins = address.origins(host, 5006)
+    assert util.create_hosts_allowlist(origins, 5006) == origins
+    assert util.check_allowlist(f"{host}:5006", origins)
+
+
+@pytest.mark.parametrize("host", ["::1", "", "no such host!"])
+def test_flyopt_app_refuses_a_bad_host_in_one_line_before_serving(host, monkeypatch, capsys):
+    pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    from flyopt.app import page
+    from flyopt.cli.main import main
+
+    monkeypatch.setattr(page, "serve", lambda *args: pytest.fail("served"))
+    assert main(["app", "--host", host, "--no-browser"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("flyopt: error: --host: ") and "Traceback" not in err
+
+
+def test_flyopt_app_serves_the_checked_host(monkeypatch, capsys):
+    pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    from flyopt.app import page
+    from flyopt.cli.main import main
+
+    served = []
+    monkeypatch.setattr(page, "serve", lambda *args: served.append(args))
+    assert main(["app", "--host", "0.0.0.0", "--port", "5123", "--no-browser"]) == 0
+    assert served == [(5123, "0.0.0.0", False)]
+    err = capsys.readouterr().err
+    assert "anyone who can reach this address" in err and "http://0.0.0.0:5123/" in err
