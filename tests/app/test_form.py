@@ -209,3 +209,80 @@ def test_the_materials_picker_shows_a_names_markup_as_text():
     assert name in picker.options.values() and name in picker.value
     assert all("<" not in label and ">" not in label for label in picker.options)
     assert html.escape(name) in picker.options
+
+
+def _table_view(pn, text, written):
+    from flyopt.app.form_view import FormView
+
+    view = FormView(pn, lambda: text, written.append, dict)
+    view.show(text)
+    assert view.table.value == "torque.resisting.points"
+    return view
+
+
+@pytest.mark.filterwarnings("ignore:The inplace keyword:Warning")  # pandas 3.1's, inside Panel's Tabulator
+def test_an_uploaded_file_is_named_in_what_is_said_of_it_and_empty_or_oversized_ones_are_refused():
+    """An outside audit: an empty file was ignored without a word; a file of any size was read (and parsed on
+    the server's event loop, which serves every session); a message named "the pasted rows", not the file."""
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    import asyncio
+    from types import SimpleNamespace
+
+    from flyopt.app.model import MAX_BYTES
+
+    written: list[str] = []
+    view = _table_view(pn, SHEAR, written)
+    view.upload.filename = "press-torque.csv"
+    for data, said in [
+        (b"", "press-torque.csv is empty"),
+        (b"0,1\n" * (MAX_BYTES // 4 + 1), "press-torque.csv is 1.0 MB, more than the 1 MB the app reads"),
+        (b"0,1\n\xff\xfe,2\n", "press-torque.csv is not UTF-8 text"),
+        (b"angle,torque\n0,1600\n45,x\n360,200\n", "press-torque.csv"),
+    ]:
+        asyncio.run(view._uploaded(SimpleNamespace(new=data)))
+        assert said in view.message.object and written == [], (said, view.message.object)
+    assert "line 3" in view.message.object  # the loader's reader names the wrong line
+    asyncio.run(view._uploaded(SimpleNamespace(new=b"angle,torque\n0,1600\n45,1600\n90,200\n360,200\n")))
+    assert view.message.object == "" and len(written) == 1
+    assert tomllib.loads(written[0])["torque"]["resisting"]["points"][1] == [45.0, 1600.0]
+
+
+@pytest.mark.filterwarnings("ignore:The inplace keyword:Warning")  # pandas 3.1's, inside Panel's Tabulator
+def test_pasted_rows_are_read_off_the_event_loop_and_a_table_too_long_for_the_app_is_refused_before_the_editor():
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    import asyncio
+    import threading
+
+    from flyopt.app.model import MAX_BYTES
+
+    written: list[str] = []
+    view = _table_view(pn, SHEAR, written)
+    # the browser's box keeps a paste up to its max_length and drops the rest silently (Panel's default 5,000
+    # characters cut a spreadsheet's 300th row): it keeps more than the app reads, so a cut paste is refused
+    assert view.paste.max_length > MAX_BYTES
+    threads = []
+    real = form.pasted_rows
+
+    def reading(*args):
+        threads.append(threading.current_thread())
+        return real(*args)
+
+    rows = "".join(f"{k * 360 / 44_999:.6f}\t{1600 if k < 5_625 else 200}\n" for k in range(45_000))
+    assert 5_000 < len(rows) < MAX_BYTES
+    view.paste.value = rows
+    try:
+        form.pasted_rows = reading
+        asyncio.run(view._paste_used(None))
+    finally:
+        form.pasted_rows = real
+    assert threads and threads[0] is not threading.main_thread()
+    # 45,000 rows read, but written inline they make the text over the app's limit: refused before the editor
+    assert written == [] and "text would be 1.1 MB" in view.message.object and "1 MB" in view.message.object
+    view.paste.value = "0\t" + "1" * MAX_BYTES  # a paste the box cut: over the limit, refused unread
+    asyncio.run(view._paste_used(None))
+    assert written == [] and "the pasted rows are over 1 MB" in view.message.object
+    view.paste.value = rows[: rows.index("\n", 6_000) + 1] + "360\t200\n"  # some 430 rows, over 5,000 characters
+    assert len(view.paste.value) > 5_000
+    asyncio.run(view._paste_used(None))
+    assert view.message.object == "" and len(written) == 1
+    assert len(tomllib.loads(written[0])["torque"]["resisting"]["points"]) == view.paste.value.count("\n")

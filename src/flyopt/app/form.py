@@ -208,8 +208,9 @@ def set_rows(text: str, path: str, rows: Sequence[Sequence[str]]) -> str:
     return set_value(text, path, _rows_literal(kept))
 
 
-def pasted_rows(pasted: str, path: str, units: tuple[str, str]) -> list[list[float]]:
-    """Rows pasted from a spreadsheet or a CSV file, read by the loader's CSV reader (its refusals, its limit).
+def pasted_rows(pasted: str, path: str, units: tuple[str, str], source: str = "the pasted rows") -> list[list[float]]:
+    """Rows pasted from a spreadsheet or a CSV file (``source`` names them in a message: the file's name), read by
+    the loader's CSV reader (its refusals, its limit).
 
     Tabs and semicolons separate columns as commas do; a first line naming the columns is skipped.
 
@@ -223,8 +224,8 @@ def pasted_rows(pasted: str, path: str, units: tuple[str, str]) -> list[list[flo
 
     text = pasted.replace("\r\n", "\n").replace("\t", ",").replace(";", ",")
     text = "\n".join(re.sub(r"\s*,\s*", ",", line.strip()) for line in text.split("\n"))
-    check_rows(text.count("\n") + 1, path, "the pasted rows")
-    numbers, _lines = read_csv(text, path, "the pasted rows", columns_of(path), units)
+    check_rows(text.count("\n") + 1, path, source)
+    numbers, _lines = read_csv(text, path, source, columns_of(path), units)
     return [[float(a), float(b)] for a, b in numbers]
 
 

@@ -7,11 +7,16 @@ the editor (checked and solved there like a typed edit).
 
 from __future__ import annotations
 
+import asyncio
 import html
 from collections.abc import Callable
 from typing import Any
 
 from flyopt.app import form
+from flyopt.app.model import MAX_BYTES
+
+#: How a limit of :data:`MAX_BYTES` reads in a message.
+LIMIT = f"{MAX_BYTES / 1e6:g} MB"
 
 #: The units offered for a pasted or uploaded table's columns (the loader knows many more; type them in the editor).
 ANGLE_UNITS = ("deg", "rad")
@@ -58,9 +63,13 @@ class FormView:
             placeholder="0\t1600\n45\t1600\n90\t200\n360\t200",
             height=110,
             sizing_mode="stretch_width",
+            # the browser's box keeps this many characters of a paste and drops the rest without a word (Panel's
+            # default, 5,000, cut a spreadsheet's 300th row mid-number): one more than the app reads, so that a
+            # paste it cut is always over the limit and refused, never read short
+            max_length=MAX_BYTES + 1,
         )
         self.use_paste = pn.widgets.Button(label="Use the pasted rows", color="default")
-        self.use_paste.on_click(lambda _event: self._take_rows(self.paste.value or ""))
+        self.use_paste.on_click(self._paste_used)
         self.upload = pn.widgets.FileInput(accept=".csv,.txt", multiple=False)
         self.upload.param.watch(self._uploaded, "value")
         self.message = pn.pane.HTML("", sizing_mode="stretch_width")
@@ -177,16 +186,40 @@ class FormView:
         rows = self.shafts.value.astype(str).values.tolist()
         self._write(lambda text: form.set_shafts(text, rows))
 
-    def _uploaded(self, event: Any) -> None:
-        if event.new:
-            try:
-                pasted = bytes(event.new).decode("utf-8-sig")
-            except UnicodeDecodeError:
-                self._say("the file is not UTF-8 text: a CSV of two columns of numbers is expected")
-                return
-            self._take_rows(pasted)
+    async def _paste_used(self, _event: Any) -> None:
+        pasted = self.paste.value or ""
+        if len(pasted.encode("utf-8")) > MAX_BYTES:
+            self._say(
+                f"the pasted rows are over {LIMIT}, more than the app reads: solve so long a table by flyopt "
+                "solve, from a CSV file beside the scene (points_file)"
+            )
+            return
+        await self._take_rows(pasted, "the pasted rows")
 
-    def _take_rows(self, pasted: str) -> None:
+    async def _uploaded(self, event: Any) -> None:
+        if event.new is None:
+            return
+        name = self.upload.filename or "the file"
+        data = bytes(event.new)
+        if not data:
+            self._say(f"{name} is empty: a CSV of two columns of numbers is expected")
+            return
+        if len(data) > MAX_BYTES:
+            self._say(
+                f"{name} is {len(data) / 1e6:.1f} MB, more than the {LIMIT} the app reads: solve so long a "
+                "table by flyopt solve, from a CSV file beside the scene (points_file)"
+            )
+            return
+        try:
+            pasted = data.decode("utf-8-sig")
+        except UnicodeDecodeError:
+            self._say(f"{name} is not UTF-8 text: a CSV of two columns of numbers is expected")
+            return
+        await self._take_rows(pasted, name)
+
+    async def _take_rows(self, pasted: str, source: str) -> None:
+        """Read the rows (a megabyte takes some 0.2 s: in a worker thread, not on the server's event loop, which
+        serves every session) and write them into the table the grid shows."""
         from flyopt.errors import SceneError
 
         path = self.table.value
@@ -195,7 +228,9 @@ class FormView:
             return
         units = (self.angle_unit.value, self.value_unit.value)
         try:
-            numbers = form.pasted_rows(pasted, path, units)
+            numbers = await asyncio.get_running_loop().run_in_executor(
+                None, form.pasted_rows, pasted, path, units, source
+            )
         except SceneError as err:
             self._say(f"{err.field}: {err.message}")
             return
@@ -207,6 +242,14 @@ class FormView:
         except KeyError as err:
             self._say(str(err.args[0]) if err.args else "that field cannot be set from the form")
             self.show(self.read())  # the widgets back to what the text says: the refused change is not shown
+            return
+        size = len(text.encode("utf-8"))
+        if size > MAX_BYTES:  # refused here, before the editor (and the browser) is sent a text it cannot send back
+            self._say(
+                f"with this the scene's text would be {size / 1e6:.1f} MB, more than the {LIMIT} the app "
+                "reads: solve so long a table by flyopt solve, from a CSV file beside the scene (points_file)"
+            )
+            self.show(self.read())
             return
         self._say("")
         self.write(text)

@@ -32,6 +32,13 @@ from flyopt.app import address, model
 #: run drops their answer.
 DEBOUNCE = 0.0
 
+#: What the page says when its connection to the server is lost (the server stopped, or a message over the
+#: websocket's limit of 4 x :data:`flyopt.app.model.MAX_BYTES` closed it): its answer is no longer kept current.
+DISCONNECTED = (
+    "The connection to flyopt was lost (the server stopped, or the page sent more than it takes: a scene text "
+    f"or a file over {model.MAX_BYTES // 1_000_000} MB is refused). Reload the page; what is shown is not current."
+)
+
 #: The template shown first.
 FIRST = "shear-press"
 
@@ -491,7 +498,14 @@ def serve(port: int, host: str, browser: bool) -> None:
     loop = asyncio.new_event_loop()
     asyncio.set_event_loop(loop)
     loop.set_exception_handler(closed_connection_handler)
-    pn.extension("codeeditor", raw_css=[CSS])
+    pn.extension(
+        "codeeditor",
+        raw_css=[CSS],
+        # a message over the websocket's limit (an editor's text or a file of some 3 MB and more) closes the
+        # connection; the page then said nothing and went on showing its last answer as if current
+        notifications=True,
+        disconnect_notification=DISCONNECTED,
+    )
     # SIGTERM stops the server as Ctrl-C does (Panel's own SIGINT handler), so that it returns here
     signal.signal(signal.SIGTERM, sigterm_as_ctrl_c)
     try:
