@@ -89,3 +89,49 @@ def test_flyopt_app_serves_the_checked_host(monkeypatch, capsys):
     assert served == [(5123, "0.0.0.0", False)]
     err = capsys.readouterr().err
     assert "anyone who can reach this address" in err and "http://0.0.0.0:5123/" in err
+
+
+SERVED = address.origins("127.0.0.1", 5006)
+TYPED = {"Host": "127.0.0.1:5006", "Sec-Fetch-Site": "none", "Sec-Fetch-Mode": "navigate", "Sec-Fetch-Dest": "document"}
+
+
+@pytest.mark.parametrize(
+    "headers",
+    [
+        TYPED,  # the address typed, or opened by flyopt app
+        {**TYPED, "Sec-Fetch-Site": "same-origin"},  # reloaded
+        {**TYPED, "Host": "localhost:5006"},
+        {**TYPED, "Sec-Fetch-Site": "cross-site", "Sec-Fetch-User": "?1"},  # a link on another page, clicked
+        {"host": "127.0.0.1:5006"},  # a script or curl: no Sec-Fetch-* headers
+        {},
+    ],
+)
+def test_a_page_the_user_opens_builds_a_session(headers):
+    assert address.refused_request(headers, SERVED) is None
+
+
+@pytest.mark.parametrize(
+    ("headers", "said"),
+    [
+        ({**TYPED, "Host": "attacker.example:5006"}, "not attacker.example:5006"),  # DNS rebinding
+        ({**TYPED, "Host": "attacker.example"}, "not attacker.example"),
+        ({"Host": "127.0.0.1:5006", "Sec-Fetch-Site": "cross-site", "Sec-Fetch-Dest": "image"}, "another site"),
+        ({**TYPED, "Sec-Fetch-Site": "cross-site"}, "another site"),  # navigated by a script, no click
+        ({**TYPED, "Sec-Fetch-Site": "same-site", "Sec-Fetch-Dest": "iframe", "Sec-Fetch-User": "?1"}, "another"),
+    ],
+)
+def test_a_request_another_site_made_builds_none(headers, said):
+    refused = address.refused_request(headers, SERVED)
+    assert refused is not None and said in refused
+
+
+def test_the_server_refuses_another_site_s_request_without_building_a_session(monkeypatch):
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    from flyopt.app import page
+
+    built = []
+    monkeypatch.setattr(page, "SERVED_AS", SERVED)
+    monkeypatch.setattr(page, "Session", lambda pn: built.append(pn))
+    monkeypatch.setattr(type(pn.state), "headers", property(lambda _self: {"Host": "attacker.example:5006"}))
+    shown = page.session()
+    assert built == [] and "not attacker.example:5006" in shown.object

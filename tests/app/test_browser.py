@@ -351,3 +351,66 @@ def test_clicking_a_pareto_point_loads_its_design_into_the_editor(server, browse
     assert display.quantity_text(float(row["d_outer"]), "length", "engineering") in answer.inner_text()
     shot(page, "9-pareto-loaded")
     page.close()
+
+
+@pytest.mark.slow  # 10 s with its own server; the rule is checked without a browser in test_address.py by default
+def test_another_site_s_page_cannot_make_the_browser_build_sessions(browser, tmp_path):
+    """An outside audit: every request for the page built a whole session (its widgets, its private folder),
+    so any page the user visited could make the browser build them by the dozen (``<img src=...>``, an iframe,
+    a fetch). Now only a page the user opens builds one (flyopt.app.address.refused_request)."""
+    import threading
+    from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+
+    temporary = tmp_path / "tmp"
+    temporary.mkdir()
+    with served(temporary) as (url, _):
+        body = "".join(f'<img src="{url}?{k}">' for k in range(5)) + f'<iframe src="{url}"></iframe>'
+        body += f"<script>fetch('{url}', {{mode: 'no-cors'}}).finally(() => document.title = 'fetched')</script>"
+
+        class Elsewhere(BaseHTTPRequestHandler):
+            def do_GET(self):  # noqa: N802 (http.server's name)
+                self.send_response(200)
+                self.send_header("Content-Type", "text/html")
+                self.end_headers()
+                self.wfile.write(body.encode())
+
+            def log_message(self, *args):
+                pass
+
+        # another site on this machine: localhost is not 127.0.0.1 (Chromium's local-network checks block a
+        # public page's requests to the loopback on their own; Firefox's do not)
+        elsewhere = ThreadingHTTPServer(("127.0.0.1", 0), Elsewhere)
+        threading.Thread(target=elsewhere.serve_forever, daemon=True).start()
+
+        def sessions():  # one private folder a session
+            return len(list(temporary.glob("flyopt-app-*")))
+
+        try:
+            page = browser.new_page()
+            assert sessions() == 1  # the served() helper's own first request: a script's, without Sec-Fetch-*
+            asked = []
+
+            def ended(request):
+                if request.url.split("?")[0] == url:
+                    asked.append((request.url, request.failure))
+
+            page.on("requestfinished", ended)
+            page.on("requestfailed", ended)
+            page.goto(f"http://localhost:{elsewhere.server_address[1]}/")
+            page.wait_for_function("document.title == 'fetched'", timeout=60_000)
+            page.wait_for_function("Array.from(document.images).every(i => i.complete)", timeout=60_000)
+            for _ in range(600):
+                if len(asked) >= 7:
+                    break
+                page.wait_for_timeout(50)
+            # each reached the server (the browser then blocked an image's HTML from the page: ORB), none was
+            # stopped by Chromium's own local-network checks
+            assert len(asked) == 7 and not any("LOCAL_NETWORK" in str(failure) for _, failure in asked), asked
+            assert sessions() == 1
+        finally:
+            elsewhere.shutdown()
+            elsewhere.server_close()
+        page.goto(url, timeout=120_000)  # the user opens it: a session, as before
+        page.wait_for_selector(".card >> text=designed", timeout=120_000)
+        assert sessions() == 2
+        page.close()

@@ -1,5 +1,5 @@
-"""The address the app is served on: which ``--host`` is taken, whether it is this machine's alone, and the
-origins whose pages may open the app's websocket.
+"""The address the app is served on: which ``--host`` is taken, whether it is this machine's alone, the
+origins whose pages may open the app's websocket, and which requests for the page build a session.
 
 Standard library only: ``flyopt app`` checks its options with it before Panel is imported. Every command's
 parser reads :data:`DEFAULT`, so ``ipaddress`` and ``socket`` are imported where they are used.
@@ -8,6 +8,8 @@ parser reads :data:`DEFAULT`, so ``ipaddress`` and ``socket`` are imported where
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 #: The address served unless ``--host`` says otherwise.
 DEFAULT = "127.0.0.1"
@@ -74,3 +76,29 @@ def origins(host: str, port: int) -> list[str]:
             except OSError:
                 continue
     return list(dict.fromkeys(f"{name}:{port}" for name in names if name and ":" not in name))
+
+
+def refused_request(headers: Mapping[str, Any], allowed: Sequence[str]) -> str | None:
+    """Why the page's request with ``headers`` builds no session, or None for one that may.
+
+    Every request for the page builds a whole session (its widgets, its private folder). A page of another
+    site could make the user's browser ask for it many times (``<img src="http://127.0.0.1:5006/">``), and a
+    name of another site's pointed at this machine (DNS rebinding) could load it. So a request is refused when
+    its ``Host`` is not one of ``allowed`` (:func:`origins`), and when the browser says it comes from another
+    site (``Sec-Fetch-Site``) other than as a page the user opened by a click (a navigation to a document with
+    ``Sec-Fetch-User``). A client that sends no ``Sec-Fetch-*`` headers (a script, curl) is not a browser led by
+    another site, and is let in as before.
+    """
+    named = {str(key).lower(): str(value) for key, value in headers.items()}
+    host = named.get("host")
+    if host is not None and (host if ":" in host else f"{host}:80").lower() not in {a.lower() for a in allowed}:
+        return f"this app is served as {allowed[0]}, not {host}"
+    site = named.get("sec-fetch-site", "none")
+    if site in ("none", "same-origin"):
+        return None
+    opened = (
+        named.get("sec-fetch-mode") == "navigate"
+        and named.get("sec-fetch-dest") == "document"
+        and named.get("sec-fetch-user") == "?1"
+    )
+    return None if opened else "a page of another site asked for this app: open it yourself"

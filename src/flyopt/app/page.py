@@ -64,10 +64,21 @@ CSS = """
 """
 
 
+#: The ``host:port`` the page is served as (:func:`flyopt.app.address.origins`), set by :func:`serve`: a request
+#: for the page names one of them, or builds no session (:func:`flyopt.app.address.refused_request`).
+SERVED_AS: list[str] = []
+
+
 def session() -> Any:
-    """One browser session's page (Panel calls this once per visitor)."""
+    """One browser session's page (Panel calls this once per visitor); a line saying why for a request that
+    builds none (one another site's page made)."""
+    import html
+
     import panel as pn
 
+    refused = address.refused_request(pn.state.headers, SERVED_AS) if SERVED_AS else None
+    if refused is not None:
+        return pn.pane.HTML(f"<p>flyopt: {html.escape(refused)}</p>")
     return Session(pn).layout
 
 
@@ -494,6 +505,7 @@ def serve(port: int, host: str, browser: bool) -> None:
     from flyopt.cli.exits import sigterm_as_ctrl_c
 
     model.serving(host)
+    SERVED_AS[:] = address.origins(host, port)
     # the loop the server runs on (Tornado's IOLoop.current() wraps this thread's asyncio loop)
     loop = asyncio.new_event_loop()
     asyncio.set_event_loop(loop)
@@ -513,7 +525,7 @@ def serve(port: int, host: str, browser: bool) -> None:
             {"/": session},
             port=port,
             address=host,
-            websocket_origin=address.origins(host, port),
+            websocket_origin=list(SERVED_AS),
             show=browser,
             title="flyopt",
             websocket_max_message_size=4 * model.MAX_BYTES,
