@@ -29,6 +29,8 @@ def test_an_ipv4_address_or_a_name_that_resolves_is_taken_as_written(host):
         ("x" * 64, "is not an address"),
         ("http://localhost", "is not an address"),
         ("nowhere.invalid", "names no address"),  # RFC 6761: .invalid never resolves
+        ("127.1", "write an IPv4 address in full"),  # the C library's short form, taken as a name
+        ("0", "write an IPv4 address in full"),
     ],
 )
 def test_anything_else_is_refused_saying_what_is_allowed(text, said):
@@ -36,6 +38,11 @@ def test_anything_else_is_refused_saying_what_is_allowed(text, said):
         address.checked_host(text)
     message = str(caught.value)
     assert said in message and repr(text) in message and "127.0.0.1" in message and "\n" not in message
+
+
+def test_a_name_is_taken_in_lower_case():
+    assert address.checked_host("LOCALHOST") == "localhost"
+    assert address.local(address.checked_host("LocalHost"))
 
 
 @pytest.mark.parametrize(
@@ -49,13 +56,6 @@ def test_only_the_loopback_serves_this_machine_alone(host, local):
 def test_the_origins_are_the_served_address_and_the_loopback_names():
     assert address.origins("127.0.0.1", 5006) == ["127.0.0.1:5006", "localhost:5006"]
     assert address.origins("192.0.2.7", 80) == ["192.0.2.7:80", "localhost:80", "127.0.0.1:80"]
-
-
-def test_served_on_every_interface_the_machine_s_own_name_may_open_the_page():
-    found = address.origins("0.0.0.0", 5006)
-    assert found[:3] == ["0.0.0.0:5006", "localhost:5006", "127.0.0.1:5006"]
-    assert f"{socket.gethostname()}:5006" in found
-    assert all(item.count(":") == 1 for item in found)
 
 
 @pytest.mark.parametrize("host", ["127.0.0.1", "localhost", "0.0.0.0", "192.0.2.7"])
@@ -91,8 +91,12 @@ def test_flyopt_app_serves_the_checked_host(monkeypatch, capsys):
     assert "anyone who can reach this address" in err and "http://0.0.0.0:5123/" in err
 
 
-SERVED = address.origins("127.0.0.1", 5006)
+SERVED = address.served_names("127.0.0.1")
 TYPED = {"Host": "127.0.0.1:5006", "Sec-Fetch-Site": "none", "Sec-Fetch-Mode": "navigate", "Sec-Fetch-Dest": "document"}
+
+
+def test_the_served_names_are_the_host_and_this_machine_s_own():
+    assert address.served_names("Workstation.LAN") >= {"workstation.lan", socket.gethostname().lower()}
 
 
 @pytest.mark.parametrize(
@@ -101,6 +105,12 @@ TYPED = {"Host": "127.0.0.1:5006", "Sec-Fetch-Site": "none", "Sec-Fetch-Mode": "
         TYPED,  # the address typed, or opened by flyopt app
         {**TYPED, "Sec-Fetch-Site": "same-origin"},  # reloaded
         {**TYPED, "Host": "localhost:5006"},
+        {**TYPED, "Host": "LOCALHOST:5006"},
+        {**TYPED, "Host": "localhost:8080"},  # a port forward (ssh -L, docker -p): any port
+        {**TYPED, "Host": "192.0.2.7:5006"},  # served on 0.0.0.0, opened by the machine's LAN address
+        {**TYPED, "Host": f"{socket.gethostname()}:5006"},  # ... or by its name
+        {**TYPED, "Host": "[::1]:5006"},
+        {**TYPED, "Host": "127.0.0.1"},  # port 80
         {**TYPED, "Sec-Fetch-Site": "cross-site", "Sec-Fetch-User": "?1"},  # a link on another page, clicked
         {"host": "127.0.0.1:5006"},  # a script or curl: no Sec-Fetch-* headers
         {},
@@ -113,8 +123,9 @@ def test_a_page_the_user_opens_builds_a_session(headers):
 @pytest.mark.parametrize(
     ("headers", "said"),
     [
-        ({**TYPED, "Host": "attacker.example:5006"}, "not attacker.example:5006"),  # DNS rebinding
-        ({**TYPED, "Host": "attacker.example"}, "not attacker.example"),
+        ({**TYPED, "Host": "attacker.example:5006"}, "not served as attacker.example:5006"),  # DNS rebinding
+        ({**TYPED, "Host": "attacker.example"}, "not served as attacker.example"),
+        ({**TYPED, "Host": "127.0.0.1.attacker.example:5006"}, "not served as"),
         ({"Host": "127.0.0.1:5006", "Sec-Fetch-Site": "cross-site", "Sec-Fetch-Dest": "image"}, "another site"),
         ({**TYPED, "Sec-Fetch-Site": "cross-site"}, "another site"),  # navigated by a script, no click
         ({**TYPED, "Sec-Fetch-Site": "same-site", "Sec-Fetch-Dest": "iframe", "Sec-Fetch-User": "?1"}, "another"),
@@ -130,8 +141,37 @@ def test_the_server_refuses_another_site_s_request_without_building_a_session(mo
     from flyopt.app import page
 
     built = []
-    monkeypatch.setattr(page, "SERVED_AS", SERVED)
+    monkeypatch.setattr(page, "SERVED_NAMES", set(SERVED))
     monkeypatch.setattr(page, "Session", lambda pn: built.append(pn))
     monkeypatch.setattr(type(pn.state), "headers", property(lambda _self: {"Host": "attacker.example:5006"}))
     shown = page.session()
-    assert built == [] and "not attacker.example:5006" in shown.object
+    assert built == [] and "not served as attacker.example:5006" in shown.object
+
+
+def test_the_sessions_are_signed_so_that_a_script_cannot_forge_the_headers_they_carry(monkeypatch):
+    """Bokeh puts the page request's headers into the session's token, and the session reads them from there:
+    an unsigned token a rebound name's script wrote, naming Host 127.0.0.1, built a whole session."""
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    import asyncio
+    import signal
+
+    from flyopt.app import model, page
+
+    given = {}
+    monkeypatch.setattr(pn, "serve", lambda *args, **kwargs: given.update(kwargs))
+    monkeypatch.setattr(pn, "extension", lambda *args, **kwargs: None)
+    monkeypatch.setattr(model, "serving", lambda host: None)
+    monkeypatch.setattr(model, "close_workspaces", lambda: None)
+    previous = signal.getsignal(signal.SIGTERM)
+    try:
+        page.serve(0, "127.0.0.1", browser=False)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        loop = asyncio.get_event_loop()
+        asyncio.set_event_loop(None)
+        loop.close()
+    assert given["sign_sessions"] is True and len(given["secret_key"]) >= 32
+    from bokeh.util.token import check_token_signature, generate_jwt_token, generate_session_id
+
+    forged = generate_jwt_token(generate_session_id(), signed=False, extra_payload={"headers": {"Host": "x"}})
+    assert not check_token_signature(forged, secret_key=given["secret_key"].encode(), signed=True)

@@ -221,30 +221,69 @@ def _table_view(pn, text, written):
 
 
 @pytest.mark.filterwarnings("ignore:The inplace keyword:Warning")  # pandas 3.1's, inside Panel's Tabulator
-def test_an_uploaded_file_is_named_in_what_is_said_of_it_and_empty_or_oversized_ones_are_refused():
+def test_an_uploaded_file_is_named_in_what_is_said_of_it_and_empty_or_oversized_ones_are_refused(monkeypatch):
     """An outside audit: an empty file was ignored without a word; a file of any size was read (and parsed on
-    the server's event loop, which serves every session); a message named "the pasted rows", not the file."""
+    the server's event loop, which serves every session); a message named "the pasted rows", not the file.
+    The files come as Panel hands them over from the browser (its FileInput's own processing: an empty file's
+    value is None, which the page took for no file at all, as an outside review found)."""
     pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
     import asyncio
-    from types import SimpleNamespace
+    import base64
+
+    import param
 
     from flyopt.app.model import MAX_BYTES
 
+    # the widgets' async watchers run to their end here, each on a loop closed after it (Panel's executor, off a
+    # server, leaves a new loop open for each)
+    monkeypatch.setattr(param.parameterized, "async_executor", lambda run: asyncio.run(run()))
+
     written: list[str] = []
     view = _table_view(pn, SHEAR, written)
-    view.upload.filename = "press-torque.csv"
+
+    def upload(name: str, data: bytes) -> None:
+        sent = {"value": base64.b64encode(data).decode(), "filename": name, "mime_type": "text/csv"}
+        view.upload.param.update(**view.upload._process_property_change(sent))  # the watchers run here
+
+    upload("empty.csv", b"")
+    assert view.upload.value is None  # Panel's own reading of an empty file
+    assert "empty.csv is empty" in view.message.object and written == []
     for data, said in [
-        (b"", "press-torque.csv is empty"),
         (b"0,1\n" * (MAX_BYTES // 4 + 1), "press-torque.csv is 1.0 MB, more than the 1 MB the app reads"),
         (b"0,1\n\xff\xfe,2\n", "press-torque.csv is not UTF-8 text"),
         (b"angle,torque\n0,1600\n45,x\n360,200\n", "press-torque.csv"),
     ]:
-        asyncio.run(view._uploaded(SimpleNamespace(new=data)))
+        upload("press-torque.csv", data)
         assert said in view.message.object and written == [], (said, view.message.object)
     assert "line 3" in view.message.object  # the loader's reader names the wrong line
-    asyncio.run(view._uploaded(SimpleNamespace(new=b"angle,torque\n0,1600\n45,1600\n90,200\n360,200\n")))
+    upload("press-torque.csv", b"angle,torque\n0,1600\n45,1600\n90,200\n360,200\n")
     assert view.message.object == "" and len(written) == 1
     assert tomllib.loads(written[0])["torque"]["resisting"]["points"][1] == [45.0, 1600.0]
+
+
+@pytest.mark.filterwarnings("ignore:The inplace keyword:Warning")  # pandas 3.1's, inside Panel's Tabulator
+def test_rows_read_for_a_text_that_changed_meanwhile_are_dropped_with_a_word(monkeypatch):
+    """An outside review: the rows were read in a worker, then written into whatever text was current when
+    they came back: a template picked meanwhile got the shear press's table in its own torque.resisting."""
+    pn = pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    import asyncio
+
+    from flyopt.app import form_view
+
+    current = [SHEAR]
+    written: list[str] = []
+    view = form_view.FormView(pn, lambda: current[0], written.append, dict)
+    view.show(SHEAR)
+    real = form_view._rows_written
+
+    def slow(*args):  # the other template picked while the rows are read
+        current[0] = (ROOT / "problems" / "punch-press.toml").read_text(encoding="utf-8")
+        return real(*args)
+
+    monkeypatch.setattr(form_view, "_rows_written", slow)
+    view.paste.value = "0\t1\n180\t2\n360\t3\n"
+    asyncio.run(view._paste_used(None))
+    assert written == [] and "the scene changed while the pasted rows were read" in view.message.object
 
 
 @pytest.mark.filterwarnings("ignore:The inplace keyword:Warning")  # pandas 3.1's, inside Panel's Tabulator

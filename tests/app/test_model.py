@@ -116,6 +116,10 @@ def test_a_missing_table_is_named_without_the_server_s_folder(workspace):
     assert problem.field == "torque.driving.points_file" and problem.line == 22
     assert "cannot read four-stroke-engine-torque.csv" in problem.message, problem.message
     assert str(workspace.folder) not in problem.message and "flyopt-app-" not in problem.message
+    # a file named "." is the folder itself (an outside review: its path was shown)
+    text = model.template_text("four-stroke-engine-csv").replace('"four-stroke-engine-torque.csv"', '"."')
+    (problem,) = model.check(text, workspace).problems
+    assert "flyopt-app-" not in problem.message and "cannot read ." in problem.message, problem.message
 
 
 def test_the_private_folder_takes_no_file_from_outside_it(workspace, tmp_path):

@@ -77,3 +77,54 @@ def test_the_server_runs_on_a_loop_with_that_handler(monkeypatch):
     assert handler is page.closed_connection_handler
     asyncio.set_event_loop(None)
     loop.close()
+
+
+@pytest.mark.slow  # a server of its own; the rules are checked without one in test_address.py by default
+def test_a_rebound_name_builds_no_session_by_the_page_nor_by_a_forged_websocket_token(tmp_path):
+    """DNS rebinding: another site's name pointed at 127.0.0.1. The page asked for by that name builds no
+    session; nor does the app's websocket opened by that page's script with a session token it wrote naming
+    Host 127.0.0.1 (an outside review: the tokens were not signed, and Bokeh reads the session's headers from
+    them; the websocket of a page's own origin is let in whatever the origins list holds)."""
+    pytest.importorskip("panel", reason="the app extra (panel) is not installed")
+    import asyncio
+    import json
+    import urllib.request
+
+    from bokeh.util.token import generate_jwt_token, generate_session_id
+    from tornado.httpclient import HTTPRequest
+    from tornado.iostream import StreamClosedError
+    from tornado.websocket import WebSocketClosedError, websocket_connect
+
+    with served(tmp_path) as (url, _):
+        port = int(url.rstrip("/").rpartition(":")[2])
+        sessions = lambda: len(list(tmp_path.glob("flyopt-app-*")))  # noqa: E731
+        assert sessions() == 1  # the helper's own first request
+        request = urllib.request.Request(url, headers={"Host": f"attacker.example:{port}"})
+        urllib.request.urlopen(request, timeout=60).close()
+        assert sessions() == 1
+
+        async def forged() -> str:
+            token = generate_jwt_token(
+                generate_session_id(), signed=False, extra_payload={"headers": {"Host": f"127.0.0.1:{port}"}}
+            )
+            rebound = {"Host": f"attacker.example:{port}", "Origin": f"http://attacker.example:{port}"}
+            try:
+                ws = await websocket_connect(
+                    HTTPRequest(f"ws://127.0.0.1:{port}/ws", headers=rebound), subprotocols=["bokeh", token]
+                )
+            except Exception as err:  # noqa: BLE001 -- refused at the handshake: what is wanted
+                return f"refused: {err}"
+            pulled = ""
+            try:
+                for part in (json.dumps({"msgid": "1", "msgtype": "PULL-DOC-REQ"}), "{}", "{}"):
+                    await ws.write_message(part)
+                while (message := await asyncio.wait_for(ws.read_message(), 20)) is not None:
+                    pulled += message if isinstance(message, str) else ""
+            except (asyncio.TimeoutError, WebSocketClosedError, StreamClosedError):
+                pass  # the server closed it (an invalid token's signature), or sent all it had
+            ws.close()
+            return pulled
+
+        pulled = asyncio.run(forged())
+        assert "Template (problems/)" not in pulled, "the forged token's session was built"
+        assert sessions() == 1

@@ -8,7 +8,7 @@ parser reads :data:`DEFAULT`, so ``ipaddress`` and ``socket`` are imported where
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping
 from typing import Any
 
 #: The address served unless ``--host`` says otherwise.
@@ -42,11 +42,13 @@ def checked_host(text: str) -> str:
     labels = text.rstrip(".").split(".")
     if not text or len(text) > _LONGEST_NAME or not all(_LABEL.fullmatch(label) for label in labels):
         raise ValueError(f"--host: {text!r} is not an address: {allowed}")
+    if labels[-1].isdigit():  # 127.1, 0: the C library's short forms of an address, not names (RFC 1123)
+        raise ValueError(f"--host: {text!r} is not an address (write an IPv4 address in full): {allowed}")
     try:
         socket.getaddrinfo(text, None)
     except (OSError, UnicodeError):
         raise ValueError(f"--host: {text!r} names no address this machine can find: {allowed}") from None
-    return text
+    return text.lower()  # a name's case means nothing (LOCALHOST is localhost)
 
 
 def local(host: str) -> bool:
@@ -62,37 +64,61 @@ def local(host: str) -> bool:
 
 
 def origins(host: str, port: int) -> list[str]:
-    """The ``host:port`` a page must come from to open the app's websocket: the served address and this
-    machine's loopback names; for the address of every interface (0.0.0.0), this machine's own names and IPv4
-    addresses too, which is what the others who may use it type."""
+    """The ``host:port`` of the pages that may open the app's websocket from another origin (Bokeh's list):
+    the served address and this machine's loopback names. The page's own websocket is of its own origin, which
+    Tornado lets in whatever the list holds (a port forward's, a LAN address's); a page of another origin needs
+    to be on this list, and none is."""
+    names = [host, "localhost", "127.0.0.1"]
+    return list(dict.fromkeys(f"{name}:{port}" for name in names))
+
+
+def _host_name(host: str) -> str:
+    """The name or address of a ``Host`` header, without its port (an IPv6 address without its brackets)."""
+    host = host.strip().lower()
+    if host.startswith("["):
+        return host[1:].partition("]")[0]
+    return host.rpartition(":")[0] if host.count(":") == 1 else host
+
+
+def _named_by_address(name: str) -> bool:
+    """Whether ``name`` is an IP address or ``localhost``: what no other site can point at this machine."""
+    import ipaddress
+
+    try:
+        ipaddress.ip_address(name)
+    except ValueError:
+        return name in LOOPBACK_NAMES
+    return True
+
+
+def served_names(host: str) -> frozenset[str]:
+    """The names a request for the page may give in its ``Host`` besides an address and ``localhost``: the name
+    it is served as (``--host``) and this machine's own (what colleagues type when it is served on 0.0.0.0)."""
     import socket
 
-    names = [host, "localhost", "127.0.0.1"]
-    if host == "0.0.0.0":
-        for name in sorted({socket.gethostname(), socket.getfqdn()}):
-            names.append(name)
-            try:
-                names += sorted({str(info[4][0]) for info in socket.getaddrinfo(name, None, socket.AF_INET)})
-            except OSError:
-                continue
-    return list(dict.fromkeys(f"{name}:{port}" for name in names if name and ":" not in name))
+    return frozenset(name.lower() for name in (host, socket.gethostname(), socket.getfqdn()) if name)
 
 
-def refused_request(headers: Mapping[str, Any], allowed: Sequence[str]) -> str | None:
-    """Why the page's request with ``headers`` builds no session, or None for one that may.
+def refused_request(headers: Mapping[str, Any], names: Collection[str]) -> str | None:
+    """Why the page's request with ``headers`` builds no session, or None for one that may; ``names`` are
+    :func:`served_names`.
 
-    Every request for the page builds a whole session (its widgets, its private folder). A page of another
-    site could make the user's browser ask for it many times (``<img src="http://127.0.0.1:5006/">``), and a
-    name of another site's pointed at this machine (DNS rebinding) could load it. So a request is refused when
-    its ``Host`` is not one of ``allowed`` (:func:`origins`), and when the browser says it comes from another
-    site (``Sec-Fetch-Site``) other than as a page the user opened by a click (a navigation to a document with
-    ``Sec-Fetch-User``). A client that sends no ``Sec-Fetch-*`` headers (a script, curl) is not a browser led by
-    another site, and is let in as before.
+    Every request for the page builds a whole session (its widgets, its private folder). A name of another
+    site's pointed at this machine (DNS rebinding) could load the app, so the ``Host`` must name it by an
+    address (127.0.0.1, a LAN address, through a port forward on any port), ``localhost``, the name it is
+    served as (``--host``) or this machine's own name; a proxy must pass one of those. A page of another site could make the user's
+    browser ask for it many times (``<img src="http://127.0.0.1:5006/">``), so a request the browser says
+    another site made (``Sec-Fetch-Site``) is refused, unless it opens a page the user clicked to
+    (a navigation to a document with ``Sec-Fetch-User``). Browsers send ``Sec-Fetch-*`` to localhost and to
+    HTTPS only: a page served over HTTP on a LAN address is not guarded so (docs/app.md, Security). A client
+    that sends none (a script, curl) is not a browser led by another site, and is let in as before.
     """
     named = {str(key).lower(): str(value) for key, value in headers.items()}
     host = named.get("host")
-    if host is not None and (host if ":" in host else f"{host}:80").lower() not in {a.lower() for a in allowed}:
-        return f"this app is served as {allowed[0]}, not {host}"
+    if host is not None:
+        name = _host_name(host)
+        if not (_named_by_address(name) or name in names):
+            return f"this app is not served as {host}: open it by this machine's address or name, or localhost"
     site = named.get("sec-fetch-site", "none")
     if site in ("none", "same-origin"):
         return None

@@ -27,6 +27,13 @@ VALUE_UNITS = {
 }
 
 
+def _rows_written(text: str, pasted: str, path: str, units: tuple[str, str], source: str) -> str:
+    """``text`` with the table at ``path`` holding the rows ``pasted`` (:func:`flyopt.app.form.pasted_rows`,
+    :func:`flyopt.app.form.set_table_numbers`)."""
+    numbers = form.pasted_rows(pasted, path, units, source)
+    return form.set_table_numbers(text, path, numbers, units)
+
+
 class FormView:
     """The form of one session; ``read()`` gives the editor's text, ``write(text)`` replaces it."""
 
@@ -71,7 +78,8 @@ class FormView:
         self.use_paste = pn.widgets.Button(label="Use the pasted rows", color="default")
         self.use_paste.on_click(self._paste_used)
         self.upload = pn.widgets.FileInput(accept=".csv,.txt", multiple=False)
-        self.upload.param.watch(self._uploaded, "value")
+        # Panel gives an empty file's value as None: its name's change says it came
+        self.upload.param.watch(self._uploaded, ["value", "filename"])
         self.message = pn.pane.HTML("", sizing_mode="stretch_width")
         self.layout = pn.Column(
             pn.pane.HTML("<b>Common fields</b> (written into the TOML as if typed)"),
@@ -196,11 +204,11 @@ class FormView:
             return
         await self._take_rows(pasted, "the pasted rows")
 
-    async def _uploaded(self, event: Any) -> None:
-        if event.new is None:
+    async def _uploaded(self, *_events: Any) -> None:
+        value, name = self.upload.value, self.upload.filename or "the file"
+        if value is None and not self.upload.filename:
             return
-        name = self.upload.filename or "the file"
-        data = bytes(event.new)
+        data = bytes(value) if value is not None else b""
         if not data:
             self._say(f"{name} is empty: a CSV of two columns of numbers is expected")
             return
@@ -218,8 +226,10 @@ class FormView:
         await self._take_rows(pasted, name)
 
     async def _take_rows(self, pasted: str, source: str) -> None:
-        """Read the rows (a megabyte takes some 0.2 s: in a worker thread, not on the server's event loop, which
-        serves every session) and write them into the table the grid shows."""
+        """Read the rows and write them into the table the grid shows, in a worker thread (a megabyte of rows
+        takes seconds to read and write into the text; the server's event loop serves every session); dropped
+        with a word if the text changed meanwhile (another template, an edit), so that they never land in a
+        text they were not read for."""
         from flyopt.errors import SceneError
 
         path = self.table.value
@@ -227,14 +237,21 @@ class FormView:
             self._say("the scene writes no table inline to fill (a points = [...] of a torque, force or pressure)")
             return
         units = (self.angle_unit.value, self.value_unit.value)
+        before = self.read()
         try:
-            numbers = await asyncio.get_running_loop().run_in_executor(
-                None, form.pasted_rows, pasted, path, units, source
+            text = await asyncio.get_running_loop().run_in_executor(
+                None, _rows_written, before, pasted, path, units, source
             )
         except SceneError as err:
             self._say(f"{err.field}: {err.message}")
             return
-        self._write(lambda text: form.set_table_numbers(text, path, numbers, units))
+        except KeyError as err:
+            self._say(str(err.args[0]) if err.args else "that table cannot be set from the form")
+            return
+        if self.read() != before:
+            self._say(f"the scene changed while {source} were read: use them again")
+            return
+        self._write(lambda _text: text)
 
     def _write(self, change: Callable[[str], str]) -> None:
         try:

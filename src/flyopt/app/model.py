@@ -97,7 +97,11 @@ def template_files(name: str) -> tuple[tuple[str, Path], ...]:
     except FlyoptError:
         return ()
     folder = path.parent.resolve()
-    return tuple((Path(file).resolve().relative_to(folder).as_posix(), Path(file)) for _field, file in read)
+    return tuple(
+        (Path(file).resolve().relative_to(folder).as_posix(), Path(file))
+        for _field, file in read
+        if Path(file).resolve().is_relative_to(folder)  # the loader reads nothing outside it: a guard
+    )
 
 
 def load_template(name: str, workspace: Workspace) -> str:
@@ -190,8 +194,8 @@ class Workspace:
         """``message`` without the server's folder, no business of the page's: the scene is :data:`SCENE_NAME`
         and a file beside it its own name."""
         message = message.replace(str(self.path), SCENE_NAME)
-        for folder in {str(self.folder), str(self.folder.resolve())}:
-            message = message.replace(folder + os.sep, "")
+        for folder in sorted({str(self.folder), str(self.folder.resolve())}, key=len, reverse=True):
+            message = message.replace(folder + os.sep, "").replace(folder, ".")  # the folder itself: "."
         return message
 
     def add(self, relative: str, data: bytes) -> Path:

@@ -64,9 +64,10 @@ CSS = """
 """
 
 
-#: The ``host:port`` the page is served as (:func:`flyopt.app.address.origins`), set by :func:`serve`: a request
-#: for the page names one of them, or builds no session (:func:`flyopt.app.address.refused_request`).
-SERVED_AS: list[str] = []
+#: What a request for the page may name in its ``Host`` besides an address and localhost
+#: (:func:`flyopt.app.address.served_names`), set by :func:`serve`; a request naming anything else, or made by
+#: another site's page, builds no session (:func:`flyopt.app.address.refused_request`).
+SERVED_NAMES: set[str] = set()
 
 
 def session() -> Any:
@@ -76,7 +77,7 @@ def session() -> Any:
 
     import panel as pn
 
-    refused = address.refused_request(pn.state.headers, SERVED_AS) if SERVED_AS else None
+    refused = address.refused_request(pn.state.headers, SERVED_NAMES) if SERVED_NAMES else None
     if refused is not None:
         return pn.pane.HTML(f"<p>flyopt: {html.escape(refused)}</p>")
     return Session(pn).layout
@@ -498,6 +499,7 @@ def closed_connection_handler(loop: Any, context: dict[str, Any]) -> None:
 
 def serve(port: int, host: str, browser: bool) -> None:
     """Serve the app on ``host``:``port`` until interrupted; open the browser when asked."""
+    import secrets
     import signal
 
     import panel as pn
@@ -505,7 +507,8 @@ def serve(port: int, host: str, browser: bool) -> None:
     from flyopt.cli.exits import sigterm_as_ctrl_c
 
     model.serving(host)
-    SERVED_AS[:] = address.origins(host, port)
+    SERVED_NAMES.clear()
+    SERVED_NAMES.update(address.served_names(host))
     # the loop the server runs on (Tornado's IOLoop.current() wraps this thread's asyncio loop)
     loop = asyncio.new_event_loop()
     asyncio.set_event_loop(loop)
@@ -525,7 +528,11 @@ def serve(port: int, host: str, browser: bool) -> None:
             {"/": session},
             port=port,
             address=host,
-            websocket_origin=list(SERVED_AS),
+            websocket_origin=address.origins(host, port),
+            # the session's token carries the page request's headers, which session() reads: signed, so that a
+            # script cannot forge one (a rebound name's websocket with a token naming 127.0.0.1 built a session)
+            sign_sessions=True,
+            secret_key=secrets.token_urlsafe(32),
             show=browser,
             title="flyopt",
             websocket_max_message_size=4 * model.MAX_BYTES,
