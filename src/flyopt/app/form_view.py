@@ -249,7 +249,8 @@ class FormView:
             self._say(str(err.args[0]) if err.args else "that table cannot be set from the form")
             return
         if self.read() != before:
-            self._say(f"the scene changed while {source} were read: use them again")
+            what = source if source == "the pasted rows" else f"the rows of {source}"
+            self._say(f"the scene changed while {what} were read: use them again")
             return
         self._write(lambda _text: text)
 
