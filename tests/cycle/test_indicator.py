@@ -590,3 +590,20 @@ def test_a_finite_jump_across_zero_is_no_pole():
     # ΔE rises at slope c + 1 up to φ = 2, then falls back to 0: A_max = 2 (c + 1) = (4π − 4)/π
     ind = energy_indicator(Constant(None), expr("min(max((phi - 2)*1e300, -1), 1)"), TWO_PI)
     assert_allclose(ind.a_max, (4 * math.pi - 4) / math.pi, rtol=1e-12)
+
+
+def test_kinks_up_to_the_limit_are_found_and_more_are_refused_naming_the_field():
+    """abs(sin(n φ)) kinks at the 2n − 1 angles k π / n inside (0, 2π): n = 256 gives 511, all found to
+    Brent's accuracy; n = 257 gives 513, over MAX_KINKS, refused at once with the field named (an outside
+    audit: abs(sin(1e3 φ)) took 17 s to check, abs(sin(1e5 φ)) did not end, its kinks not even resolved by
+    the sampling grid)."""
+    from flyopt.cycle.difference import MAX_KINKS
+
+    assert MAX_KINKS == 512
+    torque = ExpressionTorque(Expression("abs(sin(256*phi))"), 1.0)
+    assert_allclose(kinks_of(torque, TWO_PI), np.arange(1, 512) * math.pi / 256, rtol=1e-13, atol=1e-14)
+    for n in ("257", "1e3", "1e5"):
+        torque = ExpressionTorque(Expression(f"1000 + 500*abs(sin({n}*phi))**0.5"), 1.0, "torque.resisting.expression")
+        with pytest.raises(SceneError, match="more than the 512 flyopt resolves") as caught:
+            kinks_of(torque, TWO_PI)
+        assert caught.value.field == "torque.resisting.expression"

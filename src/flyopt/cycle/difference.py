@@ -27,6 +27,12 @@ from flyopt.errors import SceneError
 SAMPLES_PER_CYCLE = 4096
 """Grid on which expression torques are bracketed for crossings."""
 
+MAX_KINKS = SAMPLES_PER_CYCLE // 8
+"""Most kinks (of ``abs``, ``min``, ``max``) an expression torque may have in one cycle: 512, some eight samples
+of :data:`SAMPLES_PER_CYCLE` between two. More are not resolved by that grid (``abs(sin(1e4*phi))``'s 20,000
+were found as 3,615), and each is a piece the quadrature and the models take on its own: 2,000 kinks took
+17 s to check and ``abs(sin(1e5*phi))`` did not end (an outside audit)."""
+
 ROUNDOFF = 8 * EPS
 """|M_d − M_r| at or below ROUNDOFF·(|M_d| + |M_r|) is the round-off of the
 subtraction (or of M = W/Φ for an unknown constant) and is taken as zero, so
@@ -413,6 +419,14 @@ def kinks_of(curve: TorqueCurve, cycle_angle: float) -> Array:
             if size > 0.0:
                 found += roots(signed, 0.0, cycle_angle, SAMPLES_PER_CYCLE, size * cycle_angle, zero_runs="ends")
         kinks = np.unique(np.asarray(found, dtype=float))
+        if len(kinks) > MAX_KINKS:
+            where = next(iter(_expression_fields(curve)), "")
+            raise SceneError(
+                where,
+                f"abs, min or max make the torque kink {len(kinks)} times in the cycle, more than the "
+                f"{MAX_KINKS} flyopt resolves (allowed: at most {MAX_KINKS} kinks a cycle; a ripple that fine "
+                "changes no flywheel: leave it out, or give the torque as a table)",
+            )
         kinks.setflags(write=False)
         cache[cycle_angle] = kinks
     return cache[cycle_angle]
