@@ -209,6 +209,25 @@ def test_bench_options_are_bench_own():
     assert out.returncode == 0 and "--quick" in out.stdout and "--hard" in out.stdout
 
 
+@pytest.mark.parametrize(
+    "args, said",
+    [
+        (["--quick", "--seed", "-1"], "--seed must be between 0 and"),  # was "expected non-negative integer", 1
+        (["--seed", "abc"], "argument --seed: invalid int value"),  # was the usage block and the error
+        (["--repeats", "0"], "--repeats must be >= 1"),
+        (["--quick", "--sections", ","], "--sections names no section"),  # ran every section
+        (["--quick", "--hard-scenes", "5"], "--hard-scenes: counts the hard set's scenes"),  # ignored
+        (["--hard", "--sections", "cycle"], "--sections: the hard set (--hard) has no sections"),  # ignored
+    ],
+)
+def test_bench_refuses_a_bad_option_in_one_line_before_running(args, said):
+    """An outside audit: flyopt bench's refusals were argparse's (the usage, then the error), a negative seed
+    failed inside the run (exit 1, no option named), and options it did not use were dropped."""
+    out = run("bench", *args)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
+    assert out.stderr.startswith("flyopt bench: error: ") and said in out.stderr, out.stderr
+
+
 def test_unknown_option_of_a_command_is_refused():
     out = run("solve", PROBLEMS / "shear-press.toml", "--quick")
     assert out.returncode == 2 and "unrecognized arguments: --quick" in out.stderr

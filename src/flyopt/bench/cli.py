@@ -15,6 +15,7 @@ from flyopt.bench.hard import run_hard
 from flyopt.bench.output import hard_summary, plot, summary, write_csv, write_hard_csv
 from flyopt.bench.sections import SECTIONS, run
 from flyopt.bench.timing import Config, machine_header, pin_one_core
+from flyopt.io.sweep_spec import OPTION_MAXIMUMS, OPTION_MINIMUMS
 
 __all__ = ["RESULTS", "main"]
 
@@ -22,8 +23,8 @@ RESULTS = Path("benchmarks") / "results"
 """Where a full run writes by default (relative to the working directory): the committed results."""
 
 
-def _parser():
-    parser = argparse.ArgumentParser(
+def _parser(parser_class: type[argparse.ArgumentParser] = argparse.ArgumentParser) -> argparse.ArgumentParser:
+    parser = parser_class(
         prog="flyopt bench",
         description="Speed against error: time every way of getting an answer and its error against a "
         "reference of known accuracy; print the Markdown summary and write CSV, PNG and "
@@ -77,7 +78,13 @@ def _output_dir(args, parser, default):
     return folder
 
 
-def main(argv: list[str] | None = None, *, default_output_dir: Path = RESULTS, program: str = "flyopt bench") -> int:
+def main(
+    argv: list[str] | None = None,
+    *,
+    default_output_dir: Path = RESULTS,
+    program: str = "flyopt bench",
+    parser_class: type[argparse.ArgumentParser] = argparse.ArgumentParser,
+) -> int:
     """Entry point of ``flyopt bench``; returns the exit status (0 done).
 
     Parameters
@@ -89,21 +96,34 @@ def main(argv: list[str] | None = None, *, default_output_dir: Path = RESULTS, p
         ``benchmarks/results`` of the working directory).
     program : str, optional
         How the run was started, for the "Command:" line of the results.
+    parser_class : type, optional
+        The argument parser: ``flyopt bench`` gives the command line's own, which says a bad option in one
+        line (:class:`flyopt.cli.exits.OneLineParser`; the bench is below the command line and does not
+        import it).
 
     Returns
     -------
     int
         0 when the run is done. Bad arguments exit through argparse (status 2).
     """
-    parser = _parser()
+    parser = _parser(parser_class)
     args = parser.parse_args(argv)
     for name in ("repeats", "scenes", "hard_scenes"):
         value = getattr(args, name)
         if value is not None and value < 1:
             parser.error(f"--{name.replace('_', '-')} must be >= 1, got {value}")
+    low, high = OPTION_MINIMUMS["seed"], OPTION_MAXIMUMS["seed"]  # the random scenes' seed, as a sweep's
+    if args.seed is not None and not low <= args.seed <= high:
+        parser.error(f"--seed must be between {low} and {high}, got {args.seed}")
+    if args.hard_scenes is not None and not args.hard:
+        parser.error("--hard-scenes: counts the hard set's scenes, which run with --hard alone")
+    if args.hard and args.sections is not None:
+        parser.error("--sections: the hard set (--hard) has no sections")
     sections = None
-    if args.sections:
+    if args.sections is not None:
         sections = [s.strip() for s in args.sections.split(",") if s.strip()]
+        if not sections:
+            parser.error(f"--sections names no section; allowed are {', '.join(SECTIONS)}")
         unknown = [s for s in sections if s not in SECTIONS]
         if unknown:
             parser.error(f"section {unknown[0]!r} not recognised; allowed are {', '.join(SECTIONS)}")

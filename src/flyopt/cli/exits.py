@@ -35,7 +35,7 @@ import os
 import signal
 import sys
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
 from flyopt.errors import ExpressionError, FlyoptError, Interrupted, NonPeriodicCycle, OutputError, SceneError
 
@@ -222,3 +222,18 @@ def sigterm_as_ctrl_c(signum: int, frame: FrameType | None) -> None:
         signal.raise_signal(signal.SIGINT)
         return
     raise KeyboardInterrupt
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse, with a bad option said in one line (exit status 2) instead of the usage block.
+
+    ``flyopt solve: error: argument --units: invalid choice: 'furlongs' (choose from ...); see flyopt
+    solve --help``: the usage of a command with a dozen options is five to seven lines that bury the
+    one that matters. The subcommands' parsers are of this class too (argparse makes them so), and
+    ``flyopt bench``'s own (:mod:`flyopt.bench.cli`).
+    """
+
+    def error(self, message: str) -> NoReturn:
+        if message.endswith("expected one argument"):  # e.g. --range -1:0.5: argparse takes -1:0.5 for an option
+            message += " (write a value that starts with '-' as --option=VALUE)"
+        self.exit(EXIT_INPUT, f"{self.prog}: error: {one_line(message)}; see {self.prog} --help\n")

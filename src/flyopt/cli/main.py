@@ -45,9 +45,9 @@ import io
 import signal
 import sys
 from collections.abc import Callable, Sequence
-from typing import Any, NoReturn
+from typing import Any
 
-from flyopt.cli.exits import run, sigterm_as_ctrl_c
+from flyopt.cli.exits import OneLineParser, run, sigterm_as_ctrl_c
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -89,7 +89,7 @@ def entry() -> int:
 def _parser() -> argparse.ArgumentParser:
     from flyopt.cli import app, export, materials, new, plot, report, scene, studies
 
-    parser = _Parser(
+    parser = OneLineParser(
         prog="flyopt",
         description="Flywheel design for speed regulation.",
         epilog="exit status: 0 ok, 1 solver failed or design failed its check, 2 bad input, "
@@ -148,22 +148,6 @@ def _parser() -> argparse.ArgumentParser:
     )
     bench.set_defaults(run=_bench, takes_rest=True)  # its own options, parsed by flyopt.bench
     return parser
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse, with a bad option said in one line (exit status 2) instead of the usage block.
-
-    ``flyopt solve: error: argument --units: invalid choice: 'furlongs' (choose from ...); see flyopt
-    solve --help``: the usage of a command with a dozen options is five to seven lines that bury the
-    one that matters. The subcommands' parsers are of this class too (argparse makes them so).
-    """
-
-    def error(self, message: str) -> NoReturn:
-        from flyopt.cli.exits import EXIT_INPUT, one_line
-
-        if message.endswith("expected one argument"):  # e.g. --range -1:0.5: argparse takes -1:0.5 for an option
-            message += " (write a value that starts with '-' as --option=VALUE)"
-        self.exit(EXIT_INPUT, f"{self.prog}: error: {one_line(message)}; see {self.prog} --help\n")
 
 
 class _Version(argparse.Action):
@@ -233,7 +217,7 @@ def _silenced(handler: Callable[[argparse.Namespace], int]) -> Callable[[argpars
 def _bench(args: argparse.Namespace) -> int:
     from flyopt.bench import main as bench_main
 
-    return bench_main(args.rest)
+    return bench_main(args.rest, parser_class=OneLineParser)
 
 
 if __name__ == "__main__":  # pragma: no cover
