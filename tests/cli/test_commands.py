@@ -590,3 +590,40 @@ def test_a_results_diagram_of_a_file_that_is_not_results_says_what_it_reads(main
     assert status == 2 and stdout == "" and stderr.count("\n") == 1
     assert f"{path}: --what pareto draws the results of flyopt sweep or pareto, a .csv or .parquet file" in stderr
     assert ("write them with -o FILE.csv" in stderr) == json_words and "unknown diagram" not in stderr
+
+
+@pytest.mark.parametrize(
+    "scene, args, said",
+    [
+        ("shear-press.toml", ["--timings"], "--timings: adds each design solve's time to the JSON"),
+        ("shear-press.toml", ["--no-design", "--design-method", "ipopt"], "--design-method: chooses how"),
+        ("textbook/seed-004-lathe-power.toml", ["--verify"], "--verify: "),
+        ("textbook/seed-004-lathe-power.toml", ["--model", "dynamic"], "--model: "),
+        ("textbook/seed-004-lathe-power.toml", ["--design-method", "ipopt"], "--design-method: "),
+        ("textbook/seed-004-lathe-power.toml", ["--no-design"], "--no-design: "),
+    ],
+)
+def test_solve_refuses_an_option_it_would_drop(scene, args, said):
+    """An outside audit: these gave output byte-identical to the command without them (--verify on a
+    calculation: the user expects a simulation and got none)."""
+    out = run("solve", PROBLEMS / scene, *args)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1 and said in out.stderr, out.stderr
+    if "lathe" in scene:
+        assert "is one calculation (power_chain)" in out.stderr
+    assert out.stdout == ""
+
+
+@pytest.mark.parametrize(
+    "args, said",
+    [
+        (["--force"], "--force: replaces the file -o/--output names, which is not given"),
+        (["-o", "scene.json"], "a scene is written as TOML, to a .toml file"),
+    ],
+)
+def test_new_refuses_what_it_would_drop_or_misname(args, said, tmp_path, monkeypatch):
+    """An outside audit: `new press --force` printed the template as without it, and `-o x.json` wrote TOML into a
+    .json file (every other output checks its suffix)."""
+    monkeypatch.chdir(tmp_path)
+    out = run("new", "press", *args)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1 and said in out.stderr, out.stderr
+    assert out.stdout == "" and list(tmp_path.iterdir()) == []

@@ -54,16 +54,21 @@ def add_new_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run_new(args: argparse.Namespace) -> int:
     """``flyopt new``: the template on stdout, or written to ``-o FILE`` (refused when FILE exists, unless --force)."""
+    from flyopt.errors import SceneError
+
+    if args.output is None and args.force:  # it would be dropped: nothing is replaced on standard output
+        raise SceneError("--force", "replaces the file -o/--output names, which is not given (the template is printed)")
     text = template(args.kind)
     if args.output is None:
         print(text, end="")
         return EXIT_OK
     import os
 
-    from flyopt.errors import SceneError
     from flyopt.outputs.files import check_folder, write_text
 
     check_folder(args.output, "-o/--output")
+    if not args.output.lower().endswith(".toml"):
+        raise SceneError("-o/--output", f"{args.output!r}: a scene is written as TOML, to a .toml file")
     if os.path.lexists(args.output) and not args.force:
         raise SceneError("-o/--output", f"{args.output!r} exists: pass --force to replace it, or name another file")
     write_text(args.output, text)

@@ -96,9 +96,14 @@ def add_solve_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run_solve(args: argparse.Namespace) -> int:
     """``flyopt solve``: 0 a design or none needed, 3 infeasible, 4 verification flagged."""
+    from flyopt.cli.exits import EXIT_INPUT, fail
     from flyopt.io.scene import load
     from flyopt.pipeline import solve
 
+    if args.timings and not args.json:  # each would be dropped without a word
+        return fail("--timings: adds each design solve's time to the JSON, which --json prints", EXIT_INPUT)
+    if not args.design and args.design_method != "auto":
+        return fail("--design-method: chooses how the wheel is designed, which --no-design leaves out", EXIT_INPUT)
     scene = load(args.scene)
     if getattr(args, "output", None) is not None:  # -o (flyopt.cli.main._printed_to_file): no file the scene reads
         from flyopt.outputs.files import check_not_scene
@@ -106,6 +111,22 @@ def run_solve(args: argparse.Namespace) -> int:
         check_not_scene(args.output, scene, "the result")
     what = scene.calculation
     if what is not None:
+        dropped = [
+            option
+            for option, given in (
+                ("--no-design", not args.design),
+                ("--model", args.model is not None),
+                ("--design-method", args.design_method != "auto"),
+                ("--verify", args.verify),
+            )
+            if given
+        ]
+        if dropped:  # a calculation has no cycle to model, no wheel to design, nothing to simulate
+            return fail(
+                f"{dropped[0]}: {args.scene} is one calculation ({what}), with no cycle to model or simulate "
+                "and no wheel to design",
+                EXIT_INPUT,
+            )
         return _run_calculation(what, scene, args)
     solution = solve(
         scene,
