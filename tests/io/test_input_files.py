@@ -185,6 +185,16 @@ def test_a_sweep_output_outside_the_scene_folder_is_refused_by_check_and_sweep(t
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scene"]
 
 
+@pytest.mark.parametrize("output, said", [("study.csv/", "names a folder"), ("sub/study.parquet/", "names a folder")])
+def test_a_sweep_output_that_names_no_file_is_refused_as_on_the_command_line(tmp_path, output, said):
+    """An outside audit: [sweep] output = "x.csv/" wrote x.csv and check said ok, where -o x.csv/ is refused."""
+    path = tmp_path / "scene.toml"
+    text = (PROBLEMS / "example1-net-areas.toml").read_text(encoding="utf-8")
+    path.write_text(f'{text}\n[sweep]\noutput = "{output}"\n[sweep.vary]\n"machine.delta" = "0.01:0.1:2"\n')
+    refused(path, "sweep.output", said, commands=("check", "sweep"))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.toml"]
+
+
 def test_a_sweep_output_inside_the_folder_is_accepted(tmp_path):
     path = tmp_path / "scene.toml"
     text = (PROBLEMS / "example1-net-areas.toml").read_text(encoding="utf-8")

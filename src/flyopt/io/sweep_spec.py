@@ -766,6 +766,9 @@ def load_sweep(path: str | os.PathLike[str]) -> tuple[Scene, dict[str, Any]]:
         check_options(options, "sweep")
         if options.get("output") is not None:  # written where the scene's author says: inside its folder
             raw = options["output"]
+            from flyopt.outputs.files import check_file_name
+
+            check_file_name(str(raw), "sweep.output")  # "x.csv/" was written as x.csv
             options["output"] = str(inside_scene(raw, "sweep.output", path.parent, "output file"))
             # and so are the files the sweep writes beside it: a CSV's sidecar, the folder of its finished chunks
             from flyopt.outputs.results import parts_folder, table_files

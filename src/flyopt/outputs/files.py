@@ -262,6 +262,20 @@ def check_not_a_link(path: str | os.PathLike[str], label: str = "-o/--output") -
         )
 
 
+def check_file_name(text: str, label: str) -> None:
+    """Refuse an output's name that names no file: ``-`` (stdout to many tools), one ending in a separator (a
+    folder's: it was written as the file without it) or one holding a control character (SceneError naming
+    ``label``). :func:`check_folder` of the command line's outputs, and a scene's ``[sweep] output`` before it
+    is resolved in the scene's folder."""
+    if text == "-":  # many tools read it as stdout; here it would be a file named "-"
+        raise SceneError(label, "'-' is no file's name: leave the option out to print to stdout, or name a file")
+    if text.endswith(("/", os.sep)):
+        raise SceneError(label, f"{text!r} names a folder (it ends in {text[-1]!r}): give a file's name")
+    control = next((c for c in text if _acting(c)), None)
+    if control is not None:  # a line break in a name splits every line that quotes it; NUL ends it
+        raise SceneError(label, f"{shorten(text)} holds the control character {ascii(control)}: give a printable name")
+
+
 def check_folder(path: str | os.PathLike[str], label: str = "output", beside: tuple[str, ...] = ()) -> None:
     """Check where an output goes, before anything is computed.
 
@@ -274,13 +288,7 @@ def check_folder(path: str | os.PathLike[str], label: str = "output", beside: tu
     longest of the suffixes ``beside`` it that flyopt writes next to it (a sweep's ``.parts`` folder).
     """
     text = os.fspath(path)
-    if text == "-":  # many tools read it as stdout; here it would be a file named "-"
-        raise SceneError(label, "'-' is no file's name: leave the option out to print to stdout, or name a file")
-    if text.endswith(("/", os.sep)):
-        raise SceneError(label, f"{text!r} names a folder (it ends in {text[-1]!r}): give a file's name")
-    control = next((c for c in text if _acting(c)), None)
-    if control is not None:  # a line break in a name splits every line that quotes it; NUL ends it
-        raise SceneError(label, f"{shorten(text)} holds the control character {ascii(control)}: give a printable name")
+    check_file_name(text, label)
     name = os.path.basename(text)
     suffix = max(beside, key=len, default="")
     size, limit = len(os.fsencode(name + suffix)), _name_max(os.path.dirname(text) or ".")
