@@ -627,3 +627,16 @@ def test_new_refuses_what_it_would_drop_or_misname(args, said, tmp_path, monkeyp
     out = run("new", "press", *args)
     assert out.returncode == 2 and out.stderr.count("\n") == 1 and said in out.stderr, out.stderr
     assert out.stdout == "" and list(tmp_path.iterdir()) == []
+
+
+def test_check_writes_a_title_s_acting_characters_as_their_escapes(tmp_path):
+    """An outside audit: check's "ok (TITLE)" printed a title's U+202E (right-to-left override, which turns
+    the rest of the terminal's line around) and U+200B raw, where solve and report write their escapes."""
+    text = (PROBLEMS / "shear-press.toml").read_text(encoding="utf-8")
+    title = next(line for line in text.splitlines() if line.startswith("title = "))
+    path = tmp_path / "bidi.toml"
+    path.write_text(text.replace(title, 'title = "abc\\u202Edef\\u200Bghi"'), encoding="utf-8")
+    out = run("check", path)
+    assert out.returncode == 0, out.stderr
+    assert "\u202e" not in out.stdout and "\u200b" not in out.stdout
+    assert "ok (abc\\u202edef\\u200bghi)" in out.stdout

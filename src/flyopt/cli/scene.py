@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING, Any
 
-from flyopt.cli.exits import EXIT_OK, calculation_exit, solution_exit
+from flyopt.cli.exits import EXIT_OK, calculation_exit, one_line, solution_exit
 from flyopt.names import Model
 from flyopt.report import display
 
@@ -281,7 +281,7 @@ def _check(args: argparse.Namespace, data: dict[str, Any]) -> int:
             solve_calculation(scene)
         else:
             check_flywheel(scene)
-        print(f"{args.scene}: ok ({scene.title})")
+        print(one_line(f"{args.scene}: ok ({scene.title})"))  # a title's control and bidi characters escaped
         return EXIT_OK
     analyse(scene)  # a cycle that does not close is an input error too
     from flyopt.design import design_inputs
@@ -294,5 +294,5 @@ def _check(args: argparse.Namespace, data: dict[str, Any]) -> int:
         _, options = load_sweep(args.scene)
         if options["vary"] or len(options) > 1:  # the same checks flyopt sweep makes before it runs
             check_sweep(scene, options, "sweep")
-    print(f"{args.scene}: ok ({scene.title})")
+    print(one_line(f"{args.scene}: ok ({scene.title})"))  # a title's control and bidi characters escaped
     return EXIT_OK
