@@ -213,17 +213,17 @@ def test_bench_options_are_bench_own():
     "args, said",
     [
         (["--quick", "--seed", "-1"], "--seed must be between 0 and"),  # was "expected non-negative integer", 1
-        (["--seed", "abc"], "argument --seed: invalid int value"),  # was the usage block and the error
-        (["--repeats", "0"], "--repeats must be >= 1"),
+        (["--quick", "--seed", "abc"], "argument --seed: invalid int value"),  # was the usage block and the error
+        (["--quick", "--repeats", "0"], "--repeats must be >= 1"),
         (["--quick", "--sections", ","], "--sections names no section"),  # ran every section
         (["--quick", "--hard-scenes", "5"], "--hard-scenes: counts the hard set's scenes"),  # ignored
-        (["--hard", "--sections", "cycle"], "--sections: the hard set (--hard) has no sections"),  # ignored
+        (["--quick", "--hard", "--sections", "cycle"], "--sections: the hard set (--hard) has no sections"),
     ],
 )
-def test_bench_refuses_a_bad_option_in_one_line_before_running(args, said):
+def test_bench_refuses_a_bad_option_in_one_line_before_running(args, said, tmp_path):
     """An outside audit: flyopt bench's refusals were argparse's (the usage, then the error), a negative seed
     failed inside the run (exit 1, no option named), and options it did not use were dropped."""
-    out = run("bench", *args)
+    out = run("bench", *args, "--output-dir", tmp_path)  # were a refusal lost, a quick run into tmp_path
     assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
     assert out.stderr.startswith("flyopt bench: error: ") and said in out.stderr, out.stderr
 
@@ -603,14 +603,20 @@ def test_a_results_diagram_of_a_file_that_is_not_results_says_what_it_reads(main
         ("textbook/seed-004-lathe-power.toml", ["--no-design"], "--no-design: "),
     ],
 )
-def test_solve_refuses_an_option_it_would_drop(scene, args, said):
+def test_solve_refuses_an_option_it_would_drop(scene, args, said, tmp_path):
     """An outside audit: these gave output byte-identical to the command without them (--verify on a
-    calculation: the user expects a simulation and got none)."""
+    calculation: the user expects a simulation and got none). With -o the file is left as it was (an outside
+    review: the refusal, returned as exit status 2, emptied it and said "wrote")."""
     out = run("solve", PROBLEMS / scene, *args)
     assert out.returncode == 2 and out.stderr.count("\n") == 1 and said in out.stderr, out.stderr
     if "lathe" in scene:
         assert "is one calculation (power_chain)" in out.stderr
     assert out.stdout == ""
+    kept = tmp_path / "kept.txt"
+    kept.write_text("precious", encoding="utf-8")
+    out = run("solve", PROBLEMS / scene, *args, "-o", kept)
+    assert out.returncode == 2 and said in out.stderr and "wrote" not in out.stdout + out.stderr
+    assert kept.read_text(encoding="utf-8") == "precious"
 
 
 @pytest.mark.parametrize(

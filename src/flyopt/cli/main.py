@@ -47,7 +47,7 @@ import sys
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from flyopt.cli.exits import OneLineParser, run, sigterm_as_ctrl_c
+from flyopt.cli.exits import EXIT_INPUT, OneLineParser, run, sigterm_as_ctrl_c
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -194,6 +194,8 @@ def _printed_to_file(handler: Callable[[argparse.Namespace], int]) -> Callable[[
         printed = io.StringIO()
         with contextlib.redirect_stdout(printed):
             status = handler(args)
+        if status == EXIT_INPUT:  # a refusal the handler said and returned: no result, and the file is left as it was
+            return status
         write_text(args.output, printed.getvalue())
         if not args.quiet:
             print(f"wrote {args.output}")
