@@ -593,18 +593,20 @@ def test_a_finite_jump_across_zero_is_no_pole():
 
 
 def test_kinks_up_to_the_limit_are_found_and_more_are_refused_naming_the_field():
-    """abs(sin(n φ)) kinks at the 2n − 1 angles k π / n inside (0, 2π): n = 256 gives 511, all found to
-    Brent's accuracy; n = 257 gives 513, over MAX_KINKS, refused at once with the field named (an outside
-    audit: abs(sin(1e3 φ)) took 17 s to check, abs(sin(1e5 φ)) did not end, its kinks not even resolved by
-    the sampling grid)."""
+    """abs(sin(n φ)) kinks at the 2n − 1 angles k π / n inside (0, 2π): n = 512 gives 1,023, all found to
+    Brent's accuracy; n = 513 gives 1,025, over MAX_KINKS, refused at once with the field named (an outside
+    audit: abs(sin(1e3 φ))**0.5 took 17 s to check, abs(sin(1e5 φ)) did not end, its kinks not even resolved by
+    the sampling grid). A rectified sine over a cycle of 2,000 rad (636 kinks, π apart) is taken."""
     from flyopt.cycle.difference import MAX_KINKS
 
-    assert MAX_KINKS == 512
-    torque = ExpressionTorque(Expression("abs(sin(256*phi))"), 1.0)
-    assert_allclose(kinks_of(torque, TWO_PI), np.arange(1, 512) * math.pi / 256, rtol=1e-13, atol=1e-14)
-    for n in ("257", "1e3", "1e5"):
+    assert MAX_KINKS == 1024
+    torque = ExpressionTorque(Expression("abs(sin(512*phi))"), 1.0)
+    assert_allclose(kinks_of(torque, TWO_PI), np.arange(1, 1024) * math.pi / 512, rtol=1e-13, atol=1e-14)
+    torque = ExpressionTorque(Expression("1000 + 500*abs(sin(phi))"), 1.0)
+    assert_allclose(kinks_of(torque, 2000.0), np.arange(1, 637) * math.pi, rtol=1e-13)
+    for n in ("513", "1e3", "1e5"):
         torque = ExpressionTorque(Expression(f"1000 + 500*abs(sin({n}*phi))**0.5"), 1.0, "torque.resisting.expression")
-        with pytest.raises(SceneError, match="more than the 512 flyopt resolves") as caught:
+        with pytest.raises(SceneError, match="at least \\d+ times in the cycle, more than the 1024") as caught:
             kinks_of(torque, TWO_PI)
         assert caught.value.field == "torque.resisting.expression"
 
