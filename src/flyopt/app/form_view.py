@@ -18,6 +18,9 @@ from flyopt.app.model import MAX_BYTES
 #: How a limit of :data:`MAX_BYTES` reads in a message.
 LIMIT = f"{MAX_BYTES / 1e6:g} MB"
 
+#: Where a table too long for the app goes instead.
+ELSEWHERE = "solve so long a table by flyopt solve, from a CSV file beside the scene (points_file)"
+
 #: The units offered for a pasted or uploaded table's columns (the loader knows many more; type them in the editor).
 ANGLE_UNITS = ("deg", "rad")
 VALUE_UNITS = {
@@ -197,10 +200,7 @@ class FormView:
     async def _paste_used(self, _event: Any) -> None:
         pasted = self.paste.value or ""
         if len(pasted.encode("utf-8")) > MAX_BYTES:
-            self._say(
-                f"the pasted rows are over {LIMIT}, more than the app reads: solve so long a table by flyopt "
-                "solve, from a CSV file beside the scene (points_file)"
-            )
+            self._say(f"the pasted rows are over {LIMIT}, more than the app reads: {ELSEWHERE}")
             return
         await self._take_rows(pasted, "the pasted rows")
 
@@ -213,10 +213,7 @@ class FormView:
             self._say(f"{name} is empty: a CSV of two columns of numbers is expected")
             return
         if len(data) > MAX_BYTES:
-            self._say(
-                f"{name} is {len(data) / 1e6:.1f} MB, more than the {LIMIT} the app reads: solve so long a "
-                "table by flyopt solve, from a CSV file beside the scene (points_file)"
-            )
+            self._say(f"{name} is {len(data) / 1e6:.1f} MB, more than the {LIMIT} the app reads: {ELSEWHERE}")
             return
         try:
             pasted = data.decode("utf-8-sig")
@@ -264,8 +261,8 @@ class FormView:
         size = len(text.encode("utf-8"))
         if size > MAX_BYTES:  # refused here, before the editor (and the browser) is sent a text it cannot send back
             self._say(
-                f"with this the scene's text would be {size / 1e6:.1f} MB, more than the {LIMIT} the app "
-                "reads: solve so long a table by flyopt solve, from a CSV file beside the scene (points_file)"
+                f"with this the scene's text would be {size / 1e6:.1f} MB, more than the {LIMIT} the app reads: "
+                f"{ELSEWHERE}"
             )
             self.show(self.read())
             return

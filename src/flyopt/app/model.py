@@ -97,10 +97,10 @@ def template_files(name: str) -> tuple[tuple[str, Path], ...]:
     except FlyoptError:
         return ()
     folder = path.parent.resolve()
+    files = [Path(file) for _field, file in read]
+    # the loader reads nothing outside the template's folder: a guard, not a case
     return tuple(
-        (Path(file).resolve().relative_to(folder).as_posix(), Path(file))
-        for _field, file in read
-        if Path(file).resolve().is_relative_to(folder)  # the loader reads nothing outside it: a guard
+        (file.resolve().relative_to(folder).as_posix(), file) for file in files if file.resolve().is_relative_to(folder)
     )
 
 
