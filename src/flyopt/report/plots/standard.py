@@ -213,13 +213,75 @@ def figure_class() -> type[Figure]:
         class DrawableFigure(Figure):
             def draw(self, renderer: Any) -> None:
                 make_drawable(self)
-                super().draw(renderer)
+                with settled_ticks(self):
+                    super().draw(renderer)
 
         _FIGURE_CLASS = DrawableFigure
     return _FIGURE_CLASS
 
 
 _FIGURE_CLASS: type[Figure] | None = None
+
+
+@contextlib.contextmanager
+def settled_ticks(figure: Figure) -> Iterator[None]:
+    """Within the block, each axis of ``figure`` finds its ticks again only where what they are found from changed.
+
+    matplotlib finds an axis' ticks (its locator's locations, its formatter's labels, each Tick moved and
+    relabelled: ``Axis._update_ticks``) every time anything asks for them, and a draw asks some 25 times a
+    figure: the constrained layout's two measuring passes (every spine, every axis' tight box, the label's
+    place beside its siblings') and the draw itself. Between two of those asks nothing they are found from
+    changes but the axes' place on the figure, between the layout's passes: the view interval, the axes' box
+    in pixels (the locator's number of ticks follows the axis' length) and the figure's dpi. Here an axis
+    remembers the last ticks it found with those three, and hands them back while the three are unchanged (its
+    Ticks still hold what that search set: a search for other values replaces the one remembered). An axis
+    whose locator or formatter another axis of the figure shares (whose state the other one's search would
+    change) keeps matplotlib's own. Some 15 % of drawing the app's diagrams (issue 29); every SVG the same to
+    the byte (tests/report/test_settled_ticks.py).
+    """
+    axes_of: list[Any] = [axis for ax in _all_axes(figure) for axis in ax._axis_map.values()]
+    owners: dict[int, int] = {}
+    for axis in axes_of:
+        for thing in (axis.major.locator, axis.major.formatter, axis.minor.locator, axis.minor.formatter):
+            owners[id(thing)] = owners.get(id(thing), 0) + 1
+    settled = [
+        axis
+        for axis in axes_of
+        if "_update_ticks" not in vars(axis)  # not already settled (a draw within a layout)
+        and all(
+            owners[id(thing)] == 1
+            for thing in (axis.major.locator, axis.major.formatter, axis.minor.locator, axis.minor.formatter)
+        )
+    ]
+    for axis in settled:
+        vars(axis)["_update_ticks"] = _remembering(axis)  # the instance's own: its class untouched
+    try:
+        yield
+    finally:
+        for axis in settled:
+            del vars(axis)["_update_ticks"]
+
+
+def _remembering(axis: Any) -> Callable[[], list[Any]]:
+    """``axis``'s ``_update_ticks``, handing back the last ticks it found while their inputs are unchanged."""
+    find = type(axis)._update_ticks
+    last: list[Any] = [None, None]  # (inputs, ticks)
+
+    def update_ticks() -> list[Any]:
+        inputs = (tuple(axis.get_view_interval()), axis.axes.bbox.bounds, axis.get_figure(root=True).dpi)
+        if last[0] != inputs:
+            last[1] = find(axis)
+            last[0] = inputs
+        return list(last[1])
+
+    return update_ticks
+
+
+def _all_axes(figure: Any) -> Iterator[Axes]:
+    """Every Axes of ``figure`` and of its subfigures."""
+    yield from figure.axes
+    for sub in getattr(figure, "subfigs", ()):
+        yield from _all_axes(sub)
 
 
 def figure_of(ax: Axes) -> Figure:

@@ -1,0 +1,146 @@
+"""A figure's ticks found once per place of its axes while it is drawn (flyopt.report.plots.standard.settled_ticks).
+
+The reference is matplotlib's own path, which finds every axis' ticks each time anything asks for them: the
+figures of the shipped scenes are drawn both ways and must be the same to the byte (SVG and PDF), and the
+searches must be fewer, or the test would pass with the memory never used.
+"""
+
+import contextlib
+import io
+
+import pytest
+from conftest import PROBLEMS
+
+from flyopt.report.plots import standard
+
+#: Scenes whose diagrams between them take every kind of axes the report draws: two y axes on one x
+#: (turning moment), a shared axis (J_F–δ, speed), stresses, the wheel's section and drawing, a shaft's moments
+#: and a Campbell diagram, an engine's indicator diagram, a mechanism's.
+SCENES = ["shear-press", "punch-press-wheel", "punch-press-shaft", "four-cylinder-engine", "slider-crank-press"]
+
+
+def _figures(scene):
+    """The report's figures of ``scene`` (open matplotlib Figures, by key)."""
+    from flyopt.cli.report import collect
+    from flyopt.report.builder import build
+    from flyopt.report.document import Figure
+
+    document = build(collect(scene), "engineering", figures=True)
+    return document, {
+        b.key: b.figure
+        for section in document.sections
+        for b in section.blocks
+        if isinstance(b, Figure) and b.figure is not None
+    }
+
+
+def _drawn(scene, settled, kind="svg"):
+    """Each figure of ``scene``'s report as SVG (the app's and the HTML report's path) or PDF bytes, with or
+    without the ticks settled (the figures made and laid out the same way)."""
+    from flyopt.report.html import svg_of
+
+    patch = pytest.MonkeyPatch()
+    if not settled:
+        patch.setattr(standard, "settled_ticks", lambda figure: contextlib.nullcontext())
+    try:
+        document, figures = _figures(scene)
+        out = {}
+        for key, figure in figures.items():
+            if kind == "svg":
+                out[key] = svg_of(figure, key)
+            else:
+                buffer = io.BytesIO()
+                figure.savefig(buffer, format="pdf", metadata={"CreationDate": None, "ModDate": None})
+                out[key] = buffer.getvalue()
+        document.close()
+        return out
+    finally:
+        patch.undo()
+
+
+@pytest.mark.parametrize("scene", SCENES)
+def test_every_svg_the_same_to_the_byte(scene):
+    settled = _drawn(PROBLEMS / f"{scene}.toml", True)
+    reference = _drawn(PROBLEMS / f"{scene}.toml", False)
+    assert settled.keys() == reference.keys() and len(settled) >= 2
+    for key in reference:
+        assert settled[key] == reference[key], f"{scene}: {key} differs"
+
+
+def test_pdf_the_same_to_the_byte():
+    """savefig (the PDF report's path: a layout draw, then the PDF's own draw) as well."""
+    scene = PROBLEMS / "punch-press-shaft.toml"
+    assert _drawn(scene, True, "pdf") == _drawn(scene, False, "pdf")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    "scene", sorted(p.name for p in PROBLEMS.glob("*.toml")) + sorted(p.name for p in PROBLEMS.glob("textbook/*.toml"))
+)
+def test_every_shipped_scene_the_same(scene):
+    assert _drawn(PROBLEMS / scene, True) == _drawn(PROBLEMS / scene, False)
+
+
+def test_ticks_are_found_far_fewer_times(monkeypatch):
+    """The memory is used: a draw of shear-press's diagrams finds ticks under half as often as matplotlib's."""
+    from matplotlib.axis import Axis
+
+    from flyopt.report.html import svg_of
+
+    found = [0]
+    original = Axis._update_ticks
+
+    def counted(self):
+        found[0] += 1
+        return original(self)
+
+    monkeypatch.setattr(Axis, "_update_ticks", counted)
+    counts = {}
+    for settled in (True, False):
+        with monkeypatch.context() as patch:
+            if not settled:
+                patch.setattr(standard, "settled_ticks", lambda figure: contextlib.nullcontext())
+            document, figures = _figures(PROBLEMS / "shear-press.toml")
+            found[0] = 0
+            for key, figure in figures.items():
+                svg_of(figure, key)
+            counts[settled] = found[0]
+            document.close()
+    assert 0 < counts[True] < counts[False] / 2, counts
+
+
+def test_a_shared_locator_keeps_matplotlibs_path():
+    """Axes sharing an axis share its locator and formatter: those axes are left to matplotlib, and the
+    figure draws as matplotlib draws it."""
+    from flyopt.report.html import svg_of
+
+    def make():
+        figure = standard.new_figure(figsize=(4, 3), layout="constrained")
+        top = figure.add_subplot(211)
+        bottom = figure.add_subplot(212, sharex=top)
+        top.plot([0, 1, 2], [3, 1, 2])
+        bottom.plot([0, 1, 2], [1e5, 2e5, 1.5e5])
+        return figure, top, bottom
+
+    figure, top, bottom = make()
+    seen = {}
+
+    original = standard._remembering
+
+    def spy(axis):
+        seen[id(axis)] = True
+        return original(axis)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(standard, "_remembering", spy)
+        settled = svg_of(figure, "f")
+    assert id(top.xaxis) not in seen and id(bottom.xaxis) not in seen  # shared: matplotlib's own
+    assert id(top.yaxis) in seen and id(bottom.yaxis) in seen
+    standard.close(figure)
+    figure, *_ = make()
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(standard, "settled_ticks", lambda figure: contextlib.nullcontext())
+        reference = svg_of(figure, "f")
+    standard.close(figure)
+    assert settled == reference
+    assert not any("_update_ticks" in vars(axis) for axis in (top.xaxis, top.yaxis, bottom.xaxis, bottom.yaxis))
