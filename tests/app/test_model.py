@@ -324,3 +324,29 @@ def test_a_text_of_thousands_of_bad_keys_is_checked_at_once_and_listed_as_flyopt
     first = text.splitlines().index("k0 = 0") + 1
     assert [p.line for p in problems[:MAX_LISTED]] == list(range(first, first + MAX_LISTED))
     assert all(str(space.folder) not in p.message for p in problems)
+
+
+def test_an_edit_holds_the_collector_and_lets_it_run_after(monkeypatch):
+    """edit_held: the collector off while an edit is solved and drawn (the report's own pauses nested in it), on
+    again after; an edit that finds more than HELD_MOST objects waiting collects them first."""
+    import gc
+
+    from flyopt.report.plots import standard
+
+    assert gc.isenabled()
+    with model.edit_held():
+        assert not gc.isenabled()
+        with standard.collector_paused():  # build's and svg_of's pauses leave it to the hold
+            pass
+        assert not gc.isenabled()
+    assert gc.isenabled()
+    collected = []
+    monkeypatch.setattr(gc, "collect", lambda generation=2: collected.append(generation) or 0)
+    monkeypatch.setattr(gc, "get_count", lambda: (model.HELD_MOST + 1, 0, 0))
+    with model.edit_held():
+        pass
+    assert collected == [1]
+    monkeypatch.setattr(gc, "get_count", lambda: (model.HELD_MOST, 0, 0))
+    with model.edit_held():
+        pass
+    assert collected == [1]

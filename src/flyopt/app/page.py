@@ -18,12 +18,16 @@ Beside the Design tab, "Compare materials" and "Sweeps" (:mod:`flyopt.app.tabs`)
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import io
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from flyopt.app import address, model
+
+if TYPE_CHECKING:
+    from flyopt.app.diagrams import Diagrams
 
 #: The page's own pause after an edit before the text is checked and its numbers solved, in seconds. Panel
 #: already holds the editor's changes for 50 ms before the page sees them (its widgets' ``_debounce``): a pause
@@ -314,6 +318,12 @@ class Session:
             self.mode.object = mode
             self._busy(True)
             self.stale.object = self._stale()
+        # a fast scene's edit holds the collector from its numbers to its last diagram (a slow one's, while it draws)
+        with model.edit_held() if fast else contextlib.nullcontext():
+            await self._answer(text, units, mine, loop, mode)
+
+    async def _answer(self, text: str, units: str, mine: int, loop: asyncio.AbstractEventLoop, mode: str) -> None:
+        """Solve the checked ``text`` and show its answer: the card, then the diagrams (:meth:`_draw`)."""
         try:
             answer = await loop.run_in_executor(self.executor, model.numbers, text, self.workspace, units)
         except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
@@ -350,7 +360,13 @@ class Session:
         every diagram was drawn: a diagram that fails is said on the card, and its drawing's figures closed."""
         from flyopt.app.diagrams import Diagrams
 
-        diagrams = Diagrams(answer, self._in_view())
+        with model.edit_held():  # nested in a fast scene's: the collector held while the diagrams are drawn
+            return await self._drawn(Diagrams(answer, self._in_view()), answer, mine, loop)
+
+    async def _drawn(
+        self, diagrams: Diagrams, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop
+    ) -> bool:
+        """:meth:`_draw`'s loop: each diagram drawn in the drawing worker and shown."""
         while True:
             try:
                 step = await loop.run_in_executor(self.drawer, diagrams.step)
