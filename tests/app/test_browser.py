@@ -90,11 +90,19 @@ def card(page):
 def test_edit_break_fix_and_download(server, browser, tmp_path):
     from pypdf import PdfReader
 
+    from flyopt.app import model
+
     page = browser.new_page(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
     page.goto(server, timeout=120_000)  # a loaded host loads the page slowly
     page.wait_for_selector(".card >> text=designed", timeout=120_000)
     page.wait_for_selector(".figure-turning_moment svg", timeout=60_000)
     shot(page, "1-loaded")
+    # the diagrams' texts are text, set in the font the server sends (not one the browser happens to have)
+    loaded = page.evaluate(
+        "() => document.fonts.ready.then(() => [...document.fonts].filter(f => f.status === 'loaded').map(f => f.family))"
+    )
+    assert any(f.strip("\"'") == model.page_font()[0] for f in loaded), loaded
+    assert page.locator(".figure-turning_moment svg text").count() > 10
     json_doc = solve_json(ROOT / "problems" / "shear-press.toml")
     from flyopt.report import display
 
@@ -142,6 +150,24 @@ def test_edit_break_fix_and_download(server, browser, tmp_path):
     editor.evaluate("el => el.env.editor.setValue(el.env.editor.getValue() + '#' + 'x'.repeat(5000000))")
     page.wait_for_selector("text=The connection to flyopt was lost", timeout=60_000)
     page.close()
+
+
+def test_the_server_sends_the_diagrams_font_and_no_other_file(server):
+    """The font's route serves that one file, as it is; any other name there is not found."""
+    import urllib.error
+    import urllib.request
+
+    from flyopt.app import model
+
+    _family, file = model.page_font()
+    with urllib.request.urlopen(f"{server.rstrip('/')}/{model.FONT_ROUTE}/{file.name}", timeout=30) as answer:
+        assert answer.read() == file.read_bytes()
+    others = [p.name for p in file.parent.iterdir() if p.is_file() and p != file][:2] + ["..%2F..%2Fmatplotlibrc"]
+    for name in others:
+        with pytest.raises(urllib.error.HTTPError) as refused:
+            urllib.request.urlopen(f"{server.rstrip('/')}/{model.FONT_ROUTE}/{name}", timeout=30)
+        refused.value.close()  # the error is the response: its socket closed here
+        assert refused.value.code == 404, name
 
 
 @pytest.mark.slow  # the default run's five minutes; the form's writes and the pasted rows' answer are checked

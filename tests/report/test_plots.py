@@ -638,3 +638,19 @@ def test_a_small_deltas_three_speeds_are_written_apart_and_no_further():
     same = [1000 * math.pi / 30] * 3  # equal speeds (no fluctuation): nothing to tell apart
     assert standard.digits_apart(same, "angular_speed", "engineering", 4) == 4
     assert standard.digits_apart(rad, "angular_speed", "engineering", 14) <= display.MAX_DIGITS
+
+
+def test_a_figure_as_svg_draws_its_texts_as_paths_unless_asked_for_text():
+    """A report's SVG needs no font (its texts are glyph paths); the app's sets them as <text>, the same words."""
+    import re
+
+    from flyopt.report.html import svg_of
+    from flyopt.report.plots import standard
+
+    figure = standard.new_figure(figsize=(3, 2))
+    figure.add_subplot().set_xlabel("crank angle φ [deg]")
+    as_paths, as_text = svg_of(figure, "p"), svg_of(figure, "t", text_as_text=True)
+    standard.close(figure)
+    assert "<text" not in as_paths and "DejaVuSans-" in as_paths
+    assert "crank angle φ [deg]" in re.findall(r"<text[^>]*>([^<]*)</text>", as_text)
+    assert "DejaVuSans-" not in as_text

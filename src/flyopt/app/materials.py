@@ -231,7 +231,7 @@ def chart_svg(table: pd.DataFrame, units: str, names: dict[str, str] | None = No
 
 
 def _chart_svg(designed: pd.DataFrame, units: str, names: dict[str, str] | None) -> str:
-    from flyopt.report.html import svg_of
+    from flyopt.app.model import page_svg
     from flyopt.report.plots import standard
 
     # drawable: tick labels are made from these at the layout, after make_drawable has seen the figure's texts
@@ -270,7 +270,7 @@ def _chart_svg(designed: pd.DataFrame, units: str, names: dict[str, str] | None)
         ax.tick_params(axis="x", labelsize=8)
         ax.grid(True, axis="x", alpha=0.3)
     figure.tight_layout()
-    return svg_of(standard.make_drawable(figure), "tradeoff")
+    return page_svg(standard.make_drawable(figure), "tradeoff")
 
 
 #: The link each Pareto point carries in the SVG: ``#pick-N``, N the point's row in the front.
@@ -293,8 +293,7 @@ def pareto_svg(front: pd.DataFrame, units: str, names: dict[str, str] | None = N
 def _pareto_svg(front: pd.DataFrame, ax: Any, other: str, units: str) -> tuple[str, str]:
     import numpy as np
 
-    from flyopt.app.model import readout_json
-    from flyopt.report.html import svg_of
+    from flyopt.app.model import page_svg, readout_json
     from flyopt.report.plots import standard
     from flyopt.studies.pareto import PARETO_OBJECTIVES
 
@@ -308,7 +307,7 @@ def _pareto_svg(front: pd.DataFrame, ax: Any, other: str, units: str) -> tuple[s
     ax.set_title(ax.get_title() + " (click a point for its design)")
     figure = standard.figure_of(ax)
     try:
-        return svg_of(figure, "pareto"), readout_json(figure)
+        return page_svg(figure, "pareto"), readout_json(figure)
     finally:
         standard.close(figure)
 

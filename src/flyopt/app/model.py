@@ -418,16 +418,49 @@ def figure_blocks(document: Document) -> list[Any]:
     return [block for section in document.sections for block in section.blocks if isinstance(block, Figure)]
 
 
+def page_svg(figure: Any, prefix: str) -> str:
+    """A figure as the page shows it: an inline SVG whose texts are text in the figure's font, which the page
+    serves (:func:`page_font`; :func:`flyopt.report.html.svg_of`)."""
+    from flyopt.report.html import svg_of
+
+    return svg_of(figure, prefix, text_as_text=True)
+
+
+@functools.cache
+def page_font() -> tuple[str, Path]:
+    """(family, file) of the font the diagrams' texts are measured in (matplotlib's default, DejaVu Sans), which
+    the page serves to the browser (:data:`FONT_ROUTE`): their texts are set in it wherever the page is opened."""
+    from matplotlib import ft2font
+
+    from flyopt.report.plots import standard
+
+    file = Path(standard.font_file())
+    return str(ft2font.FT2Font(str(file)).family_name), file
+
+
+#: Where the page serves :func:`page_font`'s file (its name after it).
+FONT_ROUTE = "flyopt-font"
+
+
+def font_face_css() -> str:
+    """The page's ``@font-face`` rule of :func:`page_font`, served at :data:`FONT_ROUTE` (in the page's head: a
+    rule in a component's own styles names no font for the page)."""
+    family, file = page_font()
+    return (
+        f'@font-face {{ font-family: "{family}"; src: url("/{FONT_ROUTE}/{file.name}") format("truetype"); '
+        "font-display: block; }"
+    )
+
+
 def figure_svg(block: Any) -> Shown:
     """One Figure block as the page shows it: the SVG "" and the note in the caption where it is not drawn, the
     read-outs of its curves (:mod:`flyopt.report.plots.readout`, read off the figure as that SVG drew it)."""
     from flyopt.report.document import plain
-    from flyopt.report.html import svg_of
 
     svg = found = ""
     if block.figure is not None:
         with drawing():
-            svg = svg_of(block.figure, block.key)
+            svg = page_svg(block.figure, block.key)
             found = readout_json(block.figure)
     return Shown(block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg, found)
 

@@ -513,6 +513,17 @@ def closed_connection_handler(loop: Any, context: dict[str, Any]) -> None:
     loop.default_exception_handler(context)
 
 
+def font_route() -> tuple[str, Any, dict[str, str]]:
+    """The server's route of the diagrams' font (:func:`flyopt.app.model.page_font`): that one file, read-only,
+    at ``/flyopt-font/<its name>`` (Tornado's static file handler, which also answers a browser's cache)."""
+    import re
+
+    from tornado.web import StaticFileHandler
+
+    _family, file = model.page_font()
+    return rf"/{model.FONT_ROUTE}/({re.escape(file.name)})", StaticFileHandler, {"path": str(file.parent)}
+
+
 def serve(port: int, host: str, browser: bool) -> None:
     """Serve the app on ``host``:``port`` until interrupted; open the browser when asked."""
     import secrets
@@ -532,6 +543,7 @@ def serve(port: int, host: str, browser: bool) -> None:
     pn.extension(
         "codeeditor",
         raw_css=[CSS],
+        global_css=[model.font_face_css()],  # the diagrams' texts are text in their font: the page serves it
         # a message over the websocket's limit (an editor's text or a file of some 3 MB and more) closes the
         # connection; the page then said nothing and went on showing its last answer as if current
         notifications=True,
@@ -552,6 +564,7 @@ def serve(port: int, host: str, browser: bool) -> None:
             show=browser,
             title="flyopt",
             websocket_max_message_size=4 * model.MAX_BYTES,
+            extra_patterns=[font_route()],
             threaded=False,
         )
     finally:

@@ -246,15 +246,14 @@ def plot_shown(
 ) -> tuple[str, str]:
     """(SVG, read-outs) of the sweep plot (:func:`plot_svg`; the read-outs' JSON of
     :func:`flyopt.app.model.readout_json`, "" where an axis has no unit to read it in)."""
-    from flyopt.app.model import readout_json
-    from flyopt.report.html import svg_of
+    from flyopt.app.model import page_svg, readout_json
     from flyopt.report.plots import plot_sweep, standard
 
     with standard.LOCK:  # drawn in the tab's worker thread: one draw at a time (matplotlib is not thread-safe)
         ax = plot_sweep(frame, x, y, by, units=units)
         figure = standard.figure_of(ax)
         try:
-            return svg_of(figure, "sweep"), readout_json(figure)
+            return page_svg(figure, "sweep"), readout_json(figure)
         finally:
             standard.close(figure)
 
