@@ -1,8 +1,9 @@
-"""A figure's ticks found once per place of its axes while it is drawn (flyopt.report.plots.standard.settled_ticks).
+"""A figure's ticks found once per place of its axes, and its texts laid out once per font and size, while it is
+drawn (flyopt.report.plots.standard.settled_ticks and settled_texts).
 
-The reference is matplotlib's own path, which finds every axis' ticks each time anything asks for them: the
-figures of the shipped scenes are drawn both ways and must be the same to the byte (SVG and PDF), and the
-searches must be fewer, or the test would pass with the memory never used.
+The reference is matplotlib's own path, which finds every axis' ticks and lays out every text each time
+anything asks for them: the figures of the shipped scenes are drawn both ways and must be the same to the byte
+(SVG and PDF), and the searches and layouts must be fewer, or the test would pass with the memory never used.
 """
 
 import contextlib
@@ -17,6 +18,12 @@ from flyopt.report.plots import standard
 #: (turning moment), a shared axis (J_F–δ, speed), stresses, the wheel's section and drawing, a shaft's moments
 #: and a Campbell diagram, an engine's indicator diagram, a mechanism's.
 SCENES = ["shear-press", "punch-press-wheel", "punch-press-shaft", "four-cylinder-engine", "slider-crank-press"]
+
+
+def matplotlibs_own(patch):
+    """Draw as matplotlib draws: every tick found and every text laid out each time it is asked for."""
+    patch.setattr(standard, "settled_ticks", lambda figure: contextlib.nullcontext())
+    patch.setattr(standard, "settled_texts", contextlib.nullcontext)
 
 
 def _figures(scene):
@@ -41,7 +48,7 @@ def _drawn(scene, settled, kind="svg"):
 
     patch = pytest.MonkeyPatch()
     if not settled:
-        patch.setattr(standard, "settled_ticks", lambda figure: contextlib.nullcontext())
+        matplotlibs_own(patch)
     try:
         document, figures = _figures(scene)
         out = {}
@@ -75,7 +82,8 @@ def test_pdf_the_same_to_the_byte():
 
 @pytest.mark.slow
 @pytest.mark.parametrize(
-    "scene", sorted(p.name for p in PROBLEMS.glob("*.toml")) + sorted(p.name for p in PROBLEMS.glob("textbook/*.toml"))
+    "scene",
+    sorted(p.relative_to(PROBLEMS).as_posix() for p in [*PROBLEMS.glob("*.toml"), *PROBLEMS.glob("textbook/*.toml")]),
 )
 def test_every_shipped_scene_the_same(scene):
     assert _drawn(PROBLEMS / scene, True) == _drawn(PROBLEMS / scene, False)
@@ -99,7 +107,7 @@ def test_ticks_are_found_far_fewer_times(monkeypatch):
     for settled in (True, False):
         with monkeypatch.context() as patch:
             if not settled:
-                patch.setattr(standard, "settled_ticks", lambda figure: contextlib.nullcontext())
+                matplotlibs_own(patch)
             document, figures = _figures(PROBLEMS / "shear-press.toml")
             found[0] = 0
             for key, figure in figures.items():
@@ -139,8 +147,57 @@ def test_a_shared_locator_keeps_matplotlibs_path():
     standard.close(figure)
     figure, *_ = make()
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(standard, "settled_ticks", lambda figure: contextlib.nullcontext())
+        matplotlibs_own(patch)
         reference = svg_of(figure, "f")
     standard.close(figure)
     assert settled == reference
     assert not any("_update_ticks" in vars(axis) for axis in (top.xaxis, top.yaxis, bottom.xaxis, bottom.yaxis))
+
+
+def test_texts_are_laid_out_far_fewer_times(monkeypatch):
+    """The memory is used: a draw of shear-press's diagrams lays its texts out under half as often as matplotlib."""
+    from matplotlib.text import Text
+
+    from flyopt.report.html import svg_of
+
+    laid = [0]
+    original = Text._get_layout
+
+    def counted(self, renderer):
+        laid[0] += 1
+        return original(self, renderer)
+
+    monkeypatch.setattr(Text, "_get_layout", counted)
+    counts = {}
+    for settled in (True, False):
+        with monkeypatch.context() as patch:
+            if not settled:
+                matplotlibs_own(patch)
+            document, figures = _figures(PROBLEMS / "shear-press.toml")
+            laid[0] = 0
+            for key, figure in figures.items():
+                svg_of(figure, key, text_as_text=True)
+            counts[settled] = laid[0]
+            document.close()
+    assert Text._get_layout is counted  # put back as it was found
+    assert 0 < counts[True] < counts[False] / 2, counts
+
+
+def test_a_text_changed_between_two_asks_is_laid_out_again():
+    """The box follows the text: a label whose words, size or rotation change within the block is measured anew."""
+    from flyopt.report.html import svg_of
+
+    figure = standard.new_figure(figsize=(3, 2))
+    label = figure.add_subplot().set_xlabel("short")
+    renderer = figure.canvas.get_renderer()
+    with standard.settled_texts():
+        first = label.get_window_extent(renderer).width
+        label.set_text("a much longer label")
+        longer = label.get_window_extent(renderer).width
+        label.set_fontsize(20)
+        larger = label.get_window_extent(renderer).width
+        label.set_rotation(90)
+        turned = label.get_window_extent(renderer)
+    assert first < longer < larger and turned.height > turned.width
+    svg_of(figure, "f")
+    standard.close(figure)

@@ -213,7 +213,7 @@ def figure_class() -> type[Figure]:
         class DrawableFigure(Figure):
             def draw(self, renderer: Any) -> None:
                 make_drawable(self)
-                with settled_ticks(self):
+                with settled_ticks(self), settled_texts():
                     super().draw(renderer)
 
         _FIGURE_CLASS = DrawableFigure
@@ -260,6 +260,61 @@ def settled_ticks(figure: Figure) -> Iterator[None]:
     finally:
         for axis in settled:
             del vars(axis)["_update_ticks"]
+
+
+@contextlib.contextmanager
+def settled_texts() -> Iterator[None]:
+    """Within the block, a text is laid out again (its lines measured, its box found: ``Text._get_layout``) only
+    where what that is found from changed.
+
+    A draw asks for each text's box several times: a tick label in each of the constrained layout's two passes
+    (its axis' tight box, the spines, the label's place beside its siblings') and as it is drawn, some 900
+    times an edit of the app, each measuring every line again. The box depends on the text, its font, size,
+    rotation, alignments and line spacing, the figure's dpi and the renderer measuring it, not on where the text
+    is (its place is added after): a text remembers its last box with all of them and hands it back while they
+    are unchanged; a text wrapped to its place (``wrap``) is laid out each time. Every SVG the same to the byte
+    (tests/report/test_settled_ticks.py). Nested, the outer block's memory serves.
+    """
+    from matplotlib.text import Text
+
+    find = Text.__dict__["_get_layout"]
+    if getattr(find, "settled", False):
+        yield
+        return
+    remembered: dict[Any, tuple[tuple[Any, ...], Any]] = {}
+
+    def get_layout(text: Any, renderer: Any) -> Any:
+        if text._wrap:
+            return find(text, renderer)
+        font = text._fontproperties
+        inputs = (
+            id(renderer),
+            text._text,
+            hash(font),
+            font.get_size_in_points(),
+            text.get_figure(root=True).dpi,
+            text._linespacing,
+            text.get_usetex(),
+            text._parse_math,
+            text.get_rotation(),
+            text._rotation_mode,
+            text._horizontalalignment,
+            text._verticalalignment,
+            text._multialignment,
+        )
+        last = remembered.get(text)
+        if last is not None and last[0] == inputs:
+            return last[1]
+        layout = find(text, renderer)
+        remembered[text] = (inputs, layout)
+        return layout
+
+    get_layout.settled = True  # type: ignore[attr-defined]
+    Text._get_layout = get_layout  # type: ignore[attr-defined]
+    try:
+        yield
+    finally:
+        Text._get_layout = find  # type: ignore[attr-defined]
 
 
 def _remembering(axis: Any) -> Callable[[], list[Any]]:
