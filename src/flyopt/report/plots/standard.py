@@ -292,7 +292,7 @@ def settled_texts() -> Iterator[None]:
             text._text,
             hash(font),
             font.get_size_in_points(),
-            text.get_figure(root=True).dpi,
+            text.figure.dpi,  # a subfigure says its root's (Artist.get_figure(root=True) is matplotlib 3.10+)
             text._linespacing,
             text.get_usetex(),
             text._parse_math,
@@ -323,7 +323,7 @@ def _remembering(axis: Any) -> Callable[[], list[Any]]:
     last: list[Any] = [None, None]  # (inputs, ticks)
 
     def update_ticks() -> list[Any]:
-        inputs = (tuple(axis.get_view_interval()), axis.axes.bbox.bounds, axis.get_figure(root=True).dpi)
+        inputs = (tuple(axis.get_view_interval()), axis.axes.bbox.bounds, axis.axes.figure.dpi)
         if last[0] != inputs:
             last[1] = find(axis)
             last[0] = inputs
