@@ -369,3 +369,27 @@ def test_the_pages_diagrams_set_their_texts_as_text_in_the_font_the_page_serves(
     css = model.font_face_css()
     assert f'font-family: "{family}"' in css and f'url("/{model.FONT_ROUTE}/{file.name}")' in css
     model.close(answer.document)
+
+
+def test_overlapping_holds_keep_the_collector_held_until_the_last_ends():
+    """Two edits' holds (or an edit's and a figure's pause in the drawing worker) that end out of order: the
+    collector runs again only when the last one ends (the first to end let it run under the other)."""
+    import gc
+
+    from flyopt.report.plots import standard
+
+    assert gc.isenabled()
+    first, second = model.edit_held(), standard.collector_paused()
+    first.__enter__()
+    second.__enter__()
+    first.__exit__(None, None, None)
+    assert not gc.isenabled()
+    second.__exit__(None, None, None)
+    assert gc.isenabled()
+    gc.disable()  # paused by someone else (a caller's own choice): left so
+    try:
+        with model.edit_held():
+            pass
+        assert not gc.isenabled()
+    finally:
+        gc.enable()

@@ -201,3 +201,35 @@ def test_a_text_changed_between_two_asks_is_laid_out_again():
     assert first < longer < larger and turned.height > turned.width
     svg_of(figure, "f")
     standard.close(figure)
+
+
+def test_subfigures_axes_are_settled_once_each():
+    """A root figure's axes include its subfigures' (matplotlib 3.4+): each is settled once, and draws as
+    matplotlib draws it (listed twice, every locator looked shared and none was settled)."""
+    from flyopt.report.html import svg_of
+
+    def make():
+        figure = standard.new_figure(figsize=(5, 3), layout="constrained")
+        for sub, scale in zip(figure.subfigures(1, 2), (1.0, 1e4)):
+            sub.add_subplot().plot([0, 1, 2], [scale, 3 * scale, 2 * scale])
+        return figure
+
+    figure = make()
+    seen = []
+    original = standard._remembering
+
+    def spy(axis):
+        seen.append(axis)
+        return original(axis)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(standard, "_remembering", spy)
+        settled = svg_of(figure, "f")
+    assert len(seen) == 4 and len(set(map(id, seen))) == 4  # two axes of each of the two subfigures' Axes
+    standard.close(figure)
+    figure = make()
+    with pytest.MonkeyPatch.context() as patch:
+        matplotlibs_own(patch)
+        reference = svg_of(figure, "f")
+    standard.close(figure)
+    assert settled == reference

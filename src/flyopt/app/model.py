@@ -389,10 +389,11 @@ def edit_held() -> Iterator[None]:
     An edit makes some 10^5 objects (the report's documents, seven figures' artists and transforms), and the
     collector, run by their count, scans them again and again while they are made and drawn: its young
     collections took some 40 ms of an edit's 430 ms to the last diagram in the app's process (issue 29). Held
-    (:func:`flyopt.report.plots.standard.collector_paused`, which the report's own pauses nest in), it runs
-    once the edit is done and finds the last edit's figures, closed, in one scan: some 10 ms. The hold is the
-    whole process': while edits overlap (an engineer typing on), it lasts until none is in flight, and an edit
-    that finds more than :data:`HELD_MOST` objects waiting collects them first.
+    (:func:`flyopt.report.plots.standard.collector_paused`, whose pauses are counted over the process: the
+    report's own pauses in the drawing worker nest in it), it runs once the edit is done and finds the last
+    edit's figures, closed, in one scan: some 10 ms. The hold is the whole process': while edits overlap (an
+    engineer typing on), it lasts until none is in flight, and an edit that finds more than :data:`HELD_MOST`
+    objects waiting collects them first.
     """
     import gc
 

@@ -365,11 +365,11 @@ def remembered_text_to_path() -> Any:
             key = (font, s, features, language)
             found = self._glyphs.get(key)
             if found is None:
-                info, paths, rects = super().get_glyphs_with_font(font, s, features=features, language=language)
+                # a font's features and language as matplotlib 3.10 and later take them (none: as 3.9 and before)
+                shaping = {} if features is None and language is None else {"features": features, "language": language}
+                info, paths, rects = super().get_glyphs_with_font(font, s, **shaping)
                 if rects:  # pragma: no cover - matplotlib draws no rectangle for a plain text
-                    return super().get_glyphs_with_font(
-                        font, s, glyph_map, return_new_glyphs_only, features=features, language=language
-                    )
+                    return super().get_glyphs_with_font(font, s, glyph_map, return_new_glyphs_only, **shaping)
                 if len(self._glyphs) >= REMEMBERED_TEXTS:
                     self._glyphs.clear()
                 found = self._glyphs[key] = (info, dict(paths))

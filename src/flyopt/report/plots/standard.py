@@ -57,16 +57,30 @@ def collector_paused() -> Iterator[None]:
     counting them, runs its full collections in the middle of a report's figures: each scans every object
     of the process (numpy, matplotlib, the solution), some 0.1 s, 0.2 s of a report (issue 26). What the
     figures leave is collected as usual once the collector runs again. Reference counting frees what is not
-    in a cycle meanwhile. A pause within a pause leaves the collector to the outer one.
+    in a cycle meanwhile.
+
+    The pauses of the whole process are counted (:data:`_PAUSES`): the collector is paused by the first one in
+    (if it was running then) and runs again when the last one in flight ends, whichever thread or task each
+    is in (the app holds it through each edit, :func:`flyopt.app.model.edit_held`, while its drawing worker
+    pauses it around every figure: the first to end let it run under the others).
     """
-    if not gc.isenabled():
-        yield
-        return
-    gc.disable()
+    with _PAUSES_LOCK:
+        if _PAUSES[0] == 0:
+            _PAUSES[1] = gc.isenabled()
+            gc.disable()
+        _PAUSES[0] += 1
     try:
         yield
     finally:
-        gc.enable()
+        with _PAUSES_LOCK:
+            _PAUSES[0] -= 1
+            if _PAUSES[0] == 0 and _PAUSES[1]:
+                gc.enable()
+
+
+#: The pauses of :func:`collector_paused` in flight, and whether the collector ran before the first of them.
+_PAUSES: list[Any] = [0, False]
+_PAUSES_LOCK = threading.Lock()
 
 
 def pyplot() -> ModuleType:
@@ -239,7 +253,8 @@ def settled_ticks(figure: Figure) -> Iterator[None]:
     change) keeps matplotlib's own. Some 15 % of drawing the app's diagrams (issue 29); every SVG the same to
     the byte (tests/report/test_settled_ticks.py).
     """
-    axes_of: list[Any] = [axis for ax in _all_axes(figure) for axis in ax._axis_map.values()]
+    # each Axes once: a root figure's axes include its subfigures' in matplotlib 3.4 and later
+    axes_of: list[Any] = [axis for ax in dict.fromkeys(_all_axes(figure)) for axis in ax._axis_map.values()]
     owners: dict[int, int] = {}
     for axis in axes_of:
         for thing in (axis.major.locator, axis.major.formatter, axis.minor.locator, axis.minor.formatter):
@@ -288,7 +303,7 @@ def settled_texts() -> Iterator[None]:
             return find(text, renderer)
         font = text._fontproperties
         inputs = (
-            id(renderer),
+            renderer,  # the object, not its id, which a renderer made after this one's end may be given
             text._text,
             hash(font),
             font.get_size_in_points(),
