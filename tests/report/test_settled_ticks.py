@@ -89,31 +89,39 @@ def test_every_shipped_scene_the_same(scene):
     assert _drawn(PROBLEMS / scene, True) == _drawn(PROBLEMS / scene, False)
 
 
-def test_ticks_are_found_far_fewer_times(monkeypatch):
-    """The memory is used: a draw of shear-press's diagrams finds ticks under half as often as matplotlib's."""
-    from matplotlib.axis import Axis
-
+def _asks(monkeypatch, owner, name, text_as_text=False):
+    """How many times ``owner.name`` (a method of matplotlib's) runs while shear-press's diagrams are drawn,
+    settled (True) and as matplotlib draws them (False)."""
     from flyopt.report.html import svg_of
 
-    found = [0]
-    original = Axis._update_ticks
+    ran = [0]
+    original = getattr(owner, name)
 
-    def counted(self):
-        found[0] += 1
-        return original(self)
+    def counted(*args):
+        ran[0] += 1
+        return original(*args)
 
-    monkeypatch.setattr(Axis, "_update_ticks", counted)
+    monkeypatch.setattr(owner, name, counted)
     counts = {}
     for settled in (True, False):
         with monkeypatch.context() as patch:
             if not settled:
                 matplotlibs_own(patch)
             document, figures = _figures(PROBLEMS / "shear-press.toml")
-            found[0] = 0
+            ran[0] = 0
             for key, figure in figures.items():
-                svg_of(figure, key)
-            counts[settled] = found[0]
+                svg_of(figure, key, text_as_text=text_as_text)
+            counts[settled] = ran[0]
             document.close()
+    assert getattr(owner, name) is counted  # put back as it was found
+    return counts
+
+
+def test_ticks_are_found_far_fewer_times(monkeypatch):
+    """The memory is used: a draw of shear-press's diagrams finds ticks under half as often as matplotlib's."""
+    from matplotlib.axis import Axis
+
+    counts = _asks(monkeypatch, Axis, "_update_ticks")
     assert 0 < counts[True] < counts[False] / 2, counts
 
 
@@ -158,28 +166,7 @@ def test_texts_are_laid_out_far_fewer_times(monkeypatch):
     """The memory is used: a draw of shear-press's diagrams lays its texts out under half as often as matplotlib."""
     from matplotlib.text import Text
 
-    from flyopt.report.html import svg_of
-
-    laid = [0]
-    original = Text._get_layout
-
-    def counted(self, renderer):
-        laid[0] += 1
-        return original(self, renderer)
-
-    monkeypatch.setattr(Text, "_get_layout", counted)
-    counts = {}
-    for settled in (True, False):
-        with monkeypatch.context() as patch:
-            if not settled:
-                matplotlibs_own(patch)
-            document, figures = _figures(PROBLEMS / "shear-press.toml")
-            laid[0] = 0
-            for key, figure in figures.items():
-                svg_of(figure, key, text_as_text=True)
-            counts[settled] = laid[0]
-            document.close()
-    assert Text._get_layout is counted  # put back as it was found
+    counts = _asks(monkeypatch, Text, "_get_layout", text_as_text=True)
     assert 0 < counts[True] < counts[False] / 2, counts
 
 
