@@ -22,12 +22,9 @@ import contextlib
 import io
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from flyopt.app import address, model
-
-if TYPE_CHECKING:
-    from flyopt.app.diagrams import Diagrams
 
 #: The page's own pause after an edit before the text is checked and its numbers solved, in seconds. Panel
 #: already holds the editor's changes for 50 ms before the page sees them (its widgets' ``_debounce``): a pause
@@ -320,37 +317,33 @@ class Session:
             self.stale.object = self._stale()
         # a fast scene's edit holds the collector from its numbers to its last diagram (a slow one's, while it draws)
         with model.edit_held() if fast else contextlib.nullcontext():
-            await self._answer(text, units, mine, loop, mode)
-
-    async def _answer(self, text: str, units: str, mine: int, loop: asyncio.AbstractEventLoop, mode: str) -> None:
-        """Solve the checked ``text`` and show its answer: the card, then the diagrams (:meth:`_draw`)."""
-        try:
-            answer = await loop.run_in_executor(self.executor, model.numbers, text, self.workspace, units)
-        except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
-            if mine == self.generation:
-                field = getattr(err, "field", "")
-                message = getattr(err, "message", None) or f"{type(err).__name__}: {err}"
-                line = model.field_line(text, field) if field else None
-                self.card.html = model.card_html(None, [model.Problem(field, message, line)])
-                self._busy(False)
-                self.form.show(text)
-                self.mode.object = mode
-            return
-        if mine != self.generation:
-            return
-        self.card.html = model.card_html(answer, [], busy="" if answer.drawn else "drawing the diagrams…")
-        self._take(answer)
-        self.footer.html = f'<div class="footer">{model.provenance_html(answer)}</div>'
-        self.form.show(text)
-        self.mode.object = mode
-        self._busy(not answer.drawn)
-        if answer.drawn:  # a calculation's few figures come with its numbers
-            self._show_figures(answer.figures)
-        if not answer.drawn:
-            await asyncio.sleep(0)  # the card's message leaves before a diagram takes the interpreter
-            if await self._draw(answer, mine, loop) and mine == self.generation:
-                self.card.html = model.card_html(self.answer, [])
-                self._busy(False)
+            try:
+                answer = await loop.run_in_executor(self.executor, model.numbers, text, self.workspace, units)
+            except Exception as err:  # noqa: BLE001 -- said on the card, as the CLI says it in one line
+                if mine == self.generation:
+                    field = getattr(err, "field", "")
+                    message = getattr(err, "message", None) or f"{type(err).__name__}: {err}"
+                    line = model.field_line(text, field) if field else None
+                    self.card.html = model.card_html(None, [model.Problem(field, message, line)])
+                    self._busy(False)
+                    self.form.show(text)
+                    self.mode.object = mode
+                return
+            if mine != self.generation:
+                return
+            self.card.html = model.card_html(answer, [], busy="" if answer.drawn else "drawing the diagrams…")
+            self._take(answer)
+            self.footer.html = f'<div class="footer">{model.provenance_html(answer)}</div>'
+            self.form.show(text)
+            self.mode.object = mode
+            self._busy(not answer.drawn)
+            if answer.drawn:  # a calculation's few figures come with its numbers
+                self._show_figures(answer.figures)
+            if not answer.drawn:
+                await asyncio.sleep(0)  # the card's message leaves before a diagram takes the interpreter
+                if await self._draw(answer, mine, loop) and mine == self.generation:
+                    self.card.html = model.card_html(self.answer, [])
+                    self._busy(False)
 
     async def _draw(self, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop) -> bool:
         """Draw ``answer``'s diagrams in the drawing worker, those in view first (:class:`flyopt.app.diagrams.Diagrams`),
@@ -360,36 +353,31 @@ class Session:
         every diagram was drawn: a diagram that fails is said on the card, and its drawing's figures closed."""
         from flyopt.app.diagrams import Diagrams
 
+        diagrams = Diagrams(answer, self._in_view())
         with model.edit_held():  # nested in a fast scene's: the collector held while the diagrams are drawn
-            return await self._drawn(Diagrams(answer, self._in_view()), answer, mine, loop)
-
-    async def _drawn(
-        self, diagrams: Diagrams, answer: model.Answer, mine: int, loop: asyncio.AbstractEventLoop
-    ) -> bool:
-        """:meth:`_draw`'s loop: each diagram drawn in the drawing worker and shown."""
-        while True:
-            try:
-                step = await loop.run_in_executor(self.drawer, diagrams.step)
-            except Exception as err:  # noqa: BLE001 -- said on the card, as a failed solve is
-                self._drop(diagrams.close)
-                if mine == self.generation:
-                    self._busy(False)
-                    self.card.html = model.card_html(
-                        answer, [], busy=f"The diagrams could not be drawn: {type(err).__name__}: {err}"
-                    )
-                return False
-            if mine != self.generation:
-                self._drop(diagrams.close)
-                return False
-            if step is None:
-                break
-            index, figure = step
-            if index <= len(self.figure_slots):  # a place further down is added in order, below
-                self._show_figure(index, *figure)
-        shown = diagrams.figures()
-        self._show_figures(shown)
-        self._take(model.drawn(answer, diagrams.document(), shown))
-        return True
+            while True:
+                try:
+                    step = await loop.run_in_executor(self.drawer, diagrams.step)
+                except Exception as err:  # noqa: BLE001 -- said on the card, as a failed solve is
+                    self._drop(diagrams.close)
+                    if mine == self.generation:
+                        self._busy(False)
+                        self.card.html = model.card_html(
+                            answer, [], busy=f"The diagrams could not be drawn: {type(err).__name__}: {err}"
+                        )
+                    return False
+                if mine != self.generation:
+                    self._drop(diagrams.close)
+                    return False
+                if step is None:
+                    break
+                index, figure = step
+                if index <= len(self.figure_slots):  # a place further down is added in order, below
+                    self._show_figure(index, *figure)
+            shown = diagrams.figures()
+            self._show_figures(shown)
+            self._take(model.drawn(answer, diagrams.document(), shown))
+            return True
 
     def _stale(self) -> str:
         """The note above the downloads and diagrams while they are not the editor's text's: it names the

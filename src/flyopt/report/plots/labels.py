@@ -49,7 +49,7 @@ def lay_out(ax: Axes, keep: bool) -> None:
     engine = figure.get_layout_engine()
     if figure.axes and engine is not None:
         try:
-            with standard.settled_ticks(figure), standard.settled_texts():
+            with standard.settled(figure):
                 engine.execute(figure)
         except ValueError:  # as Figure.draw: the layout gives up on a figure too small, the draw goes on
             pass

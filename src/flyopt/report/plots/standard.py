@@ -227,7 +227,7 @@ def figure_class() -> type[Figure]:
         class DrawableFigure(Figure):
             def draw(self, renderer: Any) -> None:
                 make_drawable(self)
-                with settled_ticks(self), settled_texts():
+                with settled(self):
                     super().draw(renderer)
 
         _FIGURE_CLASS = DrawableFigure
@@ -235,6 +235,14 @@ def figure_class() -> type[Figure]:
 
 
 _FIGURE_CLASS: type[Figure] | None = None
+
+
+@contextlib.contextmanager
+def settled(figure: Figure) -> Iterator[None]:
+    """What a draw or a layout of ``figure`` finds again and again, found once: its axes' ticks
+    (:func:`settled_ticks`) and its texts' boxes (:func:`settled_texts`)."""
+    with settled_ticks(figure), settled_texts():
+        yield
 
 
 @contextlib.contextmanager
@@ -253,27 +261,28 @@ def settled_ticks(figure: Figure) -> Iterator[None]:
     change) keeps matplotlib's own. Some 15 % of drawing the app's diagrams (issue 29); every SVG the same to
     the byte (tests/report/test_settled_ticks.py).
     """
-    # each Axes once: a root figure's axes include its subfigures' in matplotlib 3.4 and later
-    axes_of: list[Any] = [axis for ax in dict.fromkeys(_all_axes(figure)) for axis in ax._axis_map.values()]
+    # a root figure's axes include its subfigures' (matplotlib 3.4 and later)
+    axes_of: list[Any] = [axis for ax in figure.axes for axis in ax._axis_map.values()]
+
+    def tickers(axis: Any) -> tuple[Any, ...]:
+        return axis.major.locator, axis.major.formatter, axis.minor.locator, axis.minor.formatter
+
     owners: dict[int, int] = {}
     for axis in axes_of:
-        for thing in (axis.major.locator, axis.major.formatter, axis.minor.locator, axis.minor.formatter):
+        for thing in tickers(axis):
             owners[id(thing)] = owners.get(id(thing), 0) + 1
-    settled = [
+    remembering = [
         axis
         for axis in axes_of
         if "_update_ticks" not in vars(axis)  # not already settled (a draw within a layout)
-        and all(
-            owners[id(thing)] == 1
-            for thing in (axis.major.locator, axis.major.formatter, axis.minor.locator, axis.minor.formatter)
-        )
+        and all(owners[id(thing)] == 1 for thing in tickers(axis))
     ]
-    for axis in settled:
+    for axis in remembering:
         vars(axis)["_update_ticks"] = _remembering(axis)  # the instance's own: its class untouched
     try:
         yield
     finally:
-        for axis in settled:
+        for axis in remembering:
             del vars(axis)["_update_ticks"]
 
 
@@ -345,13 +354,6 @@ def _remembering(axis: Any) -> Callable[[], list[Any]]:
         return list(last[1])
 
     return update_ticks
-
-
-def _all_axes(figure: Any) -> Iterator[Axes]:
-    """Every Axes of ``figure`` and of its subfigures."""
-    yield from figure.axes
-    for sub in getattr(figure, "subfigs", ()):
-        yield from _all_axes(sub)
 
 
 def figure_of(ax: Axes) -> Figure:
