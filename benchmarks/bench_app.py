@@ -3,10 +3,12 @@
 The app is served by ``python -m flyopt app`` in a subprocess and driven by headless Debian chromium
 through Playwright, as the browser tests drive it. Each edit selects ``machine.delta``'s value in the
 editor of problems/shear-press.toml (an energy-model scene, solved on every edit) and types a new one
-(the deltas cycle through values whose 1/δ is a whole number, so the card's "δ (1/n)" names the edit);
-the clock starts when the last key is sent and stops when
+(the deltas cycle through values whose 1/δ is a whole number, so the card's "δ (1/n)" names the edit), or with
+``--edit torque`` the resisting torque's points (their peak); the clock starts when the last key is sent and
+stops when
 
-* numbers: the answer card shows the new "δ (1/n)" and the status "designed";
+* numbers: the answer card shows the new "δ (1/n)" (a torque edit: the card differs from before) and the
+  status "designed";
 * the diagram in view: before the edits the page is scrolled to the J_F–δ diagram (the third on the page; it
   changes with δ), which the page then draws first (flyopt.app.diagrams: the diagrams in view first); its SVG
   differs from before;
@@ -26,9 +28,12 @@ engineer's machine; ``--pin same`` puts both on one (the runs before: the browse
 drawing then take turns on one core); ``--pin none`` leaves them to the OS. Writes
 ``benchmarks/results/app.md`` and ``app.csv``.
 
+``--edit torque`` edits the resisting torque's peak instead of δ: every diagram then changes (a δ edit leaves
+the turning-moment and energy diagrams as they were, and the page keeps them); it writes ``app_torque.md``.
+
 Usage::
 
-    python benchmarks/bench_app.py [--edits 12] [--pin split|same|none]
+    python benchmarks/bench_app.py [--edits 12] [--pin split|same|none] [--edit delta|torque]
 """
 
 import argparse
@@ -50,6 +55,30 @@ from flyopt.app.page import DEBOUNCE  # noqa: E402 -- the page's own, after the 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "problems" / "shear-press.toml"
 DELTAS = ("0.04", "0.025", "0.02", "0.0125", "0.01", "0.05")
+#: The peak resisting torques [N*m] a torque edit cycles through: each changes every diagram of the scene.
+PEAKS = ("1500", "1700", "1450", "1650", "1550", "1600")
+TORQUE = 'points = [["0 deg", "{peak} N*m"], ["45 deg", "{peak} N*m"], ["90 deg", "200 N*m"], ["360 deg", "200 N*m"]]'
+
+
+#: What each kind of edit replaces, and what of the page it leaves as it was.
+EDITED = {"delta": "machine.delta's line", "torque": "the resisting torque's points (its peak)"}
+KEPT = {
+    "delta": "a δ edit leaves the turning-moment and energy diagrams as they were",
+    "torque": "a torque edit changes every diagram: none is kept",
+}
+
+
+def edit_lines(kind):
+    """(line before, line after, what the card then shows or None: it changes) of each edit of ``kind``: δ's line
+    (the turning-moment and energy diagrams stay as they were, the page keeps them) or the resisting torque's
+    (every diagram changes)."""
+    if kind == "delta":
+        old = ["0.05", *DELTAS[:-1]]
+        return [(f"delta = {a}", f"delta = {b}", f"{b} (1/{round(1 / float(b))})") for a, b in zip(old, DELTAS)]
+    old = ["1600", *PEAKS[:-1]]
+    return [(TORQUE.format(peak=a), TORQUE.format(peak=b), None) for a, b in zip(old, PEAKS)]
+
+
 CHROMIUM = "/usr/bin/chromium"
 ARGS = [
     "--headless=new",
@@ -109,7 +138,8 @@ WATCH = """([shown, before]) => {
     const check = () => {
       if (out.card === undefined) {
         const card = deep(document, '.card');
-        if (card && card.innerText.includes(shown) && card.innerText.includes('designed')) {
+        if (card && (shown ? card.innerText.includes(shown) : card.innerText !== before.card)
+            && card.innerText.includes('designed')) {
           out.edit = window.__flyoptEdit;
           seen('card');
         }
@@ -130,7 +160,7 @@ WATCH = """([shown, before]) => {
 }"""
 
 
-def browser_latencies(url, edits, cpus):
+def browser_latencies(url, edits, cpus, kind):
     from playwright.sync_api import sync_playwright
 
     if cpus is not None:
@@ -148,26 +178,26 @@ def browser_latencies(url, edits, cpus):
         page.locator(".figure-inertia_delta").first.scroll_into_view_if_needed()
         page.locator(".figure-inertia_delta").first.evaluate("(el) => el.scrollIntoView({block: 'start'})")
         time.sleep(1.0)
-        current = "0.05"
+        lines = edit_lines(kind)
         for i in range(edits):
-            new = DELTAS[i % len(DELTAS)]
-            shown = f"{new} (1/{round(1 / float(new))})"
+            old, new, shown = lines[i % len(lines)]
             before = {
                 "first": page.locator(".figure-inertia_delta svg").first.inner_html(),
                 "last": page.locator(".figure-speed svg").first.inner_html(),
+                "card": page.locator(".card").first.inner_text(),
             }
             editor = page.locator(".ace_editor").first
-            editor.evaluate("(el, old) => { el.env.editor.find(old, {wrap: true}); }", f"delta = {current}")
+            editor.evaluate("(el, old) => { el.env.editor.find(old, {wrap: true}); }", old)
             page.evaluate(WATCH, [shown, before])
             # one edit, as a paste or a single keystroke is: the selected line replaced through the editor's own
             # API (its change event is what Panel sends), the clock started there; typed keys would make the
             # browser scroll the page back to the editor, away from the diagram in view
             editor.evaluate(
                 "(el, text) => { window.__flyoptEdit = performance.now(); el.env.editor.insert(text); }",
-                f"delta = {new}",
+                new,
             )
             out = page.evaluate("() => window.__flyoptDone", [])
-            row = {"edit": i, "delta": new}
+            row = {"edit": i, "kind": kind, "line": new}
             # where the J_F–δ diagram is after the edit (CSS pixels from the viewport's top; in view: 0 to 1000)
             row["in_view_top_px"] = page.locator(".figure-inertia_delta").first.evaluate(
                 "(el) => el.getBoundingClientRect().top"
@@ -176,13 +206,12 @@ def browser_latencies(url, edits, cpus):
                 row[f"{name}_ms"] = out[name] - out["edit"]
                 row[f"{name}_painted_ms"] = out[f"{name}_painted"] - out["edit"]
             rows.append(row)
-            current = new
             time.sleep(0.3)  # the page settles (its last card without "drawing") before the next edit
         browser.close()
     return rows
 
 
-def server_share(edits):
+def server_share(edits, kind):
     sys.path.insert(0, str(ROOT / "src"))
     from flyopt.app import model
 
@@ -191,9 +220,14 @@ def server_share(edits):
     model.solve(text, space).document.close()  # warm-up: imports, compiled models
     from flyopt.app.diagrams import Diagrams
 
-    steps = {"check": [], "numbers": [], "draw": [], "svg": [], "speed": [], "in_view": [], "all": []}
+    steps = {"check": [], "numbers": [], "draw": [], "svg": [], "speed": [], "in_view": [], "all": [], "kept": []}
+    lines = edit_lines(kind)
+    edited, shown = text, model.solve(text, space).figures  # what the page shows before the first edit
     for i in range(edits):
-        edited = text.replace("delta = 0.05", f"delta = {DELTAS[i % len(DELTAS)]}")
+        old, new, _ = lines[i % len(lines)]
+        if old not in edited:
+            raise SystemExit(f"bench_app: {SCENE.name} has no line {old!r} to edit")
+        edited = edited.replace(old, new)
         t0 = time.perf_counter()
         model.check(edited, space)
         t1 = time.perf_counter()
@@ -218,7 +252,25 @@ def server_share(edits):
             pass
         t7 = time.perf_counter()
         diagrams.document().close()
-        values = (t1 - t0, t2 - t1, t3 - t2, t4 - t3, speed - t1, t2 - t1 + t6 - t5, t2 - t1 + t7 - t5)
+        # as the page draws them, keeping those it shows whose data the edit leaves as they were
+        answer = model.numbers(edited, space)
+        t8 = time.perf_counter()
+        diagrams = Diagrams(answer, {"inertia_delta": 1.0}, shown)
+        while diagrams.step() is not None:
+            pass
+        t9 = time.perf_counter()
+        shown = diagrams.figures()
+        diagrams.document().close()
+        values = (
+            t1 - t0,
+            t2 - t1,
+            t3 - t2,
+            t4 - t3,
+            speed - t1,
+            t2 - t1 + t6 - t5,
+            t2 - t1 + t7 - t5,
+            t2 - t1 + t9 - t8,
+        )
         for name, value in zip(steps, values):
             steps[name].append(1e3 * value)
     space.close()
@@ -244,6 +296,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--edits", type=int, default=12)
     parser.add_argument("--pin", choices=sorted(PINS), default="split")
+    parser.add_argument("--edit", choices=("delta", "torque"), default="delta")
     args = parser.parse_args()
     available = os.sched_getaffinity(0) if hasattr(os, "sched_setaffinity") else set()
     server_cpus, browser_cpus = PINS[args.pin]
@@ -268,14 +321,14 @@ def main():
     url = f"http://127.0.0.1:{port}/"
     try:
         wait_until(lambda: _up(url), timeout=120)
-        rows = browser_latencies(url, args.edits, browser_cpus)
+        rows = browser_latencies(url, args.edits, browser_cpus, args.edit)
     finally:
         server.terminate()
         server.wait(10)
     load_after = load_average()
     if server_cpus is not None:
         os.sched_setaffinity(0, server_cpus)
-    steps = server_share(args.edits)
+    steps = server_share(args.edits, args.edit)
     numbers = [r["card_ms"] for r in rows]
     diagrams = [r["last_ms"] for r in rows]
     in_view = [r["first_ms"] for r in rows]
@@ -284,8 +337,8 @@ def main():
     met_in_view = "met" if statistics.median(in_view) <= 500 else "NOT met"
     text = f"""# flyopt app: edit to answer, in the browser
 
-`python benchmarks/bench_app.py --edits {args.edits} --pin {args.pin}`: problems/shear-press.toml (energy model,
-solved on every edit), machine.delta's line replaced {args.edits} times in headless chromium, each replacement one
+`python benchmarks/bench_app.py --edits {args.edits} --pin {args.pin} --edit {args.edit}`: problems/shear-press.toml (energy model,
+solved on every edit), {EDITED[args.edit]} replaced {args.edits} times in headless chromium, each replacement one
 edit (inserted at once through the editor's API, as a paste or a single keystroke is, the page scrolled to the J_F–δ
 diagram); medians (min–max). The times are the browser's own
 (`performance.now()`): from the edit's event in the page to the DOM showing the change (a MutationObserver; nothing
@@ -315,15 +368,18 @@ the same texts:
 | from the check's end to the speed diagram's SVG, all from one document | {summary(steps["speed"])} |
 | as the page draws: from the check's end to the SVG of the diagram in view (a document making it alone) | {summary(steps["in_view"])} |
 | as the page draws: from the check's end to the last SVG (the rest from a second document) | {summary(steps["all"])} |
+| as the page draws, keeping the diagrams it shows whose data the edit leaves as they were: to the last SVG | {summary(steps["kept"])} |
 
 The card is the first change sent once the numbers are solved (the report's document built without its
 diagrams); the diagrams of the same solve are drawn after it, in their own worker, and each sent as soon as
 it is drawn: those in view first (a document that makes their figures alone), then the others in the page's
-order (a second document, without solving again), the speed diagram last. An edit waits for the debounce, the
-check and the numbers for its card, and for every diagram for the speed one, so the last two rows of this
-table are the server's floor under the two rows of the browser's table.
+order (a second document, without solving again), the speed diagram last; a diagram whose data the edit leaves
+as they were (the digest of what it draws: flyopt.app.diagrams) is kept as the page shows it, not drawn
+({KEPT[args.edit]}). An edit waits for the debounce, the check and the numbers for its card, and for every
+diagram for the speed one, so the last row of this table is the server's floor under the last two rows of the
+browser's table (the two rows above it: the same edit with every diagram drawn).
 """
-    write_results(Path(__file__).parent / "results", "app", text, rows)
+    write_results(Path(__file__).parent / "results", "app" if args.edit == "delta" else "app_torque", text, rows)
     print(text)
 
 

@@ -197,9 +197,9 @@ def test_the_figures_are_the_reports_and_the_downloads_open(workspace):
     from pypdf import PdfReader
 
     answer = model.solve(model.template_text("shear-press"), workspace)
-    keys = [key for key, _, svg, _ in answer.figures if svg]
+    keys = [key for key, _, svg, *_ in answer.figures if svg]
     assert {"turning_moment", "energy", "stress", "cross_section", "speed"} <= set(keys)
-    assert all(svg.lstrip().startswith("<svg") for _, _, svg, _ in answer.figures if svg)
+    assert all(svg.lstrip().startswith("<svg") for _, _, svg, *_ in answer.figures if svg)
     readouts = {f.key: f.readout for f in answer.figures}  # the curves' read-outs; the drawing's radius only
     assert json.loads(readouts["speed"])["axes"][0]["rows"][0][0].startswith("φ = ")
     (section,) = json.loads(readouts["cross_section"])["axes"]

@@ -61,7 +61,7 @@ def test_of_many_areas_the_largest_alone_are_labelled(tmp_path):
 
     scene = _sawtooth_scene(tmp_path, 1200)
     analysis = flyopt.analyse(scene)
-    areas = sorted((abs(a) for *_lr, a in Torques(scene, analysis).areas()), reverse=True)
+    areas = sorted((abs(a) for *_lr, a in Torques.of(scene, analysis).areas()), reverse=True)
     assert len(areas) > 5 * MAX_AREA_LABELS
     ax = plots.plot_turning_moment(scene, analysis)
     try:

@@ -1,4 +1,5 @@
-"""An answer's diagrams drawn one at a time, those the visitor has in view first (docs/app.md "Latency").
+"""An answer's diagrams drawn one at a time, those the visitor has in view first, those the page shows already
+kept (docs/app.md "Latency").
 
 The page shows the card of an edit first (:func:`flyopt.app.model.numbers`), then its diagrams, each sent as
 soon as it is drawn. Drawing them all takes most of the time from an edit to its last diagram (the report's
@@ -9,6 +10,12 @@ document that makes the rest; the answer keeps one document, the second with the
 places (what the downloads render). Nothing is solved again: both documents are built from the answer's one
 solve.
 
+A diagram the edit does not change is not drawn at all: the card's document gives each diagram split into what
+it draws and how (:class:`flyopt.report.plots.digest.Plot`) the digest of its data, and where the page shows,
+in that diagram's place, one of the same key and digest, it keeps it (a δ edit leaves the turning-moment and
+energy diagrams as they were). The same digest draws the same SVG to the byte; the answer's document leaves
+that figure undrawn, and a report downloaded draws it then (:func:`flyopt.app.model.complete`).
+
 The page tells which diagrams are in view (the fraction of each, from the browser's IntersectionObserver:
 :mod:`flyopt.app.hover`); with none in view (the first answer, or a page scrolled past its diagrams) the
 diagrams are drawn from one document in their order on the page.
@@ -16,7 +23,7 @@ diagrams are drawn from one document in their order on the page.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from flyopt.app import model
@@ -32,22 +39,48 @@ def drawing_order(in_view: Mapping[str, float]) -> list[str]:
     return sorted(keys, key=lambda key: -in_view[key])  # stable: ties keep the page's order
 
 
+def kept(answer: model.Answer, showing: Sequence[model.Shown]) -> dict[int, model.Shown]:
+    """The diagrams of ``answer`` the page shows already, by their index among its figures: where the page shows,
+    in that place, a diagram of the same key and the same digest of what it draws (``showing``: what each place
+    shows), with this answer's caption."""
+    from flyopt.report.document import plain
+
+    found: dict[int, model.Shown] = {}
+    for index, block in enumerate(model.figure_blocks(answer.document)):
+        shown = showing[index] if index < len(showing) else None
+        if block.digest and shown is not None and shown.svg and (shown.key, shown.digest) == (block.key, block.digest):
+            found[index] = shown._replace(caption=plain(block.caption))
+    return found
+
+
 class Diagrams:
-    """``answer``'s diagrams, drawn one per :meth:`step`, those in view first.
+    """``answer``'s diagrams, drawn one per :meth:`step`, those in view first, those the page shows kept.
 
     Call :meth:`step` until it returns None (each call draws one diagram under the drawing lock: the page runs
     it in its drawing worker and checks between two calls whether a newer edit came), then :meth:`document`
-    for the answer's document with every figure; or :meth:`close` to drop what was made.
+    for the answer's document with every figure drawn (but those kept); or :meth:`close` to drop what was made.
+    ``showing``: what the page shows in each place (:func:`kept`).
     """
 
-    def __init__(self, answer: model.Answer, in_view: Mapping[str, float] | None = None) -> None:
+    def __init__(
+        self,
+        answer: model.Answer,
+        in_view: Mapping[str, float] | None = None,
+        showing: Sequence[model.Shown] = (),
+    ) -> None:
         self.answer = answer
-        self.first = drawing_order(in_view or {})
+        self.shown: dict[int, model.Shown] = kept(answer, showing)
+        keys = [block.key for block in model.figure_blocks(answer.document)]
+        self.todo = [key for index, key in enumerate(keys) if index not in self.shown]  # to draw, the page's order
+        self.first = [key for key in drawing_order(in_view or {}) if key in self.todo]
         self.documents: list[Document] = []
         self.queue: list[tuple[int, Any]] = []  # (index on the page, Figure block) still to draw
-        self.shown: dict[int, model.Shown] = {}
         self.order: list[int] = []  # the indices in the order drawn
-        self._passes: list[list[str] | None] = [self.first] if self.first else [None]
+        everything = None if len(self.todo) == len(keys) else self.todo  # None: every figure (no list to keep)
+        if self.first:
+            self._passes: list[list[str] | None] = [self.first]
+        else:
+            self._passes = [everything] if self.todo else []
         self._built = 0
 
     def step(self) -> tuple[int, model.Shown] | None:
@@ -76,24 +109,24 @@ class Diagrams:
         found = [(index, block) for index, block in enumerate(blocks) if block.key in keys]
         found.sort(key=lambda pair: keys.index(pair[1].key))
         self.queue = found
-        if keys is not self.first:  # the rest, after those in view
-            return
-        rest = [block.key for block in blocks if block.key not in keys]
-        if not found:  # none of the keys in view is a diagram of this answer: every one, in the page's order
-            self.documents.pop().close()
-            self._passes.append(None)
-        elif rest:
-            self._passes.append(rest)
+        if keys is self.first:  # the rest, after those in view
+            rest = [key for key in self.todo if key not in keys]
+            if rest:
+                self._passes.append(rest)
 
     def figures(self) -> list[model.Shown]:
-        """Every diagram drawn, in the page's order."""
+        """Every diagram drawn or kept, in the page's order."""
         return [self.shown[index] for index in sorted(self.shown)]
 
     def document(self) -> Document:
-        """The answer's document with every figure: the last built, each figure drawn first in its place (the
-        documents are built from the same solve: the same sections, blocks and keys)."""
+        """The answer's document with every figure drawn: the last built, each figure drawn first in its place
+        (the documents are built from the same solve: the same sections, blocks and keys); the answer's own
+        document of numbers where every diagram was kept. A kept diagram's figure is left undrawn
+        (:func:`flyopt.app.model.complete` draws it for a report)."""
         from flyopt.errors import BrokenInvariant
 
+        if not self.documents:
+            return self.answer.document
         *earlier, last = self.documents
         blocks = model.figure_blocks(last)
         for document in earlier:
@@ -101,7 +134,7 @@ class Diagrams:
                 if block.key in self.first:
                     if blocks[index].key != block.key:
                         raise BrokenInvariant(f"the app's two documents of one answer differ at figure {index}")
-                    _replace(last, blocks[index], block)
+                    model.replace_block(last, blocks[index], block)
         self.documents = [last]
         return last
 
@@ -110,12 +143,3 @@ class Diagrams:
         for document in self.documents:
             model.close(document)
         self.documents = []
-
-
-def _replace(document: Document, old: Any, new: Any) -> None:
-    """Put the block ``new`` in the place of ``old`` in ``document``."""
-    for section in document.sections:
-        for k, block in enumerate(section.blocks):
-            if block is old:
-                section.blocks[k] = new
-                return

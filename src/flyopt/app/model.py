@@ -279,12 +279,15 @@ def live(scene: Scene) -> bool:
 
 class Shown(NamedTuple):
     """One diagram as the page shows it: its key, caption, SVG ("" where it is not drawn: the note is in the
-    caption) and its read-outs, the JSON of :func:`flyopt.report.plots.readout.record` ("" for none)."""
+    caption) and its read-outs, the JSON of :func:`flyopt.report.plots.readout.record` ("" for none); ``digest``:
+    that of the data it draws (:attr:`flyopt.report.document.Figure.digest`, "" for none): an edit whose
+    diagram has the same digest keeps this one (:class:`flyopt.app.diagrams.Diagrams`)."""
 
     key: str
     caption: str
     svg: str
     readout: str = ""
+    digest: str = ""
 
 
 @dataclass
@@ -331,7 +334,7 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
     # a calculation's report draws its figures; a document of numbers only draws nothing, and does not wait for
     # a diagram being drawn in the page's drawing worker
     with drawing() if calculation else nullcontext():
-        document = build(inputs, units, figures=calculation)
+        document = build(inputs, units, figures=calculation, digests=True)
     if isinstance(inputs, CalculationInputs):
         json = json_text(calculation_document(inputs.what, inputs.scene.title, SCENE_NAME, inputs.result.to_dict()))
     else:  # the one solve: the same JSON as flyopt solve --json, its scene named as the page names it
@@ -463,7 +466,8 @@ def figure_svg(block: Any) -> Shown:
         with drawing():
             svg = page_svg(block.figure, block.key)
             found = readout_json(block.figure)
-    return Shown(block.key, plain(block.caption) + (f" — {block.note}" if block.note else ""), svg, found)
+    caption = plain(block.caption) + (f" — {block.note}" if block.note else "")
+    return Shown(block.key, caption, svg, found, block.digest if svg else "")
 
 
 def readout_json(figure: Any) -> str:
@@ -503,6 +507,7 @@ def report_bytes(answer: Answer, kind: str) -> bytes:
     diagrams (drawn here for an answer whose diagrams are not yet: nothing is solved again)."""
     with drawing():  # called on the server's event loop while a worker may draw
         document = draw(answer)
+        complete(answer, document)
         try:
             if kind == "html":
                 from flyopt.report.html import render
@@ -514,6 +519,35 @@ def report_bytes(answer: Answer, kind: str) -> bytes:
         finally:
             if document is not answer.document:
                 document.close()
+
+
+def complete(answer: Answer, document: Document) -> None:
+    """Draw into ``document`` (of ``answer``'s solve) the diagrams it leaves undrawn for the numbers only: those the
+    page kept from an earlier edit (:class:`flyopt.app.diagrams.Diagrams`) are drawn here, when a report needs
+    them, from the same solve. Call it under :func:`drawing`."""
+    from flyopt.errors import BrokenInvariant
+    from flyopt.report.builder import build
+    from flyopt.report.builder.base import NOT_DRAWN
+
+    blocks = figure_blocks(document)
+    missing = [block.key for block in blocks if block.figure is None and block.note == NOT_DRAWN]
+    if not missing:
+        return
+    made = figure_blocks(build(answer.inputs, answer.units, figures=missing))
+    for index, block in enumerate(made):
+        if block.key in missing:
+            if blocks[index].key != block.key:
+                raise BrokenInvariant(f"two documents of one answer differ at figure {index}")
+            replace_block(document, blocks[index], block)
+
+
+def replace_block(document: Document, old: Any, new: Any) -> None:
+    """Put the block ``new`` in the place of ``old`` in ``document``."""
+    for section in document.sections:
+        for k, block in enumerate(section.blocks):
+            if block is old:
+                section.blocks[k] = new
+                return
 
 
 #: The wheel's manufacturing files the page offers, as ``flyopt export`` writes them: (kind, label, file name).

@@ -125,6 +125,7 @@ class Session:
         self.figures = pn.Column(sizing_mode="stretch_width")
         #: Each diagram's place: (its column, the caption's pane, the SVG's pane), kept from answer to answer.
         self.figure_slots: list[tuple[Any, Any, Any]] = []
+        self.showing: list[model.Shown] = []  # what each of figure_slots shows (flyopt.app.diagrams.kept)
         self.stale = pn.pane.HTML("", sizing_mode="stretch_width")
         self.footer = markup(
             f'<div class="footer">{model.provenance_html(None)}</div>', stylesheets=[CSS], sizing_mode="stretch_width"
@@ -353,7 +354,7 @@ class Session:
         every diagram was drawn: a diagram that fails is said on the card, and its drawing's figures closed."""
         from flyopt.app.diagrams import Diagrams
 
-        diagrams = Diagrams(answer, self._in_view())
+        diagrams = Diagrams(answer, self._in_view(), list(self.showing))
         with model.edit_held():  # nested in a fast scene's: the collector held while the diagrams are drawn
             while True:
                 try:
@@ -373,7 +374,7 @@ class Session:
                     break
                 index, figure = step
                 if index <= len(self.figure_slots):  # a place further down is added in order, below
-                    self._show_figure(index, *figure)
+                    self._show_figure(index, figure)
             shown = diagrams.figures()
             self._show_figures(shown)
             self._take(model.drawn(answer, diagrams.document(), shown))
@@ -414,18 +415,20 @@ class Session:
     def _show_figures(self, figures: list[model.Shown]) -> None:
         """Show exactly ``figures``, in order."""
         for index, figure in enumerate(figures):
-            self._show_figure(index, *figure)
+            self._show_figure(index, figure)
         del self.figure_slots[len(figures) :]
+        del self.showing[len(figures) :]
         if len(self.figures.objects) != len(figures):
             self.figures.objects = [slot[0] for slot in self.figure_slots]
 
-    def _show_figure(self, index: int, key: str, caption: str, svg: str, readout: str = "") -> None:
+    def _show_figure(self, index: int, shown: model.Shown) -> None:
         """Show one diagram in the ``index``-th place, with its read-outs under the pointer
         (:mod:`flyopt.app.hover`): its panes kept and only their contents changed (the browser redraws that
         diagram alone), a place added where there was none."""
         from flyopt.app.hover import hover_figure
 
         pn = self.pn
+        key, caption, svg, readout = shown.key, shown.caption, shown.svg, shown.readout
         title = f"<b>{model.escape_text(caption)}</b>"
         body = _fluid(svg) if svg else ""
         classes = ["figure", f"figure-{key}"]
@@ -435,6 +438,7 @@ class Session:
             if svg_pane.css_classes != classes:
                 svg_pane.css_classes = classes
             svg_pane.param.update(svg=body, readout=readout, key=key, visible=bool(svg))
+            self.showing[index] = shown
             return
         title_pane = pn.pane.HTML(title, sizing_mode="stretch_width")
         svg_pane = hover_figure(
@@ -442,6 +446,7 @@ class Session:
         )
         column = pn.Column(title_pane, svg_pane, sizing_mode="stretch_width")
         self.figure_slots.append((column, title_pane, svg_pane))
+        self.showing.append(shown)
         self.figures.append(column)
 
     def _busy(self, on: bool) -> None:

@@ -105,13 +105,15 @@ class Equation:
 
 @dataclass
 class Figure:
-    """A diagram: a matplotlib Figure, or why it is not drawn (``note``)."""
+    """A diagram: a matplotlib Figure, or why it is not drawn (``note``); ``digest``: that of the data it draws
+    (:mod:`flyopt.report.plots.digest`; "" where its diagram has none): the same digest, the same figure."""
 
     key: str
     caption: str
     figure: Any = None  # a matplotlib Figure
     note: str = ""
     failed: bool = False
+    digest: str = ""
 
 
 @dataclass(frozen=True)

@@ -17,6 +17,7 @@ if TYPE_CHECKING:
     from flyopt.design.result import BookRim, Design
     from flyopt.pipeline import Solution
     from flyopt.report.builder.inputs import ReportInputs
+    from flyopt.report.plots.digest import Plot
 
 
 #: The note of a figure a document of numbers only leaves undrawn (:class:`BuilderBase`, ``figures=False``).
@@ -32,6 +33,7 @@ class BuilderBase:
         units: str,
         digits: int = display.DEFAULT_DIGITS,
         figures: bool | Collection[str] = True,
+        digests: bool = False,
     ) -> None:
         self.inputs = inputs
         self.units = units
@@ -39,6 +41,7 @@ class BuilderBase:
         # False: the figures' blocks hold their captions only (the app's card first); keys: those figures alone
         # (the app's diagram in view first)
         self.figures = figures if isinstance(figures, bool) else frozenset(figures)
+        self.digests = digests  # the digests of the figures it does not draw, where they have one
         self.solution = cast("Solution", inputs.solution)
         self.scene = self.solution.scene
         self.analysis = self.solution.analysis
@@ -118,19 +121,22 @@ class BuilderBase:
         return section.blocks
 
     def figure(
-        self, blocks: list[Any], key: str, caption: str, draw: Callable[..., Any], *args: Any, **kwargs: Any
+        self, blocks: list[Any], key: str, caption: str, draw: Callable[..., Any] | Plot, *args: Any, **kwargs: Any
     ) -> None:
         """Draw a diagram with a function of :mod:`flyopt.report.plots` (``units=`` and ``digits=`` where it takes
-        them: the report's).
+        them: the report's), or with a :class:`~flyopt.report.plots.digest.Plot`: its data read off ``args``,
+        their digest kept on the block (:attr:`~flyopt.report.document.Figure.digest`), then drawn from them.
 
         A builder made with ``figures=False`` draws nothing: the block holds the key and caption only, the
-        note saying so (a document of numbers, for the app's answer card before its diagrams); one made with
-        a collection of keys draws the figures of those keys alone (the app's diagram in view, first).
+        note saying so (a document of numbers, for the app's answer card before its diagrams), and, made with
+        ``digests=True``, a Plot's digest (what the app compares with the diagram it shows); one made with a
+        collection of keys draws the figures of those keys alone (the app's diagram in view, first).
         """
         from flyopt.report import plots
         from flyopt.report.plots.standard import figure_of
 
-        if self.figures is False or (not isinstance(self.figures, bool) and key not in self.figures):
+        wanted = self.figures is True or (not isinstance(self.figures, bool) and key in self.figures)
+        if not wanted and not (self.digests and isinstance(draw, plots.Plot)):
             blocks.append(Figure(key, caption, note=NOT_DRAWN))
             return
         if self.solution.drive_failed:  # the analysis is the scene without its drive: no machine to draw
@@ -138,13 +144,32 @@ class BuilderBase:
 
             blocks.append(Figure(key, caption, note=f"Not drawn: {NO_MACHINE} (the drive's section says why)."))
             return
+        digest, unread = "", None
+        call: Callable[..., Any] = draw if not isinstance(draw, plots.Plot) else draw.draw
+        if isinstance(draw, plots.Plot):
+            plot = draw
+            try:
+                data = plot.data(*args, **kwargs)
+            except Exception as err:  # noqa: BLE001 -- said below, as the diagram's own call would say it
+                if not wanted:
+                    blocks.append(Figure(key, caption, note=NOT_DRAWN))
+                    return
+                unread = err
+            else:
+                digest = plot.digest(data, self.units, self.digits)
+                if not wanted:
+                    blocks.append(Figure(key, caption, note=NOT_DRAWN, digest=digest))
+                    return
+                args, kwargs = (data,), {}
         try:
-            parameters = inspect.signature(draw).parameters
+            if unread is not None:
+                raise unread
+            parameters = inspect.signature(call).parameters
             if "units" in parameters:
                 kwargs["units"] = self.units
             if "digits" in parameters:
                 kwargs["digits"] = self.digits
-            ax = draw(*args, **kwargs)
+            ax = call(*args, **kwargs)
         except plots.NothingToDraw as said:
             blocks.append(Figure(key, caption, note=f"Not drawn: {said}."))
             return
@@ -159,7 +184,7 @@ class BuilderBase:
                 )
             )
             return
-        blocks.append(Figure(key, caption, figure=figure_of(ax)))
+        blocks.append(Figure(key, caption, figure=figure_of(ax), digest=digest))
 
     @staticmethod
     def eq(key: str, formula: str, numbers: str, result: str, section: str | int) -> Equation:

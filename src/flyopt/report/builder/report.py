@@ -28,6 +28,7 @@ def build(
     title_block: tuple[tuple[str, Any], ...] = (),
     digits: int = display.DEFAULT_DIGITS,
     figures: bool | Collection[str] = True,
+    digests: bool = False,
 ) -> Document:
     """The report of a solved scene, or of a scene that is one calculation, in a unit system.
 
@@ -48,6 +49,10 @@ def build(
         numbers, built in a few milliseconds: the app's answer card before its diagrams); figure keys
         ("speed"): those diagrams alone are drawn, the others' blocks hold their captions only (the
         app's diagram in view, drawn first). A calculation's report draws its figures either way.
+    digests : bool
+        Give the figures it does not draw the digest of what they would draw, where they have one
+        (:class:`flyopt.report.plots.digest.Plot`; a drawn figure has it either way): the app keeps a diagram it
+        shows whose digest an edit leaves as it was.
 
     Returns
     -------
@@ -61,7 +66,7 @@ def build(
         if isinstance(inputs, CalculationInputs):
             document = build_calculation(inputs, units, title_block, digits)
         else:
-            document = Builder(inputs, units, digits, figures).document(title_block)
+            document = Builder(inputs, units, digits, figures, digests).document(title_block)
     return with_appendix(document, cited)
 
 

@@ -255,7 +255,7 @@ class Steps(Requirement):
             blocks,
             "turning_moment",
             "Turning-moment diagram: the torques over the cycle, surplus and deficit areas between them",
-            plots.plot_turning_moment,
+            plots.TURNING_MOMENT,
             scene,
             a,
         )
@@ -311,7 +311,7 @@ class Steps(Requirement):
             blocks,
             "energy",
             "Energy indicator diagram: the excess work ΔE from the cycle start, A_max its largest span",
-            plots.plot_energy,
+            plots.ENERGY,
             scene,
             a,
         )

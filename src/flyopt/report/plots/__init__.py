@@ -31,14 +31,17 @@ The modules: :mod:`~flyopt.report.plots.standard` (the visual standard),
 :mod:`~flyopt.report.plots.inertia_delta`, :mod:`~flyopt.report.plots.cross_section`,
 :mod:`~flyopt.report.plots.stress`, :mod:`~flyopt.report.plots.speed`,
 :mod:`~flyopt.report.plots.energy_mass`) and :mod:`~flyopt.report.plots.results`
-(sweeps and Pareto fronts). This package names the diagrams of a scene
+(sweeps and Pareto fronts). A diagram split into what it draws and how (:class:`Plot`:
+:data:`TURNING_MOMENT`, :data:`ENERGY`) has an exact digest of its data
+(:mod:`~flyopt.report.plots.digest`): the same digest, the same figure. This package names the diagrams of a scene
 (:data:`PLOTS`) and exposes every drawing function.
 """
 
 from __future__ import annotations
 
 from flyopt.report.plots.cross_section import plot_cross_section
-from flyopt.report.plots.energy import plot_energy
+from flyopt.report.plots.digest import Plot, digest
+from flyopt.report.plots.energy import ENERGY, plot_energy
 from flyopt.report.plots.energy_mass import check_energy_mass, plot_energy_mass
 from flyopt.report.plots.inertia_delta import check_inertia_delta, plot_inertia_delta
 from flyopt.report.plots.output import FORMATS, check_output, save
@@ -53,19 +56,23 @@ from flyopt.report.plots.results import (
 from flyopt.report.plots.speed import plot_speed
 from flyopt.report.plots.standard import DEFICIT, SURPLUS, NothingToDraw
 from flyopt.report.plots.stress import plot_stress
-from flyopt.report.plots.turning_moment import plot_turning_moment
+from flyopt.report.plots.turning_moment import TURNING_MOMENT, plot_turning_moment
 
 __all__ = [
     "DEFICIT",
+    "ENERGY",
     "FORMATS",
     "MAX_LINES",
     "PLOTS",
     "RESULT_PLOTS",
     "SURPLUS",
+    "TURNING_MOMENT",
     "NothingToDraw",
+    "Plot",
     "check_energy_mass",
     "check_inertia_delta",
     "check_output",
+    "digest",
     "pareto_objectives",
     "plot_cross_section",
     "plot_energy",

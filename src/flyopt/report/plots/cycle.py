@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -42,7 +43,11 @@ def angle_axis(ax: Axes, cycle_angle: float, units: str, digits: int = display.D
     return end
 
 
-def _dead_centres(scene):
+#: The dead centres of a scene's crank (:func:`dead_centres`): (major, minor, words), or None.
+DeadCentres = tuple[tuple[tuple[float, str], ...], tuple[tuple[float, str], ...], str] | None
+
+
+def dead_centres(scene: Scene) -> DeadCentres:
     """Marks of the crank's dead centres over the cycle, or None.
 
     Returns
@@ -79,7 +84,7 @@ def _dead_centres(scene):
             if cylinders > 1
             else f"the cylinder's dead centres and strokes ({engine.cycle})"
         )
-        return major, minor, words
+        return tuple(major), tuple(minor), words
     mechanism = scene.mechanism
     if isinstance(mechanism, SliderCrank):
         r, l, e = mechanism.crank, mechanism.rod, mechanism.offset
@@ -91,13 +96,17 @@ def _dead_centres(scene):
                 angle = base + 2 * k * math.pi
                 if -1e-9 <= angle <= cycle + 1e-9:
                     major.append((min(max(angle, 0.0), cycle), name))
-        return sorted(major), [], "slider-crank dead centres: ODC outer (slider farthest from the crank), IDC inner"
+        return (
+            tuple(sorted(major)),
+            (),
+            "slider-crank dead centres: ODC outer (slider farthest from the crank), IDC inner",
+        )
     return None
 
 
-def mark_dead_centres(ax: Axes, scene: Scene, units: str) -> SecondaryAxis | None:
-    """The dead centres (and an engine's strokes) on a top axis, faint lines through the data."""
-    marks = _dead_centres(scene)
+def mark_dead_centres(ax: Axes, marks: DeadCentres, units: str) -> SecondaryAxis | None:
+    """The dead centres (and an engine's strokes) on a top axis, faint lines through the data (``marks``: the
+    scene's :func:`dead_centres`)."""
     if marks is None:
         return None
     major, minor, words = marks
@@ -178,8 +187,9 @@ def _along(curve, phi, omega):
     return _sides(phi, curve)
 
 
+@dataclass(frozen=True, eq=False)
 class Torques:
-    """The driving and resisting torques over the cycle [N*m] as the model that ran saw them.
+    """The driving and resisting torques over the cycle [N*m] as the model that ran saw them (:meth:`of`).
 
     The energy models see torques of the angle only (an unknown constant
     solved from the work balance); the dynamic model sees every torque along
@@ -188,31 +198,40 @@ class Torques:
     torque steps (left limit first), so lines and shading draw the steps.
     """
 
-    def __init__(self, scene: Scene, analysis: Analysis) -> None:
+    phi: npt.NDArray[np.float64]
+    driving: npt.NDArray[np.float64]
+    resisting: npt.NDArray[np.float64]
+    along: bool  # along the dynamic model's periodic solution ω(φ)
+    driving_solved: bool  # an unknown constant solved from the work balance
+    resisting_solved: bool
+    motor: bool  # the driving torque is (or holds) a motor's
+    resisting_speed: bool  # the resisting torque depends on speed
+
+    @classmethod
+    def of(cls, scene: Scene, analysis: Analysis) -> Torques:
+        """The torques of ``scene`` as ``analysis`` saw them."""
         machine = analysis.machine
         if machine is None:
             raise ValueError("a net-area scene has no torque curves to draw over the cycle")
         balanced = machine.angle_only()
-        self.along = analysis.model == Model.DYNAMIC
-        self.driving_solved = _unknown(machine.driving)
-        self.resisting_solved = _unknown(machine.resisting)
-        self.motor = _is_motor(machine.driving)
-        self.resisting_speed = bool(getattr(machine.resisting, "speed_dependent", False))
-        if self.along:
+        along = analysis.model == Model.DYNAMIC
+        driving_solved = bool(_unknown(machine.driving))
+        resisting_solved = bool(_unknown(machine.resisting))
+        if along:
             if analysis.requirement is None:
                 raise BrokenInvariant("the dynamic model's analysis carries its requirement")
             speed = analysis.requirement.detail.solution  # the periodic solution the dynamic model found
             phi, omega = np.asarray(speed.phi, dtype=float), np.asarray(speed.omega, dtype=float)
             offset = float(getattr(speed, "torque_offset", 0.0) or 0.0)
             # the periodic model's net torque: an unknown constant is the balancing one plus the offset
-            self.driving = (
+            driving = (
                 np.full(phi.shape, _solved(balanced.driving) + offset)
-                if self.driving_solved
+                if driving_solved
                 else _along(machine.driving, phi, omega)
             )
-            self.resisting = (
+            resisting = (
                 np.full(phi.shape, _solved(balanced.resisting) - offset)
-                if self.resisting_solved
+                if resisting_solved
                 else _along(machine.resisting, phi, omega)
             )
         else:
@@ -226,9 +245,18 @@ class Torques:
                 left, right = curve.limits(phi)
                 steps |= np.asarray(left != right)
             phi = np.sort(np.concatenate([phi, phi[steps]]))
-            self.driving = _sides(phi, balanced.driving)
-            self.resisting = _sides(phi, balanced.resisting)
-        self.phi = phi
+            driving = _sides(phi, balanced.driving)
+            resisting = _sides(phi, balanced.resisting)
+        return cls(
+            phi=phi,
+            driving=np.asarray(driving, dtype=float),
+            resisting=np.asarray(resisting, dtype=float),
+            along=along,
+            driving_solved=driving_solved,
+            resisting_solved=resisting_solved,
+            motor=_is_motor(machine.driving),
+            resisting_speed=bool(getattr(machine.resisting, "speed_dependent", False)),
+        )
 
     @property
     def net(self) -> npt.NDArray[np.float64]:
@@ -278,7 +306,36 @@ def _is_motor(curve):
 # --------------------------------------------------------------------------
 
 
-def omega_marks(analysis: Analysis, units: str, digits: int = standard.DIGITS) -> tuple[list[Mark], str | None]:
+@dataclass(frozen=True)
+class Extremes:
+    """Where the analysis puts the speed's extremes and ΔE's (the ends of A_max), and what decides them: what
+    :func:`omega_marks` marks (:meth:`of` an analysis)."""
+
+    model: str
+    a_max: float
+    variable_inertia: bool
+    angle_omega_max: float | None
+    angle_omega_min: float | None
+    angle_delta_e_max: float | None
+    angle_delta_e_min: float | None
+
+    @classmethod
+    def of(cls, analysis: Analysis) -> Extremes:
+        def angle(value: float | None) -> float | None:
+            return None if value is None else float(value)
+
+        return cls(
+            str(analysis.model),
+            float(analysis.a_max),
+            bool(analysis.machine is not None and analysis.machine.variable_inertia),
+            angle(analysis.angle_omega_max),
+            angle(analysis.angle_omega_min),
+            angle(analysis.angle_delta_e_max),
+            angle(analysis.angle_delta_e_min),
+        )
+
+
+def omega_marks(analysis: Extremes, units: str, digits: int = standard.DIGITS) -> tuple[list[Mark], str | None]:
     """The vertical marks of the speed extremes and of the ends of A_max: (angle, label, colour, style, gid).
 
     With a constant inertia and torques of the angle only the speed is extreme
@@ -289,7 +346,7 @@ def omega_marks(analysis: Analysis, units: str, digits: int = standard.DIGITS) -
     """
     marks: list[Mark] = []
     note: str | None = None
-    if analysis.a_max <= 0 and not (analysis.machine is not None and analysis.machine.variable_inertia):
+    if analysis.a_max <= 0 and not analysis.variable_inertia:
         return marks, "steady running: M_d = M_r at every angle, A_max = 0, the speed does not fluctuate"
     model = {"energy": "energy method", "energy_mass": "energy–mass model", "dynamic": "periodic solution"}[
         analysis.model

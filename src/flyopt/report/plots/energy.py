@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -11,13 +12,78 @@ from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import readout, standard
-from flyopt.report.plots.cycle import Torques, angle_axis, excess_work, mark_dead_centres
+from flyopt.report.plots.cycle import DeadCentres, Torques, angle_axis, dead_centres, excess_work, mark_dead_centres
+from flyopt.report.plots.digest import Plot
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
     from flyopt.analysis import Analysis
     from flyopt.io.scene import Scene
+
+
+@dataclass(frozen=True, eq=False)
+class EnergyDiagram:
+    """What the energy indicator diagram draws, read off a scene and its analysis (:meth:`of`): all it depends on
+    besides its units and digits (:func:`draw_energy` draws it from this alone, so that equal data,
+    :func:`flyopt.report.plots.digest.digest`, draw the same diagram)."""
+
+    title: str
+    model: str  # the model that ran
+    cycle_angle: float  # [rad]
+    constant: bool  # a constant inertia
+    chain: npt.NDArray[np.float64]  # ΔE at the chain's points [J]
+    chain_angle: npt.NDArray[np.float64] | None  # their angles [rad] (None: net areas)
+    index_max: int  # the chain's points of ΔE's extremes
+    index_min: int
+    a_max: float  # the diagram's A_max [J]
+    phi: npt.NDArray[np.float64] | None  # where ΔE(φ) is drawn [rad]
+    curve: npt.NDArray[np.float64] | None  # ΔE(φ) [J]
+    along_phi: npt.NDArray[np.float64] | None  # the dynamic model's: ΔE along its periodic solution
+    along: npt.NDArray[np.float64] | None
+    omega_at: tuple[tuple[float, float] | None, ...]  # (angle, ΔE there) of the model's ω_max and ω_min
+    dead_centres: DeadCentres
+
+    @classmethod
+    def of(cls, scene: Scene, analysis: Analysis) -> EnergyDiagram:
+        ind = analysis.indicator
+        if ind is None:
+            raise BrokenInvariant("every analysis carries its energy indicator diagram (flyopt.analysis)")
+        constant = analysis.machine is None or not analysis.machine.variable_inertia
+        dynamic = analysis.model == Model.DYNAMIC
+        phi = curve = along_phi = along = None
+        omega_at: tuple[tuple[float, float] | None, ...] = (None, None)
+        chain_angle = None
+        if ind.chain_angle is not None:
+            chain_angle = np.asarray(ind.chain_angle, dtype=float)
+            ew = excess_work(scene, analysis)
+            phi = np.union1d(np.linspace(0, scene.cycle_angle, 1501), chain_angle)
+            curve = np.asarray(ew(phi), dtype=float)
+            if dynamic:
+                torques = Torques.of(scene, analysis)
+                along_phi, along = torques.phi, torques.excess_work()
+            if not constant or dynamic:
+                omega_at = tuple(
+                    None if angle is None else (float(angle), float(ew(np.array([angle]))[0]))
+                    for angle in (analysis.angle_omega_max, analysis.angle_omega_min)
+                )
+        return cls(
+            title=str(scene.title),
+            model=str(analysis.model),
+            cycle_angle=float(scene.cycle_angle),
+            constant=bool(constant),
+            chain=np.asarray(ind.chain_delta_e, dtype=float),
+            chain_angle=chain_angle,
+            index_max=int(ind.index_max),
+            index_min=int(ind.index_min),
+            a_max=float(ind.a_max),
+            phi=phi,
+            curve=curve,
+            along_phi=along_phi,
+            along=along,
+            omega_at=omega_at,
+            dead_centres=None if chain_angle is None else dead_centres(scene),
+        )
 
 
 def plot_energy(
@@ -46,45 +112,45 @@ def plot_energy(
     matplotlib Axes
         The A_max dimension is the annotation of gid ``a_max``.
     """
+    return draw_energy(EnergyDiagram.of(scene, analysis), ax, units, digits)
+
+
+def draw_energy(
+    data: EnergyDiagram,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
+) -> Axes:
+    """:func:`plot_energy` of what it draws (:class:`EnergyDiagram`)."""
     display.check_system(units)
     ax, own = standard.axes(ax)
-    ind = analysis.indicator
-    if ind is None:
-        raise BrokenInvariant("every analysis carries its energy indicator diagram (flyopt.analysis)")
-    chain = np.asarray(ind.chain_delta_e, dtype=float)
-    constant = analysis.machine is None or not analysis.machine.variable_inertia
-    drawn: list[npt.ArrayLike] = [chain, ind.a_max]
-    if ind.chain_angle is not None:
-        ew = excess_work(scene, analysis)
-        phi = np.union1d(np.linspace(0, scene.cycle_angle, 1501), ind.chain_angle)
-        curve = ew(phi)
-        drawn.append(curve)
-        if analysis.model == Model.DYNAMIC:
-            torques = Torques(scene, analysis)
-            along = torques.excess_work()
-            drawn.append(along)
+    chain, chain_angle, constant, dynamic = data.chain, data.chain_angle, data.constant, data.model == Model.DYNAMIC
+    drawn: list[npt.ArrayLike] = [chain, data.a_max]
+    drawn.extend(values for values in (data.curve, data.along) if values is not None)
     energy = standard.scale("energy", units, drawn, digits)
-    if ind.chain_angle is None:
+    if chain_angle is None:
         x_chain = np.arange(len(chain), dtype=float)
         ax.plot(x_chain, energy.show(chain), "-", color="tab:blue", lw=1.5, label="ΔE, chained areas")
         ax.set_xlim(0, len(chain) - 1)
         ax.set_xticks(x_chain)
         ax.set_xlabel("end of area k (0: the cycle start)")
     else:
-        x_chain = standard.show(ind.chain_angle, "angle", units)
-        frozen = " (torques frozen at ω_m, the motor at its mean)" if analysis.model == Model.DYNAMIC else ""
+        if data.phi is None or data.curve is None:
+            raise BrokenInvariant("a scene of torque curves has its ΔE(φ)")
+        x_chain = standard.show(chain_angle, "angle", units)
+        frozen = " (torques frozen at ω_m, the motor at its mean)" if dynamic else ""
         (line,) = ax.plot(
-            standard.show(phi, "angle", units),
-            energy.show(curve),
+            standard.show(data.phi, "angle", units),
+            energy.show(data.curve),
             color="tab:blue",
             lw=1.5,
             label=f"ΔE(φ) = ∫(M_d − M_r) dφ{frozen}",
         )
         readout.curve(line, "ΔE", energy)
-        if analysis.model == Model.DYNAMIC:
+        if data.along is not None and data.along_phi is not None:
             (line,) = ax.plot(
-                standard.show(torques.phi, "angle", units),
-                energy.show(along),
+                standard.show(data.along_phi, "angle", units),
+                energy.show(data.along),
                 color="tab:purple",
                 lw=1.2,
                 ls="--",
@@ -92,8 +158,8 @@ def plot_energy(
                 gid="along",
             )
             readout.curve(line, "ΔE along ω(φ)", energy)
-        angle_axis(ax, scene.cycle_angle, units, digits)
-        mark_dead_centres(ax, scene, units)
+        angle_axis(ax, data.cycle_angle, units, digits)
+        mark_dead_centres(ax, data.dead_centres, units)
     y_chain = energy.show(chain)
     ax.plot(
         x_chain,
@@ -102,21 +168,21 @@ def plot_energy(
         color="black",
         ms=3.5,
         zorder=4,
-        label="ends of the areas" if ind.chain_angle is None else "ends of the areas: crossings of the torques",
+        label="ends of the areas" if chain_angle is None else "ends of the areas: crossings of the torques",
     )
-    hi, lo = float(y_chain[ind.index_max]), float(y_chain[ind.index_min])
-    names = ("ω_max", "ω_min") if constant and analysis.model != Model.DYNAMIC else ("ΔE largest", "ΔE smallest")
+    hi, lo = float(y_chain[data.index_max]), float(y_chain[data.index_min])
+    names = ("ω_max", "ω_min") if constant and not dynamic else ("ΔE largest", "ΔE smallest")
     steady = not hi > lo and constant
     extremes = (
         ()
         if steady
-        else ((ind.index_max, names[0], standard.SURPLUS, 1), (ind.index_min, names[1], standard.DEFICIT, -1))
+        else ((data.index_max, names[0], standard.SURPLUS, 1), (data.index_min, names[1], standard.DEFICIT, -1))
     )
     for k, name, colour, where in extremes:
         ax.axhline(y_chain[k], color=colour, ls=":", lw=1)
         at = (
-            f" at φ = {standard.q(ind.chain_angle[k], 'angle', units, digits)}"
-            if ind.chain_angle is not None
+            f" at φ = {standard.q(chain_angle[k], 'angle', units, digits)}"
+            if chain_angle is not None
             else f" ({display.chain_point(k)})"
         )
         ax.plot(
@@ -142,22 +208,23 @@ def plot_energy(
             color=colour,
             gid="extreme_label",
         )
-    if ind.chain_angle is not None and (not constant or analysis.model == Model.DYNAMIC) and not steady:
-        for angle, name, colour, marker in (
-            (analysis.angle_omega_max, "ω_max", standard.SURPLUS, "^"),
-            (analysis.angle_omega_min, "ω_min", standard.DEFICIT, "v"),
+    if chain_angle is not None and (not constant or dynamic) and not steady:
+        for at_omega, name, colour, marker in (
+            (data.omega_at[0], "ω_max", standard.SURPLUS, "^"),
+            (data.omega_at[1], "ω_min", standard.DEFICIT, "v"),
         ):
-            if angle is None:
+            if at_omega is None:
                 continue
+            angle, excess = at_omega
             ax.plot(
                 [float(standard.show(angle, "angle", units))],
-                [float(energy.show(ew(np.array([angle]))[0]))],
+                [float(energy.show(excess))],
                 marker,
                 color=colour,
                 ms=7,
                 zorder=6,
                 gid=f"omega_{name[-3:]}",
-                label=f"{name} ({analysis.model} model) at φ = {standard.q(angle, 'angle', units, digits)}",
+                label=f"{name} ({data.model} model) at φ = {standard.q(angle, 'angle', units, digits)}",
             )
     top, bottom = hi, lo
     for line in ax.get_lines():  # every curve drawn (ΔE along the periodic solution too) within the plot
@@ -192,7 +259,7 @@ def plot_energy(
         ax.text(
             1.04,
             0.5 * (hi + lo),
-            f"A_max = {energy.q(ind.a_max)}",
+            f"A_max = {energy.q(data.a_max)}",
             transform=dimension_at,
             rotation=90,
             ha="left",
@@ -202,8 +269,13 @@ def plot_energy(
         )
     ax.set_ylabel(energy.axis_label("excess work ΔE"))
     ax.grid(True, alpha=0.25)
-    standard.title(ax, own, scene.title, f"energy indicator diagram (A_max = {energy.q(ind.a_max)})")
+    standard.title(ax, own, data.title, f"energy indicator diagram (A_max = {energy.q(data.a_max)})")
     standard.legend(
         ax, own, title="steady running: ΔE = 0 at every angle, the speed does not fluctuate" if steady else None
     )
     return ax
+
+
+#: The energy indicator diagram as what it draws and how (the app keeps it where an edit leaves its data as they
+#: were).
+ENERGY = Plot("energy", EnergyDiagram.of, draw_energy)

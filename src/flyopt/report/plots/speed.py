@@ -9,7 +9,7 @@ import numpy as np
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import readout, standard
-from flyopt.report.plots.cycle import angle_axis, mark_dead_centres
+from flyopt.report.plots.cycle import angle_axis, dead_centres, mark_dead_centres
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -132,7 +132,7 @@ def plot_speed(
                 zorder=5,
             )
     angle_axis(ax, scene.cycle_angle, units, digits)
-    mark_dead_centres(ax, scene, units)
+    mark_dead_centres(ax, dead_centres(scene), units)
     span = max(w_max - w_min, 1e-9 * w_mean)
     ax.set_ylim(*(float(standard.show(v, "angular_speed", units)) for v in (w_min - 0.12 * span, w_max + 0.12 * span)))
     ax.set_ylabel(standard.axis_label("speed of the reference shaft ω", "angular_speed", units))

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -10,7 +11,16 @@ import numpy.typing as npt
 from flyopt.errors import BrokenInvariant
 from flyopt.report import display
 from flyopt.report.plots import readout, standard
-from flyopt.report.plots.cycle import Torques, angle_axis, mark_dead_centres, omega_marks
+from flyopt.report.plots.cycle import (
+    DeadCentres,
+    Extremes,
+    Torques,
+    angle_axis,
+    dead_centres,
+    mark_dead_centres,
+    omega_marks,
+)
+from flyopt.report.plots.digest import Plot
 from flyopt.report.plots.labels import place_area_labels
 
 if TYPE_CHECKING:
@@ -20,6 +30,64 @@ if TYPE_CHECKING:
 
     from flyopt.analysis import Analysis
     from flyopt.io.scene import Scene
+
+
+@dataclass(frozen=True, eq=False)
+class TurningMoment:
+    """What the turning-moment diagram draws, read off a scene and its analysis (:meth:`of`): all it depends on
+    besides its units and digits (:func:`draw_turning_moment` draws it from this alone, so that equal data,
+    :func:`flyopt.report.plots.digest.digest`, draw the same diagram)."""
+
+    title: str
+    model: str  # the model that ran
+    cycle_angle: float  # [rad]
+    a_max: float  # the analysis' A_max [J]
+    areas: npt.NDArray[np.float64]  # the energy indicator diagram's areas [J]
+    indicator_a_max: float  # its A_max [J]
+    net: bool  # a net-area scene: its areas as bars, no curves (the fields below unused)
+    torques: Torques | None
+    between: tuple[tuple[float, float, float], ...]  # (left, right, energy) of each area between the curves
+    driving_torque: float | None  # the mean driving torque W/Φ [N*m]
+    extremes: Extremes | None
+    dead_centres: DeadCentres
+
+    @classmethod
+    def of(cls, scene: Scene, analysis: Analysis) -> TurningMoment:
+        ind = analysis.indicator
+        if ind is None:
+            raise BrokenInvariant("every analysis carries its energy indicator diagram (flyopt.analysis)")
+
+        def made(**rest: Any) -> TurningMoment:
+            return cls(
+                title=str(scene.title),
+                model=str(analysis.model),
+                cycle_angle=float(scene.cycle_angle),
+                a_max=float(analysis.a_max),
+                areas=np.asarray(ind.areas, dtype=float),
+                indicator_a_max=float(ind.a_max),
+                **rest,
+            )
+
+        if scene.net is not None:
+            return made(net=True, torques=None, between=(), driving_torque=None, extremes=None, dead_centres=None)
+        torques = Torques.of(scene, analysis)
+        if torques.along:
+            between = torques.areas()
+        else:
+            if ind.chain_angle is None:
+                raise BrokenInvariant("a scene of torque curves has the angles of its chain")
+            between = [
+                (float(l), float(r), float(a)) for l, r, a in zip(ind.chain_angle[:-1], ind.chain_angle[1:], ind.areas)
+            ]
+        mean = analysis.driving_torque
+        return made(
+            net=False,
+            torques=torques,
+            between=tuple(between),
+            driving_torque=None if mean is None else float(mean),
+            extremes=Extremes.of(analysis),
+            dead_centres=dead_centres(scene),
+        )
 
 
 def plot_turning_moment(
@@ -63,14 +131,21 @@ def plot_turning_moment(
         ``omega_max``, ``omega_min`` (and ``delta_e_max``, ``delta_e_min``),
         the area texts gid ``area``.
     """
+    return draw_turning_moment(TurningMoment.of(scene, analysis), ax, units, digits)
+
+
+def draw_turning_moment(
+    data: TurningMoment,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
+) -> Axes:
+    """:func:`plot_turning_moment` of what it draws (:class:`TurningMoment`)."""
     display.check_system(units)
     ax, own = standard.axes(ax)
-    ind = analysis.indicator
-    if ind is None:
-        raise BrokenInvariant("every analysis carries its energy indicator diagram (flyopt.analysis)")
-    energy = standard.scale("energy", units, [ind.areas, ind.a_max, analysis.a_max], digits)
-    if scene.net is not None:
-        areas = ind.areas
+    energy = standard.scale("energy", units, [data.areas, data.indicator_a_max, data.a_max], digits)
+    if data.net:
+        areas = data.areas
         k = np.arange(1, len(areas) + 1)
         ax.bar(
             k - 0.5,
@@ -100,22 +175,15 @@ def plot_turning_moment(
         standard.title(
             ax,
             own,
-            scene.title,
-            f"net areas between the torque curves (A_max = {energy.q(ind.a_max)})",
+            data.title,
+            f"net areas between the torque curves (A_max = {energy.q(data.indicator_a_max)})",
         )
         return ax
-    torques = Torques(scene, analysis)
-    between: list[tuple[float, float, float]]  # (left, right, energy) of each area between the curves
-    if torques.along:
-        between = torques.areas()
-    else:
-        if ind.chain_angle is None:
-            raise BrokenInvariant("a scene of torque curves has the angles of its chain")
-        between = [
-            (float(l), float(r), float(a)) for l, r, a in zip(ind.chain_angle[:-1], ind.chain_angle[1:], ind.areas)
-        ]
-    energy = standard.scale("energy", units, [[a for *_lr, a in between], analysis.a_max], digits)
-    mean = analysis.driving_torque if torques.along and not torques.driving_solved else None
+    torques, between, extremes = data.torques, data.between, data.extremes
+    if torques is None or extremes is None:
+        raise BrokenInvariant("a scene of torque curves has its torques and extremes")
+    energy = standard.scale("energy", units, [[a for *_lr, a in between], data.a_max], digits)
+    mean = data.driving_torque if torques.along and not torques.driving_solved else None
     torque = standard.scale("torque", units, [torques.driving, torques.resisting, mean], digits)
     x = standard.show(torques.phi, "angle", units)
     md, mr = torque.show(torques.driving), torque.show(torques.resisting)
@@ -139,7 +207,7 @@ def plot_turning_moment(
     readout.curve(resisting, "M_r", torque)
     levels = []
     if torques.along and not torques.driving_solved and np.ptp(torques.driving) > 0:
-        mean = analysis.driving_torque
+        mean = data.driving_torque
         if mean is None:
             raise BrokenInvariant("a scene of torque curves has its mean driving torque")
         levels.append(float(torque.show(mean)))
@@ -151,14 +219,14 @@ def plot_turning_moment(
             label=f"mean M_d = W/Φ = {torque.q(mean)}",
             gid="mean_driving",
         )
-    marks, note = omega_marks(analysis, units, digits)
+    marks, note = omega_marks(extremes, units, digits)
     for angle, words, colour, style, gid in marks:
         ax.axvline(float(standard.show(angle, "angle", units)), color=colour, ls=style, lw=1.1, label=words, gid=gid)
-    end = angle_axis(ax, scene.cycle_angle, units, digits)
-    top = mark_dead_centres(ax, scene, units)
+    end = angle_axis(ax, data.cycle_angle, units, digits)
+    top = mark_dead_centres(ax, data.dead_centres, units)
     ax.set_ylabel(torque.axis_label("torque at the reference shaft"))
-    what = "along the periodic solution" if torques.along else f"A_max = {energy.q(analysis.a_max)}"
-    standard.title(ax, own, scene.title, f"turning-moment diagram, {what} ({analysis.model} model)")
+    what = "along the periodic solution" if torques.along else f"A_max = {energy.q(data.a_max)}"
+    standard.title(ax, own, data.title, f"turning-moment diagram, {what} ({data.model} model)")
     span = max(float(np.ptp(np.concatenate([md, mr]))), 1e-12 * max(1.0, float(np.max(np.abs(md)))))
     low, high = float(min(md.min(), mr.min())), float(max(md.max(), mr.max()))
     if span <= 1e-9 * max(abs(high), 1.0):
@@ -174,7 +242,7 @@ def plot_turning_moment(
             f"{'+' if area > 0 else '−'}{energy.q(abs(area))}",
             standard.SURPLUS if area > 0 else standard.DEFICIT,
         )
-        for left, right, area in _labelled(between, largest, scene.cycle_angle)
+        for left, right, area in _labelled(between, largest, data.cycle_angle)
     ]
     place_area_labels(
         ax,
@@ -190,6 +258,9 @@ def plot_turning_moment(
     del top
     return ax
 
+
+#: The turning-moment diagram as what it draws and how (the app keeps it where an edit leaves its data as they were).
+TURNING_MOMENT = Plot("turning_moment", TurningMoment.of, draw_turning_moment)
 
 #: The most areas the diagram labels: the largest, where a table crosses its mean thousands of times (a label
 #: needs some 15 mm of a diagram about 180 mm wide; each costs a search over the drawn points).

@@ -1,0 +1,115 @@
+"""A diagram an edit does not change is kept, not drawn again (flyopt.app.diagrams.kept): what the page then
+shows must be what drawing it afresh shows, to the byte, and the reports downloaded must still hold it.
+
+The reference is the whole answer solved and drawn at once (flyopt.app.model.solve: every diagram made and
+drawn from the new text), which keeps nothing.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from flyopt.app import model
+from flyopt.app.diagrams import Diagrams
+
+pytestmark = pytest.mark.usefixtures("close_figures")  # the app keeps figures open: none outlives a test
+
+
+def _edited(delta):
+    text = model.template_text("shear-press")
+    return text.replace("delta = 0.05", f"delta = {delta}", 1)
+
+
+def _drawn_keys(monkeypatch):
+    """The keys of the diagrams drawn to SVG from now on."""
+    drawn: list[str] = []
+    svg = model.figure_svg
+
+    def counted(block):
+        drawn.append(block.key)
+        return svg(block)
+
+    monkeypatch.setattr(model, "figure_svg", counted)
+    return drawn
+
+
+def _all(diagrams):
+    while diagrams.step() is not None:
+        pass
+    return diagrams.figures()
+
+
+def test_a_delta_edit_keeps_the_diagrams_it_leaves_unchanged_and_they_are_the_fresh_ones(workspace, monkeypatch):
+    before = model.solve(_edited("0.04"), workspace)
+    fresh = model.solve(_edited("0.02"), workspace)  # the reference: every diagram drawn from the new text
+    answer = model.numbers(_edited("0.02"), workspace)
+    drawn = _drawn_keys(monkeypatch)
+    diagrams = Diagrams(answer, {"inertia_delta": 1.0}, before.figures)
+    figures = _all(diagrams)
+    page = [f.key for f in fresh.figures]
+    assert {"turning_moment", "energy"}.isdisjoint(drawn)  # kept: the δ edit leaves them as they were
+    assert sorted(drawn) == sorted(k for k in page if k not in ("turning_moment", "energy"))
+    assert drawn[0] == "inertia_delta"  # the one in view still first
+    assert figures == fresh.figures  # every SVG, read-out and digest the same as drawn afresh
+    # the answer's document leaves the kept ones undrawn; a report draws them from the same solve
+    document = diagrams.document()
+    assert [b.figure is None for b in model.figure_blocks(document)] == [
+        k in ("turning_moment", "energy") for k in page
+    ]
+    html = model.report_bytes(model.drawn(answer, document, figures), "html").decode("utf-8")
+    assert html.count("<svg") == sum(1 for f in fresh.figures if f.svg)
+    assert all(b.figure is not None for b in model.figure_blocks(document) if b.key in page)
+    # a kept diagram is drawn into the report as a report drawn at once draws it (from the answer's card, which
+    # draws every figure once); the others as the page's fresh answer's report has them (drawn for the page,
+    # then again: constrained layout, run again from where the first draw left it, moves an axes by a fraction
+    # of a point)
+    once = _figures_of(model.report_bytes(model.numbers(_edited("0.02"), workspace), "html").decode("utf-8"))
+    again = _figures_of(model.report_bytes(fresh, "html").decode("utf-8"))
+    drawn_in_report = [f.key for f in fresh.figures if f.svg]
+    for k, (got, key) in enumerate(zip(_figures_of(html), drawn_in_report)):
+        assert got == (once if key in ("turning_moment", "energy") else again)[k], key
+    document.close()
+
+
+def _figures_of(html):
+    """The report's SVG figures, in order."""
+    import re
+
+    return re.findall(r"<svg.*?</svg>", html, flags=re.S)
+
+
+def test_nothing_is_kept_where_the_page_shows_another_diagram_or_other_data(workspace, monkeypatch):
+    before = model.solve(_edited("0.04"), workspace)
+    answer = model.numbers(_edited("0.02"), workspace)
+    page = [f.key for f in before.figures]
+    other = [f._replace(digest=f.digest[::-1]) for f in before.figures]  # the same keys, other data
+    moved = before.figures[1:] + before.figures[:1]  # the same diagrams, each in another place
+    for showing in (other, moved, []):
+        drawn = _drawn_keys(monkeypatch)
+        _all(Diagrams(answer, {}, showing))
+        assert drawn == page
+        monkeypatch.undo()
+
+
+def test_an_edit_that_changes_no_diagrams_data_keeps_every_split_diagram(workspace, monkeypatch):
+    """A comment typed: every diagram with a digest kept, and what the page shows the same as drawn afresh."""
+    before = model.solve(_edited("0.04"), workspace)
+    commented = _edited("0.04") + "\n# a comment\n"
+    fresh = model.solve(commented, workspace)
+    answer = model.numbers(commented, workspace)
+    drawn = _drawn_keys(monkeypatch)
+    diagrams = Diagrams(answer, {}, before.figures)
+    figures = _all(diagrams)
+    kept = {f.key for f in before.figures if f.digest}
+    assert kept >= {"turning_moment", "energy"} and kept.isdisjoint(drawn)
+    assert figures == fresh.figures  # the wheel's drawing names the scene's hash: drawn again, the rest the same
+
+
+def test_the_cards_digests_are_those_of_the_diagrams_drawn(workspace):
+    """The card's document (numbers only) gives each split diagram the digest its drawing has: what the page
+    compares is what it would draw."""
+    answer = model.numbers(_edited("0.03"), workspace)
+    whole = model.solve(_edited("0.03"), workspace)
+    card = {b.key: b.digest for b in model.figure_blocks(answer.document) if b.digest}
+    assert card.keys() == {"turning_moment", "energy"}
+    assert card == {f.key: f.digest for f in whole.figures if f.digest}
