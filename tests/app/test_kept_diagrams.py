@@ -111,5 +111,26 @@ def test_the_cards_digests_are_those_of_the_diagrams_drawn(workspace):
     answer = model.numbers(_edited("0.03"), workspace)
     whole = model.solve(_edited("0.03"), workspace)
     card = {b.key: b.digest for b in model.figure_blocks(answer.document) if b.digest}
-    assert card.keys() == {"turning_moment", "energy"}
+    assert card.keys() == {"turning_moment", "energy", "inertia_delta", "speed"}
     assert card == {f.key: f.digest for f in whole.figures if f.digest}
+
+
+def test_an_envelope_edit_keeps_the_diagrams_of_the_cycle_and_redraws_the_wheels(workspace, monkeypatch):
+    """A smaller envelope (max_outer_diameter binds shear-press's wheel) changes the wheel, not the cycle: the
+    turning-moment, energy and J_F–δ diagrams are kept, the wheel's (stress, section, drawing) drawn again, and
+    the speed (with the simulation of the designed wheel, whose J_F is the same to round-off) kept exactly when
+    its digest is the same; what the page shows is the same edit drawn afresh."""
+    text = _edited("0.04")
+    smaller = text.replace('max_outer_diameter = "0.6 m"', 'max_outer_diameter = "0.55 m"', 1)
+    assert smaller != text
+    before = model.solve(text, workspace)
+    fresh = model.solve(smaller, workspace)
+    answer = model.numbers(smaller, workspace)
+    drawn = _drawn_keys(monkeypatch)
+    figures = _all(Diagrams(answer, {}, before.figures))
+    cycle = {"turning_moment", "energy", "inertia_delta"}
+    speed = [f.digest for f in (*before.figures, *fresh.figures) if f.key == "speed"]
+    if speed[0] == speed[1]:
+        cycle.add("speed")
+    assert cycle.isdisjoint(drawn) and set(drawn) == {f.key for f in fresh.figures} - cycle
+    assert figures == fresh.figures

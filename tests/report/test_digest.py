@@ -76,7 +76,7 @@ def _split_figures(path):
     from flyopt.report.builder import build
     from flyopt.report.html import svg_of
 
-    document = build(collect(path), "engineering", figures={"turning_moment", "energy"})
+    document = build(collect(path), "engineering", figures={"turning_moment", "energy", "inertia_delta", "speed"})
     try:
         return {
             block.key: (block.digest, svg_of(block.figure, block.key))

@@ -98,7 +98,7 @@ class Requirement(BuilderBase):
             blocks.append(Figure("inertia_delta", caption, note=f"Not drawn: {self.inputs.inertia_note}."))
         else:
             curve = {} if self.inputs.inertia_curve is None else {"curve": self.inputs.inertia_curve}
-            self.figure(blocks, "inertia_delta", caption, plots.plot_inertia_delta, self.scene, a, **curve)
+            self.figure(blocks, "inertia_delta", caption, plots.INERTIA_DELTA, self.scene, a, **curve)
         if self.inputs.energy_mass is not None:
             self.figure(
                 blocks,

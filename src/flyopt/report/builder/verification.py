@@ -112,7 +112,7 @@ class VerificationAndProvenance(BuilderBase):
                     else "Speed over the cycle with the required flywheel"
                 )
                 + (", and the simulation of the design over it" if simulation is not None else ""),
-                plots.plot_speed,
+                plots.SPEED,
                 self.scene,
                 a,
                 self.inputs.speed,

@@ -32,7 +32,8 @@ The modules: :mod:`~flyopt.report.plots.standard` (the visual standard),
 :mod:`~flyopt.report.plots.stress`, :mod:`~flyopt.report.plots.speed`,
 :mod:`~flyopt.report.plots.energy_mass`) and :mod:`~flyopt.report.plots.results`
 (sweeps and Pareto fronts). A diagram split into what it draws and how (:class:`Plot`:
-:data:`TURNING_MOMENT`, :data:`ENERGY`) has an exact digest of its data
+:data:`TURNING_MOMENT`, :data:`ENERGY`, :data:`INERTIA_DELTA`,
+:data:`SPEED`) has an exact digest of its data
 (:mod:`~flyopt.report.plots.digest`): the same digest, the same figure. This package names the diagrams of a scene
 (:data:`PLOTS`) and exposes every drawing function.
 """
@@ -43,7 +44,7 @@ from flyopt.report.plots.cross_section import plot_cross_section
 from flyopt.report.plots.digest import Plot, digest
 from flyopt.report.plots.energy import ENERGY, plot_energy
 from flyopt.report.plots.energy_mass import check_energy_mass, plot_energy_mass
-from flyopt.report.plots.inertia_delta import check_inertia_delta, plot_inertia_delta
+from flyopt.report.plots.inertia_delta import INERTIA_DELTA, check_inertia_delta, plot_inertia_delta
 from flyopt.report.plots.output import FORMATS, check_output, save
 from flyopt.report.plots.results import (
     MAX_LINES,
@@ -53,7 +54,7 @@ from flyopt.report.plots.results import (
     plot_sweep,
     varied_fields,
 )
-from flyopt.report.plots.speed import plot_speed
+from flyopt.report.plots.speed import SPEED, plot_speed
 from flyopt.report.plots.standard import DEFICIT, SURPLUS, NothingToDraw
 from flyopt.report.plots.stress import plot_stress
 from flyopt.report.plots.turning_moment import TURNING_MOMENT, plot_turning_moment
@@ -62,9 +63,11 @@ __all__ = [
     "DEFICIT",
     "ENERGY",
     "FORMATS",
+    "INERTIA_DELTA",
     "MAX_LINES",
     "PLOTS",
     "RESULT_PLOTS",
+    "SPEED",
     "SURPLUS",
     "TURNING_MOMENT",
     "NothingToDraw",

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -14,6 +15,7 @@ from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.method import NOTES, cite
 from flyopt.report.plots import readout, standard
+from flyopt.report.plots.digest import Plot
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -26,6 +28,65 @@ def check_inertia_delta(analysis: Analysis) -> None:
     """Raise NothingToDraw when no flywheel is needed at any δ: a steady machine of constant inertia."""
     if not flywheel_at_some_delta(analysis):
         raise standard.NothingToDraw("no flywheel is needed for any δ (A_max = 0 J, so J_F(δ) = 0): nothing to draw")
+
+
+@dataclass(frozen=True, eq=False)
+class InertiaDelta:
+    """What the J_F–δ diagram draws, read off a scene and its analysis (:meth:`of`): all it depends on besides its
+    units and digits (:func:`draw_inertia_delta` draws it from this alone, so that equal data,
+    :func:`flyopt.report.plots.digest.digest`, draw the same diagram)."""
+
+    title: str
+    model: str  # the model that ran
+    delta: npt.NDArray[np.float64]  # δ [-], increasing
+    j: npt.NDArray[np.float64]  # J_F there [kg*m^2] (negative where none is needed)
+    a_max: float  # [J]
+    omega_mean: float  # the analysis' ω_m [rad/s]
+    scene_omega_mean: float  # the scene's (the constant-inertia comparison's)
+    j_constant: float  # the machine's constant inertia [kg*m^2]
+    j_mean: float  # the cycle mean of its inertia J_e [kg*m^2]
+    scene_delta: float  # the δ allowed
+    j_required: float  # J_F there [kg*m^2]
+    flywheel_needed: bool
+    stall_limited: bool
+    delta_reached: float  # the δ a stall limit reaches
+
+    @classmethod
+    def of(
+        cls, scene: Scene, analysis: Analysis, curve: tuple[npt.ArrayLike, npt.ArrayLike] | None = None
+    ) -> InertiaDelta:
+        check_inertia_delta(analysis)
+        j_mean = analysis.machine.j_mean() if analysis.machine is not None else analysis.j_constant
+        if curve is None:
+            if analysis.model != Model.ENERGY:
+                raise ValueError(
+                    f"J_F(δ) of the {analysis.model} model comes from analysing the scene again at each "
+                    f"δ: pass curve (flyopt.delta_curve.inertia_curve)"
+                )
+            low, high = delta_range(analysis)[[0, -1]]
+            delta = np.geomspace(float(low), float(high), 200)
+            delta = np.union1d(delta, [analysis.delta])
+            j = np.array([required_inertia(analysis.a_max, analysis.omega_mean, d, analysis.j_constant) for d in delta])
+        else:
+            delta, j = (np.asarray(v, dtype=float) for v in curve)
+            order = np.argsort(delta)
+            delta, j = delta[order], j[order]
+        return cls(
+            title=str(scene.title),
+            model=str(analysis.model),
+            delta=np.asarray(delta, dtype=float),
+            j=np.asarray(j, dtype=float),
+            a_max=float(analysis.a_max),
+            omega_mean=float(analysis.omega_mean),
+            scene_omega_mean=float(scene.omega_mean),
+            j_constant=float(analysis.j_constant),
+            j_mean=float(j_mean),
+            scene_delta=float(analysis.delta),
+            j_required=float(analysis.j_required),
+            flywheel_needed=bool(analysis.flywheel_needed),
+            stall_limited=bool(analysis.stall_limited),
+            delta_reached=float(analysis.delta_reached),
+        )
 
 
 def plot_inertia_delta(
@@ -62,27 +123,22 @@ def plot_inertia_delta(
     ValueError
         An exact model other than the energy method without ``curve``.
     """
+    return draw_inertia_delta(InertiaDelta.of(scene, analysis, curve), ax, units, digits)
+
+
+def draw_inertia_delta(
+    data: InertiaDelta,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
+) -> Axes:
+    """:func:`plot_inertia_delta` of what it draws (:class:`InertiaDelta`)."""
     display.check_system(units)
-    check_inertia_delta(analysis)
-    j_mean = analysis.machine.j_mean() if analysis.machine is not None else analysis.j_constant
-    if curve is None:
-        if analysis.model != Model.ENERGY:
-            raise ValueError(
-                f"J_F(δ) of the {analysis.model} model comes from analysing the scene again at each "
-                f"δ: pass curve (flyopt.delta_curve.inertia_curve)"
-            )
-        low, high = delta_range(analysis)[[0, -1]]
-        delta = np.geomspace(float(low), float(high), 200)
-        delta = np.union1d(delta, [analysis.delta])
-        j = np.array([required_inertia(analysis.a_max, analysis.omega_mean, d, analysis.j_constant) for d in delta])
-    else:
-        delta, j = (np.asarray(v, dtype=float) for v in curve)
-        order = np.argsort(delta)
-        delta, j = delta[order], j[order]
+    delta, j = data.delta, data.j
     ax, own = standard.axes(ax)
     inertia = standard.unit("inertia", units)[0]
     shown = standard.show(np.where(j > 0, j, np.nan), "inertia", units)
-    exact = analysis.model != Model.ENERGY
+    exact = data.model != Model.ENERGY
     j_scale = standard.scale("inertia", units, digits=digits)
     (line,) = ax.plot(
         delta,
@@ -92,15 +148,15 @@ def plot_inertia_delta(
         color="tab:blue",
         lw=1.6,
         gid="j_delta",
-        label=f"J_F(δ), {analysis.model} model"
+        label=f"J_F(δ), {data.model} model"
         + (" (the scene analysed at each δ)" if exact else cite(f" = A_max/(ω_m² δ) − J_c ({NOTES}, section 5)")),
     )
     readout.curve(line, "J_F", j_scale)
     readout.abscissa(ax, "δ", standard.scale("dimensionless", units, digits=digits))
-    if exact and analysis.a_max > 0:
+    if exact and data.a_max > 0:
         # the constant-inertia method of section 5, J_e replaced by its cycle mean, for comparison
         d = np.geomspace(delta[0], delta[-1], 200)
-        approx = np.array([required_inertia(analysis.a_max, scene.omega_mean, v, j_mean) for v in d])
+        approx = np.array([required_inertia(data.a_max, data.scene_omega_mean, v, data.j_mean) for v in d])
         (line,) = ax.plot(
             d,
             standard.show(np.where(approx > 0, approx, np.nan), "inertia", units),
@@ -112,8 +168,8 @@ def plot_inertia_delta(
         )
         readout.curve(line, "J_F by the constant-inertia method", j_scale)
     free, about = _zero_crossing(delta, j), "≈ "
-    if analysis.model == Model.ENERGY and analysis.j_constant > 0 and analysis.a_max > 0:
-        free, about = analysis.a_max / (analysis.omega_mean**2 * analysis.j_constant), "= "  # section 5, exact
+    if data.model == Model.ENERGY and data.j_constant > 0 and data.a_max > 0:
+        free, about = data.a_max / (data.omega_mean**2 * data.j_constant), "= "  # section 5, exact
     if free is not None and delta[0] <= free <= delta[-1]:
         ax.axvline(
             free,
@@ -124,35 +180,35 @@ def plot_inertia_delta(
             label=f"δ* {about}{display.number(free, digits if about == '= ' else 2)}: above it J_F = 0 "
             f"(the machine's own inertia suffices)",
         )
-    if analysis.stall_limited and delta[0] <= analysis.delta_reached <= delta[-1]:
+    if data.stall_limited and delta[0] <= data.delta_reached <= delta[-1]:
         ax.axvline(
-            analysis.delta_reached,
+            data.delta_reached,
             color="tab:orange",
             ls=":",
             lw=1.2,
             gid="delta_stall",
-            label=f"δ = {display.number(analysis.delta_reached, digits)}: from it up J_F is the stall limit "
+            label=f"δ = {display.number(data.delta_reached, digits)}: from it up J_F is the stall limit "
             f"(no periodic steady state with a smaller flywheel)",
         )
-    if analysis.flywheel_needed:
+    if data.flywheel_needed:
         ax.plot(
-            [analysis.delta],
-            [float(standard.show(analysis.j_required, "inertia", units))],
+            [data.scene_delta],
+            [float(standard.show(data.j_required, "inertia", units))],
             "o",
             color=standard.DEFICIT,
             ms=7,
             zorder=5,
             gid="design_point",
-            label=f"the scene: δ = {display.number(analysis.delta, digits)}, "
-            f"J_F = {standard.q(analysis.j_required, 'inertia', units, digits)}",
+            label=f"the scene: δ = {display.number(data.scene_delta, digits)}, "
+            f"J_F = {standard.q(data.j_required, 'inertia', units, digits)}",
         )
     else:
         ax.axvline(
-            analysis.delta,
+            data.scene_delta,
             color=standard.DEFICIT,
             lw=1,
             gid="design_point",
-            label=f"the scene's δ = {display.number(analysis.delta, digits)}: no flywheel needed",
+            label=f"the scene's δ = {display.number(data.scene_delta, digits)}: no flywheel needed",
         )
     ax.set(
         xscale="log",
@@ -163,9 +219,13 @@ def plot_inertia_delta(
     ax.set_xlim(delta[0], delta[-1])
     _plain_log_ticks(ax)
     ax.grid(True, which="both", alpha=0.25)
-    standard.title(ax, own, scene.title, f"required flywheel J_F against δ ({analysis.model} model)")
+    standard.title(ax, own, data.title, f"required flywheel J_F against δ ({data.model} model)")
     standard.legend(ax, own, ncol=1)
     return ax
+
+
+#: The J_F–δ diagram as what it draws and how (the app keeps it where an edit leaves its data as they were).
+INERTIA_DELTA = Plot("inertia_delta", InertiaDelta.of, draw_inertia_delta)
 
 
 def _plain_log_ticks(ax: Axes) -> None:

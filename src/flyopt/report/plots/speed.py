@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import readout, standard
-from flyopt.report.plots.cycle import angle_axis, dead_centres, mark_dead_centres
+from flyopt.report.plots.cycle import DeadCentres, angle_axis, dead_centres, mark_dead_centres
+from flyopt.report.plots.digest import Plot
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -18,6 +21,82 @@ if TYPE_CHECKING:
     from flyopt.io.scene import Scene
     from flyopt.sizing.energy_mass import SpeedFluctuation
     from flyopt.sizing.periodic import PeriodicSolution
+
+
+@dataclass(frozen=True, eq=False)
+class SpeedDiagram:
+    """What the speed diagram draws, read off a scene, its analysis and the speeds given (:meth:`of`): all it
+    depends on besides its units and digits (:func:`draw_speed` draws it from this alone, so that equal data,
+    :func:`flyopt.report.plots.digest.digest`, draw the same diagram)."""
+
+    title: str
+    model: str  # the model that ran
+    cycle_angle: float  # [rad]
+    dead_centres: DeadCentres
+    phi: npt.NDArray[np.float64]  # the model's ω(φ): angles [rad]
+    omega: npt.NDArray[np.float64]  # and speeds [rad/s]
+    omega_max: float  # its extremes [rad/s] (the model's where it gives them, else the curve's)
+    omega_min: float
+    phi_omega_max: float | None  # where they are [rad], where the model says
+    phi_omega_min: float | None
+    achieved: float  # the δ the curve achieves
+    allowed: float  # the δ allowed
+    j_required: float  # the flywheel the curve is of [kg*m^2]
+    given: bool  # a flywheel that exists (the analysis at the δ it reaches)
+    simulation: tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], float] | None  # (φ, ω, δ) simulated
+
+    @classmethod
+    def of(
+        cls,
+        scene: Scene,
+        analysis: Analysis,
+        speed: SpeedFluctuation | PeriodicSolution | None = None,
+        simulation: PeriodicSolution | None = None,
+    ) -> SpeedDiagram:
+        if scene.net is not None:
+            raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
+        if speed is None:
+            if analysis.requirement is None or analysis.requirement.model != Model.DYNAMIC:
+                raise ValueError(
+                    f"the {analysis.model} model's result carries no ω(φ): pass speed (Analysis.speed_curve())"
+                )
+            speed = analysis.speed_curve()
+            if speed is None:
+                raise standard.NothingToDraw(
+                    "no flywheel is needed and the speed does not fluctuate (A_max = 0 J, no inertia at all): "
+                    "nothing to draw"
+                )
+        omega = np.asarray(speed.omega, dtype=float)
+        w_max = float(getattr(speed, "omega_max", float(np.max(omega))))
+        w_min = float(getattr(speed, "omega_min", float(np.min(omega))))
+
+        def angle(name: str) -> float | None:
+            value = getattr(speed, name, None)
+            return None if value is None else float(value)
+
+        return cls(
+            title=str(scene.title),
+            model=str(analysis.model),
+            cycle_angle=float(scene.cycle_angle),
+            dead_centres=dead_centres(scene),
+            phi=np.asarray(speed.phi, dtype=float),
+            omega=omega,
+            omega_max=w_max,
+            omega_min=w_min,
+            phi_omega_max=angle("phi_omega_max"),
+            phi_omega_min=angle("phi_omega_min"),
+            achieved=float(getattr(speed, "delta", (w_max - w_min) / (0.5 * (w_max + w_min)))),
+            allowed=float(analysis.delta),
+            j_required=float(analysis.j_required),
+            given=scene.flywheel is not None,
+            simulation=None
+            if simulation is None
+            else (
+                np.asarray(simulation.phi, dtype=float),
+                np.asarray(simulation.omega, dtype=float),
+                float(simulation.delta),
+            ),
+        )
 
 
 def plot_speed(
@@ -63,22 +142,20 @@ def plot_speed(
         A net-area scene: it has no angles; or no ``speed`` for an analysis
         whose result does not carry one (the energy models).
     """
+    return draw_speed(SpeedDiagram.of(scene, analysis, speed, simulation), ax, units, digits)
+
+
+def draw_speed(
+    data: SpeedDiagram,
+    ax: Axes | None = None,
+    units: str = display.DEFAULT,
+    digits: int = display.DEFAULT_DIGITS,
+) -> Axes:
+    """:func:`plot_speed` of what it draws (:class:`SpeedDiagram`)."""
     display.check_system(units)
-    if scene.net is not None:
-        raise ValueError("a net-area scene has no angles: ω(φ) cannot be drawn")
-    if speed is None:
-        if analysis.requirement is None or analysis.requirement.model != Model.DYNAMIC:
-            raise ValueError(
-                f"the {analysis.model} model's result carries no ω(φ): pass speed (Analysis.speed_curve())"
-            )
-        speed = analysis.speed_curve()
-        if speed is None:
-            raise standard.NothingToDraw(
-                "no flywheel is needed and the speed does not fluctuate (A_max = 0 J, no inertia at all): nothing to draw"
-            )
     ax, own = standard.axes(ax)
-    omega = np.asarray(speed.omega, dtype=float)
-    x = standard.show(speed.phi, "angle", units)
+    omega = data.omega
+    x = standard.show(data.phi, "angle", units)
     speed_scale = standard.scale("angular_speed", units, digits=digits)
     (line,) = ax.plot(
         x,
@@ -86,25 +163,24 @@ def plot_speed(
         color="tab:blue",
         lw=1.6,
         gid="model",
-        label=f"ω(φ), {analysis.model} model, J_F = {standard.q(analysis.j_required, 'inertia', units, digits)}",
+        label=f"ω(φ), {data.model} model, J_F = {standard.q(data.j_required, 'inertia', units, digits)}",
     )
     readout.curve(line, "ω", speed_scale)
-    if simulation is not None:
+    if data.simulation is not None:
+        simulated_phi, simulated_omega, simulated_delta = data.simulation
         (line,) = ax.plot(
-            standard.show(simulation.phi, "angle", units),
-            speed_scale.show(simulation.omega),
+            standard.show(simulated_phi, "angle", units),
+            speed_scale.show(simulated_omega),
             color=standard.DEFICIT,
             ls="--",
             lw=1,
             gid="simulation",
-            label=f"periodic simulation (δ = {display.number(simulation.delta, digits)})",
+            label=f"periodic simulation (δ = {display.number(simulated_delta, digits)})",
         )
         readout.curve(line, "ω (simulation)", speed_scale)
-    w_max, w_min = float(np.max(omega)), float(np.min(omega))
-    w_max = float(getattr(speed, "omega_max", w_max))
-    w_min = float(getattr(speed, "omega_min", w_min))
+    w_max, w_min = data.omega_max, data.omega_min
     w_mean = 0.5 * (w_max + w_min)
-    where = {"max": getattr(speed, "phi_omega_max", None), "min": getattr(speed, "phi_omega_min", None)}
+    where = {"max": data.phi_omega_max, "min": data.phi_omega_min}
     apart = standard.digits_apart((w_max, w_mean, w_min), "angular_speed", units, digits)
     for value, name, colour, style in (
         (w_max, "max", standard.SURPLUS, ":"),
@@ -131,22 +207,26 @@ def plot_speed(
                 ms=5,
                 zorder=5,
             )
-    angle_axis(ax, scene.cycle_angle, units, digits)
-    mark_dead_centres(ax, dead_centres(scene), units)
+    angle_axis(ax, data.cycle_angle, units, digits)
+    mark_dead_centres(ax, data.dead_centres, units)
     span = max(w_max - w_min, 1e-9 * w_mean)
     ax.set_ylim(*(float(standard.show(v, "angular_speed", units)) for v in (w_min - 0.12 * span, w_max + 0.12 * span)))
     ax.set_ylabel(standard.axis_label("speed of the reference shaft ω", "angular_speed", units))
     ax.grid(True, alpha=0.25)
-    achieved = float(getattr(speed, "delta", (w_max - w_min) / w_mean))
-    given = scene.flywheel is not None  # a wheel that exists: the analysis is at the δ it reaches
+    achieved = data.achieved
+    given = data.given  # a wheel that exists: the analysis is at the δ it reaches
     standard.title(
         ax,
         own,
-        scene.title,
+        data.title,
         f"speed over the cycle with the flywheel given: δ = {display.number(achieved, digits)}"
         if given
         else f"speed over the cycle: δ = {display.number(achieved, digits)} achieved, "
-        f"{display.number(analysis.delta, digits)} allowed",
+        f"{display.number(data.allowed, digits)} allowed",
     )
     standard.legend(ax, own)
     return ax
+
+
+#: The speed diagram as what it draws and how (the app keeps it where an edit leaves its data as they were).
+SPEED = Plot("speed", SpeedDiagram.of, draw_speed)
