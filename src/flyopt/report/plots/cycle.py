@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -122,6 +122,21 @@ def mark_dead_centres(ax: Axes, marks: DeadCentres, units: str) -> SecondaryAxis
     for angle, _name in major:
         ax.axvline(float(standard.show(angle, "angle", units)), color="0.8", lw=0.6, zorder=0)
     return top
+
+
+@dataclass(frozen=True, eq=False)
+class CycleDiagram:
+    """What every diagram over the cycle draws of its scene, the first fields of a split plot's data
+    (:mod:`flyopt.report.plots.digest`): the scene's title, the model that ran, the cycle's angle [rad]."""
+
+    title: str
+    model: str
+    cycle_angle: float
+
+    @staticmethod
+    def common(scene: Scene, analysis: Analysis) -> dict[str, Any]:
+        """Those fields of ``scene`` and its ``analysis``."""
+        return {"title": str(scene.title), "model": str(analysis.model), "cycle_angle": float(scene.cycle_angle)}
 
 
 # --------------------------------------------------------------------------

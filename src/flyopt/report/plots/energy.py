@@ -12,7 +12,15 @@ from flyopt.errors import BrokenInvariant
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import readout, standard
-from flyopt.report.plots.cycle import DeadCentres, Torques, angle_axis, dead_centres, excess_work, mark_dead_centres
+from flyopt.report.plots.cycle import (
+    CycleDiagram,
+    DeadCentres,
+    Torques,
+    angle_axis,
+    dead_centres,
+    excess_work,
+    mark_dead_centres,
+)
 from flyopt.report.plots.digest import Plot
 
 if TYPE_CHECKING:
@@ -23,14 +31,11 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True, eq=False)
-class EnergyDiagram:
+class EnergyDiagram(CycleDiagram):
     """What the energy indicator diagram draws, read off a scene and its analysis (:meth:`of`): all it depends on
     besides its units and digits (:func:`draw_energy` draws it from this alone, so that equal data,
     :func:`flyopt.report.plots.digest.digest`, draw the same diagram)."""
 
-    title: str
-    model: str  # the model that ran
-    cycle_angle: float  # [rad]
     constant: bool  # a constant inertia
     chain: npt.NDArray[np.float64]  # ΔE at the chain's points [J]
     chain_angle: npt.NDArray[np.float64] | None  # their angles [rad] (None: net areas)
@@ -68,9 +73,7 @@ class EnergyDiagram:
                     for angle in (analysis.angle_omega_max, analysis.angle_omega_min)
                 )
         return cls(
-            title=str(scene.title),
-            model=str(analysis.model),
-            cycle_angle=float(scene.cycle_angle),
+            **CycleDiagram.common(scene, analysis),
             constant=bool(constant),
             chain=np.asarray(ind.chain_delta_e, dtype=float),
             chain_angle=chain_angle,

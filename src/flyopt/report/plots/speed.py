@@ -11,7 +11,7 @@ import numpy.typing as npt
 from flyopt.names import Model
 from flyopt.report import display
 from flyopt.report.plots import readout, standard
-from flyopt.report.plots.cycle import DeadCentres, angle_axis, dead_centres, mark_dead_centres
+from flyopt.report.plots.cycle import CycleDiagram, DeadCentres, angle_axis, dead_centres, mark_dead_centres
 from flyopt.report.plots.digest import Plot
 
 if TYPE_CHECKING:
@@ -24,14 +24,11 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True, eq=False)
-class SpeedDiagram:
+class SpeedDiagram(CycleDiagram):
     """What the speed diagram draws, read off a scene, its analysis and the speeds given (:meth:`of`): all it
     depends on besides its units and digits (:func:`draw_speed` draws it from this alone, so that equal data,
     :func:`flyopt.report.plots.digest.digest`, draw the same diagram)."""
 
-    title: str
-    model: str  # the model that ran
-    cycle_angle: float  # [rad]
     dead_centres: DeadCentres
     phi: npt.NDArray[np.float64]  # the model's ω(φ): angles [rad]
     omega: npt.NDArray[np.float64]  # and speeds [rad/s]
@@ -75,9 +72,7 @@ class SpeedDiagram:
             return None if value is None else float(value)
 
         return cls(
-            title=str(scene.title),
-            model=str(analysis.model),
-            cycle_angle=float(scene.cycle_angle),
+            **CycleDiagram.common(scene, analysis),
             dead_centres=dead_centres(scene),
             phi=np.asarray(speed.phi, dtype=float),
             omega=omega,

@@ -12,6 +12,7 @@ from flyopt.errors import BrokenInvariant
 from flyopt.report import display
 from flyopt.report.plots import readout, standard
 from flyopt.report.plots.cycle import (
+    CycleDiagram,
     DeadCentres,
     Extremes,
     Torques,
@@ -33,14 +34,11 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True, eq=False)
-class TurningMoment:
+class TurningMoment(CycleDiagram):
     """What the turning-moment diagram draws, read off a scene and its analysis (:meth:`of`): all it depends on
     besides its units and digits (:func:`draw_turning_moment` draws it from this alone, so that equal data,
     :func:`flyopt.report.plots.digest.digest`, draw the same diagram)."""
 
-    title: str
-    model: str  # the model that ran
-    cycle_angle: float  # [rad]
     a_max: float  # the analysis' A_max [J]
     areas: npt.NDArray[np.float64]  # the energy indicator diagram's areas [J]
     indicator_a_max: float  # its A_max [J]
@@ -59,9 +57,7 @@ class TurningMoment:
 
         def made(**rest: Any) -> TurningMoment:
             return cls(
-                title=str(scene.title),
-                model=str(analysis.model),
-                cycle_angle=float(scene.cycle_angle),
+                **CycleDiagram.common(scene, analysis),
                 a_max=float(analysis.a_max),
                 areas=np.asarray(ind.areas, dtype=float),
                 indicator_a_max=float(ind.a_max),
