@@ -85,8 +85,8 @@ def test_an_edit_s_card_does_not_wait_for_the_last_edit_s_diagrams_which_are_dro
     drawn: list[tuple[str, str]] = []  # (the edit's δ, the diagram's key)
     draw = model.draw
 
-    def drawing(answer, keys=None):
-        document = draw(answer, keys)
+    def drawing(answer, keys=None, read=None):
+        document = draw(answer, keys, read)
         document.delta = answer.sha256  # which edit the document is of
         return document
 
@@ -101,8 +101,8 @@ def test_an_edit_s_card_does_not_wait_for_the_last_edit_s_diagrams_which_are_dro
     owner: dict[int, str] = {}
     first = edited("0.04")
 
-    def draw_marked(answer, keys=None):
-        document = drawing(answer, keys)
+    def draw_marked(answer, keys=None, read=None):
+        document = drawing(answer, keys, read)
         for block in model.figure_blocks(document):
             owner[id(block)] = "first" if answer.sha256 == model.scene_digest(first) else "second"
         return document

@@ -47,6 +47,9 @@ def test_equal_data_have_equal_digests_and_a_digest_is_a_hex_string():
         (np.array([1, 2]), (1, 2)),  # an array is not a tuple
         (1, 1.0),  # an int is not a float
         (True, 1),  # a bool is not an int
+        (0.1, np.float32(0.1)),  # a float32 is not a float, though it prints the same
+        (1.5, np.float64(1.5)),  # nor is a numpy scalar a Python float (the data coerce to one)
+        ((1.0, 2.0), [1.0, 2.0]),  # a list is not a tuple
         ("", None),
         (("ab", "c"), ("a", "bc")),  # strings end where they end
         ((1.0, (2.0,)), ((1.0, 2.0),)),  # nesting counts
@@ -58,7 +61,9 @@ def test_different_data_have_different_digests(left, right):
     assert digest(left) != digest(right)
 
 
-@pytest.mark.parametrize("value", [{"a": 1.0}, {1.0}, np.array(["a"]), np.array([None]), object(), Pair])
+@pytest.mark.parametrize(
+    "value", [{"a": 1.0}, {1.0}, np.array(["a"]), np.array([None]), np.str_("a"), np.datetime64(0, "s"), object(), Pair]
+)
 def test_what_it_cannot_digest_exactly_is_refused(value):
     with pytest.raises(TypeError, match="digest"):
         digest(Pair(1.0, value))
@@ -117,3 +122,16 @@ def test_the_same_digest_draws_the_same_svg_and_a_different_one_a_different_svg(
             same += first == second
             differ += first != second
     assert same >= 6 and differ >= 6  # both cases met, or the test would prove nothing
+
+
+@pytest.mark.parametrize("name", ["plot_turning_moment", "plot_energy", "plot_inertia_delta", "plot_speed"])
+def test_a_split_plot_says_a_wrong_unit_system_first_as_before(name):
+    """The plot_* functions read their data, then draw: a wrong unit system is still said before anything about
+    the data (plot_speed of an energy-model scene without its ω(φ) said that instead after the split)."""
+    import flyopt
+    from flyopt.io.scene import load
+    from flyopt.report import plots
+
+    scene = load(PROBLEMS / "shear-press.toml")
+    with pytest.raises(ValueError, match="unit system"):
+        getattr(plots, name)(scene, flyopt.analyse(scene), units="bogus")

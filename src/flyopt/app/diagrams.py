@@ -10,11 +10,12 @@ document that makes the rest; the answer keeps one document, the second with the
 places (what the downloads render). Nothing is solved again: both documents are built from the answer's one
 solve.
 
-A diagram the edit does not change is not drawn at all: the card's document gives each diagram split into what
-it draws and how (:class:`flyopt.report.plots.digest.Plot`) the digest of its data, and where the page shows,
-in that diagram's place, one of the same key and digest, it keeps it (a δ edit leaves the turning-moment and
-energy diagrams as they were). The same digest draws the same SVG to the byte; the answer's document leaves
-that figure undrawn, and a report downloaded draws it then (:func:`flyopt.app.model.complete`).
+A diagram the edit does not change is not drawn at all: each diagram split into what it draws and how
+(:class:`flyopt.report.plots.digest.Plot`) has the digest of its data (read in the drawing worker, once for
+every document of the answer: :func:`flyopt.app.model.digests`), and where the page shows, in that diagram's
+place, one of the same key and digest, it keeps it (a δ edit leaves the turning-moment and energy diagrams as
+they were). The same digest draws the same SVG to the byte; the answer's document leaves that figure undrawn,
+and a report downloaded draws its figures afresh (:func:`flyopt.app.model.report_bytes`).
 
 The page tells which diagrams are in view (the fraction of each, from the browser's IntersectionObserver:
 :mod:`flyopt.app.hover`); with none in view (the first answer, or a page scrolled past its diagrams) the
@@ -39,14 +40,15 @@ def drawing_order(in_view: Mapping[str, float]) -> list[str]:
     return sorted(keys, key=lambda key: -in_view[key])  # stable: ties keep the page's order
 
 
-def kept(answer: model.Answer, showing: Sequence[model.Shown]) -> dict[int, model.Shown]:
-    """The diagrams of ``answer`` the page shows already, by their index among its figures: where the page shows,
-    in that place, a diagram of the same key and the same digest of what it draws (``showing``: what each place
-    shows), with this answer's caption."""
+def kept(blocks: Sequence[Any], showing: Sequence[model.Shown]) -> dict[int, model.Shown]:
+    """The diagrams of an answer (``blocks``: its document's Figure blocks, with their digests,
+    :func:`flyopt.app.model.digests`) the page shows already, by their index among its figures: where the page
+    shows, in that place, a diagram of the same key and the same digest of what it draws (``showing``: what each
+    place shows), with this answer's caption."""
     from flyopt.report.document import plain
 
     found: dict[int, model.Shown] = {}
-    for index, block in enumerate(model.figure_blocks(answer.document)):
+    for index, block in enumerate(blocks):
         shown = showing[index] if index < len(showing) else None
         if block.digest and shown is not None and shown.svg and (shown.key, shown.digest) == (block.key, block.digest):
             found[index] = shown._replace(caption=plain(block.caption))
@@ -59,7 +61,9 @@ class Diagrams:
     Call :meth:`step` until it returns None (each call draws one diagram under the drawing lock: the page runs
     it in its drawing worker and checks between two calls whether a newer edit came), then :meth:`document`
     for the answer's document with every figure drawn (but those kept); or :meth:`close` to drop what was made.
-    ``showing``: what the page shows in each place (:func:`kept`).
+    ``showing``: what the page shows in each place (:func:`kept`). The first step reads the split diagrams'
+    data and their digests (:func:`flyopt.app.model.digests`: in the drawing worker, after the card), once for
+    every document of the answer.
     """
 
     def __init__(
@@ -69,24 +73,38 @@ class Diagrams:
         showing: Sequence[model.Shown] = (),
     ) -> None:
         self.answer = answer
-        self.shown: dict[int, model.Shown] = kept(answer, showing)
-        keys = [block.key for block in model.figure_blocks(answer.document)]
-        self.todo = [key for index, key in enumerate(keys) if index not in self.shown]  # to draw, the page's order
-        self.first = [key for key in drawing_order(in_view or {}) if key in self.todo]
+        self.in_view = dict(in_view or {})
+        self.showing = list(showing)
+        self.read: dict[str, Any] = {}  # the split diagrams' data, read once for every document of the answer
+        self.shown: dict[int, model.Shown] = {}
+        self.todo: list[str] = []  # the keys to draw, in the page's order (known at the first step)
+        self.first: list[str] = []  # those in view, the most in view first
         self.documents: list[Document] = []
         self.queue: list[tuple[int, Any]] = []  # (index on the page, Figure block) still to draw
         self.order: list[int] = []  # the indices in the order drawn
-        everything = None if len(self.todo) == len(keys) else self.todo  # None: every figure (no list to keep)
-        if self.first:
-            self._passes: list[list[str] | None] = [self.first]
-        else:
-            self._passes = [everything] if self.todo else []
+        self._passes: list[list[str] | None] | None = None  # None: not planned yet (the first step plans)
         self._built = 0
+
+    def _plan(self) -> list[list[str] | None]:
+        """The documents to build, by their figures' keys (None: all): those in view, then the rest, but those the
+        page keeps (:func:`kept`, of the answer's digests; none kept where the page shows nothing)."""
+        keys = [block.key for block in model.figure_blocks(self.answer.document)]
+        candidates = {shown.key for shown in self.showing if shown.digest and shown.svg}  # the only ones to keep
+        if candidates:
+            self.shown = kept(model.figure_blocks(model.digests(self.answer, self.read, candidates)), self.showing)
+        self.todo = [key for index, key in enumerate(keys) if index not in self.shown]
+        self.first = [key for key in drawing_order(self.in_view) if key in self.todo]
+        if self.first:
+            return [self.first]
+        everything = None if len(self.todo) == len(keys) else self.todo  # None: every figure (no list to keep)
+        return [everything] if self.todo else []
 
     def step(self) -> tuple[int, model.Shown] | None:
         """Draw the next diagram: (its index among the document's figures, as the page shows it), or None
         when every diagram is drawn."""
         with model.drawing():
+            if self._passes is None:
+                self._passes = self._plan()
             while not self.queue:
                 if self._built == len(self._passes):
                     return None
@@ -100,7 +118,7 @@ class Diagrams:
 
     def _build(self, keys: list[str] | None) -> None:
         """Build the document of ``keys``' figures (None: all) and queue them, ``keys``' order first."""
-        document = model.draw(self.answer, keys)
+        document = model.draw(self.answer, keys, self.read)
         self.documents.append(document)
         blocks = model.figure_blocks(document)
         if keys is None:
@@ -109,7 +127,7 @@ class Diagrams:
         found = [(index, block) for index, block in enumerate(blocks) if block.key in keys]
         found.sort(key=lambda pair: keys.index(pair[1].key))
         self.queue = found
-        if keys is self.first:  # the rest, after those in view
+        if keys is self.first and self._passes is not None:  # the rest, after those in view
             rest = [key for key in self.todo if key not in keys]
             if rest:
                 self._passes.append(rest)
@@ -121,8 +139,8 @@ class Diagrams:
     def document(self) -> Document:
         """The answer's document with every figure drawn: the last built, each figure drawn first in its place
         (the documents are built from the same solve: the same sections, blocks and keys); the answer's own
-        document of numbers where every diagram was kept. A kept diagram's figure is left undrawn
-        (:func:`flyopt.app.model.complete` draws it for a report)."""
+        document of numbers where every diagram was kept. A kept diagram's figure is left undrawn (a report
+        draws its figures afresh, :func:`flyopt.app.model.report_bytes`)."""
         from flyopt.errors import BrokenInvariant
 
         if not self.documents:
@@ -134,7 +152,7 @@ class Diagrams:
                 if block.key in self.first:
                     if blocks[index].key != block.key:
                         raise BrokenInvariant(f"the app's two documents of one answer differ at figure {index}")
-                    model.replace_block(last, blocks[index], block)
+                    _replace(last, blocks[index], block)
         self.documents = [last]
         return last
 
@@ -143,3 +161,12 @@ class Diagrams:
         for document in self.documents:
             model.close(document)
         self.documents = []
+
+
+def _replace(document: Document, old: Any, new: Any) -> None:
+    """Put the block ``new`` in the place of ``old`` in ``document``."""
+    for section in document.sections:
+        for k, block in enumerate(section.blocks):
+            if block is old:
+                section.blocks[k] = new
+                return

@@ -334,7 +334,7 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
     # a calculation's report draws its figures; a document of numbers only draws nothing, and does not wait for
     # a diagram being drawn in the page's drawing worker
     with drawing() if calculation else nullcontext():
-        document = build(inputs, units, figures=calculation, digests=True)
+        document = build(inputs, units, figures=calculation)
     if isinstance(inputs, CalculationInputs):
         json = json_text(calculation_document(inputs.what, inputs.scene.title, SCENE_NAME, inputs.result.to_dict()))
     else:  # the one solve: the same JSON as flyopt solve --json, its scene named as the page names it
@@ -356,7 +356,7 @@ def numbers(text: str, workspace: Workspace, units: str = "engineering") -> Answ
     )
 
 
-def draw(answer: Answer, keys: Collection[str] | None = None) -> Document:
+def draw(answer: Answer, keys: Collection[str] | None = None, read: dict[str, Any] | None = None) -> Document:
     """The report's document of ``answer``'s solve with its diagrams (the same inputs: nothing is solved again);
     with ``keys``, those diagrams alone (:class:`flyopt.app.diagrams.Diagrams`: the ones in view first).
 
@@ -368,7 +368,17 @@ def draw(answer: Answer, keys: Collection[str] | None = None) -> Document:
     if answer.drawn:
         return answer.document
     with drawing():
-        return build(answer.inputs, answer.units, figures=True if keys is None else keys)
+        return build(answer.inputs, answer.units, figures=True if keys is None else keys, read=read)
+
+
+def digests(answer: Answer, read: dict[str, Any] | None = None, keys: Collection[str] | None = None) -> Document:
+    """The report's document of ``answer``'s solve without its diagrams, each split diagram's block (of ``keys``:
+    those the page shows with a digest; None: all) with the digest of what it draws
+    (:class:`flyopt.app.diagrams.Diagrams` compares them with those the page shows); their data kept in
+    ``read`` for the documents that draw them. Nothing is drawn or solved again."""
+    from flyopt.report.builder import build
+
+    return build(answer.inputs, answer.units, figures=False, digests=True if keys is None else keys, read=read)
 
 
 def drawing() -> AbstractContextManager[Any]:
@@ -503,11 +513,16 @@ def _figures(document: Document) -> list[Shown]:
 
 
 def report_bytes(answer: Answer, kind: str) -> bytes:
-    """The report of ``answer`` as ``kind`` ("html" or "pdf"), by the report's own renderers, with its
-    diagrams (drawn here for an answer whose diagrams are not yet: nothing is solved again)."""
+    """The report of ``answer`` as ``kind`` ("html" or "pdf"), by the report's own renderers, from its one solve
+    (nothing is solved again): its figures made and drawn here, once, as ``flyopt report`` draws them (the
+    page's were drawn for the page: a figure drawn again is laid out again from where the first draw left it,
+    and the page keeps diagrams of earlier edits undrawn, :class:`flyopt.app.diagrams.Diagrams`); a
+    calculation's report, drawn with its numbers, as it is."""
+    from flyopt.report.builder import CalculationInputs, build
+
     with drawing():  # called on the server's event loop while a worker may draw
-        document = draw(answer)
-        complete(answer, document)
+        calculation = isinstance(answer.inputs, CalculationInputs) and answer.drawn
+        document = answer.document if calculation else build(answer.inputs, answer.units)
         try:
             if kind == "html":
                 from flyopt.report.html import render
@@ -519,35 +534,6 @@ def report_bytes(answer: Answer, kind: str) -> bytes:
         finally:
             if document is not answer.document:
                 document.close()
-
-
-def complete(answer: Answer, document: Document) -> None:
-    """Draw into ``document`` (of ``answer``'s solve) the diagrams it leaves undrawn for the numbers only: those the
-    page kept from an earlier edit (:class:`flyopt.app.diagrams.Diagrams`) are drawn here, when a report needs
-    them, from the same solve. Call it under :func:`drawing`."""
-    from flyopt.errors import BrokenInvariant
-    from flyopt.report.builder import build
-    from flyopt.report.builder.base import NOT_DRAWN
-
-    blocks = figure_blocks(document)
-    missing = [block.key for block in blocks if block.figure is None and block.note == NOT_DRAWN]
-    if not missing:
-        return
-    made = figure_blocks(build(answer.inputs, answer.units, figures=missing))
-    for index, block in enumerate(made):
-        if block.key in missing:
-            if blocks[index].key != block.key:
-                raise BrokenInvariant(f"two documents of one answer differ at figure {index}")
-            replace_block(document, blocks[index], block)
-
-
-def replace_block(document: Document, old: Any, new: Any) -> None:
-    """Put the block ``new`` in the place of ``old`` in ``document``."""
-    for section in document.sections:
-        for k, block in enumerate(section.blocks):
-            if block is old:
-                section.blocks[k] = new
-                return
 
 
 #: The wheel's manufacturing files the page offers, as ``flyopt export`` writes them: (kind, label, file name).
@@ -595,14 +581,17 @@ def made_bytes(answer: Answer, kind: str, workspace: Workspace) -> bytes | None:
         return None
     scene = cast("Solution", answer.solution).scene
     target = workspace.folder / f"made.{kind}"
-    try:
-        if kind == "step":
-            write_solid(best, scene, target)
-        else:
-            write_drawing(drawing_of_design(best, scene), target, kind)
-        return target.read_bytes()
-    finally:
-        target.unlink(missing_ok=True)
+    # under the drawing lock: a drawing's rc_context sets matplotlib's settings for the whole process, which the
+    # drawing worker's SVG of a diagram must not see change under it
+    with drawing():
+        try:
+            if kind == "step":
+                write_solid(best, scene, target)
+            else:
+                write_drawing(drawing_of_design(best, scene), target, kind)
+            return target.read_bytes()
+        finally:
+            target.unlink(missing_ok=True)
 
 
 def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") -> str:

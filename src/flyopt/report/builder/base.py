@@ -33,7 +33,8 @@ class BuilderBase:
         units: str,
         digits: int = display.DEFAULT_DIGITS,
         figures: bool | Collection[str] = True,
-        digests: bool = False,
+        digests: bool | Collection[str] = False,
+        read: dict[str, Any] | None = None,
     ) -> None:
         self.inputs = inputs
         self.units = units
@@ -41,7 +42,10 @@ class BuilderBase:
         # False: the figures' blocks hold their captions only (the app's card first); keys: those figures alone
         # (the app's diagram in view first)
         self.figures = figures if isinstance(figures, bool) else frozenset(figures)
-        self.digests = digests  # the digests of the figures it does not draw, where they have one
+        # the digests of the figures it does not draw (True: all, or those of these keys), where they have one
+        self.digests = digests if isinstance(digests, bool) else frozenset(digests)
+        # a split diagram's data by figure key, read once for the documents of one solve (the caller's, kept)
+        self.read: dict[str, Any] = {} if read is None else read
         self.solution = cast("Solution", inputs.solution)
         self.scene = self.solution.scene
         self.analysis = self.solution.analysis
@@ -130,13 +134,15 @@ class BuilderBase:
         A builder made with ``figures=False`` draws nothing: the block holds the key and caption only, the
         note saying so (a document of numbers, for the app's answer card before its diagrams), and, made with
         ``digests=True``, a Plot's digest (what the app compares with the diagram it shows); one made with a
-        collection of keys draws the figures of those keys alone (the app's diagram in view, first).
+        collection of keys draws the figures of those keys alone (the app's diagram in view, first). A Plot's
+        data are read once for the builders given the same ``read`` (the documents of one solve).
         """
         from flyopt.report import plots
         from flyopt.report.plots.standard import figure_of
 
         wanted = self.figures is True or (not isinstance(self.figures, bool) and key in self.figures)
-        if not wanted and not (self.digests and isinstance(draw, plots.Plot)):
+        digesting = self.digests is True or (not isinstance(self.digests, bool) and key in self.digests)
+        if not wanted and not (digesting and isinstance(draw, plots.Plot)):
             blocks.append(Figure(key, caption, note=NOT_DRAWN))
             return
         if self.solution.drive_failed:  # the analysis is the scene without its drive: no machine to draw
@@ -149,14 +155,18 @@ class BuilderBase:
         if isinstance(draw, plots.Plot):
             plot = draw
             try:
-                data = plot.data(*args, **kwargs)
+                data = self.read[key] if key in self.read else plot.data(*args, **kwargs)
             except Exception as err:  # noqa: BLE001 -- said below, as the diagram's own call would say it
                 if not wanted:
                     blocks.append(Figure(key, caption, note=NOT_DRAWN))
                     return
                 unread = err
             else:
-                digest = plot.digest(data, self.units, self.digits)
+                self.read[key] = data
+                try:
+                    digest = plot.digest(data, self.units, self.digits)
+                except TypeError:  # data it cannot digest: drawn at every edit, never kept
+                    digest = ""
                 if not wanted:
                     blocks.append(Figure(key, caption, note=NOT_DRAWN, digest=digest))
                     return

@@ -28,7 +28,8 @@ def build(
     title_block: tuple[tuple[str, Any], ...] = (),
     digits: int = display.DEFAULT_DIGITS,
     figures: bool | Collection[str] = True,
-    digests: bool = False,
+    digests: bool | Collection[str] = False,
+    read: dict[str, Any] | None = None,
 ) -> Document:
     """The report of a solved scene, or of a scene that is one calculation, in a unit system.
 
@@ -49,10 +50,14 @@ def build(
         numbers, built in a few milliseconds: the app's answer card before its diagrams); figure keys
         ("speed"): those diagrams alone are drawn, the others' blocks hold their captions only (the
         app's diagram in view, drawn first). A calculation's report draws its figures either way.
-    digests : bool
-        Give the figures it does not draw the digest of what they would draw, where they have one
+    digests : bool or collection of str
+        Give the figures it does not draw (all, or those of these keys) the digest of what they would draw,
+        where they have one
         (:class:`flyopt.report.plots.digest.Plot`; a drawn figure has it either way): the app keeps a diagram it
         shows whose digest an edit leaves as it was.
+    read : dict, optional
+        The split diagrams' data by figure key, read by the first document built with it and kept there for
+        the next of the same solve (the app's documents of one answer: its digests, then its diagrams).
 
     Returns
     -------
@@ -66,7 +71,7 @@ def build(
         if isinstance(inputs, CalculationInputs):
             document = build_calculation(inputs, units, title_block, digits)
         else:
-            document = Builder(inputs, units, digits, figures, digests).document(title_block)
+            document = Builder(inputs, units, digits, figures, digests, read).document(title_block)
     return with_appendix(document, cited)
 
 

@@ -41,7 +41,7 @@ The modules: :mod:`~flyopt.report.plots.standard` (the visual standard),
 from __future__ import annotations
 
 from flyopt.report.plots.cross_section import plot_cross_section
-from flyopt.report.plots.digest import Plot, digest
+from flyopt.report.plots.digest import Plot
 from flyopt.report.plots.energy import ENERGY, plot_energy
 from flyopt.report.plots.energy_mass import check_energy_mass, plot_energy_mass
 from flyopt.report.plots.inertia_delta import INERTIA_DELTA, check_inertia_delta, plot_inertia_delta
@@ -75,7 +75,6 @@ __all__ = [
     "check_energy_mass",
     "check_inertia_delta",
     "check_output",
-    "digest",
     "pareto_objectives",
     "plot_cross_section",
     "plot_energy",

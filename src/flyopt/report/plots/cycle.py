@@ -263,9 +263,9 @@ class Torques:
             driving = _sides(phi, balanced.driving)
             resisting = _sides(phi, balanced.resisting)
         return cls(
-            phi=phi,
-            driving=np.asarray(driving, dtype=float),
-            resisting=np.asarray(resisting, dtype=float),
+            phi=np.array(phi, dtype=float),
+            driving=np.array(driving, dtype=float),
+            resisting=np.array(resisting, dtype=float),
             along=along,
             driving_solved=driving_solved,
             resisting_solved=resisting_solved,

@@ -6,9 +6,9 @@ units and digits). Two inputs whose data have the same :func:`digest` draw the s
 keeps a diagram an edit leaves unchanged (a δ edit leaves the turning-moment and energy diagrams as they were)
 instead of drawing it again (issue 29, docs/app.md "Latency").
 
-The digest is exact: every float by its 8 bytes, every array by its dtype, shape and bytes, every string by its
-characters; a value of any other type is refused (TypeError), so nothing a diagram draws can be left out of its
-digest. Values equal in number but not in bytes (0.0 and -0.0) digest apart: the diagram is then drawn again.
+The digest is exact: every float by its 8 bytes, every numpy scalar and array by its dtype (and shape) and
+bytes, every string by its characters, every sequence and dataclass by its type; a value of any other type is
+refused (TypeError), so nothing a diagram draws can be left out of its digest. Values equal in number but not in bytes (0.0 and -0.0) digest apart: the diagram is then drawn again.
 """
 
 from __future__ import annotations
@@ -39,12 +39,16 @@ def _feed(hasher: Any, value: Any) -> None:
     add = hasher.update
     if value is None:
         add(b"N")
-    elif isinstance(value, (bool, np.bool_)):
+    elif isinstance(value, np.generic):  # a numpy scalar by its dtype and bytes (a float32 is not a float)
+        if value.dtype.kind not in "biuf":
+            raise TypeError(f"digest: a numpy {value.dtype} is not data a diagram draws")
+        add(b"G" + value.dtype.str.encode() + b":" + value.tobytes())
+    elif isinstance(value, bool):
         add(b"B1" if value else b"B0")
-    elif isinstance(value, (int, np.integer)):
-        add(b"I" + str(int(value)).encode() + b";")
-    elif isinstance(value, (float, np.floating)):
-        add(b"F" + struct.pack("<d", float(value)))
+    elif isinstance(value, int):
+        add(b"I" + str(value).encode() + b";")
+    elif isinstance(value, float):
+        add(b"F" + struct.pack("<d", value))
     elif isinstance(value, str):
         data = value.encode("utf-8", "surrogatepass")
         add(b"S" + str(len(data)).encode() + b":" + data)
@@ -53,8 +57,8 @@ def _feed(hasher: Any, value: Any) -> None:
             raise TypeError(f"digest: an array of {value.dtype} is not data a diagram draws")
         add(b"A" + value.dtype.str.encode() + repr(value.shape).encode())
         add(np.ascontiguousarray(value).tobytes())
-    elif isinstance(value, (tuple, list)):
-        add(b"T" + str(len(value)).encode() + b"(")
+    elif isinstance(value, (tuple, list)):  # by its type too: a list is not a tuple, nor a named tuple
+        add(b"T" + type(value).__qualname__.encode() + b":" + str(len(value)).encode() + b"(")
         for item in value:
             _feed(hasher, item)
         add(b")")

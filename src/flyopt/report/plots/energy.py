@@ -60,7 +60,7 @@ class EnergyDiagram(CycleDiagram):
         omega_at: tuple[tuple[float, float] | None, ...] = (None, None)
         chain_angle = None
         if ind.chain_angle is not None:
-            chain_angle = np.asarray(ind.chain_angle, dtype=float)
+            chain_angle = np.array(ind.chain_angle, dtype=float)
             ew = excess_work(scene, analysis)
             phi = np.union1d(np.linspace(0, scene.cycle_angle, 1501), chain_angle)
             curve = np.asarray(ew(phi), dtype=float)
@@ -75,7 +75,7 @@ class EnergyDiagram(CycleDiagram):
         return cls(
             **CycleDiagram.common(scene, analysis),
             constant=bool(constant),
-            chain=np.asarray(ind.chain_delta_e, dtype=float),
+            chain=np.array(ind.chain_delta_e, dtype=float),
             chain_angle=chain_angle,
             index_max=int(ind.index_max),
             index_min=int(ind.index_min),
@@ -115,6 +115,7 @@ def plot_energy(
     matplotlib Axes
         The A_max dimension is the annotation of gid ``a_max``.
     """
+    display.check_system(units)  # first, as before the split: a wrong system is said before the data
     return draw_energy(EnergyDiagram.of(scene, analysis), ax, units, digits)
 
 

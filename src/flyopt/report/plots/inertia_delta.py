@@ -74,8 +74,8 @@ class InertiaDelta:
         return cls(
             title=str(scene.title),
             model=str(analysis.model),
-            delta=np.asarray(delta, dtype=float),
-            j=np.asarray(j, dtype=float),
+            delta=np.array(delta, dtype=float),
+            j=np.array(j, dtype=float),
             a_max=float(analysis.a_max),
             omega_mean=float(analysis.omega_mean),
             scene_omega_mean=float(scene.omega_mean),
@@ -123,6 +123,7 @@ def plot_inertia_delta(
     ValueError
         An exact model other than the energy method without ``curve``.
     """
+    display.check_system(units)  # first, as before the split: a wrong system is said before the data
     return draw_inertia_delta(InertiaDelta.of(scene, analysis, curve), ax, units, digits)
 
 

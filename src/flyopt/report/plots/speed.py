@@ -63,7 +63,7 @@ class SpeedDiagram(CycleDiagram):
                     "no flywheel is needed and the speed does not fluctuate (A_max = 0 J, no inertia at all): "
                     "nothing to draw"
                 )
-        omega = np.asarray(speed.omega, dtype=float)
+        omega = np.array(speed.omega, dtype=float)
         w_max = float(getattr(speed, "omega_max", float(np.max(omega))))
         w_min = float(getattr(speed, "omega_min", float(np.min(omega))))
 
@@ -74,7 +74,7 @@ class SpeedDiagram(CycleDiagram):
         return cls(
             **CycleDiagram.common(scene, analysis),
             dead_centres=dead_centres(scene),
-            phi=np.asarray(speed.phi, dtype=float),
+            phi=np.array(speed.phi, dtype=float),
             omega=omega,
             omega_max=w_max,
             omega_min=w_min,
@@ -87,8 +87,8 @@ class SpeedDiagram(CycleDiagram):
             simulation=None
             if simulation is None
             else (
-                np.asarray(simulation.phi, dtype=float),
-                np.asarray(simulation.omega, dtype=float),
+                np.array(simulation.phi, dtype=float),
+                np.array(simulation.omega, dtype=float),
                 float(simulation.delta),
             ),
         )
@@ -137,6 +137,7 @@ def plot_speed(
         A net-area scene: it has no angles; or no ``speed`` for an analysis
         whose result does not carry one (the energy models).
     """
+    display.check_system(units)  # first, as before the split: a wrong system is said before the data
     return draw_speed(SpeedDiagram.of(scene, analysis, speed, simulation), ax, units, digits)
 
 

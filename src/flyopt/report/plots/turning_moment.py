@@ -59,7 +59,7 @@ class TurningMoment(CycleDiagram):
             return cls(
                 **CycleDiagram.common(scene, analysis),
                 a_max=float(analysis.a_max),
-                areas=np.asarray(ind.areas, dtype=float),
+                areas=np.array(ind.areas, dtype=float),
                 indicator_a_max=float(ind.a_max),
                 **rest,
             )
@@ -127,6 +127,7 @@ def plot_turning_moment(
         ``omega_max``, ``omega_min`` (and ``delta_e_max``, ``delta_e_min``),
         the area texts gid ``area``.
     """
+    display.check_system(units)  # first, as before the split: a wrong system is said before the data
     return draw_turning_moment(TurningMoment.of(scene, analysis), ax, units, digits)
 
 
