@@ -10,13 +10,14 @@ is that eager design, built from the check's own output with the dataclass's con
 import copy
 import dataclasses
 import json
+import math
 import pickle
 
 import pytest
 
-from flyopt.design import Design, DesignSpec, MountShaft, design_flywheel, wheel, wheel_design
+from flyopt.design import Design, DesignSpec, MountShaft, design_flywheel, designer, wheel, wheel_design
 from flyopt.design.materials import builtin_materials
-from flyopt.design.result import CHECKED_FIELDS, Dimensions, Limits, Provenance
+from flyopt.design.result import CHECKED_FIELDS, Candidate, Dimensions, Limits, Provenance
 
 MATERIAL = builtin_materials()["cast_steel"]
 DIMS = wheel.Dims(d_outer=1.2, h=0.15, b=0.1)
@@ -90,7 +91,7 @@ def test_a_deferred_design_has_no_other_attributes():
     with pytest.raises(AttributeError, match="not_a_field"):
         deferred.not_a_field  # noqa: B018
     assert not hasattr(deferred, "not_a_field")
-    assert "_check" in vars(deferred)  # still unchecked: a missing name does not make the check
+    assert "_make" in vars(deferred)  # still unchecked: a missing name does not make the check
 
 
 def test_a_ranking_pickled_to_another_process_carries_every_check():
@@ -101,12 +102,12 @@ def test_a_ranking_pickled_to_another_process_carries_every_check():
     result = design_flywheel(40.0, 60.0, shafts, materials, SPEC)
     designs = [c for c in result.candidates if isinstance(c, Design)]
     assert len(designs) >= 2
-    assert all("_check" in vars(c) for c in designs)  # the ranking checked none
+    assert all("_make" in vars(c) for c in designs)  # the ranking checked none
     shipped = pickle.loads(pickle.dumps(result))  # (repr: a NaN read from a pickle is not the NaN sent)
     assert repr(shipped) == repr(result) and json.dumps(shipped.to_dict()) == json.dumps(result.to_dict())
     for c, s in zip(result.candidates, shipped.candidates):
         assert repr(c) == repr(s) and list(vars(c)) == list(vars(s))
-        assert "_check" not in vars(s)
+        assert "_make" not in vars(s)
         assert not isinstance(s, Design) or s.stresses.stress  # checked, with its stress fields
 
 
@@ -115,7 +116,99 @@ def test_a_check_made_meanwhile_is_not_made_again():
     most, and the second finds it made: no error, the same fields."""
     check = _Check()
     deferred = Design.checked_when_read(check, PROVENANCE, **FIELDS)
-    make = deferred._make_check  # the method the first read calls, taken before it runs
+    make = deferred._make_deferred  # the method the first read calls, taken before it runs
     assert deferred.parts == _eager().parts
     make()  # the second reader, which saw the design unchecked, comes after the first
     assert check.calls == 1 and vars(deferred) == vars(_eager())
+
+
+# An infeasible combination's reason in numbers and the cap it needs (Candidate.explained_when_read): the
+# ranking needs only that it gives no design; the text, the JSON and the report read the explanation.
+
+INFEASIBLE_SHAFTS = [MountShaft("reference", 1.0), MountShaft("slower", 0.2), MountShaft("faster", 4.0)]
+INFEASIBLE_SPEC = DesignSpec("rim", max_outer_diameter=1.0)
+INFEASIBLE_MATERIALS = [builtin_materials()[m] for m in ("cast_iron", "cast_steel")]
+
+
+def _infeasible_ranking():
+    return design_flywheel(300.0, 30.0, INFEASIBLE_SHAFTS, INFEASIBLE_MATERIALS, INFEASIBLE_SPEC)
+
+
+class _Explain:
+    """The explanation of an infeasible combination, counting its calls."""
+
+    calls = 0
+
+    def __init__(self, combo):
+        self.combo = combo
+
+    def __call__(self):
+        self.calls += 1
+        return designer._explained(self.combo, INFEASIBLE_SPEC)
+
+
+def _slower_cast_iron():
+    """The cast-iron combination on the slower shaft, decided as the ranking decides it (its J_max set)."""
+    combos = designer.combinations(
+        300.0, 30.0, None, None, INFEASIBLE_SHAFTS, [True] * 3, INFEASIBLE_MATERIALS, INFEASIBLE_SPEC
+    )
+    for order, combo, _ in combos:
+        if combo.material.name == "cast_iron" and combo.shaft.name == "slower":
+            decided = designer._Decided()
+            designer._decide_textbook(order, combo, INFEASIBLE_SPEC, True, None, decided)
+            assert decided.infeasible and not decided.pending
+            return combo
+    raise AssertionError("no such combination")
+
+
+@pytest.mark.parametrize("first", ["reason", "limits", "eq", "repr", "pickle", "deepcopy", "replace", "to_dict"])
+def test_an_infeasible_combination_explained_when_read_is_the_one_explained_at_once(first):
+    combo = _slower_cast_iron()
+    explain = _Explain(combo)
+    deferred = Candidate.explained_when_read("cast_iron", combo.shaft, "rim", explain)
+    made = designer._explained(combo, INFEASIBLE_SPEC)
+    eager = Candidate.infeasible("cast_iron", combo.shaft, "rim", made["reason"], limits=made["limits"])
+    assert explain.calls == 0 and not deferred.feasible and deferred.material == "cast_iron"
+    if first in ("reason", "limits"):
+        assert getattr(deferred, first) == getattr(eager, first)
+    elif first == "eq":
+        assert deferred == eager
+    elif first == "repr":
+        assert repr(deferred) == repr(eager)
+    elif first == "pickle":
+        shipped = pickle.loads(pickle.dumps(deferred))
+        assert repr(shipped) == repr(eager) and list(vars(shipped)) == list(vars(eager))
+    elif first == "deepcopy":
+        assert copy.deepcopy(deferred) == eager
+    elif first == "replace":
+        assert dataclasses.replace(deferred, n_arms=3) == dataclasses.replace(eager, n_arms=3)
+    else:
+        assert deferred.to_dict() == eager.to_dict()
+    assert explain.calls == 1
+    assert vars(deferred) == vars(eager) and list(vars(deferred)) == [f.name for f in dataclasses.fields(Candidate)]
+    assert deferred.reason == eager.reason and explain.calls == 1
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        deferred.reason = "r"  # type: ignore[misc]
+
+
+def test_the_ranking_explains_no_infeasible_combination_until_it_is_read():
+    result = _infeasible_ranking()
+    infeasible = [c for c in result.candidates if not c.feasible]
+    assert len(infeasible) >= 2 and result.best is not None
+    assert all("_make" in vars(c) for c in infeasible)  # the ranking explained none
+    for c in infeasible:
+        assert c.reason.startswith(f"{c.material.replace('_', ' ')} on the {c.shaft} shaft: ")
+        assert "_make" not in vars(c)  # made by that read, with the limits
+        # the cap it names is where the largest rim first gives the inertia: with no width limit, a rim down to
+        # the bore (D_i = 0, H = D_o/2) at H/B 1.5, whose exact annulus gives J = m D_o^2 / 8 with
+        # m = rho (pi/4) D_o^2 B, B = D_o / 3: J = rho pi D_o^5 / 96 (independent of the closed form's search)
+        needed = c.limits.d_outer_needed
+        rho = builtin_materials()[c.material].density
+        assert needed > c.limits.d_outer_limit and f"{needed:.3g} m" in c.reason
+        assert rho * math.pi * needed**5 / 96.0 == pytest.approx(c.limits.j_required_on_shaft, rel=1e-12)
+        assert c.limits.j_required_on_shaft > c.limits.j_max > 0
+
+
+def test_a_candidate_defers_only_the_fields_that_can_be_made_later():
+    with pytest.raises(TypeError, match="mass"):
+        Candidate.made_when_read(dict, ("mass",), material="m", shaft="s", speed_ratio=1.0, geometry="rim")

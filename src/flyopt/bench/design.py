@@ -3,9 +3,10 @@
 Design ranking, 2 materials × 3 shafts. flyopt's two paths through
 :func:`flyopt.design.design_flywheel`: the default ``auto`` (the exact
 closed form where it covers the structure) and IPOPT on every NLP, each timed
-as the one call a user makes (the default's structural check of each candidate
-is made when first read, so ``flyopt-auto-read`` times it again with every
-reported candidate's check read, as ``flyopt solve`` prints them); scipy's
+as the one call a user makes (the default's structural check of each design
+and explanation of each infeasible combination are made when first read, so
+``flyopt-auto-read`` times it again with every reported candidate read whole,
+as ``flyopt solve`` prints them); scipy's
 SLSQP on the same model, once in scaled physical variables and once in
 flyopt's own log-variables; a brute-force grid
 over mean diameter × H/B at several resolutions, each grid point sized exactly
@@ -100,8 +101,8 @@ def _flyopt_ranking(method):
     """The call a user makes: one design_flywheel over every combination (what is timed).
 
     A textbook design's structural check is made when its fields are first read
-    (:meth:`flyopt.design.result.Design.checked_when_read`), so it is not in this time;
-    :func:`_flyopt_ranking_read` times the ranking with every candidate's check read.
+    (:meth:`flyopt.design.result.Design.checked_when_read`), and an infeasible one's explanation too, so they
+    are not in this time; :func:`_flyopt_ranking_read` times the ranking with every candidate read whole.
     """
 
     def rank(j_required, omega_mean, shafts, materials, spec):
@@ -111,13 +112,14 @@ def _flyopt_ranking(method):
 
 
 def _flyopt_ranking_read(method):
-    """The ranking and the structural check of every candidate it reports, read as ``flyopt solve`` reads them
-    (what is timed): the parts, stresses and notes of each one."""
+    """The ranking with every field of every candidate it reports read, as ``flyopt solve`` reads them (what is
+    timed): the parts, stresses and notes of each design (its structural check), the reason and limits of each
+    infeasible combination (its explanation in numbers)."""
 
     def rank_and_read(j_required, omega_mean, shafts, materials, spec):
         result = design_flywheel(j_required, omega_mean, shafts, materials, spec, method=method)
         for c in result.candidates:
-            c.parts, c.stresses, c.provenance  # noqa: B018 (read to be checked)
+            c.parts, c.stresses, c.provenance, c.reason, c.limits  # noqa: B018 (read to be made)
         return result
 
     return rank_and_read
@@ -143,7 +145,7 @@ def design_methods(config: Config) -> list[tuple[Any, ...]]:
         ),
         (
             "flyopt-auto-read",
-            "every candidate's check read",
+            "every candidate read whole",
             lambda j, omega, shafts, materials, spec: ipopt_combinations(
                 j, omega, shafts, materials, spec, method="auto"
             ),
@@ -325,8 +327,8 @@ def section_design(config: Config) -> list[Row]:
             note += f"; wrong verdicts: {reasons}"
         if s["name"] == "flyopt-auto":
             note += (
-                "; each candidate's structural check is made when its fields are first read "
-                "(Design.checked_when_read), not in this time: flyopt-auto-read reads them all"
+                "; each design's structural check and each infeasible combination's explanation are made when "
+                "first read (Candidate.made_when_read), not in this time: flyopt-auto-read reads them all"
             )
         if s["checks"]:
             share = np.array(s["checks"]) / times

@@ -220,9 +220,8 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
         binding = (*binding, "mean_rim_speed")  # the courses' convention put D_m where v_max is reached
     cost = mass * m.cost if m.cost is not None else None
     shaft = combo.shaft
-    dims = wheel.Dims(d_outer=d_outer, h=d_outer / 2.0 if geometry_name == Geometry.DISC else h, b=b)
     return Design.checked_when_read(
-        functools.partial(_structure, m, geometry_name, dims, combo.omega, combo.torque, spec),
+        functools.partial(_structure, m, geometry_name, d_outer, h, b, combo.omega, combo.torque, spec),
         material=m.name,
         shaft=shaft.name,
         speed_ratio=shaft.speed_ratio,
@@ -245,10 +244,12 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
     )
 
 
-def _structure(material, geometry_name, dims, omega, torque, spec):
-    """The structural check of a textbook design (:func:`flyopt.design.wheel_design.structure_fields`, no bore):
-    its parts, stresses and notes, made when the design's structural fields are first read
+def _structure(material, geometry_name, d_outer, h, b, omega, torque, spec):
+    """The structural check of a textbook design (:func:`flyopt.design.wheel_design.structure_fields`, no bore)
+    of outer diameter ``d_outer``, rim depth ``h`` (a disc's is its radius) and width ``b``: its parts, stresses
+    and notes, made when the design's structural fields are first read
     (:meth:`flyopt.design.result.Design.checked_when_read`)."""
+    dims = wheel.Dims(d_outer=d_outer, h=d_outer / 2.0 if geometry_name == Geometry.DISC else h, b=b)
     structure = wheel_design.structure_fields(material, geometry_name, dims, omega, torque, spec, 0.0)
     return structure.parts, structure.stresses, structure.notes
 
@@ -908,25 +909,24 @@ def _decide_textbook(
                 (order, _candidate_from_design(combo, spec, *nlp.solve_combination(model, combo, spec)))
             )
         return
-    reason, needed = _explain_infeasible(combo, spec)
+    explain = functools.partial(_explained, combo, spec)
     decided.infeasible.append(
-        (
-            (order, 0),
-            Candidate.infeasible(
-                material.name,
-                combo.shaft,
-                spec.geometry,
-                reason,
-                limits=Limits(
-                    j_required_on_shaft=combo.j_shaft,
-                    d_outer_limit=combo.cap,
-                    rim_speed_limit=combo.v_max,
-                    j_max=combo.j_max,
-                    d_outer_needed=needed,
-                ),
-            ),
-        )
+        ((order, 0), Candidate.explained_when_read(material.name, combo.shaft, spec.geometry, explain))
     )
+
+
+def _explained(combo: Combination, spec: DesignSpec) -> dict[str, Any]:
+    """An infeasible textbook combination's reason and limits (the outer-diameter cap it needs among them), made
+    when first read (:meth:`flyopt.design.result.Candidate.explained_when_read`)."""
+    reason, needed = _explain_infeasible(combo, spec)
+    limits = Limits(
+        j_required_on_shaft=combo.j_shaft,
+        d_outer_limit=combo.cap,
+        rim_speed_limit=combo.v_max,
+        j_max=combo.j_max,
+        d_outer_needed=needed,
+    )
+    return {"reason": reason, "limits": limits}
 
 
 def _rank(decided: _Decided) -> tuple[tuple[Candidate, ...], list[Candidate], Design | None]:

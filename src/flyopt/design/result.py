@@ -17,7 +17,7 @@ import dataclasses
 import math
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from flyopt.design.spec import DesignSpec, MountShaft
 from flyopt.design.wheel import ARM_MINOR_RATIO, Dims
@@ -43,6 +43,8 @@ __all__ = [
     "DESIGN_FIELDS",
     "TIMING_FIELDS",
     "CHECKED_FIELDS",
+    "EXPLAINED_FIELDS",
+    "DEFERRABLE_FIELDS",
     "NO_DESIGN",
     "infeasible_message",
 ]
@@ -234,6 +236,27 @@ class Provenance:
     objective_bound: float | None = None
 
 
+#: The structural fields of a design the check gives (:func:`flyopt.design.wheel_design.structure_fields`): what
+#: :meth:`Design.checked_when_read` leaves to be computed when first read.
+CHECKED_FIELDS = ("parts", "stresses", "provenance")
+
+#: What an infeasible combination's explanation gives (its reason in numbers, and its limits with the cap it
+#: needs): what :meth:`Candidate.explained_when_read` leaves to be computed when first read.
+EXPLAINED_FIELDS = ("reason", "limits")
+
+#: Every field a candidate can leave to be made when first read (:meth:`Candidate.made_when_read`).
+DEFERRABLE_FIELDS = (*EXPLAINED_FIELDS, *CHECKED_FIELDS)
+_DEFERRABLE = frozenset(DEFERRABLE_FIELDS)
+
+#: What makes a candidate's deferred fields: () -> {name: value} for each of them.
+Deferred = Callable[[], Mapping[str, Any]]
+
+#: A structural check to be made: () -> (parts, stresses, notes), the notes joining the provenance's.
+StructureCheck = Callable[[], "tuple[Parts, Stresses, tuple[str, ...]]"]
+
+_C = TypeVar("_C", bound="Candidate")
+
+
 @dataclass(frozen=True, kw_only=True)
 class Candidate:
     """One combination of material and shaft (and arm count), designed or shown infeasible.
@@ -290,6 +313,49 @@ class Candidate:
     provenance: Provenance = field(default_factory=Provenance)
 
     @classmethod
+    def made_when_read(cls: type[_C], make: Deferred, deferred: tuple[str, ...], **fields: Any) -> _C:
+        """A candidate whose ``deferred`` fields are made by ``make`` the first time any of them is read.
+
+        The ranking needs a candidate's identity, objective and dimensions; what a reader alone needs (a
+        design's structural check, :meth:`Design.checked_when_read`; an infeasible combination's reason in
+        numbers, the cap it needs) is made when first read, once, by the same call as when made at once
+        (docs/flywheel-design.md, section 13). Equality, ``repr``, ``dataclasses.replace``, a copy and a pickle
+        (a sweep's worker sends its results pickled) read every field, so they see the candidate made whole:
+        nothing can tell it from one built with its fields given. ``make``: () -> {name: value} for each of
+        ``deferred`` (of :data:`DEFERRABLE_FIELDS`); ``fields``: every other field.
+        """
+        if not _DEFERRABLE.issuperset(deferred):
+            unknown = sorted(set(deferred) - _DEFERRABLE)
+            raise TypeError(f"fields {unknown} cannot be made when read (only {list(DEFERRABLE_FIELDS)})")
+        placeholders: dict[str, Any] = dict.fromkeys(deferred)  # None until made: dropped below
+        candidate = cls(**placeholders, **fields)
+        values = candidate.__dict__
+        for name in deferred:
+            del values[name]  # read through _MadeWhenRead until made
+        values["_make"] = make
+        return candidate
+
+    def _make_deferred(self) -> None:
+        """Make the deferred fields and hold every field in the declared order (as ``__init__`` would)."""
+        values = self.__dict__
+        make = values.get("_make")
+        if make is None:  # made meanwhile (another thread read it first)
+            return
+        try:
+            made = make()
+        except AttributeError as err:  # not to be taken for a missing attribute by the attribute's reader
+            raise RuntimeError(f"the deferred fields of {self.material} on {self.shaft} failed: {err}") from err
+        object.__setattr__(
+            self, "__dict__", {name: made[name] if name in made else values[name] for name in _order(type(self))}
+        )
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The fields, made (a pickle or a copy carries what was deferred, never the means to make it)."""
+        if "_make" in self.__dict__:
+            self._make_deferred()
+        return self.__dict__
+
+    @classmethod
     def infeasible(cls, material: str, shaft: MountShaft, geometry: str, reason: str, **fields: Any) -> Candidate:
         """A combination that gives no design (shown infeasible, or pruned): its identity from the material's key,
         the mounting shaft (its name and speed ratio) and the geometry, ``reason`` saying why in numbers, and any
@@ -301,6 +367,23 @@ class Candidate:
             geometry=geometry,
             feasible=False,
             reason=reason,
+            **fields,
+        )
+
+    @classmethod
+    def explained_when_read(
+        cls, material: str, shaft: MountShaft, geometry: str, explain: Deferred, **fields: Any
+    ) -> Candidate:
+        """An infeasible combination whose reason in numbers and limits (:data:`EXPLAINED_FIELDS`) ``explain``
+        makes when first read (:meth:`made_when_read`): the ranking needs only that it gives no design."""
+        return cls.made_when_read(
+            explain,
+            EXPLAINED_FIELDS,
+            material=material,
+            shaft=shaft.name,
+            speed_ratio=shaft.speed_ratio,
+            geometry=geometry,
+            feasible=False,
             **fields,
         )
 
@@ -370,14 +453,6 @@ class Candidate:
         return out
 
 
-#: The structural fields of a design the check gives (:func:`flyopt.design.wheel_design.structure_fields`): what
-#: :meth:`Design.checked_when_read` leaves to be computed when first read.
-CHECKED_FIELDS = ("parts", "stresses", "provenance")
-
-#: A structural check to be made: () -> (parts, stresses, notes), the notes joining the provenance's.
-StructureCheck = Callable[[], "tuple[Parts, Stresses, tuple[str, ...]]"]
-
-
 @dataclass(frozen=True, kw_only=True)
 class Design(Candidate):
     """A feasible Candidate: one with its dimensions, parts, stresses, mass, inertia and objective.
@@ -398,73 +473,55 @@ class Design(Candidate):
     @classmethod
     def checked_when_read(cls, check: StructureCheck, provenance: Provenance, **fields: Any) -> Design:
         """A design whose structural check (its ``parts``, ``stresses`` and the ``notes`` of its ``provenance``)
-        is made by ``check`` the first time any of them is read (docs/flywheel-design.md, section 13).
+        is made by ``check`` the first time any of them is read (:meth:`Candidate.made_when_read`).
 
         The ranking needs a design's objective, cost, mass and dimensions, not its stresses; a design that is
         reported (the text, the JSON, the report, a DataFrame) reads them, so each reported design is checked,
-        once, by the same ``check`` as when made at once. Equality, ``repr``, ``dataclasses.replace``, a copy
-        and a pickle (a sweep's worker sends its results pickled) read every field, so they see the checked
-        design: nothing can tell it from one built with its fields given. ``provenance``: the design's,
-        without the check's notes; ``fields``: every other field.
+        once, by the same ``check`` as when made at once. ``provenance``: the design's, without the check's
+        notes; ``fields``: every other field.
         """
-        unread: Any = None
-        design = cls(parts=unread, stresses=unread, provenance=provenance, **fields)
-        values = design.__dict__
-        for name in CHECKED_FIELDS:
-            del values[name]  # read through _CheckedWhenRead until checked
-        values["_check"] = check
-        values["_unchecked_provenance"] = provenance
-        return design
 
-    def _make_check(self) -> None:
-        """Make the deferred structural check and hold its fields in the declared order (as ``__init__`` would)."""
-        values = self.__dict__
-        if "_check" not in values:  # checked meanwhile (another thread read it first)
-            return
-        check, provenance = values["_check"], values["_unchecked_provenance"]
-        try:
+        def checked() -> dict[str, Any]:
             parts, stresses, notes = check()
-        except AttributeError as err:  # not to be taken for a missing attribute by the attribute's reader
-            raise RuntimeError(f"the structural check of {self.material} on {self.shaft} failed: {err}") from err
-        checked = {
-            "parts": parts,
-            "stresses": stresses,
-            "provenance": dataclasses.replace(provenance, notes=provenance.notes + notes) if notes else provenance,
-        }
-        object.__setattr__(
-            self, "__dict__", {name: checked[name] if name in checked else values[name] for name in _DESIGN_ORDER}
-        )
+            noted = dataclasses.replace(provenance, notes=provenance.notes + notes) if notes else provenance
+            return {"parts": parts, "stresses": stresses, "provenance": noted}
 
-    def __getstate__(self) -> dict[str, Any]:
-        """The checked design's fields (a pickle or a copy carries the check, never the means to make it)."""
-        if "_check" in self.__dict__:
-            self._make_check()
-        return self.__dict__
+        return cls.made_when_read(checked, CHECKED_FIELDS, **fields)
 
 
-class _CheckedWhenRead:
-    """A structural field of a :class:`Design`, read before its check is made (see :meth:`Design.checked_when_read`).
+class _MadeWhenRead:
+    """A field of a :class:`Candidate` read before it is made (see :meth:`Candidate.made_when_read`).
 
-    A non-data descriptor on the class: a design that holds the field (every design once checked, and every
+    A non-data descriptor on the class: a candidate that holds the field (every one once made, and every
     one built with its fields given) reads it from its own ``__dict__`` without coming here.
     """
 
     def __init__(self, name: str) -> None:
         self.name = name
 
-    def __get__(self, design: Design | None, owner: type | None = None) -> Any:
-        if design is None:
+    def __get__(self, candidate: Candidate | None, owner: type | None = None) -> Any:
+        if candidate is None:
             return self
-        if "_check" not in design.__dict__:
-            raise AttributeError(f"{type(design).__name__!r} object has no attribute {self.name!r}")
-        design._make_check()
-        return design.__dict__[self.name]
+        if "_make" not in candidate.__dict__:
+            raise AttributeError(f"{type(candidate).__name__!r} object has no attribute {self.name!r}")
+        candidate._make_deferred()
+        return candidate.__dict__[self.name]
 
 
-#: Design's fields in their declared order.
-_DESIGN_ORDER = tuple(f.name for f in dataclasses.fields(Design))
-for _name in CHECKED_FIELDS:  # set after the dataclass is made, so that it takes them for no defaults
-    setattr(Design, _name, _CheckedWhenRead(_name))
+_ORDERS: dict[type, tuple[str, ...]] = {}
+
+
+def _order(cls: type[Candidate]) -> tuple[str, ...]:
+    """A Candidate class's fields in their declared order."""
+    order = _ORDERS.get(cls)
+    if order is None:
+        order = _ORDERS[cls] = tuple(f.name for f in dataclasses.fields(cls))
+    return order
+
+
+# set after both dataclasses are made, so that neither takes them for defaults
+for _name in DEFERRABLE_FIELDS:
+    setattr(Candidate, _name, _MadeWhenRead(_name))
 del _name
 
 
