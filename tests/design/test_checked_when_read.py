@@ -212,3 +212,58 @@ def test_the_ranking_explains_no_infeasible_combination_until_it_is_read():
 def test_a_candidate_defers_only_the_fields_that_can_be_made_later():
     with pytest.raises(TypeError, match="mass"):
         Candidate.made_when_read(dict, ("mass",), material="m", shaft="s", speed_ratio=1.0, geometry="rim")
+
+
+def test_a_reader_that_finds_the_fields_made_meanwhile_reads_them():
+    """A thread that found ``reason`` missing enters the descriptor; another thread makes the fields before it
+    looks again: it reads them (it raised AttributeError, which ``getattr(c, name, default)`` would swallow)."""
+    deferred = Candidate.explained_when_read("cast_iron", INFEASIBLE_SHAFTS[0], "rim", _Explain(_slower_cast_iron()))
+    descriptor = vars(Candidate)["reason"]
+    made = deferred.reason  # the other thread's read
+    assert descriptor.__get__(deferred, Candidate) is made
+
+
+def test_threads_reading_the_same_candidates_make_each_once():
+    import sys
+    import threading
+
+    class Counting:
+        def __init__(self):
+            self.calls = 0
+
+        def __call__(self):
+            self.calls += 1
+            return {"reason": "r", "limits": Limits(j_required_on_shaft=1.0)}
+
+    makes = [Counting() for _ in range(2000)]
+    candidates = [Candidate.explained_when_read("cast_iron", INFEASIBLE_SHAFTS[0], "rim", m) for m in makes]
+    errors = []
+
+    def read():
+        try:
+            for c in candidates:
+                assert c.reason == "r" and c.limits.j_required_on_shaft == 1.0
+        except Exception as err:  # noqa: BLE001 -- counted, and the test fails on any
+            errors.append(err)
+
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)  # switch threads as often as the interpreter can
+    try:
+        threads = [threading.Thread(target=read) for _ in range(4)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    finally:
+        sys.setswitchinterval(interval)
+    assert errors == [] and [m.calls for m in makes] == [1] * len(makes)
+
+
+def test_a_make_that_leaves_a_deferred_field_unmade_is_said():
+    c = Candidate.made_when_read(lambda: {"reason": "r"}, ("reason", "limits"), **_identity())
+    with pytest.raises(TypeError, match=r"not all made: \['limits'\]"):
+        c.reason  # noqa: B018
+
+
+def _identity():
+    return dict(material="cast_iron", shaft="reference", speed_ratio=1.0, geometry="rim", feasible=False)

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import threading
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, TypeVar
@@ -336,18 +337,23 @@ class Candidate:
         return candidate
 
     def _make_deferred(self) -> None:
-        """Make the deferred fields and hold every field in the declared order (as ``__init__`` would)."""
-        values = self.__dict__
-        make = values.get("_make")
-        if make is None:  # made meanwhile (another thread read it first)
-            return
-        try:
-            made = make()
-        except AttributeError as err:  # not to be taken for a missing attribute by the attribute's reader
-            raise RuntimeError(f"the deferred fields of {self.material} on {self.shaft} failed: {err}") from err
-        object.__setattr__(
-            self, "__dict__", {name: made[name] if name in made else values[name] for name in _order(type(self))}
-        )
+        """Make the deferred fields and hold every field in the declared order (as ``__init__`` would), once:
+        under :data:`_MAKING`, so that two threads reading one candidate at once (the app's workers) make it
+        once and the second finds it made."""
+        with _MAKING:
+            values = self.__dict__
+            make = values.get("_make")
+            if make is None:  # made meanwhile (another thread read it first)
+                return
+            try:
+                made = make()
+            except AttributeError as err:  # not to be taken for a missing attribute by the attribute's reader
+                raise RuntimeError(f"the deferred fields of {self.material} on {self.shaft} failed: {err}") from err
+            order = _order(type(self))
+            missing = [name for name in order if name not in values and name not in made]
+            if missing:
+                raise TypeError(f"the deferred fields of {self.material} on {self.shaft} were not all made: {missing}")
+            object.__setattr__(self, "__dict__", {name: made[name] if name in made else values[name] for name in order})
 
     def __getstate__(self) -> dict[str, Any]:
         """The fields, made (a pickle or a copy carries what was deferred, never the means to make it)."""
@@ -502,13 +508,20 @@ class _MadeWhenRead:
     def __get__(self, candidate: Candidate | None, owner: type | None = None) -> Any:
         if candidate is None:
             return self
-        if "_make" not in candidate.__dict__:
+        values = candidate.__dict__  # one dict: another thread that makes the fields swaps in a new one
+        if self.name in values:  # made by another thread since this read found the field missing
+            return values[self.name]
+        if "_make" not in values:
             raise AttributeError(f"{type(candidate).__name__!r} object has no attribute {self.name!r}")
         candidate._make_deferred()
         return candidate.__dict__[self.name]
 
 
 _ORDERS: dict[type, tuple[str, ...]] = {}
+
+#: Held while a candidate's deferred fields are made (:meth:`Candidate._make_deferred`): re-entrant, as making
+#: one may read another's.
+_MAKING = threading.RLock()
 
 
 def _order(cls: type[Candidate]) -> tuple[str, ...]:
