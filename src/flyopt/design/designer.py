@@ -233,13 +233,7 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
         j_at_reference=inertia_at_reference(j_wheel, shaft.speed_ratio),
         objective=_objective(spec.objective, mass, d_outer, cost),
         dims=Dimensions(d_mean=d_mean, d_outer=d_outer, d_inner=max(d_inner, 0.0), h=h, b=b),
-        limits=Limits(
-            j_required_on_shaft=combo.j_shaft,
-            d_outer_limit=combo.cap,
-            rim_speed_limit=combo.v_max,
-            j_max=combo.j_max,
-            binding=binding,
-        ),
+        limits=_limits(combo, j_max=combo.j_max, binding=binding),
         provenance=Provenance(solver_status=status, iterations=iterations, solve_time=elapsed),
     )
 
@@ -285,7 +279,6 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
     combo_n = Combination(**{**combo.__dict__, "n_arms": n_arms})
     label = combo_n.label
     m = combo.material
-    given = dict(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max)
     start = time.perf_counter()
     try:
         dims, solution, checked = wheel_design.design_combination(
@@ -299,7 +292,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
             err.reason,
             n_arms=n_arms or None,
             bore=combo.bore or None,
-            limits=Limits(**given, j_max=err.j_max),
+            limits=_limits(combo, j_max=err.j_max),
         ), None
     except SolverFailed as err:
         err.combination = label
@@ -367,7 +360,7 @@ def _design_whole(combo, spec, n_arms, solver_options, method="auto"):
         ),
         parts=structure.parts,
         stresses=structure.stresses,
-        limits=Limits(**given, binding=tuple(binding), sensitivities=sensitivities, castability=structure.castability),
+        limits=_limits(combo, binding=tuple(binding), sensitivities=sensitivities, castability=structure.castability),
         provenance=Provenance(
             solver_status=solution.status,
             iterations=solution.iterations,
@@ -473,7 +466,7 @@ def _pruned(combo, spec, n_arms, bound, why, feasible, names):
         label + ": not designed, it cannot win: " + why + ", more than the " + objective + " of " + winner,
         n_arms=n_arms or None,
         bore=combo.bore or None,
-        limits=Limits(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max),
+        limits=_limits(combo),
         provenance=Provenance(pruned=True, objective_bound=bound),
     )
 
@@ -919,14 +912,14 @@ def _explained(combo: Combination, spec: DesignSpec) -> dict[str, Any]:
     """An infeasible textbook combination's reason and limits (the outer-diameter cap it needs among them), made
     when first read (:meth:`flyopt.design.result.Candidate.explained_when_read`)."""
     reason, needed = _explain_infeasible(combo, spec)
-    limits = Limits(
-        j_required_on_shaft=combo.j_shaft,
-        d_outer_limit=combo.cap,
-        rim_speed_limit=combo.v_max,
-        j_max=combo.j_max,
-        d_outer_needed=needed,
-    )
-    return {"reason": reason, "limits": limits}
+    return {"reason": reason, "limits": _limits(combo, j_max=combo.j_max, d_outer_needed=needed)}
+
+
+def _limits(combo: Combination, **found: Any) -> Limits:
+    """What a combination was designed against (the inertia on its shaft, its outer-diameter cap, its rim speed
+    limit), with what its design or its explanation ``found`` (the largest inertia it can give, what binds, the
+    cap it needs)."""
+    return Limits(j_required_on_shaft=combo.j_shaft, d_outer_limit=combo.cap, rim_speed_limit=combo.v_max, **found)
 
 
 def _rank(decided: _Decided) -> tuple[tuple[Candidate, ...], list[Candidate], Design | None]:
