@@ -259,3 +259,16 @@ def test_a_grid_over_the_apps_limit_is_refused_before_it_is_made(monkeypatch, wo
     monkeypatch.setattr(plan_module.np, "meshgrid", no_grid)  # the grid's indices: made only under the cap
     with pytest.raises(SceneError, match=f"16,000,000 points: the app runs at most {sweeps.MAX_POINTS:,}"):
         sweeps.plan(scene, big)
+
+
+@pytest.mark.parametrize(
+    ("first", "total", "words"),
+    [
+        (0.006, 0.03, "the first point took 6 ms: at most about 30 ms in one process"),  # was "about 0.0 s"
+        (0.0001, 0.0005, "the first point took under 1 ms: at most about 1 ms in one process"),
+        (0.42, 4.2, "the first point took 420 ms: at most about 4.2 s in one process"),
+        (0.21, 2100.0, "the first point took 210 ms: at most about 35 min in one process"),
+    ],
+)
+def test_the_sweep_s_estimate_is_said_in_the_unit_that_reads(first, total, words):
+    assert sweeps.estimate_text(first, total) == words

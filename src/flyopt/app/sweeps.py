@@ -153,6 +153,27 @@ def estimate(scene: Scene, axes: Sequence[Axis], points: int) -> tuple[float, fl
     return first, first * points
 
 
+def estimate_text(first: float, total: float) -> str:
+    """The sweep form's words for :func:`estimate`'s (first, total) seconds, each in the unit that reads: "the
+    first point took 6 ms: at most about 30 ms in one process", "… about 4.2 s …", "… about 35 min …" (a total of
+    0.03 s read "0.0 s")."""
+    return (
+        f"the first point took {duration_text(first)}: at most about {duration_text(max(total, 1e-3))} in one process"
+    )
+
+
+def duration_text(seconds: float) -> str:
+    """A time in ms below a second, in s to two minutes, else in minutes, as a person reads it at a glance (the
+    sweep tab's one way of saying how long)."""
+    if seconds < 1e-3:
+        return "under 1 ms"
+    if seconds < 1.0:
+        return f"{seconds * 1e3:,.0f} ms"
+    if seconds < 120.0:
+        return f"{seconds:,.1f} s"
+    return f"{seconds / 60.0:,.0f} min"
+
+
 @dataclass
 class Run:
     """A finished (or cancelled) sweep: its full table (SI) and its files in the session's folder."""

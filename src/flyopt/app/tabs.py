@@ -404,9 +404,7 @@ class SweepsTab:
                 self.spec.object = self._spec_html(f"the first point fails: {_error_text(err)}")
             return
         if mine == self.estimate_generation and plan is self.plan:
-            self.spec.object = self._spec_html(
-                f"the first point took {first * 1000:,.0f} ms: at most about {total:,.1f} s in one process"
-            )
+            self.spec.object = self._spec_html(sweeps.estimate_text(first, total))
 
     def _cancel(self, _event: Any) -> None:
         self.cancel_asked = True
@@ -468,7 +466,7 @@ class SweepsTab:
         # thread, may not have reached the page yet: a loaded host showed "done: 5 points" beside a bar at 0)
         self.bar.value = 100
         self.status.object = _message(
-            f"done: {counted(len(result.frame), 'point')} in {info['seconds']:.2f} s ({info['mode']})",
+            f"done: {counted(len(result.frame), 'point')} in {sweeps.duration_text(info['seconds'])} ({info['mode']})",
             bad=False,
         )
         units = self.session.units.value
