@@ -225,13 +225,44 @@ def test_the_stale_note_names_the_diagrams_only_where_some_are_shown(session, mo
         await until(held.is_set, "the first answer's first diagram")
         await session._refresh(edited("-1"), solve=None)
         assert session.stale.object == STALE_DOWNLOADS
+        assert "The downloads on the right are those of the last scene solved" in session.card.html
         release.set()
         await one
         await session._refresh(edited("0.04"), solve=None)  # drawn in full
         await session._refresh(edited("-1"), solve=None)
         assert session.stale.object == STALE
+        # said on the card too, under the problem: the diagrams beside it may be scrolled to, their note out of view
+        assert "machine.delta" in session.card.html
+        assert "The diagrams and downloads on the right are those of the last scene solved" in session.card.html
 
     asyncio.run(edits())
+
+
+def test_the_first_scene_s_problems_say_nothing_of_a_last_scene(session):
+    """Before any scene is solved, a broken text's card has its problems and no note of a last scene."""
+    asyncio.run(session._refresh(edited("-1"), solve=None))
+    assert "machine.delta" in session.card.html and "last scene solved" not in session.card.html
+    assert session.stale.object == ""
+
+
+def test_a_solve_that_fails_keeps_the_last_answer_and_says_so(session, monkeypatch):
+    """A valid text whose solve fails (here made to fail) leaves the last answer's diagrams and downloads on the
+    page: the card says the error and that they are the last scene's, and so does the note above them (it said
+    nothing: the diagrams of the last design stood beside an error without a word)."""
+    from flyopt.app import model
+    from flyopt.app.page import STALE
+
+    asyncio.run(session._refresh(edited("0.04"), solve=None))
+    assert session.answer is not None and session.stale.object == ""
+
+    def failing(*_args, **_kwargs):
+        raise RuntimeError("the solver stopped")
+
+    monkeypatch.setattr(model, "numbers", failing)
+    asyncio.run(session._refresh(edited("0.03"), solve=None))
+    assert "the solver stopped" in session.card.html
+    assert "The diagrams and downloads on the right are those of the last scene solved" in session.card.html
+    assert session.stale.object == STALE
 
 
 def _open_figures() -> set[int]:

@@ -594,8 +594,9 @@ def made_bytes(answer: Answer, kind: str, workspace: Workspace) -> bytes | None:
             target.unlink(missing_ok=True)
 
 
-def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") -> str:
-    """The answer card as HTML, every string escaped."""
+def card_html(answer: Answer | None, problems: list[Problem], busy: str = "", stale: str = "") -> str:
+    """The answer card as HTML, every string escaped; ``stale``: what of the page is still the last scene solved's,
+    said under the problems (the diagrams beside them may be scrolled to, their own note out of view)."""
     from html import escape
 
     if problems:
@@ -605,7 +606,8 @@ def card_html(answer: Answer | None, problems: list[Problem], busy: str = "") ->
             + f": {escape(p.message)}</li>"
             for p in problems
         )
-        return f'<div class="card bad"><b>The scene is not valid</b><ul>{items}</ul></div>'
+        note = f'<p class="stale-note">{escape(stale)}</p>' if stale else ""
+        return f'<div class="card bad"><b>The scene is not valid</b><ul>{items}</ul>{note}</div>'
     if answer is None:
         return f'<div class="card">{escape(busy) or "No answer yet."}</div>'
     return answer_card_html(card_of(answer.document), busy)

@@ -43,16 +43,13 @@ DISCONNECTED = (
 #: The template shown first.
 FIRST = "shear-press"
 
-#: Said above the diagrams and downloads while the editor's text is not valid (or not yet solved).
-STALE = (
-    '<div style="color:#c33;font-weight:bold">The diagrams and downloads below are those of the last scene solved, '
-    "not of the text in the editor.</div>"
-)
-#: The same where no diagram of the last scene solved is shown (an edit came while its first were drawn).
-STALE_DOWNLOADS = (
-    '<div style="color:#c33;font-weight:bold">The downloads below are those of the last scene solved, '
-    "not of the text in the editor.</div>"
-)
+#: What of the page is the last scene solved's while the editor's text is not valid (or not yet solved): the
+#: diagrams and downloads, or the downloads alone where no diagram of it is shown (an edit came while its first
+#: were drawn). Said above them, and on the card under the problems (:func:`flyopt.app.model.card_html`).
+STALE_WORDS = "The diagrams and downloads {where} are those of the last scene solved, not of the text in the editor."
+STALE_DOWNLOADS_WORDS = "The downloads {where} are those of the last scene solved, not of the text in the editor."
+STALE = f'<div style="color:#c33;font-weight:bold">{STALE_WORDS.format(where="below")}</div>'
+STALE_DOWNLOADS = f'<div style="color:#c33;font-weight:bold">{STALE_DOWNLOADS_WORDS.format(where="below")}</div>'
 
 CSS = """
 .card {font-family: sans-serif; font-size: 14px; padding: 6px 10px; border-left: 4px solid #2a7;}
@@ -60,6 +57,7 @@ CSS = """
 .card table {border-collapse: collapse;} .card th {text-align: left; font-weight: normal; color: #555;
  padding: 1px 12px 1px 0; vertical-align: top;} .card td {padding: 1px 0;}
 .card .status {font-size: 15px;} .card ul {margin: 4px 0; padding-left: 18px;}
+.card .stale-note {color: #c33; margin: 4px 0 0 0;}
 .footer {font-family: monospace; font-size: 11px; color: #555;}
 .figure svg {max-width: 100%; height: auto;}
 """
@@ -297,7 +295,7 @@ class Session:
             return
         self.checked = checked
         if checked.problems or checked.scene is None:
-            self.card.html = model.card_html(None, checked.problems)
+            self.card.html = model.card_html(None, checked.problems, stale=self._stale_words())
             self.stale.object = self._stale()
             self._busy(False)  # an older edit's work still running is dropped: nothing is being done for this one
             return
@@ -325,7 +323,9 @@ class Session:
                     field = getattr(err, "field", "")
                     message = getattr(err, "message", None) or f"{type(err).__name__}: {err}"
                     line = model.field_line(text, field) if field else None
-                    self.card.html = model.card_html(None, [model.Problem(field, message, line)])
+                    problem = model.Problem(field, message, line)
+                    self.card.html = model.card_html(None, [problem], stale=self._stale_words())
+                    self.stale.object = self._stale()
                     self._busy(False)
                     self.form.show(text)
                     self.mode.object = mode
@@ -385,7 +385,16 @@ class Session:
         diagrams only where some are shown."""
         if self.answer is None:
             return ""
-        return STALE if any(svg_pane.visible for _column, _title, svg_pane in self.figure_slots) else STALE_DOWNLOADS
+        return STALE if self._diagrams_shown() else STALE_DOWNLOADS
+
+    def _stale_words(self) -> str:
+        """The same said on the card, beside the problems ("on the right")."""
+        if self.answer is None:
+            return ""
+        return (STALE_WORDS if self._diagrams_shown() else STALE_DOWNLOADS_WORDS).format(where="on the right")
+
+    def _diagrams_shown(self) -> bool:
+        return any(svg_pane.visible for _column, _title, svg_pane in self.figure_slots)
 
     def _in_view(self) -> dict[str, float]:
         """The diagrams on the page by key, each with the fraction of it the visitor has in view (the page's order)."""
