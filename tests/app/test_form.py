@@ -325,3 +325,16 @@ def test_pasted_rows_are_read_off_the_event_loop_and_a_table_too_long_for_the_ap
     asyncio.run(view._paste_used(None))
     assert view.message.object == "" and len(written) == 1
     assert len(tomllib.loads(written[0])["torque"]["resisting"]["points"]) == view.paste.value.count("\n")
+
+
+def test_a_field_s_label_says_what_the_loader_takes_where_the_text_does_not_write_it():
+    """The form shows an empty field where the text does not write it: its label says what flyopt then takes, as
+    the loader takes it (a scene that writes neither the efficiency nor the rim's H/B)."""
+    scene = flyopt.load(ROOT / "problems" / "shear-press.toml")
+    data = form.parse((ROOT / "problems" / "shear-press.toml").read_text(encoding="utf-8"))
+    shown = form.shown_values(data)
+    labels = {f.path: f.label for f in form.FIELDS}
+    assert shown["machine.efficiency"] == "" and shown["design.hb_ratio"] == ""
+    assert f"; {scene.efficiency:g} if not given" in labels["machine.efficiency"]
+    low, high = scene.design.hb_ratio
+    assert f"; {low:g} to {high:g} if not given" in labels["design.hb_ratio"]

@@ -25,6 +25,8 @@ from typing import Any
 
 from flyopt._toml import tomllib
 from flyopt.cli.toml_lines import set_value
+from flyopt.design.spec import DesignSpec
+from flyopt.io.scene import Scene
 from flyopt.names import Geometry
 
 __all__ = [
@@ -58,15 +60,19 @@ class Field:
     choices: tuple[str, ...] = ()
 
 
+# what a field the text does not write is taken to be, as the loader takes it (its one default), said in the label
+_EFFICIENCY = Scene.__dataclass_fields__["efficiency"].default
+_HB_LOW, _HB_HIGH = DesignSpec().hb_ratio
+
 #: The common fields (issue 29: speed, δ, efficiency, the envelope, the geometry and the materials).
 FIELDS: tuple[Field, ...] = (
     Field("machine.speed", "mean speed (e.g. 1500 rpm)"),
     Field("machine.delta", "allowed δ (e.g. 0.05 or 5 %)"),
-    Field("machine.efficiency", "efficiency"),
+    Field("machine.efficiency", f"efficiency (e.g. 0.85; {_EFFICIENCY:g} if not given)"),
     Field("design.geometry", "geometry", "choice", tuple(g.value for g in Geometry)),
     Field("design.max_outer_diameter", "largest outer diameter (e.g. 600 mm)"),
     Field("design.max_width", "largest width (e.g. 250 mm)"),
-    Field("design.hb_ratio", "rim H/B"),
+    Field("design.hb_ratio", f"rim H/B (e.g. 1.5, or 1.5, 2 for a range; {_HB_LOW:g} to {_HB_HIGH:g} if not given)"),
     Field("design.materials", "materials", "materials"),
 )
 
