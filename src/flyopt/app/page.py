@@ -48,8 +48,15 @@ FIRST = "shear-press"
 #: were drawn). Said above them, and on the card under the problems (:func:`flyopt.app.model.card_html`).
 STALE_WORDS = "The diagrams and downloads {where} are those of the last scene solved, not of the text in the editor."
 STALE_DOWNLOADS_WORDS = "The downloads {where} are those of the last scene solved, not of the text in the editor."
-STALE = f'<div style="color:#c33;font-weight:bold">{STALE_WORDS.format(where="below")}</div>'
-STALE_DOWNLOADS = f'<div style="color:#c33;font-weight:bold">{STALE_DOWNLOADS_WORDS.format(where="below")}</div>'
+
+
+def _stale_html(words: str) -> str:
+    """The note above the downloads and diagrams (``words`` said "below" them); "" for no words."""
+    return f'<div style="color:#c33;font-weight:bold">{words}</div>' if words else ""
+
+
+STALE = _stale_html(STALE_WORDS.format(where="below"))
+STALE_DOWNLOADS = _stale_html(STALE_DOWNLOADS_WORDS.format(where="below"))
 
 CSS = """
 .card {font-family: sans-serif; font-size: 14px; padding: 6px 10px; border-left: 4px solid #2a7;}
@@ -381,20 +388,16 @@ class Session:
             return True
 
     def _stale(self) -> str:
-        """The note above the downloads and diagrams while they are not the editor's text's: it names the
-        diagrams only where some are shown."""
+        """The note above the downloads and diagrams while they are not the editor's text's."""
+        return _stale_html(self._stale_words("below"))
+
+    def _stale_words(self, where: str = "on the right") -> str:
+        """What of the page is the last scene solved's, said from ``where`` it stands ("on the right" on the card):
+        the diagrams only where some are shown; "" before any scene is solved."""
         if self.answer is None:
             return ""
-        return STALE if self._diagrams_shown() else STALE_DOWNLOADS
-
-    def _stale_words(self) -> str:
-        """The same said on the card, beside the problems ("on the right")."""
-        if self.answer is None:
-            return ""
-        return (STALE_WORDS if self._diagrams_shown() else STALE_DOWNLOADS_WORDS).format(where="on the right")
-
-    def _diagrams_shown(self) -> bool:
-        return any(svg_pane.visible for _column, _title, svg_pane in self.figure_slots)
+        shown = any(svg_pane.visible for _column, _title, svg_pane in self.figure_slots)
+        return (STALE_WORDS if shown else STALE_DOWNLOADS_WORDS).format(where=where)
 
     def _in_view(self) -> dict[str, float]:
         """The diagrams on the page by key, each with the fraction of it the visitor has in view (the page's order)."""

@@ -366,15 +366,7 @@ class Candidate:
         """A combination that gives no design (shown infeasible, or pruned): its identity from the material's key,
         the mounting shaft (its name and speed ratio) and the geometry, ``reason`` saying why in numbers, and any
         further field (``n_arms``, ``bore``, ``limits``, ``provenance``)."""
-        return cls(
-            material=material,
-            shaft=shaft.name,
-            speed_ratio=shaft.speed_ratio,
-            geometry=geometry,
-            feasible=False,
-            reason=reason,
-            **fields,
-        )
+        return cls(**_no_design(material, shaft, geometry), reason=reason, **fields)
 
     @classmethod
     def explained_when_read(
@@ -382,16 +374,7 @@ class Candidate:
     ) -> Candidate:
         """An infeasible combination whose reason in numbers and limits (:data:`EXPLAINED_FIELDS`) ``explain``
         makes when first read (:meth:`made_when_read`): the ranking needs only that it gives no design."""
-        return cls.made_when_read(
-            explain,
-            EXPLAINED_FIELDS,
-            material=material,
-            shaft=shaft.name,
-            speed_ratio=shaft.speed_ratio,
-            geometry=geometry,
-            feasible=False,
-            **fields,
-        )
+        return cls.made_when_read(explain, EXPLAINED_FIELDS, **_no_design(material, shaft, geometry), **fields)
 
     def to_dict(self, timings: bool = False) -> dict[str, Any]:
         """Plain, JSON-ready dictionary, flat (inf becomes None; wall times only with ``timings``).
@@ -515,6 +498,18 @@ class _MadeWhenRead:
             raise AttributeError(f"{type(candidate).__name__!r} object has no attribute {self.name!r}")
         candidate._make_deferred()
         return candidate.__dict__[self.name]
+
+
+def _no_design(material: str, shaft: MountShaft, geometry: str) -> dict[str, Any]:
+    """The identity of a combination that gives no design: the material's key, the mounting shaft's name and speed
+    ratio, the geometry, and that it is not feasible."""
+    return {
+        "material": material,
+        "shaft": shaft.name,
+        "speed_ratio": shaft.speed_ratio,
+        "geometry": geometry,
+        "feasible": False,
+    }
 
 
 _ORDERS: dict[type, tuple[str, ...]] = {}
