@@ -1,10 +1,12 @@
-"""A design whose structural check is made when first read (Design.checked_when_read) cannot be told from one
-built with its check made at once: the same fields, equality, repr, order of its fields, copies and pickles.
+"""A design whose structural check and description are made when first read (Design.checked_when_read) cannot be
+told from one built with them made at once: the same fields, equality, repr, order of its fields, copies and
+pickles.
 
-The default ranking leaves each textbook design's check (:func:`flyopt.design.wheel_design.structure_fields`)
-until its parts, stresses or provenance are read; every consumer reads them through the attributes, so a
-deferred design must behave in every way as the design built eagerly from the same check. The reference here
-is that eager design, built from the check's own output with the dataclass's constructor.
+The default ranking leaves each textbook design's check (:func:`flyopt.design.wheel_design.structure_fields`) and
+its description (what binds, its limits, how it was found) until its parts, stresses, provenance, reason or limits
+are read; every consumer reads them through the attributes, so a deferred design must behave in every way as the
+design built eagerly from the same calls. The reference here is that eager design, built from their own output
+with the dataclass's constructor.
 """
 
 import copy
@@ -17,7 +19,7 @@ import pytest
 
 from flyopt.design import Design, DesignSpec, MountShaft, design_flywheel, designer, wheel, wheel_design
 from flyopt.design.materials import builtin_materials
-from flyopt.design.result import CHECKED_FIELDS, Candidate, Dimensions, Limits, Provenance
+from flyopt.design.result import DEFERRABLE_FIELDS, Candidate, Dimensions, Limits, Provenance
 
 MATERIAL = builtin_materials()["cast_steel"]
 DIMS = wheel.Dims(d_outer=1.2, h=0.15, b=0.1)
@@ -28,16 +30,26 @@ FIELDS = dict(
     shaft="crankshaft",
     speed_ratio=1.0,
     geometry="rim",
-    reason="designed; binding: inertia",
     mass=300.0,
     cost=None,
     j_flywheel=40.0,
     j_at_reference=40.0,
     objective=300.0,
     dims=Dimensions(d_mean=1.05, d_outer=1.2, d_inner=0.9, h=0.15, b=0.1),
-    limits=Limits(j_required_on_shaft=40.0, binding=("inertia",)),
 )
+REASON = "designed; binding: inertia"
+LIMITS = Limits(j_required_on_shaft=40.0, binding=("inertia",))
 PROVENANCE = Provenance(solver_status="closed_form", iterations=0, solve_time=1e-5, notes=("given",))
+
+
+class _Describe:
+    """A design's description, counting its calls."""
+
+    calls = 0
+
+    def __call__(self):
+        self.calls += 1
+        return REASON, LIMITS, PROVENANCE
 
 
 class _Check:
@@ -54,7 +66,7 @@ class _Check:
 def _eager():
     s = wheel_design.structure_fields(MATERIAL, "rim", DIMS, OMEGA, 0.0, SPEC, 0.0)
     provenance = dataclasses.replace(PROVENANCE, notes=PROVENANCE.notes + s.notes)
-    return Design(**FIELDS, parts=s.parts, stresses=s.stresses, provenance=provenance)
+    return Design(**FIELDS, reason=REASON, limits=LIMITS, parts=s.parts, stresses=s.stresses, provenance=provenance)
 
 
 def _read_first(deferred, eager, first, deferred_fields, changes):
@@ -77,25 +89,26 @@ def _read_first(deferred, eager, first, deferred_fields, changes):
         assert first == "to_dict" and deferred.to_dict() == eager.to_dict()
 
 
-@pytest.mark.parametrize("first", ["parts", "stresses", "provenance", "eq", "repr", "pickle", "deepcopy", "replace"])
+@pytest.mark.parametrize("first", [*DEFERRABLE_FIELDS, "eq", "repr", "pickle", "deepcopy", "replace", "to_dict"])
 def test_a_deferred_design_is_the_eager_one_whatever_is_read_first(first):
-    check = _Check()
-    deferred = Design.checked_when_read(check, PROVENANCE, **FIELDS)
+    check, describe = _Check(), _Describe()
+    deferred = Design.checked_when_read(check, describe, **FIELDS)
     eager = _eager()
-    assert check.calls == 0 and deferred.mass == 300.0 and check.calls == 0  # the ranking's fields: no check
-    _read_first(deferred, eager, first, CHECKED_FIELDS, {"reason": "r"})
-    assert check.calls == 1
+    assert deferred.mass == 300.0 and deferred.dims == FIELDS["dims"] and deferred.objective == 300.0
+    assert check.calls == describe.calls == 0  # the ranking's fields: neither made
+    _read_first(deferred, eager, first, DEFERRABLE_FIELDS, {"mass": 1.0})
+    assert check.calls == describe.calls == 1
     # once checked, it holds exactly the eager design's fields, in their declared order, and checks no more
     assert vars(deferred) == vars(eager) and list(vars(deferred)) == [f.name for f in dataclasses.fields(Design)]
     assert deferred == eager and repr(deferred) == repr(eager)
     assert deferred.to_dict(timings=True) == eager.to_dict(timings=True)
-    assert deferred.provenance.notes[0] == "given" and check.calls == 1
+    assert deferred.provenance.notes[0] == "given" and check.calls == describe.calls == 1
     with pytest.raises(dataclasses.FrozenInstanceError):
         deferred.parts = None  # type: ignore[misc]
 
 
 def test_a_deferred_design_has_no_other_attributes():
-    deferred = Design.checked_when_read(_Check(), PROVENANCE, **FIELDS)
+    deferred = Design.checked_when_read(_Check(), _Describe(), **FIELDS)
     with pytest.raises(AttributeError, match="not_a_field"):
         deferred.not_a_field  # noqa: B018
     assert not hasattr(deferred, "not_a_field")
@@ -123,7 +136,7 @@ def test_a_check_made_meanwhile_is_not_made_again():
     """Two readers that both find a design unchecked (two threads of the app) make the check once each at
     most, and the second finds it made: no error, the same fields."""
     check = _Check()
-    deferred = Design.checked_when_read(check, PROVENANCE, **FIELDS)
+    deferred = Design.checked_when_read(check, _Describe(), **FIELDS)
     make = deferred._make_deferred  # the method the first read calls, taken before it runs
     assert deferred.parts == _eager().parts
     make()  # the second reader, which saw the design unchecked, comes after the first
@@ -257,6 +270,36 @@ def test_a_make_that_leaves_a_deferred_field_unmade_is_said():
     c = Candidate.made_when_read(lambda: {"reason": "r"}, ("reason", "limits"), **_identity())
     with pytest.raises(TypeError, match=r"not all made: \['limits'\]"):
         c.reason  # noqa: B018
+
+
+@pytest.mark.parametrize(
+    "fields, deferred, words",
+    [
+        ({"not_a_field": 1}, ("reason",), r"unknown fields \['not_a_field'\]"),
+        ({"reason": "r"}, ("reason", "limits"), r"both given and deferred \['reason'\]"),
+        ({"material": None}, ("reason",), r"missing fields \['material'\]"),
+    ],
+)
+def test_a_candidate_made_when_read_refuses_what_its_constructor_refuses(fields, deferred, words):
+    """made_when_read builds a candidate without calling __init__: it refuses what __init__ refuses (the
+    reference), an unknown field, a field given twice and a missing one, naming them."""
+    given = {**_identity(), **fields}
+    given = {name: value for name, value in given.items() if value is not None}
+    with pytest.raises(TypeError):
+        Candidate(**dict.fromkeys(deferred, "r"), **given)  # what __init__ does with the same fields
+    with pytest.raises(TypeError, match=words):
+        Candidate.made_when_read(lambda: {}, deferred, **given)
+
+
+def test_a_candidate_made_when_read_takes_the_constructors_defaults():
+    """Every field not given takes its default, a factory's made afresh for each candidate, in declared order:
+    once made it is the candidate __init__ builds from the same fields."""
+    made = [Candidate.made_when_read(lambda: {"reason": "r"}, ("reason",), **_identity()) for _ in range(2)]
+    eager = Candidate(**_identity(), reason="r")
+    assert list(vars(made[0])) == [name for name in vars(eager) if name != "reason"] + ["_make"]  # before made
+    for c in made:
+        assert c == eager and vars(c) == vars(eager) and list(vars(c)) == list(vars(eager))
+    assert made[0].limits is not made[1].limits and made[0].provenance is not made[1].provenance  # made afresh
 
 
 def _identity():

@@ -62,3 +62,49 @@ def test_every_reported_candidate_carries_its_structural_check(method, geometry_
             # and what is printed is that check
             assert row["stress"] == ref.stresses.stress and row["parts"] == list(ref.parts.items)
     assert reported > 50 and checked > reported // 2
+
+
+@pytest.mark.parametrize("geometry_name", ["rim", "thin_rim", "disc"])
+def test_every_reported_design_says_what_binds_as_its_dimensions_show(geometry_name):
+    """Each design's description (its reason, limits and provenance) is made when first read; what it says is
+    checked here against the scene itself: the inertia on its shaft J_F / r^2, its outer-diameter cap
+    min(2 v_max / (omega r), envelope) from the material's rim speed limit, and what its dimensions meet. The
+    lightest wheel of a free mean diameter sits at its cap (J grows with D faster than the mass does) and gives
+    exactly the inertia asked for."""
+    rng = random.Random(f"binding-{geometry_name}")
+    materials = [builtin_materials()[m] for m in ("cast_iron", "cast_steel")]
+    designs = 0
+    for _ in range(20):
+        j, omega = 10 ** rng.uniform(-2, 3), 10 ** rng.uniform(math.log10(50), math.log10(3000)) * math.pi / 30
+        shafts = [MountShaft("reference", 1.0), MountShaft("faster", 10 ** rng.uniform(0.0, 1.0))]
+        envelope = 2 * 36.0 / omega * rng.uniform(0.5, 1.5) if rng.random() < 0.5 else None
+        spec = DesignSpec(
+            geometry_name, max_outer_diameter=envelope, max_width=0.5 if geometry_name == "disc" else None
+        )
+        result = design_flywheel(j, omega, shafts, materials, spec)
+        ratio = {s.name: s.speed_ratio for s in shafts}
+        display = {m.name: m.display_name for m in materials}
+        for c in result.candidates:
+            if not isinstance(c, Design):
+                continue
+            designs += 1
+            # the ranking described none of its designs; but a disc at its cap has mass 8 J' / D^2 = 8 J_F / C^2 on
+            # every shaft: the rule then breaks the tie on the rim speed, which the structural check gives
+            assert "_make" in vars(c) or geometry_name == "disc"
+            r, v_max = ratio[c.shaft], {"cast_iron": 36.0, "cast_steel": 50.0}[c.material]
+            cap_speed = 2.0 * v_max / (omega * r)
+            cap = min(cap_speed, envelope or math.inf)
+            lim = c.limits
+            assert lim.j_required_on_shaft == pytest.approx(j / r**2, rel=1e-14)
+            assert lim.d_outer_limit == pytest.approx(cap, rel=1e-14) and lim.rim_speed_limit == v_max
+            assert c.dims.d_outer == pytest.approx(cap, rel=1e-9) and c.j_flywheel == pytest.approx(j / r**2)
+            assert "inertia" in lim.binding
+            assert ("rim_speed" in lim.binding) == (cap_speed <= (envelope or math.inf) * (1 + 1e-9))
+            assert ("max_outer_diameter" in lim.binding) == (
+                envelope is not None and envelope <= cap_speed * (1 + 1e-9)
+            )
+            shaft = c.shaft if c.shaft.endswith("shaft") else f"{c.shaft} shaft"
+            assert c.reason == f"{display[c.material]} on the {shaft}: designed; binding: {', '.join(lim.binding)}"
+            assert c.provenance.solver_status == "closed_form" and c.provenance.iterations == 0
+            assert "_make" not in vars(c)
+    assert designs > 40

@@ -100,9 +100,10 @@ def _per_combination(solver: Callable[[Combination], Outcome]) -> _PerCombinatio
 def _flyopt_ranking(method):
     """The call a user makes: one design_flywheel over every combination (what is timed).
 
-    A textbook design's structural check is made when its fields are first read
-    (:meth:`flyopt.design.result.Design.checked_when_read`), and an infeasible one's explanation too, so they
-    are not in this time; :func:`_flyopt_ranking_read` times the ranking with every candidate read whole.
+    A textbook design's structural check and description (what binds, its limits, how it was found) are made
+    when its fields are first read (:meth:`flyopt.design.result.Design.checked_when_read`), and an infeasible
+    one's explanation too, so they are not in this time; :func:`_flyopt_ranking_read` times the ranking with
+    every candidate read whole.
     """
 
     def rank(j_required, omega_mean, shafts, materials, spec):
@@ -113,8 +114,8 @@ def _flyopt_ranking(method):
 
 def _flyopt_ranking_read(method):
     """The ranking with every field of every candidate it reports read, as ``flyopt solve`` reads them (what is
-    timed): the parts, stresses and notes of each design (its structural check), the reason and limits of each
-    infeasible combination (its explanation in numbers)."""
+    timed): the parts, stresses and notes of each design (its structural check) and its reason and limits (what
+    binds), the reason and limits of each infeasible combination (its explanation in numbers)."""
 
     def rank_and_read(j_required, omega_mean, shafts, materials, spec):
         result = design_flywheel(j_required, omega_mean, shafts, materials, spec, method=method)
@@ -327,8 +328,9 @@ def section_design(config: Config) -> list[Row]:
             note += f"; wrong verdicts: {reasons}"
         if s["name"] == "flyopt-auto":
             note += (
-                "; each design's structural check and each infeasible combination's explanation are made when "
-                "first read (Candidate.made_when_read), not in this time: flyopt-auto-read reads them all"
+                "; each design's structural check and description (what binds, its limits, how it was found) and each "
+                "infeasible combination's explanation are made when first read (Candidate.made_when_read), not in "
+                "this time; every design is verified against every constraint in it: flyopt-auto-read reads them all"
             )
         if s["checks"]:
             share = np.array(s["checks"]) / times

@@ -183,16 +183,16 @@ def _solve_closed_form(pending, spec):
 
 
 def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, iterations, elapsed):
-    """Verify a solved design against every constraint and describe it (its structural check made when first
-    read: :meth:`flyopt.design.result.Design.checked_when_read`)."""
+    """Verify a solved design against every constraint; its structural check and its description (what binds,
+    its limits, how it was found) are made when first read (:meth:`flyopt.design.result.Design.checked_when_read`).
+    """
     m = combo.material
     geometry_name = spec.geometry
     d_outer = geometry.outer_diameter(d_mean, h)
     d_inner = geometry.inner_diameter(d_mean, h)
-    hb = h / b
     hb_min, hb_max = spec.hb_ratio
     violations = check.violations(
-        geometry_name, j_wheel, combo.j_shaft, d_outer, d_inner, b, hb, combo.cap, spec.max_width, hb_min, hb_max
+        geometry_name, j_wheel, combo.j_shaft, d_outer, d_inner, b, h / b, combo.cap, spec.max_width, hb_min, hb_max
     )
     if violations:
         source = "the closed-form design" if status == "closed_form" else f"IPOPT reported {status!r} but the design"
@@ -200,15 +200,37 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
         err.status = status
         err.combination = combo.label
         raise err
+    cost = mass * m.cost if m.cost is not None else None
+    shaft = combo.shaft
+    return Design.checked_when_read(
+        functools.partial(_structure, m, geometry_name, d_outer, h, b, combo.omega, combo.torque, spec),
+        functools.partial(_described, combo, spec, j_wheel, d_outer, d_inner, b, h, status, iterations, elapsed),
+        material=m.name,
+        shaft=shaft.name,
+        speed_ratio=shaft.speed_ratio,
+        geometry=geometry_name,
+        mass=mass,
+        cost=cost,
+        j_flywheel=j_wheel,
+        j_at_reference=inertia_at_reference(j_wheel, shaft.speed_ratio),
+        objective=_objective(spec.objective, mass, d_outer, cost),
+        dims=Dimensions(d_mean=d_mean, d_outer=d_outer, d_inner=max(d_inner, 0.0), h=h, b=b),
+    )
+
+
+def _described(combo, spec, j_wheel, d_outer, d_inner, b, h, status, iterations, elapsed):
+    """A verified textbook design's description: its reason (what binds), its limits and its provenance (without
+    the structural check's notes), made when first read (:meth:`flyopt.design.result.Design.checked_when_read`)."""
+    hb_min, hb_max = spec.hb_ratio
     binding = check.binding_names(
         check.binding_mask(
-            geometry_name,
+            spec.geometry,
             j_wheel,
             combo.j_shaft,
             d_outer,
             d_inner,
             b,
-            hb,
+            h / b,
             combo.cap_speed,
             spec.max_outer_diameter,
             spec.max_width,
@@ -218,23 +240,10 @@ def _candidate_from_design(combo, spec, d_mean, h, b, mass, j_wheel, status, ite
     )
     if combo.d_mean is not None and combo.d_mean == combo.cap_mean:
         binding = (*binding, "mean_rim_speed")  # the courses' convention put D_m where v_max is reached
-    cost = mass * m.cost if m.cost is not None else None
-    shaft = combo.shaft
-    return Design.checked_when_read(
-        functools.partial(_structure, m, geometry_name, d_outer, h, b, combo.omega, combo.torque, spec),
-        material=m.name,
-        shaft=shaft.name,
-        speed_ratio=shaft.speed_ratio,
-        geometry=geometry_name,
-        reason=f"{combo.label}: designed; binding: {', '.join(binding) or 'none'}",
-        mass=mass,
-        cost=cost,
-        j_flywheel=j_wheel,
-        j_at_reference=inertia_at_reference(j_wheel, shaft.speed_ratio),
-        objective=_objective(spec.objective, mass, d_outer, cost),
-        dims=Dimensions(d_mean=d_mean, d_outer=d_outer, d_inner=max(d_inner, 0.0), h=h, b=b),
-        limits=_limits(combo, j_max=combo.j_max, binding=binding),
-        provenance=Provenance(solver_status=status, iterations=iterations, solve_time=elapsed),
+    return (
+        f"{combo.label}: designed; binding: {', '.join(binding) or 'none'}",
+        _limits(combo, j_max=combo.j_max, binding=binding),
+        Provenance(solver_status=status, iterations=iterations, solve_time=elapsed),
     )
 
 

@@ -237,8 +237,8 @@ class Provenance:
     objective_bound: float | None = None
 
 
-#: The structural fields of a design the check gives (:func:`flyopt.design.wheel_design.structure_fields`): what
-#: :meth:`Design.checked_when_read` leaves to be computed when first read.
+#: The structural fields of a design the check gives (:func:`flyopt.design.wheel_design.structure_fields`), which
+#: :meth:`Design.checked_when_read` leaves to be computed when first read (with the design's description).
 CHECKED_FIELDS = ("parts", "stresses", "provenance")
 
 #: What an infeasible combination's explanation gives (its reason in numbers, and its limits with the cap it
@@ -254,6 +254,9 @@ Deferred = Callable[[], Mapping[str, Any]]
 
 #: A structural check to be made: () -> (parts, stresses, notes), the notes joining the provenance's.
 StructureCheck = Callable[[], "tuple[Parts, Stresses, tuple[str, ...]]"]
+
+#: A design's description to be made: () -> (reason, limits, provenance); what binds, in words and in its limits.
+Description = Callable[[], "tuple[str, Limits, Provenance]"]
 
 _C = TypeVar("_C", bound="Candidate")
 
@@ -325,15 +328,20 @@ class Candidate:
         nothing can tell it from one built with its fields given. ``make``: () -> {name: value} for each of
         ``deferred`` (of :data:`DEFERRABLE_FIELDS`); ``fields``: every other field.
         """
-        if not _DEFERRABLE.issuperset(deferred):
-            unknown = sorted(set(deferred) - _DEFERRABLE)
-            raise TypeError(f"fields {unknown} cannot be made when read (only {list(DEFERRABLE_FIELDS)})")
-        placeholders: dict[str, Any] = dict.fromkeys(deferred)  # None until made: dropped below
-        candidate = cls(**placeholders, **fields)
-        values = candidate.__dict__
-        for name in deferred:
-            del values[name]  # read through _MadeWhenRead until made
+        plan = _PLANS.get((cls, deferred)) or _plan(cls, deferred)
+        given = fields.keys()
+        if not (given <= plan.names and plan.required <= given):
+            _refuse(cls, plan, given, deferred)
+        # every field but the deferred ones in declared order, the given values over the defaults: what __init__
+        # would hold, without its cost (a ranking builds one per design; a frozen dataclass's __init__ sets each
+        # field through object.__setattr__)
+        values = {**plan.defaults, **fields}
+        for name, factory in plan.factories:
+            if values[name] is _FACTORY:
+                values[name] = factory()
         values["_make"] = make
+        candidate = object.__new__(cls)
+        object.__setattr__(candidate, "__dict__", values)
         return candidate
 
     def _make_deferred(self) -> None:
@@ -447,7 +455,8 @@ class Design(Candidate):
     """A feasible Candidate: one with its dimensions, parts, stresses, mass, inertia and objective.
 
     Each of them is required (``field()``: without it the Candidate's default None would be inherited).
-    A design made by :meth:`checked_when_read` computes its structural check the first time it is read.
+    A design made by :meth:`checked_when_read` computes its structural check and its description the first time
+    either is read.
     """
 
     feasible: bool = True
@@ -460,22 +469,25 @@ class Design(Candidate):
     stresses: Stresses = field()
 
     @classmethod
-    def checked_when_read(cls, check: StructureCheck, provenance: Provenance, **fields: Any) -> Design:
-        """A design whose structural check (its ``parts``, ``stresses`` and the ``notes`` of its ``provenance``)
-        is made by ``check`` the first time any of them is read (:meth:`Candidate.made_when_read`).
+    def checked_when_read(cls, check: StructureCheck, describe: Description, **fields: Any) -> Design:
+        """A design whose report is made the first time any of it is read (:meth:`Candidate.made_when_read`): its
+        structural check by ``check`` (its ``parts``, ``stresses`` and the check's notes in its ``provenance``),
+        its description by ``describe`` (its ``reason``, what binds; its ``limits``; its ``provenance`` before
+        the check's notes): every field of :data:`DEFERRABLE_FIELDS`.
 
-        The ranking needs a design's objective, cost, mass and dimensions, not its stresses; a design that is
-        reported (the text, the JSON, the report, a DataFrame) reads them, so each reported design is checked,
-        once, by the same ``check`` as when made at once. ``provenance``: the design's, without the check's
-        notes; ``fields``: every other field.
+        The ranking needs a design's objective, cost, mass and dimensions, not what binds nor its stresses; a
+        design that is reported (the text, the JSON, the report, a DataFrame) reads them, so each reported
+        design is checked and described, once, by the same calls as when made at once. ``fields``: every other
+        field.
         """
 
         def checked() -> dict[str, Any]:
             parts, stresses, notes = check()
+            reason, limits, provenance = describe()
             noted = dataclasses.replace(provenance, notes=provenance.notes + notes) if notes else provenance
-            return {"parts": parts, "stresses": stresses, "provenance": noted}
+            return {"reason": reason, "limits": limits, "parts": parts, "stresses": stresses, "provenance": noted}
 
-        return cls.made_when_read(checked, CHECKED_FIELDS, **fields)
+        return cls.made_when_read(checked, DEFERRABLE_FIELDS, **fields)
 
 
 class _MadeWhenRead:
@@ -525,6 +537,65 @@ def _order(cls: type[Candidate]) -> tuple[str, ...]:
     if order is None:
         order = _ORDERS[cls] = tuple(f.name for f in dataclasses.fields(cls))
     return order
+
+
+#: A field whose default is made by its ``default_factory`` (in :attr:`_Plan.defaults`).
+_FACTORY = object()
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """How :meth:`Candidate.made_when_read` builds a Candidate class with some fields deferred, as ``__init__``
+    would: the other fields in declared order with their defaults (:data:`_FACTORY` where a factory makes it),
+    the fields that may be given, those that must be, and the factories."""
+
+    defaults: dict[str, Any]
+    names: frozenset[str]
+    required: frozenset[str]
+    factories: tuple[tuple[str, Callable[[], Any]], ...]
+
+
+_PLANS: dict[tuple[type, tuple[str, ...]], _Plan] = {}
+
+
+def _plan(cls: type[Candidate], deferred: tuple[str, ...]) -> _Plan:
+    """The :class:`_Plan` of ``cls`` with ``deferred`` fields, made once for each."""
+    if not _DEFERRABLE.issuperset(deferred):
+        unknown = sorted(set(deferred) - _DEFERRABLE)
+        raise TypeError(f"fields {unknown} cannot be made when read (only {list(DEFERRABLE_FIELDS)})")
+    if hasattr(cls, "__post_init__"):  # made_when_read builds without __init__, which would call it
+        raise TypeError(f"{cls.__name__} has a __post_init__, which Candidate.made_when_read would not call")
+    defaults: dict[str, Any] = {}
+    required, factories = [], []
+    for f in dataclasses.fields(cls):
+        if f.name in deferred:
+            continue
+        if f.default is not dataclasses.MISSING:
+            defaults[f.name] = f.default
+        elif f.default_factory is not dataclasses.MISSING:
+            defaults[f.name] = _FACTORY
+            factories.append((f.name, f.default_factory))
+        else:
+            defaults[f.name] = None  # always given: refused otherwise
+            required.append(f.name)
+    plan = _PLANS[cls, tuple(deferred)] = _Plan(defaults, frozenset(defaults), frozenset(required), tuple(factories))
+    return plan
+
+
+def _refuse(cls: type[Candidate], plan: _Plan, given: Iterable[str], deferred: Iterable[str]) -> None:
+    """Raise the TypeError for fields ``given`` beside ``deferred`` ones (made when read), as ``cls(...)`` would: a
+    field unknown, given and deferred, or missing."""
+    given, deferred = set(given), set(deferred)
+    problems = [
+        f"{words} {names}"
+        for words, names in (
+            ("unknown fields", sorted(given - plan.names - deferred)),
+            ("fields both given and deferred", sorted(given & deferred)),
+            ("missing fields", sorted(plan.required - given)),
+        )
+        if names
+    ]
+    raise TypeError(f"{cls.__name__}: " + "; ".join(problems))
 
 
 # set after both dataclasses are made, so that neither takes them for defaults
