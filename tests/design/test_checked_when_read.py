@@ -300,6 +300,7 @@ def test_a_candidate_made_when_read_takes_the_constructors_defaults():
     for c in made:
         assert c == eager and vars(c) == vars(eager) and list(vars(c)) == list(vars(eager))
     assert made[0].limits is not made[1].limits and made[0].provenance is not made[1].provenance  # made afresh
+    assert Candidate.made_when_read(lambda: {"reason": "r"}, ["reason"], **_identity()) == eager  # any sequence
 
 
 def _identity():

@@ -108,3 +108,31 @@ def test_every_reported_design_says_what_binds_as_its_dimensions_show(geometry_n
             assert c.provenance.solver_status == "closed_form" and c.provenance.iterations == 0
             assert "_make" not in vars(c)
     assert designs > 40
+
+
+def test_a_design_by_ipopt_says_how_it_was_found_when_read():
+    """IPOPT's designs are described when read as the closed form's are: the solver's status and its iteration
+    count (IPOPT takes at least one), and the inertia binding (the wheel gives what is asked)."""
+    shafts = [MountShaft("reference", 1.0), MountShaft("faster", 3.0)]
+    materials = [builtin_materials()[m] for m in ("cast_iron", "cast_steel")]
+    result = design_flywheel(40.0, 60.0, shafts, materials, DesignSpec("rim"), method="ipopt")
+    designs = [c for c in result.candidates if isinstance(c, Design)]
+    assert len(designs) >= 2
+    for c in designs:
+        assert "_make" in vars(c)
+        assert c.provenance.solver_status == "Solve_Succeeded" and c.provenance.iterations > 0
+        assert "inertia" in c.limits.binding and c.reason.endswith(", ".join(c.limits.binding))
+
+
+def test_a_rim_the_books_way_says_its_mean_diameter_binds():
+    """Under criterion mean_rim_speed the rim's mean diameter is pinned where it reaches v_max at the mean speed,
+    D_m = 2 v_max / omega_m (docs/flywheel-design.md, section 20): the description says so."""
+    omega_mean = 80.0
+    spec = DesignSpec("rim", criterion="mean_rim_speed")
+    cast_iron = builtin_materials()["cast_iron"]
+    result = design_flywheel(
+        50.0, omega_mean * 1.02, [MountShaft("crank", 1.0)], [cast_iron], spec, omega_mean=omega_mean
+    )
+    (c,) = result.candidates
+    assert c.dims.d_mean == pytest.approx(2.0 * 36.0 / omega_mean, rel=1e-14)
+    assert "mean_rim_speed" in c.limits.binding and c.reason.endswith("mean_rim_speed")

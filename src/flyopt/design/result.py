@@ -328,6 +328,8 @@ class Candidate:
         nothing can tell it from one built with its fields given. ``make``: () -> {name: value} for each of
         ``deferred`` (of :data:`DEFERRABLE_FIELDS`); ``fields``: every other field.
         """
+        if type(deferred) is not tuple:  # a list, say: the plans are keyed by the tuple
+            deferred = tuple(deferred)
         plan = _PLANS.get((cls, deferred)) or _plan(cls, deferred)
         given = fields.keys()
         if not (given <= plan.names and plan.required <= given):
