@@ -3,8 +3,9 @@
 Design ranking, 2 materials × 3 shafts. flyopt's two paths through
 :func:`flyopt.design.design_flywheel`: the default ``auto`` (the exact
 closed form where it covers the structure) and IPOPT on every NLP, each timed
-as the one call a user makes (the default's structural check of each design
-and explanation of each infeasible combination are made when first read, so
+as the one call a user makes (the default's structural check and description
+of each design and explanation of each infeasible combination are made when
+first read, so
 ``flyopt-auto-read`` times it again with every reported candidate read whole,
 as ``flyopt solve`` prints them); scipy's
 SLSQP on the same model, once in scaled physical variables and once in

@@ -246,8 +246,8 @@ def comparisons(rows: list[Row]) -> list[tuple[str, str]]:
         out.append(
             (
                 "the default ranking with every candidate it reports read whole (each design's structural check "
-                "and each infeasible combination's explanation, made when first read, as `flyopt solve` prints "
-                "them all) against the grid that reaches 1e-3",
+                "and description and each infeasible combination's explanation, made when first read, as "
+                "`flyopt solve` prints them all) against the grid that reaches 1e-3",
                 f"{'met' if ratio >= 10 else '**NOT met**'} at 10x: {1e3 * read.time_median_s:.2f} ms vs "
                 f"{grids[0].setting} {1e3 * grids[0].time_median_s:.2f} ms, {ratio:.2f}x faster",
             )
