@@ -330,7 +330,7 @@ class Candidate:
         """
         if type(deferred) is not tuple:  # a list, say: the plans are keyed by the tuple
             deferred = tuple(deferred)
-        plan = _PLANS.get((cls, deferred)) or _plan(cls, deferred)
+        plan = _plan_of(cls, deferred)
         given = fields.keys()
         if not (given <= plan.names and plan.required <= given):
             _refuse(cls, plan, given, deferred)
@@ -359,7 +359,7 @@ class Candidate:
                 made = make()
             except AttributeError as err:  # not to be taken for a missing attribute by the attribute's reader
                 raise RuntimeError(f"the deferred fields of {self.material} on {self.shaft} failed: {err}") from err
-            order = _order(type(self))
+            order = _plan_of(type(self), ()).defaults  # every field, in declared order
             missing = [name for name in order if name not in values and name not in made]
             if missing:
                 raise TypeError(f"the deferred fields of {self.material} on {self.shaft} were not all made: {missing}")
@@ -526,19 +526,9 @@ def _no_design(material: str, shaft: MountShaft, geometry: str) -> dict[str, Any
     }
 
 
-_ORDERS: dict[type, tuple[str, ...]] = {}
-
 #: Held while a candidate's deferred fields are made (:meth:`Candidate._make_deferred`): re-entrant, as making
 #: one may read another's.
 _MAKING = threading.RLock()
-
-
-def _order(cls: type[Candidate]) -> tuple[str, ...]:
-    """A Candidate class's fields in their declared order."""
-    order = _ORDERS.get(cls)
-    if order is None:
-        order = _ORDERS[cls] = tuple(f.name for f in dataclasses.fields(cls))
-    return order
 
 
 #: A field whose default is made by its ``default_factory`` (in :attr:`_Plan.defaults`).
@@ -560,8 +550,14 @@ class _Plan:
 _PLANS: dict[tuple[type, tuple[str, ...]], _Plan] = {}
 
 
+def _plan_of(cls: type[Candidate], deferred: tuple[str, ...]) -> _Plan:
+    """The :class:`_Plan` of ``cls`` with ``deferred`` fields (with none: every field in declared order), made once
+    for each."""
+    return _PLANS.get((cls, deferred)) or _plan(cls, deferred)
+
+
 def _plan(cls: type[Candidate], deferred: tuple[str, ...]) -> _Plan:
-    """The :class:`_Plan` of ``cls`` with ``deferred`` fields, made once for each."""
+    """Make the :class:`_Plan` of ``cls`` with ``deferred`` fields (:func:`_plan_of` keeps it)."""
     if not _DEFERRABLE.issuperset(deferred):
         unknown = sorted(set(deferred) - _DEFERRABLE)
         raise TypeError(f"fields {unknown} cannot be made when read (only {list(DEFERRABLE_FIELDS)})")
@@ -580,7 +576,7 @@ def _plan(cls: type[Candidate], deferred: tuple[str, ...]) -> _Plan:
         else:
             defaults[f.name] = None  # always given: refused otherwise
             required.append(f.name)
-    plan = _PLANS[cls, tuple(deferred)] = _Plan(defaults, frozenset(defaults), frozenset(required), tuple(factories))
+    plan = _PLANS[cls, deferred] = _Plan(defaults, frozenset(defaults), frozenset(required), tuple(factories))
     return plan
 
 
